@@ -1,0 +1,103 @@
+"""One place for checking arrays at the public boundary.
+
+Public functions call these helpers once on entry; internal code trusts its inputs.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import InputError
+
+__all__ = ["as_points", "as_pair", "as_weights", "as_image", "check_choice", "check_positive"]
+
+
+def as_points(points, name: str = "points", *, dims=(2, 3), min_points: int = 1) -> np.ndarray:
+    """Return ``points`` as a C-contiguous (N, d) float64 array, or raise :class:`InputError`.
+
+    Parameters
+    ----------
+    points : (N, d) array_like
+        Coordinates; d must be one of ``dims``.
+    name : str
+        The argument's name, used in error messages.
+    dims : tuple of int
+        Allowed dimensions.
+    min_points : int
+        Smallest allowed N.
+    """
+    try:
+        arr = np.asarray(points, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{name} must be a numeric (N, d) array; got {type(points).__name__}") from exc
+    if arr.ndim != 2 or arr.shape[1] not in dims:
+        allowed = " or ".join(f"(N, {d})" for d in dims)
+        raise InputError(f"{name} must have shape {allowed}; got {arr.shape}. Pass one point per row.")
+    if arr.shape[0] < min_points:
+        raise InputError(
+            f"{name} has {arr.shape[0]} points but at least {min_points} are needed; pass more points "
+            "(or a smaller model, e.g. model='rigid')"
+        )
+    if not np.all(np.isfinite(arr)):
+        bad = int(np.count_nonzero(~np.isfinite(arr).all(axis=1)))
+        raise InputError(f"{name} has {bad} rows with NaN or inf; drop them first, e.g. points[np.isfinite(points).all(1)]")
+    return np.ascontiguousarray(arr)
+
+
+def as_pair(source, target, *, dims=(2, 3), min_points: int = 1, names=("source", "target")):
+    """Validate two paired point sets of equal shape (N, d); return both as float64."""
+    src = as_points(source, names[0], dims=dims, min_points=min_points)
+    dst = as_points(target, names[1], dims=dims, min_points=min_points)
+    if src.shape != dst.shape:
+        raise InputError(
+            f"{names[0]} {src.shape} and {names[1]} {dst.shape} must be paired row by row with the same shape"
+        )
+    return src, dst
+
+
+def as_weights(weights, n: int, name: str = "weights") -> np.ndarray:
+    """Return (n,) non-negative finite float64 weights (ones when ``weights`` is None)."""
+    if weights is None:
+        return np.ones(n)
+    w = np.asarray(weights, dtype=np.float64)
+    if w.shape != (n,):
+        raise InputError(f"{name} must have shape ({n},), one weight per point; got {w.shape}")
+    if not np.all(np.isfinite(w)) or np.any(w < 0):
+        raise InputError(f"{name} must be finite and non-negative")
+    if not np.any(w > 0):
+        raise InputError(f"{name} are all zero; at least one point must carry weight")
+    return w
+
+
+def as_image(image, name: str = "image", *, min_size: int = 2) -> np.ndarray:
+    """Return a 2D float64 image, rejecting empty, tiny, NaN and multi-channel input with a clear message."""
+    arr = np.asarray(image)
+    if arr.ndim == 3 and arr.shape[2] in (3, 4):
+        raise InputError(f"{name} has {arr.shape[2]} channels but a single-channel image is expected; "
+                         "convert it first, e.g. skimage.color.rgb2gray(image)")
+    if arr.ndim != 2:
+        raise InputError(f"{name} must be a 2D (rows, cols) array; got shape {arr.shape}")
+    if min(arr.shape) < min_size:
+        raise InputError(f"{name} is {arr.shape[0]}x{arr.shape[1]} pixels; at least {min_size}x{min_size} is needed")
+    arr = arr.astype(np.float64, copy=False)
+    if not np.all(np.isfinite(arr)):
+        raise InputError(f"{name} contains NaN or inf; fill them first, e.g. np.nan_to_num(image)")
+    return arr
+
+
+def check_choice(value, name: str, choices) -> str:
+    """Raise :class:`InputError` unless ``value`` is one of ``choices``."""
+    if value not in choices:
+        raise InputError(f"{name}={value!r} is not supported; use one of {sorted(choices)}")
+    return value
+
+
+def check_positive(value, name: str, *, allow_zero: bool = False) -> float:
+    """Raise :class:`InputError` unless ``value`` is a finite number > 0 (>= 0 with ``allow_zero``)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{name} must be a number; got {value!r}") from exc
+    if not np.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
+        raise InputError(f"{name} must be {'>= 0' if allow_zero else '> 0'}; got {value!r}")
+    return v

@@ -1,0 +1,56 @@
+"""The exception and warning tree of seismo3d.
+
+Every error raised on purpose by seismo3d derives from :class:`Seismo3dError` and from the built-in exception a
+caller would naturally catch (``ValueError`` for bad arguments, ``OSError`` for files), so both
+``except Seismo3dError`` and ``except ValueError`` work. Messages state the problem and the fix.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "Seismo3dError",
+    "InputError",
+    "DataNotFoundError",
+    "DataIntegrityError",
+    "SegyFormatError",
+    "SegyGeometryError",
+    "RegistrationError",
+    "Seismo3dWarning",
+    "DegenerateGeometryWarning",
+]
+
+
+class Seismo3dError(Exception):
+    """Base class of every error seismo3d raises on purpose."""
+
+
+class InputError(Seismo3dError, ValueError):
+    """An argument has the wrong shape, dtype, size or value (NaN, too few points, unknown option)."""
+
+
+class DataNotFoundError(Seismo3dError, FileNotFoundError):
+    """A data file is neither in the data directory nor downloadable."""
+
+
+class DataIntegrityError(Seismo3dError, OSError):
+    """A data file exists but its content is not what the registry says (hash mismatch, truncated)."""
+
+
+class SegyFormatError(Seismo3dError, OSError):
+    """A file is not SEG-Y, or is truncated or corrupt."""
+
+
+class SegyGeometryError(Seismo3dError, ValueError):
+    """A SEG-Y file's inline / crossline geometry cannot be read with the given header bytes or sorting."""
+
+
+class RegistrationError(Seismo3dError, RuntimeError):
+    """A registration could not produce a transform (e.g. RANSAC found no consensus)."""
+
+
+class Seismo3dWarning(UserWarning):
+    """Base class of seismo3d's warnings."""
+
+
+class DegenerateGeometryWarning(Seismo3dWarning):
+    """The data does not constrain every degree of freedom of the transform (e.g. a plane under point-to-plane ICP)."""

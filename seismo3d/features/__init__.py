@@ -1,0 +1,1 @@
+"""seismo3d.features."""

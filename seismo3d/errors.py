@@ -29,7 +29,8 @@ class InputError(Seismo3dError, ValueError):
 
 
 class DataNotFoundError(Seismo3dError, FileNotFoundError):
-    """A data file is neither in the data directory nor downloadable."""
+    """A file is missing: an input path that does not exist, or a registered data file neither in the data directory
+    nor downloadable."""
 
 
 class DataIntegrityError(Seismo3dError, OSError):

@@ -1,0 +1,208 @@
+"""Numba kernels of the HOG-pyramid descriptor: recursive (sliding) and direct circular-window histograms.
+
+Internal module: inputs are trusted (validated by the public functions in :mod:`seismo3d.features.hog_pyramid`).
+The arrays ``bins`` and ``weights`` have shape (rows + 2 * pad, cols + 2 * pad, P): each pixel of the zero-padded
+image votes ``weights[y, x, p]`` into orientation bin ``bins[y, x, p]`` for p < P (P = 2 with linear soft binning).
+A disc of radius r centred on pixel (y, x) is the set of offsets (dy, dx) with ``|dx| <= half_widths[dy + pad]``
+(a half width of -1 marks a row outside the disc), so sliding it one pixel to the right only removes the column
+``x - half_width`` and adds the column ``x + 1 + half_width`` on each of its rows: O(r) work per step instead of
+O(r^2).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+
+@njit(cache=True, nogil=True)
+def _init_discs(bins, weights, half_widths, pad, y, x, hist):
+    """Direct O(r^2) sum of every disc at (y, x) (unpadded coordinates) into hist (K, Q)."""
+    n_discs = half_widths.shape[0]
+    n_votes = bins.shape[2]
+    hist[:, :] = 0
+    for k in range(n_discs):
+        for j in range(half_widths.shape[1]):
+            h = half_widths[k, j]
+            if h < 0:
+                continue
+            yy = y + j  # padded row of offset dy = j - pad
+            for xx in range(x + pad - h, x + pad + h + 1):
+                for p in range(n_votes):
+                    hist[k, bins[yy, xx, p]] += weights[yy, xx, p]
+
+
+@njit(cache=True, nogil=True)
+def _slide_discs(bins, weights, half_widths, pad, y, x, hist):
+    """Move every disc of hist from (y, x) to (y, x + 1): subtract the leaving arc, add the entering arc."""
+    n_discs = half_widths.shape[0]
+    n_votes = bins.shape[2]
+    for k in range(n_discs):
+        for j in range(half_widths.shape[1]):
+            h = half_widths[k, j]
+            if h < 0:
+                continue
+            yy = y + j
+            x_out = x + pad - h
+            x_in = x + pad + h + 1
+            for p in range(n_votes):
+                hist[k, bins[yy, x_out, p]] -= weights[yy, x_out, p]
+                hist[k, bins[yy, x_in, p]] += weights[yy, x_in, p]
+
+
+@njit(cache=True, nogil=True)
+def dense_disc_histograms(bins, weights, half_widths, pad, rows, n_cols, out):
+    """Disc histograms at every column of the given rows, by recursion along each row.
+
+    out : (len(rows), n_cols, K, Q) array, filled in place. The first column of a row is summed directly, every
+    further column is obtained from its left neighbour by :func:`_slide_discs`.
+    """
+    n_discs = half_widths.shape[0]
+    n_bins = out.shape[3]
+    hist = np.zeros((n_discs, n_bins), dtype=out.dtype)
+    for i in range(rows.shape[0]):
+        y = rows[i]
+        _init_discs(bins, weights, half_widths, pad, y, 0, hist)
+        out[i, 0] = hist
+        for x in range(n_cols - 1):
+            _slide_discs(bins, weights, half_widths, pad, y, x, hist)
+            out[i, x + 1] = hist
+
+
+@njit(cache=True, nogil=True)
+def point_disc_histograms(bins, weights, half_widths, pad, ys, xs, max_gap, out):
+    """Disc histograms at points sorted by (row, column), sliding along each row between consecutive points.
+
+    A row is started with a direct sum at its first point; the window then slides recursively to the next point of
+    the same row, unless the gap exceeds ``max_gap`` columns, where a fresh direct sum is cheaper.
+    out : (N, K, Q) array, filled in place.
+    """
+    n_discs = half_widths.shape[0]
+    n_bins = out.shape[2]
+    hist = np.zeros((n_discs, n_bins), dtype=out.dtype)
+    n = ys.shape[0]
+    i = 0
+    while i < n:
+        y = ys[i]
+        x = xs[i]
+        _init_discs(bins, weights, half_widths, pad, y, x, hist)
+        out[i] = hist
+        i += 1
+        while i < n and ys[i] == y:
+            target = xs[i]
+            if target - x > max_gap:
+                x = target
+                _init_discs(bins, weights, half_widths, pad, y, x, hist)
+            else:
+                while x < target:
+                    _slide_discs(bins, weights, half_widths, pad, y, x, hist)
+                    x += 1
+            out[i] = hist
+            i += 1
+
+
+@njit(cache=True, nogil=True)
+def direct_disc_histogram(bins, weights, radius2, pad, y, x, n_bins, out):
+    """Reference: histogram of the disc dx^2 + dy^2 <= radius2 at (y, x) by visiting every pixel (O(r^2))."""
+    out[:] = 0
+    n_votes = bins.shape[2]
+    for dy in range(-pad, pad + 1):
+        for dx in range(-pad, pad + 1):
+            if dx * dx + dy * dy <= radius2:
+                for p in range(n_votes):
+                    out[bins[y + pad + dy, x + pad + dx, p]] += weights[y + pad + dy, x + pad + dx, p]
+
+
+@njit(cache=True, nogil=True)
+def orientation_votes(gx, gy, n_bins, pad, unit, bins, weights):
+    """Soft-binned orientation votes of every pixel into the padded (H + 2 pad, W + 2 pad, 2) bins / weights.
+
+    The orientation atan2(gy, gx) in [0, 2 pi) falls between bins b and b + 1 (mod Q) at fraction f; the pixel votes
+    round(unit * |g| * (1 - f)) into b and round(unit * |g| * f) into b + 1 (fixed point, so that sums are exact).
+    """
+    two_pi = 2.0 * np.pi
+    for y in range(gx.shape[0]):
+        for x in range(gx.shape[1]):
+            u = gx[y, x]
+            v = gy[y, x]
+            mag = np.sqrt(u * u + v * v)
+            a = np.arctan2(v, u)
+            if a < 0.0:
+                a += two_pi
+            t = a * (n_bins / two_pi)
+            b0 = int(np.floor(t))
+            f = t - b0
+            if b0 >= n_bins:
+                b0 -= n_bins
+            b1 = b0 + 1
+            if b1 >= n_bins:
+                b1 -= n_bins
+            w = np.rint(mag * unit)
+            w1 = np.rint(mag * f * unit)
+            bins[y + pad, x + pad, 0] = b0
+            bins[y + pad, x + pad, 1] = b1
+            weights[y + pad, x + pad, 0] = np.int64(w - w1)
+            weights[y + pad, x + pad, 1] = np.int64(w1)
+
+
+@njit(cache=True, nogil=True)
+def two_nearest(dist, best_idx, best, second, col_best_idx, col_best):
+    """One pass over a (n1, n2) distance matrix: per row the two smallest distances (and the index of the
+    smallest), per column the smallest distance and its row."""
+    n1, n2 = dist.shape
+    for j in range(n2):
+        col_best[j] = np.inf
+        col_best_idx[j] = -1
+    for i in range(n1):
+        b = np.inf
+        s = np.inf
+        bi = -1
+        for j in range(n2):
+            d = dist[i, j]
+            if d < b:
+                s = b
+                b = d
+                bi = j
+            elif d < s:
+                s = d
+            if d < col_best[j]:
+                col_best[j] = d
+                col_best_idx[j] = i
+        best_idx[i] = bi
+        best[i] = b
+        second[i] = s
+
+
+@njit(cache=True, nogil=True)
+def two_nearest_separated(dist, xy2, min_sep2, best_idx, best, second, col_best_idx, col_best):
+    """As :func:`two_nearest`, but the second-nearest neighbour of a row must lie farther than sqrt(min_sep2)
+    pixels from the nearest one (keypoints of one image location at several pyramid levels are not rivals)."""
+    n1, n2 = dist.shape
+    for j in range(n2):
+        col_best[j] = np.inf
+        col_best_idx[j] = -1
+    for i in range(n1):
+        b = np.inf
+        bi = -1
+        for j in range(n2):
+            d = dist[i, j]
+            if d < b:
+                b = d
+                bi = j
+            if d < col_best[j]:
+                col_best[j] = d
+                col_best_idx[j] = i
+        s = np.inf
+        if bi >= 0:
+            x0 = xy2[bi, 0]
+            y0 = xy2[bi, 1]
+            for j in range(n2):
+                d = dist[i, j]
+                if d < s and j != bi:
+                    dx = xy2[j, 0] - x0
+                    dy = xy2[j, 1] - y0
+                    if dx * dx + dy * dy > min_sep2:
+                        s = d
+        best_idx[i] = bi
+        best[i] = b
+        second[i] = s

@@ -1,0 +1,529 @@
+"""HOG-pyramid descriptor: oriented-gradient histograms over concentric circular rings, computed recursively.
+
+The descriptor of method.md section 2 (the paper's image matcher, refs [20, 24]):
+
+1. gradients of a (pyramid level of the) image; each pixel votes its gradient magnitude into the Q orientation bins
+   (linear soft binning between the two nearest bins, weights in fixed point so that sums are exact integers);
+2. around a point, K concentric discs of radii ``r_1 < ... < r_K`` (pixels with ``dx^2 + dy^2 <= r^2``) and their
+   differences, the rings; one Q-bin histogram per ring;
+3. as the window slides one pixel along a row only its boundary arcs change, so each disc histogram is updated in
+   O(r) (the column offsets entering and leaving the disc on each row are precomputed once); this gives dense
+   per-pixel ring histograms of a whole image (:func:`dense_ring_histograms`) and the histograms at keypoints by
+   sliding between the keypoints of each row (:func:`ring_histograms`);
+4. a ring is rotation invariant as a set of pixels, so rotating the image by an angle circularly shifts every
+   histogram by that angle: all rings are shifted by the dominant orientation (the peak of the disc's histogram,
+   located to a fraction of a bin), using an exact sub-bin circular shift of the Fourier series of the histograms;
+5. normalisation as in SIFT (unit length, clipping at 0.2, unit length) followed by the Hellinger (square root) map;
+6. an image pyramid (:func:`~seismo3d.features.keypoints.image_pyramid`): keypoints (Harris peaks) and descriptors
+   are computed on every level with the same ring radii in level pixels, so a coarser level describes a larger
+   region; matching across all levels gives tolerance to scale changes.
+
+References
+----------
+.. [1] A. Vokhmintcev, M. Timchenko, "The new combined method of the generation of a 3d dense map of environment
+   based on history of camera positions and the robot's movements" (the paper of this project), section 4, Tables 2-4.
+.. [2] J. Diaz-Escobar, V. Kober, V. Karnaukhov, M. Mozerov, "A robust HOG-based descriptor for pattern recognition",
+   Proc. SPIE 9971, 99712A (2016), doi:10.1117/12.2237260.
+.. [3] S. Miramontes-Jaramillo, V. Kober, V. H. Diaz-Ramirez, "Multiple objects tracking with HOGs matching in
+   circular windows", Proc. SPIE 9217, 92171N (2014), doi:10.1117/12.2061660.
+.. [4] D. G. Lowe, "Distinctive image features from scale-invariant keypoints", IJCV 60 (2004), doi:10.1023/B:VISI.0000029664.99615.94.
+.. [5] R. Arandjelovic, A. Zisserman, "Three things everyone should know to improve object retrieval" (RootSIFT),
+   CVPR 2012, doi:10.1109/CVPR.2012.6248018.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validation import as_image, check_positive
+from ..errors import InputError
+from .keypoints import Features, harris_peaks, harris_response, image_pyramid, to_gray
+
+__all__ = [
+    "HogPyramidParams",
+    "disc_half_widths",
+    "orientation_votes",
+    "dense_ring_histograms",
+    "ring_histograms",
+    "direct_ring_histograms",
+    "ring_descriptors",
+    "hog_pyramid_features",
+]
+
+# Fixed-point unit of the votes: the largest gradient magnitude of a level votes 2**20.
+_VOTE_UNIT = 2.0 ** 20
+
+
+@dataclass(frozen=True)
+class HogPyramidParams:
+    """Parameters of the HOG-pyramid detector and descriptor (defaults tuned on benchmarks/matching.py).
+
+    Attributes
+    ----------
+    n_bins : int
+        Q, number of orientation bins over 360 degrees (gradient sign kept).
+    radii : tuple of float
+        Outer radii in pixels (of each pyramid level) of the K concentric rings, increasing. The descriptor has
+        ``K * n_bins`` values.
+    scale_factor : float
+        Downsampling factor between pyramid levels (> 1).
+    n_levels : int
+        Largest number of pyramid levels.
+    gradient_sigma : float
+        Gaussian pre-smoothing of each level before the derivatives, in pixels (0 for none).
+    harris_sigma : float
+        Integration scale of the Harris structure tensor, in pixels.
+    harris_k : float
+        Harris sensitivity k.
+    nms_size : int
+        Side of the non-maximum-suppression window, in pixels of each level.
+    threshold : float
+        Keypoints must have a Harris response above ``threshold`` times the strongest response of the image.
+    max_keypoints : int
+        Keep at most this many keypoints (strongest responses over all levels).
+    clip : float
+        SIFT-style clipping of the unit-length descriptor (0 disables).
+    max_gap : int or None
+        Along a row, slide the window recursively to the next keypoint when it is at most this many columns away,
+        otherwise start afresh with a direct sum (cheaper for distant keypoints). None: the outer radius.
+    """
+
+    n_bins: int = 16
+    radii: tuple = (4.0, 8.0, 12.0, 16.0)
+    scale_factor: float = 2 ** 0.25
+    n_levels: int = 9
+    gradient_sigma: float = 1.0
+    harris_sigma: float = 1.5
+    harris_k: float = 0.04
+    nms_size: int = 3
+    threshold: float = 1e-4
+    max_keypoints: int = 4000
+    clip: float = 0.0
+    peak_ratio: float = 0.8
+    max_gap: int | None = None
+
+    def __post_init__(self):
+        if int(self.n_bins) < 4:
+            raise InputError(f"n_bins must be >= 4; got {self.n_bins!r}")
+        r = np.asarray(self.radii, dtype=np.float64)
+        if r.ndim != 1 or r.size < 1 or not np.all(np.isfinite(r)) or np.any(r <= 0) or np.any(np.diff(r) <= 0):
+            raise InputError(f"radii must be positive and strictly increasing, e.g. (4, 8, 12, 16); got {self.radii!r}")
+        if not self.scale_factor > 1:
+            raise InputError(f"scale_factor must be > 1; got {self.scale_factor!r}")
+        for name in ("n_levels", "nms_size", "max_keypoints"):
+            if int(getattr(self, name)) < 1:
+                raise InputError(f"{name} must be >= 1; got {getattr(self, name)!r}")
+        for name in ("harris_sigma",):
+            check_positive(getattr(self, name), name)
+        for name in ("gradient_sigma", "threshold", "clip"):
+            check_positive(getattr(self, name), name, allow_zero=True)
+
+    @property
+    def n_dims(self) -> int:
+        """Length of a descriptor, K * Q."""
+        return len(self.radii) * int(self.n_bins)
+
+    @property
+    def pad(self) -> int:
+        """Outer radius rounded up: the margin in pixels a window needs around its centre."""
+        return int(np.floor(max(self.radii)))
+
+
+def disc_half_widths(radii, pad: int | None = None) -> np.ndarray:
+    """Row half-widths of digital discs: the column offsets entering and leaving a disc as it slides.
+
+    Parameters
+    ----------
+    radii : (K,) array_like of float
+        Disc radii in pixels; a disc holds the offsets with ``dx^2 + dy^2 <= r^2``.
+    pad : int, optional
+        Largest row offset tabulated (default: ``floor(max(radii))``).
+
+    Returns
+    -------
+    half_widths : (K, 2 * pad + 1) int64 ndarray
+        ``half_widths[k, dy + pad]`` is the largest ``|dx|`` inside disc k on row offset dy, or -1 when that row
+        misses the disc. Sliding one pixel to the right removes column ``x - h`` and adds column ``x + 1 + h``.
+    """
+    r = np.asarray(radii, dtype=np.float64).ravel()
+    if pad is None:
+        pad = int(np.floor(r.max()))
+    hw = np.full((r.size, 2 * pad + 1), -1, dtype=np.int64)
+    for k, rad in enumerate(r):
+        r2 = rad * rad
+        for j, dy in enumerate(range(-pad, pad + 1)):
+            if dy * dy > r2:
+                continue
+            h = int(np.floor(np.sqrt(r2 - dy * dy)))
+            while h * h + dy * dy > r2:  # guard against rounding of sqrt
+                h -= 1
+            while (h + 1) ** 2 + dy * dy <= r2:
+                h += 1
+            hw[k, j] = h
+    return hw
+
+
+def orientation_votes(gx, gy, *, n_bins: int = 16, pad: int = 0):
+    """Soft-binned, fixed-point orientation votes of every pixel, zero-padded for window sums.
+
+    Parameters
+    ----------
+    gx, gy : (H, W) array_like of float
+        Derivatives along x (columns) and y (rows).
+    n_bins : int
+        Q, orientation bins over [0, 360) degrees; bin b is centred on ``b * 360 / Q`` degrees.
+    pad : int
+        Zero margin added on every side (pixels outside the image vote nothing).
+
+    Returns
+    -------
+    bins : (H + 2 pad, W + 2 pad, 2) int64 ndarray
+        The two bins each pixel votes into.
+    weights : (H + 2 pad, W + 2 pad, 2) int64 ndarray
+        The votes, ``round(u |g| (1 - f))`` and ``round(u |g| f)`` where f is the orientation's fractional position
+        between the two bins and ``u = 2**20 / max |g|`` (fixed point: window sums are exact integers).
+    """
+    from . import _kernels
+
+    gx = np.ascontiguousarray(gx, dtype=np.float64)
+    gy = np.ascontiguousarray(gy, dtype=np.float64)
+    if gx.shape != gy.shape or gx.ndim != 2:
+        raise InputError(f"gx and gy must be 2D arrays of one shape; got {gx.shape} and {gy.shape}")
+    h, w = gx.shape
+    bins = np.zeros((h + 2 * pad, w + 2 * pad, 2), np.int64)
+    weights = np.zeros_like(bins)
+    gmax = float(np.sqrt(np.max(gx * gx + gy * gy))) if gx.size else 0.0
+    if gmax > 0 and np.isfinite(gmax):
+        _kernels.orientation_votes(gx, gy, int(n_bins), int(pad), _VOTE_UNIT / gmax, bins, weights)
+    return bins, weights
+
+
+def _check_votes(bins, weights, n_bins):
+    bins = np.ascontiguousarray(bins)
+    weights = np.ascontiguousarray(weights)
+    if bins.ndim == 2:
+        bins, weights = bins[..., None], weights[..., None]
+    if bins.ndim != 3 or bins.shape != weights.shape:
+        raise InputError(f"bins and weights must both be (H, W) or (H, W, P) arrays; got {bins.shape}, {weights.shape}")
+    if not np.issubdtype(bins.dtype, np.integer):
+        raise InputError(f"bins must be integer orientation bins; got dtype {bins.dtype}")
+    if bins.size and (bins.min() < 0 or bins.max() >= n_bins):
+        raise InputError(f"bins must lie in [0, {n_bins}); got [{bins.min()}, {bins.max()}]")
+    if weights.dtype.kind not in "iuf":
+        raise InputError(f"weights must be integer or float; got dtype {weights.dtype}")
+    wdtype = np.float64 if weights.dtype.kind == "f" else np.int64
+    return bins.astype(np.int64, copy=False), np.ascontiguousarray(weights, dtype=wdtype)
+
+
+def _pad_votes(bins, weights, pad):
+    widths = ((pad, pad), (pad, pad), (0, 0))
+    return np.pad(bins, widths), np.pad(weights, widths)
+
+
+def dense_ring_histograms(bins, weights, radii, *, n_bins: int, rows=None) -> np.ndarray:
+    """Ring histograms centred on every pixel of an image (or of some rows), by recursive sliding windows.
+
+    Along each row the first window is summed directly; every next one is obtained from its left neighbour by
+    removing the pixels leaving each disc (one per disc row) and adding those entering it: O(r) per pixel.
+
+    Parameters
+    ----------
+    bins : (H, W) or (H, W, P) integer array_like
+        Orientation bin(s) in [0, n_bins) each pixel votes into (P votes per pixel, e.g. 2 with soft binning).
+    weights : (H, W) or (H, W, P) array_like, integer or float
+        The votes. Integer votes give exact integer histograms.
+    radii : (K,) array_like of float
+        Increasing disc radii in pixels; ring k is disc k minus disc k - 1.
+    n_bins : int
+        Q, number of orientation bins.
+    rows : (R,) array_like of int, optional
+        Rows to compute (default: all H rows).
+
+    Returns
+    -------
+    hist : (R, W, K, Q) int64 or float64 ndarray
+        ``hist[i, x, k]`` is the histogram of ring k centred on pixel ``(rows[i], x)``. Pixels outside the image
+        vote nothing.
+
+    Raises
+    ------
+    InputError
+        If shapes, dtypes, bins or rows are invalid.
+    """
+    from . import _kernels
+
+    b, w = _check_votes(bins, weights, int(n_bins))
+    radii = np.asarray(radii, dtype=np.float64)
+    if radii.ndim != 1 or radii.size < 1 or np.any(radii <= 0) or np.any(np.diff(radii) <= 0):
+        raise InputError(f"radii must be positive and strictly increasing; got {radii!r}")
+    h, wd = b.shape[:2]
+    rows = np.arange(h, dtype=np.int64) if rows is None else np.asarray(rows, dtype=np.int64).ravel()
+    if rows.size and (rows.min() < 0 or rows.max() >= h):
+        raise InputError(f"rows must lie in [0, {h}); got [{rows.min()}, {rows.max()}]")
+    pad = int(np.floor(radii.max()))
+    hw = disc_half_widths(radii, pad)
+    bp, wp = _pad_votes(b, w, pad)
+    out = np.zeros((rows.size, wd, radii.size, int(n_bins)), dtype=w.dtype)
+    if rows.size and wd:
+        _kernels.dense_disc_histograms(bp, wp, hw, pad, rows, wd, out)
+    out[:, :, 1:] -= out[:, :, :-1].copy()  # rings = differences of nested discs
+    return out
+
+
+def ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int, max_gap: int | None = None,
+                    padded: bool = False) -> np.ndarray:
+    """Ring histograms at given pixels, sliding recursively between the pixels of each row.
+
+    Parameters
+    ----------
+    bins, weights : (H, W[, P]) array_like
+        As in :func:`dense_ring_histograms` (or already zero-padded by ``floor(max(radii))`` when ``padded``).
+    radii : (K,) array_like of float
+        Increasing disc radii in pixels.
+    rows, cols : (N,) array_like of int
+        Pixel centres; any order (they are sorted internally and the result is returned in the input order).
+    n_bins : int
+        Q.
+    max_gap : int, optional
+        Slide to the next point of a row when it is at most this many columns away, else sum afresh
+        (default: the outer radius, where both cost about the same).
+    padded : bool
+        True when ``bins`` / ``weights`` already carry the zero margin (as returned by :func:`orientation_votes`).
+
+    Returns
+    -------
+    hist : (N, K, Q) int64 or float64 ndarray
+        Ring histograms; identical to :func:`direct_ring_histograms` (exactly, for integer weights).
+    """
+    from . import _kernels
+
+    b, w = _check_votes(bins, weights, int(n_bins))
+    radii = np.asarray(radii, dtype=np.float64)
+    pad = int(np.floor(radii.max()))
+    if not padded:
+        b, w = _pad_votes(b, w, pad)
+    h, wd = b.shape[0] - 2 * pad, b.shape[1] - 2 * pad
+    rows = np.asarray(rows, dtype=np.int64).ravel()
+    cols = np.asarray(cols, dtype=np.int64).ravel()
+    if rows.shape != cols.shape:
+        raise InputError(f"rows and cols must have the same length; got {rows.size} and {cols.size}")
+    if rows.size and (rows.min() < 0 or rows.max() >= h or cols.min() < 0 or cols.max() >= wd):
+        raise InputError(f"points must lie inside the {h}x{wd} image")
+    order = np.lexsort((cols, rows))
+    out = np.zeros((rows.size, radii.size, int(n_bins)), dtype=w.dtype)
+    gap = pad if max_gap is None else int(max_gap)
+    if rows.size:
+        _kernels.point_disc_histograms(b, w, disc_half_widths(radii, pad), pad, rows[order], cols[order], gap, out)
+    out[:, 1:] -= out[:, :-1].copy()
+    result = np.empty_like(out)
+    result[order] = out
+    return result
+
+
+def direct_ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int) -> np.ndarray:
+    """Reference ring histograms summed pixel by pixel over each ring (O(r^2) per point; for tests).
+
+    Same parameters and result as :func:`ring_histograms`; ring k holds the offsets with
+    ``r_{k-1}^2 < dx^2 + dy^2 <= r_k^2``.
+    """
+    from . import _kernels
+
+    b, w = _check_votes(bins, weights, int(n_bins))
+    radii = np.asarray(radii, dtype=np.float64)
+    pad = int(np.floor(radii.max()))
+    bp, wp = _pad_votes(b, w, pad)
+    rows = np.asarray(rows, dtype=np.int64).ravel()
+    cols = np.asarray(cols, dtype=np.int64).ravel()
+    out = np.zeros((rows.size, radii.size, int(n_bins)), dtype=wp.dtype)
+    disc = np.zeros(int(n_bins), dtype=wp.dtype)
+    for i in range(rows.size):
+        for k, rad in enumerate(radii):
+            _kernels.direct_disc_histogram(bp, wp, rad * rad, pad, rows[i], cols[i], int(n_bins), disc)
+            out[i, k] = disc
+    out[:, 1:] -= out[:, :-1].copy()
+    return out
+
+
+def ring_descriptors(hist, radii, *, clip: float = 0.2, peak_ratio: float = 0.8):
+    """Rotation-invariant descriptors from ring histograms: shift by the dominant orientation, then normalise.
+
+    Parameters
+    ----------
+    hist : (N, K, Q) array_like
+        Ring histograms (e.g. from :func:`ring_histograms`).
+    radii : (K,) array_like of float
+        The rings' outer radii in pixels (for the area normalisation).
+    clip : float
+        Clip the unit-length descriptor at this value and renormalise (0 disables), as in SIFT [4].
+
+    Returns
+    -------
+    descriptors : (N, K * Q) float32 ndarray
+        Ring after ring, each ring's Q bins starting at the dominant orientation; unit L2 norm after the Hellinger map
+        (square root of the L1-normalised vector) [5]. All-zero rows for windows without gradient.
+    orientations : (N,) float64 ndarray
+        Dominant orientation in degrees in [0, 360).
+
+    Notes
+    -----
+    Each ring is divided by its area, so that all rings weigh alike per pixel. The orientation histogram is the
+    whole disc's histogram smoothed by a Gaussian of one bin; its peak is found on an 8x finer grid and refined by a
+    parabola. Rotating an image by ``phi`` moves every gradient orientation by ``phi``: the histograms shift by
+    ``phi * Q / 360`` bins and so does the peak, so subtracting it makes the descriptor invariant (exactly for
+    multiples of ``360 / Q`` degrees, up to gradient discretisation otherwise). The fractional shift multiplies the
+    m-th Fourier coefficient of every ring histogram by ``exp(2 pi i m s / Q)``.
+    """
+    h = np.asarray(hist, dtype=np.float64)
+    if h.ndim != 3:
+        raise InputError(f"hist must have shape (N, K, Q); got {h.shape}")
+    n, k, q = h.shape
+    radii = np.asarray(radii, dtype=np.float64)
+    if radii.shape != (k,):
+        raise InputError(f"radii must have {k} entries, one per ring; got {radii.shape}")
+    if n == 0:
+        return np.zeros((0, k * q), np.float32), np.zeros(0), np.zeros(0, np.int64)
+    disc_area = np.pi * radii ** 2
+    ring_area = np.diff(disc_area, prepend=0.0)
+    rings = h / ring_area[None, :, None]
+    spectrum = np.fft.rfft(rings, axis=2)
+    m = np.arange(spectrum.shape[2])
+    disc_spectrum = np.einsum("nkm,k->nm", spectrum, ring_area)
+    # orientation histogram of the whole disc smoothed by a Gaussian (sigma = 1 bin), on an 8x finer grid
+    up = 8 * q
+    smooth = disc_spectrum * np.exp(-0.5 * (2 * np.pi * m / q) ** 2)[None]
+    fine = np.fft.irfft(smooth, n=up, axis=1)
+    left, right = np.roll(fine, 1, axis=1), np.roll(fine, -1, axis=1)
+    peak = (fine > left) & (fine >= right) & (fine >= peak_ratio * fine.max(axis=1, keepdims=True))
+    peak &= fine > 0
+    index, pk = np.nonzero(peak)
+    if index.size == 0:
+        return np.zeros((0, k * q), np.float32), np.zeros(0), np.zeros(0, np.int64)
+    lv, cv, rv = left[index, pk], fine[index, pk], right[index, pk]
+    den = lv - 2 * cv + rv
+    offset = np.where(den < 0, 0.5 * (lv - rv) / np.where(den < 0, den, -1.0), 0.0)
+    shift = (pk + offset) * (q / up)  # dominant orientation, in bins
+    spectrum = spectrum[index] * np.exp(2j * np.pi * m[None, None, :] * shift[:, None, None] / q)
+    n = index.size
+    d = np.maximum(np.fft.irfft(spectrum, n=q, axis=2), 0.0).reshape(n, k * q)
+    norm = np.linalg.norm(d, axis=1, keepdims=True)
+    d = np.divide(d, norm, out=np.zeros_like(d), where=norm > 0)
+    if clip > 0:
+        d = np.minimum(d, clip)
+        norm = np.linalg.norm(d, axis=1, keepdims=True)
+        d = np.divide(d, norm, out=np.zeros_like(d), where=norm > 0)
+    total = d.sum(axis=1, keepdims=True)
+    d = np.sqrt(np.divide(d, total, out=np.zeros_like(d), where=total > 0))
+    orientations = np.mod(shift * (360.0 / q), 360.0)
+    return d.astype(np.float32), orientations, index.astype(np.int64)
+
+
+def _level_gradients(level, sigma):
+    import cv2
+
+    if sigma > 0:
+        level = cv2.GaussianBlur(level, (0, 0), sigma)
+    gx = cv2.Sobel(level, cv2.CV_64F, 1, 0, ksize=3, scale=0.125)
+    gy = cv2.Sobel(level, cv2.CV_64F, 0, 1, ksize=3, scale=0.125)
+    return gx, gy
+
+
+def hog_pyramid_features(image, *, params: HogPyramidParams | None = None, mask=None) -> Features:
+    """Detect keypoints and compute HOG-pyramid descriptors on every level of an image pyramid.
+
+    Parameters
+    ----------
+    image : (H, W) or (H, W, 3) array_like
+        Grey image of any real dtype, or RGB colour (converted with :func:`~seismo3d.features.to_gray`).
+    params : HogPyramidParams, optional
+        Detector and descriptor parameters (defaults: ``HogPyramidParams()``).
+    mask : (H, W) array_like of bool, optional
+        Where keypoints may be; a keypoint is kept only if its whole outer disc lies inside the mask (e.g. the valid
+        area of a warped image).
+
+    Returns
+    -------
+    features : Features
+        ``method='hog'``; float32 descriptors of ``len(params.radii) * params.n_bins`` values. Empty (N = 0) for an
+        image without corners (constant, or smaller than a descriptor window).
+
+    Raises
+    ------
+    InputError
+        If the image is empty, smaller than 2 x 2, has NaN or inf values, or has 4 channels, or the mask's shape
+        differs from the image's.
+
+    References
+    ----------
+    See the module docstring: [1] (Tables 2-4), [2], [3] (ring histograms in sliding circular windows), [4], [5].
+    """
+    import cv2
+
+    from . import _kernels
+
+    p = HogPyramidParams() if params is None else params
+    img = to_gray(image)
+    h0, w0 = img.shape
+    if mask is not None:
+        mask = np.asarray(mask)
+        if mask.shape != img.shape:
+            raise InputError(f"mask must have the image's shape {img.shape}; got {mask.shape}")
+        mask = mask.astype(bool)
+    radii = np.asarray(p.radii, dtype=np.float64)
+    pad = p.pad
+    half_widths = disc_half_widths(radii, pad)
+    lo, hi = float(img.min()), float(img.max())
+    if not hi > lo:
+        return Features.empty("hog", p.n_dims)
+    img = (img - lo) / (hi - lo)
+    levels = image_pyramid(img, scale_factor=p.scale_factor, n_levels=p.n_levels, min_size=2 * pad + 3)
+    found = []
+    for lev, level in enumerate(levels):
+        h, w = level.shape
+        gx, gy = _level_gradients(level, p.gradient_sigma)
+        resp = harris_response(gx, gy, sigma=p.harris_sigma, k=p.harris_k)
+        level_mask = None
+        if mask is not None:
+            m = cv2.resize(mask.astype(np.uint8), (w, h), interpolation=cv2.INTER_NEAREST)
+            level_mask = cv2.erode(m, np.ones((2 * pad + 3, 2 * pad + 3), np.uint8), borderValue=0) > 0
+        rows, cols, xy, values = harris_peaks(resp, nms_size=p.nms_size, threshold=0.0, border=pad + 1, mask=level_mask)
+        found.append((lev, gx, gy, rows, cols, xy, values))
+    all_values = np.concatenate([f[-1] for f in found])
+    if all_values.size == 0:
+        return Features.empty("hog", p.n_dims)
+    cut = p.threshold * all_values.max()
+    if all_values.size > p.max_keypoints:
+        cut = max(cut, np.partition(all_values, all_values.size - p.max_keypoints)[all_values.size - p.max_keypoints])
+    out_xy, out_desc, out_scale, out_ori, out_resp = [], [], [], [], []
+    for lev, gx, gy, rows, cols, xy, values in found:
+        keep = values >= cut
+        if not np.any(keep):
+            continue
+        rows, cols, xy, values = rows[keep], cols[keep], xy[keep], values[keep]
+        bins, weights = orientation_votes(gx, gy, n_bins=p.n_bins, pad=pad)
+        hist = np.zeros((rows.size, radii.size, p.n_bins), np.int64)
+        gap = pad if p.max_gap is None else int(p.max_gap)
+        _kernels.point_disc_histograms(bins, weights, half_widths, pad, rows, cols, gap, hist)  # rows sorted
+        hist[:, 1:] -= hist[:, :-1].copy()
+        desc, ori, src = ring_descriptors(hist, radii, clip=p.clip, peak_ratio=p.peak_ratio)
+        xy, values, rows = xy[src], values[src], rows[src]
+        h, w = gx.shape
+        sx, sy = w0 / w, h0 / h
+        out_xy.append(np.column_stack([(xy[:, 0] + 0.5) * sx - 0.5, (xy[:, 1] + 0.5) * sy - 0.5]))
+        out_desc.append(desc)
+        out_scale.append(np.full(rows.size, 2.0 * radii[-1] * 0.5 * (sx + sy)))
+        out_ori.append(ori)
+        out_resp.append(values)
+    if not out_xy:
+        return Features.empty("hog", p.n_dims)
+    desc = np.concatenate(out_desc)
+    good = np.any(desc > 0, axis=1)
+    return Features(
+        keypoints=np.concatenate(out_xy)[good],
+        descriptors=desc[good],
+        scales=np.concatenate(out_scale)[good],
+        orientations=np.concatenate(out_ori)[good],
+        responses=np.concatenate(out_resp)[good],
+        method="hog",
+    )

@@ -1,0 +1,690 @@
+"""Reading and writing seismic data: SEG-Y cubes and lines (through segyio), raw sections, ASCII line exports.
+
+The one way to read SEG-Y is a lazy handle::
+
+    with open_segy(path) as cube:              # reads headers only
+        section = cube.inline(cube.inlines[0])  # (n_xlines, n_samples) float32
+        data = cube.read()                      # the whole file, only when asked
+
+Layouts
+-------
+* A file with inline / crossline geometry (sorted 3D cube, or a 2D line of a 3D survey, i.e. one inline or one
+  crossline) has ``cube.shape == (n_inlines, n_xlines, n_samples)``; the arrays use inline as axis 0, crossline as
+  axis 1 and the sample (time or depth, downward) as axis 2, whatever the trace order of the file.
+* A file opened with ``ignore_geometry=True`` (an unsorted file, an arbitrary line, a 2D line without inline /
+  crossline numbers) is a trace list: ``cube.shape == (n_traces, n_samples)`` in file order, and ``inlines`` /
+  ``xlines`` are None.
+
+``cube.traces`` gives (n_traces, n_samples) in file order for every file. A 2D line read with geometry (e.g.
+``penobscot_xl1155.sgy``, crossline 1155 of Penobscot 3D) keeps its inline and crossline numbers: ``cube.shape`` is
+(601, 1, 1501), ``cube.is_3d`` is False and the section is ``cube.xline(1155)`` or ``cube.traces[:]``.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+import numpy as np
+import segyio
+
+from .._atomic import atomic_path
+from .._validation import check_choice
+from ..errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError
+
+__all__ = ["SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines"]
+
+_FORMAT_NAMES = {
+    1: "4-byte IBM float",
+    2: "4-byte signed integer",
+    3: "2-byte signed integer",
+    4: "4-byte fixed point with gain",
+    5: "4-byte IEEE float",
+    6: "8-byte IEEE float",
+    7: "3-byte signed integer",
+    8: "1-byte signed integer",
+    9: "8-byte signed integer",
+    10: "4-byte unsigned integer",
+    11: "2-byte unsigned integer",
+    12: "8-byte unsigned integer",
+    15: "3-byte unsigned integer",
+    16: "1-byte unsigned integer",
+}
+
+# (n_traces, n_samples) of the raw sections in the data directory's seismic/sections (see its README).
+_SECTION_SHAPES = {
+    "campos_gx373": (550, 300),
+    "costarica_gx808": (825, 210),
+    "costarica_gx809": (825, 210),
+    "f3_f3d75s": (440, 222),
+    "teapot_tpd": (357, 315),
+    "teapot_tp73": (357, 240),
+    "f3_f3d178sub2": (951, 242),
+}
+
+# Header byte pairs tried (only after a failure) to suggest where the inline / crossline numbers are.
+_COMMON_HEADER_BYTES = ((189, 193), (9, 21), (5, 21), (9, 17), (17, 21), (221, 225))
+
+_DEPTH_WORDS = re.compile(r"\b(depth|tvdss|tvd)\b", re.IGNORECASE)
+_TIME_WORDS = re.compile(r"\b(time|twt|two[- ]way)\b", re.IGNORECASE)
+_EITHER = re.compile(r"time\s*/\s*depth|depth\s*/\s*time", re.IGNORECASE)
+
+
+def _check_header_byte(value, name: str) -> int:
+    valid = set(segyio.TraceField.enums())
+    try:
+        byte = int(value)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{name} must be a trace header byte position (int); got {value!r}") from exc
+    if byte != value or byte not in valid:
+        raise InputError(
+            f"{name}={value!r} is not the first byte of a trace header field; use e.g. {name}="
+            f"{189 if name == 'iline' else 193} (SEG-Y rev1 default) or 9 / 21 (common alternatives)"
+        )
+    return byte
+
+
+def _guess_sample_unit(text: str, measurement_system: int) -> str:
+    """'ms' unless the textual header speaks only of depth (then 'm', or 'ft' for a file in feet)."""
+    cleaned = _EITHER.sub(" ", text)
+    if _DEPTH_WORDS.search(cleaned) and not _TIME_WORDS.search(cleaned):
+        return "ft" if measurement_system == 2 else "m"
+    return "ms"
+
+
+def _scaled(values: np.ndarray, scalars: np.ndarray) -> np.ndarray:
+    """Apply SEG-Y coordinate scalars (trace bytes 71-72): positive multiplies, negative divides, 0 means 1."""
+    s = scalars.astype(np.float64)
+    factor = np.ones_like(s)
+    factor[s > 0] = s[s > 0]
+    factor[s < 0] = 1.0 / -s[s < 0]
+    return values.astype(np.float64) * factor
+
+
+class _TraceView:
+    """Lazy (n_traces, n_samples) view of a file's traces in file order; indexing reads only the requested traces."""
+
+    def __init__(self, cube: "SeismicCube"):
+        self._cube = cube
+
+    @property
+    def shape(self) -> tuple:
+        return (self._cube.n_traces, self._cube.samples.size)
+
+    dtype = np.dtype(np.float32)
+    ndim = 2
+
+    def __len__(self) -> int:
+        return self._cube.n_traces
+
+    def __getitem__(self, key) -> np.ndarray:
+        f = self._cube._handle()
+        n = self._cube.n_traces
+        if isinstance(key, (int, np.integer)):
+            i = int(key) + n if key < 0 else int(key)
+            if not 0 <= i < n:
+                raise IndexError(f"trace {key} is out of range for a file with {n} traces")
+            return np.asarray(f.trace[i], dtype=np.float32)
+        if isinstance(key, slice):
+            start, stop, step = key.indices(n)
+            if step == 1:
+                if stop <= start:
+                    return np.empty((0, self.shape[1]), np.float32)
+                return np.asarray(f.trace.raw[start:stop], dtype=np.float32).reshape(stop - start, -1)
+            key = np.arange(start, stop, step)
+        idx = np.asarray(key)
+        if idx.dtype == bool:
+            idx = np.flatnonzero(idx)
+        if idx.ndim != 1 or idx.dtype.kind not in "iu":
+            raise IndexError("index traces with an int, a slice, or a 1D array of ints / bools")
+        idx = np.where(idx < 0, idx + n, idx)
+        if idx.size and (idx.min() < 0 or idx.max() >= n):
+            raise IndexError(f"trace index out of range for a file with {n} traces")
+        out = np.empty((idx.size, self.shape[1]), np.float32)
+        for k, i in enumerate(idx):
+            out[k] = f.trace[int(i)]
+        return out
+
+    def __array__(self, dtype=None, copy=None):
+        arr = self[:]
+        return arr if dtype is None else arr.astype(dtype)
+
+    def __repr__(self) -> str:
+        return f"<traces of {self._cube.path.name}: {self.shape[0]} x {self.shape[1]} float32, lazy>"
+
+
+class SeismicCube:
+    """An open SEG-Y file: geometry read from the headers, data read on request.
+
+    Create it with :func:`open_segy`, preferably as a context manager; the file stays open (memory-mapped where the
+    platform allows) until :meth:`close`. Geometry attributes stay valid after closing; data access does not.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The file.
+    inlines : (n_inlines,) int32 ndarray or None
+        Inline numbers in array order (None for a trace list).
+    xlines : (n_xlines,) int32 ndarray or None
+        Crossline numbers in array order (None for a trace list).
+    samples : (n_samples,) float64 ndarray
+        Sample positions, ``start + i * sample_interval``, in ``sample_unit``. The start is the delay recording
+        time (trace bytes 109-110) and the interval the binary header's (bytes 3217-3218) divided by 1000
+        (microseconds to ms for time; the same scaling that Petrel, OpendTect and segyio use for depth files).
+    sample_interval : float
+        In ``sample_unit``.
+    sample_unit : {'ms', 'm', 'ft'}
+        'ms' for time data. SEG-Y rev 0/1 has no field for the vertical domain, so unless ``sample_unit=`` is given
+        to :func:`open_segy` the unit is 'ms' except when the textual header speaks only of depth (then 'm', or 'ft'
+        when the binary header's measurement system is feet).
+    n_traces : int
+    shape : tuple of int
+        ``(n_inlines, n_xlines, n_samples)`` with geometry, ``(n_traces, n_samples)`` for a trace list.
+    is_3d : bool
+        True for a cube with more than one inline and more than one crossline.
+    sorting : {'inline', 'crossline'} or None
+        The file's trace order: 'inline' when traces of one inline are consecutive. None for a trace list.
+    format : int
+        SEG-Y data sample format code (1 IBM float, 2 int32, 3 int16, 5 IEEE float, 8 int8, ...).
+    format_name : str
+    endian : {'big', 'little'}
+    iline_byte, xline_byte : int
+        The trace header bytes holding the inline and crossline numbers.
+    """
+
+    def __init__(self, segyfile, path: Path, *, iline: int, xline: int, sample_unit: str, endian: str):
+        f = segyfile
+        self._f = f
+        self.path = path
+        self.iline_byte = iline
+        self.xline_byte = xline
+        self.endian = endian
+        self.n_traces = int(f.tracecount)
+        self.samples = np.asarray(f.samples, dtype=np.float64)
+        self.samples.setflags(write=False)
+        self.sample_interval = float(self.samples[1] - self.samples[0]) if self.samples.size > 1 else float(
+            segyio.tools.dt(f) / 1000.0
+        )
+        self.sample_unit = sample_unit
+        self.format = int(f.bin[segyio.BinField.Format])
+        self.format_name = _FORMAT_NAMES.get(self.format, str(f.format))
+        if f.unstructured:
+            self.inlines = self.xlines = None
+            self.sorting = None
+            self.shape = (self.n_traces, self.samples.size)
+        else:
+            self.inlines = np.asarray(f.ilines, dtype=np.int32)
+            self.xlines = np.asarray(f.xlines, dtype=np.int32)
+            self.inlines.setflags(write=False)
+            self.xlines.setflags(write=False)
+            self.sorting = "inline" if f.sorting == segyio.TraceSortingFormat.INLINE_SORTING else "crossline"
+            self.shape = (self.inlines.size, self.xlines.size, self.samples.size)
+        self.is_3d = self.inlines is not None and self.inlines.size > 1 and self.xlines.size > 1
+        self._coords = None
+
+    # -- handle ------------------------------------------------------------------------------------------------
+    def _handle(self):
+        if self._f is None:
+            raise InputError(f"{self.path.name} is closed; reopen it with open_segy() to read data")
+        return self._f
+
+    def close(self) -> None:
+        """Close the file; geometry attributes remain usable."""
+        if self._f is not None:
+            self._f.close()
+            self._f = None
+
+    def __enter__(self) -> "SeismicCube":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def __repr__(self) -> str:
+        state = "closed" if self._f is None else "open"
+        kind = "trace list" if self.inlines is None else ("3D cube" if self.is_3d else "2D line")
+        return (f"<SeismicCube {self.path.name}: {kind} {self.shape}, {self.sample_interval:g} {self.sample_unit}, "
+                f"{self.format_name}, {state}>")
+
+    @property
+    def segyfile(self):
+        """The underlying read-only ``segyio.SegyFile`` (for header fields not exposed here)."""
+        return self._handle()
+
+    # -- layout helpers --------------------------------------------------------------------------------------
+    def _to_grid(self, per_trace: np.ndarray) -> np.ndarray:
+        """Reorder a per-trace array (n_traces, ...) in file order into (n_inlines, n_xlines, ...)."""
+        if self.inlines is None:
+            return per_trace
+        n_il, n_xl = self.inlines.size, self.xlines.size
+        rest = per_trace.shape[1:]
+        if self.sorting == "inline":
+            return per_trace.reshape(n_il, n_xl, *rest)
+        return np.ascontiguousarray(np.swapaxes(per_trace.reshape(n_xl, n_il, *rest), 0, 1))
+
+    def _to_traces(self, grid: np.ndarray) -> np.ndarray:
+        """Inverse of :meth:`_to_grid`: (n_inlines, n_xlines, ...) to (n_traces, ...) in file order."""
+        if self.inlines is None:
+            return grid
+        rest = grid.shape[2:]
+        if self.sorting == "inline":
+            return grid.reshape(self.n_traces, *rest)
+        return np.ascontiguousarray(np.swapaxes(grid, 0, 1)).reshape(self.n_traces, *rest)
+
+    def _require_geometry(self, what: str) -> None:
+        if self.inlines is None:
+            raise SegyGeometryError(
+                f"{what} needs inline / crossline geometry, but {self.path.name} was opened as a trace list "
+                "(ignore_geometry=True); use cube.traces, or reopen without ignore_geometry if the file is sorted"
+            )
+
+    # -- data --------------------------------------------------------------------------------------------------
+    @property
+    def traces(self) -> _TraceView:
+        """(n_traces, n_samples) float32 lazy view in file order: ``cube.traces[i]``, ``cube.traces[a:b]``,
+        ``cube.traces[:]`` (all). Only the indexed traces are read."""
+        self._handle()
+        return _TraceView(self)
+
+    def read(self) -> np.ndarray:
+        """Read the whole file.
+
+        Returns
+        -------
+        data : (n_inlines, n_xlines, n_samples) float32 ndarray, or (n_traces, n_samples) for a trace list
+            Shape ``cube.shape``. Integer formats are converted to float32 without scaling.
+        """
+        f = self._handle()
+        raw = np.asarray(f.trace.raw[:], dtype=np.float32).reshape(self.n_traces, self.samples.size)
+        return self._to_grid(raw)
+
+    def inline(self, number: int) -> np.ndarray:
+        """Read one inline.
+
+        Parameters
+        ----------
+        number : int
+            Inline number (as in ``cube.inlines``), not an index.
+
+        Returns
+        -------
+        section : (n_xlines, n_samples) float32 ndarray
+        """
+        self._require_geometry("inline()")
+        f = self._handle()
+        if int(number) not in set(self.inlines.tolist()):
+            raise InputError(f"inline {number} is not in {self.path.name}; its inlines are "
+                             f"{self.inlines[0]}..{self.inlines[-1]} ({self.inlines.size} lines)")
+        return np.asarray(f.iline[int(number)], dtype=np.float32).reshape(self.xlines.size, self.samples.size)
+
+    def xline(self, number: int) -> np.ndarray:
+        """Read one crossline.
+
+        Parameters
+        ----------
+        number : int
+            Crossline number (as in ``cube.xlines``), not an index.
+
+        Returns
+        -------
+        section : (n_inlines, n_samples) float32 ndarray
+        """
+        self._require_geometry("xline()")
+        f = self._handle()
+        if int(number) not in set(self.xlines.tolist()):
+            raise InputError(f"crossline {number} is not in {self.path.name}; its crosslines are "
+                             f"{self.xlines[0]}..{self.xlines[-1]} ({self.xlines.size} lines)")
+        return np.asarray(f.xline[int(number)], dtype=np.float32).reshape(self.inlines.size, self.samples.size)
+
+    def time_slice(self, index: int) -> np.ndarray:
+        """Read one horizontal slice (time or depth).
+
+        Parameters
+        ----------
+        index : int
+            Sample index, 0 <= index < n_samples (``cube.samples[index]`` is its time / depth).
+
+        Returns
+        -------
+        slice : (n_inlines, n_xlines) float32 ndarray
+        """
+        self._require_geometry("time_slice()")
+        f = self._handle()
+        ns = self.samples.size
+        if not isinstance(index, (int, np.integer)) or not 0 <= index < ns:
+            raise InputError(f"index={index!r} must be a sample index in 0..{ns - 1}; "
+                             "convert a time with np.searchsorted(cube.samples, t)")
+        sl = np.asarray(f.depth_slice[int(index)], dtype=np.float32)
+        if self.sorting == "inline":
+            return sl.reshape(self.inlines.size, self.xlines.size)
+        return np.ascontiguousarray(sl.reshape(self.xlines.size, self.inlines.size).T)
+
+    # -- coordinates -------------------------------------------------------------------------------------------
+    def _load_coords(self):
+        if self._coords is None:
+            f = self._handle()
+            tf = segyio.TraceField
+            scal = np.asarray(f.attributes(tf.SourceGroupScalar)[:])
+            result = (None, None)
+            for fx, fy in ((tf.CDP_X, tf.CDP_Y), (tf.SourceX, tf.SourceY)):
+                x = np.asarray(f.attributes(fx)[:])
+                y = np.asarray(f.attributes(fy)[:])
+                if np.any(x != 0) or np.any(y != 0):
+                    result = (self._to_grid(_scaled(x, scal)), self._to_grid(_scaled(y, scal)))
+                    break
+            self._coords = result
+        return self._coords
+
+    @property
+    def cdp_x(self):
+        """(n_inlines, n_xlines) float64 ndarray (or (n_traces,) for a trace list) of trace X coordinates with the
+        coordinate scalar applied (CDP X, trace bytes 181-184; source X, bytes 73-76, when CDP X is all zero), in the
+        survey's unit (``segyfile.bin[segyio.BinField.MeasurementSystem]``: 1 metres, 2 feet); None when absent.
+        Read from the headers on first access."""
+        return self._load_coords()[0]
+
+    @property
+    def cdp_y(self):
+        """Like :attr:`cdp_x`, for Y (CDP Y, trace bytes 185-188; source Y, bytes 77-80)."""
+        return self._load_coords()[1]
+
+
+def _suggest_header_bytes(path: Path, endian: str, tried: tuple) -> list:
+    found = []
+    for il, xl in _COMMON_HEADER_BYTES:
+        if (il, xl) == tried:
+            continue
+        try:
+            with segyio.open(str(path), "r", iline=il, xline=xl, endian=endian) as f:
+                if len(f.ilines) > 1 or len(f.xlines) > 1:
+                    found.append(f"iline={il}, xline={xl} ({len(f.ilines)} inlines x {len(f.xlines)} crosslines)")
+        except (RuntimeError, ValueError, IndexError, OSError, KeyError):
+            continue
+    return found
+
+
+def open_segy(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False, sample_unit=None,
+              endian: str = "big") -> SeismicCube:
+    """Open a SEG-Y file for lazy reading.
+
+    Only the headers are read here; the file is memory-mapped when possible and read only through
+    :meth:`SeismicCube.read`, :meth:`~SeismicCube.inline`, :meth:`~SeismicCube.xline`,
+    :meth:`~SeismicCube.time_slice` and :attr:`~SeismicCube.traces`. The file is opened read-only.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        SEG-Y file (data formats IBM float, IEEE float, int32, int16, int8, ...).
+    iline, xline : int
+        Trace header bytes of the inline and crossline numbers (SEG-Y rev1: 189 and 193; older files often 9 / 21).
+    ignore_geometry : bool
+        Read the file as a trace list in file order, without inline / crossline geometry (unsorted files, arbitrary
+        lines, 2D lines without inline / crossline numbers, irregular surveys).
+    sample_unit : {'ms', 'm', 'ft'}, optional
+        Unit of the sample axis; overrides the guess from the headers (see :class:`SeismicCube`).
+    endian : {'big', 'little'}
+        Byte order of the file; SEG-Y is big-endian unless written otherwise.
+
+    Returns
+    -------
+    cube : SeismicCube
+        Use it as a context manager (``with open_segy(p) as cube:``) or call ``cube.close()``.
+
+    Raises
+    ------
+    DataNotFoundError
+        ``path`` does not exist or is not a file.
+    SegyFormatError
+        The file is not SEG-Y, is truncated, or its traces do not fit its size.
+    SegyGeometryError
+        The inline / crossline geometry cannot be inferred from the header bytes ``iline`` / ``xline`` (unsorted
+        file, wrong header bytes, prestack gathers). The message suggests ``ignore_geometry=True`` or other bytes.
+    InputError
+        Invalid ``iline``, ``xline``, ``sample_unit`` or ``endian``.
+
+    Examples
+    --------
+    >>> with open_segy("f3_crop.sgy") as cube:      # doctest: +SKIP
+    ...     print(cube.shape, cube.sample_interval, cube.sample_unit)
+    (23, 18, 75) 4.0 ms
+    """
+    path = Path(path)
+    iline = _check_header_byte(iline, "iline")
+    xline = _check_header_byte(xline, "xline")
+    check_choice(endian, "endian", {"big", "little"})
+    if sample_unit is not None:
+        check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
+    if not path.is_file():
+        raise DataNotFoundError(f"no SEG-Y file at {path}; check the path"
+                                + (" (it is a directory)" if path.is_dir() else ""))
+    try:
+        f = segyio.open(str(path), "r", iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
+    except PermissionError:
+        raise
+    except (RuntimeError, ValueError, IndexError, OSError, KeyError) as exc:
+        if ignore_geometry:
+            raise _format_error(path, exc) from exc
+        try:  # is the file readable at all, as a trace list?
+            segyio.open(str(path), "r", ignore_geometry=True, endian=endian).close()
+        except (RuntimeError, ValueError, IndexError, OSError, KeyError):
+            raise _format_error(path, exc) from exc
+        hint = _suggest_header_bytes(path, endian, (iline, xline))
+        also = (" These header bytes give a regular geometry: " + "; ".join(hint) + ".") if hint else ""
+        raise SegyGeometryError(
+            f"cannot infer the inline / crossline geometry of {path.name} from trace header bytes iline={iline}, "
+            f"xline={xline} ({exc}). If it is an unsorted file, arbitrary line or 2D line, open it as a trace list "
+            f"with ignore_geometry=True; if it is a sorted cube, pass the header bytes of its inline / crossline "
+            f"numbers (iline=..., xline=...).{also}"
+        ) from exc
+    try:
+        if f.tracecount < 1 or len(f.samples) < 1:
+            raise SegyFormatError(f"{path.name} has no traces or no samples; it is not a usable SEG-Y file")
+        if not f.unstructured and len(f.offsets) > 1:
+            raise SegyGeometryError(
+                f"{path.name} holds prestack gathers ({len(f.offsets)} offsets per inline / crossline); seismo3d "
+                "reads post-stack data; open it with ignore_geometry=True to read the traces as a list"
+            )
+        f.mmap()
+        if sample_unit is None:
+            text = segyio.tools.wrap(f.text[0]) if f.text[0] else ""
+            sample_unit = _guess_sample_unit(text, int(f.bin[segyio.BinField.MeasurementSystem]))
+        return SeismicCube(f, path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
+    except BaseException:
+        f.close()
+        raise
+
+
+def _format_error(path: Path, exc: BaseException) -> SegyFormatError:
+    size = path.stat().st_size
+    return SegyFormatError(
+        f"{path.name} ({size} bytes) cannot be read as SEG-Y: {exc}. A SEG-Y file is a 3200-byte textual header, a "
+        "400-byte binary header and equal-length traces; check that the file is SEG-Y and complete (not truncated "
+        "by a partial copy or download); for a little-endian file pass endian='little'"
+    )
+
+
+def read_segy(path, **kwargs):
+    """Read a whole (small) SEG-Y file: a shortcut for ``with open_segy(path, **kwargs) as c: c.read()``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    **kwargs
+        Keyword arguments of :func:`open_segy`.
+
+    Returns
+    -------
+    data : (n_inlines, n_xlines, n_samples) float32 ndarray, or (n_traces, n_samples) for a trace list
+    cube : SeismicCube
+        Closed; its geometry (including ``cdp_x`` / ``cdp_y``) is loaded.
+
+    Raises
+    ------
+    See :func:`open_segy`.
+    """
+    with open_segy(path, **kwargs) as cube:
+        data = cube.read()
+        cube._load_coords()
+    return data, cube
+
+
+def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
+               endian: str = "big") -> Path:
+    """Write an attribute as SEG-Y with the headers and geometry of a template file.
+
+    The textual, binary and every trace header are copied from the template (segyio's copy-a-file recipe); only the
+    binary header's data format becomes 5 (4-byte IEEE float) so that any attribute fits. The file is written to a
+    temporary file in the output folder and moved into place when complete, so an interrupted call never leaves a
+    half-written ``out_path``. The template is only read.
+
+    Parameters
+    ----------
+    template_path : str or os.PathLike
+        The SEG-Y file whose headers are copied.
+    out_path : str or os.PathLike
+        Output file; its folder must exist. Replaced if it exists.
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        The attribute on the template's grid (``open_segy(template).shape``) or per trace in file order; written
+        as float32.
+    iline, xline, ignore_geometry, endian
+        How to open the template, as in :func:`open_segy`.
+
+    Returns
+    -------
+    out_path : pathlib.Path
+
+    Raises
+    ------
+    InputError
+        ``out_path`` is the template, its folder does not exist, ``data`` has the wrong shape or NaN / inf values.
+    SegyFormatError, SegyGeometryError, DataNotFoundError
+        The template cannot be read (see :func:`open_segy`).
+    """
+    template_path, out_path = Path(template_path), Path(out_path)
+    if template_path.resolve() == out_path.resolve() or (
+        out_path.exists() and template_path.exists() and os.path.samefile(template_path, out_path)
+    ):
+        raise InputError(f"out_path {out_path} is the template file itself; write to another file, the template "
+                         "must not be overwritten")
+    out_dir = out_path.resolve().parent
+    if not out_dir.is_dir():
+        raise InputError(f"output folder {out_dir} does not exist; create it first")
+    with open_segy(template_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian) as cube:
+        arr = np.asarray(data, dtype=np.float32)
+        ntr, ns = cube.n_traces, cube.samples.size
+        if arr.shape == cube.shape:
+            traces = cube._to_traces(arr)
+        elif arr.shape == (ntr, ns):
+            traces = arr
+        else:
+            raise InputError(f"data has shape {arr.shape} but the template {template_path.name} needs {cube.shape} "
+                             f"(its grid) or {(ntr, ns)} (traces in file order)")
+        if not np.all(np.isfinite(traces)):
+            raise InputError("data contains NaN or inf, which most SEG-Y readers reject; replace them first, e.g. "
+                             "np.nan_to_num(data)")
+        traces = np.ascontiguousarray(traces, dtype=np.float32)
+        src = cube.segyfile
+        spec = segyio.tools.metadata(src)
+        spec.format = int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)  # spec keeps the template's byte order
+        if src.unstructured:
+            spec.tracecount = src.tracecount
+        with atomic_path(out_path) as tmp, segyio.create(str(tmp), spec) as dst:
+            for i in range(1 + src.ext_headers):
+                dst.text[i] = src.text[i]
+            dst.bin = src.bin
+            dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
+            dst.header = src.header
+            for i in range(ntr):
+                dst.trace[i] = traces[i]
+    return out_path
+
+
+def read_section(path, *, n_traces=None, n_samples=None) -> np.ndarray:
+    """Read a raw 2D section stored as big-endian float32, trace after trace (no header).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.f32be`` file. The shapes of the sections in the data directory's ``seismic/sections`` are known by file
+        stem (campos_gx373 550 x 300, costarica_gx808 / gx809 825 x 210, f3_f3d75s 440 x 222, teapot_tpd 357 x 315,
+        teapot_tp73 357 x 240, f3_f3d178sub2 951 x 242); for other files pass the shape.
+    n_traces, n_samples : int, optional
+        Shape; for an unknown file give at least one, the other is derived from the file size.
+
+    Returns
+    -------
+    section : (n_traces, n_samples) float32 ndarray
+        Axis 0 trace, axis 1 sample (downward).
+
+    Raises
+    ------
+    DataNotFoundError
+        No such file.
+    InputError
+        Unknown file without a shape, or a shape that does not match the file size.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise DataNotFoundError(f"no section file at {path}; check the path")
+    n_values, rem = divmod(path.stat().st_size, 4)
+    if rem:
+        raise InputError(f"{path.name} has {path.stat().st_size} bytes, not a whole number of float32 values; "
+                         "the file is truncated or not raw float32")
+    known = _SECTION_SHAPES.get(path.stem)
+    if n_traces is None and n_samples is None:
+        if known is None:
+            raise InputError(f"the shape of {path.name} is unknown; pass n_traces= and/or n_samples= "
+                             f"(it holds {n_values} float32 values)")
+        n_traces, n_samples = known
+    elif n_traces is None or n_samples is None:
+        given = int(n_traces if n_traces is not None else n_samples)
+        if given <= 0 or n_values % given:
+            raise InputError(f"{path.name} holds {n_values} float32 values, not a multiple of {given}; check the shape")
+        other = n_values // given
+        n_traces, n_samples = (given, other) if n_traces is not None else (other, given)
+    n_traces, n_samples = int(n_traces), int(n_samples)
+    if n_traces <= 0 or n_samples <= 0 or n_traces * n_samples != n_values:
+        raise InputError(f"{path.name} holds {n_values} float32 values but the shape ({n_traces}, {n_samples}) needs "
+                         f"{n_traces * n_samples}; check n_traces / n_samples")
+    data = np.fromfile(path, dtype=">f4").reshape(n_traces, n_samples)
+    return data.astype(np.float32)
+
+
+def read_ascii_lines(path):
+    """Read an ASCII line export: one trace per row, ``inline xline sample_0 sample_1 ...`` (whitespace separated).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        E.g. ``f3_inline362.ascii`` (inline 362 of F3, crosslines 300-1250, 463 samples at 4 ms).
+
+    Returns
+    -------
+    inlines : (n_traces,) int32 ndarray
+    xlines : (n_traces,) int32 ndarray
+    traces : (n_traces, n_samples) float32 ndarray
+        Axis 1 is the sample (downward). The sample interval is not stored in the file.
+
+    Raises
+    ------
+    DataNotFoundError
+        No such file.
+    InputError
+        Rows of unequal length, non-numeric values, non-integer inline / crossline numbers, or fewer than 3 columns.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise DataNotFoundError(f"no ASCII file at {path}; check the path")
+    try:
+        table = np.loadtxt(path, dtype=np.float64, ndmin=2)
+    except ValueError as exc:
+        raise InputError(f"{path.name} is not a table of numbers with equal-length rows ({exc}); expected one trace "
+                         "per row: inline, xline, then the samples") from exc
+    if table.shape[0] == 0 or table.shape[1] < 3:
+        raise InputError(f"{path.name} has {table.shape[1] if table.size else 0} columns; expected inline, xline and "
+                         "at least one sample per row")
+    ids = table[:, :2]
+    if not np.all(ids == np.round(ids)):
+        raise InputError(f"the first two columns of {path.name} must be integer inline and crossline numbers")
+    return ids[:, 0].astype(np.int32), ids[:, 1].astype(np.int32), table[:, 2:].astype(np.float32)

@@ -22,7 +22,7 @@ import numpy as np
 
 from .._atomic import atomic_path
 from .._validation import as_points
-from ..errors import DataIntegrityError, InputError
+from ..errors import DataNotFoundError, DataIntegrityError, InputError
 from .registry import fetch
 
 __all__ = ["BunnyPair", "read_points", "write_points", "load_bunny"]
@@ -111,7 +111,7 @@ def read_points(path, *, ndim: int | None = None) -> np.ndarray:
     if ndim is not None and ndim not in (2, 3):
         raise InputError(f"ndim={ndim!r} is not supported; use 2, 3 or None (as many as the file has, up to 3)")
     if not path.is_file():
-        raise FileNotFoundError(f"{path}: no such file; check the path (point-cloud files are read, never created)")
+        raise DataNotFoundError(f"{path}: no such file; check the path (point-cloud files are read, never created)")
     if suffix == ".ply":
         points = _read_ply(path)
     elif suffix == ".npy":

@@ -93,15 +93,17 @@ class HogPyramidParams:
     n_bins: int = 16
     radii: tuple = (4.0, 8.0, 12.0, 16.0)
     scale_factor: float = 2 ** 0.25
-    n_levels: int = 9
+    n_levels: int = 11
+    first_level: int = -2
     gradient_sigma: float = 1.0
-    harris_sigma: float = 1.5
+    harris_sigma: float = 1.0
     harris_k: float = 0.04
     nms_size: int = 3
-    threshold: float = 1e-4
-    max_keypoints: int = 4000
+    scale_nms: bool = False
+    threshold: float = 1e-6
+    max_keypoints: int = 6000
     clip: float = 0.0
-    peak_ratio: float = 0.8
+    peak_ratio: float = 0.9
     max_gap: int | None = None
 
     def __post_init__(self):
@@ -173,28 +175,33 @@ def orientation_votes(gx, gy, *, n_bins: int = 16, pad: int = 0):
     gx, gy : (H, W) array_like of float
         Derivatives along x (columns) and y (rows).
     n_bins : int
-        Q, orientation bins over [0, 360) degrees; bin b is centred on ``b * 360 / Q`` degrees.
+        Q, orientation bins over [0, 360) degrees (4 <= Q <= 255); bin b is centred on ``b * 360 / Q`` degrees.
     pad : int
         Zero margin added on every side (pixels outside the image vote nothing).
 
     Returns
     -------
-    bins : (H + 2 pad, W + 2 pad, 2) int64 ndarray
+    bins : (H + 2 pad, W + 2 pad, 2) uint8 ndarray
         The two bins each pixel votes into.
-    weights : (H + 2 pad, W + 2 pad, 2) int64 ndarray
+    weights : (H + 2 pad, W + 2 pad, 2) int32 ndarray
         The votes, ``round(u |g| (1 - f))`` and ``round(u |g| f)`` where f is the orientation's fractional position
         between the two bins and ``u = 2**20 / max |g|`` (fixed point: window sums are exact integers).
     """
     from . import _kernels
 
-    gx = np.ascontiguousarray(gx, dtype=np.float64)
-    gy = np.ascontiguousarray(gy, dtype=np.float64)
+    gx = np.asarray(gx)
+    gy = np.asarray(gy)
     if gx.shape != gy.shape or gx.ndim != 2:
         raise InputError(f"gx and gy must be 2D arrays of one shape; got {gx.shape} and {gy.shape}")
+    if not 4 <= int(n_bins) <= 255:
+        raise InputError(f"n_bins must be in [4, 255]; got {n_bins!r}")
+    dtype = np.float32 if gx.dtype == np.float32 and gy.dtype == np.float32 else np.float64
+    gx = np.ascontiguousarray(gx, dtype=dtype)
+    gy = np.ascontiguousarray(gy, dtype=dtype)
     h, w = gx.shape
-    bins = np.zeros((h + 2 * pad, w + 2 * pad, 2), np.int64)
-    weights = np.zeros_like(bins)
-    gmax = float(np.sqrt(np.max(gx * gx + gy * gy))) if gx.size else 0.0
+    bins = np.zeros((h + 2 * pad, w + 2 * pad, 2), np.uint8)
+    weights = np.zeros((h + 2 * pad, w + 2 * pad, 2), np.int32)
+    gmax = float(np.sqrt(np.max(gx.astype(np.float64) ** 2 + gy.astype(np.float64) ** 2))) if gx.size else 0.0
     if gmax > 0 and np.isfinite(gmax):
         _kernels.orientation_votes(gx, gy, int(n_bins), int(pad), _VOTE_UNIT / gmax, bins, weights)
     return bins, weights
@@ -207,14 +214,23 @@ def _check_votes(bins, weights, n_bins):
         bins, weights = bins[..., None], weights[..., None]
     if bins.ndim != 3 or bins.shape != weights.shape:
         raise InputError(f"bins and weights must both be (H, W) or (H, W, P) arrays; got {bins.shape}, {weights.shape}")
-    if not np.issubdtype(bins.dtype, np.integer):
+    if bins.dtype.kind not in "iu":
         raise InputError(f"bins must be integer orientation bins; got dtype {bins.dtype}")
     if bins.size and (bins.min() < 0 or bins.max() >= n_bins):
         raise InputError(f"bins must lie in [0, {n_bins}); got [{bins.min()}, {bins.max()}]")
     if weights.dtype.kind not in "iuf":
         raise InputError(f"weights must be integer or float; got dtype {weights.dtype}")
-    wdtype = np.float64 if weights.dtype.kind == "f" else np.int64
-    return bins.astype(np.int64, copy=False), np.ascontiguousarray(weights, dtype=wdtype)
+    if weights.dtype.kind == "f":
+        weights = weights.astype(np.float64, copy=False)
+    elif weights.dtype not in (np.int32, np.int64):
+        weights = weights.astype(np.int64)
+    if bins.dtype not in (np.uint8, np.int32, np.int64):
+        bins = bins.astype(np.int64)
+    return bins, weights
+
+
+def _hist_dtype(weights):
+    return np.float64 if weights.dtype.kind == "f" else np.int64
 
 
 def _pad_votes(bins, weights, pad):
@@ -265,7 +281,7 @@ def dense_ring_histograms(bins, weights, radii, *, n_bins: int, rows=None) -> np
     pad = int(np.floor(radii.max()))
     hw = disc_half_widths(radii, pad)
     bp, wp = _pad_votes(b, w, pad)
-    out = np.zeros((rows.size, wd, radii.size, int(n_bins)), dtype=w.dtype)
+    out = np.zeros((rows.size, wd, radii.size, int(n_bins)), dtype=_hist_dtype(w))
     if rows.size and wd:
         _kernels.dense_disc_histograms(bp, wp, hw, pad, rows, wd, out)
     out[:, :, 1:] -= out[:, :, :-1].copy()  # rings = differences of nested discs
@@ -312,7 +328,7 @@ def ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int, max_gap: i
     if rows.size and (rows.min() < 0 or rows.max() >= h or cols.min() < 0 or cols.max() >= wd):
         raise InputError(f"points must lie inside the {h}x{wd} image")
     order = np.lexsort((cols, rows))
-    out = np.zeros((rows.size, radii.size, int(n_bins)), dtype=w.dtype)
+    out = np.zeros((rows.size, radii.size, int(n_bins)), dtype=_hist_dtype(w))
     gap = pad if max_gap is None else int(max_gap)
     if rows.size:
         _kernels.point_disc_histograms(b, w, disc_half_widths(radii, pad), pad, rows[order], cols[order], gap, out)
@@ -336,8 +352,8 @@ def direct_ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int) -> 
     bp, wp = _pad_votes(b, w, pad)
     rows = np.asarray(rows, dtype=np.int64).ravel()
     cols = np.asarray(cols, dtype=np.int64).ravel()
-    out = np.zeros((rows.size, radii.size, int(n_bins)), dtype=wp.dtype)
-    disc = np.zeros(int(n_bins), dtype=wp.dtype)
+    out = np.zeros((rows.size, radii.size, int(n_bins)), dtype=_hist_dtype(wp))
+    disc = np.zeros(int(n_bins), dtype=_hist_dtype(wp))
     for i in range(rows.size):
         for k, rad in enumerate(radii):
             _kernels.direct_disc_histogram(bp, wp, rad * rad, pad, rows[i], cols[i], int(n_bins), disc)
@@ -420,12 +436,15 @@ def ring_descriptors(hist, radii, *, clip: float = 0.2, peak_ratio: float = 0.8)
 
 
 def _level_gradients(level, sigma):
+    """Derivatives of a level after Gaussian smoothing (float32; Sobel / 8 is the central difference smoothed
+    across by [1, 2, 1] / 4)."""
     import cv2
 
+    level = level.astype(np.float32)
     if sigma > 0:
         level = cv2.GaussianBlur(level, (0, 0), sigma)
-    gx = cv2.Sobel(level, cv2.CV_64F, 1, 0, ksize=3, scale=0.125)
-    gy = cv2.Sobel(level, cv2.CV_64F, 0, 1, ksize=3, scale=0.125)
+    gx = cv2.Sobel(level, cv2.CV_32F, 1, 0, ksize=3, scale=0.125)
+    gy = cv2.Sobel(level, cv2.CV_32F, 0, 1, ksize=3, scale=0.125)
     return gx, gy
 
 
@@ -477,7 +496,8 @@ def hog_pyramid_features(image, *, params: HogPyramidParams | None = None, mask=
     if not hi > lo:
         return Features.empty("hog", p.n_dims)
     img = (img - lo) / (hi - lo)
-    levels = image_pyramid(img, scale_factor=p.scale_factor, n_levels=p.n_levels, min_size=2 * pad + 3)
+    levels = image_pyramid(img, scale_factor=p.scale_factor, n_levels=p.n_levels, min_size=2 * pad + 3,
+                           first_level=p.first_level)
     found = []
     for lev, level in enumerate(levels):
         h, w = level.shape
@@ -488,7 +508,19 @@ def hog_pyramid_features(image, *, params: HogPyramidParams | None = None, mask=
             m = cv2.resize(mask.astype(np.uint8), (w, h), interpolation=cv2.INTER_NEAREST)
             level_mask = cv2.erode(m, np.ones((2 * pad + 3, 2 * pad + 3), np.uint8), borderValue=0) > 0
         rows, cols, xy, values = harris_peaks(resp, nms_size=p.nms_size, threshold=0.0, border=pad + 1, mask=level_mask)
-        found.append((lev, gx, gy, rows, cols, xy, values))
+        found.append([lev, gx, gy, rows, cols, xy, values, cv2.dilate(resp, np.ones((3, 3), np.uint8))])
+    if p.scale_nms:
+        for i, f in enumerate(found):
+            keep = np.ones(f[3].size, bool)
+            h, w = f[1].shape
+            for j in (i - 1, i + 1):
+                if 0 <= j < len(found):
+                    hj, wj = found[j][1].shape
+                    r = np.clip(np.rint((f[3] + 0.5) * hj / h - 0.5).astype(int), 0, hj - 1)
+                    c = np.clip(np.rint((f[4] + 0.5) * wj / w - 0.5).astype(int), 0, wj - 1)
+                    keep &= f[6] >= found[j][7][r, c]
+            f[3], f[4], f[5], f[6] = f[3][keep], f[4][keep], f[5][keep], f[6][keep]
+    found = [tuple(f[:7]) for f in found]
     all_values = np.concatenate([f[-1] for f in found])
     if all_values.size == 0:
         return Features.empty("hog", p.n_dims)

@@ -87,7 +87,8 @@ def to_gray(image, name: str = "image") -> np.ndarray:
     return as_image(arr, name)
 
 
-def image_pyramid(image, *, scale_factor: float = 2 ** 0.25, n_levels: int = 9, min_size: int = 16) -> list:
+def image_pyramid(image, *, scale_factor: float = 2 ** 0.25, n_levels: int = 9, min_size: int = 16,
+                  first_level: int = 0) -> list:
     """Downsample a grey image into a pyramid of levels, finest first.
 
     Level ``l`` has size ``round(H / scale_factor**l) x round(W / scale_factor**l)`` and is resampled from the input
@@ -125,13 +126,16 @@ def image_pyramid(image, *, scale_factor: float = 2 ** 0.25, n_levels: int = 9, 
         raise InputError(f"n_levels must be >= 1; got {n_levels!r}")
     check_positive(min_size, "min_size")
     h0, w0 = img.shape
-    levels = [img]
-    for lev in range(1, int(n_levels)):
+    levels = []
+    for lev in range(int(first_level), int(first_level) + int(n_levels)):
         s = scale_factor ** lev
         h, w = int(round(h0 / s)), int(round(w0 / s))
         if min(h, w) < min_size:
             break
-        levels.append(cv2.resize(img, (w, h), interpolation=cv2.INTER_AREA))
+        if lev == 0:
+            levels.append(img)
+        else:
+            levels.append(cv2.resize(img, (w, h), interpolation=cv2.INTER_AREA if lev > 0 else cv2.INTER_LINEAR))
     return levels
 
 
@@ -140,7 +144,7 @@ def harris_response(gx, gy, *, sigma: float = 1.5, k: float = 0.04) -> np.ndarra
 
     Parameters
     ----------
-    gx, gy : (H, W) float64 ndarray
+    gx, gy : (H, W) float32 or float64 ndarray
         Image derivatives along x (columns) and y (rows), in grey levels per pixel.
     sigma : float
         Standard deviation in pixels of the Gaussian integration window.
@@ -149,7 +153,7 @@ def harris_response(gx, gy, *, sigma: float = 1.5, k: float = 0.04) -> np.ndarra
 
     Returns
     -------
-    response : (H, W) float64 ndarray
+    response : (H, W) ndarray, dtype of gx
         Large positive at corners, negative along edges, near zero in flat areas.
 
     References
@@ -169,7 +173,7 @@ def harris_peaks(response, *, nms_size: int = 5, threshold: float = 0.0, border:
 
     Parameters
     ----------
-    response : (H, W) float64 ndarray
+    response : (H, W) float32 or float64 ndarray
         Corner response, e.g. from :func:`harris_response`.
     nms_size : int
         Side in pixels of the square window in which a peak must be the maximum (odd, >= 3).
@@ -192,7 +196,9 @@ def harris_peaks(response, *, nms_size: int = 5, threshold: float = 0.0, border:
     """
     import cv2
 
-    r = np.asarray(response, dtype=np.float64)
+    r = np.asarray(response)
+    if r.dtype not in (np.float32, np.float64):
+        r = r.astype(np.float64)
     h, w = r.shape
     size = int(nms_size) | 1
     local_max = cv2.dilate(r, np.ones((size, size), np.uint8))
@@ -205,12 +211,12 @@ def harris_peaks(response, *, nms_size: int = 5, threshold: float = 0.0, border:
     if mask is not None:
         keep &= mask
     rows, cols = np.nonzero(keep)
-    values = r[rows, cols]
+    values = r[rows, cols].astype(np.float64)
     c = values
-    dx = 0.5 * (r[rows, cols + 1] - r[rows, cols - 1])
-    dy = 0.5 * (r[rows + 1, cols] - r[rows - 1, cols])
-    dxx = r[rows, cols + 1] - 2 * c + r[rows, cols - 1]
-    dyy = r[rows + 1, cols] - 2 * c + r[rows - 1, cols]
+    east, west = r[rows, cols + 1].astype(np.float64), r[rows, cols - 1].astype(np.float64)
+    south, north = r[rows + 1, cols].astype(np.float64), r[rows - 1, cols].astype(np.float64)
+    dx, dy = 0.5 * (east - west), 0.5 * (south - north)
+    dxx, dyy = east - 2 * c + west, south - 2 * c + north
     ox = np.where(dxx < 0, -dx / np.where(dxx < 0, dxx, -1.0), 0.0)
     oy = np.where(dyy < 0, -dy / np.where(dyy < 0, dyy, -1.0), 0.0)
     xy = np.column_stack([cols + np.clip(ox, -0.5, 0.5), rows + np.clip(oy, -0.5, 0.5)])

@@ -123,17 +123,8 @@ def detect_and_describe(image, *, method: str = "hog", mask=None, max_keypoints:
     return opencv_features(image, method=method, mask=mask, max_keypoints=max_keypoints)
 
 
-def _distance_block(a, b, b_sq, binary):
-    if binary:
-        d = a.sum(1)[:, None] + b_sq[None, :] - 2.0 * (a @ b.T)
-        return np.maximum(d, 0.0, out=d)
-    d = (a * a).sum(1)[:, None] + b_sq[None, :] - 2.0 * (a @ b.T)
-    np.maximum(d, 0.0, out=d)
-    return np.sqrt(d, out=d)
-
-
 def match_descriptors(descriptors1, descriptors2, *, binary: bool = False, ratio: float = 0.8,
-                      cross_check: bool = True, keypoints2=None, min_separation: float = 0.0):
+                      cross_check: bool = True):
     """Nearest-neighbour matching with Lowe's ratio test and a mutual (cross) check, by exhaustive search.
 
     Parameters
@@ -183,16 +174,12 @@ def match_descriptors(descriptors1, descriptors2, *, binary: bool = False, ratio
             raise InputError("binary descriptors must be packed bits (uint8)")
         a = np.unpackbits(d1, axis=1).astype(np.float32)
         b = np.unpackbits(d2, axis=1).astype(np.float32)
-        b_sq = b.sum(1)
     else:
         a = np.ascontiguousarray(d1, dtype=np.float32)
         b = np.ascontiguousarray(d2, dtype=np.float32)
         if not (np.all(np.isfinite(a)) and np.all(np.isfinite(b))):
             raise InputError("descriptors contain NaN or inf")
-        b_sq = (b * b).sum(1)
     n1, n2 = a.shape[0], b.shape[0]
-    sep2 = float(min_separation) ** 2
-    xy2 = np.zeros((n2, 2)) if keypoints2 is None else np.ascontiguousarray(keypoints2, dtype=np.float64)
     nn = np.empty(n1, np.int64)
     best = np.empty(n1, np.float32)
     second = np.empty(n1, np.float32)
@@ -200,14 +187,13 @@ def match_descriptors(descriptors1, descriptors2, *, binary: bool = False, ratio
     col_best = np.full(n2, np.inf, np.float32)
     blk_idx = np.empty(n2, np.int64)
     blk_best = np.empty(n2, np.float32)
+    a_sq = np.einsum("ij,ij->i", a, a)
+    b_sq = np.einsum("ij,ij->i", b, b)
     for start in range(0, n1, _BLOCK):
         stop = min(start + _BLOCK, n1)
-        dist = _distance_block(a[start:stop], b, b_sq, binary)
-        if sep2 > 0:
-            _kernels.two_nearest_separated(dist, xy2, sep2, nn[start:stop], best[start:stop], second[start:stop],
-                                           blk_idx, blk_best)
-        else:
-            _kernels.two_nearest(dist, nn[start:stop], best[start:stop], second[start:stop], blk_idx, blk_best)
+        gram = a[start:stop] @ b.T
+        _kernels.two_nearest(gram, a_sq[start:stop], b_sq, not binary, nn[start:stop], best[start:stop],
+                             second[start:stop], blk_idx, blk_best)
         better = blk_best < col_best
         col_best[better] = blk_best[better]
         col_idx[better] = blk_idx[better] + start
@@ -220,7 +206,7 @@ def match_descriptors(descriptors1, descriptors2, *, binary: bool = False, ratio
 
 
 def match_features(features1: Features, features2: Features, *, ratio: float = 0.8, cross_check: bool = True,
-                   verify: str | None = "homography", threshold: float = 3.0, min_separation: float = 0.0) -> MatchResult:
+                   verify: str | None = "homography", threshold: float = 3.0) -> MatchResult:
     """Match two feature sets and optionally verify the matches geometrically.
 
     Parameters
@@ -253,8 +239,7 @@ def match_features(features1: Features, features2: Features, *, ratio: float = 0
     if verify is not None:
         check_choice(verify, "verify", VERIFY_MODELS)
     i1, i2, ratios = match_descriptors(features1.descriptors, features2.descriptors, binary=features1.binary,
-                                       ratio=ratio, cross_check=cross_check, keypoints2=features2.keypoints,
-                                       min_separation=min_separation)
+                                       ratio=ratio, cross_check=cross_check)
     m = i1.size
     result = MatchResult(
         xy1=features1.keypoints[i1].copy(),

@@ -11,6 +11,7 @@ from .transforms import (
     invert,
     make_transform,
     nearest_rotation,
+    perturb,
     rotation_about_axis,
     rotation_error_deg,
     rotation_matrix,
@@ -21,6 +22,6 @@ from .transforms import (
 __all__ = [
     "MODELS", "apply_transform", "as_transform", "backproject_depth", "bounding_diagonal", "compose",
     "decompose_axis_scaled", "estimate_normals", "invert", "make_transform", "median_spacing", "nearest_rotation",
-    "normals_from_points_image", "orient_normals", "rotation_about_axis", "rotation_error_deg", "rotation_matrix",
+    "normals_from_points_image", "orient_normals", "perturb", "rotation_about_axis", "rotation_error_deg", "rotation_matrix",
     "split_transform", "translation_error", "voxel_downsample",
 ]

@@ -36,6 +36,7 @@ __all__ = [
     "translation_error",
     "as_transform",
     "check_model",
+    "perturb",
 ]
 
 MODELS = ("rigid", "similarity", "axis_scaled", "affine")
@@ -228,3 +229,29 @@ def check_model(model: str) -> str:
     """Raise :class:`~seismo3d.errors.InputError` unless ``model`` is one of :data:`MODELS`."""
     return check_choice(model, "model", MODELS)
 
+
+
+def perturb(transform, angle_deg: float, *, centre, rng) -> np.ndarray:
+    """Rotate a 3D transform's output by ``angle_deg`` about a random axis through ``centre``.
+
+    The perturbed initial guesses of the registration tests and benchmarks: ``R_p (T x - c) + c``.
+
+    Parameters
+    ----------
+    transform : (4, 4) array_like
+        The transform to perturb (e.g. a ground truth).
+    angle_deg : float
+        Rotation angle in degrees; the rotation error of the result against ``transform`` is exactly this.
+    centre : (3,) array_like
+        A point of the transform's output space on the rotation axis (e.g. the centroid of the moved source).
+    rng : numpy.random.Generator
+        Draws the axis (uniform on the sphere).
+
+    Returns
+    -------
+    (4, 4) float64 ndarray
+    """
+    m = as_transform(transform, dims=(3,))
+    c = np.asarray(centre, dtype=np.float64).reshape(3)
+    r = rotation_about_axis(rng.normal(size=3), angle_deg)
+    return make_transform(r, c - r @ c) @ m

@@ -126,30 +126,26 @@ def _prepare(source, target, target_normals, method, model, init, max_distance, 
     m0 = np.eye(d + 1) if init is None else as_transform(init, "init", dims=(d,))
     sched = default_distance_schedule(dst) if max_distance is None else _as_schedule(max_distance, "max_distance")
     if voxel_size is None:
-        voxels = (None,) * len(sched)
+        # Default point pyramid: coarse stages see the source at voxel = stage distance / 8, the last stage all of it;
+        # the target (and its KD-tree) stays at full resolution.
+        voxels = tuple((v / 8.0, None) for v in sched[:-1]) + ((None, None),)
     else:
-        voxels = _as_schedule(voxel_size, "voxel_size")
-        if len(voxels) == 1:
-            voxels = voxels * len(sched)
-        if len(voxels) != len(sched):
-            raise InputError(f"voxel_size has {len(voxels)} entries but the distance schedule has {len(sched)}; "
+        sizes = _as_schedule(voxel_size, "voxel_size")
+        if len(sizes) == 1:
+            sizes = sizes * len(sched)
+        if len(sizes) != len(sched):
+            raise InputError(f"voxel_size has {len(sizes)} entries but the distance schedule has {len(sched)}; "
                              "give one voxel size per stage or a single one")
+        voxels = tuple((v, v) for v in sizes)
     return src, dst, nrm, m0, sched, voxels
 
 
 class _DenseStage:
-    """Source and target (optionally voxel-downsampled) in the normalised frame, with the target's KD-tree."""
+    """Source and target (each optionally voxel-downsampled) in the normalised frame, with the target's KD-tree."""
 
-    def __init__(self, frame, src, dst, nrm, voxel):
-        if voxel is not None:
-            src, _ = voxel_downsample(src, voxel)
-            dst, nrm = voxel_downsample(dst, voxel, values=nrm)
-            if nrm is not None:
-                nrm = nrm / np.maximum(np.linalg.norm(nrm, axis=1, keepdims=True), 1e-300)
+    def __init__(self, frame, src, target):
         self.src = frame.points(src)
-        self.dst = frame.points(dst)
-        self.nrm = nrm
-        self.tree = cKDTree(self.dst)
+        self.dst, self.nrm, self.tree = target
 
     def correspond(self, transform, dmax):
         d = self.src.shape[1]
@@ -157,6 +153,24 @@ class _DenseStage:
         dist, idx = self.tree.query(moved, k=1, distance_upper_bound=dmax, workers=-1)
         ok = np.isfinite(dist)
         return moved, ok, idx[ok], dist[ok]
+
+
+def _stages(frame, src, dst, nrm, voxels):
+    """One _DenseStage per schedule stage; downsampled sources and target KD-trees are shared between stages."""
+    sources, targets, out = {}, {}, []
+    for src_voxel, dst_voxel in voxels:
+        if src_voxel not in sources:
+            sources[src_voxel] = src if src_voxel is None else voxel_downsample(src, src_voxel)[0]
+        if dst_voxel not in targets:
+            pts, nv = dst, nrm
+            if dst_voxel is not None:
+                pts, nv = voxel_downsample(dst, dst_voxel, values=nrm)
+                if nv is not None:
+                    nv = nv / np.maximum(np.linalg.norm(nv, axis=1, keepdims=True), 1e-300)
+            pts = frame.points(pts)
+            targets[dst_voxel] = (pts, nv, cKDTree(pts))
+        out.append(_DenseStage(frame, sources[src_voxel], targets[dst_voxel]))
+    return out
 
 
 def _needed(method, model, d):
@@ -173,6 +187,7 @@ def _run(stages, sched, frame, m0, *, method, model, max_iterations, tolerance, 
     per_stage = []
     for stage, dist_max in zip(stages, sched):
         dmax = dist_max / frame.scale
+        stage_tol = tolerance * dist_max / sched[-1]  # coarse stages need only converge to their own scale
         scale = (dmax / 3.0) if kernel_scale is None else kernel_scale / frame.scale
         converged = False
         it = 0
@@ -208,7 +223,7 @@ def _run(stages, sched, frame, m0, *, method, model, max_iterations, tolerance, 
                 delta = _solver.solve_step(h, g)
                 m = _solver.apply_update(model, m, delta)
                 step = float(np.abs(delta).max())
-            if step < tolerance:
+            if step < stage_tol:
                 converged = True
                 break
         total_iters += it
@@ -242,7 +257,7 @@ def _run(stages, sched, frame, m0, *, method, model, max_iterations, tolerance, 
 
 
 def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid", target_normals=None, init=None,
-        max_distance=None, voxel_size=None, max_iterations: int = 50, tolerance: float = 1e-6,
+        max_distance=None, voxel_size=None, max_iterations: int = 50, tolerance: float = 1e-5,
         kernel: str = "huber", kernel_scale: float | None = None,
         degeneracy_threshold: float = 1e-3) -> RegistrationResult:
     """Iterative closest point registration of ``source`` onto ``target``, in 2D or 3D.
@@ -274,11 +289,14 @@ def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid",
         the point spacing).
     voxel_size : float or sequence of float, optional
         Voxel-downsample source and target per stage (a point pyramid); one size for all stages or one per stage.
+        Default: the source is downsampled to voxels of 1/8 of each coarse stage's maximum distance and used whole in
+        the last stage; the target is never downsampled.
     max_iterations : int
         Iterations per stage.
     tolerance : float
-        Stop a stage when the largest parameter update (radians, relative scale, and translation in units of the
-        target's RMS radius) falls below this.
+        Stop the last stage when the largest parameter update (radians, relative scale, and translation in units of
+        the target's RMS radius) falls below this; a coarser stage stops at ``tolerance`` times the ratio of its
+        maximum distance to the last stage's.
     kernel : {'huber', 'tukey', 'cauchy', 'none'}
         Robust kernel on the residuals.
     kernel_scale : float, optional
@@ -321,18 +339,8 @@ def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid",
                 degeneracy_threshold=degeneracy_threshold)
 
 
-def _stages(frame, src, dst, nrm, voxels):
-    cache = {}
-    out = []
-    for v in voxels:
-        if v not in cache:
-            cache[v] = _DenseStage(frame, src, dst, nrm, v)
-        out.append(cache[v])
-    return out
-
-
 def fast_icp(source, target, *, n_samples: int = 2000, init=None, max_distance=None, max_iterations: int = 30,
-             tolerance: float = 1e-6, seed: int = 0) -> RegistrationResult:
+             tolerance: float = 1e-5, seed: int = 0) -> RegistrationResult:
     """The "Fast ICP" baseline of the paper's Table 1: rigid point-to-point ICP on a random subset of the source.
 
     Parameters

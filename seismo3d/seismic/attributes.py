@@ -97,6 +97,50 @@ def _interp_trace(f, i, j, t, nt):
     return (1.0 - w) * f[i, j, k] + w * f[i, j, k + 1]
 
 @nb.njit(cache=True, parallel=True)
+def _correlate_axis(x, w, axis, out):
+    # out = x correlated with the odd-length kernel w along `axis`, edges clamped (scipy.ndimage mode 'nearest');
+    # loops ordered so the innermost one runs along the contiguous sample axis (vectorised)
+    n0, n1, n2 = x.shape
+    r = (w.shape[0] - 1) // 2
+    if axis == 2:
+        for i in nb.prange(n0):
+            pad = np.empty(n2 + 2 * r, np.float32)
+            row = np.empty(n2, np.float32)
+            for j in range(n1):
+                for k in range(n2 + 2 * r):
+                    pad[k] = x[i, j, min(max(k - r, 0), n2 - 1)]
+                for k in range(n2):
+                    row[k] = 0.0
+                for m in range(2 * r + 1):
+                    wm = w[m]
+                    for k in range(n2):
+                        row[k] += wm * pad[k + m]
+                for k in range(n2):
+                    out[i, j, k] = row[k]
+    elif axis == 1:
+        for i in nb.prange(n0):
+            for j in range(n1):
+                for k in range(n2):
+                    out[i, j, k] = 0.0
+                for m in range(2 * r + 1):
+                    jj = min(max(j + m - r, 0), n1 - 1)
+                    wm = w[m]
+                    for k in range(n2):
+                        out[i, j, k] += wm * x[i, jj, k]
+    else:
+        for i in nb.prange(n0):
+            for j in range(n1):
+                for k in range(n2):
+                    out[i, j, k] = 0.0
+            for m in range(2 * r + 1):
+                ii = min(max(i + m - r, 0), n0 - 1)
+                wm = w[m]
+                for j in range(n1):
+                    for k in range(n2):
+                        out[i, j, k] += wm * x[ii, j, k]
+
+
+@nb.njit(cache=True, parallel=True)
 def _eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
     # Largest eigenvector (reflector normal) and (l1 - l2) / l1 of 3x3 symmetric tensors, closed form
     # (trigonometric eigenvalues, eigenvector from the cross products of the rows of T - l1 I).
@@ -294,43 +338,58 @@ class ReflectorOrientation:
         return np.degrees(np.arccos(np.clip(self.normals[..., -1], 0.0, 1.0))).astype(np.float32)
 
 
-def _gaussian_gradients(f3: np.ndarray, sigma_gradient: float, two_d: bool) -> list[np.ndarray]:
-    axes = (0, 2) if two_d else (0, 1, 2)
-    out = []
-    for ax in axes:
-        order = [0, 0, 0]
-        order[ax] = 1
-        sig = [sigma_gradient] * 3
-        if two_d:
-            sig[1] = 0.0
-        out.append(ndi.gaussian_filter(f3, sig, order=order, mode="nearest", output=np.float32))
-    return out
+def _gaussian_kernel(sigma: float, order: int) -> np.ndarray:
+    """Correlation weights of a Gaussian (order 0) or of its first derivative (order 1), truncated at 3 sigma."""
+    r = max(1, int(3.0 * sigma + 0.5))
+    t = np.arange(-r, r + 1, dtype=np.float64)
+    g = np.exp(-0.5 * (t / sigma) ** 2)
+    g /= g.sum()
+    if order == 1:
+        g = g * t / sigma**2  # correlation with these weights = d/dx of the Gaussian-smoothed signal
+    return g.astype(np.float32)
+
+
+def _gaussian3(x: np.ndarray, sigmas, orders=(0, 0, 0)) -> np.ndarray:
+    """Separable Gaussian (derivative) filter of a float32 3D array; axes with sigma 0 are left alone."""
+    out = x
+    for axis, (sig, order) in enumerate(zip(sigmas, orders)):
+        if sig <= 0 or x.shape[axis] == 1:
+            continue
+        res = np.empty(x.shape, dtype=np.float32)
+        _correlate_axis(np.ascontiguousarray(out, dtype=np.float32), _gaussian_kernel(float(sig), int(order)), axis,
+                        res)
+        out = res
+    return out if out is not x else x.astype(np.float32, copy=True)
 
 
 def _tensor_eig(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], two_d: bool):
     """Normals (n0, n1, nt, 3) and planarity of a 3D-shaped array (2D sections as (n, 1, nt))."""
     lat, vert = sigma_tensor
+    sg = sigma_gradient
     sig = (lat, 0.0 if two_d else lat, vert)
-    g = _gaussian_gradients(f3, sigma_gradient, two_d)
+    # gradients with shared smoothing passes: g0 = D0 G1 G2 f, g1 = G0 D1 G2 f, g2 = G0 G1 D2 f
+    f2 = _gaussian3(f3, (0.0, 0.0, sg))
     if two_d:
-        g0, g2 = g
+        g0 = _gaussian3(f2, (sg, 0.0, 0.0), (1, 0, 0))
+        g2 = _gaussian3(_gaussian3(f3, (sg, 0.0, 0.0)), (0.0, 0.0, sg), (0, 0, 1))
         g1 = np.zeros_like(g0)
     else:
-        g0, g1, g2 = g
-
-    def smooth(x):
-        return ndi.gaussian_filter(x, sig, mode="nearest", output=np.float32)
-
-    t00 = smooth(g0 * g0)
-    t02 = smooth(g0 * g2)
-    t22 = smooth(g2 * g2)
+        f12 = _gaussian3(f2, (0.0, sg, 0.0))
+        g0 = _gaussian3(f12, (sg, 0.0, 0.0), (1, 0, 0))
+        del f12
+        g1 = _gaussian3(_gaussian3(f2, (sg, 0.0, 0.0)), (0.0, sg, 0.0), (0, 1, 0))
+        g2 = _gaussian3(_gaussian3(f3, (sg, sg, 0.0)), (0.0, 0.0, sg), (0, 0, 1))
+    del f2
+    t00 = _gaussian3(g0 * g0, sig)
+    t02 = _gaussian3(g0 * g2, sig)
+    t22 = _gaussian3(g2 * g2, sig)
     if two_d:
         t01 = t11 = t12 = np.zeros_like(t00)
     else:
-        t01 = smooth(g0 * g1)
-        t11 = smooth(g1 * g1)
-        t12 = smooth(g1 * g2)
-    del g0, g1, g2, g
+        t01 = _gaussian3(g0 * g1, sig)
+        t11 = _gaussian3(g1 * g1, sig)
+        t12 = _gaussian3(g1 * g2, sig)
+    del g0, g1, g2
     normals = np.empty(f3.shape + (3,), dtype=np.float32)
     planarity = np.empty(f3.shape, dtype=np.float32)
     _eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity)

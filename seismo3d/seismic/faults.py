@@ -268,10 +268,11 @@ def _smooth_strike(x, alpha, h, n_threads, out):
 
 
 @nb.njit(cache=True, parallel=True)
-def _scan_dip(sn, sd, beta, h, code_k, power_squarings, tiny, n_threads, key):
-    # sn, sd, fl, code in layout (na, nt, nb). Smooth the semblance numerator and denominator along the staircase
-    # lines a = a0 + round(beta * t) of every (a, t) slice (triangle filter of half-width h, vectorised over b),
-    # form s = num / den and 1 - s^(2^p); keep the maximum and its orientation code in the packed key.
+def _scan_dip(sn, sd, beta, half, code_k, power_squarings, tiny, n_threads, key):
+    # sn, sd, key in layout (na, nt, nb). Along the staircase lines a = a0 + round(beta * t) of every (a, t) slice
+    # (vectorised over b), sum the semblance numerator and denominator over the window of `half` + 1 samples above
+    # (t - half .. t) and the one below (t .. t + half); the fault-plane semblance is the larger of the two ratios,
+    # so both halves of the plane must be discontinuous. Keep the maximum of 1 - s^(2^p) and its orientation code.
     na, nt, nbb = sn.shape
     sh = _shifts(beta, nt)
     s_min = min(sh[0], sh[nt - 1])
@@ -280,32 +281,35 @@ def _scan_dip(sn, sd, beta, h, code_k, power_squarings, tiny, n_threads, key):
     n_a0 = na + s_max - s_min
     n_chunks = min(n_a0, 4 * n_threads)
     for ic in nb.prange(n_chunks):
-        xn = np.empty((nt, nbb), np.float32)
-        xd = np.empty((nt, nbb), np.float32)
-        tmp = np.empty((nt, nbb), np.float32)
-        c = np.empty((nt + 1, nbb))
+        cn = np.empty((nt + 1, nbb))
+        cd = np.empty((nt + 1, nbb))
         for i in range(ic * n_a0 // n_chunks, (ic + 1) * n_a0 // n_chunks):
             a0 = i - s_max
             lo, hi = _segment(mono, beta >= 0, a0, na)
             if hi < lo:
                 continue
             m = hi - lo + 1
+            for j in range(nbb):
+                cn[0, j] = 0.0
+                cd[0, j] = 0.0
             for k in range(m):
                 a = a0 + sh[lo + k]
                 for j in range(nbb):
-                    xn[k, j] = sn[a, lo + k, j]
-                    xd[k, j] = sd[a, lo + k, j]
-            _box_rows(xn, tmp, c, m, nbb, h)
-            _box_rows(tmp, xn, c, m, nbb, h)
-            _box_rows(xd, tmp, c, m, nbb, h)
-            _box_rows(tmp, xd, c, m, nbb, h)
+                    cn[k + 1, j] = cn[k, j] + sn[a, lo + k, j]
+                    cd[k + 1, j] = cd[k, j] + sd[a, lo + k, j]
             for k in range(m):
                 a = a0 + sh[lo + k]
                 t = lo + k
+                k_up = max(k - half, 0)
+                k_dn = min(k + half, m - 1) + 1
                 for j in range(nbb):
-                    den = xd[k, j]
-                    s = xn[k, j] / den if den > tiny else np.float32(1.0)
-                    s = min(max(s, np.float32(0.0)), np.float32(1.0))
+                    n_up = cn[k + 1, j] - cn[k_up, j]
+                    d_up = cd[k + 1, j] - cd[k_up, j]
+                    n_dn = cn[k_dn, j] - cn[k, j]
+                    d_dn = cd[k_dn, j] - cd[k, j]
+                    s_up = n_up / d_up if d_up > tiny else 1.0
+                    s_dn = n_dn / d_dn if d_dn > tiny else 1.0
+                    s = np.float32(min(max(max(s_up, s_dn), 0.0), 1.0))
                     # s^(2^p) by repeated squaring (loop-invariant branches, so the loop still vectorises)
                     if power_squarings >= 1:
                         s = s * s
@@ -401,16 +405,15 @@ def _orientation_table(strikes, dips, two_d):
 
 def _default_angles(strikes, dips, sigma_strike, sigma_dip, two_d):
     if strikes is None:
-        # misorientation tolerated by a triangle of half-width ~ 1.6 sigma: about half a trace at its ends
-        step = np.degrees(0.5 / max(sigma_strike, 1.0))
-        n = max(8, int(np.ceil(360.0 / step / 4.0)) * 4)
+        # a plane misoriented by d radians leaves the fault by ~ sigma * d at one smoothing width from the centre:
+        # a step of 1 / sigma_strike radians (15 degrees for the default 4 traces) keeps that under half a trace
+        n = max(8, int(np.ceil(6.0 * sigma_strike)))
         strikes = np.arange(n) * (360.0 / n)
     if dips is None:
-        # uniform in cot(dip) (the horizontal shift per sample along the fault), from 90 down to 50 degrees
-        cmax = 1.0 / np.tan(np.radians(50.0))
-        step = min(0.1, 0.7 / max(sigma_dip, 1.0))
-        n = int(np.ceil(cmax / step))
-        dips = np.degrees(np.arctan2(1.0, np.linspace(0.0, cmax, n + 1)))
+        # uniform in cot(dip) (the horizontal shift per sample along the fault) from 90 down to 50 degrees, with a
+        # step of about 2 / sigma_dip in cot (6 dips for the default 12 samples)
+        n = max(3, int(np.ceil(sigma_dip / 2.0)))
+        dips = np.degrees(np.arctan2(1.0, np.linspace(0.0, 1.0 / np.tan(np.radians(50.0)), n)))
     strikes = np.atleast_1d(np.asarray(strikes, dtype=np.float64))
     dips = np.atleast_1d(np.asarray(dips, dtype=np.float64))
     if strikes.ndim != 1 or strikes.size == 0 or not np.all(np.isfinite(strikes)):
@@ -433,17 +436,19 @@ def fault_likelihood(data, *, strikes=None, dips=None, sigma_strike=4.0, sigma_d
        fault); the semblance ``s = <n> / <d>`` gives ``1 - s^power`` (eq. 2).
     4. Each sample keeps the maximum over the scan and the strike and dip where it occurred.
 
-    Time is linear in the number of samples and in the number of orientations (about 100 by default).
+    Time is linear in the number of samples and in the number of orientations (132 by default in 3D: 24 strikes x
+    6 dips, vertical planes counted once; 12 in 2D).
 
     Parameters
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
         Seismic amplitudes; the last axis is the sample (time or depth, downward). Must be finite.
     strikes : (n_strikes,) array_like of float, optional
-        Strikes to scan, degrees in [0, 360). Default: a uniform sampling of [0, 360) with a step of about
-        ``degrees(0.5 / sigma_strike)``. Ignored for 2D sections (the plane of the section).
+        Strikes to scan, degrees in [0, 360). Default: ``ceil(6 * sigma_strike)`` strikes evenly spaced over
+        [0, 360) (every 15 degrees for the default ``sigma_strike``). Ignored for 2D sections.
     dips : (n_dips,) array_like of float, optional
-        Dips to scan, degrees in (0, 90] in index space. Default: 50 to 90 degrees, uniform in cot(dip).
+        Dips to scan, degrees in (0, 90] in index space. Default: ``ceil(sigma_dip / 2)`` dips from 90 down to 50
+        degrees, evenly spaced in cot(dip) (6 for the default ``sigma_dip``).
     sigma_strike : float, optional
         Width of the smoothing along strike, in traces (unused in 2D).
     sigma_dip : float, optional
@@ -530,8 +535,8 @@ def fault_likelihood(data, *, strikes=None, dips=None, sigma_strike=4.0, sigma_d
                 _smooth_strike(xd, float(alpha), hs, n_threads, yd)
             for k, r in members:
                 beta = float(r[4])
-                h = _box_half(sigma_dip / np.sqrt(1.0 + beta * beta))
-                _scan_dip(yn, yd, beta, h, np.int32(k), squarings, tiny, n_threads, keya)
+                half = max(2, int(round(sigma_dip / np.sqrt(1.0 + beta * beta))))
+                _scan_dip(yn, yd, beta, half, np.int32(k), squarings, tiny, n_threads, keya)
         del xn, xd, yn, yd
         np.maximum(key, keya.transpose(tuple(np.argsort(perm))), out=key)
         del keya
@@ -572,13 +577,19 @@ def _otsu(values: np.ndarray) -> float:
     return float(threshold_otsu(values))
 
 
-def thin_faults(likelihood, strike, dip, *, threshold=None, low_ratio=0.5) -> np.ndarray:
+def thin_faults(likelihood, strike, dip, *, threshold=None, sigma=1.5) -> np.ndarray:
     """Thin fault likelihood to 1-sample-wide fault traces.
 
-    A sample is kept when its (lightly smoothed) likelihood is a maximum across the fault, i.e. along the fault
-    normal given by its strike and dip (non-maximum suppression, with trilinear interpolation), and when it passes a
-    hysteresis threshold: ridge samples above ``threshold`` seed faults that grow through 26-connected (8 in 2D)
-    ridge samples above ``low_ratio * threshold``.
+    1. The likelihood is smoothed with a Gaussian of width ``sigma`` (only to rank neighbours; the returned values
+       are the unsmoothed likelihood).
+    2. Non-maximum suppression across the fault: a sample is kept when its smoothed likelihood exceeds the values one
+       sample away on both sides along its fault normal (from its strike and dip; trilinear interpolation).
+    3. Hysteresis threshold (Canny 1986) on the kept ridge samples: samples above the upper threshold seed faults that
+       grow through 26-connected (8 in 2D) ridge samples above the lower threshold.
+
+    With ``threshold=None`` both thresholds come from the data: the lower one is Otsu's threshold of the ridge
+    samples' likelihood (it separates fault ridges from the lower ridges of noise and of the scan's side lobes) and
+    the upper one is half-way between it and 1. The same default works on synthetic and real data without tuning.
 
     Parameters
     ----------
@@ -586,11 +597,10 @@ def thin_faults(likelihood, strike, dip, *, threshold=None, low_ratio=0.5) -> np
         Fault likelihood in [0, 1] (``FaultLikelihood.likelihood``).
     strike, dip : array_like of float, same shape
         Fault strike and dip in degrees (``FaultLikelihood.strike_deg``, ``.dip_deg``).
-    threshold : float, optional
-        Upper likelihood threshold. ``None`` (default) chooses it from the data: Otsu's threshold of the likelihood
-        of the ridge samples, which separates fault ridges from the low ridges of noise without per-file tuning.
-    low_ratio : float, optional
-        The lower hysteresis threshold as a fraction of ``threshold``, in (0, 1].
+    threshold : float or (float, float), optional
+        Fixed thresholds instead of the data-driven ones: one value for both, or (lower, upper).
+    sigma : float, optional
+        Width of the Gaussian applied before the non-maximum suppression, in samples (0 for none).
 
     Returns
     -------
@@ -600,51 +610,100 @@ def thin_faults(likelihood, strike, dip, *, threshold=None, low_ratio=0.5) -> np
     Raises
     ------
     InputError
-        If the shapes differ or the likelihood has NaN.
+        If the shapes differ, the likelihood has NaN or a threshold is out of range.
 
     References
     ----------
     .. [1] D. Hale, Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1 (thinning of fault images).
     .. [2] N. Otsu, "A threshold selection method from gray-level histograms", IEEE Trans. SMC 9(1), 1979,
        doi:10.1109/TSMC.1979.4310076.
-    .. [3] J. Canny, "A computational approach to edge detection", IEEE TPAMI 8(6), 1986 (hysteresis).
+    .. [3] J. Canny, "A computational approach to edge detection", IEEE TPAMI 8(6), 1986,
+       doi:10.1109/TPAMI.1986.4767851.
     """
+    from skimage.filters import apply_hysteresis_threshold
+
     fl, st, dp = _check_fault_arrays(likelihood, strike, dip)
+    sigma = check_positive(sigma, "sigma", allow_zero=True)
     if threshold is not None:
-        threshold = check_positive(threshold, "threshold")
-    low_ratio = check_positive(low_ratio, "low_ratio")
-    if low_ratio > 1.0:
-        raise InputError(f"low_ratio must be in (0, 1]; got {low_ratio!r}")
+        thr = np.atleast_1d(np.asarray(threshold, dtype=np.float64)).ravel()
+        if thr.size not in (1, 2) or not np.all((thr >= 0) & (thr <= 1)) or thr[0] > thr[-1]:
+            raise InputError(f"threshold must be a likelihood in [0, 1] or a pair (lower <= upper); got {threshold!r}")
     two_d = fl.ndim == 2
     f3 = _as_3d(fl)
     n = fault_normals(_as_3d(st), _as_3d(dp), ndim=3)
     if two_d:
         n[..., 1] = 0.0
-    sig = (1.0, 0.0 if two_d else 1.0, 1.0)
-    g = ndi.gaussian_filter(f3, sig, mode="nearest")
+    g = ndi.gaussian_filter(f3, (sigma, 0.0 if two_d else sigma, sigma), mode="nearest") if sigma > 0 else f3
     ridge = np.zeros_like(f3)
-    _ridges(f3, g, np.ascontiguousarray(n[..., 0]), np.ascontiguousarray(n[..., 1]),
-            np.ascontiguousarray(n[..., 2]), ridge)
-    vals = ridge[ridge > 0]
-    hi = _otsu(vals) if threshold is None else float(threshold)
-    lo = low_ratio * hi
-    from skimage.filters import apply_hysteresis_threshold
-
-    keep = apply_hysteresis_threshold(ridge[:, 0, :] if two_d else ridge, lo, hi)
-    out = np.where(keep, fl, 0.0).astype(np.float32)
-    return out
+    _ridges(f3, g, np.ascontiguousarray(n[..., 0]), np.ascontiguousarray(n[..., 1]), np.ascontiguousarray(n[..., 2]),
+            ridge)
+    if two_d:
+        ridge = ridge[:, 0, :]
+    if threshold is None:
+        lo = _otsu(ridge[ridge > 0])
+        hi = 0.5 * (lo + 1.0)
+    else:
+        lo, hi = float(thr[0]), float(thr[-1])
+    keep = apply_hysteresis_threshold(ridge, lo, hi) & (ridge > 0)
+    return np.where(keep, fl, 0.0).astype(np.float32)
 
 
 # --------------------------------------------------------------------------------------------------------------------
 # linking
 
 
+@nb.njit(cache=True)
+def _grow_faults(indptr, indices, normals, order, cos_mean):
+    # Region growing over the neighbour graph (whose edges already join only compatible normals): from the
+    # unassigned sample of highest likelihood, add neighbours whose normal is within acos(cos_mean) of the growing
+    # fault's mean normal, breadth first. The mean keeps a fault from drifting into another one through samples of
+    # intermediate orientation where two faults meet.
+    n_pts, dim = normals.shape
+    label = -np.ones(n_pts, np.int64)
+    queue = np.empty(n_pts, np.int64)
+    mean = np.zeros(dim)
+    n_lab = 0
+    for seed in order:
+        if label[seed] >= 0:
+            continue
+        label[seed] = n_lab
+        for d in range(dim):
+            mean[d] = normals[seed, d]
+        head = 0
+        tail = 1
+        queue[0] = seed
+        while head < tail:
+            i = queue[head]
+            head += 1
+            for e in range(indptr[i], indptr[i + 1]):
+                j = indices[e]
+                if label[j] >= 0:
+                    continue
+                dot = 0.0
+                nm = 0.0
+                for d in range(dim):
+                    dot += normals[j, d] * mean[d]
+                    nm += mean[d] * mean[d]
+                if abs(dot) < cos_mean * np.sqrt(nm):
+                    continue
+                label[j] = n_lab
+                sgn = 1.0 if dot >= 0 else -1.0
+                for d in range(dim):
+                    mean[d] += sgn * normals[j, d]
+                queue[tail] = j
+                tail += 1
+        n_lab += 1
+    return label
+
+
 def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fault]:
     """Link thinned fault samples into separate faults.
 
-    Two thinned samples belong to the same fault when they are neighbours (26-connectivity in 3D, 8 in 2D) and the
-    angle between their fault normals is below ``max_angle``; faults are the connected components of that graph.
-    Faults with fewer than ``min_size`` samples are dropped.
+    Thinned samples are linked to their neighbours (26-connectivity in 3D, 8 in 2D) when the angle between their
+    fault normals is below ``max_angle``. Faults grow over these links from the sample of highest likelihood, breadth
+    first, accepting a sample only if its normal is also within 1.5 ``max_angle`` of the growing fault's mean normal:
+    this keeps two faults that cross or meet (linked through samples of intermediate orientation) apart, as fault
+    skins are kept apart in Hale (2013). Faults with fewer than ``min_size`` samples are dropped.
 
     Parameters
     ----------
@@ -656,7 +715,8 @@ def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fau
         Smallest fault kept, in samples. Default: 20 in 2D; in 3D, 100 or 1 % of the largest cube face, whichever is
         larger.
     max_angle : float, optional
-        Largest angle between the normals of linked neighbours, degrees.
+        Largest angle between the normals of linked neighbours, degrees. The default 20 lets neighbours differ by
+        one step of the default strike / dip scan.
 
     Returns
     -------
@@ -667,6 +727,11 @@ def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fau
     ------
     InputError
         If the shapes differ or an argument is out of range.
+
+    References
+    ----------
+    .. [1] D. Hale, Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1 (fault skins grown from seeds of
+       high likelihood).
     """
     fl, st, dp = _check_fault_arrays(thin, strike, dip)
     max_angle = check_positive(max_angle, "max_angle")
@@ -702,27 +767,25 @@ def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fau
         cols.append(dst[compatible])
     rows = np.concatenate(rows)
     cols = np.concatenate(cols)
-    graph = sparse.coo_matrix((np.ones(rows.size, dtype=np.int8), (rows, cols)), shape=(pts.shape[0],) * 2)
-    n_comp, comp = csgraph.connected_components(graph, directed=False)
-    sizes = np.bincount(comp, minlength=n_comp)
-    order = np.argsort(-sizes, kind="stable")
-    faults = []
-    vals = fl[mask]
-    svals = st[mask]
-    dvals = dp[mask]
-    for c in order:
-        if sizes[c] < min_size:
-            break
-        sel = np.nonzero(comp == c)[0]
-        faults.append(Fault(
-            id=len(faults) + 1,
-            points=pts[sel].astype(np.int64),
-            likelihood=vals[sel].astype(np.float32),
-            strike_deg=svals[sel].astype(np.float32),
-            dip_deg=dvals[sel].astype(np.float32),
-            normals=n[sel],
-        ))
-    return faults
+    n_pts = pts.shape[0]
+    graph = sparse.coo_matrix((np.ones(rows.size, dtype=np.int8), (rows, cols)), shape=(n_pts, n_pts)).tocsr()
+    graph = (graph + graph.T).tocsr()
+    vals, svals, dvals = fl[mask], st[mask], dp[mask]
+    order = np.argsort(-vals, kind="stable")
+    comp = _grow_faults(graph.indptr.astype(np.int64), graph.indices.astype(np.int64), n.astype(np.float64), order,
+                        float(np.cos(np.radians(1.5 * max_angle))))
+    sizes = np.bincount(comp)
+    keep = np.nonzero(sizes >= min_size)[0]
+    keep = keep[np.argsort(-sizes[keep], kind="stable")]
+    srt = np.argsort(comp, kind="stable")
+    bounds = np.searchsorted(comp[srt], np.arange(sizes.size + 1))
+    groups = [srt[bounds[c]:bounds[c + 1]] for c in keep]
+    vals, svals, dvals = fl[mask], st[mask], dp[mask]
+    return [
+        Fault(id=i + 1, points=pts[g].astype(np.int64), likelihood=vals[g].astype(np.float32),
+              strike_deg=svals[g].astype(np.float32), dip_deg=dvals[g].astype(np.float32), normals=n[g])
+        for i, g in enumerate(groups)
+    ]
 
 
 def fault_labels(faults, shape) -> np.ndarray:

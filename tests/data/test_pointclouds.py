@@ -193,7 +193,7 @@ def test_unsupported_extension_and_missing_file(tmp_path):
         read_points(tmp_path / "cloud.las")
     with pytest.raises(InputError, match="unsupported"):
         write_points(tmp_path / "cloud.pcd", _points(3, 3))
-    with pytest.raises(FileNotFoundError):
+    with pytest.raises(FileNotFoundError):  # DataNotFoundError is one
         read_points(tmp_path / "missing.ply")
     with pytest.raises(InputError, match="ndim"):
         read_points(tmp_path / "missing.ply", ndim=4)

@@ -6,7 +6,7 @@ from numpy.testing import assert_allclose
 
 from seismo3d.errors import DegenerateGeometryWarning, InputError, RegistrationError
 from seismo3d.geometry import (
-    apply_transform, estimate_normals, make_transform, rotation_about_axis, rotation_error_deg, rotation_matrix,
+    apply_transform, estimate_normals, make_transform, perturb, rotation_about_axis, rotation_error_deg, rotation_matrix,
     translation_error,
 )
 from seismo3d.registration import fast_icp, icp
@@ -37,7 +37,7 @@ def test_bunny_point_to_plane_from_15_degrees(bunny, seed):
     pair, normals = bunny
     rng = np.random.default_rng(seed)
     truth = pair.transform
-    init = _about_centroid(rotation_about_axis(rng.normal(size=3), 15.0), apply_transform(truth, pair.source)) @ truth
+    init = perturb(truth, 15.0, centre=apply_transform(truth, pair.source).mean(axis=0), rng=rng)
     assert rotation_error_deg(init, truth) == pytest.approx(15.0)
     res = icp(pair.source, pair.target, target_normals=normals, init=init)
     assert rotation_error_deg(res.transform, truth) < 0.2

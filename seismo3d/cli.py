@@ -1,0 +1,137 @@
+"""The ``seismo3d`` command: thin wrappers over the library's functions.
+
+Errors of seismo3d's own types are printed as one line (problem + fix) with exit code 2; anything else is a bug and
+keeps its traceback.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import pathlib
+from enum import Enum
+from typing import Optional
+
+import numpy as np
+import typer
+
+from .errors import InputError, Seismo3dError
+
+app = typer.Typer(help="seismo3d: fault and horizon interpretation of seismic cubes, and point-cloud / RGB-D "
+                       "registration, on one fused-ICP engine.", no_args_is_help=True, add_completion=False)
+
+
+@app.callback()
+def _main() -> None:
+    """seismo3d: fault and horizon interpretation of seismic cubes, and point-cloud / RGB-D registration."""
+
+
+class Method(str, Enum):
+    point_to_point = "point_to_point"
+    point_to_plane = "point_to_plane"
+    fused = "fused"
+
+
+class Model(str, Enum):
+    rigid = "rigid"
+    similarity = "similarity"
+    axis_scaled = "axis_scaled"
+    affine = "affine"
+
+
+def _friendly(fn):
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        try:
+            return fn(*args, **kwargs)
+        except Seismo3dError as exc:
+            typer.echo(f"error: {exc}", err=True)
+            raise typer.Exit(2) from None
+        except KeyboardInterrupt:
+            typer.echo("interrupted: finished outputs were kept, unfinished ones were not written", err=True)
+            raise typer.Exit(130) from None
+
+    return wrapper
+
+
+def _write_json(path: pathlib.Path, payload: dict) -> None:
+    from ._atomic import atomic_path
+
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(payload, indent=2) + "\n")
+
+
+def _read_transform(path: pathlib.Path, dim: int) -> np.ndarray:
+    from .geometry.transforms import as_transform
+
+    try:
+        payload = json.loads(pathlib.Path(path).read_text())
+    except FileNotFoundError as exc:
+        raise InputError(f"--init file {path} does not exist") from exc
+    except json.JSONDecodeError as exc:
+        raise InputError(f"--init file {path} is not JSON ({exc}); write {{\"transform\": [[...], ...]}}") from exc
+    matrix = payload.get("transform") if isinstance(payload, dict) else payload
+    return as_transform(matrix, f"the transform in {path}", dims=(dim,))
+
+
+@app.command()
+@_friendly
+def register(
+    source: pathlib.Path = typer.Argument(..., help="Source point cloud (.ply, .xyz/.txt/.csv, .npy): moved."),
+    target: pathlib.Path = typer.Argument(..., help="Target point cloud: fixed."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="Where to write the transform JSON."),
+    method: Method = typer.Option(Method.point_to_plane, help="Residual: point-to-point, point-to-plane or fused "
+                                                               "(features + point-to-plane, eq. 16)."),
+    model: Model = typer.Option(Model.rigid, help="Transform family."),
+    init: Optional[pathlib.Path] = typer.Option(None, help="JSON with an initial source-to-target transform."),
+    max_distance: Optional[list[float]] = typer.Option(
+        None, help="Maximum correspondence distance (repeat for a coarse-to-fine schedule); default: 10/3/1 % of "
+                   "the target's bounding-box diagonal."),
+    features: Optional[pathlib.Path] = typer.Option(
+        None, help="For --method fused: matched feature points, one row per match: source coordinates then target "
+                   "coordinates (.csv/.txt/.npy with 2d columns)."),
+    alpha: float = typer.Option(0.1, help="For --method fused: weight of the feature term in [0, 1]."),
+) -> None:
+    """Register SOURCE onto TARGET and write the (d+1)x(d+1) transform mapping source into target coordinates."""
+    from .data.pointclouds import read_points
+    from .geometry import estimate_normals
+    from .registration import fused_icp, icp
+
+    src = read_points(source)
+    dst = read_points(target)
+    if src.shape[1] != dst.shape[1]:
+        raise InputError(f"{source} is {src.shape[1]}D but {target} is {dst.shape[1]}D")
+    start = None if init is None else _read_transform(init, src.shape[1])
+    common = dict(model=model.value, init=start, max_distance=max_distance or None)
+    normals = None
+    if method is not Method.point_to_point:
+        normals = estimate_normals(dst, orient="none")
+    if method is Method.fused:
+        if features is None:
+            raise InputError("--method fused needs --features MATCHES (rows of source then target coordinates of "
+                             "matched features, e.g. from `seismo3d match` lifted to 3D)")
+        pairs = _read_matches(features, src.shape[1])
+        result = fused_icp(src, dst, target_normals=normals, source_features=pairs[:, : src.shape[1]],
+                           target_features=pairs[:, src.shape[1]:], alpha=alpha, **common)
+    else:
+        result = icp(src, dst, method=method.value, target_normals=normals, **common)
+    payload = result.to_dict()
+    payload.update(method=method.value, model=model.value, source=str(source), target=str(target))
+    _write_json(output, payload)
+    typer.echo(f"fitness {result.fitness:.3f}  inlier RMSE {result.inlier_rmse:.4g}  iterations {result.n_iterations}"
+               f"  converged {result.converged}" + ("  (DEGENERATE geometry)" if result.degenerate else ""))
+    typer.echo(np.array2string(result.transform, precision=6, suppress_small=True))
+
+
+def _read_matches(path: pathlib.Path, dim: int) -> np.ndarray:
+    if path.suffix == ".npy":
+        table = np.load(path, allow_pickle=False)
+    else:
+        table = np.loadtxt(path, delimiter="," if path.suffix == ".csv" else None, ndmin=2, comments="#")
+    if table.ndim != 2 or table.shape[1] != 2 * dim:
+        raise InputError(f"{path} must have {2 * dim} columns (source then target coordinates); got {table.shape}")
+    return table
+
+
+if __name__ == "__main__":  # pragma: no cover
+    app()

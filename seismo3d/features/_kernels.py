@@ -133,7 +133,9 @@ def direct_disc_histogram(bins, weights, radius2, pad, y, x, n_bins, out):
 
 @njit(cache=True, nogil=True, inline="always")
 def _angle(u, v):
-    """atan2(v, u) mapped to [0, 2 pi), by octant reduction and a polynomial for atan on [0, 1] (|error| < 3e-4 rad, 0.02 degrees).
+    """atan2(v, u) mapped to [0, 2 pi), by octant reduction and a polynomial for atan on [0, 1].
+
+    |error| < 3e-4 rad (0.02 degrees), far below a 22.5 degree orientation bin.
 
     The reduction makes the result exactly equivariant to quarter turns and mirror flips of (u, v) (up to the final
     rounding), which keeps descriptors of images rotated by multiples of 90 degrees identical.
@@ -155,7 +157,7 @@ def _angle(u, v):
     return r
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, fastmath=True)
 def orientation_votes(gx, gy, n_bins, pad, unit, bins, weights):
     """Soft-binned orientation votes of every pixel into the padded (H + 2 pad, W + 2 pad, 2) bins / weights.
 
@@ -223,3 +225,134 @@ def _finish(d, euclidean):
     if euclidean:
         d = np.sqrt(d)
     return d
+
+
+@njit(cache=True, nogil=True, fastmath=True)
+def orient_and_shift(rings, disc, peak_ratio, up, max_peaks, smooth, clip, out, src, shifts):
+    """Dominant orientations of each window and its ring histograms circularly shifted to start at each of them.
+
+    rings : (N, K, Q) float64 ring histograms (area-normalised); disc : (N, Q) float64 orientation histogram of the
+    whole window; smooth : (Q // 2 + 1,) Fourier weights of the smoothing (a Gaussian); up : fine-grid samples over
+    360 degrees. A peak is a local maximum of the smoothed histogram on the fine grid that reaches ``peak_ratio``
+    times the highest one, refined by a parabola (at most ``max_peaks`` per window, strongest first). For each peak s
+    (in bins) the rings are resampled at q + s through their Fourier series (an exact sub-bin circular shift), then
+    normalised: negative ripples set to 0, unit L2 norm, clipped at ``clip`` and renormalised (if clip > 0), L1
+    normalised and square-rooted (Hellinger map; unit L2 norm).
+    Writes out (M, K * Q) float32, src (M,) window index and shifts (M,) in bins; returns M.
+    """
+    n_win, n_rings, q = rings.shape
+    n_freq = q // 2 + 1
+    two_pi = 2.0 * np.pi
+    cos_q = np.empty((n_freq, q))
+    sin_q = np.empty((n_freq, q))
+    for m in range(n_freq):
+        for b in range(q):
+            cos_q[m, b] = np.cos(two_pi * m * b / q)
+            sin_q[m, b] = np.sin(two_pi * m * b / q)
+    cos_f = np.empty((up, n_freq))
+    sin_f = np.empty((up, n_freq))
+    for t in range(up):
+        for m in range(n_freq):
+            cos_f[t, m] = np.cos(two_pi * m * t / up)
+            sin_f[t, m] = np.sin(two_pi * m * t / up)
+    re = np.empty(n_freq)
+    im = np.empty(n_freq)
+    fine = np.empty(up)
+    pk_val = np.empty(max_peaks)
+    pk_pos = np.empty(max_peaks)
+    ring_re = np.empty((n_rings, n_freq))
+    ring_im = np.empty((n_rings, n_freq))
+    ring_sh_re = np.empty((n_rings, n_freq))
+    ring_sh_im = np.empty((n_rings, n_freq))
+    vec = np.empty(n_rings * q)
+    count = 0
+    for n in range(n_win):
+        for m in range(n_freq):
+            a = 0.0
+            b_ = 0.0
+            for b in range(q):
+                a += disc[n, b] * cos_q[m, b]
+                b_ -= disc[n, b] * sin_q[m, b]
+            w = smooth[m] if m == 0 or 2 * m == q else 2.0 * smooth[m]
+            re[m] = a * w
+            im[m] = b_ * w
+        fmax = -np.inf
+        for t in range(up):
+            v = 0.0
+            for m in range(n_freq):
+                v += re[m] * cos_f[t, m] - im[m] * sin_f[t, m]
+            fine[t] = v
+            if v > fmax:
+                fmax = v
+        if not fmax > 0.0:
+            continue
+        n_pk = 0
+        for t in range(up):
+            c = fine[t]
+            left = fine[t - 1] if t > 0 else fine[up - 1]
+            right = fine[t + 1] if t < up - 1 else fine[0]
+            if c > left and c >= right and c >= peak_ratio * fmax:
+                den = left - 2.0 * c + right
+                off = 0.5 * (left - right) / den if den < 0.0 else 0.0
+                pos = (t + off) * q / up
+                # keep the max_peaks strongest, sorted by decreasing height (insertion)
+                j = n_pk if n_pk < max_peaks else max_peaks - 1
+                if n_pk == max_peaks and c <= pk_val[j]:
+                    continue
+                while j > 0 and pk_val[j - 1] < c:
+                    pk_val[j] = pk_val[j - 1]
+                    pk_pos[j] = pk_pos[j - 1]
+                    j -= 1
+                pk_val[j] = c
+                pk_pos[j] = pos
+                if n_pk < max_peaks:
+                    n_pk += 1
+        for k in range(n_rings):
+            for m in range(n_freq):
+                a = 0.0
+                b_ = 0.0
+                for b in range(q):
+                    a += rings[n, k, b] * cos_q[m, b]
+                    b_ -= rings[n, k, b] * sin_q[m, b]
+                ring_re[k, m] = a
+                ring_im[k, m] = b_
+        for p in range(n_pk):
+            s = pk_pos[p]
+            for m in range(n_freq):  # shifted, inverse-DFT-weighted coefficients: w_m X_m exp(2 pi i m s / Q) / Q
+                c = np.cos(two_pi * m * s / q)
+                sn = np.sin(two_pi * m * s / q)
+                w = 1.0 / q if m == 0 or 2 * m == q else 2.0 / q
+                for k in range(n_rings):
+                    a = ring_re[k, m]
+                    b_ = ring_im[k, m]
+                    re_k = (a * c - b_ * sn) * w
+                    im_k = (a * sn + b_ * c) * w
+                    ring_sh_re[k, m] = re_k
+                    ring_sh_im[k, m] = im_k
+            ss = 0.0
+            for k in range(n_rings):
+                for b in range(q):
+                    v = 0.0
+                    for m in range(n_freq):
+                        v += ring_sh_re[k, m] * cos_q[m, b] - ring_sh_im[k, m] * sin_q[m, b]
+                    if v < 0.0:
+                        v = 0.0
+                    vec[k * q + b] = v
+                    ss += v * v
+            if ss <= 0.0:
+                continue
+            inv = 1.0 / np.sqrt(ss)
+            total = 0.0
+            ss = 0.0
+            for i in range(vec.size):
+                v = vec[i] * inv
+                if clip > 0.0 and v > clip:
+                    v = clip
+                vec[i] = v
+                total += v
+            for i in range(vec.size):
+                out[count, i] = np.sqrt(vec[i] / total)
+            src[count] = n
+            shifts[count] = s
+            count += 1
+    return count

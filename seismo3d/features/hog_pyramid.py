@@ -1,22 +1,23 @@
 """HOG-pyramid descriptor: oriented-gradient histograms over concentric circular rings, computed recursively.
 
-The descriptor of method.md section 2 (the paper's image matcher, refs [20, 24]):
+The image matcher of method.md section 2 (the paper's refs [20, 24]):
 
-1. gradients of a (pyramid level of the) image; each pixel votes its gradient magnitude into the Q orientation bins
-   (linear soft binning between the two nearest bins, weights in fixed point so that sums are exact integers);
+1. gradients of each pyramid level; each pixel votes its gradient magnitude into Q orientation bins (linear soft
+   binning between the two nearest bins; votes in fixed point so that window sums are exact integers);
 2. around a point, K concentric discs of radii ``r_1 < ... < r_K`` (pixels with ``dx^2 + dy^2 <= r^2``) and their
    differences, the rings; one Q-bin histogram per ring;
-3. as the window slides one pixel along a row only its boundary arcs change, so each disc histogram is updated in
-   O(r) (the column offsets entering and leaving the disc on each row are precomputed once); this gives dense
-   per-pixel ring histograms of a whole image (:func:`dense_ring_histograms`) and the histograms at keypoints by
-   sliding between the keypoints of each row (:func:`ring_histograms`);
-4. a ring is rotation invariant as a set of pixels, so rotating the image by an angle circularly shifts every
-   histogram by that angle: all rings are shifted by the dominant orientation (the peak of the disc's histogram,
-   located to a fraction of a bin), using an exact sub-bin circular shift of the Fourier series of the histograms;
-5. normalisation as in SIFT (unit length, clipping at 0.2, unit length) followed by the Hellinger (square root) map;
-6. an image pyramid (:func:`~seismo3d.features.keypoints.image_pyramid`): keypoints (Harris peaks) and descriptors
-   are computed on every level with the same ring radii in level pixels, so a coarser level describes a larger
-   region; matching across all levels gives tolerance to scale changes.
+3. as a window slides one pixel along a row only its boundary arcs change, so each disc histogram is updated in
+   O(r) (the column offsets entering and leaving the disc on each row are tabulated once,
+   :func:`disc_half_widths`): :func:`dense_ring_histograms` gives the ring histograms centred on every pixel of an
+   image in O(r) per pixel; at sparse keypoints (:func:`ring_histograms`) the window slides from one keypoint to the
+   next along a row when that is cheaper than a direct sum;
+4. a ring is rotation invariant as a set of pixels, so rotating the image circularly shifts every histogram: all
+   rings are shifted by the dominant orientation (a peak of the smoothed disc histogram, to a fraction of a bin, by
+   an exact sub-bin shift of their Fourier series); a window with several strong peaks gets one descriptor per peak;
+5. normalisation: rings divided by their area, unit L2 length, Hellinger (square root) map;
+6. an image pyramid (:func:`~seismo3d.features.keypoints.image_pyramid`, 4 levels per octave from 1.4x enlarged
+   down): Harris keypoints and descriptors on every level with the same ring radii in level pixels, so coarser
+   levels describe larger regions; nearest-neighbour matching over all levels gives tolerance to scale changes.
 
 References
 ----------
@@ -26,7 +27,8 @@ References
    Proc. SPIE 9971, 99712A (2016), doi:10.1117/12.2237260.
 .. [3] S. Miramontes-Jaramillo, V. Kober, V. H. Diaz-Ramirez, "Multiple objects tracking with HOGs matching in
    circular windows", Proc. SPIE 9217, 92171N (2014), doi:10.1117/12.2061660.
-.. [4] D. G. Lowe, "Distinctive image features from scale-invariant keypoints", IJCV 60 (2004), doi:10.1023/B:VISI.0000029664.99615.94.
+.. [4] D. G. Lowe, "Distinctive image features from scale-invariant keypoints", IJCV 60 (2004),
+   doi:10.1023/B:VISI.0000029664.99615.94.
 .. [5] R. Arandjelovic, A. Zisserman, "Three things everyone should know to improve object retrieval" (RootSIFT),
    CVPR 2012, doi:10.1109/CVPR.2012.6248018.
 """
@@ -37,9 +39,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import as_image, check_positive
+from .._validation import check_positive
 from ..errors import InputError
-from .keypoints import Features, harris_peaks, harris_response, image_pyramid, to_gray
+from .keypoints import Features, harris_peaks, harris_response, to_gray
 
 __all__ = [
     "HogPyramidParams",
@@ -63,31 +65,41 @@ class HogPyramidParams:
     Attributes
     ----------
     n_bins : int
-        Q, number of orientation bins over 360 degrees (gradient sign kept).
+        Q, number of orientation bins over 360 degrees (the gradient's sign is kept), 4..255.
     radii : tuple of float
         Outer radii in pixels (of each pyramid level) of the K concentric rings, increasing. The descriptor has
-        ``K * n_bins`` values.
+        ``K * n_bins`` values (64 by default).
     scale_factor : float
-        Downsampling factor between pyramid levels (> 1).
+        Downsampling factor between pyramid levels (> 1); 2**(1/4) puts four levels in an octave.
     n_levels : int
-        Largest number of pyramid levels.
+        Largest number of pyramid levels (fewer when a level would be smaller than the outer disc).
+    first_level : int
+        Index of the finest level: -2 starts at ``scale_factor**2`` = 1.41x the input size, which adds small-scale
+        keypoints (SIFT starts at 2x).
     gradient_sigma : float
-        Gaussian pre-smoothing of each level before the derivatives, in pixels (0 for none).
+        Gaussian pre-smoothing of each level before the derivatives, in level pixels (0 for none).
     harris_sigma : float
-        Integration scale of the Harris structure tensor, in pixels.
+        Integration scale of the Harris structure tensor, in level pixels.
     harris_k : float
         Harris sensitivity k.
     nms_size : int
-        Side of the non-maximum-suppression window, in pixels of each level.
+        Side of the non-maximum-suppression window, in level pixels.
+    scale_nms : bool
+        Also suppress a peak when a neighbouring level has a stronger one at the same place. Fewer, faster
+        keypoints, but Harris is a poor scale selector: fewer correct matches under scale change (off by default).
     threshold : float
         Keypoints must have a Harris response above ``threshold`` times the strongest response of the image.
     max_keypoints : int
-        Keep at most this many keypoints (strongest responses over all levels).
+        Keep at most this many keypoints, the strongest responses over all levels (before the extra descriptors of
+        windows with several dominant orientations).
     clip : float
-        SIFT-style clipping of the unit-length descriptor (0 disables).
+        SIFT-style clipping of the unit-length descriptor (0 disables; with the Hellinger map it did not help).
+    peak_ratio : float
+        A keypoint gets one descriptor per orientation peak reaching this fraction of its highest peak (at most 4).
     max_gap : int or None
         Along a row, slide the window recursively to the next keypoint when it is at most this many columns away,
-        otherwise start afresh with a direct sum (cheaper for distant keypoints). None: the outer radius.
+        otherwise start afresh with a direct sum (cheaper for distant keypoints). None: the break-even gap (the
+        outer disc's area over the pixels entering and leaving all discs per step, 4 columns for the default).
     """
 
     n_bins: int = 16
@@ -117,10 +129,13 @@ class HogPyramidParams:
         for name in ("n_levels", "nms_size", "max_keypoints"):
             if int(getattr(self, name)) < 1:
                 raise InputError(f"{name} must be >= 1; got {getattr(self, name)!r}")
-        for name in ("harris_sigma",):
-            check_positive(getattr(self, name), name)
+        if int(self.n_bins) > 255:
+            raise InputError(f"n_bins must be <= 255; got {self.n_bins!r}")
+        check_positive(self.harris_sigma, "harris_sigma")
         for name in ("gradient_sigma", "threshold", "clip"):
             check_positive(getattr(self, name), name, allow_zero=True)
+        if not 0 < self.peak_ratio <= 1:
+            raise InputError(f"peak_ratio must be in (0, 1]; got {self.peak_ratio!r}")
 
     @property
     def n_dims(self) -> int:
@@ -177,7 +192,8 @@ def orientation_votes(gx, gy, *, n_bins: int = 16, pad: int = 0):
     n_bins : int
         Q, orientation bins over [0, 360) degrees (4 <= Q <= 255); bin b is centred on ``b * 360 / Q`` degrees.
     pad : int
-        Zero margin added on every side (pixels outside the image vote nothing).
+        Zero margin added on every side (pixels outside the image vote nothing); leave it 0 for
+        :func:`dense_ring_histograms` and :func:`ring_histograms`, which add their own.
 
     Returns
     -------
@@ -229,6 +245,20 @@ def _check_votes(bins, weights, n_bins):
     return bins, weights
 
 
+def _break_even_gap(half_widths):
+    """Columns over which sliding costs about as much as a fresh direct sum of the outer disc."""
+    direct = np.sum(2 * half_widths[-1][half_widths[-1] >= 0] + 1)
+    per_step = 2 * np.count_nonzero(half_widths >= 0)
+    return max(1, int(direct // per_step))
+
+
+def _check_radii(radii):
+    r = np.asarray(radii, dtype=np.float64)
+    if r.ndim != 1 or r.size < 1 or not np.all(np.isfinite(r)) or np.any(r <= 0) or np.any(np.diff(r) <= 0):
+        raise InputError(f"radii must be positive and strictly increasing, e.g. (4, 8, 12, 16); got {radii!r}")
+    return r
+
+
 def _hist_dtype(weights):
     return np.float64 if weights.dtype.kind == "f" else np.int64
 
@@ -271,9 +301,7 @@ def dense_ring_histograms(bins, weights, radii, *, n_bins: int, rows=None) -> np
     from . import _kernels
 
     b, w = _check_votes(bins, weights, int(n_bins))
-    radii = np.asarray(radii, dtype=np.float64)
-    if radii.ndim != 1 or radii.size < 1 or np.any(radii <= 0) or np.any(np.diff(radii) <= 0):
-        raise InputError(f"radii must be positive and strictly increasing; got {radii!r}")
+    radii = _check_radii(radii)
     h, wd = b.shape[:2]
     rows = np.arange(h, dtype=np.int64) if rows is None else np.asarray(rows, dtype=np.int64).ravel()
     if rows.size and (rows.min() < 0 or rows.max() >= h):
@@ -288,14 +316,13 @@ def dense_ring_histograms(bins, weights, radii, *, n_bins: int, rows=None) -> np
     return out
 
 
-def ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int, max_gap: int | None = None,
-                    padded: bool = False) -> np.ndarray:
+def ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int, max_gap: int | None = None) -> np.ndarray:
     """Ring histograms at given pixels, sliding recursively between the pixels of each row.
 
     Parameters
     ----------
     bins, weights : (H, W[, P]) array_like
-        As in :func:`dense_ring_histograms` (or already zero-padded by ``floor(max(radii))`` when ``padded``).
+        As in :func:`dense_ring_histograms`.
     radii : (K,) array_like of float
         Increasing disc radii in pixels.
     rows, cols : (N,) array_like of int
@@ -303,10 +330,8 @@ def ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int, max_gap: i
     n_bins : int
         Q.
     max_gap : int, optional
-        Slide to the next point of a row when it is at most this many columns away, else sum afresh
-        (default: the outer radius, where both cost about the same).
-    padded : bool
-        True when ``bins`` / ``weights`` already carry the zero margin (as returned by :func:`orientation_votes`).
+        Slide to the next point of a row when it is at most this many columns away, else sum afresh (default: the
+        break-even gap where both cost the same, 4 columns for the default rings).
 
     Returns
     -------
@@ -316,10 +341,9 @@ def ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int, max_gap: i
     from . import _kernels
 
     b, w = _check_votes(bins, weights, int(n_bins))
-    radii = np.asarray(radii, dtype=np.float64)
+    radii = _check_radii(radii)
     pad = int(np.floor(radii.max()))
-    if not padded:
-        b, w = _pad_votes(b, w, pad)
+    b, w = _pad_votes(b, w, pad)
     h, wd = b.shape[0] - 2 * pad, b.shape[1] - 2 * pad
     rows = np.asarray(rows, dtype=np.int64).ravel()
     cols = np.asarray(cols, dtype=np.int64).ravel()
@@ -329,9 +353,10 @@ def ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int, max_gap: i
         raise InputError(f"points must lie inside the {h}x{wd} image")
     order = np.lexsort((cols, rows))
     out = np.zeros((rows.size, radii.size, int(n_bins)), dtype=_hist_dtype(w))
-    gap = pad if max_gap is None else int(max_gap)
+    hw = disc_half_widths(radii, pad)
+    gap = _break_even_gap(hw) if max_gap is None else int(max_gap)
     if rows.size:
-        _kernels.point_disc_histograms(b, w, disc_half_widths(radii, pad), pad, rows[order], cols[order], gap, out)
+        _kernels.point_disc_histograms(b, w, hw, pad, rows[order], cols[order], gap, out)
     out[:, 1:] -= out[:, :-1].copy()
     result = np.empty_like(out)
     result[order] = out
@@ -347,7 +372,7 @@ def direct_ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int) -> 
     from . import _kernels
 
     b, w = _check_votes(bins, weights, int(n_bins))
-    radii = np.asarray(radii, dtype=np.float64)
+    radii = _check_radii(radii)
     pad = int(np.floor(radii.max()))
     bp, wp = _pad_votes(b, w, pad)
     rows = np.asarray(rows, dtype=np.int64).ravel()
@@ -362,34 +387,44 @@ def direct_ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int) -> 
     return out
 
 
-def ring_descriptors(hist, radii, *, clip: float = 0.2, peak_ratio: float = 0.8):
-    """Rotation-invariant descriptors from ring histograms: shift by the dominant orientation, then normalise.
+def ring_descriptors(hist, radii, *, clip: float = 0.0, peak_ratio: float = 0.9, max_orientations: int = 4):
+    """Rotation-invariant descriptors from ring histograms: shift by each dominant orientation, then normalise.
 
     Parameters
     ----------
     hist : (N, K, Q) array_like
-        Ring histograms (e.g. from :func:`ring_histograms`).
+        Ring histograms of N windows (e.g. from :func:`ring_histograms`).
     radii : (K,) array_like of float
         The rings' outer radii in pixels (for the area normalisation).
     clip : float
-        Clip the unit-length descriptor at this value and renormalise (0 disables), as in SIFT [4].
+        Clip the unit-length descriptor at this value and renormalise, as in SIFT [4] (0 disables).
+    peak_ratio : float
+        A window gets one descriptor per orientation-histogram peak reaching this fraction of its highest peak
+        (SIFT [4] uses 0.8); 1 keeps only the highest.
+    max_orientations : int
+        At most this many descriptors per window (the highest peaks).
 
     Returns
     -------
-    descriptors : (N, K * Q) float32 ndarray
-        Ring after ring, each ring's Q bins starting at the dominant orientation; unit L2 norm after the Hellinger map
-        (square root of the L1-normalised vector) [5]. All-zero rows for windows without gradient.
-    orientations : (N,) float64 ndarray
-        Dominant orientation in degrees in [0, 360).
+    descriptors : (M, K * Q) float32 ndarray
+        Ring after ring (innermost first), each ring's Q bins starting at the dominant orientation; unit L2 norm
+        after the Hellinger map (square root of the L1-normalised vector) [5]. Windows without gradient give none.
+    orientations : (M,) float64 ndarray
+        Dominant orientation of each descriptor in degrees in [0, 360).
+    index : (M,) int64 ndarray
+        The window (row of ``hist``) each descriptor comes from, ascending.
 
     Notes
     -----
     Each ring is divided by its area, so that all rings weigh alike per pixel. The orientation histogram is the
-    whole disc's histogram smoothed by a Gaussian of one bin; its peak is found on an 8x finer grid and refined by a
-    parabola. Rotating an image by ``phi`` moves every gradient orientation by ``phi``: the histograms shift by
-    ``phi * Q / 360`` bins and so does the peak, so subtracting it makes the descriptor invariant (exactly for
-    multiples of ``360 / Q`` degrees, up to gradient discretisation otherwise). The fractional shift multiplies the
-    m-th Fourier coefficient of every ring histogram by ``exp(2 pi i m s / Q)``.
+    whole disc's histogram smoothed by a Gaussian of one bin; its peaks are found on a 4x finer grid (its Fourier
+    series) and refined by a parabola. Rotating an image by ``phi`` moves every gradient orientation by ``phi``: the
+    histograms shift by ``phi * Q / 360`` bins and so do the peaks, so resampling the rings from the peak on makes
+    the descriptor invariant (exactly for multiples of ``360 / Q`` degrees, up to gradient discretisation
+    otherwise). The fractional shift multiplies the m-th Fourier coefficient of every ring histogram by
+    ``exp(2 pi i m s / Q)``; negative ripples of the resampled histograms are set to zero.
+    Seismic sections have nearly as much gradient pointing up as down; a second descriptor at the second peak keeps
+    such windows matchable when the two peaks swap.
     """
     h = np.asarray(hist, dtype=np.float64)
     if h.ndim != 3:
@@ -400,39 +435,25 @@ def ring_descriptors(hist, radii, *, clip: float = 0.2, peak_ratio: float = 0.8)
         raise InputError(f"radii must have {k} entries, one per ring; got {radii.shape}")
     if n == 0:
         return np.zeros((0, k * q), np.float32), np.zeros(0), np.zeros(0, np.int64)
+    from . import _kernels
+
     disc_area = np.pi * radii ** 2
     ring_area = np.diff(disc_area, prepend=0.0)
-    rings = h / ring_area[None, :, None]
-    spectrum = np.fft.rfft(rings, axis=2)
-    m = np.arange(spectrum.shape[2])
-    disc_spectrum = np.einsum("nkm,k->nm", spectrum, ring_area)
-    # orientation histogram of the whole disc smoothed by a Gaussian (sigma = 1 bin), on an 8x finer grid
-    up = 8 * q
-    smooth = disc_spectrum * np.exp(-0.5 * (2 * np.pi * m / q) ** 2)[None]
-    fine = np.fft.irfft(smooth, n=up, axis=1)
-    left, right = np.roll(fine, 1, axis=1), np.roll(fine, -1, axis=1)
-    peak = (fine > left) & (fine >= right) & (fine >= peak_ratio * fine.max(axis=1, keepdims=True))
-    peak &= fine > 0
-    index, pk = np.nonzero(peak)
-    if index.size == 0:
-        return np.zeros((0, k * q), np.float32), np.zeros(0), np.zeros(0, np.int64)
-    lv, cv, rv = left[index, pk], fine[index, pk], right[index, pk]
-    den = lv - 2 * cv + rv
-    offset = np.where(den < 0, 0.5 * (lv - rv) / np.where(den < 0, den, -1.0), 0.0)
-    shift = (pk + offset) * (q / up)  # dominant orientation, in bins
-    spectrum = spectrum[index] * np.exp(2j * np.pi * m[None, None, :] * shift[:, None, None] / q)
-    n = index.size
-    d = np.maximum(np.fft.irfft(spectrum, n=q, axis=2), 0.0).reshape(n, k * q)
-    norm = np.linalg.norm(d, axis=1, keepdims=True)
-    d = np.divide(d, norm, out=np.zeros_like(d), where=norm > 0)
-    if clip > 0:
-        d = np.minimum(d, clip)
-        norm = np.linalg.norm(d, axis=1, keepdims=True)
-        d = np.divide(d, norm, out=np.zeros_like(d), where=norm > 0)
-    total = d.sum(axis=1, keepdims=True)
-    d = np.sqrt(np.divide(d, total, out=np.zeros_like(d), where=total > 0))
+    rings = np.ascontiguousarray(h / ring_area[None, :, None])
+    disc = np.ascontiguousarray(h.sum(axis=1))
+    # smoothing of the orientation histogram by a Gaussian of one bin, as Fourier weights
+    smooth = np.exp(-0.5 * (2 * np.pi * np.arange(q // 2 + 1) / q) ** 2)
+    max_peaks = int(max_orientations)
+    if max_peaks < 1:
+        raise InputError(f"max_orientations must be >= 1; got {max_orientations!r}")
+    desc = np.empty((n * max_peaks, k * q), np.float32)
+    index = np.empty(n * max_peaks, np.int64)
+    shift = np.empty(n * max_peaks)
+    m = _kernels.orient_and_shift(rings, disc, float(peak_ratio), 4 * q, max_peaks, smooth, float(clip), desc, index,
+                                  shift)
+    desc, index, shift = desc[:m], index[:m], shift[:m]
     orientations = np.mod(shift * (360.0 / q), 360.0)
-    return d.astype(np.float32), orientations, index.astype(np.int64)
+    return desc, orientations, index
 
 
 def _level_gradients(level, sigma):
@@ -440,12 +461,64 @@ def _level_gradients(level, sigma):
     across by [1, 2, 1] / 4)."""
     import cv2
 
-    level = level.astype(np.float32)
     if sigma > 0:
         level = cv2.GaussianBlur(level, (0, 0), sigma)
     gx = cv2.Sobel(level, cv2.CV_32F, 1, 0, ksize=3, scale=0.125)
     gy = cv2.Sobel(level, cv2.CV_32F, 0, 1, ksize=3, scale=0.125)
     return gx, gy
+
+
+def _detect_level(level, mask, p: HogPyramidParams):
+    """Gradients, Harris response and its peaks on one pyramid level."""
+    import cv2
+
+    h, w = level.shape
+    pad = p.pad
+    gx, gy = _level_gradients(level, p.gradient_sigma)
+    resp = harris_response(gx, gy, sigma=p.harris_sigma, k=p.harris_k)
+    level_mask = None
+    if mask is not None:  # the whole outer disc must lie inside the mask
+        m = cv2.resize(mask, (w, h), interpolation=cv2.INTER_NEAREST)
+        level_mask = cv2.erode(m, np.ones((2 * pad + 3, 2 * pad + 3), np.uint8), borderValue=0) > 0
+    rows, cols, xy, values = harris_peaks(resp, nms_size=p.nms_size, threshold=0.0, border=pad + 1, mask=level_mask)
+    local_max = cv2.dilate(resp, np.ones((3, 3), np.uint8)) if p.scale_nms else None
+    return {"gx": gx, "gy": gy, "rows": rows, "cols": cols, "xy": xy, "values": values, "local_max": local_max}
+
+
+def _scale_nms(found):
+    """Keep a peak only if no neighbouring level has a larger response within one pixel of the same place."""
+    keeps = []
+    for i, f in enumerate(found):
+        keep = np.ones(f["rows"].size, bool)
+        h, w = f["gx"].shape
+        for j in (i - 1, i + 1):
+            if 0 <= j < len(found):
+                hj, wj = found[j]["gx"].shape
+                r = np.clip(np.rint((f["rows"] + 0.5) * hj / h - 0.5).astype(np.int64), 0, hj - 1)
+                c = np.clip(np.rint((f["cols"] + 0.5) * wj / w - 0.5).astype(np.int64), 0, wj - 1)
+                keep &= f["values"] >= found[j]["local_max"][r, c]
+        keeps.append(keep)
+    for f, keep in zip(found, keeps):
+        for key in ("rows", "cols", "xy", "values"):
+            f[key] = f[key][keep]
+
+
+def _describe_level(f, cut, radii, half_widths, p: HogPyramidParams):
+    """Ring histograms (recursive sliding along rows) and rotation-invariant descriptors of one level's peaks."""
+    from . import _kernels
+
+    keep = f["values"] >= cut
+    rows, cols, xy, values = f["rows"][keep], f["cols"][keep], f["xy"][keep], f["values"][keep]
+    if rows.size == 0:
+        return None
+    pad = p.pad
+    bins, weights = orientation_votes(f["gx"], f["gy"], n_bins=p.n_bins, pad=pad)
+    hist = np.zeros((rows.size, radii.size, p.n_bins), np.int64)
+    gap = _break_even_gap(half_widths) if p.max_gap is None else int(p.max_gap)
+    _kernels.point_disc_histograms(bins, weights, half_widths, pad, rows, cols, gap, hist)  # peaks sorted by row
+    hist[:, 1:] -= hist[:, :-1].copy()  # nested discs -> rings
+    desc, ori, src = ring_descriptors(hist, radii, clip=p.clip, peak_ratio=p.peak_ratio)
+    return xy[src], values[src], desc, ori
 
 
 def hog_pyramid_features(image, *, params: HogPyramidParams | None = None, mask=None) -> Features:
@@ -464,8 +537,9 @@ def hog_pyramid_features(image, *, params: HogPyramidParams | None = None, mask=
     Returns
     -------
     features : Features
-        ``method='hog'``; float32 descriptors of ``len(params.radii) * params.n_bins`` values. Empty (N = 0) for an
-        image without corners (constant, or smaller than a descriptor window).
+        ``method='hog'``; float32 descriptors of ``len(params.radii) * params.n_bins`` values, one per keypoint and
+        dominant orientation. Empty (N = 0) for an image without corners (constant, or smaller than a descriptor
+        window).
 
     Raises
     ------
@@ -473,78 +547,56 @@ def hog_pyramid_features(image, *, params: HogPyramidParams | None = None, mask=
         If the image is empty, smaller than 2 x 2, has NaN or inf values, or has 4 channels, or the mask's shape
         differs from the image's.
 
+    Notes
+    -----
+    Per pyramid level (float32): Gaussian smoothing, Sobel derivatives, Harris response, peaks in ``nms_size``
+    windows with sub-pixel refinement; the ``max_keypoints`` strongest peaks over all levels are described, each at
+    its own level (a corner that persists over several levels is described at each of them, which is what makes
+    matches tolerant to scale changes between levels).
+
     References
     ----------
     See the module docstring: [1] (Tables 2-4), [2], [3] (ring histograms in sliding circular windows), [4], [5].
     """
-    import cv2
-
-    from . import _kernels
+    from .keypoints import _resize_levels
 
     p = HogPyramidParams() if params is None else params
     img = to_gray(image)
     h0, w0 = img.shape
+    mask_u8 = None
     if mask is not None:
         mask = np.asarray(mask)
         if mask.shape != img.shape:
             raise InputError(f"mask must have the image's shape {img.shape}; got {mask.shape}")
-        mask = mask.astype(bool)
+        mask_u8 = mask.astype(bool).astype(np.uint8)
     radii = np.asarray(p.radii, dtype=np.float64)
-    pad = p.pad
-    half_widths = disc_half_widths(radii, pad)
+    half_widths = disc_half_widths(radii, p.pad)
     lo, hi = float(img.min()), float(img.max())
     if not hi > lo:
         return Features.empty("hog", p.n_dims)
-    img = (img - lo) / (hi - lo)
-    levels = image_pyramid(img, scale_factor=p.scale_factor, n_levels=p.n_levels, min_size=2 * pad + 3,
-                           first_level=p.first_level)
-    found = []
-    for lev, level in enumerate(levels):
-        h, w = level.shape
-        gx, gy = _level_gradients(level, p.gradient_sigma)
-        resp = harris_response(gx, gy, sigma=p.harris_sigma, k=p.harris_k)
-        level_mask = None
-        if mask is not None:
-            m = cv2.resize(mask.astype(np.uint8), (w, h), interpolation=cv2.INTER_NEAREST)
-            level_mask = cv2.erode(m, np.ones((2 * pad + 3, 2 * pad + 3), np.uint8), borderValue=0) > 0
-        rows, cols, xy, values = harris_peaks(resp, nms_size=p.nms_size, threshold=0.0, border=pad + 1, mask=level_mask)
-        found.append([lev, gx, gy, rows, cols, xy, values, cv2.dilate(resp, np.ones((3, 3), np.uint8))])
+    img = ((img - lo) / (hi - lo)).astype(np.float32)
+    levels = _resize_levels(img, p.scale_factor, p.n_levels, 2 * p.pad + 3, p.first_level)
+    found = [_detect_level(level, mask_u8, p) for level in levels]
     if p.scale_nms:
-        for i, f in enumerate(found):
-            keep = np.ones(f[3].size, bool)
-            h, w = f[1].shape
-            for j in (i - 1, i + 1):
-                if 0 <= j < len(found):
-                    hj, wj = found[j][1].shape
-                    r = np.clip(np.rint((f[3] + 0.5) * hj / h - 0.5).astype(int), 0, hj - 1)
-                    c = np.clip(np.rint((f[4] + 0.5) * wj / w - 0.5).astype(int), 0, wj - 1)
-                    keep &= f[6] >= found[j][7][r, c]
-            f[3], f[4], f[5], f[6] = f[3][keep], f[4][keep], f[5][keep], f[6][keep]
-    found = [tuple(f[:7]) for f in found]
-    all_values = np.concatenate([f[-1] for f in found])
+        _scale_nms(found)
+    all_values = np.concatenate([f["values"] for f in found] + [np.zeros(0)])
     if all_values.size == 0:
         return Features.empty("hog", p.n_dims)
     cut = p.threshold * all_values.max()
     if all_values.size > p.max_keypoints:
-        cut = max(cut, np.partition(all_values, all_values.size - p.max_keypoints)[all_values.size - p.max_keypoints])
+        kth = all_values.size - p.max_keypoints
+        cut = max(cut, np.partition(all_values, kth)[kth])
+    described = [_describe_level(f, cut, radii, half_widths, p) for f in found]
     out_xy, out_desc, out_scale, out_ori, out_resp = [], [], [], [], []
-    for lev, gx, gy, rows, cols, xy, values in found:
-        keep = values >= cut
-        if not np.any(keep):
+    for f, d in zip(found, described):
+        if d is None:
             continue
-        rows, cols, xy, values = rows[keep], cols[keep], xy[keep], values[keep]
-        bins, weights = orientation_votes(gx, gy, n_bins=p.n_bins, pad=pad)
-        hist = np.zeros((rows.size, radii.size, p.n_bins), np.int64)
-        gap = pad if p.max_gap is None else int(p.max_gap)
-        _kernels.point_disc_histograms(bins, weights, half_widths, pad, rows, cols, gap, hist)  # rows sorted
-        hist[:, 1:] -= hist[:, :-1].copy()
-        desc, ori, src = ring_descriptors(hist, radii, clip=p.clip, peak_ratio=p.peak_ratio)
-        xy, values, rows = xy[src], values[src], rows[src]
-        h, w = gx.shape
+        xy, values, desc, ori = d
+        h, w = f["gx"].shape
         sx, sy = w0 / w, h0 / h
         out_xy.append(np.column_stack([(xy[:, 0] + 0.5) * sx - 0.5, (xy[:, 1] + 0.5) * sy - 0.5]))
         out_desc.append(desc)
-        out_scale.append(np.full(rows.size, 2.0 * radii[-1] * 0.5 * (sx + sy)))
+        out_scale.append(np.full(values.size, 2.0 * radii[-1] * 0.5 * (sx + sy)))
         out_ori.append(ori)
         out_resp.append(values)
     if not out_xy:

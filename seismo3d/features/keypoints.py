@@ -91,9 +91,9 @@ def image_pyramid(image, *, scale_factor: float = 2 ** 0.25, n_levels: int = 9, 
                   first_level: int = 0) -> list:
     """Downsample a grey image into a pyramid of levels, finest first.
 
-    Level ``l`` has size ``round(H / scale_factor**l) x round(W / scale_factor**l)`` and is resampled from the input
-    by pixel-area averaging (``cv2.INTER_AREA``, an anti-aliasing box filter), not from the previous level, so that
-    blur does not accumulate.
+    Level ``l`` (from ``first_level`` on) has size ``round(H / scale_factor**l) x round(W / scale_factor**l)`` and is
+    resampled from the input, not from the previous level, so that blur does not accumulate: by pixel-area averaging
+    (``cv2.INTER_AREA``, an anti-aliasing box filter) when shrinking, bilinearly when enlarging (l < 0).
 
     Parameters
     ----------
@@ -106,28 +106,35 @@ def image_pyramid(image, *, scale_factor: float = 2 ** 0.25, n_levels: int = 9, 
         Largest number of levels (>= 1); fewer are returned when a level would be smaller than ``min_size``.
     min_size : int
         Smallest allowed side of a level, in pixels.
+    first_level : int
+        Index of the first level; negative values start with enlarged levels (``first_level = -4`` with the default
+        factor doubles the image, as SIFT's first octave does).
 
     Returns
     -------
     levels : list of (H_l, W_l) float64 ndarray
-        ``levels[0]`` is the input itself.
+        Finest first; level 0 is the input itself.
 
     Raises
     ------
     InputError
         If the image is not 2D, is empty, contains NaN, or the parameters are out of range.
     """
-    import cv2
-
     img = as_image(image)
     if not scale_factor > 1.0:
         raise InputError(f"scale_factor must be > 1 (the downsampling between levels); got {scale_factor!r}")
     if int(n_levels) < 1:
         raise InputError(f"n_levels must be >= 1; got {n_levels!r}")
     check_positive(min_size, "min_size")
+    return _resize_levels(img, float(scale_factor), int(n_levels), int(min_size), int(first_level))
+
+
+def _resize_levels(img, scale_factor, n_levels, min_size, first_level):
+    import cv2
+
     h0, w0 = img.shape
     levels = []
-    for lev in range(int(first_level), int(first_level) + int(n_levels)):
+    for lev in range(first_level, first_level + n_levels):
         s = scale_factor ** lev
         h, w = int(round(h0 / s)), int(round(w0 / s))
         if min(h, w) < min_size:

@@ -7,7 +7,6 @@
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -96,7 +95,8 @@ def detect_and_describe(image, *, method: str = "hog", mask=None, max_keypoints:
     mask : (H, W) array_like of bool, optional
         Where keypoints may be detected.
     max_keypoints : int, optional
-        Keep at most this many keypoints (default: the method's own default; 4000 for ``'hog'``).
+        Keep at most this many keypoints (default: the method's own; 6000 for ``'hog'``, before the extra
+        descriptors of keypoints with two dominant orientations).
     params : HogPyramidParams, optional
         Parameters of ``'hog'`` (ignored by the other methods).
 

@@ -66,7 +66,7 @@ def fit_homography(xy1, xy2, *, threshold: float = 3.0, estimator: str = "usac",
     """
     import cv2
 
-    src, dst = as_pair(xy1, xy2, dims=(2,), names=("xy1", "xy2"))
+    src, dst = as_pair(xy1, xy2, dims=(2,), min_points=0, names=("xy1", "xy2"))
     check_positive(threshold, "threshold")
     check_choice(estimator, "estimator", _ESTIMATORS)
     if src.shape[0] < 4:
@@ -110,7 +110,7 @@ def fit_similarity_2d(xy1, xy2, *, threshold: float = 3.0, confidence: float = 0
     """
     import cv2
 
-    src, dst = as_pair(xy1, xy2, dims=(2,), names=("xy1", "xy2"))
+    src, dst = as_pair(xy1, xy2, dims=(2,), min_points=0, names=("xy1", "xy2"))
     check_positive(threshold, "threshold")
     if src.shape[0] < 2:
         raise RegistrationError(f"a similarity needs at least 2 matches; got {src.shape[0]}")

@@ -15,7 +15,7 @@ from typing import Optional
 import numpy as np
 import typer
 
-from .errors import InputError, Seismo3dError
+from .errors import InputError, SegyGeometryError, Seismo3dError
 
 app = typer.Typer(help="seismo3d: fault and horizon interpretation of seismic cubes, and point-cloud / RGB-D "
                        "registration, on one fused-ICP engine.", no_args_is_help=True, add_completion=False)
@@ -121,6 +121,120 @@ def register(
     typer.echo(f"fitness {result.fitness:.3f}  inlier RMSE {result.inlier_rmse:.4g}  iterations {result.n_iterations}"
                f"  converged {result.converged}" + ("  (DEGENERATE geometry)" if result.degenerate else ""))
     typer.echo(np.array2string(result.transform, precision=6, suppress_small=True))
+
+
+class SampleUnit(str, Enum):
+    ms = "ms"
+    m = "m"
+    ft = "ft"
+
+
+@app.command()
+@_friendly
+def faults(
+    input: Optional[pathlib.Path] = typer.Argument(
+        None, help="SEG-Y cube or 2D line, raw .f32be section or .npy array; omit with --demo.", show_default=False),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing); not the "
+                                                                      "input's own folder."),
+    demo: bool = typer.Option(False, "--demo", help="Run on a generated 128^3 cube with 3 faults (no input file)."),
+    seed: int = typer.Option(0, help="Seed of the --demo cube."),
+    iline: int = typer.Option(189, help="Trace header byte of the inline number (SEG-Y)."),
+    xline: int = typer.Option(193, help="Trace header byte of the crossline number (SEG-Y)."),
+    ignore_geometry: bool = typer.Option(False, "--ignore-geometry", help="Read the SEG-Y as a trace list (unsorted "
+                                                                          "file, arbitrary line): trace a 2D section."),
+    sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
+                                                                "headers (ms unless they speak of depth)."),
+    n_samples: Optional[int] = typer.Option(None, help="Samples per trace of a raw .f32be section of unknown shape."),
+) -> None:
+    """Trace the faults of INPUT and write fault likelihood, strike and dip (SEG-Y for SEG-Y input), fault surfaces
+    (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT."""
+    import csv
+    import warnings
+
+    from .seismic.job import run_faults_job
+
+    def one_line(message, category, filename, lineno, file=None, line=None):
+        typer.echo(f"warning: {message}", err=True)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("default")
+        warnings.showwarning = one_line
+        try:
+            written = run_faults_job(input, output, demo=demo, seed=seed, iline=iline, xline=xline,
+                                     ignore_geometry=ignore_geometry,
+                                     sample_unit=None if sample_unit is None else sample_unit.value,
+                                     n_samples=n_samples, progress=True)
+        except SegyGeometryError as exc:
+            raise SegyGeometryError(f"{exc} On the command line: --ignore-geometry, or --iline BYTE --xline "
+                                    "BYTE.") from None
+    with open(written["summary"], newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    source = "the demo cube" if demo else input.name
+    typer.echo(f"{len(rows)} faults in {source} -> {output}")
+    if rows:
+        unit = next((k[len("median_throw_"):] for k in rows[0] if k.startswith("median_throw_")
+                     and k != "median_throw_samples"), None)
+        for r in rows[:5]:
+            throw = "not measured"
+            if r["median_throw_samples"]:
+                throw = f"{float(r['median_throw_samples']):.1f} samples"
+                if unit:
+                    throw += f" ({float(r['median_throw_' + unit]):.1f} {unit})"
+            typer.echo(f"  fault {r['id']:>3}: {r['n_points']:>6} samples, strike {r['mean_strike_deg']:>5}, "
+                       f"dip {r['mean_dip_deg']:>4}, median throw {throw}")
+        if len(rows) > 5:
+            typer.echo(f"  ... {len(rows) - 5} more in {pathlib.Path(written['summary']).name}")
+    typer.echo("wrote " + ", ".join(pathlib.Path(p).name for p in written.values()))
+
+
+class MatchMethod(str, Enum):
+    hog = "hog"
+    sift = "sift"
+    orb = "orb"
+    akaze = "akaze"
+    brisk = "brisk"
+
+
+@app.command()
+@_friendly
+def match(
+    image1: pathlib.Path = typer.Argument(..., help="First image (PNG, JPEG, TIFF, ...; colour is converted to grey)."),
+    image2: pathlib.Path = typer.Argument(..., help="Second image."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="CSV of verified matches: x1,y1,x2,y2,score."),
+    method: MatchMethod = typer.Option(MatchMethod.hog, help="Features: HOG-pyramid or an OpenCV detector."),
+    ratio: float = typer.Option(0.8, help="Lowe's ratio-test threshold."),
+    threshold: float = typer.Option(3.0, help="RANSAC inlier reprojection error, pixels."),
+) -> None:
+    """Match IMAGE1 to IMAGE2, verify with a RANSAC homography, write the matches and print the homography.
+
+    Pixel coordinates have their origin at the centre of the top-left pixel, x to the right, y down.
+    """
+    from .features import match_images, write_matches_csv
+
+    images = [_read_image(p) for p in (image1, image2)]
+    result = match_images(*images, method=method.value, ratio=ratio, threshold=threshold, verify="homography")
+    n = write_matches_csv(output, result)
+    typer.echo(f"{result.n_putative} putative matches, {n} verified ({method.value}) -> {output}")
+    if result.homography is None:
+        typer.echo("no homography could be fitted (too few matches)")
+    else:
+        typer.echo("homography (image1 -> image2):")
+        typer.echo(np.array2string(result.homography, precision=6, suppress_small=True))
+
+
+def _read_image(path: pathlib.Path) -> np.ndarray:
+    import cv2
+
+    from .errors import DataNotFoundError
+
+    if not path.is_file():
+        raise DataNotFoundError(f"{path}: no such file; check the path")
+    image = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    if image is None:
+        raise InputError(f"{path} is not an image OpenCV can read (PNG, JPEG, TIFF, BMP, PPM/PGM)")
+    if image.ndim == 3:
+        image = cv2.cvtColor(image, cv2.COLOR_BGRA2RGB if image.shape[2] == 4 else cv2.COLOR_BGR2RGB)
+    return image
 
 
 def _read_matches(path: pathlib.Path, dim: int) -> np.ndarray:

@@ -11,8 +11,8 @@ The methods:
 - :func:`semblance`: the ratio of the energy of the summed traces to the summed energy of the traces in a window of
   neighbouring traces (Marfurt et al. 1998), optionally following reflector slopes (structure-oriented semblance,
   Hale 2009).
-- :func:`eigen_coherence`: the largest eigenvalue of the trace covariance matrix over its trace (Gersztenkorn &
-  Marfurt 1999).
+- :func:`eigen_coherence`: the share of the window's energy in the first principal component of its traces, the
+  largest eigenvalue of the trace covariance matrix divided by its trace (Gersztenkorn & Marfurt 1999).
 - :func:`discontinuity`: one minus either coherence, high at faults and other lateral breaks of reflectors.
 """
 
@@ -140,74 +140,86 @@ def _correlate_axis(x, w, axis, out):
                         out[i, j, k] += wm * x[ii, j, k]
 
 
+@nb.njit(cache=True, inline="always")
+def _eig3(a, b, c, d, e, f):
+    # Largest eigenvector (unit, third component >= 0) and (l1 - l2) / l1 of the symmetric tensor
+    # [[a, b, c], [b, d, e], [c, e, f]]: closed-form eigenvalues (trigonometric solution of the characteristic
+    # cubic), eigenvector from the largest cross product of two rows of T - l1 I.
+    p1 = b * b + c * c + e * e
+    q = (a + d + f) / 3.0
+    p2 = (a - q) ** 2 + (d - q) ** 2 + (f - q) ** 2 + 2.0 * p1
+    if p2 <= 1e-30 * (q * q + 1e-300):
+        return 0.0, 0.0, 1.0, 0.0
+    p = np.sqrt(p2 / 6.0)
+    b00 = (a - q) / p
+    b11 = (d - q) / p
+    b22 = (f - q) / p
+    b01 = b / p
+    b02 = c / p
+    b12 = e / p
+    r = 0.5 * (b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02))
+    r = min(1.0, max(-1.0, r))
+    phi = np.arccos(r) / 3.0
+    l1 = q + 2.0 * p * np.cos(phi)
+    l3 = q + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
+    l2 = 3.0 * q - l1 - l3
+    r0x, r0y, r0z = a - l1, b, c
+    r1x, r1y, r1z = b, d - l1, e
+    r2x, r2y, r2z = c, e, f - l1
+    c0x = r0y * r1z - r0z * r1y
+    c0y = r0z * r1x - r0x * r1z
+    c0z = r0x * r1y - r0y * r1x
+    c1x = r0y * r2z - r0z * r2y
+    c1y = r0z * r2x - r0x * r2z
+    c1z = r0x * r2y - r0y * r2x
+    c2x = r1y * r2z - r1z * r2y
+    c2y = r1z * r2x - r1x * r2z
+    c2z = r1x * r2y - r1y * r2x
+    m0 = c0x * c0x + c0y * c0y + c0z * c0z
+    m1 = c1x * c1x + c1y * c1y + c1z * c1z
+    m2 = c2x * c2x + c2y * c2y + c2z * c2z
+    if m0 >= m1 and m0 >= m2:
+        vx, vy, vz, m = c0x, c0y, c0z, m0
+    elif m1 >= m2:
+        vx, vy, vz, m = c1x, c1y, c1z, m1
+    else:
+        vx, vy, vz, m = c2x, c2y, c2z, m2
+    if m <= 0.0:
+        return 0.0, 0.0, 1.0, 0.0
+    s = 1.0 / np.sqrt(m)
+    if vz < 0.0:
+        s = -s
+    return vx * s, vy * s, vz * s, ((l1 - l2) / l1 if l1 > 0.0 else 0.0)
+
+
 @nb.njit(cache=True, parallel=True)
 def _eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
-    # Largest eigenvector (reflector normal) and (l1 - l2) / l1 of 3x3 symmetric tensors, closed form
-    # (trigonometric eigenvalues, eigenvector from the cross products of the rows of T - l1 I).
+    # reflector normals (..., 3) and planarity of every tensor
     n0, n1, n2 = t00.shape
     for i in nb.prange(n0):
         for j in range(n1):
             for k in range(n2):
-                a = float(t00[i, j, k])
-                b = float(t01[i, j, k])
-                c = float(t02[i, j, k])
-                d = float(t11[i, j, k])
-                e = float(t12[i, j, k])
-                f = float(t22[i, j, k])
-                p1 = b * b + c * c + e * e
-                q = (a + d + f) / 3.0
-                p2 = (a - q) ** 2 + (d - q) ** 2 + (f - q) ** 2 + 2.0 * p1
-                if p2 <= 1e-30 * (q * q + 1e-300):
-                    normals[i, j, k, 0] = 0.0
-                    normals[i, j, k, 1] = 0.0
-                    normals[i, j, k, 2] = 1.0
-                    planarity[i, j, k] = 0.0
-                    continue
-                p = np.sqrt(p2 / 6.0)
-                b00 = (a - q) / p
-                b11 = (d - q) / p
-                b22 = (f - q) / p
-                b01 = b / p
-                b02 = c / p
-                b12 = e / p
-                r = 0.5 * (b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02)
-                           + b02 * (b01 * b12 - b11 * b02))
-                r = min(1.0, max(-1.0, r))
-                phi = np.arccos(r) / 3.0
-                l1 = q + 2.0 * p * np.cos(phi)
-                l3 = q + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
-                l2 = 3.0 * q - l1 - l3
-                # rows of T - l1 I
-                r0x, r0y, r0z = a - l1, b, c
-                r1x, r1y, r1z = b, d - l1, e
-                r2x, r2y, r2z = c, e, f - l1
-                c0x = r0y * r1z - r0z * r1y
-                c0y = r0z * r1x - r0x * r1z
-                c0z = r0x * r1y - r0y * r1x
-                c1x = r0y * r2z - r0z * r2y
-                c1y = r0z * r2x - r0x * r2z
-                c1z = r0x * r2y - r0y * r2x
-                c2x = r1y * r2z - r1z * r2y
-                c2y = r1z * r2x - r1x * r2z
-                c2z = r1x * r2y - r1y * r2x
-                m0 = c0x * c0x + c0y * c0y + c0z * c0z
-                m1 = c1x * c1x + c1y * c1y + c1z * c1z
-                m2 = c2x * c2x + c2y * c2y + c2z * c2z
-                if m0 >= m1 and m0 >= m2:
-                    vx, vy, vz, m = c0x, c0y, c0z, m0
-                elif m1 >= m2:
-                    vx, vy, vz, m = c1x, c1y, c1z, m1
-                else:
-                    vx, vy, vz, m = c2x, c2y, c2z, m2
-                if m <= 0.0:
-                    vx, vy, vz, m = 0.0, 0.0, 1.0, 1.0
-                s = 1.0 / np.sqrt(m)
-                if vz < 0.0:
-                    s = -s
-                normals[i, j, k, 0] = vx * s
-                normals[i, j, k, 1] = vy * s
-                normals[i, j, k, 2] = vz * s
-                planarity[i, j, k] = (l1 - l2) / l1 if l1 > 0.0 else 0.0
+                vx, vy, vz, pl = _eig3(float(t00[i, j, k]), float(t01[i, j, k]), float(t02[i, j, k]),
+                                       float(t11[i, j, k]), float(t12[i, j, k]), float(t22[i, j, k]))
+                normals[i, j, k, 0] = vx
+                normals[i, j, k, 1] = vy
+                normals[i, j, k, 2] = vz
+                planarity[i, j, k] = pl
+
+
+@nb.njit(cache=True, parallel=True)
+def _eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1):
+    # reflector slopes -n0 / n2 and -n1 / n2 (samples per trace, clipped to +-max_slope) of every tensor
+    n0, n1, n2 = t00.shape
+    for i in nb.prange(n0):
+        for j in range(n1):
+            for k in range(n2):
+                vx, vy, vz, _ = _eig3(float(t00[i, j, k]), float(t01[i, j, k]), float(t02[i, j, k]),
+                                      float(t11[i, j, k]), float(t12[i, j, k]), float(t22[i, j, k]))
+                vz = max(vz, 0.5 / max_slope)
+                p0[i, j, k] = min(max(-vx / vz, -max_slope), max_slope)
+                p1[i, j, k] = min(max(-vy / vz, -max_slope), max_slope)
+
 
 @nb.njit(cache=True, parallel=True)
 def _semblance_num_den(f, p0, p1, r0, r1, num, den):
@@ -310,7 +322,7 @@ def _eigen_coh(f, p0, p1, r0, r1, h, out):
 # structure tensor
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class ReflectorOrientation:
     """Local reflector orientation from the structure tensor.
 
@@ -362,37 +374,43 @@ def _gaussian3(x: np.ndarray, sigmas, orders=(0, 0, 0)) -> np.ndarray:
     return out if out is not x else x.astype(np.float32, copy=True)
 
 
-def _tensor_eig(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], two_d: bool):
-    """Normals (n0, n1, nt, 3) and planarity of a 3D-shaped array (2D sections as (n, 1, nt))."""
+def _structure_tensor(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], two_d: bool):
+    """The six smoothed components (t00, t01, t02, t11, t12, t22) of the structure tensor of a 3D-shaped array."""
     lat, vert = sigma_tensor
     sg = sigma_gradient
     sig = (lat, 0.0 if two_d else lat, vert)
     # gradients with shared smoothing passes: g0 = D0 G1 G2 f, g1 = G0 D1 G2 f, g2 = G0 G1 D2 f
-    f2 = _gaussian3(f3, (0.0, 0.0, sg))
     if two_d:
-        g0 = _gaussian3(f2, (sg, 0.0, 0.0), (1, 0, 0))
+        g0 = _gaussian3(_gaussian3(f3, (0.0, 0.0, sg)), (sg, 0.0, 0.0), (1, 0, 0))
         g2 = _gaussian3(_gaussian3(f3, (sg, 0.0, 0.0)), (0.0, 0.0, sg), (0, 0, 1))
-        g1 = np.zeros_like(g0)
-    else:
-        f12 = _gaussian3(f2, (0.0, sg, 0.0))
-        g0 = _gaussian3(f12, (sg, 0.0, 0.0), (1, 0, 0))
-        del f12
-        g1 = _gaussian3(_gaussian3(f2, (sg, 0.0, 0.0)), (0.0, sg, 0.0), (0, 1, 0))
-        g2 = _gaussian3(_gaussian3(f3, (sg, sg, 0.0)), (0.0, 0.0, sg), (0, 0, 1))
+        t00 = _gaussian3(g0 * g0, sig)
+        t02 = _gaussian3(g0 * g2, sig)
+        t22 = _gaussian3(g2 * g2, sig)
+        zero = np.zeros_like(t00)
+        return t00, zero, t02, zero, zero, t22
+    f2 = _gaussian3(f3, (0.0, 0.0, sg))
+    g0 = _gaussian3(_gaussian3(f2, (0.0, sg, 0.0)), (sg, 0.0, 0.0), (1, 0, 0))
+    g1 = _gaussian3(_gaussian3(f2, (sg, 0.0, 0.0)), (0.0, sg, 0.0), (0, 1, 0))
     del f2
+    g2 = _gaussian3(_gaussian3(f3, (sg, sg, 0.0)), (0.0, 0.0, sg), (0, 0, 1))
+    # products in an order that frees each gradient as soon as possible (peak memory)
     t00 = _gaussian3(g0 * g0, sig)
+    t01 = _gaussian3(g0 * g1, sig)
     t02 = _gaussian3(g0 * g2, sig)
+    del g0
+    t11 = _gaussian3(g1 * g1, sig)
+    t12 = _gaussian3(g1 * g2, sig)
+    del g1
     t22 = _gaussian3(g2 * g2, sig)
-    if two_d:
-        t01 = t11 = t12 = np.zeros_like(t00)
-    else:
-        t01 = _gaussian3(g0 * g1, sig)
-        t11 = _gaussian3(g1 * g1, sig)
-        t12 = _gaussian3(g1 * g2, sig)
-    del g0, g1, g2
+    return t00, t01, t02, t11, t12, t22
+
+
+def _tensor_eig(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], two_d: bool):
+    """Normals (n0, n1, nt, 3) and planarity of a 3D-shaped array (2D sections as (n, 1, nt))."""
+    t = _structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
     normals = np.empty(f3.shape + (3,), dtype=np.float32)
     planarity = np.empty(f3.shape, dtype=np.float32)
-    _eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity)
+    _eig_normals(*t, normals, planarity)
     return normals, planarity
 
 
@@ -465,8 +483,12 @@ def structure_tensor_orientation(data, *, sigma_gradient=1.0, sigma_tensor=(2.0,
 
 
 def _reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_tensor) -> tuple:
-    normals, _ = _tensor_eig(f3, sigma_gradient, sigma_tensor, two_d)
-    return _slopes_from_normals(normals)
+    """Reflector slopes (p0, p1) in samples per trace of a 3D-shaped array, without storing the normals."""
+    t = _structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
+    p0 = np.empty(f3.shape, dtype=np.float32)
+    p1 = np.empty(f3.shape, dtype=np.float32)
+    _eig_slopes(*t, _MAX_SLOPE, p0, p1)
+    return p0, p1
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -504,7 +526,7 @@ def semblance(data, *, half_traces=1, half_samples=4, structure_oriented=True, s
               sigma_tensor=(2.0, 6.0)) -> np.ndarray:
     """Semblance of neighbouring traces, plain or along reflectors.
 
-    ``s = sum_t (sum_k f_k(t))^2 / (J sum_t sum_k f_k(t)^2)`` (Marfurt et al. 1998, eq. 2) over the J traces of a
+    ``s = sum_t (sum_k f_k(t))^2 / (J sum_t sum_k f_k(t)^2)`` (Marfurt et al. 1998) over the J traces of a
     (2 ``half_traces`` + 1) square of traces (a line in 2D) and 2 ``half_samples`` + 1 samples. With
     ``structure_oriented=True`` trace k is read at ``t + p . d_k`` (linear interpolation), ``p`` the reflector slopes of
     :func:`structure_tensor_orientation` at the centre sample and ``d_k`` the trace offset, so dipping reflectors stay
@@ -550,7 +572,7 @@ def eigen_coherence(data, *, half_traces=1, half_samples=4, structure_oriented=T
     """Eigenstructure coherence: the share of the window's energy in its first principal component.
 
     ``c = lambda_1(C) / trace(C)`` with ``C_kl = sum_t f_k(t) f_l(t)`` the covariance of the J traces of the window
-    over 2 ``half_samples`` + 1 samples (Gersztenkorn & Marfurt 1999, eq. 3). Windows as in :func:`semblance`.
+    over 2 ``half_samples`` + 1 samples (Gersztenkorn & Marfurt 1999). Windows as in :func:`semblance`.
     It costs about 10x :func:`semblance` (a J x J eigenproblem per sample).
 
     Parameters

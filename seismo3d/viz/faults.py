@@ -1,0 +1,459 @@
+"""Pictures and meshes of faults: PNG slices (matplotlib), VTK fault surfaces and a 3D scene (pyvista).
+
+Coordinates of the meshes and scenes are index space with the vertical axis pointing *up*: a fault point at
+(inline index i, crossline index j, sample k) is at ``(i, j, -k)`` (2D sections: ``(trace, 0, -k)``), so that VTK
+viewers (ParaView, pyvista) show the cube right side up and with one voxel per unit on every axis. The inline /
+crossline numbers and times or depths travel as point arrays when ``axes`` is given.
+
+matplotlib and pyvista are imported inside the functions, so importing this module is cheap.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .._atomic import atomic_path
+from ..errors import InputError
+
+__all__ = ["plot_fault_slices", "fault_surfaces", "save_polydata", "show_faults"]
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# helpers
+
+
+def _fault_points(faults_or_thin, shape):
+    """(points (n, ndim) int64, ids (n,) int32) from a list of Fault or a thinned array (> 0 on faults, id 1)."""
+    if isinstance(faults_or_thin, (list, tuple)):
+        if not faults_or_thin:
+            return np.zeros((0, len(shape)), np.int64), np.zeros(0, np.int32)
+        pts = np.concatenate([np.asarray(f.points, dtype=np.int64) for f in faults_or_thin])
+        ids = np.concatenate([np.full(f.points.shape[0], f.id, np.int32) for f in faults_or_thin])
+    else:
+        arr = np.asarray(faults_or_thin)
+        if arr.shape != tuple(shape):
+            raise InputError(f"the thinned faults have shape {arr.shape} but the cube {tuple(shape)}; pass "
+                             "thin_faults(...) of this cube or its list of faults")
+        pts = np.argwhere(arr > 0).astype(np.int64)
+        ids = np.ones(pts.shape[0], np.int32)
+    if pts.size and (pts.shape[1] != len(shape) or pts.min() < 0 or np.any(pts.max(0) >= np.array(shape))):
+        raise InputError(f"fault points do not fit the cube of shape {tuple(shape)}; pass the faults of this cube")
+    return pts, ids
+
+
+def _check_axes(axes, shape):
+    if axes is None:
+        return [np.arange(n, dtype=np.float64) for n in shape]
+    if len(axes) != len(shape):
+        raise InputError(f"axes must hold one 1D array per axis of the cube ({len(shape)}); got {len(axes)}")
+    out = []
+    for a, n in zip(axes, shape):
+        a = np.asarray(a, dtype=np.float64).ravel()
+        if a.size != n:
+            raise InputError(f"an axis annotation has {a.size} values but the cube axis has {n}")
+        out.append(a)
+    return out
+
+
+def _at(axis: np.ndarray, index) -> np.ndarray:
+    return np.interp(np.asarray(index, dtype=np.float64), np.arange(axis.size), axis)
+
+
+def _clip(values: np.ndarray, percentile: float) -> float:
+    c = float(np.percentile(np.abs(values), percentile)) if values.size else 1.0
+    return c if c > 0 else 1.0
+
+
+def _most_faulted(coord: np.ndarray, n: int, *, margin: float = 0.0) -> int:
+    lo, hi = int(margin * n), n - int(margin * n)
+    counts = np.bincount(coord, minlength=n)[lo:hi] if coord.size else np.zeros(max(hi - lo, 1))
+    return lo + int(np.argmax(counts)) if counts.any() else n // 2
+
+
+def _colors(ids: np.ndarray):
+    from matplotlib import colormaps
+
+    cmap = colormaps["tab10"]
+    return cmap((ids - 1) % 10)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# PNG
+
+
+def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_labels=None, slices=None, title=None,
+                      clip_percentile=99.0, dpi=110) -> Path:
+    """Draw faults over slices of the seismic and save a PNG.
+
+    3D: an inline, a crossline and a time (depth) slice, by default those crossing the most fault samples; 2D: the
+    section without and with the faults. Seismic in grey, symmetric colour limits at the ``clip_percentile`` of the
+    absolute amplitude; faults as dots coloured by fault id (10 colours, cycled). With ``likelihood``, a row of the
+    same slices of the fault likelihood is added below.
+
+    Parameters
+    ----------
+    cube : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        Seismic amplitudes.
+    faults : list of Fault or array_like of the cube's shape
+        Linked faults (:func:`~seismo3d.seismic.faults.link_faults`) or thinned faults (> 0 on faults, drawn as one
+        colour).
+    path : str or os.PathLike
+        PNG file to write (atomically); its folder must exist.
+    likelihood : array_like of the cube's shape, optional
+        Fault likelihood in [0, 1], drawn in a second row.
+    axes : sequence of 1D array_like, optional
+        Annotation of each axis, e.g. (inline numbers, crossline numbers, times in ms); default: indices.
+    slices : (int, int, int), optional
+        Indices (not numbers) of the inline, crossline and sample of the 3D slices; default: the most faulted ones.
+    axis_labels : sequence of str, optional
+        Name of each axis, e.g. ('inline', 'crossline', 'time (ms)'); default: ('inline', 'crossline', 'sample') in
+        3D, ('trace', 'sample') in 2D.
+    title : str, optional
+    clip_percentile : float, optional
+        Percentile of the absolute amplitude used as the colour limit, in (0, 100].
+    dpi : int, optional
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    InputError
+        Wrong shapes, a folder that does not exist, or slices out of range.
+    """
+    from matplotlib.figure import Figure
+
+    data = np.asarray(cube, dtype=np.float32)
+    if data.ndim not in (2, 3):
+        raise InputError(f"cube must be a 2D section or a 3D cube; got shape {data.shape}")
+    if not 0 < clip_percentile <= 100:
+        raise InputError(f"clip_percentile must be in (0, 100]; got {clip_percentile!r}")
+    shape = data.shape
+    pts, ids = _fault_points(faults, shape)
+    ax_vals = _check_axes(axes, shape)
+    if axis_labels is None:
+        axis_labels = ("inline", "crossline", "sample") if data.ndim == 3 else ("trace", "sample")
+    if len(axis_labels) != data.ndim:
+        raise InputError(f"axis_labels must name each of the {data.ndim} axes; got {axis_labels!r}")
+    sample_label = str(axis_labels[-1])
+    fl = None
+    if likelihood is not None:
+        fl = np.asarray(likelihood, dtype=np.float32)
+        if fl.shape != shape:
+            raise InputError(f"likelihood has shape {fl.shape} but the cube {shape}")
+    clip = _clip(data[np.isfinite(data)][:: max(1, data.size // 1_000_000)], clip_percentile)
+    seis = dict(cmap="gray", vmin=-clip, vmax=clip, aspect="auto", interpolation="bilinear")
+    like = dict(cmap="magma", vmin=0.0, vmax=1.0, aspect="auto", interpolation="nearest")
+
+    def dot(n_h, width_in):  # dots about half a cell wide, at least 1.5 pt^2
+        cell_pt = 72.0 * width_in / max(n_h, 1)
+        return dict(s=float(np.clip((0.5 * cell_pt) ** 2, 1.5, 12.0)), linewidths=0, marker="o")
+
+    def extent(h, v):  # horizontal axis values h, vertical v (downward)
+        dh = (h[-1] - h[0]) / max(h.size - 1, 1) / 2 if h.size > 1 else 0.5
+        dv = (v[-1] - v[0]) / max(v.size - 1, 1) / 2 if v.size > 1 else 0.5
+        return (h[0] - dh, h[-1] + dh, v[-1] + dv, v[0] - dv)
+
+    if data.ndim == 2:
+        n_rows = 3 if fl is not None else 2
+        fig = Figure(figsize=(11, 2.2 + 2.6 * n_rows), dpi=dpi, layout="constrained")
+        axs = fig.subplots(n_rows, 1, sharex=True, sharey=True, squeeze=False)[:, 0]
+        ext = extent(ax_vals[0], ax_vals[1])
+        for a in axs[:2]:
+            a.imshow(data.T, extent=ext, **seis)
+        axs[0].set_title("seismic")
+        axs[1].set_title("faults, coloured by id")
+        if pts.size:
+            axs[1].scatter(_at(ax_vals[0], pts[:, 0]), _at(ax_vals[1], pts[:, 1]), c=_colors(ids),
+                           **dot(shape[0], 10.0))
+        if fl is not None:
+            im = axs[2].imshow(fl.T, extent=ext, **like)
+            axs[2].set_title("fault likelihood")
+            fig.colorbar(im, ax=axs[2], shrink=0.8)
+        for a in axs:
+            a.set_ylabel(sample_label)
+        axs[-1].set_xlabel(str(axis_labels[0]))
+    else:
+        if slices is None:
+            slices = (_most_faulted(pts[:, 0], shape[0]), _most_faulted(pts[:, 1], shape[1]),
+                      _most_faulted(pts[:, 2], shape[2], margin=0.1))
+        slices = tuple(int(s) for s in slices)
+        if len(slices) != 3 or any(not 0 <= s < n for s, n in zip(slices, shape)):
+            raise InputError(f"slices must be 3 indices within the cube's shape {shape}; got {slices}")
+        i, j, k = slices
+        il, xl, tz = ax_vals
+        il_name, xl_name = str(axis_labels[0]), str(axis_labels[1])
+        n_rows = 2 if fl is not None else 1
+        fig = Figure(figsize=(15, 1.0 + 4.2 * n_rows), dpi=dpi, layout="constrained")
+        axs = fig.subplots(n_rows, 3, squeeze=False)
+        panels = [  # (slice of the array, horizontal axis values, vertical values, mask of points, h, v columns)
+            (lambda a: a[i].T, xl, tz, pts[:, 0] == i if pts.size else None, 1, 2,
+             f"{il_name} {il[i]:g}", xl_name, sample_label),
+            (lambda a: a[:, j].T, il, tz, pts[:, 1] == j if pts.size else None, 0, 2,
+             f"{xl_name} {xl[j]:g}", il_name, sample_label),
+            (lambda a: a[:, :, k], xl, il, pts[:, 2] == k if pts.size else None, 1, 0,
+             f"{sample_label.split(' ')[0]} slice {tz[k]:g}", xl_name, il_name),
+        ]
+        for c, (cut, h, v, sel, hc, vc, name, hl, vl) in enumerate(panels):
+            ext = extent(h, v)
+            a = axs[0, c]
+            a.imshow(cut(data), extent=ext, **seis)
+            if sel is not None and sel.any():
+                a.scatter(_at(ax_vals[hc], pts[sel, hc]), _at(ax_vals[vc], pts[sel, vc]), c=_colors(ids[sel]),
+                          **dot(h.size, 4.5))
+            a.set_title(name)
+            a.set_xlabel(hl)
+            a.set_ylabel(vl)
+            if fl is not None:
+                b = axs[1, c]
+                im = b.imshow(cut(fl), extent=ext, **like)
+                b.set_title(f"fault likelihood, {name}")
+                b.set_xlabel(hl)
+                b.set_ylabel(vl)
+        if fl is not None:
+            fig.colorbar(im, ax=axs[1, :].tolist(), shrink=0.8)
+    n_f = len(np.unique(ids)) if ids.size else 0
+    fig.suptitle(f"{title + ': ' if title else ''}{n_f} faults")
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png")
+    return path
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# VTK
+
+
+def _plane_basis(points: np.ndarray):
+    """Two unit vectors spanning the best-fit plane of (n, 3) points (least-squares, via SVD)."""
+    c = points.mean(axis=0)
+    _, _, vt = np.linalg.svd(points - c, full_matrices=False)
+    return c, vt[0], vt[1]
+
+
+def _triangulate(points: np.ndarray):
+    """Triangles (m, 3) of one fault's (n, 3) index-space points, Delaunay in its best-fit plane."""
+    import pyvista as pv
+
+    if points.shape[0] < 3:
+        return np.zeros((0, 3), np.int64)
+    c, u, v = _plane_basis(points.astype(np.float64))
+    local = np.column_stack([(points - c) @ u, (points - c) @ v, np.zeros(points.shape[0])])
+    # alpha: drop triangles wider than ~2 voxels so holes and gaps of the thinned fault stay open
+    tri = pv.PolyData(local).delaunay_2d(alpha=2.0, tol=1e-6)
+    if tri.n_points != points.shape[0]:  # pragma: no cover - vtkDelaunay2D passes the input points through
+        raise RuntimeError("vtkDelaunay2D changed the point count; cannot map triangles back to fault points")
+    faces = tri.faces.reshape(-1, 4) if tri.n_cells else np.zeros((0, 4), np.int64)
+    return faces[faces[:, 0] == 3, 1:].astype(np.int64)
+
+
+def fault_surfaces(faults, throws=None, *, axes=None):
+    """All faults as one VTK mesh: triangulated surfaces in 3D, polylines in 2D.
+
+    Each 3D fault's samples are triangulated by a Delaunay triangulation in the fault's best-fit plane (triangles
+    with a circumradius over 2 voxels are dropped, so gaps in a fault stay open); each 2D fault's samples are joined
+    in order along the fault.
+
+    Parameters
+    ----------
+    faults : sequence of Fault
+        From :func:`~seismo3d.seismic.faults.link_faults` (3D or 2D).
+    throws : sequence of FaultThrow, optional
+        From :func:`~seismo3d.seismic.throw.fault_throws`, matched to faults by ``fault_id``; the ``throw`` array is
+        NaN without it.
+    axes : sequence of 1D array_like, optional
+        Annotation of each axis ((inline numbers, crossline numbers, times or depths) in 3D, (trace labels,
+        times or depths) in 2D); adds point arrays ``inline``, ``crossline`` (3D) and ``time_or_depth``.
+
+    Returns
+    -------
+    pyvista.PolyData
+        Points at ``(i, j, -k)`` (2D: ``(trace, 0, -k)``), index space with z up. Point arrays: ``fault_id``
+        (int32), ``throw`` (float32, samples), ``likelihood`` (float32), and the annotations of ``axes``.
+
+    Raises
+    ------
+    InputError
+        Faults of mixed dimensions, or ``axes`` that do not fit.
+    """
+    import pyvista as pv
+
+    faults = list(faults)
+    by_id = {int(t.fault_id): np.asarray(t.throw, dtype=np.float32) for t in (throws or [])}
+    dims = {int(np.asarray(f.points).shape[1]) for f in faults}
+    if len(dims) > 1:
+        raise InputError("faults mix 2D and 3D points; pass the faults of one cube or section")
+    ndim = dims.pop() if dims else (len(axes) if axes is not None and len(axes) in (2, 3) else 3)
+    pts_all, ids_all, thr_all, fl_all, cells = [], [], [], [], []
+    offset = 0
+    for f in faults:
+        p = np.asarray(f.points, dtype=np.int64)
+        n = p.shape[0]
+        thr = by_id.get(int(f.id))
+        thr = thr if thr is not None and thr.shape == (n,) else np.full(n, np.nan, np.float32)
+        lik = np.asarray(f.likelihood, dtype=np.float32)
+        if ndim == 3:
+            tri = _triangulate(p)
+            if tri.size:
+                cells.append(np.column_stack([np.full(tri.shape[0], 3), tri + offset]).ravel())
+        else:
+            # order along the fault: by position along its main direction (faults are steep curves)
+            c = p - p.mean(axis=0)
+            _, _, vt = np.linalg.svd(c.astype(np.float64), full_matrices=False)
+            order = np.argsort(c @ vt[0], kind="stable")
+            p, thr, lik = p[order], thr[order], lik[order]
+            cells.append(np.concatenate([[n], np.arange(n) + offset]))
+        pts_all.append(p)
+        ids_all.append(np.full(n, f.id, np.int32))
+        thr_all.append(thr)
+        fl_all.append(lik)
+        offset += n
+    if pts_all:
+        p = np.concatenate(pts_all).astype(np.float64)
+    else:
+        p = np.zeros((0, ndim))
+    xyz = np.column_stack([p[:, 0], p[:, 1], -p[:, 2]]) if ndim == 3 else np.column_stack(
+        [p[:, 0], np.zeros(p.shape[0]), -p[:, 1]])
+    cell_arr = np.concatenate(cells).astype(np.int64) if cells else np.zeros(0, np.int64)
+    mesh = pv.PolyData(xyz, faces=cell_arr) if ndim == 3 else pv.PolyData(xyz, lines=cell_arr)
+    mesh.point_data["fault_id"] = np.concatenate(ids_all) if ids_all else np.zeros(0, np.int32)
+    mesh.point_data["throw"] = np.concatenate(thr_all) if thr_all else np.zeros(0, np.float32)
+    mesh.point_data["likelihood"] = np.concatenate(fl_all) if fl_all else np.zeros(0, np.float32)
+    if axes is not None:
+        if len(axes) != ndim:
+            raise InputError(f"axes must hold one 1D array per axis ({ndim}); got {len(axes)}")
+        ax_vals = [np.asarray(a, dtype=np.float64).ravel() for a in axes]
+        if p.size and any(p[:, d].max() >= ax_vals[d].size for d in range(ndim)):
+            raise InputError("fault points lie beyond the axes given; pass the axes of the faults' cube")
+        if ndim == 3:
+            mesh.point_data["inline"] = _at(ax_vals[0], p[:, 0])
+            mesh.point_data["crossline"] = _at(ax_vals[1], p[:, 1])
+        else:
+            mesh.point_data["trace"] = _at(ax_vals[0], p[:, 0])
+        mesh.point_data["time_or_depth"] = _at(ax_vals[-1], p[:, -1])
+    return mesh
+
+
+def save_polydata(mesh, path) -> Path:
+    """Write a pyvista / VTK PolyData atomically: ``.vtp`` (VTK XML, binary, compressed) or ``.vtk`` (legacy).
+
+    Parameters
+    ----------
+    mesh : pyvista.PolyData
+    path : str or os.PathLike
+        Destination; its folder must exist.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    InputError
+        Another extension, or a folder that does not exist.
+    """
+    from vtkmodules.vtkIOLegacy import vtkPolyDataWriter
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".vtp", ".vtk"):
+        raise InputError(f"{path.name}: write fault surfaces as .vtp (VTK XML) or .vtk (legacy VTK)")
+    with atomic_path(path) as tmp:
+        if suffix == ".vtp":
+            writer = vtkXMLPolyDataWriter()
+            writer.SetDataModeToBinary()
+        else:
+            writer = vtkPolyDataWriter()
+            writer.SetFileTypeToBinary()
+        writer.SetFileName(str(tmp))
+        writer.SetInputData(mesh)
+        if writer.Write() != 1:
+            raise OSError(f"VTK could not write {path}")
+    return path
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# 3D scene
+
+
+def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", screenshot=None,
+                window_size=(1024, 768)):
+    """A 3D scene of the cube (three orthogonal slices) and its fault surfaces, for notebooks.
+
+    Parameters
+    ----------
+    cube : (n_inlines, n_xlines, n_samples) array_like
+        Seismic amplitudes (a 2D section is shown as a single slice with fault curves).
+    faults : sequence of Fault
+    throws : sequence of FaultThrow, optional
+        Needed for ``color_by='throw'``.
+    slices : (int, int, int), optional
+        Indices of the inline, crossline and sample slices; default: the middle of the cube.
+    color_by : {'fault_id', 'throw', 'likelihood'}, optional
+    screenshot : str or os.PathLike, optional
+        Render off screen (no window needed) and write the picture to this PNG (atomically) instead of showing it.
+    window_size : (int, int), optional
+        Pixels.
+
+    Returns
+    -------
+    pyvista.Plotter
+        The scene. Without ``screenshot`` it has been shown (``plotter.show()``: inline in Jupyter, a window
+        elsewhere); with it, it has been rendered off screen and closed.
+
+    Raises
+    ------
+    InputError
+        Wrong shapes or an unknown ``color_by``.
+    """
+    import pyvista as pv
+
+    from .._validation import check_choice
+
+    check_choice(color_by, "color_by", {"fault_id", "throw", "likelihood"})
+    data = np.asarray(cube, dtype=np.float32)
+    if data.ndim == 2:
+        data = data[:, None, :]
+    if data.ndim != 3:
+        raise InputError(f"cube must be a 2D section or a 3D cube; got shape {data.shape}")
+    ni, nj, nk = data.shape
+    grid = pv.ImageData(dimensions=data.shape, origin=(0.0, 0.0, -(nk - 1.0)))  # z up: sample k at z = -k
+    grid.point_data["amplitude"] = np.ascontiguousarray(data[:, :, ::-1]).ravel(order="F")
+    if slices is None:
+        slices = (ni // 2, nj // 2, nk // 2)
+    i, j, k = (int(s) for s in slices)
+    clip = _clip(data[:: max(1, ni // 64), :: max(1, nj // 64)].ravel(), 99.0)
+    plotter = pv.Plotter(off_screen=screenshot is not None, window_size=list(window_size))
+    shown = [grid] if nj == 1 else grid.slice_orthogonal(x=float(i), y=float(j), z=-float(k))
+    for block in shown:
+        if block is not None and block.n_points:
+            plotter.add_mesh(block, scalars="amplitude", cmap="gray", clim=(-clip, clip), show_scalar_bar=False)
+    mesh = fault_surfaces(faults, throws)
+    if mesh.n_cells and data.shape[1] > 1:
+        mesh = mesh.smooth_taubin(n_iter=20, pass_band=0.1)  # display only: soften the voxel staircase
+    if mesh.n_points:
+        if color_by == "fault_id":
+            n_ids = int(np.unique(mesh.point_data["fault_id"]).size)
+            plotter.add_mesh(mesh, scalars="fault_id", cmap="tab10", categories=True, line_width=3,
+                             scalar_bar_args={"title": "fault id", "fmt": "%.0f", "n_labels": min(n_ids, 10)})
+        else:
+            plotter.add_mesh(mesh, scalars=color_by, cmap="viridis", line_width=3, nan_opacity=0.3)
+    plotter.show_axes()
+    plotter.camera_position = "xz" if nj == 1 else "iso"
+    if screenshot is None:
+        plotter.show()
+        return plotter
+    path = Path(screenshot)
+    img = plotter.screenshot(return_img=True)
+    with atomic_path(path) as tmp:
+        from matplotlib.image import imsave
+
+        imsave(tmp, img, format="png")
+    plotter.close()
+    return plotter

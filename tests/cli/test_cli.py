@@ -1,0 +1,231 @@
+"""The ``seismo3d`` command: exit codes (0 ok, 2 for seismo3d's errors and usage errors), outputs, messages."""
+
+import csv
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import segyio
+from scipy.spatial.transform import Rotation
+from typer.testing import CliRunner
+
+from seismo3d.cli import app
+from seismo3d.data.synthetic import synthetic_cube
+
+runner = CliRunner()
+
+
+def _rows(path):
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# register
+
+
+@pytest.fixture(scope="module")
+def clouds(tmp_path_factory):
+    """A bumpy surface patch and the same patch moved by a known rigid transform."""
+    folder = tmp_path_factory.mktemp("clouds")
+    u, v = np.meshgrid(np.linspace(0, 3, 40), np.linspace(0, 2, 30))
+    src = np.column_stack([u.ravel(), v.ravel(), (0.3 * np.sin(2 * u) * np.cos(3 * v) + 0.1 * u * v).ravel()])
+    T = np.eye(4)
+    T[:3, :3] = Rotation.from_euler("xyz", [3, -2, 4], degrees=True).as_matrix()
+    T[:3, 3] = [0.05, -0.03, 0.02]
+    dst = src @ T[:3, :3].T + T[:3, 3]
+    np.save(folder / "src.npy", src)
+    np.savetxt(folder / "dst.xyz", dst)
+    np.save(folder / "flat.npy", src[:, :2])
+    return folder, T
+
+
+def test_register(clouds, tmp_path):
+    folder, T = clouds
+    out = tmp_path / "T.json"
+    result = runner.invoke(app, ["register", str(folder / "src.npy"), str(folder / "dst.xyz"), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert "fitness" in result.stdout
+    payload = json.loads(out.read_text())
+    np.testing.assert_allclose(np.array(payload["transform"]), T, atol=1e-4)
+    assert payload["method"] == "point_to_plane" and payload["converged"]
+
+
+@pytest.mark.parametrize("args, message", [
+    (["{f}/src.npy", "{f}/flat.npy"], "3D but"),
+    (["{f}/src.npy", "{f}/missing.xyz"], "no such file"),
+    (["{f}/src.npy", "{f}/dst.xyz", "--method", "fused"], "--features"),
+])
+def test_register_errors(clouds, tmp_path, args, message):
+    folder, _ = clouds
+    args = [a.format(f=folder) for a in args]
+    result = runner.invoke(app, ["register", *args, "-o", str(tmp_path / "T.json")])
+    assert result.exit_code == 2
+    assert result.stderr.startswith("error: ") and message in result.stderr
+    assert not (tmp_path / "T.json").exists()
+
+
+def test_register_usage_error(clouds, tmp_path):
+    folder, _ = clouds
+    result = runner.invoke(app, ["register", str(folder / "src.npy"), str(folder / "dst.xyz"), "-o",
+                                 str(tmp_path / "T.json"), "--model", "banana"])
+    assert result.exit_code == 2
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# faults
+
+
+@pytest.fixture(scope="module")
+def cube_file(tmp_path_factory):
+    """A small synthetic SEG-Y cube (48^3, 4 ms, inlines / crosslines 1..48) in a folder of its own."""
+    path = tmp_path_factory.mktemp("cube") / "cube.sgy"
+    syn = synthetic_cube((48, 48, 48), n_faults=2, seed=1)
+    segyio.tools.from_array3D(str(path), syn.cube, format=5, dt=4000)
+    return path
+
+
+def test_faults(cube_file, tmp_path):
+    out = tmp_path / "out"
+    before = cube_file.read_bytes()
+    result = runner.invoke(app, ["faults", str(cube_file), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    summary = _rows(out / "fault_summary.csv")
+    assert len(summary) >= 2
+    assert result.stdout.startswith(f"{len(summary)} faults in cube.sgy -> {out}")
+    assert "fault   1:" in result.stdout and "wrote " in result.stdout
+    for name in ("fault_likelihood.sgy", "fault_strike.sgy", "fault_dip.sgy", "faults.vtp", "fault_points.csv",
+                 "fault_summary.csv", "faults.png"):
+        assert (out / name).is_file(), name
+        assert name in result.stdout
+    assert cube_file.read_bytes() == before
+
+
+def test_faults_sample_unit(cube_file, tmp_path):
+    out = tmp_path / "out"
+    result = runner.invoke(app, ["faults", str(cube_file), "-o", str(out), "--sample-unit", "m"])
+    assert result.exit_code == 0, result.output
+    points = _rows(out / "fault_points.csv")
+    assert "throw_m" in points[0] and "throw_ms" not in points[0]
+    assert "median_throw_m" in _rows(out / "fault_summary.csv")[0]
+
+
+def test_faults_demo_arguments(tmp_path, monkeypatch):
+    """--demo and --seed reach the job (stubbed here; tests/seismic/test_job.py runs the real demo)."""
+    import seismo3d.seismic.job as job
+
+    seen = {}
+
+    def fake_job(input_path, out_dir, **kwargs):
+        seen.update(kwargs, input_path=input_path)
+        Path(out_dir).mkdir(parents=True, exist_ok=True)
+        summary = Path(out_dir) / "fault_summary.csv"
+        summary.write_text("id,n_points,mean_strike_deg,mean_dip_deg,median_throw_samples,median_throw_ms\n"
+                           "1,500,30.0,70.0,4.5,18\n")
+        return {"summary": summary}
+
+    monkeypatch.setattr(job, "run_faults_job", fake_job)
+    result = runner.invoke(app, ["faults", "--demo", "--seed", "7", "-o", str(tmp_path / "d")])
+    assert result.exit_code == 0, result.output
+    assert seen["demo"] is True and seen["seed"] == 7 and seen["input_path"] is None
+    assert "1 faults in the demo cube" in result.stdout
+    assert "median throw 4.5 samples (18.0 ms)" in result.stdout
+
+
+def test_faults_warnings_are_one_line(tmp_path):
+    data = synthetic_cube((96, 64), n_faults=1, seed=2).cube
+    data[30] = np.nan
+    src = tmp_path / "section.npy"
+    np.save(src, data)
+    result = runner.invoke(app, ["faults", str(src), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    warn = [line for line in result.stderr.splitlines() if line.startswith("warning: ")]
+    assert any("NaN" in line for line in warn)
+    assert "Seismo3dWarning" not in result.stderr  # no Python warning format
+
+
+@pytest.mark.parametrize("case, message", [
+    ("not_segy", "cannot be read as SEG-Y"),
+    ("header_bytes", "iline=1, xline=5"),
+    ("same_folder", "another folder"),
+    ("no_input", "--demo"),
+    ("missing", "no SEG-Y file"),
+])
+def test_faults_errors(cube_file, tmp_path, case, message):
+    out = str(tmp_path / "out")
+    if case == "not_segy":
+        bad = tmp_path / "in" / "bad.sgy"
+        bad.parent.mkdir()
+        bad.write_bytes(b"\x00\x01 not seismic " * 400)
+        args = [str(bad), "-o", out]
+    elif case == "header_bytes":
+        args = [str(cube_file), "-o", out, "--iline", "1", "--xline", "5"]
+    elif case == "same_folder":
+        args = [str(cube_file), "-o", str(cube_file.parent)]
+    elif case == "no_input":
+        args = ["-o", out]
+    else:
+        args = [str(tmp_path / "nothing.sgy"), "-o", out]
+    result = runner.invoke(app, ["faults", *args])
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith("error: ") and message in result.stderr
+    assert "Traceback" not in result.output
+
+
+def test_faults_exit_code_in_a_real_process(tmp_path):
+    """The installed command exits with 2 and one line of error, no traceback."""
+    bad = tmp_path / "in" / "bad.segy"
+    bad.parent.mkdir()
+    bad.write_text("not seismic\n" * 500)
+    proc = subprocess.run([sys.executable, "-m", "seismo3d.cli", "faults", str(bad), "-o", str(tmp_path / "out")],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith("error: bad.segy") and "Traceback" not in proc.stderr
+    assert bad.read_text() == "not seismic\n" * 500
+
+
+def test_faults_interrupted(tmp_path, monkeypatch):
+    """Ctrl-C: exit code 130 and a one-line note, no traceback."""
+    import seismo3d.seismic.job as job
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(job, "run_faults_job", interrupted)
+    result = runner.invoke(app, ["faults", "--demo", "-o", str(tmp_path / "d")])
+    assert result.exit_code == 130
+    assert result.stderr.startswith("interrupted:")
+
+
+def test_match_recovers_a_known_homography(tmp_path):
+    """`seismo3d match` on a photo and its rotated copy: the printed homography is the true one."""
+    import cv2
+    from skimage import data
+
+    image = data.camera()
+    h, w = image.shape
+    truth = np.vstack([cv2.getRotationMatrix2D((w / 2 - 0.5, h / 2 - 0.5), 30.0, 1.0), [0, 0, 1]])
+    cv2.imwrite(str(tmp_path / "a.png"), image)
+    cv2.imwrite(str(tmp_path / "b.png"), cv2.warpPerspective(image, truth, (w, h)))
+    out = tmp_path / "m.csv"
+    result = runner.invoke(app, ["match", str(tmp_path / "a.png"), str(tmp_path / "b.png"), "-o", str(out),
+                                 "--method", "sift"])
+    assert result.exit_code == 0, result.output
+    rows = np.loadtxt(out, delimiter=",", skiprows=1, ndmin=2)
+    assert open(out).readline().strip() == "x1,y1,x2,y2,score" and len(rows) > 50
+    pred = cv2.perspectiveTransform(rows[:, None, :2].astype(np.float64), truth)[:, 0]
+    assert np.median(np.linalg.norm(pred - rows[:, 2:4], axis=1)) < 1.0
+
+
+@pytest.mark.parametrize("make,message", [
+    (lambda p: None, "no such file"),
+    (lambda p: p.write_text("not an image"), "not an image"),
+])
+def test_match_errors(tmp_path, make, message):
+    bad = tmp_path / "bad.png"
+    make(bad)
+    result = runner.invoke(app, ["match", str(bad), str(bad), "-o", str(tmp_path / "m.csv")])
+    assert result.exit_code == 2 and message in result.output

@@ -1,0 +1,424 @@
+"""The fault job: trace_faults on arrays, run_faults_job on files (demo, real SEG-Y, sections, bad inputs)."""
+
+import csv
+import hashlib
+import shutil
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+import segyio
+
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, Seismo3dWarning
+from seismo3d.seismic.io import open_segy
+from seismo3d.seismic.job import FaultInterpretation, run_faults_job, trace_faults
+
+POINT_COLUMNS = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples"]
+SUMMARY_COLUMNS = ["id", "n_points", "mean_strike_deg", "mean_dip_deg", "median_throw_samples"]
+
+
+def _sha(path) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def _rows(path):
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _angle(a, b, period=360.0):
+    d = abs(a - b) % period
+    return min(d, period - d)
+
+
+def _no_temp_files(folder):
+    return [p.name for p in Path(folder).iterdir() if p.name.endswith(".tmp")]
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# the demo: every output, against the synthetic cube's truth
+
+
+@pytest.fixture(scope="module")
+def demo(tmp_path_factory):
+    out = tmp_path_factory.mktemp("demo")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", Seismo3dWarning)  # a clean synthetic cube raises no warning
+        written = run_faults_job(None, out, demo=True, seed=0, progress=False)
+    return out, written
+
+
+def test_demo_writes_every_output(demo):
+    out, written = demo
+    names = {"demo_seismic.sgy", "demo_truth.csv", "fault_likelihood.sgy", "fault_strike.sgy", "fault_dip.sgy",
+             "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png"}
+    assert {p.name for p in out.iterdir()} == names
+    assert {Path(p).name for p in written.values()} == names
+    assert Path(written["figure"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_demo_csv_columns_and_values(demo):
+    out, _ = demo
+    points = _rows(out / "fault_points.csv")
+    summary = _rows(out / "fault_summary.csv")
+    assert list(points[0]) == POINT_COLUMNS + ["throw_ms", "throw_correlation"]
+    assert list(summary[0]) == SUMMARY_COLUMNS + ["median_throw_ms"]
+    # every summary row counts its points; ids 1..n by decreasing size
+    ids = [int(r["fault_id"]) for r in points]
+    assert [int(r["id"]) for r in summary] == list(range(1, len(summary) + 1))
+    assert [int(r["n_points"]) for r in summary] == [ids.count(i) for i in range(1, len(summary) + 1)]
+    sizes = [int(r["n_points"]) for r in summary]
+    assert sizes == sorted(sizes, reverse=True)
+    # geometry of the demo SEG-Y: inlines / crosslines 1..128, 4 ms samples from 0
+    il = np.array([int(r["inline"]) for r in points])
+    tz = np.array([float(r["time_or_depth"]) for r in points])
+    assert il.min() >= 1 and il.max() <= 128
+    np.testing.assert_allclose(tz % 4.0, 0.0, atol=1e-9)
+    assert tz.max() <= 127 * 4.0
+    # throw in ms is throw in samples x 4 ms
+    both = [(float(r["throw_samples"]), float(r["throw_ms"])) for r in points if r["throw_samples"]]
+    assert len(both) > 0.5 * len(points)
+    ts, tm = np.array(both).T
+    np.testing.assert_allclose(tm, 4.0 * ts, rtol=1e-4, atol=1e-3)
+
+
+def test_demo_finds_the_true_faults(demo):
+    """The three largest traced faults are the synthetic cube's three faults: strike within 10 degrees, dip within 5,
+    median throw (signed: + hanging wall down) within 1 sample of the truth at the fault's reference point."""
+    out, _ = demo
+    truth = _rows(out / "demo_truth.csv")
+    summary = _rows(out / "fault_summary.csv")
+    assert len(truth) == 3 and len(summary) >= 3
+    for t in truth:
+        best = min(summary[:3], key=lambda r: _angle(float(r["mean_strike_deg"]), float(t["strike_deg"])))
+        assert _angle(float(best["mean_strike_deg"]), float(t["strike_deg"])) <= 10.0
+        assert abs(float(best["mean_dip_deg"]) - float(t["dip_deg"])) <= 5.0
+        assert abs(float(best["median_throw_samples"]) - float(t["throw_samples"])) <= 1.0
+
+
+def test_demo_volumes_keep_the_input_geometry(demo):
+    out, _ = demo
+    with open_segy(out / "demo_seismic.sgy") as src:
+        for name in ("fault_likelihood.sgy", "fault_strike.sgy", "fault_dip.sgy"):
+            with open_segy(out / name) as cube:
+                assert cube.shape == src.shape
+                np.testing.assert_array_equal(cube.inlines, src.inlines)
+                np.testing.assert_array_equal(cube.samples, src.samples)
+    with open_segy(out / "fault_likelihood.sgy") as c:
+        fl = c.read()
+    with open_segy(out / "fault_dip.sgy") as c:
+        dip = c.read()
+    assert fl.min() >= 0.0 and fl.max() <= 1.0 and fl.max() > 0.9
+    assert dip.min() > 0.0 and dip.max() <= 90.0
+
+
+def test_demo_surfaces(demo):
+    import pyvista as pv
+
+    out, _ = demo
+    mesh = pv.read(out / "faults.vtp")
+    summary = _rows(out / "fault_summary.csv")
+    assert mesh.n_points == sum(int(r["n_points"]) for r in summary)
+    assert mesh.n_cells > mesh.n_points  # triangulated: about 2 triangles per point
+    for name in ("fault_id", "throw", "likelihood", "inline", "crossline", "time_or_depth"):
+        assert name in mesh.point_data
+    ids, counts = np.unique(mesh.point_data["fault_id"], return_counts=True)
+    np.testing.assert_array_equal(counts, [int(r["n_points"]) for r in summary])
+    # z is minus the sample index; time_or_depth is the sample's time in ms
+    np.testing.assert_allclose(mesh.point_data["time_or_depth"], -4.0 * mesh.points[:, 2], atol=1e-3)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# real data
+
+
+def test_f3_crop_round_trip(data_dir, tmp_path):
+    """The likelihood, strike and dip SEG-Y of f3_crop read back with the input's geometry and trace headers."""
+    src = tmp_path / "in" / "f3_crop.sgy"
+    src.parent.mkdir()
+    shutil.copyfile(Path(data_dir) / "seismic" / "f3_crop.sgy", src)
+    before = _sha(src)
+    out = tmp_path / "out"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)  # its muted top and low coherence are reported
+        written = run_faults_job(src, out, progress=False)
+    assert _sha(src) == before
+    with segyio.open(src) as a:
+        for key in ("likelihood", "strike", "dip"):
+            with segyio.open(written[key]) as b:
+                np.testing.assert_array_equal(a.ilines, b.ilines)
+                np.testing.assert_array_equal(a.xlines, b.xlines)
+                np.testing.assert_array_equal(a.samples, b.samples)
+                assert a.sorting == b.sorting and a.tracecount == b.tracecount
+                assert a.text[0] == b.text[0]
+                bin_a, bin_b = dict(a.bin), dict(b.bin)
+                assert bin_b.pop(segyio.BinField.Format) == 5  # IEEE float
+                bin_a.pop(segyio.BinField.Format)
+                assert bin_a == bin_b
+                for i in range(a.tracecount):
+                    assert a.header[i] == b.header[i], f"trace header {i} of {key}"
+    with open_segy(written["likelihood"]) as c:
+        fl = c.read()
+    assert fl.shape == (23, 18, 75) and fl.min() >= 0 and fl.max() <= 1
+    # the muted top (leading zeros, 8-19 samples per trace) is dead: no likelihood there
+    with open_segy(src) as c:
+        data = c.read()
+    lead = np.argmax(data != 0, axis=-1)
+    assert lead.min() >= 5
+    muted = np.arange(75)[None, None, :] < lead[..., None]
+    assert muted.sum() > 2000 and np.all(fl[muted] == 0)
+    points = _rows(written["points"])
+    assert list(points[0])[:6] == POINT_COLUMNS + ["throw_ms"]
+    assert {int(r["inline"]) for r in points} <= set(range(111, 134))
+    assert {int(r["crossline"]) for r in points} <= set(range(875, 893))
+
+
+def test_real_section(data_dir, tmp_path):
+    src = Path(data_dir) / "seismic" / "sections" / "teapot_tp73.f32be"
+    before = _sha(src)
+    written = run_faults_job(src, tmp_path / "tp73", progress=False)
+    assert _sha(src) == before
+    assert np.load(written["likelihood"]).shape == (357, 240)
+    points = _rows(written["points"])
+    summary = _rows(written["summary"])
+    assert len(summary) >= 3
+    assert list(points[0]) == POINT_COLUMNS + ["throw_correlation"]  # no unit: raw sections are in samples
+    assert all(r["crossline"] == "" for r in points)
+    assert all(0 <= int(r["inline"]) < 357 and 0 <= float(r["time_or_depth"]) < 240 for r in points)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# 2D inputs made here: a SEG-Y line (n, 1, ns) like penobscot_xl1155, a .npy section
+
+
+def _write_line(path, section, *, along="inline"):
+    """A 2D SEG-Y line: one crossline (along='inline') or one inline, 4 ms."""
+    n, ns = section.shape
+    spec = segyio.spec()
+    spec.format = 5
+    spec.samples = np.arange(ns) * 4.0
+    spec.sorting = 2
+    if along == "inline":
+        spec.ilines, spec.xlines = np.arange(1000, 1000 + n), [1155]
+    else:
+        spec.ilines, spec.xlines = [500], np.arange(10, 10 + n)
+    with segyio.create(str(path), spec) as f:
+        for i in range(n):
+            il, xl = (1000 + i, 1155) if along == "inline" else (500, 10 + i)
+            f.header[i] = {segyio.su.iline: il, segyio.su.xline: xl, segyio.su.cdpx: 100 * i}
+            f.trace[i] = section[i]
+        f.bin.update(hdt=4000, hns=ns)
+
+
+@pytest.fixture(scope="module")
+def section():
+    return synthetic_cube((160, 96), n_faults=2, seed=3)
+
+
+@pytest.mark.parametrize("along", ["inline", "crossline"])
+def test_segy_line(section, tmp_path, along):
+    src = tmp_path / "in" / "line.sgy"
+    src.parent.mkdir()
+    _write_line(src, section.cube, along=along)
+    before = _sha(src)
+    written = run_faults_job(src, tmp_path / "out", progress=False)
+    assert _sha(src) == before
+    with segyio.open(src) as a, segyio.open(written["likelihood"]) as b:
+        assert [dict(a.header[i]) for i in range(a.tracecount)] == [dict(b.header[i]) for i in range(b.tracecount)]
+        fl = segyio.tools.collect(b.trace[:])
+    assert fl.shape == (160, 96) and fl.max() > 0.5
+    points = _rows(written["points"])
+    assert len(points) > 0
+    lateral = "inline" if along == "inline" else "crossline"
+    fixed, first = ("crossline", 1000) if along == "inline" else ("inline", 10)
+    assert {int(r[fixed]) for r in points} == ({1155} if along == "inline" else {500})
+    assert all(first <= int(r[lateral]) < first + 160 for r in points)
+    # the line's two faults are found (each at least 30 samples long)
+    sizes = [int(r["n_points"]) for r in _rows(written["summary"])]
+    assert len(sizes) >= 2 and sizes[1] >= 30
+
+
+def test_npy_section_with_nan_and_dead_traces(section, tmp_path):
+    data = section.cube.copy()
+    data[40] = np.nan  # a NaN trace
+    data[100:103] = 0.0  # dead traces
+    data[:, :10] = 0.0  # a muted top
+    src = tmp_path / "section.npy"
+    np.save(src, data)
+    before = _sha(src)
+    with pytest.warns(Seismo3dWarning) as record:
+        written = run_faults_job(src, tmp_path / "out", progress=False)
+    messages = " ".join(str(w.message) for w in record)
+    assert "NaN" in messages and "constant" in messages
+    assert _sha(src) == before
+    fl = np.load(written["likelihood"])
+    assert np.all(np.isfinite(fl))
+    assert np.all(fl[37:44] == 0) and np.all(fl[97:106] == 0) and np.all(fl[:, :18] == 0)
+    points = _rows(written["points"])
+    tr = np.array([int(r["inline"]) for r in points])
+    assert not np.any((tr >= 37) & (tr <= 43)) and not np.any((tr >= 97) & (tr <= 105))
+
+
+def test_no_faults(tmp_path):
+    """A section without faults (nor any thinned sample) still gets every output, with header-only tables."""
+    import pyvista as pv
+
+    layers = np.tile(np.sin(np.arange(64) * 0.9), (80, 1)).astype(np.float32)  # flat, perfectly coherent layers
+    src = tmp_path / "flat.npy"
+    np.save(src, layers)
+    written = run_faults_job(src, tmp_path / "out", progress=False)
+    assert len(_rows(written["summary"])) == 0 and len(_rows(written["points"])) == 0
+    assert Path(written["points"]).read_text().startswith("inline,crossline,time_or_depth,fault_id,throw_samples")
+    assert pv.read(written["surfaces"]).n_points == 0
+    assert np.load(written["likelihood"]).max() < 0.1
+    assert Path(written["figure"]).stat().st_size > 1000
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# trace_faults on arrays
+
+
+def test_trace_faults_units_and_result(section):
+    res = trace_faults(section.cube, sample_interval=2.0, sample_unit="m", progress=False)
+    assert isinstance(res, FaultInterpretation)
+    assert res.sample_unit == "m" and res.sample_interval == 2.0
+    assert res.likelihood.shape == res.strike_deg.shape == res.dip_deg.shape == res.thin.shape == (160, 96)
+    assert len(res.throws) == len(res.faults) >= 2
+    assert [t.fault_id for t in res.throws] == [f.id for f in res.faults]
+    assert np.all(res.thin[res.thin > 0] == res.likelihood[res.thin > 0])
+
+
+@pytest.mark.parametrize("kwargs", [dict(sample_unit="ms"), dict(sample_unit="s", sample_interval=1.0),
+                                    dict(sample_interval=4.0), dict(sample_unit="ms", sample_interval=-4.0)])
+def test_trace_faults_rejects_bad_units(section, kwargs):
+    with pytest.raises(InputError):
+        trace_faults(section.cube, progress=False, **kwargs)
+
+
+@pytest.mark.parametrize("data", [np.zeros((40, 40)), np.full((20, 20, 20), np.nan), np.zeros((4, 5, 6, 7)),
+                                  np.array([["a"] * 20] * 20)])
+def test_trace_faults_rejects_bad_arrays(data):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        with pytest.raises(InputError):
+            trace_faults(data, progress=False)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# bad files and folders: our errors, input untouched, nothing left half-written
+
+
+def test_not_segy(tmp_path):
+    src = tmp_path / "in" / "notes.sgy"
+    src.parent.mkdir()
+    src.write_text("this is not a seismic file\n" * 200)
+    before = _sha(src)
+    with pytest.raises(SegyFormatError, match="cannot be read as SEG-Y"):
+        run_faults_job(src, tmp_path / "out", progress=False)
+    assert _sha(src) == before
+
+
+def test_truncated_segy(data_dir, tmp_path):
+    raw = (Path(data_dir) / "seismic" / "f3_crop.sgy").read_bytes()
+    src = tmp_path / "in" / "cut.sgy"
+    src.parent.mkdir()
+    src.write_bytes(raw[: len(raw) // 2 + 17])
+    with pytest.raises(SegyFormatError):
+        run_faults_job(src, tmp_path / "out", progress=False)
+
+
+def test_wrong_header_bytes(data_dir, tmp_path):
+    src = Path(data_dir) / "seismic" / "f3_crop.sgy"
+    with pytest.raises(SegyGeometryError, match="ignore_geometry"):
+        run_faults_job(src, tmp_path / "out", iline=1, xline=5, progress=False)
+
+
+def test_missing_input(tmp_path):
+    with pytest.raises(DataNotFoundError):
+        run_faults_job(tmp_path / "nothing.sgy", tmp_path / "out", progress=False)
+    with pytest.raises(DataNotFoundError):
+        run_faults_job(tmp_path / "nothing.f32be", tmp_path / "out", progress=False)
+    with pytest.raises(InputError, match="demo"):
+        run_faults_job(None, tmp_path / "out", progress=False)
+    with pytest.raises(InputError, match="not both"):
+        run_faults_job(tmp_path / "x.sgy", tmp_path / "out", demo=True, progress=False)
+
+
+def test_output_folder_is_the_input_folder(section, tmp_path):
+    src = tmp_path / "section.npy"
+    np.save(src, section.cube)
+    before = sorted(p.name for p in tmp_path.iterdir())
+    with pytest.raises(InputError, match="another folder"):
+        run_faults_job(src, tmp_path, progress=False)
+    with pytest.raises(InputError, match="another folder"):
+        run_faults_job(src, tmp_path / "." / "", progress=False)
+    assert sorted(p.name for p in tmp_path.iterdir()) == before
+    (tmp_path / "afile").write_text("x")
+    with pytest.raises(InputError, match="is a file"):
+        run_faults_job(src, tmp_path / "afile", progress=False)
+
+
+def test_interrupted_run_keeps_finished_files(section, tmp_path, monkeypatch):
+    """Ctrl-C while the picture is written: the previous faults.png stays, no temporary file is left behind."""
+    from matplotlib.figure import Figure
+
+    src = tmp_path / "section.npy"
+    np.save(src, section.cube)
+    out = tmp_path / "out"
+    written = run_faults_job(src, out, progress=False)
+    png_before = _sha(written["figure"])
+
+    def interrupted_savefig(self, fname, **kwargs):
+        Path(fname).write_bytes(b"half a picture")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(Figure, "savefig", interrupted_savefig)
+    with pytest.raises(KeyboardInterrupt):
+        run_faults_job(src, out, progress=False)
+    assert _sha(written["figure"]) == png_before
+    assert _no_temp_files(out) == []
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# rendering (seismo3d.viz.faults) of the job's results
+
+
+@pytest.fixture(scope="module")
+def small_cube():
+    syn = synthetic_cube((48, 48, 48), n_faults=2, seed=1)
+    return syn.cube, trace_faults(syn.cube, progress=False)
+
+
+def test_show_faults_off_screen(small_cube, tmp_path):
+    """VTK renders off screen here: the picture shows the slices (grey) and fault 1 in its tab10 blue."""
+    from matplotlib.image import imread
+
+    from seismo3d.viz.faults import show_faults
+
+    cube, res = small_cube
+    shot = tmp_path / "scene.png"
+    show_faults(cube, res.faults, throws=res.throws, screenshot=shot, window_size=(400, 300))
+    img = (imread(shot)[..., :3] * 255).round()
+    assert img.shape == (300, 400, 3)
+    blue = np.all(np.abs(img - [31, 119, 180]) < 60, axis=-1) & (img[..., 2] > img[..., 0] + 60)
+    grey = (np.ptp(img, axis=-1) < 8) & (img.mean(axis=-1) < 200)
+    assert blue.mean() > 0.01 and grey.mean() > 0.01
+    with pytest.raises(InputError):
+        show_faults(cube, res.faults, color_by="colour", screenshot=shot)
+
+
+def test_plot_fault_slices_arguments(small_cube, tmp_path):
+    from seismo3d.viz.faults import plot_fault_slices
+
+    cube, res = small_cube
+    path = plot_fault_slices(cube, res.thin, path=tmp_path / "thin.png", slices=(10, 20, 30))
+    assert path.read_bytes()[:4] == b"\x89PNG"
+    with pytest.raises(InputError, match="slices"):
+        plot_fault_slices(cube, res.faults, path=tmp_path / "x.png", slices=(10, 20, 48))
+    with pytest.raises(InputError, match="shape"):
+        plot_fault_slices(cube, res.thin[:, :, :10], path=tmp_path / "x.png")
+    with pytest.raises(InputError, match="does not exist"):
+        plot_fault_slices(cube, res.faults, path=tmp_path / "no" / "x.png")
+    assert not (tmp_path / "x.png").exists()

@@ -84,6 +84,9 @@ def fit_homography(xy1, xy2, *, threshold: float = 3.0, estimator: str = "usac",
 def fit_similarity_2d(xy1, xy2, *, threshold: float = 3.0, confidence: float = 0.999, max_iterations: int = 10000):
     """Robustly fit a 2D similarity (rotation, uniform scale, translation) mapping image 1 onto image 2.
 
+    Uses the registration engine's :func:`~seismo3d.registration.ransac` (minimal samples of 2 matches fitted in
+    closed form by Umeyama's method, local optimisation on the inliers).
+
     Parameters
     ----------
     xy1, xy2 : (M, 2) array_like of float
@@ -108,17 +111,19 @@ def fit_similarity_2d(xy1, xy2, *, threshold: float = 3.0, confidence: float = 0
     RegistrationError
         If there are fewer than 2 matches or RANSAC finds no model.
     """
-    import cv2
+    from ..registration import ransac
 
     src, dst = as_pair(xy1, xy2, dims=(2,), min_points=0, names=("xy1", "xy2"))
     check_positive(threshold, "threshold")
     if src.shape[0] < 2:
         raise RegistrationError(f"a similarity needs at least 2 matches; got {src.shape[0]}")
-    a, mask = cv2.estimateAffinePartial2D(src, dst, method=cv2.RANSAC, ransacReprojThreshold=float(threshold),
-                                          maxIters=int(max_iterations), confidence=float(confidence), refineIters=10)
-    if a is None or mask is None or not np.all(np.isfinite(a)):
-        raise RegistrationError("no consistent similarity among the matches; the images may not overlap")
-    return np.vstack([a, [0.0, 0.0, 1.0]]), mask.ravel().astype(bool)
+    try:  # the engine's RANSAC with its closed-form Umeyama minimal solver (method.md section 1)
+        result = ransac(src, dst, model="similarity", threshold=threshold, max_trials=max_iterations,
+                        confidence=confidence, min_inliers=min(src.shape[0], 3))
+    except (RegistrationError, InputError) as exc:
+        raise RegistrationError(f"no consistent similarity among the matches ({exc}); the images may not overlap") \
+            from exc
+    return result.transform, result.info["inliers"]
 
 
 def verify_matches(result, *, model: str = "homography", threshold: float = 3.0):

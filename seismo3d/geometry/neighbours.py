@@ -37,7 +37,12 @@ def voxel_downsample(points, voxel_size: float, *, values=None):
     pts = as_points(points)
     size = check_positive(voxel_size, "voxel_size")
     keys = np.floor((pts - pts.min(axis=0)) / size).astype(np.int64)
-    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    dims = keys.max(axis=0) + 1
+    if np.prod(dims.astype(np.float64)) < 2.0**62:  # one int64 per voxel: a 1D unique is far faster than rows
+        keys = np.ravel_multi_index(keys.T, dims)
+        _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    else:
+        _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
     inverse = inverse.reshape(-1)
     order = np.argsort(first)  # keep the voxels in order of first occurrence (stable, reproducible)
     rank = np.empty_like(order)

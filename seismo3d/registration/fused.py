@@ -17,7 +17,7 @@ __all__ = ["fused_icp"]
 def fused_icp(source, target, *, target_normals, source_features, target_features, alpha: float = 0.1,
               model: str = "rigid", init=None, feature_weights=None, ransac_threshold: float | None = None,
               ransac_trials: int = 5000, seed: int = 0, max_distance=None, voxel_size=None,
-              max_iterations: int = 50, tolerance: float = 1e-5, kernel: str = "huber",
+              max_iterations: int = 50, tolerance: float = 1e-4, kernel: str = "huber",
               kernel_scale: float | None = None, degeneracy_threshold: float = 1e-3) -> RegistrationResult:
     """Register ``source`` onto ``target`` by minimising the fused objective of the method's eq. 16.
 

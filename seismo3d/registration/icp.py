@@ -257,7 +257,7 @@ def _run(stages, sched, frame, m0, *, method, model, max_iterations, tolerance, 
 
 
 def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid", target_normals=None, init=None,
-        max_distance=None, voxel_size=None, max_iterations: int = 50, tolerance: float = 1e-5,
+        max_distance=None, voxel_size=None, max_iterations: int = 50, tolerance: float = 1e-4,
         kernel: str = "huber", kernel_scale: float | None = None,
         degeneracy_threshold: float = 1e-3) -> RegistrationResult:
     """Iterative closest point registration of ``source`` onto ``target``, in 2D or 3D.
@@ -340,7 +340,7 @@ def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid",
 
 
 def fast_icp(source, target, *, n_samples: int = 2000, init=None, max_distance=None, max_iterations: int = 30,
-             tolerance: float = 1e-5, seed: int = 0) -> RegistrationResult:
+             tolerance: float = 1e-4, seed: int = 0) -> RegistrationResult:
     """The "Fast ICP" baseline of the paper's Table 1: rigid point-to-point ICP on a random subset of the source.
 
     Parameters

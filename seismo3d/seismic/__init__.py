@@ -1,1 +1,17 @@
-"""seismo3d.seismic."""
+"""Seismic interpretation: SEG-Y I/O, reflector orientation and discontinuity attributes, fault likelihood, fault
+surfaces, fault throw by registration, and the ``seismo3d faults`` job."""
+
+from .attributes import ReflectorOrientation, discontinuity, eigen_coherence, semblance, structure_tensor_orientation
+from .faults import (
+    Fault, FaultLikelihood, evaluate_faults, fault_labels, fault_likelihood, fault_normals, link_faults, thin_faults,
+)
+from .io import SeismicCube, open_segy, read_ascii_lines, read_section, read_segy, write_like
+from .job import FaultInterpretation, run_faults_job, trace_faults
+from .throw import FaultThrow, fault_throw, fault_throws
+
+__all__ = [
+    "Fault", "FaultInterpretation", "FaultLikelihood", "FaultThrow", "ReflectorOrientation", "SeismicCube",
+    "discontinuity", "eigen_coherence", "evaluate_faults", "fault_labels", "fault_likelihood", "fault_normals",
+    "fault_throw", "fault_throws", "link_faults", "open_segy", "read_ascii_lines", "read_section", "read_segy",
+    "run_faults_job", "semblance", "structure_tensor_orientation", "thin_faults", "trace_faults", "write_like",
+]

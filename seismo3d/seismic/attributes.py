@@ -573,7 +573,7 @@ def eigen_coherence(data, *, half_traces=1, half_samples=4, structure_oriented=T
 
     ``c = lambda_1(C) / trace(C)`` with ``C_kl = sum_t f_k(t) f_l(t)`` the covariance of the J traces of the window
     over 2 ``half_samples`` + 1 samples (Gersztenkorn & Marfurt 1999). Windows as in :func:`semblance`.
-    It costs about 10x :func:`semblance` (a J x J eigenproblem per sample).
+    It costs about 4x :func:`semblance` (a J x J eigenproblem per sample; 3.3 vs 0.9 CPU s on a 128^3 cube).
 
     Parameters
     ----------

@@ -544,8 +544,8 @@ def fault_likelihood(data, *, strikes=None, dips=None, strike_smoothing=4.0, dip
     ----------
     .. [1] D. Hale, "Methods to compute fault images, extract fault surfaces, and estimate fault throws from 3D
        seismic images", Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1.
-    .. [2] D. Hale, "Fault surfaces and fault throws from 3D seismic images", SEG Technical Program Expanded
-       Abstracts 2012 (the scan over strikes and dips of ``ipf.FaultScanner``).
+    .. [2] D. Hale, ``ipf.FaultScanner`` in https://github.com/dhale/ipf (2014): the reference implementation of the
+       scan over fault strikes and dips with rotated and sheared recursive smoothing.
     .. [3] K. J. Marfurt, R. L. Kirlin, S. L. Farmer and M. S. Bahorich, "3-D seismic attributes using a
        semblance-based coherency algorithm", Geophysics 63(4), 1998, doi:10.1190/1.1444415.
 

@@ -82,6 +82,16 @@ def median_spacing(points, *, sample: int = 2000, seed: int = 0) -> float:
 
 
 def bounding_diagonal(points) -> float:
-    """Length of the diagonal of the axis-aligned bounding box, in the points' unit."""
+    """Length of the diagonal of the axis-aligned bounding box.
+
+    Parameters
+    ----------
+    points : (N, d) array_like
+
+    Returns
+    -------
+    float
+        In the points' unit.
+    """
     pts = as_points(points)
     return float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))

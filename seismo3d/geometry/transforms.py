@@ -88,7 +88,19 @@ def make_transform(linear, translation) -> np.ndarray:
 
 
 def split_transform(transform):
-    """Return ``(A, t)``: the (d, d) linear part and the (d,) translation of a homogeneous transform."""
+    """Split a homogeneous transform into its linear part and translation.
+
+    Parameters
+    ----------
+    transform : (d+1, d+1) array_like
+
+    Returns
+    -------
+    A : (d, d) float64 ndarray
+        Linear part (a copy).
+    t : (d,) float64 ndarray
+        Translation, in the points' unit (a copy).
+    """
     m = np.asarray(transform, dtype=np.float64)
     d = m.shape[0] - 1
     return m[:d, :d].copy(), m[:d, d].copy()
@@ -136,12 +148,20 @@ def compose(*transforms) -> np.ndarray:
 
 
 def invert(transform) -> np.ndarray:
-    """Invert a homogeneous transform (exactly, via the linear part's inverse).
+    """Invert a homogeneous transform exactly: ``[[A^-1, -A^-1 t], [0, 1]]``.
+
+    Parameters
+    ----------
+    transform : (d+1, d+1) array_like
+
+    Returns
+    -------
+    (d+1, d+1) float64 ndarray
 
     Raises
     ------
     InputError
-        If the linear part is singular.
+        If the matrix is not a homogeneous transform or its linear part is singular.
     """
     m = as_transform(transform)
     a, t = split_transform(m)
@@ -152,14 +172,41 @@ def invert(transform) -> np.ndarray:
 
 
 def rotation_matrix(angle_deg: float) -> np.ndarray:
-    """2D rotation matrix (2, 2) for a counter-clockwise angle in degrees."""
+    """2D rotation matrix for a counter-clockwise angle.
+
+    Parameters
+    ----------
+    angle_deg : float
+        Angle in degrees, counter-clockwise (x towards y).
+
+    Returns
+    -------
+    (2, 2) float64 ndarray
+    """
     a = np.deg2rad(angle_deg)
     c, s = np.cos(a), np.sin(a)
     return np.array([[c, -s], [s, c]])
 
 
 def rotation_about_axis(axis, angle_deg: float) -> np.ndarray:
-    """3D rotation matrix (3, 3) by ``angle_deg`` degrees about ``axis`` (any non-zero (3,) vector, right-handed)."""
+    """3D rotation matrix about an axis (right-hand rule).
+
+    Parameters
+    ----------
+    axis : (3,) array_like
+        Any non-zero vector; it is normalised.
+    angle_deg : float
+        Angle in degrees.
+
+    Returns
+    -------
+    (3, 3) float64 ndarray
+
+    Raises
+    ------
+    InputError
+        If ``axis`` is not a non-zero 3-vector.
+    """
     ax = np.asarray(axis, dtype=np.float64)
     n = np.linalg.norm(ax)
     if ax.shape != (3,) or n == 0:
@@ -168,7 +215,17 @@ def rotation_about_axis(axis, angle_deg: float) -> np.ndarray:
 
 
 def nearest_rotation(matrix) -> np.ndarray:
-    """Project a (d, d) matrix onto SO(d) (polar decomposition via SVD, with the det-sign fix).
+    """Project a matrix onto SO(d): the rotation closest to it in the Frobenius norm.
+
+    Polar decomposition via the SVD ``M = U S V^T``, returning ``U diag(1, .., det(U V^T)) V^T`` (no reflections).
+
+    Parameters
+    ----------
+    matrix : (d, d) array_like
+
+    Returns
+    -------
+    (d, d) float64 ndarray
 
     References
     ----------
@@ -202,10 +259,26 @@ def decompose_axis_scaled(transform):
 
 
 def rotation_error_deg(estimate, truth) -> float:
-    """Angle in degrees of the rotation between the rotational parts of two transforms.
+    """Angle of the rotation between the rotational parts of two transforms.
 
-    Both linear parts are first projected onto SO(d) (scales removed), so the measure also applies to similarity,
-    axis-scaled and affine estimates. For 3D this is the geodesic angle ``arccos((tr(R_e^T R_t) - 1) / 2)``.
+    Both linear parts are first projected onto SO(d) (column scales removed), so the measure also applies to
+    similarity, axis-scaled and affine estimates. For 3D this is the geodesic angle
+    ``arccos((tr(R_e^T R_t) - 1) / 2)``; for 2D the absolute difference of the angles.
+
+    Parameters
+    ----------
+    estimate, truth : (d+1, d+1) array_like
+        Homogeneous transforms of the same dimension.
+
+    Returns
+    -------
+    float
+        Degrees, in [0, 180].
+
+    Raises
+    ------
+    InputError
+        If the transforms are malformed or of different dimensions.
     """
     e, _ = split_transform(as_transform(estimate))
     g, _ = split_transform(as_transform(truth))
@@ -219,7 +292,17 @@ def rotation_error_deg(estimate, truth) -> float:
 
 
 def translation_error(estimate, truth) -> float:
-    """Euclidean distance between the translation parts of two transforms, in the points' units."""
+    """Euclidean distance between the translation parts of two transforms.
+
+    Parameters
+    ----------
+    estimate, truth : (d+1, d+1) array_like
+
+    Returns
+    -------
+    float
+        In the points' unit (e.g. metres).
+    """
     _, te = split_transform(as_transform(estimate))
     _, tt = split_transform(as_transform(truth))
     return float(np.linalg.norm(te - tt))

@@ -19,6 +19,16 @@ def min_points(model: str, dim: int) -> int:
     """Fewest point pairs that determine ``model`` in ``dim`` dimensions (the RANSAC minimal sample size).
 
     Rigid and similarity transforms need ``dim`` pairs (2 in 2D, 3 in 3D); axis-scaled and affine ones need ``dim + 1``.
+
+    Parameters
+    ----------
+    model : {'rigid', 'similarity', 'axis_scaled', 'affine'}
+    dim : int
+        2 or 3.
+
+    Returns
+    -------
+    int
     """
     check_model(model)
     return dim if model in ("rigid", "similarity") else dim + 1

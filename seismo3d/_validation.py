@@ -9,7 +9,8 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["as_points", "as_pair", "as_weights", "as_image", "check_choice", "check_positive"]
+__all__ = ["as_points", "as_pair", "as_weights", "as_image", "as_normals", "as_intrinsics", "check_choice",
+           "check_positive"]
 
 
 def as_points(points, name: str = "points", *, dims=(2, 3), min_points: int = 1) -> np.ndarray:
@@ -101,3 +102,42 @@ def check_positive(value, name: str, *, allow_zero: bool = False) -> float:
     if not np.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
         raise InputError(f"{name} must be {'>= 0' if allow_zero else '> 0'}; got {value!r}")
     return v
+
+
+def as_normals(normals, name: str, shape: tuple, *, of: str = "point") -> np.ndarray:
+    """Return ``normals`` normalised to unit length, checking one per point and no zero vectors.
+
+    Parameters
+    ----------
+    normals : (N, d) array_like
+    name : str
+        The argument's name, used in error messages.
+    shape : tuple
+        The required shape (N, d): that of the points the normals belong to.
+    of : str
+        What the points are, for the message (e.g. ``'target point'``).
+    """
+    v = as_points(normals, name, dims=(shape[1],), min_points=0)
+    if v.shape != tuple(shape):
+        raise InputError(f"{name} {v.shape} must have one normal per {of} {tuple(shape)}")
+    length = np.linalg.norm(v, axis=1)
+    if np.any(length < 1e-12):
+        raise InputError(f"{name} contains zero vectors; drop those points or recompute them")
+    return v / length[:, None]
+
+
+def as_intrinsics(intrinsics):
+    """Return pinhole intrinsics ``(fx, fy, cx, cy)`` in pixels from a (3, 3) matrix, four numbers or an object with
+    ``.matrix`` (e.g. :class:`seismo3d.data.CameraIntrinsics`); raise :class:`InputError` otherwise."""
+    if hasattr(intrinsics, "matrix"):
+        intrinsics = intrinsics.matrix
+    k = np.asarray(intrinsics, dtype=np.float64)
+    if k.shape == (3, 3):
+        fx, fy, cx, cy = k[0, 0], k[1, 1], k[0, 2], k[1, 2]
+    elif k.shape == (4,):
+        fx, fy, cx, cy = k
+    else:
+        raise InputError(f"intrinsics must be a (3, 3) camera matrix or (fx, fy, cx, cy); got shape {k.shape}")
+    if not (np.isfinite([fx, fy, cx, cy]).all() and fx > 0 and fy > 0):
+        raise InputError(f"intrinsics need finite values and fx, fy > 0; got fx={fx}, fy={fy}")
+    return float(fx), float(fy), float(cx), float(cy)

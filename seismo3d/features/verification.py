@@ -17,7 +17,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .._validation import as_pair, as_points, check_choice, check_positive
+from .._validation import as_intrinsics, as_pair, as_points, check_choice, check_positive
 from ..errors import InputError, RegistrationError
 
 __all__ = [
@@ -153,19 +153,6 @@ def verify_matches(result, *, model: str = "homography", threshold: float = 3.0)
     return replace(result, homography=matrix, inliers=inliers)
 
 
-def _intrinsics(intrinsics):
-    k = np.asarray(intrinsics, dtype=np.float64)
-    if k.shape == (4,):
-        fx, fy, cx, cy = k
-    elif k.shape == (3, 3):
-        fx, fy, cx, cy = k[0, 0], k[1, 1], k[0, 2], k[1, 2]
-    else:
-        raise InputError(f"intrinsics must be a (3, 3) camera matrix or (fx, fy, cx, cy); got shape {k.shape}")
-    if not (np.isfinite([fx, fy, cx, cy]).all() and fx > 0 and fy > 0):
-        raise InputError(f"intrinsics need finite fx, fy > 0; got fx={fx}, fy={fy}")
-    return fx, fy, cx, cy
-
-
 def lift_matches_depth(xy, depth, intrinsics, *, depth_scale: float = 1.0, max_depth: float | None = None):
     """Back-project image points into 3D camera coordinates through a depth image (pinhole model).
 
@@ -200,7 +187,7 @@ def lift_matches_depth(xy, depth, intrinsics, *, depth_scale: float = 1.0, max_d
     d = np.asarray(depth)
     if d.ndim != 2 or min(d.shape) < 1:
         raise InputError(f"depth must be a 2D (H, W) image; got shape {d.shape}")
-    fx, fy, cx, cy = _intrinsics(intrinsics)
+    fx, fy, cx, cy = as_intrinsics(intrinsics)
     scale = check_positive(depth_scale, "depth_scale")
     cols = np.rint(pts[:, 0]).astype(np.int64)
     rows = np.rint(pts[:, 1]).astype(np.int64)

@@ -7,7 +7,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order, connected_components, minimum_spanning_tree
 from scipy.spatial import cKDTree
 
-from .._validation import as_points, check_choice
+from .._validation import as_intrinsics, as_points, check_choice
 from ..errors import InputError
 
 __all__ = ["estimate_normals", "orient_normals", "normals_from_points_image", "backproject_depth"]
@@ -167,21 +167,10 @@ def backproject_depth(depth, intrinsics) -> np.ndarray:
     z = np.asarray(depth, dtype=np.float64)
     if z.ndim != 2:
         raise InputError(f"depth must be a (H, W) image; got shape {z.shape}")
-    fx, fy, cx, cy = _intrinsics(intrinsics)
+    fx, fy, cx, cy = as_intrinsics(intrinsics)
     z = np.where(np.isfinite(z) & (z > 0), z, np.nan)
     v, u = np.indices(z.shape, dtype=np.float64)
     return np.stack([(u - cx) * z / fx, (v - cy) * z / fy, z], axis=-1)
-
-
-def _intrinsics(intrinsics):
-    if hasattr(intrinsics, "matrix"):
-        intrinsics = intrinsics.matrix
-    k = np.asarray(intrinsics, dtype=np.float64)
-    if k.shape == (3, 3):
-        return k[0, 0], k[1, 1], k[0, 2], k[1, 2]
-    if k.shape == (4,):
-        return tuple(k)
-    raise InputError(f"intrinsics must be a (3, 3) matrix or (fx, fy, cx, cy); got shape {k.shape}")
 
 
 def normals_from_points_image(points_image, *, max_depth_jump: float = 0.05) -> np.ndarray:

@@ -87,9 +87,7 @@ def frame_feature_matches(source_frame, target_frame, *, method: str = "sift", r
     src = _frame_parts(source_frame, "source_frame")
     dst = _frame_parts(target_frame, "target_frame")
     result = match_images(src.color, dst.color, method=method, ratio=ratio, verify=None, max_keypoints=max_keypoints)
-    k1 = getattr(src.intrinsics, "matrix", src.intrinsics)
-    k2 = getattr(dst.intrinsics, "matrix", dst.intrinsics)
-    p1, p2, _ = lift_match_pairs(result, src.depth, dst.depth, k1, k2, inliers_only=False)
+    p1, p2, _ = lift_match_pairs(result, src.depth, dst.depth, src.intrinsics, dst.intrinsics, inliers_only=False)
     return p1, p2
 
 

@@ -13,9 +13,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .._validation import as_points, check_choice, check_positive
+from .._validation import as_points, as_normals, check_choice, check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
-from ..geometry.neighbours import voxel_downsample
+from ..geometry.neighbours import bounding_diagonal, median_spacing, voxel_downsample
 from ..geometry.transforms import as_transform, check_model, make_transform
 from . import _solver
 from .closed_form import _fit, min_points
@@ -47,8 +47,6 @@ def default_distance_schedule(target, *, fractions=(0.1, 0.03, 0.01), spacing_fa
     tuple of float
         Decreasing distances in the points' unit (duplicates removed).
     """
-    from ..geometry.neighbours import bounding_diagonal, median_spacing
-
     diag = bounding_diagonal(target)
     floor = spacing_factor * median_spacing(target)
     out = []
@@ -116,13 +114,7 @@ def _prepare(source, target, target_normals, method, model, init, max_distance, 
         if target_normals is None:
             raise InputError("point-to-plane needs target_normals; compute them with "
                              "seismo3d.geometry.estimate_normals(target)")
-        nrm = as_points(target_normals, "target_normals", dims=(d,))
-        if nrm.shape != dst.shape:
-            raise InputError(f"target_normals {nrm.shape} must have one normal per target point {dst.shape}")
-        norms = np.linalg.norm(nrm, axis=1)
-        if np.any(norms < 1e-12):
-            raise InputError("target_normals contains zero vectors; drop those points or recompute the normals")
-        nrm = nrm / norms[:, None]
+        nrm = as_normals(target_normals, "target_normals", dst.shape, of="target point")
     m0 = np.eye(d + 1) if init is None else as_transform(init, "init", dims=(d,))
     sched = default_distance_schedule(dst) if max_distance is None else _as_schedule(max_distance, "max_distance")
     if voxel_size is None:
@@ -367,8 +359,6 @@ def fast_icp(source, target, *, n_samples: int = 2000, init=None, max_distance=N
     if len(src) > n_samples:
         src = src[np.random.default_rng(seed).choice(len(src), int(n_samples), replace=False)]
     if max_distance is None:
-        from ..geometry.neighbours import bounding_diagonal
-
         max_distance = 0.05 * bounding_diagonal(target)
     return icp(src, target, method="point_to_point", model="rigid", init=init, max_distance=max_distance,
                max_iterations=max_iterations, tolerance=tolerance, kernel="none")

@@ -24,7 +24,7 @@ import numpy as np
 from scipy import ndimage as ndi
 from scipy.spatial import cKDTree
 
-from .._validation import as_points, check_positive
+from .._validation import as_points, as_normals, check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
 from .attributes import ReflectorOrientation, _as_seismic, structure_tensor_orientation
 
@@ -101,13 +101,7 @@ def _fault_arrays(fault, ndim: int) -> tuple[np.ndarray, np.ndarray, int]:
 
         normals = estimate_normals(pts, k=min(16, len(pts)), orient="none")
     else:
-        normals = as_points(normals, "fault.normals", dims=(ndim,), min_points=1)
-        if normals.shape != pts.shape:
-            raise InputError(f"fault.normals {normals.shape} must have one normal per point {pts.shape}")
-        length = np.linalg.norm(normals, axis=1)
-        if np.any(length < 1e-6):
-            raise InputError("fault.normals has zero vectors; recompute them, e.g. with fault_normals(strike, dip)")
-        normals = normals / length[:, None]
+        normals = as_normals(normals, "fault.normals", pts.shape)
     return pts, normals, fid
 
 

@@ -222,6 +222,79 @@ def match(
         typer.echo(np.array2string(result.homography, precision=6, suppress_small=True))
 
 
+class Polarity(str, Enum):
+    peak = "peak"
+    trough = "trough"
+    zero_rising = "zero_rising"
+    zero_falling = "zero_falling"
+
+
+@app.command()
+@_friendly
+def horizon(
+    input: pathlib.Path = typer.Argument(..., help="SEG-Y cube (inline-sorted or crossline-sorted)."),
+    seed: list[str] = typer.Option(..., "--seed", help="Seed pick IL,XL,T: inline and crossline numbers and the time "
+                                                       "(or depth) in the cube's sample unit; repeat for more seeds."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="Text file: one 'inline xline time' row per "
+                                                                      "tracked trace."),
+    polarity: Polarity = typer.Option(Polarity.peak, help="Event the horizon follows."),
+    faults: bool = typer.Option(False, "--faults", help="Trace the faults first and jump across them by their throw "
+                                                        "(slower: the whole fault job runs in memory)."),
+    fill: bool = typer.Option(False, "--fill", help="Fill empty traces by interpolation after tracking."),
+    surface: Optional[pathlib.Path] = typer.Option(None, help="Also write the horizon as a surface (.vtp or .vtk)."),
+    iline: int = typer.Option(189, help="Trace header byte of the inline number."),
+    xline: int = typer.Option(193, help="Trace header byte of the crossline number."),
+) -> None:
+    """Track a horizon in INPUT from one or more seed picks by registering neighbouring inlines, and write it as
+    'inline xline time' rows."""
+    import warnings
+
+    from .seismic import fill_horizon, open_segy, trace_faults, track_horizon, write_horizon_text
+
+    if output.resolve() == input.resolve() or (surface is not None and surface.resolve() == input.resolve()):
+        raise InputError(f"{output} would overwrite the input; choose another output path")
+    with open_segy(input, iline=iline, xline=xline) as cube:
+        if not cube.is_3d:
+            raise SegyGeometryError(f"{input} is not a 3D cube with inline/crossline geometry; horizon tracking "
+                                    "needs one (check --iline/--xline header bytes)")
+        data = cube.read()
+        inlines, xlines, samples = cube.inlines, cube.xlines, cube.samples
+        unit = cube.sample_unit
+    seeds = [_parse_seed(s, inlines, xlines, samples, unit) for s in seed]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        interp = trace_faults(data, sample_interval=float(samples[1] - samples[0]), sample_unit=unit) \
+            if faults else None
+        result = track_horizon(data, seeds, polarity=polarity.value, faults=interp, progress=True)
+    if fill:
+        result = fill_horizon(result)
+    n = write_horizon_text(output, result, inlines=inlines, xlines=xlines, samples=samples)
+    typer.echo(f"{n} of {result.times.size} traces tracked ({result.coverage:.1%}) -> {output}")
+    if surface is not None:
+        from .viz import horizon_surface, save_polydata
+
+        save_polydata(horizon_surface(result, inlines=inlines, xlines=xlines, samples=samples), surface)
+        typer.echo(f"surface -> {surface}")
+
+
+def _parse_seed(text: str, inlines, xlines, samples, unit: str) -> tuple[float, float, float]:
+    """'IL,XL,T' (line numbers and time/depth) -> (inline index, xline index, fractional sample index)."""
+    try:
+        il, xl, t = (float(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(f"--seed {text!r} must be IL,XL,T (three numbers separated by commas)") from None
+    where = []
+    for name, value, labels in (("inline", il, inlines), ("crossline", xl, xlines)):
+        hit = np.nonzero(np.asarray(labels) == value)[0]
+        if hit.size == 0:
+            raise InputError(f"--seed {text}: {name} {value:g} is not in the cube ({name}s {labels[0]}..{labels[-1]})")
+        where.append(float(hit[0]))
+    s = np.asarray(samples, dtype=np.float64)
+    if not s[0] <= t <= s[-1]:
+        raise InputError(f"--seed {text}: time {t:g} {unit} is outside the cube's samples ({s[0]:g}..{s[-1]:g} {unit})")
+    return where[0], where[1], float(np.interp(t, s, np.arange(s.size)))
+
+
 def _read_image(path: pathlib.Path) -> np.ndarray:
     import cv2
 

@@ -76,7 +76,8 @@ def _clean_traces(data) -> tuple[np.ndarray, np.ndarray]:
     """Replace NaN / inf by 0 (with a warning); return float32 data and the mask of dead samples (with a warning).
 
     Dead samples are those in runs of at least ``_DEAD_RUN`` equal values along a trace: dead traces, mutes (the
-    zeroed top of a survey), zero padding and NaN gaps.
+    zeroed top of a survey), zero padding and NaN gaps. Runs at the data's largest or smallest value are clipped
+    amplitudes (8-bit exports of sections), not dead samples, unless they fill the whole trace.
     """
     from scipy.ndimage import binary_opening
 
@@ -102,6 +103,11 @@ def _clean_traces(data) -> tuple[np.ndarray, np.ndarray]:
                          "check that the file is the right one and that its data format is read correctly")
     # equal neighbours along the trace, in runs of >= _DEAD_RUN - 1 differences
     flat = np.diff(arr, axis=-1) == 0
+    lo, hi = arr.min(), arr.max()
+    clipped = (arr[..., 1:] == lo) | (arr[..., 1:] == hi)
+    clipped &= ~flat.all(axis=-1, keepdims=True)
+    flat &= ~clipped
+    del clipped
     run = np.zeros((1,) * (arr.ndim - 1) + (min(_DEAD_RUN - 1, n_s - 1),), dtype=bool)
     run[...] = True
     flat = binary_opening(flat, structure=run)

@@ -1,0 +1,114 @@
+"""Horizon tracking: accuracy against people's picks and the generator's truth, beside a plain autotracker; speed.
+
+Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/horizons.py [--quick]``
+
+1. Penobscot (18 consecutive real inlines, 7 horizons picked by people): one seed per horizon on the first inline
+   (its crossline 256, at the interpreter's pick); the horizon is tracked along that inline and through all 18.
+   Per horizon: median absolute error (samples, over tracked traces), % of traces within 2 and 5 samples (untracked
+   traces count as misses), coverage, seconds; for seismo3d (fused ICP with HOG-pyramid matches, and point-to-plane
+   only) and the plain amplitude autotracker (same extremum picks, +-3 samples, breadth-first), in the same run.
+2. Synthetic faulted cubes (seismo3d.data.synthetic_cube, 3 faults): faults traced with trace_faults, every
+   horizon tracked from one seed on the middle inline; median absolute error against the true horizons.
+3. Speed: seconds per tracked slice (along one inline, and inline-to-inline carry) for growing slice sizes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+
+import numpy as np
+
+from seismo3d.data import fetch
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.seismic import autotrack, horizon_errors, trace_faults, track_horizon
+
+
+def penobscot(quick: bool) -> None:
+    z = np.load(fetch("seismic/penobscot_sections/penobscot_sections_1075_1092.npz"))
+    cube = np.ascontiguousarray(((z["seismic"].astype(np.float32) - 127.5) / 127.5).transpose(0, 2, 1))
+    human = z["horizons"].astype(np.float64)
+    human[human < 0] = np.nan
+    print("\n## Penobscot, 18 inlines x 512 traces, one seed per horizon (inline 0, trace 256)\n")
+    print("| horizon | method | median abs (samples) | within 2 % | within 5 % | coverage % | s |")
+    print("|---|---|---|---|---|---|---|")
+    runs = [("seismo3d fused (HOG)", dict(features="hog")), ("seismo3d point-to-plane", dict(features=None))]
+    if quick:
+        runs = runs[1:]
+    for k in range(human.shape[1]):
+        ref = human[:, k]
+        seed = (0, 256, ref[0, 256])
+        rows = []
+        for name, kw in runs:
+            t0 = time.perf_counter()
+            hz = track_horizon(cube, seed, **kw)
+            rows.append((name, hz.times, time.perf_counter() - t0))
+        t0 = time.perf_counter()
+        plain = autotrack(cube, seed)
+        rows.append(("plain autotracker", plain.times, time.perf_counter() - t0))
+        for name, times, sec in rows:
+            e = horizon_errors(times, ref)
+            print(f"| {k} | {name} | {e['median_abs']:.2f} | {100 * e['within_2']:.1f} | {100 * e['within_5']:.1f} | "
+                  f"{100 * e['coverage']:.1f} | {sec:.1f} |", flush=True)
+
+
+def synthetic(quick: bool) -> None:
+    print("\n## Synthetic faulted cubes 64 x 64 x 96 (3 faults, noise 0.1), all horizons, seed on the middle inline\n")
+    print("| cube seed | horizon | faults traced | median abs, with faults | within 2 % | coverage % | median abs, "
+          "no fault input | plain autotracker median abs | plain within 2 % |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for cs in range(1 if quick else 3):
+        syn = synthetic_cube((64, 64, 96), n_faults=3, seed=cs)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            faults = trace_faults(syn.cube, progress=False)
+        i0 = syn.shape[0] // 2
+        for k in range(syn.horizons.shape[0]):
+            ref = syn.horizons[k]
+            ok = np.nonzero(np.isfinite(ref[i0]))[0]
+            j0 = int(ok[np.argmin(np.abs(ok - syn.shape[1] // 2))])
+            seed = (i0, j0, float(ref[i0, j0]))
+            pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+            e = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, faults=faults, features=None).times, ref)
+            e0 = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, features=None).times, ref)
+            ea = horizon_errors(autotrack(syn.cube, seed, polarity=pol).times, ref)
+            print(f"| {cs} | {k} | {len(faults.faults)} | {e['median_abs']:.2f} | {100 * e['within_2']:.1f} | "
+                  f"{100 * e['coverage']:.1f} | {e0['median_abs']:.2f} | {ea['median_abs']:.2f} | "
+                  f"{100 * ea['within_2']:.1f} |", flush=True)
+
+
+def speed(quick: bool) -> None:
+    print("\n## Speed: seconds per tracked slice (synthetic, no faults; 8 inlines)\n")
+    print("| slice (traces x samples) | along the seed inline s | per inline-to-inline carry s (point-to-plane) | "
+          "per carry s (fused, HOG) |")
+    print("|---|---|---|---|")
+    sizes = [(128, 128), (256, 256)] if quick else [(128, 128), (256, 256), (512, 512)]
+    for n_xl, n_s in sizes:
+        syn = synthetic_cube((8, n_xl, n_s), n_faults=0, seed=0)
+        ref = syn.horizons[len(syn.horizons) // 2]
+        seed = (0, n_xl // 2, float(ref[0, n_xl // 2]))
+        pol = "peak" if syn.horizon_polarity[len(syn.horizons) // 2] > 0 else "trough"
+        t0 = time.perf_counter()
+        track_horizon(syn.cube[:1], seed, polarity=pol, features=None)
+        along = time.perf_counter() - t0
+        out = []
+        for feats in (None, "hog"):
+            t0 = time.perf_counter()
+            track_horizon(syn.cube, seed, polarity=pol, features=feats)
+            out.append((time.perf_counter() - t0 - along) / 7)
+        print(f"| {n_xl} x {n_s} | {along:.2f} | {out[0]:.2f} | {out[1]:.2f} |", flush=True)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="fewer cases (point-to-plane only on Penobscot)")
+    parser.add_argument("--only", choices=["penobscot", "synthetic", "speed"])
+    args = parser.parse_args()
+    for name, fn in (("penobscot", penobscot), ("synthetic", synthetic), ("speed", speed)):
+        if args.only in (None, name):
+            fn(args.quick)
+
+
+if __name__ == "__main__":
+    main()

@@ -79,24 +79,24 @@ def synthetic(quick: bool) -> None:
 
 
 def speed(quick: bool) -> None:
-    print("\n## Speed: seconds per tracked slice (synthetic, no faults; 8 inlines)\n")
+    print("\n## Speed: seconds per tracked slice (synthetic, no faults; 16 inlines)\n")
     print("| slice (traces x samples) | along the seed inline s | per inline-to-inline carry s (point-to-plane) | "
           "per carry s (fused, HOG) |")
     print("|---|---|---|---|")
     sizes = [(128, 128), (256, 256)] if quick else [(128, 128), (256, 256), (512, 512)]
     for n_xl, n_s in sizes:
-        syn = synthetic_cube((8, n_xl, n_s), n_faults=0, seed=0)
+        syn = synthetic_cube((16, n_xl, n_s), n_faults=0, seed=0)
         ref = syn.horizons[len(syn.horizons) // 2]
         seed = (0, n_xl // 2, float(ref[0, n_xl // 2]))
         pol = "peak" if syn.horizon_polarity[len(syn.horizons) // 2] > 0 else "trough"
         t0 = time.perf_counter()
-        track_horizon(syn.cube[:1], seed, polarity=pol, features=None)
+        track_horizon(syn.cube[0], seed[1:], polarity=pol)
         along = time.perf_counter() - t0
         out = []
         for feats in (None, "hog"):
             t0 = time.perf_counter()
             track_horizon(syn.cube, seed, polarity=pol, features=feats)
-            out.append((time.perf_counter() - t0 - along) / 7)
+            out.append((time.perf_counter() - t0 - along) / 15)
         print(f"| {n_xl} x {n_s} | {along:.2f} | {out[0]:.2f} | {out[1]:.2f} |", flush=True)
 
 

@@ -77,12 +77,14 @@ def _read_transform(path: pathlib.Path, dim: int) -> np.ndarray:
 @app.command()
 @_friendly
 def register(
-    source: pathlib.Path = typer.Argument(..., help="Source point cloud (.ply, .xyz/.txt/.csv, .npy): moved."),
-    target: pathlib.Path = typer.Argument(..., help="Target point cloud: fixed."),
+    source: pathlib.Path = typer.Argument(..., help="Source point cloud (.ply, .xyz/.txt/.csv, .npy): moved. For "
+                                                    "SEG-Y (.sgy/.segy): the FIXED cube."),
+    target: pathlib.Path = typer.Argument(..., help="Target point cloud: fixed. For SEG-Y: the MOVING cube."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Where to write the transform JSON."),
     method: Method = typer.Option(Method.point_to_plane, help="Residual: point-to-point, point-to-plane or fused "
                                                                "(features + point-to-plane, eq. 16)."),
-    model: Model = typer.Option(Model.rigid, help="Transform family."),
+    model: Optional[Model] = typer.Option(None, help="Transform family; default rigid for point clouds, axis_scaled "
+                                                     "for SEG-Y cubes."),
     init: Optional[pathlib.Path] = typer.Option(None, help="JSON with an initial source-to-target transform."),
     max_distance: Optional[list[float]] = typer.Option(
         None, help="Maximum correspondence distance (repeat for a coarse-to-fine schedule); default: 10/3/1 % of "
@@ -92,7 +94,17 @@ def register(
                    "coordinates (.csv/.txt/.npy with 2d columns)."),
     alpha: float = typer.Option(0.1, help="For --method fused: weight of the feature term in [0, 1]."),
 ) -> None:
-    """Register SOURCE onto TARGET and write the (d+1)x(d+1) transform mapping source into target coordinates."""
+    """Register SOURCE onto TARGET and write the (d+1)x(d+1) transform mapping source into target coordinates.
+
+    For two SEG-Y cubes the order is FIXED MOVING (the reference first, as in `seismo3d register BASE.sgy
+    MONITOR.sgy`): sub-volumes of different bin size, sample rate or map orientation are registered with
+    register_volumes (--model rigid, axis_scaled or affine); the JSON holds the 4x4 transforms from MOVING's
+    inline / crossline / sample indices to FIXED's, and between physical units (m, m, ms or m), the scales, the map
+    rotation, fitness and inlier RMSE."""
+    if _is_segy(source) or _is_segy(target):
+        _register_volumes(source, target, output, model or Model.axis_scaled)
+        return
+    model = model or Model.rigid
     from .data.pointclouds import read_points
     from .geometry import estimate_normals
     from .registration import fused_icp, icp
@@ -121,6 +133,35 @@ def register(
     typer.echo(f"fitness {result.fitness:.3f}  inlier RMSE {result.inlier_rmse:.4g}  iterations {result.n_iterations}"
                f"  converged {result.converged}" + ("  (DEGENERATE geometry)" if result.degenerate else ""))
     typer.echo(np.array2string(result.transform, precision=6, suppress_small=True))
+
+
+def _is_segy(path: pathlib.Path) -> bool:
+    return path.suffix.lower() in (".sgy", ".segy")
+
+
+def _register_volumes(fixed_path: pathlib.Path, moving_path: pathlib.Path, output: pathlib.Path, model) -> None:
+    """`seismo3d register FIXED.sgy MOVING.sgy`: sub-volume registration, JSON with both transforms."""
+    from .seismic import open_segy, register_volumes
+
+    if not (_is_segy(moving_path) and _is_segy(fixed_path)):
+        raise InputError(f"{fixed_path} and {moving_path}: register either two SEG-Y cubes or two point clouds, not "
+                         "one of each")
+    if model.value not in ("rigid", "axis_scaled", "affine"):
+        raise InputError(f"--model {model.value} is not available for SEG-Y volumes; use rigid (spacings from the "
+                         "headers are right), axis_scaled (default for unknown bins / sample rates) or affine")
+    with open_segy(fixed_path) as fixed, open_segy(moving_path) as moving:
+        first_f = (int(fixed.inlines[0]), int(fixed.xlines[0]), float(fixed.samples[0]))
+        first_m = (int(moving.inlines[0]), int(moving.xlines[0]), float(moving.samples[0]))
+        reg = register_volumes(fixed, moving, model=model.value)
+    payload = reg.to_dict()
+    payload.update(model=model.value, moving=str(moving_path), fixed=str(fixed_path),
+                   index_axes=["inline", "crossline", "sample"],
+                   fixed_first=dict(zip(("inline", "xline", "sample_value"), first_f)),
+                   moving_first=dict(zip(("inline", "xline", "sample_value"), first_m)))
+    _write_json(output, payload)
+    typer.echo(f"map rotation {reg.rotation_deg:.2f} deg  scales {np.array2string(reg.scales, precision=4)}  "
+               f"fitness {reg.fitness:.3f}  inlier RMSE {reg.inlier_rmse:.3g}  correlation {reg.correlation:.3f}")
+    typer.echo(np.array2string(reg.transform_index, precision=4, suppress_small=True))
 
 
 class SampleUnit(str, Enum):

@@ -7,7 +7,7 @@ public origin with pooch; see ``seismo3d/data/README.md`` for every file's purpo
 from .pointclouds import BunnyPair, load_bunny, read_points, write_points
 from .registry import REGISTRY, DataFile, data_dir, fetch, file_info, list_files
 from .rgbd import CameraIntrinsics, RGBDFrame, load_7scenes_frame, load_single_frame, load_tum_pair
-from .synthetic import SyntheticCube, synthetic_cube
+from .synthetic import SyntheticCube, resampled_pair, synthetic_cube
 
 __all__ = [
     "REGISTRY",
@@ -27,4 +27,5 @@ __all__ = [
     "load_single_frame",
     "SyntheticCube",
     "synthetic_cube",
+    "resampled_pair",
 ]

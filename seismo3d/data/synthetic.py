@@ -56,7 +56,7 @@ from scipy.ndimage import convolve1d
 from .._validation import check_positive
 from ..errors import InputError
 
-__all__ = ["FaultPlane", "SyntheticCube", "synthetic_cube", "ricker"]
+__all__ = ["FaultPlane", "SyntheticCube", "synthetic_cube", "ricker", "resampled_pair"]
 
 _MIN_THROW = 3.0
 _MIN_SIZE = 16
@@ -503,3 +503,69 @@ def _horizon_positions(rgt: np.ndarray, levels: np.ndarray) -> np.ndarray:
         pos = (k1c[..., 0] - 1) + (level - lo) / np.where(jump > 0, jump, 1)
         out[h][valid] = pos[valid]
     return out
+
+
+def resampled_pair(volume, fixed_shape, *, scales=(1.0, 1.0, 1.0), angle_deg: float = 0.0, offset=(0.0, 0.0, 0.0),
+                   moving_fraction: float = 0.75):
+    """Cut a fixed sub-volume and an overlapping, resampled and rotated moving sub-volume with the exact transform.
+
+    The test pair of sub-volume registration (:func:`seismo3d.seismic.register_volumes`): ``fixed`` is the centre
+    ``fixed_shape`` of ``volume``; ``moving`` samples ``volume`` (cubic B-spline) on a grid whose axes are the fixed
+    axes scaled by ``scales`` and rotated in map view by ``angle_deg`` (inline towards crossline), centred on the
+    fixed centre plus ``offset``. A scale above 1 makes the moving bins / sample interval coarser.
+
+    Parameters
+    ----------
+    volume : (n_inlines, n_xlines, n_samples) array_like
+        Source amplitudes (a synthetic or a real cube); finite.
+    fixed_shape : tuple of 3 int
+        Shape of the fixed sub-volume, at most ``volume.shape``.
+    scales : (3,) float
+        Moving inline, crossline and sample spacing in fixed traces / samples (each > 0).
+    angle_deg : float
+        Map-view rotation of the moving axes, degrees.
+    offset : (3,) float
+        Position of the moving centre relative to the fixed centre, fixed index units.
+    moving_fraction : float in (0, 1]
+        Extent of the moving volume along each of its axes, as a fraction of the fixed extent (before rotation).
+
+    Returns
+    -------
+    fixed : (fixed_shape) float32 ndarray
+    moving : (n_inlines', n_xlines', n_samples') float32 ndarray
+        Each axis at least 8. Samples whose position falls outside ``volume`` are 0 (dead traces).
+    transform_index : (4, 4) float64 ndarray
+        The exact map from moving index coordinates to fixed index coordinates.
+
+    Raises
+    ------
+    InputError
+        A volume that is not a finite 3D array of at least 8 per axis, a fixed shape larger than it, or non-positive
+        scales.
+    """
+    from ..seismic.volumes import resample_volume
+
+    arr = np.asarray(volume, dtype=np.float32)
+    if arr.ndim != 3:
+        raise InputError(f"volume must be 3D (n_inlines, n_xlines, n_samples); got shape {arr.shape}")
+    nb, nf = np.array(arr.shape), np.array(fixed_shape, dtype=int)
+    if nf.shape != (3,) or np.any(nf < 8) or np.any(nf > nb):
+        raise InputError(f"fixed_shape must be 3 ints between 8 and volume.shape {arr.shape}; got {fixed_shape}")
+    scales = np.asarray(scales, dtype=np.float64)
+    if scales.shape != (3,) or not np.all(scales > 0):
+        raise InputError(f"scales must be 3 numbers > 0; got {scales.tolist()}")
+    if not 0 < moving_fraction <= 1:
+        raise InputError(f"moving_fraction must be in (0, 1]; got {moving_fraction}")
+    o = (nb - nf) // 2
+    fixed = np.ascontiguousarray(arr[o[0]:o[0] + nf[0], o[1]:o[1] + nf[1], o[2]:o[2] + nf[2]])
+    th = np.radians(angle_deg)
+    linear = np.diag(scales)
+    linear[:2, :2] = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]]) @ np.diag(scales[:2])
+    nm = np.maximum((nf * moving_fraction / scales).astype(int), 8)
+    t = np.eye(4)
+    t[:3, :3] = linear
+    t[:3, 3] = (nf - 1) / 2 + np.asarray(offset, dtype=np.float64) - linear @ ((nm - 1) / 2)
+    to_volume = t.copy()
+    to_volume[:3, 3] += o
+    moving = resample_volume(arr, np.linalg.inv(to_volume), tuple(nm), fill=0.0)
+    return fixed, moving, t

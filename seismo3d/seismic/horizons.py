@@ -13,6 +13,10 @@ A horizon is followed from seed picks in two moves, both made with the registrat
    with the fused ICP (:func:`seismo3d.registration.fused_icp`, eq. 16): reflector points plus HOG-pyramid matches
    between the two section images (:func:`seismo3d.features.match_images`), per-axis scale allowed. Every pick of
    slice k is carried onto slice k + 1 and snapped.
+3. **Closing gaps** (cubes): the inline order never revisits a trace it left empty, so a last pass predicts each
+   empty trace from its tracked neighbours along both the inline and the crossline (plus a fault's jump between
+   them), snaps, and keeps the pick when the neighbours agree within a sample and its waveform correlates with
+   theirs at least ``min_confidence``; repeated until nothing changes.
 
 Across a fault (from :func:`seismo3d.seismic.trace_faults`), the step is made from one side only: the pick jumps by
 the fault's throw (down when it enters the hanging wall, up when it enters the footwall), and the panels on the two
@@ -550,7 +554,9 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, model: st
 
     In 2D the horizon is tracked along the section from each seed. In 3D it is tracked along each seed's inline,
     then carried inline by inline to both ends of the cube with the fused ICP; a trace the carry leaves empty is
-    kept at its predicted position for the next inline, so a gap does not stop the horizon.
+    kept at its predicted position for the next inline, so a gap does not stop the horizon. A last pass fills
+    empty traces from their tracked neighbours along inlines and crosslines where they agree and correlate (module
+    docstring, step 3).
 
     Parameters
     ----------
@@ -704,7 +710,69 @@ def _track_3d(arr, seeds, code, polarity, opt, fidx, sigma_tensor, features, pan
                     bar.update(1)
             fill = ~np.isfinite(times)
             times[fill], conf[fill] = new_t[fill], new_c[fill]
+    _close_gaps(arr, code, times, conf, opt, fidx)
     return Horizon(times.astype(np.float32), conf.astype(np.float32), polarity, seeds)
+
+
+def _close_gaps(arr, code, times, conf, opt, fidx, max_passes: int = 50) -> None:
+    """Fill empty traces from their tracked neighbours (in place): the gap-closing pass of 3D tracking.
+
+    A line-by-line carry leaves a trace empty where its own pick was unsure, and the inline order means a gap is
+    never revisited from the crosslines. Here every empty trace next to tracked ones (4-neighbourhood, both
+    directions) is predicted at its neighbours' times (plus the jump of a fault between them), snapped to the nearest
+    same-polarity extremum within ``snap`` samples, and kept only when the neighbours agree (their snaps within one
+    sample) and its waveform correlates with theirs at least ``min_confidence``; repeated until nothing changes.
+    """
+    n_il, n_xl, n_s = arr.shape
+    picks: dict[int, tuple] = {}
+
+    def snap(i, j, t):
+        if i not in picks:
+            picks[i] = _section_picks(arr[i].astype(np.float64), code)
+        p_t, off = picks[i]
+        p = p_t[off[j]:off[j + 1]]
+        if p.size == 0:
+            return np.nan
+        k = int(np.argmin(np.abs(p - t)))
+        return float(p[k]) if abs(p[k] - t) <= opt.snap else np.nan
+
+    def window(i, j, t):
+        z = t + np.arange(-_NCC_HALF, _NCC_HALF + 1, dtype=np.float64)
+        return np.interp(z, np.arange(n_s), arr[i, j], left=np.nan, right=np.nan)
+
+    steps = ((1, 0), (-1, 0), (0, 1), (0, -1))
+    for _ in range(max_passes):
+        empty = ~np.isfinite(times)
+        if not empty.any():
+            break
+        have = ~empty
+        near = np.zeros_like(empty)
+        near[1:] |= have[:-1]
+        near[:-1] |= have[1:]
+        near[:, 1:] |= have[:, :-1]
+        near[:, :-1] |= have[:, 1:]
+        added = 0
+        for i, j in zip(*np.nonzero(empty & near)):
+            cand, score = [], []
+            for di, dj in steps:
+                a, b = i + di, j + dj
+                if not (0 <= a < n_il and 0 <= b < n_xl) or not np.isfinite(times[a, b]):
+                    continue
+                jump = fidx.jump(np.array([a, b, times[a, b]], np.float64), np.array([i, j, times[a, b]], np.float64))
+                if not np.isfinite(jump):
+                    continue
+                t = snap(i, j, times[a, b] + jump)
+                if np.isfinite(t):
+                    cand.append(t)
+                    score.append(_ncc(window(i, j, t), window(a, b, times[a, b])))
+            if not cand or np.ptp(cand) > 1.0:
+                continue
+            c = float(np.nanmin(score)) if np.isfinite(score).any() else np.nan
+            if c >= opt.min_confidence:
+                times[i, j], conf[i, j] = float(np.median(cand)), c
+                added += 1
+        if not added:
+            break
 
 
 def autotrack(data, seed, *, polarity: str = "peak", window: int = 3) -> Horizon:

@@ -1,5 +1,6 @@
 """Horizon tracking: picks, tracking against ground truth (generator, people's picks), the peer, I/O, bad input."""
 
+import dataclasses
 import warnings
 
 import numpy as np
@@ -146,3 +147,28 @@ def test_bad_input_gives_clear_errors():
         track_horizon(syn.cube, (5, 30.0))
     with pytest.raises(InputError, match="same shape"):
         horizon_errors(np.zeros(3), np.zeros(4))
+
+
+def test_gap_closing_refills_a_hole_and_leaves_noise_empty():
+    from seismo3d.seismic.horizons import _POLARITY_CODE, _close_gaps, _FaultIndex, _Options
+
+    syn = synthetic_cube((24, 40, 64), n_faults=0, seed=4, noise=0.05)
+    k = 2
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    hz = track_horizon(syn.cube, _seed_on(syn.horizons[k], 12), polarity=pol, features=None)
+    assert np.isfinite(hz.times).all()
+    opt = _Options(model="rigid", half_traces=10, half_samples=20.0, step=4, snap=3.0, min_confidence=0.3,
+                   max_throw=10, min_fitness=0.3)
+    times, conf = hz.times.astype(np.float64), hz.confidence.astype(np.float64)
+    holed = times.copy()
+    holed[8:14, 10:18] = np.nan
+    _close_gaps(syn.cube, _POLARITY_CODE[pol], holed, conf.copy(), opt, _FaultIndex.from_interpretation(None, 3))
+    np.testing.assert_allclose(holed[8:14, 10:18], times[8:14, 10:18], atol=0.5)
+    # where the traces hold only noise, nothing correlates: the hole stays empty
+    noisy = syn.cube.copy()
+    noisy[8:14, 10:18] = np.random.default_rng(1).standard_normal((6, 8, noisy.shape[2])).astype(np.float32)
+    holed = times.copy()
+    holed[8:14, 10:18] = np.nan
+    opt = dataclasses.replace(opt, min_confidence=0.6)
+    _close_gaps(noisy, _POLARITY_CODE[pol], holed, conf.copy(), opt, _FaultIndex.from_interpretation(None, 3))
+    assert np.isnan(holed[9:13, 12:16]).all()

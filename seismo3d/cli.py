@@ -152,7 +152,7 @@ def _register_volumes(fixed_path: pathlib.Path, moving_path: pathlib.Path, outpu
     with open_segy(fixed_path) as fixed, open_segy(moving_path) as moving:
         first_f = (int(fixed.inlines[0]), int(fixed.xlines[0]), float(fixed.samples[0]))
         first_m = (int(moving.inlines[0]), int(moving.xlines[0]), float(moving.samples[0]))
-        reg = register_volumes(fixed, moving, model=model.value)
+        reg = register_volumes(fixed, moving, model=model.value, progress=True)
     payload = reg.to_dict()
     payload.update(model=model.value, moving=str(moving_path), fixed=str(fixed_path),
                    index_axes=["inline", "crossline", "sample"],

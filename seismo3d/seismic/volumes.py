@@ -1028,7 +1028,7 @@ def resample_volume(volume, transform_index, shape, *, order: int = 3, fill: flo
 def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing=None, moving_spacing=None,
                      scale_range=(0.5, 2.0), alpha: float = 0.5, feature_method: str = "hog",
                      max_points: int = 60000, max_rounds: int = 8, min_correlation: float = 0.5,
-                     seed: int = 0) -> VolumeRegistration:
+                     seed: int = 0, progress: bool = False) -> VolumeRegistration:
     """Register a moving seismic sub-volume onto a fixed one: bin sizes, sample rates and map orientation may differ.
 
     The five stages (vertical scale and shift from trace spectra and envelope profiles; a global start from
@@ -1067,6 +1067,8 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
         Lower it for a time-lapse repeat or two surveys processed differently.
     seed : int
         Seed of RANSAC and of the point subsets; the result is deterministic given it.
+    progress : bool
+        Show a tqdm bar over the stages (a pair takes 10-60 s; ``benchmarks/volumes.py``).
 
     Returns
     -------
@@ -1131,53 +1133,63 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
                              "smooth property such as velocity")
 
     # stages 1 and 2: vertical scale and shift, slice features, RANSAC
-    hyps = _global_starts(fn, mn, frames, fit_model, (lo, hi), feature_method, seed)
-    if not hyps:
-        raise RegistrationError("no consistent feature matches between slices of the two volumes: they may not "
-                                "overlap, or their scales / rotation are outside the search (scale_range); check "
-                                "the spacings and the overlap")
+    from tqdm.auto import tqdm
 
-    # fused ICP from each of the best starts (eq. 16: RANSAC inlier matches + reflector points), then the refinement
-    # with slice tracks; the candidate that correlates best over the overlap wins
-    tracker = _Tracker(fn, mn)
-    envelope_tracker = _Tracker(_envelope(fn), _envelope(mn), order=1)  # smooth: linear interpolation suffices
-    thin = _is_thin(fn.shape, mn.shape, frames, hi)
-    wf, wm = frames.w_fixed, frames.w_moving
-    nf_w = nf / wf
-    nf_w /= np.linalg.norm(nf_w, axis=1, keepdims=True)
-    best = None
-    for _, t_start, src, dst in hyps[:3]:
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", DegenerateGeometryWarning)  # reported through result.degenerate
-                fused = fused_icp(pm * wm, pf * wf, target_normals=nf_w, source_features=src, target_features=dst,
-                                  alpha=alpha, model=fit_model, init=frames.to_work(t_start), ransac_threshold=2.0,
-                                  max_distance=(4.0, 2.0, 1.0), seed=seed)
-        except RegistrationError:
-            continue
-        t = _refine(tracker, envelope_tracker, frames, frames.to_index(fused.transform), fit_model, thin,
-                    int(max_rounds), seed)
-        corr, overlap = _correlation(fn, tracker.coef, t)
-        if best is None or corr > best[0]:
-            best = (corr, overlap, t, fused, len(src))
-        if corr >= 0.9:
-            break
-    if best is None:
-        raise RegistrationError("the fused ICP found too few reflector correspondences from every feature-based "
-                                "start; the volumes may not overlap, or look too different")
-    corr, overlap, t_index, fused, n_matches = best
-    if model == "affine":  # the affine refinement: rows fitted freely from the final tracks
-        t_index = _refine(tracker, envelope_tracker, frames, t_index, "affine", thin, 3, seed)
+    with tqdm(total=4, desc="register_volumes", unit="stage", disable=not progress) as bar:
+        bar.set_postfix_str("slice features")
+        hyps = _global_starts(fn, mn, frames, fit_model, (lo, hi), feature_method, seed)
+        bar.update(1)
+        bar.set_postfix_str("fused ICP and slice tracks")
+        if not hyps:
+            raise RegistrationError("no consistent feature matches between slices of the two volumes: they may not "
+                                    "overlap, or their scales / rotation are outside the search (scale_range); check "
+                                    "the spacings and the overlap")
+
+        # fused ICP from each of the best starts (eq. 16: RANSAC inlier matches + reflector points), then the refinement
+        # with slice tracks; the candidate that correlates best over the overlap wins
+        tracker = _Tracker(fn, mn)
+        envelope_tracker = _Tracker(_envelope(fn), _envelope(mn), order=1)  # smooth: linear interpolation suffices
+        thin = _is_thin(fn.shape, mn.shape, frames, hi)
+        wf, wm = frames.w_fixed, frames.w_moving
+        nf_w = nf / wf
+        nf_w /= np.linalg.norm(nf_w, axis=1, keepdims=True)
+        best = None
+        for _, t_start, src, dst in hyps[:3]:
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore", DegenerateGeometryWarning)  # reported through result.degenerate
+                    fused = fused_icp(pm * wm, pf * wf, target_normals=nf_w, source_features=src, target_features=dst,
+                                      alpha=alpha, model=fit_model, init=frames.to_work(t_start), ransac_threshold=2.0,
+                                      max_distance=(4.0, 2.0, 1.0), seed=seed)
+            except RegistrationError:
+                continue
+            t = _refine(tracker, envelope_tracker, frames, frames.to_index(fused.transform), fit_model, thin,
+                        int(max_rounds), seed)
+            corr, overlap = _correlation(fn, tracker.coef, t)
+            if best is None or corr > best[0]:
+                best = (corr, overlap, t, fused, len(src))
+            if corr >= 0.9:
+                break
+        if best is None:
+            raise RegistrationError("the fused ICP found too few reflector correspondences from every feature-based "
+                                    "start; the volumes may not overlap, or look too different")
+        corr, overlap, t_index, fused, n_matches = best
+        if model == "affine":  # the affine refinement: rows fitted freely from the final tracks
+            t_index = _refine(tracker, envelope_tracker, frames, t_index, "affine", thin, 3, seed)
+            corr, overlap = _correlation(fn, tracker.coef, t_index)
+        bar.update(1)
+        bar.set_postfix_str("correlation polish")
+        t_index = _polish(fn, tracker.coef, t_index, frames, model)
+        bar.update(1)
         corr, overlap = _correlation(fn, tracker.coef, t_index)
-    t_index = _polish(fn, tracker.coef, t_index, frames, model)
-    corr, overlap = _correlation(fn, tracker.coef, t_index)
-    if corr < min_correlation:
-        raise RegistrationError(
-            f"the best registration correlates only {corr:.2f} with the fixed volume over {overlap:.0%} of it "
-            f"(min_correlation={min_correlation}); the volumes may not overlap or differ too much. Check the "
-            "spacings and the overlap, or lower min_correlation"
-        )
-    fitness, rmse = _reflector_fit(t_index, frames, pm, pf)
+        if corr < min_correlation:
+            raise RegistrationError(
+                f"the best registration correlates only {corr:.2f} with the fixed volume over {overlap:.0%} of it "
+                f"(min_correlation={min_correlation}); the volumes may not overlap or differ too much. Check the "
+                "spacings and the overlap, or lower min_correlation"
+            )
+        fitness, rmse = _reflector_fit(t_index, frames, pm, pf)
+        bar.update(1)
     t_phys = _diag(sp_f) @ t_index @ _diag(1.0 / sp_m)
     a = t_phys[:3, :3]
     scales = np.linalg.norm(a, axis=0)

@@ -142,11 +142,12 @@ def _is_segy(path: pathlib.Path) -> bool:
 def _register_volumes(fixed_path: pathlib.Path, moving_path: pathlib.Path, output: pathlib.Path, model) -> None:
     """`seismo3d register FIXED.sgy MOVING.sgy`: sub-volume registration, JSON with both transforms."""
     from .seismic import open_segy, register_volumes
+    from .seismic.volumes import VOLUME_MODELS
 
     if not (_is_segy(moving_path) and _is_segy(fixed_path)):
         raise InputError(f"{fixed_path} and {moving_path}: register either two SEG-Y cubes or two point clouds, not "
                          "one of each")
-    if model.value not in ("rigid", "axis_scaled", "affine"):
+    if model.value not in VOLUME_MODELS:
         raise InputError(f"--model {model.value} is not available for SEG-Y volumes; use rigid (spacings from the "
                          "headers are right), axis_scaled (default for unknown bins / sample rates) or affine")
     with open_segy(fixed_path) as fixed, open_segy(moving_path) as moving:

@@ -205,11 +205,7 @@ class _Slice:
 
     def snap(self, j: int, t: float, window: float) -> float:
         """Nearest pick of trace ``j`` within ``window`` samples of ``t``, else NaN."""
-        p = self.t[self.offsets[j]:self.offsets[j + 1]]
-        if p.size == 0 or not np.isfinite(t):
-            return np.nan
-        k = int(np.argmin(np.abs(p - t)))
-        return float(p[k]) if abs(p[k] - t) <= window else np.nan
+        return _nearest_pick(self.t, self.offsets, j, t, window)
 
     def band(self, lo: int, hi: int, ref: np.ndarray, half: float) -> tuple[np.ndarray, np.ndarray]:
         """Reflector points of traces lo..hi (inclusive) within ``half`` samples of ``ref[x - lo]``."""
@@ -220,8 +216,22 @@ class _Slice:
 
     def window(self, j: int, t: float, half: int = _NCC_HALF) -> np.ndarray:
         """Amplitudes of trace ``j`` at ``t - half .. t + half`` (linear interpolation; NaN outside)."""
-        s = t + np.arange(-half, half + 1, dtype=np.float64)
-        return np.interp(s, np.arange(self.n_samples), self.amp[j], left=np.nan, right=np.nan)
+        return _waveform(self.amp[j], t, half)
+
+
+def _nearest_pick(picks: np.ndarray, offsets: np.ndarray, k: int, t: float, window: float) -> float:
+    """The pick of trace ``k`` (``picks[offsets[k]:offsets[k + 1]]``) nearest to ``t`` within ``window``, else NaN."""
+    p = picks[offsets[k]:offsets[k + 1]]
+    if p.size == 0 or not np.isfinite(t):
+        return np.nan
+    i = int(np.argmin(np.abs(p - t)))
+    return float(p[i]) if abs(p[i] - t) <= window else np.nan
+
+
+def _waveform(trace: np.ndarray, t: float, half: int = _NCC_HALF) -> np.ndarray:
+    """Amplitudes of ``trace`` at ``t - half .. t + half`` (linear interpolation; NaN outside)."""
+    s = t + np.arange(-half, half + 1, dtype=np.float64)
+    return np.interp(s, np.arange(trace.shape[0]), trace, left=np.nan, right=np.nan)
 
 
 def _ncc(a: np.ndarray, b: np.ndarray) -> float:
@@ -723,22 +733,13 @@ def _close_gaps(arr, code, times, conf, opt, fidx, max_passes: int = 50) -> None
     same-polarity extremum within ``snap`` samples, and kept only when the neighbours agree (their snaps within one
     sample) and its waveform correlates with theirs at least ``min_confidence``; repeated until nothing changes.
     """
-    n_il, n_xl, n_s = arr.shape
+    n_il, n_xl = arr.shape[:2]
     picks: dict[int, tuple] = {}
 
     def snap(i, j, t):
         if i not in picks:
             picks[i] = _section_picks(arr[i].astype(np.float64), code)
-        p_t, off = picks[i]
-        p = p_t[off[j]:off[j + 1]]
-        if p.size == 0:
-            return np.nan
-        k = int(np.argmin(np.abs(p - t)))
-        return float(p[k]) if abs(p[k] - t) <= opt.snap else np.nan
-
-    def window(i, j, t):
-        z = t + np.arange(-_NCC_HALF, _NCC_HALF + 1, dtype=np.float64)
-        return np.interp(z, np.arange(n_s), arr[i, j], left=np.nan, right=np.nan)
+        return _nearest_pick(*picks[i], j, t, opt.snap)
 
     steps = ((1, 0), (-1, 0), (0, 1), (0, -1))
     for _ in range(max_passes):
@@ -764,7 +765,7 @@ def _close_gaps(arr, code, times, conf, opt, fidx, max_passes: int = 50) -> None
                 t = snap(i, j, times[a, b] + jump)
                 if np.isfinite(t):
                     cand.append(t)
-                    score.append(_ncc(window(i, j, t), window(a, b, times[a, b])))
+                    score.append(_ncc(_waveform(arr[i, j], t), _waveform(arr[a, b], times[a, b])))
             if not cand or np.ptp(cand) > 1.0:
                 continue
             c = float(np.nanmin(score)) if np.isfinite(score).any() else np.nan
@@ -820,11 +821,7 @@ def autotrack(data, seed, *, polarity: str = "peak", window: int = 3) -> Horizon
     times = np.full(lat, np.nan)
 
     def snap(k, t):
-        p = picks[offsets[k]:offsets[k + 1]]
-        if p.size == 0:
-            return np.nan
-        i = int(np.argmin(np.abs(p - t)))
-        return float(p[i]) if abs(p[i] - t) <= window else np.nan
+        return _nearest_pick(picks, offsets, k, t, window)
 
     start = tuple(int(round(v)) for v in seeds[0][:-1])
     t0 = snap(int(np.ravel_multi_index(start, lat)), seeds[0][-1])

@@ -52,7 +52,7 @@ from scipy import ndimage as ndi
 
 from .._validation import check_choice, check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
-from ..geometry.transforms import make_transform, nearest_rotation
+from ..geometry.transforms import nearest_rotation
 from ..registration.result import RegistrationResult
 from .attributes import _as_seismic
 
@@ -71,7 +71,6 @@ _KLT_WINDOW = 15  # Lucas-Kanade window, pixels
 _MIN_TRACKS = 24
 _N_SLICES = 10  # moving time slices matched in the global search
 _TRIALS = 1000  # RANSAC samples per global hypothesis
-_POOL = 0  # matches of this many neighbouring anisotropies on each side are pooled
 
 
 @dataclass(frozen=True, eq=False)
@@ -444,17 +443,15 @@ def _peaks(shifts, corr, k, taken):
     return out
 
 
-def _vertical_shifts(fn, mn, frames, s2, method):
+def _vertical_shifts(fn, mn, frames, s2, method, profiles):
     """Candidate vertical shifts t (fixed sample of moving sample 0), best first.
 
     Two from feature matches between vertical sections (inline and crossline sections of the moving volume, resampled
     to the fixed sample rate and three lateral scales, against five of each in the fixed volume): the modes of the
     vertical offsets of the matches. Layered reflectors look alike in every section, so the offsets agree whatever
-    the lateral misfit. One more from the correlation of the mean envelope profiles, in case the sections have no
-    features.
+    the lateral misfit. One more from the correlation of the mean envelope profiles (``profiles``: fixed, moving),
+    in case the sections have no features.
     """
-    from scipy.signal import hilbert
-
     from ..features import detect_and_describe
 
     wf, wm = frames.w_fixed, frames.w_moving
@@ -487,8 +484,7 @@ def _vertical_shifts(fn, mn, frames, s2, method):
             t = float(np.median(near)) if len(near) else float(edges[n] + 0.5)
             if all(abs(t - u) > 3.0 for u in out):
                 out.append(t)
-    shifts, corr = _profile_correlation(np.abs(hilbert(fn, axis=2)).mean(axis=(0, 1)),
-                                        np.abs(hilbert(mn, axis=2)).mean(axis=(0, 1)), s2, 0.4)
+    shifts, corr = _profile_correlation(*profiles, s2, 0.4)
     out += _peaks(shifts, corr, 1, out)
     if not out:
         raise RegistrationError("the two volumes cannot overlap vertically by 40 % at any shift; check that they "
@@ -508,13 +504,6 @@ def _resample2(img, f0, f1):
     interp = cv2.INTER_AREA if f0 * f1 < 1 else cv2.INTER_LINEAR
     out = cv2.resize(np.ascontiguousarray(img, dtype=np.float32), (n1, n0), interpolation=interp)
     return out, img.shape[0] / n0, img.shape[1] / n1  # image pixel -> slice index factors
-
-
-def _time_slice(v, z):
-    z0 = int(np.clip(np.floor(z), 0, v.shape[2] - 1))
-    z1 = min(z0 + 1, v.shape[2] - 1)
-    w = float(np.clip(z - z0, 0.0, 1.0))
-    return (1.0 - w) * v[:, :, z0] + w * v[:, :, z1]
 
 
 def _aspects(model, lo, hi):
@@ -606,8 +595,10 @@ def _is_thin(shape_f, shape_m, frames, hi):
     return min(shape_f[0] * wf[0], shape_f[1] * wf[1], shape_m[0] * wm[0] * hi, shape_m[1] * wm[1] * hi) < _MIN_MAP
 
 
-def _global_starts(fn, mn, frames, model, scale_range, method, seed):
-    """Candidate starting transforms (index space), best first: (number of RANSAC inliers, transform)."""
+def _global_starts(fn, mn, frames, model, scale_range, method, seed, profiles):
+    """Candidate starting transforms (index space), best first: (number of RANSAC inliers, transform).
+
+    ``profiles``: the mean envelope profiles (fixed, moving) along the sample axis."""
     from ..registration import ransac
 
     lo, hi = scale_range
@@ -638,16 +629,12 @@ def _global_starts(fn, mn, frames, model, scale_range, method, seed):
         # time slices: the vertical map is (s2, t2) up to the +-2 samples of the slice window, so RANSAC fits the
         # map-view part only (2D, 3 matches per sample) and the vertical shift is the inliers' median
         aspects = _aspects(model, lo, hi)
-        for t2 in _vertical_shifts(fn, mn, frames, s2, method):
-            matches = [_time_slice_matches(fn, mn, frames, s2, t2, a, cache_f, cache_m, n_slices=_N_SLICES)
-                       for a in aspects]
-            for k in range(len(aspects)):
-                # matches of neighbouring anisotropies are pooled: the true ones agree across them
-                pool = [m for m in matches[max(k - _POOL, 0):k + _POOL + 1] if m is not None]
-                if not pool or sum(len(m[0]) for m in pool) < 8:
+        for t2 in _vertical_shifts(fn, mn, frames, s2, method, profiles):
+            for aspect in aspects:
+                m = _time_slice_matches(fn, mn, frames, s2, t2, aspect, cache_f, cache_m, n_slices=_N_SLICES)
+                if m is None or len(m[0]) < 8:
                     continue
-                src = np.vstack([m[0] for m in pool]) * wm
-                dst = np.vstack([m[1] for m in pool]) * wf
+                src, dst = m[0] * wm, m[1] * wf
                 try:
                     r = ransac(src[:, :2], dst[:, :2], model="rigid" if model == "rigid" else "affine",
                                threshold=2.0, seed=seed, max_trials=_TRIALS)
@@ -785,7 +772,7 @@ def _envelope(v):
     return ((e - e.mean()) / max(float(e.std()), 1e-12)).astype(np.float32)
 
 
-def _refine(tracker, envelope_tracker, frames, t_index, model, thin, max_rounds, seed):
+def _refine(tracker, envelope_tracker, score, frames, t_index, model, thin, max_rounds, seed):
     """Alternate vertical (section tracks) and lateral (time-slice tracks, or sections when thin) row updates.
 
     The lateral rows come from envelope time slices (when they give enough tracks) until the transform moves less
@@ -794,7 +781,7 @@ def _refine(tracker, envelope_tracker, frames, t_index, model, thin, max_rounds,
     """
     corners = np.array(np.meshgrid(*[[0, n] for n in tracker.m_hi], indexing="ij")).reshape(3, -1).T
     corners = np.column_stack([corners, np.ones(len(corners))])
-    corr = _correlation(tracker.fn, tracker.coef, t_index)[0]
+    corr = score.correlation(t_index)[0]
     sharp = 0
     for _ in range(max_rounds):
         before = t_index.copy()
@@ -813,7 +800,7 @@ def _refine(tracker, envelope_tracker, frames, t_index, model, thin, max_rounds,
                 ok = _consistent(*tracker.family(2, t_index), seed)
             if ok is not None:
                 t_index = frames.project_index(_fit_rows(t_index, *ok, [0, 1]), model)
-        new_corr = _correlation(tracker.fn, tracker.coef, t_index)[0]
+        new_corr = score.correlation(t_index)[0]
         if new_corr < corr - 0.005:
             return before
         corr = max(corr, new_corr)
@@ -849,11 +836,7 @@ def _polish(fn, coef, t_index, frames, model, max_evals=800):
     from scipy.optimize import minimize
     from scipy.spatial.transform import Rotation
 
-    n_points = 40000
-    step = max(1, int(round((fn.size / n_points) ** (1 / 3))))
-    grid = np.indices(fn[::step, ::step, ::step].shape).reshape(3, -1).astype(np.float64) * step
-    f_all = fn[tuple(grid.astype(int))]
-    hi = np.array(coef.shape, dtype=np.float64)[:, None] - 1
+    overlap = _Overlap(fn, coef, 40000)
     centre = (np.array(coef.shape) - 1.0) / 2.0 * frames.w_moving
     radius = max(float(np.linalg.norm(centre)), 1.0)
     to_c, from_c = np.eye(4), np.eye(4)
@@ -871,23 +854,12 @@ def _polish(fn, coef, t_index, frames, model, max_evals=800):
         d[:3, :3], d[:3, 3] = lin, p[3:6]
         return frames.to_index(t0_work @ from_c @ d @ to_c)
 
-    def overlap(p):
-        t_inv = np.linalg.inv(transform(p))
-        m = t_inv[:3, :3] @ grid + t_inv[:3, 3:]
-        return m, np.all((m >= 0) & (m <= hi), axis=0)
-
     # the overlap may not shrink below half its start: a small overlap can correlate by chance
-    min_overlap = max(1000, 0.5 * overlap(np.zeros(12))[1].sum())
+    min_overlap = max(1000, 0.5 * overlap.inside(t_index)[1].sum())
 
     def cost(p):
-        m, ok = overlap(p)
-        if ok.sum() < min_overlap:
-            return 1.0
-        f = f_all[ok]
-        w = ndi.map_coordinates(coef, m[:, ok], order=3, prefilter=False, mode="nearest")
-        f, w = f - f.mean(), w - w.mean()
-        den = np.sqrt(np.sum(f * f) * np.sum(w * w))
-        return -float(np.sum(f * w) / den) if den > 0 else 1.0
+        c = overlap.ncc(transform(p), min_overlap)[0]
+        return -c if np.isfinite(c) else 1.0
 
     n = {"rigid": 6, "axis_scaled": 9, "affine": 12}[model]
     res = minimize(cost, np.zeros(n), method="Powell",
@@ -895,21 +867,42 @@ def _polish(fn, coef, t_index, frames, model, max_evals=800):
     return transform(res.x) if res.fun < cost(np.zeros(n)) else t_index
 
 
-def _correlation(fn, coef, t_index):
-    """NCC of fixed and resampled moving over their overlap (on a subsampled grid) and the overlap fraction."""
-    step = max(1, int(round((fn.size / 2e5) ** (1 / 3))))
-    g = np.indices(fn[::step, ::step, ::step].shape).reshape(3, -1).astype(np.float64) * step
-    t_inv = np.linalg.inv(t_index)
-    m = t_inv[:3, :3] @ g + t_inv[:3, 3:]
-    hi = np.array(coef.shape, dtype=np.float64)[:, None] - 1
-    ok = np.all((m >= 0) & (m <= hi), axis=0)
-    if ok.sum() < 100:
-        return -1.0, float(ok.mean())
-    f = fn[tuple(g[:, ok].astype(int))]
-    w = ndi.map_coordinates(coef, m[:, ok], order=3, prefilter=False, mode="nearest")
-    f, w = f - f.mean(), w - w.mean()
-    den = np.sqrt(np.sum(f * f) * np.sum(w * w))
-    return (float(np.sum(f * w) / den) if den > 0 else 0.0), float(ok.mean())
+class _Overlap:
+    """Fixed samples on a subsampled grid (about ``n_points``), and the moving volume resampled at them through a
+    transform: the normalised cross-correlation of the two over their overlap."""
+
+    def __init__(self, fn, coef, n_points):
+        step = max(1, int(round((fn.size / n_points) ** (1 / 3))))
+        sub = fn[::step, ::step, ::step]
+        self.grid = np.indices(sub.shape).reshape(3, -1).astype(np.float64) * step
+        self.f = sub.ravel()
+        self.coef = coef  # cubic B-spline coefficients of moving
+        self.hi = np.array(coef.shape, dtype=np.float64)[:, None] - 1
+
+    def inside(self, t_index):
+        """Moving index coordinates of the grid points, and which fall inside the moving volume."""
+        t_inv = np.linalg.inv(t_index)
+        m = t_inv[:3, :3] @ self.grid + t_inv[:3, 3:]
+        return m, np.all((m >= 0) & (m <= self.hi), axis=0)
+
+    def ncc(self, t_index, min_points):
+        """(NCC, overlap fraction, overlap points); the NCC is NaN under ``min_points`` or without variance."""
+        m, ok = self.inside(t_index)
+        n = int(ok.sum())
+        if n < min_points:
+            return np.nan, float(ok.mean()), n
+        f = self.f[ok]
+        w = ndi.map_coordinates(self.coef, m[:, ok], order=3, prefilter=False, mode="nearest")
+        f, w = f - f.mean(), w - w.mean()
+        den = np.sqrt(np.sum(f * f) * np.sum(w * w))
+        return (float(np.sum(f * w) / den) if den > 0 else np.nan), float(ok.mean()), n
+
+    def correlation(self, t_index):
+        """NCC and overlap fraction; -1 when fewer than 100 grid points overlap, 0 without variance."""
+        c, frac, n = self.ncc(t_index, 100)
+        if n < 100:
+            return -1.0, frac
+        return (c if np.isfinite(c) else 0.0), frac
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -1137,7 +1130,9 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
 
     with tqdm(total=4, desc="register_volumes", unit="stage", disable=not progress) as bar:
         bar.set_postfix_str("slice features")
-        hyps = _global_starts(fn, mn, frames, fit_model, (lo, hi), feature_method, seed)
+        env_f, env_m = _envelope(fn), _envelope(mn)
+        hyps = _global_starts(fn, mn, frames, fit_model, (lo, hi), feature_method, seed,
+                              (env_f.mean(axis=(0, 1)), env_m.mean(axis=(0, 1))))
         bar.update(1)
         bar.set_postfix_str("fused ICP and slice tracks")
         if not hyps:
@@ -1148,7 +1143,8 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
         # fused ICP from each of the best starts (eq. 16: RANSAC inlier matches + reflector points), then the refinement
         # with slice tracks; the candidate that correlates best over the overlap wins
         tracker = _Tracker(fn, mn)
-        envelope_tracker = _Tracker(_envelope(fn), _envelope(mn), order=1)  # smooth: linear interpolation suffices
+        envelope_tracker = _Tracker(env_f, env_m, order=1)  # smooth: linear interpolation suffices
+        score = _Overlap(fn, tracker.coef, 2e5)
         thin = _is_thin(fn.shape, mn.shape, frames, hi)
         wf, wm = frames.w_fixed, frames.w_moving
         nf_w = nf / wf
@@ -1163,9 +1159,9 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
                                       max_distance=(4.0, 2.0, 1.0), seed=seed)
             except RegistrationError:
                 continue
-            t = _refine(tracker, envelope_tracker, frames, frames.to_index(fused.transform), fit_model, thin,
+            t = _refine(tracker, envelope_tracker, score, frames, frames.to_index(fused.transform), fit_model, thin,
                         int(max_rounds), seed)
-            corr, overlap = _correlation(fn, tracker.coef, t)
+            corr, overlap = score.correlation(t)
             if best is None or corr > best[0]:
                 best = (corr, overlap, t, fused, len(src))
             if corr >= 0.9:
@@ -1175,13 +1171,13 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
                                     "start; the volumes may not overlap, or look too different")
         corr, overlap, t_index, fused, n_matches = best
         if model == "affine":  # the affine refinement: rows fitted freely from the final tracks
-            t_index = _refine(tracker, envelope_tracker, frames, t_index, "affine", thin, 3, seed)
-            corr, overlap = _correlation(fn, tracker.coef, t_index)
+            t_index = _refine(tracker, envelope_tracker, score, frames, t_index, "affine", thin, 3, seed)
+            corr, overlap = score.correlation(t_index)
         bar.update(1)
         bar.set_postfix_str("correlation polish")
         t_index = _polish(fn, tracker.coef, t_index, frames, model)
         bar.update(1)
-        corr, overlap = _correlation(fn, tracker.coef, t_index)
+        corr, overlap = score.correlation(t_index)
         if corr < min_correlation:
             raise RegistrationError(
                 f"the best registration correlates only {corr:.2f} with the fixed volume over {overlap:.0%} of it "

@@ -1,6 +1,7 @@
 """Horizon tracking: picks, tracking against ground truth (generator, people's picks), the peer, I/O, bad input."""
 
 import dataclasses
+import os
 import warnings
 
 import numpy as np
@@ -172,3 +173,31 @@ def test_gap_closing_refills_a_hole_and_leaves_noise_empty():
     opt = dataclasses.replace(opt, min_confidence=0.6)
     _close_gaps(noisy, _POLARITY_CODE[pol], holed, conf.copy(), opt, _FaultIndex.from_interpretation(None, 3))
     assert np.isnan(holed[9:13, 12:16]).all()
+
+
+@pytest.fixture(scope="module")
+def penobscot():
+    if not os.environ.get("SEISMO3D_DATA_DIR"):
+        pytest.skip("SEISMO3D_DATA_DIR is not set")
+    from seismo3d.data import fetch
+
+    z = np.load(fetch("seismic/penobscot_sections/penobscot_sections_1075_1092.npz"))
+    cube = np.ascontiguousarray(((z["seismic"].astype(np.float32) - 127.5) / 127.5).transpose(0, 2, 1))
+    human = z["horizons"].astype(np.float64)
+    human[human < 0] = np.nan
+    return cube, human
+
+
+# measured by benchmarks/horizons.py (point-to-plane): % within 5 samples of the people's picks, and the plain
+# autotracker's; the issue's target of 99 % is reached on horizons 0, 3, 4 and 5, not on 1, 2 and 6
+@pytest.mark.parametrize("k, within_5, median, plain_within_5", [(1, 0.985, 1.0, 0.963), (3, 0.995, 0.5, 0.998)])
+def test_penobscot_horizons_against_peoples_picks(penobscot, k, within_5, median, plain_within_5):
+    cube, human = penobscot
+    ref = human[:, k]
+    seed = (0, 256, ref[0, 256])
+    ours = horizon_errors(track_horizon(cube, seed, features=None).times, ref)
+    plain = horizon_errors(autotrack(cube, seed).times, ref)
+    print(k, ours, plain)
+    assert ours["within_5"] >= within_5 and ours["median_abs"] <= median
+    assert plain["within_5"] == pytest.approx(plain_within_5, abs=0.002)  # the peer, as the issue describes it
+    assert ours["within_5"] >= plain["within_5"] - 0.005

@@ -12,7 +12,10 @@ A horizon is followed from seed picks in two moves, both made with the registrat
 2. **From slice to slice** (inline k to inline k + 1 of a cube): the two sections are registered panel by panel
    with the fused ICP (:func:`seismo3d.registration.fused_icp`, eq. 16): reflector points plus HOG-pyramid matches
    between the two section images (:func:`seismo3d.features.match_images`), per-axis scale allowed. Every pick of
-   slice k is carried onto slice k + 1 and snapped.
+   slice k is carried onto slice k + 1 and snapped. Each trace is carried on its own, so a pick that snapped to
+   the neighbouring cycle would be carried, trace for trace, through every later slice; a lateral continuity check
+   puts back a pick whose neighbours on both sides agree with each other but not with it (a *spike*), and leaves
+   steps (faults) alone.
 3. **Closing gaps** (cubes): the inline order never revisits a trace it left empty, so a last pass predicts each
    empty trace from its tracked neighbours along both the inline and the crossline (plus a fault's jump between
    them), snaps, and keeps the pick when the neighbours agree within a sample and its waveform correlates with
@@ -20,7 +23,10 @@ A horizon is followed from seed picks in two moves, both made with the registrat
 
 Across a fault (from :func:`seismo3d.seismic.trace_faults`), the step is made from one side only: the pick jumps by
 the fault's throw (down when it enters the hanging wall, up when it enters the footwall), and the panels on the two
-sides are registered starting from that jump. Without fault input, a step whose panels do not fit (a discontinuity)
+sides are registered starting from that jump (a refinement within the snap window; a registration that slides
+further, onto another cycle, is not taken). A step crosses a fault when it pierces the traced fault surface next to
+a fault point; two faults between the same traces add their jumps; and a fault is crossed once going one way (after
+the jump, a dipping fault's plane can lie beyond the new pick). Without fault input, a step whose panels do not fit (a discontinuity)
 is re-made from one side with the shift found by normalised cross-correlation of the two sides' stacked traces, the
 start the throw estimation uses (:mod:`seismo3d.seismic.throw`).
 
@@ -56,6 +62,7 @@ _NCC_HALF = 8  # samples each side of a pick in the confidence correlation
 _PANEL_ITERATIONS = 15  # per distance stage: panels of ~100 points converge in a few; sliding never stops by itself
 _REFERENCE_WEIGHT = 0.3  # weight of the newest accepted pick in the running reference waveform along a slice
 _SEED_SNAP = 5.0  # samples: a seed snaps to an extremum this far at most (about half a period)
+_PIERCE = 1.5  # voxels: a step crosses a fault when it pierces the fault surface this close to a fault point
 
 
 @dataclass(frozen=True, eq=False)
@@ -248,53 +255,66 @@ def _ncc(a: np.ndarray, b: np.ndarray) -> float:
 # Faults: which steps cross one, and by how much the horizon jumps there.
 
 class _FaultIndex:
-    """Fault points with normals (into the footwall) and throws, for finding the faults a step crosses."""
+    """Fault points with normals (into the footwall), throws and fault ids, for finding the faults a step crosses."""
 
-    def __init__(self, points, normals, throws):
+    def __init__(self, points, normals, throws, ids=None):
         self.points = points
         self.normals = normals
         self.throws = throws
+        self.ids = np.zeros(len(points), np.intp) if ids is None else np.asarray(ids, np.intp)
         self.tree = cKDTree(points) if len(points) else None
 
     @classmethod
     def from_interpretation(cls, faults, ndim: int):
         if faults is None:
             return cls(np.zeros((0, ndim)), np.zeros((0, ndim)), np.zeros(0))
-        pts, nrm, thr = [], [], []
-        for f, th in zip(faults.faults, faults.throws):
+        pts, nrm, thr, ids = [], [], [], []
+        for k, (f, th) in enumerate(zip(faults.faults, faults.throws)):
             pts.append(np.asarray(f.points, np.float64))
             nrm.append(np.asarray(f.normals, np.float64))
             thr.append(np.asarray(th.throw, np.float64))
+            ids.append(np.full(len(pts[-1]), k, np.intp))
         if not pts:
             return cls(np.zeros((0, ndim)), np.zeros((0, ndim)), np.zeros(0))
         p = np.concatenate(pts)
         if p.shape[1] != ndim:
             raise InputError(f"faults were traced on {p.shape[1]}D data but the horizon is tracked in {ndim}D data; "
                              "trace the faults of the same array")
-        return cls(p, np.concatenate(nrm), np.concatenate(thr))
+        return cls(p, np.concatenate(nrm), np.concatenate(thr), np.concatenate(ids))
 
-    def jump(self, a: np.ndarray, b: np.ndarray) -> float:
-        """Vertical jump (samples) of a horizon going from point ``a`` to point ``b``: 0 when no fault lies between
-        them, +throw into the hanging wall, -throw into the footwall, NaN across a fault of unknown throw."""
+    def crossings(self, a: np.ndarray, b: np.ndarray) -> dict:
+        """The faults between point ``a`` and point ``b``: {fault id: vertical jump (samples) of a horizon going from
+        ``a`` to ``b`` across it}, +throw into the hanging wall, -throw into the footwall, NaN for unknown throw."""
         if self.tree is None:
-            return 0.0
+            return {}
         mid = 0.5 * (a + b)
         idx = self.tree.query_ball_point(mid, 0.5 * float(np.linalg.norm(b - a)) + 1.5)
         if not idx:
-            return 0.0
+            return {}
         idx = np.asarray(idx)
         p, n = self.points[idx], self.normals[idx]
         sa = np.einsum("ij,ij->i", a - p, n)
         sb = np.einsum("ij,ij->i", b - p, n)
         cross = (sa * sb < 0) & (np.abs(sa) < 3) & (np.abs(sb) < 3)
-        if not cross.any():
-            return 0.0
-        k = idx[cross][np.argmin(np.linalg.norm(p[cross] - mid, axis=1))]
-        into_footwall = float(np.dot(b - self.points[k], self.normals[k])) > 0
-        thr = self.throws[k]
-        if not np.isfinite(thr):
-            return np.nan
-        return -thr if into_footwall else thr
+        # the step must pierce the fault surface at the fault point itself (within a voxel and a half), not pass a
+        # fault that grazes it or lies beside it within the band above
+        frac = np.where(cross, sa / np.where(cross, sa - sb, 1.0), 0.0)
+        pierce = a[None, :] + frac[:, None] * (b - a)[None, :]
+        cross &= np.linalg.norm(pierce - p, axis=1) <= _PIERCE
+        out = {}
+        for fid in np.unique(self.ids[idx[cross]]):
+            sel = idx[cross][self.ids[idx[cross]] == fid]
+            k = sel[np.argmin(np.linalg.norm(self.points[sel] - mid, axis=1))]
+            into_footwall = float(np.dot(b - self.points[k], self.normals[k])) > 0
+            thr = self.throws[k]
+            out[int(fid)] = np.nan if not np.isfinite(thr) else (-thr if into_footwall else thr)
+        return out
+
+    def jump(self, a: np.ndarray, b: np.ndarray, skip=()) -> float:
+        """Vertical jump (samples) of a horizon going from ``a`` to ``b``: the sum over the faults crossed (two faults
+        between the same traces add up), leaving out the fault ids in ``skip``; 0 when none, NaN when a crossed
+        fault's throw is unknown."""
+        return float(sum(v for f, v in self.crossings(a, b).items() if f not in skip))
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -386,11 +406,16 @@ def _track_along(sl: _Slice, j0: int, t0: float, opt: _Options, faults: _FaultIn
     for direction in (1, -1):
         c, tc = j0, t0  # tc: carried position (kept even where the output is left empty)
         reference = sl.window(j0, t0)  # running waveform of the accepted picks, for the confidence
+        crossed: set = set()  # a (planar) fault is crossed once going one way; after the jump, a dipping fault's
+        # plane can lie on the far side of the new pick (heave, reverse-fault overlap), which is no second crossing
         while 0 <= c + direction < n:
             j = int(np.clip(c + direction * opt.step, 0, n - 1))
             pc = sl.slope_at(c, tc)
             pred = tc + pc * (j - c)
-            jump = faults.jump(line_point(c, tc), line_point(j, pred))
+            cross = {f: v for f, v in faults.crossings(line_point(c, tc), line_point(j, pred)).items()
+                     if f not in crossed}
+            jump = float(sum(cross.values()))
+            crossed.update(cross)
             t_new, fit = np.nan, 0.0
             if jump == 0.0:
                 lo_s, hi_s = max(c - hw, 0), min(c + hw, n - 1)
@@ -423,11 +448,12 @@ def _track_along(sl: _Slice, j0: int, t0: float, opt: _Options, faults: _FaultIn
                 init = np.eye(3)
                 init[:2, 2] = (j - c, pred + shift - tc)
                 m, fit = _register(src, dst, dnrm, init, opt.model)
+                t_new = pred + shift
                 if m is not None:
                     q = m @ np.array([c, tc, 1.0])
-                    t_new = q[1] + sl.slope_at(j, q[1]) * (j - q[0])
-                else:
-                    t_new = pred + shift
+                    refined = q[1] + sl.slope_at(j, q[1]) * (j - q[0])
+                    if abs(refined - t_new) <= opt.snap:  # a refinement, not a slide onto the next cycle
+                        t_new = refined
             # Snap the new pick and the traces in between; score each against the trace it came from.
             t_j = sl.snap(j, t_new, opt.snap)
             carried = t_j if np.isfinite(t_j) else t_new
@@ -477,9 +503,10 @@ def _slice_matches(a: _Slice, b: _Slice, rows: tuple[int, int], method):
 
 
 def _carry(src: _Slice, dst: _Slice, times: np.ndarray, opt: _Options, faults: _FaultIndex, point_pair,
-           matches, panel: int):
+           matches, panel: int, crossed: list):
     """Carry the carried positions ``times`` (n_traces,) of ``src`` onto ``dst``. Returns (out, carried, conf):
-    snapped confident picks (NaN elsewhere), positions to carry on from, confidence."""
+    snapped confident picks (NaN elsewhere), positions to carry on from, confidence. ``crossed[x]`` is the set of
+    faults trace ``x`` has already crossed in this pass (updated): each is crossed once (see :func:`_track_along`)."""
     n = src.n_traces
     out = np.full(n, np.nan)
     carried = np.full(n, np.nan)
@@ -512,7 +539,8 @@ def _carry(src: _Slice, dst: _Slice, times: np.ndarray, opt: _Options, faults: _
             q = m @ np.array([x, t, 1.0])
             guess = q[1] + dst.slope_at(x, q[1]) * (x - q[0])
             a, b = point_pair(x, t, guess)
-            jump = faults.jump(a, b)
+            jump = faults.jump(a, b, skip=crossed[x])
+            crossed[x].update(faults.crossings(a, b))
             if np.isfinite(jump):
                 guess += jump
             tt = dst.snap(x, guess, opt.snap)
@@ -522,7 +550,51 @@ def _carry(src: _Slice, dst: _Slice, times: np.ndarray, opt: _Options, faults: _
             carried[x] = anchor
             if np.isfinite(tt) and np.isfinite(score) and score >= opt.min_confidence:
                 out[x] = tt
+    _despike(dst, out, carried, conf, opt, faults, lambda x, t: point_pair(x, t, t)[1])
     return out, carried, conf
+
+
+def _despike(sl: _Slice, out: np.ndarray, carried: np.ndarray, conf: np.ndarray, opt: _Options,
+             faults: _FaultIndex, line_point, reach: int = 2, agree: float = 2.0) -> int:
+    """Lateral continuity check of one carried slice (in place); returns the number of picks changed.
+
+    The carry moves every trace on its own, so a pick that snapped to the neighbouring cycle is carried on, trace
+    for trace, through all later slices: a streak across the cube while the traces beside it are right. A pick is
+    such a spike when the nearest picks on both sides (within ``reach`` traces) agree with each other within
+    ``agree`` samples and it lies more than ``agree`` samples from their interpolation. It is re-snapped at that
+    interpolation (within ``agree``) when the waveform there correlates with the two sides at least
+    ``min_confidence``, else left empty and carried on from the interpolation. A fault between the sides (fault
+    input), or a step between them (sides that disagree: a discontinuity), leaves the pick alone.
+    """
+    n = sl.n_traces
+    before = out.copy()  # every decision on the slice as carried, so one correction cannot set off the next
+    have = np.isfinite(before)
+    changed = 0
+    for x in np.nonzero(have)[0]:
+        left = [u for u in range(x - 1, x - reach - 1, -1) if 0 <= u and have[u]][:1]
+        right = [u for u in range(x + 1, x + reach + 1) if u < n and have[u]][:1]
+        if not left or not right:
+            continue
+        a, b = left[0], right[0]
+        ta, tb = before[a], before[b]
+        if abs(ta - tb) > agree:
+            continue
+        pred = ta + (tb - ta) * (x - a) / (b - a)
+        if abs(before[x] - pred) <= agree:
+            continue
+        if faults.jump(line_point(a, ta), line_point(b, tb)) != 0.0:
+            continue
+        t = sl.snap(x, pred, agree)
+        score = np.nan
+        if np.isfinite(t):
+            wave = sl.window(x, t)
+            score = min(_ncc(wave, sl.window(a, ta)), _ncc(wave, sl.window(b, tb)))
+        if np.isfinite(score) and score >= opt.min_confidence:
+            out[x], carried[x], conf[x] = t, t, score
+        else:
+            out[x], carried[x], conf[x] = np.nan, pred, score
+        changed += 1
+    return changed
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -702,6 +774,7 @@ def _track_3d(arr, seeds, code, polarity, opt, fidx, sigma_tensor, features, pan
             start = t_line.copy()
             for direction in (1, -1):
                 prev, carried = i0, start
+                crossed = [set() for _ in range(n_xl)]
                 for i in range(i0 + direction, n_il if direction > 0 else -1, direction):
                     a, b = slice_(prev), slice_(i)
                     have = np.isfinite(carried)
@@ -714,7 +787,7 @@ def _track_3d(arr, seeds, code, polarity, opt, fidx, sigma_tensor, features, pan
                         a, b, carried, opt, fidx,
                         lambda x, t, g, i0_=prev, i1_=i: (np.array([i0_, x, t], np.float64),
                                                            np.array([i1_, x, g], np.float64)),
-                        matches, panel)
+                        matches, panel, crossed)
                     new_t[i], new_c[i] = out, c
                     prev = i
                     bar.update(1)

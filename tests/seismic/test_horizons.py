@@ -51,19 +51,24 @@ def test_track_2d_section_without_faults_follows_true_horizons(seed):
         assert e["within_2"] >= 0.97, (k, e)
 
 
-@pytest.fixture(scope="module")
-def faulted():
-    syn = synthetic_cube((64, 64, 96), n_faults=3, seed=0)
+def _faulted(seed):
+    syn = synthetic_cube((64, 64, 96), n_faults=3, seed=seed)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         faults = trace_faults(syn.cube, progress=False)
     return syn, faults
 
 
-def test_track_3d_across_faults_median_error_within_one_sample(faulted):
-    # measured (benchmarks/horizons.py): per-horizon medians 0.05-0.14 samples except one horizon whose fault jump
-    # goes wrong; pooled over all six horizons the median is well under 1 sample
-    syn, faults = faulted
+@pytest.fixture(scope="module")
+def faulted():
+    return _faulted(0)
+
+
+# measured (benchmarks/horizons.py, cube seeds 0-2): 17 of 18 horizons at medians 0.04-0.16 samples; the one wrong,
+# cube 0 horizon 1, is seeded between two faults that cross near its level and traced a voxel or two apart
+@pytest.mark.parametrize("cube_seed, n_right", [(0, 5), (2, 6)])
+def test_track_3d_across_faults_median_error_within_one_sample(faulted, cube_seed, n_right):
+    syn, faults = faulted if cube_seed == 0 else _faulted(cube_seed)
     errors = []
     for k in range(syn.horizons.shape[0]):
         ref = syn.horizons[k]
@@ -73,7 +78,7 @@ def test_track_3d_across_faults_median_error_within_one_sample(faulted):
         errors.append(err[np.isfinite(err)])
     pooled = np.concatenate(errors)
     assert np.median(pooled) <= 1.0
-    assert sum(np.median(e) <= 1.0 for e in errors) >= 5
+    assert sum(np.median(e) <= 1.0 for e in errors) >= n_right, [np.median(e) for e in errors]
 
 
 def test_fault_throw_makes_the_jump(faulted):
@@ -175,6 +180,60 @@ def test_gap_closing_refills_a_hole_and_leaves_noise_empty():
     assert np.isnan(holed[9:13, 12:16]).all()
 
 
+def _vertical_fault_points(x0, n_y=9, n_t=40):
+    """Points of a vertical fault plane at trace x0 (3D index space), normals along +x."""
+    y, t = np.meshgrid(np.arange(n_y, dtype=float), np.arange(n_t, dtype=float), indexing="ij")
+    pts = np.column_stack([np.full(y.size, float(x0)), y.ravel(), t.ravel()])
+    return pts, np.tile([1.0, 0.0, 0.0], (len(pts), 1))
+
+
+def test_fault_index_adds_up_faults_and_ignores_a_grazing_one():
+    from seismo3d.seismic.horizons import _FaultIndex
+
+    p1, n1 = _vertical_fault_points(10.5)
+    p2, n2 = _vertical_fault_points(12.5)
+    both = _FaultIndex(np.vstack([p1, p2]), np.vstack([n1, n2]), np.r_[np.full(len(p1), 4.0), np.full(len(p2), 6.0)],
+                       np.r_[np.zeros(len(p1)), np.ones(len(p2))])
+    a, b = np.array([4.0, 4.0, 20.0]), np.array([8.0, 4.0, 20.0])
+    assert both.jump(a, b) == 0.0  # no fault between
+    a, b = np.array([10.0, 4.0, 20.0]), np.array([13.0, 4.0, 20.0])
+    # both faults lie between: +x points into both footwalls, so the horizon moves up by both throws
+    assert both.crossings(a, b) == {0: -4.0, 1: -6.0}
+    assert both.jump(a, b) == -10.0
+    assert both.jump(b, a) == 10.0
+    assert both.jump(a, b, skip={0}) == -6.0  # fault 0 already crossed
+    # a fault that ends beside the step: the step crosses its plane 2 voxels past its last point, which is no crossing
+    edge = np.column_stack([np.arange(0.0, 11.0), np.full(11, 4.0), np.full(11, 20.0)])
+    ending = _FaultIndex(edge, np.tile([0.0, 0.0, 1.0], (11, 1)), np.full(11, 5.0))
+    assert ending.jump(np.array([10.0, 4.0, 18.0]), np.array([14.0, 4.0, 22.0])) == 0.0
+    assert ending.jump(np.array([6.0, 4.0, 18.0]), np.array([10.0, 4.0, 22.0])) == -5.0  # through it: into the footwall
+
+
+def test_despike_puts_a_cycle_skipped_pick_back_and_leaves_a_step_alone():
+    from seismo3d.seismic.horizons import _POLARITY_CODE, _despike, _FaultIndex, _Options, _Slice
+
+    syn = synthetic_cube((60, 96), n_faults=0, seed=3, noise=0.05)
+    k = 2
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    sl = _Slice(syn.cube, _POLARITY_CODE[pol], (2.0, 2.0))
+    truth = np.array([sl.snap(j, syn.horizons[k][j], 1.0) for j in range(60)])
+    assert np.isfinite(truth).all()
+    picks, offsets = reflector_picks(syn.cube, polarity=pol)
+    other = picks[offsets[30]:offsets[31]]
+    wrong = other[np.argmin(np.where(np.abs(other - truth[30]) > 3, np.abs(other - truth[30]), np.inf))]
+    out = truth.copy()
+    out[30] = wrong  # one pick on the neighbouring cycle
+    out[45:] += 6.0  # and a step (a fault's jump) further on
+    carried, conf = out.copy(), np.ones(60)
+    opt = _Options(model="rigid", half_traces=10, half_samples=20.0, step=4, snap=3.0, min_confidence=0.3,
+                   max_throw=10, min_fitness=0.3)
+    changed = _despike(sl, out, carried, conf, opt, _FaultIndex.from_interpretation(None, 2),
+                       lambda x, t: np.array([x, t], float))
+    assert changed == 1
+    assert out[30] == pytest.approx(truth[30]) and carried[30] == pytest.approx(truth[30])
+    np.testing.assert_array_equal(out[45:], truth[45:] + 6.0)
+
+
 @pytest.fixture(scope="module")
 def penobscot():
     if not os.environ.get("SEISMO3D_DATA_DIR"):
@@ -185,12 +244,15 @@ def penobscot():
     cube = np.ascontiguousarray(((z["seismic"].astype(np.float32) - 127.5) / 127.5).transpose(0, 2, 1))
     human = z["horizons"].astype(np.float64)
     human[human < 0] = np.nan
+    human[np.broadcast_to((np.ptp(cube, axis=2) == 0)[:, None, :], human.shape)] = np.nan  # dead traces: not scored
     return cube, human
 
 
-# measured by benchmarks/horizons.py (point-to-plane): % within 5 samples of the people's picks, and the plain
-# autotracker's; the issue's target of 99 % is reached on horizons 0, 3, 4 and 5, not on 1, 2 and 6
-@pytest.mark.parametrize("k, within_5, median, plain_within_5", [(1, 0.985, 1.0, 0.963), (3, 0.995, 0.5, 0.998)])
+# measured by benchmarks/horizons.py (point-to-plane): % within 5 samples of the people's picks on live traces, and
+# the plain autotracker's; the issue's target (99 %, median <= 1) is reached on horizons 0-4; horizon 5 reaches 99 %
+# at median 1.5 (the picks sit 1.5 samples above the clipped peak), horizon 6 stays at 89 % (an unfound fault)
+@pytest.mark.parametrize("k, within_5, median, plain_within_5",
+                         [(1, 0.990, 1.0, 0.965), (2, 0.990, 0.5, 0.988), (3, 0.995, 0.5, 0.9995)])
 def test_penobscot_horizons_against_peoples_picks(penobscot, k, within_5, median, plain_within_5):
     cube, human = penobscot
     ref = human[:, k]

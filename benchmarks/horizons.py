@@ -59,6 +59,15 @@ def penobscot(quick: bool) -> None:
                   f"{100 * e['coverage']:.1f} | {sec:.1f} |", flush=True)
 
 
+def _seed(syn, k: int, i0: int) -> tuple[tuple[float, float, float], str]:
+    """Seed on the generator's horizon ``k`` at inline ``i0``, at the picked trace nearest the middle, and the
+    horizon's polarity."""
+    ref = syn.horizons[k]
+    ok = np.nonzero(np.isfinite(ref[i0]))[0]
+    j0 = int(ok[np.argmin(np.abs(ok - syn.shape[1] // 2))])
+    return (i0, j0, float(ref[i0, j0])), "peak" if syn.horizon_polarity[k] > 0 else "trough"
+
+
 def synthetic(quick: bool) -> None:
     print("\n## Synthetic faulted cubes 64 x 64 x 96 (3 faults, noise 0.1), all horizons, seed on the middle inline\n")
     print("| cube seed | horizon | faults traced | median abs, with faults | within 2 % | coverage % | median abs, "
@@ -72,10 +81,7 @@ def synthetic(quick: bool) -> None:
         i0 = syn.shape[0] // 2
         for k in range(syn.horizons.shape[0]):
             ref = syn.horizons[k]
-            ok = np.nonzero(np.isfinite(ref[i0]))[0]
-            j0 = int(ok[np.argmin(np.abs(ok - syn.shape[1] // 2))])
-            seed = (i0, j0, float(ref[i0, j0]))
-            pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+            seed, pol = _seed(syn, k, i0)
             e = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, faults=faults, features=None).times, ref)
             e0 = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, features=None).times, ref)
             ea = horizon_errors(autotrack(syn.cube, seed, polarity=pol).times, ref)
@@ -92,9 +98,7 @@ def speed(quick: bool) -> None:
     sizes = [(128, 128), (256, 256)] if quick else [(128, 128), (256, 256), (512, 512)]
     for n_xl, n_s in sizes:
         syn = synthetic_cube((16, n_xl, n_s), n_faults=0, seed=0)
-        ref = syn.horizons[len(syn.horizons) // 2]
-        seed = (0, n_xl // 2, float(ref[0, n_xl // 2]))
-        pol = "peak" if syn.horizon_polarity[len(syn.horizons) // 2] > 0 else "trough"
+        seed, pol = _seed(syn, len(syn.horizons) // 2, 0)
         t0 = time.perf_counter()
         track_horizon(syn.cube[0], seed[1:], polarity=pol)
         along = time.perf_counter() - t0

@@ -26,9 +26,9 @@ the fault's throw (down when it enters the hanging wall, up when it enters the f
 sides are registered starting from that jump (a refinement within the snap window; a registration that slides
 further, onto another cycle, is not taken). A step crosses a fault when it pierces the traced fault surface next to
 a fault point; two faults between the same traces add their jumps; and a fault is crossed once going one way (after
-the jump, a dipping fault's plane can lie beyond the new pick). Without fault input, a step whose panels do not fit (a discontinuity)
-is re-made from one side with the shift found by normalised cross-correlation of the two sides' stacked traces, the
-start the throw estimation uses (:mod:`seismo3d.seismic.throw`).
+the jump, a dipping fault's plane can lie beyond the new pick). Without fault input, a step whose panels do not fit
+(a discontinuity) is re-made from one side with the shift found by normalised cross-correlation of the two sides'
+stacked traces, the start the throw estimation uses (:mod:`seismo3d.seismic.throw`).
 
 Each pick gets a confidence: the normalised cross-correlation of the waveform around it with the waveform around the
 pick it came from. Picks below ``min_confidence``, and picks with no extremum of the right polarity within the snap
@@ -310,11 +310,18 @@ class _FaultIndex:
             out[int(fid)] = np.nan if not np.isfinite(thr) else (-thr if into_footwall else thr)
         return out
 
-    def jump(self, a: np.ndarray, b: np.ndarray, skip=()) -> float:
+    def jump(self, a: np.ndarray, b: np.ndarray, crossed: set | None = None) -> float:
         """Vertical jump (samples) of a horizon going from ``a`` to ``b``: the sum over the faults crossed (two faults
-        between the same traces add up), leaving out the fault ids in ``skip``; 0 when none, NaN when a crossed
-        fault's throw is unknown."""
-        return float(sum(v for f, v in self.crossings(a, b).items() if f not in skip))
+        between the same traces add up); 0 when none, NaN when a crossed fault's throw is unknown.
+
+        ``crossed``: the fault ids this horizon path has already crossed, left out and updated. A (planar) fault is
+        crossed once going one way; after the jump, a dipping fault's plane can lie beyond the new pick (heave,
+        reverse-fault overlap), which is no second crossing."""
+        cross = self.crossings(a, b)
+        if crossed is not None:
+            cross = {f: v for f, v in cross.items() if f not in crossed}
+            crossed.update(cross)
+        return float(sum(cross.values()))
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -346,30 +353,33 @@ def _register(src_pts, dst_pts, dst_nrm, init, model, features=None):
 def _stack(sl: _Slice, traces: np.ndarray, ref: np.ndarray, half: int) -> np.ndarray:
     """Mean of the traces' amplitudes read along ``ref`` (samples), over ``-half..half`` samples."""
     s = ref[:, None] + np.arange(-half, half + 1)[None, :]
-    rows = [np.interp(s[i], np.arange(sl.n_samples), sl.amp[j], left=np.nan, right=np.nan)
-            for i, j in enumerate(traces)]
-    return np.nanmean(np.asarray(rows), axis=0) if rows else np.full(2 * half + 1, np.nan)
+    rows = np.array([np.interp(s[i], np.arange(sl.n_samples), sl.amp[j], left=np.nan, right=np.nan)
+                     for i, j in enumerate(traces)]).reshape(len(traces), 2 * half + 1)
+    ok = np.isfinite(rows)
+    count = ok.sum(axis=0)
+    total = np.where(ok, rows, 0.0).sum(axis=0)
+    return np.where(count > 0, total / np.maximum(count, 1), np.nan)
 
 
 def _side_shift(sl: _Slice, c: int, tc: float, pc: float, j: int, direction: int, width: int, half: int,
-                max_shift: int) -> tuple[float, float]:
-    """Shift of the horizon from the traces behind ``c`` to the traces from ``j`` on, by normalised
-    cross-correlation of the two sides' stacked traces (flattened along the slope ``pc``).
-    Returns (shift, its correlation, the correlation at zero shift)."""
+                max_shift: int) -> float:
+    """Shift (samples) of the horizon from the traces behind ``c`` to the traces from ``j`` on, by normalised
+    cross-correlation of the two sides' stacked traces (flattened along the slope ``pc``); 0 when a side has fewer
+    than two traces or nothing correlates."""
     n = sl.n_traces
     behind = np.arange(c, c - direction * width, -direction)
     behind = behind[(behind >= 0) & (behind < n)]
     ahead = np.arange(j, j + direction * width, direction)
     ahead = ahead[(ahead >= 0) & (ahead < n)]
     if behind.size < 2 or ahead.size < 2:
-        return 0.0, np.nan, np.nan
+        return 0.0
     f = _stack(sl, behind, tc + pc * (behind - c), half + max_shift)
     g = _stack(sl, ahead, tc + pc * (ahead - c), half + max_shift)
     core = f[max_shift:max_shift + 2 * half + 1]
     scores = np.array([_ncc(core, g[max_shift + s:max_shift + s + 2 * half + 1])
                        for s in range(-max_shift, max_shift + 1)])
     if not np.isfinite(scores).any():
-        return 0.0, np.nan, np.nan
+        return 0.0
     k = int(np.nanargmax(scores))
     shift = float(k - max_shift)
     if 0 < k < len(scores) - 1 and np.isfinite(scores[k - 1:k + 2]).all():
@@ -377,7 +387,7 @@ def _side_shift(sl: _Slice, c: int, tc: float, pc: float, j: int, direction: int
         den = y0 - 2 * y1 + y2
         if den < 0:
             shift += 0.5 * (y0 - y2) / den
-    return shift, float(scores[k]), float(scores[max_shift])
+    return shift
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -395,6 +405,25 @@ class _Options:
     min_fitness: float
 
 
+def _panel_step(sl: _Slice, src_span: tuple[int, int], dst_span: tuple[int, int], c: int, tc: float, j: int,
+                t_j: float, pc: float, opt: _Options) -> tuple[float, float]:
+    """Register the panel of traces ``src_span`` (inclusive) around the pick (c, tc) onto the panel ``dst_span``
+    around the predicted position (j, t_j), bands of reflector points along the slope ``pc``; returns the pick
+    carried to trace ``j`` (followed along the reflector slope) and the fitness, or (NaN, 0) when it cannot run."""
+    hv = opt.half_samples
+    xs = np.arange(src_span[0], src_span[1] + 1)
+    xd = np.arange(dst_span[0], dst_span[1] + 1)
+    src, _ = sl.band(src_span[0], src_span[1], tc + pc * (xs - c), hv)
+    dst, dnrm = sl.band(dst_span[0], dst_span[1], t_j + pc * (xd - j), hv)
+    init = np.eye(3)
+    init[:2, 2] = (j - c, t_j - tc)
+    m, fit = _register(src, dst, dnrm, init, opt.model)
+    if m is None:
+        return np.nan, 0.0
+    q = m @ np.array([c, tc, 1.0])
+    return q[1] + sl.slope_at(j, q[1]) * (j - q[0]), fit
+
+
 def _track_along(sl: _Slice, j0: int, t0: float, opt: _Options, faults: _FaultIndex, line_point):
     """Track from (j0, t0) to both ends of a slice. ``line_point(j, t)`` maps a slice position to the fault index's
     coordinates. Returns (times, confidence), NaN where empty / unreached."""
@@ -406,31 +435,17 @@ def _track_along(sl: _Slice, j0: int, t0: float, opt: _Options, faults: _FaultIn
     for direction in (1, -1):
         c, tc = j0, t0  # tc: carried position (kept even where the output is left empty)
         reference = sl.window(j0, t0)  # running waveform of the accepted picks, for the confidence
-        crossed: set = set()  # a (planar) fault is crossed once going one way; after the jump, a dipping fault's
-        # plane can lie on the far side of the new pick (heave, reverse-fault overlap), which is no second crossing
+        crossed: set = set()  # the faults this direction has crossed (see _FaultIndex.jump)
         while 0 <= c + direction < n:
             j = int(np.clip(c + direction * opt.step, 0, n - 1))
             pc = sl.slope_at(c, tc)
             pred = tc + pc * (j - c)
-            cross = {f: v for f, v in faults.crossings(line_point(c, tc), line_point(j, pred)).items()
-                     if f not in crossed}
-            jump = float(sum(cross.values()))
-            crossed.update(cross)
-            t_new, fit = np.nan, 0.0
+            jump = faults.jump(line_point(c, tc), line_point(j, pred), crossed)
+            t_new = np.nan
             if jump == 0.0:
-                lo_s, hi_s = max(c - hw, 0), min(c + hw, n - 1)
-                lo_d, hi_d = max(j - hw, 0), min(j + hw, n - 1)
-                xs = np.arange(lo_s, hi_s + 1)
-                xd = np.arange(lo_d, hi_d + 1)
-                src, _ = sl.band(lo_s, hi_s, tc + pc * (xs - c), hv)
-                dst, dnrm = sl.band(lo_d, hi_d, pred + pc * (xd - j), hv)
-                init = np.eye(3)
-                init[:2, 2] = (j - c, pred - tc)
-                m, fit = _register(src, dst, dnrm, init, opt.model)
-                if m is not None and fit >= opt.min_fitness:
-                    q = m @ np.array([c, tc, 1.0])
-                    t_new = q[1] + sl.slope_at(j, q[1]) * (j - q[0])
-                else:
+                t_new, fit = _panel_step(sl, (max(c - hw, 0), min(c + hw, n - 1)), (max(j - hw, 0), min(j + hw, n - 1)),
+                                         c, tc, j, pred, pc, opt)
+                if not (np.isfinite(t_new) and fit >= opt.min_fitness):
                     t_new = pred  # panels that do not fit (noise, chaotic zone): follow the slope, do not search
             if not np.isfinite(t_new):
                 # A fault: register from each side only, starting from its throw (or, when the fault's throw is
@@ -438,22 +453,13 @@ def _track_along(sl: _Slice, j0: int, t0: float, opt: _Options, faults: _FaultIn
                 if np.isfinite(jump) and jump != 0.0:
                     shift = jump
                 else:
-                    shift = _side_shift(sl, c, tc, pc, j, direction, 2 * hw, int(hv), opt.max_throw)[0]
-                behind = np.sort([c, int(np.clip(c - direction * 2 * hw, 0, n - 1))])
-                ahead = np.sort([j, int(np.clip(j + direction * 2 * hw, 0, n - 1))])
-                xs = np.arange(behind[0], behind[1] + 1)
-                xd = np.arange(ahead[0], ahead[1] + 1)
-                src, _ = sl.band(behind[0], behind[1], tc + pc * (xs - c), hv)
-                dst, dnrm = sl.band(ahead[0], ahead[1], pred + shift + pc * (xd - j), hv)
-                init = np.eye(3)
-                init[:2, 2] = (j - c, pred + shift - tc)
-                m, fit = _register(src, dst, dnrm, init, opt.model)
+                    shift = _side_shift(sl, c, tc, pc, j, direction, 2 * hw, int(hv), opt.max_throw)
+                behind = tuple(sorted((c, int(np.clip(c - direction * 2 * hw, 0, n - 1)))))
+                ahead = tuple(sorted((j, int(np.clip(j + direction * 2 * hw, 0, n - 1)))))
                 t_new = pred + shift
-                if m is not None:
-                    q = m @ np.array([c, tc, 1.0])
-                    refined = q[1] + sl.slope_at(j, q[1]) * (j - q[0])
-                    if abs(refined - t_new) <= opt.snap:  # a refinement, not a slide onto the next cycle
-                        t_new = refined
+                refined, _ = _panel_step(sl, behind, ahead, c, tc, j, t_new, pc, opt)
+                if abs(refined - t_new) <= opt.snap:  # a refinement, not a slide onto the next cycle (NaN: none)
+                    t_new = refined
             # Snap the new pick and the traces in between; score each against the trace it came from.
             t_j = sl.snap(j, t_new, opt.snap)
             carried = t_j if np.isfinite(t_j) else t_new
@@ -506,7 +512,7 @@ def _carry(src: _Slice, dst: _Slice, times: np.ndarray, opt: _Options, faults: _
            matches, panel: int, crossed: list):
     """Carry the carried positions ``times`` (n_traces,) of ``src`` onto ``dst``. Returns (out, carried, conf):
     snapped confident picks (NaN elsewhere), positions to carry on from, confidence. ``crossed[x]`` is the set of
-    faults trace ``x`` has already crossed in this pass (updated): each is crossed once (see :func:`_track_along`)."""
+    faults trace ``x`` has already crossed in this pass (updated; see :meth:`_FaultIndex.jump`)."""
     n = src.n_traces
     out = np.full(n, np.nan)
     carried = np.full(n, np.nan)
@@ -539,8 +545,7 @@ def _carry(src: _Slice, dst: _Slice, times: np.ndarray, opt: _Options, faults: _
             q = m @ np.array([x, t, 1.0])
             guess = q[1] + dst.slope_at(x, q[1]) * (x - q[0])
             a, b = point_pair(x, t, guess)
-            jump = faults.jump(a, b, skip=crossed[x])
-            crossed[x].update(faults.crossings(a, b))
+            jump = faults.jump(a, b, crossed[x])
             if np.isfinite(jump):
                 guess += jump
             tt = dst.snap(x, guess, opt.snap)
@@ -950,13 +955,12 @@ def fill_horizon(horizon: Horizon, *, max_gap: float | None = None) -> Horizon:
         raise InputError(f"the horizon has {int(have.sum())} picks; at least {need} are needed to interpolate")
     if max_gap is not None:
         check_positive(max_gap, "max_gap")
-    grid = np.indices(t.shape).reshape(t.ndim, -1).T.astype(np.float64)
-    pts = grid[have.ravel()]
     if t.ndim == 1:
         x = np.arange(t.size)
         filled = np.interp(x, x[have], t[have], left=np.nan, right=np.nan)
     else:
-        filled = griddata(pts, t[have], grid, method="linear").reshape(t.shape)
+        grid = np.indices(t.shape).reshape(t.ndim, -1).T.astype(np.float64)
+        filled = griddata(grid[have.ravel()], t[have], grid, method="linear").reshape(t.shape)
     if max_gap is not None:
         far = distance_transform_edt(~have) > max_gap
         filled[far & ~have] = np.nan

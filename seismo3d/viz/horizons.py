@@ -44,7 +44,6 @@ def horizon_surface(horizon, *, inlines=None, xlines=None, samples=None):
         raise InputError(f"a horizon surface needs a (n_inlines, n_xlines) grid; got shape {times.shape}")
     conf = getattr(horizon, "confidence", None)
     conf = np.full(times.shape, np.nan) if conf is None else np.asarray(conf, dtype=np.float64)
-    n_il, n_xl = times.shape
     have = np.isfinite(times)
     index = np.full(times.shape, -1, dtype=np.int64)
     index[have] = np.arange(int(have.sum()))

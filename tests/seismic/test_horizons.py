@@ -201,7 +201,8 @@ def test_fault_index_adds_up_faults_and_ignores_a_grazing_one():
     assert both.crossings(a, b) == {0: -4.0, 1: -6.0}
     assert both.jump(a, b) == -10.0
     assert both.jump(b, a) == 10.0
-    assert both.jump(a, b, skip={0}) == -6.0  # fault 0 already crossed
+    crossed = {0}  # fault 0 already crossed: left out, and fault 1 recorded
+    assert both.jump(a, b, crossed) == -6.0 and crossed == {0, 1}
     # a fault that ends beside the step: the step crosses its plane 2 voxels past its last point, which is no crossing
     edge = np.column_stack([np.arange(0.0, 11.0), np.full(11, 4.0), np.full(11, 20.0)])
     ending = _FaultIndex(edge, np.tile([0.0, 0.0, 1.0], (11, 1)), np.full(11, 5.0))

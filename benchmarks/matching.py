@@ -168,7 +168,7 @@ def print_tables(results, sets, methods=METHODS):
                 mean = _mean_over_images(per_set, m, None if set_name == "all" else [set_name])
                 cells = " ".join(f"{p:5.1f}/{n:4.0f}" for p, n in mean[:, :2])
                 lines.append(f"  {NAMES[m]:<16}{cells}  {mean[:, 2].mean():8.3f}")
-        lines.append(f"after RANSAC (USAC homography, 3 px), all images: % correct / number correct of the inliers")
+        lines.append("after RANSAC (USAC homography, 3 px), all images: % correct / number correct of the inliers")
         for m in methods:
             mean = _mean_over_images(per_set, m)
             lines.append(f"  {NAMES[m]:<16}" + " ".join(f"{p:5.1f}/{n:4.0f}" for p, n in mean[:, 3:5]))
@@ -240,7 +240,7 @@ def main(argv=None):
     print("# cells: % correct / number correct, averaged over the images of the set; SURF: patented, absent.")
     print(print_tables(results, sets))
     h, s = speed["hog"], speed["sift"]
-    print(f"\n### speed, 512 x 512 camera, detect + describe, median of 7 alternating runs (numba warm-up excluded)")
+    print("\n### speed, 512 x 512 camera, detect + describe, median of 7 alternating runs (numba warm-up excluded)")
     print(f"  HOG-pyramid {h[0] * 1e3:7.1f} ms ({h[1]} keypoints)   SIFT {s[0] * 1e3:7.1f} ms ({s[1]} keypoints)"
           f"   ratio {h[0] / s[0]:.2f}x  ({'MET' if h[0] <= 3 * s[0] else 'MISSED'}: within 3x)")
     print("\n### targets")

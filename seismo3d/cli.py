@@ -289,8 +289,6 @@ def horizon(
 ) -> None:
     """Track a horizon in INPUT from one or more seed picks by registering neighbouring inlines, and write it as
     'inline xline time' rows."""
-    import warnings
-
     from .seismic import fill_horizon, open_segy, trace_faults, track_horizon, write_horizon_text
 
     if output.resolve() == input.resolve() or (surface is not None and surface.resolve() == input.resolve()):
@@ -303,11 +301,8 @@ def horizon(
         inlines, xlines, samples = cube.inlines, cube.xlines, cube.samples
         unit = cube.sample_unit
     seeds = [_parse_seed(s, inlines, xlines, samples, unit) for s in seed]
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        interp = trace_faults(data, sample_interval=float(samples[1] - samples[0]), sample_unit=unit) \
-            if faults else None
-        result = track_horizon(data, seeds, polarity=polarity.value, faults=interp, progress=True)
+    interp = trace_faults(data, sample_interval=float(samples[1] - samples[0]), sample_unit=unit) if faults else None
+    result = track_horizon(data, seeds, polarity=polarity.value, faults=interp, progress=True)
     if fill:
         result = fill_horizon(result)
     n = write_horizon_text(output, result, inlines=inlines, xlines=xlines, samples=samples)

@@ -13,7 +13,6 @@ References
 
 from __future__ import annotations
 
-import os
 import pathlib
 import re
 from dataclasses import dataclass

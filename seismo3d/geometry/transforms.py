@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .._validation import as_points, check_choice
+from .._validation import check_choice
 from ..errors import InputError
 
 __all__ = [

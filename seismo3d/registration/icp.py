@@ -180,7 +180,7 @@ def _run(stages, sched, frame, m0, *, method, model, max_iterations, tolerance, 
     m = frame.into(m0)
     d = m.shape[0] - 1
     need = _needed(method, model, d)
-    total_iters, converged, h, wsum = 0, False, None, 0.0
+    total_iters, converged, h = 0, False, None
     per_stage = []
     for stage, dist_max in zip(stages, sched):
         dmax = dist_max / frame.scale

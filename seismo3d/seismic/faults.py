@@ -811,7 +811,7 @@ def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fau
         Fault strike and dip in degrees.
     min_size : int, optional
         Smallest fault kept, in samples. Default: in 2D, 10 % of the samples per trace (at least 10); in 3D, 1 % of
-        the samples of the largest cube face (at least 100).
+        n_samples x min(n_inlines, n_xlines), the smaller vertical face (at least 100).
     max_angle : float, optional
         Largest angle between the normals of linked neighbours, degrees. The default 20 lets neighbours differ by
         one step of the default strike / dip scan.
@@ -835,13 +835,13 @@ def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fau
     max_angle = check_positive(max_angle, "max_angle")
     ndim = fl.ndim
     if min_size is None:
-        # a fault must span about a tenth of the data: 10 % of the samples of a trace in 2D, 1 % of the largest
-        # face of a cube in 3D
+        # a fault must span about a tenth of the data: 10 % of the samples of a trace in 2D; in 3D, 1 % of the
+        # smaller vertical face (samples x the shorter of inlines and crosslines), which a fault striking across
+        # the narrow side of a slab (a few inlines cut from a survey) cannot outgrow
         if ndim == 2:
             min_size = max(10, int(round(0.1 * fl.shape[-1])))
         else:
-            faces = sorted(fl.shape)
-            min_size = max(100, int(round(0.01 * faces[-1] * faces[-2])))
+            min_size = max(100, int(round(0.01 * fl.shape[-1] * min(fl.shape[:2]))))
     min_size = int(check_positive(min_size, "min_size"))
     mask = fl > 0
     pts = np.argwhere(mask)

@@ -1,6 +1,7 @@
 """`seismo3d horizon`: a SEG-Y cube in, 'inline xline time' rows out; seeds in line numbers and ms."""
 
 import numpy as np
+import pytest
 import segyio
 from typer.testing import CliRunner
 
@@ -58,3 +59,25 @@ def test_horizon_command_bad_seeds(tmp_path):
         assert res.exit_code == 2, res.output
         assert message in res.output
     assert not (tmp_path / "h.txt").exists()
+
+
+@pytest.mark.filterwarnings("error::RuntimeWarning")
+def test_horizon_command_jumps_faults_with_faults_option(tmp_path):
+    # --faults traces the faults first; the command no longer silences RuntimeWarnings, so none may be raised.
+    syn = synthetic_cube((24, 32, 64), n_faults=2, seed=0)
+    spec = _write_cube(tmp_path / "cube.sgy", syn.cube)
+    k = 1
+    ref = syn.horizons[k]
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    j = int(np.nonzero(np.isfinite(ref[12]))[0][16])
+    seed = f"{spec.ilines[12]},{spec.xlines[j]},{4.0 * ref[12, j]:.2f}"
+    out = tmp_path / "h.txt"
+    res = runner.invoke(app, ["horizon", str(tmp_path / "cube.sgy"), "--seed", seed, "-o", str(out),
+                              "--polarity", pol, "--faults"])
+    assert res.exit_code == 0, res.output
+    rows = np.loadtxt(out, comments="#")
+    i = (rows[:, 0] - 100).astype(int)
+    jj = ((rows[:, 1] - 500) // 2).astype(int)
+    err = np.abs(rows[:, 2] / 4.0 - ref[i, jj])
+    assert len(rows) >= 0.8 * np.isfinite(ref).sum()
+    assert np.nanmedian(err) <= 1.0

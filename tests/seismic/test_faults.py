@@ -193,6 +193,21 @@ def test_link_faults_min_size_and_labels_roundtrip():
     assert len(link_faults(thin, strike, dip, min_size=2)) == 2
 
 
+def test_link_faults_default_size_keeps_a_fault_across_a_slab():
+    # A slab of 6 inlines cut from a survey (as the 18 Penobscot sections): a fault striking across the inlines
+    # spans at most 6 x its height. Sized by the largest face (1 % of 200 x 300 = 600 samples) this 6 x 80 = 480
+    # sample fault was dropped; the smaller vertical face (1 % of 6 x 300, at least 100) keeps it, and still drops
+    # a 4 x 20 = 80 sample patch.
+    thin = np.zeros((6, 200, 300), np.float32)
+    thin[:, 100, 100:180] = 0.9
+    thin[1:5, 40, 10:30] = 0.9
+    strike = np.zeros(thin.shape, np.float32)
+    dip = np.full(thin.shape, 90.0, np.float32)
+    faults = link_faults(thin, strike, dip)
+    assert [f.size for f in faults] == [480]
+    assert set(faults[0].points[:, 1]) == {100}
+
+
 def test_thin_faults_is_one_sample_wide():
     syn = synthetic_cube((256, 128), n_faults=1, seed=7)
     fl = fault_likelihood(syn.cube)

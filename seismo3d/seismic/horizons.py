@@ -26,7 +26,9 @@ the fault's throw (down when it enters the hanging wall, up when it enters the f
 sides are registered starting from that jump (a refinement within the snap window; a registration that slides
 further, onto another cycle, is not taken). A step crosses a fault when it pierces the traced fault surface next to
 a fault point; two faults between the same traces add their jumps; and a fault is crossed once going one way (after
-the jump, a dipping fault's plane can lie beyond the new pick). Without fault input, a step whose panels do not fit
+the jump, a dipping fault's plane can lie beyond the new pick). Only faults with a reliable throw are used: a fault
+whose two sides correlate less than 0.5 across it (median of its throw correlation), or which has no throw, is left
+out, as if not traced. Without fault input, a step whose panels do not fit
 (a discontinuity) is re-made from one side with the shift found by normalised cross-correlation of the two sides'
 stacked traces, the start the throw estimation uses (:mod:`seismo3d.seismic.throw`).
 
@@ -63,6 +65,10 @@ _PANEL_ITERATIONS = 15  # per distance stage: panels of ~100 points converge in 
 _REFERENCE_WEIGHT = 0.3  # weight of the newest accepted pick in the running reference waveform along a slice
 _SEED_SNAP = 5.0  # samples: a seed snaps to an extremum this far at most (about half a period)
 _PIERCE = 1.5  # voxels: a step crosses a fault when it pierces the fault surface this close to a fault point
+# A fault whose two sides correlate less than this (median over its points of FaultThrow.correlation) has an unknown
+# throw: on the clipped Penobscot data, trace_faults' low-correlation faults carry throws of 5-6 samples where people
+# see none, and jumping by them cost horizon 2 0.6 % of its traces (benchmarks/horizons.py)
+_MIN_THROW_CORRELATION = 0.5
 
 
 @dataclass(frozen=True, eq=False)
@@ -270,6 +276,9 @@ class _FaultIndex:
             return cls(np.zeros((0, ndim)), np.zeros((0, ndim)), np.zeros(0))
         pts, nrm, thr, ids = [], [], [], []
         for k, (f, th) in enumerate(zip(faults.faults, faults.throws)):
+            corr = np.asarray(th.correlation, np.float64)
+            if not (np.isfinite(corr).any() and np.nanmedian(corr) >= _MIN_THROW_CORRELATION):
+                continue
             pts.append(np.asarray(f.points, np.float64))
             nrm.append(np.asarray(f.normals, np.float64))
             thr.append(np.asarray(th.throw, np.float64))
@@ -657,7 +666,8 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, model: st
         Which event the horizon follows (see :func:`reflector_picks`).
     faults : FaultInterpretation, optional
         Faults of the same ``data`` from :func:`seismo3d.seismic.trace_faults`: steps that cross one jump by its
-        throw. Without it, discontinuities are found by the registration (panels that do not fit).
+        throw. Faults whose throw correlates less than 0.5 across them (median of ``FaultThrow.correlation``) are
+        not used. Without it, discontinuities are found by the registration (panels that do not fit).
     model : {'rigid', 'similarity', 'axis_scaled', 'affine'}
         Transform family of the panel registrations (2D). 'axis_scaled' allows per-axis scale (layers that thicken)
         but its vertical scale can slide a band that reaches the top or bottom of the data by one cycle (seen on a

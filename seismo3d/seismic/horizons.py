@@ -260,6 +260,22 @@ def _ncc(a: np.ndarray, b: np.ndarray) -> float:
 # --------------------------------------------------------------------------------------------------------------------
 # Faults: which steps cross one, and by how much the horizon jumps there.
 
+def _footwall_normals(normals) -> np.ndarray:
+    """A fault's unit normals (n, ndim), of either sign, pointing into its footwall as its throw was measured.
+
+    A fault's normals come from the strike and dip of each point, so on a (near-)vertical fault they point to either
+    side (strike and strike + 180 degrees). The throw is measured with the normals sign-aligned to their principal
+    direction (:mod:`seismo3d.seismic.throw`), so the jump of a horizon must use the same sides.
+    """
+    from .throw import _hanging_wall_normals
+
+    n = np.asarray(normals, np.float64)
+    if n.shape[1] == 2:
+        n3 = np.column_stack([n[:, 0], np.zeros(len(n)), n[:, 1]])
+        return -_hanging_wall_normals(n3)[:, [0, 2]]
+    return -_hanging_wall_normals(n)
+
+
 class _FaultIndex:
     """Fault points with normals (into the footwall), throws and fault ids, for finding the faults a step crosses."""
 
@@ -280,7 +296,7 @@ class _FaultIndex:
             if not (np.isfinite(corr).any() and np.nanmedian(corr) >= _MIN_THROW_CORRELATION):
                 continue
             pts.append(np.asarray(f.points, np.float64))
-            nrm.append(np.asarray(f.normals, np.float64))
+            nrm.append(_footwall_normals(f.normals))
             thr.append(np.asarray(th.throw, np.float64))
             ids.append(np.full(len(pts[-1]), k, np.intp))
         if not pts:

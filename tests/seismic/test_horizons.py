@@ -230,9 +230,36 @@ def test_fault_index_leaves_out_faults_whose_throw_does_not_correlate():
     idx = _FaultIndex.from_interpretation(interp, 3)
     assert set(idx.ids) == {0}
     step = np.array([[10.0, 4.0, 20.0], [11.0, 4.0, 20.0]])
-    assert idx.jump(*step) == -4.0
+    assert idx.jump(*step) == 4.0  # a vertical fault's hanging wall is its +x side (see the next test)
     assert idx.jump(*(step + [10.0, 0.0, 0.0])) == 0.0
     assert idx.jump(*(step + [20.0, 0.0, 0.0])) == 0.0
+
+
+def test_fault_index_orients_normals_as_the_throw_was_measured():
+    # Normals from strike and dip point to either side of a vertical fault (strike and strike + 180): the Penobscot
+    # fault at crossline ~51 had 147 of its 377 normals one way and the rest the other, so the jump changed sign from
+    # point to point. The index aligns them as fault_throw does (principal direction; for a vertical fault its +x
+    # side is the hanging wall), so every step across gives the same jump.
+    from types import SimpleNamespace
+
+    from seismo3d.seismic.horizons import _FaultIndex
+    from seismo3d.seismic.throw import _hanging_wall_normals
+
+    p, nrm = _vertical_fault_points(10.5)
+    flip = np.where(np.arange(len(p)) % 3 == 0, -1.0, 1.0)[:, None]
+    interp = SimpleNamespace(faults=[SimpleNamespace(points=p, normals=nrm * flip)],
+                             throws=[SimpleNamespace(throw=np.full(len(p), 4.0), correlation=np.full(len(p), 0.9))])
+    idx = _FaultIndex.from_interpretation(interp, 3)
+    assert np.allclose(idx.normals, -_hanging_wall_normals(nrm)) and np.allclose(idx.normals, [-1.0, 0.0, 0.0])
+    jumps = {idx.jump(np.array([10.0, y, t]), np.array([11.0, y, t])) for y in range(9) for t in range(5, 35, 3)}
+    assert jumps == {4.0}  # into the hanging wall: down by the throw, everywhere
+    # a fault dipping towards +x (normals into the footwall point down and to -x), some flipped: the footwall stays
+    # below the plane
+    d = np.radians(70.0)
+    down = np.array([-np.sin(d), 0.0, np.cos(d)])
+    interp.faults[0].normals = np.tile(down, (len(p), 1)) * flip
+    idx = _FaultIndex.from_interpretation(interp, 3)
+    assert np.allclose(idx.normals, down)
 
 
 def test_despike_puts_a_cycle_skipped_pick_back_and_leaves_a_step_alone():

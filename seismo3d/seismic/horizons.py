@@ -24,9 +24,11 @@ A horizon is followed from seed picks in two moves, both made with the registrat
 Across a fault (from :func:`seismo3d.seismic.trace_faults`), the step is made from one side only: the pick jumps by
 the fault's throw (down when it enters the hanging wall, up when it enters the footwall), and the panels on the two
 sides are registered starting from that jump (a refinement within the snap window; a registration that slides
-further, onto another cycle, is not taken). A step crosses a fault when it pierces the traced fault surface next to
-a fault point; two faults between the same traces add their jumps; and a fault is crossed once going one way (after
-the jump, a dipping fault's plane can lie beyond the new pick). Only faults with a reliable throw are used: a fault
+further, onto another cycle, is not taken). A step crosses a fault when it pierces the fault's local plane (the
+least-squares plane of its traced points near the step, oriented as the throw was measured) within a voxel and a
+half of one of those points; two faults between the same traces add their jumps; and a fault is crossed once going
+one way (after the jump, a dipping fault's plane can lie beyond the new pick). A seed picked on a traced fault is in
+neither wall as far as the fault can tell: the first step away from it is measured by registration, not jumped. Only faults with a reliable throw are used: a fault
 whose two sides correlate less than 0.5 across it (median of its throw correlation), or which has no throw, is left
 out, as if not traced. Without fault input, a step whose panels do not fit
 (a discontinuity) is re-made from one side with the shift found by normalised cross-correlation of the two sides'
@@ -65,6 +67,7 @@ _PANEL_ITERATIONS = 15  # per distance stage: panels of ~100 points converge in 
 _REFERENCE_WEIGHT = 0.3  # weight of the newest accepted pick in the running reference waveform along a slice
 _SEED_SNAP = 5.0  # samples: a seed snaps to an extremum this far at most (about half a period)
 _PIERCE = 1.5  # voxels: a step crosses a fault when it pierces the fault surface this close to a fault point
+_ON_FAULT = 0.5  # voxels: a point this close to a fault's local plane (and to its points) lies on the fault
 # A fault whose two sides correlate less than this (median over its points of FaultThrow.correlation) has an unknown
 # throw: on the clipped Penobscot data, trace_faults' low-correlation faults carry throws of 5-6 samples where people
 # see none, and jumping by them cost horizon 2 0.6 % of its traces (benchmarks/horizons.py)
@@ -307,33 +310,84 @@ class _FaultIndex:
                              "trace the faults of the same array")
         return cls(p, np.concatenate(nrm), np.concatenate(thr), np.concatenate(ids))
 
+    def _plane(self, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+        """Local plane (centre, unit normal into the footwall) of the fault points ``sel`` (indices, one fault).
+
+        The least-squares plane of the points (a line in 2D), oriented like their normals: the per-point normals come
+        from a coarse strike / dip scan, and a plane through each voxel misplaces the pierce point where the traced
+        surface steps from voxel to voxel. Too few or too scattered points: their mean normal."""
+        p = self.points[sel]
+        n = self.normals[sel].mean(axis=0)
+        c = p.mean(axis=0)
+        if len(p) >= 4:
+            _, sv, vt = np.linalg.svd(p - c, full_matrices=False)
+            if (sv[1] > 0.5 * sv[0] and sv[2] < 0.5 * sv[1]) if len(sv) == 3 else sv[1] < 0.5 * sv[0]:
+                n = vt[-1] if np.dot(vt[-1], n) >= 0 else -vt[-1]
+        norm = float(np.linalg.norm(n))
+        return None if norm == 0.0 else (c, n / norm)
+
+    def _near(self, a: np.ndarray, b: np.ndarray):
+        """(fault id, indices of its points) for each fault with points near the segment a-b."""
+        idx = self.tree.query_ball_point(0.5 * (a + b), 0.5 * float(np.linalg.norm(b - a)) + _PIERCE + 1.0)
+        if not idx:
+            return
+        idx = np.asarray(idx)
+        for fid in np.unique(self.ids[idx]):
+            yield int(fid), idx[self.ids[idx] == fid]
+
     def crossings(self, a: np.ndarray, b: np.ndarray) -> dict:
         """The faults between point ``a`` and point ``b``: {fault id: vertical jump (samples) of a horizon going from
-        ``a`` to ``b`` across it}, +throw into the hanging wall, -throw into the footwall, NaN for unknown throw."""
+        ``a`` to ``b`` across it}, +throw into the hanging wall, -throw into the footwall, NaN for unknown throw.
+
+        A step crosses a fault when it pierces the fault's local plane (:meth:`_plane`) within ``_PIERCE`` of one of
+        the fault's points, not beside the fault (past its end)."""
         if self.tree is None:
             return {}
-        mid = 0.5 * (a + b)
-        idx = self.tree.query_ball_point(mid, 0.5 * float(np.linalg.norm(b - a)) + 1.5)
-        if not idx:
-            return {}
-        idx = np.asarray(idx)
-        p, n = self.points[idx], self.normals[idx]
-        sa = np.einsum("ij,ij->i", a - p, n)
-        sb = np.einsum("ij,ij->i", b - p, n)
-        cross = (sa * sb < 0) & (np.abs(sa) < 3) & (np.abs(sb) < 3)
-        # the step must pierce the fault surface at the fault point itself (within a voxel and a half), not pass a
-        # fault that grazes it or lies beside it within the band above
-        frac = np.where(cross, sa / np.where(cross, sa - sb, 1.0), 0.0)
-        pierce = a[None, :] + frac[:, None] * (b - a)[None, :]
-        cross &= np.linalg.norm(pierce - p, axis=1) <= _PIERCE
         out = {}
-        for fid in np.unique(self.ids[idx[cross]]):
-            sel = idx[cross][self.ids[idx[cross]] == fid]
-            k = sel[np.argmin(np.linalg.norm(self.points[sel] - mid, axis=1))]
-            into_footwall = float(np.dot(b - self.points[k], self.normals[k])) > 0
-            thr = self.throws[k]
-            out[int(fid)] = np.nan if not np.isfinite(thr) else (-thr if into_footwall else thr)
+        for fid, sel in self._near(a, b):
+            plane = self._plane(sel)
+            if plane is None:
+                continue
+            c, n = plane
+            sa, sb = float(np.dot(a - c, n)), float(np.dot(b - c, n))
+            if not sa * sb < 0:
+                continue
+            pierce = a + sa / (sa - sb) * (b - a)
+            d = np.linalg.norm(self.points[sel] - pierce, axis=1)
+            if d.min() > _PIERCE:
+                continue
+            thr = self.throws[sel[np.argmin(d)]]
+            out[fid] = np.nan if not np.isfinite(thr) else (-thr if sb > 0 else thr)
         return out
+
+    def on_fault(self, a: np.ndarray) -> set:
+        """Ids of the faults point ``a`` lies on: within ``_ON_FAULT`` of the fault's local plane and within
+        ``_PIERCE`` of one of its points."""
+        if self.tree is None:
+            return set()
+        out = set()
+        for fid, sel in self._near(a, a):
+            plane = self._plane(sel)
+            if plane is None or np.linalg.norm(self.points[sel] - a, axis=1).min() > _PIERCE:
+                continue
+            if abs(float(np.dot(a - plane[0], plane[1]))) < _ON_FAULT:
+                out.add(fid)
+        return out
+
+    def wall_jump(self, a: np.ndarray, b: np.ndarray, ids: set) -> float:
+        """Jump (samples) of a horizon from ``a``, which lies on the faults ``ids``, to ``b`` if ``a`` is in the wall
+        ``b`` is not in: the sum of those faults' throws, signed as in :meth:`crossings`. NaN for an unknown throw."""
+        total = 0.0
+        for fid, sel in self._near(a, b):
+            if fid not in ids:
+                continue
+            plane = self._plane(sel)
+            if plane is None:
+                continue
+            c, n = plane
+            thr = self.throws[sel[np.argmin(np.linalg.norm(self.points[sel] - a, axis=1))]]
+            total += -thr if float(np.dot(b - c, n)) > 0 else thr
+        return total
 
     def jump(self, a: np.ndarray, b: np.ndarray, crossed: set | None = None) -> float:
         """Vertical jump (samples) of a horizon going from ``a`` to ``b``: the sum over the faults crossed (two faults
@@ -386,16 +440,28 @@ def _stack(sl: _Slice, traces: np.ndarray, ref: np.ndarray, half: int) -> np.nda
     return np.where(count > 0, total / np.maximum(count, 1), np.nan)
 
 
+def _sides(n: int, c: int, j: int, direction: int, width: int) -> tuple[np.ndarray, np.ndarray]:
+    """Up to ``width`` traces behind trace ``c`` (from c back) and ahead from trace ``j`` on, within 0..n-1."""
+    behind = np.arange(c, c - direction * width, -direction)
+    ahead = np.arange(j, j + direction * width, direction)
+    return behind[(behind >= 0) & (behind < n)], ahead[(ahead >= 0) & (ahead < n)]
+
+
+def _wall_score(sl: _Slice, j0: int, t0: float, j: int, pred: float, pc: float, direction: int, width: int,
+                shift: float) -> float:
+    """Normalised cross-correlation of the waveform at the seed (j0, t0) with the stack of the ``width`` traces from
+    ``j`` on (away from the seed), read along the slope ``pc`` from ``pred + shift``."""
+    ahead = np.arange(j, j + direction * width, direction)
+    ahead = ahead[(ahead >= 0) & (ahead < sl.n_traces)]
+    return _ncc(sl.window(j0, t0), _stack(sl, ahead, pred + pc * (ahead - j) + shift, _NCC_HALF))
+
+
 def _side_shift(sl: _Slice, c: int, tc: float, pc: float, j: int, direction: int, width: int, half: int,
                 max_shift: int) -> float:
     """Shift (samples) of the horizon from the traces behind ``c`` to the traces from ``j`` on, by normalised
     cross-correlation of the two sides' stacked traces (flattened along the slope ``pc``); 0 when a side has fewer
     than two traces or nothing correlates."""
-    n = sl.n_traces
-    behind = np.arange(c, c - direction * width, -direction)
-    behind = behind[(behind >= 0) & (behind < n)]
-    ahead = np.arange(j, j + direction * width, direction)
-    ahead = ahead[(ahead >= 0) & (ahead < n)]
+    behind, ahead = _sides(sl.n_traces, c, j, direction, width)
     if behind.size < 2 or ahead.size < 2:
         return 0.0
     f = _stack(sl, behind, tc + pc * (behind - c), half + max_shift)
@@ -457,15 +523,28 @@ def _track_along(sl: _Slice, j0: int, t0: float, opt: _Options, faults: _FaultIn
     conf = np.full(n, np.nan)
     times[j0], conf[j0] = t0, 1.0
     hw, hv = opt.half_traces, opt.half_samples
+    # A seed picked on a traced fault is in neither wall as far as the fault surface can tell: the first step away
+    # from it decides by correlation, and those faults are not crossed again.
+    on_seed = faults.on_fault(line_point(j0, t0))
     for direction in (1, -1):
         c, tc = j0, t0  # tc: carried position (kept even where the output is left empty)
         reference = sl.window(j0, t0)  # running waveform of the accepted picks, for the confidence
-        crossed: set = set()  # the faults this direction has crossed (see _FaultIndex.jump)
+        crossed: set = set(on_seed)  # the faults this direction has crossed (see _FaultIndex.jump)
         while 0 <= c + direction < n:
             j = int(np.clip(c + direction * opt.step, 0, n - 1))
             pc = sl.slope_at(c, tc)
             pred = tc + pc * (j - c)
             jump = faults.jump(line_point(c, tc), line_point(j, pred), crossed)
+            if on_seed and c == j0:
+                # off a fault the seed lies on: into the seed's wall (no jump) or out of the other one (the throw),
+                # whichever the seed's waveform correlates with better. (Stacks on both sides, as _side_shift uses,
+                # would straddle the very fault the seed is on.)
+                other = faults.wall_jump(line_point(c, tc), line_point(j, pred), on_seed)
+                if np.isfinite(other) and other != 0.0 and np.isfinite(jump):
+                    stay, leave = (_wall_score(sl, j0, t0, j, pred, pc, direction, max(hw // 2, 2), jump + s)
+                                   for s in (0.0, other))
+                    if leave > stay:
+                        jump += other
             t_new = np.nan
             if jump == 0.0:
                 t_new, fit = _panel_step(sl, (max(c - hw, 0), min(c + hw, n - 1)), (max(j - hw, 0), min(j + hw, n - 1)),

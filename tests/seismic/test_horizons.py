@@ -64,21 +64,23 @@ def faulted():
     return _faulted(0)
 
 
-# measured (benchmarks/horizons.py, cube seeds 0-2): 17 of 18 horizons at medians 0.04-0.16 samples; the one wrong,
-# cube 0 horizon 1, is seeded between two faults that cross near its level and traced a voxel or two apart
-@pytest.mark.parametrize("cube_seed, n_right", [(0, 5), (2, 6)])
-def test_track_3d_across_faults_median_error_within_one_sample(faulted, cube_seed, n_right):
+# measured (point-to-plane, cube seeds 0-2): all 18 horizons at medians 0.05-0.16 samples, 57-98 % of each horizon's
+# traces within 2 samples (per cube, mean 90.6, 93.6 and 86.1 %). Before the crossing test used each fault's local
+# plane, cube 0 horizon 1 (seeded where two faults cross) was 5.4 samples off and cubes 0 and 2 averaged 77 and 79 %
+# within 2 samples.
+@pytest.mark.parametrize("cube_seed", [0, 1, 2])
+def test_track_3d_across_faults_median_error_within_one_sample(faulted, cube_seed):
     syn, faults = faulted if cube_seed == 0 else _faulted(cube_seed)
-    errors = []
+    medians, within_2 = [], []
     for k in range(syn.horizons.shape[0]):
         ref = syn.horizons[k]
         pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
         hz = track_horizon(syn.cube, _seed_on(ref, syn.shape[0] // 2), polarity=pol, faults=faults, features=None)
-        err = np.abs(hz.times - ref)
-        errors.append(err[np.isfinite(err)])
-    pooled = np.concatenate(errors)
-    assert np.median(pooled) <= 1.0
-    assert sum(np.median(e) <= 1.0 for e in errors) >= n_right, [np.median(e) for e in errors]
+        e = horizon_errors(hz.times, ref)
+        medians.append(e["median_abs"])
+        within_2.append(e["within_2"])
+    assert max(medians) <= 1.0, medians
+    assert np.mean(within_2) >= 0.80, within_2
 
 
 def test_fault_throw_makes_the_jump(faulted):
@@ -260,6 +262,48 @@ def test_fault_index_orients_normals_as_the_throw_was_measured():
     interp.faults[0].normals = np.tile(down, (len(p), 1)) * flip
     idx = _FaultIndex.from_interpretation(interp, 3)
     assert np.allclose(idx.normals, down)
+
+
+def test_fault_crossing_uses_the_faults_own_plane_and_knows_a_point_on_it():
+    # A traced fault is a set of voxels (positions rounded to the grid). The crossing test takes the least-squares
+    # plane of the fault's points near the step. It used to test each point's own plane within a +-3 voxel band, and
+    # missed the along-slice step (4 traces) below, which starts 3.5 voxels from this dipping fault and ends 0.3
+    # voxel past it.
+    from seismo3d.seismic.horizons import _FaultIndex
+
+    d = np.radians(60.0)
+    into_footwall = np.array([-np.sin(d), 0.0, np.cos(d)])  # the fault dips towards +x; its footwall is below
+    y, t = np.meshgrid(np.arange(0.0, 9.0), np.arange(10.0, 31.0), indexing="ij")
+    x = np.round(10.0 + (t - 20.0) / np.tan(d))
+    pts = np.column_stack([x.ravel(), y.ravel(), t.ravel()])
+    idx = _FaultIndex(pts, np.tile(into_footwall, (len(pts), 1)), np.full(len(pts), 5.0))
+    for tz in (19.6, 20.3, 21.0, 21.7):
+        x0 = 10.0 + (tz - 20.0) / np.tan(d)  # where the true plane is at this time
+        a, b = np.array([x0 + 4.0, 4.0, tz]), np.array([x0 - 0.3 / np.sin(d), 4.0, tz])
+        assert idx.jump(a, b) == -5.0 and idx.jump(b, a) == 5.0  # into the footwall: up by the throw
+    # a step beside the fault's end is no crossing
+    assert idx.jump(np.array([20.0, 4.0, 33.0]), np.array([16.0, 4.0, 33.0])) == 0.0
+    # a point on the fault (a seed picked on it) is in neither wall
+    assert idx.on_fault(np.array([10.0, 4.0, 20.0])) == {0}
+    assert idx.on_fault(np.array([14.0, 4.0, 20.0])) == set()
+
+
+def test_seed_on_a_fault_steps_off_it_by_registration():
+    # A seed on a traced fault is in neither wall as far as the fault surface can tell; the first step to each side
+    # stays in the seed's wall or jumps out of the other one, whichever the seed's waveform correlates with better.
+    # Synthetic cube 1, horizon 4 is seeded on a fault traced 1-2 traces beside the true one; deciding the side
+    # from the surface alone put one side of the seed inline 4.4 samples off (median).
+    syn, faults = _faulted(1)
+    k = 4
+    ref = syn.horizons[k]
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    from seismo3d.seismic.horizons import _FaultIndex
+
+    seed = _seed_on(ref, syn.shape[0] // 2)
+    assert _FaultIndex.from_interpretation(faults, 3).on_fault(np.array(seed)), "the seed is no longer on a fault"
+    hz = track_horizon(syn.cube, seed, polarity=pol, faults=faults, features=None)
+    line = horizon_errors(hz.times[seed[0]], ref[seed[0]])
+    assert line["median_abs"] <= 0.5 and line["within_2"] >= 0.8, line
 
 
 def test_despike_puts_a_cycle_skipped_pick_back_and_leaves_a_step_alone():

@@ -346,10 +346,12 @@ def penobscot():
 
 
 # measured by benchmarks/horizons.py (point-to-plane): % within 5 samples of the people's picks on live traces, and
-# the plain autotracker's; the target (99 %, median <= 1) is reached on horizons 0-4; horizon 5 reaches 99 %
-# at median 1.5 (the picks sit 1.5 samples above the clipped peak), horizon 6 stays at 89 % (an unfound fault)
+# the plain autotracker's; the target (99 %, median <= 1) is reached on horizons 0-4, all asserted here;
+# horizon 5 reaches 99 % at median 1.5 (the picks sit 1.5 samples above the clipped peak), horizon 6 stays at 89 %
+# (the people's fault at crossline ~55 is traced below the horizon on inlines 0-4 and is never crossed)
 @pytest.mark.parametrize("k, within_5, median, plain_within_5",
-                         [(1, 0.990, 1.0, 0.965), (2, 0.990, 0.5, 0.988), (3, 0.995, 0.5, 0.9995)])
+                         [(0, 0.995, 1.0, 1.0), (1, 0.990, 1.0, 0.965), (2, 0.990, 0.5, 0.988),
+                          (3, 0.995, 0.5, 0.9995), (4, 0.995, 0.5, 1.0)])
 def test_penobscot_horizons_against_peoples_picks(penobscot, k, within_5, median, plain_within_5):
     cube, human = penobscot
     ref = human[:, k]

@@ -1,6 +1,7 @@
 """Horizon tracking: picks, tracking against ground truth (generator, people's picks), the peer, I/O, bad input."""
 
 import dataclasses
+import functools
 import os
 import warnings
 
@@ -51,6 +52,7 @@ def test_track_2d_section_without_faults_follows_true_horizons(seed):
         assert e["within_2"] >= 0.97, (k, e)
 
 
+@functools.lru_cache(maxsize=None)  # traced once per module run: several tests read the same cubes, none modify them
 def _faulted(seed):
     syn = synthetic_cube((64, 64, 96), n_faults=3, seed=seed)
     with warnings.catch_warnings():

@@ -48,8 +48,9 @@ def penobscot(quick: bool) -> None:
             faults = trace_faults(cube, progress=False)
         reliable = sum(np.nanmedian(th.correlation) >= _MIN_THROW_CORRELATION
                        for th in faults.throws if np.isfinite(th.correlation).any())
-        print(f"trace_faults: {len(faults.faults)} faults, {reliable} of them with a reliable throw (median correlation "
-              f">= {_MIN_THROW_CORRELATION}, the ones track_horizon uses), {time.perf_counter() - t0:.0f} s\n")
+        sec = time.perf_counter() - t0
+        print(f"trace_faults: {len(faults.faults)} faults, {reliable} of them with a reliable throw (median "
+              f"correlation >= {_MIN_THROW_CORRELATION}, the ones track_horizon uses), {sec:.0f} s\n")
         runs.append(("seismo3d point-to-plane, traced faults", dict(features=None, faults=faults)))
     print("| horizon | method | median abs (samples) | within 2 % | within 5 % | coverage % | s |")
     print("|---|---|---|---|---|---|---|")

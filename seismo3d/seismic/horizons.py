@@ -28,11 +28,12 @@ further, onto another cycle, is not taken). A step crosses a fault when it pierc
 least-squares plane of its traced points near the step, oriented as the throw was measured) within a voxel and a
 half of one of those points; two faults between the same traces add their jumps; and a fault is crossed once going
 one way (after the jump, a dipping fault's plane can lie beyond the new pick). A seed picked on a traced fault is in
-neither wall as far as the fault can tell: the first step away from it is measured by registration, not jumped. Only faults with a reliable throw are used: a fault
+neither wall as far as the fault can tell: each first step away from it stays in the seed's wall or jumps out of the
+other one, whichever the seed's waveform correlates with better. Only faults with a reliable throw are used: a fault
 whose two sides correlate less than 0.5 across it (median of its throw correlation), or which has no throw, is left
-out, as if not traced. Without fault input, a step whose panels do not fit
-(a discontinuity) is re-made from one side with the shift found by normalised cross-correlation of the two sides'
-stacked traces, the start the throw estimation uses (:mod:`seismo3d.seismic.throw`).
+out, as if not traced. Without fault input, a step whose panels do not fit (a discontinuity) is re-made from one
+side with the shift found by normalised cross-correlation of the two sides' stacked traces, the start the throw
+estimation uses (:mod:`seismo3d.seismic.throw`).
 
 Each pick gets a confidence: the normalised cross-correlation of the waveform around it with the waveform around the
 pick it came from. Picks below ``min_confidence``, and picks with no extremum of the right polarity within the snap
@@ -68,9 +69,10 @@ _REFERENCE_WEIGHT = 0.3  # weight of the newest accepted pick in the running ref
 _SEED_SNAP = 5.0  # samples: a seed snaps to an extremum this far at most (about half a period)
 _PIERCE = 1.5  # voxels: a step crosses a fault when it pierces the fault surface this close to a fault point
 _ON_FAULT = 0.5  # voxels: a point this close to a fault's local plane (and to its points) lies on the fault
-# A fault whose two sides correlate less than this (median over its points of FaultThrow.correlation) has an unknown
-# throw: on the clipped Penobscot data, trace_faults' low-correlation faults carry throws of 5-6 samples where people
-# see none, and jumping by them cost horizon 2 0.6 % of its traces (benchmarks/horizons.py)
+# A fault whose two sides correlate less than this (median over its points of FaultThrow.correlation) is not used:
+# on the clipped Penobscot data, trace_faults' low-correlation faults carry throws of 5-6 samples where people see
+# none, and jumping by them cost horizon 2 0.6 % of its traces; kept with an unknown throw instead (registration
+# decides at each crossing), they cost it 4.6 % (benchmarks/horizons.py, scratch)
 _MIN_THROW_CORRELATION = 0.5
 
 
@@ -451,8 +453,7 @@ def _wall_score(sl: _Slice, j0: int, t0: float, j: int, pred: float, pc: float, 
                 shift: float) -> float:
     """Normalised cross-correlation of the waveform at the seed (j0, t0) with the stack of the ``width`` traces from
     ``j`` on (away from the seed), read along the slope ``pc`` from ``pred + shift``."""
-    ahead = np.arange(j, j + direction * width, direction)
-    ahead = ahead[(ahead >= 0) & (ahead < sl.n_traces)]
+    _, ahead = _sides(sl.n_traces, j0, j, direction, width)
     return _ncc(sl.window(j0, t0), _stack(sl, ahead, pred + pc * (ahead - j) + shift, _NCC_HALF))
 
 

@@ -28,12 +28,12 @@ further, onto another cycle, is not taken). A step crosses a fault when it pierc
 least-squares plane of its traced points near the step, oriented as the throw was measured) within a voxel and a
 half of one of those points; two faults between the same traces add their jumps; and a fault is crossed once going
 one way (after the jump, a dipping fault's plane can lie beyond the new pick). A seed picked on a traced fault is in
-neither wall as far as the fault can tell: each first step away from it stays in the seed's wall or jumps out of the
-other one, whichever the seed's waveform correlates with better. Only faults with a reliable throw are used: a fault
-whose two sides correlate less than 0.5 across it (median of its throw correlation), or which has no throw, is left
-out, as if not traced. Without fault input, a step whose panels do not fit (a discontinuity) is re-made from one
-side with the shift found by normalised cross-correlation of the two sides' stacked traces, the start the throw
-estimation uses (:mod:`seismo3d.seismic.throw`).
+neither wall as far as the fault can tell: each first step away from it along its slice stays in the seed's wall or
+jumps out of the other one, whichever the seed's waveform correlates with better. Only faults with a reliable throw
+are used: a fault whose two sides correlate less than 0.5 across it (median of its throw correlation), or which has
+no throw, is left out, as if not traced. Without fault input, a step whose panels do not fit (a discontinuity) is
+re-made from one side with the shift found by normalised cross-correlation of the two sides' stacked traces, the
+start the throw estimation uses (:mod:`seismo3d.seismic.throw`).
 
 Each pick gets a confidence: the normalised cross-correlation of the waveform around it with the waveform around the
 pick it came from. Picks below ``min_confidence``, and picks with no extremum of the right polarity within the snap
@@ -72,7 +72,9 @@ _ON_FAULT = 0.5  # voxels: a point this close to a fault's local plane (and to i
 # A fault whose two sides correlate less than this (median over its points of FaultThrow.correlation) is not used:
 # on the clipped Penobscot data, trace_faults' low-correlation faults carry throws of 5-6 samples where people see
 # none, and jumping by them cost horizon 2 0.6 % of its traces; kept with an unknown throw instead (registration
-# decides at each crossing), they cost it 4.6 % (benchmarks/horizons.py, scratch)
+# decides at each crossing), they cost it 4.6 % (benchmarks/horizons.py, scratch). Faults with no throw at all (small
+# ones, 100-1000 voxels in the synthetic cubes) are left out too: that changed no synthetic horizon by more than 0.2 %
+# of its traces.
 _MIN_THROW_CORRELATION = 0.5
 
 
@@ -275,6 +277,7 @@ def _footwall_normals(normals) -> np.ndarray:
     from .throw import _hanging_wall_normals
 
     n = np.asarray(normals, np.float64)
+    n = n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)  # unit, as fault_throw makes them
     if n.shape[1] == 2:
         n3 = np.column_stack([n[:, 0], np.zeros(len(n)), n[:, 1]])
         return -_hanging_wall_normals(n3)[:, [0, 2]]
@@ -297,27 +300,28 @@ class _FaultIndex:
             return cls(np.zeros((0, ndim)), np.zeros((0, ndim)), np.zeros(0))
         pts, nrm, thr, ids = [], [], [], []
         for k, (f, th) in enumerate(zip(faults.faults, faults.throws)):
+            p = np.asarray(f.points, np.float64)
+            if p.ndim != 2 or p.shape[1] != ndim:
+                raise InputError(f"faults were traced on {p.shape[-1]}D data but the horizon is tracked in {ndim}D "
+                                 "data; trace the faults of the same array")
             corr = np.asarray(th.correlation, np.float64)
             if not (np.isfinite(corr).any() and np.nanmedian(corr) >= _MIN_THROW_CORRELATION):
                 continue
-            pts.append(np.asarray(f.points, np.float64))
+            pts.append(p)
             nrm.append(_footwall_normals(f.normals))
             thr.append(np.asarray(th.throw, np.float64))
-            ids.append(np.full(len(pts[-1]), k, np.intp))
+            ids.append(np.full(len(p), k, np.intp))
         if not pts:
             return cls(np.zeros((0, ndim)), np.zeros((0, ndim)), np.zeros(0))
-        p = np.concatenate(pts)
-        if p.shape[1] != ndim:
-            raise InputError(f"faults were traced on {p.shape[1]}D data but the horizon is tracked in {ndim}D data; "
-                             "trace the faults of the same array")
-        return cls(p, np.concatenate(nrm), np.concatenate(thr), np.concatenate(ids))
+        return cls(np.concatenate(pts), np.concatenate(nrm), np.concatenate(thr), np.concatenate(ids))
 
     def _plane(self, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
         """Local plane (centre, unit normal into the footwall) of the fault points ``sel`` (indices, one fault).
 
         The least-squares plane of the points (a line in 2D), oriented like their normals: the per-point normals come
         from a coarse strike / dip scan, and a plane through each voxel misplaces the pierce point where the traced
-        surface steps from voxel to voxel. Too few or too scattered points: their mean normal."""
+        surface steps from voxel to voxel. Fewer than 4 points, or points that do not spread over a plane (a strip
+        along the fault's edge, a thin slab) or do not lie on one: their mean normal."""
         p = self.points[sel]
         n = self.normals[sel].mean(axis=0)
         c = p.mean(axis=0)
@@ -352,7 +356,10 @@ class _FaultIndex:
                 continue
             c, n = plane
             sa, sb = float(np.dot(a - c, n)), float(np.dot(b - c, n))
-            if not sa * sb < 0:
+            if (sa > 0) == (sb > 0):
+                # the same side; a point on the plane counts as the hanging wall's (sb <= 0, as in wall_jump), so a
+                # step that ends on a steep fault's plane (a carry from inline to inline lands on it) and the step
+                # that leaves it cross it once
                 continue
             pierce = a + sa / (sa - sb) * (b - a)
             d = np.linalg.norm(self.points[sel] - pierce, axis=1)
@@ -380,6 +387,8 @@ class _FaultIndex:
         """Jump (samples) of a horizon from ``a``, which lies on the faults ``ids``, to ``b`` if ``a`` is in the wall
         ``b`` is not in: the sum of those faults' throws, signed as in :meth:`crossings`. NaN for an unknown throw."""
         total = 0.0
+        if self.tree is None:
+            return total
         for fid, sel in self._near(a, b):
             if fid not in ids:
                 continue
@@ -541,10 +550,12 @@ def _track_along(sl: _Slice, j0: int, t0: float, opt: _Options, faults: _FaultIn
                 # whichever the seed's waveform correlates with better. (Stacks on both sides, as _side_shift uses,
                 # would straddle the very fault the seed is on.)
                 other = faults.wall_jump(line_point(c, tc), line_point(j, pred), on_seed)
-                if np.isfinite(other) and other != 0.0 and np.isfinite(jump):
+                if not np.isfinite(other):
+                    jump = np.nan  # a throw is unknown: the shift is searched (below), as without fault input
+                elif other != 0.0 and np.isfinite(jump):
                     stay, leave = (_wall_score(sl, j0, t0, j, pred, pc, direction, max(hw // 2, 2), jump + s)
                                    for s in (0.0, other))
-                    if leave > stay:
+                    if leave > stay or (np.isnan(stay) and np.isfinite(leave)):
                         jump += other
             t_new = np.nan
             if jump == 0.0:
@@ -762,8 +773,9 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, model: st
         Which event the horizon follows (see :func:`reflector_picks`).
     faults : FaultInterpretation, optional
         Faults of the same ``data`` from :func:`seismo3d.seismic.trace_faults`: steps that cross one jump by its
-        throw. Faults whose throw correlates less than 0.5 across them (median of ``FaultThrow.correlation``) are
-        not used. Without it, discontinuities are found by the registration (panels that do not fit).
+        throw. Faults whose throw correlates less than 0.5 across them (median of ``FaultThrow.correlation``), or
+        that have no throw, are not used. A seed on a traced fault steps off it into the wall its waveform matches
+        (module docstring). Without it, discontinuities are found by the registration (panels that do not fit).
     model : {'rigid', 'similarity', 'axis_scaled', 'affine'}
         Transform family of the panel registrations (2D). 'axis_scaled' allows per-axis scale (layers that thicken)
         but its vertical scale can slide a band that reaches the top or bottom of the data by one cycle (seen on a

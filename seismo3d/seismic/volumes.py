@@ -1136,9 +1136,14 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
         bar.update(1)
         bar.set_postfix_str("fused ICP and slice tracks")
         if not hyps:
+            small = ""
+            if _is_thin(fn.shape, mn.shape, frames, hi):
+                small = (f" The volumes are small for slice features (fixed {fn.shape[0]} x {fn.shape[1]} traces, "
+                         f"moving {mn.shape[0]} x {mn.shape[1]}; features need about {_MIN_MAP} traces across): "
+                         "register larger sub-volumes if you can.")
             raise RegistrationError("no consistent feature matches between slices of the two volumes: they may not "
                                     "overlap, or their scales / rotation are outside the search (scale_range); check "
-                                    "the spacings and the overlap")
+                                    "the spacings and the overlap." + small)
 
         # fused ICP from each of the best starts (eq. 16: RANSAC inlier matches + reflector points), then the refinement
         # with slice tracks; the candidate that correlates best over the overlap wins

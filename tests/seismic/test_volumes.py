@@ -87,6 +87,14 @@ def test_unrelated_volumes_raise_registration_error(big):
         register_volumes(big[30:70, 30:70, 30:78], other)
 
 
+def test_volumes_too_small_for_slice_features_say_so():
+    # f3_crop (23 x 18 traces) fails this way: the message names the sizes and what to do
+    cube = synthetic_cube((24, 18, 80), n_faults=1, seed=2).cube
+    fixed, moving, _ = resampled_pair(cube, cube.shape, scales=(1, 1, 1), angle_deg=0, offset=(0.3, 1.2, 1.5))
+    with pytest.raises(RegistrationError, match=r"small for slice features \(fixed 24 x 18 traces, moving 18 x 13"):
+        register_volumes(fixed, moving)
+
+
 @pytest.mark.parametrize("fixed, moving, kwargs, match", [
     (np.zeros((32, 32)), None, {}, "3D volume"),
     (np.zeros((32, 32, 32)), None, {}, "constant"),

@@ -24,7 +24,7 @@ import numpy as np
 from seismo3d.data import fetch
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.seismic import autotrack, horizon_errors, trace_faults, track_horizon
-from seismo3d.seismic.horizons import _MIN_THROW_CORRELATION
+from seismo3d.seismic.horizons import _MIN_THROW_CORRELATION, _reliable_throw
 
 
 def penobscot(quick: bool) -> None:
@@ -46,8 +46,7 @@ def penobscot(quick: bool) -> None:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             faults = trace_faults(cube, progress=False)
-        reliable = sum(np.nanmedian(th.correlation) >= _MIN_THROW_CORRELATION
-                       for th in faults.throws if np.isfinite(th.correlation).any())
+        reliable = sum(_reliable_throw(th) for th in faults.throws)
         sec = time.perf_counter() - t0
         print(f"trace_faults: {len(faults.faults)} faults, {reliable} of them with a reliable throw (median "
               f"correlation >= {_MIN_THROW_CORRELATION}, the ones track_horizon uses), {sec:.0f} s\n")

@@ -57,6 +57,7 @@ from scipy.spatial import cKDTree
 from .._validation import check_choice, check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
 from .attributes import _as_seismic, structure_tensor_orientation
+from .throw import _hanging_wall_normals
 
 __all__ = ["POLARITIES", "Horizon", "reflector_picks", "autotrack", "track_horizon", "fill_horizon",
            "horizon_errors", "write_horizon_text"]
@@ -69,12 +70,11 @@ _REFERENCE_WEIGHT = 0.3  # weight of the newest accepted pick in the running ref
 _SEED_SNAP = 5.0  # samples: a seed snaps to an extremum this far at most (about half a period)
 _PIERCE = 1.5  # voxels: a step crosses a fault when it pierces the fault surface this close to a fault point
 _ON_FAULT = 0.5  # voxels: a point this close to a fault's local plane (and to its points) lies on the fault
-# A fault whose two sides correlate less than this (median over its points of FaultThrow.correlation) is not used:
-# on the clipped Penobscot data, trace_faults' low-correlation faults carry throws of 5-6 samples where people see
-# none, and jumping by them cost horizon 2 0.6 % of its traces; kept with an unknown throw instead (registration
-# decides at each crossing), they cost it 4.6 % (benchmarks/horizons.py, scratch). Faults with no throw at all (small
-# ones, 100-1000 voxels in the synthetic cubes) are left out too: that changed no synthetic horizon by more than 0.2 %
-# of its traces.
+# A fault whose two sides correlate less than this (median over its points of FaultThrow.correlation) is not used
+# (_reliable_throw): on the clipped Penobscot data trace_faults' low-correlation faults carry throws of several
+# samples where people see none, and jumping by them (or searching a shift at each of them) moved horizon 2 off its
+# reflector.
+# The "traced faults" rows of benchmarks/horizons.py show the horizons with the faults that pass.
 _MIN_THROW_CORRELATION = 0.5
 
 
@@ -274,14 +274,19 @@ def _footwall_normals(normals) -> np.ndarray:
     side (strike and strike + 180 degrees). The throw is measured with the normals sign-aligned to their principal
     direction (:mod:`seismo3d.seismic.throw`), so the jump of a horizon must use the same sides.
     """
-    from .throw import _hanging_wall_normals
-
     n = np.asarray(normals, np.float64)
     n = n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)  # unit, as fault_throw makes them
     if n.shape[1] == 2:
         n3 = np.column_stack([n[:, 0], np.zeros(len(n)), n[:, 1]])
         return -_hanging_wall_normals(n3)[:, [0, 2]]
     return -_hanging_wall_normals(n)
+
+
+def _reliable_throw(throw) -> bool:
+    """Whether :func:`track_horizon` jumps by a fault's throw: its two sides correlate at least
+    ``_MIN_THROW_CORRELATION`` across it (median of ``FaultThrow.correlation``); False without a throw."""
+    corr = np.asarray(throw.correlation, np.float64)
+    return bool(np.isfinite(corr).any() and np.nanmedian(corr) >= _MIN_THROW_CORRELATION)
 
 
 class _FaultIndex:
@@ -295,66 +300,68 @@ class _FaultIndex:
         self.tree = cKDTree(points) if len(points) else None
 
     @classmethod
+    def _empty(cls, ndim: int):
+        return cls(np.zeros((0, ndim)), np.zeros((0, ndim)), np.zeros(0))
+
+    @classmethod
     def from_interpretation(cls, faults, ndim: int):
         if faults is None:
-            return cls(np.zeros((0, ndim)), np.zeros((0, ndim)), np.zeros(0))
+            return cls._empty(ndim)
         pts, nrm, thr, ids = [], [], [], []
         for k, (f, th) in enumerate(zip(faults.faults, faults.throws)):
             p = np.asarray(f.points, np.float64)
             if p.ndim != 2 or p.shape[1] != ndim:
                 raise InputError(f"faults were traced on {p.shape[-1]}D data but the horizon is tracked in {ndim}D "
                                  "data; trace the faults of the same array")
-            corr = np.asarray(th.correlation, np.float64)
-            if not (np.isfinite(corr).any() and np.nanmedian(corr) >= _MIN_THROW_CORRELATION):
+            if not _reliable_throw(th):
                 continue
             pts.append(p)
             nrm.append(_footwall_normals(f.normals))
             thr.append(np.asarray(th.throw, np.float64))
             ids.append(np.full(len(p), k, np.intp))
         if not pts:
-            return cls(np.zeros((0, ndim)), np.zeros((0, ndim)), np.zeros(0))
+            return cls._empty(ndim)
         return cls(np.concatenate(pts), np.concatenate(nrm), np.concatenate(thr), np.concatenate(ids))
 
-    def _plane(self, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-        """Local plane (centre, unit normal into the footwall) of the fault points ``sel`` (indices, one fault).
+    def _planes(self, a: np.ndarray, b: np.ndarray):
+        """For each fault with points near the segment a-b: (fault id, indices of those points, centre, unit normal
+        into the footwall) of its local plane.
 
         The least-squares plane of the points (a line in 2D), oriented like their normals: the per-point normals come
         from a coarse strike / dip scan, and a plane through each voxel misplaces the pierce point where the traced
         surface steps from voxel to voxel. Fewer than 4 points, or points that do not spread over a plane (a strip
         along the fault's edge, a thin slab) or do not lie on one: their mean normal."""
-        p = self.points[sel]
-        n = self.normals[sel].mean(axis=0)
-        c = p.mean(axis=0)
-        if len(p) >= 4:
-            _, sv, vt = np.linalg.svd(p - c, full_matrices=False)
-            if (sv[1] > 0.5 * sv[0] and sv[2] < 0.5 * sv[1]) if len(sv) == 3 else sv[1] < 0.5 * sv[0]:
-                n = vt[-1] if np.dot(vt[-1], n) >= 0 else -vt[-1]
-        norm = float(np.linalg.norm(n))
-        return None if norm == 0.0 else (c, n / norm)
-
-    def _near(self, a: np.ndarray, b: np.ndarray):
-        """(fault id, indices of its points) for each fault with points near the segment a-b."""
+        if self.tree is None:
+            return
         idx = self.tree.query_ball_point(0.5 * (a + b), 0.5 * float(np.linalg.norm(b - a)) + _PIERCE + 1.0)
         if not idx:
             return
         idx = np.asarray(idx)
         for fid in np.unique(self.ids[idx]):
-            yield int(fid), idx[self.ids[idx] == fid]
+            sel = idx[self.ids[idx] == fid]
+            p = self.points[sel]
+            n = self.normals[sel].mean(axis=0)
+            c = p.mean(axis=0)
+            if len(p) >= 4:
+                _, sv, vt = np.linalg.svd(p - c, full_matrices=False)
+                if len(sv) == 3:
+                    planar = sv[1] > 0.5 * sv[0] and sv[2] < 0.5 * sv[1]  # spread over two axes, thin on the third
+                else:
+                    planar = sv[1] < 0.5 * sv[0]  # 2D: along a line
+                if planar:
+                    n = vt[-1] if np.dot(vt[-1], n) >= 0 else -vt[-1]
+            norm = float(np.linalg.norm(n))
+            if norm > 0.0:
+                yield int(fid), sel, c, n / norm
 
     def crossings(self, a: np.ndarray, b: np.ndarray) -> dict:
         """The faults between point ``a`` and point ``b``: {fault id: vertical jump (samples) of a horizon going from
         ``a`` to ``b`` across it}, +throw into the hanging wall, -throw into the footwall, NaN for unknown throw.
 
-        A step crosses a fault when it pierces the fault's local plane (:meth:`_plane`) within ``_PIERCE`` of one of
+        A step crosses a fault when it pierces the fault's local plane (:meth:`_planes`) within ``_PIERCE`` of one of
         the fault's points, not beside the fault (past its end)."""
-        if self.tree is None:
-            return {}
         out = {}
-        for fid, sel in self._near(a, b):
-            plane = self._plane(sel)
-            if plane is None:
-                continue
-            c, n = plane
+        for fid, sel, c, n in self._planes(a, b):
             sa, sb = float(np.dot(a - c, n)), float(np.dot(b - c, n))
             if (sa > 0) == (sb > 0):
                 # the same side; a point on the plane counts as the hanging wall's (sb <= 0, as in wall_jump), so a
@@ -366,38 +373,24 @@ class _FaultIndex:
             if d.min() > _PIERCE:
                 continue
             thr = self.throws[sel[np.argmin(d)]]
-            out[fid] = np.nan if not np.isfinite(thr) else (-thr if sb > 0 else thr)
+            out[fid] = -thr if sb > 0 else thr  # NaN stays NaN: unknown throw
         return out
 
     def on_fault(self, a: np.ndarray) -> set:
         """Ids of the faults point ``a`` lies on: within ``_ON_FAULT`` of the fault's local plane and within
         ``_PIERCE`` of one of its points."""
-        if self.tree is None:
-            return set()
-        out = set()
-        for fid, sel in self._near(a, a):
-            plane = self._plane(sel)
-            if plane is None or np.linalg.norm(self.points[sel] - a, axis=1).min() > _PIERCE:
-                continue
-            if abs(float(np.dot(a - plane[0], plane[1]))) < _ON_FAULT:
-                out.add(fid)
-        return out
+        return {fid for fid, sel, c, n in self._planes(a, a)
+                if np.linalg.norm(self.points[sel] - a, axis=1).min() <= _PIERCE
+                and abs(float(np.dot(a - c, n))) < _ON_FAULT}
 
     def wall_jump(self, a: np.ndarray, b: np.ndarray, ids: set) -> float:
         """Jump (samples) of a horizon from ``a``, which lies on the faults ``ids``, to ``b`` if ``a`` is in the wall
         ``b`` is not in: the sum of those faults' throws, signed as in :meth:`crossings`. NaN for an unknown throw."""
         total = 0.0
-        if self.tree is None:
-            return total
-        for fid, sel in self._near(a, b):
-            if fid not in ids:
-                continue
-            plane = self._plane(sel)
-            if plane is None:
-                continue
-            c, n = plane
-            thr = self.throws[sel[np.argmin(np.linalg.norm(self.points[sel] - a, axis=1))]]
-            total += -thr if float(np.dot(b - c, n)) > 0 else thr
+        for fid, sel, c, n in self._planes(a, b):
+            if fid in ids:
+                thr = self.throws[sel[np.argmin(np.linalg.norm(self.points[sel] - a, axis=1))]]
+                total += -thr if float(np.dot(b - c, n)) > 0 else thr
         return total
 
     def jump(self, a: np.ndarray, b: np.ndarray, crossed: set | None = None) -> float:
@@ -442,9 +435,7 @@ def _register(src_pts, dst_pts, dst_nrm, init, model, features=None):
 
 def _stack(sl: _Slice, traces: np.ndarray, ref: np.ndarray, half: int) -> np.ndarray:
     """Mean of the traces' amplitudes read along ``ref`` (samples), over ``-half..half`` samples."""
-    s = ref[:, None] + np.arange(-half, half + 1)[None, :]
-    rows = np.array([np.interp(s[i], np.arange(sl.n_samples), sl.amp[j], left=np.nan, right=np.nan)
-                     for i, j in enumerate(traces)]).reshape(len(traces), 2 * half + 1)
+    rows = np.array([sl.window(j, r, half) for j, r in zip(traces, ref)]).reshape(len(traces), 2 * half + 1)
     ok = np.isfinite(rows)
     count = ok.sum(axis=0)
     total = np.where(ok, rows, 0.0).sum(axis=0)
@@ -927,7 +918,8 @@ def _close_gaps(arr, code, times, conf, opt, fidx, max_passes: int = 50) -> None
     never revisited from the crosslines. Here every empty trace next to tracked ones (4-neighbourhood, both
     directions) is predicted at its neighbours' times (plus the jump of a fault between them), snapped to the nearest
     same-polarity extremum within ``snap`` samples, and kept only when the neighbours agree (their snaps within one
-    sample) and its waveform correlates with theirs at least ``min_confidence``; repeated until nothing changes.
+    sample) and its waveform correlates with theirs at least ``min_confidence``; repeated until nothing changes (at
+    most ``max_passes`` times).
     """
     n_il, n_xl = arr.shape[:2]
     picks: dict[int, tuple] = {}

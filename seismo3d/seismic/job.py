@@ -35,8 +35,8 @@ _DEMO_DT_MS = 4.0
 # of the structure tensor (smoothed over about 2 traces and 6 samples) see the edge this far; likelihood this close to
 # a dead sample is an artefact of the edge, not a fault.
 _DEAD_REACH = (3, 8)
-# Fraction of samples at the data's extremes above which the data are reported as clipped (F3, synthetic cubes:
-# < 0.01 %; the 8-bit Penobscot sections: 66 %)
+# Fraction of samples at the data's extremes above which the data are reported as clipped (unclipped data such as F3
+# and the synthetic cubes have a handful of such samples; 8-bit exports like the Penobscot sections, most of them).
 _CLIPPED_WARN = 0.05
 # Equal values in a row along a trace that make a run of dead samples (mute, dead trace, gap).
 _DEAD_RUN = 5

@@ -12,19 +12,19 @@ term, feature matches between corresponding slices the feature term. :func:`regi
    (method.md section 2) to the fixed time slices at the corresponding times (and the two neighbouring samples on each
    side, which absorbs the error of stage 1); the matches are lifted to 3D with their sample coordinate and a RANSAC
    over all of them gives the first transform. Thin volumes (fewer than 32 traces across) use inline sections instead.
-3. **Refinement with guided slice matches.** The moving volume is resampled onto slices of the fixed grid through the
-   current transform; corners of the fixed slices are tracked into them (pyramidal Lucas-Kanade with a
-   forward-backward check). Tracks on inline and crossline sections update the vertical row of the transform, tracks
-   on time slices its two lateral rows: each slice family measures only the displacement in its own plane, so this
-   split avoids the bias that a residual vertical error puts on time-slice tracks in dipping layers. Repeated until the
-   transform stops moving.
+3. **Refinement with guided slice matches** (of each stage-4 result). The moving volume is resampled onto slices of
+   the fixed grid through the current transform; corners of the fixed slices are tracked into them (pyramidal
+   Lucas-Kanade with a forward-backward check). Tracks on inline and crossline sections update the vertical row of the
+   transform, tracks on time slices its two lateral rows: each slice family measures only the displacement in its own
+   plane, so this split avoids the bias that a residual vertical error puts on time-slice tracks in dipping layers.
+   Repeated until the transform stops moving.
 4. **Fused ICP.** :func:`seismo3d.registration.fused_icp` with the reflector points of both volumes (dense term) and
    the RANSAC-kept slice matches (feature term), from each of the best starts; each result is refined as in stage 3
    and the one that correlates best with the fixed volume is kept.
 5. **Polish.** A local maximisation (Powell) of the normalised cross-correlation of the two volumes over the model's
    parameters, from that result. Reflector points constrain the vertical and the tilt well but slide along flat
    layers, and slice tracks carry the aperture problem; the correlation of the amplitudes themselves removes the
-   last 1-10 % of scale and the last degrees of rotation (measured in ``benchmarks/volumes.py``).
+   last errors of scale and rotation they leave.
 
 Conventions
 -----------
@@ -52,7 +52,7 @@ from scipy import ndimage as ndi
 
 from .._validation import check_choice, check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
-from ..geometry.transforms import nearest_rotation
+from ..geometry.transforms import decompose_axis_scaled
 from ..registration.result import RegistrationResult
 from .attributes import _as_seismic
 
@@ -358,9 +358,7 @@ def _project(transform, model):
     """The transform of ``model`` nearest to an affine one (column scales, then the nearest rotation)."""
     if model == "affine":
         return transform
-    a = transform[:3, :3]
-    s = np.linalg.norm(a, axis=0)
-    r = nearest_rotation(a / s)
+    r, s, _ = decompose_axis_scaled(transform)
     out = transform.copy()
     out[:3, :3] = r * s if model == "axis_scaled" else r
     return out
@@ -595,10 +593,10 @@ def _is_thin(shape_f, shape_m, frames, hi):
     return min(shape_f[0] * wf[0], shape_f[1] * wf[1], shape_m[0] * wm[0] * hi, shape_m[1] * wm[1] * hi) < _MIN_MAP
 
 
-def _global_starts(fn, mn, frames, model, scale_range, method, seed, profiles):
+def _global_starts(fn, mn, frames, model, scale_range, method, seed, profiles, thin):
     """Candidate starting transforms (index space), best first: (number of RANSAC inliers, transform).
 
-    ``profiles``: the mean envelope profiles (fixed, moving) along the sample axis."""
+    ``profiles``: the mean envelope profiles (fixed, moving) along the sample axis; ``thin``: :func:`_is_thin`."""
     from ..registration import ransac
 
     lo, hi = scale_range
@@ -607,7 +605,6 @@ def _global_starts(fn, mn, frames, model, scale_range, method, seed, profiles):
         s2 = wm[2] / wf[2]
     else:
         s2 = _vertical_scale(fn, mn, lo * wm[2], hi * wm[2])
-    thin = _is_thin(fn.shape, mn.shape, frames, hi)
     cache_f, cache_m = _FeatureCache(method), _FeatureCache(method)
     hyps = []
     if thin:
@@ -1008,10 +1005,14 @@ def resample_volume(volume, transform_index, shape, *, order: int = 3, fill: flo
     out = np.empty(shape, np.float32)
     hi = np.array(arr.shape, dtype=np.float64)[:, None] - 0.5
     grid = np.indices(shape[1:]).reshape(2, -1).astype(np.float64)
+    # the B-spline coefficients once for all output inlines, as map_coordinates' own prefilter makes them (the data
+    # padded by its edge values, mode="nearest"), instead of once per inline
+    pad = 12 if int(order) > 1 else 0
+    coef = ndi.spline_filter(np.pad(arr, pad, mode="edge"), int(order), mode="nearest") if pad else arr
     for i in range(shape[0]):  # one output inline at a time keeps the coordinate arrays small
         p = np.vstack([np.full(grid.shape[1], float(i)), grid])
         m = t_inv[:3, :3] @ p + t_inv[:3, 3:]
-        vals = ndi.map_coordinates(arr, m, order=int(order), mode="nearest")
+        vals = ndi.map_coordinates(coef, m + pad, order=int(order), prefilter=False, mode="nearest")
         vals[~np.all((m >= -0.5) & (m <= hi), axis=0)] = fill
         out[i] = vals.reshape(shape[1:])
     return out
@@ -1056,7 +1057,7 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
         Largest number of track-refinement rounds (stage 3).
     min_correlation : float
         Raise :class:`RegistrationError` when the best registration correlates less than this over the overlap.
-        Measured: resampled pairs of one cube reach 0.93-1.0; two unrelated 40-cube synthetic volumes 0.33.
+        Resampled pairs of one cube reach 0.90-1.0 (the correlation column of ``benchmarks/volumes.py``).
         Lower it for a time-lapse repeat or two surveys processed differently.
     seed : int
         Seed of RANSAC and of the point subsets; the result is deterministic given it.
@@ -1131,13 +1132,14 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
     with tqdm(total=4, desc="register_volumes", unit="stage", disable=not progress) as bar:
         bar.set_postfix_str("slice features")
         env_f, env_m = _envelope(fn), _envelope(mn)
+        thin = _is_thin(fn.shape, mn.shape, frames, hi)
         hyps = _global_starts(fn, mn, frames, fit_model, (lo, hi), feature_method, seed,
-                              (env_f.mean(axis=(0, 1)), env_m.mean(axis=(0, 1))))
+                              (env_f.mean(axis=(0, 1)), env_m.mean(axis=(0, 1))), thin)
         bar.update(1)
         bar.set_postfix_str("fused ICP and slice tracks")
         if not hyps:
             small = ""
-            if _is_thin(fn.shape, mn.shape, frames, hi):
+            if thin:
                 small = (f" The volumes are small for slice features (fixed {fn.shape[0]} x {fn.shape[1]} traces, "
                          f"moving {mn.shape[0]} x {mn.shape[1]}; features need about {_MIN_MAP} traces across): "
                          "register larger sub-volumes if you can.")
@@ -1150,7 +1152,6 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
         tracker = _Tracker(fn, mn)
         envelope_tracker = _Tracker(env_f, env_m, order=1)  # smooth: linear interpolation suffices
         score = _Overlap(fn, tracker.coef, 2e5)
-        thin = _is_thin(fn.shape, mn.shape, frames, hi)
         wf, wm = frames.w_fixed, frames.w_moving
         nf_w = nf / wf
         nf_w /= np.linalg.norm(nf_w, axis=1, keepdims=True)
@@ -1177,7 +1178,6 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
         corr, overlap, t_index, fused, n_matches = best
         if model == "affine":  # the affine refinement: rows fitted freely from the final tracks
             t_index = _refine(tracker, envelope_tracker, score, frames, t_index, "affine", thin, 3, seed)
-            corr, overlap = score.correlation(t_index)
         bar.update(1)
         bar.set_postfix_str("correlation polish")
         t_index = _polish(fn, tracker.coef, t_index, frames, model)
@@ -1192,9 +1192,7 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
         fitness, rmse = _reflector_fit(t_index, frames, pm, pf)
         bar.update(1)
     t_phys = _diag(sp_f) @ t_index @ _diag(1.0 / sp_m)
-    a = t_phys[:3, :3]
-    scales = np.linalg.norm(a, axis=0)
-    r = nearest_rotation(a / scales)
+    r, scales, _ = decompose_axis_scaled(t_phys)
     note = f"fixed: {note_f}; moving: {note_m}"
     return VolumeRegistration(
         transform_index=t_index, transform_physical=t_phys, scales=scales,

@@ -62,7 +62,7 @@ def test_horizon_command_bad_seeds(tmp_path):
 
 
 @pytest.mark.filterwarnings("error::RuntimeWarning")
-def test_horizon_command_jumps_faults_with_faults_option(tmp_path):
+def test_horizon_command_with_faults_raises_no_runtime_warning(tmp_path):
     # --faults traces the faults first; the command no longer silences RuntimeWarnings, so none may be raised.
     syn = synthetic_cube((24, 32, 64), n_faults=2, seed=0)
     spec = _write_cube(tmp_path / "cube.sgy", syn.cube)

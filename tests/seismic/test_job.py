@@ -425,8 +425,8 @@ def test_plot_fault_slices_arguments(small_cube, tmp_path):
 
 
 def test_clipped_amplitudes_are_reported():
-    # an 8-bit export clips the strong peaks and troughs (66 % of the Penobscot section samples sit at 0 or 255);
-    # the fault job says so, and says nothing for unclipped data
+    # an 8-bit export clips the strong peaks and troughs (most Penobscot section samples sit at 0 or 255); the fault
+    # job says so, and says nothing for unclipped data
     from seismo3d.seismic.job import _clean_traces
 
     cube = synthetic_cube((16, 16, 48), seed=0).cube

@@ -21,22 +21,18 @@ import warnings
 
 import numpy as np
 
-from seismo3d.data import fetch
+from seismo3d.data import load_penobscot_sections
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.seismic import autotrack, horizon_errors, trace_faults, track_horizon
 from seismo3d.seismic.horizons import _MIN_THROW_CORRELATION, _reliable_throw
 
 
 def penobscot(quick: bool) -> None:
-    z = np.load(fetch("seismic/penobscot_sections/penobscot_sections_1075_1092.npz"))
-    cube = np.ascontiguousarray(((z["seismic"].astype(np.float32) - 127.5) / 127.5).transpose(0, 2, 1))
-    human = z["horizons"].astype(np.float64)
-    human[human < 0] = np.nan
     # Dead traces (the image's first column on most sections) hold no data; their "picks" are mask artefacts
-    # (e.g. 255 where the next trace has 35), so they are not scored.
-    live = np.ptp(cube, axis=2) > 0
-    human[~live[:, None, :].repeat(human.shape[1], axis=1)] = np.nan
-    print(f"\n## Penobscot, 18 inlines x 512 traces ({int((~live).sum())} dead, not scored), one seed per horizon "
+    # (e.g. 255 where the next trace has 35), so the loader leaves them out and they are not scored.
+    peno = load_penobscot_sections()
+    cube, human = peno.cube, peno.horizons
+    print(f"\n## Penobscot, 18 inlines x 512 traces ({int((~peno.live).sum())} dead, not scored), one seed per horizon "
           "(inline 0, trace 256)\n")
     runs = [("seismo3d fused (HOG)", dict(features="hog")), ("seismo3d point-to-plane", dict(features=None))]
     if quick:

@@ -26,7 +26,7 @@ import warnings
 
 import numpy as np
 
-from seismo3d.data import fetch, resampled_pair, synthetic_cube
+from seismo3d.data import fetch, load_penobscot_sections, resampled_pair, synthetic_cube
 from seismo3d.errors import Seismo3dError
 from seismo3d.seismic import read_segy, reflector_points, register_volumes, registration_errors
 
@@ -115,8 +115,7 @@ def speed(quick: bool) -> None:
 
 
 def real(quick: bool) -> None:
-    z = np.load(fetch("seismic/penobscot_sections/penobscot_sections_1075_1092.npz"))
-    peno = ((z["seismic"].astype(np.float32) - 127.5) / 127.5).transpose(0, 2, 1)[:, :, ::2]
+    peno = load_penobscot_sections().cube[:, :, ::2]
     print("\n## Real: Penobscot, 18 consecutive inlines (fixed 18 x 256 x 384)\n")
     print(HEADER)
     cases = [((1, 1, 1), 0), ((1, 1, 1.5), 0), ((0.7, 1.3, 0.8), 5), ((0.5, 2, 1), 0), ((2, 0.5, 0.5), 3),

@@ -38,8 +38,13 @@ _DEAD_REACH = (3, 8)
 # Fraction of samples at the data's extremes above which the data are reported as clipped (unclipped data such as F3
 # and the synthetic cubes have a handful of such samples; 8-bit exports like the Penobscot sections, most of them).
 _CLIPPED_WARN = 0.05
-# Equal values in a row along a trace that make a run of dead samples (mute, dead trace, gap).
+# Equal values in a row along a trace that make a run of dead samples (mute, dead trace, gap), at a fill value.
 _DEAD_RUN = 5
+# A value that fills a run this long somewhere in the data (or a whole trace) is a fill value (a mute's or a padding's
+# value) besides 0. Shorter runs at other values are the quantisation of slowly varying amplitudes in integer exports:
+# in the 8-bit Penobscot sections a run of five 107s sits on a fault at inlines 1-2, and reading it as dead blanked
+# the fault's likelihood over inlines 0-5.
+_FILL_RUN = 16
 
 
 @dataclass(frozen=True)
@@ -78,9 +83,12 @@ class FaultInterpretation:
 def _clean_traces(data) -> tuple[np.ndarray, np.ndarray]:
     """Replace NaN / inf by 0 (with a warning); return float32 data and the mask of dead samples (with a warning).
 
-    Dead samples are those in runs of at least ``_DEAD_RUN`` equal values along a trace: dead traces, mutes (the
-    zeroed top of a survey), zero padding and NaN gaps. Runs at the data's largest or smallest value are clipped
-    amplitudes (8-bit exports of sections), not dead samples, unless they fill the whole trace.
+    Dead samples are those in runs of at least ``_DEAD_RUN`` equal values along a trace at a *fill value*: dead
+    traces, mutes (the zeroed top of a survey), zero padding and NaN gaps. The fill values are 0 and every value that
+    fills a whole trace or a run of at least ``_FILL_RUN`` samples somewhere in the data (a mute or padding value
+    such as the grey of an image export). Short runs at other values are quantisation (integer exports), and runs at
+    the data's largest or smallest value are clipped amplitudes (8-bit exports of sections): neither is dead, unless
+    it fills the whole trace.
     """
     from scipy.ndimage import binary_opening
 
@@ -117,9 +125,14 @@ def _clean_traces(data) -> tuple[np.ndarray, np.ndarray]:
                       Seismo3dWarning, stacklevel=3)
     flat &= ~clipped
     del clipped
-    run = np.zeros((1,) * (arr.ndim - 1) + (min(_DEAD_RUN - 1, n_s - 1),), dtype=bool)
-    run[...] = True
-    flat = binary_opening(flat, structure=run)
+
+    def runs(equal, length):  # the differences inside runs of at least `length` equal values
+        structure = np.ones((1,) * (arr.ndim - 1) + (min(length - 1, n_s - 1),), dtype=bool)
+        return binary_opening(equal, structure=structure)
+
+    whole = np.broadcast_to(flat.all(axis=-1, keepdims=True), flat.shape)
+    fill = np.union1d([0.0], arr[..., 1:][runs(flat, _FILL_RUN) | whole])
+    flat = runs(flat, _DEAD_RUN) & np.isin(arr[..., 1:], fill)
     dead = np.zeros(arr.shape, dtype=bool)
     dead[..., 1:] |= flat
     dead[..., :-1] |= flat

@@ -436,3 +436,35 @@ def test_clipped_amplitudes_are_reported():
     with warnings.catch_warnings():
         warnings.simplefilter("error", Seismo3dWarning)
         _clean_traces(cube)
+
+
+def test_quantised_runs_are_not_dead_but_fill_values_are():
+    # In an 8-bit export, slowly varying amplitudes repeat the same value for a few samples; a run of five 107s on the
+    # Penobscot fault at crossline 56 (inlines 1-2) counted as a dead zone and blanked the fault's likelihood on
+    # inlines 0-5. Dead samples are runs at a fill value: 0, or a value that fills a whole trace or a long run (the
+    # image's grey 127 in a muted top).
+    from seismo3d.seismic.job import _clean_traces
+
+    section = np.round(127.5 + 100 * synthetic_cube((40, 96), n_faults=0, seed=2).cube / 3).clip(0, 255)
+    section[:, :20] = 127  # a muted top in the image's grey: a fill value
+    section[5, 60:65] = 107  # a short run of a live value (quantisation)
+    section[8, 50:55] = 127  # a short run of the fill value: a gap
+    section[30] = 99  # a dead trace
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        _, dead = _clean_traces(section)
+    assert dead[:, :20].all() and dead[8, 50:55].all() and dead[30].all()
+    assert not dead[5, 55:70].any()
+    live = np.ones_like(dead)
+    live[:, :20] = live[8, 50:55] = live[30] = False
+    assert not dead[live].any()
+
+
+def test_penobscot_fault_at_crossline_56_is_not_blanked(penobscot):
+    from seismo3d.seismic.job import _clean_traces
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        _, dead = _clean_traces(penobscot.cube)
+    assert not dead[:, 50:62, 600:720].any()
+    assert dead[:, 10:500, :40].mean() > 0.5  # the muted top (grey 127) is still dead

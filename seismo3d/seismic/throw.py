@@ -33,6 +33,12 @@ __all__ = ["FaultThrow", "fault_throw", "fault_throws"]
 _MIN_OVERLAP = (16, 48)  # fewest fault-plane image samples seen on both sides for a correlation to count (2D, 3D)
 _MIN_ROWS = 16  # ... and fewest distinct samples (t) among them: about 2.5 periods of a 0.15 cycles/sample wavelet
 _SMALL_SHIFT_PRIOR = 0.25
+# Largest |throw| searched, as a fraction of the samples a patch's fault-plane images span (the fault's height there):
+# faults displace about 1-10 % of their length (displacement-length scaling, Kim & Sanderson 2005), so a shift of over
+# a third of the traced height is a cycle skip between periodic reflectors rather than a throw. On the 8-bit Penobscot
+# cube 14 of the 282 faults whose sides correlate had such a throw: 9-20 samples on faults 26-45 samples tall, about
+# one reflector period (benchmarks/horizons.py traces them).
+_MAX_THROW_PER_HEIGHT = 1.0 / 3.0
 _MIN_PEAKS = 12  # fewest reflector-peak points per side for a registration
 _MAX_ROTATION = 0.1  # radians: |d throw / d strike| above this (one sample per 10 traces) is not a throw gradient
 _SLOPE_MARGIN = 3  # traces beyond the farthest offset where reflector slopes are read (outside the tensor's blur)
@@ -383,9 +389,12 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
        ``H(u, t)``. For pure dip-slip, ``H(u, t) = F(u, t - throw(u))``: the shift between them is the vertical throw
        itself, not the separation seen at one lateral position (which differs by the factor
        ``1 - tan(reflector dip) / tan(fault dip)``).
-    2. **Start**: the integer shift in ``[-max_throw, max_throw]`` maximising the normalised cross-correlation of ``F``
-       and ``H``, refined by a parabola through the three best values. Searching all shifts avoids the cycle skipping
-       that ICP from zero suffers on periodic reflectors once the throw exceeds half a period.
+    2. **Start**: the integer shift in ``[-m, m]`` maximising the normalised cross-correlation of ``F`` and ``H``,
+       refined by a parabola through the three best values. Searching all shifts avoids the cycle skipping that ICP
+       from zero suffers on periodic reflectors once the throw exceeds half a period. ``m`` is ``max_throw`` or a
+       third of the samples the patch spans, whichever is smaller: faults displace about 1-10 % of their length
+       (displacement-length scaling [4]_), and a larger shift on a short fault is a cycle skip onto the next
+       reflector of a periodic sequence.
     3. **Refinement** (3D, ``refine=True``): the reflector peaks (maxima along ``t`` above half the image RMS, with
        parabolic sub-sample position) of ``F`` are registered onto those of ``H`` as 2D (u, t) points by rigid
        point-to-plane ICP (:func:`seismo3d.registration.icp`, method.md eqs. 10-15) started at the correlation
@@ -410,7 +419,8 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
         Reflector orientation of ``data`` (:func:`structure_tensor_orientation`); computed when not given (pass it
         when measuring several faults of one cube, or use :func:`fault_throws`).
     max_throw : int, optional
-        Largest |throw| searched, in samples. Default ``min(20, n_samples // 4)``.
+        Largest |throw| searched, in samples. Default ``min(20, n_samples // 4)``. A patch searches at most a third
+        of the samples it spans (step 2).
     side_traces : (int, int), optional
         Nearest and farthest lateral offsets from the fault read on each side, in traces.
     patch_traces : float, optional
@@ -437,6 +447,8 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
     .. [2] Y. Chen and G. Medioni, "Object modelling by registration of multiple range images", Image and Vision
        Computing 10(3), 1992, doi:10.1016/0262-8856(92)90066-C (point-to-plane ICP).
     .. [3] A. Vokhmintcev and M. Timchenko, the registration method of seismo3d (method.md, eqs. 10-16).
+    .. [4] Y.-S. Kim and D. J. Sanderson, "The relationship between displacement and length of faults: a review",
+       Earth-Science Reviews 68(3-4), 317-334, 2005, doi:10.1016/j.earscirev.2004.06.003.
 
     Examples
     --------
@@ -534,8 +546,9 @@ def _fault_throw(arr, fault, slopes, max_throw, side_traces, patch_traces, refin
         if out is None:
             continue
         patch, ut = out
-        shift, cc = _ncc_shift(patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], max_throw,
-                               _MIN_OVERLAP[0 if two_d else 1])
+        reach = min(max_throw, int(_MAX_THROW_PER_HEIGHT * patch.img[0].shape[1]))
+        shift, cc = _ncc_shift(patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach,
+                               _MIN_OVERLAP[0 if two_d else 1]) if reach >= 1 else (np.nan, np.nan)
         if not np.isfinite(shift):
             continue
         throw[sel] = shift

@@ -29,11 +29,15 @@ least-squares plane of its traced points near the step, oriented as the throw wa
 half of one of those points; two faults between the same traces add their jumps; and a fault is crossed once going
 one way (after the jump, a dipping fault's plane can lie beyond the new pick). A seed picked on a traced fault is in
 neither wall as far as the fault can tell: each first step away from it along its slice stays in the seed's wall or
-jumps out of the other one, whichever the seed's waveform correlates with better. Only faults with a reliable throw
-are used: a fault whose two sides correlate less than 0.5 across it (median of its throw correlation), or which has
-no throw, is left out, as if not traced. Without fault input, a step whose panels do not fit (a discontinuity) is
-re-made from one side with the shift found by normalised cross-correlation of the two sides' stacked traces, the
-start the throw estimation uses (:mod:`seismo3d.seismic.throw`).
+jumps out of the other one, whichever the seed's waveform correlates with better. Along a slice, the panels around a
+pick are kept within its fault block (the traces a horizon through it reaches without crossing a fault: reflector
+points past a fault belong to another block), and no step ends within two traces of a fault, where drag bends the
+reflectors towards it (on Penobscot horizon 6 the tracker had climbed 5 samples there before the jump): the step is
+carried on over that zone to the next trace of its grid. Only faults with a reliable throw are used: a fault whose
+two sides correlate less than 0.5 across it (median of its throw correlation), or which has no throw, is left out, as
+if not traced. Without fault input, a step whose panels do not fit (a discontinuity) is re-made from one side with
+the shift found by normalised cross-correlation of the two sides' stacked traces, the start the throw estimation
+uses (:mod:`seismo3d.seismic.throw`).
 
 Each pick gets a confidence: the normalised cross-correlation of the waveform around it with the waveform around the
 pick it came from. Picks below ``min_confidence``, and picks with no extremum of the right polarity within the snap
@@ -70,6 +74,7 @@ _REFERENCE_WEIGHT = 0.3  # weight of the newest accepted pick in the running ref
 _SEED_SNAP = 5.0  # samples: a seed snaps to an extremum this far at most (about half a period)
 _PIERCE = 1.5  # voxels: a step crosses a fault when it pierces the fault surface this close to a fault point
 _ON_FAULT = 0.5  # voxels: a point this close to a fault's local plane (and to its points) lies on the fault
+_FAULT_ZONE = 2.0  # traces: along a slice, no step ends this close to a fault (its drag zone); it steps over it
 # A fault whose two sides correlate less than this (median over its points of FaultThrow.correlation) is not used
 # (_reliable_throw): on the clipped Penobscot data trace_faults' low-correlation faults carry throws of several
 # samples where people see none, and jumping by them (or searching a shift at each of them) moved horizon 2 off its
@@ -393,6 +398,27 @@ class _FaultIndex:
                 total += -thr if float(np.dot(b - c, n)) > 0 else thr
         return total
 
+    def block(self, line_point, n: int, c: int, tc: float, slope: float, lo: int, hi: int) -> tuple[int, int]:
+        """The traces of ``lo..hi`` (inclusive, containing ``c``) that a horizon through (c, tc) with ``slope``
+        (samples per trace) reaches without crossing a fault: the fault block of the pick along a slice of ``n``
+        traces, which ``line_point(x, t)`` maps to this index's coordinates. An end short of ``lo`` / ``hi`` is the
+        last trace before a fault."""
+        if self.tree is None:
+            return lo, hi
+        a, b = line_point(lo, tc + slope * (lo - c)), line_point(hi, tc + slope * (hi - c))
+        if not self.tree.query_ball_point(0.5 * (a + b), 0.5 * float(np.linalg.norm(b - a)) + _PIERCE + 1.0):
+            return lo, hi
+        ends = []
+        for direction, end in ((-1, lo), (1, hi)):
+            x = c
+            while x != end and 0 <= x + direction < n:
+                y = x + direction
+                if self.crossings(line_point(x, tc + slope * (x - c)), line_point(y, tc + slope * (y - c))):
+                    break
+                x = y
+            ends.append(x)
+        return ends[0], ends[1]
+
     def jump(self, a: np.ndarray, b: np.ndarray, crossed: set | None = None) -> float:
         """Vertical jump (samples) of a horizon going from ``a`` to ``b``: the sum over the faults crossed (two faults
         between the same traces add up); 0 when none, NaN when a crossed fault's throw is unknown.
@@ -534,6 +560,16 @@ def _track_along(sl: _Slice, j0: int, t0: float, opt: _Options, faults: _FaultIn
         while 0 <= c + direction < n:
             j = int(np.clip(c + direction * opt.step, 0, n - 1))
             pc = sl.slope_at(c, tc)
+            span = (max(min(c, j) - hw, 0), min(max(c, j) + hw, n - 1))
+            block = faults.block(line_point, n, c, tc, pc, *span)
+            edge = block[0] if direction < 0 else block[1]
+            if edge != (span[0] if direction < 0 else span[1]):
+                # A fault between trace `edge` and the next. A step ending within _FAULT_ZONE traces of it, where drag
+                # bends the reflectors towards the fault, is carried on over the zone, to the next trace of the step
+                # grid (seed + multiples of `step`), so that a fault does not move where later steps fall.
+                at = edge + 0.5 * direction
+                while abs(j - at) < _FAULT_ZONE and 0 <= j + direction * opt.step < n:
+                    j += direction * opt.step
             pred = tc + pc * (j - c)
             jump = faults.jump(line_point(c, tc), line_point(j, pred), crossed)
             if on_seed and c == j0:
@@ -550,7 +586,9 @@ def _track_along(sl: _Slice, j0: int, t0: float, opt: _Options, faults: _FaultIn
                         jump += other
             t_new = np.nan
             if jump == 0.0:
-                t_new, fit = _panel_step(sl, (max(c - hw, 0), min(c + hw, n - 1)), (max(j - hw, 0), min(j + hw, n - 1)),
+                # both panels within the pick's fault block: reflector points past a fault belong to another block
+                lo, hi = block if block[0] <= j <= block[1] else (0, n - 1)
+                t_new, fit = _panel_step(sl, (max(c - hw, lo), min(c + hw, hi)), (max(j - hw, lo), min(j + hw, hi)),
                                          c, tc, j, pred, pc, opt)
                 if not (np.isfinite(t_new) and fit >= opt.min_fitness):
                     t_new = pred  # panels that do not fit (noise, chaotic zone): follow the slope, do not search

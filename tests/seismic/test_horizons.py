@@ -2,7 +2,6 @@
 
 import dataclasses
 import functools
-import os
 import warnings
 
 import numpy as np
@@ -214,6 +213,25 @@ def test_fault_index_adds_up_faults_and_ignores_a_grazing_one():
     assert ending.jump(np.array([6.0, 4.0, 18.0]), np.array([10.0, 4.0, 22.0])) == -5.0  # through it: into the footwall
 
 
+def test_fault_index_finds_the_fault_block_of_a_pick():
+    # Along a slice, the panels registered around a pick stay within its fault block: the traces a horizon through
+    # the pick reaches without crossing a fault (reflector points past a fault belong to another block).
+    from seismo3d.seismic.horizons import _FaultIndex
+
+    p1, n1 = _vertical_fault_points(10.5, n_t=30)  # samples 0-29
+    p2, n2 = _vertical_fault_points(20.5, n_t=30)
+    idx = _FaultIndex(np.vstack([p1, p2]), np.vstack([n1, n2]), np.full(len(p1) + len(p2), 4.0),
+                      np.r_[np.zeros(len(p1)), np.ones(len(p2))])
+    on_line = lambda x, t: np.array([x, 4.0, t], float)  # noqa: E731 - inline 4 of the index's cube
+    assert idx.block(on_line, 40, 14, 15.0, 0.0, 0, 39) == (11, 20)
+    assert idx.block(on_line, 40, 4, 15.0, 0.0, 0, 8) == (0, 8)  # no fault within the span
+    assert idx.block(on_line, 40, 25, 15.0, 0.0, 15, 35) == (21, 35)
+    assert idx.block(on_line, 40, 14, 36.0, 0.0, 0, 39) == (0, 39)  # below the faults' lower ends: one block
+    # a dipping horizon (1 sample per trace) meets fault 1 at sample 22.5 and passes below fault 2's end (at 32.5)
+    assert idx.block(on_line, 40, 14, 26.0, 1.0, 0, 39) == (11, 39)
+    assert _FaultIndex.from_interpretation(None, 3).block(on_line, 40, 14, 15.0, 0.0, 0, 39) == (0, 39)
+
+
 def test_fault_index_leaves_out_faults_whose_throw_does_not_correlate():
     # A fault whose two sides do not look alike (median throw correlation under 0.5), or has no throw at all, gives
     # no jump: on the clipped Penobscot data such faults carry throws of 5-6 samples where people see none.
@@ -341,33 +359,33 @@ def test_despike_puts_a_cycle_skipped_pick_back_and_leaves_a_step_alone():
     np.testing.assert_array_equal(out[45:], truth[45:] + 6.0)
 
 
-@pytest.fixture(scope="module")
-def penobscot():
-    if not os.environ.get("SEISMO3D_DATA_DIR"):
-        pytest.skip("SEISMO3D_DATA_DIR is not set")
-    from seismo3d.data import fetch
-
-    z = np.load(fetch("seismic/penobscot_sections/penobscot_sections_1075_1092.npz"))
-    cube = np.ascontiguousarray(((z["seismic"].astype(np.float32) - 127.5) / 127.5).transpose(0, 2, 1))
-    human = z["horizons"].astype(np.float64)
-    human[human < 0] = np.nan
-    human[np.broadcast_to((np.ptp(cube, axis=2) == 0)[:, None, :], human.shape)] = np.nan  # dead traces: not scored
-    return cube, human
-
-
-# measured by benchmarks/horizons.py (point-to-plane): % within 5 samples of the people's picks on live traces, and
-# the plain autotracker's; the issue's target (99 %, median <= 1) is reached on horizons 0-4, all asserted here;
-# horizon 5 reaches 99 % at median 1.5 (the picks sit 1.5 samples above the clipped peak), horizon 6 stays at 89 %
-# (the people's fault at crossline ~55 is traced below the horizon on inlines 0-4 and is never crossed)
+# measured by benchmarks/horizons.py (point-to-plane, no fault input): % within 5 samples of the people's picks on
+# live traces, and the plain autotracker's; the issue's target (99 %, median <= 1) is reached on horizons 0-4 without
+# fault input, all asserted here (horizon 6 needs the faults: next test)
 @pytest.mark.parametrize("k, within_5, median, plain_within_5",
                          [(0, 0.995, 1.0, 1.0), (1, 0.990, 1.0, 0.965), (2, 0.990, 0.5, 0.988),
                           (3, 0.995, 0.5, 0.9995), (4, 0.995, 0.5, 1.0)])
 def test_penobscot_horizons_against_peoples_picks(penobscot, k, within_5, median, plain_within_5):
-    cube, human = penobscot
-    ref = human[:, k]
+    ref = penobscot.horizons[:, k]
     seed = (0, 256, ref[0, 256])
-    ours = horizon_errors(track_horizon(cube, seed, features=None).times, ref)
-    plain = horizon_errors(autotrack(cube, seed).times, ref)
+    ours = horizon_errors(track_horizon(penobscot.cube, seed, features=None).times, ref)
+    plain = horizon_errors(autotrack(penobscot.cube, seed).times, ref)
     assert ours["within_5"] >= within_5 and ours["median_abs"] <= median
     assert plain["within_5"] == pytest.approx(plain_within_5, abs=0.002)  # the peer, as the issue describes it
     assert ours["within_5"] >= plain["within_5"] - 0.005
+
+
+# With the faults trace_faults finds in the cube (the issue's "use the fault throw from the fault tracing"), as in the
+# "traced faults" rows of benchmarks/horizons.py. Horizon 6 crosses the people's fault at crossline ~55 (throw about
+# 8 samples): it was at 89 % while a run of five equal 8-bit values on that fault counted as dead samples and blanked
+# its likelihood over inlines 0-5, and while steps ended in the fault's drag zone. Horizon 2 crosses a 28-sample fault
+# whose throw was measured one reflector period off (-12 samples) before the throw search was held to a third of
+# the fault's height: it was at 92.7 %. Horizon 5 reaches 99 % but its median stays at 1.5: the people's picks wander
+# within 6-8-sample clipped plateaus (about +1 sample from the centre on traces 0-200, -2.5 on 210-511, on every
+# inline), so no extremum tracker meets the median target there.
+@pytest.mark.parametrize("k, median", [(0, 1.0), (1, 1.0), (2, 0.5), (3, 0.5), (4, 0.5), (5, 1.5), (6, 1.0)])
+def test_penobscot_horizons_with_traced_faults(penobscot, penobscot_faults, k, median):
+    ref = penobscot.horizons[:, k]
+    seed = (0, 256, ref[0, 256])
+    ours = horizon_errors(track_horizon(penobscot.cube, seed, faults=penobscot_faults, features=None).times, ref)
+    assert ours["within_5"] >= 0.99 and ours["median_abs"] <= median, ours

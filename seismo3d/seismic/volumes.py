@@ -88,6 +88,7 @@ _SCALE_STEPS = 7
 _N_REFINED = 4
 _MIN_FRACTION = 0.3  # overlap needed by a correlation (of the smaller volume's samples)
 _TAPER = 2.0  # samples: the correlation's weights fall linearly to 0 over this distance from the fixed volume's edge
+_MAX_SEARCH = 100_000  # samples of each volume (sample axis halved) beyond which the correlation search is not run
 
 
 @dataclass(frozen=True, eq=False)
@@ -720,12 +721,15 @@ def _correlation_starts(fn, mn, frames, model, scale_range, n_best=3):
     translation at once (:class:`_ShiftCorrelation`), over overlaps of at least ``_MIN_FRACTION`` of the smaller
     volume; the best translation scores the map. The ``_N_REFINED`` best distinct maps are searched again on a grid
     of half the steps. The sample axis of both volumes is halved for the search (after smoothing), which keeps the
-    cost to about 20 ms per map on a 23 x 18 x 75 cube.
+    cost to about 20 ms per map on a 23 x 18 x 75 cube; volumes of more than ``_MAX_SEARCH`` samples (so halved) are
+    not searched (an empty list).
     """
     lo, hi = scale_range
     wf, wm = frames.w_fixed, frames.w_moving
-    s2 = _sample_ratio(fn, mn, frames, model, scale_range) * wf[2] / wm[2]  # working units
     dec = 2 if min(fn.shape[2], mn.shape[2]) >= 32 else 1
+    if max(fn.size, mn.size) / dec > _MAX_SEARCH:
+        return []  # about 0.1 s per map at this size: larger volumes carry slice features
+    s2 = _sample_ratio(fn, mn, frames, model, scale_range) * wf[2] / wm[2]  # working units
     fz, mz = ((ndi.gaussian_filter1d(v, 0.5 * dec, axis=2)[:, :, ::dec] if dec > 1 else v).astype(np.float64)
               for v in (fn, mn))
     shifts = _ShiftCorrelation(fz)
@@ -1237,7 +1241,7 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
     seed : int
         Seed of RANSAC and of the point subsets; the result is deterministic given it.
     progress : bool
-        Show a tqdm bar over the stages (a pair takes 10-70 s; ``benchmarks/volumes.py``).
+        Show a tqdm bar over the stages (a pair takes 10-140 s; ``benchmarks/volumes.py``).
 
     Returns
     -------
@@ -1344,15 +1348,12 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
                     best = (corr, overlap, t, fused, len(src))
                 if corr >= 0.9:
                     break
-            if best is None:
-                raise RegistrationError("the fused ICP found too few reflector correspondences from every "
-                                        "feature-based start; the volumes may not overlap, or look too different")
-            if model == "affine":  # the affine refinement: rows fitted freely from the final tracks
+            if best is not None and model == "affine":  # the affine refinement: rows fitted freely from the tracks
                 best = (*best[:2], _refine(tracker, envelope_tracker, score, frames, best[2], "affine", thin, 3,
                                            seed), *best[3:])
-        else:
-            # no slice features matched (volumes too small for them, or featureless): the correlation search, each
-            # start polished; then the fused ICP's dense term (no feature matches: alpha = 0) from the best
+        if best is None:
+            # no slice features matched (volumes too small for them, or featureless), or the fused ICP failed from
+            # every feature-based start: the correlation search, each start polished
             for _, t_start in _correlation_starts(fn, mn, frames, fit_model, (lo, hi)):
                 t = _polish(polish, t_start, frames, fit_model, (lo, hi))[0]
                 corr, overlap = score.correlation(t)
@@ -1365,7 +1366,7 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
                              f" moving {mn.shape[0]} x {mn.shape[1]}; features need about {_MIN_MAP} traces across), "
                              "and the correlation search over map rotations within +-"
                              f"{_MAX_ROTATION:g} degrees found no start: register larger sub-volumes if you can.")
-                raise RegistrationError("no consistent feature matches between slices of the two volumes, and no "
+                raise RegistrationError("no usable feature matches between slices of the two volumes, and no "
                                         "correlating start: they may not overlap, or their scales / rotation are "
                                         "outside the search (scale_range); check the spacings and the overlap."
                                         + small)

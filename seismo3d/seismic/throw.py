@@ -36,8 +36,8 @@ _SMALL_SHIFT_PRIOR = 0.25
 # Largest |throw| searched, as a fraction of the samples a patch's fault-plane images span (the fault's height there):
 # faults displace about 1-10 % of their length (displacement-length scaling, Kim & Sanderson 2005), so a shift of over
 # a third of the traced height is a cycle skip between periodic reflectors rather than a throw. On the 8-bit Penobscot
-# cube 14 of the 282 faults whose sides correlate had such a throw: 9-20 samples on faults 26-45 samples tall, about
-# one reflector period (benchmarks/horizons.py traces them).
+# cube, before this limit, 14 of the 282 faults whose sides correlate had such a throw: 9-20 samples on faults 26-45
+# samples tall, about one reflector period (test_penobscot_horizons_with_traced_faults covers the horizon it jumped).
 _MAX_THROW_PER_HEIGHT = 1.0 / 3.0
 _MIN_PEAKS = 12  # fewest reflector-peak points per side for a registration
 _MAX_ROTATION = 0.1  # radians: |d throw / d strike| above this (one sample per 10 traces) is not a throw gradient

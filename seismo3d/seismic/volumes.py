@@ -1319,17 +1319,17 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
                               (env_f.mean(axis=(0, 1)), env_m.mean(axis=(0, 1))), thin)
         bar.update(1)
         bar.set_postfix_str("fused ICP and slice tracks")
-        tracker = _Tracker(fn, mn)
         coef_f = ndi.spline_filter(fn, order=3, output=np.float32, mode="mirror")
         score = _Overlap(fn, mn, coef_f, 2e5)
         polish = _Overlap(fn, mn, coef_f, 40000)
-        wf, wm = frames.w_fixed, frames.w_moving
-        nf_w = nf / wf
-        nf_w /= np.linalg.norm(nf_w, axis=1, keepdims=True)
         best = None
         if hyps:
             # fused ICP from each of the best starts (eq. 16: RANSAC inlier matches + reflector points), then the
             # refinement with slice tracks; the candidate that correlates best over the overlap wins
+            wf, wm = frames.w_fixed, frames.w_moving
+            nf_w = nf / wf
+            nf_w /= np.linalg.norm(nf_w, axis=1, keepdims=True)
+            tracker = _Tracker(fn, mn)
             envelope_tracker = _Tracker(env_f, env_m, order=1)  # smooth: linear interpolation suffices
             for _, t_start, src, dst in hyps[:3]:
                 try:

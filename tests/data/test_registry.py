@@ -106,7 +106,7 @@ def test_list_files_prefix():
                      "scans/bunny/bun045_clean.ply"]
     assert len(list_files("rgbd/7scenes_redkitchen_0000_0495/depth/")) == 100
     assert list_files("no/such/prefix") == []
-    assert len(list_files()) == len(REGISTRY) == 344
+    assert len(list_files()) == len(REGISTRY) == 347
 
 
 def test_unknown_name_lists_close_names():

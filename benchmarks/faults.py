@@ -63,22 +63,23 @@ def _rss_mb() -> float:
 
 
 def _worker(method: str, path: str) -> dict:
-    from seismo3d.seismic import attributes, faults
+    from seismo3d import seismic
+    from seismo3d.seismic import attributes
 
     cube = np.load(path)
 
     def prepare(c):
         """Inputs of the measured call (for thin+link, the likelihood is computed beforehand)."""
-        return faults.fault_likelihood(c) if method == "thin+link" else c
+        return seismic.fault_likelihood(c) if method == "thin+link" else c
 
     def call(x):
         if method == "fault_likelihood":
-            return faults.fault_likelihood(x)
+            return seismic.fault_likelihood(x)
         if method == "thin+link":
-            thin = faults.thin_faults(x.likelihood, x.strike_deg, x.dip_deg)
-            return faults.link_faults(thin, x.strike_deg, x.dip_deg)
+            thin = seismic.thin_faults(x.likelihood, x.strike_deg, x.dip_deg)
+            return seismic.link_faults(thin, x.strike_deg, x.dip_deg)
         if method == "faults command":
-            from seismo3d.seismic.job import run_faults_job
+            from seismo3d.jobs.faults import run_faults_job
 
             with tempfile.TemporaryDirectory() as out:
                 return run_faults_job(x, out, progress=False)

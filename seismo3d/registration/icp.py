@@ -1,4 +1,6 @@
-"""ICP family: point-to-point and point-to-plane for rigid, similarity, axis-scaled and affine models, the fused
+"""The ICP family: point-to-point and point-to-plane ICP for every model, its engine pieces, and the Fast ICP baseline.
+
+Point-to-point and point-to-plane for rigid, similarity, axis-scaled and affine models, the fused
 objective's dense loop, and the "Fast ICP" baseline of the paper's Table 1 (method.md section 1).
 
 All iterations run in a normalised frame (target centroid at the origin, unit RMS radius) so that rotation, scale and

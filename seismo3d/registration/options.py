@@ -1,5 +1,8 @@
-"""ICPOptions: the correspondence schedule, stopping rule and robust kernel shared by :func:`~seismo3d.registration.icp`
-and :func:`~seismo3d.registration.fused_icp`."""
+"""ICPOptions: the distance schedule, stopping rule and robust kernel of icp and fused_icp.
+
+Keyword arguments of :func:`~seismo3d.registration.icp` and :func:`~seismo3d.registration.fused_icp` with the same
+names replace its fields (:mod:`seismo3d._options`).
+"""
 
 from __future__ import annotations
 

@@ -248,6 +248,11 @@ class SeismicCube:
                 f"{self.format_name}, {state}>")
 
     @property
+    def is_open(self) -> bool:
+        """Whether the file is open (data can be read)."""
+        return self._f is not None
+
+    @property
     def segyfile(self):
         """The underlying read-only ``segyio.SegyFile`` (for header fields not exposed here)."""
         return self._handle()
@@ -272,7 +277,9 @@ class SeismicCube:
             return grid.reshape(self.n_traces, *rest)
         return np.ascontiguousarray(np.swapaxes(grid, 0, 1)).reshape(self.n_traces, *rest)
 
-    def _require_geometry(self, what: str) -> None:
+    def require_geometry(self, what: str) -> None:
+        """Raise :class:`SegyGeometryError` naming ``what`` (e.g. ``'inline()'``) when the cube was opened as a trace
+        list (``ignore_geometry=True``)."""
         if self.inlines is None:
             raise SegyGeometryError(
                 f"{what} needs inline / crossline geometry, but {self.path.name} was opened as a trace list "
@@ -311,7 +318,7 @@ class SeismicCube:
         -------
         section : (n_xlines, n_samples) float32 ndarray
         """
-        self._require_geometry("inline()")
+        self.require_geometry("inline()")
         f = self._handle()
         if int(number) not in set(self.inlines.tolist()):
             raise InputError(f"inline {number} is not in {self.path.name}; its inlines are "
@@ -330,7 +337,7 @@ class SeismicCube:
         -------
         section : (n_inlines, n_samples) float32 ndarray
         """
-        self._require_geometry("xline()")
+        self.require_geometry("xline()")
         f = self._handle()
         if int(number) not in set(self.xlines.tolist()):
             raise InputError(f"crossline {number} is not in {self.path.name}; its crosslines are "
@@ -349,7 +356,7 @@ class SeismicCube:
         -------
         slice : (n_inlines, n_xlines) float32 ndarray
         """
-        self._require_geometry("time_slice()")
+        self.require_geometry("time_slice()")
         f = self._handle()
         ns = self.samples.size
         if not isinstance(index, (int, np.integer)) or not 0 <= index < ns:

@@ -97,7 +97,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
     cube : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
         Seismic amplitudes.
     faults : list of Fault or array_like of the cube's shape
-        Linked faults (:func:`~seismo3d.seismic.faults.link_faults`) or thinned faults (> 0 on faults, drawn as one
+        Linked faults (:func:`~seismo3d.seismic.link_faults`) or thinned faults (> 0 on faults, drawn as one
         colour).
     path : str or os.PathLike
         PNG file to write (atomically); its folder must exist.
@@ -261,9 +261,9 @@ def fault_surfaces(faults, throws=None, *, axes=None):
     Parameters
     ----------
     faults : sequence of Fault
-        From :func:`~seismo3d.seismic.faults.link_faults` (3D or 2D).
+        From :func:`~seismo3d.seismic.link_faults` (3D or 2D).
     throws : sequence of FaultThrow, optional
-        From :func:`~seismo3d.seismic.throw.fault_throws`, matched to faults by ``fault_id``; the ``throw`` array is
+        From :func:`~seismo3d.seismic.fault_throw.fault_throws`, matched to faults by ``fault_id``; the ``throw`` array is
         NaN without it.
     axes : sequence of 1D array_like, optional
         Annotation of each axis ((inline numbers, crossline numbers, times or depths) in 3D, (trace labels,

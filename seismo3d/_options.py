@@ -43,7 +43,7 @@ def resolve_options(cls, options, overrides: dict, caller: str):
     if options is None:
         options = cls()
     elif not isinstance(options, cls):
-        raise InputError(f"{caller}(options=...) must be a {cls.__name__}; got {type(options).__name__}")
+        raise InputError(f"{caller}(options=...) must be an instance of {cls.__name__}; got {type(options).__name__}")
     if not overrides:
         return options
     names = [f.name for f in dataclasses.fields(cls)]

@@ -328,21 +328,29 @@ def _correlation_candidate(vols: _Volumes, fit_model: str, thin: bool, opt: Volu
 
 def _polish_either_way(vols: _Volumes, t_index, model: str, opt: VolumeOptions) -> tuple[Polished, str]:
     """The polish with the scales along the moving axes and, for an anisotropic 'axis_scaled' result, along the
-    fixed axes too (the reverse problem polished, then inverted); the one that halves the misfit wins."""
+    fixed axes too: the reverse problem polished from the forward result projected onto its model (the polish only
+    reaches transforms of its own family from there), then inverted. The one that halves the misfit
+    ``1 - correlation`` wins, the correlation taken both ways (at the moving samples with the fixed volume
+    interpolated, and the reverse): one way alone favours the side whose volume is finer."""
     forward = polish(vols.overlap, t_index, vols.frames, model, opt)
     if not (opt.symmetric and model == "axis_scaled"):
         return forward, "moving"
     scales = np.linalg.norm(vols.frames.to_work(forward.transform)[:3, :3], axis=0)
     if abs(np.log(scales[0] / scales[1])) <= np.log1p(opt.anisotropy):
         return forward, "moving"  # laterally isotropic: both models are the same family
+    reverse_frames = vols.frames.swapped()
     coef_m = ndi.spline_filter(vols.moving, order=3, output=np.float32, mode="mirror")
     reverse_overlap = OverlapCorrelation(vols.moving, vols.fixed, coef_m, opt.polish_points, opt.taper)
-    reverse = polish(reverse_overlap, np.linalg.inv(forward.transform), vols.frames.swapped(), model, opt)
+    reverse_score = OverlapCorrelation(vols.moving, vols.fixed, coef_m, opt.score_points, opt.taper)
+    start = reverse_frames.project_index(np.linalg.inv(forward.transform), model)
+    reverse = polish(reverse_overlap, start, reverse_frames, model, opt)
     backward = Polished(np.linalg.inv(reverse.transform), forward.n_evaluations + reverse.n_evaluations,
                         reverse.converged)
-    c_forward = vols.score.correlation(forward.transform)[0]
-    c_backward = vols.score.correlation(backward.transform)[0]
-    if 1.0 - c_backward < 0.5 * (1.0 - c_forward):
+
+    def both_ways(t):
+        return 0.5 * (vols.score.correlation(t)[0] + reverse_score.correlation(np.linalg.inv(t))[0])
+
+    if 1.0 - both_ways(backward.transform) < 0.5 * (1.0 - both_ways(forward.transform)):
         return backward, "fixed"
     return forward, "moving"
 

@@ -42,7 +42,8 @@ def _assert_recovered(reg, truth, moving_shape):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("scales, angle", [((0.5, 1.0, 2.0), 15.0), ((2.0, 0.7, 1.3), 30.0), ((1.3, 1.3, 0.6), -30.0)])
+# one case here; benchmarks/volumes.py runs eight (scales 0.5-2, rotations up to 30 degrees)
+@pytest.mark.parametrize("scales, angle", [((0.5, 1.0, 2.0), 15.0)])
 def test_synthetic_scales_and_map_rotation(big, scales, angle):
     fixed, moving, truth = resampled_pair(big, (64, 64, 80), scales=scales, angle_deg=angle, offset=(3, -2, 1.5))
     reg = register_volumes(fixed, moving, model="axis_scaled")
@@ -96,10 +97,11 @@ def test_unrelated_volumes_raise_registration_error(big):
 
 # The real-cube demand on f3_crop (23 x 18 traces x 75 samples, too small for slice features: the correlation
 # start), scales 0.5-2 and map rotations up to 30 degrees; every case of benchmarks/volumes.py's f3_crop section
-# passes, two are run here. The moving volume spans the whole fixed extent (moving_fraction=1): at the default 0.75 a
-# moving volume with bins twice the fixed ones is 8 x 8 traces, and that pair fails (benchmark).
+# passes, one is run here (and the pair of the next test but one, in both orders). The moving volume spans the whole
+# fixed extent (moving_fraction=1): at the default 0.75 a moving volume with bins twice the fixed ones is 8 x 8
+# traces, and that pair fails (benchmark).
 @pytest.mark.slow
-@pytest.mark.parametrize("scales, angle", [((0.6, 1.8, 0.7), 25.0), ((2.0, 0.5, 0.5), -30.0)])
+@pytest.mark.parametrize("scales, angle", [((2.0, 0.5, 0.5), -30.0)])
 def test_real_f3_crop_without_slice_features(f3_crop, scales, angle):
     cube = f3_crop
     fixed, moving, truth = resampled_pair(cube, cube.shape, scales=scales, angle_deg=angle, offset=(0.3, 1.2, 1.5),

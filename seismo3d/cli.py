@@ -179,9 +179,14 @@ def register(
                    + ("  (DEGENERATE geometry)" if result.degenerate else ""))
         typer.echo(np.array2string(result.transform, precision=6, suppress_small=True))
     if not job.converged:
-        why = ("the geometry does not constrain every degree of freedom (a plane slides in itself); add --features "
-               "with --method fused" if job.kind == "point_clouds" and job.result.degenerate else
-               "it stopped on its iteration limit; check the overlap, or pass a closer --init")
+        if job.kind == "volumes":
+            why = ("the correlation polish stopped on its evaluation limit; check that the cubes overlap and their "
+                   "spacings")
+        elif job.result.degenerate:
+            why = ("the geometry does not constrain every degree of freedom (a plane slides in itself); add "
+                   "--features with --method fused")
+        else:
+            why = "it stopped on its iteration limit; check the overlap, or pass a closer --init"
         typer.echo(f"error: the registration did not converge ({why}); its last estimate was written to {output}",
                    err=True)
         raise typer.Exit(NOT_CONVERGED)

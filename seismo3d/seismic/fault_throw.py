@@ -25,6 +25,7 @@ from scipy import ndimage as ndi
 from scipy.spatial import cKDTree
 
 from .._options import resolve_options
+from .._progress import progress_steps
 from .._validation import as_normals, as_points, as_seismic, check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
 from .attributes import ReflectorOrientation, structure_tensor_orientation
@@ -539,7 +540,7 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
 
 
 def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = None, options: ThrowOptions | None = None,
-                 **overrides) -> list[FaultThrow]:
+                 progress: bool = False, **overrides) -> list[FaultThrow]:
     """Throw along each of several faults of one cube or section (see :func:`fault_throw`).
 
     The reflector orientation is computed once (when not given) and shared by all faults.
@@ -552,6 +553,8 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
         Faults from :func:`seismo3d.seismic.link_faults`.
     orientation, options, **overrides
         As in :func:`fault_throw`.
+    progress : bool
+        Report progress over the faults (:mod:`seismo3d._progress`).
 
     Returns
     -------
@@ -575,7 +578,12 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     if orientation is None:
         orientation = structure_tensor_orientation(arr)
     slopes = _slope_fields(orientation, arr.shape)
-    return [_fault_throw(arr, f, slopes, opt) for f in faults]
+    out = []
+    with progress_steps(len(faults), "throw", unit="fault", enabled=progress) as bar:
+        for f in faults:
+            out.append(_fault_throw(arr, f, slopes, opt))
+            bar.advance()
+    return out
 
 
 def _fault_throw(arr, fault, slopes, opt: ThrowOptions) -> FaultThrow:

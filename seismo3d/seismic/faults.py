@@ -221,7 +221,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", progress=
         Unit of the sample axis (for converting throws, see :attr:`FaultInterpretation.sample_interval`).
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
-        otherwise; the fault likelihood, the longest step, reports its scan too).
+        otherwise; the fault likelihood and the throw, the long steps, report their progress too).
 
     Returns
     -------
@@ -283,7 +283,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", progress=
         faults = link_faults(thin, strike, dip)
         bar.advance()
         bar.start("throw")
-        throws = fault_throws(arr, faults) if faults else []
+        throws = fault_throws(arr, faults, progress=progress) if faults else []
         bar.advance()
     return FaultInterpretation(likelihood=likelihood, strike_deg=strike, dip_deg=dip, thin=thin, faults=faults,
                                throws=list(throws), sample_interval=float(sample_interval), sample_unit=sample_unit)

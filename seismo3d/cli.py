@@ -135,9 +135,11 @@ _REGISTER_FLAGS = {"max_distance": "--max-distance", "init": "--init", "alpha": 
 @app.command()
 @_friendly(_REGISTER_FLAGS)
 def register(
-    source: pathlib.Path = typer.Argument(..., help="SOURCE, moved onto TARGET: a point cloud (.ply, .xyz/.txt/.csv, "
-                                                    ".npy) or the MOVING SEG-Y cube (.sgy/.segy)."),
-    target: pathlib.Path = typer.Argument(..., help="TARGET, kept fixed: a point cloud or the FIXED SEG-Y cube."),
+    source: pathlib.Path = typer.Argument(
+        ..., metavar="SOURCE", help="SOURCE, moved onto TARGET: a point cloud (.ply, .xyz/.txt/.csv, .npy) or the "
+                                    "MOVING SEG-Y cube (.sgy/.segy)."),
+    target: pathlib.Path = typer.Argument(
+        ..., metavar="TARGET", help="TARGET, kept fixed: a point cloud or the FIXED SEG-Y cube."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Where to write the transform JSON."),
     method: Method = typer.Option(Method.point_to_plane, help="Point clouds: point-to-point, point-to-plane or fused "
                                                                "(features + point-to-plane, eq. 16)."),
@@ -203,7 +205,8 @@ class SampleUnit(str, Enum):
             "demo_seed": "--demo-seed"})
 def faults(
     input: Optional[pathlib.Path] = typer.Argument(
-        None, help="SEG-Y cube or 2D line, raw .f32be section or .npy array; omit with --demo.", show_default=False),
+        None, metavar="INPUT", help="SEG-Y cube or 2D line, raw .f32be section or .npy array; omit with --demo.",
+        show_default=False),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing); not the "
                                                                       "input's own folder."),
     demo: bool = typer.Option(False, "--demo", help="Run on a generated 128^3 cube with 3 faults (no input file)."),
@@ -262,8 +265,9 @@ class MatchMethod(str, Enum):
 @app.command()
 @_friendly({"ratio": "--ratio", "threshold": "--threshold", "method": "--method"})
 def match(
-    image1: pathlib.Path = typer.Argument(..., help="First image (PNG, JPEG, TIFF, ...; colour is converted to grey)."),
-    image2: pathlib.Path = typer.Argument(..., help="Second image."),
+    image1: pathlib.Path = typer.Argument(
+        ..., metavar="IMAGE1", help="First image (PNG, JPEG, TIFF, ...; colour is converted to grey)."),
+    image2: pathlib.Path = typer.Argument(..., metavar="IMAGE2", help="Second image."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="CSV of verified matches: x1,y1,x2,y2,score."),
     method: MatchMethod = typer.Option(MatchMethod.hog, help="Features: HOG-pyramid or an OpenCV detector."),
     ratio: float = typer.Option(0.8, help="Lowe's ratio-test threshold."),
@@ -295,7 +299,7 @@ class Polarity(str, Enum):
 @app.command()
 @_friendly({"polarity": "--polarity"})
 def horizon(
-    input: pathlib.Path = typer.Argument(..., help="SEG-Y cube (inline-sorted or crossline-sorted)."),
+    input: pathlib.Path = typer.Argument(..., metavar="INPUT", help="SEG-Y cube (inline-sorted or crossline-sorted)."),
     seed: list[str] = typer.Option(..., "--seed", help="Seed pick IL,XL,T: inline and crossline numbers and the time "
                                                        "(or depth) in the cube's sample unit; repeat for more seeds."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Text file: one 'inline xline time' row per "

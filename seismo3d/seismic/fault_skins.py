@@ -1,0 +1,349 @@
+"""Fault skins: thinned fault samples linked into fault surfaces (curves in 2D), one fault one object.
+
+After Hale (2013): every thinned fault sample (a *cell*, with the normal of its fault plane) looks for its best
+neighbour above and below it down the fault's dip, and left and right along its strike, among the cells near its own
+plane whose normals agree with its own; skins grow over these links from the strongest cells, keeping to one mean
+orientation. The search reaches a few samples along the fault, so a skin bridges small gaps, and two faults that
+cross or meet stay apart because their cells' normals differ. Skins are kept when they hold a cell above the upper threshold and are large enough.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numba as nb
+import numpy as np
+
+from .._validation import check_positive
+from ..errors import InputError
+from . import _kernels
+from .fault_likelihood import fault_normals
+from .fault_surfaces import Fault, check_fault_arrays
+from .fault_voting import fault_frames
+
+__all__ = ["SkinOptions", "fault_skins"]
+
+
+@dataclass(frozen=True)
+class SkinOptions:
+    """Options of :func:`fault_skins`.
+
+    Attributes
+    ----------
+    lateral_reach : int
+        How far a cell looks for neighbours across traces (inline and crossline), traces.
+    vertical_reach : int
+        How far a cell looks for neighbours along the sample axis, samples: the longest gap down the dip a skin
+        bridges is about this minus one.
+    max_plane_distance : float
+        A neighbour lies within this distance of the cell's fault plane and the cell within this distance of the
+        neighbour's, samples.
+    max_angle : float
+        Largest angle between the normals of linked cells, degrees.
+    min_size : int, optional
+        Smallest skin kept, in cells. None: 15 in 2D; in 3D 150, or 15 per inline (crossline) of the narrower
+        lateral axis when that is smaller (a slab of a few inlines).
+    merge_gap : float
+        Two skins whose cells come within this distance (samples) are merged when they are coplanar (see
+        ``merge_angle`` and ``merge_offset``): one fault cut by a younger fault, or broken by a gap longer than the
+        neighbour search, stays one fault (0: no merging).
+    merge_offset : float
+        Largest distance of the two skins' nearest cells from each other's fitted plane (line in 2D), samples.
+    merge_angle : float
+        Largest angle between the normals of the two skins' fitted planes, degrees.
+
+    Raises
+    ------
+    InputError
+        A value out of range.
+    """
+
+    lateral_reach: int = 2
+    vertical_reach: int = 6
+    max_plane_distance: float = 1.0
+    max_angle: float = 30.0
+    min_size: int | None = None
+    merge_gap: float = 8.0
+    merge_offset: float = 4.0
+    merge_angle: float = 10.0
+
+    def __post_init__(self):
+        for name in ("lateral_reach", "vertical_reach"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or int(value) != value or value < 1:
+                raise InputError(f"{name} must be an integer >= 1; got {value!r}")
+        check_positive(self.max_plane_distance, "max_plane_distance")
+        if not 0.0 < float(self.max_angle) < 90.0:
+            raise InputError(f"max_angle must be in (0, 90) degrees; got {self.max_angle!r}")
+        if self.min_size is not None and (isinstance(self.min_size, bool) or int(self.min_size) != self.min_size
+                                          or self.min_size < 1):
+            raise InputError(f"min_size must be an integer >= 1 or None; got {self.min_size!r}")
+        check_positive(self.merge_gap, "merge_gap", allow_zero=True)
+        check_positive(self.merge_offset, "merge_offset")
+        if not 0.0 < float(self.merge_angle) < 90.0:
+            raise InputError(f"merge_angle must be in (0, 90) degrees; got {self.merge_angle!r}")
+
+    def smallest(self, shape: tuple) -> int:
+        """The smallest skin kept in an image of ``shape``, cells."""
+        if self.min_size is not None:
+            return int(self.min_size)
+        if len(shape) == 2:
+            return 15
+        return int(min(150, 15 * min(shape[0], shape[1])))
+
+
+def _offsets(two_d: bool, lateral: int, vertical: int) -> np.ndarray:
+    """(m, 3) int64 neighbour offsets: +-lateral traces (inline, crossline), +-vertical samples, nearest first."""
+    lat = np.arange(-lateral, lateral + 1)
+    grids = np.meshgrid(lat, np.array([0]) if two_d else lat, np.arange(-vertical, vertical + 1), indexing="ij")
+    off = np.stack([g.ravel() for g in grids], -1)
+    off = off[np.any(off != 0, axis=1)]
+    return off[np.argsort((off.astype(np.float64) ** 2).sum(axis=1), kind="stable")].astype(np.int64)
+
+
+@nb.njit(cache=True, parallel=True)
+def _best_neighbours(points, frames, index, offsets, max_plane, cos_angle):
+    # best[c, k]: cell c's nearest neighbour above (k = 0) and below (1) it down the dip, left (2) and right (3) of it
+    # along the strike, or -1. A neighbour lies within max_plane of c's plane and c within max_plane of its plane,
+    # their normals make an angle below acos(cos_angle), and the neighbour is in the direction's 90-degree cone;
+    # distance is measured in c's plane, with the distance off the plane counted double.
+    n = points.shape[0]
+    n0, n1, n2 = index.shape
+    best = -np.ones((n, 4), np.int64)
+    for c in nb.prange(n):
+        px, py, pz = points[c, 0], points[c, 1], points[c, 2]
+        ux, uy, uz = frames[c, 0, 0], frames[c, 0, 1], frames[c, 0, 2]
+        vx, vy, vz = frames[c, 1, 0], frames[c, 1, 1], frames[c, 1, 2]
+        wx, wy, wz = frames[c, 2, 0], frames[c, 2, 1], frames[c, 2, 2]
+        score = np.full(4, np.inf)
+        for o in range(offsets.shape[0]):
+            qx = px + offsets[o, 0]
+            qy = py + offsets[o, 1]
+            qz = pz + offsets[o, 2]
+            if qx < 0 or qy < 0 or qz < 0 or qx >= n0 or qy >= n1 or qz >= n2:
+                continue
+            q = index[qx, qy, qz]
+            if q < 0:
+                continue
+            rx = float(offsets[o, 0])
+            ry = float(offsets[o, 1])
+            rz = float(offsets[o, 2])
+            off_c = rx * ux + ry * uy + rz * uz
+            if abs(off_c) > max_plane:
+                continue
+            if abs(rx * frames[q, 0, 0] + ry * frames[q, 0, 1] + rz * frames[q, 0, 2]) > max_plane:
+                continue
+            if abs(ux * frames[q, 0, 0] + uy * frames[q, 0, 1] + uz * frames[q, 0, 2]) < cos_angle:
+                continue
+            a = rx * vx + ry * vy + rz * vz
+            bs = rx * wx + ry * wy + rz * wz
+            d2 = a * a + bs * bs + 4.0 * off_c * off_c
+            if abs(a) >= abs(bs):
+                k = 0 if a < 0 else 1
+            else:
+                k = 2 if bs < 0 else 3
+            if d2 < score[k]:
+                score[k] = d2
+                best[c, k] = q
+    return best
+
+
+@nb.njit(cache=True)
+def _grow(best, normals, order, cos_mean):
+    # skins grown breadth first over the (undirected) neighbour links from the strongest cell not yet in a skin; a
+    # cell joins when its normal is within acos(cos_mean) of the skin's running mean normal (no drift through cells
+    # of intermediate orientation into another fault)
+    n = best.shape[0]
+    # undirected adjacency from the directed best links
+    deg = np.zeros(n + 1, np.int64)
+    for c in range(n):
+        for k in range(4):
+            q = best[c, k]
+            if q >= 0:
+                deg[c + 1] += 1
+                deg[q + 1] += 1
+    for c in range(n):
+        deg[c + 1] += deg[c]
+    adj = np.empty(deg[n], np.int64)
+    fill = deg[:n].copy()
+    for c in range(n):
+        for k in range(4):
+            q = best[c, k]
+            if q >= 0:
+                adj[fill[c]] = q
+                fill[c] += 1
+                adj[fill[q]] = c
+                fill[q] += 1
+    label = -np.ones(n, np.int64)
+    queue = np.empty(n, np.int64)
+    mean = np.zeros(3)
+    n_lab = 0
+    for seed in order:
+        if label[seed] >= 0:
+            continue
+        label[seed] = n_lab
+        for d in range(3):
+            mean[d] = normals[seed, d]
+        head = 0
+        tail = 1
+        queue[0] = seed
+        while head < tail:
+            i = queue[head]
+            head += 1
+            for e in range(deg[i], deg[i + 1]):
+                j = adj[e]
+                if label[j] >= 0:
+                    continue
+                dot = normals[j, 0] * mean[0] + normals[j, 1] * mean[1] + normals[j, 2] * mean[2]
+                nm = np.sqrt(mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2])
+                if abs(dot) < cos_mean * nm:
+                    continue
+                label[j] = n_lab
+                sgn = 1.0 if dot >= 0 else -1.0
+                for d in range(3):
+                    mean[d] += sgn * normals[j, d]
+                queue[tail] = j
+                tail += 1
+        n_lab += 1
+    return label
+
+
+def _plane_fits(points: np.ndarray, label: np.ndarray, n_labels: int, minimum: int):
+    """Centroid and unit normal (smallest principal axis; in 2D sections, whose crossline coordinate is constant,
+    the normal of the best-fitting line) of every label with at least ``minimum`` points; NaN for the others."""
+    centre = np.full((n_labels, 3), np.nan)
+    normal = np.full((n_labels, 3), np.nan)
+    order = np.argsort(label, kind="stable")
+    bounds = np.searchsorted(label[order], np.arange(n_labels + 1))
+    for k in range(n_labels):
+        members = order[bounds[k]:bounds[k + 1]]
+        if members.size < minimum:
+            continue
+        p = points[members]
+        c = p.mean(axis=0)
+        _, _, vt = np.linalg.svd(p - c, full_matrices=False)
+        centre[k], normal[k] = c, vt[-1] if np.ptp(p[:, 1]) > 0 else np.array([vt[1, 0], 0.0, vt[1, 2]])
+    return centre, normal
+
+
+def _edge_cells(best: np.ndarray, label: np.ndarray, two_d: bool) -> np.ndarray:
+    """Cells on the edge of their skin: a direction (above / below, and left / right in 3D) without a neighbour of
+    the same skin."""
+    links = best[:, :2] if two_d else best
+    same = (links >= 0) & (label[np.maximum(links, 0)] == label[:, None])
+    return ~same.all(axis=1)
+
+
+def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, opt: SkinOptions) -> np.ndarray:
+    """Labels of skins merged when coplanar and close (see :class:`SkinOptions`): the pieces of one fault cut by a
+    younger fault or broken by a long gap. Only the skins' edge cells are compared, where pieces meet."""
+    from scipy import sparse
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    n_labels = int(label.max()) + 1
+    sizes = np.bincount(label, minlength=n_labels)
+    big = (sizes[label] >= 10) & edge  # skins of a few cells are noise, not pieces of a fault
+    if np.count_nonzero(big) == 0:
+        return label
+    centre, normal = _plane_fits(points, label, n_labels, 10)
+    pts, lab = points[big], label[big]
+    pairs = cKDTree(pts).query_pairs(float(opt.merge_gap), output_type="ndarray")
+    pairs = pairs[lab[pairs[:, 0]] != lab[pairs[:, 1]]]
+    if pairs.size == 0:
+        return label
+    a, b = lab[pairs[:, 0]], lab[pairs[:, 1]]
+    na, nb_ = normal[a], normal[b]
+    d = pts[pairs[:, 1]] - pts[pairs[:, 0]]
+    ok = np.abs(np.einsum("ij,ij->i", na, nb_)) >= np.cos(np.radians(opt.merge_angle))
+    ok &= np.abs(np.einsum("ij,ij->i", na, d)) <= opt.merge_offset
+    ok &= np.abs(np.einsum("ij,ij->i", nb_, d)) <= opt.merge_offset
+    if not ok.any():
+        return label
+    graph = sparse.coo_matrix((np.ones(int(ok.sum())), (a[ok], b[ok])), shape=(n_labels, n_labels))
+    _, merged = connected_components(graph, directed=False)
+    return merged[label]
+
+
+def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
+                options: SkinOptions | None = None) -> list[Fault]:
+    """Link thinned fault samples into faults (skins): surfaces in 3D, curves in 2D.
+
+    Cells are the samples of ``thin`` at or above ``lower``. Each cell links to its best neighbour in each of four
+    directions in its own fault plane (above and below down the dip, left and right along the strike; see
+    :class:`SkinOptions` for the search). Skins grow over these links breadth first from the strongest cell not yet
+    in a skin, taking a linked cell only when its normal is within ``max_angle`` of the skin's mean normal, so that a
+    skin does not drift through cells of intermediate orientation into another fault. A skin is kept when
+    one of its cells reaches ``upper`` (hysteresis, as in Canny 1986) and it has at least
+    :meth:`SkinOptions.smallest` cells.
+
+    Parameters
+    ----------
+    thin : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        Thinned fault image (> 0 on fault samples), e.g. thinned votes of :func:`~seismo3d.seismic.vote_faults`.
+    strike_deg, dip_deg : array_like of float, same shape
+        Fault strike and dip of each sample, degrees (conventions of :mod:`~seismo3d.seismic.fault_likelihood`).
+    lower, upper : float
+        Hysteresis thresholds on ``thin``, ``0 < lower <= upper``.
+    options : SkinOptions, optional
+        Neighbour search and the smallest skin.
+
+    Returns
+    -------
+    list of Fault
+        Sorted by decreasing size, ids 1, 2, ...; ``likelihood`` holds the values of ``thin``.
+
+    Raises
+    ------
+    InputError
+        Shapes differ, values are not finite, or the thresholds are out of order.
+
+    References
+    ----------
+    .. [1] D. Hale, "Methods to compute fault images, extract fault surfaces, and estimate fault throws from 3D
+       seismic images", Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1 (fault skins).
+    .. [2] J. Canny, "A computational approach to edge detection", IEEE TPAMI 8(6), 1986,
+       doi:10.1109/TPAMI.1986.4767851.
+    """
+    opt = options or SkinOptions()
+    if not isinstance(opt, SkinOptions):
+        raise InputError(f"fault_skins(options=...) must be a SkinOptions; got {type(opt).__name__}")
+    values, st, dp = check_fault_arrays(thin, strike_deg, dip_deg)
+    lower, upper = float(lower), float(upper)
+    if not 0.0 < lower <= upper:
+        raise InputError(f"fault_skins needs 0 < lower <= upper; got lower={lower!r}, upper={upper!r}")
+    two_d = values.ndim == 2
+    v3 = _kernels.as_3d(values)
+    cells = v3 >= lower
+    points = np.argwhere(cells).astype(np.int64)
+    if points.shape[0] == 0:
+        return []
+    index = np.full(v3.shape, -1, dtype=np.int64)
+    index[cells] = np.arange(points.shape[0])
+    s_cell = _kernels.as_3d(st)[cells]
+    d_cell = _kernels.as_3d(dp)[cells]
+    frames = np.ascontiguousarray(fault_frames(s_cell, d_cell))
+    best = _best_neighbours(points, frames, index, _offsets(two_d, int(opt.lateral_reach), int(opt.vertical_reach)),
+                            float(opt.max_plane_distance), float(np.cos(np.radians(opt.max_angle))))
+    del index
+    vals = v3[cells]
+    order = np.argsort(-vals, kind="stable")
+    label = _grow(best, np.ascontiguousarray(frames[:, 0, :]), order, float(np.cos(np.radians(opt.max_angle))))
+    if opt.merge_gap > 0:
+        label = _merge_coplanar(points.astype(np.float64), label, _edge_cells(best, label, two_d), opt)
+    sizes = np.bincount(label, minlength=points.shape[0])
+    strong = np.zeros(sizes.size, dtype=bool)
+    strong[np.unique(label[vals >= upper])] = True
+    keep = np.nonzero(strong & (sizes >= opt.smallest(values.shape)))[0]
+    keep = keep[np.argsort(-sizes[keep], kind="stable")]
+    by_label = np.argsort(label, kind="stable")
+    starts = np.searchsorted(label[by_label], keep)
+    pts = points if not two_d else points[:, [0, 2]]
+    faults = []
+    for fid, (root, start) in enumerate(zip(keep, starts), start=1):
+        members = by_label[start:start + sizes[root]]
+        faults.append(Fault(id=fid, points=pts[members], likelihood=vals[members].astype(np.float32),
+                            strike_deg=s_cell[members].astype(np.float32), dip_deg=d_cell[members].astype(np.float32),
+                            normals=fault_normals(s_cell[members], d_cell[members], ndim=values.ndim)))
+    return faults
+

@@ -58,6 +58,10 @@ class FaultTracingOptions:
         Floor of the upper threshold at the default sensitivity, on the absolute scale of
         :class:`~seismo3d.seismic.fault_voting.FaultVotes` (about the mean likelihood of the surfaces through a
         sample): data whose votes are all weak yield no faults rather than the strongest of its noise.
+    max_fault_fraction : float
+        The lower threshold leaves at most this fraction of the samples on thinned faults (scaled like the
+        thresholds by the sensitivity): a fault every 8 traces is already dense faulting (12 % on the Costa Rica
+        sections), and denser ridges are the uniform votes of incoherent data, not faults.
     scan : FaultScanOptions
         The fault likelihood scan.
     voting : VotingOptions
@@ -84,6 +88,7 @@ class FaultTracingOptions:
 
     sensitivity: float = 0.5
     min_vote: float = 0.1
+    max_fault_fraction: float = 0.15
     scan: FaultScanOptions = field(default_factory=FaultScanOptions)
     voting: VotingOptions = field(default_factory=VotingOptions)
     skins: SkinOptions = field(default_factory=SkinOptions)
@@ -97,6 +102,8 @@ class FaultTracingOptions:
             raise InputError(f"sensitivity must be in [0, 1]; got {self.sensitivity!r}")
         if not 0.0 <= float(self.min_vote) < 1.0:
             raise InputError(f"min_vote must be in [0, 1); got {self.min_vote!r}")
+        if not 0.0 < float(self.max_fault_fraction) <= 1.0:
+            raise InputError(f"max_fault_fraction must be in (0, 1]; got {self.max_fault_fraction!r}")
         for name, cls in (("scan", FaultScanOptions), ("voting", VotingOptions), ("skins", SkinOptions)):
             if not isinstance(getattr(self, name), cls):
                 raise InputError(f"{name} must be a {cls.__name__}; got {type(getattr(self, name)).__name__}")
@@ -109,12 +116,19 @@ class FaultTracingOptions:
             raise InputError(f"max_saturated must be a fraction in (0, 1]; got {self.max_saturated!r}")
 
     def thresholds(self, thinned_votes: np.ndarray) -> tuple[float, float]:
-        """(lower, upper) thresholds on the thinned votes (see ``sensitivity``)."""
+        """(lower, upper) thresholds on the thinned votes (see ``sensitivity`` and ``max_fault_fraction``)."""
         values = thinned_votes[thinned_votes > 0]
         factor = 2.0 ** (1.0 - 2.0 * float(self.sensitivity))
         otsu = _otsu(values) if values.size else 1.0
         upper = min(0.99, factor * max(otsu, float(self.min_vote)))
-        return upper / 3.0, upper
+        lower = upper / 3.0
+        fraction = min(1.0, float(self.max_fault_fraction) / factor)
+        if values.size > fraction * thinned_votes.size:
+            dense = float(np.quantile(values, 1.0 - fraction * thinned_votes.size / values.size))
+            if dense > lower:
+                lower = min(dense, 0.99)
+                upper = max(upper, min(0.99, 3.0 * lower))
+        return lower, upper
 
 
 def _otsu(values: np.ndarray) -> float:

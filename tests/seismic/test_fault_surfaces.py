@@ -15,7 +15,8 @@ from scipy import ndimage as ndi
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import (
-    Fault, FaultLikelihood, evaluate_faults, fault_labels, fault_likelihood, link_faults, thin_faults, trace_faults,
+    Fault, FaultLikelihood, SkinOptions, evaluate_faults, fault_labels, fault_likelihood, link_faults, thin_faults,
+    trace_faults,
 )
 
 SEEDS = (0, 1, 2, 3, 4)
@@ -210,5 +211,5 @@ def test_real_sections_run(name):
     assert fl.likelihood.shape == section.shape
     # both sections show dozens of faults; the counts are broad sanity bounds, not accuracy claims
     assert 10 <= len(faults) <= 400
-    assert all(f.size >= 15 for f in faults)  # SkinOptions.smallest in 2D
+    assert all(f.size >= SkinOptions().smallest(section.shape) for f in faults)
     assert np.count_nonzero(thin) < 0.15 * thin.size  # thinned votes: 12 % on the densely faulted gx808

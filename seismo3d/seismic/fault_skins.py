@@ -51,7 +51,8 @@ class SkinOptions:
         ``merge_angle`` and ``merge_offset``): one fault cut by a younger fault, or broken by a gap longer than the
         neighbour search, stays one fault (0: no merging).
     merge_offset : float
-        Largest distance of each skin's centre from the other's fitted plane (line in 2D), samples.
+        Largest distance across the fault between the two skins' closest cells, measured along the normals of planes
+        (lines in 2D) fitted to each skin near them, samples.
     merge_angle : float
         Largest angle between the normals of the two skins' fitted planes, degrees.
 
@@ -211,24 +212,6 @@ def _grow(best, normals, order, cos_mean):
     return label
 
 
-def _plane_fits(points: np.ndarray, label: np.ndarray, n_labels: int, minimum: int):
-    """Centroid and unit normal (smallest principal axis; in 2D sections, whose crossline coordinate is constant,
-    the normal of the best-fitting line) of every label with at least ``minimum`` points; NaN for the others."""
-    centre = np.full((n_labels, 3), np.nan)
-    normal = np.full((n_labels, 3), np.nan)
-    order = np.argsort(label, kind="stable")
-    bounds = np.searchsorted(label[order], np.arange(n_labels + 1))
-    for k in range(n_labels):
-        members = order[bounds[k]:bounds[k + 1]]
-        if members.size < minimum:
-            continue
-        p = points[members]
-        c = p.mean(axis=0)
-        _, _, vt = np.linalg.svd(p - c, full_matrices=False)
-        centre[k], normal[k] = c, vt[-1] if np.ptp(p[:, 1]) > 0 else np.array([vt[1, 0], 0.0, vt[1, 2]])
-    return centre, normal
-
-
 def _edge_cells(best: np.ndarray, label: np.ndarray, two_d: bool) -> np.ndarray:
     """Cells on the edge of their skin: a direction (above / below, and left / right in 3D) without a neighbour of
     the same skin."""
@@ -237,37 +220,72 @@ def _edge_cells(best: np.ndarray, label: np.ndarray, two_d: bool) -> np.ndarray:
     return ~same.all(axis=1)
 
 
-def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, minimum: int,
+def _local_normal(points: np.ndarray, two_d: bool) -> np.ndarray:
+    """Unit normal of the plane (line in 2D sections, whose crossline coordinate is constant) fitted to
+    ``points`` (n, 3), n >= 3."""
+    centred = points - points.mean(axis=0)
+    if two_d:
+        _, _, vt = np.linalg.svd(centred[:, [0, 2]], full_matrices=False)
+        return np.array([vt[-1, 0], 0.0, vt[-1, 1]])
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    return vt[-1]
+
+
+def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, minimum: int, two_d: bool,
                     opt: SkinOptions) -> np.ndarray:
-    """Labels of skins merged when coplanar and close (see :class:`SkinOptions`): the pieces of one fault cut by a
-    younger fault or broken by a long gap. Only the edge cells of skins of at least ``minimum`` cells are compared
-    (where pieces meet; smaller skins are noise)."""
+    """Labels of skins merged where they continue each other (see :class:`SkinOptions`): the pieces of one fault cut
+    by a younger fault or broken by a long gap. For two skins of at least ``minimum`` cells whose edge cells come
+    within ``merge_gap``, planes are fitted to each skin's cells near the two closest edge cells; they merge when the
+    planes agree within ``merge_angle`` and the gap between the cells lies within ``merge_offset`` of both planes,
+    i.e. runs along the fault, not across it (two parallel faults side by side stay apart). An edge cell of one skin
+    is compared with every cell of the other, so a piece ending on the side of another (a fork) is found too."""
     from scipy import sparse
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
     n_labels = int(label.max()) + 1
     sizes = np.bincount(label, minlength=n_labels)
-    big = (sizes[label] >= minimum) & edge
-    if np.count_nonzero(big) == 0:
+    big = sizes[label] >= minimum
+    if np.count_nonzero(big & edge) == 0:
         return label
-    centre, normal = _plane_fits(points, label, n_labels, minimum)
-    pts, lab = points[big], label[big]
-    pairs = cKDTree(pts).query_pairs(float(opt.merge_gap), output_type="ndarray")
+    # pairs (an edge cell of one skin, any cell of another) within merge_gap: a piece's end near another's end or side
+    big_pts, big_lab = points[big], label[big]
+    tree = cKDTree(big_pts)
+    edge_idx = np.nonzero(edge[big])[0]
+    hits = tree.query_ball_point(big_pts[edge_idx], float(opt.merge_gap))
+    counts = np.fromiter((len(h) for h in hits), dtype=np.int64, count=len(hits))
+    pairs = np.stack([np.repeat(edge_idx, counts), np.fromiter((k for h in hits for k in h), dtype=np.int64,
+                                                               count=int(counts.sum()))], axis=1)
+    pts, lab = big_pts, big_lab
     pairs = pairs[lab[pairs[:, 0]] != lab[pairs[:, 1]]]
     if pairs.size == 0:
         return label
-    a, b = np.unique(np.sort(np.stack([lab[pairs[:, 0]], lab[pairs[:, 1]]], axis=1), axis=1), axis=0).T
-    na, nb_ = normal[a], normal[b]
-    d = centre[b] - centre[a]
-    # the two fitted planes agree and each passes near the other skin's centre: pieces of one plane, not two
-    # parallel faults side by side
-    ok = np.abs(np.einsum("ij,ij->i", na, nb_)) >= np.cos(np.radians(opt.merge_angle))
-    ok &= np.abs(np.einsum("ij,ij->i", na, d)) <= opt.merge_offset
-    ok &= np.abs(np.einsum("ij,ij->i", nb_, d)) <= opt.merge_offset
-    if not ok.any():
+    # the closest such pair for every pair of skins
+    gap = np.linalg.norm(pts[pairs[:, 0]] - pts[pairs[:, 1]], axis=1)
+    a, b = lab[pairs[:, 0]], lab[pairs[:, 1]]
+    key = np.minimum(a, b) * n_labels + np.maximum(a, b)
+    order = np.lexsort((gap, key))
+    first = np.ones(order.size, dtype=bool)
+    first[1:] = key[order][1:] != key[order][:-1]
+    closest = pairs[order[first]]
+    radius = 2.0 * float(opt.merge_gap)
+    cos_angle = np.cos(np.radians(opt.merge_angle))
+    rows, cols = [], []
+    for i, j in closest:
+        p, q = pts[i], pts[j]
+        near_p = [k for k in tree.query_ball_point(p, radius) if big_lab[k] == lab[i]]
+        near_q = [k for k in tree.query_ball_point(q, radius) if big_lab[k] == lab[j]]
+        if len(near_p) < 3 or len(near_q) < 3:
+            continue
+        na = _local_normal(big_pts[near_p], two_d)
+        nb_ = _local_normal(big_pts[near_q], two_d)
+        d = q - p
+        if abs(na @ nb_) >= cos_angle and abs(na @ d) <= opt.merge_offset and abs(nb_ @ d) <= opt.merge_offset:
+            rows.append(lab[i])
+            cols.append(lab[j])
+    if not rows:
         return label
-    graph = sparse.coo_matrix((np.ones(int(ok.sum())), (a[ok], b[ok])), shape=(n_labels, n_labels))
+    graph = sparse.coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_labels, n_labels))
     _, merged = connected_components(graph, directed=False)
     return merged[label]
 
@@ -338,7 +356,7 @@ def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
     label = _grow(best, np.ascontiguousarray(frames[:, 0, :]), order, float(np.cos(np.radians(opt.max_angle))))
     if opt.merge_gap > 0:
         label = _merge_coplanar(points.astype(np.float64), label, _edge_cells(best, label, two_d),
-                                opt.smallest(values.shape), opt)
+                                opt.smallest(values.shape), two_d, opt)
     sizes = np.bincount(label, minlength=points.shape[0])
     strong = np.zeros(sizes.size, dtype=bool)
     strong[np.unique(label[vals >= upper])] = True

@@ -1,0 +1,176 @@
+"""The 3D seismic scene (seismo3d.viz.seismic): geometry from headers, the grid, and pictures rendered off screen."""
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from seismo3d.errors import InputError, Seismo3dWarning
+from seismo3d.seismic import Fault
+from seismo3d.viz.seismic import cube_geometry, grid_index, place_index_mesh, seismic_grid, show_seismic
+
+SHAPE = (24, 32, 40)
+
+
+def _cube():
+    """Dipping layers: sin of (sample - 0.3 * inline)."""
+    i, _, k = np.meshgrid(*(np.arange(n) for n in SHAPE), indexing="ij")
+    return np.sin(2 * np.pi * (k - 0.3 * i) / 8.0).astype(np.float32)
+
+
+def _fault():
+    """A vertical fault on the plane inline index = 12 + 0.2 * crossline index (one sample per crossline and
+    sample), facing the default (iso) camera."""
+    j, k = np.meshgrid(np.arange(SHAPE[1]), np.arange(SHAPE[2]), indexing="ij")
+    pts = np.column_stack([np.round(12 + 0.2 * j.ravel()), j.ravel(), k.ravel()]).astype(np.int64)
+    n = pts.shape[0]
+    z = np.zeros(n, np.float32)
+    return Fault(id=1, points=pts, likelihood=np.ones(n, np.float32), strike_deg=z, dip_deg=z + 90,
+                 normals=np.tile(np.float32([1, 0, 0]), (n, 1)))
+
+
+def _survey(rotation_deg=30.0):
+    """CDP X/Y of a survey rotated by ``rotation_deg``: 25 m inline bins, 12.5 m crossline bins."""
+    t = np.deg2rad(rotation_deg)
+    ii, jj = np.meshgrid(np.arange(SHAPE[0]), np.arange(SHAPE[1]), indexing="ij")
+    x = 500_000 + 25 * ii * np.cos(t) - 12.5 * jj * np.sin(t)
+    y = 6_000_000 + 25 * ii * np.sin(t) + 12.5 * jj * np.cos(t)
+    return x, y
+
+
+def _pixels(path):
+    from matplotlib.image import imread
+
+    return (imread(path)[..., :3] * 255).round()
+
+
+@pytest.mark.parametrize("rotation", [30.0, -120.0])
+def test_grid_places_every_sample_at_its_cdp_and_time(rotation):
+    cube = _cube()
+    x, y = _survey(rotation)
+    samples = 1000.0 + 4.0 * np.arange(SHAPE[2])
+    geo = cube_geometry(SHAPE, inlines=np.arange(1000, 1024), xlines=np.arange(2000, 2032), samples=samples,
+                        sample_unit="ms", cdp_x=x, cdp_y=y, vertical_exaggeration=3.0)
+    assert geo.map_unit == "m"
+    assert_allclose(np.linalg.norm(geo.axes[:2, :2], axis=1), [25.0, 12.5], rtol=1e-9)
+    assert_allclose(geo.axes[2], [0, 0, -4.0 * 3.0])  # 4 ms = 4 m at 2000 m/s two-way, times 3, downward
+    grid = seismic_grid(cube, geo)
+    pts = np.asarray(grid.points)
+    for ijk in [(0, 0, 0), (5, 17, 3), (23, 31, 39), (11, 0, 20)]:
+        world = geo.to_world(ijk)[0]
+        assert_allclose(world[:2], [x[ijk[:2]], y[ijk[:2]]], atol=1e-6)
+        assert_allclose(world[2], -(samples[ijk[2]] / 4.0) * 12.0, atol=1e-6)
+        n = int(np.argmin(np.linalg.norm(pts - world, axis=1)))
+        assert np.linalg.norm(pts[n] - world) < 1e-6
+        assert grid.point_data["amplitude"][n] == cube[ijk]
+        assert grid.point_data["time_or_depth"][n] == samples[ijk[2]]
+        assert grid.point_data["inline"][n] == 1000 + ijk[0]
+        assert np.ravel_multi_index(grid_index(geo, ijk), SHAPE, order="F") == n
+    assert np.linalg.det(np.asarray(grid.direction_matrix)) > 0  # VTK's volume rendering needs a rotation
+
+
+def test_geometry_without_coordinates_and_automatic_exaggeration():
+    geo = cube_geometry(SHAPE, inlines=np.arange(100, 124), xlines=np.arange(10, 74, 2))
+    assert geo.map_unit == "line"
+    assert_allclose(geo.to_world([(2, 3, 0)]), [[102, 16, 0]])
+    height = -geo.to_world([(0, 0, SHAPE[2] - 1)])[0, 2]
+    assert height == pytest.approx(0.5 * 62, rel=0.02)  # half the longer side (62 crossline units)
+    assert "vertical exaggeration" in geo.describe()
+
+
+def test_irregular_coordinates_fall_back_to_lines_with_a_warning():
+    x, y = _survey()
+    x = x + np.random.default_rng(0).normal(0, 20, x.shape)
+    with pytest.warns(Seismo3dWarning, match="regular grid"):
+        geo = cube_geometry(SHAPE, cdp_x=x, cdp_y=y)
+    assert geo.map_unit == "line"
+
+
+def test_index_meshes_move_with_the_geometry():
+    import pyvista as pv
+
+    geo = cube_geometry(SHAPE, inlines=np.arange(1, 25), samples=np.arange(40) * 2.0, sample_unit="m",
+                        vertical_exaggeration=2.0)
+    mesh = place_index_mesh(pv.PolyData(np.array([[3.0, 4.0, -5.0]])), geo)
+    assert_allclose(mesh.points, [[4.0, 4.0, -5.0 * 2.0]])  # inline number 4; 5 samples (one unit each) times 2
+
+
+def test_bad_inputs_are_refused():
+    with pytest.raises(InputError, match="xlines"):
+        cube_geometry(SHAPE, xlines=np.arange(5))
+    with pytest.raises(InputError, match="vertical_exaggeration"):
+        cube_geometry(SHAPE, vertical_exaggeration=0.0)
+    with pytest.raises(InputError, match="shape"):
+        seismic_grid(np.zeros((2, 2, 2)), cube_geometry(SHAPE))
+
+
+@pytest.fixture(scope="module")
+def scene_dir(tmp_path_factory):
+    return tmp_path_factory.mktemp("scenes")
+
+
+def test_slices_in_the_seismic_colours(scene_dir):
+    shot = scene_dir / "slices.png"
+    show_seismic(_cube(), screenshot=shot, window_size=(320, 240))
+    img = _pixels(shot)
+    assert img.shape == (240, 320, 3)
+    red = (img[..., 0] > 150) & (img[..., 1] < 60) & (img[..., 2] < 60)
+    blue = (img[..., 2] > 150) & (img[..., 0] < 60) & (img[..., 1] < 60)
+    assert red.mean() > 0.02 and blue.mean() > 0.02
+    assert (img.min(axis=-1) < 250).mean() > 0.15  # not blank: the white background covers under 85 %
+
+
+def test_faults_by_id_and_by_throw(scene_dir):
+    from seismo3d.seismic import FaultThrow
+
+    shot = scene_dir / "faults.png"
+    show_seismic(_cube(), faults=[_fault()], slices=(None, None, 30), cmap="gray", screenshot=shot,
+                 window_size=(320, 240))
+    img = _pixels(shot)
+    blue = (img[..., 2] > 80) & (img[..., 2] > img[..., 0] + 50)  # fault 1 in tab10 blue (31, 119, 180), shaded
+    assert blue.mean() > 0.01
+    with pytest.raises(InputError, match="throws"):
+        show_seismic(_cube(), faults=[_fault()], color_faults_by="throw", screenshot=shot)
+    n = _fault().size
+    throw = FaultThrow(fault_id=1, throw=np.full(n, 5.0, np.float32), registered=np.ones(n, bool),
+                       correlation=np.ones(n, np.float32), median_throw=5.0, fitness=1.0, inlier_rmse=0.0,
+                       n_points_used=n)
+    show_seismic(_cube(), faults=[_fault()], throws=[throw], color_faults_by="throw", slices=(None, None, 30),
+                 cmap="gray", screenshot=shot, window_size=(320, 240))
+    img = _pixels(shot)
+    brown = (img[..., 0] > img[..., 2] + 60) & (img[..., 1] > img[..., 2] + 10)  # PuOr_r at +5 samples: orange
+    assert brown.mean() > 0.01
+
+
+def test_horizons_coloured_by_time(scene_dir):
+    shot = scene_dir / "horizons.png"
+    ii, jj = np.meshgrid(np.arange(SHAPE[0]), np.arange(SHAPE[1]), indexing="ij")
+    shallow = 8.0 + 0.1 * ii
+    deep = 30.0 + 0.05 * jj
+    deep[:6, :6] = np.nan
+    geo = cube_geometry(SHAPE, samples=4.0 * np.arange(SHAPE[2]), sample_unit="ms")
+    show_seismic(_cube(), geo, slices=(None, None, None), horizons=[shallow, deep], screenshot=shot,
+                 window_size=(320, 240))
+    img = _pixels(shot)
+    purple = (img[..., 2] > img[..., 1] + 30) & (img[..., 0] > img[..., 1])  # viridis low end (68, 1, 84)
+    yellow = (img[..., 0] > 150) & (img[..., 1] > 150) & (img[..., 2] < 90)  # viridis high end (253, 231, 37)
+    assert purple.mean() > 0.01 and yellow.mean() > 0.01
+
+
+def test_fault_likelihood_volume(scene_dir):
+    shot = scene_dir / "likelihood.png"
+    ii, jj, _ = np.meshgrid(*(np.arange(n) for n in SHAPE), indexing="ij")
+    likelihood = np.exp(-((ii - 0.7 * jj) ** 2) / 4.0)
+    show_seismic(_cube(), slices=(None, None, None), likelihood=likelihood, likelihood_threshold=0.5,
+                 screenshot=shot, window_size=(320, 240))
+    img = _pixels(shot)
+    dark = img.max(axis=-1) < 120  # magma_r at likelihood 1: near black
+    assert dark.mean() > 0.005
+    with pytest.raises(InputError, match="likelihood_threshold"):
+        show_seismic(_cube(), likelihood=likelihood, likelihood_threshold=1.5, screenshot=shot)
+
+
+def test_slices_out_of_range_and_missing_folder(tmp_path):
+    with pytest.raises(InputError, match="outside"):
+        show_seismic(_cube(), slices=(99, 0, 0), screenshot=tmp_path / "x.png")
+    with pytest.raises(InputError, match="does not exist"):
+        show_seismic(_cube(), screenshot=tmp_path / "missing" / "x.png")

@@ -336,5 +336,41 @@ def horizon(
         typer.echo(f"surface -> {job.surface}")
 
 
+class FaultColour(str, Enum):
+    fault_id = "fault_id"
+    throw = "throw"
+
+
+@app.command()
+@_friendly({"vertical_exaggeration": "--vertical-exaggeration", "seismic": "--seismic", "color_by": "--color-by",
+            "window_size": "--size"})
+def render(
+    input: pathlib.Path = typer.Argument(
+        ..., metavar="INPUT", help="A SEG-Y cube, the output folder of 'seismo3d faults', or a horizon file "
+                                   "('inline xline time' rows)."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="The PNG to write."),
+    seismic: Optional[pathlib.Path] = typer.Option(None, help="SEG-Y cube drawn under faults or a horizon (a faults "
+                                                              "folder from --demo uses its demo_seismic.sgy)."),
+    color_by: FaultColour = typer.Option(FaultColour.fault_id, help="Colour of the fault surfaces."),
+    vertical_exaggeration: Optional[float] = typer.Option(
+        None, help="Vertical exaggeration; default: the cube's height is half its longer side."),
+    size: str = typer.Option("1200x900", help="Picture size WIDTHxHEIGHT in pixels."),
+) -> None:
+    """Render INPUT off screen (no display needed) into a PNG: a cube's inline, crossline and time slices, faults
+    coloured by id or throw with the fault likelihood as a semi-transparent volume, or a horizon coloured by time."""
+    from .errors import InputError
+    from .jobs.render import run_render_job
+
+    try:
+        width, height = (int(v) for v in size.lower().split("x"))
+    except ValueError:
+        raise InputError(f"--size {size!r} must be WIDTHxHEIGHT, e.g. 1200x900") from None
+    with _one_line_warnings():
+        job = run_render_job(input, output, seismic=seismic, color_by=color_by.value,
+                             vertical_exaggeration=vertical_exaggeration, window_size=(width, height))
+    what = {"segy": "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon"}[job.kind]
+    typer.echo(f"{what} of {input.name}: {job.caption} -> {job.picture}")
+
+
 if __name__ == "__main__":  # pragma: no cover
     app()

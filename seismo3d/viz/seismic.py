@@ -384,10 +384,10 @@ def _add_horizons(plotter, horizons, geometry):
 def _add_likelihood(plotter, likelihood, geometry, threshold):
     grid = seismic_grid(likelihood, geometry, name="fault likelihood")
     if threshold is None:
-        threshold = float(np.nanpercentile(grid.point_data["fault likelihood"], 90))
+        threshold = float(np.nanpercentile(grid.point_data["fault likelihood"], 95))
     if not 0 <= threshold < 1:
         raise InputError(f"likelihood_threshold must be in [0, 1); got {threshold!r}")
-    opacity = np.linspace(0.0, 0.9, 64)  # over [threshold, 1]; transparent below (clamped colour range)
+    opacity = np.linspace(0.0, 0.5, 64)  # over [threshold, 1]; transparent below (clamped colour range)
     voxel = float(np.linalg.norm(geometry.axes, axis=1).mean())
     volume = plotter.add_volume(grid, scalars="fault likelihood", cmap="magma_r", clim=(threshold, 1.0),
                                 opacity=opacity, opacity_unit_distance=voxel, shade=False,
@@ -396,6 +396,17 @@ def _add_likelihood(plotter, likelihood, geometry, threshold):
     volume.prop.interpolation_type = "linear"  # trilinear samples: no voxel bricks
     volume.mapper.SetAutoAdjustSampleDistances(False)  # a fixed step of half a voxel: no moire stripes
     volume.mapper.SetSampleDistance(0.5 * float(np.linalg.norm(geometry.axes, axis=1).min()))
+
+
+def _outline(geometry: CubeGeometry):
+    """The cube's 12 edges in the scene."""
+    import pyvista as pv
+
+    corners = np.array([[i, j, k] for i in (0, 1) for j in (0, 1) for k in (0, 1)], dtype=np.float64)
+    corners *= np.maximum(np.array(geometry.shape) - 1, 0)
+    edges = [(a, b) for a in range(8) for b in range(a + 1, 8) if np.count_nonzero(corners[a] != corners[b]) == 1]
+    lines = np.array([[2, a, b] for a, b in edges], dtype=np.int64).ravel()
+    return pv.PolyData(geometry.to_world(corners), lines=lines)
 
 
 def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, faults=None, throws=None,
@@ -407,8 +418,9 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
 
     Parameters
     ----------
-    cube : (n_inlines, n_xlines, n_samples) array_like
-        Amplitudes, shown with ``cmap`` between ``-c`` and ``c``, ``c`` the ``clip_percentile`` of ``|amplitude|``.
+    cube : (n_inlines, n_xlines, n_samples) array_like or None
+        Amplitudes, shown with ``cmap`` between ``-c`` and ``c``, ``c`` the ``clip_percentile`` of ``|amplitude|``;
+        None for a scene of faults or horizons alone (then ``geometry`` is needed).
     geometry : CubeGeometry, optional
         Default: ``cube_geometry(cube.shape)`` (line indices, sample indices, automatic vertical exaggeration).
     slices : (int or None, int or None, int or None), optional
@@ -423,9 +435,9 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
         Horizons in fractional samples (NaN where empty), coloured by time or depth on one shared scale.
     likelihood : (n_inlines, n_xlines, n_samples) array_like, optional
         Fault likelihood in [0, 1], drawn as a semi-transparent volume (transparent below
-        ``likelihood_threshold``, rising to 90 % opaque at 1).
+        ``likelihood_threshold``, rising to 50 % opaque at 1).
     likelihood_threshold : float, optional
-        Default: the likelihood's 90th percentile (the likelihood is high wherever reflectors are weak, so a fixed
+        Default: the likelihood's 95th percentile (the likelihood is high wherever reflectors are weak, so a fixed
         value would fill the cube of some surveys with haze).
     cmap : str, optional
         Matplotlib colour map of the amplitudes (a diverging one: 'seismic', 'RdBu_r', 'gray').
@@ -454,22 +466,25 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
     from .._validation import check_choice
 
     check_choice(color_faults_by, "color_faults_by", {"fault_id", "throw"})
-    data = np.asarray(cube, dtype=np.float32)
-    if data.ndim != 3:
+    if cube is None and geometry is None:
+        raise InputError("pass a cube, or a geometry to place faults and horizons without one")
+    data = None if cube is None else np.asarray(cube, dtype=np.float32)
+    if data is not None and data.ndim != 3:
         raise InputError(f"cube must be (n_inlines, n_xlines, n_samples); got shape {data.shape}")
     geometry = geometry or cube_geometry(data.shape)
-    grid = seismic_grid(data, geometry)
-    clip = symmetric_clip(data, clip_percentile)
     plotter = new_plotter(off_screen=screenshot is not None, window_size=window_size)
     plotter.set_background("white")
-    _add_slices(plotter, grid, geometry, _slice_indices(slices, data.shape), cmap=cmap, clim=(-clip, clip))
+    if data is not None:
+        grid = seismic_grid(data, geometry)
+        clip = symmetric_clip(data, clip_percentile)
+        _add_slices(plotter, grid, geometry, _slice_indices(slices, data.shape), cmap=cmap, clim=(-clip, clip))
     if faults is not None:
         _add_faults(plotter, faults, throws, geometry, color_faults_by)
     if horizons is not None and len(horizons):
         _add_horizons(plotter, horizons, geometry)
     if likelihood is not None:
         _add_likelihood(plotter, likelihood, geometry, likelihood_threshold)
-    plotter.add_mesh(grid.outline(), color="black")
+    plotter.add_mesh(_outline(geometry), color="black")
     plotter.add_text(title or geometry.describe(), font_size=9, color="black")
     plotter.show_axes()
     plotter.camera_position = camera

@@ -1,0 +1,201 @@
+"""The ``seismo3d render`` command: a picture of a SEG-Y cube, a ``faults`` output folder or a horizon file.
+
+:func:`run_render_job` finds out what the input is, reads it, builds one pyvista scene
+(:func:`seismo3d.viz.show_seismic`) and renders it off screen into a PNG.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .._validation import check_choice
+from ..errors import DataNotFoundError, InputError
+from ..seismic import open_segy
+
+__all__ = ["RenderJob", "run_render_job"]
+
+_SEGY = {".sgy", ".segy"}
+_TEXT = {".txt", ".dat", ".csv", ".xyz"}
+
+
+@dataclass(frozen=True)
+class RenderJob:
+    """What :func:`run_render_job` drew.
+
+    Attributes
+    ----------
+    kind : {'segy', 'faults', 'horizon'}
+        What the input was.
+    picture : pathlib.Path
+        The PNG written.
+    caption : str
+        The scene's caption (lines, samples, vertical exaggeration).
+    n_faults : int
+        Fault surfaces drawn (0 without).
+    """
+
+    kind: str
+    picture: Path
+    caption: str
+    n_faults: int = 0
+
+
+def _kind(path: Path) -> str:
+    if not path.exists():
+        raise DataNotFoundError(f"{path} does not exist; pass a SEG-Y cube, a 'seismo3d faults' output folder or a "
+                                "horizon text file")
+    if path.is_dir():
+        if (path / "faults.vtp").is_file():
+            return "faults"
+        raise InputError(f"{path} is a folder without faults.vtp; pass the output folder of 'seismo3d faults' (or a "
+                         "file)")
+    suffix = path.suffix.lower()
+    if suffix in _SEGY:
+        return "segy"
+    if suffix in _TEXT:
+        return "horizon"
+    raise InputError(f"{path.name}: cannot tell what to draw from the extension {suffix!r}; pass a SEG-Y cube "
+                     "(.sgy/.segy), a 'seismo3d faults' output folder or a horizon file (.txt: inline xline time rows)")
+
+
+def _read_segy(path: Path, vertical_exaggeration):
+    from ..viz.seismic import geometry_of_segy
+
+    with open_segy(path) as segy:
+        if segy.inlines is None:
+            raise InputError(f"{path.name} has no inline / crossline geometry; render needs a sorted cube")
+        return segy.read(), geometry_of_segy(segy, vertical_exaggeration=vertical_exaggeration)
+
+
+def _slices_for(shape):
+    """The middle planes; a single line (one inline or one crossline) is shown as that one plane."""
+    if shape[0] == 1:
+        return (0, None, None), "yz"
+    if shape[1] == 1:
+        return (None, 0, None), "xz"
+    return None, "iso"
+
+
+def _horizon_grid(path: Path, geometry):
+    """(n_inlines, n_xlines) fractional sample indices of an "inline xline time" text file on ``geometry``'s grid
+    (or on the grid of its own lines when ``geometry`` is None), and the geometry."""
+    from ..viz.seismic import cube_geometry
+
+    try:
+        rows = np.loadtxt(path, ndmin=2, comments="#", delimiter="," if path.suffix.lower() == ".csv" else None)
+    except ValueError as exc:
+        raise InputError(f"{path.name} is not a table of numbers ({exc}); a horizon file has 'inline xline time' "
+                         "rows") from None
+    if rows.shape[1] < 3 or rows.shape[0] < 4:
+        raise InputError(f"{path.name} has {rows.shape[0]} rows of {rows.shape[1]} columns; a horizon file has "
+                         "'inline xline time' rows (at least 4)")
+    il, xl, t = rows[:, 0], rows[:, 1], rows[:, 2]
+    if geometry is None:
+        samples = np.arange(np.floor(t.min()), np.ceil(t.max()) + 1.0)
+        geometry = cube_geometry((np.unique(il).size, np.unique(xl).size, samples.size), inlines=np.unique(il),
+                                 xlines=np.unique(xl), samples=samples, sample_unit="ms")
+    i = np.searchsorted(geometry.inlines, il)
+    j = np.searchsorted(geometry.xlines, xl)
+    ok = (i < geometry.inlines.size) & (j < geometry.xlines.size)
+    ok[ok] &= (geometry.inlines[i[ok]] == il[ok]) & (geometry.xlines[j[ok]] == xl[ok])
+    if not ok.any():
+        raise InputError(f"no row of {path.name} falls on the lines of the cube given with --seismic; pass the cube "
+                         "the horizon was tracked in")
+    times = np.full(geometry.shape[:2], np.nan)
+    times[i[ok], j[ok]] = np.interp(t[ok], geometry.samples, np.arange(geometry.samples.size))
+    return times, geometry
+
+
+def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", vertical_exaggeration=None,
+                   window_size=(1200, 900)) -> RenderJob:
+    """Render INPUT off screen into a PNG: the ``seismo3d render`` command.
+
+    Inputs
+    ------
+    * a SEG-Y cube: its middle inline, crossline and time slice (a single line: that section), placed by its CDP X/Y
+      when the headers have them (see :func:`seismo3d.viz.cube_geometry`);
+    * the output folder of ``seismo3d faults``: the fault surfaces (``faults.vtp``) with the fault likelihood as a
+      semi-transparent volume, over the slices of ``seismic`` (default: ``demo_seismic.sgy`` in the folder, written
+      by ``--demo``), placed by the geometry of ``fault_likelihood.sgy``;
+    * a horizon text file ("inline xline time" rows, as ``seismo3d horizon`` writes): the horizon coloured by time,
+      over the slices of ``seismic`` when given.
+
+    Parameters
+    ----------
+    input_path : str or os.PathLike
+    output : str or os.PathLike
+        The PNG to write (atomically; its folder must exist).
+    seismic : str or os.PathLike, optional
+        A SEG-Y cube to draw under faults or a horizon.
+    color_by : {'fault_id', 'throw'}, optional
+        Colour of the fault surfaces.
+    vertical_exaggeration : float, optional
+        Default: the cube's height becomes half its longer side.
+    window_size : (int, int), optional
+        Pixels.
+
+    Returns
+    -------
+    RenderJob
+
+    Raises
+    ------
+    DataNotFoundError
+        The input (or ``seismic``) does not exist.
+    InputError
+        An input of unknown kind, a folder without ``faults.vtp``, a horizon file that is not a table, a PNG folder
+        that does not exist.
+    SegyFormatError, SegyGeometryError
+        As :func:`seismo3d.seismic.open_segy`.
+    """
+    import pyvista as pv
+
+    from ..viz.seismic import cube_geometry, show_seismic
+
+    check_choice(color_by, "color_by", {"fault_id", "throw"})
+    path, output = Path(input_path), Path(output)
+    if output.suffix.lower() != ".png":
+        raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
+    kind = _kind(path)
+    if seismic is not None and not Path(seismic).is_file():
+        raise DataNotFoundError(f"seismic={seismic} does not exist; pass the SEG-Y cube to draw under the input")
+    cube, geometry, extra = None, None, {}
+    n_faults = 0
+    if kind == "segy":
+        cube, geometry = _read_segy(path, vertical_exaggeration)
+    elif kind == "faults":
+        under = Path(seismic) if seismic is not None else path / "demo_seismic.sgy"
+        if under.is_file():
+            cube, geometry = _read_segy(under, vertical_exaggeration)
+        likelihood_file = path / "fault_likelihood.sgy"
+        if likelihood_file.is_file():
+            likelihood, like_geometry = _read_segy(likelihood_file, vertical_exaggeration)
+            geometry = geometry or like_geometry
+        elif (path / "fault_likelihood.npy").is_file():
+            likelihood = np.load(path / "fault_likelihood.npy")
+            likelihood = likelihood[:, None, :] if likelihood.ndim == 2 else likelihood
+            geometry = geometry or cube_geometry(likelihood.shape, vertical_exaggeration=vertical_exaggeration)
+        else:
+            raise InputError(f"{path} has faults.vtp but no fault_likelihood.sgy or .npy; pass the complete output "
+                             "folder of 'seismo3d faults'")
+        if likelihood.shape != geometry.shape:
+            raise InputError(f"the fault likelihood in {path} has shape {likelihood.shape} but the seismic "
+                             f"{geometry.shape}; pass the cube the faults were traced in")
+        surfaces = pv.read(path / "faults.vtp")
+        n_faults = int(np.unique(surfaces.point_data["fault_id"]).size) if surfaces.n_points else 0
+        extra = dict(faults=surfaces, likelihood=likelihood, color_faults_by=color_by)
+    else:
+        if seismic is not None:
+            cube, geometry = _read_segy(Path(seismic), vertical_exaggeration)
+        times, geometry = _horizon_grid(path, geometry)
+        if seismic is None and vertical_exaggeration is not None:
+            geometry = cube_geometry(geometry.shape, inlines=geometry.inlines, xlines=geometry.xlines,
+                                     samples=geometry.samples, sample_unit=geometry.sample_unit,
+                                     vertical_exaggeration=vertical_exaggeration)
+        extra = dict(horizons=[times])
+    slices, camera = _slices_for(geometry.shape)
+    show_seismic(cube, geometry, slices=slices, camera=camera, screenshot=output, window_size=window_size, **extra)
+    return RenderJob(kind=kind, picture=output, caption=geometry.describe(), n_faults=n_faults)

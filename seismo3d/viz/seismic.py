@@ -353,7 +353,7 @@ def _add_faults(plotter, faults, throws, geometry, color_by):
         entries = [[f"fault {i}", tab10((i - 1) % 10)[:3]] for i in ids[:10]]
         if ids.size > 10:
             entries.append([f"... {ids.size} faults, colours cycle", "white"])
-        plotter.add_legend(entries, bcolor="white", face="rectangle", size=(0.16, 0.04 * len(entries)))
+        plotter.add_legend(entries, bcolor="white", face="rectangle", size=(0.2, 0.05 * len(entries)))
         return
     values = np.asarray(mesh.point_data["throw"], dtype=np.float64)
     if not np.isfinite(values).any():
@@ -384,9 +384,13 @@ def _add_horizons(plotter, horizons, geometry):
 def _add_likelihood(plotter, likelihood, geometry, threshold):
     grid = seismic_grid(likelihood, geometry, name="fault likelihood")
     if threshold is None:
-        threshold = float(np.nanpercentile(grid.point_data["fault likelihood"], 95))
+        values = grid.point_data["fault likelihood"]
+        threshold = min(float(np.nanpercentile(values, 95)), 0.99 * float(np.nanmax(values)))
     if not 0 <= threshold < 1:
         raise InputError(f"likelihood_threshold must be in [0, 1); got {threshold!r}")
+    # the data raised to the threshold (transparent anyway): VTK sizes its colour table by the data's range over the
+    # colour range, and would warn (and lose resolution) for a narrow colour range
+    grid.point_data["fault likelihood"] = np.maximum(grid.point_data["fault likelihood"], np.float32(threshold))
     opacity = np.linspace(0.0, 0.5, 64)  # over [threshold, 1]; transparent below (clamped colour range)
     voxel = float(np.linalg.norm(geometry.axes, axis=1).mean())
     volume = plotter.add_volume(grid, scalars="fault likelihood", cmap="magma_r", clim=(threshold, 1.0),

@@ -385,3 +385,21 @@ def test_interrupted_run_keeps_finished_files(section, tmp_path, monkeypatch):
         run_faults_job(src, out, progress=False)
     assert _sha(written["figure"]) == png_before
     assert _no_temp_files(out) == []
+
+
+@pytest.mark.slow
+def test_render_draws_the_demo_output(demo, tmp_path):
+    """`seismo3d render` on the demo's folder: slices of demo_seismic.sgy, the four fault surfaces in their tab10
+    colours and the likelihood volume, in a non-blank PNG."""
+    from matplotlib.image import imread
+
+    from seismo3d.jobs.render import run_render_job
+
+    out, _ = demo
+    job = run_render_job(out, tmp_path / "demo.png", window_size=(480, 360))
+    assert job.kind == "faults" and job.n_faults >= 3
+    img = (imread(tmp_path / "demo.png")[..., :3] * 255).round()
+    assert (img.min(axis=-1) < 250).mean() > 0.3
+    orange = (img[..., 0] > 150) & (img[..., 0] > img[..., 2] + 80) & (img[..., 1] > 60)  # fault 2, tab10 orange
+    green = (img[..., 1] > img[..., 0] + 40) & (img[..., 1] > img[..., 2] + 40)  # fault 3, tab10 green
+    assert orange.mean() > 0.005 and green.mean() > 0.005

@@ -1,0 +1,128 @@
+"""The render job (seismo3d.jobs.render) through `seismo3d render`: SEG-Y cubes with CDP coordinates, faults
+folders and horizon files rendered off screen into non-blank PNGs."""
+
+import numpy as np
+import pytest
+import segyio
+from typer.testing import CliRunner
+
+from seismo3d.cli import app
+from seismo3d.jobs.render import run_render_job
+
+runner = CliRunner()
+SHAPE = (12, 20, 48)
+
+
+def _cube():
+    i, _, k = np.meshgrid(*(np.arange(n) for n in SHAPE), indexing="ij")
+    return np.sin(2 * np.pi * (k - 0.5 * i) / 10.0).astype(np.float32)
+
+
+def _write_segy(path, cube, *, coordinates=True):
+    """A crossline-step-2 cube, inlines 100.., crosslines 500.., 4 ms, with CDP X/Y of a survey rotated 40 deg
+    (25 m x 12.5 m bins, coordinate scalar -100: centimetres)."""
+    spec = segyio.spec()
+    spec.format, spec.sorting = 5, segyio.TraceSortingFormat.INLINE_SORTING
+    spec.ilines = np.arange(100, 100 + cube.shape[0])
+    spec.xlines = np.arange(500, 500 + 2 * cube.shape[1], 2)
+    spec.samples = 4.0 * np.arange(cube.shape[2])
+    t = np.deg2rad(40.0)
+    with segyio.create(str(path), spec) as f:
+        tr = 0
+        for i, il in enumerate(spec.ilines):
+            for j, xl in enumerate(spec.xlines):
+                x = 600_000 + 25 * i * np.cos(t) - 12.5 * j * np.sin(t)
+                y = 5_000_000 + 25 * i * np.sin(t) + 12.5 * j * np.cos(t)
+                head = {segyio.su.iline: int(il), segyio.su.xline: int(xl), segyio.su.dt: 4000}
+                if coordinates:
+                    head.update({segyio.su.cdpx: int(round(x * 100)), segyio.su.cdpy: int(round(y * 100)),
+                                 segyio.su.scalco: -100})
+                f.header[tr] = head
+                f.trace[tr] = cube[i, j]
+                tr += 1
+        f.bin.update({segyio.BinField.Samples: cube.shape[2], segyio.BinField.Interval: 4000})
+    return spec
+
+
+def _not_blank(path, min_fraction=0.1):
+    from matplotlib.image import imread
+
+    img = (imread(path)[..., :3] * 255).round()
+    return (img.min(axis=-1) < 250).mean() > min_fraction, img
+
+
+def test_segy_cube_is_placed_by_its_cdp_coordinates(tmp_path):
+    _write_segy(tmp_path / "cube.sgy", _cube())
+    out = tmp_path / "cube.png"
+    res = runner.invoke(app, ["render", str(tmp_path / "cube.sgy"), "-o", str(out), "--size", "400x300",
+                              "--vertical-exaggeration", "2"])
+    assert res.exit_code == 0, res.output
+    assert "inlines 100-111, crosslines 500-538, time 0-188 ms" in res.stdout
+    ok, img = _not_blank(out)
+    assert ok and img.shape == (300, 400, 3)
+    red = (img[..., 0] > 150) & (img[..., 1] < 60) & (img[..., 2] < 60)
+    blue = (img[..., 2] > 150) & (img[..., 0] < 60) & (img[..., 1] < 60)
+    assert red.mean() > 0.01 and blue.mean() > 0.01
+
+
+def test_geometry_of_the_segy_headers(tmp_path):
+    from seismo3d.seismic import open_segy
+    from seismo3d.viz.seismic import geometry_of_segy
+
+    _write_segy(tmp_path / "cube.sgy", _cube())
+    with open_segy(tmp_path / "cube.sgy") as segy:
+        geo = geometry_of_segy(segy, vertical_exaggeration=1.0)
+    np.testing.assert_allclose(np.linalg.norm(geo.axes[:2], axis=1), [25.0, 12.5], atol=0.01)
+    assert np.degrees(np.arctan2(geo.axes[0, 1], geo.axes[0, 0])) == pytest.approx(40.0, abs=0.05)
+    np.testing.assert_allclose(geo.origin, [600_000, 5_000_000, 0], atol=0.01)
+    assert geo.axes[2, 2] == pytest.approx(-4.0)  # 4 ms at 2000 m/s two-way
+
+
+def test_faults_folder_and_horizon_file(tmp_path):
+    from seismo3d.viz import fault_surfaces, save_polydata
+    from seismo3d.seismic import Fault
+
+    folder = tmp_path / "faults"
+    folder.mkdir()
+    j, k = np.meshgrid(np.arange(SHAPE[1]), np.arange(SHAPE[2]), indexing="ij")
+    pts = np.column_stack([np.round(6 + 0.2 * j.ravel()), j.ravel(), k.ravel()]).astype(np.int64)
+    n = pts.shape[0]
+    fault = Fault(id=2, points=pts, likelihood=np.ones(n, np.float32), strike_deg=np.zeros(n, np.float32),
+                  dip_deg=np.full(n, 90, np.float32), normals=np.tile(np.float32([1, 0, 0]), (n, 1)))
+    save_polydata(fault_surfaces([fault]), folder / "faults.vtp")
+    ii = np.arange(SHAPE[0])[:, None, None] + np.zeros(SHAPE)
+    np.save(folder / "fault_likelihood.npy", np.exp(-((ii - 6) ** 2) / 2.0).astype(np.float32))
+    out = tmp_path / "faults.png"
+    job = run_render_job(folder, out, window_size=(400, 300))
+    assert job.kind == "faults" and job.n_faults == 1
+    ok, img = _not_blank(out, 0.02)
+    orange = (img[..., 0] > 150) & (img[..., 0] > img[..., 2] + 80)  # fault 2 in tab10 orange (255, 127, 14)
+    assert ok and orange.mean() > 0.01
+
+    # a horizon file on the lines of a SEG-Y cube, and alone
+    _write_segy(tmp_path / "cube.sgy", _cube(), coordinates=False)
+    rows = [(100 + i, 500 + 2 * j, 40.0 + 2.0 * i) for i in range(SHAPE[0]) for j in range(SHAPE[1])]
+    np.savetxt(tmp_path / "h.txt", rows, fmt="%g")
+    for seismic in (tmp_path / "cube.sgy", None):
+        out = tmp_path / f"h_{seismic is None}.png"
+        job = run_render_job(tmp_path / "h.txt", out, seismic=seismic, window_size=(400, 300))
+        ok, img = _not_blank(out, 0.02)
+        greenish = img[..., 1] > img[..., 2] + 40  # viridis' upper half (green to yellow); none in seismic colours
+        assert job.kind == "horizon" and ok and greenish.mean() > 0.01
+
+
+@pytest.mark.parametrize("name, args, match", [
+    ("missing", ["nothing.sgy"], "does not exist"),
+    ("extension", ["x.las"], "extension"),
+    ("png", ["cube.sgy", "-o", "x.jpg"], "PNG"),
+    ("size", ["cube.sgy", "--size", "big"], "--size"),
+])
+def test_bad_inputs_are_one_line_errors(tmp_path, name, args, match):
+    _write_segy(tmp_path / "cube.sgy", _cube())
+    (tmp_path / "x.las").write_text("")
+    if "-o" not in args:
+        args = args + ["-o", str(tmp_path / "x.png")]
+    args = [str(tmp_path / a) if a in {"nothing.sgy", "x.las", "cube.sgy"} else a for a in args]
+    res = runner.invoke(app, ["render", *args])
+    assert res.exit_code == 2, res.output
+    assert match in res.stderr and len(res.stderr.strip().splitlines()) == 1

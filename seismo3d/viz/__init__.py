@@ -1,13 +1,28 @@
 """seismo3d.viz: pictures and 3D scenes (the only package that imports matplotlib and pyvista, inside its functions).
 
+- :func:`show_seismic`: one pyvista scene of a seismic cube (inline, crossline and time-slice planes in a seismic
+  colour map) with faults, horizons and the fault likelihood, placed by a :class:`CubeGeometry`
+  (:func:`cube_geometry`, :func:`geometry_of_segy`: real line numbers or CDP X/Y, time or depth downward, vertical
+  exaggeration); :func:`seismic_grid` gives the cube as a pyvista grid. Off screen into a PNG with ``screenshot=``.
 - :func:`plot_fault_slices`: PNG of seismic slices with the faults drawn over them (matplotlib).
 - :func:`fault_surfaces`: fault surfaces (3D) or curves (2D) as one pyvista PolyData; :func:`save_polydata` writes it.
-- :func:`horizon_surface`: a tracked horizon as a pyvista surface (holes where it is empty).
-- :func:`show_faults`: a pyvista scene of the cube's slices and its fault surfaces (notebooks; off screen with
-  ``screenshot=``).
+- :func:`horizon_surface`: a tracked horizon as a pyvista surface (holes where it is empty);
+  :func:`plot_horizon_section`: horizon picks over a section (matplotlib).
+- :func:`show_point_clouds`: point clouds before / after a registration; :func:`plot_matches`: image matches.
+- :func:`show_faults`: a quick scene of a cube's middle slices and its fault surfaces in index space.
+- :mod:`seismo3d.viz.plotting`: how scenes are shown (window, Jupyter with trame or a static picture, off-screen PNG
+  through EGL; what a slim image needs).
 """
 
 from .faults import fault_surfaces, plot_fault_slices, save_polydata, show_faults
-from .horizons import horizon_surface
+from .clouds import plot_matches, show_point_clouds
+from .horizons import horizon_surface, plot_horizon_section
+from .plotting import finish_scene, jupyter_backend, new_plotter, symmetric_clip
+from .seismic import (
+    CubeGeometry, cube_geometry, geometry_of_segy, grid_index, place_index_mesh, seismic_grid, show_seismic,
+)
 
-__all__ = ["plot_fault_slices", "fault_surfaces", "horizon_surface", "save_polydata", "show_faults"]
+__all__ = ["CubeGeometry", "cube_geometry", "geometry_of_segy", "grid_index", "place_index_mesh", "seismic_grid",
+           "show_seismic", "plot_fault_slices", "fault_surfaces", "horizon_surface", "save_polydata", "show_faults",
+           "finish_scene", "jupyter_backend", "new_plotter", "symmetric_clip", "plot_horizon_section",
+           "plot_matches", "show_point_clouds"]

@@ -6,7 +6,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["horizon_surface"]
+__all__ = ["horizon_surface", "plot_horizon_section"]
 
 
 def horizon_surface(horizon, *, inlines=None, xlines=None, samples=None):
@@ -72,3 +72,64 @@ def horizon_surface(horizon, *, inlines=None, xlines=None, samples=None):
             raise InputError(f"samples must be the 1D sample axis; got shape {s.shape}")
         mesh.point_data["time_or_depth"] = np.interp(times[have], np.arange(s.size), s).astype(np.float32)
     return mesh
+
+
+def plot_horizon_section(section, picks, *, samples=None, traces=None, clip_percentile=99.0, title=None, ax=None):
+    """A seismic section with horizon picks drawn over it, one colour per entry of ``picks``.
+
+    Parameters
+    ----------
+    section : (n_traces, n_samples) array_like
+        Amplitudes (one inline or crossline of a cube), shown in grey with symmetric limits at the
+        ``clip_percentile`` of ``|amplitude|``.
+    picks : dict of str to (n_traces,) array_like of float
+        Label -> the horizon's fractional sample index on each trace (NaN where absent), e.g.
+        ``{"people": ..., "tracked": ...}``.
+    samples : (n_samples,) array_like, optional
+        Vertical axis values (ms or m); default sample indices.
+    traces : (n_traces,) array_like, optional
+        Horizontal axis values (trace or line numbers); default indices.
+    clip_percentile : float, optional
+    title : str, optional
+    ax : matplotlib.axes.Axes, optional
+        Where to draw; default a new figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    InputError
+        A section that is not 2D, or picks of another length than its traces.
+    """
+    from matplotlib.figure import Figure
+
+    from .plotting import symmetric_clip
+
+    data = np.asarray(section, dtype=np.float32)
+    if data.ndim != 2:
+        raise InputError(f"section must be (n_traces, n_samples); got shape {data.shape}")
+    x = np.arange(data.shape[0], dtype=np.float64) if traces is None else np.asarray(traces, dtype=np.float64)
+    s = np.arange(data.shape[1], dtype=np.float64) if samples is None else np.asarray(samples, dtype=np.float64)
+    if x.shape != (data.shape[0],) or s.shape != (data.shape[1],):
+        raise InputError("traces and samples must label the section's two axes")
+    if ax is None:
+        fig = Figure(figsize=(10, 5), layout="constrained")
+        ax = fig.subplots()
+    else:
+        fig = ax.figure
+    clip = symmetric_clip(data, clip_percentile)
+    ax.imshow(data.T, cmap="gray", vmin=-clip, vmax=clip, aspect="auto", interpolation="bilinear",
+              extent=(x[0], x[-1], s[-1], s[0]))
+    for n, (label, times) in enumerate(picks.items()):
+        t = np.asarray(times, dtype=np.float64)
+        if t.shape != (data.shape[0],):
+            raise InputError(f"picks[{label!r}] has shape {t.shape}; it needs one value per trace ({data.shape[0]})")
+        ax.plot(x, np.interp(t, np.arange(s.size), s), lw=1.2, label=label, color=f"C{n}")
+    ax.set_xlabel("trace")
+    ax.set_ylabel("sample" if samples is None else "time or depth")
+    ax.legend(loc="lower right")
+    if title:
+        ax.set_title(title)
+    return fig

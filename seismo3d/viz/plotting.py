@@ -40,7 +40,7 @@ def jupyter_backend() -> str:
 
 
 def new_plotter(*, off_screen: bool, window_size=(1024, 768)):
-    """A pyvista Plotter, off screen through EGL when there is no display.
+    """A pyvista Plotter; through EGL when there is no display (off screen, or a Jupyter picture).
 
     Parameters
     ----------
@@ -63,7 +63,7 @@ def new_plotter(*, off_screen: bool, window_size=(1024, 768)):
     size = [int(v) for v in np.ravel(window_size)]
     if len(size) != 2 or min(size) < 16:
         raise InputError(f"window_size must be (width, height) in pixels, each >= 16; got {window_size!r}")
-    if off_screen and not os.environ.get("DISPLAY") and not os.environ.get(_WINDOW_ENV):
+    if not os.environ.get("DISPLAY") and not os.environ.get(_WINDOW_ENV):
         os.environ[_WINDOW_ENV] = "vtkEGLRenderWindow"  # no X server to try first (see the module's docstring)
     return pv.Plotter(off_screen=off_screen, window_size=size)
 

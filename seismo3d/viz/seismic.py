@@ -353,7 +353,8 @@ def _add_faults(plotter, faults, throws, geometry, color_by):
         entries = [[f"fault {i}", tab10((i - 1) % 10)[:3]] for i in ids[:10]]
         if ids.size > 10:
             entries.append([f"... {ids.size} faults, colours cycle", "white"])
-        plotter.add_legend(entries, bcolor="white", face="rectangle", size=(0.2, 0.05 * len(entries)))
+        plotter.add_legend(entries, bcolor="white", face="rectangle", loc="upper right",
+                           size=(0.15, min(0.035 * len(entries), 0.4)))
         return
     values = np.asarray(mesh.point_data["throw"], dtype=np.float64)
     if not np.isfinite(values).any():

@@ -355,7 +355,8 @@ def load_bunny() -> BunnyPair:
     Raises
     ------
     DataNotFoundError
-        If the files are not in the data directory (they are derived files: set ``SEISMO3D_DATA_DIR``).
+        If the files are neither in the data directory nor downloadable (offline). Outside the data directory the
+        scans are made again from their origin (:mod:`seismo3d.data.derived`), hash-checked.
 
     References
     ----------

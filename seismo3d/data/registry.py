@@ -5,7 +5,9 @@ and a public origin. :func:`fetch` resolves a name to a local path: first from t
 environment variable ``SEISMO3D_DATA_DIR`` (hash checked once per process), otherwise by downloading the origin with
 pooch into ``SEISMO3D_CACHE_DIR`` (default: the operating system's cache folder). Files marked *derived* were rebuilt
 from their origin (renamed columns, cleaned rows, stacked images, added index files), so their origin would not match
-the hash: they are available only from a data directory.
+the hash: those with a derivation in :mod:`seismo3d.data.derived` (the bunny scans and poses) are made again from
+their downloaded origin and checked against the registry's hash; the others (the Penobscot image stack, the 7-Scenes
+index files) are available only from a data directory.
 
 The table at the bottom of this module is the single source of truth; ``seismo3d/data/README.md`` describes each file.
 
@@ -28,6 +30,7 @@ import types
 from dataclasses import dataclass
 
 from ..errors import DataIntegrityError, DataNotFoundError, InputError
+from .derived import DERIVATIONS
 
 __all__ = ["DataFile", "REGISTRY", "data_dir", "fetch", "file_info", "list_files"]
 
@@ -259,7 +262,8 @@ def fetch(name: str, *, verify: bool = True) -> pathlib.Path:
         If ``name`` is not registered (the message lists close names).
     DataNotFoundError
         If the file is not in the data directory and cannot be downloaded (offline, or a derived file that exists
-        only in the data directory); the message says how to set ``SEISMO3D_DATA_DIR``.
+        only in the data directory); the message says how to set ``SEISMO3D_DATA_DIR``. A derived file with a
+        derivation (:mod:`seismo3d.data.derived`) is made again from its downloaded origin.
     DataIntegrityError
         If the local or downloaded file's hash differs from the registry.
     """
@@ -274,33 +278,59 @@ def fetch(name: str, *, verify: bool = True) -> pathlib.Path:
             return path
     where = f"{DATA_DIR_ENV}={root}" if root is not None else f"{DATA_DIR_ENV} is not set"
     if entry.derived:
-        raise DataNotFoundError(
-            f"{entry.name} is not in the data directory ({where}) and cannot be downloaded: it was derived from "
-            f"{entry.repo} and exists only in the seismo3d data directory; {_not_found_hint()}"
-        )
+        derivation = DERIVATIONS.get(entry.name)
+        if derivation is None:
+            raise DataNotFoundError(
+                f"{entry.name} is not in the data directory ({where}) and cannot be downloaded: it was derived from "
+                f"{entry.repo} and exists only in the seismo3d data directory; {_not_found_hint()}"
+            )
+        return _derive(entry, derivation, where, verify)
+    folder, _, basename = entry.name.rpartition("/")
+    return _download(entry.name, entry.url, entry.sha256 if verify else None, _cache_dir() / folder, basename, where)
+
+
+def _download(name: str, url: str, sha256, folder: pathlib.Path, basename: str, where: str) -> pathlib.Path:
+    """pooch.retrieve with seismo3d's errors: DataNotFoundError offline, DataIntegrityError on a hash mismatch."""
     import pooch
 
-    folder, _, basename = entry.name.rpartition("/")
     try:
-        local = pooch.retrieve(
-            entry.url,
-            known_hash=f"sha256:{entry.sha256}" if verify else None,
-            fname=basename,
-            path=_cache_dir() / folder,
-            progressbar=False,
-        )
+        local = pooch.retrieve(url, known_hash=None if sha256 is None else f"sha256:{sha256}", fname=basename,
+                               path=folder, progressbar=False)
     except (OSError, ValueError) as exc:
         if isinstance(exc, OSError):  # requests' errors (also those that are ValueErrors) and file-system errors
             raise DataNotFoundError(
-                f"{entry.name} is not in the data directory ({where}) and downloading {entry.url} failed ({exc}); "
+                f"{name} is not in the data directory ({where}) and downloading {url} failed ({exc}); "
                 f"{_not_found_hint()}, or connect to the internet"
             ) from exc
         # pooch raises a plain ValueError when the downloaded file's hash differs
         raise DataIntegrityError(
-            f"the download of {entry.name} from {entry.url} does not match the registered SHA-256 {entry.sha256}; "
+            f"the download of {name} from {url} does not match the registered SHA-256 {sha256}; "
             f"the origin changed or the download was corrupted; {_not_found_hint()}"
         ) from exc
     return pathlib.Path(local).resolve()
+
+
+def _derive(entry: DataFile, derivation, where: str, verify: bool) -> pathlib.Path:
+    """Make a derived file again in the cache from its downloaded origin (seismo3d.data.derived), hash-checked."""
+    out = _cache_dir() / entry.name
+    if out.is_file() and (not verify or _sha256(out) == entry.sha256):
+        return out.resolve()
+    origin = None
+    if derivation.origin_path is not None:
+        url = _RAW_URL.format(repo=entry.repo, commit=entry.commit, path=derivation.origin_path)
+        folder, _, basename = derivation.origin_path.rpartition("/")
+        origin = _download(entry.name, url, derivation.origin_sha256 if verify else None,
+                           _cache_dir() / "origins" / entry.repo.replace("/", "+") / folder, basename, where)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    derivation.build(origin, out, entry.name)
+    actual = _sha256(out)
+    if verify and actual != entry.sha256:
+        out.unlink()
+        raise DataIntegrityError(
+            f"{entry.name} made again from its origin has SHA-256 {actual}, not the registered {entry.sha256}; "
+            f"the origin or the derivation changed; {_not_found_hint()}"
+        )
+    return out.resolve()
 
 
 # sha256, source key (see _SOURCES), name relative to the data directory, path in the source ('-' = derived).

@@ -26,7 +26,7 @@ EXPECTED_DERIVED = {
     "seismic/penobscot_sections/penobscot_sections_1075_1092.npz",
 }
 SMALL_FILE = "rgbd/tum_fr1xyz_pair/kinect_params.txt"  # not derived, 29 bytes
-SMALL_DERIVED = "scans/bunny/bun.conf.reference.txt"
+SMALL_DERIVED = "rgbd/7scenes_redkitchen_0000_0495/associations.txt"  # derived, not made again: data directory only
 
 
 @pytest.fixture(scope="module")
@@ -184,7 +184,7 @@ def test_hash_mismatch_in_data_dir(empty_data_dir, shared_dir):
     target.parent.mkdir(parents=True)
     shutil.copyfile(shared_dir / SMALL_DERIVED, target)
     assert fetch(SMALL_DERIVED) == target.resolve()  # verified and cached
-    target.write_text("bmesh bun000.ply 0 0 0 0 0 0 1\n")  # changed size and mtime: verified again
+    target.write_text("0 frame-000000\n")  # changed size and mtime: verified again
     with pytest.raises(DataIntegrityError, match="SHA-256"):
         fetch(SMALL_DERIVED)
     assert fetch(SMALL_DERIVED, verify=False) == target.resolve()
@@ -198,3 +198,43 @@ def test_verification_is_cached(shared_dir, monkeypatch):
     for _ in range(3):
         fetch(SMALL_FILE)
     assert len(calls) == 1
+
+
+@pytest.mark.parametrize("name", ["scans/bunny/bun000_clean.ply", "scans/bunny/bun045_clean.ply"])
+def test_bunny_scan_is_made_again_from_its_origin(empty_data_dir, shared_dir, monkeypatch, tmp_path, name):
+    """Without the data directory's copy, the origin (headerless 'x y z ' rows, then junk rows) is downloaded and
+    cleaned into a file byte-identical to the data directory's (the registry's hash is checked)."""
+    from seismo3d.data.derived import DERIVATIONS
+
+    # the origin's layout, rebuilt from the cleaned file: rows with a trailing blank, then one-number rows
+    rows = (shared_dir / name).read_text().split("end_header\n", 1)[1].splitlines()
+    origin = tmp_path / "origin.ply"
+    origin.write_text("".join(f"{r} \n" for r in rows) + "0 \n" * 50)
+    calls = []
+
+    def fake_retrieve(url, known_hash, fname, path, progressbar):
+        calls.append((url, known_hash))
+        return str(origin)
+
+    monkeypatch.setattr(pooch, "retrieve", fake_retrieve)
+    path = fetch(name)
+    entry, derivation = file_info(name), DERIVATIONS[name]
+    assert calls == [(f"https://raw.githubusercontent.com/{entry.repo}/{entry.commit}/{derivation.origin_path}",
+                      f"sha256:{derivation.origin_sha256}")]
+    assert path == (tmp_path / "cache" / name).resolve()
+    assert path.read_bytes() == (shared_dir / name).read_bytes()
+    assert fetch(name) == path and len(calls) == 1  # the cached copy is used (and checked) next time
+
+
+def test_bunny_poses_need_no_download(empty_data_dir, shared_dir):
+    path = fetch("scans/bunny/bun.conf.reference.txt")  # pooch.retrieve would raise: nothing is downloaded
+    assert path.read_bytes() == (shared_dir / "scans/bunny/bun.conf.reference.txt").read_bytes()
+
+
+def test_derivation_from_another_origin_is_refused(empty_data_dir, monkeypatch, tmp_path):
+    origin = tmp_path / "origin.ply"
+    origin.write_text("0.1 0.2 0.3 \n0 \n")
+    monkeypatch.setattr(pooch, "retrieve", lambda *a, **k: str(origin))
+    with pytest.raises(DataIntegrityError, match="made again"):
+        fetch("scans/bunny/bun000_clean.ply")
+    assert not (tmp_path / "cache" / "scans/bunny/bun000_clean.ply").exists()

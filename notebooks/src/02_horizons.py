@@ -50,22 +50,27 @@ for k in HORIZONS:
 
 # %% [markdown]
 # ## One inline
-# Inline 1084 (the middle of the slab) with the people's picks and the two trackers' horizons.
+# Inline 1084 (the middle of the slab), samples 80-359, with the people's picks (wide, pale) and the two trackers'
+# horizons (seismo3d dashed, the plain autotracker dotted). Where they agree the lines lie on top of each other.
 
 # %%
-i = 9
-picks = {}
-for k in HORIZONS:
-    picks[f"horizon {k}, people"] = slab.horizons[i, k]
-    picks[f"horizon {k}, seismo3d"] = tracked[k].times[i]
-    picks[f"horizon {k}, plain autotracker"] = plain[k].times[i]
-plot_horizon_section(slab.cube[i], picks, title=f"Penobscot inline {slab.section_ids[i]}")
+i, top, bottom = 9, 80, 360
+picks, styles = {}, {}
+for n, k in enumerate(HORIZONS):
+    for label, times, style in ((f"horizon {k}, people", slab.horizons[i, k], {"lw": 4, "alpha": 0.45}),
+                                (f"horizon {k}, seismo3d", tracked[k].times[i], {"ls": "--"}),
+                                (f"horizon {k}, plain autotracker", plain[k].times[i], {"ls": ":"})):
+        picks[label] = times - top
+        styles[label] = {"color": f"C{n}"} | style
+plot_horizon_section(slab.cube[i, :, top:bottom], picks, samples=np.arange(top, bottom), styles=styles,
+                     title=f"Penobscot inline {slab.section_ids[i]}")
 
 # %% [markdown]
 # ## The tracked horizons in 3D
-# Coloured by their depth in samples, in front of the first inline and the first trace of the slab (time downward).
+# The upper 400 samples of the slab with the two tracked horizons coloured by their depth in samples, in front of
+# the first inline and the first trace (time downward).
 
 # %%
-geometry = cube_geometry(slab.cube.shape, inlines=slab.section_ids, vertical_exaggeration=0.25)
-show_seismic(slab.cube, geometry, slices=(0, 0, None), horizons=[tracked[k] for k in HORIZONS],
-             window_size=(900, 600));
+upper = slab.cube[:, :, :400]
+geometry = cube_geometry(upper.shape, inlines=slab.section_ids)
+show_seismic(upper, geometry, slices=(0, 0, None), horizons=[tracked[k] for k in HORIZONS], window_size=(900, 600));

@@ -61,7 +61,7 @@ def show_point_clouds(clouds, *, labels=None, transforms=None, point_size=2.0, s
         plotter.add_mesh(pv.PolyData(cloud), color=_COLOURS[n % len(_COLOURS)], point_size=point_size,
                          render_points_as_spheres=False, label=None if labels is None else str(labels[n]))
     if labels is not None:
-        plotter.add_legend(bcolor="white", face="rectangle", loc="lower right", size=(0.3, 0.07 * len(clouds)))
+        plotter.add_legend(bcolor="white", face="rectangle", loc="lower left", size=(0.3, 0.07 * len(clouds)))
     if title:
         plotter.add_text(title, font_size=9, color="black")
     plotter.camera_position = camera

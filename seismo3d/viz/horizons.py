@@ -74,7 +74,8 @@ def horizon_surface(horizon, *, inlines=None, xlines=None, samples=None):
     return mesh
 
 
-def plot_horizon_section(section, picks, *, samples=None, traces=None, clip_percentile=99.0, title=None, ax=None):
+def plot_horizon_section(section, picks, *, samples=None, traces=None, styles=None, clip_percentile=99.0, title=None,
+                         ax=None):
     """A seismic section with horizon picks drawn over it, one colour per entry of ``picks``.
 
     Parameters
@@ -89,6 +90,9 @@ def plot_horizon_section(section, picks, *, samples=None, traces=None, clip_perc
         Vertical axis values (ms or m); default sample indices.
     traces : (n_traces,) array_like, optional
         Horizontal axis values (trace or line numbers); default indices.
+    styles : dict of str to dict, optional
+        Matplotlib line keywords per label (e.g. ``{"people": {"lw": 3, "alpha": 0.6}}``); default: colour
+        ``C0``, ``C1``, ... in order, 1.2 points wide.
     clip_percentile : float, optional
     title : str, optional
     ax : matplotlib.axes.Axes, optional
@@ -126,7 +130,8 @@ def plot_horizon_section(section, picks, *, samples=None, traces=None, clip_perc
         t = np.asarray(times, dtype=np.float64)
         if t.shape != (data.shape[0],):
             raise InputError(f"picks[{label!r}] has shape {t.shape}; it needs one value per trace ({data.shape[0]})")
-        ax.plot(x, np.interp(t, np.arange(s.size), s), lw=1.2, label=label, color=f"C{n}")
+        style = {"lw": 1.2, "color": f"C{n}"} | dict((styles or {}).get(label, {}))
+        ax.plot(x, np.interp(t, np.arange(s.size), s, left=np.nan, right=np.nan), label=label, **style)
     ax.set_xlabel("trace")
     ax.set_ylabel("sample" if samples is None else "time or depth")
     ax.legend(loc="lower right")

@@ -77,12 +77,13 @@ def _read_transform(path: pathlib.Path, dim: int) -> np.ndarray:
 @app.command()
 @_friendly
 def register(
-    source: pathlib.Path = typer.Argument(..., help="Source point cloud (.ply, .xyz/.txt/.csv, .npy): moved. For "
-                                                    "SEG-Y (.sgy/.segy): the FIXED cube."),
-    target: pathlib.Path = typer.Argument(..., help="Target point cloud: fixed. For SEG-Y: the MOVING cube."),
+    source: pathlib.Path = typer.Argument(..., help="Source point cloud (.ply, .xyz/.txt/.csv, .npy, LAS/LAZ) or "
+                                                    "GeoTIFF DEM: moved. For SEG-Y (.sgy/.segy): the FIXED cube."),
+    target: pathlib.Path = typer.Argument(..., help="Target point cloud or DEM: fixed. For SEG-Y: the MOVING cube."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Where to write the transform JSON."),
-    method: Method = typer.Option(Method.point_to_plane, help="Residual: point-to-point, point-to-plane or fused "
-                                                               "(features + point-to-plane, eq. 16)."),
+    method: Optional[Method] = typer.Option(None, help="Residual: point-to-point, point-to-plane or fused (features "
+                                                       "+ point-to-plane, eq. 16). Default point_to_plane; fused "
+                                                       "(hillshade features) for LAS/LAZ/GeoTIFF."),
     model: Optional[Model] = typer.Option(None, help="Transform family; default rigid for point clouds, axis_scaled "
                                                      "for SEG-Y cubes."),
     init: Optional[pathlib.Path] = typer.Option(None, help="JSON with an initial source-to-target transform."),
@@ -92,7 +93,8 @@ def register(
     features: Optional[pathlib.Path] = typer.Option(
         None, help="For --method fused: matched feature points, one row per match: source coordinates then target "
                    "coordinates (.csv/.txt/.npy with 2d columns)."),
-    alpha: float = typer.Option(0.1, help="For --method fused: weight of the feature term in [0, 1]."),
+    alpha: Optional[float] = typer.Option(None, help="For --method fused: weight of the feature term in [0, 1] "
+                                                     "(default 0.1; 0.001 for terrain files)."),
 ) -> None:
     """Register SOURCE onto TARGET and write the (d+1)x(d+1) transform mapping source into target coordinates.
 
@@ -100,10 +102,21 @@ def register(
     MONITOR.sgy`): sub-volumes of different bin size, sample rate or map orientation are registered with
     register_volumes (--model rigid, axis_scaled or affine); the JSON holds the 4x4 transforms from MOVING's
     inline / crossline / sample indices to FIXED's, and between physical units (m, m, ms or m), the scales, the map
-    rotation, fitness and inlier RMSE."""
+    rotation, fitness and inlier RMSE.
+
+    LAS/LAZ scans and GeoTIFF DEMs (any pair in one CRS) are registered in a frame recentred on the target, started
+    from matches between their hillshades (no initial guess needed); the JSON's transform is in the files' own
+    coordinates and units."""
     if _is_segy(source) or _is_segy(target):
         _register_volumes(source, target, output, model or Model.axis_scaled)
         return
+    from .terrain import is_terrain_file
+
+    if is_terrain_file(source) or is_terrain_file(target):
+        _register_terrain(source, target, output, method, model, init, max_distance, features, alpha)
+        return
+    method = method or Method.point_to_plane
+    alpha = 0.1 if alpha is None else alpha
     model = model or Model.rigid
     from .data.pointclouds import read_points
     from .geometry import estimate_normals
@@ -133,6 +146,49 @@ def register(
     typer.echo(f"fitness {result.fitness:.3f}  inlier RMSE {result.inlier_rmse:.4g}  iterations {result.n_iterations}"
                f"  converged {result.converged}" + ("  (DEGENERATE geometry)" if result.degenerate else ""))
     typer.echo(np.array2string(result.transform, precision=6, suppress_small=True))
+
+
+def _register_terrain(source, target, output, method, model, init, max_distance, features, alpha) -> None:
+    """`seismo3d register` on LAS/LAZ scans and GeoTIFF DEMs (jobs/register_terrain.py)."""
+    from .jobs.register_terrain import run_register_terrain_job
+    from .terrain import is_terrain_file
+
+    if not (is_terrain_file(source) and is_terrain_file(target)):
+        raise InputError(f"{source} and {target}: register two terrain files (LAS/LAZ, GeoTIFF) or two point clouds, "
+                         "not one of each (convert the point cloud to LAS/LAZ)")
+    if features is not None:
+        raise InputError("--features is for point clouds; terrain files are matched through their hillshades")
+    if model is not None and model.value not in ("rigid", "similarity"):
+        raise InputError(f"--model {model.value} is not available for terrain files; use rigid or similarity")
+    start = None if init is None else _read_transform(init, 3)
+    with _one_line_warnings():
+        reg = run_register_terrain_job(source, target, output, method=(method or Method.fused).value,
+                                       model=(model or Model.rigid).value, init=start, max_distance=max_distance,
+                                       alpha=alpha)
+    r = reg.registration
+    typer.echo(f"rotation {reg.rotation_deg:.3f} deg (heading {reg.heading_deg:.3f})  fitness {r.fitness:.3f}  "
+               f"inlier RMSE {r.inlier_rmse:.4g} {reg.frame.unit}  start {reg.start} ({reg.n_feature_inliers} of "
+               f"{reg.n_matches} hillshade matches)  iterations {r.n_iterations}  converged {r.converged}"
+               + ("  (geometry alone leaves a direction weakly constrained)" if r.degenerate else ""))
+    typer.echo(np.array2string(reg.transform, precision=6, suppress_small=True))
+
+
+def _one_line_warnings():
+    """Context manager printing each warning as one 'warning: ...' line on stderr."""
+    import contextlib
+    import warnings
+
+    @contextlib.contextmanager
+    def manager():
+        def one_line(message, category, filename, lineno, file=None, line=None):
+            typer.echo(f"warning: {message}", err=True)
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("default")
+            warnings.showwarning = one_line
+            yield
+
+    return manager()
 
 
 def _is_segy(path: pathlib.Path) -> bool:

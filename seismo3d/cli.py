@@ -320,6 +320,45 @@ def match(
         typer.echo(np.array2string(result.homography, precision=6, suppress_small=True))
 
 
+@app.command()
+@_friendly
+def plan(
+    grid: pathlib.Path = typer.Argument(..., help="A GeoTIFF DEM, or the output folder of `seismo3d map` (its "
+                                                  "mesh.ply becomes an occupancy grid at the robot's height)."),
+    start: str = typer.Option(..., "--start", help="Start cell ROW,COL of the grid."),
+    goal: str = typer.Option(..., "--goal", help="Goal cell ROW,COL of the grid."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="CSV of the path: row,col,x,y,z per cell."),
+    max_slope: float = typer.Option(15.0, "--max-slope", help="DEM: steepest traversable slope, degrees."),
+    cell_size: float = typer.Option(0.05, "--cell-size", help="Map folder: grid cell, metres."),
+    robot_height: float = typer.Option(0.5, "--robot-height", help="Map folder: obstacles are what stands between "
+                                                                   "--step-height and this above the floor, metres."),
+    step_height: float = typer.Option(0.05, "--step-height", help="Map folder: highest bump driven over, metres."),
+    robot_radius: float = typer.Option(0.0, "--robot-radius", help="Map folder: obstacles grown by this, metres."),
+    corner_cutting: bool = typer.Option(True, "--corner-cutting/--no-corner-cutting",
+                                        help="Allow diagonal steps between two blocked cells."),
+) -> None:
+    """Plan the shortest 8-connected path (in metres, A*) from --start to --goal through traversable cells of GRID
+    and write it as CSV (row, col, x, y, z per cell: x, y in the DEM's CRS and z its elevation; for a map, the cell
+    centre on the floor in the map's frame)."""
+    from .jobs.plan import parse_cell, run_plan_job
+    from .terrain.occupancy import OccupancyOptions
+
+    s = parse_cell(start, "--start")
+    g = parse_cell(goal, "--goal")
+    options = None
+    if grid.is_dir():
+        options = OccupancyOptions(cell_size=cell_size, robot_height=robot_height, step_height=step_height,
+                                   robot_radius=robot_radius)
+    elif not 0.0 < max_slope < 90.0:
+        raise InputError(f"--max-slope {max_slope:g} must be in (0, 90) degrees")
+    result = run_plan_job(grid, s, g, output, max_slope_deg=max_slope, options=options,
+                          corner_cutting=corner_cutting)
+    p = result.path
+    typer.echo(f"path of {len(p.cells)} cells, {p.length_m:.1f} m, from {s} to {g} on a {result.grid.shape[0]} x "
+               f"{result.grid.shape[1]} grid ({result.grid.description}); A* expanded {p.n_expanded} cells in "
+               f"{result.seconds:.3f} s -> {output}")
+
+
 class Polarity(str, Enum):
     peak = "peak"
     trough = "trough"

@@ -15,6 +15,7 @@ __all__ = [
     "SegyFormatError",
     "SegyGeometryError",
     "RegistrationError",
+    "PlanningError",
     "Seismo3dWarning",
     "DegenerateGeometryWarning",
 ]
@@ -47,6 +48,10 @@ class SegyGeometryError(Seismo3dError, ValueError):
 
 class RegistrationError(Seismo3dError, RuntimeError):
     """A registration could not produce a transform (e.g. RANSAC found no consensus)."""
+
+
+class PlanningError(Seismo3dError, RuntimeError):
+    """No path exists between a start and a goal through traversable cells."""
 
 
 class Seismo3dWarning(UserWarning):

@@ -322,6 +322,30 @@ def match(
 
 @app.command()
 @_friendly
+def lineaments(
+    dem: pathlib.Path = typer.Argument(..., help="A GeoTIFF DEM (geographic or projected CRS)."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing)."),
+) -> None:
+    """Extract the lineaments of DEM (linear terrain structures: scarps, fracture-controlled valleys) and write
+    lineaments.csv (x0, y0, x1, y1 in the raster's CRS, azimuth_deg in [0, 180), length_m, contrast), rose.png (a
+    length-weighted rose diagram) and lineaments.png (the lineaments over the multidirectional hillshade)."""
+    from .jobs.lineaments import run_lineaments_job
+
+    result = run_lineaments_job(dem, output)
+    found = result.lineaments
+    typer.echo(f"{len(found)} lineaments in {dem.name}, {found.length_m.sum() / 1000:.1f} km in all -> {output}")
+    if len(found):
+        from .terrain import rose_histogram
+
+        edges, km = rose_histogram(found, bin_deg=10.0)
+        top = np.argsort(-km)[:3]
+        typer.echo("strongest strikes (length-weighted): " + ", ".join(
+            f"{edges[i]:.0f}-{edges[i + 1]:.0f} deg ({km[i] / 1000:.1f} km)" for i in top))
+    typer.echo("wrote " + ", ".join(pathlib.Path(p).name for p in result.written.values()))
+
+
+@app.command()
+@_friendly
 def plan(
     grid: pathlib.Path = typer.Argument(..., help="A GeoTIFF DEM, or the output folder of `seismo3d map` (its "
                                                   "mesh.ply becomes an occupancy grid at the robot's height)."),

@@ -82,16 +82,17 @@ def _fractal_surface(shape, rng, beta, relief):
 
 
 def synthetic_scarp_dem(shape=(256, 256), *, n_scarps: int = 8, seed=0, pixel_size: float = 30.0,
-                        relief: float = 20.0, beta: float = 3.0, heights=(8.0, 20.0), lengths=(0.25, 0.5),
+                        relief: float = 20.0, beta: float = 4.0, heights=(8.0, 20.0), lengths=(0.25, 0.5),
                         width_px: float = 1.0, min_separation_px: float = 12.0) -> ScarpDem:
     """A DEM of random rolling terrain cut by straight scarps of known position, strike and height.
 
-    The background is a Gaussian random surface with a ``1 / f^beta`` power spectrum (``beta = 3``: smooth hills, the
-    spectrum of many real landscapes) and standard deviation ``relief``. Each scarp is a dip-slip offset along a
-    straight trace: across it the height steps by ``h * taper(s) * (1 + erf(d / width)) / 2`` (``d`` the signed
-    distance from the trace, ``s`` the position along it), with an elliptical taper ``sqrt(1 - (2 s / L)^2)`` that
-    closes the offset at the tips, and the raised block tilting back to zero over a distance L (a back-tilted
-    footwall). Traces are drawn in the middle of the grid, at least ``min_separation_px`` apart (no crossings).
+    The background is a Gaussian random surface with a ``1 / f^beta`` power spectrum (``beta = 4``: rolling hills
+    with a smooth, self-affine surface of Hurst exponent 1) and standard deviation ``relief``. Each scarp is a
+    dip-slip offset along a straight trace: across it the height steps by ``h * taper(s) * (1 + erf(d / width)) / 2``
+    (``d`` the signed distance from the trace, ``s`` the position along it), with a bell-shaped taper
+    ``cos(pi s / L)`` that closes the offset at the tips, and the raised block tilting back to zero over a distance
+    L / 2 (a back-tilted footwall; the taper keeps its side slopes below ``h pi / L``). Traces are drawn in the
+    middle of the grid, at least ``min_separation_px`` apart (no crossings).
 
     Parameters
     ----------
@@ -128,7 +129,7 @@ def synthetic_scarp_dem(shape=(256, 256), *, n_scarps: int = 8, seed=0, pixel_si
     ----------
     Saupe, D. (1988). Algorithms for random fractals. In The Science of Fractal Images, Springer, 71-136 (spectral
     synthesis). Kim, Y.-S., Sanderson, D. J. (2005). The relationship between displacement and length of faults.
-    Earth-Sci. Rev. 68, 317-334 (offset closing at the tips).
+    Earth-Sci. Rev. 68, 317-334. doi:10.1016/j.earscirev.2004.06.003 (offset largest mid-trace, closing at the tips)
     """
     h, w = (int(v) for v in shape)
     if h < 64 or w < 64:
@@ -160,9 +161,9 @@ def synthetic_scarp_dem(shape=(256, 256), *, n_scarps: int = 8, seed=0, pixel_si
         normal = np.array([direction[1], -direction[0]])  # to the right of the strike: the raised block
         d = (rows - centre[0]) * normal[0] + (cols - centre[1]) * normal[1]
         s = (rows - centre[0]) * direction[0] + (cols - centre[1]) * direction[1]
-        taper = np.sqrt(np.clip(1.0 - (2.0 * s / length) ** 2, 0.0, None))
+        taper = np.where(np.abs(s) < 0.5 * length, np.cos(np.pi * s / length), 0.0)
         step = 0.5 * (1.0 + erf(d / float(width_px)))
-        tilt = np.exp(-np.clip(d, 0.0, None) / length)
+        tilt = np.exp(-2.0 * np.clip(d, 0.0, None) / length)
         z += height * taper * step * tilt
         scarps.append(Scarp(float(a[0]), float(a[1]), float(b[0]), float(b[1]), float(az % 180.0), float(height)))
     return ScarpDem(z, float(pixel_size), tuple(scarps))

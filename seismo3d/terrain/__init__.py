@@ -4,7 +4,10 @@
 - :mod:`~seismo3d.terrain.lidar`, :mod:`~seismo3d.terrain.dem`, :mod:`~seismo3d.terrain.inputs`: readers and writers;
 - :mod:`~seismo3d.terrain.hillshade`: gradient, slope, aspect, hillshades;
 - :mod:`~seismo3d.terrain.surface`: height grids from points, normals from grids;
-- :mod:`~seismo3d.terrain.registration`: scan / DEM registration with the fused ICP.
+- :mod:`~seismo3d.terrain.registration`: scan / DEM registration with the fused ICP;
+- :mod:`~seismo3d.terrain.lineaments`: lineaments (oriented gradients, Hough, linking), rose histograms;
+- :mod:`~seismo3d.terrain.occupancy`, :mod:`~seismo3d.terrain.planning`: occupancy grids, A* and D* Lite;
+- :mod:`~seismo3d.terrain.evaluation`: scores against ground truth.
 """
 
 from .dem import DEM_SUFFIXES, Dem, read_dem, write_dem
@@ -18,8 +21,19 @@ from .hillshade import (
     slope_deg,
     terrain_gradient,
 )
+from .evaluation import LineamentEvaluation, TransformErrors, evaluate_lineaments, transform_errors
 from .inputs import TERRAIN_SUFFIXES, is_terrain_file, read_terrain
 from .lidar import LAS_SUFFIXES, LidarScan, read_las, write_las
+from .lineaments import (
+    LineamentOptions,
+    Lineaments,
+    detect_lineaments,
+    extract_lineaments,
+    rose_histogram,
+    write_lineaments_csv,
+)
+from .occupancy import OccupancyGrid, OccupancyOptions, occupancy_from_dem, occupancy_from_points, read_map_folder
+from .planning import DStarLite, GridPath, astar, path_length
 from .registration import (
     FeaturePairs,
     TerrainRegistration,
@@ -33,10 +47,14 @@ from .registration import (
 from .surface import HeightGrid, fill_holes, grid_normals, point_spacing, rasterize_points, sample_grid
 
 __all__ = [
-    "CoordinateReference", "DEM_SUFFIXES", "Dem", "FeaturePairs", "HeightGrid", "LAS_SUFFIXES", "LidarScan",
-    "LocalFrame", "TERRAIN_SUFFIXES", "TerrainGradient", "TerrainRegistration", "TerrainRegistrationOptions",
-    "TerrainSurface", "aspect_deg", "fill_holes", "grid_normals", "hillshade", "hillshades", "is_terrain_file",
-    "match_hillshades", "metres_per_degree", "multidirectional_hillshade", "point_spacing", "rasterize_points",
-    "read_dem", "read_las", "read_terrain", "register_terrain", "sample_grid", "slope_deg", "terrain_frame",
-    "terrain_gradient", "terrain_surface", "write_dem", "write_las",
+    "CoordinateReference", "DEM_SUFFIXES", "DStarLite", "Dem", "FeaturePairs", "GridPath", "HeightGrid",
+    "LAS_SUFFIXES", "LidarScan", "LineamentEvaluation", "LineamentOptions", "Lineaments", "LocalFrame",
+    "OccupancyGrid", "OccupancyOptions", "TERRAIN_SUFFIXES", "TerrainGradient", "TerrainRegistration",
+    "TerrainRegistrationOptions", "TerrainSurface", "TransformErrors", "aspect_deg", "astar", "detect_lineaments",
+    "evaluate_lineaments", "extract_lineaments", "fill_holes", "grid_normals", "hillshade", "hillshades",
+    "is_terrain_file", "match_hillshades", "metres_per_degree", "multidirectional_hillshade", "occupancy_from_dem",
+    "occupancy_from_points", "path_length", "point_spacing", "rasterize_points", "read_dem", "read_las",
+    "read_map_folder", "read_terrain", "register_terrain", "rose_histogram", "sample_grid", "slope_deg",
+    "terrain_frame", "terrain_gradient", "terrain_surface", "transform_errors", "write_dem", "write_las",
+    "write_lineaments_csv",
 ]

@@ -1,5 +1,6 @@
 """Generated terrain with known truth, for tests and benchmarks: DEMs with linear scarps, scan pairs cut from a real
-LiDAR tile and moved by a known rigid transform, and DEM crops moved by a known rotation and shift.
+LiDAR tile and moved by a known rigid transform, DEM crops moved by a known rotation and shift, and a room mesh with
+obstacles for occupancy grids.
 
 Arrays in, arrays out (no file formats): ``seismo3d.terrain`` wraps them into scans and DEMs.
 
@@ -19,7 +20,8 @@ from scipy.spatial.transform import Rotation
 from .._validation import as_points, check_positive
 from ..errors import InputError
 
-__all__ = ["Scarp", "ScarpDem", "synthetic_scarp_dem", "ScanPair", "cut_scan_pair", "MovedGrid", "moved_grid"]
+__all__ = ["Scarp", "ScarpDem", "synthetic_scarp_dem", "ScanPair", "cut_scan_pair", "MovedGrid", "moved_grid",
+           "SyntheticRoom", "synthetic_room"]
 
 
 @dataclass(frozen=True)
@@ -344,3 +346,95 @@ def moved_grid(elevation, spacing, *, crop, angle_deg: float, shift=(0.0, 0.0), 
     motion[:2, :2] = rot
     motion[:2, 3] = (sx, sy)
     return MovedGrid(out, int(r0), int(c0), np.linalg.inv(motion))
+
+
+@dataclass(frozen=True)
+class SyntheticRoom:
+    """A room for occupancy-grid tests: a marching-cubes mesh, camera poses, and what stands where.
+
+    The frame is a camera's (x right, y DOWN, z forward); the floor is the plane ``y = floor_y``. The room spans
+    x in [0, 3] m and z in [0, 2] m inside walls 1 m high; a box 0.6 m high stands across most of its depth
+    (x 1.0-1.3 m, z 0.2-1.6 m), so a robot must go around its end; a table (x 1.8-2.4 m, z 0.6-1.4 m) has its top
+    0.72-0.76 m above the floor on four 5 cm legs, so a robot lower than that passes under it.
+
+    Attributes
+    ----------
+    vertices : (N, 3) float64 ndarray
+        Mesh vertices, metres.
+    faces : (M, 3) int64 ndarray
+        Triangles (vertex indices).
+    camera_poses : (K, 4, 4) float64 ndarray
+        Camera-to-world poses 1.2 m above the floor, pitched 15 degrees down.
+    floor_y : float
+    """
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    camera_poses: np.ndarray
+    floor_y: float
+
+    box = dict(x=(1.0, 1.3), z=(0.2, 1.6), height=0.6)
+    table = dict(x=(1.8, 2.4), z=(0.6, 1.4), top=(0.72, 0.76), leg=0.05)
+    extent = dict(x=(0.0, 3.0), z=(0.0, 2.0), wall=0.05, wall_height=1.0)
+
+    @classmethod
+    def solid(cls, x, h, z):
+        """Indicator of the solid parts at points (x, height above the floor, z), metres (broadcast)."""
+        x, h, z = np.broadcast_arrays(*(np.asarray(v, dtype=np.float64) for v in (x, h, z)))
+        e, b, t = cls.extent, cls.box, cls.table
+        walls = ((x < e["x"][0] + e["wall"]) | (x > e["x"][1] - e["wall"]) | (z < e["z"][0] + e["wall"])
+                 | (z > e["z"][1] - e["wall"])) & (h < e["wall_height"])
+        box = (x >= b["x"][0]) & (x <= b["x"][1]) & (z >= b["z"][0]) & (z <= b["z"][1]) & (h <= b["height"])
+        top = (x >= t["x"][0]) & (x <= t["x"][1]) & (z >= t["z"][0]) & (z <= t["z"][1]) & (h >= t["top"][0]) & \
+              (h <= t["top"][1])
+        legs = np.zeros(x.shape, bool)
+        half = t["leg"] / 2
+        for cx in (t["x"][0] + half, t["x"][1] - half):
+            for cz in (t["z"][0] + half, t["z"][1] - half):
+                legs |= (np.abs(x - cx) <= half) & (np.abs(z - cz) <= half) & (h <= t["top"][1])
+        return (h < 0) | walls | box | top | legs
+
+    @classmethod
+    def obstacle(cls, x, z, *, step_height: float = 0.05, robot_height: float = 0.5):
+        """Truth of an occupancy grid: does something stand between ``step_height`` and ``robot_height`` above the
+        floor at (x, z)?"""
+        heights = np.linspace(step_height + 0.01, robot_height, 12)
+        return np.any([cls.solid(x, np.full(np.shape(x), h), z) for h in heights], axis=0)
+
+
+def synthetic_room(*, voxel: float = 0.02, floor_y: float = 0.3) -> SyntheticRoom:
+    """Build the :class:`SyntheticRoom` mesh: marching cubes of its solid parts on a ``voxel`` grid.
+
+    Parameters
+    ----------
+    voxel : float
+        Grid step, metres (the mesh's vertices are about this far apart).
+    floor_y : float
+        y of the floor (y points down).
+
+    Returns
+    -------
+    SyntheticRoom
+
+    References
+    ----------
+    Lorensen, W. E., Cline, H. E. (1987). Marching cubes. SIGGRAPH '87, 163-169 (scikit-image's
+    ``measure.marching_cubes``, Lewiner et al. 2003).
+    """
+    from skimage.measure import marching_cubes
+
+    step = check_positive(voxel, "voxel")
+    xs = np.arange(-0.1, 3.1 + step, step)
+    hs = np.arange(-0.1, 1.1 + step, step)
+    zs = np.arange(-0.1, 2.1 + step, step)
+    volume = SyntheticRoom.solid(*np.meshgrid(xs, hs, zs, indexing="ij")).astype(np.float32)
+    verts, faces, _, _ = marching_cubes(volume, 0.5, spacing=(step, step, step))
+    verts = verts + [xs[0], hs[0], zs[0]]
+    vertices = np.column_stack([verts[:, 0], floor_y - verts[:, 1], verts[:, 2]])  # height up -> y down
+    poses = []
+    for x, yaw in ((0.4, 0.0), (1.0, 20.0), (2.0, 60.0), (2.6, 90.0)):
+        pose = np.eye(4)
+        pose[:3, :3] = Rotation.from_euler("yx", [yaw, -15.0], degrees=True).as_matrix()
+        pose[:3, 3] = (x, floor_y - 1.2, 1.0)
+        poses.append(pose)
+    return SyntheticRoom(vertices, faces.astype(np.int64), np.array(poses), float(floor_y))

@@ -24,7 +24,7 @@ import numpy as np
 from scipy import ndimage
 
 from .._validation import check_positive
-from ..errors import InputError, RegistrationError, Seismo3dWarning
+from ..errors import DegenerateGeometryWarning, InputError, RegistrationError, Seismo3dWarning
 from ..features import match_images
 from ..geometry import estimate_normals, voxel_downsample
 from ..registration import RegistrationResult, fused_icp, icp
@@ -379,16 +379,33 @@ def register_terrain(source, target, *, init=None, options: TerrainRegistrationO
                                time.perf_counter() - t0)
 
 
+def _reissue(caught, n_inliers: int, alpha: float) -> None:
+    """Pass on the engine's warnings; its degeneracy test looks at the dense term only, so when hillshade matches are
+    in the objective say what they do instead of advising to add features."""
+    for w in caught:
+        if issubclass(w.category, DegenerateGeometryWarning) and n_inliers >= 3 and alpha > 0:
+            warnings.warn(f"the surfaces alone constrain the horizontal position weakly (gentle or planar terrain: "
+                          f"{str(w.message).split('(')[1].split(')')[0]}); the {n_inliers} hillshade matches in the "
+                          f"fit (alpha={alpha:g}) hold it, and the result reports degenerate=True for the surfaces",
+                          DegenerateGeometryWarning, stacklevel=4)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+
+
 def _fit(src: TerrainSurface, dst: TerrainSurface, pairs, local_init, cell, opts):
     """Fused ICP from the lifted matches, or ICP from init / identity when there are too few of them."""
     common = dict(target_normals=dst.normals, model=opts.model)
     if pairs is not None and len(pairs.source) >= 6:
         schedule = opts.max_distance or tuple(c * cell for c in opts.distance_cells)
         try:
-            result = fused_icp(src.points, dst.points, source_features=pairs.source, target_features=pairs.target,
-                               alpha=opts.alpha, init=local_init, ransac_threshold=opts.ransac_cells * cell,
-                               max_distance=schedule, **common)
-            return result, result.info.get("start", "ransac"), int(result.info.get("n_feature_inliers", 0))
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always", DegenerateGeometryWarning)
+                result = fused_icp(src.points, dst.points, source_features=pairs.source,
+                                   target_features=pairs.target, alpha=opts.alpha, init=local_init,
+                                   ransac_threshold=opts.ransac_cells * cell, max_distance=schedule, **common)
+            n_inliers = int(result.info.get("n_feature_inliers", 0))
+            _reissue(caught, n_inliers, opts.alpha)
+            return result, result.info.get("start", "ransac"), n_inliers
         except RegistrationError as exc:
             reason = str(exc)
     else:

@@ -3,12 +3,14 @@
 import numpy as np
 import pytest
 
+from seismo3d.data.terrain import SyntheticRoom
 from seismo3d.errors import DataNotFoundError, InputError
 from seismo3d.terrain import OccupancyOptions, astar, occupancy_from_dem, occupancy_from_points, read_map_folder, \
     slope_deg
 from seismo3d.terrain.occupancy import estimate_up
 
-from .conftest import BOX, FLOOR_Y, TABLE, room_obstacle
+BOX, TABLE, FLOOR_Y = SyntheticRoom.box, SyntheticRoom.table, 0.3  # the map_folder fixture's room (tests/conftest.py)
+room_obstacle = SyntheticRoom.obstacle
 
 
 def test_dem_grid(dfw):

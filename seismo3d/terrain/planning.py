@@ -203,11 +203,14 @@ class DStarLite:
         Cell height and width, metres.
     corner_cutting : bool
         Allow diagonal steps between two blocked cells.
+    heap_capacity : int, optional
+        Entries of the priority queue's array (default 4 N). Outdated entries stay in it until popped; when it is
+        nearly full they are dropped and the heap rebuilt, so any capacity of at least N + 32 works.
 
     Raises
     ------
     InputError
-        Bad grid, start or goal outside the grid or on an obstacle.
+        Bad grid, start or goal outside the grid or on an obstacle, a capacity below N + 32.
 
     Examples
     --------
@@ -226,7 +229,8 @@ class DStarLite:
     Koenig, S., Likhachev, M. (2002). D* Lite. AAAI-02, 476-483.
     """
 
-    def __init__(self, free, start, goal, *, spacing=(1.0, 1.0), corner_cutting: bool = True):
+    def __init__(self, free, start, goal, *, spacing=(1.0, 1.0), corner_cutting: bool = True,
+                 heap_capacity: int | None = None):
         self._free = _as_free(free).copy()
         self._dy, self._dx = _spacing(spacing)
         self._corner = bool(corner_cutting)
@@ -244,7 +248,9 @@ class DStarLite:
         self._open_k1 = np.zeros(n)
         self._open_k2 = np.zeros(n)
         self._in_open = np.zeros(n, dtype=np.bool_)
-        cap = 4 * n + 64
+        cap = 4 * n + 64 if heap_capacity is None else int(heap_capacity)
+        if cap < n + 32:  # live entries are at most n; a step pushes at most 9 between two fullness checks
+            raise InputError(f"heap_capacity must be at least the number of cells + 32 ({n + 32}); got {cap}")
         self._k1 = np.empty(cap)
         self._k2 = np.empty(cap)
         self._nodes = np.empty(cap, dtype=np.int64)

@@ -152,6 +152,8 @@ class TerrainRegistration:
         Where the fit started.
     seconds : float
         Wall time of the registration (inputs already read).
+    cell : float
+        Cell of the hillshade images and unit of the default distance schedule, local unit.
     """
 
     transform: np.ndarray
@@ -162,6 +164,7 @@ class TerrainRegistration:
     n_feature_inliers: int
     start: str
     seconds: float
+    cell: float = float("nan")
 
     @property
     def rotation_deg(self) -> float:
@@ -181,7 +184,8 @@ class TerrainRegistration:
                    local_origin=self.frame.origin.tolist(), local_scale=self.frame.scale.tolist(),
                    local_unit=self.frame.unit, rotation_deg=self.rotation_deg, heading_deg=self.heading_deg,
                    translation_local=self.transform_local[:3, 3].tolist(), n_matches=self.n_matches,
-                   n_feature_inliers=self.n_feature_inliers, start=self.start, seconds=self.seconds)
+                   n_feature_inliers=self.n_feature_inliers, start=self.start, seconds=self.seconds,
+                   cell=self.cell)
         return out
 
 
@@ -376,7 +380,7 @@ def register_terrain(source, target, *, init=None, options: TerrainRegistrationO
     result, start, n_inliers = _fit(src, dst, pairs, local_init, cell, opts)
     return TerrainRegistration(frame.transform_to_file(result.transform), result.transform, frame, result,
                                0 if pairs is None else len(pairs.source), n_inliers, start,
-                               time.perf_counter() - t0)
+                               time.perf_counter() - t0, float(cell))
 
 
 def _reissue(caught, n_inliers: int, alpha: float) -> None:

@@ -98,6 +98,28 @@ def test_dstar_lite_replans_like_astar_from_scratch():
     assert compared >= 150
 
 
+def test_dstar_lite_with_a_small_heap_compacts_and_stays_exact():
+    """With the smallest allowed queue array, outdated entries are dropped and the heap rebuilt many times."""
+    rng = np.random.default_rng(5)
+    for _ in range(10):
+        free, s, g, spacing = _random_case(rng, shape=(15, 15), density=0.15)
+        planner = DStarLite(free, s, g, spacing=spacing, heap_capacity=free.size + 32)
+        grid = free.copy()
+        for _ in range(8):
+            try:
+                expected = astar(grid, s, g, spacing=spacing).length_m
+            except PlanningError:
+                break
+            assert planner.plan().length_m == pytest.approx(expected, rel=1e-9)
+            cells = np.argwhere(rng.random(grid.shape) < 0.05)
+            cells = cells[[tuple(c) not in (s, g) for c in cells]]
+            flip = rng.random() < 0.6
+            planner.set_cells(cells, free=not flip)
+            grid[cells[:, 0], cells[:, 1]] = not flip
+    with pytest.raises(InputError, match="heap_capacity"):
+        DStarLite(free, s, g, heap_capacity=10)
+
+
 def test_errors():
     free = np.ones((10, 10), bool)
     free[:, 5] = False

@@ -174,12 +174,14 @@ def synthetic_scarp_dem(shape=(256, 256), *, n_scarps: int = 8, seed=0, pixel_si
 def _segment_distance(a, b, c, d) -> float:
     """Smallest distance between segments ab and cd (2D); 0 when they cross."""
     def cross(o, p, q):
+        """z of (p - o) x (q - o): the side of line o-p that q lies on."""
         return (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0])
 
     if cross(a, b, c) * cross(a, b, d) < 0 and cross(c, d, a) * cross(c, d, b) < 0:
         return 0.0
 
     def point_segment(p, u, v):
+        """Distance from point p to segment uv."""
         t = np.clip(np.dot(p - u, v - u) / max(np.dot(v - u, v - u), 1e-300), 0.0, 1.0)
         return float(np.linalg.norm(p - (u + t * (v - u))))
 

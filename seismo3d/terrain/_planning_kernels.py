@@ -15,7 +15,8 @@ _DC = np.array([-1, 0, 1, -1, 1, -1, 0, 1], dtype=np.int64)
 
 
 @njit(cache=True, inline="always")
-def _octile(r0, c0, r1, c1, dy, dx, diag):
+def octile(r0, c0, r1, c1, dy, dx, diag):
+    """Length of the shortest 8-connected path between two cells of an empty grid (the heuristic), metres."""
     a = abs(r0 - r1)
     b = abs(c0 - c1)
     m = min(a, b)
@@ -58,7 +59,8 @@ def _less_keys(a1, a2, b1, b2):
 
 
 @njit(cache=True)
-def _push(k1, k2, nodes, size, key1, key2, node):
+def heap_push(k1, k2, nodes, size, key1, key2, node):
+    """Insert (key1, key2, node) into the heap of ``size`` entries held in the arrays; return the new size."""
     i = size
     k1[i] = key1
     k2[i] = key2
@@ -122,7 +124,7 @@ def astar(free, start, goal, dy, dx, corner_cutting):
     nodes = np.empty(cap, dtype=np.int64)
     gr, gc = goal // w, goal % w
     g[start] = 0.0
-    size = _push(k1, k2, nodes, 0, _octile(start // w, start % w, gr, gc, dy, dx, diag), 0.0, start)
+    size = heap_push(k1, k2, nodes, 0, octile(start // w, start % w, gr, gc, dy, dx, diag), 0.0, start)
     expanded = 0
     while size > 0:
         size = _pop(k1, k2, nodes, size)
@@ -145,9 +147,9 @@ def astar(free, start, goal, dy, dx, corner_cutting):
             if tentative < g[v]:
                 g[v] = tentative
                 parent[v] = u
-                hv = _octile(r + _DR[k], c + _DC[k], gr, gc, dy, dx, diag)
+                hv = octile(r + _DR[k], c + _DC[k], gr, gc, dy, dx, diag)
                 # ties on f broken towards larger g (deeper nodes): fewer expansions on open ground
-                size = _push(k1, k2, nodes, size, tentative + hv, -tentative, v)
+                size = heap_push(k1, k2, nodes, size, tentative + hv, -tentative, v)
     return parent, g, expanded
 
 
@@ -156,7 +158,7 @@ def astar(free, start, goal, dy, dx, corner_cutting):
 @njit(cache=True)
 def _key(g, rhs, s, start_r, start_c, w, km, dy, dx, diag):
     m = min(g[s], rhs[s])
-    return m + _octile(start_r, start_c, s // w, s % w, dy, dx, diag) + km, m
+    return m + octile(start_r, start_c, s // w, s % w, dy, dx, diag) + km, m
 
 
 @njit(cache=True)
@@ -183,7 +185,7 @@ def _update_vertex(g, rhs, open_k1, open_k2, in_open, k1, k2, nodes, size, s, st
             in_open[s] = True
             open_k1[s] = a
             open_k2[s] = b
-            size = _push(k1, k2, nodes, size, a, b, s)
+            size = heap_push(k1, k2, nodes, size, a, b, s)
     else:
         in_open[s] = False  # stale heap entries are skipped when popped
     return size
@@ -231,7 +233,7 @@ def dstar_compute(free, g, rhs, open_k1, open_k2, in_open, k1, k2, nodes, size, 
         if _less_keys(top1, top2, new1, new2):
             open_k1[u] = new1
             open_k2[u] = new2
-            size = _push(k1, k2, nodes, size, new1, new2, u)
+            size = heap_push(k1, k2, nodes, size, new1, new2, u)
             continue
         expanded += 1
         r, c = u // w, u % w

@@ -301,6 +301,7 @@ def link_segments(segments, *, angle_deg: float, offset_px: float, gap_px: float
     cos_tol = np.cos(np.radians(angle_deg))
 
     def line(group):
+        """The group's fitted line from its segments' end points, weighted by segment length."""
         g = np.asarray(group)
         pts = np.concatenate([g[:, :2], g[:, 2:]])
         w = np.tile(np.hypot(g[:, 2] - g[:, 0], g[:, 3] - g[:, 1]) + 1e-9, 2)

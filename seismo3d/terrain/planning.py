@@ -256,11 +256,11 @@ class DStarLite:
         self._nodes = np.empty(cap, dtype=np.int64)
         self._rhs[self._goal] = 0.0
         diag = np.hypot(self._dx, self._dy)
-        key = kernels._octile(s[0], s[1], g[0], g[1], self._dy, self._dx, diag)
+        key = kernels.octile(s[0], s[1], g[0], g[1], self._dy, self._dx, diag)
         self._in_open[self._goal] = True
         self._open_k1[self._goal] = key
         self._open_k2[self._goal] = 0.0
-        self._size = kernels._push(self._k1, self._k2, self._nodes, 0, key, 0.0, self._goal)
+        self._size = kernels.heap_push(self._k1, self._k2, self._nodes, 0, key, 0.0, self._goal)
         self.n_expanded_total = 0
 
     @property
@@ -329,7 +329,7 @@ class DStarLite:
         # keys queued before the robot moved stay lower bounds when km grows by the heuristic distance moved
         lr, lc = divmod(self._last, self._w)
         sr, sc = divmod(self._start, self._w)
-        self._km += kernels._octile(lr, lc, sr, sc, self._dy, self._dx, np.hypot(self._dx, self._dy))
+        self._km += kernels.octile(lr, lc, sr, sc, self._dy, self._dx, np.hypot(self._dx, self._dy))
         self._last = self._start
         self._size = kernels.dstar_cells_changed(
             self._free, self._g, self._rhs, self._open_k1, self._open_k2, self._in_open, self._k1, self._k2,

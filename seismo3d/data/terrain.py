@@ -1,6 +1,6 @@
 """Generated terrain with known truth, for tests and benchmarks: DEMs with linear scarps, scan pairs cut from a real
 LiDAR tile and moved by a known rigid transform, DEM crops moved by a known rotation and shift, and a room mesh with
-obstacles for occupancy grids.
+obstacles for occupancy grids, and occupancy grids of generated rolling terrain for path planning.
 
 Arrays in, arrays out (no file formats): ``seismo3d.terrain`` wraps them into scans and DEMs.
 
@@ -21,7 +21,7 @@ from .._validation import as_points, check_positive
 from ..errors import InputError
 
 __all__ = ["Scarp", "ScarpDem", "synthetic_scarp_dem", "ScanPair", "cut_scan_pair", "MovedGrid", "moved_grid",
-           "SyntheticRoom", "synthetic_room"]
+           "SyntheticRoom", "synthetic_room", "TerrainGrid", "synthetic_occupancy"]
 
 
 @dataclass(frozen=True)
@@ -440,3 +440,74 @@ def synthetic_room(*, voxel: float = 0.02, floor_y: float = 0.3) -> SyntheticRoo
         pose[:3, 3] = (x, floor_y - 1.2, 1.0)
         poses.append(pose)
     return SyntheticRoom(vertices, faces.astype(np.int64), np.array(poses), float(floor_y))
+
+
+@dataclass(frozen=True)
+class TerrainGrid:
+    """An occupancy grid of generated terrain and a query across it.
+
+    Attributes
+    ----------
+    free : (H, W) bool ndarray
+        True where the slope is gentle enough to drive.
+    spacing : (float, float)
+        (dy, dx): cell height and width, metres.
+    start, goal : (int, int)
+        (row, col) of the free cells of the largest 8-connected free region nearest to the top-left and the
+        bottom-right corners.
+    """
+
+    free: np.ndarray
+    spacing: tuple
+    start: tuple
+    goal: tuple
+
+
+def synthetic_occupancy(shape=(400, 400), *, spacing=(30.0, 25.0), free_fraction: float = 0.7, beta: float = 4.0,
+                        seed=0) -> TerrainGrid:
+    """Occupancy grid of rolling terrain: a Gaussian random surface with a ``1 / f^beta`` power spectrum (as in
+    :func:`synthetic_scarp_dem`), blocked where its slope (central differences) is among the steepest
+    ``1 - free_fraction`` of the cells. With ``beta = 4`` the blocked cells gather into winding ridges and patches
+    with narrow gaps between them, as a slope limit does on a real DEM.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        (rows, cols), each >= 16.
+    spacing : (dy, dx)
+        Cell height and width, metres.
+    free_fraction : float
+        Fraction of cells left traversable, in (0, 1).
+    beta : float
+        Spectral exponent of the surface (larger: smoother, fewer and larger obstacles).
+    seed : int or numpy.random.Generator
+
+    Returns
+    -------
+    TerrainGrid
+
+    Raises
+    ------
+    InputError
+        A shape below 16 x 16 or a fraction outside (0, 1).
+
+    References
+    ----------
+    Saupe, D. (1988). Algorithms for random fractals. In The Science of Fractal Images, Springer, 71-136.
+    """
+    h, w = (int(v) for v in shape)
+    if h < 16 or w < 16:
+        raise InputError(f"shape must be at least (16, 16); got {shape}")
+    if not 0.0 < free_fraction < 1.0:
+        raise InputError(f"free_fraction must be in (0, 1); got {free_fraction}")
+    dy, dx = (check_positive(float(v), "spacing") for v in spacing)
+    z = _fractal_surface((h, w), np.random.default_rng(seed), float(beta), 20.0)
+    grad_r, grad_c = np.gradient(z, dy, dx)
+    slope = np.hypot(grad_r, grad_c)
+    free = slope <= np.quantile(slope, free_fraction)
+    labels, n = ndimage.label(free, structure=np.ones((3, 3), bool))
+    largest = labels == 1 + int(np.argmax(ndimage.sum(free, labels, index=np.arange(1, n + 1))))
+    cells = np.argwhere(largest)
+    start = cells[np.argmin(cells.sum(axis=1))]
+    goal = cells[np.argmin((h - 1 - cells[:, 0]) + (w - 1 - cells[:, 1]))]
+    return TerrainGrid(free, (dy, dx), tuple(int(v) for v in start), tuple(int(v) for v in goal))

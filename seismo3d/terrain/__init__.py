@@ -33,7 +33,7 @@ from .lineaments import (
     write_lineaments_csv,
 )
 from .occupancy import OccupancyGrid, OccupancyOptions, occupancy_from_dem, occupancy_from_points, read_map_folder
-from .planning import DStarLite, GridPath, astar, path_length
+from .planning import CostBounds, DStarLite, GridPath, astar, path_length
 from .registration import (
     FeaturePairs,
     TerrainRegistration,
@@ -47,7 +47,7 @@ from .registration import (
 from .surface import HeightGrid, fill_holes, grid_normals, point_spacing, rasterize_points, sample_grid
 
 __all__ = [
-    "CoordinateReference", "DEM_SUFFIXES", "DStarLite", "Dem", "FeaturePairs", "GridPath", "HeightGrid",
+    "CoordinateReference", "CostBounds", "DEM_SUFFIXES", "DStarLite", "Dem", "FeaturePairs", "GridPath", "HeightGrid",
     "LAS_SUFFIXES", "LidarScan", "LineamentEvaluation", "LineamentOptions", "Lineaments", "LocalFrame",
     "OccupancyGrid", "OccupancyOptions", "TERRAIN_SUFFIXES", "TerrainGradient", "TerrainRegistration",
     "TerrainRegistrationOptions", "TerrainSurface", "TransformErrors", "aspect_deg", "astar", "detect_lineaments",

@@ -1,5 +1,5 @@
-"""seismo3d.terrain.planning: A* against scikit-image's MCP_Geometric and a Dijkstra reference, D* Lite against A*
-after changes, errors."""
+"""seismo3d.terrain.planning: A* against scikit-image's MCP_Geometric and a Dijkstra reference, D* Lite (repaired
+backward search and guided forward search) against A* after changes, its cost bounds against Dijkstra, errors."""
 
 import numpy as np
 import pytest
@@ -16,24 +16,32 @@ def _mcp_length(free, start, goal, spacing):
     return costs[goal]
 
 
-def _dijkstra_no_corner_cutting(free, start, goal, spacing):
-    """Reference: scipy's Dijkstra on the 8-connected graph without diagonal steps between two blocked cells."""
+def _grid_graph(free, spacing, corner_cutting):
+    """Reference graph: the 8-connected grid as a scipy sparse matrix (optionally without diagonal steps between two
+    blocked cells)."""
     h, w = free.shape
     dy, dx = spacing
+    index = np.arange(h * w).reshape(h, w)
     rows, cols, vals = [], [], []
     for dr, dc in [(0, 1), (1, 0), (1, 1), (1, -1)]:
-        for r in range(h):
-            for c in range(w):
-                r2, c2 = r + dr, c + dc
-                if not (0 <= r2 < h and 0 <= c2 < w) or not (free[r, c] and free[r2, c2]):
-                    continue
-                if dr and dc and not (free[r + dr, c] and free[r, c + dc]):
-                    continue
-                rows.append(r * w + c)
-                cols.append(r2 * w + c2)
-                vals.append(np.hypot(dr * dy, dc * dx))
-    graph = coo_matrix((vals, (rows, cols)), shape=(h * w, h * w)).tocsr()
-    return dijkstra(graph, directed=False, indices=start[0] * w + start[1])[goal[0] * w + goal[1]]
+        r0, r1 = 0, h - dr
+        c0, c1 = max(0, -dc), w - max(0, dc)
+        a = (slice(r0, r1), slice(c0, c1))
+        b = (slice(r0 + dr, r1 + dr), slice(c0 + dc, c1 + dc))
+        ok = free[a] & free[b]
+        if dr and dc and not corner_cutting:
+            ok &= free[r0:r1, c0 + dc:c1 + dc] & free[r0 + dr:r1 + dr, c0:c1]
+        rows.append(index[a][ok])
+        cols.append(index[b][ok])
+        vals.append(np.full(int(ok.sum()), np.hypot(dr * dy, dc * dx)))
+    n = h * w
+    return coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)).tocsr()
+
+
+def _distances_to(free, cell, spacing, corner_cutting=True):
+    """Dijkstra (scipy) distances of every cell to ``cell``, (H, W) metres."""
+    graph = _grid_graph(free, spacing, corner_cutting)
+    return dijkstra(graph, directed=False, indices=cell[0] * free.shape[1] + cell[1]).reshape(free.shape)
 
 
 def _random_case(rng, shape=None, density=None):
@@ -50,7 +58,7 @@ def test_astar_is_optimal(corner_cutting):
     checked = 0
     for _ in range(40):
         free, s, g, spacing = _random_case(rng)
-        ref = _mcp_length(free, s, g, spacing) if corner_cutting else _dijkstra_no_corner_cutting(free, s, g, spacing)
+        ref = _mcp_length(free, s, g, spacing) if corner_cutting else _distances_to(free, g, spacing, False)[s]
         if not np.isfinite(ref):
             with pytest.raises(PlanningError, match="no path"):
                 astar(free, s, g, spacing=spacing, corner_cutting=corner_cutting)
@@ -65,16 +73,19 @@ def test_astar_is_optimal(corner_cutting):
     assert checked >= 20
 
 
-def test_dstar_lite_replans_like_astar_from_scratch():
-    """Moves along the path, blocks and frees cells, replans; every plan equals A* on the current grid."""
+@pytest.mark.parametrize("forward_search, lookahead", [(True, 0.01), (True, 0.0), (True, 0.5), (False, 0.01)])
+def test_dstar_lite_replans_like_astar_from_scratch(forward_search, lookahead):
+    """Moves along the path, blocks and frees cells, replans; every plan equals A* on the current grid, whichever
+    search (the repaired backward one or the guided forward one) made it."""
     rng = np.random.default_rng(11)
-    compared = 0
+    compared, used = 0, set()
     for _ in range(60):
         free, s, g, spacing = _random_case(rng, density=rng.uniform(0.05, 0.3))
         cc = bool(rng.integers(2))
-        planner = DStarLite(free, s, g, spacing=spacing, corner_cutting=cc)
+        planner = DStarLite(free, s, g, spacing=spacing, corner_cutting=cc, forward_search=forward_search,
+                            lookahead=lookahead)
         grid, here = free.copy(), s
-        for _ in range(4):
+        for _ in range(5):
             try:
                 expected = astar(grid, here, g, spacing=spacing, corner_cutting=cc).length_m
             except PlanningError:
@@ -82,9 +93,11 @@ def test_dstar_lite_replans_like_astar_from_scratch():
                     planner.plan()
                 break
             plan = planner.plan()
+            used.add(plan.planner)
             assert plan.length_m == pytest.approx(expected, rel=1e-9)
             assert path_length(plan.cells, spacing) == pytest.approx(expected, rel=1e-9)
             assert grid[plan.cells[:, 0], plan.cells[:, 1]].all()
+            assert tuple(plan.cells[0]) == here and tuple(plan.cells[-1]) == g
             compared += 1
             here = tuple(int(v) for v in plan.cells[min(len(plan.cells) - 1, rng.integers(0, 4))])
             planner.move_to(here)
@@ -95,29 +108,73 @@ def test_dstar_lite_replans_like_astar_from_scratch():
                 pick = cand[rng.choice(len(cand), min(len(cand), 6), replace=False)]
                 planner.set_cells(pick, free=not block)
                 grid[pick[:, 0], pick[:, 1]] = not block
-    assert compared >= 150
+    assert compared >= 200
+    assert used == ({"dstar_lite", "guided_astar"} if forward_search else {"dstar_lite"})
 
 
-def test_dstar_lite_with_a_small_heap_compacts_and_stays_exact():
-    """With the smallest allowed queue array, outdated entries are dropped and the heap rebuilt many times."""
-    rng = np.random.default_rng(5)
-    for _ in range(10):
-        free, s, g, spacing = _random_case(rng, shape=(15, 15), density=0.15)
-        planner = DStarLite(free, s, g, spacing=spacing, heap_capacity=free.size + 32)
-        grid = free.copy()
-        for _ in range(8):
+@pytest.mark.parametrize("reset_km", [False, True])
+def test_cost_bounds_are_lower_bounds_and_exact_where_settled(monkeypatch, reset_km):
+    """The guided search's heuristic, checked against Dijkstra on every cell: below the true cost to the goal on
+    the current grid while cells are only blocked, equal to it where the backward search says it is exact. With
+    ``reset_km`` km is reset (and the queue's keys recomputed) at every move, which must not change anything."""
+    if reset_km:
+        monkeypatch.setattr("seismo3d.terrain.planning._KM_LIMIT", 0)
+    rng = np.random.default_rng(2)
+    checked_exact = checked_pending = 0
+    for case in range(40):
+        free, s, g, spacing = _random_case(rng, shape=(24, 30), density=rng.uniform(0.05, 0.25))
+        cc = bool(rng.integers(2))
+        planner = DStarLite(free, s, g, spacing=spacing, corner_cutting=cc, forward_search=case % 2 == 0,
+                            lookahead=rng.choice([0.0, 0.05]))
+        assert not planner.cost_bounds().exact.any()
+        grid, here = free.copy(), s
+        for _ in range(5):
             try:
-                expected = astar(grid, s, g, spacing=spacing).length_m
+                plan = planner.plan()
             except PlanningError:
                 break
-            assert planner.plan().length_m == pytest.approx(expected, rel=1e-9)
-            cells = np.argwhere(rng.random(grid.shape) < 0.05)
-            cells = cells[[tuple(c) not in (s, g) for c in cells]]
-            flip = rng.random() < 0.6
-            planner.set_cells(cells, free=not flip)
-            grid[cells[:, 0], cells[:, 1]] = not flip
-    with pytest.raises(InputError, match="heap_capacity"):
-        DStarLite(free, s, g, heap_capacity=10)
+            truth = _distances_to(grid, g, spacing, cc)
+            bounds = planner.cost_bounds()
+            assert np.all(bounds.lower_m <= truth * (1 + 1e-9) + 1e-9)
+            if planner.n_pending == 0:
+                np.testing.assert_allclose(bounds.lower_m[bounds.exact], truth[bounds.exact], rtol=1e-9)
+                checked_exact += int(bounds.exact.sum())
+            else:
+                checked_pending += 1
+            here = tuple(int(v) for v in plan.cells[min(len(plan.cells) - 1, rng.integers(1, 6))])
+            planner.move_to(here)
+            if rng.random() < 0.3 and planner.n_pending == 0:  # free cells (never with blocked cells pending)
+                cells, value = np.argwhere(~grid), True
+            else:  # block cells on the path ahead and elsewhere
+                cells, value = np.concatenate([plan.cells[len(plan.cells) // 2:-1], np.argwhere(grid)]), False
+            cells = cells[[tuple(c) not in (here, g) for c in cells]]
+            pick = cells[rng.choice(len(cells), min(len(cells), 4), replace=False)] if len(cells) else cells
+            planner.set_cells(pick, free=value)
+            grid[pick[:, 0], pick[:, 1]] = value
+    assert checked_exact > 2000 and checked_pending > 3
+
+
+def test_wall_far_ahead_is_searched_forward_and_repaired_when_near(dfw):
+    """The real DEM's query: a wall across the path at 90 % of it leaves the backward search pending and is planned
+    by the guided search; once the robot has come to a few cells before the wall, the repair is cheap and
+    the pending cells are given to the backward search. Every plan equals A* on the changed grid."""
+    grid = occupancy_from_dem(dfw, max_slope_deg=1.5)
+    start, goal = (8, 0), (358, 366)
+    planner = DStarLite(grid.free, start, goal, spacing=grid.spacing)
+    first = planner.plan()
+    at = first.cells[int(0.9 * (len(first.cells) - 1))]
+    wall = np.array([(at[0] + dr, at[1] + dc) for dr in range(-4, 5) for dc in range(-1, 2)])
+    changed = grid.free.copy()
+    changed[wall[:, 0], wall[:, 1]] = False
+    planner.set_cells(wall, free=False)
+    far = planner.plan()
+    assert far.planner == "guided_astar" and planner.n_pending > 0
+    assert far.length_m == pytest.approx(astar(changed, start, goal, spacing=grid.spacing).length_m, rel=1e-9)
+    here = tuple(int(v) for v in far.cells[int(0.9 * (len(far.cells) - 1)) - 6])
+    planner.move_to(here)
+    near = planner.plan()
+    assert near.planner == "dstar_lite" and planner.n_pending == 0
+    assert near.length_m == pytest.approx(astar(changed, here, goal, spacing=grid.spacing).length_m, rel=1e-9)
 
 
 def test_errors():
@@ -134,6 +191,8 @@ def test_errors():
         planner.set_cells([(9, 4)], free=False)
     with pytest.raises(InputError, match="spacing"):
         astar(free, (0, 0), (1, 1), spacing=(0, 1))
+    with pytest.raises(InputError, match="lookahead"):
+        DStarLite(free, (0, 0), (9, 4), lookahead=2.0)
 
 
 def test_dfw_corners_equal_mcp(dfw):

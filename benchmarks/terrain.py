@@ -1,7 +1,9 @@
 """Terrain benchmark: registration of LiDAR scans and DEMs beside Open3D, lineaments on generated DEMs with known
-scarps and on the real DEM, planning and replanning on the real DEM beside scikit-image's MCP_Geometric.
+scarps and on the real DEM, planning and replanning on the real DEM beside scikit-image's MCP_Geometric and A* from
+scratch, replanning on generated grids.
 
-Run:  SEISMO3D_DATA_DIR=../shared/data python benchmarks/terrain.py [--pairs 5] [--dems 50]
+Run:  SEISMO3D_DATA_DIR=../shared/data python benchmarks/terrain.py [--pairs 5] [--dems 50] [--grids 8]
+      [--only registration|lineaments|planning]
 
 Table 1, registration (all from the identity: no initial guess):
 - Autzen LiDAR tile (terrain/autzen_trim.laz, feet) cut into two strips overlapping by 30 % of its width; the source
@@ -24,10 +26,16 @@ half of the middle two thirds, where the tapered offset is at least half its max
 per DEM; then the real DEM.
 
 Table 3, planning on the real DEM with --max-slope 1.5 between the corners of its traversable region (8, 0) and
-(358, 366): A* (seismo3d) and MCP_Geometric (scikit-image) lengths and seconds (median of 5 warm runs); D* Lite's
-first plan; replanning after a wall of 9 cells appears across the path, with the robot at the start or part way along
-it, against A* and D* Lite from scratch from the robot's cell (walls 9 cells long and 3 thick, so that no diagonal
-step slips through).
+(358, 366): A* (seismo3d) and MCP_Geometric (scikit-image) lengths and seconds (median of 5 warm runs); DStarLite's
+first plan (with its default lookahead band and without it); replanning after a wall appears across the path (9
+cells long and 3 thick, so that no diagonal step slips through; the first position at or after the stated fraction
+of the first path that leaves a way round), with the robot at the start or part way along it: DStarLite as shipped
+(the backward D* Lite search repaired, or A* from the robot guided by it), plain D* Lite (forward_search=False) and
+A* from scratch from the robot's cell on the changed grid; every replanned path is checked equal in length to A*'s.
+
+Table 4, the same replanning on generated grids (seismo3d.data.terrain.synthetic_occupancy: rolling fractal terrain,
+the steepest 30 % blocked), walls at 10-90 % of the path (ahead of the robot): the median and worst ratios of the replanning time to A*'s
+from scratch, how many cases are under 0.5, the ratio of expanded cells, and plain D* Lite's ratios.
 
 Timings were measured on a 2-core machine shared with other jobs: they are pessimistic.
 """
@@ -36,6 +44,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import os
 import time
 import warnings
 
@@ -239,7 +248,7 @@ def lineament_table(n_dems):
           f"{seconds:6.3f}   ({found.length_m.sum() / 1000:.1f} km)")
 
 
-# ---- Table 3: planning ---------------------------------------------------------------------------------------------
+# ---- Tables 3 and 4: planning and replanning ----------------------------------------------------------------------
 
 def _timed(fn, repeats=5):
     out, times = None, []
@@ -265,24 +274,76 @@ def _wall(path, index, half=4):
     return np.argwhere(ndimage.binary_dilation(mask, np.ones((3, 3), bool))) + lo
 
 
-def _blocking_wall(grid, path, index, here, goal):
+def _blocking_wall(free, spacing, path, index, here, goal):
     """The first wall at or after ``path.cells[index]`` that blocks the path but leaves a way round (narrow passages
-    of the slope mask would otherwise cut the grid in two)."""
+    of the slope mask would otherwise cut the grid in two); None when there is none within 60 cells."""
     from seismo3d.errors import PlanningError
 
     for at in range(index, min(index + 60, len(path.cells) - 1)):
         wall = _wall(path, at)
-        inside = (wall[:, 0] >= 0) & (wall[:, 0] < grid.shape[0]) & (wall[:, 1] >= 0) & (wall[:, 1] < grid.shape[1])
+        inside = (wall[:, 0] >= 0) & (wall[:, 0] < free.shape[0]) & (wall[:, 1] >= 0) & (wall[:, 1] < free.shape[1])
         wall = wall[inside]
         wall = wall[[tuple(w) not in (here, goal) for w in wall]]
-        changed = grid.free.copy()
+        changed = free.copy()
         changed[wall[:, 0], wall[:, 1]] = False
         try:
-            astar(changed, here, goal, spacing=grid.spacing)
+            astar(changed, here, goal, spacing=spacing)
         except PlanningError:
             continue
         return wall, changed, at
-    raise RuntimeError("no wall position leaves a path round it")
+    return None
+
+
+@dataclasses.dataclass(frozen=True)
+class Replan:
+    """One replanning case: the robot at ``robot`` of the first path, a wall across it at ``wall`` (fractions)."""
+
+    robot: float
+    wall: float
+    detour_m: float
+    length_m: float
+    seconds: float  # DStarLite (default: repair near the robot, guided search far from it): set_cells + plan
+    search: str
+    expanded: int
+    dstar_seconds: float  # DStarLite(forward_search=False): plain D* Lite
+    dstar_expanded: int
+    astar_seconds: float  # A* from scratch from the robot's cell on the changed grid
+    astar_expanded: int
+
+
+def _replan(free, spacing, start, goal, first, robot_at, wall_at, repeats=3):
+    """Time replanning (set_cells + plan on planners that planned once and moved) beside A* from scratch; each
+    timing is the median of ``repeats`` runs, each replan on a fresh planner. None when no wall leaves a way round."""
+    here = tuple(int(v) for v in first.cells[int(robot_at * (len(first.cells) - 1))])
+    found = _blocking_wall(free, spacing, first, int(wall_at * (len(first.cells) - 1)), here, goal)
+    if found is None:
+        return None
+    wall, changed, at = found
+    scratch, t_astar = _timed(lambda: astar(changed, here, goal, spacing=spacing))
+    before = astar(free, here, goal, spacing=spacing)
+    runs = {}
+    for forward in (True, False):
+        times = []
+        for _ in range(repeats):
+            planner = DStarLite(free, start, goal, spacing=spacing, forward_search=forward)
+            planner.plan()
+            planner.move_to(here)
+            planner.plan()
+            t0 = time.perf_counter()
+            planner.set_cells(wall, free=False)
+            out = planner.plan()
+            times.append(time.perf_counter() - t0)
+        assert abs(out.length_m - scratch.length_m) <= 1e-9 * scratch.length_m, (out.length_m, scratch.length_m)
+        runs[forward] = (out, float(np.median(times)))
+    (hybrid, t_hybrid), (plain, t_plain) = runs[True], runs[False]
+    return Replan(robot_at, at / (len(first.cells) - 1), scratch.length_m - before.length_m, scratch.length_m,
+                  t_hybrid, hybrid.planner, hybrid.n_expanded, t_plain, plain.n_expanded, t_astar,
+                  scratch.n_expanded)
+
+
+def _load():
+    one, five, _ = os.getloadavg()
+    return f"load average {one:.1f} (1 min), {five:.1f} (5 min) on {os.cpu_count()} cores"
 
 
 def planning_table():
@@ -292,50 +353,92 @@ def planning_table():
     grid = occupancy_from_dem(dfw, max_slope_deg=1.5)
     start, goal = (8, 0), (358, 366)
     print("\nTable 3: planning on the real DEM, --max-slope 1.5, (8, 0) -> (358, 366); targets <= 1.03 x MCP's "
-          "length in <= 1 s, replanning < half of planning from scratch")
+          f"length in <= 1 s, replanning < half of planning from scratch ({_load()})")
     astar(grid.free, start, goal, spacing=grid.spacing)  # compile / load the numba kernels once
     path, t_astar = _timed(lambda: astar(grid.free, start, goal, spacing=grid.spacing))
     costs = np.where(grid.free, 1.0, np.inf)
     (cum, _), t_mcp = _timed(lambda: MCP_Geometric(costs, sampling=grid.spacing).find_costs([start], [goal]))
     optimum = float(cum[goal])
     warm = DStarLite(grid.free, start, goal, spacing=grid.spacing)  # load the numba kernels once
-    warm.set_cells(_wall(warm.plan(), 100), free=False)
+    warm_path = warm.plan()
+    warm.set_cells(_wall(warm_path, 100), free=False)
+    warm.plan()
+    warm.set_cells(_wall(warm_path, 500), free=False)
     warm.plan()
     first, t_dstar = _timed(lambda: DStarLite(grid.free, start, goal, spacing=grid.spacing).plan())
-    print(f"{'planner':34s} {'length m':>10s} {'x MCP':>7s} {'expanded':>9s} {'seconds':>8s}")
-    print(f"{'seismo3d A*':34s} {path.length_m:10.1f} {path.length_m / optimum:7.4f} {path.n_expanded:9d} "
+    plain, t_plain = _timed(lambda: DStarLite(grid.free, start, goal, spacing=grid.spacing, lookahead=0.0).plan())
+    print(f"{'planner':40s} {'length m':>10s} {'x MCP':>7s} {'expanded':>9s} {'seconds':>8s}")
+    print(f"{'seismo3d A*':40s} {path.length_m:10.1f} {path.length_m / optimum:7.4f} {path.n_expanded:9d} "
           f"{t_astar:8.4f}")
-    print(f"{'scikit-image MCP_Geometric':34s} {optimum:10.1f} {1.0:7.4f} {'':>9s} {t_mcp:8.4f}")
-    print(f"{'seismo3d D* Lite, first plan':34s} {first.length_m:10.1f} {first.length_m / optimum:7.4f} "
+    print(f"{'scikit-image MCP_Geometric':40s} {optimum:10.1f} {1.0:7.4f} {'':>9s} {t_mcp:8.4f}")
+    print(f"{'seismo3d D* Lite, first plan':40s} {first.length_m:10.1f} {first.length_m / optimum:7.4f} "
           f"{first.n_expanded:9d} {t_dstar:8.4f}")
-    print(f"\n{'replanning: robot at / wall at':34s} {'D* Lite s':>10s} {'expanded':>9s} {'A* s':>8s} "
-          f"{'D*L scratch s':>13s} {'ratio to A*':>11s} {'length m':>10s}")
-    for robot_at, wall_at in ((0.0, 0.05), (0.3, 0.35), (0.6, 0.65), (0.0, 0.5), (0.0, 0.9)):
-        planner = DStarLite(grid.free, start, goal, spacing=grid.spacing)
-        base = planner.plan()
-        here = tuple(int(v) for v in base.cells[int(robot_at * (len(base.cells) - 1))])
-        planner.move_to(here)
-        wall, changed, at = _blocking_wall(grid, base, int(wall_at * (len(base.cells) - 1)), here, goal)
-        t0 = time.perf_counter()
-        planner.set_cells(wall, free=False)
-        replanned = planner.plan()
-        t_replan = time.perf_counter() - t0
-        scratch, t_scratch = _timed(lambda: astar(changed, here, goal, spacing=grid.spacing))
-        _, t_dscratch = _timed(lambda: DStarLite(changed, here, goal, spacing=grid.spacing).plan(), repeats=3)
-        assert abs(scratch.length_m - replanned.length_m) < 1e-6 * scratch.length_m
-        label = f"{robot_at:.0%} / {at / (len(base.cells) - 1):.0%} of the path"
-        print(f"{label:34s} {t_replan:10.4f} {replanned.n_expanded:9d} {t_scratch:8.4f} {t_dscratch:13.4f} "
-              f"{t_replan / t_scratch:11.2f} {replanned.length_m:10.1f}")
+    print(f"{'seismo3d D* Lite, first plan, lookahead 0':40s} {plain.length_m:10.1f} {plain.length_m / optimum:7.4f} "
+          f"{plain.n_expanded:9d} {t_plain:8.4f}")
+    print("\nReplanning after a wall (9 x 3 cells) appears across the path, with the robot at the start or part way "
+          "along it.\n'replan': DStarLite as shipped (repairs its backward D* Lite search when the repair is cheap, "
+          "else A* from the robot\nguided by it); 'D* Lite': DStarLite(forward_search=False); 'A*': from scratch from "
+          "the robot's cell on the changed grid.\nSeconds: set_cells + plan, median of 3 fresh planners (A*: of 5); "
+          "'detour': the new path's length minus the old one's.")
+    header = (f"{'robot / wall':>14s} {'detour m':>9s} {'replan s':>9s} {'search':>12s} {'expanded':>8s} "
+              f"{'D* Lite s':>9s} {'expanded':>8s} {'A* s':>7s} {'expanded':>8s} {'replan/A*':>9s} "
+              f"{'D*L/A*':>7s} {'length m':>9s}")
+    print(header)
+    print("-" * len(header))
+    cases = ((0.0, 0.05), (0.3, 0.35), (0.6, 0.65), (0.0, 0.5), (0.0, 0.9),  # the rows of the first version
+             (0.0, 0.2), (0.0, 0.35), (0.0, 0.6), (0.0, 0.7), (0.0, 0.8), (0.0, 0.95),
+             (0.3, 0.5), (0.3, 0.6), (0.3, 0.7), (0.3, 0.9), (0.6, 0.8), (0.6, 0.95))
+    for robot_at, wall_at in cases:
+        r = _replan(grid.free, grid.spacing, start, goal, first, robot_at, wall_at)
+        print(f"{f'{r.robot:.0%} / {r.wall:.0%}':>14s} {r.detour_m:9.1f} {r.seconds:9.4f} {r.search:>12s} "
+              f"{r.expanded:8d} {r.dstar_seconds:9.4f} {r.dstar_expanded:8d} {r.astar_seconds:7.4f} "
+              f"{r.astar_expanded:8d} {r.seconds / r.astar_seconds:9.2f} {r.dstar_seconds / r.astar_seconds:7.2f} "
+              f"{r.length_m:9.1f}")
+    print(f"({_load()})")
+
+
+def generated_replanning_table(n_grids):
+    from seismo3d.data.terrain import synthetic_occupancy
+
+    print(f"\nTable 4: replanning on {n_grids} generated grids (seismo3d.data.terrain.synthetic_occupancy, seeds "
+          f"0-{n_grids - 1}: 400 x 400 cells of 30 x 25 m, 70 % free, between the corners of the largest free "
+          f"region), as in Table 3; ratios to A* from scratch ({_load()})")
+    header = (f"{'robot / wall':>14s} {'cases':>5s} {'replan/A* median':>16s} {'worst':>6s} {'< 0.5':>6s} "
+              f"{'expanded/A* median':>18s} {'worst':>6s} {'guided':>6s} {'D*L/A* median':>13s} {'worst':>6s} "
+              f"{'detour m max':>12s}")
+    print(header)
+    print("-" * len(header))
+    grids = [synthetic_occupancy(seed=seed) for seed in range(n_grids)]
+    firsts = [DStarLite(t.free, t.start, t.goal, spacing=t.spacing).plan() for t in grids]
+    for robot_at, walls_at in ((0.0, (0.1, 0.3, 0.5, 0.7, 0.9)), (0.3, (0.35, 0.5, 0.7, 0.9))):
+        for wall_at in walls_at:
+            rows = [r for t, first in zip(grids, firsts)
+                    if (r := _replan(t.free, t.spacing, t.start, t.goal, first, robot_at, wall_at)) is not None]
+            ratio = np.array([r.seconds / r.astar_seconds for r in rows])
+            expanded = np.array([r.expanded / r.astar_expanded for r in rows])
+            plain = np.array([r.dstar_seconds / r.astar_seconds for r in rows])
+            guided = sum(r.search == "guided_astar" for r in rows)
+            print(f"{f'{robot_at:.0%} / {wall_at:.0%}':>14s} {len(rows):5d} {np.median(ratio):16.2f} "
+                  f"{ratio.max():6.2f} {int(np.sum(ratio < 0.5)):6d} {np.median(expanded):18.3f} "
+                  f"{expanded.max():6.3f} {guided:6d} {np.median(plain):13.2f} {plain.max():6.2f} "
+                  f"{max(r.detour_m for r in rows):12.1f}")
+    print(f"({_load()})")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--pairs", type=int, default=5, help="LiDAR and DEM pairs in Table 1")
     parser.add_argument("--dems", type=int, default=50, help="generated DEMs in Table 2")
+    parser.add_argument("--grids", type=int, default=8, help="generated occupancy grids in Table 4")
+    parser.add_argument("--only", choices=["registration", "lineaments", "planning"], help="print one part only")
     args = parser.parse_args()
-    registration_table(args.pairs)
-    lineament_table(args.dems)
-    planning_table()
+    if args.only in (None, "registration"):
+        registration_table(args.pairs)
+    if args.only in (None, "lineaments"):
+        lineament_table(args.dems)
+    if args.only in (None, "planning"):
+        planning_table()
+        generated_replanning_table(args.grids)
 
 
 if __name__ == "__main__":

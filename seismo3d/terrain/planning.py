@@ -307,6 +307,7 @@ class DStarLite:
     >>> planner = DStarLite(free, (0, 0), (49, 49))
     >>> first = planner.plan()
     >>> planner.set_cells([(25, c) for c in range(10, 50)], free=False)
+    40
     >>> second = planner.plan()
     >>> second.length_m > first.length_m
     True
@@ -395,9 +396,10 @@ class DStarLite:
     def plan(self) -> GridPath:
         """The shortest path from the current start to the goal on the current grid.
 
-        Repairs the backward search with the pending changes when they are nearer the robot than the goal, when a
-        cell was freed, or with ``forward_search=False``; otherwise searches forward from the robot, guided by the
-        backward search (``GridPath.planner`` says which: ``'dstar_lite'`` or ``'guided_astar'``).
+        Repairs the backward search with the pending changes when the repair would raise fewer cells than there
+        are steps from the robot to the goal, when a cell was freed, or with ``forward_search=False``; otherwise
+        searches forward from the robot, guided by the backward search (``GridPath.planner`` says which:
+        ``'dstar_lite'`` or ``'guided_astar'``).
 
         Raises
         ------

@@ -3,7 +3,9 @@
 import numpy as np
 import pytest
 
-from seismo3d.data.terrain import cut_scan_pair, moved_grid, synthetic_scarp_dem
+from scipy import ndimage
+
+from seismo3d.data.terrain import cut_scan_pair, moved_grid, synthetic_occupancy, synthetic_scarp_dem
 from seismo3d.errors import InputError
 
 
@@ -52,3 +54,20 @@ def test_moved_grid_truth_on_a_plane():
     orig_c, orig_r = 25 + 19.5 + p[0] / dx, 20 + 19.5 - p[1] / dy
     expected = 0.1 * orig_c * dx - 0.05 * (-orig_r * dy)
     assert mg.elevation[r, c] == pytest.approx(expected, abs=1e-9)
+
+
+def test_synthetic_occupancy_fraction_and_query():
+    t = synthetic_occupancy((120, 100), spacing=(30.0, 25.0), free_fraction=0.7, seed=3)
+    np.testing.assert_array_equal(t.free, synthetic_occupancy((120, 100), free_fraction=0.7, seed=3).free)
+    assert t.free.shape == (120, 100) and t.spacing == (30.0, 25.0)
+    assert t.free.mean() == pytest.approx(0.7, abs=0.005)
+    labels, n = ndimage.label(t.free, structure=np.ones((3, 3), bool))
+    sizes = np.bincount(labels.ravel())[1:]
+    assert labels[t.start] == labels[t.goal] == 1 + np.argmax(sizes)  # both in the largest free region
+    region = np.argwhere(labels == labels[t.start])
+    assert sum(t.start) == region.sum(axis=1).min()  # the region's cell nearest the top-left corner
+    assert (119 - t.goal[0]) + (99 - t.goal[1]) == ((119 - region[:, 0]) + (99 - region[:, 1])).min()
+    with pytest.raises(InputError, match="free_fraction"):
+        synthetic_occupancy(free_fraction=1.0)
+    with pytest.raises(InputError, match="shape"):
+        synthetic_occupancy((8, 100))

@@ -107,8 +107,8 @@ def _pop(k1, k2, nodes, size):
 # ---- A*, optionally guided by a backward D* Lite search -----------------------------------------------------------
 
 @njit(cache=True, inline="always")
-def guide_bound(v, w, goal_r, goal_c, cost, back_g, certificate):
-    """Lower bound of the cost from cell v to the goal.
+def guide_bound(v, r, c, goal_r, goal_c, cost, back_g, certificate):
+    """Lower bound of the cost from cell v = (r, c) to the goal.
 
     Without a certificate (``certificate[0] == 0``) the octile distance. With one, from a backward D* Lite search
     whose grid has no more obstacles than the one searched now (costs only grew since): its exact cost to the goal
@@ -121,8 +121,6 @@ def guide_bound(v, w, goal_r, goal_c, cost, back_g, certificate):
     ``g + h(start, v) + km < top`` has ``g = g*`` (it is consistent, as a queued cell's key is at least ``top``, and
     g cannot be too high or too low by the same argument), and any other has ``g* >= top - km - h(start, v)``.
     """
-    r = v // w
-    c = v % w
     h = octile(r, c, goal_r, goal_c, cost)
     if certificate[0] == 0:
         return h
@@ -142,15 +140,17 @@ def bound_field(shape_h, w, goal, cost, back_g, certificate, lower, exact):
     cost (settled by the backward search)."""
     goal_r, goal_c = goal // w, goal % w
     top = certificate[1]
-    for v in range(shape_h * w):
-        lower[v] = guide_bound(v, w, goal_r, goal_c, cost, back_g, certificate)
-        if certificate[0] == 0:
-            exact[v] = False
-        elif top >= INF:
-            exact[v] = True
-        else:
-            hs = octile(certificate[3], certificate[4], v // w, v % w, cost)
-            exact[v] = back_g[v] < INF and back_g[v] + hs + certificate[2] < top
+    for r in range(shape_h):
+        for c in range(w):
+            v = r * w + c
+            lower[v] = guide_bound(v, r, c, goal_r, goal_c, cost, back_g, certificate)
+            if certificate[0] == 0:
+                exact[v] = False
+            elif top >= INF:
+                exact[v] = True
+            else:
+                hs = octile(certificate[3], certificate[4], r, c, cost)
+                exact[v] = back_g[v] < INF and back_g[v] + hs + certificate[2] < top
 
 
 @njit(cache=True)
@@ -172,7 +172,7 @@ def forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, ge
     stamp[start] = generation
     g[start] = 0
     parent[start] = -1
-    bound = guide_bound(start, w, goal_r, goal_c, cost, back_g, certificate)
+    bound = guide_bound(start, start // w, start % w, goal_r, goal_c, cost, back_g, certificate)
     if bound >= INF:
         return INF, 0
     size = _push(k1, k2, nodes, 0, bound, 0, start)
@@ -191,11 +191,12 @@ def forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, ge
             step = _step(free, h, w, r, c, k, cost, corner_cutting)
             if step < 0:
                 continue
-            v = (r + _DR[k]) * w + (c + _DC[k])
+            rv, cv = r + _DR[k], c + _DC[k]
+            v = rv * w + cv
             tentative = gu + step
             if stamp[v] == generation and tentative >= g[v]:
                 continue
-            bound = guide_bound(v, w, goal_r, goal_c, cost, back_g, certificate)
+            bound = guide_bound(v, rv, cv, goal_r, goal_c, cost, back_g, certificate)
             if bound >= INF:
                 continue  # the backward search proved the goal unreachable from v
             stamp[v] = generation
@@ -299,16 +300,17 @@ def _heap_remove(k1, k2, nodes, pos, size, node):
 # ---- D* Lite (Koenig & Likhachev 2002, optimised version, Fig. 4), searching from the goal ------------------------
 
 @njit(cache=True, inline="always")
-def _key(g, rhs, s, start_r, start_c, w, km, cost):
+def _key(g, rhs, s, r, c, start_r, start_c, km, cost):
+    """D* Lite's key of cell s = (r, c)."""
     m = min(g[s], rhs[s])
     if m >= INF:
         return INF, INF
-    return m + octile(start_r, start_c, s // w, s % w, cost) + km, m
+    return m + octile(start_r, start_c, r, c, cost) + km, m
 
 
 @njit(cache=True)
-def _rhs_from_successors(free, g, s, w, h, cost, corner_cutting):
-    r, c = s // w, s % w
+def _rhs_from_successors(free, g, r, c, w, h, cost, corner_cutting):
+    """min over the steps out of (r, c) of step + g."""
     best = INF
     for k in range(8):
         step = _step(free, h, w, r, c, k, cost, corner_cutting)
@@ -321,9 +323,10 @@ def _rhs_from_successors(free, g, s, w, h, cost, corner_cutting):
 
 
 @njit(cache=True, inline="always")
-def _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, start_r, start_c, w, km, cost):
+def _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, r, c, start_r, start_c, km, cost):
+    """Queue cell s = (r, c) with its key when inconsistent, else take it out of the queue."""
     if g[s] != rhs[s]:
-        a, b = _key(g, rhs, s, start_r, start_c, w, km, cost)
+        a, b = _key(g, rhs, s, r, c, start_r, start_c, km, cost)
         return heap_set(k1, k2, nodes, pos, size, s, a, b)
     if pos[s] >= 0:
         return _heap_remove(k1, k2, nodes, pos, size, s)
@@ -339,19 +342,19 @@ def dstar_compute(free, g, rhs, k1, k2, nodes, pos, size, start, goal, km, cost,
     start_r, start_c = start // w, start % w
     expanded = 0
     while size > 0:
-        s1, s2 = _key(g, rhs, start, start_r, start_c, w, km, cost)
+        s1, s2 = _key(g, rhs, start, start_r, start_c, start_r, start_c, km, cost)
         if s2 < INF:
             s1 += np.int64(lookahead * s2)
         top1, top2 = k1[0], k2[0]
         if not (_less(top1, top2, s1, s2) or rhs[start] > g[start]):
             break
         u = nodes[0]
-        new1, new2 = _key(g, rhs, u, start_r, start_c, w, km, cost)
+        r, c = u // w, u % w
+        new1, new2 = _key(g, rhs, u, r, c, start_r, start_c, km, cost)
         if _less(top1, top2, new1, new2):  # queued before the robot moved: the key only grows
             size = heap_set(k1, k2, nodes, pos, size, u, new1, new2)
             continue
         expanded += 1
-        r, c = u // w, u % w
         if g[u] > rhs[u]:  # overconsistent: its cost is final
             g[u] = rhs[u]
             size = _heap_remove(k1, k2, nodes, pos, size, u)
@@ -360,22 +363,24 @@ def dstar_compute(free, g, rhs, k1, k2, nodes, pos, size, start, goal, km, cost,
                 step = _step(free, h, w, r, c, k, cost, corner_cutting)
                 if step < 0:
                     continue
-                s = (r + _DR[k]) * w + (c + _DC[k])
+                rs, cs = r + _DR[k], c + _DC[k]
+                s = rs * w + cs
                 if s != goal and step + g[u] < rhs[s]:
                     rhs[s] = step + g[u]
-                    size = _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, start_r, start_c, w, km, cost)
+                    size = _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, rs, cs, start_r, start_c, km, cost)
         else:  # underconsistent: raise it and let the cells that relied on it find another way
             g_old = g[u]
             g[u] = INF
-            size = _update_vertex(g, rhs, k1, k2, nodes, pos, size, u, start_r, start_c, w, km, cost)
+            size = _update_vertex(g, rhs, k1, k2, nodes, pos, size, u, r, c, start_r, start_c, km, cost)
             for k in range(8):
                 step = _step(free, h, w, r, c, k, cost, corner_cutting)
                 if step < 0:
                     continue
-                s = (r + _DR[k]) * w + (c + _DC[k])
+                rs, cs = r + _DR[k], c + _DC[k]
+                s = rs * w + cs
                 if s != goal and rhs[s] == step + g_old:
-                    rhs[s] = _rhs_from_successors(free, g, s, w, h, cost, corner_cutting)
-                    size = _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, start_r, start_c, w, km, cost)
+                    rhs[s] = _rhs_from_successors(free, g, rs, cs, w, h, cost, corner_cutting)
+                    size = _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, rs, cs, start_r, start_c, km, cost)
     top = k1[0] if size > 0 else INF
     return size, expanded, top
 
@@ -396,8 +401,8 @@ def dstar_cells_changed(free, g, rhs, k1, k2, nodes, pos, size, cells, start, go
                     continue
                 s = r * w + c
                 if s != goal:
-                    rhs[s] = _rhs_from_successors(free, g, s, w, h, cost, corner_cutting)
-                size = _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, start_r, start_c, w, km, cost)
+                    rhs[s] = _rhs_from_successors(free, g, r, c, w, h, cost, corner_cutting)
+                size = _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, r, c, start_r, start_c, km, cost)
     return size
 
 
@@ -406,7 +411,10 @@ def count_raised(known, g, rhs, cells, start, cost, corner_cutting, lookahead, b
     """How many cells the backward search would have to raise (and lower again) if ``cells`` were blocked, counted
     up to ``budget``: the cells below them in its tree (a cell hangs below a neighbour whose step plus cost to the
     goal equals its own cost; with ties, below each such neighbour, so a cell with another way out is counted too)
-    whose key is below the start's plus the lookahead, i.e. that D* Lite would expand before it stops.
+    whose key is below the start's plus the lookahead, i.e. that D* Lite would expand before it stops. When the
+    start itself hangs below them, the count is ``budget``: D* Lite must then also raise every cell of the tree
+    whose key is below the start's new one, which exceeds the old by the length of the detour, not known before the
+    search (a wall that closes a passage in front of the robot raises the whole region behind it).
     ``stamp == generation`` marks counted cells."""
     h, w = known.shape
     start_r, start_c = start // w, start % w
@@ -429,10 +437,13 @@ def count_raised(known, g, rhs, cells, start, cost, corner_cutting, lookahead, b
             step = _step(known, h, w, r, c, k, cost, corner_cutting)
             if step < 0:
                 continue
-            v = (r + _DR[k]) * w + (c + _DC[k])
+            rv, cv = r + _DR[k], c + _DC[k]
+            v = rv * w + cv
             if stamp[v] == generation or g[v] != step + g[x]:
                 continue
-            if g[v] + octile(start_r, start_c, v // w, v % w, cost) >= limit:
+            if v == start:
+                return budget  # the robot's own cost rises by a detour unknown here: so does the repair's reach
+            if g[v] + octile(start_r, start_c, rv, cv, cost) >= limit:
                 continue
             stamp[v] = generation
             queue[n] = v
@@ -445,7 +456,7 @@ def dstar_rekey(g, rhs, k1, k2, nodes, pos, size, start, w, cost):
     """Recompute every queued key with km = 0 (when km grows large) and restore the heap order."""
     start_r, start_c = start // w, start % w
     for i in range(size):
-        k1[i], k2[i] = _key(g, rhs, nodes[i], start_r, start_c, w, 0, cost)
+        k1[i], k2[i] = _key(g, rhs, nodes[i], nodes[i] // w, nodes[i] % w, start_r, start_c, 0, cost)
     for i in range(size // 2 - 1, -1, -1):
         _sift_down(k1, k2, nodes, pos, size, i)
 

@@ -31,7 +31,10 @@ Complexity, with N cells (memory O(N) for every planner):
   makes every cell that led to it look as good as before, and F approaches A*'s count.
 - The choice between the two: a breadth-first walk down the backward search's tree from the blocked cells, counting
   the cells the repair would raise, O(B) with B the number of steps from the robot to the goal: the repair is run
-  when it would raise fewer cells than B, which the guided search expands at the least.
+  when it would raise fewer cells than B, which the guided search expands at the least, and the robot is not among
+  them. A wall across the robot's way is thus always searched round by the guided search first (near the robot
+  both are cheap; far from it only the guided search is), and given to the backward search once the robot's old
+  way to the goal no longer crosses it.
 
 References
 ----------
@@ -257,17 +260,18 @@ class DStarLite:
     Two searches share the work. D* Lite searches back from the goal and keeps every cell's cost to the goal; when
     cells change it repairs only the costs they affect, in order of relevance to the robot's cell: cheap when the
     change is near the robot, but a wall far ahead raises the cost of every cell between the robot and the wall
-    whose way to the goal crossed it, and all of them must be repaired. So when cells were only blocked (none
-    freed) and the repair would raise more cells than there are steps from the robot to the goal, :meth:`plan`
-    leaves the backward search as it was (the changed cells stay pending) and runs A* forward from the robot on the
-    current grid, with the backward search's costs as heuristic: computed with fewer obstacles, they are lower
+    whose way to the goal crossed it, and all of them must be repaired; so does a wall that closes a passage just
+    in front of the robot, for the whole region behind it. So when cells were only blocked (none freed) and the
+    repair would raise the robot's own cost or more cells than there are steps from the robot to the goal,
+    :meth:`plan` leaves the backward search as it was (the changed cells stay pending) and runs A* forward from the
+    robot on the current grid, with the backward search's costs as heuristic: computed with fewer obstacles, they are lower
     bounds, exact where the new obstacles changed nothing, so A* runs straight along the old path to the obstacle,
     round it and back onto the old path, expanding only the cells whose old way to the goal is about as short as
     the detour. Where the backward search has not settled a cell, the bound comes from its queue: a cell whose key
     is not below the queue's smallest has a cost to the goal of at least that key less km and the heuristic from
     the robot (the invariant of LPA* / D* Lite's loop, which holds whenever the loop stops). Pending cells are given
-    to the backward search at the first :meth:`plan` where the repair has become cheap (the robot came nearer to
-    them), or where a cell was freed.
+    to the backward search at the first :meth:`plan` where the repair has become cheap (the robot's old way to the
+    goal no longer crosses them, e.g. once it is on its way round them), or where a cell was freed.
 
     Parameters
     ----------
@@ -396,8 +400,9 @@ class DStarLite:
     def plan(self) -> GridPath:
         """The shortest path from the current start to the goal on the current grid.
 
-        Repairs the backward search with the pending changes when the repair would raise fewer cells than there
-        are steps from the robot to the goal, when a cell was freed, or with ``forward_search=False``; otherwise
+        Repairs the backward search with the pending changes when the repair would not raise the robot's cost and
+        would raise fewer cells than there are steps from the robot to the goal, when a cell was freed, or with
+        ``forward_search=False``; otherwise
         searches forward from the robot, guided by the backward search (``GridPath.planner`` says which:
         ``'dstar_lite'`` or ``'guided_astar'``).
 
@@ -481,8 +486,9 @@ class DStarLite:
 
     def _repair_first(self, pending) -> bool:
         """Whether the backward search should take the pending changes now: always when a cell was freed (its
-        costs are then no lower bounds) or when it has not searched yet; otherwise when it would raise fewer
-        cells than the forward search expands at the least (the steps from the robot to the goal)."""
+        costs are then no lower bounds) or when it has not searched yet; otherwise when it would not raise the
+        robot's cost and would raise fewer cells than the forward search expands at the least (the steps from the
+        robot to the goal)."""
         if not self._forward or self._certificate[0] == 0 or self._free.ravel()[pending].any():
             return True
         (sr, sc), (gr, gc) = self.start, divmod(self._goal, self._w)

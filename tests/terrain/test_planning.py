@@ -154,10 +154,11 @@ def test_cost_bounds_are_lower_bounds_and_exact_where_settled(monkeypatch, reset
     assert checked_exact > 2000 and checked_pending > 3
 
 
-def test_wall_far_ahead_is_searched_forward_and_repaired_when_near(dfw):
+def test_wall_far_ahead_is_searched_forward_and_repaired_once_passed(dfw):
     """The real DEM's query: a wall across the path at 90 % of it leaves the backward search pending and is planned
-    by the guided search; once the robot has come to a few cells before the wall, the repair is cheap and
-    the pending cells are given to the backward search. Every plan equals A* on the changed grid."""
+    by the guided search; once the robot is on its way round the wall (its old way to the goal no longer crosses
+    it), the repair is cheap and the pending cells are given to the backward search. Every plan equals A* on the
+    changed grid."""
     grid = occupancy_from_dem(dfw, max_slope_deg=1.5)
     start, goal = (8, 0), (358, 366)
     planner = DStarLite(grid.free, start, goal, spacing=grid.spacing)

@@ -34,8 +34,9 @@ of the first path that leaves a way round), with the robot at the start or part 
 A* from scratch from the robot's cell on the changed grid; every replanned path is checked equal in length to A*'s.
 
 Table 4, the same replanning on generated grids (seismo3d.data.terrain.synthetic_occupancy: rolling fractal terrain,
-the steepest 30 % blocked), walls at 10-90 % of the path (ahead of the robot): the median and worst ratios of the replanning time to A*'s
-from scratch, how many cases are under 0.5, the ratio of expanded cells, and plain D* Lite's ratios.
+the steepest 30 % blocked), walls at 10-90 % of the path (ahead of the robot): the median and worst ratios of the
+replanning time to A*'s from scratch, how many cases are under 0.5, the ratio of expanded cells, and plain D* Lite's
+ratios.
 
 Timings were measured on a 2-core machine shared with other jobs: they are pessimistic.
 """
@@ -311,7 +312,7 @@ class Replan:
     astar_expanded: int
 
 
-def _replan(free, spacing, start, goal, first, robot_at, wall_at, repeats=3):
+def _replan(free, spacing, start, goal, first, robot_at, wall_at, repeats=5):
     """Time replanning (set_cells + plan on planners that planned once and moved) beside A* from scratch; each
     timing is the median of ``repeats`` runs, each replan on a fresh planner. None when no wall leaves a way round."""
     here = tuple(int(v) for v in first.cells[int(robot_at * (len(first.cells) - 1))])
@@ -378,8 +379,8 @@ def planning_table():
     print("\nReplanning after a wall (9 x 3 cells) appears across the path, with the robot at the start or part way "
           "along it.\n'replan': DStarLite as shipped (repairs its backward D* Lite search when the repair is cheap, "
           "else A* from the robot\nguided by it); 'D* Lite': DStarLite(forward_search=False); 'A*': from scratch from "
-          "the robot's cell on the changed grid.\nSeconds: set_cells + plan, median of 3 fresh planners (A*: of 5); "
-          "'detour': the new path's length minus the old one's.")
+          "the robot's cell on the changed grid.\nSeconds: set_cells + plan, median of 5 fresh planners (A*: of 5 "
+          "runs); 'detour': the new path's length minus the old one's.")
     header = (f"{'robot / wall':>14s} {'detour m':>9s} {'replan s':>9s} {'search':>12s} {'expanded':>8s} "
               f"{'D* Lite s':>9s} {'expanded':>8s} {'A* s':>7s} {'expanded':>8s} {'replan/A*':>9s} "
               f"{'D*L/A*':>7s} {'length m':>9s}")

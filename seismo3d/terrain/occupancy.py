@@ -76,7 +76,7 @@ def occupancy_from_dem(dem: Dem, *, max_slope_deg: float) -> OccupancyGrid:
     """
     limit = float(max_slope_deg)
     if not 0.0 < limit < 90.0:
-        raise InputError(f"the slope limit must be in (0, 90) degrees; got {max_slope_deg!r}")
+        raise InputError(f"max_slope_deg must be in (0, 90) degrees; got {max_slope_deg!r}")
     slope = slope_deg(dem.elevation_m, dem.metric_axes)
     free = np.isfinite(slope) & (slope <= limit)
     rows, cols = np.mgrid[0:dem.shape[0], 0:dem.shape[1]]

@@ -16,6 +16,7 @@ The pipeline (each step a named function):
 
 from __future__ import annotations
 
+import dataclasses
 import time
 import warnings
 from dataclasses import dataclass
@@ -23,11 +24,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
+from .._options import resolve_options
 from .._validation import check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError, Seismo3dWarning
 from ..features import match_images
 from ..geometry import estimate_normals, voxel_downsample
-from ..registration import RegistrationResult, fused_icp, icp
+from ..registration import ICPOptions, RegistrationResult, fused_icp, icp
 from .dem import Dem
 from .georef import LocalFrame, check_compatible
 from .hillshade import slope_deg
@@ -55,10 +57,10 @@ class TerrainRegistrationOptions:
     max_points : int
         Scans with more points are voxel-downsampled to about this many (DEM cells alike).
     max_distance : tuple of float or None
-        Coarse-to-fine maximum correspondence distances in the local unit. Default: ``distance_cells`` times the
-        cell after a feature start (its error is about the RANSAC threshold: a schedule as wide as the engine's
-        default, 10 % of the bounding-box diagonal, lets the points outside the overlap drag the fit away), the
-        engine's default schedule from ``init`` or the identity.
+        Coarse-to-fine maximum correspondence distances in the local unit. Default: ``icp.max_distance`` when set;
+        otherwise ``distance_cells`` times the cell after a feature start (its error is about the RANSAC threshold:
+        a schedule as wide as the engine's default, 10 % of the bounding-box diagonal, lets the points outside the
+        overlap drag the fit away), the engine's default schedule from ``init`` or the identity.
     distance_cells : tuple of float
         The default schedule after a feature start, in cells.
     ransac_cells : float
@@ -67,6 +69,9 @@ class TerrainRegistrationOptions:
         Neighbours of the PCA normals of a target scan.
     model : {'rigid', 'similarity'}
         Transform family (rigid for co-registered surveys; similarity also fits a unit mismatch).
+    icp : ICPOptions
+        The engine's dense loop (iterations, tolerance, robust kernel, degeneracy threshold; its distance schedule
+        is replaced as ``max_distance`` says).
     """
 
     cell: float | None = None
@@ -78,6 +83,7 @@ class TerrainRegistrationOptions:
     ransac_cells: float = 3.0
     normal_neighbours: int = 16
     model: str = "rigid"
+    icp: ICPOptions = ICPOptions()
 
     def __post_init__(self):
         if self.cell is not None:
@@ -89,6 +95,8 @@ class TerrainRegistrationOptions:
         check_positive(self.ransac_cells, "ransac_cells")
         if self.model not in ("rigid", "similarity"):
             raise InputError(f"model={self.model!r} is not supported for terrain; use 'rigid' or 'similarity'")
+        if not isinstance(self.icp, ICPOptions):
+            raise InputError(f"icp must be an ICPOptions; got {type(self.icp).__name__}")
 
 
 @dataclass(frozen=True)
@@ -143,11 +151,18 @@ class TerrainRegistration:
     frame : LocalFrame
         The local frame (origin in file coordinates, scale, unit).
     registration : RegistrationResult
-        The engine's result (fitness, inlier RMSE in the local unit, iterations, convergence).
+        The engine's result (fitness, inlier RMSE in the local unit, iterations, convergence of the dense term:
+        ``registration.degenerate`` when the surfaces alone leave a direction free).
     n_matches : int
         Verified hillshade matches lifted to 3D (0 when features were not used or failed).
     n_feature_inliers : int
         Matches RANSAC kept.
+    n_agreeing_matches : int
+        Matches the final transform maps within the RANSAC distance of their partners.
+    held_by_features : bool
+        The surfaces alone are degenerate (gentle or planar terrain leaves the horizontal position weakly fixed),
+        but the fit met the engine's tolerance and at least 3 hillshade matches, spread across the overlap (not on
+        one line), agree with it: the matches, which fix a rigid motion on their own, hold the fit.
     start : {'ransac', 'init', 'identity'}
         Where the fit started.
     seconds : float
@@ -165,6 +180,14 @@ class TerrainRegistration:
     start: str
     seconds: float
     cell: float = float("nan")
+    n_agreeing_matches: int = 0
+    held_by_features: bool = False
+
+    @property
+    def converged(self) -> bool:
+        """The engine converged, or its dense term alone is degenerate and the hillshade matches hold the fit
+        (``held_by_features``)."""
+        return bool(self.registration.converged or self.held_by_features)
 
     @property
     def rotation_deg(self) -> float:
@@ -178,14 +201,16 @@ class TerrainRegistration:
         return float(np.degrees(np.arctan2(self.transform_local[1, 0], self.transform_local[0, 0])))
 
     def to_dict(self) -> dict:
-        """JSON-ready dict: the engine's fields (``transform`` in file coordinates) plus the frame and start."""
+        """JSON-ready dict: the engine's fields (``transform`` in file coordinates; ``converged`` as
+        :attr:`converged`, ``degenerate`` the dense term's) plus the frame, start and matches."""
         out = self.registration.to_dict()
         out.update(transform=self.transform.tolist(), transform_local=self.transform_local.tolist(),
                    local_origin=self.frame.origin.tolist(), local_scale=self.frame.scale.tolist(),
                    local_unit=self.frame.unit, rotation_deg=self.rotation_deg, heading_deg=self.heading_deg,
                    translation_local=self.transform_local[:3, 3].tolist(), n_matches=self.n_matches,
                    n_feature_inliers=self.n_feature_inliers, start=self.start, seconds=self.seconds,
-                   cell=self.cell)
+                   cell=self.cell, converged=self.converged, n_agreeing_matches=self.n_agreeing_matches,
+                   held_by_features=self.held_by_features)
         return out
 
 
@@ -333,7 +358,7 @@ def match_hillshades(source: HeightGrid, target: HeightGrid, *, threshold_cells:
 
 
 def register_terrain(source, target, *, init=None, options: TerrainRegistrationOptions | None = None,
-                     ) -> TerrainRegistration:
+                     **overrides) -> TerrainRegistration:
     """Register a terrain scan or DEM (source) onto another (target) with the fused ICP.
 
     Parameters
@@ -344,11 +369,14 @@ def register_terrain(source, target, *, init=None, options: TerrainRegistrationO
         Initial source-to-target transform in the files' coordinates. It competes with the feature start (the one
         with more dense correspondences is used); without features it is the start.
     options : TerrainRegistrationOptions, optional
+    **overrides
+        Fields of :class:`TerrainRegistrationOptions` by name, replacing those of ``options``.
 
     Returns
     -------
     TerrainRegistration
-        ``transform`` in the files' coordinates and units.
+        ``transform`` in the files' coordinates and units; ``converged`` counts a fit held by the hillshade matches
+        where the surfaces alone are degenerate.
 
     Raises
     ------
@@ -361,12 +389,14 @@ def register_terrain(source, target, *, init=None, options: TerrainRegistrationO
     -----
     Seismo3dWarning
         When the hillshades gave too few matches and the fit starts from ``init`` or the identity.
+    DegenerateGeometryWarning
+        When the surfaces alone leave a direction weakly constrained (saying whether the hillshade matches hold it).
 
     References
     ----------
     Vokhmintcev & Timchenko (method.md), eq. 16 (fused ICP); Chen & Medioni (1991) point-to-plane ICP.
     """
-    opts = options or TerrainRegistrationOptions()
+    opts = resolve_options(TerrainRegistrationOptions, options, overrides, "register_terrain")
     t0 = time.perf_counter()
     frame = terrain_frame(source, target)
     cell = opts.cell or max(_natural_cell(source, frame), _natural_cell(target, frame))
@@ -377,39 +407,80 @@ def register_terrain(source, target, *, init=None, options: TerrainRegistrationO
         to_local = frame.matrix()
         local_init = to_local @ np.asarray(init, dtype=np.float64) @ np.linalg.inv(to_local)
     pairs = match_hillshades(src.grid, dst.grid, threshold_cells=opts.ransac_cells) if opts.features else None
-    result, start, n_inliers = _fit(src, dst, pairs, local_init, cell, opts)
+    fit = _fit(src, dst, pairs, local_init, cell, opts)
+    result = fit.result
     return TerrainRegistration(frame.transform_to_file(result.transform), result.transform, frame, result,
-                               0 if pairs is None else len(pairs.source), n_inliers, start,
-                               time.perf_counter() - t0, float(cell))
+                               0 if pairs is None else len(pairs.source), fit.n_feature_inliers, fit.start,
+                               time.perf_counter() - t0, float(cell), fit.n_agreeing, fit.held)
 
 
-def _reissue(caught, n_inliers: int, alpha: float) -> None:
+@dataclass(frozen=True)
+class _Fit:
+    """What :func:`_fit` returns: the engine's result, where it started, and how the hillshade matches agree."""
+
+    result: RegistrationResult
+    start: str
+    n_feature_inliers: int
+    n_agreeing: int
+    held: bool
+
+
+def _agreeing_matches(result: RegistrationResult, pairs: FeaturePairs, threshold: float) -> np.ndarray:
+    """(K,) bool: the lifted matches that ``result.transform`` maps within ``threshold`` of their partners."""
+    m = result.transform
+    moved = pairs.source @ m[:3, :3].T + m[:3, 3]
+    return np.linalg.norm(moved - pairs.target, axis=1) <= threshold
+
+
+def _holds(result: RegistrationResult, pairs: FeaturePairs, agree: np.ndarray, spread: float, alpha: float) -> bool:
+    """Whether the hillshade matches hold a fit whose dense term is degenerate: the engine met its tolerance, the
+    feature term was in the objective, and >= 3 agreeing matches span the overlap in both horizontal directions
+    (their minor standard deviation at least ``spread``), so they fix a rigid motion on their own."""
+    if not (result.degenerate and result.info.get("tolerance_met", False) and alpha > 0 and agree.sum() >= 3):
+        return False
+    xy = pairs.target[agree, :2]
+    minor = np.linalg.svd(xy - xy.mean(axis=0), compute_uv=False)[-1] / np.sqrt(len(xy))
+    return bool(minor >= spread)
+
+
+def _reissue(caught, held: bool, n_agreeing: int, alpha: float) -> None:
     """Pass on the engine's warnings; its degeneracy test looks at the dense term only, so when hillshade matches are
-    in the objective say what they do instead of advising to add features."""
+    in the objective say whether they hold the fit instead of advising to add features."""
     for w in caught:
-        if issubclass(w.category, DegenerateGeometryWarning) and n_inliers >= 3 and alpha > 0:
-            warnings.warn(f"the surfaces alone constrain the horizontal position weakly (gentle or planar terrain: "
-                          f"{str(w.message).split('(')[1].split(')')[0]}); the {n_inliers} hillshade matches in the "
-                          f"fit (alpha={alpha:g}) hold it, and the result reports degenerate=True for the surfaces",
-                          DegenerateGeometryWarning, stacklevel=4)
+        if issubclass(w.category, DegenerateGeometryWarning):
+            detail = str(w.message).split("(")[1].split(")")[0]
+            if held:
+                msg = (f"the surfaces alone constrain the horizontal position weakly (gentle or planar terrain: "
+                       f"{detail}); the {n_agreeing} hillshade matches in the fit (alpha={alpha:g}) hold it, and the "
+                       "result reports degenerate=True for the surfaces")
+            else:
+                msg = (f"the surfaces alone constrain the horizontal position weakly (gentle or planar terrain: "
+                       f"{detail}) and the hillshade matches do not hold the fit ({n_agreeing} agree with it): the "
+                       "result is not unique along that direction")
+            warnings.warn(msg, DegenerateGeometryWarning, stacklevel=4)
         else:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
 
 
-def _fit(src: TerrainSurface, dst: TerrainSurface, pairs, local_init, cell, opts):
+def _fit(src: TerrainSurface, dst: TerrainSurface, pairs, local_init, cell, opts) -> _Fit:
     """Fused ICP from the lifted matches, or ICP from init / identity when there are too few of them."""
     common = dict(target_normals=dst.normals, model=opts.model)
+    schedule = opts.max_distance or opts.icp.max_distance
     if pairs is not None and len(pairs.source) >= 6:
-        schedule = opts.max_distance or tuple(c * cell for c in opts.distance_cells)
+        threshold = opts.ransac_cells * cell
+        icp_options = dataclasses.replace(opts.icp, max_distance=schedule or tuple(c * cell for c in
+                                                                                    opts.distance_cells))
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always", DegenerateGeometryWarning)
                 result = fused_icp(src.points, dst.points, source_features=pairs.source,
                                    target_features=pairs.target, alpha=opts.alpha, init=local_init,
-                                   ransac_threshold=opts.ransac_cells * cell, max_distance=schedule, **common)
-            n_inliers = int(result.info.get("n_feature_inliers", 0))
-            _reissue(caught, n_inliers, opts.alpha)
-            return result, result.info.get("start", "ransac"), n_inliers
+                                   ransac_threshold=threshold, options=icp_options, **common)
+            agree = _agreeing_matches(result, pairs, threshold)
+            held = _holds(result, pairs, agree, threshold, opts.alpha)
+            _reissue(caught, held, int(agree.sum()), opts.alpha)
+            return _Fit(result, result.info.get("start", "ransac"), int(result.info.get("n_feature_inliers", 0)),
+                        int(agree.sum()), held)
         except RegistrationError as exc:
             reason = str(exc)
     else:
@@ -418,6 +489,6 @@ def _fit(src: TerrainSurface, dst: TerrainSurface, pairs, local_init, cell, opts
         warnings.warn(f"terrain registration: no feature start ({reason}); starting from "
                       f"{'the given init' if local_init is not None else 'the identity'}", Seismo3dWarning,
                       stacklevel=3)
-    result = icp(src.points, dst.points, method="point_to_plane", init=local_init, max_distance=opts.max_distance,
-                 **common)
-    return result, "init" if local_init is not None else "identity", 0
+    result = icp(src.points, dst.points, method="point_to_plane", init=local_init,
+                 options=dataclasses.replace(opts.icp, max_distance=schedule), **common)
+    return _Fit(result, "init" if local_init is not None else "identity", 0, 0, False)

@@ -1,10 +1,14 @@
-"""seismo3d.jobs.lineaments: the files of `seismo3d lineaments`, on a generated DEM written as a GeoTIFF."""
+"""seismo3d.jobs.lineaments: the files of `seismo3d lineaments`, on a generated DEM written as a GeoTIFF and through the
+command on the real DEM."""
 
 import csv
 
 import numpy as np
 import pytest
 
+from typer.testing import CliRunner
+
+from seismo3d.cli import app
 from seismo3d.data.terrain import synthetic_scarp_dem
 from seismo3d.errors import InputError
 from seismo3d.jobs.lineaments import run_lineaments_job
@@ -36,3 +40,15 @@ def test_output_folder_is_a_file(tmp_path):
     (tmp_path / "out").write_text("")
     with pytest.raises(InputError, match="is a file"):
         run_lineaments_job(tmp_path / "missing.tif", tmp_path / "out")
+
+
+def test_lineaments_command(dfw, tmp_path):
+    out = tmp_path / "out"
+    result = CliRunner().invoke(app, ["lineaments", str(dfw.path), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert "lineaments in dem_hydrosheds_dfw.tif" in result.stdout and "strongest strikes" in result.stdout
+    for name in ("lineaments.csv", "rose.png", "lineaments.png"):
+        assert (out / name).stat().st_size > 0
+    with open(out / "lineaments.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert rows and all(0 <= float(r["azimuth_deg"]) < 180 for r in rows)

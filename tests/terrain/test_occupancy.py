@@ -19,7 +19,7 @@ def test_dem_grid(dfw):
     np.testing.assert_array_equal(grid.free, slope <= 1.5)
     assert grid.spacing == dfw.pixel_size_m
     np.testing.assert_allclose(grid.coordinates[3, 4], [*dfw.xy(3, 4), dfw.elevation[3, 4]])
-    with pytest.raises(InputError, match="slope limit"):
+    with pytest.raises(InputError, match="max_slope_deg must be in"):
         occupancy_from_dem(dfw, max_slope_deg=95)
 
 

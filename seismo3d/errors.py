@@ -16,6 +16,7 @@ __all__ = [
     "SegyGeometryError",
     "UnsupportedDataError",
     "RegistrationError",
+    "PlanningError",
     "Seismo3dWarning",
     "DegenerateGeometryWarning",
 ]
@@ -53,6 +54,10 @@ class UnsupportedDataError(Seismo3dError, ValueError):
 
 class RegistrationError(Seismo3dError, RuntimeError):
     """A registration could not produce a transform (e.g. RANSAC found no consensus)."""
+
+
+class PlanningError(Seismo3dError, RuntimeError):
+    """No path exists between a start and a goal through traversable cells."""
 
 
 class Seismo3dWarning(UserWarning):

@@ -371,7 +371,8 @@ def run_icp(stages, sched, frame, m0, *, method: str, model: str, options: ICPOp
     return RegistrationResult(
         transform=frame.out_of(m), fitness=fitness, inlier_rmse=rmse, n_iterations=total_iters,
         converged=bool(converged and not degenerate), min_eigenvalue=lo, degenerate=bool(degenerate),
-        info={"iterations_per_stage": per_stage, "max_distance": tuple(sched), "eigenvalue_ratio": lo / hi if hi else 0.0},
+        info={"iterations_per_stage": per_stage, "max_distance": tuple(sched), "eigenvalue_ratio": lo / hi if hi else 0.0,
+              "tolerance_met": bool(converged)},
     )
 
 

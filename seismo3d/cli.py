@@ -446,11 +446,11 @@ class FaultColour(str, Enum):
 
 @app.command()
 @_friendly({"vertical_exaggeration": "--vertical-exaggeration", "seismic": "--seismic", "color_by": "--color-by",
-            "window_size": "--size"})
+            "window_size": "--size", "plan": "--path"})
 def render(
     input: pathlib.Path = typer.Argument(
-        ..., metavar="INPUT", help="A SEG-Y cube, the output folder of 'seismo3d faults', or a horizon file "
-                                   "('inline xline time' rows)."),
+        ..., metavar="INPUT", help="A SEG-Y cube, the output folder of 'seismo3d faults', a horizon file "
+                                   "('inline xline time' rows) or a GeoTIFF DEM."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="The PNG to write."),
     seismic: Optional[pathlib.Path] = typer.Option(None, help="SEG-Y cube drawn under faults or a horizon (a faults "
                                                               "folder from --demo uses its demo_seismic.sgy)."),
@@ -458,9 +458,12 @@ def render(
     vertical_exaggeration: Optional[float] = typer.Option(
         None, help="Vertical exaggeration; default: the cube's height is half its longer side."),
     size: str = typer.Option("1200x900", help="Picture size WIDTHxHEIGHT in pixels."),
+    lineaments: bool = typer.Option(False, "--lineaments", help="DEM: extract its lineaments and draw them."),
+    plan: Optional[pathlib.Path] = typer.Option(None, "--path", help="DEM: the CSV of 'seismo3d plan' to draw."),
 ) -> None:
     """Render INPUT off screen (no display needed) into a PNG: a cube's inline, crossline and time slices, faults
-    coloured by id or throw with the fault likelihood as a semi-transparent volume, or a horizon coloured by time."""
+    coloured by id or throw with the fault likelihood as a semi-transparent volume, a horizon coloured by time, or a
+    DEM coloured by elevation with its lineaments and a planned path."""
     from .errors import InputError
     from .jobs.render import run_render_job
 
@@ -470,8 +473,10 @@ def render(
         raise InputError(f"--size {size!r} must be WIDTHxHEIGHT, e.g. 1200x900") from None
     with _one_line_warnings():
         job = run_render_job(input, output, seismic=seismic, color_by=color_by.value,
-                             vertical_exaggeration=vertical_exaggeration, window_size=(width, height))
-    what = {"segy": "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon"}[job.kind]
+                             vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
+                             window_size=(width, height))
+    what = {"segy": "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon",
+            "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM"}[job.kind]
     typer.echo(f"{what} of {input.name}: {job.caption} -> {job.picture}")
 
 

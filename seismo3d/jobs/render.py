@@ -1,4 +1,4 @@
-"""The ``seismo3d render`` command: a picture of a SEG-Y cube, a ``faults`` output folder or a horizon file.
+"""The ``seismo3d render`` command: a picture of a SEG-Y cube, a ``faults`` output folder, a horizon file or a DEM.
 
 :func:`run_render_job` finds out what the input is, reads it, builds one pyvista scene
 (:func:`seismo3d.viz.show_seismic`) and renders it off screen into a PNG.
@@ -19,6 +19,7 @@ __all__ = ["RenderJob", "run_render_job"]
 
 _SEGY = {".sgy", ".segy"}
 _TEXT = {".txt", ".dat", ".csv", ".xyz"}
+_DEM = {".tif", ".tiff"}
 
 
 @dataclass(frozen=True)
@@ -27,7 +28,7 @@ class RenderJob:
 
     Attributes
     ----------
-    kind : {'segy', 'faults', 'horizon'}
+    kind : {'segy', 'faults', 'horizon', 'dem'}
         What the input was.
     picture : pathlib.Path
         The PNG written.
@@ -35,12 +36,15 @@ class RenderJob:
         The scene's caption (lines, samples, vertical exaggeration).
     n_faults : int
         Fault surfaces drawn (0 without).
+    n_lineaments : int
+        Lineaments drawn on a DEM (0 without).
     """
 
     kind: str
     picture: Path
     caption: str
     n_faults: int = 0
+    n_lineaments: int = 0
 
 
 def _kind(path: Path) -> str:
@@ -57,8 +61,11 @@ def _kind(path: Path) -> str:
         return "segy"
     if suffix in _TEXT:
         return "horizon"
+    if suffix in _DEM:
+        return "dem"
     raise InputError(f"{path.name}: cannot tell what to draw from the extension {suffix!r}; pass a SEG-Y cube "
-                     "(.sgy/.segy), a 'seismo3d faults' output folder or a horizon file (.txt: inline xline time rows)")
+                     "(.sgy/.segy), a 'seismo3d faults' output folder, a horizon file (.txt: inline xline time rows) "
+                     "or a DEM (.tif)")
 
 
 def _read_segy(path: Path, vertical_exaggeration):
@@ -109,8 +116,38 @@ def _horizon_grid(path: Path, geometry):
     return times, geometry
 
 
+def _read_path_csv(path: Path, shape) -> np.ndarray:
+    """(K, 2) row, col cells of a ``seismo3d plan`` CSV."""
+    import csv
+
+    if not path.is_file():
+        raise DataNotFoundError(f"path={path} does not exist; pass the CSV written by 'seismo3d plan'")
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    if not rows or not {"row", "col"} <= set(rows[0]):
+        raise InputError(f"{path.name} has no row and col columns; pass the CSV written by 'seismo3d plan'")
+    cells = np.array([[float(r["row"]), float(r["col"])] for r in rows])
+    if cells.min() < 0 or np.any(cells.max(axis=0) > np.array(shape) - 1):
+        raise InputError(f"the cells of {path.name} lie outside the DEM's {shape} grid; pass the path planned on it")
+    return cells
+
+
+def _render_dem(path: Path, output: Path, *, lineaments, plan, vertical_exaggeration, window_size) -> RenderJob:
+    from ..terrain import extract_lineaments, read_dem
+    from ..viz.terrain3d import show_terrain
+
+    dem = read_dem(path)
+    found = extract_lineaments(dem) if lineaments else None
+    cells = None if plan is None else _read_path_csv(Path(plan), dem.shape)
+    show_terrain(dem, lineaments=found, path=cells, vertical_exaggeration=vertical_exaggeration, screenshot=output,
+                 window_size=window_size)
+    dy, dx = dem.pixel_size_m
+    caption = f"{dem.shape[1]} x {dem.shape[0]} pixels of {dx:.0f} x {dy:.0f} m"
+    return RenderJob(kind="dem", picture=output, caption=caption, n_lineaments=0 if found is None else len(found))
+
+
 def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", vertical_exaggeration=None,
-                   window_size=(1200, 900)) -> RenderJob:
+                   lineaments=False, plan=None, window_size=(1200, 900)) -> RenderJob:
     """Render INPUT off screen into a PNG: the ``seismo3d render`` command.
 
     Inputs
@@ -121,7 +158,10 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
       semi-transparent volume, over the slices of ``seismic`` (default: ``demo_seismic.sgy`` in the folder, written
       by ``--demo``), placed by the geometry of ``fault_likelihood.sgy``;
     * a horizon text file ("inline xline time" rows, as ``seismo3d horizon`` writes): the horizon coloured by time,
-      over the slices of ``seismic`` when given.
+      over the slices of ``seismic`` when given;
+    * a GeoTIFF DEM: its surface coloured by elevation (metres about its centre), with its lineaments
+      (``lineaments=True``: :func:`~seismo3d.terrain.extract_lineaments`) and a path planned by ``seismo3d plan``
+      (``plan``: its CSV) draped over it (:func:`seismo3d.viz.terrain3d.show_terrain`).
 
     Parameters
     ----------
@@ -133,7 +173,11 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     color_by : {'fault_id', 'throw'}, optional
         Colour of the fault surfaces.
     vertical_exaggeration : float, optional
-        Default: the cube's height becomes half its longer side.
+        Default: the cube's height becomes half its longer side (a DEM's relief an eighth of it).
+    lineaments : bool, optional
+        DEM: extract its lineaments and draw them.
+    plan : str or os.PathLike, optional
+        DEM: the CSV of ``seismo3d plan`` (columns row, col, ...) to draw as a path.
     window_size : (int, int), optional
         Pixels.
 
@@ -160,6 +204,9 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
     kind = _kind(path)
+    if kind == "dem":
+        return _render_dem(path, output, lineaments=lineaments, plan=plan,
+                           vertical_exaggeration=vertical_exaggeration, window_size=window_size)
     if seismic is not None and not Path(seismic).is_file():
         raise DataNotFoundError(f"seismic={seismic} does not exist; pass the SEG-Y cube to draw under the input")
     cube, geometry, extra = None, None, {}

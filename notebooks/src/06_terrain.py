@@ -51,16 +51,15 @@ print(f"displacement error at the source's centroid: {errors.centroid:.2f} ft, l
       f"{errors.max_displacement:.2f} ft")
 
 # %% [markdown]
-# The two strips, every 10th point, before (left) and after (right) the registration; the target in blue.
+# The two strips seen from above, every 10th point, before and after the registration; the target in blue.
 
 # %%
 centre = pair.target.mean(axis=0)
 every = slice(None, None, 10)
-above = [(0.0, 0.0, 4000.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0)]  # looking straight down
 for label, transform in (("source as given", None), ("source registered", result.transform)):
     moved = pair.source if transform is None else pair.source @ transform[:3, :3].T + transform[:3, 3]
     show_point_clouds([moved[every] - centre, pair.target[every] - centre], labels=[label, "target"],
-                      camera=above, window_size=(560, 420));
+                      camera="xy", window_size=(560, 420));  # seen from above, north up
 
 # %% [markdown]
 # ## 2. Lineaments of a real DEM

@@ -74,8 +74,8 @@ def horizon_surface(horizon, *, inlines=None, xlines=None, samples=None):
     return mesh
 
 
-def plot_horizon_section(section, picks, *, samples=None, traces=None, styles=None, clip_percentile=99.0, title=None,
-                         ax=None):
+def plot_horizon_section(section, picks, *, samples=None, traces=None, styles=None, axis_labels=("trace", "sample"),
+                         clip_percentile=99.0, title=None, ax=None):
     """A seismic section with horizon picks drawn over it, one colour per entry of ``picks``.
 
     Parameters
@@ -93,6 +93,8 @@ def plot_horizon_section(section, picks, *, samples=None, traces=None, styles=No
     styles : dict of str to dict, optional
         Matplotlib line keywords per label (e.g. ``{"people": {"lw": 3, "alpha": 0.6}}``); default: colour
         ``C0``, ``C1``, ... in order, 1.2 points wide.
+    axis_labels : (str, str), optional
+        Horizontal and vertical axis labels, e.g. ``("crossline", "time (ms)")``.
     clip_percentile : float, optional
     title : str, optional
     ax : matplotlib.axes.Axes, optional
@@ -132,8 +134,8 @@ def plot_horizon_section(section, picks, *, samples=None, traces=None, styles=No
             raise InputError(f"picks[{label!r}] has shape {t.shape}; it needs one value per trace ({data.shape[0]})")
         style = {"lw": 1.2, "color": f"C{n}"} | dict((styles or {}).get(label, {}))
         ax.plot(x, np.interp(t, np.arange(s.size), s, left=np.nan, right=np.nan), label=label, **style)
-    ax.set_xlabel("trace")
-    ax.set_ylabel("sample" if samples is None else "time or depth")
+    ax.set_xlabel(str(axis_labels[0]))
+    ax.set_ylabel(str(axis_labels[1]))
     ax.legend(loc="lower right")
     if title:
         ax.set_title(title)

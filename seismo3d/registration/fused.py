@@ -18,7 +18,8 @@ def fused_icp(source, target, *, target_normals, source_features, target_feature
               model: str = "rigid", init=None, feature_weights=None, ransac_threshold: float | None = None,
               ransac_trials: int = 5000, seed: int = 0, max_distance=None, voxel_size=None,
               max_iterations: int = 50, tolerance: float = 1e-4, kernel: str = "huber",
-              kernel_scale: float | None = None, degeneracy_threshold: float = 1e-3) -> RegistrationResult:
+              kernel_scale: float | None = None, degeneracy_threshold: float = 1e-3,
+              correspondences=None) -> RegistrationResult:
     """Register ``source`` onto ``target`` by minimising the fused objective of the method's eq. 16.
 
     .. math::
@@ -61,7 +62,7 @@ def fused_icp(source, target, *, target_normals, source_features, target_feature
         RANSAC's maximum number of minimal samples.
     seed : int
         RANSAC seed (the result is deterministic given it).
-    max_distance, voxel_size, max_iterations, tolerance, kernel, kernel_scale, degeneracy_threshold
+    max_distance, voxel_size, max_iterations, tolerance, kernel, kernel_scale, degeneracy_threshold, correspondences
         As in :func:`~seismo3d.registration.icp`.
 
     Returns
@@ -102,7 +103,7 @@ def fused_icp(source, target, *, target_normals, source_features, target_feature
         rs, inliers = None, np.zeros(len(fs), bool)
 
     frame = _Frame.of(dst)
-    stages = _stages(frame, src, dst, nrm, voxels)
+    stages = _stages(frame, src, dst, nrm, voxels, correspondences)
     start, m_start = "init", m0
     if rs is not None:
         start, m_start = "ransac", rs.transform

@@ -11,7 +11,6 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from .._validation import as_points, as_normals, check_choice, check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
@@ -19,6 +18,7 @@ from ..geometry.neighbours import bounding_diagonal, median_spacing, voxel_downs
 from ..geometry.transforms import as_transform, check_model, make_transform
 from . import _solver
 from .closed_form import _fit, min_points
+from .correspondences import as_correspondences
 from .kernels import KERNELS, robust_weights
 from .result import RegistrationResult
 
@@ -133,7 +133,8 @@ def _prepare(source, target, target_normals, method, model, init, max_distance, 
 
 
 class _DenseStage:
-    """Source and target (each optionally voxel-downsampled) in the normalised frame, with the target's KD-tree."""
+    """Source and target (each optionally voxel-downsampled) in the normalised frame, with the target's
+    correspondence index (a KD-tree, or a projective pixel map: see :mod:`.correspondences`)."""
 
     def __init__(self, frame, src, target):
         self.src = frame.points(src)
@@ -142,18 +143,14 @@ class _DenseStage:
     def correspond(self, transform, dmax):
         d = self.src.shape[1]
         moved = self.src @ transform[:d, :d].T + transform[:d, d]
-        # threads pay off only for large queries (starting them costs about 0.2 ms per call)
-        workers = -1 if len(moved) >= _PARALLEL_QUERY else 1
-        dist, idx = self.tree.query(moved, k=1, distance_upper_bound=dmax, workers=workers)
+        dist, idx = self.tree.query(moved, dmax)
         ok = np.isfinite(dist)
         return moved, ok, idx[ok], dist[ok]
 
 
-_PARALLEL_QUERY = 20000
-
-
-def _stages(frame, src, dst, nrm, voxels):
-    """One _DenseStage per schedule stage; downsampled sources and target KD-trees are shared between stages."""
+def _stages(frame, src, dst, nrm, voxels, correspondences=None):
+    """One _DenseStage per schedule stage; downsampled sources and target indices are shared between stages."""
+    strategy = as_correspondences(correspondences)
     sources, targets, out = {}, {}, []
     for src_voxel, dst_voxel in voxels:
         if src_voxel not in sources:
@@ -165,7 +162,7 @@ def _stages(frame, src, dst, nrm, voxels):
                 if nv is not None:
                     nv = nv / np.maximum(np.linalg.norm(nv, axis=1, keepdims=True), 1e-300)
             pts = frame.points(pts)
-            targets[dst_voxel] = (pts, nv, cKDTree(pts))
+            targets[dst_voxel] = (pts, nv, strategy.index(pts, centre=frame.centre, scale=frame.scale))
         out.append(_DenseStage(frame, sources[src_voxel], targets[dst_voxel]))
     return out
 
@@ -256,7 +253,7 @@ def _run(stages, sched, frame, m0, *, method, model, max_iterations, tolerance, 
 def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid", target_normals=None, init=None,
         max_distance=None, voxel_size=None, max_iterations: int = 50, tolerance: float = 1e-4,
         kernel: str = "huber", kernel_scale: float | None = None,
-        degeneracy_threshold: float = 1e-3) -> RegistrationResult:
+        degeneracy_threshold: float = 1e-3, correspondences=None) -> RegistrationResult:
     """Iterative closest point registration of ``source`` onto ``target``, in 2D or 3D.
 
     Each iteration finds, for every (transformed) source point, its nearest target point within the current maximum
@@ -300,6 +297,9 @@ def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid",
         The kernel's threshold in the points' unit (default a third of the stage's maximum distance).
     degeneracy_threshold : float
         A final normal matrix whose smallest/largest eigenvalue ratio is below this is reported as degenerate.
+    correspondences : NearestNeighbourCorrespondences or ProjectiveCorrespondences, optional
+        How correspondences are found (:mod:`seismo3d.registration.correspondences`); default nearest neighbours by
+        a KD-tree. ``ProjectiveCorrespondences`` needs the whole organised target (no target downsampling).
 
     Returns
     -------
@@ -330,7 +330,7 @@ def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid",
                                                 voxel_size, kernel)
     check_positive(tolerance, "tolerance")
     frame = _Frame.of(dst)
-    stages = _stages(frame, src, dst, nrm, voxels)
+    stages = _stages(frame, src, dst, nrm, voxels, correspondences)
     return _run(stages, sched, frame, m0, method=method, model=model, max_iterations=int(max_iterations),
                 tolerance=tolerance, kernel=kernel, kernel_scale=kernel_scale,
                 degeneracy_threshold=degeneracy_threshold)

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 from scipy.spatial import cKDTree
 
@@ -149,26 +150,42 @@ class _ProjectiveIndex:
         self.scale = scale
 
     def query(self, moved, dmax):
-        n = len(self.target)
-        h, w = self.pixel_index.shape
-        x = moved * self.scale + self.centre  # back to the target camera's frame (metres)
-        z = x[:, 2]
-        front = z > 1e-9
-        zs = np.where(front, z, 1.0)
-        u = np.rint(self.fx * x[:, 0] / zs + self.cx)
-        v = np.rint(self.fy * x[:, 1] / zs + self.cy)
-        inside = front & (u >= 0) & (u < w) & (v >= 0) & (v < h)
-        idx = np.full(len(moved), n, np.int64)
-        idx[inside] = self.pixel_index[v[inside].astype(np.int64), u[inside].astype(np.int64)]
-        idx[idx < 0] = n
-        has = idx < n
-        dist = np.full(len(moved), np.inf)
-        diff = moved[has] - self.target[idx[has]]
-        dist[has] = np.sqrt(np.einsum("ij,ij->i", diff, diff))
-        far = dist > dmax
-        dist[far] = np.inf
-        idx[far] = n
+        moved = np.ascontiguousarray(moved, dtype=np.float64)
+        dist = np.empty(len(moved))
+        idx = np.empty(len(moved), np.int64)
+        _project_and_match(moved, self.target, self.pixel_index, self.fx, self.fy, self.cx, self.cy, self.centre,
+                           self.scale, float(dmax), dist, idx)
         return dist, idx
+
+
+@numba.njit(cache=True)
+def _project_and_match(moved, target, pixel_index, fx, fy, cx, cy, centre, scale, dmax, dist, idx):
+    """Project each moved point (normalised frame) into the target image and take that pixel's point (KinectFusion
+    projective association); ``inf`` / ``len(target)`` where none or farther than ``dmax``."""
+    n = len(target)
+    h, w = pixel_index.shape
+    for i in range(len(moved)):
+        dist[i] = np.inf
+        idx[i] = n
+        x = moved[i, 0] * scale + centre[0]
+        y = moved[i, 1] * scale + centre[1]
+        z = moved[i, 2] * scale + centre[2]
+        if z <= 1e-9:
+            continue
+        u = int(np.floor(fx * x / z + cx + 0.5))
+        v = int(np.floor(fy * y / z + cy + 0.5))
+        if u < 0 or v < 0 or u >= w or v >= h:
+            continue
+        j = pixel_index[v, u]
+        if j < 0:
+            continue
+        dx = moved[i, 0] - target[j, 0]
+        dy = moved[i, 1] - target[j, 1]
+        dz = moved[i, 2] - target[j, 2]
+        d = np.sqrt(dx * dx + dy * dy + dz * dz)
+        if d <= dmax:
+            dist[i] = d
+            idx[i] = j
 
 
 def as_correspondences(value):

@@ -1,0 +1,1 @@
+"""What each ``seismo3d`` command does end to end: read the inputs, call the applications, write the outputs."""

@@ -5,7 +5,7 @@
   for RGB-D), and the error is the distance between the aligned positions (Sturm et al. 2012, eq. 2-3).
 * RPE (relative pose error): over every pair of associated poses ``delta`` frames apart, the error of the relative
   motion ``(Q_i^-1 Q_{i+delta})^-1 (P_i^-1 P_{i+delta})``, split into its translation (metres) and rotation angle
-  (degrees) (Sturm et al. 2012, eq. 1).
+  (degrees) (Sturm et al. 2012, eq. 1; every pair, as TUM's evaluate_rpe with a fixed frame step).
 
 References
 ----------
@@ -147,7 +147,7 @@ def relative_pose_error(timestamps, poses, reference_timestamps, reference_poses
         raise InputError(f"only {est.num_poses} poses could be associated; RPE with delta={delta} needs more")
     out = []
     for relation in (metrics.PoseRelation.translation_part, metrics.PoseRelation.rotation_angle_deg):
-        rpe = metrics.RPE(relation, delta=int(delta), delta_unit=metrics.Unit.frames, all_pairs=False)
+        rpe = metrics.RPE(relation, delta=int(delta), delta_unit=metrics.Unit.frames, all_pairs=True)
         rpe.process_data((ref, est))
         out.append(TrajectoryError.of(rpe.error))
     return out[0], out[1]

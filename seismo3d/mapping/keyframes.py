@@ -224,6 +224,6 @@ class KeyframeGraph:
                               translation_error_m=float(np.linalg.norm(err[3:]))))
         return dict(
             keyframes=[dict(id=k.id, frame_index=k.frame_index, timestamp=k.timestamp, pose=k.pose.tolist(),
-                            n_features=len(k.features)) for k in self.keyframes],
+                            n_features=0 if k.features is None else len(k.features)) for k in self.keyframes],
             edges=edges,
         )

@@ -51,14 +51,22 @@ class TrackingOptions:
         Correspondence distance per level, coarse to fine, metres.
     max_iterations : tuple of int
         Gauss-Newton iterations per level, coarse to fine.
+    window : int
+        Half-width of the projective association's search window, pixels (0: KinectFusion's single pixel; 1: the
+        closest of 3 x 3, which converges like a nearest-neighbour search where the geometry constrains a direction
+        weakly, e.g. a camera turning in front of a wall; see
+        :class:`~seismo3d.registration.correspondences.ProjectiveCorrespondences`).
     tolerance : float
         The engine's convergence tolerance (largest parameter update, see :func:`~seismo3d.registration.icp`).
     kernel : {'huber', 'tukey', 'cauchy', 'none'}
         Robust kernel of the dense and feature residuals.
     kernel_scale : float
         The kernel's threshold, metres.
-    alpha : float
-        Weight of the feature term of the fused objective (eq. 16).
+    alpha : tuple of float
+        Weight of the feature term of the fused objective (eq. 16) per level, coarse to fine. The features give the
+        coarse levels their reach (RANSAC start, large motions); the finest level leans on the dense term, whose
+        points are far more numerous and, when colour is not registered to depth (7-Scenes), far more accurate than
+        colour keypoints lifted through depth. A level with alpha 0 runs point-to-plane ICP.
     min_features : int
         Fewest feature matches for the fused objective (fewer: point-to-plane alone).
     ransac_threshold : float
@@ -81,10 +89,11 @@ class TrackingOptions:
     levels: int = 3
     max_distance: tuple = (0.12, 0.06, 0.03)
     max_iterations: tuple = (10, 6, 4)
+    window: int = 1
     tolerance: float = 1e-4
     kernel: str = "huber"
     kernel_scale: float = 0.01
-    alpha: float = 0.1
+    alpha: tuple = (0.1, 0.0, 0.0)
     min_features: int = 12
     ransac_threshold: float = 0.04
     bilateral_sigma_depth: float = 0.03
@@ -100,12 +109,12 @@ class TrackingOptions:
             raise InputError(f"scale must be a whole number >= 1; got {self.scale!r}")
         if int(self.levels) != self.levels or self.levels < 1:
             raise InputError(f"levels must be a whole number >= 1; got {self.levels!r}")
-        for name in ("max_distance", "max_iterations"):
+        for name in ("max_distance", "max_iterations", "alpha"):
             if len(getattr(self, name)) != self.levels:
                 raise InputError(f"{name} needs one value per pyramid level ({self.levels}); got "
                                  f"{getattr(self, name)!r}")
-        if not 0.0 <= self.alpha <= 1.0:
-            raise InputError(f"alpha must be in [0, 1]; got {self.alpha}")
+        if not all(0.0 <= a <= 1.0 for a in self.alpha):
+            raise InputError(f"alpha must be in [0, 1] at every level; got {self.alpha}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -122,12 +131,15 @@ class FrameMeasurement:
         Per level, pixels.
     scale : int
         Subsampling of level 0 with respect to the input depth.
+    all_points : (H_0, W_0, 3) float64 ndarray
+        Level-0 points before the pixels without a normal (edges) were dropped; the dynamic-pixel test uses them.
     """
 
     points: list
     normals: np.ndarray
     intrinsics: list
     scale: int
+    all_points: np.ndarray
 
     @property
     def n_valid(self) -> int:
@@ -239,23 +251,24 @@ def measure_frame(depth, intrinsics, options: TrackingOptions | None = None) -> 
     if opt.bilateral_sigma_depth > 0 and opt.bilateral_sigma_pixels > 0:
         z0 = _bilateral(z0, opt.bilateral_sigma_depth, opt.bilateral_sigma_pixels)
     k0 = _level_intrinsics(k, opt.scale)
-    pts0 = backproject_depth(z0, k0)
-    normals = normals_from_points_image(pts0)
+    all0 = backproject_depth(z0, k0)
+    normals = normals_from_points_image(all0)
+    pts0 = all0.copy()
     pts0[~np.isfinite(normals).all(axis=-1)] = np.nan  # no normal (edge, border): not a reliable point
     points, ks = [pts0], [k0]
     for level in range(1, opt.levels):
         points.append(points[-1][::2, ::2])
         ks.append(_level_intrinsics(k0, 2**level))
-    return FrameMeasurement(points=points, normals=normals, intrinsics=ks, scale=opt.scale)
+    return FrameMeasurement(points=points, normals=normals, intrinsics=ks, scale=opt.scale, all_points=all0)
 
 
-def _prediction_level(prediction, level):
+def _prediction_level(prediction, level, window=0):
     step = 2**level
     pts = prediction.points[::step, ::step]
     nrm = prediction.normals[::step, ::step]
     valid = np.isfinite(pts[..., 2]) & np.isfinite(nrm).all(axis=-1)
     k = _level_intrinsics(prediction.intrinsics, step)
-    return pts[valid], nrm[valid], ProjectiveCorrespondences.from_mask(k, valid)
+    return pts[valid], nrm[valid], ProjectiveCorrespondences.from_mask(k, valid, window=window)
 
 
 def point_to_plane_information(points, relative, target_points, target_normals, weights=None, *, sigma: float):
@@ -286,17 +299,37 @@ def point_to_plane_information(points, relative, target_points, target_normals, 
     return (rows * w[:, None]).T @ rows / (sigma * sigma)
 
 
-def _residuals(measurement, prediction, relative, dmax):
+def _residuals(measurement, prediction, relative, dmax, window):
     """Level-0 correspondences at ``relative``: (valid mask of level-0 pixels, index, residuals, targets)."""
     pts = measurement.points[0]
     valid = np.isfinite(pts[..., 2])
     src = pts[valid]
-    tgt, nrm, strategy = _prediction_level(prediction, 0)
+    tgt, nrm, strategy = _prediction_level(prediction, 0, window)
     moved = src @ relative[:3, :3].T + relative[:3, 3]
     if len(tgt) == 0:
-        return valid, src, np.zeros(len(src), bool), np.full(len(src), len(tgt)), tgt, nrm, moved
+        return valid, src, np.zeros(len(src), bool), np.full(len(src), len(tgt)), tgt, nrm, moved, strategy
     dist, idx = strategy.index(tgt).query(moved, dmax)
-    return valid, src, np.isfinite(dist), idx, tgt, nrm, moved
+    return valid, src, np.isfinite(dist), idx, tgt, nrm, moved, strategy
+
+
+def _dynamic_pixels(measurement, relative, tgt, nrm, strategy, opt):
+    """Level-0 pixels whose residual at the solution stays too large for sensor noise (ReFusion): each valid depth
+    pixel (edges included) is projected into the prediction and compared with the predicted surface there."""
+    pts = measurement.all_points
+    valid = np.isfinite(pts[..., 2])
+    dynamic = np.zeros(valid.shape, bool)
+    if len(tgt) == 0 or not valid.any():
+        return dynamic
+    src = pts[valid]
+    moved = src @ relative[:3, :3].T + relative[:3, 3]
+    single = ProjectiveCorrespondences(strategy.intrinsics, strategy.pixel_index, 0)
+    dist, idx = single.index(tgt).query(moved, np.inf)
+    seen = np.isfinite(dist)
+    r = np.zeros(len(src))
+    r[seen] = np.einsum("ij,ij->i", moved[seen] - tgt[idx[seen]], nrm[idx[seen]])
+    limit = np.maximum(opt.dynamic_min, opt.dynamic_sigmas * kinect_depth_sigma(src[:, 2]))
+    dynamic[valid] = seen & (np.abs(r) > limit)
+    return dynamic
 
 
 def track_frame(measurement: FrameMeasurement, prediction, *, features=None,
@@ -342,7 +375,7 @@ def track_frame(measurement: FrameMeasurement, prediction, *, features=None,
         i = opt.levels - 1 - level  # option index, coarse to fine
         src = measurement.points[level]
         src = src[np.isfinite(src[..., 2])]
-        tgt, nrm, strategy = _prediction_level(prediction, level)
+        tgt, nrm, strategy = _prediction_level(prediction, level, opt.window)
         if len(src) < 50 or len(tgt) < 50:
             failed = f"too few points at pyramid level {level} ({len(src)} measured, {len(tgt)} predicted)"
             break
@@ -352,8 +385,8 @@ def track_frame(measurement: FrameMeasurement, prediction, *, features=None,
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", DegenerateGeometryWarning)
-                if fs is not None:
-                    res = fused_icp(src, tgt, source_features=fs, target_features=fd, alpha=opt.alpha,
+                if fs is not None and opt.alpha[i] > 0:
+                    res = fused_icp(src, tgt, source_features=fs, target_features=fd, alpha=opt.alpha[i],
                                     ransac_threshold=opt.ransac_threshold,
                                     ransac_trials=1000 if i == 0 else 256, **common)
                     if i == 0 and res.info.get("start") == "ransac":
@@ -378,7 +411,8 @@ def track_frame(measurement: FrameMeasurement, prediction, *, features=None,
 
 def _finish(measurement, prediction, relative, start, n_feat, per_level, failed, opt):
     """Statistics, information matrix and dynamic mask at the solution."""
-    valid, src, has, idx, tgt, nrm, moved = _residuals(measurement, prediction, relative, opt.max_distance[-1])
+    valid, src, has, idx, tgt, nrm, moved, strategy = _residuals(measurement, prediction, relative,
+                                                                 opt.max_distance[-1], opt.window)
     n = max(len(src), 1)
     fitness = float(has.sum()) / n
     h0, w0 = valid.shape
@@ -393,18 +427,7 @@ def _finish(measurement, prediction, relative, start, n_feat, per_level, failed,
         sigma = max(float(np.median(np.abs(r))) * 1.4826, 1e-3)
         w = np.minimum(1.0, opt.kernel_scale / np.maximum(np.abs(r), 1e-12))
         information = point_to_plane_information(src[has], relative, q, nv, w, sigma=sigma)
-        # dynamic pixels: the residual stays large at the solution (ReFusion), measured against the prediction
-        # wherever the pixel projects onto a predicted surface (not only within the correspondence distance)
-        dist_all, idx_all = _prediction_level(prediction, 0)[2].index(tgt).query(moved, np.inf) \
-            if len(tgt) else (np.full(len(src), np.inf), None)
-        seen = np.isfinite(dist_all)
-        r_all = np.zeros(len(src))
-        if seen.any():
-            r_all[seen] = np.einsum("ij,ij->i", moved[seen] - tgt[idx_all[seen]], nrm[idx_all[seen]])
-        limit = np.maximum(opt.dynamic_min, opt.dynamic_sigmas * kinect_depth_sigma(src[:, 2]))
-        flat = np.zeros(len(src), bool)
-        flat[seen] = np.abs(r_all[seen]) > limit[seen]
-        dynamic[valid] = flat
+        dynamic = _dynamic_pixels(measurement, relative, tgt, nrm, strategy, opt)
     ok = failed is None and fitness >= opt.min_fitness and rmse <= opt.max_rmse
     pose = prediction.pose @ relative
     info = dict(levels=per_level, failure=failed)

@@ -83,6 +83,11 @@ class ProjectiveCorrespondences:
         Pinhole intrinsics of the target image, pixels.
     pixel_index : (H, W) int ndarray
         Row of the target point seen at each pixel, -1 where the image has none.
+    window : int
+        Half-width in pixels of a search window around the projected pixel: the closest target point within it is
+        taken (0: the projected pixel only, KinectFusion's association). A small window (1-2 pixels) lets the
+        correspondence slide along the surface as a nearest neighbour would, which projective association alone
+        does poorly where the geometry constrains a direction weakly; it still costs O(window^2) per point, no tree.
 
     Raises
     ------
@@ -97,8 +102,11 @@ class ProjectiveCorrespondences:
 
     intrinsics: object
     pixel_index: np.ndarray
+    window: int = 0
 
     def __post_init__(self):
+        if int(self.window) != self.window or self.window < 0:
+            raise InputError(f"window must be a whole number of pixels >= 0; got {self.window!r}")
         pix = np.asarray(self.pixel_index)
         if pix.ndim != 2 or not np.issubdtype(pix.dtype, np.integer):
             raise InputError(f"pixel_index must be a 2D integer image (row of the target point per pixel, -1 for "
@@ -107,7 +115,7 @@ class ProjectiveCorrespondences:
         object.__setattr__(self, "intrinsics", as_intrinsics(self.intrinsics))
 
     @classmethod
-    def from_mask(cls, intrinsics, valid) -> ProjectiveCorrespondences:
+    def from_mask(cls, intrinsics, valid, *, window: int = 0) -> ProjectiveCorrespondences:
         """The strategy for target points ``points_image[valid]`` (row-major order of the valid pixels).
 
         Parameters
@@ -115,13 +123,15 @@ class ProjectiveCorrespondences:
         intrinsics : CameraIntrinsics, (3, 3) array_like or (fx, fy, cx, cy)
         valid : (H, W) bool array_like
             Pixels that hold a target point.
+        window : int
+            See the class.
         """
         valid = np.asarray(valid, dtype=bool)
         if valid.ndim != 2:
             raise InputError(f"valid must be a (H, W) mask; got shape {valid.shape}")
         pix = np.full(valid.shape, -1, np.int64)
         pix[valid] = np.arange(int(valid.sum()))
-        return cls(intrinsics, pix)
+        return cls(intrinsics, pix, int(window))
 
     def index(self, target, *, centre=None, scale=1.0):
         """Prepare the association for ``target`` ((M, 3) float64 in the engine's normalised frame
@@ -138,11 +148,12 @@ class ProjectiveCorrespondences:
                              f"per valid pixel); got {target.shape}. Do not voxel-downsample the target "
                              "(voxel_size=None) and pass the points in pixel_index order")
         c = np.zeros(3) if centre is None else np.asarray(centre, dtype=np.float64)
-        return _ProjectiveIndex(target, self.pixel_index, self.intrinsics, c, float(scale))
+        return _ProjectiveIndex(target, self.pixel_index, self.intrinsics, c, float(scale), int(self.window))
 
 
 class _ProjectiveIndex:
-    def __init__(self, target, pixel_index, intrinsics, centre, scale):
+    def __init__(self, target, pixel_index, intrinsics, centre, scale, window):
+        self.window = window
         self.target = target
         self.pixel_index = pixel_index
         self.fx, self.fy, self.cx, self.cy = intrinsics
@@ -154,14 +165,15 @@ class _ProjectiveIndex:
         dist = np.empty(len(moved))
         idx = np.empty(len(moved), np.int64)
         _project_and_match(moved, self.target, self.pixel_index, self.fx, self.fy, self.cx, self.cy, self.centre,
-                           self.scale, float(dmax), dist, idx)
+                           self.scale, float(dmax), self.window, dist, idx)
         return dist, idx
 
 
 @numba.njit(cache=True)
-def _project_and_match(moved, target, pixel_index, fx, fy, cx, cy, centre, scale, dmax, dist, idx):
-    """Project each moved point (normalised frame) into the target image and take that pixel's point (KinectFusion
-    projective association); ``inf`` / ``len(target)`` where none or farther than ``dmax``."""
+def _project_and_match(moved, target, pixel_index, fx, fy, cx, cy, centre, scale, dmax, window, dist, idx):
+    """Project each moved point (normalised frame) into the target image and take the closest target point within
+    ``window`` pixels of that pixel (KinectFusion's projective association for window 0); ``inf`` /
+    ``len(target)`` where none is within ``dmax``."""
     n = len(target)
     h, w = pixel_index.shape
     for i in range(len(moved)):
@@ -172,20 +184,26 @@ def _project_and_match(moved, target, pixel_index, fx, fy, cx, cy, centre, scale
         z = moved[i, 2] * scale + centre[2]
         if z <= 1e-9:
             continue
-        u = int(np.floor(fx * x / z + cx + 0.5))
-        v = int(np.floor(fy * y / z + cy + 0.5))
-        if u < 0 or v < 0 or u >= w or v >= h:
-            continue
-        j = pixel_index[v, u]
-        if j < 0:
-            continue
-        dx = moved[i, 0] - target[j, 0]
-        dy = moved[i, 1] - target[j, 1]
-        dz = moved[i, 2] - target[j, 2]
-        d = np.sqrt(dx * dx + dy * dy + dz * dz)
-        if d <= dmax:
-            dist[i] = d
-            idx[i] = j
+        u0 = int(np.floor(fx * x / z + cx + 0.5))
+        v0 = int(np.floor(fy * y / z + cy + 0.5))
+        best = dmax * dmax
+        for v in range(v0 - window, v0 + window + 1):
+            if v < 0 or v >= h:
+                continue
+            for u in range(u0 - window, u0 + window + 1):
+                if u < 0 or u >= w:
+                    continue
+                j = pixel_index[v, u]
+                if j < 0:
+                    continue
+                dx = moved[i, 0] - target[j, 0]
+                dy = moved[i, 1] - target[j, 1]
+                dz = moved[i, 2] - target[j, 2]
+                d2 = dx * dx + dy * dy + dz * dz
+                if d2 <= best:
+                    best = d2
+                    dist[i] = np.sqrt(d2)
+                    idx[i] = j
 
 
 def as_correspondences(value):
@@ -198,7 +216,7 @@ def as_correspondences(value):
     """
     if value is None:
         return NearestNeighbourCorrespondences()
-    if not callable(getattr(value, "index", None)):
+    if type(value).__module__ == "builtins" or not callable(getattr(value, "index", None)):
         raise InputError("correspondences must be NearestNeighbourCorrespondences(), ProjectiveCorrespondences(...) "
                          f"or None; got {type(value).__name__}")
     return value

@@ -10,8 +10,14 @@ BOXES = [
     (np.array([-1.0, 0.5, 0.8]), np.array([-0.3, 1.5, 1.5])),
     (np.array([0.4, 0.2, 1.2]), np.array([1.2, 1.5, 1.9])),
     (np.array([-0.2, -0.6, 1.6]), np.array([0.3, -0.1, 2.0])),
+    (np.array([-1.8, -1.5, 0.0]), np.array([-1.2, -0.5, 1.0])),
+    (np.array([1.0, -1.2, 0.3]), np.array([1.8, -0.4, 1.0])),
+    (np.array([-0.6, 0.8, 0.0]), np.array([0.0, 1.5, 0.5])),
+    (np.array([0.8, -0.2, 2.2]), np.array([1.6, 0.6, 2.5])),
+    (np.array([-1.6, 0.3, 2.0]), np.array([-0.9, 1.0, 2.5])),
+    (np.array([-0.9, -1.5, 1.8]), np.array([-0.4, -1.1, 2.5])),
 ]
-INTRINSICS = CameraIntrinsics(300.0, 300.0, 159.5, 119.5, 320, 240)
+INTRINSICS = CameraIntrinsics(525.0, 525.0, 319.5, 239.5, 640, 480)
 
 
 def _ray_box(origin, dirs, lo, hi, inside):
@@ -27,8 +33,21 @@ def _ray_box(origin, dirs, lo, hi, inside):
     return np.where(hit, tmin, np.inf)
 
 
-def render_depth(pose, intrinsics=INTRINSICS, boxes=BOXES):
-    """(H, W) float32 depth (metres, z along the optical axis) of the room seen from ``pose`` (camera-to-world)."""
+def corner_view():
+    """A world rotation (yaw 40, pitch 8 degrees) that turns the cameras of :func:`pose_at` towards a corner of the
+    room: three walls in view constrain every direction of motion (a frontal wall alone lets the camera slide)."""
+    from scipy.spatial.transform import Rotation
+
+    m = np.eye(4)
+    m[:3, :3] = Rotation.from_euler("yx", [40.0, 8.0], degrees=True).as_matrix()
+    return m
+
+
+def render_depth(pose, intrinsics=INTRINSICS, boxes=BOXES, turn=None):
+    """(H, W) float32 depth (metres, z along the optical axis) of the room seen from ``pose`` (camera-to-world),
+    the whole scene first turned by ``turn`` (4, 4) when given (see :func:`corner_view`)."""
+    if turn is not None:
+        pose = turn @ pose
     k = intrinsics
     v, u = np.indices((k.height, k.width), dtype=np.float64)
     cam = np.stack([(u - k.cx) / k.fx, (v - k.cy) / k.fy, np.ones_like(u)], axis=-1).reshape(-1, 3)
@@ -51,9 +70,9 @@ def pose_at(yaw_deg=0.0, pitch_deg=0.0, position=(0.0, 0.0, -1.0)):
 
 
 def room_frame(pose, timestamp=None, boxes=BOXES):
-    """An RGBDFrame of the room (no colour) with its true pose."""
-    return RGBDFrame(color=None, depth=render_depth(pose, boxes=boxes), intrinsics=INTRINSICS, pose=pose,
-                     timestamp=timestamp)
+    """An RGBDFrame of the room seen towards a corner (no colour) with its true pose."""
+    return RGBDFrame(color=None, depth=render_depth(pose, boxes=boxes, turn=corner_view()), intrinsics=INTRINSICS,
+                     pose=pose, timestamp=timestamp)
 
 
 @pytest.fixture(scope="session")

@@ -77,25 +77,29 @@ def render_map(mesh, trajectory, keyframes, path, *, window_size=(1280, 960), re
         up /= max(np.linalg.norm(up), 1e-12)
         surf.point_data["height (m)"] = mesh.vertices @ up
         plotter.add_mesh(surf, scalars="height (m)", cmap="cividis", smooth_shading=True, show_scalar_bar=True)
-    size = 0.05
+    size = 0.08
     if len(traj) >= 2:
-        plotter.add_mesh(pv.lines_from_points(traj[:, :3, 3]), color="red", line_width=4, label="trajectory")
+        plotter.add_mesh(pv.lines_from_points(traj[:, :3, 3]), color="red", line_width=6, label="trajectory")
     if reference is not None:
         ref = np.asarray(reference, dtype=np.float64).reshape(-1, 4, 4)
         if len(ref) >= 2:
             plotter.add_mesh(pv.lines_from_points(ref[:, :3, 3]), color="green", line_width=3, label="reference")
     if len(kfs):
         seg = np.concatenate([_frustum(p, size) for p in kfs])
-        plotter.add_mesh(pv.line_segments_from_points(seg), color="blue", line_width=2, label="keyframes")
+        plotter.add_mesh(pv.line_segments_from_points(seg), color="blue", line_width=3, label="keyframes")
     if len(traj) >= 2 or len(kfs):
         plotter.add_legend(bcolor="white", face=None)
-    # look from above and behind the first camera
+    # look down on the scene from above and behind the cameras (their mean viewing direction), everything in view
     if len(traj):
-        first = traj[0]
+        up = -traj[:, :3, 1].mean(axis=0)
+        up /= max(np.linalg.norm(up), 1e-12)
+        forward = traj[:, :3, 2].mean(axis=0)
+        forward -= (forward @ up) * up
+        forward /= max(np.linalg.norm(forward), 1e-12)
         centre = mesh.vertices.mean(axis=0) if len(mesh.vertices) else traj[:, :3, 3].mean(axis=0)
-        back = first[:3, 3] - 1.5 * first[:3, 2] - 1.0 * first[:3, 1]
-        plotter.camera_position = [tuple(back), tuple(centre), tuple(-first[:3, 1])]
-        plotter.reset_camera_clipping_range()
+        eye = centre + 3.0 * (-0.8 * forward + 1.0 * up)
+        plotter.camera_position = [tuple(eye), tuple(centre), tuple(forward)]
+        plotter.reset_camera()
     img = plotter.screenshot(return_img=True)
     plotter.close()
     out = Path(path)

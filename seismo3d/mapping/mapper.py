@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, Seismo3dWarning
+from ..errors import InputError, RegistrationError, Seismo3dWarning
 from .kalman import FilterOptions, PoseFilter
 from .keyframes import Keyframe, KeyframeGraph, KeyframeOptions, is_new_keyframe
 from .landmarks import FeatureOptions, FrameFeatures, LandmarkTable, frame_features, match_to_keyframe
@@ -59,6 +59,10 @@ class MapperOptions:
         A landmark match farther than this from its landmark at the tracked pose is not used (metres).
     default_frame_interval : float
         Seconds between frames that carry no timestamp.
+    guided_radius : float
+        Feature matches farther than this (metres) from their keyframe point at the predicted pose are left out of
+        tracking (guided matching with the motion model, as ORB-SLAM); all matches are used again to relocalise
+        when tracking fails.
     relocalise_translation, relocalise_rotation_deg : float
         A feature (RANSAC) start farther than this from the prediction (metres, degrees) is a relocalisation: the map
         is raycast again at the new pose, the frame tracked again, and the filter restarted there.
@@ -76,6 +80,7 @@ class MapperOptions:
     min_valid_fraction: float = 0.05
     landmark_gate: float = 0.05
     default_frame_interval: float = 1.0 / 30.0
+    guided_radius: float = 0.25
     relocalise_translation: float = 0.10
     relocalise_rotation_deg: float = 10.0
 
@@ -297,20 +302,32 @@ class RGBDMapper:
                     or angle > self.options.relocalise_rotation_deg)
 
     def _track(self, measurement, predicted, fs, fd):
+        """Track with the matches the prediction supports (guided matching); when that fails, relocalise with all
+        matches: the fused ICP's RANSAC start, then a second raycast at the pose it found."""
         opt = self.options.tracking
         shape = measurement.points[0].shape[:2]
-        feats = None if fs is None else (fs, fd)
         prediction = self.volume.raycast(measurement.intrinsics[0], predicted, shape=shape)
-        tracking = track_frame(measurement, prediction, features=feats, options=opt)
-        if (tracking.start == "ransac" and self._jumped(tracking.pose, predicted)) or not tracking.ok:
-            # relocalisation: the feature start moved the camera away from the prediction; predict the surface
-            # again where it is now and track from there
-            again = self.volume.raycast(measurement.intrinsics[0], tracking.pose, shape=shape)
-            second = track_frame(measurement, again, features=feats, options=opt)
-            if second.ok:
-                from dataclasses import replace
+        guided = None
+        if fs is not None:
+            near = np.linalg.norm(fs @ predicted[:3, :3].T + predicted[:3, 3] - fd, axis=1) < self.options.guided_radius
+            guided = (fs[near], fd[near])
+        tracking = track_frame(measurement, prediction, features=guided, options=opt)
+        if tracking.ok or fs is None or len(fs) < opt.min_features:
+            return tracking
+        # relocalisation: the engine's RANSAC over every match gives the camera-to-world pose directly (the fused
+        # ICP's start); the map is raycast there and the frame tracked from it
+        from ..registration import ransac
 
-                return replace(second, start="ransac" if tracking.start == "ransac" else second.start)
+        try:
+            start = ransac(fs, fd, model="rigid", threshold=opt.ransac_threshold, max_trials=2000).transform
+        except (RegistrationError, InputError):
+            return tracking
+        again = self.volume.raycast(measurement.intrinsics[0], start, shape=shape)
+        second = track_frame(measurement, again, features=(fs, fd), options=opt)
+        if second.ok:
+            from dataclasses import replace
+
+            return replace(second, start="ransac")
         return tracking
 
     def _update_landmarks(self, features, keyframe, matches):
@@ -354,10 +371,13 @@ class RGBDMapper:
         cur = kf.features.points[matches.frame_index] @ pose[:3, :3].T + pose[:3, 3]
         old = previous.features.points[matches.keyframe_index] @ previous.pose[:3, :3].T + previous.pose[:3, 3]
         inliers = np.linalg.norm(cur - old, axis=1) < self.options.landmark_gate
+        # at most a third of the filter's capacity per keyframe: older landmarks stay long enough to be seen again
+        budget = max(1, self.filter.options.max_landmarks // 3)
         for lid, row, is_new in self.landmark_table.link(kf.id, previous.id, matches, inliers):
-            if is_new:
+            if is_new and budget > 0:
                 z = kf.features.points[row]
-                self.filter.add_landmark(lid, z, float(kinect_depth_sigma(z[2])))
+                if self.filter.add_landmark(lid, z, float(kinect_depth_sigma(z[2]))):
+                    budget -= 1
 
     def _close_loops(self):
         accepted = 0

@@ -388,7 +388,7 @@ def track_frame(measurement: FrameMeasurement, prediction, *, features=None,
                 if fs is not None and opt.alpha[i] > 0:
                     res = fused_icp(src, tgt, source_features=fs, target_features=fd, alpha=opt.alpha[i],
                                     ransac_threshold=opt.ransac_threshold,
-                                    ransac_trials=1000 if i == 0 else 256, **common)
+                                    ransac_trials=500 if i == 0 else 256, **common)
                     if i == 0 and res.info.get("start") == "ransac":
                         start = "ransac"
                     n_feat = int(res.info.get("n_feature_inliers", 0))

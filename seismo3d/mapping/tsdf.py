@@ -241,9 +241,15 @@ class TSDFVolume:
         normals = np.full((h, w, 3), np.nan)
         opt = self.options
         if self._n_blocks:
-            _raycast(self._tsdf, self._weight, self._grid, self._origin, k, m[:3, :3].copy(), m[:3, 3].copy(),
-                     float(opt.voxel_size), float(opt.truncation_distance), float(opt.min_depth),
-                     float(opt.max_depth), points, normals)
+            rot, trans = m[:3, :3].copy(), m[:3, 3].copy()
+            # per 8 x 8 tile of the image, the depth range the allocated blocks cover: rays march only there
+            tile = 8
+            near = np.full(((h + tile - 1) // tile, (w + tile - 1) // tile), np.inf)
+            far = np.zeros_like(near)
+            _block_ranges(self._coords[: self._n_blocks], float(opt.block_size * opt.voxel_size), k, rot.T.copy(),
+                          trans, float(opt.min_depth), float(opt.max_depth), tile, h, w, near, far)
+            _raycast(self._tsdf, self._weight, self._grid, self._origin, k, rot, trans, float(opt.voxel_size),
+                     float(opt.truncation_distance), near, far, tile, points, normals)
         return SurfacePrediction(points=points, normals=normals, pose=m, intrinsics=tuple(k))
 
     def extract_mesh(self, *, slab: int = 96) -> TriangleMesh:
@@ -510,9 +516,10 @@ def _trilinear(tsdf, weight, grid, origin, px, py, pz, vs):
 
 
 @numba.njit(parallel=True, cache=True)
-def _raycast(tsdf, weight, grid, origin, k, rot, trans, vs, trunc, min_depth, max_depth, points, normals):
+def _raycast(tsdf, weight, grid, origin, k, rot, trans, vs, trunc, near, far, tile, points, normals):
     """Parallel over rows: march each pixel's ray to the first + to - zero crossing of the TSDF (KinectFusion 3.4),
-    refine it by linear interpolation and take the normal from the TSDF's central-difference gradient."""
+    within the depth range of its tile's blocks, refine it by linear interpolation and take the normal from the
+    TSDF's central-difference gradient."""
     h, w = points.shape[0], points.shape[1]
     b = tsdf.shape[1]
     shift = int(np.log2(b) + 0.5)
@@ -526,8 +533,12 @@ def _raycast(tsdf, weight, grid, origin, k, rot, trans, vs, trunc, min_depth, ma
             wx = rot[0, 0] * dx + rot[0, 1] * dy + rot[0, 2] * dz
             wy = rot[1, 0] * dx + rot[1, 1] * dy + rot[1, 2] * dz
             wz = rot[2, 0] * dx + rot[2, 1] * dy + rot[2, 2] * dz
-            t = min_depth * norm
-            t_end = max_depth * norm
+            z0 = near[v // tile, u // tile]
+            z1 = far[v // tile, u // tile]
+            if not z1 > z0:
+                continue
+            t = z0 * norm
+            t_end = z1 * norm
             f_prev = np.nan
             t_prev = t
             step = 0.0
@@ -581,6 +592,51 @@ def _raycast(tsdf, weight, grid, origin, k, rot, trans, vs, trunc, min_depth, ma
                 t_prev = t
                 step = max(vs, 0.8 * f * trunc) if f > 0 else vs
                 t += step
+
+
+@numba.njit(cache=True)
+def _block_ranges(coords, bs, k, rot_t, trans, min_depth, max_depth, tile, h, w, near, far):
+    """Splat every allocated block's bounding box into the tiles of the image it covers: per tile, the nearest and
+    farthest depth of its blocks (the raycast's bounds, as InfiniTAM's range image; Kaehler et al. 2015)."""
+    th, tw = near.shape
+    for i in range(len(coords)):
+        zmin, zmax = np.inf, -np.inf
+        umin, umax, vmin, vmax = np.inf, -np.inf, np.inf, -np.inf
+        behind = False
+        for c in range(8):
+            px = (coords[i, 0] + (c & 1)) * bs - trans[0]
+            py = (coords[i, 1] + ((c >> 1) & 1)) * bs - trans[1]
+            pz = (coords[i, 2] + ((c >> 2) & 1)) * bs - trans[2]
+            x = rot_t[0, 0] * px + rot_t[0, 1] * py + rot_t[0, 2] * pz
+            y = rot_t[1, 0] * px + rot_t[1, 1] * py + rot_t[1, 2] * pz
+            z = rot_t[2, 0] * px + rot_t[2, 1] * py + rot_t[2, 2] * pz
+            zmin = min(zmin, z)
+            zmax = max(zmax, z)
+            if z < min_depth:
+                behind = True
+                continue
+            u = k[0] * x / z + k[2]
+            v = k[1] * y / z + k[3]
+            umin, umax = min(umin, u), max(umax, u)
+            vmin, vmax = min(vmin, v), max(vmax, v)
+        if zmax < min_depth or zmin > max_depth:
+            continue
+        if behind:  # the block reaches behind the near plane: it may cover any pixel
+            umin, umax, vmin, vmax = 0.0, w - 1.0, 0.0, h - 1.0
+        if umax < 0 or vmax < 0 or umin > w - 1 or vmin > h - 1:
+            continue
+        t0 = max(int(np.floor(umin)) // tile, 0)
+        t1 = min(int(np.ceil(umax)) // tile, tw - 1)
+        s0 = max(int(np.floor(vmin)) // tile, 0)
+        s1 = min(int(np.ceil(vmax)) // tile, th - 1)
+        z0 = max(zmin, min_depth)
+        z1 = min(zmax, max_depth)
+        for a in range(s0, s1 + 1):
+            for b in range(t0, t1 + 1):
+                if z0 < near[a, b]:
+                    near[a, b] = z0
+                if z1 > far[a, b]:
+                    far[a, b] = z1
 
 
 @numba.njit(cache=True)

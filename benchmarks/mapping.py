@@ -86,7 +86,8 @@ def _run_seismo3d(option_args):
         for i in range(len(seq)):
             mapper.process(seq.read(i), index=i)
         wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-    t, p, status = mapper.trajectory()
+    traj = mapper.trajectory()
+    t, p, status = traj.timestamps, traj.poses, traj.status
     return dict(t=t, p=p, wall=wall, cpu=cpu, n=len(seq), lost=sum(s == "lost" for s in status),
                 loops=mapper.graph.n_loops, keyframes=len(mapper.graph.keyframes))
 

@@ -185,11 +185,12 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
 def _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render):
     from ..mapping.metrics import write_tum_trajectory
 
-    timestamps, poses, status = mapper.trajectory() if mapper.frames else (np.zeros(0), np.zeros((0, 4, 4)), [])
+    traj = mapper.trajectory()
+    timestamps, poses, status = traj.timestamps, traj.poses, traj.status
     written = {"trajectory": out / "trajectory.txt", "keyframes": out / "keyframes.json", "mesh": out / "mesh.ply"}
     write_tum_trajectory(written["trajectory"], timestamps, poses)
     tracked = [s != "lost" for s in status]
-    lost = [dict(index=int(f[0]), timestamp=float(f[1])) for f in mapper.frames if f[4] == "lost"]
+    lost = [dict(index=f.index, timestamp=f.timestamp) for f in mapper.frames if f.status == "lost"]
     summary = dict(sequence=str(seq.root), layout=seq.layout, frames_in_sequence=len(seq),
                    frames_processed=len(mapper.frames), frames_tracked=int(sum(tracked)), frames_skipped=len(skipped),
                    keyframes=len(mapper.graph.keyframes), loop_closures=mapper.graph.n_loops,

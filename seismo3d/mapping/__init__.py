@@ -12,14 +12,14 @@ from .kalman import FilterOptions, PoseFilter
 from .keyframes import GraphEdge, Keyframe, KeyframeGraph, KeyframeOptions, is_new_keyframe
 from .landmarks import FeatureOptions, FrameFeatures, LandmarkTable, frame_features, match_to_keyframe
 from .loop_closure import LoopClosure, LoopDetector, LoopOptions, Vocabulary
-from .mapper import FrameResult, MapperOptions, RGBDMapper
+from .mapper import FrameRecord, FrameResult, MapperOptions, RGBDMapper, Trajectory
 from .metrics import TrajectoryError, absolute_trajectory_error, relative_pose_error, write_tum_trajectory
 from .odometry import FrameMeasurement, TrackingOptions, TrackingResult, measure_frame, track_frame
 from .sequences import FrameEntry, RGBDSequence, associate_timestamps, open_sequence, read_tum_trajectory
 from .tsdf import SurfacePrediction, TriangleMesh, TSDFOptions, TSDFVolume
 
 __all__ = [
-    "FeatureOptions", "FilterOptions", "FrameEntry", "FrameFeatures", "FrameMeasurement", "FrameResult", "GraphEdge",
+    "FeatureOptions", "FilterOptions", "FrameEntry", "FrameRecord", "Trajectory", "FrameFeatures", "FrameMeasurement", "FrameResult", "GraphEdge",
     "Keyframe", "KeyframeGraph", "KeyframeOptions", "LandmarkTable", "LoopClosure", "LoopDetector", "LoopOptions",
     "MapperOptions", "PoseFilter", "RGBDMapper", "RGBDSequence", "SurfacePrediction", "TSDFOptions", "TSDFVolume",
     "TrackingOptions", "TrackingResult", "TrajectoryError", "TriangleMesh", "Vocabulary", "absolute_trajectory_error",

@@ -32,7 +32,7 @@ from .loop_closure import LoopDetector, LoopOptions
 from .odometry import TrackingOptions, dynamic_mask, kinect_depth_sigma, measure_frame, track_frame
 from .tsdf import TSDFOptions, TSDFVolume
 
-__all__ = ["MapperOptions", "FrameResult", "RGBDMapper"]
+__all__ = ["MapperOptions", "FrameResult", "FrameRecord", "Trajectory", "RGBDMapper"]
 
 
 @dataclass(frozen=True)
@@ -120,6 +120,55 @@ class FrameResult:
     loops: int
 
 
+@dataclass(frozen=True)
+class FrameRecord:
+    """The mapper's record of one frame: its pose is kept relative to a keyframe, so that a pose-graph correction of
+    the keyframe moves it too.
+
+    Attributes
+    ----------
+    index : int
+    timestamp : float
+        Seconds.
+    keyframe : int
+        Id of the keyframe the pose is relative to (the newest keyframe when the frame was mapped).
+    relative : (4, 4) float64 ndarray
+        ``inv(keyframe pose) @ frame pose``.
+    status : {'first', 'tracked', 'relocalised', 'lost'}
+    """
+
+    index: int
+    timestamp: float
+    keyframe: int
+    relative: np.ndarray
+    status: str
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """The poses of the frames mapped so far (see :meth:`RGBDMapper.trajectory`).
+
+    Attributes
+    ----------
+    timestamps : (N,) float64 ndarray
+        Seconds.
+    poses : (N, 4, 4) float64 ndarray
+        Camera-to-world, metres, corrected by the pose graph.
+    status : list of str
+        Per frame, as :attr:`FrameRecord.status`.
+    indices : (N,) int64 ndarray
+        The frames' indices.
+    """
+
+    timestamps: np.ndarray
+    poses: np.ndarray
+    status: list
+    indices: np.ndarray
+
+    def __len__(self) -> int:
+        return int(len(self.timestamps))
+
+
 class RGBDMapper:
     """Stateful RGB-D mapper (see the module docstring).
 
@@ -144,27 +193,25 @@ class RGBDMapper:
         self.landmark_table = LandmarkTable()
         self.loop_detector = LoopDetector(self.options.loops)
         self.filter = None
-        self.frames = []  # (index, timestamp, keyframe id, pose relative to that keyframe, status)
+        self.frames = []  # FrameRecord per mapped (or predicted) frame
         self._last_time = None
         self._frames_since_keyframe = 0
         self._intrinsics = None
 
     # ---------------------------------------------------------------------------------------------------------------
-    def trajectory(self) -> tuple[np.ndarray, np.ndarray, list]:
-        """The poses of every processed frame, corrected by the pose graph.
+    def trajectory(self) -> Trajectory:
+        """The poses of every processed frame, corrected by the pose graph (each frame's pose relative to its
+        keyframe, composed with the keyframe's current pose).
 
         Returns
         -------
-        timestamps : (N,) float64 ndarray
-        poses : (N, 4, 4) float64 ndarray
-            Camera-to-world, metres (each frame's pose relative to its keyframe, composed with the keyframe's
-            current pose).
-        status : list of str
+        Trajectory
         """
         kf = {k.id: k.pose for k in self.graph.keyframes}
-        t = np.array([f[1] for f in self.frames], dtype=np.float64)
-        p = np.array([kf[f[2]] @ f[3] for f in self.frames]).reshape(-1, 4, 4)
-        return t, p, [f[4] for f in self.frames]
+        return Trajectory(timestamps=np.array([f.timestamp for f in self.frames], dtype=np.float64),
+                          poses=np.array([kf[f.keyframe] @ f.relative for f in self.frames]).reshape(-1, 4, 4),
+                          status=[f.status for f in self.frames],
+                          indices=np.array([f.index for f in self.frames], dtype=np.int64))
 
     def predict(self, index: int, timestamp: float | None) -> FrameResult:
         """Account for a frame that could not be used: the filter predicts its pose (recorded as ``'lost'``).
@@ -406,4 +453,4 @@ class RGBDMapper:
 
     def _record(self, index, timestamp, pose, status):
         kf = self.graph.keyframes[-1]
-        self.frames.append((index, float(timestamp), kf.id, np.linalg.inv(kf.pose) @ pose, status))
+        self.frames.append(FrameRecord(int(index), float(timestamp), kf.id, np.linalg.inv(kf.pose) @ pose, status))

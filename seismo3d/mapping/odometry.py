@@ -33,7 +33,7 @@ from ..registration import fused_icp, icp
 from ..registration.correspondences import ProjectiveCorrespondences
 
 __all__ = ["TrackingOptions", "FrameMeasurement", "TrackingResult", "measure_frame", "track_frame",
-           "kinect_depth_sigma", "point_to_plane_information"]
+           "kinect_depth_sigma", "point_to_plane_information", "normal_space_sample", "dynamic_mask"]
 
 
 @dataclass(frozen=True)
@@ -83,6 +83,10 @@ class TrackingOptions:
         ``max(dynamic_min, dynamic_sigmas * sigma(z))`` with the Kinect noise sigma(z) of Nguyen et al. (2012).
     dynamic_dilation : int
         Dynamic regions are grown by this many pixels (of the full-resolution image) before masking.
+    max_points : int or None
+        A level with more measured points registers this many, drawn by normal-space sampling (Rusinkiewicz and
+        Levoy 2001: as many points per normal direction as each direction allows, so that the directions few
+        surfaces constrain keep their points); None uses every point.
     """
 
     scale: int = 2
@@ -103,6 +107,7 @@ class TrackingOptions:
     dynamic_sigmas: float = 4.0
     dynamic_min: float = 0.05
     dynamic_dilation: int = 4
+    max_points: int | None = 20000
 
     def __post_init__(self):
         if int(self.scale) != self.scale or self.scale < 1:
@@ -140,6 +145,11 @@ class FrameMeasurement:
     intrinsics: list
     scale: int
     all_points: np.ndarray
+
+    def level_normals(self, level: int) -> np.ndarray:
+        """(H_l, W_l, 3) normals of a pyramid level (level 0's, subsampled)."""
+        step = 2**level
+        return self.normals[::step, ::step]
 
     @property
     def n_valid(self) -> int:
@@ -203,6 +213,55 @@ def kinect_depth_sigma(z):
     """
     z = np.asarray(z, dtype=np.float64)
     return 0.0012 + 0.0019 * (z - 0.4) ** 2
+
+
+def normal_space_sample(normals, n: int, *, seed: int = 0) -> np.ndarray:
+    """Indices of ``n`` points spread evenly over normal directions (normal-space sampling).
+
+    The normals are binned by their dominant axis and sign (6 bins); each bin gets an equal share of ``n`` (a bin
+    with fewer points gives all of them and its unused share goes to the others), drawn at random within the bin.
+
+    Parameters
+    ----------
+    normals : (N, 3) float64 ndarray
+        Unit normals.
+    n : int
+        Points to keep (all when N <= n).
+    seed : int
+        Seed of the draw (the result is deterministic).
+
+    Returns
+    -------
+    (min(N, n),) int64 ndarray
+        Sorted indices.
+
+    References
+    ----------
+    Rusinkiewicz, S., Levoy, M. (2001). Efficient variants of the ICP algorithm. 3DIM, 145-152.
+    doi:10.1109/IM.2001.924423
+    """
+    m = len(normals)
+    if m <= n:
+        return np.arange(m)
+    axis = np.argmax(np.abs(normals), axis=1)
+    sign = np.take_along_axis(normals, axis[:, None], axis=1)[:, 0] > 0
+    bins = axis * 2 + sign
+    counts = np.bincount(bins, minlength=6)
+    share = np.zeros(6, np.int64)
+    left, open_bins = n, np.flatnonzero(counts > 0)
+    while left > 0 and len(open_bins):
+        each = max(left // len(open_bins), 1)
+        give = np.minimum(counts[open_bins] - share[open_bins], each)
+        share[open_bins] += give
+        left -= int(give.sum())
+        open_bins = open_bins[share[open_bins] < counts[open_bins]]
+        if give.sum() == 0:
+            break
+    rng = np.random.default_rng(seed)
+    order = np.argsort(bins, kind="stable")
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    picks = [order[starts[b] + rng.choice(counts[b], share[b], replace=False)] for b in range(6) if share[b]]
+    return np.sort(np.concatenate(picks))
 
 
 def _level_intrinsics(k, factor):
@@ -374,7 +433,10 @@ def track_frame(measurement: FrameMeasurement, prediction, *, features=None,
     for level in reversed(range(opt.levels)):
         i = opt.levels - 1 - level  # option index, coarse to fine
         src = measurement.points[level]
-        src = src[np.isfinite(src[..., 2])]
+        valid = np.isfinite(src[..., 2])
+        src = src[valid]
+        if opt.max_points and len(src) > opt.max_points:
+            src = src[normal_space_sample(measurement.level_normals(level)[valid], opt.max_points)]
         tgt, nrm, strategy = _prediction_level(prediction, level, opt.window)
         if len(src) < 50 or len(tgt) < 50:
             failed = f"too few points at pyramid level {level} ({len(src)} measured, {len(tgt)} predicted)"

@@ -173,6 +173,11 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     with threadpool_limits(1, user_api="blas"):
         try:
             interrupted = _loop(seq, mapper, frames, bar, skipped)
+        except Exception:
+            # an unexpected failure: still keep what the frames before it built, then report the failure
+            bar.close()
+            _write_outputs(out, seq, mapper, skipped, time.perf_counter() - start, True, False)
+            raise
         finally:
             bar.close()
     elapsed = time.perf_counter() - start

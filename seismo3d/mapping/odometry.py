@@ -358,12 +358,12 @@ def point_to_plane_information(points, relative, target_points, target_normals, 
     return (rows * w[:, None]).T @ rows / (sigma * sigma)
 
 
-def _residuals(measurement, prediction, relative, dmax, window):
+def _residuals(measurement, level0, relative, dmax):
     """Level-0 correspondences at ``relative``: (valid mask of level-0 pixels, index, residuals, targets)."""
     pts = measurement.points[0]
     valid = np.isfinite(pts[..., 2])
     src = pts[valid]
-    tgt, nrm, strategy = _prediction_level(prediction, 0, window)
+    tgt, nrm, strategy = level0
     moved = src @ relative[:3, :3].T + relative[:3, 3]
     if len(tgt) == 0:
         return valid, src, np.zeros(len(src), bool), np.full(len(src), len(tgt)), tgt, nrm, moved, strategy
@@ -430,6 +430,7 @@ def track_frame(measurement: FrameMeasurement, prediction, *, features=None,
         fd = np.asarray(features[1], dtype=np.float64) @ world_to_ref[:3, :3].T + world_to_ref[:3, 3]
     relative = np.eye(4)
     start, n_feat, per_level, failed = "prediction", 0, [], None
+    targets = {}
     for level in reversed(range(opt.levels)):
         i = opt.levels - 1 - level  # option index, coarse to fine
         src = measurement.points[level]
@@ -437,7 +438,7 @@ def track_frame(measurement: FrameMeasurement, prediction, *, features=None,
         src = src[valid]
         if opt.max_points and len(src) > opt.max_points:
             src = src[normal_space_sample(measurement.level_normals(level)[valid], opt.max_points)]
-        tgt, nrm, strategy = _prediction_level(prediction, level, opt.window)
+        tgt, nrm, strategy = targets[level] = _prediction_level(prediction, level, opt.window)
         if len(src) < 50 or len(tgt) < 50:
             failed = f"too few points at pyramid level {level} ({len(src)} measured, {len(tgt)} predicted)"
             break
@@ -468,13 +469,13 @@ def track_frame(measurement: FrameMeasurement, prediction, *, features=None,
         relative = res.transform
         per_level.append(dict(level=level, iterations=res.n_iterations, fitness=res.fitness,
                               rmse=res.inlier_rmse))
-    return _finish(measurement, prediction, relative, start, n_feat, per_level, failed, opt)
+    level0 = targets.get(0) or _prediction_level(prediction, 0, opt.window)
+    return _finish(measurement, prediction, level0, relative, start, n_feat, per_level, failed, opt)
 
 
-def _finish(measurement, prediction, relative, start, n_feat, per_level, failed, opt):
+def _finish(measurement, prediction, level0, relative, start, n_feat, per_level, failed, opt):
     """Statistics, information matrix and dynamic mask at the solution."""
-    valid, src, has, idx, tgt, nrm, moved, strategy = _residuals(measurement, prediction, relative,
-                                                                 opt.max_distance[-1], opt.window)
+    valid, src, has, idx, tgt, nrm, moved, strategy = _residuals(measurement, level0, relative, opt.max_distance[-1])
     n = max(len(src), 1)
     fitness = float(has.sum()) / n
     h0, w0 = valid.shape

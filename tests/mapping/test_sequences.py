@@ -103,3 +103,24 @@ def test_read_tum_trajectory(data_dir):
     assert len(t) > 1000 and np.all(np.diff(t) > 0)
     r = p[:, :3, :3]
     assert_allclose(np.einsum("nji,njk->nik", r, r), np.broadcast_to(np.eye(3), r.shape), atol=1e-6)
+
+
+def test_raw_seven_scenes_folder(tmp_path, data_dir):
+    """The origin's seq-XX layout: frame-NNNNNN.color.png / .depth.png / .pose.txt side by side, no lists."""
+    import shutil
+
+    from seismo3d.data import fetch
+
+    src = fetch("rgbd/7scenes_redkitchen_0000_0495/associations.txt").parent
+    for n in (0, 5, 10):
+        stem = f"frame-{n:06d}"
+        shutil.copy(src / f"depth/{stem}.depth.png", tmp_path)
+        shutil.copy(src / f"pose/{stem}.pose.txt", tmp_path)
+        cv2.imwrite(str(tmp_path / f"{stem}.color.png"), cv2.imread(str(src / f"rgb/{stem}.color.jpg")))
+    seq = open_sequence(tmp_path)
+    assert seq.layout == "7scenes" and len(seq) == 3 and seq.intrinsics.fx == 585.0
+    assert_allclose(seq.timestamps, [0.0, 5 / 30.0, 10 / 30.0])
+    frame = seq.read(1)
+    assert frame.pose is not None and frame.color.shape == (480, 640, 3)
+    assert_allclose(frame.pose, np.loadtxt(src / "pose/frame-000005.pose.txt"), atol=1e-9)
+    assert seq.groundtruth[1].shape == (3, 4, 4)

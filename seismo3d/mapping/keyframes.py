@@ -74,6 +74,8 @@ class Keyframe:
         Of the depth image.
     bow : dict
         Bag-of-words vector (word -> tf-idf weight), set by :class:`~seismo3d.mapping.loop_closure.LoopDetector`.
+    cache : dict
+        Derived data computed once (e.g. the downsampled cloud loop verification registers).
     """
 
     id: int
@@ -84,6 +86,7 @@ class Keyframe:
     depth: np.ndarray
     intrinsics: object
     bow: dict = field(default_factory=dict)
+    cache: dict = field(default_factory=dict)
 
     def depth_metres(self) -> np.ndarray:
         """(H, W) float32 depth in metres, NaN where invalid."""

@@ -163,6 +163,17 @@ class Vocabulary:
         return {int(i): float(v[i] / norm) for i in nz}
 
 
+def _cloud(keyframe, voxel_size):
+    """The keyframe's depth as a voxel-downsampled cloud with normals, computed once and kept on the keyframe."""
+    from .frames import frame_points
+
+    cached = keyframe.cache.get(("cloud", voxel_size))
+    if cached is None:
+        cached = keyframe.cache[("cloud", voxel_size)] = frame_points(keyframe.depth_metres(), keyframe.intrinsics,
+                                                                      voxel_size=voxel_size)
+    return cached
+
+
 def _similarity(a: dict, b: dict) -> float:
     if len(a) > len(b):
         a, b = b, a
@@ -211,10 +222,11 @@ class LoopDetector:
 
         The fused ICP starts from the RANSAC fit of the matched features (no pose prior: the drift may be large).
         """
-        from .frames import frame_points
         from ..registration import fused_icp
         from .landmarks import match_to_keyframe
         from .odometry import point_to_plane_information
+
+        from ..registration import ransac
 
         opt = self.options
         new, old = graph.keyframes[-1], graph.keyframes[candidate]
@@ -223,8 +235,13 @@ class LoopDetector:
             return None
         fs = new.features.points[matches.frame_index]
         fd = old.features.points[matches.keyframe_index]
-        src, _ = frame_points(new.depth_metres(), new.intrinsics, voxel_size=opt.voxel_size)
-        dst, nrm = frame_points(old.depth_metres(), old.intrinsics, voxel_size=opt.voxel_size)
+        # a cheap consensus test on the features alone rejects most false candidates before the dense registration
+        try:
+            ransac(fs, fd, model="rigid", threshold=0.05, max_trials=1000, min_inliers=opt.min_feature_inliers)
+        except (RegistrationError, InputError):
+            return None
+        src, _ = _cloud(new, opt.voxel_size)
+        dst, nrm = _cloud(old, opt.voxel_size)
         if len(src) < 100 or len(dst) < 100:
             return None
         try:

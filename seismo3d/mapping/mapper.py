@@ -7,8 +7,9 @@ For every frame (:meth:`RGBDMapper.process`), in order:
 2. predict the pose with the Kalman filter (constant velocity, :class:`~.kalman.PoseFilter`) and the surface by a
    raycast of the map at that pose (:meth:`~.tsdf.TSDFVolume.raycast`);
 3. track: fused ICP of the frame onto the predicted surface with projective association, coarse to fine
-   (:func:`~.odometry.track_frame`); when the prediction is lost the feature matches' RANSAC start relocalises it and
-   the map is raycast again there;
+   (:func:`~.odometry.track_frame`), with the feature matches the motion model supports (guided matching); when
+   tracking fails, the engine's RANSAC over every match relocalises the camera, the map is raycast again there and the
+   frame tracked from it (the fused ICP's global reach);
 4. update the filter with the ICP pose (its information matrix as the measurement noise) and with the landmarks the
    frame sees;
 5. fuse the frame into the TSDF at the filtered pose, leaving out dynamic pixels;

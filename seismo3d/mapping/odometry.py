@@ -3,8 +3,8 @@
 Steps 1 and 2 of the method's mapping loop (method.md section 3), done as KinectFusion does them (Newcombe et al.
 2011, section 3.5): the depth image is filtered, back-projected and turned into an image pyramid (steps 1); the map
 predicts the surface at the predicted pose (a TSDF raycast); the engine's fused ICP (eq. 16: feature matches to the last
-keyframe plus dense point-to-plane) aligns the measured points to the prediction level by level, coarse to fine, with
-*projective* data association (:class:`~seismo3d.registration.correspondences.ProjectiveCorrespondences`, O(1) per
+keyframe plus dense point-to-plane; the feature weight is set per level, by default on the coarsest only) aligns the
+measured points to the prediction level by level, coarse to fine, with *projective* data association (:class:`~seismo3d.registration.correspondences.ProjectiveCorrespondences`, O(1) per
 point) instead of a KD-tree. The result carries the pose's information matrix (the Gauss-Newton normal matrix at the
 solution, in the camera frame), the Kalman filter's measurement noise, and a mask of pixels whose residual stays large
 at the solution (moving objects: not fused into the map).

@@ -23,8 +23,7 @@ import numpy as np
 
 from seismo3d.data import load_penobscot_sections
 from seismo3d.data.synthetic import synthetic_cube
-from seismo3d.seismic import autotrack, horizon_errors, trace_faults, track_horizon
-from seismo3d.seismic.horizons import _MIN_THROW_CORRELATION, _reliable_throw
+from seismo3d.seismic import TrackingOptions, autotrack, horizon_errors, reliable_throw, trace_faults, track_horizon
 
 
 def penobscot(quick: bool) -> None:
@@ -42,10 +41,11 @@ def penobscot(quick: bool) -> None:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             faults = trace_faults(cube, progress=False)
-        reliable = sum(_reliable_throw(th) for th in faults.throws)
+        min_corr = TrackingOptions().min_throw_correlation
+        reliable = sum(reliable_throw(th, min_corr) for th in faults.throws)
         sec = time.perf_counter() - t0
         print(f"trace_faults: {len(faults.faults)} faults, {reliable} of them with a reliable throw (median "
-              f"correlation >= {_MIN_THROW_CORRELATION}, the ones track_horizon uses), {sec:.0f} s\n")
+              f"correlation >= {min_corr}, the ones track_horizon uses), {sec:.0f} s\n")
         runs.append(("seismo3d point-to-plane, traced faults", dict(features=None, faults=faults)))
     print("| horizon | method | median abs (samples) | within 2 % | within 5 % | coverage % | s |")
     print("|---|---|---|---|---|---|---|")
@@ -62,8 +62,8 @@ def penobscot(quick: bool) -> None:
         rows.append(("plain autotracker", plain.times, time.perf_counter() - t0))
         for name, times, sec in rows:
             e = horizon_errors(times, ref)
-            print(f"| {k} | {name} | {e['median_abs']:.2f} | {100 * e['within_2']:.1f} | {100 * e['within_5']:.1f} | "
-                  f"{100 * e['coverage']:.1f} | {sec:.1f} |", flush=True)
+            print(f"| {k} | {name} | {e.median_abs:.2f} | {100 * e.within_2:.1f} | {100 * e.within_5:.1f} | "
+                  f"{100 * e.coverage:.1f} | {sec:.1f} |", flush=True)
 
 
 def _seed(syn, k: int, i0: int) -> tuple[tuple[float, float, float], str]:
@@ -92,9 +92,9 @@ def synthetic(quick: bool) -> None:
             e = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, faults=faults, features=None).times, ref)
             e0 = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, features=None).times, ref)
             ea = horizon_errors(autotrack(syn.cube, seed, polarity=pol).times, ref)
-            print(f"| {cs} | {k} | {len(faults.faults)} | {e['median_abs']:.2f} | {100 * e['within_2']:.1f} | "
-                  f"{100 * e['coverage']:.1f} | {e0['median_abs']:.2f} | {ea['median_abs']:.2f} | "
-                  f"{100 * ea['within_2']:.1f} |", flush=True)
+            print(f"| {cs} | {k} | {len(faults.faults)} | {e.median_abs:.2f} | {100 * e.within_2:.1f} | "
+                  f"{100 * e.coverage:.1f} | {e0.median_abs:.2f} | {ea.median_abs:.2f} | "
+                  f"{100 * ea.within_2:.1f} |", flush=True)
 
 
 def speed(quick: bool) -> None:

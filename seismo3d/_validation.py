@@ -9,8 +9,8 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["as_points", "as_pair", "as_weights", "as_image", "as_normals", "as_intrinsics", "check_choice",
-           "check_positive"]
+__all__ = ["as_points", "as_pair", "as_weights", "as_image", "as_normals", "as_intrinsics", "as_seismic",
+           "as_sigma_pair", "check_choice", "check_int", "check_positive"]
 
 
 def as_points(points, name: str = "points", *, dims=(2, 3), min_points: int = 1) -> np.ndarray:
@@ -102,6 +102,63 @@ def check_positive(value, name: str, *, allow_zero: bool = False) -> float:
     if not np.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
         raise InputError(f"{name} must be {'>= 0' if allow_zero else '> 0'}; got {value!r}")
     return v
+
+
+def check_int(value, name: str, *, minimum: int | None = None, maximum: int | None = None,
+              allow_none: bool = False) -> int | None:
+    """Return ``value`` as an int, or raise :class:`InputError` unless it is an integer (not a bool, not a float)
+    within ``[minimum, maximum]`` (None with ``allow_none``)."""
+    if value is None and allow_none:
+        return None
+    ok = not isinstance(value, bool) and isinstance(value, (int, np.integer))
+    ok = ok and (minimum is None or value >= minimum) and (maximum is None or value <= maximum)
+    if not ok:
+        if minimum is not None and maximum is not None:
+            need = f"an int in [{minimum}, {maximum}]"
+        elif minimum is not None:
+            need = f"an int >= {minimum}"
+        elif maximum is not None:
+            need = f"an int <= {maximum}"
+        else:
+            need = "an int"
+        raise InputError(f"{name} must be {need}{' or None' if allow_none else ''}; got {value!r}")
+    return int(value)
+
+
+def as_seismic(data, name: str = "data", *, min_size: int = 3) -> np.ndarray:
+    """Return ``data`` as a C-contiguous float32 2D section (n_traces, n_samples) or 3D cube (n_inlines, n_xlines,
+    n_samples), or raise :class:`InputError` (not numeric, not 2D / 3D, an axis shorter than ``min_size``, NaN or
+    inf)."""
+    try:
+        arr = np.asarray(data)
+    except (TypeError, ValueError) as exc:  # pragma: no cover - numpy accepts almost anything
+        raise InputError(f"{name} must be a numeric array; got {type(data).__name__}") from exc
+    if arr.dtype == object or not (np.issubdtype(arr.dtype, np.number) or arr.dtype == bool):
+        raise InputError(f"{name} must be a numeric array; got dtype {arr.dtype}")
+    if arr.ndim not in (2, 3):
+        raise InputError(
+            f"{name} must be a 2D section (n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, n_samples); "
+            f"got shape {arr.shape}"
+        )
+    if min(arr.shape) < min_size:
+        raise InputError(f"{name} has shape {arr.shape}; every axis needs at least {min_size} samples")
+    arr = np.ascontiguousarray(arr, dtype=np.float32)
+    if not np.all(np.isfinite(arr)):
+        bad = int(np.count_nonzero(~np.isfinite(arr)))
+        raise InputError(f"{name} has {bad} NaN or inf samples; fill them first, e.g. np.nan_to_num({name})")
+    return arr
+
+
+def as_sigma_pair(value, name: str) -> tuple[float, float]:
+    """Parse a (lateral in traces, vertical in samples) pair of Gaussian widths > 0; a scalar sets both."""
+    vals = np.atleast_1d(np.asarray(value, dtype=np.float64)).ravel()
+    if vals.size == 1:
+        vals = np.repeat(vals, 2)
+    if vals.size != 2:
+        raise InputError(f"{name} must be a number or a pair (lateral in traces, vertical in samples); got {value!r}")
+    for v in vals:
+        check_positive(v, name)
+    return float(vals[0]), float(vals[1])
 
 
 def as_normals(normals, name: str, shape: tuple, *, of: str = "point") -> np.ndarray:

@@ -39,3 +39,47 @@ def penobscot_faults(penobscot):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", Seismo3dWarning)  # clipped amplitudes and the muted top are reported
         return trace_faults(penobscot.cube, progress=False)
+
+
+@pytest.fixture(scope="session")
+def traced_cube():
+    """``traced_cube(seed)``: a 128^3 synthetic cube (3 faults, noise 0.1) traced by :func:`trace_faults` (fault
+    likelihood, voting, skins, throws) with its reflector orientation, computed once per seed and session (about
+    15 s per cube on 2 cores).
+
+    Shared by the fault-surface and fault-throw tests, which read the same five cubes; nothing may modify them."""
+    import functools
+    from types import SimpleNamespace
+
+    from seismo3d.data.synthetic import synthetic_cube
+    from seismo3d.seismic import FaultLikelihood, structure_tensor_orientation, trace_faults
+
+    @functools.lru_cache(maxsize=None)
+    def trace(seed):
+        syn = synthetic_cube((128, 128, 128), seed=seed, noise=0.1)
+        res = trace_faults(syn.cube, progress=False)
+        return SimpleNamespace(syn=syn, likelihood=FaultLikelihood(res.likelihood, res.strike_deg, res.dip_deg),
+                               votes=res.votes, thin=res.thin, faults=res.faults, throws=res.throws,
+                               orientation=structure_tensor_orientation(syn.cube))
+
+    return trace
+
+
+@pytest.fixture(scope="session")
+def faulted_cube():
+    """``faulted_cube(seed)``: a 64 x 64 x 96 synthetic cube (3 faults) and its trace_faults interpretation, once per
+    seed and session (read by the horizon-tracking and fault-crossing tests)."""
+    import functools
+    import warnings
+
+    from seismo3d.data.synthetic import synthetic_cube
+    from seismo3d.seismic import trace_faults
+
+    @functools.lru_cache(maxsize=None)
+    def trace(seed):
+        syn = synthetic_cube((64, 64, 96), n_faults=3, seed=seed)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return syn, trace_faults(syn.cube, progress=False)
+
+    return trace

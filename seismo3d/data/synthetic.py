@@ -53,7 +53,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.ndimage import convolve1d
 
-from .._validation import check_positive
+from .._validation import check_int, check_positive
 from ..errors import InputError
 
 __all__ = ["FaultPlane", "SyntheticCube", "synthetic_cube", "ricker", "resampled_pair"]
@@ -365,10 +365,8 @@ def synthetic_cube(shape=(128, 128, 128), *, n_faults: int = 3, seed=0, noise: f
     ((64, 64, 64), 2, 2)
     """
     shp = _check_shape(shape)
-    if isinstance(n_faults, bool) or not isinstance(n_faults, (int, np.integer)) or n_faults < 0:
-        raise InputError(f"n_faults must be an int >= 0; got {n_faults!r}")
-    if isinstance(n_horizons, bool) or not isinstance(n_horizons, (int, np.integer)) or n_horizons < 0:
-        raise InputError(f"n_horizons must be an int >= 0; got {n_horizons!r}")
+    check_int(n_faults, "n_faults", minimum=0)
+    check_int(n_horizons, "n_horizons", minimum=0)
     noise = check_positive(noise, "noise", allow_zero=True)
     max_throw = check_positive(max_throw, "max_throw")
     if max_throw < _MIN_THROW:
@@ -384,8 +382,7 @@ def synthetic_cube(shape=(128, 128, 128), *, n_faults: int = 3, seed=0, noise: f
     reverse_fraction = check_positive(reverse_fraction, "reverse_fraction", allow_zero=True)
     if reverse_fraction > 1:
         raise InputError(f"reverse_fraction is a probability in [0, 1]; got {reverse_fraction}")
-    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0):
-        raise InputError(f"seed must be a non-negative int or None; got {seed!r}")
+    check_int(seed, "seed", minimum=0, allow_none=True)
 
     rng = np.random.default_rng(seed)
     lat_shape, nz = shp[:-1], shp[-1]

@@ -558,7 +558,7 @@ def hog_pyramid_features(image, *, params: HogPyramidParams | None = None, mask=
     ----------
     See the module docstring: [1] (Tables 2-4), [2], [3] (ring histograms in sliding circular windows), [4], [5].
     """
-    from .keypoints import _resize_levels
+    from .keypoints import resize_levels
 
     p = HogPyramidParams() if params is None else params
     img = to_gray(image)
@@ -575,7 +575,7 @@ def hog_pyramid_features(image, *, params: HogPyramidParams | None = None, mask=
     if not hi > lo:
         return Features.empty("hog", p.n_dims)
     img = ((img - lo) / (hi - lo)).astype(np.float32)
-    levels = _resize_levels(img, p.scale_factor, p.n_levels, 2 * p.pad + 3, p.first_level)
+    levels = resize_levels(img, p.scale_factor, p.n_levels, 2 * p.pad + 3, p.first_level)
     found = [_detect_level(level, mask_u8, p) for level in levels]
     if p.scale_nms:
         _scale_nms(found)

@@ -126,10 +126,30 @@ def image_pyramid(image, *, scale_factor: float = 2 ** 0.25, n_levels: int = 9, 
     if int(n_levels) < 1:
         raise InputError(f"n_levels must be >= 1; got {n_levels!r}")
     check_positive(min_size, "min_size")
-    return _resize_levels(img, float(scale_factor), int(n_levels), int(min_size), int(first_level))
+    return resize_levels(img, float(scale_factor), int(n_levels), int(min_size), int(first_level))
 
 
-def _resize_levels(img, scale_factor, n_levels, min_size, first_level):
+def resize_levels(img, scale_factor: float, n_levels: int, min_size: int, first_level: int) -> list:
+    """The levels of an image pyramid without the input checks (the hot path of the HOG-pyramid descriptor).
+
+    Parameters
+    ----------
+    img : (H, W) float ndarray
+        The image (checked by the caller).
+    scale_factor : float
+        Downsampling between levels, > 1.
+    n_levels : int
+        Largest number of levels.
+    min_size : int
+        A level whose smaller side would be below this is not made (the pyramid stops).
+    first_level : int
+        Level of the first image (0: the image itself).
+
+    Returns
+    -------
+    list
+        As :func:`image_pyramid`.
+    """
     import cv2
 
     h0, w0 = img.shape

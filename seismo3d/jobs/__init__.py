@@ -1,1 +1,13 @@
-"""What each ``seismo3d`` command does end to end: read the inputs, call the applications, write the outputs."""
+"""What each ``seismo3d`` command does end to end: read its inputs, call the applications, write its outputs.
+
+One module per command, ``seismo3d/jobs/<command>.py``, with one entry point ``run_<command>_job(...)`` that takes the
+command's arguments as plain Python values (paths, numbers, strings) and returns what it wrote or measured; the typer
+wrapper in :mod:`seismo3d.cli` only parses the command line, calls it and prints. Jobs may import the applications
+(:mod:`seismo3d.seismic`, ...), :mod:`seismo3d.viz` and :mod:`seismo3d.data`; no application imports a job.
+
+- :mod:`seismo3d.jobs.faults`: ``run_faults_job`` (``seismo3d faults``)
+- :mod:`seismo3d.jobs.horizon`: ``run_horizon_job`` (``seismo3d horizon``)
+- :mod:`seismo3d.jobs.register`: ``run_register_job`` (``seismo3d register``: point clouds or SEG-Y sub-volumes)
+- :mod:`seismo3d.jobs.match`: ``run_match_job`` (``seismo3d match``)
+- :mod:`seismo3d.jobs.map`: ``run_map_job`` (``seismo3d map``: RGB-D sequences)
+"""

@@ -20,13 +20,13 @@ from __future__ import annotations
 
 import json
 import pathlib
-import sys
 import time
 import warnings
 
 import numpy as np
 
 from .._atomic import atomic_path
+from .._progress import progress_steps
 from ..errors import DataIntegrityError, DataNotFoundError, FrameSkippedWarning, InputError, RegistrationError
 
 __all__ = ["run_map_job", "write_ply"]
@@ -58,34 +58,10 @@ def write_ply(path, mesh) -> None:
             fh.write(face.tobytes())
 
 
-class _Progress:
-    """A tqdm bar with frames per second on a terminal; one line per ``every`` frames otherwise (logs)."""
-
-    def __init__(self, total, enabled, every=10):
-        from tqdm.auto import tqdm
-
-        self.enabled = enabled
-        self.tty = enabled and sys.stderr.isatty()
-        self.bar = tqdm(total=total, desc="map", unit="frame", disable=not self.tty)
-        self.total, self.every, self.count, self.start = total, every, 0, time.perf_counter()
-
-    def update(self, keyframes, loops):
-        self.count += 1
-        fps = self.count / max(time.perf_counter() - self.start, 1e-9)
-        if self.tty:
-            self.bar.set_postfix(fps=f"{fps:.1f}", keyframes=keyframes, loops=loops, refresh=False)
-            self.bar.update(1)
-        elif self.enabled and (self.count % self.every == 0 or self.count == self.total):
-            print(f"map: frame {self.count}/{self.total}, {fps:.1f} frames/s, {keyframes} keyframes, {loops} loops",
-                  file=sys.stderr, flush=True)
-
-    def close(self):
-        self.bar.close()
-
-
-def _loop(sequence, mapper, frames, progress, skipped):
+def _loop(sequence, mapper, frames, steps, skipped):
     """Map ``frames`` of ``sequence``; returns True when interrupted (Ctrl-C)."""
-    for i in frames:
+    start = time.perf_counter()
+    for count, i in enumerate(frames, 1):
         entry = sequence.entries[i]
         try:
             try:
@@ -102,7 +78,9 @@ def _loop(sequence, mapper, frames, progress, skipped):
                         pass
         except KeyboardInterrupt:
             return True
-        progress.update(len(mapper.graph.keyframes), mapper.graph.n_loops)
+        fps = count / max(time.perf_counter() - start, 1e-9)
+        steps.advance(1, status=f"{fps:.1f} frames/s, {len(mapper.graph.keyframes)} keyframes, "
+                                f"{mapper.graph.n_loops} loops")
     return False
 
 
@@ -135,7 +113,8 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     max_frames : int, optional
         Map only the first this many frames.
     progress : bool
-        Show progress on standard error (a bar on a terminal, a line every 10 frames otherwise).
+        Report progress with frames per second (:mod:`seismo3d._progress`: a bar on a terminal, log lines
+        otherwise).
     render : bool
         Write ``map.png`` (pyvista off screen).
 
@@ -167,19 +146,16 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     frames = range(len(seq) if max_frames is None else min(len(seq), int(max_frames)))
     mapper = RGBDMapper(options)
     skipped = []
-    bar = _Progress(len(frames), progress)
     start = time.perf_counter()
     # numpy's BLAS threads only slow the small (N, 3) products of the loop down; numba runs the parallel parts
     with threadpool_limits(1, user_api="blas"):
         try:
-            interrupted = _loop(seq, mapper, frames, bar, skipped)
+            with progress_steps(len(frames), "map", unit="frame", enabled=progress) as steps:
+                interrupted = _loop(seq, mapper, frames, steps, skipped)
         except Exception:
             # an unexpected failure: still keep what the frames before it built, then report the failure
-            bar.close()
             _write_outputs(out, seq, mapper, skipped, time.perf_counter() - start, True, False)
             raise
-        finally:
-            bar.close()
     elapsed = time.perf_counter() - start
     written = _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render)
     if interrupted:

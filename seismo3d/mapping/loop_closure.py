@@ -222,7 +222,7 @@ class LoopDetector:
 
         The fused ICP starts from the RANSAC fit of the matched features (no pose prior: the drift may be large).
         """
-        from ..registration import fused_icp
+        from ..registration import ICPOptions, fused_icp
         from .landmarks import match_to_keyframe
         from .odometry import point_to_plane_information
 
@@ -248,7 +248,7 @@ class LoopDetector:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", DegenerateGeometryWarning)
                 res = fused_icp(src, dst, target_normals=nrm, source_features=fs, target_features=fd,
-                                ransac_threshold=0.05, max_distance=(0.1, 0.04, 0.02))
+                                ransac_threshold=0.05, options=ICPOptions(max_distance=(0.1, 0.04, 0.02)))
         except RegistrationError:
             return None
         if res.info.get("n_feature_inliers", 0) < opt.min_feature_inliers or res.fitness < opt.min_fitness \

@@ -4,8 +4,9 @@ Steps 1 and 2 of the method's mapping loop (method.md section 3), done as Kinect
 2011, section 3.5): the depth image is filtered, back-projected and turned into an image pyramid (steps 1); the map
 predicts the surface at the predicted pose (a TSDF raycast); the engine's fused ICP (eq. 16: feature matches to the last
 keyframe plus dense point-to-plane; the feature weight is set per level, by default on the coarsest only) aligns the
-measured points to the prediction level by level, coarse to fine, with *projective* data association (:class:`~seismo3d.registration.correspondences.ProjectiveCorrespondences`, O(1) per
-point) instead of a KD-tree. The result carries the pose's information matrix (the Gauss-Newton normal matrix at the
+measured points to the prediction level by level, coarse to fine, with *projective* data association
+(:class:`~seismo3d.registration.ProjectiveCorrespondences` as ``ICPOptions.correspondences``, O(1) per point) instead
+of a KD-tree. The result carries the pose's information matrix (the Gauss-Newton normal matrix at the
 solution, in the camera frame), the Kalman filter's measurement noise, and a mask of pixels whose residual stays large
 at the solution (moving objects: not fused into the map).
 
@@ -29,8 +30,7 @@ import numpy as np
 from .._validation import as_intrinsics
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
 from ..geometry import backproject_depth, normals_from_points_image
-from ..registration import fused_icp, icp
-from ..registration.correspondences import ProjectiveCorrespondences
+from ..registration import ICPOptions, ProjectiveCorrespondences, fused_icp, icp
 
 __all__ = ["TrackingOptions", "FrameMeasurement", "TrackingResult", "measure_frame", "track_frame",
            "kinect_depth_sigma", "point_to_plane_information", "normal_space_sample", "dynamic_mask"]
@@ -442,9 +442,10 @@ def track_frame(measurement: FrameMeasurement, prediction, *, features=None,
         if len(src) < 50 or len(tgt) < 50:
             failed = f"too few points at pyramid level {level} ({len(src)} measured, {len(tgt)} predicted)"
             break
-        common = dict(target_normals=nrm, init=relative, max_distance=opt.max_distance[i],
-                      max_iterations=opt.max_iterations[i], tolerance=opt.tolerance, kernel=opt.kernel,
-                      kernel_scale=opt.kernel_scale, correspondences=strategy)
+        icp_options = ICPOptions(max_distance=opt.max_distance[i], max_iterations=opt.max_iterations[i],
+                                 tolerance=opt.tolerance, kernel=opt.kernel, kernel_scale=opt.kernel_scale,
+                                 correspondences=strategy)
+        common = dict(target_normals=nrm, init=relative, options=icp_options)
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", DegenerateGeometryWarning)

@@ -180,11 +180,31 @@ def fit_transform(source, target, *, model: str = "rigid", weights=None, max_ite
     if src.shape[0] < need:
         raise InputError(f"a {model} fit in {d}D needs at least {need} point pairs; got {src.shape[0]}")
     w = as_weights(weights, src.shape[0])
-    return _fit(src, dst, w, model, max_iterations, tolerance)
+    return fit_weighted(src, dst, w, model, max_iterations, tolerance)
 
 
-def _fit(src, dst, w, model, max_iterations=200, tolerance=1e-13):
-    """Unchecked fit on validated float64 arrays (the hot path of ICP and RANSAC)."""
+def fit_weighted(src, dst, w, model, max_iterations=200, tolerance=1e-13) -> np.ndarray:
+    """:func:`fit_transform` without the input checks: the hot path of ICP and RANSAC.
+
+    Parameters
+    ----------
+    src, dst : (N, d) float64 ndarray
+        Paired points, finite, at least ``min_points(model, d)`` of them.
+    w : (N,) float64 ndarray
+        Non-negative weights, not all zero.
+    model : {'rigid', 'similarity', 'axis_scaled', 'affine'}
+    max_iterations, tolerance
+        Only for ``'axis_scaled'``: the R / S alternation's limits.
+
+    Returns
+    -------
+    (d+1, d+1) float64 ndarray
+
+    Raises
+    ------
+    InputError
+        Degenerate source geometry (the points do not span enough dimensions for the model).
+    """
     a, b, mx, my, wn = _centred(src, dst, w)
     d = src.shape[1]
     if model in ("rigid", "similarity"):

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._options import resolve_options
 from .._validation import as_pair, as_weights, check_positive
 from ..errors import InputError, RegistrationError
 from ..geometry.neighbours import bounding_diagonal
-from .icp import _Frame, _prepare, _run, _stages
+from .icp import NormalisedFrame, dense_stages, prepare_problem, run_icp
+from .options import ICPOptions
 from .ransac import ransac
 from .result import RegistrationResult
 
@@ -16,10 +18,8 @@ __all__ = ["fused_icp"]
 
 def fused_icp(source, target, *, target_normals, source_features, target_features, alpha: float = 0.1,
               model: str = "rigid", init=None, feature_weights=None, ransac_threshold: float | None = None,
-              ransac_trials: int = 5000, seed: int = 0, max_distance=None, voxel_size=None,
-              max_iterations: int = 50, tolerance: float = 1e-4, kernel: str = "huber",
-              kernel_scale: float | None = None, degeneracy_threshold: float = 1e-3,
-              correspondences=None) -> RegistrationResult:
+              ransac_trials: int = 5000, seed: int = 0, options: ICPOptions | None = None,
+              **overrides) -> RegistrationResult:
     """Register ``source`` onto ``target`` by minimising the fused objective of the method's eq. 16.
 
     .. math::
@@ -62,8 +62,11 @@ def fused_icp(source, target, *, target_normals, source_features, target_feature
         RANSAC's maximum number of minimal samples.
     seed : int
         RANSAC seed (the result is deterministic given it).
-    max_distance, voxel_size, max_iterations, tolerance, kernel, kernel_scale, degeneracy_threshold, correspondences
-        As in :func:`~seismo3d.registration.icp`.
+    options : ICPOptions, optional
+        The dense loop's distance schedule, point pyramid, iterations, tolerance, kernel, degeneracy threshold and
+        correspondence strategy, as in :func:`~seismo3d.registration.icp` (default ``ICPOptions()``).
+    **overrides
+        Fields of :class:`ICPOptions` by name, replacing those of ``options``.
 
     Returns
     -------
@@ -87,8 +90,9 @@ def fused_icp(source, target, *, target_normals, source_features, target_feature
     alpha = float(alpha)
     if not 0.0 <= alpha <= 1.0:
         raise InputError(f"alpha must be in [0, 1]; got {alpha}")
-    src, dst, nrm, m0, sched, voxels = _prepare(source, target, target_normals, "point_to_plane", model, init,
-                                                max_distance, voxel_size, kernel)
+    opt = resolve_options(ICPOptions, options, overrides, "fused_icp")
+    problem = prepare_problem(source, target, target_normals, "point_to_plane", model, init, opt)
+    src, dst, m0, sched = problem.source, problem.target, problem.init, problem.schedule
     fs, fd = as_pair(source_features, target_features, dims=(src.shape[1],),
                      names=("source_features", "target_features"))
     wf = as_weights(feature_weights, len(fs), "feature_weights")
@@ -102,8 +106,8 @@ def fused_icp(source, target, *, target_normals, source_features, target_feature
             raise RegistrationError(f"fused ICP could not start: {exc}; pass init= (a prior transform)") from exc
         rs, inliers = None, np.zeros(len(fs), bool)
 
-    frame = _Frame.of(dst)
-    stages = _stages(frame, src, dst, nrm, voxels, correspondences)
+    frame = NormalisedFrame.of(dst)
+    stages = dense_stages(frame, problem, opt.correspondences)
     start, m_start = "init", m0
     if rs is not None:
         start, m_start = "ransac", rs.transform
@@ -117,10 +121,8 @@ def fused_icp(source, target, *, target_normals, source_features, target_feature
     if inliers.any():
         fscale = thr / frame.scale
         features = (frame.points(fs[inliers]), frame.points(fd[inliers]), wf[inliers], fscale)
-    result = _run(stages, sched, frame, m_start, method="point_to_plane", model=model,
-                  max_iterations=int(max_iterations), tolerance=check_positive(tolerance, "tolerance"),
-                  kernel=kernel, kernel_scale=kernel_scale, features=features, alpha=alpha if features else 0.0,
-                  degeneracy_threshold=degeneracy_threshold)
+    result = run_icp(stages, sched, frame, m_start, method="point_to_plane", model=model, options=opt,
+                     features=features, alpha=alpha if features else 0.0)
     info = dict(result.info, n_feature_inliers=int(inliers.sum()), start=start,
                 energy=_energy(result.transform, src, stages[-1], frame, sched[-1], fs[inliers], fd[inliers],
                                wf[inliers], alpha))

@@ -1,4 +1,6 @@
-"""ICP family: point-to-point and point-to-plane for rigid, similarity, axis-scaled and affine models, the fused
+"""The ICP family: point-to-point and point-to-plane ICP for every model, its engine pieces, and the Fast ICP baseline.
+
+Point-to-point and point-to-plane for rigid, similarity, axis-scaled and affine models, the fused
 objective's dense loop, and the "Fast ICP" baseline of the paper's Table 1 (method.md section 1).
 
 All iterations run in a normalised frame (target centroid at the origin, unit RMS radius) so that rotation, scale and
@@ -12,17 +14,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import as_points, as_normals, check_choice, check_positive
+from .._options import resolve_options
+from .._validation import as_normals, as_points, check_choice
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
 from ..geometry.neighbours import bounding_diagonal, median_spacing, voxel_downsample
 from ..geometry.transforms import as_transform, check_model, make_transform
 from . import _solver
-from .closed_form import _fit, min_points
+from .closed_form import fit_weighted, min_points
 from .correspondences import as_correspondences
-from .kernels import KERNELS, robust_weights
+from .kernels import robust_weights
+from .options import ICPOptions
 from .result import RegistrationResult
 
-__all__ = ["icp", "fast_icp", "default_distance_schedule"]
+__all__ = ["icp", "fast_icp", "default_distance_schedule", "ICPProblem", "NormalisedFrame", "DenseStage",
+           "prepare_problem", "dense_stages", "run_icp"]
 
 METHODS = ("point_to_point", "point_to_plane")
 
@@ -58,47 +63,103 @@ def default_distance_schedule(target, *, fractions=(0.1, 0.03, 0.01), spacing_fa
 
 
 @dataclass(frozen=True)
-class _Frame:
-    """Normalising similarity N: p -> (p - centre) / scale."""
+class NormalisedFrame:
+    """The normalising similarity ``N: p -> (p - centre) / scale`` in which ICP iterates (target centroid at the
+    origin, unit RMS radius), so that rotation, scale and translation updates are commensurate.
+
+    Attributes
+    ----------
+    centre : (d,) float64 ndarray
+        The target's centroid.
+    scale : float
+        The target's RMS distance from it (1 when it is 0).
+    """
 
     centre: np.ndarray
     scale: float
 
     @classmethod
     def of(cls, points):
+        """The frame of ``points`` ((M, d) float64 ndarray)."""
         c = points.mean(axis=0)
         s = float(np.sqrt(np.mean(np.einsum("ij,ij->i", points - c, points - c))))
         return cls(c, s if s > 0 else 1.0)
 
     def points(self, p):
+        """``p`` ((n, d) ndarray) in the frame."""
         return (p - self.centre) / self.scale
 
     def matrix(self):
+        """N as a (d+1, d+1) homogeneous matrix."""
         d = len(self.centre)
         return make_transform(np.eye(d) / self.scale, -self.centre / self.scale)
 
     def inverse(self):
+        """N^-1 as a (d+1, d+1) homogeneous matrix."""
         d = len(self.centre)
         return make_transform(np.eye(d) * self.scale, self.centre)
 
     def into(self, transform):
+        """A transform between points' coordinates, as it acts in the frame."""
         return self.matrix() @ transform @ self.inverse()
 
     def out_of(self, transform):
+        """A transform acting in the frame, back between the points' coordinates."""
         return self.inverse() @ transform @ self.matrix()
 
 
-def _as_schedule(value, name):
-    seq = np.atleast_1d(np.asarray(value, dtype=np.float64))
-    if seq.ndim != 1 or len(seq) == 0 or not np.all(np.isfinite(seq)) or np.any(seq <= 0):
-        raise InputError(f"{name} must be a positive number or a non-empty sequence of them (coarse to fine)")
-    return tuple(float(v) for v in seq)
+@dataclass(frozen=True, eq=False)
+class ICPProblem:
+    """A checked registration problem: what :func:`prepare_problem` returns.
+
+    Attributes
+    ----------
+    source : (N, d) float64 ndarray
+    target : (M, d) float64 ndarray
+    target_normals : (M, d) float64 ndarray or None
+        Unit normals (point-to-plane only).
+    init : (d+1, d+1) float64 ndarray
+        The initial transform.
+    schedule : tuple of float
+        Maximum correspondence distance of each stage, coarse to fine, in the points' unit.
+    voxels : tuple of (float or None, float or None)
+        Per stage, the source and target voxel sizes (None: not downsampled).
+    """
+
+    source: np.ndarray
+    target: np.ndarray
+    target_normals: np.ndarray | None
+    init: np.ndarray
+    schedule: tuple
+    voxels: tuple
 
 
-def _prepare(source, target, target_normals, method, model, init, max_distance, voxel_size, kernel):
+def prepare_problem(source, target, target_normals, method: str, model: str, init,
+                    options: ICPOptions) -> ICPProblem:
+    """Check the inputs of an ICP and resolve its distance schedule and point pyramid.
+
+    Parameters
+    ----------
+    source : (N, d) array_like, d in {2, 3}
+    target : (M, d) array_like
+    target_normals : (M, d) array_like or None
+        Required for point-to-plane.
+    method : {'point_to_plane', 'point_to_point'}
+    model : {'rigid', 'similarity', 'axis_scaled', 'affine'}
+    init : (d+1, d+1) array_like or None
+    options : ICPOptions
+
+    Returns
+    -------
+    ICPProblem
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaNs, mismatched dimensions, too few points for the model, missing normals, unknown options.
+    """
     check_choice(method, "method", METHODS)
     check_model(model)
-    check_choice(kernel, "kernel", KERNELS)
     src = as_points(source, "source")
     dst = as_points(target, "target")
     d = src.shape[1]
@@ -116,41 +177,75 @@ def _prepare(source, target, target_normals, method, model, init, max_distance, 
                              "seismo3d.geometry.estimate_normals(target)")
         nrm = as_normals(target_normals, "target_normals", dst.shape, of="target point")
     m0 = np.eye(d + 1) if init is None else as_transform(init, "init", dims=(d,))
-    sched = default_distance_schedule(dst) if max_distance is None else _as_schedule(max_distance, "max_distance")
-    if voxel_size is None:
+    sched = default_distance_schedule(dst) if options.max_distance is None else options.max_distance
+    if options.voxel_size is None:
         # Default point pyramid: coarse stages see the source at voxel = stage distance / 8, the last stage all of it;
         # the target (and its KD-tree) stays at full resolution.
         voxels = tuple((v / 8.0, None) for v in sched[:-1]) + ((None, None),)
     else:
-        sizes = _as_schedule(voxel_size, "voxel_size")
+        sizes = options.voxel_size
         if len(sizes) == 1:
             sizes = sizes * len(sched)
         if len(sizes) != len(sched):
             raise InputError(f"voxel_size has {len(sizes)} entries but the distance schedule has {len(sched)}; "
                              "give one voxel size per stage or a single one")
         voxels = tuple((v, v) for v in sizes)
-    return src, dst, nrm, m0, sched, voxels
+    return ICPProblem(src, dst, nrm, m0, sched, voxels)
 
 
-class _DenseStage:
-    """Source and target (each optionally voxel-downsampled) in the normalised frame, with the target's
-    correspondence index (a KD-tree, or a projective pixel map: see :mod:`.correspondences`)."""
+class DenseStage:
+    """One stage of the schedule: source and target (each optionally voxel-downsampled) in the normalised frame,
+    with the target's correspondence index (a KD-tree, or a projective pixel map: see
+    :mod:`~seismo3d.registration.correspondences`).
+
+    Parameters
+    ----------
+    frame : NormalisedFrame
+    src : (n, d) float64 ndarray
+        Source points (points' coordinates).
+    target : tuple
+        ``(points, normals or None, index)`` of the target, already in the frame; ``index`` is what a correspondence
+        strategy's ``index()`` returns (``index.query(moved, dmax) -> (dist, idx)``).
+    """
 
     def __init__(self, frame, src, target):
         self.src = frame.points(src)
-        self.dst, self.nrm, self.tree = target
+        self.dst, self.nrm, self.index = target
 
     def correspond(self, transform, dmax):
+        """Correspondences of the moved source within ``dmax`` (frame units) by the stage's index: (moved source,
+        mask of the source points with one, target indices, distances)."""
         d = self.src.shape[1]
         moved = self.src @ transform[:d, :d].T + transform[:d, d]
-        dist, idx = self.tree.query(moved, dmax)
+        dist, idx = self.index.query(moved, dmax)
         ok = np.isfinite(dist)
         return moved, ok, idx[ok], dist[ok]
 
 
-def _stages(frame, src, dst, nrm, voxels, correspondences=None):
-    """One _DenseStage per schedule stage; downsampled sources and target indices are shared between stages."""
+def dense_stages(frame: NormalisedFrame, problem: ICPProblem, correspondences=None) -> list:
+    """One :class:`DenseStage` per stage of ``problem``'s schedule; downsampled sources and target indices (KD-trees
+    or projective pixel maps) are shared between stages.
+
+    Parameters
+    ----------
+    frame : NormalisedFrame
+        Usually ``NormalisedFrame.of(problem.target)``.
+    problem : ICPProblem
+    correspondences : NearestNeighbourCorrespondences or ProjectiveCorrespondences, optional
+        How each stage finds correspondences (usually ``ICPOptions.correspondences``; None: nearest neighbours by a
+        KD-tree).
+
+    Returns
+    -------
+    list of DenseStage
+
+    Raises
+    ------
+    InputError
+        ``correspondences`` is not a strategy, or a projective strategy is given a voxel-downsampled target.
+    """
     strategy = as_correspondences(correspondences)
+    src, dst, nrm, voxels = problem.source, problem.target, problem.target_normals, problem.voxels
     sources, targets, out = {}, {}, []
     for src_voxel, dst_voxel in voxels:
         if src_voxel not in sources:
@@ -163,7 +258,7 @@ def _stages(frame, src, dst, nrm, voxels, correspondences=None):
                     nv = nv / np.maximum(np.linalg.norm(nv, axis=1, keepdims=True), 1e-300)
             pts = frame.points(pts)
             targets[dst_voxel] = (pts, nv, strategy.index(pts, centre=frame.centre, scale=frame.scale))
-        out.append(_DenseStage(frame, sources[src_voxel], targets[dst_voxel]))
+        out.append(DenseStage(frame, sources[src_voxel], targets[dst_voxel]))
     return out
 
 
@@ -171,9 +266,45 @@ def _needed(method, model, d):
     return min_points(model, d) if method == "point_to_point" else _solver.n_params(model, d)
 
 
-def _run(stages, sched, frame, m0, *, method, model, max_iterations, tolerance, kernel, kernel_scale,
-         features=None, alpha=0.0, degeneracy_threshold=1e-3):
-    """The ICP loop over the distance schedule; ``features`` = (fs, fd, wf, feature_scale) adds eq. 16's first term."""
+def run_icp(stages, sched, frame, m0, *, method: str, model: str, options: ICPOptions, features=None,
+            alpha: float = 0.0) -> RegistrationResult:
+    """The ICP loop over the distance schedule (method.md eqs. 1-15; with ``features``, eq. 16).
+
+    Parameters
+    ----------
+    stages : list of DenseStage
+        From :func:`dense_stages`.
+    sched : tuple of float
+        The stages' maximum correspondence distances, points' unit.
+    frame : NormalisedFrame
+    m0 : (d+1, d+1) ndarray
+        Start, points' coordinates.
+    method : {'point_to_plane', 'point_to_point'}
+    model : {'rigid', 'similarity', 'axis_scaled', 'affine'}
+    options : ICPOptions
+        Iterations, tolerance, kernel and degeneracy threshold (the schedule is ``sched``).
+    features : tuple, optional
+        ``(fs, fd, wf, feature_scale)``: feature matches in the frame, their weights and the kernel scale of the
+        feature term (eq. 16's first term).
+    alpha : float
+        Weight of the feature term.
+
+    Returns
+    -------
+    RegistrationResult
+
+    Raises
+    ------
+    RegistrationError
+        Too few correspondences within a stage's distance.
+
+    Warns
+    -----
+    DegenerateGeometryWarning
+        The final normal matrix is (near) singular.
+    """
+    max_iterations, tolerance = options.max_iterations, options.tolerance
+    kernel, kernel_scale, degeneracy_threshold = options.kernel, options.kernel_scale, options.degeneracy_threshold
     m = frame.into(m0)
     d = m.shape[0] - 1
     need = _needed(method, model, d)
@@ -195,7 +326,7 @@ def _run(stages, sched, frame, m0, *, method, model, max_iterations, tolerance, 
             p, q = stage.src[ok], stage.dst[idx]
             if method == "point_to_point":
                 w = robust_weights(dist, kernel, scale)
-                new = _fit(p, q, np.maximum(w, 1e-12), model)
+                new = fit_weighted(p, q, np.maximum(w, 1e-12), model)
                 step = np.abs(new - m).max()
                 blocks = [(np.repeat(p, d, 0), _solver.axis_directions(len(p), d), np.repeat(q, d, 0),
                            np.repeat(w, d), 1.0)]
@@ -251,17 +382,16 @@ def _run(stages, sched, frame, m0, *, method, model, max_iterations, tolerance, 
 
 
 def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid", target_normals=None, init=None,
-        max_distance=None, voxel_size=None, max_iterations: int = 50, tolerance: float = 1e-4,
-        kernel: str = "huber", kernel_scale: float | None = None,
-        degeneracy_threshold: float = 1e-3, correspondences=None) -> RegistrationResult:
+        options: ICPOptions | None = None, **overrides) -> RegistrationResult:
     """Iterative closest point registration of ``source`` onto ``target``, in 2D or 3D.
 
     Each iteration finds, for every (transformed) source point, its nearest target point within the current maximum
-    correspondence distance (``scipy.spatial.cKDTree``, all cores), weights the pairs with a robust kernel and updates
-    the transform: in closed form for point-to-point (Kabsch / Umeyama / eqs. 1-9 / affine least squares), by one
-    Gauss-Newton step for point-to-plane (exact for the affine model, eqs. 11-15; on SE(d) with the exponential map
-    for the rigid one). Stages of a coarse-to-fine distance schedule run one after another, each until the update is
-    below ``tolerance`` or ``max_iterations`` is reached.
+    correspondence distance (``scipy.spatial.cKDTree``, all cores; with ``correspondences=ProjectiveCorrespondences``
+    the target point its projection lands on in an organised target), weights the pairs with a robust kernel and
+    updates the transform: in closed form for point-to-point (Kabsch / Umeyama / eqs. 1-9 / affine least squares),
+    by one Gauss-Newton step for point-to-plane (exact for the affine model, eqs. 11-15; on SE(d) with the exponential
+    map for the rigid one). Stages of a coarse-to-fine distance schedule run one after another, each until the update is
+    below the tolerance or the iteration limit is reached (:class:`ICPOptions`).
 
     Parameters
     ----------
@@ -277,29 +407,12 @@ def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid",
         Unit normals of the target (required for point-to-plane; their sign does not matter).
     init : (d+1, d+1) array_like, optional
         Initial source-to-target transform (default identity).
-    max_distance : float or sequence of float, optional
-        Maximum correspondence distance per stage, coarse to fine, in the points' unit. Default:
-        :func:`default_distance_schedule` of the target (10 %, 3 %, 1 % of its bounding-box diagonal, floored at 3x
-        the point spacing).
-    voxel_size : float or sequence of float, optional
-        Voxel-downsample source and target per stage (a point pyramid); one size for all stages or one per stage.
-        Default: the source is downsampled to voxels of 1/8 of each coarse stage's maximum distance and used whole in
-        the last stage; the target is never downsampled.
-    max_iterations : int
-        Iterations per stage.
-    tolerance : float
-        Stop the last stage when the largest parameter update (radians, relative scale, and translation in units of
-        the target's RMS radius) falls below this; a coarser stage stops at ``tolerance`` times the ratio of its
-        maximum distance to the last stage's.
-    kernel : {'huber', 'tukey', 'cauchy', 'none'}
-        Robust kernel on the residuals.
-    kernel_scale : float, optional
-        The kernel's threshold in the points' unit (default a third of the stage's maximum distance).
-    degeneracy_threshold : float
-        A final normal matrix whose smallest/largest eigenvalue ratio is below this is reported as degenerate.
-    correspondences : NearestNeighbourCorrespondences or ProjectiveCorrespondences, optional
-        How correspondences are found (:mod:`seismo3d.registration.correspondences`); default nearest neighbours by
-        a KD-tree. ``ProjectiveCorrespondences`` needs the whole organised target (no target downsampling).
+    options : ICPOptions, optional
+        Distance schedule, point pyramid, iterations, tolerance, robust kernel, degeneracy threshold, correspondence
+        strategy (default ``ICPOptions()``).
+    **overrides
+        Fields of :class:`ICPOptions` by name (``max_distance``, ``voxel_size``, ``max_iterations``, ``tolerance``,
+        ``kernel``, ``kernel_scale``, ``degeneracy_threshold``, ``correspondences``), replacing those of ``options``.
 
     Returns
     -------
@@ -326,14 +439,11 @@ def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid",
     Low, K.-L. (2004). Linear least-squares optimization for point-to-plane ICP surface registration. TR04-004, UNC.
     Vokhmintcev, A., Timchenko, M. (method.md), eqs. 1-15.
     """
-    src, dst, nrm, m0, sched, voxels = _prepare(source, target, target_normals, method, model, init, max_distance,
-                                                voxel_size, kernel)
-    check_positive(tolerance, "tolerance")
-    frame = _Frame.of(dst)
-    stages = _stages(frame, src, dst, nrm, voxels, correspondences)
-    return _run(stages, sched, frame, m0, method=method, model=model, max_iterations=int(max_iterations),
-                tolerance=tolerance, kernel=kernel, kernel_scale=kernel_scale,
-                degeneracy_threshold=degeneracy_threshold)
+    opt = resolve_options(ICPOptions, options, overrides, "icp")
+    problem = prepare_problem(source, target, target_normals, method, model, init, opt)
+    frame = NormalisedFrame.of(problem.target)
+    stages = dense_stages(frame, problem, opt.correspondences)
+    return run_icp(stages, problem.schedule, frame, problem.init, method=method, model=model, options=opt)
 
 
 def fast_icp(source, target, *, n_samples: int = 2000, init=None, max_distance=None, max_iterations: int = 30,
@@ -365,5 +475,6 @@ def fast_icp(source, target, *, n_samples: int = 2000, init=None, max_distance=N
         src = src[np.random.default_rng(seed).choice(len(src), int(n_samples), replace=False)]
     if max_distance is None:
         max_distance = 0.05 * bounding_diagonal(target)
-    return icp(src, target, method="point_to_point", model="rigid", init=init, max_distance=max_distance,
-               max_iterations=max_iterations, tolerance=tolerance, kernel="none")
+    return icp(src, target, method="point_to_point", model="rigid", init=init,
+               options=ICPOptions(max_distance=max_distance, max_iterations=max_iterations, tolerance=tolerance,
+                                  kernel="none"))

@@ -7,7 +7,7 @@ import numpy as np
 from .._validation import as_pair, check_positive
 from ..errors import InputError, RegistrationError
 from ..geometry.transforms import check_model, make_transform, nearest_rotation
-from .closed_form import _fit, min_points
+from .closed_form import fit_weighted, min_points
 from .result import RegistrationResult
 
 __all__ = ["ransac"]
@@ -98,7 +98,7 @@ def ransac(source, target, *, model: str = "rigid", threshold: float, max_trials
         if inliers.sum() < m:
             break
         try:
-            refit = _fit(src[inliers], dst[inliers], np.ones(int(inliers.sum())), model)
+            refit = fit_weighted(src[inliers], dst[inliers], np.ones(int(inliers.sum())), model)
         except InputError:
             break
         new_inliers = _inliers(refit, src, dst, thr)

@@ -55,6 +55,7 @@ _FORMAT_NAMES = {
 # (n_traces, n_samples) of the raw sections in the data directory's seismic/sections (see its README).
 _SECTION_SHAPES = {
     "campos_gx373": (550, 300),
+    "costarica_crf": (500, 180),
     "costarica_gx808": (825, 210),
     "costarica_gx809": (825, 210),
     "f3_f3d75s": (440, 222),
@@ -248,6 +249,11 @@ class SeismicCube:
                 f"{self.format_name}, {state}>")
 
     @property
+    def is_open(self) -> bool:
+        """Whether the file is open (data can be read)."""
+        return self._f is not None
+
+    @property
     def segyfile(self):
         """The underlying read-only ``segyio.SegyFile`` (for header fields not exposed here)."""
         return self._handle()
@@ -272,7 +278,9 @@ class SeismicCube:
             return grid.reshape(self.n_traces, *rest)
         return np.ascontiguousarray(np.swapaxes(grid, 0, 1)).reshape(self.n_traces, *rest)
 
-    def _require_geometry(self, what: str) -> None:
+    def require_geometry(self, what: str) -> None:
+        """Raise :class:`SegyGeometryError` naming ``what`` (e.g. ``'inline()'``) when the cube was opened as a trace
+        list (``ignore_geometry=True``)."""
         if self.inlines is None:
             raise SegyGeometryError(
                 f"{what} needs inline / crossline geometry, but {self.path.name} was opened as a trace list "
@@ -311,7 +319,7 @@ class SeismicCube:
         -------
         section : (n_xlines, n_samples) float32 ndarray
         """
-        self._require_geometry("inline()")
+        self.require_geometry("inline()")
         f = self._handle()
         if int(number) not in set(self.inlines.tolist()):
             raise InputError(f"inline {number} is not in {self.path.name}; its inlines are "
@@ -330,7 +338,7 @@ class SeismicCube:
         -------
         section : (n_inlines, n_samples) float32 ndarray
         """
-        self._require_geometry("xline()")
+        self.require_geometry("xline()")
         f = self._handle()
         if int(number) not in set(self.xlines.tolist()):
             raise InputError(f"crossline {number} is not in {self.path.name}; its crosslines are "
@@ -349,7 +357,7 @@ class SeismicCube:
         -------
         slice : (n_inlines, n_xlines) float32 ndarray
         """
-        self._require_geometry("time_slice()")
+        self.require_geometry("time_slice()")
         f = self._handle()
         ns = self.samples.size
         if not isinstance(index, (int, np.integer)) or not 0 <= index < ns:
@@ -607,8 +615,8 @@ def read_section(path, *, n_traces=None, n_samples=None) -> np.ndarray:
     ----------
     path : str or os.PathLike
         A ``.f32be`` file. The shapes of the sections in the data directory's ``seismic/sections`` are known by file
-        stem (campos_gx373 550 x 300, costarica_gx808 / gx809 825 x 210, f3_f3d75s 440 x 222, teapot_tpd 357 x 315,
-        teapot_tp73 357 x 240, f3_f3d178sub2 951 x 242); for other files pass the shape.
+        stem (campos_gx373 550 x 300, costarica_crf 500 x 180, costarica_gx808 / gx809 825 x 210, f3_f3d75s 440 x 222,
+        teapot_tpd 357 x 315, teapot_tp73 357 x 240, f3_f3d178sub2 951 x 242); for other files pass the shape.
     n_traces, n_samples : int, optional
         Shape; for an unknown file give at least one, the other is derived from the file size.
 

@@ -216,6 +216,7 @@ def test_bunny_shapes_and_transform(bunny):
     assert not bunny.source.flags.writeable
 
 
+@pytest.mark.slow
 def test_bunny_ground_truth_by_nearest_neighbour_residuals(bunny):
     tree = cKDTree(bunny.target)
 

@@ -6,7 +6,7 @@ from scipy.spatial.transform import Rotation
 
 from seismo3d.errors import InputError
 from seismo3d.geometry import rotation_error_deg, translation_error
-from seismo3d.registration import fused_icp, icp
+from seismo3d.registration import ICPOptions, fused_icp, icp
 from seismo3d.registration.correspondences import NearestNeighbourCorrespondences, ProjectiveCorrespondences
 
 K = (200.0, 200.0, 79.5, 59.5)  # 160 x 120 pixels
@@ -44,7 +44,10 @@ def test_default_strategy_is_the_kd_tree(rng):
     a = icp(src, pts, method="point_to_point", max_distance=(1.0, 0.3, 0.1))
     b = icp(src, pts, method="point_to_point", max_distance=(1.0, 0.3, 0.1),
             correspondences=NearestNeighbourCorrespondences())
+    c = icp(src, pts, method="point_to_point", options=ICPOptions(max_distance=(1.0, 0.3, 0.1), correspondences=None))
     np.testing.assert_array_equal(a.transform, b.transform)
+    np.testing.assert_array_equal(a.transform, c.transform)
+    assert ICPOptions().correspondences == NearestNeighbourCorrespondences()
     assert rotation_error_deg(a.transform, truth) < 1e-6
 
 
@@ -58,6 +61,10 @@ def test_projective_icp_recovers_a_camera_motion():
     result = icp(src, tgt, target_normals=tn, max_distance=(0.1, 0.03, 0.01), correspondences=strategy)
     assert rotation_error_deg(result.transform, truth) < 0.05 and translation_error(result.transform, truth) < 1e-3
     assert result.fitness > 0.9
+    # the same strategy as a field of ICPOptions: the same result
+    same = icp(src, tgt, target_normals=tn, options=ICPOptions(max_distance=(0.1, 0.03, 0.01),
+                                                               correspondences=strategy))
+    np.testing.assert_array_equal(same.transform, result.transform)
 
 
 @pytest.mark.filterwarnings("ignore::seismo3d.errors.DegenerateGeometryWarning")
@@ -95,3 +102,5 @@ def test_projective_refuses_a_downsampled_target():
         ProjectiveCorrespondences(K, np.zeros((3, 3)))
     with pytest.raises(InputError, match="correspondences"):
         icp(pts[valid], pts[valid], target_normals=nrm[valid], correspondences="projective")
+    with pytest.raises(InputError, match="correspondences"):
+        ICPOptions(correspondences="projective")

@@ -1,292 +1,152 @@
-"""Fault likelihood, thinning, linking and evaluation against synthetic ground truth (seismo3d.data.synthetic)."""
+"""The fault interpretation of arrays (seismo3d.seismic.faults): trace_faults' result and units, dead samples and
+clipped amplitudes (clean_traces), bad arrays, sensitivity, and the targets on real sections (Costa Rica against the
+published OSV faults, the large Penobscot fault)."""
 
-from __future__ import annotations
-
-import os
 import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
-from numpy.testing import assert_allclose
-from scipy import ndimage as ndi
 
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, Seismo3dWarning
-from seismo3d.seismic.faults import (
-    Fault,
-    FaultLikelihood,
-    evaluate_faults,
-    fault_labels,
-    fault_likelihood,
-    fault_normals,
-    link_faults,
-    thin_faults,
-)
-
-SEEDS = (0, 1, 2, 3, 4)
-
-
-def _trace(cube):
-    fl = fault_likelihood(cube)
-    thin = thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg)
-    faults = link_faults(thin, fl.strike_deg, fl.dip_deg)
-    return fl, thin, faults
+from seismo3d.seismic import FaultInterpretation, evaluate_faults, fault_labels, open_segy, trace_faults
+from seismo3d.seismic.faults import clean_traces
 
 
 @pytest.fixture(scope="module")
-def traced_3d():
-    """Default-parameter fault tracing of five 128^3 synthetic cubes (noise 0.1); about 5 s per cube on 2 cores."""
-    out = {}
-    for seed in SEEDS:
-        syn = synthetic_cube((128, 128, 128), seed=seed)
-        out[seed] = (syn, *_trace(syn.cube))
-    return out
+def section():
+    return synthetic_cube((160, 96), n_faults=2, seed=3)
 
 
-@pytest.fixture(scope="module")
-def traced_2d():
-    out = {}
-    for seed in SEEDS:
-        syn = synthetic_cube((256, 128), seed=seed)
-        out[seed] = (syn, *_trace(syn.cube))
-    return out
+def test_trace_faults_units_and_result(section):
+    res = trace_faults(section.cube, sample_interval=2.0, sample_unit="m", progress=False)
+    assert isinstance(res, FaultInterpretation)
+    assert res.sample_unit == "m" and res.sample_interval == 2.0
+    assert res.likelihood.shape == res.strike_deg.shape == res.dip_deg.shape == res.thin.shape == (160, 96)
+    assert len(res.throws) == len(res.faults) >= 2
+    assert [t.fault_id for t in res.throws] == [f.id for f in res.faults]
+    assert np.all(res.thin[res.thin > 0] == res.votes[res.thin > 0])
+    assert 0 < res.thresholds[0] <= res.thresholds[1] < 1
 
 
-# --------------------------------------------------------------------------------------------------------------------
-# accuracy on synthetic data (the issue's acceptance criteria)
+@pytest.mark.parametrize("kwargs", [dict(sample_unit="ms"), dict(sample_unit="s", sample_interval=1.0),
+                                    dict(sample_interval=4.0), dict(sample_unit="ms", sample_interval=-4.0)])
+def test_trace_faults_rejects_bad_units(section, kwargs):
+    with pytest.raises(InputError):
+        trace_faults(section.cube, progress=False, **kwargs)
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("seed", SEEDS)
-def test_3d_precision_recall(traced_3d, seed):
-    syn, fl, thin, faults = traced_3d[seed]
-    assert isinstance(fl, FaultLikelihood)
-    assert fl.likelihood.shape == syn.cube.shape and fl.likelihood.dtype == np.float32
-    assert 0.0 <= fl.likelihood.min() and fl.likelihood.max() <= 1.0
-    assert np.all((thin == 0) | (thin == fl.likelihood))
-    linked = fault_labels(faults, syn.cube.shape) > 0
-    p, r = evaluate_faults(linked, syn.fault_labels, tolerance=2)
-    print(f"3D seed {seed}: linked precision {p:.3f} recall {r:.3f}")  # the table of the notes (pytest -s)
-    # measured (seeds 0-4): precision 0.97-0.995, recall 0.95-0.99 (0.93-0.97 / 0.95-0.99 before linking)
-    assert p >= 0.85 and r >= 0.85, (p, r)
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("seed", SEEDS)
-def test_3d_fault_orientation(traced_3d, seed):
-    """Each true fault is found as one dominant linked fault whose mean normal is within 8 degrees of the truth."""
-    syn, _, _, faults = traced_3d[seed]
-    dist, nearest = ndi.distance_transform_edt(syn.fault_labels == 0, return_indices=True)
-    for plane in syn.faults:
-        best = 0
-        angle = None
-        for f in faults:
-            idx = tuple(f.points.T)
-            near_id = syn.fault_labels[tuple(nearest[(slice(None),) + idx])]
-            on = (near_id == plane.id) & (dist[idx] <= 2)
-            if on.sum() > best:
-                best = int(on.sum())
-                part = Fault(0, f.points[on], f.likelihood[on], f.strike_deg[on], f.dip_deg[on], f.normals[on])
-                angle = np.degrees(np.arccos(min(1.0, abs(float(part.mean_normal @ plane.normal)))))
-        n_true = int(np.count_nonzero(syn.fault_labels == plane.id))
-        assert best >= 0.5 * n_true, (plane.id, best, n_true)
-        assert angle <= 8.0, (plane.id, angle)  # measured: 0.5-5.7 degrees
-
-
-@pytest.mark.parametrize("seed", SEEDS)
-def test_2d_precision_recall(traced_2d, seed):
-    syn, fl, thin, faults = traced_2d[seed]
-    assert fl.likelihood.shape == syn.cube.shape
-    assert set(np.unique(fl.strike_deg)) <= {90.0, 270.0}
-    assert all(f.points.shape[1] == 2 and f.normals.shape[1] == 2 for f in faults)
-    linked = fault_labels(faults, syn.cube.shape) > 0
-    p, r = evaluate_faults(linked, syn.fault_labels, tolerance=2)
-    p_thin, r_thin = evaluate_faults(thin > 0, syn.fault_labels, tolerance=2)
-    print(f"2D seed {seed}: linked precision {p:.3f} recall {r:.3f}; thinned {p_thin:.3f} / {r_thin:.3f}")
-    # measured (seeds 0-4): linked precision 0.965-0.998, recall 0.86-0.99; thinned recall 0.90-0.99
-    assert p >= 0.85 and r >= 0.85, (p, r)
-    assert p_thin >= 0.85 and r_thin >= 0.85, (p_thin, r_thin)
-
-
-def test_2d_dip_direction_and_angle(traced_2d):
-    """Strike 270 = the fault deepens toward increasing trace index (the synthetic's convention), dip within 5 deg."""
-    syn, _, _, faults = traced_2d[0]
-    dist, nearest = ndi.distance_transform_edt(syn.fault_labels == 0, return_indices=True)
-    for plane in syn.faults:
-        on = [f for f in faults if np.mean(syn.fault_labels[tuple(nearest[(slice(None),) + tuple(f.points.T)])]
-                                           == plane.id) > 0.9]
-        assert on, plane
-        big = max(on, key=lambda f: f.size)
-        assert big.mean_strike_deg == pytest.approx(plane.strike_deg)
-        assert big.mean_dip_deg == pytest.approx(plane.dip_deg, abs=5.0)
-
-
-def test_no_faults_in_unfaulted_cube():
-    syn = synthetic_cube((80, 80, 80), n_faults=0, seed=3)
-    fl, thin, faults = _trace(syn.cube)
-    assert faults == []
-    assert np.count_nonzero(thin) < 0.001 * thin.size
-    assert np.median(fl.likelihood) < 0.3
-
-
-# --------------------------------------------------------------------------------------------------------------------
-# conventions and building blocks
-
-
-def test_normals_match_synthetic_convention():
-    syn = synthetic_cube((64, 64, 64), seed=5)
-    for plane in syn.faults:
-        n = fault_normals(np.array(plane.strike_deg), np.array(plane.dip_deg))
-        # ours points into the footwall, the generator's into the hanging wall
-        assert_allclose(n, -plane.normal, atol=1e-6)
-    n2 = fault_normals(np.array([90.0, 270.0]), np.array([60.0, 60.0]), ndim=2)
-    assert_allclose(n2, [[np.sin(np.pi / 3), 0.5], [-np.sin(np.pi / 3), 0.5]], atol=1e-6)
-    assert_allclose(np.linalg.norm(fault_normals(np.arange(0, 360, 7.0), np.full(52, 65.0)), axis=-1), 1, atol=1e-6)
-
-
-def test_likelihood_orientation_on_single_plane():
-    """One planar fault: the likelihood peaks on it with the fault's strike and dip."""
-    syn = synthetic_cube((80, 80, 80), n_faults=1, seed=11)
-    plane = syn.faults[0]
-    fl = fault_likelihood(syn.cube)
-    on = syn.fault_labels > 0
-    assert np.median(fl.likelihood[on]) > 0.8
-    assert np.median(fl.likelihood[~on]) < 0.3
-    strong = on & (fl.likelihood > 0.8)
-    ang = np.degrees(np.arccos(np.clip(np.abs(fl.normals[strong] @ plane.normal), 0, 1)))
-    assert np.median(ang) < 10.0
-
-
-def test_link_faults_separates_crossing_planes():
-    """Thin faults built from the labels, with exact orientations: every linked fault is one true fault."""
-    syn = synthetic_cube((96, 96, 96), seed=2)
-    lab = syn.fault_labels
-    strike = np.zeros(lab.shape, np.float32)
-    dip = np.zeros(lab.shape, np.float32)
-    for plane in syn.faults:
-        strike[lab == plane.id] = plane.strike_deg
-        dip[lab == plane.id] = plane.dip_deg
-    faults = link_faults((lab > 0).astype(np.float32), strike, dip)
-    assert len(faults) >= len(syn.faults)
-    for f in faults:
-        ids = lab[tuple(f.points.T)]
-        assert np.mean(ids == np.bincount(ids).argmax()) > 0.99
-        assert f.points.dtype == np.int64 and f.normals.shape == (f.size, 3)
-    assert sorted(f.size for f in faults)[::-1] == [f.size for f in faults]
-    assert [f.id for f in faults] == list(range(1, len(faults) + 1))
-
-
-def test_link_faults_min_size_and_labels_roundtrip():
-    thin = np.zeros((30, 30, 30), np.float32)
-    thin[10, 5:25, 5:25] = 0.9  # a 400-sample vertical plane
-    thin[20, 3:5, 3:5] = 0.9  # 4 samples
-    strike = np.full(thin.shape, 90.0, np.float32)
-    dip = np.full(thin.shape, 90.0, np.float32)
-    faults = link_faults(thin, strike, dip, min_size=10)
-    assert [f.size for f in faults] == [400]
-    f = faults[0]
-    assert f.mean_dip_deg == pytest.approx(90.0)
-    assert_allclose(np.abs(f.mean_normal), [1, 0, 0], atol=1e-6)
-    labels = fault_labels(faults, thin.shape)
-    assert np.count_nonzero(labels) == 400 and labels[10, 10, 10] == 1 and labels[20, 3, 3] == 0
-    assert len(link_faults(thin, strike, dip, min_size=2)) == 2
-
-
-def test_link_faults_default_size_keeps_a_fault_across_a_slab():
-    # A slab of 6 inlines cut from a survey (as the 18 Penobscot sections): a fault striking across the inlines
-    # spans at most 6 x its height. Sized by the largest face (1 % of 200 x 300 = 600 samples) this 6 x 80 = 480
-    # sample fault was dropped; the smaller vertical face (1 % of 6 x 300, at least 100) keeps it, and still drops
-    # a 4 x 20 = 80 sample patch.
-    thin = np.zeros((6, 200, 300), np.float32)
-    thin[:, 100, 100:180] = 0.9
-    thin[1:5, 40, 10:30] = 0.9
-    strike = np.zeros(thin.shape, np.float32)
-    dip = np.full(thin.shape, 90.0, np.float32)
-    faults = link_faults(thin, strike, dip)
-    assert [f.size for f in faults] == [480]
-    assert set(faults[0].points[:, 1]) == {100}
-
-
-def test_thin_faults_is_one_sample_wide():
-    syn = synthetic_cube((256, 128), n_faults=1, seed=7)
-    fl = fault_likelihood(syn.cube)
-    thin = thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg)
-    rows = [np.count_nonzero(thin[:, t]) for t in range(20, 108)]
-    assert np.median(rows) == 1
-    assert np.all((thin == 0) | (thin == fl.likelihood))
-    # fixed thresholds are honoured
-    assert np.count_nonzero(thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg, threshold=1.0)) == 0
-
-
-def test_evaluate_faults():
-    lab = np.zeros((40, 40), np.int16)
-    lab[20, :] = 1
-    pred = np.zeros((40, 40), bool)
-    pred[22, :] = True
-    assert evaluate_faults(pred, lab, tolerance=2) == (1.0, 1.0)
-    assert evaluate_faults(pred, lab, tolerance=1) == (0.0, 0.0)
-    pred[0, :10] = True
-    p, r = evaluate_faults(pred, lab, tolerance=2)
-    assert p == pytest.approx(40 / 50) and r == 1.0
-    assert evaluate_faults(np.zeros_like(pred), lab) == (0.0, 0.0)
-    assert evaluate_faults(pred, np.zeros_like(lab))[1] == 1.0
-    # border leaves the first and last samples of the last axis out
-    pred2 = np.zeros((40, 40), bool)
-    pred2[0, :3] = True
-    pred2[22, 3:37] = True
-    assert evaluate_faults(pred2, lab, border=3)[0] == 1.0
-
-
-def test_constant_and_incoherent_data():
-    fl = fault_likelihood(np.ones((20, 20, 30)))
-    assert fl.likelihood.max() == 0.0
-    noise = np.random.default_rng(0).standard_normal((30, 30, 40)).astype(np.float32)
-    with pytest.warns(Seismo3dWarning, match="little lateral coherence"):
-        fault_likelihood(noise)
+@pytest.mark.parametrize("data", [np.zeros((40, 40)), np.full((20, 20, 20), np.nan), np.zeros((4, 5, 6, 7)),
+                                  np.array([["a"] * 20] * 20)])
+def test_trace_faults_rejects_bad_arrays(data):
     with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        fault_likelihood(synthetic_cube((48, 48, 48), seed=1).cube)
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        with pytest.raises(InputError):
+            trace_faults(data, progress=False)
 
 
-def test_bad_input():
-    good = np.zeros((10, 10, 10), np.float32)
-    bad = good.copy()
-    bad[1, 2, 3] = np.nan
-    with pytest.raises(InputError, match="NaN"):
-        fault_likelihood(bad)
-    with pytest.raises(InputError, match="2D section"):
-        fault_likelihood(np.zeros(10))
-    with pytest.raises(InputError, match="power"):
-        fault_likelihood(good, power=3)
-    with pytest.raises(InputError, match="dips"):
-        fault_likelihood(good, dips=[0.0, 45.0])
-    with pytest.raises(InputError, match="same shape"):
-        thin_faults(good, good, good[:5])
-    with pytest.raises(InputError, match="threshold"):
-        thin_faults(good, good, good, threshold=(0.8, 0.2))
-    with pytest.raises(InputError, match="same shape"):
-        evaluate_faults(good > 0, good[:5])
-    with pytest.raises(ValueError):  # InputError is a ValueError
-        link_faults(good, good, good, max_angle=-1)
+def test_clipped_amplitudes_are_reported():
+    # an 8-bit export clips the strong peaks and troughs (most Penobscot section samples sit at 0 or 255); the fault
+    # job says so, and says nothing for unclipped data
+    cube = synthetic_cube((16, 16, 48), seed=0).cube
+    hi = float(np.percentile(np.abs(cube), 80))
+    with pytest.warns(Seismo3dWarning, match="clipped amplitudes"):
+        clean_traces(np.clip(cube, -hi, hi))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", Seismo3dWarning)
+        clean_traces(cube)
+
+
+def test_quantised_runs_are_not_dead_but_fill_values_are():
+    # In an 8-bit export, slowly varying amplitudes repeat the same value for a few samples; a run of five 107s on the
+    # Penobscot fault at crossline 56 (inlines 1-2) counted as a dead zone and blanked the fault's likelihood on
+    # inlines 0-5. Dead samples are runs at a fill value: 0, or a value that fills a whole trace or a long run (the
+    # image's grey 127 in a muted top).
+    section = np.round(127.5 + 100 * synthetic_cube((40, 96), n_faults=0, seed=2).cube / 3).clip(0, 255)
+    section[:, :20] = 127  # a muted top in the image's grey: a fill value
+    section[5, 60:65] = 107  # a short run of a live value (quantisation)
+    section[8, 50:55] = 127  # a short run of the fill value: a gap
+    section[30] = 99  # a dead trace
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        dead = clean_traces(section).dead
+    assert dead[:, :20].all() and dead[8, 50:55].all() and dead[30].all()
+    assert not dead[5, 55:70].any()
+    live = np.ones_like(dead)
+    live[:, :20] = live[8, 50:55] = live[30] = False
+    assert not dead[live].any()
+
+
+def test_penobscot_fault_at_crossline_56_is_not_blanked(penobscot):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        dead = clean_traces(penobscot.cube).dead
+    assert not dead[:, 50:62, 600:720].any()
+    assert dead[:, 10:500, :40].mean() > 0.5  # the muted top (grey 127) is still dead
 
 
 # --------------------------------------------------------------------------------------------------------------------
-# real data: runs, no accuracy claim (see the PNG check in benchmarks/faults.py and the report)
-
-_SECTIONS = {"costarica_gx808": (825, 210), "campos_gx373": (550, 300)}
+# real data: the issue's targets (the same defaults on every input)
 
 
-@pytest.mark.parametrize("name", sorted(_SECTIONS))
-def test_real_sections_run(name):
-    root = os.environ.get("SEISMO3D_DATA_DIR")
-    if not root:
-        pytest.skip("SEISMO3D_DATA_DIR is not set")
-    path = Path(root) / "seismic" / "sections" / f"{name}.f32be"
-    section = np.fromfile(path, ">f4").reshape(_SECTIONS[name])
-    fl, thin, faults = _trace(section)
-    assert fl.likelihood.shape == section.shape
-    # both sections show dozens of faults; the counts are broad sanity bounds, not accuracy claims
-    assert 10 <= len(faults) <= 400
-    assert all(f.size >= 20 for f in faults)
-    assert np.count_nonzero(thin) < 0.1 * thin.size
+def _read_f32be(data_dir, name, shape):
+    return np.fromfile(Path(data_dir) / "seismic" / name, ">f4").reshape(shape).astype(np.float32)
+
+
+@pytest.mark.slow
+def test_costarica_crf_against_the_published_osv_faults(data_dir):
+    """Our faults on the Costa Rica section against X. Wu's optimal-surface-voting result (a reference from another
+    algorithm, thresholded at 0.3 as published), tolerance 3 samples: recall >= 0.70 at precision >= 0.80.
+    Before the voting and skins: precision 0.79, recall 0.34."""
+    section = _read_f32be(data_dir, "sections/costarica_crf.f32be", (500, 180))
+    reference = _read_f32be(data_dir, "references/costarica_crf_osv_fvt.f32be", (500, 180)) > 0.3
+    res = trace_faults(section, progress=False)
+    scores = evaluate_faults(fault_labels(res.faults, section.shape) > 0, reference, tolerance=3)
+    print(f"crf: precision {scores.precision:.3f} recall {scores.recall:.3f}, {len(res.faults)} faults")
+    assert scores.precision >= 0.80 and scores.recall >= 0.70, scores
+
+
+def _xl1155_line_coverage(labels: np.ndarray) -> tuple[float, int]:
+    """The fault through inline 1385 at 900 ms and inline 1222 at 2550 ms on penobscot_xl1155 (inlines 1000-1600,
+    4 ms): the largest fraction of its samples from 1000 to 2400 ms that one fault id has within 10 traces of that
+    line, and the id."""
+    counts: dict = {}
+    ks = np.arange(250, 601)  # 1000 .. 2400 ms
+    for k in ks:
+        x = 1385.0 + (1222.0 - 1385.0) * (4.0 * k - 900.0) / (2550.0 - 900.0) - 1000.0
+        i0 = int(round(x))
+        for fid in set(labels[max(i0 - 10, 0):i0 + 11, k].tolist()) - {0}:
+            counts[fid] = counts.get(fid, 0) + 1
+    if not counts:
+        return 0.0, 0
+    fid = max(counts, key=counts.get)
+    return counts[fid] / ks.size, fid
+
+
+@pytest.mark.slow
+def test_penobscot_xl1155_large_normal_fault_is_one_fault(data_dir):
+    """The large normal fault of crossline 1155 (any interpreter sees it; before this work: not found, 0 faults) is
+    traced by the defaults as one fault along >= 70 % of its length between 1000 and 2400 ms, within 10 traces of
+    the line through its two ends."""
+    with open_segy(Path(data_dir) / "seismic" / "penobscot_xl1155.sgy") as cube:
+        section = cube.read()[:, 0, :]
+        samples = np.asarray(cube.samples)
+    assert samples[1] - samples[0] == 4.0 and section.shape == (601, 1501)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)  # its muted top-left corner is reported
+        res = trace_faults(section, sample_interval=4.0, sample_unit="ms", progress=False)
+    coverage, fid = _xl1155_line_coverage(fault_labels(res.faults, section.shape))
+    print(f"xl1155: fault {fid} covers {coverage:.0%} of the line, {len(res.faults)} faults")
+    assert coverage >= 0.70, (coverage, fid)
+
+
+def test_sensitivity_gives_more_or_fewer_faults(section):
+    low = trace_faults(section.cube, sensitivity=0.1, progress=False)
+    mid = trace_faults(section.cube, progress=False)
+    high = trace_faults(section.cube, sensitivity=0.9, progress=False)
+    assert low.thresholds[1] > mid.thresholds[1] > high.thresholds[1]
+    n = [int(np.count_nonzero(fault_labels(r.faults, section.cube.shape))) for r in (low, mid, high)]
+    assert n[0] <= n[1] <= n[2] and n[0] < n[2], n
+    with pytest.raises(InputError, match="sensitivity"):
+        trace_faults(section.cube, sensitivity=1.5, progress=False)

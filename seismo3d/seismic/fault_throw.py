@@ -1,15 +1,15 @@
 """Fault throw by registering the reflectors on the two sides of each fault.
 
-For every fault (from :func:`seismo3d.seismic.faults.link_faults`, or any set of fault points), the reflectors of the
+For every fault (from :func:`seismo3d.seismic.link_faults`, or any set of fault points), the reflectors of the
 footwall and of the hanging wall are carried onto the fault plane along their slopes, giving two *fault-plane images*;
 the vertical shift that aligns them is the throw (Hale 2013, section "Fault throws"). The shift is found in two steps:
 a global search of the normalised cross-correlation over integer shifts (immune to cycle skipping on the periodic
 reflectors), then a registration of the reflector peaks of the two images with the ICP engine
 (:func:`seismo3d.registration.icp`, method.md section 1), which models throw varying linearly along strike.
 
-Conventions (index space, as in :mod:`seismo3d.seismic.faults` and :mod:`seismo3d.data.synthetic`): axis 0 inline,
-axis 1 crossline, the last axis the sample (downward); one trace spacing and one sample both count as 1. Throw is the
-vertical component of the fault slip, in samples: **positive when the hanging wall moved down** (normal fault),
+Conventions (index space, as in :mod:`seismo3d.seismic.fault_likelihood` and :mod:`seismo3d.data.synthetic`): axis 0
+inline, axis 1 crossline, the last axis the sample (downward); one trace spacing and one sample both count as 1. Throw
+is the vertical component of the fault slip, in samples: **positive when the hanging wall moved down** (normal fault),
 negative when it moved up (reverse fault). The hanging wall is the block above the fault plane, on the side the fault
 dips toward; for a vertical fault (dip 90 degrees) it is undefined and the sign of the throw is arbitrary. Multiply by
 the sample interval to get the throw in ms or m.
@@ -24,25 +24,89 @@ import numpy as np
 from scipy import ndimage as ndi
 from scipy.spatial import cKDTree
 
-from .._validation import as_points, as_normals, check_positive
+from .._options import resolve_options
+from .._progress import progress_steps
+from .._validation import as_normals, as_points, as_seismic, check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
-from .attributes import ReflectorOrientation, _as_seismic, structure_tensor_orientation
+from .attributes import ReflectorOrientation, structure_tensor_orientation
+from .traces import parabolic_offset, subsample_peak
 
-__all__ = ["FaultThrow", "fault_throw", "fault_throws"]
+__all__ = ["FaultThrow", "ThrowOptions", "fault_throw", "fault_throws", "hanging_wall_normals"]
 
-_MIN_OVERLAP = (16, 48)  # fewest fault-plane image samples seen on both sides for a correlation to count (2D, 3D)
-_MIN_ROWS = 16  # ... and fewest distinct samples (t) among them: about 2.5 periods of a 0.15 cycles/sample wavelet
-_SMALL_SHIFT_PRIOR = 0.25
-# Largest |throw| searched, as a fraction of the samples a patch's fault-plane images span (the fault's height there):
-# faults displace about 1-10 % of their length (displacement-length scaling, Kim & Sanderson 2005), so a shift of over
-# a third of the traced height is a cycle skip between periodic reflectors rather than a throw. On the 8-bit Penobscot
-# cube, before this limit, 14 of the 282 faults whose sides correlate had such a throw: 9-20 samples on faults 26-45
-# samples tall, about one reflector period (test_penobscot_horizons_with_traced_faults covers the horizon it jumped).
-_MAX_THROW_PER_HEIGHT = 1.0 / 3.0
-_MIN_PEAKS = 12  # fewest reflector-peak points per side for a registration
-_MAX_ROTATION = 0.1  # radians: |d throw / d strike| above this (one sample per 10 traces) is not a throw gradient
-_SLOPE_MARGIN = 3  # traces beyond the farthest offset where reflector slopes are read (outside the tensor's blur)
-_ICP_DISTANCES = (2.0, 1.0)  # samples: coarse-to-fine correspondence distances, under half a reflector spacing
+
+@dataclass(frozen=True)
+class ThrowOptions:
+    """Options of :func:`fault_throw` and :func:`fault_throws`; the defaults are the ones every seismo3d command uses.
+
+    Attributes
+    ----------
+    max_throw : int, optional
+        Largest |throw| searched, in samples. None: ``min(20, n_samples // 4)``. A patch searches at most
+        ``max_throw_per_height`` of the samples it spans.
+    side_traces : (int, int)
+        Nearest and farthest lateral offsets from the fault read on each side, in traces.
+    patch_traces : float
+        Length of the patches along strike, in traces.
+    refine : bool
+        Refine the correlation shift by ICP registration of reflector peaks (3D only).
+    max_throw_per_height : float
+        Largest |throw| searched, as a fraction of the samples a patch's fault-plane images span (the fault's height
+        there): faults displace about 1-10 % of their length (displacement-length scaling, Kim & Sanderson 2005), so a
+        shift of over a third of the traced height is a cycle skip between periodic reflectors rather than a throw.
+        On the 8-bit Penobscot cube, before this limit, 14 of the 282 faults whose sides correlate had such a throw:
+        9-20 samples on faults 26-45 samples tall, about one reflector period.
+    min_overlap : (int, int)
+        Fewest fault-plane image samples seen on both sides for a correlation shift to count (2D, 3D).
+    min_rows : int
+        ... and fewest distinct samples (t) among them: about 2.5 periods of a 0.15 cycles/sample wavelet.
+    small_shift_prior : float
+        Weight of the preference for small shifts in the correlation search: the correlation is multiplied by
+        ``1 - small_shift_prior |k| / (max_throw + 1)``, so that of two shifts that correlate about equally (a
+        reflector sequence repeating by chance) the smaller displacement is kept.
+    min_peaks : int
+        Fewest reflector-peak points per side for a registration.
+    max_rotation : float
+        Radians: a registration whose in-plane rotation, or a throw gradient along strike, exceeds this (one sample
+        per 10 traces) is rejected.
+    slope_margin : int
+        Traces beyond the farthest offset where reflector slopes are read (outside the structure tensor's blur).
+    icp_distances : tuple of float
+        Coarse-to-fine correspondence distances of the peak registration, samples (under half a reflector spacing).
+
+    Raises
+    ------
+    InputError
+        A value out of range (checked when the options are made).
+    """
+
+    max_throw: int | None = None
+    side_traces: tuple = (2, 6)
+    patch_traces: float = 32.0
+    refine: bool = True
+    max_throw_per_height: float = 1.0 / 3.0
+    min_overlap: tuple = (16, 48)
+    min_rows: int = 16
+    small_shift_prior: float = 0.25
+    min_peaks: int = 12
+    max_rotation: float = 0.1
+    slope_margin: int = 3
+    icp_distances: tuple = (2.0, 1.0)
+
+    def __post_init__(self):
+        if self.max_throw is not None:
+            object.__setattr__(self, "max_throw", int(round(check_positive(self.max_throw, "max_throw"))))
+        try:
+            lo, hi = (int(v) for v in self.side_traces)
+        except (TypeError, ValueError) as exc:
+            raise InputError(f"side_traces must be a pair of ints (nearest, farthest) in traces; got "
+                             f"{self.side_traces!r}") from exc
+        if not 1 <= lo <= hi:
+            raise InputError(f"side_traces must satisfy 1 <= nearest <= farthest; got {self.side_traces!r}")
+        object.__setattr__(self, "side_traces", (lo, hi))
+        object.__setattr__(self, "patch_traces", float(check_positive(self.patch_traces, "patch_traces")))
+        check_positive(self.max_throw_per_height, "max_throw_per_height")
+        check_positive(self.max_rotation, "max_rotation")
+        check_positive(self.small_shift_prior, "small_shift_prior", allow_zero=True)
 
 
 @dataclass(frozen=True, eq=False)
@@ -128,30 +192,39 @@ def _slope_fields(orientation, shape) -> tuple[np.ndarray, np.ndarray]:
     return slopes[0], slopes[1]
 
 
-def _check_options(max_throw, side_traces, patch_traces, n_samples):
-    if max_throw is None:
-        max_throw = min(20, n_samples // 4)
+def _max_throw(opt: ThrowOptions, n_samples: int) -> int:
+    """The largest |throw| searched: ``opt.max_throw`` or ``min(20, n_samples // 4)``, below half a trace."""
+    max_throw = min(20, n_samples // 4) if opt.max_throw is None else opt.max_throw
     max_throw = int(round(check_positive(max_throw, "max_throw")))
     if max_throw < 1 or max_throw >= n_samples // 2:
         raise InputError(f"max_throw={max_throw} samples must be >= 1 and below half the trace length "
                          f"({n_samples // 2}); use a smaller max_throw")
-    try:
-        lo, hi = (int(v) for v in side_traces)
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"side_traces must be a pair of ints (nearest, farthest) in traces; got {side_traces!r}") \
-            from exc
-    if not 1 <= lo <= hi:
-        raise InputError(f"side_traces must satisfy 1 <= nearest <= farthest; got {side_traces!r}")
-    patch_traces = check_positive(patch_traces, "patch_traces")
-    return max_throw, (lo, hi), float(patch_traces)
+    return max_throw
 
 
 # --------------------------------------------------------------------------------------------------------------------
 # fault-plane images
 
 
-def _hanging_wall_normals(normals3: np.ndarray) -> np.ndarray:
-    """Sign-align unit normals (n, 3) to their principal direction, oriented upward (into the hanging wall)."""
+def hanging_wall_normals(normals3) -> np.ndarray:
+    """Fault normals sign-aligned to their principal direction and oriented upward, into the hanging wall: the sides
+    :func:`fault_throw` measures the throw with.
+
+    Normals from strike and dip point to either side of a (near-)vertical fault (strike and strike + 180 degrees);
+    aligning them to the principal direction of the set gives every point the same sides.
+
+    Parameters
+    ----------
+    normals3 : (n, 3) array_like of float
+        Unit fault normals (inline, xline, sample), of either sign.
+
+    Returns
+    -------
+    (n, 3) float64 ndarray
+        The normals, each multiplied by +-1; their principal direction has a non-positive sample component (for a
+        vertical fault, a negative first non-zero lateral component is flipped).
+    """
+    normals3 = np.asarray(normals3, dtype=np.float64)
     m = normals3.T @ normals3
     ref = np.linalg.eigh(m)[1][:, -1]
     if ref[2] > 1e-6 or (abs(ref[2]) <= 1e-6 and (ref[0], ref[1]) < (0.0, 0.0)):
@@ -200,7 +273,7 @@ class _Patch:
     valid: tuple  # (valid_F, valid_H) bool (nu, nt)
 
 
-def _patch_images(cube, p0, p1, pts3, nrm3, sides):
+def _patch_images(cube, p0, p1, pts3, nrm3, sides, slope_margin):
     """The two fault-plane images of one patch of fault points, and the points' (u, t) in the patch frame.
 
     Frame: origin at the points' mean lateral position, ``h`` the horizontal part of the mean normal (into the
@@ -236,7 +309,7 @@ def _patch_images(cube, p0, p1, pts3, nrm3, sides):
     shape = gu.shape
     images, valids = [], []
     for sign in (-1.0, 1.0):
-        p = _side_slope(p0, p1, il, xl, tn, h, sign * (sides[1] + _SLOPE_MARGIN))
+        p = _side_slope(p0, p1, il, xl, tn, h, sign * (sides[1] + slope_margin))
         acc, cnt = _sample(cube, il, xl, tn, h, sign * np.arange(sides[0], sides[1] + 1), p)
         n_off = sides[1] - sides[0] + 1
         img = np.zeros(shape)
@@ -255,7 +328,7 @@ def _patch_images(cube, p0, p1, pts3, nrm3, sides):
 # correlation start and registration refinement
 
 
-def _ncc_shift(f, h, vf, vh, max_throw, min_overlap):
+def _ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt: ThrowOptions):
     """Shift k maximising the normalised cross-correlation of f(u, t - k) with h(u, t), refined by a parabola.
 
     The search uses the cross-correlation normalised by the energies of the *whole* images (zero outside the
@@ -279,7 +352,7 @@ def _ncc_shift(f, h, vf, vh, max_throw, min_overlap):
         else:
             a, va, b, vb = f[:, -k:], vf[:, -k:], h[:, :nt + k], vh[:, :nt + k]
         m = va & vb
-        if m.sum() < min_overlap or np.count_nonzero(m.any(axis=0)) < _MIN_ROWS:
+        if m.sum() < min_overlap or np.count_nonzero(m.any(axis=0)) < opt.min_rows:
             continue
         am, bm = a[m], b[m]
         num = np.dot(am, bm)
@@ -290,14 +363,8 @@ def _ncc_shift(f, h, vf, vh, max_throw, min_overlap):
         return np.nan, np.nan
     # pick the peak with a mild preference for small shifts (weight 1 at zero, 0.75 at max_throw): when two shifts
     # correlate about equally (a reflector sequence repeating by chance), the smaller displacement is kept
-    i = int(np.nanargmax(cc * (1.0 - _SMALL_SHIFT_PRIOR * np.abs(ks) / (max_throw + 1.0))))
-    best = float(ks[i])
-    if 0 < i < ks.size - 1 and np.isfinite(cc[i - 1]) and np.isfinite(cc[i + 1]):
-        c_m, c_0, c_p = cc[i - 1], cc[i], cc[i + 1]
-        curv = c_m - 2.0 * c_0 + c_p
-        if curv < 0:
-            best += float(np.clip(0.5 * (c_m - c_p) / curv, -0.5, 0.5))
-    return best, float(local[i])
+    i = int(np.nanargmax(cc * (1.0 - opt.small_shift_prior * np.abs(ks) / (max_throw + 1.0))))
+    return float(ks[i]) + subsample_peak(cc, i), float(local[i])
 
 
 def _peaks(img, valid, u0, t0):
@@ -309,24 +376,33 @@ def _peaks(img, valid, u0, t0):
     rms = np.sqrt(np.mean(img[valid] ** 2))
     is_peak = inner & (c > up) & (c >= dn) & (c > 0.5 * rms)
     r, k = np.nonzero(is_peak)
-    a, b, cc = up[r, k], c[r, k], dn[r, k]
-    curv = a - 2.0 * b + cc
-    off = np.where(curv < 0, 0.5 * (a - cc) / np.where(curv < 0, curv, -1.0), 0.0)
-    return np.column_stack([r + u0, k + 1 + t0 + np.clip(off, -0.5, 0.5)]).astype(np.float64)
+    off = parabolic_offset(up[r, k], c[r, k], dn[r, k])
+    return np.column_stack([r + u0, k + 1 + t0 + off]).astype(np.float64)
 
 
-def _register(patch, shift):
-    """ICP of footwall peaks onto hanging-wall peaks in the (u, t) plane; returns (a, b, fitness, rmse, n) or None.
+@dataclass(frozen=True)
+class _PatchFit:
+    """A patch's registered throw ``a + b u`` and the registration's quality."""
+
+    a: float  # throw at u = 0, samples
+    b: float  # throw gradient along strike, samples per trace
+    fitness: float
+    inlier_rmse: float
+    n_points: int  # footwall peaks registered
+
+
+def _register(patch, shift, opt: ThrowOptions):
+    """ICP of footwall peaks onto hanging-wall peaks in the (u, t) plane; a :class:`_PatchFit`, or None.
 
     The throw model is ``a + b u`` (pure dip-slip: the slip is along t in the fault plane, linear along strike).
     """
     from ..geometry.normals import estimate_normals
     from ..geometry.transforms import make_transform
-    from ..registration import icp
+    from ..registration import ICPOptions, icp
 
     src = _peaks(patch.img[0], patch.valid[0], patch.u0, patch.t0)
     dst = _peaks(patch.img[1], patch.valid[1], patch.u0, patch.t0)
-    if len(src) < _MIN_PEAKS or len(dst) < _MIN_PEAKS or np.ptp(src[:, 0]) < 4:
+    if len(src) < opt.min_peaks or len(dst) < opt.min_peaks or np.ptp(src[:, 0]) < 4:
         return None
     nrm = estimate_normals(dst, k=min(5, len(dst)), orient="none")
     try:
@@ -335,25 +411,25 @@ def _register(patch, shift):
             # measured at constant u below, so that direction does not matter
             warnings.simplefilter("ignore", DegenerateGeometryWarning)
             res = icp(src, dst, method="point_to_plane", model="rigid", target_normals=nrm,
-                      init=make_transform(np.eye(2), [0.0, shift]), max_distance=_ICP_DISTANCES,
-                      max_iterations=20, tolerance=1e-4)
+                      init=make_transform(np.eye(2), [0.0, shift]),
+                      options=ICPOptions(max_distance=opt.icp_distances, max_iterations=20, tolerance=1e-4))
     except RegistrationError:
         return None
     m = res.transform
     angle = float(np.arctan2(m[1, 0], m[0, 0]))
-    if abs(angle) > _MAX_ROTATION or res.fitness < 0.5:
+    if abs(angle) > opt.max_rotation or res.fitness < 0.5:
         return None
     # Throw at each registered footwall peak: the t offset, at the peak's own u, of the hanging-wall reflector it lands
     # on (the target line through the moved point, with the nearest target normal): removes any slide along strike.
     moved = src @ m[:2, :2].T + m[:2, 2]
-    dist, j = cKDTree(dst).query(moved, k=1, distance_upper_bound=_ICP_DISTANCES[-1])
+    dist, j = cKDTree(dst).query(moved, k=1, distance_upper_bound=opt.icp_distances[-1])
     ok = np.isfinite(dist)
-    if ok.sum() < _MIN_PEAKS:
+    if ok.sum() < opt.min_peaks:
         return None
     n_u, n_t = nrm[j[ok], 0], nrm[j[ok], 1]
     flat = np.abs(n_t) > 0.5  # reflector lines within 60 degrees of the strike direction
     mv, sp = moved[ok][flat], src[ok][flat]
-    if len(sp) < _MIN_PEAKS:
+    if len(sp) < opt.min_peaks:
         return None
     thr = mv[:, 1] - n_u[flat] / n_t[flat] * (sp[:, 0] - mv[:, 0]) - sp[:, 1]
     # robust straight line thr = a + b u: least squares, drop residuals beyond 3 MAD, least squares again
@@ -361,22 +437,22 @@ def _register(patch, shift):
     coef = np.linalg.lstsq(design, thr, rcond=None)[0]
     r = thr - design @ coef
     keep = np.abs(r - np.median(r)) <= 3.0 * 1.4826 * np.median(np.abs(r - np.median(r))) + 1e-3
-    if keep.sum() < _MIN_PEAKS:
+    if keep.sum() < opt.min_peaks:
         return None
     coef = np.linalg.lstsq(design[keep], thr[keep], rcond=None)[0]
     a, b = float(coef[0]), float(coef[1])
     u_mid = 0.5 * (sp[:, 0].min() + sp[:, 0].max())
-    if abs(b) > _MAX_ROTATION or abs(a + b * u_mid - shift) > 1.5:
+    if abs(b) > opt.max_rotation or abs(a + b * u_mid - shift) > 1.5:
         return None  # the refinement moved to another reflector: keep the correlation start
-    return a, b, float(res.fitness), float(res.inlier_rmse), int(len(src))
+    return _PatchFit(a, b, float(res.fitness), float(res.inlier_rmse), int(len(src)))
 
 
 # --------------------------------------------------------------------------------------------------------------------
 # public API
 
 
-def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None, max_throw: int | None = None,
-                side_traces=(2, 6), patch_traces: float = 32.0, refine: bool = True) -> FaultThrow:
+def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None, options: ThrowOptions | None = None,
+                **overrides) -> FaultThrow:
     """Vertical throw along one fault, by registering the reflectors on its two sides.
 
     1. **Fault-plane images** (Hale 2013). The fault is cut into patches of ``patch_traces`` traces along strike
@@ -401,8 +477,8 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
        shift, with correspondences within 2 then 1 sample; the in-plane rotation lets the throw vary linearly along
        strike. The throw of each registered peak is the t offset, at the peak's ``u``, of the hanging-wall reflector
        it lands on; a robust line ``a + b u`` through them gives the throw at every fault point of the patch. A
-       registration that fails, has fitness < 0.5, rotates more than 0.1 rad or moves more than 1.5 samples from the
-       start is rejected and the correlation shift is kept (``registered`` is False there).
+       registration that fails, has fitness < 0.5, rotates more than ``max_rotation`` (0.1 rad) or moves more than
+       1.5 samples from the start is rejected and the correlation shift is kept (``registered`` is False there).
 
     In a 2D section the fault plane is a line (one ``u``): the whole fault is one patch and its throw is the
     correlation shift with parabolic refinement (no registration).
@@ -412,21 +488,17 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
         Seismic amplitudes, the last axis the sample. Must be finite.
     fault : Fault or (n_points, ndim) array_like
-        A fault from :func:`seismo3d.seismic.faults.link_faults` (any object with ``points`` (n, ndim) index
+        A fault from :func:`seismo3d.seismic.link_faults` (any object with ``points`` (n, ndim) index
         coordinates and ``normals`` (n, ndim) unit fault normals, of either sign; ``id`` is used when present), or a
         bare array of fault points (index coordinates) whose normals are then estimated by PCA over 16 neighbours.
     orientation : ReflectorOrientation, optional
         Reflector orientation of ``data`` (:func:`structure_tensor_orientation`); computed when not given (pass it
         when measuring several faults of one cube, or use :func:`fault_throws`).
-    max_throw : int, optional
-        Largest |throw| searched, in samples. Default ``min(20, n_samples // 4)``. A patch searches at most a third
-        of the samples it spans (step 2).
-    side_traces : (int, int), optional
-        Nearest and farthest lateral offsets from the fault read on each side, in traces.
-    patch_traces : float, optional
-        Length of the patches along strike, in traces.
-    refine : bool, optional
-        Refine the correlation shift by ICP registration of reflector peaks (3D only).
+    options : ThrowOptions, optional
+        Search range, sides, patch length, refinement and the registration's limits (:class:`ThrowOptions`).
+    **overrides
+        Fields of :class:`ThrowOptions` by name (e.g. ``max_throw=8``, ``side_traces=(2, 6)``, ``patch_traces``,
+        ``refine``), replacing those of ``options``.
 
     Returns
     -------
@@ -460,15 +532,15 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
     >>> bool(abs(res.median_throw - sign * syn.faults[0].throw_samples) < 1)
     True
     """
-    arr = _as_seismic(data)
+    arr = as_seismic(data)
+    opt = resolve_options(ThrowOptions, options, overrides, "fault_throw")
     if orientation is None:
         orientation = structure_tensor_orientation(arr)
-    return _fault_throw(arr, fault, _slope_fields(orientation, arr.shape), max_throw, side_traces, patch_traces,
-                        refine)
+    return _fault_throw(arr, fault, _slope_fields(orientation, arr.shape), opt)
 
 
-def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = None, max_throw: int | None = None,
-                 side_traces=(2, 6), patch_traces: float = 32.0, refine: bool = True) -> list[FaultThrow]:
+def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = None, options: ThrowOptions | None = None,
+                 progress: bool = False, **overrides) -> list[FaultThrow]:
     """Throw along each of several faults of one cube or section (see :func:`fault_throw`).
 
     The reflector orientation is computed once (when not given) and shared by all faults.
@@ -478,9 +550,11 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
         Seismic amplitudes, the last axis the sample. Must be finite.
     faults : sequence of Fault or of (n_points, ndim) array_like
-        Faults from :func:`seismo3d.seismic.faults.link_faults`.
-    orientation, max_throw, side_traces, patch_traces, refine
+        Faults from :func:`seismo3d.seismic.link_faults`.
+    orientation, options, **overrides
         As in :func:`fault_throw`.
+    progress : bool
+        Report progress over the faults (:mod:`seismo3d._progress`).
 
     Returns
     -------
@@ -496,19 +570,25 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     ----------
     .. [1] D. Hale, Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1.
     """
-    arr = _as_seismic(data)
+    arr = as_seismic(data)
+    opt = resolve_options(ThrowOptions, options, overrides, "fault_throws")
     faults = list(faults)
     if not faults:
         return []
     if orientation is None:
         orientation = structure_tensor_orientation(arr)
     slopes = _slope_fields(orientation, arr.shape)
-    return [_fault_throw(arr, f, slopes, max_throw, side_traces, patch_traces, refine) for f in faults]
+    out = []
+    with progress_steps(len(faults), "throw", unit="fault", enabled=progress) as bar:
+        for f in faults:
+            out.append(_fault_throw(arr, f, slopes, opt))
+            bar.advance()
+    return out
 
 
-def _fault_throw(arr, fault, slopes, max_throw, side_traces, patch_traces, refine) -> FaultThrow:
+def _fault_throw(arr, fault, slopes, opt: ThrowOptions) -> FaultThrow:
     two_d = arr.ndim == 2
-    max_throw, sides, patch_traces = _check_options(max_throw, side_traces, patch_traces, arr.shape[-1])
+    max_throw = _max_throw(opt, arr.shape[-1])
     pts, normals, fid = _fault_arrays(fault, arr.ndim)
     if np.any(pts.min(axis=0) < -0.5) or np.any(pts.max(axis=0) > np.array(arr.shape) - 0.5):
         raise InputError(f"fault {fid} has points outside the data of shape {arr.shape}; pass the faults of this data")
@@ -519,7 +599,7 @@ def _fault_throw(arr, fault, slopes, max_throw, side_traces, patch_traces, refin
         nrm3 = np.column_stack([normals[:, 0], np.zeros(len(pts)), normals[:, 1]])
     else:
         pts3, nrm3 = pts, normals
-    nrm3 = _hanging_wall_normals(nrm3)
+    nrm3 = hanging_wall_normals(nrm3)
     n = len(pts3)
     throw = np.full(n, np.nan)
     corr = np.full(n, np.nan)
@@ -532,7 +612,7 @@ def _fault_throw(arr, fault, slopes, max_throw, side_traces, patch_traces, refin
     if np.linalg.norm(lat) > 1e-6 and not two_d:
         h = lat / np.linalg.norm(lat)
         ug = pts3[:, :2] @ np.array([-h[1], h[0]])
-        n_patch = max(1, int(round(np.ptp(ug) / patch_traces)))
+        n_patch = max(1, int(round(np.ptp(ug) / opt.patch_traces)))
         edges = np.linspace(ug.min(), ug.max(), n_patch + 1)
         pid = np.clip(np.searchsorted(edges, ug, side="right") - 1, 0, n_patch - 1)
     else:
@@ -542,26 +622,25 @@ def _fault_throw(arr, fault, slopes, max_throw, side_traces, patch_traces, refin
         sel = np.nonzero(pid == k)[0]
         if len(sel) < 3:
             continue
-        out = _patch_images(cube, p0, p1, pts3[sel], nrm3[sel], sides)
+        out = _patch_images(cube, p0, p1, pts3[sel], nrm3[sel], opt.side_traces, opt.slope_margin)
         if out is None:
             continue
         patch, ut = out
-        reach = min(max_throw, int(_MAX_THROW_PER_HEIGHT * patch.img[0].shape[1]))
+        reach = min(max_throw, int(opt.max_throw_per_height * patch.img[0].shape[1]))
         shift, cc = _ncc_shift(patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach,
-                               _MIN_OVERLAP[0 if two_d else 1]) if reach >= 1 else (np.nan, np.nan)
+                               opt.min_overlap[0 if two_d else 1], opt) if reach >= 1 else (np.nan, np.nan)
         if not np.isfinite(shift):
             continue
         throw[sel] = shift
         corr[sel] = cc
-        if refine and not two_d:
-            reg = _register(patch, shift)
-            if reg is not None:
-                a, b, fit, rmse, cnt = reg
-                throw[sel] = a + b * ut[:, 0]
+        if opt.refine and not two_d:
+            fit = _register(patch, shift, opt)
+            if fit is not None:
+                throw[sel] = fit.a + fit.b * ut[:, 0]
                 registered[sel] = True
-                fits.append(fit)
-                rmses.append(rmse)
-                counts.append(cnt)
+                fits.append(fit.fitness)
+                rmses.append(fit.inlier_rmse)
+                counts.append(fit.n_points)
     finite = np.isfinite(throw)
     if counts:
         wts = np.asarray(counts, float)

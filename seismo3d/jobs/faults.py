@@ -1,267 +1,35 @@
-"""The fault job: from a seismic cube or section to fault likelihood, fault surfaces, throws and report files.
+"""The ``seismo3d faults`` job: read a seismic file (or make the demo cube), trace its faults, write the results.
 
-Two functions:
+:func:`run_faults_job` reads an input file (SEG-Y cube, 2D SEG-Y line, raw ``.f32be`` section, ``.npy`` array) or
+makes a synthetic cube, runs :func:`seismo3d.seismic.trace_faults` and writes the outputs of ``seismo3d faults`` (see
+its docstring for the list of files and their columns). Every file is written atomically; the input is only read.
 
-* :func:`trace_faults` runs the pipeline on an array (fault likelihood -> thinning -> linking -> throw) and returns a
-  :class:`FaultInterpretation`;
-* :func:`run_faults_job` reads an input file (SEG-Y cube, 2D SEG-Y line, raw ``.f32be`` section, ``.npy`` array) or
-  makes a synthetic cube, runs :func:`trace_faults` and writes the outputs of ``seismo3d faults`` (see its docstring
-  for the list of files and their columns). Every file is written atomically; the input is only read.
-
-Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults`.
+Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.fault_likelihood`.
 """
 
 from __future__ import annotations
 
 import csv
 import shutil
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from .._atomic import atomic_path
-from .._validation import check_choice, check_positive
-from ..errors import InputError, Seismo3dWarning
-from .faults import fault_likelihood, link_faults, thin_faults
+from .._progress import progress_steps
+from .._validation import check_choice
+from ..errors import InputError
+from ..seismic.faults import FaultInterpretation, trace_faults
 
-__all__ = ["FaultInterpretation", "trace_faults", "run_faults_job"]
+__all__ = ["run_faults_job"]
 
-_UNITS = {"samples", "ms", "m", "ft"}
 _DEMO_SHAPE = (128, 128, 128)
 _DEMO_DT_MS = 4.0
-# Reach (traces, samples) of a dead zone's edge in fault_likelihood: the 3 x 3-trace semblance and the reflector slopes
-# of the structure tensor (smoothed over about 2 traces and 6 samples) see the edge this far; likelihood this close to
-# a dead sample is an artefact of the edge, not a fault.
-_DEAD_REACH = (3, 8)
-# Fraction of samples at the data's extremes above which the data are reported as clipped (unclipped data such as F3
-# and the synthetic cubes have a handful of such samples; 8-bit exports like the Penobscot sections, most of them).
-_CLIPPED_WARN = 0.05
-# Equal values in a row along a trace that make a run of dead samples (mute, dead trace, gap), at a fill value.
-_DEAD_RUN = 5
-# A value that fills a run this long somewhere in the data (or a whole trace) is a fill value (a mute's or a padding's
-# value) besides 0. Shorter runs at other values are the quantisation of slowly varying amplitudes in integer exports:
-# in the 8-bit Penobscot sections a run of five 107s sits on a fault at inlines 1-2, and reading it as dead blanked
-# the fault's likelihood over inlines 0-5.
-_FILL_RUN = 16
-
-
-@dataclass(frozen=True)
-class FaultInterpretation:
-    """Result of :func:`trace_faults`.
-
-    Attributes
-    ----------
-    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
-        Fault likelihood in [0, 1] (0 on and next to dead samples).
-    strike_deg, dip_deg : same shape, float32 ndarray
-        Strike and dip of the most likely fault plane at each sample, degrees, index space.
-    thin : same shape, float32 ndarray
-        The likelihood on the 1-sample-wide thinned fault traces, 0 elsewhere (``thin > 0`` is the fault mask).
-    faults : list of Fault
-        Linked faults (surfaces in 3D, curves in 2D), ids 1, 2, ... by decreasing size.
-    throws : list of FaultThrow
-        One per fault, in the order of ``faults``; ``throws[i].throw`` is the vertical throw at each point of
-        ``faults[i]``, in samples.
-    sample_interval : float
-        Sample interval in ``sample_unit`` (1 for 'samples').
-    sample_unit : {'samples', 'ms', 'm', 'ft'}
-        Unit of the sample axis.
-    """
-
-    likelihood: np.ndarray
-    strike_deg: np.ndarray
-    dip_deg: np.ndarray
-    thin: np.ndarray
-    faults: list
-    throws: list
-    sample_interval: float
-    sample_unit: str
-
-
-def _clean_traces(data) -> tuple[np.ndarray, np.ndarray]:
-    """Replace NaN / inf by 0 (with a warning); return float32 data and the mask of dead samples (with a warning).
-
-    Dead samples are those in runs of at least ``_DEAD_RUN`` equal values along a trace at a *fill value*: dead
-    traces, mutes (the zeroed top of a survey), zero padding and NaN gaps. The fill values are 0 and every value that
-    fills a whole trace or a run of at least ``_FILL_RUN`` samples somewhere in the data (a mute or padding value
-    such as the grey of an image export). Short runs at other values are quantisation (integer exports), and runs at
-    the data's largest or smallest value are clipped amplitudes (8-bit exports of sections): neither is dead, unless
-    it fills the whole trace.
-    """
-    from scipy.ndimage import binary_opening
-
-    arr = np.asarray(data)
-    if arr.ndim not in (2, 3):
-        raise InputError(f"data must be a 2D section (n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, "
-                         f"n_samples); got shape {arr.shape}")
-    if not (np.issubdtype(arr.dtype, np.number) or arr.dtype == bool):
-        raise InputError(f"data must be numeric; got dtype {arr.dtype}")
-    if min(arr.shape) < 3:
-        raise InputError(f"data has shape {arr.shape}; every axis needs at least 3 samples")
-    arr = np.asarray(arr, dtype=np.float32)
-    finite = np.isfinite(arr)
-    if not finite.all():
-        n_bad = int(arr.size - np.count_nonzero(finite))
-        warnings.warn(f"data has {n_bad} NaN or inf samples ({n_bad / arr.size:.1%}); they are read as 0, and "
-                      "runs of them are skipped like dead traces", Seismo3dWarning, stacklevel=3)
-        arr = np.where(finite, arr, np.float32(0.0))
-    del finite
-    n_s = arr.shape[-1]
-    if arr.max() == arr.min():
-        raise InputError("every sample has the same value (or is NaN): there are no reflectors to trace faults in; "
-                         "check that the file is the right one and that its data format is read correctly")
-    # equal neighbours along the trace, in runs of >= _DEAD_RUN - 1 differences
-    flat = np.diff(arr, axis=-1) == 0
-    lo, hi = arr.min(), arr.max()
-    clipped = (arr[..., 1:] == lo) | (arr[..., 1:] == hi)
-    clipped &= ~flat.all(axis=-1, keepdims=True)
-    frac_clipped = float(np.count_nonzero(clipped)) / clipped.size
-    if frac_clipped > _CLIPPED_WARN:
-        warnings.warn(f"{frac_clipped:.0%} of the samples sit at the data's smallest or largest value: clipped "
-                      "amplitudes (an 8-bit export?). Fault likelihood and throws are measured on the clipped "
-                      "waveforms and are less reliable; trace the unclipped data if you have it",
-                      Seismo3dWarning, stacklevel=3)
-    flat &= ~clipped
-    del clipped
-
-    def runs(equal, length):  # the differences inside runs of at least `length` equal values
-        structure = np.ones((1,) * (arr.ndim - 1) + (min(length - 1, n_s - 1),), dtype=bool)
-        return binary_opening(equal, structure=structure)
-
-    whole = np.broadcast_to(flat.all(axis=-1, keepdims=True), flat.shape)
-    fill = np.union1d([0.0], arr[..., 1:][runs(flat, _FILL_RUN) | whole])
-    flat = runs(flat, _DEAD_RUN) & np.isin(arr[..., 1:], fill)
-    dead = np.zeros(arr.shape, dtype=bool)
-    dead[..., 1:] |= flat
-    dead[..., :-1] |= flat
-    del flat
-    if dead.any():
-        n_dead = int(np.count_nonzero(dead))
-        n_tr = int(np.count_nonzero(dead.all(axis=-1)))
-        warnings.warn(f"{n_dead / dead.size:.1%} of the samples are constant over {_DEAD_RUN} or more samples "
-                      f"(mutes, gaps, {n_tr} dead traces); fault likelihood within {_DEAD_REACH[0]} traces and "
-                      f"{_DEAD_REACH[1]} samples of them is set to 0", Seismo3dWarning, stacklevel=3)
-    return arr, dead
-
-
-def _near(dead: np.ndarray) -> np.ndarray:
-    """Dead samples grown by ``_DEAD_REACH`` (a box: separable maximum filters)."""
-    from scipy.ndimage import maximum_filter1d
-
-    near = dead.view(np.uint8)
-    for axis in range(dead.ndim):
-        reach = _DEAD_REACH[1] if axis == dead.ndim - 1 else _DEAD_REACH[0]
-        if dead.shape[axis] > 1:
-            near = maximum_filter1d(near, 2 * reach + 1, axis=axis, mode="constant")
-    return near.view(bool)
-
-
-def _fault_throws(data, faults) -> list:
-    """The throw step, one call: register the two sides of each fault (:mod:`seismo3d.seismic.throw`)."""
-    from .throw import fault_throws
-
-    return fault_throws(data, faults)
-
-
-def trace_faults(data, *, sample_interval=None, sample_unit="samples", progress=True) -> FaultInterpretation:
-    """Trace the faults of a seismic cube or section: likelihood, thinning, linking, throw.
-
-    The steps, with their defaults chosen from the data (no per-file tuning):
-
-    1. :func:`~seismo3d.seismic.faults.fault_likelihood` (scan of fault strikes and dips, Hale 2013);
-    2. :func:`~seismo3d.seismic.faults.thin_faults` (non-maximum suppression across the fault, Otsu + hysteresis);
-    3. :func:`~seismo3d.seismic.faults.link_faults` (fault surfaces in 3D, curves in 2D; tiny ones dropped);
-    4. :func:`~seismo3d.seismic.throw.fault_throws` (vertical throw by registering the reflectors on both sides).
-
-    NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Dead samples (runs of 5 or
-    more equal values along a trace: dead traces, mutes, gaps, NaN runs) are skipped, with a warning: the likelihood
-    within 3 traces and 8 samples of them is set to 0, since the edge of a dead zone is not a fault.
-
-    Memory and time: the whole array is processed in memory. The whole ``seismo3d faults`` command on a 256^3
-    float32 cube (64 MiB) peaked at 1.3 GB resident and took about 55 s on 2 cores (128^3: 0.4 GB, about 20 s);
-    both grow about linearly with the number of samples. Crop larger cubes, or trace them in overlapping pieces.
-
-    Parameters
-    ----------
-    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Seismic amplitudes; the last axis is the sample (time or depth, downward).
-    sample_interval : float, optional
-        Sample interval in ``sample_unit``; required unless ``sample_unit`` is 'samples'.
-    sample_unit : {'samples', 'ms', 'm', 'ft'}, optional
-        Unit of the sample axis (for converting throws, see :attr:`FaultInterpretation.sample_interval`).
-    progress : bool, optional
-        Show a progress bar over the steps on standard error (only when it is a terminal).
-
-    Returns
-    -------
-    FaultInterpretation
-        Likelihood, strike, dip, thinned faults, linked faults and their throws.
-
-    Raises
-    ------
-    InputError
-        ``data`` is not a numeric 2D / 3D array with at least 3 samples per axis, all samples are equal, or the
-        sample interval / unit is invalid.
-
-    Warns
-    -----
-    Seismo3dWarning
-        NaN / inf samples, dead samples (constant runs), or clipped amplitudes (more than 5 % of the samples at the
-        data's smallest or largest value).
-
-    References
-    ----------
-    .. [1] D. Hale, "Methods to compute fault images, extract fault surfaces, and estimate fault throws from 3D
-       seismic images", Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1.
-    .. [2] D. Hale, "Fault surfaces and fault throws from 3D seismic images", Geophysics 79(5), O53-O66, 2014,
-       doi:10.1190/geo2013-0270.1.
-
-    Examples
-    --------
-    >>> from seismo3d.data.synthetic import synthetic_cube
-    >>> syn = synthetic_cube((64, 64, 64), seed=0)
-    >>> result = trace_faults(syn.cube, sample_interval=4.0, sample_unit="ms", progress=False)
-    >>> len(result.faults) >= 1
-    True
-    """
-    from tqdm.auto import tqdm
-
-    check_choice(sample_unit, "sample_unit", _UNITS)
-    if sample_unit == "samples":
-        if sample_interval not in (None, 1, 1.0):
-            raise InputError(f"sample_interval={sample_interval!r} needs a unit; pass sample_unit='ms', 'm' or 'ft'")
-        sample_interval = 1.0
-    elif sample_interval is None:
-        raise InputError(f"sample_unit={sample_unit!r} needs sample_interval= (the sample interval in {sample_unit})")
-    sample_interval = check_positive(sample_interval, "sample_interval")
-
-    arr, dead = _clean_traces(data)
-    with tqdm(total=4, desc="faults", unit="step", disable=None if progress else True, leave=False) as bar:
-        bar.set_postfix_str("fault likelihood")
-        fl = fault_likelihood(arr)
-        likelihood, strike, dip = fl.likelihood, fl.strike_deg, fl.dip_deg
-        del fl
-        if dead.any():
-            likelihood[_near(dead)] = 0.0
-            del dead
-        bar.update(1)
-        bar.set_postfix_str("thinning")
-        thin = thin_faults(likelihood, strike, dip)
-        bar.update(1)
-        bar.set_postfix_str("linking")
-        faults = link_faults(thin, strike, dip)
-        bar.update(1)
-        bar.set_postfix_str("throw")
-        throws = _fault_throws(arr, faults) if faults else []
-        bar.update(1)
-    return FaultInterpretation(likelihood=likelihood, strike_deg=strike, dip_deg=dip, thin=thin, faults=faults,
-                               throws=list(throws), sample_interval=float(sample_interval), sample_unit=sample_unit)
 
 
 # --------------------------------------------------------------------------------------------------------------------
-# the job: inputs
+# inputs
 
 
 @dataclass(frozen=True)
@@ -307,7 +75,7 @@ class _Input:
 
 
 def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples) -> _Input:
-    from .io import open_segy, read_section
+    from ..seismic.io import open_segy, read_section
 
     path = Path(path)
     suffix = path.suffix.lower()
@@ -395,7 +163,7 @@ def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, 
     if inp.segy_path is not None:
         out = out_dir / f"{stem}.sgy"
         if like is None:
-            from .io import write_like
+            from ..seismic.io import write_like
 
             grid = values.reshape(inp.segy_shape) if inp.segy_shape is not None else values
             return write_like(inp.segy_path, out, grid, iline=iline, xline=xline, ignore_geometry=ignore_geometry)
@@ -463,16 +231,28 @@ def _write_points(inp: _Input, result: FaultInterpretation, path: Path) -> Path:
     return path
 
 
+def _dip_direction(inp: _Input, fault) -> str:
+    """Where a fault of a 2D section deepens, in the section's own terms: 'increasing inline' etc."""
+    toward_higher = fault.mean_strike_deg > 180.0  # strike 270: deepens toward increasing trace index
+    labels = inp.axes[0]
+    if labels.size > 1 and labels[-1] < labels[0]:  # trace labels decrease along the section
+        toward_higher = not toward_higher
+    return f"{'increasing' if toward_higher else 'decreasing'} {inp.trace_axis}"
+
+
 def _write_summary(inp: _Input, result: FaultInterpretation, path: Path) -> Path:
     unit = inp.unit
     extra = [] if unit == "samples" else [f"median_throw_{unit}"]
+    two_d = inp.data.ndim == 2
+    orientation = ["dips_toward"] if two_d else ["mean_strike_deg"]
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["id", "n_points", "mean_strike_deg", "mean_dip_deg", "median_throw_samples", *extra])
+        w.writerow(["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra])
         for f in result.faults:
             throw = _throw_of(result.throws, f)
             med = float(np.median(throw[np.isfinite(throw)])) if np.isfinite(throw).any() else np.nan
-            row = [f.id, f.size, f"{f.mean_strike_deg:.1f}", f"{f.mean_dip_deg:.1f}", _fmt(med)]
+            row = [f.id, f.size, _dip_direction(inp, f) if two_d else f"{f.mean_strike_deg:.1f}",
+                   f"{f.mean_dip_deg:.1f}", _fmt(med)]
             if extra:
                 row.append(_fmt(med * result.sample_interval))
             w.writerow(row)
@@ -492,8 +272,8 @@ def _check_out_dir(path, out_dir) -> Path:
     return out_dir
 
 
-def run_faults_job(input_path, out_dir, *, demo=False, seed=0, iline=189, xline=193, ignore_geometry=False,
-                   sample_unit=None, n_samples=None, progress=True) -> dict:
+def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
+                   sample_unit=None, n_samples=None, sensitivity=0.5, progress=True) -> dict:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 
     Inputs
@@ -514,9 +294,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, seed=0, iline=189, xline=
     Outputs (in ``out_dir``, created if needed; each written atomically, so an interrupted run leaves either the
     previous file or none, never a half-written one)
     ------------------------------------------------------------------------------------------------------------
-    * ``fault_likelihood.sgy``, ``fault_strike.sgy``, ``fault_dip.sgy``: fault likelihood in [0, 1], strike and dip
-      in degrees, as SEG-Y with the textual, binary and trace headers of the input (for a SEG-Y input; IEEE float).
-      For other inputs the same volumes as float32 ``.npy`` arrays of the input's shape.
+    * ``fault_likelihood.sgy``, ``fault_strike.sgy``, ``fault_dip.sgy``, ``fault_votes.sgy``: fault likelihood in
+      [0, 1], strike and dip in degrees, and the optimal-surface votes in [0, 1], as SEG-Y with the textual, binary
+      and trace headers of the input (for a SEG-Y input; IEEE float). For other inputs the same volumes as float32
+      ``.npy`` arrays of the input's shape.
     * ``faults.vtp``: all fault surfaces (triangulated; polylines for 2D inputs) in one VTK PolyData, points at
       (inline, crossline, time_or_depth) (2D: (trace label, 0, time_or_depth)), point arrays ``fault_id``,
       ``throw`` (samples) and ``likelihood``.
@@ -528,12 +309,18 @@ def run_faults_job(input_path, out_dir, *, demo=False, seed=0, iline=189, xline=
       ``inline`` is the trace index (from 0) and ``crossline`` is empty. Throw is
       positive where the hanging wall moved down (normal fault); ``throw_correlation`` (in [-1, 1]) is the
       normalised cross-correlation of the reflectors on the two sides once aligned, a quality measure (see
-      :class:`~seismo3d.seismic.throw.FaultThrow`). An unmeasured throw is empty.
+      :class:`~seismo3d.seismic.fault_throw.FaultThrow`). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
-      median_throw_samples, median_throw_<unit>``. Strike and dip are in index space (one trace step = one
-      sample; strike from the inline axis toward the crossline axis, see :mod:`seismo3d.seismic.faults`).
+      median_throw_samples, median_throw_<unit>``; for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
+      replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline
+      axis toward the crossline axis, see :mod:`seismo3d.seismic.fault_likelihood`).
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
-      the seismic, above the same slices of the fault likelihood; for 2D inputs the section.
+      the seismic, above the same slices of the fault likelihood; for 2D inputs the section, cropped to its live
+      traces and samples.
+
+    Data that cannot support fault tracing (too few traces, not seismic amplitudes, no lateral coherence: see
+    :func:`~seismo3d.seismic.trace_faults`) raises :class:`~seismo3d.errors.UnsupportedDataError` before any output
+    is written.
 
     Parameters
     ----------
@@ -543,8 +330,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, seed=0, iline=189, xline=
         Output folder; must not be the input's own folder.
     demo : bool, optional
         Run on a synthetic cube instead of ``input_path``.
-    seed : int, optional
-        Seed of the synthetic cube (``demo=True``).
+    demo_seed : int, optional
+        Seed of the synthetic cube (``demo=True``; ``--demo-seed`` on the command line).
     iline, xline : int, optional
         Trace header bytes of the inline and crossline numbers of a SEG-Y input.
     ignore_geometry : bool, optional
@@ -554,14 +341,16 @@ def run_faults_job(input_path, out_dir, *, demo=False, seed=0, iline=189, xline=
         :func:`~seismo3d.seismic.io.open_segy`).
     n_samples : int, optional
         Samples per trace of a raw ``.f32be`` section whose shape is not known by name.
+    sensitivity : float, optional
+        In [0, 1]: more faults when higher (see :class:`~seismo3d.seismic.FaultTracingOptions`).
     progress : bool, optional
-        Progress bar on standard error (only when it is a terminal).
+        Report progress (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step otherwise).
 
     Returns
     -------
     dict of str to pathlib.Path
-        The files written, keyed ``likelihood``, ``strike``, ``dip``, ``surfaces``, ``points``, ``summary``,
-        ``figure`` (and ``input``, ``truth`` for the demo).
+        The files written, keyed ``likelihood``, ``strike``, ``dip``, ``votes``, ``surfaces``, ``points``,
+        ``summary``, ``figure`` (and ``input``, ``truth`` for the demo).
 
     Raises
     ------
@@ -574,14 +363,14 @@ def run_faults_job(input_path, out_dir, *, demo=False, seed=0, iline=189, xline=
     SegyGeometryError
         The inline / crossline geometry cannot be read with ``iline`` / ``xline`` (the message suggests header bytes
         that work, or ``ignore_geometry``).
+    UnsupportedDataError
+        The data cannot support fault tracing; nothing is written.
 
     Warns
     -----
     Seismo3dWarning
         NaN / inf samples or constant traces in the input.
     """
-    from tqdm.auto import tqdm
-
     from ..viz.faults import fault_surfaces, plot_fault_slices, save_polydata
 
     if sample_unit is not None:
@@ -595,11 +384,11 @@ def run_faults_job(input_path, out_dir, *, demo=False, seed=0, iline=189, xline=
             raise InputError("no input file; pass a SEG-Y cube or line, a .f32be section or a .npy array, or use "
                              "demo=True (--demo) to run on a synthetic cube")
         out_dir = _check_out_dir(input_path, out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
 
     written = {}
     if demo:
-        inp, written["truth"] = _demo_input(out_dir, seed)
+        out_dir.mkdir(parents=True, exist_ok=True)
+        inp, written["truth"] = _demo_input(out_dir, demo_seed)
         iline, xline, ignore_geometry = 189, 193, False
     else:
         inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
@@ -609,7 +398,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, seed=0, iline=189, xline=
         raise InputError(f"the sample interval of {inp.name} is {dt:g} {inp.unit}; it must be > 0 (check the "
                          "binary header's sample interval, bytes 3217-3218)")
     result = trace_faults(inp.data, sample_interval=None if inp.unit == "samples" else dt, sample_unit=inp.unit,
-                          progress=progress)
+                          sensitivity=sensitivity, progress=progress)
+    out_dir.mkdir(parents=True, exist_ok=True)  # only now: refused data leaves nothing behind
 
     if demo:
         written["input"] = inp.segy_path
@@ -620,6 +410,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, seed=0, iline=189, xline=
         ("strike", lambda: _write_volume(inp, out_dir, "fault_strike", result.strike_deg,
                                          like=written["likelihood"], **geo)),
         ("dip", lambda: _write_volume(inp, out_dir, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
+        ("votes", lambda: _write_volume(inp, out_dir, "fault_votes", result.votes, like=written["likelihood"], **geo)),
         ("surfaces", lambda: save_polydata(fault_surfaces(result.faults, result.throws, axes=axes),
                                            out_dir / "faults.vtp")),
         ("points", lambda: _write_points(inp, result, out_dir / "fault_points.csv")),
@@ -628,10 +419,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, seed=0, iline=189, xline=
                                              likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
                                              title=inp.name)),
     ]
-    with tqdm(total=len(steps), desc="writing", unit="file", disable=None if progress else True,
-              leave=False) as bar:
+    with progress_steps(len(steps), "writing", unit="file", enabled=progress) as bar:
         for key, write in steps:
-            bar.set_postfix_str(key)
+            bar.start(key)
             written[key] = write()
-            bar.update(1)
+            bar.advance()
     return written

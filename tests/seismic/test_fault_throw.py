@@ -1,4 +1,4 @@
-"""Fault throw by registration (seismo3d.seismic.throw) against the ground truth of synthetic cubes and sections.
+"""Fault throw by registration (seismo3d.seismic.fault_throw) against the ground truth of synthetic cubes and sections.
 
 Issue 3, Must show: "throw within 1 sample (median absolute error) for faults with throw >= 3 samples" on 128^3
 synthetic cubes with noise, seeds 0-4, through the whole detection chain; plus the same measured on the TRUE fault
@@ -16,9 +16,11 @@ from scipy.spatial import cKDTree
 
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
-from seismo3d.seismic.attributes import structure_tensor_orientation
-from seismo3d.seismic.faults import fault_likelihood, link_faults, thin_faults
-from seismo3d.seismic.throw import FaultThrow, fault_throw, fault_throws
+from seismo3d.seismic import (
+    FaultThrow, ThrowOptions, fault_likelihood, fault_throw, fault_throws, link_faults, structure_tensor_orientation,
+    thin_faults,
+)
+from seismo3d.seismic.fault_throw import hanging_wall_normals
 
 SEEDS = range(5)
 TOL = 2.0  # voxels: a detected point is compared with the nearest true fault voxel within this distance
@@ -67,17 +69,15 @@ def _errors_detected(syn, faults, results):
     return out
 
 
-@pytest.fixture(scope="module", params=SEEDS, ids=lambda s: f"seed{s}")
-def chain(request):
-    """A 128^3 synthetic cube (noise 0.1), its detected faults and its reflector orientation, computed once."""
-    syn = synthetic_cube((128, 128, 128), seed=request.param, noise=0.1)
-    fl = fault_likelihood(syn.cube)
-    thin = thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg)
-    faults = link_faults(thin, fl.strike_deg, fl.dip_deg)
-    orientation = structure_tensor_orientation(syn.cube)
-    return request.param, syn, faults, orientation
+@pytest.fixture(params=SEEDS, ids=lambda s: f"seed{s}")
+def chain(request, traced_cube):
+    """A 128^3 synthetic cube (noise 0.1), its detected faults and its reflector orientation (traced once per session,
+    shared with tests/seismic/test_fault_surfaces.py)."""
+    c = traced_cube(request.param)
+    return request.param, c.syn, c.faults, c.orientation
 
 
+@pytest.mark.slow
 def test_detected_faults_throw_within_one_sample(chain):
     seed, syn, faults, orientation = chain
     results = fault_throws(syn.cube, faults, orientation=orientation)
@@ -101,6 +101,7 @@ def test_detected_faults_throw_within_one_sample(chain):
             assert results[f.id - 1].fitness > 0.6
 
 
+@pytest.mark.slow
 def test_true_fault_voxels_throw(chain):
     """Throw measured on the labelled fault voxels: accuracy independent of fault detection."""
     seed, syn, _, orientation = chain
@@ -134,6 +135,7 @@ def test_bare_point_array_estimates_normals():
     assert np.nanmedian(np.abs(res.throw - true)) <= 0.5
 
 
+@pytest.mark.slow
 def test_large_throw_no_cycle_skip():
     """Throws of 8-13 samples, beyond a reflector period (~6.7 samples): the correlation start avoids cycle skipping."""
     syn = synthetic_cube((96, 96, 128), seed=1, noise=0.1, max_throw=16)
@@ -210,6 +212,23 @@ def test_bad_options(kwargs, match):
     syn = synthetic_cube((64, 64), n_faults=1, seed=0)
     with pytest.raises(InputError, match=match):
         fault_throw(syn.cube, np.argwhere(syn.fault_labels == 1), **kwargs)
+
+
+def test_options_object_and_keywords_agree():
+    syn = synthetic_cube((64, 64), n_faults=1, seed=3, noise=0.0)
+    pts = np.argwhere(syn.fault_labels == 1)
+    a = fault_throw(syn.cube, pts, options=ThrowOptions(side_traces=(3, 7), max_throw=8))
+    b = fault_throw(syn.cube, pts, side_traces=(3, 7), max_throw=8)
+    np.testing.assert_array_equal(a.throw, b.throw)
+    with pytest.raises(InputError, match="ThrowOptions"):
+        fault_throw(syn.cube, pts, options={"max_throw": 8})
+
+
+def test_hanging_wall_normals_share_one_side():
+    n = np.tile([np.sin(np.radians(70.0)), 0.0, np.cos(np.radians(70.0))], (9, 1))
+    flip = np.where(np.arange(9) % 2 == 0, -1.0, 1.0)[:, None]
+    out = hanging_wall_normals(n * flip)
+    np.testing.assert_allclose(out, np.tile(-n[0], (9, 1)))  # all upward, into the hanging wall
 
 
 def test_bad_faults_and_orientation():

@@ -1,4 +1,5 @@
-"""`seismo3d horizon`: a SEG-Y cube in, 'inline xline time' rows out; seeds in line numbers and ms."""
+"""The horizon job (seismo3d.jobs.horizon) through `seismo3d horizon`: a SEG-Y cube in, 'inline xline time' rows
+out; seeds in line numbers and ms."""
 
 import numpy as np
 import pytest
@@ -61,6 +62,7 @@ def test_horizon_command_bad_seeds(tmp_path):
     assert not (tmp_path / "h.txt").exists()
 
 
+@pytest.mark.slow
 @pytest.mark.filterwarnings("error::RuntimeWarning")
 def test_horizon_command_with_faults_raises_no_runtime_warning(tmp_path):
     # --faults traces the faults first; the command no longer silences RuntimeWarnings, so none may be raised.
@@ -81,3 +83,12 @@ def test_horizon_command_with_faults_raises_no_runtime_warning(tmp_path):
     err = np.abs(rows[:, 2] / 4.0 - ref[i, jj])
     assert len(rows) >= 0.8 * np.isfinite(ref).sum()
     assert np.nanmedian(err) <= 1.0
+
+
+def test_seed_index_converts_line_numbers_and_time():
+    from seismo3d.jobs.horizon import seed_index
+
+    inlines, xlines, samples = np.arange(100, 110), np.arange(500, 520, 2), 4.0 * np.arange(50) + 8.0
+    assert seed_index((103, 506, 26.0), inlines, xlines, samples, "ms") == (3.0, 3.0, 4.5)
+    with pytest.raises(Exception, match="crossline 507 is not in the cube"):
+        seed_index((103, 507, 26.0), inlines, xlines, samples, "ms")

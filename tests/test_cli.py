@@ -1,4 +1,5 @@
-"""The ``seismo3d`` command: exit codes (0 ok, 2 for seismo3d's errors and usage errors), outputs, messages."""
+"""The ``seismo3d`` command (seismo3d.cli): conventions (--version, exit codes 0 / 1 / 2 / 130, one-line errors naming
+flags, progress lines in logs), and the faults and point-cloud register commands end to end."""
 
 import csv
 import json
@@ -114,8 +115,8 @@ def test_faults_sample_unit(cube_file, tmp_path):
 
 
 def test_faults_demo_arguments(tmp_path, monkeypatch):
-    """--demo and --seed reach the job (stubbed here; tests/seismic/test_job.py runs the real demo)."""
-    import seismo3d.seismic.job as job
+    """--demo and --demo-seed reach the job (stubbed here; tests/jobs/test_faults.py runs the real demo)."""
+    import seismo3d.jobs.faults as job
 
     seen = {}
 
@@ -128,9 +129,9 @@ def test_faults_demo_arguments(tmp_path, monkeypatch):
         return {"summary": summary}
 
     monkeypatch.setattr(job, "run_faults_job", fake_job)
-    result = runner.invoke(app, ["faults", "--demo", "--seed", "7", "-o", str(tmp_path / "d")])
+    result = runner.invoke(app, ["faults", "--demo", "--demo-seed", "7", "-o", str(tmp_path / "d")])
     assert result.exit_code == 0, result.output
-    assert seen["demo"] is True and seen["seed"] == 7 and seen["input_path"] is None
+    assert seen["demo"] is True and seen["demo_seed"] == 7 and seen["input_path"] is None
     assert "1 faults in the demo cube" in result.stdout
     assert "median throw 4.5 samples (18.0 ms)" in result.stdout
 
@@ -189,7 +190,7 @@ def test_faults_exit_code_in_a_real_process(tmp_path):
 
 def test_faults_interrupted(tmp_path, monkeypatch):
     """Ctrl-C: exit code 130 and a one-line note, no traceback."""
-    import seismo3d.seismic.job as job
+    import seismo3d.jobs.faults as job
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
@@ -200,32 +201,65 @@ def test_faults_interrupted(tmp_path, monkeypatch):
     assert result.stderr.startswith("interrupted:")
 
 
-def test_match_recovers_a_known_homography(tmp_path):
-    """`seismo3d match` on a photo and its rotated copy: the printed homography is the true one."""
-    import cv2
-    from skimage import data
-
-    image = data.camera()
-    h, w = image.shape
-    truth = np.vstack([cv2.getRotationMatrix2D((w / 2 - 0.5, h / 2 - 0.5), 30.0, 1.0), [0, 0, 1]])
-    cv2.imwrite(str(tmp_path / "a.png"), image)
-    cv2.imwrite(str(tmp_path / "b.png"), cv2.warpPerspective(image, truth, (w, h)))
-    out = tmp_path / "m.csv"
-    result = runner.invoke(app, ["match", str(tmp_path / "a.png"), str(tmp_path / "b.png"), "-o", str(out),
-                                 "--method", "sift"])
-    assert result.exit_code == 0, result.output
-    rows = np.loadtxt(out, delimiter=",", skiprows=1, ndmin=2)
-    assert open(out).readline().strip() == "x1,y1,x2,y2,score" and len(rows) > 50
-    pred = cv2.perspectiveTransform(rows[:, None, :2].astype(np.float64), truth)[:, 0]
-    assert np.median(np.linalg.norm(pred - rows[:, 2:4], axis=1)) < 1.0
+def test_the_demo_seed_is_not_called_seed(tmp_path):
+    # --seed is a seed pick in `seismo3d horizon`; the demo's random seed has its own name
+    result = runner.invoke(app, ["faults", "--demo", "--seed", "7", "-o", str(tmp_path / "d")])
+    assert result.exit_code == 2 and "--seed" in result.output
 
 
-@pytest.mark.parametrize("make,message", [
-    (lambda p: None, "no such file"),
-    (lambda p: p.write_text("not an image"), "not an image"),
-])
-def test_match_errors(tmp_path, make, message):
-    bad = tmp_path / "bad.png"
-    make(bad)
-    result = runner.invoke(app, ["match", str(bad), str(bad), "-o", str(tmp_path / "m.csv")])
-    assert result.exit_code == 2 and message in result.output
+# --------------------------------------------------------------------------------------------------------------------
+# conventions
+
+
+def test_version():
+    from seismo3d import __version__
+
+    result = runner.invoke(app, ["--version"])
+    assert result.exit_code == 0 and result.stdout.strip() == f"seismo3d {__version__}"
+
+
+def test_errors_name_the_command_line_flags(clouds, tmp_path):
+    folder, _ = clouds
+    result = runner.invoke(app, ["register", str(folder / "src.npy"), str(folder / "dst.xyz"), "-o",
+                                 str(tmp_path / "T.json"), "--max-distance", "-1"])
+    assert result.exit_code == 2 and "--max-distance" in result.stderr and "max_distance" not in result.stderr
+    far = tmp_path / "far.npy"
+    np.save(far, np.load(folder / "src.npy") + 100.0)  # no target point within the distance
+    result = runner.invoke(app, ["register", str(far), str(folder / "dst.xyz"), "-o", str(tmp_path / "T.json"),
+                                 "--max-distance", "0.1"])
+    assert result.exit_code == 2
+    assert "within --max-distance 0.1;" in result.stderr and "raise --max-distance or pass a better --init" in \
+        result.stderr, result.stderr
+
+
+def test_a_registration_that_did_not_converge_exits_non_zero(tmp_path):
+    # a plane slides in itself under point-to-plane ICP: the result is written, one line says why, exit code 1
+    u, v = np.meshgrid(np.linspace(0, 2, 30), np.linspace(0, 2, 30))
+    plane = np.column_stack([u.ravel(), v.ravel(), np.zeros(u.size)])
+    np.save(tmp_path / "a.npy", plane)
+    np.save(tmp_path / "b.npy", plane + [0.05, 0.02, 0.01])
+    out = tmp_path / "T.json"
+    result = runner.invoke(app, ["register", str(tmp_path / "a.npy"), str(tmp_path / "b.npy"), "-o", str(out)])
+    assert result.exit_code == 1
+    lines = [line for line in result.stderr.splitlines() if line.startswith("error:")]
+    assert len(lines) == 1 and "did not converge" in lines[0] and str(out) in lines[0]
+    assert "Warning:" not in result.stderr  # warnings are one line too: "warning: ..."
+    assert json.loads(out.read_text())["converged"] is False
+
+
+@pytest.mark.slow
+def test_progress_is_one_line_per_step_when_stderr_is_not_a_terminal(tmp_path):
+    # in a log (stderr not a terminal) the fault job's steps are lines, not carriage-return bars
+    data = synthetic_cube((64, 48), n_faults=1, seed=2).cube
+    np.save(tmp_path / "s.npy", data)
+    proc = subprocess.run([sys.executable, "-m", "seismo3d.cli", "faults", str(tmp_path / "s.npy"), "-o",
+                           str(tmp_path / "out")], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert "\r" not in proc.stderr
+    lines = proc.stderr.splitlines()
+    for step in ("fault likelihood (1/6)", "ridges (2/6)", "voting (3/6)", "thinning (4/6)", "fault skins (5/6)",
+                 "throw (6/6)"):
+        assert f"faults: {step}" in lines
+    assert any(line.startswith("fault likelihood: ") and "strike" in line for line in lines)  # inside the step
+    assert any(line.startswith("fault voting: ") and "seed" in line for line in lines)
+    assert any(line.startswith("writing: figure") for line in lines)

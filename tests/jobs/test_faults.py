@@ -1,4 +1,4 @@
-"""The fault job: trace_faults on arrays, run_faults_job on files (demo, real SEG-Y, sections, bad inputs)."""
+"""The faults job (seismo3d.jobs.faults): run_faults_job on files (demo, real SEG-Y, sections, bad inputs)."""
 
 import csv
 import hashlib
@@ -11,9 +11,11 @@ import pytest
 import segyio
 
 from seismo3d.data.synthetic import synthetic_cube
-from seismo3d.errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, Seismo3dWarning
+from seismo3d.errors import (
+    DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, Seismo3dWarning, UnsupportedDataError,
+)
+from seismo3d.jobs.faults import run_faults_job
 from seismo3d.seismic.io import open_segy
-from seismo3d.seismic.job import FaultInterpretation, run_faults_job, trace_faults
 
 POINT_COLUMNS = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples"]
 SUMMARY_COLUMNS = ["id", "n_points", "mean_strike_deg", "mean_dip_deg", "median_throw_samples"]
@@ -46,19 +48,21 @@ def demo(tmp_path_factory):
     out = tmp_path_factory.mktemp("demo")
     with warnings.catch_warnings():
         warnings.simplefilter("error", Seismo3dWarning)  # a clean synthetic cube raises no warning
-        written = run_faults_job(None, out, demo=True, seed=0, progress=False)
+        written = run_faults_job(None, out, demo=True, demo_seed=0, progress=False)
     return out, written
 
 
+@pytest.mark.slow
 def test_demo_writes_every_output(demo):
     out, written = demo
     names = {"demo_seismic.sgy", "demo_truth.csv", "fault_likelihood.sgy", "fault_strike.sgy", "fault_dip.sgy",
-             "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png"}
+             "fault_votes.sgy", "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png"}
     assert {p.name for p in out.iterdir()} == names
     assert {Path(p).name for p in written.values()} == names
     assert Path(written["figure"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+@pytest.mark.slow
 def test_demo_csv_columns_and_values(demo):
     out, _ = demo
     points = _rows(out / "fault_points.csv")
@@ -84,6 +88,7 @@ def test_demo_csv_columns_and_values(demo):
     np.testing.assert_allclose(tm, 4.0 * ts, rtol=1e-4, atol=1e-3)
 
 
+@pytest.mark.slow
 def test_demo_finds_the_true_faults(demo):
     """The three largest traced faults are the synthetic cube's three faults: strike within 10 degrees, dip within 5,
     median throw (signed: + hanging wall down) within 1 sample of the truth at the fault's reference point."""
@@ -98,6 +103,7 @@ def test_demo_finds_the_true_faults(demo):
         assert abs(float(best["median_throw_samples"]) - float(t["throw_samples"])) <= 1.0
 
 
+@pytest.mark.slow
 def test_demo_volumes_keep_the_input_geometry(demo):
     out, _ = demo
     with open_segy(out / "demo_seismic.sgy") as src:
@@ -114,6 +120,7 @@ def test_demo_volumes_keep_the_input_geometry(demo):
     assert dip.min() > 0.0 and dip.max() <= 90.0
 
 
+@pytest.mark.slow
 def test_demo_surfaces(demo):
     import pyvista as pv
 
@@ -134,19 +141,39 @@ def test_demo_surfaces(demo):
 # real data
 
 
-def test_f3_crop_round_trip(data_dir, tmp_path):
-    """The likelihood, strike and dip SEG-Y of f3_crop read back with the input's geometry and trace headers."""
-    src = tmp_path / "in" / "f3_crop.sgy"
+@pytest.mark.slow
+def _write_cube(path, cube, *, sorting=segyio.TraceSortingFormat.CROSSLINE_SORTING):
+    """A 3D SEG-Y with survey-like headers: inlines from 111, crosslines from 875 (every 2nd), CDP coordinates,
+    4 ms, IBM float, crossline-sorted (inline-sorted with ``sorting``)."""
+    n_il, n_xl, ns = cube.shape
+    spec = segyio.spec()
+    spec.format = 1
+    spec.samples = np.arange(ns) * 4.0
+    spec.sorting = sorting
+    spec.ilines, spec.xlines = np.arange(111, 111 + n_il), np.arange(875, 875 + 2 * n_xl, 2)
+    order = ([(i, j) for j in range(n_xl) for i in range(n_il)] if sorting == segyio.TraceSortingFormat.CROSSLINE_SORTING
+             else [(i, j) for i in range(n_il) for j in range(n_xl)])
+    with segyio.create(str(path), spec) as f:
+        f.text[0] = segyio.tools.wrap("C 1 seismo3d test cube with survey-like headers")
+        for t, (i, j) in enumerate(order):
+            f.header[t] = {segyio.su.iline: 111 + i, segyio.su.xline: 875 + 2 * j, segyio.su.cdpx: 605000 + 25 * i,
+                           segyio.su.cdpy: 6073000 + 25 * j, segyio.su.scalco: 1}
+            f.trace[t] = cube[i, j]
+        f.bin.update(hdt=4000, hns=ns)
+
+
+@pytest.mark.slow
+def test_segy_outputs_keep_the_inputs_headers(tmp_path):
+    """The likelihood, strike, dip and votes SEG-Y read back with the input's geometry, textual, binary and trace
+    headers (a crossline-sorted IBM-float cube written here)."""
+    src = tmp_path / "in" / "cube.sgy"
     src.parent.mkdir()
-    shutil.copyfile(Path(data_dir) / "seismic" / "f3_crop.sgy", src)
+    _write_cube(src, synthetic_cube((48, 40, 80), n_faults=2, seed=5).cube)
     before = _sha(src)
-    out = tmp_path / "out"
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", Seismo3dWarning)  # its muted top and low coherence are reported
-        written = run_faults_job(src, out, progress=False)
+    written = run_faults_job(src, tmp_path / "out", progress=False)
     assert _sha(src) == before
     with segyio.open(src) as a:
-        for key in ("likelihood", "strike", "dip"):
+        for key in ("likelihood", "strike", "dip", "votes"):
             with segyio.open(written[key]) as b:
                 np.testing.assert_array_equal(a.ilines, b.ilines)
                 np.testing.assert_array_equal(a.xlines, b.xlines)
@@ -161,18 +188,27 @@ def test_f3_crop_round_trip(data_dir, tmp_path):
                     assert a.header[i] == b.header[i], f"trace header {i} of {key}"
     with open_segy(written["likelihood"]) as c:
         fl = c.read()
-    assert fl.shape == (23, 18, 75) and fl.min() >= 0 and fl.max() <= 1
-    # the muted top (leading zeros, 8-19 samples per trace) is dead: no likelihood there
-    with open_segy(src) as c:
-        data = c.read()
-    lead = np.argmax(data != 0, axis=-1)
-    assert lead.min() >= 5
-    muted = np.arange(75)[None, None, :] < lead[..., None]
-    assert muted.sum() > 2000 and np.all(fl[muted] == 0)
+    assert fl.shape == (48, 40, 80) and fl.min() >= 0 and fl.max() <= 1
     points = _rows(written["points"])
     assert list(points[0])[:6] == POINT_COLUMNS + ["throw_ms"]
-    assert {int(r["inline"]) for r in points} <= set(range(111, 134))
-    assert {int(r["crossline"]) for r in points} <= set(range(875, 893))
+    assert {int(r["inline"]) for r in points} <= set(range(111, 159))
+    assert {int(r["crossline"]) for r in points} <= set(range(875, 955, 2))
+
+
+@pytest.mark.parametrize("name, why", [
+    ("f3_crop.sgy", "23 x 18 traces of 75 samples: fault tracing needs at least 32 traces"),
+    ("volve_migvel_depth_sub3d.sgy", "not seismic amplitude data"),
+])
+def test_data_that_cannot_support_faults_is_refused(data_dir, tmp_path, name, why):
+    """A cube too small for the scan (f3_crop, 23 x 18 traces) and a velocity model (Volve, 1480-4706 m/s): one
+    clear reason, no warnings before it, and nothing written (before: 6 junk faults on f3_crop)."""
+    src = Path(data_dir) / "seismic" / name
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with pytest.raises(UnsupportedDataError, match=why):
+            run_faults_job(src, tmp_path / "out", progress=False)
+    assert not [w for w in caught if issubclass(w.category, Seismo3dWarning)]
+    assert not (tmp_path / "out").exists()
 
 
 def test_real_section(data_dir, tmp_path):
@@ -277,36 +313,6 @@ def test_no_faults(tmp_path):
 
 
 # --------------------------------------------------------------------------------------------------------------------
-# trace_faults on arrays
-
-
-def test_trace_faults_units_and_result(section):
-    res = trace_faults(section.cube, sample_interval=2.0, sample_unit="m", progress=False)
-    assert isinstance(res, FaultInterpretation)
-    assert res.sample_unit == "m" and res.sample_interval == 2.0
-    assert res.likelihood.shape == res.strike_deg.shape == res.dip_deg.shape == res.thin.shape == (160, 96)
-    assert len(res.throws) == len(res.faults) >= 2
-    assert [t.fault_id for t in res.throws] == [f.id for f in res.faults]
-    assert np.all(res.thin[res.thin > 0] == res.likelihood[res.thin > 0])
-
-
-@pytest.mark.parametrize("kwargs", [dict(sample_unit="ms"), dict(sample_unit="s", sample_interval=1.0),
-                                    dict(sample_interval=4.0), dict(sample_unit="ms", sample_interval=-4.0)])
-def test_trace_faults_rejects_bad_units(section, kwargs):
-    with pytest.raises(InputError):
-        trace_faults(section.cube, progress=False, **kwargs)
-
-
-@pytest.mark.parametrize("data", [np.zeros((40, 40)), np.full((20, 20, 20), np.nan), np.zeros((4, 5, 6, 7)),
-                                  np.array([["a"] * 20] * 20)])
-def test_trace_faults_rejects_bad_arrays(data):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", Seismo3dWarning)
-        with pytest.raises(InputError):
-            trace_faults(data, progress=False)
-
-
-# --------------------------------------------------------------------------------------------------------------------
 # bad files and folders: our errors, input untouched, nothing left half-written
 
 
@@ -379,92 +385,3 @@ def test_interrupted_run_keeps_finished_files(section, tmp_path, monkeypatch):
         run_faults_job(src, out, progress=False)
     assert _sha(written["figure"]) == png_before
     assert _no_temp_files(out) == []
-
-
-# --------------------------------------------------------------------------------------------------------------------
-# rendering (seismo3d.viz.faults) of the job's results
-
-
-@pytest.fixture(scope="module")
-def small_cube():
-    syn = synthetic_cube((48, 48, 48), n_faults=2, seed=1)
-    return syn.cube, trace_faults(syn.cube, progress=False)
-
-
-def test_show_faults_off_screen(small_cube, tmp_path):
-    """VTK renders off screen here: the picture shows the slices (grey) and fault 1 in its tab10 blue."""
-    from matplotlib.image import imread
-
-    from seismo3d.viz.faults import show_faults
-
-    cube, res = small_cube
-    shot = tmp_path / "scene.png"
-    show_faults(cube, res.faults, throws=res.throws, screenshot=shot, window_size=(400, 300))
-    img = (imread(shot)[..., :3] * 255).round()
-    assert img.shape == (300, 400, 3)
-    blue = np.all(np.abs(img - [31, 119, 180]) < 60, axis=-1) & (img[..., 2] > img[..., 0] + 60)
-    grey = (np.ptp(img, axis=-1) < 8) & (img.mean(axis=-1) < 200)
-    assert blue.mean() > 0.01 and grey.mean() > 0.01
-    with pytest.raises(InputError):
-        show_faults(cube, res.faults, color_by="colour", screenshot=shot)
-
-
-def test_plot_fault_slices_arguments(small_cube, tmp_path):
-    from seismo3d.viz.faults import plot_fault_slices
-
-    cube, res = small_cube
-    path = plot_fault_slices(cube, res.thin, path=tmp_path / "thin.png", slices=(10, 20, 30))
-    assert path.read_bytes()[:4] == b"\x89PNG"
-    with pytest.raises(InputError, match="slices"):
-        plot_fault_slices(cube, res.faults, path=tmp_path / "x.png", slices=(10, 20, 48))
-    with pytest.raises(InputError, match="shape"):
-        plot_fault_slices(cube, res.thin[:, :, :10], path=tmp_path / "x.png")
-    with pytest.raises(InputError, match="does not exist"):
-        plot_fault_slices(cube, res.faults, path=tmp_path / "no" / "x.png")
-    assert not (tmp_path / "x.png").exists()
-
-
-def test_clipped_amplitudes_are_reported():
-    # an 8-bit export clips the strong peaks and troughs (most Penobscot section samples sit at 0 or 255); the fault
-    # job says so, and says nothing for unclipped data
-    from seismo3d.seismic.job import _clean_traces
-
-    cube = synthetic_cube((16, 16, 48), seed=0).cube
-    hi = float(np.percentile(np.abs(cube), 80))
-    with pytest.warns(Seismo3dWarning, match="clipped amplitudes"):
-        _clean_traces(np.clip(cube, -hi, hi))
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", Seismo3dWarning)
-        _clean_traces(cube)
-
-
-def test_quantised_runs_are_not_dead_but_fill_values_are():
-    # In an 8-bit export, slowly varying amplitudes repeat the same value for a few samples; a run of five 107s on the
-    # Penobscot fault at crossline 56 (inlines 1-2) counted as a dead zone and blanked the fault's likelihood on
-    # inlines 0-5. Dead samples are runs at a fill value: 0, or a value that fills a whole trace or a long run (the
-    # image's grey 127 in a muted top).
-    from seismo3d.seismic.job import _clean_traces
-
-    section = np.round(127.5 + 100 * synthetic_cube((40, 96), n_faults=0, seed=2).cube / 3).clip(0, 255)
-    section[:, :20] = 127  # a muted top in the image's grey: a fill value
-    section[5, 60:65] = 107  # a short run of a live value (quantisation)
-    section[8, 50:55] = 127  # a short run of the fill value: a gap
-    section[30] = 99  # a dead trace
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", Seismo3dWarning)
-        _, dead = _clean_traces(section)
-    assert dead[:, :20].all() and dead[8, 50:55].all() and dead[30].all()
-    assert not dead[5, 55:70].any()
-    live = np.ones_like(dead)
-    live[:, :20] = live[8, 50:55] = live[30] = False
-    assert not dead[live].any()
-
-
-def test_penobscot_fault_at_crossline_56_is_not_blanked(penobscot):
-    from seismo3d.seismic.job import _clean_traces
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", Seismo3dWarning)
-        _, dead = _clean_traces(penobscot.cube)
-    assert not dead[:, 50:62, 600:720].any()
-    assert dead[:, 10:500, :40].mean() > 0.5  # the muted top (grey 127) is still dead

@@ -1,0 +1,100 @@
+"""Progress of long runs: a tqdm bar on a terminal or in a notebook, and one log line per step everywhere else.
+
+A bar redrawn with carriage returns is unreadable in a log file or a CI console, so when standard error is not a
+terminal the steps are written as lines to the ``seismo3d`` logger (level INFO) instead; the ``seismo3d`` command
+sends that logger to standard error. Loops over many items (inlines, scanned planes) log at most about twenty lines.
+"""
+
+from __future__ import annotations
+
+import logging
+import sys
+from contextlib import contextmanager
+
+__all__ = ["LOGGER", "progress_steps"]
+
+LOGGER = logging.getLogger("seismo3d")
+_MAX_LINES = 20  # log lines of a loop over items (every 5 %)
+
+
+def _interactive() -> bool:
+    """Standard error is a terminal, or this runs in a Jupyter kernel (where tqdm draws a widget)."""
+    try:
+        return bool(sys.stderr.isatty()) or "ipykernel" in sys.modules
+    except (AttributeError, ValueError):  # a closed or replaced stderr
+        return False
+
+
+class _Steps:
+    """What :func:`progress_steps` yields: ``start(label)`` names the step that begins, ``advance(n)`` counts done."""
+
+    def __init__(self, total: int, desc: str, unit: str, bar):
+        self.total, self.desc, self.unit, self.bar = int(total), desc, unit, bar
+        self.done = 0
+        self._named = False
+        self._next_line = 0
+
+    def start(self, label: str) -> None:
+        """A named step begins (the bar's postfix; one log line)."""
+        self._named = True
+        if self.bar is not None:
+            self.bar.set_postfix_str(label)
+        elif self.enabled:
+            LOGGER.info("%s: %s (%d/%d)", self.desc, label, min(self.done + 1, self.total), self.total)
+
+    def advance(self, n: int = 1, status: str | None = None) -> None:
+        """``n`` more steps or items are done (a log line every 5 % of a loop over unnamed items); ``status``, when
+        given, is shown beside the count (the bar's postfix, the end of the log line), e.g. a rate."""
+        self.done += n
+        if self.bar is not None:
+            if status is not None:
+                self.bar.set_postfix_str(status, refresh=False)
+            self.bar.update(n)
+        elif self.enabled and not self._named and (self.done >= self._next_line or self.done >= self.total):
+            if status is None:
+                LOGGER.info("%s: %d/%d %s", self.desc, min(self.done, self.total), self.total, self.unit)
+            else:
+                LOGGER.info("%s: %d/%d %s, %s", self.desc, min(self.done, self.total), self.total, self.unit, status)
+            self._next_line = self.done + max(1, self.total // _MAX_LINES)
+
+    enabled = True
+
+
+class _Silent(_Steps):
+    enabled = False
+
+    def __init__(self):
+        super().__init__(0, "", "", None)
+
+
+@contextmanager
+def progress_steps(total: int, desc: str, *, unit: str = "step", enabled: bool = True):
+    """Report the progress of ``total`` steps: a tqdm bar on a terminal, log lines otherwise, nothing when disabled.
+
+    Parameters
+    ----------
+    total : int
+        Number of steps (or items).
+    desc : str
+        What runs, e.g. ``'faults'``.
+    unit : str
+        What a step is, e.g. ``'inline'``.
+    enabled : bool
+        False: report nothing.
+
+    Yields
+    ------
+    object
+        With ``start(label)`` (a named step begins) and ``advance(n=1, status=None)`` (steps done; ``status`` an
+        optional short text such as a rate).
+    """
+    if not enabled:
+        yield _Silent()
+        return
+    if _interactive():
+        from tqdm.auto import tqdm
+
+        with tqdm(total=total, desc=desc, unit=unit, leave=False, file=sys.stderr) as bar:
+            yield _Steps(total, desc, unit, bar)
+        return
+    yield _Steps(total, desc, unit, None)

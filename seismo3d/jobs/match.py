@@ -1,0 +1,88 @@
+"""The ``seismo3d match`` job: match two images, verify the matches with a RANSAC homography and write them as CSV."""
+
+from __future__ import annotations
+
+import pathlib
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import DataNotFoundError, InputError
+
+__all__ = ["MatchJob", "run_match_job", "read_image"]
+
+
+@dataclass(frozen=True, eq=False)
+class MatchJob:
+    """What :func:`run_match_job` did.
+
+    Attributes
+    ----------
+    result : MatchResult
+        The verified matches and the homography (:func:`seismo3d.features.match_images`).
+    n_written : int
+        Matches written to the CSV file.
+    """
+
+    result: object
+    n_written: int
+
+
+def run_match_job(image1, image2, output, *, method: str = "hog", ratio: float = 0.8,
+                  threshold: float = 3.0) -> MatchJob:
+    """Match ``image1`` to ``image2``, verify with a RANSAC homography and write ``x1,y1,x2,y2,score`` rows.
+
+    Pixel coordinates have their origin at the centre of the top-left pixel, x to the right, y down.
+
+    Parameters
+    ----------
+    image1, image2 : str or path-like
+        Images OpenCV can read (colour is converted to grey by the matcher).
+    output : str or path-like
+        The CSV file (written atomically).
+    method : {'hog', 'sift', 'orb', 'akaze', 'brisk'}
+        The HOG-pyramid matcher (method.md section 2) or an OpenCV detector.
+    ratio : float
+        Lowe's ratio-test threshold.
+    threshold : float
+        RANSAC inlier reprojection error, pixels.
+
+    Returns
+    -------
+    MatchJob
+
+    Raises
+    ------
+    DataNotFoundError
+        An image file is missing.
+    InputError
+        A file OpenCV cannot read as an image, or a bad option.
+    """
+    from ..features import match_images, write_matches_csv
+
+    images = [read_image(p) for p in (image1, image2)]
+    result = match_images(*images, method=method, ratio=ratio, threshold=threshold, verify="homography")
+    return MatchJob(result, write_matches_csv(output, result))
+
+
+def read_image(path) -> np.ndarray:
+    """An image file as an (H, W) or (H, W, 3) RGB uint8 array (OpenCV; alpha dropped).
+
+    Raises
+    ------
+    DataNotFoundError
+        No such file.
+    InputError
+        OpenCV cannot read it as an image.
+    """
+    import cv2
+
+    path = pathlib.Path(path)
+    if not path.is_file():
+        raise DataNotFoundError(f"{path}: no such file; check the path")
+    image = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    if image is None:
+        raise InputError(f"{path} is not an image OpenCV can read (PNG, JPEG, TIFF, BMP, PPM/PGM)")
+    if image.ndim == 3:
+        image = cv2.cvtColor(image, cv2.COLOR_BGRA2RGB if image.shape[2] == 4 else cv2.COLOR_BGR2RGB)
+    return image

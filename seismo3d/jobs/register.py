@@ -1,0 +1,190 @@
+"""The ``seismo3d register`` job: register SOURCE onto TARGET and write the transform as JSON.
+
+Two point clouds (PLY, XYZ text, NPY) are registered by ICP or fused ICP (:mod:`seismo3d.registration`); two SEG-Y
+sub-volumes by :func:`seismo3d.seismic.register_volumes`. The order means the same for both: the first file is moved
+(source, the moving volume) onto the second (target, the fixed volume), and the JSON's transforms map the first's
+coordinates into the second's.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._atomic import atomic_path
+from ..errors import InputError
+
+__all__ = ["RegisterJob", "run_register_job", "is_segy"]
+
+
+@dataclass(frozen=True, eq=False)
+class RegisterJob:
+    """What :func:`run_register_job` did.
+
+    Attributes
+    ----------
+    kind : {'point_clouds', 'volumes'}
+        What was registered.
+    result : RegistrationResult or VolumeRegistration
+        The registration.
+    payload : dict
+        What was written to the JSON file.
+    converged : bool
+        Whether the registration converged (``payload['converged']``).
+    """
+
+    kind: str
+    result: object
+    payload: dict
+    converged: bool
+
+
+def is_segy(path) -> bool:
+    """Whether ``path`` names a SEG-Y file (.sgy or .segy, any case)."""
+    return pathlib.Path(path).suffix.lower() in (".sgy", ".segy")
+
+
+def run_register_job(source, target, output, *, method: str = "point_to_plane", model: str | None = None,
+                     init=None, max_distance=None, features=None, alpha: float = 0.1,
+                     progress: bool = True) -> RegisterJob:
+    """Register ``source`` onto ``target`` and write the JSON of the transform (atomically).
+
+    Parameters
+    ----------
+    source, target : str or path-like
+        Two point clouds, or two SEG-Y cubes (the moving one first, then the fixed one).
+    output : str or path-like
+        The JSON file.
+    method : {'point_to_plane', 'point_to_point', 'fused'}
+        Point clouds: the residual (fused = feature matches + point-to-plane, eq. 16).
+    model : {'rigid', 'similarity', 'axis_scaled', 'affine'}, optional
+        Transform family; default rigid for point clouds, axis_scaled for SEG-Y cubes (which allow rigid,
+        axis_scaled and affine).
+    init : str or path-like, optional
+        Point clouds: a JSON file with an initial source-to-target transform (``{"transform": [[...], ...]}``).
+    max_distance : sequence of float, optional
+        Point clouds: maximum correspondence distances, coarse to fine (default 10 / 3 / 1 % of the target's
+        bounding-box diagonal).
+    features : str or path-like, optional
+        ``method='fused'``: matched feature points, one row per match, source coordinates then target coordinates
+        (.csv / .txt / .npy with 2d columns).
+    alpha : float
+        ``method='fused'``: weight of the feature term in [0, 1].
+    progress : bool
+        Report progress of a volume registration (:mod:`seismo3d._progress`).
+
+    Returns
+    -------
+    RegisterJob
+
+    Raises
+    ------
+    InputError
+        Mixed inputs (a cloud and a cube), mismatched dimensions, a model unavailable for volumes, a missing or bad
+        ``init`` or ``features`` file; and the registrations' own errors (:class:`~seismo3d.errors.InputError`,
+        :class:`~seismo3d.errors.RegistrationError`).
+    """
+    source, target, output = pathlib.Path(source), pathlib.Path(target), pathlib.Path(output)
+    if is_segy(source) or is_segy(target):
+        if not (is_segy(source) and is_segy(target)):
+            raise InputError(f"{source} and {target}: register either two SEG-Y cubes or two point clouds, not one "
+                             "of each")
+        job = _register_volumes(source, target, model or "axis_scaled", progress)
+    else:
+        job = _register_point_clouds(source, target, method, model or "rigid", init, max_distance, features, alpha)
+    write_json(output, job.payload)
+    return job
+
+
+def _register_point_clouds(source, target, method, model, init, max_distance, features, alpha) -> RegisterJob:
+    from ..data.pointclouds import read_points
+    from ..geometry import estimate_normals
+    from ..registration import ICPOptions, fused_icp, icp
+
+    src = read_points(source)
+    dst = read_points(target)
+    if src.shape[1] != dst.shape[1]:
+        raise InputError(f"{source} is {src.shape[1]}D but {target} is {dst.shape[1]}D")
+    start = None if init is None else read_transform(init, src.shape[1])
+    options = ICPOptions(max_distance=tuple(max_distance) if max_distance else None)
+    normals = None if method == "point_to_point" else estimate_normals(dst, orient="none")
+    if method == "fused":
+        if features is None:
+            raise InputError("--method fused needs --features MATCHES (rows of source then target coordinates of "
+                             "matched features, e.g. from `seismo3d match` lifted to 3D)")
+        pairs = read_matches(features, src.shape[1])
+        result = fused_icp(src, dst, target_normals=normals, source_features=pairs[:, : src.shape[1]],
+                           target_features=pairs[:, src.shape[1]:], alpha=alpha, model=model, init=start,
+                           options=options)
+    else:
+        result = icp(src, dst, method=method, model=model, target_normals=normals, init=start, options=options)
+    payload = result.to_dict()
+    payload.update(method=method, model=model, source=str(source), target=str(target))
+    return RegisterJob("point_clouds", result, payload, bool(result.converged))
+
+
+def _register_volumes(moving_path, fixed_path, model, progress) -> RegisterJob:
+    """MOVING.sgy onto FIXED.sgy: the sub-volume registration, JSON with both transforms."""
+    from ..seismic import open_segy, register_volumes
+    from ..seismic.volumes import VOLUME_MODELS
+
+    if model not in VOLUME_MODELS:
+        raise InputError(f"--model {model} is not available for SEG-Y volumes; use rigid (spacings from the "
+                         "headers are right), axis_scaled (default for unknown bins / sample rates) or affine")
+    with open_segy(fixed_path) as fixed, open_segy(moving_path) as moving:
+        first_f = (int(fixed.inlines[0]), int(fixed.xlines[0]), float(fixed.samples[0]))
+        first_m = (int(moving.inlines[0]), int(moving.xlines[0]), float(moving.samples[0]))
+        reg = register_volumes(fixed, moving, model=model, progress=progress)
+    payload = reg.to_dict()
+    payload.update(model=model, moving=str(moving_path), fixed=str(fixed_path),
+                   index_axes=["inline", "crossline", "sample"],
+                   fixed_first=dict(zip(("inline", "xline", "sample_value"), first_f)),
+                   moving_first=dict(zip(("inline", "xline", "sample_value"), first_m)))
+    return RegisterJob("volumes", reg, payload, bool(reg.converged))
+
+
+def write_json(path, payload: dict) -> None:
+    """Write ``payload`` as indented JSON, atomically."""
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(payload, indent=2) + "\n")
+
+
+def read_transform(path, dim: int) -> np.ndarray:
+    """The (dim+1, dim+1) transform of a JSON file (``{"transform": [[...], ...]}`` or a bare matrix).
+
+    Raises
+    ------
+    InputError
+        A missing file, not JSON, or not a (dim+1, dim+1) transform (the message names ``--init``).
+    """
+    from ..geometry.transforms import as_transform
+
+    try:
+        payload = json.loads(pathlib.Path(path).read_text())
+    except FileNotFoundError as exc:
+        raise InputError(f"--init file {path} does not exist") from exc
+    except json.JSONDecodeError as exc:
+        raise InputError(f"--init file {path} is not JSON ({exc}); write {{\"transform\": [[...], ...]}}") from exc
+    matrix = payload.get("transform") if isinstance(payload, dict) else payload
+    return as_transform(matrix, f"the transform in {path}", dims=(dim,))
+
+
+def read_matches(path, dim: int) -> np.ndarray:
+    """(K, 2 dim) feature matches of a .npy, .csv or whitespace text file (source then target coordinates).
+
+    Raises
+    ------
+    InputError
+        Not 2 dim columns (the message names the file).
+    """
+    path = pathlib.Path(path)
+    if path.suffix == ".npy":
+        table = np.load(path, allow_pickle=False)
+    else:
+        table = np.loadtxt(path, delimiter="," if path.suffix == ".csv" else None, ndmin=2, comments="#")
+    if table.ndim != 2 or table.shape[1] != 2 * dim:
+        raise InputError(f"{path} must have {2 * dim} columns (source then target coordinates); got {table.shape}")
+    return table

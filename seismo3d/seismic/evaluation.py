@@ -1,0 +1,204 @@
+"""Evaluation against ground truth: fault detection scores, horizon errors and sub-volume registration errors.
+
+Each function compares a result with a reference (labelled fault samples, people's or a generator's horizon picks, a
+known resampling transform) and returns a small frozen dataclass of the measures; the benchmarks print them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage as ndi
+
+from .._validation import check_positive
+from ..errors import InputError
+from ..geometry.transforms import apply_transform, as_transform, rotation_error_deg
+
+__all__ = ["FaultScores", "HorizonErrors", "RegistrationErrors", "evaluate_faults", "horizon_errors",
+           "registration_errors"]
+
+
+@dataclass(frozen=True)
+class FaultScores:
+    """Result of :func:`evaluate_faults`.
+
+    Attributes
+    ----------
+    precision : float
+        Fraction of predicted fault samples with a labelled fault sample within the tolerance, in [0, 1].
+    recall : float
+        Fraction of labelled fault samples with a predicted one within the tolerance, in [0, 1].
+    """
+
+    precision: float
+    recall: float
+
+
+@dataclass(frozen=True)
+class HorizonErrors:
+    """Result of :func:`horizon_errors` (samples).
+
+    Attributes
+    ----------
+    n : int
+        Traces with a reference pick.
+    coverage : float
+        Fraction of them tracked (NaN when ``n`` is 0).
+    median_abs : float
+        Median absolute error over the tracked ones, samples (NaN when none).
+    within_2, within_5 : float
+        Fraction of the ``n`` traces tracked within 2 and 5 samples; untracked traces count as failures.
+    """
+
+    n: int
+    coverage: float
+    median_abs: float
+    within_2: float
+    within_5: float
+
+
+@dataclass(frozen=True, eq=False)
+class RegistrationErrors:
+    """Result of :func:`registration_errors`.
+
+    Attributes
+    ----------
+    rotation_deg : float
+        Angle of the rotation between the rotational parts of the estimate and the truth, degrees.
+    scale_pct : (3,) float64 ndarray
+        Relative error of each moving axis's scale, %.
+    max_scale_pct : float
+        The largest of them, %.
+    centre_error : float
+        Distance between the fixed positions the two transforms give the moving volume's centre, fixed index units
+        (traces and samples).
+    """
+
+    rotation_deg: float
+    scale_pct: np.ndarray
+    max_scale_pct: float
+    centre_error: float
+
+
+def evaluate_faults(thin_mask, labels, *, tolerance=2.0, border=0) -> FaultScores:
+    """Precision and recall of thinned faults against labelled fault samples.
+
+    A predicted sample is correct when a labelled sample lies within ``tolerance`` samples of it (Euclidean
+    distance in index space, from :func:`scipy.ndimage.distance_transform_edt`); recall is the fraction of labelled
+    samples with a predicted sample within ``tolerance``.
+
+    Parameters
+    ----------
+    thin_mask : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like of bool
+        Predicted fault samples (e.g. ``thin_faults(...) > 0``).
+    labels : array_like of int, same shape
+        Ground truth: > 0 on fault samples.
+    tolerance : float, optional
+        Distance in samples within which a prediction matches.
+    border : int, optional
+        Samples within ``border`` of the top or bottom of the sample axis are left out of both scores. The default 0
+        scores everything: the likelihood stays valid up to the top and bottom (the windows along dip are one-sided
+        and clipped there), and on the 128^3 synthetic cubes leaving 5 samples out changes precision and recall of
+        the linked faults by at most 0.012, so there is no reason to hide the edges.
+
+    Returns
+    -------
+    FaultScores
+        ``precision`` and ``recall`` in [0, 1]; precision is 0 when nothing is predicted, recall is 1 when there are
+        no labels.
+
+    Raises
+    ------
+    InputError
+        If the shapes differ.
+    """
+    pred = np.asarray(thin_mask).astype(bool)
+    lab = np.asarray(labels) > 0
+    if pred.shape != lab.shape:
+        raise InputError(f"thin_mask {pred.shape} and labels {lab.shape} must have the same shape")
+    tolerance = check_positive(tolerance, "tolerance", allow_zero=True)
+    border = int(check_positive(border, "border", allow_zero=True))
+    valid = np.ones(pred.shape, dtype=bool)
+    if border:
+        valid[..., :border] = False
+        valid[..., pred.shape[-1] - border:] = False
+    d_to_lab = ndi.distance_transform_edt(~lab) if lab.any() else np.full(pred.shape, np.inf)
+    d_to_pred = ndi.distance_transform_edt(~pred) if pred.any() else np.full(pred.shape, np.inf)
+    p_sel = pred & valid
+    l_sel = lab & valid
+    precision = float(np.mean(d_to_lab[p_sel] <= tolerance)) if p_sel.any() else 0.0
+    recall = float(np.mean(d_to_pred[l_sel] <= tolerance)) if l_sel.any() else 1.0
+    return FaultScores(precision=precision, recall=recall)
+
+
+def horizon_errors(times, reference) -> HorizonErrors:
+    """Compare tracked horizon times with reference picks (e.g. an interpreter's), in samples.
+
+    Parameters
+    ----------
+    times, reference : array_like of float, same shape
+        Horizon times in samples; NaN (or negative, in ``reference``) where absent. Traces without a reference
+        pick are not counted; traces with a reference pick but no tracked pick count as misses.
+
+    Returns
+    -------
+    HorizonErrors
+        ``n``, ``coverage``, ``median_abs``, ``within_2``, ``within_5`` (see :class:`HorizonErrors`).
+
+    Raises
+    ------
+    InputError
+        Shapes differ.
+    """
+    t = np.asarray(times, np.float64)
+    r = np.asarray(reference, np.float64)
+    if t.shape != r.shape:
+        raise InputError(f"times {t.shape} and reference {r.shape} must have the same shape")
+    ref_ok = np.isfinite(r) & (r >= 0)
+    n = int(ref_ok.sum())
+    err = np.abs(t[ref_ok] - r[ref_ok])
+    tracked = np.isfinite(err)
+    return HorizonErrors(
+        n=n,
+        coverage=float(tracked.mean()) if n else np.nan,
+        median_abs=float(np.median(err[tracked])) if tracked.any() else np.nan,
+        within_2=float(np.mean(np.where(tracked, err, np.inf) <= 2)) if n else np.nan,
+        within_5=float(np.mean(np.where(tracked, err, np.inf) <= 5)) if n else np.nan,
+    )
+
+
+def registration_errors(estimate, truth, moving_shape) -> RegistrationErrors:
+    """Errors of an estimated index-space transform against the true one: rotation, per-axis scale, centre position.
+
+    Parameters
+    ----------
+    estimate, truth : (4, 4) array_like of float
+        Moving-index to fixed-index transforms (e.g. ``VolumeRegistration.transform_index`` and the transform
+        returned by :func:`seismo3d.data.resampled_pair`).
+    moving_shape : tuple of 3 int
+        Shape of the moving volume; the translation error is measured at its centre.
+
+    Returns
+    -------
+    RegistrationErrors
+        ``rotation_deg``, ``scale_pct``, ``max_scale_pct``, ``centre_error`` (see :class:`RegistrationErrors`).
+
+    Raises
+    ------
+    InputError
+        Malformed transforms or shape.
+    """
+    e = as_transform(estimate, "estimate", dims=(3,))
+    g = as_transform(truth, "truth", dims=(3,))
+    shape = np.asarray(moving_shape, dtype=np.float64)
+    if shape.shape != (3,):
+        raise InputError(f"moving_shape must be 3 ints; got {moving_shape!r}")
+    pct = 100.0 * np.abs(np.linalg.norm(e[:3, :3], axis=0) / np.linalg.norm(g[:3, :3], axis=0) - 1.0)
+    centre = ((shape - 1.0) / 2.0)[None]
+    return RegistrationErrors(
+        rotation_deg=float(rotation_error_deg(e, g)),
+        scale_pct=pct,
+        max_scale_pct=float(pct.max()),
+        centre_error=float(np.linalg.norm(apply_transform(e, centre) - apply_transform(g, centre))),
+    )

@@ -1,0 +1,267 @@
+"""Fault crossings: which faults a step of a horizon crosses, and by how much the horizon jumps there.
+
+:class:`FaultCrossings` holds the traced fault points of an interpretation with their normals (oriented into the
+footwall as :func:`~seismo3d.seismic.fault_throw` measured the throw) and their throws. A step from point ``a`` to
+point ``b`` crosses a fault when it pierces the fault's local plane (the least-squares plane of its points near the
+step, oriented like their normals) within ``pierce`` voxels of one of those points; the horizon then jumps by the
+throw, down into the hanging wall and up into the footwall. Two faults between the same traces add their jumps, and
+a fault is crossed once going one way (:meth:`FaultCrossings.jump`). Only faults with a reliable throw are used
+(:func:`reliable_throw`).
+
+Conventions: index space as in :mod:`seismo3d.seismic.fault_likelihood` (points ``(inline, xline, sample)`` or
+``(trace, sample)``); jumps in samples.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from ..errors import InputError
+from .fault_throw import hanging_wall_normals
+
+__all__ = ["FaultCrossings", "footwall_normals", "reliable_throw"]
+
+
+def footwall_normals(normals) -> np.ndarray:
+    """A fault's unit normals (n, ndim), of either sign, pointing into its footwall as its throw was measured.
+
+    A fault's normals come from the strike and dip of each point, so on a (near-)vertical fault they point to either
+    side (strike and strike + 180 degrees). The throw is measured with the normals sign-aligned to their principal
+    direction (:func:`~seismo3d.seismic.fault_throw.hanging_wall_normals`), so the jump of a horizon must use the
+    same sides.
+
+    Parameters
+    ----------
+    normals : (n, 3) or (n, 2) array_like of float
+        Fault normals (inline, xline, sample) or (trace, sample), any length but non-zero.
+
+    Returns
+    -------
+    (n, ndim) float64 ndarray
+        Unit normals into the footwall.
+    """
+    n = np.asarray(normals, np.float64)
+    n = n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)  # unit, as fault_throw makes them
+    if n.shape[1] == 2:
+        n3 = np.column_stack([n[:, 0], np.zeros(len(n)), n[:, 1]])
+        return -hanging_wall_normals(n3)[:, [0, 2]]
+    return -hanging_wall_normals(n)
+
+
+def reliable_throw(throw, min_correlation: float = 0.5) -> bool:
+    """Whether a fault's throw is reliable enough for a horizon to jump by it: the fault's two sides correlate at
+    least ``min_correlation`` across it (median of ``FaultThrow.correlation``); False without a throw.
+
+    On the clipped Penobscot data, :func:`~seismo3d.seismic.trace_faults`' low-correlation faults carry throws of
+    several samples where people see none, and jumping by them (or searching a shift at each of them) moved horizon 2
+    off its reflector; the "traced faults" rows of ``benchmarks/horizons.py`` show the horizons with the faults that
+    pass.
+
+    Parameters
+    ----------
+    throw : FaultThrow
+        Any object with a ``correlation`` (n,) array.
+    min_correlation : float
+        The threshold, in [-1, 1].
+
+    Returns
+    -------
+    bool
+    """
+    corr = np.asarray(throw.correlation, np.float64)
+    return bool(np.isfinite(corr).any() and np.nanmedian(corr) >= min_correlation)
+
+
+class FaultCrossings:
+    """Fault points with normals (into the footwall), throws and fault ids, for finding the faults a step crosses.
+
+    Parameters
+    ----------
+    points : (n, ndim) array_like of float
+        Fault points, index space.
+    normals : (n, ndim) array_like of float
+        Unit normals into the footwall (:func:`footwall_normals`).
+    throws : (n,) array_like of float
+        Throw at each point, samples (+ = hanging wall down); NaN where unknown.
+    ids : (n,) array_like of int, optional
+        Fault id of each point (default all 0: one fault).
+    pierce : float
+        Voxels: a step crosses a fault when it pierces the fault's local plane this close to one of its points.
+    on_fault : float
+        Voxels: a point this close to a fault's local plane (and within ``pierce`` of its points) lies on the fault.
+
+    Examples
+    --------
+    >>> y, t = np.meshgrid(np.arange(9.0), np.arange(40.0), indexing="ij")
+    >>> pts = np.column_stack([np.full(y.size, 10.5), y.ravel(), t.ravel()])   # a vertical fault at inline 10.5
+    >>> faults = FaultCrossings(pts, np.tile([1.0, 0.0, 0.0], (len(pts), 1)), np.full(len(pts), 4.0))
+    >>> faults.jump(np.array([10.0, 4.0, 20.0]), np.array([11.0, 4.0, 20.0]))   # into the footwall: up by 4
+    -4.0
+    """
+
+    def __init__(self, points, normals, throws, ids=None, *, pierce: float = 1.5, on_fault: float = 0.5):
+        points = np.asarray(points, np.float64)
+        normals = np.asarray(normals, np.float64)
+        throws = np.asarray(throws, np.float64)
+        self.pierce, self.on_fault_distance = float(pierce), float(on_fault)
+        self.points = points
+        self.normals = normals
+        self.throws = throws
+        self.ids = np.zeros(len(points), np.intp) if ids is None else np.asarray(ids, np.intp)
+        self.tree = cKDTree(points) if len(points) else None
+
+    @classmethod
+    def empty(cls, ndim: int, **kwargs) -> "FaultCrossings":
+        """No faults: every step crosses none (``ndim`` 2 or 3)."""
+        return cls(np.zeros((0, ndim)), np.zeros((0, ndim)), np.zeros(0), **kwargs)
+
+    @classmethod
+    def from_interpretation(cls, faults, ndim: int, *, min_throw_correlation: float = 0.5,
+                            **kwargs) -> "FaultCrossings":
+        """The faults of a :class:`~seismo3d.seismic.FaultInterpretation` (or None: no faults) with a reliable
+        throw (:func:`reliable_throw` at ``min_throw_correlation``); faults without a throw are left out, as if not
+        traced.
+
+        Parameters
+        ----------
+        faults : FaultInterpretation or None
+            Anything with ``faults`` (objects with ``points`` and ``normals``) and ``throws`` (with ``throw`` and
+            ``correlation``), in the same order.
+        ndim : {2, 3}
+            Dimension of the data the horizon is tracked in.
+        min_throw_correlation : float
+            See :func:`reliable_throw`.
+        **kwargs
+            ``pierce``, ``on_fault`` (see the class).
+
+        Returns
+        -------
+        FaultCrossings
+
+        Raises
+        ------
+        InputError
+            The faults were traced in data of another dimension.
+        """
+        if faults is None:
+            return cls.empty(ndim, **kwargs)
+        pts, nrm, thr, ids = [], [], [], []
+        for k, (f, th) in enumerate(zip(faults.faults, faults.throws)):
+            p = np.asarray(f.points, np.float64)
+            if p.ndim != 2 or p.shape[1] != ndim:
+                raise InputError(f"faults were traced on {p.shape[-1]}D data but the horizon is tracked in {ndim}D "
+                                 "data; trace the faults of the same array")
+            if not reliable_throw(th, min_throw_correlation):
+                continue
+            pts.append(p)
+            nrm.append(footwall_normals(f.normals))
+            thr.append(np.asarray(th.throw, np.float64))
+            ids.append(np.full(len(p), k, np.intp))
+        if not pts:
+            return cls.empty(ndim, **kwargs)
+        return cls(np.concatenate(pts), np.concatenate(nrm), np.concatenate(thr), np.concatenate(ids), **kwargs)
+
+    def _planes(self, a: np.ndarray, b: np.ndarray):
+        """For each fault with points near the segment a-b: (fault id, indices of those points, centre, unit normal
+        into the footwall) of its local plane.
+
+        The least-squares plane of the points (a line in 2D), oriented like their normals: the per-point normals come
+        from a coarse strike / dip scan, and a plane through each voxel misplaces the pierce point where the traced
+        surface steps from voxel to voxel. Fewer than 4 points, or points that do not spread over a plane (a strip
+        along the fault's edge, a thin slab) or do not lie on one: their mean normal."""
+        if self.tree is None:
+            return
+        idx = self.tree.query_ball_point(0.5 * (a + b), 0.5 * float(np.linalg.norm(b - a)) + self.pierce + 1.0)
+        if not idx:
+            return
+        idx = np.asarray(idx)
+        for fid in np.unique(self.ids[idx]):
+            sel = idx[self.ids[idx] == fid]
+            p = self.points[sel]
+            n = self.normals[sel].mean(axis=0)
+            c = p.mean(axis=0)
+            if len(p) >= 4:
+                _, sv, vt = np.linalg.svd(p - c, full_matrices=False)
+                if len(sv) == 3:
+                    planar = sv[1] > 0.5 * sv[0] and sv[2] < 0.5 * sv[1]  # spread over two axes, thin on the third
+                else:
+                    planar = sv[1] < 0.5 * sv[0]  # 2D: along a line
+                if planar:
+                    n = vt[-1] if np.dot(vt[-1], n) >= 0 else -vt[-1]
+            norm = float(np.linalg.norm(n))
+            if norm > 0.0:
+                yield int(fid), sel, c, n / norm
+
+    def crossings(self, a: np.ndarray, b: np.ndarray) -> dict:
+        """The faults between point ``a`` and point ``b``: {fault id: vertical jump (samples) of a horizon going from
+        ``a`` to ``b`` across it}, +throw into the hanging wall, -throw into the footwall, NaN for unknown throw.
+
+        A step crosses a fault when it pierces the fault's local plane (:meth:`_planes`) within ``pierce`` of one of
+        the fault's points, not beside the fault (past its end)."""
+        out = {}
+        for fid, sel, c, n in self._planes(a, b):
+            sa, sb = float(np.dot(a - c, n)), float(np.dot(b - c, n))
+            if (sa > 0) == (sb > 0):
+                # the same side; a point on the plane counts as the hanging wall's (sb <= 0, as in wall_jump), so a
+                # step that ends on a steep fault's plane (a carry from inline to inline lands on it) and the step
+                # that leaves it cross it once
+                continue
+            pierce = a + sa / (sa - sb) * (b - a)
+            d = np.linalg.norm(self.points[sel] - pierce, axis=1)
+            if d.min() > self.pierce:
+                continue
+            thr = self.throws[sel[np.argmin(d)]]
+            out[fid] = -thr if sb > 0 else thr  # NaN stays NaN: unknown throw
+        return out
+
+    def on_fault(self, a: np.ndarray) -> set:
+        """Ids of the faults point ``a`` lies on: within ``on_fault`` of the fault's local plane and within
+        ``pierce`` of one of its points."""
+        return {fid for fid, sel, c, n in self._planes(a, a)
+                if np.linalg.norm(self.points[sel] - a, axis=1).min() <= self.pierce
+                and abs(float(np.dot(a - c, n))) < self.on_fault_distance}
+
+    def wall_jump(self, a: np.ndarray, b: np.ndarray, ids: set) -> float:
+        """Jump (samples) of a horizon from ``a``, which lies on the faults ``ids``, to ``b`` if ``a`` is in the wall
+        ``b`` is not in: the sum of those faults' throws, signed as in :meth:`crossings`. NaN for an unknown throw."""
+        total = 0.0
+        for fid, sel, c, n in self._planes(a, b):
+            if fid in ids:
+                thr = self.throws[sel[np.argmin(np.linalg.norm(self.points[sel] - a, axis=1))]]
+                total += -thr if float(np.dot(b - c, n)) > 0 else thr
+        return total
+
+    def block(self, line_point, n: int, c: int, tc: float, slope: float, lo: int, hi: int) -> tuple[int, int]:
+        """The traces of ``lo..hi`` (inclusive, containing ``c``) that a horizon through (c, tc) with ``slope``
+        (samples per trace) reaches without crossing a fault: the fault block of the pick along a slice of ``n``
+        traces, which ``line_point(x, t)`` maps to this index's coordinates. An end short of ``lo`` / ``hi`` is the
+        last trace before a fault."""
+        if self.tree is None:
+            return lo, hi
+        a, b = line_point(lo, tc + slope * (lo - c)), line_point(hi, tc + slope * (hi - c))
+        if not self.tree.query_ball_point(0.5 * (a + b), 0.5 * float(np.linalg.norm(b - a)) + self.pierce + 1.0):
+            return lo, hi
+        ends = []
+        for direction, end in ((-1, lo), (1, hi)):
+            x = c
+            while x != end and 0 <= x + direction < n:
+                y = x + direction
+                if self.crossings(line_point(x, tc + slope * (x - c)), line_point(y, tc + slope * (y - c))):
+                    break
+                x = y
+            ends.append(x)
+        return ends[0], ends[1]
+
+    def jump(self, a: np.ndarray, b: np.ndarray, crossed: set | None = None) -> float:
+        """Vertical jump (samples) of a horizon going from ``a`` to ``b``: the sum over the faults crossed (two faults
+        between the same traces add up); 0 when none, NaN when a crossed fault's throw is unknown.
+
+        ``crossed``: the fault ids this horizon path has already crossed, left out and updated. A (planar) fault is
+        crossed once going one way; after the jump, a dipping fault's plane can lie beyond the new pick (heave,
+        reverse-fault overlap), which is no second crossing."""
+        cross = self.crossings(a, b)
+        if crossed is not None:
+            cross = {f: v for f, v in cross.items() if f not in crossed}
+            crossed.update(cross)
+        return float(sum(cross.values()))

@@ -1,0 +1,81 @@
+"""The register job (seismo3d.jobs.register): `seismo3d register MOVING.sgy FIXED.sgy -o transform.json` (source onto
+target, as for point clouds), mixed inputs, models; point clouds through run_register_job."""
+
+import json
+
+import numpy as np
+import pytest
+import segyio
+from typer.testing import CliRunner
+
+from seismo3d.cli import app
+from seismo3d.data import resampled_pair, synthetic_cube
+from seismo3d.seismic import registration_errors
+
+
+@pytest.fixture(scope="module")
+def pair(tmp_path_factory):
+    big = synthetic_cube((96, 96, 104), n_faults=2, seed=3).cube
+    # a rigid pair registered with --model rigid: the command's wiring (tests/seismic/volumes/ and
+    # benchmarks/volumes.py measure the scaled models)
+    fixed, moving, truth = resampled_pair(big, (56, 56, 72), angle_deg=12.0, offset=(2, -1, 1))
+    folder = tmp_path_factory.mktemp("volumes")
+    paths = folder / "fixed.sgy", folder / "moving.sgy"
+    segyio.tools.from_array(str(paths[0]), fixed, dt=4000)
+    segyio.tools.from_array(str(paths[1]), moving, dt=4000)
+    return paths, truth, moving.shape
+
+
+@pytest.mark.slow
+def test_register_segy_cubes_writes_both_transforms(pair, tmp_path):
+    (fixed, moving), truth, moving_shape = pair
+    before = [p.read_bytes() for p in (fixed, moving)]
+    out = tmp_path / "transform.json"
+    res = CliRunner().invoke(app, ["register", str(moving), str(fixed), "-o", str(out), "--model", "rigid"])
+    assert res.exit_code == 0, res.output
+    assert "map rotation" in res.output
+    payload = json.loads(out.read_text())
+    t = np.array(payload["transform_index"])
+    err = registration_errors(t, truth, moving_shape)
+    assert err.rotation_deg <= 0.5 and err.max_scale_pct <= 1.0 and err.centre_error <= 0.5
+    assert payload["model"] == "rigid" and payload["converged"] is True
+    assert payload["moving"] == str(moving) and payload["fixed"] == str(fixed)
+    assert payload["index_axes"] == ["inline", "crossline", "sample"]
+    # no CDP coordinates in these files: bins of 1, sample interval 4 ms from the binary header
+    assert payload["fixed_spacing"] == [1.0, 1.0, 4.0]
+    np.testing.assert_allclose(np.array(payload["transform_physical"]),
+                               np.diag([1, 1, 4.0, 1]) @ t @ np.diag([1, 1, 1 / 4.0, 1]), atol=1e-9)
+    assert 0 < payload["fitness"] <= 1 and payload["inlier_rmse"] >= 0
+    assert [p.read_bytes() for p in (fixed, moving)] == before  # inputs untouched
+
+
+def test_register_mixed_inputs_and_bad_model_are_clear_errors(pair, tmp_path):
+    (fixed, moving), _, _ = pair
+    cloud = tmp_path / "cloud.xyz"
+    np.savetxt(cloud, np.random.default_rng(0).normal(size=(50, 3)))
+    res = CliRunner().invoke(app, ["register", str(cloud), str(fixed), "-o", str(tmp_path / "t.json")])
+    assert res.exit_code == 2 and "not one of each" in res.output
+    res = CliRunner().invoke(app, ["register", str(moving), str(fixed), "-o", str(tmp_path / "t.json"),
+                                   "--model", "similarity"])
+    assert res.exit_code == 2 and "not available for SEG-Y" in res.output
+    assert not (tmp_path / "t.json").exists()
+
+
+def test_point_clouds_through_the_job(tmp_path):
+    from scipy.spatial.transform import Rotation
+
+    from seismo3d.jobs.register import run_register_job
+
+    u, v = np.meshgrid(np.linspace(0, 3, 40), np.linspace(0, 2, 30))
+    src = np.column_stack([u.ravel(), v.ravel(), (0.3 * np.sin(2 * u) * np.cos(3 * v) + 0.1 * u * v).ravel()])
+    truth = np.eye(4)
+    truth[:3, :3] = Rotation.from_euler("xyz", [2, -3, 4], degrees=True).as_matrix()
+    truth[:3, 3] = [0.04, -0.02, 0.03]
+    np.save(tmp_path / "src.npy", src)
+    np.save(tmp_path / "dst.npy", src @ truth[:3, :3].T + truth[:3, 3])
+    (tmp_path / "init.json").write_text(json.dumps({"transform": np.eye(4).tolist()}))
+    job = run_register_job(tmp_path / "src.npy", tmp_path / "dst.npy", tmp_path / "T.json", init=tmp_path / "init.json",
+                           max_distance=[0.3, 0.1, 0.03])
+    assert job.kind == "point_clouds" and job.converged
+    np.testing.assert_allclose(np.array(json.loads((tmp_path / "T.json").read_text())["transform"]), truth,
+                               atol=1e-4)

@@ -1,0 +1,54 @@
+"""Evaluation against ground truth (seismo3d.seismic.evaluation): fault scores, horizon errors, registration errors,
+on hand-made cases with known answers."""
+
+import numpy as np
+import pytest
+
+from seismo3d.errors import InputError
+from seismo3d.seismic import FaultScores, HorizonErrors, evaluate_faults, horizon_errors, registration_errors
+
+
+def test_evaluate_faults():
+    lab = np.zeros((40, 40), np.int16)
+    lab[20, :] = 1
+    pred = np.zeros((40, 40), bool)
+    pred[22, :] = True
+    assert evaluate_faults(pred, lab, tolerance=2) == FaultScores(1.0, 1.0)
+    assert evaluate_faults(pred, lab, tolerance=1) == FaultScores(0.0, 0.0)
+    pred[0, :10] = True
+    scores = evaluate_faults(pred, lab, tolerance=2)
+    assert scores.precision == pytest.approx(40 / 50) and scores.recall == 1.0
+    assert evaluate_faults(np.zeros_like(pred), lab) == FaultScores(0.0, 0.0)
+    assert evaluate_faults(pred, np.zeros_like(lab)).recall == 1.0
+    # border leaves the first and last samples of the last axis out
+    pred2 = np.zeros((40, 40), bool)
+    pred2[0, :3] = True
+    pred2[22, 3:37] = True
+    assert evaluate_faults(pred2, lab, border=3).precision == 1.0
+    with pytest.raises(InputError, match="same shape"):
+        evaluate_faults(pred, lab[:5])
+
+
+def test_horizon_errors():
+    reference = np.array([10.0, 11.0, 12.0, np.nan, 14.0, -1.0])  # NaN and negative: no reference pick
+    times = np.array([10.5, 14.0, np.nan, 3.0, 14.0, 9.0])
+    e = horizon_errors(times, reference)
+    assert isinstance(e, HorizonErrors)
+    assert e.n == 4 and e.coverage == 0.75  # trace 2 is a miss
+    assert e.median_abs == pytest.approx(0.5)  # errors 0.5, 3.0, 0.0
+    assert e.within_2 == 0.5 and e.within_5 == 0.75
+    with pytest.raises(InputError, match="same shape"):
+        horizon_errors(np.zeros(3), np.zeros(4))
+
+
+def test_registration_errors():
+    truth = np.eye(4)
+    est = np.diag([1.01, 1.0, 1.0, 1.0])
+    est[2, 3] = 0.25
+    err = registration_errors(est, truth, (11, 11, 11))
+    np.testing.assert_allclose(err.scale_pct, [1.0, 0.0, 0.0], atol=1e-9)
+    assert err.max_scale_pct == pytest.approx(1.0)
+    assert err.rotation_deg == pytest.approx(0.0)
+    assert err.centre_error == pytest.approx(np.hypot(0.05, 0.25))
+    with pytest.raises(InputError, match="moving_shape"):
+        registration_errors(est, truth, (11, 11))

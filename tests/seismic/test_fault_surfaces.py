@@ -1,0 +1,215 @@
+"""Fault surfaces (seismo3d.seismic.fault_surfaces): thinning and linking against synthetic ground truth, real
+sections, bad input. The five 128^3 cubes are traced once per session (tests/conftest.py, shared with the throw
+tests)."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from scipy import ndimage as ndi
+
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import InputError
+from seismo3d.seismic import (
+    Fault, FaultLikelihood, SkinOptions, evaluate_faults, fault_labels, fault_likelihood, link_faults, thin_faults,
+    trace_faults,
+)
+
+SEEDS = (0, 1, 2, 3, 4)
+
+
+def _trace(cube):
+    res = trace_faults(cube, progress=False)
+    return FaultLikelihood(res.likelihood, res.strike_deg, res.dip_deg), res.thin, res.faults
+
+
+@pytest.fixture(scope="module")
+def traced_2d():
+    out = {}
+    for seed in SEEDS:
+        syn = synthetic_cube((256, 128), seed=seed)
+        out[seed] = (syn, *_trace(syn.cube))
+    return out
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# accuracy on synthetic data (the issue's acceptance criteria)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", SEEDS)
+def test_3d_precision_recall(traced_cube, seed):
+    c = traced_cube(seed)
+    syn, fl, thin, faults = c.syn, c.likelihood, c.thin, c.faults
+    assert isinstance(fl, FaultLikelihood)
+    assert fl.likelihood.shape == syn.cube.shape and fl.likelihood.dtype == np.float32
+    assert 0.0 <= fl.likelihood.min() and fl.likelihood.max() <= 1.0
+    assert np.all((thin == 0) | (thin == c.votes))
+    linked = fault_labels(faults, syn.cube.shape) > 0
+    scores = evaluate_faults(linked, syn.fault_labels, tolerance=2)
+    p, r = scores.precision, scores.recall
+    print(f"3D seed {seed}: fault skins precision {p:.3f} recall {r:.3f}")  # the table of the notes (pytest -s)
+    assert p >= 0.90 and r >= 0.90, (p, r)  # the issue's target
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", SEEDS)
+def test_3d_fault_orientation(traced_cube, seed):
+    """Each true fault is found as one dominant linked fault whose mean normal is within 8 degrees of the truth."""
+    c = traced_cube(seed)
+    syn, faults = c.syn, c.faults
+    dist, nearest = ndi.distance_transform_edt(syn.fault_labels == 0, return_indices=True)
+    for plane in syn.faults:
+        best = 0
+        angle = None
+        for f in faults:
+            idx = tuple(f.points.T)
+            near_id = syn.fault_labels[tuple(nearest[(slice(None),) + idx])]
+            on = (near_id == plane.id) & (dist[idx] <= 2)
+            if on.sum() > best:
+                best = int(on.sum())
+                part = Fault(0, f.points[on], f.likelihood[on], f.strike_deg[on], f.dip_deg[on], f.normals[on])
+                angle = np.degrees(np.arccos(min(1.0, abs(float(part.mean_normal @ plane.normal)))))
+        n_true = int(np.count_nonzero(syn.fault_labels == plane.id))
+        assert best >= 0.5 * n_true, (plane.id, best, n_true)
+        assert angle <= 8.0, (plane.id, angle)  # measured: 0.5-5.7 degrees
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_2d_precision_recall(traced_2d, seed):
+    syn, fl, thin, faults = traced_2d[seed]
+    assert fl.likelihood.shape == syn.cube.shape
+    assert set(np.unique(fl.strike_deg)) <= {90.0, 270.0}
+    assert all(f.points.shape[1] == 2 and f.normals.shape[1] == 2 for f in faults)
+    linked = fault_labels(faults, syn.cube.shape) > 0
+    linked_scores = evaluate_faults(linked, syn.fault_labels, tolerance=2)
+    thin_scores = evaluate_faults(thin > 0, syn.fault_labels, tolerance=2)
+    p, r = linked_scores.precision, linked_scores.recall
+    p_thin, r_thin = thin_scores.precision, thin_scores.recall
+    print(f"2D seed {seed}: linked precision {p:.3f} recall {r:.3f}; thinned {p_thin:.3f} / {r_thin:.3f}")
+    assert p >= 0.85 and r >= 0.90, (p, r)  # measured: precision 0.89-1.00, recall 0.97-1.00
+    assert r_thin >= 0.90, r_thin  # the thinned votes above the lower threshold, before the skins drop short ones
+
+
+def test_2d_dip_direction_and_angle(traced_2d):
+    """Strike 270 = the fault deepens toward increasing trace index (the synthetic's convention), dip within 5 deg."""
+    syn, _, _, faults = traced_2d[0]
+    dist, nearest = ndi.distance_transform_edt(syn.fault_labels == 0, return_indices=True)
+    for plane in syn.faults:
+        on = [f for f in faults if np.mean(syn.fault_labels[tuple(nearest[(slice(None),) + tuple(f.points.T)])]
+                                           == plane.id) > 0.9]
+        assert on, plane
+        big = max(on, key=lambda f: f.size)
+        assert big.mean_strike_deg == pytest.approx(plane.strike_deg)
+        assert big.mean_dip_deg == pytest.approx(plane.dip_deg, abs=5.0)
+
+
+def test_no_faults_in_unfaulted_cube():
+    syn = synthetic_cube((80, 80, 80), n_faults=0, seed=3)
+    fl, thin, faults = _trace(syn.cube)
+    assert faults == []
+    assert np.count_nonzero(thin) < 0.001 * thin.size
+    assert np.median(fl.likelihood) < 0.3
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# building blocks
+
+
+def test_link_faults_separates_crossing_planes():
+    """Thin faults built from the labels, with exact orientations: every linked fault is one true fault."""
+    syn = synthetic_cube((96, 96, 96), seed=2)
+    lab = syn.fault_labels
+    strike = np.zeros(lab.shape, np.float32)
+    dip = np.zeros(lab.shape, np.float32)
+    for plane in syn.faults:
+        strike[lab == plane.id] = plane.strike_deg
+        dip[lab == plane.id] = plane.dip_deg
+    faults = link_faults((lab > 0).astype(np.float32), strike, dip)
+    assert len(faults) >= len(syn.faults)
+    for f in faults:
+        ids = lab[tuple(f.points.T)]
+        assert np.mean(ids == np.bincount(ids).argmax()) > 0.99
+        assert f.points.dtype == np.int64 and f.normals.shape == (f.size, 3)
+    assert sorted(f.size for f in faults)[::-1] == [f.size for f in faults]
+    assert [f.id for f in faults] == list(range(1, len(faults) + 1))
+
+
+def test_link_faults_min_size_and_labels_roundtrip():
+    thin = np.zeros((30, 30, 30), np.float32)
+    thin[10, 5:25, 5:25] = 0.9  # a 400-sample vertical plane
+    thin[20, 3:5, 3:5] = 0.9  # 4 samples
+    strike = np.full(thin.shape, 90.0, np.float32)
+    dip = np.full(thin.shape, 90.0, np.float32)
+    faults = link_faults(thin, strike, dip, min_size=10)
+    assert [f.size for f in faults] == [400]
+    f = faults[0]
+    assert f.mean_dip_deg == pytest.approx(90.0)
+    assert_allclose(np.abs(f.mean_normal), [1, 0, 0], atol=1e-6)
+    labels = fault_labels(faults, thin.shape)
+    assert np.count_nonzero(labels) == 400 and labels[10, 10, 10] == 1 and labels[20, 3, 3] == 0
+    assert len(link_faults(thin, strike, dip, min_size=2)) == 2
+
+
+def test_link_faults_default_size_keeps_a_fault_across_a_slab():
+    # A slab of 6 inlines cut from a survey (as the 18 Penobscot sections): a fault striking across the inlines
+    # spans at most 6 x its height. Sized by the largest face (1 % of 200 x 300 = 600 samples) this 6 x 80 = 480
+    # sample fault was dropped; the smaller vertical face (1 % of 6 x 300, at least 100) keeps it, and still drops
+    # a 4 x 20 = 80 sample patch.
+    thin = np.zeros((6, 200, 300), np.float32)
+    thin[:, 100, 100:180] = 0.9
+    thin[1:5, 40, 10:30] = 0.9
+    strike = np.zeros(thin.shape, np.float32)
+    dip = np.full(thin.shape, 90.0, np.float32)
+    faults = link_faults(thin, strike, dip)
+    assert [f.size for f in faults] == [480]
+    assert set(faults[0].points[:, 1]) == {100}
+
+
+def test_thin_faults_is_one_sample_wide():
+    syn = synthetic_cube((256, 128), n_faults=1, seed=7)
+    fl = fault_likelihood(syn.cube)
+    thin = thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg)
+    rows = [np.count_nonzero(thin[:, t]) for t in range(20, 108)]
+    assert np.median(rows) == 1
+    assert np.all((thin == 0) | (thin == fl.likelihood))
+    # fixed thresholds are honoured
+    assert np.count_nonzero(thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg, threshold=1.0)) == 0
+
+
+def test_bad_input():
+    good = np.zeros((10, 10, 10), np.float32)
+    with pytest.raises(InputError, match="same shape"):
+        thin_faults(good, good, good[:5])
+    with pytest.raises(InputError, match="threshold"):
+        thin_faults(good, good, good, threshold=(0.8, 0.2))
+    with pytest.raises(ValueError):  # InputError is a ValueError
+        link_faults(good, good, good, max_angle=-1)
+    with pytest.raises(InputError, match="outside"):
+        fault_labels([Fault(1, np.array([[0, 0, 12]]), np.ones(1), np.zeros(1), np.ones(1), np.ones((1, 3)))],
+                     good.shape)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# real data: runs, no accuracy claim (see the PNG check in benchmarks/faults.py and the report)
+
+_SECTIONS = {"costarica_gx808": (825, 210), "campos_gx373": (550, 300)}
+
+
+@pytest.mark.parametrize("name", sorted(_SECTIONS))
+def test_real_sections_run(name):
+    root = os.environ.get("SEISMO3D_DATA_DIR")
+    if not root:
+        pytest.skip("SEISMO3D_DATA_DIR is not set")
+    path = Path(root) / "seismic" / "sections" / f"{name}.f32be"
+    section = np.fromfile(path, ">f4").reshape(_SECTIONS[name])
+    fl, thin, faults = _trace(section)
+    assert fl.likelihood.shape == section.shape
+    # both sections show dozens of faults; the counts are broad sanity bounds, not accuracy claims
+    assert 10 <= len(faults) <= 400
+    assert all(f.size >= SkinOptions().smallest(section.shape) for f in faults)
+    assert np.count_nonzero(thin) < 0.15 * thin.size  # thinned votes: 12 % on the densely faulted gx808

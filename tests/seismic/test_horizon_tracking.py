@@ -1,0 +1,210 @@
+"""Horizon tracking (seismo3d.seismic.horizon_tracking) against ground truth: the generator's horizons (2D sections,
+faulted cubes with traced faults), people's picks on the 18 real Penobscot inlines, beside the plain autotracker; gap
+closing and the lateral continuity check; bad input."""
+
+import numpy as np
+import pytest
+
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import InputError
+from seismo3d.seismic import (
+    FaultCrossings, TrackingOptions, autotrack, fill_horizon, horizon_errors, reflector_picks, track_horizon,
+)
+from seismo3d.seismic.horizon_tracking import close_gaps, despike
+from seismo3d.seismic.reflectors import ReflectorSlice
+
+
+def _seed_on(ref, i0=None):
+    if ref.ndim == 1:
+        ok = np.nonzero(np.isfinite(ref))[0]
+        j0 = int(ok[np.argmin(np.abs(ok - ref.size // 2))])
+        return (j0, float(ref[j0]))
+    ok = np.nonzero(np.isfinite(ref[i0]))[0]
+    j0 = int(ok[np.argmin(np.abs(ok - ref.shape[1] // 2))])
+    return (i0, j0, float(ref[i0, j0]))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", [0, 1])
+def test_track_2d_section_without_faults_follows_true_horizons(seed):
+    syn = synthetic_cube((160, 128), n_faults=0, seed=seed, noise=0.2)
+    for k in range(syn.horizons.shape[0]):
+        ref = syn.horizons[k]
+        pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+        hz = track_horizon(syn.cube, _seed_on(ref), polarity=pol)
+        e = horizon_errors(hz.times, ref)
+        assert e.median_abs <= 0.3, (k, e)
+        assert e.within_2 >= 0.97, (k, e)
+
+
+# the synthetic section of benchmarks/horizons.py prints these horizons (point-to-plane, cube seeds 0-2): all 18 at
+# medians 0.05-0.16 samples, 57-98 % of each horizon's traces within 2 samples. Before the crossing test used each
+# fault's local plane, cube 0 horizon 1 (seeded where two faults cross) was 5.4 samples off.
+@pytest.mark.parametrize("cube_seed", [0, 1, 2])
+@pytest.mark.slow
+def test_track_3d_across_faults_median_error_within_one_sample(faulted_cube, cube_seed):
+    syn, faults = faulted_cube(cube_seed)
+    medians, within_2 = [], []
+    for k in range(syn.horizons.shape[0]):
+        ref = syn.horizons[k]
+        pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+        hz = track_horizon(syn.cube, _seed_on(ref, syn.shape[0] // 2), polarity=pol, faults=faults, features=None)
+        e = horizon_errors(hz.times, ref)
+        medians.append(e.median_abs)
+        within_2.append(e.within_2)
+    assert np.all(np.isfinite(medians)) and np.max(medians) <= 1.0, medians
+    assert np.mean(within_2) >= 0.80, within_2
+
+
+@pytest.mark.slow
+def test_fault_throw_makes_the_jump(faulted_cube):
+    # the horizon that crosses faults: without fault input the tracker follows the wrong reflector
+    syn, faults = faulted_cube(0)
+    k = 2
+    ref = syn.horizons[k]
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    seed = _seed_on(ref, syn.shape[0] // 2)
+    with_faults = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, faults=faults, features=None).times, ref)
+    without = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, features=None).times, ref)
+    assert with_faults.median_abs <= 1.0
+    assert without.median_abs > 3.0
+
+
+def test_low_confidence_picks_are_empty_and_fill_is_explicit():
+    syn = synthetic_cube((120, 96), n_faults=0, seed=2, noise=0.1)
+    cube = syn.cube.copy()
+    cube[60:64] = np.random.default_rng(0).standard_normal((4, cube.shape[1])).astype(np.float32)  # noise traces
+    k = 2
+    ref = syn.horizons[k]
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    hz = track_horizon(cube, (30, float(ref[30])), polarity=pol, min_confidence=0.6)
+    assert np.isnan(hz.times[60:64]).sum() >= 2  # the noise traces are not guessed
+    assert np.isfinite(hz.times[70:]).mean() > 0.9  # ... and tracking goes on beyond them
+    filled = fill_horizon(hz)
+    assert np.isfinite(filled.times[1:-1]).all()
+    assert np.isnan(hz.times[60:64]).sum() >= 2  # the input is not modified
+    gap = np.isnan(hz.times)
+    assert np.nanmax(np.abs(filled.times[gap] - ref[gap])) < 2.0
+
+
+def test_gap_closing_refills_a_hole_and_leaves_noise_empty():
+    syn = synthetic_cube((24, 40, 64), n_faults=0, seed=4, noise=0.05)
+    k = 2
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    hz = track_horizon(syn.cube, _seed_on(syn.horizons[k], 12), polarity=pol, features=None)
+    assert np.isfinite(hz.times).all()
+    opt = TrackingOptions()
+    times, conf = hz.times.astype(np.float64), hz.confidence.astype(np.float64)
+    holed = times.copy()
+    holed[8:14, 10:18] = np.nan
+    assert close_gaps(syn.cube, holed, conf.copy(), polarity=pol, options=opt) == 48
+    np.testing.assert_allclose(holed[8:14, 10:18], times[8:14, 10:18], atol=0.5)
+    # where the traces hold only noise, nothing correlates at min_confidence 0.6: the hole stays empty (at the
+    # default 0.3, chance correlations fill a few noise traces)
+    noisy = syn.cube.copy()
+    noisy[8:14, 10:18] = np.random.default_rng(1).standard_normal((6, 8, noisy.shape[2])).astype(np.float32)
+    holed = times.copy()
+    holed[8:14, 10:18] = np.nan
+    close_gaps(noisy, holed, conf.copy(), polarity=pol, faults=FaultCrossings.empty(3),
+               options=TrackingOptions(min_confidence=0.6))
+    assert np.isnan(holed[9:13, 12:16]).all()
+
+
+def test_despike_puts_a_cycle_skipped_pick_back_and_leaves_a_step_alone():
+    syn = synthetic_cube((60, 96), n_faults=0, seed=3, noise=0.05)
+    k = 2
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    sl = ReflectorSlice(syn.cube, pol, (2.0, 2.0))
+    truth = np.array([sl.snap(j, syn.horizons[k][j], 1.0) for j in range(60)])
+    assert np.isfinite(truth).all()
+    picks, offsets = reflector_picks(syn.cube, polarity=pol)
+    other = picks[offsets[30]:offsets[31]]
+    wrong = other[np.argmin(np.where(np.abs(other - truth[30]) > 3, np.abs(other - truth[30]), np.inf))]
+    out = truth.copy()
+    out[30] = wrong  # one pick on the neighbouring cycle
+    out[45:] += 6.0  # and a step (a fault's jump) further on
+    carried, conf = out.copy(), np.ones(60)
+    changed = despike(sl, out, carried, conf, min_confidence=0.3)
+    assert changed == 1
+    assert out[30] == pytest.approx(truth[30]) and carried[30] == pytest.approx(truth[30])
+    np.testing.assert_array_equal(out[45:], truth[45:] + 6.0)
+
+
+def test_bad_input_gives_clear_errors():
+    syn = synthetic_cube((20, 20, 64), n_faults=0, seed=0)
+    with pytest.raises(InputError, match="outside the data"):
+        track_horizon(syn.cube, (25, 3, 30.0))
+    with pytest.raises(InputError, match="outside the data"):
+        track_horizon(syn.cube, (5, 3, 64.0))
+    dead = syn.cube.copy()
+    dead[5, 3] = 0.0
+    with pytest.raises(InputError, match="dead trace"):
+        track_horizon(dead, (5, 3, 30.0))
+    with pytest.raises(InputError, match="polarity"):
+        track_horizon(syn.cube, (5, 3, 30.0), polarity="max")
+    with pytest.raises(InputError, match="seeds must be"):
+        track_horizon(syn.cube, (5, 30.0))
+    with pytest.raises(InputError, match="half_traces must be an int >= 1"):
+        track_horizon(syn.cube, (5, 3, 30.0), half_traces=2.5)
+    with pytest.raises(InputError, match="unknown keyword argument"):
+        track_horizon(syn.cube, (5, 3, 30.0), half_trace=5)
+
+
+def test_options_object_and_keywords_agree():
+    syn = synthetic_cube((160, 128), n_faults=0, seed=1, noise=0.2)
+    ref = syn.horizons[1]
+    pol = "peak" if syn.horizon_polarity[1] > 0 else "trough"
+    a = track_horizon(syn.cube, _seed_on(ref), polarity=pol, options=TrackingOptions(step=6, min_confidence=0.5))
+    b = track_horizon(syn.cube, _seed_on(ref), polarity=pol, step=6, min_confidence=0.5)
+    np.testing.assert_array_equal(a.times, b.times)
+
+
+# measured by benchmarks/horizons.py (point-to-plane, no fault input): % within 5 samples of the people's picks on
+# live traces, and the plain autotracker's; the issue's target (99 %, median <= 1) is reached on horizons 0-4 without
+# fault input, all asserted here (horizon 6 needs the faults: next test)
+@pytest.mark.slow
+@pytest.mark.parametrize("k, within_5, median, plain_within_5",
+                         [(0, 0.995, 1.0, 1.0), (1, 0.990, 1.0, 0.965), (2, 0.990, 0.5, 0.988),
+                          (3, 0.995, 0.5, 0.9995), (4, 0.995, 0.5, 1.0)])
+def test_penobscot_horizons_against_peoples_picks(penobscot, k, within_5, median, plain_within_5):
+    ref = penobscot.horizons[:, k]
+    seed = (0, 256, ref[0, 256])
+    ours = horizon_errors(track_horizon(penobscot.cube, seed, features=None).times, ref)
+    plain = horizon_errors(autotrack(penobscot.cube, seed).times, ref)
+    assert ours.within_5 >= within_5 and ours.median_abs <= median
+    assert plain.within_5 == pytest.approx(plain_within_5, abs=0.002)  # the peer, as the issue describes it
+    assert ours.within_5 >= plain.within_5 - 0.005
+
+
+# With the faults trace_faults finds in the cube (the issue's "use the fault throw from the fault tracing"), as in the
+# "traced faults" rows of benchmarks/horizons.py. Horizon 6 crosses the people's fault at crossline ~55 (throw about
+# 8 samples): it was at 89 % while a run of five equal 8-bit values on that fault counted as dead samples and blanked
+# its likelihood over inlines 0-5, and while steps ended in the fault's drag zone. Horizon 2 crosses a 28-sample fault
+# whose throw was measured one reflector period off (-12 samples) before the throw search was held to a third of
+# the fault's height: it was at 92.7 %. Horizon 5 reaches 99 % but its median stays at 1.5: the people's picks wander
+# within 6-8-sample clipped plateaus (about +1 sample from the centre on traces 0-200, -2.5 on 210-511, on every
+# inline), so no extremum tracker meets the median target there.
+@pytest.mark.slow
+@pytest.mark.parametrize("k, median", [(0, 1.0), (1, 1.0), (2, 0.5), (3, 0.5), (4, 0.5), (5, 1.5), (6, 1.0)])
+def test_penobscot_horizons_with_traced_faults(penobscot, penobscot_faults, k, median):
+    ref = penobscot.horizons[:, k]
+    seed = (0, 256, ref[0, 256])
+    ours = horizon_errors(track_horizon(penobscot.cube, seed, faults=penobscot_faults, features=None).times, ref)
+    assert ours.within_5 >= 0.99 and ours.median_abs <= median, ours
+
+
+@pytest.mark.slow
+def test_seed_on_a_fault_steps_off_it_by_registration(faulted_cube):
+    # A seed on a traced fault is in neither wall as far as the fault surface can tell; the first step to each side
+    # stays in the seed's wall or jumps out of the other one, whichever the seed's waveform correlates with better.
+    # Synthetic cube 1, horizon 4 is seeded on a fault traced 1-2 traces beside the true one; deciding the side
+    # from the surface alone put one side of the seed inline 4.4 samples off (median).
+    syn, faults = faulted_cube(1)
+    k = 4
+    ref = syn.horizons[k]
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    seed = _seed_on(ref, syn.shape[0] // 2)
+    assert TrackingOptions().fault_crossings(faults, 3).on_fault(np.array(seed)), "the seed is no longer on a fault"
+    hz = track_horizon(syn.cube, seed, polarity=pol, faults=faults, features=None)
+    line = horizon_errors(hz.times[seed[0]], ref[seed[0]])
+    assert line.median_abs <= 0.5 and line.within_2 >= 0.8, line

@@ -1,0 +1,47 @@
+"""Fault rendering (seismo3d.viz.faults): the pyvista scene off screen and the slice pictures of traced faults."""
+
+import numpy as np
+import pytest
+
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import InputError
+from seismo3d.seismic import trace_faults
+
+
+@pytest.fixture(scope="module")
+def small_cube():
+    syn = synthetic_cube((48, 48, 48), n_faults=2, seed=1)
+    return syn.cube, trace_faults(syn.cube, progress=False)
+
+
+def test_show_faults_off_screen(small_cube, tmp_path):
+    """VTK renders off screen here: the picture shows the slices (grey) and fault 1 in its tab10 blue."""
+    from matplotlib.image import imread
+
+    from seismo3d.viz.faults import show_faults
+
+    cube, res = small_cube
+    shot = tmp_path / "scene.png"
+    show_faults(cube, res.faults, throws=res.throws, screenshot=shot, window_size=(400, 300))
+    img = (imread(shot)[..., :3] * 255).round()
+    assert img.shape == (300, 400, 3)
+    blue = np.all(np.abs(img - [31, 119, 180]) < 60, axis=-1) & (img[..., 2] > img[..., 0] + 60)
+    grey = (np.ptp(img, axis=-1) < 8) & (img.mean(axis=-1) < 200)
+    assert blue.mean() > 0.01 and grey.mean() > 0.01
+    with pytest.raises(InputError):
+        show_faults(cube, res.faults, color_by="colour", screenshot=shot)
+
+
+def test_plot_fault_slices_arguments(small_cube, tmp_path):
+    from seismo3d.viz.faults import plot_fault_slices
+
+    cube, res = small_cube
+    path = plot_fault_slices(cube, res.thin, path=tmp_path / "thin.png", slices=(10, 20, 30))
+    assert path.read_bytes()[:4] == b"\x89PNG"
+    with pytest.raises(InputError, match="slices"):
+        plot_fault_slices(cube, res.faults, path=tmp_path / "x.png", slices=(10, 20, 48))
+    with pytest.raises(InputError, match="shape"):
+        plot_fault_slices(cube, res.thin[:, :, :10], path=tmp_path / "x.png")
+    with pytest.raises(InputError, match="does not exist"):
+        plot_fault_slices(cube, res.faults, path=tmp_path / "no" / "x.png")
+    assert not (tmp_path / "x.png").exists()

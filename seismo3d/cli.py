@@ -394,6 +394,8 @@ def plan(
     typer.echo(f"path of {len(p.cells)} cells, {p.length_m:.1f} m, from {s} to {g} on a {result.grid.shape[0]} x "
                f"{result.grid.shape[1]} grid ({result.grid.description}); A* expanded {p.n_expanded} cells in "
                f"{result.seconds:.3f} s -> {output}")
+
+
 @app.command("map")
 @_friendly({"max_frames": "--max-frames", "voxel_size": "--voxel-size"})
 def map_(

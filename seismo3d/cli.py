@@ -396,6 +396,57 @@ def plan(
                f"{result.seconds:.3f} s -> {output}")
 
 
+@app.command("map")
+@_friendly({"max_frames": "--max-frames", "voxel_size": "--voxel-size"})
+def map_(
+    sequence: pathlib.Path = typer.Argument(..., help="Sequence folder: TUM RGB-D (rgb.txt, depth.txt [, associations.txt, "
+                                                      "groundtruth.txt]) or 7-Scenes (frame-NNNNNN.depth.png, ...)."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing): "
+                                                                      "trajectory.txt, keyframes.json, mesh.ply, "
+                                                                      "map.png."),
+    max_frames: Optional[int] = typer.Option(None, "--max-frames", help="Map only the first N frames."),
+    loop_closure: bool = typer.Option(True, "--loop-closure/--no-loop-closure",
+                                      help="Look for loops (bag of words + fused ICP) and optimise the pose graph."),
+    features: bool = typer.Option(True, "--features/--no-features",
+                                  help="Use ORB features (fused ICP term, landmarks, loops); off: depth only."),
+    voxel_size: float = typer.Option(0.01, "--voxel-size", help="TSDF voxel edge, metres."),
+    render: bool = typer.Option(True, "--render/--no-render", help="Write map.png (off-screen pyvista)."),
+) -> None:
+    """Map an RGB-D SEQUENCE: frame-to-model fused ICP tracking, Kalman prediction, a TSDF map, keyframes and loop
+    closure. Writes the trajectory (TUM format), the keyframe graph, the mesh and a picture of the map into OUTPUT.
+
+    Ctrl-C stops the run and still writes the trajectory of the frames done and the map so far.
+    """
+    from dataclasses import replace
+
+    from .errors import InputError
+    from .jobs.map import run_map_job
+    from .mapping import MapperOptions, TSDFOptions
+
+    if voxel_size <= 0:
+        raise InputError(f"--voxel-size must be > 0; got {voxel_size}")
+    if max_frames is not None and max_frames < 1:
+        raise InputError(f"--max-frames must be >= 1; got {max_frames}")
+    options = MapperOptions(loop_closure=loop_closure, use_features=features)
+    options = replace(options, tsdf=TSDFOptions(voxel_size=voxel_size))
+
+    with _one_line_warnings():
+        try:
+            written = run_map_job(sequence, output, options=options, max_frames=max_frames, render=render)
+        except KeyboardInterrupt:
+            typer.echo(f"interrupted: the trajectory of the frames done and the map so far are in {output}", err=True)
+            raise typer.Exit(130) from None
+    summary = written["summary"]
+    typer.echo(f"{summary['frames_tracked']} of {summary['frames_in_sequence']} frames tracked, "
+               f"{summary['keyframes']} keyframes, {summary['loop_closures']} loop closures, "
+               f"{summary['frames_per_second']:.1f} frames/s -> {output}")
+    if summary.get("evaluation"):
+        ev = summary["evaluation"]
+        typer.echo(f"against the sequence's reference: ATE RMSE {100 * ev['ate_rmse_m']:.2f} cm, RPE "
+                   f"{100 * ev['rpe_translation_rmse_m']:.2f} cm / {ev['rpe_rotation_rmse_deg']:.2f} deg per frame")
+    typer.echo("wrote " + ", ".join(pathlib.Path(p).name for k, p in written.items() if k != "summary"))
+
+
 class Polarity(str, Enum):
     peak = "peak"
     trough = "trough"

@@ -19,6 +19,7 @@ __all__ = [
     "PlanningError",
     "Seismo3dWarning",
     "DegenerateGeometryWarning",
+    "FrameSkippedWarning",
 ]
 
 
@@ -66,3 +67,8 @@ class Seismo3dWarning(UserWarning):
 
 class DegenerateGeometryWarning(Seismo3dWarning):
     """The data does not constrain every degree of freedom of the transform (e.g. a plane under point-to-plane ICP)."""
+
+
+class FrameSkippedWarning(Seismo3dWarning):
+    """A frame of a sequence could not be used (missing file, wrong depth dtype or size, no valid depth, tracking
+    lost) and was skipped; the map and trajectory go on from the other frames."""

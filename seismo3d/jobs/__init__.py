@@ -14,4 +14,5 @@ imports a job.
 - :mod:`seismo3d.jobs.match`: ``run_match_job`` (``seismo3d match``)
 - :mod:`seismo3d.jobs.lineaments`: ``run_lineaments_job`` (``seismo3d lineaments``)
 - :mod:`seismo3d.jobs.plan`: ``run_plan_job`` (``seismo3d plan``)
+- :mod:`seismo3d.jobs.map`: ``run_map_job`` (``seismo3d map``: RGB-D sequences)
 """

@@ -9,7 +9,9 @@
 - :func:`horizon_surface`: a tracked horizon as a pyvista surface (holes where it is empty);
   :func:`plot_horizon_section`: horizon picks over a section (matplotlib).
 - :func:`show_point_clouds`: point clouds before / after a registration; :func:`plot_matches`: image matches.
-- :func:`plot_rose`, :func:`plot_lineament_map`: PNGs of terrain lineaments (rose diagram, map over a hillshade).
+- :func:`show_map` / :func:`render_map`: an RGB-D map (TSDF mesh) with the camera trajectory and keyframe frusta.
+- :func:`show_terrain`: a DEM in 3D with lineaments and a planned path; :func:`plot_rose`,
+  :func:`plot_lineament_map`: PNGs of terrain lineaments (rose diagram, map over a hillshade).
 - :func:`show_faults`: a quick scene of a cube's middle slices and its fault surfaces in index space.
 - :mod:`seismo3d.viz.plotting`: how scenes are shown (window, Jupyter with trame or a static picture, off-screen PNG
   through EGL; what a slim image needs).
@@ -18,13 +20,16 @@
 from .clouds import plot_matches, show_point_clouds
 from .faults import fault_surfaces, plot_fault_slices, save_polydata, show_faults
 from .horizons import horizon_surface, plot_horizon_section
+from .maps import render_map, show_map
 from .plotting import finish_scene, jupyter_backend, new_plotter, symmetric_clip
 from .seismic import (
     CubeGeometry, cube_geometry, geometry_of_segy, grid_index, place_index_mesh, seismic_grid, show_seismic,
 )
 from .terrain import plot_lineament_map, plot_rose
+from .terrain3d import show_terrain
 
 __all__ = ["CubeGeometry", "cube_geometry", "geometry_of_segy", "grid_index", "place_index_mesh", "seismic_grid",
            "show_seismic", "plot_fault_slices", "fault_surfaces", "horizon_surface", "save_polydata", "show_faults",
            "finish_scene", "jupyter_backend", "new_plotter", "symmetric_clip", "plot_horizon_section",
-           "plot_matches", "show_point_clouds", "plot_lineament_map", "plot_rose"]
+           "plot_matches", "show_point_clouds", "plot_lineament_map", "plot_rose", "render_map", "show_map",
+           "show_terrain"]

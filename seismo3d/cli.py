@@ -500,8 +500,8 @@ class FaultColour(str, Enum):
             "window_size": "--size", "plan": "--path"})
 def render(
     input: pathlib.Path = typer.Argument(
-        ..., metavar="INPUT", help="A SEG-Y cube, the output folder of 'seismo3d faults', a horizon file "
-                                   "('inline xline time' rows) or a GeoTIFF DEM."),
+        ..., metavar="INPUT", help="A SEG-Y cube, the output folder of 'seismo3d faults' or 'seismo3d map', a "
+                                   "horizon file ('inline xline time' rows) or a GeoTIFF DEM."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="The PNG to write."),
     seismic: Optional[pathlib.Path] = typer.Option(None, help="SEG-Y cube drawn under faults or a horizon (a faults "
                                                               "folder from --demo uses its demo_seismic.sgy)."),
@@ -513,8 +513,8 @@ def render(
     plan: Optional[pathlib.Path] = typer.Option(None, "--path", help="DEM: the CSV of 'seismo3d plan' to draw."),
 ) -> None:
     """Render INPUT off screen (no display needed) into a PNG: a cube's inline, crossline and time slices, faults
-    coloured by id or throw with the fault likelihood as a semi-transparent volume, a horizon coloured by time, or a
-    DEM coloured by elevation with its lineaments and a planned path."""
+    coloured by id or throw with the fault likelihood as a semi-transparent volume, a horizon coloured by time, an
+    RGB-D map (mesh, trajectory, keyframes), or a DEM coloured by elevation with its lineaments and a planned path."""
     from .errors import InputError
     from .jobs.render import run_render_job
 
@@ -527,7 +527,7 @@ def render(
                              vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
                              window_size=(width, height))
     what = {"segy": "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon",
-            "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM"}[job.kind]
+            "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM", "map": "map"}[job.kind]
     typer.echo(f"{what} of {input.name}: {job.caption} -> {job.picture}")
 
 

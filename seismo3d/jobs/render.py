@@ -1,4 +1,5 @@
-"""The ``seismo3d render`` command: a picture of a SEG-Y cube, a ``faults`` output folder, a horizon file or a DEM.
+"""The ``seismo3d render`` command: a picture of a SEG-Y cube, a ``faults`` or ``map`` output folder, a horizon file
+or a DEM.
 
 :func:`run_render_job` finds out what the input is, reads it, builds one pyvista scene
 (:func:`seismo3d.viz.show_seismic`) and renders it off screen into a PNG.
@@ -28,7 +29,7 @@ class RenderJob:
 
     Attributes
     ----------
-    kind : {'segy', 'faults', 'horizon', 'dem'}
+    kind : {'segy', 'faults', 'horizon', 'dem', 'map'}
         What the input was.
     picture : pathlib.Path
         The PNG written.
@@ -54,8 +55,10 @@ def _kind(path: Path) -> str:
     if path.is_dir():
         if (path / "faults.vtp").is_file():
             return "faults"
-        raise InputError(f"{path} is a folder without faults.vtp; pass the output folder of 'seismo3d faults' (or a "
-                         "file)")
+        if (path / "mesh.ply").is_file():
+            return "map"
+        raise InputError(f"{path} is a folder without faults.vtp or mesh.ply; pass the output folder of 'seismo3d "
+                         "faults' or 'seismo3d map' (or a file)")
     suffix = path.suffix.lower()
     if suffix in _SEGY:
         return "segy"
@@ -146,6 +149,32 @@ def _render_dem(path: Path, output: Path, *, lineaments, plan, vertical_exaggera
     return RenderJob(kind="dem", picture=output, caption=caption, n_lineaments=0 if found is None else len(found))
 
 
+def _render_map(path: Path, output: Path, *, window_size) -> RenderJob:
+    """The mesh, trajectory and keyframes of a ``seismo3d map`` folder."""
+    import json
+
+    import pyvista as pv
+
+    from ..mapping import read_tum_trajectory
+    from ..viz.maps import show_map
+
+    try:
+        mesh = pv.read(path / "mesh.ply")
+    except Exception as exc:  # noqa: BLE001 - VTK's reader raises assorted errors on a damaged file
+        raise InputError(f"{path / 'mesh.ply'} cannot be read as a PLY mesh ({exc}); write it again with "
+                         "'seismo3d map'") from None
+    poses = np.zeros((0, 4, 4))
+    if (path / "trajectory.txt").is_file():
+        _, poses = read_tum_trajectory(path / "trajectory.txt")
+    keyframes = np.zeros((0, 4, 4))
+    if (path / "keyframes.json").is_file():
+        graph = json.loads((path / "keyframes.json").read_text())
+        keyframes = np.array([k["pose"] for k in graph.get("keyframes", [])], dtype=np.float64).reshape(-1, 4, 4)
+    show_map(mesh, poses, keyframes, screenshot=output, window_size=window_size)
+    caption = f"{mesh.n_points} mesh vertices, {len(poses)} camera poses, {len(keyframes)} keyframes"
+    return RenderJob(kind="map", picture=output, caption=caption)
+
+
 def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", vertical_exaggeration=None,
                    lineaments=False, plan=None, window_size=(1200, 900)) -> RenderJob:
     """Render INPUT off screen into a PNG: the ``seismo3d render`` command.
@@ -161,7 +190,9 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
       over the slices of ``seismic`` when given;
     * a GeoTIFF DEM: its surface coloured by elevation (metres about its centre), with its lineaments
       (``lineaments=True``: :func:`~seismo3d.terrain.extract_lineaments`) and a path planned by ``seismo3d plan``
-      (``plan``: its CSV) draped over it (:func:`seismo3d.viz.terrain3d.show_terrain`).
+      (``plan``: its CSV) draped over it (:func:`seismo3d.viz.terrain3d.show_terrain`);
+    * the output folder of ``seismo3d map``: ``mesh.ply`` coloured by height, the trajectory of ``trajectory.txt``
+      and the keyframes of ``keyframes.json`` as camera pyramids (:func:`seismo3d.viz.maps.show_map`).
 
     Parameters
     ----------
@@ -204,6 +235,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
     kind = _kind(path)
+    if kind == "map":
+        return _render_map(path, output, window_size=window_size)
     if kind == "dem":
         return _render_dem(path, output, lineaments=lineaments, plan=plan,
                            vertical_exaggeration=vertical_exaggeration, window_size=window_size)

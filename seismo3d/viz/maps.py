@@ -29,7 +29,9 @@ def _mesh_polydata(mesh):
     import pyvista as pv
 
     if hasattr(mesh, "n_points"):
-        return mesh if mesh.n_points else None
+        # points and faces only: shading from normals pyvista computes (a PLY's stored normals, made active by the
+        # reader, lit the map from behind)
+        return pv.PolyData(np.asarray(mesh.points), mesh.faces) if mesh.n_points and mesh.n_cells else None
     if not (len(mesh.vertices) and len(mesh.faces)):
         return None
     faces = np.hstack([np.full((len(mesh.faces), 1), 3, np.int64), mesh.faces]).ravel()

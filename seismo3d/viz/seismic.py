@@ -323,17 +323,35 @@ def _slice_indices(slices, shape):
     return tuple(out)
 
 
-def _add_slices(plotter, grid, geometry, idx, *, cmap, clim):
-    """The inline, crossline and time-slice planes (an index None leaves its plane out)."""
-    ni, nj, nk = geometry.shape
-    i, j, k = grid_index(geometry, [0 if v is None else v for v in idx])
-    boxes = [(i, i, 0, nj - 1, 0, nk - 1), (0, ni - 1, j, j, 0, nk - 1), (0, ni - 1, 0, nj - 1, k, k)]
-    for box, wanted in zip(boxes, idx):
+_PLANES = ("inline", "crossline", "time slice")
+
+
+def _plane(grid, geometry, axis: int, index: int):
+    """The plane of the cube's ``axis`` (0 inline, 1 crossline, 2 sample) at the cube's ``index``."""
+    ijk = [0, 0, 0]
+    ijk[axis] = index
+    g = grid_index(geometry, ijk)[axis]
+    box = [0, geometry.shape[0] - 1, 0, geometry.shape[1] - 1, 0, geometry.shape[2] - 1]
+    box[2 * axis] = box[2 * axis + 1] = g
+    return grid.extract_subset(box)
+
+
+def _add_slices(plotter, grid, geometry, idx, *, cmap, clim, sliders=False):
+    """The inline, crossline and time-slice planes (an index None leaves its plane out); with ``sliders``, one
+    slider per plane moves it (each plane is a named actor that the slider's callback replaces)."""
+    style = dict(scalars=grid.active_scalars_name, cmap=cmap, clim=clim, show_scalar_bar=False, lighting=False)
+    for axis, wanted in enumerate(idx):
         if wanted is None:
             continue
-        plane = grid.extract_subset(box)
-        plotter.add_mesh(plane, scalars=grid.active_scalars_name, cmap=cmap, clim=clim, show_scalar_bar=False,
-                         lighting=False)
+        plotter.add_mesh(_plane(grid, geometry, axis, wanted), name=_PLANES[axis], **style)
+        if sliders:
+            def move(value, axis=axis):
+                plotter.add_mesh(_plane(grid, geometry, axis, int(round(value))), name=_PLANES[axis], **style)
+
+            y = 0.86 - 0.13 * axis
+            plotter.add_slider_widget(move, [0, geometry.shape[axis] - 1], value=wanted, title=f"{_PLANES[axis]} index",
+                                      fmt="%.0f", pointa=(0.03, y), pointb=(0.25, y), style="modern",
+                                      title_height=0.025, slider_width=0.02, tube_width=0.008)
 
 
 def _add_faults(plotter, faults, throws, geometry, color_by):
@@ -416,7 +434,7 @@ def _outline(geometry: CubeGeometry):
 
 def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, faults=None, throws=None,
                  color_faults_by="fault_id", horizons=(), likelihood=None, likelihood_threshold=None,
-                 cmap="seismic", clip_percentile=99.0, screenshot=None, window_size=(1024, 768),
+                 cmap="seismic", clip_percentile=99.0, sliders=False, screenshot=None, window_size=(1024, 768),
                  jupyter_backend=None, camera="iso", title=None):
     """One scene of a seismic cube: inline, crossline and time-slice planes, with faults, horizons and the fault
     likelihood.
@@ -448,6 +466,9 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
         Matplotlib colour map of the amplitudes (a diverging one: 'seismic', 'RdBu_r', 'gray').
     clip_percentile : float, optional
         In (0, 100].
+    sliders : bool, optional
+        Add one slider per plane that moves it through the cube (in a window, or in Jupyter with trame; a static
+        picture would only show the sliders).
     screenshot : str or os.PathLike, optional
         Render off screen and write this PNG instead of showing the scene.
     window_size : (int, int), optional
@@ -482,7 +503,8 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
     if data is not None:
         grid = seismic_grid(data, geometry)
         clip = symmetric_clip(data, clip_percentile)
-        _add_slices(plotter, grid, geometry, _slice_indices(slices, data.shape), cmap=cmap, clim=(-clip, clip))
+        _add_slices(plotter, grid, geometry, _slice_indices(slices, data.shape), cmap=cmap, clim=(-clip, clip),
+                    sliders=sliders)
     if faults is not None:
         _add_faults(plotter, faults, throws, geometry, color_faults_by)
     if horizons is not None and len(horizons):

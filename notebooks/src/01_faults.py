@@ -14,7 +14,7 @@
 #
 # To run in about a minute, the notebook traces a window of the slab: the middle 256 traces and samples 450-1089,
 # which hold the two deepest of the people's horizons and the top of the faulted interval below them. The whole
-# slab (18 x 512 x 1536) takes about 16 GB and several minutes.
+# slab (18 x 512 x 1536) takes several times as long.
 
 # %%
 %matplotlib inline

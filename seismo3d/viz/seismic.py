@@ -412,7 +412,7 @@ def _add_likelihood(plotter, likelihood, geometry, threshold):
     grid.point_data["fault likelihood"] = np.maximum(grid.point_data["fault likelihood"], np.float32(threshold))
     opacity = np.linspace(0.0, 0.5, 64)  # over [threshold, 1]; transparent below (clamped colour range)
     voxel = float(np.linalg.norm(geometry.axes, axis=1).mean())
-    volume = plotter.add_volume(grid, scalars="fault likelihood", cmap="magma_r", clim=(threshold, 1.0),
+    volume = plotter.add_volume(grid, scalars="fault likelihood", cmap="Greys", clim=(threshold, 1.0),
                                 opacity=opacity, opacity_unit_distance=voxel, shade=False,
                                 scalar_bar_args={"title": "fault\nlikelihood", "vertical": True,
                                                  "position_x": 0.06, "position_y": 0.3, "fmt": "%.3f"})

@@ -163,7 +163,7 @@ def test_fault_likelihood_volume(scene_dir):
     show_seismic(_cube(), slices=(None, None, None), likelihood=likelihood, likelihood_threshold=0.5,
                  screenshot=shot, window_size=(320, 240))
     img = _pixels(shot)
-    dark = img.max(axis=-1) < 120  # magma_r at likelihood 1: near black
+    dark = img.max(axis=-1) < 120  # Greys at likelihood 1: black
     assert dark.mean() > 0.005
     with pytest.raises(InputError, match="likelihood_threshold"):
         show_seismic(_cube(), likelihood=likelihood, likelihood_threshold=1.5, screenshot=shot)

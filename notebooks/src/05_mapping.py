@@ -6,8 +6,8 @@
 # predicts the pose, the depth is fused into a TSDF map, keyframes are kept and loops closed with a gtsam pose graph.
 # The estimated trajectory is compared with the 7-Scenes reference poses (ATE after rigid alignment, RPE per step).
 #
-# The sequence's index files (timestamps, associations) are *derived* files of the seismo3d data folder
-# (`SEISMO3D_DATA_DIR`). The same on the command line: `seismo3d map SEQUENCE -o OUTDIR` then `seismo3d render
+# The sequence is read as one folder, the seismo3d data folder's copy (`SEISMO3D_DATA_DIR`). The same on the
+# command line: `seismo3d map SEQUENCE -o OUTDIR` then `seismo3d render
 # OUTDIR -o map.png`; `python benchmarks/mapping.py` runs the whole subset beside Open3D's odometry.
 
 # %%

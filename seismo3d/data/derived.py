@@ -10,6 +10,13 @@ written here (image stacks, files with synthetic timestamps) are available from 
   the derivation keeps the leading rows of exactly three numbers, drops their trailing blank and adds a PLY header.
 - ``scans/bunny/bun.conf.reference.txt``: the two scans' poses from the repository's ``bun.conf`` with a comment on
   their convention; written from the values below (the Stanford ``bun.conf`` is not in a registered repository).
+- ``rgbd/7scenes_redkitchen_0000_0495/`` ``groundtruth.txt``, ``rgb.txt``, ``depth.txt``, ``associations.txt``: the
+  TUM-style index files of the registered 7-Scenes frames (every 5th), with synthetic timestamps (frame number / 30 s);
+  the ground truth is each registered ``pose/frame-NNNNNN.pose.txt`` (fetched, hash-checked) as ``tx ty tz qx qy qz
+  qw`` with ``qw >= 0``.
+
+The Penobscot image stack (``seismic/penobscot_sections/...npz``) has no derivation here: it is available from the
+data directory only.
 """
 
 from __future__ import annotations
@@ -21,7 +28,7 @@ from typing import Callable
 from .._atomic import atomic_path
 from ..errors import DataIntegrityError
 
-__all__ = ["Derivation", "DERIVATIONS", "clean_bunny_scan", "write_bunny_poses"]
+__all__ = ["Derivation", "DERIVATIONS", "clean_bunny_scan", "write_bunny_poses", "write_7scenes_index"]
 
 
 @dataclass(frozen=True)
@@ -109,10 +116,59 @@ def write_bunny_poses(origin, out, name) -> None:
         tmp.write_text("\n".join(_BUNNY_POSES_COMMENT + _BUNNY_POSES) + "\n", encoding="ascii")
 
 
+_7SCENES = "rgbd/7scenes_redkitchen_0000_0495"
+_7SCENES_HEADERS = {
+    "groundtruth.txt": ("# ground truth trajectory (derived from 7-Scenes redkitchen frame-XXXXXX.pose.txt, "
+                        "camera-to-world, KinectFusion-tracked)",
+                        "# timestamps are synthetic: original_frame_index / 30.0 s (7-Scenes has no timestamps)",
+                        "# timestamp tx ty tz qx qy qz qw"),
+    "rgb.txt": ("# color images (NOTE: 7-Scenes color is NOT registered to depth)", "# timestamp filename"),
+    "depth.txt": ("# depth maps (uint16 mm, 0 = invalid; depth intrinsics fx=fy=585 cx=320 cy=240)",
+                  "# timestamp filename"),
+    "associations.txt": (),
+}
+
+
+def write_7scenes_index(origin, out, name) -> None:
+    """Write one TUM-style index file of the registered 7-Scenes frames (``origin`` is unused: the frames are the
+    registry's, the poses are fetched).
+
+    Parameters
+    ----------
+    origin : None
+    out : pathlib.Path
+    name : str
+        ``rgbd/7scenes_redkitchen_0000_0495/<groundtruth|rgb|depth|associations>.txt``.
+    """
+    import numpy as np
+    from scipy.spatial.transform import Rotation
+
+    from .registry import fetch, list_files  # registry imports this module: import it when a file is made
+
+    kind = pathlib.PurePosixPath(name).name
+    frames = sorted(int(f.rsplit("frame-", 1)[1][:6]) for f in list_files(f"{_7SCENES}/depth/"))
+    lines = list(_7SCENES_HEADERS[kind])
+    for frame in frames:
+        stamp = f"{frame / 30.0:.6f}"
+        rgb, depth = f"rgb/frame-{frame:06d}.color.jpg", f"depth/frame-{frame:06d}.depth.png"
+        if kind == "groundtruth.txt":
+            pose = np.loadtxt(fetch(f"{_7SCENES}/pose/frame-{frame:06d}.pose.txt"))
+            q = Rotation.from_matrix(pose[:3, :3]).as_quat()  # qx qy qz qw
+            q = -q if q[3] < 0 else q
+            lines.append(" ".join([stamp, *(f"{v:.7f}" for v in pose[:3, 3]), *(f"{v:.7f}" for v in q)]))
+        elif kind == "associations.txt":
+            lines.append(f"{stamp} {rgb} {stamp} {depth}")
+        else:
+            lines.append(f"{stamp} {rgb if kind == 'rgb.txt' else depth}")
+    with atomic_path(out) as tmp:
+        tmp.write_text("\n".join(lines) + "\n", encoding="ascii")
+
+
 DERIVATIONS = {
     "scans/bunny/bun000_clean.ply": Derivation(
         "bun000.ply", "41d3662ce48f055e254806ea699edb71a06afde88876d37e2cece8e496dcb12b", clean_bunny_scan),
     "scans/bunny/bun045_clean.ply": Derivation(
         "bun045.ply", "960756d05262231c5fb372a5003475b0282b90800f562deb4d60282b0db336cd", clean_bunny_scan),
     "scans/bunny/bun.conf.reference.txt": Derivation(None, None, write_bunny_poses),
+    **{f"{_7SCENES}/{kind}": Derivation(None, None, write_7scenes_index) for kind in _7SCENES_HEADERS},
 }

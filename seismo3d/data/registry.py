@@ -5,9 +5,9 @@ and a public origin. :func:`fetch` resolves a name to a local path: first from t
 environment variable ``SEISMO3D_DATA_DIR`` (hash checked once per process), otherwise by downloading the origin with
 pooch into ``SEISMO3D_CACHE_DIR`` (default: the operating system's cache folder). Files marked *derived* were rebuilt
 from their origin (renamed columns, cleaned rows, stacked images, added index files), so their origin would not match
-the hash: those with a derivation in :mod:`seismo3d.data.derived` (the bunny scans and poses) are made again from
-their downloaded origin and checked against the registry's hash; the others (the Penobscot image stack, the 7-Scenes
-index files) are available only from a data directory.
+the hash: those with a derivation in :mod:`seismo3d.data.derived` (the bunny scans and poses, the 7-Scenes index
+files) are made again from their downloaded origin and checked against the registry's hash; the Penobscot image
+stack is available only from a data directory.
 
 The table at the bottom of this module is the single source of truth; ``seismo3d/data/README.md`` describes each file.
 

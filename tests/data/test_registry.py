@@ -26,7 +26,8 @@ EXPECTED_DERIVED = {
     "seismic/penobscot_sections/penobscot_sections_1075_1092.npz",
 }
 SMALL_FILE = "rgbd/tum_fr1xyz_pair/kinect_params.txt"  # not derived, 29 bytes
-SMALL_DERIVED = "rgbd/7scenes_redkitchen_0000_0495/associations.txt"  # derived, not made again: data directory only
+SMALL_DERIVED = "rgbd/7scenes_redkitchen_0000_0495/associations.txt"  # derived, 5 kB
+DATA_DIR_ONLY = "seismic/penobscot_sections/penobscot_sections_1075_1092.npz"  # derived, not made again
 
 
 @pytest.fixture(scope="module")
@@ -129,7 +130,7 @@ def test_data_dir_from_env(monkeypatch, tmp_path):
 
 def test_derived_file_missing_raises_without_network(empty_data_dir):
     with pytest.raises(DataNotFoundError, match="SEISMO3D_DATA_DIR") as info:
-        fetch(SMALL_DERIVED)
+        fetch(DATA_DIR_ONLY)
     assert "export SEISMO3D_DATA_DIR=" in str(info.value)
     assert isinstance(info.value, FileNotFoundError)
 
@@ -138,7 +139,7 @@ def test_derived_file_missing_and_env_unset(monkeypatch):
     monkeypatch.delenv("SEISMO3D_DATA_DIR", raising=False)
     monkeypatch.setattr(pooch, "retrieve", lambda *a, **k: pytest.fail("must not download a derived file"))
     with pytest.raises(DataNotFoundError, match="SEISMO3D_DATA_DIR is not set"):
-        fetch(SMALL_DERIVED)
+        fetch(DATA_DIR_ONLY)
 
 
 def test_download_failure_raises_data_not_found(empty_data_dir, monkeypatch):
@@ -238,3 +239,19 @@ def test_derivation_from_another_origin_is_refused(empty_data_dir, monkeypatch, 
     with pytest.raises(DataIntegrityError, match="made again"):
         fetch("scans/bunny/bun000_clean.ply")
     assert not (tmp_path / "cache" / "scans/bunny/bun000_clean.ply").exists()
+
+
+@pytest.mark.parametrize("kind", ["groundtruth.txt", "rgb.txt", "depth.txt", "associations.txt"])
+def test_7scenes_index_files_are_made_again(empty_data_dir, shared_dir, monkeypatch, tmp_path, kind):
+    """The TUM-style index files of the 7-Scenes subset, made from the registered frames and their fetched pose
+    files (downloads served here from the shared folder), are byte-identical to the data directory's."""
+    cache = tmp_path / "cache"
+
+    def from_shared(url, known_hash, fname, path, progressbar):
+        relative = pathlib.Path(path).relative_to(cache) / fname
+        assert known_hash == f"sha256:{file_info(relative.as_posix()).sha256}"
+        return str(shared_dir / relative)
+
+    monkeypatch.setattr(pooch, "retrieve", from_shared)
+    name = f"rgbd/7scenes_redkitchen_0000_0495/{kind}"
+    assert fetch(name).read_bytes() == (shared_dir / name).read_bytes()

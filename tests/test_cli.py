@@ -149,8 +149,9 @@ def test_faults_warnings_are_one_line(tmp_path):
 
 
 @pytest.mark.parametrize("case, message", [
-    ("not_segy", "cannot be read as SEG-Y"),
-    ("header_bytes", "iline=1, xline=5"),
+    ("not_segy", "is not SEG-Y: its binary header holds no sample format code"),
+    ("header_bytes", "no inline / crossline grid at trace header bytes --iline 1, --xline 5; --iline 189, --xline 193 "
+                     "(48 inlines x 48 crosslines) give one: pass those, or --ignore-geometry to read a trace list"),
     ("same_folder", "another folder"),
     ("no_input", "--demo"),
     ("missing", "no SEG-Y file"),
@@ -173,6 +174,7 @@ def test_faults_errors(cube_file, tmp_path, case, message):
     result = runner.invoke(app, ["faults", *args])
     assert result.exit_code == 2, result.output
     assert result.stderr.startswith("error: ") and message in result.stderr
+    assert len(result.stderr.splitlines()) == 1 and "=" not in result.stderr  # one line, CLI flags not arguments
     assert "Traceback" not in result.output
 
 

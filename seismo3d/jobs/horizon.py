@@ -41,13 +41,14 @@ class HorizonJob:
 
 
 def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults: bool = False, fill: bool = False,
-                    surface=None, iline: int = 189, xline: int = 193, progress: bool = True) -> HorizonJob:
+                    surface=None, iline: int = 189, xline: int = 193, endian=None, progress: bool = True) -> HorizonJob:
     """Track a horizon in a SEG-Y cube from seed picks and write "inline xline time" rows.
 
     Parameters
     ----------
     input_path : str or path-like
-        SEG-Y cube (inline- or crossline-sorted); only read.
+        SEG-Y cube (inline- or crossline-sorted, either byte order), read by :func:`~seismo3d.seismic.open_segy`;
+        only read.
     seeds : sequence of (float, float, float)
         Seed picks: inline number, crossline number, time (or depth) in the cube's sample unit.
     output : str or path-like
@@ -62,6 +63,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         Also write the horizon as a surface (.vtp or .vtk; :func:`seismo3d.viz.horizon_surface`).
     iline, xline : int
         Trace header bytes of the inline and crossline numbers.
+    endian : {'big', 'little'}, optional
+        Byte order of the file; by default detected from its binary header.
     progress : bool
         Report progress (:mod:`seismo3d._progress`).
 
@@ -74,7 +77,9 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     InputError
         An output path that is the input, a seed outside the cube (the message names ``--seed``).
     SegyGeometryError
-        The file is not a 3D cube with inline / crossline geometry at the given header bytes.
+        The file is not a 3D cube (the message says what it is: a 2D line, a trace list), or holds prestack gathers.
+    SegyFormatError
+        The file is not SEG-Y or cannot be read (see :func:`~seismo3d.seismic.open_segy`).
     """
     from ..seismic import fill_horizon, open_segy, trace_faults, track_horizon, write_horizon_text
 
@@ -82,10 +87,10 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     surface = None if surface is None else pathlib.Path(surface)
     if output.resolve() == input_path.resolve() or (surface is not None and surface.resolve() == input_path.resolve()):
         raise InputError(f"{output} would overwrite the input; choose another output path")
-    with open_segy(input_path, iline=iline, xline=xline) as cube:
+    with open_segy(input_path, iline=iline, xline=xline, endian=endian) as cube:
         if not cube.is_3d:
-            raise SegyGeometryError(f"{input_path} is not a 3D cube with inline/crossline geometry; horizon tracking "
-                                    "needs one (check --iline/--xline header bytes)")
+            raise SegyGeometryError(f"{input_path.name} is {cube.description}, not a 3D cube; horizon tracking needs "
+                                    "inlines and crosslines: give it a 3D cube")
         data = cube.read()
         inlines, xlines, samples = cube.inlines, cube.xlines, cube.samples
         unit = cube.sample_unit

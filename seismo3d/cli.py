@@ -238,7 +238,7 @@ class SampleUnit(str, Enum):
 
 @app.command()
 @_friendly({"sample_unit": "--sample-unit", "n_samples": "--n-samples", "ignore_geometry": "--ignore-geometry",
-            "demo_seed": "--demo-seed"})
+            "demo_seed": "--demo-seed", "sensitivity": "--sensitivity"})
 def faults(
     input: Optional[pathlib.Path] = typer.Argument(
         None, metavar="INPUT", help="SEG-Y cube or 2D line, raw .f32be section or .npy array; omit with --demo.",
@@ -255,9 +255,12 @@ def faults(
     sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
                                                                 "headers (ms unless they speak of depth)."),
     n_samples: Optional[int] = typer.Option(None, help="Samples per trace of a raw .f32be section of unknown shape."),
+    sensitivity: float = typer.Option(0.5, min=0.0, max=1.0, help="How readily faults are traced, 0-1: higher for "
+                                                                  "more (and weaker) faults, lower for fewer; the "
+                                                                  "thresholds scale by up to 2x either way."),
 ) -> None:
-    """Trace the faults of INPUT and write fault likelihood, strike and dip (SEG-Y for SEG-Y input), fault surfaces
-    (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT."""
+    """Trace the faults of INPUT and write fault likelihood, strike, dip and votes (SEG-Y for SEG-Y input), fault
+    surfaces (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT."""
     import csv
 
     from .jobs.faults import run_faults_job
@@ -266,7 +269,7 @@ def faults(
         written = run_faults_job(input, output, demo=demo, demo_seed=demo_seed, iline=iline, xline=xline,
                                  ignore_geometry=ignore_geometry, endian=_value(endian),
                                  sample_unit=None if sample_unit is None else sample_unit.value,
-                                 n_samples=n_samples, progress=True)
+                                 n_samples=n_samples, sensitivity=sensitivity, progress=True)
     with open(written["summary"], newline="") as fh:
         rows = list(csv.DictReader(fh))
     source = "the demo cube" if demo else input.name
@@ -280,8 +283,9 @@ def faults(
                 throw = f"{float(r['median_throw_samples']):.1f} samples"
                 if unit:
                     throw += f" ({float(r['median_throw_' + unit]):.1f} {unit})"
-            typer.echo(f"  fault {r['id']:>3}: {r['n_points']:>6} samples, strike {r['mean_strike_deg']:>5}, "
-                       f"dip {r['mean_dip_deg']:>4}, median throw {throw}")
+            where = (f"strike {r['mean_strike_deg']:>5}, dip {r['mean_dip_deg']:>4}" if "mean_strike_deg" in r else
+                     f"dip {r['mean_dip_deg']:>4} toward {r['dips_toward']}")
+            typer.echo(f"  fault {r['id']:>3}: {r['n_points']:>6} samples, {where}, median throw {throw}")
         if len(rows) > 5:
             typer.echo(f"  ... {len(rows) - 5} more in {pathlib.Path(written['summary']).name}")
     typer.echo("wrote " + ", ".join(pathlib.Path(p).name for p in written.values()))

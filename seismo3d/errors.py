@@ -14,6 +14,7 @@ __all__ = [
     "DataIntegrityError",
     "SegyFormatError",
     "SegyGeometryError",
+    "UnsupportedDataError",
     "RegistrationError",
     "Seismo3dWarning",
     "DegenerateGeometryWarning",
@@ -44,6 +45,11 @@ class SegyFormatError(Seismo3dError, OSError):
 
 class SegyGeometryError(Seismo3dError, ValueError):
     """A SEG-Y file's inline / crossline geometry cannot be read with the given header bytes or sorting."""
+
+
+class UnsupportedDataError(Seismo3dError, ValueError):
+    """The data cannot support what was asked: e.g. fault tracing on too few traces, on incoherent data, or on a
+    velocity model instead of seismic amplitudes."""
 
 
 class RegistrationError(Seismo3dError, RuntimeError):

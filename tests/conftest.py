@@ -43,23 +43,23 @@ def penobscot_faults(penobscot):
 
 @pytest.fixture(scope="session")
 def traced_cube():
-    """``traced_cube(seed)``: a 128^3 synthetic cube (3 faults, noise 0.1) with its fault likelihood, thinned and
-    linked faults and reflector orientation, computed once per seed and session (about 7 s per cube on 2 cores).
+    """``traced_cube(seed)``: a 128^3 synthetic cube (3 faults, noise 0.1) traced by :func:`trace_faults` (fault
+    likelihood, voting, skins, throws) with its reflector orientation, computed once per seed and session (about
+    15 s per cube on 2 cores).
 
     Shared by the fault-surface and fault-throw tests, which read the same five cubes; nothing may modify them."""
     import functools
     from types import SimpleNamespace
 
     from seismo3d.data.synthetic import synthetic_cube
-    from seismo3d.seismic import fault_likelihood, link_faults, structure_tensor_orientation, thin_faults
+    from seismo3d.seismic import FaultLikelihood, structure_tensor_orientation, trace_faults
 
     @functools.lru_cache(maxsize=None)
     def trace(seed):
         syn = synthetic_cube((128, 128, 128), seed=seed, noise=0.1)
-        fl = fault_likelihood(syn.cube)
-        thin = thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg)
-        faults = link_faults(thin, fl.strike_deg, fl.dip_deg)
-        return SimpleNamespace(syn=syn, likelihood=fl, thin=thin, faults=faults,
+        res = trace_faults(syn.cube, progress=False)
+        return SimpleNamespace(syn=syn, likelihood=FaultLikelihood(res.likelihood, res.strike_deg, res.dip_deg),
+                               votes=res.votes, thin=res.thin, faults=res.faults, throws=res.throws,
                                orientation=structure_tensor_orientation(syn.cube))
 
     return trace

@@ -259,7 +259,9 @@ def test_progress_is_one_line_per_step_when_stderr_is_not_a_terminal(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert "\r" not in proc.stderr
     lines = proc.stderr.splitlines()
-    for step in ("fault likelihood (1/4)", "thinning (2/4)", "linking (3/4)", "throw (4/4)"):
+    for step in ("fault likelihood (1/6)", "ridges (2/6)", "voting (3/6)", "thinning (4/6)", "fault skins (5/6)",
+                 "throw (6/6)"):
         assert f"faults: {step}" in lines
     assert any(line.startswith("fault likelihood: ") and "strike" in line for line in lines)  # inside the step
+    assert any(line.startswith("fault voting: ") and "seed" in line for line in lines)
     assert any(line.startswith("writing: figure") for line in lines)

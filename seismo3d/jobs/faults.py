@@ -158,7 +158,7 @@ def _demo_input(out_dir: Path, seed) -> tuple[_Input, Path]:
 
 
 def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, like=None, iline, xline,
-                  ignore_geometry) -> Path:
+                  ignore_geometry, endian=None) -> Path:
     """SEG-Y with the input's headers for a SEG-Y input, .npy otherwise.
 
     With ``like`` (a SEG-Y file this job already wrote with :func:`~seismo3d.seismic.io.write_like`), the file is a
@@ -170,7 +170,8 @@ def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, 
             from ..seismic.io import write_like
 
             grid = values.reshape(inp.segy_shape) if inp.segy_shape is not None else values
-            return write_like(inp.segy_path, out, grid, iline=iline, xline=xline, ignore_geometry=ignore_geometry)
+            return write_like(inp.segy_path, out, grid, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
+                              endian=endian)
         import segyio
 
         traces = inp.file_order(values)
@@ -235,16 +236,28 @@ def _write_points(inp: _Input, result: FaultInterpretation, path: Path) -> Path:
     return path
 
 
+def _dip_direction(inp: _Input, fault) -> str:
+    """Where a fault of a 2D section deepens, in the section's own terms: 'increasing inline' etc."""
+    toward_higher = fault.mean_strike_deg > 180.0  # strike 270: deepens toward increasing trace index
+    labels = inp.axes[0]
+    if labels.size > 1 and labels[-1] < labels[0]:  # trace labels decrease along the section
+        toward_higher = not toward_higher
+    return f"{'increasing' if toward_higher else 'decreasing'} {inp.trace_axis}"
+
+
 def _write_summary(inp: _Input, result: FaultInterpretation, path: Path) -> Path:
     unit = inp.unit
     extra = [] if unit == "samples" else [f"median_throw_{unit}"]
+    two_d = inp.data.ndim == 2
+    orientation = ["dips_toward"] if two_d else ["mean_strike_deg"]
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["id", "n_points", "mean_strike_deg", "mean_dip_deg", "median_throw_samples", *extra])
+        w.writerow(["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra])
         for f in result.faults:
             throw = _throw_of(result.throws, f)
             med = float(np.median(throw[np.isfinite(throw)])) if np.isfinite(throw).any() else np.nan
-            row = [f.id, f.size, f"{f.mean_strike_deg:.1f}", f"{f.mean_dip_deg:.1f}", _fmt(med)]
+            row = [f.id, f.size, _dip_direction(inp, f) if two_d else f"{f.mean_strike_deg:.1f}",
+                   f"{f.mean_dip_deg:.1f}", _fmt(med)]
             if extra:
                 row.append(_fmt(med * result.sample_interval))
             w.writerow(row)
@@ -265,7 +278,7 @@ def _check_out_dir(path, out_dir) -> Path:
 
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
-                   endian=None, sample_unit=None, n_samples=None, progress=True) -> dict:
+                   endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, progress=True) -> dict:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 
     Inputs
@@ -288,9 +301,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     Outputs (in ``out_dir``, created if needed; each written atomically, so an interrupted run leaves either the
     previous file or none, never a half-written one)
     ------------------------------------------------------------------------------------------------------------
-    * ``fault_likelihood.sgy``, ``fault_strike.sgy``, ``fault_dip.sgy``: fault likelihood in [0, 1], strike and dip
-      in degrees, as SEG-Y with the textual, binary and trace headers of the input (for a SEG-Y input; IEEE float).
-      For other inputs the same volumes as float32 ``.npy`` arrays of the input's shape.
+    * ``fault_likelihood.sgy``, ``fault_strike.sgy``, ``fault_dip.sgy``, ``fault_votes.sgy``: fault likelihood in
+      [0, 1], strike and dip in degrees, and the optimal-surface votes in [0, 1], as SEG-Y with the textual, binary
+      and trace headers of the input (for a SEG-Y input; IEEE float). For other inputs the same volumes as float32
+      ``.npy`` arrays of the input's shape.
     * ``faults.vtp``: all fault surfaces (triangulated; polylines for 2D inputs) in one VTK PolyData, points at
       (inline, crossline, time_or_depth) (2D: (trace label, 0, time_or_depth)), point arrays ``fault_id``,
       ``throw`` (samples) and ``likelihood``.
@@ -304,10 +318,16 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       normalised cross-correlation of the reflectors on the two sides once aligned, a quality measure (see
       :class:`~seismo3d.seismic.fault_throw.FaultThrow`). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
-      median_throw_samples, median_throw_<unit>``. Strike and dip are in index space (one trace step = one
-      sample; strike from the inline axis toward the crossline axis, see :mod:`seismo3d.seismic.fault_likelihood`).
+      median_throw_samples, median_throw_<unit>``; for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
+      replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline
+      axis toward the crossline axis, see :mod:`seismo3d.seismic.fault_likelihood`).
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
-      the seismic, above the same slices of the fault likelihood; for 2D inputs the section.
+      the seismic, above the same slices of the fault likelihood; for 2D inputs the section, cropped to its live
+      traces and samples.
+
+    Data that cannot support fault tracing (too few traces, not seismic amplitudes, no lateral coherence: see
+    :func:`~seismo3d.seismic.trace_faults`) raises :class:`~seismo3d.errors.UnsupportedDataError` before any output
+    is written.
 
     Parameters
     ----------
@@ -331,14 +351,16 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         :func:`~seismo3d.seismic.io.open_segy`).
     n_samples : int, optional
         Samples per trace of a raw ``.f32be`` section whose shape is not known by name.
+    sensitivity : float, optional
+        In [0, 1]: more faults when higher (see :class:`~seismo3d.seismic.FaultTracingOptions`).
     progress : bool, optional
         Report progress (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step otherwise).
 
     Returns
     -------
     dict of str to pathlib.Path
-        The files written, keyed ``likelihood``, ``strike``, ``dip``, ``surfaces``, ``points``, ``summary``,
-        ``figure`` (and ``input``, ``truth`` for the demo).
+        The files written, keyed ``likelihood``, ``strike``, ``dip``, ``votes``, ``surfaces``, ``points``,
+        ``summary``, ``figure`` (and ``input``, ``truth`` for the demo).
 
     Raises
     ------
@@ -352,6 +374,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     SegyGeometryError
         The inline / crossline geometry cannot be read with ``iline`` / ``xline`` (the message suggests header bytes
         that work, or ``ignore_geometry``).
+    UnsupportedDataError
+        The data cannot support fault tracing; nothing is written.
 
     Warns
     -----
@@ -373,12 +397,12 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
             raise InputError("no input file; pass a SEG-Y cube or line, a .f32be section or a .npy array, or use "
                              "demo=True (--demo) to run on a synthetic cube")
         out_dir = _check_out_dir(input_path, out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
 
     written = {}
     if demo:
+        out_dir.mkdir(parents=True, exist_ok=True)
         inp, written["truth"] = _demo_input(out_dir, demo_seed)
-        iline, xline, ignore_geometry = 189, 193, False
+        iline, xline, ignore_geometry, endian = 189, 193, False, None
     else:
         inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
                           sample_unit=sample_unit, n_samples=n_samples, endian=endian)
@@ -387,17 +411,19 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         raise InputError(f"the sample interval of {inp.name} is {dt:g} {inp.unit}; it must be > 0 (check the "
                          "binary header's sample interval, bytes 3217-3218)")
     result = trace_faults(inp.data, sample_interval=None if inp.unit == "samples" else dt, sample_unit=inp.unit,
-                          progress=progress)
+                          sensitivity=sensitivity, progress=progress)
+    out_dir.mkdir(parents=True, exist_ok=True)  # only now: refused data leaves nothing behind
 
     if demo:
         written["input"] = inp.segy_path
-    geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry)
+    geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
     axes = inp.axes
     steps = [
         ("likelihood", lambda: _write_volume(inp, out_dir, "fault_likelihood", result.likelihood, **geo)),
         ("strike", lambda: _write_volume(inp, out_dir, "fault_strike", result.strike_deg,
                                          like=written["likelihood"], **geo)),
         ("dip", lambda: _write_volume(inp, out_dir, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
+        ("votes", lambda: _write_volume(inp, out_dir, "fault_votes", result.votes, like=written["likelihood"], **geo)),
         ("surfaces", lambda: save_polydata(fault_surfaces(result.faults, result.throws, axes=axes),
                                            out_dir / "faults.vtp")),
         ("points", lambda: _write_points(inp, result, out_dir / "fault_points.csv")),

@@ -5,7 +5,9 @@
 - :mod:`~seismo3d.seismic.traces`: trace primitives (sub-sample peaks, waveform windows, NCC, lag search).
 - :mod:`~seismo3d.seismic.reflectors`: reflector picks along traces, reflector slices, reflector points.
 - :mod:`~seismo3d.seismic.fault_likelihood`: the scan over fault strikes and dips.
-- :mod:`~seismo3d.seismic.fault_surfaces`: thinning and linking into faults.
+- :mod:`~seismo3d.seismic.fault_surfaces`: faults as point sets, thinning (and the older region-growing linker).
+- :mod:`~seismo3d.seismic.fault_voting`: optimal surface voting (Wu & Fomel 2018).
+- :mod:`~seismo3d.seismic.fault_skins`: thinned faults linked into fault skins (Hale 2013).
 - :mod:`~seismo3d.seismic.fault_throw`: throw by registering the reflectors on both sides of a fault.
 - :mod:`~seismo3d.seismic.faults`: the whole fault interpretation of an array (:func:`trace_faults`).
 - :mod:`~seismo3d.seismic.fault_crossings`: which faults a horizon step crosses and the jump there.
@@ -23,9 +25,11 @@ from .evaluation import (
 )
 from .fault_crossings import FaultCrossings, reliable_throw
 from .fault_likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood, fault_normals
+from .fault_skins import SkinOptions, fault_skins
 from .fault_surfaces import Fault, fault_labels, link_faults, thin_faults
 from .fault_throw import FaultThrow, ThrowOptions, fault_throw, fault_throws
-from .faults import FaultInterpretation, trace_faults
+from .fault_voting import FaultVotes, VotingOptions, vote_faults
+from .faults import FaultInterpretation, FaultTracingOptions, trace_faults
 from .horizon_tracking import TrackingOptions, track_horizon
 from .horizons import Horizon, fill_horizon, write_horizon_text
 from .io import SeismicCube, open_segy, read_ascii_lines, read_section, read_segy, write_like
@@ -34,6 +38,7 @@ from .volumes import VolumeOptions, VolumeRegistration, register_volumes, resamp
 
 __all__ = [
     "POLARITIES", "Fault", "FaultCrossings", "FaultInterpretation", "FaultLikelihood", "FaultScanOptions",
+    "FaultTracingOptions", "FaultVotes", "SkinOptions", "VotingOptions", "fault_skins", "vote_faults",
     "FaultScores", "FaultThrow", "Horizon", "HorizonErrors", "ReflectorOrientation", "RegistrationErrors",
     "SeismicCube", "ThrowOptions", "TrackingOptions", "VolumeOptions", "VolumeRegistration",
     "autotrack", "discontinuity", "eigen_coherence", "evaluate_faults", "fault_labels", "fault_likelihood",

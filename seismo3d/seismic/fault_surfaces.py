@@ -25,7 +25,7 @@ from ..errors import InputError
 from . import _kernels
 from .fault_likelihood import fault_normals, fault_strike_dip
 
-__all__ = ["Fault", "thin_faults", "link_faults", "fault_labels"]
+__all__ = ["Fault", "check_fault_arrays", "thin_faults", "link_faults", "fault_labels"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -189,7 +189,25 @@ def _ridges(f, g, strike, dip, lut, out):
 # thinning
 
 
-def _check_fault_arrays(likelihood, strike, dip):
+def check_fault_arrays(likelihood, strike, dip):
+    """A fault image and its strike and dip as float32 arrays of one shape, or :class:`InputError`.
+
+    Parameters
+    ----------
+    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        Fault likelihood, votes or thinned faults; finite.
+    strike, dip : array_like of float, same shape
+        Strike and dip, degrees.
+
+    Returns
+    -------
+    likelihood, strike, dip : float32 ndarray
+
+    Raises
+    ------
+    InputError
+        Shapes differ or values are not finite.
+    """
     fl = as_seismic(likelihood, "likelihood", min_size=1)
     st = np.asarray(strike, dtype=np.float32)
     dp = np.asarray(dip, dtype=np.float32)
@@ -259,7 +277,7 @@ def thin_faults(likelihood, strike, dip, *, threshold=None, sigma=1.5, dip_smoot
     """
     from skimage.filters import apply_hysteresis_threshold
 
-    fl, st, dp = _check_fault_arrays(likelihood, strike, dip)
+    fl, st, dp = check_fault_arrays(likelihood, strike, dip)
     sigma = check_positive(sigma, "sigma", allow_zero=True)
     along = int(check_positive(dip_smoothing, "dip_smoothing", allow_zero=True))
     if threshold is not None:
@@ -377,7 +395,7 @@ def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fau
     .. [1] D. Hale, Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1 (fault skins grown from seeds of
        high likelihood).
     """
-    fl, st, dp = _check_fault_arrays(thin, strike, dip)
+    fl, st, dp = check_fault_arrays(thin, strike, dip)
     max_angle = check_positive(max_angle, "max_angle")
     ndim = fl.ndim
     if min_size is None:

@@ -1,8 +1,8 @@
-"""The fault interpretation of an array: fault likelihood -> thinning -> linking -> throw, after Hale (2013, 2014).
+"""The fault interpretation of an array: fault likelihood -> optimal surface voting -> fault skins -> throw.
 
-:func:`trace_faults` runs the steps with the defaults every seismo3d command uses and returns a
-:class:`FaultInterpretation`; :func:`clean_traces` finds the dead samples (mutes, dead traces, gaps) whose edges are
-not faults, and reports clipped amplitudes. Reading files and writing results is the ``faults`` command's job
+After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the steps with the defaults every seismo3d
+command uses and returns a :class:`FaultInterpretation`; :func:`clean_traces` finds the dead samples (mutes, dead
+traces, gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and writing results is the ``faults`` command's job
 (:mod:`seismo3d.jobs.faults`).
 
 Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.fault_likelihood`.
@@ -10,19 +10,22 @@ Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from .._progress import progress_steps
 from .._validation import check_choice, check_positive
-from ..errors import InputError, Seismo3dWarning
-from .fault_likelihood import fault_likelihood
-from .fault_surfaces import link_faults, thin_faults
+from ..errors import InputError, Seismo3dWarning, UnsupportedDataError
+from .fault_likelihood import FaultScanOptions, fault_likelihood
+from .fault_skins import SkinOptions, fault_skins
+from .fault_surfaces import thin_faults
 from .fault_throw import fault_throws
+from .fault_voting import VotingOptions, vote_faults
 
-__all__ = ["FaultInterpretation", "CleanTraces", "clean_traces", "trace_faults"]
+__all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "clean_traces", "trace_faults"]
 
 _UNITS = {"samples", "ms", "m", "ft"}
 # Reach (traces, samples) of a dead zone's edge in fault_likelihood: the 3 x 3-trace semblance and the reflector slopes
@@ -42,6 +45,101 @@ _FILL_RUN = 16
 
 
 @dataclass(frozen=True)
+class FaultTracingOptions:
+    """Options of :func:`trace_faults`; the defaults are the ones every seismo3d command uses, on every input.
+
+    Attributes
+    ----------
+    sensitivity : float
+        In [0, 1]: how readily a fault is traced. The upper threshold on the thinned votes is the data's Otsu
+        threshold times ``2 ** (1 - 2 * sensitivity)`` (twice it at 0, half of it at 1, the threshold itself at the
+        default 0.5), at least ``min_vote`` times the same factor; the lower threshold is a third of the upper one.
+    min_vote : float
+        Floor of the upper threshold at the default sensitivity, on the absolute scale of
+        :class:`~seismo3d.seismic.fault_voting.FaultVotes` (about the mean likelihood of the surfaces through a
+        sample): data whose votes are all weak yield no faults rather than the strongest of its noise.
+    max_fault_fraction : float
+        The lower threshold leaves at most this fraction of the samples on thinned faults (scaled like the
+        thresholds by the sensitivity): a fault every 8 traces is already dense faulting (12 % on the Costa Rica
+        sections), and denser ridges are the uniform votes of incoherent data, not faults.
+    scan : FaultScanOptions
+        The fault likelihood scan.
+    voting : VotingOptions
+        The optimal surface voting.
+    skins : SkinOptions
+        The linking into fault skins.
+    min_traces : (int, int)
+        Fewest traces along the longer and the shorter lateral axis (2D: along the section) for the scan and the
+        voting boxes to see a fault's continuity; smaller data is refused.
+    min_samples : int
+        Fewest samples per trace.
+    min_crossings : float
+        Fewest zero crossings per 100 samples of a trace with its mean removed (median over traces): seismic
+        amplitudes oscillate (a reflection every few samples), velocity or impedance models do not.
+    max_saturated : float
+        Largest fraction of the live samples with a likelihood above 0.9; beyond it the data has no lateral
+        coherence to trace faults in (noise, or traces out of order) and is refused.
+
+    Raises
+    ------
+    InputError
+        A value out of range.
+    """
+
+    sensitivity: float = 0.5
+    min_vote: float = 0.1
+    max_fault_fraction: float = 0.15
+    scan: FaultScanOptions = field(default_factory=FaultScanOptions)
+    voting: VotingOptions = field(default_factory=VotingOptions)
+    skins: SkinOptions = field(default_factory=SkinOptions)
+    min_traces: tuple = (32, 8)
+    min_samples: int = 32
+    min_crossings: float = 3.0
+    max_saturated: float = 0.95
+
+    def __post_init__(self):
+        if not 0.0 <= float(self.sensitivity) <= 1.0:
+            raise InputError(f"sensitivity must be in [0, 1]; got {self.sensitivity!r}")
+        if not 0.0 <= float(self.min_vote) < 1.0:
+            raise InputError(f"min_vote must be in [0, 1); got {self.min_vote!r}")
+        if not 0.0 < float(self.max_fault_fraction) <= 1.0:
+            raise InputError(f"max_fault_fraction must be in (0, 1]; got {self.max_fault_fraction!r}")
+        for name, cls in (("scan", FaultScanOptions), ("voting", VotingOptions), ("skins", SkinOptions)):
+            if not isinstance(getattr(self, name), cls):
+                raise InputError(f"{name} must be a {cls.__name__}; got {type(getattr(self, name)).__name__}")
+        if (len(tuple(self.min_traces)) != 2 or any(int(v) != v or v < 3 for v in self.min_traces)):
+            raise InputError(f"min_traces must be two integers >= 3; got {self.min_traces!r}")
+        object.__setattr__(self, "min_traces", tuple(int(v) for v in self.min_traces))
+        check_positive(self.min_samples, "min_samples")
+        check_positive(self.min_crossings, "min_crossings", allow_zero=True)
+        if not 0.0 < float(self.max_saturated) <= 1.0:
+            raise InputError(f"max_saturated must be a fraction in (0, 1]; got {self.max_saturated!r}")
+
+    def thresholds(self, thinned_votes: np.ndarray) -> tuple[float, float]:
+        """(lower, upper) thresholds on the thinned votes (see ``sensitivity`` and ``max_fault_fraction``)."""
+        values = thinned_votes[thinned_votes > 0]
+        factor = 2.0 ** (1.0 - 2.0 * float(self.sensitivity))
+        otsu = _otsu(values) if values.size else 1.0
+        upper = min(0.99, factor * max(otsu, float(self.min_vote)))
+        lower = upper / 3.0
+        fraction = min(1.0, float(self.max_fault_fraction) / factor)
+        if values.size > fraction * thinned_votes.size:
+            dense = float(np.quantile(values, 1.0 - fraction * thinned_votes.size / values.size))
+            if dense > lower:
+                lower = min(dense, 0.99)
+                upper = max(upper, min(0.99, 3.0 * lower))
+        return lower, upper
+
+
+def _otsu(values: np.ndarray) -> float:
+    from skimage.filters import threshold_otsu
+
+    if values.size == 0 or float(values.max()) <= float(values.min()):
+        return float(values.max()) if values.size else 1.0
+    return float(threshold_otsu(values))
+
+
+@dataclass(frozen=True)
 class FaultInterpretation:
     """Result of :func:`trace_faults`.
 
@@ -51,10 +149,16 @@ class FaultInterpretation:
         Fault likelihood in [0, 1] (0 on and next to dead samples).
     strike_deg, dip_deg : same shape, float32 ndarray
         Strike and dip of the most likely fault plane at each sample, degrees, index space.
+    votes : same shape, float32 ndarray
+        Optimal-surface votes in [0, 1] (:func:`~seismo3d.seismic.vote_faults`): about the mean likelihood of the
+        fault surfaces through each sample.
     thin : same shape, float32 ndarray
-        The likelihood on the 1-sample-wide thinned fault traces, 0 elsewhere (``thin > 0`` is the fault mask).
+        The votes on the 1-sample-wide thinned faults above the lower threshold, 0 elsewhere.
+    thresholds : (float, float)
+        The lower and upper thresholds on the thinned votes (see :class:`FaultTracingOptions`).
     faults : list of Fault
-        Linked faults (surfaces in 3D, curves in 2D), ids 1, 2, ... by decreasing size.
+        Fault skins (surfaces in 3D, curves in 2D), ids 1, 2, ... by decreasing size; their ``likelihood`` holds the
+        thinned votes.
     throws : list of FaultThrow
         One per fault, in the order of ``faults``; ``throws[i].throw`` is the vertical throw at each point of
         ``faults[i]``, in samples.
@@ -67,13 +171,13 @@ class FaultInterpretation:
     likelihood: np.ndarray
     strike_deg: np.ndarray
     dip_deg: np.ndarray
+    votes: np.ndarray
     thin: np.ndarray
+    thresholds: tuple
     faults: list
     throws: list
     sample_interval: float
     sample_unit: str
-
-
 
 
 @dataclass(frozen=True, eq=False)
@@ -193,23 +297,31 @@ def _near(dead: np.ndarray) -> np.ndarray:
 
 
 
-def trace_faults(data, *, sample_interval=None, sample_unit="samples", progress=True) -> FaultInterpretation:
-    """Trace the faults of a seismic cube or section: likelihood, thinning, linking, throw.
+def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivity=None,
+                 options: FaultTracingOptions | None = None, progress=True) -> FaultInterpretation:
+    """Trace the faults of a seismic cube or section: likelihood, voting, skins, throw.
 
     The steps, with their defaults chosen from the data (no per-file tuning):
 
-    1. :func:`~seismo3d.seismic.fault_likelihood` (scan of fault strikes and dips, Hale 2013);
-    2. :func:`~seismo3d.seismic.thin_faults` (non-maximum suppression across the fault, Otsu + hysteresis);
-    3. :func:`~seismo3d.seismic.link_faults` (fault surfaces in 3D, curves in 2D; tiny ones dropped);
-    4. :func:`~seismo3d.seismic.fault_throws` (vertical throw by registering the reflectors on both sides).
+    1. :func:`~seismo3d.seismic.fault_likelihood`: scan of fault strikes and dips of the semblance of balanced
+       amplitudes (Hale 2013);
+    2. :func:`~seismo3d.seismic.thin_faults`: its ridges (non-maximum suppression across the fault), the seeds;
+    3. :func:`~seismo3d.seismic.vote_faults`: optimal surface voting (Wu & Fomel 2018), which makes faults
+       continuous across gaps of the likelihood and leaves isolated noise weak;
+    4. the votes thinned, and thresholded from the data (Otsu, see :class:`FaultTracingOptions`);
+    5. :func:`~seismo3d.seismic.fault_skins`: the thinned votes linked into fault surfaces (curves in 2D);
+    6. :func:`~seismo3d.seismic.fault_throws`: vertical throw by registering the reflectors on both sides.
 
     NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Dead samples (runs of 5 or
     more equal values along a trace: dead traces, mutes, gaps, NaN runs) are skipped, with a warning: the likelihood
     within 3 traces and 8 samples of them is set to 0, since the edge of a dead zone is not a fault.
 
-    Memory and time: the whole array is processed in memory. The whole ``seismo3d faults`` command on a 256^3
-    float32 cube (64 MiB) peaked at 1.3 GB resident and took about 55 s on 2 cores (128^3: 0.4 GB, about 20 s);
-    both grow about linearly with the number of samples. Crop larger cubes, or trace them in overlapping pieces.
+    Data that cannot support fault tracing is refused with an :class:`~seismo3d.errors.UnsupportedDataError`:
+    too few traces or samples, data that does not oscillate like seismic amplitudes (a velocity model), or a
+    likelihood saturated everywhere (no lateral coherence).
+
+    Memory and time: the whole array is processed in memory, time and memory linear in the number of samples (see
+    ``benchmarks/faults.py`` for the figures at 64^3 to 256^3).
 
     Parameters
     ----------
@@ -219,20 +331,26 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", progress=
         Sample interval in ``sample_unit``; required unless ``sample_unit`` is 'samples'.
     sample_unit : {'samples', 'ms', 'm', 'ft'}, optional
         Unit of the sample axis (for converting throws, see :attr:`FaultInterpretation.sample_interval`).
+    sensitivity : float, optional
+        In [0, 1], more faults when higher; replaces ``options.sensitivity`` (default 0.5).
+    options : FaultTracingOptions, optional
+        Options of every step.
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
-        otherwise; the fault likelihood and the throw, the long steps, report their progress too).
+        otherwise; the likelihood, the voting and the throw report their own progress too).
 
     Returns
     -------
     FaultInterpretation
-        Likelihood, strike, dip, thinned faults, linked faults and their throws.
+        Likelihood, strike, dip, votes, thinned faults, fault skins and their throws.
 
     Raises
     ------
     InputError
         ``data`` is not a numeric 2D / 3D array with at least 3 samples per axis, all samples are equal, or the
-        sample interval / unit is invalid.
+        sample interval / unit or an option is invalid.
+    UnsupportedDataError
+        The data cannot support fault tracing (see above); the message says why and what to do.
 
     Warns
     -----
@@ -246,6 +364,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", progress=
        seismic images", Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1.
     .. [2] D. Hale, "Fault surfaces and fault throws from 3D seismic images", Geophysics 79(5), O53-O66, 2014,
        doi:10.1190/geo2013-0270.1.
+    .. [3] X. Wu and S. Fomel, "Automatic fault interpretation with optimal surface voting", Geophysics 83(5),
+       O67-O82, 2018, doi:10.1190/geo2018-0115.1.
 
     Examples
     --------
@@ -263,28 +383,100 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", progress=
     elif sample_interval is None:
         raise InputError(f"sample_unit={sample_unit!r} needs sample_interval= (the sample interval in {sample_unit})")
     sample_interval = check_positive(sample_interval, "sample_interval")
+    opt = options or FaultTracingOptions()
+    if not isinstance(opt, FaultTracingOptions):
+        raise InputError(f"trace_faults(options=...) must be a FaultTracingOptions; got {type(opt).__name__}")
+    if sensitivity is not None:
+        opt = dataclasses.replace(opt, sensitivity=sensitivity)
 
-    cleaned = clean_traces(data)
+    # bad arrays raise InputError; data that cannot support fault tracing is refused before any work, and before
+    # warnings about its dead or clipped samples that would not matter then
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", Seismo3dWarning)
+        cleaned = clean_traces(data)
+    _check_size(cleaned.data.shape, opt)
+    for w in caught:
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     arr, dead = cleaned.data, cleaned.dead
     del cleaned
-    with progress_steps(4, "faults", enabled=progress) as bar:
+    _check_amplitudes(arr, dead, opt)
+    with progress_steps(6, "faults", enabled=progress) as bar:
         bar.start("fault likelihood")
-        fl = fault_likelihood(arr, progress=progress)
+        with warnings.catch_warnings():  # saturation is decided below, on the live samples
+            warnings.simplefilter("ignore", Seismo3dWarning)
+            fl = fault_likelihood(arr, options=opt.scan, progress=progress)
         likelihood, strike, dip = fl.likelihood, fl.strike_deg, fl.dip_deg
         del fl
-        if dead.any():  # the edge of a dead zone is not a fault
-            likelihood[_near(dead)] = 0.0
+        near_dead = _near(dead) if dead.any() else None
+        if near_dead is not None:  # the edge of a dead zone is not a fault
+            likelihood[near_dead] = 0.0
+        _check_saturation(likelihood, near_dead, opt)
         del dead
         bar.advance()
-        bar.start("thinning")
-        thin = thin_faults(likelihood, strike, dip)
+        bar.start("ridges")
+        ridges = thin_faults(likelihood, strike, dip, threshold=0.0)
         bar.advance()
-        bar.start("linking")
-        faults = link_faults(thin, strike, dip)
+        bar.start("voting")
+        votes = vote_faults(likelihood, strike, dip, ridges, options=opt.voting, progress=progress)
+        del ridges
+        if near_dead is not None:  # voting surfaces bridge gaps, but a fault is not drawn across dead traces
+            votes.votes[near_dead] = 0.0
+        bar.advance()
+        bar.start("thinning")
+        thin = thin_faults(votes.votes, votes.strike_deg, votes.dip_deg, threshold=0.0, sigma=0.0, dip_smoothing=0)
+        lower, upper = opt.thresholds(thin)
+        thin[thin < lower] = 0.0
+        bar.advance()
+        bar.start("fault skins")
+        faults = fault_skins(thin, votes.strike_deg, votes.dip_deg, lower=lower, upper=upper, options=opt.skins)
         bar.advance()
         bar.start("throw")
         throws = fault_throws(arr, faults, progress=progress) if faults else []
         bar.advance()
-    return FaultInterpretation(likelihood=likelihood, strike_deg=strike, dip_deg=dip, thin=thin, faults=faults,
-                               throws=list(throws), sample_interval=float(sample_interval), sample_unit=sample_unit)
+    return FaultInterpretation(likelihood=likelihood, strike_deg=strike, dip_deg=dip, votes=votes.votes, thin=thin,
+                               thresholds=(float(lower), float(upper)), faults=faults, throws=list(throws),
+                               sample_interval=float(sample_interval), sample_unit=sample_unit)
 
+
+def _check_size(shape: tuple, opt: FaultTracingOptions) -> None:
+    """Refuse data too small for the scan and the voting boxes."""
+    lateral = sorted(shape[:-1], reverse=True)
+    need = list(opt.min_traces[: len(lateral)])
+    if any(n < m for n, m in zip(lateral, need)) or shape[-1] < opt.min_samples:
+        size = " x ".join(str(n) for n in shape[:-1])
+        want = (f"{need[0]} traces along one lateral axis and {need[1]} along the other" if len(need) == 2 else
+                f"{need[0]} traces")
+        raise UnsupportedDataError(
+            f"the data has {size} traces of {shape[-1]} samples: fault tracing needs at least {want}, and "
+            f"{opt.min_samples} samples per trace (the fault-plane windows and voting boxes span that much); "
+            "trace a larger cube or section")
+
+
+def _check_amplitudes(arr: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions) -> None:
+    """Refuse data whose traces do not oscillate like seismic amplitudes."""
+    live = ~dead.all(axis=-1)
+    traces = arr[live] if arr.ndim == 2 else arr.reshape(-1, arr.shape[-1])[live.ravel()]
+    traces = traces[:: max(1, traces.shape[0] // 4000)].astype(np.float64)
+    if traces.shape[0] == 0:
+        raise UnsupportedDataError("every trace is dead (constant): there is nothing to trace faults in")
+    centred = traces - traces.mean(axis=1, keepdims=True)
+    crossings = float(np.median(np.count_nonzero(np.diff(np.signbit(centred), axis=1), axis=1)))
+    per_100 = 100.0 * crossings / traces.shape[1]
+    if per_100 < opt.min_crossings:
+        raise UnsupportedDataError(
+            f"the traces cross their mean {per_100:.1f} times per 100 samples (seismic reflections: 10-30 times): "
+            "this is not seismic amplitude data (a velocity or impedance model?); fault tracing needs a stacked, "
+            "migrated seismic image")
+
+
+def _check_saturation(likelihood: np.ndarray, near_dead, opt: FaultTracingOptions) -> None:
+    """Refuse data whose likelihood is high almost everywhere (no lateral coherence)."""
+    values = likelihood if near_dead is None else likelihood[~near_dead]
+    if values.size == 0:
+        return
+    high = float(np.count_nonzero(values > 0.9)) / float(values.size)
+    if high > opt.max_saturated:
+        raise UnsupportedDataError(
+            f"the fault likelihood is above 0.9 at {high:.0%} of the samples: the data has no lateral coherence to "
+            "trace faults in (noise, chaotic reflections, or traces out of order); check the inline/crossline "
+            "geometry or the file")

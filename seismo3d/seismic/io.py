@@ -48,6 +48,7 @@ __all__ = ["SeismicCube", "open_segy", "read_segy", "write_like", "read_section"
 # (n_traces, n_samples) of the raw sections in the data directory's seismic/sections (see its README).
 _SECTION_SHAPES = {
     "campos_gx373": (550, 300),
+    "costarica_crf": (500, 180),
     "costarica_gx808": (825, 210),
     "costarica_gx809": (825, 210),
     "f3_f3d75s": (440, 222),
@@ -687,8 +688,8 @@ def read_section(path, *, n_traces=None, n_samples=None) -> np.ndarray:
     ----------
     path : str or os.PathLike
         A ``.f32be`` file. The shapes of the sections in the data directory's ``seismic/sections`` are known by file
-        stem (campos_gx373 550 x 300, costarica_gx808 / gx809 825 x 210, f3_f3d75s 440 x 222, teapot_tpd 357 x 315,
-        teapot_tp73 357 x 240, f3_f3d178sub2 951 x 242); for other files pass the shape.
+        stem (campos_gx373 550 x 300, costarica_crf 500 x 180, costarica_gx808 / gx809 825 x 210, f3_f3d75s 440 x 222,
+        teapot_tpd 357 x 315, teapot_tp73 357 x 240, f3_f3d178sub2 951 x 242); for other files pass the shape.
     n_traces, n_samples : int, optional
         Shape; for an unknown file give at least one, the other is derived from the file size.
 

@@ -83,12 +83,84 @@ def _colors(ids: np.ndarray):
 # PNG
 
 
+def _live_window(data: np.ndarray) -> tuple[slice, slice]:
+    """Traces and samples of a section worth drawing: without the dead (constant) traces at its sides and the rows
+    at its top and bottom where fewer than 2 % of the samples are live (mutes, padding)."""
+    live = np.abs(np.diff(data, axis=1, prepend=data[:, :1])) > 0
+    traces = np.nonzero(live.any(axis=1))[0]
+    rows = np.nonzero(live.mean(axis=0) >= 0.02)[0]
+    if traces.size < 2 or rows.size < 2:
+        return slice(None), slice(None)
+    return slice(int(traces[0]), int(traces[-1]) + 1), slice(int(rows[0]), int(rows[-1]) + 1)
+
+
+def _dot(n_h, width_in) -> dict:
+    """Scatter style of fault samples: dots about half a cell wide, at least 1.5 pt^2."""
+    cell_pt = 72.0 * width_in / max(n_h, 1)
+    return dict(s=float(np.clip((0.5 * cell_pt) ** 2, 1.5, 12.0)), linewidths=0, marker="o")
+
+
+def _extent(h, v) -> tuple:
+    """imshow extent of an image whose columns are at the values ``h`` and rows at ``v`` (downward)."""
+    dh = (h[-1] - h[0]) / max(h.size - 1, 1) / 2 if h.size > 1 else 0.5
+    dv = (v[-1] - v[0]) / max(v.size - 1, 1) / 2 if v.size > 1 else 0.5
+    return (h[0] - dh, h[-1] + dh, v[-1] + dv, v[0] - dv)
+
+
+def _section_figure(data, fl, pts, ids, ax_vals, axis_labels, seis, like, dpi):
+    """The 2D figure: the section, the faults over it and the likelihood, cropped to the live data and drawn with
+    about one sample per trace (a tall section side by side, a wide one one above the other), so that dips show."""
+    from matplotlib.figure import Figure
+
+    tr, sm = _live_window(data)
+    data = data[tr, sm]
+    fl = None if fl is None else fl[tr, sm]
+    h_vals, v_vals = ax_vals[0][tr], ax_vals[1][sm]
+    if pts.size:
+        keep = ((pts[:, 0] >= (tr.start or 0)) & (pts[:, 0] < (tr.stop or data.shape[0] + 1))
+                & (pts[:, 1] >= (sm.start or 0)) & (pts[:, 1] < (sm.stop or data.shape[1] + 1)))
+        pts, ids = pts[keep], ids[keep]
+    n_panels = 3 if fl is not None else 2
+    ratio = data.shape[1] / max(data.shape[0], 1)  # samples per trace
+    tall = ratio > 1.0
+    if tall:
+        width = 5.0
+        height = float(np.clip(width * ratio, 5.0, 14.0))
+        fig = Figure(figsize=(width * n_panels + 1.2, height + 1.0), dpi=dpi, layout="constrained")
+        axs = fig.subplots(1, n_panels, sharex=True, sharey=True, squeeze=False)[0]
+    else:
+        width = 11.0
+        height = float(np.clip(width * ratio, 2.2, 6.0))
+        fig = Figure(figsize=(width + 1.2, height * n_panels + 1.0), dpi=dpi, layout="constrained")
+        axs = fig.subplots(n_panels, 1, sharex=True, sharey=True, squeeze=False)[:, 0]
+    ext = _extent(h_vals, v_vals)
+    for a in axs[:2]:
+        a.imshow(data.T, extent=ext, **seis)
+    axs[0].set_title("seismic")
+    axs[1].set_title("faults, coloured by id")
+    if pts.size:
+        axs[1].scatter(_at(ax_vals[0], pts[:, 0]), _at(ax_vals[1], pts[:, 1]), c=_colors(ids),
+                       **_dot(data.shape[0], width))
+    if fl is not None:
+        im = axs[2].imshow(fl.T, extent=ext, **like)
+        axs[2].set_title("fault likelihood")
+        fig.colorbar(im, ax=axs[2], shrink=0.8, label="fault likelihood")
+    for a in axs:
+        a.set_xlabel(str(axis_labels[0]))
+    axs[0].set_ylabel(str(axis_labels[1]))
+    if not tall:
+        for a in axs[1:]:
+            a.set_ylabel(str(axis_labels[1]))
+    return fig
+
+
 def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_labels=None, slices=None, title=None,
                       clip_percentile=99.0, dpi=110) -> Path:
     """Draw faults over slices of the seismic and save a PNG.
 
     3D: an inline, a crossline and a time (depth) slice, by default those crossing the most fault samples; 2D: the
-    section without and with the faults. Seismic in grey, symmetric colour limits at the ``clip_percentile`` of the
+    section without and with the faults, cropped to its live traces and samples and drawn with about one sample per
+    trace so that fault dips show (tall sections side by side, wide ones one above the other). Seismic in grey, symmetric colour limits at the ``clip_percentile`` of the
     absolute amplitude; faults as dots coloured by fault id (10 colours, cycled). With ``likelihood``, a row of the
     same slices of the fault likelihood is added below.
 
@@ -149,34 +221,8 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
     seis = dict(cmap="gray", vmin=-clip, vmax=clip, aspect="auto", interpolation="bilinear")
     like = dict(cmap="magma", vmin=0.0, vmax=1.0, aspect="auto", interpolation="nearest")
 
-    def dot(n_h, width_in):  # dots about half a cell wide, at least 1.5 pt^2
-        cell_pt = 72.0 * width_in / max(n_h, 1)
-        return dict(s=float(np.clip((0.5 * cell_pt) ** 2, 1.5, 12.0)), linewidths=0, marker="o")
-
-    def extent(h, v):  # horizontal axis values h, vertical v (downward)
-        dh = (h[-1] - h[0]) / max(h.size - 1, 1) / 2 if h.size > 1 else 0.5
-        dv = (v[-1] - v[0]) / max(v.size - 1, 1) / 2 if v.size > 1 else 0.5
-        return (h[0] - dh, h[-1] + dh, v[-1] + dv, v[0] - dv)
-
     if data.ndim == 2:
-        n_rows = 3 if fl is not None else 2
-        fig = Figure(figsize=(11, 2.2 + 2.6 * n_rows), dpi=dpi, layout="constrained")
-        axs = fig.subplots(n_rows, 1, sharex=True, sharey=True, squeeze=False)[:, 0]
-        ext = extent(ax_vals[0], ax_vals[1])
-        for a in axs[:2]:
-            a.imshow(data.T, extent=ext, **seis)
-        axs[0].set_title("seismic")
-        axs[1].set_title("faults, coloured by id")
-        if pts.size:
-            axs[1].scatter(_at(ax_vals[0], pts[:, 0]), _at(ax_vals[1], pts[:, 1]), c=_colors(ids),
-                           **dot(shape[0], 10.0))
-        if fl is not None:
-            im = axs[2].imshow(fl.T, extent=ext, **like)
-            axs[2].set_title("fault likelihood")
-            fig.colorbar(im, ax=axs[2], shrink=0.8)
-        for a in axs:
-            a.set_ylabel(sample_label)
-        axs[-1].set_xlabel(str(axis_labels[0]))
+        fig = _section_figure(data, fl, pts, ids, ax_vals, axis_labels, seis, like, dpi)
     else:
         if slices is None:
             slices = (_most_faulted(pts[:, 0], shape[0]), _most_faulted(pts[:, 1], shape[1]),
@@ -199,12 +245,12 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
              f"{sample_label.split(' ')[0]} slice {tz[k]:g}", xl_name, il_name),
         ]
         for c, (cut, h, v, sel, hc, vc, name, hl, vl) in enumerate(panels):
-            ext = extent(h, v)
+            ext = _extent(h, v)
             a = axs[0, c]
             a.imshow(cut(data), extent=ext, **seis)
             if sel is not None and sel.any():
                 a.scatter(_at(ax_vals[hc], pts[sel, hc]), _at(ax_vals[vc], pts[sel, vc]), c=_colors(ids[sel]),
-                          **dot(h.size, 4.5))
+                          **_dot(h.size, 4.5))
             a.set_title(name)
             a.set_xlabel(hl)
             a.set_ylabel(vl)
@@ -215,7 +261,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
                 b.set_xlabel(hl)
                 b.set_ylabel(vl)
         if fl is not None:
-            fig.colorbar(im, ax=axs[1, :].tolist(), shrink=0.8)
+            fig.colorbar(im, ax=axs[1, :].tolist(), shrink=0.8, label="fault likelihood")
     n_f = len(np.unique(ids)) if ids.size else 0
     fig.suptitle(f"{title + ': ' if title else ''}{n_f} faults")
     path = Path(path)

@@ -11,7 +11,9 @@ import pytest
 import segyio
 
 from seismo3d.data.synthetic import synthetic_cube
-from seismo3d.errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, Seismo3dWarning
+from seismo3d.errors import (
+    DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, Seismo3dWarning, UnsupportedDataError,
+)
 from seismo3d.jobs.faults import run_faults_job
 from seismo3d.seismic.io import open_segy
 
@@ -54,7 +56,7 @@ def demo(tmp_path_factory):
 def test_demo_writes_every_output(demo):
     out, written = demo
     names = {"demo_seismic.sgy", "demo_truth.csv", "fault_likelihood.sgy", "fault_strike.sgy", "fault_dip.sgy",
-             "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png"}
+             "fault_votes.sgy", "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png"}
     assert {p.name for p in out.iterdir()} == names
     assert {Path(p).name for p in written.values()} == names
     assert Path(written["figure"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -140,19 +142,38 @@ def test_demo_surfaces(demo):
 
 
 @pytest.mark.slow
-def test_f3_crop_round_trip(data_dir, tmp_path):
-    """The likelihood, strike and dip SEG-Y of f3_crop read back with the input's geometry and trace headers."""
-    src = tmp_path / "in" / "f3_crop.sgy"
+def _write_cube(path, cube, *, sorting=segyio.TraceSortingFormat.CROSSLINE_SORTING):
+    """A 3D SEG-Y with survey-like headers: inlines from 111, crosslines from 875 (every 2nd), CDP coordinates,
+    4 ms, IBM float, crossline-sorted (inline-sorted with ``sorting``)."""
+    n_il, n_xl, ns = cube.shape
+    spec = segyio.spec()
+    spec.format = 1
+    spec.samples = np.arange(ns) * 4.0
+    spec.sorting = sorting
+    spec.ilines, spec.xlines = np.arange(111, 111 + n_il), np.arange(875, 875 + 2 * n_xl, 2)
+    order = ([(i, j) for j in range(n_xl) for i in range(n_il)] if sorting == segyio.TraceSortingFormat.CROSSLINE_SORTING
+             else [(i, j) for i in range(n_il) for j in range(n_xl)])
+    with segyio.create(str(path), spec) as f:
+        f.text[0] = segyio.tools.wrap("C 1 seismo3d test cube with survey-like headers")
+        for t, (i, j) in enumerate(order):
+            f.header[t] = {segyio.su.iline: 111 + i, segyio.su.xline: 875 + 2 * j, segyio.su.cdpx: 605000 + 25 * i,
+                           segyio.su.cdpy: 6073000 + 25 * j, segyio.su.scalco: 1}
+            f.trace[t] = cube[i, j]
+        f.bin.update(hdt=4000, hns=ns)
+
+
+@pytest.mark.slow
+def test_segy_outputs_keep_the_inputs_headers(tmp_path):
+    """The likelihood, strike, dip and votes SEG-Y read back with the input's geometry, textual, binary and trace
+    headers (a crossline-sorted IBM-float cube written here)."""
+    src = tmp_path / "in" / "cube.sgy"
     src.parent.mkdir()
-    shutil.copyfile(Path(data_dir) / "seismic" / "f3_crop.sgy", src)
+    _write_cube(src, synthetic_cube((48, 40, 80), n_faults=2, seed=5).cube)
     before = _sha(src)
-    out = tmp_path / "out"
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", Seismo3dWarning)  # its muted top and low coherence are reported
-        written = run_faults_job(src, out, progress=False)
+    written = run_faults_job(src, tmp_path / "out", progress=False)
     assert _sha(src) == before
     with segyio.open(src) as a:
-        for key in ("likelihood", "strike", "dip"):
+        for key in ("likelihood", "strike", "dip", "votes"):
             with segyio.open(written[key]) as b:
                 np.testing.assert_array_equal(a.ilines, b.ilines)
                 np.testing.assert_array_equal(a.xlines, b.xlines)
@@ -167,18 +188,27 @@ def test_f3_crop_round_trip(data_dir, tmp_path):
                     assert a.header[i] == b.header[i], f"trace header {i} of {key}"
     with open_segy(written["likelihood"]) as c:
         fl = c.read()
-    assert fl.shape == (23, 18, 75) and fl.min() >= 0 and fl.max() <= 1
-    # the muted top (leading zeros, 8-19 samples per trace) is dead: no likelihood there
-    with open_segy(src) as c:
-        data = c.read()
-    lead = np.argmax(data != 0, axis=-1)
-    assert lead.min() >= 5
-    muted = np.arange(75)[None, None, :] < lead[..., None]
-    assert muted.sum() > 2000 and np.all(fl[muted] == 0)
+    assert fl.shape == (48, 40, 80) and fl.min() >= 0 and fl.max() <= 1
     points = _rows(written["points"])
     assert list(points[0])[:6] == POINT_COLUMNS + ["throw_ms"]
-    assert {int(r["inline"]) for r in points} <= set(range(111, 134))
-    assert {int(r["crossline"]) for r in points} <= set(range(875, 893))
+    assert {int(r["inline"]) for r in points} <= set(range(111, 159))
+    assert {int(r["crossline"]) for r in points} <= set(range(875, 955, 2))
+
+
+@pytest.mark.parametrize("name, why", [
+    ("f3_crop.sgy", "23 x 18 traces of 75 samples: fault tracing needs at least 32 traces"),
+    ("volve_migvel_depth_sub3d.sgy", "not seismic amplitude data"),
+])
+def test_data_that_cannot_support_faults_is_refused(data_dir, tmp_path, name, why):
+    """A cube too small for the scan (f3_crop, 23 x 18 traces) and a velocity model (Volve, 1480-4706 m/s): one
+    clear reason, no warnings before it, and nothing written (before: 6 junk faults on f3_crop)."""
+    src = Path(data_dir) / "seismic" / name
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with pytest.raises(UnsupportedDataError, match=why):
+            run_faults_job(src, tmp_path / "out", progress=False)
+    assert not [w for w in caught if issubclass(w.category, Seismo3dWarning)]
+    assert not (tmp_path / "out").exists()
 
 
 def test_real_section(data_dir, tmp_path):

@@ -51,7 +51,7 @@ def test_constant_and_incoherent_data():
     fl = fault_likelihood(np.ones((20, 20, 30)))
     assert fl.likelihood.max() == 0.0
     noise = np.random.default_rng(0).standard_normal((30, 30, 40)).astype(np.float32)
-    with pytest.warns(Seismo3dWarning, match="little lateral coherence"):
+    with pytest.warns(Seismo3dWarning, match="no lateral coherence"):
         fault_likelihood(noise)
     with warnings.catch_warnings():
         warnings.simplefilter("error")

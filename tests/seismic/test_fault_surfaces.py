@@ -15,17 +15,16 @@ from scipy import ndimage as ndi
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import (
-    Fault, FaultLikelihood, evaluate_faults, fault_labels, fault_likelihood, link_faults, thin_faults,
+    Fault, FaultLikelihood, SkinOptions, evaluate_faults, fault_labels, fault_likelihood, link_faults, thin_faults,
+    trace_faults,
 )
 
 SEEDS = (0, 1, 2, 3, 4)
 
 
 def _trace(cube):
-    fl = fault_likelihood(cube)
-    thin = thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg)
-    faults = link_faults(thin, fl.strike_deg, fl.dip_deg)
-    return fl, thin, faults
+    res = trace_faults(cube, progress=False)
+    return FaultLikelihood(res.likelihood, res.strike_deg, res.dip_deg), res.thin, res.faults
 
 
 @pytest.fixture(scope="module")
@@ -49,13 +48,12 @@ def test_3d_precision_recall(traced_cube, seed):
     assert isinstance(fl, FaultLikelihood)
     assert fl.likelihood.shape == syn.cube.shape and fl.likelihood.dtype == np.float32
     assert 0.0 <= fl.likelihood.min() and fl.likelihood.max() <= 1.0
-    assert np.all((thin == 0) | (thin == fl.likelihood))
+    assert np.all((thin == 0) | (thin == c.votes))
     linked = fault_labels(faults, syn.cube.shape) > 0
     scores = evaluate_faults(linked, syn.fault_labels, tolerance=2)
     p, r = scores.precision, scores.recall
-    print(f"3D seed {seed}: linked precision {p:.3f} recall {r:.3f}")  # the table of the notes (pytest -s)
-    # measured (seeds 0-4): precision 0.97-0.995, recall 0.95-0.99 (0.93-0.97 / 0.95-0.99 before linking)
-    assert p >= 0.85 and r >= 0.85, (p, r)
+    print(f"3D seed {seed}: fault skins precision {p:.3f} recall {r:.3f}")  # the table of the notes (pytest -s)
+    assert p >= 0.90 and r >= 0.90, (p, r)  # the target
 
 
 @pytest.mark.slow
@@ -93,9 +91,8 @@ def test_2d_precision_recall(traced_2d, seed):
     p, r = linked_scores.precision, linked_scores.recall
     p_thin, r_thin = thin_scores.precision, thin_scores.recall
     print(f"2D seed {seed}: linked precision {p:.3f} recall {r:.3f}; thinned {p_thin:.3f} / {r_thin:.3f}")
-    # measured (seeds 0-4): linked precision 0.965-0.998, recall 0.86-0.99; thinned recall 0.90-0.99
-    assert p >= 0.85 and r >= 0.85, (p, r)
-    assert p_thin >= 0.85 and r_thin >= 0.85, (p_thin, r_thin)
+    assert p >= 0.85 and r >= 0.90, (p, r)  # measured: precision 0.89-1.00, recall 0.97-1.00
+    assert r_thin >= 0.90, r_thin  # the thinned votes above the lower threshold, before the skins drop short ones
 
 
 def test_2d_dip_direction_and_angle(traced_2d):
@@ -214,5 +211,5 @@ def test_real_sections_run(name):
     assert fl.likelihood.shape == section.shape
     # both sections show dozens of faults; the counts are broad sanity bounds, not accuracy claims
     assert 10 <= len(faults) <= 400
-    assert all(f.size >= 20 for f in faults)
-    assert np.count_nonzero(thin) < 0.1 * thin.size
+    assert all(f.size >= SkinOptions().smallest(section.shape) for f in faults)
+    assert np.count_nonzero(thin) < 0.15 * thin.size  # thinned votes: 12 % on the densely faulted gx808

@@ -1,0 +1,526 @@
+"""Optimal surface voting: fault likelihood made continuous by the votes of optimal fault surfaces (paths in 2D).
+
+After Wu & Fomel (2018). Seeds are picked on the thinned fault likelihood. Around each seed the likelihood is sampled
+in a box aligned with the seed's fault plane (u across the fault, v down its dip, w along its strike); dynamic
+programming finds the surface u(v, w) of least total cost ``1 - likelihood`` whose slope relative to the seed's plane
+stays below a strain bound; every sample the surface passes through receives a vote equal to the mean likelihood along
+the surface. Samples on long, continuous faults collect many strong votes; noise collects few, weak ones; gaps in a
+fault's likelihood are bridged by the surfaces that pass through them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numba as nb
+import numpy as np
+
+from .._options import resolve_options
+from .._progress import progress_steps
+from .._validation import check_positive
+from ..errors import InputError
+from . import _kernels
+from .fault_surfaces import check_fault_arrays
+
+__all__ = ["VotingOptions", "FaultVotes", "vote_faults", "fault_frames"]
+
+
+@dataclass(frozen=True)
+class VotingOptions:
+    """Options of :func:`vote_faults`; the defaults are Wu & Fomel's (2018) and every seismo3d command uses them.
+
+    Attributes
+    ----------
+    half_width : int, optional
+        Half-width of the voting box across the fault, samples: the surface may leave the seed's plane by at most
+        this much. None: 15 in 2D, 10 in 3D.
+    half_length_dip : int, optional
+        Half-length of the box down the fault's dip, samples. None: 30 in 2D, 20 in 3D.
+    half_length_strike : int
+        Half-length of the box along the fault's strike, traces (3D only).
+    seed_spacing : int, optional
+        Seeds are more than this many samples apart (Chebyshev distance), strongest first. None: 4 in 2D (Wu &
+        Fomel's value), 6 in 3D (a 3D surface's box holds 30 times more samples; on the synthetic 128^3 cubes 6
+        votes as well as 4 at 0.7 of the time).
+    seed_threshold : float
+        Only thinned fault-likelihood samples above this are seeds, in [0, 1).
+    max_strain : float
+        Largest slope of a voting surface relative to its seed's plane, in (0, 1]: the surface moves across the fault
+        by one sample per ``ceil(1 / max_strain)`` samples along it.
+    surface_smoothing : float
+        Half-width of the exponential smoothing of each picked surface, in units of ``ceil(1 / max_strain)`` samples
+        (0 for none).
+
+    Raises
+    ------
+    InputError
+        A value out of range (checked when the options are made).
+    """
+
+    half_width: int | None = None
+    half_length_dip: int | None = None
+    half_length_strike: int = 30
+    seed_spacing: int | None = None
+    seed_threshold: float = 0.3
+    max_strain: float = 0.25
+    surface_smoothing: float = 2.0
+
+    def __post_init__(self):
+        for name in ("half_width", "half_length_dip"):
+            value = getattr(self, name)
+            if value is not None:
+                _check_int(value, name, 1)
+        _check_int(self.half_length_strike, "half_length_strike", 1)
+        if self.seed_spacing is not None:
+            _check_int(self.seed_spacing, "seed_spacing", 1)
+        if not 0.0 <= float(self.seed_threshold) < 1.0:
+            raise InputError(f"seed_threshold must be in [0, 1); got {self.seed_threshold!r}")
+        if not 0.0 < float(self.max_strain) <= 1.0:
+            raise InputError(f"max_strain must be in (0, 1]; got {self.max_strain!r}")
+        check_positive(self.surface_smoothing, "surface_smoothing", allow_zero=True)
+
+    def box(self, shape: tuple) -> tuple[int, int, int]:
+        """(half_width, half_length_dip, half_length_strike) of the voting box for an image of ``shape``: along the
+        strike at most half the narrower lateral axis (a slab of a few inlines holds no longer fault), along the dip
+        at most half the samples."""
+        two_d = len(shape) == 2
+        ru = self.half_width if self.half_width is not None else (15 if two_d else 10)
+        rv = self.half_length_dip if self.half_length_dip is not None else (30 if two_d else 20)
+        rv = max(2, min(int(rv), (shape[-1] - 1) // 2))
+        rw = 0 if two_d else max(1, min(int(self.half_length_strike), (min(shape[0], shape[1]) - 1) // 2))
+        return int(ru), rv, rw
+
+    def spacing(self, ndim: int) -> int:
+        """The seed spacing for a 2D or 3D image."""
+        return int(self.seed_spacing) if self.seed_spacing is not None else (4 if ndim == 2 else 6)
+
+    def full_vote(self, shape: tuple) -> float:
+        """The votes a sample in the middle of a long fault of likelihood 1 receives in an image of ``shape``: one
+        per seed whose box covers it, seeds every ``spacing + 1`` samples along dip (and strike)."""
+        _, rv, rw = self.box(shape)
+        step = self.spacing(len(shape)) + 1.0
+        return (2 * rv + 1) / step * ((2 * rw + 1) / step if rw else 1.0)
+
+
+def _check_int(value, name, minimum):
+    if isinstance(value, bool) or int(value) != value or value < minimum:
+        raise InputError(f"{name} must be an integer >= {minimum}; got {value!r}")
+
+
+@dataclass(frozen=True, eq=False)
+class FaultVotes:
+    """Result of :func:`vote_faults`.
+
+    Attributes
+    ----------
+    votes : (*shape) float32 ndarray
+        Accumulated votes divided by :meth:`VotingOptions.full_vote`, clipped to [0, 1]: about the mean likelihood
+        of the fault surfaces through a sample, scaled down where fewer surfaces than on a long fault pass.
+    strike_deg, dip_deg : (*shape) float32 ndarray
+        Orientation of the best voting surface through each sample (degrees, conventions of
+        :mod:`~seismo3d.seismic.fault_likelihood`); 0 where no surface passed.
+    n_seeds : int
+        Number of seeds that voted.
+    """
+
+    votes: np.ndarray
+    strike_deg: np.ndarray
+    dip_deg: np.ndarray
+    n_seeds: int
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# dynamic programming in the box: Hale's dynamic warping with a strain bound, as Wu & Fomel (2018) use it
+
+
+@nb.njit(cache=True)
+def _prefix(e, c):
+    # c[i + 1, l] = sum of e[:i + 1, l]: sums over runs of rows in O(1)
+    ni, nl = e.shape
+    for l in range(nl):
+        c[0, l] = 0.0
+    for i in range(ni):
+        for l in range(nl):
+            c[i + 1, l] = c[i, l] + e[i, l]
+
+
+@nb.njit(cache=True)
+def _accumulate(e, b, forward, d, c):
+    # d[i, l]: least cost of a path over rows up to i (forward) or from i (backward) ending at lag l, the lag
+    # changing by at most one every b rows (the costs of the b - 1 rows in between are added along the new lag,
+    # from the prefix sums c of e)
+    ni, nl = e.shape
+    _prefix(e, c)
+    if forward:
+        for il in range(nl):
+            d[0, il] = e[0, il]
+        for ii in range(1, ni):
+            ji = ii - 1
+            jb = max(ii - b, 0)
+            for il in range(nl):
+                ilm = max(il - 1, 0)
+                ilp = min(il + 1, nl - 1)
+                # rows jb + 1 .. ji on the neighbouring lag
+                dm = d[jb, ilm] + c[ji + 1, ilm] - c[jb + 1, ilm]
+                dp = d[jb, ilp] + c[ji + 1, ilp] - c[jb + 1, ilp]
+                m = d[ji, il]
+                if dm < m:
+                    m = dm
+                if dp < m:
+                    m = dp
+                d[ii, il] = m + e[ii, il]
+    else:
+        for il in range(nl):
+            d[ni - 1, il] = e[ni - 1, il]
+        for ii in range(ni - 2, -1, -1):
+            ji = ii + 1
+            jb = min(ii + b, ni - 1)
+            for il in range(nl):
+                ilm = max(il - 1, 0)
+                ilp = min(il + 1, nl - 1)
+                # rows ji .. jb - 1 on the neighbouring lag
+                dm = d[jb, ilm] + c[jb, ilm] - c[ji, ilm]
+                dp = d[jb, ilp] + c[jb, ilp] - c[ji, ilp]
+                m = d[ji, il]
+                if dm < m:
+                    m = dm
+                if dp < m:
+                    m = dp
+                d[ii, il] = m + e[ii, il]
+
+
+@nb.njit(cache=True)
+def _backtrack(d, e, b, u, c):
+    # the least-cost path of a forward accumulation, traced back from the cheapest lag of the last row; a change of
+    # lag is spread linearly over the b rows it spans (c: prefix sums of e, as left by _accumulate)
+    ni, nl = d.shape
+    ii = ni - 1
+    il = 0
+    for jl in range(1, nl):
+        if d[ii, jl] < d[ii, il]:
+            il = jl
+    u[ii] = il
+    while ii > 0:
+        ji = ii - 1
+        jb = max(ii - b, 0)
+        ilm = max(il - 1, 0)
+        ilp = min(il + 1, nl - 1)
+        dm = d[jb, ilm] + c[ji + 1, ilm] - c[jb + 1, ilm]
+        dp = d[jb, ilp] + c[ji + 1, ilp] - c[jb + 1, ilp]
+        if d[ji, il] <= dm and d[ji, il] <= dp:
+            ii -= 1
+            u[ii] = il
+            continue
+        new = ilm if dm <= dp else ilp
+        start = u[ii]
+        steps = ii - jb
+        for s in range(1, steps + 1):
+            u[ii - s] = start + (new - il) * s / steps
+        ii = jb
+        il = new
+
+
+@nb.njit(cache=True)
+def _smooth_costs(e, b, t1, t2, c, out):
+    # nonlinear smoothing of the costs along axis 0: forward + backward accumulation - cost, the cost of the best
+    # path through each (row, lag) (Hale 2013, dynamic warping)
+    _accumulate(e, b, True, t1, c)
+    _accumulate(e, b, False, t2, c)
+    ni, nl = e.shape
+    for i in range(ni):
+        for l in range(nl):
+            out[i, l] = t1[i, l] + t2[i, l] - e[i, l]
+
+
+@nb.njit(cache=True)
+def _smooth_exponential(x, a, tmp):
+    # two-sided recursive exponential smoothing with zero-slope ends, coefficient a
+    n = x.shape[0]
+    if a <= 0.0 or n < 2:
+        return
+    tmp[0] = x[0]
+    for i in range(1, n):
+        tmp[i] = a * tmp[i - 1] + (1.0 - a) * x[i]
+    x[n - 1] = tmp[n - 1]
+    for i in range(n - 2, -1, -1):
+        x[i] = a * x[i + 1] + (1.0 - a) * tmp[i]
+
+
+@nb.njit(cache=True, inline="always")
+def _nearest(f, x, y, z):
+    n0, n1, n2 = f.shape
+    i = min(max(int(np.floor(x + 0.5)), 0), n0 - 1)
+    j = min(max(int(np.floor(y + 0.5)), 0), n1 - 1)
+    k = min(max(int(np.floor(z + 0.5)), 0), n2 - 1)
+    return f[i, j, k]
+
+
+@nb.njit(cache=True, parallel=True)
+def _vote(att, seeds, frames, ru, rv, rw, b, a_smooth, votes, best, normal):
+    # att (n0, n1, n2) likelihood in [0, 1]; seeds (ns, 3) int64; frames (ns, 3, 3) rows u (normal), v (dip
+    # vector), w (strike vector). votes (n_threads, n0, n1, n2) accumulate per thread (no write races); best and
+    # normal record the strongest surface through each sample (races there only pick one of two near-equal surfaces).
+    n0, n1, n2 = att.shape
+    nu = 2 * ru + 1
+    nv = 2 * rv + 1
+    nw = 2 * rw + 1
+    nm = max(nv, nw)
+    ns = seeds.shape[0]
+    n_threads = votes.shape[0]
+    for t in nb.prange(n_threads):
+        e = np.empty((nw, nv, nu))
+        es = np.empty((nw, nv, nu))
+        t1 = np.empty((nm, nu))
+        t2 = np.empty((nm, nu))
+        cs = np.empty((nm + 1, nu))
+        row = np.empty((nm, nu))
+        row_s = np.empty((nm, nu))
+        surf = np.empty((nw, nv))
+        tmp = np.empty(nm)
+        line = np.empty(nm)
+        for s in range(t, ns, n_threads):
+            c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
+            ux, uy, uz = frames[s, 0, 0], frames[s, 0, 1], frames[s, 0, 2]
+            vx, vy, vz = frames[s, 1, 0], frames[s, 1, 1], frames[s, 1, 2]
+            wx, wy, wz = frames[s, 2, 0], frames[s, 2, 1], frames[s, 2, 2]
+            # 1. costs 1 - likelihood in the box; outside the cone |u| <= distance from the seed, cost 1, so that the
+            #    surface passes near the seed
+            for iw in range(nw):
+                dw = iw - rw
+                for iv in range(nv):
+                    dv = iv - rv
+                    r = np.sqrt(dv * dv + dw * dw)
+                    lim = int(np.floor(r + 0.5)) if r > 2.0 else 0
+                    x0 = c0 + dv * vx + dw * wx
+                    y0 = c1 + dv * vy + dw * wy
+                    z0 = c2 + dv * vz + dw * wz
+                    for iu in range(nu):
+                        du = iu - ru
+                        if du < -lim or du > lim:
+                            e[iw, iv, iu] = 1.0
+                        else:
+                            e[iw, iv, iu] = 1.0 - _nearest(att, x0 + du * ux, y0 + du * uy, z0 + du * uz)
+            # 2. nonlinear smoothing of the costs down the dip, then along the strike
+            for iw in range(nw):
+                _smooth_costs(e[iw], b, t1[:nv], t2[:nv], cs[:nv + 1], es[iw])
+            if nw > 1:
+                for iv in range(nv):
+                    for iw in range(nw):
+                        for iu in range(nu):
+                            row[iw, iu] = es[iw, iv, iu]
+                    _smooth_costs(row[:nw], b, t1[:nw], t2[:nw], cs[:nw + 1], row_s[:nw])
+                    for iw in range(nw):
+                        for iu in range(nu):
+                            es[iw, iv, iu] = row_s[iw, iu]
+            # 3. the least-cost path down the dip in every strike slice: the surface, smoothed both ways
+            for iw in range(nw):
+                _accumulate(es[iw], b, True, t1[:nv], cs[:nv + 1])
+                _backtrack(t1[:nv], es[iw], b, line[:nv], cs[:nv + 1])
+                for iv in range(nv):
+                    surf[iw, iv] = line[iv] - ru
+                _smooth_exponential(surf[iw], a_smooth, tmp[:nv])
+            if nw > 1:
+                for iv in range(nv):
+                    for iw in range(nw):
+                        line[iw] = surf[iw, iv]
+                    _smooth_exponential(line[:nw], a_smooth, tmp[:nw])
+                    for iw in range(nw):
+                        surf[iw, iv] = line[iw]
+            # 4. the surface's mean likelihood inside the image, and its normal at the seed
+            total = 0.0
+            count = 0
+            for iw in range(nw):
+                dw = iw - rw
+                for iv in range(nv):
+                    dv = iv - rv
+                    du = surf[iw, iv]
+                    x = c0 + du * ux + dv * vx + dw * wx
+                    y = c1 + du * uy + dv * vy + dw * wy
+                    z = c2 + du * uz + dv * vz + dw * wz
+                    if x < -0.5 or y < -0.5 or z < -0.5 or x > n0 - 0.5 or y > n1 - 0.5 or z > n2 - 0.5:
+                        continue
+                    total += _nearest(att, x, y, z)
+                    count += 1
+            if count == 0:
+                continue
+            fa = total / count
+            gv = 0.5 * (surf[rw, rv + 1] - surf[rw, rv - 1])
+            gw = 0.5 * (surf[min(rw + 1, nw - 1), rv] - surf[max(rw - 1, 0), rv]) if nw > 1 else 0.0
+            nx = ux - gv * vx - gw * wx
+            ny = uy - gv * vy - gw * wy
+            nz = uz - gv * vz - gw * wz
+            nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+            nx /= nn
+            ny /= nn
+            nz /= nn
+            # 5. one vote per sample of the surface
+            for iw in range(nw):
+                dw = iw - rw
+                for iv in range(nv):
+                    dv = iv - rv
+                    du = surf[iw, iv]
+                    i = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5))
+                    j = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5))
+                    k = int(np.floor(c2 + du * uz + dv * vz + dw * wz + 0.5))
+                    if i < 0 or j < 0 or k < 0 or i >= n0 or j >= n1 or k >= n2:
+                        continue
+                    votes[t, i, j, k] += fa
+                    if fa > best[i, j, k]:
+                        best[i, j, k] = fa
+                        normal[i, j, k, 0] = nx
+                        normal[i, j, k, 1] = ny
+                        normal[i, j, k, 2] = nz
+
+
+@nb.njit(cache=True)
+def _greedy_seeds(cand, mark, d):
+    # keep candidates (sorted strongest first) with no kept seed within Chebyshev distance d
+    n0, n1, n2 = mark.shape
+    out = np.empty_like(cand)
+    n = 0
+    for c in range(cand.shape[0]):
+        i, j, k = cand[c, 0], cand[c, 1], cand[c, 2]
+        ok = True
+        for a in range(max(i - d, 0), min(i + d + 1, n0)):
+            for bb in range(max(j - d, 0), min(j + d + 1, n1)):
+                for cc in range(max(k - d, 0), min(k + d + 1, n2)):
+                    if mark[a, bb, cc]:
+                        ok = False
+                        break
+                if not ok:
+                    break
+            if not ok:
+                break
+        if ok:
+            mark[i, j, k] = True
+            out[n] = cand[c]
+            n += 1
+    return out[:n]
+
+
+def _pick_seeds(thin3: np.ndarray, threshold: float, spacing: int) -> np.ndarray:
+    """(n, 3) int64 seeds: thinned samples above ``threshold``, strongest first, more than ``spacing`` apart."""
+    cand = np.argwhere(thin3 > threshold)
+    if cand.size == 0:
+        return np.zeros((0, 3), np.int64)
+    order = np.argsort(-thin3[tuple(cand.T)], kind="stable")
+    return _greedy_seeds(cand[order].astype(np.int64), np.zeros(thin3.shape, np.bool_), int(spacing))
+
+
+def fault_frames(strike_deg, dip_deg) -> np.ndarray:
+    """Orthonormal frames of fault planes: unit normal, dip vector and strike vector.
+
+    Parameters
+    ----------
+    strike_deg, dip_deg : (n,) array_like of float
+        Fault strikes and dips, degrees (conventions of :mod:`~seismo3d.seismic.fault_likelihood`; a 2D section's
+        strike is 90 or 270).
+
+    Returns
+    -------
+    (n, 3, 3) float64 ndarray
+        Rows: the normal ``(sin(dip) sin(strike), -sin(dip) cos(strike), cos(dip))`` (into the footwall), the dip
+        vector ``(-cos(dip) sin(strike), cos(dip) cos(strike), sin(dip))`` (down the fault) and the strike vector
+        ``(cos(strike), sin(strike), 0)``, in (inline, xline, sample) components.
+    """
+    phi = np.radians(np.asarray(strike_deg, np.float64))
+    theta = np.radians(np.asarray(dip_deg, np.float64))
+    sp, cp, st, ct = np.sin(phi), np.cos(phi), np.sin(theta), np.cos(theta)
+    u = np.stack([st * sp, -st * cp, ct], -1)
+    v = np.stack([-ct * sp, ct * cp, st], -1)
+    w = np.stack([cp, sp, np.zeros_like(sp)], -1)
+    return np.stack([u, v, w], axis=-2)
+
+
+def _strike_dip(normal: np.ndarray, two_d: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Strike and dip (degrees) of (..., 3) normals (inline, xline, sample); 0, 0 where the normal is 0."""
+    n = np.where(normal[..., 2:3] < 0, -normal, normal)
+    dip = np.degrees(np.arccos(np.clip(n[..., 2], 0.0, 1.0)))
+    if two_d:
+        strike = np.where(n[..., 0] >= 0, 90.0, 270.0)
+    else:
+        strike = np.degrees(np.arctan2(n[..., 0], -n[..., 1])) % 360.0
+    none = ~np.any(normal != 0, axis=-1)
+    return np.where(none, 0.0, strike).astype(np.float32), np.where(none, 0.0, dip).astype(np.float32)
+
+
+def vote_faults(likelihood, strike_deg, dip_deg, thin, *, options: VotingOptions | None = None,
+                progress: bool = False, **overrides) -> FaultVotes:
+    """Optimal surface voting (optimal path voting in 2D) over a fault likelihood image.
+
+    1. Seeds: thinned likelihood samples above ``seed_threshold``, strongest first, more than
+       :meth:`VotingOptions.spacing` samples apart.
+    2. Around each seed, a box aligned with its fault plane (``half_width`` across, ``half_length_dip`` down the dip,
+       ``half_length_strike`` along the strike) is filled with the cost ``1 - likelihood`` (nearest sample); costs
+       outside a cone around the seed are 1, so the surface passes close to it.
+    3. The costs are smoothed nonlinearly (accumulated both ways and summed) down the dip and along the strike, and
+       the least-cost surface is picked by dynamic programming down the dip in every strike slice, its slope across
+       the fault bounded by ``max_strain`` (Hale's dynamic warping), then smoothed.
+    4. The surface votes: each of its samples receives the mean likelihood along it.
+
+    Votes are divided by :meth:`VotingOptions.full_vote` (the votes a long fault of likelihood 1 receives), so the
+    result is on an absolute scale, comparable between images.
+
+    Parameters
+    ----------
+    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        Fault likelihood in [0, 1] (:func:`~seismo3d.seismic.fault_likelihood`).
+    strike_deg, dip_deg : array_like of float, same shape
+        Fault strike and dip of each sample, degrees.
+    thin : array_like of float, same shape
+        Thinned likelihood (:func:`~seismo3d.seismic.thin_faults` with ``threshold=0``): the seed candidates.
+    options : VotingOptions, optional
+        The box, seeds and strain (defaults of Wu & Fomel 2018); keyword arguments replace its fields.
+    progress : bool, optional
+        Report progress over the seeds (see :func:`seismo3d._progress.progress_steps`).
+
+    Returns
+    -------
+    FaultVotes
+        ``votes`` in [0, 1], the orientation of the best voting surface through each sample, and the seed count.
+
+    Raises
+    ------
+    InputError
+        Shapes differ, values are not finite, or an option is out of range.
+
+    References
+    ----------
+    .. [1] X. Wu and S. Fomel, "Automatic fault interpretation with optimal surface voting", Geophysics 83(5),
+       O67-O82, 2018, doi:10.1190/geo2018-0115.1.
+    .. [2] D. Hale, "Dynamic warping of seismic images", Geophysics 78(2), S105-S115, 2013,
+       doi:10.1190/geo2012-0327.1.
+    """
+    opt = resolve_options(VotingOptions, options, overrides, "vote_faults")
+    fl, st, dp = check_fault_arrays(likelihood, strike_deg, dip_deg)
+    th = np.asarray(thin, dtype=np.float32)
+    if th.shape != fl.shape:
+        raise InputError(f"thin {th.shape} must have the shape of likelihood {fl.shape}")
+    two_d = fl.ndim == 2
+    f3 = np.ascontiguousarray(_kernels.as_3d(fl), dtype=np.float64)
+    seeds = _pick_seeds(_kernels.as_3d(th), float(opt.seed_threshold), opt.spacing(fl.ndim))
+    s3, d3 = _kernels.as_3d(st), _kernels.as_3d(dp)
+    frames = np.ascontiguousarray(fault_frames(s3[tuple(seeds.T)], d3[tuple(seeds.T)]).reshape(-1, 3, 3))
+    ru, rv, rw = opt.box(fl.shape)
+    b = int(np.ceil(1.0 / float(opt.max_strain)))
+    sigma = float(opt.surface_smoothing) * b
+    a_smooth = 0.0 if sigma <= 0 else (1.0 + sigma * sigma - np.sqrt(1.0 + 2.0 * sigma * sigma)) / (sigma * sigma)
+    n_threads = nb.get_num_threads()
+    votes = np.zeros((n_threads,) + f3.shape, np.float32)
+    best = np.zeros(f3.shape, np.float32)
+    normal = np.zeros(f3.shape + (3,), np.float32)
+    n_chunks = max(1, min(20, len(seeds) // 200))
+    bounds = np.linspace(0, len(seeds), n_chunks + 1).astype(int)
+    with progress_steps(len(seeds), "fault voting", unit="seed", enabled=progress) as steps:
+        for lo, hi in zip(bounds[:-1], bounds[1:]):
+            _vote(f3, seeds[lo:hi], frames[lo:hi], ru, rv, rw, b, a_smooth, votes, best, normal)
+            steps.advance(int(hi - lo))
+    total = votes.sum(axis=0)
+    del votes
+    np.multiply(total, np.float32(1.0 / opt.full_vote(fl.shape)), out=total)
+    np.clip(total, 0.0, 1.0, out=total)
+    strike, dip = _strike_dip(normal, two_d)
+    if two_d:
+        total, strike, dip = total[:, 0], strike[:, 0], dip[:, 0]
+    return FaultVotes(np.ascontiguousarray(total), np.ascontiguousarray(strike), np.ascontiguousarray(dip),
+                      int(len(seeds)))

@@ -1,0 +1,89 @@
+"""Fault skins (seismo3d.seismic.fault_skins): gaps bridged, crossing faults kept apart, pieces of one fault cut by
+another merged, hysteresis and sizes, options."""
+
+import numpy as np
+import pytest
+
+from seismo3d.errors import InputError
+from seismo3d.seismic import Fault, SkinOptions, fault_normals, fault_skins
+
+
+def _plane(shape, strike, dip, centre):
+    i, j, k = np.meshgrid(*(np.arange(n) for n in shape), indexing="ij")
+    n = fault_normals(np.array([strike]), np.array([dip]))[0]
+    d = (i - centre[0]) * n[0] + (j - centre[1]) * n[1] + (k - centre[2]) * n[2]
+    return np.abs(d) < 0.5  # a one-sample-thick digital plane
+
+
+def _image(masks_and_orientations, shape):
+    thin = np.zeros(shape, np.float32)
+    strike = np.zeros(shape, np.float32)
+    dip = np.zeros(shape, np.float32)
+    for mask, s, d, value in masks_and_orientations:
+        thin[mask] = value
+        strike[mask] = s
+        dip[mask] = d
+    return thin, strike, dip
+
+
+def test_crossing_planes_stay_apart_and_gaps_are_bridged():
+    shape = (64, 64, 64)
+    a = _plane(shape, 0.0, 80.0, (32, 32, 32))
+    b = _plane(shape, 90.0, 70.0, (32, 32, 32))
+    b &= ~a
+    a[:, :, 30:34] = False  # a 4-sample gap across plane a
+    thin, strike, dip = _image([(b, 90.0, 70.0, 0.8), (a, 0.0, 80.0, 0.6)], shape)
+    faults = fault_skins(thin, strike, dip, lower=0.3, upper=0.5)
+    assert len(faults) == 2 and all(isinstance(f, Fault) for f in faults)
+    for f in faults:
+        orient = {(float(s), float(d)) for s, d in zip(f.strike_deg, f.dip_deg)}
+        assert len(orient) == 1  # each skin holds one plane's cells only
+    a_skin = next(f for f in faults if f.strike_deg[0] == 0.0)
+    assert a_skin.size == int(a.sum())  # one skin across the gap
+    assert a_skin.points[:, 2].min() < 30 and a_skin.points[:, 2].max() >= 34
+
+
+def test_pieces_of_a_fault_cut_by_another_are_merged():
+    shape = (64, 64, 80)
+    a = _plane(shape, 0.0, 65.0, (32, 32, 40))
+    cut = _plane(shape, 90.0, 80.0, (32, 32, 40))
+    i = np.arange(shape[0])[:, None, None]
+    hanging = np.broadcast_to(i > 32, shape)
+    # displace plane a by 3 samples down on one side of the cutting fault, leaving a 5-trace gap between the pieces
+    moved = np.zeros(shape, bool)
+    moved[:, :, 3:] = (a & hanging)[:, :, :-3]
+    a = (a & ~hanging & (np.abs(i - 32) > 2)) | (moved & (np.abs(i - 32) > 2))
+    thin, strike, dip = _image([(cut, 90.0, 80.0, 0.9), (a, 0.0, 65.0, 0.7)], shape)
+    faults = fault_skins(thin, strike, dip, lower=0.3, upper=0.5)
+    pieces = [f for f in faults if f.strike_deg[0] == 0.0]
+    assert len(pieces) == 1 and pieces[0].size == int(a.sum())
+    apart = fault_skins(thin, strike, dip, lower=0.3, upper=0.5, options=SkinOptions(merge_gap=0))
+    assert len([f for f in apart if f.strike_deg[0] == 0.0]) == 2
+
+
+def test_hysteresis_and_smallest_skin_in_2d():
+    thin = np.zeros((100, 80), np.float32)
+    thin[20, 5:75] = 0.4  # a long weak fault with one strong sample: kept
+    thin[20, 40] = 0.9
+    thin[60, 5:75] = 0.4  # a long weak fault without: dropped
+    thin[80, 10:20] = 0.9  # a strong 10-sample fault: too small (15 samples in 2D)
+    strike = np.full(thin.shape, 90.0, np.float32)
+    dip = np.full(thin.shape, 90.0, np.float32)
+    faults = fault_skins(thin, strike, dip, lower=0.3, upper=0.8)
+    assert [f.points[:, 0].min() for f in faults] == [20] and faults[0].size == 70
+    assert faults[0].points.shape[1] == 2 and faults[0].normals.shape[1] == 2
+
+
+def test_options_and_errors():
+    assert SkinOptions().smallest((100, 120)) == 15
+    assert SkinOptions().smallest((601, 1501)) == 150
+    assert SkinOptions().smallest((128, 128, 128)) == 164
+    assert SkinOptions().smallest((18, 512, 1536)) == 276
+    assert SkinOptions().smallest((40, 40, 64)) == 100
+    for bad in (dict(lateral_reach=0), dict(max_angle=95.0), dict(min_size=0), dict(merge_offset=0.0)):
+        with pytest.raises(InputError):
+            SkinOptions(**bad)
+    thin = np.zeros((40, 40), np.float32)
+    with pytest.raises(InputError, match="lower <= upper"):
+        fault_skins(thin, thin, thin, lower=0.5, upper=0.3)
+    assert fault_skins(thin, thin, thin, lower=0.3, upper=0.5) == []

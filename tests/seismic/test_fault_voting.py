@@ -1,0 +1,89 @@
+"""Optimal surface voting (seismo3d.seismic.fault_voting): gaps bridged, noise left weak, 3D surfaces, options."""
+
+import numpy as np
+import pytest
+
+from seismo3d.errors import InputError
+from seismo3d.seismic import FaultVotes, VotingOptions, fault_normals, thin_faults, vote_faults
+from seismo3d.seismic.fault_voting import fault_frames
+
+
+def _line_image(shape=(120, 160), dip=75.0, x0=40.0, gap=(70, 90), noise=0.0, seed=0):
+    """A 2D likelihood image: a fault line dipping ``dip`` degrees toward increasing trace (strike 270) through
+    (x0, 0), likelihood 0.9 on it and 0 elsewhere except a gap of samples ``gap`` on the line, plus uniform noise."""
+    rng = np.random.default_rng(seed)
+    fl = (noise * rng.random(shape)).astype(np.float32)
+    t = np.arange(shape[1])
+    x = np.rint(x0 + t / np.tan(np.radians(dip))).astype(int)
+    on = (x < shape[0]) & ((t < gap[0]) | (t >= gap[1]))
+    fl[x[on], t[on]] = 0.9
+    strike = np.full(shape, 270.0, np.float32)
+    dip_deg = np.full(shape, dip, np.float32)
+    return fl, strike, dip_deg, x, t
+
+
+def test_a_gap_in_a_fault_is_bridged_and_isolated_noise_stays_weak():
+    fl, strike, dip, x, t = _line_image(noise=0.6)
+    votes = vote_faults(fl, strike, dip, thin_faults(fl, strike, dip, threshold=0.0))
+    assert isinstance(votes, FaultVotes) and votes.votes.shape == fl.shape and votes.n_seeds > 0
+    assert 0.0 <= votes.votes.min() and votes.votes.max() <= 1.0
+    in_gap = [votes.votes[max(x[k] - 1, 0):x[k] + 2, k].max() for k in range(72, 88)]
+    off = votes.votes.copy()
+    for k in range(t.size):  # everything farther than 3 traces from the line
+        off[max(x[k] - 3, 0):x[k] + 4, k] = 0
+    assert off.max() > 0  # the noise voted too
+    assert min(in_gap) > 1.5 * np.percentile(off[off > 0], 99), (min(in_gap), np.percentile(off[off > 0], 99))
+    # the strongest surfaces through the line have its orientation
+    on = (votes.votes > 0.5) & (fl > 0.5)
+    assert np.all(votes.strike_deg[on] == 270.0) and abs(np.median(votes.dip_deg[on]) - 75.0) < 3.0
+
+
+def test_absolute_scale_is_about_the_mean_likelihood_of_a_long_fault():
+    # a gapless line of likelihood 0.9 through the whole image: votes near its middle are about 0.9
+    fl, strike, dip, x, t = _line_image(gap=(0, 0))
+    votes = vote_faults(fl, strike, dip, thin_faults(fl, strike, dip, threshold=0.0))
+    mid = [votes.votes[max(x[k] - 1, 0):x[k] + 2, k].max() for k in range(50, 110)]
+    assert 0.6 <= np.median(mid) <= 1.0, np.median(mid)
+
+
+def test_3d_plane_votes_with_its_orientation():
+    shape = (48, 48, 64)
+    i, j, k = np.meshgrid(*(np.arange(n) for n in shape), indexing="ij")
+    strike, dip = 30.0, 70.0
+    n = fault_normals(np.array([strike]), np.array([dip]))[0]
+    dist = (i - 24) * n[0] + (j - 24) * n[1] + (k - 32) * n[2]
+    fl = np.exp(-0.5 * dist**2).astype(np.float32)
+    st = np.full(shape, strike, np.float32)
+    dp = np.full(shape, dip, np.float32)
+    votes = vote_faults(fl, st, dp, thin_faults(fl, st, dp, threshold=0.0))
+    on = (np.abs(dist) < 0.5) & (np.abs(i - 24) < 10) & (np.abs(j - 24) < 10) & (np.abs(k - 32) < 10)
+    # a box of 41 x 61 samples does not fit in this small cube, so fewer seeds vote than on a long fault
+    assert np.median(votes.votes[on]) > 0.25
+    assert np.median(votes.votes[np.abs(dist) > 4]) == 0.0
+    normals = fault_normals(votes.strike_deg[on], votes.dip_deg[on])
+    angle = np.degrees(np.arccos(np.clip(np.abs(normals @ n), 0, 1)))
+    assert np.median(angle) < 3.0
+
+
+def test_fault_frames_are_orthonormal_and_the_normal_matches_fault_normals():
+    strike = np.array([0.0, 45.0, 200.0, 300.0])
+    dip = np.array([90.0, 60.0, 75.0, 85.0])
+    frames = fault_frames(strike, dip)
+    np.testing.assert_allclose(frames @ frames.transpose(0, 2, 1), np.broadcast_to(np.eye(3), (4, 3, 3)), atol=1e-12)
+    np.testing.assert_allclose(frames[:, 0], fault_normals(strike, dip), atol=1e-6)
+    assert np.all(frames[:, 1, 2] > 0)  # the dip vector points down
+
+
+def test_options():
+    assert VotingOptions().box((100, 200)) == (15, 30, 0)
+    assert VotingOptions().box((100, 120, 200)) == (10, 20, 30)
+    assert VotingOptions().box((18, 512, 1536)) == (10, 20, 8)  # a slab of 18 inlines holds no longer fault
+    assert VotingOptions().spacing(2) == 4 and VotingOptions().spacing(3) == 6
+    for bad in (dict(max_strain=0.0), dict(seed_threshold=1.0), dict(half_width=0), dict(seed_spacing=1.5)):
+        with pytest.raises(InputError):
+            VotingOptions(**bad)
+    fl, strike, dip, *_ = _line_image()
+    with pytest.raises(InputError, match="thin"):
+        vote_faults(fl, strike, dip, fl[:, :10])
+    with pytest.raises(InputError, match="unknown keyword"):
+        vote_faults(fl, strike, dip, fl, seed_spacingg=3)

@@ -391,6 +391,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
 
     # bad arrays raise InputError; data that cannot support fault tracing is refused before any work, and before
     # warnings about its dead or clipped samples that would not matter then
+    if np.ndim(data) in (2, 3):
+        _check_size(np.shape(data), opt)  # too small for the scan (also below clean_traces' 3 samples per axis)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", Seismo3dWarning)
         cleaned = clean_traces(data)
@@ -447,7 +449,8 @@ def _check_size(shape: tuple, opt: FaultTracingOptions) -> None:
         want = (f"{need[0]} traces along one lateral axis and {need[1]} along the other" if len(need) == 2 else
                 f"{need[0]} traces")
         raise UnsupportedDataError(
-            f"the data has {size} traces of {shape[-1]} samples: fault tracing needs at least {want}, and "
+            f"the data has {size} trace{'s' if np.prod(shape[:-1]) != 1 else ''} of {shape[-1]} samples: fault "
+            f"tracing needs at least {want}, and "
             f"{opt.min_samples} samples per trace (the fault-plane windows and voting boxes span that much); "
             "trace a larger cube or section")
 

@@ -187,6 +187,37 @@ def _count_text_headers(raw: memoryview, name: str) -> int:
                           "3505-3506) but none ends with ((SEG: EndText)); the file is damaged")
 
 
+def _stanza_start(block: bytes) -> str | None:
+    """The first line of a 3200-byte block that begins like an extended textual header (``((...``, ASCII or
+    EBCDIC), else None."""
+    for encoding in ("ascii", "cp500"):
+        text = block.decode(encoding, errors="replace").lstrip()
+        if text.startswith("(("):
+            return text.split("\n", 1)[0][:60].rstrip()
+    return None
+
+
+def _refuse_undeclared_text_headers(path: Path, chosen: _Reading, data_offset: int, rest: int,
+                                    trace_bytes: int) -> None:
+    """Raise SegyFormatError when extended textual headers that bytes 3505-3506 do not count explain why the file
+    is not a whole number of traces (SEG-Y rev 1 section 3.3: each begins with a ``((...))`` stanza name)."""
+    k, first = 0, None
+    with open(path, "rb") as fh:
+        fh.seek(data_offset)
+        while (k + 1) * TEXT_HEADER_BYTES <= rest and k < 100:
+            start = _stanza_start(fh.read(TEXT_HEADER_BYTES))
+            if start is None:
+                break
+            first = first or start
+            k += 1
+    if k and (rest - k * TEXT_HEADER_BYTES) % trace_bytes == 0 and rest > k * TEXT_HEADER_BYTES:
+        n = chosen.n_text_headers
+        raise SegyFormatError(
+            f"{path.name} has {n + k} extended textual header{'s' if n + k > 1 else ''} (the "
+            f"{'first' if n == 0 else 'next'} begins "
+            f"{first!r}) but binary header bytes 3505-3506 say {n}; write {n + k} there in a copy of the file")
+
+
 def _segyio_version() -> str:
     try:
         return metadata.version("segyio")
@@ -215,7 +246,8 @@ def read_segy_layout(path, *, endian=None) -> SegyLayout:
         One line naming the reason: the file is shorter than the 3600 bytes of headers, holds no sample format code in
         either byte order (not SEG-Y), declares a variable number of extended textual headers (segyio needs the
         count), has SEG-Y rev 2 additional trace headers, 0 samples per trace or no traces, is not a whole number of
-        traces (cut short), or uses a sample format segyio does not decode (4, 7, 15).
+        traces (cut short, or extended textual headers that bytes 3505-3506 do not count), or uses a sample format
+        segyio does not decode (4, 7, 15).
     """
     path = Path(path)
     name = path.name
@@ -257,6 +289,7 @@ def read_segy_layout(path, *, endian=None) -> SegyLayout:
                               if rest == 0 else f"{name} is cut short: it ends inside {where} ({size} bytes)")
     n_traces, extra = divmod(rest, trace_bytes)
     if extra:
+        _refuse_undeclared_text_headers(path, chosen, data_offset, rest, trace_bytes)
         raise SegyFormatError(
             f"{name} is not a whole number of traces: {rest} bytes after the headers make {n_traces} traces of "
             f"{trace_bytes} bytes ({chosen.n_samples} samples of {_SAMPLE_BYTES[chosen.format]} bytes) and {extra} "

@@ -334,25 +334,32 @@ class Polarity(str, Enum):
 
 
 @app.command()
-@_friendly({"polarity": "--polarity"})
+@_friendly({"polarity": "--polarity", "surface": "--surface"})
 def horizon(
-    input: pathlib.Path = typer.Argument(..., metavar="INPUT", help="SEG-Y cube (inline-sorted or crossline-sorted, "
-                                                                    "big- or little-endian)."),
+    input: pathlib.Path = typer.Argument(..., metavar="INPUT", help="SEG-Y cube or 2D line (inline- or "
+                                                                    "crossline-sorted, big- or little-endian; a file "
+                                                                    "without inline / crossline numbers is read as a "
+                                                                    "trace list)."),
     seed: list[str] = typer.Option(..., "--seed", help="Seed pick IL,XL,T: inline and crossline numbers and the time "
-                                                       "(or depth) in the cube's sample unit; repeat for more seeds."),
+                                                       "(or depth) in the file's sample unit; TRACE,T for a file read "
+                                                       "as a trace list (trace number in file order, from 1). Repeat "
+                                                       "for more seeds."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Text file: one 'inline xline time' row per "
-                                                                      "tracked trace."),
+                                                                      "tracked trace ('trace time' for a trace list)."),
     polarity: Polarity = typer.Option(Polarity.peak, help="Event the horizon follows."),
     faults: bool = typer.Option(False, "--faults", help="Trace the faults first and jump across them by their throw "
                                                         "(slower: the whole fault job runs in memory)."),
     fill: bool = typer.Option(False, "--fill", help="Fill empty traces by interpolation after tracking."),
-    surface: Optional[pathlib.Path] = typer.Option(None, help="Also write the horizon as a surface (.vtp or .vtk)."),
+    surface: Optional[pathlib.Path] = typer.Option(None, help="Also write the horizon as a surface (.vtp or .vtk); "
+                                                              "3D cubes only."),
     iline: int = typer.Option(189, help=_ILINE_HELP),
     xline: int = typer.Option(193, help=_XLINE_HELP),
     endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
+    ignore_geometry: bool = typer.Option(False, "--ignore-geometry", help="Read the SEG-Y as a trace list (unsorted "
+                                                                          "file, arbitrary line); seeds are TRACE,T."),
 ) -> None:
-    """Track a horizon in INPUT from one or more seed picks by registering neighbouring inlines, and write it as
-    'inline xline time' rows."""
+    """Track a horizon in INPUT from one or more seed picks, by registering neighbouring inlines (a cube) or traces
+    (a 2D line), and write it as 'inline xline time' rows."""
     from .errors import InputError
     from .jobs.horizon import run_horizon_job
 
@@ -362,10 +369,12 @@ def horizon(
             seeds.append(tuple(float(v) for v in text.split(",")))
         except ValueError:
             seeds.append(())
-        if len(seeds[-1]) != 3:
-            raise InputError(f"--seed {text!r} must be IL,XL,T (three numbers separated by commas)")
+        if len(seeds[-1]) not in (2, 3):
+            raise InputError(f"--seed {text!r} must be IL,XL,T (three numbers separated by commas), or TRACE,T for a "
+                             "file read as a trace list")
     job = run_horizon_job(input, seeds, output, polarity=polarity.value, faults=faults, fill=fill, surface=surface,
-                          iline=iline, xline=xline, endian=_value(endian), progress=True)
+                          iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=_value(endian),
+                          progress=True)
     typer.echo(f"{job.n_rows} of {job.horizon.times.size} traces tracked ({job.horizon.coverage:.1%}) -> {output}")
     if job.surface is not None:
         typer.echo(f"surface -> {job.surface}")

@@ -178,6 +178,37 @@ def test_faults_errors(cube_file, tmp_path, case, message):
     assert "Traceback" not in result.output
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize("name, trace_list", [("penobscot_xl1155.sgy", False),
+                                               ("volve_fullstack_twt_arbline.sgy", True)])
+def test_faults_on_real_2d_lines_without_flags(data_dir, tmp_path, name, trace_list):
+    # a line of a 3D survey (crossline 1155) and an arbitrary line without inline / crossline numbers: no flags
+    path = Path(data_dir) / "seismic" / name
+    result = runner.invoke(app, ["faults", str(path), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    warn = [line for line in result.stderr.splitlines() if line.startswith("warning: ")]
+    listed = [line for line in warn if "read as a trace list" in line]
+    assert len(listed) == (1 if trace_list else 0) and "--iline" not in result.stderr
+    assert all("=" not in line for line in warn)  # flags, not argument names
+    rows = _rows(tmp_path / "out" / "fault_summary.csv")
+    assert f"{len(rows)} faults in {name}" in result.stdout and len(rows) >= 5
+    with segyio.open(str(tmp_path / "out" / "fault_likelihood.sgy"), ignore_geometry=True) as out, \
+            segyio.open(str(path), ignore_geometry=True) as src:
+        assert out.tracecount == src.tracecount and len(out.samples) == len(src.samples)
+
+
+def test_register_refuses_a_2d_line_in_one_line(data_dir, tmp_path):
+    # not a volume: one error line saying what the file is, no warning suggesting a flag register does not have
+    seismic = Path(data_dir) / "seismic"
+    for name, what in (("volve_fullstack_twt_arbline.sgy", "a 2D or arbitrary line without inline / crossline "
+                                                           "numbers (CDP 1-225)"),
+                       ("penobscot_xl1155.sgy", "a 2D line along inlines 1000-1600 (crossline 1155)")):
+        result = runner.invoke(app, ["register", str(seismic / name), str(seismic / "f3_crop.sgy"), "-o",
+                                     str(tmp_path / "T.json")])
+        assert result.exit_code == 2, result.output
+        assert result.stderr == f"error: {name} is {what}, not a 3D cube; register two 3D cubes\n"
+
+
 def test_faults_exit_code_in_a_real_process(tmp_path):
     """The installed command exits with 2 and one line of error, no traceback."""
     bad = tmp_path / "in" / "bad.segy"

@@ -50,8 +50,8 @@ class _Input:
     def file_order(self, values: np.ndarray) -> np.ndarray:
         """(n_traces, n_samples) of an array shaped like ``data``, in the SEG-Y file's trace order."""
         ns = values.shape[-1]
-        if self.segy_shape is None:  # trace list: already in file order
-            return values.reshape(-1, ns)
+        if self.segy_shape is None:  # trace list: already in file order (contiguous float32 for segyio)
+            return np.ascontiguousarray(values.reshape(-1, ns), dtype=np.float32)
         grid = values.reshape(self.segy_shape)
         if self.sorting == "crossline":
             grid = np.swapaxes(grid, 0, 1)

@@ -8,14 +8,16 @@ coordinates into the second's.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import pathlib
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from .._atomic import atomic_path
-from ..errors import InputError
+from ..errors import InputError, TraceListWarning
 
 __all__ = ["RegisterJob", "run_register_job", "is_segy"]
 
@@ -140,7 +142,11 @@ def _register_volumes(moving_path, fixed_path, model, progress, segy: dict) -> R
     if model not in VOLUME_MODELS:
         raise InputError(f"--model {model} is not available for SEG-Y volumes; use rigid (spacings from the "
                          "headers are right), axis_scaled (default for unknown bins / sample rates) or affine")
-    with open_segy(fixed_path, **segy) as fixed, open_segy(moving_path, **segy) as moving:
+    with contextlib.ExitStack() as opened:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", TraceListWarning)  # a file without a grid is refused below, saying why
+            fixed = opened.enter_context(open_segy(fixed_path, **segy))
+            moving = opened.enter_context(open_segy(moving_path, **segy))
         for cube in (moving, fixed):
             if not cube.is_3d:
                 raise InputError(f"{cube.path.name} is {cube.description}, not a 3D cube; register two 3D cubes")

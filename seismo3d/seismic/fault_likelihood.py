@@ -433,7 +433,8 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     """Fault likelihood, strike and dip by scanning fault orientations (Hale 2013).
 
     1. Amplitude balancing: the data divided by its local RMS amplitude (Gaussian window ``balance``), so that weak
-       reflectors count as much as strong ones.
+       reflectors count as much as strong ones. Data whose peak amplitude is beyond 2^32 or below 2^-32 (e.g.
+       unsigned 64-bit samples) is first scaled by a power of two, exactly, so that float32 sums of squares hold.
     2. Reflector slopes ``p`` from the structure tensor (as in
        :func:`~seismo3d.seismic.attributes.structure_tensor_orientation`).
     3. Structure-oriented semblance numerator ``n = (sum_k f_k)^2`` and denominator ``d = J sum_k f_k^2`` over the

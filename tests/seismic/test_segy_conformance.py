@@ -91,9 +91,10 @@ EXPECTED = {
 
 # (big-endian, little-endian) copies of one file; both read, or both refused for the same reason, except the two
 # whose little-endian copy segyio cannot read (see EXPECTED)
-TWINS = [("f3.sgy", "f3-lsb.sgy"), ("small.sgy", "small-lsb.sgy"), ("mapping-all-types.sgy", "mapping-all-types-lsb.sgy"),
-         ("small.su", "small-lsb.su"),
-         *[(f"multiformats/Format{c}msb.sgy", f"multiformats/Format{c}lsb.sgy") for c in sorted((*READ_FORMATS, 4, 7, 15))]]
+TWINS = [("f3.sgy", "f3-lsb.sgy"), ("small.sgy", "small-lsb.sgy"),
+         ("mapping-all-types.sgy", "mapping-all-types-lsb.sgy"), ("small.su", "small-lsb.su"),
+         *[(f"multiformats/Format{c}msb.sgy", f"multiformats/Format{c}lsb.sgy")
+           for c in sorted((*READ_FORMATS, 4, 7, 15))]]
 SEGYIO_READS_BIG_ONLY = [("decrement.sgy", "decrement-lsb.sgy"), ("increment.sgy", "increment-lsb.sgy")]
 
 

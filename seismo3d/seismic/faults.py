@@ -391,11 +391,12 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
 
     # bad arrays raise InputError; data that cannot support fault tracing is refused before any work, and before
     # warnings about its dead or clipped samples that would not matter then
-    if np.ndim(data) in (2, 3):
-        _check_size(np.shape(data), opt)  # too small for the scan (also below clean_traces' 3 samples per axis)
+    arr = np.asarray(data)
+    if arr.ndim in (2, 3) and min(arr.shape) < 3 and np.issubdtype(arr.dtype, np.number):
+        _check_size(arr.shape, opt)  # numbers, but below clean_traces' 3 samples per axis: the size message
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", Seismo3dWarning)
-        cleaned = clean_traces(data)
+        cleaned = clean_traces(arr)
     _check_size(cleaned.data.shape, opt)
     for w in caught:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)

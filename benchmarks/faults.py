@@ -132,7 +132,7 @@ def xl1155_coverage(labels: np.ndarray, inlines: np.ndarray, samples_ms: np.ndar
     return counts[label] / ks.size, label
 
 
-def real_sections(data_dir: Path) -> None:
+def real_sections(data_dir: Path, out_dir: Path) -> None:
     from scipy import ndimage as ndi
 
     from seismo3d.seismic import fault_labels, open_segy, trace_faults
@@ -182,7 +182,8 @@ def real_sections(data_dir: Path) -> None:
 
     from seismo3d.data import load_penobscot_sections
 
-    cube = np.array(load_penobscot_sections().cube)
+    sections = load_penobscot_sections()
+    cube = np.array(sections.cube)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # clipped amplitudes and the muted top are reported
         t = time.perf_counter()
@@ -193,6 +194,14 @@ def real_sections(data_dir: Path) -> None:
     print(f"\nPenobscot inlines 1075-1092 ({cube.shape[0]} x {cube.shape[1]} x {cube.shape[2]}, 8-bit, clipped): "
           f"{len(res.faults)} faults, {wide} of them spanning >= 10 of the {cube.shape[0]} inlines, largest "
           f"{max((f.size for f in res.faults), default=0)} samples; {seconds:.0f} s")
+    from seismo3d.viz import plot_fault_slices
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    png = plot_fault_slices(cube, res.faults, path=out_dir / "penobscot_inlines_faults.png",
+                            axes=(np.asarray(sections.section_ids), np.arange(cube.shape[1]), np.arange(cube.shape[2])),
+                            axis_labels=("inline", "trace", "sample"),
+                            title="Penobscot inlines 1075-1092: faults by id (seismo3d faults defaults)")
+    print(f"picture: {png}")
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -348,6 +357,7 @@ def main(argv=None) -> None:
     ap.add_argument("--no-speed", action="store_true", help="skip the speed and memory table")
     ap.add_argument("--no-real", action="store_true", help="skip the real sections")
     ap.add_argument("--synthetic", action="store_true", help="also the accuracy on five generated cubes")
+    ap.add_argument("--out", default="out/benchmarks", help="folder of the pictures (default: out/benchmarks)")
     ap.add_argument("--worker", nargs=2, metavar=("METHOD", "NPY"), help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.worker:
@@ -356,7 +366,7 @@ def main(argv=None) -> None:
     root = os.environ.get("SEISMO3D_DATA_DIR")
     if not args.no_real:
         if root:
-            real_sections(Path(root))
+            real_sections(Path(root), Path(args.out))
         else:
             print("real sections skipped: set SEISMO3D_DATA_DIR to the data folder", file=sys.stderr)
     if args.synthetic:

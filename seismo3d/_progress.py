@@ -42,13 +42,19 @@ class _Steps:
         elif self.enabled:
             LOGGER.info("%s: %s (%d/%d)", self.desc, label, min(self.done + 1, self.total), self.total)
 
-    def advance(self, n: int = 1) -> None:
-        """``n`` more steps or items are done (a log line every 5 % of a loop over unnamed items)."""
+    def advance(self, n: int = 1, status: str | None = None) -> None:
+        """``n`` more steps or items are done (a log line every 5 % of a loop over unnamed items); ``status``, when
+        given, is shown beside the count (the bar's postfix, the end of the log line), e.g. a rate."""
         self.done += n
         if self.bar is not None:
+            if status is not None:
+                self.bar.set_postfix_str(status, refresh=False)
             self.bar.update(n)
         elif self.enabled and not self._named and (self.done >= self._next_line or self.done >= self.total):
-            LOGGER.info("%s: %d/%d %s", self.desc, min(self.done, self.total), self.total, self.unit)
+            if status is None:
+                LOGGER.info("%s: %d/%d %s", self.desc, min(self.done, self.total), self.total, self.unit)
+            else:
+                LOGGER.info("%s: %d/%d %s, %s", self.desc, min(self.done, self.total), self.total, self.unit, status)
             self._next_line = self.done + max(1, self.total // _MAX_LINES)
 
     enabled = True
@@ -79,7 +85,8 @@ def progress_steps(total: int, desc: str, *, unit: str = "step", enabled: bool =
     Yields
     ------
     object
-        With ``start(label)`` (a named step begins) and ``advance(n=1)`` (steps done).
+        With ``start(label)`` (a named step begins) and ``advance(n=1, status=None)`` (steps done; ``status`` an
+        optional short text such as a rate).
     """
     if not enabled:
         yield _Silent()

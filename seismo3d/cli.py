@@ -28,8 +28,9 @@ import typer
 from . import __version__
 from .errors import Seismo3dError
 
-app = typer.Typer(help="seismo3d: fault and horizon interpretation of seismic cubes, and point-cloud / RGB-D "
-                       "registration, on one fused-ICP engine.", no_args_is_help=True, add_completion=False)
+app = typer.Typer(help="seismo3d: fault and horizon interpretation of seismic cubes, point-cloud / RGB-D / terrain "
+                       "registration, lineaments and path planning, on one fused-ICP engine.", no_args_is_help=True,
+                  add_completion=False)
 
 NOT_CONVERGED = 1  # exit code of a registration that did not converge (its result is written)
 
@@ -63,7 +64,7 @@ def _version(value: bool) -> None:
 @app.callback()
 def _main(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
                                        help="Print the version and exit.")) -> None:
-    """seismo3d: fault and horizon interpretation of seismic cubes, and point-cloud / RGB-D registration."""
+    """seismo3d: fault and horizon interpretation of seismic cubes, point-cloud / RGB-D / terrain registration."""
     _log_progress_to_stderr()
 
 
@@ -167,24 +168,28 @@ _REGISTER_FLAGS = {"max_distance": "--max-distance", "init": "--init", "alpha": 
 @_friendly(_REGISTER_FLAGS)
 def register(
     source: pathlib.Path = typer.Argument(
-        ..., metavar="SOURCE", help="SOURCE, moved onto TARGET: a point cloud (.ply, .xyz/.txt/.csv, .npy) or the "
-                                    "MOVING SEG-Y cube (.sgy/.segy)."),
+        ..., metavar="SOURCE", help="SOURCE, moved onto TARGET: a point cloud (.ply, .xyz/.txt/.csv, .npy), a LiDAR "
+                                    "scan (.las/.laz), a GeoTIFF DEM or the MOVING SEG-Y cube (.sgy/.segy)."),
     target: pathlib.Path = typer.Argument(
-        ..., metavar="TARGET", help="TARGET, kept fixed: a point cloud or the FIXED SEG-Y cube."),
+        ..., metavar="TARGET", help="TARGET, kept fixed: a point cloud, a LiDAR scan or DEM, or the FIXED SEG-Y "
+                                    "cube."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Where to write the transform JSON."),
-    method: Method = typer.Option(Method.point_to_plane, help="Point clouds: point-to-point, point-to-plane or fused "
-                                                               "(features + point-to-plane, eq. 16)."),
+    method: Optional[Method] = typer.Option(None, help="Residual: point-to-point, point-to-plane or fused (features "
+                                                       "+ point-to-plane, eq. 16). Default point_to_plane for point "
+                                                       "clouds; fused (hillshade features) for LAS/LAZ/GeoTIFF."),
     model: Optional[Model] = typer.Option(None, help="Transform family; default rigid for point clouds, axis_scaled "
                                                      "for SEG-Y cubes."),
-    init: Optional[pathlib.Path] = typer.Option(None, help="Point clouds: JSON with an initial source-to-target "
-                                                           "transform."),
+    init: Optional[pathlib.Path] = typer.Option(None, help="Point clouds and terrain files: JSON with an initial "
+                                                           "source-to-target transform (files' coordinates)."),
     max_distance: Optional[list[float]] = typer.Option(
-        None, help="Point clouds: maximum correspondence distance (repeat for a coarse-to-fine schedule); default: "
-                   "10/3/1 % of the target's bounding-box diagonal."),
+        None, help="Point clouds and terrain files: maximum correspondence distance (repeat for a coarse-to-fine "
+                   "schedule); default: 10/3/1 % of the target's bounding-box diagonal (terrain after a feature "
+                   "start: 8/3/1.5 hillshade cells)."),
     features: Optional[pathlib.Path] = typer.Option(
         None, help="For --method fused: matched feature points, one row per match: source coordinates then target "
                    "coordinates (.csv/.txt/.npy with 2d columns)."),
-    alpha: float = typer.Option(0.1, help="For --method fused: weight of the feature term in [0, 1]."),
+    alpha: Optional[float] = typer.Option(None, help="For --method fused: weight of the feature term in [0, 1] "
+                                                     "(default 0.1; 0.001 for terrain files)."),
     iline: int = typer.Option(189, help="SEG-Y cubes: trace header byte of the inline number."),
     xline: int = typer.Option(193, help="SEG-Y cubes: trace header byte of the crossline number."),
     endian: Optional[Endian] = typer.Option(None, help="SEG-Y cubes: byte order; default: detected from each file's "
@@ -197,11 +202,15 @@ def register(
     rate or map orientation are registered with register_volumes (--model rigid, axis_scaled or affine); the JSON
     holds the 4x4 transforms from MOVING's inline / crossline / sample indices to FIXED's (transform_index) and
     between physical units (transform_physical: m, m, ms or m), the scales, the map rotation, fitness, inlier RMSE,
-    correlation and converged. A registration that did not converge is written, reported and exits with 1."""
+    correlation and converged. LAS/LAZ scans and GeoTIFF DEMs (any pair in one CRS) are registered in a frame
+    recentred on the target, started from matches between their hillshades (no initial guess needed); the JSON's
+    transform is in the files' own coordinates and units. A registration that did not converge is written, reported
+    and exits with 1 (a terrain fit whose surfaces are too gentle to fix the horizontal position counts as converged
+    when the hillshade matches hold it)."""
     from .jobs.register import run_register_job
 
     with _one_line_warnings():
-        job = run_register_job(source, target, output, method=method.value,
+        job = run_register_job(source, target, output, method=None if method is None else method.value,
                                model=None if model is None else model.value, init=init,
                                max_distance=max_distance or None, features=features, alpha=alpha, iline=iline,
                                xline=xline, endian=_value(endian), progress=True)
@@ -210,6 +219,8 @@ def register(
         typer.echo(f"map rotation {reg.rotation_deg:.2f} deg  scales {np.array2string(reg.scales, precision=4)}  "
                    f"fitness {reg.fitness:.3f}  inlier RMSE {reg.inlier_rmse:.3g}  correlation {reg.correlation:.3f}")
         typer.echo(np.array2string(reg.transform_index, precision=4, suppress_small=True))
+    elif job.kind == "terrain":
+        _echo_terrain(job.result)
     else:
         result = job.result
         typer.echo(f"fitness {result.fitness:.3f}  inlier RMSE {result.inlier_rmse:.4g}  iterations "
@@ -217,17 +228,42 @@ def register(
                    + ("  (DEGENERATE geometry)" if result.degenerate else ""))
         typer.echo(np.array2string(result.transform, precision=6, suppress_small=True))
     if not job.converged:
-        if job.kind == "volumes":
-            why = ("the correlation polish stopped on its evaluation limit; check that the cubes overlap and their "
-                   "spacings")
-        elif job.result.degenerate:
-            why = ("the geometry does not constrain every degree of freedom (a plane slides in itself); add "
-                   "--features with --method fused")
-        else:
-            why = "it stopped on its iteration limit; check the overlap, or pass a closer --init"
-        typer.echo(f"error: the registration did not converge ({why}); its last estimate was written to {output}",
-                   err=True)
+        typer.echo(f"error: the registration did not converge ({_why_not_converged(job)}); its last estimate was "
+                   f"written to {output}", err=True)
         raise typer.Exit(NOT_CONVERGED)
+
+
+def _echo_terrain(reg) -> None:
+    """The summary of a terrain registration (:class:`~seismo3d.terrain.TerrainRegistration`)."""
+    r = reg.registration
+    note = ""
+    if reg.held_by_features:
+        note = (f"  (the surfaces alone fix the horizontal position weakly; {reg.n_agreeing_matches} hillshade "
+                "matches hold it)")
+    elif r.degenerate:
+        note = "  (DEGENERATE geometry)"
+    typer.echo(f"rotation {reg.rotation_deg:.3f} deg (heading {reg.heading_deg:.3f})  fitness {r.fitness:.3f}  "
+               f"inlier RMSE {r.inlier_rmse:.4g} {reg.frame.unit}  start {reg.start} ({reg.n_feature_inliers} of "
+               f"{reg.n_matches} hillshade matches)  iterations {r.n_iterations}  converged {reg.converged}" + note)
+    typer.echo(np.array2string(reg.transform, precision=6, suppress_small=True))
+
+
+def _why_not_converged(job) -> str:
+    """Why a registration did not converge, and what to try, in the command's flags."""
+    if job.kind == "volumes":
+        return "the correlation polish stopped on its evaluation limit; check that the cubes overlap and their spacings"
+    result = job.result.registration if job.kind == "terrain" else job.result
+    if result.degenerate and job.kind == "terrain":
+        if job.result.n_matches == 0:
+            return ("the surfaces alone do not fix every direction (gentle or planar terrain) and no hillshade "
+                    "matches were used; drop --method point_to_plane (fused is the default) or pass a closer --init")
+        return ("the surfaces alone do not fix every direction (gentle or planar terrain) and too few hillshade "
+                f"matches agree with the fit to hold it ({job.result.n_agreeing_matches}); check that the files "
+                "overlap")
+    if result.degenerate:
+        return ("the geometry does not constrain every degree of freedom (a plane slides in itself); add --features "
+                "with --method fused")
+    return "it stopped on its iteration limit; check the overlap, or pass a closer --init"
 
 
 class SampleUnit(str, Enum):
@@ -324,6 +360,124 @@ def match(
     else:
         typer.echo("homography (image1 -> image2):")
         typer.echo(np.array2string(result.homography, precision=6, suppress_small=True))
+
+
+@app.command()
+@_friendly()
+def lineaments(
+    dem: pathlib.Path = typer.Argument(..., metavar="DEM", help="A GeoTIFF DEM (geographic or projected CRS)."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing)."),
+) -> None:
+    """Extract the lineaments of DEM (linear terrain structures: scarps, fracture-controlled valleys) and write
+    lineaments.csv (x0, y0, x1, y1 in the raster's CRS, azimuth_deg in [0, 180), length_m, contrast), rose.png (a
+    length-weighted rose diagram) and lineaments.png (the lineaments over the multidirectional hillshade)."""
+    from .jobs.lineaments import run_lineaments_job
+
+    result = run_lineaments_job(dem, output)
+    found = result.lineaments
+    typer.echo(f"{len(found)} lineaments in {dem.name}, {found.length_m.sum() / 1000:.1f} km in all -> {output}")
+    if len(found):
+        from .terrain import rose_histogram
+
+        edges, km = rose_histogram(found, bin_deg=10.0)
+        top = np.argsort(-km)[:3]
+        typer.echo("strongest strikes (length-weighted): " + ", ".join(
+            f"{edges[i]:.0f}-{edges[i + 1]:.0f} deg ({km[i] / 1000:.1f} km)" for i in top))
+    typer.echo("wrote " + ", ".join(pathlib.Path(p).name for p in result.written.values()))
+
+
+_PLAN_FLAGS = {"max_slope_deg": "--max-slope", "cell_size": "--cell-size", "robot_height": "--robot-height",
+               "step_height": "--step-height", "robot_radius": "--robot-radius"}
+
+
+@app.command()
+@_friendly(_PLAN_FLAGS)
+def plan(
+    grid: pathlib.Path = typer.Argument(..., metavar="GRID", help="A GeoTIFF DEM, or the output folder of `seismo3d "
+                                                                  "map` (its mesh.ply becomes an occupancy grid at "
+                                                                  "the robot's height)."),
+    start: str = typer.Option(..., "--start", help="Start cell ROW,COL of the grid."),
+    goal: str = typer.Option(..., "--goal", help="Goal cell ROW,COL of the grid."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="CSV of the path: row,col,x,y,z per cell."),
+    max_slope: float = typer.Option(15.0, "--max-slope", help="DEM: steepest traversable slope, degrees."),
+    cell_size: float = typer.Option(0.05, "--cell-size", help="Map folder: grid cell, metres."),
+    robot_height: float = typer.Option(0.5, "--robot-height", help="Map folder: obstacles are what stands between "
+                                                                   "--step-height and this above the floor, metres."),
+    step_height: float = typer.Option(0.05, "--step-height", help="Map folder: highest bump driven over, metres."),
+    robot_radius: float = typer.Option(0.0, "--robot-radius", help="Map folder: obstacles grown by this, metres."),
+    corner_cutting: bool = typer.Option(True, "--corner-cutting/--no-corner-cutting",
+                                        help="Allow diagonal steps between two blocked cells."),
+) -> None:
+    """Plan the shortest 8-connected path (in metres, A*) from --start to --goal through traversable cells of GRID
+    and write it as CSV (row, col, x, y, z per cell: x, y in the DEM's CRS and z its elevation; for a map, the cell
+    centre on the floor in the map's frame)."""
+    from .jobs.plan import parse_cell, run_plan_job
+
+    s = parse_cell(start, "--start")
+    g = parse_cell(goal, "--goal")
+    options = None
+    if grid.is_dir():
+        from .terrain import OccupancyOptions
+
+        options = OccupancyOptions(cell_size=cell_size, robot_height=robot_height, step_height=step_height,
+                                   robot_radius=robot_radius)
+    result = run_plan_job(grid, s, g, output, max_slope_deg=max_slope, options=options,
+                          corner_cutting=corner_cutting)
+    p = result.path
+    typer.echo(f"path of {len(p.cells)} cells, {p.length_m:.1f} m, from {s} to {g} on a {result.grid.shape[0]} x "
+               f"{result.grid.shape[1]} grid ({result.grid.description}); A* expanded {p.n_expanded} cells in "
+               f"{result.seconds:.3f} s -> {output}")
+
+
+@app.command("map")
+@_friendly({"max_frames": "--max-frames", "voxel_size": "--voxel-size"})
+def map_(
+    sequence: pathlib.Path = typer.Argument(..., help="Sequence folder: TUM RGB-D (rgb.txt, depth.txt [, associations.txt, "
+                                                      "groundtruth.txt]) or 7-Scenes (frame-NNNNNN.depth.png, ...)."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing): "
+                                                                      "trajectory.txt, keyframes.json, mesh.ply, "
+                                                                      "map.png."),
+    max_frames: Optional[int] = typer.Option(None, "--max-frames", help="Map only the first N frames."),
+    loop_closure: bool = typer.Option(True, "--loop-closure/--no-loop-closure",
+                                      help="Look for loops (bag of words + fused ICP) and optimise the pose graph."),
+    features: bool = typer.Option(True, "--features/--no-features",
+                                  help="Use ORB features (fused ICP term, landmarks, loops); off: depth only."),
+    voxel_size: float = typer.Option(0.01, "--voxel-size", help="TSDF voxel edge, metres."),
+    render: bool = typer.Option(True, "--render/--no-render", help="Write map.png (off-screen pyvista)."),
+) -> None:
+    """Map an RGB-D SEQUENCE: frame-to-model fused ICP tracking, Kalman prediction, a TSDF map, keyframes and loop
+    closure. Writes the trajectory (TUM format), the keyframe graph, the mesh and a picture of the map into OUTPUT.
+
+    Ctrl-C stops the run and still writes the trajectory of the frames done and the map so far.
+    """
+    from dataclasses import replace
+
+    from .errors import InputError
+    from .jobs.map import run_map_job
+    from .mapping import MapperOptions, TSDFOptions
+
+    if voxel_size <= 0:
+        raise InputError(f"--voxel-size must be > 0; got {voxel_size}")
+    if max_frames is not None and max_frames < 1:
+        raise InputError(f"--max-frames must be >= 1; got {max_frames}")
+    options = MapperOptions(loop_closure=loop_closure, use_features=features)
+    options = replace(options, tsdf=TSDFOptions(voxel_size=voxel_size))
+
+    with _one_line_warnings():
+        try:
+            written = run_map_job(sequence, output, options=options, max_frames=max_frames, render=render)
+        except KeyboardInterrupt:
+            typer.echo(f"interrupted: the trajectory of the frames done and the map so far are in {output}", err=True)
+            raise typer.Exit(130) from None
+    summary = written["summary"]
+    typer.echo(f"{summary['frames_tracked']} of {summary['frames_in_sequence']} frames tracked, "
+               f"{summary['keyframes']} keyframes, {summary['loop_closures']} loop closures, "
+               f"{summary['frames_per_second']:.1f} frames/s -> {output}")
+    if summary.get("evaluation"):
+        ev = summary["evaluation"]
+        typer.echo(f"against the sequence's reference: ATE RMSE {100 * ev['ate_rmse_m']:.2f} cm, RPE "
+                   f"{100 * ev['rpe_translation_rmse_m']:.2f} cm / {ev['rpe_rotation_rmse_deg']:.2f} deg per frame")
+    typer.echo("wrote " + ", ".join(pathlib.Path(p).name for k, p in written.items() if k != "summary"))
 
 
 class Polarity(str, Enum):

@@ -16,9 +16,11 @@ __all__ = [
     "SegyGeometryError",
     "UnsupportedDataError",
     "RegistrationError",
+    "PlanningError",
     "Seismo3dWarning",
     "DegenerateGeometryWarning",
     "TraceListWarning",
+    "FrameSkippedWarning",
 ]
 
 
@@ -56,6 +58,10 @@ class RegistrationError(Seismo3dError, RuntimeError):
     """A registration could not produce a transform (e.g. RANSAC found no consensus)."""
 
 
+class PlanningError(Seismo3dError, RuntimeError):
+    """No path exists between a start and a goal through traversable cells."""
+
+
 class Seismo3dWarning(UserWarning):
     """Base class of seismo3d's warnings."""
 
@@ -67,3 +73,8 @@ class DegenerateGeometryWarning(Seismo3dWarning):
 class TraceListWarning(Seismo3dWarning):
     """A SEG-Y file without an inline / crossline grid at the default header bytes was read as a trace list (a 2D or
     arbitrary line, an unsorted or irregular survey); the message says what its trace headers show."""
+
+
+class FrameSkippedWarning(Seismo3dWarning):
+    """A frame of a sequence could not be used (missing file, wrong depth dtype or size, no valid depth, tracking
+    lost) and was skipped; the map and trajectory go on from the other frames."""

@@ -42,6 +42,46 @@ def penobscot_faults(penobscot):
 
 
 @pytest.fixture(scope="session")
+def autzen(data_dir):
+    """The real Autzen LiDAR tile (110,000 points, feet; seismo3d.terrain.read_las)."""
+    from seismo3d.data import fetch
+    from seismo3d.terrain import read_las
+
+    return read_las(fetch("terrain/autzen_trim.laz"))
+
+
+@pytest.fixture(scope="session")
+def dfw(data_dir):
+    """The real HydroSHEDS DEM near Dallas-Fort Worth (359 x 367, 3 arc-seconds, EPSG:4326)."""
+    from seismo3d.data import fetch
+    from seismo3d.terrain import read_dem
+
+    return read_dem(fetch("terrain/dem_hydrosheds_dfw.tif"))
+
+
+@pytest.fixture(scope="session")
+def map_folder(tmp_path_factory):
+    """A `seismo3d map`-like output folder of the generated room (seismo3d.data.terrain.synthetic_room): mesh.ply
+    (ASCII, vertices and faces) and trajectory.txt (TUM: timestamp tx ty tz qx qy qz qw)."""
+    from scipy.spatial.transform import Rotation
+
+    from seismo3d.data.terrain import synthetic_room
+
+    room = synthetic_room()
+    folder = tmp_path_factory.mktemp("map")
+    with open(folder / "mesh.ply", "w") as fh:
+        fh.write(f"ply\nformat ascii 1.0\nelement vertex {len(room.vertices)}\nproperty float x\nproperty float y\n"
+                 f"property float z\nelement face {len(room.faces)}\nproperty list uchar int vertex_indices\n"
+                 "end_header\n")
+        np.savetxt(fh, room.vertices, fmt="%.5f")
+        np.savetxt(fh, np.column_stack([np.full(len(room.faces), 3), room.faces]), fmt="%d")
+    rows = [[0.1 * k, *pose[:3, 3], *Rotation.from_matrix(pose[:3, :3]).as_quat()]
+            for k, pose in enumerate(room.camera_poses)]
+    np.savetxt(folder / "trajectory.txt", rows, fmt="%.6f")
+    return folder
+
+
+@pytest.fixture(scope="session")
 def traced_cube():
     """``traced_cube(seed)``: a 128^3 synthetic cube (3 faults, noise 0.1) traced by :func:`trace_faults` (fault
     likelihood, voting, skins, throws) with its reflector orientation, computed once per seed and session (about

@@ -26,3 +26,12 @@ def test_disabled_progress_says_nothing(caplog):
             bar.start("step")
             bar.advance()
     assert not caplog.records
+
+
+def test_status_is_shown_beside_the_count(caplog):
+    with caplog.at_level(logging.INFO, logger="seismo3d"):
+        with progress_steps(4, "map", unit="frame") as bar:
+            for i in range(4):
+                bar.advance(status=f"{i + 1}.0 frames/s")
+    lines = [r.getMessage() for r in caplog.records]
+    assert lines == [f"map: {i}/4 frame, {i}.0 frames/s" for i in range(1, 5)]

@@ -3,10 +3,16 @@
 One module per command, ``seismo3d/jobs/<command>.py``, with one entry point ``run_<command>_job(...)`` that takes the
 command's arguments as plain Python values (paths, numbers, strings) and returns what it wrote or measured; the typer
 wrapper in :mod:`seismo3d.cli` only parses the command line, calls it and prints. Jobs may import the applications
-(:mod:`seismo3d.seismic`, ...), :mod:`seismo3d.viz` and :mod:`seismo3d.data`; no application imports a job.
+(:mod:`seismo3d.seismic`, :mod:`seismo3d.terrain`, ...), :mod:`seismo3d.viz` and :mod:`seismo3d.data`; no application
+imports a job.
 
 - :mod:`seismo3d.jobs.faults`: ``run_faults_job`` (``seismo3d faults``)
 - :mod:`seismo3d.jobs.horizon`: ``run_horizon_job`` (``seismo3d horizon``)
-- :mod:`seismo3d.jobs.register`: ``run_register_job`` (``seismo3d register``: point clouds or SEG-Y sub-volumes)
+- :mod:`seismo3d.jobs.register`: ``run_register_job`` (``seismo3d register``: point clouds, SEG-Y sub-volumes, and
+  terrain files, which it hands to :mod:`seismo3d.jobs.register_terrain`)
+- :mod:`seismo3d.jobs.register_terrain`: ``run_register_terrain_job`` (``seismo3d register`` on LAS/LAZ/GeoTIFF)
 - :mod:`seismo3d.jobs.match`: ``run_match_job`` (``seismo3d match``)
+- :mod:`seismo3d.jobs.lineaments`: ``run_lineaments_job`` (``seismo3d lineaments``)
+- :mod:`seismo3d.jobs.plan`: ``run_plan_job`` (``seismo3d plan``)
+- :mod:`seismo3d.jobs.map`: ``run_map_job`` (``seismo3d map``: RGB-D sequences)
 """

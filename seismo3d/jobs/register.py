@@ -1,9 +1,10 @@
 """The ``seismo3d register`` job: register SOURCE onto TARGET and write the transform as JSON.
 
 Two point clouds (PLY, XYZ text, NPY) are registered by ICP or fused ICP (:mod:`seismo3d.registration`); two SEG-Y
-sub-volumes by :func:`seismo3d.seismic.register_volumes`. The order means the same for both: the first file is moved
-(source, the moving volume) onto the second (target, the fixed volume), and the JSON's transforms map the first's
-coordinates into the second's.
+sub-volumes by :func:`seismo3d.seismic.register_volumes`; two terrain files (LAS/LAZ scans, GeoTIFF DEMs) by
+:func:`seismo3d.terrain.register_terrain` (:mod:`seismo3d.jobs.register_terrain`). The order means the same for all:
+the first file is moved (source, the moving volume) onto the second (target, the fixed volume), and the JSON's
+transforms map the first's coordinates into the second's.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ import numpy as np
 
 from .._atomic import atomic_path
 from ..errors import InputError, TraceListWarning
+from ..terrain import is_terrain_file
 
 __all__ = ["RegisterJob", "run_register_job", "is_segy"]
 
@@ -28,9 +30,9 @@ class RegisterJob:
 
     Attributes
     ----------
-    kind : {'point_clouds', 'volumes'}
+    kind : {'point_clouds', 'volumes', 'terrain'}
         What was registered.
-    result : RegistrationResult or VolumeRegistration
+    result : RegistrationResult, VolumeRegistration or TerrainRegistration
         The registration.
     payload : dict
         What was written to the JSON file.
@@ -49,32 +51,36 @@ def is_segy(path) -> bool:
     return pathlib.Path(path).suffix.lower() in (".sgy", ".segy")
 
 
-def run_register_job(source, target, output, *, method: str = "point_to_plane", model: str | None = None,
-                     init=None, max_distance=None, features=None, alpha: float = 0.1, iline: int = 189,
+def run_register_job(source, target, output, *, method: str | None = None, model: str | None = None,
+                     init=None, max_distance=None, features=None, alpha: float | None = None, iline: int = 189,
                      xline: int = 193, endian=None, progress: bool = True) -> RegisterJob:
     """Register ``source`` onto ``target`` and write the JSON of the transform (atomically).
 
     Parameters
     ----------
     source, target : str or path-like
-        Two point clouds, or two SEG-Y cubes (the moving one first, then the fixed one).
+        Two point clouds, two SEG-Y cubes (the moving one first, then the fixed one), or two terrain files (LAS/LAZ,
+        GeoTIFF DEM; :func:`~seismo3d.jobs.register_terrain.run_register_terrain_job`).
     output : str or path-like
         The JSON file.
-    method : {'point_to_plane', 'point_to_point', 'fused'}
-        Point clouds: the residual (fused = feature matches + point-to-plane, eq. 16).
+    method : {'point_to_plane', 'point_to_point', 'fused'}, optional
+        Point clouds: the residual (fused = feature matches + point-to-plane, eq. 16); default point_to_plane.
+        Terrain files: fused (hillshade matches, the default) or point_to_plane.
     model : {'rigid', 'similarity', 'axis_scaled', 'affine'}, optional
         Transform family; default rigid for point clouds, axis_scaled for SEG-Y cubes (which allow rigid,
         axis_scaled and affine).
     init : str or path-like, optional
-        Point clouds: a JSON file with an initial source-to-target transform (``{"transform": [[...], ...]}``).
+        Point clouds and terrain files: a JSON file with an initial source-to-target transform
+        (``{"transform": [[...], ...]}``).
     max_distance : sequence of float, optional
         Point clouds: maximum correspondence distances, coarse to fine (default 10 / 3 / 1 % of the target's
         bounding-box diagonal).
     features : str or path-like, optional
         ``method='fused'``: matched feature points, one row per match, source coordinates then target coordinates
         (.csv / .txt / .npy with 2d columns).
-    alpha : float
-        ``method='fused'``: weight of the feature term in [0, 1].
+    alpha : float, optional
+        ``method='fused'``: weight of the feature term in [0, 1] (default 0.1 for point clouds,
+        :class:`~seismo3d.terrain.TerrainRegistrationOptions`'s for terrain files).
     iline, xline, endian
         SEG-Y cubes: how to open both, as in :func:`~seismo3d.seismic.open_segy` (by default inline / crossline
         numbers at trace header bytes 189 / 193 and the byte order detected per file).
@@ -88,9 +94,10 @@ def run_register_job(source, target, output, *, method: str = "point_to_plane", 
     Raises
     ------
     InputError
-        Mixed inputs (a cloud and a cube), mismatched dimensions, a model unavailable for volumes, a missing or bad
-        ``init`` or ``features`` file, a SEG-Y file that is not a 3D cube; and the registrations' own errors
-        (:class:`~seismo3d.errors.InputError`, :class:`~seismo3d.errors.RegistrationError`).
+        Mixed inputs (a cloud and a cube, a cloud and a terrain file), mismatched dimensions, a model unavailable
+        for volumes or terrain files, a missing or bad ``init`` or ``features`` file, a SEG-Y file that is not a 3D
+        cube; and the registrations' own errors (:class:`~seismo3d.errors.InputError`,
+        :class:`~seismo3d.errors.RegistrationError`).
     SegyFormatError, SegyGeometryError
         A SEG-Y file that cannot be read (see :func:`~seismo3d.seismic.open_segy`).
     """
@@ -101,8 +108,16 @@ def run_register_job(source, target, output, *, method: str = "point_to_plane", 
                              "of each")
         segy = dict(iline=iline, xline=xline, endian=endian)
         job = _register_volumes(source, target, model or "axis_scaled", progress, segy)
+    elif is_terrain_file(source) or is_terrain_file(target):
+        from .register_terrain import run_register_terrain_job
+
+        if features is not None:
+            raise InputError("--features is for point clouds; terrain files are matched through their hillshades")
+        return run_register_terrain_job(source, target, output, method=method or "fused", model=model or "rigid",
+                                        init=init, max_distance=max_distance, alpha=alpha)
     else:
-        job = _register_point_clouds(source, target, method, model or "rigid", init, max_distance, features, alpha)
+        job = _register_point_clouds(source, target, method or "point_to_plane", model or "rigid", init,
+                                     max_distance, features, 0.1 if alpha is None else alpha)
     write_json(output, job.payload)
     return job
 

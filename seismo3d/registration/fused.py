@@ -63,8 +63,8 @@ def fused_icp(source, target, *, target_normals, source_features, target_feature
     seed : int
         RANSAC seed (the result is deterministic given it).
     options : ICPOptions, optional
-        The dense loop's distance schedule, point pyramid, iterations, tolerance, kernel and degeneracy threshold, as
-        in :func:`~seismo3d.registration.icp` (default ``ICPOptions()``).
+        The dense loop's distance schedule, point pyramid, iterations, tolerance, kernel, degeneracy threshold and
+        correspondence strategy, as in :func:`~seismo3d.registration.icp` (default ``ICPOptions()``).
     **overrides
         Fields of :class:`ICPOptions` by name, replacing those of ``options``.
 
@@ -107,7 +107,7 @@ def fused_icp(source, target, *, target_normals, source_features, target_feature
         rs, inliers = None, np.zeros(len(fs), bool)
 
     frame = NormalisedFrame.of(dst)
-    stages = dense_stages(frame, problem)
+    stages = dense_stages(frame, problem, opt.correspondences)
     start, m_start = "init", m0
     if rs is not None:
         start, m_start = "ransac", rs.transform

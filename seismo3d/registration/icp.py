@@ -13,7 +13,6 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from .._options import resolve_options
 from .._validation import as_normals, as_points, check_choice
@@ -22,6 +21,7 @@ from ..geometry.neighbours import bounding_diagonal, median_spacing, voxel_downs
 from ..geometry.transforms import as_transform, check_model, make_transform
 from . import _solver
 from .closed_form import fit_weighted, min_points
+from .correspondences import as_correspondences
 from .kernels import robust_weights
 from .options import ICPOptions
 from .result import RegistrationResult
@@ -195,7 +195,8 @@ def prepare_problem(source, target, target_normals, method: str, model: str, ini
 
 class DenseStage:
     """One stage of the schedule: source and target (each optionally voxel-downsampled) in the normalised frame,
-    with the target's KD-tree.
+    with the target's correspondence index (a KD-tree, or a projective pixel map: see
+    :mod:`~seismo3d.registration.correspondences`).
 
     Parameters
     ----------
@@ -203,42 +204,47 @@ class DenseStage:
     src : (n, d) float64 ndarray
         Source points (points' coordinates).
     target : tuple
-        ``(points, normals or None, cKDTree)`` of the target, already in the frame.
+        ``(points, normals or None, index)`` of the target, already in the frame; ``index`` is what a correspondence
+        strategy's ``index()`` returns (``index.query(moved, dmax) -> (dist, idx)``).
     """
 
     def __init__(self, frame, src, target):
         self.src = frame.points(src)
-        self.dst, self.nrm, self.tree = target
+        self.dst, self.nrm, self.index = target
 
     def correspond(self, transform, dmax):
-        """Nearest-neighbour correspondences of the moved source within ``dmax`` (frame units): (moved source,
+        """Correspondences of the moved source within ``dmax`` (frame units) by the stage's index: (moved source,
         mask of the source points with one, target indices, distances)."""
         d = self.src.shape[1]
         moved = self.src @ transform[:d, :d].T + transform[:d, d]
-        # threads pay off only for large queries (starting them costs about 0.2 ms per call)
-        workers = -1 if len(moved) >= _PARALLEL_QUERY else 1
-        dist, idx = self.tree.query(moved, k=1, distance_upper_bound=dmax, workers=workers)
+        dist, idx = self.index.query(moved, dmax)
         ok = np.isfinite(dist)
         return moved, ok, idx[ok], dist[ok]
 
 
-_PARALLEL_QUERY = 20000
-
-
-def dense_stages(frame: NormalisedFrame, problem: ICPProblem) -> list:
-    """One :class:`DenseStage` per stage of ``problem``'s schedule; downsampled sources and target KD-trees are shared
-    between stages.
+def dense_stages(frame: NormalisedFrame, problem: ICPProblem, correspondences=None) -> list:
+    """One :class:`DenseStage` per stage of ``problem``'s schedule; downsampled sources and target indices (KD-trees
+    or projective pixel maps) are shared between stages.
 
     Parameters
     ----------
     frame : NormalisedFrame
         Usually ``NormalisedFrame.of(problem.target)``.
     problem : ICPProblem
+    correspondences : NearestNeighbourCorrespondences or ProjectiveCorrespondences, optional
+        How each stage finds correspondences (usually ``ICPOptions.correspondences``; None: nearest neighbours by a
+        KD-tree).
 
     Returns
     -------
     list of DenseStage
+
+    Raises
+    ------
+    InputError
+        ``correspondences`` is not a strategy, or a projective strategy is given a voxel-downsampled target.
     """
+    strategy = as_correspondences(correspondences)
     src, dst, nrm, voxels = problem.source, problem.target, problem.target_normals, problem.voxels
     sources, targets, out = {}, {}, []
     for src_voxel, dst_voxel in voxels:
@@ -251,7 +257,7 @@ def dense_stages(frame: NormalisedFrame, problem: ICPProblem) -> list:
                 if nv is not None:
                     nv = nv / np.maximum(np.linalg.norm(nv, axis=1, keepdims=True), 1e-300)
             pts = frame.points(pts)
-            targets[dst_voxel] = (pts, nv, cKDTree(pts))
+            targets[dst_voxel] = (pts, nv, strategy.index(pts, centre=frame.centre, scale=frame.scale))
         out.append(DenseStage(frame, sources[src_voxel], targets[dst_voxel]))
     return out
 
@@ -371,7 +377,8 @@ def run_icp(stages, sched, frame, m0, *, method: str, model: str, options: ICPOp
     return RegistrationResult(
         transform=frame.out_of(m), fitness=fitness, inlier_rmse=rmse, n_iterations=total_iters,
         converged=bool(converged and not degenerate), min_eigenvalue=lo, degenerate=bool(degenerate),
-        info={"iterations_per_stage": per_stage, "max_distance": tuple(sched), "eigenvalue_ratio": lo / hi if hi else 0.0},
+        info={"iterations_per_stage": per_stage, "max_distance": tuple(sched), "eigenvalue_ratio": lo / hi if hi else 0.0,
+              "tolerance_met": bool(converged)},
     )
 
 
@@ -380,10 +387,11 @@ def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid",
     """Iterative closest point registration of ``source`` onto ``target``, in 2D or 3D.
 
     Each iteration finds, for every (transformed) source point, its nearest target point within the current maximum
-    correspondence distance (``scipy.spatial.cKDTree``, all cores), weights the pairs with a robust kernel and updates
-    the transform: in closed form for point-to-point (Kabsch / Umeyama / eqs. 1-9 / affine least squares), by one
-    Gauss-Newton step for point-to-plane (exact for the affine model, eqs. 11-15; on SE(d) with the exponential map
-    for the rigid one). Stages of a coarse-to-fine distance schedule run one after another, each until the update is
+    correspondence distance (``scipy.spatial.cKDTree``, all cores; with ``correspondences=ProjectiveCorrespondences``
+    the target point its projection lands on in an organised target), weights the pairs with a robust kernel and
+    updates the transform: in closed form for point-to-point (Kabsch / Umeyama / eqs. 1-9 / affine least squares),
+    by one Gauss-Newton step for point-to-plane (exact for the affine model, eqs. 11-15; on SE(d) with the exponential
+    map for the rigid one). Stages of a coarse-to-fine distance schedule run one after another, each until the update is
     below the tolerance or the iteration limit is reached (:class:`ICPOptions`).
 
     Parameters
@@ -401,11 +409,11 @@ def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid",
     init : (d+1, d+1) array_like, optional
         Initial source-to-target transform (default identity).
     options : ICPOptions, optional
-        Distance schedule, point pyramid, iterations, tolerance, robust kernel, degeneracy threshold (default
-        ``ICPOptions()``).
+        Distance schedule, point pyramid, iterations, tolerance, robust kernel, degeneracy threshold, correspondence
+        strategy (default ``ICPOptions()``).
     **overrides
         Fields of :class:`ICPOptions` by name (``max_distance``, ``voxel_size``, ``max_iterations``, ``tolerance``,
-        ``kernel``, ``kernel_scale``, ``degeneracy_threshold``), replacing those of ``options``.
+        ``kernel``, ``kernel_scale``, ``degeneracy_threshold``, ``correspondences``), replacing those of ``options``.
 
     Returns
     -------
@@ -435,7 +443,7 @@ def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid",
     opt = resolve_options(ICPOptions, options, overrides, "icp")
     problem = prepare_problem(source, target, target_normals, method, model, init, opt)
     frame = NormalisedFrame.of(problem.target)
-    stages = dense_stages(frame, problem)
+    stages = dense_stages(frame, problem, opt.correspondences)
     return run_icp(stages, problem.schedule, frame, problem.init, method=method, model=model, options=opt)
 
 

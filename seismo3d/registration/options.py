@@ -1,4 +1,4 @@
-"""ICPOptions: the distance schedule, stopping rule and robust kernel of icp and fused_icp.
+"""ICPOptions: the distance schedule, stopping rule, robust kernel and correspondence strategy of icp and fused_icp.
 
 Keyword arguments of :func:`~seismo3d.registration.icp` and :func:`~seismo3d.registration.fused_icp` with the same
 names replace its fields (:mod:`seismo3d._options`).
@@ -12,6 +12,7 @@ import numpy as np
 
 from .._validation import check_choice, check_int, check_positive
 from ..errors import InputError
+from .correspondences import NearestNeighbourCorrespondences, as_correspondences
 from .kernels import KERNELS
 
 __all__ = ["ICPOptions", "as_schedule"]
@@ -47,8 +48,9 @@ def as_schedule(value, name: str) -> tuple:
 
 @dataclass(frozen=True)
 class ICPOptions:
-    """How an ICP runs: the coarse-to-fine correspondence distances, the point pyramid, when a stage stops and the
-    robust kernel. Shared by :func:`~seismo3d.registration.icp` and :func:`~seismo3d.registration.fused_icp`.
+    """How an ICP runs: the coarse-to-fine correspondence distances, the point pyramid, when a stage stops, the
+    robust kernel and how correspondences are found. Shared by :func:`~seismo3d.registration.icp` and
+    :func:`~seismo3d.registration.fused_icp`.
 
     Attributes
     ----------
@@ -73,11 +75,16 @@ class ICPOptions:
     degeneracy_threshold : float
         A final normal matrix whose smallest/largest eigenvalue ratio is below this is reported as degenerate (0:
         never).
+    correspondences : NearestNeighbourCorrespondences or ProjectiveCorrespondences
+        How each moved source point finds its target point (:mod:`seismo3d.registration.correspondences`): the
+        nearest target point by a KD-tree (the default, any point set), or projective data association into an
+        organised target (KinectFusion: the target point of the pixel the source point projects to; needs the whole
+        organised target, so no target downsampling by ``voxel_size``). None is taken as the default.
 
     Raises
     ------
     InputError
-        A value out of range (checked when the options are made).
+        A value out of range or a ``correspondences`` that is not a strategy (checked when the options are made).
 
     Examples
     --------
@@ -93,6 +100,7 @@ class ICPOptions:
     kernel: str = "huber"
     kernel_scale: float | None = None
     degeneracy_threshold: float = 1e-3
+    correspondences: object = NearestNeighbourCorrespondences()
 
     def __post_init__(self):
         if self.max_distance is not None:
@@ -105,3 +113,4 @@ class ICPOptions:
         if self.kernel_scale is not None:
             check_positive(self.kernel_scale, "kernel_scale")
         check_positive(self.degeneracy_threshold, "degeneracy_threshold", allow_zero=True)
+        object.__setattr__(self, "correspondences", as_correspondences(self.correspondences))

@@ -35,7 +35,9 @@ class RegistrationResult:
         True when ``min_eigenvalue`` is below the degeneracy threshold; a
         :class:`~seismo3d.errors.DegenerateGeometryWarning` was issued.
     info : dict
-        Method-specific extras (e.g. ``n_feature_inliers``, ``energy``, per-stage iteration counts).
+        Method-specific extras (e.g. ``n_feature_inliers``, ``energy``, per-stage iteration counts). ICP and fused
+        ICP add ``tolerance_met``: the last update fell below the tolerance, whatever ``degenerate`` says (a caller
+        with other evidence for the degenerate direction, such as feature matches, can judge the fit itself).
     """
 
     transform: np.ndarray

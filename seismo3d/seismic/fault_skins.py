@@ -46,6 +46,11 @@ class SkinOptions:
         n_xlines) (at least 100; a slab of a few inlines holds only short faults across it). On the 1501-sample
         Penobscot line this drops 495 of 561 skins, short ones in its chaotic deep section, and none of the faults
         of the 180-sample Costa Rica section.
+    min_height : int, optional
+        Smallest extent of a skin along the sample axis, samples. None: as tall as the smallest 2D fault (10 % of
+        the samples per trace, at least 15), so that a 3D surface is kept only when each of its sections would
+        be. Without it, a slab of nearly identical inlines turns every short 2D fragment into a surface of enough
+        cells (on the 18 clipped Penobscot inlines: 1240 skins, 123 at least 153 samples tall).
     merge_gap : float
         Two skins whose cells come within this distance (samples) are merged when they are coplanar (see
         ``merge_angle`` and ``merge_offset``): one fault cut by a younger fault, or broken by a gap longer than the
@@ -55,6 +60,12 @@ class SkinOptions:
         (lines in 2D) fitted to each skin near them, samples.
     merge_angle : float
         Largest angle between the normals of the two skins' fitted planes, degrees.
+    max_shape_angle : float
+        Largest angle between the plane (line in 2D) fitted to all of a skin's cells and the mean of the cells' own
+        fault planes, degrees. A fault's cells lie on the plane they are oriented along; a skin that grew into a
+        web of crossing or en-echelon pieces does not (on the 18 clipped Penobscot inlines, webs of short steep
+        pieces copied across the nearly identical inlines made sheets parallel to the inline sections, 43-61 deg
+        from their cells' planes; 44 of 121 skins are within 30 deg). None: no check.
 
     Raises
     ------
@@ -67,9 +78,11 @@ class SkinOptions:
     max_plane_distance: float = 1.0
     max_angle: float = 30.0
     min_size: int | None = None
+    min_height: int | None = None
     merge_gap: float = 8.0
     merge_offset: float = 4.0
     merge_angle: float = 10.0
+    max_shape_angle: float | None = 30.0
 
     def __post_init__(self):
         for name in ("lateral_reach", "vertical_reach"):
@@ -82,10 +95,15 @@ class SkinOptions:
         if self.min_size is not None and (isinstance(self.min_size, bool) or int(self.min_size) != self.min_size
                                           or self.min_size < 1):
             raise InputError(f"min_size must be an integer >= 1 or None; got {self.min_size!r}")
+        if self.min_height is not None and (isinstance(self.min_height, bool)
+                                            or int(self.min_height) != self.min_height or self.min_height < 1):
+            raise InputError(f"min_height must be an integer >= 1 or None; got {self.min_height!r}")
         check_positive(self.merge_gap, "merge_gap", allow_zero=True)
         check_positive(self.merge_offset, "merge_offset")
         if not 0.0 < float(self.merge_angle) < 90.0:
             raise InputError(f"merge_angle must be in (0, 90) degrees; got {self.merge_angle!r}")
+        if self.max_shape_angle is not None and not 0.0 < float(self.max_shape_angle) <= 90.0:
+            raise InputError(f"max_shape_angle must be in (0, 90] degrees or None; got {self.max_shape_angle!r}")
 
     def smallest(self, shape: tuple) -> int:
         """The smallest skin kept in an image of ``shape``, cells."""
@@ -94,6 +112,12 @@ class SkinOptions:
         if len(shape) == 2:
             return max(15, int(round(0.1 * shape[-1])))
         return max(100, int(round(0.01 * shape[-1] * min(shape[0], shape[1]))))
+
+    def shortest(self, shape: tuple) -> int:
+        """The smallest extent along the sample axis of a skin kept in an image of ``shape``, samples."""
+        if self.min_height is not None:
+            return int(self.min_height)
+        return max(15, int(round(0.1 * shape[-1])))
 
 
 def _offsets(two_d: bool, lateral: int, vertical: int) -> np.ndarray:
@@ -231,6 +255,40 @@ def _local_normal(points: np.ndarray, two_d: bool) -> np.ndarray:
     return vt[-1]
 
 
+def _closest_pairs(tree, pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int,
+                   chunk: int = 4096) -> np.ndarray:
+    """(m, 2) int64 indices into ``pts``: for every pair of labels, the closest (edge cell, cell of the other label)
+    pair within ``gap``, from neighbour searches of ``chunk`` edge cells at a time (memory bounded by the chunk)."""
+    from scipy.spatial import cKDTree
+
+    keys, gaps, firsts, seconds = [], [], [], []
+    for start in range(0, edge_idx.size, chunk):
+        idx = edge_idx[start:start + chunk]
+        found = cKDTree(pts[idx]).sparse_distance_matrix(tree, gap, output_type="ndarray")
+        i, j, d = idx[found["i"]], found["j"].astype(np.int64), found["v"]
+        other = lab[i] != lab[j]
+        i, j, d = i[other], j[other], d[other]
+        if i.size == 0:
+            continue
+        key = np.minimum(lab[i], lab[j]) * n_labels + np.maximum(lab[i], lab[j])
+        order = np.lexsort((d, key))
+        first = np.ones(order.size, dtype=bool)
+        first[1:] = key[order][1:] != key[order][:-1]
+        sel = order[first]
+        keys.append(key[sel])
+        gaps.append(d[sel])
+        firsts.append(i[sel])
+        seconds.append(j[sel])
+    if not keys:
+        return np.empty((0, 2), dtype=np.int64)
+    key, d = np.concatenate(keys), np.concatenate(gaps)
+    order = np.lexsort((d, key))
+    first = np.ones(order.size, dtype=bool)
+    first[1:] = key[order][1:] != key[order][:-1]
+    sel = order[first]
+    return np.stack([np.concatenate(firsts)[sel], np.concatenate(seconds)[sel]], axis=1)
+
+
 def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, minimum: int, two_d: bool,
                     opt: SkinOptions) -> np.ndarray:
     """Labels of skins merged where they continue each other (see :class:`SkinOptions`): the pieces of one fault cut
@@ -248,38 +306,28 @@ def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, min
     big = sizes[label] >= minimum
     if np.count_nonzero(big & edge) == 0:
         return label
-    # pairs (an edge cell of one skin, any cell of another) within merge_gap: a piece's end near another's end or side
-    big_pts, big_lab = points[big], label[big]
-    tree = cKDTree(big_pts)
-    edge_idx = np.nonzero(edge[big])[0]
-    hits = tree.query_ball_point(big_pts[edge_idx], float(opt.merge_gap))
-    counts = np.fromiter((len(h) for h in hits), dtype=np.int64, count=len(hits))
-    pairs = np.stack([np.repeat(edge_idx, counts), np.fromiter((k for h in hits for k in h), dtype=np.int64,
-                                                               count=int(counts.sum()))], axis=1)
-    pts, lab = big_pts, big_lab
-    pairs = pairs[lab[pairs[:, 0]] != lab[pairs[:, 1]]]
-    if pairs.size == 0:
+    # the closest pair (an edge cell of one skin, any cell of another) within merge_gap for every pair of skins: a
+    # piece's end near another's end or side
+    pts, lab = points[big], label[big]
+    tree = cKDTree(pts)
+    closest = _closest_pairs(tree, pts, lab, np.nonzero(edge[big])[0], float(opt.merge_gap), n_labels)
+    if closest.size == 0:
         return label
-    # the closest such pair for every pair of skins
-    gap = np.linalg.norm(pts[pairs[:, 0]] - pts[pairs[:, 1]], axis=1)
-    a, b = lab[pairs[:, 0]], lab[pairs[:, 1]]
-    key = np.minimum(a, b) * n_labels + np.maximum(a, b)
-    order = np.lexsort((gap, key))
-    first = np.ones(order.size, dtype=bool)
-    first[1:] = key[order][1:] != key[order][:-1]
-    closest = pairs[order[first]]
     radius = 2.0 * float(opt.merge_gap)
     cos_angle = np.cos(np.radians(opt.merge_angle))
+    near_first = tree.query_ball_point(pts[closest[:, 0]], radius)
+    near_second = tree.query_ball_point(pts[closest[:, 1]], radius)
     rows, cols = [], []
-    for i, j in closest:
-        p, q = pts[i], pts[j]
-        near_p = [k for k in tree.query_ball_point(p, radius) if big_lab[k] == lab[i]]
-        near_q = [k for k in tree.query_ball_point(q, radius) if big_lab[k] == lab[j]]
-        if len(near_p) < 3 or len(near_q) < 3:
+    for (i, j), around_i, around_j in zip(closest, near_first, near_second):
+        around_i = np.asarray(around_i, dtype=np.int64)
+        around_j = np.asarray(around_j, dtype=np.int64)
+        near_p = around_i[lab[around_i] == lab[i]]
+        near_q = around_j[lab[around_j] == lab[j]]
+        if near_p.size < 3 or near_q.size < 3:
             continue
-        na = _local_normal(big_pts[near_p], two_d)
-        nb_ = _local_normal(big_pts[near_q], two_d)
-        d = q - p
+        na = _local_normal(pts[near_p], two_d)
+        nb_ = _local_normal(pts[near_q], two_d)
+        d = pts[j] - pts[i]
         if abs(na @ nb_) >= cos_angle and abs(na @ d) <= opt.merge_offset and abs(nb_ @ d) <= opt.merge_offset:
             rows.append(lab[i])
             cols.append(lab[j])
@@ -288,6 +336,27 @@ def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, min
     graph = sparse.coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_labels, n_labels))
     _, merged = connected_components(graph, directed=False)
     return merged[label]
+
+
+def _heights(samples: np.ndarray, label: np.ndarray, roots: np.ndarray) -> np.ndarray:
+    """Extent along the sample axis (max - min + 1) of the skins ``roots``, samples."""
+    top = np.full(label.size, np.iinfo(np.int64).max, dtype=np.int64)
+    bottom = np.full(label.size, -1, dtype=np.int64)
+    np.minimum.at(top, label, samples)
+    np.maximum.at(bottom, label, samples)
+    return bottom[roots] - top[roots] + 1
+
+
+def _fits_its_cells(points: np.ndarray, normals: np.ndarray, two_d: bool, cos_max: float) -> bool:
+    """Whether the plane (line in 2D) fitted to a skin's ``points`` (n, 3) lies within ``arccos(cos_max)`` of the
+    mean of its cells' ``normals`` (n, 3; signs aligned to the first cell's)."""
+    if points.shape[0] < 3:
+        return True
+    fitted = _local_normal(points, two_d)
+    normals = np.asarray(normals, dtype=np.float64)
+    mean = (normals * np.sign(normals @ normals[0])[:, None]).sum(axis=0)
+    norm = float(np.linalg.norm(mean))
+    return norm == 0.0 or abs(float(fitted @ mean)) >= cos_max * norm
 
 
 def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
@@ -299,8 +368,9 @@ def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
     :class:`SkinOptions` for the search). Skins grow over these links breadth first from the strongest cell not yet
     in a skin, taking a linked cell only when its normal is within ``max_angle`` of the skin's mean normal, so that a
     skin does not drift through cells of intermediate orientation into another fault. A skin is kept when
-    one of its cells reaches ``upper`` (hysteresis, as in Canny 1986) and it has at least
-    :meth:`SkinOptions.smallest` cells.
+    one of its cells reaches ``upper`` (hysteresis, as in Canny 1986), it has at least
+    :meth:`SkinOptions.smallest` cells, spans at least :meth:`SkinOptions.shortest` samples, and lies on the plane
+    its cells are oriented along (``max_shape_angle``).
 
     Parameters
     ----------
@@ -361,9 +431,15 @@ def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
     strong = np.zeros(sizes.size, dtype=bool)
     strong[np.unique(label[vals >= upper])] = True
     keep = np.nonzero(strong & (sizes >= opt.smallest(values.shape)))[0]
+    keep = keep[_heights(points[:, 2], label, keep) >= opt.shortest(values.shape)]
     keep = keep[np.argsort(-sizes[keep], kind="stable")]
     by_label = np.argsort(label, kind="stable")
     starts = np.searchsorted(label[by_label], keep)
+    if opt.max_shape_angle is not None and keep.size:
+        cos_shape = np.cos(np.radians(float(opt.max_shape_angle)))
+        planar = np.array([_fits_its_cells(points[m].astype(np.float64), frames[m, 0, :], two_d, cos_shape)
+                           for m in (by_label[a:a + sizes[r]] for r, a in zip(keep, starts))], dtype=bool)
+        keep, starts = keep[planar], starts[planar]
     pts = points if not two_d else points[:, [0, 2]]
     faults = []
     for fid, (root, start) in enumerate(zip(keep, starts), start=1):

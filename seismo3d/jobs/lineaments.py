@@ -1,0 +1,106 @@
+"""The ``seismo3d lineaments`` job: a DEM in; lineaments.csv, rose.png and lineaments.png out."""
+
+from __future__ import annotations
+
+import pathlib
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ..terrain import (
+    LineamentOptions,
+    Lineaments,
+    extract_lineaments,
+    multidirectional_hillshade,
+    read_dem,
+    write_lineaments_csv,
+)
+
+__all__ = ["LineamentsJobResult", "run_lineaments_job"]
+
+
+@dataclass(frozen=True)
+class LineamentsJobResult:
+    """What :func:`run_lineaments_job` found and wrote.
+
+    Attributes
+    ----------
+    lineaments : Lineaments
+    written : dict
+        ``{'csv': path, 'rose': path, 'map': path}``.
+    """
+
+    lineaments: Lineaments
+    written: dict
+
+
+def run_lineaments_job(dem_path, outdir, *, options: LineamentOptions | None = None) -> LineamentsJobResult:
+    """Extract the lineaments of a GeoTIFF DEM and write them with two pictures.
+
+    Writes into ``outdir`` (created if missing), each file atomically:
+
+    - ``lineaments.csv``: ``x0, y0, x1, y1`` (end points in the raster's CRS), ``azimuth_deg`` (strike in [0, 180),
+      clockwise from north), ``length_m``, ``contrast`` (see :class:`~seismo3d.terrain.Lineaments`), longest first;
+    - ``rose.png``: the length-weighted rose diagram of the strikes (10-degree bins);
+    - ``lineaments.png``: the lineaments over the multidirectional hillshade, coloured by strike.
+
+    Parameters
+    ----------
+    dem_path : str or os.PathLike
+        A GeoTIFF DEM.
+    outdir : str or os.PathLike
+    options : LineamentOptions, optional
+
+    Returns
+    -------
+    LineamentsJobResult
+
+    Raises
+    ------
+    InputError
+        An all-nodata DEM, a DEM smaller than 16 x 16, an output folder that is a file.
+    DataNotFoundError, DataIntegrityError
+        A missing or unreadable file.
+    """
+    from ..viz.terrain import plot_lineament_map, plot_rose
+
+    outdir = pathlib.Path(outdir)
+    if outdir.exists() and not outdir.is_dir():
+        raise InputError(f"{outdir} is a file; give a folder for the outputs")
+    dem = read_dem(dem_path)
+    found = extract_lineaments(dem, options=options)
+    outdir.mkdir(parents=True, exist_ok=True)
+    written = {"csv": write_lineaments_csv(outdir / "lineaments.csv", found)}
+    name = pathlib.Path(dem_path).name
+    written["rose"] = plot_rose(found.azimuth_deg, found.length_m, outdir / "rose.png",
+                                title=f"{name}: {len(found)} lineaments, {found.length_m.sum() / 1000:.1f} km, "
+                                      "length-weighted strikes")
+    shade = multidirectional_hillshade(dem.elevation_m, dem.metric_axes)
+    extent, segments, aspect, labels = _map_frame(dem, found)
+    written["map"] = plot_lineament_map(shade, extent, segments, found.azimuth_deg, outdir / "lineaments.png",
+                                        aspect=aspect, axis_labels=labels,
+                                        title=f"{name}: {len(found)} lineaments over the multidirectional hillshade")
+    return LineamentsJobResult(found, written)
+
+
+def _map_frame(dem, found: Lineaments):
+    """Extent, segments, aspect and axis labels of the map: CRS coordinates for north-up rasters, pixels otherwise."""
+    a = dem.affine
+    north_up = abs(a[0, 1]) < 1e-15 and abs(a[1, 0]) < 1e-15 and a[0, 0] > 0 and a[1, 1] < 0
+    h, w = dem.shape
+    if north_up:
+        left, top = dem.xy(-0.5, -0.5)
+        right, bottom = dem.xy(h - 0.5, w - 0.5)
+        segments = np.column_stack([found.x0, found.y0, found.x1, found.y1])
+        if dem.crs.is_geographic:
+            aspect = 1.0 / np.cos(np.radians(dem.centre_xy[1]))
+            labels = ("longitude, degrees", "latitude, degrees")
+        else:
+            aspect = 1.0
+            unit = dem.crs.linear_unit if dem.crs.kind != "unknown" else "map units"
+            labels = (f"x, {unit}", f"y, {unit}")
+        return (float(left), float(right), float(bottom), float(top)), segments, aspect, labels
+    segments = np.column_stack([found.cols0, found.rows0, found.cols1, found.rows1])
+    dy, dx = dem.pixel_size_m
+    return (-0.5, w - 0.5, h - 0.5, -0.5), segments, dy / dx, ("column", "row")

@@ -1,0 +1,194 @@
+"""The map job: an RGB-D sequence in, a trajectory, a keyframe graph, a mesh and a picture of the map out.
+
+:func:`run_map_job` streams the frames of a TUM or 7-Scenes sequence (:func:`seismo3d.mapping.open_sequence`) through
+:class:`seismo3d.mapping.RGBDMapper` and writes into the output folder:
+
+* ``trajectory.txt``: ``timestamp tx ty tz qx qy qz qw`` (TUM format, camera-to-world, metres), one line per input
+  frame that has a pose (frames the loop could not use get the motion prediction; see ``keyframes.json``);
+* ``keyframes.json``: the keyframe graph (vertices with frame index, timestamp and pose; odometry and loop edges), the
+  frames skipped or lost and why, a summary (frames, keyframes, loops, frames per second) and, when the sequence has a
+  reference trajectory, the ATE and RPE against it;
+* ``mesh.ply``: the TSDF map by marching cubes (binary PLY with vertex normals);
+* ``map.png``: the mesh with the trajectory and the keyframes, rendered off screen.
+
+Every file is written atomically. A frame that cannot be read or used (missing file, depth of the wrong dtype or size,
+no valid depth, a timestamp out of order) is skipped with a :class:`~seismo3d.errors.FrameSkippedWarning`; an
+interrupt (Ctrl-C) stops the loop and the outputs of the frames done so far are still written before it propagates.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+import time
+import warnings
+
+import numpy as np
+
+from .._atomic import atomic_path
+from .._progress import progress_steps
+from ..errors import DataIntegrityError, DataNotFoundError, FrameSkippedWarning, InputError, RegistrationError
+
+__all__ = ["run_map_job", "write_ply"]
+
+
+def write_ply(path, mesh) -> None:
+    """Write a triangle mesh as binary little-endian PLY (float32 positions and normals, int32 faces), atomically.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    mesh : TriangleMesh
+    """
+    v = np.asarray(mesh.vertices, np.float32)
+    n = np.asarray(mesh.normals, np.float32)
+    f = np.asarray(mesh.faces, np.int32)
+    header = ("ply\nformat binary_little_endian 1.0\ncomment seismo3d TSDF map (metres)\n"
+              f"element vertex {len(v)}\nproperty float x\nproperty float y\nproperty float z\n"
+              "property float nx\nproperty float ny\nproperty float nz\n"
+              f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n")
+    vert = np.empty(len(v), dtype=[("p", "<f4", 3), ("n", "<f4", 3)])
+    vert["p"], vert["n"] = v, n
+    face = np.empty(len(f), dtype=[("k", "u1"), ("i", "<i4", 3)])
+    face["k"], face["i"] = 3, f
+    with atomic_path(path) as tmp:
+        with open(tmp, "wb") as fh:
+            fh.write(header.encode("ascii"))
+            fh.write(vert.tobytes())
+            fh.write(face.tobytes())
+
+
+def _loop(sequence, mapper, frames, steps, skipped):
+    """Map ``frames`` of ``sequence``; returns True when interrupted (Ctrl-C)."""
+    start = time.perf_counter()
+    for count, i in enumerate(frames, 1):
+        entry = sequence.entries[i]
+        try:
+            try:
+                frame = sequence.read(i)
+                mapper.process(frame, index=i)
+            except (DataNotFoundError, DataIntegrityError, InputError, RegistrationError) as exc:
+                skipped.append(dict(index=int(i), timestamp=float(entry.timestamp), reason=str(exc)))
+                warnings.warn(f"frame {i} (t = {entry.timestamp:.3f} s) skipped: {exc}", FrameSkippedWarning,
+                              stacklevel=2)
+                if mapper.filter is not None:
+                    try:
+                        mapper.predict(i, entry.timestamp)
+                    except InputError:
+                        pass
+        except KeyboardInterrupt:
+            return True
+        fps = count / max(time.perf_counter() - start, 1e-9)
+        steps.advance(1, status=f"{fps:.1f} frames/s, {len(mapper.graph.keyframes)} keyframes, "
+                                f"{mapper.graph.n_loops} loops")
+    return False
+
+
+def _evaluation(sequence, timestamps, poses):
+    from ..mapping.metrics import absolute_trajectory_error, relative_pose_error
+
+    if sequence.groundtruth is None or len(poses) < 3:
+        return None
+    ref_t, ref_p = sequence.groundtruth
+    try:
+        ate = absolute_trajectory_error(timestamps, poses, ref_t, ref_p)
+        rpe_t, rpe_r = relative_pose_error(timestamps, poses, ref_t, ref_p)
+    except InputError:
+        return None
+    return dict(ate_rmse_m=ate.rmse, ate_max_m=ate.max, rpe_translation_rmse_m=rpe_t.rmse,
+                rpe_rotation_rmse_deg=rpe_r.rmse, n_associated=ate.n)
+
+
+def run_map_job(sequence, output, *, options=None, max_frames: int | None = None, progress: bool = True,
+                render: bool = True) -> dict:
+    """Map an RGB-D sequence and write the outputs listed in the module docstring.
+
+    Parameters
+    ----------
+    sequence : str or os.PathLike
+        Folder of a TUM RGB-D or 7-Scenes sequence.
+    output : str or os.PathLike
+        Output folder (created if missing); it must not be the sequence folder.
+    options : MapperOptions, optional
+    max_frames : int, optional
+        Map only the first this many frames.
+    progress : bool
+        Report progress with frames per second (:mod:`seismo3d._progress`: a bar on a terminal, log lines
+        otherwise).
+    render : bool
+        Write ``map.png`` (pyvista off screen).
+
+    Returns
+    -------
+    dict
+        ``{'trajectory': path, 'keyframes': path, 'mesh': path, 'map': path (when rendered), 'summary': dict}``.
+
+    Raises
+    ------
+    DataNotFoundError
+        The sequence folder does not exist.
+    InputError
+        The folder is not a sequence, the output folder is the input folder, or ``max_frames`` < 1.
+    KeyboardInterrupt
+        Re-raised after the outputs of the frames done so far have been written.
+    """
+    from threadpoolctl import threadpool_limits
+
+    from ..mapping import RGBDMapper, open_sequence
+
+    seq = open_sequence(sequence)
+    out = pathlib.Path(output)
+    if out.resolve() == seq.root.resolve():
+        raise InputError(f"the output folder {out} is the sequence folder; choose another one")
+    if max_frames is not None and int(max_frames) < 1:
+        raise InputError(f"max_frames must be >= 1; got {max_frames!r}")
+    out.mkdir(parents=True, exist_ok=True)
+    frames = range(len(seq) if max_frames is None else min(len(seq), int(max_frames)))
+    mapper = RGBDMapper(options)
+    skipped = []
+    start = time.perf_counter()
+    # numpy's BLAS threads only slow the small (N, 3) products of the loop down; numba runs the parallel parts
+    with threadpool_limits(1, user_api="blas"):
+        try:
+            with progress_steps(len(frames), "map", unit="frame", enabled=progress) as steps:
+                interrupted = _loop(seq, mapper, frames, steps, skipped)
+        except Exception:
+            # an unexpected failure: still keep what the frames before it built, then report the failure
+            _write_outputs(out, seq, mapper, skipped, time.perf_counter() - start, True, False)
+            raise
+    elapsed = time.perf_counter() - start
+    written = _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render)
+    if interrupted:
+        raise KeyboardInterrupt
+    return written
+
+
+def _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render):
+    from ..mapping.metrics import write_tum_trajectory
+
+    traj = mapper.trajectory()
+    timestamps, poses, status = traj.timestamps, traj.poses, traj.status
+    written = {"trajectory": out / "trajectory.txt", "keyframes": out / "keyframes.json", "mesh": out / "mesh.ply"}
+    write_tum_trajectory(written["trajectory"], timestamps, poses)
+    tracked = [s != "lost" for s in status]
+    lost = [dict(index=f.index, timestamp=f.timestamp) for f in mapper.frames if f.status == "lost"]
+    summary = dict(sequence=str(seq.root), layout=seq.layout, frames_in_sequence=len(seq),
+                   frames_processed=len(mapper.frames), frames_tracked=int(sum(tracked)), frames_skipped=len(skipped),
+                   keyframes=len(mapper.graph.keyframes), loop_closures=mapper.graph.n_loops,
+                   seconds=elapsed, frames_per_second=(len(mapper.frames) + len(skipped)) / max(elapsed, 1e-9),
+                   map_blocks=mapper.volume.n_blocks, map_mib=mapper.volume.nbytes / 2**20,
+                   interrupted=bool(interrupted))
+    keep = np.array(tracked, bool)
+    evaluation = _evaluation(seq, timestamps[keep], poses[keep]) if keep.any() else None
+    payload = dict(summary=summary, evaluation=evaluation, skipped_frames=skipped, lost_frames=lost,
+                   **mapper.graph.to_dict())
+    with atomic_path(written["keyframes"]) as tmp:
+        tmp.write_text(json.dumps(payload, indent=1) + "\n")
+    mesh = mapper.volume.extract_mesh()
+    write_ply(written["mesh"], mesh)
+    if render:
+        from ..viz.maps import render_map
+
+        written["map"] = render_map(mesh, poses, mapper.graph.poses(), out / "map.png")
+    written["summary"] = dict(summary, evaluation=evaluation)
+    return written

@@ -1,0 +1,164 @@
+"""The ``seismo3d plan`` job: an occupancy grid from a DEM or a map folder, the A* path between two cells, path.csv."""
+
+from __future__ import annotations
+
+import csv
+import pathlib
+import time
+from dataclasses import dataclass
+
+from .._atomic import atomic_path
+from ..errors import InputError
+from ..terrain import DEM_SUFFIXES, read_dem
+from ..terrain.occupancy import (
+    OccupancyGrid,
+    OccupancyOptions,
+    occupancy_from_dem,
+    occupancy_from_points,
+    read_map_folder,
+)
+from ..terrain.planning import GridPath, astar
+
+__all__ = ["PlanResult", "load_occupancy", "parse_cell", "run_plan_job", "write_path_csv"]
+
+
+@dataclass(frozen=True)
+class PlanResult:
+    """What :func:`run_plan_job` did.
+
+    Attributes
+    ----------
+    path : GridPath
+    grid : OccupancyGrid
+    seconds : float
+        Wall time of the search alone.
+    output : pathlib.Path
+    """
+
+    path: GridPath
+    grid: OccupancyGrid
+    seconds: float
+    output: pathlib.Path
+
+
+def load_occupancy(grid, *, max_slope_deg: float = 15.0, options: OccupancyOptions | None = None) -> OccupancyGrid:
+    """The occupancy grid of a DEM file (slope limit) or of a ``seismo3d map`` output folder (robot height).
+
+    Parameters
+    ----------
+    grid : str or os.PathLike
+        A GeoTIFF DEM or a folder holding ``mesh.ply`` (and ``trajectory.txt`` for the up direction).
+    max_slope_deg : float
+        Steepest traversable slope of a DEM, degrees.
+    options : OccupancyOptions, optional
+        For a map folder.
+
+    Returns
+    -------
+    OccupancyGrid
+
+    Raises
+    ------
+    InputError, DataNotFoundError
+        An unsupported file, an all-nodata DEM, a folder without ``mesh.ply``.
+    """
+    grid = pathlib.Path(grid)
+    if grid.is_dir():
+        scene = read_map_folder(grid)
+        return occupancy_from_points(scene.points, options=options, hint=scene.up_hint)
+    if grid.suffix.lower() in DEM_SUFFIXES:
+        return occupancy_from_dem(read_dem(grid), max_slope_deg=max_slope_deg)
+    raise InputError(f"{grid.name}: plan on a GeoTIFF DEM ({', '.join(DEM_SUFFIXES)}) or on the output folder of "
+                     "seismo3d map")
+
+
+def _check_end(grid: OccupancyGrid, cell, name: str, why_blocked: str) -> tuple[int, int]:
+    r, c = (int(v) for v in cell)
+    h, w = grid.shape
+    if not (0 <= r < h and 0 <= c < w):
+        raise InputError(f"{name} {r},{c} is outside the grid of {h} rows x {w} columns (rows 0-{h - 1}, "
+                         f"columns 0-{w - 1})")
+    if not grid.free[r, c]:
+        reason = "has no data" if not grid.known[r, c] else why_blocked
+        raise InputError(f"{name} {r},{c} is on an obstacle (the cell {reason}); choose a traversable cell")
+    return r, c
+
+
+def write_path_csv(path, route: GridPath, grid: OccupancyGrid) -> pathlib.Path:
+    """Write ``row,col,x,y,z`` per cell from start to goal, atomically.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    route : GridPath
+    grid : OccupancyGrid
+        Gives each cell's x, y, z (:attr:`OccupancyGrid.coordinates`).
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    path = pathlib.Path(path)
+    xyz = grid.coordinates[route.cells[:, 0], route.cells[:, 1]]
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", newline="") as fh:
+            out = csv.writer(fh)
+            out.writerow(["row", "col", "x", "y", "z"])
+            for (r, c), (x, y, z) in zip(route.cells, xyz):
+                out.writerow([int(r), int(c), f"{x:.12g}", f"{y:.12g}", f"{z:.12g}"])
+    return path
+
+
+def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, options: OccupancyOptions | None = None,
+                 corner_cutting: bool = True) -> PlanResult:
+    """Plan the shortest 8-connected path between two cells of a DEM or map and write ``path.csv``.
+
+    Parameters
+    ----------
+    grid : str or os.PathLike
+        A GeoTIFF DEM (a cell is traversable when its slope is at most ``max_slope_deg``) or the output folder of
+        ``seismo3d map`` (an occupancy grid at the robot's height from its ``mesh.ply``).
+    start, goal : (int, int)
+        (row, col) cells of the grid.
+    output : str or os.PathLike
+        The CSV: ``row, col, x, y, z`` per cell from start to goal (x, y in the DEM's CRS, z its elevation; for a
+        map, the cell centre on the floor in the map's frame).
+    max_slope_deg : float
+        Slope limit of a DEM, degrees.
+    options : OccupancyOptions, optional
+        For a map folder.
+    corner_cutting : bool
+        Allow diagonal steps between two blocked cells.
+
+    Returns
+    -------
+    PlanResult
+
+    Raises
+    ------
+    InputError
+        Start or goal outside the grid or on an obstacle; bad inputs.
+    PlanningError
+        No path exists.
+    """
+    output = pathlib.Path(output)
+    occupancy = load_occupancy(grid, max_slope_deg=max_slope_deg, options=options)
+    blocked = (f"is steeper than {max_slope_deg:g} deg" if not pathlib.Path(grid).is_dir()
+               else "holds an obstacle at the robot's height, or no floor was seen there")
+    s = _check_end(occupancy, start, "start", blocked)
+    g = _check_end(occupancy, goal, "goal", blocked)
+    t0 = time.perf_counter()
+    route = astar(occupancy.free, s, g, spacing=occupancy.spacing, corner_cutting=corner_cutting)
+    seconds = time.perf_counter() - t0
+    write_path_csv(output, route, occupancy)
+    return PlanResult(route, occupancy, seconds, output)
+
+
+def parse_cell(text: str, flag: str) -> tuple[int, int]:
+    """``'ROW,COL'`` -> (row, col); the error names ``flag``."""
+    try:
+        r, c = (int(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(f"{flag} {text!r} must be ROW,COL (two integers separated by a comma)") from None
+    return r, c
+

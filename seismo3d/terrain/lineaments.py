@@ -1,0 +1,523 @@
+"""Lineaments of a DEM: long straight terrain edges (fault scarps, fracture-controlled valleys, the paper's neotectonic
+structures), found by oriented gradients, the Hough transform and linking.
+
+The pipeline (:func:`extract_lineaments`), each step a named function:
+
+1. :func:`residual_relief`: the DEM minus its regional relief (a Gaussian of ``regional_px``): a lineament is a local
+   break in the surface, and the long slopes of hills would otherwise take the strongest gradients;
+2. :func:`terrain_edges`: Canny edges of that residual relief (non-maximum suppression of the gradient across the
+   edge, hysteresis between two quantiles of the gradient magnitude): the line of steepest slope of each break;
+3. :func:`orientation_classes`: each edge pixel's gradient orientation from the HOG machinery
+   (:func:`seismo3d.features.orientation_votes`, the votes of method.md section 2), folded to ``n_orientations``
+   classes over 180 degrees. The relief term of a hillshade lit from azimuth ``a`` is the slope along ``a``, so the
+   edges of class ``a`` are those the hillshade from ``a`` shows best: the classes are the multi-directional
+   hillshade set of manual lineament mapping;
+4. :func:`hough_segments`: scikit-image's probabilistic Hough transform on each class's edges, with the line normals
+   restricted to that class (and its neighbours), so crossing structures do not merge;
+5. :func:`link_segments`: collinear segments (direction, offset and gap within tolerances) are merged, repeatedly,
+   into lineaments fitted by total least squares;
+6. :func:`lineament_contrast`: each lineament's contrast, the median across-line slope along it over the median
+   slope of the residual relief; lineaments shorter than ``min_length_px`` or with too little evidence
+   ``(contrast - 1) * length`` are dropped.
+
+Azimuths and lengths are measured in metres in the map (pixel sizes of geographic rasters converted), so they do not
+depend on the pixel aspect ratio.
+
+References
+----------
+Canny, J. (1986). A computational approach to edge detection. IEEE TPAMI 8(6), 679-698. doi:10.1109/TPAMI.1986.4767851
+Matas, J., Galambos, C., Kittler, J. (2000). Robust detection of lines using the progressive probabilistic Hough
+transform. CVIU 78(1), 119-137. doi:10.1006/cviu.1999.0831
+Smith, M. J., Clark, C. D. (2005). Methods for the visualization of digital elevation models for landform mapping.
+Earth Surf. Process. Landforms 30, 885-900. doi:10.1002/esp.1210
+Masoud, A., Koike, K. (2011). Auto-detection and integration of tectonically influenced lineaments from DEMs.
+ISPRS J. Photogramm. Remote Sens. 66(6), 818-832. doi:10.1016/j.isprsjprs.2011.08.003
+"""
+
+from __future__ import annotations
+
+import csv
+import pathlib
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage
+
+from .._atomic import atomic_path
+from .._validation import check_positive
+from ..errors import InputError
+from ..features import orientation_votes
+from .dem import Dem
+from .hillshade import as_metric_axes
+from .surface import fill_holes
+
+__all__ = ["LineamentOptions", "Lineaments", "extract_lineaments", "detect_lineaments", "residual_relief",
+           "terrain_edges", "orientation_classes", "hough_segments", "link_segments", "lineament_contrast",
+           "write_lineaments_csv", "rose_histogram"]
+
+
+@dataclass(frozen=True)
+class LineamentOptions:
+    """Options of :func:`extract_lineaments` (pixels of the DEM; the same defaults on every DEM).
+
+    The defaults were chosen on generated DEMs (seeds 0-9 and 100-119 of
+    :func:`seismo3d.data.terrain.synthetic_scarp_dem`) and checked on others (seeds 200-249; benchmarks/terrain.py).
+
+    Attributes
+    ----------
+    regional_px : float
+        Sigma of the Gaussian regional relief removed before edge detection (0: none).
+    smoothing_px : float
+        Sigma of Canny's smoothing.
+    high_quantile, low_quantile : float
+        Canny's hysteresis thresholds as quantiles of the gradient magnitude.
+    n_orientations : int
+        Orientation classes over 180 degrees.
+    hough_threshold : int
+        Votes a Hough line needs.
+    hough_length_px : int
+        Shortest Hough segment.
+    hough_gap_px : int
+        Largest gap bridged inside a Hough segment.
+    link_angle_deg, link_offset_px, link_gap_px : float
+        Two lineaments merge when their directions differ by at most ``link_angle_deg``, the other's ends lie within
+        ``link_offset_px`` of one's line and the gap between them along it is at most ``link_gap_px``.
+    min_length_px : float
+        Shortest lineament kept.
+    min_evidence : float
+        Smallest ``(contrast - 1) * length_px`` kept.
+    border_px : int
+        Edges this close to the raster's border or to nodata are ignored (smoothing artefacts).
+    seed : int
+        Seed of the probabilistic Hough transform (the result is deterministic given it).
+    """
+
+    regional_px: float = 8.0
+    smoothing_px: float = 1.0
+    high_quantile: float = 0.95
+    low_quantile: float = 0.7
+    n_orientations: int = 16
+    hough_threshold: int = 8
+    hough_length_px: int = 10
+    hough_gap_px: int = 3
+    link_angle_deg: float = 4.0
+    link_offset_px: float = 2.5
+    link_gap_px: float = 12.0
+    min_length_px: float = 20.0
+    min_evidence: float = 45.0
+    border_px: int = 4
+    seed: int = 0
+
+    def __post_init__(self):
+        check_positive(self.regional_px, "regional_px", allow_zero=True)
+        check_positive(self.smoothing_px, "smoothing_px")
+        if not 0.0 < self.low_quantile <= self.high_quantile < 1.0:
+            raise InputError(f"quantiles must satisfy 0 < low_quantile <= high_quantile < 1; got "
+                             f"{self.low_quantile}, {self.high_quantile}")
+        if not 4 <= int(self.n_orientations) <= 90:
+            raise InputError(f"n_orientations must be in [4, 90]; got {self.n_orientations!r}")
+        for name in ("hough_threshold", "hough_length_px"):
+            if int(getattr(self, name)) < 1:
+                raise InputError(f"{name} must be >= 1; got {getattr(self, name)!r}")
+        for name in ("link_angle_deg", "link_offset_px", "min_length_px"):
+            check_positive(getattr(self, name), name)
+        for name in ("hough_gap_px", "link_gap_px", "min_evidence", "border_px"):
+            check_positive(getattr(self, name), name, allow_zero=True)
+
+
+@dataclass(frozen=True)
+class Lineaments:
+    """Lineaments of a raster, K of them, longest first.
+
+    Attributes
+    ----------
+    rows0, cols0, rows1, cols1 : (K,) float64 ndarray
+        End points in (fractional) pixel indices.
+    azimuth_deg : (K,) float64 ndarray
+        Strike: compass azimuth in the map, degrees clockwise from north, in [0, 180).
+    length_m : (K,) float64 ndarray
+        Length in metres.
+    contrast : (K,) float64 ndarray
+        Median across-line slope along the lineament over the median slope of the residual relief (>= 1 means
+        steeper than the typical terrain).
+    x0, y0, x1, y1 : (K,) float64 ndarray
+        End points in the raster's CRS (pixel indices when it has no georeferencing).
+    """
+
+    rows0: np.ndarray
+    cols0: np.ndarray
+    rows1: np.ndarray
+    cols1: np.ndarray
+    azimuth_deg: np.ndarray
+    length_m: np.ndarray
+    contrast: np.ndarray
+    x0: np.ndarray
+    y0: np.ndarray
+    x1: np.ndarray
+    y1: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.azimuth_deg.shape[0])
+
+    @property
+    def segments_px(self) -> np.ndarray:
+        """(K, 4) float64: ``row0, col0, row1, col1``."""
+        return np.column_stack([self.rows0, self.cols0, self.rows1, self.cols1])
+
+
+def residual_relief(elevation, regional_px: float) -> np.ndarray:
+    """The elevation minus its regional trend (a Gaussian of ``regional_px`` pixels); the input when 0.
+
+    Parameters
+    ----------
+    elevation : (H, W) array_like
+        Finite heights.
+    regional_px : float
+
+    Returns
+    -------
+    (H, W) float64 ndarray
+    """
+    z = np.asarray(elevation, dtype=np.float64)
+    if regional_px <= 0:
+        return z.copy()
+    return z - ndimage.gaussian_filter(z, float(regional_px), mode="nearest")
+
+
+def terrain_edges(relief, *, smoothing_px: float, high_quantile: float, low_quantile: float, mask=None):
+    """Canny edges of a relief grid with quantile thresholds.
+
+    Parameters
+    ----------
+    relief : (H, W) array_like
+    smoothing_px : float
+    high_quantile, low_quantile : float
+    mask : (H, W) bool array_like, optional
+        Where edges may be.
+
+    Returns
+    -------
+    (H, W) bool ndarray
+    """
+    from skimage.feature import canny
+
+    return canny(np.asarray(relief, dtype=np.float64), sigma=float(smoothing_px), low_threshold=float(low_quantile),
+                 high_threshold=float(high_quantile), use_quantiles=True, mask=mask)
+
+
+def orientation_classes(relief, *, smoothing_px: float, n_orientations: int) -> np.ndarray:
+    """Each pixel's gradient orientation class: the HOG vote bin (over 360 degrees, 2 n bins) with the larger vote,
+    folded over 180 degrees.
+
+    Class k holds normals at ``k * 180 / n`` degrees from the +column axis towards +row (the angle of scikit-image's
+    Hough ``theta``), so the lines of class k run at ``k * 180 / n + 90`` degrees in pixel space.
+
+    Parameters
+    ----------
+    relief : (H, W) array_like
+    smoothing_px : float
+        Gaussian smoothing before the derivatives.
+    n_orientations : int
+
+    Returns
+    -------
+    (H, W) int64 ndarray
+        Classes in [0, n_orientations).
+    """
+    z = ndimage.gaussian_filter(np.asarray(relief, dtype=np.float64), float(smoothing_px), mode="nearest")
+    g_row = ndimage.sobel(z, axis=0, mode="nearest")
+    g_col = ndimage.sobel(z, axis=1, mode="nearest")
+    bins, weights = orientation_votes(g_col, g_row, n_bins=2 * int(n_orientations))
+    dominant = np.where(weights[..., 1] > weights[..., 0], bins[..., 1], bins[..., 0]).astype(np.int64)
+    return dominant % int(n_orientations)
+
+
+def hough_segments(edges, classes, options: LineamentOptions) -> np.ndarray:
+    """Probabilistic Hough segments of each orientation class (normals within 1.5 class widths of the class's).
+
+    Parameters
+    ----------
+    edges : (H, W) bool ndarray
+    classes : (H, W) int ndarray
+        From :func:`orientation_classes`.
+    options : LineamentOptions
+
+    Returns
+    -------
+    (M, 4) float64 ndarray
+        ``row0, col0, row1, col1`` per segment.
+    """
+    from skimage.transform import probabilistic_hough_line
+
+    n = int(options.n_orientations)
+    width = np.pi / n
+    out = []
+    for k in range(n):
+        near = np.abs((classes - k + n // 2) % n - n // 2) <= 1  # this class and its two neighbours
+        sel = edges & near
+        if np.count_nonzero(sel) < options.hough_threshold:
+            continue
+        theta = k * width + np.linspace(-1.5 * width, 1.5 * width, 31)
+        theta = np.sort((theta + np.pi / 2) % np.pi - np.pi / 2)
+        lines = probabilistic_hough_line(sel, threshold=int(options.hough_threshold),
+                                         line_length=int(options.hough_length_px), line_gap=int(options.hough_gap_px),
+                                         theta=theta, rng=int(options.seed) + k)
+        out.extend((y0, x0, y1, x1) for (x0, y0), (x1, y1) in lines)
+    return np.asarray(out, dtype=np.float64).reshape(-1, 4)
+
+
+def _fit(points, weights):
+    """Total-least-squares line of weighted points: centre, unit direction, extent along it."""
+    w = weights / weights.sum()
+    centre = w @ points
+    q = points - centre
+    _, vecs = np.linalg.eigh((q * w[:, None]).T @ q)
+    u = vecs[:, -1]
+    t = q @ u
+    return centre, u, float(t.min()), float(t.max())
+
+
+def link_segments(segments, *, angle_deg: float, offset_px: float, gap_px: float) -> np.ndarray:
+    """Merge collinear segments into lineaments, repeatedly, longest first.
+
+    Two groups merge when their fitted directions differ by at most ``angle_deg``, both ends of the other lie within
+    ``offset_px`` of one's line, and the gap between them along it is at most ``gap_px``; a merged group is refitted
+    by total least squares over its segments' end points, weighted by segment length.
+
+    Parameters
+    ----------
+    segments : (M, 4) array_like
+        ``row0, col0, row1, col1``.
+    angle_deg, offset_px, gap_px : float
+
+    Returns
+    -------
+    (K, 4) float64 ndarray
+        The lineaments' end points (extreme projections of their segments' ends), K <= M.
+    """
+    segs = np.asarray(segments, dtype=np.float64).reshape(-1, 4)
+    order = np.argsort(-np.hypot(segs[:, 2] - segs[:, 0], segs[:, 3] - segs[:, 1]))
+    groups = [[s] for s in segs[order]]
+    cos_tol = np.cos(np.radians(angle_deg))
+
+    def line(group):
+        """The group's fitted line from its segments' end points, weighted by segment length."""
+        g = np.asarray(group)
+        pts = np.concatenate([g[:, :2], g[:, 2:]])
+        w = np.tile(np.hypot(g[:, 2] - g[:, 0], g[:, 3] - g[:, 1]) + 1e-9, 2)
+        return _fit(pts, w)
+
+    lines = [line(g) for g in groups]
+    merged = True
+    while merged:
+        merged = False
+        i = 0
+        while i < len(groups):
+            c, u, t0, t1 = lines[i]
+            n = np.array([-u[1], u[0]])
+            others = range(i + 1, len(groups))
+            for j in others:
+                c2, u2, s0, s1 = lines[j]
+                if abs(u @ u2) < cos_tol:
+                    continue
+                ends = np.array([c2 + s0 * u2, c2 + s1 * u2]) - c
+                if np.any(np.abs(ends @ n) > offset_px):
+                    continue
+                along = ends @ u
+                if max(along.min() - t1, t0 - along.max(), 0.0) > gap_px:
+                    continue
+                groups[i] = groups[i] + groups.pop(j)
+                lines.pop(j)
+                lines[i] = line(groups[i])
+                merged = True
+                break
+            else:
+                i += 1
+    out = [np.r_[c + t0 * u, c + t1 * u] for c, u, t0, t1 in lines]
+    return np.asarray(out, dtype=np.float64).reshape(-1, 4)
+
+
+def lineament_contrast(relief, segments, *, smoothing_px: float) -> np.ndarray:
+    """Median across-line slope along each segment over the median slope of the relief.
+
+    The across-line slope at a sample is the largest ``|grad z . n|`` within 1.5 pixels across the line (n its
+    normal), so a line half a pixel off its edge is not penalised.
+
+    Parameters
+    ----------
+    relief : (H, W) array_like
+    segments : (K, 4) array_like
+        ``row0, col0, row1, col1``.
+    smoothing_px : float
+
+    Returns
+    -------
+    (K,) float64 ndarray
+    """
+    z = ndimage.gaussian_filter(np.asarray(relief, dtype=np.float64), float(smoothing_px), mode="nearest")
+    g_row = ndimage.sobel(z, axis=0, mode="nearest") / 8.0
+    g_col = ndimage.sobel(z, axis=1, mode="nearest") / 8.0
+    typical = float(np.median(np.hypot(g_row, g_col))) or 1e-300
+    out = np.zeros(len(segments))
+    for k, (r0, c0, r1, c1) in enumerate(np.asarray(segments, dtype=np.float64).reshape(-1, 4)):
+        length = np.hypot(r1 - r0, c1 - c0)
+        m = max(int(np.ceil(length)), 2)
+        rr, cc = np.linspace(r0, r1, m), np.linspace(c0, c1, m)
+        nr, nc = -(c1 - c0) / max(length, 1e-12), (r1 - r0) / max(length, 1e-12)
+        across = np.zeros(m)
+        for off in (-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5):
+            at = [rr + off * nr, cc + off * nc]
+            gr = ndimage.map_coordinates(g_row, at, order=1, mode="nearest")
+            gc = ndimage.map_coordinates(g_col, at, order=1, mode="nearest")
+            across = np.maximum(across, np.abs(gr * nr + gc * nc))
+        out[k] = float(np.median(across)) / typical
+    return out
+
+
+def detect_lineaments(elevation, spacing, *, options: LineamentOptions | None = None, valid=None) -> Lineaments:
+    """Lineaments of an elevation grid (steps 1-6 of the module docstring), with pixel coordinates only.
+
+    Parameters
+    ----------
+    elevation : (H, W) array_like
+        Heights in metres (NaN = nodata, filled smoothly before filtering and masked from the edges).
+    spacing : (dy, dx) or (2, 2) array_like
+        Pixel size in metres, or the metric axes of the raster (see :mod:`seismo3d.terrain.hillshade`).
+    options : LineamentOptions, optional
+    valid : (H, W) bool array_like, optional
+        Cells with data (default: finite elevations).
+
+    Returns
+    -------
+    Lineaments
+        ``x*, y*`` equal to the pixel columns and rows.
+
+    Raises
+    ------
+    InputError
+        A grid smaller than 16 x 16, without data, or bad options.
+    """
+    opts = options or LineamentOptions()
+    z = np.asarray(elevation, dtype=np.float64)
+    if z.ndim != 2 or min(z.shape) < 16:
+        raise InputError(f"elevation must be a 2D grid of at least 16 x 16 cells; got shape {z.shape}")
+    axes = as_metric_axes(spacing)
+    ok = np.isfinite(z) if valid is None else np.asarray(valid, dtype=bool) & np.isfinite(z)
+    if not ok.any():
+        raise InputError("the DEM has no valid cells; nothing to extract lineaments from")
+    z = fill_holes(z, ok)
+    # 1-3: residual relief, its edges away from borders and nodata, their orientation classes
+    relief = residual_relief(z, opts.regional_px)
+    inside = ndimage.binary_erosion(np.pad(ok, 1), iterations=int(opts.border_px) + 1)[1:-1, 1:-1]
+    edges = terrain_edges(relief, smoothing_px=opts.smoothing_px, high_quantile=opts.high_quantile,
+                          low_quantile=opts.low_quantile, mask=inside)
+    classes = orientation_classes(relief, smoothing_px=opts.smoothing_px, n_orientations=opts.n_orientations)
+    # 4-5: Hough segments per class, linked into lineaments
+    segments = link_segments(hough_segments(edges, classes, opts), angle_deg=opts.link_angle_deg,
+                             offset_px=opts.link_offset_px, gap_px=opts.link_gap_px)
+    # 6: keep the long, contrasted ones
+    length_px = np.hypot(segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1])
+    contrast = lineament_contrast(relief, segments, smoothing_px=opts.smoothing_px)
+    keep = (length_px >= opts.min_length_px) & ((contrast - 1.0) * length_px >= opts.min_evidence)
+    segments, contrast = segments[keep], contrast[keep]
+    east, north = _metric(segments, axes)
+    length_m = np.hypot(east, north)
+    order = np.argsort(-length_m, kind="stable")
+    segments, contrast, east, north, length_m = (a[order] for a in (segments, contrast, east, north, length_m))
+    azimuth = np.mod(np.degrees(np.arctan2(east, north)), 180.0)
+    r0, c0, r1, c1 = segments.T if len(segments) else (np.zeros(0),) * 4
+    return Lineaments(r0, c0, r1, c1, azimuth, length_m, contrast, c0.copy(), r0.copy(), c1.copy(), r1.copy())
+
+
+def _metric(segments, axes):
+    """East and north components (metres) of each segment's vector from end 0 to end 1."""
+    d_row = segments[:, 2] - segments[:, 0]
+    d_col = segments[:, 3] - segments[:, 1]
+    return axes[0, 0] * d_col + axes[0, 1] * d_row, axes[1, 0] * d_col + axes[1, 1] * d_row
+
+
+def extract_lineaments(dem: Dem, *, options: LineamentOptions | None = None) -> Lineaments:
+    """Lineaments of a DEM, with end points in its CRS, azimuths and lengths in metres.
+
+    Parameters
+    ----------
+    dem : Dem
+    options : LineamentOptions, optional
+
+    Returns
+    -------
+    Lineaments
+
+    Raises
+    ------
+    InputError
+        A DEM smaller than 16 x 16 cells or bad options.
+
+    Examples
+    --------
+    >>> from seismo3d.data.terrain import synthetic_scarp_dem
+    >>> from seismo3d.terrain import detect_lineaments
+    >>> truth = synthetic_scarp_dem(seed=3)
+    >>> found = detect_lineaments(truth.elevation, (truth.pixel_size, truth.pixel_size))
+    >>> len(found) >= len(truth.scarps) - 1
+    True
+    """
+    if not isinstance(dem, Dem):
+        raise InputError(f"dem must be a seismo3d.terrain.Dem (read_dem); got {type(dem).__name__}")
+    found = detect_lineaments(dem.elevation_m, dem.metric_axes, options=options, valid=dem.valid)
+    x0, y0 = dem.xy(found.rows0, found.cols0)
+    x1, y1 = dem.xy(found.rows1, found.cols1)
+    return Lineaments(found.rows0, found.cols0, found.rows1, found.cols1, found.azimuth_deg, found.length_m,
+                      found.contrast, np.asarray(x0), np.asarray(y0), np.asarray(x1), np.asarray(y1))
+
+
+def write_lineaments_csv(path, lineaments: Lineaments) -> pathlib.Path:
+    """Write ``x0, y0, x1, y1, azimuth_deg, length_m, contrast`` (one lineament a row, longest first), atomically.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    lineaments : Lineaments
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    path = pathlib.Path(path)
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", newline="") as fh:
+            out = csv.writer(fh)
+            out.writerow(["x0", "y0", "x1", "y1", "azimuth_deg", "length_m", "contrast"])
+            for k in range(len(lineaments)):
+                out.writerow([f"{lineaments.x0[k]:.12g}", f"{lineaments.y0[k]:.12g}", f"{lineaments.x1[k]:.12g}",
+                              f"{lineaments.y1[k]:.12g}", f"{lineaments.azimuth_deg[k]:.2f}",
+                              f"{lineaments.length_m[k]:.1f}", f"{lineaments.contrast[k]:.3f}"])
+    return path
+
+
+def rose_histogram(lineaments: Lineaments, *, bin_deg: float = 10.0):
+    """Length-weighted histogram of lineament azimuths over [0, 180) (the data of a rose diagram).
+
+    Parameters
+    ----------
+    lineaments : Lineaments
+    bin_deg : float
+        Bin width, degrees (must divide 180).
+
+    Returns
+    -------
+    edges_deg : (B + 1,) float64 ndarray
+    length_m : (B,) float64 ndarray
+        Total length per bin, metres.
+
+    Raises
+    ------
+    InputError
+        If ``bin_deg`` does not divide 180.
+    """
+    n = 180.0 / float(bin_deg)
+    if not bin_deg > 0 or abs(n - round(n)) > 1e-9:
+        raise InputError(f"bin_deg must divide 180; got {bin_deg!r}")
+    edges = np.linspace(0.0, 180.0, int(round(n)) + 1)
+    hist, _ = np.histogram(lineaments.azimuth_deg, bins=edges, weights=lineaments.length_m)
+    return edges, hist.astype(np.float64)

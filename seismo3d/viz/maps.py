@@ -1,0 +1,110 @@
+"""Pictures of RGB-D maps: the TSDF mesh with the camera trajectory and the keyframes (pyvista, off screen).
+
+pyvista is imported inside the functions. Without a display (``DISPLAY`` unset) VTK is pointed at its EGL render
+window (Mesa's EGL renders without an X server), unless ``VTK_DEFAULT_OPENGL_WINDOW`` is already set (e.g. to
+``vtkOSMesaRenderWindow``).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .._atomic import atomic_path
+from ..errors import InputError
+
+__all__ = ["render_map"]
+
+
+def _headless():
+    if not os.environ.get("DISPLAY") and "VTK_DEFAULT_OPENGL_WINDOW" not in os.environ:
+        os.environ["VTK_DEFAULT_OPENGL_WINDOW"] = "vtkEGLRenderWindow"
+
+
+def _frustum(pose, size):
+    """Line segments of a small camera pyramid at ``pose`` (camera-to-world), for pyvista."""
+    corners = np.array([[0, 0, 0], [-1, -0.75, 1.2], [1, -0.75, 1.2], [1, 0.75, 1.2], [-1, 0.75, 1.2]]) * size
+    world = corners @ pose[:3, :3].T + pose[:3, 3]
+    segments = [(0, 1), (0, 2), (0, 3), (0, 4), (1, 2), (2, 3), (3, 4), (4, 1)]
+    return np.array([[world[a], world[b]] for a, b in segments]).reshape(-1, 3)
+
+
+def render_map(mesh, trajectory, keyframes, path, *, window_size=(1280, 960), reference=None):
+    """Render the map mesh, the camera trajectory and the keyframes to a PNG, off screen.
+
+    Parameters
+    ----------
+    mesh : TriangleMesh
+        World-frame mesh (metres), e.g. :meth:`seismo3d.mapping.TSDFVolume.extract_mesh`; may be empty.
+    trajectory : (N, 4, 4) array_like
+        Camera-to-world poses of the frames, drawn as a red line.
+    keyframes : (K, 4, 4) array_like
+        Keyframe poses, drawn as small camera pyramids (blue).
+    path : str or os.PathLike
+        The PNG to write (atomically).
+    window_size : (int, int)
+        Pixels.
+    reference : (M, 4, 4) array_like, optional
+        A reference trajectory (already in the map's frame) drawn in green.
+
+    Returns
+    -------
+    pathlib.Path
+        The written file.
+
+    Raises
+    ------
+    InputError
+        Malformed poses.
+    """
+    _headless()
+    import pyvista as pv
+
+    traj = np.asarray(trajectory, dtype=np.float64).reshape(-1, 4, 4)
+    kfs = np.asarray(keyframes, dtype=np.float64).reshape(-1, 4, 4)
+    if not (np.all(np.isfinite(traj)) and np.all(np.isfinite(kfs))):
+        raise InputError("trajectory and keyframes must be finite (N, 4, 4) poses")
+    plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
+    plotter.set_background("white")
+    if len(mesh.vertices) and len(mesh.faces):
+        faces = np.hstack([np.full((len(mesh.faces), 1), 3, np.int64), mesh.faces]).ravel()
+        surf = pv.PolyData(mesh.vertices, faces)
+        surf.point_data["Normals"] = mesh.normals
+        # colour by height along the camera's mean "up" (-y of the cameras)
+        up = -traj[:, :3, 1].mean(axis=0) if len(traj) else np.array([0.0, 0.0, 1.0])
+        up /= max(np.linalg.norm(up), 1e-12)
+        surf.point_data["height (m)"] = mesh.vertices @ up
+        plotter.add_mesh(surf, scalars="height (m)", cmap="cividis", smooth_shading=True, show_scalar_bar=True)
+    size = 0.08
+    if len(traj) >= 2:
+        plotter.add_mesh(pv.lines_from_points(traj[:, :3, 3]), color="red", line_width=6, label="trajectory")
+    if reference is not None:
+        ref = np.asarray(reference, dtype=np.float64).reshape(-1, 4, 4)
+        if len(ref) >= 2:
+            plotter.add_mesh(pv.lines_from_points(ref[:, :3, 3]), color="green", line_width=3, label="reference")
+    if len(kfs):
+        seg = np.concatenate([_frustum(p, size) for p in kfs])
+        plotter.add_mesh(pv.line_segments_from_points(seg), color="blue", line_width=3, label="keyframes")
+    if len(traj) >= 2 or len(kfs):
+        plotter.add_legend(bcolor="white", face=None)
+    # look down on the scene from above and behind the cameras (their mean viewing direction), everything in view
+    if len(traj):
+        up = -traj[:, :3, 1].mean(axis=0)
+        up /= max(np.linalg.norm(up), 1e-12)
+        forward = traj[:, :3, 2].mean(axis=0)
+        forward -= (forward @ up) * up
+        forward /= max(np.linalg.norm(forward), 1e-12)
+        centre = mesh.vertices.mean(axis=0) if len(mesh.vertices) else traj[:, :3, 3].mean(axis=0)
+        eye = centre + 3.0 * (-0.8 * forward + 1.0 * up)
+        plotter.camera_position = [tuple(eye), tuple(centre), tuple(forward)]
+        plotter.reset_camera()
+    img = plotter.screenshot(return_img=True)
+    plotter.close()
+    out = Path(path)
+    with atomic_path(out) as tmp:
+        from matplotlib.image import imsave
+
+        imsave(tmp, img, format="png")
+    return out

@@ -1,0 +1,106 @@
+"""Correspondence strategies of the ICP engine: the KD-tree default is today's behaviour; projective association."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from seismo3d.errors import InputError
+from seismo3d.geometry import rotation_error_deg, translation_error
+from seismo3d.registration import ICPOptions, fused_icp, icp
+from seismo3d.registration.correspondences import NearestNeighbourCorrespondences, ProjectiveCorrespondences
+
+K = (200.0, 200.0, 79.5, 59.5)  # 160 x 120 pixels
+
+
+def _organised_surface():
+    """A wavy surface seen by a pinhole camera: points image (120, 160, 3), its normals, and the valid mask."""
+    fx, fy, cx, cy = K
+    v, u = np.indices((120, 160), dtype=np.float64)
+    x0, y0 = (u - cx) / fx, (v - cy) / fy
+    # depth of the surface z = 2 + 0.15 sin(3x) cos(2y) along each ray, by fixed-point iteration
+    z = np.full_like(u, 2.0)
+    for _ in range(30):
+        z = 2.0 + 0.15 * np.sin(3 * x0 * z) * np.cos(2 * y0 * z)
+    pts = np.stack([x0 * z, y0 * z, z], axis=-1)
+    from seismo3d.geometry import normals_from_points_image
+
+    nrm = normals_from_points_image(pts)
+    valid = np.isfinite(nrm).all(axis=-1)
+    return pts, nrm, valid
+
+
+def _motion(angle_deg=2.0, shift=(0.02, -0.01, 0.03)):
+    m = np.eye(4)
+    m[:3, :3] = Rotation.from_rotvec(np.radians(angle_deg) * np.array([0.3, 1.0, 0.2]) / np.linalg.norm(
+        [0.3, 1.0, 0.2])).as_matrix()
+    m[:3, 3] = shift
+    return m
+
+
+def test_default_strategy_is_the_kd_tree(rng):
+    pts = rng.normal(size=(800, 3))
+    truth = _motion()
+    src = (pts - truth[:3, 3]) @ truth[:3, :3]  # inverse motion: icp should find `truth`
+    a = icp(src, pts, method="point_to_point", max_distance=(1.0, 0.3, 0.1))
+    b = icp(src, pts, method="point_to_point", max_distance=(1.0, 0.3, 0.1),
+            correspondences=NearestNeighbourCorrespondences())
+    c = icp(src, pts, method="point_to_point", options=ICPOptions(max_distance=(1.0, 0.3, 0.1), correspondences=None))
+    np.testing.assert_array_equal(a.transform, b.transform)
+    np.testing.assert_array_equal(a.transform, c.transform)
+    assert ICPOptions().correspondences == NearestNeighbourCorrespondences()
+    assert rotation_error_deg(a.transform, truth) < 1e-6
+
+
+def test_projective_icp_recovers_a_camera_motion():
+    pts, nrm, valid = _organised_surface()
+    truth = _motion()
+    tgt, tn = pts[valid], nrm[valid]
+    # the source: the target surface seen from the moved camera (points in that camera's frame)
+    src = (tgt - truth[:3, 3]) @ truth[:3, :3]
+    strategy = ProjectiveCorrespondences.from_mask(K, valid)
+    result = icp(src, tgt, target_normals=tn, max_distance=(0.1, 0.03, 0.01), correspondences=strategy)
+    assert rotation_error_deg(result.transform, truth) < 0.05 and translation_error(result.transform, truth) < 1e-3
+    assert result.fitness > 0.9
+    # the same strategy as a field of ICPOptions: the same result
+    same = icp(src, tgt, target_normals=tn, options=ICPOptions(max_distance=(0.1, 0.03, 0.01),
+                                                               correspondences=strategy))
+    np.testing.assert_array_equal(same.transform, result.transform)
+
+
+@pytest.mark.filterwarnings("ignore::seismo3d.errors.DegenerateGeometryWarning")
+def test_projective_fused_icp_takes_features():
+    pts, nrm, valid = _organised_surface()
+    truth = _motion(20.0, (0.1, 0.05, -0.05))  # too far for dense ICP alone: the RANSAC start reaches it
+    tgt, tn = pts[valid], nrm[valid]
+    src = (tgt - truth[:3, 3]) @ truth[:3, :3]
+    pick = np.arange(0, len(tgt), 97)
+    strategy = ProjectiveCorrespondences.from_mask(K, valid)
+    result = fused_icp(src, tgt, target_normals=tn, source_features=src[pick], target_features=tgt[pick],
+                       max_distance=(0.1, 0.03, 0.01), correspondences=strategy)
+    assert result.info["start"] == "ransac"
+    assert rotation_error_deg(result.transform, truth) < 0.05 and translation_error(result.transform, truth) < 1e-3
+
+
+def test_query_semantics():
+    pts, nrm, valid = _organised_surface()
+    tgt = pts[valid]
+    index = ProjectiveCorrespondences.from_mask(K, valid).index(tgt)
+    behind = np.array([[0.0, 0.0, -1.0]])
+    outside = np.array([[50.0, 0.0, 1.0]])
+    on = tgt[:1] + [0.0, 0.0, 0.001]
+    dist, idx = index.query(np.vstack([behind, outside, on]), 0.01)
+    assert np.isinf(dist[:2]).all() and (idx[:2] == len(tgt)).all()
+    assert dist[2] == pytest.approx(0.001, abs=1e-9) and idx[2] == 0
+
+
+def test_projective_refuses_a_downsampled_target():
+    pts, nrm, valid = _organised_surface()
+    strategy = ProjectiveCorrespondences.from_mask(K, valid)
+    with pytest.raises(InputError, match="organised"):
+        icp(pts[valid][::2], pts[valid], target_normals=nrm[valid], voxel_size=0.05, correspondences=strategy)
+    with pytest.raises(InputError, match="pixel_index"):
+        ProjectiveCorrespondences(K, np.zeros((3, 3)))
+    with pytest.raises(InputError, match="correspondences"):
+        icp(pts[valid], pts[valid], target_normals=nrm[valid], correspondences="projective")
+    with pytest.raises(InputError, match="correspondences"):
+        ICPOptions(correspondences="projective")

@@ -26,7 +26,7 @@ import numpy as np
 import typer
 
 from . import __version__
-from .errors import SegyGeometryError, Seismo3dError
+from .errors import Seismo3dError
 
 app = typer.Typer(help="seismo3d: fault and horizon interpretation of seismic cubes, point-cloud / RGB-D / terrain "
                        "registration, lineaments and path planning, on one fused-ICP engine.", no_args_is_help=True,
@@ -68,13 +68,21 @@ def _main(version: bool = typer.Option(False, "--version", callback=_version, is
     _log_progress_to_stderr()
 
 
-_WORDS = {"init"}  # argument names that are no common English word: translated wherever they stand alone
+_WORDS = {"init", "endian"}  # argument names that are no common English word: translated wherever they stand alone
+# The options of every command that reads SEG-Y (one opening path: seismo3d.seismic.open_segy).
+_SEGY_FLAGS = {"iline": "--iline", "xline": "--xline", "endian": "--endian", "ignore_geometry": "--ignore-geometry",
+               "sample_unit": "--sample-unit"}
 
 
 def _in_flags(message: str, flags: dict) -> str:
-    """A library message in the command's terms: ``max_distance=0.1`` -> ``--max-distance 0.1``, ``max_distance``
-    -> ``--max-distance`` (names without an underscore, such as ``model``, only when followed by ``=``)."""
+    """A library message in the command's terms: ``max_distance=0.1`` -> ``--max-distance 0.1``,
+    ``endian='little'`` -> ``--endian little``, ``ignore_geometry=True`` -> ``--ignore-geometry``, ``max_distance``
+    -> ``--max-distance`` (names without an underscore, such as ``model``, only when followed by ``=``); a library
+    form followed by its flag, ``demo=True (--demo)``, becomes the flag."""
+    message = re.sub(r"(?<![\w-])\w+=\S+ \((--[\w-]+)\)", r"\1", message)
     for name, flag in flags.items():
+        message = re.sub(rf"(?<![\w-]){name}=True\b", flag, message)
+        message = re.sub(rf"(?<![\w-]){name}=(['\"])([^'\"]*)\1", rf"{flag} \2", message)
         message = re.sub(rf"(?<![\w-]){name}=", f"{flag} ", message)
         if "_" in name or name in _WORDS:
             message = re.sub(rf"(?<![\w-]){name}\b", flag, message)
@@ -82,12 +90,18 @@ def _in_flags(message: str, flags: dict) -> str:
 
 
 @contextlib.contextmanager
-def _one_line_warnings():
-    """Warnings as one line each on standard error (``warning: ...``), not Python's two-line format."""
+def _one_line_warnings(flags: dict | None = None):
+    """Warnings as one line each on standard error (``warning: ...``, library argument names replaced by ``flags``),
+    not Python's two-line format. Inside a command (where :func:`_friendly` set it up) a call without ``flags``
+    keeps the command's translation."""
+    if flags is None and getattr(warnings.showwarning, "one_line", False):
+        yield
+        return
 
     def one_line(message, category, filename, lineno, file=None, line=None):
-        typer.echo(f"warning: {message}", err=True)
+        typer.echo(f"warning: {_in_flags(str(message), flags or {})}", err=True)
 
+    one_line.one_line = True
     with warnings.catch_warnings():
         warnings.simplefilter("default")
         warnings.showwarning = one_line
@@ -95,15 +109,16 @@ def _one_line_warnings():
 
 
 def _friendly(flags: dict | None = None):
-    """Seismo3d's errors as one line with exit code 2 (library argument names replaced by ``flags``); Ctrl-C as one
-    line with exit code 130."""
-    flags = flags or {}
+    """Seismo3d's errors as one line with exit code 2 and warnings as one line each (library argument names replaced
+    by ``flags`` and the SEG-Y options); Ctrl-C as one line with exit code 130."""
+    flags = {**_SEGY_FLAGS, **(flags or {})}
 
     def decorate(fn):
         @functools.wraps(fn)
         def wrapper(*args, **kwargs):
             try:
-                return fn(*args, **kwargs)
+                with _one_line_warnings(flags):
+                    return fn(*args, **kwargs)
             except Seismo3dError as exc:
                 typer.echo(f"error: {_in_flags(str(exc), flags)}", err=True)
                 raise typer.Exit(2) from None
@@ -127,6 +142,22 @@ class Model(str, Enum):
     similarity = "similarity"
     axis_scaled = "axis_scaled"
     affine = "affine"
+
+
+class Endian(str, Enum):
+    big = "big"
+    little = "little"
+
+
+_ENDIAN_HELP = "Byte order of the SEG-Y input; default: detected from its binary header."
+_ILINE_HELP = ("Trace header byte of the inline number (SEG-Y); a file without a grid at 189 / 193 is read as a "
+               "trace list, at other bytes it is an error.")
+_XLINE_HELP = "Trace header byte of the crossline number (SEG-Y)."
+
+
+def _value(option):
+    """The value of an optional Enum option (None stays None)."""
+    return None if option is None else option.value
 
 
 _REGISTER_FLAGS = {"max_distance": "--max-distance", "init": "--init", "alpha": "--alpha", "model": "--model",
@@ -159,6 +190,10 @@ def register(
                    "coordinates (.csv/.txt/.npy with 2d columns)."),
     alpha: Optional[float] = typer.Option(None, help="For --method fused: weight of the feature term in [0, 1] "
                                                      "(default 0.1; 0.001 for terrain files)."),
+    iline: int = typer.Option(189, help="SEG-Y cubes: trace header byte of the inline number."),
+    xline: int = typer.Option(193, help="SEG-Y cubes: trace header byte of the crossline number."),
+    endian: Optional[Endian] = typer.Option(None, help="SEG-Y cubes: byte order; default: detected from each file's "
+                                                       "binary header."),
 ) -> None:
     """Register SOURCE onto TARGET and write the transform mapping SOURCE's coordinates into TARGET's.
 
@@ -177,7 +212,8 @@ def register(
     with _one_line_warnings():
         job = run_register_job(source, target, output, method=None if method is None else method.value,
                                model=None if model is None else model.value, init=init,
-                               max_distance=max_distance or None, features=features, alpha=alpha, progress=True)
+                               max_distance=max_distance or None, features=features, alpha=alpha, iline=iline,
+                               xline=xline, endian=_value(endian), progress=True)
     if job.kind == "volumes":
         reg = job.result
         typer.echo(f"map rotation {reg.rotation_deg:.2f} deg  scales {np.array2string(reg.scales, precision=4)}  "
@@ -247,8 +283,9 @@ def faults(
                                                                       "input's own folder."),
     demo: bool = typer.Option(False, "--demo", help="Run on a generated 128^3 cube with 3 faults (no input file)."),
     demo_seed: int = typer.Option(0, "--demo-seed", help="Random seed of the --demo cube."),
-    iline: int = typer.Option(189, help="Trace header byte of the inline number (SEG-Y)."),
-    xline: int = typer.Option(193, help="Trace header byte of the crossline number (SEG-Y)."),
+    iline: int = typer.Option(189, help=_ILINE_HELP),
+    xline: int = typer.Option(193, help=_XLINE_HELP),
+    endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
     ignore_geometry: bool = typer.Option(False, "--ignore-geometry", help="Read the SEG-Y as a trace list (unsorted "
                                                                           "file, arbitrary line): trace a 2D section."),
     sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
@@ -265,14 +302,10 @@ def faults(
     from .jobs.faults import run_faults_job
 
     with _one_line_warnings():
-        try:
-            written = run_faults_job(input, output, demo=demo, demo_seed=demo_seed, iline=iline, xline=xline,
-                                     ignore_geometry=ignore_geometry,
-                                     sample_unit=None if sample_unit is None else sample_unit.value,
-                                     n_samples=n_samples, sensitivity=sensitivity, progress=True)
-        except SegyGeometryError as exc:
-            raise SegyGeometryError(f"{exc} On the command line: --ignore-geometry, or --iline BYTE --xline "
-                                    "BYTE.") from None
+        written = run_faults_job(input, output, demo=demo, demo_seed=demo_seed, iline=iline, xline=xline,
+                                 ignore_geometry=ignore_geometry, endian=_value(endian),
+                                 sample_unit=None if sample_unit is None else sample_unit.value,
+                                 n_samples=n_samples, sensitivity=sensitivity, progress=True)
     with open(written["summary"], newline="") as fh:
         rows = list(csv.DictReader(fh))
     source = "the demo cube" if demo else input.name
@@ -455,23 +488,32 @@ class Polarity(str, Enum):
 
 
 @app.command()
-@_friendly({"polarity": "--polarity"})
+@_friendly({"polarity": "--polarity", "surface": "--surface"})
 def horizon(
-    input: pathlib.Path = typer.Argument(..., metavar="INPUT", help="SEG-Y cube (inline-sorted or crossline-sorted)."),
+    input: pathlib.Path = typer.Argument(..., metavar="INPUT", help="SEG-Y cube or 2D line (inline- or "
+                                                                    "crossline-sorted, big- or little-endian; a file "
+                                                                    "without inline / crossline numbers is read as a "
+                                                                    "trace list)."),
     seed: list[str] = typer.Option(..., "--seed", help="Seed pick IL,XL,T: inline and crossline numbers and the time "
-                                                       "(or depth) in the cube's sample unit; repeat for more seeds."),
+                                                       "(or depth) in the file's sample unit; TRACE,T for a file read "
+                                                       "as a trace list (trace number in file order, from 1). Repeat "
+                                                       "for more seeds."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Text file: one 'inline xline time' row per "
-                                                                      "tracked trace."),
+                                                                      "tracked trace ('trace time' for a trace list)."),
     polarity: Polarity = typer.Option(Polarity.peak, help="Event the horizon follows."),
     faults: bool = typer.Option(False, "--faults", help="Trace the faults first and jump across them by their throw "
                                                         "(slower: the whole fault job runs in memory)."),
     fill: bool = typer.Option(False, "--fill", help="Fill empty traces by interpolation after tracking."),
-    surface: Optional[pathlib.Path] = typer.Option(None, help="Also write the horizon as a surface (.vtp or .vtk)."),
-    iline: int = typer.Option(189, help="Trace header byte of the inline number."),
-    xline: int = typer.Option(193, help="Trace header byte of the crossline number."),
+    surface: Optional[pathlib.Path] = typer.Option(None, help="Also write the horizon as a surface (.vtp or .vtk); "
+                                                              "3D cubes only."),
+    iline: int = typer.Option(189, help=_ILINE_HELP),
+    xline: int = typer.Option(193, help=_XLINE_HELP),
+    endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
+    ignore_geometry: bool = typer.Option(False, "--ignore-geometry", help="Read the SEG-Y as a trace list (unsorted "
+                                                                          "file, arbitrary line); seeds are TRACE,T."),
 ) -> None:
-    """Track a horizon in INPUT from one or more seed picks by registering neighbouring inlines, and write it as
-    'inline xline time' rows."""
+    """Track a horizon in INPUT from one or more seed picks, by registering neighbouring inlines (a cube) or traces
+    (a 2D line), and write it as 'inline xline time' rows."""
     from .errors import InputError
     from .jobs.horizon import run_horizon_job
 
@@ -481,10 +523,12 @@ def horizon(
             seeds.append(tuple(float(v) for v in text.split(",")))
         except ValueError:
             seeds.append(())
-        if len(seeds[-1]) != 3:
-            raise InputError(f"--seed {text!r} must be IL,XL,T (three numbers separated by commas)")
+        if len(seeds[-1]) not in (2, 3):
+            raise InputError(f"--seed {text!r} must be IL,XL,T (three numbers separated by commas), or TRACE,T for a "
+                             "file read as a trace list")
     job = run_horizon_job(input, seeds, output, polarity=polarity.value, faults=faults, fill=fill, surface=surface,
-                          iline=iline, xline=xline, progress=True)
+                          iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=_value(endian),
+                          progress=True)
     typer.echo(f"{job.n_rows} of {job.horizon.times.size} traces tracked ({job.horizon.coverage:.1%}) -> {output}")
     if job.surface is not None:
         typer.echo(f"surface -> {job.surface}")

@@ -19,6 +19,7 @@ __all__ = [
     "PlanningError",
     "Seismo3dWarning",
     "DegenerateGeometryWarning",
+    "TraceListWarning",
     "FrameSkippedWarning",
 ]
 
@@ -67,6 +68,11 @@ class Seismo3dWarning(UserWarning):
 
 class DegenerateGeometryWarning(Seismo3dWarning):
     """The data does not constrain every degree of freedom of the transform (e.g. a plane under point-to-plane ICP)."""
+
+
+class TraceListWarning(Seismo3dWarning):
+    """A SEG-Y file without an inline / crossline grid at the default header bytes was read as a trace list (a 2D or
+    arbitrary line, an unsorted or irregular survey); the message says what its trace headers show."""
 
 
 class FrameSkippedWarning(Seismo3dWarning):

@@ -149,8 +149,9 @@ def test_faults_warnings_are_one_line(tmp_path):
 
 
 @pytest.mark.parametrize("case, message", [
-    ("not_segy", "cannot be read as SEG-Y"),
-    ("header_bytes", "iline=1, xline=5"),
+    ("not_segy", "is not SEG-Y: its binary header holds no sample format code"),
+    ("header_bytes", "no inline / crossline grid at trace header bytes --iline 1, --xline 5; --iline 189, --xline 193 "
+                     "(48 inlines x 48 crosslines) give one: pass those, or --ignore-geometry to read a trace list"),
     ("same_folder", "another folder"),
     ("no_input", "--demo"),
     ("missing", "no SEG-Y file"),
@@ -173,7 +174,39 @@ def test_faults_errors(cube_file, tmp_path, case, message):
     result = runner.invoke(app, ["faults", *args])
     assert result.exit_code == 2, result.output
     assert result.stderr.startswith("error: ") and message in result.stderr
+    assert len(result.stderr.splitlines()) == 1 and "=" not in result.stderr  # one line, CLI flags not arguments
     assert "Traceback" not in result.output
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name, trace_list", [("penobscot_xl1155.sgy", False),
+                                               ("volve_fullstack_twt_arbline.sgy", True)])
+def test_faults_on_real_2d_lines_without_flags(data_dir, tmp_path, name, trace_list):
+    # a line of a 3D survey (crossline 1155) and an arbitrary line without inline / crossline numbers: no flags
+    path = Path(data_dir) / "seismic" / name
+    result = runner.invoke(app, ["faults", str(path), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    warn = [line for line in result.stderr.splitlines() if line.startswith("warning: ")]
+    listed = [line for line in warn if "read as a trace list" in line]
+    assert len(listed) == (1 if trace_list else 0) and "--iline" not in result.stderr
+    assert all("=" not in line for line in warn)  # flags, not argument names
+    rows = _rows(tmp_path / "out" / "fault_summary.csv")
+    assert f"{len(rows)} faults in {name}" in result.stdout and len(rows) >= 5
+    with segyio.open(str(tmp_path / "out" / "fault_likelihood.sgy"), ignore_geometry=True) as out, \
+            segyio.open(str(path), ignore_geometry=True) as src:
+        assert out.tracecount == src.tracecount and len(out.samples) == len(src.samples)
+
+
+def test_register_refuses_a_2d_line_in_one_line(data_dir, tmp_path):
+    # not a volume: one error line saying what the file is, no warning suggesting a flag register does not have
+    seismic = Path(data_dir) / "seismic"
+    for name, what in (("volve_fullstack_twt_arbline.sgy", "a 2D or arbitrary line without inline / crossline "
+                                                           "numbers (CDP 1-225)"),
+                       ("penobscot_xl1155.sgy", "a 2D line along inlines 1000-1600 (crossline 1155)")):
+        result = runner.invoke(app, ["register", str(seismic / name), str(seismic / "f3_crop.sgy"), "-o",
+                                     str(tmp_path / "T.json")])
+        assert result.exit_code == 2, result.output
+        assert result.stderr == f"error: {name} is {what}, not a 3D cube; register two 3D cubes\n"
 
 
 def test_faults_exit_code_in_a_real_process(tmp_path):

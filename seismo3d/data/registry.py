@@ -9,7 +9,9 @@ the hash: those with a derivation in :mod:`seismo3d.data.derived` (the bunny sca
 files) are made again from their downloaded origin and checked against the registry's hash; the Penobscot image
 stack is available only from a data directory.
 
-The table at the bottom of this module is the single source of truth; ``seismo3d/data/README.md`` describes each file.
+The tables at the bottom of this module are the single source of truth; ``seismo3d/data/README.md`` describes each
+file. The second table lists files that are not in the data directory and are always downloaded (segyio's own test
+data, for the SEG-Y conformance test; ``DataFile.in_data_directory`` is False).
 
 Examples
 --------
@@ -52,6 +54,8 @@ class _Source:
 _SOURCES = types.MappingProxyType({
     "segyio": _Source("equinor/segyio", "ce7bf86e4bee75f3296a5a756fa123e981a04fea",
                       "F3 Netherlands (dGB Earth Sciences / TNO): CC BY-SA"),
+    "segyio_tests": _Source("equinor/segyio", "ce7bf86e4bee75f3296a5a756fa123e981a04fea",
+                            "LGPL-3.0 (segyio's test data, made by its scripts)"),
     "seg2014": _Source("seg/tutorials", "7ed8c094f00962263dfb0bebcfc6c36bf3981a74", "Penobscot 3D: CC BY-SA 3.0"),
     "seg2017": _Source("seg/tutorials-2017", "b38f798866dd4e1a38c78cfd45edb7b2cfd3d785",
                        "F3 Netherlands (dGB Earth Sciences / TNO): CC BY-SA"),
@@ -101,6 +105,9 @@ class DataFile:
         Path of the file inside ``repo`` at ``commit``; None for a derived file (several sources, or rebuilt).
     licence : str
         The licence or terms of use of the data.
+    in_data_directory : bool
+        False for a file that is not part of the seismo3d data directory and is always downloaded from its origin
+        (segyio's own test data, ``seismic/segyio_test_data/...``, read by the SEG-Y conformance test).
     """
 
     name: str
@@ -109,6 +116,7 @@ class DataFile:
     commit: str
     origin_path: str | None
     licence: str
+    in_data_directory: bool = True
 
     @property
     def derived(self) -> bool:
@@ -123,14 +131,15 @@ class DataFile:
         return _RAW_URL.format(repo=self.repo, commit=self.commit, path=self.origin_path)
 
 
-def _parse_table(table: str) -> tuple[DataFile, ...]:
+def _parse_table(table: str, *, in_data_directory: bool = True) -> tuple[DataFile, ...]:
     entries = []
     for line in table.strip().splitlines():
         sha256, source_key, name, origin_path = line.split()
         source = _SOURCES[source_key]
         entries.append(DataFile(name=name, sha256=sha256, repo=source.repo, commit=source.commit,
-                                origin_path=None if origin_path == "-" else origin_path, licence=source.licence))
-    return tuple(sorted(entries, key=lambda entry: entry.name))
+                                origin_path=None if origin_path == "-" else origin_path, licence=source.licence,
+                                in_data_directory=in_data_directory))
+    return tuple(entries)
 
 
 def data_dir() -> pathlib.Path | None:
@@ -684,7 +693,104 @@ f2194eaef8ad675f2efe26845ed61e37451472cc23a770d0ec337778b61ae9a5 segysak seismic
 b6ed6303945b0d85b59c314df8a265c91a85b9768dc70dff3c5df35970e49b6b pysheds terrain/dem_hydrosheds_dfw.tif data/dem.tif
 """
 
-REGISTRY: tuple[DataFile, ...] = _parse_table(_TABLE)
+# segyio's test data (equinor/segyio test-data/, 90 files; its README says what each one tests): not in the data
+# directory, always downloaded. Same columns as _TABLE.
+_DOWNLOAD_ONLY_TABLE = """
+7de3f6dd742069bf489626d6ee494d5657f5fae37f89ce43d24f73bed47f8faa segyio_tests seismic/segyio_test_data/1x1.sgy test-data/1x1.sgy
+f08308d76c78564667d6ac13f2f315eec826239e8add42dac3cf1e0f293a3fe6 segyio_tests seismic/segyio_test_data/1xN.sgy test-data/1xN.sgy
+360b1bb041124d14a62477f2cf61495aa98539b53123590a048fccd24556de3a segyio_tests seismic/segyio_test_data/Mx1.sgy test-data/Mx1.sgy
+6269ebe48c82527d3fe20813fc4c97bf7fefbd923d8e62eb7d4797a32e1dcc72 segyio_tests seismic/segyio_test_data/acute-small.sgy test-data/acute-small.sgy
+c5e019183b5d07c25fda617e51fad3238be32030591c9e253fa24865bcf7b8cf segyio_tests seismic/segyio_test_data/broken.sgy test-data/broken.sgy
+b1531c7173ca2b570dd2c9b7d1b54c825606f9afb1f4aa0cc769cf399af7226b segyio_tests seismic/segyio_test_data/decrement-lsb.sgy test-data/decrement-lsb.sgy
+62862a2473e83186b3b51838a9129345cec3b45839a8a6de75017e131b128c91 segyio_tests seismic/segyio_test_data/decrement.sgy test-data/decrement.sgy
+b3f9943fb3db56263b446be5f5fc7ba1c51d7facbc7a558b694db91d60f0fa33 segyio_tests seismic/segyio_test_data/delay-scalar.sgy test-data/delay-scalar.sgy
+7820e102547c938fcc86236ca928e5e7b2854b8585201b777d7bf980ad04af3e segyio seismic/segyio_test_data/f3-lsb.sgy test-data/f3-lsb.sgy
+6008d05547c6b8f6050cea7ca4683f1be3fac260235cad47eb5e61ee05d2ce23 segyio seismic/segyio_test_data/f3.sgy test-data/f3.sgy
+d2054569cf3a039a381a7ea30b236a8bcb025a160342b9ea791093a8ff021fe0 segyio_tests seismic/segyio_test_data/increment-lsb.sgy test-data/increment-lsb.sgy
+eae59cc02ce50e83cfc395dc4bb50992897850d385eaf9ec49a7459dce1adde2 segyio_tests seismic/segyio_test_data/increment.sgy test-data/increment.sgy
+edd425179124542c038fffc12fab68b1b682d901585fefcca391a5a694aa99cf segyio_tests seismic/segyio_test_data/interval-neg-bin-neg-trace.sgy test-data/interval-neg-bin-neg-trace.sgy
+d5d941871794605b69fd2ef49ce9fb4f161113df0c29dde21f97be27362caf5d segyio_tests seismic/segyio_test_data/interval-neg-bin-pos-trace.sgy test-data/interval-neg-bin-pos-trace.sgy
+84187c00aea13fb4bbd2d2fb1dc8899d8654ca48ff6b73b481387b46a957383b segyio_tests seismic/segyio_test_data/interval-pos-bin-neg-trace.sgy test-data/interval-pos-bin-neg-trace.sgy
+af64af5347f00d8c1cbc7babbacfbf1e48a1143d901d5e434177cc9da0e937e3 segyio_tests seismic/segyio_test_data/inv-acute-small.sgy test-data/inv-acute-small.sgy
+e43bb9f3ec1d80b84c1864413fdcc94bf828341a3c1621197df2cd930eeed0b2 segyio_tests seismic/segyio_test_data/left-small.sgy test-data/left-small.sgy
+514719491d7be4893cf89447e605a85a781e8ec4bd67b21eee2573d96610fbb9 segyio_tests seismic/segyio_test_data/long.sgy test-data/long.sgy
+72816b3a78d1bd48bdaeeba02af45fa454c8b8e1ba96eec85a6d2d359cede8ce segyio_tests seismic/segyio_test_data/mapping-all-types-lsb.sgy test-data/mapping-all-types-lsb.sgy
+d3a7aac97f0a08f3a0bd1120b4636b6632582ae6d4b2746440ff1187d9cea062 segyio_tests seismic/segyio_test_data/mapping-all-types.sgy test-data/mapping-all-types.sgy
+b005a797dfa4a09c12e398ddd317c1c5b38cf782af91c75dd2cea850c6100b06 segyio_tests seismic/segyio_test_data/mapping-default.sgy test-data/mapping-default.sgy
+89fd8bfd6c7b2558a82aa47621de46dd509cf5baabc62455c99d41b08a8b3c5c segyio_tests seismic/segyio_test_data/mapping-empty.sgy test-data/mapping-empty.sgy
+d14529407ea2289199f9ea515c32a02583f63c37844064b5ddbc6e64e3f55899 segyio_tests seismic/segyio_test_data/mapping-encoding-ext1.sgy test-data/mapping-encoding-ext1.sgy
+8dc7b22d32ab5725614f8e84b716edfeac20113bafad722df51987b930a8bf13 segyio_tests seismic/segyio_test_data/mapping-encoding-private.sgy test-data/mapping-encoding-private.sgy
+6cb10c6edb251eed1fa2a60da694ec0dc4ebce5e591b0781aebededba6732230 segyio_tests seismic/segyio_test_data/mapping-invalid-attribute.sgy test-data/mapping-invalid-attribute.sgy
+98079fb5916b89f717100dcc54ff20ef46b5a40391c1c2e15eb3f7d288803892 segyio_tests seismic/segyio_test_data/mapping-invalid-root.sgy test-data/mapping-invalid-root.sgy
+383a454d3e9cc341c39e5690aa564eac3cacacbcf0a74bb2901fbcfd3b87e6a0 segyio_tests seismic/segyio_test_data/mapping-invalid-value.sgy test-data/mapping-invalid-value.sgy
+7e059d3f1c8371ecdd83a797baef3be62bba04c7837e94860a7a9f5ca731ed9f segyio_tests seismic/segyio_test_data/mapping-minimal.sgy test-data/mapping-minimal.sgy
+739b98b305c5fd9b77152875601269054911be6bfffd258bec0e7841701e905b segyio_tests seismic/segyio_test_data/mapping-mixed-order.sgy test-data/mapping-mixed-order.sgy
+17ab9f1a7e16cdecab62bfd81fcadce15f0d6e4af2edf66eece4ab963de03162 segyio_tests seismic/segyio_test_data/mapping-multiple-stanzas.sgy test-data/mapping-multiple-stanzas.sgy
+a794907a5dda75feee72bb8383de9ff0e3e93d333a6540d40b451b2207d70509 segyio_tests seismic/segyio_test_data/mapping-no-extension1.sgy test-data/mapping-no-extension1.sgy
+f33656cb907f0ee7bdc977bf7642a1ea0a239fe6b06d7408cb8a0f03b02c0cac segyio_tests seismic/segyio_test_data/mapping-shifted.sgy test-data/mapping-shifted.sgy
+40925df0058e2fedfc1dedfe488815a4bcded038e5df8943db39884a6a947b58 segyio_tests seismic/segyio_test_data/mapping-unparsable.sgy test-data/mapping-unparsable.sgy
+b51214b340de0585655478c6aa0e933a5c4c3b5eb143c65e1f890cdf545d74dd segyio_tests seismic/segyio_test_data/mapping-unsupported-type.sgy test-data/mapping-unsupported-type.sgy
+e91fead35dd1ff8860da74ef3085dd9637f75ab7b4481b7fe20d773b3cb9fd24 segyio_tests seismic/segyio_test_data/multi-text.sgy test-data/multi-text.sgy
+7db3342a74f6123f913258960886442eeebc1d0a374dd11d60cbb62c3684b510 segyio seismic/segyio_test_data/multiformats/Format10lsb.sgy test-data/multiformats/Format10lsb.sgy
+1ea5260d0b3181b9d8f04421021b9d8f2b4711652805f08c8e4fdaad4ffbf5a1 segyio seismic/segyio_test_data/multiformats/Format10msb.sgy test-data/multiformats/Format10msb.sgy
+c5a8f66e0d86019d320112408b8f5bc9b13ff620f1795084c128fd9e08f4f141 segyio seismic/segyio_test_data/multiformats/Format11lsb.sgy test-data/multiformats/Format11lsb.sgy
+3cfc2000d0093d8fefd82bdbde872ea78e1cfbb2fc815a402c894a206c2839ad segyio seismic/segyio_test_data/multiformats/Format11msb.sgy test-data/multiformats/Format11msb.sgy
+d8c659745a26f4fcaf7da38172a73961c41570031296453fe816dd6fa3ab049d segyio seismic/segyio_test_data/multiformats/Format12lsb.sgy test-data/multiformats/Format12lsb.sgy
+e7eee88caf03428b8659d333708e7a2f9384f47484b193d7feaad5de3af0078e segyio seismic/segyio_test_data/multiformats/Format12msb.sgy test-data/multiformats/Format12msb.sgy
+68c1bad3278aa745e6180264df1013c4a8e0c8700bcafa6f3c10a6c78a786318 segyio seismic/segyio_test_data/multiformats/Format15lsb.sgy test-data/multiformats/Format15lsb.sgy
+357e721e5578455482cb92aec21dc9638aab0314d0ea160b32fbdcc9d13a7f16 segyio seismic/segyio_test_data/multiformats/Format15msb.sgy test-data/multiformats/Format15msb.sgy
+698fe4cb0d0907426ee11a8b877066335a06518584b1d686b112d3ed2d50a3d2 segyio seismic/segyio_test_data/multiformats/Format16lsb.sgy test-data/multiformats/Format16lsb.sgy
+034735c556216b79a858f2051d91537b50e3522d6c74e5634e3beaeebc4e732a segyio seismic/segyio_test_data/multiformats/Format16msb.sgy test-data/multiformats/Format16msb.sgy
+c943bcd9492046cec718b4b104309954f225c4062e1145279c1489b19bc83a56 segyio seismic/segyio_test_data/multiformats/Format1lsb.sgy test-data/multiformats/Format1lsb.sgy
+57cd19a9807beefafb1729b56faccc71c1ed936a8b80a54aa6113761af000119 segyio seismic/segyio_test_data/multiformats/Format1msb.sgy test-data/multiformats/Format1msb.sgy
+ca797e2115a6946d63db3d6c3c8de67f4ef2f5023c1724dea6691c10a92397f0 segyio seismic/segyio_test_data/multiformats/Format2lsb.sgy test-data/multiformats/Format2lsb.sgy
+26995d153b8f3873a595806aec9ea01ce1077067ebccaad21c957ee6af619994 segyio seismic/segyio_test_data/multiformats/Format2msb.sgy test-data/multiformats/Format2msb.sgy
+323986e72d6ae6afcc1f86a769fd0331480d199af72ad2b3a3a32bdf12f417ed segyio seismic/segyio_test_data/multiformats/Format3lsb.sgy test-data/multiformats/Format3lsb.sgy
+6008d05547c6b8f6050cea7ca4683f1be3fac260235cad47eb5e61ee05d2ce23 segyio seismic/segyio_test_data/multiformats/Format3msb.sgy test-data/multiformats/Format3msb.sgy
+1d7cdc064fdb11d75273636d3056acf446e346e72d3fc2dcd859b6750319a414 segyio seismic/segyio_test_data/multiformats/Format4lsb.sgy test-data/multiformats/Format4lsb.sgy
+9989364711fad1d1ce3e1416615c2ca13ae9186fd4677ea3daade0afe8e8b84b segyio seismic/segyio_test_data/multiformats/Format4msb.sgy test-data/multiformats/Format4msb.sgy
+e2bd0c8fdb0af1970ce8e9b152501f144966c5dc44c1de0c5e17b4c2e75b029c segyio seismic/segyio_test_data/multiformats/Format5lsb.sgy test-data/multiformats/Format5lsb.sgy
+1be2a5e8a26cb101595c2c322287f2bacf34658d50a55cdd4c55e4b640842dca segyio seismic/segyio_test_data/multiformats/Format5msb.sgy test-data/multiformats/Format5msb.sgy
+6ef0dc60b6ef8cee705f90b0d291c2d471f8ff1e0f854b17549060b9b450e876 segyio seismic/segyio_test_data/multiformats/Format6lsb.sgy test-data/multiformats/Format6lsb.sgy
+91a1ffdc87f547a2702d9fcf124c30908b19d938115334488b933658d210d01d segyio seismic/segyio_test_data/multiformats/Format6msb.sgy test-data/multiformats/Format6msb.sgy
+fa8be692fbd5265459b5d182b5b2a421ed56d2052278f9563e656bb663b438fb segyio seismic/segyio_test_data/multiformats/Format7lsb.sgy test-data/multiformats/Format7lsb.sgy
+5574ee44bdbdfb770b45ef80efc0566dc0d71e2eb9626116ac387925e27a43f2 segyio seismic/segyio_test_data/multiformats/Format7msb.sgy test-data/multiformats/Format7msb.sgy
+f18a48f3a8e442ed52a635f367964cfdf6468603d5db941cd7411e46cbee2fd7 segyio seismic/segyio_test_data/multiformats/Format8lsb.sgy test-data/multiformats/Format8lsb.sgy
+8c0012dfbb2dbed4367ac040f6d85eb0d95367f35d2b25c074da182e28cfa98b segyio seismic/segyio_test_data/multiformats/Format8msb.sgy test-data/multiformats/Format8msb.sgy
+0bc6fba1c326fb8a41d5b17aaed0b781741e2c0e94c0806b83fac77b55c0827a segyio seismic/segyio_test_data/multiformats/Format9lsb.sgy test-data/multiformats/Format9lsb.sgy
+63b92a783481e2cbcf1fb139185ea9ecb02f84905dacc1b86cf7916e7524e42c segyio seismic/segyio_test_data/multiformats/Format9msb.sgy test-data/multiformats/Format9msb.sgy
+9e6757524bbf37dce9fb5ec2a31f9e0f33b17a9f2bac48537bd4ef0e8dbe0f2d segyio_tests seismic/segyio_test_data/normal-small.sgy test-data/normal-small.sgy
+57b18ec24e1b4454f2a185fe4d79554eb6390b7e150e7445a7fbeb995077890e segyio_tests seismic/segyio_test_data/obtuse-small.sgy test-data/obtuse-small.sgy
+2a78cbec5edd94fa969673c777737a74cd3587bc9156106f6d5c9882fe447d0b segyio_tests seismic/segyio_test_data/reflex-small.sgy test-data/reflex-small.sgy
+a53d98ff0166485c90a640c077547b031324eb5e9219b029324daa8437b43c32 segyio_tests seismic/segyio_test_data/right-small.sgy test-data/right-small.sgy
+e30ed9722ff38b72cf422dc36c86ed2075cf6d82bac51da067866b8d33b0640b segyio_tests seismic/segyio_test_data/rotated-small-rev2.sgy test-data/rotated-small-rev2.sgy
+588eb04460677fdfaba8dd2318c7317153aa6ef08afb8693cff1a14f44d07886 segyio_tests seismic/segyio_test_data/shot-gather.sgy test-data/shot-gather.sgy
+f93a0b5102b1891039badf432e92f53df2f30218340617453c5dc23024521973 segyio_tests seismic/segyio_test_data/small-lsb.sgy test-data/small-lsb.sgy
+ad8f11f9b2b4ff1178b2318f375eae9f642bf1ba3f36ae215d1c50a114e5d664 segyio_tests seismic/segyio_test_data/small-lsb.su test-data/small-lsb.su
+dc68c7aa66524b5efade581b0308a288c9ca50ffc9f744b0821dd8e75b348f43 segyio_tests seismic/segyio_test_data/small-ps-dec-il-inc-xl-off.sgy test-data/small-ps-dec-il-inc-xl-off.sgy
+0a59de448a37dc5f5ee3ed818a019e8f2078e3efa6bf8fca09fe036f592e66a7 segyio_tests seismic/segyio_test_data/small-ps-dec-il-off-inc-xl.sgy test-data/small-ps-dec-il-off-inc-xl.sgy
+7282ab37c32989758a2b28951ab9208f5124f78ce33c6a8917ec4c4fcd6315ff segyio_tests seismic/segyio_test_data/small-ps-dec-il-xl-inc-off.sgy test-data/small-ps-dec-il-xl-inc-off.sgy
+f68ada833e8ec6a32d844bb437db896ad0fd60c7a8a8862e7c6c964f478fb690 segyio_tests seismic/segyio_test_data/small-ps-dec-il-xl-off.sgy test-data/small-ps-dec-il-xl-off.sgy
+360c7a50a2bc4533f8d1f4ce620c7020d971632473720855615c2e4be6cc704a segyio_tests seismic/segyio_test_data/small-ps-dec-off-inc-il-xl.sgy test-data/small-ps-dec-off-inc-il-xl.sgy
+3429eeae7c8acde05e33f490d5ebbb9a8b9cd77dedfcd69da5ab425964011ee6 segyio_tests seismic/segyio_test_data/small-ps-dec-xl-inc-il-off.sgy test-data/small-ps-dec-xl-inc-il-off.sgy
+d3685e565dc3caba4effcaa97eb28cdfc12e8ca088e87e1ff6c05179cb7ad175 segyio_tests seismic/segyio_test_data/small-ps-dec-xl-off-inc-il.sgy test-data/small-ps-dec-xl-off-inc-il.sgy
+75cac00cdefe1f3506e69a64d818e00626e67d90f562721f66707e148ba03759 segyio_tests seismic/segyio_test_data/small-ps.sgy test-data/small-ps.sgy
+e939ed45a8258f1fbaf3c21ca83f54369c4c4def79384b4cb0fc069a4eb1a191 segyio_tests seismic/segyio_test_data/small.sgy test-data/small.sgy
+0b7dcf06812c9b6b40049cc1e5c3cea9baed3e5c9a4c0690c0b15df40e4e7ad5 segyio_tests seismic/segyio_test_data/small.su test-data/small.su
+00f2af2326bc609055f17eb2571d3cd7aba67e4c6341b9b22ed8d541160de63a segyio_tests seismic/segyio_test_data/stanzas-known-count.sgy test-data/stanzas-known-count.sgy
+c21592a04f2f7633b1005bad32283a3ab5a47796ee392b7802878b47ea25cc28 segyio_tests seismic/segyio_test_data/stanzas-unknown-count.sgy test-data/stanzas-unknown-count.sgy
+ff2581f03bfe7200dbbbf997292c0a2323ae49aa9855f861b3ce999ee320a55e segyio_tests seismic/segyio_test_data/straight-small.sgy test-data/straight-small.sgy
+6001184a8424d4558d3cbc7da84fed16a7d344182eb9035cb428d43a20da0c70 segyio_tests seismic/segyio_test_data/text-embed-null.sgy test-data/text-embed-null.sgy
+9244560788a82c19cd2b54f57d52032e79a159c1bde45d24e0704e7daa04aefa segyio_tests seismic/segyio_test_data/text.sgy test-data/text.sgy
+b23509c4644f938c8f7c3d82abf09e2f012a2ce79ade391e9912a158c8eb5d0e segyio_tests seismic/segyio_test_data/tiny.sgy test-data/tiny.sgy
+397ed2ef878033fdd3177e279bfbd4767749ade955a2c0b3630559936b987ec2 segyio_tests seismic/segyio_test_data/trace-header-extension1.sgy test-data/trace-header-extension1.sgy
+931a731fc9baf80a3f926379f1c2d5c4a5f0f0a342d09ab665f18d8eb04f7cc9 segyio_tests seismic/segyio_test_data/trace-header-extensions.sgy test-data/trace-header-extensions.sgy
+e939ed45a8258f1fbaf3c21ca83f54369c4c4def79384b4cb0fc069a4eb1a191 segyio_tests seismic/segyio_test_data/小文件.sgy test-data/小文件.sgy
+"""
+
+REGISTRY: tuple[DataFile, ...] = tuple(sorted(_parse_table(_TABLE) + _parse_table(_DOWNLOAD_ONLY_TABLE,
+                                                                                  in_data_directory=False),
+                                              key=lambda entry: entry.name))
 """Every registered data file, sorted by name."""
 
 _ENTRIES = types.MappingProxyType({entry.name: entry for entry in REGISTRY})

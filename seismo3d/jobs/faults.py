@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .._atomic import atomic_path
-from .._progress import progress_steps
+from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import InputError
 from ..seismic.faults import FaultInterpretation, trace_faults
@@ -50,8 +50,8 @@ class _Input:
     def file_order(self, values: np.ndarray) -> np.ndarray:
         """(n_traces, n_samples) of an array shaped like ``data``, in the SEG-Y file's trace order."""
         ns = values.shape[-1]
-        if self.segy_shape is None:  # trace list: already in file order
-            return values.reshape(-1, ns)
+        if self.segy_shape is None:  # trace list: already in file order (contiguous float32 for segyio)
+            return np.ascontiguousarray(values.reshape(-1, ns), dtype=np.float32)
         grid = values.reshape(self.segy_shape)
         if self.sorting == "crossline":
             grid = np.swapaxes(grid, 0, 1)
@@ -74,7 +74,7 @@ class _Input:
         return (self.trace_axis, vertical)
 
 
-def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples) -> _Input:
+def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, endian=None) -> _Input:
     from ..seismic.io import open_segy, read_section
 
     path = Path(path)
@@ -103,7 +103,11 @@ def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples) 
             return _Input(np.asarray(data), path.stem, None, None, idx[0], None, idx[1].astype(np.float64), unit)
         return _Input(np.asarray(data), path.stem, None, None, idx[0], idx[1], idx[2].astype(np.float64), unit)
 
-    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit) as cube:
+    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
+                   endian=endian) as cube:
+        if cube.inlines is not None:  # a trace list was announced by open_segy's warning
+            LOGGER.info("%s: %s, %d samples of %g %s, %s, %s-endian", path.name, cube.description, cube.samples.size,
+                        cube.sample_interval, cube.sample_unit, cube.format_name, cube.endian)
         data = cube.read()
         samples = np.asarray(cube.samples, dtype=np.float64)
         unit = cube.sample_unit
@@ -154,7 +158,7 @@ def _demo_input(out_dir: Path, seed) -> tuple[_Input, Path]:
 
 
 def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, like=None, iline, xline,
-                  ignore_geometry) -> Path:
+                  ignore_geometry, endian=None) -> Path:
     """SEG-Y with the input's headers for a SEG-Y input, .npy otherwise.
 
     With ``like`` (a SEG-Y file this job already wrote with :func:`~seismo3d.seismic.io.write_like`), the file is a
@@ -166,7 +170,8 @@ def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, 
             from ..seismic.io import write_like
 
             grid = values.reshape(inp.segy_shape) if inp.segy_shape is not None else values
-            return write_like(inp.segy_path, out, grid, iline=iline, xline=xline, ignore_geometry=ignore_geometry)
+            return write_like(inp.segy_path, out, grid, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
+                              endian=endian)
         import segyio
 
         traces = inp.file_order(values)
@@ -273,14 +278,16 @@ def _check_out_dir(path, out_dir) -> Path:
 
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
-                   sample_unit=None, n_samples=None, sensitivity=0.5, progress=True) -> dict:
+                   endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, progress=True) -> dict:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 
     Inputs
     ------
-    * a SEG-Y 3D cube (any sorting, inline / crossline numbers at trace bytes ``iline`` / ``xline``);
+    * a SEG-Y 3D cube (any sorting, either byte order, inline / crossline numbers at trace bytes ``iline`` /
+      ``xline``), read by :func:`~seismo3d.seismic.io.open_segy` like every SEG-Y input of seismo3d;
     * a 2D SEG-Y line: one inline or one crossline of a survey (e.g. ``penobscot_xl1155.sgy``, shape (601, 1, 1501)),
-      or any file opened with ``ignore_geometry=True`` (a trace list); traced as a 2D section;
+      or a file without an inline / crossline grid, read as a trace list (an arbitrary or 2D line such as
+      ``volve_fullstack_twt_arbline.sgy``; one warning says so); traced as a 2D section;
     * a raw section ``.f32be`` (big-endian float32, trace after trace; see :func:`~seismo3d.seismic.io.read_section`);
     * a ``.npy`` array, 2D (n_traces, n_samples) or 3D (n_inlines, n_xlines, n_samples);
     * nothing, with ``demo=True``: a synthetic 128^3 cube with 3 faults (:func:`~seismo3d.data.synthetic_cube`)
@@ -335,7 +342,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     iline, xline : int, optional
         Trace header bytes of the inline and crossline numbers of a SEG-Y input.
     ignore_geometry : bool, optional
-        Read a SEG-Y input as a trace list (unsorted file, arbitrary line) and trace it as a 2D section.
+        Read a SEG-Y input as a trace list (unsorted file, arbitrary line) and trace it as a 2D section, without the
+        warning that a file without a grid at the default bytes gets.
+    endian : {'big', 'little'}, optional
+        Byte order of a SEG-Y input; by default detected from its binary header.
     sample_unit : {'ms', 'm', 'ft'}, optional
         Unit of a SEG-Y input's sample axis; by default guessed from its headers (see
         :func:`~seismo3d.seismic.io.open_segy`).
@@ -359,7 +369,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     DataNotFoundError
         The input does not exist.
     SegyFormatError
-        The input is not SEG-Y or is truncated.
+        The input is not SEG-Y, is cut short, or holds something segyio cannot read (one line saying which; see
+        :func:`~seismo3d.seismic.io.open_segy`). Prestack gathers raise :class:`SegyGeometryError` ("stack it first").
     SegyGeometryError
         The inline / crossline geometry cannot be read with ``iline`` / ``xline`` (the message suggests header bytes
         that work, or ``ignore_geometry``).
@@ -370,6 +381,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     -----
     Seismo3dWarning
         NaN / inf samples or constant traces in the input.
+    TraceListWarning
+        A SEG-Y input without an inline / crossline grid at bytes 189 / 193, read as a trace list (one line).
     """
     from ..viz.faults import fault_surfaces, plot_fault_slices, save_polydata
 
@@ -389,10 +402,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     if demo:
         out_dir.mkdir(parents=True, exist_ok=True)
         inp, written["truth"] = _demo_input(out_dir, demo_seed)
-        iline, xline, ignore_geometry = 189, 193, False
+        iline, xline, ignore_geometry, endian = 189, 193, False, None
     else:
         inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
-                          sample_unit=sample_unit, n_samples=n_samples)
+                          sample_unit=sample_unit, n_samples=n_samples, endian=endian)
     dt = float(inp.samples[1] - inp.samples[0]) if inp.samples.size > 1 else 1.0
     if inp.unit != "samples" and not dt > 0:
         raise InputError(f"the sample interval of {inp.name} is {dt:g} {inp.unit}; it must be > 0 (check the "
@@ -403,7 +416,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
 
     if demo:
         written["input"] = inp.segy_path
-    geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry)
+    geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
     axes = inp.axes
     steps = [
         ("likelihood", lambda: _write_volume(inp, out_dir, "fault_likelihood", result.likelihood, **geo)),

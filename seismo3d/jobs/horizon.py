@@ -1,8 +1,10 @@
-"""The ``seismo3d horizon`` job: track a horizon in a SEG-Y cube from seed picks and write it as text (and a surface).
+"""The ``seismo3d horizon`` job: track a horizon in a SEG-Y cube or 2D line from seed picks and write it as text (and a
+surface).
 
-Seeds are given in the survey's terms (inline and crossline numbers, time or depth in the cube's sample unit) and
-converted to index positions; the faults are traced first when asked (:func:`seismo3d.seismic.trace_faults`), and the
-horizon is tracked by registering neighbouring inlines (:func:`seismo3d.seismic.track_horizon`).
+Seeds are given in the survey's terms (inline and crossline numbers, or the trace number of a file without them, and
+the time or depth in the file's sample unit) and converted to index positions; the faults are traced first when asked
+(:func:`seismo3d.seismic.trace_faults`), and the horizon is tracked by registering neighbouring inlines of a cube, or
+neighbouring traces of a line (:func:`seismo3d.seismic.track_horizon`).
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import numpy as np
 from ..errors import InputError, SegyGeometryError
 from ..seismic.horizons import Horizon
 
-__all__ = ["HorizonJob", "run_horizon_job"]
+__all__ = ["HorizonJob", "run_horizon_job", "seed_index", "trace_seed_index"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,18 +42,96 @@ class HorizonJob:
     surface: pathlib.Path | None
 
 
+@dataclass(frozen=True, eq=False)
+class _Survey:
+    """What the job read: the data, and how seeds and output rows name its traces.
+
+    ``data`` is (n_inlines, n_xlines, n_samples) for a 3D cube and (n_traces, n_samples) for a 2D line: a line of
+    a 3D survey (one inline or one crossline; ``inlines`` and ``xlines`` set) or a trace list (a file without an
+    inline / crossline grid; ``inlines`` and ``xlines`` None, traces numbered from 1 in file order)."""
+
+    name: str
+    description: str
+    data: np.ndarray
+    inlines: np.ndarray | None
+    xlines: np.ndarray | None
+    samples: np.ndarray
+    unit: str
+
+    @property
+    def kind(self) -> str:
+        if self.data.ndim == 3:
+            return "cube"
+        return "line" if self.inlines is not None else "trace list"
+
+
+def _read_survey(path: pathlib.Path, *, iline, xline, ignore_geometry, endian) -> _Survey:
+    """The SEG-Y file as a cube or a 2D line; a single trace is refused."""
+    from ..seismic import open_segy
+
+    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian) as cube:
+        if cube.n_traces < 2 or cube.samples.size < 2:
+            raise SegyGeometryError(f"{path.name} is {cube.description} of {cube.samples.size} samples; horizon "
+                                    "tracking needs a 2D line or a 3D cube")
+        data = cube.read()
+        if not cube.is_3d:
+            data = data.reshape(cube.n_traces, cube.samples.size)  # a line of a survey, (n, 1, ns) or (1, n, ns)
+        return _Survey(path.name, cube.description, data, cube.inlines, cube.xlines, cube.samples, cube.sample_unit)
+
+
+def _seed_indices(survey: _Survey, seeds) -> list:
+    """Seeds in the survey's terms to index positions of ``survey.data``."""
+    out = []
+    for seed in seeds:
+        values = tuple(float(v) for v in seed)
+        text = ",".join(f"{v:g}" for v in values)
+        if survey.kind == "trace list":
+            if len(values) != 2:
+                raise InputError(f"--seed {text}: {survey.name} is read as a trace list ({survey.description}); give "
+                                 "seeds as TRACE,T: the trace number in file order (from 1) and the time")
+            out.append(trace_seed_index(values, survey.data.shape[0], survey.samples, survey.unit))
+            continue
+        if len(values) != 3:
+            raise InputError(f"--seed {text} must be IL,XL,T: the inline and crossline numbers of {survey.name} and "
+                             "the time")
+        i, j, t = seed_index(values, survey.inlines, survey.xlines, survey.samples, survey.unit)
+        if survey.kind == "cube":
+            out.append((i, j, t))
+        else:  # along the inlines of one crossline, or along the crosslines of one inline
+            out.append((i if survey.inlines.size > 1 else j, t))
+    return out
+
+
+def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
+    """'inline xline time' rows (a cube, or a line of a survey), or 'trace time' rows (a trace list)."""
+    from ..seismic import write_horizon_text
+
+    if survey.kind == "line":  # written on its (n_inlines, n_xlines) grid, one of them 1
+        shape = (survey.inlines.size, survey.xlines.size)
+        horizon = Horizon(horizon.times.reshape(shape), horizon.confidence.reshape(shape), horizon.polarity,
+                          horizon.seeds)
+    labels = np.arange(1, survey.data.shape[0] + 1) if survey.kind == "trace list" else survey.inlines
+    return write_horizon_text(output, horizon, inlines=labels, xlines=survey.xlines, samples=survey.samples)
+
+
 def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults: bool = False, fill: bool = False,
-                    surface=None, iline: int = 189, xline: int = 193, progress: bool = True) -> HorizonJob:
-    """Track a horizon in a SEG-Y cube from seed picks and write "inline xline time" rows.
+                    surface=None, iline: int = 189, xline: int = 193, ignore_geometry: bool = False, endian=None,
+                    progress: bool = True) -> HorizonJob:
+    """Track a horizon in a SEG-Y cube or 2D line from seed picks and write it as text rows.
 
     Parameters
     ----------
     input_path : str or path-like
-        SEG-Y cube (inline- or crossline-sorted); only read.
-    seeds : sequence of (float, float, float)
-        Seed picks: inline number, crossline number, time (or depth) in the cube's sample unit.
+        SEG-Y file (either byte order), read by :func:`~seismo3d.seismic.open_segy`; only read. A 3D cube
+        (inline- or crossline-sorted), a 2D line of a survey (one inline or one crossline, e.g.
+        ``penobscot_xl1155.sgy``), or a file without an inline / crossline grid, read as a trace list (an arbitrary or
+        2D line, e.g. ``volve_fullstack_twt_arbline.sgy``; one warning says so).
+    seeds : sequence of (float, float, float) or (float, float)
+        Seed picks in the survey's terms: inline number, crossline number and time (or depth, in the file's sample
+        unit) for a cube or a line of a survey; trace number (in file order, from 1) and time for a trace list.
     output : str or path-like
-        The text file (written atomically; not the input).
+        The text file (written atomically; not the input): "inline xline time" rows, or "trace time" rows for a
+        trace list.
     polarity : {'peak', 'trough', 'zero_rising', 'zero_falling'}
         The event the horizon follows.
     faults : bool
@@ -59,50 +139,98 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     fill : bool
         Fill empty traces by interpolation after tracking (:func:`seismo3d.seismic.fill_horizon`).
     surface : str or path-like, optional
-        Also write the horizon as a surface (.vtp or .vtk; :func:`seismo3d.viz.horizon_surface`).
+        Also write the horizon as a surface (.vtp or .vtk; :func:`seismo3d.viz.horizon_surface`); 3D cubes only.
     iline, xline : int
         Trace header bytes of the inline and crossline numbers.
+    ignore_geometry : bool
+        Read the file as a trace list, without the warning a file without a grid gets.
+    endian : {'big', 'little'}, optional
+        Byte order of the file; by default detected from its binary header.
     progress : bool
         Report progress (:mod:`seismo3d._progress`).
 
     Returns
     -------
     HorizonJob
+        ``horizon.times`` is (n_inlines, n_xlines) for a cube and (n_traces,) along a 2D line.
 
     Raises
     ------
     InputError
-        An output path that is the input, a seed outside the cube (the message names ``--seed``).
+        An output path that is the input, a seed outside the data or with the wrong number of values (the message
+        names ``--seed``), a surface asked for a 2D line.
     SegyGeometryError
-        The file is not a 3D cube with inline / crossline geometry at the given header bytes.
+        The file holds a single trace, or prestack gathers.
+    SegyFormatError
+        The file is not SEG-Y or cannot be read (see :func:`~seismo3d.seismic.open_segy`).
+
+    Warns
+    -----
+    TraceListWarning
+        The file has no inline / crossline grid and is read as a trace list (one line).
     """
-    from ..seismic import fill_horizon, open_segy, trace_faults, track_horizon, write_horizon_text
+    from ..seismic import fill_horizon, trace_faults, track_horizon
 
     input_path, output = pathlib.Path(input_path), pathlib.Path(output)
     surface = None if surface is None else pathlib.Path(surface)
     if output.resolve() == input_path.resolve() or (surface is not None and surface.resolve() == input_path.resolve()):
         raise InputError(f"{output} would overwrite the input; choose another output path")
-    with open_segy(input_path, iline=iline, xline=xline) as cube:
-        if not cube.is_3d:
-            raise SegyGeometryError(f"{input_path} is not a 3D cube with inline/crossline geometry; horizon tracking "
-                                    "needs one (check --iline/--xline header bytes)")
-        data = cube.read()
-        inlines, xlines, samples = cube.inlines, cube.xlines, cube.samples
-        unit = cube.sample_unit
-    index_seeds = [seed_index(s, inlines, xlines, samples, unit) for s in seeds]
+    # read the cube or line, and convert the seeds to index positions
+    survey = _read_survey(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
+    if surface is not None and survey.kind != "cube":
+        raise InputError(f"a horizon surface needs a 3D cube and {survey.name} is {survey.description}; leave out "
+                         f"surface={surface} (--surface)")
+    index_seeds = _seed_indices(survey, seeds)
+    # the faults first, when asked; then the horizon
     interp = None
     if faults:
-        interp = trace_faults(data, sample_interval=float(samples[1] - samples[0]), sample_unit=unit,
-                              progress=progress)
-    result = track_horizon(data, index_seeds, polarity=polarity, faults=interp, progress=progress)
+        interp = trace_faults(survey.data, sample_interval=float(survey.samples[1] - survey.samples[0]),
+                              sample_unit=survey.unit, progress=progress)
+    result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
     if fill:
         result = fill_horizon(result)
-    n = write_horizon_text(output, result, inlines=inlines, xlines=xlines, samples=samples)
+    # the outputs
+    n = _write_rows(output, survey, result)
     if surface is not None:
         from ..viz import horizon_surface, save_polydata
 
-        save_polydata(horizon_surface(result, inlines=inlines, xlines=xlines, samples=samples), surface)
+        save_polydata(horizon_surface(result, inlines=survey.inlines, xlines=survey.xlines, samples=survey.samples),
+                      surface)
     return HorizonJob(result, n, output, surface)
+
+
+def trace_seed_index(seed, n_traces: int, samples, unit: str) -> tuple[float, float]:
+    """A seed on a trace list, (trace number from 1, time), to index space (trace index, fractional sample index).
+
+    Parameters
+    ----------
+    seed : (float, float)
+        Trace number in file order (1 to ``n_traces``) and time or depth in ``unit``.
+    n_traces : int
+    samples : (n_samples,) array_like of float
+        The sample axis, ``unit``.
+    unit : str
+        The sample unit, for messages.
+
+    Returns
+    -------
+    (float, float)
+
+    Raises
+    ------
+    InputError
+        A trace number that is not a whole number in 1..n_traces, or a time outside the samples (the message names
+        ``--seed``).
+    """
+    trace, t = (float(v) for v in seed)
+    text = f"{trace:g},{t:g}"
+    if trace != round(trace) or not 1 <= trace <= n_traces:
+        raise InputError(f"--seed {text}: trace {trace:g} is not a trace number of the file (1..{n_traces}, in file "
+                         "order)")
+    s = np.asarray(samples, dtype=np.float64)
+    if not s[0] <= t <= s[-1]:
+        raise InputError(f"--seed {text}: time {t:g} {unit} is outside the file's samples ({s[0]:g}..{s[-1]:g} {unit})")
+    return trace - 1.0, float(np.interp(t, s, np.arange(s.size)))
 
 
 def seed_index(seed, inlines, xlines, samples, unit: str) -> tuple[float, float, float]:

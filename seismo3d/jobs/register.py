@@ -9,14 +9,16 @@ transforms map the first's coordinates into the second's.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import pathlib
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from .._atomic import atomic_path
-from ..errors import InputError
+from ..errors import InputError, TraceListWarning
 from ..terrain import is_terrain_file
 
 __all__ = ["RegisterJob", "run_register_job", "is_segy"]
@@ -50,8 +52,8 @@ def is_segy(path) -> bool:
 
 
 def run_register_job(source, target, output, *, method: str | None = None, model: str | None = None,
-                     init=None, max_distance=None, features=None, alpha: float | None = None,
-                     progress: bool = True) -> RegisterJob:
+                     init=None, max_distance=None, features=None, alpha: float | None = None, iline: int = 189,
+                     xline: int = 193, endian=None, progress: bool = True) -> RegisterJob:
     """Register ``source`` onto ``target`` and write the JSON of the transform (atomically).
 
     Parameters
@@ -79,6 +81,9 @@ def run_register_job(source, target, output, *, method: str | None = None, model
     alpha : float, optional
         ``method='fused'``: weight of the feature term in [0, 1] (default 0.1 for point clouds,
         :class:`~seismo3d.terrain.TerrainRegistrationOptions`'s for terrain files).
+    iline, xline, endian
+        SEG-Y cubes: how to open both, as in :func:`~seismo3d.seismic.open_segy` (by default inline / crossline
+        numbers at trace header bytes 189 / 193 and the byte order detected per file).
     progress : bool
         Report progress of a volume registration (:mod:`seismo3d._progress`).
 
@@ -90,15 +95,19 @@ def run_register_job(source, target, output, *, method: str | None = None, model
     ------
     InputError
         Mixed inputs (a cloud and a cube, a cloud and a terrain file), mismatched dimensions, a model unavailable
-        for volumes or terrain files, a missing or bad ``init`` or ``features`` file; and the registrations' own
-        errors (:class:`~seismo3d.errors.InputError`, :class:`~seismo3d.errors.RegistrationError`).
+        for volumes or terrain files, a missing or bad ``init`` or ``features`` file, a SEG-Y file that is not a 3D
+        cube; and the registrations' own errors (:class:`~seismo3d.errors.InputError`,
+        :class:`~seismo3d.errors.RegistrationError`).
+    SegyFormatError, SegyGeometryError
+        A SEG-Y file that cannot be read (see :func:`~seismo3d.seismic.open_segy`).
     """
     source, target, output = pathlib.Path(source), pathlib.Path(target), pathlib.Path(output)
     if is_segy(source) or is_segy(target):
         if not (is_segy(source) and is_segy(target)):
             raise InputError(f"{source} and {target}: register either two SEG-Y cubes or two point clouds, not one "
                              "of each")
-        job = _register_volumes(source, target, model or "axis_scaled", progress)
+        segy = dict(iline=iline, xline=xline, endian=endian)
+        job = _register_volumes(source, target, model or "axis_scaled", progress, segy)
     elif is_terrain_file(source) or is_terrain_file(target):
         from .register_terrain import run_register_terrain_job
 
@@ -140,7 +149,7 @@ def _register_point_clouds(source, target, method, model, init, max_distance, fe
     return RegisterJob("point_clouds", result, payload, bool(result.converged))
 
 
-def _register_volumes(moving_path, fixed_path, model, progress) -> RegisterJob:
+def _register_volumes(moving_path, fixed_path, model, progress, segy: dict) -> RegisterJob:
     """MOVING.sgy onto FIXED.sgy: the sub-volume registration, JSON with both transforms."""
     from ..seismic import open_segy, register_volumes
     from ..seismic.volumes import VOLUME_MODELS
@@ -148,7 +157,14 @@ def _register_volumes(moving_path, fixed_path, model, progress) -> RegisterJob:
     if model not in VOLUME_MODELS:
         raise InputError(f"--model {model} is not available for SEG-Y volumes; use rigid (spacings from the "
                          "headers are right), axis_scaled (default for unknown bins / sample rates) or affine")
-    with open_segy(fixed_path) as fixed, open_segy(moving_path) as moving:
+    with contextlib.ExitStack() as opened:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", TraceListWarning)  # a file without a grid is refused below, saying why
+            fixed = opened.enter_context(open_segy(fixed_path, **segy))
+            moving = opened.enter_context(open_segy(moving_path, **segy))
+        for cube in (moving, fixed):
+            if not cube.is_3d:
+                raise InputError(f"{cube.path.name} is {cube.description}, not a 3D cube; register two 3D cubes")
         first_f = (int(fixed.inlines[0]), int(fixed.xlines[0]), float(fixed.samples[0]))
         first_m = (int(moving.inlines[0]), int(moving.xlines[0]), float(moving.samples[0]))
         reg = register_volumes(fixed, moving, model=model, progress=progress)

@@ -433,7 +433,8 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     """Fault likelihood, strike and dip by scanning fault orientations (Hale 2013).
 
     1. Amplitude balancing: the data divided by its local RMS amplitude (Gaussian window ``balance``), so that weak
-       reflectors count as much as strong ones.
+       reflectors count as much as strong ones. Data whose peak amplitude is beyond 2^32 or below 2^-32 (e.g.
+       unsigned 64-bit samples) is first scaled by a power of two, exactly, so that float32 sums of squares hold.
     2. Reflector slopes ``p`` from the structure tensor (as in
        :func:`~seismo3d.seismic.attributes.structure_tensor_orientation`).
     3. Structure-oriented semblance numerator ``n = (sum_k f_k)^2`` and denominator ``d = J sum_k f_k^2`` over the
@@ -508,7 +509,7 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     if len(table) > (1 << _CODE_BITS):
         raise InputError(f"{len(table)} fault planes to scan but at most {1 << _CODE_BITS} are supported; pass fewer "
                          "strikes or dips")
-    f3 = _kernels.as_3d(arr)
+    f3 = _safe_amplitudes(_kernels.as_3d(arr))
     n_samples = f3.shape[2]
     # structure-oriented semblance numerator and denominator of each sample (3 x 3 traces along the reflector)
     sn, sd = _semblance_terms(f3, two_d, opt)
@@ -539,6 +540,16 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
         fl, strike, dip = fl[:, 0, :], strike[:, 0, :], dip[:, 0, :]
     np.clip(fl, 0.0, 1.0, out=fl)
     return FaultLikelihood(fl, strike, dip)
+
+
+def _safe_amplitudes(f3: np.ndarray) -> np.ndarray:
+    """``f3`` scaled by a power of two (exact) when its peak amplitude is so large or so small that float32 sums of
+    squares would overflow or underflow (e.g. unsigned 64-bit samples near 1.8e19); else ``f3`` itself. The
+    likelihood does not depend on the scale: semblance is a ratio of sums of squares."""
+    peak = float(np.max(np.abs(f3))) if f3.size else 0.0
+    if peak == 0.0 or 2.0 ** -32 <= peak <= 2.0 ** 32:
+        return f3
+    return f3 * np.float32(2.0 ** -np.ceil(np.log2(peak)))
 
 
 def _sum_samples(x: np.ndarray, step: int) -> np.ndarray:

@@ -391,9 +391,12 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
 
     # bad arrays raise InputError; data that cannot support fault tracing is refused before any work, and before
     # warnings about its dead or clipped samples that would not matter then
+    arr = np.asarray(data)
+    if arr.ndim in (2, 3) and min(arr.shape) < 3 and np.issubdtype(arr.dtype, np.number):
+        _check_size(arr.shape, opt)  # numbers, but below clean_traces' 3 samples per axis: the size message
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", Seismo3dWarning)
-        cleaned = clean_traces(data)
+        cleaned = clean_traces(arr)
     _check_size(cleaned.data.shape, opt)
     for w in caught:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
@@ -447,7 +450,8 @@ def _check_size(shape: tuple, opt: FaultTracingOptions) -> None:
         want = (f"{need[0]} traces along one lateral axis and {need[1]} along the other" if len(need) == 2 else
                 f"{need[0]} traces")
         raise UnsupportedDataError(
-            f"the data has {size} traces of {shape[-1]} samples: fault tracing needs at least {want}, and "
+            f"the data has {size} trace{'s' if np.prod(shape[:-1]) != 1 else ''} of {shape[-1]} samples: fault "
+            f"tracing needs at least {want}, and "
             f"{opt.min_samples} samples per trace (the fault-plane windows and voting boxes span that much); "
             "trace a larger cube or section")
 

@@ -11,19 +11,27 @@ Layouts
 * A file with inline / crossline geometry (sorted 3D cube, or a 2D line of a 3D survey, i.e. one inline or one
   crossline) has ``cube.shape == (n_inlines, n_xlines, n_samples)``; the arrays use inline as axis 0, crossline as
   axis 1 and the sample (time or depth, downward) as axis 2, whatever the trace order of the file.
-* A file opened with ``ignore_geometry=True`` (an unsorted file, an arbitrary line, a 2D line without inline /
-  crossline numbers) is a trace list: ``cube.shape == (n_traces, n_samples)`` in file order, and ``inlines`` /
-  ``xlines`` are None.
+* A file without an inline / crossline grid (an unsorted file, an arbitrary line, a 2D line without inline /
+  crossline numbers, an irregular survey) is read as a trace list, with one :class:`~seismo3d.errors.TraceListWarning`
+  saying what its trace headers show (``ignore_geometry=True`` asks for a trace list and silences it):
+  ``cube.shape == (n_traces, n_samples)`` in file order, and ``inlines`` / ``xlines`` are None.
 
 ``cube.traces`` gives (n_traces, n_samples) in file order for every file. A 2D line read with geometry (e.g.
 ``penobscot_xl1155.sgy``, crossline 1155 of Penobscot 3D) keeps its inline and crossline numbers: ``cube.shape`` is
 (601, 1, 1501), ``cube.is_3d`` is False and the section is ``cube.xline(1155)`` or ``cube.traces[:]``.
+``cube.description`` says in words what was read.
+
+Every file goes through the same steps (:func:`open_segy`): the binary header gives the byte order, the sample
+format and the trace layout (:func:`~seismo3d.seismic.segy_layout.read_segy_layout`; files segyio cannot read are
+refused there, one line each), segyio infers the grid, and the trace headers of a file without one say what it is
+(:func:`~seismo3d.seismic.segy_geometry.trace_geometry`); prestack gathers are refused.
 """
 
 from __future__ import annotations
 
 import os
 import re
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -31,26 +39,11 @@ import segyio
 
 from .._atomic import atomic_path
 from .._validation import check_choice
-from ..errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError
+from ..errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, TraceListWarning
+from .segy_geometry import TraceGeometry, span, trace_geometry
+from .segy_layout import SegyLayout, read_segy_layout, segyio_failure
 
 __all__ = ["SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines"]
-
-_FORMAT_NAMES = {
-    1: "4-byte IBM float",
-    2: "4-byte signed integer",
-    3: "2-byte signed integer",
-    4: "4-byte fixed point with gain",
-    5: "4-byte IEEE float",
-    6: "8-byte IEEE float",
-    7: "3-byte signed integer",
-    8: "1-byte signed integer",
-    9: "8-byte signed integer",
-    10: "4-byte unsigned integer",
-    11: "2-byte unsigned integer",
-    12: "8-byte unsigned integer",
-    15: "3-byte unsigned integer",
-    16: "1-byte unsigned integer",
-}
 
 # (n_traces, n_samples) of the raw sections in the data directory's seismic/sections (see its README).
 _SECTION_SHAPES = {
@@ -190,17 +183,27 @@ class SeismicCube:
         SEG-Y data sample format code (1 IBM float, 2 int32, 3 int16, 5 IEEE float, 8 int8, ...).
     format_name : str
     endian : {'big', 'little'}
+        The file's byte order (detected from the binary header unless given to :func:`open_segy`).
     iline_byte, xline_byte : int
         The trace header bytes holding the inline and crossline numbers.
+    layout : SegyLayout
+        What the binary header says (byte order and how it was decided, sample format, extended textual headers;
+        see :func:`~seismo3d.seismic.segy_layout.read_segy_layout`).
+    description : str
+        What the file is, in words: e.g. ``'a 3D cube of 23 inlines (111-133) x 18 crosslines (875-892)'``,
+        ``'a 2D line along inlines 1000-1600 (crossline 1155)'``, or for a trace list what its trace headers show
+        (``'a 2D or arbitrary line without inline / crossline numbers ...'``).
     """
 
-    def __init__(self, segyfile, path: Path, *, iline: int, xline: int, sample_unit: str, endian: str):
+    def __init__(self, segyfile, path: Path, *, iline: int, xline: int, sample_unit: str, layout: SegyLayout,
+                 traces: TraceGeometry | None = None):
         f = segyfile
         self._f = f
         self.path = path
         self.iline_byte = iline
         self.xline_byte = xline
-        self.endian = endian
+        self.layout = layout
+        self.endian = layout.endian
         self.n_traces = int(f.tracecount)
         self.samples = np.asarray(f.samples, dtype=np.float64)
         self.samples.setflags(write=False)
@@ -208,8 +211,8 @@ class SeismicCube:
             segyio.tools.dt(f) / 1000.0
         )
         self.sample_unit = sample_unit
-        self.format = int(f.bin[segyio.BinField.Format])
-        self.format_name = _FORMAT_NAMES.get(self.format, str(f.format))
+        self.format = layout.format
+        self.format_name = layout.format_name
         if f.unstructured:
             self.inlines = self.xlines = None
             self.sorting = None
@@ -222,7 +225,25 @@ class SeismicCube:
             self.sorting = "inline" if f.sorting == segyio.TraceSortingFormat.INLINE_SORTING else "crossline"
             self.shape = (self.inlines.size, self.xlines.size, self.samples.size)
         self.is_3d = self.inlines is not None and self.inlines.size > 1 and self.xlines.size > 1
+        self.description = traces.description if traces is not None else self._grid_description()
         self._coords = None
+
+    def _grid_description(self) -> str:
+        if self.inlines is None:
+            return f"a trace list of {self.n_traces} traces"
+        il, xl = self.inlines, self.xlines
+        if self.is_3d:
+            return f"a 3D cube of {il.size} inlines ({span(il)}) x {xl.size} crosslines ({span(xl)})"
+        if il.size == xl.size == 1:
+            return f"a single trace (inline {il[0]}, crossline {xl[0]})"
+        if xl.size == 1:
+            return f"a 2D line along inlines {span(il)} (crossline {xl[0]})"
+        return f"a 2D line along crosslines {span(xl)} (inline {il[0]})"
+
+    @property
+    def kind(self) -> str:
+        """``'3D cube'``, ``'2D line'`` (one inline or one crossline of a grid) or ``'trace list'``."""
+        return "trace list" if self.inlines is None else ("3D cube" if self.is_3d else "2D line")
 
     # -- handle ------------------------------------------------------------------------------------------------
     def _handle(self):
@@ -244,9 +265,8 @@ class SeismicCube:
 
     def __repr__(self) -> str:
         state = "closed" if self._f is None else "open"
-        kind = "trace list" if self.inlines is None else ("3D cube" if self.is_3d else "2D line")
-        return (f"<SeismicCube {self.path.name}: {kind} {self.shape}, {self.sample_interval:g} {self.sample_unit}, "
-                f"{self.format_name}, {state}>")
+        return (f"<SeismicCube {self.path.name}: {self.kind} {self.shape}, {self.sample_interval:g} "
+                f"{self.sample_unit}, {self.format_name}, {self.endian}-endian, {state}>")
 
     @property
     def is_open(self) -> bool:
@@ -280,11 +300,11 @@ class SeismicCube:
 
     def require_geometry(self, what: str) -> None:
         """Raise :class:`SegyGeometryError` naming ``what`` (e.g. ``'inline()'``) when the cube was opened as a trace
-        list (``ignore_geometry=True``)."""
+        list."""
         if self.inlines is None:
             raise SegyGeometryError(
-                f"{what} needs inline / crossline geometry, but {self.path.name} was opened as a trace list "
-                "(ignore_geometry=True); use cube.traces, or reopen without ignore_geometry if the file is sorted"
+                f"{what} needs inline / crossline geometry, but {self.path.name} was read as a trace list "
+                f"({self.description}); use cube.traces"
             )
 
     # -- data --------------------------------------------------------------------------------------------------
@@ -398,41 +418,110 @@ class SeismicCube:
         return self._load_coords()[1]
 
 
-def _suggest_header_bytes(path: Path, endian: str, tried: tuple) -> list:
-    found = []
+def _grid_elsewhere(path: Path, endian: str, tried: tuple, *, need_3d: bool) -> str | None:
+    """The first common header byte pair other than ``tried`` under which segyio finds a post-stack grid (3D when
+    ``need_3d``), as ``'iline=9, xline=21 (23 inlines x 18 crosslines)'``; None if there is none."""
     for il, xl in _COMMON_HEADER_BYTES:
         if (il, xl) == tried:
             continue
         try:
-            with segyio.open(str(path), "r", iline=il, xline=xl, endian=endian) as f:
-                if len(f.ilines) > 1 or len(f.xlines) > 1:
-                    found.append(f"iline={il}, xline={xl} ({len(f.ilines)} inlines x {len(f.xlines)} crosslines)")
+            with warnings.catch_warnings(), segyio.open(str(path), "r", iline=il, xline=xl, endian=endian) as f:
+                warnings.simplefilter("ignore")
+                n_il, n_xl, n_off = len(f.ilines), len(f.xlines), len(f.offsets)
         except (RuntimeError, ValueError, IndexError, OSError, KeyError):
             continue
-    return found
+        if n_off == 1 and ((n_il > 1 and n_xl > 1) if need_3d else (n_il > 1 or n_xl > 1)):
+            return f"iline={il}, xline={xl} ({n_il} inlines x {n_xl} crosslines)"
+    return None
+
+
+def _segyio_open(path: Path, layout: SegyLayout, **kwargs):
+    """segyio's read-only handle, or SegyFormatError saying why segyio cannot read a file whose layout is valid."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # segyio's own warnings (e.g. unusual headers) are not ours to pass on
+            return segyio.open(str(path), "r", endian=layout.endian, **kwargs)
+    except PermissionError:
+        raise
+    except (RuntimeError, ValueError, IndexError, OSError, KeyError) as exc:
+        raise SegyFormatError(segyio_failure(layout, path.name)) from exc
+
+
+def _open_with_geometry(path: Path, layout: SegyLayout, *, iline: int, xline: int, ignore_geometry: bool,
+                        given_bytes: bool):
+    """(segyio handle, TraceGeometry or None): the file with its inline / crossline grid, else as a trace list
+    described by its trace headers; prestack gathers, and a grid that is elsewhere than the given bytes, raise."""
+    no_grid = None  # segyio's reason, kept as the cause of our errors
+    if not ignore_geometry:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                return segyio.open(str(path), "r", iline=iline, xline=xline, endian=layout.endian), None
+        except (RuntimeError, ValueError, IndexError, KeyError) as exc:
+            no_grid = exc  # no grid at these bytes: read the trace headers below
+    f = _segyio_open(path, layout, ignore_geometry=True)
+    try:
+        traces = trace_geometry(f, iline, xline)
+        if ignore_geometry:
+            return f, traces
+        if traces.prestack:
+            raise SegyGeometryError(f"{path.name} holds prestack gathers ({traces.prestack}); seismo3d reads "
+                                    "post-stack data: stack it first") from no_grid
+        elsewhere = _grid_elsewhere(path, layout.endian, (iline, xline), need_3d=not given_bytes)
+        if given_bytes or elsewhere:
+            fix = (f"{elsewhere} give one: pass those" if elsewhere else
+                   f"read there, it is {traces.description}: pass the bytes of its inline / crossline numbers")
+            raise SegyGeometryError(f"{path.name} has no inline / crossline grid at trace header bytes iline={iline}, "
+                                    f"xline={xline}; {fix}, or ignore_geometry=True to read a trace list") from no_grid
+        warnings.warn(f"{path.name}: no inline / crossline grid at trace header bytes {iline} / {xline}, read as a "
+                      f"trace list of {f.tracecount} traces: {traces.description} (ignore_geometry=True: the same "
+                      "without this warning)", TraceListWarning, stacklevel=3)
+        return f, traces
+    except BaseException:
+        f.close()
+        raise
+
+
+def _check_post_stack(f, layout: SegyLayout, name: str) -> None:
+    """SegyFormatError if segyio disagrees with the binary header; SegyGeometryError for prestack gathers."""
+    if f.tracecount != layout.n_traces or len(f.samples) != layout.n_samples:
+        raise SegyFormatError(f"segyio reads {f.tracecount} traces of {len(f.samples)} samples from {name} but its "
+                              f"binary header and size say {layout.n_traces} of {layout.n_samples}; the file is "
+                              "damaged")
+    if not f.unstructured and len(f.offsets) > 1:
+        raise SegyGeometryError(f"{name} holds prestack gathers ({len(f.offsets)} offsets per inline / crossline "
+                                "position); seismo3d reads post-stack data: stack it first")
 
 
 def open_segy(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False, sample_unit=None,
-              endian: str = "big") -> SeismicCube:
-    """Open a SEG-Y file for lazy reading.
+              endian=None) -> SeismicCube:
+    """Open a SEG-Y file for lazy reading: the one way every command reads SEG-Y.
 
     Only the headers are read here; the file is memory-mapped when possible and read only through
     :meth:`SeismicCube.read`, :meth:`~SeismicCube.inline`, :meth:`~SeismicCube.xline`,
     :meth:`~SeismicCube.time_slice` and :attr:`~SeismicCube.traces`. The file is opened read-only.
 
+    Steps: the binary header gives the byte order, sample format and trace layout
+    (:func:`~seismo3d.seismic.segy_layout.read_segy_layout`); segyio infers the inline / crossline grid from the
+    trace header bytes ``iline`` / ``xline``; a file without one is read as a trace list described by its trace
+    headers (:func:`~seismo3d.seismic.segy_geometry.trace_geometry`), with one :class:`TraceListWarning`.
+
     Parameters
     ----------
     path : str or os.PathLike
-        SEG-Y file (data formats IBM float, IEEE float, int32, int16, int8, ...).
+        SEG-Y file, big- or little-endian (samples in IBM float, IEEE float, int8/16/32/64, uint8/16/32/64).
     iline, xline : int
-        Trace header bytes of the inline and crossline numbers (SEG-Y rev1: 189 and 193; older files often 9 / 21).
+        Trace header bytes of the inline and crossline numbers: 189 and 193 (SEG-Y rev 1) by default, where a file
+        without a grid is read as a trace list. Other bytes are a claim about the file (older files often use 9 / 21
+        or 5 / 21): a file without a grid there raises :class:`SegyGeometryError`.
     ignore_geometry : bool
-        Read the file as a trace list in file order, without inline / crossline geometry (unsorted files, arbitrary
-        lines, 2D lines without inline / crossline numbers, irregular surveys).
+        Read the file as a trace list in file order, without a grid and without the warning (unsorted files,
+        arbitrary lines, 2D lines without inline / crossline numbers, irregular surveys; also prestack gathers).
     sample_unit : {'ms', 'm', 'ft'}, optional
         Unit of the sample axis; overrides the guess from the headers (see :class:`SeismicCube`).
-    endian : {'big', 'little'}
-        Byte order of the file; SEG-Y is big-endian unless written otherwise.
+    endian : {'big', 'little'}, optional
+        Byte order of the file; by default detected from the binary header (see
+        :mod:`~seismo3d.seismic.segy_layout`).
 
     Returns
     -------
@@ -444,72 +533,50 @@ def open_segy(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool
     DataNotFoundError
         ``path`` does not exist or is not a file.
     SegyFormatError
-        The file is not SEG-Y, is truncated, or its traces do not fit its size.
+        The file is not SEG-Y, is cut short, has no traces, or uses something segyio cannot read (sample formats
+        4, 7, 15; SEG-Y rev 2 additional trace headers; a variable number of extended textual headers); or
+        ``endian`` contradicts the binary header. One line naming the reason.
     SegyGeometryError
-        The inline / crossline geometry cannot be inferred from the header bytes ``iline`` / ``xline`` (unsorted
-        file, wrong header bytes, prestack gathers). The message suggests ``ignore_geometry=True`` or other bytes.
+        Prestack gathers (stack them first); no grid at ``iline`` / ``xline`` other than 189 / 193; no grid at
+        189 / 193 while other common bytes give a 3D grid (the message names them).
     InputError
         Invalid ``iline``, ``xline``, ``sample_unit`` or ``endian``.
+
+    Warns
+    -----
+    TraceListWarning
+        The file has no grid at the default header bytes and is read as a trace list (one line saying what it is).
 
     Examples
     --------
     >>> with open_segy("f3_crop.sgy") as cube:      # doctest: +SKIP
-    ...     print(cube.shape, cube.sample_interval, cube.sample_unit)
-    (23, 18, 75) 4.0 ms
+    ...     print(cube.shape, cube.sample_interval, cube.sample_unit, cube.endian)
+    (23, 18, 75) 4.0 ms big
     """
     path = Path(path)
     iline = _check_header_byte(iline, "iline")
     xline = _check_header_byte(xline, "xline")
-    check_choice(endian, "endian", {"big", "little"})
+    given_bytes = (iline, xline) != (189, 193)
+    if endian is not None:
+        check_choice(endian, "endian", {"big", "little"})
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
     if not path.is_file():
         raise DataNotFoundError(f"no SEG-Y file at {path}; check the path"
                                 + (" (it is a directory)" if path.is_dir() else ""))
+    layout = read_segy_layout(path, endian=endian)  # byte order, format, trace layout; unreadable files refused
+    f, traces = _open_with_geometry(path, layout, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
+                                    given_bytes=given_bytes)
     try:
-        f = segyio.open(str(path), "r", iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
-    except PermissionError:
-        raise
-    except (RuntimeError, ValueError, IndexError, OSError, KeyError) as exc:
-        if ignore_geometry:
-            raise _format_error(path, exc) from exc
-        try:  # is the file readable at all, as a trace list?
-            segyio.open(str(path), "r", ignore_geometry=True, endian=endian).close()
-        except (RuntimeError, ValueError, IndexError, OSError, KeyError):
-            raise _format_error(path, exc) from exc
-        hint = _suggest_header_bytes(path, endian, (iline, xline))
-        also = (" These header bytes give a regular geometry: " + "; ".join(hint) + ".") if hint else ""
-        raise SegyGeometryError(
-            f"cannot infer the inline / crossline geometry of {path.name} from trace header bytes iline={iline}, "
-            f"xline={xline} ({exc}). If it is an unsorted file, arbitrary line or 2D line, open it as a trace list "
-            f"with ignore_geometry=True; if it is a sorted cube, pass the header bytes of its inline / crossline "
-            f"numbers (iline=..., xline=...).{also}"
-        ) from exc
-    try:
-        if f.tracecount < 1 or len(f.samples) < 1:
-            raise SegyFormatError(f"{path.name} has no traces or no samples; it is not a usable SEG-Y file")
-        if not f.unstructured and len(f.offsets) > 1:
-            raise SegyGeometryError(
-                f"{path.name} holds prestack gathers ({len(f.offsets)} offsets per inline / crossline); seismo3d "
-                "reads post-stack data; open it with ignore_geometry=True to read the traces as a list"
-            )
+        _check_post_stack(f, layout, path.name)
         f.mmap()
         if sample_unit is None:
             text = segyio.tools.wrap(f.text[0]) if f.text[0] else ""
             sample_unit = _guess_sample_unit(text, int(f.bin[segyio.BinField.MeasurementSystem]))
-        return SeismicCube(f, path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
+        return SeismicCube(f, path, iline=iline, xline=xline, sample_unit=sample_unit, layout=layout, traces=traces)
     except BaseException:
         f.close()
         raise
-
-
-def _format_error(path: Path, exc: BaseException) -> SegyFormatError:
-    size = path.stat().st_size
-    return SegyFormatError(
-        f"{path.name} ({size} bytes) cannot be read as SEG-Y: {exc}. A SEG-Y file is a 3200-byte textual header, a "
-        "400-byte binary header and equal-length traces; check that the file is SEG-Y and complete (not truncated "
-        "by a partial copy or download); for a little-endian file pass endian='little'"
-    )
 
 
 def read_segy(path, **kwargs):
@@ -538,13 +605,14 @@ def read_segy(path, **kwargs):
 
 
 def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
-               endian: str = "big") -> Path:
+               endian=None) -> Path:
     """Write an attribute as SEG-Y with the headers and geometry of a template file.
 
     The textual, binary and every trace header are copied from the template (segyio's copy-a-file recipe); only the
-    binary header's data format becomes 5 (4-byte IEEE float) so that any attribute fits. The file is written to a
-    temporary file in the output folder and moved into place when complete, so an interrupted call never leaves a
-    half-written ``out_path``. The template is only read.
+    binary header's data format becomes 5 (4-byte IEEE float) so that any attribute fits. The file is big-endian, the
+    SEG-Y standard's byte order, whatever the template's. It is written to a temporary file in the output folder and
+    moved into place when complete, so an interrupted call never leaves a half-written ``out_path``. The template is
+    only read.
 
     Parameters
     ----------
@@ -556,7 +624,8 @@ def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 
         The attribute on the template's grid (``open_segy(template).shape``) or per trace in file order; written
         as float32.
     iline, xline, ignore_geometry, endian
-        How to open the template, as in :func:`open_segy`.
+        How to open the template, as in :func:`open_segy` (a template without a grid is read as a trace list
+        without a second :class:`TraceListWarning`).
 
     Returns
     -------
@@ -578,7 +647,10 @@ def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 
     out_dir = out_path.resolve().parent
     if not out_dir.is_dir():
         raise InputError(f"output folder {out_dir} does not exist; create it first")
-    with open_segy(template_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian) as cube:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TraceListWarning)  # the caller was told when it read the template
+        cube = open_segy(template_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
+    with cube:
         arr = np.asarray(data, dtype=np.float32)
         ntr, ns = cube.n_traces, cube.samples.size
         if arr.shape == cube.shape:
@@ -594,7 +666,8 @@ def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 
         traces = np.ascontiguousarray(traces, dtype=np.float32)
         src = cube.segyfile
         spec = segyio.tools.metadata(src)
-        spec.format = int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)  # spec keeps the template's byte order
+        spec.format = int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)
+        spec.endian = "big"  # segyio converts the copied header values to it
         if src.unstructured:
             spec.tracecount = src.tracecount
         with atomic_path(out_path) as tmp, segyio.create(str(tmp), spec) as dst:

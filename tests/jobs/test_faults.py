@@ -321,7 +321,7 @@ def test_not_segy(tmp_path):
     src.parent.mkdir()
     src.write_text("this is not a seismic file\n" * 200)
     before = _sha(src)
-    with pytest.raises(SegyFormatError, match="cannot be read as SEG-Y"):
+    with pytest.raises(SegyFormatError, match="is not SEG-Y"):
         run_faults_job(src, tmp_path / "out", progress=False)
     assert _sha(src) == before
 

@@ -1,5 +1,7 @@
-"""The horizon job (seismo3d.jobs.horizon) through `seismo3d horizon`: a SEG-Y cube in, 'inline xline time' rows
-out; seeds in line numbers and ms."""
+"""The horizon job (seismo3d.jobs.horizon) through `seismo3d horizon`: a SEG-Y cube or 2D line in, 'inline xline
+time' rows out ('trace time' for a trace list); seeds in line numbers (or trace numbers) and ms."""
+
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -92,3 +94,69 @@ def test_seed_index_converts_line_numbers_and_time():
     assert seed_index((103, 506, 26.0), inlines, xlines, samples, "ms") == (3.0, 3.0, 4.5)
     with pytest.raises(Exception, match="crossline 507 is not in the cube"):
         seed_index((103, 507, 26.0), inlines, xlines, samples, "ms")
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# 2D lines with no flags: a line of a 3D survey, and an arbitrary line read as a trace list
+
+
+def test_horizon_on_a_2d_line_follows_the_picks_people_made(data_dir, penobscot, tmp_path):
+    # Crossline 1155 of Penobscot crosses the 18 inlines (1075-1092) of the interpreted sections at their column 165
+    # (1501 x 481 samples upscaled to 1536 x 512: xline 1000 + 480 / 511 * column; checked: the column's amplitudes
+    # correlate best with the line's trace there, 0.92). Seeded on inline 1075 at a horizon people picked, the track
+    # must keep to their picks on the other 17 inlines: a constant offset (the peak near their interval top) within
+    # one sample (4 ms).
+    path = Path(data_dir) / "seismic" / "penobscot_xl1155.sgy"
+    for k in (1, 6):
+        picks_ms = penobscot.horizons[:, k, 165] * (1500 / 1535) * 4.0  # rows of 1536 -> samples of 1501 at 4 ms
+        out = tmp_path / f"h{k}.txt"
+        res = runner.invoke(app, ["horizon", str(path), "--seed", f"1075,1155,{picks_ms[0]:.1f}", "-o", str(out)])
+        assert res.exit_code == 0, res.output
+        assert "warning" not in res.stderr  # a line of a survey: read with its inline / crossline numbers
+        assert out.read_text().startswith("# inline xline time\n")
+        rows = np.loadtxt(out, comments="#")
+        assert np.all(rows[:, 1] == 1155) and len(rows) >= 0.5 * 601
+        tracked = dict(zip(rows[:, 0].astype(int), rows[:, 2]))
+        offset = np.array([tracked[il] for il in range(1075, 1093)]) - picks_ms
+        assert abs(np.median(offset)) <= 4.0 and np.max(np.abs(offset - np.median(offset))) <= 4.0, offset
+
+
+def test_horizon_on_an_arbitrary_line_read_as_a_trace_list(data_dir, tmp_path):
+    # No inline / crossline numbers: read as a trace list (one warning line), seeds TRACE,T, rows 'trace time'.
+    # No picks by people exist for this line: the track must sit on a peak of each trace and move smoothly.
+    from seismo3d.seismic import open_segy
+
+    path = Path(data_dir) / "seismic" / "volve_fullstack_twt_arbline.sgy"
+    out = tmp_path / "h.txt"
+    res = runner.invoke(app, ["horizon", str(path), "--seed", "100,1500", "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    warn = [line for line in res.stderr.splitlines() if line.startswith("warning: ")]
+    assert len(warn) == 1 and "read as a trace list of 225 traces" in warn[0] and "--ignore-geometry" in warn[0]
+    assert out.read_text().startswith("# trace time\n")
+    rows = np.loadtxt(out, comments="#")
+    with open_segy(path, ignore_geometry=True) as cube:
+        data, s0, dt = cube.read(), cube.samples[0], cube.sample_interval
+    trace, k = rows[:, 0].astype(int) - 1, (rows[:, 1] - s0) / dt
+    assert len(rows) >= 0.5 * 225 and 99 in trace and abs(k[trace == 99][0] - (1500 - s0) / dt) <= 5
+    ki = np.rint(k).astype(int)
+    on_peak = (data[trace, ki] >= data[trace, ki - 1]) & (data[trace, ki] >= data[trace, ki + 1])
+    assert on_peak.mean() >= 0.95
+    assert np.median(np.abs(np.diff(k)[np.diff(trace) == 1])) <= 0.5  # samples between neighbouring traces
+
+
+def test_horizon_seeds_and_surface_on_2d_lines(data_dir, tmp_path):
+    seismic = Path(data_dir) / "seismic"
+    for name, args, message in (
+        ("volve_fullstack_twt_arbline.sgy", ["--seed", "100,1155,900"], "give seeds as TRACE,T"),
+        ("volve_fullstack_twt_arbline.sgy", ["--seed", "226,900"], "trace 226 is not a trace number of the file "
+                                                                  "(1..225"),
+        ("penobscot_xl1155.sgy", ["--seed", "100,900"], "must be IL,XL,T"),
+        ("penobscot_xl1155.sgy", ["--seed", "1385,1155,900", "--surface", str(tmp_path / "s.vtp")],
+         "a horizon surface needs a 3D cube and penobscot_xl1155.sgy is a 2D line along inlines 1000-1600 "
+         "(crossline 1155); leave out --surface"),
+    ):
+        res = runner.invoke(app, ["horizon", str(seismic / name), *args, "-o", str(tmp_path / "h.txt")])
+        assert res.exit_code == 2, res.output
+        error = [line for line in res.stderr.splitlines() if line.startswith("error: ")]
+        assert len(error) == 1 and message in error[0], res.stderr
+    assert not (tmp_path / "h.txt").exists() and not (tmp_path / "s.vtp").exists()

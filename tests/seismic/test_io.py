@@ -3,6 +3,7 @@
 import hashlib
 import os
 import shutil
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -10,7 +11,7 @@ import pytest
 import segyio
 from numpy.testing import assert_allclose, assert_array_equal
 
-from seismo3d.errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError
+from seismo3d.errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, TraceListWarning
 from seismo3d.seismic.io import (SeismicCube, open_segy, read_ascii_lines, read_section, read_segy,
                                  write_like)
 
@@ -108,10 +109,18 @@ def test_volve_depth_cube_ieee(seismic_dir):
 
 
 def test_unsorted_arbitrary_line(seismic_dir):
+    # no inline / crossline numbers (bytes 189 / 193 hold 0), CDP numbers 1-225: read as a trace list, one line says so
     path = seismic_dir / "volve_fullstack_twt_arbline.sgy"
-    with pytest.raises(SegyGeometryError, match="ignore_geometry=True"):
-        open_segy(path)
-    with open_segy(path, ignore_geometry=True) as cube:
+    with pytest.warns(TraceListWarning) as record:
+        open_segy(path).close()
+    assert len(record) == 1
+    message = str(record[0].message)
+    assert "\n" not in message and "trace list of 225 traces" in message and "CDP 1-225" in message
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # asked for: no warning
+        cube = open_segy(path, ignore_geometry=True)
+    with cube:
+        assert cube.kind == "trace list" and "2D or arbitrary line" in cube.description
         assert cube.shape == (225, 850) and cube.inlines is None and cube.sorting is None and not cube.is_3d
         data = cube.read()
         assert data.shape == (225, 850) and data.dtype == np.float32
@@ -144,18 +153,23 @@ def test_bad_requests(f3):
         open_segy(f3, sample_unit="s")
 
 
-@pytest.mark.parametrize("make", ["text", "empty", "truncated", "half", "header_only"])
-def test_not_segy_or_truncated(f3, tmp_path, make):
+@pytest.mark.parametrize("make, reason", [
+    ("text", "is not SEG-Y: its binary header holds no sample format code"),
+    ("empty", "has 0 bytes, fewer than the 3600 bytes"),
+    ("truncated", "is not a whole number of traces: 161360 bytes after the headers make 413 traces of 390 bytes"),
+    ("half", "the file is cut short"),
+    ("header_only", "has no traces: the file ends after its headers"),
+])
+def test_not_segy_or_truncated(f3, tmp_path, make, reason):
     raw = f3.read_bytes()
     content = {"text": b"inline xline amplitude\n" * 500, "empty": b"", "truncated": raw[:-100],
                "half": raw[: len(raw) // 2], "header_only": raw[:3600]}[make]
     path = tmp_path / f"{make}.sgy"
     path.write_bytes(content)
-    with pytest.raises(SegyFormatError, match="cannot be read as SEG-Y") as err:
-        open_segy(path)
-    assert err.value.__cause__ is not None
-    with pytest.raises(SegyFormatError):
-        open_segy(path, ignore_geometry=True)
+    for kwargs in ({}, {"ignore_geometry": True}):
+        with pytest.raises(SegyFormatError, match=reason) as err:
+            open_segy(path, **kwargs)
+        assert "\n" not in str(err.value) and str(err.value).startswith(f"{make}.sgy ")
 
 
 def test_missing_file(tmp_path):
@@ -166,8 +180,9 @@ def test_missing_file(tmp_path):
 
 
 # --- writing --------------------------------------------------------------------------------------------------------
-def _assert_same_headers(a_path, b_path):
-    with segyio.open(str(a_path), ignore_geometry=True) as a, segyio.open(str(b_path), ignore_geometry=True) as b:
+def _assert_same_headers(a_path, b_path, endian_a="big"):
+    with segyio.open(str(a_path), ignore_geometry=True, endian=endian_a) as a, \
+            segyio.open(str(b_path), ignore_geometry=True) as b:
         assert a.tracecount == b.tracecount
         assert a.text[0] == b.text[0]
         assert all(dict(a.header[i]) == dict(b.header[i]) for i in range(a.tracecount))
@@ -327,11 +342,15 @@ def test_sample_unit_from_textual_header(tmp_path):
 def test_little_endian_file(tmp_path):
     path = tmp_path / "le.sgy"
     expected = _small_segy(path, text="little-endian test", endian="little")
-    with pytest.raises(SegyFormatError, match="endian='little'"):
-        open_segy(path)
-    with open_segy(path, endian="little") as cube:
-        assert cube.shape == (3, 2, 20) and cube.endian == "little"
-        assert_array_equal(cube.read(), expected)
-    out = write_like(path, tmp_path / "le_out.sgy", expected * 2, endian="little")
-    with open_segy(out, endian="little") as back:
+    for endian in (None, "little"):  # detected from the binary header, or given
+        with open_segy(path, endian=endian) as cube:
+            assert cube.shape == (3, 2, 20) and cube.endian == "little"
+            assert cube.layout.endian_from == ("format code" if endian is None else "given")
+            assert_array_equal(cube.read(), expected)
+    with pytest.raises(SegyFormatError, match="it reads as little-endian .*omit endian .*or pass endian='little'"):
+        open_segy(path, endian="big")
+    out = write_like(path, tmp_path / "le_out.sgy", expected * 2)  # written big-endian, the standard's byte order
+    with open_segy(out) as back:
+        assert back.endian == "big" and back.shape == (3, 2, 20)
         assert_array_equal(back.read(), expected * 2)
+    _assert_same_headers(path, out, endian_a="little")

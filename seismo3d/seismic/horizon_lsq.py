@@ -1,0 +1,493 @@
+"""Least-squares horizons: one global solve from correlation shifts between near and distant traces.
+
+A horizon ``t`` (one fractional sample per trace) is found as the least-squares solution of many difference
+equations ``t[b] - t[a] = s_ab``, one per *pair* of traces ``a, b`` on the same inline or crossline at distances
+``1, 2, 4, ... `` traces apart, plus the seeds (Wu & Fomel 2018: least-squares horizons with local slopes and
+multigrid correlations). Each shift ``s_ab`` is found by normalised cross-correlation of a long window of trace ``a``
+(``+-correlation_half`` samples around ``t[a]``: several reflector cycles, so the sequence of reflectors and not one
+cycle decides) with trace ``b`` searched ``+-max_lag`` samples around the current estimate; the pair's weight is its
+correlation squared (pairs below ``min_pair_correlation`` are left out). Because the equations hold differences only
+and the long pairs tie distant traces directly, one bad local step (a cycle skip at a pockmark's sag, a wrong slope
+by a fault) is outvoted by the pairs that span it and cannot propagate; the estimate is re-solved a few times with the
+shifts re-measured around it (Gauss-Newton, as Wu & Fomel).
+
+Faults (:class:`~seismo3d.seismic.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is also
+searched around the estimate plus their jump, and the better-correlating centre is kept: a fault's jump is taken only
+where the registration across it supports it, so a spurious fault surface changes nothing.
+
+After the solve, each trace snaps to the nearest extremum of the polarity (within ``snap`` samples); its confidence is
+the median correlation of its waveform with its neighbours' (``+-ncc_half`` samples); picks below ``min_confidence``
+and traces not connected to a seed by confident pairs stay empty (NaN). A last self-check (:func:`cycle_skips`)
+re-measures the long pairs at the snapped horizon and flags traces whose long-range prediction is persistently about
+one reflector period away; the tracker repairs them (moves them to the predicted cycle and re-solves).
+
+Conventions: index space (axis 0 inline, axis 1 crossline, last axis sample; a 2D section ``(n_traces, n_samples)``);
+times in fractional samples.
+
+References
+----------
+.. [1] X. Wu and S. Fomel, "Least-squares horizons with local slopes and multigrid correlations", Geophysics 83(4),
+   IM29-IM40, 2018, doi:10.1190/geo2017-0830.1.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numba as nb
+import numpy as np
+
+from .fault_crossings import FaultCrossings
+from .reflectors import nearest_pick, reflector_picks
+
+__all__ = ["PairShifts", "trace_pairs", "pair_shifts", "solve_horizon", "cycle_skips"]
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# Pairs of traces and their correlation shifts.
+
+@dataclass(frozen=True, eq=False)
+class PairShifts:
+    """Pairs of traces (flat indices into the lateral grid) and their measured shifts.
+
+    Attributes
+    ----------
+    a, b : (n_pairs,) intp ndarray
+        The two traces of each pair (flat lateral indices).
+    distance : (n_pairs,) intp ndarray
+        Traces between them along their line.
+    shift : (n_pairs,) float64 ndarray
+        Measured ``t[b] - t[a]``, samples (NaN where not measured).
+    score : (n_pairs,) float64 ndarray
+        Normalised cross-correlation at that shift, NaN where not measured.
+    """
+
+    a: np.ndarray
+    b: np.ndarray
+    distance: np.ndarray
+    shift: np.ndarray
+    score: np.ndarray
+
+
+def trace_pairs(lateral_shape: tuple, distances) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """All pairs of traces on the same line of a lateral grid at the given distances.
+
+    Parameters
+    ----------
+    lateral_shape : (n_traces,) or (n_inlines, n_xlines)
+        The grid of traces.
+    distances : sequence of int
+        Distances, traces, along each axis.
+
+    Returns
+    -------
+    a, b : (n_pairs,) intp ndarray
+        Flat indices of the two traces, ``b`` further along the axis than ``a``.
+    distance : (n_pairs,) intp ndarray
+    axis : (n_pairs,) intp ndarray
+        The lateral axis the pair lies along.
+    """
+    idx = np.arange(int(np.prod(lateral_shape))).reshape(lateral_shape)
+    out = [[], [], [], []]
+    for axis in range(len(lateral_shape)):
+        for d in distances:
+            if d >= lateral_shape[axis]:
+                continue
+            lo = np.take(idx, np.arange(0, lateral_shape[axis] - d), axis=axis).ravel()
+            hi = np.take(idx, np.arange(d, lateral_shape[axis]), axis=axis).ravel()
+            out[0].append(lo)
+            out[1].append(hi)
+            out[2].append(np.full(lo.size, d))
+            out[3].append(np.full(lo.size, axis))
+    if not out[0]:
+        z = np.zeros(0, np.intp)
+        return z, z, z, z
+    return tuple(np.concatenate(v).astype(np.intp) for v in out)
+
+
+@nb.njit(cache=True)
+def _interp(trace, t):
+    n = trace.size
+    if t < 0.0 or t > n - 1:
+        return np.nan
+    k = int(np.floor(t))
+    if k >= n - 1:
+        return trace[n - 1]
+    f = t - k
+    return (1.0 - f) * trace[k] + f * trace[k + 1]
+
+
+@nb.njit(cache=True)
+def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_samples):
+    """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
+    of trace a around ``ta``; returns (lag relative to centre, score)."""
+    n = a.size
+    lag_out = np.full(n, np.nan)
+    score_out = np.full(n, np.nan)
+    m = 2 * half + 1
+    ref = np.empty(m)
+    sig = np.empty(m + 2 * max_lag)
+    scores = np.empty(2 * max_lag + 1)
+    for p in range(n):
+        if not (np.isfinite(ta[p]) and np.isfinite(centre[p])):
+            continue
+        ra = traces[a[p]]
+        rb = traces[b[p]]
+        for k in range(m):
+            ref[k] = _interp(ra, ta[p] - half + k)
+        for k in range(m + 2 * max_lag):
+            sig[k] = _interp(rb, centre[p] - half - max_lag + k)
+        best, kbest = -2.0, -1
+        for s in range(2 * max_lag + 1):
+            sa = 0.0
+            sb = 0.0
+            cnt = 0
+            for k in range(m):
+                x, y = ref[k], sig[s + k]
+                if np.isfinite(x) and np.isfinite(y):
+                    sa += x
+                    sb += y
+                    cnt += 1
+            if cnt < min_samples:
+                scores[s] = np.nan
+                continue
+            ma, mb = sa / cnt, sb / cnt
+            sab = 0.0
+            saa = 0.0
+            sbb = 0.0
+            for k in range(m):
+                x, y = ref[k], sig[s + k]
+                if np.isfinite(x) and np.isfinite(y):
+                    sab += (x - ma) * (y - mb)
+                    saa += (x - ma) ** 2
+                    sbb += (y - mb) ** 2
+            c = sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
+            scores[s] = c
+            if c > best:
+                best, kbest = c, s
+        if kbest < 0:
+            continue
+        off = 0.0
+        if 0 < kbest < 2 * max_lag and np.isfinite(scores[kbest - 1]) and np.isfinite(scores[kbest + 1]):
+            y0, y1, y2 = scores[kbest - 1], scores[kbest], scores[kbest + 1]
+            den = y0 - 2 * y1 + y2
+            if den < 0:
+                off = min(max(0.5 * (y0 - y2) / den, -0.5), 0.5)
+        lag_out[p] = kbest - max_lag + off
+        score_out[p] = best
+    return lag_out, score_out
+
+
+def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndarray, distance: np.ndarray, *,
+                half: int, max_lag: int, jumps: np.ndarray | None = None) -> PairShifts:
+    """Measure ``t[b] - t[a]`` for pairs of traces by normalised cross-correlation around the current estimate.
+
+    The window of trace ``a`` (``+-half`` samples around ``times[a]``) is correlated with trace ``b`` at lags
+    ``-max_lag..max_lag`` around ``times[b]`` (and, where ``jumps`` is non-zero, also around ``times[b] + jumps``:
+    the better-scoring centre is kept); the best lag is refined by a parabola.
+
+    Parameters
+    ----------
+    traces : (n_traces, n_samples) float32 ndarray
+        The data's traces (flat lateral index).
+    times : (n_traces,) float64 ndarray
+        Current horizon estimate, fractional samples (NaN: not measured).
+    a, b, distance : (n_pairs,) intp ndarray
+        The pairs (:func:`trace_pairs`).
+    half : int
+        Half-length of the correlation window, samples.
+    max_lag : int
+        Lags searched each side of the estimate, samples.
+    jumps : (n_pairs,) float64 ndarray, optional
+        A fault's jump expected between the two traces (0 where none).
+
+    Returns
+    -------
+    PairShifts
+    """
+    ta, tb = times[a], times[b]
+    lag, score = _pair_lags(traces, a, ta, b, tb, int(half), int(max_lag), max(5, half))
+    shift = tb + lag - ta
+    if jumps is not None:
+        alt = np.nonzero(np.isfinite(jumps) & (jumps != 0.0))[0]
+        if alt.size:
+            lag2, score2 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt] + jumps[alt], int(half),
+                                      int(max_lag), max(5, half))
+            better = np.nan_to_num(score2, nan=-2.0) > np.nan_to_num(score[alt], nan=-2.0)
+            shift[alt[better]] = (tb[alt] + jumps[alt] + lag2 - ta[alt])[better]
+            score[alt[better]] = score2[better]
+    return PairShifts(a, b, distance, shift, score)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# The least-squares solve.
+
+def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.ndarray, *, min_correlation: float,
+                  previous: np.ndarray | None = None, seed_weight: float = 100.0, damping: float = 1e-3,
+                  robust: float | None = 2.0, robust_iterations: int = 5):
+    """Least-squares horizon from pair shifts and seed times (Wu & Fomel 2018, eq. 4 with correlations only).
+
+    Minimises ``sum w_ab (t[b] - t[a] - s_ab)^2 + seed_weight^2 sum (t[s] - t_s)^2 + damping^2 sum (t - previous)^2``
+    with ``w_ab`` the pair's correlation squared (pairs below ``min_correlation`` left out).
+
+    Parameters
+    ----------
+    n : int
+        Number of traces (unknowns).
+    pairs : PairShifts
+    seeds : (n_seeds,) intp ndarray
+        Flat indices of the seed traces.
+    seed_times : (n_seeds,) float64 ndarray
+        Their times, samples.
+    min_correlation : float
+        Pairs correlating less are left out.
+    previous : (n,) float64 ndarray, optional
+        The previous estimate (the damping's target; default the mean seed time).
+    seed_weight, damping : float
+        Weights of the seed and damping equations.
+
+    Returns
+    -------
+    times : (n,) float64 ndarray
+        The solution, NaN on traces no confident pair connects to a seed.
+    """
+    from scipy import sparse
+    from scipy.sparse.csgraph import connected_components
+    from scipy.sparse.linalg import spsolve
+
+    ok = np.isfinite(pairs.shift) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
+    a, b, s = pairs.a[ok], pairs.b[ok], pairs.shift[ok]
+    w0 = pairs.score[ok] ** 2
+    prev = np.full(n, float(np.mean(seed_times))) if previous is None else np.where(np.isfinite(previous), previous,
+                                                                                        float(np.mean(seed_times)))
+    t = prev
+    for _ in range(robust_iterations + 1):
+        w = w0 if robust is None else w0 / (1.0 + ((t[b] - t[a] - s) / robust) ** 2)
+        t = _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping)
+    graph = sparse.coo_matrix((np.ones(a.size), (a, b)), shape=(n, n))
+    _, label = connected_components(graph, directed=False)
+    reached = np.isin(label, label[seeds])
+    return np.where(reached, t, np.nan)
+
+
+def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping):
+    from scipy import sparse
+    from scipy.sparse.linalg import spsolve
+
+    # normal equations of the pair rows (a graph Laplacian) plus the seeds and the damping
+    lap = sparse.coo_matrix((np.concatenate([w, w, -w, -w]), (np.concatenate([a, b, a, b]),
+                                                               np.concatenate([a, b, b, a]))), shape=(n, n)).tocsr()
+    rhs = np.zeros(n)
+    np.add.at(rhs, b, w * s)
+    np.add.at(rhs, a, -w * s)
+    diag = np.full(n, damping ** 2)
+    rhs += damping ** 2 * prev
+    np.add.at(diag, seeds, seed_weight ** 2)
+    np.add.at(rhs, seeds, seed_weight ** 2 * seed_times)
+    return spsolve((lap + sparse.diags(diag)).tocsc(), rhs)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# The cycle-skip self-check.
+
+def cycle_skips(pairs: PairShifts, times: np.ndarray, period: float, *, min_distance: int = 8,
+                min_correlation: float = 0.5, min_votes: int = 2) -> np.ndarray:
+    """Flag the traces of a horizon that sit a reflector cycle away from where the long-range pairs put them.
+
+    For each trace ``b``, the long pairs (``distance >= min_distance``) ending or starting on it predict its time
+    from their other trace (``t[a] + s_ab``, or ``t[a] - s_ab``); a trace is flagged when at least ``min_votes``
+    confident predictions agree (their median) and lie more than half a ``period`` from ``times``.
+
+    Parameters
+    ----------
+    pairs : PairShifts
+        Shifts measured at ``times`` with lags of at least a period (:func:`pair_shifts`).
+    times : (n,) float64 ndarray
+        The horizon, samples (NaN: empty).
+    period : float
+        The reflector period near the horizon, samples.
+    min_distance : int
+        Shortest pair counted, traces.
+    min_correlation : float
+        Weakest pair counted.
+    min_votes : int
+        Fewest predictions needed.
+
+    Returns
+    -------
+    (n,) float64 ndarray
+        The correction (predicted minus current time, samples) of each flagged trace, NaN elsewhere.
+    """
+    ok = (pairs.distance >= min_distance) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
+    ok &= np.isfinite(times[pairs.a]) & np.isfinite(times[pairs.b])
+    a, b, s = pairs.a[ok], pairs.b[ok], pairs.shift[ok]
+    node = np.concatenate([b, a])
+    pred = np.concatenate([times[a] + s, times[b] - s]) - times[node]
+    order = np.argsort(node, kind="stable")
+    node, pred = node[order], pred[order]
+    out = np.full(times.size, np.nan)
+    if node.size == 0:
+        return out
+    starts = np.r_[0, np.nonzero(np.diff(node))[0] + 1]
+    ends = np.r_[starts[1:], node.size]
+    for lo, hi in zip(starts, ends):
+        if hi - lo < min_votes:
+            continue
+        med = float(np.median(pred[lo:hi]))
+        if abs(med) > 0.5 * period:
+            out[node[lo]] = med
+    return out
+
+
+def reflector_period(picks: np.ndarray, offsets: np.ndarray, traces: np.ndarray, times: np.ndarray) -> float:
+    """Median spacing, samples, of consecutive same-polarity picks next to the horizon on ``traces``."""
+    gaps = []
+    for j, t in zip(traces, times):
+        p = picks[offsets[j]:offsets[j + 1]]
+        if p.size < 2 or not np.isfinite(t):
+            continue
+        k = int(np.clip(np.searchsorted(p, t), 1, p.size - 1))
+        gaps.append(p[k] - p[k - 1])
+    return float(np.median(gaps)) if gaps else np.nan
+
+
+def snap_all(picks: np.ndarray, offsets: np.ndarray, times: np.ndarray, window: float) -> np.ndarray:
+    """Each trace's time snapped to its nearest pick within ``window`` samples (NaN where none)."""
+    return np.array([nearest_pick(picks, offsets, j, t, window) for j, t in enumerate(times)])
+
+
+def faults_between(faults: FaultCrossings, lateral_shape: tuple, times: np.ndarray) -> tuple:
+    """Jumps (samples) of traced faults between neighbouring traces along each lateral axis, at the horizon ``times``
+    (lateral shape): a list of arrays, one per axis, shaped like ``times`` less one along the axis (0 where no fault;
+    NaN where a crossed fault's throw is unknown)."""
+    out = []
+    ndim = len(lateral_shape)
+    for axis in range(ndim):
+        n_steps = list(lateral_shape)
+        n_steps[axis] -= 1
+        jump = np.zeros(n_steps)
+        if faults.tree is not None:
+            for idx in np.ndindex(*n_steps):
+                nxt = list(idx)
+                nxt[axis] += 1
+                ta, tb = times[idx], times[tuple(nxt)]
+                if not (np.isfinite(ta) and np.isfinite(tb)):
+                    continue
+                jump[idx] = faults.jump(np.array([*idx, ta], np.float64), np.array([*nxt, tb], np.float64))
+        out.append(jump)
+    return out
+
+
+def pair_jumps(steps: list, lateral_shape: tuple, a: np.ndarray, b: np.ndarray, axis: np.ndarray) -> np.ndarray:
+    """The sum of the neighbour-step jumps (:func:`faults_between`) along each pair's path."""
+    out = np.zeros(a.size)
+    for ax, jump in enumerate(steps):
+        sel = axis == ax
+        if not sel.any() or not np.any(jump != 0.0):
+            continue
+        cum = np.concatenate([np.zeros_like(np.take(jump, [0], axis=ax)), np.cumsum(np.nan_to_num(jump), axis=ax)],
+                             axis=ax)
+        flat = cum.ravel()
+        out[sel] = flat[b[sel]] - flat[a[sel]]
+    return out
+
+
+def picks_of(data: np.ndarray, polarity: str) -> tuple[np.ndarray, np.ndarray]:
+    """Reflector picks of every trace of ``data`` (lateral axes flattened)."""
+    return reflector_picks(data.reshape(-1, data.shape[-1]), polarity=polarity)
+
+
+def neighbour_confidence(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndarray, half: int) -> np.ndarray:
+    """Median normalised cross-correlation (``+-half`` samples) of each trace's waveform at ``times`` with its
+    neighbours' (the pairs ``a, b``) at theirs; NaN where no neighbour is picked."""
+    ok = np.isfinite(times[a]) & np.isfinite(times[b])
+    a, b = a[ok], b[ok]
+    _, score = _pair_lags(traces, a, times[a], b, times[b], int(half), 0, 5)
+    node = np.concatenate([a, b])
+    val = np.concatenate([score, score])
+    out = np.full(times.size, np.nan)
+    order = np.argsort(node, kind="stable")
+    node, val = node[order], val[order]
+    if node.size == 0:
+        return out
+    starts = np.r_[0, np.nonzero(np.diff(node))[0] + 1]
+    ends = np.r_[starts[1:], node.size]
+    for lo, hi in zip(starts, ends):
+        out[node[lo]] = np.nanmedian(val[lo:hi]) if np.isfinite(val[lo:hi]).any() else np.nan
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class LsqHorizon:
+    """What :func:`lsq_horizon` found: snapped ``times`` and ``confidence`` (lateral shape, NaN where empty), the
+    unsnapped least-squares solution ``solution``, and ``repaired``, the traces the cycle-skip check moved."""
+
+    times: np.ndarray
+    confidence: np.ndarray
+    solution: np.ndarray
+    repaired: int
+
+
+def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: FaultCrossings, options) -> LsqHorizon:
+    """Least-squares horizon of ``data`` through ``seeds`` (module docstring); ``options`` a TrackingOptions."""
+    opt = options
+    lat = data.shape[:-1]
+    n = int(np.prod(lat))
+    traces = np.ascontiguousarray(data.reshape(n, data.shape[-1]), dtype=np.float32)
+    picks, offsets = picks_of(data, polarity)
+    # seeds: flat index and snapped time
+    seed_idx = np.array([np.ravel_multi_index(tuple(int(round(v)) for v in s[:-1]), lat) for s in seeds], np.intp)
+    seed_t = np.array([nearest_pick(picks, offsets, k, s[-1], opt.seed_snap) for k, s in zip(seed_idx, seeds)])
+    a, b, dist, axis = trace_pairs(lat, opt.pair_distances)
+    t = np.full(n, float(np.mean(seed_t)))
+    limits = [2, 8] + [max(opt.pair_distances)] * opt.iterations
+    for it in range(opt.iterations):
+        use = dist <= limits[it]
+        sol = _solve_step(traces, t, a[use], b[use], dist[use], axis[use], lat, seed_idx, seed_t, faults, opt,
+                          opt.max_lag)
+        change = np.nanmax(np.abs(sol - t)) if np.isfinite(sol).any() else 0.0
+        t = np.where(np.isfinite(sol), sol, t) if it < 2 else sol
+        if it >= 2 and change < 0.05:
+            break
+    solution = t.copy()
+    snapped = snap_all(picks, offsets, t, opt.snap)
+    # the self-check: long pairs re-measured at the snapped horizon with lags of 1.5 periods
+    repaired = 0
+    period = reflector_period(picks, offsets, np.arange(n)[np.isfinite(snapped)][::7], snapped[np.isfinite(snapped)][::7])
+    if opt.repair and np.isfinite(period):
+        lag = int(np.ceil(1.5 * period))
+        long = dist >= 8
+        jumps = _pair_fault_jumps(faults, lat, snapped, a[long], b[long], axis[long])
+        ps = pair_shifts(traces, snapped, a[long], b[long], dist[long], half=opt.correlation_half, max_lag=lag,
+                         jumps=jumps)
+        corr = cycle_skips(ps, snapped, period, min_correlation=opt.min_pair_correlation)
+        bad = np.isfinite(corr)
+        repaired = int(bad.sum())
+        if repaired:
+            t = np.where(bad, snapped + np.nan_to_num(corr), np.where(np.isfinite(snapped), snapped, t))
+            for _ in range(2):
+                sol = _solve_step(traces, t, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt, opt.max_lag)
+                t = sol
+            solution = t.copy()
+            snapped = snap_all(picks, offsets, t, opt.snap)
+    near = dist == 1
+    conf = neighbour_confidence(traces, snapped, a[near], b[near], opt.ncc_half)
+    conf[seed_idx] = 1.0
+    keep = np.isfinite(snapped) & (np.nan_to_num(conf, nan=-2.0) >= opt.min_confidence)
+    keep[seed_idx] = np.isfinite(snapped[seed_idx])
+    times = np.where(keep, snapped, np.nan)
+    return LsqHorizon(times.reshape(lat), conf.reshape(lat), solution.reshape(lat), repaired)
+
+
+def _pair_fault_jumps(faults: FaultCrossings, lat, t, a, b, axis):
+    if faults.tree is None:
+        return None
+    steps = faults_between(faults, lat, t.reshape(lat))
+    return pair_jumps(steps, lat, a, b, axis)
+
+
+def _solve_step(traces, t, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt, max_lag):
+    jumps = _pair_fault_jumps(faults, lat, t, a, b, axis)
+    ps = pair_shifts(traces, t, a, b, dist, half=opt.correlation_half, max_lag=max_lag, jumps=jumps)
+    return solve_horizon(t.size, ps, seed_idx, seed_t, min_correlation=opt.min_pair_correlation, previous=t,
+                         robust=opt.robust, robust_iterations=opt.robust_iterations)

@@ -450,7 +450,13 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
         if it >= 2 and change < 0.05:
             break
     solution = t.copy()
-    snapped = snap_all(picks, offsets, t, opt.snap)
+    if opt.dp:
+        fixed = np.full(n, np.nan)
+        fixed[seed_idx] = seed_t
+        snapped = dp_picks(traces, picks, offsets, t, lat, fixed, reach=opt.dp_reach, w_guide=opt.w_guide,
+                           w_step=opt.w_step, w_wave=opt.w_wave, half=opt.ncc_half)
+    else:
+        snapped = snap_all(picks, offsets, t, opt.snap)
     # the self-check: long pairs re-measured at the snapped horizon with lags of 1.5 periods
     repaired = 0
     period = reflector_period(picks, offsets, np.arange(n)[np.isfinite(snapped)][::7], snapped[np.isfinite(snapped)][::7])
@@ -491,3 +497,115 @@ def _solve_step(traces, t, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt,
     ps = pair_shifts(traces, t, a, b, dist, half=opt.correlation_half, max_lag=max_lag, jumps=jumps)
     return solve_horizon(t.size, ps, seed_idx, seed_t, min_correlation=opt.min_pair_correlation, previous=t,
                          robust=opt.robust, robust_iterations=opt.robust_iterations)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# Dynamic programming over candidate picks along each line, guided by the least-squares solution.
+
+@nb.njit(cache=True)
+def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, reach, w_guide, w_step, w_wave, half):
+    """Viterbi along one line of traces: one candidate pick per trace (within ``reach`` of ``guide``), minimising
+    ``w_guide |p - guide| + w_step (dp - dguide)^2 + w_wave (1 - ncc)``; a trace with ``fixed`` finite keeps only
+    the candidate nearest to it. Returns the chosen pick per trace (NaN where the trace has no candidate; the line
+    restarts after it)."""
+    n = trace_ids.size
+    out = np.full(n, np.nan)
+    max_c = 64
+    cand = np.full((n, max_c), np.nan)
+    count = np.zeros(n, np.int64)
+    for j in range(n):
+        g = guide[j]
+        if not np.isfinite(g):
+            continue
+        k = trace_ids[j]
+        best_d = 1e9
+        for q in range(offsets[k], offsets[k + 1]):
+            d = abs(picks[q] - g)
+            if d <= reach and count[j] < max_c:
+                if np.isfinite(fixed[j]):
+                    if abs(picks[q] - fixed[j]) < best_d:
+                        best_d = abs(picks[q] - fixed[j])
+                        cand[j, 0] = picks[q]
+                        count[j] = 1
+                else:
+                    cand[j, count[j]] = picks[q]
+                    count[j] += 1
+    cost = np.full((n, max_c), np.inf)
+    back = np.full((n, max_c), -1, np.int64)
+    m = 2 * half + 1
+    wa = np.empty(m)
+    wb = np.empty(m)
+    for j in range(n):
+        for c in range(count[j]):
+            u = w_guide * abs(cand[j, c] - guide[j])
+            if j == 0 or count[j - 1] == 0:
+                cost[j, c] = u
+                continue
+            kb = trace_ids[j]
+            ka = trace_ids[j - 1]
+            for s in range(m):
+                wb[s] = _interp(traces[kb], cand[j, c] - half + s)
+            best, arg = np.inf, -1
+            for p in range(count[j - 1]):
+                for s in range(m):
+                    wa[s] = _interp(traces[ka], cand[j - 1, p] - half + s)
+                step = (cand[j, c] - cand[j - 1, p]) - (guide[j] - guide[j - 1])
+                r = _ncc_windows(wa, wb)
+                v = cost[j - 1, p] + w_step * step * step + w_wave * (1.0 - r)
+                if v < best:
+                    best, arg = v, p
+            cost[j, c] = best + u
+            back[j, c] = arg
+    # backtrack each run of traces with candidates from its end
+    j = n - 1
+    while j >= 0:
+        if count[j] == 0:
+            j -= 1
+            continue
+        c = 0
+        for q in range(count[j]):
+            if cost[j, q] < cost[j, c]:
+                c = q
+        while j >= 0 and count[j] > 0 and c >= 0:
+            out[j] = cand[j, c]
+            c = back[j, c]
+            j -= 1
+    return out
+
+
+@nb.njit(cache=True)
+def _ncc_windows(a, b):
+    sa = 0.0
+    sb = 0.0
+    cnt = 0
+    for k in range(a.size):
+        if np.isfinite(a[k]) and np.isfinite(b[k]):
+            sa += a[k]
+            sb += b[k]
+            cnt += 1
+    if cnt < 5:
+        return 0.0
+    ma, mb = sa / cnt, sb / cnt
+    sab = 0.0
+    saa = 0.0
+    sbb = 0.0
+    for k in range(a.size):
+        if np.isfinite(a[k]) and np.isfinite(b[k]):
+            sab += (a[k] - ma) * (b[k] - mb)
+            saa += (a[k] - ma) ** 2
+            sbb += (b[k] - mb) ** 2
+    return sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
+
+
+def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: np.ndarray, lateral_shape: tuple,
+             fixed: np.ndarray, *, reach: float, w_guide: float, w_step: float, w_wave: float, half: int) -> np.ndarray:
+    """Picks along every line of the last lateral axis chosen by :func:`_line_dp` (flat (n,) arrays in and out)."""
+    g = guide.reshape(lateral_shape)
+    f = fixed.reshape(lateral_shape)
+    ids = np.arange(g.size).reshape(lateral_shape)
+    out = np.full(lateral_shape, np.nan)
+    if len(lateral_shape) == 1:
+        return _line_dp(ids, g, f, picks, offsets, traces, reach, w_guide, w_step, w_wave, half)
+    for i in range(lateral_shape[0]):
+        out[i] = _line_dp(ids[i], g[i], f[i], picks, offsets, traces, reach, w_guide, w_step, w_wave, half)
+    return out.ravel()

@@ -453,7 +453,8 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     if opt.dp:
         fixed = np.full(n, np.nan)
         fixed[seed_idx] = seed_t
-        snapped = dp_picks(traces, picks, offsets, t, lat, fixed, reach=opt.dp_reach, w_guide=opt.w_guide,
+        slopes = line_slopes(data, opt.sigma_tensor)
+        snapped = dp_picks(traces, picks, offsets, t, lat, fixed, slopes, reach=opt.dp_reach, w_guide=opt.w_guide,
                            w_step=opt.w_step, w_wave=opt.w_wave, half=opt.ncc_half)
     else:
         snapped = snap_all(picks, offsets, t, opt.snap)
@@ -503,7 +504,7 @@ def _solve_step(traces, t, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt,
 # Dynamic programming over candidate picks along each line, guided by the least-squares solution.
 
 @nb.njit(cache=True)
-def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, reach, w_guide, w_step, w_wave, half):
+def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_guide, w_step, w_wave, half):
     """Viterbi along one line of traces: one candidate pick per trace (within ``reach`` of ``guide``), minimising
     ``w_guide |p - guide| + w_step (dp - dguide)^2 + w_wave (1 - ncc)``; a trace with ``fixed`` finite keeps only
     the candidate nearest to it. Returns the chosen pick per trace (NaN where the trace has no candidate; the line
@@ -549,7 +550,10 @@ def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, reach, w_guide, w_
             for p in range(count[j - 1]):
                 for s in range(m):
                     wa[s] = _interp(traces[ka], cand[j - 1, p] - half + s)
-                step = (cand[j, c] - cand[j - 1, p]) - (guide[j] - guide[j - 1])
+                ns = slopes.shape[1]
+                sa = slopes[ka, min(max(int(round(cand[j - 1, p])), 0), ns - 1)]
+                sb = slopes[kb, min(max(int(round(cand[j, c])), 0), ns - 1)]
+                step = (cand[j, c] - cand[j - 1, p]) - 0.5 * (sa + sb)
                 r = _ncc_windows(wa, wb)
                 v = cost[j - 1, p] + w_step * step * step + w_wave * (1.0 - r)
                 if v < best:
@@ -598,14 +602,27 @@ def _ncc_windows(a, b):
 
 
 def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: np.ndarray, lateral_shape: tuple,
-             fixed: np.ndarray, *, reach: float, w_guide: float, w_step: float, w_wave: float, half: int) -> np.ndarray:
+             fixed: np.ndarray, slopes: np.ndarray, *, reach: float, w_guide: float, w_step: float, w_wave: float, half: int) -> np.ndarray:
     """Picks along every line of the last lateral axis chosen by :func:`_line_dp` (flat (n,) arrays in and out)."""
     g = guide.reshape(lateral_shape)
     f = fixed.reshape(lateral_shape)
     ids = np.arange(g.size).reshape(lateral_shape)
     out = np.full(lateral_shape, np.nan)
     if len(lateral_shape) == 1:
-        return _line_dp(ids, g, f, picks, offsets, traces, reach, w_guide, w_step, w_wave, half)
+        return _line_dp(ids, g, f, picks, offsets, traces, slopes, reach, w_guide, w_step, w_wave, half)
     for i in range(lateral_shape[0]):
-        out[i] = _line_dp(ids[i], g[i], f[i], picks, offsets, traces, reach, w_guide, w_step, w_wave, half)
+        out[i] = _line_dp(ids[i], g[i], f[i], picks, offsets, traces, slopes, reach, w_guide, w_step, w_wave, half)
     return out.ravel()
+
+
+def line_slopes(data: np.ndarray, sigma_tensor) -> np.ndarray:
+    """Reflector slope (samples per trace) along the last lateral axis at every sample, (n_traces, n_samples) float32
+    (structure tensor of each line, :func:`~seismo3d.seismic.structure_tensor_orientation`)."""
+    from .attributes import structure_tensor_orientation
+
+    if data.ndim == 2:
+        return structure_tensor_orientation(data, sigma_tensor=sigma_tensor).slopes[0]
+    out = np.empty(data.shape, np.float32)
+    for i in range(data.shape[0]):
+        out[i] = structure_tensor_orientation(data[i], sigma_tensor=sigma_tensor).slopes[0]
+    return out.reshape(-1, data.shape[-1])

@@ -178,6 +178,12 @@ def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_samples):
     return lag_out, score_out
 
 
+def _min_samples(half: int) -> int:
+    """Fewest samples a correlation window keeps where it runs off the trace: four fifths of it (a window cut to a
+    few samples correlates by chance)."""
+    return max(5, int(0.8 * (2 * half + 1)))
+
+
 def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndarray, distance: np.ndarray, *,
                 half: int, max_lag: int, jumps: np.ndarray | None = None) -> PairShifts:
     """Measure ``t[b] - t[a]`` for pairs of traces by normalised cross-correlation around the current estimate.
@@ -206,13 +212,13 @@ def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndar
     PairShifts
     """
     ta, tb = times[a], times[b]
-    lag, score = _pair_lags(traces, a, ta, b, tb, int(half), int(max_lag), max(5, half))
+    lag, score = _pair_lags(traces, a, ta, b, tb, int(half), int(max_lag), _min_samples(half))
     shift = tb + lag - ta
     if jumps is not None:
         alt = np.nonzero(np.isfinite(jumps) & (jumps != 0.0))[0]
         if alt.size:
             lag2, score2 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt] + jumps[alt], int(half),
-                                      int(max_lag), max(5, half))
+                                      int(max_lag), _min_samples(half))
             better = np.nan_to_num(score2, nan=-2.0) > np.nan_to_num(score[alt], nan=-2.0)
             shift[alt[better]] = (tb[alt] + jumps[alt] + lag2 - ta[alt])[better]
             score[alt[better]] = score2[better]
@@ -253,7 +259,6 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
     """
     from scipy import sparse
     from scipy.sparse.csgraph import connected_components
-    from scipy.sparse.linalg import spsolve
 
     ok = np.isfinite(pairs.shift) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
     a, b, s = pairs.a[ok], pairs.b[ok], pairs.shift[ok]
@@ -271,8 +276,10 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
 
 
 def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping):
+    """One weighted solve of the normal equations by conjugate gradients (Jacobi-preconditioned, started at
+    ``prev``)."""
     from scipy import sparse
-    from scipy.sparse.linalg import spsolve
+    from scipy.sparse.linalg import LinearOperator, cg
 
     # normal equations of the pair rows (a graph Laplacian) plus the seeds and the damping
     lap = sparse.coo_matrix((np.concatenate([w, w, -w, -w]), (np.concatenate([a, b, a, b]),
@@ -284,7 +291,11 @@ def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping
     rhs += damping ** 2 * prev
     np.add.at(diag, seeds, seed_weight ** 2)
     np.add.at(rhs, seeds, seed_weight ** 2 * seed_times)
-    return spsolve((lap + sparse.diags(diag)).tocsc(), rhs)
+    mat = (lap + sparse.diags(diag)).tocsr()
+    inv_diag = 1.0 / mat.diagonal()
+    pre = LinearOperator((n, n), matvec=lambda x: inv_diag * x)
+    t, _ = cg(mat, rhs, x0=prev, rtol=1e-8, atol=0.0, maxiter=2000, M=pre)
+    return t
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -428,8 +439,36 @@ class LsqHorizon:
     repaired: int
 
 
-def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: FaultCrossings, options) -> LsqHorizon:
-    """Least-squares horizon of ``data`` through ``seeds`` (module docstring); ``options`` a TrackingOptions."""
+def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: FaultCrossings, options,
+                progress: bool = False) -> LsqHorizon:
+    """Least-squares horizon of ``data`` through ``seeds``, picks chosen by dynamic programming (module docstring).
+
+    Parameters
+    ----------
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
+        Finite amplitudes, zero-mean.
+    seeds : (n_seeds, ndim) float64 ndarray
+        Seed picks in index space (checked by :func:`~seismo3d.seismic.horizons.as_seeds`).
+    polarity : {'peak', 'trough', 'zero_rising', 'zero_falling'}
+    faults : FaultCrossings
+        Traced faults (possibly empty).
+    options : TrackingOptions
+        The 'global' fields, ``seed_snap``, ``snap``, ``ncc_half``, ``min_confidence`` and ``sigma_tensor``.
+    progress : bool
+        Report progress over the solves (:mod:`seismo3d._progress`).
+
+    Returns
+    -------
+    LsqHorizon
+
+    Raises
+    ------
+    InputError
+        A seed with no extremum of ``polarity`` within ``seed_snap`` samples.
+    """
+    from .._progress import progress_steps
+    from ..errors import InputError
+
     opt = options
     lat = data.shape[:-1]
     n = int(np.prod(lat))
@@ -438,45 +477,57 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     # seeds: flat index and snapped time
     seed_idx = np.array([np.ravel_multi_index(tuple(int(round(v)) for v in s[:-1]), lat) for s in seeds], np.intp)
     seed_t = np.array([nearest_pick(picks, offsets, k, s[-1], opt.seed_snap) for k, s in zip(seed_idx, seeds)])
+    for s, t0 in zip(seeds, seed_t):
+        if not np.isfinite(t0):
+            raise InputError(f"seed {tuple(float(x) for x in s)} has no reflector pick of the requested polarity "
+                             f"within {opt.seed_snap} samples; move it onto the event or choose another polarity")
     a, b, dist, axis = trace_pairs(lat, opt.pair_distances)
+    # start flat at the seeds' time; the first solves use the short pairs only (coarse to fine)
     t = np.full(n, float(np.mean(seed_t)))
     limits = [2, 8] + [max(opt.pair_distances)] * opt.iterations
-    for it in range(opt.iterations):
-        use = dist <= limits[it]
-        sol = _solve_step(traces, t, a[use], b[use], dist[use], axis[use], lat, seed_idx, seed_t, faults, opt,
-                          opt.max_lag)
-        change = np.nanmax(np.abs(sol - t)) if np.isfinite(sol).any() else 0.0
-        t = np.where(np.isfinite(sol), sol, t) if it < 2 else sol
-        if it >= 2 and change < 0.05:
-            break
+    with progress_steps(opt.iterations, "horizon", unit="solve", enabled=progress) as bar:
+        for it in range(opt.iterations):
+            use = dist <= limits[it]
+            sol = _solve_step(traces, t, a[use], b[use], dist[use], axis[use], lat, seed_idx, seed_t, faults, opt,
+                              opt.max_lag)
+            change = np.nanmax(np.abs(sol - t)) if np.isfinite(sol).any() else 0.0
+            t = np.where(np.isfinite(sol), sol, t) if it < 2 else sol
+            bar.advance()
+            if it >= 2 and change < 0.05:
+                break
     solution = t.copy()
-    if opt.dp:
-        fixed = np.full(n, np.nan)
-        fixed[seed_idx] = seed_t
-        slopes = line_slopes(data, opt.sigma_tensor)
-        snapped = dp_picks(traces, picks, offsets, t, lat, fixed, slopes, reach=opt.dp_reach, w_guide=opt.w_guide,
-                           w_step=opt.w_step, w_wave=opt.w_wave, half=opt.ncc_half)
-    else:
-        snapped = snap_all(picks, offsets, t, opt.snap)
-    # the self-check: long pairs re-measured at the snapped horizon with lags of 1.5 periods
+    have = t[np.isfinite(t)]
+    margin = int(opt.dp_reach + 4 * max(opt.sigma_tensor) + 8)
+    rows = (int(max(np.min(have) - margin, 0)), int(min(np.max(have) + margin + 1, data.shape[-1])))
+    if rows[1] - rows[0] < 8:
+        rows = (0, data.shape[-1])
+    slopes = line_slopes(data, opt.sigma_tensor, rows)
+    fixed = np.full(n, np.nan)
+    fixed[seed_idx] = seed_t
+
+    def choose(guide):
+        picked = dp_picks(traces, picks, offsets, guide, lat, fixed, slopes, reach=opt.dp_reach, w_guide=opt.dp_guide,
+                        w_step=opt.dp_step, w_wave=opt.dp_wave, half=opt.ncc_half)
+        return settle_lone_departures(picked, guide, lat, picks, offsets) if len(lat) == 2 else picked
+
+    snapped = choose(t)
+    # the self-check: the long pairs re-measured at the picks with lags of 1.5 reflector periods; a repair (the
+    # flagged traces moved by the correction, re-solved, picks chosen again) is kept when fewer traces are flagged
     repaired = 0
-    period = reflector_period(picks, offsets, np.arange(n)[np.isfinite(snapped)][::7], snapped[np.isfinite(snapped)][::7])
-    if opt.repair and np.isfinite(period):
-        lag = int(np.ceil(1.5 * period))
+    if opt.repair:
         long = dist >= 8
-        jumps = _pair_fault_jumps(faults, lat, snapped, a[long], b[long], axis[long])
-        ps = pair_shifts(traces, snapped, a[long], b[long], dist[long], half=opt.correlation_half, max_lag=lag,
-                         jumps=jumps)
-        corr = cycle_skips(ps, snapped, period, min_correlation=opt.min_pair_correlation)
+        check = _SkipCheck(traces, picks, offsets, lat, a[long], b[long], dist[long], axis[long], faults, opt)
+        corr = check(snapped)
         bad = np.isfinite(corr)
-        repaired = int(bad.sum())
-        if repaired:
-            t = np.where(bad, snapped + np.nan_to_num(corr), np.where(np.isfinite(snapped), snapped, t))
+        if bad.any():
+            guide = np.where(bad, snapped + np.nan_to_num(corr), np.where(np.isfinite(snapped), snapped, t))
             for _ in range(2):
-                sol = _solve_step(traces, t, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt, opt.max_lag)
-                t = sol
-            solution = t.copy()
-            snapped = snap_all(picks, offsets, t, opt.snap)
+                guide = _solve_step(traces, guide, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt, opt.max_lag)
+            again = choose(guide)
+            left = int(np.isfinite(check(again)).sum())
+            if left < int(bad.sum()):
+                repaired = int(bad.sum()) - left
+                snapped, solution = again, guide
     near = dist == 1
     conf = neighbour_confidence(traces, snapped, a[near], b[near], opt.ncc_half)
     conf[seed_idx] = 1.0
@@ -484,6 +535,24 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     keep[seed_idx] = np.isfinite(snapped[seed_idx])
     times = np.where(keep, snapped, np.nan)
     return LsqHorizon(times.reshape(lat), conf.reshape(lat), solution.reshape(lat), repaired)
+
+
+class _SkipCheck:
+    """:func:`cycle_skips` of a horizon (flat (n,) times) against the long pairs, lags of 1.5 reflector periods."""
+
+    def __init__(self, traces, picks, offsets, lat, a, b, dist, axis, faults, opt):
+        self.traces, self.picks, self.offsets, self.lat = traces, picks, offsets, lat
+        self.a, self.b, self.dist, self.axis, self.faults, self.opt = a, b, dist, axis, faults, opt
+
+    def __call__(self, times):
+        have = np.nonzero(np.isfinite(times))[0]
+        period = reflector_period(self.picks, self.offsets, have[::7], times[have[::7]])
+        if not np.isfinite(period):
+            return np.full(times.size, np.nan)
+        jumps = _pair_fault_jumps(self.faults, self.lat, times, self.a, self.b, self.axis)
+        ps = pair_shifts(self.traces, times, self.a, self.b, self.dist, half=self.opt.correlation_half,
+                         max_lag=int(np.ceil(1.5 * period)), jumps=jumps)
+        return cycle_skips(ps, times, period, min_correlation=self.opt.min_pair_correlation, min_votes=4)
 
 
 def _pair_fault_jumps(faults: FaultCrossings, lat, t, a, b, axis):
@@ -615,14 +684,61 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     return out.ravel()
 
 
-def line_slopes(data: np.ndarray, sigma_tensor) -> np.ndarray:
-    """Reflector slope (samples per trace) along the last lateral axis at every sample, (n_traces, n_samples) float32
-    (structure tensor of each line, :func:`~seismo3d.seismic.structure_tensor_orientation`)."""
+def line_slopes(data: np.ndarray, sigma_tensor, rows: tuple[int, int] | None = None) -> np.ndarray:
+    """Reflector slope (samples per trace) along the last lateral axis, (n_traces, n_samples) float32 (structure
+    tensor of each line, :func:`~seismo3d.seismic.structure_tensor_orientation`), computed in the band of samples
+    ``rows`` (default all; 0 outside it)."""
     from .attributes import structure_tensor_orientation
 
-    if data.ndim == 2:
-        return structure_tensor_orientation(data, sigma_tensor=sigma_tensor).slopes[0]
-    out = np.empty(data.shape, np.float32)
-    for i in range(data.shape[0]):
-        out[i] = structure_tensor_orientation(data[i], sigma_tensor=sigma_tensor).slopes[0]
+    lo, hi = (0, data.shape[-1]) if rows is None else rows
+    out = np.zeros(data.shape, np.float32)
+    lines = data[None] if data.ndim == 2 else data
+    view = out[None] if data.ndim == 2 else out
+    for i in range(lines.shape[0]):
+        view[i, :, lo:hi] = structure_tensor_orientation(lines[i, :, lo:hi], sigma_tensor=sigma_tensor).slopes[0]
     return out.reshape(-1, data.shape[-1])
+
+
+def settle_lone_departures(picked: np.ndarray, guide: np.ndarray, lat: tuple, picks: np.ndarray, offsets: np.ndarray,
+                           *, agree: float = 2.0) -> np.ndarray:
+    """Picks of a cube that leave the least-squares solution by more than half a reflector period on their inline
+    alone: moved to the pick nearest the solution.
+
+    Each inline's picks are chosen by its own dynamic programme, so a departure from the (smooth, 3D) least-squares
+    solution is believed where the neighbouring inlines make it too (a sag or a fault crosses several inlines: their
+    departures agree within ``agree`` samples) and not where one inline makes it alone.
+
+    Parameters
+    ----------
+    picked, guide : (n,) float64 ndarray
+        The chosen picks and the least-squares solution (flat over the (n_inlines, n_xlines) grid ``lat``).
+    lat : (int, int)
+    picks, offsets : ndarray
+        Every trace's picks (:func:`~seismo3d.seismic.reflector_picks` of the flattened cube).
+    agree : float
+        Samples.
+
+    Returns
+    -------
+    (n,) float64 ndarray
+        A new array.
+    """
+    have = np.nonzero(np.isfinite(picked))[0]
+    period = reflector_period(picks, offsets, have[::7], picked[have[::7]])
+    if not np.isfinite(period):
+        return picked
+    dev = (picked - guide).reshape(lat)
+    lone = np.abs(dev) > 0.5 * period
+    supported = np.zeros_like(lone)
+    for step in (1, -1):
+        nb = np.roll(dev, step, axis=0)
+        ok = np.abs(nb - dev) <= agree
+        if step == 1:
+            ok[0] = False
+        else:
+            ok[-1] = False
+        supported |= ok
+    out = picked.copy()
+    for k in np.nonzero((lone & ~supported).ravel())[0]:
+        out[k] = nearest_pick(picks, offsets, k, guide[k], 0.5 * period)
+    return out

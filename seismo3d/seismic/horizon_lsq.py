@@ -118,25 +118,32 @@ def _interp(trace, t):
 
 
 @nb.njit(cache=True)
-def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_samples):
+def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
     """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
-    of trace a around ``ta``; returns (lag relative to centre, score)."""
+    of trace a around ``ta``; returns (lag relative to centre, score). Near the ends of the traces the window is
+    shortened to the samples trace a has (at least 4 each side); a lag is scored where at least ``min_fraction`` of
+    the window lies on trace b."""
     n = a.size
+    n_s = traces.shape[1]
     lag_out = np.full(n, np.nan)
     score_out = np.full(n, np.nan)
-    m = 2 * half + 1
-    ref = np.empty(m)
-    sig = np.empty(m + 2 * max_lag)
+    ref = np.empty(2 * half + 1)
+    sig = np.empty(2 * half + 1 + 2 * max_lag)
     scores = np.empty(2 * max_lag + 1)
     for p in range(n):
         if not (np.isfinite(ta[p]) and np.isfinite(centre[p])):
             continue
+        h = min(half, int(np.floor(ta[p])), int(np.floor(n_s - 1 - ta[p])))
+        if h < 4:
+            continue
+        m = 2 * h + 1
+        min_samples = max(5, int(min_fraction * m))
         ra = traces[a[p]]
         rb = traces[b[p]]
         for k in range(m):
-            ref[k] = _interp(ra, ta[p] - half + k)
+            ref[k] = _interp(ra, ta[p] - h + k)
         for k in range(m + 2 * max_lag):
-            sig[k] = _interp(rb, centre[p] - half - max_lag + k)
+            sig[k] = _interp(rb, centre[p] - h - max_lag + k)
         best, kbest = -2.0, -1
         for s in range(2 * max_lag + 1):
             sa = 0.0
@@ -178,12 +185,6 @@ def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_samples):
     return lag_out, score_out
 
 
-def _min_samples(half: int) -> int:
-    """Fewest samples a correlation window keeps where it runs off the trace: four fifths of it (a window cut to a
-    few samples correlates by chance)."""
-    return max(5, int(0.8 * (2 * half + 1)))
-
-
 def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndarray, distance: np.ndarray, *,
                 half: int, max_lag: int, jumps: np.ndarray | None = None) -> PairShifts:
     """Measure ``t[b] - t[a]`` for pairs of traces by normalised cross-correlation around the current estimate.
@@ -212,13 +213,13 @@ def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndar
     PairShifts
     """
     ta, tb = times[a], times[b]
-    lag, score = _pair_lags(traces, a, ta, b, tb, int(half), int(max_lag), _min_samples(half))
+    lag, score = _pair_lags(traces, a, ta, b, tb, int(half), int(max_lag), 0.8)
     shift = tb + lag - ta
     if jumps is not None:
         alt = np.nonzero(np.isfinite(jumps) & (jumps != 0.0))[0]
         if alt.size:
             lag2, score2 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt] + jumps[alt], int(half),
-                                      int(max_lag), _min_samples(half))
+                                      int(max_lag), 0.8)
             better = np.nan_to_num(score2, nan=-2.0) > np.nan_to_num(score[alt], nan=-2.0)
             shift[alt[better]] = (tb[alt] + jumps[alt] + lag2 - ta[alt])[better]
             score[alt[better]] = score2[better]
@@ -413,7 +414,7 @@ def neighbour_confidence(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b
     neighbours' (the pairs ``a, b``) at theirs; NaN where no neighbour is picked."""
     ok = np.isfinite(times[a]) & np.isfinite(times[b])
     a, b = a[ok], b[ok]
-    _, score = _pair_lags(traces, a, times[a], b, times[b], int(half), 0, 5)
+    _, score = _pair_lags(traces, a, times[a], b, times[b], int(half), 0, 0.8)
     node = np.concatenate([a, b])
     val = np.concatenate([score, score])
     out = np.full(times.size, np.nan)

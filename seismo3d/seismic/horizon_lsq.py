@@ -18,8 +18,9 @@ where the registration across it supports it, so a spurious fault surface change
 After the solve, each trace snaps to the nearest extremum of the polarity (within ``snap`` samples); its confidence is
 the median correlation of its waveform with its neighbours' (``+-ncc_half`` samples); picks below ``min_confidence``
 and traces not connected to a seed by confident pairs stay empty (NaN). A last self-check (:func:`cycle_skips`)
-re-measures the long pairs at the snapped horizon and flags traces whose long-range prediction is persistently about
-one reflector period away; the tracker repairs them (moves them to the predicted cycle and re-solves).
+re-measures the pairs at the picked horizon with lags of more than a reflector period and flags the traces where the
+correlation-predicted horizon (their plain least-squares solution) lies about a period away; the tracker repairs them
+(moves them to the predicted cycle, re-solves, picks again) and keeps the repair when it leaves fewer traces flagged.
 
 Conventions: index space (axis 0 inline, axis 1 crossline, last axis sample; a 2D section ``(n_traces, n_samples)``);
 times in fractional samples.
@@ -302,53 +303,42 @@ def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping
 # --------------------------------------------------------------------------------------------------------------------
 # The cycle-skip self-check.
 
-def cycle_skips(pairs: PairShifts, times: np.ndarray, period: float, *, min_distance: int = 8,
-                min_correlation: float = 0.5, min_votes: int = 2) -> np.ndarray:
-    """Flag the traces of a horizon that sit a reflector cycle away from where the long-range pairs put them.
+def cycle_skips(pairs: PairShifts, times: np.ndarray, period: float, seeds: np.ndarray, seed_times: np.ndarray, *,
+                min_correlation: float = 0.5) -> np.ndarray:
+    """Flag the traces of a horizon that sit about a reflector cycle from the correlation-predicted horizon.
 
-    For each trace ``b``, the long pairs (``distance >= min_distance``) ending or starting on it predict its time
-    from their other trace (``t[a] + s_ab``, or ``t[a] - s_ab``); a trace is flagged when at least ``min_votes``
-    confident predictions agree (their median) and lie more than half a ``period`` from ``times``.
+    The prediction is the plain least-squares horizon (:func:`solve_horizon` without robust weights, which would
+    down-weight exactly the pairs that disagree with the horizon checked) of the pair shifts measured at ``times``
+    with lags of more than a period, through the seeds. Inside a run of traces one cycle off, the pairs agree with
+    each other; the pairs that span its ends carry it back by the period, so the prediction departs from ``times``
+    over the whole run. A trace is flagged where the two differ by more than half a ``period``.
 
     Parameters
     ----------
     pairs : PairShifts
-        Shifts measured at ``times`` with lags of at least a period (:func:`pair_shifts`).
+        Shifts measured at ``times`` (:func:`pair_shifts` with ``max_lag`` above the period).
     times : (n,) float64 ndarray
         The horizon, samples (NaN: empty).
     period : float
-        The reflector period near the horizon, samples.
-    min_distance : int
-        Shortest pair counted, traces.
+        The reflector period near the horizon, samples (:func:`reflector_period`).
+    seeds : (n_seeds,) intp ndarray
+        Flat indices of the seed traces.
+    seed_times : (n_seeds,) float64 ndarray
+        Their times.
     min_correlation : float
         Weakest pair counted.
-    min_votes : int
-        Fewest predictions needed.
 
     Returns
     -------
     (n,) float64 ndarray
         The correction (predicted minus current time, samples) of each flagged trace, NaN elsewhere.
     """
-    ok = (pairs.distance >= min_distance) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
-    ok &= np.isfinite(times[pairs.a]) & np.isfinite(times[pairs.b])
-    a, b, s = pairs.a[ok], pairs.b[ok], pairs.shift[ok]
-    node = np.concatenate([b, a])
-    pred = np.concatenate([times[a] + s, times[b] - s]) - times[node]
-    order = np.argsort(node, kind="stable")
-    node, pred = node[order], pred[order]
-    out = np.full(times.size, np.nan)
-    if node.size == 0:
-        return out
-    starts = np.r_[0, np.nonzero(np.diff(node))[0] + 1]
-    ends = np.r_[starts[1:], node.size]
-    for lo, hi in zip(starts, ends):
-        if hi - lo < min_votes:
-            continue
-        med = float(np.median(pred[lo:hi]))
-        if abs(med) > 0.5 * period:
-            out[node[lo]] = med
-    return out
+    ok = np.isfinite(times[pairs.a]) & np.isfinite(times[pairs.b])
+    sub = PairShifts(pairs.a[ok], pairs.b[ok], pairs.distance[ok], pairs.shift[ok], pairs.score[ok])
+    predicted = solve_horizon(times.size, sub, seeds, seed_times, min_correlation=min_correlation, previous=times,
+                              robust=None)
+    diff = predicted - times
+    return np.where(np.abs(diff) > 0.5 * period, diff, np.nan)
 
 
 def reflector_period(picks: np.ndarray, offsets: np.ndarray, traces: np.ndarray, times: np.ndarray) -> float:
@@ -512,12 +502,12 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
         return settle_lone_departures(picked, guide, lat, picks, offsets) if len(lat) == 2 else picked
 
     snapped = choose(t)
-    # the self-check: the long pairs re-measured at the picks with lags of 1.5 reflector periods; a repair (the
-    # flagged traces moved by the correction, re-solved, picks chosen again) is kept when fewer traces are flagged
+    # the self-check: every pair re-measured at the picks with lags of 1.5 reflector periods and solved plainly; a
+    # repair (the flagged traces moved by the correction, re-solved, picks chosen again) is kept when fewer traces
+    # are flagged
     repaired = 0
     if opt.repair:
-        long = dist >= 8
-        check = _SkipCheck(traces, picks, offsets, lat, a[long], b[long], dist[long], axis[long], faults, opt)
+        check = _SkipCheck(traces, picks, offsets, lat, a, b, dist, axis, faults, opt, seed_idx, seed_t)
         corr = check(snapped)
         bad = np.isfinite(corr)
         if bad.any():
@@ -539,10 +529,12 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
 
 
 class _SkipCheck:
-    """:func:`cycle_skips` of a horizon (flat (n,) times) against the long pairs, lags of 1.5 reflector periods."""
+    """:func:`cycle_skips` of a horizon (flat (n,) times): every pair re-measured at it with lags of 1.5 reflector
+    periods."""
 
-    def __init__(self, traces, picks, offsets, lat, a, b, dist, axis, faults, opt):
+    def __init__(self, traces, picks, offsets, lat, a, b, dist, axis, faults, opt, seeds, seed_times):
         self.traces, self.picks, self.offsets, self.lat = traces, picks, offsets, lat
+        self.seeds, self.seed_times = seeds, seed_times
         self.a, self.b, self.dist, self.axis, self.faults, self.opt = a, b, dist, axis, faults, opt
 
     def __call__(self, times):
@@ -553,7 +545,8 @@ class _SkipCheck:
         jumps = _pair_fault_jumps(self.faults, self.lat, times, self.a, self.b, self.axis)
         ps = pair_shifts(self.traces, times, self.a, self.b, self.dist, half=self.opt.correlation_half,
                          max_lag=int(np.ceil(1.5 * period)), jumps=jumps)
-        return cycle_skips(ps, times, period, min_correlation=self.opt.min_pair_correlation, min_votes=4)
+        return cycle_skips(ps, times, period, self.seeds, self.seed_times,
+                           min_correlation=self.opt.min_pair_correlation)
 
 
 def _pair_fault_jumps(faults: FaultCrossings, lat, t, a, b, axis):

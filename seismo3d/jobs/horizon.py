@@ -100,12 +100,14 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     if grid.data.ndim == 2 and surface is not None:
         raise InputError(f"{input_path.name} is a 2D line: --surface needs a 3D cube; leave it out")
     index_seeds = [grid.seed_index(s) for s in seeds]
-    if faults is None:
-        faults = grid.data.ndim == 3
     interp = None
-    if faults:
-        interp = trace_faults(grid.data, sample_interval=float(grid.samples[1] - grid.samples[0]),
-                              sample_unit=grid.unit, progress=progress)
+    if faults or (faults is None and grid.data.ndim == 3):
+        try:
+            interp = trace_faults(grid.data, sample_interval=float(grid.samples[1] - grid.samples[0]),
+                                  sample_unit=grid.unit, progress=progress)
+        except InputError:
+            if faults:  # asked for: the refusal (e.g. a cube too small to trace) is the user's to see
+                raise
     result = track_horizon(grid.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
     if fill:
         result = fill_horizon(result)

@@ -346,6 +346,33 @@ def cycle_skips(pairs: PairShifts, times: np.ndarray, period: float, seeds: np.n
     return np.where(np.abs(diff) > 0.5 * period, diff, np.nan)
 
 
+def pair_agreement(pairs: PairShifts, times: np.ndarray, *, min_correlation: float, within: float) -> np.ndarray:
+    """Fraction of each trace's confident pairs that agree with the horizon ``times`` within ``within`` samples
+    (``|t[b] - t[a] - s_ab|``); 1 where a trace has no confident pair.
+
+    Parameters
+    ----------
+    pairs : PairShifts
+        Shifts measured at ``times``.
+    times : (n,) float64 ndarray
+    min_correlation : float
+        Weakest pair counted.
+    within : float
+        Samples.
+
+    Returns
+    -------
+    (n,) float64 ndarray in [0, 1]
+    """
+    ok = np.isfinite(pairs.shift) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
+    a, b = pairs.a[ok], pairs.b[ok]
+    agree = (np.abs(times[b] - times[a] - pairs.shift[ok]) <= within).astype(np.float64)
+    n = times.size
+    total = np.bincount(a, minlength=n) + np.bincount(b, minlength=n)
+    good = np.bincount(a, agree, minlength=n) + np.bincount(b, agree, minlength=n)
+    return np.where(total > 0, good / np.maximum(total, 1), 1.0)
+
+
 def reflector_period(picks: np.ndarray, offsets: np.ndarray, traces: np.ndarray, times: np.ndarray) -> float:
     """Median spacing, samples, of consecutive same-polarity picks next to the horizon on ``traces``."""
     gaps = []
@@ -502,8 +529,14 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     fixed[seed_idx] = seed_t
 
     def choose(guide):
-        picked = dp_picks(traces, picks, offsets, guide, lat, fixed, slopes, reach=opt.dp_reach, w_guide=opt.dp_guide,
-                        w_step=opt.dp_step, w_wave=opt.dp_wave, half=opt.ncc_half)
+        # the guide counts where the pairs agree with it (a trace whose pairs the robust solve outvoted, e.g. in a
+        # narrow sag the long pairs span, is left to the slopes and waveforms of its line)
+        jumps = _pair_fault_jumps(faults, lat, guide, a, b, axis)
+        ps = pair_shifts(traces, guide, a, b, dist, half=opt.correlation_half, max_lag=opt.max_lag, jumps=jumps)
+        weight = opt.dp_guide * pair_agreement(ps, guide, min_correlation=opt.min_pair_correlation,
+                                               within=opt.robust)
+        picked = dp_picks(traces, picks, offsets, guide, lat, fixed, slopes, reach=opt.dp_reach, w_guide=weight,
+                          w_step=opt.dp_step, w_wave=opt.dp_wave, half=opt.ncc_half)
         return settle_lone_departures(picked, guide, lat, picks, offsets) if len(lat) == 2 else picked
 
     snapped = choose(t)
@@ -606,7 +639,7 @@ def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_g
     wb = np.empty(m)
     for j in range(n):
         for c in range(count[j]):
-            u = w_guide * abs(cand[j, c] - guide[j])
+            u = w_guide[j] * abs(cand[j, c] - guide[j])
             if j == 0 or count[j - 1] == 0:
                 cost[j, c] = u
                 continue
@@ -674,12 +707,15 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     """Picks along every line of the last lateral axis chosen by :func:`_line_dp` (flat (n,) arrays in and out)."""
     g = guide.reshape(lateral_shape)
     f = fixed.reshape(lateral_shape)
+    wg = np.broadcast_to(np.asarray(w_guide, np.float64), guide.shape).reshape(lateral_shape)
     ids = np.arange(g.size).reshape(lateral_shape)
     out = np.full(lateral_shape, np.nan)
     if len(lateral_shape) == 1:
-        return _line_dp(ids, g, f, picks, offsets, traces, slopes, reach, w_guide, w_step, w_wave, half)
+        return _line_dp(ids, g, f, picks, offsets, traces, slopes, reach, np.ascontiguousarray(wg), w_step, w_wave,
+                        half)
     for i in range(lateral_shape[0]):
-        out[i] = _line_dp(ids[i], g[i], f[i], picks, offsets, traces, slopes, reach, w_guide, w_step, w_wave, half)
+        out[i] = _line_dp(ids[i], g[i], f[i], picks, offsets, traces, slopes, reach, np.ascontiguousarray(wg[i]), w_step,
+                          w_wave, half)
     return out.ravel()
 
 

@@ -39,9 +39,11 @@ import numba as nb
 import numpy as np
 
 from .fault_crossings import FaultCrossings
+from .horizon_dp import dp_picks, line_slopes, reflector_period, sample_at, settle_lone_departures
 from .reflectors import nearest_pick, reflector_picks
 
-__all__ = ["PairShifts", "trace_pairs", "pair_shifts", "solve_horizon", "cycle_skips"]
+__all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "solve_horizon", "cycle_skips", "pair_agreement",
+           "lsq_horizon"]
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -107,18 +109,6 @@ def trace_pairs(lateral_shape: tuple, distances) -> tuple[np.ndarray, np.ndarray
 
 
 @nb.njit(cache=True)
-def _interp(trace, t):
-    n = trace.size
-    if t < 0.0 or t > n - 1:
-        return np.nan
-    k = int(np.floor(t))
-    if k >= n - 1:
-        return trace[n - 1]
-    f = t - k
-    return (1.0 - f) * trace[k] + f * trace[k + 1]
-
-
-@nb.njit(cache=True)
 def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
     """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
     of trace a around ``ta``; returns (lag relative to centre, score). Near the ends of the traces the window is
@@ -142,9 +132,9 @@ def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
         ra = traces[a[p]]
         rb = traces[b[p]]
         for k in range(m):
-            ref[k] = _interp(ra, ta[p] - h + k)
+            ref[k] = sample_at(ra, ta[p] - h + k)
         for k in range(m + 2 * max_lag):
-            sig[k] = _interp(rb, centre[p] - h - max_lag + k)
+            sig[k] = sample_at(rb, centre[p] - h - max_lag + k)
         best, kbest = -2.0, -1
         for s in range(2 * max_lag + 1):
             sa = 0.0
@@ -373,18 +363,6 @@ def pair_agreement(pairs: PairShifts, times: np.ndarray, *, min_correlation: flo
     return np.where(total > 0, good / np.maximum(total, 1), 1.0)
 
 
-def reflector_period(picks: np.ndarray, offsets: np.ndarray, traces: np.ndarray, times: np.ndarray) -> float:
-    """Median spacing, samples, of consecutive same-polarity picks next to the horizon on ``traces``."""
-    gaps = []
-    for j, t in zip(traces, times):
-        p = picks[offsets[j]:offsets[j + 1]]
-        if p.size < 2 or not np.isfinite(t):
-            continue
-        k = int(np.clip(np.searchsorted(p, t), 1, p.size - 1))
-        gaps.append(p[k] - p[k - 1])
-    return float(np.median(gaps)) if gaps else np.nan
-
-
 def snap_all(picks: np.ndarray, offsets: np.ndarray, times: np.ndarray, window: float) -> np.ndarray:
     """Each trace's time snapped to its nearest pick within ``window`` samples (NaN where none)."""
     return np.array([nearest_pick(picks, offsets, j, t, window) for j, t in enumerate(times)])
@@ -599,181 +577,3 @@ def _solve_step(traces, t, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt,
     ps = pair_shifts(traces, t, a, b, dist, half=opt.correlation_half, max_lag=max_lag, jumps=jumps)
     return solve_horizon(t.size, ps, seed_idx, seed_t, min_correlation=opt.min_pair_correlation, previous=t,
                          robust=opt.robust, robust_iterations=opt.robust_iterations)
-
-
-# --------------------------------------------------------------------------------------------------------------------
-# Dynamic programming over candidate picks along each line, guided by the least-squares solution.
-
-@nb.njit(cache=True)
-def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_guide, w_step, w_wave, half):
-    """Viterbi along one line of traces: one candidate pick per trace (within ``reach`` of ``guide``), minimising
-    ``w_guide |p - guide| + w_step (dp - dguide)^2 + w_wave (1 - ncc)``; a trace with ``fixed`` finite keeps only
-    the candidate nearest to it. Returns the chosen pick per trace (NaN where the trace has no candidate; the line
-    restarts after it)."""
-    n = trace_ids.size
-    out = np.full(n, np.nan)
-    max_c = 64
-    cand = np.full((n, max_c), np.nan)
-    count = np.zeros(n, np.int64)
-    for j in range(n):
-        g = guide[j]
-        if not np.isfinite(g):
-            continue
-        k = trace_ids[j]
-        best_d = 1e9
-        for q in range(offsets[k], offsets[k + 1]):
-            d = abs(picks[q] - g)
-            if d <= reach and count[j] < max_c:
-                if np.isfinite(fixed[j]):
-                    if abs(picks[q] - fixed[j]) < best_d:
-                        best_d = abs(picks[q] - fixed[j])
-                        cand[j, 0] = picks[q]
-                        count[j] = 1
-                else:
-                    cand[j, count[j]] = picks[q]
-                    count[j] += 1
-    cost = np.full((n, max_c), np.inf)
-    back = np.full((n, max_c), -1, np.int64)
-    m = 2 * half + 1
-    wa = np.empty(m)
-    wb = np.empty(m)
-    for j in range(n):
-        for c in range(count[j]):
-            u = w_guide[j] * abs(cand[j, c] - guide[j])
-            if j == 0 or count[j - 1] == 0:
-                cost[j, c] = u
-                continue
-            kb = trace_ids[j]
-            ka = trace_ids[j - 1]
-            for s in range(m):
-                wb[s] = _interp(traces[kb], cand[j, c] - half + s)
-            best, arg = np.inf, -1
-            for p in range(count[j - 1]):
-                for s in range(m):
-                    wa[s] = _interp(traces[ka], cand[j - 1, p] - half + s)
-                ns = slopes.shape[1]
-                sa = slopes[ka, min(max(int(round(cand[j - 1, p])), 0), ns - 1)]
-                sb = slopes[kb, min(max(int(round(cand[j, c])), 0), ns - 1)]
-                step = (cand[j, c] - cand[j - 1, p]) - 0.5 * (sa + sb)
-                r = _ncc_windows(wa, wb)
-                v = cost[j - 1, p] + w_step * step * step + w_wave * (1.0 - r)
-                if v < best:
-                    best, arg = v, p
-            cost[j, c] = best + u
-            back[j, c] = arg
-    # backtrack each run of traces with candidates from its end
-    j = n - 1
-    while j >= 0:
-        if count[j] == 0:
-            j -= 1
-            continue
-        c = 0
-        for q in range(count[j]):
-            if cost[j, q] < cost[j, c]:
-                c = q
-        while j >= 0 and count[j] > 0 and c >= 0:
-            out[j] = cand[j, c]
-            c = back[j, c]
-            j -= 1
-    return out
-
-
-@nb.njit(cache=True)
-def _ncc_windows(a, b):
-    sa = 0.0
-    sb = 0.0
-    cnt = 0
-    for k in range(a.size):
-        if np.isfinite(a[k]) and np.isfinite(b[k]):
-            sa += a[k]
-            sb += b[k]
-            cnt += 1
-    if cnt < 5:
-        return 0.0
-    ma, mb = sa / cnt, sb / cnt
-    sab = 0.0
-    saa = 0.0
-    sbb = 0.0
-    for k in range(a.size):
-        if np.isfinite(a[k]) and np.isfinite(b[k]):
-            sab += (a[k] - ma) * (b[k] - mb)
-            saa += (a[k] - ma) ** 2
-            sbb += (b[k] - mb) ** 2
-    return sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
-
-
-def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: np.ndarray, lateral_shape: tuple,
-             fixed: np.ndarray, slopes: np.ndarray, *, reach: float, w_guide: float, w_step: float, w_wave: float, half: int) -> np.ndarray:
-    """Picks along every line of the last lateral axis chosen by :func:`_line_dp` (flat (n,) arrays in and out)."""
-    g = guide.reshape(lateral_shape)
-    f = fixed.reshape(lateral_shape)
-    wg = np.broadcast_to(np.asarray(w_guide, np.float64), guide.shape).reshape(lateral_shape)
-    ids = np.arange(g.size).reshape(lateral_shape)
-    out = np.full(lateral_shape, np.nan)
-    if len(lateral_shape) == 1:
-        return _line_dp(ids, g, f, picks, offsets, traces, slopes, reach, np.ascontiguousarray(wg), w_step, w_wave,
-                        half)
-    for i in range(lateral_shape[0]):
-        out[i] = _line_dp(ids[i], g[i], f[i], picks, offsets, traces, slopes, reach, np.ascontiguousarray(wg[i]), w_step,
-                          w_wave, half)
-    return out.ravel()
-
-
-def line_slopes(data: np.ndarray, sigma_tensor, rows: tuple[int, int] | None = None) -> np.ndarray:
-    """Reflector slope (samples per trace) along the last lateral axis, (n_traces, n_samples) float32 (structure
-    tensor of each line, :func:`~seismo3d.seismic.structure_tensor_orientation`), computed in the band of samples
-    ``rows`` (default all; 0 outside it)."""
-    from .attributes import structure_tensor_orientation
-
-    lo, hi = (0, data.shape[-1]) if rows is None else rows
-    out = np.zeros(data.shape, np.float32)
-    lines = data[None] if data.ndim == 2 else data
-    view = out[None] if data.ndim == 2 else out
-    for i in range(lines.shape[0]):
-        view[i, :, lo:hi] = structure_tensor_orientation(lines[i, :, lo:hi], sigma_tensor=sigma_tensor).slopes[0]
-    return out.reshape(-1, data.shape[-1])
-
-
-def settle_lone_departures(picked: np.ndarray, guide: np.ndarray, lat: tuple, picks: np.ndarray, offsets: np.ndarray,
-                           *, agree: float = 2.0) -> np.ndarray:
-    """Picks of a cube that leave the least-squares solution by more than half a reflector period on their inline
-    alone: moved to the pick nearest the solution.
-
-    Each inline's picks are chosen by its own dynamic programme, so a departure from the (smooth, 3D) least-squares
-    solution is believed where the neighbouring inlines make it too (a sag or a fault crosses several inlines: their
-    departures agree within ``agree`` samples) and not where one inline makes it alone.
-
-    Parameters
-    ----------
-    picked, guide : (n,) float64 ndarray
-        The chosen picks and the least-squares solution (flat over the (n_inlines, n_xlines) grid ``lat``).
-    lat : (int, int)
-    picks, offsets : ndarray
-        Every trace's picks (:func:`~seismo3d.seismic.reflector_picks` of the flattened cube).
-    agree : float
-        Samples.
-
-    Returns
-    -------
-    (n,) float64 ndarray
-        A new array.
-    """
-    have = np.nonzero(np.isfinite(picked))[0]
-    period = reflector_period(picks, offsets, have[::7], picked[have[::7]])
-    if not np.isfinite(period):
-        return picked
-    dev = (picked - guide).reshape(lat)
-    lone = np.abs(dev) > 0.5 * period
-    supported = np.zeros_like(lone)
-    for step in (1, -1):
-        nb = np.roll(dev, step, axis=0)
-        ok = np.abs(nb - dev) <= agree
-        if step == 1:
-            ok[0] = False
-        else:
-            ok[-1] = False
-        supported |= ok
-    out = picked.copy()
-    for k in np.nonzero((lone & ~supported).ravel())[0]:
-        out[k] = nearest_pick(picks, offsets, k, guide[k], 0.5 * period)
-    return out

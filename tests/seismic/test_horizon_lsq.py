@@ -1,13 +1,12 @@
 """Least-squares horizons (seismo3d.seismic.horizon_lsq): pairs, correlation shifts, the robust solve, the cycle-skip
-self-check, lone departures; generated data with known truth."""
+self-check; generated data with known truth."""
 
 import numpy as np
 import pytest
 
 from seismo3d.data.synthetic import synthetic_cube
-from seismo3d.seismic.horizon_lsq import (
-    PairShifts, cycle_skips, pair_shifts, reflector_period, settle_lone_departures, solve_horizon, trace_pairs,
-)
+from seismo3d.seismic.horizon_dp import reflector_period
+from seismo3d.seismic.horizon_lsq import PairShifts, cycle_skips, pair_shifts, solve_horizon, trace_pairs
 from seismo3d.seismic.reflectors import nearest_pick, reflector_picks
 
 
@@ -113,25 +112,6 @@ def test_cycle_skip_check_flags_a_one_period_offset():
     # the true horizon raises no flag
     ps = pair_shifts(section, truth, a, b, d, half=16, max_lag=lag)
     assert not np.isfinite(cycle_skips(ps, truth, period, seeds, truth[seeds])).any()
-
-
-def test_lone_departure_is_moved_back_and_shared_one_kept():
-    syn, pol, _, _, truth = _section_and_truth()
-    cube = np.stack([syn.cube] * 5)  # five identical inlines
-    picks, offsets = reflector_picks(cube.reshape(-1, cube.shape[-1]), polarity=pol)
-    guide = np.tile(truth, 5)
-    picked = guide.copy()
-    # inline 2 alone one cycle off at traces 50-60; inlines 3 and 4 together one cycle off at traces 100-110
-    for i, span in ((2, range(50, 61)), (3, range(100, 111)), (4, range(100, 111))):
-        for j in span:
-            k = i * 160 + j
-            picked[k] = _next_cycle(picks, offsets, k, guide[k])
-    out = settle_lone_departures(picked, guide, (5, 160), picks, offsets)
-    lone = slice(2 * 160 + 50, 2 * 160 + 61)
-    np.testing.assert_allclose(out[lone], guide[lone], atol=1e-9)
-    for i in (3, 4):
-        shared = slice(i * 160 + 100, i * 160 + 111)
-        np.testing.assert_array_equal(out[shared], picked[shared])
 
 
 @pytest.mark.parametrize("bad", [dict(method="lsq"), dict(pair_distances=(0, 2)), dict(max_lag=0),

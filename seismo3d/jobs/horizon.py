@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, SegyGeometryError
+from ..errors import InputError, SegyGeometryError, UnsupportedDataError
 from ..seismic.horizons import Horizon
 
 __all__ = ["HorizonInput", "HorizonJob", "read_horizon_input", "run_horizon_job", "seed_index"]
@@ -86,6 +86,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     InputError
         An output path that is the input, a seed outside the data or not on the line (the message names ``--seed``),
         a surface asked for a 2D line.
+    UnsupportedDataError
+        ``faults=True`` on data the fault tracer refuses.
     SegyGeometryError
         The file's geometry cannot be read at the given header bytes (try ``--ignore-geometry``).
     """
@@ -105,7 +107,7 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         try:
             interp = trace_faults(grid.data, sample_interval=float(grid.samples[1] - grid.samples[0]),
                                   sample_unit=grid.unit, progress=progress)
-        except InputError:
+        except (InputError, UnsupportedDataError):
             if faults:  # asked for: the refusal (e.g. a cube too small to trace) is the user's to see
                 raise
     result = track_horizon(grid.data, index_seeds, polarity=polarity, faults=interp, progress=progress)

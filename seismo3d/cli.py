@@ -488,7 +488,8 @@ class Polarity(str, Enum):
 
 
 @app.command()
-@_friendly({"polarity": "--polarity", "surface": "--surface"})
+@_friendly({"polarity": "--polarity", "surface": "--surface", "sample_unit": "--sample-unit",
+            "ignore_geometry": "--ignore-geometry"})
 def horizon(
     input: pathlib.Path = typer.Argument(..., metavar="INPUT", help="SEG-Y cube or 2D line (inline- or "
                                                                     "crossline-sorted, big- or little-endian; a file "
@@ -501,8 +502,9 @@ def horizon(
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Text file: one 'inline xline time' row per "
                                                                       "tracked trace ('trace time' for a trace list)."),
     polarity: Polarity = typer.Option(Polarity.peak, help="Event the horizon follows."),
-    faults: bool = typer.Option(False, "--faults", help="Trace the faults first and jump across them by their throw "
-                                                        "(slower: the whole fault job runs in memory)."),
+    faults: Optional[bool] = typer.Option(None, "--faults/--no-faults", help="Trace the faults first and take their "
+                                          "jumps where the correlation across them supports it (the whole fault job "
+                                          "runs in memory). Default: on for 3D cubes, off for 2D lines."),
     fill: bool = typer.Option(False, "--fill", help="Fill empty traces by interpolation after tracking."),
     surface: Optional[pathlib.Path] = typer.Option(None, help="Also write the horizon as a surface (.vtp or .vtk); "
                                                               "3D cubes only."),
@@ -511,9 +513,12 @@ def horizon(
     endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
     ignore_geometry: bool = typer.Option(False, "--ignore-geometry", help="Read the SEG-Y as a trace list (unsorted "
                                                                           "file, arbitrary line); seeds are TRACE,T."),
+    sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
+                                                                "headers (ms)."),
 ) -> None:
-    """Track a horizon in INPUT from one or more seed picks, by registering neighbouring inlines (a cube) or traces
-    (a 2D line), and write it as 'inline xline time' rows."""
+    """Track a horizon in INPUT (a 3D cube or a 2D line) from one or more seed picks, globally (least squares over
+    correlations between near and distant traces, then the picks of each line by dynamic programming), and write it
+    as 'inline xline time' rows ('trace time' for a trace list)."""
     from .errors import InputError
     from .jobs.horizon import run_horizon_job
 
@@ -528,7 +533,7 @@ def horizon(
                              "file read as a trace list")
     job = run_horizon_job(input, seeds, output, polarity=polarity.value, faults=faults, fill=fill, surface=surface,
                           iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=_value(endian),
-                          progress=True)
+                          sample_unit=None if sample_unit is None else sample_unit.value, progress=True)
     typer.echo(f"{job.n_rows} of {job.horizon.times.size} traces tracked ({job.horizon.coverage:.1%}) -> {output}")
     if job.surface is not None:
         typer.echo(f"surface -> {job.surface}")

@@ -2,9 +2,10 @@
 surface).
 
 Seeds are given in the survey's terms (inline and crossline numbers, or the trace number of a file without them, and
-the time or depth in the file's sample unit) and converted to index positions; the faults are traced first when asked
-(:func:`seismo3d.seismic.trace_faults`), and the horizon is tracked by registering neighbouring inlines of a cube, or
-neighbouring traces of a line (:func:`seismo3d.seismic.track_horizon`).
+the time or depth in the file's sample unit) and converted to index positions; on cubes the faults are traced first
+(:func:`seismo3d.seismic.trace_faults`; their jumps are taken only where the correlation across them supports it), and
+the horizon is tracked by :func:`seismo3d.seismic.track_horizon` (global least squares over correlations between near
+and distant traces, then dynamic programming over candidate picks), on a cube or a line.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, SegyGeometryError
+from ..errors import InputError, SegyGeometryError, UnsupportedDataError
 from ..seismic.horizons import Horizon
 
 __all__ = ["HorizonJob", "run_horizon_job", "seed_index", "trace_seed_index"]
@@ -65,11 +66,12 @@ class _Survey:
         return "line" if self.inlines is not None else "trace list"
 
 
-def _read_survey(path: pathlib.Path, *, iline, xline, ignore_geometry, endian) -> _Survey:
+def _read_survey(path: pathlib.Path, *, iline, xline, ignore_geometry, endian, sample_unit=None) -> _Survey:
     """The SEG-Y file as a cube or a 2D line; a single trace is refused."""
     from ..seismic import open_segy
 
-    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian) as cube:
+    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
+                   sample_unit=sample_unit) as cube:
         if cube.n_traces < 2 or cube.samples.size < 2:
             raise SegyGeometryError(f"{path.name} is {cube.description} of {cube.samples.size} samples; horizon "
                                     "tracking needs a 2D line or a 3D cube")
@@ -114,9 +116,9 @@ def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
     return write_horizon_text(output, horizon, inlines=labels, xlines=survey.xlines, samples=survey.samples)
 
 
-def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults: bool = False, fill: bool = False,
-                    surface=None, iline: int = 189, xline: int = 193, ignore_geometry: bool = False, endian=None,
-                    progress: bool = True) -> HorizonJob:
+def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults: bool | None = None,
+                    fill: bool = False, surface=None, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
+                    endian=None, sample_unit=None, progress: bool = True) -> HorizonJob:
     """Track a horizon in a SEG-Y cube or 2D line from seed picks and write it as text rows.
 
     Parameters
@@ -134,8 +136,10 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         trace list.
     polarity : {'peak', 'trough', 'zero_rising', 'zero_falling'}
         The event the horizon follows.
-    faults : bool
-        Trace the faults first and jump across them by their throw (the whole fault interpretation runs in memory).
+    faults : bool or None
+        Trace the faults first (:func:`seismo3d.seismic.trace_faults`) and let the tracker take their jumps where the
+        correlation across them supports it. None (default): on 3D cubes yes (a cube the fault tracer refuses is
+        tracked without them); on 2D lines no. True: always, and a refusal is raised. (In memory.)
     fill : bool
         Fill empty traces by interpolation after tracking (:func:`seismo3d.seismic.fill_horizon`).
     surface : str or path-like, optional
@@ -146,6 +150,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         Read the file as a trace list, without the warning a file without a grid gets.
     endian : {'big', 'little'}, optional
         Byte order of the file; by default detected from its binary header.
+    sample_unit : {'ms', 'm', 'ft'}, optional
+        Unit of the sample axis; default from the SEG-Y headers.
     progress : bool
         Report progress (:mod:`seismo3d._progress`).
 
@@ -163,6 +169,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         The file holds a single trace, or prestack gathers.
     SegyFormatError
         The file is not SEG-Y or cannot be read (see :func:`~seismo3d.seismic.open_segy`).
+    UnsupportedDataError
+        ``faults=True`` on data the fault tracer refuses.
 
     Warns
     -----
@@ -176,16 +184,22 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     if output.resolve() == input_path.resolve() or (surface is not None and surface.resolve() == input_path.resolve()):
         raise InputError(f"{output} would overwrite the input; choose another output path")
     # read the cube or line, and convert the seeds to index positions
-    survey = _read_survey(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
+    survey = _read_survey(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
+                          sample_unit=sample_unit)
     if surface is not None and survey.kind != "cube":
         raise InputError(f"a horizon surface needs a 3D cube and {survey.name} is {survey.description}; leave out "
                          f"surface={surface} (--surface)")
     index_seeds = _seed_indices(survey, seeds)
-    # the faults first, when asked; then the horizon
+    # the faults first (by default on cubes; a cube the fault tracer refuses is tracked without them unless they
+    # were asked for); then the horizon
     interp = None
-    if faults:
-        interp = trace_faults(survey.data, sample_interval=float(survey.samples[1] - survey.samples[0]),
-                              sample_unit=survey.unit, progress=progress)
+    if faults or (faults is None and survey.kind == "cube"):
+        try:
+            interp = trace_faults(survey.data, sample_interval=float(survey.samples[1] - survey.samples[0]),
+                                  sample_unit=survey.unit, progress=progress)
+        except (InputError, UnsupportedDataError):
+            if faults:  # asked for: the refusal (e.g. a cube too small to trace) is the user's to see
+                raise
     result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
     if fill:
         result = fill_horizon(result)

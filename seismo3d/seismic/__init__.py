@@ -12,7 +12,11 @@
 - :mod:`~seismo3d.seismic.faults`: the whole fault interpretation of an array (:func:`trace_faults`).
 - :mod:`~seismo3d.seismic.fault_crossings`: which faults a horizon step crosses and the jump there.
 - :mod:`~seismo3d.seismic.horizons`: the horizon result, seeds, gap filling, text export.
-- :mod:`~seismo3d.seismic.horizon_tracking`: horizon tracking by registering neighbouring slices.
+- :mod:`~seismo3d.seismic.horizon_tracking`: :func:`track_horizon`; horizon tracking by registering neighbouring slices.
+- :mod:`~seismo3d.seismic.horizon_lsq`: least-squares horizons from correlations of near and distant traces (the
+  default method), the cycle-skip self-check.
+- :mod:`~seismo3d.seismic.horizon_dp`: dynamic programming over candidate picks along each line.
+- :mod:`~seismo3d.seismic.tracking_options`: :class:`TrackingOptions`.
 - :mod:`~seismo3d.seismic.autotracker`: the plain amplitude autotracker (the peer).
 - :mod:`~seismo3d.seismic.volumes`: registration of sub-volumes of different bin size, sample rate and orientation.
 - :mod:`~seismo3d.seismic.evaluation`: fault scores, horizon errors, registration errors against ground truth.

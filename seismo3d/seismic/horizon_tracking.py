@@ -59,123 +59,15 @@ import numpy as np
 
 from .._options import resolve_options
 from .._progress import progress_steps
-from .._validation import as_seismic, as_sigma_pair, check_choice, check_int, check_positive
+from .._validation import as_seismic, check_choice
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
 from .fault_crossings import FaultCrossings
+from .tracking_options import TrackingOptions
 from .horizons import Horizon, as_seeds, check_live_seed
 from .reflectors import POLARITIES, ReflectorSlice, nearest_pick, reflector_picks
 from .traces import ncc, ncc_lag_search, waveform
 
 __all__ = ["TrackingOptions", "track_horizon", "despike", "close_gaps"]
-
-
-@dataclass(frozen=True)
-class TrackingOptions:
-    """Options of :func:`track_horizon`; the defaults are the ones every seismo3d command and benchmark uses.
-
-    Attributes
-    ----------
-    model : {'rigid', 'similarity', 'axis_scaled', 'affine'}
-        Transform family of the panel registrations (2D). 'axis_scaled' allows per-axis scale (layers that thicken)
-        but its vertical scale can slide a band that reaches the top or bottom of the data by one cycle (seen on a
-        synthetic section), so the default is 'rigid'.
-    half_traces : int
-        Half-width of a panel along the slice, traces (source and target panels hold 2 * half_traces + 1 traces).
-    half_samples : float
-        Half-height of the band of reflector points around the horizon, samples.
-    step : int
-        Traces between two registrations along a slice.
-    snap : float
-        Largest distance, samples, from the carried position to the extremum it snaps to.
-    min_confidence : float
-        Picks whose waveform correlation with the pick they came from is below this are left empty.
-    max_throw : int
-        Largest shift, samples, searched when a discontinuity is found without fault input.
-    features : {'hog', 'sift'} or None
-        Feature matches between neighbouring inlines for the fused ICP (3D only); None: point-to-plane only.
-    panel_traces : int
-        Width, traces, of the panels registered between neighbouring inlines (3D).
-    sigma_tensor : (float, float)
-        Smoothing (traces, samples) of the structure tensor that gives the reflector normals and slopes.
-    min_fitness : float
-        A panel registration with a lower fitness does not fit (noise, a chaotic zone, a discontinuity).
-    ncc_half : int
-        Samples each side of a pick in the confidence correlation (the waveform window).
-    panel_iterations : int
-        ICP iterations per distance stage of a panel registration: panels of ~100 points converge in a few, and
-        sliding along the reflectors never stops by itself.
-    reference_weight : float
-        Weight of the newest accepted pick in the running reference waveform along a slice.
-    seed_snap : float
-        Samples: a seed snaps to an extremum this far at most (about half a period).
-    fault_zone : float
-        Traces: along a slice, no step ends this close to a fault, where drag bends the reflectors towards it; it is
-        carried on over the zone.
-    pierce : float
-        Voxels: a step crosses a fault when it pierces the fault's local plane this close to one of its points
-        (:class:`~seismo3d.seismic.fault_crossings.FaultCrossings`).
-    on_fault : float
-        Voxels: a point this close to a fault's local plane (and its points) lies on the fault.
-    min_throw_correlation : float
-        Faults whose two sides correlate less than this (median of ``FaultThrow.correlation``) are not used
-        (:func:`~seismo3d.seismic.fault_crossings.reliable_throw`).
-    despike_reach : int
-        Traces searched on each side for the neighbours of the lateral continuity check (:func:`despike`).
-    despike_agree : float
-        Samples within which those neighbours must agree, and beyond which a pick is a spike.
-    gap_passes : int
-        Largest number of gap-closing passes (:func:`close_gaps`).
-
-    Raises
-    ------
-    InputError
-        A value out of range (checked when the options are made).
-    """
-
-    model: str = "rigid"
-    half_traces: int = 10
-    half_samples: float = 20.0
-    step: int = 4
-    snap: float = 3.0
-    min_confidence: float = 0.3
-    max_throw: int = 10
-    features: str | None = "hog"
-    panel_traces: int = 64
-    sigma_tensor: tuple = (2.0, 2.0)
-    min_fitness: float = 0.3
-    ncc_half: int = 8
-    panel_iterations: int = 15
-    reference_weight: float = 0.3
-    seed_snap: float = 5.0
-    fault_zone: float = 2.0
-    pierce: float = 1.5
-    on_fault: float = 0.5
-    min_throw_correlation: float = 0.5
-    despike_reach: int = 2
-    despike_agree: float = 2.0
-    gap_passes: int = 50
-
-    def __post_init__(self):
-        check_choice(self.model, "model", ("rigid", "similarity", "axis_scaled", "affine"))
-        if self.features is not None:
-            check_choice(self.features, "features", ("hog", "sift"))
-        for name in ("half_traces", "step", "max_throw", "panel_traces", "ncc_half", "panel_iterations",
-                     "despike_reach", "gap_passes"):
-            check_int(getattr(self, name), name, minimum=1)
-        for name in ("half_samples", "snap", "seed_snap", "pierce", "on_fault", "despike_agree"):
-            object.__setattr__(self, name, float(check_positive(getattr(self, name), name)))
-        check_positive(self.fault_zone, "fault_zone", allow_zero=True)
-        if not -1.0 <= self.min_confidence <= 1.0:
-            raise InputError(f"min_confidence is a correlation in [-1, 1]; got {self.min_confidence}")
-        if not 0.0 <= self.reference_weight <= 1.0:
-            raise InputError(f"reference_weight must be in [0, 1]; got {self.reference_weight}")
-        object.__setattr__(self, "sigma_tensor", as_sigma_pair(self.sigma_tensor, "sigma_tensor"))
-
-    def fault_crossings(self, faults, ndim: int) -> FaultCrossings:
-        """The :class:`~seismo3d.seismic.fault_crossings.FaultCrossings` of ``faults`` (None: none) with these
-        options."""
-        return FaultCrossings.from_interpretation(faults, ndim, min_throw_correlation=self.min_throw_correlation,
-                                                  pierce=self.pierce, on_fault=self.on_fault)
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -533,9 +425,17 @@ def despike(section: ReflectorSlice, picks: np.ndarray, carried: np.ndarray, con
 
 def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: TrackingOptions | None = None,
                   progress: bool = False, **overrides) -> Horizon:
-    """Track a horizon from seed picks by registering neighbouring slices (module docstring).
+    """Track a horizon from seed picks: by default globally (least-squares horizons, then dynamic programming over
+    candidate picks: :mod:`~seismo3d.seismic.horizon_lsq`), or by registering neighbouring slices
+    (``method='registration'``, module docstring).
 
-    In 2D the horizon is tracked along the section from each seed. In 3D it is tracked along each seed's inline,
+    With ``method='global'`` every trace's time comes from one robust least-squares solve of correlation shifts
+    between near and distant traces (1 to 32 traces apart along inlines and crosslines) through all the seeds at
+    once, so one bad local step is outvoted by the pairs that span it; each line's picks are then chosen together
+    by dynamic programming (near the solution, steps along the reflector slope, waveforms that correlate), checked
+    for cycle skips against the long pairs, and scored by their correlation with their neighbours.
+
+    With ``method='registration'``, in 2D the horizon is tracked along the section from each seed. In 3D it is tracked along each seed's inline,
     then carried inline by inline to both ends of the cube with the fused ICP; a trace the carry leaves empty is
     kept at its predicted position for the next inline, so a gap does not stop the horizon. A last pass fills
     empty traces from their tracked neighbours along inlines and crosslines where they agree and correlate (module
@@ -580,6 +480,8 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
     ----------
     .. [1] method.md section 6 (seismic tracks) and eq. 16 (fused ICP); the paper's "reconstruction of seismic
        tracks in a three-dimensional seismic cube".
+    .. [3] X. Wu and S. Fomel, "Least-squares horizons with local slopes and multigrid correlations", Geophysics
+       83(4), IM29-IM40, 2018 (the global method).
     .. [2] D. Hale, "Methods to compute fault images, extract fault surfaces, and estimate fault throws from 3D
        seismic images", Geophysics 78(2), O33-O43, 2013 (throw as the jump across a fault).
     """
@@ -590,6 +492,11 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
     crossings = opt.fault_crossings(faults, arr.ndim)
     for s in seeds:
         check_live_seed(arr, s)
+    if opt.method == "global":
+        from .horizon_lsq import lsq_horizon
+
+        found = lsq_horizon(arr, seeds, polarity=polarity, faults=crossings, options=opt, progress=progress)
+        return Horizon(found.times.astype(np.float32), found.confidence.astype(np.float32), polarity, seeds)
     if arr.ndim == 2:
         return _track_2d(arr, seeds, polarity, opt, crossings)
     return _track_3d(arr, seeds, polarity, opt, crossings, progress)

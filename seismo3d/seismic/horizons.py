@@ -159,9 +159,11 @@ def write_horizon_text(path, horizon: Horizon, *, inlines=None, xlines=None, sam
     path : str or path-like
         Output text file.
     horizon : Horizon
-        A 3D horizon (``times`` of shape (n_inlines, n_xlines)) or a 2D one ((n_traces,): rows are "trace time").
+        A 3D horizon (``times`` of shape (n_inlines, n_xlines)) or a 2D one ((n_traces,): rows are "trace time", or
+        "inline xline time" when both labels are given).
     inlines, xlines : (n_inlines,), (n_xlines,) array_like of int, optional
-        Inline and crossline numbers of the grid (e.g. ``SeismicCube.inlines``); default: indices.
+        Inline and crossline numbers of the grid (e.g. ``SeismicCube.inlines``); default: indices. For a 2D horizon,
+        one number per trace each (the trace headers' inline and crossline).
     samples : (n_samples,) array_like of float, optional
         The sample axis in ms or m (``SeismicCube.samples``); fractional sample indices are converted by linear
         interpolation. Default: sample indices.
@@ -182,7 +184,13 @@ def write_horizon_text(path, horizon: Horizon, *, inlines=None, xlines=None, sam
     grid = np.indices(t.shape).reshape(t.ndim, -1).T
     have = np.isfinite(t).ravel()
     cols = []
-    for axis, labels in enumerate((inlines, xlines)[:t.ndim]):
+    if t.ndim == 1 and inlines is not None and xlines is not None:  # a 2D line labelled trace by trace
+        for name, labels in (("inlines", inlines), ("xlines", xlines)):
+            if np.shape(labels) != t.shape:
+                raise InputError(f"{name} of a 2D line must hold one number per trace ({t.size}); got "
+                                 f"{np.shape(labels)}")
+        cols = [np.asarray(inlines)[have], np.asarray(xlines)[have]]
+    for axis, labels in enumerate((inlines, xlines)[:t.ndim] if not cols else ()):
         if labels is None:
             cols.append(grid[have, axis])
             continue
@@ -198,7 +206,7 @@ def write_horizon_text(path, horizon: Horizon, *, inlines=None, xlines=None, sam
         tv = np.interp(tv, np.arange(s.size), s, left=np.nan, right=np.nan)
     with atomic_path(path) as tmp:
         with open(tmp, "w") as fh:
-            header = "inline xline time" if t.ndim == 2 else "trace time"
+            header = "inline xline time" if len(cols) == 2 else "trace time"
             fh.write(f"# {header}\n")
             for row in zip(*cols, tv):
                 fh.write(" ".join(str(int(v)) for v in row[:-1]) + f" {row[-1]:.3f}\n")

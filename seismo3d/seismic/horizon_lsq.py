@@ -1,0 +1,579 @@
+"""Least-squares horizons: one global solve from correlation shifts between near and distant traces.
+
+A horizon ``t`` (one fractional sample per trace) is found as the least-squares solution of many difference
+equations ``t[b] - t[a] = s_ab``, one per *pair* of traces ``a, b`` on the same inline or crossline at distances
+``1, 2, 4, ... `` traces apart, plus the seeds (Wu & Fomel 2018: least-squares horizons with local slopes and
+multigrid correlations). Each shift ``s_ab`` is found by normalised cross-correlation of a long window of trace ``a``
+(``+-correlation_half`` samples around ``t[a]``: several reflector cycles, so the sequence of reflectors and not one
+cycle decides) with trace ``b`` searched ``+-max_lag`` samples around the current estimate; the pair's weight is its
+correlation squared (pairs below ``min_pair_correlation`` are left out). Because the equations hold differences only
+and the long pairs tie distant traces directly, one bad local step (a cycle skip at a pockmark's sag, a wrong slope
+by a fault) is outvoted by the pairs that span it and cannot propagate; the estimate is re-solved a few times with the
+shifts re-measured around it (Gauss-Newton, as Wu & Fomel).
+
+Faults (:class:`~seismo3d.seismic.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is also
+searched around the estimate plus their jump, and the better-correlating centre is kept: a fault's jump is taken only
+where the registration across it supports it, so a spurious fault surface changes nothing.
+
+After the solve, each trace snaps to the nearest extremum of the polarity (within ``snap`` samples); its confidence is
+the median correlation of its waveform with its neighbours' (``+-ncc_half`` samples); picks below ``min_confidence``
+and traces not connected to a seed by confident pairs stay empty (NaN). A last self-check (:func:`cycle_skips`)
+re-measures the pairs at the picked horizon with lags of more than a reflector period and flags the traces where the
+correlation-predicted horizon (their plain least-squares solution) lies about a period away; the tracker repairs them
+(moves them to the predicted cycle, re-solves, picks again) and keeps the repair when it leaves fewer traces flagged.
+
+Conventions: index space (axis 0 inline, axis 1 crossline, last axis sample; a 2D section ``(n_traces, n_samples)``);
+times in fractional samples.
+
+References
+----------
+.. [1] X. Wu and S. Fomel, "Least-squares horizons with local slopes and multigrid correlations", Geophysics 83(4),
+   IM29-IM40, 2018, doi:10.1190/geo2017-0830.1.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numba as nb
+import numpy as np
+
+from .fault_crossings import FaultCrossings
+from .horizon_dp import dp_picks, line_slopes, reflector_period, sample_at, settle_lone_departures
+from .reflectors import nearest_pick, reflector_picks
+
+__all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "solve_horizon", "cycle_skips", "pair_agreement",
+           "lsq_horizon"]
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# Pairs of traces and their correlation shifts.
+
+@dataclass(frozen=True, eq=False)
+class PairShifts:
+    """Pairs of traces (flat indices into the lateral grid) and their measured shifts.
+
+    Attributes
+    ----------
+    a, b : (n_pairs,) intp ndarray
+        The two traces of each pair (flat lateral indices).
+    distance : (n_pairs,) intp ndarray
+        Traces between them along their line.
+    shift : (n_pairs,) float64 ndarray
+        Measured ``t[b] - t[a]``, samples (NaN where not measured).
+    score : (n_pairs,) float64 ndarray
+        Normalised cross-correlation at that shift, NaN where not measured.
+    """
+
+    a: np.ndarray
+    b: np.ndarray
+    distance: np.ndarray
+    shift: np.ndarray
+    score: np.ndarray
+
+
+def trace_pairs(lateral_shape: tuple, distances) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """All pairs of traces on the same line of a lateral grid at the given distances.
+
+    Parameters
+    ----------
+    lateral_shape : (n_traces,) or (n_inlines, n_xlines)
+        The grid of traces.
+    distances : sequence of int
+        Distances, traces, along each axis.
+
+    Returns
+    -------
+    a, b : (n_pairs,) intp ndarray
+        Flat indices of the two traces, ``b`` further along the axis than ``a``.
+    distance : (n_pairs,) intp ndarray
+    axis : (n_pairs,) intp ndarray
+        The lateral axis the pair lies along.
+    """
+    idx = np.arange(int(np.prod(lateral_shape))).reshape(lateral_shape)
+    out = [[], [], [], []]
+    for axis in range(len(lateral_shape)):
+        for d in distances:
+            if d >= lateral_shape[axis]:
+                continue
+            lo = np.take(idx, np.arange(0, lateral_shape[axis] - d), axis=axis).ravel()
+            hi = np.take(idx, np.arange(d, lateral_shape[axis]), axis=axis).ravel()
+            out[0].append(lo)
+            out[1].append(hi)
+            out[2].append(np.full(lo.size, d))
+            out[3].append(np.full(lo.size, axis))
+    if not out[0]:
+        z = np.zeros(0, np.intp)
+        return z, z, z, z
+    return tuple(np.concatenate(v).astype(np.intp) for v in out)
+
+
+@nb.njit(cache=True)
+def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
+    """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
+    of trace a around ``ta``; returns (lag relative to centre, score). Near the ends of the traces the window is
+    shortened to the samples trace a has (at least 4 each side); a lag is scored where at least ``min_fraction`` of
+    the window lies on trace b."""
+    n = a.size
+    n_s = traces.shape[1]
+    lag_out = np.full(n, np.nan)
+    score_out = np.full(n, np.nan)
+    ref = np.empty(2 * half + 1)
+    sig = np.empty(2 * half + 1 + 2 * max_lag)
+    scores = np.empty(2 * max_lag + 1)
+    for p in range(n):
+        if not (np.isfinite(ta[p]) and np.isfinite(centre[p])):
+            continue
+        h = min(half, int(np.floor(ta[p])), int(np.floor(n_s - 1 - ta[p])))
+        if h < 4:
+            continue
+        m = 2 * h + 1
+        min_samples = max(5, int(min_fraction * m))
+        ra = traces[a[p]]
+        rb = traces[b[p]]
+        for k in range(m):
+            ref[k] = sample_at(ra, ta[p] - h + k)
+        for k in range(m + 2 * max_lag):
+            sig[k] = sample_at(rb, centre[p] - h - max_lag + k)
+        best, kbest = -2.0, -1
+        for s in range(2 * max_lag + 1):
+            sa = 0.0
+            sb = 0.0
+            cnt = 0
+            for k in range(m):
+                x, y = ref[k], sig[s + k]
+                if np.isfinite(x) and np.isfinite(y):
+                    sa += x
+                    sb += y
+                    cnt += 1
+            if cnt < min_samples:
+                scores[s] = np.nan
+                continue
+            ma, mb = sa / cnt, sb / cnt
+            sab = 0.0
+            saa = 0.0
+            sbb = 0.0
+            for k in range(m):
+                x, y = ref[k], sig[s + k]
+                if np.isfinite(x) and np.isfinite(y):
+                    sab += (x - ma) * (y - mb)
+                    saa += (x - ma) ** 2
+                    sbb += (y - mb) ** 2
+            c = sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
+            scores[s] = c
+            if c > best:
+                best, kbest = c, s
+        if kbest < 0:
+            continue
+        off = 0.0
+        if 0 < kbest < 2 * max_lag and np.isfinite(scores[kbest - 1]) and np.isfinite(scores[kbest + 1]):
+            y0, y1, y2 = scores[kbest - 1], scores[kbest], scores[kbest + 1]
+            den = y0 - 2 * y1 + y2
+            if den < 0:
+                off = min(max(0.5 * (y0 - y2) / den, -0.5), 0.5)
+        lag_out[p] = kbest - max_lag + off
+        score_out[p] = best
+    return lag_out, score_out
+
+
+def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndarray, distance: np.ndarray, *,
+                half: int, max_lag: int, jumps: np.ndarray | None = None) -> PairShifts:
+    """Measure ``t[b] - t[a]`` for pairs of traces by normalised cross-correlation around the current estimate.
+
+    The window of trace ``a`` (``+-half`` samples around ``times[a]``) is correlated with trace ``b`` at lags
+    ``-max_lag..max_lag`` around ``times[b]`` (and, where ``jumps`` is non-zero, also around ``times[b] + jumps``:
+    the better-scoring centre is kept); the best lag is refined by a parabola.
+
+    Parameters
+    ----------
+    traces : (n_traces, n_samples) float32 ndarray
+        The data's traces (flat lateral index).
+    times : (n_traces,) float64 ndarray
+        Current horizon estimate, fractional samples (NaN: not measured).
+    a, b, distance : (n_pairs,) intp ndarray
+        The pairs (:func:`trace_pairs`).
+    half : int
+        Half-length of the correlation window, samples.
+    max_lag : int
+        Lags searched each side of the estimate, samples.
+    jumps : (n_pairs,) float64 ndarray, optional
+        A fault's jump expected between the two traces (0 where none).
+
+    Returns
+    -------
+    PairShifts
+    """
+    ta, tb = times[a], times[b]
+    lag, score = _pair_lags(traces, a, ta, b, tb, int(half), int(max_lag), 0.8)
+    shift = tb + lag - ta
+    if jumps is not None:
+        # pairs across traced faults: long windows straddle the fault where it dips, and its throw varies with
+        # depth, so they are re-measured with short windows, around the estimate and around the estimate plus the
+        # fault's jump; the better-correlating one is kept (a spurious fault's jump does not correlate)
+        alt = np.nonzero(np.isfinite(jumps) & (jumps != 0.0))[0]
+        if alt.size:
+            short = max(4, int(half) // 4)
+            lag1, score1 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt], short, int(max_lag), 0.8)
+            lag2, score2 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt] + jumps[alt], short,
+                                      int(max(3, max_lag // 4)), 0.8)
+            better = np.nan_to_num(score2, nan=-2.0) > np.nan_to_num(score1, nan=-2.0)
+            shift[alt] = np.where(better, tb[alt] + jumps[alt] + lag2, tb[alt] + lag1) - ta[alt]
+            score[alt] = np.where(better, score2, score1)
+    return PairShifts(a, b, distance, shift, score)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# The least-squares solve.
+
+def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.ndarray, *, min_correlation: float,
+                  previous: np.ndarray | None = None, seed_weight: float = 100.0, damping: float = 1e-3,
+                  robust: float | None = 2.0, robust_iterations: int = 5):
+    """Least-squares horizon from pair shifts and seed times (Wu & Fomel 2018, eq. 4 with correlations only).
+
+    Minimises ``sum w_ab (t[b] - t[a] - s_ab)^2 + seed_weight^2 sum (t[s] - t_s)^2 + damping^2 sum (t - previous)^2``
+    with ``w_ab`` the pair's correlation squared (pairs below ``min_correlation`` left out).
+
+    Parameters
+    ----------
+    n : int
+        Number of traces (unknowns).
+    pairs : PairShifts
+    seeds : (n_seeds,) intp ndarray
+        Flat indices of the seed traces.
+    seed_times : (n_seeds,) float64 ndarray
+        Their times, samples.
+    min_correlation : float
+        Pairs correlating less are left out.
+    previous : (n,) float64 ndarray, optional
+        The previous estimate (the damping's target; default the mean seed time).
+    seed_weight, damping : float
+        Weights of the seed and damping equations.
+
+    Returns
+    -------
+    times : (n,) float64 ndarray
+        The solution, NaN on traces no confident pair connects to a seed.
+    """
+    from scipy import sparse
+    from scipy.sparse.csgraph import connected_components
+
+    ok = np.isfinite(pairs.shift) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
+    a, b, s = pairs.a[ok], pairs.b[ok], pairs.shift[ok]
+    w0 = pairs.score[ok] ** 2
+    prev = np.full(n, float(np.mean(seed_times))) if previous is None else np.where(np.isfinite(previous), previous,
+                                                                                        float(np.mean(seed_times)))
+    t = prev
+    for _ in range(robust_iterations + 1):
+        w = w0 if robust is None else w0 / (1.0 + ((t[b] - t[a] - s) / robust) ** 2)
+        t = _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping)
+    graph = sparse.coo_matrix((np.ones(a.size), (a, b)), shape=(n, n))
+    _, label = connected_components(graph, directed=False)
+    reached = np.isin(label, label[seeds])
+    return np.where(reached, t, np.nan)
+
+
+def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping):
+    """One weighted solve of the normal equations by conjugate gradients (Jacobi-preconditioned, started at
+    ``prev``)."""
+    from scipy import sparse
+    from scipy.sparse.linalg import LinearOperator, cg
+
+    # normal equations of the pair rows (a graph Laplacian) plus the seeds and the damping
+    lap = sparse.coo_matrix((np.concatenate([w, w, -w, -w]), (np.concatenate([a, b, a, b]),
+                                                               np.concatenate([a, b, b, a]))), shape=(n, n)).tocsr()
+    rhs = np.zeros(n)
+    np.add.at(rhs, b, w * s)
+    np.add.at(rhs, a, -w * s)
+    diag = np.full(n, damping ** 2)
+    rhs += damping ** 2 * prev
+    np.add.at(diag, seeds, seed_weight ** 2)
+    np.add.at(rhs, seeds, seed_weight ** 2 * seed_times)
+    mat = (lap + sparse.diags(diag)).tocsr()
+    inv_diag = 1.0 / mat.diagonal()
+    pre = LinearOperator((n, n), matvec=lambda x: inv_diag * x)
+    t, _ = cg(mat, rhs, x0=prev, rtol=1e-8, atol=0.0, maxiter=2000, M=pre)
+    return t
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# The cycle-skip self-check.
+
+def cycle_skips(pairs: PairShifts, times: np.ndarray, period: float, seeds: np.ndarray, seed_times: np.ndarray, *,
+                min_correlation: float = 0.5) -> np.ndarray:
+    """Flag the traces of a horizon that sit about a reflector cycle from the correlation-predicted horizon.
+
+    The prediction is the plain least-squares horizon (:func:`solve_horizon` without robust weights, which would
+    down-weight exactly the pairs that disagree with the horizon checked) of the pair shifts measured at ``times``
+    with lags of more than a period, through the seeds. Inside a run of traces one cycle off, the pairs agree with
+    each other; the pairs that span its ends carry it back by the period, so the prediction departs from ``times``
+    over the whole run. A trace is flagged where the two differ by more than half a ``period``.
+
+    Parameters
+    ----------
+    pairs : PairShifts
+        Shifts measured at ``times`` (:func:`pair_shifts` with ``max_lag`` above the period).
+    times : (n,) float64 ndarray
+        The horizon, samples (NaN: empty).
+    period : float
+        The reflector period near the horizon, samples (:func:`reflector_period`).
+    seeds : (n_seeds,) intp ndarray
+        Flat indices of the seed traces.
+    seed_times : (n_seeds,) float64 ndarray
+        Their times.
+    min_correlation : float
+        Weakest pair counted.
+
+    Returns
+    -------
+    (n,) float64 ndarray
+        The correction (predicted minus current time, samples) of each flagged trace, NaN elsewhere.
+    """
+    ok = np.isfinite(times[pairs.a]) & np.isfinite(times[pairs.b])
+    sub = PairShifts(pairs.a[ok], pairs.b[ok], pairs.distance[ok], pairs.shift[ok], pairs.score[ok])
+    predicted = solve_horizon(times.size, sub, seeds, seed_times, min_correlation=min_correlation, previous=times,
+                              robust=None)
+    diff = predicted - times
+    return np.where(np.abs(diff) > 0.5 * period, diff, np.nan)
+
+
+def pair_agreement(pairs: PairShifts, times: np.ndarray, *, min_correlation: float, within: float) -> np.ndarray:
+    """Fraction of each trace's confident pairs that agree with the horizon ``times`` within ``within`` samples
+    (``|t[b] - t[a] - s_ab|``); 1 where a trace has no confident pair.
+
+    Parameters
+    ----------
+    pairs : PairShifts
+        Shifts measured at ``times``.
+    times : (n,) float64 ndarray
+    min_correlation : float
+        Weakest pair counted.
+    within : float
+        Samples.
+
+    Returns
+    -------
+    (n,) float64 ndarray in [0, 1]
+    """
+    ok = np.isfinite(pairs.shift) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
+    a, b = pairs.a[ok], pairs.b[ok]
+    agree = (np.abs(times[b] - times[a] - pairs.shift[ok]) <= within).astype(np.float64)
+    n = times.size
+    total = np.bincount(a, minlength=n) + np.bincount(b, minlength=n)
+    good = np.bincount(a, agree, minlength=n) + np.bincount(b, agree, minlength=n)
+    return np.where(total > 0, good / np.maximum(total, 1), 1.0)
+
+
+def snap_all(picks: np.ndarray, offsets: np.ndarray, times: np.ndarray, window: float) -> np.ndarray:
+    """Each trace's time snapped to its nearest pick within ``window`` samples (NaN where none)."""
+    return np.array([nearest_pick(picks, offsets, j, t, window) for j, t in enumerate(times)])
+
+
+def faults_between(faults: FaultCrossings, lateral_shape: tuple, times: np.ndarray) -> tuple:
+    """Jumps (samples) of traced faults between neighbouring traces along each lateral axis, at the horizon ``times``
+    (lateral shape): a list of arrays, one per axis, shaped like ``times`` less one along the axis (0 where no fault;
+    NaN where a crossed fault's throw is unknown)."""
+    out = []
+    ndim = len(lateral_shape)
+    for axis in range(ndim):
+        n_steps = list(lateral_shape)
+        n_steps[axis] -= 1
+        jump = np.zeros(n_steps)
+        if faults.tree is not None:
+            for idx in np.ndindex(*n_steps):
+                nxt = list(idx)
+                nxt[axis] += 1
+                ta, tb = times[idx], times[tuple(nxt)]
+                if not (np.isfinite(ta) and np.isfinite(tb)):
+                    continue
+                jump[idx] = faults.jump(np.array([*idx, ta], np.float64), np.array([*nxt, tb], np.float64))
+        out.append(jump)
+    return out
+
+
+def pair_jumps(steps: list, lateral_shape: tuple, a: np.ndarray, b: np.ndarray, axis: np.ndarray) -> np.ndarray:
+    """The sum of the neighbour-step jumps (:func:`faults_between`) along each pair's path."""
+    out = np.zeros(a.size)
+    for ax, jump in enumerate(steps):
+        sel = axis == ax
+        if not sel.any() or not np.any(jump != 0.0):
+            continue
+        cum = np.concatenate([np.zeros_like(np.take(jump, [0], axis=ax)), np.cumsum(np.nan_to_num(jump), axis=ax)],
+                             axis=ax)
+        flat = cum.ravel()
+        out[sel] = flat[b[sel]] - flat[a[sel]]
+    return out
+
+
+def picks_of(data: np.ndarray, polarity: str) -> tuple[np.ndarray, np.ndarray]:
+    """Reflector picks of every trace of ``data`` (lateral axes flattened)."""
+    return reflector_picks(data.reshape(-1, data.shape[-1]), polarity=polarity)
+
+
+def neighbour_confidence(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndarray, half: int) -> np.ndarray:
+    """Median normalised cross-correlation (``+-half`` samples) of each trace's waveform at ``times`` with its
+    neighbours' (the pairs ``a, b``) at theirs; NaN where no neighbour is picked."""
+    ok = np.isfinite(times[a]) & np.isfinite(times[b])
+    a, b = a[ok], b[ok]
+    _, score = _pair_lags(traces, a, times[a], b, times[b], int(half), 0, 0.8)
+    node = np.concatenate([a, b])
+    val = np.concatenate([score, score])
+    out = np.full(times.size, np.nan)
+    order = np.argsort(node, kind="stable")
+    node, val = node[order], val[order]
+    if node.size == 0:
+        return out
+    starts = np.r_[0, np.nonzero(np.diff(node))[0] + 1]
+    ends = np.r_[starts[1:], node.size]
+    for lo, hi in zip(starts, ends):
+        out[node[lo]] = np.nanmedian(val[lo:hi]) if np.isfinite(val[lo:hi]).any() else np.nan
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class LsqHorizon:
+    """What :func:`lsq_horizon` found: snapped ``times`` and ``confidence`` (lateral shape, NaN where empty), the
+    unsnapped least-squares solution ``solution``, and ``repaired``, the traces the cycle-skip check moved."""
+
+    times: np.ndarray
+    confidence: np.ndarray
+    solution: np.ndarray
+    repaired: int
+
+
+def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: FaultCrossings, options,
+                progress: bool = False) -> LsqHorizon:
+    """Least-squares horizon of ``data`` through ``seeds``, picks chosen by dynamic programming (module docstring).
+
+    Parameters
+    ----------
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
+        Finite amplitudes, zero-mean.
+    seeds : (n_seeds, ndim) float64 ndarray
+        Seed picks in index space (checked by :func:`~seismo3d.seismic.horizons.as_seeds`).
+    polarity : {'peak', 'trough', 'zero_rising', 'zero_falling'}
+    faults : FaultCrossings
+        Traced faults (possibly empty).
+    options : TrackingOptions
+        The 'global' fields, ``seed_snap``, ``snap``, ``ncc_half``, ``min_confidence`` and ``sigma_tensor``.
+    progress : bool
+        Report progress over the solves (:mod:`seismo3d._progress`).
+
+    Returns
+    -------
+    LsqHorizon
+
+    Raises
+    ------
+    InputError
+        A seed with no extremum of ``polarity`` within ``seed_snap`` samples.
+    """
+    from .._progress import progress_steps
+    from ..errors import InputError
+
+    opt = options
+    lat = data.shape[:-1]
+    n = int(np.prod(lat))
+    traces = np.ascontiguousarray(data.reshape(n, data.shape[-1]), dtype=np.float32)
+    picks, offsets = picks_of(data, polarity)
+    # seeds: flat index and snapped time
+    seed_idx = np.array([np.ravel_multi_index(tuple(int(round(v)) for v in s[:-1]), lat) for s in seeds], np.intp)
+    seed_t = np.array([nearest_pick(picks, offsets, k, s[-1], opt.seed_snap) for k, s in zip(seed_idx, seeds)])
+    for s, t0 in zip(seeds, seed_t):
+        if not np.isfinite(t0):
+            raise InputError(f"seed {tuple(float(x) for x in s)} has no reflector pick of the requested polarity "
+                             f"within {opt.seed_snap} samples; move it onto the event or choose another polarity")
+    a, b, dist, axis = trace_pairs(lat, opt.pair_distances)
+    # start flat at the seeds' time; the first solves use the short pairs only (coarse to fine)
+    t = np.full(n, float(np.mean(seed_t)))
+    limits = [2, 8] + [max(opt.pair_distances)] * opt.iterations
+    with progress_steps(opt.iterations, "horizon", unit="solve", enabled=progress) as bar:
+        for it in range(opt.iterations):
+            use = dist <= limits[it]
+            sol = _solve_step(traces, t, a[use], b[use], dist[use], axis[use], lat, seed_idx, seed_t, faults, opt,
+                              opt.max_lag)
+            change = np.nanmax(np.abs(sol - t)) if np.isfinite(sol).any() else 0.0
+            t = np.where(np.isfinite(sol), sol, t) if it < 2 else sol
+            bar.advance()
+            if it >= 2 and change < 0.05:
+                break
+    solution = t.copy()
+    have = t[np.isfinite(t)]
+    margin = int(opt.dp_reach + 4 * max(opt.sigma_tensor) + 8)
+    rows = (int(max(np.min(have) - margin, 0)), int(min(np.max(have) + margin + 1, data.shape[-1])))
+    if rows[1] - rows[0] < 8:
+        rows = (0, data.shape[-1])
+    slopes = line_slopes(data, opt.sigma_tensor, rows)
+    fixed = np.full(n, np.nan)
+    fixed[seed_idx] = seed_t
+
+    def choose(guide):
+        # the guide counts where the pairs agree with it (a trace whose pairs the robust solve outvoted, e.g. in a
+        # narrow sag the long pairs span, is left to the slopes and waveforms of its line)
+        jumps = _pair_fault_jumps(faults, lat, guide, a, b, axis)
+        ps = pair_shifts(traces, guide, a, b, dist, half=opt.correlation_half, max_lag=opt.max_lag, jumps=jumps)
+        weight = opt.dp_guide * pair_agreement(ps, guide, min_correlation=opt.min_pair_correlation,
+                                               within=opt.robust)
+        picked = dp_picks(traces, picks, offsets, guide, lat, fixed, slopes, reach=opt.dp_reach, w_guide=weight,
+                          w_step=opt.dp_step, w_wave=opt.dp_wave, half=opt.ncc_half)
+        return settle_lone_departures(picked, guide, lat, picks, offsets) if len(lat) == 2 else picked
+
+    snapped = choose(t)
+    # the self-check: every pair re-measured at the picks with lags of 1.5 reflector periods and solved plainly; a
+    # repair (the flagged traces moved by the correction, re-solved, picks chosen again) is kept when fewer traces
+    # are flagged
+    repaired = 0
+    if opt.repair:
+        check = _SkipCheck(traces, picks, offsets, lat, a, b, dist, axis, faults, opt, seed_idx, seed_t)
+        corr = check(snapped)
+        bad = np.isfinite(corr)
+        if bad.any():
+            guide = np.where(bad, snapped + np.nan_to_num(corr), np.where(np.isfinite(snapped), snapped, t))
+            for _ in range(2):
+                guide = _solve_step(traces, guide, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt, opt.max_lag)
+            again = choose(guide)
+            left = int(np.isfinite(check(again)).sum())
+            if left < int(bad.sum()):
+                repaired = int(bad.sum()) - left
+                snapped, solution = again, guide
+    near = dist == 1
+    conf = neighbour_confidence(traces, snapped, a[near], b[near], opt.ncc_half)
+    conf[seed_idx] = 1.0
+    keep = np.isfinite(snapped) & (np.nan_to_num(conf, nan=-2.0) >= opt.min_confidence)
+    keep[seed_idx] = np.isfinite(snapped[seed_idx])
+    times = np.where(keep, snapped, np.nan)
+    return LsqHorizon(times.reshape(lat), conf.reshape(lat), solution.reshape(lat), repaired)
+
+
+class _SkipCheck:
+    """:func:`cycle_skips` of a horizon (flat (n,) times): every pair re-measured at it with lags of 1.5 reflector
+    periods."""
+
+    def __init__(self, traces, picks, offsets, lat, a, b, dist, axis, faults, opt, seeds, seed_times):
+        self.traces, self.picks, self.offsets, self.lat = traces, picks, offsets, lat
+        self.seeds, self.seed_times = seeds, seed_times
+        self.a, self.b, self.dist, self.axis, self.faults, self.opt = a, b, dist, axis, faults, opt
+
+    def __call__(self, times):
+        have = np.nonzero(np.isfinite(times))[0]
+        period = reflector_period(self.picks, self.offsets, have[::7], times[have[::7]])
+        if not np.isfinite(period):
+            return np.full(times.size, np.nan)
+        jumps = _pair_fault_jumps(self.faults, self.lat, times, self.a, self.b, self.axis)
+        ps = pair_shifts(self.traces, times, self.a, self.b, self.dist, half=self.opt.correlation_half,
+                         max_lag=int(np.ceil(1.5 * period)), jumps=jumps)
+        return cycle_skips(ps, times, period, self.seeds, self.seed_times,
+                           min_correlation=self.opt.min_pair_correlation)
+
+
+def _pair_fault_jumps(faults: FaultCrossings, lat, t, a, b, axis):
+    if faults.tree is None:
+        return None
+    steps = faults_between(faults, lat, t.reshape(lat))
+    return pair_jumps(steps, lat, a, b, axis)
+
+
+def _solve_step(traces, t, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt, max_lag):
+    jumps = _pair_fault_jumps(faults, lat, t, a, b, axis)
+    ps = pair_shifts(traces, t, a, b, dist, half=opt.correlation_half, max_lag=max_lag, jumps=jumps)
+    return solve_horizon(t.size, ps, seed_idx, seed_t, min_correlation=opt.min_pair_correlation, previous=t,
+                         robust=opt.robust, robust_iterations=opt.robust_iterations)

@@ -1,0 +1,124 @@
+"""Least-squares horizons (seismo3d.seismic.horizon_lsq): pairs, correlation shifts, the robust solve, the cycle-skip
+self-check; generated data with known truth."""
+
+import numpy as np
+import pytest
+
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.seismic.horizon_dp import reflector_period
+from seismo3d.seismic.horizon_lsq import PairShifts, cycle_skips, pair_shifts, solve_horizon, trace_pairs
+from seismo3d.seismic.reflectors import nearest_pick, reflector_picks
+
+
+def test_trace_pairs_cover_every_line_at_every_distance():
+    a, b, d, axis = trace_pairs((3, 10), (1, 4, 16))
+    # along axis 1: 3 lines x (9 + 6) pairs; along axis 0: 10 lines x 2 pairs at distance 1 (4 and 16 do not fit)
+    assert a.size == 3 * (9 + 6) + 10 * 2
+    assert set(d.tolist()) == {1, 4}
+    sel = (axis == 1) & (d == 4)
+    np.testing.assert_array_equal(b[sel] - a[sel], 4)
+    sel = axis == 0
+    np.testing.assert_array_equal(b[sel] - a[sel], 10)
+
+
+def test_pair_shifts_measure_a_known_delay():
+    rng = np.random.default_rng(0)
+    base = np.convolve(rng.standard_normal(200), np.hanning(7), mode="same")
+    x = np.arange(200, dtype=np.float64)
+    traces = np.stack([np.interp(x - s, x, base) for s in (0.0, 3.4, -6.0)]).astype(np.float32)
+    a = np.array([0, 0, 1])
+    b = np.array([1, 2, 2])
+    ps = pair_shifts(traces, np.full(3, 100.0), a, b, np.ones(3, np.intp), half=16, max_lag=10)
+    np.testing.assert_allclose(ps.shift, [3.4, -6.0, -9.4], atol=0.2)
+    assert np.all(ps.score > 0.95)
+
+
+def test_robust_solve_outvotes_cycle_skipped_pairs():
+    # a smooth horizon over 200 traces; pairs 1..32 traces apart with exact shifts, 10 % of them off by a
+    # reflector period (12 samples): the robust least squares puts every trace back within a third of a sample
+    rng = np.random.default_rng(1)
+    n = 200
+    truth = 50.0 + np.cumsum(rng.normal(0.0, 0.5, n))
+    a, b, d, _ = trace_pairs((n,), (1, 2, 4, 8, 16, 32))
+    shift = truth[b] - truth[a]
+    bad = rng.random(a.size) < 0.1
+    shift[bad] += rng.choice([-12.0, 12.0], bad.sum())
+    ps = PairShifts(a, b, d, shift, np.full(a.size, 0.9))
+    seeds = np.array([100])
+    t = solve_horizon(n, ps, seeds, truth[seeds], min_correlation=0.5, previous=np.full(n, truth[100]))
+    assert np.max(np.abs(t - truth)) < 0.3
+    # plain least squares (no robust weights) carries the bad pairs into the horizon
+    plain = solve_horizon(n, ps, seeds, truth[seeds], min_correlation=0.5, robust=None)
+    assert np.max(np.abs(plain - truth)) > 1.0
+
+
+def test_solve_leaves_traces_no_pair_reaches_empty():
+    a, b, d, _ = trace_pairs((10,), (1,))
+    score = np.full(a.size, 0.9)
+    score[4] = 0.1  # the pair between traces 4 and 5 does not correlate: 5..9 are cut off from the seed
+    ps = PairShifts(a, b, d, np.ones(a.size), score)
+    t = solve_horizon(10, ps, np.array([0]), np.array([20.0]), min_correlation=0.5)
+    np.testing.assert_allclose(t[:5], 20.0 + np.arange(5), atol=1e-3)
+    assert np.isnan(t[5:]).all()
+
+
+def _section_and_truth(k=2, seed=3):
+    syn = synthetic_cube((160, 128), n_faults=0, seed=seed, noise=0.05)
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    picks, offsets = reflector_picks(syn.cube, polarity=pol)
+    truth = np.array([nearest_pick(picks, offsets, j, syn.horizons[k][j], 1.0) for j in range(160)])
+    assert np.isfinite(truth).all()
+    return syn, pol, picks, offsets, truth
+
+
+def _next_cycle(picks, offsets, k, t):
+    """The pick after ``t`` on trace ``k`` (one reflector cycle down)."""
+    p = picks[offsets[k]:offsets[k + 1]]
+    return float(p[np.searchsorted(p, t + 1e-6)])
+
+
+def _random_layers(n_traces=160, n_samples=160, dip=0.05, seed=5):
+    """A section of one random reflectivity series (so that no two cycles look alike) dipping gently, convolved with
+    a Ricker wavelet; and its peak picks."""
+    rng = np.random.default_rng(seed)
+    refl = rng.standard_normal(n_samples + 40) * (rng.random(n_samples + 40) < 0.3)
+    tt = np.arange(-10, 11)
+    wavelet = (1 - 2 * (np.pi * 0.08 * tt) ** 2) * np.exp(-(np.pi * 0.08 * tt) ** 2)
+    base = np.convolve(refl, wavelet, mode="same")
+    x = np.arange(base.size, dtype=np.float64)
+    section = np.stack([np.interp(np.arange(n_samples) + 20 - dip * j, x, base) for j in range(n_traces)])
+    picks, offsets = reflector_picks(section.astype(np.float32), polarity="peak")
+    return section.astype(np.float32), picks, offsets
+
+
+def test_cycle_skip_check_flags_a_one_period_offset():
+    section, picks, offsets = _random_layers()
+    t0 = nearest_pick(picks, offsets, 0, 80.0, 8.0)
+    truth = np.array([nearest_pick(picks, offsets, j, t0 + 0.05 * j, 1.0) for j in range(160)])
+    assert np.isfinite(truth).all()
+    period = reflector_period(picks, offsets, np.arange(160), truth)
+    skipped = truth.copy()
+    for j in range(100, 140):  # a run of traces one cycle down, as a tracker that jumped at trace 100 leaves it
+        skipped[j] = _next_cycle(picks, offsets, j, truth[j])
+    a, b, d, _ = trace_pairs((160,), (1, 2, 4, 8, 16, 32))
+    lag = int(np.ceil(1.5 * max(period, np.max(skipped - truth))))
+    seeds = np.array([60])
+    ps = pair_shifts(section, skipped, a, b, d, half=16, max_lag=lag)
+    corr = cycle_skips(ps, skipped, period, seeds, truth[seeds])
+    flagged = np.isfinite(corr)
+    assert flagged[100:140].all()
+    assert not flagged[np.r_[0:100, 140:160]].any()
+    np.testing.assert_allclose(corr[100:140], (truth - skipped)[100:140], atol=1.0)
+    # the true horizon raises no flag
+    ps = pair_shifts(section, truth, a, b, d, half=16, max_lag=lag)
+    assert not np.isfinite(cycle_skips(ps, truth, period, seeds, truth[seeds])).any()
+
+
+@pytest.mark.parametrize("bad", [dict(method="lsq"), dict(pair_distances=(0, 2)), dict(max_lag=0),
+                                 dict(robust=-1.0), dict(min_pair_correlation=2.0)])
+def test_global_options_are_checked(bad):
+    from seismo3d.errors import InputError
+    from seismo3d.seismic import TrackingOptions
+
+    with pytest.raises(InputError):
+        TrackingOptions(**bad)

@@ -546,7 +546,8 @@ class FaultColour(str, Enum):
 
 @app.command()
 @_friendly({"vertical_exaggeration": "--vertical-exaggeration", "seismic": "--seismic", "color_by": "--color-by",
-            "window_size": "--size", "plan": "--path"})
+            "window_size": "--size", "plan": "--path", "endian": "--endian", "iline": "--iline",
+            "xline": "--xline"})
 def render(
     input: pathlib.Path = typer.Argument(
         ..., metavar="INPUT", help="A SEG-Y cube, the output folder of 'seismo3d faults' or 'seismo3d map', a "
@@ -560,6 +561,9 @@ def render(
     size: str = typer.Option("1200x900", help="Picture size WIDTHxHEIGHT in pixels."),
     lineaments: bool = typer.Option(False, "--lineaments", help="DEM: extract its lineaments and draw them."),
     plan: Optional[pathlib.Path] = typer.Option(None, "--path", help="DEM: the CSV of 'seismo3d plan' to draw."),
+    iline: int = typer.Option(189, help=_ILINE_HELP),
+    xline: int = typer.Option(193, help=_XLINE_HELP),
+    endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
 ) -> None:
     """Render INPUT off screen (no display needed) into a PNG: a cube's inline, crossline and time slices, faults
     coloured by id or throw with the fault likelihood as a semi-transparent volume, a horizon coloured by time, an
@@ -574,7 +578,7 @@ def render(
     with _one_line_warnings():
         job = run_render_job(input, output, seismic=seismic, color_by=color_by.value,
                              vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
-                             window_size=(width, height))
+                             window_size=(width, height), iline=iline, xline=xline, endian=_value(endian))
     what = {"segy": "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon",
             "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM", "map": "map"}[job.kind]
     typer.echo(f"{what} of {input.name}: {job.caption} -> {job.picture}")

@@ -71,10 +71,10 @@ def _kind(path: Path) -> str:
                      "or a DEM (.tif)")
 
 
-def _read_segy(path: Path, vertical_exaggeration):
+def _read_segy(path: Path, vertical_exaggeration, segy_options=None):
     from ..viz.seismic import geometry_of_segy
 
-    with open_segy(path) as segy:
+    with open_segy(path, **(segy_options or {})) as segy:
         if segy.inlines is None:
             raise InputError(f"{path.name} has no inline / crossline geometry; render needs a sorted cube")
         return segy.read(), geometry_of_segy(segy, vertical_exaggeration=vertical_exaggeration)
@@ -176,7 +176,8 @@ def _render_map(path: Path, output: Path, *, window_size) -> RenderJob:
 
 
 def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", vertical_exaggeration=None,
-                   lineaments=False, plan=None, window_size=(1200, 900)) -> RenderJob:
+                   lineaments=False, plan=None, window_size=(1200, 900), iline: int = 189, xline: int = 193,
+                   endian=None) -> RenderJob:
     """Render INPUT off screen into a PNG: the ``seismo3d render`` command.
 
     Inputs
@@ -211,6 +212,10 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
         DEM: the CSV of ``seismo3d plan`` (columns row, col, ...) to draw as a path.
     window_size : (int, int), optional
         Pixels.
+    iline, xline : int, optional
+        Trace header bytes of the inline and crossline numbers of the SEG-Y files read.
+    endian : {'big', 'little'}, optional
+        Byte order of the SEG-Y files read; by default detected from each binary header.
 
     Returns
     -------
@@ -227,6 +232,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
         As :func:`seismo3d.seismic.open_segy`.
     """
     import pyvista as pv
+
+    segy_options = {"iline": iline, "xline": xline, "endian": endian}
 
     from ..viz.seismic import cube_geometry, show_seismic
 
@@ -245,14 +252,14 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     cube, geometry, extra = None, None, {}
     n_faults = 0
     if kind == "segy":
-        cube, geometry = _read_segy(path, vertical_exaggeration)
+        cube, geometry = _read_segy(path, vertical_exaggeration, segy_options)
     elif kind == "faults":
         under = Path(seismic) if seismic is not None else path / "demo_seismic.sgy"
         if under.is_file():
-            cube, geometry = _read_segy(under, vertical_exaggeration)
+            cube, geometry = _read_segy(under, vertical_exaggeration, segy_options)
         likelihood_file = path / "fault_likelihood.sgy"
         if likelihood_file.is_file():
-            likelihood, like_geometry = _read_segy(likelihood_file, vertical_exaggeration)
+            likelihood, like_geometry = _read_segy(likelihood_file, vertical_exaggeration, segy_options)
             geometry = geometry or like_geometry
         elif (path / "fault_likelihood.npy").is_file():
             likelihood = np.load(path / "fault_likelihood.npy")
@@ -269,7 +276,7 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
         extra = dict(faults=surfaces, likelihood=likelihood, color_faults_by=color_by)
     else:
         if seismic is not None:
-            cube, geometry = _read_segy(Path(seismic), vertical_exaggeration)
+            cube, geometry = _read_segy(Path(seismic), vertical_exaggeration, segy_options)
         times, geometry = _horizon_grid(path, geometry)
         if seismic is None and vertical_exaggeration is not None:
             geometry = cube_geometry(geometry.shape, inlines=geometry.inlines, xlines=geometry.xlines,

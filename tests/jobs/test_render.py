@@ -126,3 +126,19 @@ def test_bad_inputs_are_one_line_errors(tmp_path, name, args, match):
     res = runner.invoke(app, ["render", *args])
     assert res.exit_code == 2, res.output
     assert match in res.stderr and len(res.stderr.strip().splitlines()) == 1
+
+
+def test_segy_flags_reach_the_one_opening_path(tmp_path):
+    # render opens SEG-Y like faults / horizon / register: byte order detected (big here), --endian to force it, the
+    # header bytes by --iline / --xline; a wrong forced byte order is one clear line naming the flag
+    _write_segy(tmp_path / "cube.sgy", _cube())
+    out = tmp_path / "cube.png"
+    res = runner.invoke(app, ["render", str(tmp_path / "cube.sgy"), "-o", str(out), "--size", "400x300",
+                              "--endian", "big", "--iline", "189", "--xline", "193"])
+    assert res.exit_code == 0, res.output
+    assert _not_blank(out)[0]
+    res = runner.invoke(app, ["render", str(tmp_path / "cube.sgy"), "-o", str(tmp_path / "x.png"), "--endian",
+                              "little"])
+    errors = [line for line in res.output.splitlines() if line.startswith("error: ")]
+    assert res.exit_code == 2 and len(errors) == 1 and "--endian" in errors[0], res.output
+    assert not (tmp_path / "x.png").exists()

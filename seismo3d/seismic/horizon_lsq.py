@@ -227,7 +227,7 @@ def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndar
 
 def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.ndarray, *, min_correlation: float,
                   previous: np.ndarray | None = None, seed_weight: float = 100.0, damping: float = 1e-3,
-                  robust: float | None = 2.0, robust_iterations: int = 5):
+                  robust: float | None = 2.0, robust_iterations: int = 5, distance_power: float = 0.0):
     """Least-squares horizon from pair shifts and seed times (Wu & Fomel 2018, eq. 4 with correlations only).
 
     Minimises ``sum w_ab (t[b] - t[a] - s_ab)^2 + seed_weight^2 sum (t[s] - t_s)^2 + damping^2 sum (t - previous)^2``
@@ -259,7 +259,7 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
 
     ok = np.isfinite(pairs.shift) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
     a, b, s = pairs.a[ok], pairs.b[ok], pairs.shift[ok]
-    w0 = pairs.score[ok] ** 2
+    w0 = pairs.score[ok] ** 2 / pairs.distance[ok].astype(np.float64) ** distance_power
     prev = np.full(n, float(np.mean(seed_times))) if previous is None else np.where(np.isfinite(previous), previous,
                                                                                         float(np.mean(seed_times)))
     t = prev
@@ -576,4 +576,5 @@ def _solve_step(traces, t, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt,
     jumps = _pair_fault_jumps(faults, lat, t, a, b, axis)
     ps = pair_shifts(traces, t, a, b, dist, half=opt.correlation_half, max_lag=max_lag, jumps=jumps)
     return solve_horizon(t.size, ps, seed_idx, seed_t, min_correlation=opt.min_pair_correlation, previous=t,
-                         robust=opt.robust, robust_iterations=opt.robust_iterations)
+                         robust=opt.robust, robust_iterations=opt.robust_iterations,
+                         distance_power=opt.distance_power)

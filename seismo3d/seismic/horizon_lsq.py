@@ -208,17 +208,19 @@ def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndar
     shift = tb + lag - ta
     if jumps is not None:
         # pairs across traced faults: long windows straddle the fault where it dips, and its throw varies with
-        # depth, so they are re-measured with short windows, around the estimate and around the estimate plus the
-        # fault's jump; the better-correlating one is kept (a spurious fault's jump does not correlate)
+        # depth, so the fault's jump is checked with short windows: around the estimate plus the jump (lags of a
+        # quarter) against around the estimate (full lags); only where the jump correlates better is the pair's
+        # shift the jump's, else it keeps its long-window shift (a spurious fault's jump does not correlate)
         alt = np.nonzero(np.isfinite(jumps) & (jumps != 0.0))[0]
         if alt.size:
             short = max(4, int(half) // 4)
-            lag1, score1 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt], short, int(max_lag), 0.8)
+            _, score1 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt], short, int(max_lag), 0.8)
             lag2, score2 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt] + jumps[alt], short,
                                       int(max(3, max_lag // 4)), 0.8)
             better = np.nan_to_num(score2, nan=-2.0) > np.nan_to_num(score1, nan=-2.0)
-            shift[alt] = np.where(better, tb[alt] + jumps[alt] + lag2, tb[alt] + lag1) - ta[alt]
-            score[alt] = np.where(better, score2, score1)
+            take = alt[better]
+            shift[take] = (tb[alt] + jumps[alt] + lag2 - ta[alt])[better]
+            score[take] = score2[better]
     return PairShifts(a, b, distance, shift, score)
 
 

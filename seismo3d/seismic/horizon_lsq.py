@@ -365,11 +365,6 @@ def pair_agreement(pairs: PairShifts, times: np.ndarray, *, min_correlation: flo
     return np.where(total > 0, good / np.maximum(total, 1), 1.0)
 
 
-def snap_all(picks: np.ndarray, offsets: np.ndarray, times: np.ndarray, window: float) -> np.ndarray:
-    """Each trace's time snapped to its nearest pick within ``window`` samples (NaN where none)."""
-    return np.array([nearest_pick(picks, offsets, j, t, window) for j, t in enumerate(times)])
-
-
 def faults_between(faults: FaultCrossings, lateral_shape: tuple, times: np.ndarray) -> tuple:
     """Jumps (samples) of traced faults between neighbouring traces along each lateral axis, at the horizon ``times``
     (lateral shape): a list of arrays, one per axis, shaped like ``times`` less one along the axis (0 where no fault;

@@ -2,25 +2,30 @@
 
 A horizon ``t`` (one fractional sample per trace) is found as the least-squares solution of many difference
 equations ``t[b] - t[a] = s_ab``, one per *pair* of traces ``a, b`` on the same inline or crossline at distances
-``1, 2, 4, ... `` traces apart, plus the seeds (Wu & Fomel 2018: least-squares horizons with local slopes and
-multigrid correlations). Each shift ``s_ab`` is found by normalised cross-correlation of a long window of trace ``a``
-(``+-correlation_half`` samples around ``t[a]``: several reflector cycles, so the sequence of reflectors and not one
-cycle decides) with trace ``b`` searched ``+-max_lag`` samples around the current estimate; the pair's weight is its
-correlation squared (pairs below ``min_pair_correlation`` are left out). Because the equations hold differences only
-and the long pairs tie distant traces directly, one bad local step (a cycle skip at a pockmark's sag, a wrong slope
-by a fault) is outvoted by the pairs that span it and cannot propagate; the estimate is re-solved a few times with the
-shifts re-measured around it (Gauss-Newton, as Wu & Fomel).
+``1, 2, 4, ..., 32`` traces apart, plus the seeds (Wu & Fomel 2018: least-squares horizons with local slopes and
+multigrid correlations; here the neighbours' slopes are correlations too). Each shift ``s_ab`` is found by normalised
+cross-correlation of a long window of trace ``a`` (``+-correlation_half`` samples around ``t[a]``: several reflector
+cycles, so the sequence of reflectors and not one cycle decides) with trace ``b`` searched ``+-max_lag`` samples
+around the current estimate. A pair weighs its correlation squared over its distance to ``distance_power`` (pairs
+below ``min_pair_correlation`` are left out), and the solve is iteratively re-weighted with Cauchy weights (scale
+``robust`` samples) so that pairs the solution disagrees with lose their say. Because the equations hold differences
+only and the long pairs tie distant traces directly, one bad local step (a cycle skip at a pockmark's sag, a wrong
+shift across a fault) is outvoted by the pairs that span it and cannot propagate. The estimate starts flat at the
+seeds' time and is re-solved a few times with the shifts re-measured around it (short pairs first), as Wu & Fomel's
+Gauss-Newton iterations; each solve is a sparse conjugate-gradient solve of the normal equations.
 
-Faults (:class:`~seismo3d.seismic.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is also
-searched around the estimate plus their jump, and the better-correlating centre is kept: a fault's jump is taken only
-where the registration across it supports it, so a spurious fault surface changes nothing.
+Faults (:class:`~seismo3d.seismic.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is checked
+with short windows around the estimate plus the faults' jump against around the estimate; it takes the jump only
+where that correlates better, so a fault's jump is taken only where the registration across it supports it, and a
+spurious fault surface leaves the pair's long-window shift alone.
 
-After the solve, each trace snaps to the nearest extremum of the polarity (within ``snap`` samples); its confidence is
-the median correlation of its waveform with its neighbours' (``+-ncc_half`` samples); picks below ``min_confidence``
-and traces not connected to a seed by confident pairs stay empty (NaN). A last self-check (:func:`cycle_skips`)
-re-measures the pairs at the picked horizon with lags of more than a reflector period and flags the traces where the
-correlation-predicted horizon (their plain least-squares solution) lies about a period away; the tracker repairs them
-(moves them to the predicted cycle, re-solves, picks again) and keeps the repair when it leaves fewer traces flagged.
+The picks of each line are then chosen together by dynamic programming over candidate extrema of the polarity near
+the solution (:mod:`~seismo3d.seismic.horizon_dp`). A pick's confidence is the median correlation of its waveform
+with its neighbours' (``+-ncc_half`` samples); picks below ``min_confidence`` and traces not connected to a seed by
+confident pairs stay empty (NaN). A last self-check (:func:`cycle_skips`) re-measures the pairs at the picked horizon
+with lags of more than a reflector period and flags the traces where the correlation-predicted horizon (their plain
+least-squares solution) lies about a period away; the tracker repairs them (moves them to the predicted cycle,
+re-solves, picks again) and keeps the repair when it leaves fewer traces flagged.
 
 Conventions: index space (axis 0 inline, axis 1 crossline, last axis sample; a 2D section ``(n_traces, n_samples)``);
 times in fractional samples.

@@ -2,25 +2,30 @@
 
 A horizon ``t`` (one fractional sample per trace) is found as the least-squares solution of many difference
 equations ``t[b] - t[a] = s_ab``, one per *pair* of traces ``a, b`` on the same inline or crossline at distances
-``1, 2, 4, ... `` traces apart, plus the seeds (Wu & Fomel 2018: least-squares horizons with local slopes and
-multigrid correlations). Each shift ``s_ab`` is found by normalised cross-correlation of a long window of trace ``a``
-(``+-correlation_half`` samples around ``t[a]``: several reflector cycles, so the sequence of reflectors and not one
-cycle decides) with trace ``b`` searched ``+-max_lag`` samples around the current estimate; the pair's weight is its
-correlation squared (pairs below ``min_pair_correlation`` are left out). Because the equations hold differences only
-and the long pairs tie distant traces directly, one bad local step (a cycle skip at a pockmark's sag, a wrong slope
-by a fault) is outvoted by the pairs that span it and cannot propagate; the estimate is re-solved a few times with the
-shifts re-measured around it (Gauss-Newton, as Wu & Fomel).
+``1, 2, 4, ..., 32`` traces apart, plus the seeds (Wu & Fomel 2018: least-squares horizons with local slopes and
+multigrid correlations; here the neighbours' slopes are correlations too). Each shift ``s_ab`` is found by normalised
+cross-correlation of a long window of trace ``a`` (``+-correlation_half`` samples around ``t[a]``: several reflector
+cycles, so the sequence of reflectors and not one cycle decides) with trace ``b`` searched ``+-max_lag`` samples
+around the current estimate. A pair weighs its correlation squared over its distance to ``distance_power`` (pairs
+below ``min_pair_correlation`` are left out), and the solve is iteratively re-weighted with Cauchy weights (scale
+``robust`` samples) so that pairs the solution disagrees with lose their say. Because the equations hold differences
+only and the long pairs tie distant traces directly, one bad local step (a cycle skip at a pockmark's sag, a wrong
+shift across a fault) is outvoted by the pairs that span it and cannot propagate. The estimate starts flat at the
+seeds' time and is re-solved a few times with the shifts re-measured around it (short pairs first), as Wu & Fomel's
+Gauss-Newton iterations; each solve is a sparse conjugate-gradient solve of the normal equations.
 
-Faults (:class:`~seismo3d.seismic.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is also
-searched around the estimate plus their jump, and the better-correlating centre is kept: a fault's jump is taken only
-where the registration across it supports it, so a spurious fault surface changes nothing.
+Faults (:class:`~seismo3d.seismic.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is checked
+with short windows around the estimate plus the faults' jump against around the estimate; it takes the jump only
+where that correlates better, so a fault's jump is taken only where the registration across it supports it, and a
+spurious fault surface leaves the pair's long-window shift alone.
 
-After the solve, each trace snaps to the nearest extremum of the polarity (within ``snap`` samples); its confidence is
-the median correlation of its waveform with its neighbours' (``+-ncc_half`` samples); picks below ``min_confidence``
-and traces not connected to a seed by confident pairs stay empty (NaN). A last self-check (:func:`cycle_skips`)
-re-measures the pairs at the picked horizon with lags of more than a reflector period and flags the traces where the
-correlation-predicted horizon (their plain least-squares solution) lies about a period away; the tracker repairs them
-(moves them to the predicted cycle, re-solves, picks again) and keeps the repair when it leaves fewer traces flagged.
+The picks of each line are then chosen together by dynamic programming over candidate extrema of the polarity near
+the solution (:mod:`~seismo3d.seismic.horizon_dp`). A pick's confidence is the median correlation of its waveform
+with its neighbours' (``+-ncc_half`` samples); picks below ``min_confidence`` and traces not connected to a seed by
+confident pairs stay empty (NaN). A last self-check (:func:`cycle_skips`) re-measures the pairs at the picked horizon
+with lags of more than a reflector period and flags the traces where the correlation-predicted horizon (their plain
+least-squares solution) lies about a period away; the tracker repairs them (moves them to the predicted cycle,
+re-solves, picks again) and keeps the repair when it leaves fewer traces flagged.
 
 Conventions: index space (axis 0 inline, axis 1 crossline, last axis sample; a 2D section ``(n_traces, n_samples)``);
 times in fractional samples.
@@ -208,17 +213,19 @@ def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndar
     shift = tb + lag - ta
     if jumps is not None:
         # pairs across traced faults: long windows straddle the fault where it dips, and its throw varies with
-        # depth, so they are re-measured with short windows, around the estimate and around the estimate plus the
-        # fault's jump; the better-correlating one is kept (a spurious fault's jump does not correlate)
+        # depth, so the fault's jump is checked with short windows: around the estimate plus the jump (lags of a
+        # quarter) against around the estimate (full lags); only where the jump correlates better is the pair's
+        # shift the jump's, else it keeps its long-window shift (a spurious fault's jump does not correlate)
         alt = np.nonzero(np.isfinite(jumps) & (jumps != 0.0))[0]
         if alt.size:
             short = max(4, int(half) // 4)
-            lag1, score1 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt], short, int(max_lag), 0.8)
+            _, score1 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt], short, int(max_lag), 0.8)
             lag2, score2 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt] + jumps[alt], short,
                                       int(max(3, max_lag // 4)), 0.8)
             better = np.nan_to_num(score2, nan=-2.0) > np.nan_to_num(score1, nan=-2.0)
-            shift[alt] = np.where(better, tb[alt] + jumps[alt] + lag2, tb[alt] + lag1) - ta[alt]
-            score[alt] = np.where(better, score2, score1)
+            take = alt[better]
+            shift[take] = (tb[alt] + jumps[alt] + lag2 - ta[alt])[better]
+            score[take] = score2[better]
     return PairShifts(a, b, distance, shift, score)
 
 
@@ -227,7 +234,7 @@ def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndar
 
 def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.ndarray, *, min_correlation: float,
                   previous: np.ndarray | None = None, seed_weight: float = 100.0, damping: float = 1e-3,
-                  robust: float | None = 2.0, robust_iterations: int = 5):
+                  robust: float | None = 2.0, robust_iterations: int = 5, distance_power: float = 0.0):
     """Least-squares horizon from pair shifts and seed times (Wu & Fomel 2018, eq. 4 with correlations only).
 
     Minimises ``sum w_ab (t[b] - t[a] - s_ab)^2 + seed_weight^2 sum (t[s] - t_s)^2 + damping^2 sum (t - previous)^2``
@@ -259,7 +266,7 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
 
     ok = np.isfinite(pairs.shift) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
     a, b, s = pairs.a[ok], pairs.b[ok], pairs.shift[ok]
-    w0 = pairs.score[ok] ** 2
+    w0 = pairs.score[ok] ** 2 / pairs.distance[ok].astype(np.float64) ** distance_power
     prev = np.full(n, float(np.mean(seed_times))) if previous is None else np.where(np.isfinite(previous), previous,
                                                                                         float(np.mean(seed_times)))
     t = prev
@@ -361,11 +368,6 @@ def pair_agreement(pairs: PairShifts, times: np.ndarray, *, min_correlation: flo
     total = np.bincount(a, minlength=n) + np.bincount(b, minlength=n)
     good = np.bincount(a, agree, minlength=n) + np.bincount(b, agree, minlength=n)
     return np.where(total > 0, good / np.maximum(total, 1), 1.0)
-
-
-def snap_all(picks: np.ndarray, offsets: np.ndarray, times: np.ndarray, window: float) -> np.ndarray:
-    """Each trace's time snapped to its nearest pick within ``window`` samples (NaN where none)."""
-    return np.array([nearest_pick(picks, offsets, j, t, window) for j, t in enumerate(times)])
 
 
 def faults_between(faults: FaultCrossings, lateral_shape: tuple, times: np.ndarray) -> tuple:
@@ -576,4 +578,5 @@ def _solve_step(traces, t, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt,
     jumps = _pair_fault_jumps(faults, lat, t, a, b, axis)
     ps = pair_shifts(traces, t, a, b, dist, half=opt.correlation_half, max_lag=max_lag, jumps=jumps)
     return solve_horizon(t.size, ps, seed_idx, seed_t, min_correlation=opt.min_pair_correlation, previous=t,
-                         robust=opt.robust, robust_iterations=opt.robust_iterations)
+                         robust=opt.robust, robust_iterations=opt.robust_iterations,
+                         distance_power=opt.distance_power)

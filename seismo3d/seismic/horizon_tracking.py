@@ -1,4 +1,6 @@
-"""Horizon tracking by registering neighbouring slices ("seismic tracks", method.md section 6).
+"""Horizon tracking: :func:`track_horizon`, by default global (least-squares horizons, :mod:`~seismo3d.seismic.
+horizon_lsq`), or (``method='registration'``) by registering neighbouring slices ("seismic tracks", method.md
+section 6), described here.
 
 A horizon is followed from seed picks in two moves, both made with the registration engine:
 

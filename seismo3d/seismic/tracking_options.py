@@ -33,6 +33,10 @@ class TrackingOptions:
         ('global') Pairs correlating less are left out of the solve.
     iterations : int
         ('global') Largest number of solves with the shifts re-measured around the estimate.
+    distance_power : float
+        ('global') A pair's weight is its correlation squared over its distance (traces) to this power: 1 gives every
+        distance the same say over a stretch of traces (a pair spans ``d`` traces), so short pairs shape a narrow
+        feature while long pairs still hold the cycle over a region.
     robust : float
         ('global') Scale, samples, of the Cauchy weights that down-weight pairs the solution disagrees with.
     robust_iterations : int
@@ -111,6 +115,7 @@ class TrackingOptions:
     max_lag: int = 12
     min_pair_correlation: float = 0.5
     iterations: int = 6
+    distance_power: float = 0.5
     robust: float = 2.0
     robust_iterations: int = 5
     dp_reach: float = 16.0
@@ -151,7 +156,7 @@ class TrackingOptions:
             check_int(getattr(self, name), name, minimum=1)
         for name in ("robust", "dp_reach", "dp_step"):
             object.__setattr__(self, name, float(check_positive(getattr(self, name), name)))
-        for name in ("dp_guide", "dp_wave"):
+        for name in ("dp_guide", "dp_wave", "distance_power"):
             object.__setattr__(self, name, float(check_positive(getattr(self, name), name, allow_zero=True)))
         if not -1.0 <= self.min_pair_correlation <= 1.0:
             raise InputError(f"min_pair_correlation is a correlation in [-1, 1]; got {self.min_pair_correlation}")

@@ -2,8 +2,8 @@
 
 After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the steps with the defaults every seismo3d
 command uses and returns a :class:`FaultInterpretation`; :func:`clean_traces` finds the dead samples (mutes, dead
-traces, gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and writing results is the ``faults`` command's job
-(:mod:`seismo3d.jobs.faults`).
+traces, gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and writing results is the
+``faults`` command's job (:mod:`seismo3d.jobs.faults`).
 
 Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.fault_likelihood`.
 """

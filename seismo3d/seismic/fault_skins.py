@@ -202,38 +202,7 @@ def _grow(best, normals, order, cos_mean):
                 fill[c] += 1
                 adj[fill[q]] = c
                 fill[q] += 1
-    label = -np.ones(n, np.int64)
-    queue = np.empty(n, np.int64)
-    mean = np.zeros(3)
-    n_lab = 0
-    for seed in order:
-        if label[seed] >= 0:
-            continue
-        label[seed] = n_lab
-        for d in range(3):
-            mean[d] = normals[seed, d]
-        head = 0
-        tail = 1
-        queue[0] = seed
-        while head < tail:
-            i = queue[head]
-            head += 1
-            for e in range(deg[i], deg[i + 1]):
-                j = adj[e]
-                if label[j] >= 0:
-                    continue
-                dot = normals[j, 0] * mean[0] + normals[j, 1] * mean[1] + normals[j, 2] * mean[2]
-                nm = np.sqrt(mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2])
-                if abs(dot) < cos_mean * nm:
-                    continue
-                label[j] = n_lab
-                sgn = 1.0 if dot >= 0 else -1.0
-                for d in range(3):
-                    mean[d] += sgn * normals[j, d]
-                queue[tail] = j
-                tail += 1
-        n_lab += 1
-    return label
+    return _kernels.grow_by_mean_normal(deg, adj, normals, order, cos_mean)
 
 
 def _edge_cells(best: np.ndarray, label: np.ndarray, two_d: bool) -> np.ndarray:

@@ -312,50 +312,6 @@ def thin_faults(likelihood, strike, dip, *, threshold=None, sigma=1.5, dip_smoot
 # linking
 
 
-@nb.njit(cache=True)
-def _grow_faults(indptr, indices, normals, order, cos_mean):
-    # Region growing over the neighbour graph (whose edges already join only compatible normals): from the
-    # unassigned sample of highest likelihood, add neighbours whose normal is within acos(cos_mean) of the growing
-    # fault's mean normal, breadth first. The mean keeps a fault from drifting into another one through samples of
-    # intermediate orientation where two faults meet.
-    n_pts, dim = normals.shape
-    label = -np.ones(n_pts, np.int64)
-    queue = np.empty(n_pts, np.int64)
-    mean = np.zeros(dim)
-    n_lab = 0
-    for seed in order:
-        if label[seed] >= 0:
-            continue
-        label[seed] = n_lab
-        for d in range(dim):
-            mean[d] = normals[seed, d]
-        head = 0
-        tail = 1
-        queue[0] = seed
-        while head < tail:
-            i = queue[head]
-            head += 1
-            for e in range(indptr[i], indptr[i + 1]):
-                j = indices[e]
-                if label[j] >= 0:
-                    continue
-                dot = 0.0
-                nm = 0.0
-                for d in range(dim):
-                    dot += normals[j, d] * mean[d]
-                    nm += mean[d] * mean[d]
-                if abs(dot) < cos_mean * np.sqrt(nm):
-                    continue
-                label[j] = n_lab
-                sgn = 1.0 if dot >= 0 else -1.0
-                for d in range(dim):
-                    mean[d] += sgn * normals[j, d]
-                queue[tail] = j
-                tail += 1
-        n_lab += 1
-    return label
-
-
 def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fault]:
     """Link thinned fault samples into separate faults.
 
@@ -439,8 +395,9 @@ def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fau
     graph = (graph + graph.T).tocsr()
     vals, svals, dvals = fl[mask], st[mask], dp[mask]
     order = np.argsort(-vals, kind="stable")
-    comp = _grow_faults(graph.indptr.astype(np.int64), graph.indices.astype(np.int64), n.astype(np.float64), order,
-                        float(np.cos(np.radians(1.5 * max_angle))))
+    comp = _kernels.grow_by_mean_normal(graph.indptr.astype(np.int64), graph.indices.astype(np.int64),
+                                        n.astype(np.float64), order,
+                                        float(np.cos(np.radians(1.5 * max_angle))))
     sizes = np.bincount(comp)
     keep = np.nonzero(sizes >= min_size)[0]
     keep = keep[np.argsort(-sizes[keep], kind="stable")]

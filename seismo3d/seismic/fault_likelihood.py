@@ -229,11 +229,14 @@ _FL_LEVELS = (1 << 20) - 1  # likelihood quantised to 20 bits in the high bits
 
 
 @nb.njit(cache=True)
-def _shifts(slope, n):
-    # staircase line: integer offsets round(slope * k), k = 0..n-1 (exact integer steps, no interpolation blur)
+def _shifts(slope, n, origin=0):
+    # staircase line: integer offsets round(slope * (k + origin)) - round(slope * origin), k = 0..n-1 (exact integer
+    # steps, no interpolation blur). `origin` is the index of element 0 in the whole cube, so that a block of a cube
+    # draws the same staircase lines as the whole cube
     sh = np.empty(n, np.int64)
+    s0 = int(np.floor(slope * origin + 0.5))
     for k in range(n):
-        sh[k] = int(np.floor(slope * k + 0.5))
+        sh[k] = int(np.floor(slope * (k + origin) + 0.5)) - s0
     return sh
 
 
@@ -265,12 +268,12 @@ def _box_rows(x, y, c, m, n, h):
 
 
 @nb.njit(cache=True, parallel=True)
-def _smooth_strike(x, alpha, h, n_threads, out):
+def _smooth_strike(x, alpha, h, origin, n_threads, out):
     # x in layout (na, nt, nb). Smooth along the staircase lines a = a0 + round(alpha * b) of every time slice with
     # two passes of a box of half-width h (a triangle filter), zero outside the cube; each output sample is written
-    # once. Work is split in chunks of lines with one workspace per chunk.
+    # once. `origin`: the cube index of b = 0 (blocks of a cube). Work is split in chunks of lines with one workspace per chunk.
     na, nt, nbb = x.shape
-    sh = _shifts(alpha, nbb)
+    sh = _shifts(alpha, nbb, origin)
     s_min = min(sh[0], sh[nbb - 1])
     s_max = max(sh[0], sh[nbb - 1])
     mono = np.abs(sh)
@@ -505,51 +508,129 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     arr = as_seismic(data)
     opt = resolve_options(FaultScanOptions, options, overrides, "fault_likelihood")
     two_d = arr.ndim == 2
-    table = _orientation_table(*opt.angles(), two_d)
-    if len(table) > (1 << _CODE_BITS):
-        raise InputError(f"{len(table)} fault planes to scan but at most {1 << _CODE_BITS} are supported; pass fewer "
-                         "strikes or dips")
-    f3 = _safe_amplitudes(_kernels.as_3d(arr))
-    n_samples = f3.shape[2]
-    # structure-oriented semblance numerator and denominator of each sample (3 x 3 traces along the reflector)
-    sn, sd = _semblance_terms(f3, two_d, opt)
-    tiny = float(1e-6 * sd.mean()) + 1e-30
+    f3 = _kernels.as_3d(arr)
+    stats = AmplitudeStatistics.of(f3)
+    # structure-oriented semblance numerator and denominator of each sample (3 x 3 traces along the reflector),
+    # summed over pairs of samples (the scan's vertical step)
+    sn, sd = semblance_terms(f3, opt, stats, two_d=two_d)
+    tiny = semblance_floor(float(sd.sum(dtype=np.float64)), sd.size)
     live = sd > tiny
-    # the scan on pairs of samples: each plane's semblance smoothed within it; the best plane per sample, packed
-    # into one int32 key
-    step = int(min(opt.decimation, max(1, n_samples // 16)))
-    if step > 1:
-        sn, sd = _sum_samples(sn, step), _sum_samples(sd, step)
-    key = _scan(sn, sd, table, two_d, opt, tiny * step, step, progress)
+    # the scan: each plane's semblance smoothed within it; the best plane per sample, packed into one int32 key
+    key = scan_planes(sn, sd, opt, tiny, n_samples=f3.shape[2], two_d=two_d, progress=progress)
     del sn, sd
-    if step > 1:
-        key = key[..., np.minimum(np.arange(n_samples) // step, key.shape[2] - 1)]
-    code = key & ((1 << _CODE_BITS) - 1)
-    fl = (key >> _CODE_BITS).astype(np.float32) * np.float32(1.0 / _FL_LEVELS)
+    _warn_if_saturated(*saturation_counts(key, live), opt.saturated)
+    fl, strike, dip = decode_scan(key, opt, n_samples=f3.shape[2], two_d=two_d)
     del key
-    strike = np.array([r[0] for r in table], dtype=np.float32)[code]
-    dip = np.array([r[1] for r in table], dtype=np.float32)[code]
-    if live.any():
-        high = float(np.count_nonzero(fl[live] > 0.9)) / float(np.count_nonzero(live))
-        if high > opt.saturated:
-            warnings.warn(
-                f"fault likelihood exceeds 0.9 at {high:.0%} of the samples: the data has no lateral coherence "
-                "(noise, chaotic reflections, or traces out of order), so faults traced from it are unreliable; "
-                "check the inline/crossline geometry or filter the data first", Seismo3dWarning, stacklevel=2)
     if two_d:
         fl, strike, dip = fl[:, 0, :], strike[:, 0, :], dip[:, 0, :]
-    np.clip(fl, 0.0, 1.0, out=fl)
     return FaultLikelihood(fl, strike, dip)
 
 
-def _safe_amplitudes(f3: np.ndarray) -> np.ndarray:
-    """``f3`` scaled by a power of two (exact) when its peak amplitude is so large or so small that float32 sums of
-    squares would overflow or underflow (e.g. unsigned 64-bit samples near 1.8e19); else ``f3`` itself. The
-    likelihood does not depend on the scale: semblance is a ratio of sums of squares."""
-    peak = float(np.max(np.abs(f3))) if f3.size else 0.0
-    if peak == 0.0 or 2.0 ** -32 <= peak <= 2.0 ** 32:
-        return f3
-    return f3 * np.float32(2.0 ** -np.ceil(np.log2(peak)))
+# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.chunked_likelihood): a block's
+# result equals the whole cube's over the block when the block carries the halo each step needs.
+
+@dataclass(frozen=True)
+class AmplitudeStatistics:
+    """Whole-cube amplitude statistics that the likelihood of every sample depends on.
+
+    Attributes
+    ----------
+    scale : float
+        Power of two multiplying the amplitudes: 1 unless the peak amplitude is beyond 2^32 or below 2^-32 (e.g.
+        unsigned 64-bit samples), so that float32 sums of squares neither overflow nor underflow. Exact; the
+        likelihood does not depend on it (semblance is a ratio of sums of squares).
+    energy_floor : float
+        ``1e-6`` times the mean squared (scaled) amplitude: added to the local energy before amplitude balancing,
+        so that dead traces are not divided by zero.
+    """
+
+    scale: float
+    energy_floor: float
+
+    @classmethod
+    def from_sums(cls, peak: float, sum_squares: float, count: int) -> "AmplitudeStatistics":
+        """From the peak absolute amplitude and the sum of squared amplitudes over ``count`` samples (float64 sums
+        of the unscaled data; a chunked run adds them up block by block)."""
+        scale = 1.0 if peak == 0.0 or 2.0 ** -32 <= peak <= 2.0 ** 32 else float(2.0 ** -np.ceil(np.log2(peak)))
+        mean_square = sum_squares / max(int(count), 1) * scale * scale
+        return cls(scale, float(1e-6 * mean_square + 1e-30))
+
+    @classmethod
+    def of(cls, f3: np.ndarray) -> "AmplitudeStatistics":
+        """The statistics of a whole (n0, n1, n_samples) array of amplitudes."""
+        peak = float(np.max(np.abs(f3))) if f3.size else 0.0
+        return cls.from_sums(peak, float(np.einsum("ijk,ijk->", f3, f3, dtype=np.float64)), f3.size)
+
+
+def scan_step(options: FaultScanOptions, n_samples: int) -> int:
+    """Samples summed into one by the scan (``decimation``, less for short traces)."""
+    return int(min(options.decimation, max(1, n_samples // 16)))
+
+
+def lateral_halo(options: FaultScanOptions) -> int:
+    """Traces on each side of a block that :func:`semblance_terms` needs so that the block's result equals the whole
+    cube's: the Gaussian windows (truncated at 3 sigma) of the balancing, then the wider of the structure tensor for
+    the slopes (plus the neighbouring trace read along them) and the tensor for the planarity."""
+    def radius(sigma):
+        return max(1, int(3.0 * float(sigma) + 0.5)) if sigma > 0 else 0
+    sg = radius(options.sigma_gradient)
+    balance = radius(options.balance[0]) if options.balance is not None else 0
+    slopes = sg + radius(options.sigma_tensor[0]) + 1
+    planarity = sg + radius(options.planarity_sigma[0]) if options.planarity_sigma is not None else 0
+    return balance + max(slopes, planarity)
+
+
+def strike_halo(options: FaultScanOptions) -> int:
+    """Traces on each side of a block that the smoothing along strike needs (two passes of a box, widest strike)."""
+    return 2 * _box_half(float(options.strike_smoothing))
+
+
+def semblance_terms(f3: np.ndarray, options: FaultScanOptions, stats: AmplitudeStatistics, *,
+                    two_d: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Structure-oriented semblance numerator and denominator (steps 1-3 of :func:`fault_likelihood`), summed over
+    the scan's groups of samples (:func:`scan_step`).
+
+    Parameters
+    ----------
+    f3 : (n0, n1, n_samples) float32 ndarray
+        Amplitudes (a 2D section as ``(n_traces, 1, n_samples)``), a whole cube or a block of one with
+        :func:`lateral_halo` traces of halo on each side that is not the cube's edge.
+    options : FaultScanOptions
+    stats : AmplitudeStatistics
+        Of the whole cube.
+    two_d : bool
+
+    Returns
+    -------
+    numerator, denominator : (n0, n1, ceil(n_samples / step)) float32 ndarray
+        ``(sum_k f_k)^2`` times the planarity, and ``J sum_k f_k^2``, over the 3 x 3 traces (3 in 2D) read along the
+        reflector slopes, summed over groups of ``step`` samples (the last group padded with its last sample).
+    """
+    if stats.scale != 1.0:
+        f3 = f3 * np.float32(stats.scale)
+    if options.balance is not None:
+        lat, vert = options.balance
+        energy = _kernels.gaussian3(f3 * f3, (lat, 0.0 if two_d else lat, vert))
+        f3 = (f3 / np.sqrt(energy + np.float32(stats.energy_floor))).astype(np.float32)
+        del energy
+    p0, p1 = _kernels.reflector_slopes(f3, two_d, float(options.sigma_gradient), options.sigma_tensor)
+    sn = np.empty(f3.shape, dtype=np.float32)
+    sd = np.empty(f3.shape, dtype=np.float32)
+    _kernels.semblance_num_den(f3, p0, p1, 1, 0 if two_d else 1, sn, sd)
+    del p0, p1
+    if options.planarity_sigma is not None:
+        _, planarity = _kernels.tensor_eig(f3, float(options.sigma_gradient), options.planarity_sigma, two_d)
+        sn *= planarity
+        del planarity
+    step = scan_step(options, f3.shape[2])
+    if step > 1:
+        sn, sd = _sum_samples(sn, step), _sum_samples(sd, step)
+    return sn, sd
+
+
+def semblance_floor(sum_denominator: float, count: int) -> float:
+    """Denominators at or below this (1e-6 of their mean over the cube) are dead samples: semblance 1, likelihood 0."""
+    return float(1e-6 * sum_denominator / max(int(count), 1)) + 1e-30
 
 
 def _sum_samples(x: np.ndarray, step: int) -> np.ndarray:
@@ -562,63 +643,119 @@ def _sum_samples(x: np.ndarray, step: int) -> np.ndarray:
     return np.ascontiguousarray(x.reshape(x.shape[:-1] + (m, step)).sum(axis=-1, dtype=np.float32))
 
 
-def _semblance_terms(f3, two_d, opt):
-    """Semblance numerator (times the planarity) and denominator, float32 arrays of the shape of ``f3``, over 3 x 3
-    traces (3 in 2D) read along the reflector slopes of the structure tensor, after amplitude balancing."""
-    if opt.balance is not None:
-        lat, vert = opt.balance
-        energy = _kernels.gaussian3(f3 * f3, (lat, 0.0 if two_d else lat, vert))
-        f3 = (f3 / np.sqrt(energy + np.float32(1e-6 * float(energy.mean()) + 1e-30))).astype(np.float32)
-        del energy
-    p0, p1 = _kernels.reflector_slopes(f3, two_d, float(opt.sigma_gradient), opt.sigma_tensor)
-    sn = np.empty(f3.shape, dtype=np.float32)
-    sd = np.empty(f3.shape, dtype=np.float32)
-    _kernels.semblance_num_den(f3, p0, p1, 1, 0 if two_d else 1, sn, sd)
-    del p0, p1
-    if opt.planarity_sigma is not None:
-        _, planarity = _kernels.tensor_eig(f3, float(opt.sigma_gradient), opt.planarity_sigma, two_d)
-        sn *= planarity
-    return sn, sd
+def scan_planes(sn: np.ndarray, sd: np.ndarray, options: FaultScanOptions, tiny: float, *, n_samples: int,
+                two_d: bool = False, axes: tuple = (0, 1), core: tuple | None = None, origin: int = 0,
+                progress: bool = False) -> np.ndarray:
+    """The scan (step 4 of :func:`fault_likelihood`) over the planes sheared along ``axes``.
+
+    Parameters
+    ----------
+    sn, sd : (n0, n1, m) float32 ndarray
+        From :func:`semblance_terms`.
+    options : FaultScanOptions
+    tiny : float
+        From :func:`semblance_floor` over the whole cube.
+    n_samples : int
+        Samples per trace before grouping.
+    two_d : bool
+    axes : tuple of {0, 1}
+        Shear axes of the planes to scan. A block of a cube scanned for the planes sheared along one axis must hold
+        that whole axis, and :func:`strike_halo` traces of halo along the other one.
+    core, origin : optional
+        For a block: the ``(start, stop)`` along the other axis whose result is returned, and the cube index of the
+        block's first trace along that axis.
+    progress : bool
+
+    Returns
+    -------
+    (n0, n1, m) int32 ndarray (``core`` taken along the other axis)
+        Packed ``likelihood << 11 | plane`` of the best plane at each grouped sample: decode with
+        :func:`decode_scan`; the maximum of two keys is the key of the union of their planes.
+    """
+    table = _orientation_table(*options.angles(), two_d)
+    if len(table) > (1 << _CODE_BITS):
+        raise InputError(f"{len(table)} fault planes to scan but at most {1 << _CODE_BITS} are supported; pass fewer "
+                         "strikes or dips")
+    step = scan_step(options, n_samples)
+    return _scan(sn, sd, table, two_d, options, tiny, step, progress, axes, core, origin)
 
 
-def _scan(sn, sd, table, two_d, opt, tiny, step, progress):
+def saturation_counts(key: np.ndarray, live: np.ndarray) -> tuple[int, int]:
+    """Live (grouped) samples whose likelihood exceeds 0.9, and live samples: for the saturation warning."""
+    return (int(np.count_nonzero((key >> _CODE_BITS)[live] > int(0.9 * _FL_LEVELS))),
+            int(np.count_nonzero(live)))
+
+
+def _warn_if_saturated(high: int, live: int, saturated: float) -> None:
+    if live and high / live > saturated:
+        warnings.warn(
+            f"fault likelihood exceeds 0.9 at {high / live:.0%} of the samples: the data has no lateral coherence "
+            "(noise, chaotic reflections, or traces out of order), so faults traced from it are unreliable; "
+            "check the inline/crossline geometry or filter the data first", Seismo3dWarning, stacklevel=3)
+
+
+def decode_scan(key: np.ndarray, options: FaultScanOptions, *, n_samples: int,
+                two_d: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Likelihood, strike and dip at every sample from the packed key of :func:`scan_planes` (step 5).
+
+    Returns
+    -------
+    likelihood, strike_deg, dip_deg : (n0, n1, n_samples) float32 ndarray
+    """
+    step = scan_step(options, n_samples)
+    if step > 1:
+        key = key[..., np.minimum(np.arange(n_samples) // step, key.shape[2] - 1)]
+    table = _orientation_table(*options.angles(), two_d)
+    code = key & ((1 << _CODE_BITS) - 1)
+    fl = (key >> _CODE_BITS).astype(np.float32) * np.float32(1.0 / _FL_LEVELS)
+    strike = np.array([r[0] for r in table], dtype=np.float32)[code]
+    dip = np.array([r[1] for r in table], dtype=np.float32)[code]
+    np.clip(fl, 0.0, 1.0, out=fl)
+    return fl, strike, dip
+
+
+def _scan(sn, sd, table, two_d, opt, tiny, step, progress, axes=(0, 1), core=None, origin=0):
     """The packed (likelihood << _CODE_BITS | orientation code) int32 maximum over the scanned planes, on samples
     grouped by ``step``."""
     squarings = int(opt.power).bit_length() - 1
     strike_smoothing = float(opt.strike_smoothing)
     n_threads = nb.get_num_threads()
-    key = np.zeros(sn.shape, dtype=np.int32)
+    shape = list(sn.shape)
+    if core is not None:  # a block scanned along one axis, kept on `core` of the other
+        shape[1 - axes[0]] = core[1] - core[0]
+    key = np.zeros(shape, dtype=np.int32)
     # planes sheared along axis 0 or 1, grouped by strike (mod 180): one smoothing along strike serves a group
     groups = {axis: {} for axis in (0, 1)}
     for k, r in enumerate(table):
         groups[r[2]].setdefault(round(r[0] % 180.0, 6), []).append((k, r))
-    with progress_steps(sum(len(g) for g in groups.values()), "fault likelihood", unit="strike",
+    with progress_steps(sum(len(groups[a]) for a in axes), "fault likelihood", unit="strike",
                         enabled=progress) as bar:
-        for axis in (0, 1):
+        for axis in axes:
             if not groups[axis]:
                 continue
             # kernels work in the layout (na, nt, nb): na = the sheared horizontal axis, nb = the other one
             perm = (0, 2, 1) if axis == 0 else (1, 2, 0)
             xn = np.ascontiguousarray(sn.transpose(perm))
             xd = np.ascontiguousarray(sd.transpose(perm))
-            keya = np.zeros(xn.shape, dtype=np.int32)
             smooth_lateral = not two_d and xn.shape[2] > 1
             yn = np.empty_like(xn) if smooth_lateral else xn
             yd = np.empty_like(xd) if smooth_lateral else xd
+            zn, zd = (yn, yd) if core is None else (yn[:, :, core[0]:core[1]], yd[:, :, core[0]:core[1]])
+            keya = np.zeros(zn.shape, dtype=np.int32)
             for members in groups[axis].values():
                 alpha, lateral = members[0][1][3], members[0][1][5]
                 if smooth_lateral:
                     hs = _box_half(strike_smoothing * lateral)
-                    _smooth_strike(xn, float(alpha), hs, n_threads, yn)
-                    _smooth_strike(xd, float(alpha), hs, n_threads, yd)
+                    _smooth_strike(xn, float(alpha), hs, origin, n_threads, yn)
+                    _smooth_strike(xd, float(alpha), hs, origin, n_threads, yd)
                 for k, r in members:
                     # lateral shift per (grouped) sample, and the smoothing width down the dip in grouped samples
                     beta = float(r[4]) * step
                     sigma = float(opt.dip_smoothing) * float(np.sin(np.radians(r[1]))) / step
-                    _scan_dip(yn, yd, beta, _exponential_coefficient(max(sigma, 0.5)), np.int32(k), squarings,
+                    _scan_dip(zn, zd, beta, _exponential_coefficient(max(sigma, 0.5)), np.int32(k), squarings,
                               tiny, n_threads, keya)
                 bar.advance()
-            del xn, xd, yn, yd
+            del xn, xd, yn, yd, zn, zd
             np.maximum(key, keya.transpose(tuple(np.argsort(perm))), out=key)
             del keya
     return key

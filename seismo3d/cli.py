@@ -274,7 +274,8 @@ class SampleUnit(str, Enum):
 
 @app.command()
 @_friendly({"sample_unit": "--sample-unit", "n_samples": "--n-samples", "ignore_geometry": "--ignore-geometry",
-            "demo_seed": "--demo-seed", "sensitivity": "--sensitivity"})
+            "demo_seed": "--demo-seed", "sensitivity": "--sensitivity", "memory_limit": "--memory-limit",
+            "scheduler": "--scheduler"})
 def faults(
     input: Optional[pathlib.Path] = typer.Argument(
         None, metavar="INPUT", help="SEG-Y cube or 2D line, raw .f32be section or .npy array; omit with --demo.",
@@ -294,6 +295,11 @@ def faults(
     sensitivity: float = typer.Option(0.5, min=0.0, max=1.0, help="How readily faults are traced, 0-1: higher for "
                                                                   "more (and weaker) faults, lower for fewer; the "
                                                                   "thresholds scale by up to 2x either way."),
+    memory_limit: Optional[str] = typer.Option(None, "--memory-limit", help="Memory the run may use, e.g. 8GB "
+                                               "(default: half the RAM). A larger 3D cube is processed block by "
+                                               "block into fault_likelihood.zarr, resumably."),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="dask.distributed scheduler address "
+                                            "(tcp://host:port) for block-by-block runs; default: local threads."),
 ) -> None:
     """Trace the faults of INPUT and write fault likelihood, strike, dip and votes (SEG-Y for SEG-Y input), fault
     surfaces (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT."""
@@ -305,7 +311,12 @@ def faults(
         written = run_faults_job(input, output, demo=demo, demo_seed=demo_seed, iline=iline, xline=xline,
                                  ignore_geometry=ignore_geometry, endian=_value(endian),
                                  sample_unit=None if sample_unit is None else sample_unit.value,
-                                 n_samples=n_samples, sensitivity=sensitivity, progress=True)
+                                 n_samples=n_samples, sensitivity=sensitivity, memory_limit=memory_limit,
+                                 scheduler=scheduler, progress=True)
+    if "summary" not in written:  # a cube beyond memory: the likelihood only
+        typer.echo(f"fault likelihood, strike and dip of {input.name} -> {written['likelihood']} (fault surfaces "
+                   "need more memory: raise --memory-limit)")
+        return
     with open(written["summary"], newline="") as fh:
         rows = list(csv.DictReader(fh))
     source = "the demo cube" if demo else input.name

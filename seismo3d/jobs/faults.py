@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import csv
 import shutil
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -129,9 +130,9 @@ def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, 
     return _Input(data[0], path.stem, path, shape, np.full(xl.size, il[0]), xl, samples, unit, "crossline", sorting)
 
 
-def _demo_input(out_dir: Path, seed) -> tuple[_Input, Path]:
+def _demo_input(out_dir: Path, seed, *, read: bool = True) -> tuple:
     """Write a synthetic cube as SEG-Y (4 ms, inlines / crosslines 1..128) and its true faults (CSV) into ``out_dir``;
-    read the cube back."""
+    read the cube back (or, with ``read=False``, return the SEG-Y file's path instead)."""
     import segyio
 
     from ..data.synthetic import synthetic_cube
@@ -149,6 +150,8 @@ def _demo_input(out_dir: Path, seed) -> tuple[_Input, Path]:
             w.writerow([f.id, f.kind, f"{f.strike_deg:.1f}", f"{f.dip_deg:.1f}", f"{signed:.5g}",
                         f"{signed * _DEMO_DT_MS:.5g}", f"{f.throw_gradient:.4g}"])
     del syn
+    if not read:
+        return path, truth
     inp = _read_input(path, iline=189, xline=193, ignore_geometry=False, sample_unit="ms", n_samples=None)
     return inp, truth
 
@@ -277,8 +280,83 @@ def _check_out_dir(path, out_dir) -> Path:
     return out_dir
 
 
+def _memory_limit(value) -> int:
+    """``memory_limit`` in bytes: an int, a size string ('4GB', '500MiB'), or None for half of the RAM."""
+    from ..seismic.chunked_likelihood import default_memory_limit
+
+    if value is None:
+        return default_memory_limit()
+    if isinstance(value, str):
+        from dask.utils import parse_bytes
+
+        try:
+            value = parse_bytes(value)
+        except (ValueError, TypeError) as exc:
+            raise InputError(f"memory_limit {value!r} is not a size; pass bytes or e.g. '4GB', '500MB'") from exc
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < (64 << 20):
+        raise InputError(f"memory_limit must be at least 64 MB; got {value!r}")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class LazyInput:
+    """A 3D input read block by block: its lazy amplitudes and what labels them."""
+
+    data: object  # (n_il, n_xl, ns) float32 dask array, chunks of whole traces
+    name: str
+    inline: np.ndarray
+    xline: np.ndarray
+    samples: np.ndarray  # in `unit` (sample index for 'samples')
+    unit: str  # 'ms', 'm', 'ft' or 'samples'
+
+    @property
+    def coords(self) -> dict:
+        """Coordinates for the output Zarr group."""
+        return {"inline": self.inline, "crossline": self.xline, "sample": self.samples, "sample_unit": self.unit}
+
+
+def _lazy_if_too_large(path, limit: int, *, iline, xline, sample_unit, endian) -> LazyInput | None:
+    """The input read lazily when it is a Zarr store, or a 3D SEG-Y cube or ``.npy`` array whose in-memory run would
+    need more than ``limit`` bytes; else None (the in-memory run)."""
+    from ..seismic.chunked_likelihood import in_memory_bytes
+
+    if path is None:
+        return None
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".f32be" or not path.exists():
+        return None  # 2D sections; a missing file is reported by _read_input
+    if suffix == ".npy":
+        try:
+            arr = np.load(path, allow_pickle=False, mmap_mode="r")
+        except (ValueError, OSError):
+            return None  # _read_input says why
+        if arr.ndim != 3 or in_memory_bytes(arr.shape) <= limit:
+            return None
+        if sample_unit is not None:
+            raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
+                             "in samples")
+        import dask.array as da
+
+        idx = [np.arange(n, dtype=np.int64) for n in arr.shape]
+        data = da.from_array(arr, chunks=(max(1, (64 << 20) // (4 * arr.shape[1] * arr.shape[2])), -1, -1))
+        return LazyInput(data.astype(np.float32), path.stem, idx[0], idx[1], idx[2].astype(np.float64), "samples")
+    from ..seismic.lazy_cube import open_lazy
+
+    if not path.is_dir():
+        from ..seismic.io import open_segy
+
+        with open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian) as cube:
+            if not cube.is_3d or cube.inlines is None or in_memory_bytes(cube.shape) <= limit:
+                return None
+    lazy = open_lazy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
+    return LazyInput(lazy.data, path.stem if path.is_file() else path.name.split(".")[0], np.asarray(lazy.inlines),
+                     np.asarray(lazy.xlines), np.asarray(lazy.samples, dtype=np.float64), lazy.sample_unit)
+
+
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
-                   endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, progress=True) -> dict:
+                   endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, memory_limit=None, scheduler=None,
+                   progress=True) -> dict:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 
     Inputs
@@ -325,6 +403,17 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       the seismic, above the same slices of the fault likelihood; for 2D inputs the section, cropped to its live
       traces and samples.
 
+    Cubes larger than memory
+    ------------------------
+    A 3D SEG-Y cube, Zarr store (``seismo3d convert``) or ``.npy`` array that would need more than ``memory_limit``
+    in memory is read lazily and its fault likelihood, strike and dip are computed block by block
+    (:func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood`, the same values as in memory) into
+    ``fault_likelihood.zarr`` (arrays ``likelihood``, ``strike_deg``, ``dip_deg`` and, once traced, ``votes``;
+    opened by ``xarray.open_zarr``), resumable: an interrupted run started again with the same arguments skips the
+    finished blocks. The fault surfaces (voting, skins, throw; about 72 bytes per sample) are then traced in memory
+    when they fit ``memory_limit``, giving the same faults, CSV files and picture as the in-memory run; otherwise
+    only ``fault_likelihood.zarr`` is written and a log line says how much memory the surfaces need.
+
     Data that cannot support fault tracing (too few traces, not seismic amplitudes, no lateral coherence: see
     :func:`~seismo3d.seismic.trace_faults`) raises :class:`~seismo3d.errors.UnsupportedDataError` before any output
     is written.
@@ -353,6 +442,13 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         Samples per trace of a raw ``.f32be`` section whose shape is not known by name.
     sensitivity : float, optional
         In [0, 1]: more faults when higher (see :class:`~seismo3d.seismic.FaultTracingOptions`).
+    memory_limit : int or str, optional
+        Memory the job may use, bytes or a size such as ``'4GB'`` (default: half of the machine's RAM). A 3D cube
+        whose in-memory run would need more (about 96 bytes per sample) is processed block by block (see
+        *Cubes larger than memory* below).
+    scheduler : str, optional
+        A ``dask.distributed`` scheduler address (``tcp://host:port``) for the block-by-block run; default: dask's
+        local threaded scheduler.
     progress : bool, optional
         Report progress (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step otherwise).
 
@@ -384,8 +480,6 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     TraceListWarning
         A SEG-Y input without an inline / crossline grid at bytes 189 / 193, read as a trace list (one line).
     """
-    from ..viz.faults import fault_surfaces, plot_fault_slices, save_polydata
-
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
     if demo:
@@ -398,11 +492,21 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
                              "demo=True (--demo) to run on a synthetic cube")
         out_dir = _check_out_dir(input_path, out_dir)
 
+    limit = _memory_limit(memory_limit)
     written = {}
     if demo:
         out_dir.mkdir(parents=True, exist_ok=True)
-        inp, written["truth"] = _demo_input(out_dir, demo_seed)
+        inp, written["truth"] = _demo_input(out_dir, demo_seed, read=False)
         iline, xline, ignore_geometry, endian = 189, 193, False, None
+        input_path = written["input"] = inp
+    lazy = None if ignore_geometry else _lazy_if_too_large(input_path, limit, iline=iline, xline=xline,
+                                                           sample_unit=sample_unit, endian=endian)
+    if lazy is not None:
+        written.update(_run_chunked(lazy, out_dir, memory_limit=limit, scheduler=scheduler, sensitivity=sensitivity,
+                                    progress=progress))
+        return written
+    if demo:
+        inp = _read_input(input_path, iline=189, xline=193, ignore_geometry=False, sample_unit="ms", n_samples=None)
     else:
         inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
                           sample_unit=sample_unit, n_samples=n_samples, endian=endian)
@@ -414,16 +518,24 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
                           sensitivity=sensitivity, progress=progress)
     out_dir.mkdir(parents=True, exist_ok=True)  # only now: refused data leaves nothing behind
 
-    if demo:
-        written["input"] = inp.segy_path
     geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
-    axes = inp.axes
     steps = [
         ("likelihood", lambda: _write_volume(inp, out_dir, "fault_likelihood", result.likelihood, **geo)),
         ("strike", lambda: _write_volume(inp, out_dir, "fault_strike", result.strike_deg,
                                          like=written["likelihood"], **geo)),
         ("dip", lambda: _write_volume(inp, out_dir, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
         ("votes", lambda: _write_volume(inp, out_dir, "fault_votes", result.votes, like=written["likelihood"], **geo)),
+    ]
+    _write_steps(steps + _surface_steps(inp, result, out_dir), written, progress)
+    return written
+
+
+def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path) -> list:
+    """The writers of the fault surfaces, points, summary and picture."""
+    from ..viz.faults import fault_surfaces, plot_fault_slices, save_polydata
+
+    axes = inp.axes
+    return [
         ("surfaces", lambda: save_polydata(fault_surfaces(result.faults, result.throws, axes=axes),
                                            out_dir / "faults.vtp")),
         ("points", lambda: _write_points(inp, result, out_dir / "fault_points.csv")),
@@ -432,9 +544,71 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
                                              likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
                                              title=inp.name)),
     ]
+
+
+def _write_steps(steps: list, written: dict, progress: bool) -> None:
     with progress_steps(len(steps), "writing", unit="file", enabled=progress) as bar:
         for key, write in steps:
             bar.start(key)
             written[key] = write()
             bar.advance()
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# cubes larger than memory
+
+_SURFACE_BYTES = 76  # per sample: voting, skins and throw in memory (input, likelihood, strike, dip, votes, thinning)
+
+
+def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, scheduler, sensitivity, progress) -> dict:
+    """Fault likelihood block by block into ``fault_likelihood.zarr``; fault surfaces in memory when they fit."""
+    import zarr
+
+    from ..seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood
+    from ..seismic.fault_likelihood import FaultLikelihood
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    path = out_dir / "fault_likelihood.zarr"
+    shape = tuple(int(n) for n in lazy.data.shape)
+    if path.exists():  # a finished likelihood of an earlier run of the same input: reused
+        group = zarr.open_group(str(path), mode="r")
+        if group.attrs.get("source") != lazy.name or tuple(group["likelihood"].shape) != shape:
+            raise InputError(f"{path} holds the fault likelihood of another input; pick another output folder (-o) "
+                             "or delete it")
+        LOGGER.info("%s: reusing the finished fault likelihood in %s", lazy.name, path)
+    else:
+        LOGGER.info("%s: %d x %d x %d samples need about %.1f GiB in memory, more than the memory limit "
+                    "(%.1f GiB): fault likelihood block by block into %s", lazy.name, *shape,
+                    _gib(shape, 96), memory_limit / 2**30, path.name)
+        chunked_fault_likelihood(lazy.data, path, coords=lazy.coords, progress=progress,
+                                 chunking=ChunkOptions(memory_limit=memory_limit, scheduler=scheduler))
+        zarr.open_group(str(path), mode="r+").attrs["source"] = lazy.name
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            zarr.consolidate_metadata(str(path))
+    written = {"likelihood": path}
+    if _gib(shape, _SURFACE_BYTES) * 2**30 > memory_limit:
+        LOGGER.warning("fault surfaces of %s (voting, skins, throw) need about %.1f GiB in memory, more than the "
+                       "memory limit (%.1f GiB): wrote %s only; raise --memory-limit to trace them", lazy.name,
+                       _gib(shape, _SURFACE_BYTES), memory_limit / 2**30, path.name)
+        return written
+    group = zarr.open_group(str(path), mode="r+")
+    fl = FaultLikelihood(group["likelihood"][:], group["strike_deg"][:], group["dip_deg"][:])
+    data = np.asarray(lazy.data.compute(), dtype=np.float32)
+    dt = float(lazy.samples[1] - lazy.samples[0]) if lazy.unit != "samples" else None
+    result = trace_faults(data, sample_interval=dt, sample_unit=lazy.unit, sensitivity=sensitivity, likelihood=fl,
+                          progress=progress)
+    del fl
+    votes = group.create_array("votes", shape=shape, chunks=group["likelihood"].chunks, dtype="float32",
+                               dimension_names=("inline", "crossline", "sample"), overwrite=True)
+    votes[:] = result.votes
+    with warnings.catch_warnings():  # consolidated metadata (read by xarray) is not in the Zarr v3 spec yet
+        warnings.simplefilter("ignore", UserWarning)
+        zarr.consolidate_metadata(str(path))
+    inp = _Input(data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
+    _write_steps(_surface_steps(inp, result, out_dir), written, progress)
     return written
+
+
+def _gib(shape, bytes_per_sample: int) -> float:
+    return float(np.prod(shape, dtype=np.float64)) * bytes_per_sample / 2**30

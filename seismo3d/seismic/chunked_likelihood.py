@@ -166,13 +166,26 @@ class _Plan:
                 for j in range(0, n1, size1)]
 
 
-def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions) -> _Plan:
+def _baseline(chunking: ChunkOptions, input_chunk: int) -> int:
+    """Memory of a worker before its blocks: the process itself (this one's size on the local schedulers, 256 MiB
+    assumed for a distributed worker) and two input chunks being read."""
+    own = 256 << 20
+    if chunking.scheduler in (None, "threads", "synchronous"):
+        try:
+            import psutil
+            own = int(psutil.Process().memory_info().rss)
+        except (ImportError, OSError):
+            pass
+    return own + 2 * int(input_chunk)
+
+
+def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
     n0, n1, nt = shape
     tile = int(chunking.tile)
     m = -(-nt // scan_step(options, nt))
     halo, shalo = lateral_halo(options), strike_halo(options)
-    budget = int(chunking.memory_limit or default_memory_limit()) // int(chunking.workers)
-    budget -= 256 << 20  # the interpreter, numba and dask themselves, and the input chunks being read
+    limit = int(chunking.memory_limit or default_memory_limit())
+    budget = (limit - baseline) // int(chunking.workers)
     if chunking.block is not None:
         block = int(chunking.block)
     else:
@@ -187,9 +200,9 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions) -> _Plan:
     need = max(need, max(n0, n1) * (strip + 2 * shalo) * m * _SCAN_BYTES)
     if need > budget:
         raise InputError(
-            f"a chunked run of a {n0} x {n1} x {nt} cube needs about {(need + (256 << 20)) / 2**30:.2f} GiB per "
-            f"worker but the memory limit allows {(budget + (256 << 20)) / 2**30:.2f} GiB: raise the memory limit "
-            f"(or use fewer workers)")
+            f"a chunked run of a {n0} x {n1} x {nt} cube needs about "
+            f"{(need * int(chunking.workers) + baseline) / 2**30:.2f} GiB but the memory limit is "
+            f"{limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
     return _Plan((n0, n1, nt), tile, block, strip, halo, shalo, m)
 
 
@@ -254,7 +267,8 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
         x = x.rechunk({2: -1})
     if x.dtype != np.float32:
         x = x.astype(np.float32)
-    plan = _plan(x.shape, opt, chunking)
+    input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * x.shape[2]
+    plan = _plan(x.shape, opt, chunking, _baseline(chunking, input_chunk))
     out = pathlib.Path(output)
     run = _Run(out, plan, opt, chunking, progress)
     run.start(_manifest(x.shape, opt, plan))

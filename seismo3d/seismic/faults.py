@@ -19,7 +19,7 @@ import numpy as np
 from .._progress import progress_steps
 from .._validation import check_choice, check_positive
 from ..errors import InputError, Seismo3dWarning, UnsupportedDataError
-from .fault_likelihood import FaultScanOptions, fault_likelihood
+from .fault_likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood
 from .fault_skins import SkinOptions, fault_skins
 from .fault_surfaces import thin_faults
 from .fault_throw import fault_throws
@@ -298,7 +298,8 @@ def _near(dead: np.ndarray) -> np.ndarray:
 
 
 def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivity=None,
-                 options: FaultTracingOptions | None = None, progress=True) -> FaultInterpretation:
+                 options: FaultTracingOptions | None = None, likelihood: FaultLikelihood | None = None,
+                 progress=True) -> FaultInterpretation:
     """Trace the faults of a seismic cube or section: likelihood, voting, skins, throw.
 
     The steps, with their defaults chosen from the data (no per-file tuning):
@@ -335,6 +336,10 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         In [0, 1], more faults when higher; replaces ``options.sensitivity`` (default 0.5).
     options : FaultTracingOptions, optional
         Options of every step.
+    likelihood : FaultLikelihood, optional
+        The result of step 1 computed elsewhere with ``options.scan`` (e.g. block by block by
+        :func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood`), arrays of the data's shape; the scan
+        is then skipped.
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
         otherwise; the likelihood, the voting and the throw report their own progress too).
@@ -405,9 +410,12 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     _check_amplitudes(arr, dead, opt)
     with progress_steps(6, "faults", enabled=progress) as bar:
         bar.start("fault likelihood")
-        with warnings.catch_warnings():  # saturation is decided below, on the live samples
-            warnings.simplefilter("ignore", Seismo3dWarning)
-            fl = fault_likelihood(arr, options=opt.scan, progress=progress)
+        if likelihood is None:
+            with warnings.catch_warnings():  # saturation is decided below, on the live samples
+                warnings.simplefilter("ignore", Seismo3dWarning)
+                fl = fault_likelihood(arr, options=opt.scan, progress=progress)
+        else:
+            fl = _given_likelihood(likelihood, arr.shape)
         likelihood, strike, dip = fl.likelihood, fl.strike_deg, fl.dip_deg
         del fl
         near_dead = _near(dead) if dead.any() else None
@@ -439,6 +447,17 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     return FaultInterpretation(likelihood=likelihood, strike_deg=strike, dip_deg=dip, votes=votes.votes, thin=thin,
                                thresholds=(float(lower), float(upper)), faults=faults, throws=list(throws),
                                sample_interval=float(sample_interval), sample_unit=sample_unit)
+
+
+def _given_likelihood(fl, shape: tuple) -> FaultLikelihood:
+    """A precomputed likelihood, checked against the data's shape; its arrays are copied (they are modified)."""
+    if not isinstance(fl, FaultLikelihood):
+        raise InputError(f"trace_faults(likelihood=...) must be a FaultLikelihood; got {type(fl).__name__}")
+    arrays = [np.array(a, dtype=np.float32) for a in (fl.likelihood, fl.strike_deg, fl.dip_deg)]
+    if any(a.shape != tuple(shape) for a in arrays):
+        raise InputError(f"the given fault likelihood has shape {arrays[0].shape} but the data {tuple(shape)}; "
+                         "compute it from the same data")
+    return FaultLikelihood(*arrays)
 
 
 def _check_size(shape: tuple, opt: FaultTracingOptions) -> None:

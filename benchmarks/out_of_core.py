@@ -1,0 +1,249 @@
+"""Cubes larger than memory: the chunked fault likelihood against the in-memory one (issue 19).
+
+Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000] [--only equal,threads,distributed,memory]
+[--keep DIR]``
+
+1. equal: a 256^3 generated faulted cube, in memory (:func:`seismo3d.seismic.fault_likelihood` then
+   :func:`~seismo3d.seismic.trace_faults`) and chunked (:func:`~seismo3d.seismic.chunked_likelihood.
+   chunked_fault_likelihood` with 64-trace blocks and strips, then ``trace_faults(..., likelihood=...)``): the largest
+   likelihood difference, strike / dip differences, and the faults (count, sizes, the same samples).
+2. threads / distributed: a generated cube of ``--shape`` (default 1024 x 1024 x 1000 float32 = 4.19 GB) written as
+   SEG-Y (a 256-trace faulted tile mirrored into a mosaic, so reflectors and faults continue across the seams),
+   read lazily (:func:`seismo3d.seismic.lazy_cube.open_lazy`) and its fault likelihood, strike and dip computed
+   chunk by chunk into Zarr with ``--memory-limit`` (default 1.4 GB): on dask's threaded scheduler, and on a local
+   ``dask.distributed`` cluster of 2 worker processes (1 thread each, the limit split between them). Each run is a
+   child process; its peak resident memory is sampled every 0.2 s over the process and all its children (the
+   cluster's scheduler and workers included). Seconds per GB of input samples (1e9 bytes).
+3. memory: the in-memory path (:func:`~seismo3d.seismic.fault_likelihood`) on the largest cube it holds in this
+   machine's 24 GB (512 x 512 x 1000 = 1.05 GB; about 14 copies of the cube at its peak), same sampling.
+
+The targets of issue 19: chunked peak <= 1.5 GB, <= 250 s/GB; equal: likelihood difference <= 1e-5 and the same
+faults.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+
+_TILE = 256
+
+
+def _tile(n_samples: int) -> np.ndarray:
+    from seismo3d.data.synthetic import synthetic_cube
+
+    return synthetic_cube((_TILE, _TILE, n_samples), seed=7).cube.astype(np.float32)
+
+
+def write_mosaic_segy(path: Path, shape) -> None:
+    """A (n_il, n_xl, ns) cube as an inline-sorted IEEE SEG-Y: the tile mirrored along both lateral axes."""
+    import segyio
+
+    n_il, n_xl, ns = shape
+    tile = _tile(ns)
+    spec = segyio.spec()
+    spec.sorting, spec.format = segyio.TraceSortingFormat.INLINE_SORTING, 5
+    spec.samples, spec.ilines, spec.xlines = np.arange(ns) * 4.0, np.arange(1, n_il + 1), np.arange(1, n_xl + 1)
+    idx_xl = np.arange(n_xl) % (2 * _TILE)
+    idx_xl = np.where(idx_xl < _TILE, idx_xl, 2 * _TILE - 1 - idx_xl)
+    with segyio.create(str(path), spec) as f:
+        f.bin.update(hns=ns, interval=4000, format=5)
+        k = 0
+        for i in range(n_il):
+            r = i % (2 * _TILE)
+            r = r if r < _TILE else 2 * _TILE - 1 - r
+            line = tile[r][idx_xl]
+            for j in range(n_xl):
+                f.header[k] = {segyio.su.iline: i + 1, segyio.su.xline: j + 1, segyio.su.cdp_x: 25 * i,
+                               segyio.su.cdp_y: 25 * j, segyio.su.offset: 1}
+                k += 1
+            f.iline[i + 1] = line
+            if i % 128 == 0:
+                print(f"  writing SEG-Y: inline {i + 1}/{n_il}", file=sys.stderr, flush=True)
+
+
+class _PeakRSS:
+    """Peak of the summed resident memory of a process and its children, sampled every 0.2 s."""
+
+    def __init__(self, pid: int):
+        import psutil
+
+        self.proc, self.peak, self._stop = psutil.Process(pid), 0, threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self):
+        import psutil
+
+        while not self._stop.is_set():
+            try:
+                procs = [self.proc] + self.proc.children(recursive=True)
+                total = 0
+                for p in procs:
+                    try:
+                        total += p.memory_info().rss
+                    except psutil.Error:
+                        pass
+                self.peak = max(self.peak, total)
+            except psutil.Error:
+                pass
+            time.sleep(0.2)
+
+    def stop(self) -> int:
+        self._stop.set()
+        self._thread.join()
+        return self.peak
+
+
+def _child(case: str, args: list) -> dict:
+    """Run one case in a child process; its JSON result and peak memory."""
+    cmd = [sys.executable, __file__, "--case", case, *args]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True)
+    sampler = _PeakRSS(proc.pid)
+    out, _ = proc.communicate()
+    peak = sampler.stop()
+    if proc.returncode != 0:
+        raise RuntimeError(f"case {case} failed (exit {proc.returncode})")
+    result = json.loads(out.strip().splitlines()[-1])
+    result["peak_gb"] = peak / 1e9
+    return result
+
+
+# ---------------------------------------------------------------------------------------------- cases (children)
+
+def case_chunked(sgy: str, out: str, limit: int, scheduler: str) -> dict:
+    from seismo3d.seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood
+    from seismo3d.seismic.lazy_cube import open_lazy
+
+    cube = open_lazy(sgy)
+    t0 = time.perf_counter()
+    if scheduler == "threads":
+        r = chunked_fault_likelihood(cube.data, out, chunking=ChunkOptions(memory_limit=limit), progress=True)
+    else:
+        from distributed import LocalCluster
+
+        with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                          memory_limit=limit // 2) as lc:
+            r = chunked_fault_likelihood(cube.data, out, progress=True,
+                                         chunking=ChunkOptions(memory_limit=limit // 2, scheduler=lc.scheduler_address))
+    sec = time.perf_counter() - t0
+    fl = r.open()["likelihood"]
+    return {"seconds": sec, "gb": float(np.prod(cube.shape)) * 4 / 1e9, "shape": list(cube.shape),
+            "blocks": r.blocks_computed, "max_likelihood": float(np.max(fl[::64, ::64, :]))}
+
+
+def case_memory(shape: str) -> dict:
+    from seismo3d.seismic import fault_likelihood
+
+    n_il, n_xl, ns = (int(v) for v in shape.split(","))
+    tile = _tile(ns)
+    reps = (-(-n_il // _TILE), -(-n_xl // _TILE), 1)
+    cube = np.tile(tile, reps)[:n_il, :n_xl]
+    del tile
+    t0 = time.perf_counter()
+    fl = fault_likelihood(cube)
+    sec = time.perf_counter() - t0
+    return {"seconds": sec, "gb": cube.nbytes / 1e9, "shape": list(cube.shape),
+            "max_likelihood": float(fl.likelihood.max())}
+
+
+def equal(work: Path) -> None:
+    from seismo3d.data.synthetic import synthetic_cube
+    from seismo3d.seismic import fault_likelihood, trace_faults
+    from seismo3d.seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood
+    from seismo3d.seismic.fault_likelihood import FaultLikelihood
+
+    cube = synthetic_cube((256, 256, 256), seed=0).cube.astype(np.float32)
+    t0 = time.perf_counter()
+    ref = fault_likelihood(cube)
+    t_mem = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    r = chunked_fault_likelihood(cube, work / "equal.zarr", chunking=ChunkOptions(block=64, strip=64))
+    t_chunk = time.perf_counter() - t0
+    a = r.open()
+    fl = FaultLikelihood(a["likelihood"][:], a["strike_deg"][:], a["dip_deg"][:])
+    diff = float(np.abs(fl.likelihood - ref.likelihood).max())
+    strike = float(np.mean(fl.strike_deg != ref.strike_deg))
+    dip = float(np.mean(fl.dip_deg != ref.dip_deg))
+    mem = trace_faults(cube, progress=False)
+    chk = trace_faults(cube, likelihood=fl, progress=False)
+    same = (len(mem.faults) == len(chk.faults)
+            and all(np.array_equal(f.points, g.points) for f, g in zip(mem.faults, chk.faults)))
+    print("\n### equal: 256^3 generated cube, in memory vs chunked (64-trace blocks and strips)\n")
+    print("| in memory s | chunked s | blocks | max abs likelihood diff | strike differs | dip differs | "
+          "faults in memory | faults chunked | same fault samples |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    print(f"| {t_mem:.1f} | {t_chunk:.1f} | {sum(r.blocks_computed.values())} | {diff:.2e} | {strike:.2%} | "
+          f"{dip:.2%} | {len(mem.faults)} ({sum(f.size for f in mem.faults)} samples) | {len(chk.faults)} "
+          f"({sum(f.size for f in chk.faults)} samples) | {'yes' if same else 'no'} |", flush=True)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--shape", default="1024,1024,1000")
+    ap.add_argument("--memory-shape", default="512,512,1000")
+    ap.add_argument("--memory-limit", default="1.4e9")
+    ap.add_argument("--only", default="equal,threads,distributed,memory")
+    ap.add_argument("--keep", default=None, help="folder for the SEG-Y cube (kept between runs) and the outputs")
+    ap.add_argument("--case", default=None, help=argparse.SUPPRESS)
+    ap.add_argument("case_args", nargs="*", help=argparse.SUPPRESS)
+    args = ap.parse_args()
+    if args.case == "chunked":
+        print(json.dumps(case_chunked(args.case_args[0], args.case_args[1], int(float(args.case_args[2])),
+                                      args.case_args[3])))
+        return
+    if args.case == "memory":
+        print(json.dumps(case_memory(args.case_args[0])))
+        return
+    only = set(args.only.split(","))
+    work = Path(args.keep) if args.keep else Path(tempfile.mkdtemp(prefix="seismo3d_ooc_"))
+    work.mkdir(parents=True, exist_ok=True)
+    try:
+        if "equal" in only:
+            equal(work)
+        rows = []
+        shape = tuple(int(v) for v in args.shape.split(","))
+        if only & {"threads", "distributed"}:
+            sgy = work / f"cube_{'x'.join(map(str, shape))}.sgy"
+            if not sgy.exists():
+                t0 = time.perf_counter()
+                write_mosaic_segy(sgy.with_suffix(".tmp"), shape)
+                os.replace(sgy.with_suffix(".tmp"), sgy)
+                print(f"wrote {sgy} ({sgy.stat().st_size / 1e9:.2f} GB) in {time.perf_counter() - t0:.0f} s",
+                      flush=True)
+            for scheduler in ("threads", "distributed"):
+                if scheduler not in only:
+                    continue
+                out = work / f"fl_{scheduler}.zarr"
+                for p in (out, out.with_name(out.name + ".partial"), out.with_name(out.name + ".work")):
+                    shutil.rmtree(p, ignore_errors=True)
+                r = _child("chunked", [str(sgy), str(out), args.memory_limit, scheduler])
+                rows.append((f"chunked, {'threaded scheduler' if scheduler == 'threads' else 'dask.distributed, 2 workers'}",
+                             r))
+                shutil.rmtree(out, ignore_errors=True)
+        if "memory" in only:
+            rows.append(("in memory (fault_likelihood)", _child("memory", [args.memory_shape])))
+        if rows:
+            print(f"\n### fault likelihood of large cubes (memory limit of the chunked runs {float(args.memory_limit) / 1e9:.2f} GB)\n")
+            print("| path | cube | GB | s | s/GB | peak resident GB |")
+            print("|---|---|---|---|---|---|")
+            for label, r in rows:
+                print(f"| {label} | {' x '.join(map(str, r['shape']))} | {r['gb']:.2f} | {r['seconds']:.0f} | "
+                      f"{r['seconds'] / r['gb']:.0f} | {r['peak_gb']:.2f} |", flush=True)
+    finally:
+        if not args.keep:
+            shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()

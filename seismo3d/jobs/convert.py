@@ -21,6 +21,7 @@ from pathlib import Path
 
 from .._atomic import atomic_directory
 from .._progress import progress_steps
+from .._validation import check_positive
 from ..errors import InputError, TraceListWarning
 from ..seismic.io import open_segy
 from ..seismic.seismic_zarr import SeismicZarrWriter, is_seismic_zarr
@@ -124,7 +125,8 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
     """
     input, output = Path(input), Path(output)
     started = time.perf_counter()
-    # 1. outputs that must not be written, before any reading
+    # 1. arguments and outputs that must not be written, before any reading
+    check_positive(chunk_mb, "chunk_mb")
     _check_output(input, output, overwrite)
     # 2. the SEG-Y's geometry through the one opening path (a trace list is refused by the writer, saying what it is)
     with warnings.catch_warnings():

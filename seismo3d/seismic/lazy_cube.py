@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 import segyio
 
-from .._validation import check_choice
+from .._validation import check_choice, check_positive
 from ..errors import InputError, SegyFormatError, SegyGeometryError, TraceListWarning
 from .io import open_segy
 
@@ -285,8 +285,7 @@ def inline_block_size(n_xlines: int, n_samples: int, chunk_mb: float) -> int:
     InputError
         ``chunk_mb`` is not a positive number.
     """
-    if not isinstance(chunk_mb, (int, float)) or not chunk_mb > 0:
-        raise InputError(f"chunk_mb must be a positive number of MiB; got {chunk_mb!r}")
+    chunk_mb = check_positive(chunk_mb, "chunk_mb")
     return max(1, int(chunk_mb * 2**20 // (n_xlines * n_samples * _BYTES_PER_SAMPLE)))
 
 

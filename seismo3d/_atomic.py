@@ -36,9 +36,7 @@ def atomic_path(path):
         If the destination's folder does not exist.
     """
     path = pathlib.Path(path)
-    folder = path.parent if str(path.parent) else pathlib.Path(".")
-    if not folder.is_dir():
-        raise InputError(f"cannot write {path}: folder {folder} does not exist; create it first")
+    folder = _existing_folder(path)
     fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{path.name}.", suffix=".tmp")
     os.close(fd)
     tmp = pathlib.Path(tmp)
@@ -71,12 +69,10 @@ def atomic_directory(path):
     Raises
     ------
     InputError
-        If the destination's folder does not exist.
+        If the folder that is to hold ``path`` does not exist.
     """
     path = pathlib.Path(path)
-    folder = path.parent if str(path.parent) else pathlib.Path(".")
-    if not folder.is_dir():
-        raise InputError(f"cannot write {path}: folder {folder} does not exist; create it first")
+    folder = _existing_folder(path)
     tmp = pathlib.Path(tempfile.mkdtemp(dir=folder, prefix=f".{path.name}.", suffix=".tmp"))
     old = None
     try:
@@ -95,6 +91,14 @@ def atomic_directory(path):
         shutil.rmtree(tmp, ignore_errors=True)
         if old is not None:
             shutil.rmtree(old, ignore_errors=True)
+
+
+def _existing_folder(path: pathlib.Path) -> pathlib.Path:
+    """The folder of ``path``; InputError when it does not exist."""
+    folder = path.parent if str(path.parent) else pathlib.Path(".")
+    if not folder.is_dir():
+        raise InputError(f"cannot write {path}: folder {folder} does not exist; create it first")
+    return folder
 
 
 def _umask() -> int:

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import os
 import pathlib
+import shutil
 import tempfile
 from contextlib import contextmanager
 
 from .errors import InputError
 
-__all__ = ["atomic_path"]
+__all__ = ["atomic_path", "atomic_directory"]
 
 
 @contextmanager
@@ -35,9 +36,7 @@ def atomic_path(path):
         If the destination's folder does not exist.
     """
     path = pathlib.Path(path)
-    folder = path.parent if str(path.parent) else pathlib.Path(".")
-    if not folder.is_dir():
-        raise InputError(f"cannot write {path}: folder {folder} does not exist; create it first")
+    folder = _existing_folder(path)
     fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{path.name}.", suffix=".tmp")
     os.close(fd)
     tmp = pathlib.Path(tmp)
@@ -47,6 +46,59 @@ def atomic_path(path):
         os.replace(tmp, path)
     finally:
         tmp.unlink(missing_ok=True)
+
+
+@contextmanager
+def atomic_directory(path):
+    """Yield a temporary directory beside ``path``; on success rename it to ``path``, on any error remove it.
+
+    For outputs that are directories (a Zarr store): a reader never sees a half-written ``path``, and an interrupted
+    run (exception, Ctrl-C) leaves only what was at ``path`` before. An existing ``path`` is replaced on success (the
+    caller decides whether that is allowed): it is first renamed aside, then removed once the new one is in place.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The final destination directory.
+
+    Yields
+    ------
+    pathlib.Path
+        An empty directory to write into.
+
+    Raises
+    ------
+    InputError
+        If the folder that is to hold ``path`` does not exist.
+    """
+    path = pathlib.Path(path)
+    folder = _existing_folder(path)
+    tmp = pathlib.Path(tempfile.mkdtemp(dir=folder, prefix=f".{path.name}.", suffix=".tmp"))
+    old = None
+    try:
+        yield tmp
+        os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes 0700; a finished output gets the usual permissions
+        if path.exists() or path.is_symlink():
+            old = pathlib.Path(tempfile.mkdtemp(dir=folder, prefix=f".{path.name}.", suffix=".old"))
+            os.replace(path, old / "replaced")
+        try:
+            os.replace(tmp, path)
+        except BaseException:
+            if old is not None:  # put the earlier output back
+                os.replace(old / "replaced", path)
+            raise
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+        if old is not None:
+            shutil.rmtree(old, ignore_errors=True)
+
+
+def _existing_folder(path: pathlib.Path) -> pathlib.Path:
+    """The folder of ``path``; InputError when it does not exist."""
+    folder = path.parent if str(path.parent) else pathlib.Path(".")
+    if not folder.is_dir():
+        raise InputError(f"cannot write {path}: folder {folder} does not exist; create it first")
+    return folder
 
 
 def _umask() -> int:

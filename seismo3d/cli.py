@@ -338,6 +338,35 @@ def faults(
     typer.echo("wrote " + ", ".join(pathlib.Path(p).name for p in written.values()))
 
 
+@app.command()
+@_friendly({"overwrite": "--overwrite", "chunk_mb": "--chunk-mb"})
+def convert(
+    input: pathlib.Path = typer.Argument(..., metavar="INPUT", help="3D SEG-Y cube (inline- or crossline-sorted).",
+                                         show_default=False),
+    output: pathlib.Path = typer.Argument(..., metavar="OUTPUT", help="Zarr store to write, e.g. cube.zarr (its "
+                                                                      "folder must exist).", show_default=False),
+    iline: int = typer.Option(189, help=_ILINE_HELP),
+    xline: int = typer.Option(193, help=_XLINE_HELP),
+    endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
+    sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
+                                                                "headers (ms unless they speak of depth)."),
+    chunk_mb: float = typer.Option(64.0, "--chunk-mb", min=0.001, help="MiB of amplitudes read and written per step "
+                                                                       "(the memory bound)."),
+    overwrite: bool = typer.Option(False, "--overwrite", help="Replace OUTPUT if it is a store written by "
+                                                              "'seismo3d convert' (anything else is refused)."),
+) -> None:
+    """Convert the 3D SEG-Y cube INPUT into the Zarr v3 store OUTPUT that xarray.open_zarr opens as is: amplitudes
+    'seismic' on dimensions inline, crossline, sample with their coordinates, cdp_x / cdp_y, every non-zero trace
+    header field, and the textual and binary headers as attributes. Written chunk by chunk; an interrupted convert
+    leaves no OUTPUT."""
+    from .jobs.convert import run_convert_job
+
+    result = run_convert_job(input, output, iline=iline, xline=xline, endian=_value(endian),
+                             sample_unit=None if sample_unit is None else sample_unit.value, chunk_mb=chunk_mb,
+                             overwrite=overwrite, progress=True)
+    typer.echo(f"converted {input.name}: {result.summary}")
+
+
 class MatchMethod(str, Enum):
     hog = "hog"
     sift = "sift"

@@ -296,3 +296,25 @@ def test_progress_is_one_line_per_step_when_stderr_is_not_a_terminal(tmp_path):
     assert any(line.startswith("fault likelihood: ") and "strike" in line for line in lines)  # inside the step
     assert any(line.startswith("fault voting: ") and "seed" in line for line in lines)
     assert any(line.startswith("writing: figure") for line in lines)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# convert
+
+
+def test_convert(cube_file, tmp_path):
+    """One summary line; the store holds the cube; a second run names --overwrite; a bad byte names --iline."""
+    out = tmp_path / "cube.zarr"
+    result = runner.invoke(app, ["convert", str(cube_file), str(out)])
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("converted cube.sgy: 48 inlines x 48 crosslines x 48 samples -> ")
+    import xarray as xr
+
+    with segyio.open(str(cube_file)) as f:
+        expected = segyio.tools.cube(f)
+    np.testing.assert_array_equal(xr.open_zarr(out).seismic.values, expected)
+    again = runner.invoke(app, ["convert", str(cube_file), str(out)])
+    assert again.exit_code == 2 and again.stderr.startswith("error: ") and "--overwrite" in again.stderr
+    bad = runner.invoke(app, ["convert", str(cube_file), str(tmp_path / "b.zarr"), "--iline", "190"])
+    assert bad.exit_code == 2 and "--iline" in bad.stderr and not (tmp_path / "b.zarr").exists()

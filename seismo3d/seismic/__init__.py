@@ -1,6 +1,8 @@
 """Seismic interpretation on the registration engine, one module per concept.
 
 - :mod:`~seismo3d.seismic.io`: SEG-Y cubes and lines, raw sections, ASCII lines.
+- :mod:`~seismo3d.seismic.lazy_cube`: :func:`open_lazy`, a 3D cube (SEG-Y or Zarr) as a dask array by inline blocks.
+- :mod:`~seismo3d.seismic.seismic_zarr`: the Zarr v3 layout of ``seismo3d convert`` (xarray opens it as is).
 - :mod:`~seismo3d.seismic.attributes`: structure tensor (reflector orientation), semblance, coherence.
 - :mod:`~seismo3d.seismic.traces`: trace primitives (sub-sample peaks, waveform windows, NCC, lag search).
 - :mod:`~seismo3d.seismic.reflectors`: reflector picks along traces, reflector slices, reflector points.
@@ -37,12 +39,13 @@ from .faults import FaultInterpretation, FaultTracingOptions, trace_faults
 from .horizon_tracking import TrackingOptions, track_horizon
 from .horizons import Horizon, fill_horizon, write_horizon_text
 from .io import SeismicCube, open_segy, read_ascii_lines, read_section, read_segy, write_like
+from .lazy_cube import LazyCube, open_lazy
 from .reflectors import POLARITIES, reflector_picks, reflector_points
 from .volumes import VolumeOptions, VolumeRegistration, register_volumes, resample_volume, volume_spacing
 
 __all__ = [
     "POLARITIES", "Fault", "FaultCrossings", "FaultInterpretation", "FaultLikelihood", "FaultScanOptions",
-    "FaultTracingOptions", "FaultVotes", "SkinOptions", "VotingOptions", "fault_skins", "vote_faults",
+    "FaultTracingOptions", "FaultVotes", "LazyCube", "open_lazy", "SkinOptions", "VotingOptions", "fault_skins", "vote_faults",
     "FaultScores", "FaultThrow", "Horizon", "HorizonErrors", "ReflectorOrientation", "RegistrationErrors",
     "SeismicCube", "ThrowOptions", "TrackingOptions", "VolumeOptions", "VolumeRegistration",
     "autotrack", "discontinuity", "eigen_coherence", "evaluate_faults", "fault_labels", "fault_likelihood",

@@ -43,7 +43,7 @@ from ..errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometr
 from .segy_geometry import TraceGeometry, span, trace_geometry
 from .segy_layout import SegyLayout, read_segy_layout, segyio_failure
 
-__all__ = ["SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines"]
+__all__ = ["SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines", "scale_coordinates"]
 
 # (n_traces, n_samples) of the raw sections in the data directory's seismic/sections (see its README).
 _SECTION_SHAPES = {
@@ -87,8 +87,25 @@ def _guess_sample_unit(text: str, measurement_system: int) -> str:
     return "ms"
 
 
-def _scaled(values: np.ndarray, scalars: np.ndarray) -> np.ndarray:
-    """Apply SEG-Y coordinate scalars (trace bytes 71-72): positive multiplies, negative divides, 0 means 1."""
+def scale_coordinates(values: np.ndarray, scalars: np.ndarray) -> np.ndarray:
+    """Apply SEG-Y coordinate scalars (trace header bytes 71-72): positive multiplies, negative divides, 0 means 1.
+
+    Parameters
+    ----------
+    values : (...) integer ndarray
+        Coordinates as stored in the trace headers (e.g. CDP X, bytes 181-184).
+    scalars : (...) integer ndarray
+        The scalar of each trace, same shape.
+
+    Returns
+    -------
+    (...) float64 ndarray
+        In the survey's unit (metres or feet, binary header bytes 3255-3256).
+
+    References
+    ----------
+    SEG-Y rev 1 (SEG Technical Standards Committee, 2002), trace header bytes 71-72.
+    """
     s = scalars.astype(np.float64)
     factor = np.ones_like(s)
     factor[s > 0] = s[s > 0]
@@ -399,7 +416,7 @@ class SeismicCube:
                 x = np.asarray(f.attributes(fx)[:])
                 y = np.asarray(f.attributes(fy)[:])
                 if np.any(x != 0) or np.any(y != 0):
-                    result = (self._to_grid(_scaled(x, scal)), self._to_grid(_scaled(y, scal)))
+                    result = (self._to_grid(scale_coordinates(x, scal)), self._to_grid(scale_coordinates(y, scal)))
                     break
             self._coords = result
         return self._coords

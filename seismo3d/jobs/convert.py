@@ -1,0 +1,147 @@
+"""The ``seismo3d convert`` job: a 3D SEG-Y cube into a Zarr v3 store that xarray opens as is.
+
+:func:`run_convert_job` opens the SEG-Y through :func:`~seismo3d.seismic.io.open_segy` (same flags and errors as every
+command) and writes the layout of :mod:`~seismo3d.seismic.seismic_zarr` tile by tile (memory: one tile of about
+``chunk_mb`` MiB, not the cube), with progress. The store is written into a temporary directory beside OUTPUT and
+renamed to OUTPUT when complete, so an interrupted convert (error, Ctrl-C, kill) never leaves something at OUTPUT
+that looks finished (a killed process may leave a hidden ``.OUTPUT.*.tmp`` directory, never OUTPUT). The input is
+only read.
+
+Existing OUTPUT: refused unless ``overwrite=True`` (``--overwrite``), which replaces only a store written by
+``seismo3d convert`` (anything else at OUTPUT is refused, so a wrong path cannot delete a folder).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+from .._atomic import atomic_directory
+from .._progress import progress_steps
+from .._validation import check_positive
+from ..errors import InputError, TraceListWarning
+from ..seismic.io import open_segy
+from ..seismic.seismic_zarr import SeismicZarrWriter, is_seismic_zarr
+
+__all__ = ["ConvertResult", "run_convert_job"]
+
+
+@dataclass(frozen=True)
+class ConvertResult:
+    """What :func:`run_convert_job` wrote.
+
+    Attributes
+    ----------
+    output : pathlib.Path
+        The Zarr store.
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    chunks : (int, int, int)
+        Chunk shape of the ``seismic`` array.
+    header_fields : tuple of str
+        The trace header fields kept (segyio.TraceField names; the ones not zero on every trace).
+    has_cdp_coordinates : bool
+        Whether ``cdp_x`` / ``cdp_y`` were written.
+    seconds : float
+        Wall time of the conversion.
+    """
+
+    output: Path
+    shape: tuple
+    chunks: tuple
+    header_fields: tuple
+    has_cdp_coordinates: bool
+    seconds: float
+
+    @property
+    def summary(self) -> str:
+        """One line: what was written."""
+        n_il, n_xl, ns = self.shape
+        coords = ", cdp_x / cdp_y" if self.has_cdp_coordinates else ""
+        return (f"{n_il} inlines x {n_xl} crosslines x {ns} samples -> {self.output} (chunks {self.chunks}, "
+                f"{len(self.header_fields)} trace header fields{coords}) in {self.seconds:.1f} s")
+
+
+def _check_output(input: Path, output: Path, overwrite: bool) -> None:
+    """Refuse to write over the input, or over an existing output unless it is ours and ``overwrite``."""
+    if output.resolve() == input.resolve() or (output.exists() and input.exists() and os.path.samefile(input, output)):
+        raise InputError(f"output {output} is the input file itself; write the Zarr store to another path, e.g. "
+                         f"{input.with_suffix('.zarr').name}")
+    if input.resolve().is_relative_to(output.resolve()):
+        raise InputError(f"output {output} is a folder holding the input {input.name}; choose a new path for the store")
+    if not (output.exists() or output.is_symlink()):
+        return
+    if not overwrite:
+        raise InputError(f"output {output} exists; choose another path or pass overwrite=True (--overwrite) to "
+                         "replace a store written by seismo3d convert")
+    if not is_seismic_zarr(output):
+        raise InputError(f"output {output} exists and is not a store written by seismo3d convert; overwrite=True "
+                         "(--overwrite) replaces only those: remove it yourself or choose another path")
+
+
+def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian=None, sample_unit=None,
+                    chunk_mb: float = 64, overwrite: bool = False, progress: bool = False) -> ConvertResult:
+    """Convert a 3D SEG-Y cube into a Zarr v3 store (layout of :mod:`~seismo3d.seismic.seismic_zarr`).
+
+    Parameters
+    ----------
+    input : str or os.PathLike
+        A 3D SEG-Y cube (inline- or crossline-sorted, big- or little-endian, any sample format segyio reads).
+    output : str or os.PathLike
+        The store's directory, e.g. ``cube.zarr``; its folder must exist.
+    iline, xline : int
+        Trace header bytes of the inline and crossline numbers (189 / 193 by default, SEG-Y rev 1).
+    endian : {'big', 'little'}, optional
+        Byte order; by default detected from the binary header.
+    sample_unit : {'ms', 'm', 'ft'}, optional
+        Unit of the sample axis; by default from the headers (see :class:`~seismo3d.seismic.io.SeismicCube`).
+    chunk_mb : float
+        Amplitudes read and written per step, in MiB (at least one 64 x 64-trace chunk): the memory bound.
+    overwrite : bool
+        Replace an existing ``output`` written by ``seismo3d convert``.
+    progress : bool
+        Report progress, one step per tile (:func:`seismo3d._progress.progress_steps`).
+
+    Returns
+    -------
+    ConvertResult
+
+    Raises
+    ------
+    SegyGeometryError
+        The input is a 2D line or a trace list (the store holds 3D cubes), or has no grid at ``iline`` / ``xline``.
+    SegyFormatError, DataNotFoundError
+        The input cannot be read or does not exist (see :func:`~seismo3d.seismic.io.open_segy`).
+    InputError
+        ``output`` is the input or holds it, exists (without ``overwrite``, or is not a store of this command), or
+        its folder does not exist; invalid ``iline``, ``xline``, ``endian``, ``sample_unit``.
+
+    References
+    ----------
+    Zarr v3 core specification; MDIO (TGS) for the layout idea; SEG-Y rev 1 (2002) headers.
+    """
+    input, output = Path(input), Path(output)
+    started = time.perf_counter()
+    # 1. arguments and outputs that must not be written, before any reading
+    check_positive(chunk_mb, "chunk_mb")
+    _check_output(input, output, overwrite)
+    # 2. the SEG-Y's geometry through the one opening path (a trace list is refused by the writer, saying what it is)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TraceListWarning)
+        cube = open_segy(input, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
+    # 3. tile by tile into a temporary store, renamed to OUTPUT when complete
+    with cube, atomic_directory(output) as tmp:
+        writer = SeismicZarrWriter(cube, tmp, chunk_mb=chunk_mb)
+        with progress_steps(len(writer.tiles), f"convert {input.name}", unit="tile", enabled=progress) as steps:
+            for tile in writer.tiles:
+                writer.write_tile(tile)
+                steps.advance()
+        kept = writer.finish()
+        chunks = tuple(int(c) for c in writer.seismic.chunks)
+        has_coords = "cdp_x" in writer.root
+    return ConvertResult(output=output, shape=tuple(int(n) for n in cube.shape), chunks=chunks,
+                         header_fields=tuple(kept), has_cdp_coordinates=has_coords,
+                         seconds=time.perf_counter() - started)

@@ -1,0 +1,385 @@
+"""A seismic cube read lazily as a dask array: SEG-Y through segyio's memory map, or a Zarr v3 store of
+``seismo3d convert``.
+
+:func:`open_lazy` reads the geometry once and returns a :class:`LazyCube` whose ``data`` is a dask array chunked by
+blocks of whole inlines (every crossline and every sample in a chunk), so an operator with a halo along the inline
+axis (``dask.array.map_overlap``) sees complete traces and complete crossline ranges. Nothing is read until a chunk is
+computed, and each chunk reads only its own traces.
+
+The dask graph of a SEG-Y cube holds no open file: each task is a call of :func:`read_segy_block` with a
+:class:`SegyGrid` (the file's path, byte order, trace order and shape; plain picklable values), which opens the file
+read-only itself. The same graph therefore runs on the local threaded scheduler and on a ``dask.distributed`` cluster
+whose workers see the file at the same path.
+
+Trace order: in an inline-sorted file the traces of inline ``i`` (array index) are the ``n_xlines`` consecutive traces
+from ``i * n_xlines``; in a crossline-sorted file the trace of (inline ``i``, crossline ``j``) is ``j * n_inlines + i``.
+This is segyio's grid, the one :meth:`~seismo3d.seismic.io.SeismicCube.read` returns, so a lazy cube equals
+:func:`~seismo3d.seismic.io.read_segy` value for value.
+
+References
+----------
+SEG Technical Standards Committee, *SEG-Y rev 1 Data Exchange format* (2002) and *SEG-Y_r2.0* (2017): trace order
+and the trace headers. Zarr v3 storage specification, https://zarr-specs.readthedocs.io/en/latest/v3/core/index.html.
+Dask array, https://docs.dask.org/en/stable/array.html (custom graphs: ``dask.array.Array`` from a task dict).
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import segyio
+
+from .._validation import check_choice, check_positive
+from ..errors import InputError, SegyFormatError, SegyGeometryError, TraceListWarning
+from .io import open_segy
+
+__all__ = ["LazyCube", "SegyGrid", "open_lazy", "read_segy_block", "read_segy_block_headers", "segyio_handle",
+           "inline_block_size"]
+
+_BYTES_PER_SAMPLE = 4  # float32
+
+
+@dataclass(frozen=True)
+class LazyCube:
+    """A 3D cube whose amplitudes are read on demand, chunk by chunk.
+
+    Attributes
+    ----------
+    data : (n_inlines, n_xlines, n_samples) float32 dask.array.Array
+        Axis 0 inline, axis 1 crossline, axis 2 sample (downward), as :func:`~seismo3d.seismic.io.read_segy`.
+        Chunked by blocks of whole inlines: ``data.chunks[1] == (n_xlines,)`` and ``data.chunks[2] == (n_samples,)``.
+    inlines : (n_inlines,) int32 ndarray
+        Inline numbers in array order.
+    xlines : (n_xlines,) int32 ndarray
+        Crossline numbers in array order.
+    samples : (n_samples,) float64 ndarray
+        Sample positions (time or depth) in ``sample_unit``.
+    sample_unit : {'ms', 'm', 'ft'}
+    source : pathlib.Path
+        The SEG-Y file or the Zarr store read.
+    format : {'segy', 'zarr'}
+    """
+
+    data: object
+    inlines: np.ndarray
+    xlines: np.ndarray
+    samples: np.ndarray
+    sample_unit: str
+    source: Path
+    format: str
+
+    @property
+    def shape(self) -> tuple:
+        """``(n_inlines, n_xlines, n_samples)``."""
+        return tuple(int(n) for n in self.data.shape)
+
+    @property
+    def sample_interval(self) -> float:
+        """Sample interval in ``sample_unit`` (0.0 for a single sample)."""
+        return float(self.samples[1] - self.samples[0]) if self.samples.size > 1 else 0.0
+
+
+@dataclass(frozen=True)
+class SegyGrid:
+    """How to find the traces of a 3D SEG-Y cube without reading its headers again: picklable plain values.
+
+    Attributes
+    ----------
+    path : str
+        The file (absolute path; workers of a cluster must see it there).
+    endian : {'big', 'little'}
+        Byte order (see :mod:`~seismo3d.seismic.segy_layout`).
+    sorting : {'inline', 'crossline'}
+        Trace order of the file.
+    n_inlines, n_xlines, n_samples : int
+        Grid shape.
+    """
+
+    path: str
+    endian: str
+    sorting: str
+    n_inlines: int
+    n_xlines: int
+    n_samples: int
+
+    @classmethod
+    def from_cube(cls, cube) -> "SegyGrid":
+        """The grid of an open 3D :class:`~seismo3d.seismic.io.SeismicCube`.
+
+        Raises
+        ------
+        SegyGeometryError
+            ``cube`` is a 2D line or a trace list: chunked processing needs a 3D cube.
+        """
+        if not cube.is_3d:
+            raise SegyGeometryError(f"{cube.path.name} is {cube.description}; chunked processing needs a 3D cube "
+                                    "(more than one inline and crossline): read it with open_segy / read_segy instead")
+        return cls(path=str(Path(cube.path).resolve()), endian=cube.endian, sorting=cube.sorting,
+                   n_inlines=int(cube.inlines.size), n_xlines=int(cube.xlines.size), n_samples=int(cube.samples.size))
+
+    @property
+    def n_traces(self) -> int:
+        """``n_inlines * n_xlines``."""
+        return self.n_inlines * self.n_xlines
+
+    def trace_runs(self, inline_start: int, inline_stop: int, xline_start: int, xline_stop: int):
+        """The block's traces as runs of consecutive traces in the file.
+
+        Yields
+        ------
+        (first, last, where) : (int, int, tuple)
+            Traces ``first:last`` of the file fill ``block[where]`` of a block shaped
+            ``(inline_stop - inline_start, xline_stop - xline_start, ...)``.
+        """
+        n_il, n_xl = self.n_inlines, self.n_xlines
+        if self.sorting == "inline":
+            if xline_start == 0 and xline_stop == n_xl:  # whole inlines: one run
+                yield inline_start * n_xl, inline_stop * n_xl, (slice(None),)
+                return
+            for i in range(inline_start, inline_stop):
+                yield i * n_xl + xline_start, i * n_xl + xline_stop, (i - inline_start,)
+        else:
+            for j in range(xline_start, xline_stop):
+                yield j * n_il + inline_start, j * n_il + inline_stop, (slice(None), j - xline_start)
+
+
+def segyio_handle(grid: SegyGrid):
+    """Open the file of ``grid`` read-only without scanning its geometry, memory-mapped.
+
+    Parameters
+    ----------
+    grid : SegyGrid
+
+    Returns
+    -------
+    segyio.SegyFile
+        Opened with ``ignore_geometry=True`` (traces addressed by index); close it, or use it in a ``with``.
+
+    Raises
+    ------
+    SegyFormatError
+        The file cannot be opened, or no longer holds ``grid.n_traces`` traces of ``grid.n_samples`` samples (it
+        changed since its geometry was read).
+    """
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # segyio's warnings were reported when the geometry was read
+            f = segyio.open(grid.path, "r", ignore_geometry=True, endian=grid.endian)
+    except (RuntimeError, ValueError, OSError) as exc:
+        raise SegyFormatError(f"cannot open {grid.path} to read a chunk ({exc}); it was readable when the cube was "
+                              "opened: check that it still exists and is not being written") from exc
+    if f.tracecount != grid.n_traces or len(f.samples) != grid.n_samples:
+        f.close()
+        raise SegyFormatError(f"{grid.path} now holds {f.tracecount} traces of {len(f.samples)} samples, not the "
+                              f"{grid.n_traces} of {grid.n_samples} read when it was opened; open it again")
+    f.mmap()
+    return f
+
+
+def _block_bounds(grid: SegyGrid, inline_start, inline_stop, xline_start, xline_stop) -> tuple:
+    xline_stop = grid.n_xlines if xline_stop is None else xline_stop
+    if not (0 <= inline_start < inline_stop <= grid.n_inlines and 0 <= xline_start < xline_stop <= grid.n_xlines):
+        raise InputError(f"block inlines {inline_start}:{inline_stop}, crosslines {xline_start}:{xline_stop} is not "
+                         f"inside the grid of {grid.n_inlines} x {grid.n_xlines}; pass array indices in range")
+    return xline_stop
+
+
+def read_segy_block(grid: SegyGrid, inline_start: int, inline_stop: int, xline_start: int = 0,
+                    xline_stop: int | None = None, *, segyfile=None) -> np.ndarray:
+    """Read the amplitudes of a block of inlines (and crosslines) of a 3D SEG-Y cube, only those traces.
+
+    The task function of :func:`open_lazy`'s graph: module-level and picklable; it opens the file itself unless an
+    open ``segyfile`` is given, and reads through segyio's memory map one run of consecutive traces at a time (one
+    run for whole inlines of an inline-sorted file, one per crossline of a crossline-sorted file).
+
+    Parameters
+    ----------
+    grid : SegyGrid
+    inline_start, inline_stop : int
+        Array indices (not inline numbers) of the block's first and one-past-last inline.
+    xline_start, xline_stop : int, optional
+        Array indices of the crosslines; by default every crossline.
+    segyfile : segyio.SegyFile, optional
+        An open handle of ``grid.path`` (e.g. from :func:`segyio_handle`) to read through instead of opening it.
+
+    Returns
+    -------
+    block : (inline_stop - inline_start, xline_stop - xline_start, n_samples) float32 ndarray
+        Integer sample formats converted to float32 without scaling, as :meth:`SeismicCube.read`.
+
+    Raises
+    ------
+    InputError
+        The block is not inside the grid.
+    SegyFormatError
+        The file cannot be opened or changed since it was opened (see :func:`segyio_handle`).
+    """
+    xline_stop = _block_bounds(grid, inline_start, inline_stop, xline_start, xline_stop)
+    out = np.empty((inline_stop - inline_start, xline_stop - xline_start, grid.n_samples), np.float32)
+    f = segyfile if segyfile is not None else segyio_handle(grid)
+    try:
+        for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
+            out[where] = np.asarray(f.trace.raw[first:last], dtype=np.float32).reshape(out[where].shape)
+    finally:
+        if segyfile is None:
+            f.close()
+    return out
+
+
+def read_segy_block_headers(grid: SegyGrid, fields, inline_start: int, inline_stop: int, xline_start: int = 0,
+                            xline_stop: int | None = None, *, segyfile=None) -> dict:
+    """Read trace header fields of a block of a 3D SEG-Y cube, laid out on the grid.
+
+    Parameters
+    ----------
+    grid : SegyGrid
+    fields : iterable of int
+        ``segyio.TraceField`` values (first byte of the field in the 240-byte trace header, SEG-Y rev 1 Table 3).
+    inline_start, inline_stop, xline_start, xline_stop, segyfile
+        As in :func:`read_segy_block`.
+
+    Returns
+    -------
+    headers : dict of int to (n_block_inlines, n_block_xlines) int32 ndarray
+        The field's value per trace, as segyio decodes it (2- and 4-byte signed integers).
+
+    Raises
+    ------
+    InputError, SegyFormatError
+        As :func:`read_segy_block`.
+    """
+    xline_stop = _block_bounds(grid, inline_start, inline_stop, xline_start, xline_stop)
+    shape = (inline_stop - inline_start, xline_stop - xline_start)
+    fields = [int(k) for k in fields]
+    out = {k: np.empty(shape, np.int32) for k in fields}
+    f = segyfile if segyfile is not None else segyio_handle(grid)
+    try:
+        for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
+            for k in fields:
+                target = out[k][where]
+                out[k][where] = np.asarray(f.attributes(k)[first:last], dtype=np.int64).reshape(target.shape)
+    finally:
+        if segyfile is None:
+            f.close()
+    return out
+
+
+def inline_block_size(n_xlines: int, n_samples: int, chunk_mb: float) -> int:
+    """Inlines per chunk: as many whole inlines of float32 as fit in ``chunk_mb`` MiB, at least one.
+
+    Parameters
+    ----------
+    n_xlines, n_samples : int
+    chunk_mb : float
+        Target chunk size in MiB (2**20 bytes); > 0.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    InputError
+        ``chunk_mb`` is not a positive number.
+    """
+    chunk_mb = check_positive(chunk_mb, "chunk_mb")
+    return max(1, int(chunk_mb * 2**20 // (n_xlines * n_samples * _BYTES_PER_SAMPLE)))
+
+
+def _block_edges(n: int, size: int) -> list:
+    return [(a, min(a + size, n)) for a in range(0, n, size)]
+
+
+def _lazy_segy_array(grid: SegyGrid, block: int, token: str):
+    """The dask array of ``grid``: one :func:`read_segy_block` task per block of ``block`` inlines."""
+    import dask.array as da
+
+    name = f"segy-{token}"
+    edges = _block_edges(grid.n_inlines, block)
+    graph = {(name, k, 0, 0): (read_segy_block, grid, a, b) for k, (a, b) in enumerate(edges)}
+    chunks = (tuple(b - a for a, b in edges), (grid.n_xlines,), (grid.n_samples,))
+    return da.Array(graph, name, chunks, dtype=np.float32)
+
+
+def _open_segy_lazy(path: Path, *, iline, xline, sample_unit, endian, chunk_mb) -> LazyCube:
+    from dask.base import tokenize
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TraceListWarning)  # a trace list is refused below, saying what it is
+        cube = open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
+    with cube:
+        grid = SegyGrid.from_cube(cube)
+        stat = path.stat()
+        token = tokenize(grid, stat.st_mtime_ns, stat.st_size, chunk_mb)
+        data = _lazy_segy_array(grid, inline_block_size(grid.n_xlines, grid.n_samples, chunk_mb), token)
+        return LazyCube(data=data, inlines=np.array(cube.inlines), xlines=np.array(cube.xlines),
+                        samples=np.array(cube.samples), sample_unit=cube.sample_unit, source=path, format="segy")
+
+
+def _open_zarr_lazy(path: Path, *, sample_unit, chunk_mb) -> LazyCube:
+    import dask.array as da
+
+    from .seismic_zarr import open_seismic_zarr
+
+    store = open_seismic_zarr(path)
+    seismic = store.seismic
+    n_il, n_xl, ns = seismic.shape
+    # the store's (64, 64, n_samples) tiles regrouped into blocks of whole inlines (a no-op when they already are)
+    data = da.from_zarr(seismic).rechunk((inline_block_size(n_xl, ns, chunk_mb), n_xl, ns))
+    return LazyCube(data=data, inlines=store.inlines, xlines=store.xlines, samples=store.samples,
+                    sample_unit=sample_unit or store.sample_unit, source=path, format="zarr")
+
+
+def open_lazy(path, *, iline: int = 189, xline: int = 193, sample_unit=None, endian=None,
+              chunk_mb: float = 64) -> LazyCube:
+    """Open a 3D cube (SEG-Y file or Zarr store of ``seismo3d convert``) as a lazy dask array.
+
+    Only the geometry is read here. The returned array is chunked by blocks of whole inlines of about ``chunk_mb``
+    MiB; computing a chunk reads only its traces.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A SEG-Y file (opened through :func:`~seismo3d.seismic.io.open_segy`, with its checks and errors), or a
+        directory holding a Zarr v3 store written by ``seismo3d convert`` (see
+        :mod:`~seismo3d.seismic.seismic_zarr`).
+    iline, xline : int
+        SEG-Y only: trace header bytes of the inline and crossline numbers (189 / 193 by default, SEG-Y rev 1).
+    sample_unit : {'ms', 'm', 'ft'}, optional
+        Unit of the sample axis; by default from the headers (SEG-Y, see :class:`SeismicCube`) or the store.
+    endian : {'big', 'little'}, optional
+        SEG-Y only: byte order; by default detected from the binary header.
+    chunk_mb : float
+        Target chunk size in MiB (2**20 bytes of float32); a chunk holds at least one inline.
+
+    Returns
+    -------
+    LazyCube
+
+    Raises
+    ------
+    SegyGeometryError
+        The SEG-Y file is a 2D line or a trace list (chunked processing needs a 3D cube), or holds no grid at the given
+        header bytes (see :func:`open_segy`).
+    SegyFormatError, DataNotFoundError
+        The SEG-Y file cannot be read (see :func:`open_segy`); or the path does not exist.
+    InputError
+        A directory that is not a Zarr store of ``seismo3d convert``; invalid ``chunk_mb``, ``sample_unit``, ``iline``,
+        ``xline`` or ``endian``.
+
+    Examples
+    --------
+    >>> cube = open_lazy("f3_crop.sgy", chunk_mb=1)         # doctest: +SKIP
+    >>> cube.data.chunks[0], float(cube.data[5].mean().compute())
+    """
+    path = Path(path)
+    inline_block_size(1, 1, chunk_mb)  # validates chunk_mb
+    if sample_unit is not None:
+        check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
+    if path.is_dir():
+        return _open_zarr_lazy(path, sample_unit=sample_unit, chunk_mb=chunk_mb)
+    return _open_segy_lazy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian,
+                           chunk_mb=chunk_mb)

@@ -1,0 +1,262 @@
+"""The Zarr v3 layout of a seismic cube (written by ``seismo3d convert``, read by
+:func:`~seismo3d.seismic.lazy_cube.open_lazy` and by ``xarray.open_zarr`` as is).
+
+Layout (one Zarr v3 group; the idea is MDIO's: amplitudes, their coordinates and the SEG-Y headers in one store)::
+
+    OUTPUT.zarr/
+      seismic      (n_inlines, n_xlines, n_samples) float32, dimension_names (inline, crossline, sample),
+                   chunks (64, 64, n_samples), attrs {long_name, coordinates: "cdp_x cdp_y" when present}
+      inline       (n_inlines,) int32, dims (inline,)          inline numbers
+      crossline    (n_xlines,) int32, dims (crossline,)        crossline numbers
+      sample       (n_samples,) float64, dims (sample,)        time or depth, attrs {units: 'ms' | 'm' | 'ft'}
+      cdp_x, cdp_y (n_inlines, n_xlines) float64, dims (inline, crossline), coordinate scalar applied (as
+                   SeismicCube.cdp_x: CDP X/Y, else source X/Y), attrs {units: 'm' | 'ft'}; absent when both are 0
+      <TraceField> (n_inlines, n_xlines) int32, dims (inline, crossline), chunks (64, 64): every trace header field
+                   that is not zero on every trace, named as segyio.TraceField (``CDP_X``, ``INLINE_3D``, ...)
+      group attrs: seismo3d {layout: 'seismic-zarr', version: 1, source, sorting, endian, segy_format, iline_byte,
+                   xline_byte}, sample_unit, sample_interval, text_header (str, 40 lines of 80 characters),
+                   extended_text_headers (list of str), binary_header {segyio.BinField name: int}
+
+Chunks: (64, 64, n_samples) tiles of whole traces. The fault scan and the attributes need every sample of a trace,
+so a chunk never splits a trace; 64 x 64 traces keep a chunk at 8-40 MB for 500-2500 samples, small enough for a
+worker, large enough for few files (a 10 GB cube makes about 500 chunks), and square so that inline, crossline and
+map views read alike. :func:`~seismo3d.seismic.lazy_cube.open_lazy` rechunks to blocks of whole inlines.
+
+References
+----------
+Zarr v3 core specification (``dimension_names``), https://zarr-specs.readthedocs.io/en/latest/v3/core/index.html.
+MDIO (TGS), https://mdio-python.readthedocs.io: the layout idea (named dimensions, coordinates, headers kept).
+SEG-Y rev 1 (SEG Technical Standards Committee, 2002), textual, binary and trace headers.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import segyio
+
+from ..errors import InputError
+from .io import scale_coordinates
+from .lazy_cube import SegyGrid, read_segy_block, read_segy_block_headers
+
+__all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "open_seismic_zarr", "is_seismic_zarr"]
+
+LAYOUT = {"layout": "seismic-zarr", "version": 1}
+TILE_TRACES = 64  # traces per chunk along inline and crossline
+_TRACE_FIELDS = {int(f): str(f) for f in segyio.TraceField.enums()}
+_BIN_FIELDS = {int(f): str(f) for f in segyio.BinField.enums()}
+_COORDINATE_FIELDS = ((segyio.TraceField.CDP_X, segyio.TraceField.CDP_Y),
+                      (segyio.TraceField.SourceX, segyio.TraceField.SourceY))
+_UNITS = {1: "m", 2: "ft"}  # binary header bytes 3255-3256, measurement system
+
+
+@dataclass(frozen=True)
+class SeismicZarr:
+    """A seismic Zarr store opened for reading.
+
+    Attributes
+    ----------
+    seismic : zarr.Array
+        (n_inlines, n_xlines, n_samples) float32.
+    inlines, xlines : (n,) int32 ndarray
+    samples : (n_samples,) float64 ndarray, in ``sample_unit``
+    sample_unit : {'ms', 'm', 'ft'}
+    attrs : dict
+        The group attributes (textual and binary headers, see the module docstring).
+    """
+
+    seismic: object
+    inlines: np.ndarray
+    xlines: np.ndarray
+    samples: np.ndarray
+    sample_unit: str
+    attrs: dict
+
+
+def is_seismic_zarr(path) -> bool:
+    """Whether ``path`` is a directory holding a Zarr group written in this layout (reads only its metadata)."""
+    try:
+        _open_group(Path(path))
+    except InputError:
+        return False
+    return True
+
+
+def _open_group(path: Path):
+    import zarr
+
+    not_ours = (f"{path} is not a seismic Zarr store written by 'seismo3d convert'; convert the SEG-Y with "
+                f"'seismo3d convert INPUT.sgy {path.name}'")
+    try:
+        group = zarr.open_group(str(path), mode="r")
+    except (FileNotFoundError, ValueError, KeyError, TypeError, OSError) as exc:
+        raise InputError(f"{not_ours} (no Zarr group there)") from exc
+    if dict(group.attrs).get("seismo3d", {}).get("layout") != LAYOUT["layout"]:
+        raise InputError(f"{not_ours} (its attributes do not name the seismo3d layout)")
+    version = group.attrs["seismo3d"].get("version")
+    if version != LAYOUT["version"]:
+        raise InputError(f"{path} is seismic-zarr version {version}; this seismo3d reads version "
+                         f"{LAYOUT['version']}: convert the SEG-Y again")
+    missing = [k for k in ("seismic", "inline", "crossline", "sample") if k not in group]
+    if missing:
+        raise InputError(f"{path} lacks the array(s) {', '.join(missing)}; the store is incomplete: convert the SEG-Y "
+                         "again")
+    return group
+
+
+def open_seismic_zarr(path) -> SeismicZarr:
+    """Open a store written by ``seismo3d convert`` for reading (metadata and coordinates only).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The store's directory.
+
+    Returns
+    -------
+    SeismicZarr
+
+    Raises
+    ------
+    InputError
+        Not a Zarr group, not this layout (the message says how to make one), another layout version, or arrays
+        missing.
+    """
+    path = Path(path)
+    group = _open_group(path)
+    seismic = group["seismic"]
+    return SeismicZarr(seismic=seismic, inlines=np.asarray(group["inline"][:], dtype=np.int32),
+                       xlines=np.asarray(group["crossline"][:], dtype=np.int32),
+                       samples=np.asarray(group["sample"][:], dtype=np.float64),
+                       sample_unit=str(group.attrs.get("sample_unit", "ms")), attrs=dict(group.attrs))
+
+
+def _text(raw: bytes) -> str:
+    return segyio.tools.wrap(raw.decode("ascii", errors="replace"), 80) if raw else ""
+
+
+def _group_attrs(cube) -> dict:
+    """The SEG-Y file's headers and the layout's identity, as JSON-able group attributes."""
+    f = cube.segyfile
+    binary = {_BIN_FIELDS.get(int(k), str(k)): int(v) for k, v in f.bin.items()}
+    return {
+        "seismo3d": {**LAYOUT, "source": cube.path.name, "sorting": cube.sorting, "endian": cube.endian,
+                     "segy_format": int(cube.format), "iline_byte": int(cube.iline_byte),
+                     "xline_byte": int(cube.xline_byte)},
+        "sample_unit": cube.sample_unit,
+        "sample_interval": float(cube.sample_interval),
+        "text_header": _text(f.text[0]),
+        "extended_text_headers": [_text(f.text[i]) for i in range(1, 1 + f.ext_headers)],
+        "binary_header": binary,
+    }
+
+
+class SeismicZarrWriter:
+    """Write a 3D SEG-Y cube into the Zarr layout tile by tile (memory: one tile of ``chunk_mb``).
+
+    Use: ``w = SeismicZarrWriter(cube, store)``; ``w.write_tile(t)`` for each ``t`` in ``w.tiles`` (in any order);
+    then ``w.finish()``, which drops the header fields that are zero on every trace and adds ``cdp_x`` / ``cdp_y``.
+
+    Parameters
+    ----------
+    cube : SeismicCube
+        An open 3D cube (:func:`~seismo3d.seismic.io.open_segy`); read through its memory-mapped handle.
+    store : str or os.PathLike
+        Directory of the new store (created; an existing one is replaced).
+    chunk_mb : float
+        Upper bound in MiB of the amplitudes read per tile (at least one 64 x 64-trace chunk).
+
+    Attributes
+    ----------
+    tiles : list of (int, int, int, int)
+        ``(inline_start, inline_stop, xline_start, xline_stop)`` array indices; whole chunks.
+
+    Raises
+    ------
+    SegyGeometryError
+        ``cube`` is not a 3D cube.
+    """
+
+    def __init__(self, cube, store, *, chunk_mb: float = 64):
+        import zarr
+
+        self.cube = cube
+        self.grid = SegyGrid.from_cube(cube)
+        n_il, n_xl, ns = cube.shape
+        chunk = (min(TILE_TRACES, n_il), min(TILE_TRACES, n_xl), ns)
+        self.root = zarr.open_group(str(store), mode="w", zarr_format=3, attributes=_group_attrs(cube))
+        self._coordinates(cube)
+        self.seismic = self.root.create_array("seismic", shape=cube.shape, chunks=chunk, dtype="float32",
+                                              dimension_names=("inline", "crossline", "sample"), fill_value=0.0,
+                                              attributes={"long_name": "amplitude"})
+        self.headers = {k: self.root.create_array(name, shape=(n_il, n_xl), chunks=chunk[:2], dtype="int32",
+                                                  dimension_names=("inline", "crossline"), fill_value=0)
+                        for k, name in _TRACE_FIELDS.items()}
+        self.nonzero = {k: False for k in _TRACE_FIELDS}
+        per_chunk = chunk[0] * chunk[1] * ns * 4 / 2**20
+        xl_step = chunk[1] * max(1, int(chunk_mb // per_chunk))
+        self.tiles = [(a, min(a + chunk[0], n_il), b, min(b + xl_step, n_xl))
+                      for a in range(0, n_il, chunk[0]) for b in range(0, n_xl, xl_step)]
+
+    def _coordinates(self, cube) -> None:
+        self.root.create_array("inline", data=np.asarray(cube.inlines, np.int32), dimension_names=("inline",),
+                               attributes={"long_name": "inline number"})
+        self.root.create_array("crossline", data=np.asarray(cube.xlines, np.int32), dimension_names=("crossline",),
+                               attributes={"long_name": "crossline number"})
+        self.root.create_array("sample", data=np.asarray(cube.samples, np.float64), dimension_names=("sample",),
+                               attributes={"units": cube.sample_unit, "long_name": "time or depth"})
+
+    def write_tile(self, tile) -> None:
+        """Read one tile of amplitudes and trace headers from the SEG-Y and store it.
+
+        Parameters
+        ----------
+        tile : (int, int, int, int)
+            An element of :attr:`tiles`.
+        """
+        a, b, c, d = tile
+        f = self.cube.segyfile
+        self.seismic[a:b, c:d, :] = read_segy_block(self.grid, a, b, c, d, segyfile=f)
+        for k, values in read_segy_block_headers(self.grid, _TRACE_FIELDS, a, b, c, d, segyfile=f).items():
+            self.headers[k][a:b, c:d] = values
+            self.nonzero[k] = self.nonzero[k] or bool(np.any(values))
+
+    def finish(self) -> list:
+        """Drop the all-zero header fields, add ``cdp_x`` / ``cdp_y``; return the names of the header fields kept."""
+        self._add_cdp_coordinates()
+        for k, name in _TRACE_FIELDS.items():
+            if not self.nonzero[k]:
+                del self.root[name]
+        self._consolidate()
+        return [name for k, name in _TRACE_FIELDS.items() if self.nonzero[k]]
+
+    def _consolidate(self) -> None:
+        """Consolidated metadata (every array's metadata in the group's zarr.json): xarray and other readers open the
+        store with one read. Zarr-python's extension of v3, which it warns about; readers without it ignore it."""
+        import zarr
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # ZarrUserWarning: consolidated metadata is not in the v3 specification
+            zarr.consolidate_metadata(self.root.store)
+
+    def _add_cdp_coordinates(self) -> None:
+        """cdp_x / cdp_y with the coordinate scalar applied, one row of chunks at a time (as SeismicCube.cdp_x)."""
+        fields = next(((fx, fy) for fx, fy in _COORDINATE_FIELDS if self.nonzero[fx] or self.nonzero[fy]), None)
+        if fields is None:
+            return
+        scalar = self.headers[segyio.TraceField.SourceGroupScalar]
+        unit = _UNITS.get(int(self.cube.segyfile.bin[segyio.BinField.MeasurementSystem]), "unknown")
+        n_il, n_xl = self.seismic.shape[:2]
+        rows = self.seismic.chunks[0]
+        for name, field in zip(("cdp_x", "cdp_y"), fields):
+            out = self.root.create_array(name, shape=(n_il, n_xl), chunks=self.seismic.chunks[:2], dtype="float64",
+                                         dimension_names=("inline", "crossline"), fill_value=0.0,
+                                         attributes={"units": unit})
+            for a in range(0, n_il, rows):
+                out[a:a + rows] = scale_coordinates(self.headers[field][a:a + rows], scalar[a:a + rows])
+        self.seismic.attrs["coordinates"] = "cdp_x cdp_y"
+
+

@@ -1,0 +1,161 @@
+"""The convert job: a 3D SEG-Y into the Zarr v3 layout that xarray opens as is; round trip to the SEG-Y's amplitudes,
+coordinates and headers; atomic output (an interrupted convert leaves no OUTPUT); refusals."""
+
+import contextlib
+
+import numpy as np
+import pytest
+import segyio
+from numpy.testing import assert_allclose, assert_array_equal
+
+import seismo3d.jobs.convert as convert_job
+from seismo3d.errors import InputError, SegyGeometryError
+from seismo3d.jobs.convert import run_convert_job
+from seismo3d.seismic.io import read_segy
+from seismo3d.seismic.lazy_cube import open_lazy
+
+xr = pytest.importorskip("xarray")
+
+SHAPE = (70, 66, 12)  # > 64 inlines and crosslines: 2 x 2 chunks of 64 x 64 traces, edge chunks partial
+
+
+@pytest.fixture(scope="module")
+def amplitudes():
+    return np.random.default_rng(3).standard_normal(SHAPE).astype(np.float32)
+
+
+@pytest.fixture(scope="module", params=["inline", "crossline"])
+def converted(request, amplitudes, tmp_path_factory, write_segy_cube):
+    """(SEG-Y path, store path, ConvertResult), one tile per 64 x 64 chunk (chunk_mb below one chunk)."""
+    folder = tmp_path_factory.mktemp(request.param)
+    src = write_segy_cube(folder / "cube.sgy", amplitudes, sorting=request.param, fmt=1)
+    result = run_convert_job(src, folder / "cube.zarr", chunk_mb=0.01)
+    return src, folder / "cube.zarr", result
+
+
+def _no_temporaries(folder):
+    return [p.name for p in folder.iterdir() if p.name.startswith(".")]
+
+
+def test_xarray_opens_the_store_as_is(converted):
+    src, store, result = converted
+    ref, cube = read_segy(src)
+    ds = xr.open_zarr(store)
+    assert ds.seismic.dims == ("inline", "crossline", "sample") and ds.seismic.dtype == np.float32
+    assert_array_equal(ds.seismic.values, ref)
+    assert_array_equal(ds.inline.values, cube.inlines)
+    assert_array_equal(ds.crossline.values, cube.xlines)
+    assert_array_equal(ds.sample.values, cube.samples)
+    assert ds.sample.attrs["units"] == "ms"
+    # headers: CDP_X as written (centimetres), cdp_x with the scalar -100 applied (metres), as SeismicCube.cdp_x
+    i, j = np.meshgrid(np.arange(SHAPE[0]), np.arange(SHAPE[1]), indexing="ij")
+    assert ds.CDP_X.dims == ("inline", "crossline")
+    assert_array_equal(ds.CDP_X.values, 60_500_000 + 2500 * i + 7 * j)
+    assert_array_equal(ds.INLINE_3D.values, cube.inlines[:, None] + 0 * j)
+    assert_allclose(ds.cdp_x.values, cube.cdp_x, rtol=0, atol=1e-9)
+    assert_allclose(ds.cdp_y.values, 6_073_000 + 25.0 * j, rtol=0, atol=1e-9)
+    assert {"cdp_x", "cdp_y"} <= set(ds.seismic.coords)
+    # the fields that are zero on every trace are not stored
+    assert "SourceX" not in ds and "CDP_X" in result.header_fields and "SourceX" not in result.header_fields
+    assert ds.attrs["text_header"].startswith("C 1 seismo3d generated cube")
+    assert ds.attrs["binary_header"]["Samples"] == SHAPE[2] and ds.attrs["binary_header"]["Interval"] == 4000
+    assert ds.attrs["seismo3d"]["layout"] == "seismic-zarr"
+    assert result.shape == SHAPE and result.chunks == (64, 64, SHAPE[2]) and result.has_cdp_coordinates
+
+
+def test_open_lazy_on_the_store_equals_the_segy(converted):
+    src, store, _ = converted
+    ref, _ = read_segy(src)
+    lazy = open_lazy(store, chunk_mb=20 * SHAPE[1] * SHAPE[2] * 4 / 2**20)
+    segy = open_lazy(src)
+    assert lazy.format == "zarr" and lazy.sample_unit == "ms"
+    assert lazy.data.chunks == ((20, 20, 20, 10), (SHAPE[1],), (SHAPE[2],))  # regrouped into blocks of inlines
+    assert_array_equal(lazy.data.compute(), ref)
+    assert_array_equal(lazy.inlines, segy.inlines)
+    assert_array_equal(lazy.xlines, segy.xlines)
+    assert_array_equal(lazy.samples, segy.samples)
+
+
+def test_progress_one_step_per_tile(amplitudes, tmp_path, write_segy_cube, caplog):
+    src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
+    with caplog.at_level("INFO", logger="seismo3d"):
+        run_convert_job(src, tmp_path / "out.zarr", chunk_mb=0.01, progress=True)
+    assert "convert cube.sgy: 4/4 tile" in caplog.text
+
+
+def test_real_f3_crop(data_dir, tmp_path):
+    from seismo3d.data import fetch
+
+    src = fetch("seismic/f3_crop.sgy")
+    ref, cube = read_segy(src)
+    run_convert_job(src, tmp_path / "f3.zarr")
+    ds = xr.open_zarr(tmp_path / "f3.zarr")
+    assert_array_equal(ds.seismic.values, ref)
+    assert_array_equal(ds.inline.values, cube.inlines)
+    assert_allclose(ds.cdp_x.values, cube.cdp_x, rtol=0, atol=1e-9)
+    with segyio.open(str(src), "r") as f:
+        assert_array_equal(ds.CDP_X.values.ravel(), f.attributes(segyio.TraceField.CDP_X)[:])  # inline-sorted
+    assert_array_equal(open_lazy(tmp_path / "f3.zarr").data.compute(), ref)
+
+
+class _Interrupted:
+    """progress_steps stand-in raising KeyboardInterrupt (Ctrl-C) after the first tile."""
+
+    def __init__(self):
+        self.done = 0
+
+    def advance(self, n=1, status=None):
+        self.done += n
+        if self.done == 2:
+            raise KeyboardInterrupt
+
+
+def test_interrupted_convert_leaves_no_output(amplitudes, tmp_path, write_segy_cube, monkeypatch):
+    src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
+    monkeypatch.setattr(convert_job, "progress_steps", lambda *a, **k: contextlib.nullcontext(_Interrupted()))
+    with pytest.raises(KeyboardInterrupt):
+        run_convert_job(src, tmp_path / "out.zarr", chunk_mb=0.01)
+    assert not (tmp_path / "out.zarr").exists()
+    assert _no_temporaries(tmp_path) == []
+
+
+def test_interrupted_overwrite_keeps_the_earlier_store(amplitudes, tmp_path, write_segy_cube, monkeypatch):
+    src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
+    run_convert_job(src, tmp_path / "out.zarr", chunk_mb=0.01)
+    monkeypatch.setattr(convert_job, "progress_steps", lambda *a, **k: contextlib.nullcontext(_Interrupted()))
+    with pytest.raises(KeyboardInterrupt):
+        run_convert_job(src, tmp_path / "out.zarr", chunk_mb=0.01, overwrite=True)
+    assert_array_equal(xr.open_zarr(tmp_path / "out.zarr").seismic.values, amplitudes)
+    assert _no_temporaries(tmp_path) == []
+
+
+def test_existing_output(amplitudes, tmp_path, write_segy_cube):
+    src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
+    run_convert_job(src, tmp_path / "out.zarr", chunk_mb=0.01)
+    with pytest.raises(InputError, match=r"exists; choose another path or pass overwrite=True"):
+        run_convert_job(src, tmp_path / "out.zarr")
+    changed = write_segy_cube(tmp_path / "changed.sgy", -amplitudes, sorting="crossline")
+    run_convert_job(changed, tmp_path / "out.zarr", overwrite=True)
+    assert_array_equal(xr.open_zarr(tmp_path / "out.zarr").seismic.values, -amplitudes)
+    (tmp_path / "notes").mkdir()
+    (tmp_path / "notes" / "keep.txt").write_text("mine")
+    with pytest.raises(InputError, match="not a store written by seismo3d convert"):
+        run_convert_job(src, tmp_path / "notes", overwrite=True)
+    assert (tmp_path / "notes" / "keep.txt").read_text() == "mine"
+    assert _no_temporaries(tmp_path) == []
+
+
+def test_refuses_to_overwrite_the_input(amplitudes, tmp_path, write_segy_cube):
+    src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
+    before = src.read_bytes()
+    for output in (src, tmp_path):
+        with pytest.raises(InputError, match="input"):
+            run_convert_job(src, output, overwrite=True)
+    assert src.read_bytes() == before
+
+
+def test_2d_line_is_refused(amplitudes, tmp_path, write_segy_cube):
+    src = write_segy_cube(tmp_path / "line.sgy", amplitudes[:1])
+    with pytest.raises(SegyGeometryError, match="needs a 3D cube"):
+        run_convert_job(src, tmp_path / "line.zarr")
+    assert not (tmp_path / "line.zarr").exists() and _no_temporaries(tmp_path) == []

@@ -7,15 +7,16 @@ Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000] [--only equal,t
    :func:`~seismo3d.seismic.trace_faults`) and chunked (:func:`~seismo3d.seismic.chunked_likelihood.
    chunked_fault_likelihood` with 64-trace blocks and strips, then ``trace_faults(..., likelihood=...)``): the largest
    likelihood difference, strike / dip differences, and the faults (count, sizes, the same samples).
-2. threads / distributed: a generated cube of ``--shape`` (default 1024 x 1024 x 1000 float32 = 4.19 GB) written as
+2. threads / distributed: a generated cube of ``--shape`` (default 1448 x 1448 x 512 float32 = 4.29 GB) written as
    SEG-Y (a 256-trace faulted tile mirrored into a mosaic, so reflectors and faults continue across the seams),
-   read lazily (:func:`seismo3d.seismic.lazy_cube.open_lazy`) and its fault likelihood, strike and dip computed
-   chunk by chunk into Zarr with ``--memory-limit`` (default 1.4 GB): on dask's threaded scheduler, and on a local
-   ``dask.distributed`` cluster of 2 worker processes (1 thread each, the limit split between them). Each run is a
+   read lazily (:func:`seismo3d.seismic.lazy_cube.open_lazy`, tiles of 32 traces) and its fault likelihood, strike
+   and dip computed chunk by chunk into Zarr with ``--memory-limit`` (default 1.4 GB): on dask's threaded
+   scheduler, and on a local ``dask.distributed`` cluster of 2 worker processes (1 thread each, blocks planned for
+   half the limit each, tiles of 16 traces). Each run is a
    child process; its peak resident memory is sampled every 0.2 s over the process and all its children (the
    cluster's scheduler and workers included). Seconds per GB of input samples (1e9 bytes).
 3. memory: the in-memory path (:func:`~seismo3d.seismic.fault_likelihood`) on the largest cube it holds in this
-   machine's 24 GB (512 x 512 x 1000 = 1.05 GB; about 14 copies of the cube at its peak), same sampling.
+   machine's 24 GB (768 x 768 x 512 = 1.21 GB; about 14 copies of the cube at its peak), same sampling.
 
 The targets of issue 19: chunked peak <= 1.5 GB, <= 250 s/GB; equal: likelihood difference <= 1e-5 and the same
 faults.
@@ -57,15 +58,15 @@ def write_mosaic_segy(path: Path, shape) -> None:
     idx_xl = np.arange(n_xl) % (2 * _TILE)
     idx_xl = np.where(idx_xl < _TILE, idx_xl, 2 * _TILE - 1 - idx_xl)
     with segyio.create(str(path), spec) as f:
-        f.bin.update(hns=ns, interval=4000, format=5)
+        f.bin.update(hns=ns, hdt=4000, format=5)
         k = 0
         for i in range(n_il):
             r = i % (2 * _TILE)
             r = r if r < _TILE else 2 * _TILE - 1 - r
             line = tile[r][idx_xl]
             for j in range(n_xl):
-                f.header[k] = {segyio.su.iline: i + 1, segyio.su.xline: j + 1, segyio.su.cdp_x: 25 * i,
-                               segyio.su.cdp_y: 25 * j, segyio.su.offset: 1}
+                f.header[k] = {segyio.su.iline: i + 1, segyio.su.xline: j + 1, segyio.su.cdpx: 25 * i,
+                               segyio.su.cdpy: 25 * j, segyio.su.offset: 1}
                 k += 1
             f.iline[i + 1] = line
             if i % 128 == 0:
@@ -125,21 +126,24 @@ def case_chunked(sgy: str, out: str, limit: int, scheduler: str) -> dict:
     from seismo3d.seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood
     from seismo3d.seismic.lazy_cube import open_lazy
 
-    cube = open_lazy(sgy)
+    tile = 32 if scheduler == "threads" else 16
+    cube = open_lazy(sgy, tile=tile)
     t0 = time.perf_counter()
     if scheduler == "threads":
         r = chunked_fault_likelihood(cube.data, out, chunking=ChunkOptions(memory_limit=limit), progress=True)
     else:
         from distributed import LocalCluster
 
+        # the cluster's own memory manager is left off (it would pause a worker whose numpy blocks it cannot
+        # spill); the run plans its blocks for half the limit per worker
         with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                          memory_limit=limit // 2) as lc:
-            r = chunked_fault_likelihood(cube.data, out, progress=True,
-                                         chunking=ChunkOptions(memory_limit=limit // 2, scheduler=lc.scheduler_address))
+                          memory_limit=0) as lc:
+            r = chunked_fault_likelihood(cube.data, out, progress=True, chunking=ChunkOptions(
+                memory_limit=limit // 2, tile=tile, scheduler=lc.scheduler_address))
     sec = time.perf_counter() - t0
     fl = r.open()["likelihood"]
     return {"seconds": sec, "gb": float(np.prod(cube.shape)) * 4 / 1e9, "shape": list(cube.shape),
-            "blocks": r.blocks_computed, "max_likelihood": float(np.max(fl[::64, ::64, :]))}
+            "blocks": r.blocks_computed, "steps": r.seconds, "max_likelihood": float(np.max(fl[::64, ::64, :]))}
 
 
 def case_memory(shape: str) -> dict:
@@ -190,8 +194,8 @@ def equal(work: Path) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--shape", default="1024,1024,1000")
-    ap.add_argument("--memory-shape", default="512,512,1000")
+    ap.add_argument("--shape", default="1448,1448,512")
+    ap.add_argument("--memory-shape", default="768,768,512")
     ap.add_argument("--memory-limit", default="1.4e9")
     ap.add_argument("--only", default="equal,threads,distributed,memory")
     ap.add_argument("--keep", default=None, help="folder for the SEG-Y cube (kept between runs) and the outputs")
@@ -235,11 +239,12 @@ def main() -> None:
             rows.append(("in memory (fault_likelihood)", _child("memory", [args.memory_shape])))
         if rows:
             print(f"\n### fault likelihood of large cubes (memory limit of the chunked runs {float(args.memory_limit) / 1e9:.2f} GB)\n")
-            print("| path | cube | GB | s | s/GB | peak resident GB |")
-            print("|---|---|---|---|---|---|")
+            print("| path | cube | GB | s | s/GB | peak resident GB | seconds per step |")
+            print("|---|---|---|---|---|---|---|")
             for label, r in rows:
+                steps = ", ".join(f"{k} {v:.0f}" for k, v in r.get("steps", {}).items())
                 print(f"| {label} | {' x '.join(map(str, r['shape']))} | {r['gb']:.2f} | {r['seconds']:.0f} | "
-                      f"{r['seconds'] / r['gb']:.0f} | {r['peak_gb']:.2f} |", flush=True)
+                      f"{r['seconds'] / r['gb']:.0f} | {r['peak_gb']:.2f} | {steps} |", flush=True)
     finally:
         if not args.keep:
             shutil.rmtree(work, ignore_errors=True)

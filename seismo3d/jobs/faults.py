@@ -315,10 +315,16 @@ class LazyInput:
         return {"inline": self.inline, "crossline": self.xline, "sample": self.samples, "sample_unit": self.unit}
 
 
-def _lazy_if_too_large(path, limit: int, *, iline, xline, sample_unit, endian) -> LazyInput | None:
-    """The input read lazily when it is a Zarr store, or a 3D SEG-Y cube or ``.npy`` array whose in-memory run would
-    need more than ``limit`` bytes; else None (the in-memory run)."""
+def _too_large(shape, budget: int) -> bool:
+    """Whether the in-memory run on a cube of this shape would need more than ``budget`` bytes."""
     from ..seismic.chunked_likelihood import in_memory_bytes
+
+    return in_memory_bytes(shape) > budget
+
+
+def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) -> LazyInput | None:
+    """The input read lazily when it is a Zarr store, or a 3D SEG-Y cube or ``.npy`` array whose in-memory run would
+    need more than ``budget`` bytes; else None (the in-memory run)."""
 
     if path is None:
         return None
@@ -331,7 +337,7 @@ def _lazy_if_too_large(path, limit: int, *, iline, xline, sample_unit, endian) -
             arr = np.load(path, allow_pickle=False, mmap_mode="r")
         except (ValueError, OSError):
             return None  # _read_input says why
-        if arr.ndim != 3 or in_memory_bytes(arr.shape) <= limit:
+        if arr.ndim != 3 or not _too_large(arr.shape, budget):
             return None
         if sample_unit is not None:
             raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
@@ -339,7 +345,7 @@ def _lazy_if_too_large(path, limit: int, *, iline, xline, sample_unit, endian) -
         import dask.array as da
 
         idx = [np.arange(n, dtype=np.int64) for n in arr.shape]
-        data = da.from_array(arr, chunks=(max(1, (64 << 20) // (4 * arr.shape[1] * arr.shape[2])), -1, -1))
+        data = da.from_array(arr, chunks=(_TILE, _TILE, -1))
         return LazyInput(data.astype(np.float32), path.stem, idx[0], idx[1], idx[2].astype(np.float64), "samples")
     from ..seismic.lazy_cube import open_lazy
 
@@ -347,9 +353,9 @@ def _lazy_if_too_large(path, limit: int, *, iline, xline, sample_unit, endian) -
         from ..seismic.io import open_segy
 
         with open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian) as cube:
-            if not cube.is_3d or cube.inlines is None or in_memory_bytes(cube.shape) <= limit:
+            if not cube.is_3d or cube.inlines is None or not _too_large(cube.shape, budget):
                 return None
-    lazy = open_lazy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
+    lazy = open_lazy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian, tile=_TILE)
     return LazyInput(lazy.data, path.stem if path.is_file() else path.name.split(".")[0], np.asarray(lazy.inlines),
                      np.asarray(lazy.xlines), np.asarray(lazy.samples, dtype=np.float64), lazy.sample_unit)
 
@@ -456,12 +462,16 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     -------
     dict of str to pathlib.Path
         The files written, keyed ``likelihood``, ``strike``, ``dip``, ``votes``, ``surfaces``, ``points``,
-        ``summary``, ``figure`` (and ``input``, ``truth`` for the demo).
+        ``summary``, ``figure`` (and ``input``, ``truth`` for the demo). For a cube beyond ``memory_limit``:
+        ``likelihood`` is ``fault_likelihood.zarr`` (holding strike, dip and votes too), with ``surfaces``,
+        ``points``, ``summary``, ``figure`` when the surfaces fit in memory.
 
     Raises
     ------
     InputError
-        No input (and not ``demo``), ``out_dir`` is the input's folder or a file, an invalid option, a constant input.
+        No input (and not ``demo``), ``out_dir`` is the input's folder or a file, an invalid option, a constant input,
+        a ``memory_limit`` too small for the smallest blocks, or ``out_dir`` holding the ``fault_likelihood.zarr`` of
+        another input.
     DataNotFoundError
         The input does not exist.
     SegyFormatError
@@ -492,18 +502,21 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
                              "demo=True (--demo) to run on a synthetic cube")
         out_dir = _check_out_dir(input_path, out_dir)
 
+    from ..seismic.chunked_likelihood import resident_memory
+
     limit = _memory_limit(memory_limit)
+    budget = limit - resident_memory()  # what this run may add to the process as it is now
     written = {}
     if demo:
         out_dir.mkdir(parents=True, exist_ok=True)
         inp, written["truth"] = _demo_input(out_dir, demo_seed, read=False)
         iline, xline, ignore_geometry, endian = 189, 193, False, None
         input_path = written["input"] = inp
-    lazy = None if ignore_geometry else _lazy_if_too_large(input_path, limit, iline=iline, xline=xline,
+    lazy = None if ignore_geometry else _lazy_if_too_large(input_path, budget, iline=iline, xline=xline,
                                                            sample_unit=sample_unit, endian=endian)
     if lazy is not None:
-        written.update(_run_chunked(lazy, out_dir, memory_limit=limit, scheduler=scheduler, sensitivity=sensitivity,
-                                    progress=progress))
+        written.update(_run_chunked(lazy, out_dir, memory_limit=limit, budget=budget, scheduler=scheduler,
+                                    sensitivity=sensitivity, progress=progress))
         return written
     if demo:
         inp = _read_input(input_path, iline=189, xline=193, ignore_geometry=False, sample_unit="ms", n_samples=None)
@@ -557,10 +570,12 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
 # --------------------------------------------------------------------------------------------------------------------
 # cubes larger than memory
 
+_TILE = 32  # traces per side of the lazy input's chunks: a block of the chunked run reads only the tiles around it
 _SURFACE_BYTES = 76  # per sample: voting, skins and throw in memory (input, likelihood, strike, dip, votes, thinning)
 
 
-def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, scheduler, sensitivity, progress) -> dict:
+def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: int, scheduler, sensitivity,
+                 progress) -> dict:
     """Fault likelihood block by block into ``fault_likelihood.zarr``; fault surfaces in memory when they fit."""
     import zarr
 
@@ -587,7 +602,7 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, scheduler
             warnings.simplefilter("ignore", UserWarning)
             zarr.consolidate_metadata(str(path))
     written = {"likelihood": path}
-    if _gib(shape, _SURFACE_BYTES) * 2**30 > memory_limit:
+    if _gib(shape, _SURFACE_BYTES) * 2**30 > budget:
         LOGGER.warning("fault surfaces of %s (voting, skins, throw) need about %.1f GiB in memory, more than the "
                        "memory limit (%.1f GiB): wrote %s only; raise --memory-limit to trace them", lazy.name,
                        _gib(shape, _SURFACE_BYTES), memory_limit / 2**30, path.name)

@@ -315,6 +315,19 @@ def tensor_eig(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float,
     return normals, planarity
 
 
+def tensor_planarity(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], two_d: bool):
+    """Planarity (n0, n1, nt) float32 of a 3D-shaped array (2D sections as (n, 1, nt)), without keeping the
+    normals: computed in slabs of inlines so that the normals' workspace stays small."""
+    t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
+    planarity = np.empty(f3.shape, dtype=np.float32)
+    slab = max(1, (1 << 24) // max(1, f3.shape[1] * f3.shape[2]))
+    for a in range(0, f3.shape[0], slab):
+        b = min(a + slab, f3.shape[0])
+        normals = np.empty((b - a,) + f3.shape[1:] + (3,), dtype=np.float32)
+        eig_normals(*(c[a:b] for c in t), normals, planarity[a:b])
+    return planarity
+
+
 def slopes_from_normals(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     nz = np.maximum(normals[..., 2], 1.0 / MAX_SLOPE / 2.0)
     p0 = np.clip(-normals[..., 0] / nz, -MAX_SLOPE, MAX_SLOPE).astype(np.float32)

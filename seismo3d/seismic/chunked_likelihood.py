@@ -5,9 +5,12 @@ The steps and their blocks (every block carries exactly the halo its step needs,
 :func:`~seismo3d.seismic.fault_likelihood` up to float rounding):
 
 1. Amplitude statistics (peak, mean square) of the whole cube: one pass of sums over its chunks.
-2. Semblance terms (balancing, structure tensor, structure-oriented semblance; finite Gaussian windows) on square
-   blocks of traces with :func:`~seismo3d.seismic.fault_likelihood.lateral_halo` traces of halo, every sample of
-   a trace in the block; written to an intermediate Zarr array at half the vertical resolution.
+2. Amplitude balancing on square blocks of traces with :func:`~seismo3d.seismic.fault_likelihood.balance_halo`
+   traces of halo (every sample of a trace in the block), written to an intermediate Zarr array; then the semblance
+   terms (structure tensors, structure-oriented semblance; finite Gaussian windows) on square blocks with
+   :func:`~seismo3d.seismic.fault_likelihood.semblance_halo` of halo, written at half the vertical resolution.
+   Two steps rather than one: each block carries only its own step's halo, so blocks can be larger for the same
+   memory.
 3. The scan of the planes sheared along inlines on blocks that hold every inline (the exponential smoothing down the
    dip follows a fault plane laterally without bound, so that axis is never cut) and a few crosslines with
    :func:`~seismo3d.seismic.fault_likelihood.strike_halo` of halo; then the planes sheared along crosslines on blocks
@@ -30,6 +33,7 @@ import json
 import os
 import pathlib
 import shutil
+import time
 import warnings
 from dataclasses import asdict, dataclass
 
@@ -39,18 +43,20 @@ from .._options import resolve_options
 from .._progress import progress_steps
 from .._validation import check_int
 from ..errors import InputError
-from .fault_likelihood import (AmplitudeStatistics, FaultScanOptions, decode_scan, lateral_halo, saturation_counts,
-                               scan_planes, scan_step, semblance_floor, semblance_terms, strike_halo)
+from .fault_likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan,
+                               saturation_counts, scan_planes, scan_step, semblance_floor, semblance_halo,
+                               semblance_terms, strike_halo)
 
 __all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
-           "in_memory_bytes"]
+           "in_memory_bytes", "resident_memory"]
 
-# Bytes of working memory per sample of a block (incl. halo), measured with tracemalloc on 64^3-256^3 cubes and
-# rounded up: the semblance step holds the amplitudes, the balanced amplitudes, 2 gradients, 6 tensor components
-# and the outputs; the scan holds 2 inputs, their 2 transposes, 2 smoothed copies and a key per grouped sample;
-# decoding holds the key brought back to every sample and likelihood, strike and dip.
-_SEMBLANCE_BYTES = 64
-_SCAN_BYTES = 32
+# Bytes of working memory per sample of a block (incl. halo), from the arrays each step holds at its peak: balancing
+# holds the amplitudes, their squares and two smoothing passes; the semblance step the balanced amplitudes, 3
+# gradients, 6 tensor components, the planarity and the outputs; the scan 2 inputs read in its layout, 2 smoothed
+# copies and the keys of the block's core (a third of it or less); decoding the key brought back to every sample and likelihood, strike and dip.
+_BALANCE_BYTES = 20
+_SEMBLANCE_BYTES = 56
+_SCAN_BYTES = 22
 _DECODE_BYTES = 32
 # In-memory `seismo3d faults` (likelihood, voting, skins, throw): measured 1408 MB on a 256^3 float32 cube (64 MiB).
 _IN_MEMORY_FACTOR = 24
@@ -117,10 +123,12 @@ class ChunkedLikelihood:
     shape : tuple of int
         ``(n_inlines, n_xlines, n_samples)``.
     blocks_computed, blocks_resumed : dict
-        Per step (``'semblance'``, ``'scan_inline'``, ``'scan_crossline'``, ``'decode'``), blocks computed by this
+        Per step (``'balance'``, ``'semblance'``, ``'scan_inline'``, ``'scan_crossline'``, ``'decode'``), blocks computed by this
         run and blocks found finished by an earlier, interrupted run.
     saturated_fraction : float
         Fraction of the live samples with likelihood above 0.9 (see ``FaultScanOptions.saturated``).
+    seconds : dict
+        Wall-clock seconds of each step of this run (``'statistics'`` and the steps above).
     """
 
     path: pathlib.Path
@@ -128,6 +136,7 @@ class ChunkedLikelihood:
     blocks_computed: dict
     blocks_resumed: dict
     saturated_fraction: float
+    seconds: dict
 
     def open(self):
         """The output arrays as a dict of read-only ``zarr.Array`` (name -> array)."""
@@ -155,7 +164,9 @@ class _Plan:
     shape: tuple
     tile: int
     block: int          # square blocks of the semblance and decoding steps
+    balance: int        # square blocks of the balancing step
     strip: int          # crosslines (inlines) per block of the scan along inlines (crosslines)
+    bhalo: int          # lateral halo of the balancing step
     halo: int           # lateral halo of the semblance step
     shalo: int          # halo of the smoothing along strike
     m: int              # grouped samples
@@ -166,24 +177,27 @@ class _Plan:
                 for j in range(0, n1, size1)]
 
 
+def resident_memory() -> int:
+    """Resident memory of this process, bytes (256 MiB when it cannot be read)."""
+    try:
+        import psutil
+        return int(psutil.Process().memory_info().rss)
+    except (ImportError, OSError):
+        return 256 << 20
+
+
 def _baseline(chunking: ChunkOptions, input_chunk: int) -> int:
     """Memory of a worker before its blocks: the process itself (this one's size on the local schedulers, 256 MiB
     assumed for a distributed worker) and two input chunks being read."""
-    own = 256 << 20
-    if chunking.scheduler in (None, "threads", "synchronous"):
-        try:
-            import psutil
-            own = int(psutil.Process().memory_info().rss)
-        except (ImportError, OSError):
-            pass
-    return own + 2 * int(input_chunk)
+    local = chunking.scheduler in (None, "threads", "synchronous")
+    return (resident_memory() if local else 256 << 20) + 2 * int(input_chunk)
 
 
 def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
     n0, n1, nt = shape
     tile = int(chunking.tile)
     m = -(-nt // scan_step(options, nt))
-    halo, shalo = lateral_halo(options), strike_halo(options)
+    bhalo, halo, shalo = balance_halo(options), semblance_halo(options), strike_halo(options)
     limit = int(chunking.memory_limit or default_memory_limit())
     budget = (limit - baseline) // int(chunking.workers)
     if chunking.block is not None:
@@ -194,6 +208,10 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
                and (block + tile) ** 2 * nt * _DECODE_BYTES <= budget):
             block += tile
     need = max((block + 2 * halo) ** 2 * nt * _SEMBLANCE_BYTES, block ** 2 * nt * _DECODE_BYTES)
+    balance = tile
+    while balance + tile <= 512 and (balance + tile + 2 * bhalo) ** 2 * nt * _BALANCE_BYTES <= budget:
+        balance += tile
+    need = max(need, (balance + 2 * bhalo) ** 2 * nt * _BALANCE_BYTES)
     strip = int(chunking.strip or tile)
     while chunking.strip is None and strip + tile <= max(n0, n1) and max(n0, n1) * (strip + tile + 2 * shalo) * m * _SCAN_BYTES <= budget:
         strip += tile
@@ -203,7 +221,7 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
             f"a chunked run of a {n0} x {n1} x {nt} cube needs about "
             f"{(need * int(chunking.workers) + baseline) / 2**30:.2f} GiB but the memory limit is "
             f"{limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
-    return _Plan((n0, n1, nt), tile, block, strip, halo, shalo, m)
+    return _Plan((n0, n1, nt), tile, block, balance, strip, bhalo, halo, shalo, m)
 
 
 def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None = None,
@@ -274,13 +292,14 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     run.start(_manifest(x.shape, opt, plan))
     with _client(chunking.scheduler) as client:
         run.client = client
-        stats = run.amplitude_statistics(x)
-        tiny = run.semblance(x, stats)
+        run.balance(x, run.amplitude_statistics(x))
+        tiny = run.semblance()
         run.scan(tiny, axis=0)
         run.scan(tiny, axis=1)
         saturated = run.decode(tiny, coords)
     run.finish()
-    return ChunkedLikelihood(out, tuple(x.shape), dict(run.computed), dict(run.resumed), saturated)
+    return ChunkedLikelihood(out, tuple(x.shape), dict(run.computed), dict(run.resumed), saturated,
+                             dict(run.seconds))
 
 
 def _manifest(shape, opt, plan) -> dict:
@@ -319,7 +338,7 @@ class _Run:
         self.out, self.plan, self.opt, self.chunking, self.progress = out, plan, opt, chunking, progress
         self.partial = out.with_name(out.name + ".partial")
         self.work = out.with_name(out.name + ".work")
-        self.computed, self.resumed = {}, {}
+        self.computed, self.resumed, self.seconds = {}, {}, {}
         self.client = None
 
     # -- folders and markers ------------------------------------------------------------------------------------
@@ -344,9 +363,10 @@ class _Run:
             manifest_path.write_text(json.dumps(manifest))
         n0, n1, nt = self.plan.shape
         t, m = self.plan.tile, self.plan.m
-        for name, dtype in (("numerator", "float32"), ("denominator", "float32"), ("key", "int32")):
+        for name, dtype, n in (("balanced", "float32", nt), ("numerator", "float32", m),
+                               ("denominator", "float32", m), ("key", "int32", m)):
             if not (self.work / name).exists():
-                zarr.create_array(str(self.work / name), shape=(n0, n1, m), chunks=(t, t, m), dtype=dtype,
+                zarr.create_array(str(self.work / name), shape=(n0, n1, n), chunks=(t, t, n), dtype=dtype,
                                   compressors=None, fill_value=0)
         if not self.partial.exists():
             group = zarr.open_group(str(self.partial), mode="w")
@@ -374,8 +394,15 @@ class _Run:
         shutil.rmtree(self.work, ignore_errors=True)
 
     # -- running tasks ------------------------------------------------------------------------------------------
-    def _compute(self, tasks: list, label: str) -> list:
+    def _compute(self, tasks: list, label: str, step: str) -> list:
         """Run delayed block tasks on the chosen scheduler, reporting each finished block."""
+        start = time.perf_counter()
+        try:
+            return self._compute_tasks(tasks, label)
+        finally:
+            self.seconds[step] = round(time.perf_counter() - start, 2)
+
+    def _compute_tasks(self, tasks: list, label: str) -> list:
         import dask
         if not tasks:
             return []
@@ -408,6 +435,7 @@ class _Run:
         path = self.work / "amplitudes.json"
         if path.exists():
             return AmplitudeStatistics(**json.loads(path.read_text()))
+        start = time.perf_counter()
         peak = da.max(da.fabs(x))
         squares = da.sum(x.astype(np.float64) ** 2)
         if self.client is not None:
@@ -419,21 +447,31 @@ class _Run:
             raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
                              "faults")
         path.write_text(json.dumps(asdict(stats)))
+        self.seconds["statistics"] = round(time.perf_counter() - start, 2)
         return stats
 
-    def semblance(self, x, stats: AmplitudeStatistics) -> float:
+    def balance(self, x, stats: AmplitudeStatistics) -> None:
         import dask
         p = self.plan
-        n0, n1, nt = p.shape
-        todo, done = self._pending("semblance", p.blocks(p.block, p.block))
+        n0, n1, _ = p.shape
+        todo, _ = self._pending("balance", p.blocks(p.balance, p.balance))
         tasks = []
         for b in todo:
             i0, i1, j0, j1 = b
-            a0, a1, b0, b1 = max(i0 - p.halo, 0), min(i1 + p.halo, n0), max(j0 - p.halo, 0), min(j1 + p.halo, n1)
-            tasks.append(dask.delayed(_semblance_block, pure=False)(
-                x[a0:a1, b0:b1, :], (i0 - a0, i0 - a0 + i1 - i0, j0 - b0, j0 - b0 + j1 - j0), b, str(self.work),
-                self.opt, stats, str(self._marker("semblance", b))))
-        results = self._compute(tasks, "semblance") + done
+            a0, a1, b0, b1 = max(i0 - p.bhalo, 0), min(i1 + p.bhalo, n0), max(j0 - p.bhalo, 0), min(j1 + p.bhalo, n1)
+            tasks.append(dask.delayed(_balance_block, pure=False)(
+                x[a0:a1, b0:b1, :], (i0 - a0, i1 - a0, j0 - b0, j1 - b0), b, str(self.work), self.opt, stats,
+                str(self._marker("balance", b))))
+        self._compute(tasks, "amplitude balancing", "balance")
+
+    def semblance(self) -> float:
+        import dask
+        p = self.plan
+        n0, n1, _ = p.shape
+        todo, done = self._pending("semblance", p.blocks(p.block, p.block))
+        tasks = [dask.delayed(_semblance_block, pure=False)(b, p, str(self.work), self.opt,
+                                                            str(self._marker("semblance", b))) for b in todo]
+        results = self._compute(tasks, "semblance", "semblance") + done
         total = sum(r["sum_denominator"] for r in results)
         return semblance_floor(total, n0 * n1 * p.m)
 
@@ -446,7 +484,7 @@ class _Run:
         todo, _ = self._pending(step, blocks)
         tasks = [dask.delayed(_scan_block, pure=False)(b, axis, p, str(self.work), self.opt, tiny,
                                                        str(self._marker(step, b))) for b in todo]
-        self._compute(tasks, f"fault scan along {'inlines' if axis == 0 else 'crosslines'}")
+        self._compute(tasks, f"fault scan along {'inlines' if axis == 0 else 'crosslines'}", step)
 
     def decode(self, tiny: float, coords: dict | None) -> float:
         import dask
@@ -455,7 +493,7 @@ class _Run:
         todo, done = self._pending("decode", p.blocks(p.block, p.block))
         tasks = [dask.delayed(_decode_block, pure=False)(b, p, str(self.work), str(self.partial), self.opt, tiny,
                                                          str(self._marker("decode", b))) for b in todo]
-        results = self._compute(tasks, "decode") + done
+        results = self._compute(tasks, "decode", "decode") + done
         high = sum(r["high"] for r in results)
         live = sum(r["live"] for r in results)
         group = zarr.open_group(str(self.partial), mode="r+")
@@ -486,22 +524,54 @@ def _write_marker(path: str, payload: dict) -> None:
     os.replace(tmp, path)
 
 
-def _semblance_block(f, core, block, work, opt, stats, marker) -> dict:
-    """Semblance terms of one block (with halo), its core written to the work arrays."""
+def _balance_block(f, core, block, work, opt, stats, marker) -> dict:
+    """Balanced amplitudes of one block (read with halo), its core written to the work array."""
     import zarr
     f = np.ascontiguousarray(f, dtype=np.float32)
     if not np.all(np.isfinite(f)):
         raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {block[0]}-{block[1] - 1} (indices); "
                          "replace them (e.g. by 0) before tracing faults")
-    sn, sd = semblance_terms(f, opt, stats)
+    g = balance_amplitudes(f, opt, stats)
+    del f
     c0, c1, d0, d1 = core
-    sn, sd = sn[c0:c1, d0:d1], sd[c0:c1, d0:d1]
     i0, i1, j0, j1 = block
+    zarr.open_array(f"{work}/balanced", mode="r+")[i0:i1, j0:j1, :] = g[c0:c1, d0:d1]
+    _write_marker(marker, {})
+    return {}
+
+
+def _semblance_block(block, plan: _Plan, work, opt, marker) -> dict:
+    """Semblance terms of one block from the balanced amplitudes around it, its core written to the work arrays."""
+    import zarr
+    n0, n1, _ = plan.shape
+    i0, i1, j0, j1 = block
+    a0, a1, b0, b1 = max(i0 - plan.halo, 0), min(i1 + plan.halo, n0), max(j0 - plan.halo, 0), min(j1 + plan.halo, n1)
+    f = zarr.open_array(f"{work}/balanced", mode="r")[a0:a1, b0:b1]
+    sn, sd = semblance_terms(f, opt)
+    del f
+    sn, sd = sn[i0 - a0:i1 - a0, j0 - b0:j1 - b0], sd[i0 - a0:i1 - a0, j0 - b0:j1 - b0]
     zarr.open_array(f"{work}/numerator", mode="r+")[i0:i1, j0:j1, :] = sn
     zarr.open_array(f"{work}/denominator", mode="r+")[i0:i1, j0:j1, :] = sd
     result = {"sum_denominator": float(sd.sum(dtype=np.float64))}
     _write_marker(marker, result)
     return result
+
+
+def _read_sheared(array, region, axis: int, tile: int) -> np.ndarray:
+    """A region of a (n0, n1, m) work array in the scan's layout (sheared axis, sample, other axis), read tile row
+    by tile row so that only one row is held twice."""
+    rows, cols = region
+    n_a = (rows.stop - rows.start) if axis == 0 else (cols.stop - cols.start)
+    n_b = (cols.stop - cols.start) if axis == 0 else (rows.stop - rows.start)
+    out = np.empty((n_a, array.shape[2], n_b), dtype=np.float32)
+    start = rows.start if axis == 0 else cols.start
+    for a in range(0, n_a, tile):
+        b = min(a + tile, n_a)
+        if axis == 0:
+            out[a:b] = array[start + a:start + b, cols].transpose(0, 2, 1)
+        else:
+            out[a:b] = array[rows, start + a:start + b].transpose(1, 2, 0)
+    return out
 
 
 def _scan_block(block, axis, plan: _Plan, work, opt, tiny, marker) -> dict:
@@ -518,9 +588,9 @@ def _scan_block(block, axis, plan: _Plan, work, opt, tiny, marker) -> dict:
         a, b = max(i0 - plan.shalo, 0), min(i1 + plan.shalo, n0)
         region = (slice(a, b), slice(0, n1))
         core, origin = (i0 - a, i1 - a), a
-    sn = zarr.open_array(f"{work}/numerator", mode="r")[region]
-    sd = zarr.open_array(f"{work}/denominator", mode="r")[region]
-    key = scan_planes(sn, sd, opt, tiny, n_samples=nt, axes=(axis,), core=core, origin=origin)
+    sn = _read_sheared(zarr.open_array(f"{work}/numerator", mode="r"), region, axis, plan.tile)
+    sd = _read_sheared(zarr.open_array(f"{work}/denominator", mode="r"), region, axis, plan.tile)
+    key = scan_planes(sn, sd, opt, tiny, n_samples=nt, axes=(axis,), core=core, origin=origin, sheared_layout=True)
     del sn, sd
     store = zarr.open_array(f"{work}/key", mode="r+")
     target = (slice(i0, i1), slice(j0, j1))

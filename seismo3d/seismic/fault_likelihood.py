@@ -302,12 +302,14 @@ def _smooth_strike(x, alpha, h, origin, n_threads, out):
 
 
 @nb.njit(cache=True, parallel=True)
-def _scan_dip(sn, sd, beta, a, code_k, power_squarings, tiny, n_threads, key):
+def _scan_dip(sn, sd, beta, a, code_k, power_squarings, tiny, n_threads, key, b0):
     # sn, sd, key in layout (na, nt, nb). Along the staircase lines a = a0 + round(beta * t) of every (a, t) slice
     # (vectorised over b), smooth the semblance numerator and denominator with a two-sided recursive exponential
     # filter of coefficient `a` (zero-slope ends; Hale's RecursiveExponentialFilter), and keep the maximum of
-    # 1 - (num / den)^(2^p) and its orientation code, packed into one int32.
-    na, nt, nbb = sn.shape
+    # 1 - (num / den)^(2^p) and its orientation code, packed into one int32. Only b0 <= b < b0 + key.shape[2] is
+    # scanned (key[..., b - b0]): the core of a block, read from contiguous arrays (vectorised loads)
+    na, nt = sn.shape[0], sn.shape[1]
+    nbb = key.shape[2]
     sh = _shifts(beta, nt)
     s_min = min(sh[0], sh[nt - 1])
     s_max = max(sh[0], sh[nt - 1])
@@ -328,13 +330,13 @@ def _scan_dip(sn, sd, beta, a, code_k, power_squarings, tiny, n_threads, key):
             # causal pass while gathering the line, then the anti-causal pass in place
             aa = a0 + sh[lo]
             for j in range(nbb):
-                yn[0, j] = sn[aa, lo, j]
-                yd[0, j] = sd[aa, lo, j]
+                yn[0, j] = sn[aa, lo, j + b0]
+                yd[0, j] = sd[aa, lo, j + b0]
             for k in range(1, m):
                 aa = a0 + sh[lo + k]
                 for j in range(nbb):
-                    yn[k, j] = af * yn[k - 1, j] + bf * sn[aa, lo + k, j]
-                    yd[k, j] = af * yd[k - 1, j] + bf * sd[aa, lo + k, j]
+                    yn[k, j] = af * yn[k - 1, j] + bf * sn[aa, lo + k, j + b0]
+                    yd[k, j] = af * yd[k - 1, j] + bf * sd[aa, lo + k, j + b0]
             for k in range(m - 2, -1, -1):
                 for j in range(nbb):
                     yn[k, j] = af * yn[k + 1, j] + bf * yn[k, j]
@@ -512,7 +514,7 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     stats = AmplitudeStatistics.of(f3)
     # structure-oriented semblance numerator and denominator of each sample (3 x 3 traces along the reflector),
     # summed over pairs of samples (the scan's vertical step)
-    sn, sd = semblance_terms(f3, opt, stats, two_d=two_d)
+    sn, sd = semblance_terms(balance_amplitudes(f3, opt, stats, two_d=two_d), opt, two_d=two_d)
     tiny = semblance_floor(float(sd.sum(dtype=np.float64)), sd.size)
     live = sd > tiny
     # the scan: each plane's semblance smoothed within it; the best plane per sample, packed into one int32 key
@@ -567,17 +569,24 @@ def scan_step(options: FaultScanOptions, n_samples: int) -> int:
     return int(min(options.decimation, max(1, n_samples // 16)))
 
 
-def lateral_halo(options: FaultScanOptions) -> int:
-    """Traces on each side of a block that :func:`semblance_terms` needs so that the block's result equals the whole
-    cube's: the Gaussian windows (truncated at 3 sigma) of the balancing, then the wider of the structure tensor for
-    the slopes (plus the neighbouring trace read along them) and the tensor for the planarity."""
-    def radius(sigma):
-        return max(1, int(3.0 * float(sigma) + 0.5)) if sigma > 0 else 0
-    sg = radius(options.sigma_gradient)
-    balance = radius(options.balance[0]) if options.balance is not None else 0
-    slopes = sg + radius(options.sigma_tensor[0]) + 1
-    planarity = sg + radius(options.planarity_sigma[0]) if options.planarity_sigma is not None else 0
-    return balance + max(slopes, planarity)
+def _radius(sigma) -> int:
+    """Half-width of the Gaussian windows of :mod:`seismo3d.seismic._kernels` (truncated at 3 sigma)."""
+    return max(1, int(3.0 * float(sigma) + 0.5)) if sigma > 0 else 0
+
+
+def balance_halo(options: FaultScanOptions) -> int:
+    """Traces on each side of a block that :func:`balance_amplitudes` needs so that the block's result equals the
+    whole cube's (the Gaussian window of the local RMS, truncated at 3 sigma)."""
+    return _radius(options.balance[0]) if options.balance is not None else 0
+
+
+def semblance_halo(options: FaultScanOptions) -> int:
+    """Traces on each side of a block that :func:`semblance_terms` needs: the wider of the structure tensor for the
+    slopes (plus the neighbouring trace read along them) and the tensor for the planarity."""
+    sg = _radius(options.sigma_gradient)
+    slopes = sg + _radius(options.sigma_tensor[0]) + 1
+    planarity = sg + _radius(options.planarity_sigma[0]) if options.planarity_sigma is not None else 0
+    return max(slopes, planarity)
 
 
 def strike_halo(options: FaultScanOptions) -> int:
@@ -585,19 +594,48 @@ def strike_halo(options: FaultScanOptions) -> int:
     return 2 * _box_half(float(options.strike_smoothing))
 
 
-def semblance_terms(f3: np.ndarray, options: FaultScanOptions, stats: AmplitudeStatistics, *,
-                    two_d: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """Structure-oriented semblance numerator and denominator (steps 1-3 of :func:`fault_likelihood`), summed over
-    the scan's groups of samples (:func:`scan_step`).
+def balance_amplitudes(f3: np.ndarray, options: FaultScanOptions, stats: AmplitudeStatistics, *,
+                       two_d: bool = False) -> np.ndarray:
+    """Amplitudes divided by their local RMS (step 1 of :func:`fault_likelihood`), after the exact scaling of
+    ``stats``.
 
     Parameters
     ----------
     f3 : (n0, n1, n_samples) float32 ndarray
         Amplitudes (a 2D section as ``(n_traces, 1, n_samples)``), a whole cube or a block of one with
-        :func:`lateral_halo` traces of halo on each side that is not the cube's edge.
+        :func:`balance_halo` traces of halo on each side that is not the cube's edge.
     options : FaultScanOptions
+        ``balance``: the Gaussian window (traces, samples) of the local RMS; None leaves the amplitudes as they are.
     stats : AmplitudeStatistics
         Of the whole cube.
+    two_d : bool
+
+    Returns
+    -------
+    (n0, n1, n_samples) float32 ndarray
+    """
+    if stats.scale != 1.0:
+        f3 = f3 * np.float32(stats.scale)
+    if options.balance is None:
+        return np.asarray(f3, dtype=np.float32)
+    lat, vert = options.balance
+    energy = _kernels.gaussian3(f3 * f3, (lat, 0.0 if two_d else lat, vert))
+    energy += np.float32(stats.energy_floor)
+    np.sqrt(energy, out=energy)
+    return np.divide(f3, energy, out=energy, dtype=np.float32)
+
+
+def semblance_terms(f3: np.ndarray, options: FaultScanOptions, *,
+                    two_d: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Structure-oriented semblance numerator and denominator (steps 2-3 of :func:`fault_likelihood`), summed over
+    the scan's groups of samples (:func:`scan_step`).
+
+    Parameters
+    ----------
+    f3 : (n0, n1, n_samples) float32 ndarray
+        Balanced amplitudes (:func:`balance_amplitudes`), a whole cube or a block of one with
+        :func:`semblance_halo` traces of halo on each side that is not the cube's edge.
+    options : FaultScanOptions
     two_d : bool
 
     Returns
@@ -606,20 +644,14 @@ def semblance_terms(f3: np.ndarray, options: FaultScanOptions, stats: AmplitudeS
         ``(sum_k f_k)^2`` times the planarity, and ``J sum_k f_k^2``, over the 3 x 3 traces (3 in 2D) read along the
         reflector slopes, summed over groups of ``step`` samples (the last group padded with its last sample).
     """
-    if stats.scale != 1.0:
-        f3 = f3 * np.float32(stats.scale)
-    if options.balance is not None:
-        lat, vert = options.balance
-        energy = _kernels.gaussian3(f3 * f3, (lat, 0.0 if two_d else lat, vert))
-        f3 = (f3 / np.sqrt(energy + np.float32(stats.energy_floor))).astype(np.float32)
-        del energy
+    if options.planarity_sigma is not None:  # first, so that its tensor is freed before the slopes' one is made
+        planarity = _kernels.tensor_planarity(f3, float(options.sigma_gradient), options.planarity_sigma, two_d)
     p0, p1 = _kernels.reflector_slopes(f3, two_d, float(options.sigma_gradient), options.sigma_tensor)
     sn = np.empty(f3.shape, dtype=np.float32)
     sd = np.empty(f3.shape, dtype=np.float32)
     _kernels.semblance_num_den(f3, p0, p1, 1, 0 if two_d else 1, sn, sd)
     del p0, p1
     if options.planarity_sigma is not None:
-        _, planarity = _kernels.tensor_eig(f3, float(options.sigma_gradient), options.planarity_sigma, two_d)
         sn *= planarity
         del planarity
     step = scan_step(options, f3.shape[2])
@@ -645,7 +677,7 @@ def _sum_samples(x: np.ndarray, step: int) -> np.ndarray:
 
 def scan_planes(sn: np.ndarray, sd: np.ndarray, options: FaultScanOptions, tiny: float, *, n_samples: int,
                 two_d: bool = False, axes: tuple = (0, 1), core: tuple | None = None, origin: int = 0,
-                progress: bool = False) -> np.ndarray:
+                sheared_layout: bool = False, progress: bool = False) -> np.ndarray:
     """The scan (step 4 of :func:`fault_likelihood`) over the planes sheared along ``axes``.
 
     Parameters
@@ -664,6 +696,9 @@ def scan_planes(sn: np.ndarray, sd: np.ndarray, options: FaultScanOptions, tiny:
     core, origin : optional
         For a block: the ``(start, stop)`` along the other axis whose result is returned, and the cube index of the
         block's first trace along that axis.
+    sheared_layout : bool
+        With one axis: ``sn`` and ``sd`` are given in the scan's own layout, (sheared axis, sample, other axis),
+        C-contiguous, and are used (and overwritten) in place: no copies, for blocks read to fit a memory limit.
     progress : bool
 
     Returns
@@ -677,7 +712,9 @@ def scan_planes(sn: np.ndarray, sd: np.ndarray, options: FaultScanOptions, tiny:
         raise InputError(f"{len(table)} fault planes to scan but at most {1 << _CODE_BITS} are supported; pass fewer "
                          "strikes or dips")
     step = scan_step(options, n_samples)
-    return _scan(sn, sd, table, two_d, options, tiny, step, progress, axes, core, origin)
+    if sheared_layout and len(axes) != 1:
+        raise InputError("sheared_layout=True scans the planes of one shear axis; pass axes=(0,) or axes=(1,)")
+    return _scan(sn, sd, table, two_d, options, tiny, step, progress, axes, core, origin, sheared_layout)
 
 
 def saturation_counts(key: np.ndarray, live: np.ndarray) -> tuple[int, int]:
@@ -714,13 +751,15 @@ def decode_scan(key: np.ndarray, options: FaultScanOptions, *, n_samples: int,
     return fl, strike, dip
 
 
-def _scan(sn, sd, table, two_d, opt, tiny, step, progress, axes=(0, 1), core=None, origin=0):
+def _scan(sn, sd, table, two_d, opt, tiny, step, progress, axes=(0, 1), core=None, origin=0, sheared_layout=False):
     """The packed (likelihood << _CODE_BITS | orientation code) int32 maximum over the scanned planes, on samples
     grouped by ``step``."""
     squarings = int(opt.power).bit_length() - 1
     strike_smoothing = float(opt.strike_smoothing)
     n_threads = nb.get_num_threads()
     shape = list(sn.shape)
+    if sheared_layout:  # (na, nt, nb) -> the cube's axes
+        shape = [shape[0], shape[2], shape[1]] if axes[0] == 0 else [shape[2], shape[0], shape[1]]
     if core is not None:  # a block scanned along one axis, kept on `core` of the other
         shape[1 - axes[0]] = core[1] - core[0]
     key = np.zeros(shape, dtype=np.int32)
@@ -735,13 +774,16 @@ def _scan(sn, sd, table, two_d, opt, tiny, step, progress, axes=(0, 1), core=Non
                 continue
             # kernels work in the layout (na, nt, nb): na = the sheared horizontal axis, nb = the other one
             perm = (0, 2, 1) if axis == 0 else (1, 2, 0)
-            xn = np.ascontiguousarray(sn.transpose(perm))
-            xd = np.ascontiguousarray(sd.transpose(perm))
+            if sheared_layout:
+                xn, xd = sn, sd
+            else:
+                xn = np.ascontiguousarray(sn.transpose(perm))
+                xd = np.ascontiguousarray(sd.transpose(perm))
             smooth_lateral = not two_d and xn.shape[2] > 1
             yn = np.empty_like(xn) if smooth_lateral else xn
             yd = np.empty_like(xd) if smooth_lateral else xd
-            zn, zd = (yn, yd) if core is None else (yn[:, :, core[0]:core[1]], yd[:, :, core[0]:core[1]])
-            keya = np.zeros(zn.shape, dtype=np.int32)
+            b0, b1 = (0, yn.shape[2]) if core is None else core
+            keya = np.zeros(yn.shape[:2] + (b1 - b0,), dtype=np.int32)
             for members in groups[axis].values():
                 alpha, lateral = members[0][1][3], members[0][1][5]
                 if smooth_lateral:
@@ -752,10 +794,10 @@ def _scan(sn, sd, table, two_d, opt, tiny, step, progress, axes=(0, 1), core=Non
                     # lateral shift per (grouped) sample, and the smoothing width down the dip in grouped samples
                     beta = float(r[4]) * step
                     sigma = float(opt.dip_smoothing) * float(np.sin(np.radians(r[1]))) / step
-                    _scan_dip(zn, zd, beta, _exponential_coefficient(max(sigma, 0.5)), np.int32(k), squarings,
-                              tiny, n_threads, keya)
+                    _scan_dip(yn, yd, beta, _exponential_coefficient(max(sigma, 0.5)), np.int32(k), squarings,
+                              tiny, n_threads, keya, b0)
                 bar.advance()
-            del xn, xd, yn, yd, zn, zd
+            del xn, xd, yn, yd
             np.maximum(key, keya.transpose(tuple(np.argsort(perm))), out=key)
             del keya
     return key

@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 import segyio
 
-from .._validation import check_choice, check_positive
+from .._validation import check_choice, check_int, check_positive
 from ..errors import InputError, SegyFormatError, SegyGeometryError, TraceListWarning
 from .io import open_segy
 
@@ -293,18 +293,21 @@ def _block_edges(n: int, size: int) -> list:
     return [(a, min(a + size, n)) for a in range(0, n, size)]
 
 
-def _lazy_segy_array(grid: SegyGrid, block: int, token: str):
-    """The dask array of ``grid``: one :func:`read_segy_block` task per block of ``block`` inlines."""
+def _lazy_segy_array(grid: SegyGrid, block: int, token: str, tile: int | None = None):
+    """The dask array of ``grid``: one :func:`read_segy_block` task per block of ``block`` inlines, or per tile of
+    ``tile`` x ``tile`` traces."""
     import dask.array as da
 
     name = f"segy-{token}"
-    edges = _block_edges(grid.n_inlines, block)
-    graph = {(name, k, 0, 0): (read_segy_block, grid, a, b) for k, (a, b) in enumerate(edges)}
-    chunks = (tuple(b - a for a, b in edges), (grid.n_xlines,), (grid.n_samples,))
+    edges = _block_edges(grid.n_inlines, block if tile is None else tile)
+    xedges = [(0, grid.n_xlines)] if tile is None else _block_edges(grid.n_xlines, tile)
+    graph = {(name, k, q, 0): (read_segy_block, grid, a, b, c, d) for k, (a, b) in enumerate(edges)
+             for q, (c, d) in enumerate(xedges)}
+    chunks = (tuple(b - a for a, b in edges), tuple(d - c for c, d in xedges), (grid.n_samples,))
     return da.Array(graph, name, chunks, dtype=np.float32)
 
 
-def _open_segy_lazy(path: Path, *, iline, xline, sample_unit, endian, chunk_mb) -> LazyCube:
+def _open_segy_lazy(path: Path, *, iline, xline, sample_unit, endian, chunk_mb, tile) -> LazyCube:
     from dask.base import tokenize
 
     with warnings.catch_warnings():
@@ -313,13 +316,13 @@ def _open_segy_lazy(path: Path, *, iline, xline, sample_unit, endian, chunk_mb) 
     with cube:
         grid = SegyGrid.from_cube(cube)
         stat = path.stat()
-        token = tokenize(grid, stat.st_mtime_ns, stat.st_size, chunk_mb)
-        data = _lazy_segy_array(grid, inline_block_size(grid.n_xlines, grid.n_samples, chunk_mb), token)
+        token = tokenize(grid, stat.st_mtime_ns, stat.st_size, chunk_mb, tile)
+        data = _lazy_segy_array(grid, inline_block_size(grid.n_xlines, grid.n_samples, chunk_mb), token, tile)
         return LazyCube(data=data, inlines=np.array(cube.inlines), xlines=np.array(cube.xlines),
                         samples=np.array(cube.samples), sample_unit=cube.sample_unit, source=path, format="segy")
 
 
-def _open_zarr_lazy(path: Path, *, sample_unit, chunk_mb) -> LazyCube:
+def _open_zarr_lazy(path: Path, *, sample_unit, chunk_mb, tile) -> LazyCube:
     import dask.array as da
 
     from .seismic_zarr import open_seismic_zarr
@@ -328,13 +331,14 @@ def _open_zarr_lazy(path: Path, *, sample_unit, chunk_mb) -> LazyCube:
     seismic = store.seismic
     n_il, n_xl, ns = seismic.shape
     # the store's (64, 64, n_samples) tiles regrouped into blocks of whole inlines (a no-op when they already are)
-    data = da.from_zarr(seismic).rechunk((inline_block_size(n_xl, ns, chunk_mb), n_xl, ns))
+    chunks = (inline_block_size(n_xl, ns, chunk_mb), n_xl, ns) if tile is None else (tile, tile, ns)
+    data = da.from_zarr(seismic).rechunk(chunks)
     return LazyCube(data=data, inlines=store.inlines, xlines=store.xlines, samples=store.samples,
                     sample_unit=sample_unit or store.sample_unit, source=path, format="zarr")
 
 
 def open_lazy(path, *, iline: int = 189, xline: int = 193, sample_unit=None, endian=None,
-              chunk_mb: float = 64) -> LazyCube:
+              chunk_mb: float = 64, tile: int | None = None) -> LazyCube:
     """Open a 3D cube (SEG-Y file or Zarr store of ``seismo3d convert``) as a lazy dask array.
 
     Only the geometry is read here. The returned array is chunked by blocks of whole inlines of about ``chunk_mb``
@@ -354,6 +358,9 @@ def open_lazy(path, *, iline: int = 189, xline: int = 193, sample_unit=None, end
         SEG-Y only: byte order; by default detected from the binary header.
     chunk_mb : float
         Target chunk size in MiB (2**20 bytes of float32); a chunk holds at least one inline.
+    tile : int, optional
+        Chunk by tiles of ``tile`` x ``tile`` traces (every sample) instead of blocks of whole inlines: for work on
+        square blocks of traces (the chunked fault likelihood), which then reads only the tiles around a block.
 
     Returns
     -------
@@ -379,7 +386,9 @@ def open_lazy(path, *, iline: int = 189, xline: int = 193, sample_unit=None, end
     inline_block_size(1, 1, chunk_mb)  # validates chunk_mb
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
+    if tile is not None:
+        check_int(tile, "tile", minimum=1)
     if path.is_dir():
-        return _open_zarr_lazy(path, sample_unit=sample_unit, chunk_mb=chunk_mb)
+        return _open_zarr_lazy(path, sample_unit=sample_unit, chunk_mb=chunk_mb, tile=tile)
     return _open_segy_lazy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian,
-                           chunk_mb=chunk_mb)
+                           chunk_mb=chunk_mb, tile=tile)

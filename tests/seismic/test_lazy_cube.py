@@ -130,3 +130,14 @@ def test_bad_chunk_size(chunk_mb, segy):
 def test_inline_block_size():
     assert inline_block_size(100, 250, 1) == 10  # 1 MiB / (100 * 250 * 4 bytes) = 10.49 inlines
     assert inline_block_size(1000, 2000, 1) == 1  # at least one inline
+
+
+def test_tiles_equal_inline_blocks(write_segy_cube, tmp_path):
+    """Chunks of 16 x 16 traces (partial at the far edges) read the same amplitudes as blocks of whole inlines."""
+    cube = np.random.default_rng(3).standard_normal((40, 35, 12)).astype(np.float32)
+    for sorting in ("inline", "crossline"):
+        path = write_segy_cube(tmp_path / f"{sorting}.sgy", cube, sorting=sorting)
+        lazy = open_lazy(path, tile=16)
+        assert lazy.data.chunks[:2] == ((16, 16, 8), (16, 16, 3))
+        np.testing.assert_array_equal(lazy.data.compute(), cube)
+        np.testing.assert_array_equal(lazy.data[5:30, 10:20].compute(), cube[5:30, 10:20])

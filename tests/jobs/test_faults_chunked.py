@@ -1,0 +1,92 @@
+"""The faults job on cubes beyond its memory limit (seismo3d.jobs.faults, issue 19): the block-by-block fault
+likelihood gives the same faults as the in-memory run; the surfaces are skipped with a clear line when even they do
+not fit; SEG-Y cubes are read lazily."""
+
+import csv
+import logging
+
+import numpy as np
+import pytest
+
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import InputError
+from seismo3d.jobs.faults import run_faults_job
+from seismo3d.seismic.chunked_likelihood import resident_memory
+
+SHAPE = (128, 128, 128)  # in memory ~201 MB beyond the process; surfaces ~159 MB
+
+
+def _rows(path):
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+@pytest.fixture(scope="module")
+def cube_npy(tmp_path_factory):
+    path = tmp_path_factory.mktemp("cube") / "cube.npy"
+    np.save(path, synthetic_cube(SHAPE, seed=2).cube.astype(np.float32))
+    return path
+
+
+@pytest.fixture(scope="module")
+def in_memory(cube_npy, tmp_path_factory):
+    out = tmp_path_factory.mktemp("mem")
+    return run_faults_job(cube_npy, out, memory_limit=64 << 30, progress=False)
+
+
+@pytest.mark.slow
+def test_cube_beyond_the_limit_gives_the_same_faults(cube_npy, in_memory, tmp_path, caplog):
+    limit = resident_memory() + (180 << 20)  # below the in-memory run's need, above the surfaces'
+    with caplog.at_level(logging.INFO, logger="seismo3d"):
+        written = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, progress=False)
+    assert written["likelihood"].name == "fault_likelihood.zarr"
+    assert "block by block" in caplog.text
+    import zarr
+    group = zarr.open_group(str(written["likelihood"]), mode="r")
+    reference = np.load(in_memory["likelihood"])
+    assert np.abs(group["likelihood"][:] - reference).max() <= 1e-5
+    assert np.abs(group["votes"][:] - np.load(in_memory["votes"])).max() <= 1e-6
+    assert _rows(written["summary"]) == _rows(in_memory["summary"])
+    assert _rows(written["points"]) == _rows(in_memory["points"])
+    assert written["figure"].stat().st_size > 10_000
+    # run again into the same folder: the finished likelihood is reused, the same faults come out
+    with caplog.at_level(logging.INFO, logger="seismo3d"):
+        again = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, progress=False)
+    assert "reusing the finished fault likelihood" in caplog.text
+    assert _rows(again["summary"]) == _rows(in_memory["summary"])
+
+
+@pytest.mark.slow
+def test_surfaces_skipped_when_they_do_not_fit(cube_npy, in_memory, tmp_path, caplog):
+    limit = resident_memory() + (120 << 20)
+    with caplog.at_level(logging.WARNING, logger="seismo3d"):
+        written = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, progress=False)
+    assert set(written) == {"likelihood"}
+    assert "raise --memory-limit" in caplog.text
+    import zarr
+    group = zarr.open_group(str(written["likelihood"]), mode="r")
+    assert np.abs(group["likelihood"][:] - np.load(in_memory["likelihood"])).max() <= 1e-5
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["fault_likelihood.zarr"]
+
+
+def test_segy_cube_is_read_lazily(write_segy_cube, tmp_path, caplog):
+    """A SEG-Y cube over the limit: read block by block, its likelihood equal to the in-memory one."""
+    from seismo3d.seismic import fault_likelihood
+
+    cube = synthetic_cube((96, 64, 128), seed=5).cube.astype(np.float32)
+    path = write_segy_cube(tmp_path / "cube.sgy", cube, sorting="crossline")
+    with caplog.at_level(logging.INFO, logger="seismo3d"):
+        written = run_faults_job(path, tmp_path / "out", memory_limit=resident_memory() + (40 << 20),
+                                 progress=False)
+    assert "block by block" in caplog.text
+    import zarr
+    group = zarr.open_group(str(written["likelihood"]), mode="r")
+    assert np.abs(group["likelihood"][:] - fault_likelihood(cube).likelihood).max() <= 1e-5
+    assert list(group["inline"][:]) == list(range(101, 197))
+
+
+def test_bad_memory_limit(cube_npy, tmp_path):
+    with pytest.raises(InputError, match="memory_limit"):
+        run_faults_job(cube_npy, tmp_path / "o", memory_limit="lots", progress=False)
+    with pytest.raises(InputError, match="at least 64 MB"):
+        run_faults_job(cube_npy, tmp_path / "o", memory_limit=1000, progress=False)

@@ -308,6 +308,7 @@ class LazyInput:
     xline: np.ndarray
     samples: np.ndarray  # in `unit` (sample index for 'samples')
     unit: str  # 'ms', 'm', 'ft' or 'samples'
+    segy: dict | None = None  # a SEG-Y input: template path and how to open it, for SEG-Y outputs
 
     @property
     def coords(self) -> dict:
@@ -356,8 +357,9 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
             if not cube.is_3d or cube.inlines is None or not _too_large(cube.shape, budget):
                 return None
     lazy = open_lazy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian, tile=_TILE)
+    segy = None if path.is_dir() else {"template_path": path, "iline": iline, "xline": xline, "endian": endian}
     return LazyInput(lazy.data, path.stem if path.is_file() else path.name.split(".")[0], np.asarray(lazy.inlines),
-                     np.asarray(lazy.xlines), np.asarray(lazy.samples, dtype=np.float64), lazy.sample_unit)
+                     np.asarray(lazy.xlines), np.asarray(lazy.samples, dtype=np.float64), lazy.sample_unit, segy)
 
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
@@ -416,7 +418,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     (:func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood`, the same values as in memory) into
     ``fault_likelihood.zarr`` (arrays ``likelihood``, ``strike_deg``, ``dip_deg`` and, once traced, ``votes``;
     opened by ``xarray.open_zarr``), resumable: an interrupted run started again with the same arguments skips the
-    finished blocks. The fault surfaces (voting, skins, throw; about 72 bytes per sample) are then traced in memory
+    finished blocks; for a SEG-Y input they are also written block by block as ``fault_likelihood.sgy``,
+    ``fault_strike.sgy``, ``fault_dip.sgy`` (and ``fault_votes.sgy``) with its headers, as in memory. The fault surfaces (voting, skins, throw; about 72 bytes per sample) are then traced in memory
     when they fit ``memory_limit``, giving the same faults, CSV files and picture as the in-memory run; otherwise
     only ``fault_likelihood.zarr`` is written and a log line says how much memory the surfaces need.
 
@@ -464,7 +467,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         The files written, keyed ``likelihood``, ``strike``, ``dip``, ``votes``, ``surfaces``, ``points``,
         ``summary``, ``figure`` (and ``input``, ``truth`` for the demo). For a cube beyond ``memory_limit``:
         ``likelihood`` is ``fault_likelihood.zarr`` (holding strike, dip and votes too), with ``surfaces``,
-        ``points``, ``summary``, ``figure`` when the surfaces fit in memory.
+        ``points``, ``summary``, ``figure`` when the surfaces fit in memory, and for a SEG-Y input
+        ``likelihood_segy``, ``strike_segy``, ``dip_segy`` (``votes_segy``).
 
     Raises
     ------
@@ -592,9 +596,9 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
                              "or delete it")
         LOGGER.info("%s: reusing the finished fault likelihood in %s", lazy.name, path)
     else:
-        LOGGER.info("%s: %d x %d x %d samples need about %.1f GiB in memory, more than the memory limit "
-                    "(%.1f GiB): fault likelihood block by block into %s", lazy.name, *shape,
-                    _gib(shape, 96), memory_limit / 2**30, path.name)
+        LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory, more than the %.2f GiB left under "
+                    "the memory limit (%.2f GiB): fault likelihood block by block into %s", lazy.name, *shape,
+                    _gib(shape, 96), budget / 2**30, memory_limit / 2**30, path.name)
         chunked_fault_likelihood(lazy.data, path, coords=lazy.coords, progress=progress,
                                  chunking=ChunkOptions(memory_limit=memory_limit, scheduler=scheduler))
         zarr.open_group(str(path), mode="r+").attrs["source"] = lazy.name
@@ -602,10 +606,13 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
             warnings.simplefilter("ignore", UserWarning)
             zarr.consolidate_metadata(str(path))
     written = {"likelihood": path}
+    names = {"likelihood": "likelihood", "strike": "strike_deg", "dip": "dip_deg"}
     if _gib(shape, _SURFACE_BYTES) * 2**30 > budget:
-        LOGGER.warning("fault surfaces of %s (voting, skins, throw) need about %.1f GiB in memory, more than the "
-                       "memory limit (%.1f GiB): wrote %s only; raise --memory-limit to trace them", lazy.name,
-                       _gib(shape, _SURFACE_BYTES), memory_limit / 2**30, path.name)
+        written.update(_segy_volumes(lazy, path, out_dir, names, progress))
+        LOGGER.warning("fault surfaces of %s (voting, skins, throw) need about %.2f GiB in memory, more than the "
+                       "%.2f GiB left under the memory limit (%.2f GiB): wrote %s only; raise --memory-limit to "
+                       "trace them", lazy.name, _gib(shape, _SURFACE_BYTES), budget / 2**30, memory_limit / 2**30,
+                       path.name)
         return written
     group = zarr.open_group(str(path), mode="r+")
     fl = FaultLikelihood(group["likelihood"][:], group["strike_deg"][:], group["dip_deg"][:])
@@ -622,6 +629,26 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
         zarr.consolidate_metadata(str(path))
     inp = _Input(data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
     _write_steps(_surface_steps(inp, result, out_dir), written, progress)
+    written.update(_segy_volumes(lazy, path, out_dir, dict(names, votes="votes"), progress))
+    return written
+
+
+def _segy_volumes(lazy: LazyInput, path: Path, out_dir: Path, names: dict, progress: bool) -> dict:
+    """For a SEG-Y input, the Zarr volumes also as SEG-Y with its headers (as the in-memory run writes them),
+    block by block; keyed ``<name>_segy``."""
+    if lazy.segy is None:
+        return {}
+    import zarr
+
+    from ..seismic.segy_writer import write_like_blocks
+
+    group = zarr.open_group(str(path), mode="r")
+    stems = {"likelihood": "fault_likelihood", "strike": "fault_strike", "dip": "fault_dip", "votes": "fault_votes"}
+    options = {k: v for k, v in lazy.segy.items() if k != "template_path"}
+    written = {}
+    for key, array in names.items():
+        written[f"{key}_segy"] = write_like_blocks(lazy.segy["template_path"], out_dir / f"{stems[key]}.sgy",
+                                                   group[array], progress=progress, **options)
     return written
 
 

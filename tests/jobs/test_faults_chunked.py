@@ -50,6 +50,7 @@ def test_cube_beyond_the_limit_gives_the_same_faults(cube_npy, in_memory, tmp_pa
     assert _rows(written["points"]) == _rows(in_memory["points"])
     assert written["figure"].stat().st_size > 10_000
     # run again into the same folder: the finished likelihood is reused, the same faults come out
+    limit = resident_memory() + (180 << 20)
     with caplog.at_level(logging.INFO, logger="seismo3d"):
         again = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, progress=False)
     assert "reusing the finished fault likelihood" in caplog.text
@@ -73,16 +74,24 @@ def test_segy_cube_is_read_lazily(write_segy_cube, tmp_path, caplog):
     """A SEG-Y cube over the limit: read block by block, its likelihood equal to the in-memory one."""
     from seismo3d.seismic import fault_likelihood
 
-    cube = synthetic_cube((96, 64, 128), seed=5).cube.astype(np.float32)
+    cube = synthetic_cube((128, 96, 256), seed=5).cube.astype(np.float32)
     path = write_segy_cube(tmp_path / "cube.sgy", cube, sorting="crossline")
     with caplog.at_level(logging.INFO, logger="seismo3d"):
-        written = run_faults_job(path, tmp_path / "out", memory_limit=resident_memory() + (40 << 20),
+        written = run_faults_job(path, tmp_path / "out", memory_limit=resident_memory() + (150 << 20),
                                  progress=False)
     assert "block by block" in caplog.text
     import zarr
     group = zarr.open_group(str(written["likelihood"]), mode="r")
-    assert np.abs(group["likelihood"][:] - fault_likelihood(cube).likelihood).max() <= 1e-5
-    assert list(group["inline"][:]) == list(range(101, 197))
+    reference = fault_likelihood(cube)
+    assert np.abs(group["likelihood"][:] - reference.likelihood).max() <= 1e-5
+    assert list(group["inline"][:]) == list(range(101, 229))
+    # the SEG-Y volumes, written block by block with the input's headers, as the in-memory run writes them
+    from seismo3d.seismic.io import open_segy, read_segy
+    assert np.abs(read_segy(written["likelihood_segy"])[0] - reference.likelihood).max() <= 1e-5
+    assert np.array_equal(read_segy(written["dip_segy"])[0], group["dip_deg"][:])
+    with open_segy(written["strike_segy"]) as out, open_segy(path) as src:
+        assert out.sorting == src.sorting == "crossline" and out.format == 5
+        np.testing.assert_array_equal(out.cdp_x, src.cdp_x)
 
 
 def test_bad_memory_limit(cube_npy, tmp_path):

@@ -1,0 +1,103 @@
+"""SEG-Y written block by block: an attribute of a cube larger than memory, with the headers of its template file.
+
+The counterpart of :func:`~seismo3d.seismic.io.write_like` for arrays that are read one block of inlines at a time
+(a Zarr array, a dask array): memory is one block, never the cube.
+"""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+import segyio
+
+from .._atomic import atomic_path
+from .._progress import progress_steps
+from ..errors import InputError, TraceListWarning
+from .io import open_segy
+from .lazy_cube import SegyGrid
+
+__all__ = ["write_like_blocks"]
+
+
+def write_like_blocks(template_path, out_path, values, *, iline: int = 189, xline: int = 193, endian=None,
+                      inlines_per_block: int = 32, progress: bool = False) -> Path:
+    """Write an attribute of a 3D cube as SEG-Y with the template's headers, one block of inlines at a time.
+
+    As :func:`~seismo3d.seismic.io.write_like`: the textual, binary and every trace header are copied from the
+    template, the data format becomes 5 (4-byte IEEE float) and the file is big-endian; it is written to a temporary
+    file in the output folder and moved into place when complete (an interrupted call leaves no ``out_path``). The
+    template is only read.
+
+    Parameters
+    ----------
+    template_path : str or os.PathLike
+        A 3D SEG-Y cube (inline- or crossline-sorted).
+    out_path : str or os.PathLike
+        Output file; its folder must exist. Replaced if it exists.
+    values : (n_inlines, n_xlines, n_samples) array-like with slicing
+        The attribute on the template's grid (e.g. a ``zarr.Array`` or a dask array); read by blocks of
+        ``inlines_per_block`` inlines (``values[i0:i1]``), written as float32.
+    iline, xline, endian
+        How to open the template, as in :func:`~seismo3d.seismic.io.open_segy`.
+    inlines_per_block : int
+    progress : bool
+        Report progress per block.
+
+    Returns
+    -------
+    out_path : pathlib.Path
+
+    Raises
+    ------
+    InputError
+        ``out_path`` is the template, its folder does not exist, the template is not a 3D cube, ``values`` has
+        another shape, or a block holds NaN / inf values.
+    SegyFormatError, SegyGeometryError, DataNotFoundError
+        The template cannot be read (see :func:`~seismo3d.seismic.io.open_segy`).
+
+    References
+    ----------
+    .. [1] SEG Technical Standards Committee, "SEG-Y_r2.0: SEG-Y revision 2.0 Data Exchange format", 2017.
+    """
+    template_path, out_path = Path(template_path), Path(out_path)
+    if template_path.resolve() == out_path.resolve():
+        raise InputError(f"out_path {out_path} is the template file itself; write to another file, the template "
+                         "must not be overwritten")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TraceListWarning)
+        cube = open_segy(template_path, iline=iline, xline=xline, endian=endian)
+    with cube:
+        if not cube.is_3d or cube.inlines is None:
+            raise InputError(f"{template_path.name} is {cube.description}; block-by-block SEG-Y output needs a 3D "
+                             "cube template (use write_like for lines)")
+        if tuple(values.shape) != tuple(cube.shape):
+            raise InputError(f"values have shape {tuple(values.shape)} but the template {template_path.name} needs "
+                             f"{cube.shape}")
+        grid = SegyGrid.from_cube(cube)
+        src = cube.segyfile
+        spec = segyio.tools.metadata(src)
+        spec.format = int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)
+        spec.endian = "big"
+        n_il = cube.shape[0]
+        with atomic_path(out_path) as tmp, segyio.create(str(tmp), spec) as dst:
+            for i in range(1 + src.ext_headers):
+                dst.text[i] = src.text[i]
+            dst.bin = src.bin
+            dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
+            dst.header = src.header
+            starts = range(0, n_il, int(inlines_per_block))
+            with progress_steps(len(starts), f"writing {out_path.name}", unit="block", enabled=progress) as bar:
+                for i0 in starts:
+                    i1 = min(i0 + int(inlines_per_block), n_il)
+                    block = np.asarray(values[i0:i1], dtype=np.float32)
+                    if not np.all(np.isfinite(block)):
+                        raise InputError(f"values hold NaN or inf in inlines {i0}-{i1 - 1} (indices), which most "
+                                         "SEG-Y readers reject; replace them first")
+                    for first, last, where in grid.trace_runs(i0, i1, 0, grid.n_xlines):
+                        traces = np.ascontiguousarray(block[where]).reshape(-1, grid.n_samples)
+                        for k in range(last - first):
+                            dst.trace[first + k] = traces[k]
+                    bar.advance()
+    return out_path

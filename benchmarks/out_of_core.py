@@ -232,13 +232,14 @@ def main() -> None:
                 for p in (out, out.with_name(out.name + ".partial"), out.with_name(out.name + ".work")):
                     shutil.rmtree(p, ignore_errors=True)
                 r = _child("chunked", [str(sgy), str(out), args.memory_limit, scheduler])
-                rows.append((f"chunked, {'threaded scheduler' if scheduler == 'threads' else 'dask.distributed, 2 workers'}",
-                             r))
+                label = "threaded scheduler" if scheduler == "threads" else "dask.distributed, 2 workers"
+                rows.append((f"chunked, {label}", r))
                 shutil.rmtree(out, ignore_errors=True)
         if "memory" in only:
             rows.append(("in memory (fault_likelihood)", _child("memory", [args.memory_shape])))
         if rows:
-            print(f"\n### fault likelihood of large cubes (memory limit of the chunked runs {float(args.memory_limit) / 1e9:.2f} GB)\n")
+            limit_gb = float(args.memory_limit) / 1e9
+            print(f"\n### fault likelihood of large cubes (memory limit of the chunked runs {limit_gb:.2f} GB)\n")
             print("| path | cube | GB | s | s/GB | peak resident GB | seconds per step |")
             print("|---|---|---|---|---|---|---|")
             for label, r in rows:

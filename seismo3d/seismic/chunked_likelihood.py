@@ -53,7 +53,8 @@ __all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "def
 # Bytes of working memory per sample of a block (incl. halo), from the arrays each step holds at its peak: balancing
 # holds the amplitudes, their squares and two smoothing passes; the semblance step the balanced amplitudes, 3
 # gradients, 6 tensor components, the planarity and the outputs; the scan 2 inputs read in its layout, 2 smoothed
-# copies and the keys of the block's core (a third of it or less); decoding the key brought back to every sample and likelihood, strike and dip.
+# copies and the keys of the block's core (a third of it or less); decoding the key brought back to every sample
+# and likelihood, strike and dip.
 _BALANCE_BYTES = 20
 _SEMBLANCE_BYTES = 56
 _SCAN_BYTES = 22
@@ -123,7 +124,8 @@ class ChunkedLikelihood:
     shape : tuple of int
         ``(n_inlines, n_xlines, n_samples)``.
     blocks_computed, blocks_resumed : dict
-        Per step (``'balance'``, ``'semblance'``, ``'scan_inline'``, ``'scan_crossline'``, ``'decode'``), blocks computed by this
+        Per step (``'balance'``, ``'semblance'``, ``'scan_inline'``, ``'scan_crossline'``, ``'decode'``), blocks
+        computed by this
         run and blocks found finished by an earlier, interrupted run.
     saturated_fraction : float
         Fraction of the live samples with likelihood above 0.9 (see ``FaultScanOptions.saturated``).
@@ -193,6 +195,14 @@ def _baseline(chunking: ChunkOptions, input_chunk: int) -> int:
     return (resident_memory() if local else 256 << 20) + 2 * int(input_chunk)
 
 
+def _largest(tile: int, cap: int, fits) -> int:
+    """The largest multiple of ``tile`` up to ``cap`` for which ``fits`` holds (``tile`` at least)."""
+    size = tile
+    while size + tile <= cap and fits(size + tile):
+        size += tile
+    return size
+
+
 def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
     n0, n1, nt = shape
     tile = int(chunking.tile)
@@ -200,22 +210,21 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
     bhalo, halo, shalo = balance_halo(options), semblance_halo(options), strike_halo(options)
     limit = int(chunking.memory_limit or default_memory_limit())
     budget = (limit - baseline) // int(chunking.workers)
-    if chunking.block is not None:
-        block = int(chunking.block)
-    else:
-        block = tile
-        while (block + tile <= 256 and (block + tile + 2 * halo) ** 2 * nt * _SEMBLANCE_BYTES <= budget
-               and (block + tile) ** 2 * nt * _DECODE_BYTES <= budget):
-            block += tile
-    need = max((block + 2 * halo) ** 2 * nt * _SEMBLANCE_BYTES, block ** 2 * nt * _DECODE_BYTES)
-    balance = tile
-    while balance + tile <= 512 and (balance + tile + 2 * bhalo) ** 2 * nt * _BALANCE_BYTES <= budget:
-        balance += tile
-    need = max(need, (balance + 2 * bhalo) ** 2 * nt * _BALANCE_BYTES)
-    strip = int(chunking.strip or tile)
-    while chunking.strip is None and strip + tile <= max(n0, n1) and max(n0, n1) * (strip + tile + 2 * shalo) * m * _SCAN_BYTES <= budget:
-        strip += tile
-    need = max(need, max(n0, n1) * (strip + 2 * shalo) * m * _SCAN_BYTES)
+    n_axis = max(n0, n1)
+
+    def semblance_bytes(b):
+        return max((b + 2 * halo) ** 2 * nt * _SEMBLANCE_BYTES, b ** 2 * nt * _DECODE_BYTES)
+
+    def balance_bytes(b):
+        return (b + 2 * bhalo) ** 2 * nt * _BALANCE_BYTES
+
+    def scan_bytes(w):
+        return n_axis * (w + 2 * shalo) * m * _SCAN_BYTES
+
+    block = int(chunking.block or _largest(tile, 256, lambda b: semblance_bytes(b) <= budget))
+    balance = _largest(tile, 512, lambda b: balance_bytes(b) <= budget)
+    strip = int(chunking.strip or _largest(tile, n_axis, lambda w: scan_bytes(w) <= budget))
+    need = max(semblance_bytes(block), balance_bytes(balance), scan_bytes(strip))
     if need > budget:
         raise InputError(
             f"a chunked run of a {n0} x {n1} x {nt} cube needs about "

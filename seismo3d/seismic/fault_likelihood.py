@@ -271,7 +271,8 @@ def _box_rows(x, y, c, m, n, h):
 def _smooth_strike(x, alpha, h, origin, n_threads, out):
     # x in layout (na, nt, nb). Smooth along the staircase lines a = a0 + round(alpha * b) of every time slice with
     # two passes of a box of half-width h (a triangle filter), zero outside the cube; each output sample is written
-    # once. `origin`: the cube index of b = 0 (blocks of a cube). Work is split in chunks of lines with one workspace per chunk.
+    # once. `origin`: the cube index of b = 0 (blocks of a cube). Work is split in chunks of lines with one workspace
+    # per chunk.
     na, nt, nbb = x.shape
     sh = _shifts(alpha, nbb, origin)
     s_min = min(sh[0], sh[nbb - 1])

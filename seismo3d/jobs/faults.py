@@ -351,9 +351,13 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
     from ..seismic.lazy_cube import open_lazy
 
     if not path.is_dir():
+        from ..errors import Seismo3dWarning
         from ..seismic.io import open_segy
 
-        with open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian) as cube:
+        with warnings.catch_warnings():  # only the size is wanted here: the reading that follows warns, once
+            warnings.simplefilter("ignore", Seismo3dWarning)
+            cube = open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
+        with cube:
             if not cube.is_3d or cube.inlines is None or not _too_large(cube.shape, budget):
                 return None
     lazy = open_lazy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian, tile=_TILE)

@@ -333,7 +333,7 @@ class _client:
             return None
         from distributed import Client
         try:
-            self.client = Client(self.scheduler, timeout="10s")
+            self.client = Client(self.scheduler, timeout="5s")
         except (OSError, TimeoutError) as exc:
             raise InputError(f"cannot reach the dask scheduler at {self.scheduler} ({exc}); start it (dask scheduler) "
                              "and its workers first, or leave out the scheduler to run here") from exc

@@ -587,8 +587,9 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
     """Fault likelihood block by block into ``fault_likelihood.zarr``; fault surfaces in memory when they fit."""
     import zarr
 
-    from ..seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood
+    from ..seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood, in_memory_bytes
     from ..seismic.fault_likelihood import FaultLikelihood
+    from ..seismic.seismic_zarr import consolidate
 
     out_dir.mkdir(parents=True, exist_ok=True)
     path = out_dir / "fault_likelihood.zarr"
@@ -602,13 +603,11 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
     else:
         LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory, more than the %.2f GiB left under "
                     "the memory limit (%.2f GiB): fault likelihood block by block into %s", lazy.name, *shape,
-                    _gib(shape, 96), budget / 2**30, memory_limit / 2**30, path.name)
+                    in_memory_bytes(shape) / 2**30, budget / 2**30, memory_limit / 2**30, path.name)
         chunked_fault_likelihood(lazy.data, path, coords=lazy.coords, progress=progress,
                                  chunking=ChunkOptions(memory_limit=memory_limit, scheduler=scheduler))
         zarr.open_group(str(path), mode="r+").attrs["source"] = lazy.name
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", UserWarning)
-            zarr.consolidate_metadata(str(path))
+        consolidate(path)
     written = {"likelihood": path}
     names = {"likelihood": "likelihood", "strike": "strike_deg", "dip": "dip_deg"}
     if _gib(shape, _SURFACE_BYTES) * 2**30 > budget:
@@ -628,9 +627,7 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
     votes = group.create_array("votes", shape=shape, chunks=group["likelihood"].chunks, dtype="float32",
                                dimension_names=("inline", "crossline", "sample"), overwrite=True)
     votes[:] = result.votes
-    with warnings.catch_warnings():  # consolidated metadata (read by xarray) is not in the Zarr v3 spec yet
-        warnings.simplefilter("ignore", UserWarning)
-        zarr.consolidate_metadata(str(path))
+    consolidate(path)
     inp = _Input(data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
     _write_steps(_surface_steps(inp, result, out_dir), written, progress)
     written.update(_segy_volumes(lazy, path, out_dir, dict(names, votes="votes"), progress))

@@ -34,11 +34,11 @@ import os
 import pathlib
 import shutil
 import time
-import warnings
 from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from .._atomic import atomic_path
 from .._options import resolve_options
 from .._progress import progress_steps
 from .._validation import check_int
@@ -46,6 +46,7 @@ from ..errors import InputError
 from .fault_likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan,
                                saturation_counts, scan_planes, scan_step, semblance_floor, semblance_halo,
                                semblance_terms, strike_halo)
+from .seismic_zarr import consolidate
 
 __all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
            "in_memory_bytes", "resident_memory"]
@@ -401,9 +402,7 @@ class _Run:
     def finish(self) -> None:
         import zarr
         zarr.open_group(str(self.partial), mode="r+").attrs["complete"] = True
-        with warnings.catch_warnings():  # consolidated metadata is not in the Zarr v3 spec yet; xarray reads it
-            warnings.simplefilter("ignore", UserWarning)
-            zarr.consolidate_metadata(str(self.partial))
+        consolidate(self.partial)
         os.replace(self.partial, self.out)
         shutil.rmtree(self.work, ignore_errors=True)
 
@@ -532,10 +531,8 @@ def _write_coords(group, shape, coords) -> None:
 
 
 def _write_marker(path: str, payload: dict) -> None:
-    tmp = path + ".tmp"
-    with open(tmp, "w") as fh:
+    with atomic_path(path) as tmp, open(tmp, "w") as fh:
         json.dump(payload, fh)
-    os.replace(tmp, path)
 
 
 def _balance_block(f, core, block, work, opt, stats, marker) -> dict:

@@ -31,6 +31,7 @@ SEG-Y rev 1 (SEG Technical Standards Committee, 2002), textual, binary and trace
 
 from __future__ import annotations
 
+import os
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,7 +43,8 @@ from ..errors import InputError
 from .io import scale_coordinates
 from .lazy_cube import SegyGrid, read_segy_block, read_segy_block_headers
 
-__all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "open_seismic_zarr", "is_seismic_zarr"]
+__all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate", "open_seismic_zarr",
+           "is_seismic_zarr"]
 
 LAYOUT = {"layout": "seismic-zarr", "version": 1}
 TILE_TRACES = 64  # traces per chunk along inline and crossline
@@ -105,6 +107,27 @@ def _open_group(path: Path):
         raise InputError(f"{path} lacks the array(s) {', '.join(missing)}; the store is incomplete: convert the SEG-Y "
                          "again")
     return group
+
+
+def consolidate(store) -> None:
+    """Write a Zarr group's consolidated metadata (every array's metadata in the group's ``zarr.json``), so that
+    xarray opens it with one read; call it again after adding arrays or attributes.
+
+    Parameters
+    ----------
+    store : str, os.PathLike or zarr store
+        The group.
+
+    Notes
+    -----
+    Consolidated metadata is zarr-python's extension of the Zarr v3 specification (it warns about that; the
+    warning is silenced here); readers without it ignore it.
+    """
+    import zarr
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # ZarrUserWarning: consolidated metadata is not in the v3 specification
+        zarr.consolidate_metadata(store if not isinstance(store, (str, os.PathLike)) else str(store))
 
 
 def open_seismic_zarr(path) -> SeismicZarr:
@@ -236,11 +259,7 @@ class SeismicZarrWriter:
     def _consolidate(self) -> None:
         """Consolidated metadata (every array's metadata in the group's zarr.json): xarray and other readers open the
         store with one read. Zarr-python's extension of v3, which it warns about; readers without it ignore it."""
-        import zarr
-
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # ZarrUserWarning: consolidated metadata is not in the v3 specification
-            zarr.consolidate_metadata(self.root.store)
+        consolidate(self.root.store)
 
     def _add_cdp_coordinates(self) -> None:
         """cdp_x / cdp_y with the coordinate scalar applied, one row of chunks at a time (as SeismicCube.cdp_x)."""

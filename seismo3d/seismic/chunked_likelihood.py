@@ -38,11 +38,10 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .._atomic import atomic_path
 from .._options import resolve_options
-from .._progress import progress_steps
 from .._validation import check_int
 from ..errors import InputError
+from .block_runs import BlockRun, SchedulerClient, largest_block, write_marker
 from .fault_likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan,
                                saturation_counts, scan_planes, scan_step, semblance_floor, semblance_halo,
                                semblance_terms, strike_halo)
@@ -199,14 +198,6 @@ def _baseline(chunking: ChunkOptions, input_chunk: int) -> int:
     return (resident_memory() if local else 256 << 20) + 2 * int(input_chunk)
 
 
-def _largest(tile: int, cap: int, fits) -> int:
-    """The largest multiple of ``tile`` up to ``cap`` for which ``fits`` holds (``tile`` at least)."""
-    size = tile
-    while size + tile <= cap and fits(size + tile):
-        size += tile
-    return size
-
-
 def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
     n0, n1, nt = shape
     tile = int(chunking.tile)
@@ -227,9 +218,9 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
     def scan_bytes(w):
         return n_axis * (w + 2 * shalo) * m * _SCAN_BYTES
 
-    block = int(chunking.block or _largest(tile, 256, lambda b: semblance_bytes(b) <= budget))
-    balance = _largest(tile, 512, lambda b: balance_bytes(b) <= budget)
-    strip = int(chunking.strip or _largest(tile, n_axis, lambda w: scan_bytes(w) <= budget))
+    block = int(chunking.block or largest_block(tile, 256, lambda b: semblance_bytes(b) <= budget))
+    balance = largest_block(tile, 512, lambda b: balance_bytes(b) <= budget)
+    strip = int(chunking.strip or largest_block(tile, n_axis, lambda w: scan_bytes(w) <= budget))
     need = max(semblance_bytes(block), balance_bytes(balance), scan_bytes(strip))
     if need > budget:
         raise InputError(
@@ -305,7 +296,7 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     out = pathlib.Path(output)
     run = _Run(out, plan, opt, chunking, progress)
     run.start(_manifest(x.shape, opt, plan))
-    with _client(chunking.scheduler) as client:
+    with SchedulerClient(chunking.scheduler) as client:
         run.client = client
         run.balance(x, run.amplitude_statistics(x))
         tiny = run.semblance()
@@ -322,60 +313,24 @@ def _manifest(shape, opt, plan) -> dict:
             "plan": json.loads(json.dumps(asdict(plan)))}
 
 
-class _client:
-    """The dask.distributed client for a scheduler address (None otherwise), closed on exit."""
-
-    def __init__(self, scheduler):
-        self.scheduler = scheduler
-        self.client = None
-
-    def __enter__(self):
-        if self.scheduler is None or self.scheduler in ("threads", "synchronous"):
-            return None
-        from distributed import Client
-        try:
-            self.client = Client(self.scheduler, timeout="5s")
-        except (OSError, TimeoutError) as exc:
-            raise InputError(f"cannot reach the dask scheduler at {self.scheduler} ({exc}); start it (dask scheduler) "
-                             "and its workers first, or leave out the scheduler to run here") from exc
-        return self.client
-
-    def __exit__(self, *exc):
-        if self.client is not None:
-            self.client.close()
-
-
-class _Run:
-    """One chunked run: its folders, markers, block lists and the dask calls."""
+class _Run(BlockRun):
+    """One chunked likelihood run: its folders, block lists and steps."""
 
     def __init__(self, out: pathlib.Path, plan: _Plan, opt: FaultScanOptions, chunking: ChunkOptions,
                  progress: bool):
-        self.out, self.plan, self.opt, self.chunking, self.progress = out, plan, opt, chunking, progress
+        super().__init__(out.with_name(out.name + ".work"), scheduler=chunking.scheduler, workers=chunking.workers,
+                         progress=progress)
+        self.out, self.plan, self.opt, self.chunking = out, plan, opt, chunking
         self.partial = out.with_name(out.name + ".partial")
-        self.work = out.with_name(out.name + ".work")
-        self.computed, self.resumed, self.seconds = {}, {}, {}
-        self.client = None
 
-    # -- folders and markers ------------------------------------------------------------------------------------
+    # -- folders ------------------------------------------------------------------------------------------------
     def start(self, manifest: dict) -> None:
         import zarr
         if self.out.exists():
             raise InputError(f"output {self.out} already exists; pick another output or delete it")
         if not self.out.parent.is_dir():
             raise InputError(f"cannot write {self.out}: folder {self.out.parent} does not exist; create it first")
-        manifest_path = self.work / "manifest.json"
-        if self.work.exists():
-            try:
-                earlier = json.loads(manifest_path.read_text())
-            except (OSError, ValueError):
-                earlier = None
-            if earlier != manifest:
-                raise InputError(f"{self.work} holds an unfinished run of another cube or other options; delete "
-                                 f"{self.work} and {self.partial} to start afresh, or rerun with the same input "
-                                 "and options to resume it")
-        else:
-            (self.work / "done").mkdir(parents=True)
-            manifest_path.write_text(json.dumps(manifest))
+        self.open(manifest, f"{self.work} and {self.partial}")
         n0, n1, nt = self.plan.shape
         t, m = self.plan.tile, self.plan.m
         for name, dtype, n in (("balanced", "float32", nt), ("numerator", "float32", m),
@@ -389,58 +344,12 @@ class _Run:
                 group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
                                    dimension_names=("inline", "crossline", "sample"))
 
-    def _marker(self, step: str, block) -> pathlib.Path:
-        return self.work / "done" / f"{step}-{block[0]}-{block[2]}.json"
-
-    def _pending(self, step: str, blocks) -> tuple[list, list]:
-        done = [b for b in blocks if self._marker(step, b).exists()]
-        todo = [b for b in blocks if not self._marker(step, b).exists()]
-        self.resumed[step] = len(done)
-        self.computed[step] = len(todo)
-        return todo, [json.loads(self._marker(step, b).read_text()) for b in done]
-
     def finish(self) -> None:
         import zarr
         zarr.open_group(str(self.partial), mode="r+").attrs["complete"] = True
         consolidate(self.partial)
         os.replace(self.partial, self.out)
         shutil.rmtree(self.work, ignore_errors=True)
-
-    # -- running tasks ------------------------------------------------------------------------------------------
-    def _compute(self, tasks: list, label: str, step: str) -> list:
-        """Run delayed block tasks on the chosen scheduler, reporting each finished block."""
-        start = time.perf_counter()
-        try:
-            return self._compute_tasks(tasks, label)
-        finally:
-            self.seconds[step] = round(time.perf_counter() - start, 2)
-
-    def _compute_tasks(self, tasks: list, label: str) -> list:
-        import dask
-        if not tasks:
-            return []
-        with progress_steps(len(tasks), label, unit="block", enabled=self.progress) as bar:
-            if self.client is not None:
-                from distributed import as_completed
-                futures = self.client.compute(tasks)
-                index = {f.key: i for i, f in enumerate(futures)}
-                results = [None] * len(tasks)
-                for fut in as_completed(futures):
-                    results[index[fut.key]] = fut.result()
-                    bar.advance()
-                return results
-            from dask.callbacks import Callback
-
-            names = {t.key for t in tasks}
-
-            class _Count(Callback):
-                def _posttask(self, key, result, dsk, state, worker_id):
-                    if key in names:
-                        bar.advance()
-
-            scheduler = "synchronous" if self.chunking.scheduler == "synchronous" else "threads"
-            with _Count():
-                return list(dask.compute(*tasks, scheduler=scheduler, num_workers=int(self.chunking.workers)))
 
     def amplitude_statistics(self, x) -> AmplitudeStatistics:
         import dask
@@ -467,24 +376,24 @@ class _Run:
         import dask
         p = self.plan
         n0, n1, _ = p.shape
-        todo, _ = self._pending("balance", p.blocks(p.balance, p.balance))
+        todo, _ = self.pending("balance", p.blocks(p.balance, p.balance))
         tasks = []
         for b in todo:
             i0, i1, j0, j1 = b
             a0, a1, b0, b1 = max(i0 - p.bhalo, 0), min(i1 + p.bhalo, n0), max(j0 - p.bhalo, 0), min(j1 + p.bhalo, n1)
             tasks.append(dask.delayed(_balance_block, pure=False)(
                 x[a0:a1, b0:b1, :], (i0 - a0, i1 - a0, j0 - b0, j1 - b0), b, str(self.work), self.opt, stats,
-                str(self._marker("balance", b))))
-        self._compute(tasks, "amplitude balancing", "balance")
+                str(self.marker("balance", b))))
+        self.compute(tasks, "amplitude balancing", "balance")
 
     def semblance(self) -> float:
         import dask
         p = self.plan
         n0, n1, _ = p.shape
-        todo, done = self._pending("semblance", p.blocks(p.block, p.block))
+        todo, done = self.pending("semblance", p.blocks(p.block, p.block))
         tasks = [dask.delayed(_semblance_block, pure=False)(b, p, str(self.work), self.opt,
-                                                            str(self._marker("semblance", b))) for b in todo]
-        results = self._compute(tasks, "semblance", "semblance") + done
+                                                            str(self.marker("semblance", b))) for b in todo]
+        results = self.compute(tasks, "semblance", "semblance") + done
         total = sum(r["sum_denominator"] for r in results)
         return semblance_floor(total, n0 * n1 * p.m)
 
@@ -494,19 +403,19 @@ class _Run:
         n0, n1, _ = p.shape
         step = f"scan_{'inline' if axis == 0 else 'crossline'}"
         blocks = p.blocks(n0, p.strip) if axis == 0 else p.blocks(p.strip, n1)
-        todo, _ = self._pending(step, blocks)
+        todo, _ = self.pending(step, blocks)
         tasks = [dask.delayed(_scan_block, pure=False)(b, axis, p, str(self.work), self.opt, tiny,
-                                                       str(self._marker(step, b))) for b in todo]
-        self._compute(tasks, f"fault scan along {'inlines' if axis == 0 else 'crosslines'}", step)
+                                                       str(self.marker(step, b))) for b in todo]
+        self.compute(tasks, f"fault scan along {'inlines' if axis == 0 else 'crosslines'}", step)
 
     def decode(self, tiny: float, coords: dict | None) -> float:
         import dask
         import zarr
         p = self.plan
-        todo, done = self._pending("decode", p.blocks(p.block, p.block))
+        todo, done = self.pending("decode", p.blocks(p.block, p.block))
         tasks = [dask.delayed(_decode_block, pure=False)(b, p, str(self.work), str(self.partial), self.opt, tiny,
-                                                         str(self._marker("decode", b))) for b in todo]
-        results = self._compute(tasks, "decode", "decode") + done
+                                                         str(self.marker("decode", b))) for b in todo]
+        results = self.compute(tasks, "decode", "decode") + done
         high = sum(r["high"] for r in results)
         live = sum(r["live"] for r in results)
         group = zarr.open_group(str(self.partial), mode="r+")
@@ -530,11 +439,6 @@ def _write_coords(group, shape, coords) -> None:
             arr.attrs["units"] = unit
 
 
-def _write_marker(path: str, payload: dict) -> None:
-    with atomic_path(path) as tmp, open(tmp, "w") as fh:
-        json.dump(payload, fh)
-
-
 def _balance_block(f, core, block, work, opt, stats, marker) -> dict:
     """Balanced amplitudes of one block (read with halo), its core written to the work array."""
     import zarr
@@ -547,7 +451,7 @@ def _balance_block(f, core, block, work, opt, stats, marker) -> dict:
     c0, c1, d0, d1 = core
     i0, i1, j0, j1 = block
     zarr.open_array(f"{work}/balanced", mode="r+")[i0:i1, j0:j1, :] = g[c0:c1, d0:d1]
-    _write_marker(marker, {})
+    write_marker(marker, {})
     return {}
 
 
@@ -564,7 +468,7 @@ def _semblance_block(block, plan: _Plan, work, opt, marker) -> dict:
     zarr.open_array(f"{work}/numerator", mode="r+")[i0:i1, j0:j1, :] = sn
     zarr.open_array(f"{work}/denominator", mode="r+")[i0:i1, j0:j1, :] = sd
     result = {"sum_denominator": float(sd.sum(dtype=np.float64))}
-    _write_marker(marker, result)
+    write_marker(marker, result)
     return result
 
 
@@ -608,7 +512,7 @@ def _scan_block(block, axis, plan: _Plan, work, opt, tiny, marker) -> dict:
     if axis == 1:  # the second scan: keep the better plane of both
         np.maximum(key, store[target], out=key)
     store[target] = key
-    _write_marker(marker, {})
+    write_marker(marker, {})
     return {}
 
 
@@ -626,5 +530,5 @@ def _decode_block(block, plan: _Plan, work, partial, opt, tiny, marker) -> dict:
     group["strike_deg"][i0:i1, j0:j1] = strike
     group["dip_deg"][i0:i1, j0:j1] = dip
     result = {"high": high, "live": n_live}
-    _write_marker(marker, result)
+    write_marker(marker, result)
     return result

@@ -21,7 +21,7 @@ from .fault_likelihood import fault_normals
 from .fault_surfaces import Fault, check_fault_arrays
 from .fault_voting import fault_frames
 
-__all__ = ["SkinOptions", "fault_skins"]
+__all__ = ["SkinOptions", "fault_skins", "skins_from_cells"]
 
 
 @dataclass(frozen=True)
@@ -130,13 +130,14 @@ def _offsets(two_d: bool, lateral: int, vertical: int) -> np.ndarray:
 
 
 @nb.njit(cache=True, parallel=True)
-def _best_neighbours(points, frames, index, offsets, max_plane, cos_angle):
+def _best_neighbours(points, frames, keys, shape, offsets, max_plane, cos_angle):
     # best[c, k]: cell c's nearest neighbour above (k = 0) and below (1) it down the dip, left (2) and right (3) of it
     # along the strike, or -1. A neighbour lies within max_plane of c's plane and c within max_plane of its plane,
     # their normals make an angle below acos(cos_angle), and the neighbour is in the direction's 90-degree cone;
-    # distance is measured in c's plane, with the distance off the plane counted double.
+    # distance is measured in c's plane, with the distance off the plane counted double. Cells are found by their
+    # linear index in the cube of ``shape`` among the sorted ``keys`` (no array of the cube's size).
     n = points.shape[0]
-    n0, n1, n2 = index.shape
+    n0, n1, n2 = shape[0], shape[1], shape[2]
     best = -np.ones((n, 4), np.int64)
     for c in nb.prange(n):
         px, py, pz = points[c, 0], points[c, 1], points[c, 2]
@@ -150,8 +151,9 @@ def _best_neighbours(points, frames, index, offsets, max_plane, cos_angle):
             qz = pz + offsets[o, 2]
             if qx < 0 or qy < 0 or qz < 0 or qx >= n0 or qy >= n1 or qz >= n2:
                 continue
-            q = index[qx, qy, qz]
-            if q < 0:
+            key = (qx * n1 + qy) * n2 + qz
+            q = np.searchsorted(keys, key)
+            if q >= n or keys[q] != key:
                 continue
             rx = float(offsets[o, 0])
             ry = float(offsets[o, 1])
@@ -376,31 +378,87 @@ def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
     lower, upper = float(lower), float(upper)
     if not 0.0 < lower <= upper:
         raise InputError(f"fault_skins needs 0 < lower <= upper; got lower={lower!r}, upper={upper!r}")
-    two_d = values.ndim == 2
     v3 = _kernels.as_3d(values)
     cells = v3 >= lower
-    points = np.argwhere(cells).astype(np.int64)
+    points = np.argwhere(cells)
+    return skins_from_cells(points, v3[cells], _kernels.as_3d(st)[cells], _kernels.as_3d(dp)[cells],
+                            shape=values.shape, lower=lower, upper=upper, options=opt)
+
+
+def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float, upper: float,
+                     options: SkinOptions | None = None) -> list[Fault]:
+    """Fault skins from the cells of a thinned fault image given as lists: :func:`fault_skins` without the image,
+    for a cube larger than memory whose cells are gathered block by block.
+
+    Parameters
+    ----------
+    points : (n, 3) array_like of int
+        The cells' (inline, crossline, sample) indices (a 2D section's as (trace, 0, sample)), in any order.
+    values : (n,) array_like of float
+        Their thinned votes, all at or above ``lower``.
+    strike_deg, dip_deg : (n,) array_like of float
+        Their fault strike and dip, degrees.
+    shape : tuple of int
+        Shape of the image, 2D (n_traces, n_samples) or 3D.
+    lower, upper : float
+        Hysteresis thresholds (see :func:`fault_skins`).
+    options : SkinOptions, optional
+        Neighbour search and the smallest skin.
+
+    Returns
+    -------
+    list of Fault
+        As :func:`fault_skins`: the same faults as from the image holding these cells.
+
+    Raises
+    ------
+    InputError
+        Lengths differ, a cell lies outside ``shape``, or the thresholds are out of order.
+
+    References
+    ----------
+    .. [1] D. Hale, Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1 (fault skins).
+    """
+    opt = options or SkinOptions()
+    if not isinstance(opt, SkinOptions):
+        raise InputError(f"skins_from_cells(options=...) must be a SkinOptions; got {type(opt).__name__}")
+    lower, upper = float(lower), float(upper)
+    shape = tuple(int(n) for n in shape)
+    two_d = len(shape) == 2
+    shape3 = (shape[0], 1, shape[1]) if two_d else shape
+    points = np.asarray(points, dtype=np.int64).reshape(-1, 3)
+    vals = np.asarray(values, dtype=np.float32).ravel()
+    s_cell = np.asarray(strike_deg, dtype=np.float32).ravel()
+    d_cell = np.asarray(dip_deg, dtype=np.float32).ravel()
+    if not points.shape[0] == vals.size == s_cell.size == d_cell.size:
+        raise InputError(f"skins_from_cells got {points.shape[0]} points, {vals.size} values, {s_cell.size} strikes "
+                         f"and {d_cell.size} dips; pass one of each per cell")
     if points.shape[0] == 0:
         return []
-    index = np.full(v3.shape, -1, dtype=np.int64)
-    index[cells] = np.arange(points.shape[0])
-    s_cell = _kernels.as_3d(st)[cells]
-    d_cell = _kernels.as_3d(dp)[cells]
+    if points.min() < 0 or np.any(points.max(axis=0) >= np.asarray(shape3)):
+        raise InputError(f"skins_from_cells got cells outside an image of shape {shape}; pass indices of that image")
+    if not 0.0 < lower <= upper:
+        raise InputError(f"fault skins need 0 < lower <= upper; got lower={lower!r}, upper={upper!r}")
+    keys = np.ravel_multi_index(tuple(points.T), shape3)
+    if np.any(keys[1:] <= keys[:-1]):  # the order of the image's cells, which the growth's ties follow
+        order = np.argsort(keys, kind="stable")
+        points, vals, s_cell, d_cell, keys = points[order], vals[order], s_cell[order], d_cell[order], keys[order]
+        del order
     frames = np.ascontiguousarray(fault_frames(s_cell, d_cell))
-    best = _best_neighbours(points, frames, index, _offsets(two_d, int(opt.lateral_reach), int(opt.vertical_reach)),
+    best = _best_neighbours(points, frames, keys, np.asarray(shape3, np.int64),
+                            _offsets(two_d, int(opt.lateral_reach), int(opt.vertical_reach)),
                             float(opt.max_plane_distance), float(np.cos(np.radians(opt.max_angle))))
-    del index
-    vals = v3[cells]
+    del keys
     order = np.argsort(-vals, kind="stable")
     label = _grow(best, np.ascontiguousarray(frames[:, 0, :]), order, float(np.cos(np.radians(opt.max_angle))))
     if opt.merge_gap > 0:
         label = _merge_coplanar(points.astype(np.float64), label, _edge_cells(best, label, two_d),
-                                opt.smallest(values.shape), two_d, opt)
+                                opt.smallest(shape), two_d, opt)
     sizes = np.bincount(label, minlength=points.shape[0])
     strong = np.zeros(sizes.size, dtype=bool)
     strong[np.unique(label[vals >= upper])] = True
-    keep = np.nonzero(strong & (sizes >= opt.smallest(values.shape)))[0]
-    keep = keep[_heights(points[:, 2], label, keep) >= opt.shortest(values.shape)]
+    keep = np.nonzero(strong & (sizes >= opt.smallest(shape)))[0]
+    keep = keep[_heights(points[:, 2], label, keep) >= opt.shortest(shape)]
     keep = keep[np.argsort(-sizes[keep], kind="stable")]
     by_label = np.argsort(label, kind="stable")
     starts = np.searchsorted(label[by_label], keep)
@@ -415,6 +473,6 @@ def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
         members = by_label[start:start + sizes[root]]
         faults.append(Fault(id=fid, points=pts[members], likelihood=vals[members].astype(np.float32),
                             strike_deg=s_cell[members].astype(np.float32), dip_deg=d_cell[members].astype(np.float32),
-                            normals=fault_normals(s_cell[members], d_cell[members], ndim=values.ndim)))
+                            normals=fault_normals(s_cell[members], d_cell[members], ndim=len(shape))))
     return faults
 

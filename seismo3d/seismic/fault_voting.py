@@ -22,7 +22,7 @@ from ..errors import InputError
 from . import _kernels
 from .fault_surfaces import check_fault_arrays
 
-__all__ = ["VotingOptions", "FaultVotes", "vote_faults", "fault_frames"]
+__all__ = ["VotingOptions", "FaultVotes", "vote_faults", "fault_frames", "greedy_seeds", "surface_votes"]
 
 
 @dataclass(frozen=True)
@@ -89,6 +89,12 @@ class VotingOptions:
         rv = max(2, min(int(rv), (shape[-1] - 1) // 2))
         rw = 0 if two_d else max(1, min(int(self.half_length_strike), (min(shape[0], shape[1]) - 1) // 2))
         return int(ru), rv, rw
+
+    def reach(self, shape: tuple) -> int:
+        """The farthest a seed's box reaches from the seed along any axis, samples (rounded to the nearest sample):
+        the box's half-diagonal, whatever its orientation, since the rows of a fault frame are orthonormal."""
+        ru, rv, rw = self.box(shape)
+        return int(np.ceil(np.sqrt(ru * ru + rv * rv + rw * rw) + 0.5))
 
     def spacing(self, ndim: int) -> int:
         """The seed spacing for a 2D or 3D image."""
@@ -247,20 +253,29 @@ def _smooth_exponential(x, a, tmp):
 
 
 @nb.njit(cache=True, inline="always")
-def _nearest(f, x, y, z):
+def _nearest(f, x, y, z, g0, g1):
+    # f's sample nearest to the image position (x, y, z), f holding the image from inline g0 and crossline g1: the
+    # index is rounded in image coordinates (as when f is the whole image), then clamped to f
     n0, n1, n2 = f.shape
-    i = min(max(int(np.floor(x + 0.5)), 0), n0 - 1)
-    j = min(max(int(np.floor(y + 0.5)), 0), n1 - 1)
+    i = min(max(int(np.floor(x + 0.5)) - g0, 0), n0 - 1)
+    j = min(max(int(np.floor(y + 0.5)) - g1, 0), n1 - 1)
     k = min(max(int(np.floor(z + 0.5)), 0), n2 - 1)
     return f[i, j, k]
 
 
 @nb.njit(cache=True, parallel=True)
-def _vote(att, seeds, frames, ru, rv, rw, b, a_smooth, votes, best, normal):
-    # att (n0, n1, n2) likelihood in [0, 1]; seeds (ns, 3) int64; frames (ns, 3, 3) rows u (normal), v (dip
-    # vector), w (strike vector). votes (n_threads, n0, n1, n2) accumulate per thread (no write races); best and
-    # normal record the strongest surface through each sample (races there only pick one of two near-equal surfaces).
-    n0, n1, n2 = att.shape
+def _vote(att, g0, g1, shape, seeds, ids, frames, ru, rv, rw, b, a_smooth, o0, o1, votes, best, normal):
+    # att (n_a, n_b, n2) likelihood in [0, 1], the image of ``shape`` (n0, n1, n2) from inline g0 and crossline g1
+    # on; positions are computed in image coordinates (the same float arithmetic whatever the block); seeds (ns, 3)
+    # int64 image indices; ids (ns,) int64 the seeds' indices among all
+    # seeds of the cube (thread ids[s] % n_threads sums seed s's votes, in the order of ids: the same sums, in the
+    # same order, whether the cube is voted whole or block by block); frames (ns, 3, 3) rows u (normal), v (dip
+    # vector), w (strike vector). votes (n_threads, m0, m1, n2) accumulate per thread (no write races) over the core
+    # of the image [o0:o0 + m0, o1:o1 + m1] (the whole image in memory; a block's core in a chunked run, whose att
+    # holds every sample the seeds' boxes reach); best and normal record the strongest surface through each sample
+    # of the core (races there only pick one of two near-equal surfaces).
+    n0, n1, n2 = shape[0], shape[1], shape[2]
+    m0, m1 = votes.shape[1], votes.shape[2]
     nu = 2 * ru + 1
     nv = 2 * rv + 1
     nw = 2 * rw + 1
@@ -278,7 +293,9 @@ def _vote(att, seeds, frames, ru, rv, rw, b, a_smooth, votes, best, normal):
         surf = np.empty((nw, nv))
         tmp = np.empty(nm)
         line = np.empty(nm)
-        for s in range(t, ns, n_threads):
+        for s in range(ns):
+            if ids[s] % n_threads != t:
+                continue
             c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
             ux, uy, uz = frames[s, 0, 0], frames[s, 0, 1], frames[s, 0, 2]
             vx, vy, vz = frames[s, 1, 0], frames[s, 1, 1], frames[s, 1, 2]
@@ -299,7 +316,7 @@ def _vote(att, seeds, frames, ru, rv, rw, b, a_smooth, votes, best, normal):
                         if du < -lim or du > lim:
                             e[iw, iv, iu] = 1.0
                         else:
-                            e[iw, iv, iu] = 1.0 - _nearest(att, x0 + du * ux, y0 + du * uy, z0 + du * uz)
+                            e[iw, iv, iu] = 1.0 - _nearest(att, x0 + du * ux, y0 + du * uy, z0 + du * uz, g0, g1)
             # 2. nonlinear smoothing of the costs down the dip, then along the strike
             for iw in range(nw):
                 _smooth_costs(e[iw], b, t1[:nv], t2[:nv], cs[:nv + 1], es[iw])
@@ -339,7 +356,7 @@ def _vote(att, seeds, frames, ru, rv, rw, b, a_smooth, votes, best, normal):
                     z = c2 + du * uz + dv * vz + dw * wz
                     if x < -0.5 or y < -0.5 or z < -0.5 or x > n0 - 0.5 or y > n1 - 0.5 or z > n2 - 0.5:
                         continue
-                    total += _nearest(att, x, y, z)
+                    total += _nearest(att, x, y, z, g0, g1)
                     count += 1
             if count == 0:
                 continue
@@ -359,10 +376,10 @@ def _vote(att, seeds, frames, ru, rv, rw, b, a_smooth, votes, best, normal):
                 for iv in range(nv):
                     dv = iv - rv
                     du = surf[iw, iv]
-                    i = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5))
-                    j = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5))
+                    i = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5)) - o0
+                    j = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5)) - o1
                     k = int(np.floor(c2 + du * uz + dv * vz + dw * wz + 0.5))
-                    if i < 0 or j < 0 or k < 0 or i >= n0 or j >= n1 or k >= n2:
+                    if i < 0 or j < 0 or k < 0 or i >= m0 or j >= m1 or k >= n2:
                         continue
                     votes[t, i, j, k] += fa
                     if fa > best[i, j, k]:
@@ -373,18 +390,26 @@ def _vote(att, seeds, frames, ru, rv, rw, b, a_smooth, votes, best, normal):
 
 
 @nb.njit(cache=True)
-def _greedy_seeds(cand, mark, d):
-    # keep candidates (sorted strongest first) with no kept seed within Chebyshev distance d
-    n0, n1, n2 = mark.shape
+def _greedy_seeds(cand, shape, d):
+    # keep candidates (sorted strongest first) with no kept seed within Chebyshev distance d. Kept seeds are filed in
+    # cells of d + 1 samples per side: a cell holds at most one (two points of a cell are within d of each other),
+    # and a seed within d of a candidate lies in the candidate's cell or a neighbouring one.
+    size = d + 1
+    g0 = (shape[0] + size - 1) // size
+    g1 = (shape[1] + size - 1) // size
+    g2 = (shape[2] + size - 1) // size
+    cells = -np.ones((g0, g1, g2), np.int64)
     out = np.empty_like(cand)
     n = 0
     for c in range(cand.shape[0]):
         i, j, k = cand[c, 0], cand[c, 1], cand[c, 2]
+        a, bb, cc = i // size, j // size, k // size
         ok = True
-        for a in range(max(i - d, 0), min(i + d + 1, n0)):
-            for bb in range(max(j - d, 0), min(j + d + 1, n1)):
-                for cc in range(max(k - d, 0), min(k + d + 1, n2)):
-                    if mark[a, bb, cc]:
+        for x in range(max(a - 1, 0), min(a + 2, g0)):
+            for y in range(max(bb - 1, 0), min(bb + 2, g1)):
+                for z in range(max(cc - 1, 0), min(cc + 2, g2)):
+                    s = cells[x, y, z]
+                    if s >= 0 and abs(out[s, 0] - i) <= d and abs(out[s, 1] - j) <= d and abs(out[s, 2] - k) <= d:
                         ok = False
                         break
                 if not ok:
@@ -392,19 +417,57 @@ def _greedy_seeds(cand, mark, d):
             if not ok:
                 break
         if ok:
-            mark[i, j, k] = True
+            cells[a, bb, cc] = n
             out[n] = cand[c]
             n += 1
     return out[:n]
 
 
-def _pick_seeds(thin3: np.ndarray, threshold: float, spacing: int) -> np.ndarray:
-    """(n, 3) int64 seeds: thinned samples above ``threshold``, strongest first, more than ``spacing`` apart."""
-    cand = np.argwhere(thin3 > threshold)
-    if cand.size == 0:
+def greedy_seeds(points, values, shape, spacing: int) -> np.ndarray:
+    """Voting seeds: candidate samples taken strongest first, each more than ``spacing`` samples (Chebyshev distance)
+    from every seed taken before it (Wu & Fomel 2018).
+
+    The order is by decreasing value, ties by position (inline, then crossline, then sample), so the seeds do not
+    depend on the order the candidates come in: candidates gathered block by block from a cube larger than memory
+    give the seeds of the whole cube. Memory: the candidates and one int64 per cell of ``spacing + 1`` samples a side.
+
+    Parameters
+    ----------
+    points : (n, 3) array_like of int
+        Candidate samples (inline, crossline, sample indices; a 2D section's crossline index 0).
+    values : (n,) array_like of float
+        Their thinned fault likelihood.
+    shape : (int, int, int)
+        Shape of the cube (a section as (n_traces, 1, n_samples)).
+    spacing : int
+        Seeds are more than this many samples apart (:meth:`VotingOptions.spacing`).
+
+    Returns
+    -------
+    (m, 3) int64 ndarray
+        The seeds, strongest first.
+
+    Raises
+    ------
+    InputError
+        Points and values differ in length, or a point lies outside ``shape``.
+
+    References
+    ----------
+    .. [1] X. Wu and S. Fomel, Geophysics 83(5), O67-O82, 2018, doi:10.1190/geo2018-0115.1 (seed picking).
+    """
+    pts = np.asarray(points, dtype=np.int64).reshape(-1, 3)
+    vals = np.asarray(values, dtype=np.float32).ravel()
+    shape = tuple(int(n) for n in shape)
+    if vals.size != pts.shape[0]:
+        raise InputError(f"greedy_seeds got {pts.shape[0]} points but {vals.size} values; pass one value per point")
+    if pts.shape[0] == 0:
         return np.zeros((0, 3), np.int64)
-    order = np.argsort(-thin3[tuple(cand.T)], kind="stable")
-    return _greedy_seeds(cand[order].astype(np.int64), np.zeros(thin3.shape, np.bool_), int(spacing))
+    if pts.min() < 0 or np.any(pts.max(axis=0) >= np.asarray(shape)):
+        raise InputError(f"greedy_seeds got points outside a cube of shape {shape}; pass indices of that cube")
+    key = np.ravel_multi_index(tuple(pts.T), shape)
+    order = np.lexsort((key, -vals))
+    return _greedy_seeds(np.ascontiguousarray(pts[order]), np.asarray(shape, np.int64), int(spacing))
 
 
 def fault_frames(strike_deg, dip_deg) -> np.ndarray:
@@ -433,15 +496,24 @@ def fault_frames(strike_deg, dip_deg) -> np.ndarray:
 
 
 def _strike_dip(normal: np.ndarray, two_d: bool) -> tuple[np.ndarray, np.ndarray]:
-    """Strike and dip (degrees) of (..., 3) normals (inline, xline, sample); 0, 0 where the normal is 0."""
-    n = np.where(normal[..., 2:3] < 0, -normal, normal)
-    dip = np.degrees(np.arccos(np.clip(n[..., 2], 0.0, 1.0)))
-    if two_d:
-        strike = np.where(n[..., 0] >= 0, 90.0, 270.0)
-    else:
-        strike = np.degrees(np.arctan2(n[..., 0], -n[..., 1])) % 360.0
-    none = ~np.any(normal != 0, axis=-1)
-    return np.where(none, 0.0, strike).astype(np.float32), np.where(none, 0.0, dip).astype(np.float32)
+    """Strike and dip (degrees) of (..., 3) normals (inline, xline, sample); 0, 0 where the normal is 0. Computed
+    slab by slab along the first axis (about 4 M samples each), so the temporaries stay small."""
+    shape = normal.shape[:-1]
+    strike = np.zeros(shape, np.float32)
+    dip = np.zeros(shape, np.float32)
+    step = max(1, (1 << 22) // max(1, int(np.prod(shape[1:], dtype=np.int64))))
+    for a in range(0, shape[0], step):
+        part = normal[a:a + step]
+        n = np.where(part[..., 2:3] < 0, -part, part)
+        d = np.degrees(np.arccos(np.clip(n[..., 2], 0.0, 1.0)))
+        if two_d:
+            s = np.where(n[..., 0] >= 0, 90.0, 270.0)
+        else:
+            s = np.degrees(np.arctan2(n[..., 0], -n[..., 1])) % 360.0
+        none = ~np.any(part != 0, axis=-1)
+        strike[a:a + step] = np.where(none, 0.0, s)
+        dip[a:a + step] = np.where(none, 0.0, d)
+    return strike, dip
 
 
 def vote_faults(likelihood, strike_deg, dip_deg, thin, *, options: VotingOptions | None = None,
@@ -497,30 +569,101 @@ def vote_faults(likelihood, strike_deg, dip_deg, thin, *, options: VotingOptions
     if th.shape != fl.shape:
         raise InputError(f"thin {th.shape} must have the shape of likelihood {fl.shape}")
     two_d = fl.ndim == 2
-    f3 = np.ascontiguousarray(_kernels.as_3d(fl), dtype=np.float64)
-    seeds = _pick_seeds(_kernels.as_3d(th), float(opt.seed_threshold), opt.spacing(fl.ndim))
+    th3 = _kernels.as_3d(th)
+    cand = np.argwhere(th3 > float(opt.seed_threshold))
+    seeds = greedy_seeds(cand, th3[tuple(cand.T)], th3.shape, opt.spacing(fl.ndim))
+    del cand
     s3, d3 = _kernels.as_3d(st), _kernels.as_3d(dp)
-    frames = np.ascontiguousarray(fault_frames(s3[tuple(seeds.T)], d3[tuple(seeds.T)]).reshape(-1, 3, 3))
-    ru, rv, rw = opt.box(fl.shape)
+    frames = fault_frames(s3[tuple(seeds.T)], d3[tuple(seeds.T)]).reshape(-1, 3, 3)
+    result = surface_votes(_kernels.as_3d(fl), seeds, np.arange(len(seeds)), frames, image_shape=fl.shape,
+                           options=opt, progress=progress)
+    if two_d:
+        return FaultVotes(*(np.ascontiguousarray(a[:, 0]) for a in (result.votes, result.strike_deg,
+                                                                     result.dip_deg)), result.n_seeds)
+    return result
+
+
+def surface_votes(likelihood, seeds, seed_ids, frames, *, image_shape, options: VotingOptions | None = None,
+                  origin=(0, 0), core=None, progress: bool = False) -> FaultVotes:
+    """The votes of the optimal surfaces of given seeds over (a block of) a fault likelihood image: steps 2-4 of
+    :func:`vote_faults`, which also run block by block on a cube larger than memory.
+
+    A block's votes equal those of the whole image over its ``core`` when ``likelihood`` holds every sample the
+    seeds' boxes reach and ``seeds`` every seed whose box reaches the core (see :meth:`VotingOptions.reach`), listed
+    in the order of ``seed_ids``: positions are computed in image coordinates, and each seed's votes go to the thread
+    ``seed_id % n_threads``, so the float sums are the same, in the same order (on a machine with as many numba
+    threads).
+
+    Parameters
+    ----------
+    likelihood : (n_a, n_b, n_samples) array_like of float
+        Fault likelihood in [0, 1] (a 2D section as (n_traces, 1, n_samples)): the whole image, or the block of it
+        from inline ``origin[0]`` and crossline ``origin[1]`` on.
+    seeds : (k, 3) array_like of int
+        Seeds (:func:`greedy_seeds`), image indices.
+    seed_ids : (k,) array_like of int
+        The seeds' positions in the list of all the image's seeds, increasing.
+    frames : (k, 3, 3) array_like of float
+        The seeds' fault frames (:func:`fault_frames`).
+    image_shape : tuple of int
+        Shape of the whole image, 2D or 3D: the voting box and the scale of the votes depend on it.
+    options : VotingOptions, optional
+        The box and the strain.
+    origin : (int, int)
+        Image indices of ``likelihood[0, 0]``.
+    core : (int, int, int, int), optional
+        ``(i0, j0, m0, m1)``: the votes are kept for the image's inlines ``i0 .. i0 + m0 - 1`` and crosslines
+        ``j0 .. j0 + m1 - 1``, which ``likelihood`` must hold (default: all of ``likelihood``).
+    progress : bool, optional
+        Report progress over the seeds.
+
+    Returns
+    -------
+    FaultVotes
+        Arrays of the core's shape (3D form).
+
+    Raises
+    ------
+    InputError
+        Seeds, ids and frames differ in length, or the core lies outside ``likelihood``.
+
+    References
+    ----------
+    .. [1] X. Wu and S. Fomel, Geophysics 83(5), O67-O82, 2018, doi:10.1190/geo2018-0115.1.
+    """
+    opt = options or VotingOptions()
+    att = np.ascontiguousarray(likelihood, dtype=np.float32)
+    seeds = np.ascontiguousarray(seeds, dtype=np.int64).reshape(-1, 3)
+    ids = np.ascontiguousarray(seed_ids, dtype=np.int64).ravel()
+    frames = np.ascontiguousarray(frames, dtype=np.float64).reshape(-1, 3, 3)
+    if not len(seeds) == len(ids) == len(frames):
+        raise InputError(f"surface_votes got {len(seeds)} seeds, {len(ids)} ids and {len(frames)} frames; pass one "
+                         "id and one frame per seed")
+    g0, g1 = (int(v) for v in origin)
+    i0, j0, m0, m1 = (int(v) for v in core) if core is not None else (g0, g1, att.shape[0], att.shape[1])
+    if i0 < g0 or j0 < g1 or m0 < 1 or m1 < 1 or i0 + m0 > g0 + att.shape[0] or j0 + m1 > g1 + att.shape[1]:
+        raise InputError(f"core {core} lies outside the likelihood block of shape {att.shape} at {origin}")
+    shape3 = np.asarray(image_shape if len(image_shape) == 3 else (image_shape[0], 1, image_shape[1]), np.int64)
+    ru, rv, rw = opt.box(tuple(image_shape))
     b = int(np.ceil(1.0 / float(opt.max_strain)))
     sigma = float(opt.surface_smoothing) * b
     a_smooth = 0.0 if sigma <= 0 else (1.0 + sigma * sigma - np.sqrt(1.0 + 2.0 * sigma * sigma)) / (sigma * sigma)
     n_threads = nb.get_num_threads()
-    votes = np.zeros((n_threads,) + f3.shape, np.float32)
-    best = np.zeros(f3.shape, np.float32)
-    normal = np.zeros(f3.shape + (3,), np.float32)
+    n2 = att.shape[2]
+    votes = np.zeros((n_threads, m0, m1, n2), np.float32)
+    best = np.zeros((m0, m1, n2), np.float32)
+    normal = np.zeros((m0, m1, n2, 3), np.float32)
     n_chunks = max(1, min(20, len(seeds) // 200))
     bounds = np.linspace(0, len(seeds), n_chunks + 1).astype(int)
     with progress_steps(len(seeds), "fault voting", unit="seed", enabled=progress) as steps:
         for lo, hi in zip(bounds[:-1], bounds[1:]):
-            _vote(f3, seeds[lo:hi], frames[lo:hi], ru, rv, rw, b, a_smooth, votes, best, normal)
+            _vote(att, g0, g1, shape3, seeds[lo:hi], ids[lo:hi], frames[lo:hi], ru, rv, rw, b, a_smooth, i0, j0,
+                  votes, best, normal)
             steps.advance(int(hi - lo))
+    del best
     total = votes.sum(axis=0)
     del votes
-    np.multiply(total, np.float32(1.0 / opt.full_vote(fl.shape)), out=total)
+    np.multiply(total, np.float32(1.0 / opt.full_vote(tuple(image_shape))), out=total)
     np.clip(total, 0.0, 1.0, out=total)
-    strike, dip = _strike_dip(normal, two_d)
-    if two_d:
-        total, strike, dip = total[:, 0], strike[:, 0], dip[:, 0]
-    return FaultVotes(np.ascontiguousarray(total), np.ascontiguousarray(strike), np.ascontiguousarray(dip),
-                      int(len(seeds)))
+    strike, dip = _strike_dip(normal, len(image_shape) == 2)
+    return FaultVotes(total, strike, dip, int(len(seeds)))

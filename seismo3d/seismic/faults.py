@@ -19,6 +19,7 @@ import numpy as np
 from .._progress import progress_steps
 from .._validation import check_choice, check_positive
 from ..errors import InputError, Seismo3dWarning, UnsupportedDataError
+from .dead_samples import CleanTraces, clean_traces, near_dead_samples
 from .fault_likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood
 from .fault_skins import SkinOptions, fault_skins
 from .fault_surfaces import thin_faults
@@ -28,20 +29,6 @@ from .fault_voting import VotingOptions, vote_faults
 __all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "clean_traces", "trace_faults"]
 
 _UNITS = {"samples", "ms", "m", "ft"}
-# Reach (traces, samples) of a dead zone's edge in fault_likelihood: the 3 x 3-trace semblance and the reflector slopes
-# of the structure tensor (smoothed over about 2 traces and 6 samples) see the edge this far; likelihood this close to
-# a dead sample is an artefact of the edge, not a fault.
-_DEAD_REACH = (3, 8)
-# Fraction of samples at the data's extremes above which the data are reported as clipped (unclipped data such as F3
-# and the synthetic cubes have a handful of such samples; 8-bit exports like the Penobscot sections, most of them).
-_CLIPPED_WARN = 0.05
-# Equal values in a row along a trace that make a run of dead samples (mute, dead trace, gap), at a fill value.
-_DEAD_RUN = 5
-# A value that fills a run this long somewhere in the data (or a whole trace) is a fill value (a mute's or a padding's
-# value) besides 0. Shorter runs at other values are the quantisation of slowly varying amplitudes in integer exports:
-# in the 8-bit Penobscot sections a run of five 107s sits on a fault at inlines 1-2, and reading it as dead blanked
-# the fault's likelihood over inlines 0-5.
-_FILL_RUN = 16
 
 
 @dataclass(frozen=True)
@@ -118,13 +105,34 @@ class FaultTracingOptions:
     def thresholds(self, thinned_votes: np.ndarray) -> tuple[float, float]:
         """(lower, upper) thresholds on the thinned votes (see ``sensitivity`` and ``max_fault_fraction``)."""
         values = thinned_votes[thinned_votes > 0]
-        factor = 2.0 ** (1.0 - 2.0 * float(self.sensitivity))
         otsu = _otsu(values) if values.size else 1.0
-        upper = min(0.99, factor * max(otsu, float(self.min_vote)))
+        return self.thresholds_from(otsu, values.size, thinned_votes.size,
+                                    lambda q: float(np.quantile(values, q)))
+
+    def thresholds_from(self, otsu: float, n_values: int, n_samples: int, quantile) -> tuple[float, float]:
+        """(lower, upper) thresholds from statistics of the thinned votes, as :meth:`thresholds` (for a cube whose
+        thinned votes are gathered block by block).
+
+        Parameters
+        ----------
+        otsu : float
+            Otsu's threshold of the positive thinned votes (1 when there are none).
+        n_values, n_samples : int
+            Number of positive thinned votes, and of samples.
+        quantile : callable
+            ``quantile(q)``: the q-quantile of the positive thinned votes (``numpy.quantile``'s linear method);
+            called only when they are denser than ``max_fault_fraction`` allows.
+
+        Returns
+        -------
+        (float, float)
+        """
+        factor = 2.0 ** (1.0 - 2.0 * float(self.sensitivity))
+        upper = min(0.99, factor * max(float(otsu), float(self.min_vote)))
         lower = upper / 3.0
         fraction = min(1.0, float(self.max_fault_fraction) / factor)
-        if values.size > fraction * thinned_votes.size:
-            dense = float(np.quantile(values, 1.0 - fraction * thinned_votes.size / values.size))
+        if n_values > fraction * n_samples:
+            dense = float(quantile(1.0 - fraction * n_samples / n_values))
             if dense > lower:
                 lower = min(dense, 0.99)
                 upper = max(upper, min(0.99, 3.0 * lower))
@@ -178,123 +186,6 @@ class FaultInterpretation:
     throws: list
     sample_interval: float
     sample_unit: str
-
-
-@dataclass(frozen=True, eq=False)
-class CleanTraces:
-    """Result of :func:`clean_traces`.
-
-    Attributes
-    ----------
-    data : float32 ndarray
-        The data with NaN / inf read as 0.
-    dead : bool ndarray, same shape
-        True on dead samples.
-    """
-
-    data: np.ndarray
-    dead: np.ndarray
-
-
-def clean_traces(data) -> CleanTraces:
-    """Replace NaN / inf by 0 and find the dead samples, with a warning for each, and for clipped amplitudes.
-
-    Dead samples are those in runs of at least ``_DEAD_RUN`` equal values along a trace at a *fill value*: dead
-    traces, mutes (the zeroed top of a survey), zero padding and NaN gaps. The fill values are 0 and every value that
-    fills a whole trace or a run of at least ``_FILL_RUN`` samples somewhere in the data (a mute or padding value
-    such as the grey of an image export). Short runs at other values are quantisation (integer exports), and runs at
-    the data's largest or smallest value are clipped amplitudes (8-bit exports of sections): neither is dead, unless
-    it fills the whole trace.
-
-    Parameters
-    ----------
-    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Seismic amplitudes, any real dtype.
-
-    Returns
-    -------
-    CleanTraces
-        ``data`` (float32) and the ``dead`` mask.
-
-    Raises
-    ------
-    InputError
-        Not a numeric 2D / 3D array with at least 3 samples per axis, or every sample equal.
-
-    Warns
-    -----
-    Seismo3dWarning
-        NaN / inf samples, dead samples, or clipped amplitudes (more than 5 % of the samples at the data's smallest or
-        largest value).
-    """
-    from scipy.ndimage import binary_opening
-
-    arr = np.asarray(data)
-    if arr.ndim not in (2, 3):
-        raise InputError(f"data must be a 2D section (n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, "
-                         f"n_samples); got shape {arr.shape}")
-    if not (np.issubdtype(arr.dtype, np.number) or arr.dtype == bool):
-        raise InputError(f"data must be numeric; got dtype {arr.dtype}")
-    if min(arr.shape) < 3:
-        raise InputError(f"data has shape {arr.shape}; every axis needs at least 3 samples")
-    arr = np.asarray(arr, dtype=np.float32)
-    finite = np.isfinite(arr)
-    if not finite.all():
-        n_bad = int(arr.size - np.count_nonzero(finite))
-        warnings.warn(f"data has {n_bad} NaN or inf samples ({n_bad / arr.size:.1%}); they are read as 0, and "
-                      "runs of them are skipped like dead traces", Seismo3dWarning, stacklevel=3)
-        arr = np.where(finite, arr, np.float32(0.0))
-    del finite
-    n_s = arr.shape[-1]
-    if arr.max() == arr.min():
-        raise InputError("every sample has the same value (or is NaN): there are no reflectors to trace faults in; "
-                         "check that the file is the right one and that its data format is read correctly")
-    # equal neighbours along the trace, in runs of >= _DEAD_RUN - 1 differences
-    flat = np.diff(arr, axis=-1) == 0
-    lo, hi = arr.min(), arr.max()
-    clipped = (arr[..., 1:] == lo) | (arr[..., 1:] == hi)
-    clipped &= ~flat.all(axis=-1, keepdims=True)
-    frac_clipped = float(np.count_nonzero(clipped)) / clipped.size
-    if frac_clipped > _CLIPPED_WARN:
-        warnings.warn(f"{frac_clipped:.0%} of the samples sit at the data's smallest or largest value: clipped "
-                      "amplitudes (an 8-bit export?). Fault likelihood and throws are measured on the clipped "
-                      "waveforms and are less reliable; trace the unclipped data if you have it",
-                      Seismo3dWarning, stacklevel=3)
-    flat &= ~clipped
-    del clipped
-
-    def runs(equal, length):  # the differences inside runs of at least `length` equal values
-        structure = np.ones((1,) * (arr.ndim - 1) + (min(length - 1, n_s - 1),), dtype=bool)
-        return binary_opening(equal, structure=structure)
-
-    whole = np.broadcast_to(flat.all(axis=-1, keepdims=True), flat.shape)
-    fill = np.union1d([0.0], arr[..., 1:][runs(flat, _FILL_RUN) | whole])
-    flat = runs(flat, _DEAD_RUN) & np.isin(arr[..., 1:], fill)
-    dead = np.zeros(arr.shape, dtype=bool)
-    dead[..., 1:] |= flat
-    dead[..., :-1] |= flat
-    del flat
-    if dead.any():
-        n_dead = int(np.count_nonzero(dead))
-        n_tr = int(np.count_nonzero(dead.all(axis=-1)))
-        warnings.warn(f"{n_dead / dead.size:.1%} of the samples are constant over {_DEAD_RUN} or more samples "
-                      f"(mutes, gaps, {n_tr} dead traces); fault likelihood within {_DEAD_REACH[0]} traces and "
-                      f"{_DEAD_REACH[1]} samples of them is set to 0", Seismo3dWarning, stacklevel=3)
-    return CleanTraces(arr, dead)
-
-
-def _near(dead: np.ndarray) -> np.ndarray:
-    """Dead samples grown by ``_DEAD_REACH`` (a box: separable maximum filters)."""
-    from scipy.ndimage import maximum_filter1d
-
-    near = dead.view(np.uint8)
-    for axis in range(dead.ndim):
-        reach = _DEAD_REACH[1] if axis == dead.ndim - 1 else _DEAD_REACH[0]
-        if dead.shape[axis] > 1:
-            near = maximum_filter1d(near, 2 * reach + 1, axis=axis, mode="constant")
-    return near.view(bool)
-
-
 
 
 def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivity=None,
@@ -418,7 +309,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
             fl = _given_likelihood(likelihood, arr.shape)
         likelihood, strike, dip = fl.likelihood, fl.strike_deg, fl.dip_deg
         del fl
-        near_dead = _near(dead) if dead.any() else None
+        near_dead = near_dead_samples(dead) if dead.any() else None
         if near_dead is not None:  # the edge of a dead zone is not a fault
             likelihood[near_dead] = 0.0
         _check_saturation(likelihood, near_dead, opt)

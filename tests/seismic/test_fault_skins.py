@@ -6,6 +6,7 @@ import pytest
 
 from seismo3d.errors import InputError
 from seismo3d.seismic import Fault, SkinOptions, fault_normals, fault_skins
+from seismo3d.seismic.fault_skins import skins_from_cells
 
 
 def _plane(shape, strike, dip, centre):
@@ -41,6 +42,15 @@ def test_crossing_planes_stay_apart_and_gaps_are_bridged():
     a_skin = next(f for f in faults if f.strike_deg[0] == 0.0)
     assert a_skin.size == int(a.sum())  # one skin across the gap
     assert a_skin.points[:, 2].min() < 30 and a_skin.points[:, 2].max() >= 34
+    # the same skins from the cells as lists in any order (a cube larger than memory gathers them block by block)
+    cells = np.argwhere(thin >= 0.3)
+    order = np.random.default_rng(0).permutation(len(cells))
+    at = tuple(cells[order].T)
+    again = skins_from_cells(cells[order], thin[at], strike[at], dip[at], shape=shape, lower=0.3, upper=0.5)
+    assert [f.id for f in again] == [f.id for f in faults]
+    assert all(np.array_equal(f.points, g.points) for f, g in zip(again, faults))
+    with pytest.raises(InputError, match="outside"):
+        skins_from_cells(cells + 64, thin[at], strike[at], dip[at], shape=shape, lower=0.3, upper=0.5)
 
 
 def test_pieces_of_a_fault_cut_by_another_are_merged():

@@ -87,3 +87,27 @@ def test_options():
         vote_faults(fl, strike, dip, fl[:, :10])
     with pytest.raises(InputError, match="unknown keyword"):
         vote_faults(fl, strike, dip, fl, seed_spacingg=3)
+
+
+def test_greedy_seeds_match_the_brute_force_and_ignore_the_input_order():
+    """Seeds filed in cells of spacing + 1 samples are those of the plain greedy rule (strongest first, none within
+    the spacing of a seed taken before), whatever order the candidates come in (block by block)."""
+    from seismo3d.seismic.fault_voting import greedy_seeds
+
+    rng = np.random.default_rng(4)
+    shape = (30, 25, 40)
+    points = np.unique(rng.integers(0, (30, 25, 40), size=(900, 3)), axis=0)
+    values = rng.choice(np.linspace(0.3, 1.0, 15), size=len(points)).astype(np.float32)  # many ties
+    order = np.lexsort((np.ravel_multi_index(tuple(points.T), shape), -values))
+    expected = []
+    for p in points[order]:
+        if all(np.abs(p - q).max() > 4 for q in expected):
+            expected.append(p)
+    seeds = greedy_seeds(points, values, shape, 4)
+    assert np.array_equal(seeds, np.array(expected))
+    shuffled = rng.permutation(len(points))
+    assert np.array_equal(greedy_seeds(points[shuffled], values[shuffled], shape, 4), seeds)
+    with pytest.raises(InputError, match="outside"):
+        greedy_seeds(points + 30, values, shape, 4)
+    with pytest.raises(InputError, match="one value per point"):
+        greedy_seeds(points, values[:-1], shape, 4)

@@ -1,0 +1,188 @@
+"""Resumable block-by-block runs on dask: the bookkeeping the chunked steps of a cube larger than memory share.
+
+A run owns a work folder holding a manifest (what is computed: the cube's shape, the options, the block plan) and a
+marker per finished block, written atomically after the block's data. Started again with the same manifest, a run
+skips the blocks whose markers exist; with another manifest it is refused, so an unfinished run of one cube is never
+completed with the blocks of another. Blocks are dask delayed tasks run on the local threaded scheduler, one thread
+(``'synchronous'``), or a ``dask.distributed`` cluster given by its address, with progress per finished block.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+import time
+
+from .._atomic import atomic_path
+from .._progress import progress_steps
+from ..errors import InputError
+
+__all__ = ["BlockRun", "SchedulerClient", "largest_block", "write_marker"]
+
+
+def largest_block(tile: int, cap: int, fits) -> int:
+    """The largest multiple of ``tile`` up to ``cap`` for which ``fits(size)`` holds (``tile`` at least).
+
+    Parameters
+    ----------
+    tile : int
+        Traces per side of a chunk; blocks are whole chunks.
+    cap : int
+        Largest size considered, traces.
+    fits : callable
+        ``fits(size) -> bool``: whether a block of ``size`` traces a side fits the memory budget.
+
+    Returns
+    -------
+    int
+    """
+    size = tile
+    while size + tile <= cap and fits(size + tile):
+        size += tile
+    return size
+
+
+def write_marker(path, payload: dict) -> None:
+    """Write a block's marker (its small JSON result) atomically: a marker that exists is complete.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The marker file (:meth:`BlockRun.marker`).
+    payload : dict
+        JSON-serialisable result of the block, returned again when a resumed run skips it.
+    """
+    with atomic_path(str(path)) as tmp, open(tmp, "w") as fh:
+        json.dump(payload, fh)
+
+
+class SchedulerClient:
+    """Context manager: the ``dask.distributed`` client of a scheduler address, or None for the local schedulers
+    (None, ``'threads'``, ``'synchronous'``); closed on exit.
+
+    Raises
+    ------
+    InputError
+        The address cannot be reached within 5 s.
+    """
+
+    def __init__(self, scheduler):
+        self.scheduler = scheduler
+        self.client = None
+
+    def __enter__(self):
+        if self.scheduler is None or self.scheduler in ("threads", "synchronous"):
+            return None
+        from distributed import Client
+        try:
+            self.client = Client(self.scheduler, timeout="5s")
+        except (OSError, TimeoutError) as exc:
+            raise InputError(f"cannot reach the dask scheduler at {self.scheduler} ({exc}); start it (dask scheduler) "
+                             "and its workers first, or leave out the scheduler to run here") from exc
+        return self.client
+
+    def __exit__(self, *exc):
+        if self.client is not None:
+            self.client.close()
+
+
+class BlockRun:
+    """The work folder, markers and task execution of one resumable chunked run.
+
+    Parameters
+    ----------
+    work : pathlib.Path
+        Work folder (created).
+    scheduler : str, optional
+        None / ``'threads'``, ``'synchronous'``, or a ``dask.distributed`` address (used through :attr:`client`,
+        set by the caller inside a :class:`SchedulerClient`).
+    workers : int
+        Blocks computed at once on the threaded scheduler.
+    progress : bool
+        Report progress per finished block.
+
+    Attributes
+    ----------
+    computed, resumed : dict
+        Blocks computed and skipped (finished by an earlier run) per step.
+    seconds : dict
+        Wall-clock seconds per step.
+    client : distributed.Client or None
+    """
+
+    def __init__(self, work: pathlib.Path, *, scheduler=None, workers: int = 1, progress: bool = False):
+        self.work = pathlib.Path(work)
+        self.scheduler, self.workers, self.progress = scheduler, int(workers), progress
+        self.computed, self.resumed, self.seconds = {}, {}, {}
+        self.client = None
+
+    def open(self, manifest: dict, what: str) -> None:
+        """Create the work folder with ``manifest``, or check that an existing one holds the same manifest.
+
+        Raises
+        ------
+        InputError
+            The folder holds an unfinished run of another cube or other options (``what`` names the folders to
+            delete to start afresh).
+        """
+        path = self.work / "manifest.json"
+        if self.work.exists():
+            try:
+                earlier = json.loads(path.read_text())
+            except (OSError, ValueError):
+                earlier = None
+            if earlier != manifest:
+                raise InputError(f"{self.work} holds an unfinished run of another cube or other options; delete "
+                                 f"{what} to start afresh, or rerun with the same input and options to resume it")
+        else:
+            (self.work / "done").mkdir(parents=True)
+            path.write_text(json.dumps(manifest))
+
+    def marker(self, step: str, block) -> pathlib.Path:
+        """The marker file of ``block`` (a tuple whose items 0 and 2 are its first inline and crossline) in
+        ``step``."""
+        return self.work / "done" / f"{step}-{block[0]}-{block[2]}.json"
+
+    def pending(self, step: str, blocks) -> tuple[list, list]:
+        """(blocks still to compute, results of the finished ones) of ``step``; counts them."""
+        done = [b for b in blocks if self.marker(step, b).exists()]
+        todo = [b for b in blocks if not self.marker(step, b).exists()]
+        self.resumed[step] = len(done)
+        self.computed[step] = len(todo)
+        return todo, [json.loads(self.marker(step, b).read_text()) for b in done]
+
+    def compute(self, tasks: list, label: str, step: str) -> list:
+        """Run delayed block tasks on the chosen scheduler, reporting each finished block; their results in
+        order."""
+        start = time.perf_counter()
+        try:
+            return self._compute_tasks(tasks, label)
+        finally:
+            self.seconds[step] = round(self.seconds.get(step, 0.0) + time.perf_counter() - start, 2)
+
+    def _compute_tasks(self, tasks: list, label: str) -> list:
+        import dask
+        if not tasks:
+            return []
+        with progress_steps(len(tasks), label, unit="block", enabled=self.progress) as bar:
+            if self.client is not None:
+                from distributed import as_completed
+                futures = self.client.compute(tasks)
+                index = {f.key: i for i, f in enumerate(futures)}
+                results = [None] * len(tasks)
+                for fut in as_completed(futures):
+                    results[index[fut.key]] = fut.result()
+                    bar.advance()
+                return results
+            from dask.callbacks import Callback
+
+            names = {t.key for t in tasks}
+
+            class _Count(Callback):
+                def _posttask(self, key, result, dsk, state, worker_id):
+                    if key in names:
+                        bar.advance()
+
+            scheduler = "synchronous" if self.scheduler == "synchronous" else "threads"
+            with _Count():
+                return list(dask.compute(*tasks, scheduler=scheduler, num_workers=self.workers))

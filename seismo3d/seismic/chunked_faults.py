@@ -1,0 +1,624 @@
+"""Fault surfaces of a cube larger than memory: the steps of :func:`~seismo3d.seismic.faults.trace_faults` after the
+fault likelihood, run block by block on dask from a chunked likelihood, with the same faults as the in-memory run.
+
+Every step reads what it needs around its block (the halo of its operator) from Zarr work arrays and writes its
+block's core, so the result does not depend on where the blocks are cut:
+
+1. **Fill values** of the dead-sample rules (:mod:`~seismo3d.seismic.dead_samples`): gathered over every block,
+   from the cube's smallest and largest amplitudes.
+2. **Ridges**: per block, dead samples and their reach, the likelihood zeroed there (the ``live`` likelihood) and
+   its ridges (:func:`~seismo3d.seismic.thin_faults`, halo ``RIDGE_HALO``); the ridge samples above the voting's seed
+   threshold are kept as a sparse list of seed candidates.
+3. **Seeds**: the candidates of all blocks, taken strongest first by
+   :func:`~seismo3d.seismic.fault_voting.greedy_seeds` (a sparse list: a few percent of the samples).
+4. **Votes**: per block, the seeds whose voting box reaches the block (``VotingOptions.reach``), on the live
+   likelihood read with twice that halo (:func:`~seismo3d.seismic.fault_voting.surface_votes`: each seed's votes
+   are summed by the same thread, in the same order, as in memory).
+5. **Thinning** of the votes (halo 2), with the count, smallest and largest positive thinned vote per block; then
+   their histogram (Otsu's threshold on the same 256 bins as in memory) and, when they are dense, their exact
+   quantile: the thresholds of :meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`.
+6. **Cells**: the thinned votes at or above the lower threshold, gathered as a sparse list, linked into fault skins
+   by :func:`~seismo3d.seismic.fault_skins.skins_from_cells` (no array of the cube's size).
+7. **Throws** read the amplitudes around each fault patch (:func:`~seismo3d.seismic.fault_throws` on the lazy cube).
+
+Resume, progress and schedulers are those of :mod:`~seismo3d.seismic.chunked_likelihood`: a marker per finished
+block in ``OUTPUT.work``, the output assembled in ``OUTPUT.partial`` and renamed when complete.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import pathlib
+import shutil
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from .._atomic import atomic_path
+from ..errors import InputError, UnsupportedDataError
+from .block_runs import BlockRun, SchedulerClient, largest_block, write_marker
+from .chunked_likelihood import ChunkOptions, default_memory_limit, resident_memory
+from .dead_samples import DEAD_REACH, dead_samples, fill_values, near_dead_samples
+from .fault_skins import skins_from_cells
+from .fault_surfaces import thin_faults
+from .fault_throw import fault_throws
+from .fault_voting import fault_frames, greedy_seeds, surface_votes
+from .faults import FaultTracingOptions
+from .seismic_zarr import consolidate
+
+__all__ = ["ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO"]
+
+# Lateral halo of the ridges (thin_faults with its defaults): the Gaussian of sigma 1.5 (5 traces), the average along
+# the dip over +-4 samples on planes steeper than 45 degrees (4 traces, +1 for the bilinear reads), and the
+# comparison one sample across the fault (+1, +1 for the trilinear reads).
+RIDGE_HALO = 12
+# Lateral halo of the thinning of the votes (no smoothing): one sample across the fault, trilinear reads.
+_THIN_HALO = 2
+# Bins of the histogram that finds the exact quantile of the thinned votes (only for densely faulted data).
+_QUANTILE_BINS = 1 << 16
+# Bytes of working memory per sample of a block (incl. halo): amplitudes and the dead-sample masks; likelihood,
+# strike, dip, the ranking image and its smoothing passes, ridges and the hysteresis labels; the voting's core
+# (votes of 2 threads, best surface, normal, strike, dip) and its input; the thinning of the votes.
+_DEAD_BYTES = 12
+_RIDGE_BYTES = 48
+_VOTE_CORE_BYTES = 48
+_VOTE_HALO_BYTES = 4
+_THIN_BYTES = 36
+# Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
+# frames, links, labels).
+_CANDIDATE_BYTES = 40
+_CELL_BYTES = 160
+
+
+@dataclass(frozen=True, eq=False)
+class ChunkedFaults:
+    """Result of :func:`chunked_fault_surfaces`.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The output Zarr group: ``votes`` (optimal-surface votes, near-dead samples 0), ``thin`` (thinned votes at or
+        above the lower threshold, 0 elsewhere), ``vote_strike_deg`` and ``vote_dip_deg`` (n_inlines, n_xlines,
+        n_samples) float32; attrs ``thresholds``, ``n_seeds``, ``complete``.
+    faults : list of Fault
+        Fault skins, as :attr:`~seismo3d.seismic.faults.FaultInterpretation.faults`.
+    throws : list of FaultThrow
+        One per fault.
+    thresholds : (float, float)
+        Lower and upper thresholds on the thinned votes.
+    n_seeds, n_cells : int
+        Voting seeds, and thinned-vote samples linked into skins.
+    saturated_fraction : float
+        Fraction of the live samples (not near dead ones) with a likelihood above 0.9.
+    blocks_computed, blocks_resumed : dict
+        Blocks per step computed in this call and found finished by an earlier one.
+    seconds : dict
+        Wall-clock seconds per step.
+    """
+
+    path: pathlib.Path
+    faults: list
+    throws: list
+    thresholds: tuple
+    n_seeds: int
+    n_cells: int
+    saturated_fraction: float
+    blocks_computed: dict
+    blocks_resumed: dict
+    seconds: dict
+
+
+@dataclass(frozen=True)
+class _Plan:
+    shape: tuple
+    tile: int
+    dead: int     # block sizes (traces a side) of the steps
+    ridge: int
+    vote: int
+    thin: int
+    reach: int    # a voting box's reach from its seed
+
+
+def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
+    n0, n1, nt = shape
+    tile = int(chunking.tile)
+    limit = int(chunking.memory_limit or default_memory_limit())
+    budget = int((limit - baseline) * 0.8) // int(chunking.workers)
+    reach = opt.voting.reach(shape)
+    cap = max(n0, n1)
+
+    def dead_bytes(b):
+        return b * b * nt * _DEAD_BYTES
+
+    def ridge_bytes(b):
+        h = RIDGE_HALO + DEAD_REACH[0]
+        return (b + 2 * h) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
+
+    def vote_bytes(b):
+        return (b + 4 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * _VOTE_CORE_BYTES
+
+    def thin_bytes(b):
+        return (b + 2 * _THIN_HALO) ** 2 * nt * _THIN_BYTES
+
+    sizes = {}
+    for name, need in (("dead", dead_bytes), ("ridge", ridge_bytes), ("vote", vote_bytes), ("thin", thin_bytes)):
+        top = int(chunking.block) if chunking.block else min(cap, 512)
+        sizes[name] = largest_block(tile, top, lambda b, need=need: need(b) <= budget)
+        if need(sizes[name]) > budget:
+            raise InputError(
+                f"the fault surfaces of a {n0} x {n1} x {nt} cube need about "
+                f"{(need(sizes[name]) * int(chunking.workers) + baseline) / 2**30:.2f} GiB per block but the memory "
+                f"limit is {limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
+    return _Plan((n0, n1, nt), tile, sizes["dead"], sizes["ridge"], sizes["vote"], sizes["thin"], reach)
+
+
+def _blocks(shape, size):
+    n0, n1 = shape[:2]
+    return [(i, min(i + size, n0), j, min(j + size, n1)) for i in range(0, n0, size) for j in range(0, n1, size)]
+
+
+def _around(block, halo, shape):
+    """(a0, a1, b0, b1): ``block`` grown by ``halo`` traces, clipped to the cube."""
+    i0, i1, j0, j1 = block
+    return max(i0 - halo, 0), min(i1 + halo, shape[0]), max(j0 - halo, 0), min(j1 + halo, shape[1])
+
+
+def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOptions | None = None,
+                           chunking: ChunkOptions | None = None, progress: bool = False) -> ChunkedFaults:
+    """Fault votes, thinned faults, fault skins and throws of a 3D cube larger than memory, block by block.
+
+    The method and the defaults are those of :func:`~seismo3d.seismic.faults.trace_faults` after its first step
+    (dead samples, ridges, optimal surface voting, thinning, Otsu thresholds, fault skins, throws; Hale 2013, Wu &
+    Fomel 2018); every step runs on blocks with the halo its operator needs (module notes), so the faults are those
+    of the in-memory run on the same likelihood.
+
+    Parameters
+    ----------
+    cube : (n_inlines, n_xlines, n_samples) dask.array.Array or array_like
+        Amplitudes (e.g. ``open_lazy(path).data``), finite, samples along the last axis.
+    likelihood : str or os.PathLike
+        Zarr group of :func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood` of this cube (arrays
+        ``likelihood``, ``strike_deg``, ``dip_deg``).
+    output : str or os.PathLike
+        Output Zarr group, created; must not exist unless it is the unfinished output of the same run (then
+        ``output + '.partial'`` and ``output + '.work'`` exist and the run resumes).
+    options : FaultTracingOptions, optional
+        Sensitivity, voting, skins and thresholds (defaults of :func:`~seismo3d.seismic.faults.trace_faults`).
+    chunking : ChunkOptions, optional
+        Memory limit, tile and the dask scheduler; each step sizes its blocks to the limit, at most ``block``
+        traces a side when it is given.
+    progress : bool
+        Report progress per block and per fault.
+
+    Returns
+    -------
+    ChunkedFaults
+
+    Raises
+    ------
+    InputError
+        The cube is not 3D, the likelihood group does not match it, ``output`` exists and is not an unfinished run
+        of the same cube and options, or the memory limit is too small for the smallest blocks or for the seed
+        candidates and cells.
+    UnsupportedDataError
+        The likelihood is above 0.9 at more than ``options.max_saturated`` of the live samples (as in memory).
+
+    References
+    ----------
+    .. [1] D. Hale, "Methods to compute fault images, extract fault surfaces, and estimate fault throws from 3D
+       seismic images", Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1.
+    .. [2] X. Wu and S. Fomel, "Automatic fault interpretation with optimal surface voting", Geophysics 83(5),
+       O67-O82, 2018, doi:10.1190/geo2018-0115.1.
+    """
+    import dask.array as da
+    import zarr
+
+    opt = options or FaultTracingOptions()
+    if not isinstance(opt, FaultTracingOptions):
+        raise InputError(f"options must be a FaultTracingOptions; got {type(opt).__name__}")
+    chunking = chunking or ChunkOptions()
+    x = cube if isinstance(cube, da.Array) else da.from_array(np.asarray(cube), chunks=(64, 64, -1))
+    if x.ndim != 3 or min(x.shape) < 3:
+        raise InputError(f"chunked fault surfaces need a 3D cube (n_inlines, n_xlines, n_samples); got shape {x.shape}")
+    if len(x.chunks[2]) != 1:
+        x = x.rechunk({2: -1})
+    if x.dtype != np.float32:
+        x = x.astype(np.float32)
+    shape = tuple(int(n) for n in x.shape)
+    group = zarr.open_group(str(likelihood), mode="r")
+    for name in ("likelihood", "strike_deg", "dip_deg"):
+        if name not in group or tuple(group[name].shape) != shape:
+            raise InputError(f"{likelihood} has no {name!r} array of the cube's shape {shape}; pass the output of "
+                             "chunked_fault_likelihood for this cube")
+    input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * shape[2]
+    local = chunking.scheduler in (None, "threads", "synchronous")
+    baseline = (resident_memory() if local else 256 << 20) + 2 * input_chunk
+    plan = _plan(shape, opt, chunking, baseline)
+    run = _SurfaceRun(pathlib.Path(output), pathlib.Path(likelihood), plan, opt, chunking, progress)
+    run.start({"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
+               "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve())})
+    memory = int(chunking.memory_limit or default_memory_limit()) - baseline
+    with SchedulerClient(chunking.scheduler) as client:
+        run.client = client
+        lo, hi = run.amplitude_range(x)
+        fill = run.fill_values(x, lo, hi)
+        saturated = run.ridges(x, fill, lo, hi)
+        if saturated > opt.max_saturated:
+            raise UnsupportedDataError(
+                f"the fault likelihood is above 0.9 at {saturated:.0%} of the samples: the data has no lateral "
+                "coherence to trace faults in (noise, chaotic reflections, or traces out of order); check the "
+                "inline/crossline geometry or the file")
+        seeds, frames = run.seeds(memory)
+        run.votes(seeds, frames)
+        del seeds, frames
+        lower, upper = run.thresholds()
+        points, values, strike, dip = run.cells(lower, memory)
+    faults = skins_from_cells(points, values, strike, dip, shape=shape, lower=lower, upper=upper,
+                              options=opt.skins)
+    n_cells = int(values.size)
+    del points, values, strike, dip
+    throws = fault_throws(x, faults, progress=progress) if faults else []
+    run.finish({"thresholds": [lower, upper], "n_seeds": run.n_seeds, "n_cells": n_cells,
+                "saturated_fraction": saturated})
+    return ChunkedFaults(run.out, faults, list(throws), (float(lower), float(upper)), run.n_seeds, n_cells,
+                         saturated, dict(run.computed), dict(run.resumed), dict(run.seconds))
+
+
+class _SurfaceRun(BlockRun):
+    """One chunked fault-surface run: folders, steps and their blocks."""
+
+    def __init__(self, out: pathlib.Path, likelihood: pathlib.Path, plan: _Plan, opt: FaultTracingOptions,
+                 chunking: ChunkOptions, progress: bool):
+        super().__init__(out.with_name(out.name + ".work"), scheduler=chunking.scheduler, workers=chunking.workers,
+                         progress=progress)
+        self.out, self.likelihood, self.plan, self.opt = out, str(likelihood), plan, opt
+        self.partial = out.with_name(out.name + ".partial")
+        self.n_seeds = 0
+
+    def start(self, manifest: dict) -> None:
+        import zarr
+        if self.out.exists():
+            raise InputError(f"output {self.out} already exists; pick another output or delete it")
+        if not self.out.parent.is_dir():
+            raise InputError(f"cannot write {self.out}: folder {self.out.parent} does not exist; create it first")
+        self.open(manifest, f"{self.work} and {self.partial}")
+        (self.work / "candidates").mkdir(exist_ok=True)
+        (self.work / "cells").mkdir(exist_ok=True)
+        n0, n1, nt = self.plan.shape
+        t = self.plan.tile
+        for name, dtype in (("live", "float32"), ("near", "uint8"), ("vote_raw", "float32"),
+                            ("thin_raw", "float32")):
+            if not (self.work / name).exists():
+                zarr.create_array(str(self.work / name), shape=(n0, n1, nt), chunks=(t, t, nt), dtype=dtype,
+                                  fill_value=0, **({} if name == "near" else {"compressors": None}))
+        if not self.partial.exists():
+            group = zarr.open_group(str(self.partial), mode="w")
+            for name in ("votes", "thin", "vote_strike_deg", "vote_dip_deg"):
+                group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
+                                   dimension_names=("inline", "crossline", "sample"))
+
+    def finish(self, attrs: dict) -> None:
+        import zarr
+        group = zarr.open_group(str(self.partial), mode="r+")
+        group.attrs.update(dict(attrs, method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run",
+                                complete=True))
+        consolidate(self.partial)
+        os.replace(self.partial, self.out)
+        shutil.rmtree(self.work, ignore_errors=True)
+
+    def _saved(self, name: str, compute):
+        """A small JSON result of the run kept in the work folder (computed once)."""
+        path = self.work / f"{name}.json"
+        if path.exists():
+            return json.loads(path.read_text())
+        value = compute()
+        write_marker(path, value)
+        return value
+
+    # -- steps ----------------------------------------------------------------------------------------------------
+    def amplitude_range(self, x) -> tuple[float, float]:
+        import dask
+        import dask.array as da
+
+        def compute():
+            parts = (da.min(x), da.max(x))
+            if self.client is not None:
+                lo, hi = self.client.compute(list(parts), sync=True)
+            else:
+                lo, hi = dask.compute(*parts, scheduler="threads", num_workers=self.workers)
+            return [float(lo), float(hi)]
+
+        lo, hi = self._saved("amplitude_range", compute)
+        return lo, hi
+
+    def fill_values(self, x, lo: float, hi: float) -> np.ndarray:
+        import dask
+        p = self.plan
+        todo, done = self.pending("fill", _blocks(p.shape, p.dead))
+        tasks = [dask.delayed(_fill_block, pure=False)(x[b[0]:b[1], b[2]:b[3]], lo, hi, str(self.marker("fill", b)))
+                 for b in todo]
+        results = self.compute(tasks, "fill values", "fill") + done
+        return np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
+                                        [np.zeros(1, np.float32)]))
+
+    def ridges(self, x, fill: np.ndarray, lo: float, hi: float) -> float:
+        import dask
+        p = self.plan
+        todo, done = self.pending("ridges", _blocks(p.shape, p.ridge))
+        h = RIDGE_HALO + DEAD_REACH[0]
+        tasks = []
+        for b in todo:
+            a0, a1, b0, b1 = _around(b, h, p.shape)
+            tasks.append(dask.delayed(_ridge_block, pure=False)(
+                x[a0:a1, b0:b1], (a0, b0), b, fill, lo, hi, self.likelihood, str(self.work), p, self.opt,
+                str(self.marker("ridges", b))))
+        results = self.compute(tasks, "fault ridges", "ridges") + done
+        high = sum(r["high"] for r in results)
+        live = sum(r["live"] for r in results)
+        return high / live if live else 0.0
+
+    def seeds(self, memory: int) -> tuple[np.ndarray, np.ndarray]:
+        path = self.work / "seeds.npz"
+        if not path.exists():
+            files = sorted((self.work / "candidates").glob("*.npz"))
+            n = sum(int(np.load(f)["values"].size) for f in files)
+            if n * _CANDIDATE_BYTES > memory:
+                raise InputError(f"{n} seed candidates need about {n * _CANDIDATE_BYTES / 2**30:.2f} GiB, more than "
+                                 "the memory limit leaves: raise memory_limit")
+            parts = [np.load(f) for f in files]
+            points = np.concatenate([q["points"] for q in parts]) if parts else np.zeros((0, 3), np.int64)
+            values = np.concatenate([q["values"] for q in parts]) if parts else np.zeros(0, np.float32)
+            angles = np.concatenate([q["angles"] for q in parts]) if parts else np.zeros((0, 2), np.float32)
+            del parts
+            seeds = greedy_seeds(points, values, self.plan.shape, self.opt.voting.spacing(3))
+            keys = np.ravel_multi_index(tuple(points.T), self.plan.shape)
+            del points, values
+            order = np.argsort(keys)
+            at = order[np.searchsorted(keys, np.ravel_multi_index(tuple(seeds.T), self.plan.shape), sorter=order)]
+            frames = fault_frames(angles[at, 0], angles[at, 1])
+            with atomic_path(str(path)) as tmp, open(tmp, "wb") as fh:
+                np.savez(fh, seeds=seeds, frames=frames)
+        saved = np.load(path)
+        self.n_seeds = int(len(saved["seeds"]))
+        return saved["seeds"], saved["frames"]
+
+    def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
+        import dask
+        p = self.plan
+        todo, _ = self.pending("votes", _blocks(p.shape, p.vote))
+        tasks = []
+        for b in todo:
+            i0, i1, j0, j1 = b
+            r = p.reach
+            sel = np.nonzero((seeds[:, 0] >= i0 - r) & (seeds[:, 0] < i1 + r) &
+                             (seeds[:, 1] >= j0 - r) & (seeds[:, 1] < j1 + r))[0]
+            tasks.append(dask.delayed(_vote_block, pure=False)(
+                b, seeds[sel], sel, frames[sel], str(self.work), str(self.partial), p, self.opt,
+                str(self.marker("votes", b))))
+        self.compute(tasks, "fault voting", "votes")
+
+    def thresholds(self) -> tuple[float, float]:
+        import dask
+        p = self.plan
+        blocks = _blocks(p.shape, p.thin)
+        todo, done = self.pending("thin", blocks)
+        tasks = [dask.delayed(_thin_block, pure=False)(b, str(self.work), str(self.partial), p,
+                                                       str(self.marker("thin", b))) for b in todo]
+        stats = self.compute(tasks, "thinning", "thin") + done
+        n_values = sum(r["count"] for r in stats)
+        if n_values == 0:
+            return self.opt.thresholds_from(1.0, 0, int(np.prod(p.shape)), None)
+        vmin = min(r["min"] for r in stats if r["count"])
+        vmax = max(r["max"] for r in stats if r["count"])
+        counts, centers = self._histogram(blocks, vmin, vmax, 256, "histogram")
+        otsu = vmax if vmax <= vmin else _otsu_of_histogram(counts, centers)
+        return self.opt.thresholds_from(otsu, n_values, int(np.prod(p.shape, dtype=np.int64)),
+                                        lambda q: self._quantile(blocks, q, n_values, vmin, vmax))
+
+    def _histogram(self, blocks, vmin, vmax, bins, step):
+        import dask
+        todo, done = self.pending(step, blocks)
+        tasks = [dask.delayed(_histogram_block, pure=False)(b, str(self.work), vmin, vmax, bins,
+                                                            str(self.marker(step, b))) for b in todo]
+        results = self.compute(tasks, "histogram of the thinned votes", step) + done
+        counts = np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)
+        edges = np.histogram_bin_edges(np.array([vmin, vmax], np.float32), bins=bins,
+                                       range=_float32_range(vmin, vmax))
+        return counts, (edges[:-1] + edges[1:]) / 2.0
+
+    def _quantile(self, blocks, q: float, n: int, vmin: float, vmax: float) -> float:
+        """numpy.quantile(values, q) of the positive thinned votes, exactly: the two order statistics it
+        interpolates, found by a fine histogram and a pass that gathers the values of their bins."""
+        import dask
+        rank, gamma = _virtual_index(n, q)
+        need = 2 if rank + 1 < n else 1
+        counts, _ = self._histogram(blocks, vmin, vmax, _QUANTILE_BINS, "quantile_histogram")
+        cum = np.cumsum(counts)
+        edges = np.histogram_bin_edges(np.array([vmin, vmax], np.float32), bins=_QUANTILE_BINS,
+                                       range=_float32_range(vmin, vmax))
+        first = int(np.searchsorted(cum, rank + 1))
+        last = int(np.searchsorted(cum, rank + need))
+        # one bin more on each side: the values np.histogram puts in a bin may sit on its edges
+        lo_edge, hi_edge = float(edges[max(first - 1, 0)]), float(edges[min(last + 2, _QUANTILE_BINS)])
+        todo, done = self.pending("quantile", blocks)
+        tasks = [dask.delayed(_gather_block, pure=False)(b, str(self.work), lo_edge, hi_edge,
+                                                         str(self.marker("quantile", b))) for b in todo]
+        results = self.compute(tasks, "quantile of the thinned votes", "quantile") + done
+        k = rank - sum(r["below"] for r in results)
+        window = np.sort(np.concatenate([np.asarray(r["values"], np.float32) for r in results]))
+        if k < 0 or k + need > window.size:  # pragma: no cover - the window is one bin wider than needed
+            raise RuntimeError(f"the quantile window [{lo_edge}, {hi_edge}] missed order statistic {rank}")
+        return _lerp(window[k], window[k + need - 1], gamma)
+
+    def cells(self, lower: float, memory: int):
+        import dask
+        p = self.plan
+        todo, done = self.pending("cells", _blocks(p.shape, p.thin))
+        tasks = [dask.delayed(_cell_block, pure=False)(b, str(self.work), str(self.partial), lower,
+                                                       str(self.marker("cells", b))) for b in todo]
+        results = self.compute(tasks, "fault cells", "cells") + done
+        n = sum(r["count"] for r in results)
+        if n * _CELL_BYTES > memory:
+            raise InputError(f"{n} thinned fault samples need about {n * _CELL_BYTES / 2**30:.2f} GiB to link into "
+                             "fault skins, more than the memory limit leaves: raise memory_limit")
+        parts = [np.load(f) for f in sorted((self.work / "cells").glob("*.npz"))]
+        if not parts:
+            return np.zeros((0, 3), np.int64), np.zeros(0, np.float32), np.zeros(0, np.float32), np.zeros(0, np.float32)
+        return tuple(np.concatenate([q[k] for q in parts]) for k in ("points", "values", "strike", "dip"))
+
+
+def _virtual_index(n: int, q: float) -> tuple[int, float]:
+    """(rank, gamma) of numpy.quantile's linear method for ``n`` values: the q-quantile lies between the order
+    statistics ``rank`` and ``rank + 1``, a fraction ``gamma`` of the way (numpy's arithmetic, Hyndman & Fan's
+    method 7)."""
+    v = n * q + (1.0 + q * (1.0 - 1.0 - 1.0)) - 1.0
+    rank = int(np.floor(v))
+    return min(max(rank, 0), n - 1), float(v - np.floor(v))
+
+
+def _lerp(a, b, gamma: float) -> float:
+    """numpy.quantile's interpolation between float32 order statistics ``a`` <= ``b`` (in float32, from whichever
+    end is nearer)."""
+    a, b = np.float32(a), np.float32(b)
+    d = b - a
+    return float(b - d * np.float32(1.0 - gamma)) if gamma >= 0.5 else float(a + d * np.float32(gamma))
+
+
+def _float32_range(vmin: float, vmax: float) -> tuple:
+    """The histogram range as float32 scalars: numpy then computes the bin edges in float32, as for the range of a
+    float32 array (what skimage's Otsu threshold uses in memory)."""
+    return np.float32(vmin), np.float32(vmax)
+
+
+def _otsu_of_histogram(counts: np.ndarray, centers: np.ndarray) -> float:
+    from skimage.filters import threshold_otsu
+    return float(threshold_otsu(hist=(counts, centers)))
+
+
+def _save_npz(path: pathlib.Path, **arrays) -> None:
+    with atomic_path(str(path)) as tmp, open(tmp, "wb") as fh:
+        np.savez(fh, **arrays)
+
+
+# -- block tasks --------------------------------------------------------------------------------------------------
+
+def _fill_block(f, lo, hi, marker) -> dict:
+    result = {"fill": [float(v) for v in fill_values(np.asarray(f, np.float32), lo, hi)]}
+    write_marker(marker, result)
+    return result
+
+
+def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, plan: _Plan, opt: FaultTracingOptions,
+                 marker) -> dict:
+    """Dead samples, live likelihood and ridges of one block; seed candidates of its core saved."""
+    import zarr
+    n0, n1, _ = plan.shape
+    i0, i1, j0, j1 = block
+    dead = dead_samples(np.asarray(f, np.float32), fill, lo, hi)
+    del f
+    near = near_dead_samples(dead) if dead.any() else None
+    del dead
+    a0, a1, b0, b1 = _around(block, RIDGE_HALO, plan.shape)
+    group = zarr.open_group(likelihood, mode="r")
+    fl = group["likelihood"][a0:a1, b0:b1]
+    st = group["strike_deg"][a0:a1, b0:b1]
+    dp = group["dip_deg"][a0:a1, b0:b1]
+    if near is not None:
+        near = near[a0 - origin[0]:a1 - origin[0], b0 - origin[1]:b1 - origin[1]]
+        fl[near] = 0.0
+    core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
+    live = np.ones(fl[core].shape, bool) if near is None else ~near[core]
+    zarr.open_array(f"{work}/live", mode="r+")[i0:i1, j0:j1] = fl[core]
+    if near is not None:
+        zarr.open_array(f"{work}/near", mode="r+")[i0:i1, j0:j1] = near[core].view(np.uint8)
+    high = int(np.count_nonzero((fl[core] > 0.9) & live))
+    ridges = thin_faults(fl, st, dp, threshold=0.0)[core]
+    cand = np.argwhere(ridges > float(opt.voting.seed_threshold))
+    at = tuple(cand.T)
+    local = (cand[:, 0] + i0 - a0, cand[:, 1] + j0 - b0, cand[:, 2])
+    _save_npz(pathlib.Path(work) / "candidates" / f"{i0}-{j0}.npz",
+              points=(cand + np.array([i0, j0, 0])).astype(np.int64), values=ridges[at].astype(np.float32),
+              angles=np.stack([st[local], dp[local]], axis=-1).astype(np.float32))
+    result = {"high": high, "live": int(np.count_nonzero(live))}
+    write_marker(marker, result)
+    return result
+
+
+def _vote_block(block, seeds, ids, frames, work, partial, plan: _Plan, opt: FaultTracingOptions, marker) -> dict:
+    """Votes of the seeds reaching one block, over its core, on the live likelihood around it."""
+    import zarr
+    i0, i1, j0, j1 = block
+    a0, a1, b0, b1 = _around(block, 2 * plan.reach, plan.shape)
+    att = zarr.open_array(f"{work}/live", mode="r")[a0:a1, b0:b1]
+    votes = surface_votes(att, seeds, ids, frames, image_shape=plan.shape, options=opt.voting, origin=(a0, b0),
+                          core=(i0, j0, i1 - i0, j1 - j0))
+    del att
+    near = zarr.open_array(f"{work}/near", mode="r")[i0:i1, j0:j1].view(bool)
+    votes.votes[near] = 0.0  # surfaces bridge gaps, but a fault is not drawn across dead traces
+    del near
+    zarr.open_array(f"{work}/vote_raw", mode="r+")[i0:i1, j0:j1] = votes.votes
+    group = zarr.open_group(partial, mode="r+")
+    group["votes"][i0:i1, j0:j1] = votes.votes
+    group["vote_strike_deg"][i0:i1, j0:j1] = votes.strike_deg
+    group["vote_dip_deg"][i0:i1, j0:j1] = votes.dip_deg
+    write_marker(marker, {})
+    return {}
+
+
+def _thin_block(block, work, partial, plan: _Plan, marker) -> dict:
+    """Thinned votes of one block; the count, smallest and largest of the positive ones."""
+    import zarr
+    i0, i1, j0, j1 = block
+    a0, a1, b0, b1 = _around(block, _THIN_HALO, plan.shape)
+    group = zarr.open_group(partial, mode="r")
+    votes = zarr.open_array(f"{work}/vote_raw", mode="r")[a0:a1, b0:b1]
+    thin = thin_faults(votes, group["vote_strike_deg"][a0:a1, b0:b1], group["vote_dip_deg"][a0:a1, b0:b1],
+                       threshold=0.0, sigma=0.0, dip_smoothing=0)[i0 - a0:i1 - a0, j0 - b0:j1 - b0]
+    del votes
+    zarr.open_array(f"{work}/thin_raw", mode="r+")[i0:i1, j0:j1] = thin
+    positive = thin[thin > 0]
+    result = {"count": int(positive.size), "min": float(positive.min()) if positive.size else 0.0,
+              "max": float(positive.max()) if positive.size else 0.0}
+    write_marker(marker, result)
+    return result
+
+
+def _positive_thin(block, work) -> np.ndarray:
+    import zarr
+    i0, i1, j0, j1 = block
+    thin = zarr.open_array(f"{work}/thin_raw", mode="r")[i0:i1, j0:j1]
+    return thin[thin > 0]
+
+
+def _histogram_block(block, work, vmin, vmax, bins, marker) -> dict:
+    counts, _ = np.histogram(_positive_thin(block, work), bins=bins, range=_float32_range(vmin, vmax))
+    result = {"counts": counts.tolist()}
+    write_marker(marker, result)
+    return result
+
+
+def _gather_block(block, work, lo_edge, hi_edge, marker) -> dict:
+    values = _positive_thin(block, work)
+    result = {"below": int(np.count_nonzero(values < lo_edge)),
+              "values": values[(values >= lo_edge) & (values <= hi_edge)].tolist()}
+    write_marker(marker, result)
+    return result
+
+
+def _cell_block(block, work, partial, lower, marker) -> dict:
+    """The thinned votes at or above ``lower`` of one block, written to the output and saved as cells."""
+    import zarr
+    i0, i1, j0, j1 = block
+    thin = zarr.open_array(f"{work}/thin_raw", mode="r")[i0:i1, j0:j1]
+    thin[thin < lower] = 0.0
+    group = zarr.open_group(partial, mode="r+")
+    group["thin"][i0:i1, j0:j1] = thin
+    cells = np.argwhere(thin >= lower)
+    at = tuple(cells.T)
+    _save_npz(pathlib.Path(work) / "cells" / f"{i0}-{j0}.npz",
+              points=(cells + np.array([i0, j0, 0])).astype(np.int64), values=thin[at],
+              strike=group["vote_strike_deg"][i0:i1, j0:j1][at], dip=group["vote_dip_deg"][i0:i1, j0:j1][at])
+    result = {"count": int(len(cells))}
+    write_marker(marker, result)
+    return result

@@ -1,0 +1,128 @@
+"""Chunked fault surfaces (seismo3d.seismic.chunked_faults): voting, thinning, thresholds, skins and throws block by
+block give the faults of the in-memory run, on a cube with dead traces and a mute; resumable; refusals."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+import zarr
+
+import seismo3d.seismic.chunked_faults as chunked_faults
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import InputError
+from seismo3d.seismic.chunked_faults import chunked_fault_surfaces
+from seismo3d.seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood
+from seismo3d.seismic.fault_likelihood import FaultLikelihood
+from seismo3d.seismic.faults import FaultTracingOptions, trace_faults
+
+pytestmark = pytest.mark.slow
+
+BLOCKS = ChunkOptions(block=64, strip=64, scheduler="synchronous")
+
+
+@pytest.fixture(scope="module")
+def cube():
+    """Faulted, with sides that are not multiples of the blocks, 4 dead traces and a mute over the top 10 samples."""
+    data = synthetic_cube((136, 120, 96), seed=5).cube.astype(np.float32)
+    data[70:74, 40:44, :] = 0.0
+    data[:, :, :10] = 0.0
+    return data
+
+
+@pytest.fixture(scope="module")
+def likelihood(cube, tmp_path_factory):
+    path = tmp_path_factory.mktemp("likelihood") / "fl.zarr"
+    chunked_fault_likelihood(cube, path, chunking=BLOCKS)
+    return path
+
+
+def _reference(cube, likelihood, options=None):
+    group = zarr.open_group(str(likelihood), mode="r")
+    fl = FaultLikelihood(group["likelihood"][:], group["strike_deg"][:], group["dip_deg"][:])
+    with pytest.warns(Warning):  # the dead samples are reported
+        return trace_faults(cube, likelihood=fl, options=options, progress=False)
+
+
+@pytest.fixture(scope="module")
+def reference(cube, likelihood):
+    return _reference(cube, likelihood)
+
+
+def _assert_same_faults(result, reference):
+    group = zarr.open_group(str(result.path), mode="r")
+    assert np.array_equal(group["votes"][:], reference.votes)
+    assert np.array_equal(group["thin"][:], reference.thin)
+    assert result.thresholds == reference.thresholds
+    assert len(result.faults) == len(reference.faults) >= 2
+    for mine, theirs in zip(result.faults, reference.faults):
+        assert mine.id == theirs.id
+        assert np.array_equal(mine.points, theirs.points)
+        assert np.array_equal(mine.likelihood, theirs.likelihood)
+    for mine, theirs in zip(result.throws, reference.throws):
+        np.testing.assert_allclose(mine.throw, theirs.throw, atol=1e-4, equal_nan=True)
+
+
+def test_blocks_give_the_in_memory_faults(cube, likelihood, reference, tmp_path):
+    """Blocks of 64 x 64 traces (3 x 2 blocks, partial ones at the far edges; the voting halo reaches across
+    several): votes and thinned votes equal to the bit, the same thresholds, skins and throws."""
+    result = chunked_fault_surfaces(cube, likelihood, tmp_path / "surfaces.zarr", chunking=BLOCKS)
+    assert result.blocks_computed["votes"] == 6 and result.blocks_computed["ridges"] == 6
+    assert sum(result.blocks_resumed.values()) == 0
+    assert result.n_cells == int(np.count_nonzero(reference.thin))
+    _assert_same_faults(result, reference)
+    assert not (tmp_path / "surfaces.zarr.work").exists() and not (tmp_path / "surfaces.zarr.partial").exists()
+    assert zarr.open_group(str(result.path), mode="r").attrs["complete"] is True
+    # the dead traces and the mute hold no votes
+    assert not np.any(zarr.open_group(str(result.path), mode="r")["votes"][71:73, 41:43])
+
+
+def test_dense_faults_take_the_exact_quantile(cube, likelihood, reference, tmp_path):
+    """With a fault fraction so small that the lower threshold comes from the quantile of the thinned votes, the
+    block-wise quantile (histogram, then the values of its bin) equals numpy's on the whole cube."""
+    options = FaultTracingOptions(max_fault_fraction=0.02)
+    dense = _reference(cube, likelihood, options)
+    assert dense.thresholds[0] > reference.thresholds[0] + 1e-3  # the quantile raised the lower threshold
+    reference = dense
+    result = chunked_fault_surfaces(cube, likelihood, tmp_path / "dense.zarr", options=options, chunking=BLOCKS)
+    assert result.blocks_computed["quantile"] == 6
+    _assert_same_faults(result, reference)
+
+
+def test_resume_after_an_interrupted_run(cube, likelihood, reference, tmp_path, monkeypatch):
+    """A run stopped in the voting leaves no output that looks finished; the rerun skips the finished blocks and
+    gives the same faults."""
+    calls = {"n": 0}
+    original = chunked_faults.surface_votes
+
+    def interrupted(*args, **kwargs):
+        calls["n"] += 1
+        if calls["n"] == 3:
+            raise KeyboardInterrupt
+        return original(*args, **kwargs)
+
+    out = tmp_path / "surfaces.zarr"
+    monkeypatch.setattr(chunked_faults, "surface_votes", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS)
+    assert not out.exists() and (tmp_path / "surfaces.zarr.partial").exists()
+    monkeypatch.setattr(chunked_faults, "surface_votes", original)
+    result = chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS)
+    assert result.blocks_resumed["ridges"] == 6 and result.blocks_computed["ridges"] == 0
+    assert result.blocks_resumed["votes"] == 2 and result.blocks_computed["votes"] == 4
+    _assert_same_faults(result, reference)
+
+
+def test_refusals(cube, likelihood, tmp_path):
+    out = tmp_path / "surfaces.zarr"
+    out.mkdir()
+    with pytest.raises(InputError, match="already exists"):
+        chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS)
+    with pytest.raises(InputError, match="no 'likelihood' array of the cube's shape"):
+        chunked_fault_surfaces(cube[:, :100], likelihood, tmp_path / "other.zarr", chunking=BLOCKS)
+    with pytest.raises(InputError, match="raise memory_limit"):
+        chunked_fault_surfaces(cube, likelihood, tmp_path / "small.zarr",
+                               chunking=dataclasses.replace(BLOCKS, memory_limit=1 << 20))
+    with pytest.raises(InputError, match="FaultTracingOptions"):
+        chunked_fault_surfaces(cube, likelihood, tmp_path / "bad.zarr", options="defaults")

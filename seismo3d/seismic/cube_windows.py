@@ -19,12 +19,13 @@ them shifted by its origin, so the same code runs on either source.
 from __future__ import annotations
 
 import sys
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
 from scipy import ndimage as ndi
 
-from .._validation import as_seismic
+from .._validation import as_seismic, check_int, check_positive
 from ..errors import InputError
 from .attributes import ReflectorOrientation, structure_tensor_halo, structure_tensor_orientation
 
@@ -148,32 +149,44 @@ class ArrayWindows:
 
 
 class LazyWindows:
-    """Windows of a 3D dask array of amplitudes, each read on demand with the halo of the reflector slopes.
+    """Windows of a 3D dask array of amplitudes, read on demand in tiles whose reflector slopes are computed with
+    the halo of the structure tensor and kept in a small cache.
+
+    The cube is cut into tiles of ``tile`` x ``tile`` traces (every sample). A tile is read with
+    :func:`structure_tensor_halo` traces more on each side (clipped at the cube's edges), its slopes computed there
+    and its own traces kept: their slopes equal the whole cube's. A window is assembled from the tiles it covers;
+    the most recently used tiles (up to ``cache_mb``) are kept, so the overlapping windows of neighbouring fault
+    patches compute each tile once.
 
     Parameters
     ----------
     data : (n_inlines, n_xlines, n_samples) dask.array.Array
         Seismic amplitudes of any numeric dtype and any chunks (chunks of whole traces read fastest, e.g.
-        :func:`seismo3d.seismic.lazy_cube.open_lazy`); converted to float32 window by window.
+        :func:`seismo3d.seismic.lazy_cube.open_lazy` with ``tile``); converted to float32 tile by tile.
     orientation : ReflectorOrientation, optional
-        Of the whole cube, in memory: windows then slice its slopes instead of computing them.
+        Of the whole cube, in memory: tiles then slice its slopes instead of computing them.
+    tile : int
+        Tile side, in traces (>= 1).
+    cache_mb : float
+        Memory of the kept tiles (amplitudes and two slopes, float32), MiB; at least one tile is kept.
 
     Attributes
     ----------
     shape : (int, int, int)
         Shape of ``data``.
     halo : int
-        Traces read beyond each requested side (:func:`structure_tensor_halo` of the default widths of
+        Traces read beyond each side of a tile (:func:`structure_tensor_halo` of the default widths of
         :func:`structure_tensor_orientation`); 0 when ``orientation`` is given.
 
     Raises
     ------
     InputError
-        ``data`` is not 3D, not numeric, or has an axis shorter than 3; ``orientation`` does not match it. A window
-        holding NaN or inf raises when it is read.
+        ``data`` is not 3D, not numeric, or has an axis shorter than 3; ``orientation`` does not match it; ``tile``
+        or ``cache_mb`` out of range. A tile holding NaN or inf raises when it is read.
     """
 
-    def __init__(self, data, orientation: ReflectorOrientation | None = None):
+    def __init__(self, data, orientation: ReflectorOrientation | None = None, *, tile: int = 64,
+                 cache_mb: float = 256.0):
         if data.ndim != 3:
             raise InputError(f"data must be a 3D dask array (n_inlines, n_xlines, n_samples) for the windowed path; got "
                              f"shape {data.shape}; pass a 2D section as a numpy array")
@@ -183,12 +196,40 @@ class LazyWindows:
             raise InputError(f"data has shape {data.shape}; every axis needs at least 3 samples")
         self.shape = tuple(int(n) for n in data.shape)
         self._data = data
+        self._tile = check_int(tile, "tile", minimum=1)
+        tile_bytes = 3 * 4 * self._tile ** 2 * self.shape[2]
+        self._max_tiles = max(1, int(check_positive(cache_mb, "cache_mb") * 2**20 // tile_bytes))
         self._slopes = None if orientation is None else _slope_fields(orientation, self.shape)
         self.halo = 0 if orientation is not None else structure_tensor_halo()[0]
+        self._cache = OrderedDict()
+
+    def _tile_fields(self, ti: int, tj: int) -> tuple:
+        """Amplitudes and slopes (p0, p1) of tile (ti, tj), each (m0, m1, n_samples) float32, from the cache."""
+        key = (ti, tj)
+        if key in self._cache:
+            self._cache.move_to_end(key)
+            return self._cache[key]
+        n0, n1, _ = self.shape
+        t = self._tile
+        i0, i1, j0, j1 = ti * t, min((ti + 1) * t, n0), tj * t, min((tj + 1) * t, n1)
+        a0, a1 = max(i0 - self.halo, 0), min(i1 + self.halo, n0)
+        b0, b1 = max(j0 - self.halo, 0), min(j1 + self.halo, n1)
+        block = as_seismic(np.asarray(self._data[a0:a1, b0:b1, :].compute()), "data", min_size=1)
+        if self._slopes is not None:
+            p0, p1 = (p[a0:a1, b0:b1] for p in self._slopes)
+        else:
+            slopes = structure_tensor_orientation(block).slopes
+            p0, p1 = slopes[0], slopes[1]
+        core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
+        fields = tuple(np.ascontiguousarray(f[core]) for f in (block, p0, p1))
+        self._cache[key] = fields
+        while len(self._cache) > self._max_tiles:
+            self._cache.popitem(last=False)
+        return fields
 
     def window(self, i0: int, i1: int, j0: int, j1: int) -> CubeWindow:
-        """Traces ``[i0, i1) x [j0, j1)`` (clipped to the cube) plus :attr:`halo` traces on each side (clipped to the
-        cube), every sample, with their reflector slopes.
+        """The tiles covering traces ``[i0, i1) x [j0, j1)`` (clipped to the cube), every sample, with their
+        reflector slopes.
 
         Parameters
         ----------
@@ -198,7 +239,7 @@ class LazyWindows:
         Returns
         -------
         CubeWindow
-            Its slopes equal the whole cube's over ``[i0, i1) x [j0, j1)``.
+            Its origin is a tile corner; its slopes equal the whole cube's everywhere in it.
 
         Raises
         ------
@@ -206,15 +247,20 @@ class LazyWindows:
             The traces read hold NaN or inf.
         """
         n0, n1, nt = self.shape
-        a0, a1 = max(int(i0) - self.halo, 0), min(int(i1) + self.halo, n0)
-        b0, b1 = max(int(j0) - self.halo, 0), min(int(j1) + self.halo, n1)
-        block = as_seismic(np.asarray(self._data[a0:a1, b0:b1, :].compute()), "data", min_size=1)
-        if self._slopes is not None:
-            p0, p1 = (np.ascontiguousarray(p[a0:a1, b0:b1]) for p in self._slopes)
-        else:
-            slopes = structure_tensor_orientation(block).slopes
-            p0, p1 = slopes[0], slopes[1]
-        return CubeWindow(block, p0, p1, (a0, b0), self.shape)
+        t = self._tile
+        ti0, tj0 = max(int(i0), 0) // t, max(int(j0), 0) // t
+        ti1, tj1 = max(-(-min(int(i1), n0) // t), ti0 + 1), max(-(-min(int(j1), n1) // t), tj0 + 1)
+        a0, b0 = ti0 * t, tj0 * t
+        a1, b1 = min(ti1 * t, n0), min(tj1 * t, n1)
+        out = [np.empty((a1 - a0, b1 - b0, nt), np.float32) for _ in range(3)]
+        for ti in range(ti0, ti1):
+            for tj in range(tj0, tj1):
+                fields = self._tile_fields(ti, tj)
+                rows = slice(ti * t - a0, ti * t - a0 + fields[0].shape[0])
+                cols = slice(tj * t - b0, tj * t - b0 + fields[0].shape[1])
+                for dst, src in zip(out, fields):
+                    dst[rows, cols] = src
+        return CubeWindow(out[0], out[1], out[2], (a0, b0), self.shape)
 
 
 def cube_windows(data, orientation: ReflectorOrientation | None = None) -> ArrayWindows | LazyWindows:
@@ -222,10 +268,12 @@ def cube_windows(data, orientation: ReflectorOrientation | None = None) -> Array
 
     Parameters
     ----------
-    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, or 3D dask.array.Array
-        Seismic amplitudes (a 2D dask array is read whole: a section fits in memory).
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, 3D dask.array.Array, or a source
+        Seismic amplitudes (a 2D dask array is read whole: a section fits in memory), or an :class:`ArrayWindows` /
+        :class:`LazyWindows` already made (returned as it is: e.g. a ``LazyWindows`` with another ``tile`` or
+        ``cache_mb``).
     orientation : ReflectorOrientation, optional
-        Of ``data``; computed by the source when not given (once for an in-memory array, per window for a lazy one).
+        Of ``data``; computed by the source when not given (once for an in-memory array, per tile for a lazy one).
 
     Returns
     -------
@@ -235,8 +283,13 @@ def cube_windows(data, orientation: ReflectorOrientation | None = None) -> Array
     Raises
     ------
     InputError
-        As :class:`ArrayWindows` / :class:`LazyWindows`.
+        As :class:`ArrayWindows` / :class:`LazyWindows`; ``orientation`` given with a source.
     """
+    if isinstance(data, (ArrayWindows, LazyWindows)):
+        if orientation is not None:
+            raise InputError("orientation was given with a window source; pass it to the source instead "
+                             "(LazyWindows(data, orientation))")
+        return data
     if is_dask_array(data) and data.ndim == 3:
         return LazyWindows(data, orientation)
     return ArrayWindows(data, orientation)

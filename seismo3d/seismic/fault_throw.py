@@ -21,7 +21,6 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import ndimage as ndi
 from scipy.spatial import cKDTree
 
 from .._options import resolve_options
@@ -563,20 +562,23 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     """Throw along each of several faults of one cube or section (see :func:`fault_throw`).
 
     For an in-memory cube the reflector orientation is computed once (when not given) and shared by all faults.
-    A 3D dask array is never held whole: each patch reads only the traces it samples (the bounding box of its
-    fault-plane nodes widened by ``side_traces[1] + slope_margin`` traces across the fault, plus one trace for the
-    linear interpolation and one against rounding) plus the halo of the structure tensor's filters
-    (:func:`~seismo3d.seismic.attributes.structure_tensor_halo`: 9 traces), clipped at the cube's edges, and
-    computes the reflector slopes over that window (:mod:`seismo3d.seismic.cube_windows`). Those slopes equal the
-    whole cube's where the patch reads them and the bounds tests use the cube's shape, so the throws are the
-    in-memory ones (bit for bit on the generated cubes of the tests); memory is one window (a few hundred traces,
-    every sample) at a time plus the faults. The patches are cut from each whole fault as in memory.
+    A 3D dask array is never held whole: each patch reads only a window holding the traces it samples (the bounding
+    box of its fault-plane nodes widened by ``side_traces[1] + slope_margin`` traces across the fault, plus one
+    trace for the linear interpolation and one against rounding), assembled from tiles of 64 x 64 traces (every
+    sample) whose reflector slopes are computed with the halo of the structure tensor's filters
+    (:func:`~seismo3d.seismic.attributes.structure_tensor_halo`: 9 traces), clipped at the cube's edges; the tiles
+    last used (up to 256 MiB) are kept for the next patches (:class:`~seismo3d.seismic.cube_windows.LazyWindows`).
+    Those slopes equal the whole cube's and the bounds tests use the cube's shape, so the throws are the in-memory
+    ones (bit for bit on the generated cubes of the tests). Memory: the tile cache, one window (about 150 x 150
+    traces for a fault dipping 60-70 degrees over 256 samples) and one tile's orientation workspace, plus the
+    faults. The patches are cut from each whole fault as in memory.
 
     Parameters
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, or 3D dask.array.Array
-        Seismic amplitudes, the last axis the sample. Must be finite (for a dask array: the windows read, checked as
-        they are read).
+        Seismic amplitudes, the last axis the sample. Must be finite (for a dask array: the traces read, checked as
+        they are read). Or a window source of :mod:`seismo3d.seismic.cube_windows` (e.g.
+        ``LazyWindows(dask_array, tile=32, cache_mb=64)`` for another memory / speed trade-off).
     faults : sequence of Fault or of (n_points, ndim) array_like
         Faults from :func:`seismo3d.seismic.link_faults`.
     orientation : ReflectorOrientation, optional

@@ -29,6 +29,7 @@ from . import _kernels
 __all__ = [
     "ReflectorOrientation",
     "structure_tensor_orientation",
+    "structure_tensor_halo",
     "semblance",
     "eigen_coherence",
     "discontinuity",
@@ -125,6 +126,48 @@ def structure_tensor_orientation(data, *, sigma_gradient=1.0, sigma_tensor=(2.0,
     else:
         slopes = np.stack([p0, p1])
     return ReflectorOrientation(np.ascontiguousarray(normals), np.ascontiguousarray(slopes), planarity)
+
+
+def structure_tensor_halo(sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)) -> tuple[int, int]:
+    """Reach of :func:`structure_tensor_orientation`: how far a sample's result depends on the data around it.
+
+    The orientation is a chain of separable FIR filters truncated at 3 sigma (``_kernels.gaussian_kernel``): along
+    each axis one Gaussian (derivative) pass of width ``sigma_gradient`` for the gradient, then one Gaussian pass of
+    ``sigma_tensor`` for the tensor. Its value at a sample therefore depends only on the data within the sum of the
+    two kernel radii along each axis, and the orientation of a block of a cube equals the whole cube's at every
+    sample at least that far from each block side that is not the cube's edge (at the cube's edges both clamp the
+    same way, ``scipy.ndimage`` mode ``'nearest'``).
+
+    Parameters
+    ----------
+    sigma_gradient : float, optional
+        As in :func:`structure_tensor_orientation`, samples (and traces).
+    sigma_tensor : float or (float, float), optional
+        As in :func:`structure_tensor_orientation`: (lateral in traces, vertical in samples).
+
+    Returns
+    -------
+    (int, int)
+        The halo along each lateral axis, in traces, and along the sample axis, in samples.
+
+    Raises
+    ------
+    InputError
+        If a width is not > 0.
+
+    References
+    ----------
+    .. [1] Dask documentation, "Overlapping computations" (``dask.array.map_overlap``): the halo (ghost cells) a
+       block needs for a neighbourhood operation.
+    """
+    check_positive(sigma_gradient, "sigma_gradient")
+    lateral, vertical = as_sigma_pair(sigma_tensor, "sigma_tensor")
+
+    def radius(sigma: float, order: int) -> int:
+        return (len(_kernels.gaussian_kernel(float(sigma), order)) - 1) // 2
+
+    grad = max(radius(sigma_gradient, 0), radius(sigma_gradient, 1))  # smoothing and derivative passes
+    return grad + radius(lateral, 0), grad + radius(vertical, 0)
 
 
 # --------------------------------------------------------------------------------------------------------------------

@@ -21,14 +21,14 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import ndimage as ndi
 from scipy.spatial import cKDTree
 
 from .._options import resolve_options
 from .._progress import progress_steps
-from .._validation import as_normals, as_points, as_seismic, check_positive
+from .._validation import as_normals, as_points, check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
-from .attributes import ReflectorOrientation, structure_tensor_orientation
+from .attributes import ReflectorOrientation
+from .cube_windows import CubeWindow, cube_windows
 from .traces import parabolic_offset, subsample_peak
 
 __all__ = ["FaultThrow", "ThrowOptions", "fault_throw", "fault_throws", "hanging_wall_normals"]
@@ -175,23 +175,6 @@ def _fault_arrays(fault, ndim: int) -> tuple[np.ndarray, np.ndarray, int]:
     return pts, normals, fid
 
 
-def _slope_fields(orientation, shape) -> tuple[np.ndarray, np.ndarray]:
-    """Reflector slopes along inline and crossline as two (n0, n1, nt) float32 arrays (zeros along xline in 2D)."""
-    if orientation is None:
-        raise InputError("orientation is None")  # pragma: no cover - callers compute it
-    slopes = np.asarray(getattr(orientation, "slopes", orientation), dtype=np.float32)
-    ndim = len(shape)
-    if slopes.shape != (ndim - 1, *shape):
-        raise InputError(f"orientation.slopes has shape {slopes.shape} but the data needs ({ndim - 1}, *{shape}); pass "
-                         "the ReflectorOrientation of this data (structure_tensor_orientation(data))")
-    if not np.all(np.isfinite(slopes)):
-        raise InputError("orientation.slopes has NaN or inf; recompute it with structure_tensor_orientation(data)")
-    if ndim == 2:
-        p0 = slopes[0][:, None, :]
-        return p0, np.zeros_like(p0)
-    return slopes[0], slopes[1]
-
-
 def _max_throw(opt: ThrowOptions, n_samples: int) -> int:
     """The largest |throw| searched: ``opt.max_throw`` or ``min(20, n_samples // 4)``, below half a trace."""
     max_throw = min(20, n_samples // 4) if opt.max_throw is None else opt.max_throw
@@ -233,7 +216,7 @@ def hanging_wall_normals(normals3) -> np.ndarray:
     return normals3 * sgn[:, None]
 
 
-def _side_slope(p0, p1, il, xl, t, h, d_slope):
+def _side_slope(win: CubeWindow, il, xl, t, h, d_slope):
     """Reflector slope along ``h`` (samples per trace) of the reflector through each fault-plane node.
 
     The slope is read on that reflector ``d_slope`` traces from the fault (signed: the side), where the reflector
@@ -244,22 +227,20 @@ def _side_slope(p0, p1, il, xl, t, h, d_slope):
     b = xl + d_slope * h[1]
     p = np.zeros(len(t))
     for _ in range(2):
-        c = np.stack([a, b, t + p * d_slope])
-        p = ndi.map_coordinates(p0, c, order=1, mode="nearest") * h[0] + \
-            ndi.map_coordinates(p1, c, order=1, mode="nearest") * h[1]
+        p = win.slope_along(a, b, t + p * d_slope, h)
     return p
 
 
-def _sample(cube, il, xl, t, h, offsets, p):
-    """Mean amplitude and count over the lateral ``offsets`` (traces along ``h``), read on the reflector ``t + p d``."""
+def _sample(win: CubeWindow, il, xl, t, h, offsets, p):
+    """Mean amplitude and count over the lateral ``offsets`` (traces along ``h``), read on the reflector ``t + p d``;
+    positions outside the cube (``win.cube_shape``) are left out."""
     d = np.asarray(offsets, np.float64)[:, None]
     a = il + d * h[0]
     b = xl + d * h[1]
     tt = t + p * d
-    n0, n1, nt = cube.shape
+    n0, n1, nt = win.cube_shape
     inside = (a >= -0.01) & (a <= n0 - 0.99) & (b >= -0.01) & (b <= n1 - 0.99) & (tt >= 0) & (tt <= nt - 1)
-    vals = ndi.map_coordinates(cube, np.stack([a.ravel(), b.ravel(), tt.ravel()]), order=1, mode="nearest")
-    vals = vals.reshape(a.shape)
+    vals = win.amplitude_at(a.ravel(), b.ravel(), tt.ravel()).reshape(a.shape)
     return np.where(inside, vals, 0.0).sum(axis=0), inside.sum(axis=0)
 
 
@@ -273,13 +254,29 @@ class _Patch:
     valid: tuple  # (valid_F, valid_H) bool (nu, nt)
 
 
-def _patch_images(cube, p0, p1, pts3, nrm3, sides, slope_margin):
-    """The two fault-plane images of one patch of fault points, and the points' (u, t) in the patch frame.
+@dataclass(frozen=True)
+class _PatchGrid:
+    """Fault-plane grid of one patch: the (u, t) nodes and their cube positions; no amplitudes yet."""
+
+    h: np.ndarray  # (2,) horizontal unit vector into the hanging wall (inline, xline)
+    il: np.ndarray  # (n_nodes,) inline of each node on the fault
+    xl: np.ndarray  # (n_nodes,) crossline
+    t: np.ndarray  # (n_nodes,) sample
+    rows: np.ndarray  # (n_nodes,) int row (u - u0) of each node in the images
+    cols: np.ndarray  # (n_nodes,) int column (t - t0)
+    u0: int
+    t0: int
+    shape: tuple  # (nu, nt) of the images
+    ut: np.ndarray  # (n_points, 2) the fault points' (u, t)
+
+
+def _patch_grid(pts3, nrm3) -> _PatchGrid | None:
+    """The fault-plane grid of one patch of fault points (None for a horizontal fault).
 
     Frame: origin at the points' mean lateral position, ``h`` the horizontal part of the mean normal (into the
     hanging wall), ``w`` along strike. The grid nodes are the integer (u, t) within 1.5 of a fault point; each node's
     position across the fault is the mean ``s`` of the fault points within 2 of it (this follows a curved or rough
-    fault). Returns None for a horizontal fault.
+    fault).
     """
     n = nrm3.mean(axis=0)
     lat = n[:2]
@@ -305,23 +302,44 @@ def _patch_images(cube, p0, p1, pts3, nrm3, sides, slope_margin):
     nodes, s_node = nodes[on], s_node[on]
     il = origin[0] + nodes[:, 0] * w[0] + s_node * h[0]
     xl = origin[1] + nodes[:, 0] * w[1] + s_node * h[1]
-    tn = nodes[:, 1]
-    shape = gu.shape
+    rows = (nodes[:, 0] - u_lo).astype(np.int64)
+    cols = (nodes[:, 1] - t_lo).astype(np.int64)
+    return _PatchGrid(h, il, xl, nodes[:, 1], rows, cols, u_lo, t_lo, gu.shape, ut)
+
+
+def _read_box(grid: _PatchGrid, reach: float, cube_shape) -> tuple[int, int, int, int]:
+    """Inline and crossline ranges ``(i0, i1, j0, j1)`` (half-open) of the traces :func:`_patch_images` reads for
+    ``grid``: every read is at ``node + d h`` with ``|d| <= reach`` traces (the slopes at ``side_traces[1] +
+    slope_margin``, the amplitudes nearer), interpolated linearly from the traces ``floor`` and ``floor + 1``; one
+    trace more on each side against rounding; clipped to the cube (beyond it reads clamp to the edge trace)."""
+    n0, n1 = cube_shape[0], cube_shape[1]
+    if grid.il.size == 0:
+        return 0, 0, 0, 0
+    da, db = reach * abs(grid.h[0]), reach * abs(grid.h[1])
+    i0 = int(np.floor(grid.il.min() - da)) - 1
+    i1 = int(np.floor(grid.il.max() + da)) + 3
+    j0 = int(np.floor(grid.xl.min() - db)) - 1
+    j1 = int(np.floor(grid.xl.max() + db)) + 3
+    i0, j0 = min(max(i0, 0), n0 - 1), min(max(j0, 0), n1 - 1)
+    return i0, max(min(i1, n0), i0 + 1), j0, max(min(j1, n1), j0 + 1)
+
+
+def _patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Patch:
+    """The footwall and hanging-wall fault-plane images of one patch, read from ``win`` (which holds the traces of
+    :func:`_read_box`)."""
     images, valids = [], []
     for sign in (-1.0, 1.0):
-        p = _side_slope(p0, p1, il, xl, tn, h, sign * (sides[1] + slope_margin))
-        acc, cnt = _sample(cube, il, xl, tn, h, sign * np.arange(sides[0], sides[1] + 1), p)
+        p = _side_slope(win, grid.il, grid.xl, grid.t, grid.h, sign * (sides[1] + slope_margin))
+        acc, cnt = _sample(win, grid.il, grid.xl, grid.t, grid.h, sign * np.arange(sides[0], sides[1] + 1), p)
         n_off = sides[1] - sides[0] + 1
-        img = np.zeros(shape)
-        val = np.zeros(shape, bool)
-        ri = (nodes[:, 0] - u_lo).astype(np.int64)
-        ci = (nodes[:, 1] - t_lo).astype(np.int64)
+        img = np.zeros(grid.shape)
+        val = np.zeros(grid.shape, bool)
         good = cnt >= 0.5 * n_off
-        img[ri[good], ci[good]] = acc[good] / cnt[good]
-        val[ri[good], ci[good]] = True
+        img[grid.rows[good], grid.cols[good]] = acc[good] / cnt[good]
+        val[grid.rows[good], grid.cols[good]] = True
         images.append(img)
         valids.append(val)
-    return _Patch(u_lo, t_lo, tuple(images), tuple(valids)), ut
+    return _Patch(grid.u0, grid.t0, tuple(images), tuple(valids))
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -485,8 +503,10 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
 
     Parameters
     ----------
-    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Seismic amplitudes, the last axis the sample. Must be finite.
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, or 3D dask.array.Array
+        Seismic amplitudes, the last axis the sample. Must be finite. A 3D dask array (e.g.
+        ``seismo3d.seismic.lazy_cube.open_lazy(path).data``, any numeric dtype and chunks) is never held whole: each
+        patch reads only its window of traces (see :func:`fault_throws`), with the same result as in memory.
     fault : Fault or (n_points, ndim) array_like
         A fault from :func:`seismo3d.seismic.link_faults` (any object with ``points`` (n, ndim) index
         coordinates and ``normals`` (n, ndim) unit fault normals, of either sign; ``id`` is used when present), or a
@@ -532,26 +552,38 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
     >>> bool(abs(res.median_throw - sign * syn.faults[0].throw_samples) < 1)
     True
     """
-    arr = as_seismic(data)
+    source = cube_windows(data, orientation)
     opt = resolve_options(ThrowOptions, options, overrides, "fault_throw")
-    if orientation is None:
-        orientation = structure_tensor_orientation(arr)
-    return _fault_throw(arr, fault, _slope_fields(orientation, arr.shape), opt)
+    return _fault_throw(source, fault, opt)
 
 
 def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = None, options: ThrowOptions | None = None,
                  progress: bool = False, **overrides) -> list[FaultThrow]:
     """Throw along each of several faults of one cube or section (see :func:`fault_throw`).
 
-    The reflector orientation is computed once (when not given) and shared by all faults.
+    For an in-memory cube the reflector orientation is computed once (when not given) and shared by all faults.
+    A 3D dask array is never held whole: each patch reads only a window holding the traces it samples (the bounding
+    box of its fault-plane nodes widened by ``side_traces[1] + slope_margin`` traces across the fault, plus one
+    trace for the linear interpolation and one against rounding), assembled from tiles of 64 x 64 traces (every
+    sample) whose reflector slopes are computed with the halo of the structure tensor's filters
+    (:func:`~seismo3d.seismic.attributes.structure_tensor_halo`: 9 traces), clipped at the cube's edges; the tiles
+    last used (up to 256 MiB) are kept for the next patches (:class:`~seismo3d.seismic.cube_windows.LazyWindows`).
+    Those slopes equal the whole cube's and the bounds tests use the cube's shape, so the throws are the in-memory
+    ones (bit for bit on the generated cubes of the tests). Memory: the tile cache, one window (about 150 x 150
+    traces for a fault dipping 60-70 degrees over 256 samples) and one tile's orientation workspace, plus the
+    faults. The patches are cut from each whole fault as in memory.
 
     Parameters
     ----------
-    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Seismic amplitudes, the last axis the sample. Must be finite.
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, or 3D dask.array.Array
+        Seismic amplitudes, the last axis the sample. Must be finite (for a dask array: the traces read, checked as
+        they are read). Or a window source of :mod:`seismo3d.seismic.cube_windows` (e.g.
+        ``LazyWindows(dask_array, tile=32, cache_mb=64)`` for another memory / speed trade-off).
     faults : sequence of Fault or of (n_points, ndim) array_like
         Faults from :func:`seismo3d.seismic.link_faults`.
-    orientation, options, **overrides
+    orientation : ReflectorOrientation, optional
+        As in :func:`fault_throw`; with a dask array, its slopes are sliced per window instead of recomputed.
+    options, **overrides
         As in :func:`fault_throw`.
     progress : bool
         Report progress over the faults (:mod:`seismo3d._progress`).
@@ -570,30 +602,27 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     ----------
     .. [1] D. Hale, Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1.
     """
-    arr = as_seismic(data)
+    source = cube_windows(data, orientation)
     opt = resolve_options(ThrowOptions, options, overrides, "fault_throws")
     faults = list(faults)
-    if not faults:
-        return []
-    if orientation is None:
-        orientation = structure_tensor_orientation(arr)
-    slopes = _slope_fields(orientation, arr.shape)
     out = []
     with progress_steps(len(faults), "throw", unit="fault", enabled=progress) as bar:
         for f in faults:
-            out.append(_fault_throw(arr, f, slopes, opt))
+            out.append(_fault_throw(source, f, opt))
             bar.advance()
     return out
 
 
-def _fault_throw(arr, fault, slopes, opt: ThrowOptions) -> FaultThrow:
-    two_d = arr.ndim == 2
-    max_throw = _max_throw(opt, arr.shape[-1])
-    pts, normals, fid = _fault_arrays(fault, arr.ndim)
-    if np.any(pts.min(axis=0) < -0.5) or np.any(pts.max(axis=0) > np.array(arr.shape) - 0.5):
-        raise InputError(f"fault {fid} has points outside the data of shape {arr.shape}; pass the faults of this data")
-    cube = arr[:, None, :] if two_d else arr
-    p0, p1 = slopes
+def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
+    """Throw along one fault, reading ``source`` (:func:`~seismo3d.seismic.cube_windows.cube_windows`) one patch
+    window at a time."""
+    shape = source.shape
+    two_d = len(shape) == 2
+    max_throw = _max_throw(opt, shape[-1])
+    pts, normals, fid = _fault_arrays(fault, len(shape))
+    if np.any(pts.min(axis=0) < -0.5) or np.any(pts.max(axis=0) > np.array(shape) - 0.5):
+        raise InputError(f"fault {fid} has points outside the data of shape {shape}; pass the faults of this data")
+    cube_shape = (shape[0], 1, shape[1]) if two_d else shape
     if two_d:
         pts3 = np.column_stack([pts[:, 0], np.zeros(len(pts)), pts[:, 1]])
         nrm3 = np.column_stack([normals[:, 0], np.zeros(len(pts)), normals[:, 1]])
@@ -622,10 +651,13 @@ def _fault_throw(arr, fault, slopes, opt: ThrowOptions) -> FaultThrow:
         sel = np.nonzero(pid == k)[0]
         if len(sel) < 3:
             continue
-        out = _patch_images(cube, p0, p1, pts3[sel], nrm3[sel], opt.side_traces, opt.slope_margin)
-        if out is None:
+        grid = _patch_grid(pts3[sel], nrm3[sel])
+        if grid is None:
             continue
-        patch, ut = out
+        # the patch's traces (plus the halo of their reflector slopes) only; the whole array when in memory
+        win = source.window(*_read_box(grid, opt.side_traces[1] + opt.slope_margin, cube_shape))
+        patch = _patch_images(grid, win, opt.side_traces, opt.slope_margin)
+        ut = grid.ut
         reach = min(max_throw, int(opt.max_throw_per_height * patch.img[0].shape[1]))
         shift, cc = _ncc_shift(patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach,
                                opt.min_overlap[0 if two_d else 1], opt) if reach >= 1 else (np.nan, np.nan)

@@ -13,6 +13,7 @@ from seismo3d.seismic.attributes import (
     discontinuity,
     eigen_coherence,
     semblance,
+    structure_tensor_halo,
     structure_tensor_orientation,
 )
 
@@ -111,3 +112,18 @@ def test_bad_input():
         structure_tensor_orientation(np.zeros((8, 8)), sigma_tensor=(1, 2, 3))
     with pytest.raises(InputError, match="half_traces"):
         semblance(np.zeros((8, 8)), half_traces=0)
+
+
+def test_structure_tensor_halo_is_exact_and_tight():
+    """A block of a cube with the halo has the whole cube's slopes inside it (bit for bit); one trace less does not."""
+    halo, vertical = structure_tensor_halo()
+    assert (halo, vertical) == (3 + 6, 3 + 18)  # kernel radii: round(3 sigma) of sigma 1 (gradient), 2 and 6 (tensor)
+    cube = np.random.default_rng(0).standard_normal((48, 40, 24)).astype(np.float32)
+    whole = structure_tensor_orientation(cube).slopes
+    lo, hi = 20, 26  # traces [lo, hi) along both lateral axes
+    for h, same in ((halo, True), (halo - 1, False)):
+        block = structure_tensor_orientation(cube[lo - h:hi + h, lo - h:hi + h]).slopes[:, h:-h, h:-h]
+        assert np.array_equal(block, whole[:, lo:hi, lo:hi]) is same
+    # clipped at the cube's edge: the filters clamp there as on the whole cube
+    edge = structure_tensor_orientation(cube[:hi + halo, :hi + halo]).slopes[:, :hi, :hi]
+    assert np.array_equal(edge, whole[:, :hi, :hi])

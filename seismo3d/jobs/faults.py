@@ -418,14 +418,17 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     Cubes larger than memory
     ------------------------
     A 3D SEG-Y cube, Zarr store (``seismo3d convert``) or ``.npy`` array that would need more than ``memory_limit``
-    in memory is read lazily and its fault likelihood, strike and dip are computed block by block
-    (:func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood`, the same values as in memory) into
-    ``fault_likelihood.zarr`` (arrays ``likelihood``, ``strike_deg``, ``dip_deg`` and, once traced, ``votes``;
-    opened by ``xarray.open_zarr``), resumable: an interrupted run started again with the same arguments skips the
-    finished blocks; for a SEG-Y input they are also written block by block as ``fault_likelihood.sgy``,
-    ``fault_strike.sgy``, ``fault_dip.sgy`` (and ``fault_votes.sgy``) with its headers, as in memory. The fault surfaces (voting, skins, throw; about 72 bytes per sample) are then traced in memory
-    when they fit ``memory_limit``, giving the same faults, CSV files and picture as the in-memory run; otherwise
-    only ``fault_likelihood.zarr`` is written and a log line says how much memory the surfaces need.
+    in memory is read lazily and traced block by block, with the same results as in memory: the fault likelihood,
+    strike and dip (:func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood`) into
+    ``fault_likelihood.zarr``, then the votes, thinned faults, skins and throws
+    (:func:`~seismo3d.seismic.chunked_faults.chunked_fault_surfaces`) into ``fault_surfaces.zarr`` (arrays
+    ``likelihood``, ``votes``, ``thin``; both opened by ``xarray.open_zarr``), then the same ``faults.vtp``, CSV
+    files and picture as in memory (the picture reads only its three slices). Both stores are resumable (an
+    interrupted run started again with the same arguments skips the finished blocks) and reused when finished. For
+    a SEG-Y input, ``fault_likelihood.sgy``, ``fault_strike.sgy``, ``fault_dip.sgy`` and ``fault_votes.sgy`` are
+    written block by block with its headers, as in memory. Only the fault cells (the thinned faults, about 160
+    bytes each) and the seed candidates are held whole; a limit too small for them is reported with the memory
+    they need.
 
     Data that cannot support fault tracing (too few traces, not seismic amplitudes, no lateral coherence: see
     :func:`~seismo3d.seismic.trace_faults`) raises :class:`~seismo3d.errors.UnsupportedDataError` before any output
@@ -457,7 +460,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         In [0, 1]: more faults when higher (see :class:`~seismo3d.seismic.FaultTracingOptions`).
     memory_limit : int or str, optional
         Memory the job may use, bytes or a size such as ``'4GB'`` (default: half of the machine's RAM). A 3D cube
-        whose in-memory run would need more (about 96 bytes per sample) is processed block by block (see
+        whose in-memory run would need more (about 24 times its float32 size) is processed block by block (see
         *Cubes larger than memory* below).
     scheduler : str, optional
         A ``dask.distributed`` scheduler address (``tcp://host:port``) for the block-by-block run; default: dask's
@@ -470,16 +473,16 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     dict of str to pathlib.Path
         The files written, keyed ``likelihood``, ``strike``, ``dip``, ``votes``, ``surfaces``, ``points``,
         ``summary``, ``figure`` (and ``input``, ``truth`` for the demo). For a cube beyond ``memory_limit``:
-        ``likelihood`` is ``fault_likelihood.zarr`` (holding strike, dip and votes too), with ``surfaces``,
-        ``points``, ``summary``, ``figure`` when the surfaces fit in memory, and for a SEG-Y input
-        ``likelihood_segy``, ``strike_segy``, ``dip_segy`` (``votes_segy``).
+        ``likelihood`` is ``fault_likelihood.zarr`` (holding strike and dip too), ``surfaces_zarr`` is
+        ``fault_surfaces.zarr``, with ``surfaces``, ``points``, ``summary``, ``figure``, and for a SEG-Y input
+        ``likelihood_segy``, ``strike_segy``, ``dip_segy``, ``votes_segy``.
 
     Raises
     ------
     InputError
         No input (and not ``demo``), ``out_dir`` is the input's folder or a file, an invalid option, a constant input,
-        a ``memory_limit`` too small for the smallest blocks, or ``out_dir`` holding the ``fault_likelihood.zarr`` of
-        another input.
+        a ``memory_limit`` too small for the smallest blocks or for the fault cells, or ``out_dir`` holding the
+        ``fault_likelihood.zarr`` or ``fault_surfaces.zarr`` of another input.
     DataNotFoundError
         The input does not exist.
     SegyFormatError
@@ -579,21 +582,23 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
 # cubes larger than memory
 
 _TILE = 32  # traces per side of the lazy input's chunks: a block of the chunked run reads only the tiles around it
-_SURFACE_BYTES = 76  # per sample: voting, skins and throw in memory (input, likelihood, strike, dip, votes, thinning)
 
 
 def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: int, scheduler, sensitivity,
                  progress) -> dict:
-    """Fault likelihood block by block into ``fault_likelihood.zarr``; fault surfaces in memory when they fit."""
+    """Fault likelihood block by block into ``fault_likelihood.zarr``, then the fault surfaces block by block into
+    ``fault_surfaces.zarr`` (both reused when finished, resumed when interrupted); the same files as in memory."""
     import zarr
 
+    from ..seismic.chunked_faults import chunked_fault_surfaces
     from ..seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood, in_memory_bytes
-    from ..seismic.fault_likelihood import FaultLikelihood
+    from ..seismic.faults import FaultTracingOptions
     from ..seismic.seismic_zarr import consolidate
 
     out_dir.mkdir(parents=True, exist_ok=True)
     path = out_dir / "fault_likelihood.zarr"
     shape = tuple(int(n) for n in lazy.data.shape)
+    chunking = ChunkOptions(memory_limit=memory_limit, scheduler=scheduler)
     if path.exists():  # a finished likelihood of an earlier run of the same input: reused
         group = zarr.open_group(str(path), mode="r")
         if group.attrs.get("source") != lazy.name or tuple(group["likelihood"].shape) != shape:
@@ -604,33 +609,30 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
         LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory, more than the %.2f GiB left under "
                     "the memory limit (%.2f GiB): fault likelihood block by block into %s", lazy.name, *shape,
                     in_memory_bytes(shape) / 2**30, budget / 2**30, memory_limit / 2**30, path.name)
-        chunked_fault_likelihood(lazy.data, path, coords=lazy.coords, progress=progress,
-                                 chunking=ChunkOptions(memory_limit=memory_limit, scheduler=scheduler))
+        chunked_fault_likelihood(lazy.data, path, coords=lazy.coords, progress=progress, chunking=chunking)
         zarr.open_group(str(path), mode="r+").attrs["source"] = lazy.name
         consolidate(path)
     written = {"likelihood": path}
-    names = {"likelihood": "likelihood", "strike": "strike_deg", "dip": "dip_deg"}
-    if _gib(shape, _SURFACE_BYTES) * 2**30 > budget:
-        written.update(_segy_volumes(lazy, path, out_dir, names, progress))
-        LOGGER.warning("fault surfaces of %s (voting, skins, throw) need about %.2f GiB in memory, more than the "
-                       "%.2f GiB left under the memory limit (%.2f GiB): wrote %s only; raise --memory-limit to "
-                       "trace them", lazy.name, _gib(shape, _SURFACE_BYTES), budget / 2**30, memory_limit / 2**30,
-                       path.name)
-        return written
-    group = zarr.open_group(str(path), mode="r+")
-    fl = FaultLikelihood(group["likelihood"][:], group["strike_deg"][:], group["dip_deg"][:])
-    data = np.asarray(lazy.data.compute(), dtype=np.float32)
-    dt = float(lazy.samples[1] - lazy.samples[0]) if lazy.unit != "samples" else None
-    result = trace_faults(data, sample_interval=dt, sample_unit=lazy.unit, sensitivity=sensitivity, likelihood=fl,
-                          progress=progress)
-    del fl
-    votes = group.create_array("votes", shape=shape, chunks=group["likelihood"].chunks, dtype="float32",
-                               dimension_names=("inline", "crossline", "sample"), overwrite=True)
-    votes[:] = result.votes
-    consolidate(path)
-    inp = _Input(data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
+    surfaces = chunked_fault_surfaces(lazy.data, path, out_dir / "fault_surfaces.zarr",
+                                      options=FaultTracingOptions(sensitivity=sensitivity), chunking=chunking,
+                                      progress=progress)
+    written["surfaces_zarr"] = surfaces.path
+    zarr.open_group(str(surfaces.path), mode="r+").attrs["source"] = lazy.name
+    consolidate(surfaces.path)
+    LOGGER.info("%s: %d faults from %d seeds and %d thinned fault samples (thresholds %.3f, %.3f)", lazy.name,
+                len(surfaces.faults), surfaces.n_seeds, surfaces.n_cells, *surfaces.thresholds)
+    scan = zarr.open_group(str(path), mode="r")
+    traced = zarr.open_group(str(surfaces.path), mode="r")
+    dt = float(lazy.samples[1] - lazy.samples[0]) if lazy.unit != "samples" else 1.0
+    result = FaultInterpretation(likelihood=traced["likelihood"], strike_deg=scan["strike_deg"],
+                                 dip_deg=scan["dip_deg"], votes=traced["votes"], thin=traced["thin"],
+                                 thresholds=surfaces.thresholds, faults=surfaces.faults, throws=surfaces.throws,
+                                 sample_interval=dt, sample_unit=lazy.unit)
+    inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
     _write_steps(_surface_steps(inp, result, out_dir), written, progress)
-    written.update(_segy_volumes(lazy, path, out_dir, dict(names, votes="votes"), progress))
+    written.update(_segy_volumes(lazy, surfaces.path, out_dir, {"likelihood": "likelihood", "votes": "votes"},
+                                 progress))
+    written.update(_segy_volumes(lazy, path, out_dir, {"strike": "strike_deg", "dip": "dip_deg"}, progress))
     return written
 
 
@@ -651,7 +653,3 @@ def _segy_volumes(lazy: LazyInput, path: Path, out_dir: Path, names: dict, progr
         written[f"{key}_segy"] = write_like_blocks(lazy.segy["template_path"], out_dir / f"{stems[key]}.sgy",
                                                    group[array], progress=progress, **options)
     return written
-
-
-def _gib(shape, bytes_per_sample: int) -> float:
-    return float(np.prod(shape, dtype=np.float64)) * bytes_per_sample / 2**30

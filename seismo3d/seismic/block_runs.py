@@ -138,6 +138,16 @@ class BlockRun:
             (self.work / "done").mkdir(parents=True)
             path.write_text(json.dumps(manifest))
 
+    def earlier_plan(self, manifest: dict) -> dict | None:
+        """The block plan of an unfinished run of the same work (its manifest equal to ``manifest`` but for the
+        ``plan`` key), or None: a resumed run keeps its blocks even when the memory left for it has changed."""
+        try:
+            earlier = json.loads((self.work / "manifest.json").read_text())
+        except (OSError, ValueError):
+            return None
+        same = {k: v for k, v in earlier.items() if k != "plan"} == {k: v for k, v in manifest.items() if k != "plan"}
+        return earlier.get("plan") if same else None
+
     def marker(self, step: str, block) -> pathlib.Path:
         """The marker file of ``block`` (a tuple whose items 0 and 2 are its first inline and crossline) in
         ``step``."""

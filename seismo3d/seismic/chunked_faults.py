@@ -43,6 +43,7 @@ from .dead_samples import DEAD_REACH, dead_samples, fill_values, near_dead_sampl
 from .fault_skins import skins_from_cells
 from .fault_surfaces import thin_faults
 from .fault_throw import fault_throws
+from .cube_windows import LazyWindows
 from .fault_voting import fault_frames, greedy_seeds, surface_votes
 from .faults import FaultTracingOptions
 from .seismic_zarr import consolidate
@@ -78,9 +79,13 @@ class ChunkedFaults:
     Attributes
     ----------
     path : pathlib.Path
-        The output Zarr group: ``votes`` (optimal-surface votes, near-dead samples 0), ``thin`` (thinned votes at or
-        above the lower threshold, 0 elsewhere), ``vote_strike_deg`` and ``vote_dip_deg`` (n_inlines, n_xlines,
-        n_samples) float32; attrs ``thresholds``, ``n_seeds``, ``complete``.
+        The output Zarr group: ``likelihood`` (the fault likelihood, 0 near dead samples, as
+        :attr:`~seismo3d.seismic.faults.FaultInterpretation.likelihood`), ``votes`` (optimal-surface votes),
+        ``thin`` (thinned votes at or above the lower threshold, 0 elsewhere), ``vote_strike_deg`` and
+        ``vote_dip_deg``, each (n_inlines, n_xlines, n_samples) float32 with dimensions inline, crossline, sample;
+        the cells linked into skins as ``cell_points`` (n, 3) int32 and ``cell_values``, ``cell_strike_deg``,
+        ``cell_dip_deg`` (n,) float32; attrs ``thresholds``, ``n_seeds``, ``n_cells``, ``saturated_fraction``,
+        ``run`` (what was computed) and ``complete``.
     faults : list of Fault
         Fault skins, as :attr:`~seismo3d.seismic.faults.FaultInterpretation.faults`.
     throws : list of FaultThrow
@@ -181,8 +186,9 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         Zarr group of :func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood` of this cube (arrays
         ``likelihood``, ``strike_deg``, ``dip_deg``).
     output : str or os.PathLike
-        Output Zarr group, created; must not exist unless it is the unfinished output of the same run (then
-        ``output + '.partial'`` and ``output + '.work'`` exist and the run resumes).
+        Output Zarr group, created. When it is the finished output of the same run (cube shape, likelihood, options)
+        it is reused: only the skins and throws are computed again; when ``output + '.partial'`` and
+        ``output + '.work'`` hold an unfinished run of it, the run resumes, skipping the finished blocks.
     options : FaultTracingOptions, optional
         Sensitivity, voting, skins and thresholds (defaults of :func:`~seismo3d.seismic.faults.trace_faults`).
     chunking : ChunkOptions, optional
@@ -236,10 +242,34 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     baseline = (resident_memory() if local else 256 << 20) + 2 * input_chunk
     plan = _plan(shape, opt, chunking, baseline)
     run = _SurfaceRun(pathlib.Path(output), pathlib.Path(likelihood), plan, opt, chunking, progress)
-    run.start({"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
-               "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve())})
+    manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
+                "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve())}
+    earlier = run.earlier_plan(manifest)
+    if earlier is not None:  # resuming: the blocks of the interrupted run
+        run.plan = plan = _Plan(**dict(earlier, shape=tuple(earlier["shape"])))
+        manifest["plan"] = earlier
     memory = int(chunking.memory_limit or default_memory_limit()) - baseline
-    with SchedulerClient(chunking.scheduler) as client:
+    attrs = run.finished(manifest)
+    if attrs is None:
+        attrs = _surfaces(run, x, manifest, memory)
+    elif attrs["n_cells"] * _CELL_BYTES > memory:
+        raise InputError(f"{attrs['n_cells']} thinned fault samples need about "
+                         f"{attrs['n_cells'] * _CELL_BYTES / 2**30:.2f} GiB to link into fault skins, more than the "
+                         "memory limit leaves: raise memory_limit")
+    lower, upper = (float(v) for v in attrs["thresholds"])
+    faults = skins_from_cells(*_stored_cells(run.out), shape=shape, lower=lower, upper=upper, options=opt.skins)
+    cache_mb = max(16.0, min(256.0, memory / 4 / 2**20))
+    throws = fault_throws(LazyWindows(x, cache_mb=cache_mb), faults, progress=progress) if faults else []
+    return ChunkedFaults(run.out, faults, list(throws), (lower, upper), int(attrs["n_seeds"]), int(attrs["n_cells"]),
+                         float(attrs["saturated_fraction"]), dict(run.computed), dict(run.resumed), dict(run.seconds))
+
+
+def _surfaces(run: _SurfaceRun, x, manifest: dict, memory: int) -> dict:
+    """The block steps of a run (skipping the finished blocks of an earlier one) up to the cells, stored with the
+    thresholds in the finished output; its attributes."""
+    opt = run.opt
+    run.start(manifest)
+    with SchedulerClient(run.scheduler) as client:
         run.client = client
         lo, hi = run.amplitude_range(x)
         fill = run.fill_values(x, lo, hi)
@@ -253,16 +283,19 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         run.votes(seeds, frames)
         del seeds, frames
         lower, upper = run.thresholds()
-        points, values, strike, dip = run.cells(lower, memory)
-    faults = skins_from_cells(points, values, strike, dip, shape=shape, lower=lower, upper=upper,
-                              options=opt.skins)
-    n_cells = int(values.size)
-    del points, values, strike, dip
-    throws = fault_throws(x, faults, progress=progress) if faults else []
-    run.finish({"thresholds": [lower, upper], "n_seeds": run.n_seeds, "n_cells": n_cells,
-                "saturated_fraction": saturated})
-    return ChunkedFaults(run.out, faults, list(throws), (float(lower), float(upper)), run.n_seeds, n_cells,
-                         saturated, dict(run.computed), dict(run.resumed), dict(run.seconds))
+        n_cells = run.cells(lower, memory)
+    attrs = {"thresholds": [lower, upper], "n_seeds": run.n_seeds, "n_cells": n_cells,
+             "saturated_fraction": saturated, "run": manifest}
+    run.finish(attrs)
+    return attrs
+
+
+def _stored_cells(path: pathlib.Path) -> tuple:
+    """(points (n, 3) int64, values, strike_deg, dip_deg (n,) float32) of the cells stored in a finished output."""
+    import zarr
+    group = zarr.open_group(str(path), mode="r")
+    return (group["cell_points"][:].astype(np.int64), group["cell_values"][:], group["cell_strike_deg"][:],
+            group["cell_dip_deg"][:])
 
 
 class _SurfaceRun(BlockRun):
@@ -276,10 +309,30 @@ class _SurfaceRun(BlockRun):
         self.partial = out.with_name(out.name + ".partial")
         self.n_seeds = 0
 
+    def finished(self, manifest: dict) -> dict | None:
+        """The attributes of the finished output of this same run (blocks aside: they do not change the result), or
+        None when there is no output yet.
+
+        Raises
+        ------
+        InputError
+            The output exists but is not the finished output of this run.
+        """
+        import zarr
+        if not self.out.exists():
+            return None
+        try:
+            attrs = dict(zarr.open_group(str(self.out), mode="r").attrs)
+        except Exception:  # noqa: BLE001 - anything that is not our Zarr group
+            attrs = {}
+        run = {k: v for k, v in dict(attrs.get("run") or {}).items() if k != "plan"}
+        if attrs.get("complete") is not True or run != {k: v for k, v in manifest.items() if k != "plan"}:
+            raise InputError(f"output {self.out} already exists and is not the finished output of this cube, "
+                             "likelihood and options; pick another output or delete it")
+        return attrs
+
     def start(self, manifest: dict) -> None:
         import zarr
-        if self.out.exists():
-            raise InputError(f"output {self.out} already exists; pick another output or delete it")
         if not self.out.parent.is_dir():
             raise InputError(f"cannot write {self.out}: folder {self.out.parent} does not exist; create it first")
         self.open(manifest, f"{self.work} and {self.partial}")
@@ -287,14 +340,13 @@ class _SurfaceRun(BlockRun):
         (self.work / "cells").mkdir(exist_ok=True)
         n0, n1, nt = self.plan.shape
         t = self.plan.tile
-        for name, dtype in (("live", "float32"), ("near", "uint8"), ("vote_raw", "float32"),
-                            ("thin_raw", "float32")):
+        for name, dtype in (("near", "uint8"), ("thin_raw", "float32")):
             if not (self.work / name).exists():
                 zarr.create_array(str(self.work / name), shape=(n0, n1, nt), chunks=(t, t, nt), dtype=dtype,
                                   fill_value=0, **({} if name == "near" else {"compressors": None}))
         if not self.partial.exists():
             group = zarr.open_group(str(self.partial), mode="w")
-            for name in ("votes", "thin", "vote_strike_deg", "vote_dip_deg"):
+            for name in ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg"):
                 group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
                                    dimension_names=("inline", "crossline", "sample"))
 
@@ -351,8 +403,8 @@ class _SurfaceRun(BlockRun):
         for b in todo:
             a0, a1, b0, b1 = _around(b, h, p.shape)
             tasks.append(dask.delayed(_ridge_block, pure=False)(
-                x[a0:a1, b0:b1], (a0, b0), b, fill, lo, hi, self.likelihood, str(self.work), p, self.opt,
-                str(self.marker("ridges", b))))
+                x[a0:a1, b0:b1], (a0, b0), b, fill, lo, hi, self.likelihood, str(self.work), str(self.partial), p,
+                self.opt, str(self.marker("ridges", b))))
         results = self.compute(tasks, "fault ridges", "ridges") + done
         high = sum(r["high"] for r in results)
         live = sum(r["live"] for r in results)
@@ -451,10 +503,14 @@ class _SurfaceRun(BlockRun):
             raise RuntimeError(f"the quantile window [{lo_edge}, {hi_edge}] missed order statistic {rank}")
         return _lerp(window[k], window[k + need - 1], gamma)
 
-    def cells(self, lower: float, memory: int):
+    def cells(self, lower: float, memory: int) -> int:
+        """Thinned votes at or above ``lower`` into the output, and its cells gathered into 1D arrays of the output
+        group (``cell_points``, ``cell_values``, ``cell_strike_deg``, ``cell_dip_deg``); their number."""
         import dask
+        import zarr
         p = self.plan
-        todo, done = self.pending("cells", _blocks(p.shape, p.thin))
+        blocks = _blocks(p.shape, p.thin)
+        todo, done = self.pending("cells", blocks)
         tasks = [dask.delayed(_cell_block, pure=False)(b, str(self.work), str(self.partial), lower,
                                                        str(self.marker("cells", b))) for b in todo]
         results = self.compute(tasks, "fault cells", "cells") + done
@@ -462,10 +518,22 @@ class _SurfaceRun(BlockRun):
         if n * _CELL_BYTES > memory:
             raise InputError(f"{n} thinned fault samples need about {n * _CELL_BYTES / 2**30:.2f} GiB to link into "
                              "fault skins, more than the memory limit leaves: raise memory_limit")
-        parts = [np.load(f) for f in sorted((self.work / "cells").glob("*.npz"))]
-        if not parts:
-            return np.zeros((0, 3), np.int64), np.zeros(0, np.float32), np.zeros(0, np.float32), np.zeros(0, np.float32)
-        return tuple(np.concatenate([q[k] for q in parts]) for k in ("points", "values", "strike", "dip"))
+        group = zarr.open_group(str(self.partial), mode="r+")
+        chunk = 1 << 20
+        arrays = {"cell_points": ((n, 3), "int32", (chunk, 3)), "cell_values": ((n,), "float32", (chunk,)),
+                  "cell_strike_deg": ((n,), "float32", (chunk,)), "cell_dip_deg": ((n,), "float32", (chunk,))}
+        out = {k: group.create_array(k, shape=shape, dtype=dtype, chunks=chunks, overwrite=True)
+               for k, (shape, dtype, chunks) in arrays.items()}
+        start = 0
+        for b in blocks:  # block by block: the cells of one block at a time in memory
+            q = np.load(self.work / "cells" / f"{b[0]}-{b[2]}.npz")
+            m = int(q["values"].size)
+            if m:
+                out["cell_points"][start:start + m] = q["points"].astype(np.int32)
+                for key, name in (("values", "cell_values"), ("strike", "cell_strike_deg"), ("dip", "cell_dip_deg")):
+                    out[name][start:start + m] = q[key]
+            start += m
+        return n
 
 
 def _virtual_index(n: int, q: float) -> tuple[int, float]:
@@ -509,7 +577,7 @@ def _fill_block(f, lo, hi, marker) -> dict:
     return result
 
 
-def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, plan: _Plan, opt: FaultTracingOptions,
+def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan: _Plan, opt: FaultTracingOptions,
                  marker) -> dict:
     """Dead samples, live likelihood and ridges of one block; seed candidates of its core saved."""
     import zarr
@@ -529,7 +597,7 @@ def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, plan: _Plan, 
         fl[near] = 0.0
     core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
     live = np.ones(fl[core].shape, bool) if near is None else ~near[core]
-    zarr.open_array(f"{work}/live", mode="r+")[i0:i1, j0:j1] = fl[core]
+    zarr.open_group(partial, mode="r+")["likelihood"][i0:i1, j0:j1] = fl[core]
     if near is not None:
         zarr.open_array(f"{work}/near", mode="r+")[i0:i1, j0:j1] = near[core].view(np.uint8)
     high = int(np.count_nonzero((fl[core] > 0.9) & live))
@@ -550,14 +618,13 @@ def _vote_block(block, seeds, ids, frames, work, partial, plan: _Plan, opt: Faul
     import zarr
     i0, i1, j0, j1 = block
     a0, a1, b0, b1 = _around(block, 2 * plan.reach, plan.shape)
-    att = zarr.open_array(f"{work}/live", mode="r")[a0:a1, b0:b1]
+    att = zarr.open_group(partial, mode="r")["likelihood"][a0:a1, b0:b1]
     votes = surface_votes(att, seeds, ids, frames, image_shape=plan.shape, options=opt.voting, origin=(a0, b0),
                           core=(i0, j0, i1 - i0, j1 - j0))
     del att
     near = zarr.open_array(f"{work}/near", mode="r")[i0:i1, j0:j1].view(bool)
     votes.votes[near] = 0.0  # surfaces bridge gaps, but a fault is not drawn across dead traces
     del near
-    zarr.open_array(f"{work}/vote_raw", mode="r+")[i0:i1, j0:j1] = votes.votes
     group = zarr.open_group(partial, mode="r+")
     group["votes"][i0:i1, j0:j1] = votes.votes
     group["vote_strike_deg"][i0:i1, j0:j1] = votes.strike_deg
@@ -572,7 +639,7 @@ def _thin_block(block, work, partial, plan: _Plan, marker) -> dict:
     i0, i1, j0, j1 = block
     a0, a1, b0, b1 = _around(block, _THIN_HALO, plan.shape)
     group = zarr.open_group(partial, mode="r")
-    votes = zarr.open_array(f"{work}/vote_raw", mode="r")[a0:a1, b0:b1]
+    votes = group["votes"][a0:a1, b0:b1]
     thin = thin_faults(votes, group["vote_strike_deg"][a0:a1, b0:b1], group["vote_dip_deg"][a0:a1, b0:b1],
                        threshold=0.0, sigma=0.0, dip_smoothing=0)[i0 - a0:i1 - a0, j0 - b0:j1 - b0]
     del votes

@@ -295,6 +295,9 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     plan = _plan(x.shape, opt, chunking, _baseline(chunking, input_chunk))
     out = pathlib.Path(output)
     run = _Run(out, plan, opt, chunking, progress)
+    earlier = run.earlier_plan(_manifest(x.shape, opt, plan))
+    if earlier is not None:  # resuming: the blocks of the interrupted run
+        run.plan = plan = _Plan(**dict(earlier, shape=tuple(earlier["shape"])))
     run.start(_manifest(x.shape, opt, plan))
     with SchedulerClient(chunking.scheduler) as client:
         run.client = client

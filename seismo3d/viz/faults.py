@@ -61,6 +61,21 @@ def _at(axis: np.ndarray, index) -> np.ndarray:
     return np.interp(np.asarray(index, dtype=np.float64), np.arange(axis.size), axis)
 
 
+def _is_lazy_cube(a) -> bool:
+    """A 3D array read slice by slice (dask, Zarr) rather than whole."""
+    return not isinstance(a, np.ndarray) and hasattr(a, "shape") and hasattr(a, "__getitem__") and len(a.shape) == 3
+
+
+def _read(a) -> np.ndarray:
+    return np.asarray(a, dtype=np.float32)
+
+
+def _symmetric_limits(data: np.ndarray, percentile: float) -> dict:
+    """vmin / vmax at the ``percentile`` of the absolute amplitude of (at most a million of) the finite samples."""
+    clip = _clip(data[np.isfinite(data)][:: max(1, data.size // 1_000_000)], percentile)
+    return {"vmin": -clip, "vmax": clip}
+
+
 def _clip(values: np.ndarray, percentile: float) -> float:
     c = float(np.percentile(np.abs(values), percentile)) if values.size else 1.0
     return c if c > 0 else 1.0
@@ -167,14 +182,15 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
     Parameters
     ----------
     cube : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Seismic amplitudes.
+        Seismic amplitudes; a 3D dask or Zarr array is read only on the three slices drawn (their amplitudes set the
+        colour limits), for cubes larger than memory.
     faults : list of Fault or array_like of the cube's shape
         Linked faults (:func:`~seismo3d.seismic.link_faults`) or thinned faults (> 0 on faults, drawn as one
         colour).
     path : str or os.PathLike
         PNG file to write (atomically); its folder must exist.
     likelihood : array_like of the cube's shape, optional
-        Fault likelihood in [0, 1], drawn in a second row.
+        Fault likelihood in [0, 1], drawn in a second row (a dask or Zarr array is read on the slices only).
     axes : sequence of 1D array_like, optional
         Annotation of each axis, e.g. (inline numbers, crossline numbers, times in ms); default: indices.
     slices : (int, int, int), optional
@@ -199,12 +215,13 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
     """
     from matplotlib.figure import Figure
 
-    data = np.asarray(cube, dtype=np.float32)
+    lazy = _is_lazy_cube(cube)
+    data = cube if lazy else np.asarray(cube, dtype=np.float32)
     if data.ndim not in (2, 3):
         raise InputError(f"cube must be a 2D section or a 3D cube; got shape {data.shape}")
     if not 0 < clip_percentile <= 100:
         raise InputError(f"clip_percentile must be in (0, 100]; got {clip_percentile!r}")
-    shape = data.shape
+    shape = tuple(int(n) for n in data.shape)
     pts, ids = _fault_points(faults, shape)
     ax_vals = _check_axes(axes, shape)
     if axis_labels is None:
@@ -214,14 +231,14 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
     sample_label = str(axis_labels[-1])
     fl = None
     if likelihood is not None:
-        fl = np.asarray(likelihood, dtype=np.float32)
-        if fl.shape != shape:
-            raise InputError(f"likelihood has shape {fl.shape} but the cube {shape}")
-    clip = _clip(data[np.isfinite(data)][:: max(1, data.size // 1_000_000)], clip_percentile)
-    seis = dict(cmap="gray", vmin=-clip, vmax=clip, aspect="auto", interpolation="bilinear")
+        fl = likelihood if _is_lazy_cube(likelihood) else np.asarray(likelihood, dtype=np.float32)
+        if tuple(fl.shape) != shape:
+            raise InputError(f"likelihood has shape {tuple(fl.shape)} but the cube {shape}")
+    seis = dict(cmap="gray", aspect="auto", interpolation="bilinear")
     like = dict(cmap="magma", vmin=0.0, vmax=1.0, aspect="auto", interpolation="nearest")
 
     if data.ndim == 2:
+        seis.update(_symmetric_limits(data, clip_percentile))
         fig = _section_figure(data, fl, pts, ids, ax_vals, axis_labels, seis, like, dpi)
     else:
         if slices is None:
@@ -237,17 +254,19 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
         fig = Figure(figsize=(15, 1.0 + 4.2 * n_rows), dpi=dpi, layout="constrained")
         axs = fig.subplots(n_rows, 3, squeeze=False)
         panels = [  # (slice of the array, horizontal axis values, vertical values, mask of points, h, v columns)
-            (lambda a: a[i].T, xl, tz, pts[:, 0] == i if pts.size else None, 1, 2,
+            (lambda a: _read(a[i]).T, xl, tz, pts[:, 0] == i if pts.size else None, 1, 2,
              f"{il_name} {il[i]:g}", xl_name, sample_label),
-            (lambda a: a[:, j].T, il, tz, pts[:, 1] == j if pts.size else None, 0, 2,
+            (lambda a: _read(a[:, j]).T, il, tz, pts[:, 1] == j if pts.size else None, 0, 2,
              f"{xl_name} {xl[j]:g}", il_name, sample_label),
-            (lambda a: a[:, :, k], xl, il, pts[:, 2] == k if pts.size else None, 1, 0,
+            (lambda a: _read(a[:, :, k]), xl, il, pts[:, 2] == k if pts.size else None, 1, 0,
              f"{sample_label.split(' ')[0]} slice {tz[k]:g}", xl_name, il_name),
         ]
+        cuts = [p[0](data) for p in panels]  # a lazy cube is read only here: three slices
+        seis.update(_symmetric_limits(np.concatenate([c.ravel() for c in cuts]) if lazy else data, clip_percentile))
         for c, (cut, h, v, sel, hc, vc, name, hl, vl) in enumerate(panels):
             ext = _extent(h, v)
             a = axs[0, c]
-            a.imshow(cut(data), extent=ext, **seis)
+            a.imshow(cuts[c], extent=ext, **seis)
             if sel is not None and sel.any():
                 a.scatter(_at(ax_vals[hc], pts[sel, hc]), _at(ax_vals[vc], pts[sel, vc]), c=_colors(ids[sel]),
                           **_dot(h.size, 4.5))

@@ -74,8 +74,13 @@ def test_blocks_give_the_in_memory_faults(cube, likelihood, reference, tmp_path)
     _assert_same_faults(result, reference)
     assert not (tmp_path / "surfaces.zarr.work").exists() and not (tmp_path / "surfaces.zarr.partial").exists()
     assert zarr.open_group(str(result.path), mode="r").attrs["complete"] is True
-    # the dead traces and the mute hold no votes
-    assert not np.any(zarr.open_group(str(result.path), mode="r")["votes"][71:73, 41:43])
+    group = zarr.open_group(str(result.path), mode="r")
+    assert not np.any(group["votes"][71:73, 41:43])  # the dead traces and the mute hold no votes
+    assert np.array_equal(group["likelihood"][:], reference.likelihood)  # zeroed near dead samples, as in memory
+    # the finished output of the same run is reused: no block computed again, the same faults
+    again = chunked_fault_surfaces(cube, likelihood, tmp_path / "surfaces.zarr", chunking=BLOCKS)
+    assert sum(again.blocks_computed.values()) == 0
+    _assert_same_faults(again, reference)
 
 
 def test_dense_faults_take_the_exact_quantile(cube, likelihood, reference, tmp_path):

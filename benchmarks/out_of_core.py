@@ -1,12 +1,12 @@
 """Cubes larger than memory: the chunked fault likelihood against the in-memory one (issue 19).
 
-Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000] [--only equal,threads,distributed,memory]
-[--keep DIR]``
+Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000]
+[--only equal,threads,surfaces,distributed,memory,memory_surfaces] [--keep DIR]``
 
-1. equal: a 256^3 generated faulted cube, in memory (:func:`seismo3d.seismic.fault_likelihood` then
-   :func:`~seismo3d.seismic.trace_faults`) and chunked (:func:`~seismo3d.seismic.chunked_likelihood.
-   chunked_fault_likelihood` with 64-trace blocks and strips, then ``trace_faults(..., likelihood=...)``): the largest
-   likelihood difference, strike / dip differences, and the faults (count, sizes, the same samples).
+1. equal: a 256^3 generated faulted cube, in memory (:func:`~seismo3d.seismic.trace_faults`) and chunked
+   (:func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood` then
+   :func:`~seismo3d.seismic.chunked_faults.chunked_fault_surfaces`, 64-trace blocks): the largest likelihood
+   difference, strike / dip differences, votes difference, and the faults (count, sizes, the same samples, throws).
 2. threads / distributed: a generated cube of ``--shape`` (default 1448 x 1448 x 512 float32 = 4.29 GB) written as
    SEG-Y (a 256-trace faulted tile mirrored into a mosaic, so reflectors and faults continue across the seams),
    read lazily (:func:`seismo3d.seismic.lazy_cube.open_lazy`, tiles of 32 traces) and its fault likelihood, strike
@@ -15,11 +15,15 @@ Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000] [--only equal,t
    half the limit each, tiles of 16 traces). Each run is a
    child process; its peak resident memory is sampled every 0.2 s over the process and all its children (the
    cluster's scheduler and workers included). Seconds per GB of input samples (1e9 bytes).
+   surfaces: then the fault surfaces of that cube (:func:`~seismo3d.seismic.chunked_faults.chunked_fault_surfaces`
+   on the threaded run's likelihood, same memory limit), same sampling.
 3. memory: the in-memory path (:func:`~seismo3d.seismic.fault_likelihood`) on the largest cube it holds in this
-   machine's 24 GB (768 x 768 x 512 = 1.21 GB; about 14 copies of the cube at its peak), same sampling.
+   machine's 24 GB (768 x 768 x 512 = 1.21 GB; about 14 copies of the cube at its peak), same sampling;
+   memory_surfaces: the whole in-memory :func:`~seismo3d.seismic.trace_faults` on the largest cube it holds
+   (``--surfaces-memory-shape``, 512 x 512 x 512 = 0.54 GB).
 
-The targets of issue 19: chunked peak <= 1.5 GB, <= 250 s/GB; equal: likelihood difference <= 1e-5 and the same
-faults.
+The targets of issue 19: chunked peak <= 1.5 GB, <= 250 s/GB (the fault likelihood); equal: likelihood difference
+<= 1e-5 and the same faults.
 """
 
 from __future__ import annotations
@@ -146,14 +150,31 @@ def case_chunked(sgy: str, out: str, limit: int, scheduler: str) -> dict:
             "blocks": r.blocks_computed, "steps": r.seconds, "max_likelihood": float(np.max(fl[::64, ::64, :]))}
 
 
-def case_memory(shape: str) -> dict:
-    from seismo3d.seismic import fault_likelihood
+def case_surfaces(sgy: str, likelihood: str, out: str, limit: int) -> dict:
+    from seismo3d.seismic.chunked_faults import chunked_fault_surfaces
+    from seismo3d.seismic.chunked_likelihood import ChunkOptions
+    from seismo3d.seismic.lazy_cube import open_lazy
 
+    cube = open_lazy(sgy, tile=32)
+    t0 = time.perf_counter()
+    r = chunked_fault_surfaces(cube.data, likelihood, out, chunking=ChunkOptions(memory_limit=limit), progress=True)
+    sec = time.perf_counter() - t0
+    return {"seconds": sec, "gb": float(np.prod(cube.shape)) * 4 / 1e9, "shape": list(cube.shape),
+            "blocks": r.blocks_computed, "steps": r.seconds, "faults": len(r.faults), "cells": r.n_cells,
+            "seeds": r.n_seeds}
+
+
+def _mosaic(shape: str) -> np.ndarray:
     n_il, n_xl, ns = (int(v) for v in shape.split(","))
     tile = _tile(ns)
     reps = (-(-n_il // _TILE), -(-n_xl // _TILE), 1)
-    cube = np.tile(tile, reps)[:n_il, :n_xl]
-    del tile
+    return np.tile(tile, reps)[:n_il, :n_xl]
+
+
+def case_memory(shape: str) -> dict:
+    from seismo3d.seismic import fault_likelihood
+
+    cube = _mosaic(shape)
     t0 = time.perf_counter()
     fl = fault_likelihood(cube)
     sec = time.perf_counter() - t0
@@ -161,9 +182,22 @@ def case_memory(shape: str) -> dict:
             "max_likelihood": float(fl.likelihood.max())}
 
 
+def case_memory_surfaces(shape: str) -> dict:
+    from seismo3d.seismic import trace_faults
+
+    cube = _mosaic(shape)
+    t0 = time.perf_counter()
+    result = trace_faults(cube, progress=False)
+    sec = time.perf_counter() - t0
+    return {"seconds": sec, "gb": cube.nbytes / 1e9, "shape": list(cube.shape), "faults": len(result.faults)}
+
+
 def equal(work: Path) -> None:
     from seismo3d.data.synthetic import synthetic_cube
     from seismo3d.seismic import fault_likelihood, trace_faults
+    import zarr
+
+    from seismo3d.seismic.chunked_faults import chunked_fault_surfaces
     from seismo3d.seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood
     from seismo3d.seismic.fault_likelihood import FaultLikelihood
 
@@ -180,24 +214,33 @@ def equal(work: Path) -> None:
     strike = float(np.mean(fl.strike_deg != ref.strike_deg))
     dip = float(np.mean(fl.dip_deg != ref.dip_deg))
     mem = trace_faults(cube, progress=False)
-    chk = trace_faults(cube, likelihood=fl, progress=False)
+    t0 = time.perf_counter()
+    chk = chunked_fault_surfaces(cube, work / "equal.zarr", work / "equal_surfaces.zarr",
+                                 chunking=ChunkOptions(block=64))
+    t_surf = time.perf_counter() - t0
+    votes = float(np.abs(zarr.open_group(str(chk.path), mode="r")["votes"][:] - mem.votes).max())
     same = (len(mem.faults) == len(chk.faults)
             and all(np.array_equal(f.points, g.points) for f, g in zip(mem.faults, chk.faults)))
+    throw = max((float(np.nanmax(np.abs(f.throw - g.throw), initial=0.0)) for f, g in zip(mem.throws, chk.throws)),
+                default=0.0)
     print("\n### equal: 256^3 generated cube, in memory vs chunked (64-trace blocks and strips)\n")
-    print("| in memory s | chunked s | blocks | max abs likelihood diff | strike differs | dip differs | "
-          "faults in memory | faults chunked | same fault samples |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| likelihood in memory s | chunked s | blocks | max abs likelihood diff | strike differs | dip differs | "
+          "surfaces chunked s | max abs votes diff | faults in memory | faults chunked | same fault samples | "
+          "max abs throw diff |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     print(f"| {t_mem:.1f} | {t_chunk:.1f} | {sum(r.blocks_computed.values())} | {diff:.2e} | {strike:.2%} | "
-          f"{dip:.2%} | {len(mem.faults)} ({sum(f.size for f in mem.faults)} samples) | {len(chk.faults)} "
-          f"({sum(f.size for f in chk.faults)} samples) | {'yes' if same else 'no'} |", flush=True)
+          f"{dip:.2%} | {t_surf:.1f} | {votes:.2e} | {len(mem.faults)} ({sum(f.size for f in mem.faults)} samples) | "
+          f"{len(chk.faults)} ({sum(f.size for f in chk.faults)} samples) | {'yes' if same else 'no'} | "
+          f"{throw:.2e} |", flush=True)
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--shape", default="1448,1448,512")
     ap.add_argument("--memory-shape", default="768,768,512")
+    ap.add_argument("--surfaces-memory-shape", default="512,512,512")
     ap.add_argument("--memory-limit", default="1.4e9")
-    ap.add_argument("--only", default="equal,threads,distributed,memory")
+    ap.add_argument("--only", default="equal,threads,surfaces,distributed,memory,memory_surfaces")
     ap.add_argument("--keep", default=None, help="folder for the SEG-Y cube (kept between runs) and the outputs")
     ap.add_argument("--case", default=None, help=argparse.SUPPRESS)
     ap.add_argument("case_args", nargs="*", help=argparse.SUPPRESS)
@@ -206,8 +249,15 @@ def main() -> None:
         print(json.dumps(case_chunked(args.case_args[0], args.case_args[1], int(float(args.case_args[2])),
                                       args.case_args[3])))
         return
+    if args.case == "surfaces":
+        print(json.dumps(case_surfaces(args.case_args[0], args.case_args[1], args.case_args[2],
+                                       int(float(args.case_args[3])))))
+        return
     if args.case == "memory":
         print(json.dumps(case_memory(args.case_args[0])))
+        return
+    if args.case == "memory_surfaces":
+        print(json.dumps(case_memory_surfaces(args.case_args[0])))
         return
     only = set(args.only.split(","))
     work = Path(args.keep) if args.keep else Path(tempfile.mkdtemp(prefix="seismo3d_ooc_"))
@@ -217,7 +267,8 @@ def main() -> None:
             equal(work)
         rows = []
         shape = tuple(int(v) for v in args.shape.split(","))
-        if only & {"threads", "distributed"}:
+        surface_rows = []
+        if only & {"threads", "distributed", "surfaces"}:
             sgy = work / f"cube_{'x'.join(map(str, shape))}.sgy"
             if not sgy.exists():
                 t0 = time.perf_counter()
@@ -234,9 +285,20 @@ def main() -> None:
                 r = _child("chunked", [str(sgy), str(out), args.memory_limit, scheduler])
                 label = "threaded scheduler" if scheduler == "threads" else "dask.distributed, 2 workers"
                 rows.append((f"chunked, {label}", r))
+                if scheduler == "threads" and "surfaces" in only:
+                    traced = work / "surfaces.zarr"
+                    for p in (traced, traced.with_name(traced.name + ".partial"),
+                              traced.with_name(traced.name + ".work")):
+                        shutil.rmtree(p, ignore_errors=True)
+                    surface_rows.append(("chunked fault surfaces, threaded scheduler",
+                                         _child("surfaces", [str(sgy), str(out), str(traced), args.memory_limit])))
+                    shutil.rmtree(traced, ignore_errors=True)
                 shutil.rmtree(out, ignore_errors=True)
         if "memory" in only:
             rows.append(("in memory (fault_likelihood)", _child("memory", [args.memory_shape])))
+        if "memory_surfaces" in only:
+            surface_rows.append(("in memory (trace_faults, likelihood included)",
+                                 _child("memory_surfaces", [args.surfaces_memory_shape])))
         if rows:
             limit_gb = float(args.memory_limit) / 1e9
             print(f"\n### fault likelihood of large cubes (memory limit of the chunked runs {limit_gb:.2f} GB)\n")
@@ -246,6 +308,15 @@ def main() -> None:
                 steps = ", ".join(f"{k} {v:.0f}" for k, v in r.get("steps", {}).items())
                 print(f"| {label} | {' x '.join(map(str, r['shape']))} | {r['gb']:.2f} | {r['seconds']:.0f} | "
                       f"{r['seconds'] / r['gb']:.0f} | {r['peak_gb']:.2f} | {steps} |", flush=True)
+        if surface_rows:
+            limit_gb = float(args.memory_limit) / 1e9
+            print(f"\n### fault surfaces of large cubes (voting, skins, throw; memory limit {limit_gb:.2f} GB)\n")
+            print("| path | cube | GB | s | s/GB | peak resident GB | faults | seconds per step |")
+            print("|---|---|---|---|---|---|---|---|")
+            for label, r in surface_rows:
+                steps = ", ".join(f"{k} {v:.0f}" for k, v in r.get("steps", {}).items())
+                print(f"| {label} | {' x '.join(map(str, r['shape']))} | {r['gb']:.2f} | {r['seconds']:.0f} | "
+                      f"{r['seconds'] / r['gb']:.0f} | {r['peak_gb']:.2f} | {r['faults']} | {steps} |", flush=True)
     finally:
         if not args.keep:
             shutil.rmtree(work, ignore_errors=True)

@@ -43,7 +43,8 @@ from .dead_samples import DEAD_REACH, dead_samples, fill_values, near_dead_sampl
 from .fault_skins import skins_from_cells
 from .fault_surfaces import thin_faults
 from .fault_throw import fault_throws
-from .cube_windows import LazyWindows
+from .attributes import structure_tensor_halo, structure_tensor_orientation
+from .cube_windows import StoredWindows
 from .fault_voting import fault_frames, greedy_seeds, surface_votes
 from .faults import FaultTracingOptions
 from .seismic_zarr import consolidate
@@ -58,18 +59,20 @@ RIDGE_HALO = 12
 _THIN_HALO = 2
 # Bins of the histogram that finds the exact quantile of the thinned votes (only for densely faulted data).
 _QUANTILE_BINS = 1 << 16
-# Bytes of working memory per sample of a block (incl. halo): amplitudes and the dead-sample masks; likelihood,
-# strike, dip, the ranking image and its smoothing passes, ridges and the hysteresis labels; the voting's core
-# (votes of 2 threads, best surface, normal, strike, dip) and its input; the thinning of the votes.
+# Bytes of working memory per sample of a block (incl. halo): amplitudes, their reflector slopes and the dead-sample
+# masks; likelihood, strike, dip, the ranking image and its smoothing passes, ridges and the hysteresis labels; the
+# voting's core (votes of 2 threads, best surface, normal, strike, dip) and its input; the thinning of the votes.
+# (tracemalloc peaks on 96-trace blocks of 512 samples: ridges 44 per sample of the likelihood's halo block, amplitudes
+# included; voting 44 per core sample besides the input; thinning 41)
 _DEAD_BYTES = 12
 _RIDGE_BYTES = 48
 _VOTE_CORE_BYTES = 48
 _VOTE_HALO_BYTES = 4
-_THIN_BYTES = 36
+_THIN_BYTES = 44
 # Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
-# frames, links, labels).
+# frames, links, labels; the skins of 1.4 M cells raised the resident memory by 0.41 GB).
 _CANDIDATE_BYTES = 40
-_CELL_BYTES = 160
+_CELL_BYTES = 320
 
 
 @dataclass(frozen=True, eq=False)
@@ -125,6 +128,12 @@ class _Plan:
     reach: int    # a voting box's reach from its seed
 
 
+def _amplitude_halo() -> int:
+    """Traces of amplitudes read around a block of the ridge step: the dead samples' reach around the likelihood's
+    halo, and the structure tensor's halo for the reflector slopes."""
+    return max(RIDGE_HALO + DEAD_REACH[0], structure_tensor_halo()[0])
+
+
 def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
     n0, n1, nt = shape
     tile = int(chunking.tile)
@@ -137,7 +146,7 @@ def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int
         return b * b * nt * _DEAD_BYTES
 
     def ridge_bytes(b):
-        h = RIDGE_HALO + DEAD_REACH[0]
+        h = _amplitude_halo()
         return (b + 2 * h) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
 
     def vote_bytes(b):
@@ -248,18 +257,19 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     if earlier is not None:  # resuming: the blocks of the interrupted run
         run.plan = plan = _Plan(**dict(earlier, shape=tuple(earlier["shape"])))
         manifest["plan"] = earlier
-    memory = int(chunking.memory_limit or default_memory_limit()) - baseline
+    memory = int(chunking.memory_limit or default_memory_limit())  # the cells' and candidates' checks: less the RSS
     attrs = run.finished(manifest)
     if attrs is None:
         attrs = _surfaces(run, x, manifest, memory)
-    elif attrs["n_cells"] * _CELL_BYTES > memory:
+    elif attrs["n_cells"] * _CELL_BYTES > memory - resident_memory():
         raise InputError(f"{attrs['n_cells']} thinned fault samples need about "
                          f"{attrs['n_cells'] * _CELL_BYTES / 2**30:.2f} GiB to link into fault skins, more than the "
                          "memory limit leaves: raise memory_limit")
     lower, upper = (float(v) for v in attrs["thresholds"])
     faults = skins_from_cells(*_stored_cells(run.out), shape=shape, lower=lower, upper=upper, options=opt.skins)
-    cache_mb = max(16.0, min(256.0, memory / 4 / 2**20))
-    throws = fault_throws(LazyWindows(x, cache_mb=cache_mb), faults, progress=progress) if faults else []
+    stored = zarr.open_group(str(run.out), mode="r")
+    windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
+    throws = fault_throws(windows, faults, progress=progress) if faults else []
     return ChunkedFaults(run.out, faults, list(throws), (lower, upper), int(attrs["n_seeds"]), int(attrs["n_cells"]),
                          float(attrs["saturated_fraction"]), dict(run.computed), dict(run.resumed), dict(run.seconds))
 
@@ -346,7 +356,8 @@ class _SurfaceRun(BlockRun):
                                   fill_value=0, **({} if name == "near" else {"compressors": None}))
         if not self.partial.exists():
             group = zarr.open_group(str(self.partial), mode="w")
-            for name in ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg"):
+            for name in ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg", "slope_inline",
+                         "slope_xline"):
                 group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
                                    dimension_names=("inline", "crossline", "sample"))
 
@@ -398,7 +409,7 @@ class _SurfaceRun(BlockRun):
         import dask
         p = self.plan
         todo, done = self.pending("ridges", _blocks(p.shape, p.ridge))
-        h = RIDGE_HALO + DEAD_REACH[0]
+        h = _amplitude_halo()
         tasks = []
         for b in todo:
             a0, a1, b0, b1 = _around(b, h, p.shape)
@@ -415,7 +426,7 @@ class _SurfaceRun(BlockRun):
         if not path.exists():
             files = sorted((self.work / "candidates").glob("*.npz"))
             n = sum(int(np.load(f)["values"].size) for f in files)
-            if n * _CANDIDATE_BYTES > memory:
+            if n * _CANDIDATE_BYTES > memory - resident_memory():
                 raise InputError(f"{n} seed candidates need about {n * _CANDIDATE_BYTES / 2**30:.2f} GiB, more than "
                                  "the memory limit leaves: raise memory_limit")
             parts = [np.load(f) for f in files]
@@ -515,7 +526,7 @@ class _SurfaceRun(BlockRun):
                                                        str(self.marker("cells", b))) for b in todo]
         results = self.compute(tasks, "fault cells", "cells") + done
         n = sum(r["count"] for r in results)
-        if n * _CELL_BYTES > memory:
+        if n * _CELL_BYTES > memory - resident_memory():
             raise InputError(f"{n} thinned fault samples need about {n * _CELL_BYTES / 2**30:.2f} GiB to link into "
                              "fault skins, more than the memory limit leaves: raise memory_limit")
         group = zarr.open_group(str(self.partial), mode="r+")
@@ -583,7 +594,9 @@ def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan
     import zarr
     n0, n1, _ = plan.shape
     i0, i1, j0, j1 = block
-    dead = dead_samples(np.asarray(f, np.float32), fill, lo, hi)
+    f = np.asarray(f, np.float32)
+    _write_slopes(f, origin, block, partial)
+    dead = dead_samples(f, fill, lo, hi)
     del f
     near = near_dead_samples(dead) if dead.any() else None
     del dead
@@ -611,6 +624,18 @@ def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan
     result = {"high": high, "live": int(np.count_nonzero(live))}
     write_marker(marker, result)
     return result
+
+
+def _write_slopes(f: np.ndarray, origin, block, partial) -> None:
+    """Reflector slopes (:func:`structure_tensor_orientation`, as the throws read them in memory) of a block's core,
+    from its amplitudes read with at least :func:`structure_tensor_halo` traces of halo."""
+    import zarr
+    i0, i1, j0, j1 = block
+    core = (slice(i0 - origin[0], i1 - origin[0]), slice(j0 - origin[1], j1 - origin[1]))
+    slopes = structure_tensor_orientation(f).slopes
+    group = zarr.open_group(partial, mode="r+")
+    group["slope_inline"][i0:i1, j0:j1] = slopes[0][core]
+    group["slope_xline"][i0:i1, j0:j1] = slopes[1][core]
 
 
 def _vote_block(block, seeds, ids, frames, work, partial, plan: _Plan, opt: FaultTracingOptions, marker) -> dict:

@@ -29,7 +29,7 @@ from .._validation import as_seismic, check_int, check_positive
 from ..errors import InputError
 from .attributes import ReflectorOrientation, structure_tensor_halo, structure_tensor_orientation
 
-__all__ = ["ArrayWindows", "CubeWindow", "LazyWindows", "cube_windows", "is_dask_array"]
+__all__ = ["ArrayWindows", "CubeWindow", "LazyWindows", "StoredWindows", "cube_windows", "is_dask_array"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -263,6 +263,57 @@ class LazyWindows:
         return CubeWindow(out[0], out[1], out[2], (a0, b0), self.shape)
 
 
+class StoredWindows:
+    """Windows of a cube whose reflector slopes were computed beforehand (block by block, e.g. by
+    :func:`~seismo3d.seismic.chunked_faults.chunked_fault_surfaces`) and stored: each window reads exactly its traces
+    of the amplitudes and of the two slope arrays, and nothing is computed or cached (memory: one window).
+
+    Parameters
+    ----------
+    data : (n_inlines, n_xlines, n_samples) dask.array.Array or array-like read by slicing (Zarr)
+        Seismic amplitudes.
+    slope_inline, slope_xline : (n_inlines, n_xlines, n_samples) array-like read by slicing (Zarr)
+        Reflector slopes along inline and crossline, samples per trace, equal to those of
+        :func:`structure_tensor_orientation` on the whole cube.
+
+    Attributes
+    ----------
+    shape : (int, int, int)
+
+    Raises
+    ------
+    InputError
+        The three arrays differ in shape or are not 3D; a window holding NaN or inf when it is read.
+    """
+
+    def __init__(self, data, slope_inline, slope_xline):
+        shapes = {tuple(int(n) for n in a.shape) for a in (data, slope_inline, slope_xline)}
+        if len(shapes) != 1 or len(next(iter(shapes))) != 3:
+            raise InputError(f"amplitudes and slopes must be 3D arrays of one shape; got {sorted(shapes)}")
+        self.shape = shapes.pop()
+        self._arrays = (data, slope_inline, slope_xline)
+
+    def window(self, i0: int, i1: int, j0: int, j1: int) -> CubeWindow:
+        """Traces ``[i0, i1) x [j0, j1)`` (clipped to the cube), every sample, with their slopes.
+
+        Returns
+        -------
+        CubeWindow
+        """
+        n0, n1, _ = self.shape
+        a0, a1, b0, b1 = max(int(i0), 0), min(int(i1), n0), max(int(j0), 0), min(int(j1), n1)
+        a1, b1 = max(a1, a0 + 1), max(b1, b0 + 1)
+        fields = []
+        for arr in self._arrays:
+            block = arr[a0:a1, b0:b1, :]
+            block = block.compute() if hasattr(block, "compute") else block
+            fields.append(np.ascontiguousarray(block, dtype=np.float32))
+        if not np.all(np.isfinite(fields[0])):
+            raise InputError(f"the cube holds NaN or inf in inlines {a0}-{a1 - 1}, crosslines {b0}-{b1 - 1} "
+                             "(indices); replace them (e.g. by 0)")
+        return CubeWindow(fields[0], fields[1], fields[2], (a0, b0), self.shape)
+
+
 def cube_windows(data, orientation: ReflectorOrientation | None = None) -> ArrayWindows | LazyWindows:
     """The window source of ``data``: :class:`LazyWindows` for a 3D dask array, else :class:`ArrayWindows`.
 
@@ -270,7 +321,7 @@ def cube_windows(data, orientation: ReflectorOrientation | None = None) -> Array
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, 3D dask.array.Array, or a source
         Seismic amplitudes (a 2D dask array is read whole: a section fits in memory), or an :class:`ArrayWindows` /
-        :class:`LazyWindows` already made (returned as it is: e.g. a ``LazyWindows`` with another ``tile`` or
+        :class:`LazyWindows` / :class:`StoredWindows` already made (returned as it is: e.g. a ``LazyWindows`` with another ``tile`` or
         ``cache_mb``).
     orientation : ReflectorOrientation, optional
         Of ``data``; computed by the source when not given (once for an in-memory array, per tile for a lazy one).
@@ -285,7 +336,7 @@ def cube_windows(data, orientation: ReflectorOrientation | None = None) -> Array
     InputError
         As :class:`ArrayWindows` / :class:`LazyWindows`; ``orientation`` given with a source.
     """
-    if isinstance(data, (ArrayWindows, LazyWindows)):
+    if isinstance(data, (ArrayWindows, LazyWindows, StoredWindows)):
         if orientation is not None:
             raise InputError("orientation was given with a window source; pass it to the source instead "
                              "(LazyWindows(data, orientation))")

@@ -234,6 +234,20 @@ def equal(work: Path) -> None:
           f"{throw:.2e} |", flush=True)
 
 
+def _table(title: str, rows: list, faults: bool = False) -> None:
+    """One markdown table of (label, result) rows: cube, GB, seconds, s/GB, peak, (faults,) seconds per step."""
+    if not rows:
+        return
+    print(f"\n### {title}\n")
+    print(f"| path | cube | GB | s | s/GB | peak resident GB |{' faults |' if faults else ''} seconds per step |")
+    print("|---" * (8 if faults else 7) + "|")
+    for label, r in rows:
+        steps = ", ".join(f"{k} {v:.0f}" for k, v in r.get("steps", {}).items())
+        extra = f" {r['faults']} |" if faults else ""
+        print(f"| {label} | {' x '.join(map(str, r['shape']))} | {r['gb']:.2f} | {r['seconds']:.0f} | "
+              f"{r['seconds'] / r['gb']:.0f} | {r['peak_gb']:.2f} |{extra} {steps} |", flush=True)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--shape", default="1448,1448,512")
@@ -299,24 +313,10 @@ def main() -> None:
         if "memory_surfaces" in only:
             surface_rows.append(("in memory (trace_faults, likelihood included)",
                                  _child("memory_surfaces", [args.surfaces_memory_shape])))
-        if rows:
-            limit_gb = float(args.memory_limit) / 1e9
-            print(f"\n### fault likelihood of large cubes (memory limit of the chunked runs {limit_gb:.2f} GB)\n")
-            print("| path | cube | GB | s | s/GB | peak resident GB | seconds per step |")
-            print("|---|---|---|---|---|---|---|")
-            for label, r in rows:
-                steps = ", ".join(f"{k} {v:.0f}" for k, v in r.get("steps", {}).items())
-                print(f"| {label} | {' x '.join(map(str, r['shape']))} | {r['gb']:.2f} | {r['seconds']:.0f} | "
-                      f"{r['seconds'] / r['gb']:.0f} | {r['peak_gb']:.2f} | {steps} |", flush=True)
-        if surface_rows:
-            limit_gb = float(args.memory_limit) / 1e9
-            print(f"\n### fault surfaces of large cubes (voting, skins, throw; memory limit {limit_gb:.2f} GB)\n")
-            print("| path | cube | GB | s | s/GB | peak resident GB | faults | seconds per step |")
-            print("|---|---|---|---|---|---|---|---|")
-            for label, r in surface_rows:
-                steps = ", ".join(f"{k} {v:.0f}" for k, v in r.get("steps", {}).items())
-                print(f"| {label} | {' x '.join(map(str, r['shape']))} | {r['gb']:.2f} | {r['seconds']:.0f} | "
-                      f"{r['seconds'] / r['gb']:.0f} | {r['peak_gb']:.2f} | {r['faults']} | {steps} |", flush=True)
+        limit_gb = float(args.memory_limit) / 1e9
+        _table(f"fault likelihood of large cubes (memory limit of the chunked runs {limit_gb:.2f} GB)", rows)
+        _table(f"fault surfaces of large cubes (voting, skins, throw; memory limit {limit_gb:.2f} GB)", surface_rows,
+               faults=True)
     finally:
         if not args.keep:
             shutil.rmtree(work, ignore_errors=True)

@@ -379,6 +379,13 @@ class _SurfaceRun(BlockRun):
         write_marker(path, value)
         return value
 
+    def _each_block(self, step: str, label: str, task, blocks, *args) -> list:
+        """``task(block, *args, marker)`` on every block of ``step`` not finished yet; the results of all blocks."""
+        import dask
+        todo, done = self.pending(step, blocks)
+        tasks = [dask.delayed(task, pure=False)(b, *args, str(self.marker(step, b))) for b in todo]
+        return self.compute(tasks, label, step) + done
+
     # -- steps ----------------------------------------------------------------------------------------------------
     def amplitude_range(self, x) -> tuple[float, float]:
         import dask
@@ -462,13 +469,9 @@ class _SurfaceRun(BlockRun):
         self.compute(tasks, "fault voting", "votes")
 
     def thresholds(self) -> tuple[float, float]:
-        import dask
         p = self.plan
         blocks = _blocks(p.shape, p.thin)
-        todo, done = self.pending("thin", blocks)
-        tasks = [dask.delayed(_thin_block, pure=False)(b, str(self.work), str(self.partial), p,
-                                                       str(self.marker("thin", b))) for b in todo]
-        stats = self.compute(tasks, "thinning", "thin") + done
+        stats = self._each_block("thin", "thinning", _thin_block, blocks, str(self.work), str(self.partial), p)
         n_values = sum(r["count"] for r in stats)
         if n_values == 0:
             return self.opt.thresholds_from(1.0, 0, int(np.prod(p.shape)), None)
@@ -480,11 +483,8 @@ class _SurfaceRun(BlockRun):
                                         lambda q: self._quantile(blocks, q, n_values, vmin, vmax))
 
     def _histogram(self, blocks, vmin, vmax, bins, step):
-        import dask
-        todo, done = self.pending(step, blocks)
-        tasks = [dask.delayed(_histogram_block, pure=False)(b, str(self.work), vmin, vmax, bins,
-                                                            str(self.marker(step, b))) for b in todo]
-        results = self.compute(tasks, "histogram of the thinned votes", step) + done
+        results = self._each_block(step, "histogram of the thinned votes", _histogram_block, blocks, str(self.work),
+                                   vmin, vmax, bins)
         counts = np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)
         edges = np.histogram_bin_edges(np.array([vmin, vmax], np.float32), bins=bins,
                                        range=_float32_range(vmin, vmax))
@@ -493,7 +493,6 @@ class _SurfaceRun(BlockRun):
     def _quantile(self, blocks, q: float, n: int, vmin: float, vmax: float) -> float:
         """numpy.quantile(values, q) of the positive thinned votes, exactly: the two order statistics it
         interpolates, found by a fine histogram and a pass that gathers the values of their bins."""
-        import dask
         rank, gamma = _virtual_index(n, q)
         need = 2 if rank + 1 < n else 1
         counts, _ = self._histogram(blocks, vmin, vmax, _QUANTILE_BINS, "quantile_histogram")
@@ -504,10 +503,8 @@ class _SurfaceRun(BlockRun):
         last = int(np.searchsorted(cum, rank + need))
         # one bin more on each side: the values np.histogram puts in a bin may sit on its edges
         lo_edge, hi_edge = float(edges[max(first - 1, 0)]), float(edges[min(last + 2, _QUANTILE_BINS)])
-        todo, done = self.pending("quantile", blocks)
-        tasks = [dask.delayed(_gather_block, pure=False)(b, str(self.work), lo_edge, hi_edge,
-                                                         str(self.marker("quantile", b))) for b in todo]
-        results = self.compute(tasks, "quantile of the thinned votes", "quantile") + done
+        results = self._each_block("quantile", "quantile of the thinned votes", _gather_block, blocks, str(self.work),
+                                   lo_edge, hi_edge)
         k = rank - sum(r["below"] for r in results)
         window = np.sort(np.concatenate([np.asarray(r["values"], np.float32) for r in results]))
         if k < 0 or k + need > window.size:  # pragma: no cover - the window is one bin wider than needed
@@ -517,14 +514,11 @@ class _SurfaceRun(BlockRun):
     def cells(self, lower: float, memory: int) -> int:
         """Thinned votes at or above ``lower`` into the output, and its cells gathered into 1D arrays of the output
         group (``cell_points``, ``cell_values``, ``cell_strike_deg``, ``cell_dip_deg``); their number."""
-        import dask
         import zarr
         p = self.plan
         blocks = _blocks(p.shape, p.thin)
-        todo, done = self.pending("cells", blocks)
-        tasks = [dask.delayed(_cell_block, pure=False)(b, str(self.work), str(self.partial), lower,
-                                                       str(self.marker("cells", b))) for b in todo]
-        results = self.compute(tasks, "fault cells", "cells") + done
+        results = self._each_block("cells", "fault cells", _cell_block, blocks, str(self.work), str(self.partial),
+                                   lower)
         n = sum(r["count"] for r in results)
         if n * _CELL_BYTES > memory - resident_memory():
             raise InputError(f"{n} thinned fault samples need about {n * _CELL_BYTES / 2**30:.2f} GiB to link into "

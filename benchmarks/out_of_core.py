@@ -1,7 +1,7 @@
 """Cubes larger than memory: the chunked fault likelihood against the in-memory one (issue 19).
 
 Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000]
-[--only equal,threads,surfaces,distributed,memory,memory_surfaces] [--keep DIR]``
+[--only equal,threads,surfaces,distributed,distributed-inprocess,memory,memory_surfaces] [--keep DIR]``
 
 1. equal: a 256^3 generated faulted cube, in memory (:func:`~seismo3d.seismic.trace_faults`) and chunked
    (:func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood` then
@@ -11,10 +11,13 @@ Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000]
    SEG-Y (a 256-trace faulted tile mirrored into a mosaic, so reflectors and faults continue across the seams),
    read lazily (:func:`seismo3d.seismic.lazy_cube.open_lazy`, tiles of 32 traces) and its fault likelihood, strike
    and dip computed chunk by chunk into Zarr with ``--memory-limit`` (default 1.4 GB): on dask's threaded
-   scheduler, and on a local ``dask.distributed`` cluster of 2 worker processes (1 thread each, blocks planned for
-   half the limit each, tiles of 16 traces). Each run is a
-   child process; its peak resident memory is sampled every 0.2 s over the process and all its children (the
-   cluster's scheduler and workers included). Seconds per GB of input samples (1e9 bytes).
+   scheduler, and on a local ``dask.distributed`` cluster of 2 workers (1 thread each, blocks planned for half the
+   limit each, tiles of 16 traces): as 2 worker processes with their nannies (``distributed``) and as 2 workers in
+   the client's process (``distributed-inprocess``, off by default). Each run is a child process; its peak memory
+   is sampled over the process and all its children (the cluster's scheduler, nannies and workers included): the
+   summed resident memory (RSS, every 0.2 s; it counts the libraries every process maps once per process) and the
+   summed proportional set size (PSS, every 1 s; shared pages split between the processes that share them: the
+   memory the machine gives the run). Seconds per GB of input samples (1e9 bytes).
    surfaces: then the fault surfaces of that cube (:func:`~seismo3d.seismic.chunked_faults.chunked_fault_surfaces`
    on the threaded run's likelihood, same memory limit), same sampling.
 3. memory: the in-memory path (:func:`~seismo3d.seismic.fault_likelihood`) on the largest cube it holds in this
@@ -78,30 +81,37 @@ def write_mosaic_segy(path: Path, shape) -> None:
 
 
 class _PeakRSS:
-    """Peak of the summed resident memory of a process and its children, sampled every 0.2 s."""
+    """Peak of the summed resident memory of a process and its children, sampled every 0.2 s; and of their summed
+    proportional set size (PSS: shared pages, such as the libraries every worker process maps, counted once over the
+    processes that share them), every 1 s (Linux)."""
 
     def __init__(self, pid: int):
         import psutil
 
-        self.proc, self.peak, self._stop = psutil.Process(pid), 0, threading.Event()
+        self.proc, self.peak, self.peak_pss, self._stop = psutil.Process(pid), 0, 0, threading.Event()
         self._thread = threading.Thread(target=self._run, daemon=True)
         self._thread.start()
 
     def _run(self):
         import psutil
 
+        tick = 0
         while not self._stop.is_set():
             try:
                 procs = [self.proc] + self.proc.children(recursive=True)
-                total = 0
+                total = pss = 0
                 for p in procs:
                     try:
                         total += p.memory_info().rss
+                        if tick % 5 == 0:
+                            pss += getattr(p.memory_full_info(), "pss", 0)
                     except psutil.Error:
                         pass
                 self.peak = max(self.peak, total)
+                self.peak_pss = max(self.peak_pss, pss)
             except psutil.Error:
                 pass
+            tick += 1
             time.sleep(0.2)
 
     def stop(self) -> int:
@@ -121,6 +131,7 @@ def _child(case: str, args: list) -> dict:
         raise RuntimeError(f"case {case} failed (exit {proc.returncode})")
     result = json.loads(out.strip().splitlines()[-1])
     result["peak_gb"] = peak / 1e9
+    result["peak_pss_gb"] = sampler.peak_pss / 1e9
     return result
 
 
@@ -139,9 +150,11 @@ def case_chunked(sgy: str, out: str, limit: int, scheduler: str) -> dict:
         from distributed import LocalCluster
 
         # the cluster's own memory manager is left off (it would pause a worker whose numpy blocks it cannot
-        # spill); the run plans its blocks for half the limit per worker
-        with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                          memory_limit=0) as lc:
+        # spill); the run plans its blocks for half the limit per worker. "distributed": 2 worker processes (each
+        # with its nanny); "distributed-inprocess": 2 workers as threads of this process (numba's omp layer lets
+        # both run parallel kernels at once)
+        with LocalCluster(n_workers=2, threads_per_worker=1, processes=scheduler == "distributed",
+                          dashboard_address=None, memory_limit=0) as lc:
             r = chunked_fault_likelihood(cube.data, out, progress=True, chunking=ChunkOptions(
                 memory_limit=limit // 2, tile=tile, scheduler=lc.scheduler_address))
     sec = time.perf_counter() - t0
@@ -239,13 +252,15 @@ def _table(title: str, rows: list, faults: bool = False) -> None:
     if not rows:
         return
     print(f"\n### {title}\n")
-    print(f"| path | cube | GB | s | s/GB | peak resident GB |{' faults |' if faults else ''} seconds per step |")
-    print("|---" * (8 if faults else 7) + "|")
+    print(f"| path | cube | GB | s | s/GB | peak resident GB (RSS summed) | peak PSS GB |"
+          f"{' faults |' if faults else ''} seconds per step |")
+    print("|---" * (9 if faults else 8) + "|")
     for label, r in rows:
         steps = ", ".join(f"{k} {v:.0f}" for k, v in r.get("steps", {}).items())
         extra = f" {r['faults']} |" if faults else ""
         print(f"| {label} | {' x '.join(map(str, r['shape']))} | {r['gb']:.2f} | {r['seconds']:.0f} | "
-              f"{r['seconds'] / r['gb']:.0f} | {r['peak_gb']:.2f} |{extra} {steps} |", flush=True)
+              f"{r['seconds'] / r['gb']:.0f} | {r['peak_gb']:.2f} | {r['peak_pss_gb']:.2f} |{extra} {steps} |",
+              flush=True)
 
 
 def main() -> None:
@@ -282,7 +297,7 @@ def main() -> None:
         rows = []
         shape = tuple(int(v) for v in args.shape.split(","))
         surface_rows = []
-        if only & {"threads", "distributed", "surfaces"}:
+        if only & {"threads", "distributed", "distributed-inprocess", "surfaces"}:
             sgy = work / f"cube_{'x'.join(map(str, shape))}.sgy"
             if not sgy.exists():
                 t0 = time.perf_counter()
@@ -290,14 +305,15 @@ def main() -> None:
                 os.replace(sgy.with_suffix(".tmp"), sgy)
                 print(f"wrote {sgy} ({sgy.stat().st_size / 1e9:.2f} GB) in {time.perf_counter() - t0:.0f} s",
                       flush=True)
-            for scheduler in ("threads", "distributed"):
+            for scheduler in ("threads", "distributed", "distributed-inprocess"):
                 if scheduler not in only:
                     continue
                 out = work / f"fl_{scheduler}.zarr"
                 for p in (out, out.with_name(out.name + ".partial"), out.with_name(out.name + ".work")):
                     shutil.rmtree(p, ignore_errors=True)
                 r = _child("chunked", [str(sgy), str(out), args.memory_limit, scheduler])
-                label = "threaded scheduler" if scheduler == "threads" else "dask.distributed, 2 workers"
+                label = {"threads": "threaded scheduler", "distributed": "dask.distributed, 2 worker processes",
+                         "distributed-inprocess": "dask.distributed, 2 workers in one process"}[scheduler]
                 rows.append((f"chunked, {label}", r))
                 if scheduler == "threads" and "surfaces" in only:
                     traced = work / "surfaces.zarr"

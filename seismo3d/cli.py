@@ -296,8 +296,9 @@ def faults(
                                                                   "more (and weaker) faults, lower for fewer; the "
                                                                   "thresholds scale by up to 2x either way."),
     memory_limit: Optional[str] = typer.Option(None, "--memory-limit", help="Memory the run may use, e.g. 8GB "
-                                               "(default: half the RAM). A larger 3D cube is processed block by "
-                                               "block into fault_likelihood.zarr, resumably."),
+                                               "(default: half the RAM). A larger 3D cube is traced block by "
+                                               "block (fault_likelihood.zarr, fault_surfaces.zarr), resumably, "
+                                               "with the same faults."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="dask.distributed scheduler address "
                                             "(tcp://host:port) for block-by-block runs; default: local threads."),
 ) -> None:
@@ -313,10 +314,6 @@ def faults(
                                  sample_unit=None if sample_unit is None else sample_unit.value,
                                  n_samples=n_samples, sensitivity=sensitivity, memory_limit=memory_limit,
                                  scheduler=scheduler, progress=True)
-    if "summary" not in written:  # a cube beyond memory: the likelihood only
-        typer.echo(f"fault likelihood, strike and dip of {input.name} -> {written['likelihood']} (fault surfaces "
-                   "need more memory: raise --memory-limit)")
-        return
     with open(written["summary"], newline="") as fh:
         rows = list(csv.DictReader(fh))
     source = "the demo cube" if demo else input.name

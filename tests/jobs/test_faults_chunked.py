@@ -72,8 +72,10 @@ def test_tight_limit_traces_the_surfaces_block_by_block(cube_npy, in_memory, tmp
         "faults.vtp"]
 
 
+@pytest.mark.slow
 def test_segy_cube_is_read_lazily(write_segy_cube, tmp_path, caplog):
-    """A SEG-Y cube over the limit: read block by block, its likelihood equal to the in-memory one."""
+    """A SEG-Y cube over the limit: read block by block, its likelihood equal to the in-memory one, its volumes
+    written as SEG-Y with the input's headers."""
     from seismo3d.seismic import fault_likelihood
 
     cube = synthetic_cube((128, 96, 256), seed=5).cube.astype(np.float32)
@@ -91,6 +93,8 @@ def test_segy_cube_is_read_lazily(write_segy_cube, tmp_path, caplog):
     from seismo3d.seismic.io import open_segy, read_segy
     assert np.abs(read_segy(written["likelihood_segy"])[0] - reference.likelihood).max() <= 1e-5
     assert np.array_equal(read_segy(written["dip_segy"])[0], group["dip_deg"][:])
+    traced = zarr.open_group(str(written["surfaces_zarr"]), mode="r")
+    assert np.array_equal(read_segy(written["votes_segy"])[0], traced["votes"][:])
     with open_segy(written["strike_segy"]) as out, open_segy(path) as src:
         assert out.sorting == src.sorting == "crossline" and out.format == 5
         np.testing.assert_array_equal(out.cdp_x, src.cdp_x)

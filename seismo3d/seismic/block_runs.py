@@ -17,7 +17,12 @@ from .._atomic import atomic_path
 from .._progress import progress_steps
 from ..errors import InputError
 
-__all__ = ["BlockRun", "SchedulerClient", "largest_block", "release_memory", "write_marker"]
+__all__ = ["BlockRun", "SchedulerClient", "MEMORY_HEADROOM", "largest_block", "release_memory", "write_marker"]
+
+# Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
+# for the allocator's fragmentation and the reads in flight (a chunked likelihood run peaked at 1.54 GB under a
+# 1.4 GB limit without it).
+MEMORY_HEADROOM = 0.8
 
 # glibc's malloc options (malloc.h): allocations above M_MMAP_THRESHOLD are mapped and unmapped on their own, so a
 # freed block's memory goes back to the system at once; setting it also stops glibc raising the threshold as large

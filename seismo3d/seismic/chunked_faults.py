@@ -33,11 +33,12 @@ import pathlib
 import shutil
 from dataclasses import asdict, dataclass
 
+import numba
 import numpy as np
 
 from .._atomic import atomic_path
 from ..errors import InputError, UnsupportedDataError
-from .block_runs import BlockRun, SchedulerClient, largest_block, write_marker
+from .block_runs import MEMORY_HEADROOM, BlockRun, SchedulerClient, largest_block, write_marker
 from .chunked_likelihood import ChunkOptions, default_memory_limit, resident_memory
 from .dead_samples import DEAD_REACH, dead_samples, fill_values, near_dead_samples
 from .fault_skins import skins_from_cells
@@ -66,7 +67,7 @@ _QUANTILE_BINS = 1 << 16
 # included; voting 44 per core sample besides the input; thinning 41)
 _DEAD_BYTES = 12
 _RIDGE_BYTES = 48
-_VOTE_CORE_BYTES = 48
+_VOTE_CORE_BYTES = 36  # and 4 more per numba thread (each sums its seeds' votes in its own array)
 _VOTE_HALO_BYTES = 4
 _THIN_BYTES = 44
 # Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
@@ -138,9 +139,10 @@ def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int
     n0, n1, nt = shape
     tile = int(chunking.tile)
     limit = int(chunking.memory_limit or default_memory_limit())
-    budget = int((limit - baseline) * 0.8) // int(chunking.workers)
+    budget = int((limit - baseline) * MEMORY_HEADROOM) // int(chunking.workers)
     reach = opt.voting.reach(shape)
     cap = max(n0, n1)
+    threads = numba.get_num_threads()
 
     def dead_bytes(b):
         return b * b * nt * _DEAD_BYTES
@@ -150,7 +152,7 @@ def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int
         return (b + 2 * h) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
 
     def vote_bytes(b):
-        return (b + 4 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * _VOTE_CORE_BYTES
+        return (b + 4 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * (_VOTE_CORE_BYTES + 4 * threads)
 
     def thin_bytes(b):
         return (b + 2 * _THIN_HALO) ** 2 * nt * _THIN_BYTES

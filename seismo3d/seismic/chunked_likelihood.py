@@ -41,7 +41,7 @@ import numpy as np
 from .._options import resolve_options
 from .._validation import check_int
 from ..errors import InputError
-from .block_runs import BlockRun, SchedulerClient, largest_block, write_marker
+from .block_runs import MEMORY_HEADROOM, BlockRun, SchedulerClient, largest_block, write_marker
 from .fault_likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan,
                                saturation_counts, scan_planes, scan_step, semblance_floor, semblance_halo,
                                semblance_terms, strike_halo)
@@ -50,7 +50,6 @@ from .seismic_zarr import consolidate
 __all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
            "in_memory_bytes", "resident_memory"]
 
-_HEADROOM = 0.8
 # Bytes of working memory per sample of a block (incl. halo), from the arrays each step holds at its peak: balancing
 # holds the amplitudes, their squares and two smoothing passes; the semblance step the balanced amplitudes, 3
 # gradients, 6 tensor components, the planarity and the outputs; the scan 2 inputs read in its layout, 2 smoothed
@@ -206,7 +205,7 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
     limit = int(chunking.memory_limit or default_memory_limit())
     # what the blocks may use: the limit less the process itself, less a fifth for the allocator's fragmentation
     # (freed blocks that threads' arenas keep) and the reads in flight; measured 1.54 GB peak for 1.4 GB without it
-    budget = int((limit - baseline) * _HEADROOM) // int(chunking.workers)
+    budget = int((limit - baseline) * MEMORY_HEADROOM) // int(chunking.workers)
     n_axis = max(n0, n1)
 
     def semblance_bytes(b):

@@ -138,7 +138,7 @@ def _best_neighbours(points, frames, keys, shape, offsets, max_plane, cos_angle)
     # linear index in the cube of ``shape`` among the sorted ``keys`` (no array of the cube's size).
     n = points.shape[0]
     n0, n1, n2 = shape[0], shape[1], shape[2]
-    best = -np.ones((n, 4), np.int64)
+    best = -np.ones((n, 4), np.int32)
     for c in nb.prange(n):
         px, py, pz = points[c, 0], points[c, 1], points[c, 2]
         ux, uy, uz = frames[c, 0, 0], frames[c, 0, 1], frames[c, 0, 2]
@@ -185,7 +185,7 @@ def _grow(best, normals, order, cos_mean):
     # of intermediate orientation into another fault)
     n = best.shape[0]
     # undirected adjacency from the directed best links
-    deg = np.zeros(n + 1, np.int64)
+    deg = np.zeros(n + 1, np.int64)  # offsets: up to 8 links a cell
     for c in range(n):
         for k in range(4):
             q = best[c, k]
@@ -194,7 +194,7 @@ def _grow(best, normals, order, cos_mean):
                 deg[q + 1] += 1
     for c in range(n):
         deg[c + 1] += deg[c]
-    adj = np.empty(deg[n], np.int64)
+    adj = np.empty(deg[n], np.int32)
     fill = deg[:n].copy()
     for c in range(n):
         for k in range(4):
@@ -279,7 +279,7 @@ def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, min
         return label
     # the closest pair (an edge cell of one skin, any cell of another) within merge_gap for every pair of skins: a
     # piece's end near another's end or side
-    pts, lab = points[big], label[big]
+    pts, lab = points[big].astype(np.float64), label[big]
     tree = cKDTree(pts)
     closest = _closest_pairs(tree, pts, lab, np.nonzero(edge[big])[0], float(opt.merge_gap), n_labels)
     if closest.size == 0:
@@ -444,16 +444,20 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
         order = np.argsort(keys, kind="stable")
         points, vals, s_cell, d_cell, keys = points[order], vals[order], s_cell[order], d_cell[order], keys[order]
         del order
+    points = points.astype(np.int32)  # memory: a cube larger than memory may have tens of millions of cells
     frames = np.ascontiguousarray(fault_frames(s_cell, d_cell))
     best = _best_neighbours(points, frames, keys, np.asarray(shape3, np.int64),
                             _offsets(two_d, int(opt.lateral_reach), int(opt.vertical_reach)),
                             float(opt.max_plane_distance), float(np.cos(np.radians(opt.max_angle))))
     del keys
+    normals = np.ascontiguousarray(frames[:, 0, :])
+    del frames
     order = np.argsort(-vals, kind="stable")
-    label = _grow(best, np.ascontiguousarray(frames[:, 0, :]), order, float(np.cos(np.radians(opt.max_angle))))
+    label = _grow(best, normals, order, float(np.cos(np.radians(opt.max_angle))))
+    del order
     if opt.merge_gap > 0:
-        label = _merge_coplanar(points.astype(np.float64), label, _edge_cells(best, label, two_d),
-                                opt.smallest(shape), two_d, opt)
+        label = _merge_coplanar(points, label, _edge_cells(best, label, two_d), opt.smallest(shape), two_d, opt)
+    del best
     sizes = np.bincount(label, minlength=points.shape[0])
     strong = np.zeros(sizes.size, dtype=bool)
     strong[np.unique(label[vals >= upper])] = True
@@ -464,14 +468,14 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     starts = np.searchsorted(label[by_label], keep)
     if opt.max_shape_angle is not None and keep.size:
         cos_shape = np.cos(np.radians(float(opt.max_shape_angle)))
-        planar = np.array([_fits_its_cells(points[m].astype(np.float64), frames[m, 0, :], two_d, cos_shape)
+        planar = np.array([_fits_its_cells(points[m].astype(np.float64), normals[m], two_d, cos_shape)
                            for m in (by_label[a:a + sizes[r]] for r, a in zip(keep, starts))], dtype=bool)
         keep, starts = keep[planar], starts[planar]
     pts = points if not two_d else points[:, [0, 2]]
     faults = []
     for fid, (root, start) in enumerate(zip(keep, starts), start=1):
         members = by_label[start:start + sizes[root]]
-        faults.append(Fault(id=fid, points=pts[members], likelihood=vals[members].astype(np.float32),
+        faults.append(Fault(id=fid, points=pts[members].astype(np.int64), likelihood=vals[members].astype(np.float32),
                             strike_deg=s_cell[members].astype(np.float32), dip_deg=d_cell[members].astype(np.float32),
                             normals=fault_normals(s_cell[members], d_cell[members], ndim=len(shape))))
     return faults

@@ -393,7 +393,8 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     Parameters
     ----------
     points : (n, 3) array_like of int
-        The cells' (inline, crossline, sample) indices (a 2D section's as (trace, 0, sample)), in any order.
+        The cells' (inline, crossline, sample) indices (a 2D section's as (trace, 0, sample)), in any order (in C
+        order, inline then crossline then sample, they are not copied to be sorted).
     values : (n,) array_like of float
         Their thinned votes, all at or above ``lower``.
     strike_deg, dip_deg : (n,) array_like of float
@@ -426,7 +427,9 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     shape = tuple(int(n) for n in shape)
     two_d = len(shape) == 2
     shape3 = (shape[0], 1, shape[1]) if two_d else shape
-    points = np.asarray(points, dtype=np.int64).reshape(-1, 3)
+    points = np.asarray(points).reshape(-1, 3)
+    if points.size and not np.issubdtype(points.dtype, np.integer):
+        raise InputError(f"skins_from_cells needs integer cell indices; got dtype {points.dtype}")
     vals = np.asarray(values, dtype=np.float32).ravel()
     s_cell = np.asarray(strike_deg, dtype=np.float32).ravel()
     d_cell = np.asarray(dip_deg, dtype=np.float32).ravel()
@@ -439,13 +442,15 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
         raise InputError(f"skins_from_cells got cells outside an image of shape {shape}; pass indices of that image")
     if not 0.0 < lower <= upper:
         raise InputError(f"fault skins need 0 < lower <= upper; got lower={lower!r}, upper={upper!r}")
+    points = points.astype(np.int32, copy=False)  # memory: a cube larger than memory has tens of millions of cells
     keys = np.ravel_multi_index(tuple(points.T), shape3)
     if np.any(keys[1:] <= keys[:-1]):  # the order of the image's cells, which the growth's ties follow
         order = np.argsort(keys, kind="stable")
         points, vals, s_cell, d_cell, keys = points[order], vals[order], s_cell[order], d_cell[order], keys[order]
         del order
-    points = points.astype(np.int32)  # memory: a cube larger than memory may have tens of millions of cells
-    frames = np.ascontiguousarray(fault_frames(s_cell, d_cell))
+    frames = np.empty((points.shape[0], 3, 3))
+    for a in range(0, points.shape[0], 1 << 18):  # by slices: fault_frames' float64 temporaries stay small
+        frames[a:a + (1 << 18)] = fault_frames(s_cell[a:a + (1 << 18)], d_cell[a:a + (1 << 18)])
     best = _best_neighbours(points, frames, keys, np.asarray(shape3, np.int64),
                             _offsets(two_d, int(opt.lateral_reach), int(opt.vertical_reach)),
                             float(opt.max_plane_distance), float(np.cos(np.radians(opt.max_angle))))

@@ -73,7 +73,7 @@ _THIN_BYTES = 44
 # Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
 # frames, links, labels, the merging's KD-tree; measured 219-234 bytes a cell on 1.4 M cells of a 512^3 cube, 250 on
 # the 11 M cells of a 1448 x 1448 x 512 one).
-_CANDIDATE_BYTES = 40
+_CANDIDATE_BYTES = 80  # points, values, angles (36), the sort keys, order and sorted copy
 _CELL_BYTES = 240
 
 

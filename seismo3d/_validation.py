@@ -125,6 +125,21 @@ def check_int(value, name: str, *, minimum: int | None = None, maximum: int | No
     return int(value)
 
 
+def check_seismic_layout(shape, dtype, name: str = "data", *, min_size: int = 3) -> None:
+    """Raise :class:`InputError` unless an array of ``shape`` and ``dtype`` is a numeric 2D section or 3D cube whose
+    axes hold at least ``min_size`` samples (without reading it: also for lazy dask / Zarr arrays)."""
+    dtype = np.dtype(dtype)
+    if dtype == object or not (np.issubdtype(dtype, np.number) or dtype == bool):
+        raise InputError(f"{name} must be a numeric array; got dtype {dtype}")
+    if len(shape) not in (2, 3):
+        raise InputError(
+            f"{name} must be a 2D section (n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, n_samples); "
+            f"got shape {tuple(shape)}"
+        )
+    if min(shape) < min_size:
+        raise InputError(f"{name} has shape {tuple(shape)}; every axis needs at least {min_size} samples")
+
+
 def as_seismic(data, name: str = "data", *, min_size: int = 3) -> np.ndarray:
     """Return ``data`` as a C-contiguous float32 2D section (n_traces, n_samples) or 3D cube (n_inlines, n_xlines,
     n_samples), or raise :class:`InputError` (not numeric, not 2D / 3D, an axis shorter than ``min_size``, NaN or
@@ -133,15 +148,7 @@ def as_seismic(data, name: str = "data", *, min_size: int = 3) -> np.ndarray:
         arr = np.asarray(data)
     except (TypeError, ValueError) as exc:  # pragma: no cover - numpy accepts almost anything
         raise InputError(f"{name} must be a numeric array; got {type(data).__name__}") from exc
-    if arr.dtype == object or not (np.issubdtype(arr.dtype, np.number) or arr.dtype == bool):
-        raise InputError(f"{name} must be a numeric array; got dtype {arr.dtype}")
-    if arr.ndim not in (2, 3):
-        raise InputError(
-            f"{name} must be a 2D section (n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, n_samples); "
-            f"got shape {arr.shape}"
-        )
-    if min(arr.shape) < min_size:
-        raise InputError(f"{name} has shape {arr.shape}; every axis needs at least {min_size} samples")
+    check_seismic_layout(arr.shape, arr.dtype, name, min_size=min_size)
     arr = np.ascontiguousarray(arr, dtype=np.float32)
     if not np.all(np.isfinite(arr)):
         bad = int(np.count_nonzero(~np.isfinite(arr)))

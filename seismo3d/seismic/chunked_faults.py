@@ -477,7 +477,7 @@ class _SurfaceRun(BlockRun):
         stats = self._each_block("thin", "thinning", _thin_block, blocks, str(self.work), str(self.partial), p)
         n_values = sum(r["count"] for r in stats)
         if n_values == 0:
-            return self.opt.thresholds_from(1.0, 0, int(np.prod(p.shape)), None)
+            return self.opt.thresholds_from(1.0, 0, int(np.prod(p.shape, dtype=np.int64)), None)
         vmin = min(r["min"] for r in stats if r["count"])
         vmax = max(r["max"] for r in stats if r["count"])
         counts, centers = self._histogram(blocks, vmin, vmax, 256, "histogram")

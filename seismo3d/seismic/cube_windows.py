@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage as ndi
 
-from .._validation import as_seismic, check_int, check_positive
+from .._validation import as_seismic, check_int, check_positive, check_seismic_layout
 from ..errors import InputError
 from .attributes import ReflectorOrientation, structure_tensor_halo, structure_tensor_orientation
 
@@ -190,10 +190,7 @@ class LazyWindows:
         if data.ndim != 3:
             raise InputError(f"data must be a 3D dask array (n_inlines, n_xlines, n_samples) for the windowed path; got "
                              f"shape {data.shape}; pass a 2D section as a numpy array")
-        if not (np.issubdtype(data.dtype, np.number) or data.dtype == bool):
-            raise InputError(f"data must be a numeric array; got dtype {data.dtype}")
-        if min(data.shape) < 3:
-            raise InputError(f"data has shape {data.shape}; every axis needs at least 3 samples")
+        check_seismic_layout(data.shape, data.dtype)
         self.shape = tuple(int(n) for n in data.shape)
         self._data = data
         self._tile = check_int(tile, "tile", minimum=1)

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validation import check_seismic_layout
 from ..errors import InputError, Seismo3dWarning
 
 __all__ = ["CleanTraces", "clean_traces", "fill_values", "dead_samples", "near_dead_samples", "DEAD_REACH"]
@@ -187,13 +188,7 @@ def clean_traces(data) -> CleanTraces:
         largest value).
     """
     arr = np.asarray(data)
-    if arr.ndim not in (2, 3):
-        raise InputError(f"data must be a 2D section (n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, "
-                         f"n_samples); got shape {arr.shape}")
-    if not (np.issubdtype(arr.dtype, np.number) or arr.dtype == bool):
-        raise InputError(f"data must be numeric; got dtype {arr.dtype}")
-    if min(arr.shape) < 3:
-        raise InputError(f"data has shape {arr.shape}; every axis needs at least 3 samples")
+    check_seismic_layout(arr.shape, arr.dtype)
     arr = np.asarray(arr, dtype=np.float32)
     finite = np.isfinite(arr)
     if not finite.all():

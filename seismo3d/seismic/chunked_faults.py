@@ -39,7 +39,7 @@ import numpy as np
 from .._atomic import atomic_path
 from ..errors import InputError, UnsupportedDataError
 from .block_runs import MEMORY_HEADROOM, BlockRun, SchedulerClient, largest_block, write_marker
-from .chunked_likelihood import ChunkOptions, default_memory_limit, resident_memory
+from .chunked_likelihood import ChunkOptions, default_memory_limit, resident_memory, worker_baseline
 from .dead_samples import DEAD_REACH, dead_samples, fill_values, near_dead_samples
 from .fault_skins import skins_from_cells
 from .fault_surfaces import thin_faults
@@ -250,8 +250,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
             raise InputError(f"{likelihood} has no {name!r} array of the cube's shape {shape}; pass the output of "
                              "chunked_fault_likelihood for this cube")
     input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * shape[2]
-    local = chunking.scheduler in (None, "threads", "synchronous")
-    baseline = (resident_memory() if local else 256 << 20) + 2 * input_chunk
+    baseline = worker_baseline(chunking, input_chunk)
     plan = _plan(shape, opt, chunking, baseline)
     run = _SurfaceRun(pathlib.Path(output), pathlib.Path(likelihood), plan, opt, chunking, progress)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),

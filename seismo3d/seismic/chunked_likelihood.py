@@ -48,7 +48,7 @@ from .fault_likelihood import (AmplitudeStatistics, FaultScanOptions, balance_am
 from .seismic_zarr import consolidate
 
 __all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
-           "in_memory_bytes", "resident_memory"]
+           "in_memory_bytes", "resident_memory", "worker_baseline"]
 
 # Bytes of working memory per sample of a block (incl. halo), from the arrays each step holds at its peak: balancing
 # holds the amplitudes, their squares and two smoothing passes; the semblance step the balanced amplitudes, 3
@@ -190,9 +190,22 @@ def resident_memory() -> int:
         return 256 << 20
 
 
-def _baseline(chunking: ChunkOptions, input_chunk: int) -> int:
+def worker_baseline(chunking: ChunkOptions, input_chunk: int) -> int:
     """Memory of a worker before its blocks: the process itself (this one's size on the local schedulers, 256 MiB
-    assumed for a distributed worker) and two input chunks being read."""
+    assumed for a distributed worker) and two input chunks being read.
+
+    Parameters
+    ----------
+    chunking : ChunkOptions
+        Its scheduler says whether the blocks run in this process.
+    input_chunk : int
+        Bytes of one chunk of the lazy input.
+
+    Returns
+    -------
+    int
+        Bytes.
+    """
     local = chunking.scheduler in (None, "threads", "synchronous")
     return (resident_memory() if local else 256 << 20) + 2 * int(input_chunk)
 
@@ -291,7 +304,7 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     if x.dtype != np.float32:
         x = x.astype(np.float32)
     input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * x.shape[2]
-    plan = _plan(x.shape, opt, chunking, _baseline(chunking, input_chunk))
+    plan = _plan(x.shape, opt, chunking, worker_baseline(chunking, input_chunk))
     out = pathlib.Path(output)
     run = _Run(out, plan, opt, chunking, progress)
     earlier = run.earlier_plan(_manifest(x.shape, opt, plan))

@@ -49,10 +49,10 @@ PAPER = {
 
 
 def _sequence():
-    from seismo3d.data import fetch
+    from seismo3d.data import fetch_folder
     from seismo3d.mapping import open_sequence
 
-    return open_sequence(fetch(f"{SEQUENCE}/associations.txt").parent)
+    return open_sequence(fetch_folder(SEQUENCE))
 
 
 def _errors(timestamps, poses, seq):

@@ -1,6 +1,6 @@
 """The notebooks run as tests through nbmake (``python -m pytest`` collects ``notebooks/*.ipynb``). Each takes a minute
 or two, so they are marked ``slow`` and left out of the fast lane (``-m "not slow"``); like the real-data tests they
-are skipped when ``SEISMO3D_DATA_DIR`` is unset (two of them read derived files that exist only there)."""
+are skipped when ``SEISMO3D_DATA_DIR`` is unset (without it they would download their data: hundreds of files)."""
 
 import os
 

@@ -5,7 +5,7 @@ public origin with pooch; see ``seismo3d/data/README.md`` for every file's purpo
 """
 
 from .pointclouds import BunnyPair, load_bunny, read_points, write_points
-from .registry import REGISTRY, DataFile, data_dir, fetch, file_info, list_files
+from .registry import REGISTRY, DataFile, data_dir, fetch, fetch_folder, file_info, list_files
 from .rgbd import CameraIntrinsics, RGBDFrame, load_7scenes_frame, load_single_frame, load_tum_pair
 from .sections import PenobscotSections, load_penobscot_sections
 from .synthetic import SyntheticCube, resampled_pair, synthetic_cube
@@ -15,6 +15,7 @@ __all__ = [
     "DataFile",
     "data_dir",
     "fetch",
+    "fetch_folder",
     "file_info",
     "list_files",
     "BunnyPair",

@@ -5,9 +5,8 @@ and a public origin. :func:`fetch` resolves a name to a local path: first from t
 environment variable ``SEISMO3D_DATA_DIR`` (hash checked once per process), otherwise by downloading the origin with
 pooch into ``SEISMO3D_CACHE_DIR`` (default: the operating system's cache folder). Files marked *derived* were rebuilt
 from their origin (renamed columns, cleaned rows, stacked images, added index files), so their origin would not match
-the hash: those with a derivation in :mod:`seismo3d.data.derived` (the bunny scans and poses, the 7-Scenes index
-files) are made again from their downloaded origin and checked against the registry's hash; the Penobscot image
-stack is available only from a data directory.
+the hash: they are made again from their downloaded origins by :mod:`seismo3d.data.derived` (the bunny scans and
+poses, the 7-Scenes index files, the Penobscot image stack) and checked against the registry's hash.
 
 The tables at the bottom of this module are the single source of truth; ``seismo3d/data/README.md`` describes each
 file. The second table lists files that are not in the data directory and are always downloaded (segyio's own test
@@ -28,13 +27,15 @@ import functools
 import hashlib
 import os
 import pathlib
+import shutil
 import types
 from dataclasses import dataclass
 
+from .._atomic import atomic_path
 from ..errors import DataIntegrityError, DataNotFoundError, InputError
 from .derived import DERIVATIONS
 
-__all__ = ["DataFile", "REGISTRY", "data_dir", "fetch", "file_info", "list_files"]
+__all__ = ["DataFile", "REGISTRY", "data_dir", "fetch", "fetch_folder", "file_info", "list_files"]
 
 DATA_DIR_ENV = "SEISMO3D_DATA_DIR"
 CACHE_DIR_ENV = "SEISMO3D_CACHE_DIR"
@@ -298,6 +299,55 @@ def fetch(name: str, *, verify: bool = True) -> pathlib.Path:
     return _download(entry.name, entry.url, entry.sha256 if verify else None, _cache_dir() / folder, basename, where)
 
 
+def fetch_folder(prefix: str, *, verify: bool = True) -> pathlib.Path:
+    """Return a local folder holding every registered file under ``prefix``, downloading what is missing.
+
+    For data read as a folder (an RGB-D sequence: images, depth maps, poses and index files side by side). When the
+    data directory holds all of the folder's files, its folder is returned (each file hash-checked as by
+    :func:`fetch`); otherwise every file is fetched into the cache (downloaded, made again from its origin, or
+    copied from the data directory) and the cache's folder is returned.
+
+    Parameters
+    ----------
+    prefix : str
+        A registered folder, e.g. ``"rgbd/7scenes_redkitchen_0000_0495"`` (with or without the trailing slash).
+    verify : bool, optional
+        Check the SHA-256 hashes (default).
+
+    Returns
+    -------
+    folder : pathlib.Path
+        Absolute path of the folder. Treat it as read-only.
+
+    Raises
+    ------
+    InputError
+        If no file is registered under ``prefix``.
+    DataNotFoundError, DataIntegrityError
+        As :func:`fetch`, for any of the folder's files.
+    """
+    folder = prefix.rstrip("/") if isinstance(prefix, str) else prefix
+    names = list_files(folder + "/") if isinstance(folder, str) and folder else []
+    if not names:
+        raise InputError(f"no data files are registered under the folder {prefix!r}; see "
+                         "seismo3d.data.list_files() for the registered names")
+    root = data_dir()
+    if root is not None and all((root / name).is_file() for name in names):
+        for name in names:
+            fetch(name, verify=verify)
+        return (root / folder).resolve()
+    cache = _cache_dir()
+    for name in names:
+        path = fetch(name, verify=verify)
+        target = cache / name
+        if path != target.resolve() and not (target.is_file() and _sha256(target) == file_info(name).sha256):
+            # read from the data directory: copied beside the downloaded files
+            target.parent.mkdir(parents=True, exist_ok=True)
+            with atomic_path(str(target)) as tmp:
+                shutil.copyfile(path, tmp)
+    return (cache / folder).resolve()
+
+
 def _download(name: str, url: str, sha256, folder: pathlib.Path, basename: str, where: str) -> pathlib.Path:
     """pooch.retrieve with seismo3d's errors: DataNotFoundError offline, DataIntegrityError on a hash mismatch."""
     import pooch
@@ -324,14 +374,14 @@ def _derive(entry: DataFile, derivation, where: str, verify: bool) -> pathlib.Pa
     out = _cache_dir() / entry.name
     if out.is_file() and (not verify or _sha256(out) == entry.sha256):
         return out.resolve()
-    origin = None
-    if derivation.origin_path is not None:
-        url = _RAW_URL.format(repo=entry.repo, commit=entry.commit, path=derivation.origin_path)
-        folder, _, basename = derivation.origin_path.rpartition("/")
-        origin = _download(entry.name, url, derivation.origin_sha256 if verify else None,
-                           _cache_dir() / "origins" / entry.repo.replace("/", "+") / folder, basename, where)
+    origins = []
+    for origin_path, origin_sha256 in derivation.origins:
+        url = _RAW_URL.format(repo=entry.repo, commit=entry.commit, path=origin_path)
+        folder, _, basename = origin_path.rpartition("/")
+        origins.append(_download(entry.name, url, origin_sha256 if verify else None,
+                                 _cache_dir() / "origins" / entry.repo.replace("/", "+") / folder, basename, where))
     out.parent.mkdir(parents=True, exist_ok=True)
-    derivation.build(origin, out, entry.name)
+    derivation.build(tuple(origins), out, entry.name)
     actual = _sha256(out)
     if verify and actual != entry.sha256:
         out.unlink()

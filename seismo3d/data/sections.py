@@ -52,7 +52,10 @@ def load_penobscot_sections() -> PenobscotSections:
     Raises
     ------
     DataNotFoundError
-        If the file is not in the data directory (it is derived: set ``SEISMO3D_DATA_DIR``).
+        If the file is neither in the data directory nor made again from its downloaded origin images
+        (offline): set ``SEISMO3D_DATA_DIR``.
+    DataIntegrityError
+        If the file, or an origin image, does not match its registered SHA-256.
 
     References
     ----------

@@ -27,7 +27,8 @@ EXPECTED_DERIVED = {
 }
 SMALL_FILE = "rgbd/tum_fr1xyz_pair/kinect_params.txt"  # not derived, 29 bytes
 SMALL_DERIVED = "rgbd/7scenes_redkitchen_0000_0495/associations.txt"  # derived, 5 kB
-DATA_DIR_ONLY = "seismic/penobscot_sections/penobscot_sections_1075_1092.npz"  # derived, not made again
+PENOBSCOT = "seismic/penobscot_sections/penobscot_sections_1075_1092.npz"  # derived from 36 PNGs
+SEQUENCE = "rgbd/7scenes_redkitchen_0000_0495"
 
 
 @pytest.fixture(scope="module")
@@ -132,25 +133,30 @@ def test_data_dir_from_env(monkeypatch, tmp_path):
     assert data_dir() == tmp_path
 
 
-def test_derived_file_missing_raises_without_network(empty_data_dir):
+def _offline(*args, **kwargs):
+    raise ConnectionError("no network")  # requests' ConnectionError is also an OSError
+
+
+def test_derived_file_missing_raises_without_network(empty_data_dir, monkeypatch):
+    monkeypatch.setattr(pooch, "retrieve", _offline)
     with pytest.raises(DataNotFoundError, match="SEISMO3D_DATA_DIR") as info:
-        fetch(DATA_DIR_ONLY)
+        fetch(PENOBSCOT)
     assert "export SEISMO3D_DATA_DIR=" in str(info.value)
+    assert "mini_test/images/1075.png" in str(info.value)  # the origin it tried to download
     assert isinstance(info.value, FileNotFoundError)
+    assert not (empty_data_dir.parent / "cache" / PENOBSCOT).exists()
 
 
-def test_derived_file_missing_and_env_unset(monkeypatch):
+def test_derived_file_missing_and_env_unset(monkeypatch, tmp_path):
     monkeypatch.delenv("SEISMO3D_DATA_DIR", raising=False)
-    monkeypatch.setattr(pooch, "retrieve", lambda *a, **k: pytest.fail("must not download a derived file"))
+    monkeypatch.setenv("SEISMO3D_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(pooch, "retrieve", _offline)
     with pytest.raises(DataNotFoundError, match="SEISMO3D_DATA_DIR is not set"):
-        fetch(DATA_DIR_ONLY)
+        fetch(PENOBSCOT)
 
 
 def test_download_failure_raises_data_not_found(empty_data_dir, monkeypatch):
-    def offline(*args, **kwargs):
-        raise ConnectionError("no network")  # requests' ConnectionError is also an OSError
-
-    monkeypatch.setattr(pooch, "retrieve", offline)
+    monkeypatch.setattr(pooch, "retrieve", _offline)
     with pytest.raises(DataNotFoundError, match="SEISMO3D_DATA_DIR") as info:
         fetch(SMALL_FILE)
     assert "raw.githubusercontent.com" in str(info.value)
@@ -224,8 +230,9 @@ def test_bunny_scan_is_made_again_from_its_origin(empty_data_dir, shared_dir, mo
     monkeypatch.setattr(pooch, "retrieve", fake_retrieve)
     path = fetch(name)
     entry, derivation = file_info(name), DERIVATIONS[name]
-    assert calls == [(f"https://raw.githubusercontent.com/{entry.repo}/{entry.commit}/{derivation.origin_path}",
-                      f"sha256:{derivation.origin_sha256}")]
+    ((origin_path, origin_sha256),) = derivation.origins
+    assert calls == [(f"https://raw.githubusercontent.com/{entry.repo}/{entry.commit}/{origin_path}",
+                      f"sha256:{origin_sha256}")]
     assert path == (tmp_path / "cache" / name).resolve()
     assert path.read_bytes() == (shared_dir / name).read_bytes()
     assert fetch(name) == path and len(calls) == 1  # the cached copy is used (and checked) next time
@@ -259,3 +266,144 @@ def test_7scenes_index_files_are_made_again(empty_data_dir, shared_dir, monkeypa
     monkeypatch.setattr(pooch, "retrieve", from_shared)
     name = f"rgbd/7scenes_redkitchen_0000_0495/{kind}"
     assert fetch(name).read_bytes() == (shared_dir / name).read_bytes()
+
+
+def _penobscot_origin(shared_dir, folder: pathlib.Path) -> dict:
+    """The origin's 18 images and 18 masks rebuilt from the data directory's stack (grey PNG = the 8-bit section,
+    RGB PNG = each interval in its class colour, with one anti-aliased pixel between two classes per column): the
+    PNGs of atlan-antillia's repository hold the same pixels (checked byte for byte against the real origin when
+    this derivation was written; the real files are not in the data directory)."""
+    import cv2
+    import numpy as np
+
+    from seismo3d.data.derived import PENOBSCOT_CLASS_COLOURS
+
+    colours = np.asarray(PENOBSCOT_CLASS_COLOURS, np.int32)
+    files = {}
+    with np.load(shared_dir / PENOBSCOT) as z:
+        for section, image, labels in zip(z["section_ids"], z["seismic"], z["labels"]):
+            mask = colours[labels]
+            edge = np.nonzero(np.diff(labels[:, 100].astype(int)))[0]
+            if len(edge):  # a blend 40 % of the way to the class below: still snaps to the class above
+                r = edge[0]
+                mask[r, 100] = (0.6 * colours[labels[r, 100]] + 0.4 * colours[labels[r + 1, 100]]).round()
+            for kind, array in (("images", image), ("masks", mask[:, :, ::-1].astype(np.uint8))):
+                path = folder / kind / f"{section}.png"
+                path.parent.mkdir(parents=True, exist_ok=True)
+                assert cv2.imwrite(str(path), array)
+                files[f"{kind}/{section}.png"] = path
+    return files
+
+
+def test_penobscot_stack_is_made_again_from_its_origin(empty_data_dir, shared_dir, monkeypatch, tmp_path):
+    """Without the data directory's copy, the 36 origin PNGs are downloaded (pooch checks each registered hash) and
+    stacked into an npz byte-identical to the data directory's, then checked against the registry's hash."""
+    from seismo3d.data import load_penobscot_sections
+    from seismo3d.data.derived import DERIVATIONS
+
+    files = _penobscot_origin(shared_dir, tmp_path / "origin")
+    entry, derivation = file_info(PENOBSCOT), DERIVATIONS[PENOBSCOT]
+    prefix = (f"https://raw.githubusercontent.com/{entry.repo}/{entry.commit}/"
+              "projects/TensorFlowFlexUNet/Penobscot/mini_test/")
+    calls = []
+
+    def fake_retrieve(url, known_hash, fname, path, progressbar):
+        calls.append((url, known_hash))
+        return str(files[url.removeprefix(prefix)])
+
+    monkeypatch.setattr(pooch, "retrieve", fake_retrieve)
+    path = fetch(PENOBSCOT)
+    assert [url for url, _ in calls] == [prefix + f"{kind}/{k}.png" for kind in ("images", "masks")
+                                         for k in range(1075, 1093)]
+    assert [h for _, h in calls] == [f"sha256:{sha}" for _, sha in derivation.origins]
+    assert len(set(calls)) == 36
+    assert path == (tmp_path / "cache" / PENOBSCOT).resolve()
+    assert path.read_bytes() == (shared_dir / PENOBSCOT).read_bytes()
+    assert load_penobscot_sections().cube.shape == (18, 512, 1536)  # the loader reads the cache's copy
+    assert len(calls) == 36
+
+
+def test_penobscot_stack_snaps_masks_and_finds_horizon_tops(tmp_path):
+    """Anti-aliased mask pixels go to the nearest class colour (a tie to the lower class); horizon k on a trace is
+    the first row of a class above k, so a horizon whose interval is missing there takes the next one's top."""
+    import cv2
+    import numpy as np
+
+    from seismo3d.data.derived import PENOBSCOT_CLASS_COLOURS, stack_penobscot_sections
+
+    colours = np.asarray(PENOBSCOT_CLASS_COLOURS, np.int32)
+    labels = np.zeros((12, 3), np.uint8)
+    labels[3:, 0], labels[6:, 0] = 1, 7  # trace 0: classes 0, 1, 7 (horizons 1-6 at the top of class 7)
+    labels[5:, 1] = 2  # trace 1: class 2 from row 5 (horizon 0 there too); no class above 2
+    mask = colours[labels].astype(np.float64)
+    mask[4, 2] = (colours[3] + colours[4]) / 2  # trace 2, all class 0 but a tie between classes 3 and 4
+    mask[8, 2] = 0.7 * colours[5] + 0.3 * colours[6]
+    image = np.arange(36, dtype=np.uint8).reshape(12, 3)
+    origins = []
+    for kind, array in (("images", image), ("masks", mask.round().astype(np.uint8)[:, :, ::-1])):
+        origins.append(tmp_path / kind / "1200.png")
+        origins[-1].parent.mkdir()
+        cv2.imwrite(str(origins[-1]), array)
+    stack_penobscot_sections(tuple(origins), tmp_path / "out.npz", PENOBSCOT)
+    with np.load(tmp_path / "out.npz") as z:
+        assert z["section_ids"].tolist() == [1200]
+        assert np.array_equal(z["seismic"][0], image)
+        expected = labels.copy()
+        expected[4, 2], expected[8, 2] = 3, 5
+        assert np.array_equal(z["labels"][0], expected)
+        assert z["horizons"][0, :, 0].tolist() == [3, 6, 6, 6, 6, 6, 6]
+        assert z["horizons"][0, :, 1].tolist() == [5, 5, -1, -1, -1, -1, -1]
+        assert z["horizons"][0, :, 2].tolist() == [4, 4, 4, 8, 8, -1, -1]
+
+
+def test_penobscot_stack_refuses_a_mismatched_mask(tmp_path):
+    import cv2
+    import numpy as np
+
+    from seismo3d.data.derived import stack_penobscot_sections
+
+    image, mask = tmp_path / "images" / "1.png", tmp_path / "masks" / "1.png"
+    for path, array in ((image, np.zeros((8, 4), np.uint8)), (mask, np.zeros((8, 5, 3), np.uint8))):
+        path.parent.mkdir()
+        cv2.imwrite(str(path), array)
+    with pytest.raises(DataIntegrityError, match="not the origin registered"):
+        stack_penobscot_sections((image, mask), tmp_path / "out.npz", PENOBSCOT)
+    assert not (tmp_path / "out.npz").exists()
+
+
+def test_fetch_folder_from_data_dir(shared_dir):
+    from seismo3d.data import fetch_folder
+
+    assert fetch_folder(SEQUENCE + "/") == (shared_dir / SEQUENCE).resolve()
+    with pytest.raises(InputError, match="list_files"):
+        fetch_folder("rgbd/no_such_sequence")
+
+
+def test_fetch_folder_gathers_a_partial_folder_in_the_cache(empty_data_dir, shared_dir, monkeypatch, tmp_path):
+    """A data directory holding part of a sequence: the missing files are downloaded (served here from the shared
+    folder), the index files made again, and the present ones copied, so the cache holds the whole folder."""
+    from seismo3d.data import fetch_folder
+    from seismo3d.mapping import open_sequence
+
+    for name in list_files(SEQUENCE + "/pose/"):  # the data directory holds the poses only
+        (empty_data_dir / name).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(shared_dir / name, empty_data_dir / name)
+    cache = tmp_path / "cache"
+    downloads = []
+
+    def from_shared(url, known_hash, fname, path, progressbar):
+        relative = (pathlib.Path(path).relative_to(cache) / fname).as_posix()
+        downloads.append(relative)
+        pathlib.Path(path).mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(shared_dir / relative, pathlib.Path(path) / fname)  # as pooch does
+        return str(pathlib.Path(path) / fname)
+
+    monkeypatch.setattr(pooch, "retrieve", from_shared)
+    folder = fetch_folder(SEQUENCE)
+    assert folder == (cache / SEQUENCE).resolve()
+    names = list_files(SEQUENCE + "/")
+    assert {p.relative_to(cache).as_posix() for p in folder.rglob("*") if p.is_file()} == set(names)
+    for name in names:
+        assert (cache / name).read_bytes() == (shared_dir / name).read_bytes(), name
+    assert not any("/pose/" in name for name in downloads)  # the data directory's poses were copied
+    assert len(open_sequence(folder)) == 100

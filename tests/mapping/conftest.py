@@ -78,7 +78,7 @@ def room_frame(pose, timestamp=None, boxes=BOXES):
 @pytest.fixture(scope="session")
 def seven_scenes(data_dir):
     """The 7-Scenes redkitchen subset as a sequence (100 frames, every 5th)."""
-    from seismo3d.data import fetch
+    from seismo3d.data import fetch_folder
     from seismo3d.mapping import open_sequence
 
-    return open_sequence(fetch("rgbd/7scenes_redkitchen_0000_0495/associations.txt").parent)
+    return open_sequence(fetch_folder("rgbd/7scenes_redkitchen_0000_0495"))

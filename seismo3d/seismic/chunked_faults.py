@@ -62,12 +62,14 @@ _THIN_HALO = 2
 _QUANTILE_BINS = 1 << 16
 # Bytes of working memory per sample of a block (incl. halo): amplitudes, their reflector slopes and the dead-sample
 # masks; likelihood, strike, dip, the ranking image and its smoothing passes, ridges and the hysteresis labels; the
-# voting's core (votes of 2 threads, best surface, normal, strike, dip) and its input; the thinning of the votes.
+# voting's core (votes, strongest surface and its seed per numba thread; the summed votes, strike, dip) and its
+# input; the thinning of the votes.
 # (tracemalloc peaks on 96-trace blocks of 512 samples: ridges 44 per sample of the likelihood's halo block, amplitudes
-# included; voting 44 per core sample besides the input; thinning 41)
+# included; voting 32 per core sample with 2 threads besides the input, 8 + 12 per thread; thinning 41)
 _DEAD_BYTES = 12
 _RIDGE_BYTES = 48
-_VOTE_CORE_BYTES = 36  # and 4 more per numba thread (each sums its seeds' votes in its own array)
+_VOTE_CORE_BYTES = 12
+_VOTE_THREAD_BYTES = 12  # per numba thread: its votes, strongest surface and seed (each thread its own arrays)
 _VOTE_HALO_BYTES = 4
 _THIN_BYTES = 44
 # Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
@@ -153,7 +155,7 @@ def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int
         return (b + 2 * h) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
 
     def vote_bytes(b):
-        return (b + 4 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * (_VOTE_CORE_BYTES + 4 * threads)
+        return (b + 4 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * (_VOTE_CORE_BYTES + _VOTE_THREAD_BYTES * threads)
 
     def thin_bytes(b):
         return (b + 2 * _THIN_HALO) ** 2 * nt * _THIN_BYTES
@@ -383,9 +385,8 @@ class _SurfaceRun(BlockRun):
 
     def _each_block(self, step: str, label: str, task, blocks, *args) -> list:
         """``task(block, *args, marker)`` on every block of ``step`` not finished yet; the results of all blocks."""
-        import dask
         todo, done = self.pending(step, blocks)
-        tasks = [dask.delayed(task, pure=False)(b, *args, str(self.marker(step, b))) for b in todo]
+        tasks = [self.task(task, b, *args, str(self.marker(step, b))) for b in todo]
         return self.compute(tasks, label, step) + done
 
     # -- steps ----------------------------------------------------------------------------------------------------
@@ -405,26 +406,23 @@ class _SurfaceRun(BlockRun):
         return lo, hi
 
     def fill_values(self, x, lo: float, hi: float) -> np.ndarray:
-        import dask
         p = self.plan
         todo, done = self.pending("fill", _blocks(p.shape, p.dead))
-        tasks = [dask.delayed(_fill_block, pure=False)(x[b[0]:b[1], b[2]:b[3]], lo, hi, str(self.marker("fill", b)))
+        tasks = [self.task(_fill_block, x[b[0]:b[1], b[2]:b[3]], lo, hi, str(self.marker("fill", b)))
                  for b in todo]
         results = self.compute(tasks, "fill values", "fill") + done
         return np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
                                         [np.zeros(1, np.float32)]))
 
     def ridges(self, x, fill: np.ndarray, lo: float, hi: float) -> float:
-        import dask
         p = self.plan
         todo, done = self.pending("ridges", _blocks(p.shape, p.ridge))
         h = _amplitude_halo()
         tasks = []
         for b in todo:
             a0, a1, b0, b1 = _around(b, h, p.shape)
-            tasks.append(dask.delayed(_ridge_block, pure=False)(
-                x[a0:a1, b0:b1], (a0, b0), b, fill, lo, hi, self.likelihood, str(self.work), str(self.partial), p,
-                self.opt, str(self.marker("ridges", b))))
+            tasks.append(self.task(_ridge_block, x[a0:a1, b0:b1], (a0, b0), b, fill, lo, hi, self.likelihood,
+                                   str(self.work), str(self.partial), p, self.opt, str(self.marker("ridges", b))))
         results = self.compute(tasks, "fault ridges", "ridges") + done
         high = sum(r["high"] for r in results)
         live = sum(r["live"] for r in results)
@@ -456,7 +454,6 @@ class _SurfaceRun(BlockRun):
         return saved["seeds"], saved["frames"]
 
     def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
-        import dask
         p = self.plan
         todo, _ = self.pending("votes", _blocks(p.shape, p.vote))
         tasks = []
@@ -465,9 +462,10 @@ class _SurfaceRun(BlockRun):
             r = p.reach
             sel = np.nonzero((seeds[:, 0] >= i0 - r) & (seeds[:, 0] < i1 + r) &
                              (seeds[:, 1] >= j0 - r) & (seeds[:, 1] < j1 + r))[0]
-            tasks.append(dask.delayed(_vote_block, pure=False)(
-                b, seeds[sel], sel, frames[sel], str(self.work), str(self.partial), p, self.opt,
-                str(self.marker("votes", b))))
+            # threads=False: the votes are summed per numba thread (fault_voting.surface_votes), so a block's
+            # kernel keeps the process's threads, as the in-memory run
+            tasks.append(self.task(_vote_block, b, seeds[sel], sel, frames[sel], str(self.work), str(self.partial),
+                                   p, self.opt, str(self.marker("votes", b)), threads=False))
         self.compute(tasks, "fault voting", "votes")
 
     def thresholds(self) -> tuple[float, float]:

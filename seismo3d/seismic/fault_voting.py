@@ -264,7 +264,8 @@ def _nearest(f, x, y, z, g0, g1):
 
 
 @nb.njit(cache=True, parallel=True)
-def _vote(att, g0, g1, shape, seeds, ids, frames, ru, rv, rw, b, a_smooth, o0, o1, votes, best, normal):
+def _vote(att, g0, g1, shape, seeds, ids, frames, lo, hi, ru, rv, rw, b, a_smooth, o0, o1, votes, best, best_seed,
+          seed_normal):
     # att (n_a, n_b, n2) likelihood in [0, 1], the image of ``shape`` (n0, n1, n2) from inline g0 and crossline g1
     # on; positions are computed in image coordinates (the same float arithmetic whatever the block); seeds (ns, 3)
     # int64 image indices; ids (ns,) int64 the seeds' indices among all
@@ -272,15 +273,18 @@ def _vote(att, g0, g1, shape, seeds, ids, frames, ru, rv, rw, b, a_smooth, o0, o
     # same order, whether the cube is voted whole or block by block); frames (ns, 3, 3) rows u (normal), v (dip
     # vector), w (strike vector). votes (n_threads, m0, m1, n2) accumulate per thread (no write races) over the core
     # of the image [o0:o0 + m0, o1:o1 + m1] (the whole image in memory; a block's core in a chunked run, whose att
-    # holds every sample the seeds' boxes reach); best and normal record the strongest surface through each sample
-    # of the core (races there only pick one of two near-equal surfaces).
+    # holds every sample the seeds' boxes reach). best and best_seed (n_threads, m0, m1, n2), also per thread,
+    # record the strongest surface of the thread's seeds through each sample (its mean likelihood and the seed's
+    # position s; equal means go to the smaller id), seed_normal[s] the normal of seed s at the seed (seeds lo..hi-1
+    # are voted by this call):
+    # _strongest then takes the strongest over the threads, so the result depends neither on the threads' timing
+    # nor on their number.
     n0, n1, n2 = shape[0], shape[1], shape[2]
     m0, m1 = votes.shape[1], votes.shape[2]
     nu = 2 * ru + 1
     nv = 2 * rv + 1
     nw = 2 * rw + 1
     nm = max(nv, nw)
-    ns = seeds.shape[0]
     n_threads = votes.shape[0]
     for t in nb.prange(n_threads):
         e = np.empty((nw, nv, nu))
@@ -293,7 +297,7 @@ def _vote(att, g0, g1, shape, seeds, ids, frames, ru, rv, rw, b, a_smooth, o0, o
         surf = np.empty((nw, nv))
         tmp = np.empty(nm)
         line = np.empty(nm)
-        for s in range(ns):
+        for s in range(lo, hi):
             if ids[s] % n_threads != t:
                 continue
             c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
@@ -370,6 +374,9 @@ def _vote(att, g0, g1, shape, seeds, ids, frames, ru, rv, rw, b, a_smooth, o0, o
             nx /= nn
             ny /= nn
             nz /= nn
+            seed_normal[s, 0] = nx
+            seed_normal[s, 1] = ny
+            seed_normal[s, 2] = nz
             # 5. one vote per sample of the surface
             for iw in range(nw):
                 dw = iw - rw
@@ -382,11 +389,33 @@ def _vote(att, g0, g1, shape, seeds, ids, frames, ru, rv, rw, b, a_smooth, o0, o
                     if i < 0 or j < 0 or k < 0 or i >= m0 or j >= m1 or k >= n2:
                         continue
                     votes[t, i, j, k] += fa
-                    if fa > best[i, j, k]:
-                        best[i, j, k] = fa
-                        normal[i, j, k, 0] = nx
-                        normal[i, j, k, 1] = ny
-                        normal[i, j, k, 2] = nz
+                    q = best_seed[t, i, j, k]
+                    if fa > best[t, i, j, k] or (fa == best[t, i, j, k] and q >= 0 and ids[s] < ids[q]):
+                        best[t, i, j, k] = fa
+                        best_seed[t, i, j, k] = s
+
+
+@nb.njit(cache=True, parallel=True)
+def _strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
+    # strike and dip (m0, m1, n2) of the strongest surface through each sample over the threads' records (the
+    # larger mean likelihood, then the smaller seed id); 0 where no surface passes
+    n_threads, m0 = best.shape[0], best.shape[1]
+    for i in nb.prange(m0):
+        for j in range(best.shape[2]):
+            for k in range(best.shape[3]):
+                top = 0.0
+                s = -1
+                for t in range(n_threads):
+                    q = best_seed[t, i, j, k]
+                    if q < 0:
+                        continue
+                    f = best[t, i, j, k]
+                    if s < 0 or f > top or (f == top and ids[q] < ids[s]):
+                        top = f
+                        s = q
+                if s >= 0:
+                    strike[i, j, k] = seed_strike[s]
+                    dip[i, j, k] = seed_dip[s]
 
 
 @nb.njit(cache=True)
@@ -651,19 +680,23 @@ def surface_votes(likelihood, seeds, seed_ids, frames, *, image_shape, options: 
     n_threads = nb.get_num_threads()
     n2 = att.shape[2]
     votes = np.zeros((n_threads, m0, m1, n2), np.float32)
-    best = np.zeros((m0, m1, n2), np.float32)
-    normal = np.zeros((m0, m1, n2, 3), np.float32)
+    best = np.zeros((n_threads, m0, m1, n2), np.float32)
+    best_seed = np.full((n_threads, m0, m1, n2), -1, np.int32)
+    seed_normal = np.zeros((len(seeds), 3), np.float32)
     n_chunks = max(1, min(20, len(seeds) // 200))
     bounds = np.linspace(0, len(seeds), n_chunks + 1).astype(int)
     with progress_steps(len(seeds), "fault voting", unit="seed", enabled=progress) as steps:
         for lo, hi in zip(bounds[:-1], bounds[1:]):
-            _vote(att, g0, g1, shape3, seeds[lo:hi], ids[lo:hi], frames[lo:hi], ru, rv, rw, b, a_smooth, i0, j0,
-                  votes, best, normal)
+            _vote(att, g0, g1, shape3, seeds, ids, frames, int(lo), int(hi), ru, rv, rw, b, a_smooth, i0, j0,
+                  votes, best, best_seed, seed_normal)
             steps.advance(int(hi - lo))
-    del best
     total = votes.sum(axis=0)
     del votes
+    seed_strike, seed_dip = _strike_dip(seed_normal, len(image_shape) == 2)
+    strike = np.zeros((m0, m1, n2), np.float32)
+    dip = np.zeros((m0, m1, n2), np.float32)
+    _strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip)
+    del best, best_seed
     np.multiply(total, np.float32(1.0 / opt.full_vote(tuple(image_shape))), out=total)
     np.clip(total, 0.0, 1.0, out=total)
-    strike, dip = _strike_dip(normal, len(image_shape) == 2)
     return FaultVotes(total, strike, dip, int(len(seeds)))

@@ -111,3 +111,44 @@ def test_greedy_seeds_match_the_brute_force_and_ignore_the_input_order():
         greedy_seeds(points + 30, values, shape, 4)
     with pytest.raises(InputError, match="one value per point"):
         greedy_seeds(points, values[:-1], shape, 4)
+
+
+def _crossing_faults(shape=(40, 40, 48)):
+    """Two crossing planes of likelihood (strikes 30 and 120 degrees): many samples lie on surfaces of several
+    seeds, of both planes, so the strongest surface through a sample is contested."""
+    i, j, k = np.meshgrid(*(np.arange(n) for n in shape), indexing="ij")
+    fl = np.zeros(shape, np.float32)
+    for strike, dip, scale in ((30.0, 70.0, 1.0), (120.0, 80.0, 0.9)):
+        n = fault_normals(np.array([strike]), np.array([dip]))[0]
+        dist = (i - 20) * n[0] + (j - 20) * n[1] + (k - 24) * n[2]
+        fl = np.maximum(fl, scale * np.exp(-0.5 * dist**2).astype(np.float32))
+    return fl
+
+
+def test_strongest_surface_does_not_depend_on_the_threads():
+    """The strike and dip of the votes come from the strongest surface through each sample (equal ones: the smaller
+    seed id): the same on 1 and 2 numba threads and from run to run (the threads no longer race for it)."""
+    import numba
+
+    from seismo3d.seismic.fault_voting import greedy_seeds, surface_votes
+
+    fl = _crossing_faults()
+    points = np.argwhere(fl > 0.6)
+    seeds = greedy_seeds(points, fl[tuple(points.T)], fl.shape, 3)
+    ids = np.arange(len(seeds))
+    frames = fault_frames(np.full(len(seeds), 30.0), np.full(len(seeds), 70.0))
+    frames[1::2] = fault_frames(np.full(len(seeds[1::2]), 120.0), np.full(len(seeds[1::2]), 80.0))
+    before = numba.get_num_threads()
+    runs = []
+    try:
+        for threads in (1, 2, 2, 2):
+            numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+            runs.append(surface_votes(fl, seeds, ids, frames, image_shape=fl.shape))
+    finally:
+        numba.set_num_threads(before)
+    contested = (runs[0].votes > 0).sum()
+    assert len(seeds) > 20 and contested > 1000
+    for other in runs[1:]:
+        assert np.array_equal(other.strike_deg, runs[0].strike_deg)
+        assert np.array_equal(other.dip_deg, runs[0].dip_deg)
+        np.testing.assert_allclose(other.votes, runs[0].votes, rtol=1e-5, atol=1e-6)  # sums in another order

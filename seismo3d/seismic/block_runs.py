@@ -10,14 +10,17 @@ completed with the blocks of another. Blocks are dask delayed tasks run on the l
 from __future__ import annotations
 
 import json
+import os
 import pathlib
 import time
+import uuid
 
 from .._atomic import atomic_path
 from .._progress import progress_steps
 from ..errors import InputError
 
-__all__ = ["BlockRun", "SchedulerClient", "MEMORY_HEADROOM", "largest_block", "release_memory", "write_marker"]
+__all__ = ["BlockRun", "SchedulerClient", "MEMORY_HEADROOM", "kernel_threads", "largest_block", "release_memory",
+           "run_block", "write_marker"]
 
 # Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
 # for the allocator's fragmentation and the reads in flight (a chunked likelihood run peaked at 1.54 GB under a
@@ -95,6 +98,72 @@ def write_marker(path, payload: dict) -> None:
         json.dump(payload, fh)
 
 
+def _usable_cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+def kernel_threads(client) -> dict:
+    """Numba threads for one block task on each host of a ``dask.distributed`` cluster: the host's cores shared by
+    the worker threads running there (at least 1).
+
+    Every worker thread runs one block at a time and each block's kernels are parallel (numba): left at numba's
+    default (every core), two workers on a 2-core host run 4 kernel threads on 2 cores, and their serial parts
+    (reads, writes, numpy) no longer overlap the other worker's kernels.
+
+    Parameters
+    ----------
+    client : distributed.Client
+
+    Returns
+    -------
+    dict
+        ``{host: threads}``, host as in the scheduler's worker information.
+    """
+    workers = client.scheduler_info(n_workers=-1)["workers"]
+    cores = client.run(_usable_cores)
+    threads_on, cores_on = {}, {}
+    for address, info in workers.items():
+        host = info["host"]
+        threads_on[host] = threads_on.get(host, 0) + int(info["nthreads"])
+        cores_on[host] = max(cores_on.get(host, 1), int(cores.get(address, 1)))
+    return {host: max(1, cores_on[host] // threads_on[host]) for host in threads_on}
+
+
+def run_block(fn, threads, *args):
+    """``fn(*args)`` with numba's kernel threads of this task set from ``threads`` (:func:`kernel_threads`, on a
+    ``dask.distributed`` worker; None: left as they are).
+
+    Parameters
+    ----------
+    fn : callable
+        A block task.
+    threads : dict or None
+        ``{host: threads}``; the worker's host is looked up (the smallest value when it is missing).
+    *args
+        Arguments of ``fn``.
+
+    Returns
+    -------
+    The result of ``fn``.
+    """
+    if not threads:
+        return fn(*args)
+    import numba
+    from distributed import get_worker
+    from distributed.comm import get_address_host
+
+    n = threads.get(get_address_host(get_worker().address), min(threads.values()))
+    before = numba.get_num_threads()
+    numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))  # numba's setting is per thread
+    try:
+        return fn(*args)
+    finally:
+        numba.set_num_threads(before)
+
+
 class SchedulerClient:
     """Context manager: the ``dask.distributed`` client of a scheduler address, or None for the local schedulers
     (None, ``'threads'``, ``'synchronous'``); closed on exit.
@@ -154,6 +223,7 @@ class BlockRun:
         self.scheduler, self.workers, self.progress = scheduler, int(workers), progress
         self.computed, self.resumed, self.seconds = {}, {}, {}
         self.client = None
+        self._kernel_threads = None
 
     def open(self, manifest: dict, what: str) -> None:
         """Create the work folder with ``manifest``, or check that an existing one holds the same manifest.
@@ -186,6 +256,20 @@ class BlockRun:
             return None
         same = {k: v for k, v in earlier.items() if k != "plan"} == {k: v for k, v in manifest.items() if k != "plan"}
         return earlier.get("plan") if same else None
+
+    def task(self, fn, *args, threads: bool = True):
+        """A dask delayed task ``fn(*args)`` of one block (impure: run once per compute), named after ``fn``; on a
+        ``dask.distributed`` cluster its kernels use the worker's share of the host's cores (:func:`kernel_threads`)
+        unless ``threads`` is False (a step whose float sums depend on the number of threads, kept as in memory)."""
+        import dask
+
+        share = None
+        if threads and self.client is not None:
+            if self._kernel_threads is None:
+                self._kernel_threads = kernel_threads(self.client)
+            share = self._kernel_threads
+        name = f"{fn.__name__.strip('_')}-{uuid.uuid4().hex}"
+        return dask.delayed(run_block, pure=False)(fn, share, *args, dask_key_name=name)
 
     def marker(self, step: str, block) -> pathlib.Path:
         """The marker file of ``block`` (a tuple whose items 0 and 2 are its first inline and crossline) in

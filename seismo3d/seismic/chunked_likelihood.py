@@ -388,7 +388,6 @@ class _Run(BlockRun):
         return stats
 
     def balance(self, x, stats: AmplitudeStatistics) -> None:
-        import dask
         p = self.plan
         n0, n1, _ = p.shape
         todo, _ = self.pending("balance", p.blocks(p.balance, p.balance))
@@ -396,40 +395,36 @@ class _Run(BlockRun):
         for b in todo:
             i0, i1, j0, j1 = b
             a0, a1, b0, b1 = max(i0 - p.bhalo, 0), min(i1 + p.bhalo, n0), max(j0 - p.bhalo, 0), min(j1 + p.bhalo, n1)
-            tasks.append(dask.delayed(_balance_block, pure=False)(
-                x[a0:a1, b0:b1, :], (i0 - a0, i1 - a0, j0 - b0, j1 - b0), b, str(self.work), self.opt, stats,
-                str(self.marker("balance", b))))
+            tasks.append(self.task(_balance_block, x[a0:a1, b0:b1, :], (i0 - a0, i1 - a0, j0 - b0, j1 - b0), b,
+                                   str(self.work), self.opt, stats, str(self.marker("balance", b))))
         self.compute(tasks, "amplitude balancing", "balance")
 
     def semblance(self) -> float:
-        import dask
         p = self.plan
         n0, n1, _ = p.shape
         todo, done = self.pending("semblance", p.blocks(p.block, p.block))
-        tasks = [dask.delayed(_semblance_block, pure=False)(b, p, str(self.work), self.opt,
-                                                            str(self.marker("semblance", b))) for b in todo]
+        tasks = [self.task(_semblance_block, b, p, str(self.work), self.opt, str(self.marker("semblance", b)))
+                 for b in todo]
         results = self.compute(tasks, "semblance", "semblance") + done
         total = sum(r["sum_denominator"] for r in results)
         return semblance_floor(total, n0 * n1 * p.m)
 
     def scan(self, tiny: float, axis: int) -> None:
-        import dask
         p = self.plan
         n0, n1, _ = p.shape
         step = f"scan_{'inline' if axis == 0 else 'crossline'}"
         blocks = p.blocks(n0, p.strip) if axis == 0 else p.blocks(p.strip, n1)
         todo, _ = self.pending(step, blocks)
-        tasks = [dask.delayed(_scan_block, pure=False)(b, axis, p, str(self.work), self.opt, tiny,
-                                                       str(self.marker(step, b))) for b in todo]
+        tasks = [self.task(_scan_block, b, axis, p, str(self.work), self.opt, tiny, str(self.marker(step, b)))
+                 for b in todo]
         self.compute(tasks, f"fault scan along {'inlines' if axis == 0 else 'crosslines'}", step)
 
     def decode(self, tiny: float, coords: dict | None) -> float:
-        import dask
         import zarr
         p = self.plan
         todo, done = self.pending("decode", p.blocks(p.block, p.block))
-        tasks = [dask.delayed(_decode_block, pure=False)(b, p, str(self.work), str(self.partial), self.opt, tiny,
-                                                         str(self.marker("decode", b))) for b in todo]
+        tasks = [self.task(_decode_block, b, p, str(self.work), str(self.partial), self.opt, tiny,
+                           str(self.marker("decode", b))) for b in todo]
         results = self.compute(tasks, "decode", "decode") + done
         high = sum(r["high"] for r in results)
         live = sum(r["live"] for r in results)

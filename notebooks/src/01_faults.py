@@ -7,10 +7,11 @@
 # Fomel 2018), links the thinned faults into fault skins and measures each fault's throw by registering the
 # reflectors on its two sides.
 #
-# The data come from the seismo3d data folder (`SEISMO3D_DATA_DIR`): this slab is *derived* (8-bit images and
-# colour masks stacked into one file), so it exists nowhere else. The 8-bit images are heavily clipped (two thirds
-# of the samples sit at the extremes), which makes the tracer find more, smaller faults here than on a float cube
-# (the fault likelihood is high almost everywhere on this slab; a known limitation being worked on).
+# The slab is read from the seismo3d data folder (`SEISMO3D_DATA_DIR`) or, without it, made again from its public
+# origin (the 8-bit images and colour masks, downloaded and hash-checked, stacked into the same bytes). The 8-bit
+# images are heavily clipped (two thirds of the samples sit at the extremes), which makes the tracer find more,
+# smaller faults here than on a float cube (the fault likelihood is high almost everywhere on this slab; a known
+# limitation being worked on).
 #
 # To run in about a minute, the notebook traces a window of the slab: the middle 256 traces and samples 450-1089,
 # which hold the two deepest of the people's horizons and the top of the faulted interval below them. The whole

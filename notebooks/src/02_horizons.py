@@ -8,7 +8,8 @@
 # autotracker (the same extremum picks, breadth-first from the seed). One seed per horizon: inline 1075, trace 256,
 # at the people's pick.
 #
-# The slab is a *derived* file of the seismo3d data folder (`SEISMO3D_DATA_DIR`). `python benchmarks/horizons.py`
+# The slab comes from the seismo3d data folder (`SEISMO3D_DATA_DIR`) or is made again from its downloaded origin
+# images (hash-checked). `python benchmarks/horizons.py`
 # scores all seven horizons, fused ICP and tracking across traced faults.
 
 # %%

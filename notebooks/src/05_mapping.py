@@ -6,7 +6,8 @@
 # predicts the pose, the depth is fused into a TSDF map, keyframes are kept and loops closed with a gtsam pose graph.
 # The estimated trajectory is compared with the 7-Scenes reference poses (ATE after rigid alignment, RPE per step).
 #
-# The sequence is read as one folder, the seismo3d data folder's copy (`SEISMO3D_DATA_DIR`). The same on the
+# The sequence is read as one folder: the seismo3d data folder's copy (`SEISMO3D_DATA_DIR`), or its frames fetched
+# by origin (hash-checked) into the cache when the data folder is not there. The same on the
 # command line: `seismo3d map SEQUENCE -o OUTDIR` then `seismo3d render
 # OUTDIR -o map.png`; `python benchmarks/mapping.py` runs the whole subset beside Open3D's odometry.
 
@@ -15,13 +16,13 @@ import time
 
 import numpy as np
 
-from seismo3d.data import fetch
+from seismo3d.data import fetch_folder
 from seismo3d.mapping import RGBDMapper, absolute_trajectory_error, open_sequence, relative_pose_error
 from seismo3d.viz import show_map
 
 FRAMES = 40  # of the 100 in the subset (every 5th frame of the first 500): about 2.5 s of the original video
 
-sequence = open_sequence(fetch("rgbd/7scenes_redkitchen_0000_0495/associations.txt").parent)
+sequence = open_sequence(fetch_folder("rgbd/7scenes_redkitchen_0000_0495"))
 print(f"sequence: {len(sequence)} frames ({sequence.layout}), mapping the first {FRAMES}")
 
 mapper = RGBDMapper()

@@ -509,7 +509,7 @@ def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", 
                              scalar_bar_args={"title": "fault id", "fmt": "%.0f", "n_labels": min(n_ids, 10)})
         else:
             plotter.add_mesh(mesh, scalars=color_by, cmap="viridis", line_width=3, nan_opacity=0.3)
-    plotter.show_axes()
+    plotter.add_axes(xlabel="inline", ylabel="crossline", zlabel="sample (down)", color="black")
     plotter.camera_position = "xz" if nj == 1 else "iso"
     if screenshot is None:
         plotter.show()

@@ -77,6 +77,14 @@ class CubeGeometry:
         ijk = np.asarray(ijk, dtype=np.float64).reshape(-1, 3)
         return self.origin + ijk @ self.axes
 
+    def axis_labels(self) -> tuple[str, str, str]:
+        """Names of the scene's x, y and z axes for the orientation widget: inline / crossline (line numbers) or
+        easting / northing (CDP X/Y, in ``map_unit``), and time or depth, which increases downward."""
+        name = {"ms": "time", "m": "depth", "ft": "depth"}.get(self.sample_unit, "sample")
+        if self.map_unit == "line":
+            return "inline", "crossline", f"{name} (down)"
+        return f"X ({self.map_unit})", f"Y ({self.map_unit})", f"{name} (down)"
+
     def describe(self) -> str:
         """One line: the lines, the sample range and the vertical exaggeration (used as the scene's caption)."""
         il, xl, s = self.inlines, self.xlines, self.samples
@@ -513,6 +521,7 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
         _add_likelihood(plotter, likelihood, geometry, likelihood_threshold)
     plotter.add_mesh(_outline(geometry), color="black")
     plotter.add_text(title or geometry.describe(), font_size=9, color="black")
-    plotter.show_axes()
+    x_label, y_label, z_label = geometry.axis_labels()
+    plotter.add_axes(xlabel=x_label, ylabel=y_label, zlabel=z_label, color="black")
     plotter.camera_position = camera
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)

@@ -158,7 +158,7 @@ def show_terrain(dem, *, lineaments=None, path=None, vertical_exaggeration=None,
     height_km = dy * (dem.shape[0] - 1) / 1000.0
     plotter.add_text(title or (f"DEM {width_km:.1f} x {height_km:.1f} km, relief {np.ptp(z):.0f} m, vertical "
                                f"exaggeration {ve:.2g}"), font_size=9, color="black", position="upper_right")
-    plotter.show_axes()
+    plotter.add_axes(xlabel="east (m)", ylabel="north (m)", zlabel="up", color="black")
     if camera is None:
         side = max(dx * dem.shape[1], dy * dem.shape[0])
         top = float(np.nanmax(z)) * ve

@@ -480,6 +480,7 @@ def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", 
     import pyvista as pv
 
     from .._validation import check_choice
+    from .plotting import bar_below
 
     check_choice(color_by, "color_by", {"fault_id", "throw", "likelihood"})
     data = np.asarray(cube, dtype=np.float32)
@@ -506,9 +507,10 @@ def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", 
         if color_by == "fault_id":
             n_ids = int(np.unique(mesh.point_data["fault_id"]).size)
             plotter.add_mesh(mesh, scalars="fault_id", cmap="tab10", categories=True, line_width=3,
-                             scalar_bar_args={"title": "fault id", "fmt": "%.0f", "n_labels": min(n_ids, 10)})
+                             scalar_bar_args=bar_below("fault id", fmt="%.0f", n_labels=min(n_ids, 10)))
         else:
-            plotter.add_mesh(mesh, scalars=color_by, cmap="viridis", line_width=3, nan_opacity=0.3)
+            plotter.add_mesh(mesh, scalars=color_by, cmap="viridis", line_width=3, nan_opacity=0.3,
+                             scalar_bar_args=bar_below(color_by))
     plotter.add_axes(xlabel="inline", ylabel="crossline", zlabel="sample (down)", color="black")
     plotter.camera_position = "xz" if nj == 1 else "iso"
     if screenshot is None:

@@ -74,7 +74,7 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
     """
     import pyvista as pv
 
-    from .plotting import finish_scene, new_plotter
+    from .plotting import bar_below, finish_scene, new_plotter
 
     traj = np.asarray(trajectory, dtype=np.float64).reshape(-1, 4, 4)
     kfs = np.asarray(keyframes, dtype=np.float64).reshape(-1, 4, 4)
@@ -89,7 +89,8 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
         up = -traj[:, :3, 1].mean(axis=0) if len(traj) else np.array([0.0, 0.0, 1.0])
         up /= max(np.linalg.norm(up), 1e-12)
         surf.point_data["height (m)"] = vertices @ up
-        plotter.add_mesh(surf, scalars="height (m)", cmap="cividis", smooth_shading=True, show_scalar_bar=True)
+        plotter.add_mesh(surf, scalars="height (m)", cmap="cividis", smooth_shading=True,
+                         scalar_bar_args=bar_below("height (m)"))
     size = 0.08
     if len(traj) >= 2:
         plotter.add_mesh(pv.lines_from_points(traj[:, :3, 3]), color="red", line_width=6, label="trajectory")

@@ -22,7 +22,7 @@ import numpy as np
 from .._atomic import atomic_path
 from ..errors import InputError
 
-__all__ = ["jupyter_backend", "new_plotter", "finish_scene", "symmetric_clip"]
+__all__ = ["jupyter_backend", "new_plotter", "finish_scene", "symmetric_clip", "bar_below"]
 
 _WINDOW_ENV = "VTK_DEFAULT_OPENGL_WINDOW"
 
@@ -132,3 +132,21 @@ def symmetric_clip(values, percentile: float = 99.0) -> float:
     flat = np.abs(flat[np.isfinite(flat)])
     c = float(np.percentile(flat, percentile)) if flat.size else 0.0
     return c if c > 0 else 1.0
+
+
+def bar_below(title: str, **options) -> dict:
+    """``scalar_bar_args`` of pyvista's horizontal colour bar at the bottom of a scene, its title clear of the tick
+    labels (VTK draws both above the bar: the title's trailing newline lifts it a line).
+
+    Parameters
+    ----------
+    title : str
+        The quantity and its unit, e.g. ``'elevation (m)'``.
+    **options
+        Other ``scalar_bar_args`` (``fmt``, ``n_labels``, ...).
+
+    Returns
+    -------
+    dict
+    """
+    return {"title": f"{title}\n", **options}

@@ -21,7 +21,7 @@ import numpy as np
 from ..errors import InputError, Seismo3dWarning
 from .faults import fault_surfaces
 from .horizons import horizon_surface
-from .plotting import finish_scene, new_plotter, symmetric_clip
+from .plotting import bar_below, finish_scene, new_plotter, symmetric_clip
 
 __all__ = ["CubeGeometry", "cube_geometry", "geometry_of_segy", "seismic_grid", "place_index_mesh", "show_seismic"]
 
@@ -387,7 +387,7 @@ def _add_faults(plotter, faults, throws, geometry, color_by):
         raise InputError("color_by='throw' needs measured throws; pass throws= (FaultInterpretation.throws)")
     lim = float(np.nanpercentile(np.abs(values), 98)) or 1.0
     plotter.add_mesh(mesh, scalars="throw", cmap="PuOr_r", clim=(-lim, lim), nan_color="lightgrey",
-                     line_width=3, ambient=0.3, scalar_bar_args={"title": "throw (samples, + normal)"})
+                     line_width=3, ambient=0.3, scalar_bar_args=bar_below("throw (samples, + normal)"))
 
 
 def _add_horizons(plotter, horizons, geometry):

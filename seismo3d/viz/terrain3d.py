@@ -133,8 +133,10 @@ def show_terrain(dem, *, lineaments=None, path=None, vertical_exaggeration=None,
     lift = 0.01 * float(np.ptp(z)) + 0.5  # lines just above the surface (metres, before exaggeration)
     plotter = new_plotter(off_screen=screenshot is not None, window_size=window_size)
     plotter.set_background("white")
+    # the colour bar upright on the right: at the bottom it hid the goal of paths ending in a near corner
     plotter.add_mesh(surface, scalars="elevation", cmap="gist_earth", smooth_shading=True,
-                     scalar_bar_args={"title": "elevation (m)", "fmt": "%.0f"})
+                     scalar_bar_args={"title": "elevation\n(m)", "fmt": "%.0f", "vertical": True,
+                                      "position_x": 0.88, "position_y": 0.25, "height": 0.5, "width": 0.06})
     if lineaments is not None and len(lineaments):
         lines = []
         for r0, c0, r1, c1 in lineaments.segments_px:

@@ -251,9 +251,15 @@ def eigen_coherence_kernel(f, p0, p1, r0, r1, h, out):
                 out[i, j, t] = min(1.0, max(0.0, acc / tr))
 
 
+def gaussian_radius(sigma: float) -> int:
+    """Half-width, in samples, of :func:`gaussian_kernel` of width ``sigma`` (truncated at 3 sigma; 0 when the
+    width is 0: no filter)."""
+    return max(1, int(3.0 * float(sigma) + 0.5)) if sigma > 0 else 0
+
+
 def gaussian_kernel(sigma: float, order: int) -> np.ndarray:
     """Correlation weights of a Gaussian (order 0) or of its first derivative (order 1), truncated at 3 sigma."""
-    r = max(1, int(3.0 * sigma + 0.5))
+    r = gaussian_radius(sigma)
     t = np.arange(-r, r + 1, dtype=np.float64)
     g = np.exp(-0.5 * (t / sigma) ** 2)
     g /= g.sum()

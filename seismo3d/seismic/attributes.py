@@ -163,11 +163,8 @@ def structure_tensor_halo(sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)) -> tuple[
     check_positive(sigma_gradient, "sigma_gradient")
     lateral, vertical = as_sigma_pair(sigma_tensor, "sigma_tensor")
 
-    def radius(sigma: float, order: int) -> int:
-        return (len(_kernels.gaussian_kernel(float(sigma), order)) - 1) // 2
-
-    grad = max(radius(sigma_gradient, 0), radius(sigma_gradient, 1))  # smoothing and derivative passes
-    return grad + radius(lateral, 0), grad + radius(vertical, 0)
+    grad = _kernels.gaussian_radius(sigma_gradient)  # its smoothing and derivative passes
+    return grad + _kernels.gaussian_radius(lateral), grad + _kernels.gaussian_radius(vertical)
 
 
 # --------------------------------------------------------------------------------------------------------------------

@@ -155,7 +155,8 @@ def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int
         return (b + 2 * h) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
 
     def vote_bytes(b):
-        return (b + 4 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * (_VOTE_CORE_BYTES + _VOTE_THREAD_BYTES * threads)
+        core = _VOTE_CORE_BYTES + _VOTE_THREAD_BYTES * threads
+        return (b + 4 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * core
 
     def thin_bytes(b):
         return (b + 2 * _THIN_HALO) ** 2 * nt * _THIN_BYTES

@@ -570,23 +570,19 @@ def scan_step(options: FaultScanOptions, n_samples: int) -> int:
     return int(min(options.decimation, max(1, n_samples // 16)))
 
 
-def _radius(sigma) -> int:
-    """Half-width of the Gaussian windows of :mod:`seismo3d.seismic._kernels` (truncated at 3 sigma)."""
-    return max(1, int(3.0 * float(sigma) + 0.5)) if sigma > 0 else 0
-
-
 def balance_halo(options: FaultScanOptions) -> int:
     """Traces on each side of a block that :func:`balance_amplitudes` needs so that the block's result equals the
     whole cube's (the Gaussian window of the local RMS, truncated at 3 sigma)."""
-    return _radius(options.balance[0]) if options.balance is not None else 0
+    return _kernels.gaussian_radius(options.balance[0]) if options.balance is not None else 0
 
 
 def semblance_halo(options: FaultScanOptions) -> int:
     """Traces on each side of a block that :func:`semblance_terms` needs: the wider of the structure tensor for the
     slopes (plus the neighbouring trace read along them) and the tensor for the planarity."""
-    sg = _radius(options.sigma_gradient)
-    slopes = sg + _radius(options.sigma_tensor[0]) + 1
-    planarity = sg + _radius(options.planarity_sigma[0]) if options.planarity_sigma is not None else 0
+    sg = _kernels.gaussian_radius(options.sigma_gradient)
+    slopes = sg + _kernels.gaussian_radius(options.sigma_tensor[0]) + 1
+    planarity = (sg + _kernels.gaussian_radius(options.planarity_sigma[0])
+                 if options.planarity_sigma is not None else 0)
     return max(slopes, planarity)
 
 

@@ -13,7 +13,8 @@ Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000]
    and dip computed chunk by chunk into Zarr with ``--memory-limit`` (default 1.4 GB): on dask's threaded
    scheduler, and on a local ``dask.distributed`` cluster of 2 workers (1 thread each, blocks planned for half the
    limit each, each block's kernels on the worker's share of the cores, :func:`~seismo3d.seismic.block_runs.
-   kernel_threads`): as 2 worker processes with their nannies (``distributed``) and as 2 workers in
+   kernel_threads`; tiles of 16 traces, so that a scan strip fits half the limit): as 2 worker processes with their
+   nannies (``distributed``) and as 2 workers in
    the client's process (``distributed-inprocess``, off by default). Each run is a child process; its peak memory
    is sampled over the process and all its children (the cluster's scheduler, nannies and workers included): the
    summed resident memory (RSS, every 0.2 s; it counts the libraries every process maps once per process) and the
@@ -145,7 +146,10 @@ def case_chunked(sgy: str, out: str, limit: int, scheduler: str) -> dict:
     from seismo3d.seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood
     from seismo3d.seismic.lazy_cube import open_lazy
 
-    cube = open_lazy(sgy, tile=32)
+    # tiles of 16 traces on the cluster: each worker plans for half the limit, and a scan strip holds a whole
+    # lateral axis (1448 traces x 32 x 256 grouped samples x 24 B = 0.65 GiB for a 32-trace strip: too much)
+    tile = 32 if scheduler == "threads" else 16
+    cube = open_lazy(sgy, tile=tile)
     t0 = time.perf_counter()
     if scheduler == "threads":
         r = chunked_fault_likelihood(cube.data, out, chunking=ChunkOptions(memory_limit=limit), progress=True)
@@ -159,7 +163,7 @@ def case_chunked(sgy: str, out: str, limit: int, scheduler: str) -> dict:
         with LocalCluster(n_workers=2, threads_per_worker=1, processes=scheduler == "distributed",
                           dashboard_address=None, memory_limit=0) as lc:
             r = chunked_fault_likelihood(cube.data, out, progress=True, chunking=ChunkOptions(
-                memory_limit=limit // 2, scheduler=lc.scheduler_address))
+                memory_limit=limit // 2, tile=tile, scheduler=lc.scheduler_address))
     sec = time.perf_counter() - t0
     fl = r.open()["likelihood"]
     return {"seconds": sec, "gb": float(np.prod(cube.shape)) * 4 / 1e9, "shape": list(cube.shape),

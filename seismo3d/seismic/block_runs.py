@@ -284,6 +284,13 @@ class BlockRun:
         self.computed[step] = len(todo)
         return todo, [json.loads(self.marker(step, b).read_text()) for b in done]
 
+    def each_block(self, step: str, label: str, fn, blocks, *args) -> list:
+        """``fn(block, *args, marker)`` on every block of ``step`` not finished yet (:meth:`task`, :meth:`compute`);
+        the results of the computed blocks, then those of the finished ones."""
+        todo, done = self.pending(step, blocks)
+        tasks = [self.task(fn, b, *args, str(self.marker(step, b))) for b in todo]
+        return self.compute(tasks, label, step) + done
+
     def compute(self, tasks: list, label: str, step: str) -> list:
         """Run delayed block tasks on the chosen scheduler, reporting each finished block; their results in
         order."""

@@ -384,12 +384,6 @@ class _SurfaceRun(BlockRun):
         write_marker(path, value)
         return value
 
-    def _each_block(self, step: str, label: str, task, blocks, *args) -> list:
-        """``task(block, *args, marker)`` on every block of ``step`` not finished yet; the results of all blocks."""
-        todo, done = self.pending(step, blocks)
-        tasks = [self.task(task, b, *args, str(self.marker(step, b))) for b in todo]
-        return self.compute(tasks, label, step) + done
-
     # -- steps ----------------------------------------------------------------------------------------------------
     def amplitude_range(self, x) -> tuple[float, float]:
         import dask
@@ -472,7 +466,7 @@ class _SurfaceRun(BlockRun):
     def thresholds(self) -> tuple[float, float]:
         p = self.plan
         blocks = _blocks(p.shape, p.thin)
-        stats = self._each_block("thin", "thinning", _thin_block, blocks, str(self.work), str(self.partial), p)
+        stats = self.each_block("thin", "thinning", _thin_block, blocks, str(self.work), str(self.partial), p)
         n_values = sum(r["count"] for r in stats)
         if n_values == 0:
             return self.opt.thresholds_from(1.0, 0, int(np.prod(p.shape, dtype=np.int64)), None)
@@ -484,7 +478,7 @@ class _SurfaceRun(BlockRun):
                                         lambda q: self._quantile(blocks, q, n_values, vmin, vmax))
 
     def _histogram(self, blocks, vmin, vmax, bins, step):
-        results = self._each_block(step, "histogram of the thinned votes", _histogram_block, blocks, str(self.work),
+        results = self.each_block(step, "histogram of the thinned votes", _histogram_block, blocks, str(self.work),
                                    vmin, vmax, bins)
         counts = np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)
         edges = np.histogram_bin_edges(np.array([vmin, vmax], np.float32), bins=bins,
@@ -504,7 +498,7 @@ class _SurfaceRun(BlockRun):
         last = int(np.searchsorted(cum, rank + need))
         # one bin more on each side: the values np.histogram puts in a bin may sit on its edges
         lo_edge, hi_edge = float(edges[max(first - 1, 0)]), float(edges[min(last + 2, _QUANTILE_BINS)])
-        results = self._each_block("quantile", "quantile of the thinned votes", _gather_block, blocks, str(self.work),
+        results = self.each_block("quantile", "quantile of the thinned votes", _gather_block, blocks, str(self.work),
                                    lo_edge, hi_edge)
         k = rank - sum(r["below"] for r in results)
         window = np.sort(np.concatenate([np.asarray(r["values"], np.float32) for r in results]))
@@ -519,7 +513,7 @@ class _SurfaceRun(BlockRun):
         import zarr
         p = self.plan
         blocks = _blocks(p.shape, p.thin)
-        results = self._each_block("cells", "fault cells", _cell_block, blocks, str(self.work), str(self.partial),
+        results = self.each_block("cells", "fault cells", _cell_block, blocks, str(self.work), str(self.partial),
                                    lower)
         n = sum(r["count"] for r in results)
         if n * _CELL_BYTES > memory - resident_memory():

@@ -402,10 +402,8 @@ class _Run(BlockRun):
     def semblance(self) -> float:
         p = self.plan
         n0, n1, _ = p.shape
-        todo, done = self.pending("semblance", p.blocks(p.block, p.block))
-        tasks = [self.task(_semblance_block, b, p, str(self.work), self.opt, str(self.marker("semblance", b)))
-                 for b in todo]
-        results = self.compute(tasks, "semblance", "semblance") + done
+        results = self.each_block("semblance", "semblance", _semblance_block, p.blocks(p.block, p.block), p,
+                                  str(self.work), self.opt)
         total = sum(r["sum_denominator"] for r in results)
         return semblance_floor(total, n0 * n1 * p.m)
 
@@ -414,18 +412,14 @@ class _Run(BlockRun):
         n0, n1, _ = p.shape
         step = f"scan_{'inline' if axis == 0 else 'crossline'}"
         blocks = p.blocks(n0, p.strip) if axis == 0 else p.blocks(p.strip, n1)
-        todo, _ = self.pending(step, blocks)
-        tasks = [self.task(_scan_block, b, axis, p, str(self.work), self.opt, tiny, str(self.marker(step, b)))
-                 for b in todo]
-        self.compute(tasks, f"fault scan along {'inlines' if axis == 0 else 'crosslines'}", step)
+        self.each_block(step, f"fault scan along {'inlines' if axis == 0 else 'crosslines'}", _scan_block, blocks,
+                        axis, p, str(self.work), self.opt, tiny)
 
     def decode(self, tiny: float, coords: dict | None) -> float:
         import zarr
         p = self.plan
-        todo, done = self.pending("decode", p.blocks(p.block, p.block))
-        tasks = [self.task(_decode_block, b, p, str(self.work), str(self.partial), self.opt, tiny,
-                           str(self.marker("decode", b))) for b in todo]
-        results = self.compute(tasks, "decode", "decode") + done
+        results = self.each_block("decode", "decode", _decode_block, p.blocks(p.block, p.block), p, str(self.work),
+                                  str(self.partial), self.opt, tiny)
         high = sum(r["high"] for r in results)
         live = sum(r["live"] for r in results)
         group = zarr.open_group(str(self.partial), mode="r+")

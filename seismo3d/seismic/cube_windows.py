@@ -311,15 +311,16 @@ class StoredWindows:
         return CubeWindow(fields[0], fields[1], fields[2], (a0, b0), self.shape)
 
 
-def cube_windows(data, orientation: ReflectorOrientation | None = None) -> ArrayWindows | LazyWindows:
+def cube_windows(data, orientation: ReflectorOrientation | None = None
+                 ) -> ArrayWindows | LazyWindows | StoredWindows:
     """The window source of ``data``: :class:`LazyWindows` for a 3D dask array, else :class:`ArrayWindows`.
 
     Parameters
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, 3D dask.array.Array, or a source
         Seismic amplitudes (a 2D dask array is read whole: a section fits in memory), or an :class:`ArrayWindows` /
-        :class:`LazyWindows` / :class:`StoredWindows` already made (returned as it is: e.g. a ``LazyWindows`` with another ``tile`` or
-        ``cache_mb``).
+        :class:`LazyWindows` / :class:`StoredWindows` already made (returned as it is: e.g. a ``LazyWindows`` with
+        another ``tile`` or ``cache_mb``).
     orientation : ReflectorOrientation, optional
         Of ``data``; computed by the source when not given (once for an in-memory array, per tile for a lazy one).
 

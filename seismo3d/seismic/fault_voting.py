@@ -276,9 +276,8 @@ def _vote(att, g0, g1, shape, seeds, ids, frames, lo, hi, ru, rv, rw, b, a_smoot
     # holds every sample the seeds' boxes reach). best and best_seed (n_threads, m0, m1, n2), also per thread,
     # record the strongest surface of the thread's seeds through each sample (its mean likelihood and the seed's
     # position s; equal means go to the smaller id), seed_normal[s] the normal of seed s at the seed (seeds lo..hi-1
-    # are voted by this call):
-    # _strongest then takes the strongest over the threads, so the result depends neither on the threads' timing
-    # nor on their number.
+    # are voted by this call); _strongest then takes the strongest over the threads, so the result depends neither
+    # on the threads' timing nor on their number.
     n0, n1, n2 = shape[0], shape[1], shape[2]
     m0, m1 = votes.shape[1], votes.shape[2]
     nu = 2 * ru + 1

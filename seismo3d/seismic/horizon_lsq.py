@@ -25,7 +25,9 @@ with its neighbours' (``+-ncc_half`` samples); picks below ``min_confidence`` an
 confident pairs stay empty (NaN). A last self-check (:func:`cycle_skips`) re-measures the pairs at the picked horizon
 with lags of more than a reflector period and flags the traces where the correlation-predicted horizon (their plain
 least-squares solution) lies about a period away; the tracker repairs them (moves them to the predicted cycle,
-re-solves, picks again) and keeps the repair when it leaves fewer traces flagged.
+re-solves, picks again) and keeps the repair when it leaves fewer traces flagged. Regions of flagged traces that the
+solve kept a cycle off are then moved by a minimum cut where their pairs correlate clearly better a cycle away
+(:mod:`~seismo3d.seismic.cycle_cut`).
 
 Conventions: index space (axis 0 inline, axis 1 crossline, last axis sample; a 2D section ``(n_traces, n_samples)``);
 times in fractional samples.
@@ -43,12 +45,13 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
+from .cycle_cut import cycle_cut
 from .fault_crossings import FaultCrossings
 from .horizon_dp import dp_picks, line_slopes, reflector_period, sample_at, settle_lone_departures
 from .reflectors import nearest_pick, reflector_picks
 
-__all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "solve_horizon", "cycle_skips", "pair_agreement",
-           "lsq_horizon"]
+__all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "window_correlation", "solve_horizon", "cycle_skips",
+           "pair_agreement", "lsq_horizon"]
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -411,12 +414,38 @@ def picks_of(data: np.ndarray, polarity: str) -> tuple[np.ndarray, np.ndarray]:
     return reflector_picks(data.reshape(-1, data.shape[-1]), polarity=polarity)
 
 
+def window_correlation(traces: np.ndarray, a: np.ndarray, ta: np.ndarray, b: np.ndarray, tb: np.ndarray, *,
+                       half: int) -> np.ndarray:
+    """Normalised cross-correlation of trace ``a``'s window around ``ta`` with trace ``b``'s around ``tb``, for each
+    pair (no lag search; windows ``+-half`` samples, shortened near the ends of the traces as in
+    :func:`pair_shifts`).
+
+    Parameters
+    ----------
+    traces : (n_traces, n_samples) float32 ndarray
+    a, b : (n_pairs,) intp ndarray
+        The traces of each pair.
+    ta, tb : (n_pairs,) float64 ndarray
+        Window centres, fractional samples.
+    half : int
+        Samples.
+
+    Returns
+    -------
+    (n_pairs,) float64 ndarray
+        In [-1, 1]; NaN where a centre is NaN or the windows overlap the traces too little.
+    """
+    _, score = _pair_lags(traces, np.asarray(a, np.intp), np.asarray(ta, np.float64), np.asarray(b, np.intp),
+                          np.asarray(tb, np.float64), int(half), 0, 0.8)
+    return score
+
+
 def neighbour_confidence(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndarray, half: int) -> np.ndarray:
     """Median normalised cross-correlation (``+-half`` samples) of each trace's waveform at ``times`` with its
     neighbours' (the pairs ``a, b``) at theirs; NaN where no neighbour is picked."""
     ok = np.isfinite(times[a]) & np.isfinite(times[b])
     a, b = a[ok], b[ok]
-    _, score = _pair_lags(traces, a, times[a], b, times[b], int(half), 0, 0.8)
+    score = window_correlation(traces, a, times[a], b, times[b], half=half)
     node = np.concatenate([a, b])
     val = np.concatenate([score, score])
     out = np.full(times.size, np.nan)
@@ -537,6 +566,16 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
             if left < int(bad.sum()):
                 repaired = int(bad.sum()) - left
                 snapped, solution = again, guide
+        # regions a cycle off that the least-squares solve kept (their shifts are measured around its own
+        # estimate): moved by a minimum cut where their pairs correlate clearly better a cycle away
+        flags = np.isfinite(check(snapped))
+        if flags.any():
+            cut = cycle_cut(traces, picks, offsets, snapped, lat, a, b, dist, seeds=seed_idx, movable=flags,
+                            period=check.period, half=opt.correlation_half, ncc_half=opt.ncc_half,
+                            distance_power=opt.distance_power, min_gain=opt.cut_gain,
+                            min_extent=max(opt.pair_distances))
+            snapped = cut.times
+            repaired += cut.moved
     near = dist == 1
     conf = neighbour_confidence(traces, snapped, a[near], b[near], opt.ncc_half)
     conf[seed_idx] = 1.0
@@ -548,16 +587,17 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
 
 class _SkipCheck:
     """:func:`cycle_skips` of a horizon (flat (n,) times): every pair re-measured at it with lags of 1.5 reflector
-    periods."""
+    periods; ``period`` is the reflector period (samples) of the last horizon checked."""
 
     def __init__(self, traces, picks, offsets, lat, a, b, dist, axis, faults, opt, seeds, seed_times):
+        self.period = np.nan
         self.traces, self.picks, self.offsets, self.lat = traces, picks, offsets, lat
         self.seeds, self.seed_times = seeds, seed_times
         self.a, self.b, self.dist, self.axis, self.faults, self.opt = a, b, dist, axis, faults, opt
 
     def __call__(self, times):
         have = np.nonzero(np.isfinite(times))[0]
-        period = reflector_period(self.picks, self.offsets, have[::7], times[have[::7]])
+        period = self.period = reflector_period(self.picks, self.offsets, have[::7], times[have[::7]])
         if not np.isfinite(period):
             return np.full(times.size, np.nan)
         jumps = _pair_fault_jumps(self.faults, self.lat, times, self.a, self.b, self.axis)

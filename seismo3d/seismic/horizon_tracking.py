@@ -498,7 +498,12 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
         from .horizon_lsq import lsq_horizon
 
         found = lsq_horizon(arr, seeds, polarity=polarity, faults=crossings, options=opt, progress=progress)
-        return Horizon(found.times.astype(np.float32), found.confidence.astype(np.float32), polarity, seeds)
+        times, conf = found.times.copy(), found.confidence.copy()
+        if arr.ndim == 3:
+            # traces left empty beside tracked ones (a pick the line's programme or the lateral check gave up, whose
+            # neighbours were a cycle off before the repair) are filled where their neighbours agree and correlate
+            close_gaps(arr, times, conf, polarity=polarity, faults=crossings, options=opt)
+        return Horizon(times.astype(np.float32), conf.astype(np.float32), polarity, seeds)
     if arr.ndim == 2:
         return _track_2d(arr, seeds, polarity, opt, crossings)
     return _track_3d(arr, seeds, polarity, opt, crossings, progress)

@@ -51,7 +51,12 @@ class TrackingOptions:
         ('global') Cost of neighbouring picks' waveforms that do not correlate (times 1 - correlation).
     repair : bool
         ('global') Run the cycle-skip self-check and repair flagged traces
-        (:func:`~seismo3d.seismic.horizon_lsq.cycle_skips`).
+        (:func:`~seismo3d.seismic.horizon_lsq.cycle_skips`), then move flagged regions by a cycle where the pairs
+        correlate better (:func:`~seismo3d.seismic.cycle_cut.cycle_cut`).
+    cut_gain : float
+        ('global') A region the cycle cut moves must remove at least this fraction of its traces' mean
+        decorrelation with their neighbours (1 - confidence): regions continuous either way, or in chaotic data,
+        stay.
     model : {'rigid', 'similarity', 'axis_scaled', 'affine'}
         Transform family of the panel registrations (2D). 'axis_scaled' allows per-axis scale (layers that thicken)
         but its vertical scale can slide a band that reaches the top or bottom of the data by one cycle (seen on a
@@ -123,6 +128,7 @@ class TrackingOptions:
     dp_step: float = 1.0
     dp_wave: float = 4.0
     repair: bool = True
+    cut_gain: float = 0.4
     model: str = "rigid"
     half_traces: int = 10
     half_samples: float = 20.0
@@ -169,6 +175,8 @@ class TrackingOptions:
         for name in ("half_samples", "snap", "seed_snap", "pierce", "on_fault", "despike_agree"):
             object.__setattr__(self, name, float(check_positive(getattr(self, name), name)))
         check_positive(self.fault_zone, "fault_zone", allow_zero=True)
+        if not 0.0 <= self.cut_gain <= 1.0:
+            raise InputError(f"cut_gain is a fraction in [0, 1]; got {self.cut_gain}")
         if not -1.0 <= self.min_confidence <= 1.0:
             raise InputError(f"min_confidence is a correlation in [-1, 1]; got {self.min_confidence}")
         if not 0.0 <= self.reference_weight <= 1.0:

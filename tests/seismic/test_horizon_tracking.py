@@ -72,12 +72,17 @@ def test_track_3d_across_faults_median_error_within_one_sample(faulted_errors, c
 
 
 # The registration tracker kept 80 % of these horizons' traces within 2 samples on average; the global tracker keeps
-# 72-76 % (cubes 0-2: 0.763, 0.723, 0.743): its picks are right in the median but a region beyond a fault is still a
-# cycle off on some horizons, and the top horizon of cube 0 is reached on 62 % of its traces only.
-@pytest.mark.parametrize("cube_seed", [0, 1, 2])
+# 79 / 85 / 74 % (cubes 0-2: 0.789, 0.853, 0.743; 0.763, 0.723, 0.743 before the cycle cut and the gap closing): its
+# picks are right in the median, but on cubes 0 and 2 regions beyond a fault are still a cycle off on some horizons
+# (cube 2 horizon 3: 851 traces one cycle down, which the cycle cut does not move), and the top horizon of cube 0 is
+# reached on 62 % of its traces only.
+WITHIN_2_MISSED = {0: "global tracker: 78.9 % of traces within 2 samples on average (registration tracker: 80 %)",
+                   2: "global tracker: 74.3 % of traces within 2 samples on average (registration tracker: 80 %)"}
+
+
+@pytest.mark.parametrize("cube_seed", [pytest.param(s, marks=pytest.mark.xfail(reason=WITHIN_2_MISSED[s], strict=True))
+                                       if s in WITHIN_2_MISSED else s for s in (0, 1, 2)])
 @pytest.mark.slow
-@pytest.mark.xfail(reason="global tracker: 72-76 % of traces within 2 samples on average (registration tracker: 80 %)",
-                   strict=True)
 def test_track_3d_across_faults_keeps_most_traces_within_two_samples(faulted_errors, cube_seed):
     assert np.mean([e.within_2 for e in faulted_errors(cube_seed)]) >= 0.80
 
@@ -190,12 +195,12 @@ def test_options_object_and_keywords_agree():
 # horizon: >= 99 % of the live traces within 5 samples, median <= 1 sample (horizon 5: 1.5, the people's picks wander
 # within clipped plateaus), and at least the plain autotracker's % within 5 less half a point, measured here.
 FOLDS = {"1075-1083": slice(0, 9), "1084-1092": slice(9, 18)}
-# measured (both at or above the plain autotracker less half a point; below the 99 %): horizon 6 on 1075-1083 crosses
-# a fault of about 16 samples' throw (more than a reflector period) that correlations alone do not see (the plain
-# autotracker is at 89.3 %; the faults traced in this slab do not carry the throw); horizon 1 on 1084-1092 cuts the
-# bottom of the pockmark's sag on some inlines (the autotracker: 98.9 %)
-MISSED = {("1075-1083", 6): "fault throw above a reflector period: 91.6 % within 5 (autotracker 89.3 %)",
-          ("1084-1092", 1): "pockmark sag bottom: 98.9 % within 5 (autotracker 98.9 %)"}
+# measured (at the plain autotracker; below the 99 %): horizon 1 on 1084-1092 cuts the bottom of the pockmark's sag on
+# some inlines (the autotracker: 98.9 %). Horizon 6 on 1075-1083 (a fault whose throw at the horizon is about half a
+# reflector period, so the correlations across it are ambiguous; 91.6 % before) reaches 99.5 % since the cycle cut moves
+# the region the solve kept a cycle off (seismo3d.seismic.cycle_cut) and the gap closing refills the inline whose
+# picks the lateral check had emptied.
+MISSED = {("1084-1092", 1): "pockmark sag bottom: 98.9 % within 5 (autotracker 98.9 %)"}
 
 
 def _peak_seed(cube, ref, trace=256):

@@ -573,7 +573,7 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
             cut = cycle_cut(traces, picks, offsets, snapped, lat, a, b, dist, seeds=seed_idx, movable=flags,
                             period=check.period, half=opt.correlation_half, ncc_half=opt.ncc_half,
                             distance_power=opt.distance_power, min_gain=opt.cut_gain,
-                            min_extent=max(opt.pair_distances))
+                            min_extent=int(dist.max()) if dist.size else 0)
             snapped = cut.times
             repaired += cut.moved
     near = dist == 1

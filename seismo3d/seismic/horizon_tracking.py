@@ -435,7 +435,10 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
     between near and distant traces (1 to 32 traces apart along inlines and crosslines) through all the seeds at
     once, so one bad local step is outvoted by the pairs that span it; each line's picks are then chosen together
     by dynamic programming (near the solution, steps along the reflector slope, waveforms that correlate), checked
-    for cycle skips against the long pairs, and scored by their correlation with their neighbours.
+    for cycle skips against the long pairs (regions a cycle off moved back by a minimum cut where their pairs
+    correlate clearly better: :mod:`~seismo3d.seismic.cycle_cut`), and scored by their correlation with their
+    neighbours; in 3D, empty traces beside tracked ones are then filled where their neighbours agree and correlate
+    (:func:`close_gaps`).
 
     With ``method='registration'``, in 2D the horizon is tracked along the section from each seed. In 3D it is tracked along each seed's inline,
     then carried inline by inline to both ends of the cube with the fused ICP; a trace the carry leaves empty is
@@ -495,18 +498,29 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
     for s in seeds:
         check_live_seed(arr, s)
     if opt.method == "global":
-        from .horizon_lsq import lsq_horizon
-
-        found = lsq_horizon(arr, seeds, polarity=polarity, faults=crossings, options=opt, progress=progress)
-        times, conf = found.times.copy(), found.confidence.copy()
-        if arr.ndim == 3:
-            # traces left empty beside tracked ones (a pick the line's programme or the lateral check gave up, whose
-            # neighbours were a cycle off before the repair) are filled where their neighbours agree and correlate
-            close_gaps(arr, times, conf, polarity=polarity, faults=crossings, options=opt)
-        return Horizon(times.astype(np.float32), conf.astype(np.float32), polarity, seeds)
+        return _track_global(arr, seeds, polarity, opt, crossings, progress)
     if arr.ndim == 2:
         return _track_2d(arr, seeds, polarity, opt, crossings)
     return _track_3d(arr, seeds, polarity, opt, crossings, progress)
+
+
+def _track_global(arr, seeds, polarity, opt: TrackingOptions, crossings: FaultCrossings, progress: bool) -> Horizon:
+    """``method='global'``: the least-squares horizon and its picks (:func:`~seismo3d.seismic.horizon_lsq.
+    lsq_horizon`), the lateral continuity check along both lateral axes (the lines' programmes do not see each
+    other: a lone pick a cycle off its agreeing neighbours is a spike; the seeds' own picks stay), then, in 3D, the
+    gap closing (traces left empty beside tracked ones, e.g. a pick the lateral checks gave up while its neighbours
+    were a cycle off before the repair, filled where the neighbours agree and correlate)."""
+    from .horizon_lsq import lsq_horizon
+
+    found = lsq_horizon(arr, seeds, polarity=polarity, faults=crossings, options=opt, progress=progress)
+    times, conf = found.times.copy(), found.confidence.copy()
+    at_seeds = tuple(np.rint(seeds[:, :-1]).astype(np.intp).T)
+    kept = times[at_seeds].copy(), conf[at_seeds].copy()
+    _despike_lines(arr, times, conf, polarity, opt, crossings)
+    times[at_seeds], conf[at_seeds] = kept
+    if arr.ndim == 3:
+        close_gaps(arr, times, conf, polarity=polarity, faults=crossings, options=opt)
+    return Horizon(times.astype(np.float32), conf.astype(np.float32), polarity, seeds)
 
 
 def _snap_seed(sl: ReflectorSlice, j: int, t: float, window: float, seed) -> float:
@@ -582,6 +596,32 @@ def _track_3d(arr, seeds, polarity, opt: TrackingOptions, crossings: FaultCrossi
     # the gap-closing pass: traces the inline order left empty, from their neighbours along both axes
     close_gaps(arr, times, conf, polarity=polarity, faults=crossings, options=opt)
     return Horizon(times.astype(np.float32), conf.astype(np.float32), polarity, seeds)
+
+
+def _despike_lines(arr, times, conf, polarity, opt: TrackingOptions, crossings: FaultCrossings) -> int:
+    """:func:`despike` along every line of a horizon (a 2D section's line; a cube's inlines, then its crosslines):
+    picks that left both line neighbours for a neighbouring cycle while the neighbours agree are re-snapped between
+    them or emptied. ``times`` and ``conf`` (lateral shape) are modified in place; returns the picks changed."""
+    changed = 0
+    if arr.ndim == 2:
+        carried = times.copy()
+        return despike(ReflectorSlice(arr, polarity, opt.sigma_tensor, opt.ncc_half), times, carried, conf,
+                       min_confidence=opt.min_confidence, faults=crossings, reach=opt.despike_reach,
+                       agree=opt.despike_agree)
+    for axis in (0, 1):  # lines along crosslines (one per inline), then along inlines (one per crossline)
+        for k in range(arr.shape[axis]):
+            index = (k, slice(None)) if axis == 0 else (slice(None), k)
+            line = np.ascontiguousarray(arr[index])
+            picks, conf_line = times[index].copy(), conf[index].copy()
+
+            def line_point(x, t, k=k, axis=axis):
+                return np.array([k, x, t] if axis == 0 else [x, k, t], np.float64)
+
+            changed += despike(ReflectorSlice(line, polarity, opt.sigma_tensor, opt.ncc_half), picks, picks.copy(),
+                               conf_line, min_confidence=opt.min_confidence, faults=crossings, line_point=line_point,
+                               reach=opt.despike_reach, agree=opt.despike_agree)
+            times[index], conf[index] = picks, conf_line
+    return changed
 
 
 def close_gaps(data, times: np.ndarray, confidence: np.ndarray, *, polarity: str = "peak",

@@ -9,7 +9,9 @@ import pytest
 from seismo3d.seismic.cycle_cut import binary_min_cut, cycle_cut, neighbour_cycle
 from seismo3d.seismic.horizon_dp import reflector_period
 from seismo3d.seismic.horizon_lsq import trace_pairs
-from seismo3d.seismic.reflectors import nearest_pick, reflector_picks
+from seismo3d.seismic.reflectors import nearest_pick
+
+from .conftest import random_layers
 
 
 @pytest.mark.parametrize("seed", range(5))
@@ -35,21 +37,6 @@ def test_min_cut_finds_the_brute_force_minimum_of_a_submodular_energy(seed):
     assert energy(got) == pytest.approx(best[0], abs=1e-4)
 
 
-def _layers(lateral, n_samples=120, dip=0.04, seed=7):
-    """Traces of one random reflectivity series (no two cycles look alike), dipping gently along the last lateral
-    axis, Ricker wavelet; flat (n, n_samples) float32, with their peak picks."""
-    rng = np.random.default_rng(seed)
-    refl = rng.standard_normal(n_samples + 40) * (rng.random(n_samples + 40) < 0.3)
-    tt = np.arange(-10, 11)
-    wavelet = (1 - 2 * (np.pi * 0.08 * tt) ** 2) * np.exp(-(np.pi * 0.08 * tt) ** 2)
-    base = np.convolve(refl, wavelet, mode="same")
-    x = np.arange(base.size, dtype=np.float64)
-    pos = np.indices(lateral)[-1].ravel()
-    traces = np.stack([np.interp(np.arange(n_samples) + 20 - dip * j, x, base) for j in pos]).astype(np.float32)
-    picks, offsets = reflector_picks(traces, polarity="peak")
-    return traces, picks, offsets, pos
-
-
 def _truth(picks, offsets, pos, t0, dip=0.04):
     start = nearest_pick(picks, offsets, 0, t0, 8.0)
     return np.array([nearest_pick(picks, offsets, k, start + dip * j, 1.0) for k, j in enumerate(pos)])
@@ -68,7 +55,7 @@ def test_a_region_one_cycle_off_is_moved_back(direction):
     # as a tracker leaves it after one wrong step across a fault: inlines 0-6, crosslines 0-15 of a 12 x 40 grid one
     # cycle down (or up); the seed and the rest are right
     lateral = (12, 40)
-    traces, picks, offsets, pos = _layers(lateral)
+    traces, picks, offsets, pos = random_layers(lateral, n_samples=120, dip=0.04, seed=7)
     truth = _truth(picks, offsets, pos, 60.0)
     assert np.isfinite(truth).all()
     skipped = truth.reshape(lateral).copy()
@@ -90,7 +77,7 @@ def test_a_region_one_cycle_off_is_moved_back(direction):
 
 def test_a_consistent_horizon_and_traces_not_flagged_stay():
     lateral = (160,)
-    traces, picks, offsets, pos = _layers(lateral)
+    traces, picks, offsets, pos = random_layers(lateral, n_samples=120, dip=0.04, seed=7)
     truth = _truth(picks, offsets, pos, 60.0)
     seeds = np.array([60])
     # the true horizon: nothing to gain

@@ -3,28 +3,14 @@ noisy guide, and lone departures moved back; generated data with known truth."""
 
 import numpy as np
 
-from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.seismic.horizon_dp import dp_picks, line_slopes, settle_lone_departures
 from seismo3d.seismic.reflectors import nearest_pick, reflector_picks
 
-
-def _section_and_truth(k=2, seed=3):
-    syn = synthetic_cube((160, 128), n_faults=0, seed=seed, noise=0.05)
-    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
-    picks, offsets = reflector_picks(syn.cube, polarity=pol)
-    truth = np.array([nearest_pick(picks, offsets, j, syn.horizons[k][j], 1.0) for j in range(160)])
-    assert np.isfinite(truth).all()
-    return syn, pol, picks, offsets, truth
-
-
-def _next_cycle(picks, offsets, k, t):
-    """The pick after ``t`` on trace ``k`` (one reflector cycle down)."""
-    p = picks[offsets[k]:offsets[k + 1]]
-    return float(p[np.searchsorted(p, t + 1e-6)])
+from .conftest import next_cycle, section_and_truth
 
 
 def test_dp_picks_the_true_reflector_from_a_noisy_guide():
-    syn, pol, picks, offsets, truth = _section_and_truth()
+    syn, pol, picks, offsets, truth = section_and_truth()
     guide = truth + np.random.default_rng(0).normal(0.0, 1.5, truth.size)  # +-1.5 samples of noise per trace
     fixed = np.full(truth.size, np.nan)
     fixed[80] = truth[80]
@@ -37,7 +23,7 @@ def test_dp_picks_the_true_reflector_from_a_noisy_guide():
 
 
 def test_lone_departure_is_moved_back_and_shared_one_kept():
-    syn, pol, _, _, truth = _section_and_truth()
+    syn, pol, _, _, truth = section_and_truth()
     cube = np.stack([syn.cube] * 5)  # five identical inlines
     picks, offsets = reflector_picks(cube.reshape(-1, cube.shape[-1]), polarity=pol)
     guide = np.tile(truth, 5)
@@ -46,7 +32,7 @@ def test_lone_departure_is_moved_back_and_shared_one_kept():
     for i, span in ((2, range(50, 61)), (3, range(100, 111)), (4, range(100, 111))):
         for j in span:
             k = i * 160 + j
-            picked[k] = _next_cycle(picks, offsets, k, guide[k])
+            picked[k] = next_cycle(picks, offsets, k, guide[k])
     out = settle_lone_departures(picked, guide, (5, 160), picks, offsets)
     lone = slice(2 * 160 + 50, 2 * 160 + 61)
     np.testing.assert_allclose(out[lone], guide[lone], atol=1e-9)

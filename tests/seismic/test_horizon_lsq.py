@@ -4,10 +4,11 @@ self-check; generated data with known truth."""
 import numpy as np
 import pytest
 
-from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.seismic.horizon_dp import reflector_period
 from seismo3d.seismic.horizon_lsq import PairShifts, cycle_skips, pair_shifts, solve_horizon, trace_pairs
-from seismo3d.seismic.reflectors import nearest_pick, reflector_picks
+from seismo3d.seismic.reflectors import nearest_pick
+
+from .conftest import next_cycle, random_layers
 
 
 def test_trace_pairs_cover_every_line_at_every_distance():
@@ -62,44 +63,15 @@ def test_solve_leaves_traces_no_pair_reaches_empty():
     assert np.isnan(t[5:]).all()
 
 
-def _section_and_truth(k=2, seed=3):
-    syn = synthetic_cube((160, 128), n_faults=0, seed=seed, noise=0.05)
-    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
-    picks, offsets = reflector_picks(syn.cube, polarity=pol)
-    truth = np.array([nearest_pick(picks, offsets, j, syn.horizons[k][j], 1.0) for j in range(160)])
-    assert np.isfinite(truth).all()
-    return syn, pol, picks, offsets, truth
-
-
-def _next_cycle(picks, offsets, k, t):
-    """The pick after ``t`` on trace ``k`` (one reflector cycle down)."""
-    p = picks[offsets[k]:offsets[k + 1]]
-    return float(p[np.searchsorted(p, t + 1e-6)])
-
-
-def _random_layers(n_traces=160, n_samples=160, dip=0.05, seed=5):
-    """A section of one random reflectivity series (so that no two cycles look alike) dipping gently, convolved with
-    a Ricker wavelet; and its peak picks."""
-    rng = np.random.default_rng(seed)
-    refl = rng.standard_normal(n_samples + 40) * (rng.random(n_samples + 40) < 0.3)
-    tt = np.arange(-10, 11)
-    wavelet = (1 - 2 * (np.pi * 0.08 * tt) ** 2) * np.exp(-(np.pi * 0.08 * tt) ** 2)
-    base = np.convolve(refl, wavelet, mode="same")
-    x = np.arange(base.size, dtype=np.float64)
-    section = np.stack([np.interp(np.arange(n_samples) + 20 - dip * j, x, base) for j in range(n_traces)])
-    picks, offsets = reflector_picks(section.astype(np.float32), polarity="peak")
-    return section.astype(np.float32), picks, offsets
-
-
 def test_cycle_skip_check_flags_a_one_period_offset():
-    section, picks, offsets = _random_layers()
+    section, picks, offsets, _ = random_layers()
     t0 = nearest_pick(picks, offsets, 0, 80.0, 8.0)
     truth = np.array([nearest_pick(picks, offsets, j, t0 + 0.05 * j, 1.0) for j in range(160)])
     assert np.isfinite(truth).all()
     period = reflector_period(picks, offsets, np.arange(160), truth)
     skipped = truth.copy()
     for j in range(100, 140):  # a run of traces one cycle down, as a tracker that jumped at trace 100 leaves it
-        skipped[j] = _next_cycle(picks, offsets, j, truth[j])
+        skipped[j] = next_cycle(picks, offsets, j, truth[j])
     a, b, d, _ = trace_pairs((160,), (1, 2, 4, 8, 16, 32))
     lag = int(np.ceil(1.5 * max(period, np.max(skipped - truth))))
     seeds = np.array([60])

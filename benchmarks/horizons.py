@@ -69,7 +69,7 @@ def penobscot(quick: bool) -> None:
             rows.append(("plain autotracker", plain.times, time.perf_counter() - t0))
             for name, times, sec in rows:
                 e = horizon_errors(times, ref)
-                print(f"| {fold} | {k} | {name} | {e.median_abs:.2f} | {100 * e.within_5:.1f} | "
+                print(f"| {fold} | {k} | {name} | {e.median_abs:.2f} | {100 * e.within_5:.2f} | "
                       f"{100 * e.coverage:.1f} | {sec / cube.shape[0]:.2f} |", flush=True)
 
 

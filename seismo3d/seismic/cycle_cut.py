@@ -230,44 +230,54 @@ def cycle_cut(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, times:
     from .horizon_lsq import neighbour_confidence
 
     t = np.asarray(times, np.float64).copy()
-    weight = 1.0 / distance.astype(np.float64) ** distance_power
-    near = distance == 1
     n = t.size
-
-    def total_cost(tt):
-        ok = np.isfinite(tt[a]) & np.isfinite(tt[b])
-        return float(np.sum(weight[ok] * (1.0 - _pair_ncc(traces, a[ok], tt[a[ok]], b[ok], tt[b[ok]], half))))
-
-    before = cost = total_cost(t)
+    # only pairs of two picked traces count (a move keeps a trace picked); each pair's current cost is kept, and a
+    # pass re-measures only the pairs that touch a trace free to move
+    live = np.isfinite(t[a]) & np.isfinite(t[b])
+    a, b = a[live], b[live]
+    weight = 1.0 / distance[live].astype(np.float64) ** distance_power
+    near = distance[live] == 1
+    pair_cost = weight * (1.0 - _pair_ncc(traces, a, t[a], b, t[b], half))
+    before = cost = float(pair_cost.sum())
+    can_move = np.asarray(movable, bool) & np.isfinite(t)
+    can_move[np.asarray(seeds, np.intp)] = False
     moved = np.zeros(n, bool)
-    if not (np.isfinite(period) and movable.any()):
+    if not (np.isfinite(period) and can_move.any()):
         return CycleCut(t, 0, before, before)
     for _ in range(rounds):
         changed = False
         for direction in (1, -1):
             alt = neighbour_cycle(picks, offsets, t, direction, 0.5 * period)
-            ok = np.isfinite(t[a]) & np.isfinite(t[b])
-            pa, pb, w = a[ok], b[ok], weight[ok]
+            free = can_move & np.isfinite(alt)
+            touch = free[a] | free[b]
+            if not touch.any():
+                continue
+            pa, pb, w = a[touch], b[touch], weight[touch]
             ta, tb = t[pa], t[pb]
-            xa = np.where(np.isfinite(alt[pa]), alt[pa], ta)
-            xb = np.where(np.isfinite(alt[pb]), alt[pb], tb)
-            terms = [w * (1.0 - _pair_ncc(traces, pa, u, pb, v, half)) for u, v in ((ta, tb), (ta, xb), (xa, tb),
-                                                                                  (xa, xb))]
-            fixed = np.concatenate([np.asarray(seeds, np.intp), np.nonzero(~(movable & np.isfinite(alt)))[0]])
-            flip = binary_min_cut(n, pa, pb, *terms, fixed)
+            xa = np.where(free[pa], alt[pa], ta)
+            xb = np.where(free[pb], alt[pb], tb)
+            terms = [pair_cost[touch]] + [w * (1.0 - _pair_ncc(traces, pa, u, pb, v, half))
+                                          for u, v in ((ta, xb), (xa, tb), (xa, xb))]
+            flip = binary_min_cut(n, pa, pb, *terms, np.nonzero(~free)[0])
             if not flip.any():
                 continue
             # each moved region must reach beyond the longest pair and correlate clearly better with its neighbours
+            cand = np.where(flip, alt, t)
+            mine = near & (flip[a] | flip[b])  # every neighbour pair of a moved trace
             flip &= _clear_regions(flip, lateral_shape,
-                                   neighbour_confidence(traces, t, a[near], b[near], ncc_half),
-                                   neighbour_confidence(traces, np.where(flip, alt, t), a[near], b[near], ncc_half),
+                                   neighbour_confidence(traces, t, a[mine], b[mine], ncc_half),
+                                   neighbour_confidence(traces, cand, a[mine], b[mine], ncc_half),
                                    min_extent=min_extent, min_gain=min_gain)
             if not flip.any():
                 continue
             cand = np.where(flip, alt, t)
-            new_cost = total_cost(cand)
-            if new_cost < cost:
-                t, cost, changed = cand, new_cost, True
+            hit = flip[a] | flip[b]
+            new_cost = weight[hit] * (1.0 - _pair_ncc(traces, a[hit], cand[a[hit]], b[hit], cand[b[hit]], half))
+            delta = float(new_cost.sum() - pair_cost[hit].sum())
+            if delta < 0.0:
+                t, changed = cand, True
+                pair_cost[hit] = new_cost
+                cost += delta
                 moved |= flip
         if not changed:
             break

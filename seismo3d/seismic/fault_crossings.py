@@ -253,6 +253,27 @@ class FaultCrossings:
             ends.append(x)
         return ends[0], ends[1]
 
+    def near_segments(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Which of many segments come near a traced fault: only these can cross one (:meth:`crossings` of the
+        others is empty; the same search radius as :meth:`_planes`, in one KD-tree query).
+
+        Parameters
+        ----------
+        a, b : (n, ndim) float64 ndarray
+            The segments' ends, index space (samples last); finite.
+
+        Returns
+        -------
+        (n,) bool ndarray
+        """
+        a = np.asarray(a, np.float64)
+        b = np.asarray(b, np.float64)
+        if self.tree is None or len(a) == 0:
+            return np.zeros(len(a), bool)
+        radius = 0.5 * np.linalg.norm(b - a, axis=1) + self.pierce + 1.0
+        nearest, _ = self.tree.query(0.5 * (a + b), k=1)
+        return nearest <= radius
+
     def jump(self, a: np.ndarray, b: np.ndarray, crossed: set | None = None) -> float:
         """Vertical jump (samples) of a horizon going from ``a`` to ``b``: the sum over the faults crossed (two faults
         between the same traces add up); 0 when none, NaN when a crossed fault's throw is unknown.

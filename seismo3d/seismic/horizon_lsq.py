@@ -383,14 +383,16 @@ def faults_between(faults: FaultCrossings, lateral_shape: tuple, times: np.ndarr
         n_steps = list(lateral_shape)
         n_steps[axis] -= 1
         jump = np.zeros(n_steps)
-        if faults.tree is not None:
-            for idx in np.ndindex(*n_steps):
-                nxt = list(idx)
-                nxt[axis] += 1
-                ta, tb = times[idx], times[tuple(nxt)]
-                if not (np.isfinite(ta) and np.isfinite(tb)):
-                    continue
-                jump[idx] = faults.jump(np.array([*idx, ta], np.float64), np.array([*nxt, tb], np.float64))
+        if faults.tree is not None and jump.size:
+            here = np.indices(n_steps).reshape(ndim, -1).T  # C order, as jump.flat
+            there = here.copy()
+            there[:, axis] += 1
+            ta, tb = times[tuple(here.T)], times[tuple(there.T)]
+            ok = np.nonzero(np.isfinite(ta) & np.isfinite(tb))[0]
+            pa = np.column_stack([here[ok], ta[ok]]).astype(np.float64)
+            pb = np.column_stack([there[ok], tb[ok]]).astype(np.float64)
+            for k in np.nonzero(faults.near_segments(pa, pb))[0]:  # only steps near a fault can cross one
+                jump.flat[ok[k]] = faults.jump(pa[k], pb[k])
         out.append(jump)
     return out
 
@@ -556,22 +558,25 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     if opt.repair:
         check = _SkipCheck(traces, picks, offsets, lat, a, b, dist, axis, faults, opt, seed_idx, seed_t)
         corr = check(snapped)
+        period = check.period
         bad = np.isfinite(corr)
         if bad.any():
             guide = np.where(bad, snapped + np.nan_to_num(corr), np.where(np.isfinite(snapped), snapped, t))
             for _ in range(2):
                 guide = _solve_step(traces, guide, a, b, dist, axis, lat, seed_idx, seed_t, faults, opt, opt.max_lag)
             again = choose(guide)
-            left = int(np.isfinite(check(again)).sum())
+            corr_again = check(again)
+            left = int(np.isfinite(corr_again).sum())
             if left < int(bad.sum()):
                 repaired = int(bad.sum()) - left
                 snapped, solution = again, guide
+                corr, period = corr_again, check.period
         # regions a cycle off that the least-squares solve kept (their shifts are measured around its own
         # estimate): moved by a minimum cut where their pairs correlate clearly better a cycle away
-        flags = np.isfinite(check(snapped))
+        flags = np.isfinite(corr)
         if flags.any():
             cut = cycle_cut(traces, picks, offsets, snapped, lat, a, b, dist, seeds=seed_idx, movable=flags,
-                            period=check.period, half=opt.correlation_half, ncc_half=opt.ncc_half,
+                            period=period, half=opt.correlation_half, ncc_half=opt.ncc_half,
                             distance_power=opt.distance_power, min_gain=opt.cut_gain,
                             min_extent=int(dist.max()) if dist.size else 0)
             snapped = cut.times

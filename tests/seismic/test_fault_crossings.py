@@ -125,3 +125,19 @@ def test_fault_crossing_uses_the_faults_own_plane_and_knows_a_point_on_it():
     # a point on the fault (a seed picked on it) is in neither wall
     assert idx.on_fault(np.array([10.0, 4.0, 20.0])) == {0}
     assert idx.on_fault(np.array([14.0, 4.0, 20.0])) == set()
+
+
+def test_near_segments_keeps_every_segment_that_crosses_a_fault():
+    # the pre-filter of the horizon tracker's fault steps: a segment it leaves out never crosses a fault
+    p1, n1 = _vertical_fault_points(10.5)
+    p2, n2 = _vertical_fault_points(20.5, n_t=20)
+    faults = FaultCrossings(np.vstack([p1, p2]), np.vstack([n1, n2]), np.r_[np.full(len(p1), 4.0), np.full(len(p2), 6.0)],
+                            np.r_[np.zeros(len(p1)), np.ones(len(p2))])
+    rng = np.random.default_rng(0)
+    a = rng.uniform([0, 0, 0], [30, 9, 40], (400, 3))
+    b = a + rng.normal(0.0, 1.5, (400, 3))
+    near = faults.near_segments(a, b)
+    crossing = np.array([bool(faults.crossings(x, y)) for x, y in zip(a, b)])
+    assert crossing.any() and not near.all()
+    assert np.all(near[crossing])
+    assert not FaultCrossings.empty(3).near_segments(a, b).any()

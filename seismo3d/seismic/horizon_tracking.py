@@ -360,7 +360,7 @@ def despike(section: ReflectorSlice, picks: np.ndarray, carried: np.ndarray, con
     Parameters
     ----------
     section : ReflectorSlice
-        The slice the picks were carried onto (its ``n_traces``, ``snap`` and ``window`` are read).
+        The slice the picks were carried onto.
     picks : (n_traces,) float64 ndarray
         Snapped picks, fractional samples (NaN where empty); modified in place.
     carried : (n_traces,) float64 ndarray
@@ -598,47 +598,26 @@ def _track_3d(arr, seeds, polarity, opt: TrackingOptions, crossings: FaultCrossi
     return Horizon(times.astype(np.float32), conf.astype(np.float32), polarity, seeds)
 
 
-class _LineView:
-    """One line of traces of a cube whose picks are known: what :func:`despike` reads of a
-    :class:`~seismo3d.seismic.reflectors.ReflectorSlice` (``n_traces``, ``snap``, ``window``), without the slice's
-    structure tensor."""
-
-    def __init__(self, traces, ids, picks, offsets, window_half: int):
-        self.traces, self.ids, self.picks, self.offsets = traces, ids, picks, offsets
-        self.window_half = int(window_half)
-        self.n_traces = ids.size
-
-    def snap(self, j: int, t: float, window: float) -> float:
-        return nearest_pick(self.picks, self.offsets, int(self.ids[j]), t, window)
-
-    def window(self, j: int, t: float, half: int | None = None) -> np.ndarray:
-        return waveform(self.traces[self.ids[j]], t, self.window_half if half is None else half)
-
-
 def _despike_lines(arr, times, conf, polarity, opt: TrackingOptions, crossings: FaultCrossings) -> int:
     """:func:`despike` along every line of a horizon (a 2D section's line; a cube's inlines, then its crosslines):
     picks that left both line neighbours for a neighbouring cycle while the neighbours agree are re-snapped between
     them or emptied. ``times`` and ``conf`` (lateral shape) are modified in place; returns the picks changed."""
-    lat = arr.shape[:-1]
-    traces = arr.reshape(-1, arr.shape[-1])
-    picks, offsets = reflector_picks(traces, polarity=polarity)
-    ids = np.arange(traces.shape[0]).reshape(lat)
     if arr.ndim == 2:
-        return despike(_LineView(traces, ids, picks, offsets, opt.ncc_half), times, times.copy(), conf,
+        return despike(ReflectorSlice(arr, polarity, opt.sigma_tensor, opt.ncc_half), times, times.copy(), conf,
                        min_confidence=opt.min_confidence, faults=crossings, reach=opt.despike_reach,
                        agree=opt.despike_agree)
     changed = 0
     for axis in (0, 1):  # lines along crosslines (one per inline), then along inlines (one per crossline)
-        for k in range(lat[axis]):
+        for k in range(arr.shape[axis]):
             index = (k, slice(None)) if axis == 0 else (slice(None), k)
             line, line_conf = times[index].copy(), conf[index].copy()
 
             def line_point(x, t, k=k, axis=axis):
                 return np.array([k, x, t] if axis == 0 else [x, k, t], np.float64)
 
-            changed += despike(_LineView(traces, ids[index], picks, offsets, opt.ncc_half), line, line.copy(),
-                               line_conf, min_confidence=opt.min_confidence, faults=crossings, line_point=line_point,
-                               reach=opt.despike_reach, agree=opt.despike_agree)
+            changed += despike(ReflectorSlice(arr[index], polarity, opt.sigma_tensor, opt.ncc_half), line,
+                               line.copy(), line_conf, min_confidence=opt.min_confidence, faults=crossings,
+                               line_point=line_point, reach=opt.despike_reach, agree=opt.despike_agree)
             times[index], conf[index] = line, line_conf
     return changed
 

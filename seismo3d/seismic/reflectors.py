@@ -12,6 +12,8 @@ Conventions: the last axis is the sample (downward); positions are fractional sa
 
 from __future__ import annotations
 
+import functools
+
 import numba as nb
 import numpy as np
 from scipy import ndimage as ndi
@@ -184,7 +186,8 @@ class ReflectorSlice:
     ----------
     amp : (n_traces, n_samples) float32 ndarray
     slope : (n_traces, n_samples) float32 ndarray
-        Reflector slope, samples per trace.
+        Reflector slope, samples per trace (the structure tensor is computed when ``slope`` or ``normals`` is first
+        read).
     t, offsets : ndarray
         The picks, as :func:`reflector_picks` returns them.
     x : (n_picks,) float64 ndarray
@@ -194,17 +197,28 @@ class ReflectorSlice:
     """
 
     def __init__(self, amp, polarity: str, sigma_tensor, window_half: int = 8):
-        from .attributes import structure_tensor_orientation
-
         self.amp = np.ascontiguousarray(amp, dtype=np.float32)
         self.n_traces, self.n_samples = self.amp.shape
         self.window_half = int(window_half)
-        orient = structure_tensor_orientation(self.amp, sigma_tensor=sigma_tensor)
-        self.slope = orient.slopes[0]
+        self.sigma_tensor = sigma_tensor
         self.t, self.offsets = reflector_picks(self.amp, polarity=polarity)
         self.x = np.repeat(np.arange(self.n_traces, dtype=np.float64), np.diff(self.offsets))
+
+    @functools.cached_property
+    def _orientation(self):
+        # the structure tensor, computed when slopes or normals are first read (the lateral check reads neither)
+        from .attributes import structure_tensor_orientation
+
+        return structure_tensor_orientation(self.amp, sigma_tensor=self.sigma_tensor)
+
+    @functools.cached_property
+    def slope(self) -> np.ndarray:
+        return self._orientation.slopes[0]
+
+    @functools.cached_property
+    def normals(self) -> np.ndarray:
         ti = np.clip(np.rint(self.t).astype(np.intp), 0, self.n_samples - 1)
-        self.normals = orient.normals[self.x.astype(np.intp), ti].astype(np.float64)
+        return self._orientation.normals[self.x.astype(np.intp), ti].astype(np.float64)
 
     def slope_at(self, j: int, t: float) -> float:
         """Reflector slope (samples per trace) at trace ``j``, sample ``t`` (rounded, clipped to the slice)."""

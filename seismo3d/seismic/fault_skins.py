@@ -120,24 +120,32 @@ class SkinOptions:
         return max(15, int(round(0.1 * shape[-1])))
 
 
-def _offsets(two_d: bool, lateral: int, vertical: int) -> np.ndarray:
-    """(m, 3) int64 neighbour offsets: +-lateral traces (inline, crossline), +-vertical samples, nearest first."""
+def _offset_ranks(two_d: bool, lateral: int, vertical: int) -> np.ndarray:
+    """(2 lateral + 1, 2 lateral + 1 (1 in 2D), 2 vertical + 1) int64: the rank of each neighbour offset (+-lateral
+    traces, +-vertical samples) when ordered nearest first (ties in C order), -1 for the cell itself. The neighbour
+    search takes the first of equally near candidates in this order."""
     lat = np.arange(-lateral, lateral + 1)
     grids = np.meshgrid(lat, np.array([0]) if two_d else lat, np.arange(-vertical, vertical + 1), indexing="ij")
-    off = np.stack([g.ravel() for g in grids], -1)
-    off = off[np.any(off != 0, axis=1)]
-    return off[np.argsort((off.astype(np.float64) ** 2).sum(axis=1), kind="stable")].astype(np.int64)
+    length = sum(g.astype(np.float64) ** 2 for g in grids)
+    rank = np.empty(length.size, np.int64)
+    rank[np.argsort(length.ravel(), kind="stable")] = np.arange(length.size) - 1  # the cell itself (0) first
+    rank = rank.reshape(length.shape)
+    rank[lateral, 0 if two_d else lateral, vertical] = -1
+    return rank
 
 
 @nb.njit(cache=True, parallel=True)
-def _best_neighbours(points, frames, keys, shape, offsets, max_plane, cos_angle):
+def _best_neighbours(points, frames, keys, shape, ranks, max_plane, cos_angle):
     # best[c, k]: cell c's nearest neighbour above (k = 0) and below (1) it down the dip, left (2) and right (3) of it
     # along the strike, or -1. A neighbour lies within max_plane of c's plane and c within max_plane of its plane,
     # their normals make an angle below acos(cos_angle), and the neighbour is in the direction's 90-degree cone;
-    # distance is measured in c's plane, with the distance off the plane counted double. Cells are found by their
-    # linear index in the cube of ``shape`` among the sorted ``keys`` (no array of the cube's size).
+    # distance is measured in c's plane, with the distance off the plane counted double, ties to the lower offset
+    # rank (``ranks``, :func:`_offset_ranks`). Cells are found by their linear index in the cube of ``shape`` among
+    # the sorted ``keys`` (no array of the cube's size): the cells of one trace within the vertical reach are one
+    # range of keys.
     n = points.shape[0]
     n0, n1, n2 = shape[0], shape[1], shape[2]
+    lat0, lat1, vert = ranks.shape[0] // 2, ranks.shape[1] // 2, ranks.shape[2] // 2
     best = -np.ones((n, 4), np.int32)
     for c in nb.prange(n):
         px, py, pz = points[c, 0], points[c, 1], points[c, 2]
@@ -145,36 +153,44 @@ def _best_neighbours(points, frames, keys, shape, offsets, max_plane, cos_angle)
         vx, vy, vz = frames[c, 1, 0], frames[c, 1, 1], frames[c, 1, 2]
         wx, wy, wz = frames[c, 2, 0], frames[c, 2, 1], frames[c, 2, 2]
         score = np.full(4, np.inf)
-        for o in range(offsets.shape[0]):
-            qx = px + offsets[o, 0]
-            qy = py + offsets[o, 1]
-            qz = pz + offsets[o, 2]
-            if qx < 0 or qy < 0 or qz < 0 or qx >= n0 or qy >= n1 or qz >= n2:
+        rank = np.zeros(4, np.int64)
+        for ox in range(-lat0, lat0 + 1):
+            qx = px + ox
+            if qx < 0 or qx >= n0:
                 continue
-            key = (qx * n1 + qy) * n2 + qz
-            q = np.searchsorted(keys, key)
-            if q >= n or keys[q] != key:
-                continue
-            rx = float(offsets[o, 0])
-            ry = float(offsets[o, 1])
-            rz = float(offsets[o, 2])
-            off_c = rx * ux + ry * uy + rz * uz
-            if abs(off_c) > max_plane:
-                continue
-            if abs(rx * frames[q, 0, 0] + ry * frames[q, 0, 1] + rz * frames[q, 0, 2]) > max_plane:
-                continue
-            if abs(ux * frames[q, 0, 0] + uy * frames[q, 0, 1] + uz * frames[q, 0, 2]) < cos_angle:
-                continue
-            a = rx * vx + ry * vy + rz * vz
-            bs = rx * wx + ry * wy + rz * wz
-            d2 = a * a + bs * bs + 4.0 * off_c * off_c
-            if abs(a) >= abs(bs):
-                k = 0 if a < 0 else 1
-            else:
-                k = 2 if bs < 0 else 3
-            if d2 < score[k]:
-                score[k] = d2
-                best[c, k] = q
+            for oy in range(-lat1, lat1 + 1):
+                qy = py + oy
+                if qy < 0 or qy >= n1:
+                    continue
+                base = (qx * n1 + qy) * n2
+                first = np.searchsorted(keys, base + max(pz - vert, 0))
+                last = np.searchsorted(keys, base + min(pz + vert, n2 - 1), side="right")
+                for q in range(first, last):
+                    oz = keys[q] - base - pz
+                    r = ranks[ox + lat0, oy + lat1, oz + vert]
+                    if r < 0:  # c itself
+                        continue
+                    rx = float(ox)
+                    ry = float(oy)
+                    rz = float(oz)
+                    off_c = rx * ux + ry * uy + rz * uz
+                    if abs(off_c) > max_plane:
+                        continue
+                    if abs(rx * frames[q, 0, 0] + ry * frames[q, 0, 1] + rz * frames[q, 0, 2]) > max_plane:
+                        continue
+                    if abs(ux * frames[q, 0, 0] + uy * frames[q, 0, 1] + uz * frames[q, 0, 2]) < cos_angle:
+                        continue
+                    a = rx * vx + ry * vy + rz * vz
+                    bs = rx * wx + ry * wy + rz * wz
+                    d2 = a * a + bs * bs + 4.0 * off_c * off_c
+                    if abs(a) >= abs(bs):
+                        k = 0 if a < 0 else 1
+                    else:
+                        k = 2 if bs < 0 else 3
+                    if d2 < score[k] or (d2 == score[k] and r < rank[k]):
+                        score[k] = d2
+                        rank[k] = r
+                        best[c, k] = q
     return best
 
 
@@ -226,38 +242,147 @@ def _local_normal(points: np.ndarray, two_d: bool) -> np.ndarray:
     return vt[-1]
 
 
-def _closest_pairs(tree, pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int,
-                   chunk: int = 4096) -> np.ndarray:
-    """(m, 2) int64 indices into ``pts``: for every pair of labels, the closest (edge cell, cell of the other label)
-    pair within ``gap``, from neighbour searches of ``chunk`` edge cells at a time (memory bounded by the chunk)."""
-    from scipy.spatial import cKDTree
+@nb.njit(cache=True)
+def _nearest_of_other_skins(e, pts, lab, sorted_pts, sorted_lab, bucket, dims, side, keys, order, gap2, slot, labels,
+                            dist2, cells):
+    # For cell e: the nearest cell (squared distance, index) of every other label within sqrt(gap2), ties to the
+    # lower index, from the buckets (cubes of ``side``) around e's bucket that come within the gap; the cells are
+    # searched in bucket order (``sorted_pts``, ``sorted_lab``, ``keys`` = pts, lab, bucket keys [order]). ``labels``,
+    # ``dist2``, ``cells`` take the results (grown when full); ``slot`` (one per label, all -1) is the position of a
+    # label in them, and is left all -1 again. Returns the number of labels found and the three (grown) arrays.
+    m = 0
+    gap = np.sqrt(gap2)
+    own = lab[e]
+    ex = pts[e]
+    # the buckets within the gap of e along each axis
+    first_b = np.empty(3, np.int64)
+    last_b = np.empty(3, np.int64)
+    for a in range(3):
+        first_b[a] = max(int(np.floor((ex[a] - gap) / side)), 0)
+        last_b[a] = min(int(np.floor((ex[a] + gap) / side)), dims[a] - 1)
+    for bx in range(first_b[0], last_b[0] + 1):
+        for by in range(first_b[1], last_b[1] + 1):
+            # the column's buckets along the samples are consecutive keys: one range of cells; the column is
+            # skipped when its nearest point to e (buckets counted from the cells' lowest corner) is beyond the gap
+            box2 = 0.0
+            for a, b in ((0, bx), (1, by)):
+                lo = b * side - ex[a]
+                hi = lo + side
+                if lo > 0.0:
+                    box2 += lo * lo
+                elif hi < 0.0:
+                    box2 += hi * hi
+            if box2 > gap2:
+                continue
+            column = bx * dims[1] + by
+            low = column * dims[2] + first_b[2]
+            high = column * dims[2] + last_b[2]
+            for r in range(np.searchsorted(keys, low), np.searchsorted(keys, high, side="right")):
+                if sorted_lab[r] == own:
+                    continue
+                d2 = 0.0
+                for a in range(3):
+                    t = sorted_pts[r, a] - ex[a]
+                    d2 += t * t
+                if d2 > gap2:
+                    continue
+                j = order[r]
+                k = slot[lab[j]]
+                if k < 0:
+                    if m == labels.size:  # grow the lists
+                        labels = np.concatenate((labels, np.empty(m, np.int64)))
+                        dist2 = np.concatenate((dist2, np.empty(m)))
+                        cells = np.concatenate((cells, np.empty(m, np.int64)))
+                    slot[lab[j]] = m
+                    labels[m] = lab[j]
+                    dist2[m] = d2
+                    cells[m] = j
+                    m += 1
+                elif d2 < dist2[k] or (d2 == dist2[k] and j < cells[k]):
+                    dist2[k] = d2
+                    cells[k] = j
+    for k in range(m):
+        slot[labels[k]] = -1
+    return m, labels, dist2, cells
 
-    keys, gaps, firsts, seconds = [], [], [], []
-    for start in range(0, edge_idx.size, chunk):
-        idx = edge_idx[start:start + chunk]
-        found = cKDTree(pts[idx]).sparse_distance_matrix(tree, gap, output_type="ndarray")
-        i, j, d = idx[found["i"]], found["j"].astype(np.int64), found["v"]
-        other = lab[i] != lab[j]
-        i, j, d = i[other], j[other], d[other]
-        if i.size == 0:
-            continue
-        key = np.minimum(lab[i], lab[j]) * n_labels + np.maximum(lab[i], lab[j])
-        order = np.lexsort((d, key))
-        first = np.ones(order.size, dtype=bool)
-        first[1:] = key[order][1:] != key[order][:-1]
-        sel = order[first]
-        keys.append(key[sel])
-        gaps.append(d[sel])
-        firsts.append(i[sel])
-        seconds.append(j[sel])
-    if not keys:
+
+@nb.njit(cache=True, parallel=True)
+def _edge_pairs(edge_idx, pts, lab, sorted_pts, sorted_lab, n_labels, bucket, dims, side, keys, order, gap2,
+                n_chunks):
+    # every (edge cell, nearest cell of another label within the gap, squared distance), the edge cells in
+    # ``n_chunks`` chunks (each with its own label slots), gathered in order
+    n = edge_idx.size
+    bounds = np.linspace(0, n, n_chunks + 1).astype(np.int64)
+    firsts = [np.empty(0, np.int64) for _ in range(n_chunks)]
+    seconds = [np.empty(0, np.int64) for _ in range(n_chunks)]
+    dists = [np.empty(0) for _ in range(n_chunks)]
+    for c in nb.prange(n_chunks):
+        slot = -np.ones(n_labels, np.int64)
+        labels = np.empty(16, np.int64)
+        dist2 = np.empty(16)
+        cells = np.empty(16, np.int64)
+        first = np.empty(64, np.int64)
+        second = np.empty(64, np.int64)
+        dist = np.empty(64)
+        used = 0
+        for r in range(bounds[c], bounds[c + 1]):
+            m, labels, dist2, cells = _nearest_of_other_skins(edge_idx[r], pts, lab, sorted_pts, sorted_lab, bucket,
+                                                             dims, side, keys, order, gap2, slot, labels, dist2,
+                                                             cells)
+            while used + m > first.size:
+                first = np.concatenate((first, np.empty(first.size, np.int64)))
+                second = np.concatenate((second, np.empty(second.size, np.int64)))
+                dist = np.concatenate((dist, np.empty(dist.size)))
+            for k in range(m):
+                first[used] = edge_idx[r]
+                second[used] = cells[k]
+                dist[used] = dist2[k]
+                used += 1
+        firsts[c] = first[:used]
+        seconds[c] = second[:used]
+        dists[c] = dist[:used]
+    total = 0
+    for c in range(n_chunks):
+        total += firsts[c].size
+    first = np.empty(total, np.int64)
+    second = np.empty(total, np.int64)
+    dist = np.empty(total)
+    m = 0
+    for c in range(n_chunks):
+        k = firsts[c].size
+        first[m:m + k] = firsts[c]
+        second[m:m + k] = seconds[c]
+        dist[m:m + k] = dists[c]
+        m += k
+    return first, second, dist
+
+
+def _closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
+    """(m, 2) int64 indices into ``pts`` (n, 3): for every pair of labels, the closest (edge cell, cell of the other
+    label) pair within ``gap`` (ties: the lower edge cell, then the lower other cell). Cells are binned in buckets
+    of side ``gap / 2`` (memory: a few arrays of n), so each edge cell compares itself with the cells of the buckets
+    that come within the gap only and keeps the nearest cell of each other label (no list of all the pairs)."""
+    if edge_idx.size == 0 or pts.shape[0] == 0:
         return np.empty((0, 2), dtype=np.int64)
-    key, d = np.concatenate(keys), np.concatenate(gaps)
-    order = np.lexsort((d, key))
-    first = np.ones(order.size, dtype=bool)
-    first[1:] = key[order][1:] != key[order][:-1]
-    sel = order[first]
-    return np.stack([np.concatenate(firsts)[sel], np.concatenate(seconds)[sel]], axis=1)
+    pts = np.ascontiguousarray(pts - pts.min(axis=0), dtype=np.float64)  # distances do not change
+    _, compact = np.unique(lab, return_inverse=True)  # labels 0..k-1: one slot each
+    compact = compact.astype(np.int64).ravel()
+    side = max(0.5 * float(gap), 0.5)
+    bucket = np.floor(pts / side).astype(np.int64)
+    dims = bucket.max(axis=0) + 1
+    keys = (bucket[:, 0] * dims[1] + bucket[:, 1]) * dims[2] + bucket[:, 2]
+    order = np.argsort(keys, kind="stable")
+    first, second, dist2 = _edge_pairs(np.ascontiguousarray(edge_idx, dtype=np.int64), pts, compact, pts[order],
+                                       compact[order], int(compact.max()) + 1, bucket, dims, side, keys[order],
+                                       order, float(gap) ** 2, 4 * nb.get_num_threads())
+    if first.size == 0:
+        return np.empty((0, 2), dtype=np.int64)
+    key = np.minimum(lab[first], lab[second]).astype(np.int64) * n_labels + np.maximum(lab[first], lab[second])
+    order = np.lexsort((second, first, dist2, key))
+    keep = np.ones(order.size, dtype=bool)
+    keep[1:] = key[order][1:] != key[order][:-1]
+    sel = order[keep]
+    return np.stack([first[sel], second[sel]], axis=1)
 
 
 def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, minimum: int, two_d: bool,
@@ -280,20 +405,28 @@ def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, min
     # the closest pair (an edge cell of one skin, any cell of another) within merge_gap for every pair of skins: a
     # piece's end near another's end or side
     pts, lab = points[big].astype(np.float64), label[big]
-    tree = cKDTree(pts)
-    closest = _closest_pairs(tree, pts, lab, np.nonzero(edge[big])[0], float(opt.merge_gap), n_labels)
+    closest = _closest_pairs(pts, lab, np.nonzero(edge[big])[0], float(opt.merge_gap), n_labels)
     if closest.size == 0:
         return label
     radius = 2.0 * float(opt.merge_gap)
     cos_angle = np.cos(np.radians(opt.merge_angle))
-    near_first = tree.query_ball_point(pts[closest[:, 0]], radius)
-    near_second = tree.query_ball_point(pts[closest[:, 1]], radius)
+    # each skin's cells near a cell are searched among that skin's cells only (one KD-tree a skin, built when first
+    # needed): a search among all cells returns mostly other skins' cells
+    by_label = np.argsort(lab, kind="stable")
+    starts = np.searchsorted(lab[by_label], np.arange(n_labels + 1))
+    trees: dict = {}
+
+    def own_skin_near(i):
+        skin = int(lab[i])
+        if skin not in trees:
+            cells = by_label[starts[skin]:starts[skin + 1]]
+            trees[skin] = (cells, cKDTree(pts[cells]))
+        cells, tree = trees[skin]
+        return cells[np.sort(np.asarray(tree.query_ball_point(pts[i], radius), dtype=np.int64))]
+
     rows, cols = [], []
-    for (i, j), around_i, around_j in zip(closest, near_first, near_second):
-        around_i = np.asarray(around_i, dtype=np.int64)
-        around_j = np.asarray(around_j, dtype=np.int64)
-        near_p = around_i[lab[around_i] == lab[i]]
-        near_q = around_j[lab[around_j] == lab[j]]
+    for i, j in closest:
+        near_p, near_q = own_skin_near(i), own_skin_near(j)
         if near_p.size < 3 or near_q.size < 3:
             continue
         na = _local_normal(pts[near_p], two_d)
@@ -452,7 +585,7 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     for a in range(0, points.shape[0], 1 << 18):  # by slices: fault_frames' float64 temporaries stay small
         frames[a:a + (1 << 18)] = fault_frames(s_cell[a:a + (1 << 18)], d_cell[a:a + (1 << 18)])
     best = _best_neighbours(points, frames, keys, np.asarray(shape3, np.int64),
-                            _offsets(two_d, int(opt.lateral_reach), int(opt.vertical_reach)),
+                            _offset_ranks(two_d, int(opt.lateral_reach), int(opt.vertical_reach)),
                             float(opt.max_plane_distance), float(np.cos(np.radians(opt.max_angle))))
     del keys
     normals = np.ascontiguousarray(frames[:, 0, :])

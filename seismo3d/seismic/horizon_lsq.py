@@ -391,8 +391,8 @@ def faults_between(faults: FaultCrossings, lateral_shape: tuple, times: np.ndarr
             ok = np.nonzero(np.isfinite(ta) & np.isfinite(tb))[0]
             pa = np.column_stack([here[ok], ta[ok]]).astype(np.float64)
             pb = np.column_stack([there[ok], tb[ok]]).astype(np.float64)
-            for k in np.nonzero(faults.near_segments(pa, pb))[0]:  # only steps near a fault can cross one
-                jump.flat[ok[k]] = faults.jump(pa[k], pb[k])
+            near = np.nonzero(faults.near_segments(pa, pb))[0]  # only steps near a fault can cross one
+            jump.flat[ok[near]] = faults.step_jumps(pa[near], pb[near])
         out.append(jump)
     return out
 

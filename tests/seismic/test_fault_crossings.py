@@ -141,3 +141,35 @@ def test_near_segments_keeps_every_segment_that_crosses_a_fault():
     assert crossing.any() and not near.all()
     assert np.all(near[crossing])
     assert not FaultCrossings.empty(3).near_segments(a, b).any()
+
+
+def _dipping_fault_points(x0, dip_per_sample, n_y=9, n_t=40, jitter=0.0, rng=None):
+    """A fault plane through trace x0 at sample 0 that moves ``dip_per_sample`` traces per sample (3D), normals
+    into +x; ``jitter`` voxels of noise on the points (as a traced fault's)."""
+    y, t = np.meshgrid(np.arange(n_y, dtype=float), np.arange(n_t, dtype=float), indexing="ij")
+    pts = np.column_stack([x0 + dip_per_sample * t.ravel(), y.ravel(), t.ravel()])
+    if jitter:
+        pts[:, 0] += rng.normal(0.0, jitter, len(pts))
+    n = np.array([1.0, 0.0, -dip_per_sample])
+    return pts, np.tile(n / np.linalg.norm(n), (len(pts), 1))
+
+
+def test_step_jumps_equal_jump_step_by_step():
+    # the horizon tracker's many neighbour steps in one compiled call: the same jump as jump() on every step, with
+    # two faults (one dipping, with jittered points and an unknown throw on part of it), in 3D and in 2D
+    rng = np.random.default_rng(3)
+    p1, n1 = _vertical_fault_points(10.5)
+    p2, n2 = _dipping_fault_points(16.0, 0.2, jitter=0.3, rng=rng)
+    throws = np.r_[np.full(len(p1), 4.0), np.where(p2[:, 2] > 30, np.nan, 6.0)]
+    pts, nrm, ids = np.vstack([p1, p2]), np.vstack([n1, n2]), np.r_[np.zeros(len(p1)), np.ones(len(p2))]
+    for ndim in (3, 2):
+        cols = [0, 1, 2] if ndim == 3 else [0, 2]
+        keep = np.ones(len(pts), bool) if ndim == 3 else pts[:, 1] == 4.0  # 2D: the section at crossline 4
+        faults = FaultCrossings(pts[keep][:, cols], nrm[keep][:, cols], throws[keep], ids[keep])
+        a = rng.uniform(0.0, [30, 9, 40] if ndim == 3 else [30, 40], (3000, ndim))
+        b = a + rng.normal(0.0, 1.5, (3000, ndim))
+        expected = np.array([faults.jump(x, y) for x, y in zip(a, b)])
+        got = faults.step_jumps(a, b)
+        assert np.count_nonzero(expected) > 50 and np.isnan(expected).any(), ndim
+        np.testing.assert_allclose(got, expected, rtol=0, atol=1e-9, equal_nan=True)
+    assert np.array_equal(FaultCrossings.empty(2).step_jumps(a, b), np.zeros(len(a)))

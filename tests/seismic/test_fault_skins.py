@@ -97,3 +97,29 @@ def test_options_and_errors():
     with pytest.raises(InputError, match="lower <= upper"):
         fault_skins(thin, thin, thin, lower=0.5, upper=0.3)
     assert fault_skins(thin, thin, thin, lower=0.3, upper=0.5) == []
+
+
+@pytest.mark.parametrize("two_d", [False, True])
+def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d):
+    # the merge step's search (compiled, bucketed) against every pair: for each two skins, the closest (edge cell,
+    # cell of the other skin) within the gap, ties to the lower edge cell, then the lower other cell
+    from seismo3d.seismic.fault_skins import _closest_pairs  # the kernel itself: its public caller merges skins
+
+    rng = np.random.default_rng(7)
+    pts = rng.integers(0, 30, (600, 3)).astype(np.float64)
+    if two_d:
+        pts[:, 1] = 0.0
+    pts = np.unique(pts, axis=0)
+    lab = rng.integers(0, 12, len(pts))
+    edge = np.sort(rng.choice(len(pts), len(pts) // 3, replace=False))
+    gap = 5.0
+    best = {}
+    for i in edge:
+        for j in range(len(pts)):
+            d = float(np.linalg.norm(pts[i] - pts[j]))
+            if lab[i] != lab[j] and d <= gap:
+                key = (min(lab[i], lab[j]), max(lab[i], lab[j]))
+                best[key] = min(best.get(key, (np.inf, 0, 0)), (d, int(i), j))
+    got = _closest_pairs(pts, lab, edge, gap, 12)
+    assert len(best) > 20
+    assert sorted(map(tuple, got.tolist())) == sorted((i, j) for _, i, j in best.values())

@@ -243,17 +243,16 @@ def _local_normal(points: np.ndarray, two_d: bool) -> np.ndarray:
 
 
 @nb.njit(cache=True)
-def _nearest_of_other_skins(e, pts, lab, sorted_pts, sorted_lab, bucket, dims, side, keys, order, gap2, slot, labels,
-                            dist2, cells):
+def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, slot, labels, dist2, cells):
     # For cell e: the nearest cell (squared distance, index) of every other label within sqrt(gap2), ties to the
-    # lower index, from the buckets (cubes of ``side``) around e's bucket that come within the gap; the cells are
-    # searched in bucket order (``sorted_pts``, ``sorted_lab``, ``keys`` = pts, lab, bucket keys [order]). ``labels``,
-    # ``dist2``, ``cells`` take the results (grown when full); ``slot`` (one per label, all -1) is the position of a
-    # label in them, and is left all -1 again. Returns the number of labels found and the three (grown) arrays.
+    # lower index, from the buckets (cubes of ``side`` from ``origin``, :func:`_bucket_keys`) around e's bucket that
+    # come within the gap; ``keys`` are the cells' bucket keys in ``order``. ``labels``, ``dist2``, ``cells`` take
+    # the results (grown when full); ``slot`` (one per label, all -1) is the position of a label in them, and is left
+    # all -1 again. Returns the number of labels found and the three (grown) arrays.
     m = 0
     gap = np.sqrt(gap2)
     own = lab[e]
-    ex = pts[e]
+    ex = pts[e] - origin
     # the buckets within the gap of e along each axis
     first_b = np.empty(3, np.int64)
     last_b = np.empty(3, np.int64)
@@ -278,15 +277,15 @@ def _nearest_of_other_skins(e, pts, lab, sorted_pts, sorted_lab, bucket, dims, s
             low = column * dims[2] + first_b[2]
             high = column * dims[2] + last_b[2]
             for r in range(np.searchsorted(keys, low), np.searchsorted(keys, high, side="right")):
-                if sorted_lab[r] == own:
+                j = order[r]
+                if lab[j] == own:
                     continue
                 d2 = 0.0
                 for a in range(3):
-                    t = sorted_pts[r, a] - ex[a]
+                    t = pts[j, a] - pts[e, a]
                     d2 += t * t
                 if d2 > gap2:
                     continue
-                j = order[r]
                 k = slot[lab[j]]
                 if k < 0:
                     if m == labels.size:  # grow the lists
@@ -307,8 +306,7 @@ def _nearest_of_other_skins(e, pts, lab, sorted_pts, sorted_lab, bucket, dims, s
 
 
 @nb.njit(cache=True, parallel=True)
-def _edge_pairs(edge_idx, pts, lab, sorted_pts, sorted_lab, n_labels, bucket, dims, side, keys, order, gap2,
-                n_chunks):
+def _edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, gap2, n_chunks):
     # every (edge cell, nearest cell of another label within the gap, squared distance), the edge cells in
     # ``n_chunks`` chunks (each with its own label slots), gathered in order
     n = edge_idx.size
@@ -326,9 +324,8 @@ def _edge_pairs(edge_idx, pts, lab, sorted_pts, sorted_lab, n_labels, bucket, di
         dist = np.empty(64)
         used = 0
         for r in range(bounds[c], bounds[c + 1]):
-            m, labels, dist2, cells = _nearest_of_other_skins(edge_idx[r], pts, lab, sorted_pts, sorted_lab, bucket,
-                                                             dims, side, keys, order, gap2, slot, labels, dist2,
-                                                             cells)
+            m, labels, dist2, cells = _nearest_of_other_skins(edge_idx[r], pts, lab, origin, dims, side, keys, order,
+                                                             gap2, slot, labels, dist2, cells)
             while used + m > first.size:
                 first = np.concatenate((first, np.empty(first.size, np.int64)))
                 second = np.concatenate((second, np.empty(second.size, np.int64)))
@@ -357,24 +354,38 @@ def _edge_pairs(edge_idx, pts, lab, sorted_pts, sorted_lab, n_labels, bucket, di
     return first, second, dist
 
 
+@nb.njit(cache=True)
+def _bucket_keys(pts, origin, side, dims):
+    # each cell's bucket (cubes of ``side`` from ``origin``) as one key, C order over ``dims`` buckets
+    keys = np.empty(pts.shape[0], np.int64)
+    for c in range(pts.shape[0]):
+        k = 0
+        for a in range(3):
+            k = k * dims[a] + int(np.floor((pts[c, a] - origin[a]) / side))
+        keys[c] = k
+    return keys
+
+
 def _closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
     """(m, 2) int64 indices into ``pts`` (n, 3): for every pair of labels, the closest (edge cell, cell of the other
     label) pair within ``gap`` (ties: the lower edge cell, then the lower other cell). Cells are binned in buckets
-    of side ``gap / 2`` (memory: a few arrays of n), so each edge cell compares itself with the cells of the buckets
-    that come within the gap only and keeps the nearest cell of each other label (no list of all the pairs)."""
+    of side ``gap / 2`` (memory: three int64 arrays of n besides the cells), so each edge cell compares itself with
+    the cells of the buckets that come within the gap only and keeps the nearest cell of each other label (no list
+    of all the pairs)."""
     if edge_idx.size == 0 or pts.shape[0] == 0:
         return np.empty((0, 2), dtype=np.int64)
-    pts = np.ascontiguousarray(pts - pts.min(axis=0), dtype=np.float64)  # distances do not change
+    pts = np.ascontiguousarray(pts, dtype=np.float64)
     _, compact = np.unique(lab, return_inverse=True)  # labels 0..k-1: one slot each
     compact = compact.astype(np.int64).ravel()
     side = max(0.5 * float(gap), 0.5)
-    bucket = np.floor(pts / side).astype(np.int64)
-    dims = bucket.max(axis=0) + 1
-    keys = (bucket[:, 0] * dims[1] + bucket[:, 1]) * dims[2] + bucket[:, 2]
+    origin = pts.min(axis=0)
+    dims = np.floor((pts.max(axis=0) - origin) / side).astype(np.int64) + 1
+    keys = _bucket_keys(pts, origin, side, dims)
     order = np.argsort(keys, kind="stable")
-    first, second, dist2 = _edge_pairs(np.ascontiguousarray(edge_idx, dtype=np.int64), pts, compact, pts[order],
-                                       compact[order], int(compact.max()) + 1, bucket, dims, side, keys[order],
-                                       order, float(gap) ** 2, 4 * nb.get_num_threads())
+    keys = keys[order]
+    first, second, dist2 = _edge_pairs(np.ascontiguousarray(edge_idx, dtype=np.int64), pts, compact,
+                                       int(compact.max()) + 1, origin, dims, side, keys, order, float(gap) ** 2,
+                                       4 * nb.get_num_threads())
     if first.size == 0:
         return np.empty((0, 2), dtype=np.int64)
     key = np.minimum(lab[first], lab[second]).astype(np.int64) * n_labels + np.maximum(lab[first], lab[second])

@@ -404,9 +404,18 @@ class FaultCrossings:
         -------
         (n,) float64 ndarray
             Jump of each step, samples: 0 where it crosses no fault, NaN where a crossed fault's throw is unknown.
+
+        Raises
+        ------
+        InputError
+            ``a`` and ``b`` differ in shape or are not (n, ndim) with the faults' ndim.
         """
         a = np.ascontiguousarray(a, np.float64)
         b = np.ascontiguousarray(b, np.float64)
+        ndim = self.points.shape[1]
+        if a.shape != b.shape or a.ndim != 2 or a.shape[1] != ndim:
+            raise InputError(f"step_jumps needs two (n, {ndim}) arrays of step ends; got shapes {a.shape} and "
+                             f"{b.shape}")
         if self.tree is None or len(a) == 0:
             return np.zeros(len(a))
         if self._buckets is None:
@@ -416,10 +425,11 @@ class FaultCrossings:
             dims = cell.max(axis=0) + 1
             keys = (cell[:, 0] * dims[1] + cell[:, 1]) * dims[2] + cell[:, 2]
             order = np.argsort(keys, kind="stable")
-            self._buckets = (keys[order], order, lo, dims)
-        keys, order, lo, dims = self._buckets
-        return _step_jumps(a, b, self.points, self.normals, self.throws, self.ids.astype(np.int64), keys, order, lo,
-                           dims, self.pierce)
+            self._buckets = (keys[order], order, lo, dims, np.ascontiguousarray(self.points),
+                             np.ascontiguousarray(self.normals), np.ascontiguousarray(self.throws),
+                             self.ids.astype(np.int64))
+        keys, order, lo, dims, pts, nrm, thr, ids = self._buckets
+        return _step_jumps(a, b, pts, nrm, thr, ids, keys, order, lo, dims, self.pierce)
 
     def jump(self, a: np.ndarray, b: np.ndarray, crossed: set | None = None) -> float:
         """Vertical jump (samples) of a horizon going from ``a`` to ``b``: the sum over the faults crossed (two faults

@@ -4,7 +4,9 @@ walls, and the reliable-throw gate."""
 from types import SimpleNamespace
 
 import numpy as np
+import pytest
 
+from seismo3d.errors import InputError
 from seismo3d.seismic import FaultCrossings
 from seismo3d.seismic.fault_throw import hanging_wall_normals
 
@@ -173,3 +175,5 @@ def test_step_jumps_equal_jump_step_by_step():
         assert np.count_nonzero(expected) > 50 and np.isnan(expected).any(), ndim
         np.testing.assert_allclose(got, expected, rtol=0, atol=1e-9, equal_nan=True)
     assert np.array_equal(FaultCrossings.empty(2).step_jumps(a, b), np.zeros(len(a)))
+    with pytest.raises(InputError, match=r"\(n, 2\)"):
+        FaultCrossings.empty(2).step_jumps(a, b[:, :1])

@@ -19,6 +19,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ..errors import InputError
+from . import _kernels
 from .fault_throw import hanging_wall_normals
 
 __all__ = ["FaultCrossings", "footwall_normals", "reliable_throw"]
@@ -79,9 +80,10 @@ _BUCKET = 4.0  # voxels: the side of the buckets the step kernel finds fault poi
 
 @nb.njit(cache=True)
 def _group_plane(pts, nrm, cells, ndim):
-    # the local plane of one fault's points ``cells`` (as FaultCrossings._planes): centre and unit normal (zeros
-    # when the normals cancel); the least-squares plane from the scatter matrix's eigenvectors (its square-rooted
-    # eigenvalues are the singular values of the centred points)
+    # the local plane of one fault's points ``cells`` (FaultCrossings._planes, and the compiled steps): centre and
+    # unit normal (zeros when the normals cancel). The least-squares plane (line in 2D) from the scatter matrix's
+    # eigenvectors (its square-rooted eigenvalues are the singular values of the centred points) where the points
+    # spread over it and lie on it; else their mean normal.
     m = cells.size
     c = np.zeros(ndim)
     n = np.zeros(ndim)
@@ -178,7 +180,6 @@ def _one_step_jump(a, b, pts, nrm, throws, ids, keys, order, bucket_lo, dims, pi
     return total
 
 
-
 @nb.njit(cache=True, parallel=True)
 def _step_jumps(a, b, pts, nrm, throws, ids, keys, order, bucket_lo, dims, pierce):
     # _one_step_jump of every step a[s] -> b[s]
@@ -186,6 +187,7 @@ def _step_jumps(a, b, pts, nrm, throws, ids, keys, order, bucket_lo, dims, pierc
     for s in nb.prange(a.shape[0]):
         out[s] = _one_step_jump(a[s], b[s], pts, nrm, throws, ids, keys, order, bucket_lo, dims, pierce)
     return out
+
 
 class FaultCrossings:
     """Fault points with normals (into the footwall), throws and fault ids, for finding the faults a step crosses.
@@ -215,14 +217,14 @@ class FaultCrossings:
     """
 
     def __init__(self, points, normals, throws, ids=None, *, pierce: float = 1.5, on_fault: float = 0.5):
-        points = np.asarray(points, np.float64)
-        normals = np.asarray(normals, np.float64)
-        throws = np.asarray(throws, np.float64)
+        points = np.ascontiguousarray(points, np.float64)  # contiguous: read by the compiled plane fit and steps
+        normals = np.ascontiguousarray(normals, np.float64)
+        throws = np.ascontiguousarray(throws, np.float64)
         self.pierce, self.on_fault_distance = float(pierce), float(on_fault)
         self.points = points
         self.normals = normals
         self.throws = throws
-        self.ids = np.zeros(len(points), np.intp) if ids is None else np.asarray(ids, np.intp)
+        self.ids = np.zeros(len(points), np.int64) if ids is None else np.asarray(ids, np.int64)
         self.tree = cKDTree(points) if len(points) else None
         self._buckets = None  # for step_jumps, built when first needed
 
@@ -290,23 +292,12 @@ class FaultCrossings:
         idx = self.tree.query_ball_point(0.5 * (a + b), 0.5 * float(np.linalg.norm(b - a)) + self.pierce + 1.0)
         if not idx:
             return
-        idx = np.asarray(idx)
+        idx = np.asarray(idx, dtype=np.int64)
         for fid in np.unique(self.ids[idx]):
             sel = idx[self.ids[idx] == fid]
-            p = self.points[sel]
-            n = self.normals[sel].mean(axis=0)
-            c = p.mean(axis=0)
-            if len(p) >= 4:
-                _, sv, vt = np.linalg.svd(p - c, full_matrices=False)
-                if len(sv) == 3:
-                    planar = sv[1] > 0.5 * sv[0] and sv[2] < 0.5 * sv[1]  # spread over two axes, thin on the third
-                else:
-                    planar = sv[1] < 0.5 * sv[0]  # 2D: along a line
-                if planar:
-                    n = vt[-1] if np.dot(vt[-1], n) >= 0 else -vt[-1]
-            norm = float(np.linalg.norm(n))
-            if norm > 0.0:
-                yield int(fid), sel, c, n / norm
+            c, n = _group_plane(self.points, self.normals, sel, self.points.shape[1])
+            if np.any(n != 0.0):
+                yield int(fid), sel, c, n
 
     def crossings(self, a: np.ndarray, b: np.ndarray) -> dict:
         """The faults between point ``a`` and point ``b``: {fault id: vertical jump (samples) of a horizon going from
@@ -420,16 +411,10 @@ class FaultCrossings:
             return np.zeros(len(a))
         if self._buckets is None:
             pts3 = self.points if self.points.shape[1] == 3 else np.insert(self.points, 1, 0.0, axis=1)
-            lo = pts3.min(axis=0)
-            cell = np.floor((pts3 - lo) / _BUCKET).astype(np.int64)
-            dims = cell.max(axis=0) + 1
-            keys = (cell[:, 0] * dims[1] + cell[:, 1]) * dims[2] + cell[:, 2]
-            order = np.argsort(keys, kind="stable")
-            self._buckets = (keys[order], order, lo, dims, np.ascontiguousarray(self.points),
-                             np.ascontiguousarray(self.normals), np.ascontiguousarray(self.throws),
-                             self.ids.astype(np.int64))
-        keys, order, lo, dims, pts, nrm, thr, ids = self._buckets
-        return _step_jumps(a, b, pts, nrm, thr, ids, keys, order, lo, dims, self.pierce)
+            self._buckets = _kernels.bucket_grid(pts3, _BUCKET)
+        keys, order, lo, dims = self._buckets
+        return _step_jumps(a, b, self.points, self.normals, self.throws, self.ids, keys, order, lo, dims,
+                           self.pierce)
 
     def jump(self, a: np.ndarray, b: np.ndarray, crossed: set | None = None) -> float:
         """Vertical jump (samples) of a horizon going from ``a`` to ``b``: the sum over the faults crossed (two faults

@@ -245,7 +245,7 @@ def _local_normal(points: np.ndarray, two_d: bool) -> np.ndarray:
 @nb.njit(cache=True)
 def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, slot, labels, dist2, cells):
     # For cell e: the nearest cell (squared distance, index) of every other label within sqrt(gap2), ties to the
-    # lower index, from the buckets (cubes of ``side`` from ``origin``, :func:`_bucket_keys`) around e's bucket that
+    # lower index, from the buckets (cubes of ``side`` from ``origin``, :func:`~seismo3d.seismic._kernels.bucket_grid`) around e's bucket that
     # come within the gap; ``keys`` are the cells' bucket keys in ``order``. ``labels``, ``dist2``, ``cells`` take
     # the results (grown when full); ``slot`` (one per label, all -1) is the position of a label in them, and is left
     # all -1 again. Returns the number of labels found and the three (grown) arrays.
@@ -354,18 +354,6 @@ def _edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, g
     return first, second, dist
 
 
-@nb.njit(cache=True)
-def _bucket_keys(pts, origin, side, dims):
-    # each cell's bucket (cubes of ``side`` from ``origin``) as one key, C order over ``dims`` buckets
-    keys = np.empty(pts.shape[0], np.int64)
-    for c in range(pts.shape[0]):
-        k = 0
-        for a in range(3):
-            k = k * dims[a] + int(np.floor((pts[c, a] - origin[a]) / side))
-        keys[c] = k
-    return keys
-
-
 def _closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
     """(m, 2) int64 indices into ``pts`` (n, 3): for every pair of labels, the closest (edge cell, cell of the other
     label) pair within ``gap`` (ties: the lower edge cell, then the lower other cell). Cells are binned in buckets
@@ -378,11 +366,7 @@ def _closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: 
     _, compact = np.unique(lab, return_inverse=True)  # labels 0..k-1: one slot each
     compact = compact.astype(np.int64).ravel()
     side = max(0.5 * float(gap), 0.5)
-    origin = pts.min(axis=0)
-    dims = np.floor((pts.max(axis=0) - origin) / side).astype(np.int64) + 1
-    keys = _bucket_keys(pts, origin, side, dims)
-    order = np.argsort(keys, kind="stable")
-    keys = keys[order]
+    keys, order, origin, dims = _kernels.bucket_grid(pts, side)
     first, second, dist2 = _edge_pairs(np.ascontiguousarray(edge_idx, dtype=np.int64), pts, compact,
                                        int(compact.max()) + 1, origin, dims, side, keys, order, float(gap) ** 2,
                                        4 * nb.get_num_threads())

@@ -554,8 +554,8 @@ def horizon(
                                                                 "headers (ms)."),
 ) -> None:
     """Track a horizon in INPUT (a 3D cube or a 2D line) from one or more seed picks, globally (least squares over
-    correlations between near and distant traces, then the picks of each line by dynamic programming), and write it
-    as 'inline xline time' rows ('trace time' for a trace list)."""
+    correlations between near and distant traces, then the picks by dynamic programming along inlines and crosslines),
+    and write it as 'inline xline time' rows ('trace time' for a trace list)."""
     from .errors import InputError
     from .jobs.horizon import run_horizon_job
 

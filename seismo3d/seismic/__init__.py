@@ -17,7 +17,8 @@
 - :mod:`~seismo3d.seismic.horizon_tracking`: :func:`track_horizon`; horizon tracking by registering neighbouring slices.
 - :mod:`~seismo3d.seismic.horizon_lsq`: least-squares horizons from correlations of near and distant traces (the
   default method), the cycle-skip self-check.
-- :mod:`~seismo3d.seismic.horizon_dp`: dynamic programming over candidate picks along each line.
+- :mod:`~seismo3d.seismic.horizon_dp`: dynamic programming over candidate picks along each line, swept over inlines
+  and crosslines in a cube.
 - :mod:`~seismo3d.seismic.tracking_options`: :class:`TrackingOptions`.
 - :mod:`~seismo3d.seismic.autotracker`: the plain amplitude autotracker (the peer).
 - :mod:`~seismo3d.seismic.volumes`: registration of sub-volumes of different bin size, sample rate and orientation.

@@ -5,8 +5,10 @@ extrema of the horizon's polarity within ``reach`` samples of the guide as candi
 one per trace minimising, along the line, ``w_guide |pick - guide|`` (per trace) + ``w_step (step - slope)^2`` (the
 step between neighbouring picks against the structure-tensor reflector slope there) + ``w_wave (1 - ncc)`` (their
 waveforms' correlation). A seed's trace keeps the candidate nearest the seed. Lines are the last lateral axis
-(crosslines of each inline); :func:`settle_lone_departures` then moves back picks that leave the guide by half a
-reflector period on their inline alone.
+(crosslines of each inline). In a cube the lines are then chosen together: sweeps over inlines and crosslines lower
+the energy of the whole surface, the same terms along both lateral axes (:func:`dp_picks`). Without sweeps,
+:func:`settle_lone_departures` moves back picks that leave the guide by half a reflector period on their inline
+alone.
 
 References
 ----------
@@ -14,6 +16,8 @@ References
    Trans. Information Theory 13(2), 260-269, 1967.
 .. [2] D. Hale, "Dynamic warping of seismic images", Geophysics 78(2), S105-S115, 2013 (dynamic programming with a
    smoothness constraint on seismic shifts).
+.. [3] J. Besag, "On the statistical analysis of dirty pictures", J. Royal Statistical Society B 48(3), 259-302,
+   1986 (iterated conditional modes: coordinate descent on a Markov random field's energy).
 """
 
 from __future__ import annotations
@@ -41,11 +45,14 @@ def sample_at(trace, t):
 
 
 @nb.njit(cache=True)
-def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_guide, w_step, w_wave, half):
-    """Viterbi along one line of traces: one candidate pick per trace (within ``reach`` of ``guide``), minimising
-    ``w_guide |p - guide| + w_step (dp - dguide)^2 + w_wave (1 - ncc)``; a trace with ``fixed`` finite keeps only
-    the candidate nearest to it. Returns the chosen pick per trace (NaN where the trace has no candidate; the line
-    restarts after it)."""
+def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_guide, w_step, w_wave, half,
+             cross_ids, cross_t, cross_slopes):
+    """Viterbi along one line of traces: one candidate pick per trace (within ``reach`` of ``guide``), minimising the
+    sum of ``w_guide |p - guide|`` per trace and :func:`_pair_cost` per step; a trace with ``fixed`` finite keeps only
+    the candidate nearest to it. ``cross_ids`` / ``cross_t`` ((n, k), -1 / NaN where none) are picks of neighbouring
+    lines held fixed, the previous line's in column 0 and the next line's in column 1: their pair costs (slopes
+    ``cross_slopes`` across the lines) join each candidate's guide term. Returns the chosen pick per trace (NaN where
+    the trace has no candidate; the line restarts after it)."""
     n = trace_ids.size
     out = np.full(n, np.nan)
     max_c = 64
@@ -73,13 +80,25 @@ def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_g
     m = 2 * half + 1
     wa = np.empty(m)
     wb = np.empty(m)
+    ns = slopes.shape[1]
     for j in range(n):
+        kb = trace_ids[j]
         for c in range(count[j]):
             u = w_guide[j] * abs(cand[j, c] - guide[j])
+            for e in range(cross_ids.shape[1]):
+                ko = cross_ids[j, e]
+                to = cross_t[j, e]
+                if ko < 0 or not np.isfinite(to):
+                    continue
+                so = cross_slopes[ko, min(max(int(round(to)), 0), ns - 1)]
+                sc = cross_slopes[kb, min(max(int(round(cand[j, c])), 0), ns - 1)]
+                if e == 0:
+                    u += _pair_cost(traces, ko, to, kb, cand[j, c], so, sc, w_step, w_wave, half, wa, wb)
+                else:
+                    u += _pair_cost(traces, kb, cand[j, c], ko, to, sc, so, w_step, w_wave, half, wa, wb)
             if j == 0 or count[j - 1] == 0:
                 cost[j, c] = u
                 continue
-            kb = trace_ids[j]
             ka = trace_ids[j - 1]
             for s in range(m):
                 wb[s] = sample_at(traces[kb], cand[j, c] - half + s)
@@ -87,7 +106,6 @@ def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_g
             for p in range(count[j - 1]):
                 for s in range(m):
                     wa[s] = sample_at(traces[ka], cand[j - 1, p] - half + s)
-                ns = slopes.shape[1]
                 sa = slopes[ka, min(max(int(round(cand[j - 1, p])), 0), ns - 1)]
                 sb = slopes[kb, min(max(int(round(cand[j, c])), 0), ns - 1)]
                 step = (cand[j, c] - cand[j - 1, p]) - 0.5 * (sa + sb)
@@ -140,20 +158,160 @@ def window_ncc(a, b):
 
 
 def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: np.ndarray, lateral_shape: tuple,
-             fixed: np.ndarray, slopes: np.ndarray, *, reach: float, w_guide: float, w_step: float, w_wave: float, half: int) -> np.ndarray:
-    """Picks along every line of the last lateral axis chosen by :func:`_line_dp` (flat (n,) arrays in and out)."""
+             fixed: np.ndarray, slopes: np.ndarray, *, reach: float, w_guide, w_step: float, w_wave: float, half: int,
+             cross_slopes: np.ndarray | None = None, sweeps: int = 0) -> np.ndarray:
+    """Picks of a horizon chosen by dynamic programming along lines, then (cubes) by sweeps over both lateral axes.
+
+    Every line of the last lateral axis (crosslines of each inline) is chosen by the Viterbi algorithm (module
+    docstring). For a cube with ``cross_slopes`` and ``sweeps`` > 0 the lines are then chosen together, by coordinate
+    descent on the energy of the whole surface: the guide terms plus the pair costs (step against the reflector slope,
+    waveform correlation) of neighbouring traces along *both* lateral axes. Each sweep re-chooses every line of the
+    first axis, then of the last, by the same dynamic programme with the pair costs to the picks of its two
+    neighbouring lines, held, added to each candidate's guide term; no re-choice raises the energy, which the
+    line-by-line choice, blind across lines, can leave high (neighbouring inlines a cycle apart over a patch).
+    Coordinate descent stops in a local minimum, and a patch one cycle off that is continuous inside is one, so it runs
+    from two starts, the line-by-line picks and the picks nearest the guide, and keeps the lower energy. This is
+    iterated conditional modes (reference 3 of the module) with lines as blocks.
+
+    Parameters
+    ----------
+    traces : (n, n_samples) float32 ndarray
+        The traces, flat over the lateral grid.
+    picks, offsets : ndarray
+        Every trace's picks of the horizon's polarity (:func:`~seismo3d.seismic.reflector_picks`), samples.
+    guide : (n,) float64 ndarray
+        The guide (least-squares horizon), samples; NaN: the trace gets no pick.
+    lateral_shape : (int,) or (int, int)
+        The lateral grid.
+    fixed : (n,) float64 ndarray
+        Seed times (NaN elsewhere): a seed trace keeps its candidate nearest the seed.
+    slopes : (n, n_samples) float32 ndarray
+        Reflector slope along the last lateral axis (:func:`line_slopes`), samples per trace.
+    reach : float
+        Candidates lie within ``reach`` samples of the guide.
+    w_guide : float or (n,) float64 ndarray
+        Weight of ``|pick - guide|`` (per sample).
+    w_step, w_wave : float
+        Weights of ``(step - slope)^2`` (per sample squared) and of ``1 - ncc``.
+    half : int
+        Half-length of the waveform windows, samples.
+    cross_slopes : (n, n_samples) float32 ndarray, optional
+        Reflector slope along the first lateral axis (cubes); without it, no sweeps.
+    sweeps : int
+        Coordinate-descent sweeps over both axes (cubes; 0: the line-by-line picks).
+
+    Returns
+    -------
+    (n,) float64 ndarray
+        Picks, samples (NaN where a trace has no candidate).
+
+    Notes
+    -----
+    Raises nothing of its own: its callers (:func:`~seismo3d.seismic.horizon_lsq.lsq_horizon`) check the inputs.
+    """
     g = guide.reshape(lateral_shape)
     f = fixed.reshape(lateral_shape)
-    wg = np.broadcast_to(np.asarray(w_guide, np.float64), guide.shape).reshape(lateral_shape)
+    wg = np.ascontiguousarray(np.broadcast_to(np.asarray(w_guide, np.float64), guide.shape).reshape(lateral_shape))
     ids = np.arange(g.size).reshape(lateral_shape)
-    out = np.full(lateral_shape, np.nan)
+    no_ids = np.full((g.shape[-1], 0), -1, np.int64)
+    no_t = np.full((g.shape[-1], 0), np.nan)
     if len(lateral_shape) == 1:
-        return _line_dp(ids, g, f, picks, offsets, traces, slopes, reach, np.ascontiguousarray(wg), w_step, w_wave,
-                        half)
+        return _line_dp(ids, g, f, picks, offsets, traces, slopes, reach, wg, w_step, w_wave, half, no_ids, no_t,
+                        slopes)
+    lines = np.full(lateral_shape, np.nan)
     for i in range(lateral_shape[0]):
-        out[i] = _line_dp(ids[i], g[i], f[i], picks, offsets, traces, slopes, reach, np.ascontiguousarray(wg[i]), w_step,
-                          w_wave, half)
-    return out.ravel()
+        lines[i] = _line_dp(ids[i], g[i], f[i], picks, offsets, traces, slopes, reach, wg[i], w_step, w_wave, half,
+                            no_ids, no_t, slopes)
+    if cross_slopes is None or sweeps <= 0:
+        return lines.ravel()
+    nearest = _nearest_picks(picks, offsets, np.where(np.isfinite(fixed), fixed, guide), reach)
+    nearest[~np.isfinite(guide)] = np.nan
+    best, best_energy = lines, np.inf
+    for start in (lines, nearest.reshape(lateral_shape)):
+        cur = start.copy()
+        for _ in range(sweeps):
+            _sweep(cur, g, f, wg, ids, picks, offsets, traces, slopes, cross_slopes, reach, w_step, w_wave, half)
+        energy = _grid_energy(cur, g, wg, traces, slopes, cross_slopes, w_step, w_wave, half)
+        if energy < best_energy:
+            best, best_energy = cur, energy
+    return best.ravel()
+
+
+def _sweep(out, g, f, wg, ids, picks, offsets, traces, slopes, cross_slopes, reach, w_step, w_wave, half):
+    """One coordinate-descent sweep: every line along the first lateral axis, then along the last, re-chosen by
+    :func:`_line_dp` with the picks of its two neighbouring lines held (``out``, (n_inlines, n_xlines), updated in
+    place)."""
+    for axis in (0, 1):
+        along, across = (cross_slopes, slopes) if axis == 0 else (slopes, cross_slopes)
+        g_t, f_t, w_t, ids_t, out_t = (np.moveaxis(x, axis, -1) for x in (g, f, wg, ids, out))
+        n_lines, length = g_t.shape
+        for i in range(n_lines):
+            c_ids = np.full((length, 2), -1, np.int64)
+            c_t = np.full((length, 2), np.nan)
+            if i > 0:
+                c_ids[:, 0], c_t[:, 0] = ids_t[i - 1], out_t[i - 1]
+            if i + 1 < n_lines:
+                c_ids[:, 1], c_t[:, 1] = ids_t[i + 1], out_t[i + 1]
+            out_t[i] = _line_dp(np.ascontiguousarray(ids_t[i]), np.ascontiguousarray(g_t[i]),
+                                np.ascontiguousarray(f_t[i]), picks, offsets, traces, along, reach,
+                                np.ascontiguousarray(w_t[i]), w_step, w_wave, half, c_ids, c_t, across)
+
+
+@nb.njit(cache=True)
+def _nearest_picks(picks, offsets, times, reach):
+    """Each trace's pick nearest to ``times`` ((n,) samples) within ``reach`` samples, NaN where none."""
+    out = np.full(times.size, np.nan)
+    for k in range(times.size):
+        t = times[k]
+        if not np.isfinite(t):
+            continue
+        best = reach
+        for q in range(offsets[k], offsets[k + 1]):
+            d = abs(picks[q] - t)
+            if d <= best:
+                best = d
+                out[k] = picks[q]
+    return out
+
+
+@nb.njit(cache=True)
+def _pair_cost(traces, ka, ta, kb, tb, sa, sb, w_step, w_wave, half, wa, wb):
+    """Cost of picks ``ta`` on trace ``ka`` and ``tb`` on its next trace ``kb``: ``w_step (step - slope)^2 +
+    w_wave (1 - ncc)`` (slopes ``sa``, ``sb`` at the two picks)."""
+    for s in range(2 * half + 1):
+        wa[s] = sample_at(traces[ka], ta - half + s)
+        wb[s] = sample_at(traces[kb], tb - half + s)
+    step = (tb - ta) - 0.5 * (sa + sb)
+    return w_step * step * step + w_wave * (1.0 - window_ncc(wa, wb))
+
+
+@nb.njit(cache=True)
+def _grid_energy(out, guide, wg, traces, slopes, cross_slopes, w_step, w_wave, half):
+    """The energy the line sweeps lower, over a (n_inlines, n_xlines) grid of picks: guide terms plus the pair costs
+    of neighbouring traces along both axes (pairs with an empty pick left out)."""
+    ni, nx = out.shape
+    ns = slopes.shape[1]
+    wa = np.empty(2 * half + 1)
+    wb = np.empty(2 * half + 1)
+    e = 0.0
+    for i in range(ni):
+        for j in range(nx):
+            t = out[i, j]
+            if not np.isfinite(t):
+                continue
+            e += wg[i, j] * abs(t - guide[i, j])
+            k = i * nx + j
+            r = min(max(int(round(t)), 0), ns - 1)
+            if j + 1 < nx and np.isfinite(out[i, j + 1]):
+                t2 = out[i, j + 1]
+                r2 = min(max(int(round(t2)), 0), ns - 1)
+                e += _pair_cost(traces, k, t, k + 1, t2, slopes[k, r], slopes[k + 1, r2], w_step, w_wave, half, wa, wb)
+            if i + 1 < ni and np.isfinite(out[i + 1, j]):
+                t2 = out[i + 1, j]
+                r2 = min(max(int(round(t2)), 0), ns - 1)
+                e += _pair_cost(traces, k, t, k + nx, t2, cross_slopes[k, r], cross_slopes[k + nx, r2], w_step, w_wave,
+                                half, wa, wb)
+    return e
 
 
 def line_slopes(data: np.ndarray, sigma_tensor, rows: tuple[int, int] | None = None) -> np.ndarray:

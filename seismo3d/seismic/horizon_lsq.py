@@ -6,7 +6,9 @@ equations ``t[b] - t[a] = s_ab``, one per *pair* of traces ``a, b`` on the same 
 multigrid correlations; here the neighbours' slopes are correlations too). Each shift ``s_ab`` is found by normalised
 cross-correlation of a long window of trace ``a`` (``+-correlation_half`` samples around ``t[a]``: several reflector
 cycles, so the sequence of reflectors and not one cycle decides) with trace ``b`` searched ``+-max_lag`` samples
-around the current estimate. A pair weighs its correlation squared over its distance to ``distance_power`` (pairs
+around the current estimate (near the ends of the traces, where the window overlaps trace ``b`` at too few lags on
+one side, the lags are cut as far on the other side: searched on one side only, the wrong-cycle matches of noisy
+pairs would all fall there and bias the solve). A pair weighs its correlation squared over its distance to ``distance_power`` (pairs
 below ``min_pair_correlation`` are left out), and the solve is iteratively re-weighted with Cauchy weights (scale
 ``robust`` samples) so that pairs the solution disagrees with lose their say. Because the equations hold differences
 only and the long pairs tie distant traces directly, one bad local step (a cycle skip at a pockmark's sag, a wrong
@@ -20,7 +22,8 @@ where that correlates better, so a fault's jump is taken only where the registra
 spurious fault surface leaves the pair's long-window shift alone.
 
 The picks of each line are then chosen together by dynamic programming over candidate extrema of the polarity near
-the solution (:mod:`~seismo3d.seismic.horizon_dp`). A pick's confidence is the median correlation of its waveform
+the solution, and in a cube the lines of both lateral axes by sweeps of it over inlines and crosslines
+(:mod:`~seismo3d.seismic.horizon_dp`). A pick's confidence is the median correlation of its waveform
 with its neighbours' (``+-ncc_half`` samples); picks below ``min_confidence`` and traces not connected to a seed by
 confident pairs stay empty (NaN). A last self-check (:func:`cycle_skips`) re-measures the pairs at the picked horizon
 with lags of more than a reflector period and flags the traces where the correlation-predicted horizon (their plain
@@ -143,8 +146,19 @@ def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
             ref[k] = sample_at(ra, ta[p] - h + k)
         for k in range(m + 2 * max_lag):
             sig[k] = sample_at(rb, centre[p] - h - max_lag + k)
+        # lags are scored only where the window overlaps trace b enough: near the trace ends that cuts the range
+        # on one side; it is cut on the other side as well, or a pair's wrong-cycle matches (more of them on the
+        # longer side) would bias the shifts towards it
+        reach = max_lag
+        for k in range(max_lag + 1):
+            lo = centre[p] - h - k
+            hi = centre[p] + h + k
+            if min(lo + m - 1, n_s - 1.0) - max(lo, 0.0) + 1 < min_samples or \
+                    min(hi, n_s - 1.0) - max(hi - m + 1, 0.0) + 1 < min_samples:
+                reach = k - 1
+                break
         best, kbest = -2.0, -1
-        for s in range(2 * max_lag + 1):
+        for s in range(max_lag - reach, max_lag + reach + 1):
             sa = 0.0
             sb = 0.0
             cnt = 0
@@ -536,6 +550,10 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     if rows[1] - rows[0] < 8:
         rows = (0, data.shape[-1])
     slopes = line_slopes(data, opt.sigma_tensor, rows)
+    cross = None  # slopes along the inline axis, for the sweeps of the picks over both axes
+    if len(lat) == 2 and opt.dp_sweeps:
+        cross = line_slopes(np.ascontiguousarray(data.transpose(1, 0, 2)), opt.sigma_tensor, rows)
+        cross = np.ascontiguousarray(cross.reshape(lat[1], lat[0], -1).transpose(1, 0, 2).reshape(n, -1))
     fixed = np.full(n, np.nan)
     fixed[seed_idx] = seed_t
 
@@ -547,8 +565,11 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
         weight = opt.dp_guide * pair_agreement(ps, guide, min_correlation=opt.min_pair_correlation,
                                                within=opt.robust)
         picked = dp_picks(traces, picks, offsets, guide, lat, fixed, slopes, reach=opt.dp_reach, w_guide=weight,
-                          w_step=opt.dp_step, w_wave=opt.dp_wave, half=opt.ncc_half)
-        return settle_lone_departures(picked, guide, lat, picks, offsets) if len(lat) == 2 else picked
+                          w_step=opt.dp_step, w_wave=opt.dp_wave, half=opt.ncc_half, cross_slopes=cross,
+                          sweeps=opt.dp_sweeps)
+        if len(lat) == 1 or cross is not None:  # the sweeps weigh a departure against the neighbouring inlines
+            return picked
+        return settle_lone_departures(picked, guide, lat, picks, offsets)
 
     snapped = choose(t)
     # the self-check: every pair re-measured at the picks with lags of 1.5 reflector periods and solved plainly; a

@@ -434,7 +434,8 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
     With ``method='global'`` every trace's time comes from one robust least-squares solve of correlation shifts
     between near and distant traces (1 to 32 traces apart along inlines and crosslines) through all the seeds at
     once, so one bad local step is outvoted by the pairs that span it; each line's picks are then chosen together
-    by dynamic programming (near the solution, steps along the reflector slope, waveforms that correlate), checked
+    by dynamic programming (near the solution, steps along the reflector slope, waveforms that correlate), in a cube
+    swept over inlines and crosslines so that neighbouring lines agree (``dp_sweeps``), checked
     for cycle skips against the long pairs (regions a cycle off moved back by a minimum cut where their pairs
     correlate clearly better: :mod:`~seismo3d.seismic.cycle_cut`), and scored by their correlation with their
     neighbours; in 3D, empty traces beside tracked ones are then filled where their neighbours agree and correlate

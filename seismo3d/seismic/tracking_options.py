@@ -21,8 +21,8 @@ class TrackingOptions:
     ----------
     method : {'global', 'registration'}
         'global' (default): least-squares horizons from correlation shifts between near and distant traces, solved
-        at once, then dynamic programming over the candidate picks of each line (:mod:`~seismo3d.seismic.
-        horizon_lsq`); 'registration': the slice-by-slice tracker of :mod:`~seismo3d.seismic.horizon_tracking`.
+        at once, then dynamic programming over the candidate picks of each line, swept over both lateral axes in
+        a cube (:mod:`~seismo3d.seismic.horizon_lsq`); 'registration': the slice-by-slice tracker of :mod:`~seismo3d.seismic.horizon_tracking`.
     pair_distances : tuple of int
         ('global') Distances, traces, of the correlated pairs along each lateral axis.
     correlation_half : int
@@ -49,6 +49,10 @@ class TrackingOptions:
         ('global') Cost per squared sample of a step between neighbouring picks away from the reflector slope.
     dp_wave : float
         ('global') Cost of neighbouring picks' waveforms that do not correlate (times 1 - correlation).
+    dp_sweeps : int
+        ('global', cubes) Sweeps over inlines and crosslines after the line-by-line choice of picks, each line
+        re-chosen with the picks of its neighbouring lines held (:func:`~seismo3d.seismic.horizon_dp.dp_picks`);
+        0 keeps the line-by-line picks.
     repair : bool
         ('global') Run the cycle-skip self-check and repair flagged traces
         (:func:`~seismo3d.seismic.horizon_lsq.cycle_skips`), then move flagged regions by a cycle where the pairs
@@ -127,6 +131,7 @@ class TrackingOptions:
     dp_guide: float = 0.2
     dp_step: float = 1.0
     dp_wave: float = 4.0
+    dp_sweeps: int = 2
     repair: bool = True
     cut_gain: float = 0.4
     model: str = "rigid"
@@ -160,6 +165,7 @@ class TrackingOptions:
         object.__setattr__(self, "pair_distances", dists)
         for name in ("correlation_half", "max_lag", "iterations", "robust_iterations"):
             check_int(getattr(self, name), name, minimum=1)
+        check_int(self.dp_sweeps, "dp_sweeps", minimum=0)
         for name in ("robust", "dp_reach", "dp_step"):
             object.__setattr__(self, name, float(check_positive(getattr(self, name), name)))
         for name in ("dp_guide", "dp_wave", "distance_power"):

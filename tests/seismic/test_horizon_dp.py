@@ -6,7 +6,7 @@ import numpy as np
 from seismo3d.seismic.horizon_dp import dp_picks, line_slopes, settle_lone_departures
 from seismo3d.seismic.reflectors import nearest_pick, reflector_picks
 
-from .conftest import next_cycle, section_and_truth
+from .conftest import next_cycle, random_layers, section_and_truth
 
 
 def test_dp_picks_the_true_reflector_from_a_noisy_guide():
@@ -39,3 +39,29 @@ def test_lone_departure_is_moved_back_and_shared_one_kept():
     for i in (3, 4):
         shared = slice(i * 160 + 100, i * 160 + 111)
         np.testing.assert_array_equal(out[shared], picked[shared])
+
+
+def test_sweeps_bring_inlines_a_cycle_off_back_in_line_with_their_neighbours():
+    # 9 inlines of a gently dipping random layering; the guide of inlines 3-5 is one cycle down over crosslines 0-69
+    # (a patch the least-squares solution got wrong): each inline alone follows it (stepping back costs more than
+    # the guide), but a cycle between neighbouring inlines costs more still, so the sweeps over both axes restore them
+    lat = (9, 80)
+    traces, picks, offsets, pos = random_layers(lat, n_samples=160, dip=0.05, seed=5)
+    first = nearest_pick(picks, offsets, 0, 80.0, 6.0)
+    truth = np.array([nearest_pick(picks, offsets, k, first + 0.05 * pos[k], 1.0) for k in range(pos.size)])
+    assert np.isfinite(truth).all()
+    guide = truth.copy()
+    for k in np.ravel_multi_index(np.mgrid[3:6, 0:70].reshape(2, -1), lat):
+        guide[k] = next_cycle(picks, offsets, k, truth[k])
+    fixed = np.full(truth.size, np.nan)
+    fixed[0] = truth[0]
+    data = traces.reshape(lat + (-1,))
+    slopes = line_slopes(data, (2.0, 2.0))
+    across = line_slopes(np.ascontiguousarray(data.transpose(1, 0, 2)), (2.0, 2.0))
+    across = np.ascontiguousarray(across.reshape(80, 9, -1).transpose(1, 0, 2).reshape(traces.shape))
+    kw = dict(reach=16.0, w_guide=0.2, w_step=1.0, w_wave=4.0, half=8)
+    lines = dp_picks(traces, picks, offsets, guide, lat, fixed, slopes, **kw)
+    wrong = (np.abs(lines - truth) > 1.0).reshape(lat)
+    assert wrong[3:6].all() and not wrong[:3].any() and not wrong[6:].any()
+    swept = dp_picks(traces, picks, offsets, guide, lat, fixed, slopes, cross_slopes=across, sweeps=2, **kw)
+    np.testing.assert_allclose(swept, truth, atol=1e-9)

@@ -29,6 +29,7 @@ from . import _kernels
 __all__ = [
     "ReflectorOrientation",
     "structure_tensor_orientation",
+    "section_slopes",
     "structure_tensor_halo",
     "semblance",
     "eigen_coherence",
@@ -126,6 +127,56 @@ def structure_tensor_orientation(data, *, sigma_gradient=1.0, sigma_tensor=(2.0,
     else:
         slopes = np.stack([p0, p1])
     return ReflectorOrientation(np.ascontiguousarray(normals), np.ascontiguousarray(slopes), planarity)
+
+
+def section_slopes(data, axis: int, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.0),
+                   max_lines: int = 256) -> np.ndarray:
+    """Reflector slopes of every 2D section of a cube along one lateral axis: the slopes of
+    :func:`structure_tensor_orientation` on each inline (``axis=1``: along the crosslines) or each crossline
+    (``axis=0``: along the inlines), all sections at once.
+
+    Parameters
+    ----------
+    data : (n_inlines, n_xlines, n_samples) array_like
+        Seismic amplitudes. Converted to float32. Must be finite.
+    axis : {0, 1}
+        The lateral axis the slopes run along (the sections are the cube's lines along it).
+    sigma_gradient, sigma_tensor : float, optional
+        As in :func:`structure_tensor_orientation` (traces, samples).
+    max_lines : int, optional
+        Sections computed together (bounds the memory: 12 bytes per sample of them).
+
+    Returns
+    -------
+    (n_inlines, n_xlines, n_samples) float32 ndarray
+        Slopes along ``axis``, samples per trace (clipped to +-5), equal to ``structure_tensor_orientation(section)
+        .slopes[0]`` of each section.
+
+    Raises
+    ------
+    InputError
+        If ``data`` is not a finite 3D numeric array, ``axis`` is not 0 or 1, or a width is not > 0.
+
+    References
+    ----------
+    As :func:`structure_tensor_orientation` (the 2D tensor filters along ``axis`` and the sample axis only).
+    """
+    from ..errors import InputError
+
+    arr = as_seismic(data, min_size=1)
+    if arr.ndim != 3:
+        raise InputError(f"data must be a cube (n_inlines, n_xlines, n_samples); got shape {arr.shape}")
+    if axis not in (0, 1):
+        raise InputError(f"axis must be 0 (slopes along the inlines) or 1 (along the crosslines); got {axis!r}")
+    check_positive(sigma_gradient, "sigma_gradient")
+    sig_t = as_sigma_pair(sigma_tensor, "sigma_tensor")
+    lines = arr if axis == 0 else arr.transpose(1, 0, 2)  # (n along the slopes, n sections, n_samples)
+    out = np.empty(lines.shape, np.float32)
+    for a in range(0, lines.shape[1], max(1, int(max_lines))):
+        block = np.ascontiguousarray(lines[:, a:a + max_lines])
+        normals, _ = _kernels.tensor_eig(block, float(sigma_gradient), sig_t, True)
+        out[:, a:a + max_lines] = _kernels.slopes_from_normals(normals)[0]
+    return out if axis == 0 else np.ascontiguousarray(out.transpose(1, 0, 2))
 
 
 def structure_tensor_halo(sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)) -> tuple[int, int]:

@@ -314,18 +314,19 @@ def _grid_energy(out, guide, wg, traces, slopes, cross_slopes, w_step, w_wave, h
     return e
 
 
-def line_slopes(data: np.ndarray, sigma_tensor, rows: tuple[int, int] | None = None) -> np.ndarray:
-    """Reflector slope (samples per trace) along the last lateral axis, (n_traces, n_samples) float32 (structure
-    tensor of each line, :func:`~seismo3d.seismic.structure_tensor_orientation`), computed in the band of samples
-    ``rows`` (default all; 0 outside it)."""
-    from .attributes import structure_tensor_orientation
+def line_slopes(data: np.ndarray, sigma_tensor, rows: tuple[int, int] | None = None, *, axis: int = -1) -> np.ndarray:
+    """Reflector slope (samples per trace) along one lateral axis, (n_traces, n_samples) float32 flat over the lateral
+    grid: the structure tensor of each line along ``axis`` (-1: the last lateral axis, the crosslines of each inline;
+    0: the inline axis of a cube; :func:`~seismo3d.seismic.attributes.section_slopes`), computed in the band of
+    samples ``rows`` (default all; 0 outside it)."""
+    from .attributes import section_slopes, structure_tensor_orientation
 
     lo, hi = (0, data.shape[-1]) if rows is None else rows
     out = np.zeros(data.shape, np.float32)
-    lines = data[None] if data.ndim == 2 else data
-    view = out[None] if data.ndim == 2 else out
-    for i in range(lines.shape[0]):
-        view[i, :, lo:hi] = structure_tensor_orientation(lines[i, :, lo:hi], sigma_tensor=sigma_tensor).slopes[0]
+    if data.ndim == 2:
+        out[:, lo:hi] = structure_tensor_orientation(data[:, lo:hi], sigma_tensor=sigma_tensor).slopes[0]
+    else:
+        out[..., lo:hi] = section_slopes(data[..., lo:hi], 0 if axis == 0 else 1, sigma_tensor=sigma_tensor)
     return out.reshape(-1, data.shape[-1])
 
 

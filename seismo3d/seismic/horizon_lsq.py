@@ -552,8 +552,7 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     slopes = line_slopes(data, opt.sigma_tensor, rows)
     cross = None  # slopes along the inline axis, for the sweeps of the picks over both axes
     if len(lat) == 2 and opt.dp_sweeps:
-        cross = line_slopes(np.ascontiguousarray(data.transpose(1, 0, 2)), opt.sigma_tensor, rows)
-        cross = np.ascontiguousarray(cross.reshape(lat[1], lat[0], -1).transpose(1, 0, 2).reshape(n, -1))
+        cross = line_slopes(data, opt.sigma_tensor, rows, axis=0)
     fixed = np.full(n, np.nan)
     fixed[seed_idx] = seed_t
 

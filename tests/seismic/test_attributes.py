@@ -12,6 +12,7 @@ from seismo3d.seismic.attributes import (
     ReflectorOrientation,
     discontinuity,
     eigen_coherence,
+    section_slopes,
     semblance,
     structure_tensor_halo,
     structure_tensor_orientation,
@@ -127,3 +128,21 @@ def test_structure_tensor_halo_is_exact_and_tight():
     # clipped at the cube's edge: the filters clamp there as on the whole cube
     edge = structure_tensor_orientation(cube[:hi + halo, :hi + halo]).slopes[:, :hi, :hi]
     assert np.array_equal(edge, whole[:, :hi, :hi])
+
+
+@pytest.mark.parametrize("axis", [0, 1])
+def test_section_slopes_equal_each_sections_structure_tensor(axis):
+    cube = synthetic_cube((16, 21, 60), n_faults=2, seed=1).cube
+    got = section_slopes(cube, axis, sigma_tensor=(2.0, 3.0), max_lines=5)  # blocks of 5 sections
+    sections = [cube[:, j] for j in range(21)] if axis == 0 else [cube[i] for i in range(16)]
+    each = np.stack([structure_tensor_orientation(sec, sigma_tensor=(2.0, 3.0)).slopes[0] for sec in sections],
+                    axis=1 if axis == 0 else 0)
+    np.testing.assert_array_equal(got, each)
+    assert np.abs(got).max() > 0.1  # the faulted cube's reflectors dip
+
+
+@pytest.mark.parametrize("data, axis, match", [(np.zeros((10, 20)), 0, "cube"),
+                                               (np.zeros((4, 5, 20)), 2, "axis must be 0")])
+def test_section_slopes_bad_input(data, axis, match):
+    with pytest.raises(InputError, match=match):
+        section_slopes(data, axis)

@@ -57,8 +57,7 @@ def test_sweeps_bring_inlines_a_cycle_off_back_in_line_with_their_neighbours():
     fixed[0] = truth[0]
     data = traces.reshape(lat + (-1,))
     slopes = line_slopes(data, (2.0, 2.0))
-    across = line_slopes(np.ascontiguousarray(data.transpose(1, 0, 2)), (2.0, 2.0))
-    across = np.ascontiguousarray(across.reshape(80, 9, -1).transpose(1, 0, 2).reshape(traces.shape))
+    across = line_slopes(data, (2.0, 2.0), axis=0)
     kw = dict(reach=16.0, w_guide=0.2, w_step=1.0, w_wave=4.0, half=8)
     lines = dp_picks(traces, picks, offsets, guide, lat, fixed, slopes, **kw)
     wrong = (np.abs(lines - truth) > 1.0).reshape(lat)

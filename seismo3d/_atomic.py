@@ -10,7 +10,7 @@ from contextlib import contextmanager
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_directory"]
+__all__ = ["atomic_path", "atomic_directory", "existing_folder"]
 
 
 @contextmanager
@@ -36,7 +36,7 @@ def atomic_path(path):
         If the destination's folder does not exist.
     """
     path = pathlib.Path(path)
-    folder = _existing_folder(path)
+    folder = existing_folder(path)
     fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{path.name}.", suffix=".tmp")
     os.close(fd)
     tmp = pathlib.Path(tmp)
@@ -72,7 +72,7 @@ def atomic_directory(path):
         If the folder that is to hold ``path`` does not exist.
     """
     path = pathlib.Path(path)
-    folder = _existing_folder(path)
+    folder = existing_folder(path)
     tmp = pathlib.Path(tempfile.mkdtemp(dir=folder, prefix=f".{path.name}.", suffix=".tmp"))
     old = None
     try:
@@ -93,8 +93,24 @@ def atomic_directory(path):
             shutil.rmtree(old, ignore_errors=True)
 
 
-def _existing_folder(path: pathlib.Path) -> pathlib.Path:
-    """The folder of ``path``; InputError when it does not exist."""
+def existing_folder(path: pathlib.Path) -> pathlib.Path:
+    """The folder of ``path``; InputError when it does not exist (checked before a long run, and again on writing).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        An output file.
+
+    Returns
+    -------
+    pathlib.Path
+        Its folder (``.`` for a bare file name).
+
+    Raises
+    ------
+    InputError
+        The folder does not exist.
+    """
     folder = path.parent if str(path.parent) else pathlib.Path(".")
     if not folder.is_dir():
         raise InputError(f"cannot write {path}: folder {folder} does not exist; create it first")

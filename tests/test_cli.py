@@ -318,3 +318,23 @@ def test_convert(cube_file, tmp_path):
     assert again.exit_code == 2 and again.stderr.startswith("error: ") and "--overwrite" in again.stderr
     bad = runner.invoke(app, ["convert", str(cube_file), str(tmp_path / "b.zarr"), "--iline", "190"])
     assert bad.exit_code == 2 and "--iline" in bad.stderr and not (tmp_path / "b.zarr").exists()
+
+
+@pytest.mark.parametrize("args", [
+    ["register", "a.ply", "b.ply", "-o", "{missing}/t.json"],
+    ["match", "a.png", "b.png", "-o", "{missing}/m.csv"],
+    ["plan", "dem.tif", "--start", "1,1", "--goal", "2,2", "-o", "{missing}/p.csv"],
+    ["render", "a.ply", "-o", "{missing}/r.png"],
+    ["horizon", "a.sgy", "--seed", "1,1,1", "-o", "{missing}/h.txt"],
+])
+def test_a_missing_output_folder_is_refused_before_any_work(tmp_path, args):
+    # the inputs are empty files: had the command read them first, it would fail on them, not on the output
+    for name in ("a.ply", "b.ply", "a.png", "b.png", "dem.tif", "a.sgy"):
+        (tmp_path / name).touch()
+    missing = tmp_path / "not_made"
+    args = [str(tmp_path / a) if a in ("a.ply", "b.ply", "a.png", "b.png", "dem.tif", "a.sgy") else
+            a.format(missing=missing) for a in args]
+    res = runner.invoke(app, args)
+    assert res.exit_code == 2, res.output
+    assert f"folder {missing} does not exist; create it first" in " ".join(res.output.split())
+    assert not missing.exists()

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._atomic import existing_folder
 from ..errors import InputError, SegyGeometryError, UnsupportedDataError
 from ..seismic.horizons import Horizon
 
@@ -163,8 +164,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     Raises
     ------
     InputError
-        An output path that is the input, a seed outside the data or with the wrong number of values (the message
-        names ``--seed``), a surface asked for a 2D line.
+        An output path that is the input or whose folder does not exist (checked before tracking), a seed outside
+        the data or with the wrong number of values (the message names ``--seed``), a surface asked for a 2D line.
     SegyGeometryError
         The file holds a single trace, or prestack gathers.
     SegyFormatError
@@ -183,6 +184,9 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     surface = None if surface is None else pathlib.Path(surface)
     if output.resolve() == input_path.resolve() or (surface is not None and surface.resolve() == input_path.resolve()):
         raise InputError(f"{output} would overwrite the input; choose another output path")
+    for path in (output, surface):  # before the work, not after it
+        if path is not None:
+            existing_folder(path)
     # read the cube or line, and convert the seeds to index positions
     survey = _read_survey(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
                           sample_unit=sample_unit)

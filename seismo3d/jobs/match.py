@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._atomic import existing_folder
 from ..errors import DataNotFoundError, InputError
 
 __all__ = ["MatchJob", "run_match_job", "read_image"]
@@ -60,6 +61,7 @@ def run_match_job(image1, image2, output, *, method: str = "hog", ratio: float =
     """
     from ..features import match_images, write_matches_csv
 
+    existing_folder(pathlib.Path(output))  # before the matching, not after it
     images = [read_image(p) for p in (image1, image2)]
     result = match_images(*images, method=method, ratio=ratio, threshold=threshold, verify="homography")
     return MatchJob(result, write_matches_csv(output, result))

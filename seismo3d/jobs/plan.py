@@ -7,7 +7,7 @@ import pathlib
 import time
 from dataclasses import dataclass
 
-from .._atomic import atomic_path
+from .._atomic import atomic_path, existing_folder
 from ..errors import InputError
 from ..terrain import DEM_SUFFIXES, read_dem
 from ..terrain.occupancy import (
@@ -142,6 +142,7 @@ def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, opti
         No path exists.
     """
     output = pathlib.Path(output)
+    existing_folder(output)  # before the planning, not after it
     occupancy = load_occupancy(grid, max_slope_deg=max_slope_deg, options=options)
     blocked = (f"is steeper than {max_slope_deg:g} deg" if not pathlib.Path(grid).is_dir()
                else "holds an obstacle at the robot's height, or no floor was seen there")

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._atomic import atomic_path
+from .._atomic import atomic_path, existing_folder
 from ..errors import InputError, TraceListWarning
 from ..terrain import is_terrain_file
 
@@ -102,6 +102,7 @@ def run_register_job(source, target, output, *, method: str | None = None, model
         A SEG-Y file that cannot be read (see :func:`~seismo3d.seismic.open_segy`).
     """
     source, target, output = pathlib.Path(source), pathlib.Path(target), pathlib.Path(output)
+    existing_folder(output)  # before the registration, not after it
     if is_segy(source) or is_segy(target):
         if not (is_segy(source) and is_segy(target)):
             raise InputError(f"{source} and {target}: register either two SEG-Y cubes or two point clouds, not one "

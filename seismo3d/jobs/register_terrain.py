@@ -10,6 +10,7 @@ import pathlib
 
 import numpy as np
 
+from .._atomic import existing_folder
 from ..errors import InputError
 from ..terrain import TerrainRegistrationOptions, is_terrain_file, read_terrain, register_terrain
 from .register import RegisterJob, read_transform, write_json
@@ -60,6 +61,7 @@ def run_register_terrain_job(source, target, output, *, method: str = "fused", m
         When the inputs do not overlap enough to register.
     """
     source, target, output = (pathlib.Path(p) for p in (source, target, output))
+    existing_folder(output)  # before the registration, not after it
     if not (is_terrain_file(source) and is_terrain_file(target)):
         raise InputError(f"{source} and {target}: register two terrain files (LAS/LAZ, GeoTIFF) or two point clouds, "
                          "not one of each (convert the point cloud to LAS/LAZ)")

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._atomic import existing_folder
 from .._validation import check_choice
 from ..errors import DataNotFoundError, InputError
 from ..seismic import open_segy
@@ -241,6 +242,7 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     path, output = Path(input_path), Path(output)
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
+    existing_folder(output)  # before the rendering, not after it
     kind = _kind(path)
     if kind == "map":
         return _render_map(path, output, window_size=window_size)

@@ -64,6 +64,25 @@ def test_horizon_command_bad_seeds(tmp_path):
     assert not (tmp_path / "h.txt").exists()
 
 
+def test_horizon_command_refuses_a_missing_output_folder_before_tracking(tmp_path, monkeypatch):
+    import seismo3d.seismic as seismic
+
+    syn = synthetic_cube((16, 16, 48), n_faults=0, seed=0)
+    _write_cube(tmp_path / "cube.sgy", syn.cube)
+
+    def no_tracking(*args, **kwargs):
+        raise AssertionError("tracked before the output folder was checked")
+
+    monkeypatch.setattr(seismic, "track_horizon", no_tracking)
+    monkeypatch.setattr(seismic, "trace_faults", no_tracking)
+    for extra, missing in ((["-o", str(tmp_path / "no" / "h.txt")], "no"),
+                           (["-o", str(tmp_path / "h.txt"), "--surface", str(tmp_path / "gone" / "s.vtp")], "gone")):
+        res = runner.invoke(app, ["horizon", str(tmp_path / "cube.sgy"), "--seed", "100,500,40", *extra])
+        assert res.exit_code == 2, res.output
+        assert f"folder {tmp_path / missing} does not exist; create it first" in " ".join(res.output.split())
+    assert not (tmp_path / "h.txt").exists()
+
+
 @pytest.mark.slow
 @pytest.mark.filterwarnings("error::RuntimeWarning")
 def test_horizon_command_with_faults_raises_no_runtime_warning(tmp_path):

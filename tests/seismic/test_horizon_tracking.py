@@ -288,5 +288,7 @@ def test_f3_crop_picks_do_not_jitter(data_dir, ms):
 
     ours, n_ours = share_of_jumps(track_horizon(cube, seed).times)
     plain, _ = share_of_jumps(autotrack(cube, seed).times)
-    assert n_ours > 0.75 * (22 * 18 + 23 * 17), n_ours  # most neighbouring pairs are picked
+    # emptying picks would hide jumps: at least two thirds of the neighbouring pairs are picked (measured: 684 and
+    # 618 of 787; low-confidence picks stay empty)
+    assert n_ours >= 2 / 3 * (22 * 18 + 23 * 17), n_ours
     assert ours <= plain, (ours, plain)

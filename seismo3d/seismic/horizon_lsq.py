@@ -302,16 +302,16 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
     t = prev
     for _ in range(robust_iterations + 1):
         w = w0 if robust is None else w0 / (1.0 + ((t[b] - t[a] - s) / robust) ** 2)
-        t = _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping)
+        t = _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start=t)
     graph = sparse.coo_matrix((np.ones(a.size), (a, b)), shape=(n, n))
     _, label = connected_components(graph, directed=False)
     reached = np.isin(label, label[seeds])
     return np.where(reached, t, np.nan)
 
 
-def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping):
+def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start):
     """One weighted solve of the normal equations by conjugate gradients (Jacobi-preconditioned, started at
-    ``prev``)."""
+    ``start``: the last re-weighted solution, which the next one differs little from)."""
     from scipy import sparse
     from scipy.sparse.linalg import LinearOperator, cg
 
@@ -328,7 +328,9 @@ def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping
     mat = (lap + sparse.diags(diag)).tocsr()
     inv_diag = 1.0 / mat.diagonal()
     pre = LinearOperator((n, n), matvec=lambda x: inv_diag * x)
-    t, _ = cg(mat, rhs, x0=prev, rtol=1e-8, atol=0.0, maxiter=2000, M=pre)
+    # the right-hand side is dominated by the seed rows (seed_weight^2 x time, ~1e6), so a residual relative to it
+    # must be small for the pair rows (weights ~1) to be solved to a fraction of a sample
+    t, _ = cg(mat, rhs, x0=start, rtol=1e-10, atol=0.0, maxiter=2000, M=pre)
     return t
 
 

@@ -8,8 +8,8 @@ cross-correlation of a long window of trace ``a`` (``+-correlation_half`` sample
 cycles, so the sequence of reflectors and not one cycle decides) with trace ``b`` searched ``+-max_lag`` samples
 around the current estimate (near the ends of the traces, where the window overlaps trace ``b`` at too few lags on
 one side, the lags are cut as far on the other side: searched on one side only, the wrong-cycle matches of noisy
-pairs would all fall there and bias the solve). A pair weighs its correlation squared over its distance to ``distance_power`` (pairs
-below ``min_pair_correlation`` are left out), and the solve is iteratively re-weighted with Cauchy weights (scale
+pairs would all fall there and bias the solve). A pair weighs its correlation squared over its distance to
+``distance_power`` (pairs below ``min_pair_correlation`` are left out), and the solve is iteratively re-weighted with Cauchy weights (scale
 ``robust`` samples) so that pairs the solution disagrees with lose their say. Because the equations hold differences
 only and the long pairs tie distant traces directly, one bad local step (a cycle skip at a pockmark's sag, a wrong
 shift across a fault) is outvoted by the pairs that span it and cannot propagate. The estimate starts flat at the

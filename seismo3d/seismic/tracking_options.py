@@ -22,7 +22,8 @@ class TrackingOptions:
     method : {'global', 'registration'}
         'global' (default): least-squares horizons from correlation shifts between near and distant traces, solved
         at once, then dynamic programming over the candidate picks of each line, swept over both lateral axes in
-        a cube (:mod:`~seismo3d.seismic.horizon_lsq`); 'registration': the slice-by-slice tracker of :mod:`~seismo3d.seismic.horizon_tracking`.
+        a cube (:mod:`~seismo3d.seismic.horizon_lsq`); 'registration': the slice-by-slice tracker of
+        :mod:`~seismo3d.seismic.horizon_tracking`.
     pair_distances : tuple of int
         ('global') Distances, traces, of the correlated pairs along each lateral axis.
     correlation_half : int

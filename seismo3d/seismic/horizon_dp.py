@@ -81,27 +81,33 @@ def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_g
     wa = np.empty(m)
     wb = np.empty(m)
     ns = slopes.shape[1]
+    n_cross = cross_ids.shape[1]
+    w_cross = np.empty((n_cross, m))
     for j in range(n):
         kb = trace_ids[j]
+        # the neighbouring lines' windows: the same for every candidate of the trace
+        for e in range(n_cross):
+            if cross_ids[j, e] >= 0 and np.isfinite(cross_t[j, e]):
+                for s in range(m):
+                    w_cross[e, s] = sample_at(traces[cross_ids[j, e]], cross_t[j, e] - half + s)
         for c in range(count[j]):
+            for s in range(m):
+                wb[s] = sample_at(traces[kb], cand[j, c] - half + s)
             u = w_guide[j] * abs(cand[j, c] - guide[j])
-            for e in range(cross_ids.shape[1]):
+            for e in range(n_cross):
                 ko = cross_ids[j, e]
                 to = cross_t[j, e]
                 if ko < 0 or not np.isfinite(to):
                     continue
                 so = cross_slopes[ko, min(max(int(round(to)), 0), ns - 1)]
                 sc = cross_slopes[kb, min(max(int(round(cand[j, c])), 0), ns - 1)]
-                if e == 0:
-                    u += _pair_cost(traces, ko, to, kb, cand[j, c], so, sc, w_step, w_wave, half, wa, wb)
-                else:
-                    u += _pair_cost(traces, kb, cand[j, c], ko, to, sc, so, w_step, w_wave, half, wa, wb)
+                # the previous line's pick before this one (e = 0), the next line's after it
+                step = (cand[j, c] - to) - 0.5 * (so + sc) if e == 0 else (to - cand[j, c]) - 0.5 * (sc + so)
+                u += _windows_cost(step, w_cross[e], wb, w_step, w_wave)
             if j == 0 or count[j - 1] == 0:
                 cost[j, c] = u
                 continue
             ka = trace_ids[j - 1]
-            for s in range(m):
-                wb[s] = sample_at(traces[kb], cand[j, c] - half + s)
             best, arg = np.inf, -1
             for p in range(count[j - 1]):
                 for s in range(m):
@@ -276,12 +282,18 @@ def _nearest_picks(picks, offsets, times, reach):
 
 @nb.njit(cache=True)
 def _pair_cost(traces, ka, ta, kb, tb, sa, sb, w_step, w_wave, half, wa, wb):
-    """Cost of picks ``ta`` on trace ``ka`` and ``tb`` on its next trace ``kb``: ``w_step (step - slope)^2 +
-    w_wave (1 - ncc)`` (slopes ``sa``, ``sb`` at the two picks)."""
+    """Cost of picks ``ta`` on trace ``ka`` and ``tb`` on its next trace ``kb`` (slopes ``sa``, ``sb`` at the two
+    picks; ``wa``, ``wb``: work arrays for their windows): :func:`_windows_cost`."""
     for s in range(2 * half + 1):
         wa[s] = sample_at(traces[ka], ta - half + s)
         wb[s] = sample_at(traces[kb], tb - half + s)
-    step = (tb - ta) - 0.5 * (sa + sb)
+    return _windows_cost((tb - ta) - 0.5 * (sa + sb), wa, wb, w_step, w_wave)
+
+
+@nb.njit(cache=True)
+def _windows_cost(step, wa, wb, w_step, w_wave):
+    """``w_step step^2 + w_wave (1 - ncc)``: a step (samples, less the reflector slope) and the correlation of the two
+    picks' windows."""
     return w_step * step * step + w_wave * (1.0 - window_ncc(wa, wb))
 
 

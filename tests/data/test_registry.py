@@ -65,19 +65,19 @@ def test_registry_matches_sha256sums(shared_dir):
         listed[name.removeprefix("./")] = sha
     listed.pop("README.md", None)
     listed.pop("SHA256SUMS", None)
-    assert {entry.name: entry.sha256 for entry in REGISTRY if entry.in_data_directory} == listed
+    assert {entry.name: entry.sha256 for entry in REGISTRY} == listed
 
 
 def test_every_file_in_data_dir_is_registered_and_hashes_match(shared_dir):
     on_disk = {p.relative_to(shared_dir).as_posix() for p in shared_dir.rglob("*") if p.is_file()}
     on_disk -= {"README.md", "SHA256SUMS"}
-    assert on_disk == {entry.name for entry in REGISTRY if entry.in_data_directory}
-    for entry in (e for e in REGISTRY if e.in_data_directory):  # about 40 MB in total: hash each file once
+    assert on_disk == {entry.name for entry in REGISTRY}
+    for entry in REGISTRY:  # about 60 MB in total: hash each file once
         assert _sha256(shared_dir / entry.name) == entry.sha256, entry.name
 
 
 def test_fetch_resolves_every_file_from_data_dir(shared_dir):
-    for name in (e.name for e in REGISTRY if e.in_data_directory):
+    for name in (e.name for e in REGISTRY):
         path = fetch(name)
         assert path == (shared_dir / name).resolve()
 
@@ -90,7 +90,6 @@ def test_entries_are_consistent():
         assert len(entry.sha256) == 64 and int(entry.sha256, 16) >= 0
         assert entry.licence
         assert len(entry.commit) == 40
-        assert entry.in_data_directory or not entry.derived  # a download-only file must be downloadable
         if entry.derived:
             assert entry.url is None
         else:
@@ -109,10 +108,11 @@ def test_list_files_prefix():
                      "scans/bunny/bun045_clean.ply"]
     assert len(list_files("rgbd/7scenes_redkitchen_0000_0495/depth/")) == 100
     assert list_files("no/such/prefix") == []
-    assert len(list_files()) == len(REGISTRY) == 347 + 90
+    assert len(list_files()) == len(REGISTRY) == 347 + 91 + 10
     segyio_tests = list_files("seismic/segyio_test_data/")
-    assert len(segyio_tests) == 90 and len(list_files("seismic/segyio_test_data/multiformats/")) == 28
-    assert {e.name for e in REGISTRY if not e.in_data_directory} == set(segyio_tests)
+    assert len(segyio_tests) == 91 and len(list_files("seismic/segyio_test_data/multiformats/")) == 28
+    assert list_files("seismic/f3_fault_masks/") == sorted(
+        f"seismic/f3_fault_masks/{kind}_inline_{n}.png" for kind in ("mask", "seismic") for n in range(100, 501, 100))
 
 
 def test_unknown_name_lists_close_names():

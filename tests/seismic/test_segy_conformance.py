@@ -1,6 +1,6 @@
 """SEG-Y conformance: segyio's own test data (equinor/segyio ``test-data/``, 90 files; its README says what each file
-tests), fetched through the data registry (``seismic/segyio_test_data/...``, download only; skipped when it can be
-neither found in the cache nor downloaded).
+tests), fetched through the data registry (``seismic/segyio_test_data/...``, in the data directory; skipped when it
+can be neither found there nor downloaded).
 
 Every file is read or refused in one line naming the reason that segyio's README gives for the file; what is read
 matches segyio's own reading of the file, opened with the byte order that the file's name states (so the byte order
@@ -27,7 +27,7 @@ from seismo3d.errors import (DataNotFoundError, SegyFormatError, SegyGeometryErr
 from seismo3d.seismic import fault_likelihood, open_segy
 
 PREFIX = "seismic/segyio_test_data/"
-NAMES = [name.removeprefix(PREFIX) for name in list_files(PREFIX)]
+NAMES = [name.removeprefix(PREFIX) for name in list_files(PREFIX) if name.endswith((".sgy", ".su"))]
 
 # What each file is, from segyio's test-data/README.md, and what seismo3d must do with it.
 SMALL, F3, TINY = (5, 5, 50), (23, 18, 75), (3, 2, 4)  # small.sgy, f3.sgy, tiny.sgy: inlines x crosslines x samples

@@ -204,6 +204,134 @@ def real_sections(data_dir: Path, out_dir: Path) -> None:
     print(f"picture: {png}")
 
 
+SECTIONS = {  # every real 2D section of the data folder: (file, n_traces, n_samples)
+    "campos_gx373": (550, 300), "costarica_crf": (500, 180), "costarica_gx808": (825, 210),
+    "costarica_gx809": (825, 210), "f3_f3d178sub2": (951, 242), "f3_f3d75s": (440, 222), "teapot_tp73": (357, 240),
+    "teapot_tpd": (357, 315),
+}
+# the evidence options tried by the cross-validation on the F3 inlines (min_throw in samples, min_correlation_gain)
+EVIDENCE_GRID = [(t, g) for t in (0.0, 0.5, 1.0, 1.5, 2.0, 3.0) for g in (-1.0, 0.0, 0.05, 0.1, 0.2)]
+
+
+def _kept_mask(faults, evidence, shape, min_throw, min_gain):
+    from seismo3d.seismic.fault_evidence import EvidenceOptions
+
+    opt = EvidenceOptions(min_throw=min_throw, min_correlation_gain=min_gain)
+    mask = np.zeros(shape, bool)
+    n = 0
+    for fault, e in zip(faults, evidence):
+        if min_throw == 0.0 and min_gain == -1.0 or e.supports(opt):
+            mask[tuple(fault.points.T)] = True
+            n += 1
+    return mask, n
+
+
+def f3_people(out_dir: Path) -> None:
+    """The five F3 inlines with faults drawn by a person: scores per inline, the plain skeleton at its single best
+    threshold, and the evidence options chosen by cross-validation (chosen on three inlines, scored on two)."""
+    import dataclasses
+    import itertools
+
+    from seismo3d.data import load_f3_fault_sections
+    from seismo3d.seismic import trace_faults
+    from seismo3d.seismic.fault_evidence import EvidenceOptions, fault_evidence
+    from seismo3d.seismic.faults import FaultTracingOptions
+
+    data = load_f3_fault_sections()
+    n = len(data.inlines)
+    every = FaultTracingOptions(evidence=EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))
+    rows, candidates, seconds = [], [], []
+    for k in range(n):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the muted top is reported
+            t = time.perf_counter()
+            res = trace_faults(data.sections[k], sample_interval=4.0, sample_unit="ms", progress=False)
+            seconds.append(time.perf_counter() - t)
+            cand = trace_faults(data.sections[k], sample_interval=4.0, sample_unit="ms", progress=False,
+                                options=every)
+        ours = np.zeros(data.sections[k].shape, bool)
+        for f in res.faults:
+            ours[tuple(f.points.T)] = True
+        rows.append((*_scores(ours, data.faults[k]), len(res.faults)))
+        candidates.append((cand.faults, [fault_evidence(t) for t in cand.throws]))
+    # the peer: one quantile of 1 - plain semblance for all five inlines, the best mean F1
+    best = None
+    for q in np.linspace(0.50, 0.99, 25):
+        scores = [_scores(semblance_skeleton(data.sections[k], float(np.quantile(
+            1.0 - plain_semblance(data.sections[k]), q))), data.faults[k]) for k in range(n)]
+        if best is None or np.mean([s[2] for s in scores]) > np.mean([s[2] for s in best[1]]):
+            best = (q, scores)
+    # every grid point's scores on every inline, then the cross-validation over the 10 splits 3 / 2
+    grid_scores = {g: [_scores(_kept_mask(*candidates[k], data.sections[k].shape, *g)[0], data.faults[k])
+                       for k in range(n)] for g in EVIDENCE_GRID}
+    default = EvidenceOptions()
+    print("\nF3 inlines with faults drawn by a person (951 x 462 each), tolerance 3 samples: precision / recall / F1; "
+          "FaultNet (Dou et al. 2022, released weights) F1 from the issue for reference\n")
+    faultnet = (0.33, 0.28, 0.15, 0.14, 0.19)
+    head = (f"{'inline':>6s} | {'seismo3d defaults':>24s} {'faults':>6s} | {'candidates, no evidence':>24s} "
+            f"{'n':>4s} | {'1-semblance skeleton':>24s} | {'FaultNet F1':>11s}")
+    print(head + "\n" + "-" * len(head))
+    fmt = lambda s: f"{s[0]:6.3f} / {s[1]:5.3f} / {s[2]:5.3f}"  # noqa: E731
+    for k in range(n):
+        cand = grid_scores[(0.0, -1.0)][k]
+        print(f"{data.inlines[k]:6d} | {fmt(rows[k]):>24s} {rows[k][3]:6d} | {fmt(cand):>24s} "
+              f"{len(candidates[k][0]):4d} | {fmt(best[1][k]):>24s} | {faultnet[k]:11.2f}")
+    mean = lambda scores: tuple(float(np.mean([s[i] for s in scores])) for i in range(3))  # noqa: E731
+    print(f"{'mean':>6s} | {fmt(mean(rows)):>24s} {'':6s} | {fmt(mean(grid_scores[(0.0, -1.0)])):>24s} {'':4s} | "
+          f"{fmt(mean(best[1])):>24s} | {np.mean(faultnet):11.2f}")
+    print(f"skeleton threshold: the {best[0]:.0%} quantile of 1 - semblance on every inline; seismo3d "
+          f"{np.mean(seconds):.1f} s per inline")
+    print(f"\nCross-validation of the evidence options (min_throw samples, min_correlation_gain) over "
+          f"{len(EVIDENCE_GRID)} grid points: chosen by mean F1 on three inlines, scored on the other two; the default "
+          f"is ({default.min_throw:g}, {default.min_correlation_gain:g})\n")
+    head = f"{'chosen on':>16s} {'held out':>10s} {'choice':>12s} {'held-out F1':>11s} {'default F1':>10s}"
+    print(head + "\n" + "-" * len(head))
+    held_chosen, held_default = [], []
+    for train in itertools.combinations(range(n), 3):
+        test = [k for k in range(n) if k not in train]
+        choice = max(EVIDENCE_GRID, key=lambda g: (np.mean([grid_scores[g][k][2] for k in train]), -abs(g[0] - 1)))
+        f_choice = float(np.mean([grid_scores[choice][k][2] for k in test]))
+        f_default = float(np.mean([_scores(_kept_mask(*candidates[k], data.sections[k].shape, default.min_throw,
+                                                      default.min_correlation_gain)[0], data.faults[k])[2]
+                                   for k in test]))
+        held_chosen.append(f_choice)
+        held_default.append(f_default)
+        names = lambda ks: ",".join(str(data.inlines[k]) for k in ks)  # noqa: E731
+        print(f"{names(train):>16s} {names(test):>10s} {str(choice):>12s} {f_choice:11.3f} {f_default:10.3f}")
+    print(f"{'mean':>16s} {'':>10s} {'':>12s} {np.mean(held_chosen):11.3f} {np.mean(held_default):10.3f}")
+    _ = dataclasses
+
+
+def real_section_counts(data_dir: Path) -> None:
+    """Fault counts on every real 2D section of the data folder, with the defaults and with no evidence asked."""
+    from seismo3d.seismic import open_segy, trace_faults
+    from seismo3d.seismic.fault_evidence import EvidenceOptions
+    from seismo3d.seismic.faults import FaultTracingOptions
+
+    every = FaultTracingOptions(evidence=EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))
+    inputs = {name: (_f32be(data_dir, f"sections/{name}.f32be", shape), None) for name, shape in SECTIONS.items()}
+    for name in ("penobscot_xl1155", "volve_fullstack_twt_arbline"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with open_segy(data_dir / "seismic" / f"{name}.sgy") as cube:
+                arr = cube.read()
+                dt = float(cube.samples[1] - cube.samples[0])
+        inputs[name] = (arr.reshape(-1, arr.shape[-1]), dt)
+    print("\nFaults on every real section of the data folder (defaults; candidates: no displacement asked)\n")
+    head = f"{'section':30s} {'shape':>10s} {'faults':>7s} {'candidates':>10s} {'seconds':>8s}"
+    print(head + "\n" + "-" * len(head))
+    for name, (arr, dt) in inputs.items():
+        unit = {"sample_interval": dt, "sample_unit": "ms"} if dt else {}
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            t = time.perf_counter()
+            res = trace_faults(arr, progress=False, **unit)
+            seconds = time.perf_counter() - t
+            cand = trace_faults(arr, progress=False, options=every, **unit)
+        print(f"{name:30s} {'x'.join(map(str, arr.shape)):>10s} {len(res.faults):7d} {len(cand.faults):10d} "
+              f"{seconds:8.1f}")
+
+
 # --------------------------------------------------------------------------------------------------------------------
 # 2. generated cubes
 
@@ -356,6 +484,8 @@ def main(argv=None) -> None:
     ap.add_argument("--no-bruges", action="store_true", help="skip bruges.attribute.discontinuity")
     ap.add_argument("--no-speed", action="store_true", help="skip the speed and memory table")
     ap.add_argument("--no-real", action="store_true", help="skip the real sections")
+    ap.add_argument("--only", choices=("f3", "counts"), help="only the F3 inlines drawn by a person, or only the "
+                    "fault counts on every real section")
     ap.add_argument("--synthetic", action="store_true", help="also the accuracy on five generated cubes")
     ap.add_argument("--out", default="out/benchmarks", help="folder of the pictures (default: out/benchmarks)")
     ap.add_argument("--worker", nargs=2, metavar=("METHOD", "NPY"), help=argparse.SUPPRESS)
@@ -364,8 +494,15 @@ def main(argv=None) -> None:
         print(json.dumps(_worker(*args.worker)))
         return
     root = os.environ.get("SEISMO3D_DATA_DIR")
+    if args.only:
+        if not root:
+            sys.exit("set SEISMO3D_DATA_DIR to the data folder")
+        f3_people(Path(args.out)) if args.only == "f3" else real_section_counts(Path(root))
+        return
     if not args.no_real:
         if root:
+            f3_people(Path(args.out))
+            real_section_counts(Path(root))
             real_sections(Path(root), Path(args.out))
         else:
             print("real sections skipped: set SEISMO3D_DATA_DIR to the data folder", file=sys.stderr)

@@ -1,17 +1,21 @@
-"""Loader of the real seismic sections with people's interpretation (Penobscot, 18 consecutive inlines)."""
+"""Loaders of the real seismic sections with people's interpretation: Penobscot (18 consecutive inlines with
+horizons) and F3 (five inlines with faults drawn by a person)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+import cv2
 import numpy as np
 
 from .registry import fetch
 
-__all__ = ["PenobscotSections", "load_penobscot_sections"]
+__all__ = ["F3FaultSections", "PenobscotSections", "load_f3_fault_sections", "load_penobscot_sections"]
 
 _PENOBSCOT = "seismic/penobscot_sections/penobscot_sections_1075_1092.npz"
-
+_F3_MASKS = "seismic/f3_fault_masks/{kind}_inline_{inline}.png"
+F3_MASK_INLINES = (100, 200, 300, 400, 500)
+_F3_SHAPE = (951, 462)  # crosslines x samples of the interpreter's masks
 
 @dataclass(frozen=True, eq=False)
 class PenobscotSections:
@@ -71,3 +75,67 @@ def load_penobscot_sections() -> PenobscotSections:
     for array in (cube, horizons, live, ids):
         array.setflags(write=False)
     return PenobscotSections(cube=cube, horizons=horizons, live=live, section_ids=ids)
+
+
+@dataclass(frozen=True, eq=False)
+class F3FaultSections:
+    """Five real F3 inlines with faults drawn by a person (see :func:`load_f3_fault_sections`).
+
+    Attributes
+    ----------
+    sections : (5, 951, 462) float32 ndarray
+        Amplitudes (inline, crossline, sample), the 8-bit grey rendering mapped to [-1, 1] about the grey level
+        127.5; samples are 4 ms from 0 ms.
+    faults : (5, 951, 462) bool ndarray
+        The interpreter's fault lines (True on fault samples).
+    inlines : (5,) int ndarray
+        The inline numbers, 100 to 500.
+    sample_interval : float
+        4.0, milliseconds.
+    """
+
+    sections: np.ndarray
+    faults: np.ndarray
+    inlines: np.ndarray
+    sample_interval: float = 4.0
+
+
+def load_f3_fault_sections() -> F3FaultSections:
+    """Load five real inlines of the Netherlands F3 block with the fault lines an interpreter drew on them.
+
+    Each inline's seismic is an 8-bit grey rendering (1114 x 541 pixels) that the interpreter's drawing stretched
+    onto the inline's 951 crosslines x 462 samples; it is resampled onto that grid (bilinear, OpenCV) so that it
+    lines up with the drawn mask (alpha > 0 = fault). Most of each inline is unfaulted layering above a faulted deep
+    interval: the fault scores of ``benchmarks/faults.py`` are measured on them (tolerant precision and recall,
+    :func:`seismo3d.seismic.evaluate_faults`, tolerance 3 samples).
+
+    Returns
+    -------
+    F3FaultSections
+        ``sections`` (5, 951, 462) float32 in [-1, 1], ``faults`` (5, 951, 462) bool, ``inlines`` (100, ..., 500).
+        Arrays are read-only.
+
+    Raises
+    ------
+    DataNotFoundError
+        If an image is neither in the data directory nor downloadable (offline): set ``SEISMO3D_DATA_DIR``.
+    DataIntegrityError
+        If an image does not match its registered SHA-256.
+
+    References
+    ----------
+    .. [1] T. Wrona, seismic_deep_learning, tutorial 3 (fault masks of F3 inlines 100-500), github.com/thilowrona.
+    .. [2] F3 Netherlands, dGB Earth Sciences / TNO (CC BY-SA).
+    """
+    sections, faults = [], []
+    for inline in F3_MASK_INLINES:
+        grey = cv2.imread(str(fetch(_F3_MASKS.format(kind="seismic", inline=inline))), cv2.IMREAD_GRAYSCALE)
+        rgba = cv2.imread(str(fetch(_F3_MASKS.format(kind="mask", inline=inline))), cv2.IMREAD_UNCHANGED)
+        grey = cv2.resize(grey, _F3_SHAPE, interpolation=cv2.INTER_LINEAR)  # (samples, crosslines)
+        sections.append(((grey.astype(np.float32) - 127.5) / 127.5).T)
+        faults.append((rgba[..., 3] > 0).T)
+    out = F3FaultSections(sections=np.ascontiguousarray(np.stack(sections)), faults=np.stack(faults),
+                          inlines=np.array(F3_MASK_INLINES))
+    for array in (out.sections, out.faults, out.inlines):
+        array.setflags(write=False)
+    return out

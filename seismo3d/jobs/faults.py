@@ -218,7 +218,8 @@ def _column(values, fmt: str) -> list:
 def _write_points(inp: _Input, result: FaultInterpretation, path: Path) -> Path:
     unit = inp.unit
     extra = [] if unit == "samples" else [f"throw_{unit}"]
-    header = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation"]
+    header = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation",
+              "correlation_gain"]
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         fh.write(",".join(header) + "\n")
         for f in result.faults:
@@ -234,7 +235,9 @@ def _write_points(inp: _Input, result: FaultInterpretation, path: Path) -> Path:
             ]
             if extra:
                 cols.append(_column(throw * result.sample_interval, ".5g"))
-            cols.append(_column(_throw_of(result.throws, f, "correlation"), ".3f"))
+            correlation = _throw_of(result.throws, f, "correlation")
+            cols.append(_column(correlation, ".3f"))
+            cols.append(_column(correlation - _throw_of(result.throws, f, "correlation_unshifted"), ".3f"))
             fh.writelines(",".join(row) + "\n" for row in zip(*cols))
     return path
 
@@ -255,14 +258,16 @@ def _write_summary(inp: _Input, result: FaultInterpretation, path: Path) -> Path
     orientation = ["dips_toward"] if two_d else ["mean_strike_deg"]
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra])
+        w.writerow(["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra,
+                    "throw_spread_samples", "throw_correlation", "correlation_gain"])
+        evidence = {e.fault_id: e for e in result.evidence}
         for f in result.faults:
-            throw = _throw_of(result.throws, f)
-            med = float(np.median(throw[np.isfinite(throw)])) if np.isfinite(throw).any() else np.nan
+            e = evidence[f.id]
             row = [f.id, f.size, _dip_direction(inp, f) if two_d else f"{f.mean_strike_deg:.1f}",
-                   f"{f.mean_dip_deg:.1f}", _fmt(med)]
+                   f"{f.mean_dip_deg:.1f}", _fmt(e.median_throw)]
             if extra:
-                row.append(_fmt(med * result.sample_interval))
+                row.append(_fmt(e.median_throw * result.sample_interval))
+            row += [_fmt(e.throw_spread), _fmt(e.correlation), _fmt(e.correlation_gain)]
             w.writerow(row)
     return path
 
@@ -399,16 +404,19 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       (inline, crossline, time_or_depth) (2D: (trace label, 0, time_or_depth)), point arrays ``fault_id``,
       ``throw`` (samples) and ``likelihood``.
     * ``fault_points.csv``: one row per fault sample, columns ``inline, crossline, time_or_depth, fault_id,
-      throw_samples, throw_<unit>, throw_correlation``; ``time_or_depth`` is in the sample unit (ms, m or ft from the
+      throw_samples, throw_<unit>, throw_correlation, correlation_gain``; ``time_or_depth`` is in the sample unit (ms, m or ft from the
       SEG-Y headers or ``sample_unit``; the sample index for raw sections and ``.npy``, which have no
       ``throw_<unit>`` column).
       For raw sections, 2D ``.npy`` arrays and trace lists whose inline / crossline header bytes hold no numbers,
       ``inline`` is the trace index (from 0) and ``crossline`` is empty. Throw is
       positive where the hanging wall moved down (normal fault); ``throw_correlation`` (in [-1, 1]) is the
       normalised cross-correlation of the reflectors on the two sides once aligned, a quality measure (see
-      :class:`~seismo3d.seismic.fault_throw.FaultThrow`). An unmeasured throw is empty.
+      :class:`~seismo3d.seismic.fault_throw.FaultThrow`); ``correlation_gain`` is that correlation less the sides'
+      correlation with no shift (the evidence of a displacement). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
-      median_throw_samples, median_throw_<unit>``; for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
+      median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_correlation, correlation_gain``: the
+      evidence each fault shows (:class:`~seismo3d.seismic.fault_evidence.FaultEvidence`; only faults whose
+      reflectors are displaced are kept), to sort and filter on; for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
       replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline
       axis toward the crossline axis, see :mod:`seismo3d.seismic.fault_likelihood`).
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
@@ -627,7 +635,7 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
     result = FaultInterpretation(likelihood=traced["likelihood"], strike_deg=scan["strike_deg"],
                                  dip_deg=scan["dip_deg"], votes=traced["votes"], thin=traced["thin"],
                                  thresholds=surfaces.thresholds, faults=surfaces.faults, throws=surfaces.throws,
-                                 sample_interval=dt, sample_unit=lazy.unit)
+                                 evidence=surfaces.evidence, sample_interval=dt, sample_unit=lazy.unit)
     inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
     _write_steps(_surface_steps(inp, result, out_dir), written, progress)
     written.update(_segy_volumes(lazy, surfaces.path, out_dir, {"likelihood": "likelihood", "votes": "votes"},

@@ -43,6 +43,7 @@ from .chunked_likelihood import ChunkOptions, default_memory_limit, resident_mem
 from .dead_samples import DEAD_REACH, dead_samples, fill_values, near_dead_samples
 from .fault_skins import skins_from_cells
 from .fault_surfaces import thin_faults
+from .fault_evidence import supported_faults
 from .fault_throw import fault_throws
 from .attributes import structure_tensor_halo, structure_tensor_orientation
 from .cube_windows import StoredWindows
@@ -97,6 +98,9 @@ class ChunkedFaults:
         Fault skins, as :attr:`~seismo3d.seismic.faults.FaultInterpretation.faults`.
     throws : list of FaultThrow
         One per fault.
+    evidence : list of FaultEvidence
+        One per fault (:func:`~seismo3d.seismic.fault_evidence.supported_faults`: faults without a displacement
+        are left out, as in memory).
     thresholds : (float, float)
         Lower and upper thresholds on the thinned votes.
     n_seeds, n_cells : int
@@ -112,6 +116,7 @@ class ChunkedFaults:
     path: pathlib.Path
     faults: list
     throws: list
+    evidence: list
     thresholds: tuple
     n_seeds: int
     n_cells: int
@@ -275,7 +280,8 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     stored = zarr.open_group(str(run.out), mode="r")
     windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
     throws = fault_throws(windows, faults, progress=progress) if faults else []
-    return ChunkedFaults(run.out, faults, list(throws), (lower, upper), int(attrs["n_seeds"]), int(attrs["n_cells"]),
+    faults, throws, evidence = supported_faults(faults, list(throws), options=opt.evidence, sensitivity=opt.sensitivity)
+    return ChunkedFaults(run.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]), int(attrs["n_cells"]),
                          float(attrs["saturated_fraction"]), dict(run.computed), dict(run.resumed), dict(run.seconds))
 
 

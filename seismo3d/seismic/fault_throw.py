@@ -127,6 +127,10 @@ class FaultThrow:
     correlation : (n_points,) float32 ndarray
         Peak normalised cross-correlation of the two fault-plane images of the point's patch, in [-1, 1] (a quality
         measure: low values mean the two sides do not look alike); NaN where ``throw`` is NaN.
+    correlation_unshifted : (n_points,) float32 ndarray
+        The same correlation with no shift across the fault (NaN where it overlaps too little): the sides of a fault
+        correlate better after the throw's shift (``correlation - correlation_unshifted`` is the correlation gain);
+        sides that correlate as well unshifted are reflectors continuing across, not a fault.
     median_throw : float
         Median of the finite ``throw`` values, samples (NaN if none).
     fitness : float
@@ -142,6 +146,7 @@ class FaultThrow:
     throw: np.ndarray
     registered: np.ndarray
     correlation: np.ndarray
+    correlation_unshifted: np.ndarray
     median_throw: float
     fitness: float
     inlier_rmse: float
@@ -361,7 +366,7 @@ def _ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt: ThrowOptions):
     ef = np.dot(f[vf], f[vf])
     eh = np.dot(h[vh], h[vh])
     if ef <= 0 or eh <= 0:
-        return np.nan, np.nan
+        return np.nan, np.nan, np.nan
     for i, k in enumerate(ks):
         if abs(k) >= nt:
             continue
@@ -378,11 +383,11 @@ def _ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt: ThrowOptions):
         den = np.sqrt(np.dot(am, am) * np.dot(bm, bm))
         local[i] = num / den if den > 0 else 0.0
     if not np.any(np.isfinite(cc)):
-        return np.nan, np.nan
+        return np.nan, np.nan, np.nan
     # pick the peak with a mild preference for small shifts (weight 1 at zero, 0.75 at max_throw): when two shifts
     # correlate about equally (a reflector sequence repeating by chance), the smaller displacement is kept
     i = int(np.nanargmax(cc * (1.0 - opt.small_shift_prior * np.abs(ks) / (max_throw + 1.0))))
-    return float(ks[i]) + subsample_peak(cc, i), float(local[i])
+    return float(ks[i]) + subsample_peak(cc, i), float(local[i]), float(local[max_throw])
 
 
 def _peaks(img, valid, u0, t0):
@@ -632,6 +637,7 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
     n = len(pts3)
     throw = np.full(n, np.nan)
     corr = np.full(n, np.nan)
+    corr0 = np.full(n, np.nan)
     registered = np.zeros(n, bool)
     fits, rmses, counts = [], [], []
 
@@ -659,12 +665,13 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         patch = _patch_images(grid, win, opt.side_traces, opt.slope_margin)
         ut = grid.ut
         reach = min(max_throw, int(opt.max_throw_per_height * patch.img[0].shape[1]))
-        shift, cc = _ncc_shift(patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach,
-                               opt.min_overlap[0 if two_d else 1], opt) if reach >= 1 else (np.nan, np.nan)
+        shift, cc, cc0 = _ncc_shift(patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach,
+                                    opt.min_overlap[0 if two_d else 1], opt) if reach >= 1 else (np.nan,) * 3
         if not np.isfinite(shift):
             continue
         throw[sel] = shift
         corr[sel] = cc
+        corr0[sel] = cc0
         if opt.refine and not two_d:
             fit = _register(patch, shift, opt)
             if fit is not None:
@@ -682,6 +689,6 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         fitness = rmse = float("nan")
     return FaultThrow(
         fault_id=fid, throw=throw.astype(np.float32), registered=registered, correlation=corr.astype(np.float32),
-        median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=fitness,
+        correlation_unshifted=corr0.astype(np.float32), median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=fitness,
         inlier_rmse=rmse, n_points_used=int(sum(counts)),
     )

@@ -20,6 +20,7 @@ from .._progress import progress_steps
 from .._validation import check_choice, check_positive
 from ..errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .dead_samples import CleanTraces, clean_traces, near_dead_samples
+from .fault_evidence import EvidenceOptions, supported_faults
 from .fault_likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood
 from .fault_skins import SkinOptions, fault_skins
 from .fault_surfaces import thin_faults
@@ -55,6 +56,8 @@ class FaultTracingOptions:
         The optimal surface voting.
     skins : SkinOptions
         The linking into fault skins.
+    evidence : EvidenceOptions
+        The displacement a fault must show to be kept (:func:`~seismo3d.seismic.fault_evidence.supported_faults`).
     min_traces : (int, int)
         Fewest traces along the longer and the shorter lateral axis (2D: along the section) for the scan and the
         voting boxes to see a fault's continuity; smaller data is refused.
@@ -79,6 +82,7 @@ class FaultTracingOptions:
     scan: FaultScanOptions = field(default_factory=FaultScanOptions)
     voting: VotingOptions = field(default_factory=VotingOptions)
     skins: SkinOptions = field(default_factory=SkinOptions)
+    evidence: EvidenceOptions = field(default_factory=EvidenceOptions)
     min_traces: tuple = (32, 8)
     min_samples: int = 32
     min_crossings: float = 3.0
@@ -91,7 +95,8 @@ class FaultTracingOptions:
             raise InputError(f"min_vote must be in [0, 1); got {self.min_vote!r}")
         if not 0.0 < float(self.max_fault_fraction) <= 1.0:
             raise InputError(f"max_fault_fraction must be in (0, 1]; got {self.max_fault_fraction!r}")
-        for name, cls in (("scan", FaultScanOptions), ("voting", VotingOptions), ("skins", SkinOptions)):
+        for name, cls in (("scan", FaultScanOptions), ("voting", VotingOptions), ("skins", SkinOptions),
+                          ("evidence", EvidenceOptions)):
             if not isinstance(getattr(self, name), cls):
                 raise InputError(f"{name} must be a {cls.__name__}; got {type(getattr(self, name)).__name__}")
         if (len(tuple(self.min_traces)) != 2 or any(int(v) != v or v < 3 for v in self.min_traces)):
@@ -170,6 +175,8 @@ class FaultInterpretation:
     throws : list of FaultThrow
         One per fault, in the order of ``faults``; ``throws[i].throw`` is the vertical throw at each point of
         ``faults[i]``, in samples.
+    evidence : list of FaultEvidence
+        One per fault: median throw, its spread, the sides' correlation and its gain from the throw's shift.
     sample_interval : float
         Sample interval in ``sample_unit`` (1 for 'samples').
     sample_unit : {'samples', 'ms', 'm', 'ft'}
@@ -184,6 +191,7 @@ class FaultInterpretation:
     thresholds: tuple
     faults: list
     throws: list
+    evidence: list
     sample_interval: float
     sample_unit: str
 
@@ -202,7 +210,9 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
        continuous across gaps of the likelihood and leaves isolated noise weak;
     4. the votes thinned, and thresholded from the data (Otsu, see :class:`FaultTracingOptions`);
     5. :func:`~seismo3d.seismic.fault_skins`: the thinned votes linked into fault surfaces (curves in 2D);
-    6. :func:`~seismo3d.seismic.fault_throws`: vertical throw by registering the reflectors on both sides.
+    6. :func:`~seismo3d.seismic.fault_throws`: vertical throw by registering the reflectors on both sides;
+    7. :func:`~seismo3d.seismic.fault_evidence.supported_faults`: only the faults across which the reflectors are
+       displaced are kept (a throw of at least a sample that aligns the sides better than no shift).
 
     NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Dead samples (runs of 5 or
     more equal values along a trace: dead traces, mutes, gaps, NaN runs) are skipped, with a warning: the likelihood
@@ -299,7 +309,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     arr, dead = cleaned.data, cleaned.dead
     del cleaned
     _check_amplitudes(arr, dead, opt)
-    with progress_steps(6, "faults", enabled=progress) as bar:
+    with progress_steps(7, "faults", enabled=progress) as bar:
         bar.start("fault likelihood")
         if likelihood is None:
             with warnings.catch_warnings():  # saturation is decided below, on the live samples
@@ -335,9 +345,13 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         bar.start("throw")
         throws = fault_throws(arr, faults, progress=progress) if faults else []
         bar.advance()
+        bar.start("evidence")
+        faults, throws, evidence = supported_faults(faults, list(throws), options=opt.evidence,
+                                                    sensitivity=opt.sensitivity)
+        bar.advance()
     return FaultInterpretation(likelihood=likelihood, strike_deg=strike, dip_deg=dip, votes=votes.votes, thin=thin,
-                               thresholds=(float(lower), float(upper)), faults=faults, throws=list(throws),
-                               sample_interval=float(sample_interval), sample_unit=sample_unit)
+                               thresholds=(float(lower), float(upper)), faults=faults, throws=throws,
+                               evidence=evidence, sample_interval=float(sample_interval), sample_unit=sample_unit)
 
 
 def _given_likelihood(fl, shape: tuple) -> FaultLikelihood:

@@ -132,7 +132,8 @@ def test_faults_by_id_and_by_throw(scene_dir):
         show_seismic(_cube(), faults=[_fault()], color_faults_by="throw", screenshot=shot)
     n = _fault().size
     throw = FaultThrow(fault_id=1, throw=np.full(n, 5.0, np.float32), registered=np.ones(n, bool),
-                       correlation=np.ones(n, np.float32), median_throw=5.0, fitness=1.0, inlier_rmse=0.0,
+                       correlation=np.ones(n, np.float32), correlation_unshifted=np.zeros(n, np.float32),
+                       median_throw=5.0, fitness=1.0, inlier_rmse=0.0,
                        n_points_used=n)
     show_seismic(_cube(), faults=[_fault()], throws=[throw], color_faults_by="throw", slices=(None, None, 30),
                  cmap="gray", screenshot=shot, window_size=(320, 240))

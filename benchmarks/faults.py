@@ -256,7 +256,7 @@ def f3_people(out_dir: Path) -> None:
         candidates.append((cand.faults, [fault_evidence(t) for t in cand.throws]))
     # the peer: one quantile of 1 - plain semblance for all five inlines, the best mean F1
     best = None
-    for q in np.linspace(0.50, 0.99, 25):
+    for q in np.concatenate([np.linspace(0.50, 0.98, 25), [0.985, 0.99, 0.993, 0.996, 0.998]]):
         scores = [_scores(semblance_skeleton(data.sections[k], float(np.quantile(
             1.0 - plain_semblance(data.sections[k]), q))), data.faults[k]) for k in range(n)]
         if best is None or np.mean([s[2] for s in scores]) > np.mean([s[2] for s in best[1]]):

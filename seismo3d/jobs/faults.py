@@ -4,7 +4,7 @@
 makes a synthetic cube, runs :func:`seismo3d.seismic.trace_faults` and writes the outputs of ``seismo3d faults`` (see
 its docstring for the list of files and their columns). Every file is written atomically; the input is only read.
 
-Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.fault_likelihood`.
+Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood`.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from .._atomic import atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import InputError
-from ..seismic.faults import FaultInterpretation, trace_faults
+from ..seismic.faults.pipeline import FaultInterpretation, trace_faults
 
 __all__ = ["run_faults_job"]
 
@@ -76,7 +76,7 @@ class _Input:
 
 
 def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, endian=None) -> _Input:
-    from ..seismic.io import open_segy, read_section
+    from ..seismic.io.segy import open_segy, read_section
 
     path = Path(path)
     suffix = path.suffix.lower()
@@ -170,7 +170,7 @@ def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, 
     if inp.segy_path is not None:
         out = out_dir / f"{stem}.sgy"
         if like is None:
-            from ..seismic.io import write_like
+            from ..seismic.io.segy import write_like
 
             grid = values.reshape(inp.segy_shape) if inp.segy_shape is not None else values
             return write_like(inp.segy_path, out, grid, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
@@ -282,7 +282,7 @@ def _check_out_dir(path, out_dir) -> Path:
 
 def _memory_limit(value) -> int:
     """``memory_limit`` in bytes: an int, a size string ('4GB', '500MiB'), or None for half of the RAM."""
-    from ..seismic.chunked_likelihood import default_memory_limit
+    from ..seismic.faults.likelihood_blocks import default_memory_limit
 
     if value is None:
         return default_memory_limit()
@@ -318,7 +318,7 @@ class LazyInput:
 
 def _too_large(shape, budget: int) -> bool:
     """Whether the in-memory run on a cube of this shape would need more than ``budget`` bytes."""
-    from ..seismic.chunked_likelihood import in_memory_bytes
+    from ..seismic.faults.likelihood_blocks import in_memory_bytes
 
     return in_memory_bytes(shape) > budget
 
@@ -348,11 +348,11 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
         idx = [np.arange(n, dtype=np.int64) for n in arr.shape]
         data = da.from_array(arr, chunks=(_TILE, _TILE, -1))
         return LazyInput(data.astype(np.float32), path.stem, idx[0], idx[1], idx[2].astype(np.float64), "samples")
-    from ..seismic.lazy_cube import open_lazy
+    from ..seismic.io.lazy import open_lazy
 
     if not path.is_dir():
         from ..errors import Seismo3dWarning
-        from ..seismic.io import open_segy
+        from ..seismic.io.segy import open_segy
 
         with warnings.catch_warnings():  # only the size is wanted here: the reading that follows warns, once
             warnings.simplefilter("ignore", Seismo3dWarning)
@@ -406,11 +406,11 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       ``inline`` is the trace index (from 0) and ``crossline`` is empty. Throw is
       positive where the hanging wall moved down (normal fault); ``throw_correlation`` (in [-1, 1]) is the
       normalised cross-correlation of the reflectors on the two sides once aligned, a quality measure (see
-      :class:`~seismo3d.seismic.fault_throw.FaultThrow`). An unmeasured throw is empty.
+      :class:`~seismo3d.seismic.faults.throw.FaultThrow`). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
       median_throw_samples, median_throw_<unit>``; for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
       replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline
-      axis toward the crossline axis, see :mod:`seismo3d.seismic.fault_likelihood`).
+      axis toward the crossline axis, see :mod:`seismo3d.seismic.faults.likelihood`).
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
       the seismic, above the same slices of the fault likelihood; for 2D inputs the section, cropped to its live
       traces and samples.
@@ -419,9 +419,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     ------------------------
     A 3D SEG-Y cube, Zarr store (``seismo3d convert``) or ``.npy`` array that would need more than ``memory_limit``
     in memory is read lazily and traced block by block, with the same results as in memory: the fault likelihood,
-    strike and dip (:func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood`) into
+    strike and dip (:func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood`) into
     ``fault_likelihood.zarr``, then the votes, thinned faults, skins and throws
-    (:func:`~seismo3d.seismic.chunked_faults.chunked_fault_surfaces`) into ``fault_surfaces.zarr`` (arrays
+    (:func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces`) into ``fault_surfaces.zarr`` (arrays
     ``likelihood``, ``votes``, ``thin``; both opened by ``xarray.open_zarr``), then the same ``faults.vtp``, CSV
     files and picture as in memory (the picture reads only its three slices). Both stores are resumable (an
     interrupted run started again with the same arguments skips the finished blocks) and reused when finished. For
@@ -513,7 +513,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
                              "demo=True (--demo) to run on a synthetic cube")
         out_dir = _check_out_dir(input_path, out_dir)
 
-    from ..seismic.chunked_likelihood import resident_memory
+    from ..seismic.faults.likelihood_blocks import resident_memory
 
     limit = _memory_limit(memory_limit)
     budget = limit - resident_memory()  # what this run may add to the process as it is now
@@ -590,10 +590,10 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
     ``fault_surfaces.zarr`` (both reused when finished, resumed when interrupted); the same files as in memory."""
     import zarr
 
-    from ..seismic.chunked_faults import chunked_fault_surfaces
-    from ..seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood, in_memory_bytes
-    from ..seismic.faults import FaultTracingOptions
-    from ..seismic.seismic_zarr import consolidate
+    from ..seismic.faults.pipeline_blocks import chunked_fault_surfaces
+    from ..seismic.faults.likelihood_blocks import ChunkOptions, chunked_fault_likelihood, in_memory_bytes
+    from ..seismic.faults.pipeline import FaultTracingOptions
+    from ..seismic.io.zarr_store import consolidate
 
     out_dir.mkdir(parents=True, exist_ok=True)
     path = out_dir / "fault_likelihood.zarr"
@@ -643,7 +643,7 @@ def _segy_volumes(lazy: LazyInput, path: Path, out_dir: Path, names: dict, progr
         return {}
     import zarr
 
-    from ..seismic.segy_writer import write_like_blocks
+    from ..seismic.io.writer import write_like_blocks
 
     group = zarr.open_group(str(path), mode="r")
     stems = {"likelihood": "fault_likelihood", "strike": "fault_strike", "dip": "fault_dip", "votes": "fault_votes"}

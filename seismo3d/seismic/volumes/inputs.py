@@ -42,7 +42,7 @@ def volume_spacing(cube):
     InputError
         If ``cube`` is not a SeismicCube.
     """
-    from ..io import SeismicCube
+    from ..io.segy import SeismicCube
 
     if not isinstance(cube, SeismicCube):
         raise InputError(f"cube must be a SeismicCube from open_segy(); got {type(cube).__name__}")
@@ -115,7 +115,7 @@ def as_volume(volume, name: str, spacing) -> VolumeInput:
     InputError
         A closed cube, a volume that is not 3D, too small, NaN / inf, or a bad spacing.
     """
-    from ..io import SeismicCube
+    from ..io.segy import SeismicCube
 
     note = "given"
     if isinstance(volume, SeismicCube):

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import check_positive
-from ..errors import InputError
+from ..._validation import check_positive
+from ...errors import InputError
 
 __all__ = ["Horizon", "as_seeds", "check_live_seed", "fill_horizon", "write_horizon_text"]
 
@@ -178,7 +178,7 @@ def write_horizon_text(path, horizon: Horizon, *, inlines=None, xlines=None, sam
     InputError
         Axis lengths do not match the horizon's grid.
     """
-    from .._atomic import atomic_path
+    from ..._atomic import atomic_path
 
     t = np.asarray(horizon.times, np.float64)
     grid = np.indices(t.shape).reshape(t.ndim, -1).T

@@ -14,12 +14,12 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from .._validation import check_positive
-from ..errors import InputError
-from . import _kernels
-from .fault_likelihood import fault_normals
-from .fault_surfaces import Fault, check_fault_arrays
-from .fault_voting import fault_frames
+from ..._validation import check_positive
+from ...errors import InputError
+from .. import _kernels
+from .likelihood import fault_normals
+from .surfaces import Fault, check_fault_arrays
+from .voting import fault_frames
 
 __all__ = ["SkinOptions", "fault_skins", "skins_from_cells"]
 
@@ -476,7 +476,7 @@ def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
     thin : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
         Thinned fault image (> 0 on fault samples), e.g. thinned votes of :func:`~seismo3d.seismic.vote_faults`.
     strike_deg, dip_deg : array_like of float, same shape
-        Fault strike and dip of each sample, degrees (conventions of :mod:`~seismo3d.seismic.fault_likelihood`).
+        Fault strike and dip of each sample, degrees (conventions of :mod:`~seismo3d.seismic.faults.likelihood`).
     lower, upper : float
         Hysteresis thresholds on ``thin``, ``0 < lower <= upper``.
     options : SkinOptions, optional

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import check_seismic_layout
-from ..errors import InputError, Seismo3dWarning
+from ..._validation import check_seismic_layout
+from ...errors import InputError, Seismo3dWarning
 
 __all__ = ["CleanTraces", "clean_traces", "fill_values", "dead_samples", "near_dead_samples", "DEAD_REACH"]
 

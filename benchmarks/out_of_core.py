@@ -20,12 +20,12 @@ Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000]
    summed resident memory (RSS, every 0.2 s; it counts the libraries every process maps once per process) and the
    summed proportional set size (PSS, every 1 s; shared pages split between the processes that share them: the
    memory the machine gives the run). Seconds per GB of input samples (1e9 bytes).
-   surfaces: then the fault surfaces of that cube (:func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces`
-   on the threaded run's likelihood, same memory limit), same sampling. Its fault cells (the thinned faults linked
-   into skins in memory, ~1 % of the samples here) may need more than the limit: the run then refuses after its block
-   steps, and the benchmark runs it again with ``--link-memory-limit`` (the blocks resumed, the linking done); the
-   peaks of both parts are printed.
-3. memory: the in-memory path (:func:`~seismo3d.seismic.faults.likelihood`) on the largest cube it holds in this
+   surfaces: then the fault surfaces of that cube
+   (:func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces` on the threaded run's likelihood, same
+   memory limit), same sampling. Its fault cells (the thinned faults linked into skins in memory, ~1 % of the samples
+   here) may need more than the limit: the run then refuses after its block steps, and the benchmark runs it again with
+   ``--link-memory-limit`` (the blocks resumed, the linking done); the peaks of both parts are printed.
+3. memory: the in-memory path (:func:`~seismo3d.seismic.faults.fault_likelihood`) on the largest cube it holds in this
    machine's 24 GB (768 x 768 x 512 = 1.21 GB; about 14 copies of the cube at its peak), same sampling;
    memory_surfaces: the whole in-memory :func:`~seismo3d.seismic.trace_faults` on the largest cube it holds
    (``--surfaces-memory-shape``, 512 x 512 x 512 = 0.54 GB).

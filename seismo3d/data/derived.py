@@ -30,6 +30,8 @@ import pathlib
 from dataclasses import dataclass
 from typing import Callable
 
+import numpy as np
+
 from .._atomic import atomic_path
 from ..errors import DataIntegrityError
 
@@ -199,8 +201,6 @@ def stack_penobscot_sections(origins, out, name) -> None:
     DataIntegrityError
         An image cannot be decoded, or an image and its mask differ in size or are not grey / RGB.
     """
-    import numpy as np
-
     half = len(origins) // 2
     ids = [int(pathlib.PurePath(path).stem) for path in origins[:half]]
     colours = np.asarray(PENOBSCOT_CLASS_COLOURS, np.int32)

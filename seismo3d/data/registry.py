@@ -32,6 +32,9 @@ import shutil
 import types
 from dataclasses import dataclass
 
+import numpy as np
+from scipy.spatial.transform import Rotation
+
 from .._atomic import atomic_path
 from ..errors import DataIntegrityError, DataNotFoundError, InputError
 from .derived import DERIVATIONS as _ORIGIN_DERIVATIONS
@@ -426,9 +429,6 @@ def write_7scenes_index(origins, out, name) -> None:
     name : str
         ``rgbd/7scenes_redkitchen_0000_0495/<groundtruth|rgb|depth|associations>.txt``.
     """
-    import numpy as np
-    from scipy.spatial.transform import Rotation
-
     kind = pathlib.PurePosixPath(name).name
     frames = sorted(int(f.rsplit("frame-", 1)[1][:6]) for f in list_files(f"{_7SCENES}/depth/"))
     lines = list(_7SCENES_HEADERS[kind])

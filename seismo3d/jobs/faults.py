@@ -16,12 +16,22 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+import segyio
 
 from .._atomic import atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
-from ..errors import InputError
-from ..seismic.faults.pipeline import FaultInterpretation, trace_faults
+from ..data.synthetic import synthetic_cube
+from ..errors import DataNotFoundError, InputError, Seismo3dWarning
+from ..seismic.faults.likelihood_blocks import (
+    ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory,
+)
+from ..seismic.faults.pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
+from ..seismic.faults.pipeline_blocks import chunked_fault_surfaces
+from ..seismic.io.lazy import open_lazy
+from ..seismic.io.segy import open_segy, read_section, write_like
+from ..seismic.io.writer import write_like_blocks
+from ..seismic.io.zarr_store import consolidate
 
 __all__ = ["run_faults_job"]
 
@@ -76,14 +86,10 @@ class _Input:
 
 
 def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, endian=None) -> _Input:
-    from ..seismic.io.segy import open_segy, read_section
-
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix in (".f32be", ".npy"):
         if not path.is_file():
-            from ..errors import DataNotFoundError
-
             raise DataNotFoundError(f"no input file at {path}; check the path")
         if suffix == ".f32be":
             data = read_section(path, n_samples=n_samples)
@@ -133,9 +139,6 @@ def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, 
 def _demo_input(out_dir: Path, seed, *, read: bool = True) -> tuple:
     """Write a synthetic cube as SEG-Y (4 ms, inlines / crosslines 1..128) and its true faults (CSV) into ``out_dir``;
     read the cube back (or, with ``read=False``, return the SEG-Y file's path instead)."""
-    import segyio
-
-    from ..data.synthetic import synthetic_cube
 
     syn = synthetic_cube(_DEMO_SHAPE, seed=seed)
     path = out_dir / "demo_seismic.sgy"
@@ -170,13 +173,9 @@ def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, 
     if inp.segy_path is not None:
         out = out_dir / f"{stem}.sgy"
         if like is None:
-            from ..seismic.io.segy import write_like
-
             grid = values.reshape(inp.segy_shape) if inp.segy_shape is not None else values
             return write_like(inp.segy_path, out, grid, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
                               endian=endian)
-        import segyio
-
         traces = inp.file_order(values)
         with atomic_path(out) as tmp:
             shutil.copyfile(like, tmp)
@@ -282,8 +281,6 @@ def _check_out_dir(path, out_dir) -> Path:
 
 def _memory_limit(value) -> int:
     """``memory_limit`` in bytes: an int, a size string ('4GB', '500MiB'), or None for half of the RAM."""
-    from ..seismic.faults.likelihood_blocks import default_memory_limit
-
     if value is None:
         return default_memory_limit()
     if isinstance(value, str):
@@ -318,8 +315,6 @@ class LazyInput:
 
 def _too_large(shape, budget: int) -> bool:
     """Whether the in-memory run on a cube of this shape would need more than ``budget`` bytes."""
-    from ..seismic.faults.likelihood_blocks import in_memory_bytes
-
     return in_memory_bytes(shape) > budget
 
 
@@ -348,12 +343,7 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
         idx = [np.arange(n, dtype=np.int64) for n in arr.shape]
         data = da.from_array(arr, chunks=(_TILE, _TILE, -1))
         return LazyInput(data.astype(np.float32), path.stem, idx[0], idx[1], idx[2].astype(np.float64), "samples")
-    from ..seismic.io.lazy import open_lazy
-
     if not path.is_dir():
-        from ..errors import Seismo3dWarning
-        from ..seismic.io.segy import open_segy
-
         with warnings.catch_warnings():  # only the size is wanted here: the reading that follows warns, once
             warnings.simplefilter("ignore", Seismo3dWarning)
             cube = open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
@@ -513,8 +503,6 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
                              "demo=True (--demo) to run on a synthetic cube")
         out_dir = _check_out_dir(input_path, out_dir)
 
-    from ..seismic.faults.likelihood_blocks import resident_memory
-
     limit = _memory_limit(memory_limit)
     budget = limit - resident_memory()  # what this run may add to the process as it is now
     written = {}
@@ -590,11 +578,6 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
     ``fault_surfaces.zarr`` (both reused when finished, resumed when interrupted); the same files as in memory."""
     import zarr
 
-    from ..seismic.faults.pipeline_blocks import chunked_fault_surfaces
-    from ..seismic.faults.likelihood_blocks import ChunkOptions, chunked_fault_likelihood, in_memory_bytes
-    from ..seismic.faults.pipeline import FaultTracingOptions
-    from ..seismic.io.zarr_store import consolidate
-
     out_dir.mkdir(parents=True, exist_ok=True)
     path = out_dir / "fault_likelihood.zarr"
     shape = tuple(int(n) for n in lazy.data.shape)
@@ -642,8 +625,6 @@ def _segy_volumes(lazy: LazyInput, path: Path, out_dir: Path, names: dict, progr
     if lazy.segy is None:
         return {}
     import zarr
-
-    from ..seismic.io.writer import write_like_blocks
 
     group = zarr.open_group(str(path), mode="r")
     stems = {"likelihood": "fault_likelihood", "strike": "fault_strike", "dip": "fault_dip", "votes": "fault_votes"}

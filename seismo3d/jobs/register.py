@@ -16,7 +16,12 @@ import warnings
 import numpy as np
 
 from .._atomic import existing_folder
+from ..data.pointclouds import read_points
 from ..errors import InputError, TraceListWarning
+from ..geometry import estimate_normals
+from ..registration import ICPOptions, fused_icp, icp
+from ..seismic import open_segy, register_volumes
+from ..seismic.volumes import VOLUME_MODELS
 from ..terrain import is_terrain_file
 from .register_files import RegisterJob, read_transform, write_json
 from .register_terrain import run_register_terrain_job
@@ -100,10 +105,6 @@ def run_register_job(source, target, output, *, method: str | None = None, model
 
 
 def _register_point_clouds(source, target, method, model, init, max_distance, features, alpha) -> RegisterJob:
-    from ..data.pointclouds import read_points
-    from ..geometry import estimate_normals
-    from ..registration import ICPOptions, fused_icp, icp
-
     src = read_points(source)
     dst = read_points(target)
     if src.shape[1] != dst.shape[1]:
@@ -128,9 +129,6 @@ def _register_point_clouds(source, target, method, model, init, max_distance, fe
 
 def _register_volumes(moving_path, fixed_path, model, progress, segy: dict) -> RegisterJob:
     """MOVING.sgy onto FIXED.sgy: the sub-volume registration, JSON with both transforms."""
-    from ..seismic import open_segy, register_volumes
-    from ..seismic.volumes import VOLUME_MODELS
-
     if model not in VOLUME_MODELS:
         raise InputError(f"--model {model} is not available for SEG-Y volumes; use rigid (spacings from the "
                          "headers are right), axis_scaled (default for unknown bins / sample rates) or affine")

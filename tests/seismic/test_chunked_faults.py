@@ -1,5 +1,5 @@
-"""Chunked fault surfaces (seismo3d.seismic.faults.pipeline_blocks): voting, thinning, thresholds, skins and throws block by
-block give the faults of the in-memory run, on a cube with dead traces and a mute; resumable; refusals."""
+"""Chunked fault surfaces (seismo3d.seismic.faults.pipeline_blocks): voting, thinning, thresholds, skins and throws
+block by block give the faults of the in-memory run, on a cube with dead traces and a mute; resumable; refusals."""
 
 from __future__ import annotations
 

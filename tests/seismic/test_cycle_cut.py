@@ -1,5 +1,5 @@
-"""Cycle-skip repair by a minimum cut (seismo3d.seismic.horizons.cycle_cut): the cut against brute force, and regions of a
-horizon put one cycle off on generated layers with known truth."""
+"""Cycle-skip repair by a minimum cut (seismo3d.seismic.horizons.cycle_cut): the cut against brute force, and regions of
+a horizon put one cycle off on generated layers with known truth."""
 
 import itertools
 

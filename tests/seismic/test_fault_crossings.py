@@ -1,5 +1,5 @@
-"""Fault crossings (seismo3d.seismic.horizons.fault_crossings): hand-made fault planes with known crossings, jumps, blocks and
-walls, and the reliable-throw gate."""
+"""Fault crossings (seismo3d.seismic.horizons.fault_crossings): hand-made fault planes with known crossings, jumps,
+blocks and walls, and the reliable-throw gate."""
 
 from types import SimpleNamespace
 

@@ -192,8 +192,8 @@ FOLDS = {"1075-1083": slice(0, 9), "1084-1092": slice(9, 18)}
 # measured (at the plain autotracker; below the 99 %): horizon 1 on 1084-1092 cuts the bottom of the pockmark's sag on
 # some inlines (the autotracker: 98.9 %). Horizon 6 on 1075-1083 (a fault whose throw at the horizon is about half a
 # reflector period, so the correlations across it are ambiguous; 91.6 % before) reaches 99.5 % since the cycle cut moves
-# the region the solve kept a cycle off (seismo3d.seismic.horizons.cycle_cut) and the gap closing refills the inline whose
-# picks the lateral check had emptied.
+# the region the solve kept a cycle off (seismo3d.seismic.horizons.cycle_cut) and the gap closing refills the inline
+# whose picks the lateral check had emptied.
 MISSED = {("1084-1092", 1): "pockmark sag bottom: 98.93-98.98 % within 5 as the solver rounds (autotracker 98.93 %)"}
 
 

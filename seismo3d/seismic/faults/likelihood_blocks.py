@@ -2,7 +2,7 @@
 block on dask, with the halo each step needs, results written block by block to Zarr, resumable.
 
 The steps and their blocks (every block carries exactly the halo its step needs, so the result equals the in-memory
-:func:`~seismo3d.seismic.faults.likelihood` up to float rounding):
+:func:`~seismo3d.seismic.faults.fault_likelihood` up to float rounding):
 
 1. Amplitude statistics (peak, mean square) of the whole cube: one pass of sums over its chunks.
 2. Amplitude balancing on square blocks of traces with :func:`~seismo3d.seismic.faults.likelihood.balance_halo`
@@ -247,8 +247,8 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
                              progress: bool = False, **overrides) -> ChunkedLikelihood:
     """Fault likelihood, strike and dip of a 3D cube computed block by block and written to a Zarr group.
 
-    The method is :func:`~seismo3d.seismic.faults.likelihood` (Hale 2013): every step runs on blocks with the halo it
-    needs (see the module notes), so the output equals the in-memory result up to float rounding (max abs
+    The method is :func:`~seismo3d.seismic.faults.fault_likelihood` (Hale 2013): every step runs on blocks with the
+    halo it needs (see the module notes), so the output equals the in-memory result up to float rounding (max abs
     difference of the likelihood <= 1e-5, checked by the tests on generated cubes).
 
     Parameters
@@ -260,7 +260,7 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
         Output Zarr group (a folder), created; must not exist unless it is the unfinished output of the same run
         (then ``output + '.partial'`` and ``output + '.work'`` exist and the run resumes).
     options : FaultScanOptions, optional
-        The scan (defaults as in :func:`~seismo3d.seismic.faults.likelihood`).
+        The scan (defaults as in :func:`~seismo3d.seismic.faults.fault_likelihood`).
     chunking : ChunkOptions, optional
         Memory limit, block sizes and the dask scheduler.
     coords : dict, optional

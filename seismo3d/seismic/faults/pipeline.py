@@ -195,13 +195,13 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
 
     The steps, with their defaults chosen from the data (no per-file tuning):
 
-    1. :func:`~seismo3d.seismic.faults.likelihood`: scan of fault strikes and dips of the semblance of balanced
+    1. :func:`~seismo3d.seismic.faults.fault_likelihood`: scan of fault strikes and dips of the semblance of balanced
        amplitudes (Hale 2013);
     2. :func:`~seismo3d.seismic.thin_faults`: its ridges (non-maximum suppression across the fault), the seeds;
     3. :func:`~seismo3d.seismic.vote_faults`: optimal surface voting (Wu & Fomel 2018), which makes faults
        continuous across gaps of the likelihood and leaves isolated noise weak;
     4. the votes thinned, and thresholded from the data (Otsu, see :class:`FaultTracingOptions`);
-    5. :func:`~seismo3d.seismic.faults.skins`: the thinned votes linked into fault surfaces (curves in 2D);
+    5. :func:`~seismo3d.seismic.faults.fault_skins`: the thinned votes linked into fault surfaces (curves in 2D);
     6. :func:`~seismo3d.seismic.fault_throws`: vertical throw by registering the reflectors on both sides.
 
     NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Dead samples (runs of 5 or
@@ -229,8 +229,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         Options of every step.
     likelihood : FaultLikelihood, optional
         The result of step 1 computed elsewhere with ``options.scan`` (e.g. block by block by
-        :func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood`), arrays of the data's shape; the scan
-        is then skipped.
+        :func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood`), arrays of the data's shape; the
+        scan is then skipped.
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
         otherwise; the likelihood, the voting and the throw report their own progress too).

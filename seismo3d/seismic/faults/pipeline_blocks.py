@@ -38,17 +38,17 @@ import numpy as np
 
 from ..._atomic import atomic_path
 from ...errors import InputError, UnsupportedDataError
+from ..attributes import structure_tensor_halo, structure_tensor_orientation
 from ..blocks import MEMORY_HEADROOM, BlockRun, SchedulerClient, largest_block, write_marker
-from .likelihood_blocks import ChunkOptions, default_memory_limit, resident_memory, worker_baseline
+from ..io.zarr_store import consolidate
 from .dead_samples import DEAD_REACH, dead_samples, fill_values, near_dead_samples
+from .likelihood_blocks import ChunkOptions, default_memory_limit, resident_memory, worker_baseline
+from .pipeline import FaultTracingOptions
 from .skins import skins_from_cells
 from .surfaces import thin_faults
 from .throw import fault_throws
-from ..attributes import structure_tensor_halo, structure_tensor_orientation
-from .windows import StoredWindows
 from .voting import fault_frames, greedy_seeds, surface_votes
-from .pipeline import FaultTracingOptions
-from ..io.zarr_store import consolidate
+from .windows import StoredWindows
 
 __all__ = ["ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO"]
 
@@ -457,7 +457,7 @@ class _SurfaceRun(BlockRun):
             r = p.reach
             sel = np.nonzero((seeds[:, 0] >= i0 - r) & (seeds[:, 0] < i1 + r) &
                              (seeds[:, 1] >= j0 - r) & (seeds[:, 1] < j1 + r))[0]
-            # threads=False: the votes are summed per numba thread (fault_voting.surface_votes), so a block's
+            # threads=False: the votes are summed per numba thread (voting.surface_votes), so a block's
             # kernel keeps the process's threads, as the in-memory run
             tasks.append(self.task(_vote_block, b, seeds[sel], sel, frames[sel], str(self.work), str(self.partial),
                                    p, self.opt, str(self.marker("votes", b)), threads=False))

@@ -13,10 +13,14 @@ from dataclasses import dataclass
 
 import numba as nb
 import numpy as np
+from scipy import sparse
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
 
 from ..._validation import check_positive
 from ...errors import InputError
 from .. import _kernels
+from ._kernels import grow_by_mean_normal
 from .likelihood import fault_normals
 from .surfaces import Fault, check_fault_arrays
 from .voting import fault_frames
@@ -220,7 +224,7 @@ def _grow(best, normals, order, cos_mean):
                 fill[c] += 1
                 adj[fill[q]] = c
                 fill[q] += 1
-    return _kernels.grow_by_mean_normal(deg, adj, normals, order, cos_mean)
+    return grow_by_mean_normal(deg, adj, normals, order, cos_mean)
 
 
 def _edge_cells(best: np.ndarray, label: np.ndarray, two_d: bool) -> np.ndarray:
@@ -388,10 +392,6 @@ def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, min
     planes agree within ``merge_angle`` and the gap between the cells lies within ``merge_offset`` of both planes,
     i.e. runs along the fault, not across it (two parallel faults side by side stay apart). An edge cell of one skin
     is compared with every cell of the other, so a piece ending on the side of another (a fork) is found too."""
-    from scipy import sparse
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-
     n_labels = int(label.max()) + 1
     sizes = np.bincount(label, minlength=n_labels)
     big = sizes[label] >= minimum

@@ -23,6 +23,7 @@ from scipy import sparse
 from ..._validation import as_seismic, check_positive
 from ...errors import InputError
 from .. import _kernels
+from ._kernels import grow_by_mean_normal
 from .likelihood import fault_normals, fault_strike_dip
 
 __all__ = ["Fault", "check_fault_arrays", "thin_faults", "link_faults", "fault_labels"]
@@ -395,9 +396,9 @@ def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fau
     graph = (graph + graph.T).tocsr()
     vals, svals, dvals = fl[mask], st[mask], dp[mask]
     order = np.argsort(-vals, kind="stable")
-    comp = _kernels.grow_by_mean_normal(graph.indptr.astype(np.int64), graph.indices.astype(np.int64),
-                                        n.astype(np.float64), order,
-                                        float(np.cos(np.radians(1.5 * max_angle))))
+    comp = grow_by_mean_normal(graph.indptr.astype(np.int64), graph.indices.astype(np.int64),
+                               n.astype(np.float64), order,
+                               float(np.cos(np.radians(1.5 * max_angle))))
     sizes = np.bincount(comp)
     keep = np.nonzero(sizes >= min_size)[0]
     keep = keep[np.argsort(-sizes[keep], kind="stable")]

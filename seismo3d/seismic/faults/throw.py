@@ -27,9 +27,12 @@ from ..._options import resolve_options
 from ..._progress import progress_steps
 from ..._validation import as_normals, as_points, check_positive
 from ...errors import DegenerateGeometryWarning, InputError, RegistrationError
+from ...geometry.normals import estimate_normals
+from ...geometry.transforms import make_transform
+from ...registration import ICPOptions, icp
 from ..attributes import ReflectorOrientation
-from .windows import CubeWindow, cube_windows
 from ..traces import parabolic_offset, subsample_peak
+from .windows import CubeWindow, cube_windows
 
 __all__ = ["FaultThrow", "ThrowOptions", "fault_throw", "fault_throws", "hanging_wall_normals"]
 
@@ -167,8 +170,6 @@ def _fault_arrays(fault, ndim: int) -> tuple[np.ndarray, np.ndarray, int]:
     if normals is None:
         if len(pts) < ndim + 1:
             raise InputError(f"fault has {len(pts)} points; at least {ndim + 1} are needed to estimate its normals")
-        from ...geometry.normals import estimate_normals
-
         normals = estimate_normals(pts, k=min(16, len(pts)), orient="none")
     else:
         normals = as_normals(normals, "fault.normals", pts.shape)
@@ -414,10 +415,6 @@ def _register(patch, shift, opt: ThrowOptions):
 
     The throw model is ``a + b u`` (pure dip-slip: the slip is along t in the fault plane, linear along strike).
     """
-    from ...geometry.normals import estimate_normals
-    from ...geometry.transforms import make_transform
-    from ...registration import ICPOptions, icp
-
     src = _peaks(patch.img[0], patch.valid[0], patch.u0, patch.t0)
     dst = _peaks(patch.img[1], patch.valid[1], patch.u0, patch.t0)
     if len(src) < opt.min_peaks or len(dst) < opt.min_peaks or np.ptp(src[:, 0]) < 4:

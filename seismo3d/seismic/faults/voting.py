@@ -564,7 +564,7 @@ def vote_faults(likelihood, strike_deg, dip_deg, thin, *, options: VotingOptions
     Parameters
     ----------
     likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Fault likelihood in [0, 1] (:func:`~seismo3d.seismic.faults.likelihood`).
+        Fault likelihood in [0, 1] (:func:`~seismo3d.seismic.faults.fault_likelihood`).
     strike_deg, dip_deg : array_like of float, same shape
         Fault strike and dip of each sample, degrees.
     thin : array_like of float, same shape

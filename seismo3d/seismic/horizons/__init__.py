@@ -27,8 +27,8 @@ from .cycle_cut import CycleCut, neighbour_cycle, binary_min_cut
 from .lsq import (
     PairShifts, LsqHorizon, trace_pairs, pair_shifts, solve_horizon, cycle_skips, pair_agreement, lsq_horizon,
 )
-from .tracking import track_horizon, despike, close_gaps
 from .autotracker import autotrack
+from .tracking import track_horizon, despike, close_gaps
 
 __all__ = [
     "Horizon", "as_seeds", "check_live_seed", "fill_horizon", "write_horizon_text", "TrackingOptions",

@@ -40,6 +40,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import ndimage, sparse
+from scipy.sparse.csgraph import breadth_first_order, maximum_flow
 
 from .correlation import neighbour_confidence, window_correlation
 
@@ -121,9 +123,6 @@ def binary_min_cut(n: int, a: np.ndarray, b: np.ndarray, e00: np.ndarray, e01: n
     (n,) bool ndarray
         True where the label is 1.
     """
-    from scipy import sparse
-    from scipy.sparse.csgraph import breadth_first_order, maximum_flow
-
     lam = np.maximum(e01 + e10 - e00 - e11, 0.0)
     coef_a = e10 - e00  # E = e00 + coef_a x_a + coef_b x_b + lam (1 - x_a) x_b
     coef_b = e11 - e10
@@ -168,8 +167,6 @@ def _clear_regions(flip, lateral_shape, before, after, *, min_extent, min_gain):
     """The moved traces whose region (connected, grouped across single traces that stay: a noisy pick does not split
     a region) reaches further than ``min_extent`` traces along a lateral axis and whose mean confidence rises from
     ``before`` to ``after`` by at least ``min_gain`` of its decorrelation (flat (n,) bool)."""
-    from scipy import ndimage
-
     grid = flip.reshape(lateral_shape)
     joined, _ = ndimage.label(ndimage.binary_dilation(grid, np.ones((3,) * grid.ndim, bool)))
     region = np.where(grid, joined, 0)

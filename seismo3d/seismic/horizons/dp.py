@@ -25,6 +25,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+from ..attributes import section_slopes, structure_tensor_orientation
 from ..reflectors import nearest_pick
 
 __all__ = ["sample_at", "window_ncc", "dp_picks", "line_slopes", "reflector_period", "settle_lone_departures"]
@@ -331,8 +332,6 @@ def line_slopes(data: np.ndarray, sigma_tensor, rows: tuple[int, int] | None = N
     grid: the structure tensor of each line along ``axis`` (-1: the last lateral axis, the crosslines of each inline;
     0: the inline axis of a cube; :func:`~seismo3d.seismic.attributes.section_slopes`), computed in the band of
     samples ``rows`` (default all; 0 outside it)."""
-    from ..attributes import section_slopes, structure_tensor_orientation
-
     lo, hi = (0, data.shape[-1]) if rows is None else rows
     out = np.zeros(data.shape, np.float32)
     if data.ndim == 2:

@@ -16,8 +16,8 @@ shift across a fault) is outvoted by the pairs that span it and cannot propagate
 seeds' time and is re-solved a few times with the shifts re-measured around it (short pairs first), as Wu & Fomel's
 Gauss-Newton iterations; each solve is a sparse conjugate-gradient solve of the normal equations.
 
-Faults (:class:`~seismo3d.seismic.horizons.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is checked
-with short windows around the estimate plus the faults' jump against around the estimate; it takes the jump only
+Faults (:class:`~seismo3d.seismic.horizons.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is
+checked with short windows around the estimate plus the faults' jump against around the estimate; it takes the jump only
 where that correlates better, so a fault's jump is taken only where the registration across it supports it, and a
 spurious fault surface leaves the pair's long-window shift alone.
 
@@ -46,12 +46,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import sparse
+from scipy.sparse.csgraph import connected_components
+from scipy.sparse.linalg import LinearOperator, cg
 
+from ..._progress import progress_steps
+from ...errors import InputError
+from ..reflectors import nearest_pick, reflector_picks
 from .correlation import _pair_lags, neighbour_confidence, window_correlation
 from .cycle_cut import cycle_cut
-from .fault_crossings import FaultCrossings
 from .dp import dp_picks, line_slopes, reflector_period, settle_lone_departures
-from ..reflectors import nearest_pick, reflector_picks
+from .fault_crossings import FaultCrossings
 
 __all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "window_correlation", "solve_horizon", "cycle_skips",
            "pair_agreement", "lsq_horizon"]
@@ -199,9 +204,6 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
     times : (n,) float64 ndarray
         The solution, NaN on traces no confident pair connects to a seed.
     """
-    from scipy import sparse
-    from scipy.sparse.csgraph import connected_components
-
     ok = np.isfinite(pairs.shift) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
     a, b, s = pairs.a[ok], pairs.b[ok], pairs.shift[ok]
     w0 = pairs.score[ok] ** 2 / pairs.distance[ok].astype(np.float64) ** distance_power
@@ -220,9 +222,6 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
 def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start):
     """One weighted solve of the normal equations by conjugate gradients (Jacobi-preconditioned, started at
     ``start``: the last re-weighted solution, which the next one differs little from)."""
-    from scipy import sparse
-    from scipy.sparse.linalg import LinearOperator, cg
-
     # normal equations of the pair rows (a graph Laplacian) plus the seeds and the damping
     lap = sparse.coo_matrix((np.concatenate([w, w, -w, -w]), (np.concatenate([a, b, a, b]),
                                                                np.concatenate([a, b, b, a]))), shape=(n, n)).tocsr()
@@ -391,9 +390,6 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     InputError
         A seed with no extremum of ``polarity`` within ``seed_snap`` samples.
     """
-    from ..._progress import progress_steps
-    from ...errors import InputError
-
     opt = options
     lat = data.shape[:-1]
     n = int(np.prod(lat))

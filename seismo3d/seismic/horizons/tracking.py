@@ -1,6 +1,6 @@
-"""Horizon tracking: :func:`track_horizon`, by default global (least-squares horizons, :mod:`~seismo3d.seismic.
-horizon_lsq`), or (``method='registration'``) by registering neighbouring slices ("seismic tracks", method.md
-section 6), described here.
+"""Horizon tracking: :func:`track_horizon`, by default global (least-squares horizons,
+:mod:`~seismo3d.seismic.horizons.lsq`), or (``method='registration'``) by registering neighbouring slices ("seismic
+tracks", method.md section 6), described here.
 
 A horizon is followed from seed picks in two moves, both made with the registration engine:
 
@@ -63,11 +63,13 @@ from ..._options import resolve_options
 from ..._progress import progress_steps
 from ..._validation import as_seismic, check_choice
 from ...errors import DegenerateGeometryWarning, InputError, RegistrationError
-from .fault_crossings import FaultCrossings
-from .options import TrackingOptions
-from .result import Horizon, as_seeds, check_live_seed
+from ...registration import ICPOptions, fused_icp, icp
 from ..reflectors import POLARITIES, ReflectorSlice, nearest_pick, reflector_picks
 from ..traces import ncc, ncc_lag_search, waveform
+from .fault_crossings import FaultCrossings
+from .lsq import lsq_horizon
+from .options import TrackingOptions
+from .result import Horizon, as_seeds, check_live_seed
 
 __all__ = ["TrackingOptions", "track_horizon", "despike", "close_gaps"]
 
@@ -77,8 +79,6 @@ __all__ = ["TrackingOptions", "track_horizon", "despike", "close_gaps"]
 
 def _register(src_pts, dst_pts, dst_nrm, init, opt: TrackingOptions, features=None):
     """Panel registration; returns (transform, fitness) or (None, 0) when it cannot run."""
-    from ...registration import ICPOptions, fused_icp, icp
-
     icp_options = ICPOptions(max_distance=(3.0, 1.5), degeneracy_threshold=0.0, max_iterations=opt.panel_iterations)
 
     if len(src_pts) < 6 or len(dst_pts) < 6:
@@ -511,8 +511,6 @@ def _track_global(arr, seeds, polarity, opt: TrackingOptions, crossings: FaultCr
     other: a lone pick a cycle off its agreeing neighbours is a spike; the seeds' own picks stay), then, in 3D, the
     gap closing (traces left empty beside tracked ones, e.g. a pick the lateral checks gave up while its neighbours
     were a cycle off before the repair, filled where the neighbours agree and correlate)."""
-    from .lsq import lsq_horizon
-
     found = lsq_horizon(arr, seeds, polarity=polarity, faults=crossings, options=opt, progress=progress)
     times, conf = found.times.copy(), found.confidence.copy()
     at_seeds = tuple(np.rint(seeds[:, :-1]).astype(np.intp).T)

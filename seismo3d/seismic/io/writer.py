@@ -15,8 +15,8 @@ import segyio
 from ..._atomic import atomic_path
 from ..._progress import progress_steps
 from ...errors import InputError, TraceListWarning
-from .segy import open_segy
 from .blocks import SegyGrid
+from .segy import open_segy
 
 __all__ = ["write_like_blocks"]
 

@@ -40,8 +40,8 @@ import numpy as np
 import segyio
 
 from ...errors import InputError
-from .segy import scale_coordinates
 from .blocks import SegyGrid, read_segy_block, read_segy_block_headers
+from .segy import scale_coordinates
 
 __all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate", "open_seismic_zarr",
            "is_seismic_zarr"]

@@ -8,10 +8,10 @@ a child process (numba kernels warmed up on a small cube first), :func:`~seismo3
 faults on
 
 - memory: the cube read whole (:func:`~seismo3d.seismic.io.read_segy`), the orientation computed over it;
-- lazy: the dask array of :func:`~seismo3d.seismic.lazy_cube.open_lazy` (chunks of 64 x 64 traces), each patch
+- lazy: the dask array of :func:`~seismo3d.seismic.io.lazy.open_lazy` (chunks of 64 x 64 traces), each patch
   reading only a window of tiles of 64 x 64 traces around it, the slopes of a tile computed with the structure
   tensor's halo, the tiles last used kept up to 256 MiB (the default of
-  :class:`~seismo3d.seismic.cube_windows.LazyWindows`);
+  :class:`~seismo3d.seismic.faults.windows.LazyWindows`);
 - lazy-32: the same with tiles of 32 traces and a 128 MiB tile cache (a window of about 5 x 5 tiles: smaller cache
   thrashes).
 
@@ -96,11 +96,11 @@ def case(path: str, sgy: str, faults_pkl: str, out: str) -> dict:
 
     from seismo3d.seismic import fault_throws
     from seismo3d.seismic.io import read_segy
-    from seismo3d.seismic.lazy_cube import open_lazy
+    from seismo3d.seismic.io.lazy import open_lazy
 
     _warm_up()
     faults = pickle.loads(Path(faults_pkl).read_bytes())
-    from seismo3d.seismic.cube_windows import LazyWindows
+    from seismo3d.seismic.faults.windows import LazyWindows
 
     if path == "memory":
         data = read_segy(sgy)[0]

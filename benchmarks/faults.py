@@ -214,7 +214,7 @@ EVIDENCE_GRID = [(t, g) for t in (0.0, 0.5, 1.0, 1.5, 2.0, 3.0) for g in (-1.0, 
 
 
 def _kept_mask(faults, evidence, shape, min_throw, min_gain):
-    from seismo3d.seismic.fault_evidence import EvidenceOptions
+    from seismo3d.seismic.faults.evidence import EvidenceOptions
 
     opt = EvidenceOptions(min_throw=min_throw, min_correlation_gain=min_gain)
     mask = np.zeros(shape, bool)
@@ -234,7 +234,7 @@ def f3_people(out_dir: Path) -> None:
 
     from seismo3d.data import load_f3_fault_sections
     from seismo3d.seismic import trace_faults
-    from seismo3d.seismic.fault_evidence import EvidenceOptions, fault_evidence
+    from seismo3d.seismic.faults.evidence import EvidenceOptions, fault_evidence
     from seismo3d.seismic.faults import FaultTracingOptions
 
     data = load_f3_fault_sections()
@@ -305,7 +305,7 @@ def f3_people(out_dir: Path) -> None:
 def real_section_counts(data_dir: Path) -> None:
     """Fault counts on every real 2D section of the data folder, with the defaults and with no evidence asked."""
     from seismo3d.seismic import open_segy, trace_faults
-    from seismo3d.seismic.fault_evidence import EvidenceOptions
+    from seismo3d.seismic.faults.evidence import EvidenceOptions
     from seismo3d.seismic.faults import FaultTracingOptions
 
     every = FaultTracingOptions(evidence=EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))

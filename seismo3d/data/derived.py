@@ -14,6 +14,8 @@ written here (image stacks, files with synthetic timestamps) are available from 
   TUM-style index files of the registered 7-Scenes frames (every 5th), with synthetic timestamps (frame number / 30 s);
   the ground truth is each registered ``pose/frame-NNNNNN.pose.txt`` (fetched, hash-checked) as ``tx ty tz qx qy qz
   qw`` with ``qw >= 0``.
+  That derivation fetches other registered files, so it is written in :mod:`seismo3d.data.registry` (its
+  ``DERIVATIONS`` adds it to the ones here).
 
 - ``seismic/penobscot_sections/penobscot_sections_1075_1092.npz``: the 18 section images (8-bit PNGs) and interval
   masks (RGB PNGs, one colour per interval, anti-aliased at the boundaries) of inlines 1075-1092 in
@@ -28,11 +30,13 @@ import pathlib
 from dataclasses import dataclass
 from typing import Callable
 
+import numpy as np
+
 from .._atomic import atomic_path
 from ..errors import DataIntegrityError
 
-__all__ = ["Derivation", "DERIVATIONS", "clean_bunny_scan", "write_bunny_poses", "write_7scenes_index",
-           "stack_penobscot_sections", "PENOBSCOT_CLASS_COLOURS"]
+__all__ = ["Derivation", "DERIVATIONS", "clean_bunny_scan", "write_bunny_poses", "stack_penobscot_sections",
+           "PENOBSCOT_CLASS_COLOURS"]
 
 
 @dataclass(frozen=True)
@@ -120,54 +124,6 @@ def write_bunny_poses(origins, out, name) -> None:
         tmp.write_text("\n".join(_BUNNY_POSES_COMMENT + _BUNNY_POSES) + "\n", encoding="ascii")
 
 
-_7SCENES = "rgbd/7scenes_redkitchen_0000_0495"
-_7SCENES_HEADERS = {
-    "groundtruth.txt": ("# ground truth trajectory (derived from 7-Scenes redkitchen frame-XXXXXX.pose.txt, "
-                        "camera-to-world, KinectFusion-tracked)",
-                        "# timestamps are synthetic: original_frame_index / 30.0 s (7-Scenes has no timestamps)",
-                        "# timestamp tx ty tz qx qy qz qw"),
-    "rgb.txt": ("# color images (NOTE: 7-Scenes color is NOT registered to depth)", "# timestamp filename"),
-    "depth.txt": ("# depth maps (uint16 mm, 0 = invalid; depth intrinsics fx=fy=585 cx=320 cy=240)",
-                  "# timestamp filename"),
-    "associations.txt": (),
-}
-
-
-def write_7scenes_index(origins, out, name) -> None:
-    """Write one TUM-style index file of the registered 7-Scenes frames (no origin: the frames are the registry's,
-    the poses are fetched).
-
-    Parameters
-    ----------
-    origins : tuple (empty)
-    out : pathlib.Path
-    name : str
-        ``rgbd/7scenes_redkitchen_0000_0495/<groundtruth|rgb|depth|associations>.txt``.
-    """
-    import numpy as np
-    from scipy.spatial.transform import Rotation
-
-    from .registry import fetch, list_files  # registry imports this module: import it when a file is made
-
-    kind = pathlib.PurePosixPath(name).name
-    frames = sorted(int(f.rsplit("frame-", 1)[1][:6]) for f in list_files(f"{_7SCENES}/depth/"))
-    lines = list(_7SCENES_HEADERS[kind])
-    for frame in frames:
-        stamp = f"{frame / 30.0:.6f}"
-        rgb, depth = f"rgb/frame-{frame:06d}.color.jpg", f"depth/frame-{frame:06d}.depth.png"
-        if kind == "groundtruth.txt":
-            pose = np.loadtxt(fetch(f"{_7SCENES}/pose/frame-{frame:06d}.pose.txt"))
-            q = Rotation.from_matrix(pose[:3, :3]).as_quat()  # qx qy qz qw
-            q = -q if q[3] < 0 else q
-            lines.append(" ".join([stamp, *(f"{v:.7f}" for v in pose[:3, 3]), *(f"{v:.7f}" for v in q)]))
-        elif kind == "associations.txt":
-            lines.append(f"{stamp} {rgb} {stamp} {depth}")
-        else:
-            lines.append(f"{stamp} {rgb if kind == 'rgb.txt' else depth}")
-    with atomic_path(out) as tmp:
-        tmp.write_text("\n".join(lines) + "\n", encoding="ascii")
-
-
 _PENOBSCOT = "seismic/penobscot_sections/penobscot_sections_1075_1092.npz"
 _PENOBSCOT_FOLDER = "projects/TensorFlowFlexUNet/Penobscot/mini_test"
 # RGB colour of each interval class 0..7 in the origin's masks (0 = above the first horizon)
@@ -245,8 +201,6 @@ def stack_penobscot_sections(origins, out, name) -> None:
     DataIntegrityError
         An image cannot be decoded, or an image and its mask differ in size or are not grey / RGB.
     """
-    import numpy as np
-
     half = len(origins) // 2
     ids = [int(pathlib.PurePath(path).stem) for path in origins[:half]]
     colours = np.asarray(PENOBSCOT_CLASS_COLOURS, np.int32)
@@ -281,6 +235,5 @@ DERIVATIONS = {
     "scans/bunny/bun045_clean.ply": Derivation(
         (("bun045.ply", "960756d05262231c5fb372a5003475b0282b90800f562deb4d60282b0db336cd"),), clean_bunny_scan),
     "scans/bunny/bun.conf.reference.txt": Derivation((), write_bunny_poses),
-    **{f"{_7SCENES}/{kind}": Derivation((), write_7scenes_index) for kind in _7SCENES_HEADERS},
     _PENOBSCOT: Derivation(_penobscot_origins(), stack_penobscot_sections),
 }

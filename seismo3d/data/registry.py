@@ -6,7 +6,8 @@ environment variable ``SEISMO3D_DATA_DIR`` (hash checked once per process), othe
 pooch into ``SEISMO3D_CACHE_DIR`` (default: the operating system's cache folder). Files marked *derived* were rebuilt
 from their origin (renamed columns, cleaned rows, stacked images, added index files), so their origin would not match
 the hash: they are made again from their downloaded origins by :mod:`seismo3d.data.derived` (the bunny scans and
-poses, the 7-Scenes index files, the Penobscot image stack) and checked against the registry's hash.
+poses, the Penobscot image stack) or from other registered files here (the 7-Scenes index files) and checked
+against the registry's hash.
 
 The registry file ``registry.txt`` beside this module (name, SHA-256, source, path in the source; package data) is
 the single source of truth; ``seismo3d/data/README.md`` describes each file.
@@ -31,9 +32,13 @@ import shutil
 import types
 from dataclasses import dataclass
 
+import numpy as np
+from scipy.spatial.transform import Rotation
+
 from .._atomic import atomic_path
 from ..errors import DataIntegrityError, DataNotFoundError, InputError
-from .derived import DERIVATIONS
+from .derived import DERIVATIONS as _ORIGIN_DERIVATIONS
+from .derived import Derivation
 
 __all__ = ["DataFile", "REGISTRY", "data_dir", "fetch", "fetch_folder", "file_info", "list_files"]
 
@@ -398,3 +403,52 @@ REGISTRY: tuple[DataFile, ...] = _read_registry()
 """Every registered data file, sorted by name."""
 
 _ENTRIES = types.MappingProxyType({entry.name: entry for entry in REGISTRY})
+
+
+_7SCENES = "rgbd/7scenes_redkitchen_0000_0495"
+_7SCENES_HEADERS = {
+    "groundtruth.txt": ("# ground truth trajectory (derived from 7-Scenes redkitchen frame-XXXXXX.pose.txt, "
+                        "camera-to-world, KinectFusion-tracked)",
+                        "# timestamps are synthetic: original_frame_index / 30.0 s (7-Scenes has no timestamps)",
+                        "# timestamp tx ty tz qx qy qz qw"),
+    "rgb.txt": ("# color images (NOTE: 7-Scenes color is NOT registered to depth)", "# timestamp filename"),
+    "depth.txt": ("# depth maps (uint16 mm, 0 = invalid; depth intrinsics fx=fy=585 cx=320 cy=240)",
+                  "# timestamp filename"),
+    "associations.txt": (),
+}
+
+
+def write_7scenes_index(origins, out, name) -> None:
+    """Write one TUM-style index file of the registered 7-Scenes frames (no origin: the frames are the registry's,
+    the poses are fetched).
+
+    Parameters
+    ----------
+    origins : tuple (empty)
+    out : pathlib.Path
+    name : str
+        ``rgbd/7scenes_redkitchen_0000_0495/<groundtruth|rgb|depth|associations>.txt``.
+    """
+    kind = pathlib.PurePosixPath(name).name
+    frames = sorted(int(f.rsplit("frame-", 1)[1][:6]) for f in list_files(f"{_7SCENES}/depth/"))
+    lines = list(_7SCENES_HEADERS[kind])
+    for frame in frames:
+        stamp = f"{frame / 30.0:.6f}"
+        rgb, depth = f"rgb/frame-{frame:06d}.color.jpg", f"depth/frame-{frame:06d}.depth.png"
+        if kind == "groundtruth.txt":
+            pose = np.loadtxt(fetch(f"{_7SCENES}/pose/frame-{frame:06d}.pose.txt"))
+            q = Rotation.from_matrix(pose[:3, :3]).as_quat()  # qx qy qz qw
+            q = -q if q[3] < 0 else q
+            lines.append(" ".join([stamp, *(f"{v:.7f}" for v in pose[:3, 3]), *(f"{v:.7f}" for v in q)]))
+        elif kind == "associations.txt":
+            lines.append(f"{stamp} {rgb} {stamp} {depth}")
+        else:
+            lines.append(f"{stamp} {rgb if kind == 'rgb.txt' else depth}")
+    with atomic_path(out) as tmp:
+        tmp.write_text("\n".join(lines) + "\n", encoding="ascii")
+
+
+# every derivation: those of seismo3d.data.derived (made from downloaded origins) and the 7-Scenes index files (made
+# from other registered files, fetched here)
+DERIVATIONS = {**_ORIGIN_DERIVATIONS,
+               **{f"{_7SCENES}/{kind}": Derivation((), write_7scenes_index) for kind in _7SCENES_HEADERS}}

@@ -21,6 +21,7 @@ import numpy as np
 
 from .._validation import as_image, as_pair, check_choice, check_positive
 from ..errors import InputError
+from .matching import match_images
 
 __all__ = [
     "MatchEvaluation",
@@ -151,8 +152,6 @@ def timed_match(image1, image2, homography, *, threshold: float = 3.0, use_inlie
     evaluation : MatchEvaluation
         With ``seconds`` = wall-clock time of detection, description, matching and verification of the pair.
     """
-    from .matching import match_images
-
     start = time.perf_counter()
     result = match_images(image1, image2, **match_options)
     seconds = time.perf_counter() - start

@@ -41,7 +41,8 @@ import numpy as np
 
 from .._validation import check_positive
 from ..errors import InputError
-from .keypoints import Features, harris_peaks, harris_response, to_gray
+from . import _kernels
+from .keypoints import Features, harris_peaks, harris_response, resize_levels, to_gray
 
 __all__ = [
     "HogPyramidParams",
@@ -203,8 +204,6 @@ def orientation_votes(gx, gy, *, n_bins: int = 16, pad: int = 0):
         The votes, ``round(u |g| (1 - f))`` and ``round(u |g| f)`` where f is the orientation's fractional position
         between the two bins and ``u = 2**20 / max |g|`` (fixed point: window sums are exact integers).
     """
-    from . import _kernels
-
     gx = np.asarray(gx)
     gy = np.asarray(gy)
     if gx.shape != gy.shape or gx.ndim != 2:
@@ -298,8 +297,6 @@ def dense_ring_histograms(bins, weights, radii, *, n_bins: int, rows=None) -> np
     InputError
         If shapes, dtypes, bins or rows are invalid.
     """
-    from . import _kernels
-
     b, w = _check_votes(bins, weights, int(n_bins))
     radii = _check_radii(radii)
     h, wd = b.shape[:2]
@@ -338,8 +335,6 @@ def ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int, max_gap: i
     hist : (N, K, Q) int64 or float64 ndarray
         Ring histograms; identical to :func:`direct_ring_histograms` (exactly, for integer weights).
     """
-    from . import _kernels
-
     b, w = _check_votes(bins, weights, int(n_bins))
     radii = _check_radii(radii)
     pad = int(np.floor(radii.max()))
@@ -369,8 +364,6 @@ def direct_ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int) -> 
     Same parameters and result as :func:`ring_histograms`; ring k holds the offsets with
     ``r_{k-1}^2 < dx^2 + dy^2 <= r_k^2``.
     """
-    from . import _kernels
-
     b, w = _check_votes(bins, weights, int(n_bins))
     radii = _check_radii(radii)
     pad = int(np.floor(radii.max()))
@@ -435,8 +428,6 @@ def ring_descriptors(hist, radii, *, clip: float = 0.0, peak_ratio: float = 0.9,
         raise InputError(f"radii must have {k} entries, one per ring; got {radii.shape}")
     if n == 0:
         return np.zeros((0, k * q), np.float32), np.zeros(0), np.zeros(0, np.int64)
-    from . import _kernels
-
     disc_area = np.pi * radii ** 2
     ring_area = np.diff(disc_area, prepend=0.0)
     rings = np.ascontiguousarray(h / ring_area[None, :, None])
@@ -505,8 +496,6 @@ def _scale_nms(found):
 
 def _describe_level(f, cut, radii, half_widths, p: HogPyramidParams):
     """Ring histograms (recursive sliding along rows) and rotation-invariant descriptors of one level's peaks."""
-    from . import _kernels
-
     keep = f["values"] >= cut
     rows, cols, xy, values = f["rows"][keep], f["cols"][keep], f["xy"][keep], f["values"][keep]
     if rows.size == 0:
@@ -558,8 +547,6 @@ def hog_pyramid_features(image, *, params: HogPyramidParams | None = None, mask=
     ----------
     See the module docstring: [1] (Tables 2-4), [2], [3] (ring histograms in sliding circular windows), [4], [5].
     """
-    from .keypoints import resize_levels
-
     p = HogPyramidParams() if params is None else params
     img = to_gray(image)
     h0, w0 = img.shape

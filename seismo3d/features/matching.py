@@ -7,16 +7,18 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from .._atomic import atomic_path
 from .._validation import check_choice
 from ..errors import InputError
+from . import _kernels
 from .hog_pyramid import HogPyramidParams, hog_pyramid_features
 from .keypoints import Features
 from .opencv import OPENCV_METHODS, opencv_features
+from .verification import verify_matches
 
 __all__ = [
     "METHODS",
@@ -114,8 +116,6 @@ def detect_and_describe(image, *, method: str = "hog", mask=None, max_keypoints:
     if method == "hog":
         p = HogPyramidParams() if params is None else params
         if max_keypoints is not None:
-            from dataclasses import replace
-
             if int(max_keypoints) < 1:
                 raise InputError(f"max_keypoints must be >= 1 or None; got {max_keypoints!r}")
             p = replace(p, max_keypoints=int(max_keypoints))
@@ -158,8 +158,6 @@ def match_descriptors(descriptors1, descriptors2, *, binary: bool = False, ratio
     D. G. Lowe, "Distinctive image features from scale-invariant keypoints", IJCV 60 (2004), section 7.1,
     doi:10.1023/B:VISI.0000029664.99615.94.
     """
-    from . import _kernels
-
     d1 = np.asarray(descriptors1)
     d2 = np.asarray(descriptors2)
     if d1.ndim != 2 or d2.ndim != 2 or d1.shape[1] != d2.shape[1]:
@@ -254,8 +252,6 @@ def match_features(features1: Features, features2: Features, *, ratio: float = 0
     )
     if verify is None:
         return result
-    from .verification import verify_matches
-
     return verify_matches(result, model=verify, threshold=threshold)
 
 

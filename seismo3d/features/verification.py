@@ -19,6 +19,7 @@ import numpy as np
 
 from .._validation import as_intrinsics, as_pair, as_points, check_choice, check_positive
 from ..errors import InputError, RegistrationError
+from ..registration import ransac
 
 __all__ = [
     "fit_homography",
@@ -111,8 +112,6 @@ def fit_similarity_2d(xy1, xy2, *, threshold: float = 3.0, confidence: float = 0
     RegistrationError
         If there are fewer than 2 matches or RANSAC finds no model.
     """
-    from ..registration import ransac
-
     src, dst = as_pair(xy1, xy2, dims=(2,), min_points=0, names=("xy1", "xy2"))
     check_positive(threshold, "threshold")
     if src.shape[0] < 2:

@@ -1,7 +1,7 @@
 """The ``seismo3d convert`` job: a 3D SEG-Y cube into a Zarr v3 store that xarray opens as is.
 
 :func:`run_convert_job` opens the SEG-Y through :func:`~seismo3d.seismic.io.open_segy` (same flags and errors as every
-command) and writes the layout of :mod:`~seismo3d.seismic.seismic_zarr` tile by tile (memory: one tile of about
+command) and writes the layout of :mod:`~seismo3d.seismic.io.zarr_store` tile by tile (memory: one tile of about
 ``chunk_mb`` MiB, not the cube), with progress. The store is written into a temporary directory beside OUTPUT and
 renamed to OUTPUT when complete, so an interrupted convert (error, Ctrl-C, kill) never leaves something at OUTPUT
 that looks finished (a killed process may leave a hidden ``.OUTPUT.*.tmp`` directory, never OUTPUT). The input is
@@ -23,8 +23,8 @@ from .._atomic import atomic_directory
 from .._progress import progress_steps
 from .._validation import check_positive
 from ..errors import InputError, TraceListWarning
-from ..seismic.io import open_segy
-from ..seismic.seismic_zarr import SeismicZarrWriter, is_seismic_zarr
+from ..seismic.io.segy import open_segy
+from ..seismic.io.zarr_store import SeismicZarrWriter, is_seismic_zarr
 
 __all__ = ["ConvertResult", "run_convert_job"]
 
@@ -84,7 +84,7 @@ def _check_output(input: Path, output: Path, overwrite: bool) -> None:
 
 def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian=None, sample_unit=None,
                     chunk_mb: float = 64, overwrite: bool = False, progress: bool = False) -> ConvertResult:
-    """Convert a 3D SEG-Y cube into a Zarr v3 store (layout of :mod:`~seismo3d.seismic.seismic_zarr`).
+    """Convert a 3D SEG-Y cube into a Zarr v3 store (layout of :mod:`~seismo3d.seismic.io.zarr_store`).
 
     Parameters
     ----------

@@ -4,7 +4,7 @@
 makes a synthetic cube, runs :func:`seismo3d.seismic.trace_faults` and writes the outputs of ``seismo3d faults`` (see
 its docstring for the list of files and their columns). Every file is written atomically; the input is only read.
 
-Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.fault_likelihood`.
+Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood`.
 """
 
 from __future__ import annotations
@@ -16,12 +16,22 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+import segyio
 
 from .._atomic import atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
-from ..errors import InputError
-from ..seismic.faults import FaultInterpretation, trace_faults
+from ..data.synthetic import synthetic_cube
+from ..errors import DataNotFoundError, InputError, Seismo3dWarning
+from ..seismic.faults.likelihood_blocks import (
+    ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory,
+)
+from ..seismic.faults.pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
+from ..seismic.faults.pipeline_blocks import chunked_fault_surfaces
+from ..seismic.io.lazy import open_lazy
+from ..seismic.io.segy import open_segy, read_section, write_like
+from ..seismic.io.writer import write_like_blocks
+from ..seismic.io.zarr_store import consolidate
 
 __all__ = ["run_faults_job"]
 
@@ -76,14 +86,10 @@ class _Input:
 
 
 def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, endian=None) -> _Input:
-    from ..seismic.io import open_segy, read_section
-
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix in (".f32be", ".npy"):
         if not path.is_file():
-            from ..errors import DataNotFoundError
-
             raise DataNotFoundError(f"no input file at {path}; check the path")
         if suffix == ".f32be":
             data = read_section(path, n_samples=n_samples)
@@ -133,9 +139,6 @@ def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, 
 def _demo_input(out_dir: Path, seed, *, read: bool = True) -> tuple:
     """Write a synthetic cube as SEG-Y (4 ms, inlines / crosslines 1..128) and its true faults (CSV) into ``out_dir``;
     read the cube back (or, with ``read=False``, return the SEG-Y file's path instead)."""
-    import segyio
-
-    from ..data.synthetic import synthetic_cube
 
     syn = synthetic_cube(_DEMO_SHAPE, seed=seed)
     path = out_dir / "demo_seismic.sgy"
@@ -170,13 +173,9 @@ def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, 
     if inp.segy_path is not None:
         out = out_dir / f"{stem}.sgy"
         if like is None:
-            from ..seismic.io import write_like
-
             grid = values.reshape(inp.segy_shape) if inp.segy_shape is not None else values
             return write_like(inp.segy_path, out, grid, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
                               endian=endian)
-        import segyio
-
         traces = inp.file_order(values)
         with atomic_path(out) as tmp:
             shutil.copyfile(like, tmp)
@@ -287,8 +286,6 @@ def _check_out_dir(path, out_dir) -> Path:
 
 def _memory_limit(value) -> int:
     """``memory_limit`` in bytes: an int, a size string ('4GB', '500MiB'), or None for half of the RAM."""
-    from ..seismic.chunked_likelihood import default_memory_limit
-
     if value is None:
         return default_memory_limit()
     if isinstance(value, str):
@@ -323,8 +320,6 @@ class LazyInput:
 
 def _too_large(shape, budget: int) -> bool:
     """Whether the in-memory run on a cube of this shape would need more than ``budget`` bytes."""
-    from ..seismic.chunked_likelihood import in_memory_bytes
-
     return in_memory_bytes(shape) > budget
 
 
@@ -353,12 +348,7 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
         idx = [np.arange(n, dtype=np.int64) for n in arr.shape]
         data = da.from_array(arr, chunks=(_TILE, _TILE, -1))
         return LazyInput(data.astype(np.float32), path.stem, idx[0], idx[1], idx[2].astype(np.float64), "samples")
-    from ..seismic.lazy_cube import open_lazy
-
     if not path.is_dir():
-        from ..errors import Seismo3dWarning
-        from ..seismic.io import open_segy
-
         with warnings.catch_warnings():  # only the size is wanted here: the reading that follows warns, once
             warnings.simplefilter("ignore", Seismo3dWarning)
             cube = open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
@@ -411,14 +401,14 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       ``inline`` is the trace index (from 0) and ``crossline`` is empty. Throw is
       positive where the hanging wall moved down (normal fault); ``throw_correlation`` (in [-1, 1]) is the
       normalised cross-correlation of the reflectors on the two sides once aligned, a quality measure (see
-      :class:`~seismo3d.seismic.fault_throw.FaultThrow`); ``correlation_gain`` is that correlation less the sides'
+      :class:`~seismo3d.seismic.faults.throw.FaultThrow`); ``correlation_gain`` is that correlation less the sides'
       correlation with no shift (the evidence of a displacement). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
       median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_correlation, correlation_gain``: the
-      evidence each fault shows (:class:`~seismo3d.seismic.fault_evidence.FaultEvidence`; only faults whose
+      evidence each fault shows (:class:`~seismo3d.seismic.faults.evidence.FaultEvidence`; only faults whose
       reflectors are displaced are kept), to sort and filter on; for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
       replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline
-      axis toward the crossline axis, see :mod:`seismo3d.seismic.fault_likelihood`).
+      axis toward the crossline axis, see :mod:`seismo3d.seismic.faults.likelihood`).
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
       the seismic, above the same slices of the fault likelihood; for 2D inputs the section, cropped to its live
       traces and samples.
@@ -427,9 +417,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     ------------------------
     A 3D SEG-Y cube, Zarr store (``seismo3d convert``) or ``.npy`` array that would need more than ``memory_limit``
     in memory is read lazily and traced block by block, with the same results as in memory: the fault likelihood,
-    strike and dip (:func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood`) into
+    strike and dip (:func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood`) into
     ``fault_likelihood.zarr``, then the votes, thinned faults, skins and throws
-    (:func:`~seismo3d.seismic.chunked_faults.chunked_fault_surfaces`) into ``fault_surfaces.zarr`` (arrays
+    (:func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces`) into ``fault_surfaces.zarr`` (arrays
     ``likelihood``, ``votes``, ``thin``; both opened by ``xarray.open_zarr``), then the same ``faults.vtp``, CSV
     files and picture as in memory (the picture reads only its three slices). Both stores are resumable (an
     interrupted run started again with the same arguments skips the finished blocks) and reused when finished. For
@@ -521,8 +511,6 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
                              "demo=True (--demo) to run on a synthetic cube")
         out_dir = _check_out_dir(input_path, out_dir)
 
-    from ..seismic.chunked_likelihood import resident_memory
-
     limit = _memory_limit(memory_limit)
     budget = limit - resident_memory()  # what this run may add to the process as it is now
     written = {}
@@ -598,11 +586,6 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
     ``fault_surfaces.zarr`` (both reused when finished, resumed when interrupted); the same files as in memory."""
     import zarr
 
-    from ..seismic.chunked_faults import chunked_fault_surfaces
-    from ..seismic.chunked_likelihood import ChunkOptions, chunked_fault_likelihood, in_memory_bytes
-    from ..seismic.faults import FaultTracingOptions
-    from ..seismic.seismic_zarr import consolidate
-
     out_dir.mkdir(parents=True, exist_ok=True)
     path = out_dir / "fault_likelihood.zarr"
     shape = tuple(int(n) for n in lazy.data.shape)
@@ -650,8 +633,6 @@ def _segy_volumes(lazy: LazyInput, path: Path, out_dir: Path, names: dict, progr
     if lazy.segy is None:
         return {}
     import zarr
-
-    from ..seismic.segy_writer import write_like_blocks
 
     group = zarr.open_group(str(path), mode="r")
     stems = {"likelihood": "fault_likelihood", "strike": "fault_strike", "dip": "fault_dip", "votes": "fault_votes"}

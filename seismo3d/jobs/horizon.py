@@ -17,7 +17,7 @@ import numpy as np
 
 from .._atomic import existing_folder
 from ..errors import InputError, SegyGeometryError, UnsupportedDataError
-from ..seismic.horizons import Horizon
+from ..seismic.horizons.result import Horizon
 
 __all__ = ["HorizonJob", "run_horizon_job", "seed_index", "trace_seed_index"]
 

@@ -24,10 +24,13 @@ import time
 import warnings
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from .._atomic import atomic_path
 from .._progress import progress_steps
 from ..errors import DataIntegrityError, DataNotFoundError, FrameSkippedWarning, InputError, RegistrationError
+from ..mapping import RGBDMapper, open_sequence
+from ..mapping.metrics import absolute_trajectory_error, relative_pose_error, write_tum_trajectory
 
 __all__ = ["run_map_job", "write_ply"]
 
@@ -85,8 +88,6 @@ def _loop(sequence, mapper, frames, steps, skipped):
 
 
 def _evaluation(sequence, timestamps, poses):
-    from ..mapping.metrics import absolute_trajectory_error, relative_pose_error
-
     if sequence.groundtruth is None or len(poses) < 3:
         return None
     ref_t, ref_p = sequence.groundtruth
@@ -132,9 +133,6 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     KeyboardInterrupt
         Re-raised after the outputs of the frames done so far have been written.
     """
-    from threadpoolctl import threadpool_limits
-
-    from ..mapping import RGBDMapper, open_sequence
 
     seq = open_sequence(sequence)
     out = pathlib.Path(output)
@@ -164,8 +162,6 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
 
 
 def _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render):
-    from ..mapping.metrics import write_tum_trajectory
-
     traj = mapper.trajectory()
     timestamps, poses, status = traj.timestamps, traj.poses, traj.status
     written = {"trajectory": out / "trajectory.txt", "keyframes": out / "keyframes.json", "mesh": out / "mesh.ply"}

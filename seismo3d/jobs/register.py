@@ -10,40 +10,23 @@ transforms map the first's coordinates into the second's.
 from __future__ import annotations
 
 import contextlib
-import json
 import pathlib
 import warnings
-from dataclasses import dataclass
 
 import numpy as np
 
-from .._atomic import atomic_path, existing_folder
+from .._atomic import existing_folder
+from ..data.pointclouds import read_points
 from ..errors import InputError, TraceListWarning
+from ..geometry import estimate_normals
+from ..registration import ICPOptions, fused_icp, icp
+from ..seismic import open_segy, register_volumes
+from ..seismic.volumes import VOLUME_MODELS
 from ..terrain import is_terrain_file
+from .register_files import RegisterJob, read_transform, write_json
+from .register_terrain import run_register_terrain_job
 
 __all__ = ["RegisterJob", "run_register_job", "is_segy"]
-
-
-@dataclass(frozen=True, eq=False)
-class RegisterJob:
-    """What :func:`run_register_job` did.
-
-    Attributes
-    ----------
-    kind : {'point_clouds', 'volumes', 'terrain'}
-        What was registered.
-    result : RegistrationResult, VolumeRegistration or TerrainRegistration
-        The registration.
-    payload : dict
-        What was written to the JSON file.
-    converged : bool
-        Whether the registration converged (``payload['converged']``).
-    """
-
-    kind: str
-    result: object
-    payload: dict
-    converged: bool
 
 
 def is_segy(path) -> bool:
@@ -110,8 +93,6 @@ def run_register_job(source, target, output, *, method: str | None = None, model
         segy = dict(iline=iline, xline=xline, endian=endian)
         job = _register_volumes(source, target, model or "axis_scaled", progress, segy)
     elif is_terrain_file(source) or is_terrain_file(target):
-        from .register_terrain import run_register_terrain_job
-
         if features is not None:
             raise InputError("--features is for point clouds; terrain files are matched through their hillshades")
         return run_register_terrain_job(source, target, output, method=method or "fused", model=model or "rigid",
@@ -124,10 +105,6 @@ def run_register_job(source, target, output, *, method: str | None = None, model
 
 
 def _register_point_clouds(source, target, method, model, init, max_distance, features, alpha) -> RegisterJob:
-    from ..data.pointclouds import read_points
-    from ..geometry import estimate_normals
-    from ..registration import ICPOptions, fused_icp, icp
-
     src = read_points(source)
     dst = read_points(target)
     if src.shape[1] != dst.shape[1]:
@@ -152,9 +129,6 @@ def _register_point_clouds(source, target, method, model, init, max_distance, fe
 
 def _register_volumes(moving_path, fixed_path, model, progress, segy: dict) -> RegisterJob:
     """MOVING.sgy onto FIXED.sgy: the sub-volume registration, JSON with both transforms."""
-    from ..seismic import open_segy, register_volumes
-    from ..seismic.volumes import VOLUME_MODELS
-
     if model not in VOLUME_MODELS:
         raise InputError(f"--model {model} is not available for SEG-Y volumes; use rigid (spacings from the "
                          "headers are right), axis_scaled (default for unknown bins / sample rates) or affine")
@@ -175,32 +149,6 @@ def _register_volumes(moving_path, fixed_path, model, progress, segy: dict) -> R
                    fixed_first=dict(zip(("inline", "xline", "sample_value"), first_f)),
                    moving_first=dict(zip(("inline", "xline", "sample_value"), first_m)))
     return RegisterJob("volumes", reg, payload, bool(reg.converged))
-
-
-def write_json(path, payload: dict) -> None:
-    """Write ``payload`` as indented JSON, atomically."""
-    with atomic_path(path) as tmp:
-        tmp.write_text(json.dumps(payload, indent=2) + "\n")
-
-
-def read_transform(path, dim: int) -> np.ndarray:
-    """The (dim+1, dim+1) transform of a JSON file (``{"transform": [[...], ...]}`` or a bare matrix).
-
-    Raises
-    ------
-    InputError
-        A missing file, not JSON, or not a (dim+1, dim+1) transform (the message names ``--init``).
-    """
-    from ..geometry.transforms import as_transform
-
-    try:
-        payload = json.loads(pathlib.Path(path).read_text())
-    except FileNotFoundError as exc:
-        raise InputError(f"--init file {path} does not exist") from exc
-    except json.JSONDecodeError as exc:
-        raise InputError(f"--init file {path} is not JSON ({exc}); write {{\"transform\": [[...], ...]}}") from exc
-    matrix = payload.get("transform") if isinstance(payload, dict) else payload
-    return as_transform(matrix, f"the transform in {path}", dims=(dim,))
 
 
 def read_matches(path, dim: int) -> np.ndarray:

@@ -1,7 +1,7 @@
 """The terrain branch of ``seismo3d register``: LAS/LAZ scans and GeoTIFF DEMs in, the transform JSON out.
 
 :func:`seismo3d.jobs.register.run_register_job` hands terrain files here; the result is the same
-:class:`~seismo3d.jobs.register.RegisterJob` (``kind='terrain'``).
+:class:`~seismo3d.jobs.register_files.RegisterJob` (``kind='terrain'``).
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ import numpy as np
 from .._atomic import existing_folder
 from ..errors import InputError
 from ..terrain import TerrainRegistrationOptions, is_terrain_file, read_terrain, register_terrain
-from .register import RegisterJob, read_transform, write_json
+from .register_files import RegisterJob, read_transform, write_json
 
 __all__ = ["run_register_terrain_job"]
 

@@ -7,6 +7,8 @@ or a DEM.
 
 from __future__ import annotations
 
+import csv
+import json
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -15,7 +17,9 @@ import numpy as np
 from .._atomic import existing_folder
 from .._validation import check_choice
 from ..errors import DataNotFoundError, InputError
+from ..mapping import read_tum_trajectory
 from ..seismic import open_segy
+from ..terrain import extract_lineaments, read_dem
 
 __all__ = ["RenderJob", "run_render_job"]
 
@@ -122,8 +126,6 @@ def _horizon_grid(path: Path, geometry):
 
 def _read_path_csv(path: Path, shape) -> np.ndarray:
     """(K, 2) row, col cells of a ``seismo3d plan`` CSV."""
-    import csv
-
     if not path.is_file():
         raise DataNotFoundError(f"path={path} does not exist; pass the CSV written by 'seismo3d plan'")
     with open(path, newline="") as fh:
@@ -137,7 +139,6 @@ def _read_path_csv(path: Path, shape) -> np.ndarray:
 
 
 def _render_dem(path: Path, output: Path, *, lineaments, plan, vertical_exaggeration, window_size) -> RenderJob:
-    from ..terrain import extract_lineaments, read_dem
     from ..viz.terrain3d import show_terrain
 
     dem = read_dem(path)
@@ -152,11 +153,9 @@ def _render_dem(path: Path, output: Path, *, lineaments, plan, vertical_exaggera
 
 def _render_map(path: Path, output: Path, *, window_size) -> RenderJob:
     """The mesh, trajectory and keyframes of a ``seismo3d map`` folder."""
-    import json
 
     import pyvista as pv
 
-    from ..mapping import read_tum_trajectory
     from ..viz.maps import show_map
 
     try:

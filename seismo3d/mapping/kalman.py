@@ -26,6 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.linalg import block_diag
 
 from .._validation import check_positive
 from ..errors import InputError
@@ -186,8 +187,6 @@ class PoseFilter:
             self.last_seen[k] = self.step
             used += 1
         if used:
-            from scipy.linalg import block_diag
-
             self._update(np.concatenate(rs), np.vstack(hs), block_diag(*covs), gate=None)
         return used
 

@@ -17,7 +17,7 @@ IEEE T-RO 31(5), 1147-1163. doi:10.1109/TRO.2015.2463671
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace as dc_replace
 
 import numpy as np
 
@@ -115,7 +115,6 @@ def frame_features(color, depth, intrinsics, options: FeatureOptions | None = No
     FrameFeatures
         Possibly empty (K = 0).
     """
-    from dataclasses import replace as dc_replace
 
     from ..features import Features, detect_and_describe, lift_matches_depth
 

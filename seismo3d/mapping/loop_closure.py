@@ -25,9 +25,14 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from .._validation import check_positive
 from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
+from ..registration import ICPOptions, fused_icp, ransac
+from .frames import frame_points
+from .landmarks import match_to_keyframe
+from .odometry import point_to_plane_information
 
 __all__ = ["LoopOptions", "LoopClosure", "Vocabulary", "LoopDetector"]
 
@@ -165,8 +170,6 @@ class Vocabulary:
 
 def _cloud(keyframe, voxel_size):
     """The keyframe's depth as a voxel-downsampled cloud with normals, computed once and kept on the keyframe."""
-    from .frames import frame_points
-
     cached = keyframe.cache.get(("cloud", voxel_size))
     if cached is None:
         cached = keyframe.cache[("cloud", voxel_size)] = frame_points(keyframe.depth_metres(), keyframe.intrinsics,
@@ -222,11 +225,6 @@ class LoopDetector:
 
         The fused ICP starts from the RANSAC fit of the matched features (no pose prior: the drift may be large).
         """
-        from ..registration import ICPOptions, fused_icp
-        from .landmarks import match_to_keyframe
-        from .odometry import point_to_plane_information
-
-        from ..registration import ransac
 
         opt = self.options
         new, old = graph.keyframes[-1], graph.keyframes[candidate]
@@ -255,8 +253,6 @@ class LoopDetector:
                 or res.inlier_rmse > opt.max_rmse or res.degenerate:
             return None
         # information of the loop edge from the dense correspondences at the solution (KD-tree)
-        from scipy.spatial import cKDTree
-
         moved = src @ res.transform[:3, :3].T + res.transform[:3, 3]
         dist, idx = cKDTree(dst).query(moved, distance_upper_bound=opt.max_rmse * 2)
         ok = np.isfinite(dist)

@@ -21,11 +21,12 @@ For every frame (:meth:`RGBDMapper.process`), in order:
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..errors import InputError, RegistrationError, Seismo3dWarning
+from ..registration import ransac
 from .kalman import FilterOptions, PoseFilter
 from .keyframes import Keyframe, KeyframeGraph, KeyframeOptions, is_new_keyframe
 from .landmarks import FeatureOptions, FrameFeatures, LandmarkTable, frame_features, match_to_keyframe
@@ -364,8 +365,6 @@ class RGBDMapper:
             return tracking
         # relocalisation: the engine's RANSAC over every match gives the camera-to-world pose directly (the fused
         # ICP's start); the map is raycast there and the frame tracked from it
-        from ..registration import ransac
-
         try:
             start = ransac(fs, fd, model="rigid", threshold=opt.ransac_threshold, max_trials=2000).transform
         except (RegistrationError, InputError):
@@ -373,8 +372,6 @@ class RGBDMapper:
         again = self.volume.raycast(measurement.intrinsics[0], start, shape=shape)
         second = track_frame(measurement, again, features=(fs, fd), options=opt)
         if second.ok:
-            from dataclasses import replace
-
             return replace(second, start="ransac")
         return tracking
 

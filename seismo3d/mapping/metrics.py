@@ -20,7 +20,9 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
+from .._atomic import atomic_path
 from .._validation import check_positive
 from ..errors import InputError
 
@@ -169,9 +171,6 @@ def write_tum_trajectory(path, timestamps, poses) -> int:
     int
         Lines written.
     """
-    from scipy.spatial.transform import Rotation
-
-    from .._atomic import atomic_path
 
     t = np.asarray(timestamps, dtype=np.float64).reshape(-1)
     p = np.asarray(poses, dtype=np.float64).reshape(-1, 4, 4)

@@ -28,11 +28,13 @@ from __future__ import annotations
 
 import pathlib
 import re
+from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
-from .._validation import check_positive
+from .._validation import as_intrinsics, check_positive
 from ..data.rgbd import CameraIntrinsics, RGBDFrame
 from ..errors import DataIntegrityError, DataNotFoundError, InputError
 
@@ -207,8 +209,6 @@ def read_tum_trajectory(path) -> tuple[np.ndarray, np.ndarray]:
     InputError
         If a line does not hold 8 numbers.
     """
-    from scipy.spatial.transform import Rotation
-
     path = pathlib.Path(path)
     if not path.is_file():
         raise DataNotFoundError(f"trajectory file {path} does not exist")
@@ -270,8 +270,6 @@ def _intrinsics_for(root: pathlib.Path, layout: str, width: int, height: int, ov
     if override is not None:
         if isinstance(override, CameraIntrinsics):
             return override
-        from .._validation import as_intrinsics
-
         fx, fy, cx, cy = as_intrinsics(override)
         return CameraIntrinsics(fx, fy, cx, cy, width, height)
     matrix_file = root / "camera-intrinsics.txt"
@@ -416,8 +414,6 @@ def _read_only(array):
 
 def _image_size(raw) -> tuple[int, int]:
     """Width and height most common among the first five readable depth images (640 x 480 when none can be read)."""
-    from collections import Counter
-
     sizes = Counter()
     for _, _, depth_path in raw[:20]:
         try:

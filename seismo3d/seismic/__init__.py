@@ -1,57 +1,106 @@
-"""Seismic interpretation on the registration engine, one module per concept.
+"""Seismic interpretation on the registration engine, in three sub-packages and a few modules shared by them.
 
-- :mod:`~seismo3d.seismic.io`: SEG-Y cubes and lines, raw sections, ASCII lines.
-- :mod:`~seismo3d.seismic.lazy_cube`: :func:`open_lazy`, a 3D cube (SEG-Y or Zarr) as a dask array by inline blocks.
-- :mod:`~seismo3d.seismic.seismic_zarr`: the Zarr v3 layout of ``seismo3d convert`` (xarray opens it as is).
+Sub-packages:
+
+- :mod:`~seismo3d.seismic.io`: reading and writing seismic data.
+
+  - :mod:`~seismo3d.seismic.io.segy`: SEG-Y cubes and lines, raw sections, ASCII lines.
+  - :mod:`~seismo3d.seismic.io.layout`: byte order, sample format and rev-2 headers of a SEG-Y file.
+  - :mod:`~seismo3d.seismic.io.geometry`: the traces of a file without an inline / crossline grid.
+  - :mod:`~seismo3d.seismic.io.blocks`: a 3D SEG-Y cube read by blocks of inlines (:class:`SegyGrid`).
+  - :mod:`~seismo3d.seismic.io.lazy`: :func:`open_lazy`, a 3D cube (SEG-Y or Zarr) as a dask array by inline blocks.
+  - :mod:`~seismo3d.seismic.io.zarr_store`: the Zarr v3 layout of ``seismo3d convert`` (xarray opens it as is).
+  - :mod:`~seismo3d.seismic.io.writer`: a SEG-Y file written block by block like another.
+
+- :mod:`~seismo3d.seismic.faults`: fault interpretation.
+
+  - :mod:`~seismo3d.seismic.faults.likelihood`: the scan over fault strikes and dips.
+  - :mod:`~seismo3d.seismic.faults.dead_samples`: dead traces and samples, and their fill values.
+  - :mod:`~seismo3d.seismic.faults.windows`: windows of a cube around points (in memory, lazy or stored).
+  - :mod:`~seismo3d.seismic.faults.surfaces`: faults as point sets, thinning (and the older region-growing linker).
+  - :mod:`~seismo3d.seismic.faults.voting`: optimal surface voting (Wu & Fomel 2018).
+  - :mod:`~seismo3d.seismic.faults.skins`: thinned faults linked into fault skins (Hale 2013).
+  - :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides of a fault.
+  - :mod:`~seismo3d.seismic.faults.pipeline`: the whole fault interpretation of an array (:func:`trace_faults`).
+  - :mod:`~seismo3d.seismic.faults.likelihood_blocks`: the likelihood scan of a stored cube by blocks, resumable.
+  - :mod:`~seismo3d.seismic.faults.pipeline_blocks`: the fault surfaces of a stored cube by blocks.
+
+- :mod:`~seismo3d.seismic.horizons`: horizon tracking.
+
+  - :mod:`~seismo3d.seismic.horizons.result`: the horizon result, seeds, gap filling, text export.
+  - :mod:`~seismo3d.seismic.horizons.options`: :class:`TrackingOptions`.
+  - :mod:`~seismo3d.seismic.horizons.fault_crossings`: which faults a horizon step crosses and the jump there.
+  - :mod:`~seismo3d.seismic.horizons.tracking`: :func:`track_horizon`; horizon tracking by registering neighbouring
+    slices.
+  - :mod:`~seismo3d.seismic.horizons.lsq`: least-squares horizons from correlations of near and distant traces (the
+    default method), the cycle-skip self-check.
+  - :mod:`~seismo3d.seismic.horizons.correlation`: correlation of trace windows pair by pair.
+  - :mod:`~seismo3d.seismic.horizons.dp`: dynamic programming over candidate picks along each line, swept over
+    inlines and crosslines in a cube.
+  - :mod:`~seismo3d.seismic.horizons.cycle_cut`: regions a cycle off moved by a minimum cut.
+  - :mod:`~seismo3d.seismic.horizons.autotracker`: the plain amplitude autotracker (the peer).
+
+- :mod:`~seismo3d.seismic.volumes`: registration of sub-volumes of different bin size, sample rate and orientation.
+
+Modules shared by the sub-packages:
+
 - :mod:`~seismo3d.seismic.attributes`: structure tensor (reflector orientation), semblance, coherence.
 - :mod:`~seismo3d.seismic.traces`: trace primitives (sub-sample peaks, waveform windows, NCC, lag search).
 - :mod:`~seismo3d.seismic.reflectors`: reflector picks along traces, reflector slices, reflector points.
-- :mod:`~seismo3d.seismic.fault_likelihood`: the scan over fault strikes and dips.
-- :mod:`~seismo3d.seismic.fault_surfaces`: faults as point sets, thinning (and the older region-growing linker).
-- :mod:`~seismo3d.seismic.fault_voting`: optimal surface voting (Wu & Fomel 2018).
-- :mod:`~seismo3d.seismic.fault_skins`: thinned faults linked into fault skins (Hale 2013).
-- :mod:`~seismo3d.seismic.fault_throw`: throw by registering the reflectors on both sides of a fault.
-- :mod:`~seismo3d.seismic.faults`: the whole fault interpretation of an array (:func:`trace_faults`).
-- :mod:`~seismo3d.seismic.fault_crossings`: which faults a horizon step crosses and the jump there.
-- :mod:`~seismo3d.seismic.horizons`: the horizon result, seeds, gap filling, text export.
-- :mod:`~seismo3d.seismic.horizon_tracking`: :func:`track_horizon`; horizon tracking by registering neighbouring slices.
-- :mod:`~seismo3d.seismic.horizon_lsq`: least-squares horizons from correlations of near and distant traces (the
-  default method), the cycle-skip self-check.
-- :mod:`~seismo3d.seismic.horizon_dp`: dynamic programming over candidate picks along each line, swept over inlines
-  and crosslines in a cube.
-- :mod:`~seismo3d.seismic.tracking_options`: :class:`TrackingOptions`.
-- :mod:`~seismo3d.seismic.autotracker`: the plain amplitude autotracker (the peer).
-- :mod:`~seismo3d.seismic.volumes`: registration of sub-volumes of different bin size, sample rate and orientation.
+- :mod:`~seismo3d.seismic.blocks`: resumable runs over the blocks of a cube (markers, memory, schedulers).
 - :mod:`~seismo3d.seismic.evaluation`: fault scores, horizon errors, registration errors against ground truth.
+- ``seismo3d.seismic._kernels``: the numba kernels shared by attributes, faults and horizons (private).
 """
 
 from .attributes import ReflectorOrientation, discontinuity, eigen_coherence, semblance, structure_tensor_orientation
-from .autotracker import autotrack
+from .blocks import BlockRun, SchedulerClient, run_block
 from .evaluation import (
     FaultScores, HorizonErrors, RegistrationErrors, evaluate_faults, horizon_errors, registration_errors,
 )
-from .fault_crossings import FaultCrossings, reliable_throw
-from .fault_likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood, fault_normals
-from .fault_skins import SkinOptions, fault_skins
-from .fault_surfaces import Fault, fault_labels, link_faults, thin_faults
-from .fault_throw import FaultThrow, ThrowOptions, fault_throw, fault_throws
-from .fault_voting import FaultVotes, VotingOptions, vote_faults
-from .faults import FaultInterpretation, FaultTracingOptions, trace_faults
-from .horizon_tracking import TrackingOptions, track_horizon
-from .horizons import Horizon, fill_horizon, write_horizon_text
-from .io import SeismicCube, open_segy, read_ascii_lines, read_section, read_segy, write_like
-from .lazy_cube import LazyCube, open_lazy
+from .faults import (
+    ChunkedFaults, ChunkedLikelihood, ChunkOptions, CleanTraces, CubeWindow, EvidenceOptions, Fault, FaultEvidence,
+    FaultInterpretation,
+    FaultLikelihood, FaultScanOptions, FaultThrow, FaultTracingOptions, FaultVotes, SkinOptions, ThrowOptions,
+    VotingOptions, chunked_fault_likelihood, chunked_fault_surfaces, clean_traces, cube_windows, fault_labels,
+    fault_likelihood, fault_normals, fault_skins, fault_throw, fault_throws, fill_values, link_faults,
+    near_dead_samples, supported_faults, thin_faults, trace_faults, vote_faults,
+)
+from .faults.dead_samples import dead_samples
+from .horizons import (
+    CycleCut, FaultCrossings, Horizon, TrackingOptions, autotrack, fill_horizon, reliable_throw, track_horizon,
+    write_horizon_text,
+)
+from .horizons.cycle_cut import cycle_cut
+from .io import (
+    LazyCube, SegyGrid, SegyLayout, SeismicCube, SeismicZarr, SeismicZarrWriter, TraceGeometry, inline_block_size,
+    is_seismic_zarr, open_lazy, open_seismic_zarr, open_segy, read_ascii_lines, read_section, read_segy,
+    read_segy_block, read_segy_block_headers, read_segy_layout, trace_geometry, write_like, write_like_blocks,
+)
 from .reflectors import POLARITIES, reflector_picks, reflector_points
 from .volumes import VolumeOptions, VolumeRegistration, register_volumes, resample_volume, volume_spacing
 
 __all__ = [
+    # exported before the sub-packages
     "POLARITIES", "Fault", "FaultCrossings", "FaultInterpretation", "FaultLikelihood", "FaultScanOptions",
-    "FaultTracingOptions", "FaultVotes", "LazyCube", "open_lazy", "SkinOptions", "VotingOptions", "fault_skins", "vote_faults",
-    "FaultScores", "FaultThrow", "Horizon", "HorizonErrors", "ReflectorOrientation", "RegistrationErrors",
-    "SeismicCube", "ThrowOptions", "TrackingOptions", "VolumeOptions", "VolumeRegistration",
+    "FaultTracingOptions", "FaultVotes", "LazyCube", "open_lazy", "SkinOptions", "VotingOptions", "fault_skins",
+    "vote_faults", "FaultScores", "FaultThrow", "Horizon", "HorizonErrors", "ReflectorOrientation",
+    "RegistrationErrors", "SeismicCube", "ThrowOptions", "TrackingOptions", "VolumeOptions", "VolumeRegistration",
     "autotrack", "discontinuity", "eigen_coherence", "evaluate_faults", "fault_labels", "fault_likelihood",
     "fault_normals", "fault_throw", "fault_throws", "fill_horizon", "horizon_errors", "link_faults", "open_segy",
     "read_ascii_lines", "read_section", "read_segy", "reflector_picks", "reflector_points", "register_volumes",
     "registration_errors", "reliable_throw", "resample_volume", "semblance", "structure_tensor_orientation",
     "thin_faults", "trace_faults", "track_horizon", "volume_spacing", "write_horizon_text", "write_like",
+    # io: SEG-Y layout and geometry, reading by blocks, the Zarr store of `seismo3d convert`, writing by blocks
+    "SegyLayout", "read_segy_layout", "TraceGeometry", "trace_geometry", "SegyGrid", "read_segy_block",
+    "read_segy_block_headers", "inline_block_size", "SeismicZarr", "SeismicZarrWriter", "open_seismic_zarr",
+    "is_seismic_zarr", "write_like_blocks",
+    # faults: dead samples, cube windows, the likelihood scan and the fault surfaces by blocks
+    "CleanTraces", "clean_traces", "dead_samples", "near_dead_samples", "fill_values", "CubeWindow", "cube_windows",
+    "ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "ChunkedFaults", "chunked_fault_surfaces",
+    # faults: the evidence a fault must show
+    "EvidenceOptions", "FaultEvidence", "supported_faults",
+    # horizons: the cycle-skip cut
+    "CycleCut", "cycle_cut",
+    # resumable block runs
+    "BlockRun", "SchedulerClient", "run_block",
 ]

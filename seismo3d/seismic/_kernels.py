@@ -1,5 +1,5 @@
-"""Numba kernels and array helpers shared by the seismic attributes and the fault likelihood (a private module:
-import it whole, ``from . import _kernels``).
+"""Numba kernels and array helpers shared by the seismic attributes, the faults and the horizons (a private module:
+import it whole, ``from . import _kernels``; the kernels only the faults use are in ``faults/_kernels.py``).
 
 Arrays are 3D ``(n0, n1, n_samples)`` float32; a 2D section is viewed as ``(n_traces, 1, n_samples)`` (:func:`as_3d`).
 Distances are in samples and traces. The kernels are compiled on first call and cached on disk.
@@ -348,50 +348,6 @@ def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_t
     p1 = np.empty(f3.shape, dtype=np.float32)
     eig_slopes(*t, MAX_SLOPE, p0, p1)
     return p0, p1
-
-
-@nb.njit(cache=True)
-def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):
-    # Region growing over the neighbour graph (whose edges already join only compatible normals): from the
-    # unassigned sample of highest likelihood, add neighbours whose normal is within acos(cos_mean) of the growing
-    # fault's mean normal, breadth first. The mean keeps a fault from drifting into another one through samples of
-    # intermediate orientation where two faults meet.
-    n_pts, dim = normals.shape
-    label = -np.ones(n_pts, np.int64)
-    queue = np.empty(n_pts, np.int64)
-    mean = np.zeros(dim)
-    n_lab = 0
-    for seed in order:
-        if label[seed] >= 0:
-            continue
-        label[seed] = n_lab
-        for d in range(dim):
-            mean[d] = normals[seed, d]
-        head = 0
-        tail = 1
-        queue[0] = seed
-        while head < tail:
-            i = queue[head]
-            head += 1
-            for e in range(indptr[i], indptr[i + 1]):
-                j = indices[e]
-                if label[j] >= 0:
-                    continue
-                dot = 0.0
-                nm = 0.0
-                for d in range(dim):
-                    dot += normals[j, d] * mean[d]
-                    nm += mean[d] * mean[d]
-                if abs(dot) < cos_mean * np.sqrt(nm):
-                    continue
-                label[j] = n_lab
-                sgn = 1.0 if dot >= 0 else -1.0
-                for d in range(dim):
-                    mean[d] += sgn * normals[j, d]
-                queue[tail] = j
-                tail += 1
-        n_lab += 1
-    return label
 
 
 @nb.njit(cache=True)

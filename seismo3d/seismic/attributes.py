@@ -24,6 +24,7 @@ import numpy as np
 from scipy import ndimage as ndi
 
 from .._validation import as_seismic, as_sigma_pair, check_choice, check_positive
+from ..errors import InputError
 from . import _kernels
 
 __all__ = [
@@ -161,8 +162,6 @@ def section_slopes(data, axis: int, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.
     ----------
     As :func:`structure_tensor_orientation` (the 2D tensor filters along ``axis`` and the sample axis only).
     """
-    from ..errors import InputError
-
     arr = as_seismic(data, min_size=1)
     if arr.ndim != 3:
         raise InputError(f"data must be a cube (n_inlines, n_xlines, n_samples); got shape {arr.shape}")

@@ -20,6 +20,7 @@ from scipy import ndimage as ndi
 
 from .._validation import as_seismic, check_choice
 from ..errors import InputError
+from .attributes import structure_tensor_orientation
 from .traces import parabolic_offset, waveform
 
 __all__ = ["POLARITIES", "ReflectorSlice", "reflector_picks", "nearest_pick", "reflector_points",
@@ -207,8 +208,6 @@ class ReflectorSlice:
     @functools.cached_property
     def _orientation(self):
         # the structure tensor, computed when slopes or normals are first read (the lateral check reads neither)
-        from .attributes import structure_tensor_orientation
-
         return structure_tensor_orientation(self.amp, sigma_tensor=self.sigma_tensor)
 
     @functools.cached_property
@@ -337,8 +336,6 @@ def reflector_points(data, *, quantile: float = 0.5, min_planarity: float = 0.5,
 
 
 def _strong_planar_peaks(a, quantile, min_planarity, max_points, seed):
-    from .attributes import structure_tensor_orientation
-
     s = ndi.gaussian_filter1d(a, 1.0, axis=2)
     n_tr = s.shape[0] * s.shape[1]
     flat = s.reshape(n_tr, s.shape[2])

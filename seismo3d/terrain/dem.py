@@ -7,6 +7,7 @@ import pathlib
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+import tifffile
 
 from .._atomic import atomic_path
 from ..errors import DataIntegrityError, DataNotFoundError, InputError
@@ -176,8 +177,6 @@ def read_dem(path) -> Dem:
     ----------
     OGC 19-008r4 (2019), OGC GeoTIFF Standard 1.1, sections 7.2-7.4 (raster to model transformation).
     """
-    import tifffile
-
     path = pathlib.Path(path)
     if not path.is_file():
         raise DataNotFoundError(f"{path}: no such file; check the path")
@@ -267,8 +266,6 @@ def write_dem(path, dem: Dem, *, nodata: float = -9999.0) -> pathlib.Path:
     InputError
         On a bad suffix.
     """
-    import tifffile
-
     path = pathlib.Path(path)
     if path.suffix.lower() not in DEM_SUFFIXES:
         raise InputError(f"{path.name}: a GeoTIFF DEM must end in .tif or .tiff")

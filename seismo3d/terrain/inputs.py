@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pathlib
 
+from ..errors import InputError
 from .dem import DEM_SUFFIXES, Dem, read_dem
 from .lidar import LAS_SUFFIXES, LidarScan, read_las
 
@@ -35,8 +36,6 @@ def read_terrain(path) -> LidarScan | Dem:
     DataNotFoundError, DataIntegrityError
         As the readers.
     """
-    from ..errors import InputError
-
     suffix = pathlib.Path(path).suffix.lower()
     if suffix in LAS_SUFFIXES:
         return read_las(path)

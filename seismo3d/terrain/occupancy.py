@@ -13,9 +13,12 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy import ndimage
+from scipy.spatial.transform import Rotation
 
 from .._validation import as_points, check_positive
+from ..data import read_points
 from ..errors import DataNotFoundError, InputError
+from ..geometry import estimate_normals
 from .dem import Dem
 from .hillshade import slope_deg
 
@@ -153,8 +156,6 @@ def estimate_up(points, *, hint=None, floor_angle_deg: float = 20.0) -> tuple[np
     InputError
         Too few points, or none facing up (no floor seen).
     """
-    from ..geometry import estimate_normals
-
     pts = as_points(points, "points", dims=(3,), min_points=10)
     hint = np.array([0.0, 0.0, 1.0]) if hint is None else np.asarray(hint, dtype=np.float64).reshape(3)
     hint = hint / np.linalg.norm(hint)
@@ -295,9 +296,6 @@ def read_map_folder(folder) -> MapScene:
     InputError, DataIntegrityError
         A malformed mesh or trajectory.
     """
-    from scipy.spatial.transform import Rotation
-
-    from ..data import read_points
 
     folder = pathlib.Path(folder)
     mesh = folder / "mesh.ply"

@@ -328,8 +328,8 @@ def fault_surfaces(faults, throws=None, *, axes=None):
     faults : sequence of Fault
         From :func:`~seismo3d.seismic.link_faults` (3D or 2D).
     throws : sequence of FaultThrow, optional
-        From :func:`~seismo3d.seismic.fault_throw.fault_throws`, matched to faults by ``fault_id``; the ``throw`` array is
-        NaN without it.
+        From :func:`~seismo3d.seismic.faults.throw.fault_throws`, matched to faults by ``fault_id``; the ``throw`` array
+        is NaN without it.
     axes : sequence of 1D array_like, optional
         Annotation of each axis ((inline numbers, crossline numbers, times or depths) in 3D, (trace labels,
         times or depths) in 2D); adds point arrays ``inline``, ``crossline`` (3D) and ``time_or_depth``.

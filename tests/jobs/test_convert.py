@@ -12,7 +12,7 @@ import seismo3d.jobs.convert as convert_job
 from seismo3d.errors import InputError, SegyGeometryError
 from seismo3d.jobs.convert import run_convert_job
 from seismo3d.seismic.io import read_segy
-from seismo3d.seismic.lazy_cube import open_lazy
+from seismo3d.seismic.io.lazy import open_lazy
 
 xr = pytest.importorskip("xarray")
 

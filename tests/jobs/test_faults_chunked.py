@@ -11,7 +11,7 @@ import pytest
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.jobs.faults import run_faults_job
-from seismo3d.seismic.chunked_likelihood import resident_memory
+from seismo3d.seismic.faults.likelihood_blocks import resident_memory
 
 SHAPE = (128, 128, 128)  # in memory ~201 MB beyond the process; surfaces ~159 MB
 

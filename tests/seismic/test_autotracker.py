@@ -1,4 +1,4 @@
-"""The plain amplitude autotracker (seismo3d.seismic.autotracker): the generator's horizon on a clean cube, bad
+"""The plain amplitude autotracker (seismo3d.seismic.horizons.autotracker): the generator's horizon on a clean cube, bad
 input."""
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""Tests of seismo3d.seismic.block_runs: block tasks on a dask.distributed cluster use the worker's share of the
+"""Tests of seismo3d.seismic.blocks: block tasks on a dask.distributed cluster use the worker's share of the
 host's cores for their numba kernels, and leave the worker's setting as it was."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import os
 import numba
 import pytest
 
-from seismo3d.seismic.block_runs import BlockRun, kernel_threads, run_block
+from seismo3d.seismic.blocks import BlockRun, kernel_threads, run_block
 
 
 def _kernel_thread_count(_block):

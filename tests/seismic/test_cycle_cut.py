@@ -1,14 +1,14 @@
-"""Cycle-skip repair by a minimum cut (seismo3d.seismic.cycle_cut): the cut against brute force, and regions of a
-horizon put one cycle off on generated layers with known truth."""
+"""Cycle-skip repair by a minimum cut (seismo3d.seismic.horizons.cycle_cut): the cut against brute force, and regions of
+a horizon put one cycle off on generated layers with known truth."""
 
 import itertools
 
 import numpy as np
 import pytest
 
-from seismo3d.seismic.cycle_cut import binary_min_cut, cycle_cut, neighbour_cycle
-from seismo3d.seismic.horizon_dp import reflector_period
-from seismo3d.seismic.horizon_lsq import trace_pairs
+from seismo3d.seismic.horizons.cycle_cut import binary_min_cut, cycle_cut, neighbour_cycle
+from seismo3d.seismic.horizons.dp import reflector_period
+from seismo3d.seismic.horizons.lsq import trace_pairs
 from seismo3d.seismic.reflectors import nearest_pick
 
 from .conftest import random_layers

@@ -1,5 +1,5 @@
-"""Fault crossings (seismo3d.seismic.fault_crossings): hand-made fault planes with known crossings, jumps, blocks and
-walls, and the reliable-throw gate."""
+"""Fault crossings (seismo3d.seismic.horizons.fault_crossings): hand-made fault planes with known crossings, jumps,
+blocks and walls, and the reliable-throw gate."""
 
 from types import SimpleNamespace
 
@@ -8,7 +8,7 @@ import pytest
 
 from seismo3d.errors import InputError
 from seismo3d.seismic import FaultCrossings
-from seismo3d.seismic.fault_throw import hanging_wall_normals
+from seismo3d.seismic.faults.throw import hanging_wall_normals
 
 
 def _vertical_fault_points(x0, n_y=9, n_t=40):

@@ -1,4 +1,4 @@
-"""The evidence a fault must show (seismo3d.seismic.fault_evidence): displaced reflectors across it."""
+"""The evidence a fault must show (seismo3d.seismic.faults.evidence): displaced reflectors across it."""
 
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ import pytest
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import fault_throw, fault_throws, trace_faults
-from seismo3d.seismic.fault_evidence import EvidenceOptions, FaultEvidence, fault_evidence, supported_faults
-from seismo3d.seismic.fault_throw import FaultThrow
+from seismo3d.seismic.faults.evidence import EvidenceOptions, FaultEvidence, fault_evidence, supported_faults
+from seismo3d.seismic.faults.throw import FaultThrow
 
 
 @pytest.mark.parametrize("seed", range(4))

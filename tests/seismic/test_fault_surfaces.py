@@ -1,4 +1,4 @@
-"""Fault surfaces (seismo3d.seismic.fault_surfaces): thinning and linking against synthetic ground truth, real
+"""Fault surfaces (seismo3d.seismic.faults.surfaces): thinning and linking against synthetic ground truth, real
 sections, bad input. The five 128^3 cubes are traced once per session (tests/conftest.py, shared with the throw
 tests)."""
 

@@ -1,4 +1,4 @@
-"""Fault throw by registration (seismo3d.seismic.fault_throw) against the ground truth of synthetic cubes and sections.
+"""Fault throw by registration (seismo3d.seismic.faults.throw) against the ground truth of synthetic cubes and sections.
 
 Issue 3, Must show: "throw within 1 sample (median absolute error) for faults with throw >= 3 samples" on 128^3
 synthetic cubes with noise, seeds 0-4, through the whole detection chain; plus the same measured on the TRUE fault
@@ -20,7 +20,7 @@ from seismo3d.seismic import (
     FaultThrow, ThrowOptions, fault_likelihood, fault_throw, fault_throws, link_faults, structure_tensor_orientation,
     thin_faults,
 )
-from seismo3d.seismic.fault_throw import hanging_wall_normals
+from seismo3d.seismic.faults.throw import hanging_wall_normals
 
 SEEDS = range(5)
 TOL = 2.0  # voxels: a detected point is compared with the nearest true fault voxel within this distance

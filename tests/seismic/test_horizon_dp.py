@@ -1,9 +1,9 @@
-"""Dynamic programming over candidate picks (seismo3d.seismic.horizon_dp): the picks of a line chosen together from a
+"""Dynamic programming over candidate picks (seismo3d.seismic.horizons.dp): the picks of a line chosen together from a
 noisy guide, and lone departures moved back; generated data with known truth."""
 
 import numpy as np
 
-from seismo3d.seismic.horizon_dp import dp_picks, line_slopes, settle_lone_departures
+from seismo3d.seismic.horizons.dp import dp_picks, line_slopes, settle_lone_departures
 from seismo3d.seismic.reflectors import nearest_pick, reflector_picks
 
 from .conftest import next_cycle, random_layers, section_and_truth

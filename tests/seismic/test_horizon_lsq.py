@@ -1,11 +1,11 @@
-"""Least-squares horizons (seismo3d.seismic.horizon_lsq): pairs, correlation shifts, the robust solve, the cycle-skip
+"""Least-squares horizons (seismo3d.seismic.horizons.lsq): pairs, correlation shifts, the robust solve, the cycle-skip
 self-check; generated data with known truth."""
 
 import numpy as np
 import pytest
 
-from seismo3d.seismic.horizon_dp import reflector_period
-from seismo3d.seismic.horizon_lsq import PairShifts, cycle_skips, pair_shifts, solve_horizon, trace_pairs
+from seismo3d.seismic.horizons.dp import reflector_period
+from seismo3d.seismic.horizons.lsq import PairShifts, cycle_skips, pair_shifts, solve_horizon, trace_pairs
 from seismo3d.seismic.reflectors import nearest_pick
 
 from .conftest import next_cycle, random_layers

@@ -1,4 +1,4 @@
-"""Horizon tracking (seismo3d.seismic.horizon_tracking) against ground truth: the generator's horizons (2D sections,
+"""Horizon tracking (seismo3d.seismic.horizons.tracking) against ground truth: the generator's horizons (2D sections,
 faulted cubes with traced faults), people's picks on the 18 real Penobscot inlines, beside the plain autotracker; gap
 closing and the lateral continuity check; bad input."""
 
@@ -10,7 +10,7 @@ from seismo3d.errors import InputError
 from seismo3d.seismic import (
     FaultCrossings, TrackingOptions, autotrack, fill_horizon, horizon_errors, reflector_picks, track_horizon,
 )
-from seismo3d.seismic.horizon_tracking import close_gaps, despike
+from seismo3d.seismic.horizons.tracking import close_gaps, despike
 from seismo3d.seismic.reflectors import ReflectorSlice, nearest_pick
 
 
@@ -192,8 +192,8 @@ FOLDS = {"1075-1083": slice(0, 9), "1084-1092": slice(9, 18)}
 # measured (at the plain autotracker; below the 99 %): horizon 1 on 1084-1092 cuts the bottom of the pockmark's sag on
 # some inlines (the autotracker: 98.9 %). Horizon 6 on 1075-1083 (a fault whose throw at the horizon is about half a
 # reflector period, so the correlations across it are ambiguous; 91.6 % before) reaches 99.5 % since the cycle cut moves
-# the region the solve kept a cycle off (seismo3d.seismic.cycle_cut) and the gap closing refills the inline whose
-# picks the lateral check had emptied.
+# the region the solve kept a cycle off (seismo3d.seismic.horizons.cycle_cut) and the gap closing refills the inline
+# whose picks the lateral check had emptied.
 MISSED = {("1084-1092", 1): "pockmark sag bottom: 98.93-98.98 % within 5 as the solver rounds (autotracker 98.93 %)"}
 
 

@@ -12,7 +12,7 @@ from numpy.testing import assert_array_equal
 
 from seismo3d.errors import InputError, SegyFormatError, SegyGeometryError
 from seismo3d.seismic.io import read_segy
-from seismo3d.seismic.lazy_cube import SegyGrid, inline_block_size, open_lazy, read_segy_block
+from seismo3d.seismic.io.lazy import SegyGrid, inline_block_size, open_lazy, read_segy_block
 
 SHAPE = (13, 11, 40)  # inlines, crosslines, samples
 

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..._validation import as_seismic
 from ...errors import InputError
+from ..io.segy import SeismicCube
 
 __all__ = ["MIN_SIZE", "VolumeInput", "as_spacing", "as_volume", "volume_spacing"]
 
@@ -42,8 +43,6 @@ def volume_spacing(cube):
     InputError
         If ``cube`` is not a SeismicCube.
     """
-    from ..io import SeismicCube
-
     if not isinstance(cube, SeismicCube):
         raise InputError(f"cube must be a SeismicCube from open_segy(); got {type(cube).__name__}")
     cube.require_geometry("volume_spacing()")
@@ -115,8 +114,6 @@ def as_volume(volume, name: str, spacing) -> VolumeInput:
     InputError
         A closed cube, a volume that is not 3D, too small, NaN / inf, or a bad spacing.
     """
-    from ..io import SeismicCube
-
     note = "given"
     if isinstance(volume, SeismicCube):
         if not volume.is_open:

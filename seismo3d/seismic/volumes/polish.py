@@ -11,6 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy import ndimage as ndi
+from scipy.optimize import minimize
+from scipy.spatial.transform import Rotation
 
 from .frames import WorkingFrames
 from .options import VolumeOptions
@@ -43,9 +45,6 @@ def polish(overlap: "OverlapCorrelation", t_index, frames: WorkingFrames, model:
     transform, while slice tracks (stage 3) keep a bias along the reflectors where the aperture problem leaves them
     free.
     """
-    from scipy.optimize import minimize
-    from scipy.spatial.transform import Rotation
-
     t0_work = frames.to_work(t_index)
     c_m = (np.array(overlap.moving_shape) - 1.0) / 2.0 * frames.w_moving
     c_f = t0_work[:3, :3] @ c_m + t0_work[:3, 3]

@@ -9,8 +9,11 @@ from __future__ import annotations
 
 import numpy as np
 from scipy import ndimage as ndi
+from scipy.signal import hilbert
+from scipy.spatial import cKDTree
 
 from ...errors import InputError, RegistrationError
+from ...registration import ransac
 from .frames import WorkingFrames
 from .options import VolumeOptions
 
@@ -124,8 +127,6 @@ def fit_rows(t_index, src, dst, rows) -> np.ndarray:
 def consistent_tracks(src, dst, seed: int, min_tracks: int, threshold: float = 1.0):
     """The tracks ((K, 3) moving, (K, 3) fixed) consistent with one affine transform (the engine's RANSAC within
     ``threshold``), or None when fewer than ``min_tracks`` (or tracks that do not spread over all three axes)."""
-    from ...registration import ransac
-
     if len(src) < min_tracks or not all(np.ptp(src[:, a]) > 2.0 for a in range(3)):
         return None
     try:
@@ -139,8 +140,6 @@ def consistent_tracks(src, dst, seed: int, min_tracks: int, threshold: float = 1
 def envelope(v) -> np.ndarray:
     """Instantaneous amplitude (Hilbert transform) along the traces of a cube, normalised (float32): it varies slowly
     with time, so slices of it barely change under a small vertical misfit."""
-    from scipy.signal import hilbert
-
     e = np.abs(hilbert(v, axis=2)).astype(np.float32)
     return ((e - e.mean()) / max(float(e.std()), 1e-12)).astype(np.float32)
 
@@ -194,8 +193,6 @@ def refine_with_tracks(tracker: SliceTracker, envelope_tracker: SliceTracker, sc
 def reflector_fit(t_index, frames: WorkingFrames, pm, pf, max_distance: float = 1.0) -> tuple[float, float]:
     """Fitness and inlier RMSE of the moving reflector points ``pm`` against the fixed ones ``pf`` ((N, 3) index
     coordinates) at a transform, as the ICP reports them (working units, within ``max_distance``)."""
-    from scipy.spatial import cKDTree
-
     t_work = frames.to_work(t_index)
     moved = (pm * frames.w_moving) @ t_work[:3, :3].T + t_work[:3, 3]
     dist, _ = cKDTree(pf * frames.w_fixed).query(moved, distance_upper_bound=max_distance, workers=-1)

@@ -17,6 +17,7 @@ from ..._progress import progress_steps
 from ..._validation import check_choice
 from ...errors import DegenerateGeometryWarning, InputError, RegistrationError
 from ...geometry.transforms import decompose_axis_scaled
+from ...registration import ICPOptions, fused_icp
 from ...registration.result import RegistrationResult
 from ..reflectors import normalise_amplitudes, reflector_points
 from .frames import WorkingFrames, homogeneous_diag
@@ -265,8 +266,6 @@ def _refined_feature_candidate(vols: _Volumes, starts: list[FeatureStart], point
                                fit_model: str, thin: bool, opt: VolumeOptions, progress: bool) -> _Candidate | None:
     """The fused ICP (eq. 16: RANSAC inlier matches + reflector points) from each of the best feature starts, then
     the refinement with slice tracks; the candidate that correlates best over the overlap, or None."""
-    from ...registration import ICPOptions, fused_icp
-
     if not starts:
         return None
     pf, nf, pm = points

@@ -11,10 +11,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import ndimage as ndi
+from scipy import fft, ndimage as ndi
 
 from ..._progress import progress_steps
 from ...errors import InputError, RegistrationError
+from ...registration import ransac
 from .frames import WorkingFrames, project_to_model
 from .options import VolumeOptions
 from .slices import FeatureCache, section_matches, time_slice_matches
@@ -81,8 +82,6 @@ def feature_starts(fn, mn, frames: WorkingFrames, model: str, profiles, thin: bo
         Starts with plausible scales (within ``scale_range`` widened by a quarter), best first; empty when no slice
         features match.
     """
-    from ...registration import ransac
-
     method, seed = opt.feature_method, opt.seed
     scale_range = opt.scale_range
     lo, hi = scale_range
@@ -165,8 +164,6 @@ class MaskedNCC:
         """Correlation of ``img`` (n0', n1', n2') over ``mask`` (same shape, 0 / 1) with the fixed volume at every
         integer shift: (ncc, origin), ``ncc[k]`` correlating ``fixed[x + k - origin]`` with ``img[x]``; -inf where
         fewer than ``min_overlap`` samples overlap or a side is constant."""
-        from scipy import fft
-
         origin = np.array(img.shape) - 1
         shape = tuple(fft.next_fast_len(int(a + b - 1), real=True) for a, b in zip(self.f.shape, img.shape))
         if shape not in self.cache:

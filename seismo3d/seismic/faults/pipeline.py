@@ -5,7 +5,7 @@ command uses and returns a :class:`FaultInterpretation`; :func:`clean_traces` fi
 traces, gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and writing results is the
 ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
 
-Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.fault_likelihood`.
+Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood`.
 """
 
 from __future__ import annotations
@@ -16,16 +16,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._progress import progress_steps
-from .._validation import check_choice, check_positive
-from ..errors import InputError, Seismo3dWarning, UnsupportedDataError
+from ..._progress import progress_steps
+from ..._validation import check_choice, check_positive
+from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .dead_samples import CleanTraces, clean_traces, near_dead_samples
-from .fault_evidence import EvidenceOptions, supported_faults
-from .fault_likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood
-from .fault_skins import SkinOptions, fault_skins
-from .fault_surfaces import thin_faults
-from .fault_throw import fault_throws
-from .fault_voting import VotingOptions, vote_faults
+from .evidence import EvidenceOptions, supported_faults
+from .likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood
+from .skins import SkinOptions, fault_skins
+from .surfaces import thin_faults
+from .throw import fault_throws
+from .voting import VotingOptions, vote_faults
 
 __all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "clean_traces", "trace_faults"]
 
@@ -44,7 +44,7 @@ class FaultTracingOptions:
         default 0.5), at least ``min_vote`` times the same factor; the lower threshold is a third of the upper one.
     min_vote : float
         Floor of the upper threshold at the default sensitivity, on the absolute scale of
-        :class:`~seismo3d.seismic.fault_voting.FaultVotes` (about the mean likelihood of the surfaces through a
+        :class:`~seismo3d.seismic.faults.voting.FaultVotes` (about the mean likelihood of the surfaces through a
         sample): data whose votes are all weak yield no faults rather than the strongest of its noise.
     max_fault_fraction : float
         The lower threshold leaves at most this fraction of the samples on thinned faults (scaled like the
@@ -57,7 +57,7 @@ class FaultTracingOptions:
     skins : SkinOptions
         The linking into fault skins.
     evidence : EvidenceOptions
-        The displacement a fault must show to be kept (:func:`~seismo3d.seismic.fault_evidence.supported_faults`).
+        The displacement a fault must show to be kept (:func:`~seismo3d.seismic.faults.evidence.supported_faults`).
     min_traces : (int, int)
         Fewest traces along the longer and the shorter lateral axis (2D: along the section) for the scan and the
         voting boxes to see a fault's continuity; smaller data is refused.
@@ -203,15 +203,15 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
 
     The steps, with their defaults chosen from the data (no per-file tuning):
 
-    1. :func:`~seismo3d.seismic.fault_likelihood`: scan of fault strikes and dips of the semblance of balanced
+    1. :func:`~seismo3d.seismic.faults.fault_likelihood`: scan of fault strikes and dips of the semblance of balanced
        amplitudes (Hale 2013);
     2. :func:`~seismo3d.seismic.thin_faults`: its ridges (non-maximum suppression across the fault), the seeds;
     3. :func:`~seismo3d.seismic.vote_faults`: optimal surface voting (Wu & Fomel 2018), which makes faults
        continuous across gaps of the likelihood and leaves isolated noise weak;
     4. the votes thinned, and thresholded from the data (Otsu, see :class:`FaultTracingOptions`);
-    5. :func:`~seismo3d.seismic.fault_skins`: the thinned votes linked into fault surfaces (curves in 2D);
+    5. :func:`~seismo3d.seismic.faults.fault_skins`: the thinned votes linked into fault surfaces (curves in 2D);
     6. :func:`~seismo3d.seismic.fault_throws`: vertical throw by registering the reflectors on both sides;
-    7. :func:`~seismo3d.seismic.fault_evidence.supported_faults`: only the faults across which the reflectors are
+    7. :func:`~seismo3d.seismic.faults.evidence.supported_faults`: only the faults across which the reflectors are
        displaced are kept (a throw of at least a sample that aligns the sides better than no shift).
 
     NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Dead samples (runs of 5 or
@@ -239,8 +239,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         Options of every step.
     likelihood : FaultLikelihood, optional
         The result of step 1 computed elsewhere with ``options.scan`` (e.g. block by block by
-        :func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood`), arrays of the data's shape; the scan
-        is then skipped.
+        :func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood`), arrays of the data's shape; the
+        scan is then skipped.
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
         otherwise; the likelihood, the voting and the throw report their own progress too).

@@ -1,6 +1,6 @@
 """Dynamic programming over candidate picks: the picks of each line of a horizon chosen together.
 
-Given a guide (the least-squares horizon of :mod:`~seismo3d.seismic.horizon_lsq`), every trace of a line offers its
+Given a guide (the least-squares horizon of :mod:`~seismo3d.seismic.horizons.lsq`), every trace of a line offers its
 extrema of the horizon's polarity within ``reach`` samples of the guide as candidates; the Viterbi algorithm chooses
 one per trace minimising, along the line, ``w_guide |pick - guide|`` (per trace) + ``w_step (step - slope)^2`` (the
 step between neighbouring picks against the structure-tensor reflector slope there) + ``w_wave (1 - ncc)`` (their
@@ -25,7 +25,8 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .reflectors import nearest_pick
+from ..attributes import section_slopes, structure_tensor_orientation
+from ..reflectors import nearest_pick
 
 __all__ = ["sample_at", "window_ncc", "dp_picks", "line_slopes", "reflector_period", "settle_lone_departures"]
 
@@ -213,7 +214,7 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
 
     Notes
     -----
-    Raises nothing of its own: its callers (:func:`~seismo3d.seismic.horizon_lsq.lsq_horizon`) check the inputs.
+    Raises nothing of its own: its callers (:func:`~seismo3d.seismic.horizons.lsq.lsq_horizon`) check the inputs.
     """
     g = guide.reshape(lateral_shape)
     f = fixed.reshape(lateral_shape)
@@ -331,8 +332,6 @@ def line_slopes(data: np.ndarray, sigma_tensor, rows: tuple[int, int] | None = N
     grid: the structure tensor of each line along ``axis`` (-1: the last lateral axis, the crosslines of each inline;
     0: the inline axis of a cube; :func:`~seismo3d.seismic.attributes.section_slopes`), computed in the band of
     samples ``rows`` (default all; 0 outside it)."""
-    from .attributes import section_slopes, structure_tensor_orientation
-
     lo, hi = (0, data.shape[-1]) if rows is None else rows
     out = np.zeros(data.shape, np.float32)
     if data.ndim == 2:

@@ -11,9 +11,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.interpolate import griddata
+from scipy.ndimage import distance_transform_edt
 
-from .._validation import check_positive
-from ..errors import InputError
+from ..._atomic import atomic_path
+from ..._validation import check_positive
+from ...errors import InputError
 
 __all__ = ["Horizon", "as_seeds", "check_live_seed", "fill_horizon", "write_horizon_text"]
 
@@ -125,9 +128,6 @@ def fill_horizon(horizon: Horizon, *, max_gap: float | None = None) -> Horizon:
     InputError
         Fewer than 2 (1D) or 3 (2D) picks to interpolate from, or ``max_gap`` <= 0.
     """
-    from scipy.interpolate import griddata
-    from scipy.ndimage import distance_transform_edt
-
     t = horizon.times.astype(np.float64)
     have = np.isfinite(t)
     need = 2 if t.ndim == 1 else 3
@@ -178,8 +178,6 @@ def write_horizon_text(path, horizon: Horizon, *, inlines=None, xlines=None, sam
     InputError
         Axis lengths do not match the horizon's grid.
     """
-    from .._atomic import atomic_path
-
     t = np.asarray(horizon.times, np.float64)
     grid = np.indices(t.shape).reshape(t.ndim, -1).T
     have = np.isfinite(t).ravel()

@@ -7,7 +7,7 @@ a global search of the normalised cross-correlation over integer shifts (immune 
 reflectors), then a registration of the reflector peaks of the two images with the ICP engine
 (:func:`seismo3d.registration.icp`, method.md section 1), which models throw varying linearly along strike.
 
-Conventions (index space, as in :mod:`seismo3d.seismic.fault_likelihood` and :mod:`seismo3d.data.synthetic`): axis 0
+Conventions (index space, as in :mod:`seismo3d.seismic.faults.likelihood` and :mod:`seismo3d.data.synthetic`): axis 0
 inline, axis 1 crossline, the last axis the sample (downward); one trace spacing and one sample both count as 1. Throw
 is the vertical component of the fault slip, in samples: **positive when the hanging wall moved down** (normal fault),
 negative when it moved up (reverse fault). The hanging wall is the block above the fault plane, on the side the fault
@@ -23,13 +23,16 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .._options import resolve_options
-from .._progress import progress_steps
-from .._validation import as_normals, as_points, check_positive
-from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
-from .attributes import ReflectorOrientation
-from .cube_windows import CubeWindow, cube_windows
-from .traces import parabolic_offset, subsample_peak
+from ..._options import resolve_options
+from ..._progress import progress_steps
+from ..._validation import as_normals, as_points, check_positive
+from ...errors import DegenerateGeometryWarning, InputError, RegistrationError
+from ...geometry.normals import estimate_normals
+from ...geometry.transforms import make_transform
+from ...registration import ICPOptions, icp
+from ..attributes import ReflectorOrientation
+from ..traces import parabolic_offset, subsample_peak
+from .windows import CubeWindow, cube_windows
 
 __all__ = ["FaultThrow", "ThrowOptions", "fault_throw", "fault_throws", "hanging_wall_normals"]
 
@@ -172,8 +175,6 @@ def _fault_arrays(fault, ndim: int) -> tuple[np.ndarray, np.ndarray, int]:
     if normals is None:
         if len(pts) < ndim + 1:
             raise InputError(f"fault has {len(pts)} points; at least {ndim + 1} are needed to estimate its normals")
-        from ..geometry.normals import estimate_normals
-
         normals = estimate_normals(pts, k=min(16, len(pts)), orient="none")
     else:
         normals = as_normals(normals, "fault.normals", pts.shape)
@@ -419,10 +420,6 @@ def _register(patch, shift, opt: ThrowOptions):
 
     The throw model is ``a + b u`` (pure dip-slip: the slip is along t in the fault plane, linear along strike).
     """
-    from ..geometry.normals import estimate_normals
-    from ..geometry.transforms import make_transform
-    from ..registration import ICPOptions, icp
-
     src = _peaks(patch.img[0], patch.valid[0], patch.u0, patch.t0)
     dst = _peaks(patch.img[1], patch.valid[1], patch.u0, patch.t0)
     if len(src) < opt.min_peaks or len(dst) < opt.min_peaks or np.ptp(src[:, 0]) < 4:
@@ -510,7 +507,7 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, or 3D dask.array.Array
         Seismic amplitudes, the last axis the sample. Must be finite. A 3D dask array (e.g.
-        ``seismo3d.seismic.lazy_cube.open_lazy(path).data``, any numeric dtype and chunks) is never held whole: each
+        ``seismo3d.seismic.io.lazy.open_lazy(path).data``, any numeric dtype and chunks) is never held whole: each
         patch reads only its window of traces (see :func:`fault_throws`), with the same result as in memory.
     fault : Fault or (n_points, ndim) array_like
         A fault from :func:`seismo3d.seismic.link_faults` (any object with ``points`` (n, ndim) index
@@ -572,7 +569,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     trace for the linear interpolation and one against rounding), assembled from tiles of 64 x 64 traces (every
     sample) whose reflector slopes are computed with the halo of the structure tensor's filters
     (:func:`~seismo3d.seismic.attributes.structure_tensor_halo`: 9 traces), clipped at the cube's edges; the tiles
-    last used (up to 256 MiB) are kept for the next patches (:class:`~seismo3d.seismic.cube_windows.LazyWindows`).
+    last used (up to 256 MiB) are kept for the next patches (:class:`~seismo3d.seismic.faults.windows.LazyWindows`).
     Those slopes equal the whole cube's and the bounds tests use the cube's shape, so the throws are the in-memory
     ones (bit for bit on the generated cubes of the tests). Memory: the tile cache, one window (about 150 x 150
     traces for a fault dipping 60-70 degrees over 256 samples) and one tile's orientation workspace, plus the
@@ -582,7 +579,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, or 3D dask.array.Array
         Seismic amplitudes, the last axis the sample. Must be finite (for a dask array: the traces read, checked as
-        they are read). Or a window source of :mod:`seismo3d.seismic.cube_windows` (e.g.
+        they are read). Or a window source of :mod:`seismo3d.seismic.faults.windows` (e.g.
         ``LazyWindows(dask_array, tile=32, cache_mb=64)`` for another memory / speed trade-off).
     faults : sequence of Fault or of (n_points, ndim) array_like
         Faults from :func:`seismo3d.seismic.link_faults`.
@@ -619,7 +616,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
 
 
 def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
-    """Throw along one fault, reading ``source`` (:func:`~seismo3d.seismic.cube_windows.cube_windows`) one patch
+    """Throw along one fault, reading ``source`` (:func:`~seismo3d.seismic.faults.windows.cube_windows`) one patch
     window at a time."""
     shape = source.shape
     two_d = len(shape) == 2

@@ -5,7 +5,7 @@ clipping, dim and chaotic intervals, coherent noise, acquisition footprint) most
 continue unbroken. What makes a discontinuity a fault is a displacement (Hale 2014): the reflectors on the two sides
 line up only after a vertical shift, the throw, or they do not line up at all (a large throw beyond the search, a
 juxtaposition of unlike packages). :func:`fault_evidence` reads that evidence from the throw measurement
-(:func:`~seismo3d.seismic.fault_throw.fault_throw`: the shift that best aligns the images of the two sides, and their
+(:func:`~seismo3d.seismic.faults.throw.fault_throw`: the shift that best aligns the images of the two sides, and their
 correlation with and without that shift), and :func:`supported_faults` drops the candidates across which the
 reflectors continue unbroken: sides that match with no shift (normalised correlation of at least 0.5, as much
 coherent as incoherent energy) and that no shift of a sample or more matches better. The measures are absolute and
@@ -20,8 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import check_positive
-from ..errors import InputError
+from ..._validation import check_positive
+from ...errors import InputError
 
 __all__ = ["EvidenceOptions", "FaultEvidence", "fault_evidence", "supported_faults"]
 
@@ -114,7 +114,7 @@ def fault_evidence(throw) -> FaultEvidence:
     Parameters
     ----------
     throw : FaultThrow
-        The result of :func:`~seismo3d.seismic.fault_throw.fault_throw` for the fault: ``throw``,
+        The result of :func:`~seismo3d.seismic.faults.throw.fault_throw` for the fault: ``throw``,
         ``correlation`` and ``correlation_unshifted`` per point.
 
     Returns
@@ -161,9 +161,9 @@ def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | N
     Parameters
     ----------
     faults : list of Fault
-        Fault skins (:func:`~seismo3d.seismic.fault_skins.fault_skins`), ids 1, 2, ... in decreasing size.
+        Fault skins (:func:`~seismo3d.seismic.faults.skins.fault_skins`), ids 1, 2, ... in decreasing size.
     throws : list of FaultThrow
-        Their throws, in the same order (:func:`~seismo3d.seismic.fault_throw.fault_throws`).
+        Their throws, in the same order (:func:`~seismo3d.seismic.faults.throw.fault_throws`).
     options : EvidenceOptions, optional
         The evidence asked for.
     sensitivity : float, optional

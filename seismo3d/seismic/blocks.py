@@ -9,9 +9,12 @@ completed with the blocks of another. Blocks are dask delayed tasks run on the l
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import json
 import os
 import pathlib
+import sys
 import time
 import uuid
 
@@ -36,10 +39,6 @@ _LARGE = 16 << 20
 
 
 def _libc():
-    import ctypes
-    import ctypes.util
-    import sys
-
     if not sys.platform.startswith("linux"):
         return None
     try:

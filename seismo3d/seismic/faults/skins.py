@@ -13,13 +13,17 @@ from dataclasses import dataclass
 
 import numba as nb
 import numpy as np
+from scipy import sparse
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
 
-from .._validation import check_positive
-from ..errors import InputError
-from . import _kernels
-from .fault_likelihood import fault_normals
-from .fault_surfaces import Fault, check_fault_arrays
-from .fault_voting import fault_frames
+from ..._validation import check_positive
+from ...errors import InputError
+from .. import _kernels
+from ._kernels import grow_by_mean_normal
+from .likelihood import fault_normals
+from .surfaces import Fault, check_fault_arrays
+from .voting import fault_frames
 
 __all__ = ["SkinOptions", "fault_skins", "skins_from_cells"]
 
@@ -220,7 +224,7 @@ def _grow(best, normals, order, cos_mean):
                 fill[c] += 1
                 adj[fill[q]] = c
                 fill[q] += 1
-    return _kernels.grow_by_mean_normal(deg, adj, normals, order, cos_mean)
+    return grow_by_mean_normal(deg, adj, normals, order, cos_mean)
 
 
 def _edge_cells(best: np.ndarray, label: np.ndarray, two_d: bool) -> np.ndarray:
@@ -388,10 +392,6 @@ def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, min
     planes agree within ``merge_angle`` and the gap between the cells lies within ``merge_offset`` of both planes,
     i.e. runs along the fault, not across it (two parallel faults side by side stay apart). An edge cell of one skin
     is compared with every cell of the other, so a piece ending on the side of another (a fork) is found too."""
-    from scipy import sparse
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-
     n_labels = int(label.max()) + 1
     sizes = np.bincount(label, minlength=n_labels)
     big = sizes[label] >= minimum
@@ -476,7 +476,7 @@ def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
     thin : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
         Thinned fault image (> 0 on fault samples), e.g. thinned votes of :func:`~seismo3d.seismic.vote_faults`.
     strike_deg, dip_deg : array_like of float, same shape
-        Fault strike and dip of each sample, degrees (conventions of :mod:`~seismo3d.seismic.fault_likelihood`).
+        Fault strike and dip of each sample, degrees (conventions of :mod:`~seismo3d.seismic.faults.likelihood`).
     lower, upper : float
         Hysteresis thresholds on ``thin``, ``0 < lower <= upper``.
     options : SkinOptions, optional

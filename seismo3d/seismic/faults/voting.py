@@ -15,12 +15,12 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from .._options import resolve_options
-from .._progress import progress_steps
-from .._validation import check_positive
-from ..errors import InputError
-from . import _kernels
-from .fault_surfaces import check_fault_arrays
+from ..._options import resolve_options
+from ..._progress import progress_steps
+from ..._validation import check_positive
+from ...errors import InputError
+from .. import _kernels
+from .surfaces import check_fault_arrays
 
 __all__ = ["VotingOptions", "FaultVotes", "vote_faults", "fault_frames", "greedy_seeds", "surface_votes"]
 
@@ -124,7 +124,7 @@ class FaultVotes:
         of the fault surfaces through a sample, scaled down where fewer surfaces than on a long fault pass.
     strike_deg, dip_deg : (*shape) float32 ndarray
         Orientation of the best voting surface through each sample (degrees, conventions of
-        :mod:`~seismo3d.seismic.fault_likelihood`); 0 where no surface passed.
+        :mod:`~seismo3d.seismic.faults.likelihood`); 0 where no surface passed.
     n_seeds : int
         Number of seeds that voted.
     """
@@ -504,7 +504,7 @@ def fault_frames(strike_deg, dip_deg) -> np.ndarray:
     Parameters
     ----------
     strike_deg, dip_deg : (n,) array_like of float
-        Fault strikes and dips, degrees (conventions of :mod:`~seismo3d.seismic.fault_likelihood`; a 2D section's
+        Fault strikes and dips, degrees (conventions of :mod:`~seismo3d.seismic.faults.likelihood`; a 2D section's
         strike is 90 or 270).
 
     Returns
@@ -564,7 +564,7 @@ def vote_faults(likelihood, strike_deg, dip_deg, thin, *, options: VotingOptions
     Parameters
     ----------
     likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Fault likelihood in [0, 1] (:func:`~seismo3d.seismic.fault_likelihood`).
+        Fault likelihood in [0, 1] (:func:`~seismo3d.seismic.faults.fault_likelihood`).
     strike_deg, dip_deg : array_like of float, same shape
         Fault strike and dip of each sample, degrees.
     thin : array_like of float, same shape

@@ -18,9 +18,10 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.ndimage import binary_opening, maximum_filter1d
 
-from .._validation import check_seismic_layout
-from ..errors import InputError, Seismo3dWarning
+from ..._validation import check_seismic_layout
+from ...errors import InputError, Seismo3dWarning
 
 __all__ = ["CleanTraces", "clean_traces", "fill_values", "dead_samples", "near_dead_samples", "DEAD_REACH"]
 
@@ -67,8 +68,6 @@ def _flat_samples(arr: np.ndarray, lo, hi) -> tuple[np.ndarray, np.ndarray]:
 
 def _runs(equal: np.ndarray, length: int) -> np.ndarray:
     """The differences inside runs of at least ``length`` equal values along the last axis."""
-    from scipy.ndimage import binary_opening
-
     n_s = equal.shape[-1] + 1
     structure = np.ones((1,) * (equal.ndim - 1) + (min(length - 1, n_s - 1),), dtype=bool)
     return binary_opening(equal, structure=structure)
@@ -146,8 +145,6 @@ def near_dead_samples(dead: np.ndarray) -> np.ndarray:
     bool ndarray, same shape
         True within ``DEAD_REACH`` of a dead sample: fault likelihood there is an artefact of the dead zone's edge.
     """
-    from scipy.ndimage import maximum_filter1d
-
     near = np.ascontiguousarray(dead, dtype=bool).view(np.uint8)
     for axis in range(near.ndim):
         reach = DEAD_REACH[1] if axis == near.ndim - 1 else DEAD_REACH[0]

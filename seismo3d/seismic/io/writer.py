@@ -12,11 +12,11 @@ from pathlib import Path
 import numpy as np
 import segyio
 
-from .._atomic import atomic_path
-from .._progress import progress_steps
-from ..errors import InputError, TraceListWarning
-from .io import open_segy
-from .lazy_cube import SegyGrid
+from ..._atomic import atomic_path
+from ..._progress import progress_steps
+from ...errors import InputError, TraceListWarning
+from .blocks import SegyGrid
+from .segy import open_segy
 
 __all__ = ["write_like_blocks"]
 

@@ -3,7 +3,7 @@ traces' waveforms correlate better with the traces they are paired with.
 
 A horizon tracked from one seed can follow the wrong cycle over a region it reached through one ambiguous step, for
 example across a fault whose throw is near half a reflector period: the region is internally continuous, and the
-least-squares solve (:mod:`~seismo3d.seismic.horizon_lsq`), whose shifts are measured around its own estimate, keeps
+least-squares solve (:mod:`~seismo3d.seismic.horizons.lsq`), whose shifts are measured around its own estimate, keeps
 it. What betrays it is its border with the part of the horizon that reached the same traces the right way: there the
 horizon steps by a period between traces whose waveforms say there is no step.
 
@@ -16,13 +16,13 @@ traces' answers only, so the best set of traces to move is a minimum s-t cut of 
 (Kolmogorov & Zabih 2004; pairwise terms that are not submodular are truncated), solved with scipy's maximum flow.
 
 Four rules keep the repair from changing which reflector the horizon follows: the seeds never move; only traces the
-cycle-skip self-check flags may move (:func:`~seismo3d.seismic.horizon_lsq.cycle_skips`: about a period from the
+cycle-skip self-check flags may move (:func:`~seismo3d.seismic.horizons.lsq.cycle_skips`: about a period from the
 correlation-predicted horizon); each region the cut moves (its connected moved traces, grouped across single traces
 that stay) must reach further than ``min_extent`` traces along a lateral axis, the longest pair distance of the
 least-squares solve: pairs span a narrower region, so the solve has weighed it already (a small sag or a patch of
 chaotic data), while a wider region is held only by the pairs across its border; and it must remove at least
 ``min_gain`` of its traces' decorrelation with their neighbours (``1 - confidence``, the pick confidence of
-:func:`~seismo3d.seismic.horizon_lsq.neighbour_confidence`): a region that is continuous either way, or that lies in
+:func:`~seismo3d.seismic.horizons.lsq.neighbour_confidence`): a region that is continuous either way, or that lies in
 chaotic data, stays. A pass is kept only when the total cost falls.
 
 Conventions: flat trace indices over the lateral grid, times in fractional samples, NaN where a trace is empty.
@@ -40,6 +40,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import ndimage, sparse
+from scipy.sparse.csgraph import breadth_first_order, maximum_flow
+
+from .correlation import neighbour_confidence, window_correlation
 
 __all__ = ["CycleCut", "neighbour_cycle", "binary_min_cut", "cycle_cut"]
 
@@ -119,9 +123,6 @@ def binary_min_cut(n: int, a: np.ndarray, b: np.ndarray, e00: np.ndarray, e01: n
     (n,) bool ndarray
         True where the label is 1.
     """
-    from scipy import sparse
-    from scipy.sparse.csgraph import breadth_first_order, maximum_flow
-
     lam = np.maximum(e01 + e10 - e00 - e11, 0.0)
     coef_a = e10 - e00  # E = e00 + coef_a x_a + coef_b x_b + lam (1 - x_a) x_b
     coef_b = e11 - e10
@@ -159,8 +160,6 @@ def binary_min_cut(n: int, a: np.ndarray, b: np.ndarray, e00: np.ndarray, e01: n
 
 
 def _pair_ncc(traces, a, ta, b, tb, half):
-    from .horizon_lsq import window_correlation
-
     return np.nan_to_num(window_correlation(traces, a, ta, b, tb, half=half), nan=0.0)
 
 
@@ -168,8 +167,6 @@ def _clear_regions(flip, lateral_shape, before, after, *, min_extent, min_gain):
     """The moved traces whose region (connected, grouped across single traces that stay: a noisy pick does not split
     a region) reaches further than ``min_extent`` traces along a lateral axis and whose mean confidence rises from
     ``before`` to ``after`` by at least ``min_gain`` of its decorrelation (flat (n,) bool)."""
-    from scipy import ndimage
-
     grid = flip.reshape(lateral_shape)
     joined, _ = ndimage.label(ndimage.binary_dilation(grid, np.ones((3,) * grid.ndim, bool)))
     region = np.where(grid, joined, 0)
@@ -202,7 +199,7 @@ def cycle_cut(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, times:
         The horizon, samples (NaN: empty); picks of ``picks``.
     lateral_shape : (n_traces,) or (n_inlines, n_xlines)
     a, b, distance : (n_pairs,) intp ndarray
-        The trace pairs (:func:`~seismo3d.seismic.horizon_lsq.trace_pairs`).
+        The trace pairs (:func:`~seismo3d.seismic.horizons.lsq.trace_pairs`).
     seeds : (n_seeds,) intp ndarray
         Traces that never move.
     movable : (n,) bool ndarray
@@ -227,8 +224,6 @@ def cycle_cut(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, times:
     -------
     CycleCut
     """
-    from .horizon_lsq import neighbour_confidence
-
     t = np.asarray(times, np.float64).copy()
     n = t.size
     # only pairs of two picked traces count (a move keeps a trace picked); each pair's current cost is kept, and a

@@ -4,24 +4,24 @@ fault likelihood, run block by block on dask from a chunked likelihood, with the
 Every step reads what it needs around its block (the halo of its operator) from Zarr work arrays and writes its
 block's core, so the result does not depend on where the blocks are cut:
 
-1. **Fill values** of the dead-sample rules (:mod:`~seismo3d.seismic.dead_samples`): gathered over every block,
+1. **Fill values** of the dead-sample rules (:mod:`~seismo3d.seismic.faults.dead_samples`): gathered over every block,
    from the cube's smallest and largest amplitudes.
 2. **Ridges**: per block, dead samples and their reach, the likelihood zeroed there (the ``live`` likelihood) and
    its ridges (:func:`~seismo3d.seismic.thin_faults`, halo ``RIDGE_HALO``); the ridge samples above the voting's seed
    threshold are kept as a sparse list of seed candidates.
 3. **Seeds**: the candidates of all blocks, taken strongest first by
-   :func:`~seismo3d.seismic.fault_voting.greedy_seeds` (a sparse list: a few percent of the samples).
+   :func:`~seismo3d.seismic.faults.voting.greedy_seeds` (a sparse list: a few percent of the samples).
 4. **Votes**: per block, the seeds whose voting box reaches the block (``VotingOptions.reach``), on the live
-   likelihood read with twice that halo (:func:`~seismo3d.seismic.fault_voting.surface_votes`: each seed's votes
+   likelihood read with twice that halo (:func:`~seismo3d.seismic.faults.voting.surface_votes`: each seed's votes
    are summed by the same thread, in the same order, as in memory).
 5. **Thinning** of the votes (halo 2), with the count, smallest and largest positive thinned vote per block; then
    their histogram (Otsu's threshold on the same 256 bins as in memory) and, when they are dense, their exact
    quantile: the thresholds of :meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`.
 6. **Cells**: the thinned votes at or above the lower threshold, gathered as a sparse list, linked into fault skins
-   by :func:`~seismo3d.seismic.fault_skins.skins_from_cells` (no array of the cube's size).
+   by :func:`~seismo3d.seismic.faults.skins.skins_from_cells` (no array of the cube's size).
 7. **Throws** read the amplitudes around each fault patch (:func:`~seismo3d.seismic.fault_throws` on the lazy cube).
 
-Resume, progress and schedulers are those of :mod:`~seismo3d.seismic.chunked_likelihood`: a marker per finished
+Resume, progress and schedulers are those of :mod:`~seismo3d.seismic.faults.likelihood_blocks`: a marker per finished
 block in ``OUTPUT.work``, the output assembled in ``OUTPUT.partial`` and renamed when complete.
 """
 
@@ -36,20 +36,20 @@ from dataclasses import asdict, dataclass
 import numba
 import numpy as np
 
-from .._atomic import atomic_path
-from ..errors import InputError, UnsupportedDataError
-from .block_runs import MEMORY_HEADROOM, BlockRun, SchedulerClient, largest_block, write_marker
-from .chunked_likelihood import ChunkOptions, default_memory_limit, resident_memory, worker_baseline
+from ..._atomic import atomic_path
+from ...errors import InputError, UnsupportedDataError
+from ..attributes import structure_tensor_halo, structure_tensor_orientation
+from ..blocks import MEMORY_HEADROOM, BlockRun, SchedulerClient, largest_block, write_marker
+from ..io.zarr_store import consolidate
 from .dead_samples import DEAD_REACH, dead_samples, fill_values, near_dead_samples
-from .fault_skins import skins_from_cells
-from .fault_surfaces import thin_faults
-from .fault_evidence import supported_faults
-from .fault_throw import fault_throws
-from .attributes import structure_tensor_halo, structure_tensor_orientation
-from .cube_windows import StoredWindows
-from .fault_voting import fault_frames, greedy_seeds, surface_votes
-from .faults import FaultTracingOptions
-from .seismic_zarr import consolidate
+from .evidence import supported_faults
+from .likelihood_blocks import ChunkOptions, default_memory_limit, resident_memory, worker_baseline
+from .pipeline import FaultTracingOptions
+from .skins import skins_from_cells
+from .surfaces import thin_faults
+from .throw import fault_throws
+from .voting import fault_frames, greedy_seeds, surface_votes
+from .windows import StoredWindows
 
 __all__ = ["ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO"]
 
@@ -99,7 +99,7 @@ class ChunkedFaults:
     throws : list of FaultThrow
         One per fault.
     evidence : list of FaultEvidence
-        One per fault (:func:`~seismo3d.seismic.fault_evidence.supported_faults`: faults without a displacement
+        One per fault (:func:`~seismo3d.seismic.faults.evidence.supported_faults`: faults without a displacement
         are left out, as in memory).
     thresholds : (float, float)
         Lower and upper thresholds on the thinned votes.
@@ -203,7 +203,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     cube : (n_inlines, n_xlines, n_samples) dask.array.Array or array_like
         Amplitudes (e.g. ``open_lazy(path).data``), finite, samples along the last axis.
     likelihood : str or os.PathLike
-        Zarr group of :func:`~seismo3d.seismic.chunked_likelihood.chunked_fault_likelihood` of this cube (arrays
+        Zarr group of :func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood` of this cube (arrays
         ``likelihood``, ``strike_deg``, ``dip_deg``).
     output : str or os.PathLike
         Output Zarr group, created. When it is the finished output of the same run (cube shape, likelihood, options)
@@ -463,7 +463,7 @@ class _SurfaceRun(BlockRun):
             r = p.reach
             sel = np.nonzero((seeds[:, 0] >= i0 - r) & (seeds[:, 0] < i1 + r) &
                              (seeds[:, 1] >= j0 - r) & (seeds[:, 1] < j1 + r))[0]
-            # threads=False: the votes are summed per numba thread (fault_voting.surface_votes), so a block's
+            # threads=False: the votes are summed per numba thread (voting.surface_votes), so a block's
             # kernel keeps the process's threads, as the in-memory run
             tasks.append(self.task(_vote_block, b, seeds[sel], sel, frames[sel], str(self.work), str(self.partial),
                                    p, self.opt, str(self.marker("votes", b)), threads=False))

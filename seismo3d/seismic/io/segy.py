@@ -22,9 +22,9 @@ Layouts
 ``cube.description`` says in words what was read.
 
 Every file goes through the same steps (:func:`open_segy`): the binary header gives the byte order, the sample
-format and the trace layout (:func:`~seismo3d.seismic.segy_layout.read_segy_layout`; files segyio cannot read are
+format and the trace layout (:func:`~seismo3d.seismic.io.layout.read_segy_layout`; files segyio cannot read are
 refused there, one line each), segyio infers the grid, and the trace headers of a file without one say what it is
-(:func:`~seismo3d.seismic.segy_geometry.trace_geometry`); prestack gathers are refused.
+(:func:`~seismo3d.seismic.io.geometry.trace_geometry`); prestack gathers are refused.
 """
 
 from __future__ import annotations
@@ -37,11 +37,11 @@ from pathlib import Path
 import numpy as np
 import segyio
 
-from .._atomic import atomic_path
-from .._validation import check_choice
-from ..errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, TraceListWarning
-from .segy_geometry import TraceGeometry, span, trace_geometry
-from .segy_layout import SegyLayout, read_segy_layout, segyio_failure
+from ..._atomic import atomic_path
+from ..._validation import check_choice
+from ...errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, TraceListWarning
+from .geometry import TraceGeometry, span, trace_geometry
+from .layout import SegyLayout, read_segy_layout, segyio_failure
 
 __all__ = ["SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines", "scale_coordinates"]
 
@@ -205,7 +205,7 @@ class SeismicCube:
         The trace header bytes holding the inline and crossline numbers.
     layout : SegyLayout
         What the binary header says (byte order and how it was decided, sample format, extended textual headers;
-        see :func:`~seismo3d.seismic.segy_layout.read_segy_layout`).
+        see :func:`~seismo3d.seismic.io.layout.read_segy_layout`).
     description : str
         What the file is, in words: e.g. ``'a 3D cube of 23 inlines (111-133) x 18 crosslines (875-892)'``,
         ``'a 2D line along inlines 1000-1600 (crossline 1155)'``, or for a trace list what its trace headers show
@@ -519,9 +519,9 @@ def open_segy(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool
     :meth:`~SeismicCube.time_slice` and :attr:`~SeismicCube.traces`. The file is opened read-only.
 
     Steps: the binary header gives the byte order, sample format and trace layout
-    (:func:`~seismo3d.seismic.segy_layout.read_segy_layout`); segyio infers the inline / crossline grid from the
+    (:func:`~seismo3d.seismic.io.layout.read_segy_layout`); segyio infers the inline / crossline grid from the
     trace header bytes ``iline`` / ``xline``; a file without one is read as a trace list described by its trace
-    headers (:func:`~seismo3d.seismic.segy_geometry.trace_geometry`), with one :class:`TraceListWarning`.
+    headers (:func:`~seismo3d.seismic.io.geometry.trace_geometry`), with one :class:`TraceListWarning`.
 
     Parameters
     ----------
@@ -538,7 +538,7 @@ def open_segy(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool
         Unit of the sample axis; overrides the guess from the headers (see :class:`SeismicCube`).
     endian : {'big', 'little'}, optional
         Byte order of the file; by default detected from the binary header (see
-        :mod:`~seismo3d.seismic.segy_layout`).
+        :mod:`~seismo3d.seismic.io.layout`).
 
     Returns
     -------

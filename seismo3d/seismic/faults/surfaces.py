@@ -6,10 +6,10 @@ Surfaces in 3D cubes, curves in 2D sections, after Hale 2013:
    data (Otsu on the ridge values) leaves 1-sample-wide fault traces.
 2. :func:`link_faults`: thinned samples with compatible orientations are grown into separate faults; tiny ones are
    dropped. Each :class:`Fault` carries its points and their normals, the input for measuring throw across it
-   (:mod:`seismo3d.seismic.fault_throw`).
+   (:mod:`seismo3d.seismic.faults.throw`).
 3. :func:`fault_labels`: faults painted into a label array.
 
-Conventions (strike, dip, normals, index space) are those of :mod:`seismo3d.seismic.fault_likelihood`.
+Conventions (strike, dip, normals, index space) are those of :mod:`seismo3d.seismic.faults.likelihood`.
 """
 
 from __future__ import annotations
@@ -20,10 +20,11 @@ import numba as nb
 import numpy as np
 from scipy import sparse
 
-from .._validation import as_seismic, check_positive
-from ..errors import InputError
-from . import _kernels
-from .fault_likelihood import fault_normals, fault_strike_dip
+from ..._validation import as_seismic, check_positive
+from ...errors import InputError
+from .. import _kernels
+from ._kernels import grow_by_mean_normal
+from .likelihood import fault_normals, fault_strike_dip
 
 __all__ = ["Fault", "check_fault_arrays", "thin_faults", "link_faults", "fault_labels"]
 
@@ -395,9 +396,9 @@ def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fau
     graph = (graph + graph.T).tocsr()
     vals, svals, dvals = fl[mask], st[mask], dp[mask]
     order = np.argsort(-vals, kind="stable")
-    comp = _kernels.grow_by_mean_normal(graph.indptr.astype(np.int64), graph.indices.astype(np.int64),
-                                        n.astype(np.float64), order,
-                                        float(np.cos(np.radians(1.5 * max_angle))))
+    comp = grow_by_mean_normal(graph.indptr.astype(np.int64), graph.indices.astype(np.int64),
+                               n.astype(np.float64), order,
+                               float(np.cos(np.radians(1.5 * max_angle))))
     sizes = np.bincount(comp)
     keep = np.nonzero(sizes >= min_size)[0]
     keep = keep[np.argsort(-sizes[keep], kind="stable")]

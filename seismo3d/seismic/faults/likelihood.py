@@ -1,7 +1,7 @@
 """Fault likelihood: a scan over fault strikes and dips (after Hale 2013), in 3D cubes and 2D sections.
 
 The structure-oriented semblance is summed within each candidate fault plane; each sample keeps the largest likelihood
-``1 - s^8`` of the scanned planes through it, and that plane's strike and dip. :mod:`seismo3d.seismic.fault_surfaces`
+``1 - s^8`` of the scanned planes through it, and that plane's strike and dip. :mod:`seismo3d.seismic.faults.surfaces`
 thins and links the likelihood into faults.
 
 Conventions (index space: one trace spacing and one sample both count as 1, the sample axis points down; the same
@@ -29,11 +29,11 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from .._options import resolve_options
-from .._progress import progress_steps
-from .._validation import as_seismic, as_sigma_pair, check_int, check_positive
-from ..errors import InputError, Seismo3dWarning
-from . import _kernels
+from ..._options import resolve_options
+from ..._progress import progress_steps
+from ..._validation import as_seismic, as_sigma_pair, check_int, check_positive
+from ...errors import InputError, Seismo3dWarning
+from .. import _kernels
 
 __all__ = ["FaultLikelihood", "FaultScanOptions", "fault_likelihood", "fault_normals", "fault_strike_dip"]
 
@@ -529,7 +529,7 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     return FaultLikelihood(fl, strike, dip)
 
 
-# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.chunked_likelihood): a block's
+# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.faults.likelihood_blocks): a block's
 # result equals the whole cube's over the block when the block carries the halo each step needs.
 
 @dataclass(frozen=True)

@@ -10,10 +10,10 @@ from collections import deque
 
 import numpy as np
 
-from .._validation import as_seismic, check_choice, check_int
-from ..errors import InputError
-from .horizons import Horizon, as_seeds, check_live_seed
-from .reflectors import POLARITIES, nearest_pick, reflector_picks
+from ..._validation import as_seismic, check_choice, check_int
+from ...errors import InputError
+from ..reflectors import POLARITIES, nearest_pick, reflector_picks
+from .result import Horizon, as_seeds, check_live_seed
 
 __all__ = ["autotrack"]
 

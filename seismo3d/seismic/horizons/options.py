@@ -1,13 +1,13 @@
 """Options of horizon tracking (:func:`~seismo3d.seismic.track_horizon`): one frozen dataclass for both methods, the
-global least-squares tracker (:mod:`~seismo3d.seismic.horizon_lsq`, the default) and the slice-by-slice registration
-tracker (:mod:`~seismo3d.seismic.horizon_tracking`)."""
+global least-squares tracker (:mod:`~seismo3d.seismic.horizons.lsq`, the default) and the slice-by-slice registration
+tracker (:mod:`~seismo3d.seismic.horizons.tracking`)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .._validation import as_sigma_pair, check_choice, check_int, check_positive
-from ..errors import InputError
+from ..._validation import as_sigma_pair, check_choice, check_int, check_positive
+from ...errors import InputError
 from .fault_crossings import FaultCrossings
 
 __all__ = ["TrackingOptions"]
@@ -22,8 +22,8 @@ class TrackingOptions:
     method : {'global', 'registration'}
         'global' (default): least-squares horizons from correlation shifts between near and distant traces, solved
         at once, then dynamic programming over the candidate picks of each line, swept over both lateral axes in
-        a cube (:mod:`~seismo3d.seismic.horizon_lsq`); 'registration': the slice-by-slice tracker of
-        :mod:`~seismo3d.seismic.horizon_tracking`.
+        a cube (:mod:`~seismo3d.seismic.horizons.lsq`); 'registration': the slice-by-slice tracker of
+        :mod:`~seismo3d.seismic.horizons.tracking`.
     pair_distances : tuple of int
         ('global') Distances, traces, of the correlated pairs along each lateral axis.
     correlation_half : int
@@ -52,12 +52,12 @@ class TrackingOptions:
         ('global') Cost of neighbouring picks' waveforms that do not correlate (times 1 - correlation).
     dp_sweeps : int
         ('global', cubes) Sweeps over inlines and crosslines after the line-by-line choice of picks, each line
-        re-chosen with the picks of its neighbouring lines held (:func:`~seismo3d.seismic.horizon_dp.dp_picks`);
+        re-chosen with the picks of its neighbouring lines held (:func:`~seismo3d.seismic.horizons.dp.dp_picks`);
         0 keeps the line-by-line picks.
     repair : bool
         ('global') Run the cycle-skip self-check and repair flagged traces
-        (:func:`~seismo3d.seismic.horizon_lsq.cycle_skips`), then move flagged regions by a cycle where the pairs
-        correlate better (:func:`~seismo3d.seismic.cycle_cut.cycle_cut`).
+        (:func:`~seismo3d.seismic.horizons.lsq.cycle_skips`), then move flagged regions by a cycle where the pairs
+        correlate better (:func:`~seismo3d.seismic.horizons.cycle_cut.cycle_cut`).
     cut_gain : float
         ('global') A region the cycle cut moves must remove at least this fraction of its traces' mean
         decorrelation with their neighbours (1 - confidence): regions continuous either way, or in chaotic data,
@@ -100,12 +100,12 @@ class TrackingOptions:
         carried on over the zone.
     pierce : float
         Voxels: a step crosses a fault when it pierces the fault's local plane this close to one of its points
-        (:class:`~seismo3d.seismic.fault_crossings.FaultCrossings`).
+        (:class:`~seismo3d.seismic.horizons.fault_crossings.FaultCrossings`).
     on_fault : float
         Voxels: a point this close to a fault's local plane (and its points) lies on the fault.
     min_throw_correlation : float
         Faults whose two sides correlate less than this (median of ``FaultThrow.correlation``) are not used
-        (:func:`~seismo3d.seismic.fault_crossings.reliable_throw`).
+        (:func:`~seismo3d.seismic.horizons.fault_crossings.reliable_throw`).
     despike_reach : int
         Traces searched on each side for the neighbours of the lateral continuity check (:func:`despike`).
     despike_agree : float
@@ -191,7 +191,7 @@ class TrackingOptions:
         object.__setattr__(self, "sigma_tensor", as_sigma_pair(self.sigma_tensor, "sigma_tensor"))
 
     def fault_crossings(self, faults, ndim: int) -> FaultCrossings:
-        """The :class:`~seismo3d.seismic.fault_crossings.FaultCrossings` of ``faults`` (None: none) with these
+        """The :class:`~seismo3d.seismic.horizons.fault_crossings.FaultCrossings` of ``faults`` (None: none) with these
         options."""
         return FaultCrossings.from_interpretation(faults, ndim, min_throw_correlation=self.min_throw_correlation,
                                                   pierce=self.pierce, on_fault=self.on_fault)

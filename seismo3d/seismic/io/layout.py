@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SegyFormatError
+from ...errors import SegyFormatError
 
 __all__ = ["SegyLayout", "read_segy_layout", "segyio_failure", "FORMAT_NAMES", "READABLE_FORMATS"]
 

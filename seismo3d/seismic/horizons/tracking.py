@@ -1,6 +1,6 @@
-"""Horizon tracking: :func:`track_horizon`, by default global (least-squares horizons, :mod:`~seismo3d.seismic.
-horizon_lsq`), or (``method='registration'``) by registering neighbouring slices ("seismic tracks", method.md
-section 6), described here.
+"""Horizon tracking: :func:`track_horizon`, by default global (least-squares horizons,
+:mod:`~seismo3d.seismic.horizons.lsq`), or (``method='registration'``) by registering neighbouring slices ("seismic
+tracks", method.md section 6), described here.
 
 A horizon is followed from seed picks in two moves, both made with the registration engine:
 
@@ -39,15 +39,15 @@ carried on over that zone to the next trace of its grid. Only faults with a reli
 two sides correlate less than 0.5 across it (median of its throw correlation), or which has no throw, is left out, as
 if not traced. Without fault input, a step whose panels do not fit (a discontinuity) is re-made from one side with
 the shift found by normalised cross-correlation of the two sides' stacked traces, the start the throw estimation
-uses (:mod:`seismo3d.seismic.fault_throw`). The fault geometry (piercing, walls, blocks) is
-:class:`~seismo3d.seismic.fault_crossings.FaultCrossings`.
+uses (:mod:`seismo3d.seismic.faults.throw`). The fault geometry (piercing, walls, blocks) is
+:class:`~seismo3d.seismic.horizons.fault_crossings.FaultCrossings`.
 
 Each pick gets a confidence: the normalised cross-correlation of the waveform around it with the waveform around the
 pick it came from. Picks below ``min_confidence``, and picks with no extremum of the right polarity within the snap
 window, are left empty (NaN); tracking goes on from their predicted position. :func:`~seismo3d.seismic.fill_horizon`
 interpolates the gaps as a separate, explicit step. The tuning values are the fields of :class:`TrackingOptions`.
 
-Conventions: index space as in :mod:`seismo3d.seismic.fault_likelihood` (axis 0 inline, axis 1 crossline, last axis
+Conventions: index space as in :mod:`seismo3d.seismic.faults.likelihood` (axis 0 inline, axis 1 crossline, last axis
 sample, downward; a 2D section is ``(n_traces, n_samples)``). Horizon times are fractional sample indices; convert with
 the cube's ``samples`` axis (ms or m).
 """
@@ -59,15 +59,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._options import resolve_options
-from .._progress import progress_steps
-from .._validation import as_seismic, check_choice
-from ..errors import DegenerateGeometryWarning, InputError, RegistrationError
+from ..._options import resolve_options
+from ..._progress import progress_steps
+from ..._validation import as_seismic, check_choice
+from ...errors import DegenerateGeometryWarning, InputError, RegistrationError
+from ...registration import ICPOptions, fused_icp, icp
+from ..reflectors import POLARITIES, ReflectorSlice, nearest_pick, reflector_picks
+from ..traces import ncc, ncc_lag_search, waveform
 from .fault_crossings import FaultCrossings
-from .tracking_options import TrackingOptions
-from .horizons import Horizon, as_seeds, check_live_seed
-from .reflectors import POLARITIES, ReflectorSlice, nearest_pick, reflector_picks
-from .traces import ncc, ncc_lag_search, waveform
+from .lsq import lsq_horizon
+from .options import TrackingOptions
+from .result import Horizon, as_seeds, check_live_seed
 
 __all__ = ["TrackingOptions", "track_horizon", "despike", "close_gaps"]
 
@@ -77,8 +79,6 @@ __all__ = ["TrackingOptions", "track_horizon", "despike", "close_gaps"]
 
 def _register(src_pts, dst_pts, dst_nrm, init, opt: TrackingOptions, features=None):
     """Panel registration; returns (transform, fitness) or (None, 0) when it cannot run."""
-    from ..registration import ICPOptions, fused_icp, icp
-
     icp_options = ICPOptions(max_distance=(3.0, 1.5), degeneracy_threshold=0.0, max_iterations=opt.panel_iterations)
 
     if len(src_pts) < 6 or len(dst_pts) < 6:
@@ -265,7 +265,7 @@ def _slice_matches(a: ReflectorSlice, b: ReflectorSlice, rows: tuple[int, int], 
     returned as ((K, 2), (K, 2)) (trace, sample) arrays, or None."""
     if method is None:
         return None
-    from ..features import lift_matches_section, match_images
+    from ...features import lift_matches_section, match_images
 
     r0, r1 = rows
     ia = a.amp[:, r0:r1].T
@@ -428,7 +428,7 @@ def despike(section: ReflectorSlice, picks: np.ndarray, carried: np.ndarray, con
 def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: TrackingOptions | None = None,
                   progress: bool = False, **overrides) -> Horizon:
     """Track a horizon from seed picks: by default globally (least-squares horizons, then dynamic programming over
-    candidate picks: :mod:`~seismo3d.seismic.horizon_lsq`), or by registering neighbouring slices
+    candidate picks: :mod:`~seismo3d.seismic.horizons.lsq`), or by registering neighbouring slices
     (``method='registration'``, module docstring).
 
     With ``method='global'`` every trace's time comes from one robust least-squares solve of correlation shifts
@@ -437,7 +437,7 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
     by dynamic programming (near the solution, steps along the reflector slope, waveforms that correlate), in a cube
     swept over inlines and crosslines so that neighbouring lines agree (``dp_sweeps``), checked
     for cycle skips against the long pairs (regions a cycle off moved back by a minimum cut where their pairs
-    correlate clearly better: :mod:`~seismo3d.seismic.cycle_cut`), and scored by their correlation with their
+    correlate clearly better: :mod:`~seismo3d.seismic.horizons.cycle_cut`), and scored by their correlation with their
     neighbours; in 3D, empty traces beside tracked ones are then filled where their neighbours agree and correlate
     (:func:`close_gaps`).
 
@@ -506,13 +506,11 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
 
 
 def _track_global(arr, seeds, polarity, opt: TrackingOptions, crossings: FaultCrossings, progress: bool) -> Horizon:
-    """``method='global'``: the least-squares horizon and its picks (:func:`~seismo3d.seismic.horizon_lsq.
+    """``method='global'``: the least-squares horizon and its picks (:func:`~seismo3d.seismic.horizons.lsq.
     lsq_horizon`), the lateral continuity check along both lateral axes (the lines' programmes do not see each
     other: a lone pick a cycle off its agreeing neighbours is a spike; the seeds' own picks stay), then, in 3D, the
     gap closing (traces left empty beside tracked ones, e.g. a pick the lateral checks gave up while its neighbours
     were a cycle off before the repair, filled where the neighbours agree and correlate)."""
-    from .horizon_lsq import lsq_horizon
-
     found = lsq_horizon(arr, seeds, polarity=polarity, faults=crossings, options=opt, progress=progress)
     times, conf = found.times.copy(), found.confidence.copy()
     at_seeds = tuple(np.rint(seeds[:, :-1]).astype(np.intp).T)

@@ -1,19 +1,19 @@
-"""Fault likelihood of a cube larger than memory: the scan of :mod:`~seismo3d.seismic.fault_likelihood` run block by
+"""Fault likelihood of a cube larger than memory: the scan of :mod:`~seismo3d.seismic.faults.likelihood` run block by
 block on dask, with the halo each step needs, results written block by block to Zarr, resumable.
 
 The steps and their blocks (every block carries exactly the halo its step needs, so the result equals the in-memory
-:func:`~seismo3d.seismic.fault_likelihood` up to float rounding):
+:func:`~seismo3d.seismic.faults.fault_likelihood` up to float rounding):
 
 1. Amplitude statistics (peak, mean square) of the whole cube: one pass of sums over its chunks.
-2. Amplitude balancing on square blocks of traces with :func:`~seismo3d.seismic.fault_likelihood.balance_halo`
+2. Amplitude balancing on square blocks of traces with :func:`~seismo3d.seismic.faults.likelihood.balance_halo`
    traces of halo (every sample of a trace in the block), written to an intermediate Zarr array; then the semblance
    terms (structure tensors, structure-oriented semblance; finite Gaussian windows) on square blocks with
-   :func:`~seismo3d.seismic.fault_likelihood.semblance_halo` of halo, written at half the vertical resolution.
+   :func:`~seismo3d.seismic.faults.likelihood.semblance_halo` of halo, written at half the vertical resolution.
    Two steps rather than one: each block carries only its own step's halo, so blocks can be larger for the same
    memory.
 3. The scan of the planes sheared along inlines on blocks that hold every inline (the exponential smoothing down the
    dip follows a fault plane laterally without bound, so that axis is never cut) and a few crosslines with
-   :func:`~seismo3d.seismic.fault_likelihood.strike_halo` of halo; then the planes sheared along crosslines on blocks
+   :func:`~seismo3d.seismic.faults.likelihood.strike_halo` of halo; then the planes sheared along crosslines on blocks
    that hold every crossline. The packed keys of both are combined by their maximum.
 4. Likelihood, strike and dip decoded block by block into the output Zarr group.
 
@@ -38,14 +38,14 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .._options import resolve_options
-from .._validation import check_int
-from ..errors import InputError
-from .block_runs import MEMORY_HEADROOM, BlockRun, SchedulerClient, largest_block, write_marker
-from .fault_likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan,
+from ..._options import resolve_options
+from ..._validation import check_int
+from ...errors import InputError
+from ..blocks import MEMORY_HEADROOM, BlockRun, SchedulerClient, largest_block, write_marker
+from .likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan,
                                saturation_counts, scan_planes, scan_step, semblance_floor, semblance_halo,
                                semblance_terms, strike_halo)
-from .seismic_zarr import consolidate
+from ..io.zarr_store import consolidate
 
 __all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
            "in_memory_bytes", "resident_memory", "worker_baseline"]
@@ -247,8 +247,8 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
                              progress: bool = False, **overrides) -> ChunkedLikelihood:
     """Fault likelihood, strike and dip of a 3D cube computed block by block and written to a Zarr group.
 
-    The method is :func:`~seismo3d.seismic.fault_likelihood` (Hale 2013): every step runs on blocks with the halo it
-    needs (see the module notes), so the output equals the in-memory result up to float rounding (max abs
+    The method is :func:`~seismo3d.seismic.faults.fault_likelihood` (Hale 2013): every step runs on blocks with the
+    halo it needs (see the module notes), so the output equals the in-memory result up to float rounding (max abs
     difference of the likelihood <= 1e-5, checked by the tests on generated cubes).
 
     Parameters
@@ -260,7 +260,7 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
         Output Zarr group (a folder), created; must not exist unless it is the unfinished output of the same run
         (then ``output + '.partial'`` and ``output + '.work'`` exist and the run resumes).
     options : FaultScanOptions, optional
-        The scan (defaults as in :func:`~seismo3d.seismic.fault_likelihood`).
+        The scan (defaults as in :func:`~seismo3d.seismic.faults.fault_likelihood`).
     chunking : ChunkOptions, optional
         Memory limit, block sizes and the dask scheduler.
     coords : dict, optional

@@ -1,5 +1,5 @@
 """The Zarr v3 layout of a seismic cube (written by ``seismo3d convert``, read by
-:func:`~seismo3d.seismic.lazy_cube.open_lazy` and by ``xarray.open_zarr`` as is).
+:func:`~seismo3d.seismic.io.lazy.open_lazy` and by ``xarray.open_zarr`` as is).
 
 Layout (one Zarr v3 group; the idea is MDIO's: amplitudes, their coordinates and the SEG-Y headers in one store)::
 
@@ -20,7 +20,7 @@ Layout (one Zarr v3 group; the idea is MDIO's: amplitudes, their coordinates and
 Chunks: (64, 64, n_samples) tiles of whole traces. The fault scan and the attributes need every sample of a trace,
 so a chunk never splits a trace; 64 x 64 traces keep a chunk at 8-40 MB for 500-2500 samples, small enough for a
 worker, large enough for few files (a 10 GB cube makes about 500 chunks), and square so that inline, crossline and
-map views read alike. :func:`~seismo3d.seismic.lazy_cube.open_lazy` rechunks to blocks of whole inlines.
+map views read alike. :func:`~seismo3d.seismic.io.lazy.open_lazy` rechunks to blocks of whole inlines.
 
 References
 ----------
@@ -39,9 +39,9 @@ from pathlib import Path
 import numpy as np
 import segyio
 
-from ..errors import InputError
-from .io import scale_coordinates
-from .lazy_cube import SegyGrid, read_segy_block, read_segy_block_headers
+from ...errors import InputError
+from .blocks import SegyGrid, read_segy_block, read_segy_block_headers
+from .segy import scale_coordinates
 
 __all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate", "open_seismic_zarr",
            "is_seismic_zarr"]

@@ -16,21 +16,21 @@ shift across a fault) is outvoted by the pairs that span it and cannot propagate
 seeds' time and is re-solved a few times with the shifts re-measured around it (short pairs first), as Wu & Fomel's
 Gauss-Newton iterations; each solve is a sparse conjugate-gradient solve of the normal equations.
 
-Faults (:class:`~seismo3d.seismic.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is checked
-with short windows around the estimate plus the faults' jump against around the estimate; it takes the jump only
+Faults (:class:`~seismo3d.seismic.horizons.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is
+checked with short windows around the estimate plus the faults' jump against around the estimate; it takes the jump only
 where that correlates better, so a fault's jump is taken only where the registration across it supports it, and a
 spurious fault surface leaves the pair's long-window shift alone.
 
 The picks of each line are then chosen together by dynamic programming over candidate extrema of the polarity near
 the solution, and in a cube the lines of both lateral axes by sweeps of it over inlines and crosslines
-(:mod:`~seismo3d.seismic.horizon_dp`). A pick's confidence is the median correlation of its waveform
+(:mod:`~seismo3d.seismic.horizons.dp`). A pick's confidence is the median correlation of its waveform
 with its neighbours' (``+-ncc_half`` samples); picks below ``min_confidence`` and traces not connected to a seed by
 confident pairs stay empty (NaN). A last self-check (:func:`cycle_skips`) re-measures the pairs at the picked horizon
 with lags of more than a reflector period and flags the traces where the correlation-predicted horizon (their plain
 least-squares solution) lies about a period away; the tracker repairs them (moves them to the predicted cycle,
 re-solves, picks again) and keeps the repair when it leaves fewer traces flagged. Regions of flagged traces that the
 solve kept a cycle off are then moved by a minimum cut where their pairs correlate clearly better a cycle away
-(:mod:`~seismo3d.seismic.cycle_cut`).
+(:mod:`~seismo3d.seismic.horizons.cycle_cut`).
 
 Conventions: index space (axis 0 inline, axis 1 crossline, last axis sample; a 2D section ``(n_traces, n_samples)``);
 times in fractional samples.
@@ -45,13 +45,18 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numba as nb
 import numpy as np
+from scipy import sparse
+from scipy.sparse.csgraph import connected_components
+from scipy.sparse.linalg import LinearOperator, cg
 
+from ..._progress import progress_steps
+from ...errors import InputError
+from ..reflectors import nearest_pick, reflector_picks
+from .correlation import _pair_lags, neighbour_confidence, window_correlation
 from .cycle_cut import cycle_cut
+from .dp import dp_picks, line_slopes, reflector_period, settle_lone_departures
 from .fault_crossings import FaultCrossings
-from .horizon_dp import dp_picks, line_slopes, reflector_period, sample_at, settle_lone_departures
-from .reflectors import nearest_pick, reflector_picks
 
 __all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "window_correlation", "solve_horizon", "cycle_skips",
            "pair_agreement", "lsq_horizon"]
@@ -117,98 +122,6 @@ def trace_pairs(lateral_shape: tuple, distances) -> tuple[np.ndarray, np.ndarray
         z = np.zeros(0, np.intp)
         return z, z, z, z
     return tuple(np.concatenate(v).astype(np.intp) for v in out)
-
-
-_PAIR_CHUNK = 256  # pairs per parallel task of _pair_lags
-
-
-@nb.njit(cache=True, parallel=True)
-def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
-    """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
-    of trace a around ``ta``; returns (lag relative to centre, score), NaN where not measured
-    (:func:`_one_pair_lag`); the pairs in parallel chunks."""
-    n = a.size
-    lag_out = np.full(n, np.nan)
-    score_out = np.full(n, np.nan)
-    n_chunks = (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK
-    for c in nb.prange(n_chunks):
-        ref = np.empty(2 * half + 1)
-        sig = np.empty(2 * half + 1 + 2 * max_lag)
-        scores = np.empty(2 * max_lag + 1)
-        for p in range(c * _PAIR_CHUNK, min(n, (c + 1) * _PAIR_CHUNK)):
-            lag_out[p], score_out[p] = _one_pair_lag(traces, a[p], ta[p], b[p], centre[p], half, max_lag,
-                                                     min_fraction, ref, sig, scores)
-    return lag_out, score_out
-
-
-@nb.njit(cache=True)
-def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, sig, scores):
-    """The lag around ``centre`` on trace ``kb`` at which it correlates best with the window of trace ``ka`` around
-    ``ta``, refined by a parabola, and its correlation; (NaN, NaN) where not measured. Near the ends of the traces
-    the window is shortened to the samples trace ``ka`` has (at least 4 each side); a lag is scored where at least
-    ``min_fraction`` of the window lies on trace ``kb``. ``ref``, ``sig``, ``scores``: work arrays."""
-    n_s = traces.shape[1]
-    if not (np.isfinite(ta) and np.isfinite(centre)):
-        return np.nan, np.nan
-    h = min(half, int(np.floor(ta)), int(np.floor(n_s - 1 - ta)))
-    if h < 4:
-        return np.nan, np.nan
-    m = 2 * h + 1
-    min_samples = max(5, int(min_fraction * m))
-    ra = traces[ka]
-    rb = traces[kb]
-    for k in range(m):
-        ref[k] = sample_at(ra, ta - h + k)
-    for k in range(m + 2 * max_lag):
-        sig[k] = sample_at(rb, centre - h - max_lag + k)
-    # lags are scored only where the window overlaps trace b enough: near the trace ends that cuts the range on one
-    # side; it is cut on the other side as well, or a pair's wrong-cycle matches (more of them on the longer side)
-    # would bias the shifts towards it
-    reach = max_lag
-    for k in range(max_lag + 1):
-        lo = centre - h - k
-        hi = centre + h + k
-        if min(lo + m - 1, n_s - 1.0) - max(lo, 0.0) + 1 < min_samples or \
-                min(hi, n_s - 1.0) - max(hi - m + 1, 0.0) + 1 < min_samples:
-            reach = k - 1
-            break
-    scores[:] = np.nan
-    best, kbest = -2.0, -1
-    for s in range(max_lag - reach, max_lag + reach + 1):
-        sa = 0.0
-        sb = 0.0
-        cnt = 0
-        for k in range(m):
-            x, y = ref[k], sig[s + k]
-            if np.isfinite(x) and np.isfinite(y):
-                sa += x
-                sb += y
-                cnt += 1
-        if cnt < min_samples:
-            continue
-        ma, mb = sa / cnt, sb / cnt
-        sab = 0.0
-        saa = 0.0
-        sbb = 0.0
-        for k in range(m):
-            x, y = ref[k], sig[s + k]
-            if np.isfinite(x) and np.isfinite(y):
-                sab += (x - ma) * (y - mb)
-                saa += (x - ma) ** 2
-                sbb += (y - mb) ** 2
-        c = sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
-        scores[s] = c
-        if c > best:
-            best, kbest = c, s
-    if kbest < 0:
-        return np.nan, np.nan
-    off = 0.0
-    if 0 < kbest < 2 * max_lag and np.isfinite(scores[kbest - 1]) and np.isfinite(scores[kbest + 1]):
-        y0, y1, y2 = scores[kbest - 1], scores[kbest], scores[kbest + 1]
-        den = y0 - 2 * y1 + y2
-        if den < 0:
-            off = min(max(0.5 * (y0 - y2) / den, -0.5), 0.5)
-    return kbest - max_lag + off, best
 
 
 def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndarray, distance: np.ndarray, *,
@@ -291,9 +204,6 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
     times : (n,) float64 ndarray
         The solution, NaN on traces no confident pair connects to a seed.
     """
-    from scipy import sparse
-    from scipy.sparse.csgraph import connected_components
-
     ok = np.isfinite(pairs.shift) & (np.nan_to_num(pairs.score, nan=-1.0) >= min_correlation)
     a, b, s = pairs.a[ok], pairs.b[ok], pairs.shift[ok]
     w0 = pairs.score[ok] ** 2 / pairs.distance[ok].astype(np.float64) ** distance_power
@@ -312,9 +222,6 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
 def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start):
     """One weighted solve of the normal equations by conjugate gradients (Jacobi-preconditioned, started at
     ``start``: the last re-weighted solution, which the next one differs little from)."""
-    from scipy import sparse
-    from scipy.sparse.linalg import LinearOperator, cg
-
     # normal equations of the pair rows (a graph Laplacian) plus the seeds and the damping
     lap = sparse.coo_matrix((np.concatenate([w, w, -w, -w]), (np.concatenate([a, b, a, b]),
                                                                np.concatenate([a, b, b, a]))), shape=(n, n)).tocsr()
@@ -445,52 +352,6 @@ def picks_of(data: np.ndarray, polarity: str) -> tuple[np.ndarray, np.ndarray]:
     return reflector_picks(data.reshape(-1, data.shape[-1]), polarity=polarity)
 
 
-def window_correlation(traces: np.ndarray, a: np.ndarray, ta: np.ndarray, b: np.ndarray, tb: np.ndarray, *,
-                       half: int) -> np.ndarray:
-    """Normalised cross-correlation of trace ``a``'s window around ``ta`` with trace ``b``'s around ``tb``, for each
-    pair (no lag search; windows ``+-half`` samples, shortened near the ends of the traces as in
-    :func:`pair_shifts`).
-
-    Parameters
-    ----------
-    traces : (n_traces, n_samples) float32 ndarray
-    a, b : (n_pairs,) intp ndarray
-        The traces of each pair.
-    ta, tb : (n_pairs,) float64 ndarray
-        Window centres, fractional samples.
-    half : int
-        Samples.
-
-    Returns
-    -------
-    (n_pairs,) float64 ndarray
-        In [-1, 1]; NaN where a centre is NaN or the windows overlap the traces too little.
-    """
-    _, score = _pair_lags(traces, np.asarray(a, np.intp), np.asarray(ta, np.float64), np.asarray(b, np.intp),
-                          np.asarray(tb, np.float64), int(half), 0, 0.8)
-    return score
-
-
-def neighbour_confidence(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndarray, half: int) -> np.ndarray:
-    """Median normalised cross-correlation (``+-half`` samples) of each trace's waveform at ``times`` with its
-    neighbours' (the pairs ``a, b``) at theirs; NaN where no neighbour is picked."""
-    ok = np.isfinite(times[a]) & np.isfinite(times[b])
-    a, b = a[ok], b[ok]
-    score = window_correlation(traces, a, times[a], b, times[b], half=half)
-    node = np.concatenate([a, b])
-    val = np.concatenate([score, score])
-    out = np.full(times.size, np.nan)
-    order = np.argsort(node, kind="stable")
-    node, val = node[order], val[order]
-    if node.size == 0:
-        return out
-    starts = np.r_[0, np.nonzero(np.diff(node))[0] + 1]
-    ends = np.r_[starts[1:], node.size]
-    for lo, hi in zip(starts, ends):
-        out[node[lo]] = np.nanmedian(val[lo:hi]) if np.isfinite(val[lo:hi]).any() else np.nan
-    return out
-
-
 @dataclass(frozen=True, eq=False)
 class LsqHorizon:
     """What :func:`lsq_horizon` found: snapped ``times`` and ``confidence`` (lateral shape, NaN where empty), the
@@ -529,9 +390,6 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     InputError
         A seed with no extremum of ``polarity`` within ``seed_snap`` samples.
     """
-    from .._progress import progress_steps
-    from ..errors import InputError
-
     opt = options
     lat = data.shape[:-1]
     n = int(np.prod(lat))

@@ -1,0 +1,47 @@
+"""Fault interpretation: the fault-likelihood scan, thinning, voting, fault skins, throw, and the whole pipeline in
+memory or by blocks of a cube stored on disk.
+
+- :mod:`~seismo3d.seismic.faults.likelihood`: the scan over fault strikes and dips (:func:`fault_likelihood`).
+- :mod:`~seismo3d.seismic.faults.dead_samples`: dead traces and dead samples, and their fill values.
+- :mod:`~seismo3d.seismic.faults.windows`: windows of a cube around points (in memory, lazy or stored).
+- :mod:`~seismo3d.seismic.faults.surfaces`: faults as point sets, thinning (and the older region-growing linker).
+- :mod:`~seismo3d.seismic.faults.voting`: optimal surface voting (Wu & Fomel 2018).
+- :mod:`~seismo3d.seismic.faults.skins`: thinned faults linked into fault skins (Hale 2013).
+- :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides of a fault.
+- :mod:`~seismo3d.seismic.faults.evidence`: the evidence a fault must show (reflectors displaced or broken across it).
+- :mod:`~seismo3d.seismic.faults.pipeline`: the whole fault interpretation of an array (:func:`trace_faults`).
+- :mod:`~seismo3d.seismic.faults.likelihood_blocks`: the likelihood scan of a cube by blocks, resumable
+  (:func:`chunked_fault_likelihood`).
+- :mod:`~seismo3d.seismic.faults.pipeline_blocks`: the fault surfaces of a cube by blocks
+  (:func:`chunked_fault_surfaces`).
+
+The function :func:`~seismo3d.seismic.faults.dead_samples.dead_samples` is not re-exported here: its name is its
+module's.
+"""
+
+from .likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood, fault_normals, fault_strike_dip
+from .dead_samples import CleanTraces, clean_traces, fill_values, near_dead_samples, DEAD_REACH
+from .windows import ArrayWindows, CubeWindow, LazyWindows, StoredWindows, cube_windows, is_dask_array
+from .surfaces import Fault, check_fault_arrays, thin_faults, link_faults, fault_labels
+from .voting import VotingOptions, FaultVotes, vote_faults, fault_frames, greedy_seeds, surface_votes
+from .skins import SkinOptions, fault_skins, skins_from_cells
+from .throw import FaultThrow, ThrowOptions, fault_throw, fault_throws, hanging_wall_normals
+from .evidence import EvidenceOptions, FaultEvidence, fault_evidence, supported_faults
+from .pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
+from .likelihood_blocks import (
+    ChunkOptions, ChunkedLikelihood, chunked_fault_likelihood, default_memory_limit, in_memory_bytes,
+    resident_memory, worker_baseline,
+)
+from .pipeline_blocks import ChunkedFaults, chunked_fault_surfaces, RIDGE_HALO
+
+__all__ = [
+    "FaultLikelihood", "FaultScanOptions", "fault_likelihood", "fault_normals", "fault_strike_dip", "CleanTraces",
+    "clean_traces", "fill_values", "near_dead_samples", "DEAD_REACH", "ArrayWindows", "CubeWindow", "LazyWindows",
+    "StoredWindows", "cube_windows", "is_dask_array", "Fault", "check_fault_arrays", "thin_faults", "link_faults",
+    "fault_labels", "VotingOptions", "FaultVotes", "vote_faults", "fault_frames", "greedy_seeds", "surface_votes",
+    "SkinOptions", "fault_skins", "skins_from_cells", "FaultThrow", "ThrowOptions", "fault_throw", "fault_throws",
+    "hanging_wall_normals", "EvidenceOptions", "FaultEvidence", "fault_evidence", "supported_faults",
+    "FaultInterpretation", "FaultTracingOptions", "trace_faults", "ChunkOptions",
+    "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit", "in_memory_bytes", "resident_memory",
+    "worker_baseline", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO",
+]

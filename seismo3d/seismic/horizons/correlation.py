@@ -1,0 +1,154 @@
+"""Normalised cross-correlation of trace windows at given times, pair by pair: the lag search of the least-squares
+horizon's pairs (:func:`~seismo3d.seismic.horizons.lsq.pair_shifts`), the correlation of two windows, and a pick's
+confidence against its neighbours (used by :mod:`~seismo3d.seismic.horizons.lsq` and
+:mod:`~seismo3d.seismic.horizons.cycle_cut`).
+
+Conventions: traces ``(n_traces, n_samples)``; times in fractional samples.
+"""
+
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+from .dp import sample_at
+
+__all__ = ["window_correlation", "neighbour_confidence"]
+
+
+_PAIR_CHUNK = 256  # pairs per parallel task of _pair_lags
+
+
+@nb.njit(cache=True, parallel=True)
+def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
+    """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
+    of trace a around ``ta``; returns (lag relative to centre, score), NaN where not measured
+    (:func:`_one_pair_lag`); the pairs in parallel chunks."""
+    n = a.size
+    lag_out = np.full(n, np.nan)
+    score_out = np.full(n, np.nan)
+    n_chunks = (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK
+    for c in nb.prange(n_chunks):
+        ref = np.empty(2 * half + 1)
+        sig = np.empty(2 * half + 1 + 2 * max_lag)
+        scores = np.empty(2 * max_lag + 1)
+        for p in range(c * _PAIR_CHUNK, min(n, (c + 1) * _PAIR_CHUNK)):
+            lag_out[p], score_out[p] = _one_pair_lag(traces, a[p], ta[p], b[p], centre[p], half, max_lag,
+                                                     min_fraction, ref, sig, scores)
+    return lag_out, score_out
+
+
+@nb.njit(cache=True)
+def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, sig, scores):
+    """The lag around ``centre`` on trace ``kb`` at which it correlates best with the window of trace ``ka`` around
+    ``ta``, refined by a parabola, and its correlation; (NaN, NaN) where not measured. Near the ends of the traces
+    the window is shortened to the samples trace ``ka`` has (at least 4 each side); a lag is scored where at least
+    ``min_fraction`` of the window lies on trace ``kb``. ``ref``, ``sig``, ``scores``: work arrays."""
+    n_s = traces.shape[1]
+    if not (np.isfinite(ta) and np.isfinite(centre)):
+        return np.nan, np.nan
+    h = min(half, int(np.floor(ta)), int(np.floor(n_s - 1 - ta)))
+    if h < 4:
+        return np.nan, np.nan
+    m = 2 * h + 1
+    min_samples = max(5, int(min_fraction * m))
+    ra = traces[ka]
+    rb = traces[kb]
+    for k in range(m):
+        ref[k] = sample_at(ra, ta - h + k)
+    for k in range(m + 2 * max_lag):
+        sig[k] = sample_at(rb, centre - h - max_lag + k)
+    # lags are scored only where the window overlaps trace b enough: near the trace ends that cuts the range on one
+    # side; it is cut on the other side as well, or a pair's wrong-cycle matches (more of them on the longer side)
+    # would bias the shifts towards it
+    reach = max_lag
+    for k in range(max_lag + 1):
+        lo = centre - h - k
+        hi = centre + h + k
+        if min(lo + m - 1, n_s - 1.0) - max(lo, 0.0) + 1 < min_samples or \
+                min(hi, n_s - 1.0) - max(hi - m + 1, 0.0) + 1 < min_samples:
+            reach = k - 1
+            break
+    scores[:] = np.nan
+    best, kbest = -2.0, -1
+    for s in range(max_lag - reach, max_lag + reach + 1):
+        sa = 0.0
+        sb = 0.0
+        cnt = 0
+        for k in range(m):
+            x, y = ref[k], sig[s + k]
+            if np.isfinite(x) and np.isfinite(y):
+                sa += x
+                sb += y
+                cnt += 1
+        if cnt < min_samples:
+            continue
+        ma, mb = sa / cnt, sb / cnt
+        sab = 0.0
+        saa = 0.0
+        sbb = 0.0
+        for k in range(m):
+            x, y = ref[k], sig[s + k]
+            if np.isfinite(x) and np.isfinite(y):
+                sab += (x - ma) * (y - mb)
+                saa += (x - ma) ** 2
+                sbb += (y - mb) ** 2
+        c = sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
+        scores[s] = c
+        if c > best:
+            best, kbest = c, s
+    if kbest < 0:
+        return np.nan, np.nan
+    off = 0.0
+    if 0 < kbest < 2 * max_lag and np.isfinite(scores[kbest - 1]) and np.isfinite(scores[kbest + 1]):
+        y0, y1, y2 = scores[kbest - 1], scores[kbest], scores[kbest + 1]
+        den = y0 - 2 * y1 + y2
+        if den < 0:
+            off = min(max(0.5 * (y0 - y2) / den, -0.5), 0.5)
+    return kbest - max_lag + off, best
+
+
+def window_correlation(traces: np.ndarray, a: np.ndarray, ta: np.ndarray, b: np.ndarray, tb: np.ndarray, *,
+                       half: int) -> np.ndarray:
+    """Normalised cross-correlation of trace ``a``'s window around ``ta`` with trace ``b``'s around ``tb``, for each
+    pair (no lag search; windows ``+-half`` samples, shortened near the ends of the traces as in
+    :func:`pair_shifts`).
+
+    Parameters
+    ----------
+    traces : (n_traces, n_samples) float32 ndarray
+    a, b : (n_pairs,) intp ndarray
+        The traces of each pair.
+    ta, tb : (n_pairs,) float64 ndarray
+        Window centres, fractional samples.
+    half : int
+        Samples.
+
+    Returns
+    -------
+    (n_pairs,) float64 ndarray
+        In [-1, 1]; NaN where a centre is NaN or the windows overlap the traces too little.
+    """
+    _, score = _pair_lags(traces, np.asarray(a, np.intp), np.asarray(ta, np.float64), np.asarray(b, np.intp),
+                          np.asarray(tb, np.float64), int(half), 0, 0.8)
+    return score
+
+
+def neighbour_confidence(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndarray, half: int) -> np.ndarray:
+    """Median normalised cross-correlation (``+-half`` samples) of each trace's waveform at ``times`` with its
+    neighbours' (the pairs ``a, b``) at theirs; NaN where no neighbour is picked."""
+    ok = np.isfinite(times[a]) & np.isfinite(times[b])
+    a, b = a[ok], b[ok]
+    score = window_correlation(traces, a, times[a], b, times[b], half=half)
+    node = np.concatenate([a, b])
+    val = np.concatenate([score, score])
+    out = np.full(times.size, np.nan)
+    order = np.argsort(node, kind="stable")
+    node, val = node[order], val[order]
+    if node.size == 0:
+        return out
+    starts = np.r_[0, np.nonzero(np.diff(node))[0] + 1]
+    ends = np.r_[starts[1:], node.size]
+    for lo, hi in zip(starts, ends):
+        out[node[lo]] = np.nanmedian(val[lo:hi]) if np.isfinite(val[lo:hi]).any() else np.nan
+    return out

@@ -213,47 +213,45 @@ SECTIONS = {  # every real 2D section of the data folder: (file, n_traces, n_sam
 EVIDENCE_GRID = [(t, g) for t in (0.0, 0.5, 1.0, 1.5, 2.0, 3.0) for g in (-1.0, 0.0, 0.05, 0.1, 0.2)]
 
 
-def _kept_mask(faults, evidence, shape, min_throw, min_gain):
-    from seismo3d.seismic.faults.evidence import EvidenceOptions
-
-    opt = EvidenceOptions(min_throw=min_throw, min_correlation_gain=min_gain)
+def _kept_mask(faults, evidence, shape, options=None):
+    """The samples of the faults whose evidence ``options`` accept (all of them for None)."""
     mask = np.zeros(shape, bool)
-    n = 0
     for fault, e in zip(faults, evidence):
-        if min_throw == 0.0 and min_gain == -1.0 or e.supports(opt):
+        if options is None or e.supports(options):
             mask[tuple(fault.points.T)] = True
-            n += 1
-    return mask, n
+    return mask
 
 
-def f3_people(out_dir: Path) -> None:
+def _candidates(section, **unit):
+    """The faults of the whole pipeline before the evidence is asked (only unmeasured ones dropped), their evidence,
+    and the seconds of the run; the defaults' faults are those whose evidence ``EvidenceOptions()`` accepts."""
+    from seismo3d.seismic import trace_faults
+    from seismo3d.seismic.faults import EvidenceOptions, FaultTracingOptions
+
+    every = FaultTracingOptions(evidence=EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # muted tops and clipped amplitudes are reported
+        t = time.perf_counter()
+        res = trace_faults(section, progress=False, options=every, **unit)
+        seconds = time.perf_counter() - t
+    return res.faults, res.evidence, seconds
+
+
+def f3_people() -> None:
     """The five F3 inlines with faults drawn by a person: scores per inline, the plain skeleton at its single best
     threshold, and the evidence options chosen by cross-validation (chosen on three inlines, scored on two)."""
-    import dataclasses
     import itertools
 
     from seismo3d.data import load_f3_fault_sections
-    from seismo3d.seismic import trace_faults
-    from seismo3d.seismic.faults.evidence import EvidenceOptions, fault_evidence
-    from seismo3d.seismic.faults import FaultTracingOptions
+    from seismo3d.seismic.faults import EvidenceOptions
 
     data = load_f3_fault_sections()
     n = len(data.inlines)
-    every = FaultTracingOptions(evidence=EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))
-    rows, candidates, seconds = [], [], []
+    candidates, seconds = [], []
     for k in range(n):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # the muted top is reported
-            t = time.perf_counter()
-            res = trace_faults(data.sections[k], sample_interval=4.0, sample_unit="ms", progress=False)
-            seconds.append(time.perf_counter() - t)
-            cand = trace_faults(data.sections[k], sample_interval=4.0, sample_unit="ms", progress=False,
-                                options=every)
-        ours = np.zeros(data.sections[k].shape, bool)
-        for f in res.faults:
-            ours[tuple(f.points.T)] = True
-        rows.append((*_scores(ours, data.faults[k]), len(res.faults)))
-        candidates.append((cand.faults, [fault_evidence(t) for t in cand.throws]))
+        faults, evidence, sec = _candidates(data.sections[k], sample_interval=4.0, sample_unit="ms")
+        candidates.append((faults, evidence))
+        seconds.append(sec)
     # the peer: one quantile of 1 - plain semblance for all five inlines, the best mean F1
     best = None
     for q in np.concatenate([np.linspace(0.50, 0.98, 25), [0.985, 0.99, 0.993, 0.996, 0.998]]):
@@ -261,10 +259,14 @@ def f3_people(out_dir: Path) -> None:
             1.0 - plain_semblance(data.sections[k]), q))), data.faults[k]) for k in range(n)]
         if best is None or np.mean([s[2] for s in scores]) > np.mean([s[2] for s in best[1]]):
             best = (q, scores)
-    # every grid point's scores on every inline, then the cross-validation over the 10 splits 3 / 2
-    grid_scores = {g: [_scores(_kept_mask(*candidates[k], data.sections[k].shape, *g)[0], data.faults[k])
-                       for k in range(n)] for g in EVIDENCE_GRID}
+    # every grid point's scores on every inline (the defaults' among them), then the 10 splits 3 / 2
     default = EvidenceOptions()
+    grid = {(t, g): EvidenceOptions(min_throw=t, min_correlation_gain=g) for t, g in EVIDENCE_GRID}
+    grid_scores = {key: [_scores(_kept_mask(*candidates[k], data.sections[k].shape, opt), data.faults[k])
+                         for k in range(n)] for key, opt in grid.items()}
+    ours = grid_scores[(default.min_throw, default.min_correlation_gain)]
+    every = [_scores(_kept_mask(*candidates[k], data.sections[k].shape), data.faults[k]) for k in range(n)]
+    n_ours = [sum(e.supports(default) for e in candidates[k][1]) for k in range(n)]
     print("\nF3 inlines with faults drawn by a person (951 x 462 each), tolerance 3 samples: precision / recall / F1; "
           "FaultNet (Dou et al. 2022, released weights) F1 from the issue for reference\n")
     faultnet = (0.33, 0.28, 0.15, 0.14, 0.19)
@@ -273,13 +275,12 @@ def f3_people(out_dir: Path) -> None:
     print(head + "\n" + "-" * len(head))
     fmt = lambda s: f"{s[0]:6.3f} / {s[1]:5.3f} / {s[2]:5.3f}"  # noqa: E731
     for k in range(n):
-        cand = grid_scores[(0.0, -1.0)][k]
-        print(f"{data.inlines[k]:6d} | {fmt(rows[k]):>24s} {rows[k][3]:6d} | {fmt(cand):>24s} "
+        print(f"{data.inlines[k]:6d} | {fmt(ours[k]):>24s} {n_ours[k]:6d} | {fmt(every[k]):>24s} "
               f"{len(candidates[k][0]):4d} | {fmt(best[1][k]):>24s} | {faultnet[k]:11.2f}")
     mean = lambda scores: tuple(float(np.mean([s[i] for s in scores])) for i in range(3))  # noqa: E731
-    print(f"{'mean':>6s} | {fmt(mean(rows)):>24s} {'':6s} | {fmt(mean(grid_scores[(0.0, -1.0)])):>24s} {'':4s} | "
+    print(f"{'mean':>6s} | {fmt(mean(ours)):>24s} {'':6s} | {fmt(mean(every)):>24s} {'':4s} | "
           f"{fmt(mean(best[1])):>24s} | {np.mean(faultnet):11.2f}")
-    print(f"skeleton threshold: the {best[0]:.0%} quantile of 1 - semblance on every inline; seismo3d "
+    print(f"skeleton threshold: the {best[0]:.1%} quantile of 1 - semblance on every inline; seismo3d "
           f"{np.mean(seconds):.1f} s per inline")
     print(f"\nCross-validation of the evidence options (min_throw samples, min_correlation_gain) over "
           f"{len(EVIDENCE_GRID)} grid points: chosen by mean F1 on three inlines, scored on the other two; the default "
@@ -287,28 +288,22 @@ def f3_people(out_dir: Path) -> None:
     head = f"{'chosen on':>16s} {'held out':>10s} {'choice':>12s} {'held-out F1':>11s} {'default F1':>10s}"
     print(head + "\n" + "-" * len(head))
     held_chosen, held_default = [], []
+    names = lambda ks: ",".join(str(data.inlines[k]) for k in ks)  # noqa: E731
     for train in itertools.combinations(range(n), 3):
         test = [k for k in range(n) if k not in train]
-        choice = max(EVIDENCE_GRID, key=lambda g: (np.mean([grid_scores[g][k][2] for k in train]), -abs(g[0] - 1)))
-        f_choice = float(np.mean([grid_scores[choice][k][2] for k in test]))
-        f_default = float(np.mean([_scores(_kept_mask(*candidates[k], data.sections[k].shape, default.min_throw,
-                                                      default.min_correlation_gain)[0], data.faults[k])[2]
-                                   for k in test]))
-        held_chosen.append(f_choice)
-        held_default.append(f_default)
-        names = lambda ks: ",".join(str(data.inlines[k]) for k in ks)  # noqa: E731
-        print(f"{names(train):>16s} {names(test):>10s} {str(choice):>12s} {f_choice:11.3f} {f_default:10.3f}")
+        choice = max(EVIDENCE_GRID, key=lambda g: np.mean([grid_scores[g][k][2] for k in train]))
+        held_chosen.append(float(np.mean([grid_scores[choice][k][2] for k in test])))
+        held_default.append(float(np.mean([ours[k][2] for k in test])))
+        print(f"{names(train):>16s} {names(test):>10s} {str(choice):>12s} {held_chosen[-1]:11.3f} "
+              f"{held_default[-1]:10.3f}")
     print(f"{'mean':>16s} {'':>10s} {'':>12s} {np.mean(held_chosen):11.3f} {np.mean(held_default):10.3f}")
-    _ = dataclasses
 
 
 def real_section_counts(data_dir: Path) -> None:
     """Fault counts on every real 2D section of the data folder, with the defaults and with no evidence asked."""
-    from seismo3d.seismic import open_segy, trace_faults
-    from seismo3d.seismic.faults.evidence import EvidenceOptions
-    from seismo3d.seismic.faults import FaultTracingOptions
+    from seismo3d.seismic import open_segy
+    from seismo3d.seismic.faults import EvidenceOptions
 
-    every = FaultTracingOptions(evidence=EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))
     inputs = {name: (_f32be(data_dir, f"sections/{name}.f32be", shape), None) for name, shape in SECTIONS.items()}
     for name in ("penobscot_xl1155", "volve_fullstack_twt_arbline"):
         with warnings.catch_warnings():
@@ -320,16 +315,11 @@ def real_section_counts(data_dir: Path) -> None:
     print("\nFaults on every real section of the data folder (defaults; candidates: no displacement asked)\n")
     head = f"{'section':30s} {'shape':>10s} {'faults':>7s} {'candidates':>10s} {'seconds':>8s}"
     print(head + "\n" + "-" * len(head))
+    default = EvidenceOptions()
     for name, (arr, dt) in inputs.items():
-        unit = {"sample_interval": dt, "sample_unit": "ms"} if dt else {}
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            t = time.perf_counter()
-            res = trace_faults(arr, progress=False, **unit)
-            seconds = time.perf_counter() - t
-            cand = trace_faults(arr, progress=False, options=every, **unit)
-        print(f"{name:30s} {'x'.join(map(str, arr.shape)):>10s} {len(res.faults):7d} {len(cand.faults):10d} "
-              f"{seconds:8.1f}")
+        faults, evidence, seconds = _candidates(arr, **({"sample_interval": dt, "sample_unit": "ms"} if dt else {}))
+        n_ours = sum(e.supports(default) for e in evidence)
+        print(f"{name:30s} {'x'.join(map(str, arr.shape)):>10s} {n_ours:7d} {len(faults):10d} {seconds:8.1f}")
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -497,11 +487,11 @@ def main(argv=None) -> None:
     if args.only:
         if not root:
             sys.exit("set SEISMO3D_DATA_DIR to the data folder")
-        f3_people(Path(args.out)) if args.only == "f3" else real_section_counts(Path(root))
+        f3_people() if args.only == "f3" else real_section_counts(Path(root))
         return
     if not args.no_real:
         if root:
-            f3_people(Path(args.out))
+            f3_people()
             real_section_counts(Path(root))
             real_sections(Path(root), Path(args.out))
         else:

@@ -21,7 +21,6 @@ import segyio
 from .._atomic import atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
-from ..data.synthetic import synthetic_cube
 from ..errors import DataNotFoundError, InputError, Seismo3dWarning
 from ..seismic.faults.likelihood_blocks import (
     ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory,
@@ -139,6 +138,7 @@ def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, 
 def _demo_input(out_dir: Path, seed, *, read: bool = True) -> tuple:
     """Write a synthetic cube as SEG-Y (4 ms, inlines / crosslines 1..128) and its true faults (CSV) into ``out_dir``;
     read the cube back (or, with ``read=False``, return the SEG-Y file's path instead)."""
+    from ..data.synthetic import synthetic_cube  # 0.5 s of imports (the data package): only for --demo
 
     syn = synthetic_cube(_DEMO_SHAPE, seed=seed)
     path = out_dir / "demo_seismic.sgy"

@@ -11,7 +11,6 @@ from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import fault_throw, fault_throws, trace_faults
 from seismo3d.seismic.faults.evidence import EvidenceOptions, FaultEvidence, fault_evidence, supported_faults
-from seismo3d.seismic.faults.throw import FaultThrow
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -73,9 +72,11 @@ def test_supported_faults_keeps_order_and_renumbers():
     assert [t.fault_id for t in result.throws] == [e.fault_id for e in result.evidence] == \
         [f.id for f in result.faults]
     faults, throws = result.faults, result.throws
-    # a copy of fault 1 whose throws say "no displacement" is dropped, the others renumbered after it
-    flat = dataclasses.replace(throws[0], throw=np.zeros_like(throws[0].throw),
-                               correlation_unshifted=throws[0].correlation)
+    # a copy of fault 1 whose throws say "no displacement" (sides matching, 0.9, with and without a shift) is
+    # dropped, the others renumbered after it
+    matching = np.full_like(throws[0].correlation, 0.9)
+    flat = dataclasses.replace(throws[0], throw=np.zeros_like(throws[0].throw), median_throw=0.0,
+                               correlation=matching, correlation_unshifted=matching)
     kept, kept_throws, evidence = supported_faults(faults, [flat, *throws[1:]])
     assert [f.id for f in kept] == [t.fault_id for t in kept_throws] == list(range(1, len(faults)))
     assert all(np.array_equal(a.points, b.points) for a, b in zip(kept, faults[1:]))
@@ -92,4 +93,3 @@ def test_bad_input():
         EvidenceOptions(min_throw=-1.0)
     with pytest.raises(InputError, match="min_correlation_gain"):
         EvidenceOptions(min_correlation_gain=3.0)
-    assert isinstance(throws[0], FaultThrow)

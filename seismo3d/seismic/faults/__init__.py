@@ -26,7 +26,7 @@ from .surfaces import Fault, check_fault_arrays, thin_faults, link_faults, fault
 from .voting import VotingOptions, FaultVotes, vote_faults, fault_frames, greedy_seeds, surface_votes
 from .skins import SkinOptions, fault_skins, skins_from_cells
 from .throw import FaultThrow, ThrowOptions, fault_throw, fault_throws, hanging_wall_normals
-from .evidence import EvidenceOptions, FaultEvidence, fault_evidence, supported_faults
+from .evidence import EvidenceOptions, FaultEvidence, fault_evidence, sensitivity_factor, supported_faults
 from .pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
 from .likelihood_blocks import (
     ChunkOptions, ChunkedLikelihood, chunked_fault_likelihood, default_memory_limit, in_memory_bytes,
@@ -40,7 +40,8 @@ __all__ = [
     "StoredWindows", "cube_windows", "is_dask_array", "Fault", "check_fault_arrays", "thin_faults", "link_faults",
     "fault_labels", "VotingOptions", "FaultVotes", "vote_faults", "fault_frames", "greedy_seeds", "surface_votes",
     "SkinOptions", "fault_skins", "skins_from_cells", "FaultThrow", "ThrowOptions", "fault_throw", "fault_throws",
-    "hanging_wall_normals", "EvidenceOptions", "FaultEvidence", "fault_evidence", "supported_faults",
+    "hanging_wall_normals", "EvidenceOptions", "FaultEvidence", "fault_evidence", "sensitivity_factor",
+    "supported_faults",
     "FaultInterpretation", "FaultTracingOptions", "trace_faults", "ChunkOptions",
     "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit", "in_memory_bytes", "resident_memory",
     "worker_baseline", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO",

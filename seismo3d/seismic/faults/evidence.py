@@ -23,7 +23,13 @@ import numpy as np
 from ..._validation import check_positive
 from ...errors import InputError
 
-__all__ = ["EvidenceOptions", "FaultEvidence", "fault_evidence", "supported_faults"]
+__all__ = ["EvidenceOptions", "FaultEvidence", "fault_evidence", "sensitivity_factor", "supported_faults"]
+
+
+def sensitivity_factor(sensitivity: float) -> float:
+    """The factor ``2 ** (1 - 2 * sensitivity)`` by which a sensitivity in [0, 1] scales every threshold of the fault
+    pipeline (the vote thresholds and the evidence asked for): 2 at 0, 1 at the default 0.5, 1/2 at 1."""
+    return 2.0 ** (1.0 - 2.0 * float(sensitivity))
 
 
 @dataclass(frozen=True)
@@ -33,7 +39,7 @@ class EvidenceOptions:
     The defaults are not fitted to data: one sample is the smallest displacement the data resolves, a correlation
     of 0.5 is the level where the sides hold as much coherent as incoherent energy. ``benchmarks/faults.py --only
     f3`` cross-validates a grid of ``min_throw`` and ``min_correlation_gain`` on the five F3 inlines with faults
-    drawn by a person (chosen on three inlines, scored on the other two): the choices vary from fold to fold (1 to 2
+    drawn by a person (chosen on three inlines, scored on the other two): the choices vary from fold to fold (1 to 3
     samples) and score lower on the held-out inlines than these defaults.
 
     Attributes
@@ -94,7 +100,7 @@ class FaultEvidence:
     def supports(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
         """True when the fault shows what ``options`` ask for at ``sensitivity`` in [0, 1]: a displacement, or sides
         that do not match without a shift."""
-        factor = 2.0 ** (1.0 - 2.0 * float(sensitivity))
+        factor = sensitivity_factor(sensitivity)
         if not (np.isfinite(self.median_throw) and np.isfinite(self.correlation_gain)):
             return False  # the two sides could not be compared: nothing shows a fault
         if self.correlation - self.correlation_gain < options.continuity:
@@ -137,6 +143,7 @@ def fault_evidence(throw) -> FaultEvidence:
         t = np.asarray(throw.throw, np.float64)
         c = np.asarray(throw.correlation, np.float64)
         c0 = np.asarray(throw.correlation_unshifted, np.float64)
+        median_throw = float(throw.median_throw)
     except AttributeError as exc:
         raise InputError(f"fault_evidence needs a FaultThrow (see fault_throw); got {type(throw).__name__}") from exc
     measured = np.isfinite(t)
@@ -145,7 +152,7 @@ def fault_evidence(throw) -> FaultEvidence:
         spread = float(q3 - q1)
     else:
         spread = float("nan")
-    return FaultEvidence(fault_id=int(throw.fault_id), median_throw=_median(t), throw_spread=spread,
+    return FaultEvidence(fault_id=int(throw.fault_id), median_throw=median_throw, throw_spread=spread,
                          correlation=_median(c), correlation_gain=_median(c - c0),
                          measured_fraction=float(measured.mean()) if t.size else 0.0)
 

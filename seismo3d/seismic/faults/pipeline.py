@@ -20,7 +20,7 @@ from ..._progress import progress_steps
 from ..._validation import check_choice, check_positive
 from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .dead_samples import CleanTraces, clean_traces, near_dead_samples
-from .evidence import EvidenceOptions, supported_faults
+from .evidence import EvidenceOptions, sensitivity_factor, supported_faults
 from .likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood
 from .skins import SkinOptions, fault_skins
 from .surfaces import thin_faults
@@ -132,7 +132,7 @@ class FaultTracingOptions:
         -------
         (float, float)
         """
-        factor = 2.0 ** (1.0 - 2.0 * float(self.sensitivity))
+        factor = sensitivity_factor(self.sensitivity)
         upper = min(0.99, factor * max(float(otsu), float(self.min_vote)))
         lower = upper / 3.0
         fraction = min(1.0, float(self.max_fault_fraction) / factor)

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import numpy as np
 from scipy import ndimage as ndi
-from scipy.signal import hilbert
 from scipy.spatial import cKDTree
 
 from ...errors import InputError, RegistrationError
@@ -140,6 +139,8 @@ def consistent_tracks(src, dst, seed: int, min_tracks: int, threshold: float = 1
 def envelope(v) -> np.ndarray:
     """Instantaneous amplitude (Hilbert transform) along the traces of a cube, normalised (float32): it varies slowly
     with time, so slices of it barely change under a small vertical misfit."""
+    from scipy.signal import hilbert  # scipy.signal takes 0.5 s to import: only when a volume is registered
+
     e = np.abs(hilbert(v, axis=2)).astype(np.float32)
     return ((e - e.mean()) / max(float(e.std()), 1e-12)).astype(np.float32)
 

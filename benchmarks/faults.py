@@ -30,15 +30,21 @@ Three tables (each can be skipped):
    process CPU time of all threads, which barely moves when other jobs load the machine):
 
    - ``fault_likelihood`` (the scan over 24 strikes x 13 dips at half vertical resolution);
+   - ``learned_likelihood``: the fault network on every inline and crossline section, numpy, with strike and dip;
    - ``voting+skins``: ridges, optimal surface voting, thinning, thresholds and fault skins, from the likelihood;
-   - ``trace_faults``: the whole interpretation of the array, throws included;
+   - ``trace_faults``: the whole interpretation of the array, throws included (``trace_faults learned``: with the
+     learned likelihood);
    - ``faults command``: the whole ``seismo3d faults`` job (``run_faults_job``): read the .npy, trace, and write
-     every output (volumes, VTK surfaces, CSVs, PNG);
+     every output (volumes, VTK surfaces, CSVs, PNG); ``faults command learned``: ``--likelihood learned``;
    - peers: ``seismo3d.seismic.semblance`` (structure-oriented, 3 x 3 traces x 9 samples), a plain vectorised
      semblance written here with ``scipy.ndimage.uniform_filter`` (3 x 3 traces x 9 samples, flat windows; the
      cheapest discontinuity attribute one can write with numpy), and ``bruges.attribute.discontinuity`` (64^3 only:
      one call computes Marfurt semblance, Gersztenkorn eigen-coherence and the gradient structure tensor in Python
      loops over windows; ``pip install -e ".[bench]"``).
+
+Tables of the learned likelihood: ``--only f3`` (the F3 inlines drawn by a person, both likelihoods, the skeleton,
+FaultNet's figures, and the cross-validated choice of likelihood and evidence), ``--only counts`` (fault counts of
+both on every real section), ``--only generated`` (generated sections and cubes never trained on, both).
 
 Run: ``python benchmarks/faults.py`` (about 10 minutes on 2 cores); ``--sizes 64 128`` for a quicker speed table,
 ``--no-speed``, ``--no-real``, ``--synthetic`` to choose the tables, ``--no-bruges`` to skip bruges.
@@ -59,8 +65,8 @@ from pathlib import Path
 
 import numpy as np
 
-METHODS = ("fault_likelihood", "voting+skins", "trace_faults", "faults command", "semblance", "plain_semblance",
-           "bruges")
+METHODS = ("fault_likelihood", "learned_likelihood", "voting+skins", "trace_faults", "trace_faults learned",
+           "faults command", "faults command learned", "semblance", "plain_semblance", "bruges")
 PEERS = {"plain_semblance", "bruges"}
 XL1155_ENDS = ((1385.0, 900.0), (1222.0, 2550.0))  # (inline, ms) of the fault's two ends
 
@@ -210,6 +216,7 @@ SECTIONS = {  # every real 2D section of the data folder: (file, n_traces, n_sam
     "teapot_tpd": (357, 315),
 }
 # the evidence options tried by the cross-validation on the F3 inlines (min_throw in samples, min_correlation_gain)
+LIKELIHOODS = ("learned", "scan")
 EVIDENCE_GRID = [(t, g) for t in (0.0, 0.5, 1.0, 1.5, 2.0, 3.0) for g in (-1.0, 0.0, 0.05, 0.1, 0.2)]
 
 
@@ -222,13 +229,14 @@ def _kept_mask(faults, evidence, shape, options=None):
     return mask
 
 
-def _candidates(section, **unit):
+def _candidates(section, likelihood="scan", **unit):
     """The faults of the whole pipeline before the evidence is asked (only unmeasured ones dropped), their evidence,
     and the seconds of the run; the defaults' faults are those whose evidence ``EvidenceOptions()`` accepts."""
     from seismo3d.seismic import trace_faults
     from seismo3d.seismic.faults import EvidenceOptions, FaultTracingOptions
 
-    every = FaultTracingOptions(evidence=EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))
+    every = FaultTracingOptions(likelihood=likelihood,
+                                evidence=EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # muted tops and clipped amplitudes are reported
         t = time.perf_counter()
@@ -238,8 +246,9 @@ def _candidates(section, **unit):
 
 
 def f3_people() -> None:
-    """The five F3 inlines with faults drawn by a person: scores per inline, the plain skeleton at its single best
-    threshold, and the evidence options chosen by cross-validation (chosen on three inlines, scored on two)."""
+    """The five F3 inlines with faults drawn by a person: scores per inline of the learned and the scanned
+    likelihood's faults (defaults), the plain skeleton at its single best threshold, and the likelihood and evidence
+    options chosen by cross-validation (chosen on three inlines, scored on the other two, every split)."""
     import itertools
 
     from seismo3d.data import load_f3_fault_sections
@@ -247,11 +256,11 @@ def f3_people() -> None:
 
     data = load_f3_fault_sections()
     n = len(data.inlines)
-    candidates, seconds = [], []
-    for k in range(n):
-        faults, evidence, sec = _candidates(data.sections[k], sample_interval=4.0, sample_unit="ms")
-        candidates.append((faults, evidence))
-        seconds.append(sec)
+    candidates, seconds = {}, {}
+    for likelihood in LIKELIHOODS:
+        runs = [_candidates(data.sections[k], likelihood, sample_interval=4.0, sample_unit="ms") for k in range(n)]
+        candidates[likelihood] = [(f, e) for f, e, _ in runs]
+        seconds[likelihood] = [sec for _, _, sec in runs]
     # the peer: one quantile of 1 - plain semblance for all five inlines, the best mean F1
     best = None
     for q in np.concatenate([np.linspace(0.50, 0.98, 25), [0.985, 0.99, 0.993, 0.996, 0.998]]):
@@ -259,44 +268,45 @@ def f3_people() -> None:
             1.0 - plain_semblance(data.sections[k]), q))), data.faults[k]) for k in range(n)]
         if best is None or np.mean([s[2] for s in scores]) > np.mean([s[2] for s in best[1]]):
             best = (q, scores)
-    # every grid point's scores on every inline (the defaults' among them), then the 10 splits 3 / 2
+    # every (likelihood, evidence) grid point's scores on every inline (the defaults' among them)
     default = EvidenceOptions()
-    grid = {(t, g): EvidenceOptions(min_throw=t, min_correlation_gain=g) for t, g in EVIDENCE_GRID}
-    grid_scores = {key: [_scores(_kept_mask(*candidates[k], data.sections[k].shape, opt), data.faults[k])
+    grid = {(lk, t, g): EvidenceOptions(min_throw=t, min_correlation_gain=g)
+            for lk in LIKELIHOODS for t, g in EVIDENCE_GRID}
+    grid_scores = {key: [_scores(_kept_mask(*candidates[key[0]][k], data.sections[k].shape, opt), data.faults[k])
                          for k in range(n)] for key, opt in grid.items()}
-    ours = grid_scores[(default.min_throw, default.min_correlation_gain)]
-    every = [_scores(_kept_mask(*candidates[k], data.sections[k].shape), data.faults[k]) for k in range(n)]
-    n_ours = [sum(e.supports(default) for e in candidates[k][1]) for k in range(n)]
-    print("\nF3 inlines with faults drawn by a person (951 x 462 each), tolerance 3 samples: precision / recall / F1; "
-          "FaultNet (Dou et al. 2022, released weights) F1 from the issue for reference\n")
+    ours = {lk: grid_scores[(lk, default.min_throw, default.min_correlation_gain)] for lk in LIKELIHOODS}
+    n_ours = {lk: [sum(e.supports(default) for e in candidates[lk][k][1]) for k in range(n)] for lk in LIKELIHOODS}
+    print("\nF3 inlines with faults drawn by a person (951 x 462 each), tolerance 3 samples: precision / recall / F1 "
+          "of the defaults' faults with each likelihood; FaultNet (Dou et al. 2022, released weights) F1 from the "
+          "issue for reference\n")
     faultnet = (0.33, 0.28, 0.15, 0.14, 0.19)
-    head = (f"{'inline':>6s} | {'seismo3d defaults':>24s} {'faults':>6s} | {'candidates, no evidence':>24s} "
-            f"{'n':>4s} | {'1-semblance skeleton':>24s} | {'FaultNet F1':>11s}")
+    head = (f"{'inline':>6s} | {'learned likelihood':>24s} {'faults':>6s} | {'scan likelihood':>24s} {'faults':>6s} | "
+            f"{'1-semblance skeleton':>24s} | {'FaultNet F1':>11s}")
     print(head + "\n" + "-" * len(head))
     fmt = lambda s: f"{s[0]:6.3f} / {s[1]:5.3f} / {s[2]:5.3f}"  # noqa: E731
     for k in range(n):
-        print(f"{data.inlines[k]:6d} | {fmt(ours[k]):>24s} {n_ours[k]:6d} | {fmt(every[k]):>24s} "
-              f"{len(candidates[k][0]):4d} | {fmt(best[1][k]):>24s} | {faultnet[k]:11.2f}")
+        print(f"{data.inlines[k]:6d} | {fmt(ours['learned'][k]):>24s} {n_ours['learned'][k]:6d} | "
+              f"{fmt(ours['scan'][k]):>24s} {n_ours['scan'][k]:6d} | {fmt(best[1][k]):>24s} | {faultnet[k]:11.2f}")
     mean = lambda scores: tuple(float(np.mean([s[i] for s in scores])) for i in range(3))  # noqa: E731
-    print(f"{'mean':>6s} | {fmt(mean(ours)):>24s} {'':6s} | {fmt(mean(every)):>24s} {'':4s} | "
+    print(f"{'mean':>6s} | {fmt(mean(ours['learned'])):>24s} {'':6s} | {fmt(mean(ours['scan'])):>24s} {'':6s} | "
           f"{fmt(mean(best[1])):>24s} | {np.mean(faultnet):11.2f}")
-    print(f"skeleton threshold: the {best[0]:.1%} quantile of 1 - semblance on every inline; seismo3d "
-          f"{np.mean(seconds):.1f} s per inline")
-    print(f"\nCross-validation of the evidence options (min_throw samples, min_correlation_gain) over "
-          f"{len(EVIDENCE_GRID)} grid points: chosen by mean F1 on three inlines, scored on the other two; the default "
-          f"is ({default.min_throw:g}, {default.min_correlation_gain:g})\n")
-    head = f"{'chosen on':>16s} {'held out':>10s} {'choice':>12s} {'held-out F1':>11s} {'default F1':>10s}"
+    print(f"skeleton threshold: the {best[0]:.1%} quantile of 1 - semblance on every inline; seconds per inline: "
+          + ", ".join(f"{lk} {np.mean(seconds[lk]):.1f}" for lk in LIKELIHOODS))
+    print(f"\nCross-validation of the likelihood and the evidence options (min_throw samples, min_correlation_gain), "
+          f"{len(grid)} choices: chosen by mean F1 on three inlines, scored on the other two; the defaults are "
+          f"(learned, {default.min_throw:g}, {default.min_correlation_gain:g})\n")
+    head = f"{'chosen on':>16s} {'held out':>10s} {'choice':>22s} {'held-out F1':>11s} {'default F1':>10s}"
     print(head + "\n" + "-" * len(head))
     held_chosen, held_default = [], []
     names = lambda ks: ",".join(str(data.inlines[k]) for k in ks)  # noqa: E731
     for train in itertools.combinations(range(n), 3):
         test = [k for k in range(n) if k not in train]
-        choice = max(EVIDENCE_GRID, key=lambda g: np.mean([grid_scores[g][k][2] for k in train]))
+        choice = max(grid, key=lambda g: np.mean([grid_scores[g][k][2] for k in train]))
         held_chosen.append(float(np.mean([grid_scores[choice][k][2] for k in test])))
-        held_default.append(float(np.mean([ours[k][2] for k in test])))
-        print(f"{names(train):>16s} {names(test):>10s} {str(choice):>12s} {held_chosen[-1]:11.3f} "
+        held_default.append(float(np.mean([ours["learned"][k][2] for k in test])))
+        print(f"{names(train):>16s} {names(test):>10s} {str(choice):>22s} {held_chosen[-1]:11.3f} "
               f"{held_default[-1]:10.3f}")
-    print(f"{'mean':>16s} {'':>10s} {'':>12s} {np.mean(held_chosen):11.3f} {np.mean(held_default):10.3f}")
+    print(f"{'mean':>16s} {'':>10s} {'':>22s} {np.mean(held_chosen):11.3f} {np.mean(held_default):10.3f}")
 
 
 def real_section_counts(data_dir: Path) -> None:
@@ -312,34 +322,85 @@ def real_section_counts(data_dir: Path) -> None:
                 arr = cube.read()
                 dt = float(cube.samples[1] - cube.samples[0])
         inputs[name] = (arr.reshape(-1, arr.shape[-1]), dt)
-    print("\nFaults on every real section of the data folder (defaults; candidates: no displacement asked)\n")
-    head = f"{'section':30s} {'shape':>10s} {'faults':>7s} {'candidates':>10s} {'seconds':>8s}"
+    print("\nFaults on every real section of the data folder with each likelihood (defaults; candidates: no "
+          "displacement asked)\n")
+    head = f"{'section':30s} {'shape':>10s}" + "".join(f" | {lk + ' faults':>14s} {'candidates':>10s} {'s':>5s}"
+                                                       for lk in LIKELIHOODS)
     print(head + "\n" + "-" * len(head))
     default = EvidenceOptions()
     for name, (arr, dt) in inputs.items():
-        faults, evidence, seconds = _candidates(arr, **({"sample_interval": dt, "sample_unit": "ms"} if dt else {}))
-        n_ours = sum(e.supports(default) for e in evidence)
-        print(f"{name:30s} {'x'.join(map(str, arr.shape)):>10s} {n_ours:7d} {len(faults):10d} {seconds:8.1f}")
+        row = f"{name:30s} {'x'.join(map(str, arr.shape)):>10s}"
+        for lk in LIKELIHOODS:
+            faults, evidence, seconds = _candidates(arr, lk, **({"sample_interval": dt, "sample_unit": "ms"}
+                                                                if dt else {}))
+            row += f" | {sum(e.supports(default) for e in evidence):14d} {len(faults):10d} {seconds:5.1f}"
+        print(row)
 
 
 # --------------------------------------------------------------------------------------------------------------------
 # 2. generated cubes
 
 
-def synthetic_accuracy(seeds=(0, 1, 2, 3, 4)) -> None:
+def generated_sections(n: int = 20) -> None:
+    """Generated sections the training never saw (seeds from 31,000,000): the learned and the scanned
+    likelihood's faults against the labels on faulted ones, and the faults on unfaulted cubes with real-data
+    degradations (a chaotic blob, coherent noise, 8-bit clipping)."""
+    from seismo3d.data.degradations import add_noise, chaotic_interval, clip_and_quantise
+    from seismo3d.data.synthetic import synthetic_cube
+    from seismo3d.data.synthetic_sections import synthetic_fault_section
+    from seismo3d.seismic import evaluate_faults, fault_labels, trace_faults
+    from seismo3d.seismic.faults import FaultTracingOptions
+
+    print(f"\nGenerated 256 x 256 sections never trained on ({n} seeds from 31,000,000, the training recipe's "
+          "degradations): faults against the labels (tolerance 2 samples), summed over the faulted sections; "
+          "faults found on the unfaulted ones\n")
+    head = f"{'likelihood':>10s} {'precision':>9s} {'recall':>7s} {'faulted':>8s} {'unfaulted':>9s} {'their faults':>12s}"
+    print(head + "\n" + "-" * len(head))
+    sections = [synthetic_fault_section((256, 256), seed=31_000_000 + i) for i in range(n)]
+    rng = np.random.default_rng(5)
+    unfaulted = []
+    for seed in range(5):  # unfaulted cubes (as sections) with the degradations of real data
+        x = synthetic_cube((256, 256), n_faults=0, seed=100 + seed, noise=0.0, max_dip=25.0).cube
+        x = add_noise(chaotic_interval(x, rng, strength=1.0, blob=True), rng, white=0.2, coherent=0.4)
+        unfaulted.append(clip_and_quantise(x, rng, clip_percentile=98.0))
+    for lk in LIKELIHOODS:
+        opt = FaultTracingOptions(likelihood=lk)
+        hits_p = hits_r = n_p = n_r = 0.0
+        faulted, empty_faults = 0, []
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            for sec in sections:
+                res = trace_faults(sec.section, options=opt, progress=False)
+                if not sec.faults.any():
+                    empty_faults.append(len(res.faults))
+                    continue
+                faulted += 1
+                pred = fault_labels(res.faults, sec.section.shape) > 0
+                sc = evaluate_faults(pred, sec.faults, tolerance=2)
+                hits_p += sc.precision * pred.sum()
+                n_p += pred.sum()
+                hits_r += sc.recall * sec.faults.sum()
+                n_r += sec.faults.sum()
+            empty_faults += [len(trace_faults(x, options=opt, progress=False).faults) for x in unfaulted]
+        print(f"{lk:>10s} {hits_p / max(n_p, 1):9.3f} {hits_r / max(n_r, 1):7.3f} {faulted:8d} "
+              f"{len(empty_faults):9d} {str(empty_faults):>12s}")
+
+
+def synthetic_accuracy(seeds=(0, 1, 2, 3, 4), likelihood: str = "scan") -> None:
     from scipy import ndimage as ndi
 
     from seismo3d.data.synthetic import synthetic_cube
     from seismo3d.seismic import evaluate_faults, fault_labels, trace_faults
+    from seismo3d.seismic.faults import FaultTracingOptions
 
-    print("\nGenerated 128^3 cubes (noise 0.1, 3 faults): fault skins against the true fault samples (tolerance 2), "
-          "throw at the true faults\n")
+    print(f"\nGenerated 128^3 cubes (noise 0.1, 3 faults), {likelihood} likelihood: fault skins against the true fault "
+          "samples (tolerance 2), throw at the true faults\n")
     head = f"{'seed':>4s} {'precision':>9s} {'recall':>7s} {'faults':>7s} {'median |throw error|':>21s} {'seconds':>8s}"
     print(head + "\n" + "-" * len(head))
     for seed in seeds:
         syn = synthetic_cube((128, 128, 128), seed=seed, noise=0.1)
         t = time.perf_counter()
-        res = trace_faults(syn.cube, progress=False)
+        res = trace_faults(syn.cube, options=FaultTracingOptions(likelihood=likelihood), progress=False)
         seconds = time.perf_counter() - t
         s = evaluate_faults(fault_labels(res.faults, syn.cube.shape) > 0, syn.fault_labels, tolerance=2)
         # throw error at skin points within 2 samples of a true fault, against the true throw at the nearest fault
@@ -383,6 +444,10 @@ def _worker(method: str, path: str) -> dict:
     def call(x):
         if method == "fault_likelihood":
             return seismic.fault_likelihood(x)
+        if method == "learned_likelihood":
+            return seismic.learned_fault_likelihood(x)
+        if method == "trace_faults learned":
+            return seismic.trace_faults(x, progress=False, options=seismic.FaultTracingOptions(likelihood="learned"))
         if method == "voting+skins":
             opt = seismic.FaultTracingOptions()
             ridges = seismic.thin_faults(x.likelihood, x.strike_deg, x.dip_deg, threshold=0.0)
@@ -394,11 +459,12 @@ def _worker(method: str, path: str) -> dict:
             return seismic.fault_skins(thin, votes.strike_deg, votes.dip_deg, lower=lower, upper=upper)
         if method == "trace_faults":
             return seismic.trace_faults(x, progress=False)
-        if method == "faults command":
+        if method.startswith("faults command"):
             from seismo3d.jobs.faults import run_faults_job
 
             with tempfile.TemporaryDirectory() as out:
-                return run_faults_job(x, out, progress=False)
+                return run_faults_job(x, out, progress=False,
+                                      likelihood="learned" if method.endswith("learned") else "scan")
         if method == "semblance":
             return attributes.semblance(x)
         if method == "plain_semblance":
@@ -410,7 +476,7 @@ def _worker(method: str, path: str) -> dict:
         raise ValueError(method)
 
     warnings.simplefilter("ignore")
-    if method == "faults command":
+    if method.startswith("faults command"):
         small = Path(tempfile.mkdtemp()) / "warmup.npy"
         np.save(small, np.ascontiguousarray(cube[:40, :40, :64]))
         call(small)  # compile numba kernels outside the measurement
@@ -474,8 +540,8 @@ def main(argv=None) -> None:
     ap.add_argument("--no-bruges", action="store_true", help="skip bruges.attribute.discontinuity")
     ap.add_argument("--no-speed", action="store_true", help="skip the speed and memory table")
     ap.add_argument("--no-real", action="store_true", help="skip the real sections")
-    ap.add_argument("--only", choices=("f3", "counts"), help="only the F3 inlines drawn by a person, or only the "
-                    "fault counts on every real section")
+    ap.add_argument("--only", choices=("f3", "counts", "generated"), help="only the F3 inlines drawn by a person, "
+                    "the fault counts on every real section, or the generated sections and cubes (both likelihoods)")
     ap.add_argument("--synthetic", action="store_true", help="also the accuracy on five generated cubes")
     ap.add_argument("--out", default="out/benchmarks", help="folder of the pictures (default: out/benchmarks)")
     ap.add_argument("--worker", nargs=2, metavar=("METHOD", "NPY"), help=argparse.SUPPRESS)
@@ -484,6 +550,11 @@ def main(argv=None) -> None:
         print(json.dumps(_worker(*args.worker)))
         return
     root = os.environ.get("SEISMO3D_DATA_DIR")
+    if args.only == "generated":
+        generated_sections()
+        for likelihood in LIKELIHOODS:
+            synthetic_accuracy(likelihood=likelihood)
+        return
     if args.only:
         if not root:
             sys.exit("set SEISMO3D_DATA_DIR to the data folder")
@@ -497,7 +568,9 @@ def main(argv=None) -> None:
         else:
             print("real sections skipped: set SEISMO3D_DATA_DIR to the data folder", file=sys.stderr)
     if args.synthetic:
-        synthetic_accuracy()
+        generated_sections()
+        for likelihood in LIKELIHOODS:
+            synthetic_accuracy(likelihood=likelihood)
     if not args.no_speed:
         speed(args.sizes, args.no_bruges)
 

@@ -272,9 +272,15 @@ class SampleUnit(str, Enum):
     ft = "ft"
 
 
+class Likelihood(str, Enum):
+    scan = "scan"
+    learned = "learned"
+
+
 @app.command()
 @_friendly({"sample_unit": "--sample-unit", "n_samples": "--n-samples", "ignore_geometry": "--ignore-geometry",
-            "demo_seed": "--demo-seed", "sensitivity": "--sensitivity", "memory_limit": "--memory-limit",
+            "demo_seed": "--demo-seed", "sensitivity": "--sensitivity", "likelihood": "--likelihood",
+            "memory_limit": "--memory-limit",
             "scheduler": "--scheduler"})
 def faults(
     input: Optional[pathlib.Path] = typer.Argument(
@@ -295,6 +301,9 @@ def faults(
     sensitivity: float = typer.Option(0.5, min=0.0, max=1.0, help="How readily faults are traced, 0-1: higher for "
                                                                   "more (and weaker) faults, lower for fewer; the "
                                                                   "thresholds scale by up to 2x either way."),
+    likelihood: Likelihood = typer.Option(Likelihood.scan, "--likelihood", help="Fault likelihood: 'scan' (fault-"
+                                          "plane semblance, Hale 2013) or 'learned' (seismo3d's fault network, "
+                                          "trained on generated sections)."),
     memory_limit: Optional[str] = typer.Option(None, "--memory-limit", help="Memory the run may use, e.g. 8GB "
                                                "(default: half the RAM). A larger 3D cube is traced block by "
                                                "block (fault_likelihood.zarr, fault_surfaces.zarr), resumably, "
@@ -312,7 +321,8 @@ def faults(
         written = run_faults_job(input, output, demo=demo, demo_seed=demo_seed, iline=iline, xline=xline,
                                  ignore_geometry=ignore_geometry, endian=_value(endian),
                                  sample_unit=None if sample_unit is None else sample_unit.value,
-                                 n_samples=n_samples, sensitivity=sensitivity, memory_limit=memory_limit,
+                                 n_samples=n_samples, sensitivity=sensitivity, likelihood=likelihood.value,
+                                 memory_limit=memory_limit,
                                  scheduler=scheduler, progress=True)
     with open(written["summary"], newline="") as fh:
         rows = list(csv.DictReader(fh))

@@ -26,6 +26,7 @@ from ..seismic.faults.likelihood_blocks import (
     ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory,
 )
 from ..seismic.faults.pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
+from ..seismic.faults.learned_blocks import chunked_learned_likelihood
 from ..seismic.faults.pipeline_blocks import chunked_fault_surfaces
 from ..seismic.io.lazy import open_lazy
 from ..seismic.io.segy import open_segy, read_section, write_like
@@ -362,8 +363,8 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
 
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
-                   endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, memory_limit=None, scheduler=None,
-                   progress=True) -> dict:
+                   endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, likelihood="scan",
+                   memory_limit=None, scheduler=None, progress=True) -> dict:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 
     Inputs
@@ -456,6 +457,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         Samples per trace of a raw ``.f32be`` section whose shape is not known by name.
     sensitivity : float, optional
         In [0, 1]: more faults when higher (see :class:`~seismo3d.seismic.FaultTracingOptions`).
+    likelihood : {'scan', 'learned'}, optional
+        The fault likelihood: the scan of fault-plane semblance or the fault network
+        (:attr:`~seismo3d.seismic.FaultTracingOptions.likelihood`).
     memory_limit : int or str, optional
         Memory the job may use, bytes or a size such as ``'4GB'`` (default: half of the machine's RAM). A 3D cube
         whose in-memory run would need more (about 24 times its float32 size) is processed block by block (see
@@ -501,6 +505,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     """
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
+    options = FaultTracingOptions(sensitivity=sensitivity, likelihood=likelihood)
     if demo:
         if input_path is not None:
             raise InputError("pass either an input file or demo=True (--demo), not both")
@@ -523,7 +528,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
                                                            sample_unit=sample_unit, endian=endian)
     if lazy is not None:
         written.update(_run_chunked(lazy, out_dir, memory_limit=limit, budget=budget, scheduler=scheduler,
-                                    sensitivity=sensitivity, progress=progress))
+                                    options=options, progress=progress))
         return written
     if demo:
         inp = _read_input(input_path, iline=189, xline=193, ignore_geometry=False, sample_unit="ms", n_samples=None)
@@ -535,7 +540,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         raise InputError(f"the sample interval of {inp.name} is {dt:g} {inp.unit}; it must be > 0 (check the "
                          "binary header's sample interval, bytes 3217-3218)")
     result = trace_faults(inp.data, sample_interval=None if inp.unit == "samples" else dt, sample_unit=inp.unit,
-                          sensitivity=sensitivity, progress=progress)
+                          options=options, progress=progress)
     out_dir.mkdir(parents=True, exist_ok=True)  # only now: refused data leaves nothing behind
 
     geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
@@ -580,8 +585,8 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
 _TILE = 32  # traces per side of the lazy input's chunks: a block of the chunked run reads only the tiles around it
 
 
-def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: int, scheduler, sensitivity,
-                 progress) -> dict:
+def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: int, scheduler,
+                 options: FaultTracingOptions, progress) -> dict:
     """Fault likelihood block by block into ``fault_likelihood.zarr``, then the fault surfaces block by block into
     ``fault_surfaces.zarr`` (both reused when finished, resumed when interrupted); the same files as in memory."""
     import zarr
@@ -592,7 +597,8 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
     chunking = ChunkOptions(memory_limit=memory_limit, scheduler=scheduler)
     if path.exists():  # a finished likelihood of an earlier run of the same input: reused
         group = zarr.open_group(str(path), mode="r")
-        if group.attrs.get("source") != lazy.name or tuple(group["likelihood"].shape) != shape:
+        if (group.attrs.get("source") != lazy.name or tuple(group["likelihood"].shape) != shape
+                or group.attrs.get("likelihood", "scan") != options.likelihood):
             raise InputError(f"{path} holds the fault likelihood of another input; pick another output folder (-o) "
                              "or delete it")
         LOGGER.info("%s: reusing the finished fault likelihood in %s", lazy.name, path)
@@ -600,12 +606,17 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
         LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory, more than the %.2f GiB left under "
                     "the memory limit (%.2f GiB): fault likelihood block by block into %s", lazy.name, *shape,
                     in_memory_bytes(shape) / 2**30, budget / 2**30, memory_limit / 2**30, path.name)
-        chunked_fault_likelihood(lazy.data, path, coords=lazy.coords, progress=progress, chunking=chunking)
-        zarr.open_group(str(path), mode="r+").attrs["source"] = lazy.name
+        if options.likelihood == "learned":
+            chunked_learned_likelihood(lazy.data, path, options=options.learned, coords=lazy.coords,
+                                       progress=progress, chunking=chunking)
+        else:
+            chunked_fault_likelihood(lazy.data, path, options=options.scan, coords=lazy.coords, progress=progress,
+                                     chunking=chunking)
+        zarr.open_group(str(path), mode="r+").attrs.update({"source": lazy.name, "likelihood": options.likelihood})
         consolidate(path)
     written = {"likelihood": path}
     surfaces = chunked_fault_surfaces(lazy.data, path, out_dir / "fault_surfaces.zarr",
-                                      options=FaultTracingOptions(sensitivity=sensitivity), chunking=chunking,
+                                      options=options, chunking=chunking,
                                       progress=progress)
     written["surfaces_zarr"] = surfaces.path
     zarr.open_group(str(surfaces.path), mode="r+").attrs["source"] = lazy.name

@@ -15,6 +15,7 @@ Sub-packages:
 - :mod:`~seismo3d.seismic.faults`: fault interpretation.
 
   - :mod:`~seismo3d.seismic.faults.likelihood`: the scan over fault strikes and dips.
+  - :mod:`~seismo3d.seismic.faults.learned`: the learned fault likelihood (a U-Net trained on generated sections).
   - :mod:`~seismo3d.seismic.faults.dead_samples`: dead traces and samples, and their fill values.
   - :mod:`~seismo3d.seismic.faults.windows`: windows of a cube around points (in memory, lazy or stored).
   - :mod:`~seismo3d.seismic.faults.surfaces`: faults as point sets, thinning (and the older region-growing linker).
@@ -60,8 +61,8 @@ from .evaluation import (
 from .faults import (
     ChunkedFaults, ChunkedLikelihood, ChunkOptions, CleanTraces, CubeWindow, EvidenceOptions, Fault, FaultEvidence,
     FaultInterpretation,
-    FaultLikelihood, FaultScanOptions, FaultThrow, FaultTracingOptions, FaultVotes, SkinOptions, ThrowOptions,
-    VotingOptions, chunked_fault_likelihood, chunked_fault_surfaces, clean_traces, cube_windows, fault_labels,
+    FaultLikelihood, FaultScanOptions, FaultThrow, FaultTracingOptions, FaultVotes, LearnedOptions, SkinOptions,
+    ThrowOptions, VotingOptions, chunked_fault_likelihood, chunked_learned_likelihood, learned_fault_likelihood, chunked_fault_surfaces, clean_traces, cube_windows, fault_labels,
     fault_likelihood, fault_normals, fault_skins, fault_throw, fault_throws, fill_values, link_faults,
     near_dead_samples, supported_faults, thin_faults, trace_faults, vote_faults,
 )
@@ -97,6 +98,7 @@ __all__ = [
     # faults: dead samples, cube windows, the likelihood scan and the fault surfaces by blocks
     "CleanTraces", "clean_traces", "dead_samples", "near_dead_samples", "fill_values", "CubeWindow", "cube_windows",
     "ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "ChunkedFaults", "chunked_fault_surfaces",
+    "LearnedOptions", "learned_fault_likelihood", "chunked_learned_likelihood",
     # faults: the evidence a fault must show
     "EvidenceOptions", "FaultEvidence", "supported_faults",
     # horizons: the cycle-skip cut

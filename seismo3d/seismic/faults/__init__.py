@@ -2,6 +2,8 @@
 memory or by blocks of a cube stored on disk.
 
 - :mod:`~seismo3d.seismic.faults.likelihood`: the scan over fault strikes and dips (:func:`fault_likelihood`).
+- :mod:`~seismo3d.seismic.faults.learned`: the learned fault likelihood, a U-Net trained on generated sections
+  (:func:`learned_fault_likelihood`); its numpy forward pass in :mod:`~seismo3d.seismic.faults.unet`.
 - :mod:`~seismo3d.seismic.faults.dead_samples`: dead traces and dead samples, and their fill values.
 - :mod:`~seismo3d.seismic.faults.windows`: windows of a cube around points (in memory, lazy or stored).
 - :mod:`~seismo3d.seismic.faults.surfaces`: faults as point sets, thinning (and the older region-growing linker).
@@ -12,6 +14,8 @@ memory or by blocks of a cube stored on disk.
 - :mod:`~seismo3d.seismic.faults.pipeline`: the whole fault interpretation of an array (:func:`trace_faults`).
 - :mod:`~seismo3d.seismic.faults.likelihood_blocks`: the likelihood scan of a cube by blocks, resumable
   (:func:`chunked_fault_likelihood`).
+- :mod:`~seismo3d.seismic.faults.learned_blocks`: the learned likelihood of a cube by blocks, resumable
+  (:func:`chunked_learned_likelihood`).
 - :mod:`~seismo3d.seismic.faults.pipeline_blocks`: the fault surfaces of a cube by blocks
   (:func:`chunked_fault_surfaces`).
 
@@ -20,6 +24,7 @@ module's.
 """
 
 from .likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood, fault_normals, fault_strike_dip
+from .learned import LearnedOptions, learned_fault_likelihood, load_fault_network
 from .dead_samples import CleanTraces, clean_traces, fill_values, near_dead_samples, DEAD_REACH
 from .windows import ArrayWindows, CubeWindow, LazyWindows, StoredWindows, cube_windows, is_dask_array
 from .surfaces import Fault, check_fault_arrays, thin_faults, link_faults, fault_labels
@@ -32,10 +37,12 @@ from .likelihood_blocks import (
     ChunkOptions, ChunkedLikelihood, chunked_fault_likelihood, default_memory_limit, in_memory_bytes,
     resident_memory, worker_baseline,
 )
+from .learned_blocks import chunked_learned_likelihood
 from .pipeline_blocks import ChunkedFaults, chunked_fault_surfaces, RIDGE_HALO
 
 __all__ = [
-    "FaultLikelihood", "FaultScanOptions", "fault_likelihood", "fault_normals", "fault_strike_dip", "CleanTraces",
+    "FaultLikelihood", "FaultScanOptions", "fault_likelihood", "fault_normals", "fault_strike_dip", "LearnedOptions",
+    "learned_fault_likelihood", "load_fault_network", "chunked_learned_likelihood", "CleanTraces",
     "clean_traces", "fill_values", "near_dead_samples", "DEAD_REACH", "ArrayWindows", "CubeWindow", "LazyWindows",
     "StoredWindows", "cube_windows", "is_dask_array", "Fault", "check_fault_arrays", "thin_faults", "link_faults",
     "fault_labels", "VotingOptions", "FaultVotes", "vote_faults", "fault_frames", "greedy_seeds", "surface_votes",

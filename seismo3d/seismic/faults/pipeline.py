@@ -22,6 +22,7 @@ from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .dead_samples import CleanTraces, clean_traces, near_dead_samples
 from .evidence import EvidenceOptions, sensitivity_factor, supported_faults
 from .likelihood import FaultLikelihood, FaultScanOptions, fault_likelihood
+from .learned import LearnedOptions, learned_fault_likelihood
 from .skins import SkinOptions, fault_skins
 from .surfaces import thin_faults
 from .throw import fault_throws
@@ -30,6 +31,7 @@ from .voting import VotingOptions, vote_faults
 __all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "clean_traces", "trace_faults"]
 
 _UNITS = {"samples", "ms", "m", "ft"}
+LIKELIHOODS = ("scan", "learned")
 
 
 @dataclass(frozen=True)
@@ -50,8 +52,13 @@ class FaultTracingOptions:
         The lower threshold leaves at most this fraction of the samples on thinned faults (scaled like the
         thresholds by the sensitivity): a fault every 8 traces is already dense faulting (12 % on the Costa Rica
         sections), and denser ridges are the uniform votes of incoherent data, not faults.
+    likelihood : {'scan', 'learned'}
+        The fault likelihood of step 1: the scan of fault-plane semblance (Hale 2013, ``scan``) or the fault network
+        trained on generated sections (:mod:`~seismo3d.seismic.faults.learned`, ``learned``).
     scan : FaultScanOptions
         The fault likelihood scan.
+    learned : LearnedOptions
+        The learned fault likelihood.
     voting : VotingOptions
         The optimal surface voting.
     skins : SkinOptions
@@ -79,7 +86,9 @@ class FaultTracingOptions:
     sensitivity: float = 0.5
     min_vote: float = 0.1
     max_fault_fraction: float = 0.15
+    likelihood: str = "scan"
     scan: FaultScanOptions = field(default_factory=FaultScanOptions)
+    learned: LearnedOptions = field(default_factory=LearnedOptions)
     voting: VotingOptions = field(default_factory=VotingOptions)
     skins: SkinOptions = field(default_factory=SkinOptions)
     evidence: EvidenceOptions = field(default_factory=EvidenceOptions)
@@ -95,8 +104,9 @@ class FaultTracingOptions:
             raise InputError(f"min_vote must be in [0, 1); got {self.min_vote!r}")
         if not 0.0 < float(self.max_fault_fraction) <= 1.0:
             raise InputError(f"max_fault_fraction must be in (0, 1]; got {self.max_fault_fraction!r}")
-        for name, cls in (("scan", FaultScanOptions), ("voting", VotingOptions), ("skins", SkinOptions),
-                          ("evidence", EvidenceOptions)):
+        check_choice(self.likelihood, "likelihood", LIKELIHOODS)
+        for name, cls in (("scan", FaultScanOptions), ("learned", LearnedOptions), ("voting", VotingOptions),
+                          ("skins", SkinOptions), ("evidence", EvidenceOptions)):
             if not isinstance(getattr(self, name), cls):
                 raise InputError(f"{name} must be a {cls.__name__}; got {type(getattr(self, name)).__name__}")
         if (len(tuple(self.min_traces)) != 2 or any(int(v) != v or v < 3 for v in self.min_traces)):
@@ -314,7 +324,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         if likelihood is None:
             with warnings.catch_warnings():  # saturation is decided below, on the live samples
                 warnings.simplefilter("ignore", Seismo3dWarning)
-                fl = fault_likelihood(arr, options=opt.scan, progress=progress)
+                fl = (fault_likelihood(arr, options=opt.scan, progress=progress) if opt.likelihood == "scan" else
+                      learned_fault_likelihood(arr, options=opt.learned, progress=progress))
         else:
             fl = _given_likelihood(likelihood, arr.shape)
         likelihood, strike, dip = fl.likelihood, fl.strike_deg, fl.dip_deg

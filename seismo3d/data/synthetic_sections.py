@@ -1,0 +1,293 @@
+"""Generated faulted seismic sections with fault labels: the training and validation data of the learned likelihood.
+
+Each section is built like FaultSeg3D's training cubes (Wu et al. 2019), in 2D and with more variety:
+
+1. **Reflectivity** in relative geologic time (RGT): a blocky impedance log (layers 1-12 samples thick, a random
+   walk of log-impedance with occasional strong contrasts) differentiated, with smooth lateral amplitude changes.
+2. **Layering**: folding (sums of Gaussian bumps and a plane, up to ``max_fold_dip``), and with probability 0.4
+   an angular unconformity (a second package of another dip above a wavy surface: reflector terminations that are
+   not faults).
+3. **Faults**, oldest first, 0-``max_faults`` of them (none with probability ``p_unfaulted``): normal or reverse
+   dip-slip on a planar or slightly curved (listric) trace of dip 50-88 degrees (index space), the throw tapering
+   to 0 at the fault's tips (faults that die out within the section) or constant along it (faults crossing it),
+   0-``max_throw`` samples at the fault's centre. Younger faults offset older ones (faults cut faults).
+4. Every output sample is mapped back through the faults, youngest first, then through the layering to its RGT
+   (exact labels); the reflectivity is sampled there and convolved along the trace with a Ricker wavelet of peak
+   frequency 0.06-0.2 cycles per sample (15-50 Hz at 4 ms) and random phase rotation.
+5. The degradations of real data (:func:`seismo3d.data.degradations.degrade`).
+
+Labels: the samples within 1 sample (across the fault) of a fault trace where its local throw is at least
+``min_label_throw`` samples (a fault that displaces nothing is invisible, and labelling it would teach the network to
+guess).
+
+Conventions: axis 0 trace, axis 1 sample (downward), as in :mod:`seismo3d.data.synthetic`.
+
+References
+----------
+Wu, X., Liang, L., Shi, Y., and Fomel, S., 2019, FaultSeg3D: Using synthetic data sets to train an end-to-end
+convolutional neural network for 3D seismic fault segmentation: Geophysics, 84(3), IM35-IM45.
+doi:10.1190/geo2018-0646.1
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.ndimage import gaussian_filter1d, map_coordinates
+from scipy.signal import hilbert
+
+from .._validation import check_int
+from ..errors import InputError
+from .degradations import degrade
+from .synthetic import ricker
+
+__all__ = ["FaultSectionOptions", "FaultSection", "synthetic_fault_section", "fault_section_batch"]
+
+
+@dataclass(frozen=True)
+class FaultSectionOptions:
+    """Ranges of the random draws of :func:`synthetic_fault_section`.
+
+    Attributes
+    ----------
+    max_faults : int
+        Most faults per section (the number is uniform in 1..max_faults when faulted).
+    p_unfaulted : float
+        Probability of a section without any fault.
+    dip_range : (float, float)
+        Fault dips, degrees from the horizontal in index space (one trace = one sample).
+    max_throw : float
+        Largest throw at a fault's centre, samples.
+    reverse_fraction : float
+        Fraction of reverse faults.
+    frequency_range : (float, float)
+        Peak frequency of the Ricker wavelet, cycles per sample (15-50 Hz at 4 ms is 0.06-0.2).
+    max_fold_dip : float
+        Steepest reflector dip of the folding, degrees.
+    min_label_throw : float
+        Fault samples are labelled where the local throw is at least this, samples.
+    degradation : float
+        Strength of :func:`~seismo3d.data.degradations.degrade` (0: clean up to a little white noise).
+    """
+
+    max_faults: int = 8
+    p_unfaulted: float = 0.15
+    dip_range: tuple = (50.0, 88.0)
+    max_throw: float = 20.0
+    reverse_fraction: float = 0.3
+    frequency_range: tuple = (0.06, 0.2)
+    max_fold_dip: float = 30.0
+    min_label_throw: float = 1.0
+    degradation: float = 1.0
+
+
+@dataclass(frozen=True, eq=False)
+class FaultSection:
+    """Result of :func:`synthetic_fault_section`.
+
+    Attributes
+    ----------
+    section : (n_traces, n_samples) float32 ndarray
+        Degraded amplitudes.
+    clean : (n_traces, n_samples) float32 ndarray
+        The same before the degradations.
+    faults : (n_traces, n_samples) bool ndarray
+        Fault labels.
+    throw : (n_traces, n_samples) float32 ndarray
+        Local throw (samples) at the labelled samples, 0 elsewhere.
+    n_faults : int
+        Number of faults drawn (some may have no labelled sample where their throw stays below the minimum).
+    """
+
+    section: np.ndarray
+    clean: np.ndarray
+    faults: np.ndarray
+    throw: np.ndarray
+    n_faults: int
+
+
+def _impedance_reflectivity(rng, n: int) -> np.ndarray:
+    """Reflectivity of a blocky log-impedance random walk, length n (samples of RGT)."""
+    out = np.zeros(n)
+    z = 0
+    log_imp = 0.0
+    while z < n:
+        thick = int(rng.integers(1, 9))
+        step = rng.normal(0, 0.08) + (rng.normal(0, 0.2) if rng.random() < 0.03 else 0.0)
+        log_imp += step
+        out[z] = step
+        z += thick
+    return out
+
+
+def _layering(rng, nx: int, nz: int, max_dip: float):
+    """RGT of every sample of a (nx, nz) section before faulting: folding and an optional unconformity."""
+    x = np.arange(nx, dtype=np.float64)[:, None]
+    z = np.arange(nz, dtype=np.float64)[None, :]
+
+    def folded(dip_deg):
+        g = np.zeros((nx, 1))
+        for _ in range(int(rng.integers(1, 5))):
+            c, s = rng.uniform(-0.2, 1.2) * nx, rng.uniform(0.1, 0.5) * nx
+            g += rng.uniform(-1, 1) * np.exp(-0.5 * ((x - c) / s) ** 2)
+        g += rng.uniform(-0.5, 0.5) * (x - nx / 2) / nx
+        slope = np.abs(np.gradient(g[:, 0])).max() or 1.0
+        g *= np.tan(np.radians(dip_deg)) / slope
+        growth = rng.uniform(0.2, 1.0)
+        return z + ((1 - growth) + growth * z / nz) * g
+
+    rgt = folded(rng.uniform(0.0, 1.0) * max_dip)
+    if rng.random() < 0.4:  # angular unconformity: another package above a wavy erosion surface
+        upper = folded(rng.uniform(0.0, 1.0) * max_dip) - 3 * nz
+        surface = rng.uniform(0.2, 0.7) * nz + gaussian_filter1d(rng.normal(0, 1, nx), nx / 8) * nz * 0.5
+        rgt = np.where(z < surface[:, None], upper, rgt)
+    return rgt
+
+
+@dataclass(frozen=True)
+class _Fault:
+    x0: float  # lateral position of the trace at depth z0
+    z0: float
+    cot: float  # lateral change of the trace per sample of depth (signed: the dip direction)
+    curvature: float  # listric bend: extra lateral offset per sample^2
+    direction: float  # +1: the fault dips towards +x (increasing trace index), -1 towards -x
+    throw: float  # throw at the centre, samples (negative: reverse)
+    top: float  # depth range where the fault slips
+    bottom: float
+    tapered: bool
+
+    def trace_x(self, z):
+        dz = z - self.z0
+        return self.x0 + self.cot * dz + self.curvature * dz * dz
+
+    def local_throw(self, z):
+        if not self.tapered:
+            inside = (z >= self.top) & (z <= self.bottom)
+            return np.where(inside, self.throw, 0.0)
+        mid, half = 0.5 * (self.top + self.bottom), 0.5 * (self.bottom - self.top)
+        u = np.clip(1 - ((z - mid) / half) ** 2, 0, None)
+        return self.throw * np.sqrt(u)
+
+
+def _draw_fault(rng, nx: int, nz: int, opt: FaultSectionOptions) -> _Fault:
+    dip = rng.uniform(*opt.dip_range)
+    direction = rng.choice([-1.0, 1.0])
+    throw = rng.uniform(0.0, opt.max_throw) * (-1.0 if rng.random() < opt.reverse_fraction else 1.0)
+    z0 = rng.uniform(0.2, 0.8) * nz
+    tapered = rng.random() < 0.6
+    if tapered:
+        length = rng.uniform(0.3, 1.2) * nz
+        top = z0 - rng.uniform(0.3, 0.7) * length
+        bottom, top = top + length, top
+    else:
+        top, bottom = -np.inf, np.inf
+    curvature = rng.uniform(0, 0.4) / nz * direction if rng.random() < 0.3 else 0.0
+    return _Fault(x0=rng.uniform(0.1, 0.9) * nx, z0=z0, cot=direction / np.tan(np.radians(dip)),
+                  curvature=float(curvature), direction=float(direction), throw=float(throw), top=float(top), bottom=float(bottom),
+                  tapered=bool(tapered))
+
+
+def _unfault(fault: _Fault, xs, zs):
+    """Map sample coordinates back across one fault: (x, z) before the slip, distance to the trace, local throw."""
+    xf = fault.trace_x(zs)
+    slope = fault.cot + 2 * fault.curvature * (zs - fault.z0)  # dx/dz along the trace
+    sin_dip = 1.0 / np.sqrt(1.0 + slope * slope)
+    distance = (xs - xf) * sin_dip  # perpendicular distance, positive on the +x side
+    # the hanging wall is the block above the fault: on the side the fault dips towards
+    hanging = (xs - xf) * fault.direction > 0
+    t = fault.local_throw(zs)
+    # dip-slip: the hanging wall moved down (normal) by t vertically and t * slope laterally
+    xs = np.where(hanging, xs - t * slope, xs)
+    zs = np.where(hanging, zs - t, zs)
+    return xs, zs, distance, t
+
+
+def synthetic_fault_section(shape=(128, 128), *, seed=0, options: FaultSectionOptions | None = None) -> FaultSection:
+    """Generate a faulted (or unfaulted) seismic section with the degradations of real data and its fault labels.
+
+    See the module docstring for the construction.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        ``(n_traces, n_samples)``, each >= 16.
+    seed : int or numpy.random.Generator
+        Seed of the random draws (the same seed gives the same section).
+    options : FaultSectionOptions, optional
+        Ranges of the draws.
+
+    Returns
+    -------
+    FaultSection
+
+    Raises
+    ------
+    InputError
+        ``shape`` is not two integers >= 16, or ``options`` is not a :class:`FaultSectionOptions`.
+
+    References
+    ----------
+    Wu et al. 2019, FaultSeg3D, Geophysics 84(3), IM35-IM45, doi:10.1190/geo2018-0646.1.
+    """
+    opt = options or FaultSectionOptions()
+    if not isinstance(opt, FaultSectionOptions):
+        raise InputError(f"options must be a FaultSectionOptions; got {type(opt).__name__}")
+    if len(tuple(shape)) != 2:
+        raise InputError(f"shape must be (n_traces, n_samples); got {shape!r}")
+    nx, nz = (check_int(v, "shape", minimum=16) for v in shape)
+    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+
+    n_faults = 0 if rng.random() < opt.p_unfaulted else int(rng.integers(1, opt.max_faults + 1))
+    faults = [_draw_fault(rng, nx, nz, opt) for _ in range(n_faults)]
+    xs, zs = np.meshgrid(np.arange(nx, dtype=np.float64), np.arange(nz, dtype=np.float64), indexing="ij")
+    labels = np.zeros((nx, nz), bool)
+    throw = np.zeros((nx, nz), np.float32)
+    for fault in reversed(faults):  # youngest first
+        xs, zs, distance, t = _unfault(fault, xs, zs)
+        on = (np.abs(distance) <= 1.0) & (np.abs(t) >= opt.min_label_throw)
+        labels |= on
+        throw[on] = np.abs(t[on])
+
+    # the layering, sampled at the unfaulted positions (RGT of a margin around the section: faults move samples)
+    margin = int(np.ceil(opt.max_throw * 2 + 8))
+    rgt_grid = _layering(rng, nx + 2 * margin, nz + 2 * margin, opt.max_fold_dip)
+    rgt = map_coordinates(rgt_grid, [xs + margin, zs + margin], order=1, mode="nearest")
+    lo = float(rgt.min()) - 1
+    n_rgt = int(np.ceil(float(rgt.max()) - lo)) + 2
+    series = _impedance_reflectivity(rng, n_rgt)
+    amplitude = 1 + 0.3 * gaussian_filter1d(rng.normal(0, 1, nx), nx / 6)[:, None] * np.sqrt(nx / 6)
+    reflectivity = np.interp(rgt - lo, np.arange(n_rgt), series) * amplitude
+
+    f = rng.uniform(*opt.frequency_range)
+    wavelet = ricker(f)
+    phase = np.radians(rng.uniform(-90.0, 90.0))
+    wavelet = np.cos(phase) * wavelet + np.sin(phase) * np.imag(hilbert(wavelet))
+    start = (wavelet.size - 1) // 2  # the centred part of the full convolution ('same' even for short traces)
+    clean = np.apply_along_axis(lambda tr: np.convolve(tr, wavelet)[start:start + nz], 1, reflectivity)
+    clean = (clean / (float(clean.std()) or 1.0)).astype(np.float32)
+    section = degrade(clean, rng, strength=opt.degradation)
+    return FaultSection(section=section, clean=clean, faults=labels, throw=throw, n_faults=n_faults)
+
+
+def fault_section_batch(n: int, shape=(128, 128), *, seed=0, options: FaultSectionOptions | None = None):
+    """``n`` sections of :func:`synthetic_fault_section` with seeds ``seed * 1_000_003 + i``.
+
+    Parameters
+    ----------
+    n : int
+        Number of sections.
+    shape : (int, int)
+        ``(n_traces, n_samples)`` of each.
+    seed : int
+        Seed of the batch (different batches, different sections).
+    options : FaultSectionOptions, optional
+
+    Returns
+    -------
+    sections : (n, n_traces, n_samples) float32 ndarray
+    labels : (n, n_traces, n_samples) bool ndarray
+    """
+    n = check_int(n, "n", minimum=1)
+    out = [synthetic_fault_section(shape, seed=int(seed) * 1_000_003 + i, options=options) for i in range(n)]
+    return np.stack([s.section for s in out]), np.stack([s.faults for s in out])

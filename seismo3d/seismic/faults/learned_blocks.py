@@ -1,0 +1,253 @@
+"""The learned fault likelihood of a cube larger than memory, block by block on dask, resumable.
+
+The steps (each block carries the halo its step needs, so the output equals the in-memory
+:func:`~seismo3d.seismic.faults.learned.learned_fault_likelihood` up to float rounding):
+
+1. The amplitude scale (median and standard deviation) from the regular subsample of traces that
+   :func:`~seismo3d.seismic.faults.learned.amplitude_scale` uses in memory too.
+2. The network's probability on lateral blocks with :data:`~seismo3d.seismic.faults.unet.RECEPTIVE_HALF` traces of
+   halo (a multiple of 8, and blocks start at multiples of 8, so the network's pooling grid is the whole cube's),
+   every sample of each trace, on the inline and the crossline sections of the block; written to a work array.
+3. Strike and dip from the structure tensor of the probability on blocks with the tensor smoothing's halo, written
+   with the likelihood to the output Zarr group (``likelihood``, ``strike_deg``, ``dip_deg``: what
+   :func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces` reads, as from the scan's chunked run).
+
+Markers, resumption, the ``.partial`` output and the schedulers are those of
+:mod:`~seismo3d.seismic.faults.likelihood_blocks`.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import pathlib
+import shutil
+from dataclasses import asdict
+
+import numpy as np
+
+from ..._options import resolve_options
+from ...errors import InputError
+from ..blocks import BlockRun, SchedulerClient, largest_block, write_marker
+from .learned import (LearnedOptions, amplitude_scale, fault_probability, orientation_from_likelihood,
+                      scale_subsample)
+from ..io.zarr_store import consolidate
+from .likelihood_blocks import ChunkedLikelihood, ChunkOptions, _write_coords
+from .unet import RECEPTIVE_HALF
+
+__all__ = ["chunked_learned_likelihood"]
+
+# bytes per sample of a block (halo included) at each step's peak: the amplitudes, both directions' probabilities and
+# one batch of sections' activations (about 60 floats per sample of a section) in step 2; the probability, its
+# 3 gradients, 6 tensor components, the eigen decomposition's 3 x 3 matrices and the outputs in step 3
+_PROBABILITY_BYTES = 16
+_ORIENTATION_BYTES = 140
+_ALIGN = 8
+
+
+def _orientation_halo(opt: LearnedOptions) -> int:
+    return int(np.ceil(4 * float(opt.orientation_sigma))) + 1  # Gaussian radius (truncate 4) and the gradient
+
+
+def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None = None,
+                               chunking: ChunkOptions | None = None, coords: dict | None = None,
+                               progress: bool = False, **overrides) -> ChunkedLikelihood:
+    """Learned fault likelihood, strike and dip of a 3D cube computed block by block and written to a Zarr group.
+
+    Parameters
+    ----------
+    cube : (n_inlines, n_xlines, n_samples) dask.array.Array or array_like
+        Amplitudes, e.g. ``open_lazy(path).data``; finite.
+    output : str or os.PathLike
+        Output Zarr group (a folder), created; must not exist unless it is the unfinished output of the same run.
+    options : LearnedOptions, optional
+    chunking : ChunkOptions, optional
+        Memory limit, block size and the dask scheduler.
+    coords : dict, optional
+        ``inline``, ``crossline``, ``sample`` coordinates (and ``sample_unit``) written beside the arrays.
+    progress : bool
+        Report progress per block.
+    **overrides
+        Fields of :class:`~seismo3d.seismic.faults.learned.LearnedOptions` by name.
+
+    Returns
+    -------
+    ChunkedLikelihood
+        Steps ``'probability'`` and ``'orientation'``.
+
+    Raises
+    ------
+    InputError
+        The cube is not 3D, holds NaN / inf, ``output`` exists and is not an unfinished run of the same cube and
+        options, or the memory limit is too small for the smallest blocks.
+    """
+    import dask.array as da
+
+    opt = resolve_options(LearnedOptions, options, overrides, "chunked_learned_likelihood")
+    chunking = chunking or ChunkOptions()
+    x = cube if isinstance(cube, da.Array) else np.asarray(cube)
+    if x.ndim != 3 or min(x.shape) < 3:
+        raise InputError(f"a chunked fault likelihood needs a 3D cube (n_inlines, n_xlines, n_samples); got shape "
+                         f"{x.shape}")
+    if not isinstance(x, da.Array):
+        x = da.from_array(x, chunks=(64, -1, -1))
+    if len(x.chunks[2]) != 1:
+        x = x.rechunk({2: -1})
+    shape = tuple(int(n) for n in x.shape)
+    budget = int(chunking.memory_limit or 0) or None
+    plan = _plan(shape, opt, chunking, budget)
+    out = pathlib.Path(output)
+    run = _Run(out, plan, opt, chunking, progress)
+    manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt))), "plan": plan,
+                "method": "learned"}
+    earlier = run.earlier_plan(manifest)
+    if earlier is not None:
+        run.plan = plan = dict(earlier)
+        manifest["plan"] = plan
+    run.start(manifest)
+    with SchedulerClient(chunking.scheduler) as client:
+        run.client = client
+        scale = run.scale(x)
+        run.probability(x, scale)
+        saturated = run.orientation(coords)
+    run.finish()
+    return ChunkedLikelihood(out, shape, dict(run.computed), dict(run.resumed), saturated, dict(run.seconds))
+
+
+def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, budget) -> dict:
+    """Block sides (traces, multiples of 8 and of the tile) of the two steps under the memory limit."""
+    nt = shape[2]
+    tile = int(chunking.tile)
+    halo_p = RECEPTIVE_HALF
+    halo_o = _orientation_halo(opt)
+    cap = max(tile, (max(shape[0], shape[1]) + tile - 1) // tile * tile)
+    limit = budget if budget else 1 << 62
+
+    def fits(halo, per_sample):
+        return lambda b: (b + 2 * halo) ** 2 * nt * per_sample * int(chunking.workers) <= limit
+
+    step = np.lcm(tile, _ALIGN)
+    block_p = largest_block(int(step), min(cap, 512), fits(halo_p, _PROBABILITY_BYTES))
+    block_o = largest_block(int(step), min(cap, 256), fits(halo_o, _ORIENTATION_BYTES))
+    if not (fits(halo_p, _PROBABILITY_BYTES)(block_p) and fits(halo_o, _ORIENTATION_BYTES)(block_o)):
+        need = max((step + 2 * halo_p) ** 2 * nt * _PROBABILITY_BYTES, (step + 2 * halo_o) ** 2 * nt *
+                   _ORIENTATION_BYTES)
+        raise InputError(f"the memory limit ({limit / 2**30:.2f} GiB) is below the smallest block of the learned "
+                         f"likelihood ({need / 2**30:.2f} GiB for {nt} samples per trace); raise --memory-limit")
+    return {"shape": list(shape), "tile": tile, "block_probability": int(block_p), "block_orientation": int(block_o),
+            "halo_probability": halo_p, "halo_orientation": halo_o}
+
+
+def _blocks(shape, side: int):
+    return [(i, min(i + side, shape[0]), j, min(j + side, shape[1]))
+            for i in range(0, shape[0], side) for j in range(0, shape[1], side)]
+
+
+class _Run(BlockRun):
+    """One chunked learned-likelihood run: its folders and steps."""
+
+    def __init__(self, out: pathlib.Path, plan: dict, opt: LearnedOptions, chunking: ChunkOptions, progress: bool):
+        super().__init__(out.with_name(out.name + ".work"), scheduler=chunking.scheduler, workers=chunking.workers,
+                         progress=progress)
+        self.out, self.plan, self.opt, self.chunking = out, plan, opt, chunking
+        self.partial = out.with_name(out.name + ".partial")
+
+    def start(self, manifest: dict) -> None:
+        import zarr
+        if self.out.exists():
+            raise InputError(f"output {self.out} already exists; pick another output or delete it")
+        if not self.out.parent.is_dir():
+            raise InputError(f"cannot write {self.out}: folder {self.out.parent} does not exist; create it first")
+        self.open(manifest, f"{self.work} and {self.partial}")
+        n0, n1, nt = self.plan["shape"]
+        t = self.plan["tile"]
+        if not (self.work / "probability").exists():
+            zarr.create_array(str(self.work / "probability"), shape=(n0, n1, nt), chunks=(t, t, nt),
+                              dtype="float32", compressors=None, fill_value=0)
+        if not self.partial.exists():
+            group = zarr.open_group(str(self.partial), mode="w")
+            for name in ("likelihood", "strike_deg", "dip_deg"):
+                group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
+                                   dimension_names=("inline", "crossline", "sample"))
+
+    def finish(self) -> None:
+        import zarr
+        zarr.open_group(str(self.partial), mode="r+").attrs["complete"] = True
+        consolidate(self.partial)
+        os.replace(self.partial, self.out)
+        shutil.rmtree(self.work, ignore_errors=True)
+
+    def scale(self, x) -> tuple:
+        path = self.work / "scale.json"
+        if path.exists():
+            return tuple(json.loads(path.read_text()))
+        s0, s1 = scale_subsample(x.shape)
+        sample = np.asarray(x[::s0, ::s1, :].compute(), dtype=np.float32)
+        if not np.isfinite(sample).all():
+            raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
+                             "faults")
+        scale = amplitude_scale(sample, subsample=False)
+        path.write_text(json.dumps(list(scale)))
+        return scale
+
+    def probability(self, x, scale) -> None:
+        p = self.plan
+        n0, n1, _ = p["shape"]
+        halo = p["halo_probability"]
+        todo, _ = self.pending("probability", _blocks((n0, n1), p["block_probability"]))
+        tasks = []
+        for b in todo:
+            i0, i1, j0, j1 = b
+            a0, a1, b0, b1 = max(i0 - halo, 0), min(i1 + halo, n0), max(j0 - halo, 0), min(j1 + halo, n1)
+            tasks.append(self.task(_probability_block, x[a0:a1, b0:b1, :], (i0 - a0, i1 - a0, j0 - b0, j1 - b0), b,
+                                   str(self.work), self.opt, scale, str(self.marker("probability", b))))
+        self.compute(tasks, "fault network", "probability")
+
+    def orientation(self, coords) -> float:
+        import zarr
+        p = self.plan
+        results = self.each_block("orientation", "fault orientation", _orientation_block,
+                                  _blocks(p["shape"][:2], p["block_orientation"]), p, str(self.work),
+                                  str(self.partial), self.opt)
+        high = sum(r["high"] for r in results)
+        group = zarr.open_group(str(self.partial), mode="r+")
+        _write_coords(group, tuple(p["shape"]), coords)
+        fraction = high / float(np.prod(p["shape"]))
+        group.attrs.update({"method": "learned fault likelihood (seismo3d fault network), chunked run",
+                            "saturated_fraction": fraction})
+        return fraction
+
+
+def _probability_block(f, core, block, work, opt, scale, marker) -> dict:
+    """The network's probability on one block read with halo; its core written to the work array."""
+    import zarr
+    f = np.ascontiguousarray(f, dtype=np.float32)
+    if not np.isfinite(f).all():
+        raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {block[0]}-{block[1] - 1} (indices); "
+                         "replace them (e.g. by 0) before tracing faults")
+    prob = fault_probability(f, options=opt, scale=scale)
+    c0, c1, d0, d1 = core
+    i0, i1, j0, j1 = block
+    zarr.open_array(f"{work}/probability", mode="r+")[i0:i1, j0:j1, :] = prob[c0:c1, d0:d1]
+    write_marker(marker, {})
+    return {}
+
+
+def _orientation_block(block, plan: dict, work, partial, opt, marker) -> dict:
+    """Strike and dip of one block from the probability around it, written with the likelihood to the output."""
+    import zarr
+    n0, n1, _ = plan["shape"]
+    halo = plan["halo_orientation"]
+    i0, i1, j0, j1 = block
+    a0, a1, b0, b1 = max(i0 - halo, 0), min(i1 + halo, n0), max(j0 - halo, 0), min(j1 + halo, n1)
+    prob = zarr.open_array(f"{work}/probability", mode="r")[a0:a1, b0:b1]
+    strike, dip = orientation_from_likelihood(prob, sigma=float(opt.orientation_sigma))
+    core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
+    group = zarr.open_group(partial, mode="r+")
+    likelihood = np.where(dip[core] < float(opt.min_dip), np.float32(0.0), prob[core])
+    group["likelihood"][i0:i1, j0:j1] = likelihood
+    group["strike_deg"][i0:i1, j0:j1] = strike[core]
+    group["dip_deg"][i0:i1, j0:j1] = dip[core]
+    result = {"high": int(np.count_nonzero(likelihood > 0.9))}
+    write_marker(marker, result)
+    return result

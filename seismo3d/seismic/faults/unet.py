@@ -1,0 +1,152 @@
+"""The fault network's forward pass in numpy: a compact 2D U-Net, run without a deep-learning framework.
+
+The architecture (Ronneberger et al. 2015; as FaultSeg3D uses it for faults, Wu et al. 2019, here in 2D and smaller),
+with ``c = channels``:
+
+* encoder level k (k = 0, 1, 2): two 3 x 3 convolutions to ``c[k]`` channels, each followed by its batch
+  normalisation (folded into the convolution's weights and bias when the weights are exported) and a ReLU; a 2 x 2
+  max-pooling between levels;
+* bottleneck: two 3 x 3 convolutions to ``c[3]`` channels;
+* decoder level k (k = 2, 1, 0): nearest-neighbour upsampling by 2, concatenation with encoder level k's output,
+  two 3 x 3 convolutions to ``c[k]`` channels;
+* head: a 1 x 1 convolution to one channel and a logistic sigmoid: the fault probability of each sample.
+
+Sizes: the input's two axes must be multiples of 8 (:func:`unet_forward` pads them); the receptive field is
+:data:`RECEPTIVE_HALF` samples on each side. Convolutions are zero-padded ('same'), as in the training framework,
+so the weights give the same numbers here (float32, differences of the order of 1e-6).
+
+The weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape ``(c_out, c_in, 3, 3)`` (PyTorch's
+``Conv2d`` layout) and ``'{block}.{i}.bias'`` ``(c_out,)``, for the blocks ``enc0, enc1, enc2, bottleneck, dec2,
+dec1, dec0`` and ``i`` in 0, 1; and ``'head.weight'`` ``(1, c0, 1, 1)``, ``'head.bias'`` ``(1,)``.
+
+References
+----------
+Ronneberger, O., Fischer, P., and Brox, T., 2015, U-Net: Convolutional networks for biomedical image segmentation:
+MICCAI 2015, LNCS 9351, 234-241. doi:10.1007/978-3-319-24574-4_28
+
+Wu, X., Liang, L., Shi, Y., and Fomel, S., 2019, FaultSeg3D: Using synthetic data sets to train an end-to-end
+convolutional neural network for 3D seismic fault segmentation: Geophysics, 84(3), IM35-IM45.
+doi:10.1190/geo2018-0646.1
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...errors import InputError
+
+__all__ = ["BLOCKS", "RECEPTIVE_HALF", "unet_forward", "normalise_section"]
+
+BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
+# two 3x3 convolutions per level: 2 samples of context each at level k cost 2 * 2**k input samples; encoder and
+# decoder levels 0-2 and the bottleneck (level 3): 2 * (1 + 2 + 4) * 2 + 2 * 8 = 44, plus the pooling offsets
+RECEPTIVE_HALF = 56
+_MULTIPLE = 8
+_TILE_SAMPLES = 16384
+
+
+def _conv3x3(x: np.ndarray, weight: np.ndarray, bias: np.ndarray) -> np.ndarray:
+    """'same' 3 x 3 convolution (cross-correlation, zero padding) of NHWC float32 ``x``; returns NHWC.
+
+    The columns of the 9 shifted copies are gathered for about ``_TILE_SAMPLES`` output samples at a time, so they
+    stay in the processor's cache, and multiplied by the weights in one matrix product (BLAS).
+    """
+    b, h, w, c = x.shape
+    c_out = weight.shape[0]
+    xp = np.pad(x, ((0, 0), (1, 1), (1, 1), (0, 0))).reshape(b * (h + 2), w + 2, c)
+    wt = np.ascontiguousarray(weight.transpose(2, 3, 1, 0).reshape(9 * c, c_out))  # rows ordered (ky, kx, c_in)
+    out = np.empty((b * h, w, c_out), np.float32)
+    rows = max(1, _TILE_SAMPLES // w)
+    cols = np.empty((rows, w, 9, c), np.float32)
+    for k in range(b):
+        for r0 in range(0, h, rows):
+            n = min(h, r0 + rows) - r0
+            top = k * (h + 2) + r0
+            for i in range(3):
+                for j in range(3):
+                    cols[:n, :, 3 * i + j, :] = xp[top + i:top + i + n, j:j + w, :]
+            res = cols[:n].reshape(n * w, 9 * c) @ wt
+            res += bias
+            out[k * h + r0:k * h + r0 + n] = res.reshape(n, w, c_out)
+    return out.reshape(b, h, w, c_out)
+
+
+def _block(x: np.ndarray, weights, name: str) -> np.ndarray:
+    for i in (0, 1):
+        x = _conv3x3(x, weights[f"{name}.{i}.weight"], weights[f"{name}.{i}.bias"])
+        np.maximum(x, 0.0, out=x)
+    return x
+
+
+def _pool(x: np.ndarray) -> np.ndarray:
+    b, h, w, c = x.shape
+    return x.reshape(b, h // 2, 2, w // 2, 2, c).max(axis=(2, 4))
+
+
+def _up(x: np.ndarray) -> np.ndarray:
+    return x.repeat(2, axis=1).repeat(2, axis=2)
+
+
+def normalise_section(section: np.ndarray) -> np.ndarray:
+    """The network's input scaling: amplitudes divided by their standard deviation, clipped to +-5.
+
+    Parameters
+    ----------
+    section : (..., n_traces, n_samples) array_like
+        Amplitudes of one section, or a stack of sections (each scaled on its own).
+
+    Returns
+    -------
+    ndarray, float32, the same shape
+    """
+    x = np.asarray(section, dtype=np.float32)
+    x = x - np.median(x, axis=(-2, -1), keepdims=True)
+    std = x.std(axis=(-2, -1), keepdims=True)
+    x = x / np.where(std > 0, std, 1.0)
+    return np.clip(x, -5.0, 5.0).astype(np.float32)
+
+
+def unet_forward(sections: np.ndarray, weights) -> np.ndarray:
+    """Fault probability of each sample of a stack of (normalised) sections.
+
+    Parameters
+    ----------
+    sections : (n, n_traces, n_samples) float32 ndarray
+        Sections scaled by :func:`normalise_section`. Any size: each axis is padded by reflection to a multiple
+        of 8 and the output cropped back.
+    weights : mapping of str to ndarray
+        The network's weights (see the module docstring), float32.
+
+    Returns
+    -------
+    (n, n_traces, n_samples) float32 ndarray
+        Fault probability in [0, 1].
+
+    Raises
+    ------
+    InputError
+        ``sections`` is not a 3D stack or the weights miss an entry.
+    """
+    x = np.asarray(sections, dtype=np.float32)
+    if x.ndim != 3:
+        raise InputError(f"sections must be a (n, n_traces, n_samples) stack; got shape {x.shape}")
+    missing = [f"{b}.{i}.weight" for b in BLOCKS for i in (0, 1) if f"{b}.{i}.weight" not in weights]
+    if missing or "head.weight" not in weights:
+        raise InputError(f"the fault network's weights miss {missing or ['head.weight']}")
+    n, h, w = x.shape
+    ph, pw = (-h) % _MULTIPLE, (-w) % _MULTIPLE
+    if ph or pw:
+        x = np.pad(x, ((0, 0), (0, ph), (0, pw)), mode="reflect" if min(h, w) > max(ph, pw) else "edge")
+    x = x[..., None]
+    skips = []
+    for k in range(3):
+        x = _block(x, weights, f"enc{k}")
+        skips.append(x)
+        x = _pool(x)
+    x = _block(x, weights, "bottleneck")
+    for k in (2, 1, 0):
+        x = np.concatenate([_up(x), skips[k]], axis=-1)
+        x = _block(x, weights, f"dec{k}")
+    logits = x @ weights["head.weight"].reshape(1, -1).T + weights["head.bias"]
+    prob = 1.0 / (1.0 + np.exp(-logits[..., 0]))
+    return prob[:, :h, :w].astype(np.float32)

@@ -152,7 +152,7 @@ def test_faults_warnings_are_one_line(tmp_path):
     ("not_segy", "is not SEG-Y: its binary header holds no sample format code"),
     ("header_bytes", "no inline / crossline grid at trace header bytes --iline 1, --xline 5; --iline 189, --xline 193 "
                      "(48 inlines x 48 crosslines) give one: pass those, or --ignore-geometry to read a trace list"),
-    ("same_folder", "another folder"),
+    ("same_folder", "holds the input"),
     ("no_input", "--demo"),
     ("missing", "no SEG-Y file"),
 ])

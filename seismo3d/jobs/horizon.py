@@ -15,9 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._atomic import existing_folder
 from ..errors import InputError, SegyGeometryError, UnsupportedDataError
 from ..seismic.horizons.result import Horizon
+from .outputs import check_outputs, output_file
 
 __all__ = ["HorizonJob", "run_horizon_job", "seed_index", "trace_seed_index"]
 
@@ -119,7 +119,7 @@ def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
 
 def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults: bool | None = None,
                     fill: bool = False, surface=None, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
-                    endian=None, sample_unit=None, progress: bool = True) -> HorizonJob:
+                    endian=None, sample_unit=None, overwrite: bool = False, progress: bool = True) -> HorizonJob:
     """Track a horizon in a SEG-Y cube or 2D line from seed picks and write it as text rows.
 
     Parameters
@@ -153,6 +153,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         Byte order of the file; by default detected from its binary header.
     sample_unit : {'ms', 'm', 'ft'}, optional
         Unit of the sample axis; default from the SEG-Y headers.
+    overwrite : bool
+        Replace an existing ``output`` or ``surface`` (see :mod:`seismo3d.jobs.outputs`).
     progress : bool
         Report progress (:mod:`seismo3d._progress`).
 
@@ -164,7 +166,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     Raises
     ------
     InputError
-        An output path that is the input or whose folder does not exist (checked before tracking), a seed outside
+        An output that is the input, exists (without ``overwrite``) or cannot be written (checked before the input
+        is read), a seed outside
         the data or with the wrong number of values (the message names ``--seed``), a surface asked for a 2D line.
     SegyGeometryError
         The file holds a single trace, or prestack gathers.
@@ -182,11 +185,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
 
     input_path, output = pathlib.Path(input_path), pathlib.Path(output)
     surface = None if surface is None else pathlib.Path(surface)
-    if output.resolve() == input_path.resolve() or (surface is not None and surface.resolve() == input_path.resolve()):
-        raise InputError(f"{output} would overwrite the input; choose another output path")
-    for path in (output, surface):  # before the work, not after it
-        if path is not None:
-            existing_folder(path)
+    check_outputs([output_file(output, "horizon.txt"), surface and output_file(surface, "horizon.vtp")],
+                  [input_path], overwrite=overwrite)
     # read the cube or line, and convert the seeds to index positions
     survey = _read_survey(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
                           sample_unit=sample_unit)

@@ -7,7 +7,7 @@ import pathlib
 import time
 from dataclasses import dataclass
 
-from .._atomic import atomic_path, existing_folder
+from .._atomic import atomic_path
 from ..errors import InputError
 from ..terrain import DEM_SUFFIXES, read_dem
 from ..terrain.occupancy import (
@@ -18,6 +18,7 @@ from ..terrain.occupancy import (
     read_map_folder,
 )
 from ..terrain.planning import GridPath, astar
+from .outputs import check_outputs, output_file
 
 __all__ = ["PlanResult", "load_occupancy", "parse_cell", "run_plan_job", "write_path_csv"]
 
@@ -110,7 +111,7 @@ def write_path_csv(path, route: GridPath, grid: OccupancyGrid) -> pathlib.Path:
 
 
 def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, options: OccupancyOptions | None = None,
-                 corner_cutting: bool = True) -> PlanResult:
+                 corner_cutting: bool = True, overwrite: bool = False) -> PlanResult:
     """Plan the shortest 8-connected path between two cells of a DEM or map and write ``path.csv``.
 
     Parameters
@@ -122,13 +123,16 @@ def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, opti
         (row, col) cells of the grid.
     output : str or os.PathLike
         The CSV: ``row, col, x, y, z`` per cell from start to goal (x, y in the DEM's CRS, z its elevation; for a
-        map, the cell centre on the floor in the map's frame).
+        map, the cell centre on the floor in the map's frame). Not the input, and not an existing file unless
+        ``overwrite`` (see :mod:`seismo3d.jobs.outputs`; checked before the grid is read).
     max_slope_deg : float
         Slope limit of a DEM, degrees.
     options : OccupancyOptions, optional
         For a map folder.
     corner_cutting : bool
         Allow diagonal steps between two blocked cells.
+    overwrite : bool
+        Replace an existing ``output``.
 
     Returns
     -------
@@ -137,12 +141,13 @@ def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, opti
     Raises
     ------
     InputError
-        Start or goal outside the grid or on an obstacle; bad inputs.
+        An output that is the input, exists (without ``overwrite``) or cannot be written; start or goal outside the
+        grid or on an obstacle; bad inputs.
     PlanningError
         No path exists.
     """
     output = pathlib.Path(output)
-    existing_folder(output)  # before the planning, not after it
+    check_outputs([output_file(output, "path.csv")], [grid], overwrite=overwrite)
     occupancy = load_occupancy(grid, max_slope_deg=max_slope_deg, options=options)
     blocked = (f"is steeper than {max_slope_deg:g} deg" if not pathlib.Path(grid).is_dir()
                else "holds an obstacle at the robot's height, or no floor was seen there")

@@ -14,12 +14,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import existing_folder
 from .._validation import check_choice
 from ..errors import DataNotFoundError, InputError
 from ..mapping import read_tum_trajectory
 from ..seismic import open_segy
 from ..terrain import extract_lineaments, read_dem
+from .outputs import check_outputs, output_file
 
 __all__ = ["RenderJob", "run_render_job"]
 
@@ -177,7 +177,7 @@ def _render_map(path: Path, output: Path, *, window_size) -> RenderJob:
 
 def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", vertical_exaggeration=None,
                    lineaments=False, plan=None, window_size=(1200, 900), iline: int = 189, xline: int = 193,
-                   endian=None) -> RenderJob:
+                   endian=None, overwrite: bool = False) -> RenderJob:
     """Render INPUT off screen into a PNG: the ``seismo3d render`` command.
 
     Inputs
@@ -199,7 +199,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     ----------
     input_path : str or os.PathLike
     output : str or os.PathLike
-        The PNG to write (atomically; its folder must exist).
+        The PNG to write (atomically; its folder must exist); not an input, and not an existing file unless
+        ``overwrite`` (see :mod:`seismo3d.jobs.outputs`; checked before the inputs are read).
     seismic : str or os.PathLike, optional
         A SEG-Y cube to draw under faults or a horizon.
     color_by : {'fault_id', 'throw'}, optional
@@ -216,6 +217,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
         Trace header bytes of the inline and crossline numbers of the SEG-Y files read.
     endian : {'big', 'little'}, optional
         Byte order of the SEG-Y files read; by default detected from each binary header.
+    overwrite : bool, optional
+        Replace an existing ``output``.
 
     Returns
     -------
@@ -226,8 +229,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     DataNotFoundError
         The input (or ``seismic``) does not exist.
     InputError
-        An input of unknown kind, a folder without ``faults.vtp``, a horizon file that is not a table, a PNG folder
-        that does not exist.
+        An output that is an input, exists (without ``overwrite``) or cannot be written; an input of unknown kind, a
+        folder without ``faults.vtp``, a horizon file that is not a table.
     SegyFormatError, SegyGeometryError
         As :func:`seismo3d.seismic.open_segy`.
     """
@@ -241,7 +244,7 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     path, output = Path(input_path), Path(output)
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
-    existing_folder(output)  # before the rendering, not after it
+    check_outputs([output_file(output, "picture.png")], [path, seismic, plan], overwrite=overwrite)
     kind = _kind(path)
     if kind == "map":
         return _render_map(path, output, window_size=window_size)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, SegyGeometryError, UnsupportedDataError
+from ..errors import InputError, SeedError, SegyGeometryError, UnsupportedDataError
 from ..seismic.horizons.result import Horizon
 from .outputs import check_outputs, output_file
 
@@ -103,6 +103,78 @@ def _seed_indices(survey: _Survey, seeds) -> list:
         else:  # along the inlines of one crossline, or along the crosslines of one inline
             out.append((i if survey.inlines.size > 1 else j, t))
     return out
+
+
+@dataclass(frozen=True)
+class _Position:
+    """An index position in the survey's terms: the trace's labels (('inline', 1010), ('crossline', 1155)) or
+    (('trace', 7),), and the time or depth in the file's unit."""
+
+    labels: tuple
+    time: float
+    unit: str
+
+    @property
+    def trace(self) -> str:
+        return ", ".join(f"{name} {value}" for name, value in self.labels)
+
+    @property
+    def words(self) -> str:
+        return f"{self.trace}, {self.time:.6g} {self.unit}"
+
+    @property
+    def seed(self) -> str:
+        """As a --seed value: IL,XL,T or TRACE,T."""
+        return ",".join(str(value) for _, value in self.labels) + f",{self.time:.6g}"
+
+
+def _survey_position(survey: _Survey, position) -> _Position:
+    """An index position (lateral indices, fractional sample) of ``survey.data`` in the survey's terms."""
+    *lateral, k = (float(v) for v in position)
+    lateral = [int(round(v)) for v in lateral]
+    time = float(np.interp(k, np.arange(survey.samples.size), survey.samples))
+    if survey.kind == "trace list":
+        labels = (("trace", lateral[0] + 1),)
+    elif survey.kind == "cube":
+        labels = (("inline", int(survey.inlines[lateral[0]])), ("crossline", int(survey.xlines[lateral[1]])))
+    elif survey.inlines.size > 1:  # a line along the inlines of one crossline
+        labels = (("inline", int(survey.inlines[lateral[0]])), ("crossline", int(survey.xlines[0])))
+    else:
+        labels = (("inline", int(survey.inlines[0])), ("crossline", int(survey.xlines[lateral[0]])))
+    return _Position(labels, time, survey.unit)
+
+
+def _mute_note(survey: _Survey, position) -> str:
+    """' (muted there: constant from 0 to 1456 ms)' when the trace is constant around ``position``, else ''."""
+    trace = survey.data[tuple(int(round(v)) for v in position[:-1])]
+    k = int(np.clip(round(position[-1]), 0, trace.size - 1))
+    same = trace == trace[k]
+    if k + 1 < trace.size and not same[k + 1] and (k == 0 or not same[k - 1]):
+        return ""
+    first = k - int(np.argmin(same[k::-1])) + 1 if not same[:k + 1].all() else 0
+    last = k + int(np.argmin(same[k:])) - 1 if not same[k:].all() else trace.size - 1
+    return f" (muted there: constant from {survey.samples[first]:g} to {survey.samples[last]:g} {survey.unit})"
+
+
+def _seed_error(exc: SeedError, survey: _Survey, seeds, index_seeds, polarity: str) -> InputError:
+    """The library's seed error in the user's terms: the seed as typed, where it is, and the nearest position that
+    can start a horizon as a --seed to pass."""
+    which = int(np.argmin([np.abs(np.subtract(s, exc.seed)).sum() for s in index_seeds]))
+    text = ",".join(f"{float(v):g}" for v in seeds[which])
+    trace = _survey_position(survey, exc.seed).trace
+    if exc.window is None:
+        problem, kind = f"the trace at {trace} is dead (all samples equal)", "live trace"
+    else:
+        dt = float(survey.samples[1] - survey.samples[0])
+        problem = (f"no {polarity} pick within {exc.window:g} samples ({exc.window * dt:g} {survey.unit}) of "
+                   f"{float(seeds[which][-1]):g} {survey.unit} on the trace at {trace}{_mute_note(survey, exc.seed)}")
+        kind = f"{polarity} pick"
+    if exc.nearest is None:
+        return InputError(f"--seed {text}: {problem}, and no trace of {survey.name} has one; check --polarity and "
+                          "the file")
+    near = _survey_position(survey, exc.nearest)
+    return InputError(f"--seed {text}: {problem}; the nearest {kind} is at {near.words}: pass --seed {near.seed}"
+                      + ("" if exc.window is None else " (or another --polarity)"))
 
 
 def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
@@ -204,7 +276,10 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         except (InputError, UnsupportedDataError):
             if faults:  # asked for: the refusal (e.g. a cube too small to trace) is the user's to see
                 raise
-    result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
+    try:
+        result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
+    except SeedError as exc:  # the library speaks of index positions: the user's inline, crossline and time instead
+        raise _seed_error(exc, survey, seeds, index_seeds, polarity) from None
     if fill:
         result = fill_horizon(result)
     # the outputs

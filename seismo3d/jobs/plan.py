@@ -7,6 +7,8 @@ import pathlib
 import time
 from dataclasses import dataclass
 
+import numpy as np
+
 from .._atomic import atomic_path
 from ..errors import InputError
 from ..terrain import DEM_SUFFIXES, read_dem
@@ -73,15 +75,24 @@ def load_occupancy(grid, *, max_slope_deg: float = 15.0, options: OccupancyOptio
                      "seismo3d map")
 
 
-def _check_end(grid: OccupancyGrid, cell, name: str, why_blocked: str) -> tuple[int, int]:
+def _check_end(grid: OccupancyGrid, cell, name: str, why_blocked: str, loosen: str) -> tuple[int, int]:
+    """``cell`` as (row, col) when it is inside the grid and traversable; InputError naming ``--{name}``, why the
+    cell is blocked and the nearest traversable cell (or, with none, ``loosen``: what would free cells)."""
     r, c = (int(v) for v in cell)
     h, w = grid.shape
     if not (0 <= r < h and 0 <= c < w):
-        raise InputError(f"{name} {r},{c} is outside the grid of {h} rows x {w} columns (rows 0-{h - 1}, "
+        raise InputError(f"--{name} {r},{c} is outside the grid of {h} rows x {w} columns (rows 0-{h - 1}, "
                          f"columns 0-{w - 1})")
     if not grid.free[r, c]:
         reason = "has no data" if not grid.known[r, c] else why_blocked
-        raise InputError(f"{name} {r},{c} is on an obstacle (the cell {reason}); choose a traversable cell")
+        free = np.argwhere(grid.free)
+        if free.size == 0:
+            raise InputError(f"--{name} {r},{c} is on an obstacle (the cell {reason}) and no cell of the grid is "
+                             f"traversable; {loosen}")
+        distance = np.hypot(*(free - (r, c)).T)
+        rr, cc = (int(v) for v in free[np.argmin(distance)])
+        raise InputError(f"--{name} {r},{c} is on an obstacle (the cell {reason}); the nearest traversable cell is "
+                         f"{rr},{cc} ({distance.min():.1f} cells away): pass --{name} {rr},{cc}")
     return r, c
 
 
@@ -149,10 +160,14 @@ def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, opti
     output = pathlib.Path(output)
     check_outputs([output_file(output, "path.csv")], [grid], overwrite=overwrite)
     occupancy = load_occupancy(grid, max_slope_deg=max_slope_deg, options=options)
-    blocked = (f"is steeper than {max_slope_deg:g} deg" if not pathlib.Path(grid).is_dir()
-               else "holds an obstacle at the robot's height, or no floor was seen there")
-    s = _check_end(occupancy, start, "start", blocked)
-    g = _check_end(occupancy, goal, "goal", blocked)
+    if pathlib.Path(grid).is_dir():
+        blocked = "holds an obstacle at the robot's height, or no floor was seen there"
+        loosen = "lower --robot-radius or raise --step-height"
+    else:
+        blocked = f"is steeper than --max-slope {max_slope_deg:g} deg"
+        loosen = f"raise --max-slope (now {max_slope_deg:g} deg)"
+    s = _check_end(occupancy, start, "start", blocked, loosen)
+    g = _check_end(occupancy, goal, "goal", blocked, loosen)
     t0 = time.perf_counter()
     route = astar(occupancy.free, s, g, spacing=occupancy.spacing, corner_cutting=corner_cutting)
     seconds = time.perf_counter() - t0

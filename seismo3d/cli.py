@@ -519,19 +519,28 @@ def map_(
 
     with _one_line_warnings():
         try:
-            written = run_map_job(sequence, output, options=options, max_frames=max_frames, render=render)
+            written = run_map_job(sequence, output, options=options, max_frames=max_frames, render=render,
+                                  overwrite=overwrite)
         except KeyboardInterrupt:
             typer.echo(f"interrupted: the trajectory of the frames done and the map so far are in {output}", err=True)
             raise typer.Exit(130) from None
     summary = written["summary"]
-    typer.echo(f"{summary['frames_tracked']} of {summary['frames_in_sequence']} frames tracked, "
-               f"{summary['keyframes']} keyframes, {summary['loop_closures']} loop closures, "
-               f"{summary['frames_per_second']:.1f} frames/s -> {output}")
+    typer.echo(f"{_frames_tracked(summary, max_frames)}, {summary['keyframes']} keyframes, "
+               f"{summary['loop_closures']} loop closures, {summary['frames_per_second']:.1f} frames/s -> {output}")
     if summary.get("evaluation"):
         ev = summary["evaluation"]
         typer.echo(f"against the sequence's reference: ATE RMSE {100 * ev['ate_rmse_m']:.2f} cm, RPE "
                    f"{100 * ev['rpe_translation_rmse_m']:.2f} cm / {ev['rpe_rotation_rmse_deg']:.2f} deg per frame")
     typer.echo("wrote " + ", ".join(pathlib.Path(p).name for k, p in written.items() if k != "summary"))
+
+
+def _frames_tracked(summary: dict, max_frames: int | None) -> str:
+    """'98 of 100 frames tracked', or for a run limited by --max-frames, '30 of the first 30 frames tracked
+    (--max-frames 30; the sequence has 100)'."""
+    tracked, total = summary["frames_tracked"], summary["frames_in_sequence"]
+    if max_frames is None or max_frames >= total:
+        return f"{tracked} of {total} frames tracked"
+    return f"{tracked} of the first {max_frames} frames tracked (--max-frames {max_frames}; the sequence has {total})"
 
 
 class Polarity(str, Enum):

@@ -190,6 +190,13 @@ def _check_no_earlier_result(output: Output) -> None:
                          "path")
 
 
+def _cannot(output: Output) -> str:
+    """The start of a rule-3 message: 'cannot write PATH' or 'cannot create output folder PATH'."""
+    if output.kind == "folder" and not output.path.is_dir():
+        return f"cannot create output folder {output.path}"
+    return f"cannot write {output.path}"
+
+
 def _destination(output: Output) -> Path:
     """The existing folder that will hold the output (rule 3 probes it)."""
     out = output.path
@@ -197,7 +204,7 @@ def _destination(output: Output) -> Path:
         folder = out.parent if str(out.parent) else Path(".")
         if not folder.is_dir():
             why = "is a file" if folder.exists() else "does not exist"
-            raise InputError(f"cannot write {out}: folder {folder} {why}; "
+            raise InputError(f"{_cannot(output)}: folder {folder} {why}; "
                              f"{'create it first' if why == 'does not exist' else 'choose another path'}")
         return folder
     if out.is_dir():
@@ -206,7 +213,7 @@ def _destination(output: Output) -> Path:
     while not parent.exists():
         parent = parent.parent
     if not parent.is_dir():
-        raise InputError(f"cannot create output folder {out}: {parent} is a file, not a folder; choose another path")
+        raise InputError(f"{_cannot(output)}: {parent} is a file, not a folder; choose another path")
     return parent
 
 
@@ -216,7 +223,7 @@ def _probe_writable(output: Output) -> None:
     try:
         fd, probe = tempfile.mkstemp(dir=folder, prefix=".seismo3d-probe-")
     except OSError as exc:
-        raise InputError(f"cannot write {output.path}: no file can be created in {folder} "
-                         f"({exc.strerror or exc}); choose a folder you can write to") from None
+        raise InputError(f"{_cannot(output)}: no file can be created in {folder} ({exc.strerror or exc}); choose "
+                         "a folder you can write to") from None
     os.close(fd)
     os.unlink(probe)

@@ -242,9 +242,9 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
 
     check_choice(color_by, "color_by", {"fault_id", "throw"})
     path, output = Path(input_path), Path(output)
+    check_outputs([output_file(output, "picture.png")], [path, seismic, plan], overwrite=overwrite)
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
-    check_outputs([output_file(output, "picture.png")], [path, seismic, plan], overwrite=overwrite)
     kind = _kind(path)
     if kind == "map":
         return _render_map(path, output, window_size=window_size)

@@ -87,7 +87,7 @@ def _in_flags(message: str, flags: dict) -> str:
         message = re.sub(rf"(?<![\w-]){name}=(['\"])([^'\"]*)\1", rf"{flag} \2", message)
         message = re.sub(rf"(?<![\w-]){name}=", f"{flag} ", message)
         if "_" in name or name in _WORDS:
-            message = re.sub(rf"(?<![\w-]){name}\b", flag, message)
+            message = re.sub(rf"(?<![\w/.-]){name}(?![\w/-]|\.\w)", flag, message)  # not in a file name
     return message
 
 

@@ -23,10 +23,12 @@ from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import DataNotFoundError, InputError, Seismo3dWarning
 from ..seismic.faults.likelihood_blocks import (
-    ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory,
+    ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory, worker_baseline,
 )
 from ..seismic.faults.pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
 from ..seismic.faults.pipeline_blocks import chunked_fault_surfaces
+from ..seismic.blocks import release_memory
+from ..seismic.faults.preflight import SampleOptions, judge_sample, minimum_memory_limit
 from ..seismic.io.lazy import open_lazy
 from ..seismic.io.segy import open_segy, read_section, write_like
 from ..seismic.io.writer import write_like_blocks
@@ -311,6 +313,43 @@ class LazyInput:
         return {"inline": self.inline, "crossline": self.xline, "sample": self.samples, "sample_unit": self.unit}
 
 
+def _size_text(n: int) -> str:
+    """Bytes as a --memory-limit value, rounded up: '1.3GB', '460MB'."""
+    if n >= 10 ** 9:
+        return f"{np.ceil(n / 10 ** 8) / 10:g}GB"
+    return f"{int(np.ceil(n / 10 ** 7)) * 10}MB"
+
+
+def _check_block_run(lazy: LazyInput, limit: int, scheduler, options: FaultTracingOptions) -> None:
+    """Before any block of a block-by-block run: the memory its smallest blocks need; then the data judged from a
+    sample of blocks (not seismic amplitudes, no lateral coherence) and the memory its seed candidates need."""
+    shape = tuple(int(n) for n in lazy.data.shape)
+    chunks = lazy.data.chunks
+
+    def baseline() -> int:  # the process as it is now, and the input chunks a block reads
+        return worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler),
+                               4 * max(chunks[0]) * max(chunks[1]) * shape[2])
+
+    _check_limit(lazy.name, shape, limit, minimum_memory_limit(shape, baseline=baseline(), options=options),
+                 " for its smallest blocks alone")
+    LOGGER.info("%s: judging the data from a sample of blocks", lazy.name)
+    sample = judge_sample(lazy.data, options=options)
+    release_memory()  # the sample's arrays, before the process is measured again
+    need = minimum_memory_limit(shape, baseline=baseline(), options=options, sample=sample)
+    _check_limit(lazy.name, shape, limit, need, f" (with the ~{sample.candidates(shape)} seed candidates a sample "
+                                                "of its blocks predicts)")
+
+
+def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:
+    """InputError naming the smallest --memory-limit that works when ``limit`` is below ``need``."""
+    if need <= limit:
+        return
+    held = resident_memory()
+    raise InputError(f"{name}: a block-by-block run of its {shape[0]} x {shape[1]} x {shape[2]} samples needs a "
+                     f"memory limit of at least {_size_text(need)}{why}, more than the {_size_text(limit)} given "
+                     f"(this process alone holds {_size_text(held)}); pass memory_limit='{_size_text(need)}' or more")
+
+
 def _too_large(shape, budget: int) -> bool:
     """Whether the in-memory run on a cube of this shape would need more than ``budget`` bytes."""
     return in_memory_bytes(shape) > budget
@@ -530,6 +569,7 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     lazy = None if ignore_geometry else _lazy_if_too_large(input_path, budget, iline=iline, xline=xline,
                                                            sample_unit=sample_unit, endian=endian)
     if lazy is not None:
+        _check_block_run(lazy, limit, scheduler, FaultTracingOptions(sensitivity=sensitivity))
         written.update(_run_chunked(lazy, out_dir, files, memory_limit=limit, budget=budget, scheduler=scheduler,
                                     sensitivity=sensitivity, progress=progress))
         return written
@@ -538,6 +578,8 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     else:
         inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
                           sample_unit=sample_unit, n_samples=n_samples, endian=endian)
+    if SampleOptions().worth_sampling(inp.data.shape):  # refused from a sample, not after the whole likelihood
+        judge_sample(inp.data, options=FaultTracingOptions(sensitivity=sensitivity))
     dt = float(inp.samples[1] - inp.samples[0]) if inp.samples.size > 1 else 1.0
     if inp.unit != "samples" and not dt > 0:
         raise InputError(f"the sample interval of {inp.name} is {dt:g} {inp.unit}; it must be > 0 (check the "
@@ -604,9 +646,10 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: i
                              "or delete it")
         LOGGER.info("%s: reusing the finished fault likelihood in %s", lazy.name, path)
     else:
-        LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory, more than the %.2f GiB left under "
-                    "the memory limit (%.2f GiB): fault likelihood block by block into %s", lazy.name, *shape,
-                    in_memory_bytes(shape) / 2**30, budget / 2**30, memory_limit / 2**30, path.name)
+        LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory besides this process (%.2f GiB), more "
+                    "than the memory limit of %.2f GiB allows: fault likelihood block by block into %s", lazy.name,
+                    *shape, in_memory_bytes(shape) / 2**30, (memory_limit - budget) / 2**30, memory_limit / 2**30,
+                    path.name)
         chunked_fault_likelihood(lazy.data, path, coords=lazy.coords, progress=progress, chunking=chunking)
         zarr.open_group(str(path), mode="r+").attrs["source"] = lazy.name
         consolidate(path)

@@ -629,6 +629,10 @@ def render(
     iline: int = typer.Option(189, help=_ILINE_HELP),
     xline: int = typer.Option(193, help=_XLINE_HELP),
     endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
+    ignore_geometry: bool = typer.Option(False, "--ignore-geometry", help="Read the SEG-Y as a trace list (unsorted "
+                                                                          "file, arbitrary line): draw one section."),
+    sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
+                                                                "headers (ms unless they speak of depth)."),
     overwrite: bool = _overwrite_option(),
 ) -> None:
     """Render INPUT off screen (no display needed) into a PNG: a cube's inline, crossline and time slices, faults
@@ -645,7 +649,7 @@ def render(
         job = run_render_job(input, output, seismic=seismic, color_by=color_by.value,
                              vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
                              window_size=(width, height), iline=iline, xline=xline, endian=_value(endian),
-                             overwrite=overwrite)
+                             ignore_geometry=ignore_geometry, sample_unit=_value(sample_unit), overwrite=overwrite)
     what = {"segy": "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon",
             "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM", "map": "map"}[job.kind]
     typer.echo(f"{what} of {input.name}: {job.caption} -> {job.picture}")

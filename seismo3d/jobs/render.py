@@ -77,12 +77,18 @@ def _kind(path: Path) -> str:
 
 
 def _read_segy(path: Path, vertical_exaggeration, segy_options=None):
-    from ..viz.seismic import geometry_of_segy
+    """The amplitudes as (n_inlines, n_xlines, n_samples) and their geometry; a trace list as one section of
+    (n_traces, 1, n_samples), its traces numbered from 1 in file order."""
+    from ..viz.seismic import cube_geometry, geometry_of_segy
 
     with open_segy(path, **(segy_options or {})) as segy:
-        if segy.inlines is None:
-            raise InputError(f"{path.name} has no inline / crossline geometry; render needs a sorted cube")
-        return segy.read(), geometry_of_segy(segy, vertical_exaggeration=vertical_exaggeration)
+        if segy.inlines is not None:
+            return segy.read(), geometry_of_segy(segy, vertical_exaggeration=vertical_exaggeration)
+        data = segy.read()[:, None, :]
+        geometry = cube_geometry(data.shape, inlines=np.arange(1, data.shape[0] + 1), xlines=[0],
+                                 samples=segy.samples, sample_unit=segy.sample_unit,
+                                 vertical_exaggeration=vertical_exaggeration, lateral_names=("trace", ""))
+        return data, geometry
 
 
 def _slices_for(shape):
@@ -177,13 +183,15 @@ def _render_map(path: Path, output: Path, *, window_size) -> RenderJob:
 
 def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", vertical_exaggeration=None,
                    lineaments=False, plan=None, window_size=(1200, 900), iline: int = 189, xline: int = 193,
-                   endian=None, overwrite: bool = False) -> RenderJob:
+                   endian=None, ignore_geometry: bool = False, sample_unit=None,
+                   overwrite: bool = False) -> RenderJob:
     """Render INPUT off screen into a PNG: the ``seismo3d render`` command.
 
     Inputs
     ------
     * a SEG-Y cube: its middle inline, crossline and time slice (a single line: that section), placed by its CDP X/Y
-      when the headers have them (see :func:`seismo3d.viz.cube_geometry`);
+      when the headers have them (see :func:`seismo3d.viz.cube_geometry`); a file without an inline / crossline grid
+      (or with ``ignore_geometry``) is drawn as one section, its traces numbered from 1 in file order;
     * the output folder of ``seismo3d faults``: the fault surfaces (``faults.vtp``) with the fault likelihood as a
       semi-transparent volume, over the slices of ``seismic`` (default: ``demo_seismic.sgy`` in the folder, written
       by ``--demo``), placed by the geometry of ``fault_likelihood.sgy``;
@@ -217,6 +225,10 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
         Trace header bytes of the inline and crossline numbers of the SEG-Y files read.
     endian : {'big', 'little'}, optional
         Byte order of the SEG-Y files read; by default detected from each binary header.
+    ignore_geometry : bool, optional
+        Read the SEG-Y files as trace lists, without the warning a file without a grid gets.
+    sample_unit : {'ms', 'm', 'ft'}, optional
+        Unit of the SEG-Y sample axis; by default from the headers.
     overwrite : bool, optional
         Replace an existing ``output``.
 
@@ -236,7 +248,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     """
     import pyvista as pv
 
-    segy_options = {"iline": iline, "xline": xline, "endian": endian}
+    segy_options = {"iline": iline, "xline": xline, "endian": endian, "ignore_geometry": ignore_geometry,
+                    "sample_unit": sample_unit}
 
     from ..viz.seismic import cube_geometry, show_seismic
 

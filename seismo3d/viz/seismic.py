@@ -50,6 +50,9 @@ class CubeGeometry:
         Unit of the lateral scene coordinates: the survey's ('m' or 'ft') with CDP X/Y, 'line' without.
     vertical_exaggeration : float
         Factor applied to the vertical axis.
+    lateral_names : (str, str)
+        What numbers the two lateral axes: ``('inline', 'crossline')``, or ``('trace', '')`` for a trace list (one
+        section, traces numbered in file order; ``inlines`` then holds the trace numbers).
     """
 
     shape: tuple
@@ -61,6 +64,7 @@ class CubeGeometry:
     axes: np.ndarray
     map_unit: str
     vertical_exaggeration: float
+    lateral_names: tuple = ("inline", "crossline")
 
     def to_world(self, ijk) -> np.ndarray:
         """Scene coordinates of index-space positions.
@@ -82,7 +86,7 @@ class CubeGeometry:
         easting / northing (CDP X/Y, in ``map_unit``), and time or depth, which increases downward."""
         name = {"ms": "time", "m": "depth", "ft": "depth"}.get(self.sample_unit, "sample")
         if self.map_unit == "line":
-            return "inline", "crossline", f"{name} (down)"
+            return self.lateral_names[0], self.lateral_names[1], f"{name} (down)"
         return f"X ({self.map_unit})", f"Y ({self.map_unit})", f"{name} (down)"
 
     def describe(self) -> str:
@@ -90,8 +94,10 @@ class CubeGeometry:
         il, xl, s = self.inlines, self.xlines, self.samples
         unit = "" if self.sample_unit == "samples" else f" {self.sample_unit}"
         name = {"ms": "time", "m": "depth", "ft": "depth"}.get(self.sample_unit, "sample")
-        return (f"inlines {il[0]:g}-{il[-1]:g}, crosslines {xl[0]:g}-{xl[-1]:g}, {name} {s[0]:g}-{s[-1]:g}{unit} "
-                f"(down), vertical exaggeration {self.vertical_exaggeration:.2g}")
+        first, second = self.lateral_names
+        lines = f"{first}s {il[0]:g}-{il[-1]:g}" + (f", {second}s {xl[0]:g}-{xl[-1]:g}" if second else "")
+        return (f"{lines}, {name} {s[0]:g}-{s[-1]:g}{unit} (down), vertical exaggeration "
+                f"{self.vertical_exaggeration:.2g}")
 
 
 def _axis(values, n: int, name: str) -> np.ndarray:
@@ -127,7 +133,8 @@ def _bin_vectors(cdp_x, cdp_y, shape):
 
 
 def cube_geometry(shape, *, inlines=None, xlines=None, samples=None, sample_unit="samples", cdp_x=None, cdp_y=None,
-                  map_unit="m", vertical_exaggeration=None, velocity=2000.0) -> CubeGeometry:
+                  map_unit="m", vertical_exaggeration=None, velocity=2000.0,
+                  lateral_names=("inline", "crossline")) -> CubeGeometry:
     """The scene geometry of a cube from its line numbers, samples and (optionally) CDP coordinates.
 
     Parameters
@@ -148,6 +155,8 @@ def cube_geometry(shape, *, inlines=None, xlines=None, samples=None, sample_unit
         Multiplies the vertical axis; default: the cube's height becomes half its longer lateral side.
     velocity : float, optional
         For a time cube shown with map coordinates: the velocity (m/s or ft/s) converting two-way time to depth.
+    lateral_names : (str, str), optional
+        What numbers the lateral axes (see :attr:`CubeGeometry.lateral_names`).
 
     Returns
     -------
@@ -193,7 +202,7 @@ def cube_geometry(shape, *, inlines=None, xlines=None, samples=None, sample_unit
         a.setflags(write=False)
     return CubeGeometry(shape=shape, inlines=il, xlines=xl, samples=s, sample_unit=sample_unit, origin=origin,
                         axes=np.vstack([a_i, a_j, down]), map_unit=unit,
-                        vertical_exaggeration=float(vertical_exaggeration))
+                        vertical_exaggeration=float(vertical_exaggeration), lateral_names=tuple(lateral_names))
 
 
 def geometry_of_segy(segy, *, vertical_exaggeration=None, velocity=2000.0) -> CubeGeometry:

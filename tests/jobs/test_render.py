@@ -142,3 +142,29 @@ def test_segy_flags_reach_the_one_opening_path(tmp_path):
     errors = [line for line in res.output.splitlines() if line.startswith("error: ")]
     assert res.exit_code == 2 and len(errors) == 1 and "--endian" in errors[0], res.output
     assert not (tmp_path / "x.png").exists()
+
+
+def _write_trace_list(path, section):
+    """A SEG-Y file of (n_traces, n_samples) without inline / crossline numbers (a trace list), 4 ms."""
+    spec = segyio.spec()
+    spec.format, spec.tracecount, spec.samples = 5, section.shape[0], 4.0 * np.arange(section.shape[1])
+    with segyio.create(str(path), spec) as f:
+        for k, trace in enumerate(section):
+            f.header[k] = {segyio.su.cdp: k + 1, segyio.su.dt: 4000}
+            f.trace[k] = trace.astype(np.float32)
+        f.bin.update({segyio.BinField.Samples: section.shape[1], segyio.BinField.Interval: 4000})
+
+
+def test_a_trace_list_is_drawn_as_one_section(tmp_path):
+    """A file without an inline / crossline grid: one section, traces numbered in file order; the warning names
+    --ignore-geometry, which render has: with it, the same picture and no warning."""
+    _write_trace_list(tmp_path / "line.sgy", _cube()[:, 0, :].repeat(3, axis=0))
+    res = runner.invoke(app, ["render", str(tmp_path / "line.sgy"), "-o", str(tmp_path / "a.png"), "--size",
+                              "400x300"])
+    assert res.exit_code == 0, res.output
+    assert "traces 1-36, time 0-188 ms" in res.stdout
+    assert res.stderr.startswith("warning: ") and "--ignore-geometry" in res.stderr
+    assert _not_blank(tmp_path / "a.png")[0]
+    quiet = runner.invoke(app, ["render", str(tmp_path / "line.sgy"), "-o", str(tmp_path / "b.png"), "--size",
+                                "400x300", "--ignore-geometry"])
+    assert quiet.exit_code == 0 and quiet.stderr == "", quiet.output

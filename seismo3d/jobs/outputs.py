@@ -3,8 +3,8 @@
 Every job calls :func:`check_outputs` first, with its inputs and its outputs; the rules are the same for all:
 
 1. **An output is never an input.** An output that is an input (the same path, through symlinks, or the same file
-   under another name), an output folder or store that holds an input, and an existing file inside an input folder
-   are refused, ``overwrite`` or not.
+   under another name) and an output folder or store that holds an input are refused, ``overwrite`` or not. A job
+   that reads files of an input folder (``mesh.ply`` of a map folder) passes them as inputs too.
 2. **Earlier results are never replaced silently.** An output file (or store) that exists, and an output folder
    holding any of the files a run of the command writes there, are refused unless ``overwrite=True``
    (``--overwrite`` on every command). Other files in an output folder are left alone.
@@ -152,7 +152,7 @@ def _suggestion(output: Output, folder: Path) -> str:
 
 
 def _check_apart(output: Output, source: Path) -> None:
-    """Rule 1: the output is not ``source``, does not hold it, and replaces no file inside it."""
+    """Rule 1: the output is not ``source`` and does not hold it."""
     out = output.path
     what = "output folder" if output.kind == "folder" else "output"
     if _same(out, source):
@@ -161,10 +161,6 @@ def _check_apart(output: Output, source: Path) -> None:
     if output.kind != "file" and _resolved(source).is_relative_to(_resolved(out)):
         raise InputError(f"{what} {out} holds the input {source}; write to a folder that holds no input"
                          f"{_suggestion(output, _resolved(out))}")
-    if (output.kind != "folder" and source.is_dir() and (out.exists() or out.is_symlink())
-            and _resolved(out).is_relative_to(_resolved(source))):
-        raise InputError(f"output {out} is inside the input folder {source} and exists; write the result outside "
-                         f"the input folder, or to a new name in it")
 
 
 def _check_kind(output: Output) -> None:

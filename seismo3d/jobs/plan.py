@@ -158,7 +158,9 @@ def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, opti
         No path exists.
     """
     output = pathlib.Path(output)
-    check_outputs([output_file(output, "path.csv")], [grid], overwrite=overwrite)
+    folder = pathlib.Path(grid)
+    read = [folder / "mesh.ply", folder / "trajectory.txt"] if folder.is_dir() else []  # a map folder's inputs
+    check_outputs([output_file(output, "path.csv")], [grid, *read], overwrite=overwrite)
     occupancy = load_occupancy(grid, max_slope_deg=max_slope_deg, options=options)
     if pathlib.Path(grid).is_dir():
         blocked = "holds an obstacle at the robot's height, or no floor was seen there"

@@ -26,6 +26,9 @@ __all__ = ["RenderJob", "run_render_job"]
 _SEGY = {".sgy", ".segy"}
 _TEXT = {".txt", ".dat", ".csv", ".xyz"}
 _DEM = {".tif", ".tiff"}
+# The files render reads of a 'seismo3d faults' or 'seismo3d map' output folder (inputs: never replaced by the PNG).
+_FOLDER_FILES = ("faults.vtp", "fault_likelihood.sgy", "fault_likelihood.npy", "demo_seismic.sgy", "mesh.ply",
+                 "trajectory.txt", "keyframes.json")
 
 
 @dataclass(frozen=True)
@@ -255,7 +258,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
 
     check_choice(color_by, "color_by", {"fault_id", "throw"})
     path, output = Path(input_path), Path(output)
-    check_outputs([output_file(output, "picture.png")], [path, seismic, plan], overwrite=overwrite)
+    read = [path / name for name in _FOLDER_FILES] if path.is_dir() else []  # what render reads of a folder
+    check_outputs([output_file(output, "picture.png")], [path, seismic, plan, *read], overwrite=overwrite)
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
     kind = _kind(path)

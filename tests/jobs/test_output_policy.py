@@ -347,11 +347,17 @@ def test_check_outputs_rules(tmp_path):
             check_outputs(outputs, [cube])
 
 
-def test_an_existing_file_inside_an_input_folder_is_never_replaced(tmp_path):
-    """An input folder's files are inputs: replacing one is refused even with overwrite; new files are allowed."""
+def test_the_files_a_command_reads_of_an_input_folder_are_inputs(map_folder, tmp_path):
+    """plan reads mesh.ply of a map folder: it is never replaced, even with --overwrite; render writes a picture into
+    a folder it reads, and replaces it with --overwrite."""
     folder = tmp_path / "map_run"
-    folder.mkdir()
-    (folder / "mesh.ply").write_text("ply")
-    with pytest.raises(InputError, match="inside the input folder"):
-        check_outputs([output_file(folder / "mesh.ply")], [folder], overwrite=True)
-    check_outputs([output_file(folder / "path.csv")], [folder])
+    shutil.copytree(map_folder, folder)
+    before = _digest(folder)
+    line = _refused(runner.invoke(app, ["plan", str(folder), "--start", "20,8", "--goal", "20,56", "-o",
+                                        str(folder / "mesh.ply"), "--overwrite"]))
+    assert "is the input mesh.ply itself" in line
+    assert _digest(folder) == before
+    for extra in ([], ["--overwrite"]):
+        result = runner.invoke(app, ["render", str(folder), "-o", str(folder / "view.png"), "--size", "200x150",
+                                     *extra])
+        assert result.exit_code == 0, result.output

@@ -95,17 +95,18 @@ def _read_segy(path: Path, vertical_exaggeration, segy_options=None):
 
 
 def _slices_for(shape):
-    """The middle planes; a single line (one inline or one crossline) is shown as that one plane."""
+    """The middle planes; a single line (one inline or one crossline) is shown as that one plane, seen square on."""
     if shape[0] == 1:
-        return (0, None, None), "yz"
+        return (0, None, None), "section"
     if shape[1] == 1:
-        return (None, 0, None), "xz"
+        return (None, 0, None), "section"
     return None, "iso"
 
 
 def _horizon_grid(path: Path, geometry):
-    """(n_inlines, n_xlines) fractional sample indices of an "inline xline time" text file on ``geometry``'s grid
-    (or on the grid of its own lines when ``geometry`` is None), and the geometry."""
+    """(n_inlines, n_xlines) fractional sample indices of an "inline xline time" text file (or "trace time" rows of
+    a trace list, on a (n_traces, 1) grid) on ``geometry``'s grid (or on the grid of its own lines when ``geometry``
+    is None), and the geometry."""
     from ..viz.seismic import cube_geometry
 
     try:
@@ -113,14 +114,16 @@ def _horizon_grid(path: Path, geometry):
     except ValueError as exc:
         raise InputError(f"{path.name} is not a table of numbers ({exc}); a horizon file has 'inline xline time' "
                          "rows") from None
-    if rows.shape[1] < 3 or rows.shape[0] < 4:
+    if rows.shape[1] < 2 or rows.shape[0] < 4:
         raise InputError(f"{path.name} has {rows.shape[0]} rows of {rows.shape[1]} columns; a horizon file has "
-                         "'inline xline time' rows (at least 4)")
-    il, xl, t = rows[:, 0], rows[:, 1], rows[:, 2]
+                         "'inline xline time' rows, or 'trace time' rows for a trace list (at least 4)")
+    trace_list = rows.shape[1] == 2
+    il, xl, t = (rows[:, 0], np.zeros(len(rows)), rows[:, 1]) if trace_list else (rows[:, 0], rows[:, 1], rows[:, 2])
     if geometry is None:
         samples = np.arange(np.floor(t.min()), np.ceil(t.max()) + 1.0)
         geometry = cube_geometry((np.unique(il).size, np.unique(xl).size, samples.size), inlines=np.unique(il),
-                                 xlines=np.unique(xl), samples=samples, sample_unit="ms")
+                                 xlines=np.unique(xl), samples=samples, sample_unit="ms",
+                                 lateral_names=("trace", "") if trace_list else ("inline", "crossline"))
     i = np.searchsorted(geometry.inlines, il)
     j = np.searchsorted(geometry.xlines, xl)
     ok = (i < geometry.inlines.size) & (j < geometry.xlines.size)

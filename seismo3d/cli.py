@@ -125,7 +125,8 @@ def _friendly(flags: dict | None = None):
                 typer.echo(f"error: {_in_flags(str(exc), flags)}", err=True)
                 raise typer.Exit(2) from None
             except KeyboardInterrupt:
-                typer.echo("interrupted: finished outputs were kept, unfinished ones were not written", err=True)
+                typer.echo("interrupted: earlier results are as they were and nothing half-written was left (an "
+                           "output folder's new files are moved in only when all are written)", err=True)
                 raise typer.Exit(130) from None
 
         return wrapper

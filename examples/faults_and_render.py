@@ -15,16 +15,16 @@ from seismo3d.jobs.faults import run_faults_job
 from seismo3d.jobs.render import run_render_job
 
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "faults_demo")
-written = run_faults_job(None, out, demo=True, progress=True)
+written = run_faults_job(None, out, demo=True, overwrite=True, progress=True)  # overwrite: a rerun replaces the files
 with open(written["summary"], newline="") as fh:
     for row in csv.DictReader(fh):
         print(f"fault {row['id']}: {row['n_points']} samples, strike {row['mean_strike_deg']} deg, dip "
               f"{row['mean_dip_deg']} deg, median throw {row['median_throw_samples']} samples")
 
 # %% Render the folder off screen: slices of demo_seismic.sgy, fault surfaces by id, the likelihood volume
-job = run_render_job(out, out / "scene.png")
+job = run_render_job(out, out / "scene.png", overwrite=True)
 print(f"{job.n_faults} faults drawn: {job.caption} -> {job.picture}")
 
 # %% The same faults coloured by throw (samples; + where the hanging wall moved down)
-job = run_render_job(out, out / "scene_throw.png", color_by="throw")
+job = run_render_job(out, out / "scene_throw.png", color_by="throw", overwrite=True)
 print(f"-> {job.picture}")

@@ -20,7 +20,7 @@ skimage.io.imsave("camera_90.png", turned)
 
 # %% Match with the HOG-pyramid (RANSAC homography), and score the matches against the known homography
 for method in ("hog", "sift"):
-    job = run_match_job("camera.png", "camera_90.png", f"matches_{method}.csv", method=method)
+    job = run_match_job("camera.png", "camera_90.png", f"matches_{method}.csv", method=method, overwrite=True)
     res = job.result
     score = evaluate_matches(res.xy1[res.inliers], res.xy2[res.inliers], h)
     print(f"{method}: {res.n_putative} putative matches, {job.n_written} verified, "

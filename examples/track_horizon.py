@@ -24,10 +24,10 @@ with segyio.open("cube.sgy", ignore_geometry=True) as f:
 truth = syn.horizons[1]
 polarity = "peak" if syn.horizon_polarity[1] > 0 else "trough"
 seed = (1 + 8, 1 + 12, 4.0 * truth[8, 12])  # from_array3D numbers lines from 1
-job = run_horizon_job("cube.sgy", [seed], "horizon.txt", polarity=polarity, progress=False)
+job = run_horizon_job("cube.sgy", [seed], "horizon.txt", polarity=polarity, overwrite=True, progress=False)
 errors = horizon_errors(job.horizon.times, truth)
 print(f"{job.n_rows} traces tracked; median error {errors.median_abs:.2f} samples, {100 * errors.within_2:.0f} % "
       "within 2 samples of the truth")
 
 # %% Draw it over the cube
-print(run_render_job("horizon.txt", "horizon.png", seismic="cube.sgy").caption, "-> horizon.png")
+print(run_render_job("horizon.txt", "horizon.png", seismic="cube.sgy", overwrite=True).caption, "-> horizon.png")

@@ -10,7 +10,7 @@ from contextlib import contextmanager
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_directory", "existing_folder"]
+__all__ = ["atomic_path", "atomic_directory", "existing_folder", "StagedFolder"]
 
 
 @contextmanager
@@ -91,6 +91,66 @@ def atomic_directory(path):
         shutil.rmtree(tmp, ignore_errors=True)
         if old is not None:
             shutil.rmtree(old, ignore_errors=True)
+
+
+class StagedFolder:
+    """The files of an output folder written into a hidden staging folder inside it, and moved in together when the
+    block ends without an error (each by a rename over any earlier file); on an error, nothing of them is kept.
+
+    A run that fails while writing its files (a full disk, a renderer that cannot start) leaves the earlier files of
+    the folder as they were, not a mix of old and new ones. The folder is created (with its parents) on entering,
+    and removed again on an error when it was created here and is still empty, so a refused run leaves nothing
+    behind. Files the block writes into the folder itself (e.g. the resumable stores of a chunked run) are not
+    touched.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The output folder.
+
+    Examples
+    --------
+    >>> with StagedFolder(out_dir) as stage:                  # doctest: +SKIP
+    ...     (stage.path / "result.csv").write_text("...")
+    >>> stage.final(stage.path / "result.csv")                # doctest: +SKIP
+    PosixPath('out_dir/result.csv')
+    """
+
+    def __init__(self, folder):
+        self.folder = pathlib.Path(folder)
+        self.path = None
+        self._created = False
+
+    def __enter__(self) -> "StagedFolder":
+        self._created = not self.folder.exists()
+        self.folder.mkdir(parents=True, exist_ok=True)
+        self.path = pathlib.Path(tempfile.mkdtemp(dir=self.folder, prefix=".staged-", suffix=".tmp"))
+        return self
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        try:
+            if exc_type is None:
+                for item in sorted(self.path.iterdir()):
+                    os.replace(item, self.folder / item.name)
+        finally:
+            shutil.rmtree(self.path, ignore_errors=True)
+            if exc_type is not None and self._created and not any(self.folder.iterdir()):
+                self.folder.rmdir()
+
+    def final(self, path) -> pathlib.Path:
+        """Where a file written into the staging folder is once the block has ended.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            A path inside :attr:`path` (other paths are returned unchanged).
+
+        Returns
+        -------
+        pathlib.Path
+        """
+        path = pathlib.Path(path)
+        return self.folder / path.relative_to(self.path) if path.is_relative_to(self.path) else path
 
 
 def existing_folder(path: pathlib.Path) -> pathlib.Path:

@@ -72,6 +72,8 @@ _WORDS = {"init", "endian"}  # argument names that are no common English word: t
 # The options of every command that reads SEG-Y (one opening path: seismo3d.seismic.open_segy).
 _SEGY_FLAGS = {"iline": "--iline", "xline": "--xline", "endian": "--endian", "ignore_geometry": "--ignore-geometry",
                "sample_unit": "--sample-unit"}
+# The options every command has (the output policy of seismo3d.jobs.outputs).
+_COMMON_FLAGS = {"overwrite": "--overwrite"}
 
 
 def _in_flags(message: str, flags: dict) -> str:
@@ -85,7 +87,7 @@ def _in_flags(message: str, flags: dict) -> str:
         message = re.sub(rf"(?<![\w-]){name}=(['\"])([^'\"]*)\1", rf"{flag} \2", message)
         message = re.sub(rf"(?<![\w-]){name}=", f"{flag} ", message)
         if "_" in name or name in _WORDS:
-            message = re.sub(rf"(?<![\w-]){name}\b", flag, message)
+            message = re.sub(rf"(?<![\w/.-]){name}(?![\w/-]|\.\w)", flag, message)  # not in a file name
     return message
 
 
@@ -111,7 +113,7 @@ def _one_line_warnings(flags: dict | None = None):
 def _friendly(flags: dict | None = None):
     """Seismo3d's errors as one line with exit code 2 and warnings as one line each (library argument names replaced
     by ``flags`` and the SEG-Y options); Ctrl-C as one line with exit code 130."""
-    flags = {**_SEGY_FLAGS, **(flags or {})}
+    flags = {**_SEGY_FLAGS, **_COMMON_FLAGS, **(flags or {})}
 
     def decorate(fn):
         @functools.wraps(fn)
@@ -123,7 +125,8 @@ def _friendly(flags: dict | None = None):
                 typer.echo(f"error: {_in_flags(str(exc), flags)}", err=True)
                 raise typer.Exit(2) from None
             except KeyboardInterrupt:
-                typer.echo("interrupted: finished outputs were kept, unfinished ones were not written", err=True)
+                typer.echo("interrupted: earlier results are as they were and nothing half-written was left (an "
+                           "output folder's new files are moved in only when all are written)", err=True)
                 raise typer.Exit(130) from None
 
         return wrapper
@@ -153,6 +156,13 @@ _ENDIAN_HELP = "Byte order of the SEG-Y input; default: detected from its binary
 _ILINE_HELP = ("Trace header byte of the inline number (SEG-Y); a file without a grid at 189 / 193 is read as a "
                "trace list, at other bytes it is an error.")
 _XLINE_HELP = "Trace header byte of the crossline number (SEG-Y)."
+
+
+def _overwrite_option():
+    """The --overwrite flag, the same on every command."""
+    return typer.Option(False, "--overwrite", help="Replace the results of an earlier run at the output (an existing "
+                                                   "output file, or an output folder's files); without it they are "
+                                                   "refused, and an output is never an input.")
 
 
 def _value(option):
@@ -194,6 +204,7 @@ def register(
     xline: int = typer.Option(193, help="SEG-Y cubes: trace header byte of the crossline number."),
     endian: Optional[Endian] = typer.Option(None, help="SEG-Y cubes: byte order; default: detected from each file's "
                                                        "binary header."),
+    overwrite: bool = _overwrite_option(),
 ) -> None:
     """Register SOURCE onto TARGET and write the transform mapping SOURCE's coordinates into TARGET's.
 
@@ -213,7 +224,7 @@ def register(
         job = run_register_job(source, target, output, method=None if method is None else method.value,
                                model=None if model is None else model.value, init=init,
                                max_distance=max_distance or None, features=features, alpha=alpha, iline=iline,
-                               xline=xline, endian=_value(endian), progress=True)
+                               xline=xline, endian=_value(endian), overwrite=overwrite, progress=True)
     if job.kind == "volumes":
         reg = job.result
         typer.echo(f"map rotation {reg.rotation_deg:.2f} deg  scales {np.array2string(reg.scales, precision=4)}  "
@@ -286,8 +297,8 @@ def faults(
     input: Optional[pathlib.Path] = typer.Argument(
         None, metavar="INPUT", help="SEG-Y cube or 2D line, raw .f32be section or .npy array; omit with --demo.",
         show_default=False),
-    output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing); not the "
-                                                                      "input's own folder."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing); not one "
+                                                                      "holding the input."),
     demo: bool = typer.Option(False, "--demo", help="Run on a generated 128^3 cube with 3 faults (no input file)."),
     demo_seed: int = typer.Option(0, "--demo-seed", help="Random seed of the --demo cube."),
     iline: int = typer.Option(189, help=_ILINE_HELP),
@@ -310,6 +321,7 @@ def faults(
                                                "with the same faults."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="dask.distributed scheduler address "
                                             "(tcp://host:port) for block-by-block runs; default: local threads."),
+    overwrite: bool = _overwrite_option(),
 ) -> None:
     """Trace the faults of INPUT and write fault likelihood, strike, dip and votes (SEG-Y for SEG-Y input), fault
     surfaces (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT."""
@@ -322,8 +334,7 @@ def faults(
                                  ignore_geometry=ignore_geometry, endian=_value(endian),
                                  sample_unit=None if sample_unit is None else sample_unit.value,
                                  n_samples=n_samples, sensitivity=sensitivity, likelihood=likelihood.value,
-                                 memory_limit=memory_limit,
-                                 scheduler=scheduler, progress=True)
+                                 memory_limit=memory_limit, scheduler=scheduler, overwrite=overwrite, progress=True)
     with open(written["summary"], newline="") as fh:
         rows = list(csv.DictReader(fh))
     source = "the demo cube" if demo else input.name
@@ -360,7 +371,8 @@ def convert(
     chunk_mb: float = typer.Option(64.0, "--chunk-mb", min=0.001, help="MiB of amplitudes read and written per step "
                                                                        "(the memory bound)."),
     overwrite: bool = typer.Option(False, "--overwrite", help="Replace OUTPUT if it is a store written by "
-                                                              "'seismo3d convert' (anything else is refused)."),
+                                                              "'seismo3d convert' (anything else is refused; an "
+                                                              "output is never the input)."),
 ) -> None:
     """Convert the 3D SEG-Y cube INPUT into the Zarr v3 store OUTPUT that xarray.open_zarr opens as is: amplitudes
     'seismic' on dimensions inline, crossline, sample with their coordinates, cdp_x / cdp_y, every non-zero trace
@@ -392,6 +404,7 @@ def match(
     method: MatchMethod = typer.Option(MatchMethod.hog, help="Features: HOG-pyramid or an OpenCV detector."),
     ratio: float = typer.Option(0.8, help="Lowe's ratio-test threshold."),
     threshold: float = typer.Option(3.0, help="RANSAC inlier reprojection error, pixels."),
+    overwrite: bool = _overwrite_option(),
 ) -> None:
     """Match IMAGE1 to IMAGE2, verify with a RANSAC homography, write the matches and print the homography.
 
@@ -399,7 +412,8 @@ def match(
     """
     from .jobs.match import run_match_job
 
-    job = run_match_job(image1, image2, output, method=method.value, ratio=ratio, threshold=threshold)
+    job = run_match_job(image1, image2, output, method=method.value, ratio=ratio, threshold=threshold,
+                        overwrite=overwrite)
     result = job.result
     typer.echo(f"{result.n_putative} putative matches, {job.n_written} verified ({method.value}) -> {output}")
     if result.homography is None:
@@ -414,13 +428,14 @@ def match(
 def lineaments(
     dem: pathlib.Path = typer.Argument(..., metavar="DEM", help="A GeoTIFF DEM (geographic or projected CRS)."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing)."),
+    overwrite: bool = _overwrite_option(),
 ) -> None:
     """Extract the lineaments of DEM (linear terrain structures: scarps, fracture-controlled valleys) and write
     lineaments.csv (x0, y0, x1, y1 in the raster's CRS, azimuth_deg in [0, 180), length_m, contrast), rose.png (a
     length-weighted rose diagram) and lineaments.png (the lineaments over the multidirectional hillshade)."""
     from .jobs.lineaments import run_lineaments_job
 
-    result = run_lineaments_job(dem, output)
+    result = run_lineaments_job(dem, output, overwrite=overwrite)
     found = result.lineaments
     typer.echo(f"{len(found)} lineaments in {dem.name}, {found.length_m.sum() / 1000:.1f} km in all -> {output}")
     if len(found):
@@ -454,6 +469,7 @@ def plan(
     robot_radius: float = typer.Option(0.0, "--robot-radius", help="Map folder: obstacles grown by this, metres."),
     corner_cutting: bool = typer.Option(True, "--corner-cutting/--no-corner-cutting",
                                         help="Allow diagonal steps between two blocked cells."),
+    overwrite: bool = _overwrite_option(),
 ) -> None:
     """Plan the shortest 8-connected path (in metres, A*) from --start to --goal through traversable cells of GRID
     and write it as CSV (row, col, x, y, z per cell: x, y in the DEM's CRS and z its elevation; for a map, the cell
@@ -469,7 +485,7 @@ def plan(
         options = OccupancyOptions(cell_size=cell_size, robot_height=robot_height, step_height=step_height,
                                    robot_radius=robot_radius)
     result = run_plan_job(grid, s, g, output, max_slope_deg=max_slope, options=options,
-                          corner_cutting=corner_cutting)
+                          corner_cutting=corner_cutting, overwrite=overwrite)
     p = result.path
     typer.echo(f"path of {len(p.cells)} cells, {p.length_m:.1f} m, from {s} to {g} on a {result.grid.shape[0]} x "
                f"{result.grid.shape[1]} grid ({result.grid.description}); A* expanded {p.n_expanded} cells in "
@@ -491,6 +507,7 @@ def map_(
                                   help="Use ORB features (fused ICP term, landmarks, loops); off: depth only."),
     voxel_size: float = typer.Option(0.01, "--voxel-size", help="TSDF voxel edge, metres."),
     render: bool = typer.Option(True, "--render/--no-render", help="Write map.png (off-screen pyvista)."),
+    overwrite: bool = _overwrite_option(),
 ) -> None:
     """Map an RGB-D SEQUENCE: frame-to-model fused ICP tracking, Kalman prediction, a TSDF map, keyframes and loop
     closure. Writes the trajectory (TUM format), the keyframe graph, the mesh and a picture of the map into OUTPUT.
@@ -512,19 +529,28 @@ def map_(
 
     with _one_line_warnings():
         try:
-            written = run_map_job(sequence, output, options=options, max_frames=max_frames, render=render)
+            written = run_map_job(sequence, output, options=options, max_frames=max_frames, render=render,
+                                  overwrite=overwrite)
         except KeyboardInterrupt:
             typer.echo(f"interrupted: the trajectory of the frames done and the map so far are in {output}", err=True)
             raise typer.Exit(130) from None
     summary = written["summary"]
-    typer.echo(f"{summary['frames_tracked']} of {summary['frames_in_sequence']} frames tracked, "
-               f"{summary['keyframes']} keyframes, {summary['loop_closures']} loop closures, "
-               f"{summary['frames_per_second']:.1f} frames/s -> {output}")
+    typer.echo(f"{_frames_tracked(summary, max_frames)}, {summary['keyframes']} keyframes, "
+               f"{summary['loop_closures']} loop closures, {summary['frames_per_second']:.1f} frames/s -> {output}")
     if summary.get("evaluation"):
         ev = summary["evaluation"]
         typer.echo(f"against the sequence's reference: ATE RMSE {100 * ev['ate_rmse_m']:.2f} cm, RPE "
                    f"{100 * ev['rpe_translation_rmse_m']:.2f} cm / {ev['rpe_rotation_rmse_deg']:.2f} deg per frame")
     typer.echo("wrote " + ", ".join(pathlib.Path(p).name for k, p in written.items() if k != "summary"))
+
+
+def _frames_tracked(summary: dict, max_frames: int | None) -> str:
+    """'98 of 100 frames tracked', or for a run limited by --max-frames, '30 of the first 30 frames tracked
+    (--max-frames 30; the sequence has 100)'."""
+    tracked, total = summary["frames_tracked"], summary["frames_in_sequence"]
+    if max_frames is None or max_frames >= total:
+        return f"{tracked} of {total} frames tracked"
+    return f"{tracked} of the first {max_frames} frames tracked (--max-frames {max_frames}; the sequence has {total})"
 
 
 class Polarity(str, Enum):
@@ -562,6 +588,7 @@ def horizon(
                                                                           "file, arbitrary line); seeds are TRACE,T."),
     sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
                                                                 "headers (ms)."),
+    overwrite: bool = _overwrite_option(),
 ) -> None:
     """Track a horizon in INPUT (a 3D cube or a 2D line) from one or more seed picks, globally (least squares over
     correlations between near and distant traces, then the picks by dynamic programming along inlines and crosslines),
@@ -580,7 +607,8 @@ def horizon(
                              "file read as a trace list")
     job = run_horizon_job(input, seeds, output, polarity=polarity.value, faults=faults, fill=fill, surface=surface,
                           iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=_value(endian),
-                          sample_unit=None if sample_unit is None else sample_unit.value, progress=True)
+                          sample_unit=None if sample_unit is None else sample_unit.value, overwrite=overwrite,
+                          progress=True)
     typer.echo(f"{job.n_rows} of {job.horizon.times.size} traces tracked ({job.horizon.coverage:.1%}) -> {output}")
     if job.surface is not None:
         typer.echo(f"surface -> {job.surface}")
@@ -611,6 +639,11 @@ def render(
     iline: int = typer.Option(189, help=_ILINE_HELP),
     xline: int = typer.Option(193, help=_XLINE_HELP),
     endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
+    ignore_geometry: bool = typer.Option(False, "--ignore-geometry", help="Read the SEG-Y as a trace list (unsorted "
+                                                                          "file, arbitrary line): draw one section."),
+    sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
+                                                                "headers (ms unless they speak of depth)."),
+    overwrite: bool = _overwrite_option(),
 ) -> None:
     """Render INPUT off screen (no display needed) into a PNG: a cube's inline, crossline and time slices, faults
     coloured by id or throw with the fault likelihood as a semi-transparent volume, a horizon coloured by time, an
@@ -625,7 +658,8 @@ def render(
     with _one_line_warnings():
         job = run_render_job(input, output, seismic=seismic, color_by=color_by.value,
                              vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
-                             window_size=(width, height), iline=iline, xline=xline, endian=_value(endian))
+                             window_size=(width, height), iline=iline, xline=xline, endian=_value(endian),
+                             ignore_geometry=ignore_geometry, sample_unit=_value(sample_unit), overwrite=overwrite)
     what = {"segy": "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon",
             "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM", "map": "map"}[job.kind]
     typer.echo(f"{what} of {input.name}: {job.caption} -> {job.picture}")

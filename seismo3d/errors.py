@@ -10,6 +10,7 @@ from __future__ import annotations
 __all__ = [
     "Seismo3dError",
     "InputError",
+    "SeedError",
     "DataNotFoundError",
     "DataIntegrityError",
     "SegyFormatError",
@@ -30,6 +31,30 @@ class Seismo3dError(Exception):
 
 class InputError(Seismo3dError, ValueError):
     """An argument has the wrong shape, dtype, size or value (NaN, too few points, unknown option)."""
+
+
+class SeedError(InputError):
+    """A horizon seed cannot start a horizon: it lies on a dead trace, or has no reflector of the requested polarity
+    near it.
+
+    Parameters
+    ----------
+    message : str
+        The message, in index space (what the library was given).
+    seed : tuple of float
+        The seed, index space: ``(inline, xline, sample)`` or ``(trace, sample)``.
+    nearest : tuple of float or None
+        The nearest position (same axes) that can start a horizon (a reflector pick of the requested polarity, or a
+        live trace), for a caller to offer in its own terms; None when the data has none.
+    window : float or None
+        The snapping distance searched, samples; None for a seed on a dead trace.
+    """
+
+    def __init__(self, message: str, seed, nearest=None, window=None):
+        super().__init__(message)
+        self.seed = tuple(float(v) for v in seed)
+        self.nearest = None if nearest is None else tuple(float(v) for v in nearest)
+        self.window = None if window is None else float(window)
 
 
 class DataNotFoundError(Seismo3dError, FileNotFoundError):

@@ -152,7 +152,7 @@ def test_faults_warnings_are_one_line(tmp_path):
     ("not_segy", "is not SEG-Y: its binary header holds no sample format code"),
     ("header_bytes", "no inline / crossline grid at trace header bytes --iline 1, --xline 5; --iline 189, --xline 193 "
                      "(48 inlines x 48 crosslines) give one: pass those, or --ignore-geometry to read a trace list"),
-    ("same_folder", "another folder"),
+    ("same_folder", "holds the input"),
     ("no_input", "--demo"),
     ("missing", "no SEG-Y file"),
 ])
@@ -338,3 +338,14 @@ def test_a_missing_output_folder_is_refused_before_any_work(tmp_path, args):
     assert res.exit_code == 2, res.output
     assert f"folder {missing} does not exist; create it first" in " ".join(res.output.split())
     assert not missing.exists()
+
+
+def test_argument_names_inside_file_names_are_left_alone():
+    """Library names become flags in messages, but not inside a path (init.json, /runs/max_distance/...)."""
+    from seismo3d.cli import _in_flags
+
+    flags = {"init": "--init", "max_distance": "--max-distance"}
+    assert _in_flags("output /tmp/init.json is the input init.json itself; raise max_distance or pass init.",
+                     flags) == ("output /tmp/init.json is the input init.json itself; raise --max-distance or pass "
+                                "--init.")
+    assert _in_flags("cannot read /runs/max_distance/init", flags) == "cannot read /runs/max_distance/init"

@@ -7,13 +7,13 @@ renamed to OUTPUT when complete, so an interrupted convert (error, Ctrl-C, kill)
 that looks finished (a killed process may leave a hidden ``.OUTPUT.*.tmp`` directory, never OUTPUT). The input is
 only read.
 
-Existing OUTPUT: refused unless ``overwrite=True`` (``--overwrite``), which replaces only a store written by
+OUTPUT follows the output policy of every command (:mod:`seismo3d.jobs.outputs`): not the input nor a folder holding
+it, and an existing OUTPUT only with ``overwrite=True`` (``--overwrite``), which replaces only a store written by
 ``seismo3d convert`` (anything else at OUTPUT is refused, so a wrong path cannot delete a folder).
 """
 
 from __future__ import annotations
 
-import os
 import time
 import warnings
 from dataclasses import dataclass
@@ -25,6 +25,7 @@ from .._validation import check_positive
 from ..errors import InputError, TraceListWarning
 from ..seismic.io.segy import open_segy
 from ..seismic.io.zarr_store import SeismicZarrWriter, is_seismic_zarr
+from .outputs import check_outputs, output_store
 
 __all__ = ["ConvertResult", "run_convert_job"]
 
@@ -66,18 +67,9 @@ class ConvertResult:
 
 
 def _check_output(input: Path, output: Path, overwrite: bool) -> None:
-    """Refuse to write over the input, or over an existing output unless it is ours and ``overwrite``."""
-    if output.resolve() == input.resolve() or (output.exists() and input.exists() and os.path.samefile(input, output)):
-        raise InputError(f"output {output} is the input file itself; write the Zarr store to another path, e.g. "
-                         f"{input.with_suffix('.zarr').name}")
-    if input.resolve().is_relative_to(output.resolve()):
-        raise InputError(f"output {output} is a folder holding the input {input.name}; choose a new path for the store")
-    if not (output.exists() or output.is_symlink()):
-        return
-    if not overwrite:
-        raise InputError(f"output {output} exists; choose another path or pass overwrite=True (--overwrite) to "
-                         "replace a store written by seismo3d convert")
-    if not is_seismic_zarr(output):
+    """The output policy, and an existing output replaced only when it is a store of this command."""
+    check_outputs([output_store(output, input.with_suffix(".zarr").name)], [input], overwrite=overwrite)
+    if (output.exists() or output.is_symlink()) and not is_seismic_zarr(output):
         raise InputError(f"output {output} exists and is not a store written by seismo3d convert; overwrite=True "
                          "(--overwrite) replaces only those: remove it yourself or choose another path")
 
@@ -117,7 +109,7 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
         The input cannot be read or does not exist (see :func:`~seismo3d.seismic.io.open_segy`).
     InputError
         ``output`` is the input or holds it, exists (without ``overwrite``, or is not a store of this command), or
-        its folder does not exist; invalid ``iline``, ``xline``, ``endian``, ``sample_unit``.
+        cannot be written (its folder does not exist or takes no files); invalid ``iline``, ``xline``, ``endian``, ``sample_unit``.
 
     References
     ----------

@@ -18,22 +18,30 @@ from pathlib import Path
 import numpy as np
 import segyio
 
-from .._atomic import atomic_path
+from .._atomic import StagedFolder, atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import DataNotFoundError, InputError, Seismo3dWarning
 from ..seismic.faults.likelihood_blocks import (
-    ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory,
+    ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory, worker_baseline,
 )
 from ..seismic.faults.pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
 from ..seismic.faults.learned_blocks import chunked_learned_likelihood
 from ..seismic.faults.pipeline_blocks import chunked_fault_surfaces
+from ..seismic.blocks import release_memory
+from ..seismic.faults.preflight import SampleOptions, judge_sample, minimum_memory_limit
 from ..seismic.io.lazy import open_lazy
 from ..seismic.io.segy import open_segy, read_section, write_like
 from ..seismic.io.writer import write_like_blocks
 from ..seismic.io.zarr_store import consolidate
+from .outputs import check_outputs, output_folder
 
-__all__ = ["run_faults_job"]
+__all__ = ["RESULTS", "run_faults_job"]
+
+# What a run writes into its folder (SEG-Y volumes for a SEG-Y input, .npy otherwise; the demo's cube and truth).
+# The Zarr stores of a block-by-block run are not among them: they are reused or resumed by the next run.
+RESULTS = tuple(f"fault_{name}.{ext}" for ext in ("sgy", "npy") for name in ("likelihood", "strike", "dip", "votes")) + (
+    "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "demo_seismic.sgy", "demo_truth.csv")
 
 _DEMO_SHAPE = (128, 128, 128)
 _DEMO_DT_MS = 4.0
@@ -272,19 +280,6 @@ def _write_summary(inp: _Input, result: FaultInterpretation, path: Path) -> Path
     return path
 
 
-def _check_out_dir(path, out_dir) -> Path:
-    out_dir = Path(out_dir)
-    if out_dir.exists() and not out_dir.is_dir():
-        raise InputError(f"output folder {out_dir} is a file; pass a folder (it is created if missing)")
-    if path is not None:
-        src = Path(path)
-        if src.exists() and out_dir.resolve() == src.resolve().parent:
-            raise InputError(f"output folder {out_dir} is the folder of the input {src.name}; write the results to "
-                             f"another folder (e.g. -o {src.resolve().parent / (src.stem + '_faults')}) so that "
-                             "inputs and results stay apart")
-    return out_dir
-
-
 def _memory_limit(value) -> int:
     """``memory_limit`` in bytes: an int, a size string ('4GB', '500MiB'), or None for half of the RAM."""
     if value is None:
@@ -317,6 +312,43 @@ class LazyInput:
     def coords(self) -> dict:
         """Coordinates for the output Zarr group."""
         return {"inline": self.inline, "crossline": self.xline, "sample": self.samples, "sample_unit": self.unit}
+
+
+def _size_text(n: int) -> str:
+    """Bytes as a --memory-limit value, rounded up: '1.3GB', '460MB'."""
+    if n >= 10 ** 9:
+        return f"{np.ceil(n / 10 ** 8) / 10:g}GB"
+    return f"{int(np.ceil(n / 10 ** 7)) * 10}MB"
+
+
+def _check_block_run(lazy: LazyInput, limit: int, scheduler, options: FaultTracingOptions) -> None:
+    """Before any block of a block-by-block run: the memory its smallest blocks need; then the data judged from a
+    sample of blocks (not seismic amplitudes, no lateral coherence) and the memory its seed candidates need."""
+    shape = tuple(int(n) for n in lazy.data.shape)
+    chunks = lazy.data.chunks
+
+    def baseline() -> int:  # the process as it is now, and the input chunks a block reads
+        return worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler),
+                               4 * max(chunks[0]) * max(chunks[1]) * shape[2])
+
+    _check_limit(lazy.name, shape, limit, minimum_memory_limit(shape, baseline=baseline(), options=options),
+                 " for its smallest blocks alone")
+    LOGGER.info("%s: judging the data from a sample of blocks", lazy.name)
+    sample = judge_sample(lazy.data, options=options)
+    release_memory()  # the sample's arrays, before the process is measured again
+    need = minimum_memory_limit(shape, baseline=baseline(), options=options, sample=sample)
+    _check_limit(lazy.name, shape, limit, need, f" (with the ~{sample.candidates(shape)} seed candidates a sample "
+                                                "of its blocks predicts)")
+
+
+def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:
+    """InputError naming the smallest --memory-limit that works when ``limit`` is below ``need``."""
+    if need <= limit:
+        return
+    held = resident_memory()
+    raise InputError(f"{name}: a block-by-block run of its {shape[0]} x {shape[1]} x {shape[2]} samples needs a "
+                     f"memory limit of at least {_size_text(need)}{why}, more than the {_size_text(limit)} given "
+                     f"(this process alone holds {_size_text(held)}); pass memory_limit='{_size_text(need)}' or more")
 
 
 def _too_large(shape, budget: int) -> bool:
@@ -364,7 +396,7 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
                    endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, likelihood="scan",
-                   memory_limit=None, scheduler=None, progress=True) -> dict:
+                   memory_limit=None, scheduler=None, overwrite=False, progress=True) -> dict:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 
     Inputs
@@ -384,9 +416,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
 
     The input is read whole into memory (see :func:`trace_faults` for the memory needed); it is never written to.
 
-    Outputs (in ``out_dir``, created if needed; each written atomically, so an interrupted run leaves either the
-    previous file or none, never a half-written one)
-    ------------------------------------------------------------------------------------------------------------
+    Outputs (in ``out_dir``, created if needed; written into a staging folder and moved in together once every one
+    is written, so a failed or interrupted run leaves the previous files or none, never a mix or a half-written one)
+    -------------------------------------------------------------------------------------------------------------
     * ``fault_likelihood.sgy``, ``fault_strike.sgy``, ``fault_dip.sgy``, ``fault_votes.sgy``: fault likelihood in
       [0, 1], strike and dip in degrees, and the optimal-surface votes in [0, 1], as SEG-Y with the textual, binary
       and trace headers of the input (for a SEG-Y input; IEEE float). For other inputs the same volumes as float32
@@ -438,7 +470,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     input_path : str or os.PathLike or None
         The input file; None with ``demo=True``.
     out_dir : str or os.PathLike
-        Output folder; must not be the input's own folder.
+        Output folder; not one holding the input, and not one holding an earlier run's files (:data:`RESULTS`)
+        unless ``overwrite`` (:mod:`seismo3d.jobs.outputs`; checked before the input is read).
     demo : bool, optional
         Run on a synthetic cube instead of ``input_path``.
     demo_seed : int, optional
@@ -467,6 +500,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     scheduler : str, optional
         A ``dask.distributed`` scheduler address (``tcp://host:port``) for the block-by-block run; default: dask's
         local threaded scheduler.
+    overwrite : bool, optional
+        Replace the files of an earlier run in ``out_dir``.
     progress : bool, optional
         Report progress (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step otherwise).
 
@@ -482,7 +517,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     Raises
     ------
     InputError
-        No input (and not ``demo``), ``out_dir`` is the input's folder or a file, an invalid option, a constant input,
+        No input (and not ``demo``), ``out_dir`` holds the input, is a file, holds an earlier run's files (without
+        ``overwrite``) or cannot be written, an invalid option, a constant input,
         a ``memory_limit`` too small for the smallest blocks or for the fault cells, or ``out_dir`` holding the
         ``fault_likelihood.zarr`` or ``fault_surfaces.zarr`` of another input.
     DataNotFoundError
@@ -506,28 +542,40 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
     options = FaultTracingOptions(sensitivity=sensitivity, likelihood=likelihood)
-    if demo:
-        if input_path is not None:
-            raise InputError("pass either an input file or demo=True (--demo), not both")
-        out_dir = _check_out_dir(None, out_dir)
-    else:
-        if input_path is None:
-            raise InputError("no input file; pass a SEG-Y cube or line, a .f32be section or a .npy array, or use "
-                             "demo=True (--demo) to run on a synthetic cube")
-        out_dir = _check_out_dir(input_path, out_dir)
-
+    if demo and input_path is not None:
+        raise InputError("pass either an input file or demo=True (--demo), not both")
+    if not demo and input_path is None:
+        raise InputError("no input file; pass a SEG-Y cube or line, a .f32be section or a .npy array, or use "
+                         "demo=True (--demo) to run on a synthetic cube")
+    out_dir = Path(out_dir)
+    stem = "demo" if demo else Path(input_path).stem
+    check_outputs([output_folder(out_dir, RESULTS, f"{stem}_faults")], [input_path], overwrite=overwrite)
     limit = _memory_limit(memory_limit)
+    segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian, sample_unit=sample_unit)
+    with StagedFolder(out_dir) as stage:  # the files moved in together when every one is written
+        written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
+                                   n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
+                                   progress=progress)
+    return {key: stage.final(path) for key, path in written.items()}
+
+
+def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed, segy: dict, n_samples,
+                     options: FaultTracingOptions, limit: int, scheduler, progress) -> dict:
+    """Read (or make) the input, trace its faults in memory or block by block, write the results into ``files``
+    (the block-by-block run's Zarr stores into ``out_dir``); the files written, by key."""
+    iline, xline, ignore_geometry, endian, sample_unit = (segy[k] for k in ("iline", "xline", "ignore_geometry",
+                                                                            "endian", "sample_unit"))
     budget = limit - resident_memory()  # what this run may add to the process as it is now
     written = {}
     if demo:
-        out_dir.mkdir(parents=True, exist_ok=True)
-        inp, written["truth"] = _demo_input(out_dir, demo_seed, read=False)
+        inp, written["truth"] = _demo_input(files, demo_seed, read=False)
         iline, xline, ignore_geometry, endian = 189, 193, False, None
         input_path = written["input"] = inp
     lazy = None if ignore_geometry else _lazy_if_too_large(input_path, budget, iline=iline, xline=xline,
                                                            sample_unit=sample_unit, endian=endian)
     if lazy is not None:
-        written.update(_run_chunked(lazy, out_dir, memory_limit=limit, budget=budget, scheduler=scheduler,
+        _check_block_run(lazy, limit, scheduler, options)
+        written.update(_run_chunked(lazy, out_dir, files, memory_limit=limit, budget=budget, scheduler=scheduler,
                                     options=options, progress=progress))
         return written
     if demo:
@@ -535,23 +583,24 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     else:
         inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
                           sample_unit=sample_unit, n_samples=n_samples, endian=endian)
+    if SampleOptions().worth_sampling(inp.data.shape):  # refused from a sample, not after the whole likelihood
+        judge_sample(inp.data, options=options)
     dt = float(inp.samples[1] - inp.samples[0]) if inp.samples.size > 1 else 1.0
     if inp.unit != "samples" and not dt > 0:
         raise InputError(f"the sample interval of {inp.name} is {dt:g} {inp.unit}; it must be > 0 (check the "
                          "binary header's sample interval, bytes 3217-3218)")
     result = trace_faults(inp.data, sample_interval=None if inp.unit == "samples" else dt, sample_unit=inp.unit,
                           options=options, progress=progress)
-    out_dir.mkdir(parents=True, exist_ok=True)  # only now: refused data leaves nothing behind
 
     geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
     steps = [
-        ("likelihood", lambda: _write_volume(inp, out_dir, "fault_likelihood", result.likelihood, **geo)),
-        ("strike", lambda: _write_volume(inp, out_dir, "fault_strike", result.strike_deg,
+        ("likelihood", lambda: _write_volume(inp, files, "fault_likelihood", result.likelihood, **geo)),
+        ("strike", lambda: _write_volume(inp, files, "fault_strike", result.strike_deg,
                                          like=written["likelihood"], **geo)),
-        ("dip", lambda: _write_volume(inp, out_dir, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
-        ("votes", lambda: _write_volume(inp, out_dir, "fault_votes", result.votes, like=written["likelihood"], **geo)),
+        ("dip", lambda: _write_volume(inp, files, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
+        ("votes", lambda: _write_volume(inp, files, "fault_votes", result.votes, like=written["likelihood"], **geo)),
     ]
-    _write_steps(steps + _surface_steps(inp, result, out_dir), written, progress)
+    _write_steps(steps + _surface_steps(inp, result, files), written, progress)
     return written
 
 
@@ -585,13 +634,13 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
 _TILE = 32  # traces per side of the lazy input's chunks: a block of the chunked run reads only the tiles around it
 
 
-def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: int, scheduler,
+def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: int, budget: int, scheduler,
                  options: FaultTracingOptions, progress) -> dict:
     """Fault likelihood block by block into ``fault_likelihood.zarr``, then the fault surfaces block by block into
-    ``fault_surfaces.zarr`` (both reused when finished, resumed when interrupted); the same files as in memory."""
+    ``fault_surfaces.zarr`` (both in ``out_dir``: reused when finished, resumed when interrupted); the same files as
+    in memory, into ``files``."""
     import zarr
 
-    out_dir.mkdir(parents=True, exist_ok=True)
     path = out_dir / "fault_likelihood.zarr"
     shape = tuple(int(n) for n in lazy.data.shape)
     chunking = ChunkOptions(memory_limit=memory_limit, scheduler=scheduler)
@@ -603,9 +652,10 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
                              "or delete it")
         LOGGER.info("%s: reusing the finished fault likelihood in %s", lazy.name, path)
     else:
-        LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory, more than the %.2f GiB left under "
-                    "the memory limit (%.2f GiB): fault likelihood block by block into %s", lazy.name, *shape,
-                    in_memory_bytes(shape) / 2**30, budget / 2**30, memory_limit / 2**30, path.name)
+        LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory besides this process (%.2f GiB), more "
+                    "than the memory limit of %.2f GiB allows: fault likelihood block by block into %s", lazy.name,
+                    *shape, in_memory_bytes(shape) / 2**30, (memory_limit - budget) / 2**30, memory_limit / 2**30,
+                    path.name)
         if options.likelihood == "learned":
             chunked_learned_likelihood(lazy.data, path, options=options.learned, coords=lazy.coords,
                                        progress=progress, chunking=chunking)
@@ -631,10 +681,10 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, *, memory_limit: int, budget: i
                                  thresholds=surfaces.thresholds, faults=surfaces.faults, throws=surfaces.throws,
                                  evidence=surfaces.evidence, sample_interval=dt, sample_unit=lazy.unit)
     inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
-    _write_steps(_surface_steps(inp, result, out_dir), written, progress)
-    written.update(_segy_volumes(lazy, surfaces.path, out_dir, {"likelihood": "likelihood", "votes": "votes"},
+    _write_steps(_surface_steps(inp, result, files), written, progress)
+    written.update(_segy_volumes(lazy, surfaces.path, files, {"likelihood": "likelihood", "votes": "votes"},
                                  progress))
-    written.update(_segy_volumes(lazy, path, out_dir, {"strike": "strike_deg", "dip": "dip_deg"}, progress))
+    written.update(_segy_volumes(lazy, path, files, {"strike": "strike_deg", "dip": "dip_deg"}, progress))
     return written
 
 

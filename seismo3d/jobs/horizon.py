@@ -15,9 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._atomic import existing_folder
-from ..errors import InputError, SegyGeometryError, UnsupportedDataError
+from ..errors import InputError, SeedError, SegyGeometryError, UnsupportedDataError
 from ..seismic.horizons.result import Horizon
+from .outputs import check_outputs, output_file
 
 __all__ = ["HorizonJob", "run_horizon_job", "seed_index", "trace_seed_index"]
 
@@ -105,6 +105,78 @@ def _seed_indices(survey: _Survey, seeds) -> list:
     return out
 
 
+@dataclass(frozen=True)
+class _Position:
+    """An index position in the survey's terms: the trace's labels (('inline', 1010), ('crossline', 1155)) or
+    (('trace', 7),), and the time or depth in the file's unit."""
+
+    labels: tuple
+    time: float
+    unit: str
+
+    @property
+    def trace(self) -> str:
+        return ", ".join(f"{name} {value}" for name, value in self.labels)
+
+    @property
+    def words(self) -> str:
+        return f"{self.trace}, {self.time:.6g} {self.unit}"
+
+    @property
+    def seed(self) -> str:
+        """As a --seed value: IL,XL,T or TRACE,T."""
+        return ",".join(str(value) for _, value in self.labels) + f",{self.time:.6g}"
+
+
+def _survey_position(survey: _Survey, position) -> _Position:
+    """An index position (lateral indices, fractional sample) of ``survey.data`` in the survey's terms."""
+    *lateral, k = (float(v) for v in position)
+    lateral = [int(round(v)) for v in lateral]
+    time = float(np.interp(k, np.arange(survey.samples.size), survey.samples))
+    if survey.kind == "trace list":
+        labels = (("trace", lateral[0] + 1),)
+    elif survey.kind == "cube":
+        labels = (("inline", int(survey.inlines[lateral[0]])), ("crossline", int(survey.xlines[lateral[1]])))
+    elif survey.inlines.size > 1:  # a line along the inlines of one crossline
+        labels = (("inline", int(survey.inlines[lateral[0]])), ("crossline", int(survey.xlines[0])))
+    else:
+        labels = (("inline", int(survey.inlines[0])), ("crossline", int(survey.xlines[lateral[0]])))
+    return _Position(labels, time, survey.unit)
+
+
+def _mute_note(survey: _Survey, position) -> str:
+    """' (muted there: constant from 0 to 1456 ms)' when the trace is constant around ``position``, else ''."""
+    trace = survey.data[tuple(int(round(v)) for v in position[:-1])]
+    k = int(np.clip(round(position[-1]), 0, trace.size - 1))
+    same = trace == trace[k]
+    if k + 1 < trace.size and not same[k + 1] and (k == 0 or not same[k - 1]):
+        return ""
+    first = k - int(np.argmin(same[k::-1])) + 1 if not same[:k + 1].all() else 0
+    last = k + int(np.argmin(same[k:])) - 1 if not same[k:].all() else trace.size - 1
+    return f" (muted there: constant from {survey.samples[first]:g} to {survey.samples[last]:g} {survey.unit})"
+
+
+def _seed_error(exc: SeedError, survey: _Survey, seeds, index_seeds, polarity: str) -> InputError:
+    """The library's seed error in the user's terms: the seed as typed, where it is, and the nearest position that
+    can start a horizon as a --seed to pass."""
+    which = int(np.argmin([np.abs(np.subtract(s, exc.seed)).sum() for s in index_seeds]))
+    text = ",".join(f"{float(v):g}" for v in seeds[which])
+    trace = _survey_position(survey, exc.seed).trace
+    if exc.window is None:
+        problem, kind = f"the trace at {trace} is dead (all samples equal)", "live trace"
+    else:
+        dt = float(survey.samples[1] - survey.samples[0])
+        problem = (f"no {polarity} pick within {exc.window:g} samples ({exc.window * dt:g} {survey.unit}) of "
+                   f"{float(seeds[which][-1]):g} {survey.unit} on the trace at {trace}{_mute_note(survey, exc.seed)}")
+        kind = f"{polarity} pick"
+    if exc.nearest is None:
+        return InputError(f"--seed {text}: {problem}, and no trace of {survey.name} has one; check --polarity and "
+                          "the file")
+    near = _survey_position(survey, exc.nearest)
+    return InputError(f"--seed {text}: {problem}; the nearest {kind} is at {near.words}: pass --seed {near.seed}"
+                      + ("" if exc.window is None else " (or another --polarity)"))
+
+
 def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
     """'inline xline time' rows (a cube, or a line of a survey), or 'trace time' rows (a trace list)."""
     from ..seismic import write_horizon_text
@@ -119,7 +191,7 @@ def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
 
 def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults: bool | None = None,
                     fill: bool = False, surface=None, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
-                    endian=None, sample_unit=None, progress: bool = True) -> HorizonJob:
+                    endian=None, sample_unit=None, overwrite: bool = False, progress: bool = True) -> HorizonJob:
     """Track a horizon in a SEG-Y cube or 2D line from seed picks and write it as text rows.
 
     Parameters
@@ -153,6 +225,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         Byte order of the file; by default detected from its binary header.
     sample_unit : {'ms', 'm', 'ft'}, optional
         Unit of the sample axis; default from the SEG-Y headers.
+    overwrite : bool
+        Replace an existing ``output`` or ``surface`` (see :mod:`seismo3d.jobs.outputs`).
     progress : bool
         Report progress (:mod:`seismo3d._progress`).
 
@@ -164,7 +238,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     Raises
     ------
     InputError
-        An output path that is the input or whose folder does not exist (checked before tracking), a seed outside
+        An output that is the input, exists (without ``overwrite``) or cannot be written (checked before the input
+        is read), a seed outside
         the data or with the wrong number of values (the message names ``--seed``), a surface asked for a 2D line.
     SegyGeometryError
         The file holds a single trace, or prestack gathers.
@@ -182,11 +257,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
 
     input_path, output = pathlib.Path(input_path), pathlib.Path(output)
     surface = None if surface is None else pathlib.Path(surface)
-    if output.resolve() == input_path.resolve() or (surface is not None and surface.resolve() == input_path.resolve()):
-        raise InputError(f"{output} would overwrite the input; choose another output path")
-    for path in (output, surface):  # before the work, not after it
-        if path is not None:
-            existing_folder(path)
+    check_outputs([output_file(output, "horizon.txt"), surface and output_file(surface, "horizon.vtp")],
+                  [input_path], overwrite=overwrite)
     # read the cube or line, and convert the seeds to index positions
     survey = _read_survey(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
                           sample_unit=sample_unit)
@@ -204,7 +276,10 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         except (InputError, UnsupportedDataError):
             if faults:  # asked for: the refusal (e.g. a cube too small to trace) is the user's to see
                 raise
-    result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
+    try:
+        result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
+    except SeedError as exc:  # the library speaks of index positions: the user's inline, crossline and time instead
+        raise _seed_error(exc, survey, seeds, index_seeds, polarity) from None
     if fill:
         result = fill_horizon(result)
     # the outputs

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError
+from .._atomic import StagedFolder
 from ..terrain import (
     LineamentOptions,
     Lineaments,
@@ -16,8 +16,11 @@ from ..terrain import (
     read_dem,
     write_lineaments_csv,
 )
+from .outputs import check_outputs, output_folder
 
-__all__ = ["LineamentsJobResult", "run_lineaments_job"]
+__all__ = ["LineamentsJobResult", "RESULTS", "run_lineaments_job"]
+
+RESULTS = ("lineaments.csv", "rose.png", "lineaments.png")  # what a run writes into its folder
 
 
 @dataclass(frozen=True)
@@ -35,10 +38,11 @@ class LineamentsJobResult:
     written: dict
 
 
-def run_lineaments_job(dem_path, outdir, *, options: LineamentOptions | None = None) -> LineamentsJobResult:
+def run_lineaments_job(dem_path, outdir, *, options: LineamentOptions | None = None,
+                       overwrite: bool = False) -> LineamentsJobResult:
     """Extract the lineaments of a GeoTIFF DEM and write them with two pictures.
 
-    Writes into ``outdir`` (created if missing), each file atomically:
+    Writes into ``outdir`` (created if missing; the three files moved in together once all are written):
 
     - ``lineaments.csv``: ``x0, y0, x1, y1`` (end points in the raster's CRS), ``azimuth_deg`` (strike in [0, 180),
       clockwise from north), ``length_m``, ``contrast`` (see :class:`~seismo3d.terrain.Lineaments`), longest first;
@@ -50,7 +54,11 @@ def run_lineaments_job(dem_path, outdir, *, options: LineamentOptions | None = N
     dem_path : str or os.PathLike
         A GeoTIFF DEM.
     outdir : str or os.PathLike
+        Not the DEM's folder nor one holding an earlier run's files unless ``overwrite`` (see
+        :mod:`seismo3d.jobs.outputs`; checked before the DEM is read).
     options : LineamentOptions, optional
+    overwrite : bool, optional
+        Replace the files of an earlier run in ``outdir``.
 
     Returns
     -------
@@ -59,29 +67,31 @@ def run_lineaments_job(dem_path, outdir, *, options: LineamentOptions | None = N
     Raises
     ------
     InputError
-        An all-nodata DEM, a DEM smaller than 16 x 16, an output folder that is a file.
+        An output folder that holds the DEM, is a file, holds an earlier run's files (without ``overwrite``) or
+        cannot be written; an all-nodata DEM, a DEM smaller than 16 x 16.
     DataNotFoundError, DataIntegrityError
         A missing or unreadable file.
     """
     from ..viz.terrain import plot_lineament_map, plot_rose
 
     outdir = pathlib.Path(outdir)
-    if outdir.exists() and not outdir.is_dir():
-        raise InputError(f"{outdir} is a file; give a folder for the outputs")
+    name = pathlib.Path(dem_path).name
+    check_outputs([output_folder(outdir, RESULTS, f"{pathlib.Path(dem_path).stem}_lineaments")], [dem_path],
+                  overwrite=overwrite)
     dem = read_dem(dem_path)
     found = extract_lineaments(dem, options=options)
-    outdir.mkdir(parents=True, exist_ok=True)
-    written = {"csv": write_lineaments_csv(outdir / "lineaments.csv", found)}
-    name = pathlib.Path(dem_path).name
-    written["rose"] = plot_rose(found.azimuth_deg, found.length_m, outdir / "rose.png",
-                                title=f"{name}: {len(found)} lineaments, {found.length_m.sum() / 1000:.1f} km, "
-                                      "length-weighted strikes")
-    shade = multidirectional_hillshade(dem.elevation_m, dem.metric_axes)
-    extent, segments, aspect, labels = _map_frame(dem, found)
-    written["map"] = plot_lineament_map(shade, extent, segments, found.azimuth_deg, outdir / "lineaments.png",
-                                        aspect=aspect, axis_labels=labels,
-                                        title=f"{name}: {len(found)} lineaments over the multidirectional hillshade")
-    return LineamentsJobResult(found, written)
+    with StagedFolder(outdir) as stage:
+        written = {"csv": write_lineaments_csv(stage.path / "lineaments.csv", found)}
+        written["rose"] = plot_rose(found.azimuth_deg, found.length_m, stage.path / "rose.png",
+                                    title=f"{name}: {len(found)} lineaments, {found.length_m.sum() / 1000:.1f} km, "
+                                          "length-weighted strikes")
+        shade = multidirectional_hillshade(dem.elevation_m, dem.metric_axes)
+        extent, segments, aspect, labels = _map_frame(dem, found)
+        written["map"] = plot_lineament_map(shade, extent, segments, found.azimuth_deg, stage.path / "lineaments.png",
+                                            aspect=aspect, axis_labels=labels,
+                                            title=f"{name}: {len(found)} lineaments over the multidirectional "
+                                                  "hillshade")
+    return LineamentsJobResult(found, {key: stage.final(path) for key, path in written.items()})
 
 
 def _map_frame(dem, found: Lineaments):

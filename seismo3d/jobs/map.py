@@ -11,7 +11,8 @@
 * ``mesh.ply``: the TSDF map by marching cubes (binary PLY with vertex normals);
 * ``map.png``: the mesh with the trajectory and the keyframes, rendered off screen.
 
-Every file is written atomically. A frame that cannot be read or used (missing file, depth of the wrong dtype or size,
+The output folder follows the output policy of every command (:mod:`seismo3d.jobs.outputs`); the files are written
+into a staging folder and moved in together. A frame that cannot be read or used (missing file, depth of the wrong dtype or size,
 no valid depth, a timestamp out of order) is skipped with a :class:`~seismo3d.errors.FrameSkippedWarning`; an
 interrupt (Ctrl-C) stops the loop and the outputs of the frames done so far are still written before it propagates.
 """
@@ -26,13 +27,16 @@ import warnings
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from .._atomic import atomic_path
+from .._atomic import StagedFolder, atomic_path
 from .._progress import progress_steps
 from ..errors import DataIntegrityError, DataNotFoundError, FrameSkippedWarning, InputError, RegistrationError
 from ..mapping import RGBDMapper, open_sequence
 from ..mapping.metrics import absolute_trajectory_error, relative_pose_error, write_tum_trajectory
+from .outputs import check_outputs, output_folder
 
-__all__ = ["run_map_job", "write_ply"]
+__all__ = ["RESULTS", "run_map_job", "write_ply"]
+
+RESULTS = ("trajectory.txt", "keyframes.json", "mesh.ply", "map.png")  # what a run writes into its folder
 
 
 def write_ply(path, mesh) -> None:
@@ -101,7 +105,7 @@ def _evaluation(sequence, timestamps, poses):
 
 
 def run_map_job(sequence, output, *, options=None, max_frames: int | None = None, progress: bool = True,
-                render: bool = True) -> dict:
+                render: bool = True, overwrite: bool = False) -> dict:
     """Map an RGB-D sequence and write the outputs listed in the module docstring.
 
     Parameters
@@ -109,7 +113,9 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     sequence : str or os.PathLike
         Folder of a TUM RGB-D or 7-Scenes sequence.
     output : str or os.PathLike
-        Output folder (created if missing); it must not be the sequence folder.
+        Output folder (created if missing); not the sequence folder nor one holding it, and not one holding an
+        earlier run's files unless ``overwrite`` (:mod:`seismo3d.jobs.outputs`; checked before the sequence is
+        read).
     options : MapperOptions, optional
     max_frames : int, optional
         Map only the first this many frames.
@@ -118,6 +124,8 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
         otherwise).
     render : bool
         Write ``map.png`` (pyvista off screen).
+    overwrite : bool
+        Replace the files of an earlier run in ``output``.
 
     Returns
     -------
@@ -129,18 +137,16 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     DataNotFoundError
         The sequence folder does not exist.
     InputError
-        The folder is not a sequence, the output folder is the input folder, or ``max_frames`` < 1.
+        The folder is not a sequence, the output folder breaks the output policy, or ``max_frames`` < 1.
     KeyboardInterrupt
         Re-raised after the outputs of the frames done so far have been written.
     """
-
-    seq = open_sequence(sequence)
     out = pathlib.Path(output)
-    if out.resolve() == seq.root.resolve():
-        raise InputError(f"the output folder {out} is the sequence folder; choose another one")
+    check_outputs([output_folder(out, RESULTS, f"{pathlib.Path(sequence).name}_map")], [sequence],
+                  overwrite=overwrite)
     if max_frames is not None and int(max_frames) < 1:
         raise InputError(f"max_frames must be >= 1; got {max_frames!r}")
-    out.mkdir(parents=True, exist_ok=True)
+    seq = open_sequence(sequence)
     frames = range(len(seq) if max_frames is None else min(len(seq), int(max_frames)))
     mapper = RGBDMapper(options)
     skipped = []
@@ -162,6 +168,13 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
 
 
 def _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render):
+    """The files of the run, moved into ``out`` together once every one is written."""
+    with StagedFolder(out) as stage:
+        written = _write_files(stage.path, seq, mapper, skipped, elapsed, interrupted, render)
+    return {key: value if key == "summary" else stage.final(value) for key, value in written.items()}
+
+
+def _write_files(out, seq, mapper, skipped, elapsed, interrupted, render):
     traj = mapper.trajectory()
     timestamps, poses, status = traj.timestamps, traj.poses, traj.status
     written = {"trajectory": out / "trajectory.txt", "keyframes": out / "keyframes.json", "mesh": out / "mesh.ply"}

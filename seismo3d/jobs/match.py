@@ -7,8 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._atomic import existing_folder
 from ..errors import DataNotFoundError, InputError
+from .outputs import check_outputs, output_file
 
 __all__ = ["MatchJob", "run_match_job", "read_image"]
 
@@ -30,7 +30,7 @@ class MatchJob:
 
 
 def run_match_job(image1, image2, output, *, method: str = "hog", ratio: float = 0.8,
-                  threshold: float = 3.0) -> MatchJob:
+                  threshold: float = 3.0, overwrite: bool = False) -> MatchJob:
     """Match ``image1`` to ``image2``, verify with a RANSAC homography and write ``x1,y1,x2,y2,score`` rows.
 
     Pixel coordinates have their origin at the centre of the top-left pixel, x to the right, y down.
@@ -40,13 +40,16 @@ def run_match_job(image1, image2, output, *, method: str = "hog", ratio: float =
     image1, image2 : str or path-like
         Images OpenCV can read (colour is converted to grey by the matcher).
     output : str or path-like
-        The CSV file (written atomically).
+        The CSV file (written atomically); not an input, and not an existing file unless ``overwrite`` (see
+        :mod:`seismo3d.jobs.outputs`; checked before the images are read).
     method : {'hog', 'sift', 'orb', 'akaze', 'brisk'}
         The HOG-pyramid matcher (method.md section 2) or an OpenCV detector.
     ratio : float
         Lowe's ratio-test threshold.
     threshold : float
         RANSAC inlier reprojection error, pixels.
+    overwrite : bool
+        Replace an existing ``output``.
 
     Returns
     -------
@@ -57,11 +60,12 @@ def run_match_job(image1, image2, output, *, method: str = "hog", ratio: float =
     DataNotFoundError
         An image file is missing.
     InputError
-        A file OpenCV cannot read as an image, or a bad option.
+        An output that is an input, exists (without ``overwrite``) or cannot be written; a file OpenCV cannot read
+        as an image, or a bad option.
     """
     from ..features import match_images, write_matches_csv
 
-    existing_folder(pathlib.Path(output))  # before the matching, not after it
+    check_outputs([output_file(output, "matches.csv")], [image1, image2], overwrite=overwrite)
     images = [read_image(p) for p in (image1, image2)]
     result = match_images(*images, method=method, ratio=ratio, threshold=threshold, verify="homography")
     return MatchJob(result, write_matches_csv(output, result))

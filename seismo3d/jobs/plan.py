@@ -7,7 +7,9 @@ import pathlib
 import time
 from dataclasses import dataclass
 
-from .._atomic import atomic_path, existing_folder
+import numpy as np
+
+from .._atomic import atomic_path
 from ..errors import InputError
 from ..terrain import DEM_SUFFIXES, read_dem
 from ..terrain.occupancy import (
@@ -18,6 +20,7 @@ from ..terrain.occupancy import (
     read_map_folder,
 )
 from ..terrain.planning import GridPath, astar
+from .outputs import check_outputs, output_file
 
 __all__ = ["PlanResult", "load_occupancy", "parse_cell", "run_plan_job", "write_path_csv"]
 
@@ -72,15 +75,24 @@ def load_occupancy(grid, *, max_slope_deg: float = 15.0, options: OccupancyOptio
                      "seismo3d map")
 
 
-def _check_end(grid: OccupancyGrid, cell, name: str, why_blocked: str) -> tuple[int, int]:
+def _check_end(grid: OccupancyGrid, cell, name: str, why_blocked: str, loosen: str) -> tuple[int, int]:
+    """``cell`` as (row, col) when it is inside the grid and traversable; InputError naming ``--{name}``, why the
+    cell is blocked and the nearest traversable cell (or, with none, ``loosen``: what would free cells)."""
     r, c = (int(v) for v in cell)
     h, w = grid.shape
     if not (0 <= r < h and 0 <= c < w):
-        raise InputError(f"{name} {r},{c} is outside the grid of {h} rows x {w} columns (rows 0-{h - 1}, "
+        raise InputError(f"--{name} {r},{c} is outside the grid of {h} rows x {w} columns (rows 0-{h - 1}, "
                          f"columns 0-{w - 1})")
     if not grid.free[r, c]:
         reason = "has no data" if not grid.known[r, c] else why_blocked
-        raise InputError(f"{name} {r},{c} is on an obstacle (the cell {reason}); choose a traversable cell")
+        free = np.argwhere(grid.free)
+        if free.size == 0:
+            raise InputError(f"--{name} {r},{c} is on an obstacle (the cell {reason}) and no cell of the grid is "
+                             f"traversable; {loosen}")
+        distance = np.hypot(*(free - (r, c)).T)
+        rr, cc = (int(v) for v in free[np.argmin(distance)])
+        raise InputError(f"--{name} {r},{c} is on an obstacle (the cell {reason}); the nearest traversable cell is "
+                         f"{rr},{cc} ({distance.min():.1f} cells away): pass --{name} {rr},{cc}")
     return r, c
 
 
@@ -110,7 +122,7 @@ def write_path_csv(path, route: GridPath, grid: OccupancyGrid) -> pathlib.Path:
 
 
 def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, options: OccupancyOptions | None = None,
-                 corner_cutting: bool = True) -> PlanResult:
+                 corner_cutting: bool = True, overwrite: bool = False) -> PlanResult:
     """Plan the shortest 8-connected path between two cells of a DEM or map and write ``path.csv``.
 
     Parameters
@@ -122,13 +134,16 @@ def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, opti
         (row, col) cells of the grid.
     output : str or os.PathLike
         The CSV: ``row, col, x, y, z`` per cell from start to goal (x, y in the DEM's CRS, z its elevation; for a
-        map, the cell centre on the floor in the map's frame).
+        map, the cell centre on the floor in the map's frame). Not the input, and not an existing file unless
+        ``overwrite`` (see :mod:`seismo3d.jobs.outputs`; checked before the grid is read).
     max_slope_deg : float
         Slope limit of a DEM, degrees.
     options : OccupancyOptions, optional
         For a map folder.
     corner_cutting : bool
         Allow diagonal steps between two blocked cells.
+    overwrite : bool
+        Replace an existing ``output``.
 
     Returns
     -------
@@ -137,17 +152,24 @@ def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, opti
     Raises
     ------
     InputError
-        Start or goal outside the grid or on an obstacle; bad inputs.
+        An output that is the input, exists (without ``overwrite``) or cannot be written; start or goal outside the
+        grid or on an obstacle; bad inputs.
     PlanningError
         No path exists.
     """
     output = pathlib.Path(output)
-    existing_folder(output)  # before the planning, not after it
+    folder = pathlib.Path(grid)
+    read = [folder / "mesh.ply", folder / "trajectory.txt"] if folder.is_dir() else []  # a map folder's inputs
+    check_outputs([output_file(output, "path.csv")], [grid, *read], overwrite=overwrite)
     occupancy = load_occupancy(grid, max_slope_deg=max_slope_deg, options=options)
-    blocked = (f"is steeper than {max_slope_deg:g} deg" if not pathlib.Path(grid).is_dir()
-               else "holds an obstacle at the robot's height, or no floor was seen there")
-    s = _check_end(occupancy, start, "start", blocked)
-    g = _check_end(occupancy, goal, "goal", blocked)
+    if pathlib.Path(grid).is_dir():
+        blocked = "holds an obstacle at the robot's height, or no floor was seen there"
+        loosen = "lower --robot-radius or raise --step-height"
+    else:
+        blocked = f"is steeper than --max-slope {max_slope_deg:g} deg"
+        loosen = f"raise --max-slope (now {max_slope_deg:g} deg)"
+    s = _check_end(occupancy, start, "start", blocked, loosen)
+    g = _check_end(occupancy, goal, "goal", blocked, loosen)
     t0 = time.perf_counter()
     route = astar(occupancy.free, s, g, spacing=occupancy.spacing, corner_cutting=corner_cutting)
     seconds = time.perf_counter() - t0

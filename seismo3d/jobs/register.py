@@ -15,7 +15,6 @@ import warnings
 
 import numpy as np
 
-from .._atomic import existing_folder
 from ..data.pointclouds import read_points
 from ..errors import InputError, TraceListWarning
 from ..geometry import estimate_normals
@@ -23,6 +22,7 @@ from ..registration import ICPOptions, fused_icp, icp
 from ..seismic import open_segy, register_volumes
 from ..seismic.volumes import VOLUME_MODELS
 from ..terrain import is_terrain_file
+from .outputs import check_outputs, output_file
 from .register_files import RegisterJob, read_transform, write_json
 from .register_terrain import run_register_terrain_job
 
@@ -36,7 +36,7 @@ def is_segy(path) -> bool:
 
 def run_register_job(source, target, output, *, method: str | None = None, model: str | None = None,
                      init=None, max_distance=None, features=None, alpha: float | None = None, iline: int = 189,
-                     xline: int = 193, endian=None, progress: bool = True) -> RegisterJob:
+                     xline: int = 193, endian=None, overwrite: bool = False, progress: bool = True) -> RegisterJob:
     """Register ``source`` onto ``target`` and write the JSON of the transform (atomically).
 
     Parameters
@@ -45,7 +45,8 @@ def run_register_job(source, target, output, *, method: str | None = None, model
         Two point clouds, two SEG-Y cubes (the moving one first, then the fixed one), or two terrain files (LAS/LAZ,
         GeoTIFF DEM; :func:`~seismo3d.jobs.register_terrain.run_register_terrain_job`).
     output : str or path-like
-        The JSON file.
+        The JSON file; not an input, and not an existing file unless ``overwrite`` (see
+        :mod:`seismo3d.jobs.outputs`; checked before the inputs are read).
     method : {'point_to_plane', 'point_to_point', 'fused'}, optional
         Point clouds: the residual (fused = feature matches + point-to-plane, eq. 16); default point_to_plane.
         Terrain files: fused (hillshade matches, the default) or point_to_plane.
@@ -67,6 +68,8 @@ def run_register_job(source, target, output, *, method: str | None = None, model
     iline, xline, endian
         SEG-Y cubes: how to open both, as in :func:`~seismo3d.seismic.open_segy` (by default inline / crossline
         numbers at trace header bytes 189 / 193 and the byte order detected per file).
+    overwrite : bool
+        Replace an existing ``output``.
     progress : bool
         Report progress of a volume registration (:mod:`seismo3d._progress`).
 
@@ -77,15 +80,16 @@ def run_register_job(source, target, output, *, method: str | None = None, model
     Raises
     ------
     InputError
-        Mixed inputs (a cloud and a cube, a cloud and a terrain file), mismatched dimensions, a model unavailable
-        for volumes or terrain files, a missing or bad ``init`` or ``features`` file, a SEG-Y file that is not a 3D
-        cube; and the registrations' own errors (:class:`~seismo3d.errors.InputError`,
+        An output that is an input, exists (without ``overwrite``) or cannot be written; mixed inputs (a cloud and
+        a cube, a cloud and a terrain file), mismatched dimensions, points or matches with NaN or infinite
+        coordinates (the message names the file and rows), a model unavailable for volumes or terrain files, a
+        missing or bad ``init`` or ``features`` file, a SEG-Y file that is not a 3D cube; and the registrations' own errors (:class:`~seismo3d.errors.InputError`,
         :class:`~seismo3d.errors.RegistrationError`).
     SegyFormatError, SegyGeometryError
         A SEG-Y file that cannot be read (see :func:`~seismo3d.seismic.open_segy`).
     """
     source, target, output = pathlib.Path(source), pathlib.Path(target), pathlib.Path(output)
-    existing_folder(output)  # before the registration, not after it
+    check_outputs([output_file(output, "transform.json")], [source, target, init, features], overwrite=overwrite)
     if is_segy(source) or is_segy(target):
         if not (is_segy(source) and is_segy(target)):
             raise InputError(f"{source} and {target}: register either two SEG-Y cubes or two point clouds, not one "
@@ -96,7 +100,7 @@ def run_register_job(source, target, output, *, method: str | None = None, model
         if features is not None:
             raise InputError("--features is for point clouds; terrain files are matched through their hillshades")
         return run_register_terrain_job(source, target, output, method=method or "fused", model=model or "rigid",
-                                        init=init, max_distance=max_distance, alpha=alpha)
+                                        init=init, max_distance=max_distance, alpha=alpha, overwrite=overwrite)
     else:
         job = _register_point_clouds(source, target, method or "point_to_plane", model or "rigid", init,
                                      max_distance, features, 0.1 if alpha is None else alpha)
@@ -105,8 +109,8 @@ def run_register_job(source, target, output, *, method: str | None = None, model
 
 
 def _register_point_clouds(source, target, method, model, init, max_distance, features, alpha) -> RegisterJob:
-    src = read_points(source)
-    dst = read_points(target)
+    src = _finite_rows(read_points(source), source, "SOURCE")
+    dst = _finite_rows(read_points(target), target, "TARGET")
     if src.shape[1] != dst.shape[1]:
         raise InputError(f"{source} is {src.shape[1]}D but {target} is {dst.shape[1]}D")
     start = None if init is None else read_transform(init, src.shape[1])
@@ -116,7 +120,7 @@ def _register_point_clouds(source, target, method, model, init, max_distance, fe
         if features is None:
             raise InputError("--method fused needs --features MATCHES (rows of source then target coordinates of "
                              "matched features, e.g. from `seismo3d match` lifted to 3D)")
-        pairs = read_matches(features, src.shape[1])
+        pairs = _finite_rows(read_matches(features, src.shape[1]), features, "--features")
         result = fused_icp(src, dst, target_normals=normals, source_features=pairs[:, : src.shape[1]],
                            target_features=pairs[:, src.shape[1]:], alpha=alpha, model=model, init=start,
                            options=options)
@@ -149,6 +153,17 @@ def _register_volumes(moving_path, fixed_path, model, progress, segy: dict) -> R
                    fixed_first=dict(zip(("inline", "xline", "sample_value"), first_f)),
                    moving_first=dict(zip(("inline", "xline", "sample_value"), first_m)))
     return RegisterJob("volumes", reg, payload, bool(reg.converged))
+
+
+def _finite_rows(table: np.ndarray, path, role: str) -> np.ndarray:
+    """``table`` when every row is finite; else InputError naming the file and its first bad rows (from 1)."""
+    bad = np.flatnonzero(~np.isfinite(table).all(axis=1))
+    if bad.size:
+        rows = ", ".join(str(int(r) + 1) for r in bad[:5]) + (" ..." if bad.size > 5 else "")
+        raise InputError(f"{role} {pathlib.Path(path).name} has {bad.size} of {len(table)} rows with NaN or infinite "
+                         f"coordinates (rows {rows}, counting from 1); remove or fix those rows in the file and run "
+                         "again")
+    return table
 
 
 def read_matches(path, dim: int) -> np.ndarray:

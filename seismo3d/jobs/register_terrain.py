@@ -10,16 +10,16 @@ import pathlib
 
 import numpy as np
 
-from .._atomic import existing_folder
 from ..errors import InputError
 from ..terrain import TerrainRegistrationOptions, is_terrain_file, read_terrain, register_terrain
+from .outputs import check_outputs, output_file
 from .register_files import RegisterJob, read_transform, write_json
 
 __all__ = ["run_register_terrain_job"]
 
 
 def run_register_terrain_job(source, target, output, *, method: str = "fused", model: str = "rigid", init=None,
-                             max_distance=None, alpha: float | None = None) -> RegisterJob:
+                             max_distance=None, alpha: float | None = None, overwrite: bool = False) -> RegisterJob:
     """Register a terrain file onto another and write the transform JSON, atomically.
 
     Parameters
@@ -44,6 +44,8 @@ def run_register_terrain_job(source, target, output, *, method: str = "fused", m
         Correspondence distances, coarse to fine, in the local unit (the files' unit; metres for geographic CRSs).
     alpha : float, optional
         Weight of the feature term (default :class:`~seismo3d.terrain.TerrainRegistrationOptions`'s).
+    overwrite : bool, optional
+        Replace an existing ``output`` (:mod:`seismo3d.jobs.outputs`).
 
     Returns
     -------
@@ -55,13 +57,14 @@ def run_register_terrain_job(source, target, output, *, method: str = "fused", m
     Raises
     ------
     InputError
-        A file that is not LAS/LAZ/GeoTIFF beside one that is, unsupported method or model, a bad ``init`` file, an
-        output that would overwrite an input, incompatible CRSs, an empty LAS or an all-nodata DEM.
+        An output that is an input, exists (without ``overwrite``) or cannot be written; a file that is not
+        LAS/LAZ/GeoTIFF beside one that is, unsupported method or model, a bad ``init`` file, incompatible CRSs, an
+        empty LAS or an all-nodata DEM.
     RegistrationError
         When the inputs do not overlap enough to register.
     """
     source, target, output = (pathlib.Path(p) for p in (source, target, output))
-    existing_folder(output)  # before the registration, not after it
+    check_outputs([output_file(output, "transform.json")], [source, target, init], overwrite=overwrite)
     if not (is_terrain_file(source) and is_terrain_file(target)):
         raise InputError(f"{source} and {target}: register two terrain files (LAS/LAZ, GeoTIFF) or two point clouds, "
                          "not one of each (convert the point cloud to LAS/LAZ)")
@@ -70,8 +73,6 @@ def run_register_terrain_job(source, target, output, *, method: str = "fused", m
     if method not in ("fused", "point_to_plane"):
         raise InputError(f"--method {method} is not available for terrain files; use fused (hillshade features + "
                          "point-to-plane, the default) or point_to_plane (from --init or the identity)")
-    if output.resolve() in (source.resolve(), target.resolve()):
-        raise InputError(f"{output} would overwrite an input; choose another output path")
     src = read_terrain(source)
     dst = read_terrain(target)
     fields = dict(features=method == "fused", model=model)

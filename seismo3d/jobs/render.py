@@ -14,18 +14,21 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import existing_folder
 from .._validation import check_choice
 from ..errors import DataNotFoundError, InputError
 from ..mapping import read_tum_trajectory
 from ..seismic import open_segy
 from ..terrain import extract_lineaments, read_dem
+from .outputs import check_outputs, output_file
 
 __all__ = ["RenderJob", "run_render_job"]
 
 _SEGY = {".sgy", ".segy"}
 _TEXT = {".txt", ".dat", ".csv", ".xyz"}
 _DEM = {".tif", ".tiff"}
+# The files render reads of a 'seismo3d faults' or 'seismo3d map' output folder (inputs: never replaced by the PNG).
+_FOLDER_FILES = ("faults.vtp", "fault_likelihood.sgy", "fault_likelihood.npy", "demo_seismic.sgy", "mesh.ply",
+                 "trajectory.txt", "keyframes.json")
 
 
 @dataclass(frozen=True)
@@ -77,26 +80,33 @@ def _kind(path: Path) -> str:
 
 
 def _read_segy(path: Path, vertical_exaggeration, segy_options=None):
-    from ..viz.seismic import geometry_of_segy
+    """The amplitudes as (n_inlines, n_xlines, n_samples) and their geometry; a trace list as one section of
+    (n_traces, 1, n_samples), its traces numbered from 1 in file order."""
+    from ..viz.seismic import cube_geometry, geometry_of_segy
 
     with open_segy(path, **(segy_options or {})) as segy:
-        if segy.inlines is None:
-            raise InputError(f"{path.name} has no inline / crossline geometry; render needs a sorted cube")
-        return segy.read(), geometry_of_segy(segy, vertical_exaggeration=vertical_exaggeration)
+        if segy.inlines is not None:
+            return segy.read(), geometry_of_segy(segy, vertical_exaggeration=vertical_exaggeration)
+        data = segy.read()[:, None, :]
+        geometry = cube_geometry(data.shape, inlines=np.arange(1, data.shape[0] + 1), xlines=[0],
+                                 samples=segy.samples, sample_unit=segy.sample_unit,
+                                 vertical_exaggeration=vertical_exaggeration, lateral_names=("trace", ""))
+        return data, geometry
 
 
 def _slices_for(shape):
-    """The middle planes; a single line (one inline or one crossline) is shown as that one plane."""
+    """The middle planes; a single line (one inline or one crossline) is shown as that one plane, seen square on."""
     if shape[0] == 1:
-        return (0, None, None), "yz"
+        return (0, None, None), "section"
     if shape[1] == 1:
-        return (None, 0, None), "xz"
+        return (None, 0, None), "section"
     return None, "iso"
 
 
 def _horizon_grid(path: Path, geometry):
-    """(n_inlines, n_xlines) fractional sample indices of an "inline xline time" text file on ``geometry``'s grid
-    (or on the grid of its own lines when ``geometry`` is None), and the geometry."""
+    """(n_inlines, n_xlines) fractional sample indices of an "inline xline time" text file (or "trace time" rows of
+    a trace list, on a (n_traces, 1) grid) on ``geometry``'s grid (or on the grid of its own lines when ``geometry``
+    is None), and the geometry."""
     from ..viz.seismic import cube_geometry
 
     try:
@@ -104,14 +114,16 @@ def _horizon_grid(path: Path, geometry):
     except ValueError as exc:
         raise InputError(f"{path.name} is not a table of numbers ({exc}); a horizon file has 'inline xline time' "
                          "rows") from None
-    if rows.shape[1] < 3 or rows.shape[0] < 4:
+    if rows.shape[1] < 2 or rows.shape[0] < 4:
         raise InputError(f"{path.name} has {rows.shape[0]} rows of {rows.shape[1]} columns; a horizon file has "
-                         "'inline xline time' rows (at least 4)")
-    il, xl, t = rows[:, 0], rows[:, 1], rows[:, 2]
+                         "'inline xline time' rows, or 'trace time' rows for a trace list (at least 4)")
+    trace_list = rows.shape[1] == 2
+    il, xl, t = (rows[:, 0], np.zeros(len(rows)), rows[:, 1]) if trace_list else (rows[:, 0], rows[:, 1], rows[:, 2])
     if geometry is None:
         samples = np.arange(np.floor(t.min()), np.ceil(t.max()) + 1.0)
         geometry = cube_geometry((np.unique(il).size, np.unique(xl).size, samples.size), inlines=np.unique(il),
-                                 xlines=np.unique(xl), samples=samples, sample_unit="ms")
+                                 xlines=np.unique(xl), samples=samples, sample_unit="ms",
+                                 lateral_names=("trace", "") if trace_list else ("inline", "crossline"))
     i = np.searchsorted(geometry.inlines, il)
     j = np.searchsorted(geometry.xlines, xl)
     ok = (i < geometry.inlines.size) & (j < geometry.xlines.size)
@@ -177,13 +189,15 @@ def _render_map(path: Path, output: Path, *, window_size) -> RenderJob:
 
 def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", vertical_exaggeration=None,
                    lineaments=False, plan=None, window_size=(1200, 900), iline: int = 189, xline: int = 193,
-                   endian=None) -> RenderJob:
+                   endian=None, ignore_geometry: bool = False, sample_unit=None,
+                   overwrite: bool = False) -> RenderJob:
     """Render INPUT off screen into a PNG: the ``seismo3d render`` command.
 
     Inputs
     ------
     * a SEG-Y cube: its middle inline, crossline and time slice (a single line: that section), placed by its CDP X/Y
-      when the headers have them (see :func:`seismo3d.viz.cube_geometry`);
+      when the headers have them (see :func:`seismo3d.viz.cube_geometry`); a file without an inline / crossline grid
+      (or with ``ignore_geometry``) is drawn as one section, its traces numbered from 1 in file order;
     * the output folder of ``seismo3d faults``: the fault surfaces (``faults.vtp``) with the fault likelihood as a
       semi-transparent volume, over the slices of ``seismic`` (default: ``demo_seismic.sgy`` in the folder, written
       by ``--demo``), placed by the geometry of ``fault_likelihood.sgy``;
@@ -199,7 +213,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     ----------
     input_path : str or os.PathLike
     output : str or os.PathLike
-        The PNG to write (atomically; its folder must exist).
+        The PNG to write (atomically; its folder must exist); not an input, and not an existing file unless
+        ``overwrite`` (see :mod:`seismo3d.jobs.outputs`; checked before the inputs are read).
     seismic : str or os.PathLike, optional
         A SEG-Y cube to draw under faults or a horizon.
     color_by : {'fault_id', 'throw'}, optional
@@ -216,6 +231,12 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
         Trace header bytes of the inline and crossline numbers of the SEG-Y files read.
     endian : {'big', 'little'}, optional
         Byte order of the SEG-Y files read; by default detected from each binary header.
+    ignore_geometry : bool, optional
+        Read the SEG-Y files as trace lists, without the warning a file without a grid gets.
+    sample_unit : {'ms', 'm', 'ft'}, optional
+        Unit of the SEG-Y sample axis; by default from the headers.
+    overwrite : bool, optional
+        Replace an existing ``output``.
 
     Returns
     -------
@@ -226,22 +247,24 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     DataNotFoundError
         The input (or ``seismic``) does not exist.
     InputError
-        An input of unknown kind, a folder without ``faults.vtp``, a horizon file that is not a table, a PNG folder
-        that does not exist.
+        An output that is an input, exists (without ``overwrite``) or cannot be written; an input of unknown kind, a
+        folder without ``faults.vtp``, a horizon file that is not a table.
     SegyFormatError, SegyGeometryError
         As :func:`seismo3d.seismic.open_segy`.
     """
     import pyvista as pv
 
-    segy_options = {"iline": iline, "xline": xline, "endian": endian}
+    segy_options = {"iline": iline, "xline": xline, "endian": endian, "ignore_geometry": ignore_geometry,
+                    "sample_unit": sample_unit}
 
     from ..viz.seismic import cube_geometry, show_seismic
 
     check_choice(color_by, "color_by", {"fault_id", "throw"})
     path, output = Path(input_path), Path(output)
+    read = [path / name for name in _FOLDER_FILES] if path.is_dir() else []  # what render reads of a folder
+    check_outputs([output_file(output, "picture.png")], [path, seismic, plan, *read], overwrite=overwrite)
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
-    existing_folder(output)  # before the rendering, not after it
     kind = _kind(path)
     if kind == "map":
         return _render_map(path, output, window_size=window_size)

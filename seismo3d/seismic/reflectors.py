@@ -23,7 +23,7 @@ from ..errors import InputError
 from .attributes import structure_tensor_orientation
 from .traces import parabolic_offset, waveform
 
-__all__ = ["POLARITIES", "ReflectorSlice", "reflector_picks", "nearest_pick", "reflector_points",
+__all__ = ["POLARITIES", "ReflectorSlice", "reflector_picks", "nearest_pick", "nearest_reflector", "reflector_points",
            "normalise_amplitudes"]
 
 POLARITIES = ("peak", "trough", "zero_rising", "zero_falling")
@@ -166,6 +166,38 @@ def nearest_pick(times: np.ndarray, offsets: np.ndarray, trace: int, t: float, w
         return np.nan
     i = int(np.argmin(np.abs(p - t)))
     return float(p[i]) if abs(p[i] - t) <= window else np.nan
+
+
+def nearest_reflector(times: np.ndarray, offsets: np.ndarray, lateral_shape: tuple, position) -> tuple | None:
+    """The pick nearest to ``position`` with no distance limit: on its own trace the pick nearest in time; when that
+    trace has none, the nearest trace that has picks (lateral distance, in traces), and its pick nearest in time.
+
+    Parameters
+    ----------
+    times, offsets : ndarray
+        Picks of the traces (lateral axes flattened in C order), as :func:`reflector_picks` returns them.
+    lateral_shape : tuple of int
+        ``(n_traces,)`` or ``(n_inlines, n_xlines)``.
+    position : sequence of float
+        Index position, the lateral indices then the fractional sample.
+
+    Returns
+    -------
+    tuple of float or None
+        The pick's index position (same axes as ``position``), or None when no trace has a pick.
+    """
+    lateral = np.asarray(position[:-1], dtype=np.float64)
+    counts = np.diff(offsets)
+    k = int(np.ravel_multi_index(tuple(int(round(v)) for v in lateral), lateral_shape))
+    if counts[k] == 0:
+        have = np.flatnonzero(counts > 0)
+        if have.size == 0:
+            return None
+        where = np.column_stack(np.unravel_index(have, lateral_shape))
+        k = int(have[np.argmin(((where - lateral) ** 2).sum(axis=1))])
+    p = times[offsets[k]:offsets[k + 1]]
+    t = float(p[np.argmin(np.abs(p - float(position[-1])))])
+    return tuple(float(v) for v in np.unravel_index(k, lateral_shape)) + (t,)
 
 
 class ReflectorSlice:

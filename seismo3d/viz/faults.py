@@ -169,6 +169,13 @@ def _section_figure(data, fl, pts, ids, ax_vals, axis_labels, seis, like, dpi):
     return fig
 
 
+def _slice_title(sample_label: str, value: float) -> str:
+    """'time slice 204 ms' from the sample axis' label 'time (ms)' ('sample slice 51' for 'sample')."""
+    name, _, unit = sample_label.partition(" (")
+    unit = unit.rstrip(")")
+    return f"{name} slice {value:g}" + (f" {unit}" if unit else "")
+
+
 def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_labels=None, slices=None, title=None,
                       clip_percentile=99.0, dpi=110) -> Path:
     """Draw faults over slices of the seismic and save a PNG.
@@ -259,7 +266,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
             (lambda a: _read(a[:, j]).T, il, tz, pts[:, 1] == j if pts.size else None, 0, 2,
              f"{xl_name} {xl[j]:g}", il_name, sample_label),
             (lambda a: _read(a[:, :, k]), xl, il, pts[:, 2] == k if pts.size else None, 1, 0,
-             f"{sample_label.split(' ')[0]} slice {tz[k]:g}", xl_name, il_name),
+             _slice_title(sample_label, tz[k]), xl_name, il_name),
         ]
         cuts = [p[0](data) for p in panels]  # a lazy cube is read only here: three slices
         seis.update(_symmetric_limits(np.concatenate([c.ravel() for c in cuts]) if lazy else data, clip_percentile))

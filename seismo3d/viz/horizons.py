@@ -10,10 +10,11 @@ __all__ = ["horizon_surface", "plot_horizon_section"]
 
 
 def horizon_surface(horizon, *, inlines=None, xlines=None, samples=None):
-    """A tracked 3D horizon as a pyvista surface: one quad per 2 x 2 block of picked traces.
+    """A tracked horizon as a pyvista surface: one quad per 2 x 2 block of picked traces; on a single line (one
+    inline or one crossline: a (n, 1) or (1, n) grid) a curve, one segment between neighbouring picked traces.
 
-    Empty traces (NaN) leave holes: quads with an empty corner are dropped, nothing is interpolated (use
-    :func:`seismo3d.seismic.fill_horizon` first to close gaps).
+    Empty traces (NaN) leave holes: quads (segments) with an empty corner (end) are dropped, nothing is interpolated
+    (use :func:`seismo3d.seismic.fill_horizon` first to close gaps).
 
     Parameters
     ----------
@@ -57,6 +58,10 @@ def horizon_surface(horizon, *, inlines=None, xlines=None, samples=None):
     mesh.verts = np.empty(0, dtype=np.int64)
     if quads.size:
         mesh.faces = quads
+    elif 1 in times.shape:  # a line: its picks joined along it
+        along = index.ravel()
+        pair = (along[:-1] >= 0) & (along[1:] >= 0)
+        mesh.lines = np.column_stack([np.full(int(pair.sum()), 2), along[:-1][pair], along[1:][pair]]).ravel()
     mesh.point_data["sample"] = times[have].astype(np.float32)
     mesh.point_data["confidence"] = conf[have].astype(np.float32)
     for name, labels, axis in (("inline", inlines, 0), ("crossline", xlines, 1)):

@@ -50,6 +50,9 @@ class CubeGeometry:
         Unit of the lateral scene coordinates: the survey's ('m' or 'ft') with CDP X/Y, 'line' without.
     vertical_exaggeration : float
         Factor applied to the vertical axis.
+    lateral_names : (str, str)
+        What numbers the two lateral axes: ``('inline', 'crossline')``, or ``('trace', '')`` for a trace list (one
+        section, traces numbered in file order; ``inlines`` then holds the trace numbers).
     """
 
     shape: tuple
@@ -61,6 +64,7 @@ class CubeGeometry:
     axes: np.ndarray
     map_unit: str
     vertical_exaggeration: float
+    lateral_names: tuple = ("inline", "crossline")
 
     def to_world(self, ijk) -> np.ndarray:
         """Scene coordinates of index-space positions.
@@ -79,19 +83,21 @@ class CubeGeometry:
 
     def axis_labels(self) -> tuple[str, str, str]:
         """Names of the scene's x, y and z axes for the orientation widget: inline / crossline (line numbers) or
-        easting / northing (CDP X/Y, in ``map_unit``), and time or depth, which increases downward."""
-        name = {"ms": "time", "m": "depth", "ft": "depth"}.get(self.sample_unit, "sample")
+        easting / northing (CDP X/Y, in ``map_unit``), and 'up' (the widget's z arrow points up, the way time or
+        depth decreases)."""
         if self.map_unit == "line":
-            return "inline", "crossline", f"{name} (down)"
-        return f"X ({self.map_unit})", f"Y ({self.map_unit})", f"{name} (down)"
+            return self.lateral_names[0], self.lateral_names[1], "up"
+        return f"X ({self.map_unit})", f"Y ({self.map_unit})", "up"
 
     def describe(self) -> str:
         """One line: the lines, the sample range and the vertical exaggeration (used as the scene's caption)."""
         il, xl, s = self.inlines, self.xlines, self.samples
         unit = "" if self.sample_unit == "samples" else f" {self.sample_unit}"
         name = {"ms": "time", "m": "depth", "ft": "depth"}.get(self.sample_unit, "sample")
-        return (f"inlines {il[0]:g}-{il[-1]:g}, crosslines {xl[0]:g}-{xl[-1]:g}, {name} {s[0]:g}-{s[-1]:g}{unit} "
-                f"(down), vertical exaggeration {self.vertical_exaggeration:.2g}")
+        first, second = self.lateral_names
+        lines = f"{first}s {il[0]:g}-{il[-1]:g}" + (f", {second}s {xl[0]:g}-{xl[-1]:g}" if second else "")
+        return (f"{lines}, {name} {s[0]:g}-{s[-1]:g}{unit} (down), vertical exaggeration "
+                f"{self.vertical_exaggeration:.2g}")
 
 
 def _axis(values, n: int, name: str) -> np.ndarray:
@@ -127,7 +133,8 @@ def _bin_vectors(cdp_x, cdp_y, shape):
 
 
 def cube_geometry(shape, *, inlines=None, xlines=None, samples=None, sample_unit="samples", cdp_x=None, cdp_y=None,
-                  map_unit="m", vertical_exaggeration=None, velocity=2000.0) -> CubeGeometry:
+                  map_unit="m", vertical_exaggeration=None, velocity=2000.0,
+                  lateral_names=("inline", "crossline")) -> CubeGeometry:
     """The scene geometry of a cube from its line numbers, samples and (optionally) CDP coordinates.
 
     Parameters
@@ -148,6 +155,8 @@ def cube_geometry(shape, *, inlines=None, xlines=None, samples=None, sample_unit
         Multiplies the vertical axis; default: the cube's height becomes half its longer lateral side.
     velocity : float, optional
         For a time cube shown with map coordinates: the velocity (m/s or ft/s) converting two-way time to depth.
+    lateral_names : (str, str), optional
+        What numbers the lateral axes (see :attr:`CubeGeometry.lateral_names`).
 
     Returns
     -------
@@ -193,7 +202,7 @@ def cube_geometry(shape, *, inlines=None, xlines=None, samples=None, sample_unit
         a.setflags(write=False)
     return CubeGeometry(shape=shape, inlines=il, xlines=xl, samples=s, sample_unit=sample_unit, origin=origin,
                         axes=np.vstack([a_i, a_j, down]), map_unit=unit,
-                        vertical_exaggeration=float(vertical_exaggeration))
+                        vertical_exaggeration=float(vertical_exaggeration), lateral_names=tuple(lateral_names))
 
 
 def geometry_of_segy(segy, *, vertical_exaggeration=None, velocity=2000.0) -> CubeGeometry:
@@ -345,13 +354,18 @@ def _plane(grid, geometry, axis: int, index: int):
 
 
 def _add_slices(plotter, grid, geometry, idx, *, cmap, clim, sliders=False):
-    """The inline, crossline and time-slice planes (an index None leaves its plane out); with ``sliders``, one
-    slider per plane moves it (each plane is a named actor that the slider's callback replaces)."""
+    """The inline, crossline and time-slice planes (an index None leaves its plane out), with one amplitude colour
+    bar at the bottom left; with ``sliders``, one slider per plane moves it (each plane is a named actor that the
+    slider's callback replaces)."""
     style = dict(scalars=grid.active_scalars_name, cmap=cmap, clim=clim, show_scalar_bar=False, lighting=False)
+    first = True
     for axis, wanted in enumerate(idx):
         if wanted is None:
             continue
-        plotter.add_mesh(_plane(grid, geometry, axis, wanted), name=_PLANES[axis], **style)
+        bar = dict(show_scalar_bar=True, scalar_bar_args=bar_below("amplitude", position_x=0.22, width=0.34,
+                                                                   fmt="%.3g", n_labels=3)) if first else {}
+        plotter.add_mesh(_plane(grid, geometry, axis, wanted), name=_PLANES[axis], **{**style, **bar})
+        first = False
         if sliders:
             def move(value, axis=axis):
                 plotter.add_mesh(_plane(grid, geometry, axis, int(round(value))), name=_PLANES[axis], **style)
@@ -362,32 +376,48 @@ def _add_slices(plotter, grid, geometry, idx, *, cmap, clim, sliders=False):
                                       title_height=0.025, slider_width=0.02, tube_width=0.008)
 
 
+def _toward_viewer(geometry: CubeGeometry) -> np.ndarray:
+    """On a single line, one bin toward the viewer of its section (see :func:`_section_normal`): what lifts a mesh
+    over the section's plane rather than through it; zero for a cube."""
+    if 1 not in geometry.shape[:2]:
+        return np.zeros(3)
+    along = geometry.axes[0] if geometry.shape[0] > 1 else geometry.axes[1]
+    return _section_normal(geometry) * float(np.linalg.norm(along))
+
+
+def _lift(mesh, geometry: CubeGeometry):
+    """A mesh in index space placed in the scene, over a single line's section (:func:`_toward_viewer`)."""
+    mesh = place_index_mesh(mesh, geometry)
+    mesh.points += _toward_viewer(geometry)
+    return mesh
+
+
 def _add_faults(plotter, faults, throws, geometry, color_by):
     mesh = faults if hasattr(faults, "n_points") else fault_surfaces(list(faults), throws)
     if not mesh.n_points:
         return
     if mesh.n_cells and mesh.n_cells != mesh.n_lines:
         mesh = mesh.smooth_taubin(n_iter=20, pass_band=0.1)  # display only: soften the voxel staircase
-    mesh = place_index_mesh(mesh, geometry)
+    mesh = _lift(mesh, geometry)
     if color_by == "fault_id":
         from matplotlib import colormaps
+        from matplotlib.colors import ListedColormap
 
-        ids = np.unique(mesh.point_data["fault_id"]).astype(int)
-        plotter.add_mesh(mesh, scalars="fault_id", cmap="tab10", clim=(0.5, 10.5), n_colors=10,
-                         show_scalar_bar=False, line_width=3, ambient=0.3)
+        top = int(np.max(mesh.point_data["fault_id"]))
         tab10 = colormaps["tab10"]
-        entries = [[f"fault {i}", tab10((i - 1) % 10)[:3]] for i in ids[:10]]
-        if ids.size > 10:
-            entries.append([f"... {ids.size} faults, colours cycle", "white"])
-        plotter.add_legend(entries, bcolor="white", face="rectangle", loc="upper right",
-                           size=(0.15, min(0.035 * len(entries), 0.4)))
+        colours = ListedColormap([tab10((i - 1) % 10) for i in range(1, top + 1)])  # fault i: tab10 colour i - 1
+        plotter.add_mesh(mesh, scalars="fault_id", cmap=colours, clim=(0.5, top + 0.5), n_colors=top,
+                         line_width=3, ambient=0.3,
+                         scalar_bar_args=bar_below(f"fault id 1-{top}" + (", colours cycle" if top > 10 else ""),
+                                                   position_x=0.6, width=0.35, n_labels=0))
         return
     values = np.asarray(mesh.point_data["throw"], dtype=np.float64)
     if not np.isfinite(values).any():
         raise InputError("color_by='throw' needs measured throws; pass throws= (FaultInterpretation.throws)")
     lim = float(np.nanpercentile(np.abs(values), 98)) or 1.0
     plotter.add_mesh(mesh, scalars="throw", cmap="PuOr_r", clim=(-lim, lim), nan_color="lightgrey",
-                     line_width=3, ambient=0.3, scalar_bar_args=bar_below("throw (samples, + normal)"))
+                     line_width=3, ambient=0.3,
+                     scalar_bar_args=bar_below("throw (samples, + normal)", position_x=0.6, width=0.35))
 
 
 def _add_horizons(plotter, horizons, geometry):
@@ -395,7 +425,7 @@ def _add_horizons(plotter, horizons, geometry):
     for h in horizons:
         surf = horizon_surface(h, samples=geometry.samples)
         if surf.n_points:
-            surfaces.append(place_index_mesh(surf, geometry))
+            surfaces.append(_lift(surf, geometry))
     if not surfaces:
         return
     values = np.concatenate([s.point_data["time_or_depth"] for s in surfaces])
@@ -404,6 +434,7 @@ def _add_horizons(plotter, horizons, geometry):
     name = {"ms": "time", "m": "depth", "ft": "depth"}.get(geometry.sample_unit, "sample")
     for n, surf in enumerate(surfaces):
         plotter.add_mesh(surf, scalars="time_or_depth", cmap="viridis", clim=clim, show_scalar_bar=n == 0,
+                         line_width=5, render_lines_as_tubes=True,  # a horizon on a 2D line is a curve
                          scalar_bar_args={"title": f"horizon\n{name}{unit}", "vertical": True, "fmt": "%.4g",
                                           "position_x": 0.84, "position_y": 0.3, "width": 0.08})
 
@@ -419,11 +450,17 @@ def _add_likelihood(plotter, likelihood, geometry, threshold):
     # colour range, and would warn (and lose resolution) for a narrow colour range
     grid.point_data["fault likelihood"] = np.maximum(grid.point_data["fault likelihood"], np.float32(threshold))
     opacity = np.linspace(0.0, 0.5, 64)  # over [threshold, 1]; transparent below (clamped colour range)
+    bar = {"title": "fault\nlikelihood", "vertical": True, "position_x": 0.06, "position_y": 0.3, "fmt": "%.3f"}
+    if 1 in geometry.shape[:2]:  # a line: the likelihood is a plane, drawn as one over the section (a volume one
+        # voxel thick takes minutes to ray-cast, for the same picture)
+        plane = grid.extract_surface(algorithm="dataset_surface")
+        plane.points += 0.5 * _toward_viewer(geometry)  # over the seismic, under the faults
+        plotter.add_mesh(plane, scalars="fault likelihood", cmap="Greys", clim=(threshold, 1.0), opacity=opacity,
+                         lighting=False, scalar_bar_args=bar)
+        return
     voxel = float(np.linalg.norm(geometry.axes, axis=1).mean())
     volume = plotter.add_volume(grid, scalars="fault likelihood", cmap="Greys", clim=(threshold, 1.0),
-                                opacity=opacity, opacity_unit_distance=voxel, shade=False,
-                                scalar_bar_args={"title": "fault\nlikelihood", "vertical": True,
-                                                 "position_x": 0.06, "position_y": 0.3, "fmt": "%.3f"})
+                                opacity=opacity, opacity_unit_distance=voxel, shade=False, scalar_bar_args=bar)
     volume.prop.interpolation_type = "linear"  # trilinear samples: no voxel bricks
     volume.mapper.SetAutoAdjustSampleDistances(False)  # a fixed step of half a voxel: no moire stripes
     volume.mapper.SetSampleDistance(0.5 * float(np.linalg.norm(geometry.axes, axis=1).min()))
@@ -482,7 +519,8 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
     window_size : (int, int), optional
     jupyter_backend : str, optional
         See :func:`~seismo3d.viz.plotting.finish_scene` (default trame when installed, else a static image).
-    camera : {'iso', 'xz', 'yz', 'xy'} or camera position, optional
+    camera : {'iso', 'xz', 'yz', 'xy', 'section'} or camera position, optional
+        'section': square to the cube's one inline or crossline (a 2D line), time or depth downward.
     title : str, optional
         Caption; default the geometry's :meth:`~CubeGeometry.describe`.
 
@@ -523,5 +561,16 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
     plotter.add_text(title or geometry.describe(), font_size=9, color="black")
     x_label, y_label, z_label = geometry.axis_labels()
     plotter.add_axes(xlabel=x_label, ylabel=y_label, zlabel=z_label, color="black")
-    plotter.camera_position = camera
+    if isinstance(camera, str) and camera == "section":
+        plotter.view_vector(_section_normal(geometry), viewup=(0.0, 0.0, 1.0))
+    else:
+        plotter.camera_position = camera
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)
+
+
+def _section_normal(geometry: CubeGeometry) -> np.ndarray:
+    """The direction square to a single line's plane, on the side from which its line numbers increase to the right
+    (time or depth downward): the camera's position from the plane."""
+    along = geometry.axes[0] if geometry.shape[0] > 1 else geometry.axes[1]
+    normal = np.cross(geometry.axes[2], along)
+    return normal / (np.linalg.norm(normal) or 1.0)

@@ -132,7 +132,7 @@ def test_interrupted_overwrite_keeps_the_earlier_store(amplitudes, tmp_path, wri
 def test_existing_output(amplitudes, tmp_path, write_segy_cube):
     src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
     run_convert_job(src, tmp_path / "out.zarr", chunk_mb=0.01)
-    with pytest.raises(InputError, match=r"exists; choose another path or pass overwrite=True"):
+    with pytest.raises(InputError, match=r"exists; pass overwrite=True \(--overwrite\) to replace it"):
         run_convert_job(src, tmp_path / "out.zarr")
     changed = write_segy_cube(tmp_path / "changed.sgy", -amplitudes, sorting="crossline")
     run_convert_job(changed, tmp_path / "out.zarr", overwrite=True)

@@ -357,9 +357,9 @@ def test_output_folder_is_the_input_folder(section, tmp_path):
     src = tmp_path / "section.npy"
     np.save(src, section.cube)
     before = sorted(p.name for p in tmp_path.iterdir())
-    with pytest.raises(InputError, match="another folder"):
+    with pytest.raises(InputError, match="holds the input"):
         run_faults_job(src, tmp_path, progress=False)
-    with pytest.raises(InputError, match="another folder"):
+    with pytest.raises(InputError, match="holds the input"):
         run_faults_job(src, tmp_path / "." / "", progress=False)
     assert sorted(p.name for p in tmp_path.iterdir()) == before
     (tmp_path / "afile").write_text("x")
@@ -368,14 +368,15 @@ def test_output_folder_is_the_input_folder(section, tmp_path):
 
 
 def test_interrupted_run_keeps_finished_files(section, tmp_path, monkeypatch):
-    """Ctrl-C while the picture is written: the previous faults.png stays, no temporary file is left behind."""
+    """Ctrl-C while the picture of a run with overwrite=True is written: every file of the previous run stays as it
+    was (the new files are moved in only when all are written), no temporary file is left behind."""
     from matplotlib.figure import Figure
 
     src = tmp_path / "section.npy"
     np.save(src, section.cube)
     out = tmp_path / "out"
     written = run_faults_job(src, out, progress=False)
-    png_before = _sha(written["figure"])
+    before = {key: _sha(path) for key, path in written.items()}
 
     def interrupted_savefig(self, fname, **kwargs):
         Path(fname).write_bytes(b"half a picture")
@@ -383,8 +384,8 @@ def test_interrupted_run_keeps_finished_files(section, tmp_path, monkeypatch):
 
     monkeypatch.setattr(Figure, "savefig", interrupted_savefig)
     with pytest.raises(KeyboardInterrupt):
-        run_faults_job(src, out, progress=False)
-    assert _sha(written["figure"]) == png_before
+        run_faults_job(src, out, overwrite=True, progress=False)
+    assert {key: _sha(path) for key, path in written.items()} == before
     assert _no_temp_files(out) == []
 
 

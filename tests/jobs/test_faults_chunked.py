@@ -50,10 +50,11 @@ def test_cube_beyond_the_limit_gives_the_same_faults(cube_npy, in_memory, tmp_pa
     assert _rows(written["summary"]) == _rows(in_memory["summary"])
     assert _rows(written["points"]) == _rows(in_memory["points"])
     assert written["figure"].stat().st_size > 10_000
-    # run again into the same folder: the finished likelihood is reused, the same faults come out
+    # run again into the same folder (overwrite=True: it holds this run's results): the finished likelihood is
+    # reused, the same faults come out
     limit = resident_memory() + (180 << 20)
     with caplog.at_level(logging.INFO, logger="seismo3d"):
-        again = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, progress=False)
+        again = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, overwrite=True, progress=False)
     assert "reusing the finished fault likelihood" in caplog.text
     assert _rows(again["summary"]) == _rows(in_memory["summary"])
     assert _rows(again["points"]) == _rows(in_memory["points"])

@@ -64,6 +64,60 @@ def test_horizon_command_bad_seeds(tmp_path):
     assert not (tmp_path / "h.txt").exists()
 
 
+def _one_error_line(res) -> str:
+    lines = [line for line in res.stderr.splitlines() if line.strip()]
+    assert res.exit_code == 2, res.output
+    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
+    return lines[0]
+
+
+def test_seed_without_a_pick_is_named_in_the_users_terms(tmp_path):
+    """A seed in a muted top: the message repeats the inline, crossline and time typed, says the trace is muted
+    there, and names the nearest peak as a --seed that works."""
+    import re
+
+    from seismo3d.seismic import reflector_picks
+
+    syn = synthetic_cube((16, 16, 48), n_faults=0, seed=0)
+    cube = syn.cube.copy()
+    cube[:, :, :20] = 0.0  # muted down to 76 ms
+    _write_cube(tmp_path / "cube.sgy", cube)
+    args = ["horizon", str(tmp_path / "cube.sgy"), "--no-faults", "-o", str(tmp_path / "h.txt")]
+    line = _one_error_line(runner.invoke(app, [*args, "--seed", "104,510,20"]))
+    assert line.startswith("error: --seed 104,510,20: no peak pick within 5 samples (20 ms) of 20 ms on the trace at "
+                           "inline 104, crossline 510 (muted there: constant from 0 to 76 ms); the nearest peak pick "
+                           "is at inline 104, crossline 510, ")
+    assert "seed (" not in line  # no index positions
+    t = float(re.search(r"pass --seed 104,510,([\d.]+)", line).group(1))
+    peaks, _ = reflector_picks(cube[4, 5][None], polarity="peak")
+    assert t == pytest.approx(4.0 * peaks.min(), abs=0.05)  # the first peak below the mute: the nearest to 20 ms
+    assert runner.invoke(app, [*args, "--seed", f"104,510,{t}"]).exit_code == 0
+
+
+def test_seed_on_a_dead_trace_names_the_nearest_live_trace(tmp_path):
+    syn = synthetic_cube((16, 16, 48), n_faults=0, seed=0)
+    cube = syn.cube.copy()
+    cube[3:6, 4] = 0.0  # three dead traces along crossline 508
+    _write_cube(tmp_path / "cube.sgy", cube)
+    line = _one_error_line(runner.invoke(app, ["horizon", str(tmp_path / "cube.sgy"), "--no-faults", "--seed",
+                                               "104,508,100", "-o", str(tmp_path / "h.txt")]))
+    assert line == ("error: --seed 104,508,100: the trace at inline 104, crossline 508 is dead (all samples equal); "
+                    "the nearest live trace is at inline 104, crossline 506, 100 ms: pass --seed 104,506,100")
+
+
+def test_seed_in_the_mute_of_penobscot_xl1155(data_dir, tmp_path):
+    """The issue's case: --seed 1010,1155,500 on the real line answers in inline / crossline / ms, not indices."""
+    import os
+
+    path = os.path.join(data_dir, "seismic", "penobscot_xl1155.sgy")
+    line = _one_error_line(runner.invoke(app, ["horizon", path, "--seed", "1010,1155,500", "-o",
+                                               str(tmp_path / "h.txt")]))
+    assert line == ("error: --seed 1010,1155,500: no peak pick within 5 samples (20 ms) of 500 ms on the trace at "
+                    "inline 1010, crossline 1155 (muted there: constant from 0 to 1452 ms); the nearest peak pick is "
+                    "at inline 1010, crossline 1155, 1466.2 ms: pass --seed 1010,1155,1466.2 (or another "
+                    "--polarity)")
+
+
 def test_horizon_command_refuses_a_missing_output_folder_before_tracking(tmp_path, monkeypatch):
     import seismo3d.seismic as seismic
 

@@ -99,9 +99,10 @@ def test_cli(sequence, tmp_path):
     out = tmp_path / "cli"
     result = runner.invoke(app, ["map", str(sequence), "-o", str(out), "--max-frames", "3", "--no-render"])
     assert result.exit_code == 0, result.output
-    assert "3 of 10 frames tracked" in result.output and "ATE" in result.output
+    assert "3 of the first 3 frames tracked (--max-frames 3; the sequence has 10)" in result.output
+    assert "ATE" in result.output
     assert (out / "trajectory.txt").is_file() and not (out / "map.png").exists()
-    bad = runner.invoke(app, ["map", str(tmp_path / "absent"), "-o", str(out)])
+    bad = runner.invoke(app, ["map", str(tmp_path / "absent"), "-o", str(tmp_path / "new")])
     assert bad.exit_code == 2 and "does not exist" in bad.output
     same = runner.invoke(app, ["map", str(sequence), "-o", str(sequence)])
-    assert same.exit_code == 2 and "sequence folder" in same.output
+    assert same.exit_code == 2 and "is the input" in same.output

@@ -2,6 +2,7 @@
 real DEM and a map folder, one clear line for each bad cell."""
 
 import csv
+import re
 
 import numpy as np
 import pytest
@@ -83,9 +84,10 @@ def test_plan_command_on_the_dem(dfw, tmp_path):
 
 
 @pytest.mark.parametrize("start, goal, message", [
-    ("400,0", "358,366", "start 400,0 is outside the grid of 359 rows x 367 columns"),
-    ("0,366", "358,366", "start 0,366 is on an obstacle (the cell is steeper than 1.5 deg)"),
-    ("8,0", "0,366", "goal 0,366 is on an obstacle"),
+    ("400,0", "358,366", "--start 400,0 is outside the grid of 359 rows x 367 columns"),
+    ("0,366", "358,366", "--start 0,366 is on an obstacle (the cell is steeper than --max-slope 1.5 deg); the "
+                         "nearest traversable cell is"),
+    ("8,0", "0,366", "--goal 0,366 is on an obstacle"),
     ("0,0", "358,366", "no path from start (0, 0) to goal (358, 366)"),
     ("8", "358,366", "--start '8' must be ROW,COL"),
 ])
@@ -94,6 +96,20 @@ def test_plan_bad_cells(dfw, tmp_path, start, goal, message):
                                  "-o", str(tmp_path / "p.csv")])
     assert message in _one_error_line(result)
     assert not (tmp_path / "p.csv").exists()
+
+
+def test_plan_names_the_nearest_free_cell(dfw, tmp_path):
+    """A start on an obstacle: the message names the nearest traversable cell, which is free, no free cell is nearer,
+    and planning from it works."""
+    args = ["plan", str(dfw.path), "--goal", "358,366", "--max-slope", "1.5", "-o", str(tmp_path / "p.csv")]
+    line = _one_error_line(runner.invoke(app, [*args, "--start", "0,366"]))
+    rr, cc = (int(v) for v in re.search(r"pass --start (\d+),(\d+)", line).groups())
+    free = load_occupancy(dfw.path, max_slope_deg=1.5).free
+    assert free[rr, cc] and not free[0, 366]
+    rows, cols = np.nonzero(free)
+    assert np.hypot(rr - 0, cc - 366) == pytest.approx(np.hypot(rows - 0, cols - 366).min())
+    again = runner.invoke(app, [*args, "--start", f"{rr},{cc}"])
+    assert "on an obstacle" not in again.output
 
 
 def test_plan_command_on_a_map_folder(map_folder, tmp_path):

@@ -79,3 +79,17 @@ def test_point_clouds_through_the_job(tmp_path):
     assert job.kind == "point_clouds" and job.converged
     np.testing.assert_allclose(np.array(json.loads((tmp_path / "T.json").read_text())["transform"]), truth,
                                atol=1e-4)
+
+
+def test_points_with_nan_are_named_by_file_and_row(tmp_path):
+    """A NaN coordinate: the message names SOURCE's file and the rows (from 1), and suggests no NumPy expression."""
+    points = np.random.default_rng(0).random((50, 3))
+    points[[3, 17]] = np.nan
+    np.save(tmp_path / "holes.npy", points)
+    np.save(tmp_path / "dst.npy", np.random.default_rng(1).random((50, 3)))
+    res = CliRunner().invoke(app, ["register", str(tmp_path / "holes.npy"), str(tmp_path / "dst.npy"), "-o",
+                                   str(tmp_path / "T.json")])
+    assert res.exit_code == 2
+    assert res.stderr == ("error: SOURCE holes.npy has 2 of 50 rows with NaN or infinite coordinates (rows 4, 18, "
+                          "counting from 1); remove or fix those rows in the file and run again\n")
+    assert "np." not in res.stderr and not (tmp_path / "T.json").exists()

@@ -142,3 +142,68 @@ def test_segy_flags_reach_the_one_opening_path(tmp_path):
     errors = [line for line in res.output.splitlines() if line.startswith("error: ")]
     assert res.exit_code == 2 and len(errors) == 1 and "--endian" in errors[0], res.output
     assert not (tmp_path / "x.png").exists()
+
+
+def _write_trace_list(path, section):
+    """A SEG-Y file of (n_traces, n_samples) without inline / crossline numbers (a trace list), 4 ms."""
+    spec = segyio.spec()
+    spec.format, spec.tracecount, spec.samples = 5, section.shape[0], 4.0 * np.arange(section.shape[1])
+    with segyio.create(str(path), spec) as f:
+        for k, trace in enumerate(section):
+            f.header[k] = {segyio.su.cdp: k + 1, segyio.su.dt: 4000}
+            f.trace[k] = trace.astype(np.float32)
+        f.bin.update({segyio.BinField.Samples: section.shape[1], segyio.BinField.Interval: 4000})
+
+
+def test_a_trace_list_is_drawn_as_one_section(tmp_path):
+    """A file without an inline / crossline grid: one section, traces numbered in file order; the warning names
+    --ignore-geometry, which render has: with it, the same picture and no warning."""
+    _write_trace_list(tmp_path / "line.sgy", _cube()[:, 0, :].repeat(3, axis=0))
+    res = runner.invoke(app, ["render", str(tmp_path / "line.sgy"), "-o", str(tmp_path / "a.png"), "--size",
+                              "400x300"])
+    assert res.exit_code == 0, res.output
+    assert "traces 1-36, time 0-188 ms" in res.stdout
+    assert res.stderr.startswith("warning: ") and "--ignore-geometry" in res.stderr
+    assert _not_blank(tmp_path / "a.png")[0]
+    quiet = runner.invoke(app, ["render", str(tmp_path / "line.sgy"), "-o", str(tmp_path / "b.png"), "--size",
+                                "400x300", "--ignore-geometry"])
+    assert quiet.exit_code == 0 and quiet.stderr == "", quiet.output
+
+
+def test_a_trace_list_horizon_is_drawn_over_its_section(tmp_path):
+    """'trace time' rows (seismo3d horizon on a trace list) over the trace list: the curve in viridis colours."""
+    section = _cube()[:, 0, :].repeat(3, axis=0)
+    _write_trace_list(tmp_path / "line.sgy", section)
+    np.savetxt(tmp_path / "h.txt", [(k + 1, 80.0) for k in range(section.shape[0])], fmt="%g")
+    res = runner.invoke(app, ["render", str(tmp_path / "h.txt"), "--seismic", str(tmp_path / "line.sgy"),
+                              "--ignore-geometry", "-o", str(tmp_path / "h.png"), "--size", "400x300"])
+    assert res.exit_code == 0, res.output
+    img = _not_blank(tmp_path / "h.png")[1][: int(0.75 * 300), : int(0.75 * 400)]  # left of the bar, over the widget
+    purple = (np.abs(img - [68, 1, 84]) < 40).all(axis=-1)  # viridis at the low end: one time, one colour
+    rows, cols = np.nonzero(purple)
+    assert rows.size > 100 and np.ptp(cols) > 0.3 * 400 and np.ptp(rows) <= 12
+
+
+def test_a_faults_folder_of_a_line_renders_quickly(tmp_path):
+    """The likelihood of a 2D line of a survey is drawn as a plane (a volume one voxel thick, its crossline step zero,
+    took minutes to ray-cast)."""
+    import time
+
+    from seismo3d.seismic import Fault
+    from seismo3d.viz import fault_surfaces, save_polydata
+
+    folder = tmp_path / "faults"
+    folder.mkdir()
+    n_traces, n_samples = 601, 1501
+    k = np.arange(200, 1200)
+    pts = np.column_stack([300 + (k - 200) // 10, np.zeros_like(k), k]).astype(np.int64)
+    n = pts.shape[0]
+    fault = Fault(id=1, points=pts, likelihood=np.ones(n, np.float32), strike_deg=np.zeros(n, np.float32),
+                  dip_deg=np.full(n, 84, np.float32), normals=np.tile(np.float32([1, 0, 0]), (n, 1)))
+    save_polydata(fault_surfaces([fault]), folder / "faults.vtp")
+    likelihood = np.random.default_rng(0).random((n_traces, 1, n_samples), dtype=np.float32) ** 8
+    _write_segy(folder / "fault_likelihood.sgy", likelihood)  # a line of a survey placed by its CDP X/Y
+    start = time.perf_counter()
+    job = run_render_job(folder, tmp_path / "f.png", window_size=(400, 300))
+    assert time.perf_counter() - start < 15.0
+    assert job.n_faults == 1 and _not_blank(tmp_path / "f.png", 0.02)[0]

@@ -175,6 +175,24 @@ def test_bad_input_gives_clear_errors():
         track_horizon(syn.cube, (5, 3, 30.0), half_trace=5)
 
 
+@pytest.mark.parametrize("method", ["global", "registration"])
+@pytest.mark.parametrize("shape, seed", [((20, 20, 64), (5, 3, 4.0)), ((40, 64), (5, 4.0))])
+def test_seed_without_a_pick_names_the_nearest_pick(method, shape, seed):
+    """A seed in a muted top: SeedError with the seed and the nearest pick on its trace (index space), for every
+    method and dimension."""
+    from seismo3d.errors import SeedError
+    from seismo3d.seismic import reflector_picks
+
+    cube = synthetic_cube(shape, n_faults=0, seed=0).cube.copy()
+    cube[..., :20] = 0.0
+    with pytest.raises(SeedError, match="no reflector pick") as caught:
+        track_horizon(cube, seed, method=method, progress=False)
+    trace = cube[tuple(int(v) for v in seed[:-1])]
+    first = reflector_picks(trace[None], polarity="peak")[0].min()
+    assert caught.value.seed == seed and caught.value.window == 5.0
+    assert caught.value.nearest == pytest.approx((*seed[:-1], first))
+
+
 def test_options_object_and_keywords_agree():
     syn = synthetic_cube((160, 128), n_faults=0, seed=1, noise=0.2)
     ref = syn.horizons[1]

@@ -67,3 +67,16 @@ def test_reflector_slice_snaps_to_its_picks():
     points, normals = sl.band(5, 9, np.full(5, t), 4.0)
     assert points.shape[1] == 2 and np.all(np.abs(points[:, 1] - t) <= 4.0) and normals.shape == points.shape
     assert sl.window(10, t).shape == (17,)
+
+
+def test_nearest_reflector_on_the_trace_or_the_nearest_trace_with_picks():
+    """On its own trace: the pick nearest in time at any distance; on a trace without picks: the laterally nearest
+    trace that has picks; none anywhere: None."""
+    from seismo3d.seismic.reflectors import nearest_reflector
+
+    times = np.array([10.0, 40.0, 25.0])
+    offsets = np.array([0, 2, 2, 2, 3])  # (2, 2) traces: picks on (0, 0) and (1, 1)
+    assert nearest_reflector(times, offsets, (2, 2), (0, 0, 30.0)) == (0.0, 0.0, 40.0)
+    assert nearest_reflector(times, offsets, (2, 2), (1, 0, 12.0)) == (0.0, 0.0, 10.0)  # tie (0, 0) / (1, 1): first
+    assert nearest_reflector(times, offsets, (2, 2), (0.9, 1.2, 0.0)) == (1.0, 1.0, 25.0)
+    assert nearest_reflector(np.zeros(0), np.zeros(3, np.int64), (2,), (0, 5.0)) is None

@@ -45,3 +45,11 @@ def test_plot_fault_slices_arguments(small_cube, tmp_path):
     with pytest.raises(InputError, match="does not exist"):
         plot_fault_slices(cube, res.faults, path=tmp_path / "no" / "x.png")
     assert not (tmp_path / "x.png").exists()
+
+
+@pytest.mark.parametrize("label, title", [("time (ms)", "time slice 204 ms"), ("depth (m)", "depth slice 204 m"),
+                                          ("sample", "sample slice 204")])
+def test_the_time_slice_title_has_its_unit(label, title):
+    from seismo3d.viz.faults import _slice_title
+
+    assert _slice_title(label, 204.0) == title

@@ -60,5 +60,5 @@ def test_render_a_map_folder(tmp_path):
     img = _pixels(out)
     assert ((img[..., 2] > 200) & (img[..., 0] < 60)).mean() > 0.001  # the keyframe pyramids
     (tmp_path / "empty").mkdir()
-    res = runner.invoke(app, ["render", str(tmp_path / "empty"), "-o", str(out)])
+    res = runner.invoke(app, ["render", str(tmp_path / "empty"), "-o", str(tmp_path / "empty.png")])
     assert res.exit_code == 2 and "mesh.ply" in res.stderr

@@ -199,3 +199,47 @@ def test_sliders_move_the_planes(tmp_path):
     plane = pl.actors["inline"].mapper.dataset
     np.testing.assert_allclose(np.unique(np.asarray(plane.points)[:, 0]), geo.to_world([(20, 0, 0)])[0, 0])
     pl.close()
+
+
+def _line():
+    """One crossline of the dipping layers: (24, 1, 40)."""
+    return _cube()[:, :1, :]
+
+
+def _coloured(img):
+    """Pixels of a colour (not grey, black or white): the grey seismic and the black text have none."""
+    return (np.abs(img[..., 0] - img[..., 1]) > 40) | (np.abs(img[..., 1] - img[..., 2]) > 40)
+
+
+def test_a_horizon_on_a_line_is_drawn_over_its_section(scene_dir):
+    """A horizon on one line is a curve (horizon_surface joins its picks), drawn over the section seen square on."""
+    shot = scene_dir / "line_horizon.png"
+    show_seismic(_line(), horizons=[np.full((SHAPE[0], 1), 20.0)], cmap="gray", camera="section", screenshot=shot,
+                 window_size=(320, 240))
+    img = _pixels(shot)
+    rows, cols = np.nonzero(_coloured(img)[: int(0.8 * 240), : int(0.8 * 320)])  # left of the bar, above the widget
+    assert rows.size > 100
+    assert np.ptp(cols) > 0.3 * 320 and np.ptp(rows) <= 12  # a flat curve across the section
+
+
+def test_fault_ids_and_amplitudes_in_bars_below_the_scene(scene_dir):
+    """No legend box over the data: fault ids and amplitudes are colour bars in the band below the scene."""
+    shot = scene_dir / "bars.png"
+    show_seismic(_cube(), faults=[_fault()], slices=(None, None, 30), screenshot=shot, window_size=(400, 300))
+    img = _pixels(shot)
+    band = img[int(0.82 * 300):]
+    fault_bar, amplitude_bar = band[:, int(0.62 * 400):int(0.93 * 400)], band[:, int(0.24 * 400):int(0.54 * 400)]
+    tab10_blue = (np.abs(fault_bar - [31, 119, 180]) < 25).all(axis=-1)
+    assert tab10_blue.mean() > 0.01  # fault 1's colour in the fault-id bar
+    red = (amplitude_bar[..., 0] > 150) & (amplitude_bar[..., 2] < 80)
+    blue = (amplitude_bar[..., 2] > 150) & (amplitude_bar[..., 0] < 80)
+    assert red.mean() > 0.01 and blue.mean() > 0.01  # the seismic colour map, both ends
+    corner = img[: int(0.3 * 300), int(0.8 * 400):]
+    assert not (np.abs(corner - [31, 119, 180]) < 25).all(axis=-1).any()  # no legend swatch top right
+
+
+def test_the_orientation_widget_arrow_points_up_and_says_so():
+    assert cube_geometry(SHAPE, sample_unit="ms").axis_labels() == ("inline", "crossline", "up")
+    trace_list = cube_geometry((10, 1, 20), lateral_names=("trace", ""), samples=4.0 * np.arange(20), sample_unit="ms")
+    assert trace_list.axis_labels()[0] == "trace"
+    assert trace_list.describe().startswith("traces 0-9, time 0-76 ms (down)")

@@ -64,5 +64,6 @@ def test_render_a_geotiff_with_its_lineaments_and_a_path(tmp_path):
     img = _pixels(out)
     assert (img.max(axis=-1) < 40).mean() > 0.002
     (tmp_path / "bad.csv").write_text("a,b\n1,2\n")
-    res = runner.invoke(app, ["render", str(tmp_path / "dem.tif"), "--path", str(tmp_path / "bad.csv"), "-o", str(out)])
+    res = runner.invoke(app, ["render", str(tmp_path / "dem.tif"), "--path", str(tmp_path / "bad.csv"), "-o",
+                              str(tmp_path / "bad.png")])
     assert res.exit_code == 2 and "seismo3d plan" in res.stderr

@@ -18,6 +18,8 @@ memory or by blocks of a cube stored on disk.
   (:func:`chunked_learned_likelihood`).
 - :mod:`~seismo3d.seismic.faults.pipeline_blocks`: the fault surfaces of a cube by blocks
   (:func:`chunked_fault_surfaces`).
+- :mod:`~seismo3d.seismic.faults.preflight`: a large cube judged from a sample of blocks before its full computation
+  (:func:`judge_sample`), and the smallest memory limit of a run by blocks (:func:`minimum_memory_limit`).
 
 The function :func:`~seismo3d.seismic.faults.dead_samples.dead_samples` is not re-exported here: its name is its
 module's.
@@ -39,6 +41,7 @@ from .likelihood_blocks import (
 )
 from .learned_blocks import chunked_learned_likelihood
 from .pipeline_blocks import ChunkedFaults, chunked_fault_surfaces, RIDGE_HALO
+from .preflight import CubeSample, SampleOptions, judge_sample, minimum_memory_limit
 
 __all__ = [
     "FaultLikelihood", "FaultScanOptions", "fault_likelihood", "fault_normals", "fault_strike_dip", "LearnedOptions",
@@ -51,5 +54,6 @@ __all__ = [
     "supported_faults",
     "FaultInterpretation", "FaultTracingOptions", "trace_faults", "ChunkOptions",
     "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit", "in_memory_bytes", "resident_memory",
-    "worker_baseline", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO",
+    "worker_baseline", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO", "CubeSample", "SampleOptions",
+    "judge_sample", "minimum_memory_limit",
 ]

@@ -48,7 +48,7 @@ from .likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitud
 from ..io.zarr_store import consolidate
 
 __all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
-           "in_memory_bytes", "resident_memory", "worker_baseline"]
+           "in_memory_bytes", "resident_memory", "smallest_block_bytes", "worker_baseline"]
 
 # Bytes of working memory per sample of a block (incl. halo), from the arrays each step holds at its peak: balancing
 # holds the amplitudes, their squares and two smoothing passes; the semblance step the balanced amplitudes, 3
@@ -210,15 +210,12 @@ def worker_baseline(chunking: ChunkOptions, input_chunk: int) -> int:
     return (resident_memory() if local else 256 << 20) + 2 * int(input_chunk)
 
 
-def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
+def _step_bytes(shape, options: FaultScanOptions) -> tuple:
+    """Bytes a block of ``b`` traces a side needs in the semblance (and decoding), balancing and scan steps: three
+    functions of ``b``."""
     n0, n1, nt = shape
-    tile = int(chunking.tile)
     m = -(-nt // scan_step(options, nt))
     bhalo, halo, shalo = balance_halo(options), semblance_halo(options), strike_halo(options)
-    limit = int(chunking.memory_limit or default_memory_limit())
-    # what the blocks may use: the limit less the process itself, less a fifth for the allocator's fragmentation
-    # (freed blocks that threads' arenas keep) and the reads in flight; measured 1.54 GB peak for 1.4 GB without it
-    budget = int((limit - baseline) * MEMORY_HEADROOM) // int(chunking.workers)
     n_axis = max(n0, n1)
 
     def semblance_bytes(b):
@@ -229,6 +226,40 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
 
     def scan_bytes(w):
         return n_axis * (w + 2 * shalo) * m * _SCAN_BYTES
+
+    return semblance_bytes, balance_bytes, scan_bytes
+
+
+def smallest_block_bytes(shape, options: FaultScanOptions | None = None, tile: int = 32) -> int:
+    """Bytes the largest step of :func:`chunked_fault_likelihood` needs with its smallest blocks (one ``tile`` a
+    side), on top of the process itself: what ``memory_limit`` must leave for it (before the headroom).
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    options : FaultScanOptions, optional
+    tile : int
+        Traces a side of the smallest block (:attr:`ChunkOptions.tile`).
+
+    Returns
+    -------
+    int
+    """
+    return int(max(f(int(tile)) for f in _step_bytes(tuple(int(n) for n in shape), options or FaultScanOptions())))
+
+
+def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
+    n0, n1, nt = shape
+    tile = int(chunking.tile)
+    m = -(-nt // scan_step(options, nt))
+    bhalo, halo, shalo = balance_halo(options), semblance_halo(options), strike_halo(options)
+    limit = int(chunking.memory_limit or default_memory_limit())
+    # what the blocks may use: the limit less the process itself, less a fifth for the allocator's fragmentation
+    # (freed blocks that threads' arenas keep) and the reads in flight; measured 1.54 GB peak for 1.4 GB without it
+    budget = int((limit - baseline) * MEMORY_HEADROOM) // int(chunking.workers)
+    n_axis = max(n0, n1)
+    semblance_bytes, balance_bytes, scan_bytes = _step_bytes(shape, options)
 
     block = int(chunking.block or largest_block(tile, 256, lambda b: semblance_bytes(b) <= budget))
     balance = largest_block(tile, 512, lambda b: balance_bytes(b) <= budget)

@@ -309,16 +309,16 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     # warnings about its dead or clipped samples that would not matter then
     arr = np.asarray(data)
     if arr.ndim in (2, 3) and min(arr.shape) < 3 and np.issubdtype(arr.dtype, np.number):
-        _check_size(arr.shape, opt)  # numbers, but below clean_traces' 3 samples per axis: the size message
+        check_size(arr.shape, opt)  # numbers, but below clean_traces' 3 samples per axis: the size message
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", Seismo3dWarning)
         cleaned = clean_traces(arr)
-    _check_size(cleaned.data.shape, opt)
+    check_size(cleaned.data.shape, opt)
     for w in caught:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     arr, dead = cleaned.data, cleaned.dead
     del cleaned
-    _check_amplitudes(arr, dead, opt)
+    check_amplitudes(arr, dead, opt)
     with progress_steps(7, "faults", enabled=progress) as bar:
         bar.start("fault likelihood")
         if likelihood is None:
@@ -376,8 +376,20 @@ def _given_likelihood(fl, shape: tuple) -> FaultLikelihood:
     return FaultLikelihood(*arrays)
 
 
-def _check_size(shape: tuple, opt: FaultTracingOptions) -> None:
-    """Refuse data too small for the scan and the voting boxes."""
+def check_size(shape: tuple, opt: FaultTracingOptions) -> None:
+    """Refuse data too small for the scan and the voting boxes.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        ``(n_inlines, n_xlines, n_samples)`` or ``(n_traces, n_samples)``.
+    opt : FaultTracingOptions
+
+    Raises
+    ------
+    UnsupportedDataError
+        Fewer traces or samples than ``opt.min_traces`` / ``opt.min_samples``.
+    """
     lateral = sorted(shape[:-1], reverse=True)
     need = list(opt.min_traces[: len(lateral)])
     if any(n < m for n, m in zip(lateral, need)) or shape[-1] < opt.min_samples:
@@ -391,8 +403,23 @@ def _check_size(shape: tuple, opt: FaultTracingOptions) -> None:
             "trace a larger cube or section")
 
 
-def _check_amplitudes(arr: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions) -> None:
-    """Refuse data whose traces do not oscillate like seismic amplitudes."""
+def check_amplitudes(arr: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions) -> None:
+    """Refuse data whose traces do not oscillate like seismic amplitudes (median zero crossings per 100 samples below
+    ``opt.min_crossings``, over up to about 4000 live traces).
+
+    Parameters
+    ----------
+    arr : (..., n_samples) float ndarray
+        Amplitudes (NaN-free, as :func:`~seismo3d.seismic.faults.dead_samples.clean_traces` returns them).
+    dead : bool ndarray of ``arr``'s shape
+        Dead samples.
+    opt : FaultTracingOptions
+
+    Raises
+    ------
+    UnsupportedDataError
+        Every trace dead, or too few zero crossings.
+    """
     live = ~dead.all(axis=-1)
     traces = arr[live] if arr.ndim == 2 else arr.reshape(-1, arr.shape[-1])[live.ravel()]
     traces = traces[:: max(1, traces.shape[0] // 4000)].astype(np.float64)
@@ -415,7 +442,11 @@ def _check_saturation(likelihood: np.ndarray, near_dead, opt: FaultTracingOption
         return
     high = float(np.count_nonzero(values > 0.9)) / float(values.size)
     if high > opt.max_saturated:
-        raise UnsupportedDataError(
-            f"the fault likelihood is above 0.9 at {high:.0%} of the samples: the data has no lateral coherence to "
-            "trace faults in (noise, chaotic reflections, or traces out of order); check the inline/crossline "
+        raise UnsupportedDataError(no_coherence_message(high))
+
+
+def no_coherence_message(fraction: float) -> str:
+    """The refusal of data without lateral coherence, its likelihood above 0.9 at ``fraction`` of the samples."""
+    return (f"the fault likelihood is above 0.9 at {fraction:.0%} of the samples: the data has no lateral coherence "
+            "to trace faults in (noise, chaotic reflections, or traces out of order); check the inline/crossline "
             "geometry or the file")

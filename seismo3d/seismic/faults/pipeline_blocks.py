@@ -44,14 +44,14 @@ from ..io.zarr_store import consolidate
 from .dead_samples import DEAD_REACH, dead_samples, fill_values, near_dead_samples
 from .evidence import supported_faults
 from .likelihood_blocks import ChunkOptions, default_memory_limit, resident_memory, worker_baseline
-from .pipeline import FaultTracingOptions
+from .pipeline import FaultTracingOptions, no_coherence_message
 from .skins import skins_from_cells
 from .surfaces import thin_faults
 from .throw import fault_throws
 from .voting import fault_frames, greedy_seeds, surface_votes
 from .windows import StoredWindows
 
-__all__ = ["ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO"]
+__all__ = ["CANDIDATE_BYTES", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO", "smallest_block_bytes"]
 
 # Lateral halo of the ridges (thin_faults with its defaults): the Gaussian of sigma 1.5 (5 traces), the average along
 # the dip over +-4 samples on planes steeper than 45 degrees (4 traces, +1 for the bilinear reads), and the
@@ -76,7 +76,7 @@ _THIN_BYTES = 44
 # Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
 # frames, links, labels, the merging's KD-tree; measured 219-234 bytes a cell on 1.4 M cells of a 512^3 cube, 250 on
 # the 11 M cells of a 1448 x 1448 x 512 one).
-_CANDIDATE_BYTES = 80  # points, values, angles (36), the sort keys, order and sorted copy
+CANDIDATE_BYTES = 80  # points, values, angles (36), the sort keys, order and sorted copy
 _CELL_BYTES = 240
 
 
@@ -143,13 +143,11 @@ def _amplitude_halo() -> int:
     return max(RIDGE_HALO + DEAD_REACH[0], structure_tensor_halo()[0])
 
 
-def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
-    n0, n1, nt = shape
-    tile = int(chunking.tile)
-    limit = int(chunking.memory_limit or default_memory_limit())
-    budget = int((limit - baseline) * MEMORY_HEADROOM) // int(chunking.workers)
+def _step_bytes(shape, opt: FaultTracingOptions) -> dict:
+    """Bytes a block of ``b`` traces a side needs in each step (dead samples, ridges, voting, thinning): functions of
+    ``b`` by step name."""
+    nt = shape[2]
     reach = opt.voting.reach(shape)
-    cap = max(n0, n1)
     threads = numba.get_num_threads()
 
     def dead_bytes(b):
@@ -166,8 +164,38 @@ def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int
     def thin_bytes(b):
         return (b + 2 * _THIN_HALO) ** 2 * nt * _THIN_BYTES
 
+    return {"dead": dead_bytes, "ridge": ridge_bytes, "vote": vote_bytes, "thin": thin_bytes}
+
+
+def smallest_block_bytes(shape, options: FaultTracingOptions | None = None, tile: int = 32) -> int:
+    """Bytes the largest step of :func:`chunked_fault_surfaces` needs with its smallest blocks (one ``tile`` a side),
+    on top of the process itself: what ``memory_limit`` must leave for it (before the headroom).
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    options : FaultTracingOptions, optional
+    tile : int
+        Traces a side of the smallest block (:attr:`~seismo3d.seismic.faults.likelihood_blocks.ChunkOptions.tile`).
+
+    Returns
+    -------
+    int
+    """
+    steps = _step_bytes(tuple(int(n) for n in shape), options or FaultTracingOptions())
+    return int(max(need(int(tile)) for need in steps.values()))
+
+
+def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
+    n0, n1, nt = shape
+    tile = int(chunking.tile)
+    limit = int(chunking.memory_limit or default_memory_limit())
+    budget = int((limit - baseline) * MEMORY_HEADROOM) // int(chunking.workers)
+    reach = opt.voting.reach(shape)
+    cap = max(n0, n1)
     sizes = {}
-    for name, need in (("dead", dead_bytes), ("ridge", ridge_bytes), ("vote", vote_bytes), ("thin", thin_bytes)):
+    for name, need in _step_bytes(shape, opt).items():
         top = int(chunking.block) if chunking.block else min(cap, 512)
         sizes[name] = largest_block(tile, top, lambda b, need=need: need(b) <= budget)
         if need(sizes[name]) > budget:
@@ -296,10 +324,7 @@ def _surfaces(run: _SurfaceRun, x, manifest: dict, memory: int) -> dict:
         fill = run.fill_values(x, lo, hi)
         saturated = run.ridges(x, fill, lo, hi)
         if saturated > opt.max_saturated:
-            raise UnsupportedDataError(
-                f"the fault likelihood is above 0.9 at {saturated:.0%} of the samples: the data has no lateral "
-                "coherence to trace faults in (noise, chaotic reflections, or traces out of order); check the "
-                "inline/crossline geometry or the file")
+            raise UnsupportedDataError(no_coherence_message(saturated))
         seeds, frames = run.seeds(memory)
         run.votes(seeds, frames)
         del seeds, frames
@@ -434,8 +459,8 @@ class _SurfaceRun(BlockRun):
         if not path.exists():
             files = sorted((self.work / "candidates").glob("*.npz"))
             n = sum(int(np.load(f)["values"].size) for f in files)
-            if n * _CANDIDATE_BYTES > memory - resident_memory():
-                raise InputError(f"{n} seed candidates need about {n * _CANDIDATE_BYTES / 2**30:.2f} GiB, more than "
+            if n * CANDIDATE_BYTES > memory - resident_memory():
+                raise InputError(f"{n} seed candidates need about {n * CANDIDATE_BYTES / 2**30:.2f} GiB, more than "
                                  "the memory limit leaves: raise memory_limit")
             parts = [np.load(f) for f in files]
             points = np.concatenate([q["points"] for q in parts]) if parts else np.zeros((0, 3), np.int64)

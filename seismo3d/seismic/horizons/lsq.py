@@ -52,11 +52,12 @@ from scipy.sparse.linalg import LinearOperator, cg
 
 from ..._progress import progress_steps
 from ...errors import InputError
-from ..reflectors import nearest_pick, reflector_picks
+from ..reflectors import nearest_pick, nearest_reflector, reflector_picks
 from .correlation import _pair_lags, neighbour_confidence, window_correlation
 from .cycle_cut import cycle_cut
 from .dp import dp_picks, line_slopes, reflector_period, settle_lone_departures
 from .fault_crossings import FaultCrossings
+from .result import no_pick_error
 
 __all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "window_correlation", "solve_horizon", "cycle_skips",
            "pair_agreement", "lsq_horizon"]
@@ -387,7 +388,7 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
 
     Raises
     ------
-    InputError
+    SeedError
         A seed with no extremum of ``polarity`` within ``seed_snap`` samples.
     """
     opt = options
@@ -400,8 +401,7 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     seed_t = np.array([nearest_pick(picks, offsets, k, s[-1], opt.seed_snap) for k, s in zip(seed_idx, seeds)])
     for s, t0 in zip(seeds, seed_t):
         if not np.isfinite(t0):
-            raise InputError(f"seed {tuple(float(x) for x in s)} has no reflector pick of the requested polarity "
-                             f"within {opt.seed_snap} samples; move it onto the event or choose another polarity")
+            raise no_pick_error(s, opt.seed_snap, nearest_reflector(picks, offsets, lat, s))
     a, b, dist, axis = trace_pairs(lat, opt.pair_distances)
     # start flat at the seeds' time; the first solves use the short pairs only (coarse to fine)
     t = np.full(n, float(np.mean(seed_t)))

@@ -16,7 +16,7 @@ from scipy.ndimage import distance_transform_edt
 
 from ..._atomic import atomic_path
 from ..._validation import check_positive
-from ...errors import InputError
+from ...errors import InputError, SeedError
 
 __all__ = ["Horizon", "as_seeds", "check_live_seed", "fill_horizon", "write_horizon_text"]
 
@@ -96,12 +96,43 @@ def as_seeds(seeds, shape) -> np.ndarray:
 
 
 def check_live_seed(data: np.ndarray, seed: np.ndarray) -> None:
-    """Raise :class:`InputError` when ``seed`` (an index position, last coordinate the sample) lies on a dead trace
-    of ``data`` (all samples equal)."""
+    """Raise :class:`~seismo3d.errors.SeedError` when ``seed`` (an index position, last coordinate the sample) lies
+    on a dead trace of ``data`` (all samples equal); its ``nearest`` is the nearest live trace at the seed's
+    sample."""
     trace = data[tuple(int(round(v)) for v in seed[:-1])]
     if np.ptp(trace) == 0:
-        raise InputError(f"seed {tuple(float(x) for x in seed)} is on a dead trace (all samples equal {trace[0]}); "
-                         "move the seed to a live trace")
+        live = np.argwhere(np.ptp(data, axis=-1) > 0)
+        nearest = None
+        if live.size:
+            at = live[np.argmin(((live - np.asarray(seed[:-1], np.float64)) ** 2).sum(axis=1))]
+            nearest = (*at, seed[-1])
+        raise SeedError(f"seed {_position(seed)} is on a dead trace (all samples equal {trace[0]}); move the seed to "
+                        "a live trace" + ("" if nearest is None else f", e.g. {_position(nearest)}"), seed, nearest)
+
+
+def no_pick_error(seed, window: float, nearest) -> SeedError:
+    """The error of a seed with no reflector pick of the requested polarity within ``window`` samples.
+
+    Parameters
+    ----------
+    seed : sequence of float
+        Index position, the sample last.
+    window : float
+        The snapping distance searched, samples.
+    nearest : sequence of float or None
+        The nearest position with a pick (:func:`~seismo3d.seismic.reflectors.nearest_reflector`).
+
+    Returns
+    -------
+    SeedError
+    """
+    where = "" if nearest is None else f" (the nearest is at {_position(nearest)})"
+    return SeedError(f"seed {_position(seed)} has no reflector pick of the requested polarity within {window:g} "
+                     f"samples{where}; move it onto the event or choose another polarity", seed, nearest, window)
+
+
+def _position(values) -> str:
+    return "(" + ", ".join(f"{float(v):g}" for v in values) + ")"
 
 
 def fill_horizon(horizon: Horizon, *, max_gap: float | None = None) -> Horizon:

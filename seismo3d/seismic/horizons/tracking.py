@@ -64,12 +64,12 @@ from ..._progress import progress_steps
 from ..._validation import as_seismic, check_choice
 from ...errors import DegenerateGeometryWarning, InputError, RegistrationError
 from ...registration import ICPOptions, fused_icp, icp
-from ..reflectors import POLARITIES, ReflectorSlice, nearest_pick, reflector_picks
+from ..reflectors import POLARITIES, ReflectorSlice, nearest_pick, nearest_reflector, reflector_picks
 from ..traces import ncc, ncc_lag_search, waveform
 from .fault_crossings import FaultCrossings
 from .lsq import lsq_horizon
 from .options import TrackingOptions
-from .result import Horizon, as_seeds, check_live_seed
+from .result import Horizon, as_seeds, check_live_seed, no_pick_error
 
 __all__ = ["TrackingOptions", "track_horizon", "despike", "close_gaps"]
 
@@ -523,10 +523,11 @@ def _track_global(arr, seeds, polarity, opt: TrackingOptions, crossings: FaultCr
 
 
 def _snap_seed(sl: ReflectorSlice, j: int, t: float, window: float, seed) -> float:
+    """The seed's pick on trace ``j`` of its slice (the seed's inline in 3D); SeedError naming the nearest pick."""
     t0 = sl.snap(j, t, window)
     if not np.isfinite(t0):
-        raise InputError(f"seed {tuple(float(x) for x in seed)} has no reflector pick of the requested polarity within "
-                         f"{window} samples; move it onto the event or choose another polarity")
+        nearest = nearest_reflector(sl.t, sl.offsets, (sl.n_traces,), (j, t))
+        raise no_pick_error(seed, window, None if nearest is None else (*seed[:-2], *nearest))
     return t0
 
 

@@ -1,0 +1,144 @@
+"""The faults job decides its refusals before the full computation (issue 32): data without lateral coherence from a
+sample of blocks, a memory limit too small with the smallest one that works, and no negative sizes in any message."""
+
+import logging
+import re
+import time
+
+import numpy as np
+import pytest
+import segyio
+from typer.testing import CliRunner
+
+import seismo3d.jobs.faults as job
+from seismo3d.cli import app
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import UnsupportedDataError
+from seismo3d.seismic.faults.preflight import CubeSample
+
+runner = CliRunner()
+
+
+def _never(*args, **kwargs):  # pragma: no cover - must not be called
+    raise AssertionError("the full computation started")
+
+
+def _error_line(result) -> str:
+    """The refusal: exit 2, one 'error:' line, the last on stderr (after progress lines), no traceback."""
+    lines = [line for line in result.stderr.splitlines() if line.strip()]
+    assert result.exit_code == 2 and isinstance(result.exception, SystemExit), result.output
+    assert [line for line in lines if line.startswith("error: ")] == lines[-1:], result.stderr
+    return lines[-1]
+
+
+@pytest.fixture(scope="module")
+def cube_file(tmp_path_factory):
+    """A 128^3 SEG-Y cube: in memory it needs ~200 MB beyond the process, more than the limits below leave."""
+    path = tmp_path_factory.mktemp("cube") / "cube.sgy"
+    segyio.tools.from_array3D(str(path), synthetic_cube((128, 128, 128), seed=2).cube.astype(np.float32), format=5,
+                              dt=4000)
+    return path
+
+
+def test_a_limit_below_the_smallest_blocks_names_the_minimum_at_once(cube_file, tmp_path, monkeypatch):
+    monkeypatch.setattr(job, "chunked_fault_likelihood", _never)
+    monkeypatch.setattr(job, "judge_sample", _never)
+    line = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
+                                               "--memory-limit", "100MB"]))
+    assert line.startswith("error: cube: a block-by-block run of its 128 x 128 x 128 samples needs a memory limit of "
+                           "at least ")
+    assert "more than the 100MB given" in line and not re.search(r"-\d", line)
+    need = re.search(r"pass --memory-limit (\d+)MB or more$", line).group(1)
+    assert not (tmp_path / "out").exists()
+
+    class Sampled(Exception):
+        pass
+
+    def sampled(*args, **kwargs):
+        raise Sampled
+
+    monkeypatch.setattr(job, "judge_sample", sampled)  # the limit named passes this check: the sample comes next
+    with pytest.raises(Sampled):
+        job.run_faults_job(cube_file, tmp_path / "out", memory_limit=f"{need}MB", progress=False)
+
+
+def test_the_seed_candidates_a_sample_predicts_raise_the_minimum(cube_file, tmp_path, monkeypatch):
+    from seismo3d.seismic.faults.likelihood_blocks import resident_memory
+
+    dense = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1.0)  # 2 M candidates
+    monkeypatch.setattr(job, "judge_sample", lambda *a, **k: dense)
+    monkeypatch.setattr(job, "chunked_fault_likelihood", _never)
+    limit = f"{(resident_memory() + (150 << 20)) // 10**6}MB"  # the smallest blocks fit, 168 MB of candidates do not
+    line = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
+                                           "--memory-limit", limit]))
+    assert "(with the ~2097152 seed candidates a sample of its blocks predicts)" in line
+    need = int(re.search(r"pass --memory-limit (\d+)MB or more$", line).group(1))
+    assert need * 10**6 >= 2097152 * 80
+
+
+def test_progress_lines_have_no_negative_sizes(cube_file, tmp_path, monkeypatch, caplog):
+    """A limit below the process's own size: the lines say what the process holds, never a negative size left."""
+    monkeypatch.setattr(job, "judge_sample", lambda *a, **k: CubeSample(3, 1, 0.1, 0.0))
+    monkeypatch.setattr(job, "minimum_memory_limit", lambda *a, **k: 0)  # let the run reach its first step
+
+    class Started(Exception):
+        pass
+
+    def started(*args, **kwargs):
+        raise Started
+
+    monkeypatch.setattr(job, "chunked_fault_likelihood", started)
+    with caplog.at_level(logging.INFO, logger="seismo3d"), pytest.raises(Started):
+        job.run_faults_job(cube_file, tmp_path / "out", memory_limit="100MB", progress=False)
+    assert "block by block" in caplog.text and not re.search(r"-\d", caplog.text)
+
+
+@pytest.fixture(scope="module")
+def noise_file(tmp_path_factory):
+    """The issue's cube: 400 x 400 x 500 float32 white noise as SEG-Y (358 MB)."""
+    path = tmp_path_factory.mktemp("noise") / "noise.sgy"
+    noise = np.random.default_rng(0).standard_normal((400, 400, 500), dtype=np.float32)
+    segyio.tools.from_array3D(str(path), noise, format=5, dt=4000)
+    return path
+
+
+@pytest.mark.slow
+def test_white_noise_under_1GB_is_refused_within_30_s(noise_file, tmp_path):
+    """As a user runs it: a fresh process (this one is larger than 1 GB after a test session), imports included."""
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    start = time.perf_counter()
+    done = subprocess.run([sys.executable, "-m", "seismo3d.cli", "faults", str(noise_file), "-o", str(tmp_path / "out"),
+                           "--memory-limit", "1GB"], capture_output=True, text=True, env=env, timeout=300)
+    seconds = time.perf_counter() - start
+    assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
+    assert done.stderr.splitlines()[-1] == (
+        "error: in a sample of 3 blocks of 48 x 48 traces, the fault likelihood is above 0.9 at 100% of the samples: "
+        "the data has no lateral coherence to trace faults in (noise, chaotic reflections, or traces out of order); "
+        "check the inline/crossline geometry or the file")
+    assert seconds <= 30.0
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.slow
+def test_white_noise_under_100MB_names_the_minimum_before_any_block(noise_file, tmp_path, monkeypatch):
+    monkeypatch.setattr(job, "chunked_fault_likelihood", _never)
+    monkeypatch.setattr(job, "judge_sample", _never)
+    line = _error_line(runner.invoke(app, ["faults", str(noise_file), "-o", str(tmp_path / "out"),
+                                               "--memory-limit", "100MB"]))
+    size = r"\d+(\.\d)?[MG]B"  # this process's size sets the minimum: MB alone, GB after a long test session
+    assert re.search(rf"needs a memory limit of at least {size} for its smallest blocks alone, more than the 100MB "
+                     rf"given \(this process alone holds {size}\); pass --memory-limit {size} or more$", line)
+
+
+@pytest.mark.slow
+def test_noise_in_memory_is_refused_from_a_sample(tmp_path, monkeypatch):
+    """A cube traced in memory but large enough to sample: refused before its whole likelihood."""
+    path = tmp_path / "noise.npy"
+    np.save(path, np.random.default_rng(1).standard_normal((300, 300, 320), dtype=np.float32))
+    monkeypatch.setattr(job, "trace_faults", _never)
+    with pytest.raises(UnsupportedDataError, match="in a sample of 3 blocks"):
+        job.run_faults_job(path, tmp_path / "out", progress=False)

@@ -1,0 +1,97 @@
+"""Judging a cube from a sample of blocks before tracing its faults, and the smallest memory limit of a block-by-block
+run (seismo3d.seismic.faults.preflight)."""
+
+import numpy as np
+import pytest
+
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import InputError, UnsupportedDataError
+from seismo3d.seismic.faults import likelihood_blocks, pipeline_blocks
+from seismo3d.seismic.faults.likelihood import FaultScanOptions
+from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions
+from seismo3d.seismic.faults.pipeline import FaultTracingOptions
+from seismo3d.seismic.faults.preflight import CubeSample, SampleOptions, judge_sample, minimum_memory_limit
+
+
+class Recording:
+    """An array that records the samples read from it."""
+
+    def __init__(self, data):
+        self.data, self.shape, self.read = data, data.shape, 0
+
+    def __getitem__(self, region):
+        block = self.data[region]
+        self.read += block.size
+        return block
+
+
+SMALL = SampleOptions(n_blocks=2, traces=32, samples=96)  # a quick sample for tests
+
+
+@pytest.mark.slow
+def test_noise_is_refused_from_a_sample_reading_only_the_sample():
+    noise = Recording(np.random.default_rng(0).standard_normal((160, 160, 400)).astype(np.float32))
+    with pytest.raises(UnsupportedDataError, match=r"^in a sample of 2 blocks of 32 x 32 traces, the fault likelihood "
+                                                   r"is above 0.9 at 100% of the samples: the data has no lateral "
+                                                   r"coherence"):
+        judge_sample(noise, sample=SMALL)
+    assert noise.read == 2 * 32 * 32 * 96
+
+
+def test_a_velocity_model_is_refused_from_a_sample():
+    t = np.linspace(0.0, 1.0, 200)
+    model = 1500.0 + 2500.0 * t[None, None, :] + np.linspace(0, 50, 64)[:, None, None] + np.zeros((64, 64, 1))
+    with pytest.raises(UnsupportedDataError, match="not seismic amplitude data"):
+        judge_sample(model.astype(np.float32))
+
+
+def test_a_cube_too_small_is_refused_before_reading():
+    tiny = Recording(np.zeros((20, 6, 100), np.float32))
+    with pytest.raises(UnsupportedDataError, match="fault tracing needs at least 32 traces"):
+        judge_sample(tiny)
+    assert tiny.read == 0
+
+
+@pytest.mark.slow
+def test_seismic_passes_with_its_seed_candidates():
+    cube = synthetic_cube((64, 64, 160), seed=2).cube
+    sample = judge_sample(cube, sample=SMALL)
+    assert sample.n_blocks == 2 and sample.n_samples == 2 * 32 * 32 * 96
+    assert sample.saturated_fraction < 0.5  # far from the refusal
+    assert 0.0 < sample.candidate_density < 0.2
+    assert sample.candidates((100, 100, 100)) == int(np.ceil(sample.candidate_density * 1e6))
+
+
+@pytest.mark.parametrize("shape", [(128, 128, 128), (400, 400, 500), (96, 300, 64)])
+def test_minimum_memory_limit_is_what_both_stages_plan_with(shape):
+    """At the minimum both block-by-block stages plan their blocks (the second from a process grown by the stage
+    growth); 1 MiB less and one of them refuses."""
+    baseline, growth = 300 << 20, 50 << 20
+    limit = minimum_memory_limit(shape, baseline=baseline, growth=growth)
+
+    def plans(memory_limit):
+        chunking = ChunkOptions(memory_limit=memory_limit)
+        likelihood_blocks._plan(shape, FaultScanOptions(), chunking, baseline)
+        pipeline_blocks._plan(shape, FaultTracingOptions(), chunking, baseline + growth)
+
+    plans(limit)
+    with pytest.raises(InputError, match="raise memory_limit"):
+        plans(limit - (1 << 20))
+
+
+def test_minimum_memory_limit_holds_the_predicted_seed_candidates():
+    shape = (400, 400, 500)
+    plain = minimum_memory_limit(shape, baseline=0, growth=0)
+    dense = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.05)
+    with_candidates = minimum_memory_limit(shape, baseline=0, sample=dense, growth=0)
+    assert with_candidates == dense.candidates(shape) * pipeline_blocks.CANDIDATE_BYTES > plain
+    sparse = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1e-6)
+    assert minimum_memory_limit(shape, baseline=0, sample=sparse, growth=0) == plain
+
+
+def test_sample_options_are_checked():
+    with pytest.raises(InputError, match="n_blocks"):
+        SampleOptions(n_blocks=9)
+    with pytest.raises(InputError, match="saturated"):
+        SampleOptions(saturated=1.5)
+    assert SampleOptions().worth_sampling((400, 400, 500)) and not SampleOptions().worth_sampling((128, 128, 128))

@@ -336,11 +336,13 @@ def main(argv=None) -> None:
     parser.add_argument("--learning-rate", type=float, default=defaults.learning_rate)
     parser.add_argument("--seed", type=int, default=defaults.seed)
     parser.add_argument("--threads", type=int, default=defaults.threads)
+    parser.add_argument("--n-validation", type=int, default=defaults.n_validation)
+    parser.add_argument("--log-every", type=int, default=defaults.log_every)
     a = parser.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s")
     options = TrainingOptions(channels=tuple(int(v) for v in a.channels.split(",")), steps=a.steps,
                               batch_size=a.batch_size, patch=a.patch, learning_rate=a.learning_rate, seed=a.seed,
-                              threads=a.threads)
+                              threads=a.threads, n_validation=a.n_validation, log_every=a.log_every)
     record = train(options, a.out)
     print(f"validation {record['validation']}; weights sha256 {record['weights_sha256']}")
 

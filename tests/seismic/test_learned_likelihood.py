@@ -138,14 +138,21 @@ def test_cube_directions_keep_the_larger_probability():
 
 
 def test_training_smoke(tmp_path):
-    pytest.importorskip("torch")
-    from seismo3d.training.fault_unet import TrainingOptions, train
+    """A few training steps on tiny sections with the training script's command line, in its own process (PyTorch's
+    and numba's thread pools do not share one process safely)."""
+    import json
+    import subprocess
+    import sys
 
-    record = train(TrainingOptions(channels=(4, 8, 8, 8), steps=2, batch_size=2, patch=32, n_validation=2,
-                                   log_every=1, threads=1), tmp_path)
-    weights = dict(np.load(tmp_path / "fault_unet.npz"))
-    assert record["weights_sha256"] == hashlib.sha256((tmp_path / "fault_unet.npz").read_bytes()).hexdigest()
-    check = np.load(tmp_path / "fault_unet_check.npz")
+    pytest.importorskip("torch")
+    out = tmp_path / "run"
+    subprocess.run([sys.executable, "-m", "seismo3d.training.fault_unet", "--out", str(out), "--steps", "2",
+                    "--batch-size", "2", "--patch", "32", "--channels", "4,8,8,8", "--threads", "1",
+                    "--n-validation", "2", "--log-every", "1"], check=True, capture_output=True, timeout=300)
+    record = json.loads((out / "fault_unet.json").read_text())
+    weights = dict(np.load(out / "fault_unet.npz"))
+    assert record["weights_sha256"] == hashlib.sha256((out / "fault_unet.npz").read_bytes()).hexdigest()
+    check = np.load(out / "fault_unet_check.npz")
     assert np.abs(unet_forward(check["section"][None], weights)[0] - check["probability"]).max() <= 1e-5
     assert [h["step"] for h in record["history"]] == [1, 2]
 

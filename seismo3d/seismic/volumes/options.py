@@ -45,7 +45,10 @@ class VolumeOptions:
         decimation of 2, 0.30 at 4; a velocity model: 0.97 at 8) ...
     min_contrast : float
         ... then the envelope of the traces while its spread is this fraction of its mean (f3_crop: 0.5 at 8; the
-        clipped Penobscot amplitudes: 0.09 at 4); the samples are decimated no further.
+        clipped Penobscot amplitudes: 0.09 at 4) ...
+    min_amplitude : float
+        ... then the smoothed amplitudes while they keep this fraction of their variance (Penobscot: 0.12 at 4, 0.03
+        at 8); the samples are decimated no further. Both volumes hold the same kind on each level.
     n_points : int
         About this many samples of each volume are correlated per level.
     max_iterations : int
@@ -94,6 +97,7 @@ class VolumeOptions:
     smooth_property: float = 0.9
     keep_amplitude: float = 0.35
     min_contrast: float = 0.25
+    min_amplitude: float = 0.1
     n_points: int = 20_000
     max_iterations: int = 20
     tolerance: float = 0.02
@@ -120,7 +124,7 @@ class VolumeOptions:
         if factor & (factor - 1):
             raise InputError(f"max_factor must be a power of 2 (1, 2, 4, 8, ...); got {factor}")
         for name in ("max_rotation", "rotation_step", "tolerance", "taper", "min_fraction", "max_disagreement",
-                     "keep_amplitude", "min_contrast", "smooth_property",
+                     "keep_amplitude", "min_contrast", "min_amplitude", "smooth_property",
                      "max_rotation_disagreement", "max_scale_disagreement", "control_shift", "control_ratio"):
             check_positive(getattr(self, name), name)
         if not self.max_anisotropy >= 1.0:

@@ -5,8 +5,9 @@ inline, crossline and sample after a Gaussian smoothing of width ``factor / 2``.
 amplitudes while the smoothing keeps enough of their variance (``keep_amplitude``: a smooth property such as a
 velocity keeps almost all of it at any level), else the envelope of the traces (instantaneous amplitude: smooth, so
 a vertical misfit of a few samples does not flip the sign of the correlation) while it still varies
-(``min_contrast``: the envelope of heavily clipped amplitudes hardly does); the samples are decimated no further than
-that.
+(``min_contrast``), else the smoothed amplitudes while a little of them is left (``min_amplitude``: the envelope of
+heavily clipped amplitudes is flat); the samples are decimated no further than that, the traces may be. Both volumes
+hold the same kind on each level.
 """
 
 from __future__ import annotations
@@ -19,8 +20,8 @@ from scipy import fft, ndimage as ndi
 
 from .model import homogeneous_diag
 
-__all__ = ["Sampled", "Samples", "level_factors", "vertical_contents", "build_level", "envelope", "live_traces",
-           "to_level", "from_level"]
+__all__ = ["Sampled", "Samples", "level_factors", "smoothing_measures", "level_kind", "build_level", "envelope",
+           "live_traces", "to_level", "from_level"]
 
 
 def live_traces(volume) -> np.ndarray:
@@ -57,29 +58,48 @@ def level_factors(shape, *, min_lateral: int, min_vertical: int, max_factor: int
     return tuple(out)
 
 
-def vertical_contents(volume, env, live, max_vertical: int, *, keep_amplitude: float,
-                      min_contrast: float) -> list[str]:
-    """What each vertical decimation factor 1, 2, 4, ... up to ``max_vertical`` holds: ``'amplitude'`` while the
-    Gaussian smoothing of width ``factor / 2`` keeps ``keep_amplitude`` of the amplitudes' variance, then
-    ``'envelope'`` while the smoothed envelope's spread is ``min_contrast`` of its mean (``env`` None: never); the
-    list stops at the first factor where neither holds."""
+def smoothing_measures(volume, env, live, factor: int) -> tuple[float, float]:
+    """What a Gaussian of width ``factor / 2`` samples along the traces leaves: the fraction of the amplitudes'
+    variance it keeps, and the spread of the smoothed envelope over its mean (NaN without ``env``)."""
+    if factor == 1:
+        return 1.0, float("inf")
     amp = volume[live].astype(np.float64)
-    envelope_raw = None if env is None else env[live].astype(np.float64)
-    out = ["amplitude"]
-    factor = 2
-    while factor <= max_vertical:
-        kept = ndi.gaussian_filter1d(amp, factor / 2.0, axis=-1, mode="nearest").var() / max(amp.var(), 1e-12)
-        if kept >= keep_amplitude and out[-1] == "amplitude":
-            out.append("amplitude")
-        elif envelope_raw is None:
-            break
-        else:
-            smooth_env = ndi.gaussian_filter1d(envelope_raw, factor / 2.0, axis=-1, mode="nearest")
-            if smooth_env.std() < min_contrast * abs(smooth_env.mean()):
-                break
-            out.append("envelope")
-        factor *= 2
-    return out
+    kept = ndi.gaussian_filter1d(amp, factor / 2.0, axis=-1, mode="nearest").var() / max(amp.var(), 1e-12)
+    if env is None:
+        return float(kept), float("nan")
+    smooth = ndi.gaussian_filter1d(env[live].astype(np.float64), factor / 2.0, axis=-1, mode="nearest")
+    return float(kept), float(smooth.std() / max(abs(smooth.mean()), 1e-12))
+
+
+def level_kind(measures, finer: str | None, *, keep_amplitude: float, min_contrast: float,
+               min_amplitude: float) -> str | None:
+    """What a level holds, the same for both volumes so that they are compared like with like.
+
+    Parameters
+    ----------
+    measures : list of (float, float)
+        Each volume's :func:`smoothing_measures` at its vertical factor on this level.
+    finer : {'amplitude', 'envelope'} or None
+        What the next finer level holds (None for the finest).
+    keep_amplitude, min_contrast, min_amplitude : float
+        ``'amplitude'`` while every volume keeps ``keep_amplitude`` of its variance (and the finer levels hold
+        amplitudes); then ``'envelope'`` while every volume's envelope spreads ``min_contrast`` of its mean; else
+        the smoothed amplitudes while every volume keeps ``min_amplitude`` of its variance (amplitudes clipped
+        until their envelope is flat still have their low frequencies).
+
+    Returns
+    -------
+    {'amplitude', 'envelope'} or None
+        None when nothing holds: the samples are decimated no further.
+    """
+    kept = [k for k, _ in measures]
+    if min(kept) >= keep_amplitude and finer in (None, "amplitude"):
+        return "amplitude"
+    if all(c >= min_contrast for _, c in measures):  # NaN (no envelope) fails
+        return "envelope"
+    if min(kept) >= min_amplitude and finer in (None, "amplitude"):
+        return "amplitude"
+    return None
 
 
 @dataclass(frozen=True)

@@ -21,8 +21,8 @@ from .check import Consistency, consistency_check
 from .inputs import VolumeInput, as_volume
 from .model import VOLUME_MODELS, Reparam, corner_distance, decompose_map, homogeneous_diag, map_matrix
 from .options import VolumeOptions
-from .pyramid import (Sampled, build_level, envelope, from_level, level_factors, live_traces, to_level,
-                      vertical_contents)
+from .pyramid import (Sampled, build_level, envelope, from_level, level_factors, level_kind, live_traces,
+                      smoothing_measures, to_level)
 from .refine import PairCorrelation, Refined, refine
 from .search import Start, correlation_search, distinct_starts
 from .vertical import vertical_scale
@@ -219,7 +219,7 @@ def register_volumes(fixed, moving, *, model: str = "affine", fixed_spacing=None
         # two smooth properties (velocity models) are registered by their derivatives along the traces, the layer
         # contrasts: a trend that grows with depth fixes no position, and a vertical scale only multiplies them
         derivative = _is_smooth(fixed_in, opt) and _is_smooth(moving_in, opt)
-        pf, pm = _pyramid(fixed_in, "fixed", derivative, opt), _pyramid(moving_in, "moving", derivative, opt)
+        pf, pm = _pyramids([(fixed_in, "fixed"), (moving_in, "moving")], derivative, opt)
         sp_f, sp_m = fixed_in.spacing, moving_in.spacing
         done("prepare")
         # stage 1: every candidate map on the coarsest level, both volumes' bin scales
@@ -270,26 +270,49 @@ def _is_smooth(vol: VolumeInput, opt: VolumeOptions) -> bool:
     return bool(kept >= opt.smooth_property * max(traces.var(), 1e-30))
 
 
-def _pyramid(vol: VolumeInput, name: str, derivative: bool, opt: VolumeOptions) -> _Pyramid:
-    """The levels of a checked volume: normalised amplitudes (0 on dead traces), or with ``derivative`` their
-    derivative along the traces, or the envelope of either, decimated coarse to fine
-    (:mod:`~seismo3d.seismic.volumes.pyramid`)."""
-    data = np.gradient(vol.data, axis=2).astype(np.float32) if derivative else vol.data
-    data = normalise_amplitudes(data, name)
-    live = live_traces(vol.data)
-    data[~live] = 0.0
-    env = None if derivative else envelope(data, live)  # the derivative of a property is no oscillating wavelet
-    f0, f1, vertical = level_factors(data.shape, min_lateral=opt.min_lateral, min_vertical=opt.min_vertical,
-                                     max_factor=opt.max_factor)
-    contents = vertical_contents(data, env, live, vertical, keep_amplitude=opt.keep_amplitude,
-                                 min_contrast=opt.min_contrast)
-    coarsest = np.array([f0, f1, 2 ** (len(contents) - 1)])
-    levels = []
-    for k in range(int(np.log2(coarsest.max())) + 1):
-        factors = np.minimum(2 ** k, coarsest)
-        source = env if contents[int(np.log2(factors[2]))] == "envelope" else data
-        levels.append(build_level(source, live, factors, opt.taper))
-    return _Pyramid(levels)
+def _pyramids(volumes, derivative: bool, opt: VolumeOptions) -> list[_Pyramid]:
+    """The levels of the checked fixed and moving volumes: normalised amplitudes (0 on dead traces), or with
+    ``derivative`` their derivatives along the traces, or the envelope of either, decimated coarse to fine; each
+    level holds the same kind of data in both (:func:`~seismo3d.seismic.volumes.pyramid.level_kind`)."""
+    prepared = []
+    for vol, name in volumes:
+        data = np.gradient(vol.data, axis=2).astype(np.float32) if derivative else vol.data
+        data = normalise_amplitudes(data, name)
+        live = live_traces(vol.data)
+        data[~live] = 0.0
+        env = None if derivative else envelope(data, live)  # the derivative of a property is no oscillating wavelet
+        coarsest = np.array(level_factors(data.shape, min_lateral=opt.min_lateral, min_vertical=opt.min_vertical,
+                                          max_factor=opt.max_factor))
+        prepared.append((data, env, live, coarsest))
+    memo = {}
+
+    def cached(i, factor):  # each volume's smoothing measures once per vertical factor
+        if (i, factor) not in memo:
+            data, env, live, _ = prepared[i]
+            memo[i, factor] = smoothing_measures(data, env, live, factor)
+        return memo[i, factor]
+
+    # level by level: the samples are decimated while both volumes keep a kind of data, the traces further
+    plan = []  # (factors per volume, kind) per level, finest first
+    last_vertical = np.inf  # the last level whose samples are decimated further
+    for k in range(int(np.log2(max(c.max() for *_, c in prepared))) + 1):
+        for attempt in range(2):
+            factors = [np.minimum([2 ** k, 2 ** k, 2 ** min(k, last_vertical)], c) for *_, c in prepared]
+            if plan and all(np.array_equal(a, b) for a, b in zip(factors, plan[-1][0])):
+                break  # nothing decimated further
+            measures = [cached(i, int(f[2])) for i, f in enumerate(factors)]
+            kind = level_kind(measures, plan[-1][1] if plan else None, keep_amplitude=opt.keep_amplitude,
+                              min_contrast=opt.min_contrast, min_amplitude=opt.min_amplitude)
+            if kind is not None:
+                plan.append((factors, kind))
+                break
+            last_vertical = k - 1  # neither kind survives: the samples stay as on the level before
+    out = []
+    for i, (data, env, live, _) in enumerate(prepared):
+        levels = [build_level(env if kind == "envelope" else data, live, factors[i], opt.taper)
+                  for factors, kind in plan]
+        out.append(_Pyramid(levels))
+    return out
 
 
 def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: VolumeOptions) -> tuple[list, int]:

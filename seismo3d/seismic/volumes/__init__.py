@@ -7,17 +7,20 @@ the traces a scale and a shift. Its inverse is of the same family, so the answer
 passed as fixed. :func:`register_volumes` (:mod:`.registration`) runs, coarse to fine from the start:
 
 1. **Levels** (:mod:`.pyramid`). Each volume decimated by powers of 2 until about ``min_lateral`` traces across and
-   ``min_vertical`` samples remain; levels decimated by 4 or more along the traces hold the trace envelope (smooth:
-   a vertical misfit of a few samples does not flip the correlation's sign), finer ones the amplitudes.
+   ``min_vertical`` samples remain. A level holds the same kind of data in both volumes: the amplitudes while the
+   smoothing keeps them, the trace envelope where it does not (smooth: a vertical misfit of a few samples does not
+   flip the correlation's sign), or, where the envelope is flat (clipped amplitudes), the smoothed amplitudes while a
+   little of them is left; the samples are decimated no further. Two smooth properties (velocity models) are
+   registered by their derivatives along the traces.
 2. **Search** (:mod:`.search`, coarsest level). Map rotations within +-``max_rotation`` degrees and the lateral
    scales of each axis of either volume over ``scale_range`` (``scale_step`` apart), with the vertical scale where
    the mean trace spectra agree (:mod:`.vertical`); for each map the moving volume (or, for the fixed volume's
    scales, the fixed one) is resampled and correlated with the other at every translation at once (masked FFT
    normalised cross-correlation, Padfield 2012).
 3. **Refinement** (:mod:`.refine`). The ``n_starts`` best distinct starts, Levenberg-Marquardt on the correlation of
-   the two volumes taken both ways (at the moving samples with the fixed volume interpolated, and the reverse:
-   symmetric in the two volumes) over the 8 parameters of the map, on the coarsest level; the best one on each finer
-   level, full resolution last.
+   the two volumes taken both ways (at the moving samples with the fixed volume interpolated, and the reverse, each
+   weighted by the inverse of its misfit: symmetric in the two volumes) over the 8 parameters of the map, on the
+   coarsest level; the best one on each finer level, full resolution last.
 4. **Check** (:mod:`.check`). ``converged`` only with enough overlap and correlation, scales within the range, the
    two one-way registrations (MOVING onto FIXED, FIXED onto MOVING) agreeing within the tolerances, no other optimum
    nearly as good, and a correlation clearly better than the result's shifted controls; otherwise the reason in one

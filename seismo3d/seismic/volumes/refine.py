@@ -7,7 +7,9 @@ volume's interpolation error (a coarser volume interpolated at finer positions) 
 
 Each way is a zero-normalised cross-correlation written as a residual, ``sqrt(w / W) (v^ - m^)`` with ``v^`` and ``m^``
 the weighted zero-mean, unit-variance values of the two volumes (``sum r^2 = 2 (1 - NCC)``), whose Jacobian
-includes the derivative of the normalisation; the steps are Gauss-Newton with Marquardt's damping.
+includes the derivative of the normalisation; each way is weighted by the inverse of its misfit at the start of the
+refinement (the way that interpolates an aliased volume correlates less and leads less); the steps are Gauss-Newton
+with Marquardt's damping.
 
 References
 ----------
@@ -40,7 +42,7 @@ class Evaluation:
 
     @property
     def cost(self) -> float:
-        """``sum r^2``: 2 (1 - NCC) per way."""
+        """``sum r^2``: 2 (1 - NCC) per way, times the way's weight."""
         return float(self.residuals @ self.residuals)
 
 
@@ -86,6 +88,17 @@ class PairCorrelation:
         self.xf, self.vf = fixed.points(n_points)
         self.centre = moving.hi / 2.0
         self.min_points = float(min_points)
+        self.way_weights = np.ones(len(self.ways))
+        self._cache = (None, None)
+
+    def weigh_ways(self, misfits) -> None:
+        """Weight each way's residuals by the inverse of its misfit ``1 - NCC`` ((n_ways,), at the start of a
+        refinement): the two ways are two estimates of one map, and the one that interpolates an aliased volume
+        (coarser bins, or resampled without a low-pass) correlates less and is biased; inverse-variance weighting
+        lets the better one lead. Swapping the volumes swaps the ways and their weights, so the cost stays
+        symmetric."""
+        m = np.maximum(np.nan_to_num(np.asarray(misfits, dtype=np.float64), nan=2.0), 1e-4)
+        self.way_weights = m.mean() / m
         self._cache = (None, None)
 
     def params(self, t_level) -> np.ndarray:
@@ -127,8 +140,9 @@ class PairCorrelation:
                 corr.append(np.nan)
                 continue
             r, j, c = _ncc_residuals(src, samples, dv @ dp)
-            res.append(r)
-            jac.append(j)
+            w = np.sqrt(self.way_weights[len(res)])
+            res.append(w * r)
+            jac.append(w * j)
             corr.append(c)
         out = Evaluation(np.concatenate(res), np.vstack(jac), np.array(corr), np.array(over))
         self._cache = (key, out)
@@ -154,13 +168,16 @@ class Refined:
 
 def refine(pair: PairCorrelation, t_level, *, max_iterations: int, tolerance: float,
            min_overlap_ratio: float = 0.5) -> Refined:
-    """Levenberg-Marquardt steps on the two-way correlation from the (4, 4) level transform ``t_level``.
+    """Levenberg-Marquardt steps on the two-way correlation from the (4, 4) level transform ``t_level``, each way
+    weighted by the inverse of its misfit there (:meth:`PairCorrelation.weigh_ways`).
 
     Stops when a step moves no corner of the moving volume by more than ``tolerance`` (level samples), after
     ``max_iterations`` steps, or when no damped step lowers the cost. A step that shrinks either way's overlap below
     ``min_overlap_ratio`` of the start's is refused: a small overlap can correlate by chance.
     """
     q = pair.params(t_level)
+    if len(pair.ways) > 1:
+        pair.weigh_ways(1.0 - pair.evaluate(q).correlations)
     ev = pair.evaluate(q)
     floor = min_overlap_ratio * ev.overlaps
     corners = transform_corners(pair.moving.shape)

@@ -66,6 +66,7 @@ def test_register_f3_onto_its_shifted_copy_and_unrelated_cubes(data_dir, tmp_pat
     np.testing.assert_allclose(np.array(payload["transform_index"])[:3, 3], [-4, -4, -5], atol=0.1)
     assert payload["model"] == "affine"
     # unrelated data: written, not converged, the reason in one line, exit 1
+    out = tmp_path / "unrelated.json"
     res = CliRunner().invoke(app, ["register", str(paths["other"]), str(paths["f3"]), "-o", str(out)])
     assert res.exit_code == 1
     payload = json.loads(out.read_text())

@@ -187,8 +187,8 @@ def register(
     method: Optional[Method] = typer.Option(None, help="Residual: point-to-point, point-to-plane or fused (features "
                                                        "+ point-to-plane, eq. 16). Default point_to_plane for point "
                                                        "clouds; fused (hillshade features) for LAS/LAZ/GeoTIFF."),
-    model: Optional[Model] = typer.Option(None, help="Transform family; default rigid for point clouds, axis_scaled "
-                                                     "for SEG-Y cubes."),
+    model: Optional[Model] = typer.Option(None, help="Transform family; default rigid for point clouds, affine for "
+                                                     "SEG-Y cubes (the bins of both, map rotation, vertical scale)."),
     init: Optional[pathlib.Path] = typer.Option(None, help="Point clouds and terrain files: JSON with an initial "
                                                            "source-to-target transform (files' coordinates)."),
     max_distance: Optional[list[float]] = typer.Option(
@@ -210,10 +210,11 @@ def register(
 
     Point clouds: the JSON holds the (d+1)x(d+1) matrix under "transform" plus fitness, inlier_rmse, n_iterations,
     converged. Two SEG-Y cubes (`seismo3d register MOVING.sgy FIXED.sgy`): sub-volumes of different bin size, sample
-    rate or map orientation are registered with register_volumes (--model rigid, axis_scaled or affine); the JSON
-    holds the 4x4 transforms from MOVING's inline / crossline / sample indices to FIXED's (transform_index) and
-    between physical units (transform_physical: m, m, ms or m), the scales, the map rotation, fitness, inlier RMSE,
-    correlation and converged. LAS/LAZ scans and GeoTIFF DEMs (any pair in one CRS) are registered in a frame
+    rate or map orientation are registered with register_volumes (--model affine or rigid), with the same answer in
+    either order; the JSON holds the 4x4 transforms from MOVING's inline / crossline / sample indices to FIXED's
+    (transform_index) and between physical units (transform_physical: m, m, ms or m), the map rotation, the scales
+    of both cubes, correlation, overlap, converged and the reason when not, the consistency check and the seconds of
+    each stage. LAS/LAZ scans and GeoTIFF DEMs (any pair in one CRS) are registered in a frame
     recentred on the target, started from matches between their hillshades (no initial guess needed); the JSON's
     transform is in the files' own coordinates and units. A registration that did not converge is written, reported
     and exits with 1 (a terrain fit whose surfaces are too gentle to fix the horizontal position counts as converged
@@ -227,8 +228,12 @@ def register(
                                xline=xline, endian=_value(endian), overwrite=overwrite, progress=True)
     if job.kind == "volumes":
         reg = job.result
-        typer.echo(f"map rotation {reg.rotation_deg:.2f} deg  scales {np.array2string(reg.scales, precision=4)}  "
-                   f"fitness {reg.fitness:.3f}  inlier RMSE {reg.inlier_rmse:.3g}  correlation {reg.correlation:.3f}")
+        stages = "  ".join(f"{k} {v:.1f}" for k, v in reg.stage_seconds.items())
+        typer.echo(f"map rotation {reg.rotation_deg:.2f} deg  moving scales "
+                   f"{np.array2string(reg.moving_scales, precision=4)}  fixed scales "
+                   f"{np.array2string(reg.fixed_scales[:2], precision=4)}  correlation {reg.correlation:.3f}  "
+                   f"overlap {reg.overlap:.0%}  converged {reg.converged}")
+        typer.echo(f"seconds: {stages}")
         typer.echo(np.array2string(reg.transform_index, precision=4, suppress_small=True))
     elif job.kind == "terrain":
         _echo_terrain(job.result)
@@ -262,7 +267,7 @@ def _echo_terrain(reg) -> None:
 def _why_not_converged(job) -> str:
     """Why a registration did not converge, and what to try, in the command's flags."""
     if job.kind == "volumes":
-        return "the correlation polish stopped on its evaluation limit; check that the cubes overlap and their spacings"
+        return job.result.reason
     result = job.result.registration if job.kind == "terrain" else job.result
     if result.degenerate and job.kind == "terrain":
         if job.result.n_matches == 0:

@@ -503,15 +503,19 @@ def _horizon_positions(rgt: np.ndarray, levels: np.ndarray) -> np.ndarray:
 
 
 def resampled_pair(volume, fixed_shape, *, scales=(1.0, 1.0, 1.0), angle_deg: float = 0.0, offset=(0.0, 0.0, 0.0),
-                   moving_fraction: float = 0.75):
+                   moving_fraction: float = 0.75, fixed_scales=(1.0, 1.0, 1.0), moving_shape=None):
     """Cut a fixed sub-volume and an overlapping, resampled and rotated moving sub-volume with the exact transform.
 
-    The test pair of sub-volume registration (:func:`seismo3d.seismic.register_volumes`): ``fixed`` is the centre
-    ``fixed_shape`` of ``volume``; ``moving`` samples ``volume`` on a grid whose axes are the fixed axes scaled by
-    ``scales`` and rotated in map view by ``angle_deg`` (inline towards crossline), centred on the fixed centre plus
-    ``offset``. A scale above 1 makes the moving bins / sample interval coarser. The samples are interpolated with a
-    Lanczos-3 windowed sinc (along the sample axis, then in map view), not with the cubic B-spline that registration
-    resamples with: a pair made with the registration's own interpolator would be matched by running it backwards.
+    The test pair of sub-volume registration (:func:`seismo3d.seismic.register_volumes`): ``fixed`` samples the centre
+    of ``volume`` on a grid of ``fixed_shape`` whose axes are ``volume``'s scaled by ``fixed_scales`` (with unit
+    ``fixed_scales``, the default, it is the centre ``fixed_shape`` of ``volume`` itself, no interpolation); ``moving``
+    samples ``volume`` on a grid whose axes are ``volume``'s scaled by ``scales`` and rotated in map view by
+    ``angle_deg`` (inline towards crossline), centred on the fixed centre plus ``offset``. A scale above 1 makes the
+    bins / sample interval coarser. With scales on both volumes the index map is
+    ``diag(fixed_scales)^-1 R diag(scales)``, which no per-axis scale on one side alone expresses. The samples are
+    interpolated with a Lanczos-3 windowed sinc (along the sample axis, then in map view), not with the cubic
+    B-spline that registration resamples with: a pair made with the registration's own interpolator would be matched
+    by running it backwards.
 
     Parameters
     ----------
@@ -520,13 +524,18 @@ def resampled_pair(volume, fixed_shape, *, scales=(1.0, 1.0, 1.0), angle_deg: fl
     fixed_shape : tuple of 3 int
         Shape of the fixed sub-volume, at most ``volume.shape``.
     scales : (3,) float
-        Moving inline, crossline and sample spacing in fixed traces / samples (each > 0).
+        Moving inline, crossline and sample spacing in traces / samples of ``volume`` (each > 0).
     angle_deg : float
         Map-view rotation of the moving axes, degrees.
     offset : (3,) float
         Position of the moving centre relative to the fixed centre, fixed index units.
     moving_fraction : float in (0, 1]
         Extent of the moving volume along each of its axes, as a fraction of the fixed extent (before rotation).
+    fixed_scales : (3,) float
+        Fixed inline, crossline and sample spacing in traces / samples of ``volume`` (each > 0);
+        ``fixed_shape * fixed_scales`` must fit in ``volume``.
+    moving_shape : tuple of 3 int, optional
+        Shape of the moving volume (each at least 8), instead of the one ``moving_fraction`` gives.
 
     Returns
     -------
@@ -539,8 +548,8 @@ def resampled_pair(volume, fixed_shape, *, scales=(1.0, 1.0, 1.0), angle_deg: fl
     Raises
     ------
     InputError
-        A volume that is not a finite 3D array of at least 8 per axis, a fixed shape larger than it, or non-positive
-        scales.
+        A volume that is not a finite 3D array of at least 8 per axis, a fixed grid larger than it, non-positive
+        scales or a moving shape under 8.
 
     References
     ----------
@@ -551,26 +560,43 @@ def resampled_pair(volume, fixed_shape, *, scales=(1.0, 1.0, 1.0), angle_deg: fl
     if arr.ndim != 3:
         raise InputError(f"volume must be 3D (n_inlines, n_xlines, n_samples); got shape {arr.shape}")
     nb, nf = np.array(arr.shape), np.array(fixed_shape, dtype=int)
-    if nf.shape != (3,) or np.any(nf < 8) or np.any(nf > nb):
-        raise InputError(f"fixed_shape must be 3 ints between 8 and volume.shape {arr.shape}; got {fixed_shape}")
     scales = np.asarray(scales, dtype=np.float64)
-    if scales.shape != (3,) or not np.all(scales > 0):
-        raise InputError(f"scales must be 3 numbers > 0; got {scales.tolist()}")
+    fixed_scales = np.asarray(fixed_scales, dtype=np.float64)
+    for name, value in (("scales", scales), ("fixed_scales", fixed_scales)):
+        if value.shape != (3,) or not np.all(value > 0):
+            raise InputError(f"{name} must be 3 numbers > 0; got {value.tolist()}")
+    if nf.shape != (3,) or np.any(nf < 8) or np.any((nf - 1) * fixed_scales > nb - 1):
+        raise InputError(f"fixed_shape must be 3 ints >= 8 whose grid (fixed_shape - 1) * fixed_scales fits in "
+                         f"volume.shape {arr.shape}; got {fixed_shape}")
     if not 0 < moving_fraction <= 1:
         raise InputError(f"moving_fraction must be in (0, 1]; got {moving_fraction}")
-    o = (nb - nf) // 2
-    fixed = np.ascontiguousarray(arr[o[0]:o[0] + nf[0], o[1]:o[1] + nf[1], o[2]:o[2] + nf[2]])
+    if np.all(fixed_scales == 1.0):  # the centre of the volume itself, on its own samples
+        o = ((nb - nf) // 2).astype(np.float64)
+        fixed = np.ascontiguousarray(arr[int(o[0]):int(o[0]) + nf[0], int(o[1]):int(o[1]) + nf[1],
+                                         int(o[2]):int(o[2]) + nf[2]])
+    else:
+        o = (nb - 1) / 2 - fixed_scales * (nf - 1) / 2
+        to_fixed = np.diag(np.r_[fixed_scales, 1.0])
+        to_fixed[:3, 3] = o
+        fixed = _lanczos_resample(arr, to_fixed, tuple(nf))
     th = np.radians(angle_deg)
     linear = np.diag(scales)
     linear[:2, :2] = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]]) @ np.diag(scales[:2])
-    nm = np.maximum((nf * moving_fraction / scales).astype(int), 8)
-    t = np.eye(4)
-    t[:3, :3] = linear
-    t[:3, 3] = (nf - 1) / 2 + np.asarray(offset, dtype=np.float64) - linear @ ((nm - 1) / 2)
-    to_volume = t.copy()
-    to_volume[:3, 3] += o
+    if moving_shape is None:
+        nm = np.maximum((nf * fixed_scales * moving_fraction / scales).astype(int), 8)
+    else:
+        nm = np.array(moving_shape, dtype=int)
+        if nm.shape != (3,) or np.any(nm < 8):
+            raise InputError(f"moving_shape must be 3 ints >= 8; got {moving_shape}")
+    # moving index -> volume index: centred on the fixed centre plus offset (fixed index units)
+    to_volume = np.eye(4)
+    to_volume[:3, :3] = linear
+    centre = o + fixed_scales * ((nf - 1) / 2 + np.asarray(offset, dtype=np.float64))
+    to_volume[:3, 3] = centre - linear @ ((nm - 1) / 2)
     moving = _lanczos_resample(arr, to_volume, tuple(nm))
-    return fixed, moving, t
+    from_fixed = np.diag(np.r_[1.0 / fixed_scales, 1.0])
+    from_fixed[:3, 3] = -o / fixed_scales
+    return fixed, moving, from_fixed @ to_volume
 
 
 _LANCZOS = 3  # lobes of the windowed sinc of resampled_pair

@@ -73,12 +73,16 @@ class RegistrationErrors:
     centre_error : float
         Distance between the fixed positions the two transforms give the moving volume's centre, fixed index units
         (traces and samples).
+    corner_error : float
+        The largest such distance over the moving volume's 8 corner samples, fixed index units: it bounds the error
+        of every moving sample's position.
     """
 
     rotation_deg: float
     scale_pct: np.ndarray
     max_scale_pct: float
     centre_error: float
+    corner_error: float
 
 
 def evaluate_faults(thin_mask, labels, *, tolerance=2.0, border=0) -> FaultScores:
@@ -182,7 +186,8 @@ def registration_errors(estimate, truth, moving_shape) -> RegistrationErrors:
     Returns
     -------
     RegistrationErrors
-        ``rotation_deg``, ``scale_pct``, ``max_scale_pct``, ``centre_error`` (see :class:`RegistrationErrors`).
+        ``rotation_deg``, ``scale_pct``, ``max_scale_pct``, ``centre_error``, ``corner_error`` (see
+        :class:`RegistrationErrors`).
 
     Raises
     ------
@@ -196,9 +201,11 @@ def registration_errors(estimate, truth, moving_shape) -> RegistrationErrors:
         raise InputError(f"moving_shape must be 3 ints; got {moving_shape!r}")
     pct = 100.0 * np.abs(np.linalg.norm(e[:3, :3], axis=0) / np.linalg.norm(g[:3, :3], axis=0) - 1.0)
     centre = ((shape - 1.0) / 2.0)[None]
+    corners = np.array(np.meshgrid(*[[0.0, n - 1.0] for n in shape], indexing="ij")).reshape(3, -1).T
     return RegistrationErrors(
         rotation_deg=float(rotation_error_deg(e, g)),
         scale_pct=pct,
         max_scale_pct=float(pct.max()),
         centre_error=float(np.linalg.norm(apply_transform(e, centre) - apply_transform(g, centre))),
+        corner_error=float(np.linalg.norm(apply_transform(e, corners) - apply_transform(g, corners), axis=1).max()),
     )

@@ -26,27 +26,52 @@ def pair(tmp_path_factory):
     return paths, truth, moving.shape
 
 
-@pytest.mark.slow
 def test_register_segy_cubes_writes_both_transforms(pair, tmp_path):
     (fixed, moving), truth, moving_shape = pair
     before = [p.read_bytes() for p in (fixed, moving)]
     out = tmp_path / "transform.json"
     res = CliRunner().invoke(app, ["register", str(moving), str(fixed), "-o", str(out), "--model", "rigid"])
     assert res.exit_code == 0, res.output
-    assert "map rotation" in res.output
+    assert "map rotation" in res.output and "seconds: prepare" in res.output
     payload = json.loads(out.read_text())
     t = np.array(payload["transform_index"])
     err = registration_errors(t, truth, moving_shape)
-    assert err.rotation_deg <= 0.5 and err.max_scale_pct <= 1.0 and err.centre_error <= 0.5
-    assert payload["model"] == "rigid" and payload["converged"] is True
+    assert err.rotation_deg <= 0.5 and err.max_scale_pct <= 1.0 and err.corner_error <= 0.5
+    assert payload["model"] == "rigid" and payload["converged"] is True and payload["reason"] == ""
     assert payload["moving"] == str(moving) and payload["fixed"] == str(fixed)
     assert payload["index_axes"] == ["inline", "crossline", "sample"]
+    assert set(payload["stage_seconds"]) == {"prepare", "search", "coarse", "fine", "check"}
+    assert payload["check"]["disagreement"] <= 0.5
     # no CDP coordinates in these files: bins of 1, sample interval 4 ms from the binary header
     assert payload["fixed_spacing"] == [1.0, 1.0, 4.0]
     np.testing.assert_allclose(np.array(payload["transform_physical"]),
                                np.diag([1, 1, 4.0, 1]) @ t @ np.diag([1, 1, 1 / 4.0, 1]), atol=1e-9)
-    assert 0 < payload["fitness"] <= 1 and payload["inlier_rmse"] >= 0
+    assert abs(payload["rotation_deg"] - 12.0) <= 0.5 and 0 < payload["overlap"] <= 1
     assert [p.read_bytes() for p in (fixed, moving)] == before  # inputs untouched
+
+
+@pytest.mark.slow
+def test_register_f3_onto_its_shifted_copy_and_unrelated_cubes(data_dir, tmp_path):
+    from seismo3d.seismic import read_segy
+
+    f3, _ = read_segy(f"{data_dir}/seismic/f3_crop.sgy")
+    paths = {name: tmp_path / f"{name}.sgy" for name in ("f3", "copy", "other")}
+    segyio.tools.from_array(str(paths["f3"]), f3, dt=4000)
+    segyio.tools.from_array(str(paths["copy"]), np.ascontiguousarray(f3[4:, 4:, 5:]), dt=4000)
+    segyio.tools.from_array(str(paths["other"]), synthetic_cube((24, 24, 80), n_faults=1, seed=4).cube, dt=4000)
+    out = tmp_path / "t.json"
+    res = CliRunner().invoke(app, ["register", str(paths["f3"]), str(paths["copy"]), "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    payload = json.loads(out.read_text())
+    np.testing.assert_allclose(np.array(payload["transform_index"])[:3, 3], [-4, -4, -5], atol=0.1)
+    assert payload["model"] == "affine"
+    # unrelated data: written, not converged, the reason in one line, exit 1
+    out = tmp_path / "unrelated.json"
+    res = CliRunner().invoke(app, ["register", str(paths["other"]), str(paths["f3"]), "-o", str(out)])
+    assert res.exit_code == 1
+    payload = json.loads(out.read_text())
+    assert payload["converged"] is False and payload["reason"]
+    assert f"did not converge ({payload['reason']})" in res.output
 
 
 def test_register_mixed_inputs_and_bad_model_are_clear_errors(pair, tmp_path):
@@ -55,9 +80,10 @@ def test_register_mixed_inputs_and_bad_model_are_clear_errors(pair, tmp_path):
     np.savetxt(cloud, np.random.default_rng(0).normal(size=(50, 3)))
     res = CliRunner().invoke(app, ["register", str(cloud), str(fixed), "-o", str(tmp_path / "t.json")])
     assert res.exit_code == 2 and "not one of each" in res.output
-    res = CliRunner().invoke(app, ["register", str(moving), str(fixed), "-o", str(tmp_path / "t.json"),
-                                   "--model", "similarity"])
-    assert res.exit_code == 2 and "not available for SEG-Y" in res.output
+    for model in ("similarity", "axis_scaled"):  # a scale on one volume's axes cannot express two surveys' bins
+        res = CliRunner().invoke(app, ["register", str(moving), str(fixed), "-o", str(tmp_path / "t.json"),
+                                       "--model", model])
+        assert res.exit_code == 2 and "not available for SEG-Y" in res.output and "affine" in res.output
     assert not (tmp_path / "t.json").exists()
 
 

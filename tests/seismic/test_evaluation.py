@@ -50,5 +50,6 @@ def test_registration_errors():
     assert err.max_scale_pct == pytest.approx(1.0)
     assert err.rotation_deg == pytest.approx(0.0)
     assert err.centre_error == pytest.approx(np.hypot(0.05, 0.25))
+    assert err.corner_error == pytest.approx(np.hypot(0.1, 0.25))  # corner inline 10: 0.1 off, all 0.25 deeper
     with pytest.raises(InputError, match="moving_shape"):
         registration_errors(est, truth, (11, 11))

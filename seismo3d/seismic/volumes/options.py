@@ -1,15 +1,13 @@
-"""VolumeOptions: the search ranges, sizes and thresholds of :func:`~seismo3d.seismic.register_volumes`."""
+"""VolumeOptions: search ranges, levels, sizes and check tolerances of :func:`~seismo3d.seismic.register_volumes`."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..._validation import check_choice, check_int, check_positive
+from ..._validation import check_int, check_positive
 from ...errors import InputError
 
-__all__ = ["VOLUME_MODELS", "VolumeOptions"]
-
-VOLUME_MODELS = ("rigid", "axis_scaled", "affine")
+__all__ = ["VolumeOptions"]
 
 
 @dataclass(frozen=True)
@@ -20,72 +18,67 @@ class VolumeOptions:
     Attributes
     ----------
     scale_range : (float, float)
-        Smallest and largest per-axis scale searched, relative to the spacings.
-    alpha : float in [0, 1]
-        Weight of the feature term of the fused ICP (method.md eq. 16).
-    feature_method : {'hog', 'sift'}
-        Slice features of the global start: the HOG-pyramid (method.md section 2) or OpenCV's SIFT.
-    max_points : int
-        Largest number of reflector points per volume in the fused ICP (a fixed random subset beyond it).
-    max_rounds : int
-        Largest number of track-refinement rounds (stage 3).
-    min_correlation : float
-        The registration fails (:class:`~seismo3d.errors.RegistrationError`) when the best result correlates less
-        than this over the overlap. Resampled pairs of one cube reach 0.90-1.0 (the correlation column of
-        ``benchmarks/volumes.py``). Lower it for a time-lapse repeat or two surveys processed differently. Volumes too
-        small for slice features (the correlation start) fit 7-9 parameters to few samples: two unrelated 24 x
-        18-trace synthetic volumes reached 0.88 there, so raise it (to 0.9 for resampled copies) when you need a
-        failure to be reported.
-    seed : int
-        Seed of RANSAC and of the point subsets; the result is deterministic given it.
-    min_map : int
-        Fewest traces across (working cells, the moving volume at its largest scale) for time slices to carry
-        features; thinner volumes use inline sections.
-    max_feature_side : int
-        Slices for the global feature search are downsampled to at most this many pixels a side.
-    shift_window : tuple of int
-        Fixed time slices matched around the predicted one, samples.
-    n_slices : int
-        Moving time slices matched in the global search.
-    ransac_trials : int
-        RANSAC samples per global hypothesis.
-    max_starts : int
-        Feature-based starts refined by the fused ICP (best first).
-    good_correlation : float
-        A refined start correlating this well ends the search over starts.
-    klt_window : int
-        Lucas-Kanade window of the slice tracks, pixels.
-    min_tracks : int
-        Fewest consistent slice tracks for a refinement round.
+        Smallest and largest scale of a moving bin (inline, crossline) and sample interval, relative to the spacings,
+        that the search covers; the result may leave it by a quarter (then it is ``converged: false``).
     max_rotation : float
-        Degrees: the correlation start searches map rotations within +-max_rotation ...
+        Degrees: the search covers map rotations within +-max_rotation ...
     rotation_step : float
         ... every rotation_step degrees ...
-    scale_steps : int
-        ... and lateral scales on this many log-spaced values per axis over ``scale_range``, then again on half
-        those steps around the ``n_refined`` best maps.
-    n_refined : int
-        See ``scale_steps``.
-    min_fraction : float
-        Overlap a correlation needs, as a fraction of the smaller volume's samples.
+    scale_step : float
+        ... and the lateral scale of each axis of either volume on log-spaced values ``scale_step`` apart over
+        ``scale_range`` (the refinement converges from half a step off: 7.5 degrees, 19 % per axis, on f3_crop).
+    max_anisotropy : float
+        Largest ratio of the two lateral scales of a volume searched (f3_crop pairs with scales 0.6 and 1.6, a ratio
+        of 2.7, need 2.83, the next step).
+    n_starts : int
+        Distinct best starts of the search refined on the coarsest level.
+    min_lateral, min_vertical : int
+        The coarsest level keeps at least this many traces along each map axis and samples along the traces ...
+    max_factor : int
+        ... decimating each by at most this factor (a power of 2).
+    smooth_property : float
+        Two volumes whose traces keep this fraction of their variance under a Gaussian of ``max_factor / 2`` samples
+        hold a smooth property (the Volve velocity model: 0.97) and are registered by their derivatives along the
+        traces (seismic amplitudes keep 0.01-0.2).
+    keep_amplitude : float
+        A level holds the amplitudes while its smoothing keeps this fraction of their variance (f3_crop: 0.56 at a
+        decimation of 2, 0.30 at 4; a velocity model: 0.97 at 8) ...
+    min_contrast : float
+        ... then the envelope of the traces while its spread is this fraction of its mean (f3_crop: 0.5 at 8; the
+        clipped Penobscot amplitudes: 0.09 at 4) ...
+    min_amplitude : float
+        ... then the smoothed amplitudes while they keep this fraction of their variance (Penobscot: 0.12 at 4, 0.03
+        at 8); the samples are decimated no further. Both volumes hold the same kind on each level.
+    n_points : int
+        About this many samples of each volume are correlated per level.
+    max_iterations : int
+        Largest number of Levenberg-Marquardt steps per level.
+    tolerance : float
+        Samples: the full-resolution refinement stops when a step moves no corner of the moving volume further (the
+        coarser levels at five times this, in their samples).
     taper : float
-        Samples: the correlation's weights fall linearly to 0 over this distance from the fixed volume's edge.
-    max_search : int
-        Samples of each volume (sample axis halved) beyond which the correlation start is not searched (about 0.1 s
-        per map at that size: larger volumes carry slice features).
-    polish_evaluations : int
-        Largest number of correlation evaluations of the polish (stage 5).
-    score_points, polish_points : int
-        Moving samples (a regular subset) at which the overlap correlation is evaluated to rank candidates and to
-        polish.
-    symmetric : bool
-        For ``'axis_scaled'``: when the polished lateral scales differ by more than ``anisotropy``, polish again with
-        the scales along the *fixed* volume's axes (the model of the reverse problem) and keep that result when it
-        halves the misfit ``1 - correlation``. Scales along one volume's axes cannot represent scales along the
-        other's under a map rotation, so without it the answer depends on which volume is passed as fixed (a
-        f3_crop copy rotated 12 degrees with scales 1.25 / 0.8 / 1.1 landed 2.1 degrees off when passed as fixed).
-    anisotropy : float
-        See ``symmetric`` (a relative difference of the two lateral scales).
+        Samples: correlation weights fall to 0 over this distance at the volumes' edges and dead traces.
+    min_fraction : float
+        Overlap needed, as a fraction of the smaller volume (in the search, and to be ``converged``).
+    min_correlation : float
+        A result whose correlation (the mean of both ways) is below this is not ``converged``.
+    max_disagreement : float
+        Fixed samples: the two one-way registrations (MOVING onto FIXED, FIXED onto MOVING) must map every corner of
+        the moving volume within this distance of each other (and agree within ``max_rotation_disagreement`` and
+        ``max_scale_disagreement``) for the result to be ``converged``.
+    max_rotation_disagreement : float
+        Degrees.
+    max_scale_disagreement : float
+        Relative, per axis of the moving volume. Each way alone is less certain than their combination: the way that
+        interpolates a volume with aliased (coarse) bins is biased, and the one-way estimates of f3_crop pairs differ
+        by up to 2.2 % where the two-way result is within 0.7 % of the truth.
+    control_shift : float
+        Samples: the shifted controls displace the result by this much along each axis of the fixed volume, both
+        ways ...
+    control_ratio : float
+        ... and the result is ``converged`` only when its misfit ``1 - correlation`` is at most ``control_ratio``
+        times the smallest misfit of the controls, and of the best distinct other optimum of the search (resampled
+        pairs of f3_crop reach 0.1-0.4, unrelated volumes 0.9-1.0: ``benchmarks/volumes.py``).
 
     Raises
     ------
@@ -94,33 +87,29 @@ class VolumeOptions:
     """
 
     scale_range: tuple = (0.5, 2.0)
-    alpha: float = 0.5
-    feature_method: str = "hog"
-    max_points: int = 60000
-    max_rounds: int = 8
-    min_correlation: float = 0.5
-    seed: int = 0
-    min_map: int = 32
-    max_feature_side: int = 192
-    shift_window: tuple = (-2, -1, 0, 1, 2)
-    n_slices: int = 10
-    ransac_trials: int = 1000
-    max_starts: int = 3
-    good_correlation: float = 0.9
-    klt_window: int = 15
-    min_tracks: int = 24
     max_rotation: float = 45.0
-    rotation_step: float = 7.5
-    scale_steps: int = 7
-    n_refined: int = 4
-    min_fraction: float = 0.3
+    rotation_step: float = 15.0
+    scale_step: float = 2.0 ** 0.5
+    max_anisotropy: float = 2.0 ** 1.5
+    n_starts: int = 6
+    min_lateral: int = 16
+    min_vertical: int = 8
+    max_factor: int = 8
+    smooth_property: float = 0.9
+    keep_amplitude: float = 0.35
+    min_contrast: float = 0.25
+    min_amplitude: float = 0.1
+    n_points: int = 20_000
+    max_iterations: int = 20
+    tolerance: float = 0.02
     taper: float = 2.0
-    max_search: int = 100_000
-    polish_evaluations: int = 800
-    score_points: int = 200_000
-    polish_points: int = 40_000
-    symmetric: bool = True
-    anisotropy: float = 0.01
+    min_fraction: float = 0.3
+    min_correlation: float = 0.3
+    max_disagreement: float = 0.5
+    max_rotation_disagreement: float = 0.5
+    max_scale_disagreement: float = 0.025
+    control_shift: float = 2.0
+    control_ratio: float = 0.7
 
     def __post_init__(self):
         try:
@@ -130,16 +119,18 @@ class VolumeOptions:
         if not 0 < lo <= 1 <= hi or not hi < float("inf"):
             raise InputError(f"scale_range must satisfy 0 < smallest <= 1 <= largest; got {self.scale_range!r}")
         object.__setattr__(self, "scale_range", (lo, hi))
-        alpha = float(self.alpha)
-        if not 0.0 <= alpha <= 1.0:
-            raise InputError(f"alpha must be in [0, 1]; got {alpha}")
-        object.__setattr__(self, "alpha", alpha)
-        check_choice(self.feature_method, "feature_method", ("hog", "sift"))
-        check_positive(self.max_points, "max_points")
-        for name in ("max_rounds", "min_map", "max_feature_side", "n_slices", "ransac_trials", "max_starts",
-                     "klt_window", "min_tracks", "scale_steps", "n_refined", "max_search", "polish_evaluations",
-                     "score_points", "polish_points"):
+        for name in ("n_starts", "min_lateral", "min_vertical", "n_points", "max_iterations"):
             check_int(getattr(self, name), name, minimum=1)
-        check_int(self.seed, "seed", minimum=0)
-        for name in ("max_rotation", "rotation_step", "min_fraction", "taper", "anisotropy"):
+        factor = check_int(self.max_factor, "max_factor", minimum=1)
+        if factor & (factor - 1):
+            raise InputError(f"max_factor must be a power of 2 (1, 2, 4, 8, ...); got {factor}")
+        for name in ("max_rotation", "rotation_step", "tolerance", "taper", "min_fraction", "max_disagreement",
+                     "keep_amplitude", "min_contrast", "min_amplitude", "smooth_property",
+                     "max_rotation_disagreement", "max_scale_disagreement", "control_shift", "control_ratio"):
             check_positive(getattr(self, name), name)
+        if not self.max_anisotropy >= 1.0:
+            raise InputError(f"max_anisotropy must be >= 1 (a ratio of two scales); got {self.max_anisotropy}")
+        if not self.scale_step > 1.0:
+            raise InputError(f"scale_step must be > 1 (a factor between neighbouring scales); got {self.scale_step}")
+        if not -1.0 <= self.min_correlation < 1.0:
+            raise InputError(f"min_correlation must be in [-1, 1); got {self.min_correlation}")

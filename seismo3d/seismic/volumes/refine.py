@@ -1,201 +1,213 @@
-"""Stage 3 of the volume registration: refinement of the transform by slice tracks.
+"""Refinement of the map: a Levenberg-Marquardt maximisation of the two volumes' correlation over its parameters.
 
-The moving volume is resampled onto slices of the fixed grid through the current transform; corners of the fixed slices
-are tracked into them (pyramidal Lucas-Kanade with a forward-backward check, Bouguet 2000; Shi & Tomasi 1994), and rows
-of the transform are refitted to the tracks consistent with one affine map.
+The correlation is taken both ways: at samples of the moving volume with the fixed one interpolated through the map,
+and at samples of the fixed volume with the moving one interpolated through its inverse. Their sum does not change
+when the two volumes swap roles (and the map is inverted), so neither argument order is favoured, and neither
+volume's interpolation error (a coarser volume interpolated at finer positions) is trusted alone.
+
+Each way is a zero-normalised cross-correlation written as a residual, ``sqrt(w / W) (v^ - m^)`` with ``v^`` and ``m^``
+the weighted zero-mean, unit-variance values of the two volumes (``sum r^2 = 2 (1 - NCC)``), whose Jacobian
+includes the derivative of the normalisation; each way is weighted by the inverse of its misfit at the start of the
+refinement (the way that interpolates an aliased volume correlates less and leads less); the steps are Gauss-Newton
+with Marquardt's damping.
+
+References
+----------
+.. [1] D. W. Marquardt, "An algorithm for least-squares estimation of nonlinear parameters", J. Soc. Ind. Appl. Math.
+   11(2), 431-441, 1963, doi:10.1137/0111030.
+.. [2] S. Baker, I. Matthews, "Lucas-Kanade 20 years on: a unifying framework", Int. J. Comput. Vis. 56(3), 221-255,
+   2004, doi:10.1023/B:VISI.0000011205.11775.fd.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
-from scipy import ndimage as ndi
-from scipy.spatial import cKDTree
 
-from ...errors import InputError, RegistrationError
-from ...registration import ransac
-from .frames import WorkingFrames
-from .options import VolumeOptions
+from .model import Reparam, model_matrix, model_params, point_derivatives, transform_corners
+from .pyramid import Sampled
 
-__all__ = ["SliceTracker", "fit_rows", "consistent_tracks", "envelope", "refine_with_tracks", "reflector_fit"]
+__all__ = ["PairCorrelation", "Evaluation", "Refined", "refine"]
 
 
-class SliceTracker:
-    """Corners of fixed slices tracked into the moving volume resampled through the current transform.
+@dataclass(frozen=True, eq=False)
+class Evaluation:
+    """The two-way correlation at one parameter vector."""
+
+    residuals: np.ndarray  # (N,)
+    jacobian: np.ndarray  # (N, n_params)
+    correlations: np.ndarray  # (n_ways,): forward (moving samples), backward (fixed samples); NaN without overlap
+    overlaps: np.ndarray  # (n_ways,): fraction of each way's points inside the other volume (summed weights)
+
+    @property
+    def cost(self) -> float:
+        """``sum r^2``: 2 (1 - NCC) per way, times the way's weight."""
+        return float(self.residuals @ self.residuals)
+
+
+def _ncc_residuals(src, samples, dv):
+    """Residuals, Jacobian ((N, n)) and NCC of one way; ``dv`` ((N, n)) the derivatives of the sampled values."""
+    w, v = samples.weights, samples.values
+    total = w.sum()
+    m = src - np.sum(w * src) / total
+    m /= max(np.sqrt(np.sum(w * m * m) / total), 1e-12)
+    vm = v - np.sum(w * v) / total
+    sig = max(np.sqrt(np.sum(w * vm * vm) / total), 1e-12)
+    vh = vm / sig
+    sw = np.sqrt(w / total)
+    dvm = dv - np.einsum("n,np->p", w, dv) / total  # einsum: no BLAS threads for these thin products
+    dsig = np.einsum("n,np->p", w * vh, dvm) / total
+    jac = sw[:, None] * (dvm / sig - vh[:, None] * (dsig / sig)[None, :])
+    return sw * (vh - m), jac, float(np.sum(w * vh * m) / total)
+
+
+class PairCorrelation:
+    """The two-way correlation of a fixed and a moving level through the model, as residuals and their Jacobian.
 
     Parameters
     ----------
-    fn, mn : (n0, n1, n2) float32 ndarray
-        Fixed and moving volumes (normalised amplitudes, or their envelopes).
-    order : {1, 3}
-        Interpolation of the moving volume (cubic B-spline, or linear for smooth volumes).
-    window : int
-        Lucas-Kanade window, pixels (smaller on small slices).
+    fixed, moving : Sampled
+        The two volumes at one level.
+    reparam : Reparam
+        The model's parameters (affine or rigid) at this level.
+    n_points : int
+        About this many samples of each volume (a regular subset of the live traces) are correlated.
+    min_points : int
+        Fewest overlapping points (summed weights) per way; with fewer, the way counts as uncorrelated (NCC 0).
+    ways : tuple of {'forward', 'backward'}
+        The ways correlated: ``'forward'`` at the moving samples (MOVING onto FIXED), ``'backward'`` at the fixed
+        samples (FIXED onto MOVING); both by default.
     """
 
-    def __init__(self, fn, mn, order=3, window: int = 15):
-        self.window = int(window)
-        self.fn = fn
-        self.order = order
-        # cubic B-spline coefficients of moving (the samples themselves for linear interpolation)
-        self.coef = ndi.spline_filter(mn, order=3, output=np.float32) if order == 3 else mn
-        self.m_hi = np.array(mn.shape, dtype=np.float64) - 1.0
+    def __init__(self, fixed: Sampled, moving: Sampled, reparam: Reparam, n_points: int, min_points: float = 50.0,
+                 ways: tuple = ("forward", "backward")):
+        self.fixed, self.moving, self.reparam = fixed, moving, reparam
+        self.ways = tuple(ways)
+        self.xm, self.vm = moving.points(n_points)
+        self.xf, self.vf = fixed.points(n_points)
+        self.centre = moving.hi / 2.0
+        self.min_points = float(min_points)
+        self.way_weights = np.ones(len(self.ways))
+        self._cache = (None, None)
 
-    @staticmethod
-    def _u8(a):
-        """Normalised amplitudes (about -3..3) as an 8-bit image."""
-        return np.clip((a + 3.0) * (255.0 / 6.0), 0, 255).astype(np.uint8)
+    def weigh_ways(self, misfits) -> None:
+        """Weight each way's residuals by the inverse of its misfit ``1 - NCC`` ((n_ways,), at the start of a
+        refinement): the two ways are two estimates of one map, and the one that interpolates an aliased volume
+        (coarser bins, or resampled without a low-pass) correlates less and is biased; inverse-variance weighting
+        lets the better one lead. Swapping the volumes swaps the ways and their weights, so the cost stays
+        symmetric."""
+        m = np.maximum(np.nan_to_num(np.asarray(misfits, dtype=np.float64), nan=2.0), 1e-4)
+        self.way_weights = m.mean() / m
+        self._cache = (None, None)
 
-    def family(self, axis, t_index, step=None):
-        """Tracks on the fixed slices normal to ``axis`` (every ``step``-th, default about 24 slices) through the
-        (4, 4) moving-index to fixed-index ``t_index``: ((K, 3) moving points, (K, 3) fixed points), index
-        coordinates."""
-        import cv2
+    def params(self, t_level) -> np.ndarray:
+        """The fitted parameters nearest to a (4, 4) level transform."""
+        return self.reparam.start(model_params(t_level, self.centre))
 
-        fn = self.fn
-        t_inv = np.linalg.inv(t_index)
-        other = [a for a in range(3) if a != axis]
-        shape2 = (fn.shape[other[0]], fn.shape[other[1]])
-        win = int(min(self.window, max(5, (min(shape2) // 3) | 1)))
-        if min(shape2) < win + 4:
-            return np.zeros((0, 3)), np.zeros((0, 3))
-        n = fn.shape[axis]
-        step = step or max(2, n // 24)
-        grid = np.indices(shape2, dtype=np.float64)
-        kernel = np.ones((win, win), np.uint8)
-        lk = dict(winSize=(win, win), maxLevel=3, criteria=(cv2.TERM_CRITERIA_EPS | cv2.TERM_CRITERIA_COUNT, 30, 0.01))
-        src, dst = [], []
-        for idx in range(step // 2, n, step):
-            coords = np.empty((3,) + shape2)
-            coords[axis] = idx
-            coords[other[0]], coords[other[1]] = grid
-            m = np.tensordot(t_inv[:3, :3], coords, axes=1) + t_inv[:3, 3, None, None]
-            valid = np.all((m >= 0) & (m <= self.m_hi[:, None, None]), axis=0)
-            if valid.mean() < 0.05:
+    def transform(self, q) -> np.ndarray:
+        """The (4, 4) level transform of the fitted parameters ``q``."""
+        return model_matrix(self.reparam.affine(q)[0], self.centre)
+
+    def evaluate(self, q) -> Evaluation:
+        """Residuals, Jacobian, correlations and overlaps at ``q`` (the last evaluation is cached)."""
+        key = np.asarray(q, dtype=np.float64).tobytes()
+        if self._cache[0] == key:
+            return self._cache[1]
+        p, dp = self.reparam.affine(q)
+        t = model_matrix(p, self.centre)
+        t_inv = np.linalg.inv(t)
+        parts = []
+        if "forward" in self.ways:  # moving samples, the fixed volume interpolated at their images
+            s = self.fixed.sample(t[:3, :3] @ self.xm + t[:3, 3:])
+            dv = np.einsum("kn,pkn->np", s.gradients, point_derivatives(self.xm, self.centre))
+            parts.append((self.vm, s, dv))
+        if "backward" in self.ways:
+            # fixed samples, the moving volume at their pre-images x = A^-1 (y - b) + c,
+            # dx/dp = -A^-1 (dA/dp (x - c) + db/dp)
+            x = t_inv[:3, :3] @ self.xf + t_inv[:3, 3:]
+            s = self.moving.sample(x)
+            dv = -np.einsum("kn,pkn->np", t_inv[:3, :3].T @ s.gradients, point_derivatives(x, self.centre))
+            parts.append((self.vf, s, dv))
+        res, jac, corr, over = [], [], [], []
+        for src, samples, dv in parts:
+            total = float(samples.weights.sum())
+            over.append(total / len(src))
+            if total < self.min_points:  # too little overlap: uncorrelated, and no direction out of it
+                n = len(src)
+                res.append(np.full(n, np.sqrt(2.0 / n)))
+                jac.append(np.zeros((n, len(q))))
+                corr.append(np.nan)
                 continue
-            mask = cv2.erode(valid.astype(np.uint8), kernel)
-            if mask.sum() < 4 * win:
-                continue
-            warped = ndi.map_coordinates(self.coef, m.reshape(3, -1), order=self.order, prefilter=False,
-                                         mode="nearest")
-            im_w = self._u8(warped.reshape(shape2))
-            im_f = self._u8(np.take(fn, idx, axis=axis))
-            pts = cv2.goodFeaturesToTrack(im_f, maxCorners=300, qualityLevel=0.01, minDistance=4, mask=mask * 255,
-                                          blockSize=5)
-            if pts is None:
-                continue
-            nxt, st, _ = cv2.calcOpticalFlowPyrLK(im_f, im_w, pts, None, **lk)
-            back, st2, _ = cv2.calcOpticalFlowPyrLK(im_w, im_f, nxt, None, **lk)
-            ok = (st.ravel() == 1) & (st2.ravel() == 1) & (np.linalg.norm((back - pts).reshape(-1, 2), axis=1) < 0.5)
-            a, b = pts.reshape(-1, 2)[ok].astype(np.float64), nxt.reshape(-1, 2)[ok].astype(np.float64)
-            inside = (b[:, 0] >= 0) & (b[:, 0] <= shape2[1] - 1) & (b[:, 1] >= 0) & (b[:, 1] <= shape2[0] - 1)
-            inside &= mask[np.clip(np.round(b[:, 1]).astype(int), 0, shape2[0] - 1),
-                           np.clip(np.round(b[:, 0]).astype(int), 0, shape2[1] - 1)] > 0
-            a, b = a[inside], b[inside]
-            if not len(a):
-                continue
-            pf = np.empty((len(a), 3))
-            pw = np.empty((len(a), 3))
-            pf[:, axis] = pw[:, axis] = idx
-            pf[:, other[0]], pf[:, other[1]] = a[:, 1], a[:, 0]  # image (x = column, y = row)
-            pw[:, other[0]], pw[:, other[1]] = b[:, 1], b[:, 0]
-            src.append(pw @ t_inv[:3, :3].T + t_inv[:3, 3])
-            dst.append(pf)
-        if not src:
-            return np.zeros((0, 3)), np.zeros((0, 3))
-        return np.vstack(src), np.vstack(dst)
+            r, j, c = _ncc_residuals(src, samples, dv @ dp)
+            w = np.sqrt(self.way_weights[len(res)])
+            res.append(w * r)
+            jac.append(w * j)
+            corr.append(c)
+        out = Evaluation(np.concatenate(res), np.vstack(jac), np.array(corr), np.array(over))
+        self._cache = (key, out)
+        return out
 
 
-def fit_rows(t_index, src, dst, rows) -> np.ndarray:
-    """Refit the given rows of a (4, 4) affine transform to matches ((K, 3) each) by least squares with 3-sigma
-    outlier rejection (three rounds); the other rows are kept."""
-    out = t_index.copy()
-    a = np.column_stack([src, np.ones(len(src))])
-    for r in rows:
-        keep = np.ones(len(src), bool)
-        coef = out[r]
-        for _ in range(3):
-            if keep.sum() < 8:
-                break
-            coef = np.linalg.lstsq(a[keep], dst[keep, r], rcond=None)[0]
-            res = np.abs(a @ coef - dst[:, r])
-            keep = res < 3.0 * max(1.4826 * np.median(res[keep]), 0.1)
-        out[r] = coef
-    return out
+@dataclass(frozen=True, eq=False)
+class Refined:
+    """Result of :func:`refine` (at the level of its :class:`PairCorrelation`)."""
+
+    transform: np.ndarray  # (4, 4) moving level index -> fixed level index
+    correlations: np.ndarray  # (n_ways,) forward, backward
+    overlaps: np.ndarray  # (n_ways,) fraction of each way's points inside the other volume
+    n_iterations: int
+    converged: bool  # the last step moved the corners less than the tolerance
+
+    @property
+    def correlation(self) -> float:
+        """The mean of the two ways' correlations (-1 when a way has no overlap)."""
+        c = np.where(np.isfinite(self.correlations), self.correlations, -1.0)
+        return float(c.mean())
 
 
-def consistent_tracks(src, dst, seed: int, min_tracks: int, threshold: float = 1.0):
-    """The tracks ((K, 3) moving, (K, 3) fixed) consistent with one affine transform (the engine's RANSAC within
-    ``threshold``), or None when fewer than ``min_tracks`` (or tracks that do not spread over all three axes)."""
-    if len(src) < min_tracks or not all(np.ptp(src[:, a]) > 2.0 for a in range(3)):
-        return None
-    try:
-        r = ransac(src, dst, model="affine", threshold=threshold, seed=seed, max_trials=1000)
-    except (RegistrationError, InputError):
-        return None
-    inl = r.info["inliers"]
-    return (src[inl], dst[inl]) if inl.sum() >= min_tracks else None
+def refine(pair: PairCorrelation, t_level, *, max_iterations: int, tolerance: float,
+           min_overlap_ratio: float = 0.5) -> Refined:
+    """Levenberg-Marquardt steps on the two-way correlation from the (4, 4) level transform ``t_level``, each way
+    weighted by the inverse of its misfit there (:meth:`PairCorrelation.weigh_ways`).
 
-
-def envelope(v) -> np.ndarray:
-    """Instantaneous amplitude (Hilbert transform) along the traces of a cube, normalised (float32): it varies slowly
-    with time, so slices of it barely change under a small vertical misfit."""
-    from scipy.signal import hilbert  # scipy.signal takes 0.5 s to import: only when a volume is registered
-
-    e = np.abs(hilbert(v, axis=2)).astype(np.float32)
-    return ((e - e.mean()) / max(float(e.std()), 1e-12)).astype(np.float32)
-
-
-def refine_with_tracks(tracker: SliceTracker, envelope_tracker: SliceTracker, score, frames: WorkingFrames,
-                       t_index, model: str, thin: bool, max_rounds: int, opt: VolumeOptions) -> np.ndarray:
-    """Alternate vertical (section tracks) and lateral (time-slice tracks, or sections when thin) row updates of the
-    (4, 4) ``t_index``; ``score`` is an :class:`~seismo3d.seismic.volumes.polish.OverlapCorrelation`.
-
-    The lateral rows come from envelope time slices (when they give enough tracks) until the transform moves less
-    than 0.3 voxel, then from two rounds of amplitude time slices (sharper, but biased by a residual vertical error that
-    the first rounds remove). A round that lowers the correlation of the two volumes is undone and ends the loop.
+    Stops when a step moves no corner of the moving volume by more than ``tolerance`` (level samples), after
+    ``max_iterations`` steps, or when no damped step lowers the cost. A step that shrinks either way's overlap below
+    ``min_overlap_ratio`` of the start's is refused: a small overlap can correlate by chance.
     """
-    corners = np.array(np.meshgrid(*[[0, n] for n in tracker.m_hi], indexing="ij")).reshape(3, -1).T
-    corners = np.column_stack([corners, np.ones(len(corners))])
-    seed, min_tracks = opt.seed, opt.min_tracks
-    corr = score.correlation(t_index)[0]
-    sharp = 0
-    for _ in range(max_rounds):
-        before = t_index.copy()
-        sections = [tracker.family(a, t_index) for a in (0, 1)]
-        ok = consistent_tracks(np.vstack([s for s, _ in sections]), np.vstack([d for _, d in sections]), seed,
-                               min_tracks)
-        if ok is not None:
-            t_index = frames.project_index(fit_rows(t_index, *ok, [2]), model)
-        if thin:
-            for axis, row in ((0, 1), (1, 0)):  # inline sections see crosslines, crossline sections inlines
-                ok = consistent_tracks(*tracker.family(axis, t_index), seed, min_tracks)
-                if ok is not None:
-                    t_index = frames.project_index(fit_rows(t_index, *ok, [row]), model)
-        else:
-            ok = None if sharp else consistent_tracks(*envelope_tracker.family(2, t_index), seed, 40)
-            if ok is None:
-                ok = consistent_tracks(*tracker.family(2, t_index), seed, min_tracks)
-            if ok is not None:
-                t_index = frames.project_index(fit_rows(t_index, *ok, [0, 1]), model)
-        new_corr = score.correlation(t_index)[0]
-        if new_corr < corr - 0.005:
-            return before
-        corr = max(corr, new_corr)
-        move = np.abs(corners @ (t_index - before)[:3].T).max()
-        if sharp:
-            sharp += 1
-            if sharp > 2:
+    q = pair.params(t_level)
+    if len(pair.ways) > 1:
+        pair.weigh_ways(1.0 - pair.evaluate(q).correlations)
+    ev = pair.evaluate(q)
+    floor = min_overlap_ratio * ev.overlaps
+    corners = transform_corners(pair.moving.shape)
+
+    def moved(step):  # the largest displacement of a moving corner by a step, level samples
+        return np.abs((pair.transform(q + step) - pair.transform(q))[:3] @ corners).max()
+
+    lam, n_it, converged = 1e-3, 0, False
+    for n_it in range(1, max_iterations + 1):
+        h = ev.jacobian.T @ ev.jacobian
+        g = ev.jacobian.T @ ev.residuals
+        diag = np.diag(np.diag(h)) + 1e-12 * np.eye(len(q))
+        accepted = False
+        for _ in range(8):  # Marquardt: raise the damping until a step lowers the cost
+            step = -np.linalg.solve(h + lam * diag, g)
+            if moved(step) < tolerance:
+                converged = True  # the next step would not move the corners: a (local) maximum
                 break
-        elif move < 0.3:
-            sharp = 1
-    return t_index
-
-
-def reflector_fit(t_index, frames: WorkingFrames, pm, pf, max_distance: float = 1.0) -> tuple[float, float]:
-    """Fitness and inlier RMSE of the moving reflector points ``pm`` against the fixed ones ``pf`` ((N, 3) index
-    coordinates) at a transform, as the ICP reports them (working units, within ``max_distance``)."""
-    t_work = frames.to_work(t_index)
-    moved = (pm * frames.w_moving) @ t_work[:3, :3].T + t_work[:3, 3]
-    dist, _ = cKDTree(pf * frames.w_fixed).query(moved, distance_upper_bound=max_distance, workers=-1)
-    ok = np.isfinite(dist)
-    return float(ok.mean()), (float(np.sqrt(np.mean(dist[ok] ** 2))) if ok.any() else float("inf"))
+            trial = pair.evaluate(q + step)
+            if trial.cost < ev.cost and np.all(trial.overlaps >= floor):
+                accepted = True
+                lam = max(lam / 3.0, 1e-7)
+                break
+            lam *= 4.0
+        if not accepted:
+            converged = converged or lam > 1e2  # damped to a standstill
+            break
+        move = moved(step)
+        q, ev = q + step, trial
+        if move < tolerance:
+            converged = True
+            break
+    return Refined(pair.transform(q), ev.correlations, ev.overlaps, n_it, converged)

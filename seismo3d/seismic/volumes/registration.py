@@ -1,13 +1,14 @@
-"""register_volumes: the five stages of the sub-volume registration in order, and its result.
+"""register_volumes: the stages of the sub-volume registration in order, and its result.
 
-Stages 1-5 of :mod:`seismo3d.seismic.volumes`, each a call to a named step; the candidates passed between them are
-dataclasses.
+Stages of :mod:`seismo3d.seismic.volumes`, each a call to a named step, each timed: ``prepare`` (inputs, levels),
+``search`` (the coarsest level), ``coarse`` (the best starts refined there), ``fine`` (the best one through the finer
+levels to full resolution), ``check`` (:mod:`.check`).
 """
 
 from __future__ import annotations
 
-import warnings
-from dataclasses import dataclass
+import time
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import ndimage as ndi
@@ -15,19 +16,20 @@ from scipy import ndimage as ndi
 from ..._options import resolve_options
 from ..._progress import progress_steps
 from ..._validation import check_choice
-from ...errors import DegenerateGeometryWarning, InputError, RegistrationError
-from ...geometry.transforms import decompose_axis_scaled
-from ...registration import ICPOptions, fused_icp
-from ...registration.result import RegistrationResult
-from ..reflectors import normalise_amplitudes, reflector_points
-from .frames import WorkingFrames, homogeneous_diag
-from .inputs import as_volume
-from .options import VOLUME_MODELS, VolumeOptions
-from .polish import OverlapCorrelation, Polished, polish
-from .refine import SliceTracker, envelope, refine_with_tracks, reflector_fit
-from .starts import FeatureStart, correlation_starts, feature_starts, is_thin
+from ..reflectors import normalise_amplitudes
+from .check import Consistency, consistency_check
+from .inputs import VolumeInput, as_volume
+from .model import VOLUME_MODELS, Reparam, corner_distance, decompose_map, homogeneous_diag, map_matrix
+from .options import VolumeOptions
+from .pyramid import (Sampled, build_level, envelope, from_level, level_factors, level_kind, live_traces,
+                      smoothing_measures, to_level)
+from .refine import PairCorrelation, Refined, refine
+from .search import Start, correlation_search, distinct_starts
+from .vertical import vertical_scale
 
 __all__ = ["VolumeRegistration", "register_volumes"]
+
+STAGES = ("prepare", "search", "coarse", "fine", "check")
 
 
 @dataclass(frozen=True, eq=False)
@@ -41,165 +43,154 @@ class VolumeRegistration:
     transform_physical : (4, 4) float64 ndarray
         The same map between physical coordinates ``spacing * index`` (m, m, ms or m), i.e.
         ``diag(fixed_spacing, 1) @ transform_index @ diag(1 / moving_spacing, 1)``.
-    scales : (3,) float64 ndarray
-        Per-axis scales of the moving axes in ``transform_physical`` (column norms of its linear part): the length of
-        one moving physical unit along each moving axis, in fixed physical units. 1 when the spacings are right; with
-        the default spacing of 1 (arrays), the moving bin sizes and sample interval in fixed traces and samples.
     rotation_deg : float
-        Map-view rotation of the moving axes in the physical (inline m, crossline m) plane, degrees, counter-clockwise
-        from the +inline axis towards the +crossline axis.
-    fitness : float
-        Fraction of moving reflector points with a fixed reflector point within the final correspondence distance of
-        the fused ICP (1 fixed sample), over all moving reflector points (so at most the overlap fraction).
-    inlier_rmse : float
-        RMS distance between those corresponding reflector points, in fixed samples (working frame units).
+        Map rotation of the moving grid, degrees, counter-clockwise from the fixed +inline axis towards the fixed
+        +crossline axis (:func:`~seismo3d.seismic.volumes.model.decompose_map`).
+    moving_scales : (3,) float64 ndarray
+        Moving inline bin, crossline bin and sample interval in units of the fixed spacings (1 when the spacings are
+        right; with the default spacing of 1 for arrays, in fixed traces and samples).
+    fixed_scales : (3,) float64 ndarray
+        Corrections of the fixed inline and crossline bins (their product is 1), and 1.
+    scales_separable : bool
+        Whether the bin anisotropy of the two grids could be told apart (a map rotation away from 0 and 90 degrees);
+        otherwise all of it is on ``moving_scales``.
     correlation : float
-        Normalised cross-correlation of the fixed volume and the registered moving volume over their overlap, in
-        [-1, 1]: a quality measure independent of the reflector picking.
+        Normalised cross-correlation of the two volumes through the result, the mean of both ways (at the moving
+        samples with the fixed volume interpolated, and the reverse), in [-1, 1].
     overlap : float
-        Fraction of the fixed volume's voxels covered by the registered moving volume.
-    n_reflector_points : int
-        Moving reflector points used by the fused ICP (dense term).
-    n_feature_matches : int
-        Feature matches (slice tracks) used by the fused ICP (feature term); 0 after a correlation start.
+        Fraction of the smaller volume (live samples) inside the other one.
+    converged : bool
+        The consistency check passed (:mod:`seismo3d.seismic.volumes.check`).
+    reason : str
+        Why not converged, in one line ('' when converged).
+    check : Consistency
+        The check's measures: the one-way registrations and how far apart they are, the best other optimum, the
+        shifted controls.
+    stage_seconds : dict
+        Seconds per stage: ``prepare``, ``search``, ``coarse``, ``fine``, ``check``.
+    n_maps : int
+        Linear maps scored by the search.
     fixed_spacing, moving_spacing : (3,) float64 ndarray
         Inline bin (m), crossline bin (m), sample interval (ms or m) used for each volume.
     spacing_note : str
         Where the spacings came from (given, SEG-Y headers, or the default 1 when unknown).
-    result : RegistrationResult
-        The fused ICP's result, in working-frame coordinates (see the module docstring). When no slice features
-        matched (the correlation start), the polish's: the final transform, the reflector fit's fitness and RMSE,
-        the correlation evaluations as ``n_iterations``, and ``info['start'] == 'correlation'``.
-    converged : bool
-        The final correlation polish stopped on its tolerances (not on its evaluation limit), and the result
-        correlates at least ``min_correlation``.
-    scaled_axes : {'moving', 'fixed'}
-        Which volume's axes carry the per-axis scales of the final polish (see ``VolumeOptions.symmetric``).
+    model : {'affine', 'rigid'}
     """
 
     transform_index: np.ndarray
     transform_physical: np.ndarray
-    scales: np.ndarray
     rotation_deg: float
-    fitness: float
-    inlier_rmse: float
+    moving_scales: np.ndarray
+    fixed_scales: np.ndarray
+    scales_separable: bool
     correlation: float
     overlap: float
-    n_reflector_points: int
-    n_feature_matches: int
-    fixed_spacing: np.ndarray
-    moving_spacing: np.ndarray
-    spacing_note: str
-    result: RegistrationResult
-    converged: bool = True
-    scaled_axes: str = "moving"
+    converged: bool
+    reason: str
+    check: Consistency
+    stage_seconds: dict = field(default_factory=dict)
+    n_maps: int = 0
+    fixed_spacing: np.ndarray = field(default_factory=lambda: np.ones(3))
+    moving_spacing: np.ndarray = field(default_factory=lambda: np.ones(3))
+    spacing_note: str = ""
+    model: str = "affine"
 
     def to_dict(self) -> dict:
-        """JSON-ready dict of the transforms (nested lists), scales, rotation, quality measures and spacings."""
+        """JSON-ready dict of the transforms (nested lists), decomposition, quality measures, check and timings."""
         return {
             "transform_index": np.asarray(self.transform_index).tolist(),
             "transform_physical": np.asarray(self.transform_physical).tolist(),
-            "scales": np.asarray(self.scales).tolist(),
             "rotation_deg": float(self.rotation_deg),
-            "fitness": float(self.fitness),
-            "inlier_rmse": float(self.inlier_rmse),
+            "moving_scales": np.asarray(self.moving_scales).tolist(),
+            "fixed_scales": np.asarray(self.fixed_scales).tolist(),
+            "scales_separable": bool(self.scales_separable),
             "correlation": float(self.correlation),
             "overlap": float(self.overlap),
-            "n_reflector_points": int(self.n_reflector_points),
-            "n_feature_matches": int(self.n_feature_matches),
+            "converged": bool(self.converged),
+            "reason": self.reason,
+            "check": self.check.to_dict(),
+            "stage_seconds": {k: round(float(v), 3) for k, v in self.stage_seconds.items()},
+            "n_maps": int(self.n_maps),
             "fixed_spacing": np.asarray(self.fixed_spacing).tolist(),
             "moving_spacing": np.asarray(self.moving_spacing).tolist(),
             "spacing_note": self.spacing_note,
-            "scaled_axes": self.scaled_axes,
-            "converged": bool(self.converged),
         }
 
 
 @dataclass(frozen=True, eq=False)
-class _Candidate:
-    """A registration before the polish: its overlap correlation, the transform and where it came from."""
+class _Pyramid:
+    """One volume's levels, finest (full resolution) first."""
 
-    correlation: float
-    overlap: float
-    transform: np.ndarray  # (4, 4) moving index -> fixed index
-    fused: RegistrationResult | None = None  # the fused ICP's result (None after a correlation start)
-    n_matches: int = 0  # feature matches of the fused ICP
+    levels: list  # of Sampled
+
+    def at(self, k: int) -> Sampled:
+        """Level ``k``, or the coarsest when it has fewer."""
+        return self.levels[min(k, len(self.levels) - 1)]
 
 
 @dataclass(frozen=True, eq=False)
-class _Volumes:
-    """The two checked, normalised volumes, their frames and the overlap correlations used to rank and polish."""
+class _Coarse:
+    """The starts refined on the coarsest level: the best, and the best distinct other one."""
 
-    fixed: np.ndarray  # normalised float32
-    moving: np.ndarray
-    frames: WorkingFrames
-    score: OverlapCorrelation  # ranks candidates (about score_points samples)
-    overlap: OverlapCorrelation  # the polish's (about polish_points samples)
+    best: Refined
+    runner_up: Refined | None  # None when every start led to the best
 
 
-def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing=None, moving_spacing=None,
+def register_volumes(fixed, moving, *, model: str = "affine", fixed_spacing=None, moving_spacing=None,
                      options: VolumeOptions | None = None, progress: bool = False,
                      **overrides) -> VolumeRegistration:
     """Register a moving seismic sub-volume onto a fixed one: bin sizes, sample rates and map orientation may differ.
 
-    The five stages (vertical scale and shift from trace spectra and envelope profiles; a global start from
-    HOG-pyramid matches between corresponding slices with RANSAC, or for volumes too small for slice features from a
-    correlation search over map rotations within +-45 degrees and the scale range; the fused ICP of reflector points
-    and those matches; refinement by slice tracks; a local maximisation of the amplitude correlation) are described
-    in :mod:`seismo3d.seismic.volumes`. Which volume is passed as fixed does not change the answer (up to the
-    polish's tolerance): see ``VolumeOptions.symmetric``.
+    The map has the bins of both volumes (:mod:`~seismo3d.seismic.volumes.model`): a general linear map in map view
+    (a map rotation and the inline / crossline bin scales of either volume), a vertical scale and a shift, so the
+    answer does not depend on which volume is passed as fixed. Coarse to fine from the start: a search over map
+    rotations and the scales of either volume on the coarsest decimated level (every translation at once by masked
+    FFT correlation), the best starts refined there (Levenberg-Marquardt on the correlation of both volumes, taken
+    both ways), the best one through the finer levels to full resolution, then a consistency check
+    (:mod:`~seismo3d.seismic.volumes.check`) before it is called converged.
 
     Parameters
     ----------
     fixed : (n_inlines, n_xlines, n_samples) array_like or SeismicCube
-        The reference volume: amplitudes of any real dtype (uint8 images of sections too), or an open
-        :class:`~seismo3d.seismic.SeismicCube` whose spacing is then read from its CDP coordinates and sample interval
-        (:func:`~seismo3d.seismic.volume_spacing`).
+        The reference volume: amplitudes of any real dtype, or an open :class:`~seismo3d.seismic.SeismicCube` whose
+        spacing is then read from its CDP coordinates and sample interval (:func:`~seismo3d.seismic.volume_spacing`).
+        Dead (constant) traces are left out.
     moving : (n_inlines', n_xlines', n_samples') array_like or SeismicCube
-        The volume to map onto ``fixed``; it must overlap it (at least ~40 % of the shorter one in time / depth).
-    model : {'axis_scaled', 'rigid', 'affine'}
-        Transform family in the working frame (module docstring): ``'rigid'`` trusts the spacings, ``'axis_scaled'``
-        estimates a scale per axis within ``scale_range`` of them, ``'affine'`` estimates any affine map (started as
-        ``'axis_scaled'``).
+        The volume to map onto ``fixed``; the two must share at least ``min_fraction`` of the smaller one.
+    model : {'affine', 'rigid'}
+        ``'affine'``: the map rotation, the bin scales of both volumes and the vertical scale are estimated (within
+        ``scale_range`` of the spacings); ``'rigid'``: the spacings are right, only a map rotation and a translation
+        (and a vertical shift) are estimated.
     fixed_spacing, moving_spacing : (3,) array_like of float, optional
         Inline bin (m), crossline bin (m) and sample interval (ms or m; the same unit for both volumes). Default: from
         the SEG-Y headers for a SeismicCube, else 1 (index units; scales are then in fixed traces and samples).
     options : VolumeOptions, optional
-        Scale range, fused-ICP weight, features, point counts, thresholds, seed and the search ranges of every stage
-        (:class:`~seismo3d.seismic.volumes.VolumeOptions`).
+        Search ranges, levels, sizes and check tolerances (:class:`~seismo3d.seismic.volumes.VolumeOptions`).
     progress : bool
-        Report progress over the stages and inside the long ones (:mod:`seismo3d._progress`: a bar on a terminal,
-        log lines otherwise; a pair takes 10-140 s, ``benchmarks/volumes.py``).
+        Report progress over the stages (:mod:`seismo3d._progress`).
     **overrides
         Fields of :class:`~seismo3d.seismic.volumes.VolumeOptions` by name (e.g. ``scale_range=(0.5, 2.0)``,
-        ``min_correlation=0.9``, ``seed=1``), replacing those of ``options``.
+        ``max_rotation=90``), replacing those of ``options``.
 
     Returns
     -------
     VolumeRegistration
-        ``transform_index`` (moving index -> fixed index), ``transform_physical``, ``scales``, ``rotation_deg``,
-        ``fitness``, ``inlier_rmse``, ``correlation``, ``converged``, ... and the fused ICP's ``result``.
+        ``transform_index`` (moving index -> fixed index), ``transform_physical``, ``rotation_deg``,
+        ``moving_scales``, ``fixed_scales``, ``correlation``, ``overlap``, ``converged`` and ``reason``, the check's
+        measures and ``stage_seconds``. A result that is not converged still holds the best map found.
 
     Raises
     ------
     InputError
         A volume that is not 3D, smaller than 8 along an axis, constant or (almost) all dead; NaN / inf values; a
-        spacing that is not three positive numbers; an unknown model or option; too few reflector points.
-    RegistrationError
-        No consistent slice matches and no correlating start (the volumes do not overlap, look too different, or
-        are rotated by more than 45 degrees while too small for slice features), or a result whose correlation is
-        below ``min_correlation``.
+        spacing that is not three positive numbers; an unknown model or option.
 
     References
     ----------
-    Vokhmintcev, A., Timchenko, M., method.md eqs. 1-9 (per-axis scale), eq. 16 (fused objective), section 2
-    (HOG-pyramid matcher).
     Padfield, D. (2012). Masked object registration in the Fourier domain. IEEE Trans. Image Process. 21(5),
     2706-2718. doi:10.1109/TIP.2011.2181402
-    Morel, J.-M., Yu, G. (2009). ASIFT: A new framework for fully affine invariant image comparison. SIAM J. Imaging
-    Sci. 2(2), 438-469. doi:10.1137/080732730
-    Bouguet, J.-Y. (2000). Pyramidal implementation of the Lucas Kanade feature tracker. Intel Corporation.
-    Shi, J., Tomasi, C. (1994). Good features to track. CVPR, 593-600. doi:10.1109/CVPR.1994.323794
+    Marquardt, D. W. (1963). An algorithm for least-squares estimation of nonlinear parameters. J. Soc. Ind. Appl.
+    Math. 11(2), 431-441. doi:10.1137/0111030
 
     Examples
     --------
@@ -207,179 +198,203 @@ def register_volumes(fixed, moving, *, model: str = "axis_scaled", fixed_spacing
     >>> from seismo3d.data import synthetic_cube
     >>> cube = synthetic_cube((96, 96, 96), n_faults=3, seed=1).cube
     >>> reg = register_volumes(cube[:72, :72], cube[16:, 20:, 10:])        # doctest: +SKIP
-    >>> np.round(reg.transform_index[:3, 3], 1)                              # doctest: +SKIP
-    array([16., 20., 10.])
+    >>> np.round(reg.transform_index[:3, 3], 1), reg.converged              # doctest: +SKIP
+    (array([16., 20., 10.]), True)
     """
     check_choice(model, "model", VOLUME_MODELS)
     opt = resolve_options(VolumeOptions, options, overrides, "register_volumes")
-    fixed_in = as_volume(fixed, "fixed", fixed_spacing)
-    moving_in = as_volume(moving, "moving", moving_spacing)
-    fn, mn = normalise_amplitudes(fixed_in.data, "fixed"), normalise_amplitudes(moving_in.data, "moving")
-    frames = WorkingFrames(fixed_in.spacing, moving_in.spacing)
-    fit_model = "axis_scaled" if model == "affine" else model
+    seconds = {}
+    with progress_steps(len(STAGES), "register_volumes", enabled=progress) as bar:
+        clock = time.perf_counter()
 
-    # reflector points first: they also reject volumes without reflectors before the expensive stages
-    pf, nf, pm = _reflector_point_sets(fn, mn, opt)
-    with progress_steps(4, "register_volumes", enabled=progress) as bar:
-        # stages 1 and 2: vertical scale and shift, slice features, RANSAC
-        bar.start("slice features")
-        env_f, env_m = envelope(fn), envelope(mn)
-        thin = is_thin(fn.shape, mn.shape, frames, opt.scale_range[1], opt)
-        starts = feature_starts(fn, mn, frames, fit_model, (env_f.mean(axis=(0, 1)), env_m.mean(axis=(0, 1))), thin,
-                                opt)
-        bar.advance()
-        bar.start("fused ICP and slice tracks")
-        coef_f = ndi.spline_filter(fn, order=3, output=np.float32, mode="mirror")
-        vols = _Volumes(fn, mn, frames, OverlapCorrelation(fn, mn, coef_f, opt.score_points, opt.taper),
-                        OverlapCorrelation(fn, mn, coef_f, opt.polish_points, opt.taper))
-        # stages 4 and 3: the fused ICP from each of the best starts, refined by slice tracks
-        best = _refined_feature_candidate(vols, starts, (pf, nf, pm), (env_f, env_m), model, fit_model, thin, opt,
-                                          progress)
-        if best is None:
-            # no slice features matched (volumes too small for them, or featureless), or the fused ICP failed from
-            # every feature-based start: the correlation search, each start polished
-            best = _correlation_candidate(vols, fit_model, thin, opt, progress)
-        bar.advance()
-        # stage 5: the polish, with the scales along either volume's axes
-        bar.start("correlation polish")
-        polished, scaled_axes = _polish_either_way(vols, best.transform, model, opt)
-        bar.advance()
-        bar.start("checks")
-        result = _finish(vols, best, polished, scaled_axes, fixed_in, moving_in, pf, pm, opt)
-        bar.advance()
-    return result
-
-
-def _reflector_point_sets(fn, mn, opt: VolumeOptions):
-    """Fixed reflector points and normals, moving reflector points (normalised volumes); at least 100 each."""
-    pf, nf = reflector_points(fn, max_points=int(opt.max_points), seed=opt.seed, normalise=False)
-    pm, _ = reflector_points(mn, max_points=int(opt.max_points), seed=opt.seed + 1, normalise=False)
-    for name, p in (("fixed", pf), ("moving", pm)):
-        if len(p) < 100:
-            raise InputError(f"{name} has only {len(p)} reflector points (strong, planar amplitude peaks); at least "
-                             "100 are needed. Check that it holds reflection seismic amplitudes, not noise or a "
-                             "smooth property such as velocity")
-    return pf, nf, pm
-
-
-def _refined_feature_candidate(vols: _Volumes, starts: list[FeatureStart], points, envelopes, model: str,
-                               fit_model: str, thin: bool, opt: VolumeOptions, progress: bool) -> _Candidate | None:
-    """The fused ICP (eq. 16: RANSAC inlier matches + reflector points) from each of the best feature starts, then
-    the refinement with slice tracks; the candidate that correlates best over the overlap, or None."""
-    if not starts:
-        return None
-    pf, nf, pm = points
-    frames = vols.frames
-    wf, wm = frames.w_fixed, frames.w_moving
-    nf_w = nf / wf
-    nf_w /= np.linalg.norm(nf_w, axis=1, keepdims=True)
-    tracker = SliceTracker(vols.fixed, vols.moving, window=opt.klt_window)
-    envelope_tracker = SliceTracker(*envelopes, order=1, window=opt.klt_window)  # smooth: linear suffices
-    best = None
-    with progress_steps(min(len(starts), opt.max_starts), "feature starts", unit="start", enabled=progress) as bar:
-        for start in starts[:opt.max_starts]:
+        def done(stage):  # the time of each stage, in the result
+            nonlocal clock
+            now = time.perf_counter()
+            seconds[stage] = now - clock
+            clock = now
             bar.advance()
-            try:
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore", DegenerateGeometryWarning)  # reported via result.degenerate
-                    fused = fused_icp(pm * wm, pf * wf, target_normals=nf_w, source_features=start.source_matches,
-                                      target_features=start.target_matches, alpha=opt.alpha, model=fit_model,
-                                      init=frames.to_work(start.transform), ransac_threshold=2.0, seed=opt.seed,
-                                      options=ICPOptions(max_distance=(4.0, 2.0, 1.0)))
-            except RegistrationError:
-                continue
-            t = refine_with_tracks(tracker, envelope_tracker, vols.score, frames, frames.to_index(fused.transform),
-                                   fit_model, thin, int(opt.max_rounds), opt)
-            corr, overlap = vols.score.correlation(t)
-            if best is None or corr > best.correlation:
-                best = _Candidate(corr, overlap, t, fused, len(start.source_matches))
-            if corr >= opt.good_correlation:
-                break
-    if best is not None and model == "affine":  # the affine refinement: rows fitted freely from the tracks
-        t = refine_with_tracks(tracker, envelope_tracker, vols.score, frames, best.transform, "affine", thin, 3, opt)
-        best = _Candidate(best.correlation, best.overlap, t, best.fused, best.n_matches)
-    return best
 
-
-def _correlation_candidate(vols: _Volumes, fit_model: str, thin: bool, opt: VolumeOptions,
-                           progress: bool) -> _Candidate:
-    """The best polished start of the correlation search; raises :class:`RegistrationError` when none correlates
-    at least ``min_correlation``."""
-    best = None
-    for start in correlation_starts(vols.fixed, vols.moving, vols.frames, fit_model, opt, progress=progress):
-        t = polish(vols.overlap, start.transform, vols.frames, fit_model, opt).transform
-        corr, overlap = vols.score.correlation(t)
-        if best is None or corr > best.correlation:
-            best = _Candidate(corr, overlap, t)
-    if best is None or best.correlation < opt.min_correlation:
-        fn, mn = vols.fixed, vols.moving
-        small = ""
-        if thin:
-            small = (f" The volumes are small for slice features (fixed {fn.shape[0]} x {fn.shape[1]} traces,"
-                     f" moving {mn.shape[0]} x {mn.shape[1]}; features need about {opt.min_map} traces across), "
-                     "and the correlation search over map rotations within +-"
-                     f"{opt.max_rotation:g} degrees found no start: register larger sub-volumes if you can.")
-        raise RegistrationError("no usable feature matches between slices of the two volumes, and no "
-                                "correlating start: they may not overlap, or their scales / rotation are "
-                                "outside the search (scale_range); check the spacings and the overlap." + small)
-    return best
-
-
-def _polish_either_way(vols: _Volumes, t_index, model: str, opt: VolumeOptions) -> tuple[Polished, str]:
-    """The polish with the scales along the moving axes and, for an anisotropic 'axis_scaled' result, along the
-    fixed axes too: the reverse problem polished from the forward result projected onto its model (the polish only
-    reaches transforms of its own family from there), then inverted. The one that halves the misfit
-    ``1 - correlation`` wins, the correlation taken both ways (at the moving samples with the fixed volume
-    interpolated, and the reverse): one way alone favours the side whose volume is finer."""
-    forward = polish(vols.overlap, t_index, vols.frames, model, opt)
-    if not (opt.symmetric and model == "axis_scaled"):
-        return forward, "moving"
-    scales = np.linalg.norm(vols.frames.to_work(forward.transform)[:3, :3], axis=0)
-    if abs(np.log(scales[0] / scales[1])) <= np.log1p(opt.anisotropy):
-        return forward, "moving"  # laterally isotropic: both models are the same family
-    reverse_frames = vols.frames.swapped()
-    coef_m = ndi.spline_filter(vols.moving, order=3, output=np.float32, mode="mirror")
-    reverse_overlap = OverlapCorrelation(vols.moving, vols.fixed, coef_m, opt.polish_points, opt.taper)
-    reverse_score = OverlapCorrelation(vols.moving, vols.fixed, coef_m, opt.score_points, opt.taper)
-    start = reverse_frames.project_index(np.linalg.inv(forward.transform), model)
-    reverse = polish(reverse_overlap, start, reverse_frames, model, opt)
-    backward = Polished(np.linalg.inv(reverse.transform), forward.n_evaluations + reverse.n_evaluations,
-                        reverse.converged)
-
-    def both_ways(t):
-        return 0.5 * (vols.score.correlation(t)[0] + reverse_score.correlation(np.linalg.inv(t))[0])
-
-    if 1.0 - both_ways(backward.transform) < 0.5 * (1.0 - both_ways(forward.transform)):
-        return backward, "fixed"
-    return forward, "moving"
-
-
-def _finish(vols: _Volumes, best: _Candidate, polished: Polished, scaled_axes: str, fixed_in, moving_in, pf, pm,
-            opt: VolumeOptions) -> VolumeRegistration:
-    """The final checks and measures: correlation (raises below ``min_correlation``), reflector fit, physical
-    transform, scales and map rotation."""
-    frames = vols.frames
-    t_index = polished.transform
-    corr, overlap = vols.score.correlation(t_index)
-    if corr < opt.min_correlation:
-        raise RegistrationError(
-            f"the best registration correlates only {corr:.2f} with the fixed volume over {overlap:.0%} of it "
-            f"(min_correlation={opt.min_correlation}); the volumes may not overlap or differ too much. Check the "
-            "spacings and the overlap, or lower min_correlation"
-        )
-    fitness, rmse = reflector_fit(t_index, frames, pm, pf)
-    fused = best.fused
-    if fused is None:  # the correlation start: the polish is the registration
-        fused = RegistrationResult(transform=frames.to_work(t_index), fitness=fitness, inlier_rmse=rmse,
-                                   n_iterations=polished.n_evaluations, converged=polished.converged,
-                                   info={"start": "correlation", "correlation": corr})
-    sp_f, sp_m = fixed_in.spacing, moving_in.spacing
+        bar.start("prepare")
+        fixed_in, moving_in = as_volume(fixed, "fixed", fixed_spacing), as_volume(moving, "moving", moving_spacing)
+        # two smooth properties (velocity models) are registered by their derivatives along the traces, the layer
+        # contrasts: a trend that grows with depth fixes no position, and a vertical scale only multiplies them
+        derivative = _is_smooth(fixed_in, opt) and _is_smooth(moving_in, opt)
+        pf, pm = _pyramids([(fixed_in, "fixed"), (moving_in, "moving")], derivative, opt)
+        sp_f, sp_m = fixed_in.spacing, moving_in.spacing
+        done("prepare")
+        # stage 1: every candidate map on the coarsest level, both volumes' bin scales
+        bar.start("search")
+        top = max(len(pf.levels), len(pm.levels)) - 1
+        starts, n_maps = _search(pf, pm, top, sp_f, sp_m, model, opt)
+        done("search")
+        # stage 2: the best starts refined on the coarsest level
+        bar.start("coarse")
+        coarse = _refine_starts(pf.at(top), pm.at(top), starts, sp_f, sp_m, model, opt,
+                                tolerance=opt.tolerance * (5 if top else 1))
+        done("coarse")
+        # stage 3: the best one through the finer levels, and the best distinct other one (for the check)
+        bar.start("fine")
+        t_index, final = _refine_down(pf, pm, coarse.best.transform, top, sp_f, sp_m, model, opt)
+        runner_up = None
+        if coarse.runner_up is not None and _close(coarse.best, coarse.runner_up, opt):
+            # as good on the coarsest level: which one is better only full resolution tells
+            runner_up = _refine_down(pf, pm, coarse.runner_up.transform, top, sp_f, sp_m, model, opt)[0]
+        done("fine")
+        # stage 4: the consistency check
+        bar.start("check")
+        ev = final.evaluate(final.params(t_index))
+        correlation = float(np.mean(np.where(np.isfinite(ev.correlations), ev.correlations, -1.0)))
+        overlap = float(np.max(ev.overlaps))  # of the smaller volume: the larger of the two ways' fractions
+        check = consistency_check(final, t_index, correlation, overlap, runner_up, (sp_f, sp_m), opt)
+        done("check")
     t_phys = homogeneous_diag(sp_f) @ t_index @ homogeneous_diag(1.0 / sp_m)
-    r, scales, _ = decompose_axis_scaled(t_phys)
+    dec = decompose_map(t_phys)
     return VolumeRegistration(
-        transform_index=t_index, transform_physical=t_phys, scales=scales,
-        rotation_deg=float(np.degrees(np.arctan2(r[1, 0], r[0, 0]))), fitness=fitness, inlier_rmse=rmse,
-        correlation=corr, overlap=overlap, n_reflector_points=int(len(pm)), n_feature_matches=int(best.n_matches),
-        fixed_spacing=sp_f, moving_spacing=sp_m, spacing_note=f"fixed: {fixed_in.note}; moving: {moving_in.note}",
-        result=fused, converged=bool(polished.converged), scaled_axes=scaled_axes,
+        transform_index=t_index, transform_physical=t_phys, rotation_deg=dec.rotation_deg,
+        moving_scales=dec.moving_scales, fixed_scales=dec.fixed_scales, scales_separable=dec.separable,
+        correlation=correlation, overlap=overlap, converged=check.converged, reason=check.reason, check=check,
+        stage_seconds=seconds, n_maps=n_maps, fixed_spacing=sp_f, moving_spacing=sp_m,
+        spacing_note=f"fixed: {fixed_in.note}; moving: {moving_in.note}", model=model,
     )
+
+
+def _is_smooth(vol: VolumeInput, opt: VolumeOptions) -> bool:
+    """Whether a volume holds a smooth property (a velocity model) rather than seismic amplitudes: a Gaussian of
+    width ``max_factor / 2`` samples along the traces keeps at least ``smooth_property`` of its variance."""
+    live = live_traces(vol.data)
+    if not live.any():
+        return False  # a constant volume: refused with its reason when it is normalised
+    traces = vol.data[live].astype(np.float64)
+    traces = traces - traces.mean()
+    kept = ndi.gaussian_filter1d(traces, opt.max_factor / 2.0, axis=-1, mode="nearest").var()
+    return bool(kept >= opt.smooth_property * max(traces.var(), 1e-30))
+
+
+def _pyramids(volumes, derivative: bool, opt: VolumeOptions) -> list[_Pyramid]:
+    """The levels of the checked fixed and moving volumes: normalised amplitudes (0 on dead traces), or with
+    ``derivative`` their derivatives along the traces, or the envelope of either, decimated coarse to fine; each
+    level holds the same kind of data in both (:func:`~seismo3d.seismic.volumes.pyramid.level_kind`)."""
+    prepared = []
+    for vol, name in volumes:
+        data = np.gradient(vol.data, axis=2).astype(np.float32) if derivative else vol.data
+        data = normalise_amplitudes(data, name)
+        live = live_traces(vol.data)
+        data[~live] = 0.0
+        env = None if derivative else envelope(data, live)  # the derivative of a property is no oscillating wavelet
+        coarsest = np.array(level_factors(data.shape, min_lateral=opt.min_lateral, min_vertical=opt.min_vertical,
+                                          max_factor=opt.max_factor))
+        prepared.append((data, env, live, coarsest))
+    memo = {}
+
+    def cached(i, factor):  # each volume's smoothing measures once per vertical factor
+        if (i, factor) not in memo:
+            data, env, live, _ = prepared[i]
+            memo[i, factor] = smoothing_measures(data, env, live, factor)
+        return memo[i, factor]
+
+    # level by level: the samples are decimated while both volumes keep a kind of data, the traces further
+    plan = []  # (factors per volume, kind) per level, finest first
+    last_vertical = np.inf  # the last level whose samples are decimated further
+    for k in range(int(np.log2(max(c.max() for *_, c in prepared))) + 1):
+        for attempt in range(2):
+            factors = [np.minimum([2 ** k, 2 ** k, 2 ** min(k, last_vertical)], c) for *_, c in prepared]
+            if plan and all(np.array_equal(a, b) for a, b in zip(factors, plan[-1][0])):
+                break  # nothing decimated further
+            measures = [cached(i, int(f[2])) for i, f in enumerate(factors)]
+            kind = level_kind(measures, plan[-1][1] if plan else None, keep_amplitude=opt.keep_amplitude,
+                              min_contrast=opt.min_contrast, min_amplitude=opt.min_amplitude)
+            if kind is not None:
+                plan.append((factors, kind))
+                break
+            last_vertical = k - 1  # neither kind survives: the samples stay as on the level before
+    out = []
+    for i, (data, env, live, _) in enumerate(prepared):
+        levels = [build_level(env if kind == "envelope" else data, live, factors[i], opt.taper)
+                  for factors, kind in plan]
+        out.append(_Pyramid(levels))
+    return out
+
+
+def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: VolumeOptions) -> tuple[list, int]:
+    """The distinct best starts of the search on level ``top`` over map rotations and the lateral scales of either
+    volume, with the vertical scale of the trace spectra (full resolution), and the number of maps scored.
+
+    Maps with the scales on the moving volume's axes resample it onto the fixed grid; maps with the scales on the
+    fixed volume's axes are the same search with the volumes' roles swapped, inverted (only the rotated ones
+    anisotropic by two scale steps or more: the others are, or start the refinement as close as, maps of the first
+    kind). Lateral anisotropies above ``max_anisotropy`` are left out.
+    """
+    fixed, moving = pf.at(top), pm.at(top)
+    ratio = sp_m[2] / sp_f[2]  # moving sample interval in fixed samples, by the spacings
+    lo, hi = opt.scale_range
+    if model == "rigid":
+        vertical, axis_scales = ratio, np.ones(1)
+    else:
+        vertical = vertical_scale(pf.at(0).data, pm.at(0).data, lo * ratio, hi * ratio)
+        n = int(np.floor(np.log(hi / lo) / np.log(opt.scale_step) + 1e-9))
+        axis_scales = lo * opt.scale_step ** np.arange(n + 1)
+        axis_scales = np.unique(np.r_[axis_scales, hi] if hi / axis_scales[-1] > opt.scale_step ** 0.5 else
+                                axis_scales)
+    angles = np.arange(-opt.max_rotation, opt.max_rotation + 1e-9, opt.rotation_step)
+    pairs = [(sx, sy) for sx in axis_scales for sy in axis_scales
+             if max(sx, sy) / min(sx, sy) <= opt.max_anisotropy * (1 + 1e-9)]
+    forward, backward = [], []
+    for theta in angles:
+        for lateral in pairs:
+            forward.append(_level_map(theta, lateral, vertical, sp_f, sp_m, fixed, moving))
+            # rotated and anisotropic by two steps or more: also on the fixed volume's axes (a milder anisotropy
+            # on either side starts the refinement close enough)
+            if theta != 0 and max(lateral) / min(lateral) > opt.scale_step ** 1.5:
+                backward.append(_level_map(theta, lateral, 1.0 / vertical, sp_m, sp_f, moving, fixed))
+    starts = correlation_search(fixed, moving, forward, opt.min_fraction)
+    starts += [Start(s.correlation, np.linalg.inv(s.transform))
+               for s in correlation_search(moving, fixed, backward, opt.min_fraction)]
+    starts.sort(key=lambda s: -s.correlation)
+    return distinct_starts(starts, moving.shape, opt.n_starts, 2.0), len(forward) + len(backward)
+
+
+def _level_map(theta, lateral, vertical, sp_to, sp_from, to: Sampled, frm: Sampled) -> np.ndarray:
+    """(3, 3) linear map from ``frm``'s level index to ``to``'s: a map rotation and lateral scales of the physical
+    coordinates (``sp_*`` the spacings), and ``vertical`` full-resolution samples of ``to`` per sample of ``frm``."""
+    lin = np.diag(1.0 / sp_to) @ map_matrix(theta, lateral, 1.0) @ np.diag(sp_from)
+    lin[2, 2] = vertical
+    return np.diag(1.0 / to.factors) @ lin @ np.diag(frm.factors)
+
+
+def _refine_starts(fixed: Sampled, moving: Sampled, starts: list, sp_f, sp_m, model: str, opt: VolumeOptions, *,
+                   tolerance: float) -> _Coarse:
+    """Each start refined on the coarsest level; the best, and the best distinct other optimum."""
+    pair = PairCorrelation(fixed, moving, Reparam(model, sp_f * fixed.factors, sp_m * moving.factors),
+                           opt.n_points)
+    results = sorted((refine(pair, s.transform, max_iterations=opt.max_iterations, tolerance=tolerance)
+                      for s in starts), key=lambda r: -r.correlation)
+    if not results:  # no map overlaps enough anywhere: the identity, which the check reports
+        results = [refine(pair, np.eye(4), max_iterations=1, tolerance=tolerance)]
+    best = results[0]
+    others = [r for r in results[1:] if corner_distance(r.transform, best.transform, moving.shape) > 2.0]
+    return _Coarse(best, others[0] if others else None)
+
+
+def _close(best: Refined, other: Refined, opt: VolumeOptions) -> bool:
+    """Whether ``other`` correlates nearly as well as ``best`` (misfit ratio above ``control_ratio``)."""
+    return 1.0 - best.correlation > opt.control_ratio * (1.0 - other.correlation)
+
+
+def _refine_down(pf: _Pyramid, pm: _Pyramid, t_top, top: int, sp_f, sp_m, model: str,
+                 opt: VolumeOptions) -> tuple[np.ndarray, PairCorrelation]:
+    """A transform of level ``top`` refined on every finer level down to full resolution; the full-resolution
+    transform and correlation."""
+    t_index = from_level(t_top, pf.at(top), pm.at(top))
+    pair = None
+    for k in range(top - 1, -1, -1):
+        fixed, moving = pf.at(k), pm.at(k)
+        pair = PairCorrelation(fixed, moving, Reparam(model, sp_f * fixed.factors, sp_m * moving.factors),
+                               opt.n_points)
+        # the finer levels only need to bring the next one into its peak: a tenth of a sample of theirs
+        r = refine(pair, to_level(t_index, fixed, moving), max_iterations=opt.max_iterations,
+                   tolerance=opt.tolerance if k == 0 else 5 * opt.tolerance)
+        t_index = from_level(r.transform, fixed, moving)
+    if pair is None:  # a single level
+        fixed, moving = pf.at(0), pm.at(0)
+        pair = PairCorrelation(fixed, moving, Reparam(model, sp_f, sp_m), opt.n_points)
+    return t_index, pair

@@ -1,0 +1,71 @@
+"""Levels of the volume registration (seismo3d.seismic.volumes.pyramid): the envelope, what each level holds for
+seismic amplitudes, clipped amplitudes and a smooth property, the decimation factors, and sampling."""
+
+import numpy as np
+import pytest
+
+from seismo3d.data import synthetic_cube
+from seismo3d.seismic.volumes.pyramid import (Sampled, build_level, envelope, from_level, level_factors, level_kind,
+                                              smoothing_measures, to_level)
+
+
+@pytest.mark.parametrize("n", [64, 65])
+def test_envelope_is_the_modulus_of_scipys_analytic_signal(n):
+    from scipy.signal import hilbert
+
+    v = np.random.default_rng(0).normal(size=(3, 4, n)).astype(np.float32)
+    live = np.ones((3, 4), bool)
+    live[0, 0] = False
+    e = envelope(v, live)
+    np.testing.assert_allclose(e[live], np.abs(hilbert(v, axis=2))[live], atol=1e-5)
+    assert e[0, 0, 0] == pytest.approx(e[live].mean())  # dead traces hold the live mean
+
+
+def _kinds(volumes, factors=(2, 4, 8), envelopes=True):
+    """What the levels decimated by ``factors`` hold for these volumes (as register_volumes decides)."""
+    live = np.ones(volumes[0].shape[:2], bool)
+    out, finer = [], "amplitude"
+    for f in factors:
+        measures = [smoothing_measures(v, envelope(v, live) if envelopes else None, live, f) for v in volumes]
+        finer = level_kind(measures, finer, keep_amplitude=0.35, min_contrast=0.25, min_amplitude=0.1)
+        if finer is None:
+            break
+        out.append(finer)
+    return out
+
+
+def test_levels_hold_amplitudes_then_the_envelope_and_stop_where_nothing_survives():
+    cube = synthetic_cube((16, 16, 128), n_faults=0, seed=2).cube
+    kinds = _kinds([cube])
+    assert kinds[0] == "amplitude" and kinds[-1] == "envelope"
+    # a smooth property (a trend along the traces) keeps its amplitudes at every level
+    trend = np.broadcast_to(np.linspace(-3.0, 3.0, 128), (16, 16, 128)) + 0.1 * cube
+    assert _kinds([trend], envelopes=False) == ["amplitude"] * 3
+    # clipped amplitudes: a flat envelope, and their smoothing soon keeps too little: the decimation stops
+    clipped = np.sign(cube)
+    assert "envelope" not in _kinds([clipped]) and len(_kinds([clipped])) < 3
+    # both volumes hold the same kind: the clipped one holds the other back
+    assert _kinds([cube, clipped]) == _kinds([clipped, cube]) == _kinds([clipped])
+
+
+def test_level_factors_keep_enough_traces_and_samples():
+    assert level_factors((160, 160, 130), min_lateral=16, min_vertical=9, max_factor=8) == (8, 8, 8)
+    assert level_factors((23, 40, 75), min_lateral=16, min_vertical=9, max_factor=8) == (1, 2, 8)  # 20 traces, 9.4
+    assert level_factors((23, 40, 70), min_lateral=16, min_vertical=9, max_factor=8) == (1, 2, 4)  # 8.75 < 9
+    assert level_factors((23, 40, 70), min_lateral=16, min_vertical=8, max_factor=8) == (1, 2, 8)
+
+
+def test_a_level_maps_transforms_to_full_resolution_and_samples_with_weights():
+    cube = synthetic_cube((24, 24, 40), n_faults=0, seed=1).cube
+    live = np.ones((24, 24), bool)
+    live[:, :4] = False  # dead traces
+    level = build_level(cube, live, (2, 2, 2), taper=2.0)
+    assert isinstance(level, Sampled) and level.shape == (12, 12, 20)
+    t = np.eye(4)
+    t[:3, 3] = (4.0, -2.0, 6.0)
+    np.testing.assert_allclose(from_level(to_level(t, level, level), level, level), t)
+    pts = np.array([[6.0, 6.0, 10.0], [6.0, 0.5, 10.0], [6.0, 6.0, -3.0]]).T  # inside, dead traces, outside
+    s = level.sample(pts)
+    assert s.weights[0] == pytest.approx(1.0)
+    assert s.weights[1] == 0.0 and s.weights[2] == 0.0
+    assert s.values[0] == pytest.approx(level.data[6, 6, 10], abs=1e-5)

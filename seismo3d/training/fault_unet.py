@@ -44,14 +44,14 @@ from pathlib import Path
 
 import numpy as np
 import torch
-from scipy.ndimage import distance_transform_edt
 from torch import nn
 
 from ..data.synthetic_sections import FaultSectionOptions, synthetic_fault_section
+from ..seismic.evaluation import evaluate_faults
 from ..seismic.faults.unet import BLOCKS, normalise_section
 
 __all__ = ["TrainingOptions", "FaultUNet", "train", "export_weights", "model_from_weights", "write_check",
-           "tolerant_scores", "validate", "main"]
+           "validate", "main"]
 
 VALIDATION_SEED = 7_777_777
 log = logging.getLogger("seismo3d.training")
@@ -204,14 +204,6 @@ def write_check(weights: dict, path: Path, *, shape=(96, 64), seed: int = 202611
     np.savez(path, section=section, probability=prob.astype(np.float32))
 
 
-def tolerant_scores(pred: np.ndarray, labels: np.ndarray, tol: float = 2.0) -> tuple[float, float]:
-    """(precision, recall): predicted samples within ``tol`` of a label, labels within ``tol`` of a prediction."""
-    pred, labels = np.asarray(pred, bool), np.asarray(labels, bool)
-    hit_p = (distance_transform_edt(~labels) <= tol)[pred].sum() if labels.any() else 0
-    hit_r = (distance_transform_edt(~pred) <= tol)[labels].sum() if pred.any() else 0
-    return float(hit_p), float(hit_r)
-
-
 def _batch(seed: int, first: int, n: int, patch: int, options: FaultSectionOptions):
     sections = [synthetic_fault_section((patch, patch), seed=seed * 1_000_003 + first + i, options=options)
                 for i in range(n)]
@@ -246,8 +238,10 @@ def validate(model: FaultUNet, x: torch.Tensor, y: np.ndarray) -> dict:
             clean += int(p.sum() < 10)
             n_pred += p.sum()
             continue
-        a, b = tolerant_scores(p, lab)
-        hits_p, hits_r, n_pred, n_label = hits_p + a, hits_r + b, n_pred + p.sum(), n_label + lab.sum()
+        scores = evaluate_faults(p, lab, tolerance=2)
+        hits_p += scores.precision * p.sum()
+        hits_r += scores.recall * lab.sum()
+        n_pred, n_label = n_pred + p.sum(), n_label + lab.sum()
     precision = hits_p / n_pred if n_pred else 0.0
     recall = hits_r / n_label if n_label else 0.0
     f1 = 2 * precision * recall / (precision + recall) if precision + recall else 0.0

@@ -44,7 +44,7 @@ from scipy.ndimage import gaussian_filter
 from ..._progress import progress_steps
 from ...errors import InputError, Seismo3dError
 from .likelihood import FaultLikelihood
-from .unet import RECEPTIVE_HALF, unet_forward
+from .unet import normalise_section, unet_forward
 
 __all__ = ["WEIGHTS_SHA256", "LearnedOptions", "load_fault_network", "scale_subsample", "amplitude_scale",
            "fault_probability", "learned_fault_likelihood", "orientation_from_likelihood"]
@@ -163,11 +163,9 @@ def amplitude_scale(data, *, subsample: bool = True) -> tuple[float, float]:
 
 
 def _sections_probability(stack: np.ndarray, scale, weights, batch: int, bar) -> np.ndarray:
-    centre, std = scale
     out = np.empty(stack.shape, np.float32)
     for i in range(0, stack.shape[0], batch):
-        x = np.clip((np.asarray(stack[i:i + batch], np.float32) - centre) / std, -5.0, 5.0)
-        out[i:i + batch] = unet_forward(x, weights)
+        out[i:i + batch] = unet_forward(normalise_section(stack[i:i + batch], scale=scale), weights)
         bar.advance(min(batch, stack.shape[0] - i))
     return out
 

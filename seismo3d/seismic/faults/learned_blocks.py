@@ -19,20 +19,18 @@ Markers, resumption, the ``.partial`` output and the schedulers are those of
 from __future__ import annotations
 
 import json
-import os
 import pathlib
-import shutil
 from dataclasses import asdict
 
 import numpy as np
 
 from ..._options import resolve_options
 from ...errors import InputError
-from ..blocks import BlockRun, SchedulerClient, largest_block, write_marker
+from ..blocks import SchedulerClient, largest_block, write_marker
 from .learned import (LearnedOptions, amplitude_scale, fault_probability, orientation_from_likelihood,
                       scale_subsample)
-from ..io.zarr_store import consolidate
-from .likelihood_blocks import ChunkedLikelihood, ChunkOptions, _write_coords
+from .likelihood_blocks import (ChunkedLikelihood, ChunkOptions, LikelihoodRun, _write_coords, lateral_blocks,
+                                trace_cube)
 from .unet import RECEPTIVE_HALF
 
 __all__ = ["chunked_learned_likelihood"]
@@ -81,18 +79,9 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
         The cube is not 3D, holds NaN / inf, ``output`` exists and is not an unfinished run of the same cube and
         options, or the memory limit is too small for the smallest blocks.
     """
-    import dask.array as da
-
     opt = resolve_options(LearnedOptions, options, overrides, "chunked_learned_likelihood")
     chunking = chunking or ChunkOptions()
-    x = cube if isinstance(cube, da.Array) else np.asarray(cube)
-    if x.ndim != 3 or min(x.shape) < 3:
-        raise InputError(f"a chunked fault likelihood needs a 3D cube (n_inlines, n_xlines, n_samples); got shape "
-                         f"{x.shape}")
-    if not isinstance(x, da.Array):
-        x = da.from_array(x, chunks=(64, -1, -1))
-    if len(x.chunks[2]) != 1:
-        x = x.rechunk({2: -1})
+    x = trace_cube(cube, "a chunked learned fault likelihood")
     shape = tuple(int(n) for n in x.shape)
     budget = int(chunking.memory_limit or 0) or None
     plan = _plan(shape, opt, chunking, budget)
@@ -138,44 +127,16 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, budget) -> dict:
             "halo_probability": halo_p, "halo_orientation": halo_o}
 
 
-def _blocks(shape, side: int):
-    return [(i, min(i + side, shape[0]), j, min(j + side, shape[1]))
-            for i in range(0, shape[0], side) for j in range(0, shape[1], side)]
-
-
-class _Run(BlockRun):
-    """One chunked learned-likelihood run: its folders and steps."""
+class _Run(LikelihoodRun):
+    """One chunked learned-likelihood run: its steps."""
 
     def __init__(self, out: pathlib.Path, plan: dict, opt: LearnedOptions, chunking: ChunkOptions, progress: bool):
-        super().__init__(out.with_name(out.name + ".work"), scheduler=chunking.scheduler, workers=chunking.workers,
-                         progress=progress)
-        self.out, self.plan, self.opt, self.chunking = out, plan, opt, chunking
-        self.partial = out.with_name(out.name + ".partial")
+        super().__init__(out, chunking, progress)
+        self.plan, self.opt = plan, opt
 
     def start(self, manifest: dict) -> None:
-        import zarr
-        if self.out.exists():
-            raise InputError(f"output {self.out} already exists; pick another output or delete it")
-        if not self.out.parent.is_dir():
-            raise InputError(f"cannot write {self.out}: folder {self.out.parent} does not exist; create it first")
-        self.open(manifest, f"{self.work} and {self.partial}")
-        n0, n1, nt = self.plan["shape"]
-        t = self.plan["tile"]
-        if not (self.work / "probability").exists():
-            zarr.create_array(str(self.work / "probability"), shape=(n0, n1, nt), chunks=(t, t, nt),
-                              dtype="float32", compressors=None, fill_value=0)
-        if not self.partial.exists():
-            group = zarr.open_group(str(self.partial), mode="w")
-            for name in ("likelihood", "strike_deg", "dip_deg"):
-                group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
-                                   dimension_names=("inline", "crossline", "sample"))
-
-    def finish(self) -> None:
-        import zarr
-        zarr.open_group(str(self.partial), mode="r+").attrs["complete"] = True
-        consolidate(self.partial)
-        os.replace(self.partial, self.out)
-        shutil.rmtree(self.work, ignore_errors=True)
+        self.start_output(manifest, tuple(self.plan["shape"]), self.plan["tile"],
+                          (("probability", "float32", self.plan["shape"][2]),))
 
     def scale(self, x) -> tuple:
         path = self.work / "scale.json"
@@ -194,7 +155,7 @@ class _Run(BlockRun):
         p = self.plan
         n0, n1, _ = p["shape"]
         halo = p["halo_probability"]
-        todo, _ = self.pending("probability", _blocks((n0, n1), p["block_probability"]))
+        todo, _ = self.pending("probability", lateral_blocks(p["shape"], p["block_probability"], p["block_probability"]))
         tasks = []
         for b in todo:
             i0, i1, j0, j1 = b
@@ -207,7 +168,7 @@ class _Run(BlockRun):
         import zarr
         p = self.plan
         results = self.each_block("orientation", "fault orientation", _orientation_block,
-                                  _blocks(p["shape"][:2], p["block_orientation"]), p, str(self.work),
+                                  lateral_blocks(p["shape"], p["block_orientation"], p["block_orientation"]), p, str(self.work),
                                   str(self.partial), self.opt)
         high = sum(r["high"] for r in results)
         group = zarr.open_group(str(self.partial), mode="r+")

@@ -176,9 +176,35 @@ class _Plan:
     m: int              # grouped samples
 
     def blocks(self, size0, size1):
-        n0, n1 = self.shape[:2]
-        return [(i, min(i + size0, n0), j, min(j + size1, n1)) for i in range(0, n0, size0)
-                for j in range(0, n1, size1)]
+        return lateral_blocks(self.shape, size0, size1)
+
+
+def lateral_blocks(shape, size0: int, size1: int) -> list:
+    """``(i0, i1, j0, j1)`` of the blocks of ``size0`` inlines by ``size1`` crosslines (every sample) that tile a cube
+    of ``shape``, inline-major."""
+    n0, n1 = shape[:2]
+    return [(i, min(i + size0, n0), j, min(j + size1, n1)) for i in range(0, n0, size0) for j in range(0, n1, size1)]
+
+
+def trace_cube(cube, what: str):
+    """``cube`` as a dask array whose chunks hold whole traces (3D, at least 3 samples per axis).
+
+    Raises
+    ------
+    InputError
+        The cube is not 3D with at least 3 samples per axis (``what`` names the computation in the message).
+    """
+    import dask.array as da
+
+    x = cube if isinstance(cube, da.Array) else np.asarray(cube)
+    if x.ndim != 3 or min(x.shape) < 3:
+        raise InputError(f"{what} needs a 3D cube (n_inlines, n_xlines, n_samples) with at least 3 samples per axis; "
+                         f"got shape {x.shape}")
+    if not isinstance(x, da.Array):
+        x = da.from_array(x, chunks=(64, -1, -1))
+    if len(x.chunks[2]) != 1:
+        x = x.rechunk({2: -1})
+    return x
 
 
 def resident_memory() -> int:
@@ -320,18 +346,9 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     .. [2] Dask documentation, "Overlapping computations" (``dask.array.map_overlap``): the halo idea used here
        with per-step halos and per-block resumability.
     """
-    import dask.array as da
-
     opt = resolve_options(FaultScanOptions, options, overrides, "chunked_fault_likelihood")
     chunking = chunking or ChunkOptions()
-    x = cube if isinstance(cube, da.Array) else np.asarray(cube)
-    if x.ndim != 3 or min(x.shape) < 3:
-        raise InputError(f"a chunked fault likelihood needs a 3D cube (n_inlines, n_xlines, n_samples) with at least "
-                         f"3 samples per axis; got shape {x.shape}")
-    if not isinstance(x, da.Array):
-        x = da.from_array(x, chunks=(64, -1, -1))
-    if len(x.chunks[2]) != 1:
-        x = x.rechunk({2: -1})
+    x = trace_cube(cube, "a chunked fault likelihood")
     if x.dtype != np.float32:
         x = x.astype(np.float32)
     input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * x.shape[2]
@@ -359,28 +376,37 @@ def _manifest(shape, opt, plan) -> dict:
             "plan": json.loads(json.dumps(asdict(plan)))}
 
 
-class _Run(BlockRun):
-    """One chunked likelihood run: its folders, block lists and steps."""
+class LikelihoodRun(BlockRun):
+    """The folders of a chunked likelihood run (the scan's or the learned one's): the work folder with its
+    intermediate arrays, the output assembled in ``OUTPUT.partial`` (``likelihood``, ``strike_deg``, ``dip_deg``) and
+    renamed to ``OUTPUT`` when complete.
 
-    def __init__(self, out: pathlib.Path, plan: _Plan, opt: FaultScanOptions, chunking: ChunkOptions,
-                 progress: bool):
+    Parameters
+    ----------
+    out : pathlib.Path
+        The output Zarr group.
+    chunking : ChunkOptions
+    progress : bool
+    """
+
+    def __init__(self, out: pathlib.Path, chunking: ChunkOptions, progress: bool):
         super().__init__(out.with_name(out.name + ".work"), scheduler=chunking.scheduler, workers=chunking.workers,
                          progress=progress)
-        self.out, self.plan, self.opt, self.chunking = out, plan, opt, chunking
+        self.out, self.chunking = out, chunking
         self.partial = out.with_name(out.name + ".partial")
 
-    # -- folders ------------------------------------------------------------------------------------------------
-    def start(self, manifest: dict) -> None:
+    def start_output(self, manifest: dict, shape, tile: int, work_arrays) -> None:
+        """Refuse an existing output or a missing folder, open the work folder with ``manifest``, and create the
+        work arrays ``(name, dtype, samples per trace)`` and the output arrays that do not exist yet."""
         import zarr
         if self.out.exists():
             raise InputError(f"output {self.out} already exists; pick another output or delete it")
         if not self.out.parent.is_dir():
             raise InputError(f"cannot write {self.out}: folder {self.out.parent} does not exist; create it first")
         self.open(manifest, f"{self.work} and {self.partial}")
-        n0, n1, nt = self.plan.shape
-        t, m = self.plan.tile, self.plan.m
-        for name, dtype, n in (("balanced", "float32", nt), ("numerator", "float32", m),
-                               ("denominator", "float32", m), ("key", "int32", m)):
+        n0, n1, nt = shape
+        t = tile
+        for name, dtype, n in work_arrays:
             if not (self.work / name).exists():
                 zarr.create_array(str(self.work / name), shape=(n0, n1, n), chunks=(t, t, n), dtype=dtype,
                                   compressors=None, fill_value=0)
@@ -391,11 +417,27 @@ class _Run(BlockRun):
                                    dimension_names=("inline", "crossline", "sample"))
 
     def finish(self) -> None:
+        """Mark the output complete, rename it into place and delete the work folder."""
         import zarr
         zarr.open_group(str(self.partial), mode="r+").attrs["complete"] = True
         consolidate(self.partial)
         os.replace(self.partial, self.out)
         shutil.rmtree(self.work, ignore_errors=True)
+
+
+class _Run(LikelihoodRun):
+    """One chunked likelihood run: its block lists and steps."""
+
+    def __init__(self, out: pathlib.Path, plan: _Plan, opt: FaultScanOptions, chunking: ChunkOptions,
+                 progress: bool):
+        super().__init__(out, chunking, progress)
+        self.plan, self.opt = plan, opt
+
+    def start(self, manifest: dict) -> None:
+        m, nt = self.plan.m, self.plan.shape[2]
+        self.start_output(manifest, self.plan.shape, self.plan.tile,
+                          (("balanced", "float32", nt), ("numerator", "float32", m), ("denominator", "float32", m),
+                           ("key", "int32", m)))
 
     def amplitude_statistics(self, x) -> AmplitudeStatistics:
         import dask

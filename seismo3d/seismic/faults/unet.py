@@ -39,7 +39,9 @@ __all__ = ["BLOCKS", "RECEPTIVE_HALF", "unet_forward", "normalise_section"]
 
 BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
 # two 3x3 convolutions per level: 2 samples of context each at level k cost 2 * 2**k input samples; encoder and
-# decoder levels 0-2 and the bottleneck (level 3): 2 * (1 + 2 + 4) * 2 + 2 * 8 = 44, plus the pooling offsets
+# decoder levels 0-2 and the bottleneck (level 3): 2 * (1 + 2 + 4) * 2 + 2 * 8 = 44 (measured: 44 from an impulse at
+# an aligned position), plus up to 7 from where a sample sits in the pooling grid: 51, rounded up to a multiple of 8
+# so that a block starting at a multiple of it keeps the whole input's pooling grid
 RECEPTIVE_HALF = 56
 _MULTIPLE = 8
 _TILE_SAMPLES = 16384
@@ -87,23 +89,29 @@ def _up(x: np.ndarray) -> np.ndarray:
     return x.repeat(2, axis=1).repeat(2, axis=2)
 
 
-def normalise_section(section: np.ndarray) -> np.ndarray:
-    """The network's input scaling: amplitudes divided by their standard deviation, clipped to +-5.
+def normalise_section(section, *, scale=None) -> np.ndarray:
+    """The network's input scaling: amplitudes minus their median, divided by their standard deviation, clipped to
+    +-5.
 
     Parameters
     ----------
     section : (..., n_traces, n_samples) array_like
-        Amplitudes of one section, or a stack of sections (each scaled on its own).
+        Amplitudes of one section, or a stack of sections.
+    scale : (float, float), optional
+        (median, standard deviation) to use for every section (those of a whole cube); default: each section's own.
 
     Returns
     -------
     ndarray, float32, the same shape
     """
     x = np.asarray(section, dtype=np.float32)
-    x = x - np.median(x, axis=(-2, -1), keepdims=True)
-    std = x.std(axis=(-2, -1), keepdims=True)
-    x = x / np.where(std > 0, std, 1.0)
-    return np.clip(x, -5.0, 5.0).astype(np.float32)
+    if scale is None:
+        centre = np.median(x, axis=(-2, -1), keepdims=True)
+        std = (x - centre).std(axis=(-2, -1), keepdims=True)
+        std = np.where(std > 0, std, 1.0)
+    else:
+        centre, std = (np.float32(v) for v in scale)
+    return np.clip((x - centre) / std, -5.0, 5.0).astype(np.float32)
 
 
 def unet_forward(sections: np.ndarray, weights) -> np.ndarray:

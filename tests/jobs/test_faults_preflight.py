@@ -23,6 +23,15 @@ def _never(*args, **kwargs):  # pragma: no cover - must not be called
     raise AssertionError("the full computation started")
 
 
+_SIZE = r"(\d+(?:\.\d+)?(?:MB|GB))"
+
+
+def _bytes(text: str) -> int:
+    """A size as the job writes it ('460MB', '1.3GB'; the process running the whole suite can hold over 1 GB)."""
+    value, unit = float(text[:-2]), text[-2:]
+    return int(round(value * (10 ** 6 if unit == "MB" else 10 ** 9)))
+
+
 def _error_line(result) -> str:
     """The refusal: exit 2, one 'error:' line, the last on stderr (after progress lines), no traceback."""
     lines = [line for line in result.stderr.splitlines() if line.strip()]
@@ -48,7 +57,7 @@ def test_a_limit_below_the_smallest_blocks_names_the_minimum_at_once(cube_file, 
     assert line.startswith("error: cube: a block-by-block run of its 128 x 128 x 128 samples needs a memory limit of "
                            "at least ")
     assert "more than the 100MB given" in line and not re.search(r"-\d", line)
-    need = re.search(r"pass --memory-limit (\d+)MB or more$", line).group(1)
+    need = re.search(rf"pass --memory-limit {_SIZE} or more$", line).group(1)
     assert not (tmp_path / "out").exists()
 
     class Sampled(Exception):
@@ -59,7 +68,7 @@ def test_a_limit_below_the_smallest_blocks_names_the_minimum_at_once(cube_file, 
 
     monkeypatch.setattr(job, "judge_sample", sampled)  # the limit named passes this check: the sample comes next
     with pytest.raises(Sampled):
-        job.run_faults_job(cube_file, tmp_path / "out", memory_limit=f"{need}MB", progress=False)
+        job.run_faults_job(cube_file, tmp_path / "out", memory_limit=need, progress=False)
 
 
 def test_the_seed_candidates_a_sample_predicts_raise_the_minimum(cube_file, tmp_path, monkeypatch):
@@ -70,13 +79,13 @@ def test_the_seed_candidates_a_sample_predicts_raise_the_minimum(cube_file, tmp_
     # blocks fit, 168 MB of candidates do not
     first = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
                                             "--memory-limit", "100MB"]))
-    blocks = int(re.search(r"at least (\d+)MB for its smallest blocks alone", first).group(1))
-    limit = f"{blocks + 20}MB"
+    blocks = _bytes(re.search(rf"at least {_SIZE} for its smallest blocks alone", first).group(1))
+    limit = f"{(blocks + 20 * 10 ** 6) // 10 ** 6}MB"
     line = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
                                            "--memory-limit", limit]))
     assert "(with the ~2097152 seed candidates a sample of its blocks predicts)" in line
-    need = int(re.search(r"pass --memory-limit (\d+)MB or more$", line).group(1))
-    assert need * 10**6 >= 2097152 * 80
+    need = _bytes(re.search(rf"pass --memory-limit {_SIZE} or more$", line).group(1))
+    assert need >= 2097152 * 80
 
 
 def test_progress_lines_have_no_negative_sizes(cube_file, tmp_path, monkeypatch, caplog):

@@ -74,7 +74,7 @@ def median_spacing(points, *, sample: int = 2000, seed: int = 0) -> float:
         In the points' unit.
     """
     pts = as_points(points, min_points=2)
-    tree = cKDTree(pts)
+    tree = cKDTree(pts, balanced_tree=False, compact_nodes=False)  # half the build time, same exact neighbours
     rng = np.random.default_rng(seed)
     q = pts if len(pts) <= sample else pts[rng.choice(len(pts), sample, replace=False)]
     dist, _ = tree.query(q, k=2, workers=-1)

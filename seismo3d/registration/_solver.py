@@ -22,10 +22,14 @@ normal-equation solution of eqs. 12-15. For the rigid model this is point-to-pla
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..geometry.transforms import make_transform, nearest_rotation
+from .kernels import KERNELS
+
+_CHUNKS = 64  # fixed work split of the compiled accumulation, so sums do not depend on the thread count
 
 
 def n_params(model: str, d: int) -> int:
@@ -121,3 +125,106 @@ def eigen_range(h: np.ndarray, total_weight: float):
 def axis_directions(n: int, d: int) -> np.ndarray:
     """The d unit axis directions repeated for n points: shape (n * d, d), row-major (point 0 e_1..e_d, point 1, ...)."""
     return np.tile(np.eye(d), (n, 1))
+
+
+def plane_system_rigid3(moved, t0, dst, nrm, idx, kernel: str, scale: float, factor: float):
+    """The point-to-plane normal equations of the rigid 3D model in one compiled pass (no gathered copies).
+
+    For every source point ``i`` with a correspondence (``idx[i] < len(dst)``): ``r = n . (y - q)`` with
+    ``y = moved[i]``, ``q = dst[idx[i]]``, ``n = nrm[idx[i]]``, weight ``w = factor * robust_weight(r)`` and Jacobian
+    row ``[u x n, n]`` (``u = y - t0``): the same ``H``, ``g`` as :func:`normal_matrix` with the block
+    ``(p, n, q, w, factor)``, up to rounding.
+
+    Parameters
+    ----------
+    moved : (N, 3) float64 ndarray
+        Source points moved by the current transform (``A0 p + t0``).
+    t0 : (3,) float64 ndarray
+        The current translation.
+    dst, nrm : (M, 3) float64 ndarrays
+        Target points and unit normals.
+    idx : (N,) int64 ndarray
+        Target row of each source point, ``M`` where there is none (as ``cKDTree.query`` returns).
+    kernel : {'none', 'huber', 'tukey', 'cauchy'}
+        Robust kernel (:func:`~seismo3d.registration.kernels.robust_weights`).
+    scale : float
+        Kernel scale, unit of the residuals.
+    factor : float
+        Block factor multiplying every weight.
+
+    Returns
+    -------
+    h : (6, 6) float64 ndarray
+    g : (6,) float64 ndarray
+    count : int
+        Source points with a correspondence.
+    """
+    sums = _plane_sums(moved, np.asarray(t0, dtype=np.float64), dst, nrm, idx, KERNELS.index(kernel), float(scale),
+                       float(factor))
+    total = sums.sum(axis=0)
+    h = np.zeros((6, 6))
+    h[np.triu_indices(6)] = total[:21]
+    h = h + np.triu(h, 1).T
+    return h, total[21:27].copy(), int(round(total[27]))
+
+
+@numba.njit(cache=True)
+def _plane_sums(moved, t0, dst, nrm, idx, kernel, scale, factor):
+    """Per-chunk sums: the 21 upper-triangle entries of H, the 6 of g and the count."""
+    n, m = len(moved), len(dst)
+    out = np.zeros((_CHUNKS, 28))
+    for chunk in range(_CHUNKS):
+        acc = out[chunk]
+        row = np.empty(6)
+        for i in range(chunk * n // _CHUNKS, (chunk + 1) * n // _CHUNKS):
+            j = idx[i]
+            if j >= m:
+                continue
+            nx, ny, nz = nrm[j, 0], nrm[j, 1], nrm[j, 2]
+            r = nx * (moved[i, 0] - dst[j, 0]) + ny * (moved[i, 1] - dst[j, 1]) + nz * (moved[i, 2] - dst[j, 2])
+            a = abs(r)
+            if kernel == 1:
+                w = 1.0 if a <= scale else scale / max(a, 1e-300)
+            elif kernel == 2:
+                v = a / scale
+                w = (1.0 - v * v) ** 2 if v < 1.0 else 0.0
+            elif kernel == 3:
+                w = 1.0 / (1.0 + (a / scale) ** 2)
+            else:
+                w = 1.0
+            w *= factor
+            ux, uy, uz = moved[i, 0] - t0[0], moved[i, 1] - t0[1], moved[i, 2] - t0[2]
+            row[0] = uy * nz - uz * ny
+            row[1] = uz * nx - ux * nz
+            row[2] = ux * ny - uy * nx
+            row[3], row[4], row[5] = nx, ny, nz
+            k = 0
+            for p in range(6):
+                wp = w * row[p]
+                for q in range(p, 6):
+                    acc[k] += wp * row[q]
+                    k += 1
+                acc[21 + p] += wp * r
+            acc[27] += 1.0
+    return out
+
+
+def moved_points(points, transform):
+    """``points @ A.T + t`` for ``transform = [A, t]`` in one compiled pass ((n, d) float64 -> (n, d) float64);
+    the BLAS product of an (n, 3) and a (3, 3) matrix is several times slower and starts threads."""
+    d = points.shape[1]
+    return _moved(np.ascontiguousarray(points), np.ascontiguousarray(transform[:d, :d]),
+                  np.ascontiguousarray(transform[:d, d]))
+
+
+@numba.njit(cache=True)
+def _moved(points, a, t):
+    n, d = points.shape
+    out = np.empty((n, d))
+    for i in range(n):
+        for r in range(d):
+            v = t[r]
+            for c in range(d):
+                v += a[r, c] * points[i, c]
+            out[i, r] = v
+    return out

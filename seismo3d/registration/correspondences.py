@@ -3,7 +3,8 @@
 :func:`~seismo3d.registration.icp` and :func:`~seismo3d.registration.fused_icp` take ``correspondences=`` one of:
 
 * :class:`NearestNeighbourCorrespondences` (the default): the nearest target point within the stage's maximum
-  distance, by a KD-tree (``scipy.spatial.cKDTree``). Works on any point set; one query costs O(log M) per point.
+  distance, by a hashed voxel grid (:class:`~seismo3d.geometry.voxel_hash.VoxelHashIndex`, cells of a fraction of
+  that distance, compiled and parallel). Works on any point set; a query costs O(1) per point.
 * :class:`ProjectiveCorrespondences`: projective data association for *organised* targets (a depth or raycast image
   whose pixels are the target points): each moved source point is projected into the target camera and takes the
   target point of the pixel it lands on, kept when it is within the maximum distance. O(1) per point, no tree; the
@@ -29,43 +30,54 @@ from dataclasses import dataclass
 
 import numba
 import numpy as np
-from scipy.spatial import cKDTree
 
-from .._validation import as_intrinsics
+from .._validation import as_intrinsics, check_positive
 from ..errors import InputError
+from ..geometry.voxel_hash import VoxelHashIndex
 
 __all__ = ["NearestNeighbourCorrespondences", "ProjectiveCorrespondences", "as_correspondences"]
 
-# threads pay off only for large queries (starting them costs about 0.2 ms per call)
-PARALLEL_QUERY = 20000
-
-
 @dataclass(frozen=True)
 class NearestNeighbourCorrespondences:
-    """Nearest-neighbour correspondences by a KD-tree over the target (the engine's default).
+    """Exact nearest-neighbour correspondences within the stage's distance (the engine's default), by a hashed voxel
+    grid over the target built once per distance (:class:`~seismo3d.geometry.voxel_hash.VoxelHashIndex`).
 
     Attributes
     ----------
-    parallel_threshold : int
-        Queries of at least this many points use all cores (``workers=-1``).
+    cell_fraction : float
+        Voxel edge as a fraction of the stage's maximum distance (speed only: the correspondences are the exact
+        nearest neighbours, as a KD-tree finds them, for any value).
+
+    Raises
+    ------
+    InputError
+        A non-positive ``cell_fraction``.
     """
 
-    parallel_threshold: int = PARALLEL_QUERY
+    cell_fraction: float = 1.0
+
+    def __post_init__(self):
+        check_positive(self.cell_fraction, "cell_fraction")
 
     def index(self, target, *, centre=None, scale=1.0):
-        """Build the KD-tree of ``target`` ((M, d) float64, the engine's normalised frame); ``centre`` and ``scale``
-        are unused (nearest neighbours do not depend on the frame)."""
-        return _TreeIndex(cKDTree(target), self.parallel_threshold)
+        """The nearest-neighbour index of ``target`` ((M, d) float64, the engine's normalised frame); ``centre`` and
+        ``scale`` are unused (nearest neighbours do not depend on the frame)."""
+        return _GridIndex(target, self.cell_fraction)
 
 
-class _TreeIndex:
-    def __init__(self, tree, parallel_threshold):
-        self.tree = tree
-        self.parallel_threshold = parallel_threshold
+class _GridIndex:
+    """One voxel hash of the target per maximum distance asked (a schedule asks for a few)."""
+
+    def __init__(self, target, cell_fraction):
+        self.target = target
+        self.cell_fraction = cell_fraction
+        self.grids = {}
 
     def query(self, moved, dmax):
-        workers = -1 if len(moved) >= self.parallel_threshold else 1
-        return self.tree.query(moved, k=1, distance_upper_bound=dmax, workers=workers)
+        grid = self.grids.get(dmax)
+        if grid is None:
+            grid = self.grids[dmax] = VoxelHashIndex(self.target, self.cell_fraction * dmax)
+        return grid.query(moved, dmax)
 
 
 @dataclass(frozen=True, eq=False)

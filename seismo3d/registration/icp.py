@@ -212,12 +212,18 @@ class DenseStage:
         self.src = frame.points(src)
         self.dst, self.nrm, self.index = target
 
+    def query(self, transform, dmax):
+        """The moved source and, for every source point, its correspondence within ``dmax`` (frame units) by the
+        stage's index: (moved source (n, d), distances (n,) ``inf`` where none, target rows (n,) ``len(dst)`` where
+        none)."""
+        moved = _solver.moved_points(self.src, transform)
+        dist, idx = self.index.query(moved, dmax)
+        return moved, dist, idx
+
     def correspond(self, transform, dmax):
         """Correspondences of the moved source within ``dmax`` (frame units) by the stage's index: (moved source,
         mask of the source points with one, target indices, distances)."""
-        d = self.src.shape[1]
-        moved = self.src @ transform[:d, :d].T + transform[:d, d]
-        dist, idx = self.index.query(moved, dmax)
+        moved, dist, idx = self.query(transform, dmax)
         ok = np.isfinite(dist)
         return moved, ok, idx[ok], dist[ok]
 
@@ -317,34 +323,31 @@ def run_icp(stages, sched, frame, m0, *, method: str, model: str, options: ICPOp
         converged = False
         it = 0
         for it in range(1, max_iterations + 1):
-            _, ok, idx, dist = stage.correspond(m, dmax)
-            if ok.sum() < need:
+            moved, dist, idx = stage.query(m, dmax)
+            queried = m
+            ok = np.isfinite(dist)
+            n_ok = int(ok.sum())
+            if n_ok < need:
                 raise RegistrationError(
-                    f"only {int(ok.sum())} source points have a target point within max_distance={dist_max:g}; "
+                    f"only {n_ok} source points have a target point within max_distance={dist_max:g}; "
                     f"at least {need} are needed: raise max_distance or pass a better init"
                 )
-            p, q = stage.src[ok], stage.dst[idx]
             if method == "point_to_point":
-                w = robust_weights(dist, kernel, scale)
-                new = fit_weighted(p, q, np.maximum(w, 1e-12), model)
+                w = robust_weights(dist[ok], kernel, scale)
+                new = fit_weighted(stage.src[ok], stage.dst[idx[ok]], np.maximum(w, 1e-12), model)
                 step = np.abs(new - m).max()
-                blocks = [(np.repeat(p, d, 0), _solver.axis_directions(len(p), d), np.repeat(q, d, 0),
-                           np.repeat(w, d), 1.0)]
                 m = new
             else:
-                n = stage.nrm[idx]
-                u = p @ m[:d, :d].T + m[:d, d]
-                r = np.einsum("ij,ij->i", n, u - q)
-                w = robust_weights(r, kernel, scale)
-                wd = (1.0 - alpha) / max(len(p), 1)  # (1 - alpha) / |A_d|  (eq. 16; W scales both terms alike)
-                blocks = [(p, n, q, w, wd)]
+                wd = (1.0 - alpha) / n_ok  # (1 - alpha) / |A_d|  (eq. 16; W scales both terms alike)
+                h, g = _plane_system(stage, moved, idx, m, model, kernel, scale, wd)
                 if features is not None and alpha > 0:
                     fs, fd, wf, fscale = features
                     res = fs @ m[:d, :d].T + m[:d, d] - fd
                     rw = wf * robust_weights(np.linalg.norm(res, axis=1), kernel, fscale)
-                    blocks.append((np.repeat(fs, d, 0), _solver.axis_directions(len(fs), d), np.repeat(fd, d, 0),
-                                   np.repeat(rw, d), alpha / len(fs)))
-                h, g = _solver.normal_matrix(blocks, model, m)
+                    hf, gf = _solver.normal_matrix([(np.repeat(fs, d, 0), _solver.axis_directions(len(fs), d),
+                                                     np.repeat(fd, d, 0), np.repeat(rw, d), alpha / len(fs))],
+                                                   model, m)
+                    h, g = h + hf, g + gf
                 delta = _solver.solve_step(h, g)
                 m = _solver.apply_update(model, m, delta)
                 step = float(np.abs(delta).max())
@@ -353,19 +356,22 @@ def run_icp(stages, sched, frame, m0, *, method: str, model: str, options: ICPOp
                 break
         total_iters += it
         per_stage.append(it)
-    # Final statistics at the last stage's distance, with the final transform.
+    # Final statistics at the last stage's distance: of the last iteration's correspondences when that stage
+    # converged (the transform has since moved by less than the tolerance), else re-found with the final transform.
     stage, dmax = stages[-1], sched[-1] / frame.scale
-    moved, ok, idx, dist = stage.correspond(m, dmax)
+    if not converged:
+        queried = m
+        moved, dist, idx = stage.query(m, dmax)
+    ok = np.isfinite(dist)
     fitness = float(ok.mean())
-    rmse = float(np.sqrt(np.mean(dist**2)) * frame.scale) if ok.any() else float("inf")
-    p, q = stage.src[ok], stage.dst[idx]
+    rmse = float(np.sqrt(np.mean(dist[ok] ** 2)) * frame.scale) if ok.any() else float("inf")
     if method == "point_to_plane":
-        blocks = [(p, stage.nrm[idx], q, np.ones(len(p)), 1.0)]
+        h, _ = _plane_system(stage, moved, idx, queried, model, "none", 1.0, 1.0)
     else:
-        blocks = [(np.repeat(p, d, 0), _solver.axis_directions(len(p), d), np.repeat(q, d, 0), np.ones(len(p) * d),
-                   1.0)]
-    h, _ = _solver.normal_matrix(blocks, model, m)
-    lo, hi = _solver.eigen_range(h, float(len(p)))
+        p, q = stage.src[ok], stage.dst[idx[ok]]
+        h, _ = _solver.normal_matrix([(np.repeat(p, d, 0), _solver.axis_directions(len(p), d), np.repeat(q, d, 0),
+                                       np.ones(len(p) * d), 1.0)], model, queried)
+    lo, hi = _solver.eigen_range(h, float(ok.sum()))
     degenerate = hi <= 0 or lo / hi < degeneracy_threshold
     if degenerate:
         warnings.warn(
@@ -382,12 +388,27 @@ def run_icp(stages, sched, frame, m0, *, method: str, model: str, options: ICPOp
     )
 
 
+def _plane_system(stage, moved, idx, m, model, kernel, scale, factor):
+    """Point-to-plane normal equations (H, g) of a stage's correspondences (``idx``: target row per source point,
+    ``len(stage.dst)`` where none), each residual weighted by ``factor`` times the robust kernel: one compiled pass
+    for the rigid 3D model, numpy over the gathered pairs for the others."""
+    d = m.shape[0] - 1
+    if model == "rigid" and d == 3:
+        h, g, _ = _solver.plane_system_rigid3(moved, m[:d, d], stage.dst, stage.nrm, idx, kernel, scale, factor)
+        return h, g
+    ok = idx < len(stage.dst)
+    p, j = stage.src[ok], idx[ok]
+    n, q = stage.nrm[j], stage.dst[j]
+    w = robust_weights(np.einsum("ij,ij->i", n, moved[ok] - q), kernel, scale)
+    return _solver.normal_matrix([(p, n, q, w, factor)], model, m)
+
+
 def icp(source, target, *, method: str = "point_to_plane", model: str = "rigid", target_normals=None, init=None,
         options: ICPOptions | None = None, **overrides) -> RegistrationResult:
     """Iterative closest point registration of ``source`` onto ``target``, in 2D or 3D.
 
     Each iteration finds, for every (transformed) source point, its nearest target point within the current maximum
-    correspondence distance (``scipy.spatial.cKDTree``, all cores; with ``correspondences=ProjectiveCorrespondences``
+    correspondence distance (exact, by a hashed voxel grid: :mod:`~seismo3d.geometry.voxel_hash`; with ``correspondences=ProjectiveCorrespondences``
     the target point its projection lands on in an organised target), weights the pairs with a robust kernel and
     updates the transform: in closed form for point-to-point (Kabsch / Umeyama / eqs. 1-9 / affine least squares),
     by one Gauss-Newton step for point-to-plane (exact for the affine model, eqs. 11-15; on SE(d) with the exponential

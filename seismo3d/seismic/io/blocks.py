@@ -19,6 +19,8 @@ from ...errors import InputError, SegyFormatError, SegyGeometryError
 
 __all__ = ["SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle"]
 
+_RUN_TRACES = 1024  # traces read per segyio call into a block (a few MB of temporaries, not a block's worth)
+
 
 @dataclass(frozen=True)
 class SegyGrid:
@@ -160,7 +162,13 @@ def read_segy_block(grid: SegyGrid, inline_start: int, inline_stop: int, xline_s
     f = segyfile if segyfile is not None else segyio_handle(grid)
     try:
         for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
-            out[where] = np.asarray(f.trace.raw[first:last], dtype=np.float32).reshape(out[where].shape)
+            flat = out[where].reshape(last - first, grid.n_samples)
+            if np.shares_memory(flat, out):  # a view: filled in pieces, so the temporaries stay small
+                for a in range(first, last, _RUN_TRACES):
+                    b = min(a + _RUN_TRACES, last)
+                    flat[a - first:b - first] = f.trace.raw[a:b]
+            else:
+                out[where] = np.asarray(f.trace.raw[first:last], dtype=np.float32).reshape(out[where].shape)
     finally:
         if segyfile is None:
             f.close()

@@ -40,7 +40,7 @@ import numpy as np
 import segyio
 
 from ...errors import InputError
-from .blocks import SegyGrid, read_segy_block, read_segy_block_headers
+from .blocks import SegyGrid, read_segy_block, read_segy_block_headers, segyio_handle
 from .segy import scale_coordinates
 
 __all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate", "open_seismic_zarr",
@@ -53,6 +53,10 @@ _BIN_FIELDS = {int(f): str(f) for f in segyio.BinField.enums()}
 _COORDINATE_FIELDS = ((segyio.TraceField.CDP_X, segyio.TraceField.CDP_Y),
                       (segyio.TraceField.SourceX, segyio.TraceField.SourceY))
 _UNITS = {1: "m", 2: "ft"}  # binary header bytes 3255-3256, measurement system
+# Amplitudes: Blosc LZ4 with byte shuffle compresses float32 seismic as well as Zarr's default (Zstd level 0) at about
+# three times its speed, so that convert runs at the speed of reading the SEG-Y (benchmarks/convert.py).
+SEISMIC_CODEC = ({"name": "blosc", "configuration": {"cname": "lz4", "clevel": 5, "shuffle": "shuffle",
+                                                      "typesize": 4, "blocksize": 0}},)
 
 
 @dataclass(frozen=True)
@@ -214,10 +218,8 @@ class SeismicZarrWriter:
         self._coordinates(cube)
         self.seismic = self.root.create_array("seismic", shape=cube.shape, chunks=chunk, dtype="float32",
                                               dimension_names=("inline", "crossline", "sample"), fill_value=0.0,
-                                              attributes={"long_name": "amplitude"})
-        self.headers = {k: self.root.create_array(name, shape=(n_il, n_xl), chunks=chunk[:2], dtype="int32",
-                                                  dimension_names=("inline", "crossline"), fill_value=0)
-                        for k, name in _TRACE_FIELDS.items()}
+                                              compressors=SEISMIC_CODEC, attributes={"long_name": "amplitude"})
+        self.headers = {}  # TraceField -> zarr array, created at the field's first non-zero value (before it: fill 0)
         self.nonzero = {k: False for k in _TRACE_FIELDS}
         per_chunk = chunk[0] * chunk[1] * ns * 4 / 2**20
         xl_step = chunk[1] * max(1, int(chunk_mb // per_chunk))
@@ -241,18 +243,26 @@ class SeismicZarrWriter:
             An element of :attr:`tiles`.
         """
         a, b, c, d = tile
-        f = self.cube.segyfile
-        self.seismic[a:b, c:d, :] = read_segy_block(self.grid, a, b, c, d, segyfile=f)
-        for k, values in read_segy_block_headers(self.grid, _TRACE_FIELDS, a, b, c, d, segyfile=f).items():
-            self.headers[k][a:b, c:d] = values
-            self.nonzero[k] = self.nonzero[k] or bool(np.any(values))
+        # A memory map of its own per tile: the pages it reads count as this process's memory until it is closed,
+        # so the cube's handle (mapped for the whole run) would hold the whole file by the last tile.
+        with segyio_handle(self.grid) as f:
+            block = read_segy_block(self.grid, a, b, c, d, segyfile=f)
+            headers = read_segy_block_headers(self.grid, _TRACE_FIELDS, a, b, c, d, segyfile=f)
+        self.seismic[a:b, c:d, :] = block  # after the map is closed: its pages and the chunks' buffers never coexist
+        del block
+        for k, values in headers.items():
+            if values.any():  # all-zero chunks are the fill value: not written (most of the 91 fields are unused)
+                if k not in self.headers:
+                    n_il, n_xl = self.seismic.shape[:2]
+                    self.headers[k] = self.root.create_array(
+                        _TRACE_FIELDS[k], shape=(n_il, n_xl), chunks=self.seismic.chunks[:2], dtype="int32",
+                        dimension_names=("inline", "crossline"), fill_value=0)
+                self.headers[k][a:b, c:d] = values
+                self.nonzero[k] = True
 
     def finish(self) -> list:
         """Drop the all-zero header fields, add ``cdp_x`` / ``cdp_y``; return the names of the header fields kept."""
         self._add_cdp_coordinates()
-        for k, name in _TRACE_FIELDS.items():
-            if not self.nonzero[k]:
-                del self.root[name]
         self._consolidate()
         return [name for k, name in _TRACE_FIELDS.items() if self.nonzero[k]]
 
@@ -261,12 +271,18 @@ class SeismicZarrWriter:
         store with one read. Zarr-python's extension of v3, which it warns about; readers without it ignore it."""
         consolidate(self.root.store)
 
+    def _header_rows(self, field):
+        """``rows(a, b)``: the field's values on inlines ``a:b`` (zeros for a field never written)."""
+        if field in self.headers:
+            return lambda a, b: self.headers[field][a:b]
+        return lambda a, b: np.zeros((min(b, self.seismic.shape[0]) - a, self.seismic.shape[1]), np.int32)
+
     def _add_cdp_coordinates(self) -> None:
         """cdp_x / cdp_y with the coordinate scalar applied, one row of chunks at a time (as SeismicCube.cdp_x)."""
         fields = next(((fx, fy) for fx, fy in _COORDINATE_FIELDS if self.nonzero[fx] or self.nonzero[fy]), None)
         if fields is None:
             return
-        scalar = self.headers[segyio.TraceField.SourceGroupScalar]
+        scalar = self._header_rows(segyio.TraceField.SourceGroupScalar)
         unit = _UNITS.get(int(self.cube.segyfile.bin[segyio.BinField.MeasurementSystem]), "unknown")
         n_il, n_xl = self.seismic.shape[:2]
         rows = self.seismic.chunks[0]
@@ -275,7 +291,7 @@ class SeismicZarrWriter:
                                          dimension_names=("inline", "crossline"), fill_value=0.0,
                                          attributes={"units": unit})
             for a in range(0, n_il, rows):
-                out[a:a + rows] = scale_coordinates(self.headers[field][a:a + rows], scalar[a:a + rows])
+                out[a:a + rows] = scale_coordinates(self._header_rows(field)(a, a + rows), scalar(a, a + rows))
         self.seismic.attrs["coordinates"] = "cdp_x cdp_y"
 
 

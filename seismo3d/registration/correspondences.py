@@ -4,7 +4,7 @@
 
 * :class:`NearestNeighbourCorrespondences` (the default): the nearest target point within the stage's maximum
   distance, by a hashed voxel grid (:class:`~seismo3d.geometry.voxel_hash.VoxelHashIndex`, cells of a fraction of
-  that distance, compiled and parallel). Works on any point set; a query costs O(1) per point.
+  that distance, compiled, one thread). Works on any point set; a query costs O(1) per point.
 * :class:`ProjectiveCorrespondences`: projective data association for *organised* targets (a depth or raycast image
   whose pixels are the target points): each moved source point is projected into the target camera and takes the
   target point of the pixel it lands on, kept when it is within the maximum distance. O(1) per point, no tree; the

@@ -27,6 +27,7 @@ import typer
 
 from . import __version__
 from .errors import Seismo3dError
+from .jobs.runinfo import cli_call
 
 app = typer.Typer(help="seismo3d: fault and horizon interpretation of seismic cubes, point-cloud / RGB-D / terrain "
                        "registration, lineaments and path planning, on one fused-ICP engine.", no_args_is_help=True,
@@ -118,8 +119,8 @@ def _friendly(flags: dict | None = None):
     def decorate(fn):
         @functools.wraps(fn)
         def wrapper(*args, **kwargs):
-            try:
-                with _one_line_warnings(flags):
+            try:  # the command's name is its function's (map_ for map)
+                with _one_line_warnings(flags), cli_call(fn.__name__.rstrip("_"), kwargs):
                     return fn(*args, **kwargs)
             except Seismo3dError as exc:
                 typer.echo(f"error: {_in_flags(str(exc), flags)}", err=True)

@@ -35,13 +35,15 @@ from ..seismic.io.segy import open_segy, read_section, write_like
 from ..seismic.io.writer import write_like_blocks
 from ..seismic.io.zarr_store import consolidate
 from .outputs import check_outputs, output_folder
+from .runinfo import RUN_JSON, RunRecord
 
 __all__ = ["RESULTS", "run_faults_job"]
 
 # What a run writes into its folder (SEG-Y volumes for a SEG-Y input, .npy otherwise; the demo's cube and truth).
 # The Zarr stores of a block-by-block run are not among them: they are reused or resumed by the next run.
 RESULTS = tuple(f"fault_{name}.{ext}" for ext in ("sgy", "npy") for name in ("likelihood", "strike", "dip", "votes")) + (
-    "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "demo_seismic.sgy", "demo_truth.csv")
+    "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "demo_seismic.sgy", "demo_truth.csv",
+    RUN_JSON)
 
 _DEMO_SHAPE = (128, 128, 128)
 _DEMO_DT_MS = 4.0
@@ -539,6 +541,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     TraceListWarning
         A SEG-Y input without an inline / crossline grid at bytes 189 / 193, read as a trace list (one line).
     """
+    record = RunRecord("faults", locals())  # first: the arguments as called
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
     options = FaultTracingOptions(sensitivity=sensitivity, likelihood=likelihood)
@@ -553,10 +556,15 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     limit = _memory_limit(memory_limit)
     segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian, sample_unit=sample_unit)
     with StagedFolder(out_dir) as stage:  # the files moved in together when every one is written
-        written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
-                                   n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
-                                   progress=progress)
-    return {key: stage.final(path) for key, path in written.items()}
+        with record.stage("trace_and_write"):
+            written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
+                                       n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
+                                       progress=progress)
+        final = {key: stage.final(path) for key, path in written.items()}
+        record.options["tracing_options"] = options
+        final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"input": input_path},
+                                                     outputs=final))
+    return final
 
 
 def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed, segy: dict, n_samples,

@@ -33,10 +33,11 @@ from ..errors import DataIntegrityError, DataNotFoundError, FrameSkippedWarning,
 from ..mapping import RGBDMapper, open_sequence
 from ..mapping.metrics import absolute_trajectory_error, relative_pose_error, write_tum_trajectory
 from .outputs import check_outputs, output_folder
+from .runinfo import RUN_JSON, RunRecord
 
 __all__ = ["RESULTS", "run_map_job", "write_ply"]
 
-RESULTS = ("trajectory.txt", "keyframes.json", "mesh.ply", "map.png")  # what a run writes into its folder
+RESULTS = ("trajectory.txt", "keyframes.json", "mesh.ply", "map.png", RUN_JSON)  # what a run writes into its folder
 
 
 def write_ply(path, mesh) -> None:
@@ -141,6 +142,7 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     KeyboardInterrupt
         Re-raised after the outputs of the frames done so far have been written.
     """
+    record = RunRecord("map", locals())  # first: the arguments as called
     out = pathlib.Path(output)
     check_outputs([output_folder(out, RESULTS, f"{pathlib.Path(sequence).name}_map")], [sequence],
                   overwrite=overwrite)
@@ -154,24 +156,29 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     # numpy's BLAS threads only slow the small (N, 3) products of the loop down; numba runs the parallel parts
     with threadpool_limits(1, user_api="blas"):
         try:
-            with progress_steps(len(frames), "map", unit="frame", enabled=progress) as steps:
+            with progress_steps(len(frames), "map", unit="frame", enabled=progress) as steps, record.stage("map"):
                 interrupted = _loop(seq, mapper, frames, steps, skipped)
         except Exception:
             # an unexpected failure: still keep what the frames before it built, then report the failure
-            _write_outputs(out, seq, mapper, skipped, time.perf_counter() - start, True, False)
+            _write_outputs(out, seq, mapper, skipped, time.perf_counter() - start, True, False, record)
             raise
     elapsed = time.perf_counter() - start
-    written = _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render)
+    written = _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render, record)
     if interrupted:
         raise KeyboardInterrupt
     return written
 
 
-def _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render):
-    """The files of the run, moved into ``out`` together once every one is written."""
+def _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render, record: RunRecord):
+    """The files of the run and its ``run.json``, moved into ``out`` together once every one is written."""
     with StagedFolder(out) as stage:
-        written = _write_files(stage.path, seq, mapper, skipped, elapsed, interrupted, render)
-    return {key: value if key == "summary" else stage.final(value) for key, value in written.items()}
+        with record.stage("write"):
+            written = _write_files(stage.path, seq, mapper, skipped, elapsed, interrupted, render)
+        final = {key: value if key == "summary" else stage.final(value) for key, value in written.items()}
+        final["run_json"] = stage.final(record.write(
+            stage.path / RUN_JSON, inputs={"sequence": seq.root},
+            outputs={k: v for k, v in final.items() if k != "summary"}, results=final["summary"]))
+    return final
 
 
 def _write_files(out, seq, mapper, skipped, elapsed, interrupted, render):

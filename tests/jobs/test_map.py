@@ -2,6 +2,7 @@
 
 import json
 import shutil
+import time
 
 import numpy as np
 import pytest
@@ -94,11 +95,16 @@ def test_interrupt_keeps_the_frames_done(sequence, tmp_path, monkeypatch):
     assert not list(out.glob(".*.tmp"))  # no half-written file left behind
 
 
-def test_cli(sequence, tmp_path):
+def test_cli(sequence, tmp_path, check_run_json):
     runner = CliRunner()
     out = tmp_path / "cli"
+    since = time.time()
     result = runner.invoke(app, ["map", str(sequence), "-o", str(out), "--max-frames", "3", "--no-render"])
     assert result.exit_code == 0, result.output
+    record = check_run_json(out / "run.json", "map", {"sequence": sequence}, ["trajectory", "keyframes", "mesh"],
+                            ["max_frames", "options", "render", "overwrite"], since)
+    assert record["options"]["max_frames"] == 3 and record["options"]["options"]["tsdf"]["voxel_size"] == 0.01
+    assert record["results"]["frames_processed"] == 3 and set(record["stage_seconds"]) == {"map", "write"}
     assert "3 of the first 3 frames tracked (--max-frames 3; the sequence has 10)" in result.output
     assert "ATE" in result.output
     assert (out / "trajectory.txt").is_file() and not (out / "map.png").exists()

@@ -3,6 +3,7 @@ generated inputs: the version, the command line and arguments, every option, eac
 the stage times and the outputs; the output policy applies to it. (``seismo3d map`` is checked in
 tests/jobs/test_map.py, on the real frames it needs.)"""
 
+import csv
 import json
 import time
 
@@ -74,6 +75,8 @@ def test_faults(tmp_path, check_run_json):
                             ["sensitivity", "likelihood", "memory_limit", "iline", "n_samples"], since)
     assert record["options"]["sensitivity"] == 0.6
     assert record["options"]["tracing_options"]["sensitivity"] == 0.6  # the FaultTracingOptions dataclass
+    with open(out / "fault_summary.csv", newline="") as fh:
+        assert record["results"]["n_faults"] == len(list(csv.DictReader(fh)))
 
 
 def test_convert(cube_file, tmp_path, check_run_json):

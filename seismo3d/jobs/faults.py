@@ -37,7 +37,7 @@ from ..seismic.io.zarr_store import consolidate
 from .outputs import check_outputs, output_folder
 from .runinfo import RUN_JSON, RunRecord
 
-__all__ = ["RESULTS", "run_faults_job"]
+__all__ = ["FaultsJobResult", "RESULTS", "run_faults_job"]
 
 # What a run writes into its folder (SEG-Y volumes for a SEG-Y input, .npy otherwise; the demo's cube and truth).
 # The Zarr stores of a block-by-block run are not among them: they are reused or resumed by the next run.
@@ -47,6 +47,33 @@ RESULTS = tuple(f"fault_{name}.{ext}" for ext in ("sgy", "npy") for name in ("li
 
 _DEMO_SHAPE = (128, 128, 128)
 _DEMO_DT_MS = 4.0
+
+
+@dataclass(frozen=True)
+class FaultsJobResult:
+    """What :func:`run_faults_job` wrote and found.
+
+    Attributes
+    ----------
+    written : dict of str to pathlib.Path
+        The files written, by key (see :func:`run_faults_job`'s Returns), and ``run_json``.
+    faults : tuple of dict
+        One row per fault as written to ``fault_summary.csv``: column name to the text written.
+    run_json : pathlib.Path
+        The record of the run (:mod:`seismo3d.jobs.runinfo`).
+    stage_seconds : dict
+        Wall time of each stage (``trace_and_write``: reading, tracing and writing).
+    """
+
+    written: dict
+    faults: tuple
+    run_json: Path
+    stage_seconds: dict
+
+    @property
+    def n_faults(self) -> int:
+        """How many faults were kept."""
+        return len(self.faults)
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -261,15 +288,17 @@ def _dip_direction(inp: _Input, fault) -> str:
     return f"{'increasing' if toward_higher else 'decreasing'} {inp.trace_axis}"
 
 
-def _write_summary(inp: _Input, result: FaultInterpretation, path: Path) -> Path:
+def _write_summary(inp: _Input, result: FaultInterpretation, path: Path, rows: list) -> Path:
+    """fault_summary.csv; its rows are also appended to ``rows`` (column name to text) for the job's result."""
     unit = inp.unit
     extra = [] if unit == "samples" else [f"median_throw_{unit}"]
     two_d = inp.data.ndim == 2
     orientation = ["dips_toward"] if two_d else ["mean_strike_deg"]
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra,
-                    "throw_spread_samples", "throw_correlation", "correlation_gain"])
+        header = ["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra,
+                  "throw_spread_samples", "throw_correlation", "correlation_gain"]
+        w.writerow(header)
         evidence = {e.fault_id: e for e in result.evidence}
         for f in result.faults:
             e = evidence[f.id]
@@ -279,6 +308,7 @@ def _write_summary(inp: _Input, result: FaultInterpretation, path: Path) -> Path
                 row.append(_fmt(e.median_throw * result.sample_interval))
             row += [_fmt(e.throw_spread), _fmt(e.correlation), _fmt(e.correlation_gain)]
             w.writerow(row)
+            rows.append(dict(zip(header, (str(v) for v in row))))
     return path
 
 
@@ -398,7 +428,7 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
                    endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, likelihood="scan",
-                   memory_limit=None, scheduler=None, overwrite=False, progress=True) -> dict:
+                   memory_limit=None, scheduler=None, overwrite=False, progress=True) -> FaultsJobResult:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 
     Inputs
@@ -509,9 +539,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
 
     Returns
     -------
-    dict of str to pathlib.Path
-        The files written, keyed ``likelihood``, ``strike``, ``dip``, ``votes``, ``surfaces``, ``points``,
-        ``summary``, ``figure`` (and ``input``, ``truth`` for the demo). For a cube beyond ``memory_limit``:
+    FaultsJobResult
+        ``faults``: the rows of ``fault_summary.csv``; ``written``: the files written, keyed ``likelihood``,
+        ``strike``, ``dip``, ``votes``, ``surfaces``, ``points``, ``summary``, ``figure``, ``run_json`` (and
+        ``input``, ``truth`` for the demo). For a cube beyond ``memory_limit``:
         ``likelihood`` is ``fault_likelihood.zarr`` (holding strike and dip too), ``surfaces_zarr`` is
         ``fault_surfaces.zarr``, with ``surfaces``, ``points``, ``summary``, ``figure``, and for a SEG-Y input
         ``likelihood_segy``, ``strike_segy``, ``dip_segy``, ``votes_segy``.
@@ -555,22 +586,24 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     check_outputs([output_folder(out_dir, RESULTS, f"{stem}_faults")], [input_path], overwrite=overwrite)
     limit = _memory_limit(memory_limit)
     segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian, sample_unit=sample_unit)
+    summary = []  # the rows of fault_summary.csv, as written
     with StagedFolder(out_dir) as stage:  # the files moved in together when every one is written
         with record.stage("trace_and_write"):
             written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
                                        n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
-                                       progress=progress)
+                                       progress=progress, summary=summary)
         final = {key: stage.final(path) for key, path in written.items()}
         record.options["tracing_options"] = options
         final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"input": input_path},
-                                                     outputs=final))
-    return final
+                                                     outputs=final, results={"n_faults": len(summary)}))
+    return FaultsJobResult(final, tuple(summary), final["run_json"], dict(record.stage_seconds))
 
 
 def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed, segy: dict, n_samples,
-                     options: FaultTracingOptions, limit: int, scheduler, progress) -> dict:
+                     options: FaultTracingOptions, limit: int, scheduler, progress, summary: list) -> dict:
     """Read (or make) the input, trace its faults in memory or block by block, write the results into ``files``
-    (the block-by-block run's Zarr stores into ``out_dir``); the files written, by key."""
+    (the block-by-block run's Zarr stores into ``out_dir``); the files written, by key (the summary's rows appended
+    to ``summary``)."""
     iline, xline, ignore_geometry, endian, sample_unit = (segy[k] for k in ("iline", "xline", "ignore_geometry",
                                                                             "endian", "sample_unit"))
     budget = limit - resident_memory()  # what this run may add to the process as it is now
@@ -584,7 +617,7 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     if lazy is not None:
         _check_block_run(lazy, limit, scheduler, options)
         written.update(_run_chunked(lazy, out_dir, files, memory_limit=limit, budget=budget, scheduler=scheduler,
-                                    options=options, progress=progress))
+                                    options=options, progress=progress, summary=summary))
         return written
     if demo:
         inp = _read_input(input_path, iline=189, xline=193, ignore_geometry=False, sample_unit="ms", n_samples=None)
@@ -608,12 +641,12 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
         ("dip", lambda: _write_volume(inp, files, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
         ("votes", lambda: _write_volume(inp, files, "fault_votes", result.votes, like=written["likelihood"], **geo)),
     ]
-    _write_steps(steps + _surface_steps(inp, result, files), written, progress)
+    _write_steps(steps + _surface_steps(inp, result, files, summary), written, progress)
     return written
 
 
-def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path) -> list:
-    """The writers of the fault surfaces, points, summary and picture."""
+def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summary: list) -> list:
+    """The writers of the fault surfaces, points, summary (its rows appended to ``summary``) and picture."""
     from ..viz.faults import fault_surfaces, plot_fault_slices, save_polydata
 
     axes = inp.axes
@@ -621,7 +654,7 @@ def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path) -> l
         ("surfaces", lambda: save_polydata(fault_surfaces(result.faults, result.throws, axes=axes),
                                            out_dir / "faults.vtp")),
         ("points", lambda: _write_points(inp, result, out_dir / "fault_points.csv")),
-        ("summary", lambda: _write_summary(inp, result, out_dir / "fault_summary.csv")),
+        ("summary", lambda: _write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
         ("figure", lambda: plot_fault_slices(inp.data, result.faults, path=out_dir / "faults.png",
                                              likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
                                              title=inp.name)),
@@ -643,7 +676,7 @@ _TILE = 32  # traces per side of the lazy input's chunks: a block of the chunked
 
 
 def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: int, budget: int, scheduler,
-                 options: FaultTracingOptions, progress) -> dict:
+                 options: FaultTracingOptions, progress, summary: list) -> dict:
     """Fault likelihood block by block into ``fault_likelihood.zarr``, then the fault surfaces block by block into
     ``fault_surfaces.zarr`` (both in ``out_dir``: reused when finished, resumed when interrupted); the same files as
     in memory, into ``files``."""
@@ -689,7 +722,7 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: i
                                  thresholds=surfaces.thresholds, faults=surfaces.faults, throws=surfaces.throws,
                                  evidence=surfaces.evidence, sample_interval=dt, sample_unit=lazy.unit)
     inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
-    _write_steps(_surface_steps(inp, result, files), written, progress)
+    _write_steps(_surface_steps(inp, result, files, summary), written, progress)
     written.update(_segy_volumes(lazy, surfaces.path, files, {"likelihood": "likelihood", "votes": "votes"},
                                  progress))
     written.update(_segy_volumes(lazy, path, files, {"strike": "strike_deg", "dip": "dip_deg"}, progress))

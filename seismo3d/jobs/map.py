@@ -23,6 +23,7 @@ import json
 import pathlib
 import time
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -35,9 +36,37 @@ from ..mapping.metrics import absolute_trajectory_error, relative_pose_error, wr
 from .outputs import check_outputs, output_folder
 from .runinfo import RUN_JSON, RunRecord
 
-__all__ = ["RESULTS", "run_map_job", "write_ply"]
+__all__ = ["MapJobResult", "RESULTS", "run_map_job", "write_ply"]
 
 RESULTS = ("trajectory.txt", "keyframes.json", "mesh.ply", "map.png", RUN_JSON)  # what a run writes into its folder
+
+
+@dataclass(frozen=True)
+class MapJobResult:
+    """What :func:`run_map_job` wrote and measured.
+
+    Attributes
+    ----------
+    written : dict of str to pathlib.Path
+        ``trajectory``, ``keyframes``, ``mesh``, ``map`` (when rendered) and ``run_json``.
+    summary : dict
+        The summary of ``keyframes.json``: ``frames_in_sequence``, ``frames_processed``, ``frames_tracked``,
+        ``frames_skipped``, ``keyframes``, ``loop_closures``, ``seconds``, ``frames_per_second``, ``map_blocks``,
+        ``map_mib``, ``interrupted``, ...
+    evaluation : dict or None
+        ATE and RPE against the sequence's reference trajectory (``ate_rmse_m``, ``ate_max_m``,
+        ``rpe_translation_rmse_m``, ``rpe_rotation_rmse_deg``, ``n_associated``); None without one.
+    run_json : pathlib.Path
+        The record of the run (:mod:`seismo3d.jobs.runinfo`).
+    stage_seconds : dict
+        Wall time of each stage (``map``: the frames; ``write``: the files).
+    """
+
+    written: dict
+    summary: dict
+    evaluation: dict | None
+    run_json: pathlib.Path
+    stage_seconds: dict
 
 
 def write_ply(path, mesh) -> None:
@@ -106,7 +135,7 @@ def _evaluation(sequence, timestamps, poses):
 
 
 def run_map_job(sequence, output, *, options=None, max_frames: int | None = None, progress: bool = True,
-                render: bool = True, overwrite: bool = False) -> dict:
+                render: bool = True, overwrite: bool = False) -> MapJobResult:
     """Map an RGB-D sequence and write the outputs listed in the module docstring.
 
     Parameters
@@ -130,8 +159,7 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
 
     Returns
     -------
-    dict
-        ``{'trajectory': path, 'keyframes': path, 'mesh': path, 'map': path (when rendered), 'summary': dict}``.
+    MapJobResult
 
     Raises
     ------
@@ -169,16 +197,16 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     return written
 
 
-def _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render, record: RunRecord):
+def _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render, record: RunRecord) -> MapJobResult:
     """The files of the run and its ``run.json``, moved into ``out`` together once every one is written."""
     with StagedFolder(out) as stage:
         with record.stage("write"):
-            written = _write_files(stage.path, seq, mapper, skipped, elapsed, interrupted, render)
-        final = {key: value if key == "summary" else stage.final(value) for key, value in written.items()}
-        final["run_json"] = stage.final(record.write(
-            stage.path / RUN_JSON, inputs={"sequence": seq.root},
-            outputs={k: v for k, v in final.items() if k != "summary"}, results=final["summary"]))
-    return final
+            written, summary, evaluation = _write_files(stage.path, seq, mapper, skipped, elapsed, interrupted,
+                                                        render)
+        final = {key: stage.final(path) for key, path in written.items()}
+        final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"sequence": seq.root},
+                                                     outputs=final, results=dict(summary, evaluation=evaluation)))
+    return MapJobResult(final, summary, evaluation, final["run_json"], dict(record.stage_seconds))
 
 
 def _write_files(out, seq, mapper, skipped, elapsed, interrupted, render):
@@ -206,5 +234,4 @@ def _write_files(out, seq, mapper, skipped, elapsed, interrupted, render):
         from ..viz.maps import render_map
 
         written["map"] = render_map(mesh, poses, mapper.graph.poses(), out / "map.png")
-    written["summary"] = dict(summary, evaluation=evaluation)
-    return written
+    return written, summary, evaluation

@@ -50,7 +50,7 @@ def sequence(tmp_path_factory, data_dir):
 @pytest.mark.slow
 def test_job_writes_every_output_and_skips_bad_frames(sequence, tmp_path):
     with pytest.warns(UserWarning) as record:
-        written = run_map_job(sequence, tmp_path / "out", progress=False)
+        written = run_map_job(sequence, tmp_path / "out", progress=False).written
     skipped = [w for w in record if issubclass(w.category, FrameSkippedWarning)]
     assert len(skipped) == 2
     assert any("gap" in str(w.message) for w in record)

@@ -17,6 +17,7 @@ import numpy as np
 
 from ..errors import InputError, SeedError, SegyGeometryError, UnsupportedDataError
 from ..seismic.horizons.result import Horizon
+from .inputs import read_seismic
 from .outputs import check_outputs, output_file
 from .runinfo import RunRecord, run_json_output, run_json_path
 
@@ -78,18 +79,19 @@ class _Survey:
 
 
 def _read_survey(path: pathlib.Path, *, iline, xline, ignore_geometry, endian, sample_unit=None) -> _Survey:
-    """The SEG-Y file as a cube or a 2D line; a single trace is refused."""
-    from ..seismic import open_segy
-
-    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
-                   sample_unit=sample_unit) as cube:
-        if cube.n_traces < 2 or cube.samples.size < 2:
-            raise SegyGeometryError(f"{path.name} is {cube.description} of {cube.samples.size} samples; horizon "
-                                    "tracking needs a 2D line or a 3D cube")
-        data = cube.read()
-        if not cube.is_3d:
-            data = data.reshape(cube.n_traces, cube.samples.size)  # a line of a survey, (n, 1, ns) or (1, n, ns)
-        return _Survey(path.name, cube.description, data, cube.inlines, cube.xlines, cube.samples, cube.sample_unit)
+    """The SEG-Y file as a cube or a 2D line (:func:`~seismo3d.jobs.inputs.read_seismic`); a single trace is
+    refused."""
+    seismic = read_seismic(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
+                           sample_unit=sample_unit, arrays=False)
+    data, n_samples = seismic.data, seismic.samples.size
+    n_traces = int(np.prod(data.shape[:-1]))
+    if n_traces < 2 or n_samples < 2:
+        raise SegyGeometryError(f"{path.name} is {seismic.description} of {n_samples} samples; horizon tracking "
+                                "needs a 2D line or a 3D cube")
+    if seismic.kind == "line":
+        data = data.reshape(n_traces, n_samples)  # a line of a survey, (n, 1, ns) or (1, n, ns)
+    return _Survey(path.name, seismic.description, data, seismic.inlines, seismic.xlines, seismic.samples,
+                   seismic.sample_unit)
 
 
 def _seed_indices(survey: _Survey, seeds) -> list:

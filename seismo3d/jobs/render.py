@@ -17,14 +17,14 @@ import numpy as np
 from .._validation import check_choice
 from ..errors import DataNotFoundError, InputError
 from ..mapping import read_tum_trajectory
-from ..seismic import open_segy
 from ..terrain import extract_lineaments, read_dem
+from .inputs import SEGY_SUFFIXES, read_seismic
 from .outputs import check_outputs, output_file
 from .runinfo import RunRecord, run_json_output, run_json_path
 
 __all__ = ["RenderJob", "run_render_job"]
 
-_SEGY = {".sgy", ".segy"}
+_SEGY = set(SEGY_SUFFIXES)
 _TEXT = {".txt", ".dat", ".csv", ".xyz"}
 _DEM = {".tif", ".tiff"}
 # The files render reads of a 'seismo3d faults' or 'seismo3d map' output folder (inputs: never replaced by the PNG).
@@ -88,17 +88,20 @@ def _kind(path: Path) -> str:
 
 def _read_segy(path: Path, vertical_exaggeration, segy_options=None):
     """The amplitudes as (n_inlines, n_xlines, n_samples) and their geometry; a trace list as one section of
-    (n_traces, 1, n_samples), its traces numbered from 1 in file order."""
-    from ..viz.seismic import cube_geometry, geometry_of_segy
+    (n_traces, 1, n_samples), its traces numbered from 1 in file order (:func:`~seismo3d.jobs.inputs.read_seismic`)."""
+    from ..viz.seismic import cube_geometry
 
-    with open_segy(path, **(segy_options or {})) as segy:
-        if segy.inlines is not None:
-            return segy.read(), geometry_of_segy(segy, vertical_exaggeration=vertical_exaggeration)
-        data = segy.read()[:, None, :]
-        geometry = cube_geometry(data.shape, inlines=np.arange(1, data.shape[0] + 1), xlines=[0],
-                                 samples=segy.samples, sample_unit=segy.sample_unit,
-                                 vertical_exaggeration=vertical_exaggeration, lateral_names=("trace", ""))
-        return data, geometry
+    seismic = read_seismic(path, **(segy_options or {}), coordinates=True, arrays=False)
+    if seismic.kind != "trace list":
+        return seismic.data, cube_geometry(seismic.data.shape, inlines=seismic.inlines, xlines=seismic.xlines,
+                                           samples=seismic.samples, sample_unit=seismic.sample_unit,
+                                           cdp_x=seismic.cdp_x, cdp_y=seismic.cdp_y, map_unit=seismic.map_unit,
+                                           vertical_exaggeration=vertical_exaggeration)
+    data = seismic.data[:, None, :]
+    geometry = cube_geometry(data.shape, inlines=np.arange(1, data.shape[0] + 1), xlines=[0],
+                             samples=seismic.samples, sample_unit=seismic.sample_unit,
+                             vertical_exaggeration=vertical_exaggeration, lateral_names=("trace", ""))
+    return data, geometry
 
 
 def _slices_for(shape):

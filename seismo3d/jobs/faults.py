@@ -21,7 +21,7 @@ import segyio
 from .._atomic import StagedFolder, atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
-from ..errors import DataNotFoundError, InputError, Seismo3dWarning
+from ..errors import InputError, Seismo3dWarning
 from ..seismic.faults.likelihood_blocks import (
     ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory, worker_baseline,
 )
@@ -31,9 +31,10 @@ from ..seismic.faults.pipeline_blocks import chunked_fault_surfaces
 from ..seismic.blocks import release_memory
 from ..seismic.faults.preflight import SampleOptions, judge_sample, minimum_memory_limit
 from ..seismic.io.lazy import open_lazy
-from ..seismic.io.segy import open_segy, read_section, write_like
+from ..seismic.io.segy import open_segy, write_like
 from ..seismic.io.writer import write_like_blocks
 from ..seismic.io.zarr_store import consolidate
+from .inputs import read_seismic
 from .outputs import check_outputs, output_folder
 from .runinfo import RUN_JSON, RunRecord
 
@@ -123,50 +124,26 @@ class _Input:
 
 
 def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, endian=None) -> _Input:
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix in (".f32be", ".npy"):
-        if not path.is_file():
-            raise DataNotFoundError(f"no input file at {path}; check the path")
-        if suffix == ".f32be":
-            data = read_section(path, n_samples=n_samples)
-        else:
-            try:
-                data = np.load(path, allow_pickle=False, mmap_mode="r")
-            except (ValueError, OSError) as exc:
-                raise InputError(f"{path.name} is not a readable .npy array ({exc}); save it with numpy.save") from exc
-            if data.ndim not in (2, 3):
-                raise InputError(f"{path.name} holds an array of shape {data.shape}; expected a 2D section "
-                                 "(n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, n_samples)")
-        unit = "samples"
-        if sample_unit is not None:
-            raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
-                             "in samples")
+    """The input through the jobs' one reader (:func:`~seismo3d.jobs.inputs.read_seismic`), labelled for the
+    outputs."""
+    seismic = read_seismic(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
+                           n_samples=n_samples, endian=endian)
+    path, data, samples, unit = seismic.path, seismic.data, seismic.samples, seismic.sample_unit
+    if not seismic.is_segy:  # .npy, .f32be: traces labelled by their index
         idx = [np.arange(n, dtype=np.int64) for n in data.shape]
-        if data.ndim == 2:
-            return _Input(np.asarray(data), path.stem, None, None, idx[0], None, idx[1].astype(np.float64), unit)
-        return _Input(np.asarray(data), path.stem, None, None, idx[0], idx[1], idx[2].astype(np.float64), unit)
-
-    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
-                   endian=endian) as cube:
-        if cube.inlines is not None:  # a trace list was announced by open_segy's warning
-            LOGGER.info("%s: %s, %d samples of %g %s, %s, %s-endian", path.name, cube.description, cube.samples.size,
-                        cube.sample_interval, cube.sample_unit, cube.format_name, cube.endian)
-        data = cube.read()
-        samples = np.asarray(cube.samples, dtype=np.float64)
-        unit = cube.sample_unit
-        if cube.inlines is None:  # trace list: label traces with their header inline / crossline numbers, if any
-            f = cube.segyfile
-            il = np.asarray(f.attributes(cube.iline_byte)[:], dtype=np.int64)
-            xl = np.asarray(f.attributes(cube.xline_byte)[:], dtype=np.int64)
-            if np.all(il == il[0]) and np.all(xl == xl[0]):  # no numbers there: the trace index
-                il, xl = np.arange(cube.n_traces, dtype=np.int64), None
-            return _Input(data, path.stem, path, None, il, xl, samples, unit, "trace")
-        il = np.asarray(cube.inlines, dtype=np.int64)
-        xl = np.asarray(cube.xlines, dtype=np.int64)
-        if cube.is_3d:
-            return _Input(data, path.stem, path, cube.shape, il, xl, samples, unit, "trace", cube.sorting)
-        shape, sorting = cube.shape, cube.sorting
+        return _Input(np.asarray(data), path.stem, None, None, idx[0], idx[1] if data.ndim == 3 else None, samples,
+                      unit)
+    if seismic.kind == "trace list":  # label traces with their header inline / crossline numbers, if any
+        il, xl = seismic.trace_inlines.astype(np.int64), seismic.trace_xlines.astype(np.int64)
+        if np.all(il == il[0]) and np.all(xl == xl[0]):  # no numbers there: the trace index
+            il, xl = np.arange(il.size, dtype=np.int64), None
+        return _Input(data, path.stem, path, None, il, xl, samples, unit, "trace")
+    LOGGER.info("%s: %s, %d samples of %g %s, %s, %s-endian", path.name, seismic.description, samples.size,
+                seismic.sample_interval, unit, seismic.format_name, seismic.endian)
+    il, xl = seismic.inlines.astype(np.int64), seismic.xlines.astype(np.int64)
+    shape, sorting = seismic.grid_shape, seismic.sorting
+    if seismic.kind == "cube":
+        return _Input(data, path.stem, path, shape, il, xl, samples, unit, "trace", sorting)
     if shape[1] == 1:  # a line along inlines (one crossline), e.g. penobscot_xl1155
         return _Input(data[:, 0, :], path.stem, path, shape, il, np.full(il.size, xl[0]), samples, unit, "inline",
                       sorting)

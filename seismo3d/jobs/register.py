@@ -18,6 +18,7 @@ import numpy as np
 from ..errors import InputError, TraceListWarning
 from ..seismic import open_segy, register_volumes
 from ..seismic.volumes import VOLUME_MODELS
+from .inputs import input_kind
 from .outputs import check_outputs, output_file
 from .register_files import RegisterJob, finish_register_job, read_transform
 from .runinfo import RunRecord, run_json_output
@@ -26,8 +27,8 @@ __all__ = ["RegisterJob", "run_register_job", "is_segy"]
 
 
 def is_segy(path) -> bool:
-    """Whether ``path`` names a SEG-Y file (.sgy or .segy, any case)."""
-    return pathlib.Path(path).suffix.lower() in (".sgy", ".segy")
+    """Whether ``path`` names a SEG-Y file (.sgy or .segy, any case; :func:`~seismo3d.jobs.inputs.input_kind`)."""
+    return input_kind(path) == "segy"
 
 
 def run_register_job(source, target, output, *, method: str | None = None, model: str | None = None,
@@ -113,10 +114,8 @@ def run_register_job(source, target, output, *, method: str | None = None, model
 
 
 def _is_terrain(*paths) -> bool:
-    """Whether any of ``paths`` is a LAS/LAZ scan or a GeoTIFF DEM (:func:`seismo3d.terrain.is_terrain_file`)."""
-    from ..terrain import is_terrain_file
-
-    return any(is_terrain_file(p) for p in paths)
+    """Whether any of ``paths`` is a LAS/LAZ scan or a GeoTIFF DEM (:func:`~seismo3d.jobs.inputs.input_kind`)."""
+    return any(input_kind(p) == "terrain" for p in paths)
 
 
 def _register_point_clouds(source, target, method, model, init, max_distance, features, alpha,

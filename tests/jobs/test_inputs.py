@@ -65,3 +65,12 @@ def test_the_jobs_error_messages(tmp_path):
                                         ("a.xyz", "points"), ("a.zarr", "zarr"), ("a.png", "unknown")])
 def test_input_kind(name, kind, tmp_path):
     assert input_kind(tmp_path / name) == kind
+
+
+def test_terrain_suffixes_are_the_terrain_readers():
+    """input_kind keeps its own list (importing seismo3d.terrain costs a second that SEG-Y commands do not pay):
+    it must stay the readers' list."""
+    from seismo3d.jobs import inputs
+    from seismo3d.terrain.inputs import TERRAIN_SUFFIXES
+
+    assert set(inputs._TERRAIN_SUFFIXES) == set(TERRAIN_SUFFIXES)

@@ -70,29 +70,25 @@ class MapJobResult:
 
 
 def write_ply(path, mesh) -> None:
-    """Write a triangle mesh as binary little-endian PLY (float32 positions and normals, int32 faces), atomically.
+    """Write a triangle mesh as binary little-endian PLY (float32 positions and normals, int32 faces), atomically,
+    through VTK (:func:`seismo3d.viz.save_polydata`).
 
     Parameters
     ----------
     path : str or os.PathLike
     mesh : TriangleMesh
     """
-    v = np.asarray(mesh.vertices, np.float32)
-    n = np.asarray(mesh.normals, np.float32)
-    f = np.asarray(mesh.faces, np.int32)
-    header = ("ply\nformat binary_little_endian 1.0\ncomment seismo3d TSDF map (metres)\n"
-              f"element vertex {len(v)}\nproperty float x\nproperty float y\nproperty float z\n"
-              "property float nx\nproperty float ny\nproperty float nz\n"
-              f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n")
-    vert = np.empty(len(v), dtype=[("p", "<f4", 3), ("n", "<f4", 3)])
-    vert["p"], vert["n"] = v, n
-    face = np.empty(len(f), dtype=[("k", "u1"), ("i", "<i4", 3)])
-    face["k"], face["i"] = 3, f
-    with atomic_path(path) as tmp:
-        with open(tmp, "wb") as fh:
-            fh.write(header.encode("ascii"))
-            fh.write(vert.tobytes())
-            fh.write(face.tobytes())
+    import pyvista as pv
+
+    from ..viz.faults import save_polydata
+
+    faces = np.asarray(mesh.faces, np.int64).reshape(-1, 3)
+    poly = pv.PolyData(np.asarray(mesh.vertices, np.float32).reshape(-1, 3),
+                       np.column_stack([np.full(len(faces), 3), faces]).ravel() if len(faces) else None)
+    if poly.n_points:  # (pyvista refuses empty arrays; an empty map is written without them)
+        poly.point_data["Normals"] = np.asarray(mesh.normals, np.float32).reshape(-1, 3)
+        poly.point_data.active_normals_name = "Normals"
+    save_polydata(poly, path)
 
 
 def _loop(sequence, mapper, frames, steps, skipped):

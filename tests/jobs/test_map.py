@@ -112,3 +112,30 @@ def test_cli(sequence, tmp_path, check_run_json):
     assert bad.exit_code == 2 and "does not exist" in bad.output
     same = runner.invoke(app, ["map", str(sequence), "-o", str(sequence)])
     assert same.exit_code == 2 and "is the input" in same.output
+
+
+def test_mesh_ply_is_written_through_vtk_and_read_back(tmp_path):
+    """mesh.ply (binary little-endian, float32 positions and normals, faces) reads back the same through pyvista
+    (render) and seismo3d's point reader (plan); an empty map still writes a valid file."""
+    import pyvista as pv
+
+    from seismo3d.data.pointclouds import read_points
+    from seismo3d.jobs.map import write_ply
+    from seismo3d.mapping.tsdf import TriangleMesh
+
+    rng = np.random.default_rng(0)
+    vertices = rng.random((6, 3))
+    normals = rng.standard_normal((6, 3))
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    faces = np.array([[0, 1, 2], [2, 3, 4], [3, 4, 5]])
+    write_ply(tmp_path / "mesh.ply", TriangleMesh(vertices, faces, normals))
+    header = (tmp_path / "mesh.ply").read_bytes().split(b"end_header")[0].decode("ascii")
+    assert "format binary_little_endian 1.0" in header and "element vertex 6" in header and "property float nx" in header
+    mesh = pv.read(tmp_path / "mesh.ply")
+    np.testing.assert_allclose(mesh.points, vertices.astype(np.float32), rtol=0, atol=0)  # float32, as before
+    np.testing.assert_array_equal(mesh.regular_faces, faces)
+    np.testing.assert_allclose(mesh.point_data["Normals"], normals.astype(np.float32), rtol=0, atol=0)
+    np.testing.assert_array_equal(read_points(tmp_path / "mesh.ply"), vertices.astype(np.float32))
+    write_ply(tmp_path / "empty.ply", TriangleMesh(np.zeros((0, 3)), np.zeros((0, 3), np.int64), np.zeros((0, 3))))
+    assert pv.read(tmp_path / "empty.ply").n_points == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["empty.ply", "mesh.ply"]  # no temporary file left

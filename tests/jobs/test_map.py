@@ -130,7 +130,8 @@ def test_mesh_ply_is_written_through_vtk_and_read_back(tmp_path):
     faces = np.array([[0, 1, 2], [2, 3, 4], [3, 4, 5]])
     write_ply(tmp_path / "mesh.ply", TriangleMesh(vertices, faces, normals))
     header = (tmp_path / "mesh.ply").read_bytes().split(b"end_header")[0].decode("ascii")
-    assert "format binary_little_endian 1.0" in header and "element vertex 6" in header and "property float nx" in header
+    assert "format binary_little_endian 1.0" in header and "element vertex 6" in header
+    assert "property float nx" in header and "element face 3" in header
     mesh = pv.read(tmp_path / "mesh.ply")
     np.testing.assert_allclose(mesh.points, vertices.astype(np.float32), rtol=0, atol=0)  # float32, as before
     np.testing.assert_array_equal(mesh.regular_faces, faces)

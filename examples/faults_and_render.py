@@ -7,7 +7,6 @@ The same on the command line:
 """
 
 # %% Trace the faults of the demo cube (128^3 samples, 3 true faults); outputs go to OUTDIR
-import csv
 import sys
 from pathlib import Path
 
@@ -15,11 +14,11 @@ from seismo3d.jobs.faults import run_faults_job
 from seismo3d.jobs.render import run_render_job
 
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "faults_demo")
-written = run_faults_job(None, out, demo=True, overwrite=True, progress=True)  # overwrite: a rerun replaces the files
-with open(written["summary"], newline="") as fh:
-    for row in csv.DictReader(fh):
-        print(f"fault {row['id']}: {row['n_points']} samples, strike {row['mean_strike_deg']} deg, dip "
-              f"{row['mean_dip_deg']} deg, median throw {row['median_throw_samples']} samples")
+result = run_faults_job(None, out, demo=True, overwrite=True, progress=True)  # overwrite: a rerun replaces the files
+for row in result.faults:  # the rows of fault_summary.csv
+    print(f"fault {row['id']}: {row['n_points']} samples, strike {row['mean_strike_deg']} deg, dip "
+          f"{row['mean_dip_deg']} deg, median throw {row['median_throw_samples']} samples")
+print(f"options, inputs and stage times of the run: {result.run_json}")
 
 # %% Render the folder off screen: slices of demo_seismic.sgy, fault surfaces by id, the likelihood volume
 job = run_render_job(out, out / "scene.png", overwrite=True)

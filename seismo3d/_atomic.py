@@ -14,7 +14,7 @@ __all__ = ["atomic_path", "atomic_directory", "existing_folder", "StagedFolder"]
 
 
 @contextmanager
-def atomic_path(path):
+def atomic_path(path, *, suffix: str = ".tmp"):
     """Yield a temporary path in the destination's folder; on success rename it to ``path``, on any error remove it.
 
     A reader never sees a half-written file, and an interrupted run (exception, Ctrl-C) leaves any earlier file at
@@ -24,6 +24,9 @@ def atomic_path(path):
     ----------
     path : str or os.PathLike
         The final destination.
+    suffix : str, optional
+        End of the temporary file's name: ``.tmp``, or for a writer that insists on its own extension (VTK's PLY
+        writer appends ``.ply`` to any other name) e.g. ``.tmp.ply``.
 
     Yields
     ------
@@ -37,7 +40,7 @@ def atomic_path(path):
     """
     path = pathlib.Path(path)
     folder = existing_folder(path)
-    fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{path.name}.", suffix=".tmp")
+    fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{path.name}.", suffix=suffix)
     os.close(fd)
     tmp = pathlib.Path(tmp)
     try:

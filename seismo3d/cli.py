@@ -27,6 +27,7 @@ import typer
 
 from . import __version__
 from .errors import Seismo3dError
+from .jobs.runinfo import cli_call
 
 app = typer.Typer(help="seismo3d: fault and horizon interpretation of seismic cubes, point-cloud / RGB-D / terrain "
                        "registration, lineaments and path planning, on one fused-ICP engine.", no_args_is_help=True,
@@ -118,8 +119,8 @@ def _friendly(flags: dict | None = None):
     def decorate(fn):
         @functools.wraps(fn)
         def wrapper(*args, **kwargs):
-            try:
-                with _one_line_warnings(flags):
+            try:  # the command's name is its function's (map_ for map)
+                with _one_line_warnings(flags), cli_call(fn.__name__.rstrip("_"), kwargs):
                     return fn(*args, **kwargs)
             except Seismo3dError as exc:
                 typer.echo(f"error: {_in_flags(str(exc), flags)}", err=True)
@@ -330,18 +331,15 @@ def faults(
 ) -> None:
     """Trace the faults of INPUT and write fault likelihood, strike, dip and votes (SEG-Y for SEG-Y input), fault
     surfaces (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT."""
-    import csv
-
     from .jobs.faults import run_faults_job
 
     with _one_line_warnings():
-        written = run_faults_job(input, output, demo=demo, demo_seed=demo_seed, iline=iline, xline=xline,
-                                 ignore_geometry=ignore_geometry, endian=_value(endian),
-                                 sample_unit=None if sample_unit is None else sample_unit.value,
-                                 n_samples=n_samples, sensitivity=sensitivity, likelihood=likelihood.value,
-                                 memory_limit=memory_limit, scheduler=scheduler, overwrite=overwrite, progress=True)
-    with open(written["summary"], newline="") as fh:
-        rows = list(csv.DictReader(fh))
+        job = run_faults_job(input, output, demo=demo, demo_seed=demo_seed, iline=iline, xline=xline,
+                             ignore_geometry=ignore_geometry, endian=_value(endian),
+                             sample_unit=None if sample_unit is None else sample_unit.value,
+                             n_samples=n_samples, sensitivity=sensitivity, likelihood=likelihood.value,
+                             memory_limit=memory_limit, scheduler=scheduler, overwrite=overwrite, progress=True)
+    rows = job.faults
     source = "the demo cube" if demo else input.name
     typer.echo(f"{len(rows)} faults in {source} -> {output}")
     if rows:
@@ -357,8 +355,8 @@ def faults(
                      f"dip {r['mean_dip_deg']:>4} toward {r['dips_toward']}")
             typer.echo(f"  fault {r['id']:>3}: {r['n_points']:>6} samples, {where}, median throw {throw}")
         if len(rows) > 5:
-            typer.echo(f"  ... {len(rows) - 5} more in {pathlib.Path(written['summary']).name}")
-    typer.echo("wrote " + ", ".join(pathlib.Path(p).name for p in written.values()))
+            typer.echo(f"  ... {len(rows) - 5} more in {pathlib.Path(job.written['summary']).name}")
+    typer.echo("wrote " + ", ".join(pathlib.Path(p).name for p in job.written.values()))
 
 
 @app.command()
@@ -534,19 +532,19 @@ def map_(
 
     with _one_line_warnings():
         try:
-            written = run_map_job(sequence, output, options=options, max_frames=max_frames, render=render,
-                                  overwrite=overwrite)
+            job = run_map_job(sequence, output, options=options, max_frames=max_frames, render=render,
+                              overwrite=overwrite)
         except KeyboardInterrupt:
             typer.echo(f"interrupted: the trajectory of the frames done and the map so far are in {output}", err=True)
             raise typer.Exit(130) from None
-    summary = written["summary"]
+    summary = job.summary
     typer.echo(f"{_frames_tracked(summary, max_frames)}, {summary['keyframes']} keyframes, "
                f"{summary['loop_closures']} loop closures, {summary['frames_per_second']:.1f} frames/s -> {output}")
-    if summary.get("evaluation"):
-        ev = summary["evaluation"]
+    if job.evaluation:
+        ev = job.evaluation
         typer.echo(f"against the sequence's reference: ATE RMSE {100 * ev['ate_rmse_m']:.2f} cm, RPE "
                    f"{100 * ev['rpe_translation_rmse_m']:.2f} cm / {ev['rpe_rotation_rmse_deg']:.2f} deg per frame")
-    typer.echo("wrote " + ", ".join(pathlib.Path(p).name for k, p in written.items() if k != "summary"))
+    typer.echo("wrote " + ", ".join(pathlib.Path(p).name for p in job.written.values()))
 
 
 def _frames_tracked(summary: dict, max_frames: int | None) -> str:

@@ -151,3 +151,49 @@ def write_segy_cube():
         return path
 
     return write
+
+
+@pytest.fixture
+def check_run_json():
+    """``check_run_json(path, command, inputs, outputs, options, since)``: the ``run.json`` of a run
+    (seismo3d.jobs.runinfo) parses and holds the version, the command line and the command's arguments, every
+    option named in ``options``, each input file's size and sha256 (computed here again), a start time no earlier
+    than ``since`` (time.time() before the run; one second of margin for the record's whole seconds), stage times
+    that add up to no more than the run's, and the outputs, which exist; no temporary file is left beside it.
+    Returns the record."""
+    import datetime
+    import hashlib
+    import json
+    import time
+    from pathlib import Path
+
+    import seismo3d
+
+    def check(path, command, inputs, outputs, options, since, cli=True):
+        path = Path(path)
+        record = json.loads(path.read_text())
+        assert record["seismo3d_version"] == seismo3d.__version__
+        assert record["command"] == command and isinstance(record["argv"], list) and record["argv"]
+        assert set(options) <= set(record["options"]), set(options) - set(record["options"])
+        if cli:
+            assert record["cli"]["command"] == command
+            assert record["cli"]["arguments"], "the command's arguments"
+        for role, file in inputs.items():
+            entry, file = record["inputs"][role], Path(file)
+            assert entry["path"] == os.path.abspath(file)
+            if file.is_file():
+                assert entry["identity"] == "sha256" and entry["bytes"] == file.stat().st_size
+                assert entry["sha256"] == hashlib.sha256(file.read_bytes()).hexdigest()
+            else:
+                assert entry["kind"] == "folder" and entry["identity"] == "size+mtime" and entry["files"] > 0
+        started = datetime.datetime.fromisoformat(record["started"]).timestamp()
+        assert since - 1.0 <= started <= time.time()
+        stages = record["stage_seconds"]
+        assert stages and all(v >= 0 for v in stages.values())
+        assert sum(stages.values()) <= record["seconds"] + 1e-5  # stages do not overlap; rounding to 1 us each
+        for key in outputs:
+            assert Path(record["outputs"][key]).exists(), key
+        assert not list(path.parent.glob(".*.tmp")) and not list(path.parent.glob(".staged-*"))
+        return record
+
+    return check

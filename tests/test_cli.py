@@ -122,11 +122,9 @@ def test_faults_demo_arguments(tmp_path, monkeypatch):
 
     def fake_job(input_path, out_dir, **kwargs):
         seen.update(kwargs, input_path=input_path)
-        Path(out_dir).mkdir(parents=True, exist_ok=True)
-        summary = Path(out_dir) / "fault_summary.csv"
-        summary.write_text("id,n_points,mean_strike_deg,mean_dip_deg,median_throw_samples,median_throw_ms\n"
-                           "1,500,30.0,70.0,4.5,18\n")
-        return {"summary": summary}
+        row = dict(id="1", n_points="500", mean_strike_deg="30.0", mean_dip_deg="70.0", median_throw_samples="4.5",
+                   median_throw_ms="18")
+        return job.FaultsJobResult({"summary": Path(out_dir) / "fault_summary.csv"}, (row,), None, {})
 
     monkeypatch.setattr(job, "run_faults_job", fake_job)
     result = runner.invoke(app, ["faults", "--demo", "--demo-seed", "7", "-o", str(tmp_path / "d")])

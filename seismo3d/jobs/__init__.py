@@ -15,4 +15,11 @@ imports a job.
 - :mod:`seismo3d.jobs.lineaments`: ``run_lineaments_job`` (``seismo3d lineaments``)
 - :mod:`seismo3d.jobs.plan`: ``run_plan_job`` (``seismo3d plan``)
 - :mod:`seismo3d.jobs.map`: ``run_map_job`` (``seismo3d map``: RGB-D sequences)
+- :mod:`seismo3d.jobs.convert`: ``run_convert_job`` (``seismo3d convert``)
+- :mod:`seismo3d.jobs.render`: ``run_render_job`` (``seismo3d render``)
+
+Shared by all: :mod:`seismo3d.jobs.outputs` (the output policy, checked before any input is read),
+:mod:`seismo3d.jobs.runinfo` (``run.json`` beside every command's outputs: :class:`~seismo3d.jobs.runinfo.RunRecord`)
+and :mod:`seismo3d.jobs.inputs` (the one reader of seismic inputs, ``read_seismic``, and ``input_kind``). Each job
+returns a result dataclass (paths written, counts, ``stage_seconds``, ``run_json``).
 """

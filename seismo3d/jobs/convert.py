@@ -26,6 +26,7 @@ from ..errors import InputError, TraceListWarning
 from ..seismic.io.segy import open_segy
 from ..seismic.io.zarr_store import SeismicZarrWriter, is_seismic_zarr
 from .outputs import check_outputs, output_store
+from .runinfo import RunRecord, run_json_output, run_json_path
 
 __all__ = ["ConvertResult", "run_convert_job"]
 
@@ -48,6 +49,10 @@ class ConvertResult:
         Whether ``cdp_x`` / ``cdp_y`` were written.
     seconds : float
         Wall time of the conversion.
+    run_json : pathlib.Path
+        The record of the run, ``OUTPUT.run.json`` beside the store (:mod:`seismo3d.jobs.runinfo`).
+    stage_seconds : dict
+        Wall time of each stage (``open``, ``write``).
     """
 
     output: Path
@@ -56,6 +61,8 @@ class ConvertResult:
     header_fields: tuple
     has_cdp_coordinates: bool
     seconds: float
+    run_json: Path | None = None
+    stage_seconds: dict | None = None
 
     @property
     def summary(self) -> str:
@@ -66,12 +73,15 @@ class ConvertResult:
                 f"{len(self.header_fields)} trace header fields{coords}) in {self.seconds:.1f} s")
 
 
-def _check_output(input: Path, output: Path, overwrite: bool) -> None:
-    """The output policy, and an existing output replaced only when it is a store of this command."""
-    check_outputs([output_store(output, input.with_suffix(".zarr").name)], [input], overwrite=overwrite)
+def _check_output(input: Path, output: Path, overwrite: bool):
+    """The output policy, and an existing output replaced only when it is a store of this command; the store as an
+    :class:`~seismo3d.jobs.outputs.Output`."""
+    main = output_store(output, input.with_suffix(".zarr").name)
+    check_outputs([main, run_json_output(main)], [input], overwrite=overwrite)
     if (output.exists() or output.is_symlink()) and not is_seismic_zarr(output):
         raise InputError(f"output {output} exists and is not a store written by seismo3d convert; overwrite=True "
                          "(--overwrite) replaces only those: remove it yourself or choose another path")
+    return main
 
 
 def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian=None, sample_unit=None,
@@ -115,17 +125,18 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
     ----------
     Zarr v3 core specification; MDIO (TGS) for the layout idea; SEG-Y rev 1 (2002) headers.
     """
+    record = RunRecord("convert", locals())  # first: the arguments as called
     input, output = Path(input), Path(output)
     started = time.perf_counter()
     # 1. arguments and outputs that must not be written, before any reading
     check_positive(chunk_mb, "chunk_mb")
-    _check_output(input, output, overwrite)
+    main = _check_output(input, output, overwrite)
     # 2. the SEG-Y's geometry through the one opening path (a trace list is refused by the writer, saying what it is)
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), record.stage("open"):
         warnings.simplefilter("ignore", TraceListWarning)
         cube = open_segy(input, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
     # 3. tile by tile into a temporary store, renamed to OUTPUT when complete
-    with cube, atomic_directory(output) as tmp:
+    with cube, record.stage("write"), atomic_directory(output) as tmp:
         writer = SeismicZarrWriter(cube, tmp, chunk_mb=chunk_mb)
         with progress_steps(len(writer.tiles), f"convert {input.name}", unit="tile", enabled=progress) as steps:
             for tile in writer.tiles:
@@ -134,6 +145,10 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
         kept = writer.finish()
         chunks = tuple(int(c) for c in writer.seismic.chunks)
         has_coords = "cdp_x" in writer.root
-    return ConvertResult(output=output, shape=tuple(int(n) for n in cube.shape), chunks=chunks,
-                         header_fields=tuple(kept), has_cdp_coordinates=has_coords,
-                         seconds=time.perf_counter() - started)
+    shape = tuple(int(n) for n in cube.shape)
+    run_json = record.write(run_json_path(main), inputs={"input": input}, outputs={"store": output},
+                            results=dict(shape=shape, chunks=chunks, header_fields=list(kept),
+                                         has_cdp_coordinates=has_coords))
+    return ConvertResult(output=output, shape=shape, chunks=chunks, header_fields=tuple(kept),
+                         has_cdp_coordinates=has_coords, seconds=time.perf_counter() - started, run_json=run_json,
+                         stage_seconds=dict(record.stage_seconds))

@@ -21,7 +21,7 @@ import segyio
 from .._atomic import StagedFolder, atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
-from ..errors import DataNotFoundError, InputError, Seismo3dWarning
+from ..errors import InputError, Seismo3dWarning
 from ..seismic.faults.likelihood_blocks import (
     ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory, worker_baseline,
 )
@@ -31,20 +31,50 @@ from ..seismic.faults.pipeline_blocks import chunked_fault_surfaces
 from ..seismic.blocks import release_memory
 from ..seismic.faults.preflight import SampleOptions, judge_sample, minimum_memory_limit
 from ..seismic.io.lazy import open_lazy
-from ..seismic.io.segy import open_segy, read_section, write_like
+from ..seismic.io.segy import open_segy, write_like
 from ..seismic.io.writer import write_like_blocks
 from ..seismic.io.zarr_store import consolidate
+from .inputs import read_seismic
 from .outputs import check_outputs, output_folder
+from .runinfo import RUN_JSON, RunRecord
 
-__all__ = ["RESULTS", "run_faults_job"]
+__all__ = ["FaultsJobResult", "RESULTS", "run_faults_job"]
 
 # What a run writes into its folder (SEG-Y volumes for a SEG-Y input, .npy otherwise; the demo's cube and truth).
 # The Zarr stores of a block-by-block run are not among them: they are reused or resumed by the next run.
 RESULTS = tuple(f"fault_{name}.{ext}" for ext in ("sgy", "npy") for name in ("likelihood", "strike", "dip", "votes")) + (
-    "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "demo_seismic.sgy", "demo_truth.csv")
+    "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "demo_seismic.sgy", "demo_truth.csv",
+    RUN_JSON)
 
 _DEMO_SHAPE = (128, 128, 128)
 _DEMO_DT_MS = 4.0
+
+
+@dataclass(frozen=True)
+class FaultsJobResult:
+    """What :func:`run_faults_job` wrote and found.
+
+    Attributes
+    ----------
+    written : dict of str to pathlib.Path
+        The files written, by key (see :func:`run_faults_job`'s Returns), and ``run_json``.
+    faults : tuple of dict
+        One row per fault as written to ``fault_summary.csv``: column name to the text written.
+    run_json : pathlib.Path
+        The record of the run (:mod:`seismo3d.jobs.runinfo`).
+    stage_seconds : dict
+        Wall time of each stage (``trace_and_write``: reading, tracing and writing).
+    """
+
+    written: dict
+    faults: tuple
+    run_json: Path
+    stage_seconds: dict
+
+    @property
+    def n_faults(self) -> int:
+        """How many faults were kept."""
+        return len(self.faults)
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -94,50 +124,26 @@ class _Input:
 
 
 def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, endian=None) -> _Input:
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix in (".f32be", ".npy"):
-        if not path.is_file():
-            raise DataNotFoundError(f"no input file at {path}; check the path")
-        if suffix == ".f32be":
-            data = read_section(path, n_samples=n_samples)
-        else:
-            try:
-                data = np.load(path, allow_pickle=False, mmap_mode="r")
-            except (ValueError, OSError) as exc:
-                raise InputError(f"{path.name} is not a readable .npy array ({exc}); save it with numpy.save") from exc
-            if data.ndim not in (2, 3):
-                raise InputError(f"{path.name} holds an array of shape {data.shape}; expected a 2D section "
-                                 "(n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, n_samples)")
-        unit = "samples"
-        if sample_unit is not None:
-            raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
-                             "in samples")
+    """The input through the jobs' one reader (:func:`~seismo3d.jobs.inputs.read_seismic`), labelled for the
+    outputs."""
+    seismic = read_seismic(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
+                           n_samples=n_samples, endian=endian)
+    path, data, samples, unit = seismic.path, seismic.data, seismic.samples, seismic.sample_unit
+    if not seismic.is_segy:  # .npy, .f32be: traces labelled by their index
         idx = [np.arange(n, dtype=np.int64) for n in data.shape]
-        if data.ndim == 2:
-            return _Input(np.asarray(data), path.stem, None, None, idx[0], None, idx[1].astype(np.float64), unit)
-        return _Input(np.asarray(data), path.stem, None, None, idx[0], idx[1], idx[2].astype(np.float64), unit)
-
-    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
-                   endian=endian) as cube:
-        if cube.inlines is not None:  # a trace list was announced by open_segy's warning
-            LOGGER.info("%s: %s, %d samples of %g %s, %s, %s-endian", path.name, cube.description, cube.samples.size,
-                        cube.sample_interval, cube.sample_unit, cube.format_name, cube.endian)
-        data = cube.read()
-        samples = np.asarray(cube.samples, dtype=np.float64)
-        unit = cube.sample_unit
-        if cube.inlines is None:  # trace list: label traces with their header inline / crossline numbers, if any
-            f = cube.segyfile
-            il = np.asarray(f.attributes(cube.iline_byte)[:], dtype=np.int64)
-            xl = np.asarray(f.attributes(cube.xline_byte)[:], dtype=np.int64)
-            if np.all(il == il[0]) and np.all(xl == xl[0]):  # no numbers there: the trace index
-                il, xl = np.arange(cube.n_traces, dtype=np.int64), None
-            return _Input(data, path.stem, path, None, il, xl, samples, unit, "trace")
-        il = np.asarray(cube.inlines, dtype=np.int64)
-        xl = np.asarray(cube.xlines, dtype=np.int64)
-        if cube.is_3d:
-            return _Input(data, path.stem, path, cube.shape, il, xl, samples, unit, "trace", cube.sorting)
-        shape, sorting = cube.shape, cube.sorting
+        return _Input(np.asarray(data), path.stem, None, None, idx[0], idx[1] if data.ndim == 3 else None, samples,
+                      unit)
+    if seismic.kind == "trace list":  # label traces with their header inline / crossline numbers, if any
+        il, xl = seismic.trace_inlines.astype(np.int64), seismic.trace_xlines.astype(np.int64)
+        if np.all(il == il[0]) and np.all(xl == xl[0]):  # no numbers there: the trace index
+            il, xl = np.arange(il.size, dtype=np.int64), None
+        return _Input(data, path.stem, path, None, il, xl, samples, unit, "trace")
+    LOGGER.info("%s: %s, %d samples of %g %s, %s, %s-endian", path.name, seismic.description, samples.size,
+                seismic.sample_interval, unit, seismic.format_name, seismic.endian)
+    il, xl = seismic.inlines.astype(np.int64), seismic.xlines.astype(np.int64)
+    shape, sorting = seismic.grid_shape, seismic.sorting
+    if seismic.kind == "cube":
+        return _Input(data, path.stem, path, shape, il, xl, samples, unit, "trace", sorting)
     if shape[1] == 1:  # a line along inlines (one crossline), e.g. penobscot_xl1155
         return _Input(data[:, 0, :], path.stem, path, shape, il, np.full(il.size, xl[0]), samples, unit, "inline",
                       sorting)
@@ -259,15 +265,17 @@ def _dip_direction(inp: _Input, fault) -> str:
     return f"{'increasing' if toward_higher else 'decreasing'} {inp.trace_axis}"
 
 
-def _write_summary(inp: _Input, result: FaultInterpretation, path: Path) -> Path:
+def _write_summary(inp: _Input, result: FaultInterpretation, path: Path, rows: list) -> Path:
+    """fault_summary.csv; its rows are also appended to ``rows`` (column name to text) for the job's result."""
     unit = inp.unit
     extra = [] if unit == "samples" else [f"median_throw_{unit}"]
     two_d = inp.data.ndim == 2
     orientation = ["dips_toward"] if two_d else ["mean_strike_deg"]
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra,
-                    "throw_spread_samples", "throw_correlation", "correlation_gain"])
+        header = ["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra,
+                  "throw_spread_samples", "throw_correlation", "correlation_gain"]
+        w.writerow(header)
         evidence = {e.fault_id: e for e in result.evidence}
         for f in result.faults:
             e = evidence[f.id]
@@ -277,6 +285,7 @@ def _write_summary(inp: _Input, result: FaultInterpretation, path: Path) -> Path
                 row.append(_fmt(e.median_throw * result.sample_interval))
             row += [_fmt(e.throw_spread), _fmt(e.correlation), _fmt(e.correlation_gain)]
             w.writerow(row)
+            rows.append(dict(zip(header, (str(v) for v in row))))
     return path
 
 
@@ -396,7 +405,7 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
                    endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, likelihood="scan",
-                   memory_limit=None, scheduler=None, overwrite=False, progress=True) -> dict:
+                   memory_limit=None, scheduler=None, overwrite=False, progress=True) -> FaultsJobResult:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 
     Inputs
@@ -507,9 +516,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
 
     Returns
     -------
-    dict of str to pathlib.Path
-        The files written, keyed ``likelihood``, ``strike``, ``dip``, ``votes``, ``surfaces``, ``points``,
-        ``summary``, ``figure`` (and ``input``, ``truth`` for the demo). For a cube beyond ``memory_limit``:
+    FaultsJobResult
+        ``faults``: the rows of ``fault_summary.csv``; ``written``: the files written, keyed ``likelihood``,
+        ``strike``, ``dip``, ``votes``, ``surfaces``, ``points``, ``summary``, ``figure``, ``run_json`` (and
+        ``input``, ``truth`` for the demo). For a cube beyond ``memory_limit``:
         ``likelihood`` is ``fault_likelihood.zarr`` (holding strike and dip too), ``surfaces_zarr`` is
         ``fault_surfaces.zarr``, with ``surfaces``, ``points``, ``summary``, ``figure``, and for a SEG-Y input
         ``likelihood_segy``, ``strike_segy``, ``dip_segy``, ``votes_segy``.
@@ -539,6 +549,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     TraceListWarning
         A SEG-Y input without an inline / crossline grid at bytes 189 / 193, read as a trace list (one line).
     """
+    record = RunRecord("faults", locals())  # first: the arguments as called
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
     options = FaultTracingOptions(sensitivity=sensitivity, likelihood=likelihood)
@@ -552,17 +563,24 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     check_outputs([output_folder(out_dir, RESULTS, f"{stem}_faults")], [input_path], overwrite=overwrite)
     limit = _memory_limit(memory_limit)
     segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian, sample_unit=sample_unit)
+    summary = []  # the rows of fault_summary.csv, as written
     with StagedFolder(out_dir) as stage:  # the files moved in together when every one is written
-        written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
-                                   n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
-                                   progress=progress)
-    return {key: stage.final(path) for key, path in written.items()}
+        with record.stage("trace_and_write"):
+            written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
+                                       n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
+                                       progress=progress, summary=summary)
+        final = {key: stage.final(path) for key, path in written.items()}
+        record.options["tracing_options"] = options
+        final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"input": input_path},
+                                                     outputs=final, results={"n_faults": len(summary)}))
+    return FaultsJobResult(final, tuple(summary), final["run_json"], dict(record.stage_seconds))
 
 
 def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed, segy: dict, n_samples,
-                     options: FaultTracingOptions, limit: int, scheduler, progress) -> dict:
+                     options: FaultTracingOptions, limit: int, scheduler, progress, summary: list) -> dict:
     """Read (or make) the input, trace its faults in memory or block by block, write the results into ``files``
-    (the block-by-block run's Zarr stores into ``out_dir``); the files written, by key."""
+    (the block-by-block run's Zarr stores into ``out_dir``); the files written, by key (the summary's rows appended
+    to ``summary``)."""
     iline, xline, ignore_geometry, endian, sample_unit = (segy[k] for k in ("iline", "xline", "ignore_geometry",
                                                                             "endian", "sample_unit"))
     budget = limit - resident_memory()  # what this run may add to the process as it is now
@@ -576,7 +594,7 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     if lazy is not None:
         _check_block_run(lazy, limit, scheduler, options)
         written.update(_run_chunked(lazy, out_dir, files, memory_limit=limit, budget=budget, scheduler=scheduler,
-                                    options=options, progress=progress))
+                                    options=options, progress=progress, summary=summary))
         return written
     if demo:
         inp = _read_input(input_path, iline=189, xline=193, ignore_geometry=False, sample_unit="ms", n_samples=None)
@@ -600,12 +618,12 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
         ("dip", lambda: _write_volume(inp, files, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
         ("votes", lambda: _write_volume(inp, files, "fault_votes", result.votes, like=written["likelihood"], **geo)),
     ]
-    _write_steps(steps + _surface_steps(inp, result, files), written, progress)
+    _write_steps(steps + _surface_steps(inp, result, files, summary), written, progress)
     return written
 
 
-def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path) -> list:
-    """The writers of the fault surfaces, points, summary and picture."""
+def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summary: list) -> list:
+    """The writers of the fault surfaces, points, summary (its rows appended to ``summary``) and picture."""
     from ..viz.faults import fault_surfaces, plot_fault_slices, save_polydata
 
     axes = inp.axes
@@ -613,7 +631,7 @@ def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path) -> l
         ("surfaces", lambda: save_polydata(fault_surfaces(result.faults, result.throws, axes=axes),
                                            out_dir / "faults.vtp")),
         ("points", lambda: _write_points(inp, result, out_dir / "fault_points.csv")),
-        ("summary", lambda: _write_summary(inp, result, out_dir / "fault_summary.csv")),
+        ("summary", lambda: _write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
         ("figure", lambda: plot_fault_slices(inp.data, result.faults, path=out_dir / "faults.png",
                                              likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
                                              title=inp.name)),
@@ -635,7 +653,7 @@ _TILE = 32  # traces per side of the lazy input's chunks: a block of the chunked
 
 
 def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: int, budget: int, scheduler,
-                 options: FaultTracingOptions, progress) -> dict:
+                 options: FaultTracingOptions, progress, summary: list) -> dict:
     """Fault likelihood block by block into ``fault_likelihood.zarr``, then the fault surfaces block by block into
     ``fault_surfaces.zarr`` (both in ``out_dir``: reused when finished, resumed when interrupted); the same files as
     in memory, into ``files``."""
@@ -681,7 +699,7 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: i
                                  thresholds=surfaces.thresholds, faults=surfaces.faults, throws=surfaces.throws,
                                  evidence=surfaces.evidence, sample_interval=dt, sample_unit=lazy.unit)
     inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
-    _write_steps(_surface_steps(inp, result, files), written, progress)
+    _write_steps(_surface_steps(inp, result, files, summary), written, progress)
     written.update(_segy_volumes(lazy, surfaces.path, files, {"likelihood": "likelihood", "votes": "votes"},
                                  progress))
     written.update(_segy_volumes(lazy, path, files, {"strike": "strike_deg", "dip": "dip_deg"}, progress))

@@ -17,7 +17,9 @@ import numpy as np
 
 from ..errors import InputError, SeedError, SegyGeometryError, UnsupportedDataError
 from ..seismic.horizons.result import Horizon
+from .inputs import read_seismic
 from .outputs import check_outputs, output_file
+from .runinfo import RunRecord, run_json_output, run_json_path
 
 __all__ = ["HorizonJob", "run_horizon_job", "seed_index", "trace_seed_index"]
 
@@ -36,12 +38,21 @@ class HorizonJob:
         The text file.
     surface : pathlib.Path or None
         The surface file, when asked for.
+    run_json : pathlib.Path
+        The record of the run (:mod:`seismo3d.jobs.runinfo`).
+    stage_seconds : dict
+        Wall time of each stage (``read``, ``faults`` when traced, ``track``, ``write``).
+    n_faults : int
+        Faults traced first (0 without).
     """
 
     horizon: Horizon
     n_rows: int
     output: pathlib.Path
     surface: pathlib.Path | None
+    run_json: pathlib.Path | None = None
+    stage_seconds: dict | None = None
+    n_faults: int = 0
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,18 +79,19 @@ class _Survey:
 
 
 def _read_survey(path: pathlib.Path, *, iline, xline, ignore_geometry, endian, sample_unit=None) -> _Survey:
-    """The SEG-Y file as a cube or a 2D line; a single trace is refused."""
-    from ..seismic import open_segy
-
-    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
-                   sample_unit=sample_unit) as cube:
-        if cube.n_traces < 2 or cube.samples.size < 2:
-            raise SegyGeometryError(f"{path.name} is {cube.description} of {cube.samples.size} samples; horizon "
-                                    "tracking needs a 2D line or a 3D cube")
-        data = cube.read()
-        if not cube.is_3d:
-            data = data.reshape(cube.n_traces, cube.samples.size)  # a line of a survey, (n, 1, ns) or (1, n, ns)
-        return _Survey(path.name, cube.description, data, cube.inlines, cube.xlines, cube.samples, cube.sample_unit)
+    """The SEG-Y file as a cube or a 2D line (:func:`~seismo3d.jobs.inputs.read_seismic`); a single trace is
+    refused."""
+    seismic = read_seismic(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
+                           sample_unit=sample_unit, arrays=False)
+    data, n_samples = seismic.data, seismic.samples.size
+    n_traces = int(np.prod(data.shape[:-1]))
+    if n_traces < 2 or n_samples < 2:
+        raise SegyGeometryError(f"{path.name} is {seismic.description} of {n_samples} samples; horizon tracking "
+                                "needs a 2D line or a 3D cube")
+    if seismic.kind == "line":
+        data = data.reshape(n_traces, n_samples)  # a line of a survey, (n, 1, ns) or (1, n, ns)
+    return _Survey(path.name, seismic.description, data, seismic.inlines, seismic.xlines, seismic.samples,
+                   seismic.sample_unit)
 
 
 def _seed_indices(survey: _Survey, seeds) -> list:
@@ -253,15 +265,18 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     TraceListWarning
         The file has no inline / crossline grid and is read as a trace list (one line).
     """
+    record = RunRecord("horizon", locals())  # first: the arguments as called
     from ..seismic import fill_horizon, trace_faults, track_horizon
 
     input_path, output = pathlib.Path(input_path), pathlib.Path(output)
     surface = None if surface is None else pathlib.Path(surface)
-    check_outputs([output_file(output, "horizon.txt"), surface and output_file(surface, "horizon.vtp")],
+    main = output_file(output, "horizon.txt")
+    check_outputs([main, run_json_output(main), surface and output_file(surface, "horizon.vtp")],
                   [input_path], overwrite=overwrite)
     # read the cube or line, and convert the seeds to index positions
-    survey = _read_survey(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
-                          sample_unit=sample_unit)
+    with record.stage("read"):
+        survey = _read_survey(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
+                              sample_unit=sample_unit)
     if surface is not None and survey.kind != "cube":
         raise InputError(f"a horizon surface needs a 3D cube and {survey.name} is {survey.description}; leave out "
                          f"surface={surface} (--surface)")
@@ -271,25 +286,33 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     interp = None
     if faults or (faults is None and survey.kind == "cube"):
         try:
-            interp = trace_faults(survey.data, sample_interval=float(survey.samples[1] - survey.samples[0]),
-                                  sample_unit=survey.unit, progress=progress)
+            with record.stage("faults"):
+                interp = trace_faults(survey.data, sample_interval=float(survey.samples[1] - survey.samples[0]),
+                                      sample_unit=survey.unit, progress=progress)
         except (InputError, UnsupportedDataError):
             if faults:  # asked for: the refusal (e.g. a cube too small to trace) is the user's to see
                 raise
     try:
-        result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
+        with record.stage("track"):
+            result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
     except SeedError as exc:  # the library speaks of index positions: the user's inline, crossline and time instead
         raise _seed_error(exc, survey, seeds, index_seeds, polarity) from None
     if fill:
         result = fill_horizon(result)
     # the outputs
-    n = _write_rows(output, survey, result)
-    if surface is not None:
-        from ..viz import horizon_surface, save_polydata
+    with record.stage("write"):
+        n = _write_rows(output, survey, result)
+        if surface is not None:
+            from ..viz import horizon_surface, save_polydata
 
-        save_polydata(horizon_surface(result, inlines=survey.inlines, xlines=survey.xlines, samples=survey.samples),
-                      surface)
-    return HorizonJob(result, n, output, surface)
+            save_polydata(horizon_surface(result, inlines=survey.inlines, xlines=survey.xlines,
+                                          samples=survey.samples), surface)
+    n_faults = 0 if interp is None else len(interp.faults)
+    run_json = record.write(run_json_path(main), inputs={"input": input_path}, outputs={"horizon": output,
+                                                                                        "surface": surface},
+                            results=dict(kind=survey.kind, n_rows=n, n_traces=int(result.times.size),
+                                         coverage=float(result.coverage), n_faults=n_faults))
+    return HorizonJob(result, n, output, surface, run_json, dict(record.stage_seconds), n_faults)
 
 
 def trace_seed_index(seed, n_traces: int, samples, unit: str) -> tuple[float, float]:

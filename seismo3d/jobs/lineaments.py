@@ -17,10 +17,11 @@ from ..terrain import (
     write_lineaments_csv,
 )
 from .outputs import check_outputs, output_folder
+from .runinfo import RUN_JSON, RunRecord, run_json_path
 
 __all__ = ["LineamentsJobResult", "RESULTS", "run_lineaments_job"]
 
-RESULTS = ("lineaments.csv", "rose.png", "lineaments.png")  # what a run writes into its folder
+RESULTS = ("lineaments.csv", "rose.png", "lineaments.png", RUN_JSON)  # what a run writes into its folder
 
 
 @dataclass(frozen=True)
@@ -32,22 +33,29 @@ class LineamentsJobResult:
     lineaments : Lineaments
     written : dict
         ``{'csv': path, 'rose': path, 'map': path}``.
+    run_json : pathlib.Path
+        The record of the run (:mod:`seismo3d.jobs.runinfo`).
+    stage_seconds : dict
+        Wall time of each stage (``read``, ``extract``, ``write``).
     """
 
     lineaments: Lineaments
     written: dict
+    run_json: pathlib.Path | None = None
+    stage_seconds: dict | None = None
 
 
 def run_lineaments_job(dem_path, outdir, *, options: LineamentOptions | None = None,
                        overwrite: bool = False) -> LineamentsJobResult:
     """Extract the lineaments of a GeoTIFF DEM and write them with two pictures.
 
-    Writes into ``outdir`` (created if missing; the three files moved in together once all are written):
+    Writes into ``outdir`` (created if missing; the files moved in together once all are written):
 
     - ``lineaments.csv``: ``x0, y0, x1, y1`` (end points in the raster's CRS), ``azimuth_deg`` (strike in [0, 180),
       clockwise from north), ``length_m``, ``contrast`` (see :class:`~seismo3d.terrain.Lineaments`), longest first;
     - ``rose.png``: the length-weighted rose diagram of the strikes (10-degree bins);
-    - ``lineaments.png``: the lineaments over the multidirectional hillshade, coloured by strike.
+    - ``lineaments.png``: the lineaments over the multidirectional hillshade, coloured by strike;
+    - ``run.json``: the record of the run (options, inputs' sha256, stage times; :mod:`seismo3d.jobs.runinfo`).
 
     Parameters
     ----------
@@ -72,26 +80,39 @@ def run_lineaments_job(dem_path, outdir, *, options: LineamentOptions | None = N
     DataNotFoundError, DataIntegrityError
         A missing or unreadable file.
     """
-    from ..viz.terrain import plot_lineament_map, plot_rose
-
+    record = RunRecord("lineaments", locals())  # first: the arguments as called
     outdir = pathlib.Path(outdir)
     name = pathlib.Path(dem_path).name
-    check_outputs([output_folder(outdir, RESULTS, f"{pathlib.Path(dem_path).stem}_lineaments")], [dem_path],
-                  overwrite=overwrite)
-    dem = read_dem(dem_path)
-    found = extract_lineaments(dem, options=options)
+    main = output_folder(outdir, RESULTS, f"{pathlib.Path(dem_path).stem}_lineaments")
+    check_outputs([main], [dem_path], overwrite=overwrite)
+    with record.stage("read"):
+        dem = read_dem(dem_path)
+    with record.stage("extract"):
+        found = extract_lineaments(dem, options=options)
     with StagedFolder(outdir) as stage:
-        written = {"csv": write_lineaments_csv(stage.path / "lineaments.csv", found)}
-        written["rose"] = plot_rose(found.azimuth_deg, found.length_m, stage.path / "rose.png",
-                                    title=f"{name}: {len(found)} lineaments, {found.length_m.sum() / 1000:.1f} km, "
-                                          "length-weighted strikes")
-        shade = multidirectional_hillshade(dem.elevation_m, dem.metric_axes)
-        extent, segments, aspect, labels = _map_frame(dem, found)
-        written["map"] = plot_lineament_map(shade, extent, segments, found.azimuth_deg, stage.path / "lineaments.png",
-                                            aspect=aspect, axis_labels=labels,
-                                            title=f"{name}: {len(found)} lineaments over the multidirectional "
-                                                  "hillshade")
-    return LineamentsJobResult(found, {key: stage.final(path) for key, path in written.items()})
+        with record.stage("write"):
+            written = _write_files(stage.path, dem, found, name)
+        final = {key: stage.final(path) for key, path in written.items()}
+        record.write(stage.path / RUN_JSON, inputs={"dem": dem_path}, outputs=final,
+                     results=dict(n_lineaments=len(found), length_km=float(found.length_m.sum()) / 1000))
+    return LineamentsJobResult(found, final, run_json_path(main), dict(record.stage_seconds))
+
+
+def _write_files(folder: pathlib.Path, dem, found: Lineaments, name: str) -> dict:
+    """lineaments.csv, rose.png and lineaments.png into ``folder``, by key."""
+    from ..viz.terrain import plot_lineament_map, plot_rose
+
+    written = {"csv": write_lineaments_csv(folder / "lineaments.csv", found)}
+    written["rose"] = plot_rose(found.azimuth_deg, found.length_m, folder / "rose.png",
+                                title=f"{name}: {len(found)} lineaments, {found.length_m.sum() / 1000:.1f} km, "
+                                      "length-weighted strikes")
+    shade = multidirectional_hillshade(dem.elevation_m, dem.metric_axes)
+    extent, segments, aspect, labels = _map_frame(dem, found)
+    written["map"] = plot_lineament_map(shade, extent, segments, found.azimuth_deg, folder / "lineaments.png",
+                                        aspect=aspect, axis_labels=labels,
+                                        title=f"{name}: {len(found)} lineaments over the multidirectional "
+                                              "hillshade")
+    return written
 
 
 def _map_frame(dem, found: Lineaments):

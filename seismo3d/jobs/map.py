@@ -23,6 +23,7 @@ import json
 import pathlib
 import time
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -33,36 +34,61 @@ from ..errors import DataIntegrityError, DataNotFoundError, FrameSkippedWarning,
 from ..mapping import RGBDMapper, open_sequence
 from ..mapping.metrics import absolute_trajectory_error, relative_pose_error, write_tum_trajectory
 from .outputs import check_outputs, output_folder
+from .runinfo import RUN_JSON, RunRecord
 
-__all__ = ["RESULTS", "run_map_job", "write_ply"]
+__all__ = ["MapJobResult", "RESULTS", "run_map_job", "write_ply"]
 
-RESULTS = ("trajectory.txt", "keyframes.json", "mesh.ply", "map.png")  # what a run writes into its folder
+RESULTS = ("trajectory.txt", "keyframes.json", "mesh.ply", "map.png", RUN_JSON)  # what a run writes into its folder
+
+
+@dataclass(frozen=True)
+class MapJobResult:
+    """What :func:`run_map_job` wrote and measured.
+
+    Attributes
+    ----------
+    written : dict of str to pathlib.Path
+        ``trajectory``, ``keyframes``, ``mesh``, ``map`` (when rendered) and ``run_json``.
+    summary : dict
+        The summary of ``keyframes.json``: ``frames_in_sequence``, ``frames_processed``, ``frames_tracked``,
+        ``frames_skipped``, ``keyframes``, ``loop_closures``, ``seconds``, ``frames_per_second``, ``map_blocks``,
+        ``map_mib``, ``interrupted``, ...
+    evaluation : dict or None
+        ATE and RPE against the sequence's reference trajectory (``ate_rmse_m``, ``ate_max_m``,
+        ``rpe_translation_rmse_m``, ``rpe_rotation_rmse_deg``, ``n_associated``); None without one.
+    run_json : pathlib.Path
+        The record of the run (:mod:`seismo3d.jobs.runinfo`).
+    stage_seconds : dict
+        Wall time of each stage (``map``: the frames; ``write``: the files).
+    """
+
+    written: dict
+    summary: dict
+    evaluation: dict | None
+    run_json: pathlib.Path
+    stage_seconds: dict
 
 
 def write_ply(path, mesh) -> None:
-    """Write a triangle mesh as binary little-endian PLY (float32 positions and normals, int32 faces), atomically.
+    """Write a triangle mesh as binary little-endian PLY (float32 positions and normals, int32 faces), atomically,
+    through VTK (:func:`seismo3d.viz.save_polydata`).
 
     Parameters
     ----------
     path : str or os.PathLike
     mesh : TriangleMesh
     """
-    v = np.asarray(mesh.vertices, np.float32)
-    n = np.asarray(mesh.normals, np.float32)
-    f = np.asarray(mesh.faces, np.int32)
-    header = ("ply\nformat binary_little_endian 1.0\ncomment seismo3d TSDF map (metres)\n"
-              f"element vertex {len(v)}\nproperty float x\nproperty float y\nproperty float z\n"
-              "property float nx\nproperty float ny\nproperty float nz\n"
-              f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n")
-    vert = np.empty(len(v), dtype=[("p", "<f4", 3), ("n", "<f4", 3)])
-    vert["p"], vert["n"] = v, n
-    face = np.empty(len(f), dtype=[("k", "u1"), ("i", "<i4", 3)])
-    face["k"], face["i"] = 3, f
-    with atomic_path(path) as tmp:
-        with open(tmp, "wb") as fh:
-            fh.write(header.encode("ascii"))
-            fh.write(vert.tobytes())
-            fh.write(face.tobytes())
+    import pyvista as pv
+
+    from ..viz.faults import save_polydata
+
+    faces = np.asarray(mesh.faces, np.int64).reshape(-1, 3)
+    poly = pv.PolyData(np.asarray(mesh.vertices, np.float32).reshape(-1, 3),
+                       np.column_stack([np.full(len(faces), 3), faces]).ravel() if len(faces) else None)
+    if poly.n_points:  # (pyvista refuses empty arrays; an empty map is written without them)
+        poly.point_data["Normals"] = np.asarray(mesh.normals, np.float32).reshape(-1, 3)
+        poly.point_data.active_normals_name = "Normals"
+    save_polydata(poly, path)
 
 
 def _loop(sequence, mapper, frames, steps, skipped):
@@ -105,7 +131,7 @@ def _evaluation(sequence, timestamps, poses):
 
 
 def run_map_job(sequence, output, *, options=None, max_frames: int | None = None, progress: bool = True,
-                render: bool = True, overwrite: bool = False) -> dict:
+                render: bool = True, overwrite: bool = False) -> MapJobResult:
     """Map an RGB-D sequence and write the outputs listed in the module docstring.
 
     Parameters
@@ -129,8 +155,7 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
 
     Returns
     -------
-    dict
-        ``{'trajectory': path, 'keyframes': path, 'mesh': path, 'map': path (when rendered), 'summary': dict}``.
+    MapJobResult
 
     Raises
     ------
@@ -141,6 +166,7 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     KeyboardInterrupt
         Re-raised after the outputs of the frames done so far have been written.
     """
+    record = RunRecord("map", locals())  # first: the arguments as called
     out = pathlib.Path(output)
     check_outputs([output_folder(out, RESULTS, f"{pathlib.Path(sequence).name}_map")], [sequence],
                   overwrite=overwrite)
@@ -154,24 +180,29 @@ def run_map_job(sequence, output, *, options=None, max_frames: int | None = None
     # numpy's BLAS threads only slow the small (N, 3) products of the loop down; numba runs the parallel parts
     with threadpool_limits(1, user_api="blas"):
         try:
-            with progress_steps(len(frames), "map", unit="frame", enabled=progress) as steps:
+            with progress_steps(len(frames), "map", unit="frame", enabled=progress) as steps, record.stage("map"):
                 interrupted = _loop(seq, mapper, frames, steps, skipped)
         except Exception:
             # an unexpected failure: still keep what the frames before it built, then report the failure
-            _write_outputs(out, seq, mapper, skipped, time.perf_counter() - start, True, False)
+            _write_outputs(out, seq, mapper, skipped, time.perf_counter() - start, True, False, record)
             raise
     elapsed = time.perf_counter() - start
-    written = _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render)
+    written = _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render, record)
     if interrupted:
         raise KeyboardInterrupt
     return written
 
 
-def _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render):
-    """The files of the run, moved into ``out`` together once every one is written."""
+def _write_outputs(out, seq, mapper, skipped, elapsed, interrupted, render, record: RunRecord) -> MapJobResult:
+    """The files of the run and its ``run.json``, moved into ``out`` together once every one is written."""
     with StagedFolder(out) as stage:
-        written = _write_files(stage.path, seq, mapper, skipped, elapsed, interrupted, render)
-    return {key: value if key == "summary" else stage.final(value) for key, value in written.items()}
+        with record.stage("write"):
+            written, summary, evaluation = _write_files(stage.path, seq, mapper, skipped, elapsed, interrupted,
+                                                        render)
+        final = {key: stage.final(path) for key, path in written.items()}
+        final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"sequence": seq.root},
+                                                     outputs=final, results=dict(summary, evaluation=evaluation)))
+    return MapJobResult(final, summary, evaluation, final["run_json"], dict(record.stage_seconds))
 
 
 def _write_files(out, seq, mapper, skipped, elapsed, interrupted, render):
@@ -199,5 +230,4 @@ def _write_files(out, seq, mapper, skipped, elapsed, interrupted, render):
         from ..viz.maps import render_map
 
         written["map"] = render_map(mesh, poses, mapper.graph.poses(), out / "map.png")
-    written["summary"] = dict(summary, evaluation=evaluation)
-    return written
+    return written, summary, evaluation

@@ -9,6 +9,7 @@ import numpy as np
 
 from ..errors import DataNotFoundError, InputError
 from .outputs import check_outputs, output_file
+from .runinfo import RunRecord, run_json_output, run_json_path
 
 __all__ = ["MatchJob", "run_match_job", "read_image"]
 
@@ -23,10 +24,19 @@ class MatchJob:
         The verified matches and the homography (:func:`seismo3d.features.match_images`).
     n_written : int
         Matches written to the CSV file.
+    output : pathlib.Path
+        The CSV file.
+    run_json : pathlib.Path
+        The record of the run (:mod:`seismo3d.jobs.runinfo`).
+    stage_seconds : dict
+        Wall time of each stage (``read``, ``match``, ``write``).
     """
 
     result: object
     n_written: int
+    output: pathlib.Path | None = None
+    run_json: pathlib.Path | None = None
+    stage_seconds: dict | None = None
 
 
 def run_match_job(image1, image2, output, *, method: str = "hog", ratio: float = 0.8,
@@ -63,12 +73,22 @@ def run_match_job(image1, image2, output, *, method: str = "hog", ratio: float =
         An output that is an input, exists (without ``overwrite``) or cannot be written; a file OpenCV cannot read
         as an image, or a bad option.
     """
+    record = RunRecord("match", locals())  # first: the arguments as called
     from ..features import match_images, write_matches_csv
 
-    check_outputs([output_file(output, "matches.csv")], [image1, image2], overwrite=overwrite)
-    images = [read_image(p) for p in (image1, image2)]
-    result = match_images(*images, method=method, ratio=ratio, threshold=threshold, verify="homography")
-    return MatchJob(result, write_matches_csv(output, result))
+    main = output_file(output, "matches.csv")
+    check_outputs([main, run_json_output(main)], [image1, image2], overwrite=overwrite)
+    with record.stage("read"):
+        images = [read_image(p) for p in (image1, image2)]
+    with record.stage("match"):
+        result = match_images(*images, method=method, ratio=ratio, threshold=threshold, verify="homography")
+    with record.stage("write"):
+        n_written = write_matches_csv(output, result)
+    homography = None if result.homography is None else np.asarray(result.homography)
+    run_json = record.write(run_json_path(main), inputs={"image1": image1, "image2": image2},
+                            outputs={"matches": output},
+                            results=dict(n_putative=result.n_putative, n_verified=n_written, homography=homography))
+    return MatchJob(result, n_written, pathlib.Path(output), run_json, dict(record.stage_seconds))
 
 
 def read_image(path) -> np.ndarray:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import csv
 import pathlib
-import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,6 +20,7 @@ from ..terrain.occupancy import (
 )
 from ..terrain.planning import GridPath, astar
 from .outputs import check_outputs, output_file
+from .runinfo import RunRecord, run_json_output, run_json_path
 
 __all__ = ["PlanResult", "load_occupancy", "parse_cell", "run_plan_job", "write_path_csv"]
 
@@ -36,12 +36,18 @@ class PlanResult:
     seconds : float
         Wall time of the search alone.
     output : pathlib.Path
+    run_json : pathlib.Path
+        The record of the run (:mod:`seismo3d.jobs.runinfo`).
+    stage_seconds : dict
+        Wall time of each stage (``read``, ``search``, ``write``).
     """
 
     path: GridPath
     grid: OccupancyGrid
     seconds: float
     output: pathlib.Path
+    run_json: pathlib.Path | None = None
+    stage_seconds: dict | None = None
 
 
 def load_occupancy(grid, *, max_slope_deg: float = 15.0, options: OccupancyOptions | None = None) -> OccupancyGrid:
@@ -157,11 +163,14 @@ def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, opti
     PlanningError
         No path exists.
     """
+    record = RunRecord("plan", locals())  # first: the arguments as called
     output = pathlib.Path(output)
     folder = pathlib.Path(grid)
     read = [folder / "mesh.ply", folder / "trajectory.txt"] if folder.is_dir() else []  # a map folder's inputs
-    check_outputs([output_file(output, "path.csv")], [grid, *read], overwrite=overwrite)
-    occupancy = load_occupancy(grid, max_slope_deg=max_slope_deg, options=options)
+    main = output_file(output, "path.csv")
+    check_outputs([main, run_json_output(main)], [grid, *read], overwrite=overwrite)
+    with record.stage("read"):
+        occupancy = load_occupancy(grid, max_slope_deg=max_slope_deg, options=options)
     if pathlib.Path(grid).is_dir():
         blocked = "holds an obstacle at the robot's height, or no floor was seen there"
         loosen = "lower --robot-radius or raise --step-height"
@@ -170,11 +179,15 @@ def run_plan_job(grid, start, goal, output, *, max_slope_deg: float = 15.0, opti
         loosen = f"raise --max-slope (now {max_slope_deg:g} deg)"
     s = _check_end(occupancy, start, "start", blocked, loosen)
     g = _check_end(occupancy, goal, "goal", blocked, loosen)
-    t0 = time.perf_counter()
-    route = astar(occupancy.free, s, g, spacing=occupancy.spacing, corner_cutting=corner_cutting)
-    seconds = time.perf_counter() - t0
-    write_path_csv(output, route, occupancy)
-    return PlanResult(route, occupancy, seconds, output)
+    with record.stage("search"):
+        route = astar(occupancy.free, s, g, spacing=occupancy.spacing, corner_cutting=corner_cutting)
+    with record.stage("write"):
+        write_path_csv(output, route, occupancy)
+    inputs = {"grid": grid} if not read else {"mesh": read[0], "trajectory": read[1] if read[1].is_file() else None}
+    run_json = record.write(run_json_path(main), inputs=inputs, outputs={"path": output},
+                            results=dict(cells=len(route.cells), length_m=route.length_m,
+                                         n_expanded=route.n_expanded, grid_shape=occupancy.shape))
+    return PlanResult(route, occupancy, record.stage_seconds["search"], output, run_json, dict(record.stage_seconds))
 
 
 def parse_cell(text: str, flag: str) -> tuple[int, int]:

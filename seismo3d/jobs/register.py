@@ -18,15 +18,17 @@ import numpy as np
 from ..errors import InputError, TraceListWarning
 from ..seismic import open_segy, register_volumes
 from ..seismic.volumes import VOLUME_MODELS
+from .inputs import input_kind
 from .outputs import check_outputs, output_file
-from .register_files import RegisterJob, read_transform, write_json
+from .register_files import RegisterJob, finish_register_job, read_transform
+from .runinfo import RunRecord, run_json_output
 
 __all__ = ["RegisterJob", "run_register_job", "is_segy"]
 
 
 def is_segy(path) -> bool:
-    """Whether ``path`` names a SEG-Y file (.sgy or .segy, any case)."""
-    return pathlib.Path(path).suffix.lower() in (".sgy", ".segy")
+    """Whether ``path`` names a SEG-Y file (.sgy or .segy, any case; :func:`~seismo3d.jobs.inputs.input_kind`)."""
+    return input_kind(path) == "segy"
 
 
 def run_register_job(source, target, output, *, method: str | None = None, model: str | None = None,
@@ -83,14 +85,17 @@ def run_register_job(source, target, output, *, method: str | None = None, model
     SegyFormatError, SegyGeometryError
         A SEG-Y file that cannot be read (see :func:`~seismo3d.seismic.open_segy`).
     """
+    record = RunRecord("register", locals())  # first: the arguments as called
     source, target, output = pathlib.Path(source), pathlib.Path(target), pathlib.Path(output)
-    check_outputs([output_file(output, "transform.json")], [source, target, init, features], overwrite=overwrite)
+    main = output_file(output, "transform.json")
+    check_outputs([main, run_json_output(main)], [source, target, init, features], overwrite=overwrite)
     if is_segy(source) or is_segy(target):
         if not (is_segy(source) and is_segy(target)):
             raise InputError(f"{source} and {target}: register either two SEG-Y cubes or two point clouds, not one "
                              "of each")
         segy = dict(iline=iline, xline=xline, endian=endian)
-        job = _register_volumes(source, target, model or "affine", progress, segy)
+        with record.stage("register"):
+            job = _register_volumes(source, target, model or "affine", progress, segy)
     elif _is_terrain(source, target):
         # the point-cloud and terrain machinery (data registry, ICP, rasters: 1.2 s of the 2.6 s of imports) only
         # for those inputs, so that registering two SEG-Y cubes does not wait for it
@@ -99,43 +104,45 @@ def run_register_job(source, target, output, *, method: str | None = None, model
         if features is not None:
             raise InputError("--features is for point clouds; terrain files are matched through their hillshades")
         return run_register_terrain_job(source, target, output, method=method or "fused", model=model or "rigid",
-                                        init=init, max_distance=max_distance, alpha=alpha, overwrite=overwrite)
+                                        init=init, max_distance=max_distance, alpha=alpha, overwrite=overwrite,
+                                        record=record)
     else:
         job = _register_point_clouds(source, target, method or "point_to_plane", model or "rigid", init,
-                                     max_distance, features, 0.1 if alpha is None else alpha)
-    write_json(output, job.payload)
-    return job
+                                     max_distance, features, 0.1 if alpha is None else alpha, record)
+    return finish_register_job(job, record, output, {"source": source, "target": target, "init": init,
+                                                     "features": features})
 
 
 def _is_terrain(*paths) -> bool:
-    """Whether any of ``paths`` is a LAS/LAZ scan or a GeoTIFF DEM (:func:`seismo3d.terrain.is_terrain_file`)."""
-    from ..terrain import is_terrain_file
-
-    return any(is_terrain_file(p) for p in paths)
+    """Whether any of ``paths`` is a LAS/LAZ scan or a GeoTIFF DEM (:func:`~seismo3d.jobs.inputs.input_kind`)."""
+    return any(input_kind(p) == "terrain" for p in paths)
 
 
-def _register_point_clouds(source, target, method, model, init, max_distance, features, alpha) -> RegisterJob:
+def _register_point_clouds(source, target, method, model, init, max_distance, features, alpha,
+                           record: RunRecord) -> RegisterJob:
     from ..data.pointclouds import read_points
     from ..geometry import estimate_normals
     from ..registration import ICPOptions, fused_icp, icp
 
-    src = _finite_rows(read_points(source), source, "SOURCE")
-    dst = _finite_rows(read_points(target), target, "TARGET")
+    with record.stage("read"):
+        src = _finite_rows(read_points(source), source, "SOURCE")
+        dst = _finite_rows(read_points(target), target, "TARGET")
     if src.shape[1] != dst.shape[1]:
         raise InputError(f"{source} is {src.shape[1]}D but {target} is {dst.shape[1]}D")
     start = None if init is None else read_transform(init, src.shape[1])
     options = ICPOptions(max_distance=tuple(max_distance) if max_distance else None)
-    normals = None if method == "point_to_point" else estimate_normals(dst, orient="none")
-    if method == "fused":
-        if features is None:
-            raise InputError("--method fused needs --features MATCHES (rows of source then target coordinates of "
-                             "matched features, e.g. from `seismo3d match` lifted to 3D)")
-        pairs = _finite_rows(read_matches(features, src.shape[1]), features, "--features")
-        result = fused_icp(src, dst, target_normals=normals, source_features=pairs[:, : src.shape[1]],
-                           target_features=pairs[:, src.shape[1]:], alpha=alpha, model=model, init=start,
-                           options=options)
-    else:
-        result = icp(src, dst, method=method, model=model, target_normals=normals, init=start, options=options)
+    if method == "fused" and features is None:
+        raise InputError("--method fused needs --features MATCHES (rows of source then target coordinates of "
+                         "matched features, e.g. from `seismo3d match` lifted to 3D)")
+    with record.stage("register"):
+        normals = None if method == "point_to_point" else estimate_normals(dst, orient="none")
+        if method == "fused":
+            pairs = _finite_rows(read_matches(features, src.shape[1]), features, "--features")
+            result = fused_icp(src, dst, target_normals=normals, source_features=pairs[:, : src.shape[1]],
+                               target_features=pairs[:, src.shape[1]:], alpha=alpha, model=model, init=start,
+                               options=options)
+        else:
+            result = icp(src, dst, method=method, model=model, target_normals=normals, init=start, options=options)
     payload = result.to_dict()
     payload.update(method=method, model=model, source=str(source), target=str(target))
     return RegisterJob("point_clouds", result, payload, bool(result.converged))

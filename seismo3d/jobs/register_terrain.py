@@ -13,13 +13,15 @@ import numpy as np
 from ..errors import InputError
 from ..terrain import TerrainRegistrationOptions, is_terrain_file, read_terrain, register_terrain
 from .outputs import check_outputs, output_file
-from .register_files import RegisterJob, read_transform, write_json
+from .register_files import RegisterJob, finish_register_job, read_transform
+from .runinfo import RunRecord, run_json_output
 
 __all__ = ["run_register_terrain_job"]
 
 
 def run_register_terrain_job(source, target, output, *, method: str = "fused", model: str = "rigid", init=None,
-                             max_distance=None, alpha: float | None = None, overwrite: bool = False) -> RegisterJob:
+                             max_distance=None, alpha: float | None = None, overwrite: bool = False,
+                             record: RunRecord | None = None) -> RegisterJob:
     """Register a terrain file onto another and write the transform JSON, atomically.
 
     Parameters
@@ -46,6 +48,10 @@ def run_register_terrain_job(source, target, output, *, method: str = "fused", m
         Weight of the feature term (default :class:`~seismo3d.terrain.TerrainRegistrationOptions`'s).
     overwrite : bool, optional
         Replace an existing ``output`` (:mod:`seismo3d.jobs.outputs`).
+    record : RunRecord, optional
+        The run's record when :func:`~seismo3d.jobs.register.run_register_job` hands the files here (its
+        arguments are the run's options); by default a new one with this function's arguments. Written beside
+        ``output`` as ``<output>.run.json`` (:mod:`seismo3d.jobs.runinfo`).
 
     Returns
     -------
@@ -63,8 +69,11 @@ def run_register_terrain_job(source, target, output, *, method: str = "fused", m
     RegistrationError
         When the inputs do not overlap enough to register.
     """
+    if record is None:
+        record = RunRecord("register", {k: v for k, v in locals().items() if k != "record"})
     source, target, output = (pathlib.Path(p) for p in (source, target, output))
-    check_outputs([output_file(output, "transform.json")], [source, target, init], overwrite=overwrite)
+    main = output_file(output, "transform.json")
+    check_outputs([main, run_json_output(main)], [source, target, init], overwrite=overwrite)
     if not (is_terrain_file(source) and is_terrain_file(target)):
         raise InputError(f"{source} and {target}: register two terrain files (LAS/LAZ, GeoTIFF) or two point clouds, "
                          "not one of each (convert the point cloud to LAS/LAZ)")
@@ -73,8 +82,9 @@ def run_register_terrain_job(source, target, output, *, method: str = "fused", m
     if method not in ("fused", "point_to_plane"):
         raise InputError(f"--method {method} is not available for terrain files; use fused (hillshade features + "
                          "point-to-plane, the default) or point_to_plane (from --init or the identity)")
-    src = read_terrain(source)
-    dst = read_terrain(target)
+    with record.stage("read"):
+        src = read_terrain(source)
+        dst = read_terrain(target)
     fields = dict(features=method == "fused", model=model)
     if max_distance:
         fields["max_distance"] = tuple(float(v) for v in max_distance)
@@ -82,13 +92,14 @@ def run_register_terrain_job(source, target, output, *, method: str = "fused", m
         fields["alpha"] = float(alpha)
     options = TerrainRegistrationOptions(**fields)
     start = None if init is None else read_transform(init, 3)
-    result = register_terrain(src, dst, init=start, options=options)
+    with record.stage("register"):
+        result = register_terrain(src, dst, init=start, options=options)
     payload = _jsonable(result.to_dict())
     payload.update(method=method, model=model, source=str(source), target=str(target),
                    source_crs=_jsonable(src.crs.to_dict()), target_crs=_jsonable(dst.crs.to_dict()),
                    units=_units(dst.crs))
-    write_json(output, payload)
-    return RegisterJob("terrain", result, payload, bool(result.converged))
+    job = RegisterJob("terrain", result, payload, bool(result.converged))
+    return finish_register_job(job, record, output, {"source": source, "target": target, "init": init})
 
 
 def _units(crs) -> str:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import csv
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -17,13 +17,14 @@ import numpy as np
 from .._validation import check_choice
 from ..errors import DataNotFoundError, InputError
 from ..mapping import read_tum_trajectory
-from ..seismic import open_segy
 from ..terrain import extract_lineaments, read_dem
+from .inputs import SEGY_SUFFIXES, read_seismic
 from .outputs import check_outputs, output_file
+from .runinfo import RunRecord, run_json_output, run_json_path
 
 __all__ = ["RenderJob", "run_render_job"]
 
-_SEGY = {".sgy", ".segy"}
+_SEGY = set(SEGY_SUFFIXES)
 _TEXT = {".txt", ".dat", ".csv", ".xyz"}
 _DEM = {".tif", ".tiff"}
 # The files render reads of a 'seismo3d faults' or 'seismo3d map' output folder (inputs: never replaced by the PNG).
@@ -47,6 +48,10 @@ class RenderJob:
         Fault surfaces drawn (0 without).
     n_lineaments : int
         Lineaments drawn on a DEM (0 without).
+    run_json : pathlib.Path
+        The record of the run (:mod:`seismo3d.jobs.runinfo`).
+    stage_seconds : dict
+        Wall time of each stage (``render``: reading and drawing).
     """
 
     kind: str
@@ -54,6 +59,8 @@ class RenderJob:
     caption: str
     n_faults: int = 0
     n_lineaments: int = 0
+    run_json: Path | None = None
+    stage_seconds: dict | None = None
 
 
 def _kind(path: Path) -> str:
@@ -81,17 +88,20 @@ def _kind(path: Path) -> str:
 
 def _read_segy(path: Path, vertical_exaggeration, segy_options=None):
     """The amplitudes as (n_inlines, n_xlines, n_samples) and their geometry; a trace list as one section of
-    (n_traces, 1, n_samples), its traces numbered from 1 in file order."""
-    from ..viz.seismic import cube_geometry, geometry_of_segy
+    (n_traces, 1, n_samples), its traces numbered from 1 in file order (:func:`~seismo3d.jobs.inputs.read_seismic`)."""
+    from ..viz.seismic import cube_geometry
 
-    with open_segy(path, **(segy_options or {})) as segy:
-        if segy.inlines is not None:
-            return segy.read(), geometry_of_segy(segy, vertical_exaggeration=vertical_exaggeration)
-        data = segy.read()[:, None, :]
-        geometry = cube_geometry(data.shape, inlines=np.arange(1, data.shape[0] + 1), xlines=[0],
-                                 samples=segy.samples, sample_unit=segy.sample_unit,
-                                 vertical_exaggeration=vertical_exaggeration, lateral_names=("trace", ""))
-        return data, geometry
+    seismic = read_seismic(path, **(segy_options or {}), coordinates=True, arrays=False)
+    if seismic.kind != "trace list":
+        return seismic.data, cube_geometry(seismic.data.shape, inlines=seismic.inlines, xlines=seismic.xlines,
+                                           samples=seismic.samples, sample_unit=seismic.sample_unit,
+                                           cdp_x=seismic.cdp_x, cdp_y=seismic.cdp_y, map_unit=seismic.map_unit,
+                                           vertical_exaggeration=vertical_exaggeration)
+    data = seismic.data[:, None, :]
+    geometry = cube_geometry(data.shape, inlines=np.arange(1, data.shape[0] + 1), xlines=[0],
+                             samples=seismic.samples, sample_unit=seismic.sample_unit,
+                             vertical_exaggeration=vertical_exaggeration, lateral_names=("trace", ""))
+    return data, geometry
 
 
 def _slices_for(shape):
@@ -252,20 +262,37 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     SegyFormatError, SegyGeometryError
         As :func:`seismo3d.seismic.open_segy`.
     """
-    import pyvista as pv
-
+    record = RunRecord("render", locals())  # first: the arguments as called
     segy_options = {"iline": iline, "xline": xline, "endian": endian, "ignore_geometry": ignore_geometry,
                     "sample_unit": sample_unit}
-
-    from ..viz.seismic import cube_geometry, show_seismic
 
     check_choice(color_by, "color_by", {"fault_id", "throw"})
     path, output = Path(input_path), Path(output)
     read = [path / name for name in _FOLDER_FILES] if path.is_dir() else []  # what render reads of a folder
-    check_outputs([output_file(output, "picture.png")], [path, seismic, plan, *read], overwrite=overwrite)
+    main = output_file(output, "picture.png")
+    check_outputs([main, run_json_output(main)], [path, seismic, plan, *read], overwrite=overwrite)
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
     kind = _kind(path)
+    with record.stage("render"):
+        job = _render(kind, path, output, seismic=seismic, color_by=color_by,
+                      vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
+                      window_size=window_size, segy_options=segy_options)
+    inputs = {"input": path, "seismic": seismic, "path": plan}
+    inputs.update({name: p for name, p in zip(_FOLDER_FILES, read) if p.is_file()})
+    run_json = record.write(run_json_path(main), inputs=inputs, outputs={"picture": output},
+                            results=dict(kind=job.kind, caption=job.caption, n_faults=job.n_faults,
+                                         n_lineaments=job.n_lineaments))
+    return replace(job, run_json=run_json, stage_seconds=dict(record.stage_seconds))
+
+
+def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_exaggeration, lineaments, plan,
+            window_size, segy_options) -> RenderJob:
+    """Read the input of ``kind`` and draw it into ``output`` (the scenes of :func:`run_render_job`)."""
+    import pyvista as pv
+
+    from ..viz.seismic import cube_geometry, show_seismic
+
     if kind == "map":
         return _render_map(path, output, window_size=window_size)
     if kind == "dem":

@@ -411,7 +411,8 @@ def fault_surfaces(faults, throws=None, *, axes=None):
 
 
 def save_polydata(mesh, path) -> Path:
-    """Write a pyvista / VTK PolyData atomically: ``.vtp`` (VTK XML, binary, compressed) or ``.vtk`` (legacy).
+    """Write a pyvista / VTK PolyData atomically: ``.vtp`` (VTK XML, binary, compressed), ``.vtk`` (legacy) or
+    ``.ply`` (binary little-endian PLY: float32 positions, the active point normals as ``nx ny nz``, faces).
 
     Parameters
     ----------
@@ -430,16 +431,21 @@ def save_polydata(mesh, path) -> Path:
         Another extension, or a folder that does not exist.
     """
     from vtkmodules.vtkIOLegacy import vtkPolyDataWriter
+    from vtkmodules.vtkIOPLY import vtkPLYWriter
     from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
     path = Path(path)
     suffix = path.suffix.lower()
-    if suffix not in (".vtp", ".vtk"):
-        raise InputError(f"{path.name}: write fault surfaces as .vtp (VTK XML) or .vtk (legacy VTK)")
-    with atomic_path(path) as tmp:
+    if suffix not in (".vtp", ".vtk", ".ply"):
+        raise InputError(f"{path.name}: write a surface as .vtp (VTK XML), .vtk (legacy VTK) or .ply")
+    with atomic_path(path, suffix=".tmp.ply" if suffix == ".ply" else ".tmp") as tmp:  # VTK appends .ply otherwise
         if suffix == ".vtp":
             writer = vtkXMLPolyDataWriter()
             writer.SetDataModeToBinary()
+        elif suffix == ".ply":
+            writer = vtkPLYWriter()
+            writer.SetFileTypeToBinary()
+            writer.SetDataByteOrderToLittleEndian()
         else:
             writer = vtkPolyDataWriter()
             writer.SetFileTypeToBinary()

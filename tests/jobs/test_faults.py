@@ -49,7 +49,7 @@ def demo(tmp_path_factory):
     out = tmp_path_factory.mktemp("demo")
     with warnings.catch_warnings():
         warnings.simplefilter("error", Seismo3dWarning)  # a clean synthetic cube raises no warning
-        written = run_faults_job(None, out, demo=True, demo_seed=0, progress=False)
+        written = run_faults_job(None, out, demo=True, demo_seed=0, progress=False).written
     return out, written
 
 
@@ -57,7 +57,7 @@ def demo(tmp_path_factory):
 def test_demo_writes_every_output(demo):
     out, written = demo
     names = {"demo_seismic.sgy", "demo_truth.csv", "fault_likelihood.sgy", "fault_strike.sgy", "fault_dip.sgy",
-             "fault_votes.sgy", "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png"}
+             "fault_votes.sgy", "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "run.json"}
     assert {p.name for p in out.iterdir()} == names
     assert {Path(p).name for p in written.values()} == names
     assert Path(written["figure"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -171,7 +171,7 @@ def test_segy_outputs_keep_the_inputs_headers(tmp_path):
     src.parent.mkdir()
     _write_cube(src, synthetic_cube((48, 40, 80), n_faults=2, seed=5).cube)
     before = _sha(src)
-    written = run_faults_job(src, tmp_path / "out", progress=False)
+    written = run_faults_job(src, tmp_path / "out", progress=False).written
     assert _sha(src) == before
     with segyio.open(src) as a:
         for key in ("likelihood", "strike", "dip", "votes"):
@@ -215,7 +215,7 @@ def test_data_that_cannot_support_faults_is_refused(data_dir, tmp_path, name, wh
 def test_real_section(data_dir, tmp_path):
     src = Path(data_dir) / "seismic" / "sections" / "teapot_tp73.f32be"
     before = _sha(src)
-    written = run_faults_job(src, tmp_path / "tp73", progress=False)
+    written = run_faults_job(src, tmp_path / "tp73", progress=False).written
     assert _sha(src) == before
     assert np.load(written["likelihood"]).shape == (357, 240)
     points = _rows(written["points"])
@@ -260,7 +260,7 @@ def test_segy_line(section, tmp_path, along):
     src.parent.mkdir()
     _write_line(src, section.cube, along=along)
     before = _sha(src)
-    written = run_faults_job(src, tmp_path / "out", progress=False)
+    written = run_faults_job(src, tmp_path / "out", progress=False).written
     assert _sha(src) == before
     with segyio.open(src) as a, segyio.open(written["likelihood"]) as b:
         assert [dict(a.header[i]) for i in range(a.tracecount)] == [dict(b.header[i]) for i in range(b.tracecount)]
@@ -286,7 +286,7 @@ def test_npy_section_with_nan_and_dead_traces(section, tmp_path):
     np.save(src, data)
     before = _sha(src)
     with pytest.warns(Seismo3dWarning) as record:
-        written = run_faults_job(src, tmp_path / "out", progress=False)
+        written = run_faults_job(src, tmp_path / "out", progress=False).written
     messages = " ".join(str(w.message) for w in record)
     assert "NaN" in messages and "constant" in messages
     assert _sha(src) == before
@@ -305,7 +305,7 @@ def test_no_faults(tmp_path):
     layers = np.tile(np.sin(np.arange(64) * 0.9), (80, 1)).astype(np.float32)  # flat, perfectly coherent layers
     src = tmp_path / "flat.npy"
     np.save(src, layers)
-    written = run_faults_job(src, tmp_path / "out", progress=False)
+    written = run_faults_job(src, tmp_path / "out", progress=False).written
     assert len(_rows(written["summary"])) == 0 and len(_rows(written["points"])) == 0
     assert Path(written["points"]).read_text().startswith("inline,crossline,time_or_depth,fault_id,throw_samples")
     assert pv.read(written["surfaces"]).n_points == 0
@@ -375,7 +375,7 @@ def test_interrupted_run_keeps_finished_files(section, tmp_path, monkeypatch):
     src = tmp_path / "section.npy"
     np.save(src, section.cube)
     out = tmp_path / "out"
-    written = run_faults_job(src, out, progress=False)
+    written = run_faults_job(src, out, progress=False).written
     before = {key: _sha(path) for key, path in written.items()}
 
     def interrupted_savefig(self, fname, **kwargs):

@@ -31,14 +31,14 @@ def cube_npy(tmp_path_factory):
 @pytest.fixture(scope="module")
 def in_memory(cube_npy, tmp_path_factory):
     out = tmp_path_factory.mktemp("mem")
-    return run_faults_job(cube_npy, out, memory_limit=64 << 30, progress=False)
+    return run_faults_job(cube_npy, out, memory_limit=64 << 30, progress=False).written
 
 
 @pytest.mark.slow
 def test_cube_beyond_the_limit_gives_the_same_faults(cube_npy, in_memory, tmp_path, caplog):
     limit = resident_memory() + (180 << 20)  # below the in-memory run's need, above the surfaces'
     with caplog.at_level(logging.INFO, logger="seismo3d"):
-        written = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, progress=False)
+        written = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, progress=False).written
     assert written["likelihood"].name == "fault_likelihood.zarr"
     assert "block by block" in caplog.text
     import zarr
@@ -54,7 +54,8 @@ def test_cube_beyond_the_limit_gives_the_same_faults(cube_npy, in_memory, tmp_pa
     # reused, the same faults come out
     limit = resident_memory() + (180 << 20)
     with caplog.at_level(logging.INFO, logger="seismo3d"):
-        again = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, overwrite=True, progress=False)
+        again = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, overwrite=True,
+                               progress=False).written
     assert "reusing the finished fault likelihood" in caplog.text
     assert _rows(again["summary"]) == _rows(in_memory["summary"])
     assert _rows(again["points"]) == _rows(in_memory["points"])
@@ -65,12 +66,12 @@ def test_tight_limit_traces_the_surfaces_block_by_block(cube_npy, in_memory, tmp
     """A limit far below the in-memory surfaces' need (about 76 bytes a sample, 160 MB here): smaller blocks, the
     same faults and throws."""
     limit = resident_memory() + (110 << 20)
-    written = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, progress=False)
+    written = run_faults_job(cube_npy, tmp_path / "out", memory_limit=limit, progress=False).written
     assert _rows(written["summary"]) == _rows(in_memory["summary"])
     assert _rows(written["points"]) == _rows(in_memory["points"])
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == [
         "fault_likelihood.zarr", "fault_points.csv", "fault_summary.csv", "fault_surfaces.zarr", "faults.png",
-        "faults.vtp"]
+        "faults.vtp", "run.json"]
 
 
 @pytest.mark.slow
@@ -83,7 +84,7 @@ def test_segy_cube_is_read_lazily(write_segy_cube, tmp_path, caplog):
     path = write_segy_cube(tmp_path / "cube.sgy", cube, sorting="crossline")
     with caplog.at_level(logging.INFO, logger="seismo3d"):
         written = run_faults_job(path, tmp_path / "out", memory_limit=resident_memory() + (150 << 20),
-                                 progress=False)
+                                 progress=False).written
     assert "block by block" in caplog.text
     import zarr
     group = zarr.open_group(str(written["likelihood"]), mode="r")

@@ -2,6 +2,7 @@
 
 import json
 import shutil
+import time
 
 import numpy as np
 import pytest
@@ -49,7 +50,7 @@ def sequence(tmp_path_factory, data_dir):
 @pytest.mark.slow
 def test_job_writes_every_output_and_skips_bad_frames(sequence, tmp_path):
     with pytest.warns(UserWarning) as record:
-        written = run_map_job(sequence, tmp_path / "out", progress=False)
+        written = run_map_job(sequence, tmp_path / "out", progress=False).written
     skipped = [w for w in record if issubclass(w.category, FrameSkippedWarning)]
     assert len(skipped) == 2
     assert any("gap" in str(w.message) for w in record)
@@ -94,11 +95,16 @@ def test_interrupt_keeps_the_frames_done(sequence, tmp_path, monkeypatch):
     assert not list(out.glob(".*.tmp"))  # no half-written file left behind
 
 
-def test_cli(sequence, tmp_path):
+def test_cli(sequence, tmp_path, check_run_json):
     runner = CliRunner()
     out = tmp_path / "cli"
+    since = time.time()
     result = runner.invoke(app, ["map", str(sequence), "-o", str(out), "--max-frames", "3", "--no-render"])
     assert result.exit_code == 0, result.output
+    record = check_run_json(out / "run.json", "map", {"sequence": sequence}, ["trajectory", "keyframes", "mesh"],
+                            ["max_frames", "options", "render", "overwrite"], since)
+    assert record["options"]["max_frames"] == 3 and record["options"]["options"]["tsdf"]["voxel_size"] == 0.01
+    assert record["results"]["frames_processed"] == 3 and set(record["stage_seconds"]) == {"map", "write"}
     assert "3 of the first 3 frames tracked (--max-frames 3; the sequence has 10)" in result.output
     assert "ATE" in result.output
     assert (out / "trajectory.txt").is_file() and not (out / "map.png").exists()
@@ -106,3 +112,31 @@ def test_cli(sequence, tmp_path):
     assert bad.exit_code == 2 and "does not exist" in bad.output
     same = runner.invoke(app, ["map", str(sequence), "-o", str(sequence)])
     assert same.exit_code == 2 and "is the input" in same.output
+
+
+def test_mesh_ply_is_written_through_vtk_and_read_back(tmp_path):
+    """mesh.ply (binary little-endian, float32 positions and normals, faces) reads back the same through pyvista
+    (render) and seismo3d's point reader (plan); an empty map still writes a valid file."""
+    import pyvista as pv
+
+    from seismo3d.data.pointclouds import read_points
+    from seismo3d.jobs.map import write_ply
+    from seismo3d.mapping.tsdf import TriangleMesh
+
+    rng = np.random.default_rng(0)
+    vertices = rng.random((6, 3))
+    normals = rng.standard_normal((6, 3))
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    faces = np.array([[0, 1, 2], [2, 3, 4], [3, 4, 5]])
+    write_ply(tmp_path / "mesh.ply", TriangleMesh(vertices, faces, normals))
+    header = (tmp_path / "mesh.ply").read_bytes().split(b"end_header")[0].decode("ascii")
+    assert "format binary_little_endian 1.0" in header and "element vertex 6" in header
+    assert "property float nx" in header and "element face 3" in header
+    mesh = pv.read(tmp_path / "mesh.ply")
+    np.testing.assert_allclose(mesh.points, vertices.astype(np.float32), rtol=0, atol=0)  # float32, as before
+    np.testing.assert_array_equal(mesh.regular_faces, faces)
+    np.testing.assert_allclose(mesh.point_data["Normals"], normals.astype(np.float32), rtol=0, atol=0)
+    np.testing.assert_array_equal(read_points(tmp_path / "mesh.ply"), vertices.astype(np.float32))
+    write_ply(tmp_path / "empty.ply", TriangleMesh(np.zeros((0, 3)), np.zeros((0, 3), np.int64), np.zeros((0, 3))))
+    assert pv.read(tmp_path / "empty.ply").n_points == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["empty.ply", "mesh.ply"]  # no temporary file left

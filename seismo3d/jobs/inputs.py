@@ -1,0 +1,205 @@
+"""The one reader of the jobs' seismic inputs: a SEG-Y cube, line or trace list, a ``.npy`` array or a raw ``.f32be``
+section, as a :class:`SeismicInput` (what kind, the amplitudes, their geometry and sample interval, the source path).
+
+SEG-Y is opened by :func:`~seismo3d.seismic.io.open_segy` (the flags, errors and warnings of every command) and raw
+sections by :func:`~seismo3d.seismic.io.read_section`; this module only chooses the reader by the file's kind
+(:func:`input_kind`, also used for point clouds and terrain files) and gathers what the jobs need into one object,
+so that ``faults``, ``horizon`` and ``render`` do not each work it out their own way.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import DataNotFoundError, InputError
+from ..seismic.io.segy import open_segy, read_section
+
+__all__ = ["SEGY_SUFFIXES", "SeismicInput", "input_kind", "read_seismic"]
+
+SEGY_SUFFIXES = (".sgy", ".segy")
+_TERRAIN_SUFFIXES = (".las", ".laz", ".tif", ".tiff")
+_CLOUD_SUFFIXES = (".ply", ".xyz", ".txt", ".csv", ".pts", ".npy")
+
+
+def input_kind(path) -> str:
+    """What a job's input file is, by its name: one rule for every command.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    {'segy', 'zarr', 'f32be', 'npy', 'terrain', 'points', 'folder', 'unknown'}
+        ``'segy'``: .sgy / .segy; ``'zarr'``: a .zarr store; ``'f32be'``: a raw big-endian float32 section;
+        ``'terrain'``: LAS/LAZ scans and GeoTIFF DEMs; ``'points'``: point-cloud files (.ply, .xyz, .txt, .csv,
+        .pts); ``'npy'``: a numpy array (a seismic array or a point cloud, as the command reads it); ``'folder'``:
+        another folder (the output folder of a command).
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix in SEGY_SUFFIXES:
+        return "segy"
+    if suffix == ".zarr":
+        return "zarr"
+    if path.is_dir():
+        return "folder"
+    if suffix == ".f32be":
+        return "f32be"
+    if suffix == ".npy":
+        return "npy"
+    if suffix in _TERRAIN_SUFFIXES:
+        return "terrain"
+    if suffix in _CLOUD_SUFFIXES:
+        return "points"
+    return "unknown"
+
+
+@dataclass(frozen=True, eq=False)
+class SeismicInput:
+    """A seismic input as read: the amplitudes and how their traces and samples are named.
+
+    Attributes
+    ----------
+    kind : {'cube', 'line', 'trace list', 'array', 'section'}
+        A SEG-Y 3D cube, a SEG-Y line of a survey (one inline or one crossline), a SEG-Y file read as a trace
+        list (no inline / crossline grid, or ``ignore_geometry``), a ``.npy`` array, a raw ``.f32be`` section.
+    path : pathlib.Path
+        The source file.
+    data : ndarray
+        float32 for SEG-Y and raw sections: (n_inlines, n_xlines, n_samples) for a cube or a line (one of the first
+        two 1), (n_traces, n_samples) for a trace list and a raw section; a ``.npy`` array as stored (2D or 3D,
+        memory-mapped).
+    samples : (n_samples,) float64 ndarray
+        Sample positions in ``sample_unit`` (the sample index for ``.npy`` and ``.f32be``).
+    sample_unit : {'ms', 'm', 'ft', 'samples'}
+    inlines, xlines : ndarray or None
+        The grid's inline and crossline numbers (SEG-Y cubes and lines); None otherwise.
+    description : str
+        In words, what was read (SEG-Y: :attr:`~seismo3d.seismic.io.SeismicCube.description`).
+    grid_shape : tuple or None
+        The SEG-Y grid's shape ``(n_inlines, n_xlines, n_samples)``; None for a trace list and other files.
+    sorting : {'inline', 'crossline'} or None
+        Trace order of a SEG-Y grid.
+    trace_inlines, trace_xlines : ndarray or None
+        A trace list's inline and crossline header values per trace (at the ``iline`` / ``xline`` bytes).
+    cdp_x, cdp_y : ndarray or None
+        SEG-Y trace coordinates (with ``coordinates=True``), as
+        :attr:`~seismo3d.seismic.io.SeismicCube.cdp_x`.
+    map_unit : {'m', 'ft'}
+        Unit of ``cdp_x`` / ``cdp_y`` (binary header bytes 3255-3256).
+    format_name, endian : str or None
+        SEG-Y sample format and byte order.
+    """
+
+    kind: str
+    path: Path
+    data: np.ndarray
+    samples: np.ndarray
+    sample_unit: str
+    inlines: np.ndarray | None = None
+    xlines: np.ndarray | None = None
+    description: str = ""
+    grid_shape: tuple | None = None
+    sorting: str | None = None
+    trace_inlines: np.ndarray | None = None
+    trace_xlines: np.ndarray | None = None
+    cdp_x: np.ndarray | None = None
+    cdp_y: np.ndarray | None = None
+    map_unit: str = "m"
+    format_name: str | None = None
+    endian: str | None = None
+
+    @property
+    def sample_interval(self) -> float:
+        """Sample step in :attr:`sample_unit` (1 for one sample)."""
+        return float(self.samples[1] - self.samples[0]) if self.samples.size > 1 else 1.0
+
+    @property
+    def is_segy(self) -> bool:
+        return self.kind in ("cube", "line", "trace list")
+
+
+def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False, endian=None,
+                 sample_unit=None, n_samples: int | None = None, coordinates: bool = False,
+                 arrays: bool = True) -> SeismicInput:
+    """Read a seismic input whole: a SEG-Y file, a ``.npy`` array or a raw ``.f32be`` section.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    iline, xline, ignore_geometry, endian, sample_unit
+        SEG-Y: as :func:`~seismo3d.seismic.io.open_segy`. ``sample_unit`` is refused for ``.npy`` and ``.f32be``
+        (they have no sample interval).
+    n_samples : int, optional
+        Samples per trace of a raw ``.f32be`` section whose shape is not known by name.
+    coordinates : bool
+        SEG-Y: also read the trace coordinates (``cdp_x``, ``cdp_y``; one pass over the trace headers).
+    arrays : bool
+        Read ``.npy`` and ``.f32be`` files as arrays; False for a command that reads SEG-Y only (every file is then
+        opened as SEG-Y, whose error says what the file is not).
+
+    Returns
+    -------
+    SeismicInput
+
+    Raises
+    ------
+    DataNotFoundError
+        No such file.
+    InputError
+        A ``.npy`` file numpy cannot read, or not 2D / 3D; ``sample_unit`` for a file without a sample interval; a
+        raw section of unknown shape.
+    SegyFormatError, SegyGeometryError
+        As :func:`~seismo3d.seismic.io.open_segy`.
+
+    Warns
+    -----
+    TraceListWarning
+        A SEG-Y file without an inline / crossline grid, read as a trace list (one line).
+    """
+    path = Path(path)
+    kind = input_kind(path)
+    if arrays and kind in ("npy", "f32be"):
+        return _read_array(path, kind, sample_unit=sample_unit, n_samples=n_samples)
+    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
+                   endian=endian) as cube:
+        fields = dict(path=path, data=cube.read(), samples=np.asarray(cube.samples, dtype=np.float64),
+                      sample_unit=cube.sample_unit, description=cube.description, format_name=cube.format_name,
+                      endian=cube.endian)
+        if coordinates:
+            fields.update(cdp_x=cube.cdp_x, cdp_y=cube.cdp_y,
+                          map_unit="ft" if int(cube.segyfile.bin[3255]) == 2 else "m")
+        if cube.inlines is None:  # a trace list (announced by open_segy's warning unless ignore_geometry)
+            f = cube.segyfile
+            return SeismicInput(kind="trace list", trace_inlines=np.asarray(f.attributes(cube.iline_byte)[:]),
+                                trace_xlines=np.asarray(f.attributes(cube.xline_byte)[:]), **fields)
+        return SeismicInput(kind="cube" if cube.is_3d else "line", inlines=np.asarray(cube.inlines),
+                            xlines=np.asarray(cube.xlines), grid_shape=tuple(cube.shape), sorting=cube.sorting,
+                            **fields)
+
+
+def _read_array(path: Path, kind: str, *, sample_unit, n_samples) -> SeismicInput:
+    """A ``.npy`` array (memory-mapped) or a raw ``.f32be`` section, in samples."""
+    if not path.is_file():
+        raise DataNotFoundError(f"no input file at {path}; check the path")
+    if kind == "f32be":
+        data = read_section(path, n_samples=n_samples)
+    else:
+        try:
+            data = np.load(path, allow_pickle=False, mmap_mode="r")
+        except (ValueError, OSError) as exc:
+            raise InputError(f"{path.name} is not a readable .npy array ({exc}); save it with numpy.save") from exc
+        if data.ndim not in (2, 3):
+            raise InputError(f"{path.name} holds an array of shape {data.shape}; expected a 2D section "
+                             "(n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, n_samples)")
+    if sample_unit is not None:
+        raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
+                         "in samples")
+    shape = " x ".join(str(n) for n in data.shape)
+    return SeismicInput(kind="section" if kind == "f32be" else "array", path=path, data=data,
+                        samples=np.arange(data.shape[-1], dtype=np.float64), sample_unit="samples",
+                        description=f"{'a raw section' if kind == 'f32be' else 'an array'} of {shape} samples")

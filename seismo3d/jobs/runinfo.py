@@ -1,0 +1,294 @@
+"""``run.json``: what a run of a ``seismo3d`` command was, written beside its outputs by every job.
+
+Every job starts a :class:`RunRecord` with its arguments, times its stages with :meth:`RunRecord.stage` and ends
+with :meth:`RunRecord.write` (which calls :func:`write_run_json`, the one writer). The file holds:
+
+- ``seismo3d_version``, ``command`` (the command's name), ``argv`` (the process's command line, ``sys.argv``) and,
+  when the run came from the ``seismo3d`` command, ``cli``: its ``command`` and parsed ``arguments``;
+- ``options``: every argument of the job as called (paths as text, option dataclasses as dictionaries);
+- ``inputs``: per input, its path, size in bytes, modification time (UTC) and ``sha256``; for a file above
+  :data:`HASH_LIMIT` bytes (and for a folder: its file count, total size and newest modification time) the
+  ``identity`` says ``'size+mtime'`` instead of ``'sha256'`` and no hash is computed;
+- ``started`` (UTC, ISO 8601), ``seconds`` (the whole run) and ``stage_seconds`` (per named stage);
+- ``outputs``: the files written, by key; ``results``: the job's counts (faults, rows, ...).
+
+Where it goes (:func:`run_json_path`): ``run.json`` inside an output folder (moved in with the folder's other files),
+``<output name>.run.json`` beside an output file or store (``horizon.txt.run.json``, ``cube.zarr.run.json``), so
+two runs writing files into one folder keep their own records. It follows the output policy of every command
+(:func:`run_json_output` is checked with the other outputs by :func:`~seismo3d.jobs.outputs.check_outputs`: an
+earlier record is replaced only with ``overwrite``) and is written atomically.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import contextvars
+import dataclasses
+import datetime
+import enum
+import hashlib
+import json
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from .. import __version__
+from .._atomic import atomic_path
+from .outputs import Output
+
+__all__ = ["HASH_LIMIT", "RUN_JSON", "RunRecord", "cli_call", "input_identity", "jsonable", "run_json_output",
+           "run_json_path", "write_run_json"]
+
+RUN_JSON = "run.json"
+HASH_LIMIT = 200 * 2**20  # bytes: larger inputs are identified by size and modification time (hashing 200 MiB: ~0.5 s)
+
+_CLI_CALL: contextvars.ContextVar = contextvars.ContextVar("seismo3d_cli_call", default=None)
+
+
+@contextlib.contextmanager
+def cli_call(command: str, arguments: dict):
+    """Within the block, runs record that they came from the ``seismo3d`` command ``command`` with ``arguments``
+    (used by :mod:`seismo3d.cli`).
+
+    Parameters
+    ----------
+    command : str
+        The command's name, e.g. ``'faults'``.
+    arguments : dict
+        The command's parsed arguments, by parameter name.
+    """
+    token = _CLI_CALL.set({"command": command, "arguments": jsonable(arguments)})
+    try:
+        yield
+    finally:
+        _CLI_CALL.reset(token)
+
+
+def run_json_path(output: Output) -> Path:
+    """Where the record of a run whose main output is ``output`` goes.
+
+    Parameters
+    ----------
+    output : Output
+        The command's main output (:func:`~seismo3d.jobs.outputs.output_file`, ``output_store``,
+        ``output_folder``).
+
+    Returns
+    -------
+    pathlib.Path
+        ``<folder>/run.json`` for an output folder, ``<output>.run.json`` beside an output file or store.
+    """
+    if output.kind == "folder":
+        return output.path / RUN_JSON
+    return output.path.with_name(output.path.name + "." + RUN_JSON)
+
+
+def run_json_output(output: Output) -> Output:
+    """The record of a run as an output to check with the others (:func:`~seismo3d.jobs.outputs.check_outputs`).
+
+    Parameters
+    ----------
+    output : Output
+        The command's main output.
+
+    Returns
+    -------
+    Output
+        For an output folder, the folder with ``run.json`` among its results; else the file
+        ``<output>.run.json``.
+    """
+    if output.kind == "folder":
+        return Output(output.path, "folder", (RUN_JSON,), output.example)
+    return Output(run_json_path(output), "file", (), "")
+
+
+def jsonable(value):
+    """``value`` as plain JSON values: dataclasses as dictionaries, paths as text, enums as their values, numpy
+    scalars and arrays as numbers and lists, tuples and sets as lists; anything else as its ``repr``.
+
+    Parameters
+    ----------
+    value : object
+
+    Returns
+    -------
+    None, bool, int, float, str, list or dict
+    """
+    if value is None or isinstance(value, (bool, int, str)):
+        return value
+    if isinstance(value, float):
+        return value if np.isfinite(value) else str(value)
+    if isinstance(value, enum.Enum):
+        return jsonable(value.value)
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return {f.name: jsonable(getattr(value, f.name)) for f in dataclasses.fields(value)}
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple, set, frozenset)):
+        return [jsonable(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return jsonable(value.tolist())
+    if isinstance(value, np.generic):
+        return jsonable(value.item())
+    return repr(value)
+
+
+def _utc(seconds: float) -> str:
+    return datetime.datetime.fromtimestamp(seconds, datetime.timezone.utc).isoformat(timespec="seconds")
+
+
+def _sha256(path: Path) -> str:
+    digest = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def input_identity(path) -> dict:
+    """What identifies an input: path, size, modification time and sha256 (size + mtime above :data:`HASH_LIMIT`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A file or a folder (a sequence folder, a Zarr store, the output folder of another command).
+
+    Returns
+    -------
+    dict
+        ``path`` (absolute), ``kind`` (``'file'``, ``'folder'`` or ``'missing'``), ``bytes``, ``mtime`` (UTC,
+        ISO 8601), ``identity`` (``'sha256'`` or ``'size+mtime'``) and ``sha256`` (None when not computed); a
+        folder adds ``files`` (how many it holds, at any depth).
+    """
+    path = Path(path)
+    entry = {"path": os.path.abspath(path)}
+    if path.is_file():
+        stat = path.stat()
+        hashed = stat.st_size <= HASH_LIMIT
+        entry.update(kind="file", bytes=stat.st_size, mtime=_utc(stat.st_mtime),
+                     identity="sha256" if hashed else "size+mtime", sha256=_sha256(path) if hashed else None)
+    elif path.is_dir():
+        stats = [p.stat() for p in path.rglob("*") if p.is_file()]
+        entry.update(kind="folder", files=len(stats), bytes=sum(s.st_size for s in stats),
+                     mtime=_utc(max((s.st_mtime for s in stats), default=path.stat().st_mtime)),
+                     identity="size+mtime", sha256=None)
+    else:
+        entry.update(kind="missing", bytes=None, mtime=None, identity=None, sha256=None)
+    return entry
+
+
+def write_run_json(path, *, command: str, options: dict, inputs: dict, started: float, seconds: float,
+                   stage_seconds: dict, outputs: dict, results: dict | None = None) -> Path:
+    """Write the record of a run (contents in the module notes), atomically; the one writer every job uses.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Where (:func:`run_json_path`; inside an output folder's staging folder for jobs that stage their files).
+    command : str
+        The command's name.
+    options : dict
+        Every argument of the job (made JSON-able by :func:`jsonable`).
+    inputs : dict
+        Input paths by role (``'input'``, ``'source'``, ...); None entries are left out.
+    started : float
+        Start time, seconds since the epoch (``time.time()``).
+    seconds : float
+        Wall time of the run, seconds.
+    stage_seconds : dict
+        Wall time of each stage, seconds.
+    outputs : dict
+        Paths written, by key (None entries are left out).
+    results : dict, optional
+        The job's counts and measures.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    record = {
+        "seismo3d_version": __version__,
+        "command": command,
+        "argv": list(sys.argv),
+        "cli": None,
+        "options": jsonable(options),
+        "inputs": {role: input_identity(p) for role, p in inputs.items() if p is not None},
+        "started": _utc(started),
+        "seconds": round(float(seconds), 6),
+        "stage_seconds": {k: round(float(v), 6) for k, v in stage_seconds.items()},
+        "outputs": {k: os.fspath(v) for k, v in outputs.items() if v is not None},
+        "results": jsonable(results or {}),
+    }
+    call = _CLI_CALL.get()
+    if call is not None and call["command"] == command:
+        record["cli"] = call
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(record, indent=1) + "\n")
+    return path
+
+
+class RunRecord:
+    """The record of one run in the making: its start, options and stage times, written by :meth:`write`.
+
+    Parameters
+    ----------
+    command : str
+        The command's name (``'faults'``, ``'register'``, ...).
+    options : dict
+        Every argument of the job as called (e.g. ``dict(locals())`` first thing in the job).
+
+    Examples
+    --------
+    >>> record = RunRecord("plan", dict(locals()))            # doctest: +SKIP
+    >>> with record.stage("read"):                              # doctest: +SKIP
+    ...     grid = load_occupancy(path)
+    >>> record.write(run_json_path(out), inputs={"grid": path}, outputs={"path": out})  # doctest: +SKIP
+    """
+
+    def __init__(self, command: str, options: dict):
+        self.command = command
+        self.options = dict(options)
+        self.started = time.time()
+        self._t0 = time.perf_counter()
+        self.stage_seconds: dict = {}
+
+    @contextlib.contextmanager
+    def stage(self, name: str):
+        """Time the block as stage ``name`` (a repeated name adds up)."""
+        t0 = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.stage_seconds[name] = self.stage_seconds.get(name, 0.0) + time.perf_counter() - t0
+
+    @property
+    def seconds(self) -> float:
+        """Wall time since the record was started."""
+        return time.perf_counter() - self._t0
+
+    def write(self, path, *, inputs: dict, outputs: dict, results: dict | None = None) -> Path:
+        """Write ``run.json`` at ``path`` (:func:`write_run_json`).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+        inputs : dict
+            Input paths by role.
+        outputs : dict
+            Paths written, by key.
+        results : dict, optional
+            Counts and measures of the run.
+
+        Returns
+        -------
+        pathlib.Path
+        """
+        return write_run_json(path, command=self.command, options=self.options, inputs=inputs, started=self.started,
+                              seconds=self.seconds, stage_seconds=self.stage_seconds, outputs=outputs,
+                              results=results)

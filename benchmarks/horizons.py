@@ -50,7 +50,7 @@ def penobscot(quick: bool) -> None:
     if not quick:
         runs.append(("registration tracker", dict(method="registration", features=None)))
     # compiled kernels are loaded (or compiled) once before any timing: a small run of each method
-    small = np.ascontiguousarray(peno.cube[:2, 200:300])
+    small = np.ascontiguousarray(peno.cube[:3, 200:300])
     picks, offsets = reflector_picks(small[0, 50][None])
     warm = (0, 50, nearest_pick(picks, offsets, 0, float(peno.horizons[0, 0, 250]), 5.0))
     for _, kw in runs:

@@ -54,10 +54,8 @@ def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, 
     min_samples = max(5, int(min_fraction * m))
     ra = traces[ka]
     rb = traces[kb]
-    for k in range(m):
-        ref[k] = sample_at(ra, ta - h + k)
-    for k in range(m + 2 * max_lag):
-        sig[k] = sample_at(rb, centre - h - max_lag + k)
+    _read_window(ra, ta - h, m, ref)
+    _read_window(rb, centre - h - max_lag, m + 2 * max_lag, sig)
     # lags are scored only where the window overlaps trace b enough: near the trace ends that cuts the range on one
     # side; it is cut on the other side as well, or a pair's wrong-cycle matches (more of them on the longer side)
     # would bias the shifts towards it
@@ -71,29 +69,29 @@ def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, 
             break
     scores[:] = np.nan
     best, kbest = -2.0, -1
+    # trace a's window lies inside the trace (h above), so it is all finite: centred once, it serves every lag where
+    # trace b's window is finite too (interior lags: the run of finite ``sig`` samples)
+    ma = 0.0
+    for k in range(m):
+        ma += ref[k]
+    ma /= m
+    saa = 0.0
+    for k in range(m):
+        ref[k] -= ma
+        saa += ref[k] * ref[k]
+    first = 0  # sig[first:last] is finite
+    while first < m + 2 * max_lag and not np.isfinite(sig[first]):
+        first += 1
+    last = first
+    while last < m + 2 * max_lag and np.isfinite(sig[last]):
+        last += 1
     for s in range(max_lag - reach, max_lag + reach + 1):
-        sa = 0.0
-        sb = 0.0
-        cnt = 0
-        for k in range(m):
-            x, y = ref[k], sig[s + k]
-            if np.isfinite(x) and np.isfinite(y):
-                sa += x
-                sb += y
-                cnt += 1
-        if cnt < min_samples:
-            continue
-        ma, mb = sa / cnt, sb / cnt
-        sab = 0.0
-        saa = 0.0
-        sbb = 0.0
-        for k in range(m):
-            x, y = ref[k], sig[s + k]
-            if np.isfinite(x) and np.isfinite(y):
-                sab += (x - ma) * (y - mb)
-                saa += (x - ma) ** 2
-                sbb += (y - mb) ** 2
-        c = sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
+        if s >= first and s + m <= last:
+            c = _centred_ncc(ref, saa, sig, s, m)
+        else:
+            c = _partial_window_ncc(ref, sig, s, m, min_samples)
+            if np.isnan(c):
+                continue
         scores[s] = c
         if c > best:
             best, kbest = c, s
@@ -106,6 +104,68 @@ def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, 
         if den < 0:
             off = min(max(0.5 * (y0 - y2) / den, -0.5), 0.5)
     return kbest - max_lag + off, best
+
+
+@nb.njit(cache=True)
+def _read_window(trace, start, count, out):
+    """``out[k] = sample_at(trace, start + k)`` for k < ``count`` (:func:`~seismo3d.seismic.horizons.dp.sample_at`:
+    linear interpolation, NaN outside the trace); the samples share one interpolation weight."""
+    k0 = int(np.floor(start))
+    f = start - k0
+    n = trace.size
+    for k in range(count):
+        i = k0 + k
+        if 0 <= i < n - 1:
+            out[k] = (1.0 - f) * trace[i] + f * trace[i + 1]
+        else:
+            out[k] = sample_at(trace, start + k)
+
+
+@nb.njit(cache=True, fastmath={"reassoc", "contract", "nsz", "arcp"})
+def _centred_ncc(ref, saa, sig, s, m):
+    """Normalised cross-correlation of the centred window ``ref`` (squared spread ``saa``) with ``sig[s:s + m]``, all
+    finite, in one pass (the sums of ``sig``, its squares and its products with ``ref``; reassociated, so the
+    compiler vectorises them); 0 where a window is flat."""
+    sb = 0.0
+    sbb = 0.0
+    sab = 0.0
+    for k in range(m):
+        y = sig[s + k]
+        sb += y
+        sbb += y * y
+        sab += ref[k] * y  # ref is centred: the mean of sig drops out
+    var = sbb - sb * sb / m
+    if not (saa > 0 and var > 1e-9 * sbb):
+        return 0.0
+    return sab / np.sqrt(saa * var)
+
+
+@nb.njit(cache=True)
+def _partial_window_ncc(ref, sig, s, m, min_samples):
+    """:func:`_centred_ncc` over the samples where both windows are finite (the means of those); NaN with fewer than
+    ``min_samples``."""
+    sa = 0.0
+    sb = 0.0
+    cnt = 0
+    for k in range(m):
+        x, y = ref[k], sig[s + k]
+        if np.isfinite(x) and np.isfinite(y):
+            sa += x
+            sb += y
+            cnt += 1
+    if cnt < min_samples:
+        return np.nan
+    ma, mb = sa / cnt, sb / cnt
+    sab = 0.0
+    saa = 0.0
+    sbb = 0.0
+    for k in range(m):
+        x, y = ref[k], sig[s + k]
+        if np.isfinite(x) and np.isfinite(y):
+            sab += (x - ma) * (y - mb)
+            saa += (x - ma) ** 2
+            sbb += (y - mb) ** 2
+    return sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
 
 
 def window_correlation(traces: np.ndarray, a: np.ndarray, ta: np.ndarray, b: np.ndarray, tb: np.ndarray, *,
@@ -142,13 +202,25 @@ def neighbour_confidence(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b
     score = window_correlation(traces, a, times[a], b, times[b], half=half)
     node = np.concatenate([a, b])
     val = np.concatenate([score, score])
-    out = np.full(times.size, np.nan)
     order = np.argsort(node, kind="stable")
-    node, val = node[order], val[order]
-    if node.size == 0:
-        return out
-    starts = np.r_[0, np.nonzero(np.diff(node))[0] + 1]
-    ends = np.r_[starts[1:], node.size]
-    for lo, hi in zip(starts, ends):
-        out[node[lo]] = np.nanmedian(val[lo:hi]) if np.isfinite(val[lo:hi]).any() else np.nan
+    return _group_nanmedian(node[order], val[order], times.size)
+
+
+@nb.njit(cache=True)
+def _group_nanmedian(node, val, n):
+    """Median of the finite ``val`` of each ``node`` (sorted), (n,) float64, NaN where a node has none."""
+    out = np.full(n, np.nan)
+    buf = np.empty(val.size)
+    lo = 0
+    while lo < node.size:
+        hi = lo
+        cnt = 0
+        while hi < node.size and node[hi] == node[lo]:
+            if np.isfinite(val[hi]):
+                buf[cnt] = val[hi]
+                cnt += 1
+            hi += 1
+        if cnt:
+            out[node[lo]] = np.median(buf[:cnt])
+        lo = hi
     return out

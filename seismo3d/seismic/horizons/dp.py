@@ -79,8 +79,8 @@ def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_g
     cost = np.full((n, max_c), np.inf)
     back = np.full((n, max_c), -1, np.int64)
     m = 2 * half + 1
-    wa = np.empty(m)
-    wb = np.empty(m)
+    win_prev = np.empty((max_c, m))  # the candidates' windows on the previous trace and on this one
+    win = np.empty((max_c, m))
     ns = slopes.shape[1]
     n_cross = cross_ids.shape[1]
     w_cross = np.empty((n_cross, m))
@@ -91,7 +91,9 @@ def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_g
             if cross_ids[j, e] >= 0 and np.isfinite(cross_t[j, e]):
                 for s in range(m):
                     w_cross[e, s] = sample_at(traces[cross_ids[j, e]], cross_t[j, e] - half + s)
+        win_prev, win = win, win_prev
         for c in range(count[j]):
+            wb = win[c]
             for s in range(m):
                 wb[s] = sample_at(traces[kb], cand[j, c] - half + s)
             u = w_guide[j] * abs(cand[j, c] - guide[j])
@@ -111,8 +113,7 @@ def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_g
             ka = trace_ids[j - 1]
             best, arg = np.inf, -1
             for p in range(count[j - 1]):
-                for s in range(m):
-                    wa[s] = sample_at(traces[ka], cand[j - 1, p] - half + s)
+                wa = win_prev[p]
                 sa = slopes[ka, min(max(int(round(cand[j - 1, p])), 0), ns - 1)]
                 sb = slopes[kb, min(max(int(round(cand[j, c])), 0), ns - 1)]
                 step = (cand[j, c] - cand[j - 1, p]) - 0.5 * (sa + sb)

@@ -45,10 +45,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba as nb
 import numpy as np
 from scipy import sparse
 from scipy.sparse.csgraph import connected_components
-from scipy.sparse.linalg import LinearOperator, cg
 
 from ..._progress import progress_steps
 from ...errors import InputError
@@ -223,23 +223,67 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
 def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start):
     """One weighted solve of the normal equations by conjugate gradients (Jacobi-preconditioned, started at
     ``start``: the last re-weighted solution, which the next one differs little from)."""
-    # normal equations of the pair rows (a graph Laplacian) plus the seeds and the damping
-    lap = sparse.coo_matrix((np.concatenate([w, w, -w, -w]), (np.concatenate([a, b, a, b]),
-                                                               np.concatenate([a, b, b, a]))), shape=(n, n)).tocsr()
-    rhs = np.zeros(n)
-    np.add.at(rhs, b, w * s)
-    np.add.at(rhs, a, -w * s)
-    diag = np.full(n, damping ** 2)
-    rhs += damping ** 2 * prev
-    np.add.at(diag, seeds, seed_weight ** 2)
-    np.add.at(rhs, seeds, seed_weight ** 2 * seed_times)
-    mat = (lap + sparse.diags(diag)).tocsr()
-    inv_diag = 1.0 / mat.diagonal()
-    pre = LinearOperator((n, n), matvec=lambda x: inv_diag * x)
+    # normal equations of the pair rows (a graph Laplacian, applied from the pair list) plus the seeds and the damping
+    ws = w * s
+    rhs = np.bincount(b, ws, minlength=n) - np.bincount(a, ws, minlength=n) + damping ** 2 * prev
+    diag = np.full(n, damping ** 2) + np.bincount(seeds, minlength=n) * seed_weight ** 2
+    rhs += np.bincount(seeds, seed_weight ** 2 * seed_times, minlength=n)
     # the right-hand side is dominated by the seed rows (seed_weight^2 x time, ~1e6), so a residual relative to it
     # must be small for the pair rows (weights ~1) to be solved to a fraction of a sample
-    t, _ = cg(mat, rhs, x0=start, rtol=1e-10, atol=0.0, maxiter=2000, M=pre)
-    return t
+    return _laplacian_cg(a, b, w, diag, rhs, np.array(start, np.float64), 1e-10, 2000)
+
+
+@nb.njit(cache=True)
+def _laplacian_matvec(a, b, w, diag, x, out):
+    """``out = (L + diag(diag)) x`` with ``L`` the weighted graph Laplacian of the pairs ``a, b`` (weights ``w``)."""
+    for k in range(x.size):
+        out[k] = diag[k] * x[k]
+    for e in range(a.size):
+        d = w[e] * (x[a[e]] - x[b[e]])
+        out[a[e]] += d
+        out[b[e]] -= d
+
+
+@nb.njit(cache=True)
+def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter):
+    """Jacobi-preconditioned conjugate gradients on ``(L + diag(diag)) x = rhs`` from ``x`` (overwritten), stopped when
+    the residual's norm falls below ``rtol`` times the right-hand side's (the iteration of
+    :func:`scipy.sparse.linalg.cg`, compiled, with the Laplacian applied from the pair list)."""
+    n = rhs.size
+    inv = diag.copy()
+    for e in range(a.size):
+        inv[a[e]] += w[e]
+        inv[b[e]] += w[e]
+    inv = 1.0 / inv
+    bnrm = np.sqrt(np.dot(rhs, rhs))
+    if bnrm == 0.0:
+        return rhs.copy()
+    atol = rtol * bnrm
+    q = np.empty(n)
+    _laplacian_matvec(a, b, w, diag, x, q)
+    r = rhs - q
+    p = np.empty(n)
+    z = np.empty(n)
+    rho_prev = 1.0
+    for it in range(maxiter):
+        if np.sqrt(np.dot(r, r)) < atol:
+            break
+        for k in range(n):
+            z[k] = inv[k] * r[k]
+        rho = np.dot(r, z)
+        if it > 0:
+            beta = rho / rho_prev
+            for k in range(n):
+                p[k] = beta * p[k] + z[k]
+        else:
+            p[:] = z
+        _laplacian_matvec(a, b, w, diag, p, q)
+        alpha = rho / np.dot(p, q)
+        for k in range(n):
+            x[k] += alpha * p[k]
+            r[k] -= alpha * q[k]
+        rho_prev = rho
+    return x
 
 
 # --------------------------------------------------------------------------------------------------------------------

@@ -606,6 +606,9 @@ def _despike_lines(arr, times, conf, polarity, opt: TrackingOptions, crossings: 
         return despike(ReflectorSlice(arr, polarity, opt.sigma_tensor, opt.ncc_half), times, times.copy(), conf,
                        min_confidence=opt.min_confidence, faults=crossings, reach=opt.despike_reach,
                        agree=opt.despike_agree)
+    # the lines' picks are the cube's (picks are per trace), gathered once instead of re-picked line by line
+    picks, offsets = reflector_picks(arr.reshape(-1, arr.shape[-1]), polarity=polarity)
+    ids = np.arange(times.size).reshape(times.shape)
     changed = 0
     for axis in (0, 1):  # lines along crosslines (one per inline), then along inlines (one per crossline)
         for k in range(arr.shape[axis]):
@@ -615,11 +618,26 @@ def _despike_lines(arr, times, conf, polarity, opt: TrackingOptions, crossings: 
             def line_point(x, t, k=k, axis=axis):
                 return np.array([k, x, t] if axis == 0 else [x, k, t], np.float64)
 
-            changed += despike(ReflectorSlice(arr[index], polarity, opt.sigma_tensor, opt.ncc_half), line,
+            changed += despike(_LinePicks(arr[index], picks, offsets, ids[index], opt.ncc_half), line,
                                line.copy(), line_conf, min_confidence=opt.min_confidence, faults=crossings,
                                line_point=line_point, reach=opt.despike_reach, agree=opt.despike_agree)
             times[index], conf[index] = line, line_conf
     return changed
+
+
+class _LinePicks:
+    """One line of a cube as :func:`despike` reads it (``n_traces``, ``snap``, ``window`` of
+    :class:`~seismo3d.seismic.reflectors.ReflectorSlice`), its picks gathered from the cube's (``picks``,
+    ``offsets`` of the flattened cube; ``ids`` the line's flat trace indices)."""
+
+    snap = ReflectorSlice.snap
+    window = ReflectorSlice.window
+
+    def __init__(self, amp, picks, offsets, ids, window_half: int):
+        self.amp, self.n_traces, self.window_half = amp, len(ids), int(window_half)
+        counts = np.diff(offsets)[ids]
+        self.offsets = np.concatenate([[0], np.cumsum(counts)])
+        self.t = picks[np.repeat(offsets[ids] - self.offsets[:-1], counts) + np.arange(self.offsets[-1])]
 
 
 def close_gaps(data, times: np.ndarray, confidence: np.ndarray, *, polarity: str = "peak",

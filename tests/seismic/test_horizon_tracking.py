@@ -10,7 +10,7 @@ from seismo3d.errors import InputError
 from seismo3d.seismic import (
     FaultCrossings, TrackingOptions, autotrack, fill_horizon, horizon_errors, reflector_picks, track_horizon,
 )
-from seismo3d.seismic.horizons.tracking import close_gaps, despike
+from seismo3d.seismic.horizons.lateral_check import close_gaps, despike
 from seismo3d.seismic.reflectors import ReflectorSlice, nearest_pick
 
 

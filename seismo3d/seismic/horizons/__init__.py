@@ -28,7 +28,8 @@ from .lsq import (
     PairShifts, LsqHorizon, trace_pairs, pair_shifts, solve_horizon, cycle_skips, pair_agreement, lsq_horizon,
 )
 from .autotracker import autotrack
-from .tracking import track_horizon, despike, close_gaps
+from .lateral_check import close_gaps, despike
+from .tracking import track_horizon
 
 __all__ = [
     "Horizon", "as_seeds", "check_live_seed", "fill_horizon", "write_horizon_text", "TrackingOptions",

@@ -51,7 +51,6 @@ from scipy import sparse
 from scipy.sparse.csgraph import connected_components
 
 from ..._progress import progress_steps
-from ...errors import InputError
 from ..reflectors import nearest_pick, nearest_reflector, reflector_picks
 from .correlation import _pair_lags, neighbour_confidence, window_correlation
 from .cycle_cut import cycle_cut

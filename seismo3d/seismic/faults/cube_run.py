@@ -22,7 +22,8 @@ from ...errors import InputError
 from ..blocks import release_memory
 from ..io.zarr_store import consolidate
 from .checks import check_size
-from .dead_samples import check_varies, clipped_count, warn_clipped, warn_non_finite
+from .dead_samples import (check_varies, clipped_count, dead_samples, fill_values, warn_clipped, warn_dead,
+                           warn_non_finite)
 from .interpretation import FaultInterpretation, FaultTracingOptions
 from .learned_blocks import chunked_learned_likelihood
 from .likelihood_blocks import ChunkOptions, chunked_fault_likelihood
@@ -128,8 +129,9 @@ def _whole_traces(x):
 
 
 def finite_cube(x):
-    """The cube with NaN / inf read as 0 (warned, as in memory); constant data refused and clipped amplitudes
-    warned about (:mod:`~seismo3d.seismic.faults.dead_samples`), from two passes over the blocks.
+    """The cube with NaN / inf read as 0 (warned, as in memory); constant data refused, clipped amplitudes and dead
+    samples warned about (:mod:`~seismo3d.seismic.faults.dead_samples`), from three passes over the blocks (the dead
+    samples need the fill values of the whole cube).
 
     Parameters
     ----------
@@ -149,7 +151,7 @@ def finite_cube(x):
     Warns
     -----
     Seismo3dWarning
-        NaN / inf or clipped samples (:func:`~seismo3d.seismic.faults.dead_samples.clean_traces`' warnings).
+        NaN / inf, clipped or dead samples (:func:`~seismo3d.seismic.faults.dead_samples.clean_traces`' warnings).
     """
     import dask
     import dask.array as da
@@ -162,10 +164,25 @@ def finite_cube(x):
     check_varies(float(lo), float(hi))
     x = cleaned if n_bad else x
     lo, hi = np.float32(lo), np.float32(hi)
-    counts = x.map_blocks(lambda b: np.array([[[clipped_count(b, lo, hi)]]], np.int64), dtype=np.int64,
-                          chunks=(1, 1, 1))
-    warn_clipped(int(counts.sum().compute()), n - int(np.prod(x.shape[:-1], dtype=np.int64)))
+    parts = [dask.delayed(_clipped_and_fills)(b, lo, hi) for b in x.to_delayed().ravel()]
+    parts = dask.compute(*parts)
+    warn_clipped(sum(p[0] for p in parts), n - int(np.prod(x.shape[:-1], dtype=np.int64)))
+    fill = np.unique(np.concatenate([p[1] for p in parts]))
+    dead = dask.compute(*[dask.delayed(_dead_counts)(b, fill, lo, hi) for b in x.to_delayed().ravel()])
+    warn_dead(sum(d[0] for d in dead), n, sum(d[1] for d in dead))
     return x
+
+
+def _clipped_and_fills(block, lo, hi) -> tuple:
+    """(clipped samples, fill values) of a block of whole traces."""
+    block = np.asarray(block, np.float32)
+    return clipped_count(block, lo, hi), fill_values(block, lo, hi)
+
+
+def _dead_counts(block, fill, lo, hi) -> tuple[int, int]:
+    """(dead samples, dead traces) of a block of whole traces."""
+    dead = dead_samples(np.asarray(block, np.float32), fill, lo, hi)
+    return int(np.count_nonzero(dead)), int(np.count_nonzero(dead.all(axis=-1)))
 
 
 def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOptions):

@@ -41,7 +41,7 @@ from ..attributes import structure_tensor_orientation
 from ..blocks import BlockRun, SchedulerClient, write_marker
 from ..io.zarr_store import consolidate
 from .checks import check_saturation
-from .dead_samples import dead_samples, fill_values, near_dead_samples, warn_dead
+from .dead_samples import dead_samples, fill_values, near_dead_samples
 from .evidence import supported_faults
 from .interpretation import FaultTracingOptions
 from .likelihood_blocks import ChunkOptions
@@ -191,7 +191,6 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         raise InputError(f"{attrs['n_cells']} thinned fault samples need about "
                          f"{attrs['n_cells'] * CELL_BYTES / 2**30:.2f} GiB to link into fault skins, more than the "
                          "memory limit leaves: raise memory_limit")
-    warn_dead(*attrs.get("dead", (0, 1, 0)))  # as in memory (clean_traces), also when the output is reused
     lower, upper = (float(v) for v in attrs["thresholds"])
     faults = skins_from_cells(*_stored_cells(run.out), shape=shape, lower=lower, upper=upper, options=opt.skins)
     stored = zarr.open_group(str(run.out), mode="r")
@@ -211,7 +210,7 @@ def _surfaces(run: _SurfaceRun, x, manifest: dict, memory: int) -> dict:
         run.client = client
         lo, hi = run.amplitude_range(x)
         fill = run.fill_values(x, lo, hi)
-        high, live, dead = run.ridges(x, fill, lo, hi)
+        high, live = run.ridges(x, fill, lo, hi)
         saturated = check_saturation(high, live, opt)
         seeds, frames = run.seeds(memory)
         run.votes(seeds, frames)
@@ -219,7 +218,7 @@ def _surfaces(run: _SurfaceRun, x, manifest: dict, memory: int) -> dict:
         lower, upper = run.thresholds()
         n_cells = run.cells(lower, memory)
     attrs = {"thresholds": [lower, upper], "n_seeds": run.n_seeds, "n_cells": n_cells,
-             "saturated_fraction": saturated, "dead": dead, "run": manifest}
+             "saturated_fraction": saturated, "run": manifest}
     run.finish(attrs)
     return attrs
 
@@ -328,8 +327,8 @@ class _SurfaceRun(BlockRun):
         return np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
                                         [np.zeros(1, np.float32)]))
 
-    def ridges(self, x, fill: np.ndarray, lo: float, hi: float) -> tuple[int, int, list]:
-        """Ridges of every block; (saturated live samples, live samples, [dead samples, samples, dead traces])."""
+    def ridges(self, x, fill: np.ndarray, lo: float, hi: float) -> tuple[int, int]:
+        """Ridges of every block; (saturated live samples, live samples)."""
         p = self.plan
         todo, done = self.pending("ridges", square_blocks(p.shape, p.ridge))
         h = amplitude_halo()
@@ -339,8 +338,7 @@ class _SurfaceRun(BlockRun):
             tasks.append(self.task(_ridge_block, x[a0:a1, b0:b1], (a0, b0), b, fill, lo, hi, self.likelihood,
                                    str(self.work), str(self.partial), p, self.opt, str(self.marker("ridges", b))))
         results = self.compute(tasks, "fault ridges", "ridges") + done
-        dead = [sum(r["dead"][k] for r in results) for k in range(3)]
-        return sum(r["high"] for r in results), sum(r["live"] for r in results), dead
+        return sum(r["high"] for r in results), sum(r["live"] for r in results)
 
     def seeds(self, memory: int) -> tuple[np.ndarray, np.ndarray]:
         path = self.work / "seeds.npz"
@@ -470,10 +468,8 @@ def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan
     _write_slopes(f, origin, block, partial)
     dead = dead_samples(f, fill, lo, hi)
     del f
-    own = dead[i0 - origin[0]:i1 - origin[0], j0 - origin[1]:j1 - origin[1]]
-    counts = [int(np.count_nonzero(own)), int(own.size), int(np.count_nonzero(own.all(axis=-1)))]
     near = near_dead_samples(dead) if dead.any() else None
-    del dead, own
+    del dead
     a0, a1, b0, b1 = around(block, RIDGE_HALO, plan.shape)
     group = zarr.open_group(likelihood, mode="r")
     fl = group["likelihood"][a0:a1, b0:b1]
@@ -493,7 +489,7 @@ def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan
     _save_npz(pathlib.Path(work) / "candidates" / f"{i0}-{j0}.npz",
               points=(cand + np.array([i0, j0, 0])).astype(np.int64), values=ridge[at].astype(np.float32),
               angles=np.stack([st[local], dp[local]], axis=-1).astype(np.float32))
-    result = {"high": high, "live": live, "dead": counts}
+    result = {"high": high, "live": live}
     write_marker(marker, result)
     return result
 

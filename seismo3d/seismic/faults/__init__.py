@@ -1,15 +1,20 @@
 """Fault interpretation: the fault-likelihood scan, thinning, voting, fault skins, throw, and the whole pipeline in
 memory or by blocks of a cube stored on disk.
 
-- :mod:`~seismo3d.seismic.faults.likelihood`: the scan over fault strikes and dips (:func:`fault_likelihood`).
+- :mod:`~seismo3d.seismic.faults.likelihood`: the scan over fault strikes and dips (:func:`fault_likelihood`); its
+  numba kernels in :mod:`~seismo3d.seismic.faults.scan_kernels`, the planes' normals in
+  :mod:`~seismo3d.seismic.faults.fault_planes`.
 - :mod:`~seismo3d.seismic.faults.learned`: the learned fault likelihood, a U-Net trained on generated sections
   (:func:`learned_fault_likelihood`); its numpy forward pass in :mod:`~seismo3d.seismic.faults.unet`.
 - :mod:`~seismo3d.seismic.faults.dead_samples`: dead traces and dead samples, and their fill values.
 - :mod:`~seismo3d.seismic.faults.windows`: windows of a cube around points (in memory, lazy or stored).
 - :mod:`~seismo3d.seismic.faults.surfaces`: faults as point sets, thinning (and the older region-growing linker).
-- :mod:`~seismo3d.seismic.faults.voting`: optimal surface voting (Wu & Fomel 2018).
-- :mod:`~seismo3d.seismic.faults.skins`: thinned faults linked into fault skins (Hale 2013).
-- :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides of a fault.
+- :mod:`~seismo3d.seismic.faults.voting`: optimal surface voting (Wu & Fomel 2018); its kernels in
+  :mod:`~seismo3d.seismic.faults.voting_kernels`.
+- :mod:`~seismo3d.seismic.faults.skins`: thinned faults linked into fault skins (Hale 2013); the closest cells of
+  different skins in :mod:`~seismo3d.seismic.faults.skin_pairs`.
+- :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides of a fault; its patches in
+  :mod:`~seismo3d.seismic.faults.throw_patches`.
 - :mod:`~seismo3d.seismic.faults.evidence`: the evidence a fault must show (reflectors displaced or broken across it).
 - :mod:`~seismo3d.seismic.faults.pipeline`: the whole fault interpretation (:func:`trace_faults`), in memory or block
   by block (:mod:`~seismo3d.seismic.faults.cube_run`) as :mod:`~seismo3d.seismic.faults.memory` decides

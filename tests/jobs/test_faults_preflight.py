@@ -77,6 +77,9 @@ def test_the_seed_candidates_a_sample_predicts_raise_the_minimum(cube_file, tmp_
     dense = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1.0)  # 2 M candidates
     monkeypatch.setattr(cube_run, "judge_sample", lambda *a, **k: dense)
     monkeypatch.setattr(cube_run, "chunked_fault_likelihood", _never)
+    # blocks at either limit: the limit named is rounded up to 0.1 GB once this process holds over 1 GB (the whole
+    # suite), which can leave room for the 200 MB in-memory run; this test is about the candidates' check
+    monkeypatch.setattr(job, "fits_in_memory", lambda *a, **k: False)
     # the smallest blocks' own minimum, asked of the job (it depends on the size of this process), plus 20 MB: the
     # blocks fit, 168 MB of candidates do not
     first = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),

@@ -1,10 +1,11 @@
 """:func:`~seismo3d.seismic.faults.trace_faults` on a cube beyond the memory limit: the same checks and steps, run
 block by block on dask into two resumable Zarr stores of a work folder.
 
-The order is that of the run in memory: the data's size, its NaN / inf samples (read as 0, with the same warning),
-constant data and clipped amplitudes (the same refusal and warning, from passes over the blocks); the data judged
-from a sample of blocks (not seismic amplitudes, no lateral coherence: :func:`~seismo3d.seismic.faults.judge_sample`)
-and the memory the run needs; then the fault likelihood
+The checks are those of the run in memory, from the same functions: the data's size; the memory the run needs and
+the data judged from a sample of blocks (not seismic amplitudes, no lateral coherence:
+:func:`~seismo3d.seismic.faults.judge_sample`), before any pass over the whole cube; its NaN / inf samples (read as
+0, with the same warning), constant data, clipped amplitudes and dead samples (the same refusal and warnings, from
+passes over the blocks); then the fault likelihood
 (:func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood` or the learned one) into
 ``fault_likelihood.zarr`` and the fault surfaces (:func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces`:
 dead samples, saturation, ridges, voting, thinning, thresholds, skins, throws, evidence) into
@@ -186,9 +187,10 @@ def _dead_counts(block, fill, lo, hi) -> tuple[int, int]:
 
 
 def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOptions):
-    """Before any block of a run by blocks: the memory its smallest blocks need (at once); the data's NaN, constant
-    and clipped samples (:func:`finite_cube`); the data judged from a sample of blocks (not seismic amplitudes, no
-    lateral coherence: the refusals of the run in memory); the memory the seed candidates the sample predicts need.
+    """Before any block of a run by blocks: the memory its smallest blocks need (at once); the data judged from a
+    sample of blocks (not seismic amplitudes, no lateral coherence: the refusals of the run in memory, in seconds);
+    the memory the seed candidates the sample predicts need; then the data's NaN, constant, clipped and dead samples
+    (:func:`finite_cube`, passes over the whole cube).
 
     Parameters
     ----------
@@ -221,14 +223,13 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
 
     _check_limit(name, shape, limit, minimum_memory_limit(shape, baseline=baseline(), options=options),
                  " for its smallest blocks alone")
-    x = finite_cube(x)
     LOGGER.info("%s: judging the data from a sample of blocks", name)
-    sample = judge_sample(x, options=options)
+    sample = judge_sample(x, options=options)  # before the passes over the whole cube: a refusal in seconds
     release_memory()  # the sample's arrays, before the process is measured again
     need = minimum_memory_limit(shape, baseline=baseline(), options=options, sample=sample)
     _check_limit(name, shape, limit, need, f" (with the ~{sample.candidates(shape)} seed candidates a sample "
                                            "of its blocks predicts)")
-    return x
+    return finite_cube(x)
 
 
 def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:

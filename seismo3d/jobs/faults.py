@@ -22,18 +22,12 @@ from .._atomic import StagedFolder, atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import InputError, Seismo3dWarning
-from ..seismic.faults.likelihood_blocks import (
-    ChunkOptions, chunked_fault_likelihood, default_memory_limit, in_memory_bytes, resident_memory, worker_baseline,
-)
+from ..seismic.faults.memory import fits_in_memory, parse_memory_limit, resident_memory
 from ..seismic.faults.pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
-from ..seismic.faults.learned_blocks import chunked_learned_likelihood
-from ..seismic.faults.pipeline_blocks import chunked_fault_surfaces
-from ..seismic.blocks import release_memory
-from ..seismic.faults.preflight import SampleOptions, judge_sample, minimum_memory_limit
 from ..seismic.io.lazy import open_lazy
 from ..seismic.io.segy import open_segy, write_like
 from ..seismic.io.writer import write_like_blocks
-from ..seismic.io.zarr_store import consolidate
+from .fault_tables import write_points, write_summary
 from .inputs import read_seismic
 from .outputs import check_outputs, output_folder
 from .runinfo import RUN_JSON, RunRecord
@@ -206,105 +200,6 @@ def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, 
     return out
 
 
-def _sample_position(samples: np.ndarray, k) -> np.ndarray:
-    return np.interp(np.asarray(k, dtype=np.float64), np.arange(samples.size), samples)
-
-
-def _fmt(v: float) -> str:
-    return "" if not np.isfinite(v) else f"{v:.5g}"
-
-
-def _throw_of(throws, fault, field="throw") -> np.ndarray:
-    """(n_points,) float64 throw in samples (or its ``correlation``) of ``fault``; NaN where it was not measured."""
-    for t in throws:
-        if t.fault_id == fault.id:
-            values = np.asarray(getattr(t, field), dtype=np.float64)
-            if values.shape == (fault.size,):
-                return values
-    return np.full(fault.size, np.nan)
-
-
-def _column(values, fmt: str) -> list:
-    """Format a column for CSV: ``fmt`` for finite values, empty for NaN."""
-    return [format(v, fmt) if v == v else "" for v in np.asarray(values, dtype=np.float64).tolist()]
-
-
-def _write_points(inp: _Input, result: FaultInterpretation, path: Path) -> Path:
-    unit = inp.unit
-    extra = [] if unit == "samples" else [f"throw_{unit}"]
-    header = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation",
-              "correlation_gain"]
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        fh.write(",".join(header) + "\n")
-        for f in result.faults:
-            p = f.points
-            throw = _throw_of(result.throws, f)
-            lateral = inp.inline[p[:, 0]], (None if inp.xline is None else inp.xline[p[:, 1 if p.shape[1] == 3 else 0]])
-            cols = [
-                [str(v) for v in lateral[0].tolist()],
-                [""] * f.size if lateral[1] is None else [str(v) for v in lateral[1].tolist()],
-                _column(_sample_position(inp.samples, p[:, -1]), ".6g"),
-                [str(f.id)] * f.size,
-                _column(throw, ".5g"),
-            ]
-            if extra:
-                cols.append(_column(throw * result.sample_interval, ".5g"))
-            correlation = _throw_of(result.throws, f, "correlation")
-            cols.append(_column(correlation, ".3f"))
-            cols.append(_column(correlation - _throw_of(result.throws, f, "correlation_unshifted"), ".3f"))
-            fh.writelines(",".join(row) + "\n" for row in zip(*cols))
-    return path
-
-
-def _dip_direction(inp: _Input, fault) -> str:
-    """Where a fault of a 2D section deepens, in the section's own terms: 'increasing inline' etc."""
-    toward_higher = fault.mean_strike_deg > 180.0  # strike 270: deepens toward increasing trace index
-    labels = inp.axes[0]
-    if labels.size > 1 and labels[-1] < labels[0]:  # trace labels decrease along the section
-        toward_higher = not toward_higher
-    return f"{'increasing' if toward_higher else 'decreasing'} {inp.trace_axis}"
-
-
-def _write_summary(inp: _Input, result: FaultInterpretation, path: Path, rows: list) -> Path:
-    """fault_summary.csv; its rows are also appended to ``rows`` (column name to text) for the job's result."""
-    unit = inp.unit
-    extra = [] if unit == "samples" else [f"median_throw_{unit}"]
-    two_d = inp.data.ndim == 2
-    orientation = ["dips_toward"] if two_d else ["mean_strike_deg"]
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        header = ["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra,
-                  "throw_spread_samples", "throw_correlation", "correlation_gain"]
-        w.writerow(header)
-        evidence = {e.fault_id: e for e in result.evidence}
-        for f in result.faults:
-            e = evidence[f.id]
-            row = [f.id, f.size, _dip_direction(inp, f) if two_d else f"{f.mean_strike_deg:.1f}",
-                   f"{f.mean_dip_deg:.1f}", _fmt(e.median_throw)]
-            if extra:
-                row.append(_fmt(e.median_throw * result.sample_interval))
-            row += [_fmt(e.throw_spread), _fmt(e.correlation), _fmt(e.correlation_gain)]
-            w.writerow(row)
-            rows.append(dict(zip(header, (str(v) for v in row))))
-    return path
-
-
-def _memory_limit(value) -> int:
-    """``memory_limit`` in bytes: an int, a size string ('4GB', '500MiB'), or None for half of the RAM."""
-    if value is None:
-        return default_memory_limit()
-    if isinstance(value, str):
-        from dask.utils import parse_bytes
-
-        try:
-            value = parse_bytes(value)
-        except (ValueError, TypeError) as exc:
-            raise InputError(f"memory_limit {value!r} is not a size; pass bytes or e.g. '4GB', '500MB'") from exc
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < (64 << 20):
-        raise InputError(f"memory_limit must be at least 64 MB; got {value!r}")
-    return int(value)
-
-
 @dataclass(frozen=True)
 class LazyInput:
     """A 3D input read block by block: its lazy amplitudes and what labels them."""
@@ -323,51 +218,10 @@ class LazyInput:
         return {"inline": self.inline, "crossline": self.xline, "sample": self.samples, "sample_unit": self.unit}
 
 
-def _size_text(n: int) -> str:
-    """Bytes as a --memory-limit value, rounded up: '1.3GB', '460MB'."""
-    if n >= 10 ** 9:
-        return f"{np.ceil(n / 10 ** 8) / 10:g}GB"
-    return f"{int(np.ceil(n / 10 ** 7)) * 10}MB"
-
-
-def _check_block_run(lazy: LazyInput, limit: int, scheduler, options: FaultTracingOptions) -> None:
-    """Before any block of a block-by-block run: the memory its smallest blocks need; then the data judged from a
-    sample of blocks (not seismic amplitudes, no lateral coherence) and the memory its seed candidates need."""
-    shape = tuple(int(n) for n in lazy.data.shape)
-    chunks = lazy.data.chunks
-
-    def baseline() -> int:  # the process as it is now, and the input chunks a block reads
-        return worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler),
-                               4 * max(chunks[0]) * max(chunks[1]) * shape[2])
-
-    _check_limit(lazy.name, shape, limit, minimum_memory_limit(shape, baseline=baseline(), options=options),
-                 " for its smallest blocks alone")
-    LOGGER.info("%s: judging the data from a sample of blocks", lazy.name)
-    sample = judge_sample(lazy.data, options=options)
-    release_memory()  # the sample's arrays, before the process is measured again
-    need = minimum_memory_limit(shape, baseline=baseline(), options=options, sample=sample)
-    _check_limit(lazy.name, shape, limit, need, f" (with the ~{sample.candidates(shape)} seed candidates a sample "
-                                                "of its blocks predicts)")
-
-
-def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:
-    """InputError naming the smallest --memory-limit that works when ``limit`` is below ``need``."""
-    if need <= limit:
-        return
-    held = resident_memory()
-    raise InputError(f"{name}: a block-by-block run of its {shape[0]} x {shape[1]} x {shape[2]} samples needs a "
-                     f"memory limit of at least {_size_text(need)}{why}, more than the {_size_text(limit)} given "
-                     f"(this process alone holds {_size_text(held)}); pass memory_limit='{_size_text(need)}' or more")
-
-
-def _too_large(shape, budget: int) -> bool:
-    """Whether the in-memory run on a cube of this shape would need more than ``budget`` bytes."""
-    return in_memory_bytes(shape) > budget
-
-
-def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) -> LazyInput | None:
-    """The input read lazily when it is a Zarr store, or a 3D SEG-Y cube or ``.npy`` array whose in-memory run would
-    need more than ``budget`` bytes; else None (the in-memory run)."""
+def _lazy_if_too_large(path, limit: int, held: int, *, iline, xline, sample_unit, endian) -> LazyInput | None:
+    """The input read lazily when it is a Zarr store, or a 3D SEG-Y cube or ``.npy`` array whose in-memory run does
+    not fit ``limit`` beside the ``held`` bytes of the process (:func:`~seismo3d.seismic.faults.fits_in_memory`);
+    else None (the in-memory run)."""
 
     if path is None:
         return None
@@ -380,7 +234,7 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
             arr = np.load(path, allow_pickle=False, mmap_mode="r")
         except (ValueError, OSError):
             return None  # _read_input says why
-        if arr.ndim != 3 or not _too_large(arr.shape, budget):
+        if arr.ndim != 3 or fits_in_memory(arr.shape, limit, held=held):
             return None
         if sample_unit is not None:
             raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
@@ -395,7 +249,7 @@ def _lazy_if_too_large(path, budget: int, *, iline, xline, sample_unit, endian) 
             warnings.simplefilter("ignore", Seismo3dWarning)
             cube = open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
         with cube:
-            if not cube.is_3d or cube.inlines is None or not _too_large(cube.shape, budget):
+            if not cube.is_3d or cube.inlines is None or fits_in_memory(cube.shape, limit, held=held):
                 return None
     lazy = open_lazy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian, tile=_TILE)
     segy = None if path.is_dir() else {"template_path": path, "iline": iline, "xline": xline, "endian": endian}
@@ -423,7 +277,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       throw_gradient``: the throw at the fault's reference point, + for hanging wall down, and its change per trace
       along strike), to compare with ``fault_summary.csv``.
 
-    The input is read whole into memory (see :func:`trace_faults` for the memory needed); it is never written to.
+    The input is read whole into memory unless it is too large (below); it is never written to.
 
     Outputs (in ``out_dir``, created if needed; written into a staging folder and moved in together once every one
     is written, so a failed or interrupted run leaves the previous files or none, never a mix or a half-written one)
@@ -561,7 +415,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     out_dir = Path(out_dir)
     stem = "demo" if demo else Path(input_path).stem
     check_outputs([output_folder(out_dir, RESULTS, f"{stem}_faults")], [input_path], overwrite=overwrite)
-    limit = _memory_limit(memory_limit)
+    limit = parse_memory_limit(memory_limit)
     segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian, sample_unit=sample_unit)
     summary = []  # the rows of fault_summary.csv, as written
     with StagedFolder(out_dir) as stage:  # the files moved in together when every one is written
@@ -583,32 +437,26 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     to ``summary``)."""
     iline, xline, ignore_geometry, endian, sample_unit = (segy[k] for k in ("iline", "xline", "ignore_geometry",
                                                                             "endian", "sample_unit"))
-    budget = limit - resident_memory()  # what this run may add to the process as it is now
+    held = resident_memory()  # the process as it is now: the run may add up to the limit less this
     written = {}
     if demo:
         inp, written["truth"] = _demo_input(files, demo_seed, read=False)
-        iline, xline, ignore_geometry, endian = 189, 193, False, None
+        iline, xline, ignore_geometry, endian, sample_unit, n_samples = 189, 193, False, None, "ms", None
         input_path = written["input"] = inp
-    lazy = None if ignore_geometry else _lazy_if_too_large(input_path, budget, iline=iline, xline=xline,
+    lazy = None if ignore_geometry else _lazy_if_too_large(input_path, limit, held, iline=iline, xline=xline,
                                                            sample_unit=sample_unit, endian=endian)
     if lazy is not None:
-        _check_block_run(lazy, limit, scheduler, options)
-        written.update(_run_chunked(lazy, out_dir, files, memory_limit=limit, budget=budget, scheduler=scheduler,
+        written.update(_run_chunked(lazy, out_dir, files, memory_limit=limit, scheduler=scheduler,
                                     options=options, progress=progress, summary=summary))
         return written
-    if demo:
-        inp = _read_input(input_path, iline=189, xline=193, ignore_geometry=False, sample_unit="ms", n_samples=None)
-    else:
-        inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
-                          sample_unit=sample_unit, n_samples=n_samples, endian=endian)
-    if SampleOptions().worth_sampling(inp.data.shape):  # refused from a sample, not after the whole likelihood
-        judge_sample(inp.data, options=options)
+    inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
+                      n_samples=n_samples, endian=endian)
     dt = float(inp.samples[1] - inp.samples[0]) if inp.samples.size > 1 else 1.0
     if inp.unit != "samples" and not dt > 0:
         raise InputError(f"the sample interval of {inp.name} is {dt:g} {inp.unit}; it must be > 0 (check the "
                          "binary header's sample interval, bytes 3217-3218)")
     result = trace_faults(inp.data, sample_interval=None if inp.unit == "samples" else dt, sample_unit=inp.unit,
-                          options=options, progress=progress)
+                          options=options, in_memory=True, progress=progress)
 
     geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
     steps = [
@@ -630,8 +478,8 @@ def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summ
     return [
         ("surfaces", lambda: save_polydata(fault_surfaces(result.faults, result.throws, axes=axes),
                                            out_dir / "faults.vtp")),
-        ("points", lambda: _write_points(inp, result, out_dir / "fault_points.csv")),
-        ("summary", lambda: _write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
+        ("points", lambda: write_points(inp, result, out_dir / "fault_points.csv")),
+        ("summary", lambda: write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
         ("figure", lambda: plot_fault_slices(inp.data, result.faults, path=out_dir / "faults.png",
                                              likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
                                              title=inp.name)),
@@ -652,57 +500,22 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
 _TILE = 32  # traces per side of the lazy input's chunks: a block of the chunked run reads only the tiles around it
 
 
-def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: int, budget: int, scheduler,
+def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: int, scheduler,
                  options: FaultTracingOptions, progress, summary: list) -> dict:
-    """Fault likelihood block by block into ``fault_likelihood.zarr``, then the fault surfaces block by block into
-    ``fault_surfaces.zarr`` (both in ``out_dir``: reused when finished, resumed when interrupted); the same files as
-    in memory, into ``files``."""
-    import zarr
-
-    path = out_dir / "fault_likelihood.zarr"
-    shape = tuple(int(n) for n in lazy.data.shape)
-    chunking = ChunkOptions(memory_limit=memory_limit, scheduler=scheduler)
-    if path.exists():  # a finished likelihood of an earlier run of the same input: reused
-        group = zarr.open_group(str(path), mode="r")
-        if (group.attrs.get("source") != lazy.name or tuple(group["likelihood"].shape) != shape
-                or group.attrs.get("likelihood", "scan") != options.likelihood):
-            raise InputError(f"{path} holds the fault likelihood of another input; pick another output folder (-o) "
-                             "or delete it")
-        LOGGER.info("%s: reusing the finished fault likelihood in %s", lazy.name, path)
-    else:
-        LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory besides this process (%.2f GiB), more "
-                    "than the memory limit of %.2f GiB allows: fault likelihood block by block into %s", lazy.name,
-                    *shape, in_memory_bytes(shape) / 2**30, (memory_limit - budget) / 2**30, memory_limit / 2**30,
-                    path.name)
-        if options.likelihood == "learned":
-            chunked_learned_likelihood(lazy.data, path, options=options.learned, coords=lazy.coords,
-                                       progress=progress, chunking=chunking)
-        else:
-            chunked_fault_likelihood(lazy.data, path, options=options.scan, coords=lazy.coords, progress=progress,
-                                     chunking=chunking)
-        zarr.open_group(str(path), mode="r+").attrs.update({"source": lazy.name, "likelihood": options.likelihood})
-        consolidate(path)
-    written = {"likelihood": path}
-    surfaces = chunked_fault_surfaces(lazy.data, path, out_dir / "fault_surfaces.zarr",
-                                      options=options, chunking=chunking,
-                                      progress=progress)
-    written["surfaces_zarr"] = surfaces.path
-    zarr.open_group(str(surfaces.path), mode="r+").attrs["source"] = lazy.name
-    consolidate(surfaces.path)
-    LOGGER.info("%s: %d faults from %d seeds and %d thinned fault samples (thresholds %.3f, %.3f)", lazy.name,
-                len(surfaces.faults), surfaces.n_seeds, surfaces.n_cells, *surfaces.thresholds)
-    scan = zarr.open_group(str(path), mode="r")
-    traced = zarr.open_group(str(surfaces.path), mode="r")
-    dt = float(lazy.samples[1] - lazy.samples[0]) if lazy.unit != "samples" else 1.0
-    result = FaultInterpretation(likelihood=traced["likelihood"], strike_deg=scan["strike_deg"],
-                                 dip_deg=scan["dip_deg"], votes=traced["votes"], thin=traced["thin"],
-                                 thresholds=surfaces.thresholds, faults=surfaces.faults, throws=surfaces.throws,
-                                 evidence=surfaces.evidence, sample_interval=dt, sample_unit=lazy.unit)
+    """The faults of a cube traced block by block (:func:`~seismo3d.seismic.faults.trace_faults`) into
+    ``fault_likelihood.zarr`` and ``fault_surfaces.zarr`` in ``out_dir`` (reused when finished, resumed when
+    interrupted); the same files as in memory, into ``files``."""
+    dt = float(lazy.samples[1] - lazy.samples[0]) if lazy.unit != "samples" else None
+    result = trace_faults(lazy.data, sample_interval=dt, sample_unit=lazy.unit, options=options,
+                          memory_limit=memory_limit, in_memory=False, work_dir=out_dir, scheduler=scheduler,
+                          source=lazy.name, coords=lazy.coords, progress=progress)
+    written = {"likelihood": result.stores["likelihood"], "surfaces_zarr": result.stores["surfaces"]}
     inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
     _write_steps(_surface_steps(inp, result, files, summary), written, progress)
-    written.update(_segy_volumes(lazy, surfaces.path, files, {"likelihood": "likelihood", "votes": "votes"},
+    written.update(_segy_volumes(lazy, result.stores["surfaces"], files, {"likelihood": "likelihood",
+                                                                          "votes": "votes"}, progress))
+    written.update(_segy_volumes(lazy, result.stores["likelihood"], files, {"strike": "strike_deg", "dip": "dip_deg"},
                                  progress))
-    written.update(_segy_volumes(lazy, path, files, {"strike": "strike_deg", "dip": "dip_deg"}, progress))
     return written
 
 

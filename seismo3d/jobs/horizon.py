@@ -11,6 +11,7 @@ and distant traces, then dynamic programming over candidate picks), on a cube or
 from __future__ import annotations
 
 import pathlib
+import tempfile
 from dataclasses import dataclass
 
 import numpy as np
@@ -203,7 +204,8 @@ def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
 
 def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults: bool | None = None,
                     fill: bool = False, surface=None, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
-                    endian=None, sample_unit=None, overwrite: bool = False, progress: bool = True) -> HorizonJob:
+                    endian=None, sample_unit=None, overwrite: bool = False, memory_limit=None,
+                    progress: bool = True) -> HorizonJob:
     """Track a horizon in a SEG-Y cube or 2D line from seed picks and write it as text rows.
 
     Parameters
@@ -224,7 +226,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     faults : bool or None
         Trace the faults first (:func:`seismo3d.seismic.trace_faults`) and let the tracker take their jumps where the
         correlation across them supports it. None (default): on 3D cubes yes (a cube the fault tracer refuses is
-        tracked without them); on 2D lines no. True: always, and a refusal is raised. (In memory.)
+        tracked without them); on 2D lines no. True: always, and a refusal is raised. In memory, or block by block
+        when the cube's fault run does not fit ``memory_limit`` (:func:`seismo3d.seismic.faults.fits_in_memory`).
     fill : bool
         Fill empty traces by interpolation after tracking (:func:`seismo3d.seismic.fill_horizon`).
     surface : str or path-like, optional
@@ -239,6 +242,9 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         Unit of the sample axis; default from the SEG-Y headers.
     overwrite : bool
         Replace an existing ``output`` or ``surface`` (see :mod:`seismo3d.jobs.outputs`).
+    memory_limit : int or str, optional
+        Memory the fault tracing may use (default half of the RAM); a run by blocks keeps its stores in a temporary
+        folder, removed at the end.
     progress : bool
         Report progress (:mod:`seismo3d._progress`).
 
@@ -284,19 +290,21 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     # the faults first (by default on cubes; a cube the fault tracer refuses is tracked without them unless they
     # were asked for); then the horizon
     interp = None
-    if faults or (faults is None and survey.kind == "cube"):
+    with tempfile.TemporaryDirectory(prefix="seismo3d-faults-") as work:  # the stores of a run by blocks
+        if faults or (faults is None and survey.kind == "cube"):
+            try:
+                with record.stage("faults"):
+                    interp = trace_faults(survey.data, sample_interval=float(survey.samples[1] - survey.samples[0]),
+                                          sample_unit=survey.unit, memory_limit=memory_limit, work_dir=work,
+                                          source=survey.name, progress=progress)
+            except (InputError, UnsupportedDataError):
+                if faults:  # asked for: the refusal (e.g. a cube too small to trace) is the user's to see
+                    raise
         try:
-            with record.stage("faults"):
-                interp = trace_faults(survey.data, sample_interval=float(survey.samples[1] - survey.samples[0]),
-                                      sample_unit=survey.unit, progress=progress)
-        except (InputError, UnsupportedDataError):
-            if faults:  # asked for: the refusal (e.g. a cube too small to trace) is the user's to see
-                raise
-    try:
-        with record.stage("track"):
-            result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
-    except SeedError as exc:  # the library speaks of index positions: the user's inline, crossline and time instead
-        raise _seed_error(exc, survey, seeds, index_seeds, polarity) from None
+            with record.stage("track"):
+                result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
+        except SeedError as exc:  # the library speaks of index positions: the user's inline, crossline and time
+            raise _seed_error(exc, survey, seeds, index_seeds, polarity) from None
     if fill:
         result = fill_horizon(result)
     # the outputs

@@ -11,6 +11,8 @@ import segyio
 from typer.testing import CliRunner
 
 import seismo3d.jobs.faults as job
+import seismo3d.seismic.faults.cube_run as cube_run
+import seismo3d.seismic.faults.pipeline as pipeline
 from seismo3d.cli import app
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import UnsupportedDataError
@@ -50,8 +52,8 @@ def cube_file(tmp_path_factory):
 
 
 def test_a_limit_below_the_smallest_blocks_names_the_minimum_at_once(cube_file, tmp_path, monkeypatch):
-    monkeypatch.setattr(job, "chunked_fault_likelihood", _never)
-    monkeypatch.setattr(job, "judge_sample", _never)
+    monkeypatch.setattr(cube_run, "chunked_fault_likelihood", _never)
+    monkeypatch.setattr(cube_run, "judge_sample", _never)
     line = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
                                                "--memory-limit", "100MB"]))
     assert line.startswith("error: cube: a block-by-block run of its 128 x 128 x 128 samples needs a memory limit of "
@@ -66,15 +68,18 @@ def test_a_limit_below_the_smallest_blocks_names_the_minimum_at_once(cube_file, 
     def sampled(*args, **kwargs):
         raise Sampled
 
-    monkeypatch.setattr(job, "judge_sample", sampled)  # the limit named passes this check: the sample comes next
+    monkeypatch.setattr(cube_run, "judge_sample", sampled)  # the limit named passes this check: the sample comes next
     with pytest.raises(Sampled):
         job.run_faults_job(cube_file, tmp_path / "out", memory_limit=need, progress=False)
 
 
 def test_the_seed_candidates_a_sample_predicts_raise_the_minimum(cube_file, tmp_path, monkeypatch):
     dense = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1.0)  # 2 M candidates
-    monkeypatch.setattr(job, "judge_sample", lambda *a, **k: dense)
-    monkeypatch.setattr(job, "chunked_fault_likelihood", _never)
+    monkeypatch.setattr(cube_run, "judge_sample", lambda *a, **k: dense)
+    monkeypatch.setattr(cube_run, "chunked_fault_likelihood", _never)
+    # blocks at either limit: the limit named is rounded up to 0.1 GB once this process holds over 1 GB (the whole
+    # suite), which can leave room for the 200 MB in-memory run; this test is about the candidates' check
+    monkeypatch.setattr(job, "fits_in_memory", lambda *a, **k: False)
     # the smallest blocks' own minimum, asked of the job (it depends on the size of this process), plus 20 MB: the
     # blocks fit, 168 MB of candidates do not
     first = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
@@ -90,8 +95,8 @@ def test_the_seed_candidates_a_sample_predicts_raise_the_minimum(cube_file, tmp_
 
 def test_progress_lines_have_no_negative_sizes(cube_file, tmp_path, monkeypatch, caplog):
     """A limit below the process's own size: the lines say what the process holds, never a negative size left."""
-    monkeypatch.setattr(job, "judge_sample", lambda *a, **k: CubeSample(3, 1, 0.1, 0.0))
-    monkeypatch.setattr(job, "minimum_memory_limit", lambda *a, **k: 0)  # let the run reach its first step
+    monkeypatch.setattr(cube_run, "judge_sample", lambda *a, **k: CubeSample(3, 1, 0.1, 0.0))
+    monkeypatch.setattr(cube_run, "minimum_memory_limit", lambda *a, **k: 0)  # let the run reach its first step
 
     class Started(Exception):
         pass
@@ -99,7 +104,7 @@ def test_progress_lines_have_no_negative_sizes(cube_file, tmp_path, monkeypatch,
     def started(*args, **kwargs):
         raise Started
 
-    monkeypatch.setattr(job, "chunked_fault_likelihood", started)
+    monkeypatch.setattr(cube_run, "chunked_fault_likelihood", started)
     with caplog.at_level(logging.INFO, logger="seismo3d"), pytest.raises(Started):
         job.run_faults_job(cube_file, tmp_path / "out", memory_limit="100MB", progress=False)
     assert "block by block" in caplog.text and not re.search(r"-\d", caplog.text)
@@ -137,8 +142,8 @@ def test_white_noise_under_1GB_is_refused_within_30_s(noise_file, tmp_path):
 
 @pytest.mark.slow
 def test_white_noise_under_100MB_names_the_minimum_before_any_block(noise_file, tmp_path, monkeypatch):
-    monkeypatch.setattr(job, "chunked_fault_likelihood", _never)
-    monkeypatch.setattr(job, "judge_sample", _never)
+    monkeypatch.setattr(cube_run, "chunked_fault_likelihood", _never)
+    monkeypatch.setattr(cube_run, "judge_sample", _never)
     line = _error_line(runner.invoke(app, ["faults", str(noise_file), "-o", str(tmp_path / "out"),
                                                "--memory-limit", "100MB"]))
     size = r"\d+(\.\d)?[MG]B"  # this process's size sets the minimum: MB alone, GB after a long test session
@@ -151,6 +156,6 @@ def test_noise_in_memory_is_refused_from_a_sample(tmp_path, monkeypatch):
     """A cube traced in memory but large enough to sample: refused before its whole likelihood."""
     path = tmp_path / "noise.npy"
     np.save(path, np.random.default_rng(1).standard_normal((300, 300, 320), dtype=np.float32))
-    monkeypatch.setattr(job, "trace_faults", _never)
+    monkeypatch.setattr(pipeline, "fault_likelihood", _never)
     with pytest.raises(UnsupportedDataError, match="in a sample of 3 blocks"):
         job.run_faults_job(path, tmp_path / "out", progress=False)

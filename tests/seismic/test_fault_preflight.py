@@ -6,7 +6,7 @@ import pytest
 
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, UnsupportedDataError
-from seismo3d.seismic.faults import likelihood_blocks, pipeline_blocks
+from seismo3d.seismic.faults import likelihood_blocks, surface_plan
 from seismo3d.seismic.faults.likelihood import FaultScanOptions
 from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions
 from seismo3d.seismic.faults.pipeline import FaultTracingOptions
@@ -72,7 +72,7 @@ def test_minimum_memory_limit_is_what_both_stages_plan_with(shape):
     def plans(memory_limit):
         chunking = ChunkOptions(memory_limit=memory_limit)
         likelihood_blocks._plan(shape, FaultScanOptions(), chunking, baseline)
-        pipeline_blocks._plan(shape, FaultTracingOptions(), chunking, baseline + growth)
+        surface_plan.plan_blocks(shape, FaultTracingOptions(), chunking, baseline + growth)
 
     plans(limit)
     with pytest.raises(InputError, match="raise memory_limit"):
@@ -84,7 +84,7 @@ def test_minimum_memory_limit_holds_the_predicted_seed_candidates():
     plain = minimum_memory_limit(shape, baseline=0, growth=0)
     dense = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.05)
     with_candidates = minimum_memory_limit(shape, baseline=0, sample=dense, growth=0)
-    assert with_candidates == dense.candidates(shape) * pipeline_blocks.CANDIDATE_BYTES > plain
+    assert with_candidates == dense.candidates(shape) * surface_plan.CANDIDATE_BYTES > plain
     sparse = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1e-6)
     assert minimum_memory_limit(shape, baseline=0, sample=sparse, growth=0) == plain
 

@@ -23,7 +23,8 @@ from scipy.ndimage import binary_opening, maximum_filter1d
 from ..._validation import check_seismic_layout
 from ...errors import InputError, Seismo3dWarning
 
-__all__ = ["CleanTraces", "clean_traces", "fill_values", "dead_samples", "near_dead_samples", "DEAD_REACH"]
+__all__ = ["CleanTraces", "clean_traces", "check_varies", "clipped_count", "fill_values", "dead_samples",
+           "near_dead_samples", "warn_clipped", "warn_dead", "warn_non_finite", "DEAD_REACH"]
 
 # Reach (traces, samples) of a dead zone's edge in fault_likelihood: the 3 x 3-trace semblance and the reflector slopes
 # of the structure tensor (smoothed over about 2 traces and 6 samples) see the edge this far; likelihood this close to
@@ -189,30 +190,84 @@ def clean_traces(data) -> CleanTraces:
     arr = np.asarray(arr, dtype=np.float32)
     finite = np.isfinite(arr)
     if not finite.all():
-        n_bad = int(arr.size - np.count_nonzero(finite))
-        warnings.warn(f"data has {n_bad} NaN or inf samples ({n_bad / arr.size:.1%}); they are read as 0, and "
-                      "runs of them are skipped like dead traces", Seismo3dWarning, stacklevel=3)
+        warn_non_finite(int(arr.size - np.count_nonzero(finite)), arr.size)
         arr = np.where(finite, arr, np.float32(0.0))
     del finite
-    if arr.max() == arr.min():
-        raise InputError("every sample has the same value (or is NaN): there are no reflectors to trace faults in; "
-                         "check that the file is the right one and that its data format is read correctly")
     lo, hi = arr.min(), arr.max()
+    check_varies(lo, hi)
     flat, clipped = _flat_samples(arr, lo, hi)
-    frac_clipped = float(np.count_nonzero(clipped)) / clipped.size
-    if frac_clipped > _CLIPPED_WARN:
-        warnings.warn(f"{frac_clipped:.0%} of the samples sit at the data's smallest or largest value: clipped "
-                      "amplitudes (an 8-bit export?). Fault likelihood and throws are measured on the clipped "
-                      "waveforms and are less reliable; trace the unclipped data if you have it",
-                      Seismo3dWarning, stacklevel=3)
+    warn_clipped(int(np.count_nonzero(clipped)), clipped.size)
     flat &= ~clipped
     del clipped
     dead = _dead(arr, flat, _fills(arr, flat))
     del flat
-    if dead.any():
-        n_dead = int(np.count_nonzero(dead))
-        n_tr = int(np.count_nonzero(dead.all(axis=-1)))
-        warnings.warn(f"{n_dead / dead.size:.1%} of the samples are constant over {DEAD_RUN} or more samples "
-                      f"(mutes, gaps, {n_tr} dead traces); fault likelihood within {DEAD_REACH[0]} traces and "
-                      f"{DEAD_REACH[1]} samples of them is set to 0", Seismo3dWarning, stacklevel=3)
+    warn_dead(int(np.count_nonzero(dead)), dead.size, int(np.count_nonzero(dead.all(axis=-1))))
     return CleanTraces(arr, dead)
+
+
+def clipped_count(data, lo: float, hi: float) -> int:
+    """Samples of a block of whole traces at the data's smallest ``lo`` or largest ``hi`` value (after the first of
+    each trace, on traces that are not constant): summed over the blocks, the count :func:`warn_clipped` takes.
+
+    Returns
+    -------
+    int
+    """
+    _, clipped = _flat_samples(np.asarray(data, dtype=np.float32), lo, hi)
+    return int(np.count_nonzero(clipped))
+
+
+def warn_non_finite(n_bad: int, n: int) -> None:
+    """Warn that ``n_bad`` of ``n`` samples are NaN or inf (read as 0).
+
+    Warns
+    -----
+    Seismo3dWarning
+        When ``n_bad > 0``.
+    """
+    if n_bad:
+        warnings.warn(f"data has {n_bad} NaN or inf samples ({n_bad / n:.1%}); they are read as 0, and "
+                      "runs of them are skipped like dead traces", Seismo3dWarning, stacklevel=3)
+
+
+def check_varies(lo: float, hi: float) -> None:
+    """Refuse data whose smallest and largest values (NaN read as 0) are equal.
+
+    Raises
+    ------
+    InputError
+        ``lo == hi``.
+    """
+    if lo == hi:
+        raise InputError("every sample has the same value (or is NaN): there are no reflectors to trace faults in; "
+                         "check that the file is the right one and that its data format is read correctly")
+
+
+def warn_clipped(n_clipped: int, n: int) -> None:
+    """Warn when more than 5 % of the ``n`` sample steps are clipped amplitudes (:func:`clipped_count`).
+
+    Warns
+    -----
+    Seismo3dWarning
+        ``n_clipped / n`` above 5 %.
+    """
+    fraction = float(n_clipped) / n if n else 0.0
+    if fraction > _CLIPPED_WARN:
+        warnings.warn(f"{fraction:.0%} of the samples sit at the data's smallest or largest value: clipped "
+                      "amplitudes (an 8-bit export?). Fault likelihood and throws are measured on the clipped "
+                      "waveforms and are less reliable; trace the unclipped data if you have it",
+                      Seismo3dWarning, stacklevel=3)
+
+
+def warn_dead(n_dead: int, n: int, n_dead_traces: int) -> None:
+    """Warn that ``n_dead`` of ``n`` samples are dead (``n_dead_traces`` whole traces).
+
+    Warns
+    -----
+    Seismo3dWarning
+        When ``n_dead > 0``.
+    """
+    if n_dead:
+        warnings.warn(f"{n_dead / n:.1%} of the samples are constant over {DEAD_RUN} or more samples "
+                      f"(mutes, gaps, {n_dead_traces} dead traces); fault likelihood within {DEAD_REACH[0]} traces "
+                      f"and {DEAD_REACH[1]} samples of them is set to 0", Seismo3dWarning, stacklevel=3)

@@ -46,6 +46,7 @@ from .likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitud
                                saturation_counts, scan_planes, scan_step, semblance_floor, semblance_halo,
                                semblance_terms, strike_halo)
 from ..io.zarr_store import consolidate
+from .memory import default_memory_limit, in_memory_bytes, resident_memory, worker_baseline
 
 __all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
            "in_memory_bytes", "resident_memory", "smallest_block_bytes", "worker_baseline"]
@@ -61,8 +62,6 @@ _BALANCE_BYTES = 20
 _SEMBLANCE_BYTES = 48
 _SCAN_BYTES = 24
 _DECODE_BYTES = 24
-# In-memory `seismo3d faults` (likelihood, voting, skins, throw): measured 1408 MB on a 256^3 float32 cube (64 MiB).
-_IN_MEMORY_FACTOR = 24
 
 
 @dataclass(frozen=True)
@@ -149,20 +148,6 @@ class ChunkedLikelihood:
         return {name: group[name] for name in ("likelihood", "strike_deg", "dip_deg")}
 
 
-def default_memory_limit() -> int:
-    """Half of the machine's physical memory, bytes (the default ``--memory-limit``)."""
-    try:
-        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    except (ValueError, OSError, AttributeError):
-        total = 8 << 30
-    return int(total // 2)
-
-
-def in_memory_bytes(shape) -> int:
-    """Peak memory of the in-memory ``seismo3d faults`` on a float32 cube of this shape, bytes (measured factor)."""
-    return int(np.prod(shape, dtype=np.int64)) * 4 * _IN_MEMORY_FACTOR
-
-
 @dataclass(frozen=True)
 class _Plan:
     shape: tuple
@@ -205,35 +190,6 @@ def trace_cube(cube, what: str):
     if len(x.chunks[2]) != 1:
         x = x.rechunk({2: -1})
     return x
-
-
-def resident_memory() -> int:
-    """Resident memory of this process, bytes (256 MiB when it cannot be read)."""
-    try:
-        import psutil
-        return int(psutil.Process().memory_info().rss)
-    except (ImportError, OSError):
-        return 256 << 20
-
-
-def worker_baseline(chunking: ChunkOptions, input_chunk: int) -> int:
-    """Memory of a worker before its blocks: the process itself (this one's size on the local schedulers, 256 MiB
-    assumed for a distributed worker) and two input chunks being read.
-
-    Parameters
-    ----------
-    chunking : ChunkOptions
-        Its scheduler says whether the blocks run in this process.
-    input_chunk : int
-        Bytes of one chunk of the lazy input.
-
-    Returns
-    -------
-    int
-        Bytes.
-    """
-    local = chunking.scheduler in (None, "threads", "synchronous")
-    return (resident_memory() if local else 256 << 20) + 2 * int(input_chunk)
 
 
 def _step_bytes(shape, options: FaultScanOptions) -> tuple:

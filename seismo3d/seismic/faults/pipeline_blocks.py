@@ -33,51 +33,30 @@ import pathlib
 import shutil
 from dataclasses import asdict, dataclass
 
-import numba
 import numpy as np
 
 from ..._atomic import atomic_path
-from ...errors import InputError, UnsupportedDataError
-from ..attributes import structure_tensor_halo, structure_tensor_orientation
-from ..blocks import MEMORY_HEADROOM, BlockRun, SchedulerClient, largest_block, write_marker
+from ...errors import InputError
+from ..attributes import structure_tensor_orientation
+from ..blocks import BlockRun, SchedulerClient, write_marker
 from ..io.zarr_store import consolidate
-from .dead_samples import DEAD_REACH, dead_samples, fill_values, near_dead_samples
+from .checks import check_saturation
+from .dead_samples import dead_samples, fill_values, near_dead_samples
 from .evidence import supported_faults
-from .likelihood_blocks import ChunkOptions, default_memory_limit, resident_memory, worker_baseline
-from .pipeline import FaultTracingOptions, no_coherence_message
+from .interpretation import FaultTracingOptions
+from .likelihood_blocks import ChunkOptions
+from .memory import default_memory_limit, resident_memory, worker_baseline
 from .skins import skins_from_cells
-from .surfaces import thin_faults
+from .steps import live_likelihood, ridges, thin_votes, without_dead_edges
+from .surface_plan import (CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, THIN_HALO, SurfacePlan, amplitude_halo, around,
+                           plan_blocks, smallest_block_bytes, square_blocks)
+from .thresholds import (HISTOGRAM_BINS, QUANTILE_BINS, block_histogram, otsu_of_histogram, quantile_of_window,
+                         quantile_window)
 from .throw import fault_throws
 from .voting import fault_frames, greedy_seeds, surface_votes
 from .windows import StoredWindows
 
 __all__ = ["CANDIDATE_BYTES", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO", "smallest_block_bytes"]
-
-# Lateral halo of the ridges (thin_faults with its defaults): the Gaussian of sigma 1.5 (5 traces), the average along
-# the dip over +-4 samples on planes steeper than 45 degrees (4 traces, +1 for the bilinear reads), and the
-# comparison one sample across the fault (+1, +1 for the trilinear reads).
-RIDGE_HALO = 12
-# Lateral halo of the thinning of the votes (no smoothing): one sample across the fault, trilinear reads.
-_THIN_HALO = 2
-# Bins of the histogram that finds the exact quantile of the thinned votes (only for densely faulted data).
-_QUANTILE_BINS = 1 << 16
-# Bytes of working memory per sample of a block (incl. halo): amplitudes, their reflector slopes and the dead-sample
-# masks; likelihood, strike, dip, the ranking image and its smoothing passes, ridges and the hysteresis labels; the
-# voting's core (votes, strongest surface and its seed per numba thread; the summed votes, strike, dip) and its
-# input; the thinning of the votes.
-# (tracemalloc peaks on 96-trace blocks of 512 samples: ridges 44 per sample of the likelihood's halo block, amplitudes
-# included; voting 32 per core sample with 2 threads besides the input, 8 + 12 per thread; thinning 41)
-_DEAD_BYTES = 12
-_RIDGE_BYTES = 48
-_VOTE_CORE_BYTES = 12
-_VOTE_THREAD_BYTES = 12  # per numba thread: its votes, strongest surface and seed (each thread its own arrays)
-_VOTE_HALO_BYTES = 4
-_THIN_BYTES = 44
-# Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
-# frames, links, labels, the merging's KD-tree; measured 219-234 bytes a cell on 1.4 M cells of a 512^3 cube, 250 on
-# the 11 M cells of a 1448 x 1448 x 512 one).
-CANDIDATE_BYTES = 80  # points, values, angles (36), the sort keys, order and sorted copy
-_CELL_BYTES = 240
 
 
 @dataclass(frozen=True, eq=False)
@@ -124,97 +103,6 @@ class ChunkedFaults:
     blocks_computed: dict
     blocks_resumed: dict
     seconds: dict
-
-
-@dataclass(frozen=True)
-class _Plan:
-    shape: tuple
-    tile: int
-    dead: int     # block sizes (traces a side) of the steps
-    ridge: int
-    vote: int
-    thin: int
-    reach: int    # a voting box's reach from its seed
-
-
-def _amplitude_halo() -> int:
-    """Traces of amplitudes read around a block of the ridge step: the dead samples' reach around the likelihood's
-    halo, and the structure tensor's halo for the reflector slopes."""
-    return max(RIDGE_HALO + DEAD_REACH[0], structure_tensor_halo()[0])
-
-
-def _step_bytes(shape, opt: FaultTracingOptions) -> dict:
-    """Bytes a block of ``b`` traces a side needs in each step (dead samples, ridges, voting, thinning): functions of
-    ``b`` by step name."""
-    nt = shape[2]
-    reach = opt.voting.reach(shape)
-    threads = numba.get_num_threads()
-
-    def dead_bytes(b):
-        return b * b * nt * _DEAD_BYTES
-
-    def ridge_bytes(b):
-        h = _amplitude_halo()
-        return (b + 2 * h) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
-
-    def vote_bytes(b):
-        core = _VOTE_CORE_BYTES + _VOTE_THREAD_BYTES * threads
-        return (b + 4 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * core
-
-    def thin_bytes(b):
-        return (b + 2 * _THIN_HALO) ** 2 * nt * _THIN_BYTES
-
-    return {"dead": dead_bytes, "ridge": ridge_bytes, "vote": vote_bytes, "thin": thin_bytes}
-
-
-def smallest_block_bytes(shape, options: FaultTracingOptions | None = None, tile: int = 32) -> int:
-    """Bytes the largest step of :func:`chunked_fault_surfaces` needs with its smallest blocks (one ``tile`` a side),
-    on top of the process itself: what ``memory_limit`` must leave for it (before the headroom).
-
-    Parameters
-    ----------
-    shape : (int, int, int)
-        ``(n_inlines, n_xlines, n_samples)``.
-    options : FaultTracingOptions, optional
-    tile : int
-        Traces a side of the smallest block (:attr:`~seismo3d.seismic.faults.likelihood_blocks.ChunkOptions.tile`).
-
-    Returns
-    -------
-    int
-    """
-    steps = _step_bytes(tuple(int(n) for n in shape), options or FaultTracingOptions())
-    return int(max(need(int(tile)) for need in steps.values()))
-
-
-def _plan(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
-    n0, n1, nt = shape
-    tile = int(chunking.tile)
-    limit = int(chunking.memory_limit or default_memory_limit())
-    budget = int((limit - baseline) * MEMORY_HEADROOM) // int(chunking.workers)
-    reach = opt.voting.reach(shape)
-    cap = max(n0, n1)
-    sizes = {}
-    for name, need in _step_bytes(shape, opt).items():
-        top = int(chunking.block) if chunking.block else min(cap, 512)
-        sizes[name] = largest_block(tile, top, lambda b, need=need: need(b) <= budget)
-        if need(sizes[name]) > budget:
-            raise InputError(
-                f"the fault surfaces of a {n0} x {n1} x {nt} cube need about "
-                f"{(need(sizes[name]) * int(chunking.workers) + baseline) / 2**30:.2f} GiB per block but the memory "
-                f"limit is {limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
-    return _Plan((n0, n1, nt), tile, sizes["dead"], sizes["ridge"], sizes["vote"], sizes["thin"], reach)
-
-
-def _blocks(shape, size):
-    n0, n1 = shape[:2]
-    return [(i, min(i + size, n0), j, min(j + size, n1)) for i in range(0, n0, size) for j in range(0, n1, size)]
-
-
-def _around(block, halo, shape):
-    """(a0, a1, b0, b1): ``block`` grown by ``halo`` traces, clipped to the cube."""
-    i0, i1, j0, j1 = block
-    return max(i0 - halo, 0), min(i1 + halo, shape[0]), max(j0 - halo, 0), min(j1 + halo, shape[1])
 
 
 def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOptions | None = None,
@@ -287,21 +175,21 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
                              "chunked_fault_likelihood for this cube")
     input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * shape[2]
     baseline = worker_baseline(chunking, input_chunk)
-    plan = _plan(shape, opt, chunking, baseline)
+    plan = plan_blocks(shape, opt, chunking, baseline)
     run = _SurfaceRun(pathlib.Path(output), pathlib.Path(likelihood), plan, opt, chunking, progress)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
                 "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve())}
     earlier = run.earlier_plan(manifest)
     if earlier is not None:  # resuming: the blocks of the interrupted run
-        run.plan = plan = _Plan(**dict(earlier, shape=tuple(earlier["shape"])))
+        run.plan = plan = SurfacePlan(**dict(earlier, shape=tuple(earlier["shape"])))
         manifest["plan"] = earlier
     memory = int(chunking.memory_limit or default_memory_limit())  # the cells' and candidates' checks: less the RSS
     attrs = run.finished(manifest)
     if attrs is None:
         attrs = _surfaces(run, x, manifest, memory)
-    elif attrs["n_cells"] * _CELL_BYTES > memory - resident_memory():
+    elif attrs["n_cells"] * CELL_BYTES > memory - resident_memory():
         raise InputError(f"{attrs['n_cells']} thinned fault samples need about "
-                         f"{attrs['n_cells'] * _CELL_BYTES / 2**30:.2f} GiB to link into fault skins, more than the "
+                         f"{attrs['n_cells'] * CELL_BYTES / 2**30:.2f} GiB to link into fault skins, more than the "
                          "memory limit leaves: raise memory_limit")
     lower, upper = (float(v) for v in attrs["thresholds"])
     faults = skins_from_cells(*_stored_cells(run.out), shape=shape, lower=lower, upper=upper, options=opt.skins)
@@ -322,9 +210,8 @@ def _surfaces(run: _SurfaceRun, x, manifest: dict, memory: int) -> dict:
         run.client = client
         lo, hi = run.amplitude_range(x)
         fill = run.fill_values(x, lo, hi)
-        saturated = run.ridges(x, fill, lo, hi)
-        if saturated > opt.max_saturated:
-            raise UnsupportedDataError(no_coherence_message(saturated))
+        high, live = run.ridges(x, fill, lo, hi)
+        saturated = check_saturation(high, live, opt)
         seeds, frames = run.seeds(memory)
         run.votes(seeds, frames)
         del seeds, frames
@@ -347,7 +234,7 @@ def _stored_cells(path: pathlib.Path) -> tuple:
 class _SurfaceRun(BlockRun):
     """One chunked fault-surface run: folders, steps and their blocks."""
 
-    def __init__(self, out: pathlib.Path, likelihood: pathlib.Path, plan: _Plan, opt: FaultTracingOptions,
+    def __init__(self, out: pathlib.Path, likelihood: pathlib.Path, plan: SurfacePlan, opt: FaultTracingOptions,
                  chunking: ChunkOptions, progress: bool):
         super().__init__(out.with_name(out.name + ".work"), scheduler=chunking.scheduler, workers=chunking.workers,
                          progress=progress)
@@ -433,26 +320,25 @@ class _SurfaceRun(BlockRun):
 
     def fill_values(self, x, lo: float, hi: float) -> np.ndarray:
         p = self.plan
-        todo, done = self.pending("fill", _blocks(p.shape, p.dead))
+        todo, done = self.pending("fill", square_blocks(p.shape, p.dead))
         tasks = [self.task(_fill_block, x[b[0]:b[1], b[2]:b[3]], lo, hi, str(self.marker("fill", b)))
                  for b in todo]
         results = self.compute(tasks, "fill values", "fill") + done
         return np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
                                         [np.zeros(1, np.float32)]))
 
-    def ridges(self, x, fill: np.ndarray, lo: float, hi: float) -> float:
+    def ridges(self, x, fill: np.ndarray, lo: float, hi: float) -> tuple[int, int]:
+        """Ridges of every block; (saturated live samples, live samples)."""
         p = self.plan
-        todo, done = self.pending("ridges", _blocks(p.shape, p.ridge))
-        h = _amplitude_halo()
+        todo, done = self.pending("ridges", square_blocks(p.shape, p.ridge))
+        h = amplitude_halo()
         tasks = []
         for b in todo:
-            a0, a1, b0, b1 = _around(b, h, p.shape)
+            a0, a1, b0, b1 = around(b, h, p.shape)
             tasks.append(self.task(_ridge_block, x[a0:a1, b0:b1], (a0, b0), b, fill, lo, hi, self.likelihood,
                                    str(self.work), str(self.partial), p, self.opt, str(self.marker("ridges", b))))
         results = self.compute(tasks, "fault ridges", "ridges") + done
-        high = sum(r["high"] for r in results)
-        live = sum(r["live"] for r in results)
-        return high / live if live else 0.0
+        return sum(r["high"] for r in results), sum(r["live"] for r in results)
 
     def seeds(self, memory: int) -> tuple[np.ndarray, np.ndarray]:
         path = self.work / "seeds.npz"
@@ -481,7 +367,7 @@ class _SurfaceRun(BlockRun):
 
     def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
         p = self.plan
-        todo, _ = self.pending("votes", _blocks(p.shape, p.vote))
+        todo, _ = self.pending("votes", square_blocks(p.shape, p.vote))
         tasks = []
         for b in todo:
             i0, i1, j0, j1 = b
@@ -495,47 +381,35 @@ class _SurfaceRun(BlockRun):
         self.compute(tasks, "fault voting", "votes")
 
     def thresholds(self) -> tuple[float, float]:
+        """The thresholds from the thinned votes of every block: their count and range, their histogram (Otsu) and,
+        when they are dense, their exact quantile (:mod:`~seismo3d.seismic.faults.thresholds`)."""
         p = self.plan
-        blocks = _blocks(p.shape, p.thin)
+        blocks = square_blocks(p.shape, p.thin)
         stats = self.each_block("thin", "thinning", _thin_block, blocks, str(self.work), str(self.partial), p)
         n_values = sum(r["count"] for r in stats)
+        n_samples = int(np.prod(p.shape, dtype=np.int64))
         if n_values == 0:
-            return self.opt.thresholds_from(1.0, 0, int(np.prod(p.shape, dtype=np.int64)), None)
+            return self.opt.thresholds_from(1.0, 0, n_samples, None)
         vmin = min(r["min"] for r in stats if r["count"])
         vmax = max(r["max"] for r in stats if r["count"])
-        counts, centers = self._histogram(blocks, vmin, vmax, 256, "histogram")
-        otsu = vmax if vmax <= vmin else _otsu_of_histogram(counts, centers)
-        return self.opt.thresholds_from(otsu, n_values, int(np.prod(p.shape, dtype=np.int64)),
+        otsu = otsu_of_histogram(self._histogram(blocks, vmin, vmax, HISTOGRAM_BINS, "histogram"), vmin, vmax)
+        return self.opt.thresholds_from(otsu, n_values, n_samples,
                                         lambda q: self._quantile(blocks, q, n_values, vmin, vmax))
 
-    def _histogram(self, blocks, vmin, vmax, bins, step):
+    def _histogram(self, blocks, vmin, vmax, bins, step) -> np.ndarray:
         results = self.each_block(step, "histogram of the thinned votes", _histogram_block, blocks, str(self.work),
                                    vmin, vmax, bins)
-        counts = np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)
-        edges = np.histogram_bin_edges(np.array([vmin, vmax], np.float32), bins=bins,
-                                       range=_float32_range(vmin, vmax))
-        return counts, (edges[:-1] + edges[1:]) / 2.0
+        return np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)
 
     def _quantile(self, blocks, q: float, n: int, vmin: float, vmax: float) -> float:
         """numpy.quantile(values, q) of the positive thinned votes, exactly: the two order statistics it
         interpolates, found by a fine histogram and a pass that gathers the values of their bins."""
-        rank, gamma = _virtual_index(n, q)
-        need = 2 if rank + 1 < n else 1
-        counts, _ = self._histogram(blocks, vmin, vmax, _QUANTILE_BINS, "quantile_histogram")
-        cum = np.cumsum(counts)
-        edges = np.histogram_bin_edges(np.array([vmin, vmax], np.float32), bins=_QUANTILE_BINS,
-                                       range=_float32_range(vmin, vmax))
-        first = int(np.searchsorted(cum, rank + 1))
-        last = int(np.searchsorted(cum, rank + need))
-        # one bin more on each side: the values np.histogram puts in a bin may sit on its edges
-        lo_edge, hi_edge = float(edges[max(first - 1, 0)]), float(edges[min(last + 2, _QUANTILE_BINS)])
+        counts = self._histogram(blocks, vmin, vmax, QUANTILE_BINS, "quantile_histogram")
+        window = quantile_window(counts, n, q, vmin, vmax)
         results = self.each_block("quantile", "quantile of the thinned votes", _gather_block, blocks, str(self.work),
-                                   lo_edge, hi_edge)
-        k = rank - sum(r["below"] for r in results)
-        window = np.sort(np.concatenate([np.asarray(r["values"], np.float32) for r in results]))
-        if k < 0 or k + need > window.size:  # pragma: no cover - the window is one bin wider than needed
-            raise RuntimeError(f"the quantile window [{lo_edge}, {hi_edge}] missed order statistic {rank}")
-        return _lerp(window[k], window[k + need - 1], gamma)
+                                   window[3], window[4])
+        values = np.concatenate([np.asarray(r["values"], np.float32) for r in results])
+        return quantile_of_window(window, sum(r["below"] for r in results), values)
 
     def cells(self, lower: float, memory: int) -> int:
         """Thinned votes at or above ``lower`` into the output, and its cells gathered into 1D arrays of the output
@@ -543,12 +417,12 @@ class _SurfaceRun(BlockRun):
         need no sorted copies); their number."""
         import zarr
         p = self.plan
-        blocks = _blocks(p.shape, p.thin)
+        blocks = square_blocks(p.shape, p.thin)
         results = self.each_block("cells", "fault cells", _cell_block, blocks, str(self.work), str(self.partial),
                                    lower)
         n = sum(r["count"] for r in results)
-        if n * _CELL_BYTES > memory - resident_memory():
-            raise InputError(f"{n} thinned fault samples need about {n * _CELL_BYTES / 2**30:.2f} GiB to link into "
+        if n * CELL_BYTES > memory - resident_memory():
+            raise InputError(f"{n} thinned fault samples need about {n * CELL_BYTES / 2**30:.2f} GiB to link into "
                              "fault skins, more than the memory limit leaves: raise memory_limit")
         group = zarr.open_group(str(self.partial), mode="r+")
         chunk = 1 << 20
@@ -571,34 +445,6 @@ class _SurfaceRun(BlockRun):
         return n
 
 
-def _virtual_index(n: int, q: float) -> tuple[int, float]:
-    """(rank, gamma) of numpy.quantile's linear method for ``n`` values: the q-quantile lies between the order
-    statistics ``rank`` and ``rank + 1``, a fraction ``gamma`` of the way (numpy's arithmetic, Hyndman & Fan's
-    method 7)."""
-    v = n * q + (1.0 + q * (1.0 - 1.0 - 1.0)) - 1.0
-    rank = int(np.floor(v))
-    return min(max(rank, 0), n - 1), float(v - np.floor(v))
-
-
-def _lerp(a, b, gamma: float) -> float:
-    """numpy.quantile's interpolation between float32 order statistics ``a`` <= ``b`` (in float32, from whichever
-    end is nearer)."""
-    a, b = np.float32(a), np.float32(b)
-    d = b - a
-    return float(b - d * np.float32(1.0 - gamma)) if gamma >= 0.5 else float(a + d * np.float32(gamma))
-
-
-def _float32_range(vmin: float, vmax: float) -> tuple:
-    """The histogram range as float32 scalars: numpy then computes the bin edges in float32, as for the range of a
-    float32 array (what skimage's Otsu threshold uses in memory)."""
-    return np.float32(vmin), np.float32(vmax)
-
-
-def _otsu_of_histogram(counts: np.ndarray, centers: np.ndarray) -> float:
-    from skimage.filters import threshold_otsu
-    return float(threshold_otsu(hist=(counts, centers)))
-
-
 def _save_npz(path: pathlib.Path, **arrays) -> None:
     with atomic_path(str(path)) as tmp, open(tmp, "wb") as fh:
         np.savez(fh, **arrays)
@@ -612,7 +458,7 @@ def _fill_block(f, lo, hi, marker) -> dict:
     return result
 
 
-def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan: _Plan, opt: FaultTracingOptions,
+def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan: SurfacePlan, opt: FaultTracingOptions,
                  marker) -> dict:
     """Dead samples, live likelihood and ridges of one block; seed candidates of its core saved."""
     import zarr
@@ -624,28 +470,26 @@ def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan
     del f
     near = near_dead_samples(dead) if dead.any() else None
     del dead
-    a0, a1, b0, b1 = _around(block, RIDGE_HALO, plan.shape)
+    a0, a1, b0, b1 = around(block, RIDGE_HALO, plan.shape)
     group = zarr.open_group(likelihood, mode="r")
     fl = group["likelihood"][a0:a1, b0:b1]
     st = group["strike_deg"][a0:a1, b0:b1]
     dp = group["dip_deg"][a0:a1, b0:b1]
     if near is not None:
         near = near[a0 - origin[0]:a1 - origin[0], b0 - origin[1]:b1 - origin[1]]
-        fl[near] = 0.0
     core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
-    live = np.ones(fl[core].shape, bool) if near is None else ~near[core]
+    high, live = live_likelihood(fl, near, core)
     zarr.open_group(partial, mode="r+")["likelihood"][i0:i1, j0:j1] = fl[core]
     if near is not None:
         zarr.open_array(f"{work}/near", mode="r+")[i0:i1, j0:j1] = near[core].view(np.uint8)
-    high = int(np.count_nonzero((fl[core] > 0.9) & live))
-    ridges = thin_faults(fl, st, dp, threshold=0.0)[core]
-    cand = np.argwhere(ridges > float(opt.voting.seed_threshold))
+    ridge = ridges(fl, st, dp)[core]
+    cand = np.argwhere(ridge > float(opt.voting.seed_threshold))
     at = tuple(cand.T)
     local = (cand[:, 0] + i0 - a0, cand[:, 1] + j0 - b0, cand[:, 2])
     _save_npz(pathlib.Path(work) / "candidates" / f"{i0}-{j0}.npz",
-              points=(cand + np.array([i0, j0, 0])).astype(np.int64), values=ridges[at].astype(np.float32),
+              points=(cand + np.array([i0, j0, 0])).astype(np.int64), values=ridge[at].astype(np.float32),
               angles=np.stack([st[local], dp[local]], axis=-1).astype(np.float32))
-    result = {"high": high, "live": int(np.count_nonzero(live))}
+    result = {"high": high, "live": live}
     write_marker(marker, result)
     return result
 
@@ -662,18 +506,16 @@ def _write_slopes(f: np.ndarray, origin, block, partial) -> None:
     group["slope_xline"][i0:i1, j0:j1] = slopes[1][core]
 
 
-def _vote_block(block, seeds, ids, frames, work, partial, plan: _Plan, opt: FaultTracingOptions, marker) -> dict:
+def _vote_block(block, seeds, ids, frames, work, partial, plan: SurfacePlan, opt: FaultTracingOptions, marker) -> dict:
     """Votes of the seeds reaching one block, over its core, on the live likelihood around it."""
     import zarr
     i0, i1, j0, j1 = block
-    a0, a1, b0, b1 = _around(block, 2 * plan.reach, plan.shape)
+    a0, a1, b0, b1 = around(block, 2 * plan.reach, plan.shape)
     att = zarr.open_group(partial, mode="r")["likelihood"][a0:a1, b0:b1]
     votes = surface_votes(att, seeds, ids, frames, image_shape=plan.shape, options=opt.voting, origin=(a0, b0),
                           core=(i0, j0, i1 - i0, j1 - j0))
     del att
-    near = zarr.open_array(f"{work}/near", mode="r")[i0:i1, j0:j1].view(bool)
-    votes.votes[near] = 0.0  # surfaces bridge gaps, but a fault is not drawn across dead traces
-    del near
+    without_dead_edges(votes.votes, zarr.open_array(f"{work}/near", mode="r")[i0:i1, j0:j1].view(bool))
     group = zarr.open_group(partial, mode="r+")
     group["votes"][i0:i1, j0:j1] = votes.votes
     group["vote_strike_deg"][i0:i1, j0:j1] = votes.strike_deg
@@ -682,15 +524,15 @@ def _vote_block(block, seeds, ids, frames, work, partial, plan: _Plan, opt: Faul
     return {}
 
 
-def _thin_block(block, work, partial, plan: _Plan, marker) -> dict:
+def _thin_block(block, work, partial, plan: SurfacePlan, marker) -> dict:
     """Thinned votes of one block; the count, smallest and largest of the positive ones."""
     import zarr
     i0, i1, j0, j1 = block
-    a0, a1, b0, b1 = _around(block, _THIN_HALO, plan.shape)
+    a0, a1, b0, b1 = around(block, THIN_HALO, plan.shape)
     group = zarr.open_group(partial, mode="r")
     votes = group["votes"][a0:a1, b0:b1]
-    thin = thin_faults(votes, group["vote_strike_deg"][a0:a1, b0:b1], group["vote_dip_deg"][a0:a1, b0:b1],
-                       threshold=0.0, sigma=0.0, dip_smoothing=0)[i0 - a0:i1 - a0, j0 - b0:j1 - b0]
+    thin = thin_votes(votes, group["vote_strike_deg"][a0:a1, b0:b1],
+                      group["vote_dip_deg"][a0:a1, b0:b1])[i0 - a0:i1 - a0, j0 - b0:j1 - b0]
     del votes
     zarr.open_array(f"{work}/thin_raw", mode="r+")[i0:i1, j0:j1] = thin
     positive = thin[thin > 0]
@@ -708,8 +550,7 @@ def _positive_thin(block, work) -> np.ndarray:
 
 
 def _histogram_block(block, work, vmin, vmax, bins, marker) -> dict:
-    counts, _ = np.histogram(_positive_thin(block, work), bins=bins, range=_float32_range(vmin, vmax))
-    result = {"counts": counts.tolist()}
+    result = {"counts": block_histogram(_positive_thin(block, work), vmin, vmax, bins).tolist()}
     write_marker(marker, result)
     return result
 

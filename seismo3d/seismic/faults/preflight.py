@@ -29,10 +29,11 @@ from ..blocks import MEMORY_HEADROOM
 from .dead_samples import clean_traces, near_dead_samples
 from .likelihood import fault_likelihood
 from .likelihood_blocks import smallest_block_bytes as likelihood_block_bytes
-from .pipeline import FaultTracingOptions, check_amplitudes, check_size, no_coherence_message
-from .pipeline_blocks import CANDIDATE_BYTES
-from .pipeline_blocks import smallest_block_bytes as surfaces_block_bytes
-from .surfaces import thin_faults
+from .checks import check_amplitudes, check_size, no_coherence_message
+from .interpretation import FaultTracingOptions
+from .steps import live_likelihood, ridges
+from .surface_plan import CANDIDATE_BYTES
+from .surface_plan import smallest_block_bytes as surfaces_block_bytes
 
 __all__ = ["CubeSample", "SampleOptions", "STAGE_GROWTH", "judge_sample", "minimum_memory_limit"]
 
@@ -213,14 +214,9 @@ def _block_measures(data: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", Seismo3dWarning)
         fl = fault_likelihood(data, options=opt.scan, progress=False)
-    likelihood = fl.likelihood
-    near = near_dead_samples(dead) if dead.any() else None
-    if near is not None:
-        likelihood[near] = 0.0
-    live = np.ones(likelihood.shape, bool) if near is None else ~near
-    ridges = thin_faults(likelihood, fl.strike_deg, fl.dip_deg, threshold=0.0)
-    return (int(np.count_nonzero((likelihood > 0.9) & live)), int(np.count_nonzero(live)),
-            int(np.count_nonzero(ridges > float(opt.voting.seed_threshold))))
+    high, live = live_likelihood(fl.likelihood, near_dead_samples(dead) if dead.any() else None)
+    seeds = ridges(fl.likelihood, fl.strike_deg, fl.dip_deg)
+    return high, live, int(np.count_nonzero(seeds > float(opt.voting.seed_threshold)))
 
 
 def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions | None = None, tile: int = 32,

@@ -1,0 +1,102 @@
+"""The fault tables of ``seismo3d faults``: ``fault_points.csv`` (a row per fault point) and ``fault_summary.csv``
+(a row per fault, with the evidence a user sorts and filters by), labelled with the input's inlines, crosslines and
+times or depths. Written atomically.
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+
+from .._atomic import atomic_path
+from ..seismic.faults.pipeline import FaultInterpretation
+
+__all__ = ["sample_position", "write_points", "write_summary"]
+
+
+def sample_position(samples: np.ndarray, k) -> np.ndarray:
+    """Time or depth of fractional sample indices ``k`` on the ``samples`` axis (linear between samples)."""
+    return np.interp(np.asarray(k, dtype=np.float64), np.arange(samples.size), samples)
+
+
+def _fmt(v: float) -> str:
+    return "" if not np.isfinite(v) else f"{v:.5g}"
+
+
+def _throw_of(throws, fault, field="throw") -> np.ndarray:
+    """(n_points,) float64 throw in samples (or its ``correlation``) of ``fault``; NaN where it was not measured."""
+    for t in throws:
+        if t.fault_id == fault.id:
+            values = np.asarray(getattr(t, field), dtype=np.float64)
+            if values.shape == (fault.size,):
+                return values
+    return np.full(fault.size, np.nan)
+
+
+def _column(values, fmt: str) -> list:
+    """Format a column for CSV: ``fmt`` for finite values, empty for NaN."""
+    return [format(v, fmt) if v == v else "" for v in np.asarray(values, dtype=np.float64).tolist()]
+
+
+def write_points(inp, result: FaultInterpretation, path: Path) -> Path:
+    """fault_points.csv: one row per fault point (inline, crossline, time or depth, fault id, throw and its
+    evidence); ``inp`` is the job's input (its trace labels, samples and unit)."""
+    unit = inp.unit
+    extra = [] if unit == "samples" else [f"throw_{unit}"]
+    header = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation",
+              "correlation_gain"]
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        fh.write(",".join(header) + "\n")
+        for f in result.faults:
+            p = f.points
+            throw = _throw_of(result.throws, f)
+            lateral = inp.inline[p[:, 0]], (None if inp.xline is None else inp.xline[p[:, 1 if p.shape[1] == 3 else 0]])
+            cols = [
+                [str(v) for v in lateral[0].tolist()],
+                [""] * f.size if lateral[1] is None else [str(v) for v in lateral[1].tolist()],
+                _column(sample_position(inp.samples, p[:, -1]), ".6g"),
+                [str(f.id)] * f.size,
+                _column(throw, ".5g"),
+            ]
+            if extra:
+                cols.append(_column(throw * result.sample_interval, ".5g"))
+            correlation = _throw_of(result.throws, f, "correlation")
+            cols.append(_column(correlation, ".3f"))
+            cols.append(_column(correlation - _throw_of(result.throws, f, "correlation_unshifted"), ".3f"))
+            fh.writelines(",".join(row) + "\n" for row in zip(*cols))
+    return path
+
+
+def _dip_direction(inp, fault) -> str:
+    """Where a fault of a 2D section deepens, in the section's own terms: 'increasing inline' etc."""
+    toward_higher = fault.mean_strike_deg > 180.0  # strike 270: deepens toward increasing trace index
+    labels = inp.axes[0]
+    if labels.size > 1 and labels[-1] < labels[0]:  # trace labels decrease along the section
+        toward_higher = not toward_higher
+    return f"{'increasing' if toward_higher else 'decreasing'} {inp.trace_axis}"
+
+
+def write_summary(inp, result: FaultInterpretation, path: Path, rows: list) -> Path:
+    """fault_summary.csv; its rows are also appended to ``rows`` (column name to text) for the job's result."""
+    unit = inp.unit
+    extra = [] if unit == "samples" else [f"median_throw_{unit}"]
+    two_d = inp.data.ndim == 2
+    orientation = ["dips_toward"] if two_d else ["mean_strike_deg"]
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        w = csv.writer(fh)
+        header = ["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra,
+                  "throw_spread_samples", "throw_correlation", "correlation_gain"]
+        w.writerow(header)
+        evidence = {e.fault_id: e for e in result.evidence}
+        for f in result.faults:
+            e = evidence[f.id]
+            row = [f.id, f.size, _dip_direction(inp, f) if two_d else f"{f.mean_strike_deg:.1f}",
+                   f"{f.mean_dip_deg:.1f}", _fmt(e.median_throw)]
+            if extra:
+                row.append(_fmt(e.median_throw * result.sample_interval))
+            row += [_fmt(e.throw_spread), _fmt(e.correlation), _fmt(e.correlation_gain)]
+            w.writerow(row)
+            rows.append(dict(zip(header, (str(v) for v in row))))
+    return path

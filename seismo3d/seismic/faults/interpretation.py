@@ -1,0 +1,188 @@
+"""The options and the result of :func:`~seismo3d.seismic.faults.trace_faults`, whichever way it runs (in memory or
+block by block)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..._validation import check_choice, check_positive
+from ...errors import InputError
+from .evidence import EvidenceOptions, sensitivity_factor
+from .learned import LearnedOptions
+from .likelihood import FaultScanOptions
+from .skins import SkinOptions
+from .thresholds import otsu, quantile
+from .voting import VotingOptions
+
+__all__ = ["FaultInterpretation", "FaultTracingOptions", "LIKELIHOODS"]
+
+LIKELIHOODS = ("scan", "learned")
+
+
+@dataclass(frozen=True)
+class FaultTracingOptions:
+    """Options of :func:`trace_faults`; the defaults are the ones every seismo3d command uses, on every input.
+
+    Attributes
+    ----------
+    sensitivity : float
+        In [0, 1]: how readily a fault is traced. The upper threshold on the thinned votes is the data's Otsu
+        threshold times ``2 ** (1 - 2 * sensitivity)`` (twice it at 0, half of it at 1, the threshold itself at the
+        default 0.5), at least ``min_vote`` times the same factor; the lower threshold is a third of the upper one.
+    min_vote : float
+        Floor of the upper threshold at the default sensitivity, on the absolute scale of
+        :class:`~seismo3d.seismic.faults.voting.FaultVotes` (about the mean likelihood of the surfaces through a
+        sample): data whose votes are all weak yield no faults rather than the strongest of its noise.
+    max_fault_fraction : float
+        The lower threshold leaves at most this fraction of the samples on thinned faults (scaled like the
+        thresholds by the sensitivity): a fault every 8 traces is already dense faulting (12 % on the Costa Rica
+        sections), and denser ridges are the uniform votes of incoherent data, not faults.
+    likelihood : {'scan', 'learned'}
+        The fault likelihood of step 1: the scan of fault-plane semblance (Hale 2013, ``scan``) or the fault network
+        trained on generated sections (:mod:`~seismo3d.seismic.faults.learned`, ``learned``).
+    scan : FaultScanOptions
+        The fault likelihood scan.
+    learned : LearnedOptions
+        The learned fault likelihood.
+    voting : VotingOptions
+        The optimal surface voting.
+    skins : SkinOptions
+        The linking into fault skins.
+    evidence : EvidenceOptions
+        The displacement a fault must show to be kept (:func:`~seismo3d.seismic.faults.evidence.supported_faults`).
+    min_traces : (int, int)
+        Fewest traces along the longer and the shorter lateral axis (2D: along the section) for the scan and the
+        voting boxes to see a fault's continuity; smaller data is refused.
+    min_samples : int
+        Fewest samples per trace.
+    min_crossings : float
+        Fewest zero crossings per 100 samples of a trace with its mean removed (median over traces): seismic
+        amplitudes oscillate (a reflection every few samples), velocity or impedance models do not.
+    max_saturated : float
+        Largest fraction of the live samples with a likelihood above 0.9; beyond it the data has no lateral
+        coherence to trace faults in (noise, or traces out of order) and is refused.
+
+    Raises
+    ------
+    InputError
+        A value out of range.
+    """
+
+    sensitivity: float = 0.5
+    min_vote: float = 0.1
+    max_fault_fraction: float = 0.15
+    likelihood: str = "scan"
+    scan: FaultScanOptions = field(default_factory=FaultScanOptions)
+    learned: LearnedOptions = field(default_factory=LearnedOptions)
+    voting: VotingOptions = field(default_factory=VotingOptions)
+    skins: SkinOptions = field(default_factory=SkinOptions)
+    evidence: EvidenceOptions = field(default_factory=EvidenceOptions)
+    min_traces: tuple = (32, 8)
+    min_samples: int = 32
+    min_crossings: float = 3.0
+    max_saturated: float = 0.95
+
+    def __post_init__(self):
+        if not 0.0 <= float(self.sensitivity) <= 1.0:
+            raise InputError(f"sensitivity must be in [0, 1]; got {self.sensitivity!r}")
+        if not 0.0 <= float(self.min_vote) < 1.0:
+            raise InputError(f"min_vote must be in [0, 1); got {self.min_vote!r}")
+        if not 0.0 < float(self.max_fault_fraction) <= 1.0:
+            raise InputError(f"max_fault_fraction must be in (0, 1]; got {self.max_fault_fraction!r}")
+        check_choice(self.likelihood, "likelihood", LIKELIHOODS)
+        for name, cls in (("scan", FaultScanOptions), ("learned", LearnedOptions), ("voting", VotingOptions),
+                          ("skins", SkinOptions), ("evidence", EvidenceOptions)):
+            if not isinstance(getattr(self, name), cls):
+                raise InputError(f"{name} must be a {cls.__name__}; got {type(getattr(self, name)).__name__}")
+        if (len(tuple(self.min_traces)) != 2 or any(int(v) != v or v < 3 for v in self.min_traces)):
+            raise InputError(f"min_traces must be two integers >= 3; got {self.min_traces!r}")
+        object.__setattr__(self, "min_traces", tuple(int(v) for v in self.min_traces))
+        check_positive(self.min_samples, "min_samples")
+        check_positive(self.min_crossings, "min_crossings", allow_zero=True)
+        if not 0.0 < float(self.max_saturated) <= 1.0:
+            raise InputError(f"max_saturated must be a fraction in (0, 1]; got {self.max_saturated!r}")
+
+    def thresholds(self, thinned_votes: np.ndarray) -> tuple[float, float]:
+        """(lower, upper) thresholds on the thinned votes (see ``sensitivity`` and ``max_fault_fraction``)."""
+        values = thinned_votes[thinned_votes > 0]
+        return self.thresholds_from(otsu(values), values.size, thinned_votes.size, lambda q: quantile(values, q))
+
+    def thresholds_from(self, otsu: float, n_values: int, n_samples: int, quantile) -> tuple[float, float]:
+        """(lower, upper) thresholds from statistics of the thinned votes, as :meth:`thresholds` (for a cube whose
+        thinned votes are gathered block by block).
+
+        Parameters
+        ----------
+        otsu : float
+            Otsu's threshold of the positive thinned votes (1 when there are none).
+        n_values, n_samples : int
+            Number of positive thinned votes, and of samples.
+        quantile : callable
+            ``quantile(q)``: the q-quantile of the positive thinned votes (``numpy.quantile``'s linear method);
+            called only when they are denser than ``max_fault_fraction`` allows.
+
+        Returns
+        -------
+        (float, float)
+        """
+        factor = sensitivity_factor(self.sensitivity)
+        upper = min(0.99, factor * max(float(otsu), float(self.min_vote)))
+        lower = upper / 3.0
+        fraction = min(1.0, float(self.max_fault_fraction) / factor)
+        if n_values > fraction * n_samples:
+            dense = float(quantile(1.0 - fraction * n_samples / n_values))
+            if dense > lower:
+                lower = min(dense, 0.99)
+                upper = max(upper, min(0.99, 3.0 * lower))
+        return lower, upper
+
+
+@dataclass(frozen=True)
+class FaultInterpretation:
+    """Result of :func:`trace_faults`.
+
+    Attributes
+    ----------
+    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
+        Fault likelihood in [0, 1] (0 on and next to dead samples).
+    strike_deg, dip_deg : same shape, float32 ndarray
+        Strike and dip of the most likely fault plane at each sample, degrees, index space.
+    votes : same shape, float32 ndarray
+        Optimal-surface votes in [0, 1] (:func:`~seismo3d.seismic.vote_faults`): about the mean likelihood of the
+        fault surfaces through each sample.
+    thin : same shape, float32 ndarray
+        The votes on the 1-sample-wide thinned faults above the lower threshold, 0 elsewhere.
+    thresholds : (float, float)
+        The lower and upper thresholds on the thinned votes (see :class:`FaultTracingOptions`).
+    faults : list of Fault
+        Fault skins (surfaces in 3D, curves in 2D), ids 1, 2, ... by decreasing size; their ``likelihood`` holds the
+        thinned votes.
+    throws : list of FaultThrow
+        One per fault, in the order of ``faults``; ``throws[i].throw`` is the vertical throw at each point of
+        ``faults[i]``, in samples.
+    evidence : list of FaultEvidence
+        One per fault: median throw, its spread, the sides' correlation and its gain from the throw's shift.
+    sample_interval : float
+        Sample interval in ``sample_unit`` (1 for 'samples').
+    sample_unit : {'samples', 'ms', 'm', 'ft'}
+        Unit of the sample axis.
+    stores : dict of str to pathlib.Path
+        Empty for a run in memory. For a cube traced block by block, the Zarr groups its arrays are read from:
+        ``likelihood`` (fault likelihood, strike and dip of the scan) and ``surfaces``
+        (:class:`~seismo3d.seismic.faults.pipeline_blocks.ChunkedFaults`); the arrays above are then Zarr arrays.
+    """
+
+    likelihood: np.ndarray
+    strike_deg: np.ndarray
+    dip_deg: np.ndarray
+    votes: np.ndarray
+    thin: np.ndarray
+    thresholds: tuple
+    faults: list
+    throws: list
+    evidence: list
+    sample_interval: float
+    sample_unit: str
+    stores: dict = field(default_factory=dict)

@@ -1,0 +1,167 @@
+"""The numba kernels of the fault-likelihood scan (:mod:`~seismo3d.seismic.faults.likelihood`): the packed scan key, the
+smoothing along strike and the exponential smoothing down the dip with the semblance's power, and their coefficients."""
+
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+__all__ = []  # the kernels are private to the scan
+
+
+# numba kernels of the scan
+
+_CODE_BITS = 11  # orientation code in the low bits of the packed scan key (at most 2048 orientations)
+_FL_LEVELS = (1 << 20) - 1  # likelihood quantised to 20 bits in the high bits
+
+
+@nb.njit(cache=True)
+def _shifts(slope, n, origin=0):
+    # staircase line: integer offsets round(slope * (k + origin)) - round(slope * origin), k = 0..n-1 (exact integer
+    # steps, no interpolation blur). `origin` is the index of element 0 in the whole cube, so that a block of a cube
+    # draws the same staircase lines as the whole cube
+    sh = np.empty(n, np.int64)
+    s0 = int(np.floor(slope * origin + 0.5))
+    for k in range(n):
+        sh[k] = int(np.floor(slope * (k + origin) + 0.5)) - s0
+    return sh
+
+
+@nb.njit(cache=True)
+def _segment(mono, positive, a0, na):
+    # t range [lo, hi] of the staircase line a = a0 + sign * mono[t] (mono non-decreasing) inside 0 <= a < na
+    if positive:
+        lo = np.searchsorted(mono, -a0, side="left")
+        hi = np.searchsorted(mono, na - 1 - a0, side="right") - 1
+    else:
+        lo = np.searchsorted(mono, a0 - na + 1, side="left")
+        hi = np.searchsorted(mono, a0, side="right") - 1
+    return lo, hi
+
+
+@nb.njit(cache=True, inline="always")
+def _box_rows(x, y, c, m, n, h):
+    # y[k, :] = sum of x[j, :] over |j - k| <= h, 0 <= j < m (zero outside), vectorised along the rows
+    for j in range(n):
+        c[0, j] = 0.0
+    for k in range(m):
+        for j in range(n):
+            c[k + 1, j] = c[k, j] + x[k, j]
+    for k in range(m):
+        e = min(k + h, m - 1) + 1
+        s = max(k - h, 0)
+        for j in range(n):
+            y[k, j] = c[e, j] - c[s, j]
+
+
+@nb.njit(cache=True, parallel=True)
+def _smooth_strike(x, alpha, h, origin, n_threads, out):
+    # x in layout (na, nt, nb). Smooth along the staircase lines a = a0 + round(alpha * b) of every time slice with
+    # two passes of a box of half-width h (a triangle filter), zero outside the cube; each output sample is written
+    # once. `origin`: the cube index of b = 0 (blocks of a cube). Work is split in chunks of lines with one workspace
+    # per chunk.
+    na, nt, nbb = x.shape
+    sh = _shifts(alpha, nbb, origin)
+    s_min = min(sh[0], sh[nbb - 1])
+    s_max = max(sh[0], sh[nbb - 1])
+    mono = np.abs(sh)
+    n_a0 = na + s_max - s_min
+    n_chunks = min(n_a0, 4 * n_threads)
+    for ic in nb.prange(n_chunks):
+        buf = np.empty((nbb, nt), np.float32)
+        tmp = np.empty((nbb, nt), np.float32)
+        c = np.empty((nbb + 1, nt))
+        for i in range(ic * n_a0 // n_chunks, (ic + 1) * n_a0 // n_chunks):
+            a0 = i - s_max
+            lo, hi = _segment(mono, alpha >= 0, a0, na)
+            if hi < lo:
+                continue
+            m = hi - lo + 1
+            for k in range(m):
+                a = a0 + sh[lo + k]
+                for t in range(nt):
+                    buf[k, t] = x[a, t, lo + k]
+            _box_rows(buf, tmp, c, m, nt, h)
+            _box_rows(tmp, buf, c, m, nt, h)
+            for k in range(m):
+                a = a0 + sh[lo + k]
+                for t in range(nt):
+                    out[a, t, lo + k] = buf[k, t]
+
+
+@nb.njit(cache=True, parallel=True)
+def _scan_dip(sn, sd, beta, a, code_k, power_squarings, tiny, n_threads, key, b0):
+    # sn, sd, key in layout (na, nt, nb). Along the staircase lines a = a0 + round(beta * t) of every (a, t) slice
+    # (vectorised over b), smooth the semblance numerator and denominator with a two-sided recursive exponential
+    # filter of coefficient `a` (zero-slope ends; Hale's RecursiveExponentialFilter), and keep the maximum of
+    # 1 - (num / den)^(2^p) and its orientation code, packed into one int32. Only b0 <= b < b0 + key.shape[2] is
+    # scanned (key[..., b - b0]): the core of a block, read from contiguous arrays (vectorised loads)
+    na, nt = sn.shape[0], sn.shape[1]
+    nbb = key.shape[2]
+    sh = _shifts(beta, nt)
+    s_min = min(sh[0], sh[nt - 1])
+    s_max = max(sh[0], sh[nt - 1])
+    mono = np.abs(sh)
+    n_a0 = na + s_max - s_min
+    n_chunks = min(n_a0, 4 * n_threads)
+    af = np.float32(a)
+    bf = np.float32(1.0 - a)
+    for ic in nb.prange(n_chunks):
+        yn = np.empty((nt, nbb), np.float32)
+        yd = np.empty((nt, nbb), np.float32)
+        for i in range(ic * n_a0 // n_chunks, (ic + 1) * n_a0 // n_chunks):
+            a0 = i - s_max
+            lo, hi = _segment(mono, beta >= 0, a0, na)
+            if hi < lo:
+                continue
+            m = hi - lo + 1
+            # causal pass while gathering the line, then the anti-causal pass in place
+            aa = a0 + sh[lo]
+            for j in range(nbb):
+                yn[0, j] = sn[aa, lo, j + b0]
+                yd[0, j] = sd[aa, lo, j + b0]
+            for k in range(1, m):
+                aa = a0 + sh[lo + k]
+                for j in range(nbb):
+                    yn[k, j] = af * yn[k - 1, j] + bf * sn[aa, lo + k, j + b0]
+                    yd[k, j] = af * yd[k - 1, j] + bf * sd[aa, lo + k, j + b0]
+            for k in range(m - 2, -1, -1):
+                for j in range(nbb):
+                    yn[k, j] = af * yn[k + 1, j] + bf * yn[k, j]
+                    yd[k, j] = af * yd[k + 1, j] + bf * yd[k, j]
+            for k in range(m):
+                aa = a0 + sh[lo + k]
+                t = lo + k
+                for j in range(nbb):
+                    d = yd[k, j]
+                    s = yn[k, j] / d if d > tiny else np.float32(1.0)
+                    s = min(max(s, np.float32(0.0)), np.float32(1.0))
+                    # s^(2^p) by repeated squaring (loop-invariant branches, so the loop still vectorises)
+                    if power_squarings >= 1:
+                        s = s * s
+                    if power_squarings >= 2:
+                        s = s * s
+                    if power_squarings >= 3:
+                        s = s * s
+                    if power_squarings >= 4:
+                        s = s * s
+                    if power_squarings >= 5:
+                        s = s * s
+                    q = np.int32((np.float32(1.0) - s) * np.float32(_FL_LEVELS) + np.float32(0.5))
+                    key[aa, t, j] = max(key[aa, t, j], (q << _CODE_BITS) | code_k)
+
+
+def _exponential_coefficient(sigma: float) -> float:
+    """Coefficient of the two-sided recursive exponential filter whose impulse response has standard deviation
+    ``sigma`` samples (Hale's RecursiveExponentialFilter)."""
+    ss = sigma * sigma
+    return float((1.0 + ss - np.sqrt(1.0 + 2.0 * ss)) / ss)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# fault likelihood
+
+
+def _box_half(sigma: float) -> int:
+    # two passes of a box of half-width h have variance 2 h (h + 1) / 3; match it to sigma^2
+    return max(1, int(round(np.sqrt(1.5 * sigma * sigma + 0.25) - 0.5)))

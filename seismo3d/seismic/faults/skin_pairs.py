@@ -1,0 +1,150 @@
+"""The closest cells of different fault skins within a gap (:mod:`~seismo3d.seismic.faults.skins`): edge cells matched to
+the nearest cell of every other skin through a grid of buckets, in parallel; the pairs the merging of coplanar skins
+considers."""
+
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+from .. import _kernels
+
+__all__ = []  # private to the skins
+
+
+@nb.njit(cache=True)
+def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, slot, labels, dist2, cells):
+    # For cell e: the nearest cell (squared distance, index) of every other label within sqrt(gap2), ties to the
+    # lower index, from the buckets (cubes of ``side`` from ``origin``, :func:`~seismo3d.seismic._kernels.bucket_grid`) around e's bucket that
+    # come within the gap; ``keys`` are the cells' bucket keys in ``order``. ``labels``, ``dist2``, ``cells`` take
+    # the results (grown when full); ``slot`` (one per label, all -1) is the position of a label in them, and is left
+    # all -1 again. Returns the number of labels found and the three (grown) arrays.
+    m = 0
+    gap = np.sqrt(gap2)
+    own = lab[e]
+    ex = pts[e] - origin
+    # the buckets within the gap of e along each axis
+    first_b = np.empty(3, np.int64)
+    last_b = np.empty(3, np.int64)
+    for a in range(3):
+        first_b[a] = max(int(np.floor((ex[a] - gap) / side)), 0)
+        last_b[a] = min(int(np.floor((ex[a] + gap) / side)), dims[a] - 1)
+    for bx in range(first_b[0], last_b[0] + 1):
+        for by in range(first_b[1], last_b[1] + 1):
+            # the column's buckets along the samples are consecutive keys: one range of cells; the column is
+            # skipped when its nearest point to e (buckets counted from the cells' lowest corner) is beyond the gap
+            box2 = 0.0
+            for a, b in ((0, bx), (1, by)):
+                lo = b * side - ex[a]
+                hi = lo + side
+                if lo > 0.0:
+                    box2 += lo * lo
+                elif hi < 0.0:
+                    box2 += hi * hi
+            if box2 > gap2:
+                continue
+            column = bx * dims[1] + by
+            low = column * dims[2] + first_b[2]
+            high = column * dims[2] + last_b[2]
+            for r in range(np.searchsorted(keys, low), np.searchsorted(keys, high, side="right")):
+                j = order[r]
+                if lab[j] == own:
+                    continue
+                d2 = 0.0
+                for a in range(3):
+                    t = pts[j, a] - pts[e, a]
+                    d2 += t * t
+                if d2 > gap2:
+                    continue
+                k = slot[lab[j]]
+                if k < 0:
+                    if m == labels.size:  # grow the lists
+                        labels = np.concatenate((labels, np.empty(m, np.int64)))
+                        dist2 = np.concatenate((dist2, np.empty(m)))
+                        cells = np.concatenate((cells, np.empty(m, np.int64)))
+                    slot[lab[j]] = m
+                    labels[m] = lab[j]
+                    dist2[m] = d2
+                    cells[m] = j
+                    m += 1
+                elif d2 < dist2[k] or (d2 == dist2[k] and j < cells[k]):
+                    dist2[k] = d2
+                    cells[k] = j
+    for k in range(m):
+        slot[labels[k]] = -1
+    return m, labels, dist2, cells
+
+
+@nb.njit(cache=True, parallel=True)
+def _edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, gap2, n_chunks):
+    # every (edge cell, nearest cell of another label within the gap, squared distance), the edge cells in
+    # ``n_chunks`` chunks (each with its own label slots), gathered in order
+    n = edge_idx.size
+    bounds = np.linspace(0, n, n_chunks + 1).astype(np.int64)
+    firsts = [np.empty(0, np.int64) for _ in range(n_chunks)]
+    seconds = [np.empty(0, np.int64) for _ in range(n_chunks)]
+    dists = [np.empty(0) for _ in range(n_chunks)]
+    for c in nb.prange(n_chunks):
+        slot = -np.ones(n_labels, np.int64)
+        labels = np.empty(16, np.int64)
+        dist2 = np.empty(16)
+        cells = np.empty(16, np.int64)
+        first = np.empty(64, np.int64)
+        second = np.empty(64, np.int64)
+        dist = np.empty(64)
+        used = 0
+        for r in range(bounds[c], bounds[c + 1]):
+            m, labels, dist2, cells = _nearest_of_other_skins(edge_idx[r], pts, lab, origin, dims, side, keys, order,
+                                                             gap2, slot, labels, dist2, cells)
+            while used + m > first.size:
+                first = np.concatenate((first, np.empty(first.size, np.int64)))
+                second = np.concatenate((second, np.empty(second.size, np.int64)))
+                dist = np.concatenate((dist, np.empty(dist.size)))
+            for k in range(m):
+                first[used] = edge_idx[r]
+                second[used] = cells[k]
+                dist[used] = dist2[k]
+                used += 1
+        firsts[c] = first[:used]
+        seconds[c] = second[:used]
+        dists[c] = dist[:used]
+    total = 0
+    for c in range(n_chunks):
+        total += firsts[c].size
+    first = np.empty(total, np.int64)
+    second = np.empty(total, np.int64)
+    dist = np.empty(total)
+    m = 0
+    for c in range(n_chunks):
+        k = firsts[c].size
+        first[m:m + k] = firsts[c]
+        second[m:m + k] = seconds[c]
+        dist[m:m + k] = dists[c]
+        m += k
+    return first, second, dist
+
+
+def _closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
+    """(m, 2) int64 indices into ``pts`` (n, 3): for every pair of labels, the closest (edge cell, cell of the other
+    label) pair within ``gap`` (ties: the lower edge cell, then the lower other cell). Cells are binned in buckets
+    of side ``gap / 2`` (memory: three int64 arrays of n besides the cells), so each edge cell compares itself with
+    the cells of the buckets that come within the gap only and keeps the nearest cell of each other label (no list
+    of all the pairs)."""
+    if edge_idx.size == 0 or pts.shape[0] == 0:
+        return np.empty((0, 2), dtype=np.int64)
+    pts = np.ascontiguousarray(pts, dtype=np.float64)
+    _, compact = np.unique(lab, return_inverse=True)  # labels 0..k-1: one slot each
+    compact = compact.astype(np.int64).ravel()
+    side = max(0.5 * float(gap), 0.5)
+    keys, order, origin, dims = _kernels.bucket_grid(pts, side)
+    first, second, dist2 = _edge_pairs(np.ascontiguousarray(edge_idx, dtype=np.int64), pts, compact,
+                                       int(compact.max()) + 1, origin, dims, side, keys, order, float(gap) ** 2,
+                                       4 * nb.get_num_threads())
+    if first.size == 0:
+        return np.empty((0, 2), dtype=np.int64)
+    key = np.minimum(lab[first], lab[second]).astype(np.int64) * n_labels + np.maximum(lab[first], lab[second])
+    order = np.lexsort((second, first, dist2, key))
+    keep = np.ones(order.size, dtype=bool)
+    keep[1:] = key[order][1:] != key[order][:-1]
+    sel = order[keep]
+    return np.stack([first[sel], second[sel]], axis=1)

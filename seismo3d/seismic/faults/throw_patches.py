@@ -1,0 +1,139 @@
+"""The patches of a fault whose throw is measured (:mod:`~seismo3d.seismic.faults.throw`): the fault's points gridded on
+its plane, the box of the cube each patch reads, and the images of the reflectors on both sides of it."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from .windows import CubeWindow
+
+__all__ = []  # private to the throw
+
+
+def _side_slope(win: CubeWindow, il, xl, t, h, d_slope):
+    """Reflector slope along ``h`` (samples per trace) of the reflector through each fault-plane node.
+
+    The slope is read on that reflector ``d_slope`` traces from the fault (signed: the side), where the reflector
+    lands at ``t + p d_slope`` (two fixed-point iterations): next to the fault the structure tensor averages the
+    offset reflectors of both sides and its slope is biased.
+    """
+    a = il + d_slope * h[0]
+    b = xl + d_slope * h[1]
+    p = np.zeros(len(t))
+    for _ in range(2):
+        p = win.slope_along(a, b, t + p * d_slope, h)
+    return p
+
+
+def _sample(win: CubeWindow, il, xl, t, h, offsets, p):
+    """Mean amplitude and count over the lateral ``offsets`` (traces along ``h``), read on the reflector ``t + p d``;
+    positions outside the cube (``win.cube_shape``) are left out."""
+    d = np.asarray(offsets, np.float64)[:, None]
+    a = il + d * h[0]
+    b = xl + d * h[1]
+    tt = t + p * d
+    n0, n1, nt = win.cube_shape
+    inside = (a >= -0.01) & (a <= n0 - 0.99) & (b >= -0.01) & (b <= n1 - 0.99) & (tt >= 0) & (tt <= nt - 1)
+    vals = win.amplitude_at(a.ravel(), b.ravel(), tt.ravel()).reshape(a.shape)
+    return np.where(inside, vals, 0.0).sum(axis=0), inside.sum(axis=0)
+
+
+@dataclass(frozen=True)
+class _Patch:
+    """Fault-plane images of one patch: F (footwall) and H (hanging wall) on a (u, t) grid."""
+
+    u0: int  # u of row 0 (traces along strike, local frame)
+    t0: int  # t of column 0 (samples)
+    img: tuple  # (F, H) float64 (nu, nt)
+    valid: tuple  # (valid_F, valid_H) bool (nu, nt)
+
+
+@dataclass(frozen=True)
+class _PatchGrid:
+    """Fault-plane grid of one patch: the (u, t) nodes and their cube positions; no amplitudes yet."""
+
+    h: np.ndarray  # (2,) horizontal unit vector into the hanging wall (inline, xline)
+    il: np.ndarray  # (n_nodes,) inline of each node on the fault
+    xl: np.ndarray  # (n_nodes,) crossline
+    t: np.ndarray  # (n_nodes,) sample
+    rows: np.ndarray  # (n_nodes,) int row (u - u0) of each node in the images
+    cols: np.ndarray  # (n_nodes,) int column (t - t0)
+    u0: int
+    t0: int
+    shape: tuple  # (nu, nt) of the images
+    ut: np.ndarray  # (n_points, 2) the fault points' (u, t)
+
+
+def _patch_grid(pts3, nrm3) -> _PatchGrid | None:
+    """The fault-plane grid of one patch of fault points (None for a horizontal fault).
+
+    Frame: origin at the points' mean lateral position, ``h`` the horizontal part of the mean normal (into the
+    hanging wall), ``w`` along strike. The grid nodes are the integer (u, t) within 1.5 of a fault point; each node's
+    position across the fault is the mean ``s`` of the fault points within 2 of it (this follows a curved or rough
+    fault).
+    """
+    n = nrm3.mean(axis=0)
+    lat = n[:2]
+    if np.linalg.norm(lat) < 1e-6:  # horizontal "fault": no sides to compare
+        return None
+    h = lat / np.linalg.norm(lat)  # horizontal unit vector into the hanging wall
+    w = np.array([-h[1], h[0]])  # along strike
+    origin = pts3[:, :2].mean(axis=0)
+    rel = pts3[:, :2] - origin
+    u, s, t = rel @ w, rel @ h, pts3[:, 2]
+    ut = np.column_stack([u, t])
+    u_lo, u_hi = int(np.floor(u.min())), int(np.ceil(u.max()))
+    t_lo, t_hi = int(np.floor(t.min())), int(np.ceil(t.max()))
+    gu, gt = np.meshgrid(np.arange(u_lo, u_hi + 1), np.arange(t_lo, t_hi + 1), indexing="ij")
+    nodes = np.column_stack([gu.ravel(), gt.ravel()]).astype(np.float64)
+    k = min(6, len(pts3))
+    dist, idx = cKDTree(ut).query(nodes, k=k, distance_upper_bound=2.0)
+    dist, idx = dist.reshape(len(nodes), k), idx.reshape(len(nodes), k)
+    ok = np.isfinite(dist)
+    on = dist[:, 0] <= 1.5
+    s_pad = np.append(s, 0.0)
+    s_node = np.where(ok, s_pad[np.minimum(idx, len(s))], 0.0).sum(1) / np.maximum(ok.sum(1), 1)
+    nodes, s_node = nodes[on], s_node[on]
+    il = origin[0] + nodes[:, 0] * w[0] + s_node * h[0]
+    xl = origin[1] + nodes[:, 0] * w[1] + s_node * h[1]
+    rows = (nodes[:, 0] - u_lo).astype(np.int64)
+    cols = (nodes[:, 1] - t_lo).astype(np.int64)
+    return _PatchGrid(h, il, xl, nodes[:, 1], rows, cols, u_lo, t_lo, gu.shape, ut)
+
+
+def _read_box(grid: _PatchGrid, reach: float, cube_shape) -> tuple[int, int, int, int]:
+    """Inline and crossline ranges ``(i0, i1, j0, j1)`` (half-open) of the traces :func:`_patch_images` reads for
+    ``grid``: every read is at ``node + d h`` with ``|d| <= reach`` traces (the slopes at ``side_traces[1] +
+    slope_margin``, the amplitudes nearer), interpolated linearly from the traces ``floor`` and ``floor + 1``; one
+    trace more on each side against rounding; clipped to the cube (beyond it reads clamp to the edge trace)."""
+    n0, n1 = cube_shape[0], cube_shape[1]
+    if grid.il.size == 0:
+        return 0, 0, 0, 0
+    da, db = reach * abs(grid.h[0]), reach * abs(grid.h[1])
+    i0 = int(np.floor(grid.il.min() - da)) - 1
+    i1 = int(np.floor(grid.il.max() + da)) + 3
+    j0 = int(np.floor(grid.xl.min() - db)) - 1
+    j1 = int(np.floor(grid.xl.max() + db)) + 3
+    i0, j0 = min(max(i0, 0), n0 - 1), min(max(j0, 0), n1 - 1)
+    return i0, max(min(i1, n0), i0 + 1), j0, max(min(j1, n1), j0 + 1)
+
+
+def _patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Patch:
+    """The footwall and hanging-wall fault-plane images of one patch, read from ``win`` (which holds the traces of
+    :func:`_read_box`)."""
+    images, valids = [], []
+    for sign in (-1.0, 1.0):
+        p = _side_slope(win, grid.il, grid.xl, grid.t, grid.h, sign * (sides[1] + slope_margin))
+        acc, cnt = _sample(win, grid.il, grid.xl, grid.t, grid.h, sign * np.arange(sides[0], sides[1] + 1), p)
+        n_off = sides[1] - sides[0] + 1
+        img = np.zeros(grid.shape)
+        val = np.zeros(grid.shape, bool)
+        good = cnt >= 0.5 * n_off
+        img[grid.rows[good], grid.cols[good]] = acc[good] / cnt[good]
+        val[grid.rows[good], grid.cols[good]] = True
+        images.append(img)
+        valids.append(val)
+    return _Patch(grid.u0, grid.t0, tuple(images), tuple(valids))

@@ -1,0 +1,292 @@
+"""The numba kernels of optimal surface voting (:mod:`~seismo3d.seismic.faults.voting`, Wu & Fomel 2018): Hale's dynamic
+warping with a strain bound in each seed's box, the votes of the best surface summed per thread, and the strongest
+surface's orientation at each sample."""
+
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+__all__ = []  # the kernels are private to the voting
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# dynamic programming in the box: Hale's dynamic warping with a strain bound, as Wu & Fomel (2018) use it
+
+
+@nb.njit(cache=True)
+def _prefix(e, c):
+    # c[i + 1, l] = sum of e[:i + 1, l]: sums over runs of rows in O(1)
+    ni, nl = e.shape
+    for l in range(nl):
+        c[0, l] = 0.0
+    for i in range(ni):
+        for l in range(nl):
+            c[i + 1, l] = c[i, l] + e[i, l]
+
+
+@nb.njit(cache=True)
+def _accumulate(e, b, forward, d, c):
+    # d[i, l]: least cost of a path over rows up to i (forward) or from i (backward) ending at lag l, the lag
+    # changing by at most one every b rows (the costs of the b - 1 rows in between are added along the new lag,
+    # from the prefix sums c of e)
+    ni, nl = e.shape
+    _prefix(e, c)
+    if forward:
+        for il in range(nl):
+            d[0, il] = e[0, il]
+        for ii in range(1, ni):
+            ji = ii - 1
+            jb = max(ii - b, 0)
+            for il in range(nl):
+                ilm = max(il - 1, 0)
+                ilp = min(il + 1, nl - 1)
+                # rows jb + 1 .. ji on the neighbouring lag
+                dm = d[jb, ilm] + c[ji + 1, ilm] - c[jb + 1, ilm]
+                dp = d[jb, ilp] + c[ji + 1, ilp] - c[jb + 1, ilp]
+                m = d[ji, il]
+                if dm < m:
+                    m = dm
+                if dp < m:
+                    m = dp
+                d[ii, il] = m + e[ii, il]
+    else:
+        for il in range(nl):
+            d[ni - 1, il] = e[ni - 1, il]
+        for ii in range(ni - 2, -1, -1):
+            ji = ii + 1
+            jb = min(ii + b, ni - 1)
+            for il in range(nl):
+                ilm = max(il - 1, 0)
+                ilp = min(il + 1, nl - 1)
+                # rows ji .. jb - 1 on the neighbouring lag
+                dm = d[jb, ilm] + c[jb, ilm] - c[ji, ilm]
+                dp = d[jb, ilp] + c[jb, ilp] - c[ji, ilp]
+                m = d[ji, il]
+                if dm < m:
+                    m = dm
+                if dp < m:
+                    m = dp
+                d[ii, il] = m + e[ii, il]
+
+
+@nb.njit(cache=True)
+def _backtrack(d, e, b, u, c):
+    # the least-cost path of a forward accumulation, traced back from the cheapest lag of the last row; a change of
+    # lag is spread linearly over the b rows it spans (c: prefix sums of e, as left by _accumulate)
+    ni, nl = d.shape
+    ii = ni - 1
+    il = 0
+    for jl in range(1, nl):
+        if d[ii, jl] < d[ii, il]:
+            il = jl
+    u[ii] = il
+    while ii > 0:
+        ji = ii - 1
+        jb = max(ii - b, 0)
+        ilm = max(il - 1, 0)
+        ilp = min(il + 1, nl - 1)
+        dm = d[jb, ilm] + c[ji + 1, ilm] - c[jb + 1, ilm]
+        dp = d[jb, ilp] + c[ji + 1, ilp] - c[jb + 1, ilp]
+        if d[ji, il] <= dm and d[ji, il] <= dp:
+            ii -= 1
+            u[ii] = il
+            continue
+        new = ilm if dm <= dp else ilp
+        start = u[ii]
+        steps = ii - jb
+        for s in range(1, steps + 1):
+            u[ii - s] = start + (new - il) * s / steps
+        ii = jb
+        il = new
+
+
+@nb.njit(cache=True)
+def _smooth_costs(e, b, t1, t2, c, out):
+    # nonlinear smoothing of the costs along axis 0: forward + backward accumulation - cost, the cost of the best
+    # path through each (row, lag) (Hale 2013, dynamic warping)
+    _accumulate(e, b, True, t1, c)
+    _accumulate(e, b, False, t2, c)
+    ni, nl = e.shape
+    for i in range(ni):
+        for l in range(nl):
+            out[i, l] = t1[i, l] + t2[i, l] - e[i, l]
+
+
+@nb.njit(cache=True)
+def _smooth_exponential(x, a, tmp):
+    # two-sided recursive exponential smoothing with zero-slope ends, coefficient a
+    n = x.shape[0]
+    if a <= 0.0 or n < 2:
+        return
+    tmp[0] = x[0]
+    for i in range(1, n):
+        tmp[i] = a * tmp[i - 1] + (1.0 - a) * x[i]
+    x[n - 1] = tmp[n - 1]
+    for i in range(n - 2, -1, -1):
+        x[i] = a * x[i + 1] + (1.0 - a) * tmp[i]
+
+
+@nb.njit(cache=True, inline="always")
+def _nearest(f, x, y, z, g0, g1):
+    # f's sample nearest to the image position (x, y, z), f holding the image from inline g0 and crossline g1: the
+    # index is rounded in image coordinates (as when f is the whole image), then clamped to f
+    n0, n1, n2 = f.shape
+    i = min(max(int(np.floor(x + 0.5)) - g0, 0), n0 - 1)
+    j = min(max(int(np.floor(y + 0.5)) - g1, 0), n1 - 1)
+    k = min(max(int(np.floor(z + 0.5)), 0), n2 - 1)
+    return f[i, j, k]
+
+
+@nb.njit(cache=True, parallel=True)
+def _vote(att, g0, g1, shape, seeds, ids, frames, lo, hi, ru, rv, rw, b, a_smooth, o0, o1, votes, best, best_seed,
+          seed_normal):
+    # att (n_a, n_b, n2) likelihood in [0, 1], the image of ``shape`` (n0, n1, n2) from inline g0 and crossline g1
+    # on; positions are computed in image coordinates (the same float arithmetic whatever the block); seeds (ns, 3)
+    # int64 image indices; ids (ns,) int64 the seeds' indices among all
+    # seeds of the cube (thread ids[s] % n_threads sums seed s's votes, in the order of ids: the same sums, in the
+    # same order, whether the cube is voted whole or block by block); frames (ns, 3, 3) rows u (normal), v (dip
+    # vector), w (strike vector). votes (n_threads, m0, m1, n2) accumulate per thread (no write races) over the core
+    # of the image [o0:o0 + m0, o1:o1 + m1] (the whole image in memory; a block's core in a chunked run, whose att
+    # holds every sample the seeds' boxes reach). best and best_seed (n_threads, m0, m1, n2), also per thread,
+    # record the strongest surface of the thread's seeds through each sample (its mean likelihood and the seed's
+    # position s; equal means go to the smaller id), seed_normal[s] the normal of seed s at the seed (seeds lo..hi-1
+    # are voted by this call); _strongest then takes the strongest over the threads, so the result depends neither
+    # on the threads' timing nor on their number.
+    n0, n1, n2 = shape[0], shape[1], shape[2]
+    m0, m1 = votes.shape[1], votes.shape[2]
+    nu = 2 * ru + 1
+    nv = 2 * rv + 1
+    nw = 2 * rw + 1
+    nm = max(nv, nw)
+    n_threads = votes.shape[0]
+    for t in nb.prange(n_threads):
+        e = np.empty((nw, nv, nu))
+        es = np.empty((nw, nv, nu))
+        t1 = np.empty((nm, nu))
+        t2 = np.empty((nm, nu))
+        cs = np.empty((nm + 1, nu))
+        row = np.empty((nm, nu))
+        row_s = np.empty((nm, nu))
+        surf = np.empty((nw, nv))
+        tmp = np.empty(nm)
+        line = np.empty(nm)
+        for s in range(lo, hi):
+            if ids[s] % n_threads != t:
+                continue
+            c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
+            ux, uy, uz = frames[s, 0, 0], frames[s, 0, 1], frames[s, 0, 2]
+            vx, vy, vz = frames[s, 1, 0], frames[s, 1, 1], frames[s, 1, 2]
+            wx, wy, wz = frames[s, 2, 0], frames[s, 2, 1], frames[s, 2, 2]
+            # 1. costs 1 - likelihood in the box; outside the cone |u| <= distance from the seed, cost 1, so that the
+            #    surface passes near the seed
+            for iw in range(nw):
+                dw = iw - rw
+                for iv in range(nv):
+                    dv = iv - rv
+                    r = np.sqrt(dv * dv + dw * dw)
+                    lim = int(np.floor(r + 0.5)) if r > 2.0 else 0
+                    x0 = c0 + dv * vx + dw * wx
+                    y0 = c1 + dv * vy + dw * wy
+                    z0 = c2 + dv * vz + dw * wz
+                    for iu in range(nu):
+                        du = iu - ru
+                        if du < -lim or du > lim:
+                            e[iw, iv, iu] = 1.0
+                        else:
+                            e[iw, iv, iu] = 1.0 - _nearest(att, x0 + du * ux, y0 + du * uy, z0 + du * uz, g0, g1)
+            # 2. nonlinear smoothing of the costs down the dip, then along the strike
+            for iw in range(nw):
+                _smooth_costs(e[iw], b, t1[:nv], t2[:nv], cs[:nv + 1], es[iw])
+            if nw > 1:
+                for iv in range(nv):
+                    for iw in range(nw):
+                        for iu in range(nu):
+                            row[iw, iu] = es[iw, iv, iu]
+                    _smooth_costs(row[:nw], b, t1[:nw], t2[:nw], cs[:nw + 1], row_s[:nw])
+                    for iw in range(nw):
+                        for iu in range(nu):
+                            es[iw, iv, iu] = row_s[iw, iu]
+            # 3. the least-cost path down the dip in every strike slice: the surface, smoothed both ways
+            for iw in range(nw):
+                _accumulate(es[iw], b, True, t1[:nv], cs[:nv + 1])
+                _backtrack(t1[:nv], es[iw], b, line[:nv], cs[:nv + 1])
+                for iv in range(nv):
+                    surf[iw, iv] = line[iv] - ru
+                _smooth_exponential(surf[iw], a_smooth, tmp[:nv])
+            if nw > 1:
+                for iv in range(nv):
+                    for iw in range(nw):
+                        line[iw] = surf[iw, iv]
+                    _smooth_exponential(line[:nw], a_smooth, tmp[:nw])
+                    for iw in range(nw):
+                        surf[iw, iv] = line[iw]
+            # 4. the surface's mean likelihood inside the image, and its normal at the seed
+            total = 0.0
+            count = 0
+            for iw in range(nw):
+                dw = iw - rw
+                for iv in range(nv):
+                    dv = iv - rv
+                    du = surf[iw, iv]
+                    x = c0 + du * ux + dv * vx + dw * wx
+                    y = c1 + du * uy + dv * vy + dw * wy
+                    z = c2 + du * uz + dv * vz + dw * wz
+                    if x < -0.5 or y < -0.5 or z < -0.5 or x > n0 - 0.5 or y > n1 - 0.5 or z > n2 - 0.5:
+                        continue
+                    total += _nearest(att, x, y, z, g0, g1)
+                    count += 1
+            if count == 0:
+                continue
+            fa = total / count
+            gv = 0.5 * (surf[rw, rv + 1] - surf[rw, rv - 1])
+            gw = 0.5 * (surf[min(rw + 1, nw - 1), rv] - surf[max(rw - 1, 0), rv]) if nw > 1 else 0.0
+            nx = ux - gv * vx - gw * wx
+            ny = uy - gv * vy - gw * wy
+            nz = uz - gv * vz - gw * wz
+            nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+            nx /= nn
+            ny /= nn
+            nz /= nn
+            seed_normal[s, 0] = nx
+            seed_normal[s, 1] = ny
+            seed_normal[s, 2] = nz
+            # 5. one vote per sample of the surface
+            for iw in range(nw):
+                dw = iw - rw
+                for iv in range(nv):
+                    dv = iv - rv
+                    du = surf[iw, iv]
+                    i = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5)) - o0
+                    j = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5)) - o1
+                    k = int(np.floor(c2 + du * uz + dv * vz + dw * wz + 0.5))
+                    if i < 0 or j < 0 or k < 0 or i >= m0 or j >= m1 or k >= n2:
+                        continue
+                    votes[t, i, j, k] += fa
+                    q = best_seed[t, i, j, k]
+                    if fa > best[t, i, j, k] or (fa == best[t, i, j, k] and q >= 0 and ids[s] < ids[q]):
+                        best[t, i, j, k] = fa
+                        best_seed[t, i, j, k] = s
+
+
+@nb.njit(cache=True, parallel=True)
+def _strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
+    # strike and dip (m0, m1, n2) of the strongest surface through each sample over the threads' records (the
+    # larger mean likelihood, then the smaller seed id); 0 where no surface passes
+    n_threads, m0 = best.shape[0], best.shape[1]
+    for i in nb.prange(m0):
+        for j in range(best.shape[2]):
+            for k in range(best.shape[3]):
+                top = 0.0
+                s = -1
+                for t in range(n_threads):
+                    q = best_seed[t, i, j, k]
+                    if q < 0:
+                        continue
+                    f = best[t, i, j, k]
+                    if s < 0 or f > top or (f == top and ids[q] < ids[s]):
+                        top = f
+                        s = q
+                if s >= 0:
+                    strike[i, j, k] = seed_strike[s]
+                    dip[i, j, k] = seed_dip[s]

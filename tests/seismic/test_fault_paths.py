@@ -1,0 +1,97 @@
+"""trace_faults runs in memory or block by block (issue 30): the library decides from the cube's size and the memory
+limit, and both runs give the same refusals and warnings, from the same check functions."""
+
+import re
+import warnings
+
+import numpy as np
+import pytest
+
+import seismo3d.seismic.faults.cube_run as cube_run
+import seismo3d.seismic.faults.pipeline as pipeline
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import InputError, Seismo3dWarning, UnsupportedDataError
+from seismo3d.seismic.faults import fits_in_memory, in_memory_bytes, parse_memory_limit, trace_faults
+
+
+class _Likelihood(Exception):
+    """Raised where the fault likelihood would start: every check before it has passed."""
+
+
+def _stop(*args, **kwargs):
+    raise _Likelihood
+
+
+@pytest.fixture(scope="module")
+def seismic():
+    return synthetic_cube((64, 64, 64), seed=1).cube.astype(np.float32)
+
+
+def _nan(cube):
+    out = cube.copy()
+    out[10:14, 20:24, 30:40] = np.nan
+    return out, (None, r"data has 160 NaN or inf samples \(0\.1%\); they are read as 0")
+
+
+def _tiny(cube):
+    return cube[:20, :6].copy(), (UnsupportedDataError, r"the data has 20 x 6 traces of 64 samples: fault tracing "
+                                                        r"needs at least 32 traces")
+
+
+def _velocity(cube):
+    depth = np.linspace(1500.0, 4500.0, cube.shape[2], dtype=np.float32)
+    lateral = np.linspace(0.0, 50.0, cube.shape[0], dtype=np.float32)[:, None, None]
+    return (depth + lateral) * np.ones(cube.shape, np.float32), (UnsupportedDataError,
+                                                                 r"this is not seismic amplitude data")
+
+
+def _clipped(cube):
+    return np.clip(cube, -0.3 * cube.max(), 0.3 * cube.max()), (None, r"sit at the data's smallest or largest "
+                                                                      r"value: clipped amplitudes")
+
+
+def _constant(cube):
+    return np.full(cube.shape, 3.0, np.float32), (InputError, r"every sample has the same value")
+
+
+@pytest.mark.parametrize("case", [_nan, _tiny, _velocity, _clipped, _constant], ids=lambda f: f.__name__[1:])
+def test_both_runs_give_the_same_refusal_or_warning(case, seismic, tmp_path, monkeypatch):
+    """The in-memory run and the run by blocks (forced) of the same array: the same exception and message, or the
+    same warning before the likelihood starts (where the test stops both runs)."""
+    data, (error, message) = case(seismic)
+    monkeypatch.setattr(pipeline, "fault_likelihood", _stop)
+    monkeypatch.setattr(cube_run, "chunked_fault_likelihood", _stop)
+    outcomes = []
+    for in_memory in (True, False):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", Seismo3dWarning)
+            with pytest.raises(error or _Likelihood) as raised:
+                trace_faults(data, in_memory=in_memory, work_dir=tmp_path, progress=False)
+        texts = sorted(str(w.message) for w in caught if issubclass(w.category, Seismo3dWarning))
+        outcomes.append((raised.type, str(raised.value), texts))
+    if error is None:
+        assert any(re.search(message, t) for t in outcomes[0][2]), outcomes[0][2]
+    else:
+        assert re.search(message, outcomes[0][1]), outcomes[0][1]
+    # the same refusal and the same warnings; a refusal's figures may differ where the block run judges a sample
+    assert outcomes[0][0] == outcomes[1][0] and outcomes[0][2] == outcomes[1][2]
+    assert re.search(message, outcomes[1][1] if error else " ".join(outcomes[1][2]))
+
+
+def test_the_memory_decision():
+    """fits_in_memory: the in-memory need (24 bytes a float32 sample, as measured) against the limit less what the
+    process holds; 2D sections always fit; limits parsed as the commands take them."""
+    shape = (256, 256, 256)
+    need = in_memory_bytes(shape)
+    assert need == 256 ** 3 * 4 * 24
+    assert fits_in_memory(shape, need + (100 << 20), held=100 << 20)
+    assert not fits_in_memory(shape, need + (100 << 20), held=(100 << 20) + 1)
+    assert fits_in_memory((100_000, 2000), "100MB", held=0)
+    assert parse_memory_limit("500MB") == 500 * 10 ** 6 and parse_memory_limit(1 << 30) == 1 << 30
+    with pytest.raises(InputError, match="at least 64 MB"):
+        fits_in_memory(shape, "1MB")
+
+
+def test_a_cube_beyond_the_limit_needs_a_work_folder(seismic):
+    with pytest.raises(InputError, match="pass work_dir="):
+        trace_faults(seismic, in_memory=False, progress=False)

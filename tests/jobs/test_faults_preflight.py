@@ -54,6 +54,12 @@ def cube_file(tmp_path_factory):
 def test_a_limit_below_the_smallest_blocks_names_the_minimum_at_once(cube_file, tmp_path, monkeypatch):
     monkeypatch.setattr(cube_run, "chunked_fault_likelihood", _never)
     monkeypatch.setattr(cube_run, "judge_sample", _never)
+    # the process as measured by the first call for both calls: the limit named is rounded up (to 10 MB, or 0.1 GB
+    # over 1 GB), and a process grown by a fraction of a MB in between could sit just above it
+    baseline = {}
+    measure = cube_run.worker_baseline
+    monkeypatch.setattr(cube_run, "worker_baseline", lambda *a, **k: baseline.setdefault("bytes", measure(*a, **k)))
+    monkeypatch.setattr(job, "fits_in_memory", lambda *a, **k: False)  # blocks at either limit (see the next test)
     line = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
                                                "--memory-limit", "100MB"]))
     assert line.startswith("error: cube: a block-by-block run of its 128 x 128 x 128 samples needs a memory limit of "

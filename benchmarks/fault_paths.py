@@ -1,0 +1,88 @@
+"""The faults job in memory and under a memory limit that forces blocks give the same faults (issue 30).
+
+Run: ``SEISMO3D_DATA_DIR=... python benchmarks/fault_paths.py [--only generated,penobscot] [--keep DIR]``
+
+For a generated 192^3 faulted cube (:func:`~seismo3d.data.synthetic.synthetic_cube`, seed 4) and the 18 Penobscot
+inlines (:func:`~seismo3d.data.load_penobscot_sections`), :func:`~seismo3d.jobs.faults.run_faults_job` runs once with
+a limit far above the in-memory need and once with the process's own size plus 60 % of that need (so the library
+decides on blocks). Printed per cube: whether ``fault_points.csv`` and ``fault_summary.csv`` are byte-identical, the
+largest fault likelihood and votes differences (target <= 1e-6), the number of faults, and both runs' seconds with
+the load average. The suite keeps a smaller cube's comparison (``tests/jobs/test_faults_chunked.py``); these two take
+minutes each.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import pathlib
+import tempfile
+import time
+import warnings
+
+import numpy as np
+import zarr
+
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.jobs.faults import run_faults_job
+from seismo3d.seismic.faults import in_memory_bytes, resident_memory
+
+
+def _timed(*args, **kwargs):
+    start = time.perf_counter()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = run_faults_job(*args, **kwargs)
+    return result, time.perf_counter() - start, sorted({str(w.message).split(":")[0][:60] for w in caught})
+
+
+def compare(name: str, npy: pathlib.Path, out: pathlib.Path) -> dict:
+    """Run the job both ways on ``npy`` and compare the outputs."""
+    shape = np.load(npy, mmap_mode="r").shape
+    memory, t_memory, w_memory = _timed(npy, out / "memory", memory_limit=64 << 30, progress=False)
+    limit = resident_memory() + int(0.6 * in_memory_bytes(shape))
+    blocks, t_blocks, w_blocks = _timed(npy, out / "blocks", memory_limit=limit, progress=False)
+    m, b = memory.written, blocks.written
+    if b["likelihood"].name != "fault_likelihood.zarr":
+        raise SystemExit(f"{name}: the limit {limit / 2**30:.2f} GiB did not force blocks")
+    traced = zarr.open_group(str(b["surfaces_zarr"]), mode="r")
+    return {
+        "cube": name, "shape": "x".join(map(str, shape)), "faults": memory.n_faults,
+        "points equal": b["points"].read_bytes() == m["points"].read_bytes(),
+        "summary equal": b["summary"].read_bytes() == m["summary"].read_bytes(),
+        "likelihood diff": float(np.abs(traced["likelihood"][:] - np.load(m["likelihood"])).max()),
+        "votes diff": float(np.abs(traced["votes"][:] - np.load(m["votes"])).max()),
+        "s in memory": t_memory, "s by blocks": t_blocks, "limit GiB": limit / 2**30,
+        "warnings equal": w_memory == w_blocks,
+    }
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", default="generated,penobscot")
+    ap.add_argument("--keep", type=pathlib.Path, default=None, help="keep the outputs in this folder")
+    args = ap.parse_args(argv)
+    only = set(args.only.split(","))
+    root = args.keep or pathlib.Path(tempfile.mkdtemp(prefix="fault_paths_"))
+    root.mkdir(parents=True, exist_ok=True)
+    rows = []
+    if "generated" in only:
+        npy = root / "generated.npy"
+        np.save(npy, synthetic_cube((192, 192, 192), seed=4).cube.astype(np.float32))
+        rows.append(compare("generated 192^3", npy, root / "generated"))
+    if "penobscot" in only:
+        from seismo3d.data import load_penobscot_sections
+
+        npy = root / "penobscot.npy"
+        np.save(npy, load_penobscot_sections().cube)
+        rows.append(compare("Penobscot 18 inlines", npy, root / "penobscot"))
+    print(f"load average {os.getloadavg()[0]:.1f}")
+    keys = list(rows[0])
+    print(" | ".join(keys))
+    for r in rows:
+        print(" | ".join(f"{r[k]:.3g}" if isinstance(r[k], float) else str(r[k]) for k in keys))
+    print(f"outputs in {root}")
+
+
+if __name__ == "__main__":
+    main()

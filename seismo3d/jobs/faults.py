@@ -25,8 +25,8 @@ from ..errors import InputError, Seismo3dWarning
 from ..seismic.faults.memory import fits_in_memory, parse_memory_limit, resident_memory
 from ..seismic.faults.pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
 from ..seismic.io.lazy import open_lazy
-from ..seismic.io.segy import open_segy, write_like
-from ..seismic.io.writer import write_like_blocks
+from ..seismic.io.segy import open_segy
+from ..seismic.io.writer import write_like, write_like_blocks
 from .fault_tables import write_points, write_summary
 from .inputs import read_seismic
 from .outputs import check_outputs, output_folder

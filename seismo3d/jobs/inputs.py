@@ -15,7 +15,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DataNotFoundError, InputError
-from ..seismic.io.segy import open_segy, read_section
+from ..seismic.io.sections import read_section
+from ..seismic.io.segy import open_segy
 
 __all__ = ["SEGY_SUFFIXES", "SeismicInput", "input_kind", "read_seismic"]
 

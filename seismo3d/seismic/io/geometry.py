@@ -116,3 +116,29 @@ def trace_geometry(segyfile, iline: int, xline: int) -> TraceGeometry:
     if prestack is None and n_positions < n:
         description += f"; {n - n_positions} traces repeat a position"
     return TraceGeometry(description, prestack)
+
+
+def scale_coordinates(values: np.ndarray, scalars: np.ndarray) -> np.ndarray:
+    """Apply SEG-Y coordinate scalars (trace header bytes 71-72): positive multiplies, negative divides, 0 means 1.
+
+    Parameters
+    ----------
+    values : (...) integer ndarray
+        Coordinates as stored in the trace headers (e.g. CDP X, bytes 181-184).
+    scalars : (...) integer ndarray
+        The scalar of each trace, same shape.
+
+    Returns
+    -------
+    (...) float64 ndarray
+        In the survey's unit (metres or feet, binary header bytes 3255-3256).
+
+    References
+    ----------
+    SEG-Y rev 1 (SEG Technical Standards Committee, 2002), trace header bytes 71-72.
+    """
+    s = scalars.astype(np.float64)
+    factor = np.ones_like(s)
+    factor[s > 0] = s[s > 0]
+    factor[s < 0] = 1.0 / -s[s < 0]
+    return values.astype(np.float64) * factor

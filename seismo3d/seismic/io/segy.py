@@ -29,7 +29,6 @@ refused there, one line each), segyio infers the grid, and the trace headers of 
 
 from __future__ import annotations
 
-import os
 import re
 import warnings
 from pathlib import Path
@@ -37,25 +36,13 @@ from pathlib import Path
 import numpy as np
 import segyio
 
-from ..._atomic import atomic_path
 from ..._validation import check_choice
 from ...errors import DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, TraceListWarning
-from .geometry import TraceGeometry, span, trace_geometry
+from .geometry import TraceGeometry, scale_coordinates, span, trace_geometry
 from .layout import SegyLayout, read_segy_layout, segyio_failure
 
-__all__ = ["SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines", "scale_coordinates"]
+__all__ = ["SeismicCube", "open_segy", "read_segy"]
 
-# (n_traces, n_samples) of the raw sections in the data directory's seismic/sections (see its README).
-_SECTION_SHAPES = {
-    "campos_gx373": (550, 300),
-    "costarica_crf": (500, 180),
-    "costarica_gx808": (825, 210),
-    "costarica_gx809": (825, 210),
-    "f3_f3d75s": (440, 222),
-    "teapot_tpd": (357, 315),
-    "teapot_tp73": (357, 240),
-    "f3_f3d178sub2": (951, 242),
-}
 
 # Header byte pairs tried (only after a failure) to suggest where the inline / crossline numbers are.
 _COMMON_HEADER_BYTES = ((189, 193), (9, 21), (5, 21), (9, 17), (17, 21), (221, 225))
@@ -85,32 +72,6 @@ def _guess_sample_unit(text: str, measurement_system: int) -> str:
     if _DEPTH_WORDS.search(cleaned) and not _TIME_WORDS.search(cleaned):
         return "ft" if measurement_system == 2 else "m"
     return "ms"
-
-
-def scale_coordinates(values: np.ndarray, scalars: np.ndarray) -> np.ndarray:
-    """Apply SEG-Y coordinate scalars (trace header bytes 71-72): positive multiplies, negative divides, 0 means 1.
-
-    Parameters
-    ----------
-    values : (...) integer ndarray
-        Coordinates as stored in the trace headers (e.g. CDP X, bytes 181-184).
-    scalars : (...) integer ndarray
-        The scalar of each trace, same shape.
-
-    Returns
-    -------
-    (...) float64 ndarray
-        In the survey's unit (metres or feet, binary header bytes 3255-3256).
-
-    References
-    ----------
-    SEG-Y rev 1 (SEG Technical Standards Committee, 2002), trace header bytes 71-72.
-    """
-    s = scalars.astype(np.float64)
-    factor = np.ones_like(s)
-    factor[s > 0] = s[s > 0]
-    factor[s < 0] = 1.0 / -s[s < 0]
-    return values.astype(np.float64) * factor
 
 
 class _TraceView:
@@ -619,170 +580,3 @@ def read_segy(path, **kwargs):
         data = cube.read()
         cube._load_coords()
     return data, cube
-
-
-def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
-               endian=None) -> Path:
-    """Write an attribute as SEG-Y with the headers and geometry of a template file.
-
-    The textual, binary and every trace header are copied from the template (segyio's copy-a-file recipe); only the
-    binary header's data format becomes 5 (4-byte IEEE float) so that any attribute fits. The file is big-endian, the
-    SEG-Y standard's byte order, whatever the template's. It is written to a temporary file in the output folder and
-    moved into place when complete, so an interrupted call never leaves a half-written ``out_path``. The template is
-    only read.
-
-    Parameters
-    ----------
-    template_path : str or os.PathLike
-        The SEG-Y file whose headers are copied.
-    out_path : str or os.PathLike
-        Output file; its folder must exist. Replaced if it exists.
-    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        The attribute on the template's grid (``open_segy(template).shape``) or per trace in file order; written
-        as float32.
-    iline, xline, ignore_geometry, endian
-        How to open the template, as in :func:`open_segy` (a template without a grid is read as a trace list
-        without a second :class:`TraceListWarning`).
-
-    Returns
-    -------
-    out_path : pathlib.Path
-
-    Raises
-    ------
-    InputError
-        ``out_path`` is the template, its folder does not exist, ``data`` has the wrong shape or NaN / inf values.
-    SegyFormatError, SegyGeometryError, DataNotFoundError
-        The template cannot be read (see :func:`open_segy`).
-    """
-    template_path, out_path = Path(template_path), Path(out_path)
-    if template_path.resolve() == out_path.resolve() or (
-        out_path.exists() and template_path.exists() and os.path.samefile(template_path, out_path)
-    ):
-        raise InputError(f"out_path {out_path} is the template file itself; write to another file, the template "
-                         "must not be overwritten")
-    out_dir = out_path.resolve().parent
-    if not out_dir.is_dir():
-        raise InputError(f"output folder {out_dir} does not exist; create it first")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", TraceListWarning)  # the caller was told when it read the template
-        cube = open_segy(template_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
-    with cube:
-        arr = np.asarray(data, dtype=np.float32)
-        ntr, ns = cube.n_traces, cube.samples.size
-        if arr.shape == cube.shape:
-            traces = cube._to_traces(arr)
-        elif arr.shape == (ntr, ns):
-            traces = arr
-        else:
-            raise InputError(f"data has shape {arr.shape} but the template {template_path.name} needs {cube.shape} "
-                             f"(its grid) or {(ntr, ns)} (traces in file order)")
-        if not np.all(np.isfinite(traces)):
-            raise InputError("data contains NaN or inf, which most SEG-Y readers reject; replace them first, e.g. "
-                             "np.nan_to_num(data)")
-        traces = np.ascontiguousarray(traces, dtype=np.float32)
-        src = cube.segyfile
-        spec = segyio.tools.metadata(src)
-        spec.format = int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)
-        spec.endian = "big"  # segyio converts the copied header values to it
-        if src.unstructured:
-            spec.tracecount = src.tracecount
-        with atomic_path(out_path) as tmp, segyio.create(str(tmp), spec) as dst:
-            for i in range(1 + src.ext_headers):
-                dst.text[i] = src.text[i]
-            dst.bin = src.bin
-            dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
-            dst.header = src.header
-            for i in range(ntr):
-                dst.trace[i] = traces[i]
-    return out_path
-
-
-def read_section(path, *, n_traces=None, n_samples=None) -> np.ndarray:
-    """Read a raw 2D section stored as big-endian float32, trace after trace (no header).
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        A ``.f32be`` file. The shapes of the sections in the data directory's ``seismic/sections`` are known by file
-        stem (campos_gx373 550 x 300, costarica_crf 500 x 180, costarica_gx808 / gx809 825 x 210, f3_f3d75s 440 x 222,
-        teapot_tpd 357 x 315, teapot_tp73 357 x 240, f3_f3d178sub2 951 x 242); for other files pass the shape.
-    n_traces, n_samples : int, optional
-        Shape; for an unknown file give at least one, the other is derived from the file size.
-
-    Returns
-    -------
-    section : (n_traces, n_samples) float32 ndarray
-        Axis 0 trace, axis 1 sample (downward).
-
-    Raises
-    ------
-    DataNotFoundError
-        No such file.
-    InputError
-        Unknown file without a shape, or a shape that does not match the file size.
-    """
-    path = Path(path)
-    if not path.is_file():
-        raise DataNotFoundError(f"no section file at {path}; check the path")
-    n_values, rem = divmod(path.stat().st_size, 4)
-    if rem:
-        raise InputError(f"{path.name} has {path.stat().st_size} bytes, not a whole number of float32 values; "
-                         "the file is truncated or not raw float32")
-    known = _SECTION_SHAPES.get(path.stem)
-    if n_traces is None and n_samples is None:
-        if known is None:
-            raise InputError(f"the shape of {path.name} is unknown; pass n_traces= and/or n_samples= "
-                             f"(it holds {n_values} float32 values)")
-        n_traces, n_samples = known
-    elif n_traces is None or n_samples is None:
-        given = int(n_traces if n_traces is not None else n_samples)
-        if given <= 0 or n_values % given:
-            raise InputError(f"{path.name} holds {n_values} float32 values, not a multiple of {given}; check the shape")
-        other = n_values // given
-        n_traces, n_samples = (given, other) if n_traces is not None else (other, given)
-    n_traces, n_samples = int(n_traces), int(n_samples)
-    if n_traces <= 0 or n_samples <= 0 or n_traces * n_samples != n_values:
-        raise InputError(f"{path.name} holds {n_values} float32 values but the shape ({n_traces}, {n_samples}) needs "
-                         f"{n_traces * n_samples}; check n_traces / n_samples")
-    data = np.fromfile(path, dtype=">f4").reshape(n_traces, n_samples)
-    return data.astype(np.float32)
-
-
-def read_ascii_lines(path):
-    """Read an ASCII line export: one trace per row, ``inline xline sample_0 sample_1 ...`` (whitespace separated).
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        E.g. ``f3_inline362.ascii`` (inline 362 of F3, crosslines 300-1250, 463 samples at 4 ms).
-
-    Returns
-    -------
-    inlines : (n_traces,) int32 ndarray
-    xlines : (n_traces,) int32 ndarray
-    traces : (n_traces, n_samples) float32 ndarray
-        Axis 1 is the sample (downward). The sample interval is not stored in the file.
-
-    Raises
-    ------
-    DataNotFoundError
-        No such file.
-    InputError
-        Rows of unequal length, non-numeric values, non-integer inline / crossline numbers, or fewer than 3 columns.
-    """
-    path = Path(path)
-    if not path.is_file():
-        raise DataNotFoundError(f"no ASCII file at {path}; check the path")
-    try:
-        table = np.loadtxt(path, dtype=np.float64, ndmin=2)
-    except ValueError as exc:
-        raise InputError(f"{path.name} is not a table of numbers with equal-length rows ({exc}); expected one trace "
-                         "per row: inline, xline, then the samples") from exc
-    if table.shape[0] == 0 or table.shape[1] < 3:
-        raise InputError(f"{path.name} has {table.shape[1] if table.size else 0} columns; expected inline, xline and "
-                         "at least one sample per row")
-    ids = table[:, :2]
-    if not np.all(ids == np.round(ids)):
-        raise InputError(f"the first two columns of {path.name} must be integer inline and crossline numbers")
-    return ids[:, 0].astype(np.int32), ids[:, 1].astype(np.int32), table[:, 2:].astype(np.float32)

@@ -1,11 +1,11 @@
-"""SEG-Y written block by block: an attribute of a cube larger than memory, with the headers of its template file.
-
-The counterpart of :func:`~seismo3d.seismic.io.write_like` for arrays that are read one block of inlines at a time
-(a Zarr array, a dask array): memory is one block, never the cube.
+"""SEG-Y written like a template file: an attribute with the template's headers, whole (:func:`write_like`) or one
+block of inlines at a time for a cube larger than memory (:func:`write_like_blocks`: a Zarr or dask array; memory is
+one block, never the cube).
 """
 
 from __future__ import annotations
 
+import os
 import warnings
 from pathlib import Path
 
@@ -18,7 +18,84 @@ from ...errors import InputError, TraceListWarning
 from .blocks import SegyGrid
 from .segy import open_segy
 
-__all__ = ["write_like_blocks"]
+__all__ = ["write_like", "write_like_blocks"]
+
+
+def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
+               endian=None) -> Path:
+    """Write an attribute as SEG-Y with the headers and geometry of a template file.
+
+    The textual, binary and every trace header are copied from the template (segyio's copy-a-file recipe); only the
+    binary header's data format becomes 5 (4-byte IEEE float) so that any attribute fits. The file is big-endian, the
+    SEG-Y standard's byte order, whatever the template's. It is written to a temporary file in the output folder and
+    moved into place when complete, so an interrupted call never leaves a half-written ``out_path``. The template is
+    only read.
+
+    Parameters
+    ----------
+    template_path : str or os.PathLike
+        The SEG-Y file whose headers are copied.
+    out_path : str or os.PathLike
+        Output file; its folder must exist. Replaced if it exists.
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        The attribute on the template's grid (``open_segy(template).shape``) or per trace in file order; written
+        as float32.
+    iline, xline, ignore_geometry, endian
+        How to open the template, as in :func:`open_segy` (a template without a grid is read as a trace list
+        without a second :class:`TraceListWarning`).
+
+    Returns
+    -------
+    out_path : pathlib.Path
+
+    Raises
+    ------
+    InputError
+        ``out_path`` is the template, its folder does not exist, ``data`` has the wrong shape or NaN / inf values.
+    SegyFormatError, SegyGeometryError, DataNotFoundError
+        The template cannot be read (see :func:`open_segy`).
+    """
+    template_path, out_path = Path(template_path), Path(out_path)
+    if template_path.resolve() == out_path.resolve() or (
+        out_path.exists() and template_path.exists() and os.path.samefile(template_path, out_path)
+    ):
+        raise InputError(f"out_path {out_path} is the template file itself; write to another file, the template "
+                         "must not be overwritten")
+    out_dir = out_path.resolve().parent
+    if not out_dir.is_dir():
+        raise InputError(f"output folder {out_dir} does not exist; create it first")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TraceListWarning)  # the caller was told when it read the template
+        cube = open_segy(template_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
+    with cube:
+        arr = np.asarray(data, dtype=np.float32)
+        ntr, ns = cube.n_traces, cube.samples.size
+        if arr.shape == cube.shape:
+            traces = cube._to_traces(arr)
+        elif arr.shape == (ntr, ns):
+            traces = arr
+        else:
+            raise InputError(f"data has shape {arr.shape} but the template {template_path.name} needs {cube.shape} "
+                             f"(its grid) or {(ntr, ns)} (traces in file order)")
+        if not np.all(np.isfinite(traces)):
+            raise InputError("data contains NaN or inf, which most SEG-Y readers reject; replace them first, e.g. "
+                             "np.nan_to_num(data)")
+        traces = np.ascontiguousarray(traces, dtype=np.float32)
+        src = cube.segyfile
+        spec = segyio.tools.metadata(src)
+        spec.format = int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)
+        spec.endian = "big"  # segyio converts the copied header values to it
+        if src.unstructured:
+            spec.tracecount = src.tracecount
+        with atomic_path(out_path) as tmp, segyio.create(str(tmp), spec) as dst:
+            for i in range(1 + src.ext_headers):
+                dst.text[i] = src.text[i]
+            dst.bin = src.bin
+            dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
+            dst.header = src.header
+            for i in range(ntr):
+                dst.trace[i] = traces[i]
+    return out_path
 
 
 def write_like_blocks(template_path, out_path, values, *, iline: int = 189, xline: int = 193, endian=None,

@@ -41,7 +41,7 @@ import segyio
 
 from ...errors import InputError
 from .blocks import SegyGrid, read_segy_block, read_segy_block_headers, segyio_handle
-from .segy import scale_coordinates
+from .geometry import scale_coordinates
 
 __all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate", "open_seismic_zarr",
            "is_seismic_zarr"]

@@ -340,7 +340,7 @@ def test_a_missing_output_folder_is_refused_before_any_work(tmp_path, args):
 
 def test_argument_names_inside_file_names_are_left_alone():
     """Library names become flags in messages, but not inside a path (init.json, /runs/max_distance/...)."""
-    from seismo3d.cli import _in_flags
+    from seismo3d._cli_messages import in_flags as _in_flags
 
     flags = {"init": "--init", "max_distance": "--max-distance"}
     assert _in_flags("output /tmp/init.json is the input init.json itself; raise max_distance or pass init.",

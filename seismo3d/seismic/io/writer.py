@@ -55,15 +55,7 @@ def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 
     SegyFormatError, SegyGeometryError, DataNotFoundError
         The template cannot be read (see :func:`open_segy`).
     """
-    template_path, out_path = Path(template_path), Path(out_path)
-    if template_path.resolve() == out_path.resolve() or (
-        out_path.exists() and template_path.exists() and os.path.samefile(template_path, out_path)
-    ):
-        raise InputError(f"out_path {out_path} is the template file itself; write to another file, the template "
-                         "must not be overwritten")
-    out_dir = out_path.resolve().parent
-    if not out_dir.is_dir():
-        raise InputError(f"output folder {out_dir} does not exist; create it first")
+    template_path, out_path = _check_destination(template_path, out_path)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", TraceListWarning)  # the caller was told when it read the template
         cube = open_segy(template_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
@@ -138,10 +130,7 @@ def write_like_blocks(template_path, out_path, values, *, iline: int = 189, xlin
     ----------
     .. [1] SEG Technical Standards Committee, "SEG-Y_r2.0: SEG-Y revision 2.0 Data Exchange format", 2017.
     """
-    template_path, out_path = Path(template_path), Path(out_path)
-    if template_path.resolve() == out_path.resolve():
-        raise InputError(f"out_path {out_path} is the template file itself; write to another file, the template "
-                         "must not be overwritten")
+    template_path, out_path = _check_destination(template_path, out_path)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", TraceListWarning)
         cube = open_segy(template_path, iline=iline, xline=xline, endian=endian)
@@ -178,3 +167,18 @@ def write_like_blocks(template_path, out_path, values, *, iline: int = 189, xlin
                             dst.trace[first + k] = traces[k]
                     bar.advance()
     return out_path
+
+
+def _check_destination(template_path, out_path) -> tuple[Path, Path]:
+    """The two paths, after refusing an ``out_path`` that is the template (also through a link) or whose folder does
+    not exist."""
+    template_path, out_path = Path(template_path), Path(out_path)
+    if template_path.resolve() == out_path.resolve() or (
+        out_path.exists() and template_path.exists() and os.path.samefile(template_path, out_path)
+    ):
+        raise InputError(f"out_path {out_path} is the template file itself; write to another file, the template "
+                         "must not be overwritten")
+    out_dir = out_path.resolve().parent
+    if not out_dir.is_dir():
+        raise InputError(f"output folder {out_dir} does not exist; create it first")
+    return template_path, out_path

@@ -217,6 +217,8 @@ SECTIONS = {  # every real 2D section of the data folder: (file, n_traces, n_sam
 }
 # the evidence options tried by the cross-validation on the F3 inlines (min_throw in samples, min_correlation_gain)
 LIKELIHOODS = ("learned", "scan")
+# the learned likelihood's network grids tried by the cross-validation on the F3 inlines (LearnedOptions.resample)
+RESAMPLE_GRID = (1.0, 0.85, 0.7, 0.6, 0.5)
 EVIDENCE_GRID = [(t, g) for t in (0.0, 0.5, 1.0, 1.5, 2.0, 3.0) for g in (-1.0, 0.0, 0.05, 0.1, 0.2)]
 
 
@@ -229,13 +231,15 @@ def _kept_mask(faults, evidence, shape, options=None):
     return mask
 
 
-def _candidates(section, likelihood="scan", **unit):
+def _candidates(section, likelihood="scan", resample=None, **unit):
     """The faults of the whole pipeline before the evidence is asked (only unmeasured ones dropped), their evidence,
-    and the seconds of the run; the defaults' faults are those whose evidence ``EvidenceOptions()`` accepts."""
+    and the seconds of the run; the defaults' faults are those whose evidence ``EvidenceOptions()`` accepts.
+    ``resample``: the learned likelihood's network grid (default: LearnedOptions's)."""
     from seismo3d.seismic import trace_faults
-    from seismo3d.seismic.faults import EvidenceOptions, FaultTracingOptions
+    from seismo3d.seismic.faults import EvidenceOptions, FaultTracingOptions, LearnedOptions
 
-    every = FaultTracingOptions(likelihood=likelihood,
+    learned = LearnedOptions() if resample is None else LearnedOptions(resample=resample)
+    every = FaultTracingOptions(likelihood=likelihood, learned=learned,
                                 evidence=EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # muted tops and clipped amplitudes are reported
@@ -254,13 +258,21 @@ def f3_people() -> None:
     from seismo3d.data import load_f3_fault_sections
     from seismo3d.seismic.faults import EvidenceOptions
 
+    from seismo3d.seismic.faults import LearnedOptions
+
     data = load_f3_fault_sections()
     n = len(data.inlines)
     candidates, seconds = {}, {}
-    for likelihood in LIKELIHOODS:
-        runs = [_candidates(data.sections[k], likelihood, sample_interval=4.0, sample_unit="ms") for k in range(n)]
-        candidates[likelihood] = [(f, e) for f, e, _ in runs]
-        seconds[likelihood] = [sec for _, _, sec in runs]
+    variants = [("scan", None)] + [("learned", r) for r in RESAMPLE_GRID]
+    for likelihood, resample in variants:
+        runs = [_candidates(data.sections[k], likelihood, resample, sample_interval=4.0, sample_unit="ms")
+                for k in range(n)]
+        name = likelihood if resample is None else f"learned@{resample:g}"
+        candidates[name] = [(f, e) for f, e, _ in runs]
+        seconds[name] = [sec for _, _, sec in runs]
+    default_resample = LearnedOptions().resample
+    candidates["learned"] = candidates[f"learned@{default_resample:g}"]
+    seconds["learned"] = seconds[f"learned@{default_resample:g}"]
     # the peer: one quantile of 1 - plain semblance for all five inlines, the best mean F1
     best = None
     for q in np.concatenate([np.linspace(0.50, 0.98, 25), [0.985, 0.99, 0.993, 0.996, 0.998]]):
@@ -271,7 +283,9 @@ def f3_people() -> None:
     # every (likelihood, evidence) grid point's scores on every inline (the defaults' among them)
     default = EvidenceOptions()
     grid = {(lk, t, g): EvidenceOptions(min_throw=t, min_correlation_gain=g)
-            for lk in LIKELIHOODS for t, g in EVIDENCE_GRID}
+            for lk in candidates if lk != "learned" for t, g in EVIDENCE_GRID}
+    for t, g in EVIDENCE_GRID:  # the default network grid under its own name too
+        grid[("learned", t, g)] = EvidenceOptions(min_throw=t, min_correlation_gain=g)
     grid_scores = {key: [_scores(_kept_mask(*candidates[key[0]][k], data.sections[k].shape, opt), data.faults[k])
                          for k in range(n)] for key, opt in grid.items()}
     ours = {lk: grid_scores[(lk, default.min_throw, default.min_correlation_gain)] for lk in LIKELIHOODS}
@@ -290,23 +304,33 @@ def f3_people() -> None:
     mean = lambda scores: tuple(float(np.mean([s[i] for s in scores])) for i in range(3))  # noqa: E731
     print(f"{'mean':>6s} | {fmt(mean(ours['learned'])):>24s} {'':6s} | {fmt(mean(ours['scan'])):>24s} {'':6s} | "
           f"{fmt(mean(best[1])):>24s} | {np.mean(faultnet):11.2f}")
+    print(f"(learned: network grid resample={default_resample:g}, the default)")
+    print("\nThe learned likelihood's network grid (LearnedOptions.resample), default evidence: mean precision / "
+          "recall / F1 over the five inlines, F1 per inline, seconds per inline")
+    for r in RESAMPLE_GRID:
+        key = (f"learned@{r:g}", default.min_throw, default.min_correlation_gain)
+        sc = grid_scores[key]
+        print(f"  resample {r:4.2f}: {fmt(mean(sc))}   F1 " + " ".join(f"{x[2]:.3f}" for x in sc)
+              + f"   {np.mean(seconds[key[0]]):.1f} s")
     print(f"skeleton threshold: the {best[0]:.1%} quantile of 1 - semblance on every inline; seconds per inline: "
           + ", ".join(f"{lk} {np.mean(seconds[lk]):.1f}" for lk in LIKELIHOODS))
-    print(f"\nCross-validation of the likelihood and the evidence options (min_throw samples, min_correlation_gain), "
-          f"{len(grid)} choices: chosen by mean F1 on three inlines, scored on the other two; the defaults are "
-          f"(learned, {default.min_throw:g}, {default.min_correlation_gain:g})\n")
-    head = f"{'chosen on':>16s} {'held out':>10s} {'choice':>22s} {'held-out F1':>11s} {'default F1':>10s}"
+    choices = [g for g in grid if g[0] != "learned"]
+    print(f"\nCross-validation of the likelihood (scan, or learned at each network grid) and the evidence options "
+          f"(min_throw samples, min_correlation_gain), {len(choices)} choices: chosen by mean F1 on three inlines, "
+          f"scored on the other two; the defaults are (learned@{default_resample:g}, {default.min_throw:g}, "
+          f"{default.min_correlation_gain:g})\n")
+    head = f"{'chosen on':>16s} {'held out':>10s} {'choice':>30s} {'held-out F1':>11s} {'default F1':>10s}"
     print(head + "\n" + "-" * len(head))
     held_chosen, held_default = [], []
     names = lambda ks: ",".join(str(data.inlines[k]) for k in ks)  # noqa: E731
     for train in itertools.combinations(range(n), 3):
         test = [k for k in range(n) if k not in train]
-        choice = max(grid, key=lambda g: np.mean([grid_scores[g][k][2] for k in train]))
+        choice = max(choices, key=lambda g: np.mean([grid_scores[g][k][2] for k in train]))
         held_chosen.append(float(np.mean([grid_scores[choice][k][2] for k in test])))
         held_default.append(float(np.mean([ours["learned"][k][2] for k in test])))
-        print(f"{names(train):>16s} {names(test):>10s} {str(choice):>22s} {held_chosen[-1]:11.3f} "
+        print(f"{names(train):>16s} {names(test):>10s} {str(choice):>30s} {held_chosen[-1]:11.3f} "
               f"{held_default[-1]:10.3f}")
-    print(f"{'mean':>16s} {'':>10s} {'':>22s} {np.mean(held_chosen):11.3f} {np.mean(held_default):10.3f}")
+    print(f"{'mean':>16s} {'':>10s} {'':>30s} {np.mean(held_chosen):11.3f} {np.mean(held_default):10.3f}")
 
 
 def real_section_counts(data_dir: Path) -> None:

@@ -44,7 +44,8 @@ from scipy.ndimage import gaussian_filter
 from ..._progress import progress_steps
 from ...errors import InputError, Seismo3dError
 from .likelihood import FaultLikelihood
-from .unet import normalise_section, unet_forward
+from .network_grid import from_network_grid, to_network_grid
+from .unet import POOLING_MULTIPLE, normalise_section, unet_forward
 
 __all__ = ["WEIGHTS_SHA256", "LearnedOptions", "load_fault_network", "scale_subsample", "amplitude_scale",
            "fault_probability", "learned_fault_likelihood", "orientation_from_likelihood"]
@@ -71,12 +72,20 @@ class LearnedOptions:
         outside what it learned.
     sections_per_batch : int
         Sections run through the network at a time (memory vs overhead).
+    resample : float
+        The network runs on the data resampled by this factor along every axis (in [0.25, 1]; 1: the data's own
+        grid), its probability interpolated back (:mod:`~seismo3d.seismic.faults.network_grid`): below 1 its fixed
+        receptive field covers more traces and samples, so a fault zone is one line instead of a crosshatch of short
+        segments, and it runs on ``resample**2`` (sections) or ``resample**3`` (cubes) of the samples. The default
+        is chosen by cross-validation on the F3 inlines drawn by a person (``python benchmarks/faults.py --only
+        f3``).
     """
 
     directions: str = "both"
     orientation_sigma: float = 2.0
     min_dip: float = 40.0
     sections_per_batch: int = 4
+    resample: float = 0.7
 
     def __post_init__(self):
         if self.directions not in ("both", "inline", "crossline"):
@@ -85,6 +94,8 @@ class LearnedOptions:
             raise InputError(f"orientation_sigma must be > 0 samples; got {self.orientation_sigma!r}")
         if not 0.0 <= float(self.min_dip) < 90.0:
             raise InputError(f"min_dip must be in [0, 90) degrees; got {self.min_dip!r}")
+        if not 0.25 <= float(self.resample) <= 1.0:
+            raise InputError(f"resample must be in [0.25, 1]; got {self.resample!r}")
         if int(self.sections_per_batch) < 1:
             raise InputError(f"sections_per_batch must be >= 1; got {self.sections_per_batch!r}")
 
@@ -171,7 +182,7 @@ def _sections_probability(stack: np.ndarray, scale, weights, batch: int, bar) ->
 
 
 def fault_probability(data: np.ndarray, *, options: LearnedOptions | None = None, scale=None,
-                      progress: bool = False) -> np.ndarray:
+                      progress: bool = False, origin=None) -> np.ndarray:
     """The network's fault probability of a section or cube (no orientation).
 
     Parameters
@@ -183,6 +194,9 @@ def fault_probability(data: np.ndarray, *, options: LearnedOptions | None = None
         (median, standard deviation) of the amplitudes (:func:`amplitude_scale`); default: of ``data``.
     progress : bool, optional
         A progress bar over the sections.
+    origin : sequence of int, optional
+        Global lateral index of ``data``'s first trace when it is a block of a larger cube (the network grid is the
+        whole cube's: :func:`~seismo3d.seismic.faults.network_grid.to_network_grid`); default 0.
 
     Returns
     -------
@@ -190,9 +204,16 @@ def fault_probability(data: np.ndarray, *, options: LearnedOptions | None = None
         Probability in [0, 1].
     """
     opt = options or LearnedOptions()
-    weights = load_fault_network()
     arr = np.asarray(data, dtype=np.float32)
     scale = amplitude_scale(arr) if scale is None else scale
+    small, first = to_network_grid(arr, float(opt.resample), origin=origin, align=POOLING_MULTIPLE)
+    prob = _network_probability(small, opt, scale, progress)
+    return from_network_grid(prob, arr.shape, float(opt.resample), origin=origin, first=first)
+
+
+def _network_probability(arr: np.ndarray, opt: LearnedOptions, scale, progress: bool) -> np.ndarray:
+    """The network's probability of a section or cube on its own grid (every inline and crossline section)."""
+    weights = load_fault_network()
     batch = int(opt.sections_per_batch)
     if arr.ndim == 2:
         with progress_steps(1, "fault network", unit="section", enabled=progress) as bar:

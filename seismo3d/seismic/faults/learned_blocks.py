@@ -5,9 +5,11 @@ The steps (each block carries the halo its step needs, so the output equals the 
 
 1. The amplitude scale (median and standard deviation) from the regular subsample of traces that
    :func:`~seismo3d.seismic.faults.learned.amplitude_scale` uses in memory too.
-2. The network's probability on lateral blocks with :data:`~seismo3d.seismic.faults.unet.RECEPTIVE_HALF` traces of
-   halo (a multiple of 8, and blocks start at multiples of 8, so the network's pooling grid is the whole cube's),
-   every sample of each trace, on the inline and the crossline sections of the block; written to a work array.
+2. The network's probability on lateral blocks with the network's receptive half of halo
+   (:data:`~seismo3d.seismic.faults.unet.RECEPTIVE_HALF` traces on the network's grid:
+   :func:`~seismo3d.seismic.faults.network_grid.grid_halo`), every sample of each trace, on the inline and the
+   crossline sections of the block, resampled onto the whole cube's network grid (its pooling grid included); written
+   to a work array.
 3. Strike and dip from the structure tensor of the probability on blocks with the tensor smoothing's halo, written
    with the likelihood to the output Zarr group (``likelihood``, ``strike_deg``, ``dip_deg``: what
    :func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces` reads, as from the scan's chunked run).
@@ -31,7 +33,8 @@ from .learned import (LearnedOptions, amplitude_scale, fault_probability, orient
                       scale_subsample)
 from .likelihood_blocks import (ChunkedLikelihood, ChunkOptions, LikelihoodRun, _write_coords, lateral_blocks,
                                 trace_cube)
-from .unet import RECEPTIVE_HALF
+from .network_grid import grid_halo
+from .unet import POOLING_MULTIPLE, RECEPTIVE_HALF
 
 __all__ = ["chunked_learned_likelihood"]
 
@@ -40,7 +43,6 @@ __all__ = ["chunked_learned_likelihood"]
 # 3 gradients, 6 tensor components, the eigen decomposition's 3 x 3 matrices and the outputs in step 3
 _PROBABILITY_BYTES = 16
 _ORIENTATION_BYTES = 140
-_ALIGN = 8
 
 
 def _orientation_halo(opt: LearnedOptions) -> int:
@@ -107,7 +109,7 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, budget) -> dict:
     """Block sides (traces, multiples of 8 and of the tile) of the two steps under the memory limit."""
     nt = shape[2]
     tile = int(chunking.tile)
-    halo_p = RECEPTIVE_HALF
+    halo_p = grid_halo(RECEPTIVE_HALF, float(opt.resample), POOLING_MULTIPLE) if opt.resample < 1 else RECEPTIVE_HALF
     halo_o = _orientation_halo(opt)
     cap = max(tile, (max(shape[0], shape[1]) + tile - 1) // tile * tile)
     limit = budget if budget else 1 << 62
@@ -115,7 +117,7 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, budget) -> dict:
     def fits(halo, per_sample):
         return lambda b: (b + 2 * halo) ** 2 * nt * per_sample * int(chunking.workers) <= limit
 
-    step = np.lcm(tile, _ALIGN)
+    step = np.lcm(tile, POOLING_MULTIPLE)
     block_p = largest_block(int(step), min(cap, 512), fits(halo_p, _PROBABILITY_BYTES))
     block_o = largest_block(int(step), min(cap, 256), fits(halo_o, _ORIENTATION_BYTES))
     if not (fits(halo_p, _PROBABILITY_BYTES)(block_p) and fits(halo_o, _ORIENTATION_BYTES)(block_o)):
@@ -161,7 +163,7 @@ class _Run(LikelihoodRun):
             i0, i1, j0, j1 = b
             a0, a1, b0, b1 = max(i0 - halo, 0), min(i1 + halo, n0), max(j0 - halo, 0), min(j1 + halo, n1)
             tasks.append(self.task(_probability_block, x[a0:a1, b0:b1, :], (i0 - a0, i1 - a0, j0 - b0, j1 - b0), b,
-                                   str(self.work), self.opt, scale, str(self.marker("probability", b))))
+                                   str(self.work), self.opt, scale, (a0, b0), str(self.marker("probability", b))))
         self.compute(tasks, "fault network", "probability")
 
     def orientation(self, coords) -> float:
@@ -179,14 +181,14 @@ class _Run(LikelihoodRun):
         return fraction
 
 
-def _probability_block(f, core, block, work, opt, scale, marker) -> dict:
+def _probability_block(f, core, block, work, opt, scale, origin, marker) -> dict:
     """The network's probability on one block read with halo; its core written to the work array."""
     import zarr
     f = np.ascontiguousarray(f, dtype=np.float32)
     if not np.isfinite(f).all():
         raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {block[0]}-{block[1] - 1} (indices); "
                          "replace them (e.g. by 0) before tracing faults")
-    prob = fault_probability(f, options=opt, scale=scale)
+    prob = fault_probability(f, options=opt, scale=scale, origin=origin)
     c0, c1, d0, d1 = core
     i0, i1, j0, j1 = block
     zarr.open_array(f"{work}/probability", mode="r+")[i0:i1, j0:j1, :] = prob[c0:c1, d0:d1]

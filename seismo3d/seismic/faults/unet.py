@@ -35,7 +35,7 @@ import numpy as np
 
 from ...errors import InputError
 
-__all__ = ["BLOCKS", "RECEPTIVE_HALF", "unet_forward", "normalise_section"]
+__all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "unet_forward", "normalise_section"]
 
 BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
 # two 3x3 convolutions per level: 2 samples of context each at level k cost 2 * 2**k input samples; encoder and
@@ -43,7 +43,9 @@ BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
 # an aligned position), plus up to 7 from where a sample sits in the pooling grid: 51, rounded up to a multiple of 8
 # so that a block starting at a multiple of it keeps the whole input's pooling grid
 RECEPTIVE_HALF = 56
-_MULTIPLE = 8
+# three 2x2 poolings: sections are padded to a multiple of this, and blocks keep the whole input's pooling grid
+# when they start at a multiple of it
+POOLING_MULTIPLE = 8
 _TILE_SAMPLES = 16384
 
 
@@ -142,7 +144,7 @@ def unet_forward(sections: np.ndarray, weights) -> np.ndarray:
     if missing or "head.weight" not in weights:
         raise InputError(f"the fault network's weights miss {missing or ['head.weight']}")
     n, h, w = x.shape
-    ph, pw = (-h) % _MULTIPLE, (-w) % _MULTIPLE
+    ph, pw = (-h) % POOLING_MULTIPLE, (-w) % POOLING_MULTIPLE
     if ph or pw:
         x = np.pad(x, ((0, 0), (0, ph), (0, pw)), mode="reflect" if min(h, w) > max(ph, pw) else "edge")
     x = x[..., None]

@@ -1,0 +1,199 @@
+"""The grid the fault network sees: the data resampled by one factor along every axis, and the probability back.
+
+The network's receptive field is fixed in samples (:data:`~seismo3d.seismic.faults.unet.RECEPTIVE_HALF`), while
+real faults are zones: the large Penobscot fault drags its reflectors over tens of traces, and the network run at
+the data's own grid sees that zone as a crosshatch of short segments. Run on the data resampled by a factor below 1
+along every axis (dips in index space unchanged), the same network sees the zone whole, and runs on fewer samples.
+
+The grid is global, so a block of a cube gives the samples of the whole cube's grid: network sample ``u`` lies at
+input coordinate ``u / factor`` (linear interpolation of the input after a Gaussian anti-alias filter of standard
+deviation ``0.5 / factor - 0.5`` samples), and input sample ``i`` takes the probability at network coordinate
+``i * factor`` (linear interpolation). A block whose first lateral input index is ``origin`` starts its network grid
+at the first multiple of ``align`` at or after ``origin * factor``, so the network's pooling grid is the whole
+cube's (:mod:`~seismo3d.seismic.faults.learned_blocks`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.ndimage import gaussian_filter
+
+from ...errors import InputError
+
+__all__ = ["anti_alias_sigma", "grid_size", "grid_halo", "to_network_grid", "from_network_grid"]
+
+
+def _check_factor(factor) -> float:
+    f = float(factor)
+    if not 0.25 <= f <= 1.0:
+        raise InputError(f"the network's resampling factor must be in [0.25, 1]; got {factor!r}")
+    return f
+
+
+def anti_alias_sigma(factor: float) -> float:
+    """Standard deviation (input samples) of the Gaussian filter applied before resampling by ``factor``.
+
+    Parameters
+    ----------
+    factor : float
+        Resampling factor in [0.25, 1] (1: no filter).
+
+    Returns
+    -------
+    float
+        ``0.5 / factor - 0.5``: 0 at 1, 0.5 samples at 0.5.
+
+    Raises
+    ------
+    InputError
+        ``factor`` is outside [0.25, 1].
+    """
+    return 0.5 / _check_factor(factor) - 0.5
+
+
+def grid_size(n: int, factor: float) -> int:
+    """Samples of the network grid along an axis of ``n`` input samples (the last at ``(n - 1) * factor``).
+
+    Parameters
+    ----------
+    n : int
+        Input samples along the axis.
+    factor : float
+        Resampling factor in [0.25, 1].
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    InputError
+        ``factor`` is outside [0.25, 1].
+    """
+    return int(math.floor((int(n) - 1) * _check_factor(factor) + 1e-9)) + 1
+
+
+def grid_halo(network_halo: int, factor: float, align: int) -> int:
+    """Input samples of halo a block needs so that its core's probability equals the whole cube's.
+
+    Parameters
+    ----------
+    network_halo : int
+        Halo the network needs on its own grid (its receptive half).
+    factor : float
+        Resampling factor in [0.25, 1].
+    align : int
+        The network grid of a block starts at a multiple of this (up to ``align - 1`` network samples lost).
+
+    Returns
+    -------
+    int
+        A multiple of ``align`` (input samples).
+
+    Raises
+    ------
+    InputError
+        ``factor`` is outside [0.25, 1].
+    """
+    f = _check_factor(factor)
+    need = (int(network_halo) + int(align)) / f + 2 + 4 * anti_alias_sigma(f)
+    return int(math.ceil(need / align)) * int(align)
+
+
+def _first(origin: int, factor: float, align: int) -> int:
+    """First network sample of a block whose first input sample is ``origin`` (a multiple of ``align``)."""
+    return int(math.ceil(origin * factor / align - 1e-9)) * align
+
+
+def _interpolate_axis(a: np.ndarray, axis: int, positions: np.ndarray) -> np.ndarray:
+    """Values of ``a`` at fractional ``positions`` (local indices, within [0, n - 1]) along ``axis``, linearly."""
+    lo = np.floor(positions).astype(np.int64)
+    lo = np.clip(lo, 0, max(a.shape[axis] - 2, 0))
+    w = (positions - lo).astype(np.float32)
+    hi = np.minimum(lo + 1, a.shape[axis] - 1)
+    shape = [1] * a.ndim
+    shape[axis] = -1
+    w = w.reshape(shape)
+    return np.take(a, lo, axis=axis) * (1 - w) + np.take(a, hi, axis=axis) * w
+
+
+def to_network_grid(data: np.ndarray, factor: float, *, origin=None, align: int = 8) -> tuple[np.ndarray, tuple]:
+    """Resample a section, cube or block onto the network grid.
+
+    Parameters
+    ----------
+    data : (n_traces, n_samples) or (n_inlines, n_xlines, n_samples) float32 ndarray
+        Amplitudes (a block of a larger cube when ``origin`` is given).
+    factor : float
+        Resampling factor in [0.25, 1] along every axis.
+    origin : sequence of int, optional
+        Global index of ``data``'s first sample along each lateral axis (default 0: the whole input).
+    align : int, optional
+        Along the lateral axes the block's network grid starts at a multiple of this.
+
+    Returns
+    -------
+    small : float32 ndarray
+        The data on the network grid.
+    first : tuple of int
+        Global network index of ``small``'s first sample along each axis (0 along the sample axis).
+
+    Raises
+    ------
+    InputError
+        ``factor`` is outside [0.25, 1].
+    """
+    f = _check_factor(factor)
+    arr = np.asarray(data, dtype=np.float32)
+    origin = tuple(int(o) for o in (origin or (0,) * (arr.ndim - 1))) + (0,)
+    if f == 1.0:
+        return arr, origin
+    out = gaussian_filter(arr, anti_alias_sigma(f), truncate=4.0)
+    first = []
+    for axis, (n, o) in enumerate(zip(arr.shape, origin)):
+        lateral = axis < arr.ndim - 1
+        u0 = _first(o, f, align) if lateral else 0
+        u1 = grid_size(o + n, f)  # one past the last network sample inside the data
+        u = np.arange(u0, u1, dtype=np.float64)
+        out = _interpolate_axis(out, axis, u / f - o)
+        first.append(u0)
+    return np.ascontiguousarray(out, dtype=np.float32), tuple(first)
+
+
+def from_network_grid(small: np.ndarray, shape, factor: float, *, origin=None, first=None) -> np.ndarray:
+    """Interpolate a probability on the network grid back onto the input's samples.
+
+    Parameters
+    ----------
+    small : float32 ndarray
+        Values on the network grid (:func:`to_network_grid`'s ``small``).
+    shape : tuple of int
+        Shape of the input block.
+    factor : float
+        The resampling factor.
+    origin : sequence of int, optional
+        Global lateral index of the input block's first sample (default 0).
+    first : sequence of int, optional
+        Global network index of ``small``'s first sample along each axis (:func:`to_network_grid`'s ``first``).
+
+    Returns
+    -------
+    float32 ndarray of ``shape``
+
+    Raises
+    ------
+    InputError
+        ``factor`` is outside [0.25, 1].
+    """
+    f = _check_factor(factor)
+    out = np.asarray(small, dtype=np.float32)
+    if f == 1.0:
+        return out
+    origin = tuple(int(o) for o in (origin or (0,) * (len(shape) - 1))) + (0,)
+    first = tuple(first or (0,) * len(shape))
+    for axis, (n, o, u0) in enumerate(zip(shape, origin, first)):
+        i = np.arange(o, o + n, dtype=np.float64)
+        out = _interpolate_axis(out, axis, np.clip(i * f - u0, 0, out.shape[axis] - 1))
+    return np.ascontiguousarray(out, dtype=np.float32)

@@ -539,8 +539,10 @@ def render(
         ..., metavar="INPUT", help="A SEG-Y cube, the output folder of 'seismo3d faults' or 'seismo3d map', a "
                                    "horizon file ('inline xline time' rows) or a GeoTIFF DEM."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="The PNG to write."),
-    seismic: Optional[pathlib.Path] = typer.Option(None, help="SEG-Y cube drawn under faults or a horizon (a faults "
-                                                              "folder from --demo uses its demo_seismic.sgy)."),
+    seismic: Optional[pathlib.Path] = typer.Option(None, help="SEG-Y cube drawn under faults or a horizon; default: "
+                                                              "the run's input recorded in its run.json, read with "
+                                                              "the run's SEG-Y flags, while unchanged (a faults "
+                                                              "folder from --demo: its demo_seismic.sgy)."),
     color_by: FaultColour = typer.Option(FaultColour.fault_id, help="Colour of the fault surfaces."),
     vertical_exaggeration: Optional[float] = typer.Option(
         None, help="Vertical exaggeration; default: the cube's height is half its longer side."),

@@ -10,7 +10,7 @@ from contextlib import contextmanager
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_directory", "existing_folder", "StagedFolder"]
+__all__ = ["atomic_path", "atomic_directory", "existing_folder", "SetAside", "StagedFolder"]
 
 
 @contextmanager
@@ -154,6 +154,66 @@ class StagedFolder:
         """
         path = pathlib.Path(path)
         return self.folder / path.relative_to(self.path) if path.is_relative_to(self.path) else path
+
+
+class SetAside:
+    """Entries of a folder that a run replaces, moved into a hidden folder inside it while the run writes its own:
+    deleted when the block ends without an error, moved back when it ends with one (after removing whatever the run
+    left at their names), so a failed or interrupted run leaves the earlier entries as they were.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The folder holding the entries (an output folder).
+
+    Examples
+    --------
+    >>> with SetAside(out_dir) as aside:                      # doctest: +SKIP
+    ...     aside.move(["fault_likelihood.zarr", "fault_likelihood.zarr.work"])
+    ...     write_new_stores(out_dir)
+    """
+
+    def __init__(self, folder):
+        self.folder = pathlib.Path(folder)
+        self.path = None  # the hidden folder, made by the first move
+        self.names: list = []  # every name handed over: the run's own entries there are removed on an error
+        self.moved: list = []  # the names whose earlier entries are in the hidden folder
+
+    def __enter__(self) -> "SetAside":
+        return self
+
+    def move(self, names) -> None:
+        """Move the entries ``names`` (of :attr:`folder`; missing ones are only remembered) aside.
+
+        Parameters
+        ----------
+        names : iterable of str
+        """
+        for name in names:
+            if name in self.names:
+                continue
+            self.names.append(name)
+            if os.path.lexists(self.folder / name):
+                if self.path is None:
+                    self.path = pathlib.Path(tempfile.mkdtemp(dir=self.folder, prefix=".earlier-", suffix=".tmp"))
+                os.replace(self.folder / name, self.path / name)
+                self.moved.append(name)
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        if exc_type is not None:
+            for name in self.names:
+                _remove(self.folder / name)
+            for name in self.moved:
+                os.replace(self.path / name, self.folder / name)
+        if self.path is not None:
+            shutil.rmtree(self.path, ignore_errors=True)
+
+
+def _remove(path: pathlib.Path) -> None:
+    if path.is_dir() and not path.is_symlink():
+        shutil.rmtree(path)
+    elif os.path.lexists(path):
+        path.unlink()
 
 
 def existing_folder(path: pathlib.Path) -> pathlib.Path:

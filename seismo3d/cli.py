@@ -8,6 +8,8 @@ Conventions, the same for every command:
   a registration that did not converge writes its result, says so in one line and exits with 1; Ctrl-C exits with
   130. Anything else is a bug and keeps its traceback.
 - Progress goes to standard error: a bar on a terminal, one line per step otherwise (logs, CI).
+- Each command checks its output (:func:`~seismo3d._cli_outputs.check_before_import`) before it imports its job:
+  the jobs are imported inside the commands, deliberately, so that a refusal and ``--help`` need no numba / scipy.
 """
 
 from __future__ import annotations
@@ -20,6 +22,8 @@ import numpy as np
 import typer
 
 from . import __version__
+from ._cli_outputs import check_before_import
+from .jobs.outputs import output_file
 from ._cli_messages import friendly as _friendly, log_progress_to_stderr
 from ._cli_messages import one_line_warnings as _one_line_warnings
 
@@ -128,6 +132,7 @@ def register(
     transform is in the files' own coordinates and units. A registration that did not converge is written, reported
     and exits with 1 (a terrain fit whose surfaces are too gentle to fix the horizontal position counts as converged
     when the hillshade matches hold it)."""
+    check_before_import("file", output, [source, target, init, features], overwrite=overwrite)
     from .jobs.register import run_register_job
 
     with _one_line_warnings():
@@ -239,6 +244,7 @@ def faults(
 ) -> None:
     """Trace the faults of INPUT and write fault likelihood, strike, dip and votes (SEG-Y for SEG-Y input), fault
     surfaces (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT."""
+    check_before_import("folder", output, [input], overwrite=overwrite)
     from .jobs.faults import run_faults_job
 
     with _one_line_warnings():
@@ -289,6 +295,7 @@ def convert(
     'seismic' on dimensions inline, crossline, sample with their coordinates, cdp_x / cdp_y, every non-zero trace
     header field, and the textual and binary headers as attributes. Written chunk by chunk; an interrupted convert
     leaves no OUTPUT."""
+    check_before_import("store", output, [input], overwrite=overwrite)
     from .jobs.convert import run_convert_job
 
     result = run_convert_job(input, output, iline=iline, xline=xline, endian=_value(endian),
@@ -321,6 +328,7 @@ def match(
 
     Pixel coordinates have their origin at the centre of the top-left pixel, x to the right, y down.
     """
+    check_before_import("file", output, [image1, image2], overwrite=overwrite)
     from .jobs.match import run_match_job
 
     job = run_match_job(image1, image2, output, method=method.value, ratio=ratio, threshold=threshold,
@@ -344,6 +352,7 @@ def lineaments(
     """Extract the lineaments of DEM (linear terrain structures: scarps, fracture-controlled valleys) and write
     lineaments.csv (x0, y0, x1, y1 in the raster's CRS, azimuth_deg in [0, 180), length_m, contrast), rose.png (a
     length-weighted rose diagram) and lineaments.png (the lineaments over the multidirectional hillshade)."""
+    check_before_import("folder", output, [dem], overwrite=overwrite)
     from .jobs.lineaments import run_lineaments_job
 
     result = run_lineaments_job(dem, output, overwrite=overwrite)
@@ -385,6 +394,7 @@ def plan(
     """Plan the shortest 8-connected path (in metres, A*) from --start to --goal through traversable cells of GRID
     and write it as CSV (row, col, x, y, z per cell: x, y in the DEM's CRS and z its elevation; for a map, the cell
     centre on the floor in the map's frame)."""
+    check_before_import("file", output, [grid], overwrite=overwrite)
     from .jobs.plan import parse_cell, run_plan_job
 
     s = parse_cell(start, "--start")
@@ -428,6 +438,8 @@ def map_(
     from dataclasses import replace
 
     from .errors import InputError
+
+    check_before_import("folder", output, [sequence], overwrite=overwrite)
     from .jobs.map import run_map_job
     from .mapping import MapperOptions, TSDFOptions
 
@@ -505,6 +517,8 @@ def horizon(
     correlations between near and distant traces, then the picks by dynamic programming along inlines and crosslines),
     and write it as 'inline xline time' rows ('trace time' for a trace list)."""
     from .errors import InputError
+
+    check_before_import("file", output, [input], overwrite=overwrite, also=surface and output_file(surface))
     from .jobs.horizon import run_horizon_job
 
     seeds = []
@@ -539,8 +553,10 @@ def render(
         ..., metavar="INPUT", help="A SEG-Y cube, the output folder of 'seismo3d faults' or 'seismo3d map', a "
                                    "horizon file ('inline xline time' rows) or a GeoTIFF DEM."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="The PNG to write."),
-    seismic: Optional[pathlib.Path] = typer.Option(None, help="SEG-Y cube drawn under faults or a horizon (a faults "
-                                                              "folder from --demo uses its demo_seismic.sgy)."),
+    seismic: Optional[pathlib.Path] = typer.Option(None, help="SEG-Y cube drawn under faults or a horizon; default: "
+                                                              "the run's input recorded in its run.json, read with "
+                                                              "the run's SEG-Y flags, while unchanged (a faults "
+                                                              "folder from --demo: its demo_seismic.sgy)."),
     color_by: FaultColour = typer.Option(FaultColour.fault_id, help="Colour of the fault surfaces."),
     vertical_exaggeration: Optional[float] = typer.Option(
         None, help="Vertical exaggeration; default: the cube's height is half its longer side."),
@@ -560,6 +576,8 @@ def render(
     coloured by id or throw with the fault likelihood as a semi-transparent volume, a horizon coloured by time, an
     RGB-D map (mesh, trajectory, keyframes), or a DEM coloured by elevation with its lineaments and a planned path."""
     from .errors import InputError
+
+    check_before_import("file", output, [input, seismic, plan], overwrite=overwrite)
     from .jobs.render import run_render_job
 
     try:

@@ -10,6 +10,7 @@ from __future__ import annotations
 __all__ = [
     "Seismo3dError",
     "InputError",
+    "EarlierStoresError",
     "SeedError",
     "DataNotFoundError",
     "DataIntegrityError",
@@ -31,6 +32,23 @@ class Seismo3dError(Exception):
 
 class InputError(Seismo3dError, ValueError):
     """An argument has the wrong shape, dtype, size or value (NaN, too few points, unknown option)."""
+
+
+class EarlierStoresError(InputError):
+    """A resumable block-by-block run found, where it writes, the stores or work folders of another run (another
+    input, likelihood or options), which it neither reuses nor replaces.
+
+    Parameters
+    ----------
+    message : str
+    paths : iterable of str or os.PathLike
+        The stores or work folders in the way (a caller that may replace them moves them aside: see
+        :class:`seismo3d._atomic.SetAside`).
+    """
+
+    def __init__(self, message: str, paths):
+        super().__init__(message)
+        self.paths = tuple(str(p) for p in paths)
 
 
 class SeedError(InputError):

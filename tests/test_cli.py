@@ -347,3 +347,17 @@ def test_argument_names_inside_file_names_are_left_alone():
                      flags) == ("output /tmp/init.json is the input init.json itself; raise --max-distance or pass "
                                 "--init.")
     assert _in_flags("cannot read /runs/max_distance/init", flags) == "cannot read /runs/max_distance/init"
+
+
+def test_render_accepts_the_segy_flags_of_faults():
+    """Every flag of `faults` that says how to read a SEG-Y file is a flag of `render` too, with the same default
+    (``--n-samples`` is for raw .f32be sections, which render does not draw)."""
+    import typer.main
+
+    commands = typer.main.get_command(app).commands
+    segy = {"iline", "xline", "endian", "ignore_geometry", "sample_unit"}
+
+    def flags(name):
+        return {p.name: (tuple(p.opts), p.default) for p in commands[name].params if p.name in segy}
+
+    assert set(flags("faults")) == segy and flags("render") == flags("faults")

@@ -18,10 +18,10 @@ from pathlib import Path
 import numpy as np
 import segyio
 
-from .._atomic import StagedFolder, atomic_path
+from .._atomic import SetAside, StagedFolder, atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
-from ..errors import InputError, Seismo3dWarning
+from ..errors import EarlierStoresError, InputError, Seismo3dWarning
 from ..seismic.faults.memory import fits_in_memory, parse_memory_limit, resident_memory
 from ..seismic.faults.pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
 from ..seismic.io.lazy import open_lazy
@@ -364,7 +364,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         A ``dask.distributed`` scheduler address (``tcp://host:port``) for the block-by-block run; default: dask's
         local threaded scheduler.
     overwrite : bool, optional
-        Replace the files of an earlier run in ``out_dir``.
+        Replace the files of an earlier run in ``out_dir``, and the block-by-block stores of another input or other
+        options (moved aside while this run writes its own, deleted when it has finished, moved back if it fails;
+        without ``overwrite`` they are refused, and those of the same input and options reused or resumed).
     progress : bool, optional
         Report progress (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step otherwise).
 
@@ -384,7 +386,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         No input (and not ``demo``), ``out_dir`` holds the input, is a file, holds an earlier run's files (without
         ``overwrite``) or cannot be written, an invalid option, a constant input,
         a ``memory_limit`` too small for the smallest blocks or for the fault cells, or ``out_dir`` holding the
-        ``fault_likelihood.zarr`` or ``fault_surfaces.zarr`` of another input.
+        ``fault_likelihood.zarr`` or ``fault_surfaces.zarr`` of another input (without ``overwrite``).
     DataNotFoundError
         The input does not exist.
     SegyFormatError
@@ -418,11 +420,13 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     limit = parse_memory_limit(memory_limit)
     segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian, sample_unit=sample_unit)
     summary = []  # the rows of fault_summary.csv, as written
-    with StagedFolder(out_dir) as stage:  # the files moved in together when every one is written
+    # the files moved in together when every one is written; with overwrite, another run's block-by-block stores
+    # moved aside, deleted once the new files are in, moved back if the run fails
+    with SetAside(out_dir) as aside, StagedFolder(out_dir) as stage:
         with record.stage("trace_and_write"):
             written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
                                        n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
-                                       progress=progress, summary=summary)
+                                       progress=progress, summary=summary, aside=aside if overwrite else None)
         final = {key: stage.final(path) for key, path in written.items()}
         record.options["tracing_options"] = options
         final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"input": input_path},
@@ -431,10 +435,11 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
 
 
 def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed, segy: dict, n_samples,
-                     options: FaultTracingOptions, limit: int, scheduler, progress, summary: list) -> dict:
+                     options: FaultTracingOptions, limit: int, scheduler, progress, summary: list,
+                     aside: SetAside | None) -> dict:
     """Read (or make) the input, trace its faults in memory or block by block, write the results into ``files``
-    (the block-by-block run's Zarr stores into ``out_dir``); the files written, by key (the summary's rows appended
-    to ``summary``)."""
+    (the block-by-block run's Zarr stores into ``out_dir``, another run's stores there moved into ``aside``, or
+    refused when it is None); the files written, by key (the summary's rows appended to ``summary``)."""
     iline, xline, ignore_geometry, endian, sample_unit = (segy[k] for k in ("iline", "xline", "ignore_geometry",
                                                                             "endian", "sample_unit"))
     held = resident_memory()  # the process as it is now: the run may add up to the limit less this
@@ -447,7 +452,7 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
                                                            sample_unit=sample_unit, endian=endian)
     if lazy is not None:
         written.update(_run_chunked(lazy, out_dir, files, memory_limit=limit, scheduler=scheduler,
-                                    options=options, progress=progress, summary=summary))
+                                    options=options, progress=progress, summary=summary, aside=aside))
         return written
     inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
                       n_samples=n_samples, endian=endian)
@@ -501,14 +506,19 @@ _TILE = 32  # traces per side of the lazy input's chunks: a block of the chunked
 
 
 def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: int, scheduler,
-                 options: FaultTracingOptions, progress, summary: list) -> dict:
+                 options: FaultTracingOptions, progress, summary: list, aside: SetAside | None) -> dict:
     """The faults of a cube traced block by block (:func:`~seismo3d.seismic.faults.trace_faults`) into
     ``fault_likelihood.zarr`` and ``fault_surfaces.zarr`` in ``out_dir`` (reused when finished, resumed when
-    interrupted); the same files as in memory, into ``files``."""
+    interrupted; those of another run moved into ``aside``, or refused without it); the same files as in memory,
+    into ``files``."""
     dt = float(lazy.samples[1] - lazy.samples[0]) if lazy.unit != "samples" else None
-    result = trace_faults(lazy.data, sample_interval=dt, sample_unit=lazy.unit, options=options,
-                          memory_limit=memory_limit, in_memory=False, work_dir=out_dir, scheduler=scheduler,
-                          source=lazy.name, coords=lazy.coords, progress=progress)
+
+    def trace():
+        return trace_faults(lazy.data, sample_interval=dt, sample_unit=lazy.unit, options=options,
+                            memory_limit=memory_limit, in_memory=False, work_dir=out_dir, scheduler=scheduler,
+                            source=lazy.name, coords=lazy.coords, progress=progress)
+
+    result = _replacing_earlier_stores(trace, out_dir, aside)
     written = {"likelihood": result.stores["likelihood"], "surfaces_zarr": result.stores["surfaces"]}
     inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
     _write_steps(_surface_steps(inp, result, files, summary), written, progress)
@@ -517,6 +527,28 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: i
     written.update(_segy_volumes(lazy, result.stores["likelihood"], files, {"strike": "strike_deg", "dip": "dip_deg"},
                                  progress))
     return written
+
+
+def _replacing_earlier_stores(trace, out_dir: Path, aside: SetAside | None):
+    """``trace()``, a block-by-block run; where it finds the stores (or work folders) of another run in
+    ``out_dir``, it is refused without ``aside`` (no overwrite), else they are moved aside with their work folders
+    and the run starts again (the stores it may reuse are kept)."""
+    while True:
+        try:
+            return trace()
+        except EarlierStoresError as exc:
+            stores = sorted({Path(p).name.removesuffix(".work").removesuffix(".partial") for p in exc.paths})
+            names = [name + end for name in stores for end in ("", ".work", ".partial")]
+            if aside is None:
+                raise InputError(f"output folder {out_dir} holds {' and '.join(stores)} of another input or other "
+                                 "options (rerun with those to resume or reuse them); pass overwrite=True "
+                                 "(--overwrite) to replace them (they are kept until this run has written its "
+                                 "own), or choose another folder") from None
+            if set(names) <= set(aside.names):  # already moved aside, and still in the way: not ours to replace
+                raise
+            LOGGER.info("%s: moving the earlier run's %s aside (deleted when this run has finished)", out_dir,
+                        " and ".join(stores))
+            aside.move(names)
 
 
 def _segy_volumes(lazy: LazyInput, path: Path, out_dir: Path, names: dict, progress: bool) -> dict:

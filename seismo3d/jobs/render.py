@@ -9,18 +9,19 @@ from __future__ import annotations
 
 import csv
 import json
+import warnings
 from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
 from .._validation import check_choice
-from ..errors import DataNotFoundError, InputError
+from ..errors import DataNotFoundError, InputError, Seismo3dWarning
 from ..mapping import read_tum_trajectory
 from ..terrain import extract_lineaments, read_dem
 from .inputs import SEGY_SUFFIXES, read_seismic
 from .outputs import check_outputs, output_file
-from .runinfo import RunRecord, run_json_output, run_json_path
+from .runinfo import RUN_JSON, RunRecord, input_changed, read_run_json, run_json_output, run_json_path
 
 __all__ = ["RenderJob", "run_render_job"]
 
@@ -29,7 +30,9 @@ _TEXT = {".txt", ".dat", ".csv", ".xyz"}
 _DEM = {".tif", ".tiff"}
 # The files render reads of a 'seismo3d faults' or 'seismo3d map' output folder (inputs: never replaced by the PNG).
 _FOLDER_FILES = ("faults.vtp", "fault_likelihood.sgy", "fault_likelihood.npy", "demo_seismic.sgy", "mesh.ply",
-                 "trajectory.txt", "keyframes.json")
+                 "trajectory.txt", "keyframes.json", RUN_JSON)
+# The SEG-Y options of a faults or horizon run (its run.json's options): how the run read its input.
+_SEGY_OPTIONS = ("iline", "xline", "endian", "ignore_geometry", "sample_unit")
 
 
 @dataclass(frozen=True)
@@ -48,6 +51,9 @@ class RenderJob:
         Fault surfaces drawn (0 without).
     n_lineaments : int
         Lineaments drawn on a DEM (0 without).
+    seismic : pathlib.Path or None
+        The SEG-Y cube drawn under faults or a horizon: ``seismic`` as given, the demo's cube, or the input recorded
+        in the run's ``run.json``; None when none was drawn.
     run_json : pathlib.Path
         The record of the run (:mod:`seismo3d.jobs.runinfo`).
     stage_seconds : dict
@@ -59,6 +65,7 @@ class RenderJob:
     caption: str
     n_faults: int = 0
     n_lineaments: int = 0
+    seismic: Path | None = None
     run_json: Path | None = None
     stage_seconds: dict | None = None
 
@@ -84,6 +91,50 @@ def _kind(path: Path) -> str:
     raise InputError(f"{path.name}: cannot tell what to draw from the extension {suffix!r}; pass a SEG-Y cube "
                      "(.sgy/.segy), a 'seismo3d faults' output folder, a horizon file (.txt: inline xline time rows) "
                      "or a DEM (.tif)")
+
+
+@dataclass(frozen=True)
+class _EarlierRun:
+    """What the ``run.json`` of the faults or horizon run that wrote render's input says of the run's input.
+
+    ``input``: the input's path (None for a ``--demo`` run or without a record); ``entry``: its identity as recorded
+    (:func:`~seismo3d.jobs.runinfo.input_identity`); ``segy_options``: the SEG-Y options the run read it with (None
+    without a record)."""
+
+    input: Path | None = None
+    entry: dict | None = None
+    segy_options: dict | None = None
+
+
+def _earlier_run(kind: str, path: Path) -> _EarlierRun:
+    """The record of the run that wrote a faults folder (its ``run.json``) or a horizon file
+    (``<file>.run.json``)."""
+    if kind not in ("faults", "horizon"):
+        return _EarlierRun()
+    record = read_run_json(path / RUN_JSON if kind == "faults" else run_json_path(output_file(path)))
+    if record is None or record.get("command") != kind:
+        return _EarlierRun()
+    options = record.get("options") or {}
+    segy = {k: options[k] for k in _SEGY_OPTIONS if k in options}
+    entry = (record.get("inputs") or {}).get("input")
+    if not isinstance(entry, dict) or "path" not in entry:  # a --demo run: its options were not the cube's
+        return _EarlierRun()
+    return _EarlierRun(Path(entry["path"]), entry, segy)
+
+
+def _run_input_to_draw(run: _EarlierRun) -> Path | None:
+    """The earlier run's input when it is still the file the run read and is SEG-Y; else None, said in one
+    warning naming ``seismic``."""
+    if run.input is None:
+        return None
+    problem = input_changed(run.entry)
+    if problem is None and run.input.suffix.lower() not in _SEGY:
+        problem = "is not SEG-Y (render draws SEG-Y cubes only)"
+    if problem is None:
+        return run.input
+    warnings.warn(f"the run's input {run.input} {problem}: drawn without seismic; pass seismic=CUBE.sgy to draw "
+                  "one under it", Seismo3dWarning, stacklevel=2)
+    return None
 
 
 def _read_segy(path: Path, vertical_exaggeration, segy_options=None):
@@ -210,9 +261,14 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
       (or with ``ignore_geometry``) is drawn as one section, its traces numbered from 1 in file order;
     * the output folder of ``seismo3d faults``: the fault surfaces (``faults.vtp``) with the fault likelihood as a
       semi-transparent volume, over the slices of ``seismic`` (default: ``demo_seismic.sgy`` in the folder, written
-      by ``--demo``), placed by the geometry of ``fault_likelihood.sgy``;
+      by ``--demo``, else the run's input as its ``run.json`` records it), placed by the geometry of
+      ``fault_likelihood.sgy``;
     * a horizon text file ("inline xline time" rows, as ``seismo3d horizon`` writes): the horizon coloured by time,
-      over the slices of ``seismic`` when given;
+      over the slices of ``seismic`` (default: the run's input as ``<file>.run.json`` records it);
+
+    The run's input is drawn only while it is the file the run read (the size and sha256 in ``run.json``, or size
+    and modification time for a file above :data:`~seismo3d.jobs.runinfo.HASH_LIMIT`), read with the SEG-Y options
+    the run used (so are the folder's own SEG-Y files); otherwise the picture has no seismic and a warning says why.
     * a GeoTIFF DEM: its surface coloured by elevation (metres about its centre), with its lineaments
       (``lineaments=True``: :func:`~seismo3d.terrain.extract_lineaments`) and a path planned by ``seismo3d plan``
       (``plan``: its CSV) draped over it (:func:`seismo3d.viz.terrain3d.show_terrain`);
@@ -226,7 +282,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
         The PNG to write (atomically; its folder must exist); not an input, and not an existing file unless
         ``overwrite`` (see :mod:`seismo3d.jobs.outputs`; checked before the inputs are read).
     seismic : str or os.PathLike, optional
-        A SEG-Y cube to draw under faults or a horizon.
+        A SEG-Y cube to draw under faults or a horizon (read with ``iline``, ``xline``, ... below); default: the
+        input of the run that wrote them (above).
     color_by : {'fault_id', 'throw'}, optional
         Colour of the fault surfaces.
     vertical_exaggeration : float, optional
@@ -238,7 +295,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     window_size : (int, int), optional
         Pixels.
     iline, xline : int, optional
-        Trace header bytes of the inline and crossline numbers of the SEG-Y files read.
+        Trace header bytes of the inline and crossline numbers of the SEG-Y files read (for a faults folder or
+        horizon file with a ``run.json``, of ``seismic`` only: the run's own files are read with the run's).
     endian : {'big', 'little'}, optional
         Byte order of the SEG-Y files read; by default detected from each binary header.
     ignore_geometry : bool, optional
@@ -251,6 +309,12 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     Returns
     -------
     RenderJob
+
+    Warns
+    -----
+    Seismo3dWarning
+        The recorded input of a faults or horizon run no longer exists, has changed or is not SEG-Y: drawn without
+        seismic.
 
     Raises
     ------
@@ -274,11 +338,12 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
     kind = _kind(path)
+    run = _earlier_run(kind, path)
     with record.stage("render"):
         job = _render(kind, path, output, seismic=seismic, color_by=color_by,
                       vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
-                      window_size=window_size, segy_options=segy_options)
-    inputs = {"input": path, "seismic": seismic, "path": plan}
+                      window_size=window_size, segy_options=segy_options, run=run)
+    inputs = {"input": path, "seismic": job.seismic, "path": plan}
     inputs.update({name: p for name, p in zip(_FOLDER_FILES, read) if p.is_file()})
     run_json = record.write(run_json_path(main), inputs=inputs, outputs={"picture": output},
                             results=dict(kind=job.kind, caption=job.caption, n_faults=job.n_faults,
@@ -287,8 +352,9 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
 
 
 def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_exaggeration, lineaments, plan,
-            window_size, segy_options) -> RenderJob:
-    """Read the input of ``kind`` and draw it into ``output`` (the scenes of :func:`run_render_job`)."""
+            window_size, segy_options, run: _EarlierRun) -> RenderJob:
+    """Read the input of ``kind`` and draw it into ``output`` (the scenes of :func:`run_render_job`; ``run``: the
+    record of the faults or horizon run that wrote the input)."""
     import pyvista as pv
 
     from ..viz.seismic import cube_geometry, show_seismic
@@ -302,15 +368,19 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
         raise DataNotFoundError(f"seismic={seismic} does not exist; pass the SEG-Y cube to draw under the input")
     cube, geometry, extra = None, None, {}
     n_faults = 0
+    run_options = run.segy_options or segy_options  # the run's files and input, read as the run read its input
+    under, under_options = (Path(seismic), segy_options) if seismic is not None else (None, run_options)
     if kind == "segy":
         cube, geometry = _read_segy(path, vertical_exaggeration, segy_options)
     elif kind == "faults":
-        under = Path(seismic) if seismic is not None else path / "demo_seismic.sgy"
-        if under.is_file():
-            cube, geometry = _read_segy(under, vertical_exaggeration, segy_options)
+        if under is None and (path / "demo_seismic.sgy").is_file():
+            under = path / "demo_seismic.sgy"
+        under = under or _run_input_to_draw(run)
+        if under is not None:
+            cube, geometry = _read_segy(under, vertical_exaggeration, under_options)
         likelihood_file = path / "fault_likelihood.sgy"
         if likelihood_file.is_file():
-            likelihood, like_geometry = _read_segy(likelihood_file, vertical_exaggeration, segy_options)
+            likelihood, like_geometry = _read_segy(likelihood_file, vertical_exaggeration, run_options)
             geometry = geometry or like_geometry
         elif (path / "fault_likelihood.npy").is_file():
             likelihood = np.load(path / "fault_likelihood.npy")
@@ -326,14 +396,15 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
         n_faults = int(np.unique(surfaces.point_data["fault_id"]).size) if surfaces.n_points else 0
         extra = dict(faults=surfaces, likelihood=likelihood, color_faults_by=color_by)
     else:
-        if seismic is not None:
-            cube, geometry = _read_segy(Path(seismic), vertical_exaggeration, segy_options)
+        under = under or _run_input_to_draw(run)
+        if under is not None:
+            cube, geometry = _read_segy(under, vertical_exaggeration, under_options)
         times, geometry = _horizon_grid(path, geometry)
-        if seismic is None and vertical_exaggeration is not None:
+        if under is None and vertical_exaggeration is not None:
             geometry = cube_geometry(geometry.shape, inlines=geometry.inlines, xlines=geometry.xlines,
                                      samples=geometry.samples, sample_unit=geometry.sample_unit,
                                      vertical_exaggeration=vertical_exaggeration)
         extra = dict(horizons=[times])
     slices, camera = _slices_for(geometry.shape)
     show_seismic(cube, geometry, slices=slices, camera=camera, screenshot=output, window_size=window_size, **extra)
-    return RenderJob(kind=kind, picture=output, caption=geometry.describe(), n_faults=n_faults)
+    return RenderJob(kind=kind, picture=output, caption=geometry.describe(), n_faults=n_faults, seismic=under)

@@ -39,8 +39,8 @@ from .. import __version__
 from .._atomic import atomic_path
 from .outputs import Output
 
-__all__ = ["HASH_LIMIT", "RUN_JSON", "RunRecord", "cli_call", "input_identity", "jsonable", "run_json_output",
-           "run_json_path", "write_run_json"]
+__all__ = ["HASH_LIMIT", "RUN_JSON", "RunRecord", "cli_call", "input_changed", "input_identity", "jsonable",
+           "read_run_json", "run_json_output", "run_json_path", "write_run_json"]
 
 RUN_JSON = "run.json"
 HASH_LIMIT = 200 * 2**20  # bytes: larger inputs are identified by size and modification time (hashing 200 MiB: ~0.5 s)
@@ -180,6 +180,56 @@ def input_identity(path) -> dict:
     else:
         entry.update(kind="missing", bytes=None, mtime=None, identity=None, sha256=None)
     return entry
+
+
+def input_changed(entry: dict) -> str | None:
+    """Whether an input recorded by :func:`input_identity` is still the file the run read.
+
+    Parameters
+    ----------
+    entry : dict
+        One of ``run.json``'s ``inputs``.
+
+    Returns
+    -------
+    str or None
+        None when the file at ``entry['path']`` has the recorded size and sha256 (for ``identity`` ``'size+mtime'``:
+        the recorded size and modification time); otherwise what differs, as a phrase such as ``'no longer
+        exists'`` or ``'has changed (3756244 bytes then, 1024 now)'``.
+    """
+    path = Path(entry.get("path", ""))
+    if entry.get("kind") != "file":
+        return "was not recorded as a file"
+    if not path.is_file():
+        return "no longer exists"
+    stat = path.stat()
+    if stat.st_size != entry.get("bytes"):
+        return f"has changed ({entry.get('bytes')} bytes then, {stat.st_size} now)"
+    if entry.get("identity") == "sha256":
+        return None if _sha256(path) == entry.get("sha256") else "has changed (its sha256 differs)"
+    if _utc(stat.st_mtime) != entry.get("mtime"):
+        return f"has changed (modified {_utc(stat.st_mtime)}, the run read the version of {entry.get('mtime')})"
+    return None
+
+
+def read_run_json(path) -> dict | None:
+    """The record of a run (:func:`write_run_json`), or None when there is none or it cannot be read.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        ``run.json`` of an output folder, or ``<output>.run.json`` (:func:`run_json_path`).
+
+    Returns
+    -------
+    dict or None
+        The record; None for a missing file, a file that is not JSON or not a record (no ``command``).
+    """
+    try:
+        record = json.loads(Path(path).read_text())
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError):
+        return None
+    return record if isinstance(record, dict) and "command" in record else None
 
 
 def write_run_json(path, *, command: str, options: dict, inputs: dict, started: float, seconds: float,

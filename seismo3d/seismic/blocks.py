@@ -20,7 +20,7 @@ import uuid
 
 from .._atomic import atomic_path
 from .._progress import progress_steps
-from ..errors import InputError
+from ..errors import EarlierStoresError, InputError
 
 __all__ = ["BlockRun", "SchedulerClient", "MEMORY_HEADROOM", "kernel_threads", "largest_block", "release_memory",
            "run_block", "write_marker"]
@@ -240,8 +240,9 @@ class BlockRun:
             except (OSError, ValueError):
                 earlier = None
             if earlier != manifest:
-                raise InputError(f"{self.work} holds an unfinished run of another cube or other options; delete "
-                                 f"{what} to start afresh, or rerun with the same input and options to resume it")
+                raise EarlierStoresError(f"{self.work} holds an unfinished run of another cube or other options; "
+                                         f"delete {what} to start afresh, or rerun with the same input and options "
+                                         "to resume it", [self.work])
         else:
             (self.work / "done").mkdir(parents=True)
             path.write_text(json.dumps(manifest))

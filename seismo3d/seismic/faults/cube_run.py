@@ -15,11 +15,12 @@ dead samples, saturation, ridges, voting, thinning, thresholds, skins, throws, e
 from __future__ import annotations
 
 import pathlib
+import uuid
 
 import numpy as np
 
 from ..._progress import LOGGER
-from ...errors import InputError
+from ...errors import EarlierStoresError, InputError
 from ..blocks import release_memory
 from ..io.zarr_store import consolidate
 from .checks import check_size
@@ -92,8 +93,8 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
         group = zarr.open_group(str(path), mode="r")
         if (group.attrs.get("source") != source or tuple(group["likelihood"].shape) != shape
                 or group.attrs.get("likelihood", "scan") != opt.likelihood):
-            raise InputError(f"{path} holds the fault likelihood of another input; pick another output folder (-o) "
-                             "or delete it")
+            raise EarlierStoresError(f"{path} holds the fault likelihood of another input; pick another output "
+                                     "folder (-o) or delete it", [path])
         LOGGER.info("%s: reusing the finished fault likelihood in %s", source, path)
     else:
         held = resident_memory()
@@ -105,7 +106,9 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
                                        chunking=chunking)
         else:
             chunked_fault_likelihood(x, path, options=opt.scan, coords=coords, progress=progress, chunking=chunking)
-        zarr.open_group(str(path), mode="r+").attrs.update({"source": source, "likelihood": opt.likelihood})
+        # "id": this store, told apart from a later one at the same path (fault_surfaces.zarr records whose it is)
+        zarr.open_group(str(path), mode="r+").attrs.update({"source": source, "likelihood": opt.likelihood,
+                                                            "id": uuid.uuid4().hex})
         consolidate(path)
     surfaces = chunked_fault_surfaces(x, path, work_dir / SURFACES_STORE, options=opt, chunking=chunking,
                                       progress=progress)

@@ -36,7 +36,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from ..._atomic import atomic_path
-from ...errors import InputError
+from ...errors import EarlierStoresError, InputError
 from ..attributes import structure_tensor_orientation
 from ..blocks import BlockRun, SchedulerClient, write_marker
 from ..io.zarr_store import consolidate
@@ -178,7 +178,8 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     plan = plan_blocks(shape, opt, chunking, baseline)
     run = _SurfaceRun(pathlib.Path(output), pathlib.Path(likelihood), plan, opt, chunking, progress)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
-                "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve())}
+                "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve()),
+                "likelihood_id": group.attrs.get("id")}  # another likelihood written at the same path is not this
     earlier = run.earlier_plan(manifest)
     if earlier is not None:  # resuming: the blocks of the interrupted run
         run.plan = plan = SurfacePlan(**dict(earlier, shape=tuple(earlier["shape"])))
@@ -260,8 +261,8 @@ class _SurfaceRun(BlockRun):
             attrs = {}
         run = {k: v for k, v in dict(attrs.get("run") or {}).items() if k != "plan"}
         if attrs.get("complete") is not True or run != {k: v for k, v in manifest.items() if k != "plan"}:
-            raise InputError(f"output {self.out} already exists and is not the finished output of this cube, "
-                             "likelihood and options; pick another output or delete it")
+            raise EarlierStoresError(f"output {self.out} already exists and is not the finished output of this "
+                                     "cube, likelihood and options; pick another output or delete it", [self.out])
         return attrs
 
     def start(self, manifest: dict) -> None:

@@ -1,0 +1,93 @@
+"""--overwrite on a faults folder holding the block-by-block stores of another input (issue 32): without it they are
+refused (and a run of the same input resumes or reuses them); with it they are replaced, kept until the new run has
+written its own, and moved back when the run fails. The block run is forced on a small cube by reporting that the
+in-memory run does not fit (seismo3d.jobs.faults.fits_in_memory), as a large cube under --memory-limit would."""
+
+import hashlib
+import logging
+
+import numpy as np
+import pytest
+import zarr
+
+import seismo3d.jobs.faults as job
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import InputError
+from seismo3d.jobs.faults import run_faults_job
+
+STORES = ("fault_likelihood.zarr", "fault_surfaces.zarr")
+
+
+@pytest.fixture
+def blocks(monkeypatch):
+    monkeypatch.setattr(job, "fits_in_memory", lambda *args, **kwargs: False)
+
+
+@pytest.fixture(scope="module")
+def cubes(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("cubes")
+    for name, seed in (("a", 2), ("b", 3)):
+        np.save(folder / f"{name}.npy", synthetic_cube((32, 32, 48), n_faults=2, seed=seed).cube.astype(np.float32))
+    return folder
+
+
+def _digest(folder):
+    """sha256 of every file under the folder's stores, by relative path."""
+    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for name in STORES for p in sorted((folder / name).rglob("*")) if p.is_file()}
+
+
+def _source(folder, store="fault_likelihood.zarr"):
+    return zarr.open_group(str(folder / store), mode="r").attrs["source"]
+
+
+def _leftovers(folder):
+    return sorted(p.name for p in folder.iterdir() if p.name.startswith(".") or p.name.endswith((".work", ".partial")))
+
+
+def test_stores_of_another_input_are_refused_without_overwrite(blocks, cubes, tmp_path):
+    out = tmp_path / "out"
+    run_faults_job(cubes / "a.npy", out, progress=False)
+    assert _source(out) == "a" and _source(out, "fault_surfaces.zarr") == "a"
+    for name in job.RESULTS:  # the earlier run's files gone: only its stores are left in the way
+        (out / name).unlink(missing_ok=True)
+    before = _digest(out)
+    with pytest.raises(InputError, match=r"holds fault_likelihood.zarr of another input .*--overwrite"):
+        run_faults_job(cubes / "b.npy", out, progress=False)
+    assert _digest(out) == before and _leftovers(out) == []
+
+
+def test_overwrite_replaces_the_stores_and_a_failed_run_puts_them_back(blocks, cubes, tmp_path, monkeypatch):
+    out = tmp_path / "out"
+    first = run_faults_job(cubes / "a.npy", out, progress=False)
+    before, files = _digest(out), {n: (out / n).read_bytes() for n in job.RESULTS if (out / n).exists()}
+
+    def fail(*args, **kwargs):  # the new stores are written, the run fails on writing its files
+        assert _source(out) == "b" and _source(out, "fault_surfaces.zarr") == "b"
+        raise OSError("No space left on device")
+
+    with monkeypatch.context() as patch:
+        patch.setattr(job, "_write_steps", fail)
+        with pytest.raises(OSError, match="No space"):
+            run_faults_job(cubes / "b.npy", out, overwrite=True, progress=False)
+    assert _digest(out) == before and _leftovers(out) == []  # the earlier stores as they were, nothing else
+    assert {n: (out / n).read_bytes() for n in files} == files
+
+    second = run_faults_job(cubes / "b.npy", out, overwrite=True, progress=False)
+    assert _source(out) == "b" and _source(out, "fault_surfaces.zarr") == "b" and _leftovers(out) == []
+    assert (out / "fault_summary.csv").read_text() != files["fault_summary.csv"].decode()
+    assert first.written["likelihood"] == second.written["likelihood"] == out / "fault_likelihood.zarr"
+
+
+def test_a_rerun_of_the_same_input_resumes_without_overwrite(blocks, cubes, tmp_path, monkeypatch, caplog):
+    out = tmp_path / "out"
+    with monkeypatch.context() as patch:  # interrupted once the stores are finished, before its files are in
+        patch.setattr(job, "_write_steps", lambda *a, **k: (_ for _ in ()).throw(KeyboardInterrupt()))
+        with pytest.raises(KeyboardInterrupt):
+            run_faults_job(cubes / "a.npy", out, progress=False)
+    before = _digest(out)
+    assert before and not (out / "faults.vtp").exists()
+    with caplog.at_level(logging.INFO, logger="seismo3d"):
+        result = run_faults_job(cubes / "a.npy", out, progress=False)
+    assert "reusing the finished fault likelihood" in caplog.text and "aside" not in caplog.text
+    assert _digest(out) == before and (out / "faults.vtp").exists() and result.faults

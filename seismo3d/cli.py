@@ -231,9 +231,10 @@ def faults(
     sensitivity: float = typer.Option(0.5, min=0.0, max=1.0, help="How readily faults are traced, 0-1: higher for "
                                                                   "more (and weaker) faults, lower for fewer; the "
                                                                   "thresholds scale by up to 2x either way."),
-    likelihood: Likelihood = typer.Option(Likelihood.scan, "--likelihood", help="Fault likelihood: 'scan' (fault-"
-                                          "plane semblance, Hale 2013) or 'learned' (seismo3d's fault network, "
-                                          "trained on generated sections)."),
+    likelihood: Likelihood = typer.Option(Likelihood.learned, "--likelihood", help="Fault likelihood: 'learned' "
+                                          "(seismo3d's fault network, trained on generated sections; the default, "
+                                          "chosen on faults drawn by people) or 'scan' (fault-plane semblance, "
+                                          "Hale 2013)."),
     memory_limit: Optional[str] = typer.Option(None, "--memory-limit", help="Memory the run may use, e.g. 8GB "
                                                "(default: half the RAM). A larger 3D cube is traced block by "
                                                "block (fault_likelihood.zarr, fault_surfaces.zarr), resumably, "

@@ -258,7 +258,7 @@ def _lazy_if_too_large(path, limit: int, held: int, *, iline, xline, sample_unit
 
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
-                   endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, likelihood="scan",
+                   endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, likelihood="learned",
                    memory_limit=None, scheduler=None, overwrite=False, progress=True) -> FaultsJobResult:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 

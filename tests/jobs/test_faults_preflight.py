@@ -116,6 +116,7 @@ def test_progress_lines_have_no_negative_sizes(cube_file, tmp_path, monkeypatch,
         raise Started
 
     monkeypatch.setattr(cube_run, "chunked_fault_likelihood", started)
+    monkeypatch.setattr(cube_run, "chunked_learned_likelihood", started)
     with caplog.at_level(logging.INFO, logger="seismo3d"), pytest.raises(Started):
         job.run_faults_job(cube_file, tmp_path / "out", memory_limit="100MB", progress=False)
     assert "block by block" in caplog.text and not re.search(r"-\d", caplog.text)
@@ -168,5 +169,6 @@ def test_noise_in_memory_is_refused_from_a_sample(tmp_path, monkeypatch):
     path = tmp_path / "noise.npy"
     np.save(path, np.random.default_rng(1).standard_normal((300, 300, 320), dtype=np.float32))
     monkeypatch.setattr(pipeline, "fault_likelihood", _never)
+    monkeypatch.setattr(pipeline, "learned_fault_likelihood", _never)
     with pytest.raises(UnsupportedDataError, match="in a sample of 3 blocks"):
         job.run_faults_job(path, tmp_path / "out", progress=False)

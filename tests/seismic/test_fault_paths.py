@@ -59,8 +59,9 @@ def test_both_runs_give_the_same_refusal_or_warning(case, seismic, tmp_path, mon
     """The in-memory run and the run by blocks (forced) of the same array: the same exception and message, or the
     same warning before the likelihood starts (where the test stops both runs)."""
     data, (error, message) = case(seismic)
-    monkeypatch.setattr(pipeline, "fault_likelihood", _stop)
-    monkeypatch.setattr(cube_run, "chunked_fault_likelihood", _stop)
+    for module, name in ((pipeline, "fault_likelihood"), (pipeline, "learned_fault_likelihood"),
+                         (cube_run, "chunked_fault_likelihood"), (cube_run, "chunked_learned_likelihood")):
+        monkeypatch.setattr(module, name, _stop)
     outcomes = []
     for in_memory in (True, False):
         with warnings.catch_warnings(record=True) as caught:

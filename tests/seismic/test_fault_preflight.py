@@ -6,7 +6,7 @@ import pytest
 
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, UnsupportedDataError
-from seismo3d.seismic.faults import likelihood_blocks, surface_plan
+from seismo3d.seismic.faults import learned_blocks, likelihood_blocks, surface_plan
 from seismo3d.seismic.faults.likelihood import FaultScanOptions
 from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions
 from seismo3d.seismic.faults.pipeline import FaultTracingOptions
@@ -62,27 +62,32 @@ def test_seismic_passes_with_its_seed_candidates():
     assert sample.candidates((100, 100, 100)) == int(np.ceil(sample.candidate_density * 1e6))
 
 
+@pytest.mark.parametrize("likelihood", ["scan", "learned"])
 @pytest.mark.parametrize("shape", [(128, 128, 128), (400, 400, 500), (96, 300, 64)])
-def test_minimum_memory_limit_is_what_both_stages_plan_with(shape):
+def test_minimum_memory_limit_is_what_both_stages_plan_with(shape, likelihood):
     """At the minimum both block-by-block stages plan their blocks (the second from a process grown by the stage
     growth); 1 MiB less and one of them refuses."""
     baseline, growth = 300 << 20, 50 << 20
-    limit = minimum_memory_limit(shape, baseline=baseline, growth=growth)
+    opt = FaultTracingOptions(likelihood=likelihood)
+    limit = minimum_memory_limit(shape, baseline=baseline, growth=growth, options=opt)
 
     def plans(memory_limit):
         chunking = ChunkOptions(memory_limit=memory_limit)
-        likelihood_blocks._plan(shape, FaultScanOptions(), chunking, baseline)
-        surface_plan.plan_blocks(shape, FaultTracingOptions(), chunking, baseline + growth)
+        if likelihood == "scan":
+            likelihood_blocks._plan(shape, FaultScanOptions(), chunking, baseline)
+        else:
+            learned_blocks._plan(shape, opt.learned, chunking, memory_limit)
+        surface_plan.plan_blocks(shape, opt, chunking, baseline + growth)
 
     plans(limit)
-    with pytest.raises(InputError, match="raise memory_limit"):
+    with pytest.raises(InputError, match="raise (--)?memory_limit"):
         plans(limit - (1 << 20))
 
 
 def test_minimum_memory_limit_holds_the_predicted_seed_candidates():
     shape = (400, 400, 500)
     plain = minimum_memory_limit(shape, baseline=0, growth=0)
-    dense = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.05)
+    dense = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.2)
     with_candidates = minimum_memory_limit(shape, baseline=0, sample=dense, growth=0)
     assert with_candidates == dense.candidates(shape) * surface_plan.CANDIDATE_BYTES > plain
     sparse = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1e-6)

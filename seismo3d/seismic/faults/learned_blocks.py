@@ -36,7 +36,7 @@ from .likelihood_blocks import (ChunkedLikelihood, ChunkOptions, LikelihoodRun, 
 from .network_grid import grid_halo
 from .unet import POOLING_MULTIPLE, RECEPTIVE_HALF
 
-__all__ = ["chunked_learned_likelihood"]
+__all__ = ["chunked_learned_likelihood", "learned_block_bytes"]
 
 # bytes per sample of a block (halo included) at each step's peak: the amplitudes, both directions' probabilities and
 # one batch of sections' activations (about 60 floats per sample of a section) in step 2; the probability, its
@@ -105,11 +105,39 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     return ChunkedLikelihood(out, shape, dict(run.computed), dict(run.resumed), saturated, dict(run.seconds))
 
 
+def _probability_halo(opt: LearnedOptions) -> int:
+    if opt.resample < 1:
+        return grid_halo(RECEPTIVE_HALF, float(opt.resample), POOLING_MULTIPLE)
+    return RECEPTIVE_HALF
+
+
+def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
+    """Bytes of the learned likelihood's smallest block (one worker), the larger of its two steps.
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    opt : LearnedOptions
+    tile : int
+        Traces a side of the smallest blocks (rounded up to the network's pooling multiple).
+
+    Returns
+    -------
+    int
+        Bytes: a ``memory_limit`` below this times the workers is refused by :func:`chunked_learned_likelihood`.
+    """
+    nt = int(shape[2])
+    step = int(np.lcm(int(tile), POOLING_MULTIPLE))
+    return max((step + 2 * _probability_halo(opt)) ** 2 * nt * _PROBABILITY_BYTES,
+               (step + 2 * _orientation_halo(opt)) ** 2 * nt * _ORIENTATION_BYTES)
+
+
 def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, budget) -> dict:
     """Block sides (traces, multiples of 8 and of the tile) of the two steps under the memory limit."""
     nt = shape[2]
     tile = int(chunking.tile)
-    halo_p = grid_halo(RECEPTIVE_HALF, float(opt.resample), POOLING_MULTIPLE) if opt.resample < 1 else RECEPTIVE_HALF
+    halo_p = _probability_halo(opt)
     halo_o = _orientation_halo(opt)
     cap = max(tile, (max(shape[0], shape[1]) + tile - 1) // tile * tile)
     limit = budget if budget else 1 << 62
@@ -121,8 +149,7 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, budget) -> dict:
     block_p = largest_block(int(step), min(cap, 512), fits(halo_p, _PROBABILITY_BYTES))
     block_o = largest_block(int(step), min(cap, 256), fits(halo_o, _ORIENTATION_BYTES))
     if not (fits(halo_p, _PROBABILITY_BYTES)(block_p) and fits(halo_o, _ORIENTATION_BYTES)(block_o)):
-        need = max((step + 2 * halo_p) ** 2 * nt * _PROBABILITY_BYTES, (step + 2 * halo_o) ** 2 * nt *
-                   _ORIENTATION_BYTES)
+        need = learned_block_bytes(shape, opt, tile)
         raise InputError(f"the memory limit ({limit / 2**30:.2f} GiB) is below the smallest block of the learned "
                          f"likelihood ({need / 2**30:.2f} GiB for {nt} samples per trace); raise --memory-limit")
     return {"shape": list(shape), "tile": tile, "block_probability": int(block_p), "block_orientation": int(block_o),

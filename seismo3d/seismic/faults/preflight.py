@@ -31,6 +31,7 @@ from .likelihood import fault_likelihood
 from .likelihood_blocks import smallest_block_bytes as likelihood_block_bytes
 from .checks import check_amplitudes, check_size, no_coherence_message
 from .interpretation import FaultTracingOptions
+from .learned_blocks import learned_block_bytes
 from .steps import live_likelihood, ridges
 from .surface_plan import CANDIDATE_BYTES
 from .surface_plan import smallest_block_bytes as surfaces_block_bytes
@@ -253,7 +254,8 @@ def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions |
         return start + int(np.ceil(block_bytes * int(workers) / MEMORY_HEADROOM))
 
     baseline, growth = int(baseline), int(growth)
-    need = max(stage(likelihood_block_bytes(shape, opt.scan, tile), baseline),
+    need = max(stage(likelihood_block_bytes(shape, opt.scan, tile), baseline)
+               if opt.likelihood == "scan" else learned_block_bytes(shape, opt.learned, tile) * int(workers),
                stage(surfaces_block_bytes(shape, opt, tile), baseline + growth))
     if sample is not None:
         need = max(need, baseline + growth + sample.candidates(shape) * CANDIDATE_BYTES)

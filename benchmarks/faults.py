@@ -271,8 +271,7 @@ def f3_people() -> None:
         candidates[name] = [(f, e) for f, e, _ in runs]
         seconds[name] = [sec for _, _, sec in runs]
     default_resample = LearnedOptions().resample
-    candidates["learned"] = candidates[f"learned@{default_resample:g}"]
-    seconds["learned"] = seconds[f"learned@{default_resample:g}"]
+    shown = {"learned": f"learned@{default_resample:g}", "scan": "scan"}  # each likelihood's defaults
     # the peer: one quantile of 1 - plain semblance for all five inlines, the best mean F1
     best = None
     for q in np.concatenate([np.linspace(0.50, 0.98, 25), [0.985, 0.99, 0.993, 0.996, 0.998]]):
@@ -283,13 +282,12 @@ def f3_people() -> None:
     # every (likelihood, evidence) grid point's scores on every inline (the defaults' among them)
     default = EvidenceOptions()
     grid = {(lk, t, g): EvidenceOptions(min_throw=t, min_correlation_gain=g)
-            for lk in candidates if lk != "learned" for t, g in EVIDENCE_GRID}
-    for t, g in EVIDENCE_GRID:  # the default network grid under its own name too
-        grid[("learned", t, g)] = EvidenceOptions(min_throw=t, min_correlation_gain=g)
+            for lk in candidates for t, g in EVIDENCE_GRID}
     grid_scores = {key: [_scores(_kept_mask(*candidates[key[0]][k], data.sections[k].shape, opt), data.faults[k])
                          for k in range(n)] for key, opt in grid.items()}
-    ours = {lk: grid_scores[(lk, default.min_throw, default.min_correlation_gain)] for lk in LIKELIHOODS}
-    n_ours = {lk: [sum(e.supports(default) for e in candidates[lk][k][1]) for k in range(n)] for lk in LIKELIHOODS}
+    ours = {lk: grid_scores[(shown[lk], default.min_throw, default.min_correlation_gain)] for lk in LIKELIHOODS}
+    n_ours = {lk: [sum(e.supports(default) for e in candidates[shown[lk]][k][1]) for k in range(n)]
+              for lk in LIKELIHOODS}
     print("\nF3 inlines with faults drawn by a person (951 x 462 each), tolerance 3 samples: precision / recall / F1 "
           "of the defaults' faults with each likelihood; FaultNet (Dou et al. 2022, released weights) F1 from the "
           "issue for reference\n")
@@ -313,10 +311,9 @@ def f3_people() -> None:
         print(f"  resample {r:4.2f}: {fmt(mean(sc))}   F1 " + " ".join(f"{x[2]:.3f}" for x in sc)
               + f"   {np.mean(seconds[key[0]]):.1f} s")
     print(f"skeleton threshold: the {best[0]:.1%} quantile of 1 - semblance on every inline; seconds per inline: "
-          + ", ".join(f"{lk} {np.mean(seconds[lk]):.1f}" for lk in LIKELIHOODS))
-    choices = [g for g in grid if g[0] != "learned"]
+          + ", ".join(f"{lk} {np.mean(seconds[shown[lk]]):.1f}" for lk in LIKELIHOODS))
     print(f"\nCross-validation of the likelihood (scan, or learned at each network grid) and the evidence options "
-          f"(min_throw samples, min_correlation_gain), {len(choices)} choices: chosen by mean F1 on three inlines, "
+          f"(min_throw samples, min_correlation_gain), {len(grid)} choices: chosen by mean F1 on three inlines, "
           f"scored on the other two; the defaults are (learned@{default_resample:g}, {default.min_throw:g}, "
           f"{default.min_correlation_gain:g})\n")
     head = f"{'chosen on':>16s} {'held out':>10s} {'choice':>30s} {'held-out F1':>11s} {'default F1':>10s}"
@@ -325,7 +322,7 @@ def f3_people() -> None:
     names = lambda ks: ",".join(str(data.inlines[k]) for k in ks)  # noqa: E731
     for train in itertools.combinations(range(n), 3):
         test = [k for k in range(n) if k not in train]
-        choice = max(choices, key=lambda g: np.mean([grid_scores[g][k][2] for k in train]))
+        choice = max(grid, key=lambda g: np.mean([grid_scores[g][k][2] for k in train]))
         held_chosen.append(float(np.mean([grid_scores[choice][k][2] for k in test])))
         held_default.append(float(np.mean([ours["learned"][k][2] for k in test])))
         print(f"{names(train):>16s} {names(test):>10s} {str(choice):>30s} {held_chosen[-1]:11.3f} "

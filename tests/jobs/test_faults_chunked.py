@@ -78,7 +78,7 @@ def test_tight_limit_traces_the_surfaces_block_by_block(cube_npy, in_memory, tmp
 def test_segy_cube_is_read_lazily(write_segy_cube, tmp_path, caplog):
     """A SEG-Y cube over the limit: read block by block, its likelihood equal to the in-memory one, its volumes
     written as SEG-Y with the input's headers."""
-    from seismo3d.seismic.faults.learned import learned_fault_likelihood
+    from seismo3d.seismic.faults.learned import LearnedOptions, learned_fault_likelihood
 
     cube = synthetic_cube((128, 96, 256), seed=5).cube.astype(np.float32)
     path = write_segy_cube(tmp_path / "cube.sgy", cube, sorting="crossline")
@@ -94,7 +94,8 @@ def test_segy_cube_is_read_lazily(write_segy_cube, tmp_path, caplog):
     reference = learned_fault_likelihood(cube)  # the default likelihood
     diff = np.abs(group["likelihood"][:] - reference.likelihood)
     # equal up to float rounding, except where rounding flips the min_dip mask (the dip within 0.01 deg of it)
-    assert diff[np.abs(reference.dip_deg - 40.0) > 0.01].max() <= 1e-5 and np.count_nonzero(diff > 1e-5) <= 3
+    min_dip = LearnedOptions().min_dip
+    assert diff[np.abs(reference.dip_deg - min_dip) > 0.01].max() <= 1e-5 and np.count_nonzero(diff > 1e-5) <= 3
     assert list(group["inline"][:]) == list(range(101, 229))
     # the SEG-Y volumes, written block by block with the input's headers, as the in-memory run writes them
     from seismo3d.seismic.io import open_segy, read_segy

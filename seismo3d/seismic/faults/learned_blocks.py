@@ -106,9 +106,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
 
 
 def _probability_halo(opt: LearnedOptions) -> int:
-    if opt.resample < 1:
-        return grid_halo(RECEPTIVE_HALF, float(opt.resample), POOLING_MULTIPLE)
-    return RECEPTIVE_HALF
+    return grid_halo(RECEPTIVE_HALF, float(opt.resample), POOLING_MULTIPLE)
 
 
 def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:

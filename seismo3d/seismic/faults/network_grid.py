@@ -90,7 +90,8 @@ def grid_halo(network_halo: int, factor: float, align: int) -> int:
     Returns
     -------
     int
-        A multiple of ``align`` (input samples).
+        Input samples: ``network_halo`` itself at factor 1 (the data's own grid, whose blocks start at multiples of
+        ``align``), else a multiple of ``align``.
 
     Raises
     ------
@@ -98,6 +99,8 @@ def grid_halo(network_halo: int, factor: float, align: int) -> int:
         ``factor`` is outside [0.25, 1].
     """
     f = _check_factor(factor)
+    if f == 1.0:
+        return int(network_halo)
     need = (int(network_halo) + int(align)) / f + 2 + 4 * anti_alias_sigma(f)
     return int(math.ceil(need / align)) * int(align)
 

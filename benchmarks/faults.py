@@ -30,12 +30,14 @@ Three tables (each can be skipped):
    process CPU time of all threads, which barely moves when other jobs load the machine):
 
    - ``fault_likelihood`` (the scan over 24 strikes x 13 dips at half vertical resolution);
-   - ``learned_likelihood``: the fault network on every inline and crossline section, numpy, with strike and dip;
+   - ``learned_likelihood``: the fault network on every inline and crossline section (numpy and numba), with strike
+     and dip;
    - ``voting+skins``: ridges, optimal surface voting, thinning, thresholds and fault skins, from the likelihood;
-   - ``trace_faults``: the whole interpretation of the array, throws included (``trace_faults learned``: with the
-     learned likelihood);
-   - ``faults command``: the whole ``seismo3d faults`` job (``run_faults_job``): read the .npy, trace, and write
-     every output (volumes, VTK surfaces, CSVs, PNG); ``faults command learned``: ``--likelihood learned``;
+   - ``trace_faults learned`` / ``trace_faults scan``: the whole interpretation of the array, throws included,
+     with the learned likelihood (the default) or the scan;
+   - ``faults command learned`` / ``faults command scan``: the whole ``seismo3d faults`` job (``run_faults_job``):
+     read the .npy, trace, and write every output (volumes, VTK surfaces, CSVs, PNG), with ``--likelihood learned``
+     (the default) or ``scan``;
    - peers: ``seismo3d.seismic.semblance`` (structure-oriented, 3 x 3 traces x 9 samples), a plain vectorised
      semblance written here with ``scipy.ndimage.uniform_filter`` (3 x 3 traces x 9 samples, flat windows; the
      cheapest discontinuity attribute one can write with numpy), and ``bruges.attribute.discontinuity`` (64^3 only:
@@ -65,8 +67,8 @@ from pathlib import Path
 
 import numpy as np
 
-METHODS = ("fault_likelihood", "learned_likelihood", "voting+skins", "trace_faults", "trace_faults learned",
-           "faults command", "faults command learned", "semblance", "plain_semblance", "bruges")
+METHODS = ("fault_likelihood", "learned_likelihood", "voting+skins", "trace_faults scan", "trace_faults learned",
+           "faults command scan", "faults command learned", "semblance", "plain_semblance", "bruges")
 PEERS = {"plain_semblance", "bruges"}
 XL1155_ENDS = ((1385.0, 900.0), (1222.0, 2550.0))  # (inline, ms) of the fault's two ends
 
@@ -467,8 +469,9 @@ def _worker(method: str, path: str) -> dict:
             return seismic.fault_likelihood(x)
         if method == "learned_likelihood":
             return seismic.learned_fault_likelihood(x)
-        if method == "trace_faults learned":
-            return seismic.trace_faults(x, progress=False, options=seismic.FaultTracingOptions(likelihood="learned"))
+        if method.startswith("trace_faults"):
+            likelihood = method.split()[-1]
+            return seismic.trace_faults(x, progress=False, options=seismic.FaultTracingOptions(likelihood=likelihood))
         if method == "voting+skins":
             opt = seismic.FaultTracingOptions()
             ridges = seismic.thin_faults(x.likelihood, x.strike_deg, x.dip_deg, threshold=0.0)
@@ -478,8 +481,6 @@ def _worker(method: str, path: str) -> dict:
             lower, upper = opt.thresholds(thin)
             thin[thin < lower] = 0.0
             return seismic.fault_skins(thin, votes.strike_deg, votes.dip_deg, lower=lower, upper=upper)
-        if method == "trace_faults":
-            return seismic.trace_faults(x, progress=False)
         if method.startswith("faults command"):
             from seismo3d.jobs.faults import run_faults_job
 

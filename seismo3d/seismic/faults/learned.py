@@ -43,6 +43,7 @@ from scipy.ndimage import gaussian_filter
 
 from ..._progress import progress_steps
 from ...errors import InputError, Seismo3dError
+from .._kernels import eig_normals
 from .likelihood import FaultLikelihood
 from .network_grid import from_network_grid, to_network_grid
 from .unet import POOLING_MULTIPLE, normalise_section, unet_forward
@@ -247,34 +248,6 @@ def _largest_eigenvector_2d(t00, t01, t11) -> np.ndarray:
     return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
 
 
-def _largest_eigenvector_3d(t00, t01, t02, t11, t12, t22) -> np.ndarray:
-    """Unit eigenvector of the largest eigenvalue of symmetric 3 x 3 tensors, (..., 3), in closed form: the
-    eigenvalue by Smith's trigonometric formula (Smith 1961), the vector as the largest cross product of two rows of
-    ``T - lambda I``; vertical where the tensor is isotropic (no orientation)."""
-    q = (t00 + t11 + t22) / 3.0
-    off = t01 * t01 + t02 * t02 + t12 * t12
-    p = np.sqrt(((t00 - q) ** 2 + (t11 - q) ** 2 + (t22 - q) ** 2 + 2.0 * off) / 6.0)
-    safe = np.where(p > 0, p, 1.0)
-    b00, b11, b22 = (t00 - q) / safe, (t11 - q) / safe, (t22 - q) / safe
-    b01, b02, b12 = t01 / safe, t02 / safe, t12 / safe
-    det = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02)
-    lam = q + 2.0 * p * np.cos(np.arccos(np.clip(det / 2.0, -1.0, 1.0)) / 3.0)
-    rows = (np.stack([t00 - lam, t01, t02], -1), np.stack([t01, t11 - lam, t12], -1),
-            np.stack([t02, t12, t22 - lam], -1))
-    best = np.zeros(t00.shape + (3,), t00.dtype)
-    best_norm = np.zeros(t00.shape, t00.dtype)
-    for a, b in ((0, 1), (0, 2), (1, 2)):
-        c = np.cross(rows[a], rows[b])
-        norm = np.einsum("...i,...i->...", c, c)
-        better = norm > best_norm
-        best[better], best_norm[better] = c[better], norm[better]
-    length = np.sqrt(best_norm)
-    flat = length <= 1e-12 * np.maximum(p, 1e-30) ** 2
-    best /= np.where(flat, 1.0, length)[..., None]
-    best[flat] = (0.0, 0.0, 1.0)
-    return best
-
-
 def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
     """Strike and dip of the faults of a likelihood image, from its structure tensor.
 
@@ -312,8 +285,9 @@ def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0) -
     if nd == 2:
         normals = _largest_eigenvector_2d(comps[0, 0], comps[0, 1], comps[1, 1])
     else:
-        normals = _largest_eigenvector_3d(comps[0, 0], comps[0, 1], comps[0, 2], comps[1, 1], comps[1, 2],
-                                          comps[2, 2])
+        normals = np.empty(p.shape + (3,), np.float32)
+        eig_normals(comps[0, 0], comps[0, 1], comps[0, 2], comps[1, 1], comps[1, 2], comps[2, 2], normals,
+                    np.empty(p.shape, np.float32))
     return _normals_to_strike_dip(normals)
 
 

@@ -123,12 +123,13 @@ def _best_skeleton(section, reference):
     return best
 
 
-def xl1155_coverage(labels: np.ndarray, inlines: np.ndarray, samples_ms: np.ndarray) -> tuple[float, int]:
-    """The largest fraction of the xl1155 fault's samples from 1000 to 2400 ms held by one label within 10 traces of
+def xl1155_coverage(labels: np.ndarray, inlines: np.ndarray, samples_ms: np.ndarray,
+                    span=(1000.0, 2400.0)) -> tuple[float, int]:
+    """The largest fraction of the xl1155 fault's samples within ``span`` (ms) held by one label within 10 traces of
     the line through its ends, and that label (0: none)."""
     (il0, t0), (il1, t1) = XL1155_ENDS
     counts: dict = {}
-    ks = np.nonzero((samples_ms >= 1000.0) & (samples_ms <= 2400.0))[0]
+    ks = np.nonzero((samples_ms >= span[0]) & (samples_ms <= span[1]))[0]
     for k in ks:
         il = il0 + (il1 - il0) * (samples_ms[k] - t0) / (t1 - t0)
         i0 = int(np.argmin(np.abs(inlines - il)))
@@ -174,19 +175,24 @@ def real_sections(data_dir: Path, out_dir: Path) -> None:
         t = time.perf_counter()
         res = trace_faults(line, sample_interval=4.0, sample_unit="ms", progress=False)
         seconds = time.perf_counter() - t
-    cov, fid = xl1155_coverage(fault_labels(res.faults, line.shape), inlines, samples)
+    labels = fault_labels(res.faults, line.shape)
+    cov, fid = xl1155_coverage(labels, inlines, samples)
+    cov_issue, fid_issue = xl1155_coverage(labels, inlines, samples, span=(900.0, 2550.0))
     # the peer at the same relative threshold as its best crf F1: connected skeleton pieces as its "faults"
     skel = semblance_skeleton(line, float(np.quantile(1.0 - plain_semblance(line), q)))
     pieces, n_pieces = ndi.label(skel, structure=np.ones((3, 3)))
     cov_peer, piece = xl1155_coverage(pieces, inlines, samples)
+    cov_peer_issue, _ = xl1155_coverage(pieces, inlines, samples, span=(900.0, 2550.0))
     share = float(np.count_nonzero(pieces == piece)) / max(int(np.count_nonzero(pieces)), 1)
     print("\nPenobscot crossline 1155: the large normal fault (inline 1385 at 900 ms to 1222 at 2550 ms), fraction of "
-          "1000-2400 ms held by one fault within 10 traces of that line (target >= 70 %)\n")
-    head = f"{'method':44s} {'one fault':>9s} {'faults':>7s}   note"
+          "1000-2400 ms and of 900-2550 ms held by one fault within 10 traces of that line (targets >= 70 % and, "
+          "issue 35, >= 80 %)\n")
+    head = f"{'method':44s} {'1000-2400':>9s} {'900-2550':>9s} {'faults':>7s}   note"
     print(head + "\n" + "-" * len(head))
-    print(f"{'seismo3d faults (defaults)':44s} {cov:9.0%} {len(res.faults):7d}   fault {fid}, {seconds:.1f} s")
-    print(f"{'plain 1-semblance skeleton, crf threshold':44s} {cov_peer:9.0%} {n_pieces:7d}   connected pieces; the "
-          f"one on the fault holds {share:.0%} of the skeleton (a web, not a fault)")
+    print(f"{'seismo3d faults (defaults)':44s} {cov:9.0%} {cov_issue:9.0%} {len(res.faults):7d}   fault {fid} "
+          f"({fid_issue} over 900-2550), {seconds:.1f} s")
+    print(f"{'plain 1-semblance skeleton, crf threshold':44s} {cov_peer:9.0%} {cov_peer_issue:9.0%} {n_pieces:7d}   "
+          f"connected pieces; the one on the fault holds {share:.0%} of the skeleton (a web, not a fault)")
 
     from seismo3d.data import load_penobscot_sections
 

@@ -1,9 +1,28 @@
 """Shared fixtures: the real-data directory and small generated point sets."""
 
 import os
+import pickle
 
 import numpy as np
 import pytest
+from filelock import FileLock
+
+
+def computed_once(tmp_path_factory, key, compute):
+    """``compute()`` once per test session, shared by the pytest-xdist workers: the first worker to ask computes it
+    under a file lock and pickles it into the session's temporary folder (which the workers share); the others wait
+    for it and load the same value. Without xdist it is computed in the process. Only for results the tests read and
+    never modify."""
+    root = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        root = root.parent  # pytest-of-<user>/pytest-<n>/: one folder per session, shared by its workers
+    path = root / f"computed-once-{key}.pickle"
+    with FileLock(f"{path}.lock"):
+        if path.is_file():
+            return pickle.loads(path.read_bytes())
+        value = compute()
+        path.write_bytes(pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
+        return value
 
 
 @pytest.fixture(scope="session")
@@ -82,25 +101,29 @@ def map_folder(tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
-def traced_cube():
+def traced_cube(tmp_path_factory):
     """``traced_cube(seed)``: a 128^3 synthetic cube (3 faults, noise 0.1) traced by :func:`trace_faults` (fault
-    likelihood, voting, skins, throws) with its reflector orientation, computed once per seed and session (about
-    15 s per cube on 2 cores).
+    likelihood, voting, skins, throws) with its reflector orientation, computed once per seed and session, also
+    across pytest-xdist workers (:func:`computed_once`; about 15 s per cube on 2 cores).
 
-    Shared by the fault-surface and fault-throw tests, which read the same five cubes; nothing may modify them."""
+    Shared by the fault-surface and fault-throw tests, which read the same five cubes and may run on different
+    workers; nothing may modify them."""
     import functools
     from types import SimpleNamespace
 
     from seismo3d.data.synthetic import synthetic_cube
     from seismo3d.seismic import FaultLikelihood, structure_tensor_orientation, trace_faults
 
-    @functools.lru_cache(maxsize=None)
-    def trace(seed):
+    def compute(seed):
         syn = synthetic_cube((128, 128, 128), seed=seed, noise=0.1)
         res = trace_faults(syn.cube, progress=False)
         return SimpleNamespace(syn=syn, likelihood=FaultLikelihood(res.likelihood, res.strike_deg, res.dip_deg),
                                votes=res.votes, thin=res.thin, faults=res.faults, throws=res.throws,
                                orientation=structure_tensor_orientation(syn.cube))
+
+    @functools.lru_cache(maxsize=None)
+    def trace(seed):
+        return computed_once(tmp_path_factory, f"traced_cube-{seed}", lambda: compute(seed))
 
     return trace
 

@@ -3,6 +3,7 @@ seismic amplitudes, clipped amplitudes and a smooth property, the decimation fac
 
 import numpy as np
 import pytest
+from scipy import ndimage as ndi
 
 from seismo3d.data import synthetic_cube
 from seismo3d.seismic.volumes.pyramid import (Sampled, build_level, envelope, from_level, level_factors, level_kind,
@@ -69,3 +70,16 @@ def test_a_level_maps_transforms_to_full_resolution_and_samples_with_weights():
     assert s.weights[0] == pytest.approx(1.0)
     assert s.weights[1] == 0.0 and s.weights[2] == 0.0
     assert s.values[0] == pytest.approx(level.data[6, 6, 10], abs=1e-5)
+
+
+def test_high_frequency_grows_when_a_volume_is_sampled_coarser_without_a_low_pass():
+    rng = np.random.default_rng(1)
+    field = ndi.gaussian_filter(rng.normal(size=(48, 48, 48)), 2.0).astype(np.float32)
+    live = np.ones((48, 48), bool)
+    fine = Sampled(field, live, (1, 1, 1), 2.0).high_frequency
+    coarse = Sampled(np.ascontiguousarray(field[::2, ::2, ::2]), live[::2, ::2], (2, 2, 2), 2.0).high_frequency
+    noise = Sampled(rng.normal(size=(24, 24, 24)).astype(np.float32), live[:24, :24], (1, 1, 1), 2.0).high_frequency
+    # measured 0.035 and 0.097 (every second sample of a Gaussian-smoothed field aliases); white noise spreads its
+    # power evenly, 0.4 of it above 0.3 cycles per sample along each of the three axes: 1.2
+    assert coarse > 2.0 * fine
+    assert noise == pytest.approx(1.2, abs=0.1)

@@ -69,3 +69,21 @@ def test_refine_converges_from_a_start_a_few_samples_and_degrees_off(smooth_pair
     assert r.converged
     assert corner_distance(r.transform, truth, moving.shape) < 0.05
     assert r.correlation > 0.999
+
+
+def test_the_way_that_interpolates_the_less_aliased_volume_leads(smooth_pair):
+    # the field and every second sample of it: at equal misfits, the way interpolating the field (forward, with the
+    # field fixed) weighs high_frequency ratio ** 4 (about 60) times the way interpolating the aliased copy; the
+    # weights swap with the volumes
+    fixed = smooth_pair[0]
+    coarse = Sampled(np.ascontiguousarray(fixed.data[::2, ::2, ::2]), fixed.live[::2, ::2], (2, 2, 2), 2.0)
+    there = PairCorrelation(fixed, coarse, Reparam("affine", None, None), 1000)
+    back = PairCorrelation(coarse, fixed, Reparam("affine", None, None), 1000)
+    there.weigh_ways([0.01, 0.01])
+    back.weigh_ways([0.01, 0.01])
+    ratio = (coarse.high_frequency / fixed.high_frequency) ** 4
+    assert there.way_weights[0] / there.way_weights[1] == pytest.approx(ratio)
+    assert ratio > 10.0
+    np.testing.assert_allclose(back.way_weights, there.way_weights[::-1])
+    there.weigh_ways([0.01, 0.04])  # a way with four times the misfit weighs four times less
+    assert there.way_weights[0] / there.way_weights[1] == pytest.approx(4 * ratio)

@@ -153,16 +153,19 @@ def test_penobscot_pairs(penobscot_block, angle, moving_scales, fixed_scales, or
 ])
 def test_volve_velocity_is_right_or_not_converged(volve_block, angle, moving_scales, fixed_scales, order):
     # a smooth property, registered by its derivative along the traces: the lateral position rests on small
-    # anomalies, and copies with coarse bins are aliased; 16 of the benchmark's 24 Volve registrations are right,
-    # most of the others say converged: false, and two converge 1.07 and 1.18 % off in scale (corners within 0.25
-    # samples, rotation within 0.1 deg): hence 1.5 % here, not the 1 % of the other data sets
+    # anomalies, and copies with coarse bins are aliased. The way that interpolates the less aliased volume leads
+    # (refine.PairCorrelation.weigh_ways): 20 of the benchmark's 24 Volve registrations are right (16 before), the
+    # others say converged: false but one, not among these four (rotation 30 deg, fixed bins 1.6, vertical 1.25,
+    # moving onto fixed: 2.2 % off, benchmarks/volumes.py). Of these eight, five are right and converged, two are
+    # right and not converged (one-way refinements 3.2 % or corners 0.54 samples apart), one is 118 deg off (a wrong
+    # start of the search) and not converged
     fixed, moving, truth = make_pair(volve_block, angle, moving_scales, fixed_scales)
     reg, t, shape = register_in_order(fixed, moving, truth, order)
     err = registration_errors(reg.transform_index, t, shape)
     print(f"converged {reg.converged} ({reg.reason}); rotation {err.rotation_deg:.3f}, scales "
           f"{err.max_scale_pct:.2f} %, corners {err.corner_error:.3f}")
     if reg.converged:
-        assert err.rotation_deg <= ROTATION_DEG and err.corner_error <= CORNERS and err.max_scale_pct <= 1.5
+        assert err.rotation_deg <= ROTATION_DEG and err.corner_error <= CORNERS and err.max_scale_pct <= SCALE_PCT
     else:
         assert reg.reason
 

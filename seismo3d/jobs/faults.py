@@ -23,6 +23,7 @@ from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import EarlierStoresError, InputError, Seismo3dWarning
 from ..seismic.faults.memory import fits_in_memory, parse_memory_limit, resident_memory
+from ..seismic.faults.block_run import BlockRunOptions
 from ..seismic.faults.pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
 from ..seismic.io.lazy import open_lazy
 from ..seismic.io.segy import open_segy
@@ -461,7 +462,7 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
         raise InputError(f"the sample interval of {inp.name} is {dt:g} {inp.unit}; it must be > 0 (check the "
                          "binary header's sample interval, bytes 3217-3218)")
     result = trace_faults(inp.data, sample_interval=None if inp.unit == "samples" else dt, sample_unit=inp.unit,
-                          options=options, in_memory=True, progress=progress)
+                          options=options, blocks=BlockRunOptions(in_memory=True), progress=progress)
 
     geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
     steps = [
@@ -514,9 +515,10 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: i
     dt = float(lazy.samples[1] - lazy.samples[0]) if lazy.unit != "samples" else None
 
     def trace():
-        return trace_faults(lazy.data, sample_interval=dt, sample_unit=lazy.unit, options=options,
-                            memory_limit=memory_limit, in_memory=False, work_dir=out_dir, scheduler=scheduler,
-                            source=lazy.name, coords=lazy.coords, progress=progress)
+        blocks = BlockRunOptions(memory_limit=memory_limit, in_memory=False, work_dir=out_dir, scheduler=scheduler,
+                                 source=lazy.name, coords=lazy.coords)
+        return trace_faults(lazy.data, sample_interval=dt, sample_unit=lazy.unit, options=options, blocks=blocks,
+                            progress=progress)
 
     result = _replacing_earlier_stores(trace, out_dir, aside)
     written = {"likelihood": result.stores["likelihood"], "surfaces_zarr": result.stores["surfaces"]}

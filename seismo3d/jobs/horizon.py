@@ -272,7 +272,7 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         The file has no inline / crossline grid and is read as a trace list (one line).
     """
     record = RunRecord("horizon", locals())  # first: the arguments as called
-    from ..seismic import fill_horizon, trace_faults, track_horizon
+    from ..seismic import BlockRunOptions, fill_horizon, trace_faults, track_horizon
 
     input_path, output = pathlib.Path(input_path), pathlib.Path(output)
     surface = None if surface is None else pathlib.Path(surface)
@@ -295,8 +295,9 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
             try:
                 with record.stage("faults"):
                     interp = trace_faults(survey.data, sample_interval=float(survey.samples[1] - survey.samples[0]),
-                                          sample_unit=survey.unit, memory_limit=memory_limit, work_dir=work,
-                                          source=survey.name, progress=progress)
+                                          sample_unit=survey.unit, progress=progress,
+                                          blocks=BlockRunOptions(memory_limit=memory_limit, work_dir=work,
+                                                                 source=survey.name))
             except (InputError, UnsupportedDataError):
                 if faults:  # asked for: the refusal (e.g. a cube too small to trace) is the user's to see
                     raise

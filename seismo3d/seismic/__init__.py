@@ -59,8 +59,8 @@ from .evaluation import (
     FaultScores, HorizonErrors, RegistrationErrors, evaluate_faults, horizon_errors, registration_errors,
 )
 from .faults import (
-    ChunkedFaults, ChunkedLikelihood, ChunkOptions, CleanTraces, CubeWindow, EvidenceOptions, Fault, FaultEvidence,
-    FaultInterpretation,
+    BlockRunOptions, ChunkedFaults, ChunkedLikelihood, ChunkOptions, CleanTraces, CubeWindow, EvidenceOptions, Fault,
+    FaultEvidence, FaultInterpretation,
     FaultLikelihood, FaultScanOptions, FaultThrow, FaultTracingOptions, FaultVotes, LearnedOptions, SkinOptions,
     ThrowOptions, VotingOptions, chunked_fault_likelihood, chunked_learned_likelihood, learned_fault_likelihood, chunked_fault_surfaces, clean_traces, cube_windows, fault_labels,
     fault_likelihood, fault_normals, fault_skins, fault_throw, fault_throws, fill_values, link_faults,
@@ -99,6 +99,8 @@ __all__ = [
     "CleanTraces", "clean_traces", "dead_samples", "near_dead_samples", "fill_values", "CubeWindow", "cube_windows",
     "ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "ChunkedFaults", "chunked_fault_surfaces",
     "LearnedOptions", "learned_fault_likelihood", "chunked_learned_likelihood",
+    # faults: how trace_faults runs a cube (in memory or by blocks)
+    "BlockRunOptions",
     # faults: the evidence a fault must show
     "EvidenceOptions", "FaultEvidence", "supported_faults",
     # horizons: the cycle-skip cut

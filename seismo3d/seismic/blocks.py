@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import ctypes
 import ctypes.util
+import math
 import json
 import os
 import pathlib
@@ -22,13 +23,55 @@ from .._atomic import atomic_path
 from .._progress import progress_steps
 from ..errors import EarlierStoresError, InputError
 
-__all__ = ["BlockRun", "SchedulerClient", "MEMORY_HEADROOM", "kernel_threads", "largest_block", "release_memory",
-           "run_block", "write_marker"]
+__all__ = ["BlockRun", "SchedulerClient", "MEMORY_HEADROOM", "block_budget", "kernel_threads", "largest_block",
+           "limit_for_blocks", "release_memory", "run_block", "write_marker"]
 
 # Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
 # for the allocator's fragmentation and the reads in flight (a chunked likelihood run peaked at 1.54 GB under a
 # 1.4 GB limit without it).
 MEMORY_HEADROOM = 0.8
+
+
+def block_budget(limit: int, baseline: int, workers: int) -> int:
+    """Bytes one worker's block may plan for under a memory limit: the limit less the process itself, times
+    :data:`MEMORY_HEADROOM`, shared by the workers. The likelihood scan and the fault surfaces plan with it (the
+    learned likelihood's plan does not yet); :func:`limit_for_blocks` is its inverse.
+
+    Parameters
+    ----------
+    limit : int
+        Memory limit, bytes.
+    baseline : int
+        Bytes the process holds before its blocks (:func:`~seismo3d.seismic.faults.memory.worker_baseline`).
+    workers : int
+        Blocks computed at once (>= 1).
+
+    Returns
+    -------
+    int
+        Bytes; negative when the baseline is above the limit (no block fits).
+    """
+    return int((int(limit) - int(baseline)) * MEMORY_HEADROOM) // int(workers)
+
+
+def limit_for_blocks(block_bytes: int, baseline: int, workers: int) -> int:
+    """The smallest memory limit whose :func:`block_budget` holds a block of ``block_bytes`` per worker.
+
+    Parameters
+    ----------
+    block_bytes : int
+        Bytes of one block at its step's peak.
+    baseline : int
+        Bytes the process holds before its blocks.
+    workers : int
+        Blocks computed at once (>= 1).
+
+    Returns
+    -------
+    int
+        Bytes: ``baseline + ceil(block_bytes * workers / MEMORY_HEADROOM)``.
+    """
+    return int(baseline) + math.ceil(int(block_bytes) * int(workers) / MEMORY_HEADROOM)
 
 # glibc's malloc options (malloc.h): allocations above M_MMAP_THRESHOLD are mapped and unmapped on their own, so a
 # freed block's memory goes back to the system at once; setting it also stops glibc raising the threshold as large

@@ -96,7 +96,7 @@ def test_hog_matches_a_real_photo_under_the_papers_views(make_h, value):
     fit = corners @ result.homography.T
     truth = corners @ h.T
     err = np.linalg.norm(fit[:, :2] / fit[:, 2:] - truth[:, :2] / truth[:, 2:], axis=1)
-    assert err.max() < 2.0  # pixels, at the image corners
+    assert err.max() < 0.15  # pixels, at the image corners: measured 0.064-0.094 over the views, limit 1.5x the worst
     assert result.n_inliers >= 0.95 * before.n_correct
 
 

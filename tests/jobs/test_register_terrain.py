@@ -47,7 +47,8 @@ def test_register_laz_pair_from_identity(laz_pair, tmp_path):
     payload = json.loads(out.read_text())
     source = read_las(folder / "source.laz").points
     err = transform_errors(np.array(payload["transform"]), pair.transform, source)
-    assert err.rotation_deg < 0.2 and err.centroid < 0.5 and err.max_displacement < 0.5
+    # measured 0.0072 deg, centroid 0.046 and at worst 0.093 (the cloud's units), limits 1.5x
+    assert err.rotation_deg < 0.011 and err.centroid < 0.069 and err.max_displacement < 0.14
     assert payload["method"] == "fused" and payload["units"].startswith("foot")
     assert payload["source_crs"]["linear_unit"] == "foot"
     np.testing.assert_allclose(payload["local_origin"][:2], np.mean(
@@ -72,7 +73,7 @@ def test_register_dem_pair(dfw, tmp_path):
     truth = LocalFrame(np.array([cx, cy, 0.0]), np.array([dx / sx, dy / sy, 1.0]), "m").transform_to_file(mg.transform)
     p = np.c_[source.points(), np.ones(int(source.valid.sum()))]
     d = (p @ np.array(payload["transform"]).T - p @ truth.T)[:, :2]
-    assert np.max(np.hypot(d[:, 0] / sx, d[:, 1] / sy)) < 0.5  # pixels
+    assert np.max(np.hypot(d[:, 0] / sx, d[:, 1] / sy)) < 0.017  # pixels: measured 0.011, limit 1.5x
     assert payload["local_unit"] == "metre" and "degrees" in payload["units"]
     # gentle terrain: the surfaces alone leave the horizontal position weakly fixed (degenerate), the hillshade
     # matches hold it, so the fit counts as converged and the command succeeds

@@ -42,7 +42,8 @@ def test_detects_and_verifies_the_revisit(graph):
     loop = detector.verify(partial, candidates[0][0], candidates[0][1])
     assert loop is not None and (loop.source, loop.target) == (0, 8)
     truth = np.linalg.inv(graph.keyframes[0].pose) @ graph.keyframes[8].pose
-    assert rotation_error_deg(loop.relative, truth) < 1.0 and translation_error(loop.relative, truth) < 0.02
+    # measured 0.17 deg and 0.0044 m, limits 1.5x
+    assert rotation_error_deg(loop.relative, truth) < 0.26 and translation_error(loop.relative, truth) < 0.0066
     assert np.all(np.linalg.eigvalsh(loop.information) > 0)
 
 

@@ -53,7 +53,8 @@ def test_relocalises_after_a_bad_prediction(seven_scenes, first_30):
     result = mapper.process(frame, index=12)
     assert result.status == "relocalised"
     truth = np.linalg.inv(seven_scenes.entries[0].pose) @ frame.pose  # the map's frame is the first camera's
-    assert rotation_error_deg(result.pose, truth) < 2.0 and translation_error(result.pose, truth) < 0.05
+    # measured 0.58 deg and 0.017 m, limits 1.5x
+    assert rotation_error_deg(result.pose, truth) < 0.88 and translation_error(result.pose, truth) < 0.026
 
 
 @pytest.mark.slow
@@ -93,4 +94,5 @@ def test_generated_room_sequence_without_features():
     # the map's frame is the first camera's: compare relative to it
     for est, truth in zip(poses, truths):
         rel = np.linalg.inv(truths[0]) @ truth
-        assert rotation_error_deg(est, rel) < 0.5 and translation_error(est, rel) < 0.02
+        # measured at worst 0.0050 deg and 3.1e-4 m over the frames, limits 1.5x
+        assert rotation_error_deg(est, rel) < 0.0076 and translation_error(est, rel) < 4.7e-4

@@ -37,10 +37,11 @@ def test_tracks_a_known_motion(room_model, yaw, pitch, shift):
     prediction = room_model.raycast(m.intrinsics[0], predicted, shape=m.points[0].shape[:2])
     result = track_frame(m, prediction, options=opt)
     assert result.ok and result.fitness > 0.7  # occlusion edges and the newly seen margin have none
-    assert rotation_error_deg(result.pose, truth) < 0.2 and translation_error(result.pose, truth) < 0.005
+    # measured 0.0070-0.0085 deg and 4.4e-4 m over both motions, limits 1.5x the worst
+    assert rotation_error_deg(result.pose, truth) < 0.013 and translation_error(result.pose, truth) < 6.7e-4
     # information: positive definite, and a camera facing walls constrains everything
     assert np.all(np.linalg.eigvalsh(result.information) > 0)
-    assert result.dynamic.mean() < 0.01  # a static scene: (almost) nothing is flagged as moving
+    assert result.dynamic.mean() < 0.0021  # a static scene: measured 0.0010-0.0014 flagged, limit 1.5x the worst
 
 
 def test_moving_object_is_flagged_and_kept_out(room_model):
@@ -51,7 +52,8 @@ def test_moving_object_is_flagged_and_kept_out(room_model):
     m = measure_frame(depth, INTRINSICS, opt)
     prediction = room_model.raycast(m.intrinsics[0], pose_at(), shape=m.points[0].shape[:2])
     result = track_frame(m, prediction, options=opt)
-    assert rotation_error_deg(result.pose, pose) < 0.3 and translation_error(result.pose, pose) < 0.01
+    # measured 0.013 deg and 6.3e-4 m, limits 1.5x
+    assert rotation_error_deg(result.pose, pose) < 0.019 and translation_error(result.pose, pose) < 9.5e-4
     background = render_depth(pose)
     on_object = np.abs(depth - background) > 0.1
     mapped_behind = on_object & (background < 3.9)  # the map ends at 4 m: farther, nothing says the object moved
@@ -79,5 +81,5 @@ def test_tum_pair_against_motion_capture(tum_pair):
     result = track_frame(m, prediction, options=opt)
     truth = np.linalg.inv(prev.pose) @ curr.pose  # curr camera in prev camera's frame
     assert result.ok
-    assert translation_error(result.pose, truth) < 0.01
-    assert rotation_error_deg(result.pose, truth) < 0.5
+    assert translation_error(result.pose, truth) < 0.0054  # measured 0.0035 m, limit 1.5x
+    assert rotation_error_deg(result.pose, truth) < 0.33  # measured 0.22 deg, limit 1.5x

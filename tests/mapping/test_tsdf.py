@@ -26,7 +26,8 @@ def test_raycast_reproduces_the_depth(room_volume):
     ok = np.isfinite(z)
     assert ok.mean() > 0.8  # the room's walls and boxes, less occlusion edges
     err = np.abs(z[ok] - truth[ok])
-    assert np.median(err) < 0.002 and np.percentile(err, 90) < 0.01  # 2 cm voxels, exact depth
+    # 2 cm voxels, exact depth: measured median 4.7e-5 m and 90th percentile 6.7e-4 m, limits 1.5x
+    assert np.median(err) < 7e-5 and np.percentile(err, 90) < 1.1e-3
     # normals face the camera and are unit
     n = prediction.normals[ok]
     assert np.allclose(np.linalg.norm(n, axis=1), 1.0, atol=1e-6)
@@ -40,7 +41,7 @@ def test_mesh_lies_on_the_walls(room_volume):
     # the far wall z = 2.5: vertices near it (away from edges) lie on it within a voxel
     far = (np.abs(v[:, 2] - 2.5) < 0.1) & (np.abs(v[:, 0]) < 1.5) & (np.abs(v[:, 1]) < 1.0)
     assert far.sum() > 100
-    assert np.median(np.abs(v[far, 2] - 2.5)) < 0.005
+    assert np.median(np.abs(v[far, 2] - 2.5)) < 1.1e-4  # measured 7.2e-5 m, limit 1.5x
     assert mesh.faces.max() < len(v) and mesh.normals.shape == v.shape
 
 
@@ -70,7 +71,8 @@ def test_mask_keeps_pixels_out():
     mask[:, :320] = False
     volume.integrate(depth, INTRINSICS, pose, mask=mask)
     z = volume.raycast(INTRINSICS, pose, shape=(480, 640)).points[..., 2]
-    assert np.isfinite(z[:, 360:]).mean() > 0.8 and np.isfinite(z[:, :280]).mean() < 0.05
+    # measured 0.842 kept and 0.0 masked through: limits 3 points less, and under 5 % masked through
+    assert np.isfinite(z[:, 360:]).mean() > 0.81 and np.isfinite(z[:, :280]).mean() < 0.05
 
 
 @pytest.mark.parametrize("bad", [np.zeros(5), np.zeros((2, 3, 4)), np.array([["a"]])])

@@ -40,10 +40,10 @@ def test_bunny_point_to_plane_from_15_degrees(bunny, seed):
     init = perturb(truth, 15.0, centre=apply_transform(truth, pair.source).mean(axis=0), rng=rng)
     assert rotation_error_deg(init, truth) == pytest.approx(15.0)
     res = icp(pair.source, pair.target, target_normals=normals, init=init)
-    assert rotation_error_deg(res.transform, truth) < 0.2
-    assert translation_error(res.transform, truth) < 1e-3
+    assert rotation_error_deg(res.transform, truth) < 0.14  # measured 0.089 deg, limit 1.5x
+    assert translation_error(res.transform, truth) < 1.4e-4  # measured 9.0e-5, limit 1.5x
     assert res.converged and not res.degenerate
-    assert res.fitness > 0.8 and res.inlier_rmse < 1e-3
+    assert res.fitness > 0.91 and res.inlier_rmse < 7e-4  # measured 0.944 and 4.5e-4: limits 3 points less, 1.5x
 
 
 def _model_truth(model):
@@ -64,7 +64,8 @@ def test_point_to_plane_models_on_resampled_surface(model, rng):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DegenerateGeometryWarning)  # a shallow surface weakly constrains affine
         res = icp(source, target, model=model, target_normals=normals, max_distance=(0.2, 0.05, 0.02))
-    assert np.sqrt(np.mean(np.sum((apply_transform(res.transform, source) - world) ** 2, axis=1))) < 2e-3
+    # measured 6.3e-5 (rigid) to 1.3e-4 (similarity), limit 1.5x the worst
+    assert np.sqrt(np.mean(np.sum((apply_transform(res.transform, source) - world) ** 2, axis=1))) < 2e-4
 
 
 @pytest.mark.parametrize("model", ["rigid", "similarity", "axis_scaled", "affine"])
@@ -95,7 +96,8 @@ def test_2d_point_to_plane(model, rng):
     src_world = np.c_[np.cos(s) * (1 + 0.3 * np.cos(3 * s)), np.sin(s) * (1 + 0.2 * np.sin(2 * s))]
     source = apply_transform(np.linalg.inv(truth), src_world)
     res = icp(source, target, model=model, target_normals=normals, max_distance=(0.5, 0.1, 0.03))
-    assert np.abs(apply_transform(res.transform, source) - src_world).max() < 5e-3
+    # measured 6.1e-7 (rigid) to 2.2e-6 (affine), limit 1.5x the worst
+    assert np.abs(apply_transform(res.transform, source) - src_world).max() < 3.4e-6
 
 
 def test_plane_is_reported_degenerate(rng):

@@ -11,7 +11,9 @@ import seismo3d.seismic.faults.cube_run as cube_run
 import seismo3d.seismic.faults.pipeline as pipeline
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, Seismo3dWarning, UnsupportedDataError
-from seismo3d.seismic.faults import fits_in_memory, in_memory_bytes, parse_memory_limit, trace_faults
+from seismo3d.seismic.faults import (
+    BlockRunOptions, fits_in_memory, in_memory_bytes, parse_memory_limit, trace_faults,
+)
 
 
 class _Likelihood(Exception):
@@ -67,7 +69,7 @@ def test_both_runs_give_the_same_refusal_or_warning(case, seismic, tmp_path, mon
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", Seismo3dWarning)
             with pytest.raises(error or _Likelihood) as raised:
-                trace_faults(data, in_memory=in_memory, work_dir=tmp_path, progress=False)
+                trace_faults(data, blocks=BlockRunOptions(in_memory=in_memory, work_dir=tmp_path), progress=False)
         texts = sorted(str(w.message) for w in caught if issubclass(w.category, Seismo3dWarning))
         outcomes.append((raised.type, str(raised.value), texts))
     if error is None:
@@ -94,5 +96,5 @@ def test_the_memory_decision():
 
 
 def test_a_cube_beyond_the_limit_needs_a_work_folder(seismic):
-    with pytest.raises(InputError, match="pass work_dir="):
-        trace_faults(seismic, in_memory=False, progress=False)
+    with pytest.raises(InputError, match=r"pass blocks=BlockRunOptions\(work_dir=\.\.\.\)"):
+        trace_faults(seismic, blocks=BlockRunOptions(in_memory=False), progress=False)

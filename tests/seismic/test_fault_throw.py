@@ -6,6 +6,10 @@ voxels (throw accuracy independent of detection) and on 2D sections. Errors are 
 (positive for normal faults, negative for reverse ones), so a wrong hanging-wall side counts as an error.
 
 Per-fault numbers are printed (``pytest -s``).
+
+Limits: the measured worst over the seeds / cases each test runs, times 1.5 (the inputs are generated with fixed seeds,
+so the margin covers float and library differences, and a 2x regression fails), written beside each assertion as
+"measured X, limit Y". Where the issue set a target (issue 3: median within 1 sample), it is asserted too.
 """
 
 from types import SimpleNamespace
@@ -93,10 +97,11 @@ def test_detected_faults_throw_within_one_sample(chain):
     # every true fault is found and measured over most of its length
     assert {tid for _, tid, e in matched if e.size > 5000} == {f.id for f in syn.faults}
     assert pooled.size > 0.6 * np.count_nonzero(syn.fault_labels)
-    assert np.median(pooled) <= 1.0  # Must show (measured 0.04-0.09)
+    assert np.median(pooled) <= 1.0  # Must show (issue 3's target)
+    assert np.median(pooled) <= 0.12  # measured 0.033-0.079 over seeds 0-4, limit 1.5x the worst
     for f, tid, e in matched:
-        if e.size >= 5000:  # the main faults, each on its own (measured <= 0.16)
-            assert np.median(e) <= 0.5, (f.id, tid)
+        if e.size >= 5000:  # the main faults, each on its own
+            assert np.median(e) <= 0.3, (f.id, tid)  # measured 0.012-0.20 (seed 0 fault 3), limit 1.5x the worst
             assert results[f.id - 1].registered.mean() > 0.5  # the registration engine did the work, not the fallback
             assert results[f.id - 1].fitness > 0.6
 
@@ -117,12 +122,12 @@ def test_true_fault_voxels_throw(chain):
         print(f"seed {seed} true fault {tf.id} ({tf.kind}, throw {np.median(true):+.2f}): median |err| "
               f"{np.median(err):.3f}, 90th pct {np.percentile(err, 90):.2f} samples, "
               f"registered {r.registered.mean():.2f}")
-        assert np.median(err) <= 0.5  # measured <= 0.15
+        assert np.median(err) <= 0.27  # measured 0.017-0.174 (seed 0 fault 3), limit 1.5x the worst
         assert np.sign(r.median_throw) == np.sign(np.median(true))  # hanging-wall side and sign convention
         assert r.fault_id == tf.id and r.throw.shape == (len(f.points),) and r.throw.dtype == np.float32
     pooled = np.concatenate(pooled)
     print(f"seed {seed} true voxels pooled median |err| {np.median(pooled):.3f}")
-    assert np.median(pooled) <= 0.25  # measured 0.03-0.08
+    assert np.median(pooled) <= 0.13  # measured 0.028-0.083, limit 1.5x the worst
 
 
 def test_bare_point_array_estimates_normals():
@@ -132,7 +137,7 @@ def test_bare_point_array_estimates_normals():
     res = fault_throw(syn.cube, pts)
     true = syn.fault_throw[tuple(pts.T)] * (1.0 if syn.faults[0].kind == "normal" else -1.0)
     assert res.fault_id == 0
-    assert np.nanmedian(np.abs(res.throw - true)) <= 0.5
+    assert np.nanmedian(np.abs(res.throw - true)) <= 0.19  # measured 0.123, limit 1.5x
 
 
 @pytest.mark.slow
@@ -145,7 +150,7 @@ def test_large_throw_no_cycle_skip():
     for f, tf, r in zip(faults, syn.faults, results):
         true = syn.fault_throw[tuple(f.points.T)] * (1.0 if tf.kind == "normal" else -1.0)
         big += np.median(np.abs(true)) > 10
-        assert np.nanmedian(np.abs(r.throw - true)) <= 0.5  # measured <= 0.07
+        assert np.nanmedian(np.abs(r.throw - true)) <= 0.12  # measured 0.042-0.074, limit 1.5x the worst
     assert big >= 1  # the case exercised: one fault throws 13 samples
 
 
@@ -162,7 +167,7 @@ def test_sections(seed):
     for tf, r in zip(syn.faults, results):
         true = tf.throw_samples * (1.0 if tf.kind == "normal" else -1.0)
         print(f"section seed {seed} true fault {tf.id}: throw {true:+.2f}, estimate {r.median_throw:+.2f}")
-        assert abs(r.median_throw - true) <= 0.5  # measured <= 0.25
+        assert abs(r.median_throw - true) <= 0.37  # measured 0.002-0.247 (seed 3), limit 1.5x the worst
         assert not r.registered.any() and r.n_points_used == 0  # 2D: no registration, correlation only
     # detected faults
     fl = fault_likelihood(syn.cube)
@@ -171,7 +176,7 @@ def test_sections(seed):
     pooled = np.concatenate([e for _, _, e in matched])
     print(f"section seed {seed}: detected pooled median |err| {np.median(pooled):.3f} over {pooled.size} points")
     assert pooled.size > 0.5 * np.count_nonzero(syn.fault_labels)
-    assert np.median(pooled) <= 1.0  # measured 0.03-0.14
+    assert np.median(pooled) <= 0.18  # measured 0.022-0.118 over seeds 0-5, limit 1.5x the worst
 
 
 def test_sign_convention_normal_and_reverse():
@@ -181,7 +186,7 @@ def test_sign_convention_normal_and_reverse():
         for tf in syn.faults:
             r = fault_throw(syn.cube, np.argwhere(syn.fault_labels == tf.id))
             assert np.sign(r.median_throw) == sign
-            assert abs(r.median_throw - sign * tf.throw_samples) <= 0.5
+            assert abs(r.median_throw - sign * tf.throw_samples) <= 0.3  # measured 0.015-0.196, limit 1.5x
 
 
 # --- edge cases and bad input ---------------------------------------------------------------------------------------

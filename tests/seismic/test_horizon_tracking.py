@@ -33,8 +33,8 @@ def test_track_2d_section_without_faults_follows_true_horizons(seed):
         pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
         hz = track_horizon(syn.cube, _seed_on(ref), polarity=pol)
         e = horizon_errors(hz.times, ref)
-        assert e.median_abs <= 0.3, (k, e)
-        assert e.within_2 >= 0.97, (k, e)
+        assert e.median_abs <= 0.13, (k, e)  # measured 0.053-0.083 over seeds 0-1, limit 1.5x the worst
+        assert e.within_2 >= 0.99, (k, e)  # measured 1.0 on every horizon; limit: one trace of the 160 off
 
 
 # the synthetic section of benchmarks/horizons.py prints these horizons (cube seeds 0-2): the issue's target is a
@@ -68,7 +68,8 @@ def faulted_errors(faulted_cube):
 @pytest.mark.slow
 def test_track_3d_across_faults_median_error_within_one_sample(faulted_errors, cube_seed):
     medians = [e.median_abs for e in faulted_errors(cube_seed)]
-    assert np.all(np.isfinite(medians)) and np.max(medians) <= 1.0, medians
+    assert np.all(np.isfinite(medians)) and np.max(medians) <= 1.0, medians  # the issue's target
+    assert np.max(medians) <= 0.17, medians  # measured 0.083 / 0.104 / 0.109 (cubes 0-2), limit 1.5x the worst
 
 
 # The registration tracker kept 80 % of these horizons' traces within 2 samples on average; the global tracker keeps
@@ -78,7 +79,9 @@ def test_track_3d_across_faults_median_error_within_one_sample(faulted_errors, c
 @pytest.mark.parametrize("cube_seed", [0, 1, 2])
 @pytest.mark.slow
 def test_track_3d_across_faults_keeps_most_traces_within_two_samples(faulted_errors, cube_seed):
-    assert np.mean([e.within_2 for e in faulted_errors(cube_seed)]) >= 0.80
+    # measured 0.930 / 0.871 / 0.890 (cubes 0-2); limit the worst less 3 points (a cube's horizons moved a cycle off
+    # over 3 % of their traces fail)
+    assert np.mean([e.within_2 for e in faulted_errors(cube_seed)]) >= 0.84
 
 
 @pytest.mark.slow
@@ -91,8 +94,8 @@ def test_fault_throw_makes_the_jump(faulted_cube):
     seed = _seed_on(ref, syn.shape[0] // 2)
     with_faults = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, faults=faults, features=None).times, ref)
     without = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, features=None).times, ref)
-    assert with_faults.median_abs <= 1.0
-    assert without.median_abs > 3.0
+    assert with_faults.median_abs <= 0.13  # measured 0.083, limit 1.5x
+    assert without.median_abs > 3.0  # measured 5.0: the contrast the test shows (the jump of a reflector cycle)
 
 
 def test_low_confidence_picks_are_empty_and_fill_is_explicit():
@@ -109,7 +112,7 @@ def test_low_confidence_picks_are_empty_and_fill_is_explicit():
     assert np.isfinite(filled.times[1:-1]).all()
     assert np.isnan(hz.times[60:64]).sum() >= 2  # the input is not modified
     gap = np.isnan(hz.times)
-    assert np.nanmax(np.abs(filled.times[gap] - ref[gap])) < 2.0
+    assert np.nanmax(np.abs(filled.times[gap] - ref[gap])) < 0.16  # measured 0.105, limit 1.5x
 
 
 def test_gap_closing_refills_a_hole_and_leaves_noise_empty():
@@ -206,6 +209,12 @@ def test_options_object_and_keywords_agree():
 # inlines, one seed per horizon on the fold's first inline (trace 256, at the people's pick). Targets on every fold and
 # horizon: >= 99 % of the live traces within 5 samples, median <= 1 sample (horizon 5: 1.5, the people's picks wander
 # within clipped plateaus), and at least the plain autotracker's % within 5 less half a point, measured here.
+# The median limits are per horizon, for a reason: the people's picks sit on a grid of half a sample, so a horizon's
+# median |error| moves in steps of 0.5 and no margin fits between the measured median and the next step. Each limit is
+# the median measured on that horizon, the same on both folds and with traced faults (MEDIAN_MEASURED); a horizon that
+# gets one step worse fails. The issue's targets (1 sample, 1.5 on horizon 5) are asserted beside them.
+MEDIAN_MEASURED = {0: 1.0, 1: 1.0, 2: 0.5, 3: 0.5, 4: 0.5, 5: 1.5, 6: 1.0}
+MEDIAN_TARGET = {k: 1.5 if k == 5 else 1.0 for k in range(7)}  # the issue's: horizon 5's picks wander (above)
 FOLDS = {"1075-1083": slice(0, 9), "1084-1092": slice(9, 18)}
 # measured (at the plain autotracker; below the 99 %): horizon 1 on 1084-1092 cuts the bottom of the pockmark's sag on
 # some inlines (the autotracker: 98.9 %). Horizon 6 on 1075-1083 (a fault whose throw at the horizon is about half a
@@ -237,7 +246,8 @@ def test_penobscot_folds_against_peoples_picks(penobscot_folds, fold, k):
     seed = _peak_seed(cube, ref)
     ours = horizon_errors(track_horizon(cube, seed).times, ref)
     plain = horizon_errors(autotrack(cube, seed).times, ref)
-    assert ours.within_5 >= 0.99 and ours.median_abs <= (1.5 if k == 5 else 1.0), ours
+    assert ours.within_5 >= 0.99 and ours.median_abs <= MEDIAN_TARGET[k], ours  # the issue's targets
+    assert ours.median_abs <= MEDIAN_MEASURED[k], ours  # measured (see MEDIAN_MEASURED)
     assert ours.within_5 >= plain.within_5 - 0.005, (ours, plain)
 
 
@@ -256,14 +266,14 @@ def test_penobscot_pockmark_passed_with_margin(penobscot):
 # than half a point against tracking without fault input, and the horizons that reach the targets without faults keep
 # them (horizon 6 needs a fault throw the traced faults do not carry: see MISSED).
 @pytest.mark.slow
-@pytest.mark.parametrize("k, median", [(0, 1.0), (1, 1.0), (2, 0.5), (3, 0.5), (4, 0.5), (5, 1.5), (6, 1.0)])
-def test_penobscot_horizons_with_traced_faults(penobscot, penobscot_faults, k, median):
+@pytest.mark.parametrize("k", range(7))
+def test_penobscot_horizons_with_traced_faults(penobscot, penobscot_faults, k):
     ref = penobscot.horizons[:, k]
     seed = (0, 256, ref[0, 256])
     ours = horizon_errors(track_horizon(penobscot.cube, seed, faults=penobscot_faults).times, ref)
     without = horizon_errors(track_horizon(penobscot.cube, seed).times, ref)
     assert ours.within_5 >= without.within_5 - 0.005, (ours, without)
-    assert ours.median_abs <= median, ours
+    assert ours.median_abs <= MEDIAN_MEASURED[k], ours  # measured (see MEDIAN_MEASURED)
     if k != 6:
         assert ours.within_5 >= 0.99, ours
 
@@ -282,7 +292,8 @@ def test_seed_on_a_fault_steps_off_it_by_registration(faulted_cube):
     assert TrackingOptions().fault_crossings(faults, 3).on_fault(np.array(seed)), "the seed is no longer on a fault"
     hz = track_horizon(syn.cube, seed, polarity=pol, faults=faults, features=None)
     line = horizon_errors(hz.times[seed[0]], ref[seed[0]])
-    assert line.median_abs <= 0.5 and line.within_2 >= 0.8, line
+    # measured median 0.044, 98.4 % within 2; limits 1.5x the median, the share less 3 points
+    assert line.median_abs <= 0.07 and line.within_2 >= 0.95, line
 
 
 @pytest.mark.parametrize("ms", [132.0, 236.0])

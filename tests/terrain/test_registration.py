@@ -60,8 +60,8 @@ def test_generated_dem_to_dem_without_data():
         warnings.simplefilter("ignore", DegenerateGeometryWarning)
         result = register_terrain(source, dem)
     assert result.start == "ransac" and result.n_feature_inliers >= 20
-    assert _pixel_errors(result, source, truth) < 0.5
-    assert result.heading_deg == pytest.approx(-25.0, abs=0.1)  # the source was turned +25 deg
+    assert _pixel_errors(result, source, truth) < 0.0083  # measured 0.0055 pixels, limit 1.5x
+    assert result.heading_deg == pytest.approx(-25.0, abs=0.003)  # turned +25 deg: measured 0.0019 off, limit 1.5x
 
 
 def test_dfw_dem_to_dem(dfw):
@@ -71,7 +71,7 @@ def test_dfw_dem_to_dem(dfw):
     # gentle terrain: the surfaces alone hardly fix the horizontal position, the hillshade matches do (and say so)
     with pytest.warns(DegenerateGeometryWarning, match="hillshade matches in the fit"):
         result = register_terrain(source, dfw)
-    assert _pixel_errors(result, source, truth) < 0.5
+    assert _pixel_errors(result, source, truth) < 0.031  # measured 0.020 pixels, limit 1.5x
     assert result.frame.unit == "metre" and result.rotation_deg == pytest.approx(15.0, abs=0.05)
     # the engine's dense term is degenerate (so its converged is False); the agreeing, spread matches hold the fit
     assert result.registration.degenerate and not result.registration.converged
@@ -90,8 +90,9 @@ def test_autzen_scan_to_dem(autzen, autzen_pair):
     dem = Dem(g.elevation, np.array([[g.cell, 0, g.x0], [0, -g.cell, g.y0], [0, 0, 1.0]]), autzen.crs)
     result = register_terrain(_scan(autzen_pair.source, autzen.crs), dem)
     err = transform_errors(result.transform, autzen_pair.transform, autzen_pair.source)
-    # the DEM's 3 ft cells average the surface: measured 0.03 deg and 0.5 ft at worst
-    assert err.rotation_deg < 0.1 and err.centroid < 0.5 and err.max_displacement < 1.0
+    # the DEM's 3 ft cells average the surface: measured 0.038 deg, centroid 0.42 ft, at worst 0.58 ft; limits 1.5x
+    # (the centroid's 0.5 ft, under 1.5x, kept)
+    assert err.rotation_deg < 0.058 and err.centroid < 0.5 and err.max_displacement < 0.88
 
 
 def test_features_off_starts_from_init(autzen, autzen_pair):

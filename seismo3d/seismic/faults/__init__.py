@@ -18,7 +18,8 @@ memory or by blocks of a cube stored on disk.
 - :mod:`~seismo3d.seismic.faults.evidence`: the evidence a fault must show (reflectors displaced or broken across it).
 - :mod:`~seismo3d.seismic.faults.pipeline`: the whole fault interpretation (:func:`trace_faults`), in memory or block
   by block (:mod:`~seismo3d.seismic.faults.cube_run`) as :mod:`~seismo3d.seismic.faults.memory` decides
-  (:func:`fits_in_memory`); its options and result in :mod:`~seismo3d.seismic.faults.interpretation`, its refusals
+  (:func:`fits_in_memory`) with the options of :mod:`~seismo3d.seismic.faults.block_run` (:class:`BlockRunOptions`);
+  its options and result in :mod:`~seismo3d.seismic.faults.interpretation`, its refusals
   in :mod:`~seismo3d.seismic.faults.checks`, the steps both runs share in :mod:`~seismo3d.seismic.faults.steps`, the
   thresholds' statistics (in memory and streamed) in :mod:`~seismo3d.seismic.faults.thresholds`.
 - :mod:`~seismo3d.seismic.faults.likelihood_blocks`: the likelihood scan of a cube by blocks, resumable
@@ -44,6 +45,7 @@ from .skins import SkinOptions, fault_skins, skins_from_cells
 from .throw import FaultThrow, ThrowOptions, fault_throw, fault_throws, hanging_wall_normals
 from .evidence import EvidenceOptions, FaultEvidence, fault_evidence, sensitivity_factor, supported_faults
 from .pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
+from .block_run import BlockRunOptions
 from .likelihood_blocks import ChunkOptions, ChunkedLikelihood, chunked_fault_likelihood
 from .memory import (default_memory_limit, fits_in_memory, in_memory_bytes, parse_memory_limit, resident_memory,
                      worker_baseline)
@@ -60,7 +62,7 @@ __all__ = [
     "SkinOptions", "fault_skins", "skins_from_cells", "FaultThrow", "ThrowOptions", "fault_throw", "fault_throws",
     "hanging_wall_normals", "EvidenceOptions", "FaultEvidence", "fault_evidence", "sensitivity_factor",
     "supported_faults",
-    "FaultInterpretation", "FaultTracingOptions", "trace_faults", "ChunkOptions",
+    "FaultInterpretation", "FaultTracingOptions", "trace_faults", "BlockRunOptions", "ChunkOptions",
     "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit", "in_memory_bytes", "resident_memory",
     "worker_baseline", "fits_in_memory", "parse_memory_limit", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO", "CubeSample", "SampleOptions",
     "judge_sample", "minimum_memory_limit",

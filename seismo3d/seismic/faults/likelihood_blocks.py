@@ -41,7 +41,7 @@ import numpy as np
 from ..._options import resolve_options
 from ..._validation import check_int
 from ...errors import InputError
-from ..blocks import MEMORY_HEADROOM, BlockRun, SchedulerClient, largest_block, write_marker
+from ..blocks import BlockRun, SchedulerClient, block_budget, largest_block, write_marker
 from .likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan,
                                saturation_counts, scan_planes, scan_step, semblance_floor, semblance_halo,
                                semblance_terms, strike_halo)
@@ -239,7 +239,7 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
     limit = int(chunking.memory_limit or default_memory_limit())
     # what the blocks may use: the limit less the process itself, less a fifth for the allocator's fragmentation
     # (freed blocks that threads' arenas keep) and the reads in flight; measured 1.54 GB peak for 1.4 GB without it
-    budget = int((limit - baseline) * MEMORY_HEADROOM) // int(chunking.workers)
+    budget = block_budget(limit, baseline, int(chunking.workers))
     n_axis = max(n0, n1)
     semblance_bytes, balance_bytes, scan_bytes = _step_bytes(shape, options)
 

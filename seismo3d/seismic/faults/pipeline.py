@@ -18,6 +18,7 @@ import numpy as np
 from ..._progress import progress_steps
 from ..._validation import check_choice, check_positive
 from ...errors import InputError, Seismo3dWarning
+from .block_run import BlockRunOptions
 from .checks import check_amplitudes, check_saturation, check_size, no_coherence_message
 from .cube_run import trace_faults_by_blocks
 from .dead_samples import CleanTraces, clean_traces, near_dead_samples
@@ -25,7 +26,6 @@ from .evidence import supported_faults
 from .interpretation import LIKELIHOODS, FaultInterpretation, FaultTracingOptions
 from .learned import learned_fault_likelihood
 from .likelihood import FaultLikelihood, fault_likelihood
-from .memory import fits_in_memory, parse_memory_limit
 from .preflight import SampleOptions, judge_sample
 from .skins import fault_skins
 from .steps import live_likelihood, ridges, thin_votes, without_dead_edges
@@ -41,8 +41,7 @@ _UNITS = {"samples", "ms", "m", "ft"}
 
 def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivity=None,
                  options: FaultTracingOptions | None = None, likelihood: FaultLikelihood | None = None,
-                 memory_limit=None, in_memory: bool | None = None, work_dir=None, scheduler=None,
-                 source: str = "cube", coords: dict | None = None, progress=True) -> FaultInterpretation:
+                 blocks: BlockRunOptions | None = None, progress=True) -> FaultInterpretation:
     """Trace the faults of a seismic cube or section: likelihood, voting, skins, throw.
 
     The steps, with their defaults chosen from the data (no per-file tuning):
@@ -67,9 +66,9 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     likelihood saturated everywhere (no lateral coherence).
 
     Memory and time: time and memory linear in the number of samples (see ``benchmarks/faults.py`` for the figures
-    at 64^3 to 256^3). A 3D cube whose run in memory would need more than ``memory_limit`` beside the process
+    at 64^3 to 256^3). A 3D cube whose run in memory would need more than ``blocks.memory_limit`` beside the process
     (:func:`~seismo3d.seismic.faults.memory.fits_in_memory`: about 24 times its float32 size) is traced block by
-    block (:mod:`~seismo3d.seismic.faults.cube_run`) into Zarr stores in ``work_dir``, with the same checks,
+    block (:mod:`~seismo3d.seismic.faults.cube_run`) into Zarr stores in ``blocks.work_dir``, with the same checks,
     warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of blocks
     first (:meth:`~seismo3d.seismic.faults.SampleOptions.worth_sampling`) is refused from that sample before the
     whole likelihood (:func:`~seismo3d.seismic.faults.judge_sample`), on either path.
@@ -90,19 +89,10 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         The result of step 1 computed elsewhere with ``options.scan`` (e.g. block by block by
         :func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood`), arrays of the data's shape; the
         scan is then skipped.
-    memory_limit : int or str, optional
-        Memory the run may use, bytes or a size such as ``'4GB'`` (default half of the RAM).
-    in_memory : bool, optional
-        Force the run in memory (True) or block by block (False, 3D only); default: decided from ``memory_limit``.
-    work_dir : str or os.PathLike, optional
-        Existing folder of the Zarr stores of a run by blocks (``fault_likelihood.zarr``, ``fault_surfaces.zarr``:
-        reused when finished, resumed when interrupted); required when the cube is traced block by block.
-    scheduler : str, optional
-        A ``dask.distributed`` scheduler address for a run by blocks; default dask's local threads.
-    source : str, optional
-        The input's name, recorded in the stores of a run by blocks (a likelihood of another source is not reused).
-    coords : dict, optional
-        ``inline``, ``crossline``, ``sample`` and ``sample_unit`` coordinates of the stores of a run by blocks.
+    blocks : BlockRunOptions, optional
+        How a cube is run: the memory limit (default half of the RAM), a forced choice between the run in memory and
+        the run by blocks, the folder of the Zarr stores of a run by blocks (required for one), its dask scheduler,
+        and the input's name and coordinates recorded in the stores (:class:`BlockRunOptions`).
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
         otherwise; the likelihood, the voting and the throw report their own progress too).
@@ -116,8 +106,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     ------
     InputError
         ``data`` is not a numeric 2D / 3D array with at least 3 samples per axis, all samples are equal, the
-        sample interval / unit or an option is invalid, a run by blocks without ``work_dir`` or with a
-        ``memory_limit`` too small for its blocks (the message names one that works).
+        sample interval / unit or an option is invalid, a run by blocks without ``blocks.work_dir`` or with a
+        ``blocks.memory_limit`` too small for its blocks (the message names one that works).
     UnsupportedDataError
         The data cannot support fault tracing (see above); the message says why and what to do.
 
@@ -158,14 +148,15 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     if sensitivity is not None:
         opt = dataclasses.replace(opt, sensitivity=sensitivity)
 
-    if not _in_memory(data, opt, likelihood, memory_limit, in_memory):
-        if work_dir is None:
+    run = _block_run(blocks)
+    if not run.in_memory_for(np.shape(data), has_likelihood=likelihood is not None):
+        if run.work_dir is None:
             raise InputError(f"a {' x '.join(str(n) for n in np.shape(data))} cube beyond the memory limit is traced "
-                             "block by block into Zarr stores: pass work_dir= (an existing folder), or a larger "
-                             "memory_limit")
+                             "block by block into Zarr stores: pass blocks=BlockRunOptions(work_dir=...) (an "
+                             "existing folder), or a larger memory_limit")
         return trace_faults_by_blocks(data, opt, sample_interval=sample_interval, sample_unit=sample_unit,
-                                      memory_limit=parse_memory_limit(memory_limit), work_dir=work_dir,
-                                      scheduler=scheduler, source=source, coords=coords, progress=progress)
+                                      memory_limit=run.limit, work_dir=run.work_dir, scheduler=run.scheduler,
+                                      source=run.source, coords=run.coords, progress=progress)
     arr, dead = _cleaned(data, opt)
     with progress_steps(7, "faults", enabled=progress) as bar:
         bar.start("fault likelihood")
@@ -210,16 +201,14 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
                                evidence=evidence, sample_interval=float(sample_interval), sample_unit=sample_unit)
 
 
-def _in_memory(data, opt: FaultTracingOptions, likelihood, memory_limit, in_memory) -> bool:
-    """Whether ``data`` is traced in memory: forced by ``in_memory``, else the memory decision; 2D data, and data
-    given with its likelihood, always are."""
-    shape = tuple(np.shape(data))
-    limit = parse_memory_limit(memory_limit)  # an invalid limit is refused on either path
-    if len(shape) != 3 or likelihood is not None or in_memory:
-        return True
-    if in_memory is False:
-        return False
-    return fits_in_memory(shape, limit)
+def _block_run(blocks) -> BlockRunOptions:
+    """The block-run options given to :func:`trace_faults` (its defaults when None), checked for their type."""
+    if blocks is None:
+        return BlockRunOptions()
+    if not isinstance(blocks, BlockRunOptions):
+        raise InputError(f"trace_faults(blocks=...) must be a BlockRunOptions (memory_limit, in_memory, work_dir, "
+                         f"scheduler, source, coords); got {type(blocks).__name__}")
+    return blocks
 
 
 def _cleaned(data, opt: FaultTracingOptions) -> tuple[np.ndarray, np.ndarray]:

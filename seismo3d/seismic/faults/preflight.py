@@ -25,7 +25,7 @@ import numpy as np
 
 from ..._validation import check_int, check_positive
 from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
-from ..blocks import MEMORY_HEADROOM
+from ..blocks import limit_for_blocks
 from .dead_samples import clean_traces, near_dead_samples
 from .likelihood import fault_likelihood
 from .likelihood_blocks import smallest_block_bytes as likelihood_block_bytes
@@ -250,13 +250,11 @@ def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions |
     """
     opt = options or FaultTracingOptions()
     shape = tuple(int(n) for n in shape)
-    def stage(block_bytes: int, start: int) -> int:  # the limit at which a stage plans blocks of block_bytes
-        return start + int(np.ceil(block_bytes * int(workers) / MEMORY_HEADROOM))
-
     baseline, growth = int(baseline), int(growth)
-    need = max(stage(likelihood_block_bytes(shape, opt.scan, tile), baseline)
-               if opt.likelihood == "scan" else learned_block_bytes(shape, opt.learned, tile) * int(workers),
-               stage(surfaces_block_bytes(shape, opt, tile), baseline + growth))
+    # the learned likelihood's plan budgets against the whole limit (learned_blocks._plan), not yet with block_budget
+    first = (limit_for_blocks(likelihood_block_bytes(shape, opt.scan, tile), baseline, workers)
+             if opt.likelihood == "scan" else learned_block_bytes(shape, opt.learned, tile) * int(workers))
+    need = max(first, limit_for_blocks(surfaces_block_bytes(shape, opt, tile), baseline + growth, workers))
     if sample is not None:
         need = max(need, baseline + growth + sample.candidates(shape) * CANDIDATE_BYTES)
     return need

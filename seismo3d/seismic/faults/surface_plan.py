@@ -9,7 +9,7 @@ import numba
 
 from ...errors import InputError
 from ..attributes import structure_tensor_halo
-from ..blocks import MEMORY_HEADROOM, largest_block
+from ..blocks import block_budget, largest_block
 from .dead_samples import DEAD_REACH
 from .interpretation import FaultTracingOptions
 from .likelihood_blocks import ChunkOptions, default_memory_limit
@@ -110,7 +110,7 @@ def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baselin
     n0, n1, nt = shape
     tile = int(chunking.tile)
     limit = int(chunking.memory_limit or default_memory_limit())
-    budget = int((limit - baseline) * MEMORY_HEADROOM) // int(chunking.workers)
+    budget = block_budget(limit, baseline, int(chunking.workers))
     reach = opt.voting.reach(shape)
     cap = max(n0, n1)
     sizes = {}

@@ -1,4 +1,5 @@
-"""The fault network's forward pass in numpy: a compact 2D U-Net, run without a deep-learning framework.
+"""The fault network's forward pass: a compact 2D U-Net, run without a deep-learning framework (numpy, and numba
+for its 3 x 3 convolutions).
 
 The architecture (Ronneberger et al. 2015; as FaultSeg3D uses it for faults, Wu et al. 2019, here in 2D and smaller),
 with ``c = channels``:

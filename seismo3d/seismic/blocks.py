@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import ctypes
 import ctypes.util
-import math
 import json
+import math
 import os
 import pathlib
 import sys
@@ -72,6 +72,7 @@ def limit_for_blocks(block_bytes: int, baseline: int, workers: int) -> int:
         Bytes: ``baseline + ceil(block_bytes * workers / MEMORY_HEADROOM)``.
     """
     return int(baseline) + math.ceil(int(block_bytes) * int(workers) / MEMORY_HEADROOM)
+
 
 # glibc's malloc options (malloc.h): allocations above M_MMAP_THRESHOLD are mapped and unmapped on their own, so a
 # freed block's memory goes back to the system at once; setting it also stops glibc raising the threshold as large

@@ -110,6 +110,12 @@ def _first(origin: int, factor: float, align: int) -> int:
     return int(math.ceil(origin * factor / align - 1e-9)) * align
 
 
+def _full_origin(origin, ndim: int) -> tuple:
+    """The block's global index along every axis: ``origin`` along the lateral axes (0 when None), 0 along the
+    sample axis."""
+    return tuple(int(o) for o in (origin or (0,) * (ndim - 1))) + (0,)
+
+
 def _interpolate_axis(a: np.ndarray, axis: int, positions: np.ndarray) -> np.ndarray:
     """Values of ``a`` at fractional ``positions`` (local indices, within [0, n - 1]) along ``axis``, linearly."""
     lo = np.floor(positions).astype(np.int64)
@@ -150,7 +156,7 @@ def to_network_grid(data: np.ndarray, factor: float, *, origin=None, align: int 
     """
     f = _check_factor(factor)
     arr = np.asarray(data, dtype=np.float32)
-    origin = tuple(int(o) for o in (origin or (0,) * (arr.ndim - 1))) + (0,)
+    origin = _full_origin(origin, arr.ndim)
     if f == 1.0:
         return arr, origin
     out = gaussian_filter(arr, anti_alias_sigma(f), truncate=4.0)
@@ -194,7 +200,7 @@ def from_network_grid(small: np.ndarray, shape, factor: float, *, origin=None, f
     out = np.asarray(small, dtype=np.float32)
     if f == 1.0:
         return out
-    origin = tuple(int(o) for o in (origin or (0,) * (len(shape) - 1))) + (0,)
+    origin = _full_origin(origin, len(shape))
     first = tuple(first or (0,) * len(shape))
     for axis, (n, o, u0) in enumerate(zip(shape, origin, first)):
         i = np.arange(o, o + n, dtype=np.float64)

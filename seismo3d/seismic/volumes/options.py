@@ -72,8 +72,8 @@ class VolumeOptions:
         Relative, per axis of the moving volume. Each way alone is less certain than their combination: the way that
         interpolates a volume with aliased (coarse) bins is biased (on the Volve velocity pairs its optimum alone is
         up to 7.8 % off), and the one-way refinements of f3_crop pairs differ by up to 2.1 % where the two-way result
-        is within 0.6 % of the truth (``benchmarks/volumes.py --only grid``); right Volve results' differ by up to
-        3.2 % (those are ``converged: false``). The issue's 1 % would refuse most right results of coarse-binned
+        is within 0.6 % of the truth (``benchmarks/volumes.py --only grid``); those of right Volve results differ by
+        up to 3.2 % (those are ``converged: false``). The issue's 1 % would refuse most right results of coarse-binned
         pairs, so this check stays at 2.5 %; it let one Volve pair 2.2 % off through.
     control_shift : float
         Samples: the shifted controls displace the result by this much along each axis of the fixed volume, both

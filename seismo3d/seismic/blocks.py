@@ -34,8 +34,8 @@ MEMORY_HEADROOM = 0.8
 
 def block_budget(limit: int, baseline: int, workers: int) -> int:
     """Bytes one worker's block may plan for under a memory limit: the limit less the process itself, times
-    :data:`MEMORY_HEADROOM`, shared by the workers. The likelihood scan and the fault surfaces plan with it (the
-    learned likelihood's plan does not yet); :func:`limit_for_blocks` is its inverse.
+    :data:`MEMORY_HEADROOM`, shared by the workers. Both likelihoods (scan and learned) and the fault surfaces plan
+    with it; :func:`limit_for_blocks` is its inverse.
 
     Parameters
     ----------

@@ -76,7 +76,7 @@ def test_minimum_memory_limit_is_what_both_stages_plan_with(shape, likelihood):
         if likelihood == "scan":
             likelihood_blocks._plan(shape, FaultScanOptions(), chunking, baseline)
         else:
-            learned_blocks._plan(shape, opt.learned, chunking, memory_limit)
+            learned_blocks._plan(shape, opt.learned, chunking, baseline)
         surface_plan.plan_blocks(shape, opt, chunking, baseline + growth)
 
     plans(limit)

@@ -28,21 +28,23 @@ import numpy as np
 
 from ..._options import resolve_options
 from ...errors import InputError
-from ..blocks import SchedulerClient, largest_block, write_marker
+from ..blocks import SchedulerClient, block_budget, largest_block, limit_for_blocks, write_marker
 from .learned import (LearnedOptions, amplitude_scale, fault_probability, orientation_from_likelihood,
                       scale_subsample)
 from .likelihood_blocks import (ChunkedLikelihood, ChunkOptions, LikelihoodRun, _write_coords, lateral_blocks,
                                 trace_cube)
+from .memory import default_memory_limit, worker_baseline
 from .network_grid import grid_halo
 from .unet import POOLING_MULTIPLE, RECEPTIVE_HALF
 
 __all__ = ["chunked_learned_likelihood", "learned_block_bytes"]
 
-# bytes per sample of a block (halo included) at each step's peak: the amplitudes, both directions' probabilities and
-# one batch of sections' activations (about 60 floats per sample of a section) in step 2; the probability, its
-# 3 gradients, 6 tensor components, the eigen decomposition's 3 x 3 matrices and the outputs in step 3
-_PROBABILITY_BYTES = 16
-_ORIENTATION_BYTES = 140
+# bytes per sample of a block (halo included) at each step's peak, as benchmarks/learned_block_memory.py measures
+# them (tracemalloc): the amplitudes, both directions' probabilities and one batch of sections' activations in step 2
+# (measured 21.5-23.1); the probability, its gradients, the tensor components and the outputs in step 3 (measured
+# 72.0); the headroom for the allocator is block_budget's
+_PROBABILITY_BYTES = 24
+_ORIENTATION_BYTES = 80
 
 
 def _orientation_halo(opt: LearnedOptions) -> int:
@@ -85,8 +87,8 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     chunking = chunking or ChunkOptions()
     x = trace_cube(cube, "a chunked learned fault likelihood")
     shape = tuple(int(n) for n in x.shape)
-    budget = int(chunking.memory_limit or 0) or None
-    plan = _plan(shape, opt, chunking, budget)
+    input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * shape[2]
+    plan = _plan(shape, opt, chunking, worker_baseline(chunking, input_chunk))
     out = pathlib.Path(output)
     run = _Run(out, plan, opt, chunking, progress)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt))), "plan": plan,
@@ -123,7 +125,8 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
     Returns
     -------
     int
-        Bytes: a ``memory_limit`` below this times the workers is refused by :func:`chunked_learned_likelihood`.
+        Bytes per worker: a ``memory_limit`` below :func:`~seismo3d.seismic.blocks.limit_for_blocks` of it is refused
+        by :func:`chunked_learned_likelihood`.
     """
     nt = int(shape[2])
     step = int(np.lcm(int(tile), POOLING_MULTIPLE))
@@ -131,25 +134,31 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
                (step + 2 * _orientation_halo(opt)) ** 2 * nt * _ORIENTATION_BYTES)
 
 
-def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, budget) -> dict:
-    """Block sides (traces, multiples of 8 and of the tile) of the two steps under the memory limit."""
+def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> dict:
+    """Block sides (traces, multiples of 8 and of the tile) of the two steps under the memory limit, planned with
+    :func:`~seismo3d.seismic.blocks.block_budget` as the scan's and the surfaces' blocks are."""
     nt = shape[2]
     tile = int(chunking.tile)
     halo_p = _probability_halo(opt)
     halo_o = _orientation_halo(opt)
     cap = max(tile, (max(shape[0], shape[1]) + tile - 1) // tile * tile)
-    limit = budget if budget else 1 << 62
+    limit = int(chunking.memory_limit or default_memory_limit())
+    budget = block_budget(limit, baseline, int(chunking.workers))
 
     def fits(halo, per_sample):
-        return lambda b: (b + 2 * halo) ** 2 * nt * per_sample * int(chunking.workers) <= limit
+        return lambda b: (b + 2 * halo) ** 2 * nt * per_sample <= budget
 
-    step = np.lcm(tile, POOLING_MULTIPLE)
-    block_p = largest_block(int(step), min(cap, 512), fits(halo_p, _PROBABILITY_BYTES))
-    block_o = largest_block(int(step), min(cap, 256), fits(halo_o, _ORIENTATION_BYTES))
+    step = int(np.lcm(tile, POOLING_MULTIPLE))
+    if chunking.block and int(chunking.block) % step:
+        raise InputError(f"block must be a multiple of {step} traces for the learned likelihood (the tile and the "
+                         f"network's pooling multiple {POOLING_MULTIPLE}); got {chunking.block}")
+    block_p = int(chunking.block or largest_block(step, min(cap, 512), fits(halo_p, _PROBABILITY_BYTES)))
+    block_o = int(chunking.block or largest_block(step, min(cap, 256), fits(halo_o, _ORIENTATION_BYTES)))
     if not (fits(halo_p, _PROBABILITY_BYTES)(block_p) and fits(halo_o, _ORIENTATION_BYTES)(block_o)):
-        need = learned_block_bytes(shape, opt, tile)
-        raise InputError(f"the memory limit ({limit / 2**30:.2f} GiB) is below the smallest block of the learned "
-                         f"likelihood ({need / 2**30:.2f} GiB for {nt} samples per trace); raise --memory-limit")
+        need = limit_for_blocks(learned_block_bytes(shape, opt, tile), baseline, int(chunking.workers))
+        raise InputError(f"the memory limit ({limit / 2**30:.2f} GiB) is below what the smallest blocks of the "
+                         f"learned likelihood need ({need / 2**30:.2f} GiB for {nt} samples per trace and "
+                         f"{int(chunking.workers)} worker(s)); raise memory_limit (--memory-limit on the command line)")
     return {"shape": list(shape), "tile": tile, "block_probability": int(block_p), "block_orientation": int(block_o),
             "halo_probability": halo_p, "halo_orientation": halo_o}
 

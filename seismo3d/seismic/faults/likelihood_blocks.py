@@ -76,8 +76,9 @@ class ChunkOptions:
     tile : int
         Traces per side of a Zarr chunk of the intermediate and output arrays (32); blocks are whole tiles.
     block : int, optional
-        Traces per side of a block of the semblance and decoding steps (a multiple of ``tile``); default: the
-        largest that fits ``memory_limit`` with ``workers`` blocks at once, at most 256.
+        Traces per side of a block of the scan's semblance and decoding steps, and of both steps of the learned
+        likelihood (a multiple of ``tile``, and of 8 for the learned likelihood); default: the largest that fits
+        ``memory_limit`` with ``workers`` blocks at once, at most 256 (512 for the network's step).
     strip : int, optional
         Crosslines (inlines) per block of the scan of planes sheared along inlines (crosslines), whose blocks hold
         every inline (crossline); a multiple of ``tile``. Default: the largest that fits ``memory_limit``.

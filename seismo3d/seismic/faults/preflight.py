@@ -251,9 +251,8 @@ def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions |
     opt = options or FaultTracingOptions()
     shape = tuple(int(n) for n in shape)
     baseline, growth = int(baseline), int(growth)
-    # the learned likelihood's plan budgets against the whole limit (learned_blocks._plan), not yet with block_budget
-    first = (limit_for_blocks(likelihood_block_bytes(shape, opt.scan, tile), baseline, workers)
-             if opt.likelihood == "scan" else learned_block_bytes(shape, opt.learned, tile) * int(workers))
+    first = limit_for_blocks(likelihood_block_bytes(shape, opt.scan, tile) if opt.likelihood == "scan"
+                             else learned_block_bytes(shape, opt.learned, tile), baseline, workers)
     need = max(first, limit_for_blocks(surfaces_block_bytes(shape, opt, tile), baseline + growth, workers))
     if sample is not None:
         need = max(need, baseline + growth + sample.candidates(shape) * CANDIDATE_BYTES)

@@ -1,14 +1,15 @@
 """Point-cloud files: read and write PLY, XYZ / TXT / CSV and NPY, and load the Stanford bunny scan pair.
 
-Only vertex coordinates are read and written; colours, normals and faces are ignored. The PLY reader is a small
-numpy parser of the header (``element`` / ``property`` lines) that handles ASCII, binary little-endian and binary
-big-endian files.
+Only vertex coordinates are read and written; colours, normals and faces are ignored. PLY files are read and
+written by plyfile [3]_ (ASCII, binary little- and big-endian; coordinates keep their precision: VTK's reader, which
+pyvista uses, casts double coordinates to float32, 15 cm off at UTM northings, and pads a truncated file with zeros).
 
 References
 ----------
 .. [1] Turk, G. (1994). The PLY polygon file format. http://paulbourke.net/dataformats/ply/
 .. [2] Turk, G. and Levoy, M. (1994). Zippered polygon meshes from range images. SIGGRAPH '94, 311-318.
        doi:10.1145/192161.192241 (the Stanford bunny scans)
+.. [3] plyfile: NumPy-based PLY reader and writer. https://github.com/dranjan/python-plyfile
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ import re
 from dataclasses import dataclass
 
 import numpy as np
+from plyfile import PlyData, PlyElement, PlyElementParseError, PlyHeaderParseError
 
 from .._atomic import atomic_path
 from .._validation import as_points
@@ -28,16 +30,6 @@ __all__ = ["BunnyPair", "read_points", "write_points", "load_bunny"]
 
 _TEXT_SUFFIXES = (".xyz", ".txt", ".csv")
 _SUFFIXES = (".ply", *_TEXT_SUFFIXES, ".npy")
-
-# PLY scalar types (both the classic and the sized spellings) -> numpy dtype character.
-_PLY_TYPES = {
-    "char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1",
-    "short": "i2", "int16": "i2", "ushort": "u2", "uint16": "u2",
-    "int": "i4", "int32": "i4", "uint": "u4", "uint32": "u4",
-    "float": "f4", "float32": "f4", "double": "f8", "float64": "f8",
-}
-_PLY_FORMATS = {"ascii": None, "binary_little_endian": "<", "binary_big_endian": ">"}
-
 
 @dataclass(frozen=True, eq=False)
 class BunnyPair:
@@ -77,8 +69,8 @@ def read_points(path, *, ndim: int | None = None) -> np.ndarray:
     path : str or os.PathLike
         File to read. The format follows the extension:
 
-        - ``.ply``: ASCII or binary (little or big endian) PLY; the ``x``, ``y`` and (if present) ``z`` properties of
-          the ``vertex`` element are read, other properties and elements are skipped.
+        - ``.ply``: ASCII or binary (little or big endian) PLY, read by plyfile; the ``x``, ``y`` and (if present)
+          ``z`` properties of the ``vertex`` element are read, other properties and elements are skipped.
         - ``.xyz``, ``.txt``, ``.csv``: one point per row, columns separated by whitespace or commas; the first 2 or 3
           columns are read, extra columns (intensity, colour) are ignored. Leading header lines that are not
           numbers and lines starting with ``#`` or ``//`` are skipped.
@@ -179,100 +171,27 @@ def _read_text(path: pathlib.Path, ndim: int | None) -> np.ndarray:
     return points
 
 
-def _parse_ply_header(stream, path: pathlib.Path):
-    """Return (format, elements, data_offset); elements = [(name, count, [(prop, type or None, list types)])]."""
-    magic = stream.readline()
-    if magic.strip() != b"ply":
-        raise DataIntegrityError(f"{path}: not a PLY file (first line {magic[:20]!r}, expected 'ply')")
-    fmt = None
-    elements = []
-    while True:
-        raw = stream.readline()
-        if not raw:
-            raise DataIntegrityError(f"{path}: PLY header has no 'end_header' line; the file is truncated")
-        words = raw.decode("ascii", errors="replace").split()
-        if not words or words[0] in ("comment", "obj_info"):
-            continue
-        keyword = words[0]
-        try:
-            if keyword == "end_header":
-                break
-            if keyword == "format":
-                fmt = words[1]
-                if fmt not in _PLY_FORMATS:
-                    raise DataIntegrityError(
-                        f"{path}: unknown PLY format {fmt!r}; expected one of {list(_PLY_FORMATS)}")
-            elif keyword == "element":
-                elements.append((words[1], int(words[2]), []))
-            elif keyword == "property":
-                if not elements:
-                    raise DataIntegrityError(f"{path}: PLY property {words[-1]!r} before any element")
-                if words[1] == "list":
-                    elements[-1][2].append((words[4], None, (_PLY_TYPES[words[2]], _PLY_TYPES[words[3]])))
-                else:
-                    elements[-1][2].append((words[2], _PLY_TYPES[words[1]], None))
-            else:
-                raise DataIntegrityError(f"{path}: unexpected PLY header line {raw.strip()!r}")
-        except (IndexError, KeyError, ValueError) as exc:
-            if isinstance(exc, DataIntegrityError):
-                raise
-            raise DataIntegrityError(f"{path}: malformed PLY header line {raw.strip()!r}") from exc
-    if fmt is None:
-        raise DataIntegrityError(f"{path}: PLY header has no 'format' line")
-    return fmt, elements, stream.tell()
-
-
 def _read_ply(path: pathlib.Path) -> np.ndarray:
-    with open(path, "rb") as stream:
-        fmt, elements, offset = _parse_ply_header(stream, path)
-    names = [e[0] for e in elements]
+    """The ``x``, ``y`` and (if present) ``z`` of a PLY file's ``vertex`` element, float64 (plyfile)."""
+    try:
+        data = PlyData.read(str(path))
+    except PlyHeaderParseError as exc:
+        raise DataIntegrityError(f"{path}: malformed or unsupported PLY header ({exc}); it must start with 'ply', "
+                                 "name an ascii or binary format and end with 'end_header'") from exc
+    except PlyElementParseError as exc:
+        what = "the file is truncated" if "end-of-file" in str(exc) or "early end" in str(exc) else "malformed data"
+        raise DataIntegrityError(f"{path}: {what} ({exc}); re-export the PLY file") from exc
+    except (ValueError, EOFError) as exc:
+        raise DataIntegrityError(f"{path}: unreadable PLY data ({exc}); the file is corrupt or truncated") from exc
+    names = [e.name for e in data.elements]
     if "vertex" not in names:
         raise InputError(f"{path.name}: PLY file has no 'vertex' element (elements: {names}); it holds no points")
-    index = names.index("vertex")
-    _, count, props = elements[index]
-    prop_names = [p[0] for p in props]
-    if "x" not in prop_names or "y" not in prop_names:
-        raise InputError(f"{path.name}: PLY vertex element has properties {prop_names}; 'x' and 'y' are required")
-    axes = ["x", "y", "z"] if "z" in prop_names else ["x", "y"]
-    if count == 0:
-        return np.empty((0, len(axes)))
-    byte_order = _PLY_FORMATS[fmt]
-    if byte_order is None:
-        return _read_ply_ascii(path, offset, elements[:index], count, prop_names, axes)
-    if any(p[1] is None for e in elements[: index + 1] for p in e[2]):
-        raise InputError(f"{path.name}: binary PLY with list properties in or before the vertex element is not "
-                         "supported; convert the file (e.g. with Open3D or meshio) to x y z vertices first")
-    skip = sum(e[1] * np.dtype([(p[0], byte_order + p[1]) for p in e[2]]).itemsize for e in elements[:index])
-    dtype = np.dtype([(p[0], byte_order + p[1]) for p in props])
-    need = offset + skip + count * dtype.itemsize
-    size = path.stat().st_size
-    if size < need:
-        raise DataIntegrityError(f"{path}: binary PLY declares {count} vertices ({need} bytes) but the file has "
-                                 f"{size} bytes; the file is truncated")
-    vertices = np.fromfile(path, dtype=dtype, count=count, offset=offset + skip)
-    return np.stack([vertices[a].astype(np.float64) for a in axes], axis=1)
-
-
-def _read_ply_ascii(path, offset, before, count, prop_names, axes) -> np.ndarray:
-    with open(path, "rb") as stream:
-        stream.seek(offset)
-        for _, n, _ in before:  # one line per element instance in ASCII PLY
-            for _ in range(n):
-                stream.readline()
-        lines = [stream.readline().decode("ascii", errors="replace") for _ in range(count)]
-    if not lines[-1].strip():
-        got = sum(1 for line in lines if line.strip())
-        raise DataIntegrityError(f"{path}: ASCII PLY declares {count} vertices but only {got} rows follow the "
-                                 "header; the file is truncated")
-    columns = [prop_names.index(a) for a in axes]
-    try:
-        values = np.loadtxt(lines, usecols=columns, ndmin=2, dtype=np.float64)
-    except ValueError as exc:
-        raise DataIntegrityError(f"{path}: malformed ASCII PLY vertex row ({exc}); every vertex row needs "
-                                 f"{len(prop_names)} numbers") from exc
-    if values.shape[0] != count:
-        raise DataIntegrityError(f"{path}: ASCII PLY declares {count} vertices but {values.shape[0]} rows were read")
-    return values
+    vertex = data["vertex"]
+    properties = [prop.name for prop in vertex.properties]
+    if "x" not in properties or "y" not in properties:
+        raise InputError(f"{path.name}: PLY vertex element has properties {properties}; 'x' and 'y' are required")
+    axes = ["x", "y", "z"] if "z" in properties else ["x", "y"]
+    return np.stack([np.asarray(vertex[a], dtype=np.float64) for a in axes], axis=1).reshape(-1, len(axes))
 
 
 def write_points(path, points) -> pathlib.Path:
@@ -305,11 +224,11 @@ def write_points(path, points) -> pathlib.Path:
     points = as_points(points, "points", min_points=0)
     with atomic_path(path) as tmp, open(tmp, "wb") as stream:
         if suffix == ".ply":
-            axes = "xyz"[: points.shape[1]]
-            header = ["ply", "format binary_little_endian 1.0", "comment written by seismo3d",
-                      f"element vertex {points.shape[0]}", *[f"property double {a}" for a in axes], "end_header"]
-            stream.write(("\n".join(header) + "\n").encode("ascii"))
-            stream.write(points.astype("<f8").tobytes())
+            vertices = np.empty(points.shape[0], dtype=[(a, "<f8") for a in "xyz"[: points.shape[1]]])
+            for k, a in enumerate(vertices.dtype.names):
+                vertices[a] = points[:, k]
+            PlyData([PlyElement.describe(vertices, "vertex")], byte_order="<",
+                    comments=["written by seismo3d"]).write(stream)
         elif suffix == ".npy":
             np.save(stream, points, allow_pickle=False)
         else:

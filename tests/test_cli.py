@@ -105,6 +105,7 @@ def test_faults(cube_file, tmp_path):
     assert cube_file.read_bytes() == before
 
 
+@pytest.mark.slow  # 2.0 s in the fast lane, whose budget is 60 s
 def test_faults_sample_unit(cube_file, tmp_path):
     out = tmp_path / "out"
     result = runner.invoke(app, ["faults", str(cube_file), "-o", str(out), "--sample-unit", "m"])

@@ -295,6 +295,7 @@ def _penobscot_origin(shared_dir, folder: pathlib.Path) -> dict:
     return files
 
 
+@pytest.mark.slow  # 6.6 s in the fast lane, whose budget is 60 s
 def test_penobscot_stack_is_made_again_from_its_origin(empty_data_dir, shared_dir, monkeypatch, tmp_path):
     """Without the data directory's copy, the 36 origin PNGs are downloaded (pooch checks each registered hash) and
     stacked into an npz byte-identical to the data directory's, then checked against the registry's hash."""

@@ -212,6 +212,7 @@ def test_data_that_cannot_support_faults_is_refused(data_dir, tmp_path, name, wh
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.slow  # 1.5 s in the fast lane, whose budget is 60 s
 def test_real_section(data_dir, tmp_path):
     src = Path(data_dir) / "seismic" / "sections" / "teapot_tp73.f32be"
     before = _sha(src)
@@ -254,6 +255,7 @@ def section():
     return synthetic_cube((160, 96), n_faults=2, seed=3)
 
 
+@pytest.mark.slow  # 1.3-2.0 s each in the fast lane, whose budget is 60 s
 @pytest.mark.parametrize("along", ["inline", "crossline"])
 def test_segy_line(section, tmp_path, along):
     src = tmp_path / "in" / "line.sgy"

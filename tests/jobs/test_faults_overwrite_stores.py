@@ -45,6 +45,7 @@ def _leftovers(folder):
     return sorted(p.name for p in folder.iterdir() if p.name.startswith(".") or p.name.endswith((".work", ".partial")))
 
 
+@pytest.mark.slow  # 2.8 s in the fast lane, whose budget is 60 s
 def test_stores_of_another_input_are_refused_without_overwrite(blocks, cubes, tmp_path):
     out = tmp_path / "out"
     run_faults_job(cubes / "a.npy", out, progress=False)
@@ -57,6 +58,7 @@ def test_stores_of_another_input_are_refused_without_overwrite(blocks, cubes, tm
     assert _digest(out) == before and _leftovers(out) == []
 
 
+@pytest.mark.slow  # 7.5 s in the fast lane, whose budget is 60 s
 def test_overwrite_replaces_the_stores_and_a_failed_run_puts_them_back(blocks, cubes, tmp_path, monkeypatch):
     out = tmp_path / "out"
     first = run_faults_job(cubes / "a.npy", out, progress=False)
@@ -79,6 +81,7 @@ def test_overwrite_replaces_the_stores_and_a_failed_run_puts_them_back(blocks, c
     assert first.written["likelihood"] == second.written["likelihood"] == out / "fault_likelihood.zarr"
 
 
+@pytest.mark.slow  # 2.5 s in the fast lane, whose budget is 60 s
 def test_a_rerun_of_the_same_input_resumes_without_overwrite(blocks, cubes, tmp_path, monkeypatch, caplog):
     out = tmp_path / "out"
     with monkeypatch.context() as patch:  # interrupted once the stores are finished, before its files are in

@@ -26,6 +26,7 @@ def pair(tmp_path_factory):
     return paths, truth, moving.shape
 
 
+@pytest.mark.slow  # 1.9 s in the fast lane, whose budget is 60 s
 def test_register_segy_cubes_writes_both_transforms(pair, tmp_path):
     (fixed, moving), truth, moving_shape = pair
     before = [p.read_bytes() for p in (fixed, moving)]

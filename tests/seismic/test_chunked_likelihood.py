@@ -41,6 +41,7 @@ def _assert_same(result, reference):
     assert np.mean(arrays["dip_deg"][:] != reference.dip_deg) < 1e-4
 
 
+@pytest.mark.slow  # 3.1 s with its fixture in the fast lane, whose budget is 60 s
 def test_blocks_equal_the_whole_cube(cube, reference, tmp_path):
     """Blocks of 32 x 32 traces, scan strips of 32: every block boundary inside the cube, the result unchanged."""
     out = tmp_path / "fl.zarr"
@@ -92,6 +93,7 @@ def test_refusals(cube, tmp_path):
     assert not (tmp_path / "a.zarr").exists() and not (tmp_path / "c.zarr").exists()
 
 
+@pytest.mark.slow  # 3.2 s in the fast lane, whose budget is 60 s
 def test_memory_budget_is_the_block_size(tmp_path):
     """A lower memory limit gives smaller blocks (more of them) and the same likelihood."""
     syn = synthetic_cube((128, 128, 64), seed=4).cube.astype(np.float32)

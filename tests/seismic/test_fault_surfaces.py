@@ -108,6 +108,7 @@ def test_2d_dip_direction_and_angle(traced_2d):
         assert big.mean_dip_deg == pytest.approx(plane.dip_deg, abs=5.0)
 
 
+@pytest.mark.slow  # 3.3 s in the fast lane, whose budget is 60 s
 def test_no_faults_in_unfaulted_cube():
     syn = synthetic_cube((80, 80, 80), n_faults=0, seed=3)
     fl, thin, faults = _trace(syn.cube)

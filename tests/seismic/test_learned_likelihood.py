@@ -140,6 +140,7 @@ def test_cube_directions_keep_the_larger_probability():
     assert np.array_equal(both, np.maximum(inl, xl))
 
 
+@pytest.mark.slow  # 9.7 s: imports torch and trains in the fast lane, whose budget is 60 s
 def test_training_smoke(tmp_path):
     """A few training steps on tiny sections with the training script's command line, in its own process (PyTorch's
     and numba's thread pools do not share one process safely)."""

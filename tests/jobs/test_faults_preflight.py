@@ -93,12 +93,13 @@ def test_the_seed_candidates_a_sample_predicts_raise_the_minimum(cube_file, tmp_
     monkeypatch.setattr(cube_run, "worker_baseline", lambda *a, **k: baseline.setdefault("bytes", measure(*a, **k)))
     # the smallest blocks' own minimum, asked of the job (it depends on the size of this process), plus 20 MB: the
     # blocks fit, 168 MB of candidates do not
+    # the scan's smallest blocks (the learned likelihood's, halo 96 traces, need more than the candidates here)
     first = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
-                                            "--memory-limit", "100MB"]))
+                                            "--likelihood", "scan", "--memory-limit", "100MB"]))
     blocks = _bytes(re.search(rf"at least {_SIZE} for its smallest blocks alone", first).group(1))
     limit = f"{(blocks + 20 * 10 ** 6) // 10 ** 6}MB"
     line = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
-                                           "--memory-limit", limit]))
+                                           "--likelihood", "scan", "--memory-limit", limit]))
     assert "(with the ~2097152 seed candidates a sample of its blocks predicts)" in line
     need = _bytes(re.search(rf"pass --memory-limit {_SIZE} or more$", line).group(1))
     assert need >= 2097152 * 80

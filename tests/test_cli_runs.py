@@ -101,6 +101,7 @@ def test_match(tmp_path, check_run_json):
     assert record["results"]["n_verified"] == len(np.loadtxt(tmp_path / "m.csv", delimiter=",", skiprows=1, ndmin=2))
 
 
+@pytest.mark.slow  # 1.4 s; the fast lane (budget 60 s) keeps the job: jobs/test_lineaments.py
 def test_lineaments(tmp_path, check_run_json):
     from seismo3d.data.terrain import synthetic_scarp_dem
 

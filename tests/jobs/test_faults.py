@@ -369,6 +369,7 @@ def test_output_folder_is_the_input_folder(section, tmp_path):
         run_faults_job(src, tmp_path / "afile", progress=False)
 
 
+@pytest.mark.slow  # 1.3 s in the fast lane, whose budget is 60 s
 def test_interrupted_run_keeps_finished_files(section, tmp_path, monkeypatch):
     """Ctrl-C while the picture of a run with overwrite=True is written: every file of the previous run stays as it
     was (the new files are moved in only when all are written), no temporary file is left behind."""

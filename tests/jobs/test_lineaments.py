@@ -42,6 +42,7 @@ def test_output_folder_is_a_file(tmp_path):
         run_lineaments_job(tmp_path / "missing.tif", tmp_path / "out")
 
 
+@pytest.mark.slow  # 1.2 s in the fast lane, whose budget is 60 s
 def test_lineaments_command(dfw, tmp_path):
     out = tmp_path / "out"
     result = CliRunner().invoke(app, ["lineaments", str(dfw.path), "-o", str(out)])

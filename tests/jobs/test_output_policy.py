@@ -251,6 +251,7 @@ def test_earlier_results_are_refused_without_overwrite(command, work, tmp_path):
     assert _digest(work) == inputs and _digests(tmp_path / "out") == earlier
 
 
+@pytest.mark.slow  # 0.6-1.2 s per command, 6 s in all in the fast lane, whose budget is 60 s
 @pytest.mark.parametrize("command", RUNS)
 def test_earlier_results_are_replaced_with_overwrite(command, work, tmp_path, request):
     if command.name == "map":

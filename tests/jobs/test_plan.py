@@ -51,6 +51,7 @@ def test_unreachable_goal_writes_nothing(ridge_dem, tmp_path):
     assert not (tmp_path / "p.csv").exists()
 
 
+@pytest.mark.slow  # 1.8 s in the fast lane, whose budget is 60 s
 def test_map_folder_and_other_inputs(map_folder, tmp_path):
     grid = load_occupancy(map_folder, options=OccupancyOptions(cell_size=0.1))
     assert grid.spacing == (0.1, 0.1) and grid.free.any()
@@ -112,6 +113,7 @@ def test_plan_names_the_nearest_free_cell(dfw, tmp_path):
     assert "on an obstacle" not in again.output
 
 
+@pytest.mark.slow  # 1.5 s in the fast lane, whose budget is 60 s
 def test_plan_command_on_a_map_folder(map_folder, tmp_path):
     out = tmp_path / "path.csv"
     result = runner.invoke(app, ["plan", str(map_folder), "--start", "20,8", "--goal", "20,56", "-o", str(out)])

@@ -31,6 +31,7 @@ def test_vocabulary_words_and_vectors(graph):
     assert abs(sum(w * w for w in v.values()) - 1.0) < 1e-9
 
 
+@pytest.mark.slow  # 1.4 s in the fast lane, whose budget is 60 s
 def test_detects_and_verifies_the_revisit(graph):
     detector = LoopDetector(LoopOptions(vocabulary_keyframes=8, recent_window=2))
     partial = KeyframeGraph()

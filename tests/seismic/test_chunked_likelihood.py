@@ -58,6 +58,7 @@ def test_blocks_equal_the_whole_cube(cube, reference, tmp_path):
     assert ds.sizes == {"inline": 112, "crossline": 80, "sample": 72}
 
 
+@pytest.mark.slow  # 2.5 s with its setup in the fast lane, whose budget is 60 s
 def test_lazy_dask_input_with_coordinates(cube, reference, tmp_path):
     da = pytest.importorskip("dask.array")
     lazy = da.from_array(cube, chunks=(16, 80, 72))

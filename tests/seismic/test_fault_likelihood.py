@@ -34,6 +34,7 @@ def test_strike_dip_is_the_inverse_of_fault_normals():
     assert fault_strike_dip(np.array([np.sin(np.pi / 3), 0.5]))[0] == 90.0  # 2D
 
 
+@pytest.mark.slow  # 2.3 s in the fast lane, whose budget is 60 s
 def test_likelihood_orientation_on_single_plane():
     """One planar fault: the likelihood peaks on it with the fault's strike and dip."""
     syn = synthetic_cube((80, 80, 80), n_faults=1, seed=11)

@@ -130,6 +130,7 @@ def test_generated_faulted_cubes_precision_and_recall():
         assert s.precision >= 0.90 and s.recall >= 0.90, (seed, s)
 
 
+@pytest.mark.slow  # 1.2 s in the fast lane, whose budget is 60 s
 def test_cube_directions_keep_the_larger_probability():
     # on the data's own grid (resample 1): with resampling the maximum is taken on the network's grid, before the
     # probability is interpolated back

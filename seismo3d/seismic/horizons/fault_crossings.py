@@ -377,7 +377,8 @@ class FaultCrossings:
         if self.tree is None or len(a) == 0:
             return np.zeros(len(a), bool)
         radius = 0.5 * np.linalg.norm(b - a, axis=1) + self.pierce + 1.0
-        nearest, _ = self.tree.query(0.5 * (a + b), k=1)
+        # the search stops at the largest radius (most segments are far from every fault: inf, not near)
+        nearest, _ = self.tree.query(0.5 * (a + b), k=1, distance_upper_bound=float(radius.max()) * (1 + 1e-9) + 1e-9)
         return nearest <= radius
 
     def step_jumps(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:

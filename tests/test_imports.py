@@ -130,7 +130,9 @@ def test_no_import_cycle():
 OPTIONAL = {"seismo3d.training.fault_unet": "torch"}  # the `train` extra
 
 
-@pytest.mark.parametrize("name", sorted(MODULES))
+# the training module imports torch (2.4 s): in the slow lane, the fast lane's budget being 60 s
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in OPTIONAL else n
+                                  for n in sorted(MODULES)])
 def test_every_module_imports(name):
     if name in OPTIONAL:
         pytest.importorskip(OPTIONAL[name])

@@ -373,6 +373,7 @@ def test_check_outputs_rules(tmp_path):
             check_outputs(outputs, [cube])
 
 
+@pytest.mark.slow  # 1.8 s in the fast lane, whose budget is 60 s
 def test_the_files_a_command_reads_of_an_input_folder_are_inputs(map_folder, tmp_path):
     """plan reads mesh.ply of a map folder: it is never replaced, even with --overwrite; render writes a picture into
     a folder it reads, and replaces it with --overwrite."""

@@ -44,6 +44,7 @@ def test_tracks_a_known_motion(room_model, yaw, pitch, shift):
     assert result.dynamic.mean() < 0.0021  # a static scene: measured 0.0010-0.0014 flagged, limit 1.5x the worst
 
 
+@pytest.mark.slow  # 1.2 s in the fast lane, whose budget is 60 s
 def test_moving_object_is_flagged_and_kept_out(room_model):
     pose = pose_at(1.0)
     intruder = (np.array([-0.3, -0.4, 0.3]), np.array([0.3, 0.4, 0.6]))  # a box 1.3-1.6 m in front of the camera

@@ -71,11 +71,12 @@ def assert_recovered(reg, truth, moving_shape):
 ORDERS = ["moving onto fixed", "fixed onto moving"]
 
 
-# the grid's hardest kinds in the fast lane: a 40-degree rotation with an anisotropy of 2.7 on the moving volume,
+# the grid's hardest kinds: a 40-degree rotation with an anisotropy of 2.7 on the moving volume,
 # and bins that differ on both volumes (no per-axis scale on one side expresses the map)
 @pytest.mark.parametrize("order", ORDERS)
 @pytest.mark.parametrize("angle, moving_scales, fixed_scales", [
-    (40.0, (1.6, 0.6, 0.8), (1.0, 1.0, 1.0)),
+    # 2.4-3.9 s each: in the slow lane (the fast lane's budget is 60 s); the fast lane keeps the pair below
+    pytest.param(40.0, (1.6, 0.6, 0.8), (1.0, 1.0, 1.0), marks=pytest.mark.slow),
     (25.0, (0.7, 1.3, 1.1), (1.25, 0.8, 1.0)),
 ])
 def test_f3_pairs_in_either_order(f3_crop, angle, moving_scales, fixed_scales, order):
@@ -170,6 +171,7 @@ def test_volve_velocity_is_right_or_not_converged(volve_block, angle, moving_sca
         assert reg.reason
 
 
+@pytest.mark.slow  # 3.6 s in the fast lane, whose budget is 60 s
 def test_unrelated_volumes_are_not_converged(f3_crop):
     other = synthetic_cube((24, 24, 80), n_faults=1, seed=4).cube
     reg = register_volumes(other, f3_crop)

@@ -279,6 +279,7 @@ def test_segy_line(section, tmp_path, along):
     assert len(sizes) >= 2 and sizes[1] >= 30
 
 
+@pytest.mark.slow  # 1.4 s in the fast lane, whose budget is 60 s
 def test_npy_section_with_nan_and_dead_traces(section, tmp_path):
     data = section.cube.copy()
     data[40] = np.nan  # a NaN trace

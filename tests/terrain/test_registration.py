@@ -64,6 +64,7 @@ def test_generated_dem_to_dem_without_data():
     assert result.heading_deg == pytest.approx(-25.0, abs=0.003)  # turned +25 deg: measured 0.0019 off, limit 1.5x
 
 
+@pytest.mark.slow  # 0.8 s; test_autzen_scan_to_dem stays in the fast lane, whose budget is 60 s
 def test_dfw_dem_to_dem(dfw):
     """A 200 x 200 crop of the real DEM turned 15 deg and shifted 1.3 km: within 0.5 pixel (measured 0.02)."""
     source, truth = _moved_dem(dfw, rows=slice(80, 280), cols=slice(90, 290), angle_deg=15.0,
@@ -95,6 +96,7 @@ def test_autzen_scan_to_dem(autzen, autzen_pair):
     assert err.rotation_deg < 0.058 and err.centroid < 0.5 and err.max_displacement < 0.88
 
 
+@pytest.mark.slow  # 1.1 s in the fast lane, whose budget is 60 s
 def test_features_off_starts_from_init(autzen, autzen_pair):
     """Without features, plain point-to-plane ICP runs from the given init (here the truth perturbed 0.5 deg)."""
     c = autzen_pair.source.mean(axis=0) @ autzen_pair.transform[:3, :3].T + autzen_pair.transform[:3, 3]

@@ -251,18 +251,28 @@ def _sweep(out, g, f, wg, ids, picks, offsets, traces, slopes, cross_slopes, rea
     place)."""
     for axis in (0, 1):
         along, across = (cross_slopes, slopes) if axis == 0 else (slopes, cross_slopes)
-        g_t, f_t, w_t, ids_t, out_t = (np.moveaxis(x, axis, -1) for x in (g, f, wg, ids, out))
-        n_lines, length = g_t.shape
-        for i in range(n_lines):
-            c_ids = np.full((length, 2), -1, np.int64)
-            c_t = np.full((length, 2), np.nan)
-            if i > 0:
-                c_ids[:, 0], c_t[:, 0] = ids_t[i - 1], out_t[i - 1]
-            if i + 1 < n_lines:
-                c_ids[:, 1], c_t[:, 1] = ids_t[i + 1], out_t[i + 1]
-            out_t[i] = _line_dp(np.ascontiguousarray(ids_t[i]), np.ascontiguousarray(g_t[i]),
-                                np.ascontiguousarray(f_t[i]), picks, offsets, traces, along, reach,
-                                np.ascontiguousarray(w_t[i]), w_step, w_wave, half, c_ids, c_t, across)
+        g_t, f_t, w_t, ids_t, out_t = (np.ascontiguousarray(np.moveaxis(x, axis, -1)) for x in (g, f, wg, ids, out))
+        _sweep_lines(out_t, g_t, f_t, w_t, ids_t, picks, offsets, traces, along, across, reach, w_step, w_wave, half)
+        np.moveaxis(out, axis, -1)[...] = out_t
+
+
+@nb.njit(cache=True)
+def _sweep_lines(out, guide, fixed, w_guide, ids, picks, offsets, traces, along, across, reach, w_step, w_wave,
+                 half):
+    """The lines (rows of the (n_lines, length) arrays) re-chosen in order by :func:`_line_dp`, each with the picks
+    of the line before it (already re-chosen) and after it held; ``out`` updated in place."""
+    n_lines, length = guide.shape
+    for i in range(n_lines):
+        c_ids = np.full((length, 2), -1, np.int64)
+        c_t = np.full((length, 2), np.nan)
+        if i > 0:
+            c_ids[:, 0] = ids[i - 1]
+            c_t[:, 0] = out[i - 1]
+        if i + 1 < n_lines:
+            c_ids[:, 1] = ids[i + 1]
+            c_t[:, 1] = out[i + 1]
+        out[i] = _line_dp(ids[i], guide[i], fixed[i], picks, offsets, traces, along, reach, w_guide[i], w_step,
+                          w_wave, half, c_ids, c_t, across)
 
 
 @nb.njit(cache=True)

@@ -93,16 +93,18 @@ def despike(section: ReflectorSlice, picks: np.ndarray, carried: np.ndarray, con
     return changed
 
 
-def despike_lines(arr, times, conf, polarity, opt: TrackingOptions, crossings: FaultCrossings) -> int:
+def despike_lines(arr, times, conf, polarity, opt: TrackingOptions, crossings: FaultCrossings,
+                  picks: tuple | None = None) -> int:
     """:func:`despike` along every line of a horizon (a 2D section's line; a cube's inlines, then its crosslines):
     picks that left both line neighbours for a neighbouring cycle while the neighbours agree are re-snapped between
-    them or emptied. ``times`` and ``conf`` (lateral shape) are modified in place; returns the picks changed."""
+    them or emptied. ``times`` and ``conf`` (lateral shape) are modified in place; returns the picks changed.
+    ``picks``: the cube's reflector picks ``(times, offsets)``, lateral axes flattened, if the caller has them."""
     if arr.ndim == 2:
         return despike(ReflectorSlice(arr, polarity, opt.sigma_tensor, opt.ncc_half), times, times.copy(), conf,
                        min_confidence=opt.min_confidence, faults=crossings, reach=opt.despike_reach,
                        agree=opt.despike_agree)
     # the lines' picks are the cube's (picks are per trace), gathered once instead of re-picked line by line
-    picks, offsets = reflector_picks(arr.reshape(-1, arr.shape[-1]), polarity=polarity)
+    picks, offsets = reflector_picks(arr.reshape(-1, arr.shape[-1]), polarity=polarity) if picks is None else picks
     ids = np.arange(times.size).reshape(times.shape)
     changed = 0
     for axis in (0, 1):  # lines along crosslines (one per inline), then along inlines (one per crossline)
@@ -136,7 +138,8 @@ class _LinePicks:
 
 
 def close_gaps(data, times: np.ndarray, confidence: np.ndarray, *, polarity: str = "peak",
-               faults: FaultCrossings | None = None, options: TrackingOptions | None = None) -> int:
+               faults: FaultCrossings | None = None, options: TrackingOptions | None = None,
+               picks: tuple | None = None) -> int:
     """Fill empty traces of a 3D horizon from their tracked neighbours: the gap-closing pass of :func:`track_horizon`.
 
     A line-by-line carry leaves a trace empty where its own pick was unsure, and the inline order means a gap is
@@ -160,6 +163,10 @@ def close_gaps(data, times: np.ndarray, confidence: np.ndarray, *, polarity: str
         Faults of ``data`` (default none).
     options : TrackingOptions, optional
         ``snap``, ``min_confidence``, ``ncc_half`` and ``gap_passes`` are used.
+    picks : (ndarray, ndarray), optional
+        ``(times, offsets)``: the reflector picks of ``polarity`` of every trace of ``data``, lateral axes flattened
+        (:func:`~seismo3d.seismic.reflector_picks` of ``data.reshape(-1, n_samples)``), when the caller has them;
+        default: each inline's, computed when first needed.
 
     Returns
     -------
@@ -170,12 +177,14 @@ def close_gaps(data, times: np.ndarray, confidence: np.ndarray, *, polarity: str
     arr = data
     fidx = FaultCrossings.empty(3) if faults is None else faults
     n_il, n_xl = arr.shape[:2]
-    picks: dict[int, tuple] = {}
+    per_inline: dict[int, tuple] = {}
 
     def snap(i, j, t):
-        if i not in picks:
-            picks[i] = reflector_picks(arr[i], polarity=polarity)
-        return nearest_pick(*picks[i], j, t, opt.snap)
+        if picks is not None:
+            return nearest_pick(*picks, i * n_xl + j, t, opt.snap)
+        if i not in per_inline:
+            per_inline[i] = reflector_picks(arr[i], polarity=polarity)
+        return nearest_pick(*per_inline[i], j, t, opt.snap)
 
     steps = ((1, 0), (-1, 0), (0, 1), (0, -1))
     filled = 0

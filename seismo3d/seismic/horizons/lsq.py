@@ -408,7 +408,7 @@ class LsqHorizon:
 
 
 def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: FaultCrossings, options,
-                progress: bool = False) -> LsqHorizon:
+                progress: bool = False, picks: tuple | None = None) -> LsqHorizon:
     """Least-squares horizon of ``data`` through ``seeds``, picks chosen by dynamic programming (module docstring).
 
     Parameters
@@ -424,6 +424,9 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
         The 'global' fields, ``seed_snap``, ``snap``, ``ncc_half``, ``min_confidence`` and ``sigma_tensor``.
     progress : bool
         Report progress over the solves (:mod:`seismo3d._progress`).
+    picks : (ndarray, ndarray), optional
+        ``(times, offsets)``: the reflector picks of ``polarity`` of every trace of ``data`` (lateral axes flattened,
+        :func:`picks_of`), when the caller has them already; default: computed here.
 
     Returns
     -------
@@ -438,7 +441,7 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     lat = data.shape[:-1]
     n = int(np.prod(lat))
     traces = np.ascontiguousarray(data.reshape(n, data.shape[-1]), dtype=np.float32)
-    picks, offsets = picks_of(data, polarity)
+    picks, offsets = picks_of(data, polarity) if picks is None else picks
     # seeds: flat index and snapped time
     seed_idx = np.array([np.ravel_multi_index(tuple(int(round(v)) for v in s[:-1]), lat) for s in seeds], np.intp)
     seed_t = np.array([nearest_pick(picks, offsets, k, s[-1], opt.seed_snap) for k, s in zip(seed_idx, seeds)])

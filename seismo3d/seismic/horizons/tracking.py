@@ -68,7 +68,7 @@ from ..reflectors import POLARITIES, ReflectorSlice, nearest_reflector
 from ..traces import ncc, ncc_lag_search
 from .fault_crossings import FaultCrossings
 from .lateral_check import close_gaps, despike, despike_lines
-from .lsq import lsq_horizon
+from .lsq import lsq_horizon, picks_of
 from .options import TrackingOptions
 from .result import Horizon, as_seeds, check_live_seed, no_pick_error
 
@@ -434,14 +434,15 @@ def _track_global(arr, seeds, polarity, opt: TrackingOptions, crossings: FaultCr
     other: a lone pick a cycle off its agreeing neighbours is a spike; the seeds' own picks stay), then, in 3D, the
     gap closing (traces left empty beside tracked ones, e.g. a pick the lateral checks gave up while its neighbours
     were a cycle off before the repair, filled where the neighbours agree and correlate)."""
-    found = lsq_horizon(arr, seeds, polarity=polarity, faults=crossings, options=opt, progress=progress)
+    picks = picks_of(arr, polarity)  # every trace's picks, once for the three steps
+    found = lsq_horizon(arr, seeds, polarity=polarity, faults=crossings, options=opt, progress=progress, picks=picks)
     times, conf = found.times.copy(), found.confidence.copy()
     at_seeds = tuple(np.rint(seeds[:, :-1]).astype(np.intp).T)
     kept = times[at_seeds].copy(), conf[at_seeds].copy()
-    despike_lines(arr, times, conf, polarity, opt, crossings)
+    despike_lines(arr, times, conf, polarity, opt, crossings, picks=picks)
     times[at_seeds], conf[at_seeds] = kept
     if arr.ndim == 3:
-        close_gaps(arr, times, conf, polarity=polarity, faults=crossings, options=opt)
+        close_gaps(arr, times, conf, polarity=polarity, faults=crossings, options=opt, picks=picks)
     return Horizon(times.astype(np.float32), conf.astype(np.float32), polarity, seeds)
 
 

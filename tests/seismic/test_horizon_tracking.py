@@ -125,8 +125,13 @@ def test_gap_closing_refills_a_hole_and_leaves_noise_empty():
     times, conf = hz.times.astype(np.float64), hz.confidence.astype(np.float64)
     holed = times.copy()
     holed[8:14, 10:18] = np.nan
+    given = holed.copy()
     assert close_gaps(syn.cube, holed, conf.copy(), polarity=pol, options=opt) == 48
     np.testing.assert_allclose(holed[8:14, 10:18], times[8:14, 10:18], atol=0.5)
+    # the cube's picks passed in (as track_horizon does) fill the same traces at the same times
+    cube_picks = reflector_picks(syn.cube.reshape(-1, syn.cube.shape[-1]), polarity=pol)
+    assert close_gaps(syn.cube, given, conf.copy(), polarity=pol, options=opt, picks=cube_picks) == 48
+    np.testing.assert_array_equal(given, holed)
     # where the traces hold only noise, nothing correlates at min_confidence 0.6: the hole stays empty (at the
     # default 0.3, chance correlations fill a few noise traces)
     noisy = syn.cube.copy()

@@ -20,6 +20,12 @@ from ...errors import InputError, SegyFormatError, SegyGeometryError
 __all__ = ["SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle"]
 
 _RUN_TRACES = 1024  # traces read per segyio call into a block (a few MB of temporaries, not a block's worth)
+_TRACE_HEADER_BYTES = 240
+# Bytes of each trace header field: up to the next field's first byte (SEG-Y rev 1 Table 3; 2 or 4)
+_FIELD_STARTS = sorted(int(k) for k in segyio.TraceField.enums())
+_FIELD_BYTES = dict(zip(_FIELD_STARTS, np.diff(_FIELD_STARTS + [_TRACE_HEADER_BYTES + 1]).tolist()))
+# Bytes per sample of the sample formats (SEG-Y rev 2 Table 1; binary header bytes 3225-3226)
+_SAMPLE_BYTES = {1: 4, 2: 4, 3: 2, 5: 4, 6: 8, 8: 1, 9: 8, 10: 4, 11: 2, 12: 8, 15: 3, 16: 1}
 
 
 @dataclass(frozen=True)
@@ -175,9 +181,34 @@ def read_segy_block(grid: SegyGrid, inline_start: int, inline_stop: int, xline_s
     return out
 
 
+def _header_dtype(fields, endian: str) -> np.dtype:
+    """The listed trace header fields as one structured 240-byte record: 4- or 2-byte signed integers at their byte
+    positions (SEG-Y rev 1 Table 3, as segyio decodes them), in the file's byte order."""
+    order = ">" if endian == "big" else "<"
+    return np.dtype({"names": [str(k) for k in fields], "formats": [f"{order}i{_FIELD_BYTES[k]}" for k in fields],
+                     "offsets": [k - 1 for k in fields], "itemsize": _TRACE_HEADER_BYTES})
+
+
+def _trace_table(f, grid: SegyGrid):
+    """The file's traces as a read-only ``(n_traces, trace_bytes)`` uint8 memory map (header then samples), or None
+    when the file's size does not match that layout (then the headers are read through segyio)."""
+    sample_bytes = _SAMPLE_BYTES.get(int(f.format))
+    if sample_bytes is None:
+        return None
+    first = 3600 + 3200 * int(f.ext_headers)
+    stride = _TRACE_HEADER_BYTES + grid.n_samples * sample_bytes
+    if Path(grid.path).stat().st_size != first + stride * grid.n_traces:
+        return None
+    return np.memmap(grid.path, np.uint8, mode="r", offset=first, shape=(grid.n_traces, stride))
+
+
 def read_segy_block_headers(grid: SegyGrid, fields, inline_start: int, inline_stop: int, xline_start: int = 0,
                             xline_stop: int | None = None, *, segyfile=None) -> dict:
     """Read trace header fields of a block of a 3D SEG-Y cube, laid out on the grid.
+
+    The block's 240-byte trace headers are copied out of a memory map of the file once (one run of consecutive traces
+    at a time) and every field decoded from them with numpy; a field whose bytes are zero on every trace of the block
+    is not decoded (zeros). Files whose size does not match fixed-length traces are read through segyio instead.
 
     Parameters
     ----------
@@ -200,14 +231,36 @@ def read_segy_block_headers(grid: SegyGrid, fields, inline_start: int, inline_st
     xline_stop = _block_bounds(grid, inline_start, inline_stop, xline_start, xline_stop)
     shape = (inline_stop - inline_start, xline_stop - xline_start)
     fields = [int(k) for k in fields]
-    out = {k: np.empty(shape, np.int32) for k in fields}
+    unknown = [k for k in fields if k not in _FIELD_BYTES]
+    if unknown:
+        raise InputError(f"{unknown} are not trace header fields; pass segyio.TraceField values")
     f = segyfile if segyfile is not None else segyio_handle(grid)
     try:
+        table = _trace_table(f, grid)
+        if table is None:
+            return _read_headers_segyio(f, grid, fields, inline_start, inline_stop, xline_start, xline_stop)
+        raw = np.empty(shape + (_TRACE_HEADER_BYTES,), np.uint8)
         for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
-            for k in fields:
-                target = out[k][where]
-                out[k][where] = np.asarray(f.attributes(k)[first:last], dtype=np.int64).reshape(target.shape)
+            raw[where] = table[first:last, :_TRACE_HEADER_BYTES].reshape(raw[where].shape)
+        del table  # unmapped: its pages stop counting as this process's memory
     finally:
         if segyfile is None:
             f.close()
+    # a field is zero on every trace when all of its bytes are: only the others are decoded
+    used = raw.reshape(-1, _TRACE_HEADER_BYTES).any(axis=0)
+    decoded = [k for k in fields if used[k - 1:k - 1 + _FIELD_BYTES[k]].any()]
+    records = raw.view(_header_dtype(decoded, grid.endian))[..., 0]
+    out = {k: np.zeros(shape, np.int32) for k in fields}
+    for k in decoded:
+        out[k][...] = records[str(k)]
+    return out
+
+
+def _read_headers_segyio(f, grid: SegyGrid, fields, inline_start, inline_stop, xline_start, xline_stop) -> dict:
+    """:func:`read_segy_block_headers` through segyio's field reader, one field and run at a time."""
+    out = {k: np.empty((inline_stop - inline_start, xline_stop - xline_start), np.int32) for k in fields}
+    for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
+        for k in fields:
+            target = out[k][where]
+            out[k][where] = np.asarray(f.attributes(k)[first:last], dtype=np.int64).reshape(target.shape)
     return out

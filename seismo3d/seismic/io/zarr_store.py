@@ -184,8 +184,15 @@ def _group_attrs(cube) -> dict:
 class SeismicZarrWriter:
     """Write a 3D SEG-Y cube into the Zarr layout tile by tile (memory: one tile of ``chunk_mb``).
 
-    Use: ``w = SeismicZarrWriter(cube, store)``; ``w.write_tile(t)`` for each ``t`` in ``w.tiles`` (in any order);
-    then ``w.finish()``, which drops the header fields that are zero on every trace and adds ``cdp_x`` / ``cdp_y``.
+    Use: ``w = SeismicZarrWriter(cube, store)``; ``w.write_tile(t)`` for each ``t`` in ``w.tiles`` (in any order;
+    in their order one row of header fields is held at a time); then ``w.finish()``, which adds ``cdp_x`` / ``cdp_y``
+    when the coordinates are not CDP X / Y but source X / Y.
+
+    Amplitudes are written one tile per call, whole chunks at a time, chunks of zeros skipped (left to the fill
+    value, as zarr does, by a cheaper test than zarr's own). The trace header fields of a row of chunks (64
+    inlines, every crossline) are gathered from its tiles and written once the row is complete, with ``cdp_x`` /
+    ``cdp_y`` of that row: one write per field and row, not per tile (memory: 64 x n_xlines int32 per field that is
+    not zero, e.g. 1 MiB per field for 4000 crosslines).
 
     Parameters
     ----------
@@ -216,11 +223,16 @@ class SeismicZarrWriter:
         chunk = (min(TILE_TRACES, n_il), min(TILE_TRACES, n_xl), ns)
         self.root = zarr.open_group(str(store), mode="w", zarr_format=3, attributes=_group_attrs(cube))
         self._coordinates(cube)
+        # write_empty_chunks: every chunk written is stored; the chunks of zeros are skipped in _write_amplitudes
+        # instead (zarr's own test compares each value to the fill value as a void type: half the write time)
         self.seismic = self.root.create_array("seismic", shape=cube.shape, chunks=chunk, dtype="float32",
                                               dimension_names=("inline", "crossline", "sample"), fill_value=0.0,
-                                              compressors=SEISMIC_CODEC, attributes={"long_name": "amplitude"})
+                                              compressors=SEISMIC_CODEC, attributes={"long_name": "amplitude"},
+                                              config={"write_empty_chunks": True})
         self.headers = {}  # TraceField -> zarr array, created at the field's first non-zero value (before it: fill 0)
         self.nonzero = {k: False for k in _TRACE_FIELDS}
+        self._rows = {}  # first inline of a row of chunks -> _HeaderRow, until all its tiles are written
+        self._cdp = None  # (cdp_x, cdp_y) zarr arrays from CDP X / Y, created at their first non-zero row
         per_chunk = chunk[0] * chunk[1] * ns * 4 / 2**20
         xl_step = chunk[1] * max(1, int(chunk_mb // per_chunk))
         self.tiles = [(a, min(a + chunk[0], n_il), b, min(b + xl_step, n_xl))
@@ -244,25 +256,65 @@ class SeismicZarrWriter:
         """
         a, b, c, d = tile
         # A memory map of its own per tile: the pages it reads count as this process's memory until it is closed,
-        # so the cube's handle (mapped for the whole run) would hold the whole file by the last tile.
+        # so the cube's handle (mapped for the whole run) would hold the whole file by the last tile. The headers
+        # first: their reader maps the tile's pages too, and has unmapped them before the amplitudes are read.
         with segyio_handle(self.grid) as f:
-            block = read_segy_block(self.grid, a, b, c, d, segyfile=f)
             headers = read_segy_block_headers(self.grid, _TRACE_FIELDS, a, b, c, d, segyfile=f)
-        self.seismic[a:b, c:d, :] = block  # after the map is closed: its pages and the chunks' buffers never coexist
+            block = read_segy_block(self.grid, a, b, c, d, segyfile=f)
+        self._write_amplitudes(block, a, b, c, d)  # after the map is closed: its pages and zarr's buffers never coexist
         del block
-        for k, values in headers.items():
-            if values.any():  # all-zero chunks are the fill value: not written (most of the 91 fields are unused)
-                if k not in self.headers:
-                    n_il, n_xl = self.seismic.shape[:2]
-                    self.headers[k] = self.root.create_array(
-                        _TRACE_FIELDS[k], shape=(n_il, n_xl), chunks=self.seismic.chunks[:2], dtype="int32",
-                        dimension_names=("inline", "crossline"), fill_value=0)
-                self.headers[k][a:b, c:d] = values
-                self.nonzero[k] = True
+        row = self._rows.setdefault(a, _HeaderRow(b - a, self.seismic.shape[1]))
+        if row.add(headers, c, d):
+            self._write_header_row(self._rows.pop(a), a, b)
+
+    def _write_amplitudes(self, block, a, b, c, d) -> None:
+        """The tile in one write, or chunk by chunk when some of its chunks are all zeros (those are not written)."""
+        step = self.seismic.chunks[1]
+        starts = range(0, d - c, step)
+        # bit patterns, as zarr's test: -0.0 is not the fill value 0.0 and is stored
+        empty = [not block[:, j:j + step].view(np.uint32).any() for j in starts]
+        if not any(empty):
+            self.seismic[a:b, c:d] = block
+            return
+        for j, skip in zip(starts, empty):
+            if not skip:
+                self.seismic[a:b, c + j:min(c + j + step, d)] = block[:, j:j + step]
+
+    def _write_header_row(self, row: "_HeaderRow", a: int, b: int) -> None:
+        """A complete row of chunks: its non-zero header fields, and cdp_x / cdp_y from CDP X / Y."""
+        n_il, n_xl = self.seismic.shape[:2]
+        for k, values in row.fields.items():
+            if k not in self.headers:
+                self.headers[k] = self.root.create_array(
+                    _TRACE_FIELDS[k], shape=(n_il, n_xl), chunks=self.seismic.chunks[:2], dtype="int32",
+                    dimension_names=("inline", "crossline"), fill_value=0)
+            self.headers[k][a:b] = values
+            self.nonzero[k] = True
+        fx, fy = _COORDINATE_FIELDS[0]
+        if fx in row.fields or fy in row.fields:  # rows where both are 0 keep the fill value, 0.0
+            if self._cdp is None:
+                self._cdp = self._create_cdp_arrays()
+            scalar = row.values(segyio.TraceField.SourceGroupScalar)
+            for out, field in zip(self._cdp, (fx, fy)):
+                out[a:b] = scale_coordinates(row.values(field), scalar)
+
+    def _create_cdp_arrays(self) -> tuple:
+        n_il, n_xl = self.seismic.shape[:2]
+        unit = _UNITS.get(int(self.cube.segyfile.bin[segyio.BinField.MeasurementSystem]), "unknown")
+        return tuple(self.root.create_array(name, shape=(n_il, n_xl), chunks=self.seismic.chunks[:2],
+                                            dtype="float64", dimension_names=("inline", "crossline"), fill_value=0.0,
+                                            attributes={"units": unit})
+                     for name in ("cdp_x", "cdp_y"))
 
     def finish(self) -> list:
-        """Drop the all-zero header fields, add ``cdp_x`` / ``cdp_y``; return the names of the header fields kept."""
-        self._add_cdp_coordinates()
+        """Write the rows of header fields still gathered (tiles missing), add ``cdp_x`` / ``cdp_y`` from source X / Y
+        when CDP X / Y are zero everywhere; return the names of the header fields kept."""
+        for a, row in sorted(self._rows.items()):
+            self._write_header_row(row, a, a + row.n_inlines)
+        self._rows.clear()
+        self._add_source_coordinates()
+        if self._cdp is not None:
+            self.seismic.attrs["coordinates"] = "cdp_x cdp_y"
         self._consolidate()
         return [name for k, name in _TRACE_FIELDS.items() if self.nonzero[k]]
 
@@ -277,21 +329,39 @@ class SeismicZarrWriter:
             return lambda a, b: self.headers[field][a:b]
         return lambda a, b: np.zeros((min(b, self.seismic.shape[0]) - a, self.seismic.shape[1]), np.int32)
 
-    def _add_cdp_coordinates(self) -> None:
-        """cdp_x / cdp_y with the coordinate scalar applied, one row of chunks at a time (as SeismicCube.cdp_x)."""
-        fields = next(((fx, fy) for fx, fy in _COORDINATE_FIELDS if self.nonzero[fx] or self.nonzero[fy]), None)
-        if fields is None:
+    def _add_source_coordinates(self) -> None:
+        """cdp_x / cdp_y from source X / Y with the coordinate scalar applied, one row of chunks at a time (as
+        SeismicCube.cdp_x), when CDP X / Y are zero on every trace and source X / Y are not."""
+        fields = _COORDINATE_FIELDS[1]
+        if self._cdp is not None or not (self.nonzero[fields[0]] or self.nonzero[fields[1]]):
             return
+        self._cdp = self._create_cdp_arrays()
         scalar = self._header_rows(segyio.TraceField.SourceGroupScalar)
-        unit = _UNITS.get(int(self.cube.segyfile.bin[segyio.BinField.MeasurementSystem]), "unknown")
-        n_il, n_xl = self.seismic.shape[:2]
         rows = self.seismic.chunks[0]
-        for name, field in zip(("cdp_x", "cdp_y"), fields):
-            out = self.root.create_array(name, shape=(n_il, n_xl), chunks=self.seismic.chunks[:2], dtype="float64",
-                                         dimension_names=("inline", "crossline"), fill_value=0.0,
-                                         attributes={"units": unit})
-            for a in range(0, n_il, rows):
+        for out, field in zip(self._cdp, fields):
+            for a in range(0, self.seismic.shape[0], rows):
                 out[a:a + rows] = scale_coordinates(self._header_rows(field)(a, a + rows), scalar(a, a + rows))
-        self.seismic.attrs["coordinates"] = "cdp_x cdp_y"
 
 
+class _HeaderRow:
+    """The non-zero trace header fields of one row of chunks (inlines ``a:a + n_inlines``, every crossline), filled
+    tile by tile."""
+
+    def __init__(self, n_inlines: int, n_xlines: int):
+        self.n_inlines, self.n_xlines = n_inlines, n_xlines
+        self.fields = {}  # TraceField -> (n_inlines, n_xlines) int32, made at the field's first non-zero tile
+        self.filled = 0  # crosslines written
+
+    def add(self, headers: dict, c: int, d: int) -> bool:
+        """Add a tile's fields on crosslines ``c:d``; whether the row is complete."""
+        for k, values in headers.items():
+            if values.any():
+                if k not in self.fields:
+                    self.fields[k] = np.zeros((self.n_inlines, self.n_xlines), np.int32)
+                self.fields[k][:, c:d] = values
+        self.filled += d - c
+        return self.filled == self.n_xlines
+
+    def values(self, field) -> np.ndarray:
+        """A field's values (zeros when it is zero on every trace of the row)."""
+        return self.fields.get(field, np.zeros((self.n_inlines, self.n_xlines), np.int32))

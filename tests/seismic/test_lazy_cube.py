@@ -23,7 +23,8 @@ def amplitudes():
     return np.random.default_rng(7).standard_normal(SHAPE).astype(np.float32)
 
 
-@pytest.fixture(scope="module", params=[("inline", 5), ("crossline", 1)], ids=["inline-sorted", "crossline-sorted"])
+@pytest.fixture(scope="module", params=[("inline", 5), ("crossline", 1), ("crossline", 5)],
+                ids=["inline-sorted", "crossline-sorted", "crossline-sorted-ieee"])
 def segy(request, amplitudes, tmp_path_factory, write_segy_cube):
     sorting, fmt = request.param
     return write_segy_cube(tmp_path_factory.mktemp(sorting) / "cube.sgy", amplitudes, sorting=sorting, fmt=fmt)
@@ -90,13 +91,15 @@ def test_block_headers_equal_segyio(segy, tmp_path):
         read_segy_block_headers(grid, [2], 0, 1)
 
 
-def test_block_headers_little_endian(data_dir):
+@pytest.mark.parametrize("name", ["f3-lsb.sgy", "multiformats/Format5lsb.sgy"])
+def test_block_little_endian(name, data_dir):
     from seismo3d.data import fetch
 
-    path = fetch("seismic/segyio_test_data/f3-lsb.sgy")
-    _, cube = read_segy(path, endian="little")
+    path = fetch(f"seismic/segyio_test_data/{name}")
+    ref, cube = read_segy(path, endian="little")
     grid = SegyGrid.from_cube(cube)
     assert grid.endian == "little"
+    assert_array_equal(read_segy_block(grid, 3, 20, 2, 17), ref[3:20, 2:17])
     expected = _segyio_fields(path, endian="little")
     headers = read_segy_block_headers(grid, expected, 3, 20, 2, 17)
     shape = (cube.inlines.size, cube.xlines.size)

@@ -25,6 +25,8 @@ _TRACE_HEADER_BYTES = 240
 _FIELD_STARTS = sorted(int(k) for k in segyio.TraceField.enums())
 _FIELD_BYTES = dict(zip(_FIELD_STARTS, np.diff(_FIELD_STARTS + [_TRACE_HEADER_BYTES + 1]).tolist()))
 # Bytes per sample of the sample formats (SEG-Y rev 2 Table 1; binary header bytes 3225-3226)
+_IEEE_FLOAT32 = 5
+_ENDIAN = {"big": ">", "little": "<"}
 _SAMPLE_BYTES = {1: 4, 2: 4, 3: 2, 5: 4, 6: 8, 8: 1, 9: 8, 10: 4, 11: 2, 12: 8, 15: 3, 16: 1}
 
 
@@ -138,8 +140,10 @@ def read_segy_block(grid: SegyGrid, inline_start: int, inline_stop: int, xline_s
     """Read the amplitudes of a block of inlines (and crosslines) of a 3D SEG-Y cube, only those traces.
 
     The task function of :func:`open_lazy`'s graph: module-level and picklable; it opens the file itself unless an
-    open ``segyfile`` is given, and reads through segyio's memory map one run of consecutive traces at a time (one
-    run for whole inlines of an inline-sorted file, one per crossline of a crossline-sorted file).
+    open ``segyfile`` is given, and reads one run of consecutive traces at a time (one run for whole inlines of an
+    inline-sorted file, one per crossline of a crossline-sorted file): IEEE float samples (format 5) straight out of
+    a numpy memory map of the file (byte order swapped by numpy, the same values as segyio; about twice its speed),
+    the other formats through segyio's memory map, which converts them.
 
     Parameters
     ----------
@@ -167,6 +171,12 @@ def read_segy_block(grid: SegyGrid, inline_start: int, inline_stop: int, xline_s
     out = np.empty((inline_stop - inline_start, xline_stop - xline_start, grid.n_samples), np.float32)
     f = segyfile if segyfile is not None else segyio_handle(grid)
     try:
+        table = _trace_table(f, grid) if int(f.format) == _IEEE_FLOAT32 else None
+        if table is not None:  # IEEE floats: the samples as they are, byte order swapped by numpy as segyio does
+            samples = table[:, _TRACE_HEADER_BYTES:].view(_ENDIAN[grid.endian] + "f4")
+            for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
+                out[where] = samples[first:last].reshape(out[where].shape)
+            return out
         for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
             flat = out[where].reshape(last - first, grid.n_samples)
             if np.shares_memory(flat, out):  # a view: filled in pieces, so the temporaries stay small
@@ -184,7 +194,7 @@ def read_segy_block(grid: SegyGrid, inline_start: int, inline_stop: int, xline_s
 def _header_dtype(fields, endian: str) -> np.dtype:
     """The listed trace header fields as one structured 240-byte record: 4- or 2-byte signed integers at their byte
     positions (SEG-Y rev 1 Table 3, as segyio decodes them), in the file's byte order."""
-    order = ">" if endian == "big" else "<"
+    order = _ENDIAN[endian]
     return np.dtype({"names": [str(k) for k in fields], "formats": [f"{order}i{_FIELD_BYTES[k]}" for k in fields],
                      "offsets": [k - 1 for k in fields], "itemsize": _TRACE_HEADER_BYTES})
 

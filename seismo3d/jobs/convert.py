@@ -136,8 +136,9 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
         warnings.simplefilter("ignore", TraceListWarning)
         cube = open_segy(input, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
     # 3. tile by tile into a temporary store, renamed to OUTPUT when complete
-    with cube, record.stage("write"), atomic_directory(output) as tmp:
-        writer = SeismicZarrWriter(cube, tmp, chunk_mb=chunk_mb)
+    # (leaving the writer's block waits for its background writes, so that an interrupted store is removed whole)
+    with cube, record.stage("write"), atomic_directory(output) as tmp, \
+            SeismicZarrWriter(cube, tmp, chunk_mb=chunk_mb) as writer:
         with progress_steps(len(writer.tiles), f"convert {input.name}", unit="tile", enabled=progress) as steps:
             for tile in writer.tiles:
                 writer.write_tile(tile)

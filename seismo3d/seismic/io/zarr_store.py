@@ -33,6 +33,8 @@ from __future__ import annotations
 
 import os
 import warnings
+from collections import deque
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -53,6 +55,7 @@ _BIN_FIELDS = {int(f): str(f) for f in segyio.BinField.enums()}
 _COORDINATE_FIELDS = ((segyio.TraceField.CDP_X, segyio.TraceField.CDP_Y),
                       (segyio.TraceField.SourceX, segyio.TraceField.SourceY))
 _UNITS = {1: "m", 2: "ft"}  # binary header bytes 3255-3256, measurement system
+_WRITE_THREADS = 2  # background threads handing chunks to zarr (which compresses them on threads of its own)
 # Amplitudes: Blosc LZ4 with byte shuffle compresses float32 seismic as well as Zarr's default (Zstd level 0) at about
 # three times its speed, so that convert runs at the speed of reading the SEG-Y (benchmarks/convert.py).
 SEISMIC_CODEC = ({"name": "blosc", "configuration": {"cname": "lz4", "clevel": 5, "shuffle": "shuffle",
@@ -182,17 +185,21 @@ def _group_attrs(cube) -> dict:
 
 
 class SeismicZarrWriter:
-    """Write a 3D SEG-Y cube into the Zarr layout tile by tile (memory: one tile of ``chunk_mb``).
+    """Write a 3D SEG-Y cube into the Zarr layout tile by tile (memory: about ``chunk_mb``).
 
-    Use: ``w = SeismicZarrWriter(cube, store)``; ``w.write_tile(t)`` for each ``t`` in ``w.tiles`` (in any order;
-    in their order one row of header fields is held at a time); then ``w.finish()``, which adds ``cdp_x`` / ``cdp_y``
-    when the coordinates are not CDP X / Y but source X / Y.
+    Use: ``with SeismicZarrWriter(cube, store) as w:``, ``w.write_tile(t)`` for each ``t`` in ``w.tiles`` (in any
+    order; in their order one row of header fields is held at a time), then ``w.finish()``, which waits for the last
+    writes and adds ``cdp_x`` / ``cdp_y`` when the coordinates are not CDP X / Y but source X / Y. Leaving the
+    ``with`` waits for the writes under way (after an error too), so that the store can then be removed.
 
-    Amplitudes are written one tile per call, whole chunks at a time, chunks of zeros skipped (left to the fill
-    value, as zarr does, by a cheaper test than zarr's own). The trace header fields of a row of chunks (64
-    inlines, every crossline) are gathered from its tiles and written once the row is complete, with ``cdp_x`` /
-    ``cdp_y`` of that row: one write per field and row, not per tile (memory: 64 x n_xlines int32 per field that is
-    not zero, e.g. 1 MiB per field for 4000 crosslines).
+    A tile is read chunk by chunk (64 x 64 traces: headers, then amplitudes), each chunk handed to a background
+    writer once read, so that reading the next chunk and compressing and writing the previous ones overlap: at most
+    ``chunk_mb`` of amplitudes (and no more than one chunk per writer thread and the one being read) are held at a
+    time; zarr compresses each chunk (one more chunk-sized buffer per writer thread). Chunks of zeros are not
+    written (left to the fill value, as zarr does, by a cheaper test than zarr's own). The trace header fields of a
+    row of chunks (64 inlines, every crossline) are gathered from its tiles and written once the row is complete,
+    with ``cdp_x`` / ``cdp_y`` of that row: one write per field and row, not per tile (memory: 64 x n_xlines int32
+    per field that is not zero, e.g. 1 MiB per field for 4000 crosslines).
 
     Parameters
     ----------
@@ -201,7 +208,8 @@ class SeismicZarrWriter:
     store : str or os.PathLike
         Directory of the new store (created; an existing one is replaced).
     chunk_mb : float
-        Upper bound in MiB of the amplitudes read per tile (at least one 64 x 64-trace chunk).
+        Upper bound in MiB of the amplitudes read or being written at a time, and of a tile (at least one 64 x
+        64-trace chunk).
 
     Attributes
     ----------
@@ -223,8 +231,8 @@ class SeismicZarrWriter:
         chunk = (min(TILE_TRACES, n_il), min(TILE_TRACES, n_xl), ns)
         self.root = zarr.open_group(str(store), mode="w", zarr_format=3, attributes=_group_attrs(cube))
         self._coordinates(cube)
-        # write_empty_chunks: every chunk written is stored; the chunks of zeros are skipped in _write_amplitudes
-        # instead (zarr's own test compares each value to the fill value as a void type: half the write time)
+        # write_empty_chunks: every chunk written is stored; the chunks of zeros are skipped in write_tile instead
+        # (zarr's own test compares each value to the fill value as a void type: half the write time)
         self.seismic = self.root.create_array("seismic", shape=cube.shape, chunks=chunk, dtype="float32",
                                               dimension_names=("inline", "crossline", "sample"), fill_value=0.0,
                                               compressors=SEISMIC_CODEC, attributes={"long_name": "amplitude"},
@@ -233,10 +241,17 @@ class SeismicZarrWriter:
         self.nonzero = {k: False for k in _TRACE_FIELDS}
         self._rows = {}  # first inline of a row of chunks -> _HeaderRow, until all its tiles are written
         self._cdp = None  # (cdp_x, cdp_y) zarr arrays from CDP X / Y, created at their first non-zero row
-        per_chunk = chunk[0] * chunk[1] * ns * 4 / 2**20
-        xl_step = chunk[1] * max(1, int(chunk_mb // per_chunk))
+        chunk_bytes = chunk[0] * chunk[1] * ns * 4
+        self._writes = _BackgroundWrites(max(chunk_mb * 2**20, chunk_bytes), max_pending=_WRITE_THREADS + 1)
+        xl_step = chunk[1] * max(1, int(chunk_mb * 2**20 // chunk_bytes))
         self.tiles = [(a, min(a + chunk[0], n_il), b, min(b + xl_step, n_xl))
                       for a in range(0, n_il, chunk[0]) for b in range(0, n_xl, xl_step)]
+
+    def __enter__(self) -> "SeismicZarrWriter":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._writes.close(raise_errors=exc[0] is None)
 
     def _coordinates(self, cube) -> None:
         self.root.create_array("inline", data=np.asarray(cube.inlines, np.int32), dimension_names=("inline",),
@@ -247,38 +262,33 @@ class SeismicZarrWriter:
                                attributes={"units": cube.sample_unit, "long_name": "time or depth"})
 
     def write_tile(self, tile) -> None:
-        """Read one tile of amplitudes and trace headers from the SEG-Y and store it.
+        """Read one tile of amplitudes and trace headers from the SEG-Y and hand it to the background writer.
 
         Parameters
         ----------
         tile : (int, int, int, int)
             An element of :attr:`tiles`.
+
+        Raises
+        ------
+        Exception
+            The error of an earlier write, if one failed.
         """
         a, b, c, d = tile
-        # A memory map of its own per tile: the pages it reads count as this process's memory until it is closed,
-        # so the cube's handle (mapped for the whole run) would hold the whole file by the last tile. The headers
-        # first: their reader maps the tile's pages too, and has unmapped them before the amplitudes are read.
-        with segyio_handle(self.grid) as f:
-            headers = read_segy_block_headers(self.grid, _TRACE_FIELDS, a, b, c, d, segyfile=f)
-            block = read_segy_block(self.grid, a, b, c, d, segyfile=f)
-        self._write_amplitudes(block, a, b, c, d)  # after the map is closed: its pages and zarr's buffers never coexist
-        del block
-        row = self._rows.setdefault(a, _HeaderRow(b - a, self.seismic.shape[1]))
-        if row.add(headers, c, d):
-            self._write_header_row(self._rows.pop(a), a, b)
-
-    def _write_amplitudes(self, block, a, b, c, d) -> None:
-        """The tile in one write, or chunk by chunk when some of its chunks are all zeros (those are not written)."""
         step = self.seismic.chunks[1]
-        starts = range(0, d - c, step)
-        # bit patterns, as zarr's test: -0.0 is not the fill value 0.0 and is stored
-        empty = [not block[:, j:j + step].view(np.uint32).any() for j in starts]
-        if not any(empty):
-            self.seismic[a:b, c:d] = block
-            return
-        for j, skip in zip(starts, empty):
-            if not skip:
-                self.seismic[a:b, c + j:min(c + j + step, d)] = block[:, j:j + step]
+        row = self._rows.setdefault(a, _HeaderRow(b - a, self.seismic.shape[1]))
+        # A memory map of its own per chunk (its pages count as this process's memory until it is closed, so the
+        # cube's handle, mapped for the whole run, would hold the whole file by the last tile)
+        with segyio_handle(self.grid) as f:
+            for j in range(c, d, step):
+                k = min(j + step, d)
+                row.add(read_segy_block_headers(self.grid, _TRACE_FIELDS, a, b, j, k, segyfile=f), j, k)
+                self._writes.wait_for_room((b - a) * (k - j) * self.grid.n_samples * 4)
+                chunk = read_segy_block(self.grid, a, b, j, k, segyfile=f)
+                if chunk.view(np.uint32).max():  # bit patterns, as zarr: -0.0 is not the fill value 0.0 (max: no cast)
+                    self._writes.submit(self.seismic, (slice(a, b), slice(j, k)), chunk)
+        if row.complete:
+            self._write_header_row(self._rows.pop(a), a, b)
 
     def _write_header_row(self, row: "_HeaderRow", a: int, b: int) -> None:
         """A complete row of chunks: its non-zero header fields, and cdp_x / cdp_y from CDP X / Y."""
@@ -288,7 +298,7 @@ class SeismicZarrWriter:
                 self.headers[k] = self.root.create_array(
                     _TRACE_FIELDS[k], shape=(n_il, n_xl), chunks=self.seismic.chunks[:2], dtype="int32",
                     dimension_names=("inline", "crossline"), fill_value=0)
-            self.headers[k][a:b] = values
+            self._writes.submit(self.headers[k], slice(a, b), values)
             self.nonzero[k] = True
         fx, fy = _COORDINATE_FIELDS[0]
         if fx in row.fields or fy in row.fields:  # rows where both are 0 keep the fill value, 0.0
@@ -296,7 +306,7 @@ class SeismicZarrWriter:
                 self._cdp = self._create_cdp_arrays()
             scalar = row.values(segyio.TraceField.SourceGroupScalar)
             for out, field in zip(self._cdp, (fx, fy)):
-                out[a:b] = scale_coordinates(row.values(field), scalar)
+                self._writes.submit(out, slice(a, b), scale_coordinates(row.values(field), scalar))
 
     def _create_cdp_arrays(self) -> tuple:
         n_il, n_xl = self.seismic.shape[:2]
@@ -307,11 +317,18 @@ class SeismicZarrWriter:
                      for name in ("cdp_x", "cdp_y"))
 
     def finish(self) -> list:
-        """Write the rows of header fields still gathered (tiles missing), add ``cdp_x`` / ``cdp_y`` from source X / Y
-        when CDP X / Y are zero everywhere; return the names of the header fields kept."""
+        """Write the rows of header fields still gathered (tiles missing), wait for every write, add ``cdp_x`` /
+        ``cdp_y`` from source X / Y when CDP X / Y are zero everywhere; return the names of the header fields kept.
+
+        Raises
+        ------
+        Exception
+            The error of a write, if one failed.
+        """
         for a, row in sorted(self._rows.items()):
             self._write_header_row(row, a, a + row.n_inlines)
         self._rows.clear()
+        self._writes.wait()
         self._add_source_coordinates()
         if self._cdp is not None:
             self.seismic.attrs["coordinates"] = "cdp_x cdp_y"
@@ -343,6 +360,44 @@ class SeismicZarrWriter:
                 out[a:a + rows] = scale_coordinates(self._header_rows(field)(a, a + rows), scalar(a, a + rows))
 
 
+class _BackgroundWrites:
+    """Zarr writes (``array[selection] = values``) on background threads, the values held until written: at most
+    ``max_bytes`` of them and ``max_pending`` writes at a time; the first error is raised by the next call."""
+
+    def __init__(self, max_bytes: float, *, max_pending: int):
+        self.max_bytes, self.max_pending = max_bytes, max_pending
+        self._pool = ThreadPoolExecutor(max_workers=_WRITE_THREADS, thread_name_prefix="seismic-zarr-write")
+        self._pending = deque()  # (future, bytes), oldest first
+
+    def wait_for_room(self, nbytes: int) -> None:
+        """Wait until ``nbytes`` more can be held (oldest writes first)."""
+        while self._pending and (len(self._pending) >= self.max_pending
+                                 or sum(n for _, n in self._pending) + nbytes > self.max_bytes):
+            future, _ = self._pending.popleft()
+            future.result()
+
+    def submit(self, array, selection, values: np.ndarray) -> None:
+        """Write ``values`` to ``array[selection]`` in the background (once there is room for them)."""
+        self.wait_for_room(values.nbytes)
+        self._pending.append((self._pool.submit(array.__setitem__, selection, values), values.nbytes))
+
+    def wait(self) -> None:
+        """Wait for every write; raise the first error."""
+        self.wait_for_room(self.max_bytes + 1)
+
+    def close(self, *, raise_errors: bool) -> None:
+        """Wait for the writes under way (raising their first error only if ``raise_errors``) and stop the threads."""
+        try:
+            if raise_errors:
+                self.wait()
+            else:
+                for future, _ in self._pending:
+                    future.exception()  # waits; the error that ended the run is the one reported
+        finally:
+            self._pending.clear()
+            self._pool.shutdown(wait=True)
+
+
 class _HeaderRow:
     """The non-zero trace header fields of one row of chunks (inlines ``a:a + n_inlines``, every crossline), filled
     tile by tile."""
@@ -352,15 +407,19 @@ class _HeaderRow:
         self.fields = {}  # TraceField -> (n_inlines, n_xlines) int32, made at the field's first non-zero tile
         self.filled = 0  # crosslines written
 
-    def add(self, headers: dict, c: int, d: int) -> bool:
-        """Add a tile's fields on crosslines ``c:d``; whether the row is complete."""
+    @property
+    def complete(self) -> bool:
+        """Whether every crossline was added."""
+        return self.filled == self.n_xlines
+
+    def add(self, headers: dict, c: int, d: int) -> None:
+        """Add the fields of the row's crosslines ``c:d``."""
         for k, values in headers.items():
             if values.any():
                 if k not in self.fields:
                     self.fields[k] = np.zeros((self.n_inlines, self.n_xlines), np.int32)
                 self.fields[k][:, c:d] = values
         self.filled += d - c
-        return self.filled == self.n_xlines
 
     def values(self, field) -> np.ndarray:
         """A field's values (zeros when it is zero on every trace of the row)."""

@@ -168,26 +168,33 @@ def read_segy_block(grid: SegyGrid, inline_start: int, inline_stop: int, xline_s
         The file cannot be opened or changed since it was opened (see :func:`segyio_handle`).
     """
     xline_stop = _block_bounds(grid, inline_start, inline_stop, xline_start, xline_stop)
-    out = np.empty((inline_stop - inline_start, xline_stop - xline_start, grid.n_samples), np.float32)
     f = segyfile if segyfile is not None else segyio_handle(grid)
     try:
         table = _trace_table(f, grid) if int(f.format) == _IEEE_FLOAT32 else None
-        if table is not None:  # IEEE floats: the samples as they are, byte order swapped by numpy as segyio does
-            samples = table[:, _TRACE_HEADER_BYTES:].view(_ENDIAN[grid.endian] + "f4")
-            for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
-                out[where] = samples[first:last].reshape(out[where].shape)
-            return out
-        for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
-            flat = out[where].reshape(last - first, grid.n_samples)
-            if np.shares_memory(flat, out):  # a view: filled in pieces, so the temporaries stay small
-                for a in range(first, last, _RUN_TRACES):
-                    b = min(a + _RUN_TRACES, last)
-                    flat[a - first:b - first] = f.trace.raw[a:b]
-            else:
-                out[where] = np.asarray(f.trace.raw[first:last], dtype=np.float32).reshape(out[where].shape)
+        return _read_amplitudes(f, table, grid, inline_start, inline_stop, xline_start, xline_stop)
     finally:
         if segyfile is None:
             f.close()
+
+
+def _read_amplitudes(f, table, grid: SegyGrid, inline_start, inline_stop, xline_start, xline_stop) -> np.ndarray:
+    """:func:`read_segy_block` from an open handle and, for IEEE float samples, the file's trace table (or None)."""
+    out = np.empty((inline_stop - inline_start, xline_stop - xline_start, grid.n_samples), np.float32)
+    runs = grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop)
+    if table is not None and int(f.format) == _IEEE_FLOAT32:
+        # IEEE floats: the samples as they are, byte order swapped by numpy as segyio does
+        samples = table[:, _TRACE_HEADER_BYTES:].view(_ENDIAN[grid.endian] + "f4")
+        for first, last, where in runs:
+            out[where] = samples[first:last].reshape(out[where].shape)
+        return out
+    for first, last, where in runs:
+        flat = out[where].reshape(last - first, grid.n_samples)
+        if np.shares_memory(flat, out):  # a view: filled in pieces, so the temporaries stay small
+            for a in range(first, last, _RUN_TRACES):
+                b = min(a + _RUN_TRACES, last)
+                flat[a - first:b - first] = f.trace.raw[a:b]
+        else:
+            out[where] = np.asarray(f.trace.raw[first:last], dtype=np.float32).reshape(out[where].shape)
     return out
 
 
@@ -239,23 +246,37 @@ def read_segy_block_headers(grid: SegyGrid, fields, inline_start: int, inline_st
         As :func:`read_segy_block`.
     """
     xline_stop = _block_bounds(grid, inline_start, inline_stop, xline_start, xline_stop)
-    shape = (inline_stop - inline_start, xline_stop - xline_start)
     fields = [int(k) for k in fields]
     unknown = [k for k in fields if k not in _FIELD_BYTES]
     if unknown:
         raise InputError(f"{unknown} are not trace header fields; pass segyio.TraceField values")
     f = segyfile if segyfile is not None else segyio_handle(grid)
     try:
-        table = _trace_table(f, grid)
-        if table is None:
-            return _read_headers_segyio(f, grid, fields, inline_start, inline_stop, xline_start, xline_stop)
-        raw = np.empty(shape + (_TRACE_HEADER_BYTES,), np.uint8)
-        for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
-            raw[where] = table[first:last, :_TRACE_HEADER_BYTES].reshape(raw[where].shape)
-        del table  # unmapped: its pages stop counting as this process's memory
+        return _read_headers(f, _trace_table(f, grid), grid, fields, inline_start, inline_stop, xline_start,
+                             xline_stop)
     finally:
         if segyfile is None:
             f.close()
+
+
+def _read_block_and_headers(grid: SegyGrid, fields, inline_start: int, inline_stop: int, xline_start: int,
+                            xline_stop: int, segyfile) -> tuple:
+    """:func:`read_segy_block` and :func:`read_segy_block_headers` of one block in bounds, through one memory map
+    of the file (its pages faulted in once, not twice): ``(amplitudes, headers)``. The Zarr conversion's reader."""
+    table = _trace_table(segyfile, grid)
+    headers = _read_headers(segyfile, table, grid, [int(k) for k in fields], inline_start, inline_stop, xline_start,
+                            xline_stop)
+    return _read_amplitudes(segyfile, table, grid, inline_start, inline_stop, xline_start, xline_stop), headers
+
+
+def _read_headers(f, table, grid: SegyGrid, fields, inline_start, inline_stop, xline_start, xline_stop) -> dict:
+    """:func:`read_segy_block_headers` from an open handle and the file's trace table (None: through segyio)."""
+    if table is None:
+        return _read_headers_segyio(f, grid, fields, inline_start, inline_stop, xline_start, xline_stop)
+    shape = (inline_stop - inline_start, xline_stop - xline_start)
+    raw = np.empty(shape + (_TRACE_HEADER_BYTES,), np.uint8)
+    for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
+        raw[where] = table[first:last, :_TRACE_HEADER_BYTES].reshape(raw[where].shape)
     # a field is zero on every trace when all of its bytes are: only the others are decoded
     used = raw.reshape(-1, _TRACE_HEADER_BYTES).any(axis=0)
     decoded = [k for k in fields if used[k - 1:k - 1 + _FIELD_BYTES[k]].any()]

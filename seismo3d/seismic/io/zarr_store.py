@@ -42,7 +42,7 @@ import numpy as np
 import segyio
 
 from ...errors import InputError
-from .blocks import SegyGrid, read_segy_block, read_segy_block_headers, segyio_handle
+from .blocks import SegyGrid, _read_block_and_headers, segyio_handle
 from .geometry import scale_coordinates
 
 __all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate", "open_seismic_zarr",
@@ -192,14 +192,14 @@ class SeismicZarrWriter:
     writes and adds ``cdp_x`` / ``cdp_y`` when the coordinates are not CDP X / Y but source X / Y. Leaving the
     ``with`` waits for the writes under way (after an error too), so that the store can then be removed.
 
-    A tile is read chunk by chunk (64 x 64 traces: headers, then amplitudes), each chunk handed to a background
-    writer once read, so that reading the next chunk and compressing and writing the previous ones overlap: at most
-    ``chunk_mb`` of amplitudes (and no more than one chunk per writer thread and the one being read) are held at a
-    time; zarr compresses each chunk (one more chunk-sized buffer per writer thread). Chunks of zeros are not
-    written (left to the fill value, as zarr does, by a cheaper test than zarr's own). The trace header fields of a
-    row of chunks (64 inlines, every crossline) are gathered from its tiles and written once the row is complete,
-    with ``cdp_x`` / ``cdp_y`` of that row: one write per field and row, not per tile (memory: 64 x n_xlines int32
-    per field that is not zero, e.g. 1 MiB per field for 4000 crosslines).
+    A tile is read chunk by chunk (64 x 64 traces, headers and amplitudes through one memory map), each chunk
+    handed to a background writer once read, so that reading the next chunk and compressing and writing the previous
+    ones overlap: at most ``chunk_mb`` of amplitudes (and no more than one chunk per writer thread and the one being
+    read) are held at a time; zarr compresses each chunk (one more chunk-sized buffer per writer thread). Chunks of
+    zeros are not written (left to the fill value, as zarr does, by a cheaper test than zarr's own). The trace
+    header fields of a row of chunks (64 inlines, every crossline) are gathered from its tiles and written once the
+    row is complete, with ``cdp_x`` / ``cdp_y`` of that row: one write per field and row, not per tile (memory: 64 x
+    n_xlines int32 per field that is not zero, e.g. 1 MiB per field for 4000 crosslines).
 
     Parameters
     ----------
@@ -282,9 +282,9 @@ class SeismicZarrWriter:
         with segyio_handle(self.grid) as f:
             for j in range(c, d, step):
                 k = min(j + step, d)
-                row.add(read_segy_block_headers(self.grid, _TRACE_FIELDS, a, b, j, k, segyfile=f), j, k)
                 self._writes.wait_for_room((b - a) * (k - j) * self.grid.n_samples * 4)
-                chunk = read_segy_block(self.grid, a, b, j, k, segyfile=f)
+                chunk, headers = _read_block_and_headers(self.grid, _TRACE_FIELDS, a, b, j, k, f)
+                row.add(headers, j, k)
                 if chunk.view(np.uint32).max():  # bit patterns, as zarr: -0.0 is not the fill value 0.0 (max: no cast)
                     self._writes.submit(self.seismic, (slice(a, b), slice(j, k)), chunk)
         if row.complete:

@@ -35,11 +35,12 @@ print(json.dumps({"seconds": seconds, "peak_mb": resource.getrusage(resource.RUS
 """
 
 _CONVERT = """
-import json, resource, shutil, sys, time
+import json, pathlib, resource, shutil, sys, time
 import zarr  # imported by the job on first use; imported here so that the time is the conversion's
 from seismo3d.jobs.convert import run_convert_job
 out = sys.argv[2]
 shutil.rmtree(out, ignore_errors=True)
+pathlib.Path(out + ".run.json").unlink(missing_ok=True)  # the run record of the previous run, beside the store
 base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 t0 = time.perf_counter()
 run_convert_job(sys.argv[1], out, chunk_mb=float(sys.argv[3]))

@@ -286,8 +286,8 @@ def convert(
     endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
     sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
                                                                 "headers (ms unless they speak of depth)."),
-    chunk_mb: float = typer.Option(64.0, "--chunk-mb", min=0.001, help="MiB of amplitudes read and written per step "
-                                                                       "(the memory bound)."),
+    chunk_mb: float = typer.Option(64.0, "--chunk-mb", min=0.001, help="MiB of amplitudes read or being written at "
+                                                                       "a time (the memory bound)."),
     overwrite: bool = typer.Option(False, "--overwrite", help="Replace OUTPUT if it is a store written by "
                                                               "'seismo3d convert' (anything else is refused; an "
                                                               "output is never the input)."),

@@ -1,8 +1,9 @@
 """The ``seismo3d convert`` job: a 3D SEG-Y cube into a Zarr v3 store that xarray opens as is.
 
 :func:`run_convert_job` opens the SEG-Y through :func:`~seismo3d.seismic.io.open_segy` (same flags and errors as every
-command) and writes the layout of :mod:`~seismo3d.seismic.io.zarr_store` tile by tile (memory: one tile of about
-``chunk_mb`` MiB, not the cube), with progress. The store is written into a temporary directory beside OUTPUT and
+command) and writes the layout of :mod:`~seismo3d.seismic.io.zarr_store` tile by tile, reading the next chunks while
+background threads compress and write the previous ones (memory: about ``chunk_mb`` MiB of amplitudes, not the
+cube), with progress. The store is written into a temporary directory beside OUTPUT and
 renamed to OUTPUT when complete, so an interrupted convert (error, Ctrl-C, kill) never leaves something at OUTPUT
 that looks finished (a killed process may leave a hidden ``.OUTPUT.*.tmp`` directory, never OUTPUT). The input is
 only read.
@@ -101,7 +102,8 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
     sample_unit : {'ms', 'm', 'ft'}, optional
         Unit of the sample axis; by default from the headers (see :class:`~seismo3d.seismic.io.SeismicCube`).
     chunk_mb : float
-        Amplitudes read and written per step, in MiB (at least one 64 x 64-trace chunk): the memory bound.
+        Amplitudes read or being written at a time, and per tile (one progress step), in MiB (at least one 64 x
+        64-trace chunk): the memory bound.
     overwrite : bool
         Replace an existing ``output`` written by ``seismo3d convert``.
     progress : bool
@@ -136,8 +138,9 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
         warnings.simplefilter("ignore", TraceListWarning)
         cube = open_segy(input, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
     # 3. tile by tile into a temporary store, renamed to OUTPUT when complete
-    with cube, record.stage("write"), atomic_directory(output) as tmp:
-        writer = SeismicZarrWriter(cube, tmp, chunk_mb=chunk_mb)
+    # (leaving the writer's block waits for its background writes, so that an interrupted store is removed whole)
+    with cube, record.stage("write"), atomic_directory(output) as tmp, \
+            SeismicZarrWriter(cube, tmp, chunk_mb=chunk_mb) as writer:
         with progress_steps(len(writer.tiles), f"convert {input.name}", unit="tile", enabled=progress) as steps:
             for tile in writer.tiles:
                 writer.write_tile(tile)

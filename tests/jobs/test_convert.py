@@ -129,6 +129,26 @@ def test_interrupted_overwrite_keeps_the_earlier_store(amplitudes, tmp_path, wri
     assert _no_temporaries(tmp_path) == []
 
 
+def test_failed_background_write_leaves_no_output(amplitudes, tmp_path, write_segy_cube, monkeypatch):
+    """A chunk write that fails on the writer's thread (disk full) ends the convert with its error, whole store
+    removed."""
+    import seismo3d.seismic.io.zarr_store as zarr_store
+
+    src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
+    submit = zarr_store._BackgroundWrites.submit
+
+    def disk_full(self, array, selection, values):
+        def fail(*_):
+            raise OSError(28, "No space left on device")
+        return submit(self, type("Full", (), {"__setitem__": fail})(), selection, values)
+
+    monkeypatch.setattr(zarr_store._BackgroundWrites, "submit", disk_full)
+    with pytest.raises(OSError, match="No space left"):
+        run_convert_job(src, tmp_path / "out.zarr", chunk_mb=0.01)
+    assert not (tmp_path / "out.zarr").exists()
+    assert _no_temporaries(tmp_path) == []
+
+
 def test_existing_output(amplitudes, tmp_path, write_segy_cube):
     src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
     run_convert_job(src, tmp_path / "out.zarr", chunk_mb=0.01)

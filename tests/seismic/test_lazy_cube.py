@@ -8,11 +8,12 @@ import warnings
 import dask
 import numpy as np
 import pytest
+import segyio
 from numpy.testing import assert_array_equal
 
 from seismo3d.errors import InputError, SegyFormatError, SegyGeometryError
 from seismo3d.seismic.io import read_segy
-from seismo3d.seismic.io.lazy import SegyGrid, inline_block_size, open_lazy, read_segy_block
+from seismo3d.seismic.io.lazy import SegyGrid, inline_block_size, open_lazy, read_segy_block, read_segy_block_headers
 
 SHAPE = (13, 11, 40)  # inlines, crosslines, samples
 
@@ -22,7 +23,8 @@ def amplitudes():
     return np.random.default_rng(7).standard_normal(SHAPE).astype(np.float32)
 
 
-@pytest.fixture(scope="module", params=[("inline", 5), ("crossline", 1)], ids=["inline-sorted", "crossline-sorted"])
+@pytest.fixture(scope="module", params=[("inline", 5), ("crossline", 1), ("crossline", 5)],
+                ids=["inline-sorted", "crossline-sorted", "crossline-sorted-ieee"])
 def segy(request, amplitudes, tmp_path_factory, write_segy_cube):
     sorting, fmt = request.param
     return write_segy_cube(tmp_path_factory.mktemp(sorting) / "cube.sgy", amplitudes, sorting=sorting, fmt=fmt)
@@ -51,6 +53,58 @@ def test_block_of_inlines_and_crosslines(segy, amplitudes):
     assert_array_equal(read_segy_block(grid, 12, 13), ref[12:13])
     with pytest.raises(InputError, match="inside the grid"):
         read_segy_block(grid, 5, 14)
+
+
+def _segyio_fields(path, endian="big"):
+    """Every trace header field of the file as segyio decodes it, one array per field, in file order."""
+    with segyio.open(str(path), "r", ignore_geometry=True, endian=endian) as f:
+        return {int(k): f.attributes(int(k))[:] for k in segyio.TraceField.enums()}
+
+
+def _on_grid(values, grid, sorting):
+    return values.reshape(grid) if sorting == "inline" else values.reshape(grid[::-1]).T
+
+
+def test_block_headers_equal_segyio(segy, tmp_path):
+    """Every field of trace headers full of random bytes (but the grid's bytes), decoded as segyio does: 2- and
+    4-byte signed integers at their byte positions, on any block of inlines and crosslines."""
+    path = shutil.copy(segy, tmp_path / "random_headers.sgy")
+    ns = SHAPE[2]
+    raw = np.memmap(path, np.uint8, mode="r+", offset=3600, shape=(13 * 11, 240 + 4 * ns))
+    keep = np.zeros(240, bool)
+    keep[[*range(36, 40), *range(114, 118), *range(188, 196)]] = True  # offset, samples, interval, inline, crossline
+    noise = np.random.default_rng(5).integers(0, 256, size=(raw.shape[0], 240), dtype=np.uint8)
+    raw[:, :240] = np.where(keep, raw[:, :240], noise)
+    raw.flush()
+    del raw
+    _, cube = read_segy(path)
+    grid = SegyGrid.from_cube(cube)
+    expected = _segyio_fields(path)
+    assert sum(v.min() < 0 for v in expected.values()) > 40  # negative values of 2- and 4-byte fields
+    fields = [int(k) for k in segyio.TraceField.enums()]
+    for block in [(0, 13, 0, 11), (2, 9, 3, 7), (12, 13, 10, 11)]:
+        headers = read_segy_block_headers(grid, fields, *block)
+        a, b, c, d = block
+        for k in fields:
+            assert_array_equal(headers[k], _on_grid(expected[k], (13, 11), grid.sorting)[a:b, c:d], err_msg=str(k))
+    with pytest.raises(InputError, match="not trace header fields"):
+        read_segy_block_headers(grid, [2], 0, 1)
+
+
+@pytest.mark.parametrize("name", ["f3-lsb.sgy", "multiformats/Format5lsb.sgy"])
+def test_block_little_endian(name, data_dir):
+    from seismo3d.data import fetch
+
+    path = fetch(f"seismic/segyio_test_data/{name}")
+    ref, cube = read_segy(path, endian="little")
+    grid = SegyGrid.from_cube(cube)
+    assert grid.endian == "little"
+    assert_array_equal(read_segy_block(grid, 3, 20, 2, 17), ref[3:20, 2:17])
+    expected = _segyio_fields(path, endian="little")
+    headers = read_segy_block_headers(grid, expected, 3, 20, 2, 17)
+    shape = (cube.inlines.size, cube.xlines.size)
+    for k, values in expected.items():
+        assert_array_equal(headers[k], _on_grid(values, shape, grid.sorting)[3:20, 2:17], err_msg=str(k))
 
 
 def test_graph_holds_no_open_file(segy):

@@ -33,6 +33,8 @@ from __future__ import annotations
 
 import os
 import warnings
+from collections import deque
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -40,7 +42,7 @@ import numpy as np
 import segyio
 
 from ...errors import InputError
-from .blocks import SegyGrid, read_segy_block, read_segy_block_headers, segyio_handle
+from .blocks import SegyGrid, _read_block_and_headers, segyio_handle
 from .geometry import scale_coordinates
 
 __all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate", "open_seismic_zarr",
@@ -53,6 +55,7 @@ _BIN_FIELDS = {int(f): str(f) for f in segyio.BinField.enums()}
 _COORDINATE_FIELDS = ((segyio.TraceField.CDP_X, segyio.TraceField.CDP_Y),
                       (segyio.TraceField.SourceX, segyio.TraceField.SourceY))
 _UNITS = {1: "m", 2: "ft"}  # binary header bytes 3255-3256, measurement system
+_WRITE_THREADS = 2  # background threads handing chunks to zarr (which compresses them on threads of its own)
 # Amplitudes: Blosc LZ4 with byte shuffle compresses float32 seismic as well as Zarr's default (Zstd level 0) at about
 # three times its speed, so that convert runs at the speed of reading the SEG-Y (benchmarks/convert.py).
 SEISMIC_CODEC = ({"name": "blosc", "configuration": {"cname": "lz4", "clevel": 5, "shuffle": "shuffle",
@@ -182,10 +185,21 @@ def _group_attrs(cube) -> dict:
 
 
 class SeismicZarrWriter:
-    """Write a 3D SEG-Y cube into the Zarr layout tile by tile (memory: one tile of ``chunk_mb``).
+    """Write a 3D SEG-Y cube into the Zarr layout tile by tile (memory: about ``chunk_mb``).
 
-    Use: ``w = SeismicZarrWriter(cube, store)``; ``w.write_tile(t)`` for each ``t`` in ``w.tiles`` (in any order);
-    then ``w.finish()``, which drops the header fields that are zero on every trace and adds ``cdp_x`` / ``cdp_y``.
+    Use: ``with SeismicZarrWriter(cube, store) as w:``, ``w.write_tile(t)`` for each ``t`` in ``w.tiles`` (in any
+    order; in their order one row of header fields is held at a time), then ``w.finish()``, which waits for the last
+    writes and adds ``cdp_x`` / ``cdp_y`` when the coordinates are not CDP X / Y but source X / Y. Leaving the
+    ``with`` waits for the writes under way (after an error too), so that the store can then be removed.
+
+    A tile is read chunk by chunk (64 x 64 traces, headers and amplitudes through one memory map), each chunk
+    handed to a background writer once read, so that reading the next chunk and compressing and writing the previous
+    ones overlap: at most ``chunk_mb`` of amplitudes (and no more than one chunk per writer thread and the one being
+    read) are held at a time; zarr compresses each chunk (one more chunk-sized buffer per writer thread). Chunks of
+    zeros are not written (left to the fill value, as zarr does, by a cheaper test than zarr's own). The trace
+    header fields of a row of chunks (64 inlines, every crossline) are gathered from its tiles and written once the
+    row is complete, with ``cdp_x`` / ``cdp_y`` of that row: one write per field and row, not per tile (memory: 64 x
+    n_xlines int32 per field that is not zero, e.g. 1 MiB per field for 4000 crosslines).
 
     Parameters
     ----------
@@ -194,7 +208,8 @@ class SeismicZarrWriter:
     store : str or os.PathLike
         Directory of the new store (created; an existing one is replaced).
     chunk_mb : float
-        Upper bound in MiB of the amplitudes read per tile (at least one 64 x 64-trace chunk).
+        Upper bound in MiB of the amplitudes read or being written at a time, and of a tile (at least one 64 x
+        64-trace chunk).
 
     Attributes
     ----------
@@ -216,15 +231,27 @@ class SeismicZarrWriter:
         chunk = (min(TILE_TRACES, n_il), min(TILE_TRACES, n_xl), ns)
         self.root = zarr.open_group(str(store), mode="w", zarr_format=3, attributes=_group_attrs(cube))
         self._coordinates(cube)
+        # write_empty_chunks: every chunk written is stored; the chunks of zeros are skipped in write_tile instead
+        # (zarr's own test compares each value to the fill value as a void type: half the write time)
         self.seismic = self.root.create_array("seismic", shape=cube.shape, chunks=chunk, dtype="float32",
                                               dimension_names=("inline", "crossline", "sample"), fill_value=0.0,
-                                              compressors=SEISMIC_CODEC, attributes={"long_name": "amplitude"})
+                                              compressors=SEISMIC_CODEC, attributes={"long_name": "amplitude"},
+                                              config={"write_empty_chunks": True})
         self.headers = {}  # TraceField -> zarr array, created at the field's first non-zero value (before it: fill 0)
         self.nonzero = {k: False for k in _TRACE_FIELDS}
-        per_chunk = chunk[0] * chunk[1] * ns * 4 / 2**20
-        xl_step = chunk[1] * max(1, int(chunk_mb // per_chunk))
+        self._rows = {}  # first inline of a row of chunks -> _HeaderRow, until all its tiles are written
+        self._cdp = None  # (cdp_x, cdp_y) zarr arrays from CDP X / Y, created at their first non-zero row
+        chunk_bytes = chunk[0] * chunk[1] * ns * 4
+        self._writes = _BackgroundWrites(max(chunk_mb * 2**20, chunk_bytes), max_pending=_WRITE_THREADS + 1)
+        xl_step = chunk[1] * max(1, int(chunk_mb * 2**20 // chunk_bytes))
         self.tiles = [(a, min(a + chunk[0], n_il), b, min(b + xl_step, n_xl))
                       for a in range(0, n_il, chunk[0]) for b in range(0, n_xl, xl_step)]
+
+    def __enter__(self) -> "SeismicZarrWriter":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._writes.close(raise_errors=exc[0] is None)
 
     def _coordinates(self, cube) -> None:
         self.root.create_array("inline", data=np.asarray(cube.inlines, np.int32), dimension_names=("inline",),
@@ -235,34 +262,76 @@ class SeismicZarrWriter:
                                attributes={"units": cube.sample_unit, "long_name": "time or depth"})
 
     def write_tile(self, tile) -> None:
-        """Read one tile of amplitudes and trace headers from the SEG-Y and store it.
+        """Read one tile of amplitudes and trace headers from the SEG-Y and hand it to the background writer.
 
         Parameters
         ----------
         tile : (int, int, int, int)
             An element of :attr:`tiles`.
+
+        Raises
+        ------
+        Exception
+            The error of an earlier write, if one failed.
         """
         a, b, c, d = tile
-        # A memory map of its own per tile: the pages it reads count as this process's memory until it is closed,
-        # so the cube's handle (mapped for the whole run) would hold the whole file by the last tile.
+        step = self.seismic.chunks[1]
+        row = self._rows.setdefault(a, _HeaderRow(b - a, self.seismic.shape[1]))
+        # A memory map of its own per chunk (its pages count as this process's memory until it is closed, so the
+        # cube's handle, mapped for the whole run, would hold the whole file by the last tile)
         with segyio_handle(self.grid) as f:
-            block = read_segy_block(self.grid, a, b, c, d, segyfile=f)
-            headers = read_segy_block_headers(self.grid, _TRACE_FIELDS, a, b, c, d, segyfile=f)
-        self.seismic[a:b, c:d, :] = block  # after the map is closed: its pages and the chunks' buffers never coexist
-        del block
-        for k, values in headers.items():
-            if values.any():  # all-zero chunks are the fill value: not written (most of the 91 fields are unused)
-                if k not in self.headers:
-                    n_il, n_xl = self.seismic.shape[:2]
-                    self.headers[k] = self.root.create_array(
-                        _TRACE_FIELDS[k], shape=(n_il, n_xl), chunks=self.seismic.chunks[:2], dtype="int32",
-                        dimension_names=("inline", "crossline"), fill_value=0)
-                self.headers[k][a:b, c:d] = values
-                self.nonzero[k] = True
+            for j in range(c, d, step):
+                k = min(j + step, d)
+                self._writes.wait_for_room((b - a) * (k - j) * self.grid.n_samples * 4)
+                chunk, headers = _read_block_and_headers(self.grid, _TRACE_FIELDS, a, b, j, k, f)
+                row.add(headers, j, k)
+                if chunk.view(np.uint32).max():  # bit patterns, as zarr: -0.0 is not the fill value 0.0 (max: no cast)
+                    self._writes.submit(self.seismic, (slice(a, b), slice(j, k)), chunk)
+        if row.complete:
+            self._write_header_row(self._rows.pop(a), a, b)
+
+    def _write_header_row(self, row: "_HeaderRow", a: int, b: int) -> None:
+        """A complete row of chunks: its non-zero header fields, and cdp_x / cdp_y from CDP X / Y."""
+        n_il, n_xl = self.seismic.shape[:2]
+        for k, values in row.fields.items():
+            if k not in self.headers:
+                self.headers[k] = self.root.create_array(
+                    _TRACE_FIELDS[k], shape=(n_il, n_xl), chunks=self.seismic.chunks[:2], dtype="int32",
+                    dimension_names=("inline", "crossline"), fill_value=0)
+            self._writes.submit(self.headers[k], slice(a, b), values)
+            self.nonzero[k] = True
+        fx, fy = _COORDINATE_FIELDS[0]
+        if fx in row.fields or fy in row.fields:  # rows where both are 0 keep the fill value, 0.0
+            if self._cdp is None:
+                self._cdp = self._create_cdp_arrays()
+            scalar = row.values(segyio.TraceField.SourceGroupScalar)
+            for out, field in zip(self._cdp, (fx, fy)):
+                self._writes.submit(out, slice(a, b), scale_coordinates(row.values(field), scalar))
+
+    def _create_cdp_arrays(self) -> tuple:
+        n_il, n_xl = self.seismic.shape[:2]
+        unit = _UNITS.get(int(self.cube.segyfile.bin[segyio.BinField.MeasurementSystem]), "unknown")
+        return tuple(self.root.create_array(name, shape=(n_il, n_xl), chunks=self.seismic.chunks[:2],
+                                            dtype="float64", dimension_names=("inline", "crossline"), fill_value=0.0,
+                                            attributes={"units": unit})
+                     for name in ("cdp_x", "cdp_y"))
 
     def finish(self) -> list:
-        """Drop the all-zero header fields, add ``cdp_x`` / ``cdp_y``; return the names of the header fields kept."""
-        self._add_cdp_coordinates()
+        """Write the rows of header fields still gathered (tiles missing), wait for every write, add ``cdp_x`` /
+        ``cdp_y`` from source X / Y when CDP X / Y are zero everywhere; return the names of the header fields kept.
+
+        Raises
+        ------
+        Exception
+            The error of a write, if one failed.
+        """
+        for a, row in sorted(self._rows.items()):
+            self._write_header_row(row, a, a + row.n_inlines)
+        self._rows.clear()
+        self._writes.wait()
+        self._add_source_coordinates()
+        if self._cdp is not None:
+            self.seismic.attrs["coordinates"] = "cdp_x cdp_y"
         self._consolidate()
         return [name for k, name in _TRACE_FIELDS.items() if self.nonzero[k]]
 
@@ -277,21 +346,81 @@ class SeismicZarrWriter:
             return lambda a, b: self.headers[field][a:b]
         return lambda a, b: np.zeros((min(b, self.seismic.shape[0]) - a, self.seismic.shape[1]), np.int32)
 
-    def _add_cdp_coordinates(self) -> None:
-        """cdp_x / cdp_y with the coordinate scalar applied, one row of chunks at a time (as SeismicCube.cdp_x)."""
-        fields = next(((fx, fy) for fx, fy in _COORDINATE_FIELDS if self.nonzero[fx] or self.nonzero[fy]), None)
-        if fields is None:
+    def _add_source_coordinates(self) -> None:
+        """cdp_x / cdp_y from source X / Y with the coordinate scalar applied, one row of chunks at a time (as
+        SeismicCube.cdp_x), when CDP X / Y are zero on every trace and source X / Y are not."""
+        fields = _COORDINATE_FIELDS[1]
+        if self._cdp is not None or not (self.nonzero[fields[0]] or self.nonzero[fields[1]]):
             return
+        self._cdp = self._create_cdp_arrays()
         scalar = self._header_rows(segyio.TraceField.SourceGroupScalar)
-        unit = _UNITS.get(int(self.cube.segyfile.bin[segyio.BinField.MeasurementSystem]), "unknown")
-        n_il, n_xl = self.seismic.shape[:2]
         rows = self.seismic.chunks[0]
-        for name, field in zip(("cdp_x", "cdp_y"), fields):
-            out = self.root.create_array(name, shape=(n_il, n_xl), chunks=self.seismic.chunks[:2], dtype="float64",
-                                         dimension_names=("inline", "crossline"), fill_value=0.0,
-                                         attributes={"units": unit})
-            for a in range(0, n_il, rows):
+        for out, field in zip(self._cdp, fields):
+            for a in range(0, self.seismic.shape[0], rows):
                 out[a:a + rows] = scale_coordinates(self._header_rows(field)(a, a + rows), scalar(a, a + rows))
-        self.seismic.attrs["coordinates"] = "cdp_x cdp_y"
 
 
+class _BackgroundWrites:
+    """Zarr writes (``array[selection] = values``) on background threads, the values held until written: at most
+    ``max_bytes`` of them and ``max_pending`` writes at a time; the first error is raised by the next call."""
+
+    def __init__(self, max_bytes: float, *, max_pending: int):
+        self.max_bytes, self.max_pending = max_bytes, max_pending
+        self._pool = ThreadPoolExecutor(max_workers=_WRITE_THREADS, thread_name_prefix="seismic-zarr-write")
+        self._pending = deque()  # (future, bytes), oldest first
+
+    def wait_for_room(self, nbytes: int) -> None:
+        """Wait until ``nbytes`` more can be held (oldest writes first)."""
+        while self._pending and (len(self._pending) >= self.max_pending
+                                 or sum(n for _, n in self._pending) + nbytes > self.max_bytes):
+            future, _ = self._pending.popleft()
+            future.result()
+
+    def submit(self, array, selection, values: np.ndarray) -> None:
+        """Write ``values`` to ``array[selection]`` in the background (once there is room for them)."""
+        self.wait_for_room(values.nbytes)
+        self._pending.append((self._pool.submit(array.__setitem__, selection, values), values.nbytes))
+
+    def wait(self) -> None:
+        """Wait for every write; raise the first error."""
+        self.wait_for_room(self.max_bytes + 1)
+
+    def close(self, *, raise_errors: bool) -> None:
+        """Wait for the writes under way (raising their first error only if ``raise_errors``) and stop the threads."""
+        try:
+            if raise_errors:
+                self.wait()
+            else:
+                for future, _ in self._pending:
+                    future.exception()  # waits; the error that ended the run is the one reported
+        finally:
+            self._pending.clear()
+            self._pool.shutdown(wait=True)
+
+
+class _HeaderRow:
+    """The non-zero trace header fields of one row of chunks (inlines ``a:a + n_inlines``, every crossline), filled
+    tile by tile."""
+
+    def __init__(self, n_inlines: int, n_xlines: int):
+        self.n_inlines, self.n_xlines = n_inlines, n_xlines
+        self.fields = {}  # TraceField -> (n_inlines, n_xlines) int32, made at the field's first non-zero tile
+        self.filled = 0  # crosslines written
+
+    @property
+    def complete(self) -> bool:
+        """Whether every crossline was added."""
+        return self.filled == self.n_xlines
+
+    def add(self, headers: dict, c: int, d: int) -> None:
+        """Add the fields of the row's crosslines ``c:d``."""
+        for k, values in headers.items():
+            if values.any():
+                if k not in self.fields:
+                    self.fields[k] = np.zeros((self.n_inlines, self.n_xlines), np.int32)
+                self.fields[k][:, c:d] = values
+        self.filled += d - c
+
+    def values(self, field) -> np.ndarray:
+        """A field's values (zeros when it is zero on every trace of the row)."""
+        return self.fields.get(field, np.zeros((self.n_inlines, self.n_xlines), np.int32))

@@ -150,9 +150,9 @@ def grid(quick: bool, repeat: int) -> None:
     for name, base in real_blocks().items():
         print(f"\n## {name}: block {base.shape}, {len(cases)} pairs in both orders\n")
         print("| rotation | moving scales | fixed scales | order | s | rotation err deg (reported / true) | "
-              "max scale err % | corner err | correlation | check: corners / scales apart | converged | right | "
-              "reason |")
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+              "max scale err % | corner err | correlation | check: leading way from the result, corners / scales | "
+              "other way, corners / scales | converged | right | reason |")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         counts = {"right": 0, "converged": 0, "converged and wrong": 0, "n": 0}
         seconds = []
         for angle, sm, sf in cases:
@@ -174,7 +174,9 @@ def grid(quick: bool, repeat: int) -> None:
                 print(f"| {angle} | {sm} | {sf[:2]} | {order} | {seconds[-1]:.1f} | {e.rotation_deg:.3f} "
                       f"({reg.rotation_deg:.2f} / {true_rotation:.2f}) | {e.max_scale_pct:.2f} | "
                       f"{e.corner_error:.3f} | {reg.correlation:.3f} | {reg.check.disagreement:.2f} / "
-                      f"{100 * reg.check.scale_disagreement:.2f} % | {'yes' if reg.converged else 'no'} | "
+                      f"{100 * reg.check.scale_disagreement:.2f} % ({reg.check.leading_way}) | "
+                      f"{reg.check.other_way_disagreement:.2f} / {100 * reg.check.other_way_scale_disagreement:.2f} % | "
+                      f"{'yes' if reg.converged else 'no'} | "
                       f"{'yes' if right else 'no'} | {reg.reason} |", flush=True)
         print(f"\n{name}: right {counts['right']} of {counts['n']}, converged {counts['converged']}, converged but "
               f"not right {counts['converged and wrong']}; seconds per registration: median "

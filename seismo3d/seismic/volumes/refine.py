@@ -94,21 +94,28 @@ class PairCorrelation:
         self._cache = (None, None)
 
     def weigh_ways(self, misfits) -> None:
-        """Weight each way's residuals by the inverse of its misfit ``1 - NCC`` ((n_ways,), at the start of a
-        refinement) and of the ``ALIASING_POWER``-th power of the high-frequency content of the volume it
+        """Weight each way's residuals by :meth:`way_weights` of its misfit ``1 - NCC`` ((n_ways,), at the start of a
+        refinement)."""
+        self.way_weights = self.weights_for(misfits)
+        self._cache = (None, None)
+
+    def weights_for(self, misfits) -> np.ndarray:
+        """The ways' weights for their misfits ``1 - NCC`` ((n_ways,) array_like; NaN: no overlap): the inverse of
+        the misfit and of the ``ALIASING_POWER``-th power of the high-frequency content of the volume the way
         interpolates (:attr:`~seismo3d.seismic.volumes.pyramid.Sampled.high_frequency`: the fixed one for
-        ``'forward'``, the moving one for ``'backward'``). The two ways are two estimates of one map, and the one that
-        interpolates an aliased volume (coarser bins, or resampled without a low-pass) is biased: on the Volve
-        velocity pairs of ``benchmarks/volumes.py``, each way's optimum alone is within 0.4 % of the true scales when
-        it interpolates the less aliased volume and up to 7.8 % off when it interpolates the other, while the
-        misfits of the two ways differ by less than a factor 2, too little to let the unbiased one lead. Swapping the
-        volumes swaps the ways and their weights, so the cost stays symmetric."""
+        ``'forward'``, the moving one for ``'backward'``), normalised to a mean of 1; (n_ways,) float64.
+
+        The two ways are two estimates of one map, and the one that interpolates an aliased volume (coarser bins, or
+        resampled without a low-pass) is biased: on the Volve velocity pairs of ``benchmarks/volumes.py``, each way's
+        optimum alone is within 0.4 % of the true scales when it interpolates the less aliased volume and up to 7.8 %
+        off when it interpolates the other, while the misfits of the two ways differ by less than a factor 2, too
+        little to let the unbiased one lead. Swapping the volumes swaps the ways and their weights, so the cost stays
+        symmetric."""
         m = np.maximum(np.nan_to_num(np.asarray(misfits, dtype=np.float64), nan=2.0), 1e-4)
         interpolated = {"forward": self.fixed, "backward": self.moving}
         h = np.array([max(interpolated[way].high_frequency, 1e-6) for way in self.ways])
         w = 1.0 / (m * h ** ALIASING_POWER)
-        self.way_weights = w * len(w) / w.sum()
-        self._cache = (None, None)
+        return w * len(w) / w.sum()
 
     def params(self, t_level) -> np.ndarray:
         """The fitted parameters nearest to a (4, 4) level transform."""

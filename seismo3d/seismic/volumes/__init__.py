@@ -22,7 +22,8 @@ passed as fixed. :func:`register_volumes` (:mod:`.registration`) runs, coarse to
    weighted by the inverse of its misfit: symmetric in the two volumes) over the 8 parameters of the map, on the
    coarsest level; the best one on each finer level, full resolution last.
 4. **Check** (:mod:`.check`). ``converged`` only with enough overlap and correlation, scales within the range, the
-   two one-way registrations (MOVING onto FIXED, FIXED onto MOVING) agreeing within the tolerances, no other optimum
+   way that leads the result (MOVING onto FIXED or FIXED onto MOVING, the one interpolating the less aliased volume)
+   staying on it within the tolerances when refined on its own, no other optimum
    nearly as good, and a correlation clearly better than the result's shifted controls; otherwise the reason in one
    line.
 

@@ -64,8 +64,8 @@ class VolumeRegistration:
     reason : str
         Why not converged, in one line ('' when converged).
     check : Consistency
-        The check's measures: the one-way registrations and how far apart they are, the best other optimum, the
-        shifted controls.
+        The check's measures: the one-way registrations, how far the leading one and the other one are from the
+        result, the best other optimum, the shifted controls.
     stage_seconds : dict
         Seconds per stage: ``prepare``, ``search``, ``coarse``, ``fine``, ``check``.
     n_maps : int

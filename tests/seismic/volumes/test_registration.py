@@ -84,7 +84,14 @@ def test_f3_pairs_in_either_order(f3_crop, angle, moving_scales, fixed_scales, o
     reg, t, shape = register_in_order(fixed, moving, truth, order)
     assert_recovered(reg, t, shape)
     assert set(reg.stage_seconds) == {"prepare", "search", "coarse", "fine", "check"}
-    assert reg.check.disagreement <= 0.5 and reg.overlap > 0.8
+    assert reg.overlap > 0.8
+    # the check (check.py): the same physical way leads in either order, and refined alone it stays on the result
+    # (measured 0.00 samples and 0.0 %: limits the refinement's stopping step, 0.02 samples, and 0.1 %); the other
+    # way, reported, is 0.10-0.11 samples and 0.8-1.1 % away (limits 1.5x)
+    check = reg.check
+    assert check.leading_way == ("forward" if order == "moving onto fixed" else "backward")
+    assert check.disagreement <= 0.02 and check.scale_disagreement <= 0.001, check.to_dict()
+    assert check.other_way_disagreement <= 0.17 and check.other_way_scale_disagreement <= 0.017, check.to_dict()
 
 
 def test_f3_onto_its_shifted_copy(f3_crop):

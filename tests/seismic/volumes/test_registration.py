@@ -73,9 +73,10 @@ ORDERS = ["moving onto fixed", "fixed onto moving"]
 
 # the grid's hardest kinds: a 40-degree rotation with an anisotropy of 2.7 on the moving volume,
 # and bins that differ on both volumes (no per-axis scale on one side expresses the map)
-@pytest.mark.parametrize("order", ORDERS)
+@pytest.mark.parametrize("order", [ORDERS[0], pytest.param(ORDERS[1], marks=pytest.mark.slow)])
 @pytest.mark.parametrize("angle, moving_scales, fixed_scales", [
-    # 2.4-3.9 s each: in the slow lane (the fast lane's budget is 60 s); the fast lane keeps the pair below
+    # 2.4-4.4 s each: in the slow lane (the fast lane's budget is 60 s); the fast lane keeps the pair below, in
+    # one order (the other order in the slow lane)
     pytest.param(40.0, (1.6, 0.6, 0.8), (1.0, 1.0, 1.0), marks=pytest.mark.slow),
     (25.0, (0.7, 1.3, 1.1), (1.25, 0.8, 1.0)),
 ])

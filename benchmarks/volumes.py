@@ -150,8 +150,8 @@ def grid(quick: bool, repeat: int) -> None:
     for name, base in real_blocks().items():
         print(f"\n## {name}: block {base.shape}, {len(cases)} pairs in both orders\n")
         print("| rotation | moving scales | fixed scales | order | s | rotation err deg (reported / true) | "
-              "max scale err % | corner err | correlation | check: leading way from the result, corners / scales | "
-              "other way, corners / scales | converged | right | reason |")
+              "max scale err % | corner err | correlation | leading way (the answer) from the two-way optimum, "
+              "corners / scales | other way from the answer, corners / scales | converged | right | reason |")
         print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         counts = {"right": 0, "converged": 0, "converged and wrong": 0, "n": 0}
         seconds = []

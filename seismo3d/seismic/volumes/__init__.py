@@ -20,12 +20,13 @@ passed as fixed. :func:`register_volumes` (:mod:`.registration`) runs, coarse to
 3. **Refinement** (:mod:`.refine`). The ``n_starts`` best distinct starts, Levenberg-Marquardt on the correlation of
    the two volumes taken both ways (at the moving samples with the fixed volume interpolated, and the reverse, each
    weighted by the inverse of its misfit: symmetric in the two volumes) over the 8 parameters of the map, on the
-   coarsest level; the best one on each finer level, full resolution last.
-4. **Check** (:mod:`.check`). ``converged`` only with enough overlap and correlation, scales within the range, the
-   way that leads the result (MOVING onto FIXED or FIXED onto MOVING, the one interpolating the less aliased volume)
-   staying on it within the tolerances when refined on its own, no other optimum
-   nearly as good, and a correlation clearly better than the result's shifted controls; otherwise the reason in one
-   line.
+   coarsest level (the Jacobian from the spline's own derivative there: the starts are furthest off), the best one on
+   each finer level, full resolution last.
+4. **Answer and check** (:mod:`.check`). The two-way optimum refined again on the way that leads it alone (the one
+   interpolating the less aliased volume: the other is biased) is the answer; ``converged`` only with enough overlap
+   and correlation, scales within the range, the two estimates on one peak (the leading way's optimum within the
+   tolerances of the two-way optimum), no other optimum nearly as good, and a correlation clearly better than the
+   answer's shifted controls; otherwise the reason in one line.
 
 Conventions
 -----------

@@ -21,6 +21,8 @@ from scipy import fft, ndimage as ndi
 from .model import homogeneous_diag
 
 HIGH_FREQUENCY = 0.3  # cycles per sample: above it, a cubic spline interpolates poorly (Sampled.high_frequency)
+SPLINE_STEP = 0.01  # samples: the central difference of the spline for its derivative (Sampled.sample)
+GRADIENTS = ("central", "spline")
 
 __all__ = ["Sampled", "Samples", "level_factors", "smoothing_measures", "level_kind", "build_level", "envelope",
            "live_traces", "to_level", "from_level"]
@@ -145,8 +147,9 @@ class Sampled:
     def gradient_volumes(self) -> list:
         """Central differences of the data along the three axes (float32). Smoother than the cubic B-spline's own
         derivative near the Nyquist frequency, they give the refinement steps that keep to the main correlation
-        peak: with the spline's derivative, an f3_crop pair rotated 40 degrees converged to a vertical scale 37 %
-        off."""
+        peak from a start on it: with the spline's derivative on every level, an f3_crop pair rotated 40 degrees
+        converged to a vertical scale 37 % off (the coarsest level, whose starts are further off, uses the spline's
+        derivative: :func:`~seismo3d.seismic.volumes.registration._refine_starts`)."""
         return [np.ascontiguousarray(g, dtype=np.float32) for g in np.gradient(self.data)]
 
     @cached_property
@@ -173,8 +176,15 @@ class Sampled:
         grid = np.array(np.unravel_index(flat, self.shape))
         return grid.astype(np.float64), self.data.ravel()[flat].astype(np.float64)
 
-    def sample(self, pts) -> Samples:
-        """Weights, values (cubic B-spline) and gradients (linear) at (3, N) index coordinates."""
+    def sample(self, pts, gradient: str = "central") -> Samples:
+        """Weights, values (cubic B-spline) and gradients at (3, N) index coordinates.
+
+        ``gradient``: ``'central'``, the :attr:`gradient_volumes` interpolated linearly (smoother near the Nyquist
+        frequency than the values' own derivative); ``'spline'``, the derivative of the cubic B-spline that gives
+        the values (a central difference of it over +-``SPLINE_STEP`` samples): the exact gradient of the
+        correlation the refinement climbs. On aliased volumes the two differ by most of their size laterally (the
+        Volve velocity copies of ``benchmarks/volumes.py``: 76-89 %, of either sign).
+        """
         n = pts.shape[1]
         edge = np.minimum(pts, self.hi[:, None] - pts)
         w = np.clip((edge + 0.5) / self.taper, 0.0, 1.0).prod(axis=0)
@@ -183,8 +193,16 @@ class Sampled:
         weights, values, grads = np.zeros(n), np.zeros(n), np.zeros((3, n))
         weights[inside] = w[inside] * ndi.map_coordinates(self.live_weights, p[:2], order=1, mode="nearest")
         values[inside] = ndi.map_coordinates(self.coefficients, p, order=3, prefilter=False, mode="mirror")
-        for k, g in enumerate(self.gradient_volumes):
-            grads[k, inside] = ndi.map_coordinates(g, p, order=1, mode="nearest")
+        if gradient == "spline":
+            for k in range(3):
+                step = np.zeros((3, 1))
+                step[k] = SPLINE_STEP
+                ahead, behind = (ndi.map_coordinates(self.coefficients, p + sign * step, order=3, prefilter=False,
+                                                     mode="mirror") for sign in (1.0, -1.0))
+                grads[k, inside] = (ahead - behind) / (2.0 * SPLINE_STEP)
+        else:
+            for k, g in enumerate(self.gradient_volumes):
+                grads[k, inside] = ndi.map_coordinates(g, p, order=1, mode="nearest")
         return Samples(weights, values, grads)
 
 

@@ -25,9 +25,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..._validation import check_choice
 from .model import Reparam, model_matrix, model_params, point_derivatives, transform_corners
-from .pyramid import Sampled
+from .pyramid import GRADIENTS, Sampled
 
+WAYS = ("forward", "backward")
 ALIASING_POWER = 4  # of the high-frequency content in the way weights (PairCorrelation.weigh_ways)
 
 __all__ = ["PairCorrelation", "Evaluation", "Refined", "refine"]
@@ -80,12 +82,20 @@ class PairCorrelation:
     ways : tuple of {'forward', 'backward'}
         The ways correlated: ``'forward'`` at the moving samples (MOVING onto FIXED), ``'backward'`` at the fixed
         samples (FIXED onto MOVING); both by default.
+    gradient : {'central', 'spline'}
+        The volumes' gradients in the Jacobian (:meth:`~seismo3d.seismic.volumes.pyramid.Sampled.sample`).
+
+    Raises
+    ------
+    InputError
+        An unknown way or gradient.
     """
 
     def __init__(self, fixed: Sampled, moving: Sampled, reparam: Reparam, n_points: int, min_points: float = 50.0,
-                 ways: tuple = ("forward", "backward")):
+                 ways: tuple = ("forward", "backward"), gradient: str = "central"):
         self.fixed, self.moving, self.reparam = fixed, moving, reparam
-        self.ways = tuple(ways)
+        self.ways = tuple(check_choice(way, "ways", WAYS) for way in ways)
+        self.gradient = check_choice(gradient, "gradient", GRADIENTS)
         self.xm, self.vm = moving.points(n_points)
         self.xf, self.vf = fixed.points(n_points)
         self.centre = moving.hi / 2.0
@@ -135,14 +145,14 @@ class PairCorrelation:
         t_inv = np.linalg.inv(t)
         parts = []
         if "forward" in self.ways:  # moving samples, the fixed volume interpolated at their images
-            s = self.fixed.sample(t[:3, :3] @ self.xm + t[:3, 3:])
+            s = self.fixed.sample(t[:3, :3] @ self.xm + t[:3, 3:], self.gradient)
             dv = np.einsum("kn,pkn->np", s.gradients, point_derivatives(self.xm, self.centre))
             parts.append((self.vm, s, dv))
         if "backward" in self.ways:
             # fixed samples, the moving volume at their pre-images x = A^-1 (y - b) + c,
             # dx/dp = -A^-1 (dA/dp (x - c) + db/dp)
             x = t_inv[:3, :3] @ self.xf + t_inv[:3, 3:]
-            s = self.moving.sample(x)
+            s = self.moving.sample(x, self.gradient)
             dv = -np.einsum("kn,pkn->np", t_inv[:3, :3].T @ s.gradients, point_derivatives(x, self.centre))
             parts.append((self.vf, s, dv))
         res, jac, corr, over = [], [], [], []

@@ -86,13 +86,14 @@ def test_f3_pairs_in_either_order(f3_crop, angle, moving_scales, fixed_scales, o
     assert_recovered(reg, t, shape)
     assert set(reg.stage_seconds) == {"prepare", "search", "coarse", "fine", "check"}
     assert reg.overlap > 0.8
-    # the check (check.py): the same physical way leads in either order, and refined alone it stays on the result
-    # (measured 0.00 samples and 0.0 %: limits the refinement's stopping step, 0.02 samples, and 0.1 %); the other
-    # way, reported, is 0.10-0.11 samples and 0.8-1.1 % away (limits 1.5x)
+    # the last stage (check.py): the same physical way leads in either order, and refined alone from the two-way
+    # optimum (its optimum is the answer) it moves 0.00-0.026 samples and 0.00-0.23 % (limits 1.5x); the other way,
+    # reported, ends 0.03-0.13 samples and 0.05-1.5 % from the answer (limits 1.5x)
     check = reg.check
     assert check.leading_way == ("forward" if order == "moving onto fixed" else "backward")
-    assert check.disagreement <= 0.02 and check.scale_disagreement <= 0.001, check.to_dict()
-    assert check.other_way_disagreement <= 0.17 and check.other_way_scale_disagreement <= 0.017, check.to_dict()
+    np.testing.assert_array_equal(reg.transform_index, check.transform)
+    assert check.disagreement <= 0.04 and check.scale_disagreement <= 0.0035, check.to_dict()
+    assert check.other_way_disagreement <= 0.2 and check.other_way_scale_disagreement <= 0.022, check.to_dict()
 
 
 def test_f3_onto_its_shifted_copy(f3_crop):
@@ -161,23 +162,16 @@ def test_penobscot_pairs(penobscot_block, angle, moving_scales, fixed_scales, or
     (0.0, (1.0, 1.0, 1.25), (0.6, 1.6, 1.0)),
     (30.0, (1.0, 1.0, 1.25), (1.6, 1.6, 1.0)),
 ])
-def test_volve_velocity_is_right_or_not_converged(volve_block, angle, moving_scales, fixed_scales, order):
+def test_volve_velocity_pairs_are_right(volve_block, angle, moving_scales, fixed_scales, order):
     # a smooth property, registered by its derivative along the traces: the lateral position rests on small
-    # anomalies, and copies with coarse bins are aliased. The way that interpolates the less aliased volume leads
-    # (refine.PairCorrelation.weights_for), and a result is converged only if that way alone stays on it within 1 %
-    # (check.py): 21 of the benchmark's 24 Volve registrations are right and converged, the other 3 are not
-    # converged (benchmarks/volumes.py). Among these ten: the pair at 30 deg with fixed bins 1.6 (2.2 % off moving
-    # onto fixed, which converged before the leading-way check, and 3.4 % off the other way) and one wrong start of
-    # the search (0 deg, fixed onto moving, 118 deg off) are not converged; the other seven are right and converged
+    # anomalies, and copies with coarse bins are aliased, so the way that interpolates them is biased. The answer is
+    # the way that interpolates the less aliased volume refined alone (check.py). Among these ten, the pair at 30 deg
+    # with fixed bins 1.6 was 2.2 % (moving onto fixed) and 3.4 % (fixed onto moving) off at the two-way optimum
+    # (not converged), and the 0-deg pair fixed onto moving climbed from its start to a map rotation of 118 deg with
+    # the central-difference Jacobian on the coarsest level (registration._refine_starts); all ten are right and
+    # converged (24 of 24 in benchmarks/volumes.py)
     fixed, moving, truth = make_pair(volve_block, angle, moving_scales, fixed_scales)
-    reg, t, shape = register_in_order(fixed, moving, truth, order)
-    err = registration_errors(reg.transform_index, t, shape)
-    print(f"converged {reg.converged} ({reg.reason}); rotation {err.rotation_deg:.3f}, scales "
-          f"{err.max_scale_pct:.2f} %, corners {err.corner_error:.3f}")
-    if reg.converged:
-        assert err.rotation_deg <= ROTATION_DEG and err.corner_error <= CORNERS and err.max_scale_pct <= SCALE_PCT
-    else:
-        assert reg.reason
+    assert_recovered(*register_in_order(fixed, moving, truth, order))
 
 
 @pytest.mark.slow  # 3.6 s in the fast lane, whose budget is 60 s

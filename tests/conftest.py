@@ -2,10 +2,17 @@
 
 import os
 import pickle
+import sys
 
 import numpy as np
 import pytest
 from filelock import FileLock
+
+# pytest keeps the assertion-rewritten test modules in __pycache__, unless Python is told not to write bytecode
+# (PYTHONDONTWRITEBYTECODE, set in some CI images and sandboxes, this machine's among them): then every worker rewrites
+# every test module on every run, 4-5 s of each worker's collection here. The modules imported after this line (the
+# test modules and seismo3d) are written again.
+sys.dont_write_bytecode = False
 
 
 def computed_once(tmp_path_factory, key, compute):

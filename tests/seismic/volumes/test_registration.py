@@ -120,16 +120,13 @@ def test_order_does_not_change_the_answer(f3_crop):
     assert backward.rotation_deg == pytest.approx(-forward.rotation_deg, abs=0.1)
 
 
+# the grid's pairs with bins that differ on the fixed volume (or on both), whose errors in benchmarks/volumes.py are
+# the largest of the f3_crop grid, besides the two pairs above; the whole grid (24 registrations per data set) is the
+# benchmark's, out of the test suite's 10 minutes
 @pytest.mark.slow
 @pytest.mark.parametrize("order", ORDERS)
 @pytest.mark.parametrize("angle, moving_scales, fixed_scales", [
-    (0.0, (1.0, 1.0, 1.0), (1.0, 1.0, 1.0)),
-    (10.0, (0.6, 0.6, 0.8), (1.0, 1.0, 1.0)),
-    (20.0, (1.6, 1.6, 1.25), (1.0, 1.0, 1.0)),
-    (30.0, (0.6, 1.6, 1.0), (1.0, 1.0, 1.0)),
     (0.0, (1.0, 1.0, 1.25), (0.6, 1.6, 1.0)),
-    (10.0, (1.0, 1.0, 1.0), (1.6, 0.6, 1.0)),
-    (20.0, (1.0, 1.0, 0.8), (0.6, 0.6, 1.0)),
     (30.0, (1.0, 1.0, 1.25), (1.6, 1.6, 1.0)),
     (40.0, (1.0, 1.0, 1.0), (1.25, 0.8, 1.0)),
     (35.0, (1.3, 1.3, 0.9), (0.8, 1.25, 1.0)),
@@ -144,7 +141,6 @@ def test_f3_grid(f3_crop, angle, moving_scales, fixed_scales, order):
 @pytest.mark.parametrize("angle, moving_scales, fixed_scales", [
     (40.0, (1.6, 0.6, 0.8), (1.0, 1.0, 1.0)),
     (30.0, (1.0, 1.0, 1.25), (1.6, 1.6, 1.0)),
-    (25.0, (0.7, 1.3, 1.1), (1.25, 0.8, 1.0)),
 ])
 def test_penobscot_pairs(penobscot_block, angle, moving_scales, fixed_scales, order):
     # clipped 8-bit amplitudes: neither their smoothing nor their envelope survives decimating the samples by 4, so
@@ -157,18 +153,16 @@ def test_penobscot_pairs(penobscot_block, angle, moving_scales, fixed_scales, or
 @pytest.mark.parametrize("order", ORDERS)
 @pytest.mark.parametrize("angle, moving_scales, fixed_scales", [
     (10.0, (1.0, 1.0, 1.0), (1.6, 0.6, 1.0)),
-    (20.0, (1.6, 1.6, 1.25), (1.0, 1.0, 1.0)),
-    (25.0, (0.7, 1.3, 1.1), (1.25, 0.8, 1.0)),
     (0.0, (1.0, 1.0, 1.25), (0.6, 1.6, 1.0)),
     (30.0, (1.0, 1.0, 1.25), (1.6, 1.6, 1.0)),
 ])
 def test_volve_velocity_pairs_are_right(volve_block, angle, moving_scales, fixed_scales, order):
     # a smooth property, registered by its derivative along the traces: the lateral position rests on small
     # anomalies, and copies with coarse bins are aliased, so the way that interpolates them is biased. The answer is
-    # the way that interpolates the less aliased volume refined alone (check.py). Among these ten, the pair at 30 deg
+    # the way that interpolates the less aliased volume refined alone (check.py). Among these six, the pair at 30 deg
     # with fixed bins 1.6 was 2.2 % (moving onto fixed) and 3.4 % (fixed onto moving) off at the two-way optimum
     # (not converged), and the 0-deg pair fixed onto moving climbed from its start to a map rotation of 118 deg with
-    # the central-difference Jacobian on the coarsest level (registration._refine_starts); all ten are right and
+    # the central-difference Jacobian on the coarsest level (registration._refine_starts); all six are right and
     # converged (24 of 24 in benchmarks/volumes.py)
     fixed, moving, truth = make_pair(volve_block, angle, moving_scales, fixed_scales)
     assert_recovered(*register_in_order(fixed, moving, truth, order))

@@ -21,7 +21,7 @@ import argparse
 import numpy as np
 from scipy.ndimage import distance_transform_edt
 
-from faults import _candidates, _kept_mask  # benchmarks/faults.py: the same runs as its F3 table
+from faults import _candidates, _kept_mask, _scores  # benchmarks/faults.py: the same runs as its F3 table
 from seismo3d.data import load_f3_fault_sections
 from seismo3d.seismic.faults import EvidenceOptions
 
@@ -41,12 +41,7 @@ def f1_without(pred, drawn, a, b) -> float:
     """Tolerant F1 with samples ``a:b`` left out of both images."""
     keep = np.ones(pred.shape[1], bool)
     keep[a:b] = False
-    p, d = pred[:, keep], drawn[:, keep]
-    if not p.any() or not d.any():
-        return 0.0
-    precision = float((distance_transform_edt(~d)[p] <= TOLERANCE).mean())
-    recall = float((distance_transform_edt(~p)[d] <= TOLERANCE).mean())
-    return 2 * precision * recall / (precision + recall) if precision + recall else 0.0
+    return _scores(pred[:, keep], drawn[:, keep], TOLERANCE)[2]
 
 
 def main(argv=None) -> None:

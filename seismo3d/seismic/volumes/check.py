@@ -38,7 +38,7 @@ import numpy as np
 
 from .model import corner_distance, decompose_map, homogeneous_diag
 from .options import VolumeOptions
-from .refine import PairCorrelation, refine
+from .refine import WAYS, PairCorrelation, refine
 
 __all__ = ["Consistency", "consistency_check"]
 
@@ -142,11 +142,10 @@ def consistency_check(final: PairCorrelation, two_way, runner_up, spacings, opt:
         return homogeneous_diag(sp_f) @ t @ homogeneous_diag(1.0 / sp_m)
 
     # MOVING onto FIXED and FIXED onto MOVING, each way's correlation alone, refined from the two-way optimum
-    ways = ("forward", "backward")
     one_way = {way: refine(PairCorrelation(final.fixed, final.moving, final.reparam, opt.n_points, ways=(way,)),
                            two_way, max_iterations=opt.max_iterations, tolerance=opt.tolerance).transform
-               for way in ways}
-    lead = ways[int(np.argmax(final.weights_for(1.0 - final.evaluate(final.params(two_way)).correlations)))]
+               for way in WAYS}
+    lead = WAYS[int(np.argmax(final.weights_for(1.0 - final.evaluate(final.params(two_way)).correlations)))]
 
     def apart(t, ref):  # corner distance, rotation difference (deg) and largest relative scale difference
         rotation = abs((decompose_map(physical(t)).rotation_deg - decompose_map(physical(ref)).rotation_deg
@@ -159,10 +158,9 @@ def consistency_check(final: PairCorrelation, two_way, runner_up, spacings, opt:
     # the leading way's optimum, unless it left the two-way optimum's peak (then the two-way optimum, not converged)
     shared = disagreement <= opt.max_disagreement and rotation <= opt.max_rotation_disagreement
     answer = one_way[lead] if shared else np.asarray(two_way, dtype=np.float64)
-    ev = final.evaluate(final.params(answer))
-    correlation = float(np.mean(np.where(np.isfinite(ev.correlations), ev.correlations, -1.0)))
-    overlap = float(np.max(ev.overlaps))  # of the smaller volume: the larger of the two ways' fractions
-    other_distance, _, other_scale = apart(one_way[ways[1 - ways.index(lead)]], answer)
+    correlation = _correlation(final, answer)
+    overlap = float(np.max(final.evaluate(final.params(answer)).overlaps))  # the larger way's: of the smaller volume
+    other_distance, _, other_scale = apart(one_way[WAYS[1 - WAYS.index(lead)]], answer)
     # the other optimum, when distinct, and the shifted controls
     other = float("nan")
     if runner_up is not None and corner_distance(runner_up, answer, final.moving.shape) > opt.max_disagreement:

@@ -92,7 +92,7 @@ class PairCorrelation:
     """
 
     def __init__(self, fixed: Sampled, moving: Sampled, reparam: Reparam, n_points: int, min_points: float = 50.0,
-                 ways: tuple = ("forward", "backward"), gradient: str = "central"):
+                 ways: tuple = WAYS, gradient: str = "central"):
         self.fixed, self.moving, self.reparam = fixed, moving, reparam
         self.ways = tuple(check_choice(way, "ways", WAYS) for way in ways)
         self.gradient = check_choice(gradient, "gradient", GRADIENTS)

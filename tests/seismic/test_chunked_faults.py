@@ -15,6 +15,7 @@ from seismo3d.errors import InputError
 from seismo3d.seismic.faults.pipeline_blocks import chunked_fault_surfaces
 from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions, chunked_fault_likelihood
 from seismo3d.seismic.faults.likelihood import FaultLikelihood
+from seismo3d.seismic.faults.surface_steps import surface_cells
 from seismo3d.seismic.faults import FaultTracingOptions, trace_faults
 
 pytestmark = pytest.mark.slow
@@ -64,10 +65,18 @@ def _assert_same_faults(result, reference):
         np.testing.assert_allclose(mine.throw, theirs.throw, atol=1e-4, equal_nan=True)
 
 
-def test_blocks_give_the_in_memory_faults(cube, likelihood, reference, tmp_path):
+def test_blocks_give_the_in_memory_faults(cube, likelihood, reference, tmp_path, monkeypatch):
     """Blocks of 64 x 64 traces (3 x 2 blocks, partial ones at the far edges; the voting halo reaches across
-    several): votes and thinned votes equal to the bit, the same thresholds, skins and throws."""
+    several), through the sequence of steps the run in memory calls (surface_steps.surface_cells): votes and thinned
+    votes equal to the bit, the same thresholds, skins and throws."""
+    runs = []
+
+    def recorded(run, opt, bar=None):
+        runs.append(type(run).__name__)
+        return surface_cells(run, opt, bar)
+    monkeypatch.setattr(chunked_faults, "surface_cells", recorded)
     result = chunked_fault_surfaces(cube, likelihood, tmp_path / "surfaces.zarr", chunking=BLOCKS)
+    assert runs == ["_SurfaceRun"]
     assert result.blocks_computed["votes"] == 6 and result.blocks_computed["ridges"] == 6
     assert sum(result.blocks_resumed.values()) == 0
     assert result.n_cells == int(np.count_nonzero(reference.thin))

@@ -20,8 +20,13 @@ memory or by blocks of a cube stored on disk.
   by block (:mod:`~seismo3d.seismic.faults.cube_run`) as :mod:`~seismo3d.seismic.faults.memory` decides
   (:func:`fits_in_memory`) with the options of :mod:`~seismo3d.seismic.faults.block_run` (:class:`BlockRunOptions`);
   its options and result in :mod:`~seismo3d.seismic.faults.interpretation`, its refusals
-  in :mod:`~seismo3d.seismic.faults.checks`, the steps both runs share in :mod:`~seismo3d.seismic.faults.steps`, the
-  thresholds' statistics (in memory and streamed) in :mod:`~seismo3d.seismic.faults.thresholds`.
+  in :mod:`~seismo3d.seismic.faults.checks`, the step functions both runs share in
+  :mod:`~seismo3d.seismic.faults.steps`, the thresholds' statistics (in memory and streamed) in
+  :mod:`~seismo3d.seismic.faults.thresholds`.
+- :mod:`~seismo3d.seismic.faults.surface_steps`: the one sequence of the steps after the likelihood
+  (:func:`surface_cells`, :func:`faults_from_cells`) over a :class:`SurfaceRun`: the whole array in memory
+  (:class:`ArrayRun`, :mod:`~seismo3d.seismic.faults.array_run`) or the blocks of a cube
+  (:mod:`~seismo3d.seismic.faults.pipeline_blocks`).
 - :mod:`~seismo3d.seismic.faults.likelihood_blocks`: the likelihood scan of a cube by blocks, resumable
   (:func:`chunked_fault_likelihood`).
 - :mod:`~seismo3d.seismic.faults.learned_blocks`: the learned likelihood of a cube by blocks, resumable
@@ -40,10 +45,13 @@ from .learned import LearnedOptions, learned_fault_likelihood, load_fault_networ
 from .dead_samples import CleanTraces, clean_traces, fill_values, near_dead_samples, DEAD_REACH
 from .windows import ArrayWindows, CubeWindow, LazyWindows, StoredWindows, cube_windows, is_dask_array
 from .surfaces import Fault, check_fault_arrays, thin_faults, link_faults, fault_labels
-from .voting import VotingOptions, FaultVotes, vote_faults, fault_frames, greedy_seeds, surface_votes
-from .skins import SkinOptions, fault_skins, skins_from_cells
+from .voting import (VotingOptions, FaultVotes, vote_faults, fault_frames, greedy_seeds, image_seeds, seed_votes,
+                     surface_votes)
+from .skins import SkinOptions, fault_skins, image_cells, skins_from_cells
 from .throw import FaultThrow, ThrowOptions, fault_throw, fault_throws, hanging_wall_normals
 from .evidence import EvidenceOptions, FaultEvidence, fault_evidence, sensitivity_factor, supported_faults
+from .surface_steps import SurfaceCells, SurfaceRun, faults_from_cells, surface_cells
+from .array_run import ArrayRun
 from .pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
 from .block_run import BlockRunOptions
 from .likelihood_blocks import ChunkOptions, ChunkedLikelihood, chunked_fault_likelihood
@@ -58,10 +66,11 @@ __all__ = [
     "learned_fault_likelihood", "load_fault_network", "chunked_learned_likelihood", "CleanTraces",
     "clean_traces", "fill_values", "near_dead_samples", "DEAD_REACH", "ArrayWindows", "CubeWindow", "LazyWindows",
     "StoredWindows", "cube_windows", "is_dask_array", "Fault", "check_fault_arrays", "thin_faults", "link_faults",
-    "fault_labels", "VotingOptions", "FaultVotes", "vote_faults", "fault_frames", "greedy_seeds", "surface_votes",
-    "SkinOptions", "fault_skins", "skins_from_cells", "FaultThrow", "ThrowOptions", "fault_throw", "fault_throws",
+    "fault_labels", "VotingOptions", "FaultVotes", "vote_faults", "fault_frames", "greedy_seeds", "image_seeds",
+    "seed_votes", "surface_votes", "SkinOptions", "fault_skins", "image_cells", "skins_from_cells", "FaultThrow",
+    "ThrowOptions", "fault_throw", "fault_throws",
     "hanging_wall_normals", "EvidenceOptions", "FaultEvidence", "fault_evidence", "sensitivity_factor",
-    "supported_faults",
+    "supported_faults", "SurfaceCells", "SurfaceRun", "faults_from_cells", "surface_cells", "ArrayRun",
     "FaultInterpretation", "FaultTracingOptions", "trace_faults", "BlockRunOptions", "ChunkOptions",
     "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit", "in_memory_bytes", "resident_memory",
     "worker_baseline", "fits_in_memory", "parse_memory_limit", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO", "CubeSample", "SampleOptions",

@@ -1,9 +1,11 @@
 """The fault interpretation of an array: fault likelihood -> optimal surface voting -> fault skins -> throw.
 
 After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the steps with the defaults every seismo3d
-command uses and returns a :class:`FaultInterpretation`; :func:`clean_traces` finds the dead samples (mutes, dead
-traces, gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and writing results is the
-``faults`` command's job (:mod:`seismo3d.jobs.faults`).
+command uses and returns a :class:`FaultInterpretation`: the checks and the likelihood, then the one sequence of
+steps of :mod:`~seismo3d.seismic.faults.surface_steps`, on the whole array as one block
+(:class:`~seismo3d.seismic.faults.array_run.ArrayRun`) or block by block (:mod:`~seismo3d.seismic.faults.cube_run`);
+:func:`clean_traces` finds the dead samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped
+amplitudes. Reading files and writing results is the ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
 
 Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood`.
 """
@@ -18,19 +20,16 @@ import numpy as np
 from ..._progress import progress_steps
 from ..._validation import check_choice, check_positive
 from ...errors import InputError, Seismo3dWarning
+from .array_run import ArrayRun
 from .block_run import BlockRunOptions
-from .checks import check_amplitudes, check_saturation, check_size, no_coherence_message
+from .checks import check_amplitudes, check_size, no_coherence_message
 from .cube_run import trace_faults_by_blocks
 from .dead_samples import CleanTraces, clean_traces, near_dead_samples
-from .evidence import supported_faults
 from .interpretation import LIKELIHOODS, FaultInterpretation, FaultTracingOptions
 from .learned import learned_fault_likelihood
 from .likelihood import FaultLikelihood, fault_likelihood
 from .preflight import SampleOptions, judge_sample
-from .skins import fault_skins
-from .steps import live_likelihood, ridges, thin_votes, without_dead_edges
-from .throw import fault_throws
-from .voting import vote_faults
+from .surface_steps import faults_from_cells, surface_cells
 
 # check_size, check_amplitudes, no_coherence_message and LIKELIHOODS are imported here by older callers
 __all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "LIKELIHOODS", "check_amplitudes",
@@ -161,44 +160,25 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     with progress_steps(7, "faults", enabled=progress) as bar:
         bar.start("fault likelihood")
         if likelihood is None:
-            with warnings.catch_warnings():  # saturation is decided below, on the live samples
+            with warnings.catch_warnings():  # saturation is decided by the steps, on the live samples
                 warnings.simplefilter("ignore", Seismo3dWarning)
                 fl = (fault_likelihood(arr, options=opt.scan, progress=progress) if opt.likelihood == "scan" else
                       learned_fault_likelihood(arr, options=opt.learned, progress=progress))
         else:
             fl = _given_likelihood(likelihood, arr.shape)
-        likelihood, strike, dip = fl.likelihood, fl.strike_deg, fl.dip_deg
-        del fl
         near_dead = near_dead_samples(dead) if dead.any() else None
         del dead
-        check_saturation(*live_likelihood(likelihood, near_dead), opt)
         bar.advance()
-        bar.start("ridges")
-        seeds = ridges(likelihood, strike, dip)
-        bar.advance()
-        bar.start("voting")
-        votes = vote_faults(likelihood, strike, dip, seeds, options=opt.voting, progress=progress)
-        del seeds
-        without_dead_edges(votes.votes, near_dead)
-        bar.advance()
-        bar.start("thinning")
-        thin = thin_votes(votes.votes, votes.strike_deg, votes.dip_deg)
-        lower, upper = opt.thresholds(thin)
-        thin[thin < lower] = 0.0
-        bar.advance()
-        bar.start("fault skins")
-        faults = fault_skins(thin, votes.strike_deg, votes.dip_deg, lower=lower, upper=upper, options=opt.skins)
-        bar.advance()
-        bar.start("throw")
-        throws = fault_throws(arr, faults, progress=progress) if faults else []
-        bar.advance()
-        bar.start("evidence")
-        faults, throws, evidence = supported_faults(faults, list(throws), options=opt.evidence,
-                                                    sensitivity=opt.sensitivity)
-        bar.advance()
-    return FaultInterpretation(likelihood=likelihood, strike_deg=strike, dip_deg=dip, votes=votes.votes, thin=thin,
-                               thresholds=(float(lower), float(upper)), faults=faults, throws=throws,
-                               evidence=evidence, sample_interval=float(sample_interval), sample_unit=sample_unit)
+        run = ArrayRun(fl.likelihood, fl.strike_deg, fl.dip_deg, near_dead, opt, progress=progress)
+        del fl
+        found = surface_cells(run, opt, bar)
+        faults, throws, evidence = faults_from_cells(run.cell_arrays, arr.shape, arr, found.thresholds, opt,
+                                                     bar=bar, progress=progress)
+    votes = run.fault_votes
+    return FaultInterpretation(likelihood=run.likelihood, strike_deg=run.strike_deg, dip_deg=run.dip_deg,
+                               votes=votes.votes, thin=run.thin, thresholds=found.thresholds, faults=faults,
+                               throws=throws, evidence=evidence, sample_interval=float(sample_interval),
+                               sample_unit=sample_unit)
 
 
 def _block_run(blocks) -> BlockRunOptions:

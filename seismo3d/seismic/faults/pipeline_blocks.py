@@ -1,6 +1,11 @@
 """Fault surfaces of a cube larger than memory: the steps of :func:`~seismo3d.seismic.faults.trace_faults` after the
 fault likelihood, run block by block on dask from a chunked likelihood, with the same faults as the in-memory run.
 
+``_SurfaceRun`` implements the named steps of :class:`~seismo3d.seismic.faults.surface_steps.SurfaceRun` on blocks;
+:func:`~seismo3d.seismic.faults.surface_steps.surface_cells` calls them in the order the run in memory does
+(:class:`~seismo3d.seismic.faults.array_run.ArrayRun`: the whole array as one block), and
+:func:`~seismo3d.seismic.faults.surface_steps.faults_from_cells` makes the faults of the stored cells.
+
 Every step reads what it needs around its block (the halo of its operator) from Zarr work arrays and writes its
 block's core, so the result does not depend on where the blocks are cut:
 
@@ -40,19 +45,16 @@ from ...errors import EarlierStoresError, InputError
 from ..attributes import structure_tensor_orientation
 from ..blocks import BlockRun, SchedulerClient, write_marker
 from ..io.zarr_store import consolidate
-from .checks import check_saturation
 from .dead_samples import dead_samples, fill_values, near_dead_samples
-from .evidence import supported_faults
 from .interpretation import FaultTracingOptions
 from .likelihood_blocks import ChunkOptions
 from .memory import default_memory_limit, resident_memory, worker_baseline
-from .skins import skins_from_cells
 from .steps import live_likelihood, ridges, thin_votes, without_dead_edges
 from .surface_plan import (CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, THIN_HALO, SurfacePlan, amplitude_halo, around,
                            plan_blocks, smallest_block_bytes, square_blocks)
+from .surface_steps import faults_from_cells, surface_cells
 from .thresholds import (HISTOGRAM_BINS, QUANTILE_BINS, block_histogram, otsu_of_histogram, quantile_of_window,
                          quantile_window)
-from .throw import fault_throws
 from .voting import fault_frames, greedy_seeds, surface_votes
 from .windows import StoredWindows
 
@@ -193,11 +195,10 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
                          f"{attrs['n_cells'] * CELL_BYTES / 2**30:.2f} GiB to link into fault skins, more than the "
                          "memory limit leaves: raise memory_limit")
     lower, upper = (float(v) for v in attrs["thresholds"])
-    faults = skins_from_cells(*_stored_cells(run.out), shape=shape, lower=lower, upper=upper, options=opt.skins)
     stored = zarr.open_group(str(run.out), mode="r")
     windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
-    throws = fault_throws(windows, faults, progress=progress) if faults else []
-    faults, throws, evidence = supported_faults(faults, list(throws), options=opt.evidence, sensitivity=opt.sensitivity)
+    faults, throws, evidence = faults_from_cells(_stored_cells(run.out), shape, windows, (lower, upper), opt,
+                                                 progress=progress)
     return ChunkedFaults(run.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]), int(attrs["n_cells"]),
                          float(attrs["saturated_fraction"]), dict(run.computed), dict(run.resumed), dict(run.seconds))
 
@@ -205,21 +206,13 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
 def _surfaces(run: _SurfaceRun, x, manifest: dict, memory: int) -> dict:
     """The block steps of a run (skipping the finished blocks of an earlier one) up to the cells, stored with the
     thresholds in the finished output; its attributes."""
-    opt = run.opt
     run.start(manifest)
+    run.x, run.memory = x, memory
     with SchedulerClient(run.scheduler) as client:
         run.client = client
-        lo, hi = run.amplitude_range(x)
-        fill = run.fill_values(x, lo, hi)
-        high, live = run.ridges(x, fill, lo, hi)
-        saturated = check_saturation(high, live, opt)
-        seeds, frames = run.seeds(memory)
-        run.votes(seeds, frames)
-        del seeds, frames
-        lower, upper = run.thresholds()
-        n_cells = run.cells(lower, memory)
-    attrs = {"thresholds": [lower, upper], "n_seeds": run.n_seeds, "n_cells": n_cells,
-             "saturated_fraction": saturated, "run": manifest}
+        found = surface_cells(run, run.opt)
+    attrs = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,
+             "saturated_fraction": found.saturated_fraction, "run": manifest}
     run.finish(attrs)
     return attrs
 
@@ -242,6 +235,7 @@ class _SurfaceRun(BlockRun):
         self.out, self.likelihood, self.plan, self.opt = out, str(likelihood), plan, opt
         self.partial = out.with_name(out.name + ".partial")
         self.n_seeds = 0
+        self.x, self.memory = None, 0  # the cube and the memory limit (bytes), set when the steps run
 
     def finished(self, manifest: dict) -> dict | None:
         """The attributes of the finished output of this same run (blocks aside: they do not change the result), or
@@ -328,8 +322,12 @@ class _SurfaceRun(BlockRun):
         return np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
                                         [np.zeros(1, np.float32)]))
 
-    def ridges(self, x, fill: np.ndarray, lo: float, hi: float) -> tuple[int, int]:
-        """Ridges of every block; (saturated live samples, live samples)."""
+    def ridges(self) -> tuple[int, int]:
+        """Dead samples (from the fill values of the whole cube), live likelihood and ridges of every block;
+        (saturated live samples, live samples)."""
+        x = self.x
+        lo, hi = self.amplitude_range(x)
+        fill = self.fill_values(x, lo, hi)
         p = self.plan
         todo, done = self.pending("ridges", square_blocks(p.shape, p.ridge))
         h = amplitude_halo()
@@ -341,7 +339,8 @@ class _SurfaceRun(BlockRun):
         results = self.compute(tasks, "fault ridges", "ridges") + done
         return sum(r["high"] for r in results), sum(r["live"] for r in results)
 
-    def seeds(self, memory: int) -> tuple[np.ndarray, np.ndarray]:
+    def seeds(self) -> tuple[np.ndarray, np.ndarray]:
+        memory = self.memory
         path = self.work / "seeds.npz"
         if not path.exists():
             files = sorted((self.work / "candidates").glob("*.npz"))
@@ -412,7 +411,7 @@ class _SurfaceRun(BlockRun):
         values = np.concatenate([np.asarray(r["values"], np.float32) for r in results])
         return quantile_of_window(window, sum(r["below"] for r in results), values)
 
-    def cells(self, lower: float, memory: int) -> int:
+    def cells(self, lower: float) -> int:
         """Thinned votes at or above ``lower`` into the output, and its cells gathered into 1D arrays of the output
         group (``cell_points``, ``cell_values``, ``cell_strike_deg``, ``cell_dip_deg``) in C order (the skins then
         need no sorted copies); their number."""
@@ -422,7 +421,7 @@ class _SurfaceRun(BlockRun):
         results = self.each_block("cells", "fault cells", _cell_block, blocks, str(self.work), str(self.partial),
                                    lower)
         n = sum(r["count"] for r in results)
-        if n * CELL_BYTES > memory - resident_memory():
+        if n * CELL_BYTES > self.memory - resident_memory():
             raise InputError(f"{n} thinned fault samples need about {n * CELL_BYTES / 2**30:.2f} GiB to link into "
                              "fault skins, more than the memory limit leaves: raise memory_limit")
         group = zarr.open_group(str(self.partial), mode="r+")

@@ -26,7 +26,7 @@ from .surfaces import Fault, check_fault_arrays
 from .voting import fault_frames
 from .skin_pairs import _closest_pairs
 
-__all__ = ["SkinOptions", "fault_skins", "skins_from_cells"]
+__all__ = ["SkinOptions", "fault_skins", "image_cells", "skins_from_cells"]
 
 
 @dataclass(frozen=True)
@@ -369,11 +369,28 @@ def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
     lower, upper = float(lower), float(upper)
     if not 0.0 < lower <= upper:
         raise InputError(f"fault_skins needs 0 < lower <= upper; got lower={lower!r}, upper={upper!r}")
-    v3 = _kernels.as_3d(values)
+    return skins_from_cells(*image_cells(values, st, dp, lower), shape=values.shape, lower=lower, upper=upper,
+                            options=opt)
+
+
+def image_cells(thin: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray, lower: float) -> tuple:
+    """The cells of a thinned fault image that :func:`skins_from_cells` links: its samples at or above ``lower``.
+
+    Parameters
+    ----------
+    thin, strike_deg, dip_deg : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
+        Thinned fault image, fault strike and dip (degrees).
+    lower : float
+        Lower hysteresis threshold.
+
+    Returns
+    -------
+    (points (n, 3) int64, values (n,), strike_deg (n,), dip_deg (n,) float32)
+        In C order (a section's points as (trace, 0, sample)).
+    """
+    v3 = _kernels.as_3d(thin)
     cells = v3 >= lower
-    points = np.argwhere(cells)
-    return skins_from_cells(points, v3[cells], _kernels.as_3d(st)[cells], _kernels.as_3d(dp)[cells],
-                            shape=values.shape, lower=lower, upper=upper, options=opt)
+    return np.argwhere(cells), v3[cells], _kernels.as_3d(strike_deg)[cells], _kernels.as_3d(dip_deg)[cells]
 
 
 def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float, upper: float,

@@ -23,7 +23,8 @@ from .. import _kernels
 from .surfaces import check_fault_arrays
 from .voting_kernels import _vote, _strongest
 
-__all__ = ["VotingOptions", "FaultVotes", "vote_faults", "fault_frames", "greedy_seeds", "surface_votes"]
+__all__ = ["VotingOptions", "FaultVotes", "vote_faults", "fault_frames", "greedy_seeds", "image_seeds", "seed_votes",
+           "surface_votes"]
 
 
 @dataclass(frozen=True)
@@ -315,16 +316,56 @@ def vote_faults(likelihood, strike_deg, dip_deg, thin, *, options: VotingOptions
     th = np.asarray(thin, dtype=np.float32)
     if th.shape != fl.shape:
         raise InputError(f"thin {th.shape} must have the shape of likelihood {fl.shape}")
-    two_d = fl.ndim == 2
-    th3 = _kernels.as_3d(th)
-    cand = np.argwhere(th3 > float(opt.seed_threshold))
-    seeds = greedy_seeds(cand, th3[tuple(cand.T)], th3.shape, opt.spacing(fl.ndim))
+    seeds, frames = image_seeds(th, st, dp, opt)
+    return seed_votes(fl, seeds, frames, options=opt, progress=progress)
+
+
+def image_seeds(thin: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray,
+                options: VotingOptions) -> tuple[np.ndarray, np.ndarray]:
+    """Step 1 of :func:`vote_faults` on a whole image: the seeds and their fault frames.
+
+    Parameters
+    ----------
+    thin, strike_deg, dip_deg : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
+        Thinned likelihood (the seed candidates), fault strike and dip (degrees).
+    options : VotingOptions
+
+    Returns
+    -------
+    seeds : (k, 3) int64 ndarray
+        Seeds (a section's as (trace, 0, sample)), strongest first (:func:`greedy_seeds`).
+    frames : (k, 3, 3) float64 ndarray
+        Their fault frames (:func:`fault_frames`).
+    """
+    th3 = _kernels.as_3d(thin)
+    cand = np.argwhere(th3 > float(options.seed_threshold))
+    seeds = greedy_seeds(cand, th3[tuple(cand.T)], th3.shape, options.spacing(thin.ndim))
     del cand
-    s3, d3 = _kernels.as_3d(st), _kernels.as_3d(dp)
-    frames = fault_frames(s3[tuple(seeds.T)], d3[tuple(seeds.T)]).reshape(-1, 3, 3)
-    result = surface_votes(_kernels.as_3d(fl), seeds, np.arange(len(seeds)), frames, image_shape=fl.shape,
-                           options=opt, progress=progress)
-    if two_d:
+    s3, d3 = _kernels.as_3d(strike_deg), _kernels.as_3d(dip_deg)
+    return seeds, fault_frames(s3[tuple(seeds.T)], d3[tuple(seeds.T)]).reshape(-1, 3, 3)
+
+
+def seed_votes(likelihood: np.ndarray, seeds: np.ndarray, frames: np.ndarray, *, options: VotingOptions,
+               progress: bool = False) -> FaultVotes:
+    """Steps 2-4 of :func:`vote_faults` on a whole image: the votes of the seeds of :func:`image_seeds`.
+
+    Parameters
+    ----------
+    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
+        Fault likelihood in [0, 1].
+    seeds : (k, 3) int64 ndarray
+    frames : (k, 3, 3) float64 ndarray
+    options : VotingOptions
+    progress : bool
+
+    Returns
+    -------
+    FaultVotes
+        Arrays of the image's shape.
+    """
+    result = surface_votes(_kernels.as_3d(likelihood), seeds, np.arange(len(seeds)), frames,
+                           image_shape=likelihood.shape, options=options, progress=progress)
+    if likelihood.ndim == 2:
         return FaultVotes(*(np.ascontiguousarray(a[:, 0]) for a in (result.votes, result.strike_deg,
                                                                      result.dip_deg)), result.n_seeds)
     return result

@@ -1,0 +1,158 @@
+"""The one sequence of the steps of :func:`~seismo3d.seismic.faults.trace_faults` after the fault likelihood, for a
+run on the whole array in memory and a run block by block.
+
+A run is an object with the named steps of :class:`SurfaceRun`; :func:`surface_cells` calls them in their order with
+the saturation refusal between them, and :func:`faults_from_cells` links the cells into fault skins, measures their
+throws and keeps the faults the evidence supports. Two runs implement the steps:
+
+- :class:`~seismo3d.seismic.faults.array_run.ArrayRun`: the whole array as one block, in memory (2D or 3D);
+- ``_SurfaceRun`` of :mod:`~seismo3d.seismic.faults.pipeline_blocks`: block by block on dask into Zarr stores,
+  each block read with the halo of its step (a cube larger than memory).
+
+Both call the same step functions (:mod:`~seismo3d.seismic.faults.steps`, :func:`~seismo3d.seismic.faults.voting.
+greedy_seeds`, :func:`~seismo3d.seismic.faults.voting.surface_votes`, :func:`~seismo3d.seismic.faults.skins.
+skins_from_cells`), so the faults do not depend on which run traced them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from .checks import check_saturation
+from .evidence import supported_faults
+from .interpretation import FaultTracingOptions
+from .skins import skins_from_cells
+from .throw import fault_throws
+
+__all__ = ["SurfaceCells", "SurfaceRun", "faults_from_cells", "surface_cells"]
+
+
+class SurfaceRun(Protocol):
+    """The steps after the fault likelihood, on the whole array or block by block."""
+
+    def ridges(self) -> tuple[int, int]:
+        """Dead samples and their reach, the likelihood set to 0 there, its ridges (the seed candidates); returns
+        (live samples with a likelihood above 0.9, live samples) for the saturation refusal."""
+
+    def seeds(self) -> tuple[np.ndarray, np.ndarray]:
+        """The voting seeds (k, 3) int64, strongest first, and their fault frames (k, 3, 3)."""
+
+    def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
+        """The seeds' optimal-surface votes, 0 near dead samples."""
+
+    def thresholds(self) -> tuple[float, float]:
+        """The votes thinned; (lower, upper) thresholds of the thinned votes."""
+
+    def cells(self, lower: float) -> int:
+        """The thinned votes below ``lower`` set to 0; the rest kept as cells; their number."""
+
+
+@dataclass(frozen=True)
+class SurfaceCells:
+    """What :func:`surface_cells` found.
+
+    Attributes
+    ----------
+    thresholds : (float, float)
+        Lower and upper thresholds on the thinned votes.
+    n_seeds, n_cells : int
+        Voting seeds, and thinned-vote samples linked into skins.
+    saturated_fraction : float
+        Fraction of the live samples with a likelihood above 0.9.
+    """
+
+    thresholds: tuple
+    n_seeds: int
+    n_cells: int
+    saturated_fraction: float
+
+
+class _NoBar:
+    """Stands in for a progress bar of :func:`seismo3d._progress.progress_steps`: a run by blocks reports per block."""
+
+    def start(self, name: str) -> None:
+        pass
+
+    def advance(self, n: int = 1) -> None:
+        pass
+
+
+def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> SurfaceCells:
+    """Ridges, saturation refusal, seeds, votes, thresholds and cells, in this order (Hale 2013; Wu & Fomel 2018).
+
+    Parameters
+    ----------
+    run : SurfaceRun
+        The whole array or the blocks.
+    opt : FaultTracingOptions
+    bar : progress bar, optional
+        Advanced once per named step (ridges, voting, thinning).
+
+    Returns
+    -------
+    SurfaceCells
+
+    Raises
+    ------
+    UnsupportedDataError
+        The likelihood is saturated (:func:`~seismo3d.seismic.faults.checks.check_saturation`).
+    InputError
+        A run by blocks whose seed candidates or cells need more than its memory limit.
+    """
+    bar = bar or _NoBar()
+    bar.start("ridges")
+    high, live = run.ridges()
+    saturated = check_saturation(high, live, opt)
+    bar.advance()
+    bar.start("voting")
+    seeds, frames = run.seeds()
+    run.votes(seeds, frames)
+    bar.advance()
+    bar.start("thinning")
+    lower, upper = run.thresholds()
+    n_cells = run.cells(lower)
+    bar.advance()
+    return SurfaceCells((float(lower), float(upper)), int(len(seeds)), int(n_cells), float(saturated))
+
+
+def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, opt: FaultTracingOptions, *,
+                      bar=None, progress: bool = False) -> tuple[list, list, list]:
+    """Fault skins of the cells, their throws, and the faults their evidence supports.
+
+    Parameters
+    ----------
+    cells : tuple
+        (points (n, 3) int, values, strike_deg, dip_deg (n,) float32) of the run's cells, in C order.
+    shape : tuple of int
+        Shape of the image (2D or 3D).
+    windows : ndarray or window source
+        The amplitudes, for :func:`~seismo3d.seismic.fault_throws`.
+    thresholds : (float, float)
+        Lower and upper thresholds of the skins' hysteresis.
+    opt : FaultTracingOptions
+    bar : progress bar, optional
+        Advanced once per step (fault skins, throw, evidence).
+    progress : bool
+        Progress of the throws per fault.
+
+    Returns
+    -------
+    (faults, throws, evidence) : lists
+        As :attr:`~seismo3d.seismic.faults.FaultInterpretation.faults`, ``throws`` and ``evidence``.
+    """
+    bar = bar or _NoBar()
+    lower, upper = thresholds
+    bar.start("fault skins")
+    faults = skins_from_cells(*cells, shape=shape, lower=lower, upper=upper, options=opt.skins)
+    bar.advance()
+    bar.start("throw")
+    throws = fault_throws(windows, faults, progress=progress) if faults else []
+    bar.advance()
+    bar.start("evidence")
+    faults, throws, evidence = supported_faults(faults, list(throws), options=opt.evidence,
+                                                sensitivity=opt.sensitivity)
+    bar.advance()
+    return faults, throws, evidence

@@ -53,24 +53,68 @@ class ArrayRun:
         self.cell_arrays = None
 
     def ridges(self) -> tuple[int, int]:
+        """The likelihood set to 0 near dead samples (in place) and its ridges, the seed candidates.
+
+        Returns
+        -------
+        (int, int)
+            Live samples with a likelihood above 0.9, and live samples (for the saturation refusal).
+        """
         high, live = live_likelihood(self.likelihood, self.near_dead)
         self._ridges = ridges(self.likelihood, self.strike_deg, self.dip_deg)
         return high, live
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:
+        """The voting seeds of the ridges, strongest first (:func:`~seismo3d.seismic.faults.voting.image_seeds`).
+
+        Returns
+        -------
+        seeds : (k, 3) int64 ndarray
+            Sample indices (a section's as (trace, 0, sample)).
+        frames : (k, 3, 3) float64 ndarray
+            Their fault frames.
+        """
         seeds, frames = image_seeds(self._ridges, self.strike_deg, self.dip_deg, self.opt.voting)
         self._ridges = None
         return seeds, frames
 
     def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
+        """The seeds' optimal-surface votes over the whole array (:func:`~seismo3d.seismic.faults.voting.seed_votes`),
+        0 near dead samples, in :attr:`fault_votes`.
+
+        Parameters
+        ----------
+        seeds : (k, 3) int64 ndarray
+        frames : (k, 3, 3) float64 ndarray
+        """
         self.fault_votes = seed_votes(self.likelihood, seeds, frames, options=self.opt.voting, progress=self.progress)
         without_dead_edges(self.fault_votes.votes, self.near_dead)
 
     def thresholds(self) -> tuple[float, float]:
+        """The votes thinned (:attr:`thin`) and their thresholds, by numpy and scikit-image
+        (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds`).
+
+        Returns
+        -------
+        (float, float)
+            Lower and upper thresholds.
+        """
         self.thin = thin_votes(self.fault_votes.votes, self.fault_votes.strike_deg, self.fault_votes.dip_deg)
         return self.opt.thresholds(self.thin)
 
     def cells(self, lower: float) -> int:
+        """The thinned votes below ``lower`` set to 0; the rest as cells in :attr:`cell_arrays`.
+
+        Parameters
+        ----------
+        lower : float
+            Lower threshold.
+
+        Returns
+        -------
+        int
+            Number of cells.
+        """
         self.thin[self.thin < lower] = 0.0
         self.cell_arrays = image_cells(self.thin, self.fault_votes.strike_deg, self.fault_votes.dip_deg, lower)
         return int(len(self.cell_arrays[0]))

@@ -67,6 +67,12 @@ class _Silent(_Steps):
         super().__init__(0, "", "", None)
 
 
+def no_progress() -> _Steps:
+    """What :func:`progress_steps` yields when disabled, outside a ``with`` block: ``start`` and ``advance`` that
+    report nothing (for a caller whose progress is reported elsewhere)."""
+    return _Silent()
+
+
 @contextmanager
 def progress_steps(total: int, desc: str, *, unit: str = "step", enabled: bool = True):
     """Report the progress of ``total`` steps: a tqdm bar on a terminal, log lines otherwise, nothing when disabled.
@@ -89,7 +95,7 @@ def progress_steps(total: int, desc: str, *, unit: str = "step", enabled: bool =
         optional short text such as a rate).
     """
     if not enabled:
-        yield _Silent()
+        yield no_progress()
         return
     if _interactive():
         from tqdm.auto import tqdm

@@ -178,7 +178,8 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * shape[2]
     baseline = worker_baseline(chunking, input_chunk)
     plan = plan_blocks(shape, opt, chunking, baseline)
-    run = _SurfaceRun(pathlib.Path(output), pathlib.Path(likelihood), plan, opt, chunking, progress)
+    memory = int(chunking.memory_limit or default_memory_limit())  # the cells' and candidates' checks: less the RSS
+    run = _SurfaceRun(pathlib.Path(output), pathlib.Path(likelihood), x, plan, opt, chunking, memory, progress)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
                 "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve()),
                 "likelihood_id": group.attrs.get("id")}  # another likelihood written at the same path is not this
@@ -186,10 +187,9 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     if earlier is not None:  # resuming: the blocks of the interrupted run
         run.plan = plan = SurfacePlan(**dict(earlier, shape=tuple(earlier["shape"])))
         manifest["plan"] = earlier
-    memory = int(chunking.memory_limit or default_memory_limit())  # the cells' and candidates' checks: less the RSS
     attrs = run.finished(manifest)
     if attrs is None:
-        attrs = _surfaces(run, x, manifest, memory)
+        attrs = _surfaces(run, manifest)
     elif attrs["n_cells"] * CELL_BYTES > memory - resident_memory():
         raise InputError(f"{attrs['n_cells']} thinned fault samples need about "
                          f"{attrs['n_cells'] * CELL_BYTES / 2**30:.2f} GiB to link into fault skins, more than the "
@@ -203,11 +203,10 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
                          float(attrs["saturated_fraction"]), dict(run.computed), dict(run.resumed), dict(run.seconds))
 
 
-def _surfaces(run: _SurfaceRun, x, manifest: dict, memory: int) -> dict:
+def _surfaces(run: _SurfaceRun, manifest: dict) -> dict:
     """The block steps of a run (skipping the finished blocks of an earlier one) up to the cells, stored with the
     thresholds in the finished output; its attributes."""
     run.start(manifest)
-    run.x, run.memory = x, memory
     with SchedulerClient(run.scheduler) as client:
         run.client = client
         found = surface_cells(run, run.opt)
@@ -228,14 +227,13 @@ def _stored_cells(path: pathlib.Path) -> tuple:
 class _SurfaceRun(BlockRun):
     """One chunked fault-surface run: folders, steps and their blocks."""
 
-    def __init__(self, out: pathlib.Path, likelihood: pathlib.Path, plan: SurfacePlan, opt: FaultTracingOptions,
-                 chunking: ChunkOptions, progress: bool):
+    def __init__(self, out: pathlib.Path, likelihood: pathlib.Path, x, plan: SurfacePlan, opt: FaultTracingOptions,
+                 chunking: ChunkOptions, memory: int, progress: bool):
         super().__init__(out.with_name(out.name + ".work"), scheduler=chunking.scheduler, workers=chunking.workers,
                          progress=progress)
         self.out, self.likelihood, self.plan, self.opt = out, str(likelihood), plan, opt
         self.partial = out.with_name(out.name + ".partial")
-        self.n_seeds = 0
-        self.x, self.memory = None, 0  # the cube and the memory limit (bytes), set when the steps run
+        self.x, self.memory = x, memory  # the cube (dask, whole traces) and the memory limit, bytes
 
     def finished(self, manifest: dict) -> dict | None:
         """The attributes of the finished output of this same run (blocks aside: they do not change the result), or
@@ -362,7 +360,6 @@ class _SurfaceRun(BlockRun):
             with atomic_path(str(path)) as tmp, open(tmp, "wb") as fh:
                 np.savez(fh, seeds=seeds, frames=frames)
         saved = np.load(path)
-        self.n_seeds = int(len(saved["seeds"]))
         return saved["seeds"], saved["frames"]
 
     def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:

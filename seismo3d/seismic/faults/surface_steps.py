@@ -21,6 +21,7 @@ from typing import Protocol
 
 import numpy as np
 
+from ..._progress import no_progress
 from .checks import check_saturation
 from .evidence import supported_faults
 from .interpretation import FaultTracingOptions
@@ -70,16 +71,6 @@ class SurfaceCells:
     saturated_fraction: float
 
 
-class _NoBar:
-    """Stands in for a progress bar of :func:`seismo3d._progress.progress_steps`: a run by blocks reports per block."""
-
-    def start(self, name: str) -> None:
-        pass
-
-    def advance(self, n: int = 1) -> None:
-        pass
-
-
 def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> SurfaceCells:
     """Ridges, saturation refusal, seeds, votes, thresholds and cells, in this order (Hale 2013; Wu & Fomel 2018).
 
@@ -89,7 +80,8 @@ def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> Surfac
         The whole array or the blocks.
     opt : FaultTracingOptions
     bar : progress bar, optional
-        Advanced once per named step (ridges, voting, thinning).
+        Of :func:`seismo3d._progress.progress_steps`, advanced once per named step (ridges, voting, thinning);
+        default none (a run by blocks reports per block).
 
     Returns
     -------
@@ -102,7 +94,7 @@ def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> Surfac
     InputError
         A run by blocks whose seed candidates or cells need more than its memory limit.
     """
-    bar = bar or _NoBar()
+    bar = bar or no_progress()
     bar.start("ridges")
     high, live = run.ridges()
     saturated = check_saturation(high, live, opt)
@@ -143,7 +135,7 @@ def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, op
     (faults, throws, evidence) : lists
         As :attr:`~seismo3d.seismic.faults.FaultInterpretation.faults`, ``throws`` and ``evidence``.
     """
-    bar = bar or _NoBar()
+    bar = bar or no_progress()
     lower, upper = thresholds
     bar.start("fault skins")
     faults = skins_from_cells(*cells, shape=shape, lower=lower, upper=upper, options=opt.skins)

@@ -158,8 +158,9 @@ def consistency_check(final: PairCorrelation, two_way, runner_up, spacings, opt:
     # the leading way's optimum, unless it left the two-way optimum's peak (then the two-way optimum, not converged)
     shared = disagreement <= opt.max_disagreement and rotation <= opt.max_rotation_disagreement
     answer = one_way[lead] if shared else np.asarray(two_way, dtype=np.float64)
-    correlation = _correlation(final, answer)
-    overlap = float(np.max(final.evaluate(final.params(answer)).overlaps))  # the larger way's: of the smaller volume
+    ev = final.evaluate(final.params(answer))
+    correlation = _mean_correlation(ev.correlations)
+    overlap = float(np.max(ev.overlaps))  # the larger way's: of the smaller volume
     other_distance, _, other_scale = apart(one_way[WAYS[1 - WAYS.index(lead)]], answer)
     # the other optimum, when distinct, and the shifted controls
     other = float("nan")
@@ -177,8 +178,12 @@ def consistency_check(final: PairCorrelation, two_way, runner_up, spacings, opt:
 
 def _correlation(pair: PairCorrelation, t_index) -> float:
     """The two-way correlation at a transform (-1 for a way without overlap)."""
-    c = pair.evaluate(pair.params(t_index)).correlations
-    return float(np.mean(np.where(np.isfinite(c), c, -1.0)))
+    return _mean_correlation(pair.evaluate(pair.params(t_index)).correlations)
+
+
+def _mean_correlation(correlations) -> float:
+    """The mean of the ways' correlations, -1 for a way without overlap."""
+    return float(np.mean(np.where(np.isfinite(correlations), correlations, -1.0)))
 
 
 def _shifted(t_index, axis: int, shift: float) -> np.ndarray:

@@ -24,12 +24,13 @@ import numpy as np
 
 from .._validation import as_points, check_positive
 from ..errors import InputError
+from .neighbours import axis_bounds
 
 __all__ = ["VoxelHashIndex"]
 
 _BITS = 21  # bits per voxel coordinate in the packed key
 _LIMIT = (1 << _BITS) - 8  # voxel coordinates allowed per axis (the cell grows beyond that)
-_CHUNKS = 64  # fixed work split of a query, so results do not depend on the thread count
+_CHUNKS = 64  # fixed work split of a query, run in parallel (each query point independent of the others)
 
 
 class VoxelHashIndex:
@@ -64,8 +65,8 @@ class VoxelHashIndex:
         self.n = len(pts)
         self.dim = pts.shape[1]
         pts = _as_3d(pts)
-        self.origin = pts.min(axis=0)
-        extent = float((pts.max(axis=0) - self.origin).max())
+        self.origin, top = axis_bounds(pts)
+        extent = float((top - self.origin).max())
         self.cell = max(check_positive(cell, "cell"), extent / _LIMIT, 1e-300)
         keys = _voxel_keys(pts, self.origin, self.cell)
         order = np.argsort(keys, kind="stable")
@@ -177,14 +178,14 @@ def _gap(offset, frac):
     return 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, parallel=True)
 def _query(q, pts, order, origin, cell, rings, dmax, table_keys, table_start, table_stop, dist, idx):
     n_pts = len(order)
     mask = len(table_keys) - 1
     shift = 64 - _log2(len(table_keys))
     limit = np.int64(1) << np.int64(_BITS)
     n = len(q)
-    for chunk in range(_CHUNKS):
+    for chunk in numba.prange(_CHUNKS):
         for i in range(chunk * n // _CHUNKS, (chunk + 1) * n // _CHUNKS):
             best = dmax * dmax
             found = -1

@@ -168,12 +168,13 @@ def plane_system_rigid3(moved, t0, dst, nrm, idx, kernel: str, scale: float, fac
     return h, total[21:27].copy(), int(round(total[27]))
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, parallel=True)
 def _plane_sums(moved, t0, dst, nrm, idx, kernel, scale, factor):
-    """Per-chunk sums: the 21 upper-triangle entries of H, the 6 of g and the count."""
+    """Per-chunk sums: the 21 upper-triangle entries of H, the 6 of g and the count (chunks in parallel; the caller
+    adds them in chunk order, so the sums do not depend on the threads)."""
     n, m = len(moved), len(dst)
     out = np.zeros((_CHUNKS, 28))
-    for chunk in range(_CHUNKS):
+    for chunk in numba.prange(_CHUNKS):
         acc = out[chunk]
         row = np.empty(6)
         for i in range(chunk * n // _CHUNKS, (chunk + 1) * n // _CHUNKS):

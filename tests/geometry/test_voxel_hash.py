@@ -51,3 +51,15 @@ def test_refuses_bad_input():
         VoxelHashIndex(np.zeros((3, 4)), 1.0)
     with pytest.raises(InputError):
         VoxelHashIndex(np.zeros((3, 3)), -1.0)
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32, np.int64, np.int32])
+@pytest.mark.parametrize("d", [2, 3])
+def test_axis_bounds_equal_numpys_reductions(rng, dtype, d):
+    from seismo3d.geometry.neighbours import axis_bounds
+
+    points = (rng.normal(size=(1001, d)) * 1000).astype(dtype)
+    lo, hi = axis_bounds(points)
+    assert lo.dtype == hi.dtype == np.dtype(dtype) and lo.shape == hi.shape == (d,)
+    np.testing.assert_array_equal(lo, points.min(axis=0))
+    np.testing.assert_array_equal(hi, points.max(axis=0))

@@ -25,8 +25,11 @@ def _ray_box(origin, dirs, lo, hi, inside):
     with np.errstate(divide="ignore", invalid="ignore"):
         t1 = (lo - origin) / dirs
         t2 = (hi - origin) / dirs
-    tmin = np.nanmax(np.minimum(t1, t2), axis=1)
-    tmax = np.nanmin(np.maximum(t1, t2), axis=1)
+    near, far = np.minimum(t1, t2), np.maximum(t1, t2)
+    # column by column: numpy's nanmax / nanmin across the 3 columns of (n, 3) rows are ~20x slower (unvectorised);
+    # fmax / fmin skip NaN the same way (a ray parallel to a slab)
+    tmin = np.fmax(np.fmax(near[:, 0], near[:, 1]), near[:, 2])
+    tmax = np.fmin(np.fmin(far[:, 0], far[:, 1]), far[:, 2])
     if inside:
         return tmax
     hit = (tmax >= tmin) & (tmin > 0)

@@ -129,3 +129,30 @@ def test_compiled_plane_system_equals_numpy(rng):
         assert count == ok.sum()
         np.testing.assert_allclose(h, h_ref, rtol=1e-10, atol=1e-12)
         np.testing.assert_allclose(g, g_ref, rtol=1e-10, atol=1e-12)
+
+
+def test_compiled_plane_system_and_query_do_not_depend_on_the_threads(rng):
+    """The correspondences and the normal equations are computed in parallel over a fixed split of the points (64
+    chunks, summed in chunk order): one thread and every thread give the same bits."""
+    import numba
+
+    from seismo3d.geometry.voxel_hash import VoxelHashIndex
+    from seismo3d.registration import _solver
+
+    src, dst = rng.normal(size=(20000, 3)), rng.normal(size=(15000, 3))
+    nrm = rng.normal(size=(15000, 3))
+    nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
+    index = VoxelHashIndex(dst, 0.3)
+    runs = []
+    for threads in (1, numba.config.NUMBA_NUM_THREADS):
+        before = numba.get_num_threads()
+        numba.set_num_threads(threads)
+        try:
+            dist, idx = index.query(src, 0.3)
+            h, g, count = _solver.plane_system_rigid3(src, np.zeros(3), dst, nrm, idx, "huber", 0.1, 1.0)
+        finally:
+            numba.set_num_threads(before)
+        runs.append((dist, idx, h, g, count))
+    assert 0 < runs[0][4] < len(src)
+    for a, b in zip(*runs):
+        np.testing.assert_array_equal(a, b)

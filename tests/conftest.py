@@ -88,19 +88,22 @@ def dfw(data_dir):
 @pytest.fixture(scope="session")
 def map_folder(tmp_path_factory):
     """A `seismo3d map`-like output folder of the generated room (seismo3d.data.terrain.synthetic_room): mesh.ply
-    (ASCII, vertices and faces) and trajectory.txt (TUM: timestamp tx ty tz qx qy qz qw)."""
+    written as the map job writes it (:func:`seismo3d.jobs.map.write_ply`: binary PLY, float32 vertices and normals,
+    the normals from the faces) and trajectory.txt (TUM: timestamp tx ty tz qx qy qz qw). (ASCII PLY is read by the
+    point-cloud tests; plyfile reads it a line at a time, 4.5 s for this mesh.)"""
     from scipy.spatial.transform import Rotation
 
     from seismo3d.data.terrain import synthetic_room
+    from seismo3d.jobs.map import write_ply
+    from seismo3d.mapping.tsdf import TriangleMesh
 
     room = synthetic_room()
     folder = tmp_path_factory.mktemp("map")
-    with open(folder / "mesh.ply", "w") as fh:
-        fh.write(f"ply\nformat ascii 1.0\nelement vertex {len(room.vertices)}\nproperty float x\nproperty float y\n"
-                 f"property float z\nelement face {len(room.faces)}\nproperty list uchar int vertex_indices\n"
-                 "end_header\n")
-        np.savetxt(fh, room.vertices, fmt="%.5f")
-        np.savetxt(fh, np.column_stack([np.full(len(room.faces), 3), room.faces]), fmt="%d")
+    tri = room.vertices[room.faces]
+    normals = np.zeros_like(room.vertices)
+    np.add.at(normals, room.faces.ravel(), np.repeat(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), 3, 0))
+    normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-12)
+    write_ply(folder / "mesh.ply", TriangleMesh(room.vertices, room.faces, normals))
     rows = [[0.1 * k, *pose[:3, 3], *Rotation.from_matrix(pose[:3, :3]).as_quat()]
             for k, pose in enumerate(room.camera_poses)]
     np.savetxt(folder / "trajectory.txt", rows, fmt="%.6f")

@@ -67,7 +67,12 @@ class ICPOptions:
     tolerance : float
         Stop the last stage when the largest parameter update (radians, relative scale, and translation in units of
         the target's RMS radius) falls below this; a coarser stage stops at ``tolerance`` times the ratio of its
-        maximum distance to the last stage's.
+        maximum distance to the last stage's. The default, 3e-4 (0.017 degrees, and 0.3 mm on a scene of 1 m RMS
+        radius), is 3-6 times stricter than small_gicp's stop (0.1 degrees, 1 mm): nearest-neighbour ICP converges
+        linearly (each update about half the last on the 7-Scenes frames), and below this the updates change the
+        answer by less than its error against the ground truth moves between peers (``python
+        benchmarks/registration.py``: 1e-4 took 8 iterations from the identity on 7-Scenes 5 -> 0, 3e-4 takes 4,
+        rotation error 0.167 / 0.170 deg, translation 5.16 / 5.12 mm; the bunny's answers are the same).
     kernel : {'huber', 'tukey', 'cauchy', 'none'}
         Robust kernel on the residuals.
     kernel_scale : float, optional
@@ -90,13 +95,13 @@ class ICPOptions:
     --------
     >>> opt = ICPOptions(max_distance=(3.0, 1.5), max_iterations=15)
     >>> opt.max_distance, opt.tolerance
-    ((3.0, 1.5), 0.0001)
+    ((3.0, 1.5), 0.0003)
     """
 
     max_distance: float | tuple | None = None
     voxel_size: float | tuple | None = None
     max_iterations: int = 50
-    tolerance: float = 1e-4
+    tolerance: float = 3e-4
     kernel: str = "huber"
     kernel_scale: float | None = None
     degeneracy_threshold: float = 1e-3

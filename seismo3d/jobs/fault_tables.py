@@ -26,9 +26,10 @@ def _fmt(v: float) -> str:
 
 
 def _throw_of(throws, fault, field="throw") -> np.ndarray:
-    """(n_points,) float64 throw in samples (or its ``correlation``) of ``fault``; NaN where it was not measured."""
+    """(n_points,) float64 throw in samples (or another per-point field, e.g. ``correlation``) of ``fault``; NaN
+    where it was not measured."""
     for t in throws:
-        if t.fault_id == fault.id:
+        if t.fault_id == fault.id and getattr(t, field) is not None:
             values = np.asarray(getattr(t, field), dtype=np.float64)
             if values.shape == (fault.size,):
                 return values
@@ -46,7 +47,7 @@ def write_points(inp, result: FaultInterpretation, path: Path) -> Path:
     unit = inp.unit
     extra = [] if unit == "samples" else [f"throw_{unit}"]
     header = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation",
-              "correlation_gain"]
+              "correlation_gain", "side_coherence"]
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         fh.write(",".join(header) + "\n")
         for f in result.faults:
@@ -65,6 +66,7 @@ def write_points(inp, result: FaultInterpretation, path: Path) -> Path:
             correlation = _throw_of(result.throws, f, "correlation")
             cols.append(_column(correlation, ".3f"))
             cols.append(_column(correlation - _throw_of(result.throws, f, "correlation_unshifted"), ".3f"))
+            cols.append(_column(_throw_of(result.throws, f, "side_coherence"), ".3f"))
             fh.writelines(",".join(row) + "\n" for row in zip(*cols))
     return path
 
@@ -87,7 +89,7 @@ def write_summary(inp, result: FaultInterpretation, path: Path, rows: list) -> P
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
         header = ["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra,
-                  "throw_spread_samples", "throw_correlation", "correlation_gain"]
+                  "throw_spread_samples", "throw_correlation", "correlation_gain", "side_coherence"]
         w.writerow(header)
         evidence = {e.fault_id: e for e in result.evidence}
         for f in result.faults:
@@ -96,7 +98,7 @@ def write_summary(inp, result: FaultInterpretation, path: Path, rows: list) -> P
                    f"{f.mean_dip_deg:.1f}", _fmt(e.median_throw)]
             if extra:
                 row.append(_fmt(e.median_throw * result.sample_interval))
-            row += [_fmt(e.throw_spread), _fmt(e.correlation), _fmt(e.correlation_gain)]
+            row += [_fmt(e.throw_spread), _fmt(e.correlation), _fmt(e.correlation_gain), _fmt(e.side_coherence)]
             w.writerow(row)
             rows.append(dict(zip(header, (str(v) for v in row))))
     return path

@@ -291,7 +291,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       (inline, crossline, time_or_depth) (2D: (trace label, 0, time_or_depth)), point arrays ``fault_id``,
       ``throw`` (samples) and ``likelihood``.
     * ``fault_points.csv``: one row per fault sample, columns ``inline, crossline, time_or_depth, fault_id,
-      throw_samples, throw_<unit>, throw_correlation, correlation_gain``; ``time_or_depth`` is in the sample unit (ms, m or ft from the
+      throw_samples, throw_<unit>, throw_correlation, correlation_gain, side_coherence``; ``time_or_depth`` is in the sample unit (ms, m or ft from the
       SEG-Y headers or ``sample_unit``; the sample index for raw sections and ``.npy``, which have no
       ``throw_<unit>`` column).
       For raw sections, 2D ``.npy`` arrays and trace lists whose inline / crossline header bytes hold no numbers,
@@ -299,9 +299,12 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       positive where the hanging wall moved down (normal fault); ``throw_correlation`` (in [-1, 1]) is the
       normalised cross-correlation of the reflectors on the two sides once aligned, a quality measure (see
       :class:`~seismo3d.seismic.faults.throw.FaultThrow`); ``correlation_gain`` is that correlation less the sides'
-      correlation with no shift (the evidence of a displacement). An unmeasured throw is empty.
+      correlation with no shift (the evidence of a displacement); ``side_coherence`` how continuous the reflectors
+      are along each side (the smaller of the two: a mismatch of incoherent sides is no evidence). An unmeasured
+      throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
-      median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_correlation, correlation_gain``: the
+      median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_correlation, correlation_gain,
+      side_coherence``: the
       evidence each fault shows (:class:`~seismo3d.seismic.faults.evidence.FaultEvidence`; only faults whose
       reflectors are displaced are kept), to sort and filter on; for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
       replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline

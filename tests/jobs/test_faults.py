@@ -19,7 +19,7 @@ from seismo3d.seismic.io import open_segy
 
 POINT_COLUMNS = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples"]
 SUMMARY_COLUMNS = ["id", "n_points", "mean_strike_deg", "mean_dip_deg", "median_throw_samples"]
-EVIDENCE_COLUMNS = ["throw_spread_samples", "throw_correlation", "correlation_gain"]
+EVIDENCE_COLUMNS = ["throw_spread_samples", "throw_correlation", "correlation_gain", "side_coherence"]
 
 
 def _sha(path) -> str:
@@ -68,7 +68,7 @@ def test_demo_csv_columns_and_values(demo):
     out, _ = demo
     points = _rows(out / "fault_points.csv")
     summary = _rows(out / "fault_summary.csv")
-    assert list(points[0]) == POINT_COLUMNS + ["throw_ms", "throw_correlation", "correlation_gain"]
+    assert list(points[0]) == POINT_COLUMNS + ["throw_ms", "throw_correlation", "correlation_gain", "side_coherence"]
     assert list(summary[0]) == SUMMARY_COLUMNS + ["median_throw_ms", *EVIDENCE_COLUMNS]
     # every summary row counts its points; ids 1..n by decreasing size
     ids = [int(r["fault_id"]) for r in points]
@@ -222,7 +222,7 @@ def test_real_section(data_dir, tmp_path):
     points = _rows(written["points"])
     summary = _rows(written["summary"])
     assert len(summary) >= 3
-    assert list(points[0]) == POINT_COLUMNS + ["throw_correlation", "correlation_gain"]  # raw sections: samples
+    assert list(points[0]) == POINT_COLUMNS + ["throw_correlation", "correlation_gain", "side_coherence"]  # raw sections: samples
     assert all(r["crossline"] == "" for r in points)
     assert all(0 <= int(r["inline"]) < 357 and 0 <= float(r["time_or_depth"]) < 240 for r in points)
 

@@ -24,6 +24,7 @@ def test_true_faults_show_a_displacement_and_unbroken_layers_do_not(seed):
         evidence = fault_evidence(fault_throw(syn.cube, np.argwhere(syn.fault_labels == tf.id)))
         assert abs(evidence.median_throw) >= 1.5, evidence
         assert evidence.correlation_gain > 0.1, evidence  # measured 0.3-0.9
+        assert evidence.side_coherence > 0.7, evidence
         assert evidence.supports(EvidenceOptions())
     # a vertical line of samples 30-100 at the trace farthest from every fault sample (20 traces from the edges)
     traces = np.arange(20, 172)
@@ -55,13 +56,27 @@ def test_sensitivity_scales_the_throw_asked_for():
 
 
 def test_sides_that_do_not_match_unshifted_are_a_discontinuity():
-    """Penobscot crossline 1155's large normal fault: its throw is beyond the search (median 0.1 sample measured)
-    and its sides correlate 0.41 at best: a discontinuity, kept; the same numbers with sides matching (0.9) are
-    unbroken reflectors."""
+    """Penobscot crossline 1155's large normal fault: its throw is beyond the search (median -0.2 sample measured)
+    and its sides correlate 0.46 at best (each side continuous in itself: side coherence 0.89): a discontinuity,
+    kept; the same numbers with sides matching (0.9) are unbroken reflectors."""
     opt = EvidenceOptions()
-    assert FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0).supports(opt)
-    assert not FaultEvidence(1, 0.1, 0.0, 0.9, 0.0, 1.0).supports(opt)
-    assert not FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0).supports(EvidenceOptions(continuity=0.4))
+    assert FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(opt)
+    assert not FaultEvidence(1, 0.1, 0.0, 0.9, 0.0, 1.0, 0.89).supports(opt)
+    assert not FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(EvidenceOptions(continuity=0.4))
+
+
+def test_side_coherence_of_layers_against_noise():
+    """A vertical line between layered reflectors and incoherent noise: the sides do not match and the noise side is
+    not continuous in itself (side coherence near 0); a line through the layers alone has continuous sides."""
+    syn = synthetic_cube((160, 128), n_faults=0, seed=2, noise=0.05)
+    data = np.array(syn.cube, dtype=np.float64)
+    rng = np.random.default_rng(0)
+    data[80:] = rng.normal(0.0, data.std(), data[80:].shape)  # traces 80-159: noise
+    boundary = np.column_stack([np.full(81, 80), np.arange(20, 101)])
+    layered = np.column_stack([np.full(81, 40), np.arange(20, 101)])
+    edge, inside = fault_evidence(fault_throw(data, boundary)), fault_evidence(fault_throw(data, layered))
+    assert edge.side_coherence < 0.3 and edge.correlation - edge.correlation_gain < 0.5, edge
+    assert inside.side_coherence > 0.8, inside
 
 
 def test_supported_faults_keeps_order_and_renumbers():

@@ -137,6 +137,12 @@ class FaultThrow:
         sides that correlate as well unshifted are reflectors continuing across, not a fault.
     median_throw : float
         Median of the finite ``throw`` values, samples (NaN if none).
+    side_coherence : (n_points,) float32 ndarray
+        How continuous the reflectors are along each side of the point's patch: the normalised correlation of the
+        mean of the nearer half of the side traces with the mean of the farther half, the smaller of the two sides',
+        in [-1, 1]; NaN where a side has too few samples read at every offset (None for a ``FaultThrow`` made
+        without it). Noise or a chaotic body matches nothing, itself included:
+        sides that do not match each other say more of a fault when each is continuous in itself.
     fitness : float
         Fraction of footwall reflector peaks with a hanging-wall peak within 1 sample after registration, averaged over
         the registered patches (weighted by their number of peaks); NaN if no patch was registered.
@@ -155,6 +161,7 @@ class FaultThrow:
     fitness: float
     inlier_rmse: float
     n_points_used: int
+    side_coherence: np.ndarray | None = None
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -510,6 +517,7 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
     throw = np.full(n, np.nan)
     corr = np.full(n, np.nan)
     corr0 = np.full(n, np.nan)
+    coherence = np.full(n, np.nan)
     registered = np.zeros(n, bool)
     fits, rmses, counts = [], [], []
 
@@ -535,6 +543,7 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         # the patch's traces (plus the halo of their reflector slopes) only; the whole array when in memory
         win = source.window(*_read_box(grid, opt.side_traces[1] + opt.slope_margin, cube_shape))
         patch = _patch_images(grid, win, opt.side_traces, opt.slope_margin)
+        coherence[sel] = float(np.min(patch.coherence))  # NaN when either side is NaN
         ut = grid.ut
         reach = min(max_throw, int(opt.max_throw_per_height * patch.img[0].shape[1]))
         shift, cc, cc0 = _ncc_shift(patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach,
@@ -562,5 +571,5 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
     return FaultThrow(
         fault_id=fid, throw=throw.astype(np.float32), registered=registered, correlation=corr.astype(np.float32),
         correlation_unshifted=corr0.astype(np.float32), median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=fitness,
-        inlier_rmse=rmse, n_points_used=int(sum(counts)),
+        inlier_rmse=rmse, n_points_used=int(sum(counts)), side_coherence=coherence.astype(np.float32),
     )

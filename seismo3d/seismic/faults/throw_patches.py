@@ -29,8 +29,8 @@ def _side_slope(win: CubeWindow, il, xl, t, h, d_slope):
 
 
 def _sample(win: CubeWindow, il, xl, t, h, offsets, p):
-    """Mean amplitude and count over the lateral ``offsets`` (traces along ``h``), read on the reflector ``t + p d``;
-    positions outside the cube (``win.cube_shape``) are left out."""
+    """Amplitudes over the lateral ``offsets`` (traces along ``h``), read on the reflector ``t + p d``: (values
+    (n_offsets, n_nodes), 0 at positions outside the cube (``win.cube_shape``), and the mask of those inside)."""
     d = np.asarray(offsets, np.float64)[:, None]
     a = il + d * h[0]
     b = xl + d * h[1]
@@ -38,7 +38,20 @@ def _sample(win: CubeWindow, il, xl, t, h, offsets, p):
     n0, n1, nt = win.cube_shape
     inside = (a >= -0.01) & (a <= n0 - 0.99) & (b >= -0.01) & (b <= n1 - 0.99) & (tt >= 0) & (tt <= nt - 1)
     vals = win.amplitude_at(a.ravel(), b.ravel(), tt.ravel()).reshape(a.shape)
-    return np.where(inside, vals, 0.0).sum(axis=0), inside.sum(axis=0)
+    return np.where(inside, vals, 0.0), inside
+
+
+def _coherence(vals: np.ndarray, inside: np.ndarray) -> float:
+    """Normalised correlation, over the nodes read at every offset, of the mean of the nearer half of the offsets
+    with the mean of the farther half: how continuous the reflectors are along one side of the fault (NaN when fewer
+    than 16 nodes qualify)."""
+    half = vals.shape[0] // 2
+    both = inside.all(axis=0)
+    if half < 1 or np.count_nonzero(both) < 16:
+        return float("nan")
+    near, far = vals[:half, both].mean(axis=0), vals[half:, both].mean(axis=0)
+    den = np.sqrt(np.dot(near, near) * np.dot(far, far))
+    return float(np.dot(near, far) / den) if den > 0 else float("nan")
 
 
 @dataclass(frozen=True)
@@ -49,6 +62,7 @@ class _Patch:
     t0: int  # t of column 0 (samples)
     img: tuple  # (F, H) float64 (nu, nt)
     valid: tuple  # (valid_F, valid_H) bool (nu, nt)
+    coherence: tuple = (float("nan"), float("nan"))  # (F, H): nearer against farther traces of each side
 
 
 @dataclass(frozen=True)
@@ -124,10 +138,12 @@ def _read_box(grid: _PatchGrid, reach: float, cube_shape) -> tuple[int, int, int
 def _patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Patch:
     """The footwall and hanging-wall fault-plane images of one patch, read from ``win`` (which holds the traces of
     :func:`_read_box`)."""
-    images, valids = [], []
+    images, valids, coherence = [], [], []
     for sign in (-1.0, 1.0):
         p = _side_slope(win, grid.il, grid.xl, grid.t, grid.h, sign * (sides[1] + slope_margin))
-        acc, cnt = _sample(win, grid.il, grid.xl, grid.t, grid.h, sign * np.arange(sides[0], sides[1] + 1), p)
+        vals, inside = _sample(win, grid.il, grid.xl, grid.t, grid.h, sign * np.arange(sides[0], sides[1] + 1), p)
+        acc, cnt = vals.sum(axis=0), inside.sum(axis=0)
+        coherence.append(_coherence(vals, inside))
         n_off = sides[1] - sides[0] + 1
         img = np.zeros(grid.shape)
         val = np.zeros(grid.shape, bool)
@@ -136,4 +152,4 @@ def _patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Pa
         val[grid.rows[good], grid.cols[good]] = True
         images.append(img)
         valids.append(val)
-    return _Patch(grid.u0, grid.t0, tuple(images), tuple(valids))
+    return _Patch(grid.u0, grid.t0, tuple(images), tuple(valids), tuple(coherence))

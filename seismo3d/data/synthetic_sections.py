@@ -69,6 +69,21 @@ class FaultSectionOptions:
         Fault samples are labelled where the local throw is at least this, samples.
     degradation : float
         Strength of :func:`~seismo3d.data.degradations.degrade` (0: clean up to a little white noise).
+    p_fault_system : float
+        Probability that a faulted section's faults form one system, as extension and compression make them
+        (Anderson's faulting: a set of nearly parallel faults and its conjugate): one dip direction and a dip
+        drawn for the section, each fault within ``system_dip_spread`` degrees of it and antithetic (the other
+        direction) with probability ``p_antithetic``. Otherwise (and at the default 0) every fault draws its own dip
+        and direction.
+    system_dip_spread : float
+        Standard deviation of a system's fault dips about the section's dip, degrees.
+    p_antithetic : float
+        Probability that a fault of a system dips the other way.
+    p_steep_fold : float
+        Probability that a section's folding reaches ``steep_fold_dip`` instead of ``max_fold_dip``: reflectors as
+        steep as faults (diapir flanks, drag folds) that offset nothing and are not faults.
+    steep_fold_dip : float
+        Steepest reflector dip of a steeply folded section, degrees.
     """
 
     max_faults: int = 8
@@ -80,6 +95,20 @@ class FaultSectionOptions:
     max_fold_dip: float = 30.0
     min_label_throw: float = 1.0
     degradation: float = 1.0
+    p_fault_system: float = 0.0
+    system_dip_spread: float = 5.0
+    p_antithetic: float = 0.25
+    p_steep_fold: float = 0.0
+    steep_fold_dip: float = 55.0
+
+    def __post_init__(self):
+        for name in ("p_unfaulted", "reverse_fraction", "p_fault_system", "p_antithetic", "p_steep_fold"):
+            if not 0.0 <= float(getattr(self, name)) <= 1.0:
+                raise InputError(f"{name} must be a probability in [0, 1]; got {getattr(self, name)!r}")
+        if not 0.0 <= float(self.system_dip_spread) <= 45.0:
+            raise InputError(f"system_dip_spread must be in [0, 45] degrees; got {self.system_dip_spread!r}")
+        if not 0.0 <= float(self.steep_fold_dip) < 90.0:
+            raise InputError(f"steep_fold_dip must be in [0, 90) degrees; got {self.steep_fold_dip!r}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -170,9 +199,14 @@ class _Fault:
         return self.throw * np.sqrt(u)
 
 
-def _draw_fault(rng, nx: int, nz: int, opt: FaultSectionOptions) -> _Fault:
-    dip = rng.uniform(*opt.dip_range)
-    direction = rng.choice([-1.0, 1.0])
+def _draw_fault(rng, nx: int, nz: int, opt: FaultSectionOptions, system=None) -> _Fault:
+    """One fault; ``system``: (dip, direction) of the section's fault system, or None for an independent fault."""
+    if system is None:
+        dip = rng.uniform(*opt.dip_range)
+        direction = rng.choice([-1.0, 1.0])
+    else:
+        dip = float(np.clip(rng.normal(system[0], opt.system_dip_spread), *opt.dip_range))
+        direction = -system[1] if rng.random() < opt.p_antithetic else system[1]
     throw = rng.uniform(0.0, opt.max_throw) * (-1.0 if rng.random() < opt.reverse_fraction else 1.0)
     z0 = rng.uniform(0.2, 0.8) * nz
     tapered = rng.random() < 0.6
@@ -239,7 +273,10 @@ def synthetic_fault_section(shape=(128, 128), *, seed=0, options: FaultSectionOp
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
 
     n_faults = 0 if rng.random() < opt.p_unfaulted else int(rng.integers(1, opt.max_faults + 1))
-    faults = [_draw_fault(rng, nx, nz, opt) for _ in range(n_faults)]
+    system = None
+    if n_faults and opt.p_fault_system > 0 and rng.random() < opt.p_fault_system:
+        system = (rng.uniform(*opt.dip_range), rng.choice([-1.0, 1.0]))
+    faults = [_draw_fault(rng, nx, nz, opt, system) for _ in range(n_faults)]
     xs, zs = np.meshgrid(np.arange(nx, dtype=np.float64), np.arange(nz, dtype=np.float64), indexing="ij")
     labels = np.zeros((nx, nz), bool)
     throw = np.zeros((nx, nz), np.float32)
@@ -251,7 +288,10 @@ def synthetic_fault_section(shape=(128, 128), *, seed=0, options: FaultSectionOp
 
     # the layering, sampled at the unfaulted positions (RGT of a margin around the section: faults move samples)
     margin = int(np.ceil(opt.max_throw * 2 + 8))
-    rgt_grid = _layering(rng, nx + 2 * margin, nz + 2 * margin, opt.max_fold_dip)
+    fold_dip = opt.max_fold_dip
+    if opt.p_steep_fold > 0 and rng.random() < opt.p_steep_fold:
+        fold_dip = opt.steep_fold_dip
+    rgt_grid = _layering(rng, nx + 2 * margin, nz + 2 * margin, fold_dip)
     rgt = map_coordinates(rgt_grid, [xs + margin, zs + margin], order=1, mode="nearest")
     lo = float(rgt.min()) - 1
     n_rgt = int(np.ceil(float(rgt.max()) - lo)) + 2

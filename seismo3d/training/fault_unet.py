@@ -35,6 +35,7 @@ image segmentation: 3DV 2016, 565-571. doi:10.1109/3DV.2016.79
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import hashlib
 import json
 import logging
@@ -318,6 +319,19 @@ def train(options: TrainingOptions, out_dir: Path, *, section_options: FaultSect
     return record
 
 
+def _generator_options(items) -> FaultSectionOptions:
+    """The generator's options from ``NAME=VALUE`` strings (values parsed as JSON: numbers, lists)."""
+    fields = {f.name: f for f in dataclasses.fields(FaultSectionOptions)}
+    given = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        if not sep or name not in fields:
+            raise SystemExit(f"--generator {item!r}: expected NAME=VALUE with NAME one of {', '.join(fields)}")
+        parsed = json.loads(value)
+        given[name] = tuple(parsed) if isinstance(parsed, list) else parsed
+    return FaultSectionOptions(**given)
+
+
 def main(argv=None) -> None:
     """Command line: ``python -m seismo3d.training.fault_unet --out DIR [--steps N] ...``."""
     defaults = TrainingOptions()
@@ -332,12 +346,15 @@ def main(argv=None) -> None:
     parser.add_argument("--threads", type=int, default=defaults.threads)
     parser.add_argument("--n-validation", type=int, default=defaults.n_validation)
     parser.add_argument("--log-every", type=int, default=defaults.log_every)
+    parser.add_argument("--generator", action="append", default=[], metavar="NAME=VALUE",
+                        help="a FaultSectionOptions field of the generated sections (repeatable), e.g. "
+                             "p_fault_system=0.7")
     a = parser.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s")
     options = TrainingOptions(channels=tuple(int(v) for v in a.channels.split(",")), steps=a.steps,
                               batch_size=a.batch_size, patch=a.patch, learning_rate=a.learning_rate, seed=a.seed,
                               threads=a.threads, n_validation=a.n_validation, log_every=a.log_every)
-    record = train(options, a.out)
+    record = train(options, a.out, section_options=_generator_options(a.generator))
     print(f"validation {record['validation']}; weights sha256 {record['weights_sha256']}")
 
 

@@ -1,0 +1,53 @@
+"""The generated training sections of the learned fault likelihood (seismo3d.data.synthetic_sections): the options
+of fault systems and steep folds (used by ``python -m seismo3d.training.fault_unet --generator NAME=VALUE``)."""
+
+import numpy as np
+import pytest
+
+from seismo3d.data.synthetic_sections import FaultSectionOptions, _draw_fault, synthetic_fault_section
+from seismo3d.errors import InputError
+
+
+def test_the_new_options_off_by_default_leave_the_sections_unchanged():
+    # the shipped network was trained on these sections: the defaults draw nothing more from the generator
+    for seed in range(6):
+        a = synthetic_fault_section((64, 48), seed=seed)
+        b = synthetic_fault_section((64, 48), seed=seed, options=FaultSectionOptions(p_fault_system=0.0,
+                                                                                     p_steep_fold=0.0))
+        assert np.array_equal(a.section, b.section) and np.array_equal(a.faults, b.faults)
+
+
+def test_a_fault_system_shares_one_dip_direction_and_a_dip():
+    opt = FaultSectionOptions(p_antithetic=0.0, system_dip_spread=3.0)
+    rng = np.random.default_rng(0)
+    faults = [_draw_fault(rng, 128, 128, opt, (70.0, -1.0)) for _ in range(200)]
+    assert all(f.direction == -1.0 for f in faults)
+    dips = np.degrees(np.arctan(1.0 / np.abs([f.cot for f in faults])))
+    assert abs(np.median(dips) - 70.0) < 1.0 and np.std(dips) < 4.0
+    anti = FaultSectionOptions(p_antithetic=0.25)
+    share = np.mean([_draw_fault(rng, 128, 128, anti, (70.0, 1.0)).direction < 0 for _ in range(2000)])
+    assert 0.2 < share < 0.3
+
+
+def test_steep_folds_dip_more_than_the_default_folds():
+    def steepest(options):
+        out = []
+        for seed in range(12):
+            clean = synthetic_fault_section((96, 96), seed=seed, options=options).clean
+            gx, gz = np.gradient(clean.astype(np.float64))
+            # reflector dip from the gradient: 90 deg minus its angle from the trace axis, at strong gradients
+            strong = np.hypot(gx, gz) > np.quantile(np.hypot(gx, gz), 0.9)
+            out.append(np.degrees(np.arctan2(np.abs(gx[strong]), np.abs(gz[strong]))).mean())
+        return np.mean(out)
+
+    flat = FaultSectionOptions(max_faults=1, p_unfaulted=1.0, max_fold_dip=5.0)
+    steep = FaultSectionOptions(max_faults=1, p_unfaulted=1.0, max_fold_dip=5.0, p_steep_fold=1.0,
+                                steep_fold_dip=60.0)
+    assert steepest(steep) > steepest(flat) + 5.0
+
+
+@pytest.mark.parametrize("kwargs", [dict(p_fault_system=1.5), dict(p_steep_fold=-0.1), dict(p_antithetic=2.0),
+                                    dict(system_dip_spread=50.0), dict(steep_fold_dip=90.0), dict(p_unfaulted=1.2)])
+def test_bad_options_are_refused(kwargs):
+    with pytest.raises(InputError, match=next(iter(kwargs))):
+        FaultSectionOptions(**kwargs)

@@ -300,8 +300,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       normalised cross-correlation of the reflectors on the two sides once aligned, a quality measure (see
       :class:`~seismo3d.seismic.faults.throw.FaultThrow`); ``correlation_gain`` is that correlation less the sides'
       correlation with no shift (the evidence of a displacement); ``side_coherence`` how continuous the reflectors
-      are along each side (the smaller of the two: a mismatch of incoherent sides is no evidence). An unmeasured
-      throw is empty.
+      are along each side in itself (the smaller of the two sides; reported, not asked for: sides that do not match
+      say less of a fault when they are not continuous themselves). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
       median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_correlation, correlation_gain,
       side_coherence``: the

@@ -1,6 +1,6 @@
 """The faults job in memory and under a memory limit that forces blocks give the same faults (issue 30).
 
-Run: ``SEISMO3D_DATA_DIR=... python benchmarks/fault_paths.py [--only generated,penobscot] [--keep DIR]``
+Run: ``SEISMO3D_DATA_DIR=... python benchmarks/fault_paths.py [--only generated,penobscot,target] [--keep DIR]``
 
 For a generated 192^3 faulted cube (:func:`~seismo3d.data.synthetic.synthetic_cube`, seed 4) and the 18 Penobscot
 inlines (:func:`~seismo3d.data.load_penobscot_sections`), :func:`~seismo3d.jobs.faults.run_faults_job` runs once with
@@ -11,6 +11,13 @@ forced, fault by fault. Printed per cube: whether ``fault_points.csv`` and ``fau
 (forced: the faults' ids, points and likelihood, and their throws and evidence, equal), the largest fault likelihood
 and votes differences (target <= 1e-6), the number of faults, and both runs' seconds with the load average. The
 suite keeps a smaller cube's comparison (``tests/jobs/test_faults_chunked.py``); these two take minutes each.
+
+``target`` (issue 34, off by default: about 10 minutes): the command a user runs on a 400 x 400 x 500 SEG-Y cube
+(a generated faulted 256-trace tile mirrored into it, as ``benchmarks/out_of_core.py`` writes it; 320 MB of
+samples), ``seismo3d faults CUBE -o OUT`` in memory and ``seismo3d faults CUBE -o OUT --memory-limit 1GB`` by blocks,
+each a child process whose peak resident memory (RSS, with its children) is sampled every 0.2 s. Printed: seconds
+and s/GB of each, their ratio (target <= 1.3), the peaks against the limit, and whether the two runs wrote the same
+``fault_points.csv`` and ``fault_summary.csv``.
 """
 
 from __future__ import annotations
@@ -19,6 +26,8 @@ import argparse
 import os
 import pathlib
 import re
+import shutil
+import subprocess
 import tempfile
 import time
 import warnings
@@ -103,6 +112,42 @@ def forced_blocks(name: str, npy: pathlib.Path, out: pathlib.Path, smallest: int
     }
 
 
+def target(root: pathlib.Path, shape=(400, 400, 500), limit: str = "1GB") -> dict:
+    """The faults command on a SEG-Y cube of ``shape`` in memory and under ``--memory-limit limit``, each a child
+    process; its seconds and peak memory."""
+    import sys
+
+    sys.path.insert(0, str(pathlib.Path(__file__).parent))
+    from out_of_core import _PeakRSS, write_mosaic_segy
+
+    sgy = root / "target.sgy"
+    if not sgy.exists():
+        write_mosaic_segy(sgy, shape)
+    gb = float(np.prod(shape)) * 4 / 1e9
+    runs = {}
+    for key, extra in (("memory", []), ("blocks", ["--memory-limit", limit])):
+        out = root / f"target_{key}"
+        cmd = [shutil.which("seismo3d"), "faults", str(sgy), "-o", str(out), *extra]
+        start = time.perf_counter()
+        with open(root / f"target_{key}.log", "w") as log:  # the progress the command reports
+            proc = subprocess.Popen(cmd, stderr=log)
+            sampler = _PeakRSS(proc.pid)
+            proc.wait()
+        peak = sampler.stop()
+        if proc.returncode != 0:
+            raise SystemExit(f"{' '.join(cmd)} failed (exit {proc.returncode})")
+        runs[key] = (time.perf_counter() - start, peak, out)
+    (t_m, p_m, o_m), (t_b, p_b, o_b) = runs["memory"], runs["blocks"]
+    if not (o_b / "fault_likelihood.zarr").exists():
+        raise SystemExit(f"--memory-limit {limit} did not run by blocks")
+    return {
+        "cube": "x".join(map(str, shape)) + " SEG-Y", "s/GB in memory": t_m / gb, "s/GB by blocks": t_b / gb,
+        "ratio": t_b / t_m, "peak GiB in memory": p_m / 2**30, "peak GiB by blocks": p_b / 2**30,
+        "limit": limit, "points equal": (o_b / "fault_points.csv").read_bytes() == (o_m / "fault_points.csv").read_bytes(),
+        "summary equal": (o_b / "fault_summary.csv").read_bytes() == (o_m / "fault_summary.csv").read_bytes(),
+    }
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", default="generated,penobscot")
@@ -123,6 +168,13 @@ def main(argv=None) -> None:
         np.save(npy, load_penobscot_sections().cube)
         rows.append(compare("Penobscot 18 inlines", npy, root / "penobscot"))
     print(f"load average {os.getloadavg()[0]:.1f}")
+    if "target" in only:
+        row = target(root)
+        print(" | ".join(row))
+        print(" | ".join(f"{v:.3g}" if isinstance(v, float) else str(v) for v in row.values()))
+        print(f"load average {os.getloadavg()[0]:.1f}")
+    if not rows:
+        return
     keys = list(rows[0])
     print(" | ".join(keys))
     for r in rows:

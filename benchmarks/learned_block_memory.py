@@ -1,60 +1,97 @@
-"""Peak memory per sample of the learned likelihood's two block steps (their halos included), the figures behind
-``_PROBABILITY_BYTES`` and ``_ORIENTATION_BYTES`` in seismo3d/seismic/faults/learned_blocks.py.
+"""Peak memory of the learned likelihood's two block steps, the figures behind ``_NETWORK_INPUT_BYTES``,
+``_NETWORK_BATCH_BYTES`` and ``_ORIENTATION_BYTES`` in seismo3d/seismic/faults/learned_blocks.py.
 
-Measured with tracemalloc (numpy reports its arrays to it): the block as read, then ``fault_probability`` on it at
-the default options, after a warm-up that loads the weights; and a probability block as read, then
-``orientation_from_likelihood`` and the dip mask, as ``learned_blocks._orientation_block`` runs them. Prints each
-block's peak beside the constant the plan uses (the peer: the planned bytes per sample) and the load average (the
-machine is shared; memory does not depend on it, time does).
+Measured with tracemalloc (numpy reports its arrays to it), after a warm-up that loads the weights:
+
+* network blocks of both directions, as ``learned_blocks._network_block`` runs them (the region as read, the
+  resampling, the network on the block's sections, the write of its core to a work array), for blocks of a few
+  sections and of many, narrow and as wide as the cube; printed beside the bytes the plan's model gives them;
+* an interior orientation block, as ``learned_blocks._orientation_block`` runs it (both directions' probabilities
+  read from their work arrays, their maximum interpolated onto the block, ``orientation_from_likelihood``, the dip
+  mask, the writes), per sample of the block with its halo beside the planned constant.
+
+The load average is printed (the machine is shared; memory does not depend on it, time does).
 
     python benchmarks/learned_block_memory.py
 """
 
 import os
+import tempfile
 import tracemalloc
 
 import numpy as np
+import zarr
 
 from seismo3d.data.synthetic import synthetic_cube
-from seismo3d.seismic.faults import learned_blocks
+from seismo3d.seismic.faults import learned_blocks as lb
 from seismo3d.seismic.faults.learned import (LearnedOptions, amplitude_scale, fault_probability,
                                              orientation_from_likelihood)
+from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions
+
+
+def network_blocks(opt: LearnedOptions) -> None:
+    factor = float(opt.resample)
+    batch = int(opt.sections_per_batch)
+    print(f"network blocks: planned {lb._NETWORK_INPUT_BYTES} bytes per input sample read + "
+          f"{lb._NETWORK_BATCH_BYTES} per network sample of a batch of {batch} sections; load average "
+          f"{os.getloadavg()[0]:.1f}")
+    work = tempfile.mkdtemp(prefix="learned_memory_")
+    for shape in ((200, 200, 128), (240, 240, 256)):
+        cube = synthetic_cube(shape, seed=0, n_faults=2).cube.astype(np.float32)
+        scale = amplitude_scale(cube)
+        fault_probability(cube[:40, :40, :32], options=opt, scale=scale)  # warm-up: the weights loaded
+        grid = lb._network_shape(shape, factor)
+        array = f"{work}/net_{shape[2]}"
+        zarr.create_array(array, shape=grid, chunks=(16, 16, grid[2]), dtype="float32", fill_value=0,
+                          compressors=None)
+        for axis in (0, 1):
+            for across, along in ((16, 48), (16, grid[1 - axis]), (48, grid[1 - axis])):
+                size = (across, along) if axis == 0 else (along, across)
+                block = (16, 16 + size[0], 16, min(16 + size[1], grid[1])) if along < grid[1 - axis] else \
+                    ((16, 16 + size[0], 0, grid[1]) if axis == 0 else (0, grid[0], 16, 16 + size[1]))
+                a0, a1, b0, b1 = lb._network_region(block, axis, shape, factor)
+                region = cube[a0:a1, b0:b1]
+                tracemalloc.start()
+                read = region.copy()  # the block as read
+                lb._network_block(read, block, axis, (a0, b0), array, opt, scale, f"{work}/marker.json")
+                _, peak = tracemalloc.get_traced_memory()
+                tracemalloc.stop()
+                del read
+                model = lb._network_block_bytes(block, axis, shape, factor, batch)
+                print(f"  {shape} axis {axis}, {across} sections x {along} traces (region {a1 - a0} x {b1 - b0}): "
+                      f"peak {peak / 2**20:.1f} MiB, planned {model / 2**20:.1f} MiB ({peak / model:.2f})")
+
+
+def orientation_blocks(opt: LearnedOptions) -> None:
+    halo = lb._orientation_halo(opt)
+    rng = np.random.default_rng(0)
+    orientation_from_likelihood(rng.random((20, 20, 32), dtype=np.float32), sigma=float(opt.orientation_sigma))
+    print(f"orientation: halo {halo} traces, planned {lb._ORIENTATION_BYTES} bytes per sample")
+    for core, nt in ((32, 128), (64, 128), (64, 256)):
+        shape = (3 * core, 3 * core, nt)
+        plan = lb._plan(shape, opt, ChunkOptions(block=core, memory_limit=8 << 30), 0)
+        work = tempfile.mkdtemp(prefix="learned_memory_")
+        grid, c = plan["network_shape"], plan["network_chunk"]
+        for name in plan["network_blocks"]:  # the two directions' probabilities on the network grid
+            zarr.create_array(f"{work}/network_{name}", shape=tuple(grid), chunks=(c, c, grid[2]), dtype="float32",
+                              compressors=None)[:] = rng.random(tuple(grid), dtype=np.float32)
+        partial = zarr.open_group(f"{work}/out.partial", mode="w")
+        for name in ("likelihood", "strike_deg", "dip_deg"):
+            partial.create_array(name, shape=shape, chunks=(core, core, nt), dtype="float32")
+        block = (core, 2 * core, core, 2 * core)  # an interior block: its halo on every side
+        side = core + 2 * halo
+        tracemalloc.start()
+        lb._orientation_block(block, plan, work, f"{work}/out.partial", opt, f"{work}/marker.json")
+        _, peak = tracemalloc.get_traced_memory()
+        tracemalloc.stop()
+        print(f"  block {core} + 2 x {halo} = {side}^2 traces x {nt} samples: peak {peak / 2**20:.1f} MiB, "
+              f"{peak / (side * side * nt):.1f} bytes per sample (planned {lb._ORIENTATION_BYTES})")
 
 
 def main() -> None:
     opt = LearnedOptions()
-    halo = learned_blocks._probability_halo(opt)
-    print(f"halo {halo} traces, planned {learned_blocks._PROBABILITY_BYTES} bytes per sample, load average "
-          f"{os.getloadavg()[0]:.1f}")
-    for core, nt in ((32, 128), (64, 128), (64, 256)):
-        side = core + 2 * halo
-        src = synthetic_cube((side, side, nt), seed=0, n_faults=2).cube
-        scale = amplitude_scale(src)
-        fault_probability(src[:40, :40], options=opt, scale=scale)  # warm-up: the weights loaded
-        tracemalloc.start()
-        block = np.ascontiguousarray(src, dtype=np.float32).copy()  # the block as read, halo included
-        fault_probability(block, options=opt, scale=scale, origin=(0, 0))
-        _, peak = tracemalloc.get_traced_memory()
-        tracemalloc.stop()
-        del block
-        print(f"block {core} + 2 x {halo} = {side}^2 traces x {nt} samples: peak {peak / 2**20:.1f} MiB, "
-              f"{peak / (side * side * nt):.1f} bytes per sample (planned {learned_blocks._PROBABILITY_BYTES})")
-    halo = learned_blocks._orientation_halo(opt)
-    rng = np.random.default_rng(0)
-    orientation_from_likelihood(rng.random((20, 20, 32), dtype=np.float32), sigma=float(opt.orientation_sigma))
-    print(f"orientation: halo {halo} traces, planned {learned_blocks._ORIENTATION_BYTES} bytes per sample")
-    for core, nt in ((32, 128), (64, 128), (64, 256)):
-        side = core + 2 * halo
-        prob = rng.random((side, side, nt), dtype=np.float32)
-        tracemalloc.start()
-        block = prob.copy()  # the probability block as read, halo included
-        strike, dip = orientation_from_likelihood(block, sigma=float(opt.orientation_sigma))
-        likelihood = np.where(dip < float(opt.min_dip), np.float32(0.0), block)
-        _, peak = tracemalloc.get_traced_memory()
-        tracemalloc.stop()
-        del block, strike, dip, likelihood
-        print(f"block {core} + 2 x {halo} = {side}^2 traces x {nt} samples: peak {peak / 2**20:.1f} MiB, "
-              f"{peak / (side * side * nt):.1f} bytes per sample (planned {learned_blocks._ORIENTATION_BYTES})")
+    network_blocks(opt)
+    orientation_blocks(opt)
 
 
 if __name__ == "__main__":

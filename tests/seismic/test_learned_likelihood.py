@@ -164,11 +164,13 @@ def test_training_smoke(tmp_path):
     assert [h["step"] for h in record["history"]] == [1, 2]
 
 
-# slow: 2 x 2 forced blocks, each reading (nearly) the whole cube with its halo: 3-5 s each here
+# slow: forced blocks, each network block reading most of the cube along its sections
 @pytest.mark.slow
 @pytest.mark.parametrize("resample, shape, block", [
-    (1.0, (72, 80, 48), 64),  # the data's own grid: halo 56 traces
-    (LearnedOptions().resample, (120, 124, 32), 64),  # the default's grid: block origins off its pooling grid
+    (1.0, (72, 80, 48), 64),  # the data's own grid: network blocks of 64 traces, halo 56 traces
+    # the default's grid: network blocks of 48 network traces, origins off its pooling grid, the halo along the
+    # sections inside the cube on both sides (blocks 48-96 and 96-144 of 163 and 166)
+    (LearnedOptions().resample, (232, 236, 32), 64),
 ])
 def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block):
     from seismo3d.seismic.faults.learned_blocks import chunked_learned_likelihood
@@ -179,7 +181,7 @@ def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block)
     mem = learned_fault_likelihood(cube, options=opt)
     run = chunked_learned_likelihood(cube, tmp_path / "l.zarr", options=opt,
                                      chunking=ChunkOptions(block=block, scheduler="synchronous"))
-    assert run.blocks_computed["probability"] > 1 and run.blocks_computed["orientation"] > 1
+    assert min(run.blocks_computed[step] for step in ("network_inline", "network_crossline", "orientation")) > 1
     out = run.open()
     # equal up to float rounding, except where the dip sits on min_dip and rounding flips the dip mask (1 sample of
     # 1.75 M at resample 0.7, its dip 40.0015 deg)
@@ -207,3 +209,36 @@ def test_a_block_on_the_whole_cubes_network_grid_equals_the_whole_cube():
     assert a0 > 0 and b0 > 0 and i1 + halo < cube.shape[0] and j1 + halo < cube.shape[1]
     block = fault_probability(cube[a0:i1 + halo, b0:j1 + halo], options=opt, scale=scale, origin=(a0, b0))
     assert np.abs(block[i0 - a0:i1 - a0, j0 - b0:j1 - b0] - whole[i0:i1, j0:j1]).max() <= 1e-5
+
+
+@pytest.mark.parametrize("shape, limit", [((400, 400, 500), 10**9), ((1448, 1448, 512), 10**9)])
+def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
+    # the network is 2D: a block of sections needs the receptive half of halo along them only, so the plan makes
+    # them as long as the limit allows (the whole width: no halo) and only then stacks sections
+    from seismo3d.seismic.faults import learned_blocks
+    from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions
+
+    opt = LearnedOptions()
+    baseline = 300 << 20
+    plan = learned_blocks._plan(shape, opt, ChunkOptions(memory_limit=limit), baseline)
+    grid = plan["network_shape"]
+    budget = int((limit - baseline) * 0.8)
+    for axis, name in enumerate(("inline", "crossline")):
+        across, along = plan["network_blocks"][name]
+        assert learned_blocks._largest_network_bytes(grid, across, along, axis, shape, opt.resample, 4) <= budget
+        if along < grid[1 - axis]:  # longer sections would not fit, even one chunk of them
+            assert along % 16 == 0 and across == 16
+            assert learned_blocks._largest_network_bytes(grid, 16, along + 16, axis, shape, opt.resample, 4) > budget
+        else:  # whole sections: as many as fit
+            assert learned_blocks._largest_network_bytes(grid, across + 16, along, axis, shape, opt.resample,
+                                                         4) > budget or across >= grid[axis]
+
+
+def test_network_grid_alignment_per_axis():
+    from seismo3d.seismic.faults.network_grid import to_network_grid
+
+    block = np.random.default_rng(0).standard_normal((40, 40, 16)).astype(np.float32)
+    _, first = to_network_grid(block, 0.7, origin=(13, 13), align=(1, 8))
+    assert first == (10, 16, 0)  # ceil(13 * 0.7) = 10; the first multiple of 8 at or after 9.1
+    with pytest.raises(InputError, match="align"):
+        to_network_grid(block, 0.7, origin=(13, 13), align=(1, 8, 8))

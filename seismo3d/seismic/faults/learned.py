@@ -49,7 +49,8 @@ from .network_grid import from_network_grid, to_network_grid
 from .unet import POOLING_MULTIPLE, normalise_section, unet_forward
 
 __all__ = ["WEIGHTS_SHA256", "LearnedOptions", "load_fault_network", "scale_subsample", "amplitude_scale",
-           "fault_probability", "learned_fault_likelihood", "orientation_from_likelihood"]
+           "fault_probability", "cube_directions", "direction_probability", "learned_fault_likelihood",
+           "orientation_from_likelihood"]
 
 WEIGHTS_FILE = "fault_unet.npz"
 WEIGHTS_SHA256 = "a9ce4d6307adffffb046b629bb723dd690f1d29a8679e71ce2b8ac0fad19ad4b"
@@ -219,16 +220,59 @@ def _network_probability(arr: np.ndarray, opt: LearnedOptions, scale, progress: 
     if arr.ndim == 2:
         with progress_steps(1, "fault network", unit="section", enabled=progress) as bar:
             return _sections_probability(arr[None], scale, weights, batch, bar)[0]
-    n_sections = (arr.shape[0] if opt.directions in ("both", "inline") else 0) + \
-                 (arr.shape[1] if opt.directions in ("both", "crossline") else 0)
+    directions = cube_directions(opt)
     prob = None
-    with progress_steps(n_sections, "fault network", unit="section", enabled=progress) as bar:
-        if opt.directions in ("both", "inline"):
-            prob = _sections_probability(arr, scale, weights, batch, bar)
-        if opt.directions in ("both", "crossline"):
-            xl = _sections_probability(arr.transpose(1, 0, 2), scale, weights, batch, bar).transpose(1, 0, 2)
-            prob = xl if prob is None else np.maximum(prob, xl)
+    with progress_steps(sum(arr.shape[a] for a in directions), "fault network", unit="section",
+                        enabled=progress) as bar:
+        for axis in directions:
+            one = direction_probability(arr, axis, scale=scale, batch=batch, bar=bar)
+            prob = one if prob is None else np.maximum(prob, one)
     return np.ascontiguousarray(prob)
+
+
+def cube_directions(options: LearnedOptions) -> tuple:
+    """The lateral axes whose sections the network runs on in a cube: 0 (inline sections ``data[i]``), 1
+    (crossline sections ``data[:, j]``) or both, as ``options.directions`` says.
+
+    Parameters
+    ----------
+    options : LearnedOptions
+
+    Returns
+    -------
+    tuple of int
+    """
+    return {"both": (0, 1), "inline": (0,), "crossline": (1,)}[options.directions]
+
+
+def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4, bar=None) -> np.ndarray:
+    """The network's probability on the sections of a cube stacked along one lateral axis.
+
+    Parameters
+    ----------
+    small : (n_inlines, n_xlines, n_samples) float32 ndarray
+        Amplitudes on the network grid (:func:`~seismo3d.seismic.faults.network_grid.to_network_grid`).
+    axis : {0, 1}
+        0: the inline sections ``small[i]``; 1: the crossline sections ``small[:, j]``.
+    scale : (float, float)
+        (median, standard deviation) of the whole input's amplitudes (:func:`amplitude_scale`).
+    batch : int, optional
+        Sections through the network at a time.
+    bar : optional
+        A progress bar of :func:`seismo3d._progress.progress_steps`, advanced per section.
+
+    Returns
+    -------
+    float32 ndarray, the shape of ``small``
+        Probability in [0, 1]; each section's from that section alone (the network is 2D).
+    """
+    weights = load_fault_network()
+    if bar is None:
+        with progress_steps(small.shape[axis], "fault network", unit="section", enabled=False) as quiet:
+            return direction_probability(small, axis, scale=scale, batch=batch, bar=quiet)
+    if axis == 0:
+        return _sections_probability(small, scale, weights, batch, bar)
+    return _sections_probability(small.transpose(1, 0, 2), scale, weights, batch, bar).transpose(1, 0, 2)
 
 
 def _normals_to_strike_dip(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -1,18 +1,24 @@
 """The learned fault likelihood of a cube larger than memory, block by block on dask, resumable.
 
-The steps (each block carries the halo its step needs, so the output equals the in-memory
+The network is 2D: an inline section's probability depends on that section alone, so a block of inline sections
+needs the network's receptive half of halo along the crosslines only, and a block of crossline sections along the
+inlines only. The steps (the output equals the in-memory
 :func:`~seismo3d.seismic.faults.learned.learned_fault_likelihood` up to float rounding):
 
 1. The amplitude scale (median and standard deviation) from the regular subsample of traces that
    :func:`~seismo3d.seismic.faults.learned.amplitude_scale` uses in memory too.
-2. The network's probability on lateral blocks with the network's receptive half of halo
-   (:data:`~seismo3d.seismic.faults.unet.RECEPTIVE_HALF` traces on the network's grid:
-   :func:`~seismo3d.seismic.faults.network_grid.grid_halo`), every sample of each trace, on the inline and the
-   crossline sections of the block, resampled onto the whole cube's network grid (its pooling grid included); written
-   to a work array.
-3. Strike and dip from the structure tensor of the probability on blocks with the tensor smoothing's halo, written
-   with the likelihood to the output Zarr group (``likelihood``, ``strike_deg``, ``dip_deg``: what
-   :func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces` reads, as from the scan's chunked run).
+2. Per direction the network runs on (``network_inline``, ``network_crossline``): blocks of the whole cube's network
+   grid (:mod:`~seismo3d.seismic.faults.network_grid`), ``k`` sections of ``w`` network traces each, read with the
+   receptive half of halo (:data:`~seismo3d.seismic.faults.unet.RECEPTIVE_HALF` network traces, the block's grid on
+   the whole cube's pooling grid) along the sections and only the resampling's few traces across them; every sample
+   of each trace. The blocks are as long along the sections as the memory limit allows (the whole cube's width
+   when it fits: no halo at all), so the halo adds little. Each direction's probability is written on the network
+   grid to a work array.
+3. Strike and dip: on blocks with the tensor smoothing's halo, the larger of the two directions' probabilities on the
+   network grid is interpolated onto the block's samples (as in memory: the maximum before the interpolation), its
+   structure tensor gives strike and dip, written with the likelihood to the output Zarr group (``likelihood``,
+   ``strike_deg``, ``dip_deg``: what :func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces` reads,
+   as from the scan's chunked run).
 
 Markers, resumption, the ``.partial`` output and the schedulers are those of
 :mod:`~seismo3d.seismic.faults.likelihood_blocks`.
@@ -21,6 +27,7 @@ Markers, resumption, the ``.partial`` output and the schedulers are those of
 from __future__ import annotations
 
 import json
+import math
 import pathlib
 from dataclasses import asdict
 
@@ -29,22 +36,28 @@ import numpy as np
 from ..._options import resolve_options
 from ...errors import InputError
 from ..blocks import SchedulerClient, block_budget, largest_block, limit_for_blocks, write_marker
-from .learned import (LearnedOptions, amplitude_scale, fault_probability, orientation_from_likelihood,
-                      scale_subsample)
+from .learned import (LearnedOptions, amplitude_scale, cube_directions, direction_probability,
+                      orientation_from_likelihood, scale_subsample)
 from .likelihood_blocks import (ChunkedLikelihood, ChunkOptions, LikelihoodRun, _write_coords, lateral_blocks,
                                 trace_cube)
 from .memory import default_memory_limit, worker_baseline
-from .network_grid import grid_halo
+from .network_grid import anti_alias_sigma, from_network_grid, grid_size, to_network_grid
 from .unet import POOLING_MULTIPLE, RECEPTIVE_HALF
 
 __all__ = ["chunked_learned_likelihood", "learned_block_bytes"]
 
-# bytes per sample of a block (halo included) at each step's peak, as benchmarks/learned_block_memory.py measures
-# them (tracemalloc): the amplitudes, both directions' probabilities and one batch of sections' activations in step 2
-# (measured 21.5-23.1); the probability, its gradients, the tensor components and the outputs in step 3 (measured
-# 72.0); the headroom for the allocator is block_budget's
-_PROBABILITY_BYTES = 24
+# Network-grid traces a side of the chunks of the network work arrays; the network blocks are multiples of it (or the
+# whole width), so no two blocks write one chunk
+_NETWORK_CHUNK = 16
+# bytes at the peak of a network block (benchmarks/learned_block_memory.py measures them with tracemalloc): per input
+# sample of the block as read (the amplitudes, the anti-alias filter, the resampling) and per network-grid sample of
+# the sections run at once (one batch's activations, the network's output)
+_NETWORK_INPUT_BYTES = 8
+_NETWORK_BATCH_BYTES = 420
+# bytes per sample of an orientation block (halo included) at its peak: the probability, its gradients, the tensor
+# components and the outputs (measured 72.0); the headroom for the allocator is block_budget's
 _ORIENTATION_BYTES = 80
+_DIRECTION_NAMES = {0: "inline", 1: "crossline"}
 
 
 def _orientation_halo(opt: LearnedOptions) -> int:
@@ -64,7 +77,9 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
         Output Zarr group (a folder), created; must not exist unless it is the unfinished output of the same run.
     options : LearnedOptions, optional
     chunking : ChunkOptions, optional
-        Memory limit, block size and the dask scheduler.
+        Memory limit, block size and the dask scheduler. ``chunking.block`` (traces, a multiple of the tile) fixes
+        the strike-and-dip blocks and makes the network blocks as many network traces a side as it spans
+        (``block * resample``, rounded up to a multiple of 16).
     coords : dict, optional
         ``inline``, ``crossline``, ``sample`` coordinates (and ``sample_unit``) written beside the arrays.
     progress : bool
@@ -75,7 +90,8 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     Returns
     -------
     ChunkedLikelihood
-        Steps ``'probability'`` and ``'orientation'``.
+        Steps ``'network_inline'`` and / or ``'network_crossline'`` (as ``options.directions`` says) and
+        ``'orientation'``.
 
     Raises
     ------
@@ -92,7 +108,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     out = pathlib.Path(output)
     run = _Run(out, plan, opt, chunking, progress)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt))), "plan": plan,
-                "method": "learned"}
+                "method": "learned, network blocks per direction"}
     earlier = run.earlier_plan(manifest)
     if earlier is not None:
         run.plan = plan = dict(earlier)
@@ -101,18 +117,83 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     with SchedulerClient(chunking.scheduler) as client:
         run.client = client
         scale = run.scale(x)
-        run.probability(x, scale)
+        for axis in cube_directions(opt):
+            run.network(x, scale, axis)
         saturated = run.orientation(coords)
     run.finish()
     return ChunkedLikelihood(out, shape, dict(run.computed), dict(run.resumed), saturated, dict(run.seconds))
 
 
-def _probability_halo(opt: LearnedOptions) -> int:
-    return grid_halo(RECEPTIVE_HALF, float(opt.resample), POOLING_MULTIPLE)
+def _network_shape(shape, factor: float) -> tuple:
+    """The whole cube's network grid: samples per axis."""
+    return tuple(grid_size(int(n), factor) for n in shape)
+
+
+def _input_span(u0: int, u1: int, need: int, factor: float, n: int) -> tuple:
+    """Input samples ``[a0, a1)`` along one lateral axis whose resampling gives the whole cube's network samples
+    ``[u0 - need, u1 + need)`` (within the cube) exactly: the anti-alias filter's radius and the linear
+    interpolation's neighbour on both sides. ``u0 - need`` is a multiple of the pooling multiple, so at factor 1
+    ``a0`` is too (the block's pooling grid is the cube's)."""
+    if factor == 1.0:
+        return max(u0 - need, 0), min(u1 + need, n)
+    margin = int(4.0 * anti_alias_sigma(factor) + 0.5) + 2  # scipy's Gaussian radius at truncate 4, and one more
+    return (max(math.floor((u0 - need) / factor) - margin, 0),
+            min(math.floor((u1 - 1 + need) / factor) + 1 + margin, n))
+
+
+def _network_region(block, axis: int, shape, factor: float) -> tuple:
+    """``(a0, a1, b0, b1)``: the input traces a network block of direction ``axis`` reads (the receptive half along
+    its sections, the resampling's margin across them)."""
+    u0, u1, v0, v1 = block
+    need = (0, RECEPTIVE_HALF) if axis == 0 else (RECEPTIVE_HALF, 0)
+    return _input_span(u0, u1, need[0], factor, shape[0]) + _input_span(v0, v1, need[1], factor, shape[1])
+
+
+def _network_block_bytes(block, axis: int, shape, factor: float, batch: int) -> int:
+    """Bytes at the peak of one network block (the model of ``_NETWORK_INPUT_BYTES`` and ``_NETWORK_BATCH_BYTES``)."""
+    a0, a1, b0, b1 = _network_region(block, axis, shape, factor)
+    nt = int(shape[2])
+    along = grid_size(b1 - b0, factor) if axis == 0 else grid_size(a1 - a0, factor)  # network traces per section
+    sections = block[1] - block[0] if axis == 0 else block[3] - block[2]
+    per_section = (along + POOLING_MULTIPLE) * (grid_size(nt, factor) + POOLING_MULTIPLE)
+    return ((a1 - a0) * (b1 - b0) * nt * _NETWORK_INPUT_BYTES
+            + min(batch, sections) * per_section * _NETWORK_BATCH_BYTES)
+
+
+def _network_blocks(grid, across: int, along: int, axis: int) -> list:
+    """``(u0, u1, v0, v1)`` network-grid blocks of ``across`` sections by ``along`` traces for direction ``axis``."""
+    size = (across, along) if axis == 0 else (along, across)
+    return lateral_blocks(grid, *size)
+
+
+def _largest_network_bytes(grid, across: int, along: int, axis: int, shape, factor: float, batch: int) -> int:
+    """Bytes of the largest block of a network block plan: the first, second and last blocks along each axis hold
+    every size of region there is (clipped at the cube's two edges or not)."""
+    size = (across, along) if axis == 0 else (along, across)
+    starts = [sorted({0, min(s, (n - 1) // s * s), (n - 1) // s * s}) for n, s in zip(grid[:2], size)]
+    return max(_network_block_bytes((u, min(u + size[0], grid[0]), v, min(v + size[1], grid[1])), axis, shape,
+                                    factor, batch) for u in starts[0] for v in starts[1])
+
+
+def _largest_network_block(grid, axis: int, shape, factor: float, batch: int, budget: int, fixed=None) -> tuple:
+    """``(across, along)`` network traces of the blocks of direction ``axis``: as long along the sections as the
+    budget allows (the whole width when it fits), then as many sections as it allows; ``fixed`` forces both."""
+    c = _NETWORK_CHUNK
+    width = grid[1 - axis]
+
+    def fits(across, along):
+        return _largest_network_bytes(grid, across, along, axis, shape, factor, batch) <= budget
+
+    if fixed is not None:
+        return fixed, fixed
+    longest = [w for w in range(c, width, c)] + [width]
+    along = max((w for w in longest if fits(c, w)), default=c)
+    across = largest_block(c, max(c, -(-grid[axis] // c) * c), lambda k: fits(k, along))
+    return across, along
 
 
 def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
-    """Bytes of the learned likelihood's smallest block (one worker), the larger of its two steps.
+    """Bytes of the learned likelihood's smallest block (one worker), the largest of its steps.
 
     Parameters
     ----------
@@ -120,7 +201,7 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
         ``(n_inlines, n_xlines, n_samples)``.
     opt : LearnedOptions
     tile : int
-        Traces a side of the smallest blocks (rounded up to the network's pooling multiple).
+        Traces a side of the smallest strike-and-dip blocks.
 
     Returns
     -------
@@ -128,39 +209,50 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
         Bytes per worker: a ``memory_limit`` below :func:`~seismo3d.seismic.blocks.limit_for_blocks` of it is refused
         by :func:`chunked_learned_likelihood`.
     """
-    nt = int(shape[2])
-    step = int(np.lcm(int(tile), POOLING_MULTIPLE))
-    return max((step + 2 * _probability_halo(opt)) ** 2 * nt * _PROBABILITY_BYTES,
-               (step + 2 * _orientation_halo(opt)) ** 2 * nt * _ORIENTATION_BYTES)
+    shape = tuple(int(n) for n in shape)
+    factor = float(opt.resample)
+    grid = _network_shape(shape, factor)
+    c = _NETWORK_CHUNK
+    network = max(_largest_network_bytes(grid, c, c, axis, shape, factor, int(opt.sections_per_batch))
+                  for axis in cube_directions(opt))
+    return max(network, (int(tile) + 2 * _orientation_halo(opt)) ** 2 * shape[2] * _ORIENTATION_BYTES)
 
 
 def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> dict:
-    """Block sides (traces, multiples of 8 and of the tile) of the two steps under the memory limit, planned with
+    """The network blocks of each direction (network traces, multiples of 16 or the whole width) and the
+    strike-and-dip blocks (traces, multiples of the tile) under the memory limit, planned with
     :func:`~seismo3d.seismic.blocks.block_budget` as the scan's and the surfaces' blocks are."""
     nt = shape[2]
     tile = int(chunking.tile)
-    halo_p = _probability_halo(opt)
+    factor = float(opt.resample)
+    grid = _network_shape(shape, factor)
     halo_o = _orientation_halo(opt)
     cap = max(tile, (max(shape[0], shape[1]) + tile - 1) // tile * tile)
     limit = int(chunking.memory_limit or default_memory_limit())
     budget = block_budget(limit, baseline, int(chunking.workers))
+    batch = int(opt.sections_per_batch)
+    if chunking.block and int(chunking.block) % tile:
+        raise InputError(f"block must be a multiple of the tile ({tile} traces); got {chunking.block}")
+    fixed = None
+    if chunking.block:
+        fixed = max(_NETWORK_CHUNK, -(-math.ceil(int(chunking.block) * factor) // _NETWORK_CHUNK) * _NETWORK_CHUNK)
+    network = {}
+    for axis in cube_directions(opt):
+        network[_DIRECTION_NAMES[axis]] = list(_largest_network_block(grid, axis, shape, factor, batch, budget, fixed))
 
-    def fits(halo, per_sample):
-        return lambda b: (b + 2 * halo) ** 2 * nt * per_sample <= budget
+    def fits_o(b):
+        return (b + 2 * halo_o) ** 2 * nt * _ORIENTATION_BYTES <= budget
 
-    step = int(np.lcm(tile, POOLING_MULTIPLE))
-    if chunking.block and int(chunking.block) % step:
-        raise InputError(f"block must be a multiple of {step} traces for the learned likelihood (the tile and the "
-                         f"network's pooling multiple {POOLING_MULTIPLE}); got {chunking.block}")
-    block_p = int(chunking.block or largest_block(step, min(cap, 512), fits(halo_p, _PROBABILITY_BYTES)))
-    block_o = int(chunking.block or largest_block(step, min(cap, 256), fits(halo_o, _ORIENTATION_BYTES)))
-    if not (fits(halo_p, _PROBABILITY_BYTES)(block_p) and fits(halo_o, _ORIENTATION_BYTES)(block_o)):
+    block_o = int(chunking.block or largest_block(tile, min(cap, 256), fits_o))
+    biggest = max(_largest_network_bytes(grid, *network[_DIRECTION_NAMES[axis]], axis, shape, factor, batch)
+                  for axis in cube_directions(opt))
+    if not (biggest <= budget and fits_o(block_o)):
         need = limit_for_blocks(learned_block_bytes(shape, opt, tile), baseline, int(chunking.workers))
         raise InputError(f"the memory limit ({limit / 2**30:.2f} GiB) is below what the smallest blocks of the "
                          f"learned likelihood need ({need / 2**30:.2f} GiB for {nt} samples per trace and "
                          f"{int(chunking.workers)} worker(s)); raise memory_limit (--memory-limit on the command line)")
-    return {"shape": list(shape), "tile": tile, "block_probability": int(block_p), "block_orientation": int(block_o),
-            "halo_probability": halo_p, "halo_orientation": halo_o}
+    return {"shape": list(shape), "tile": tile, "network_shape": list(grid), "network_chunk": _NETWORK_CHUNK,
+            "network_blocks": network, "block_orientation": int(block_o), "halo_orientation": halo_o}
 
 
 class _Run(LikelihoodRun):
@@ -171,8 +263,14 @@ class _Run(LikelihoodRun):
         self.plan, self.opt = plan, opt
 
     def start(self, manifest: dict) -> None:
-        self.start_output(manifest, tuple(self.plan["shape"]), self.plan["tile"],
-                          (("probability", "float32", self.plan["shape"][2]),))
+        import zarr
+        self.start_output(manifest, tuple(self.plan["shape"]), self.plan["tile"], ())
+        grid, c = self.plan["network_shape"], self.plan["network_chunk"]
+        for name in self.plan["network_blocks"]:
+            path = self.work / f"network_{name}"
+            if not path.exists():
+                zarr.create_array(str(path), shape=tuple(grid), chunks=(c, c, grid[2]), dtype="float32",
+                                  compressors=None, fill_value=0)
 
     def scale(self, x) -> tuple:
         path = self.work / "scale.json"
@@ -187,25 +285,24 @@ class _Run(LikelihoodRun):
         path.write_text(json.dumps(list(scale)))
         return scale
 
-    def probability(self, x, scale) -> None:
+    def network(self, x, scale, axis: int) -> None:
         p = self.plan
-        n0, n1, _ = p["shape"]
-        halo = p["halo_probability"]
-        todo, _ = self.pending("probability", lateral_blocks(p["shape"], p["block_probability"], p["block_probability"]))
+        name = _DIRECTION_NAMES[axis]
+        step = f"network_{name}"
+        todo, _ = self.pending(step, _network_blocks(p["network_shape"], *p["network_blocks"][name], axis))
         tasks = []
         for b in todo:
-            i0, i1, j0, j1 = b
-            a0, a1, b0, b1 = max(i0 - halo, 0), min(i1 + halo, n0), max(j0 - halo, 0), min(j1 + halo, n1)
-            tasks.append(self.task(_probability_block, x[a0:a1, b0:b1, :], (i0 - a0, i1 - a0, j0 - b0, j1 - b0), b,
-                                   str(self.work), self.opt, scale, (a0, b0), str(self.marker("probability", b))))
-        self.compute(tasks, "fault network", "probability")
+            a0, a1, b0, b1 = _network_region(b, axis, p["shape"], float(self.opt.resample))
+            tasks.append(self.task(_network_block, x[a0:a1, b0:b1, :], b, axis, (a0, b0), str(self.work / step),
+                                   self.opt, scale, str(self.marker(step, b))))
+        self.compute(tasks, f"fault network on {name}s", step)
 
     def orientation(self, coords) -> float:
         import zarr
         p = self.plan
         results = self.each_block("orientation", "fault orientation", _orientation_block,
-                                  lateral_blocks(p["shape"], p["block_orientation"], p["block_orientation"]), p, str(self.work),
-                                  str(self.partial), self.opt)
+                                  lateral_blocks(p["shape"], p["block_orientation"], p["block_orientation"]), p,
+                                  str(self.work), str(self.partial), self.opt)
         high = sum(r["high"] for r in results)
         group = zarr.open_group(str(self.partial), mode="r+")
         _write_coords(group, tuple(p["shape"]), coords)
@@ -215,19 +312,47 @@ class _Run(LikelihoodRun):
         return fraction
 
 
-def _probability_block(f, core, block, work, opt, scale, origin, marker) -> dict:
-    """The network's probability on one block read with halo; its core written to the work array."""
+def _network_block(f, block, axis, origin, array, opt, scale, marker) -> dict:
+    """The network's probability on the sections of one network block (direction ``axis``), read with its halo;
+    written to the direction's work array on the network grid."""
     import zarr
     f = np.ascontiguousarray(f, dtype=np.float32)
+    u0, u1, v0, v1 = block
     if not np.isfinite(f).all():
-        raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {block[0]}-{block[1] - 1} (indices); "
+        lo, hi = origin[0], origin[0] + f.shape[0]
+        raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {lo}-{hi - 1} (indices); "
                          "replace them (e.g. by 0) before tracing faults")
-    prob = fault_probability(f, options=opt, scale=scale, origin=origin)
-    c0, c1, d0, d1 = core
-    i0, i1, j0, j1 = block
-    zarr.open_array(f"{work}/probability", mode="r+")[i0:i1, j0:j1, :] = prob[c0:c1, d0:d1]
+    aligns = (1, POOLING_MULTIPLE) if axis == 0 else (POOLING_MULTIPLE, 1)
+    small, first = to_network_grid(f, float(opt.resample), origin=origin, align=aligns)
+    del f
+    r0, r1, c0, c1 = u0 - first[0], u1 - first[0], v0 - first[1], v1 - first[1]
+    assert min(r0, c0) >= 0 and r1 <= small.shape[0] and c1 <= small.shape[1], "network block outside its region"
+    sections = small[r0:r1] if axis == 0 else small[:, c0:c1]
+    prob = direction_probability(sections, axis, scale=scale, batch=int(opt.sections_per_batch))
+    zarr.open_array(array, mode="r+")[u0:u1, v0:v1, :] = prob[:, c0:c1] if axis == 0 else prob[r0:r1]
     write_marker(marker, {})
     return {}
+
+
+def _probability(plan: dict, work, region, opt: LearnedOptions) -> np.ndarray:
+    """The network's probability on the input samples of ``region`` ``(a0, a1, b0, b1)``: the larger of the two
+    directions' on the network grid, interpolated (as :func:`~seismo3d.seismic.faults.learned.fault_probability`
+    does on the whole cube)."""
+    import zarr
+    a0, a1, b0, b1 = region
+    factor = float(opt.resample)
+    grid = plan["network_shape"]
+    if factor == 1.0:
+        u, v = (a0, a1), (b0, b1)
+    else:  # the network samples either side of every input sample of the region
+        u = (math.floor(a0 * factor), min(math.floor((a1 - 1) * factor) + 2, grid[0]))
+        v = (math.floor(b0 * factor), min(math.floor((b1 - 1) * factor) + 2, grid[1]))
+    small = None
+    for name in plan["network_blocks"]:
+        one = zarr.open_array(f"{work}/network_{name}", mode="r")[u[0]:u[1], v[0]:v[1]]
+        small = one if small is None else np.maximum(small, one)
+    return from_network_grid(small, (a1 - a0, b1 - b0, plan["shape"][2]), factor, origin=(a0, b0),
+                             first=(u[0], v[0], 0))
 
 
 def _orientation_block(block, plan: dict, work, partial, opt, marker) -> dict:
@@ -237,7 +362,7 @@ def _orientation_block(block, plan: dict, work, partial, opt, marker) -> dict:
     halo = plan["halo_orientation"]
     i0, i1, j0, j1 = block
     a0, a1, b0, b1 = max(i0 - halo, 0), min(i1 + halo, n0), max(j0 - halo, 0), min(j1 + halo, n1)
-    prob = zarr.open_array(f"{work}/probability", mode="r")[a0:a1, b0:b1]
+    prob = _probability(plan, work, (a0, a1, b0, b1), opt)
     strike, dip = orientation_from_likelihood(prob, sigma=float(opt.orientation_sigma))
     core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
     group = zarr.open_group(partial, mode="r+")

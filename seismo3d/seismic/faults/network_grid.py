@@ -116,6 +116,14 @@ def _full_origin(origin, ndim: int) -> tuple:
     return tuple(int(o) for o in (origin or (0,) * (ndim - 1))) + (0,)
 
 
+def _lateral_aligns(align, n_lateral: int) -> tuple:
+    """``align`` (an int, or one per lateral axis) as a tuple of ``n_lateral`` positive ints."""
+    aligns = tuple(int(a) for a in align) if np.ndim(align) else (int(align),) * n_lateral
+    if len(aligns) != n_lateral or min(aligns) < 1:
+        raise InputError(f"align must be a positive int or one per lateral axis ({n_lateral}); got {align!r}")
+    return aligns
+
+
 def _interpolate_axis(a: np.ndarray, axis: int, positions: np.ndarray) -> np.ndarray:
     """Values of ``a`` at fractional ``positions`` (local indices, within [0, n - 1]) along ``axis``, linearly."""
     lo = np.floor(positions).astype(np.int64)
@@ -139,8 +147,10 @@ def to_network_grid(data: np.ndarray, factor: float, *, origin=None, align: int 
         Resampling factor in [0.25, 1] along every axis.
     origin : sequence of int, optional
         Global index of ``data``'s first sample along each lateral axis (default 0: the whole input).
-    align : int, optional
-        Along the lateral axes the block's network grid starts at a multiple of this.
+    align : int or sequence of int, optional
+        Along the lateral axes the block's network grid starts at a multiple of this (one value per lateral axis,
+        or one for all): the network's pooling multiple along an axis the network convolves over, 1 along an axis
+        its sections are stacked on (no pooling grid to keep).
 
     Returns
     -------
@@ -157,13 +167,14 @@ def to_network_grid(data: np.ndarray, factor: float, *, origin=None, align: int 
     f = _check_factor(factor)
     arr = np.asarray(data, dtype=np.float32)
     origin = _full_origin(origin, arr.ndim)
+    aligns = _lateral_aligns(align, arr.ndim - 1)
     if f == 1.0:
         return arr, origin
     out = gaussian_filter(arr, anti_alias_sigma(f), truncate=4.0)
     first = []
     for axis, (n, o) in enumerate(zip(arr.shape, origin)):
         lateral = axis < arr.ndim - 1
-        u0 = _first(o, f, align) if lateral else 0
+        u0 = _first(o, f, aligns[axis]) if lateral else 0
         u1 = grid_size(o + n, f)  # one past the last network sample inside the data
         u = np.arange(u0, u1, dtype=np.float64)
         out = _interpolate_axis(out, axis, u / f - o)

@@ -15,7 +15,7 @@ import segyio
 from ..._atomic import atomic_path
 from ..._progress import progress_steps
 from ...errors import InputError, TraceListWarning
-from .blocks import SegyGrid
+from .blocks import _FIELD_STARTS, _SAMPLE_BYTES, _TRACE_HEADER_BYTES, SegyGrid, _header_dtype
 from .segy import open_segy
 
 __all__ = ["write_like", "write_like_blocks"]
@@ -79,14 +79,13 @@ def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 
         spec.endian = "big"  # segyio converts the copied header values to it
         if src.unstructured:
             spec.tracecount = src.tracecount
-        with atomic_path(out_path) as tmp, segyio.create(str(tmp), spec) as dst:
-            for i in range(1 + src.ext_headers):
-                dst.text[i] = src.text[i]
-            dst.bin = src.bin
-            dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
-            dst.header = src.header
-            for i in range(ntr):
-                dst.trace[i] = traces[i]
+        with atomic_path(out_path) as tmp:
+            with segyio.create(str(tmp), spec) as dst:
+                headers_copied = _start_like(src, dst, template_path, cube.endian)
+                for i in range(ntr):
+                    dst.trace[i] = traces[i]
+            if not headers_copied:
+                _copy_trace_headers(template_path, src, cube.endian, tmp)
     return out_path
 
 
@@ -146,27 +145,80 @@ def write_like_blocks(template_path, out_path, values, *, iline: int = 189, xlin
         spec = segyio.tools.metadata(src)
         spec.format = int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)
         spec.endian = "big"
-        n_il = cube.shape[0]
-        with atomic_path(out_path) as tmp, segyio.create(str(tmp), spec) as dst:
-            for i in range(1 + src.ext_headers):
-                dst.text[i] = src.text[i]
-            dst.bin = src.bin
-            dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
-            dst.header = src.header
-            starts = range(0, n_il, int(inlines_per_block))
-            with progress_steps(len(starts), f"writing {out_path.name}", unit="block", enabled=progress) as bar:
-                for i0 in starts:
-                    i1 = min(i0 + int(inlines_per_block), n_il)
-                    block = np.asarray(values[i0:i1], dtype=np.float32)
-                    if not np.all(np.isfinite(block)):
-                        raise InputError(f"values hold NaN or inf in inlines {i0}-{i1 - 1} (indices), which most "
-                                         "SEG-Y readers reject; replace them first")
-                    for first, last, where in grid.trace_runs(i0, i1, 0, grid.n_xlines):
-                        traces = np.ascontiguousarray(block[where]).reshape(-1, grid.n_samples)
-                        for k in range(last - first):
-                            dst.trace[first + k] = traces[k]
-                    bar.advance()
+        with atomic_path(out_path) as tmp:
+            with segyio.create(str(tmp), spec) as dst:
+                headers_copied = _start_like(src, dst, template_path, cube.endian)
+                _write_inline_blocks(dst, values, grid, int(inlines_per_block), f"writing {out_path.name}", progress)
+            if not headers_copied:
+                _copy_trace_headers(template_path, src, cube.endian, tmp)
     return out_path
+
+
+def _write_inline_blocks(dst, values, grid: SegyGrid, inlines_per_block: int, label: str, progress: bool) -> None:
+    """The traces of ``values`` into the open SEG-Y ``dst``, ``inlines_per_block`` inlines read at a time."""
+    starts = range(0, grid.n_inlines, inlines_per_block)
+    with progress_steps(len(starts), label, unit="block", enabled=progress) as bar:
+        for i0 in starts:
+            i1 = min(i0 + inlines_per_block, grid.n_inlines)
+            block = np.asarray(values[i0:i1], dtype=np.float32)
+            if not np.all(np.isfinite(block)):
+                raise InputError(f"values hold NaN or inf in inlines {i0}-{i1 - 1} (indices), which most SEG-Y "
+                                 "readers reject; replace them first")
+            for first, last, where in grid.trace_runs(i0, i1, 0, grid.n_xlines):
+                traces = np.ascontiguousarray(block[where]).reshape(-1, grid.n_samples)
+                for k in range(last - first):
+                    dst.trace[first + k] = traces[k]
+            bar.advance()
+
+
+def _start_like(src, dst, template_path: Path, endian: str) -> bool:
+    """Copy the textual and binary headers of ``src`` into the new file ``dst`` (data format 5); the trace headers
+    too when the template's traces are not of one fixed length (through segyio, field by field). Whether the trace
+    headers were copied (else :func:`_copy_trace_headers` copies them once ``dst`` is closed)."""
+    for i in range(1 + src.ext_headers):
+        dst.text[i] = src.text[i]
+    dst.bin = src.bin
+    dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
+    if _trace_headers(template_path, src, endian) is None:
+        dst.header = src.header
+        return True
+    return False
+
+
+def _trace_headers(template_path: Path, src, endian: str):
+    """The template's trace headers as a read-only ``(n_traces, 240)`` view of a memory map of the file, or None
+    when its size does not match traces of one fixed length."""
+    sample_bytes = _SAMPLE_BYTES.get(int(src.format))
+    if sample_bytes is None:
+        return None
+    first = 3600 + 3200 * int(src.ext_headers)
+    stride = _TRACE_HEADER_BYTES + len(src.samples) * sample_bytes
+    if template_path.stat().st_size != first + stride * src.tracecount:
+        return None
+    table = np.memmap(template_path, np.uint8, mode="r", offset=first, shape=(src.tracecount, stride))
+    return table[:, :_TRACE_HEADER_BYTES]
+
+
+_COPY_TRACES = 16384  # trace headers copied at a time (4 MB)
+
+
+def _copy_trace_headers(template_path: Path, src, endian: str, out_path) -> None:
+    """Copy every 240-byte trace header of the template into the closed big-endian IEEE-float SEG-Y ``out_path``
+    (same trace count and samples per trace), as ``segyio``'s header copy does field by field: byte for byte from a
+    big-endian template, each field (SEG-Y rev 1 Table 3, 2 or 4 bytes) byte-swapped from a little-endian one."""
+    headers = _trace_headers(template_path, src, endian)
+    n = src.tracecount
+    first = 3600 + 3200 * int(src.ext_headers)
+    out = np.memmap(out_path, np.uint8, mode="r+", offset=first,
+                    shape=(n, _TRACE_HEADER_BYTES + 4 * len(src.samples)))
+    swap = None if endian == "big" else (_header_dtype(_FIELD_STARTS, "little"), _header_dtype(_FIELD_STARTS, "big"))
+    for a in range(0, n, _COPY_TRACES):
+        raw = np.array(headers[a:a + _COPY_TRACES])
+        if swap is not None:
+            raw = raw.view(swap[0]).reshape(-1).astype(swap[1]).view(np.uint8).reshape(raw.shape)
+        out[a:a + _COPY_TRACES, :_TRACE_HEADER_BYTES] = raw
+    out.flush()
+    del out
 
 
 def _check_destination(template_path, out_path) -> tuple[Path, Path]:

@@ -127,6 +127,7 @@ def target(root: pathlib.Path, shape=(400, 400, 500), limit: str = "1GB") -> dic
     runs = {}
     for key, extra in (("memory", []), ("blocks", ["--memory-limit", limit])):
         out = root / f"target_{key}"
+        shutil.rmtree(out, ignore_errors=True)  # an earlier benchmark's: the command would reuse its stores
         cmd = [shutil.which("seismo3d"), "faults", str(sgy), "-o", str(out), *extra]
         start = time.perf_counter()
         with open(root / f"target_{key}.log", "w") as log:  # the progress the command reports

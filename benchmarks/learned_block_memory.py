@@ -32,7 +32,8 @@ from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions
 def network_blocks(opt: LearnedOptions) -> None:
     factor = float(opt.resample)
     batch = int(opt.sections_per_batch)
-    print(f"network blocks: planned {lb._NETWORK_INPUT_BYTES} bytes per input sample read + "
+    print(f"network blocks: planned {lb._NETWORK_INPUT_BYTES} bytes per input sample read (8 of them for dask's "
+          "reads, not seen here) + "
           f"{lb._NETWORK_BATCH_BYTES} per network sample of a batch of {batch} sections; load average "
           f"{os.getloadavg()[0]:.1f}")
     work = tempfile.mkdtemp(prefix="learned_memory_")

@@ -34,3 +34,24 @@ def test_block_tasks_share_the_cores_between_workers(tmp_path):
         assert client.compute(tasks, sync=True) == [min(max(1, cores // 2), numba.config.NUMBA_NUM_THREADS)] * 4
         kept = client.compute([run.task(_kernel_thread_count, 0, threads=False)], sync=True)
         assert kept == [numba.config.NUMBA_NUM_THREADS]  # the process's threads: restored after the tasks above
+
+
+def test_serial_step_blocks_trade_halo_for_idle_cores(monkeypatch):
+    from seismo3d.seismic import blocks
+
+    monkeypatch.setattr(blocks, "_usable_cores", lambda: 2)
+    mib = 1 << 20
+
+    def block_bytes(side):  # 1 MiB per trace of a block with 9 traces of halo
+        return (side + 18) ** 2 * mib
+
+    # room for one block of 96 or two of 64 (each within half the budget): (82 / 64)^2 / 2 < (114 / 96)^2
+    limit = int(2 * 82 ** 2 * mib / blocks.MEMORY_HEADROOM) + 1
+    assert blocks.serial_step_blocks(limit, 0, 1, None, 32, 256, 9, block_bytes) == (2, 64)
+    # a third of that: one block of 32 (50^2 MiB) or two of 32 (each over half the budget: not allowed)
+    small = int(50 ** 2 * mib / blocks.MEMORY_HEADROOM) + 1
+    assert blocks.serial_step_blocks(small, 0, 1, None, 32, 256, 9, block_bytes) == (1, 32)
+    # a cluster runs the blocks its workers take: the count asked for
+    assert blocks.serial_step_blocks(limit, 0, 1, "tcp://127.0.0.1:8786", 32, 256, 9, block_bytes) == (1, 96)
+    # two blocks at once asked for: never fewer
+    assert blocks.serial_step_blocks(limit, 0, 2, None, 32, 256, 9, block_bytes) == (2, 64)

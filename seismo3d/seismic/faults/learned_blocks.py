@@ -35,7 +35,8 @@ import numpy as np
 
 from ..._options import resolve_options
 from ...errors import InputError
-from ..blocks import SchedulerClient, block_budget, largest_block, limit_for_blocks, write_marker
+from ..blocks import (SchedulerClient, block_budget, largest_block, limit_for_blocks, serial_step_blocks,
+                      write_marker)
 from .learned import (LearnedOptions, amplitude_scale, cube_directions, direction_probability,
                       orientation_from_likelihood, scale_subsample)
 from .likelihood_blocks import (ChunkedLikelihood, ChunkOptions, LikelihoodRun, _write_coords, lateral_blocks,
@@ -49,10 +50,13 @@ __all__ = ["chunked_learned_likelihood", "learned_block_bytes"]
 # Network-grid traces a side of the chunks of the network work arrays; the network blocks are multiples of it (or the
 # whole width), so no two blocks write one chunk
 _NETWORK_CHUNK = 16
-# bytes at the peak of a network block (benchmarks/learned_block_memory.py measures them with tracemalloc): per input
-# sample of the block as read (the amplitudes, the anti-alias filter, the resampling) and per network-grid sample of
-# the sections run at once (one batch's activations, the network's output)
-_NETWORK_INPUT_BYTES = 8
+# bytes at the peak of a network block: per input sample of the block (8: the amplitudes as read, the anti-alias
+# filter, the resampling, as benchmarks/learned_block_memory.py measures them with tracemalloc from the block as read;
+# 8 more: the tiles dask reads and joins into the block, held while it joins them, and the next block's tiles read
+# while this block runs; without them the 400 x 400 x 500 run of benchmarks/fault_paths.py --only target held 0.97 GiB
+# of anonymous memory under a 0.93 GiB limit) and per network-grid sample of the sections run at once (one batch's
+# activations, the network's output)
+_NETWORK_INPUT_BYTES = 16
 _NETWORK_BATCH_BYTES = 420
 # bytes per sample of an orientation block (halo included) at its peak: the probability, its gradients, the tensor
 # components and the outputs (measured 72.0); the headroom for the allocator is block_budget's
@@ -240,19 +244,24 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
     for axis in cube_directions(opt):
         network[_DIRECTION_NAMES[axis]] = list(_largest_network_block(grid, axis, shape, factor, batch, budget, fixed))
 
-    def fits_o(b):
-        return (b + 2 * halo_o) ** 2 * nt * _ORIENTATION_BYTES <= budget
+    def bytes_o(b):
+        return (b + 2 * halo_o) ** 2 * nt * _ORIENTATION_BYTES
 
-    block_o = int(chunking.block or largest_block(tile, min(cap, 256), fits_o))
+    if chunking.block:
+        workers_o, block_o = int(chunking.workers), int(chunking.block)
+    else:  # its kernels are mostly serial (scipy's Gaussian filters): blocks at once on the idle cores
+        workers_o, block_o = serial_step_blocks(limit, baseline, int(chunking.workers), chunking.scheduler, tile,
+                                                min(cap, 256), halo_o, bytes_o)
     biggest = max(_largest_network_bytes(grid, *network[_DIRECTION_NAMES[axis]], axis, shape, factor, batch)
                   for axis in cube_directions(opt))
-    if not (biggest <= budget and fits_o(block_o)):
+    if not (biggest <= budget and bytes_o(block_o) <= block_budget(limit, baseline, workers_o)):
         need = limit_for_blocks(learned_block_bytes(shape, opt, tile), baseline, int(chunking.workers))
         raise InputError(f"the memory limit ({limit / 2**30:.2f} GiB) is below what the smallest blocks of the "
                          f"learned likelihood need ({need / 2**30:.2f} GiB for {nt} samples per trace and "
                          f"{int(chunking.workers)} worker(s)); raise memory_limit (--memory-limit on the command line)")
     return {"shape": list(shape), "tile": tile, "network_shape": list(grid), "network_chunk": _NETWORK_CHUNK,
-            "network_blocks": network, "block_orientation": int(block_o), "halo_orientation": halo_o}
+            "network_blocks": network, "block_orientation": int(block_o), "workers_orientation": int(workers_o),
+            "halo_orientation": halo_o}
 
 
 class _Run(LikelihoodRun):
@@ -302,7 +311,7 @@ class _Run(LikelihoodRun):
         p = self.plan
         results = self.each_block("orientation", "fault orientation", _orientation_block,
                                   lateral_blocks(p["shape"], p["block_orientation"], p["block_orientation"]), p,
-                                  str(self.work), str(self.partial), self.opt)
+                                  str(self.work), str(self.partial), self.opt, workers=p["workers_orientation"])
         high = sum(r["high"] for r in results)
         group = zarr.open_group(str(self.partial), mode="r+")
         _write_coords(group, tuple(p["shape"]), coords)

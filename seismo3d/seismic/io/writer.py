@@ -81,7 +81,7 @@ def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 
             spec.tracecount = src.tracecount
         with atomic_path(out_path) as tmp:
             with segyio.create(str(tmp), spec) as dst:
-                headers_copied = _start_like(src, dst, template_path, cube.endian)
+                headers_copied = _start_like(src, dst, template_path)
                 for i in range(ntr):
                     dst.trace[i] = traces[i]
             if not headers_copied:
@@ -147,7 +147,7 @@ def write_like_blocks(template_path, out_path, values, *, iline: int = 189, xlin
         spec.endian = "big"
         with atomic_path(out_path) as tmp:
             with segyio.create(str(tmp), spec) as dst:
-                headers_copied = _start_like(src, dst, template_path, cube.endian)
+                headers_copied = _start_like(src, dst, template_path)
                 _write_inline_blocks(dst, values, grid, int(inlines_per_block), f"writing {out_path.name}", progress)
             if not headers_copied:
                 _copy_trace_headers(template_path, src, cube.endian, tmp)
@@ -171,7 +171,7 @@ def _write_inline_blocks(dst, values, grid: SegyGrid, inlines_per_block: int, la
             bar.advance()
 
 
-def _start_like(src, dst, template_path: Path, endian: str) -> bool:
+def _start_like(src, dst, template_path: Path) -> bool:
     """Copy the textual and binary headers of ``src`` into the new file ``dst`` (data format 5); the trace headers
     too when the template's traces are not of one fixed length (through segyio, field by field). Whether the trace
     headers were copied (else :func:`_copy_trace_headers` copies them once ``dst`` is closed)."""
@@ -179,15 +179,15 @@ def _start_like(src, dst, template_path: Path, endian: str) -> bool:
         dst.text[i] = src.text[i]
     dst.bin = src.bin
     dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
-    if _trace_headers(template_path, src, endian) is None:
+    if _trace_layout(template_path, src) is None:
         dst.header = src.header
         return True
     return False
 
 
-def _trace_headers(template_path: Path, src, endian: str):
-    """The template's trace headers as a read-only ``(n_traces, 240)`` view of a memory map of the file, or None
-    when its size does not match traces of one fixed length."""
+def _trace_layout(template_path: Path, src) -> tuple | None:
+    """``(first trace's byte, bytes per trace)`` of the template, or None when its size does not match traces of one
+    fixed length."""
     sample_bytes = _SAMPLE_BYTES.get(int(src.format))
     if sample_bytes is None:
         return None
@@ -195,30 +195,36 @@ def _trace_headers(template_path: Path, src, endian: str):
     stride = _TRACE_HEADER_BYTES + len(src.samples) * sample_bytes
     if template_path.stat().st_size != first + stride * src.tracecount:
         return None
-    table = np.memmap(template_path, np.uint8, mode="r", offset=first, shape=(src.tracecount, stride))
-    return table[:, :_TRACE_HEADER_BYTES]
+    return first, stride
 
 
-_COPY_TRACES = 16384  # trace headers copied at a time (4 MB)
+_COPY_TRACES = 8192  # traces whose headers are copied at a time (the template's and the output's: 2 x 18 MB at most)
 
 
 def _copy_trace_headers(template_path: Path, src, endian: str, out_path) -> None:
     """Copy every 240-byte trace header of the template into the closed big-endian IEEE-float SEG-Y ``out_path``
     (same trace count and samples per trace), as ``segyio``'s header copy does field by field: byte for byte from a
-    big-endian template, each field (SEG-Y rev 1 Table 3, 2 or 4 bytes) byte-swapped from a little-endian one."""
-    headers = _trace_headers(template_path, src, endian)
+    big-endian template, each field (SEG-Y rev 1 Table 3, 2 or 4 bytes) byte-swapped from a little-endian one. Read
+    and written a run of traces at a time with plain file reads (no memory map: the files' pages are not the
+    process's)."""
+    first, stride = _trace_layout(template_path, src)
     n = src.tracecount
-    first = 3600 + 3200 * int(src.ext_headers)
-    out = np.memmap(out_path, np.uint8, mode="r+", offset=first,
-                    shape=(n, _TRACE_HEADER_BYTES + 4 * len(src.samples)))
+    out_first = 3600 + 3200 * int(src.ext_headers)
+    out_stride = _TRACE_HEADER_BYTES + 4 * len(src.samples)
     swap = None if endian == "big" else (_header_dtype(_FIELD_STARTS, "little"), _header_dtype(_FIELD_STARTS, "big"))
-    for a in range(0, n, _COPY_TRACES):
-        raw = np.array(headers[a:a + _COPY_TRACES])
-        if swap is not None:
-            raw = raw.view(swap[0]).reshape(-1).astype(swap[1]).view(np.uint8).reshape(raw.shape)
-        out[a:a + _COPY_TRACES, :_TRACE_HEADER_BYTES] = raw
-    out.flush()
-    del out
+    with open(template_path, "rb") as fin, open(out_path, "r+b") as fout:
+        for a in range(0, n, _COPY_TRACES):
+            m = min(_COPY_TRACES, n - a)
+            fin.seek(first + a * stride)
+            raw = np.fromfile(fin, np.uint8, m * stride).reshape(m, stride)[:, :_TRACE_HEADER_BYTES]
+            if swap is not None:
+                raw = np.ascontiguousarray(raw).view(swap[0]).reshape(-1).astype(swap[1]).view(np.uint8)
+                raw = raw.reshape(m, _TRACE_HEADER_BYTES)
+            fout.seek(out_first + a * out_stride)
+            block = np.fromfile(fout, np.uint8, m * out_stride).reshape(m, out_stride)
+            block[:, :_TRACE_HEADER_BYTES] = raw
+            fout.seek(out_first + a * out_stride)
+            block.tofile(fout)
 
 
 def _check_destination(template_path, out_path) -> tuple[Path, Path]:

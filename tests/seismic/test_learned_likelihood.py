@@ -83,6 +83,11 @@ def test_orientation_of_a_dipping_line():
     assert (strike[on] == 270.0).mean() > 0.9  # dips towards +trace: strike 270 (module conventions)
 
 
+def test_direction_probability_refuses_a_section():
+    with pytest.raises(InputError, match="n_inlines, n_xlines, n_samples"):
+        learned.direction_probability(np.zeros((40, 32), np.float32), 0, scale=(0.0, 1.0))
+
+
 def test_bad_input_is_refused():
     with pytest.raises(InputError, match="NaN"):
         learned_fault_likelihood(np.full((40, 40), np.nan))
@@ -168,9 +173,9 @@ def test_training_smoke(tmp_path):
 @pytest.mark.slow
 @pytest.mark.parametrize("resample, shape, block", [
     (1.0, (72, 80, 48), 64),  # the data's own grid: network blocks of 64 traces, halo 56 traces
-    # the default's grid: network blocks of 48 network traces, origins off its pooling grid, the halo along the
-    # sections inside the cube on both sides (blocks 48-96 and 96-144 of 163 and 166)
-    (LearnedOptions().resample, (232, 236, 32), 64),
+    # the default's grid: network blocks of 80 network traces, origins off its pooling grid, the halo along the
+    # sections inside the cube at the end of block 0-80 and at the start of block 80-160 (of 163 and 166)
+    (LearnedOptions().resample, (232, 236, 32), 96),
 ])
 def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block):
     from seismo3d.seismic.faults.learned_blocks import chunked_learned_likelihood

@@ -264,8 +264,24 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
     Returns
     -------
     float32 ndarray, the shape of ``small``
-        Probability in [0, 1]; each section's from that section alone (the network is 2D).
+        Probability in [0, 1]; each section's from that section alone (the network is 2D), so a block of sections
+        needs halo along its sections only (:mod:`~seismo3d.seismic.faults.learned_blocks`).
+
+    Raises
+    ------
+    InputError
+        ``small`` is not a 3D cube.
+    Seismo3dError
+        The shipped weights are missing or damaged.
+
+    References
+    ----------
+    Wu et al. 2019, FaultSeg3D, Geophysics 84(3), IM35-IM45, doi:10.1190/geo2018-0646.1 (a network per section run
+    over a cube's sections).
     """
+    if np.ndim(small) != 3 or axis not in (0, 1):
+        raise InputError(f"direction_probability needs a (n_inlines, n_xlines, n_samples) cube and axis 0 or 1; got "
+                         f"shape {np.shape(small)} and axis {axis!r}")
     weights = load_fault_network()
     if bar is None:
         with progress_steps(small.shape[axis], "fault network", unit="section", enabled=False) as quiet:

@@ -95,8 +95,9 @@ class FaultEvidence:
         the mean of a side's nearer traces with the mean of its farther ones,
         :attr:`~seismo3d.seismic.faults.throw.FaultThrow.side_coherence`), in [-1, 1]; NaN if unmeasured. Reported,
         not asked for: a mismatch of sides that are not continuous themselves (noise, the edge of a chaotic body:
-        0.01 on a generated one) says little of a displacement, but real faults in noisy data have it too (0.3-0.5
-        on the Costa Rica crf section, where asking for 0.5 drops faults of the published OSV result).
+        0.01 on a generated one) says little of a displacement, but real faults in noisy data have it too: on the
+        Costa Rica crf section (``side_coherence`` in the ``fault_summary.csv`` of ``seismo3d faults``) faults that
+        the published OSV result also holds measure below 0.5, and asking for 0.5 drops them.
     """
 
     fault_id: int

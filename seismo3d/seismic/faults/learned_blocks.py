@@ -68,6 +68,11 @@ def _orientation_halo(opt: LearnedOptions) -> int:
     return int(np.ceil(4 * float(opt.orientation_sigma))) + 1  # Gaussian radius (truncate 4) and the gradient
 
 
+def _orientation_block_bytes(side: int, n_samples: int, opt: LearnedOptions) -> int:
+    """Bytes of a strike-and-dip block of ``side`` traces a side, its halo included."""
+    return (int(side) + 2 * _orientation_halo(opt)) ** 2 * int(n_samples) * _ORIENTATION_BYTES
+
+
 def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None = None,
                                chunking: ChunkOptions | None = None, coords: dict | None = None,
                                progress: bool = False, **overrides) -> ChunkedLikelihood:
@@ -182,16 +187,15 @@ def _largest_network_bytes(grid, across: int, along: int, axis: int, shape, fact
 def _largest_network_block(grid, axis: int, shape, factor: float, batch: int, budget: int, fixed=None) -> tuple:
     """``(across, along)`` network traces of the blocks of direction ``axis``: as long along the sections as the
     budget allows (the whole width when it fits), then as many sections as it allows; ``fixed`` forces both."""
+    if fixed is not None:
+        return fixed, fixed
     c = _NETWORK_CHUNK
     width = grid[1 - axis]
 
     def fits(across, along):
         return _largest_network_bytes(grid, across, along, axis, shape, factor, batch) <= budget
 
-    if fixed is not None:
-        return fixed, fixed
-    longest = [w for w in range(c, width, c)] + [width]
-    along = max((w for w in longest if fits(c, w)), default=c)
+    along = max((w for w in [*range(c, width, c), width] if fits(c, w)), default=c)
     across = largest_block(c, max(c, -(-grid[axis] // c) * c), lambda k: fits(k, along))
     return across, along
 
@@ -219,7 +223,7 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
     c = _NETWORK_CHUNK
     network = max(_largest_network_bytes(grid, c, c, axis, shape, factor, int(opt.sections_per_batch))
                   for axis in cube_directions(opt))
-    return max(network, (int(tile) + 2 * _orientation_halo(opt)) ** 2 * shape[2] * _ORIENTATION_BYTES)
+    return max(network, _orientation_block_bytes(tile, shape[2], opt))
 
 
 def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> dict:
@@ -245,7 +249,7 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
         network[_DIRECTION_NAMES[axis]] = list(_largest_network_block(grid, axis, shape, factor, batch, budget, fixed))
 
     def bytes_o(b):
-        return (b + 2 * halo_o) ** 2 * nt * _ORIENTATION_BYTES
+        return _orientation_block_bytes(b, nt, opt)
 
     if chunking.block:
         workers_o, block_o = int(chunking.workers), int(chunking.block)

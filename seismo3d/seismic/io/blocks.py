@@ -206,16 +206,26 @@ def _header_dtype(fields, endian: str) -> np.dtype:
                      "offsets": [k - 1 for k in fields], "itemsize": _TRACE_HEADER_BYTES})
 
 
-def _trace_table(f, grid: SegyGrid):
-    """The file's traces as a read-only ``(n_traces, trace_bytes)`` uint8 memory map (header then samples), or None
-    when the file's size does not match that layout (then the headers are read through segyio)."""
+def _trace_layout(f, path, n_samples: int, n_traces: int) -> tuple | None:
+    """``(byte of the first trace, bytes per trace)`` of the open SEG-Y ``f`` at ``path``, or None when its size does
+    not match traces of one fixed length (or its sample format is unknown)."""
     sample_bytes = _SAMPLE_BYTES.get(int(f.format))
     if sample_bytes is None:
         return None
     first = 3600 + 3200 * int(f.ext_headers)
-    stride = _TRACE_HEADER_BYTES + grid.n_samples * sample_bytes
-    if Path(grid.path).stat().st_size != first + stride * grid.n_traces:
+    stride = _TRACE_HEADER_BYTES + int(n_samples) * sample_bytes
+    if Path(path).stat().st_size != first + stride * int(n_traces):
         return None
+    return first, stride
+
+
+def _trace_table(f, grid: SegyGrid):
+    """The file's traces as a read-only ``(n_traces, trace_bytes)`` uint8 memory map (header then samples), or None
+    when the file's size does not match that layout (then the headers are read through segyio)."""
+    layout = _trace_layout(f, grid.path, grid.n_samples, grid.n_traces)
+    if layout is None:
+        return None
+    first, stride = layout
     return np.memmap(grid.path, np.uint8, mode="r", offset=first, shape=(grid.n_traces, stride))
 
 

@@ -15,7 +15,7 @@ import segyio
 from ..._atomic import atomic_path
 from ..._progress import progress_steps
 from ...errors import InputError, TraceListWarning
-from .blocks import _FIELD_STARTS, _SAMPLE_BYTES, _TRACE_HEADER_BYTES, SegyGrid, _header_dtype
+from .blocks import _FIELD_STARTS, _TRACE_HEADER_BYTES, SegyGrid, _header_dtype, _trace_layout
 from .segy import open_segy
 
 __all__ = ["write_like", "write_like_blocks"]
@@ -179,23 +179,10 @@ def _start_like(src, dst, template_path: Path) -> bool:
         dst.text[i] = src.text[i]
     dst.bin = src.bin
     dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
-    if _trace_layout(template_path, src) is None:
+    if _trace_layout(src, template_path, len(src.samples), src.tracecount) is None:
         dst.header = src.header
         return True
     return False
-
-
-def _trace_layout(template_path: Path, src) -> tuple | None:
-    """``(first trace's byte, bytes per trace)`` of the template, or None when its size does not match traces of one
-    fixed length."""
-    sample_bytes = _SAMPLE_BYTES.get(int(src.format))
-    if sample_bytes is None:
-        return None
-    first = 3600 + 3200 * int(src.ext_headers)
-    stride = _TRACE_HEADER_BYTES + len(src.samples) * sample_bytes
-    if template_path.stat().st_size != first + stride * src.tracecount:
-        return None
-    return first, stride
 
 
 _COPY_TRACES = 8192  # traces whose headers are copied at a time (the template's and the output's: 2 x 18 MB at most)
@@ -207,10 +194,10 @@ def _copy_trace_headers(template_path: Path, src, endian: str, out_path) -> None
     big-endian template, each field (SEG-Y rev 1 Table 3, 2 or 4 bytes) byte-swapped from a little-endian one. Read
     and written a run of traces at a time with plain file reads (no memory map: the files' pages are not the
     process's)."""
-    first, stride = _trace_layout(template_path, src)
     n = src.tracecount
-    out_first = 3600 + 3200 * int(src.ext_headers)
-    out_stride = _TRACE_HEADER_BYTES + 4 * len(src.samples)
+    first, stride = _trace_layout(src, template_path, len(src.samples), n)
+    out_first = first  # the same textual and binary headers
+    out_stride = _TRACE_HEADER_BYTES + 4 * len(src.samples)  # IEEE float samples
     swap = None if endian == "big" else (_header_dtype(_FIELD_STARTS, "little"), _header_dtype(_FIELD_STARTS, "big"))
     with open(template_path, "rb") as fin, open(out_path, "r+b") as fout:
         for a in range(0, n, _COPY_TRACES):

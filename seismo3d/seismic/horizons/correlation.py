@@ -32,18 +32,19 @@ def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
         ref = np.empty(2 * half + 1)
         sig = np.empty(2 * half + 1 + 2 * max_lag)
         scores = np.empty(2 * max_lag + 1)
+        products = np.empty(2 * max_lag + 1)
         for p in range(c * _PAIR_CHUNK, min(n, (c + 1) * _PAIR_CHUNK)):
             lag_out[p], score_out[p] = _one_pair_lag(traces, a[p], ta[p], b[p], centre[p], half, max_lag,
-                                                     min_fraction, ref, sig, scores)
+                                                     min_fraction, ref, sig, scores, products)
     return lag_out, score_out
 
 
 @nb.njit(cache=True)
-def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, sig, scores):
+def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, sig, scores, products):
     """The lag around ``centre`` on trace ``kb`` at which it correlates best with the window of trace ``ka`` around
     ``ta``, refined by a parabola, and its correlation; (NaN, NaN) where not measured. Near the ends of the traces
     the window is shortened to the samples trace ``ka`` has (at least 4 each side); a lag is scored where at least
-    ``min_fraction`` of the window lies on trace ``kb``. ``ref``, ``sig``, ``scores``: work arrays."""
+    ``min_fraction`` of the window lies on trace ``kb``. ``ref``, ``sig``, ``scores``, ``products``: work arrays."""
     n_s = traces.shape[1]
     if not (np.isfinite(ta) and np.isfinite(centre)):
         return np.nan, np.nan
@@ -60,7 +61,8 @@ def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, 
     # side; it is cut on the other side as well, or a pair's wrong-cycle matches (more of them on the longer side)
     # would bias the shifts towards it
     reach = max_lag
-    for k in range(max_lag + 1):
+    inside = centre - h - max_lag >= 0.0 and centre + h + max_lag <= n_s - 1.0  # every lag overlaps it wholly
+    for k in range(0 if inside else max_lag + 1):
         lo = centre - h - k
         hi = centre + h + k
         if min(lo + m - 1, n_s - 1.0) - max(lo, 0.0) + 1 < min_samples or \
@@ -85,14 +87,21 @@ def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, 
     last = first
     while last < m + 2 * max_lag and np.isfinite(sig[last]):
         last += 1
+    # the interior lags (trace b's window finite): their products with the window of a at once, the sums of trace
+    # b's window and of its squares slid from lag to lag
+    lo = max(max_lag - reach, first)
+    hi = min(max_lag + reach, last - m)  # inclusive
+    if hi >= lo:
+        _window_products(ref, sig, m, lo, hi + 1, products)
+        _interior_scores(sig, m, lo, hi + 1, saa, products, scores)
     for s in range(max_lag - reach, max_lag + reach + 1):
-        if s >= first and s + m <= last:
-            c = _centred_ncc(ref, saa, sig, s, m)
+        if lo <= s <= hi:
+            c = scores[s]
         else:
             c = _partial_window_ncc(ref, sig, s, m, min_samples)
             if np.isnan(c):
                 continue
-        scores[s] = c
+            scores[s] = c
         if c > best:
             best, kbest = c, s
     if kbest < 0:
@@ -113,6 +122,11 @@ def _read_window(trace, start, count, out):
     k0 = int(np.floor(start))
     f = start - k0
     n = trace.size
+    if k0 >= 0 and k0 + count < n:  # inside the trace: no sample needs the ends' rule (unsigned: no wraparound)
+        base = nb.uint64(k0)
+        for k in range(nb.uint64(count)):
+            out[k] = (1.0 - f) * trace[base + k] + f * trace[base + k + nb.uint64(1)]
+        return
     for k in range(count):
         i = k0 + k
         if 0 <= i < n - 1:
@@ -122,27 +136,70 @@ def _read_window(trace, start, count, out):
 
 
 @nb.njit(cache=True, fastmath={"reassoc", "contract", "nsz", "arcp"})
-def _centred_ncc(ref, saa, sig, s, m):
-    """Normalised cross-correlation of the centred window ``ref`` (squared spread ``saa``) with ``sig[s:s + m]``, all
-    finite, in one pass (the sums of ``sig``, its squares and its products with ``ref``; reassociated, so the
-    compiler vectorises them); 0 where a window is flat."""
+def _window_products(ref, sig, m, lo, hi, out):
+    """``out[s] = sum_k ref[k] sig[s + k]`` (k < ``m``) for lags ``lo <= s < hi``: eight lags at a time, each one
+    accumulator, so the compiler keeps them in vector registers (reassociated; unsigned indices, so that no
+    negative-index wraparound stands in the way)."""
+    one = nb.uint64(1)
+    s = nb.uint64(lo)
+    end = nb.uint64(hi)
+    width = nb.uint64(m)
+    while s + nb.uint64(8) <= end:
+        a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = 0.0
+        for k in range(width):
+            r = ref[k]
+            i = s + k
+            a0 += r * sig[i]
+            a1 += r * sig[i + one]
+            a2 += r * sig[i + nb.uint64(2)]
+            a3 += r * sig[i + nb.uint64(3)]
+            a4 += r * sig[i + nb.uint64(4)]
+            a5 += r * sig[i + nb.uint64(5)]
+            a6 += r * sig[i + nb.uint64(6)]
+            a7 += r * sig[i + nb.uint64(7)]
+        out[s], out[s + one], out[s + nb.uint64(2)], out[s + nb.uint64(3)] = a0, a1, a2, a3
+        out[s + nb.uint64(4)], out[s + nb.uint64(5)], out[s + nb.uint64(6)], out[s + nb.uint64(7)] = a4, a5, a6, a7
+        s += nb.uint64(8)
+    while s < end:
+        acc = 0.0
+        for k in range(width):
+            acc += ref[k] * sig[s + k]
+        out[s] = acc
+        s += one
+
+
+@nb.njit(cache=True)
+def _interior_scores(sig, m, lo, hi, saa, products, scores):
+    """``scores[s]`` for the lags ``lo <= s < hi`` where trace b's window ``sig[s:s + m]`` is finite: the products
+    (:func:`_window_products`) over the spreads of the two windows (``saa``: the centred window of a's), 0 where a
+    window is flat. The sums of b's window and of its squares are slid from lag to lag into ``scores``, then turned
+    into correlations in one loop the compiler vectorises."""
+    one = nb.uint64(1)
+    start = nb.uint64(lo)
+    end = nb.uint64(hi)
+    width = nb.uint64(m)
     sb = 0.0
     sbb = 0.0
-    sab = 0.0
-    for k in range(m):
-        y = sig[s + k]
+    for k in range(width):
+        y = sig[start + k]
         sb += y
         sbb += y * y
-        sab += ref[k] * y  # ref is centred: the mean of sig drops out
-    var = sbb - sb * sb / m
-    if not (saa > 0 and var > 1e-9 * sbb):
-        return 0.0
-    return sab / np.sqrt(saa * var)
+    for s in range(start, end):
+        if s > start:
+            y0 = sig[s - one]
+            y1 = sig[s + width - one]
+            sb += y1 - y0
+            sbb += y1 * y1 - y0 * y0
+        var = sbb - sb * sb / m
+        scores[s] = var if saa > 0 and var > 1e-9 * sbb else -1.0  # -1: a flat window
+    for s in range(start, end):
+        v = scores[s]
+        scores[s] = products[s] / np.sqrt(saa * v) if v > 0.0 else 0.0
 
 
 @nb.njit(cache=True)
 def _partial_window_ncc(ref, sig, s, m, min_samples):
-    """:func:`_centred_ncc` over the samples where both windows are finite (the means of those); NaN with fewer than
+    """:func:`_one_pair_lag`'s correlation over the samples where both windows are finite (the means of those); NaN with fewer than
     ``min_samples``."""
     sa = 0.0
     sb = 0.0

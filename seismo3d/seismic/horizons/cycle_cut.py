@@ -39,6 +39,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba as nb
 import numpy as np
 from scipy import ndimage, sparse
 from scipy.sparse.csgraph import breadth_first_order, maximum_flow
@@ -81,8 +82,16 @@ def neighbour_cycle(picks: np.ndarray, offsets: np.ndarray, times: np.ndarray, d
     (n,) float64 ndarray
         Samples; NaN where the trace is empty or has no such pick.
     """
+    return _neighbour_cycle(picks, offsets, np.asarray(times, np.float64), int(direction), float(min_gap))
+
+
+@nb.njit(cache=True)
+def _neighbour_cycle(picks, offsets, times, direction, min_gap):
+    """:func:`neighbour_cycle`, compiled."""
     out = np.full(times.size, np.nan)
-    for j in np.nonzero(np.isfinite(times))[0]:
+    for j in range(times.size):
+        if not np.isfinite(times[j]):
+            continue
         p = picks[offsets[j]:offsets[j + 1]]
         if direction > 0:
             k = np.searchsorted(p, times[j] + min_gap, side="left")

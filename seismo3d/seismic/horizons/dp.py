@@ -45,79 +45,161 @@ def sample_at(trace, t):
 
 
 
+_MAX_CANDIDATES = 64  # candidates per trace at most (the reach holds a few reflector cycles)
+
+
 @nb.njit(cache=True)
-def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_guide, w_step, w_wave, half,
-             cross_ids, cross_t, cross_slopes):
-    """Viterbi along one line of traces: one candidate pick per trace (within ``reach`` of ``guide``), minimising the
-    sum of ``w_guide |p - guide|`` per trace and :func:`_pair_cost` per step; a trace with ``fixed`` finite keeps only
-    the candidate nearest to it. ``cross_ids`` / ``cross_t`` ((n, k), -1 / NaN where none) are picks of neighbouring
-    lines held fixed, the previous line's in column 0 and the next line's in column 1: their pair costs (slopes
-    ``cross_slopes`` across the lines) join each candidate's guide term. Returns the chosen pick per trace (NaN where
-    the trace has no candidate; the line restarts after it)."""
+def _trace_candidates(k, guide, fixed, picks, offsets, reach, out):
+    """The candidates of trace ``k``: its picks within ``reach`` of ``guide`` (at most :data:`_MAX_CANDIDATES`), or,
+    where ``fixed`` is finite, the one of them nearest to it; written to ``out`` (when given), their count returned."""
+    g = guide[k]
+    if not np.isfinite(g):
+        return 0
+    count = 0
+    best_d = 1e9
+    for q in range(offsets[k], offsets[k + 1]):
+        d = abs(picks[q] - g)
+        if d <= reach and count < _MAX_CANDIDATES:
+            if np.isfinite(fixed[k]):
+                if abs(picks[q] - fixed[k]) < best_d:
+                    best_d = abs(picks[q] - fixed[k])
+                    if out.size:
+                        out[0] = picks[q]
+                    count = 1
+            else:
+                if out.size:
+                    out[count] = picks[q]
+                count += 1
+    return count
+
+
+@nb.njit(cache=True, parallel=True)
+def _candidates(traces, guide, fixed, picks, offsets, reach, half):
+    """Every trace's candidate picks (:func:`_trace_candidates`) and their waveforms, once for all the programmes of
+    :func:`dp_picks`: ``(first, pick, unit, whole)``, the candidates of trace ``k`` at ``first[k]:first[k + 1]`` of
+    ``pick``; ``unit`` (n_candidates, 2 half + 1) float32 the window ``+-half`` samples around each pick centred and
+    scaled to unit norm (zeros where flat), so that two windows' normalised cross-correlation is their dot product;
+    ``whole`` False where a window leaves the trace (its correlations are :func:`window_ncc`'s of the raw windows)."""
+    n = guide.size
+    none = np.empty(0)
+    first = np.zeros(n + 1, np.int64)
+    for k in nb.prange(n):
+        first[k + 1] = _trace_candidates(k, guide, fixed, picks, offsets, reach, none)
+    first = np.cumsum(first)
+    pick = np.empty(first[n])
+    m = 2 * half + 1
+    unit = np.zeros((first[n], m), np.float32)
+    whole = np.zeros(first[n], np.bool_)
+    for k in nb.prange(n):
+        _trace_candidates(k, guide, fixed, picks, offsets, reach, pick[first[k]:first[k + 1]])
+        win = np.empty(m)
+        for q in range(first[k], first[k + 1]):
+            finite = True
+            mean = 0.0
+            for s in range(m):
+                win[s] = sample_at(traces[k], pick[q] - half + s)
+                finite &= np.isfinite(win[s])
+                mean += win[s]
+            if not finite:
+                continue
+            mean /= m
+            ss = 0.0
+            for s in range(m):
+                win[s] -= mean
+                ss += win[s] * win[s]
+            whole[q] = True
+            if ss > 0:
+                scale = 1.0 / np.sqrt(ss)
+                for s in range(m):
+                    unit[q, s] = win[s] * scale
+    return first, pick, unit, whole
+
+
+@nb.njit(cache=True)
+def _candidate_at(first, pick, k, t):
+    """The index of trace ``k``'s candidate at ``t`` (exactly), -1 where ``t`` is none of them."""
+    for q in range(first[k], first[k + 1]):
+        if pick[q] == t:
+            return q
+    return -1
+
+
+@nb.njit(cache=True)
+def _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb):
+    """Normalised cross-correlation of the windows ``+-half`` samples around ``ta`` on trace ``ka`` and ``tb`` on
+    ``kb`` (:func:`window_ncc`): the dot product of the candidates' unit windows ``qa``, ``qb`` where both lie inside
+    their traces, else computed from the traces (``wa``, ``wb``: work arrays)."""
+    if qa >= 0 and qb >= 0 and whole[qa] and whole[qb]:
+        r = 0.0
+        for s in range(unit.shape[1]):
+            r += np.float64(unit[qa, s]) * np.float64(unit[qb, s])
+        return r
+    for s in range(2 * half + 1):
+        wa[s] = sample_at(traces[ka], ta - half + s)
+        wb[s] = sample_at(traces[kb], tb - half + s)
+    return window_ncc(wa, wb)
+
+
+@nb.njit(cache=True)
+def _slope_at(slopes, k, t):
+    """The reflector slope on trace ``k`` at the sample nearest ``t``."""
+    return slopes[k, min(max(int(round(t)), 0), slopes.shape[1] - 1)]
+
+
+@nb.njit(cache=True)
+def _line_dp(trace_ids, guide, first, pick, unit, whole, traces, slopes, w_guide, w_step, w_wave, half, cross_ids,
+             cross_t, cross_slopes):
+    """Viterbi along one line of traces: one candidate pick per trace (:func:`_candidates`), minimising the sum of
+    ``w_guide |p - guide|`` per trace and ``w_step (step - slope)^2 + w_wave (1 - ncc)`` per step. ``cross_ids`` /
+    ``cross_t`` ((n, k), -1 / NaN where none) are picks of neighbouring lines held fixed, the previous line's in
+    column 0 and the next line's in column 1: their pair costs (slopes ``cross_slopes`` across the lines) join each
+    candidate's guide term. Returns the chosen pick per trace (NaN where the trace has no candidate; the line restarts
+    after it)."""
     n = trace_ids.size
     out = np.full(n, np.nan)
-    max_c = 64
-    cand = np.full((n, max_c), np.nan)
-    count = np.zeros(n, np.int64)
+    width = 1
     for j in range(n):
-        g = guide[j]
-        if not np.isfinite(g):
-            continue
-        k = trace_ids[j]
-        best_d = 1e9
-        for q in range(offsets[k], offsets[k + 1]):
-            d = abs(picks[q] - g)
-            if d <= reach and count[j] < max_c:
-                if np.isfinite(fixed[j]):
-                    if abs(picks[q] - fixed[j]) < best_d:
-                        best_d = abs(picks[q] - fixed[j])
-                        cand[j, 0] = picks[q]
-                        count[j] = 1
-                else:
-                    cand[j, count[j]] = picks[q]
-                    count[j] += 1
-    cost = np.full((n, max_c), np.inf)
-    back = np.full((n, max_c), -1, np.int64)
-    m = 2 * half + 1
-    win_prev = np.empty((max_c, m))  # the candidates' windows on the previous trace and on this one
-    win = np.empty((max_c, m))
-    ns = slopes.shape[1]
+        width = max(width, first[trace_ids[j] + 1] - first[trace_ids[j]])
+    cost = np.full((n, width), np.inf)
+    back = np.full((n, width), -1, np.int64)
+    wa = np.empty(2 * half + 1)
+    wb = np.empty(2 * half + 1)
     n_cross = cross_ids.shape[1]
-    w_cross = np.empty((n_cross, m))
+    held = np.empty(n_cross, np.int64)
     for j in range(n):
         kb = trace_ids[j]
-        # the neighbouring lines' windows: the same for every candidate of the trace
+        # the neighbouring lines' picks: the same for every candidate of the trace (-2: none held)
         for e in range(n_cross):
+            held[e] = -2
             if cross_ids[j, e] >= 0 and np.isfinite(cross_t[j, e]):
-                for s in range(m):
-                    w_cross[e, s] = sample_at(traces[cross_ids[j, e]], cross_t[j, e] - half + s)
-        win_prev, win = win, win_prev
-        for c in range(count[j]):
-            wb = win[c]
-            for s in range(m):
-                wb[s] = sample_at(traces[kb], cand[j, c] - half + s)
-            u = w_guide[j] * abs(cand[j, c] - guide[j])
+                held[e] = _candidate_at(first, pick, cross_ids[j, e], cross_t[j, e])
+        ka = trace_ids[j - 1] if j > 0 else -1
+        n_prev = first[ka + 1] - first[ka] if j > 0 else 0
+        for c in range(first[kb + 1] - first[kb]):
+            qb = first[kb] + c
+            tb = pick[qb]
+            sb = _slope_at(slopes, kb, tb)
+            u = w_guide[j] * abs(tb - guide[j])
             for e in range(n_cross):
+                if held[e] == -2:
+                    continue
                 ko = cross_ids[j, e]
                 to = cross_t[j, e]
-                if ko < 0 or not np.isfinite(to):
-                    continue
-                so = cross_slopes[ko, min(max(int(round(to)), 0), ns - 1)]
-                sc = cross_slopes[kb, min(max(int(round(cand[j, c])), 0), ns - 1)]
+                so = _slope_at(cross_slopes, ko, to)
+                sc = _slope_at(cross_slopes, kb, tb)
                 # the previous line's pick before this one (e = 0), the next line's after it
-                step = (cand[j, c] - to) - 0.5 * (so + sc) if e == 0 else (to - cand[j, c]) - 0.5 * (sc + so)
-                u += _windows_cost(step, w_cross[e], wb, w_step, w_wave)
-            if j == 0 or count[j - 1] == 0:
+                step = (tb - to) - 0.5 * (so + sc) if e == 0 else (to - tb) - 0.5 * (sc + so)
+                r = _pick_ncc(traces, unit, whole, ko, to, held[e], kb, tb, qb, half, wa, wb)
+                u += w_step * step * step + w_wave * (1.0 - r)
+            if n_prev == 0:
                 cost[j, c] = u
                 continue
-            ka = trace_ids[j - 1]
             best, arg = np.inf, -1
-            for p in range(count[j - 1]):
-                wa = win_prev[p]
-                sa = slopes[ka, min(max(int(round(cand[j - 1, p])), 0), ns - 1)]
-                sb = slopes[kb, min(max(int(round(cand[j, c])), 0), ns - 1)]
-                step = (cand[j, c] - cand[j - 1, p]) - 0.5 * (sa + sb)
-                r = window_ncc(wa, wb)
+            for p in range(n_prev):
+                qa = first[ka] + p
+                ta = pick[qa]
+                step = (tb - ta) - 0.5 * (_slope_at(slopes, ka, ta) + sb)
+                r = _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb)
                 v = cost[j - 1, p] + w_step * step * step + w_wave * (1.0 - r)
                 if v < best:
                     best, arg = v, p
@@ -126,15 +208,16 @@ def _line_dp(trace_ids, guide, fixed, picks, offsets, traces, slopes, reach, w_g
     # backtrack each run of traces with candidates from its end
     j = n - 1
     while j >= 0:
-        if count[j] == 0:
+        count = first[trace_ids[j] + 1] - first[trace_ids[j]]
+        if count == 0:
             j -= 1
             continue
         c = 0
-        for q in range(count[j]):
+        for q in range(count):
             if cost[j, q] < cost[j, c]:
                 c = q
-        while j >= 0 and count[j] > 0 and c >= 0:
-            out[j] = cand[j, c]
+        while j >= 0 and first[trace_ids[j] + 1] > first[trace_ids[j]] and c >= 0:
+            out[j] = pick[first[trace_ids[j]] + c]
             c = back[j, c]
             j -= 1
     return out
@@ -218,18 +301,17 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     Raises nothing of its own: its callers (:func:`~seismo3d.seismic.horizons.lsq.lsq_horizon`) check the inputs.
     """
     g = guide.reshape(lateral_shape)
-    f = fixed.reshape(lateral_shape)
     wg = np.ascontiguousarray(np.broadcast_to(np.asarray(w_guide, np.float64), guide.shape).reshape(lateral_shape))
     ids = np.arange(g.size).reshape(lateral_shape)
+    cands = _candidates(traces, np.ascontiguousarray(guide, np.float64), np.ascontiguousarray(fixed, np.float64),
+                        picks, offsets, float(reach), int(half))
     no_ids = np.full((g.shape[-1], 0), -1, np.int64)
     no_t = np.full((g.shape[-1], 0), np.nan)
     if len(lateral_shape) == 1:
-        return _line_dp(ids, g, f, picks, offsets, traces, slopes, reach, wg, w_step, w_wave, half, no_ids, no_t,
-                        slopes)
+        return _line_dp(ids, g, *cands, traces, slopes, wg, w_step, w_wave, half, no_ids, no_t, slopes)
     lines = np.full(lateral_shape, np.nan)
     for i in range(lateral_shape[0]):
-        lines[i] = _line_dp(ids[i], g[i], f[i], picks, offsets, traces, slopes, reach, wg[i], w_step, w_wave, half,
-                            no_ids, no_t, slopes)
+        lines[i] = _line_dp(ids[i], g[i], *cands, traces, slopes, wg[i], w_step, w_wave, half, no_ids, no_t, slopes)
     if cross_slopes is None or sweeps <= 0:
         return lines.ravel()
     nearest = _nearest_picks(picks, offsets, np.where(np.isfinite(fixed), fixed, guide), reach)
@@ -238,27 +320,26 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     for start in (lines, nearest.reshape(lateral_shape)):
         cur = start.copy()
         for _ in range(sweeps):
-            _sweep(cur, g, f, wg, ids, picks, offsets, traces, slopes, cross_slopes, reach, w_step, w_wave, half)
-        energy = _grid_energy(cur, g, wg, traces, slopes, cross_slopes, w_step, w_wave, half)
+            _sweep(cur, g, wg, ids, cands, traces, slopes, cross_slopes, w_step, w_wave, half)
+        energy = _grid_energy(cur, g, wg, *cands, traces, slopes, cross_slopes, w_step, w_wave, half)
         if energy < best_energy:
             best, best_energy = cur, energy
     return best.ravel()
 
 
-def _sweep(out, g, f, wg, ids, picks, offsets, traces, slopes, cross_slopes, reach, w_step, w_wave, half):
+def _sweep(out, g, wg, ids, cands, traces, slopes, cross_slopes, w_step, w_wave, half):
     """One coordinate-descent sweep: every line along the first lateral axis, then along the last, re-chosen by
     :func:`_line_dp` with the picks of its two neighbouring lines held (``out``, (n_inlines, n_xlines), updated in
-    place)."""
+    place; ``cands``: :func:`_candidates`)."""
     for axis in (0, 1):
         along, across = (cross_slopes, slopes) if axis == 0 else (slopes, cross_slopes)
-        g_t, f_t, w_t, ids_t, out_t = (np.ascontiguousarray(np.moveaxis(x, axis, -1)) for x in (g, f, wg, ids, out))
-        _sweep_lines(out_t, g_t, f_t, w_t, ids_t, picks, offsets, traces, along, across, reach, w_step, w_wave, half)
+        g_t, w_t, ids_t, out_t = (np.ascontiguousarray(np.moveaxis(x, axis, -1)) for x in (g, wg, ids, out))
+        _sweep_lines(out_t, g_t, w_t, ids_t, *cands, traces, along, across, w_step, w_wave, half)
         np.moveaxis(out, axis, -1)[...] = out_t
 
 
 @nb.njit(cache=True)
-def _sweep_lines(out, guide, fixed, w_guide, ids, picks, offsets, traces, along, across, reach, w_step, w_wave,
-                 half):
+def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, traces, along, across, w_step, w_wave, half):
     """The lines (rows of the (n_lines, length) arrays) re-chosen in order by :func:`_line_dp`, each with the picks
     of the line before it (already re-chosen) and after it held; ``out`` updated in place."""
     n_lines, length = guide.shape
@@ -271,8 +352,8 @@ def _sweep_lines(out, guide, fixed, w_guide, ids, picks, offsets, traces, along,
         if i + 1 < n_lines:
             c_ids[:, 1] = ids[i + 1]
             c_t[:, 1] = out[i + 1]
-        out[i] = _line_dp(ids[i], guide[i], fixed[i], picks, offsets, traces, along, reach, w_guide[i], w_step,
-                          w_wave, half, c_ids, c_t, across)
+        out[i] = _line_dp(ids[i], guide[i], first, pick, unit, whole, traces, along, w_guide[i], w_step, w_wave,
+                          half, c_ids, c_t, across)
 
 
 @nb.njit(cache=True)
@@ -293,28 +374,11 @@ def _nearest_picks(picks, offsets, times, reach):
 
 
 @nb.njit(cache=True)
-def _pair_cost(traces, ka, ta, kb, tb, sa, sb, w_step, w_wave, half, wa, wb):
-    """Cost of picks ``ta`` on trace ``ka`` and ``tb`` on its next trace ``kb`` (slopes ``sa``, ``sb`` at the two
-    picks; ``wa``, ``wb``: work arrays for their windows): :func:`_windows_cost`."""
-    for s in range(2 * half + 1):
-        wa[s] = sample_at(traces[ka], ta - half + s)
-        wb[s] = sample_at(traces[kb], tb - half + s)
-    return _windows_cost((tb - ta) - 0.5 * (sa + sb), wa, wb, w_step, w_wave)
-
-
-@nb.njit(cache=True)
-def _windows_cost(step, wa, wb, w_step, w_wave):
-    """``w_step step^2 + w_wave (1 - ncc)``: a step (samples, less the reflector slope) and the correlation of the two
-    picks' windows."""
-    return w_step * step * step + w_wave * (1.0 - window_ncc(wa, wb))
-
-
-@nb.njit(cache=True)
-def _grid_energy(out, guide, wg, traces, slopes, cross_slopes, w_step, w_wave, half):
+def _grid_energy(out, guide, wg, first, pick, unit, whole, traces, slopes, cross_slopes, w_step, w_wave, half):
     """The energy the line sweeps lower, over a (n_inlines, n_xlines) grid of picks: guide terms plus the pair costs
-    of neighbouring traces along both axes (pairs with an empty pick left out)."""
+    ``w_step (step - slope)^2 + w_wave (1 - ncc)`` of neighbouring traces along both axes (pairs with an empty pick
+    left out)."""
     ni, nx = out.shape
-    ns = slopes.shape[1]
     wa = np.empty(2 * half + 1)
     wb = np.empty(2 * half + 1)
     e = 0.0
@@ -325,16 +389,17 @@ def _grid_energy(out, guide, wg, traces, slopes, cross_slopes, w_step, w_wave, h
                 continue
             e += wg[i, j] * abs(t - guide[i, j])
             k = i * nx + j
-            r = min(max(int(round(t)), 0), ns - 1)
-            if j + 1 < nx and np.isfinite(out[i, j + 1]):
-                t2 = out[i, j + 1]
-                r2 = min(max(int(round(t2)), 0), ns - 1)
-                e += _pair_cost(traces, k, t, k + 1, t2, slopes[k, r], slopes[k + 1, r2], w_step, w_wave, half, wa, wb)
-            if i + 1 < ni and np.isfinite(out[i + 1, j]):
-                t2 = out[i + 1, j]
-                r2 = min(max(int(round(t2)), 0), ns - 1)
-                e += _pair_cost(traces, k, t, k + nx, t2, cross_slopes[k, r], cross_slopes[k + nx, r2], w_step, w_wave,
-                                half, wa, wb)
+            q = _candidate_at(first, pick, k, t)
+            for axis in range(2):
+                i2, j2 = (i, j + 1) if axis == 1 else (i + 1, j)
+                if i2 >= ni or j2 >= nx or not np.isfinite(out[i2, j2]):
+                    continue
+                t2 = out[i2, j2]
+                k2 = i2 * nx + j2
+                along = slopes if axis == 1 else cross_slopes
+                step = (t2 - t) - 0.5 * (_slope_at(along, k, t) + _slope_at(along, k2, t2))
+                r = _pick_ncc(traces, unit, whole, k, t, q, k2, t2, _candidate_at(first, pick, k2, t2), half, wa, wb)
+                e += w_step * step * step + w_wave * (1.0 - r)
     return e
 
 
@@ -399,11 +464,23 @@ def settle_lone_departures(picked: np.ndarray, guide: np.ndarray, lat: tuple, pi
 
 def reflector_period(picks: np.ndarray, offsets: np.ndarray, traces: np.ndarray, times: np.ndarray) -> float:
     """Median spacing, samples, of consecutive same-polarity picks next to the horizon on ``traces``."""
-    gaps = []
-    for j, t in zip(traces, times):
-        p = picks[offsets[j]:offsets[j + 1]]
-        if p.size < 2 or not np.isfinite(t):
+    gaps = _pick_gaps(picks, offsets, np.asarray(traces, np.int64), np.asarray(times, np.float64))
+    return float(np.median(gaps)) if gaps.size else np.nan
+
+
+@nb.njit(cache=True)
+def _pick_gaps(picks, offsets, traces, times):
+    """The spacing of the two picks around ``times`` on each of ``traces`` (the pair at the nearer end where the
+    time lies outside them); traces with fewer than two picks or no time are left out."""
+    gaps = np.empty(traces.size)
+    count = 0
+    for i in range(traces.size):
+        j = traces[i]
+        lo, hi = offsets[j], offsets[j + 1]
+        if hi - lo < 2 or not np.isfinite(times[i]):
             continue
-        k = int(np.clip(np.searchsorted(p, t), 1, p.size - 1))
-        gaps.append(p[k] - p[k - 1])
-    return float(np.median(gaps)) if gaps else np.nan
+        k = lo + np.searchsorted(picks[lo:hi], times[i])
+        k = min(max(k, lo + 1), hi - 1)
+        gaps[count] = picks[k] - picks[k - 1]
+        count += 1
+    return gaps[:count]

@@ -22,6 +22,8 @@ References
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
+
 import numba as nb
 import numpy as np
 
@@ -74,12 +76,13 @@ def _trace_candidates(k, guide, fixed, picks, offsets, reach, out):
 
 
 @nb.njit(cache=True, parallel=True)
-def _candidates(traces, guide, fixed, picks, offsets, reach, half):
+def _candidates(traces, guide, fixed, picks, offsets, reach, half, slopes, cross_slopes):
     """Every trace's candidate picks (:func:`_trace_candidates`) and their waveforms, once for all the programmes of
     :func:`dp_picks`: ``(first, pick, unit, whole)``, the candidates of trace ``k`` at ``first[k]:first[k + 1]`` of
     ``pick``; ``unit`` (n_candidates, 2 half + 1) float32 the window ``+-half`` samples around each pick centred and
     scaled to unit norm (zeros where flat), so that two windows' normalised cross-correlation is their dot product;
-    ``whole`` False where a window leaves the trace (its correlations are :func:`window_ncc`'s of the raw windows)."""
+    ``whole`` False where a window leaves the trace (its correlations are :func:`window_ncc`'s of the raw windows);
+    ``slope``, ``cross_slope`` the reflector slopes ``slopes`` and ``cross_slopes`` at each candidate."""
     n = guide.size
     none = np.empty(0)
     first = np.zeros(n + 1, np.int64)
@@ -90,10 +93,14 @@ def _candidates(traces, guide, fixed, picks, offsets, reach, half):
     m = 2 * half + 1
     unit = np.zeros((first[n], m), np.float32)
     whole = np.zeros(first[n], np.bool_)
+    slope = np.empty(first[n], np.float32)
+    cross_slope = np.empty(first[n], np.float32)
     for k in nb.prange(n):
         _trace_candidates(k, guide, fixed, picks, offsets, reach, pick[first[k]:first[k + 1]])
         win = np.empty(m)
         for q in range(first[k], first[k + 1]):
+            slope[q] = _slope_at(slopes, k, pick[q])
+            cross_slope[q] = _slope_at(cross_slopes, k, pick[q])
             finite = True
             mean = 0.0
             for s in range(m):
@@ -112,7 +119,7 @@ def _candidates(traces, guide, fixed, picks, offsets, reach, half):
                 scale = 1.0 / np.sqrt(ss)
                 for s in range(m):
                     unit[q, s] = win[s] * scale
-    return first, pick, unit, whole
+    return first, pick, unit, whole, slope, cross_slope
 
 
 @nb.njit(cache=True)
@@ -124,16 +131,22 @@ def _candidate_at(first, pick, k, t):
     return -1
 
 
+@nb.njit(cache=True, fastmath={"reassoc", "contract", "nsz"})
+def _unit_dot(ua, ub):
+    """The dot product of two unit windows (float32, summed in float64; reassociated, so it is vectorised)."""
+    r = 0.0
+    for s in range(nb.uint64(ua.size)):
+        r += np.float64(ua[s]) * np.float64(ub[s])
+    return r
+
+
 @nb.njit(cache=True)
 def _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb):
     """Normalised cross-correlation of the windows ``+-half`` samples around ``ta`` on trace ``ka`` and ``tb`` on
     ``kb`` (:func:`window_ncc`): the dot product of the candidates' unit windows ``qa``, ``qb`` where both lie inside
     their traces, else computed from the traces (``wa``, ``wb``: work arrays)."""
     if qa >= 0 and qb >= 0 and whole[qa] and whole[qb]:
-        r = 0.0
-        for s in range(unit.shape[1]):
-            r += np.float64(unit[qa, s]) * np.float64(unit[qb, s])
-        return r
+        return _unit_dot(unit[qa], unit[qb])
     for s in range(2 * half + 1):
         wa[s] = sample_at(traces[ka], ta - half + s)
         wb[s] = sample_at(traces[kb], tb - half + s)
@@ -147,14 +160,14 @@ def _slope_at(slopes, k, t):
 
 
 @nb.njit(cache=True)
-def _line_dp(trace_ids, guide, first, pick, unit, whole, traces, slopes, w_guide, w_step, w_wave, half, cross_ids,
-             cross_t, cross_slopes):
+def _line_dp(trace_ids, guide, first, pick, unit, whole, slope, cross_slope, traces, slopes, w_guide, w_step, w_wave,
+             half, cross_ids, cross_t, cross_slopes):
     """Viterbi along one line of traces: one candidate pick per trace (:func:`_candidates`), minimising the sum of
     ``w_guide |p - guide|`` per trace and ``w_step (step - slope)^2 + w_wave (1 - ncc)`` per step. ``cross_ids`` /
     ``cross_t`` ((n, k), -1 / NaN where none) are picks of neighbouring lines held fixed, the previous line's in
     column 0 and the next line's in column 1: their pair costs (slopes ``cross_slopes`` across the lines) join each
-    candidate's guide term. Returns the chosen pick per trace (NaN where the trace has no candidate; the line restarts
-    after it)."""
+    candidate's guide term. ``slope``, ``cross_slope``: ``slopes`` and ``cross_slopes`` at each candidate. Returns the
+    chosen pick per trace (NaN where the trace has no candidate; the line restarts after it)."""
     n = trace_ids.size
     out = np.full(n, np.nan)
     width = 1
@@ -178,15 +191,15 @@ def _line_dp(trace_ids, guide, first, pick, unit, whole, traces, slopes, w_guide
         for c in range(first[kb + 1] - first[kb]):
             qb = first[kb] + c
             tb = pick[qb]
-            sb = _slope_at(slopes, kb, tb)
+            sb = slope[qb]
             u = w_guide[j] * abs(tb - guide[j])
             for e in range(n_cross):
                 if held[e] == -2:
                     continue
                 ko = cross_ids[j, e]
                 to = cross_t[j, e]
-                so = _slope_at(cross_slopes, ko, to)
-                sc = _slope_at(cross_slopes, kb, tb)
+                so = cross_slope[held[e]] if held[e] >= 0 else _slope_at(cross_slopes, ko, to)
+                sc = cross_slope[qb]
                 # the previous line's pick before this one (e = 0), the next line's after it
                 step = (tb - to) - 0.5 * (so + sc) if e == 0 else (to - tb) - 0.5 * (sc + so)
                 r = _pick_ncc(traces, unit, whole, ko, to, held[e], kb, tb, qb, half, wa, wb)
@@ -198,7 +211,7 @@ def _line_dp(trace_ids, guide, first, pick, unit, whole, traces, slopes, w_guide
             for p in range(n_prev):
                 qa = first[ka] + p
                 ta = pick[qa]
-                step = (tb - ta) - 0.5 * (_slope_at(slopes, ka, ta) + sb)
+                step = (tb - ta) - 0.5 * (slope[qa] + sb)
                 r = _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb)
                 v = cost[j - 1, p] + w_step * step * step + w_wave * (1.0 - r)
                 if v < best:
@@ -303,43 +316,55 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     g = guide.reshape(lateral_shape)
     wg = np.ascontiguousarray(np.broadcast_to(np.asarray(w_guide, np.float64), guide.shape).reshape(lateral_shape))
     ids = np.arange(g.size).reshape(lateral_shape)
-    cands = _candidates(traces, np.ascontiguousarray(guide, np.float64), np.ascontiguousarray(fixed, np.float64),
-                        picks, offsets, float(reach), int(half))
+    across = slopes if cross_slopes is None else cross_slopes
+    *cands, slope, cross_slope = _candidates(traces, np.ascontiguousarray(guide, np.float64),
+                                             np.ascontiguousarray(fixed, np.float64), picks, offsets, float(reach),
+                                             int(half), slopes, across)
     no_ids = np.full((g.shape[-1], 0), -1, np.int64)
     no_t = np.full((g.shape[-1], 0), np.nan)
     if len(lateral_shape) == 1:
-        return _line_dp(ids, g, *cands, traces, slopes, wg, w_step, w_wave, half, no_ids, no_t, slopes)
+        return _line_dp(ids, g, *cands, slope, cross_slope, traces, slopes, wg, w_step, w_wave, half, no_ids, no_t,
+                        across)
     lines = np.full(lateral_shape, np.nan)
     for i in range(lateral_shape[0]):
-        lines[i] = _line_dp(ids[i], g[i], *cands, traces, slopes, wg[i], w_step, w_wave, half, no_ids, no_t, slopes)
+        lines[i] = _line_dp(ids[i], g[i], *cands, slope, cross_slope, traces, slopes, wg[i], w_step, w_wave, half,
+                            no_ids, no_t, across)
     if cross_slopes is None or sweeps <= 0:
         return lines.ravel()
     nearest = _nearest_picks(picks, offsets, np.where(np.isfinite(fixed), fixed, guide), reach)
     nearest[~np.isfinite(guide)] = np.nan
-    best, best_energy = lines, np.inf
-    for start in (lines, nearest.reshape(lateral_shape)):
+
+    def descend(start):
         cur = start.copy()
         for _ in range(sweeps):
-            _sweep(cur, g, wg, ids, cands, traces, slopes, cross_slopes, w_step, w_wave, half)
-        energy = _grid_energy(cur, g, wg, *cands, traces, slopes, cross_slopes, w_step, w_wave, half)
+            _sweep(cur, g, wg, ids, cands, (slope, cross_slope), traces, slopes, cross_slopes, w_step, w_wave, half)
+        return cur, _grid_energy(cur, g, wg, *cands, traces, slopes, cross_slopes, w_step, w_wave, half)
+
+    # the two starts are independent: one thread each (the compiled sweeps release the GIL)
+    with ThreadPoolExecutor(2) as pool:
+        ends = list(pool.map(descend, (lines, nearest.reshape(lateral_shape))))
+    best, best_energy = lines, np.inf
+    for cur, energy in ends:  # in order: on a tie the line-by-line start's, as one after the other
         if energy < best_energy:
             best, best_energy = cur, energy
     return best.ravel()
 
 
-def _sweep(out, g, wg, ids, cands, traces, slopes, cross_slopes, w_step, w_wave, half):
+def _sweep(out, g, wg, ids, cands, at_candidates, traces, slopes, cross_slopes, w_step, w_wave, half):
     """One coordinate-descent sweep: every line along the first lateral axis, then along the last, re-chosen by
     :func:`_line_dp` with the picks of its two neighbouring lines held (``out``, (n_inlines, n_xlines), updated in
-    place; ``cands``: :func:`_candidates`)."""
+    place; ``cands``: :func:`_candidates`' candidates and waveforms, ``at_candidates`` its two slopes)."""
     for axis in (0, 1):
         along, across = (cross_slopes, slopes) if axis == 0 else (slopes, cross_slopes)
+        along_c, across_c = at_candidates[::-1] if axis == 0 else at_candidates
         g_t, w_t, ids_t, out_t = (np.ascontiguousarray(np.moveaxis(x, axis, -1)) for x in (g, wg, ids, out))
-        _sweep_lines(out_t, g_t, w_t, ids_t, *cands, traces, along, across, w_step, w_wave, half)
+        _sweep_lines(out_t, g_t, w_t, ids_t, *cands, along_c, across_c, traces, along, across, w_step, w_wave, half)
         np.moveaxis(out, axis, -1)[...] = out_t
 
 
-@nb.njit(cache=True)
-def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, traces, along, across, w_step, w_wave, half):
+@nb.njit(cache=True, nogil=True)
+def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across, w_step,
+                 w_wave, half):
     """The lines (rows of the (n_lines, length) arrays) re-chosen in order by :func:`_line_dp`, each with the picks
     of the line before it (already re-chosen) and after it held; ``out`` updated in place."""
     n_lines, length = guide.shape
@@ -352,8 +377,8 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, traces, alo
         if i + 1 < n_lines:
             c_ids[:, 1] = ids[i + 1]
             c_t[:, 1] = out[i + 1]
-        out[i] = _line_dp(ids[i], guide[i], first, pick, unit, whole, traces, along, w_guide[i], w_step, w_wave,
-                          half, c_ids, c_t, across)
+        out[i] = _line_dp(ids[i], guide[i], first, pick, unit, whole, along_c, across_c, traces, along,
+                          w_guide[i], w_step, w_wave, half, c_ids, c_t, across)
 
 
 @nb.njit(cache=True)
@@ -373,7 +398,7 @@ def _nearest_picks(picks, offsets, times, reach):
     return out
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def _grid_energy(out, guide, wg, first, pick, unit, whole, traces, slopes, cross_slopes, w_step, w_wave, half):
     """The energy the line sweeps lower, over a (n_inlines, n_xlines) grid of picks: guide terms plus the pair costs
     ``w_step (step - slope)^2 + w_wave (1 - ncc)`` of neighbouring traces along both axes (pairs with an empty pick

@@ -66,6 +66,70 @@ def test_pair_shifts_do_not_depend_on_the_order_of_the_pairs():
     assert np.isfinite(forward.shift).mean() > 0.5
 
 
+def _direct_lag_search(traces, ka, ta, kb, tb, half, max_lag):
+    """The lag search of pair_shifts written out for windows inside both traces: every lag's normalised
+    cross-correlation computed on its own with numpy, the best refined by a parabola."""
+    x = np.arange(traces.shape[1], dtype=np.float64)
+    ref = np.interp(ta - half + np.arange(2 * half + 1), x, traces[ka])
+    ref = ref - ref.mean()
+    scores = []
+    for lag in range(-max_lag, max_lag + 1):
+        sig = np.interp(tb + lag - half + np.arange(2 * half + 1), x, traces[kb])
+        sig = sig - sig.mean()
+        scores.append(ref @ sig / np.sqrt((ref @ ref) * (sig @ sig)))
+    k = int(np.argmax(scores))
+    off = 0.0
+    if 0 < k < 2 * max_lag:
+        y0, y1, y2 = scores[k - 1:k + 2]
+        if y0 - 2 * y1 + y2 < 0:
+            off = float(np.clip(0.5 * (y0 - y2) / (y0 - 2 * y1 + y2), -0.5, 0.5))
+    return tb + k - max_lag + off - ta, scores[k]
+
+
+def test_pair_shifts_inside_the_traces_equal_a_direct_lag_search():
+    # the compiled search (products of eight lags at a time, sums slid from lag to lag) against each lag computed
+    # on its own, at fractional times of noisy dipping layers
+    traces, _, _, _ = random_layers((200,), n_samples=120, dip=0.3, seed=3)
+    rng = np.random.default_rng(4)
+    traces = traces + 0.3 * traces.std() * rng.standard_normal(traces.shape).astype(np.float32)
+    a, b, d, _ = trace_pairs((200,), (1, 4, 32))
+    times = rng.uniform(40.0, 80.0, 200)  # windows of +-16 and lags of +-12 stay inside the 120 samples
+    ps = pair_shifts(traces, times, a, b, d, half=16, max_lag=12)
+    for p in rng.choice(a.size, 60, replace=False):
+        shift, score = _direct_lag_search(traces, a[p], times[a[p]], b[p], times[b[p]], 16, 12)
+        assert ps.shift[p] == pytest.approx(shift, abs=1e-9)
+        assert ps.score[p] == pytest.approx(score, abs=1e-9)
+
+
+def test_two_level_solve_equals_the_direct_solution():
+    # the conjugate gradients with the aggregates' coarse level reach the normal equations' own solution (a sparse
+    # direct solve) on a grid of 12 x 90 traces, with and without a grid shape for the aggregates
+    from scipy.sparse import coo_matrix, diags
+    from scipy.sparse.linalg import spsolve
+
+    rng = np.random.default_rng(7)
+    lat = (12, 90)
+    n = lat[0] * lat[1]
+    truth = 60.0 + np.cumsum(rng.normal(0.0, 0.4, n))
+    a, b, d, _ = trace_pairs(lat, (1, 2, 4, 8, 16, 32))
+    shift = truth[b] - truth[a] + rng.normal(0.0, 0.3, a.size)
+    score = rng.uniform(0.6, 1.0, a.size)
+    ps = PairShifts(a, b, d, shift, score)
+    seeds = np.array([5 * 90 + 40, 9 * 90 + 10])
+    previous = np.full(n, 60.0)
+    w = score ** 2
+    lap = coo_matrix((np.r_[w, w, -w, -w], (np.r_[a, b, a, b], np.r_[a, b, b, a])), shape=(n, n))
+    diag = np.full(n, 1e-6)
+    diag[seeds] += 1e4
+    rhs = np.bincount(b, w * shift, minlength=n) - np.bincount(a, w * shift, minlength=n) + 1e-6 * previous
+    rhs[seeds] += 1e4 * truth[seeds]
+    direct = spsolve((lap + diags(diag)).tocsc(), rhs)
+    for shape in (lat, None):
+        t = solve_horizon(n, ps, seeds, truth[seeds], min_correlation=0.5, previous=previous, robust=None,
+                          lateral_shape=shape)
+        np.testing.assert_allclose(t, direct, atol=1e-3)
+
+
 def test_robust_solve_outvotes_cycle_skipped_pairs():
     # a smooth horizon over 200 traces; pairs 1..32 traces apart with exact shifts, 10 % of them off by a
     # reflector period (12 samples): the robust least squares puts every trace back within a third of a sample

@@ -10,7 +10,7 @@ from seismo3d.errors import InputError
 from seismo3d.seismic import (
     FaultCrossings, TrackingOptions, autotrack, fill_horizon, horizon_errors, reflector_picks, track_horizon,
 )
-from seismo3d.seismic.horizons.lateral_check import close_gaps, despike
+from seismo3d.seismic.horizons.lateral_check import close_gaps, despike, despike_lines
 from seismo3d.seismic.reflectors import ReflectorSlice, nearest_pick
 
 
@@ -161,6 +161,27 @@ def test_despike_puts_a_cycle_skipped_pick_back_and_leaves_a_step_alone():
     assert changed == 1
     assert out[30] == pytest.approx(truth[30]) and carried[30] == pytest.approx(truth[30])
     np.testing.assert_array_equal(out[45:], truth[45:] + 6.0)
+
+
+def test_despike_lines_changes_only_the_spikes_of_a_cube():
+    # five identical inlines of a generated section; a pick one cycle off on inline 2 (a spike along its crossline
+    # line and along its inline line): despike_lines puts it back and leaves every other pick as it was (the lines
+    # without a spike candidate are not visited)
+    syn = synthetic_cube((60, 96), n_faults=0, seed=3, noise=0.05)
+    k = 2
+    pol = "peak" if syn.horizon_polarity[k] > 0 else "trough"
+    cube = np.stack([syn.cube] * 5)
+    picks, offsets = reflector_picks(cube.reshape(-1, cube.shape[-1]), polarity=pol)
+    truth = np.array([nearest_pick(picks, offsets, j, syn.horizons[k][j], 1.0) for j in range(60)])
+    assert np.isfinite(truth).all()
+    times = np.tile(truth, (5, 1))
+    spike = 2 * 60 + 30
+    other = picks[offsets[spike]:offsets[spike + 1]]
+    times[2, 30] = other[np.argmin(np.where(np.abs(other - truth[30]) > 3, np.abs(other - truth[30]), np.inf))]
+    conf = np.ones((5, 60))
+    changed = despike_lines(cube, times, conf, pol, TrackingOptions(), FaultCrossings.empty(3), picks=(picks, offsets))
+    assert changed == 1
+    np.testing.assert_allclose(times, np.tile(truth, (5, 1)), atol=1e-9)
 
 
 def test_bad_input_gives_clear_errors():

@@ -257,7 +257,7 @@ def _coarse_labels(lateral_shape: tuple) -> tuple[np.ndarray, int]:
         labels = labels * count + (np.arange(length) * count // length).reshape(shape)  # blocks of equal length
     labels = labels.ravel()
     _, labels = np.unique(labels, return_inverse=True)
-    return labels.astype(np.int64), int(labels.max()) + 1 if n else 0
+    return labels.astype(np.int64), int(labels.max()) + 1
 
 
 def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start, labels, n_coarse):

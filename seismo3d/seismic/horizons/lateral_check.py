@@ -62,22 +62,12 @@ def despike(section: ReflectorSlice, picks: np.ndarray, carried: np.ndarray, con
     if line_point is None:
         def line_point(x, t):
             return np.array([x, t], np.float64)
-    n = sl.n_traces
     before = out.copy()  # every decision on the slice as carried, so one correction cannot set off the next
-    have = np.isfinite(before)
+    spike, left, right, predicted = (v[0] for v in _spike_candidates(before[None], reach, agree))
     changed = 0
-    for x in np.nonzero(have)[0]:
-        left = [u for u in range(x - 1, x - reach - 1, -1) if 0 <= u and have[u]][:1]
-        right = [u for u in range(x + 1, x + reach + 1) if u < n and have[u]][:1]
-        if not left or not right:
-            continue
-        a, b = left[0], right[0]
+    for x in np.nonzero(spike)[0]:
+        a, b, pred = int(left[x]), int(right[x]), float(predicted[x])
         ta, tb = before[a], before[b]
-        if abs(ta - tb) > agree:
-            continue
-        pred = ta + (tb - ta) * (x - a) / (b - a)
-        if abs(before[x] - pred) <= agree:
-            continue
         if faults.jump(line_point(a, ta), line_point(b, tb)) != 0.0:
             continue
         t = sl.snap(x, pred, agree)
@@ -110,7 +100,8 @@ def despike_lines(arr, times, conf, polarity, opt: TrackingOptions, crossings: F
     for axis in (0, 1):  # lines along crosslines (one per inline), then along inlines (one per crossline)
         # only the lines with a spike candidate (the test of :func:`despike` before the faults, the snap and the
         # waveforms) are visited: on the others it changes nothing
-        spiky = _spike_candidates(times if axis == 0 else times.T, opt.despike_reach, opt.despike_agree).any(axis=1)
+        spiky = _spike_candidates(times if axis == 0 else times.T, opt.despike_reach,
+                                  opt.despike_agree)[0].any(axis=1)
         for k in np.nonzero(spiky)[0]:
             index = (k, slice(None)) if axis == 0 else (slice(None), k)
             line, line_conf = times[index].copy(), conf[index].copy()
@@ -125,10 +116,11 @@ def despike_lines(arr, times, conf, polarity, opt: TrackingOptions, crossings: F
     return changed
 
 
-def _spike_candidates(lines: np.ndarray, reach: int, agree: float) -> np.ndarray:
+def _spike_candidates(lines: np.ndarray, reach: int, agree: float) -> tuple:
     """The picks :func:`despike` tests further, for many lines at once ((n_lines, n_traces) float64, NaN where
     empty): a pick whose nearest picks within ``reach`` traces on both sides agree within ``agree`` samples and lies
-    more than ``agree`` samples from their interpolation. (n_lines, n_traces) bool."""
+    more than ``agree`` samples from their interpolation. ``(spike, left, right, predicted)``, each (n_lines,
+    n_traces): the test (bool), the two sides' traces (-1 where none) and their interpolation at the pick."""
     have = np.isfinite(lines)
     n = lines.shape[1]
     x = np.arange(n)
@@ -138,8 +130,7 @@ def _spike_candidates(lines: np.ndarray, reach: int, agree: float) -> np.ndarray
         for d in range(reach, 0, -1):  # the nearest side wins: written last
             u = x + direction * d
             inside = (u >= 0) & (u < n)
-            src = np.clip(u, 0, n - 1)
-            take = have[:, src] & inside
+            take = have[:, np.clip(u, 0, n - 1)] & inside
             pos = np.where(take, u, pos)
         sides.append(pos)
     a, b = sides
@@ -148,7 +139,8 @@ def _spike_candidates(lines: np.ndarray, reach: int, agree: float) -> np.ndarray
     tb = np.take_along_axis(lines, np.maximum(b, 0), axis=1)
     with np.errstate(invalid="ignore"):
         pred = ta + (tb - ta) * (x - a) / np.where(found, b - a, 1)
-        return found & (np.abs(ta - tb) <= agree) & (np.abs(lines - pred) > agree)
+        spike = found & (np.abs(ta - tb) <= agree) & (np.abs(lines - pred) > agree)
+    return spike, a, b, pred
 
 
 class _LinePicks:

@@ -255,9 +255,8 @@ def _coarse_labels(lateral_shape: tuple) -> tuple[np.ndarray, int]:
         shape = [1] * len(lateral_shape)
         shape[axis] = length
         labels = labels * count + (np.arange(length) * count // length).reshape(shape)  # blocks of equal length
-    labels = labels.ravel()
-    _, labels = np.unique(labels, return_inverse=True)
-    return labels.astype(np.int64), int(labels.max()) + 1
+    labels = labels.ravel()  # every block holds a trace (count <= length): the labels are 0 .. n_coarse - 1
+    return labels, int(labels.max()) + 1
 
 
 def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start, labels, n_coarse):

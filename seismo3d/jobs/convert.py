@@ -1,12 +1,11 @@
 """The ``seismo3d convert`` job: a 3D SEG-Y cube into a Zarr v3 store that xarray opens as is.
 
 :func:`run_convert_job` opens the SEG-Y through :func:`~seismo3d.seismic.io.open_segy` (same flags and errors as every
-command) and writes the layout of :mod:`~seismo3d.seismic.io.zarr_store` tile by tile, reading the next chunks while
-background threads compress and write the previous ones (memory: about ``chunk_mb`` MiB of amplitudes, not the
-cube), with progress. The store is written into a temporary directory beside OUTPUT and
-renamed to OUTPUT when complete, so an interrupted convert (error, Ctrl-C, kill) never leaves something at OUTPUT
-that looks finished (a killed process may leave a hidden ``.OUTPUT.*.tmp`` directory, never OUTPUT). The input is
-only read.
+command) and writes the layout of :mod:`~seismo3d.seismic.io.zarr_store` tile by tile, two threads each reading,
+compressing and writing a chunk (memory: about ``chunk_mb`` MiB of amplitudes, not the cube), with progress. The
+store is written into a temporary directory beside OUTPUT and renamed to OUTPUT when complete, so an interrupted
+convert (error, Ctrl-C, kill) never leaves something at OUTPUT that looks finished (a killed process may leave a
+hidden ``.OUTPUT.*.tmp`` directory, never OUTPUT). The input is only read.
 
 OUTPUT follows the output policy of every command (:mod:`seismo3d.jobs.outputs`): not the input nor a folder holding
 it, and an existing OUTPUT only with ``overwrite=True`` (``--overwrite``), which replaces only a store written by
@@ -121,7 +120,8 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
         The input cannot be read or does not exist (see :func:`~seismo3d.seismic.io.open_segy`).
     InputError
         ``output`` is the input or holds it, exists (without ``overwrite``, or is not a store of this command), or
-        cannot be written (its folder does not exist or takes no files); invalid ``iline``, ``xline``, ``endian``, ``sample_unit``.
+        cannot be written (its folder does not exist or takes no files); invalid ``iline``, ``xline``, ``endian``,
+        ``sample_unit``.
 
     References
     ----------

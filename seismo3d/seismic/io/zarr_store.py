@@ -9,10 +9,12 @@ Layout (one Zarr v3 group; the idea is MDIO's: amplitudes, their coordinates and
       inline       (n_inlines,) int32, dims (inline,)          inline numbers
       crossline    (n_xlines,) int32, dims (crossline,)        crossline numbers
       sample       (n_samples,) float64, dims (sample,)        time or depth, attrs {units: 'ms' | 'm' | 'ft'}
-      cdp_x, cdp_y (n_inlines, n_xlines) float64, dims (inline, crossline), coordinate scalar applied (as
-                   SeismicCube.cdp_x: CDP X/Y, else source X/Y), attrs {units: 'm' | 'ft'}; absent when both are 0
-      <TraceField> (n_inlines, n_xlines) int32, dims (inline, crossline), chunks (64, 64): every trace header field
-                   that is not zero on every trace, named as segyio.TraceField (``CDP_X``, ``INLINE_3D``, ...)
+      cdp_x, cdp_y (n_inlines, n_xlines) float64, dims (inline, crossline), chunks (64, n_xlines), coordinate
+                   scalar applied (as SeismicCube.cdp_x: CDP X/Y, else source X/Y), attrs {units: 'm' | 'ft'}; absent
+                   when both are 0
+      <TraceField> (n_inlines, n_xlines) int32, dims (inline, crossline), chunks (64, n_xlines): every trace
+                   header field that is not zero on every trace, named as segyio.TraceField (``CDP_X``,
+                   ``INLINE_3D``, ...)
       group attrs: seismo3d {layout: 'seismic-zarr', version: 1, source, sorting, endian, segy_format, iline_byte,
                    xline_byte}, sample_unit, sample_interval, text_header (str, 40 lines of 80 characters),
                    extended_text_headers (list of str), binary_header {segyio.BinField name: int}
@@ -55,7 +57,7 @@ _BIN_FIELDS = {int(f): str(f) for f in segyio.BinField.enums()}
 _COORDINATE_FIELDS = ((segyio.TraceField.CDP_X, segyio.TraceField.CDP_Y),
                       (segyio.TraceField.SourceX, segyio.TraceField.SourceY))
 _UNITS = {1: "m", 2: "ft"}  # binary header bytes 3255-3256, measurement system
-_WRITE_THREADS = 2  # background threads handing chunks to zarr (which compresses them on threads of its own)
+_COPY_THREADS = 2  # threads reading, compressing and writing chunks (numpy copies, Blosc, file writes: GIL free)
 # Amplitudes: Blosc LZ4 with byte shuffle compresses float32 seismic as well as Zarr's default (Zstd level 0) at about
 # three times its speed, so that convert runs at the speed of reading the SEG-Y (benchmarks/convert.py).
 SEISMIC_CODEC = ({"name": "blosc", "configuration": {"cname": "lz4", "clevel": 5, "shuffle": "shuffle",
@@ -192,14 +194,15 @@ class SeismicZarrWriter:
     writes and adds ``cdp_x`` / ``cdp_y`` when the coordinates are not CDP X / Y but source X / Y. Leaving the
     ``with`` waits for the writes under way (after an error too), so that the store can then be removed.
 
-    A tile is read chunk by chunk (64 x 64 traces, headers and amplitudes through one memory map), each chunk
-    handed to a background writer once read, so that reading the next chunk and compressing and writing the previous
-    ones overlap: at most ``chunk_mb`` of amplitudes (and no more than one chunk per writer thread and the one being
-    read) are held at a time; zarr compresses each chunk (one more chunk-sized buffer per writer thread). Chunks of
-    zeros are not written (left to the fill value, as zarr does, by a cheaper test than zarr's own). The trace
-    header fields of a row of chunks (64 inlines, every crossline) are gathered from its tiles and written once the
-    row is complete, with ``cdp_x`` / ``cdp_y`` of that row: one write per field and row, not per tile (memory: 64 x
-    n_xlines int32 per field that is not zero, e.g. 1 MiB per field for 4000 crosslines).
+    A tile is copied chunk by chunk (64 x 64 traces) on two threads: each reads its chunk's headers and amplitudes
+    through one memory map, encodes the amplitudes with the array's codecs (little-endian bytes, then Blosc) and
+    writes them to the chunk's key in the store, so that both cores read, compress and write (zarr's array API
+    would add about a third to the CPU time: its asyncio tasks and buffer copies). At most ``chunk_mb`` of
+    amplitudes, and no more than three chunks, are held at a time (with each its encoded bytes). Chunks of zeros
+    are not written (left to the fill value, as zarr does). The trace header fields of a row of chunks (64
+    inlines, every crossline) are gathered from its tiles and written through zarr once the row is complete, with
+    ``cdp_x`` / ``cdp_y`` of that row: one write and one chunk file per field and row (memory: 64 x n_xlines int32
+    per field that is not zero, e.g. 1 MiB per field for 4000 crosslines).
 
     Parameters
     ----------
@@ -231,18 +234,17 @@ class SeismicZarrWriter:
         chunk = (min(TILE_TRACES, n_il), min(TILE_TRACES, n_xl), ns)
         self.root = zarr.open_group(str(store), mode="w", zarr_format=3, attributes=_group_attrs(cube))
         self._coordinates(cube)
-        # write_empty_chunks: every chunk written is stored; the chunks of zeros are skipped in write_tile instead
-        # (zarr's own test compares each value to the fill value as a void type: half the write time)
         self.seismic = self.root.create_array("seismic", shape=cube.shape, chunks=chunk, dtype="float32",
                                               dimension_names=("inline", "crossline", "sample"), fill_value=0.0,
-                                              compressors=SEISMIC_CODEC, attributes={"long_name": "amplitude"},
-                                              config={"write_empty_chunks": True})
+                                              compressors=SEISMIC_CODEC, attributes={"long_name": "amplitude"})
+        self._chunk_files = _ChunkFiles(self.seismic, store)
+        self._header_chunks = (chunk[0], n_xl)  # one chunk file per field and row (64 x 64 chunks: 7x the files)
         self.headers = {}  # TraceField -> zarr array, created at the field's first non-zero value (before it: fill 0)
         self.nonzero = {k: False for k in _TRACE_FIELDS}
         self._rows = {}  # first inline of a row of chunks -> _HeaderRow, until all its tiles are written
         self._cdp = None  # (cdp_x, cdp_y) zarr arrays from CDP X / Y, created at their first non-zero row
         chunk_bytes = chunk[0] * chunk[1] * ns * 4
-        self._writes = _BackgroundWrites(max(chunk_mb * 2**20, chunk_bytes), max_pending=_WRITE_THREADS + 1)
+        self._copies = _BackgroundWork(max(chunk_mb * 2**20, chunk_bytes), max_pending=_COPY_THREADS + 1)
         xl_step = chunk[1] * max(1, int(chunk_mb * 2**20 // chunk_bytes))
         self.tiles = [(a, min(a + chunk[0], n_il), b, min(b + xl_step, n_xl))
                       for a in range(0, n_il, chunk[0]) for b in range(0, n_xl, xl_step)]
@@ -251,7 +253,7 @@ class SeismicZarrWriter:
         return self
 
     def __exit__(self, *exc) -> None:
-        self._writes.close(raise_errors=exc[0] is None)
+        self._copies.close(raise_errors=exc[0] is None)
 
     def _coordinates(self, cube) -> None:
         self.root.create_array("inline", data=np.asarray(cube.inlines, np.int32), dimension_names=("inline",),
@@ -262,7 +264,8 @@ class SeismicZarrWriter:
                                attributes={"units": cube.sample_unit, "long_name": "time or depth"})
 
     def write_tile(self, tile) -> None:
-        """Read one tile of amplitudes and trace headers from the SEG-Y and hand it to the background writer.
+        """Copy one tile of amplitudes from the SEG-Y into the store (chunks on the background threads) and gather its
+        trace headers; write the row's headers once it is complete.
 
         Parameters
         ----------
@@ -272,23 +275,30 @@ class SeismicZarrWriter:
         Raises
         ------
         Exception
-            The error of an earlier write, if one failed.
+            The error of a chunk's copy (reading the SEG-Y or writing the store), if one failed.
         """
         a, b, c, d = tile
         step = self.seismic.chunks[1]
         row = self._rows.setdefault(a, _HeaderRow(b - a, self.seismic.shape[1]))
-        # A memory map of its own per chunk (its pages count as this process's memory until it is closed, so the
+        # A memory map of its own per tile (its pages count as this process's memory until it is closed, so the
         # cube's handle, mapped for the whole run, would hold the whole file by the last tile)
         with segyio_handle(self.grid) as f:
-            for j in range(c, d, step):
-                k = min(j + step, d)
-                self._writes.wait_for_room((b - a) * (k - j) * self.grid.n_samples * 4)
-                chunk, headers = _read_block_and_headers(self.grid, _TRACE_FIELDS, a, b, j, k, f)
-                row.add(headers, j, k)
-                if chunk.view(np.uint32).max():  # bit patterns, as zarr: -0.0 is not the fill value 0.0 (max: no cast)
-                    self._writes.submit(self.seismic, (slice(a, b), slice(j, k)), chunk)
+            copies = [(j, min(j + step, d)) for j in range(c, d, step)]
+            copies = [(j, k, self._copies.run(self._copy_chunk, f, a, b, j, k,
+                                              nbytes=(b - a) * (k - j) * self.grid.n_samples * 4))
+                      for j, k in copies]
+            for j, k, future in copies:  # the handle stays open until its chunks are read
+                row.add(future.result(), j, k)
         if row.complete:
             self._write_header_row(self._rows.pop(a), a, b)
+
+    def _copy_chunk(self, f, a: int, b: int, c: int, d: int) -> dict:
+        """On a background thread: the chunk of inlines ``a:b`` and crosslines ``c:d`` read from the open SEG-Y
+        ``f`` and its amplitudes written to the store unless all zero; its trace headers."""
+        chunk, headers = _read_block_and_headers(self.grid, _TRACE_FIELDS, a, b, c, d, f)
+        if chunk.view(np.uint32).max():  # bit patterns, as zarr: -0.0 is not the fill value 0.0 (max: no cast)
+            self._chunk_files.write(chunk, a, c, 0)
+        return headers
 
     def _write_header_row(self, row: "_HeaderRow", a: int, b: int) -> None:
         """A complete row of chunks: its non-zero header fields, and cdp_x / cdp_y from CDP X / Y."""
@@ -296,9 +306,9 @@ class SeismicZarrWriter:
         for k, values in row.fields.items():
             if k not in self.headers:
                 self.headers[k] = self.root.create_array(
-                    _TRACE_FIELDS[k], shape=(n_il, n_xl), chunks=self.seismic.chunks[:2], dtype="int32",
+                    _TRACE_FIELDS[k], shape=(n_il, n_xl), chunks=self._header_chunks, dtype="int32",
                     dimension_names=("inline", "crossline"), fill_value=0)
-            self._writes.submit(self.headers[k], slice(a, b), values)
+            self.headers[k][a:b] = values
             self.nonzero[k] = True
         fx, fy = _COORDINATE_FIELDS[0]
         if fx in row.fields or fy in row.fields:  # rows where both are 0 keep the fill value, 0.0
@@ -306,12 +316,12 @@ class SeismicZarrWriter:
                 self._cdp = self._create_cdp_arrays()
             scalar = row.values(segyio.TraceField.SourceGroupScalar)
             for out, field in zip(self._cdp, (fx, fy)):
-                self._writes.submit(out, slice(a, b), scale_coordinates(row.values(field), scalar))
+                out[a:b] = scale_coordinates(row.values(field), scalar)
 
     def _create_cdp_arrays(self) -> tuple:
         n_il, n_xl = self.seismic.shape[:2]
         unit = _UNITS.get(int(self.cube.segyfile.bin[segyio.BinField.MeasurementSystem]), "unknown")
-        return tuple(self.root.create_array(name, shape=(n_il, n_xl), chunks=self.seismic.chunks[:2],
+        return tuple(self.root.create_array(name, shape=(n_il, n_xl), chunks=self._header_chunks,
                                             dtype="float64", dimension_names=("inline", "crossline"), fill_value=0.0,
                                             attributes={"units": unit})
                      for name in ("cdp_x", "cdp_y"))
@@ -328,7 +338,7 @@ class SeismicZarrWriter:
         for a, row in sorted(self._rows.items()):
             self._write_header_row(row, a, a + row.n_inlines)
         self._rows.clear()
-        self._writes.wait()
+        self._copies.wait()
         self._add_source_coordinates()
         if self._cdp is not None:
             self.seismic.attrs["coordinates"] = "cdp_x cdp_y"
@@ -360,33 +370,69 @@ class SeismicZarrWriter:
                 out[a:a + rows] = scale_coordinates(self._header_rows(field)(a, a + rows), scalar(a, a + rows))
 
 
-class _BackgroundWrites:
-    """Zarr writes (``array[selection] = values``) on background threads, the values held until written: at most
-    ``max_bytes`` of them and ``max_pending`` writes at a time; the first error is raised by the next call."""
+class _ChunkFiles:
+    """The chunk files of a Zarr v3 array in a local store, written as zarr would write them: the values encoded by
+    the array's codecs (little-endian bytes, then its Blosc compressor), at the chunk's key (the array's chunk key
+    encoding), an edge chunk padded with the fill value to the full chunk shape (as the Zarr v3 specification
+    stores it). For the amplitudes only (``SEISMIC_CODEC``); thread-safe: each call writes its own file."""
+
+    def __init__(self, array, store: Path):
+        import numcodecs
+
+        blosc = SEISMIC_CODEC[0]["configuration"]
+        shuffle = {"noshuffle": numcodecs.Blosc.NOSHUFFLE, "shuffle": numcodecs.Blosc.SHUFFLE,
+                   "bitshuffle": numcodecs.Blosc.BITSHUFFLE}[blosc["shuffle"]]
+        # typesize: the item size of the float32 values encoded (as the codec's "typesize": 4)
+        self._codec = numcodecs.Blosc(cname=blosc["cname"], clevel=blosc["clevel"], shuffle=shuffle,
+                                      blocksize=blosc["blocksize"])
+        self._array, self._folder = array, Path(store) / array.path
+
+    def write(self, values: np.ndarray, *start: int) -> None:
+        """Write the chunk whose first element is at array index ``start`` (chunk-aligned) from ``values`` (the
+        chunk's elements inside the array)."""
+        shape = self._array.chunks
+        if len(start) != len(shape):
+            raise ValueError(f"a chunk of the {len(shape)}D array {self._array.path} starts at {len(shape)} indices, "
+                             f"not {start}")
+        if values.shape != shape:
+            full = np.full(shape, self._array.fill_value, "<f4")
+            full[tuple(slice(0, n) for n in values.shape)] = values
+            values = full
+        key = self._array.metadata.encode_chunk_key(tuple(i // n for i, n in zip(start, shape)))
+        path = self._folder / key
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(self._codec.encode(np.ascontiguousarray(values, dtype="<f4")))
+
+
+class _BackgroundWork:
+    """Calls on background threads, with the bytes each holds until done: at most ``max_bytes`` of them and
+    ``max_pending`` calls at a time; the first error is raised by the next call."""
 
     def __init__(self, max_bytes: float, *, max_pending: int):
         self.max_bytes, self.max_pending = max_bytes, max_pending
-        self._pool = ThreadPoolExecutor(max_workers=_WRITE_THREADS, thread_name_prefix="seismic-zarr-write")
+        self._pool = ThreadPoolExecutor(max_workers=_COPY_THREADS, thread_name_prefix="seismic-zarr-copy")
         self._pending = deque()  # (future, bytes), oldest first
 
     def wait_for_room(self, nbytes: int) -> None:
-        """Wait until ``nbytes`` more can be held (oldest writes first)."""
+        """Wait until ``nbytes`` more can be held (oldest calls first)."""
         while self._pending and (len(self._pending) >= self.max_pending
                                  or sum(n for _, n in self._pending) + nbytes > self.max_bytes):
             future, _ = self._pending.popleft()
             future.result()
 
-    def submit(self, array, selection, values: np.ndarray) -> None:
-        """Write ``values`` to ``array[selection]`` in the background (once there is room for them)."""
-        self.wait_for_room(values.nbytes)
-        self._pending.append((self._pool.submit(array.__setitem__, selection, values), values.nbytes))
+    def run(self, function, *args, nbytes: int):
+        """Call ``function(*args)`` in the background once ``nbytes`` more can be held; its future."""
+        self.wait_for_room(nbytes)
+        future = self._pool.submit(function, *args)
+        self._pending.append((future, nbytes))
+        return future
 
     def wait(self) -> None:
-        """Wait for every write; raise the first error."""
+        """Wait for every call; raise the first error."""
         self.wait_for_room(self.max_bytes + 1)
 
     def close(self, *, raise_errors: bool) -> None:
-        """Wait for the writes under way (raising their first error only if ``raise_errors``) and stop the threads."""
+        """Wait for the calls under way (raising their first error only if ``raise_errors``) and stop the threads."""
         try:
             if raise_errors:
                 self.wait()

@@ -53,7 +53,8 @@ Modules shared by the sub-packages:
 - ``seismo3d.seismic._kernels``: the numba kernels shared by attributes, faults and horizons (private).
 """
 
-from .attributes import ReflectorOrientation, discontinuity, eigen_coherence, semblance, structure_tensor_orientation
+from .attributes import (ReflectorOrientation, discontinuity, eigen_coherence, semblance, structure_tensor_orientation,
+                         structure_tensor_slopes)
 from .blocks import BlockRun, SchedulerClient, run_block
 from .evaluation import (
     FaultScores, HorizonErrors, RegistrationErrors, evaluate_faults, horizon_errors, registration_errors,
@@ -90,7 +91,7 @@ __all__ = [
     "fault_normals", "fault_throw", "fault_throws", "fill_horizon", "horizon_errors", "link_faults", "open_segy",
     "read_ascii_lines", "read_section", "read_segy", "reflector_picks", "reflector_points", "register_volumes",
     "registration_errors", "reliable_throw", "resample_volume", "semblance", "structure_tensor_orientation",
-    "thin_faults", "trace_faults", "track_horizon", "volume_spacing", "write_horizon_text", "write_like",
+    "structure_tensor_slopes", "thin_faults", "trace_faults", "track_horizon", "volume_spacing", "write_horizon_text", "write_like",
     # io: SEG-Y layout and geometry, reading by blocks, the Zarr store of `seismo3d convert`, writing by blocks
     "SegyLayout", "read_segy_layout", "TraceGeometry", "trace_geometry", "SegyGrid", "read_segy_block",
     "read_segy_block_headers", "inline_block_size", "SeismicZarr", "SeismicZarrWriter", "open_seismic_zarr",

@@ -155,6 +155,23 @@ def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1):
 
 
 @nb.njit(cache=True, parallel=True)
+def eig_slopes_f32(t00, t01, t02, t11, t12, t22, max_slope, p0, p1):
+    # the slopes of eig_normals' float32 normals as slopes_from_normals takes them (float32 arithmetic, so equal
+    # bit for bit), without storing the normals and planarity
+    floor = np.float32(1.0 / max_slope / 2.0)
+    top = np.float32(max_slope)
+    n0, n1, n2 = t00.shape
+    for i in nb.prange(n0):
+        for j in range(n1):
+            for k in range(n2):
+                vx, vy, vz, _ = eig3(float(t00[i, j, k]), float(t01[i, j, k]), float(t02[i, j, k]),
+                                      float(t11[i, j, k]), float(t12[i, j, k]), float(t22[i, j, k]))
+                nz = max(np.float32(vz), floor)
+                p0[i, j, k] = min(max(-np.float32(vx) / nz, -top), top)
+                p1[i, j, k] = min(max(-np.float32(vy) / nz, -top), top)
+
+
+@nb.njit(cache=True, parallel=True)
 def semblance_num_den(f, p0, p1, r0, r1, num, den):
     # Semblance numerator (sum of the traces)^2 and denominator J * sum of squares, over the (2 r0 + 1) x
     # (2 r1 + 1) neighbouring traces, each read at t + p0 * di + p1 * dj (reflector slopes of the centre sample;
@@ -338,6 +355,16 @@ def slopes_from_normals(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     nz = np.maximum(normals[..., 2], 1.0 / MAX_SLOPE / 2.0)
     p0 = np.clip(-normals[..., 0] / nz, -MAX_SLOPE, MAX_SLOPE).astype(np.float32)
     p1 = np.clip(-normals[..., 1] / nz, -MAX_SLOPE, MAX_SLOPE).astype(np.float32)
+    return p0, p1
+
+
+def orientation_slopes(f3: np.ndarray, sigma_gradient: float, sigma_tensor, two_d: bool) -> tuple:
+    """Reflector slopes (p0, p1) of a 3D-shaped array equal bit for bit to those of :func:`tensor_eig`'s normals
+    (:func:`slopes_from_normals`), without storing the normals."""
+    t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
+    p0 = np.empty(f3.shape, dtype=np.float32)
+    p1 = np.empty(f3.shape, dtype=np.float32)
+    eig_slopes_f32(*t, MAX_SLOPE, p0, p1)
     return p0, p1
 
 

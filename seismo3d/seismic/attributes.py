@@ -30,6 +30,7 @@ from . import _kernels
 __all__ = [
     "ReflectorOrientation",
     "structure_tensor_orientation",
+    "structure_tensor_slopes",
     "section_slopes",
     "structure_tensor_halo",
     "semblance",
@@ -128,6 +129,42 @@ def structure_tensor_orientation(data, *, sigma_gradient=1.0, sigma_tensor=(2.0,
     else:
         slopes = np.stack([p0, p1])
     return ReflectorOrientation(np.ascontiguousarray(normals), np.ascontiguousarray(slopes), planarity)
+
+
+def structure_tensor_slopes(data, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)) -> np.ndarray:
+    """Reflector slopes from the structure tensor: ``structure_tensor_orientation(data).slopes`` bit for bit, without
+    the normals and planarity (about half the time on a 110 x 110 x 500 block, two thirds on 400 x 400 x 500).
+
+    Parameters
+    ----------
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        Seismic amplitudes; the last axis is the sample axis. Converted to float32. Must be finite.
+    sigma_gradient, sigma_tensor : float, optional
+        As in :func:`structure_tensor_orientation` (samples and traces).
+
+    Returns
+    -------
+    (ndim - 1, *data.shape) float32 ndarray
+        Slopes along each lateral axis, samples per trace (clipped to +-5), as
+        :attr:`ReflectorOrientation.slopes`.
+
+    Raises
+    ------
+    InputError
+        If ``data`` is not a finite 2D / 3D numeric array or a width is not > 0.
+
+    References
+    ----------
+    As :func:`structure_tensor_orientation`.
+    """
+    arr = as_seismic(data)
+    check_positive(sigma_gradient, "sigma_gradient")
+    sig_t = as_sigma_pair(sigma_tensor, "sigma_tensor")
+    two_d = arr.ndim == 2
+    p0, p1 = _kernels.orientation_slopes(_kernels.as_3d(arr), float(sigma_gradient), sig_t, two_d)
+    if two_d:
+        return np.ascontiguousarray(p0[None, :, 0, :])
+    return np.stack([p0, p1])
 
 
 def section_slopes(data, axis: int, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.0),

@@ -42,7 +42,7 @@ import numpy as np
 
 from ..._atomic import atomic_path
 from ...errors import EarlierStoresError, InputError
-from ..attributes import structure_tensor_orientation
+from ..attributes import structure_tensor_slopes
 from ..blocks import BlockRun, SchedulerClient, write_marker
 from ..io.zarr_store import consolidate
 from .dead_samples import dead_samples, fill_values, near_dead_samples
@@ -492,12 +492,12 @@ def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan
 
 
 def _write_slopes(f: np.ndarray, origin, block, partial) -> None:
-    """Reflector slopes (:func:`structure_tensor_orientation`, as the throws read them in memory) of a block's core,
+    """Reflector slopes (:func:`structure_tensor_slopes`, as the throws read them in memory) of a block's core,
     from its amplitudes read with at least :func:`structure_tensor_halo` traces of halo."""
     import zarr
     i0, i1, j0, j1 = block
     core = (slice(i0 - origin[0], i1 - origin[0]), slice(j0 - origin[1], j1 - origin[1]))
-    slopes = structure_tensor_orientation(f).slopes
+    slopes = structure_tensor_slopes(f)
     group = zarr.open_group(partial, mode="r+")
     group["slope_inline"][i0:i1, j0:j1] = slopes[0][core]
     group["slope_xline"][i0:i1, j0:j1] = slopes[1][core]

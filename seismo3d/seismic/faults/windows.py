@@ -27,7 +27,7 @@ from scipy import ndimage as ndi
 
 from ..._validation import as_seismic, check_int, check_positive, check_seismic_layout
 from ...errors import InputError
-from ..attributes import ReflectorOrientation, structure_tensor_halo, structure_tensor_orientation
+from ..attributes import ReflectorOrientation, structure_tensor_halo, structure_tensor_slopes
 
 __all__ = ["ArrayWindows", "CubeWindow", "LazyWindows", "StoredWindows", "cube_windows", "is_dask_array"]
 
@@ -142,7 +142,7 @@ class ArrayWindows:
         computed at the first call when it was not given."""
         if self._whole is None:
             if self._slopes is None:
-                self._slopes = _slope_fields(structure_tensor_orientation(self._arr), self.shape)
+                self._slopes = _slope_fields(structure_tensor_slopes(self._arr), self.shape)
             cube = self._arr[:, None, :] if self._arr.ndim == 2 else self._arr
             self._whole = CubeWindow(cube, *self._slopes, (0, 0), cube.shape)
         return self._whole
@@ -215,8 +215,7 @@ class LazyWindows:
         if self._slopes is not None:
             p0, p1 = (p[a0:a1, b0:b1] for p in self._slopes)
         else:
-            slopes = structure_tensor_orientation(block).slopes
-            p0, p1 = slopes[0], slopes[1]
+            p0, p1 = structure_tensor_slopes(block)
         core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
         fields = tuple(np.ascontiguousarray(f[core]) for f in (block, p0, p1))
         self._cache[key] = fields

@@ -356,27 +356,46 @@ def test_little_endian_file(tmp_path):
     _assert_same_headers(path, out, endian_a="little")
 
 
-@pytest.mark.parametrize("name", ["f3.sgy", "f3-lsb.sgy"])
-def test_written_files_equal_segyios_header_copy(tmp_path, name, data_dir):
-    """Both writers copy the trace headers from the template's bytes (byte-swapped per field from a little-endian
-    one): the file is byte for byte the one segyio's field-by-field copy writes."""
-    from seismo3d.data import fetch
-    from seismo3d.seismic.io import write_like_blocks
-
-    template = fetch(f"seismic/segyio_test_data/{name}")
+def _segyio_copy(template, values, path):
+    """segyio's copy-a-file recipe: ``template``'s headers (format 5, big-endian) with ``values`` as its traces."""
     with open_segy(template) as cube:
-        values = np.random.default_rng(0).random(cube.shape, dtype=np.float32)
         traces, endian = cube._to_traces(values), cube.endian
     with segyio.open(str(template), ignore_geometry=True, endian=endian) as src:
         spec = segyio.tools.metadata(src)
         spec.format, spec.endian = 5, "big"
-        with segyio.create(str(tmp_path / "segyio.sgy"), spec) as dst:
+        with segyio.create(str(path), spec) as dst:
             dst.text[0] = src.text[0]
             dst.bin = src.bin
             dst.bin.update({segyio.BinField.Format: 5})
             dst.header = src.header
             for i in range(src.tracecount):
                 dst.trace[i] = traces[i]
-    expected = (tmp_path / "segyio.sgy").read_bytes()
+    return path.read_bytes()
+
+
+@pytest.mark.parametrize("name", ["f3.sgy", "f3-lsb.sgy"])
+def test_written_files_equal_segyios_header_copy(tmp_path, name, data_dir):
+    """Both writers write the traces themselves, the headers from the template's bytes (byte-swapped per field from
+    a little-endian one): the file is byte for byte the one segyio's field-by-field copy writes."""
+    from seismo3d.data import fetch
+    from seismo3d.seismic.io import write_like_blocks
+
+    template = fetch(f"seismic/segyio_test_data/{name}")
+    with open_segy(template) as cube:
+        values = np.random.default_rng(0).random(cube.shape, dtype=np.float32)
+    expected = _segyio_copy(template, values, tmp_path / "segyio.sgy")
     assert write_like(template, tmp_path / "a.sgy", values).read_bytes() == expected
     assert write_like_blocks(template, tmp_path / "b.sgy", values, inlines_per_block=5).read_bytes() == expected
+
+
+def test_written_crossline_sorted_file_equals_segyios_copy(tmp_path, write_segy_cube):
+    """A crossline-sorted IBM-float template: the blocks of inlines are scattered runs of single traces in the file,
+    written in place; both writers' files are byte for byte segyio's copy."""
+    from seismo3d.seismic.io import write_like_blocks
+
+    values = np.random.default_rng(1).random((7, 5, 12), dtype=np.float32)
+    template = write_segy_cube(tmp_path / "xl.sgy", values, sorting="crossline", fmt=1)
+    expected = _segyio_copy(template, values[::-1] * 3, tmp_path / "segyio.sgy")
+    assert write_like(template, tmp_path / "a.sgy", values[::-1] * 3).read_bytes() == expected
+    assert write_like_blocks(template, tmp_path / "b.sgy", values[::-1] * 3, inlines_per_block=2).read_bytes() \
+        == expected

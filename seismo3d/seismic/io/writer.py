@@ -81,11 +81,13 @@ def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 
             spec.tracecount = src.tracecount
         with atomic_path(out_path) as tmp:
             with segyio.create(str(tmp), spec) as dst:
-                headers_copied = _start_like(src, dst, template_path)
-                for i in range(ntr):
-                    dst.trace[i] = traces[i]
-            if not headers_copied:
-                _copy_trace_headers(template_path, src, cube.endian, tmp)
+                fixed_length = _start_like(src, dst, template_path)
+                if not fixed_length:
+                    for i in range(ntr):
+                        dst.trace[i] = traces[i]
+            if fixed_length:
+                with _TraceWriter(template_path, src, cube.endian, tmp) as writer:
+                    writer.write(0, traces)
     return out_path
 
 
@@ -147,15 +149,20 @@ def write_like_blocks(template_path, out_path, values, *, iline: int = 189, xlin
         spec.endian = "big"
         with atomic_path(out_path) as tmp:
             with segyio.create(str(tmp), spec) as dst:
-                headers_copied = _start_like(src, dst, template_path)
-                _write_inline_blocks(dst, values, grid, int(inlines_per_block), f"writing {out_path.name}", progress)
-            if not headers_copied:
-                _copy_trace_headers(template_path, src, cube.endian, tmp)
+                fixed_length = _start_like(src, dst, template_path)
+                if not fixed_length:
+                    _write_inline_blocks(values, grid, int(inlines_per_block), f"writing {out_path.name}", progress,
+                                         lambda first, traces: _write_segyio_traces(dst, first, traces))
+            if fixed_length:
+                with _TraceWriter(template_path, src, cube.endian, tmp) as writer:
+                    _write_inline_blocks(values, grid, int(inlines_per_block), f"writing {out_path.name}", progress,
+                                         writer.write)
     return out_path
 
 
-def _write_inline_blocks(dst, values, grid: SegyGrid, inlines_per_block: int, label: str, progress: bool) -> None:
-    """The traces of ``values`` into the open SEG-Y ``dst``, ``inlines_per_block`` inlines read at a time."""
+def _write_inline_blocks(values, grid: SegyGrid, inlines_per_block: int, label: str, progress: bool, write) -> None:
+    """The traces of ``values``, ``inlines_per_block`` inlines read at a time, handed to ``write(first_trace,
+    traces)`` one run of consecutive traces of the file at a time."""
     starts = range(0, grid.n_inlines, inlines_per_block)
     with progress_steps(len(starts), label, unit="block", enabled=progress) as bar:
         for i0 in starts:
@@ -165,53 +172,81 @@ def _write_inline_blocks(dst, values, grid: SegyGrid, inlines_per_block: int, la
                 raise InputError(f"values hold NaN or inf in inlines {i0}-{i1 - 1} (indices), which most SEG-Y "
                                  "readers reject; replace them first")
             for first, last, where in grid.trace_runs(i0, i1, 0, grid.n_xlines):
-                traces = np.ascontiguousarray(block[where]).reshape(-1, grid.n_samples)
-                for k in range(last - first):
-                    dst.trace[first + k] = traces[k]
+                write(first, np.ascontiguousarray(block[where]).reshape(-1, grid.n_samples))
             bar.advance()
+
+
+def _write_segyio_traces(dst, first: int, traces: np.ndarray) -> None:
+    """Traces ``first, first + 1, ...`` through segyio, one at a time (templates whose traces differ in length)."""
+    for k in range(traces.shape[0]):
+        dst.trace[first + k] = traces[k]
 
 
 def _start_like(src, dst, template_path: Path) -> bool:
     """Copy the textual and binary headers of ``src`` into the new file ``dst`` (data format 5); the trace headers
-    too when the template's traces are not of one fixed length (through segyio, field by field). Whether the trace
-    headers were copied (else :func:`_copy_trace_headers` copies them once ``dst`` is closed)."""
+    too when the template's traces are not of one fixed length (through segyio, field by field). Whether the traces
+    are of one fixed length (then :class:`_TraceWriter` writes them, headers and samples, once ``dst`` is closed)."""
     for i in range(1 + src.ext_headers):
         dst.text[i] = src.text[i]
     dst.bin = src.bin
     dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
     if _trace_layout(src, template_path, len(src.samples), src.tracecount) is None:
         dst.header = src.header
-        return True
-    return False
+        return False
+    return True
 
 
-_COPY_TRACES = 8192  # traces whose headers are copied at a time (the template's and the output's: 2 x 18 MB at most)
+_COPY_TRACES = 8192  # traces written at a time (the template's read and the output's: 2 x 18 MB at most)
 
 
-def _copy_trace_headers(template_path: Path, src, endian: str, out_path) -> None:
-    """Copy every 240-byte trace header of the template into the closed big-endian IEEE-float SEG-Y ``out_path``
-    (same trace count and samples per trace), as ``segyio``'s header copy does field by field: byte for byte from a
-    big-endian template, each field (SEG-Y rev 1 Table 3, 2 or 4 bytes) byte-swapped from a little-endian one. Read
-    and written a run of traces at a time with plain file reads (no memory map: the files' pages are not the
-    process's)."""
-    n = src.tracecount
-    first, stride = _trace_layout(src, template_path, len(src.samples), n)
-    out_first = first  # the same textual and binary headers
-    out_stride = _TRACE_HEADER_BYTES + 4 * len(src.samples)  # IEEE float samples
-    swap = None if endian == "big" else (_header_dtype(_FIELD_STARTS, "little"), _header_dtype(_FIELD_STARTS, "big"))
-    with open(template_path, "rb") as fin, open(out_path, "r+b") as fout:
-        for a in range(0, n, _COPY_TRACES):
-            m = min(_COPY_TRACES, n - a)
-            fin.seek(first + a * stride)
-            raw = np.fromfile(fin, np.uint8, m * stride).reshape(m, stride)[:, :_TRACE_HEADER_BYTES]
-            if swap is not None:
-                raw = np.ascontiguousarray(raw).view(swap[0]).reshape(-1).astype(swap[1]).view(np.uint8)
+class _TraceWriter:
+    """The traces of a big-endian IEEE-float SEG-Y ``out_path`` whose textual and binary headers segyio wrote (no
+    trace yet), written with plain file writes: each trace's 240-byte header copied from the template as segyio's
+    header copy does field by field (byte for byte from a big-endian template, each field of SEG-Y rev 1 Table 3, 2
+    or 4 bytes, byte-swapped from a little-endian one), then its samples as big-endian 4-byte floats. One write per
+    run of traces instead of segyio's write per trace and a second pass for the headers; plain reads of the template
+    (no memory map: the files' pages are not the process's). Use as a context manager; the file is sized for every
+    trace at the start, so runs may come in any order."""
+
+    def __init__(self, template_path: Path, src, endian: str, out_path):
+        self.n = src.tracecount
+        self.first, self.stride = _trace_layout(src, template_path, len(src.samples), self.n)
+        self.n_samples = len(src.samples)
+        self.out_stride = _TRACE_HEADER_BYTES + 4 * self.n_samples  # IEEE float samples
+        self.swap = None if endian == "big" else (_header_dtype(_FIELD_STARTS, "little"),
+                                                  _header_dtype(_FIELD_STARTS, "big"))
+        self.template_path, self.out_path = template_path, out_path
+
+    def __enter__(self) -> "_TraceWriter":
+        self._fin = open(self.template_path, "rb")
+        try:
+            self._fout = open(self.out_path, "r+b")
+            self._fout.truncate(self.first + self.n * self.out_stride)  # the same textual and binary headers
+        except BaseException:
+            self._fin.close()
+            raise
+        return self
+
+    def __exit__(self, *exc) -> None:
+        try:
+            self._fout.close()
+        finally:
+            self._fin.close()
+
+    def write(self, first: int, traces: np.ndarray) -> None:
+        """Traces ``first, first + 1, ...`` of the file: ``traces`` (m, n_samples) float32."""
+        for a in range(0, traces.shape[0], _COPY_TRACES):
+            m = min(_COPY_TRACES, traces.shape[0] - a)
+            self._fin.seek(self.first + (first + a) * self.stride)
+            raw = np.fromfile(self._fin, np.uint8, m * self.stride).reshape(m, self.stride)[:, :_TRACE_HEADER_BYTES]
+            out = np.empty((m, self.out_stride), np.uint8)
+            if self.swap is not None:
+                raw = np.ascontiguousarray(raw).view(self.swap[0]).reshape(-1).astype(self.swap[1]).view(np.uint8)
                 raw = raw.reshape(m, _TRACE_HEADER_BYTES)
-            fout.seek(out_first + a * out_stride)
-            block = np.fromfile(fout, np.uint8, m * out_stride).reshape(m, out_stride)
-            block[:, :_TRACE_HEADER_BYTES] = raw
-            fout.seek(out_first + a * out_stride)
-            block.tofile(fout)
+            out[:, :_TRACE_HEADER_BYTES] = raw
+            out[:, _TRACE_HEADER_BYTES:].view(">f4")[:] = traces[a:a + m]
+            self._fout.seek(self.first + (first + a) * self.out_stride)
+            out.tofile(self._fout)
 
 
 def _check_destination(template_path, out_path) -> tuple[Path, Path]:

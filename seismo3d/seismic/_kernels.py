@@ -141,34 +141,26 @@ def eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
 
 
 @nb.njit(cache=True, parallel=True)
-def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1):
-    # reflector slopes -n0 / n2 and -n1 / n2 (samples per trace, clipped to +-max_slope) of every tensor
+def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_normals):
+    # reflector slopes -n0 / n2 and -n1 / n2 (samples per trace, clipped to +-max_slope) of every tensor; with
+    # as_float32_normals, from the normals rounded to float32 and divided in float32, as slopes_from_normals takes
+    # eig_normals' normals (the same bits), else in float64
+    floor32 = np.float32(1.0 / max_slope / 2.0)
+    top32 = np.float32(max_slope)
     n0, n1, n2 = t00.shape
     for i in nb.prange(n0):
         for j in range(n1):
             for k in range(n2):
                 vx, vy, vz, _ = eig3(float(t00[i, j, k]), float(t01[i, j, k]), float(t02[i, j, k]),
                                       float(t11[i, j, k]), float(t12[i, j, k]), float(t22[i, j, k]))
-                vz = max(vz, 0.5 / max_slope)
-                p0[i, j, k] = min(max(-vx / vz, -max_slope), max_slope)
-                p1[i, j, k] = min(max(-vy / vz, -max_slope), max_slope)
-
-
-@nb.njit(cache=True, parallel=True)
-def eig_slopes_f32(t00, t01, t02, t11, t12, t22, max_slope, p0, p1):
-    # the slopes of eig_normals' float32 normals as slopes_from_normals takes them (float32 arithmetic, so equal
-    # bit for bit), without storing the normals and planarity
-    floor = np.float32(1.0 / max_slope / 2.0)
-    top = np.float32(max_slope)
-    n0, n1, n2 = t00.shape
-    for i in nb.prange(n0):
-        for j in range(n1):
-            for k in range(n2):
-                vx, vy, vz, _ = eig3(float(t00[i, j, k]), float(t01[i, j, k]), float(t02[i, j, k]),
-                                      float(t11[i, j, k]), float(t12[i, j, k]), float(t22[i, j, k]))
-                nz = max(np.float32(vz), floor)
-                p0[i, j, k] = min(max(-np.float32(vx) / nz, -top), top)
-                p1[i, j, k] = min(max(-np.float32(vy) / nz, -top), top)
+                if as_float32_normals:
+                    nz = max(np.float32(vz), floor32)
+                    p0[i, j, k] = min(max(-np.float32(vx) / nz, -top32), top32)
+                    p1[i, j, k] = min(max(-np.float32(vy) / nz, -top32), top32)
+                else:
+                    vz = max(vz, 0.5 / max_slope)
+                    p0[i, j, k] = min(max(-vx / vz, -max_slope), max_slope)
+                    p1[i, j, k] = min(max(-vy / vz, -max_slope), max_slope)
 
 
 @nb.njit(cache=True, parallel=True)
@@ -358,22 +350,14 @@ def slopes_from_normals(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return p0, p1
 
 
-def orientation_slopes(f3: np.ndarray, sigma_gradient: float, sigma_tensor, two_d: bool) -> tuple:
-    """Reflector slopes (p0, p1) of a 3D-shaped array equal bit for bit to those of :func:`tensor_eig`'s normals
-    (:func:`slopes_from_normals`), without storing the normals."""
+def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_tensor,
+                     as_float32_normals: bool = False) -> tuple:
+    """Reflector slopes (p0, p1) in samples per trace of a 3D-shaped array, without storing the normals; with
+    ``as_float32_normals`` equal bit for bit to those of :func:`tensor_eig`'s normals (:func:`slopes_from_normals`)."""
     t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
     p0 = np.empty(f3.shape, dtype=np.float32)
     p1 = np.empty(f3.shape, dtype=np.float32)
-    eig_slopes_f32(*t, MAX_SLOPE, p0, p1)
-    return p0, p1
-
-
-def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_tensor) -> tuple:
-    """Reflector slopes (p0, p1) in samples per trace of a 3D-shaped array, without storing the normals."""
-    t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
-    p0 = np.empty(f3.shape, dtype=np.float32)
-    p1 = np.empty(f3.shape, dtype=np.float32)
-    eig_slopes(*t, MAX_SLOPE, p0, p1)
+    eig_slopes(*t, MAX_SLOPE, p0, p1, bool(as_float32_normals))
     return p0, p1
 
 

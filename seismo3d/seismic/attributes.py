@@ -161,7 +161,8 @@ def structure_tensor_slopes(data, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)
     check_positive(sigma_gradient, "sigma_gradient")
     sig_t = as_sigma_pair(sigma_tensor, "sigma_tensor")
     two_d = arr.ndim == 2
-    p0, p1 = _kernels.orientation_slopes(_kernels.as_3d(arr), float(sigma_gradient), sig_t, two_d)
+    p0, p1 = _kernels.reflector_slopes(_kernels.as_3d(arr), two_d, float(sigma_gradient), sig_t,
+                                       as_float32_normals=True)
     if two_d:
         return np.ascontiguousarray(p0[None, :, 0, :])
     return np.stack([p0, p1])

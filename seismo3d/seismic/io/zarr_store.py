@@ -392,8 +392,8 @@ class _ChunkFiles:
         chunk's elements inside the array)."""
         shape = self._array.chunks
         if len(start) != len(shape):
-            raise ValueError(f"a chunk of the {len(shape)}D array {self._array.path} starts at {len(shape)} indices, "
-                             f"not {start}")
+            raise ValueError(f"a chunk of the {len(shape)}D array {self._array.path} needs {len(shape)} start "
+                             f"indices; got {start}")
         if values.shape != shape:
             full = np.full(shape, self._array.fill_value, "<f4")
             full[tuple(slice(0, n) for n in values.shape)] = values

@@ -40,7 +40,9 @@ class Fault:
     points : (n, ndim) int64 ndarray
         Index coordinates (inline, xline, sample) or (trace, sample) of the fault's samples.
     likelihood : (n,) float32 ndarray
-        Fault likelihood at each point.
+        The value at each point of the thinned fault image the fault was linked from (:func:`fault_skins`): in
+        :func:`~seismo3d.seismic.trace_faults`, the thinned votes of the optimal-surface voting, not the fault
+        likelihood itself (Hale's skins, whose cells carry a thinned likelihood, give the name).
     strike_deg, dip_deg : (n,) float32 ndarray
         Strike and dip at each point, degrees (module conventions).
     normals : (n, ndim) float32 ndarray

@@ -40,7 +40,8 @@ class Fault:
     points : (n, ndim) int64 ndarray
         Index coordinates (inline, xline, sample) or (trace, sample) of the fault's samples.
     likelihood : (n,) float32 ndarray
-        The value at each point of the thinned fault image the fault was linked from (:func:`fault_skins`): in
+        The value at each point of the thinned fault image the fault was linked from
+        (:func:`~seismo3d.seismic.faults.skins.fault_skins`): in
         :func:`~seismo3d.seismic.trace_faults`, the thinned votes of the optimal-surface voting, not the fault
         likelihood itself (Hale's skins, whose cells carry a thinned likelihood, give the name).
     strike_deg, dip_deg : (n,) float32 ndarray

@@ -147,7 +147,7 @@ def test_failed_background_write_leaves_no_output(amplitudes, tmp_path, write_se
 
 
 def test_chunk_files_are_the_bytes_zarr_writes(converted, tmp_path):
-    """convert encodes and writes the amplitude chunks itself (zarr's array API costs a third more CPU): every chunk
+    """convert encodes and writes the amplitude chunks itself (zarr's array API costs a quarter more CPU): every chunk
     file, edge chunks included, holds the bytes zarr's own write of the same values gives, under the same key."""
     import zarr
 

@@ -79,11 +79,12 @@ def _trace_candidates(k, guide, fixed, picks, offsets, reach, out):
 def _candidates(traces, guide, fixed, picks, offsets, reach, half, slopes, cross_slopes):
     """Every trace's candidate picks (:func:`_trace_candidates`) and their waveforms, once for all the programmes of
     :func:`dp_picks`: ``(first, pick, unit, whole, slope, cross_slope)``, the candidates of trace ``k`` at
-    ``first[k]:first[k + 1]`` of ``pick``; ``unit`` (n_candidates, 2 half + 1) float32 the window ``+-half`` samples around each pick centred and
-    scaled to unit norm (zeros where flat), so that two windows' normalised cross-correlation is their dot product;
-    ``whole`` False where a window leaves the trace (its correlations are :func:`window_ncc`'s of the raw windows);
-    ``slope``, ``cross_slope`` the reflector slopes ``slopes`` and ``cross_slopes`` at each candidate. About
-    ``4 (2 half + 1) + 18`` bytes a candidate (a few candidates a trace: ~0.2 KB a trace at ``half`` 8)."""
+    ``first[k]:first[k + 1]`` of ``pick``; ``unit`` (n_candidates, 2 half + 1) float32 the window ``+-half`` samples
+    around each pick centred and scaled to unit norm (zeros where flat), so that two windows' normalised
+    cross-correlation is their dot product; ``whole`` False where a window leaves the trace (its correlations are
+    :func:`window_ncc`'s of the raw windows); ``slope``, ``cross_slope`` the reflector slopes ``slopes`` and
+    ``cross_slopes`` at each candidate. About ``4 (2 half + 1) + 18`` bytes a candidate (a few candidates a trace: ~0.2
+    KB a trace at ``half`` 8)."""
     n = guide.size
     none = np.empty(0)
     first = np.zeros(n + 1, np.int64)

@@ -83,8 +83,7 @@ def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 
             with segyio.create(str(tmp), spec) as dst:
                 fixed_length = _start_like(src, dst, template_path)
                 if not fixed_length:
-                    for i in range(ntr):
-                        dst.trace[i] = traces[i]
+                    _write_segyio_traces(dst, 0, traces)
             if fixed_length:
                 with _TraceWriter(template_path, src, cube.endian, tmp) as writer:
                     writer.write(0, traces)

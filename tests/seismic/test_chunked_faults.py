@@ -105,25 +105,37 @@ def test_dense_faults_take_the_exact_quantile(cube, likelihood, reference, tmp_p
 
 
 def test_resume_after_an_interrupted_run(cube, likelihood, reference, tmp_path, monkeypatch):
-    """A run stopped in the voting leaves no output that looks finished; the rerun skips the finished blocks and
-    gives the same faults."""
-    calls = {"n": 0}
-    original = chunked_faults.surface_votes
+    """A run stopped in the seeds' surfaces, then one stopped in the voting, leave no output that looks finished;
+    each rerun skips the finished blocks, and the last gives the same faults."""
 
-    def interrupted(*args, **kwargs):
-        calls["n"] += 1
-        if calls["n"] == 3:
-            raise KeyboardInterrupt
-        return original(*args, **kwargs)
+    def interrupted_at(original, call):
+        calls = {"n": 0}
+
+        def run(*args, **kwargs):
+            calls["n"] += 1
+            if calls["n"] == call:
+                raise KeyboardInterrupt
+            return original(*args, **kwargs)
+        return run
 
     out = tmp_path / "surfaces.zarr"
-    monkeypatch.setattr(chunked_faults, "surface_votes", interrupted)
+    monkeypatch.setattr(chunked_faults, "seed_surfaces", interrupted_at(chunked_faults.seed_surfaces, 3))
     with pytest.raises(KeyboardInterrupt):
         chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS)
     assert not out.exists() and (tmp_path / "surfaces.zarr.partial").exists()
-    monkeypatch.setattr(chunked_faults, "surface_votes", original)
+    monkeypatch.undo()
+
+    class Interrupted(chunked_faults.VoteSum):
+        votes = interrupted_at(chunked_faults.VoteSum.votes, 3)
+
+    monkeypatch.setattr(chunked_faults, "VoteSum", Interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS)
+    assert not out.exists()
+    monkeypatch.undo()
     result = chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS)
     assert result.blocks_resumed["ridges"] == 6 and result.blocks_computed["ridges"] == 0
+    assert result.blocks_resumed["surfaces"] == 6 and result.blocks_computed["surfaces"] == 0
     assert result.blocks_resumed["votes"] == 2 and result.blocks_computed["votes"] == 4
     _assert_same_faults(result, reference)
 

@@ -61,7 +61,7 @@ class ArrayRun:
             Live samples with a likelihood above 0.9, and live samples (for the saturation refusal).
         """
         high, live = live_likelihood(self.likelihood, self.near_dead)
-        self._ridges = ridges(self.likelihood, self.strike_deg, self.dip_deg)
+        self._ridges = ridges(self.likelihood, self.strike_deg, self.dip_deg, self.opt.voting.seed_threshold)
         return high, live
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:

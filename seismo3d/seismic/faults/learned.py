@@ -348,6 +348,7 @@ def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0) -
         normals = np.empty(p.shape + (3,), np.float32)
         eig_normals(comps[0, 0], comps[0, 1], comps[0, 2], comps[1, 1], comps[1, 2], comps[2, 2], normals,
                     np.empty(p.shape, np.float32))
+    del comps  # the tensor (6 floats a sample) is not held while the angles are computed: a lower peak
     return _normals_to_strike_dip(normals)
 
 

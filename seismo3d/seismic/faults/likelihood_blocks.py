@@ -45,7 +45,7 @@ from ..blocks import BlockRun, SchedulerClient, block_budget, largest_block, wri
 from .likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan,
                                saturation_counts, scan_planes, scan_step, semblance_floor, semblance_halo,
                                semblance_terms, strike_halo)
-from ..io.zarr_store import consolidate
+from ..io.zarr_store import SEISMIC_CODEC, consolidate
 from .memory import default_memory_limit, in_memory_bytes, resident_memory, worker_baseline
 
 __all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
@@ -371,7 +371,7 @@ class LikelihoodRun(BlockRun):
             group = zarr.open_group(str(self.partial), mode="w")
             for name in ("likelihood", "strike_deg", "dip_deg"):
                 group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
-                                   dimension_names=("inline", "crossline", "sample"))
+                                   compressors=SEISMIC_CODEC, dimension_names=("inline", "crossline", "sample"))
 
     def finish(self) -> None:
         """Mark the output complete, rename it into place and delete the work folder."""

@@ -16,9 +16,11 @@ block's core, so the result does not depend on where the blocks are cut:
    threshold are kept as a sparse list of seed candidates.
 3. **Seeds**: the candidates of all blocks, taken strongest first by
    :func:`~seismo3d.seismic.faults.voting.greedy_seeds` (a sparse list: a few percent of the samples).
-4. **Votes**: per block, the seeds whose voting box reaches the block (``VotingOptions.reach``), on the live
-   likelihood read with twice that halo (:func:`~seismo3d.seismic.faults.voting.surface_votes`: each seed's votes
-   are summed by the same thread, in the same order, as in memory).
+4. **Surfaces, then votes**: each seed's optimal surface once, in the block holding the seed, on the live likelihood
+   read with the voting's reach (``VotingOptions.reach``) around it
+   (:func:`~seismo3d.seismic.faults.voting.seed_surfaces`, stored as the samples each surface passes); then per block
+   the votes of the surfaces of the seeds reaching it (:class:`~seismo3d.seismic.faults.voting.VoteSum`: each seed's
+   votes are summed by the same thread, in the same order, as in memory).
 5. **Thinning** of the votes (halo 2), with the count, smallest and largest positive thinned vote per block; then
    their histogram (Otsu's threshold on the same 256 bins as in memory) and, when they are dense, their exact
    quantile: the thresholds of :meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`.
@@ -44,18 +46,18 @@ from ..._atomic import atomic_path
 from ...errors import EarlierStoresError, InputError
 from ..attributes import structure_tensor_slopes
 from ..blocks import BlockRun, SchedulerClient, write_marker
-from ..io.zarr_store import consolidate
+from ..io.zarr_store import SEISMIC_CODEC, consolidate
 from .dead_samples import dead_samples, fill_values, near_dead_samples
 from .interpretation import FaultTracingOptions
 from .likelihood_blocks import ChunkOptions
 from .memory import default_memory_limit, resident_memory, worker_baseline
 from .steps import live_likelihood, ridges, thin_votes, without_dead_edges
-from .surface_plan import (CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, THIN_HALO, SurfacePlan, amplitude_halo, around,
-                           plan_blocks, smallest_block_bytes, square_blocks)
+from .surface_plan import (CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, SURFACE_BATCH_BYTES, THIN_HALO, SurfacePlan,
+                           amplitude_halo, around, plan_blocks, smallest_block_bytes, square_blocks)
 from .surface_steps import faults_from_cells, surface_cells
 from .thresholds import (HISTOGRAM_BINS, QUANTILE_BINS, block_histogram, otsu_of_histogram, quantile_of_window,
                          quantile_window)
-from .voting import fault_frames, greedy_seeds, surface_votes
+from .voting import SeedSurfaces, VoteSum, fault_frames, greedy_seeds, seed_surfaces
 from .windows import StoredWindows
 
 __all__ = ["CANDIDATE_BYTES", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO", "smallest_block_bytes"]
@@ -264,6 +266,7 @@ class _SurfaceRun(BlockRun):
         self.open(manifest, f"{self.work} and {self.partial}")
         (self.work / "candidates").mkdir(exist_ok=True)
         (self.work / "cells").mkdir(exist_ok=True)
+        (self.work / "surfaces").mkdir(exist_ok=True)
         n0, n1, nt = self.plan.shape
         t = self.plan.tile
         for name, dtype in (("near", "uint8"), ("thin_raw", "float32")):
@@ -275,7 +278,7 @@ class _SurfaceRun(BlockRun):
             for name in ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg", "slope_inline",
                          "slope_xline"):
                 group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
-                                   dimension_names=("inline", "crossline", "sample"))
+                                   compressors=SEISMIC_CODEC, dimension_names=("inline", "crossline", "sample"))
 
     def finish(self, attrs: dict) -> None:
         import zarr
@@ -363,18 +366,23 @@ class _SurfaceRun(BlockRun):
         return saved["seeds"], saved["frames"]
 
     def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
+        """Each seed's optimal surface once, in the block that holds the seed (the likelihood read with the voting's
+        reach around it), then the votes of every block from the surfaces of the seeds reaching it, in id order."""
         p = self.plan
-        todo, _ = self.pending("votes", square_blocks(p.shape, p.vote))
+        blocks = square_blocks(p.shape, p.vote)
+        todo, _ = self.pending("surfaces", blocks)
         tasks = []
         for b in todo:
             i0, i1, j0, j1 = b
-            r = p.reach
-            sel = np.nonzero((seeds[:, 0] >= i0 - r) & (seeds[:, 0] < i1 + r) &
-                             (seeds[:, 1] >= j0 - r) & (seeds[:, 1] < j1 + r))[0]
-            # threads=False: the votes are summed per numba thread (voting.surface_votes), so a block's
-            # kernel keeps the process's threads, as the in-memory run
-            tasks.append(self.task(_vote_block, b, seeds[sel], sel, frames[sel], str(self.work), str(self.partial),
-                                   p, self.opt, str(self.marker("votes", b)), threads=False))
+            sel = np.nonzero((seeds[:, 0] >= i0) & (seeds[:, 0] < i1) & (seeds[:, 1] >= j0) & (seeds[:, 1] < j1))[0]
+            tasks.append(self.task(_surface_block, b, seeds[sel], sel, frames[sel], str(self.work), str(self.partial),
+                                   p, self.opt, str(self.marker("surfaces", b))))
+        self.compute(tasks, "fault surfaces", "surfaces")
+        todo, _ = self.pending("votes", blocks)
+        # threads=False: the votes are summed per numba thread (voting.VoteSum), so a block's kernel keeps the
+        # process's threads, as the in-memory run
+        tasks = [self.task(_vote_block, b, seeds, blocks, str(self.work), str(self.partial), p, self.opt,
+                           str(self.marker("votes", b)), threads=False) for b in todo]
         self.compute(tasks, "fault voting", "votes")
 
     def thresholds(self) -> tuple[float, float]:
@@ -479,7 +487,7 @@ def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan
     zarr.open_group(partial, mode="r+")["likelihood"][i0:i1, j0:j1] = fl[core]
     if near is not None:
         zarr.open_array(f"{work}/near", mode="r+")[i0:i1, j0:j1] = near[core].view(np.uint8)
-    ridge = ridges(fl, st, dp)[core]
+    ridge = ridges(fl, st, dp, opt.voting.seed_threshold)[core]
     cand = np.argwhere(ridge > float(opt.voting.seed_threshold))
     at = tuple(cand.T)
     local = (cand[:, 0] + i0 - a0, cand[:, 1] + j0 - b0, cand[:, 2])
@@ -503,15 +511,58 @@ def _write_slopes(f: np.ndarray, origin, block, partial) -> None:
     group["slope_xline"][i0:i1, j0:j1] = slopes[1][core]
 
 
-def _vote_block(block, seeds, ids, frames, work, partial, plan: SurfacePlan, opt: FaultTracingOptions, marker) -> dict:
-    """Votes of the seeds reaching one block, over its core, on the live likelihood around it."""
+def _surface_block(block, seeds, ids, frames, work, partial, plan: SurfacePlan, opt: FaultTracingOptions,
+                   marker) -> dict:
+    """The optimal surfaces of the seeds of one block, on the live likelihood read with the voting's reach around
+    it, saved in ``work/surfaces`` (offsets as a .npy, read back row by row; ids, votes and normals)."""
+    import zarr
+    a0, a1, b0, b1 = around(block, plan.reach, plan.shape)
+    att = zarr.open_group(partial, mode="r")["likelihood"][a0:a1, b0:b1]
+    found = seed_surfaces(att, seeds, frames, image_shape=plan.shape, options=opt.voting, origin=(a0, b0))
+    del att
+    stem = pathlib.Path(work) / "surfaces" / f"{block[0]}-{block[2]}"
+    with atomic_path(str(stem) + ".offsets.npy") as tmp, open(tmp, "wb") as fh:
+        np.save(fh, found.offsets)
+    _save_npz(stem.with_suffix(".npz"), ids=np.asarray(ids, np.int64), mean_likelihood=found.mean_likelihood,
+              normals=found.normals)
+    write_marker(marker, {})
+    return {}
+
+
+def _vote_block(block, seeds, blocks, work, partial, plan: SurfacePlan, opt: FaultTracingOptions, marker) -> dict:
+    """Votes over one block's core of the surfaces of the seeds reaching it, added in id order (as in memory), a
+    batch of at most ``SURFACE_BATCH_BYTES`` of surfaces at a time."""
     import zarr
     i0, i1, j0, j1 = block
-    a0, a1, b0, b1 = around(block, 2 * plan.reach, plan.shape)
-    att = zarr.open_group(partial, mode="r")["likelihood"][a0:a1, b0:b1]
-    votes = surface_votes(att, seeds, ids, frames, image_shape=plan.shape, options=opt.voting, origin=(a0, b0),
-                          core=(i0, j0, i1 - i0, j1 - j0))
-    del att
+    r = plan.reach
+    total = VoteSum(plan.shape, (i0, j0, i1 - i0, j1 - j0), options=opt.voting)
+    parts = []  # (ids, file, rows) of the seeds reaching the block, per seed block
+    for b in blocks:  # seed blocks within reach
+        if b[1] <= i0 - r or b[0] >= i1 + r or b[3] <= j0 - r or b[2] >= j1 + r:
+            continue
+        stem = pathlib.Path(work) / "surfaces" / f"{b[0]}-{b[2]}"
+        ids = np.load(stem.with_suffix(".npz"))["ids"]
+        at = seeds[ids]
+        rows = np.nonzero((at[:, 0] >= i0 - r) & (at[:, 0] < i1 + r) & (at[:, 1] >= j0 - r) &
+                          (at[:, 1] < j1 + r))[0]
+        if rows.size:
+            parts.append((ids[rows], stem, rows))
+    if parts:
+        ids = np.concatenate([q[0] for q in parts])
+        which = np.concatenate([np.full(q[0].size, n) for n, q in enumerate(parts)])
+        rows = np.concatenate([q[2] for q in parts])
+        order = np.argsort(ids)
+        ids, which, rows = ids[order], which[order], rows[order]
+        stored = [np.load(q[1].with_suffix(".npz")) for q in parts]
+        per_seed = np.load(str(parts[0][1]) + ".offsets.npy", mmap_mode="r")[:1].nbytes + 32
+        batch = max(1, SURFACE_BATCH_BYTES // per_seed)
+        for lo in range(0, ids.size, batch):
+            hi = min(lo + batch, ids.size)
+            surfaces = _surfaces_of(parts, stored, which[lo:hi], rows[lo:hi])
+            total.add(seeds[ids[lo:hi]], ids[lo:hi], surfaces)
+            del surfaces
+    votes = total.votes()
+    del total
     without_dead_edges(votes.votes, zarr.open_array(f"{work}/near", mode="r")[i0:i1, j0:j1].view(bool))
     group = zarr.open_group(partial, mode="r+")
     group["votes"][i0:i1, j0:j1] = votes.votes
@@ -519,6 +570,25 @@ def _vote_block(block, seeds, ids, frames, work, partial, plan: SurfacePlan, opt
     group["vote_dip_deg"][i0:i1, j0:j1] = votes.dip_deg
     write_marker(marker, {})
     return {}
+
+
+def _surfaces_of(parts, stored, which, rows) -> SeedSurfaces:
+    """The stored surfaces of a batch of seeds, in the batch's order: seed k is row ``rows[k]`` of seed block
+    ``which[k]``."""
+    out = None
+    for n, (_, stem, _) in enumerate(parts):
+        mine = np.nonzero(which == n)[0]
+        if not mine.size:
+            continue
+        offsets = np.load(str(stem) + ".offsets.npy", mmap_mode="r")
+        if out is None:
+            out = SeedSurfaces(np.empty((which.size,) + offsets.shape[1:], offsets.dtype), np.empty(which.size),
+                               np.empty((which.size, 3), np.float32))
+        out.offsets[mine] = offsets[rows[mine]]
+        del offsets
+        out.mean_likelihood[mine] = stored[n]["mean_likelihood"][rows[mine]]
+        out.normals[mine] = stored[n]["normals"][rows[mine]]
+    return out
 
 
 def _thin_block(block, work, partial, plan: SurfacePlan, marker) -> dict:

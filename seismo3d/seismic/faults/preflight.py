@@ -216,7 +216,7 @@ def _block_measures(data: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions
         warnings.simplefilter("ignore", Seismo3dWarning)
         fl = fault_likelihood(data, options=opt.scan, progress=False)
     high, live = live_likelihood(fl.likelihood, near_dead_samples(dead) if dead.any() else None)
-    seeds = ridges(fl.likelihood, fl.strike_deg, fl.dip_deg)
+    seeds = ridges(fl.likelihood, fl.strike_deg, fl.dip_deg, opt.voting.seed_threshold)
     return high, live, int(np.count_nonzero(seeds > float(opt.voting.seed_threshold)))
 
 

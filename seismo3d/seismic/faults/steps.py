@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .surfaces import thin_faults
+from .surfaces import check_fault_arrays, ridge_image
 
 __all__ = ["live_likelihood", "ridges", "thin_votes", "without_dead_edges"]
 
@@ -40,12 +40,26 @@ def live_likelihood(likelihood: np.ndarray, near_dead, core=None) -> tuple[int, 
     return int(np.count_nonzero(values > 0.9)), int(values.size)
 
 
-def ridges(likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray) -> np.ndarray:
-    """The ridges of the fault likelihood (non-maximum suppression across the fault, smoothed): the voting's seeds.
+def ridges(likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray, floor: float = 0.0) -> np.ndarray:
+    """The ridges of the fault likelihood (non-maximum suppression across the fault, smoothed): the voting's seed
+    candidates.
 
-    Halo: ``RIDGE_HALO`` traces. Arrays of one shape, float32; returns the thinned likelihood, float32.
+    Parameters
+    ----------
+    likelihood, strike_deg, dip_deg : ndarray, one shape, float32
+        The (live) fault likelihood, its strike and dip in degrees.
+    floor : float
+        Ridge samples with a likelihood at or below it are left out (0): pass the voting's seed threshold, the
+        only ridges used (:attr:`~seismo3d.seismic.faults.VotingOptions.seed_threshold`); the ridges above it are
+        those of :func:`~seismo3d.seismic.thin_faults` with ``threshold=0``, computed on their neighbourhood only.
+
+    Returns
+    -------
+    ndarray of the likelihood's shape, float32
+        The likelihood on its ridge samples above ``floor``, 0 elsewhere. Halo: ``RIDGE_HALO`` traces.
     """
-    return thin_faults(likelihood, strike_deg, dip_deg, threshold=0.0)
+    fl, st, dp = check_fault_arrays(likelihood, strike_deg, dip_deg)
+    return ridge_image(fl, st, dp, floor=float(floor))
 
 
 def without_dead_edges(votes: np.ndarray, near_dead) -> np.ndarray:
@@ -61,4 +75,6 @@ def thin_votes(votes: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray) -
 
     Halo: ``THIN_HALO`` traces. Arrays of one shape, float32; returns the thinned votes, float32 (0 off the faults).
     """
-    return thin_faults(votes, strike_deg, dip_deg, threshold=0.0, sigma=0.0, dip_smoothing=0)
+    fv, st, dp = check_fault_arrays(votes, strike_deg, dip_deg)
+    return ridge_image(fv, st, dp, floor=0.0, sigma=0.0, dip_smoothing=0)
+

@@ -14,8 +14,8 @@ from .dead_samples import DEAD_REACH
 from .interpretation import FaultTracingOptions
 from .likelihood_blocks import ChunkOptions, default_memory_limit
 
-__all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "RIDGE_HALO", "SurfacePlan", "THIN_HALO", "amplitude_halo", "around",
-           "plan_blocks", "smallest_block_bytes", "square_blocks"]
+__all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "RIDGE_HALO", "SURFACE_BATCH_BYTES", "SurfacePlan", "THIN_HALO",
+           "amplitude_halo", "around", "plan_blocks", "smallest_block_bytes", "square_blocks"]
 
 # Lateral halo of the ridges (thin_faults with its defaults): the Gaussian of sigma 1.5 (5 traces), the average along
 # the dip over +-4 samples on planes steeper than 45 degrees (4 traces, +1 for the bilinear reads), and the
@@ -34,6 +34,9 @@ _RIDGE_BYTES = 48
 _VOTE_CORE_BYTES = 12
 _VOTE_THREAD_BYTES = 12  # per numba thread: its votes, strongest surface and seed (each thread its own arrays)
 _VOTE_HALO_BYTES = 4
+# Surfaces of seeds read back at once by a block of the voting (the rest of the seeds reaching it come in later
+# batches, in id order).
+SURFACE_BATCH_BYTES = 16 << 20
 _THIN_BYTES = 44
 # Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
 # frames, links, labels, the merging's KD-tree; measured 219-234 bytes a cell on 1.4 M cells of a 512^3 cube, 250 on
@@ -76,9 +79,16 @@ def _step_bytes(shape, opt: FaultTracingOptions) -> dict:
         h = amplitude_halo()
         return (b + 2 * h) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
 
+    # the surfaces of a block's seeds: at most one seed per (spacing + 1)^3 samples (greedy_seeds keeps them more
+    # than spacing apart), each (2 rw + 1) x (2 rv + 1) offsets of 3 int8, its vote (float64) and normal (3 float32)
+    _, rv, rw = opt.voting.box(shape)
+    per_seed = (2 * rw + 1) * (2 * rv + 1) * 3 * (1 if reach < 127 else 2) + 20
+    surface_density = per_seed / (opt.voting.spacing(3) + 1) ** 3  # bytes per sample of a block's core
+
     def vote_bytes(b):
-        core = _VOTE_CORE_BYTES + _VOTE_THREAD_BYTES * threads
-        return (b + 4 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * core
+        surfaces = (b + 2 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * surface_density
+        votes = b * b * nt * (_VOTE_CORE_BYTES + _VOTE_THREAD_BYTES * threads) + SURFACE_BATCH_BYTES
+        return int(max(surfaces, votes))
 
     def thin_bytes(b):
         return (b + 2 * THIN_HALO) ** 2 * nt * _THIN_BYTES

@@ -21,10 +21,10 @@ from ..._validation import check_positive
 from ...errors import InputError
 from .. import _kernels
 from .surfaces import check_fault_arrays
-from .voting_kernels import _vote, _strongest
+from .voting_kernels import _cast_votes, _seed_surfaces, _strongest
 
-__all__ = ["VotingOptions", "FaultVotes", "vote_faults", "fault_frames", "greedy_seeds", "image_seeds", "seed_votes",
-           "surface_votes"]
+__all__ = ["VotingOptions", "FaultVotes", "SeedSurfaces", "VoteSum", "vote_faults", "fault_frames", "greedy_seeds",
+           "image_seeds", "seed_surfaces", "seed_votes", "surface_votes"]
 
 
 @dataclass(frozen=True)
@@ -420,42 +420,195 @@ def surface_votes(likelihood, seeds, seed_ids, frames, *, image_shape, options: 
     .. [1] X. Wu and S. Fomel, Geophysics 83(5), O67-O82, 2018, doi:10.1190/geo2018-0115.1.
     """
     opt = options or VotingOptions()
-    att = np.ascontiguousarray(likelihood, dtype=np.float32)
     seeds = np.ascontiguousarray(seeds, dtype=np.int64).reshape(-1, 3)
     ids = np.ascontiguousarray(seed_ids, dtype=np.int64).ravel()
     frames = np.ascontiguousarray(frames, dtype=np.float64).reshape(-1, 3, 3)
     if not len(seeds) == len(ids) == len(frames):
         raise InputError(f"surface_votes got {len(seeds)} seeds, {len(ids)} ids and {len(frames)} frames; pass one "
                          "id and one frame per seed")
+    att = np.asarray(likelihood)
     g0, g1 = (int(v) for v in origin)
     i0, j0, m0, m1 = (int(v) for v in core) if core is not None else (g0, g1, att.shape[0], att.shape[1])
     if i0 < g0 or j0 < g1 or m0 < 1 or m1 < 1 or i0 + m0 > g0 + att.shape[0] or j0 + m1 > g1 + att.shape[1]:
         raise InputError(f"core {core} lies outside the likelihood block of shape {att.shape} at {origin}")
+    total = VoteSum(image_shape, (i0, j0, m0, m1), options=opt)
+    n_chunks = max(1, min(20, len(seeds) // 200))  # the surfaces of one chunk at a time: bounded memory, progress
+    bounds = np.linspace(0, len(seeds), n_chunks + 1).astype(int)
+    with progress_steps(len(seeds), "fault voting", unit="seed", enabled=progress) as steps:
+        for lo, hi in zip(bounds[:-1], bounds[1:]):
+            part = seed_surfaces(att, seeds[lo:hi], frames[lo:hi], image_shape=image_shape, options=opt,
+                                 origin=origin)
+            total.add(seeds[lo:hi], ids[lo:hi], part)
+            steps.advance(int(hi - lo))
+    return total.votes()
+
+
+@dataclass(frozen=True, eq=False)
+class SeedSurfaces:
+    """Optimal surfaces of seeds (steps 2-3 of :func:`vote_faults`), where they pass and how strong they are: what a
+    seed's votes need, wherever it is voted.
+
+    Attributes
+    ----------
+    offsets : (k, nw, nv, 3) int8 (int16 for boxes reaching beyond 127 samples) ndarray
+        The sample (inline, crossline, sample) each surface passes at strike step ``iw`` and dip step ``iv``,
+        relative to its seed, rounded in image coordinates.
+    mean_likelihood : (k,) float64 ndarray
+        Each surface's mean likelihood inside the image: its vote; -1 where no sample of it is inside (no vote).
+    normals : (k, 3) float32 ndarray
+        Each surface's unit normal at its seed.
+    """
+
+    offsets: np.ndarray
+    mean_likelihood: np.ndarray
+    normals: np.ndarray
+
+    def take(self, rows) -> SeedSurfaces:
+        """The surfaces of ``rows`` (indices or a boolean mask)."""
+        return SeedSurfaces(self.offsets[rows], self.mean_likelihood[rows], self.normals[rows])
+
+
+def seed_surfaces(likelihood, seeds, frames, *, image_shape, options: VotingOptions | None = None,
+                  origin=(0, 0)) -> SeedSurfaces:
+    """The optimal surface of each seed in its voting box (steps 2-3 of :func:`vote_faults`), on (a block of) the
+    fault likelihood holding every sample the seeds' boxes reach (:meth:`VotingOptions.reach` around the seeds).
+
+    Positions are computed in image coordinates, so a seed's surface is the same whichever block holds its box: a
+    cube larger than memory computes each seed's surface once and casts its votes into every block it reaches
+    (:class:`VoteSum`).
+
+    Parameters
+    ----------
+    likelihood : (n_a, n_b, n_samples) array_like of float
+        Fault likelihood in [0, 1] (a 2D section as (n_traces, 1, n_samples)): the whole image, or the block of it
+        from inline ``origin[0]`` and crossline ``origin[1]`` on.
+    seeds : (k, 3) array_like of int
+        Seeds (:func:`greedy_seeds`), image indices.
+    frames : (k, 3, 3) array_like of float
+        The seeds' fault frames (:func:`fault_frames`).
+    image_shape : tuple of int
+        Shape of the whole image, 2D or 3D: the voting box depends on it.
+    options : VotingOptions, optional
+    origin : (int, int)
+        Image indices of ``likelihood[0, 0]``.
+
+    Returns
+    -------
+    SeedSurfaces
+
+    Raises
+    ------
+    InputError
+        Seeds and frames differ in length.
+
+    References
+    ----------
+    .. [1] X. Wu and S. Fomel, Geophysics 83(5), O67-O82, 2018, doi:10.1190/geo2018-0115.1.
+    .. [2] D. Hale, "Dynamic warping of seismic images", Geophysics 78(2), S105-S115, 2013,
+       doi:10.1190/geo2012-0327.1.
+    """
+    opt = options or VotingOptions()
+    att = np.ascontiguousarray(likelihood, dtype=np.float32)
+    seeds = np.ascontiguousarray(seeds, dtype=np.int64).reshape(-1, 3)
+    frames = np.ascontiguousarray(frames, dtype=np.float64).reshape(-1, 3, 3)
+    if len(seeds) != len(frames):
+        raise InputError(f"seed_surfaces got {len(seeds)} seeds and {len(frames)} frames; pass one frame per seed")
     shape3 = np.asarray(image_shape if len(image_shape) == 3 else (image_shape[0], 1, image_shape[1]), np.int64)
     ru, rv, rw = opt.box(tuple(image_shape))
     b = int(np.ceil(1.0 / float(opt.max_strain)))
     sigma = float(opt.surface_smoothing) * b
     a_smooth = 0.0 if sigma <= 0 else (1.0 + sigma * sigma - np.sqrt(1.0 + 2.0 * sigma * sigma)) / (sigma * sigma)
-    n_threads = nb.get_num_threads()
-    n2 = att.shape[2]
-    votes = np.zeros((n_threads, m0, m1, n2), np.float32)
-    best = np.zeros((n_threads, m0, m1, n2), np.float32)
-    best_seed = np.full((n_threads, m0, m1, n2), -1, np.int32)
-    seed_normal = np.zeros((len(seeds), 3), np.float32)
-    n_chunks = max(1, min(20, len(seeds) // 200))
-    bounds = np.linspace(0, len(seeds), n_chunks + 1).astype(int)
-    with progress_steps(len(seeds), "fault voting", unit="seed", enabled=progress) as steps:
-        for lo, hi in zip(bounds[:-1], bounds[1:]):
-            _vote(att, g0, g1, shape3, seeds, ids, frames, int(lo), int(hi), ru, rv, rw, b, a_smooth, i0, j0,
-                  votes, best, best_seed, seed_normal)
-            steps.advance(int(hi - lo))
-    total = votes.sum(axis=0)
-    del votes
-    seed_strike, seed_dip = _strike_dip(seed_normal, len(image_shape) == 2)
-    strike = np.zeros((m0, m1, n2), np.float32)
-    dip = np.zeros((m0, m1, n2), np.float32)
-    _strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip)
-    del best, best_seed
-    np.multiply(total, np.float32(1.0 / opt.full_vote(tuple(image_shape))), out=total)
-    np.clip(total, 0.0, 1.0, out=total)
-    return FaultVotes(total, strike, dip, int(len(seeds)))
+    dtype = np.int8 if opt.reach(tuple(image_shape)) < 127 else np.int16
+    offsets = np.zeros((len(seeds), 2 * rw + 1, 2 * rv + 1, 3), dtype)
+    fa = np.full(len(seeds), -1.0)
+    normals = np.zeros((len(seeds), 3), np.float32)
+    g0, g1 = (int(v) for v in origin)
+    _seed_surfaces(att, g0, g1, shape3, seeds, frames, ru, rv, rw, b, a_smooth, nb.get_num_threads(), offsets, fa,
+                   normals)
+    return SeedSurfaces(offsets, fa, normals)
+
+
+class VoteSum:
+    """The votes of seed surfaces over (a block of) an image, summed as seeds are added (step 4 of
+    :func:`vote_faults`).
+
+    Seeds must be added in increasing id order (their positions in the image's list of seeds), in one or several
+    calls: each seed's votes go to the thread ``id % n_threads`` (numba's threads), so the float sums are those of
+    the whole image voted at once, in the same order, whichever block or batch of seeds a surface comes in.
+
+    Parameters
+    ----------
+    image_shape : tuple of int
+        Shape of the whole image, 2D or 3D (the scale of the votes depends on it).
+    core : (int, int, int, int)
+        ``(i0, j0, m0, m1)``: the votes kept, for the image's inlines ``i0 .. i0 + m0 - 1`` and crosslines
+        ``j0 .. j0 + m1 - 1``.
+    options : VotingOptions, optional
+
+    Notes
+    -----
+    Memory: 12 bytes per core sample and numba thread, until :meth:`votes`.
+    """
+
+    def __init__(self, image_shape, core, *, options: VotingOptions | None = None):
+        self.image_shape = tuple(int(n) for n in image_shape)
+        self.opt = options or VotingOptions()
+        self.i0, self.j0, m0, m1 = (int(v) for v in core)
+        n2 = self.image_shape[-1]
+        n_threads = nb.get_num_threads()
+        self._votes = np.zeros((n_threads, m0, m1, n2), np.float32)
+        self._best = np.zeros((n_threads, m0, m1, n2), np.float32)
+        self._best_seed = np.full((n_threads, m0, m1, n2), -1, np.int32)
+        self._ids, self._normals = [], []
+        self._count = 0
+        self._last = -1
+
+    def add(self, seeds, seed_ids, surfaces: SeedSurfaces) -> None:
+        """Cast the votes of ``surfaces`` (of ``seeds``, ids ``seed_ids`` increasing, after those added before).
+
+        Raises
+        ------
+        InputError
+            Lengths differ, or the ids do not follow those added before in increasing order.
+        """
+        seeds = np.ascontiguousarray(seeds, dtype=np.int64).reshape(-1, 3)
+        ids = np.ascontiguousarray(seed_ids, dtype=np.int64).ravel()
+        if not len(seeds) == len(ids) == len(surfaces.mean_likelihood):
+            raise InputError(f"VoteSum.add got {len(seeds)} seeds, {len(ids)} ids and "
+                             f"{len(surfaces.mean_likelihood)} surfaces; pass one id and one surface per seed")
+        if len(ids) == 0:
+            return
+        if ids[0] <= self._last or np.any(np.diff(ids) <= 0):
+            raise InputError("VoteSum.add needs the seeds in increasing id order, after those added before")
+        # the strongest surface is recorded by its position in the seeds added so far (increasing with the ids:
+        # the same tie-breaks)
+        positions = np.arange(self._count, self._count + len(ids), dtype=np.int64)
+        _cast_votes(seeds, ids, positions, np.ascontiguousarray(surfaces.offsets),
+                    np.ascontiguousarray(surfaces.mean_likelihood, dtype=np.float64), self.i0, self.j0,
+                    self._votes, self._best, self._best_seed)
+        self._ids.append(ids)
+        self._normals.append(np.asarray(surfaces.normals, np.float32))
+        self._count += len(ids)
+        self._last = int(ids[-1])
+
+    def votes(self) -> FaultVotes:
+        """The summed votes, divided by :meth:`VotingOptions.full_vote` and clipped to [0, 1], and the orientation
+        of the strongest surface through each sample; the arrays are freed from this object.
+
+        Returns
+        -------
+        FaultVotes
+            Arrays of the core's shape (3D form).
+        """
+        total = self._votes.sum(axis=0)
+        self._votes = None
+        normals = np.concatenate(self._normals) if self._normals else np.zeros((0, 3), np.float32)
+        seed_strike, seed_dip = _strike_dip(normals, len(self.image_shape) == 2)
+        positions = np.arange(self._count, dtype=np.int64)
+        strike = np.zeros(total.shape, np.float32)
+        dip = np.zeros(total.shape, np.float32)
+        _strongest(self._best, self._best_seed, positions, seed_strike, seed_dip, strike, dip)
+        self._best = self._best_seed = None
+        np.multiply(total, np.float32(1.0 / self.opt.full_vote(self.image_shape)), out=total)
+        np.clip(total, 0.0, 1.0, out=total)
+        return FaultVotes(total, strike, dip, self._count)

@@ -138,28 +138,107 @@ def _nearest(f, x, y, z, g0, g1):
     return f[i, j, k]
 
 
+@nb.njit(cache=True)
+def _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth, e, es, t1, t2, cs, row, row_s, surf,
+             tmp, line, seed_normal):
+    # steps 1-4 for seed s: its optimal surface in surf (nw, nv) (offsets across the fault, samples), the surface's
+    # mean likelihood inside the image (returned; -1 when no sample of it is inside) and its normal at the seed in
+    # seed_normal[s]. att (n_a, n_b, n2) the likelihood of the image of shape (n0, n1, n2) from inline g0 and
+    # crossline g1 on; positions in image coordinates (the same float arithmetic whatever the block)
+    nu = 2 * ru + 1
+    nv = 2 * rv + 1
+    nw = 2 * rw + 1
+    c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
+    ux, uy, uz = frames[s, 0, 0], frames[s, 0, 1], frames[s, 0, 2]
+    vx, vy, vz = frames[s, 1, 0], frames[s, 1, 1], frames[s, 1, 2]
+    wx, wy, wz = frames[s, 2, 0], frames[s, 2, 1], frames[s, 2, 2]
+    # 1. costs 1 - likelihood in the box; outside the cone |u| <= distance from the seed, cost 1, so that the
+    #    surface passes near the seed
+    for iw in range(nw):
+        dw = iw - rw
+        for iv in range(nv):
+            dv = iv - rv
+            r = np.sqrt(dv * dv + dw * dw)
+            lim = int(np.floor(r + 0.5)) if r > 2.0 else 0
+            x0 = c0 + dv * vx + dw * wx
+            y0 = c1 + dv * vy + dw * wy
+            z0 = c2 + dv * vz + dw * wz
+            for iu in range(nu):
+                du = iu - ru
+                if du < -lim or du > lim:
+                    e[iw, iv, iu] = 1.0
+                else:
+                    e[iw, iv, iu] = 1.0 - _nearest(att, x0 + du * ux, y0 + du * uy, z0 + du * uz, g0, g1)
+    # 2. nonlinear smoothing of the costs down the dip, then along the strike
+    for iw in range(nw):
+        _smooth_costs(e[iw], b, t1[:nv], t2[:nv], cs[:nv + 1], es[iw])
+    if nw > 1:
+        for iv in range(nv):
+            for iw in range(nw):
+                for iu in range(nu):
+                    row[iw, iu] = es[iw, iv, iu]
+            _smooth_costs(row[:nw], b, t1[:nw], t2[:nw], cs[:nw + 1], row_s[:nw])
+            for iw in range(nw):
+                for iu in range(nu):
+                    es[iw, iv, iu] = row_s[iw, iu]
+    # 3. the least-cost path down the dip in every strike slice: the surface, smoothed both ways
+    for iw in range(nw):
+        _accumulate(es[iw], b, True, t1[:nv], cs[:nv + 1])
+        _backtrack(t1[:nv], es[iw], b, line[:nv], cs[:nv + 1])
+        for iv in range(nv):
+            surf[iw, iv] = line[iv] - ru
+        _smooth_exponential(surf[iw], a_smooth, tmp[:nv])
+    if nw > 1:
+        for iv in range(nv):
+            for iw in range(nw):
+                line[iw] = surf[iw, iv]
+            _smooth_exponential(line[:nw], a_smooth, tmp[:nw])
+            for iw in range(nw):
+                surf[iw, iv] = line[iw]
+    # 4. the surface's mean likelihood inside the image, and its normal at the seed
+    total = 0.0
+    count = 0
+    for iw in range(nw):
+        dw = iw - rw
+        for iv in range(nv):
+            dv = iv - rv
+            du = surf[iw, iv]
+            x = c0 + du * ux + dv * vx + dw * wx
+            y = c1 + du * uy + dv * vy + dw * wy
+            z = c2 + du * uz + dv * vz + dw * wz
+            if x < -0.5 or y < -0.5 or z < -0.5 or x > n0 - 0.5 or y > n1 - 0.5 or z > n2 - 0.5:
+                continue
+            total += _nearest(att, x, y, z, g0, g1)
+            count += 1
+    if count == 0:
+        return -1.0
+    fa = total / count
+    gv = 0.5 * (surf[rw, rv + 1] - surf[rw, rv - 1])
+    gw = 0.5 * (surf[min(rw + 1, nw - 1), rv] - surf[max(rw - 1, 0), rv]) if nw > 1 else 0.0
+    nx = ux - gv * vx - gw * wx
+    ny = uy - gv * vy - gw * wy
+    nz = uz - gv * vz - gw * wz
+    nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+    nx /= nn
+    ny /= nn
+    nz /= nn
+    seed_normal[s, 0] = nx
+    seed_normal[s, 1] = ny
+    seed_normal[s, 2] = nz
+    return fa
+
+
 @nb.njit(cache=True, parallel=True)
-def _vote(att, g0, g1, shape, seeds, ids, frames, lo, hi, ru, rv, rw, b, a_smooth, o0, o1, votes, best, best_seed,
-          seed_normal):
-    # att (n_a, n_b, n2) likelihood in [0, 1], the image of ``shape`` (n0, n1, n2) from inline g0 and crossline g1
-    # on; positions are computed in image coordinates (the same float arithmetic whatever the block); seeds (ns, 3)
-    # int64 image indices; ids (ns,) int64 the seeds' indices among all
-    # seeds of the cube (thread ids[s] % n_threads sums seed s's votes, in the order of ids: the same sums, in the
-    # same order, whether the cube is voted whole or block by block); frames (ns, 3, 3) rows u (normal), v (dip
-    # vector), w (strike vector). votes (n_threads, m0, m1, n2) accumulate per thread (no write races) over the core
-    # of the image [o0:o0 + m0, o1:o1 + m1] (the whole image in memory; a block's core in a chunked run, whose att
-    # holds every sample the seeds' boxes reach). best and best_seed (n_threads, m0, m1, n2), also per thread,
-    # record the strongest surface of the thread's seeds through each sample (its mean likelihood and the seed's
-    # position s; equal means go to the smaller id), seed_normal[s] the normal of seed s at the seed (seeds lo..hi-1
-    # are voted by this call); _strongest then takes the strongest over the threads, so the result depends neither
-    # on the threads' timing nor on their number.
+def _seed_surfaces(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n_threads, offsets, fa, seed_normal):
+    # Steps 1-4 for every seed, each on one thread (no shared writes): fa[s] the surface's mean likelihood (-1: no
+    # vote), seed_normal[s] its normal at the seed, offsets[s, iw, iv] the sample (inline, crossline, sample) the
+    # surface passes at (dip step iv, strike step iw), relative to the seed, rounded in image coordinates as the
+    # votes are cast (so that _cast_votes gives the votes of the surface wherever it was computed)
     n0, n1, n2 = shape[0], shape[1], shape[2]
-    m0, m1 = votes.shape[1], votes.shape[2]
     nu = 2 * ru + 1
     nv = 2 * rv + 1
     nw = 2 * rw + 1
     nm = max(nv, nw)
-    n_threads = votes.shape[0]
     for t in nb.prange(n_threads):
         e = np.empty((nw, nv, nu))
         es = np.empty((nw, nv, nu))
@@ -171,102 +250,57 @@ def _vote(att, g0, g1, shape, seeds, ids, frames, lo, hi, ru, rv, rw, b, a_smoot
         surf = np.empty((nw, nv))
         tmp = np.empty(nm)
         line = np.empty(nm)
-        for s in range(lo, hi):
-            if ids[s] % n_threads != t:
+        for s in range(t, seeds.shape[0], n_threads):
+            f = _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth, e, es, t1, t2, cs, row,
+                         row_s, surf, tmp, line, seed_normal)
+            fa[s] = f
+            if f < 0:
                 continue
             c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
             ux, uy, uz = frames[s, 0, 0], frames[s, 0, 1], frames[s, 0, 2]
             vx, vy, vz = frames[s, 1, 0], frames[s, 1, 1], frames[s, 1, 2]
             wx, wy, wz = frames[s, 2, 0], frames[s, 2, 1], frames[s, 2, 2]
-            # 1. costs 1 - likelihood in the box; outside the cone |u| <= distance from the seed, cost 1, so that the
-            #    surface passes near the seed
-            for iw in range(nw):
-                dw = iw - rw
-                for iv in range(nv):
-                    dv = iv - rv
-                    r = np.sqrt(dv * dv + dw * dw)
-                    lim = int(np.floor(r + 0.5)) if r > 2.0 else 0
-                    x0 = c0 + dv * vx + dw * wx
-                    y0 = c1 + dv * vy + dw * wy
-                    z0 = c2 + dv * vz + dw * wz
-                    for iu in range(nu):
-                        du = iu - ru
-                        if du < -lim or du > lim:
-                            e[iw, iv, iu] = 1.0
-                        else:
-                            e[iw, iv, iu] = 1.0 - _nearest(att, x0 + du * ux, y0 + du * uy, z0 + du * uz, g0, g1)
-            # 2. nonlinear smoothing of the costs down the dip, then along the strike
-            for iw in range(nw):
-                _smooth_costs(e[iw], b, t1[:nv], t2[:nv], cs[:nv + 1], es[iw])
-            if nw > 1:
-                for iv in range(nv):
-                    for iw in range(nw):
-                        for iu in range(nu):
-                            row[iw, iu] = es[iw, iv, iu]
-                    _smooth_costs(row[:nw], b, t1[:nw], t2[:nw], cs[:nw + 1], row_s[:nw])
-                    for iw in range(nw):
-                        for iu in range(nu):
-                            es[iw, iv, iu] = row_s[iw, iu]
-            # 3. the least-cost path down the dip in every strike slice: the surface, smoothed both ways
-            for iw in range(nw):
-                _accumulate(es[iw], b, True, t1[:nv], cs[:nv + 1])
-                _backtrack(t1[:nv], es[iw], b, line[:nv], cs[:nv + 1])
-                for iv in range(nv):
-                    surf[iw, iv] = line[iv] - ru
-                _smooth_exponential(surf[iw], a_smooth, tmp[:nv])
-            if nw > 1:
-                for iv in range(nv):
-                    for iw in range(nw):
-                        line[iw] = surf[iw, iv]
-                    _smooth_exponential(line[:nw], a_smooth, tmp[:nw])
-                    for iw in range(nw):
-                        surf[iw, iv] = line[iw]
-            # 4. the surface's mean likelihood inside the image, and its normal at the seed
-            total = 0.0
-            count = 0
             for iw in range(nw):
                 dw = iw - rw
                 for iv in range(nv):
                     dv = iv - rv
                     du = surf[iw, iv]
-                    x = c0 + du * ux + dv * vx + dw * wx
-                    y = c1 + du * uy + dv * vy + dw * wy
-                    z = c2 + du * uz + dv * vz + dw * wz
-                    if x < -0.5 or y < -0.5 or z < -0.5 or x > n0 - 0.5 or y > n1 - 0.5 or z > n2 - 0.5:
-                        continue
-                    total += _nearest(att, x, y, z, g0, g1)
-                    count += 1
-            if count == 0:
+                    offsets[s, iw, iv, 0] = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5)) - c0
+                    offsets[s, iw, iv, 1] = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5)) - c1
+                    offsets[s, iw, iv, 2] = int(np.floor(c2 + du * uz + dv * vz + dw * wz + 0.5)) - c2
+
+
+@nb.njit(cache=True, parallel=True)
+def _cast_votes(seeds, ids, positions, offsets, fa, o0, o1, votes, best, best_seed):
+    # Step 5: one vote fa[s] per sample of each seed's surface (offsets from _seed_surfaces) inside the core
+    # [o0:o0 + m0, o1:o1 + m1] of the image. Thread ids[s] % n_threads (ids: the seeds' indices among all seeds of
+    # the image, increasing) sums seed s's votes, in the order of the list: the same sums, in the same order,
+    # whether the cube is voted whole or block by block. best and best_seed (n_threads, m0, m1, n2), also per
+    # thread, record the strongest surface of the thread's seeds through each sample (its mean likelihood and the
+    # seed's position, positions[s], in the list of seeds the votes are summed over, increasing with the ids; equal
+    # means go to the smaller position); _strongest then takes the strongest over the threads, so the result
+    # depends neither on the threads' timing nor on their number.
+    n_threads, m0, m1, n2 = votes.shape
+    nw, nv = offsets.shape[1], offsets.shape[2]
+    for t in nb.prange(n_threads):
+        for s in range(seeds.shape[0]):
+            if ids[s] % n_threads != t or fa[s] < 0:
                 continue
-            fa = total / count
-            gv = 0.5 * (surf[rw, rv + 1] - surf[rw, rv - 1])
-            gw = 0.5 * (surf[min(rw + 1, nw - 1), rv] - surf[max(rw - 1, 0), rv]) if nw > 1 else 0.0
-            nx = ux - gv * vx - gw * wx
-            ny = uy - gv * vy - gw * wy
-            nz = uz - gv * vz - gw * wz
-            nn = np.sqrt(nx * nx + ny * ny + nz * nz)
-            nx /= nn
-            ny /= nn
-            nz /= nn
-            seed_normal[s, 0] = nx
-            seed_normal[s, 1] = ny
-            seed_normal[s, 2] = nz
-            # 5. one vote per sample of the surface
+            f = fa[s]
+            p = positions[s]
+            c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
             for iw in range(nw):
-                dw = iw - rw
                 for iv in range(nv):
-                    dv = iv - rv
-                    du = surf[iw, iv]
-                    i = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5)) - o0
-                    j = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5)) - o1
-                    k = int(np.floor(c2 + du * uz + dv * vz + dw * wz + 0.5))
+                    i = c0 + offsets[s, iw, iv, 0] - o0
+                    j = c1 + offsets[s, iw, iv, 1] - o1
+                    k = c2 + offsets[s, iw, iv, 2]
                     if i < 0 or j < 0 or k < 0 or i >= m0 or j >= m1 or k >= n2:
                         continue
-                    votes[t, i, j, k] += fa
+                    votes[t, i, j, k] += f
                     q = best_seed[t, i, j, k]
-                    if fa > best[t, i, j, k] or (fa == best[t, i, j, k] and q >= 0 and ids[s] < ids[q]):
-                        best[t, i, j, k] = fa
-                        best_seed[t, i, j, k] = s
+                    if f > best[t, i, j, k] or (f == best[t, i, j, k] and q >= 0 and p < q):
+                        best[t, i, j, k] = f
+                        best_seed[t, i, j, k] = p
 
 
 @nb.njit(cache=True, parallel=True)

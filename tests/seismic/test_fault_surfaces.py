@@ -182,6 +182,30 @@ def test_thin_faults_is_one_sample_wide():
     assert np.count_nonzero(thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg, threshold=1.0)) == 0
 
 
+def test_ridges_above_a_floor_are_those_of_the_whole_ranking_image():
+    """The ridges computed only around the samples above a floor (the seed threshold, a fixed lower threshold) are
+    those of the ranking image computed everywhere, bit for bit, in 3D and 2D; and thin_faults' fixed thresholds
+    keep what the hysteresis of the whole ridge image keeps."""
+    from skimage.filters import apply_hysteresis_threshold
+
+    from seismo3d.seismic.faults.steps import ridges
+    from seismo3d.seismic.faults.surfaces import ridge_image
+
+    syn = synthetic_cube((32, 32, 72), n_faults=2, seed=3)
+    fl = fault_likelihood(syn.cube)
+    for like, strike, dip in ((fl.likelihood, fl.strike_deg, fl.dip_deg),
+                              (fl.likelihood[:, 16], fl.strike_deg[:, 16], fl.dip_deg[:, 16])):
+        everywhere = ridge_image(like, strike, dip)
+        for floor in (0.0, 0.3, 0.6):
+            above = everywhere > floor
+            assert 0 < np.count_nonzero(above) < like.size // 5
+            assert np.array_equal(np.where(above, everywhere, 0), np.where(above, ridges(like, strike, dip, floor), 0))
+            assert not np.any(ridges(like, strike, dip, floor)[like <= floor])
+        for lo, hi in ((0.3, 0.3), (0.2, 0.6)):
+            keep = apply_hysteresis_threshold(everywhere, lo, hi) & (everywhere > 0)
+            assert np.array_equal(thin_faults(like, strike, dip, threshold=(lo, hi)), np.where(keep, like, 0))
+
+
 def test_bad_input():
     good = np.zeros((10, 10, 10), np.float32)
     with pytest.raises(InputError, match="same shape"):

@@ -152,3 +152,43 @@ def test_strongest_surface_does_not_depend_on_the_threads():
         assert np.array_equal(other.strike_deg, runs[0].strike_deg)
         assert np.array_equal(other.dip_deg, runs[0].dip_deg)
         np.testing.assert_allclose(other.votes, runs[0].votes, rtol=1e-5, atol=1e-6)  # sums in another order
+
+
+def test_votes_from_surfaces_computed_in_other_blocks_equal_the_whole_images():
+    """Each seed's surface computed once, in a block holding the seed with the voting's reach around it, then cast
+    into another block's core in batches (VoteSum, as the run by blocks does): the votes, strike and dip of the
+    whole image over that core, bit for bit; seeds out of id order are refused."""
+    from seismo3d.seismic.faults.voting import VoteSum, greedy_seeds, seed_surfaces, surface_votes
+
+    fl = _crossing_faults()
+    points = np.argwhere(fl > 0.6)
+    seeds = greedy_seeds(points, fl[tuple(points.T)], fl.shape, 3)
+    frames = fault_frames(np.full(len(seeds), 30.0), np.full(len(seeds), 70.0))
+    frames[1::2] = fault_frames(np.full(len(seeds[1::2]), 120.0), np.full(len(seeds[1::2]), 80.0))
+    opt = VotingOptions(half_length_strike=8)
+    whole = surface_votes(fl, seeds, np.arange(len(seeds)), frames, image_shape=fl.shape, options=opt)
+    reach = opt.reach(fl.shape)
+    half = fl.shape[0] // 2
+    surfaces = {}
+    for a0, a1 in ((0, half), (half, fl.shape[0])):  # seed blocks along the inlines, each with its reach
+        mine = np.nonzero((seeds[:, 0] >= a0) & (seeds[:, 0] < a1))[0]
+        r0, r1 = max(a0 - reach, 0), min(a1 + reach, fl.shape[0])
+        found = seed_surfaces(fl[r0:r1], seeds[mine], frames[mine], image_shape=fl.shape, options=opt, origin=(r0, 0))
+        surfaces.update({int(s): found.take([n]) for n, s in enumerate(mine)})
+    core = (10, 5, 20, fl.shape[1] - 12)  # across both seed blocks
+    total = VoteSum(fl.shape, core, options=opt)
+    ids = np.arange(len(seeds))
+    for batch in np.array_split(ids, 3):
+        part = [surfaces[int(s)] for s in batch]
+        total.add(seeds[batch], batch, type(part[0])(*(np.concatenate([getattr(p, f) for p in part])
+                                                       for f in ("offsets", "mean_likelihood", "normals"))))
+    block = total.votes()
+    window = (slice(10, 30), slice(5, fl.shape[1] - 7))
+    assert block.n_seeds == len(seeds) > 20 and np.count_nonzero(block.votes) > 500
+    assert np.array_equal(block.votes, whole.votes[window])
+    assert np.array_equal(block.strike_deg, whole.strike_deg[window])
+    assert np.array_equal(block.dip_deg, whole.dip_deg[window])
+    again = VoteSum(fl.shape, core, options=opt)
+    again.add(seeds[5:6], [5], surfaces[5])
+    with pytest.raises(InputError, match="increasing id order"):
+        again.add(seeds[4:5], [4], surfaces[4])

@@ -140,11 +140,12 @@ def _nearest(f, x, y, z, g0, g1):
 
 @nb.njit(cache=True)
 def _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth, e, es, t1, t2, cs, row, row_s, surf,
-             tmp, line, seed_normal):
+             tmp, line, seed_normal, offsets):
     # steps 1-4 for seed s: its optimal surface in surf (nw, nv) (offsets across the fault, samples), the surface's
-    # mean likelihood inside the image (returned; -1 when no sample of it is inside) and its normal at the seed in
-    # seed_normal[s]. att (n_a, n_b, n2) the likelihood of the image of shape (n0, n1, n2) from inline g0 and
-    # crossline g1 on; positions in image coordinates (the same float arithmetic whatever the block)
+    # mean likelihood inside the image (returned; -1 when no sample of it is inside), its normal at the seed in
+    # seed_normal[s] and the samples it passes in offsets[s] (see _seed_surfaces). att (n_a, n_b, n2) the likelihood
+    # of the image of shape (n0, n1, n2) from inline g0 and crossline g1 on; positions in image coordinates (the
+    # same float arithmetic whatever the block)
     nu = 2 * ru + 1
     nv = 2 * rv + 1
     nw = 2 * rw + 1
@@ -225,6 +226,15 @@ def _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth,
     seed_normal[s, 0] = nx
     seed_normal[s, 1] = ny
     seed_normal[s, 2] = nz
+    # 5. the samples the surface passes, rounded in image coordinates as its votes are cast
+    for iw in range(nw):
+        dw = iw - rw
+        for iv in range(nv):
+            dv = iv - rv
+            du = surf[iw, iv]
+            offsets[s, iw, iv, 0] = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5)) - c0
+            offsets[s, iw, iv, 1] = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5)) - c1
+            offsets[s, iw, iv, 2] = int(np.floor(c2 + du * uz + dv * vz + dw * wz + 0.5)) - c2
     return fa
 
 
@@ -251,23 +261,8 @@ def _seed_surfaces(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n
         tmp = np.empty(nm)
         line = np.empty(nm)
         for s in range(t, seeds.shape[0], n_threads):
-            f = _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth, e, es, t1, t2, cs, row,
-                         row_s, surf, tmp, line, seed_normal)
-            fa[s] = f
-            if f < 0:
-                continue
-            c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
-            ux, uy, uz = frames[s, 0, 0], frames[s, 0, 1], frames[s, 0, 2]
-            vx, vy, vz = frames[s, 1, 0], frames[s, 1, 1], frames[s, 1, 2]
-            wx, wy, wz = frames[s, 2, 0], frames[s, 2, 1], frames[s, 2, 2]
-            for iw in range(nw):
-                dw = iw - rw
-                for iv in range(nv):
-                    dv = iv - rv
-                    du = surf[iw, iv]
-                    offsets[s, iw, iv, 0] = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5)) - c0
-                    offsets[s, iw, iv, 1] = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5)) - c1
-                    offsets[s, iw, iv, 2] = int(np.floor(c2 + du * uz + dv * vz + dw * wz + 0.5)) - c2
+            fa[s] = _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth, e, es, t1, t2, cs,
+                             row, row_s, surf, tmp, line, seed_normal, offsets)
 
 
 @nb.njit(cache=True, parallel=True)

@@ -536,29 +536,29 @@ def _vote_block(block, seeds, blocks, work, partial, plan: SurfacePlan, opt: Fau
     i0, i1, j0, j1 = block
     r = plan.reach
     total = VoteSum(plan.shape, (i0, j0, i1 - i0, j1 - j0), options=opt.voting)
-    parts = []  # (ids, file, rows) of the seeds reaching the block, per seed block
+    parts = []  # (ids, file, rows, stored votes and normals) of the seeds reaching the block, per seed block
     for b in blocks:  # seed blocks within reach
         if b[1] <= i0 - r or b[0] >= i1 + r or b[3] <= j0 - r or b[2] >= j1 + r:
             continue
         stem = pathlib.Path(work) / "surfaces" / f"{b[0]}-{b[2]}"
-        ids = np.load(stem.with_suffix(".npz"))["ids"]
-        at = seeds[ids]
+        with np.load(stem.with_suffix(".npz")) as saved:
+            stored = dict(saved)
+        at = seeds[stored["ids"]]
         rows = np.nonzero((at[:, 0] >= i0 - r) & (at[:, 0] < i1 + r) & (at[:, 1] >= j0 - r) &
                           (at[:, 1] < j1 + r))[0]
         if rows.size:
-            parts.append((ids[rows], stem, rows))
+            parts.append((stored["ids"][rows], stem, rows, stored))
     if parts:
         ids = np.concatenate([q[0] for q in parts])
         which = np.concatenate([np.full(q[0].size, n) for n, q in enumerate(parts)])
         rows = np.concatenate([q[2] for q in parts])
         order = np.argsort(ids)
         ids, which, rows = ids[order], which[order], rows[order]
-        stored = [np.load(q[1].with_suffix(".npz")) for q in parts]
         per_seed = np.load(str(parts[0][1]) + ".offsets.npy", mmap_mode="r")[:1].nbytes + 32
         batch = max(1, SURFACE_BATCH_BYTES // per_seed)
         for lo in range(0, ids.size, batch):
             hi = min(lo + batch, ids.size)
-            surfaces = _surfaces_of(parts, stored, which[lo:hi], rows[lo:hi])
+            surfaces = _surfaces_of(parts, which[lo:hi], rows[lo:hi])
             total.add(seeds[ids[lo:hi]], ids[lo:hi], surfaces)
             del surfaces
     votes = total.votes()
@@ -572,11 +572,11 @@ def _vote_block(block, seeds, blocks, work, partial, plan: SurfacePlan, opt: Fau
     return {}
 
 
-def _surfaces_of(parts, stored, which, rows) -> SeedSurfaces:
+def _surfaces_of(parts, which, rows) -> SeedSurfaces:
     """The stored surfaces of a batch of seeds, in the batch's order: seed k is row ``rows[k]`` of seed block
-    ``which[k]``."""
+    ``which[k]`` (an item of ``parts``)."""
     out = None
-    for n, (_, stem, _) in enumerate(parts):
+    for n, (_, stem, _, stored) in enumerate(parts):
         mine = np.nonzero(which == n)[0]
         if not mine.size:
             continue
@@ -586,8 +586,8 @@ def _surfaces_of(parts, stored, which, rows) -> SeedSurfaces:
                                np.empty((which.size, 3), np.float32))
         out.offsets[mine] = offsets[rows[mine]]
         del offsets
-        out.mean_likelihood[mine] = stored[n]["mean_likelihood"][rows[mine]]
-        out.normals[mine] = stored[n]["normals"][rows[mine]]
+        out.mean_likelihood[mine] = stored["mean_likelihood"][rows[mine]]
+        out.normals[mine] = stored["normals"][rows[mine]]
     return out
 
 

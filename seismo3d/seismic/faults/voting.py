@@ -426,7 +426,7 @@ def surface_votes(likelihood, seeds, seed_ids, frames, *, image_shape, options: 
     if not len(seeds) == len(ids) == len(frames):
         raise InputError(f"surface_votes got {len(seeds)} seeds, {len(ids)} ids and {len(frames)} frames; pass one "
                          "id and one frame per seed")
-    att = np.asarray(likelihood)
+    att = np.ascontiguousarray(likelihood, dtype=np.float32)  # once, not per batch of seeds
     g0, g1 = (int(v) for v in origin)
     i0, j0, m0, m1 = (int(v) for v in core) if core is not None else (g0, g1, att.shape[0], att.shape[1])
     if i0 < g0 or j0 < g1 or m0 < 1 or m1 < 1 or i0 + m0 > g0 + att.shape[0] or j0 + m1 > g1 + att.shape[1]:
@@ -559,7 +559,7 @@ class VoteSum:
         self._votes = np.zeros((n_threads, m0, m1, n2), np.float32)
         self._best = np.zeros((n_threads, m0, m1, n2), np.float32)
         self._best_seed = np.full((n_threads, m0, m1, n2), -1, np.int32)
-        self._ids, self._normals = [], []
+        self._normals = []
         self._count = 0
         self._last = -1
 
@@ -586,7 +586,6 @@ class VoteSum:
         _cast_votes(seeds, ids, positions, np.ascontiguousarray(surfaces.offsets),
                     np.ascontiguousarray(surfaces.mean_likelihood, dtype=np.float64), self.i0, self.j0,
                     self._votes, self._best, self._best_seed)
-        self._ids.append(ids)
         self._normals.append(np.asarray(surfaces.normals, np.float32))
         self._count += len(ids)
         self._last = int(ids[-1])

@@ -24,7 +24,8 @@ RIDGE_HALO = 12
 # Lateral halo of the thinning of the votes (no smoothing): one sample across the fault, trilinear reads.
 THIN_HALO = 2
 # Bytes of working memory per sample of a block (incl. halo): amplitudes, their reflector slopes and the dead-sample
-# masks; likelihood, strike, dip, the ranking image and its smoothing passes, ridges and the hysteresis labels; the
+# masks; likelihood, strike, dip, the ranking image and its smoothing passes, ridges (and, until stop 49, the
+# hysteresis labels: the ridges now peak at 21, the slopes at 36 per amplitude sample; the constants were kept); the
 # voting's core (votes, strongest surface and its seed per numba thread; the summed votes, strike, dip) and its
 # input; the thinning of the votes.
 # (tracemalloc peaks on 96-trace blocks of 512 samples: ridges 44 per sample of the likelihood's halo block, amplitudes

@@ -304,14 +304,17 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       say less of a fault when they are not continuous themselves). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
       median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_correlation, correlation_gain,
-      side_coherence``: the
-      evidence each fault shows (:class:`~seismo3d.seismic.faults.evidence.FaultEvidence`; only faults whose
-      reflectors are displaced are kept), to sort and filter on; for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
+      side_coherence, vote_ratio, mean_likelihood``: the
+      evidence each fault shows (:class:`~seismo3d.seismic.faults.evidence.FaultEvidence`; only faults whose votes
+      hold along them and whose reflectors are displaced, or which the network calls likely, are kept:
+      :func:`~seismo3d.seismic.faults.evidence.supported_faults`), to sort and filter on; ``vote_ratio`` is the
+      fault's mean thinned votes over the run's upper vote threshold, ``mean_likelihood`` its mean fault likelihood;
+      for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
       replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline
       axis toward the crossline axis, see :mod:`seismo3d.seismic.faults.likelihood`).
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
-      the seismic, above the same slices of the fault likelihood; for 2D inputs the section, cropped to its live
-      traces and samples.
+      the seismic, coloured by their |median throw| (in the sample unit), above the same slices of the fault
+      likelihood; for 2D inputs the section, cropped to its live traces and samples.
 
     Cubes larger than memory
     ------------------------
@@ -491,8 +494,15 @@ def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summ
         ("summary", lambda: write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
         ("figure", lambda: plot_fault_slices(inp.data, result.faults, path=out_dir / "faults.png",
                                              likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
-                                             title=inp.name)),
+                                             title=inp.name, **_throw_colours(inp, result))),
     ]
+
+
+def _throw_colours(inp, result) -> dict:
+    """faults.png's colours: each fault's |median throw| (the evidence of fault_summary.csv), in the data's unit."""
+    scale = 1.0 if inp.unit == "samples" else float(result.sample_interval)
+    values = {e.fault_id: abs(e.median_throw) * scale for e in result.evidence}
+    return {"fault_values": values, "value_label": f"|median throw| ({inp.unit})"}
 
 
 def _write_steps(steps: list, written: dict, progress: bool) -> None:

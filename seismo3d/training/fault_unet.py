@@ -8,7 +8,9 @@ writes ``fault_unet.npz`` (the weights, batch normalisation folded in, float32: 
 :mod:`seismo3d.seismic.faults.unet` runs), ``fault_unet.json`` (options, seed, time, the loss every
 ``--log-every`` steps and the validation scores), ``fault_unet_check.npz`` (a small section and PyTorch's output for
 it) and ``train.log``. To ship a retrained network: copy the two ``fault_unet.*`` files to
-``seismo3d/seismic/faults/``, the check file to ``tests/seismic/data/``, and the sha256 printed at the end into
+``seismo3d/seismic/faults/``, the check file to ``tests/seismic/data/``, export the weights to the ONNX model the
+package runs (``python -m seismo3d.training.export_onnx seismo3d/seismic/faults/fault_unet.npz
+seismo3d/seismic/faults/fault_unet.onnx``) and put the sha256 it prints into
 :data:`seismo3d.seismic.faults.learned.WEIGHTS_SHA256`.
 
 Data: every step draws a new batch of sections from :func:`seismo3d.data.synthetic_sections.synthetic_fault_section`
@@ -160,7 +162,7 @@ def export_weights(model: FaultUNet) -> dict:
 
 def model_from_weights(weights: dict) -> FaultUNet:
     """A :class:`FaultUNet` (evaluation mode) that computes what exported ``weights`` compute: the folded convolutions
-    loaded, each batch normalisation an identity. Used to check the numpy forward pass against PyTorch's.
+    loaded, each batch normalisation an identity. Used to check the ONNX forward pass against PyTorch's.
 
     Parameters
     ----------
@@ -188,7 +190,7 @@ def model_from_weights(weights: dict) -> FaultUNet:
 
 def write_check(weights: dict, path: Path, *, shape=(96, 64), seed: int = 20261123) -> None:
     """A small generated section and PyTorch's fault probability of it (``section``, ``probability``, float32):
-    the stored input and output the numpy inference is tested against.
+    the stored input and output the ONNX inference is tested against.
 
     Parameters
     ----------

@@ -94,6 +94,40 @@ def _colors(ids: np.ndarray):
     return cmap((ids - 1) % 10)
 
 
+class _FaultColours:
+    """Colours of the fault points: by id (10 colours, cycled), or by a value per fault on one colour scale."""
+
+    def __init__(self, ids: np.ndarray, fault_values, label):
+        from matplotlib import colormaps
+        from matplotlib.colors import Normalize
+
+        self.label = label
+        if fault_values is None:
+            self.rgba, self.mappable = _colors(ids), None
+            return
+        values = {int(k): float(v) for k, v in dict(fault_values).items()}
+        missing = sorted(set(np.unique(ids).tolist()) - set(values))
+        if missing:
+            raise InputError(f"fault_values has no value for faults {missing[:5]}; give one per fault id")
+        per_point = np.array([values[int(i)] for i in ids], np.float64)
+        finite = np.array([v for v in values.values() if np.isfinite(v)])
+        hi = float(np.percentile(finite, 95)) if finite.size else 1.0
+        lo = float(min(finite.min(), 0.0)) if finite.size else 0.0
+        norm = Normalize(vmin=lo, vmax=hi if hi > lo else lo + 1.0)
+        cmap = colormaps["viridis"].with_extremes(bad="0.6")
+        self.rgba = cmap(norm(np.ma.masked_invalid(per_point)))
+        from matplotlib.cm import ScalarMappable
+
+        self.mappable = ScalarMappable(norm=norm, cmap=cmap)
+
+    def title(self) -> str:
+        return "faults, coloured by id" if self.mappable is None else f"faults, coloured by {self.label}"
+
+    def bar(self, fig, ax) -> None:
+        if self.mappable is not None:
+            fig.colorbar(self.mappable, ax=ax, shrink=0.8, label=self.label)
+
+
 # --------------------------------------------------------------------------------------------------------------------
 # PNG
 
@@ -122,7 +156,7 @@ def _extent(h, v) -> tuple:
     return (h[0] - dh, h[-1] + dh, v[-1] + dv, v[0] - dv)
 
 
-def _section_figure(data, fl, pts, ids, ax_vals, axis_labels, seis, like, dpi):
+def _section_figure(data, fl, pts, colours, ax_vals, axis_labels, seis, like, dpi):
     """The 2D figure: the section, the faults over it and the likelihood, cropped to the live data and drawn with
     about one sample per trace (a tall section side by side, a wide one one above the other), so that dips show."""
     from matplotlib.figure import Figure
@@ -134,7 +168,7 @@ def _section_figure(data, fl, pts, ids, ax_vals, axis_labels, seis, like, dpi):
     if pts.size:
         keep = ((pts[:, 0] >= (tr.start or 0)) & (pts[:, 0] < (tr.stop or data.shape[0] + 1))
                 & (pts[:, 1] >= (sm.start or 0)) & (pts[:, 1] < (sm.stop or data.shape[1] + 1)))
-        pts, ids = pts[keep], ids[keep]
+        pts, rgba = pts[keep], colours.rgba[keep]
     n_panels = 3 if fl is not None else 2
     ratio = data.shape[1] / max(data.shape[0], 1)  # samples per trace
     tall = ratio > 1.0
@@ -152,10 +186,11 @@ def _section_figure(data, fl, pts, ids, ax_vals, axis_labels, seis, like, dpi):
     for a in axs[:2]:
         a.imshow(data.T, extent=ext, **seis)
     axs[0].set_title("seismic")
-    axs[1].set_title("faults, coloured by id")
+    axs[1].set_title(colours.title())
     if pts.size:
-        axs[1].scatter(_at(ax_vals[0], pts[:, 0]), _at(ax_vals[1], pts[:, 1]), c=_colors(ids),
+        axs[1].scatter(_at(ax_vals[0], pts[:, 0]), _at(ax_vals[1], pts[:, 1]), c=rgba,
                        **_dot(data.shape[0], width))
+    colours.bar(fig, axs[1])
     if fl is not None:
         im = axs[2].imshow(fl.T, extent=ext, **like)
         axs[2].set_title("fault likelihood")
@@ -177,14 +212,15 @@ def _slice_title(sample_label: str, value: float) -> str:
 
 
 def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_labels=None, slices=None, title=None,
-                      clip_percentile=99.0, dpi=110) -> Path:
+                      clip_percentile=99.0, dpi=110, fault_values=None, value_label="value") -> Path:
     """Draw faults over slices of the seismic and save a PNG.
 
     3D: an inline, a crossline and a time (depth) slice, by default those crossing the most fault samples; 2D: the
     section without and with the faults, cropped to its live traces and samples and drawn with about one sample per
     trace so that fault dips show (tall sections side by side, wide ones one above the other). Seismic in grey, symmetric colour limits at the ``clip_percentile`` of the
-    absolute amplitude; faults as dots coloured by fault id (10 colours, cycled). With ``likelihood``, a row of the
-    same slices of the fault likelihood is added below.
+    absolute amplitude; faults as dots coloured by fault id (10 colours, cycled), or by ``fault_values`` on one
+    colour scale (viridis from the smaller of 0 and the least value to the 95th percentile of the values, grey for
+    NaN) with its colour bar. With ``likelihood``, a row of the same slices of the fault likelihood is added below.
 
     Parameters
     ----------
@@ -209,6 +245,11 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
     clip_percentile : float, optional
         Percentile of the absolute amplitude used as the colour limit, in (0, 100].
     dpi : int, optional
+    fault_values : mapping of int to float, optional
+        A value per fault id to colour the faults by (e.g. the |median throw| in ms, the evidence of
+        ``fault_summary.csv``); default: colours by id.
+    value_label : str, optional
+        The colour bar's label for ``fault_values``, e.g. '|median throw| (ms)'.
 
     Returns
     -------
@@ -218,7 +259,8 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
     Raises
     ------
     InputError
-        Wrong shapes, a folder that does not exist, or slices out of range.
+        Wrong shapes, a folder that does not exist, slices out of range, or a fault without a value in
+        ``fault_values``.
     """
     from matplotlib.figure import Figure
 
@@ -230,6 +272,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
         raise InputError(f"clip_percentile must be in (0, 100]; got {clip_percentile!r}")
     shape = tuple(int(n) for n in data.shape)
     pts, ids = _fault_points(faults, shape)
+    colours = _FaultColours(ids, fault_values, value_label)
     ax_vals = _check_axes(axes, shape)
     if axis_labels is None:
         axis_labels = ("inline", "crossline", "sample") if data.ndim == 3 else ("trace", "sample")
@@ -246,7 +289,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
 
     if data.ndim == 2:
         seis.update(_symmetric_limits(data, clip_percentile))
-        fig = _section_figure(data, fl, pts, ids, ax_vals, axis_labels, seis, like, dpi)
+        fig = _section_figure(data, fl, pts, colours, ax_vals, axis_labels, seis, like, dpi)
     else:
         if slices is None:
             slices = (_most_faulted(pts[:, 0], shape[0]), _most_faulted(pts[:, 1], shape[1]),
@@ -275,9 +318,9 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
             a = axs[0, c]
             a.imshow(cuts[c], extent=ext, **seis)
             if sel is not None and sel.any():
-                a.scatter(_at(ax_vals[hc], pts[sel, hc]), _at(ax_vals[vc], pts[sel, vc]), c=_colors(ids[sel]),
+                a.scatter(_at(ax_vals[hc], pts[sel, hc]), _at(ax_vals[vc], pts[sel, vc]), c=colours.rgba[sel],
                           **_dot(h.size, 4.5))
-            a.set_title(name)
+            a.set_title(name if colours.mappable is None else f"{name}, {colours.title()}")
             a.set_xlabel(hl)
             a.set_ylabel(vl)
             if fl is not None:
@@ -286,6 +329,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
                 b.set_title(f"fault likelihood, {name}")
                 b.set_xlabel(hl)
                 b.set_ylabel(vl)
+        colours.bar(fig, axs[0, :].tolist())
         if fl is not None:
             fig.colorbar(im, ax=axs[1, :].tolist(), shrink=0.8, label="fault likelihood")
     n_f = len(np.unique(ids)) if ids.size else 0

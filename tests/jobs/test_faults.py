@@ -19,7 +19,8 @@ from seismo3d.seismic.io import open_segy
 
 POINT_COLUMNS = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples"]
 SUMMARY_COLUMNS = ["id", "n_points", "mean_strike_deg", "mean_dip_deg", "median_throw_samples"]
-EVIDENCE_COLUMNS = ["throw_spread_samples", "throw_correlation", "correlation_gain", "side_coherence"]
+EVIDENCE_COLUMNS = ["throw_spread_samples", "throw_correlation", "correlation_gain", "side_coherence",
+                    "vote_ratio", "mean_likelihood"]
 
 
 def _sha(path) -> str:
@@ -76,6 +77,8 @@ def test_demo_csv_columns_and_values(demo):
     assert [int(r["n_points"]) for r in summary] == [ids.count(i) for i in range(1, len(summary) + 1)]
     sizes = [int(r["n_points"]) for r in summary]
     assert sizes == sorted(sizes, reverse=True)
+    # every kept fault's votes hold along it (the default evidence asks 0.9 of the upper threshold)
+    assert all(float(r["vote_ratio"]) >= 0.9 and 0.0 <= float(r["mean_likelihood"]) <= 1.0 for r in summary)
     # geometry of the demo SEG-Y: inlines / crosslines 1..128, 4 ms samples from 0
     il = np.array([int(r["inline"]) for r in points])
     tz = np.array([float(r["time_or_depth"]) for r in points])

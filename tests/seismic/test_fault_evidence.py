@@ -1,4 +1,5 @@
-"""The evidence a fault must show (seismo3d.seismic.faults.evidence): displaced reflectors across it."""
+"""The evidence a fault must show (seismo3d.seismic.faults.evidence): displaced reflectors across it, votes that
+hold along it, a likely fault."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import pytest
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import fault_throw, fault_throws, trace_faults
+from seismo3d.seismic.faults import FaultTracingOptions
 from seismo3d.seismic.faults.evidence import EvidenceOptions, FaultEvidence, fault_evidence, supported_faults
 
 
@@ -25,14 +27,15 @@ def test_true_faults_show_a_displacement_and_unbroken_layers_do_not(seed):
         assert abs(evidence.median_throw) >= 1.5, evidence
         assert evidence.correlation_gain > 0.1, evidence  # measured 0.3-0.9
         assert evidence.side_coherence > 0.7, evidence
-        assert evidence.supports(EvidenceOptions())
+        assert evidence.shows_displacement(EvidenceOptions())
     # a vertical line of samples 30-100 at the trace farthest from every fault sample (20 traces from the edges)
     traces = np.arange(20, 172)
     far = traces[np.argmax(np.min(np.abs(traces[:, None] - np.argwhere(syn.fault_labels > 0)[None, :, 0]), axis=1))]
     line = np.column_stack([np.full(71, far), np.arange(30, 101)])
     evidence = fault_evidence(fault_throw(syn.cube, line))
     assert abs(evidence.median_throw) < 0.5 and abs(evidence.correlation_gain) < 0.02, evidence
-    assert not evidence.supports(EvidenceOptions())
+    assert not evidence.shows_displacement(EvidenceOptions())
+    assert not evidence.supports(EvidenceOptions.for_likelihood("scan"))  # and its sides match unshifted
 
 
 def test_unmeasured_fault_has_no_evidence():
@@ -43,8 +46,8 @@ def test_unmeasured_fault_has_no_evidence():
     assert not evidence.supports(EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))
 
 
-def _evidence(throw, gain):
-    return FaultEvidence(1, throw, 0.0, 0.9, gain, 1.0)
+def _evidence(throw, gain, *, vote_ratio=1.0, mean_likelihood=0.0):
+    return FaultEvidence(1, throw, 0.0, 0.9, gain, 1.0, vote_ratio=vote_ratio, mean_likelihood=mean_likelihood)
 
 
 def test_sensitivity_scales_the_throw_asked_for():
@@ -55,14 +58,56 @@ def test_sensitivity_scales_the_throw_asked_for():
     assert not _evidence(3.0, -0.01).supports(opt)  # the shift must not correlate worse than no shift
 
 
-def test_sides_that_do_not_match_unshifted_are_a_discontinuity():
+def test_sides_that_do_not_match_unshifted_are_a_discontinuity_for_the_scan():
     """Penobscot crossline 1155's large normal fault: its throw is beyond the search (median -0.2 sample measured)
-    and its sides correlate 0.46 at best (each side continuous in itself: side coherence 0.89): a discontinuity,
-    kept; the same numbers with sides matching (0.9) are unbroken reflectors."""
+    and its sides correlate 0.46 at best (each side continuous in itself: side coherence 0.89): for the scan (its
+    likelihood no probability) a discontinuity, kept; the same numbers with sides matching (0.9) are unbroken
+    reflectors. For the learned likelihood the mismatch alone is not enough: the network's mean probability along
+    the fault decides (on a generated section without faults, a chaotic body's edge: no match unshifted, probability
+    0.26)."""
+    scan = EvidenceOptions.for_likelihood("scan")
+    assert scan == EvidenceOptions(min_vote_ratio=0.0, min_probability=None)
+    assert FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(scan)
+    assert not FaultEvidence(1, 0.1, 0.0, 0.9, 0.0, 1.0, 0.89).supports(scan)
+    assert not FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(dataclasses.replace(scan, continuity=0.4))
+    learned = EvidenceOptions.for_likelihood("learned")
+    assert learned == EvidenceOptions()
+    mismatch = FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89, vote_ratio=1.9)
+    assert not dataclasses.replace(mismatch, mean_likelihood=0.26).supports(learned)
+    assert dataclasses.replace(mismatch, mean_likelihood=0.69).supports(learned)
+    with pytest.raises(InputError, match="likelihood"):
+        EvidenceOptions.for_likelihood("semblance")
+
+
+def test_votes_must_hold_along_the_fault():
+    """A fault whose mean thinned votes stay under 0.9 of the upper threshold is dropped, however displaced; the
+    ratio is not scaled by the sensitivity (the thresholds are), and 0 asks nothing."""
     opt = EvidenceOptions()
-    assert FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(opt)
-    assert not FaultEvidence(1, 0.1, 0.0, 0.9, 0.0, 1.0, 0.89).supports(opt)
-    assert not FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(EvidenceOptions(continuity=0.4))
+    assert _evidence(3.0, 0.5, vote_ratio=0.9).supports(opt)
+    assert not _evidence(3.0, 0.5, vote_ratio=0.89).supports(opt)
+    assert not _evidence(3.0, 0.5, vote_ratio=0.89).supports(opt, 1.0)
+    assert _evidence(3.0, 0.5, vote_ratio=0.1).supports(EvidenceOptions(min_vote_ratio=0.0))
+    with pytest.raises(InputError, match="vote ratio"):
+        _evidence(3.0, 0.5, vote_ratio=float("nan")).supports(opt)
+    assert _evidence(3.0, 0.5, vote_ratio=float("nan")).supports(EvidenceOptions(min_vote_ratio=0.0))
+
+
+def test_a_likely_fault_needs_no_measured_displacement():
+    """With the learned likelihood a fault without a resolved throw is kept when the network's mean probability
+    along it reaches 0.5 (scaled by the sensitivity like the throw); a displaced fault needs no probability."""
+    opt = EvidenceOptions()
+    assert not _evidence(0.2, 0.0, mean_likelihood=0.49).supports(opt)
+    assert _evidence(0.2, 0.0, mean_likelihood=0.5).supports(opt)
+    assert _evidence(0.2, 0.0, mean_likelihood=0.3).supports(opt, 1.0)  # 0.25 asked at sensitivity 1
+    assert not _evidence(0.2, 0.0, mean_likelihood=0.99).supports(opt, 0.0)  # min(1, 1.0) asked at sensitivity 0
+    assert _evidence(2.0, 0.1, mean_likelihood=0.0).supports(opt)
+    with pytest.raises(InputError, match="mean likelihood"):
+        _evidence(0.2, 0.0, mean_likelihood=float("nan")).supports(opt)
+    for bad in (-0.1, 1.5):
+        with pytest.raises(InputError, match="min_probability"):
+            EvidenceOptions(min_probability=bad)
+    with pytest.raises(InputError, match="min_vote_ratio"):
+        EvidenceOptions(min_vote_ratio=-1.0)
 
 
 def test_side_coherence_of_layers_against_noise():
@@ -92,9 +137,27 @@ def test_supported_faults_keeps_order_and_renumbers():
     matching = np.full_like(throws[0].correlation, 0.9)
     flat = dataclasses.replace(throws[0], throw=np.zeros_like(throws[0].throw), median_throw=0.0,
                                correlation=matching, correlation_unshifted=matching)
-    kept, kept_throws, evidence = supported_faults(faults, [flat, *throws[1:]])
+    ratios = [e.vote_ratio for e in result.evidence]
+    means = [0.0] + [e.mean_likelihood for e in result.evidence[1:]]  # and the network does not call it a fault
+    kept, kept_throws, evidence = supported_faults(faults, [flat, *throws[1:]], vote_ratios=ratios,
+                                                   mean_likelihoods=means)
     assert [f.id for f in kept] == [t.fault_id for t in kept_throws] == list(range(1, len(faults)))
     assert all(np.array_equal(a.points, b.points) for a, b in zip(kept, faults[1:]))
+    assert [e.vote_ratio for e in evidence] == ratios[1:] and [e.mean_likelihood for e in evidence] == means[1:]
+    with pytest.raises(InputError, match="vote ratios"):
+        supported_faults(faults, throws, vote_ratios=ratios[1:], mean_likelihoods=means)
+
+
+def test_the_strengths_are_those_along_the_traced_faults():
+    """Each fault's vote ratio is its mean thinned votes over the run's upper threshold, its mean likelihood the
+    likelihood's mean over its points."""
+    syn = synthetic_cube((192, 128), seed=1, noise=0.1, n_faults=2)
+    every = FaultTracingOptions(evidence=EvidenceOptions(min_vote_ratio=0.0, min_probability=0.0))
+    result = trace_faults(syn.cube, options=every, progress=False)
+    assert result.faults
+    for f, e in zip(result.faults, result.evidence):
+        assert e.vote_ratio == pytest.approx(float(np.mean(f.likelihood)) / result.thresholds[1], rel=1e-6)
+        assert e.mean_likelihood == pytest.approx(float(result.likelihood[tuple(f.points.T)].mean()), rel=1e-6)
 
 
 def test_bad_input():

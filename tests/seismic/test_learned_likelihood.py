@@ -1,7 +1,9 @@
-"""The learned fault likelihood: the shipped network, its numpy inference, its orientation, and its faults on
+"""The learned fault likelihood: the shipped network, its ONNX inference, its orientation, and its faults on
 generated sections and cubes the training never saw."""
 
 import hashlib
+import io
+import json
 import warnings
 from importlib import resources
 from pathlib import Path
@@ -20,18 +22,25 @@ from seismo3d.seismic.faults.learned import (LearnedOptions, WEIGHTS_SHA256, amp
                                              learned_fault_likelihood, load_fault_network,
                                              orientation_from_likelihood)
 from seismo3d.seismic.faults.network_grid import grid_halo
-from seismo3d.seismic.faults.unet import POOLING_MULTIPLE, RECEPTIVE_HALF, normalise_section, unet_forward
+from seismo3d.seismic.faults.unet import (POOLING_MULTIPLE, RECEPTIVE_HALF, normalise_section, onnx_model,
+                                          unet_forward)
 
 CHECK = Path(__file__).parent / "data" / "fault_unet_check.npz"
 LEARNED = FaultTracingOptions(likelihood="learned")
 TEST_SEED = 31_000_000  # generator seeds the training never draws (it draws seed 0 * 1_000_003 + i, i < 20_000)
 
 
-def test_shipped_weights_have_the_recorded_sha256():
-    raw = resources.files("seismo3d.seismic.faults").joinpath("fault_unet.npz").read_bytes()
+def test_shipped_network_has_the_recorded_sha256_and_is_the_export_of_the_trained_weights():
+    files = resources.files("seismo3d.seismic.faults")
+    raw = files.joinpath("fault_unet.onnx").read_bytes()
     assert hashlib.sha256(raw).hexdigest() == WEIGHTS_SHA256
-    weights = load_fault_network()
-    assert sum(w.size for w in weights.values()) * 4 <= 10 * 2 ** 20  # ships in <= 10 MB
+    assert len(raw) <= 10 * 2 ** 20  # ships in <= 10 MB
+    record = json.loads(files.joinpath("fault_unet.json").read_text())
+    npz = files.joinpath("fault_unet.npz").read_bytes()
+    assert hashlib.sha256(npz).hexdigest() == record["weights_sha256"]
+    pytest.importorskip("onnx")  # the test extra has it
+    with np.load(io.BytesIO(npz)) as weights:
+        assert onnx_model({k: weights[k] for k in weights.files}) == raw  # a deterministic export, byte for byte
 
 
 def test_damaged_weights_are_refused(monkeypatch):
@@ -44,7 +53,7 @@ def test_damaged_weights_are_refused(monkeypatch):
         load_fault_network.cache_clear()
 
 
-def test_numpy_inference_equals_the_stored_pytorch_output():
+def test_onnx_inference_equals_the_stored_pytorch_output():
     check = np.load(CHECK)
     got = unet_forward(check["section"][None], load_fault_network())[0]
     assert got.shape == check["probability"].shape
@@ -173,9 +182,11 @@ def test_training_smoke(tmp_path):
 @pytest.mark.slow
 @pytest.mark.parametrize("resample, shape, block", [
     (1.0, (72, 80, 48), 64),  # the data's own grid: network blocks of 64 traces, halo 56 traces
-    # the default's grid: network blocks of 80 network traces, origins off its pooling grid, the halo along the
+    # a grid of 0.7: network blocks of 80 network traces, origins off its pooling grid, the halo along the
     # sections inside the cube at the end of block 0-80 and at the start of block 80-160 (of 163 and 166)
-    (LearnedOptions().resample, (232, 236, 32), 96),
+    (0.7, (232, 236, 32), 96),
+    # the default's three grids (0.5, 0.7, 1), their mean: blocks of 48, 80 and 96 network traces
+    (LearnedOptions().resample, (120, 128, 32), 96),
 ])
 def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block):
     from seismo3d.seismic.faults.learned_blocks import chunked_learned_likelihood
@@ -186,7 +197,9 @@ def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block)
     mem = learned_fault_likelihood(cube, options=opt)
     run = chunked_learned_likelihood(cube, tmp_path / "l.zarr", options=opt,
                                      chunking=ChunkOptions(block=block, scheduler="synchronous"))
-    assert min(run.blocks_computed[step] for step in ("network_inline", "network_crossline", "orientation")) > 1
+    steps = [f"network_{d}_{k}" for k in range(len(opt.resample)) for d in ("inline", "crossline")]
+    assert set(run.blocks_computed) == set(steps) | {"orientation"}
+    assert min(run.blocks_computed[step] for step in steps + ["orientation"]) > 1, run.blocks_computed
     out = run.open()
     # equal up to float rounding, except where the dip sits on min_dip and rounding flips the dip mask (1 sample of
     # 1.75 M at resample 0.7, its dip 40.0015 deg)
@@ -203,12 +216,11 @@ def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block)
 def test_a_block_on_the_whole_cubes_network_grid_equals_the_whole_cube():
     # a block with the network grid's halo, its lateral origin away from 0 on both axes and not a multiple of the
     # pooling grid on the network grid: its core equals the whole cube's probability up to float rounding
-    opt = LearnedOptions()
-    assert opt.resample < 1
+    opt = LearnedOptions(resample=0.7)  # one grid below 1 (the default's mean of grids: the blocks test above)
     cube = synthetic_cube((232, 236, 32), seed=4, noise=0.1).cube
     scale = amplitude_scale(cube)
     whole = fault_probability(cube, options=opt, scale=scale)
-    halo = grid_halo(RECEPTIVE_HALF, opt.resample, POOLING_MULTIPLE)
+    halo = grid_halo(RECEPTIVE_HALF, 0.7, POOLING_MULTIPLE)
     i0, i1, j0, j1 = 100, 132, 107, 129
     a0, b0 = i0 - halo, j0 - halo
     assert a0 > 0 and b0 > 0 and i1 + halo < cube.shape[0] and j1 + halo < cube.shape[1]
@@ -226,17 +238,19 @@ def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
     opt = LearnedOptions()
     baseline = 300 << 20
     plan = learned_blocks._plan(shape, opt, ChunkOptions(memory_limit=limit), baseline)
-    grid = plan["network_shape"]
     budget = int((limit - baseline) * 0.8)
-    for axis, name in enumerate(("inline", "crossline")):
-        across, along = plan["network_blocks"][name]
-        assert learned_blocks._largest_network_bytes(grid, across, along, axis, shape, opt.resample, 4) <= budget
-        if along < grid[1 - axis]:  # longer sections would not fit, even one chunk of them
-            assert along % 16 == 0 and across == 16
-            assert learned_blocks._largest_network_bytes(grid, 16, along + 16, axis, shape, opt.resample, 4) > budget
-        else:  # whole sections: as many as fit
-            assert learned_blocks._largest_network_bytes(grid, across + 16, along, axis, shape, opt.resample,
-                                                         4) > budget or across >= grid[axis]
+    assert [g["factor"] for g in plan["grids"]] == list(opt.resample)
+    for g in plan["grids"]:
+        grid, factor = g["network_shape"], g["factor"]
+        for axis, name in enumerate(("inline", "crossline")):
+            across, along = g["network_blocks"][name]
+            assert learned_blocks._largest_network_bytes(grid, across, along, axis, shape, factor, 4) <= budget
+            if along < grid[1 - axis]:  # longer sections would not fit, even one chunk of them
+                assert along % 16 == 0 and across == 16
+                assert learned_blocks._largest_network_bytes(grid, 16, along + 16, axis, shape, factor, 4) > budget
+            else:  # whole sections: as many as fit
+                assert learned_blocks._largest_network_bytes(grid, across + 16, along, axis, shape, factor,
+                                                             4) > budget or across >= grid[axis]
 
 
 def test_network_grid_alignment_per_axis():
@@ -247,3 +261,18 @@ def test_network_grid_alignment_per_axis():
     assert first == (10, 16, 0)  # ceil(13 * 0.7) = 10; the first multiple of 8 at or after 9.1
     with pytest.raises(InputError, match="align"):
         to_network_grid(block, 0.7, origin=(13, 13), align=(1, 8, 8))
+
+
+def test_the_likelihood_of_several_grids_is_the_mean_of_each_grids():
+    # sections and cubes: the mean of the grids' probabilities, in the order given, each as one grid gives it
+    sec = synthetic_cube((96, 80), seed=1, noise=0.1).cube
+    cube = synthetic_cube((24, 40, 48), seed=1, noise=0.1).cube
+    for data in (sec, cube):
+        grids = fault_probability(data, options=LearnedOptions(resample=(0.5, 0.7, 1.0)))
+        each = [fault_probability(data, options=LearnedOptions(resample=f)) for f in (0.5, 0.7, 1.0)]
+        expected = (each[0] + each[1] + each[2]) * np.float32(1.0 / 3.0)
+        assert grids.dtype == np.float32 and np.array_equal(grids, expected)
+    assert LearnedOptions(resample=0.7).resample == (0.7,)
+    for bad in ((), (0.7, 0.7), (0.2, 0.7), 1.5, "fine"):
+        with pytest.raises(InputError, match="resample"):
+            LearnedOptions(resample=bad)

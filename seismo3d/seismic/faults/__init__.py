@@ -5,7 +5,7 @@ memory or by blocks of a cube stored on disk.
   numba kernels in :mod:`~seismo3d.seismic.faults.scan_kernels`, the planes' normals in
   :mod:`~seismo3d.seismic.faults.fault_planes`.
 - :mod:`~seismo3d.seismic.faults.learned`: the learned fault likelihood, a U-Net trained on generated sections
-  (:func:`learned_fault_likelihood`); its numpy forward pass in :mod:`~seismo3d.seismic.faults.unet`.
+  (:func:`learned_fault_likelihood`); its forward pass (ONNX Runtime) in :mod:`~seismo3d.seismic.faults.unet`.
 - :mod:`~seismo3d.seismic.faults.dead_samples`: dead traces and dead samples, and their fill values.
 - :mod:`~seismo3d.seismic.faults.windows`: windows of a cube around points (in memory, lazy or stored).
 - :mod:`~seismo3d.seismic.faults.surfaces`: faults as point sets, thinning (and the older region-growing linker).

@@ -1,18 +1,24 @@
-"""The evidence a fault must show: reflectors displaced across it.
+"""The evidence a fault must show: reflectors displaced across it, and a fault likelihood that holds along it.
 
 A ridge of the fault likelihood is only a discontinuity of the reflectors' lateral continuity; on real data (8-bit
 clipping, dim and chaotic intervals, coherent noise, acquisition footprint) most such ridges cross reflectors that
 continue unbroken. What makes a discontinuity a fault is a displacement (Hale 2014): the reflectors on the two sides
-line up only after a vertical shift, the throw, or they do not line up at all (a large throw beyond the search, a
-juxtaposition of unlike packages). :func:`fault_evidence` reads that evidence from the throw measurement
+line up only after a vertical shift, the throw. :func:`fault_evidence` reads that evidence from the throw measurement
 (:func:`~seismo3d.seismic.faults.throw.fault_throw`: the shift that best aligns the images of the two sides, and their
-correlation with and without that shift), and :func:`supported_faults` drops the candidates across which the
-reflectors continue unbroken: sides that match with no shift (normalised correlation of at least 0.5, as much
-coherent as incoherent energy) and that no shift of a sample or more matches better. The measures are absolute and
-dimensionless, the same on every input: a shift in samples (a displacement under one sample is not resolved by the
-data) and normalised correlations. Each fault also reports how continuous its sides are in themselves
-(``side_coherence``), to sort and filter on: along the edge of a chaotic body or in noise nothing matches, the side
-itself included.
+correlation with and without that shift) and the strength of the fault along its whole length (its mean thinned
+votes against the upper vote threshold, its mean fault likelihood), and :func:`supported_faults` keeps a candidate
+when
+
+1. its thinned votes reach, on average along it, nearly the upper threshold of the hysteresis that traced it (0.9
+   of it: a fault strong only at a few seed samples and linked through weak votes is a chain of noise), and
+2. the reflectors are displaced across it (a shift of a sample or more that aligns the sides at least as well as no
+   shift), or else, for the learned likelihood (a probability), the network's mean probability along it is at least
+   one half; for the scan (not a probability), sides that do not match without a shift (normalised correlation
+   below 0.5: a throw beyond the search, or unlike packages juxtaposed).
+
+The measures are absolute and dimensionless, the same on every input: a shift in samples (a displacement under one
+sample is not resolved by the data), normalised correlations, a probability and a ratio to the run's own threshold.
+Each fault also reports how continuous its sides are in themselves (``side_coherence``), to sort and filter on.
 """
 
 from __future__ import annotations
@@ -38,11 +44,14 @@ def sensitivity_factor(sensitivity: float) -> float:
 class EvidenceOptions:
     """What a fault must show to be kept (see :func:`supported_faults`).
 
-    The defaults are not fitted to data: one sample is the smallest displacement the data resolves, a correlation
-    of 0.5 is the level where the sides hold as much coherent as incoherent energy. ``benchmarks/faults.py --only
-    f3`` cross-validates a grid of ``min_throw`` and ``min_correlation_gain`` on the five F3 inlines with faults
-    drawn by a person (chosen on three inlines, scored on the other two): the choices vary from fold to fold (1 to 3
-    samples) and score lower on the held-out inlines than these defaults.
+    One sample is the smallest displacement the data resolves, a correlation of 0.5 is the level where the sides
+    hold as much coherent as incoherent energy, a probability of 0.5 is the network's own decision level. The vote
+    ratio (0.9 of the upper threshold the hysteresis traced the fault from) and the probability are chosen by
+    cross-validation on the five F3 inlines with faults drawn by a person (``benchmarks/faults.py --only f3``:
+    ratios 0, 0.75, 0.9, 1, 1.1, probabilities 0.5, 0.6, 0.7 and four sets of network grids, chosen on three inlines,
+    scored on the other two, every split); the generated cubes' true faults measure 0.96-1.44.
+
+    Use :meth:`for_likelihood` for the defaults of each fault likelihood (``FaultTracingOptions`` does).
 
     Attributes
     ----------
@@ -56,12 +65,29 @@ class EvidenceOptions:
     continuity : float
         Unshifted median correlation of the sides from which the reflectors are taken to continue across the
         candidate; below it the sides do not match without a shift, which is itself evidence of a fault (a throw
-        beyond the search, or unlike packages juxtaposed).
+        beyond the search, or unlike packages juxtaposed) when ``min_probability`` is None.
+    min_vote_ratio : float
+        Smallest mean of the fault's thinned votes along it, as a fraction of the upper vote threshold of the run
+        (:attr:`FaultEvidence.vote_ratio`); 0 asks nothing. Not scaled by the sensitivity: the thresholds already
+        are. Higher keeps fewer faults linked through weak votes (on the F3 inlines: precision 0.50, 0.59, 0.59 at
+        0.75, 0.9, 1; recall 0.45, 0.45, 0.42).
+    min_probability : float or None
+        For a fault likelihood that is a probability (the learned one): the mean likelihood along a fault
+        (:attr:`FaultEvidence.mean_likelihood`) from which it is kept without a measured displacement, at the default
+        sensitivity (scaled like ``min_throw``); the unshifted mismatch of the sides is then not evidence by itself.
+        None (the scan's default, whose likelihood is not a probability): the unshifted mismatch is evidence.
+
+    Raises
+    ------
+    InputError
+        A value out of range.
     """
 
     min_throw: float = 1.0
     min_correlation_gain: float = 0.0
     continuity: float = 0.5
+    min_vote_ratio: float = 0.9
+    min_probability: float | None = 0.5
 
     def __post_init__(self):
         check_positive(self.min_throw, "min_throw", allow_zero=True)
@@ -69,6 +95,36 @@ class EvidenceOptions:
             raise InputError(f"min_correlation_gain must be in [-1, 2]; got {self.min_correlation_gain!r}")
         if not -1.0 <= float(self.continuity) <= 1.0:
             raise InputError(f"continuity must be a correlation in [-1, 1]; got {self.continuity!r}")
+        check_positive(self.min_vote_ratio, "min_vote_ratio", allow_zero=True)
+        if self.min_probability is not None and not 0.0 <= float(self.min_probability) <= 1.0:
+            raise InputError(f"min_probability must be a probability in [0, 1] or None; got {self.min_probability!r}")
+
+    @classmethod
+    def for_likelihood(cls, likelihood: str) -> "EvidenceOptions":
+        """The default evidence for a fault likelihood.
+
+        Parameters
+        ----------
+        likelihood : {'learned', 'scan'}
+            ``'learned'``: the class defaults. ``'scan'``: no vote ratio asked and the unshifted mismatch as
+            evidence (``min_vote_ratio=0``, ``min_probability=None``): the scan's likelihood is not a probability,
+            and its dense faults on the Costa Rica crf section (against the published OSV image, tolerance 3:
+            recall 0.71) fall to recall 0.52 when the vote ratio is asked.
+
+        Returns
+        -------
+        EvidenceOptions
+
+        Raises
+        ------
+        InputError
+            An unknown likelihood.
+        """
+        if likelihood == "learned":
+            return cls()
+        if likelihood == "scan":
+            return cls(min_vote_ratio=0.0, min_probability=None)
+        raise InputError(f"likelihood must be 'learned' or 'scan'; got {likelihood!r}")
 
 
 @dataclass(frozen=True)
@@ -98,6 +154,12 @@ class FaultEvidence:
         0.01 on a generated one) says little of a displacement, but real faults in noisy data have it too: on the
         Costa Rica crf section (``side_coherence`` in the ``fault_summary.csv`` of ``seismo3d faults``) faults that
         the published OSV result also holds measure below 0.5, and asking for 0.5 drops them.
+    vote_ratio : float
+        Mean of the fault's thinned votes along it over the upper vote threshold of the run that traced it
+        (dimensionless; 1: as strong on average as the hysteresis' seeds); NaN when not measured.
+    mean_likelihood : float
+        Mean fault likelihood along the fault, in [0, 1] (for the learned likelihood: the network's probability);
+        NaN when not measured.
     """
 
     fault_id: int
@@ -107,17 +169,43 @@ class FaultEvidence:
     correlation_gain: float
     measured_fraction: float
     side_coherence: float = float("nan")
+    vote_ratio: float = float("nan")
+    mean_likelihood: float = float("nan")
+
+    def shows_displacement(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
+        """True when the sides line up after a shift of at least ``options.min_throw`` samples at least
+        ``options.min_correlation_gain`` better than with none (both scaled by the sensitivity in [0, 1])."""
+        factor = sensitivity_factor(sensitivity)
+        return bool(np.isfinite(self.median_throw) and np.isfinite(self.correlation_gain)
+                    and abs(self.median_throw) >= factor * options.min_throw
+                    and self.correlation_gain >= factor * options.min_correlation_gain)
 
     def supports(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
-        """True when the fault shows what ``options`` ask for at ``sensitivity`` in [0, 1]: a displacement, or sides
-        that do not match without a shift."""
-        factor = sensitivity_factor(sensitivity)
+        """True when the fault shows what ``options`` ask for at ``sensitivity`` in [0, 1] (see
+        :func:`supported_faults`): votes that hold along it, and a displacement or, for a probability, a likely
+        fault (for the scan: sides that do not match without a shift).
+
+        Raises
+        ------
+        InputError
+            ``options`` ask for a vote ratio or a mean likelihood that this evidence did not measure (NaN).
+        """
         if not (np.isfinite(self.median_throw) and np.isfinite(self.correlation_gain)):
             return False  # the two sides could not be compared: nothing shows a fault
-        if self.correlation - self.correlation_gain < options.continuity:
-            return True  # the sides do not match unshifted: a discontinuity
-        return (abs(self.median_throw) >= factor * options.min_throw
-                and self.correlation_gain >= factor * options.min_correlation_gain)
+        if options.min_vote_ratio > 0:
+            if not np.isfinite(self.vote_ratio):
+                raise InputError("this evidence has no vote ratio: measure it (fault_evidence(throw, vote_ratio=...)) "
+                                 "or ask EvidenceOptions(min_vote_ratio=0)")
+            if self.vote_ratio < options.min_vote_ratio:
+                return False  # strong only at its seeds, linked through weak votes
+        if self.shows_displacement(options, sensitivity):
+            return True
+        if options.min_probability is None:
+            return bool(self.correlation - self.correlation_gain < options.continuity)  # no match unshifted
+        if not np.isfinite(self.mean_likelihood):
+            raise InputError("this evidence has no mean likelihood: measure it (fault_evidence(throw, "
+                             "mean_likelihood=...)) or ask EvidenceOptions(min_probability=None)")
+        return bool(self.mean_likelihood >= min(1.0, sensitivity_factor(sensitivity) * options.min_probability))
 
 
 def _median(values: np.ndarray) -> float:
@@ -125,7 +213,8 @@ def _median(values: np.ndarray) -> float:
     return float(np.median(finite)) if finite.size else float("nan")
 
 
-def fault_evidence(throw) -> FaultEvidence:
+def fault_evidence(throw, *, vote_ratio: float = float("nan"),
+                   mean_likelihood: float = float("nan")) -> FaultEvidence:
     """The displacement evidence of a fault from its throw measurement.
 
     Parameters
@@ -133,12 +222,17 @@ def fault_evidence(throw) -> FaultEvidence:
     throw : FaultThrow
         The result of :func:`~seismo3d.seismic.faults.throw.fault_throw` for the fault: ``throw``,
         ``correlation`` and ``correlation_unshifted`` per point.
+    vote_ratio : float, optional
+        Mean thinned votes along the fault over the run's upper vote threshold (see :func:`supported_faults`).
+    mean_likelihood : float, optional
+        Mean fault likelihood along the fault.
 
     Returns
     -------
     FaultEvidence
         Median throw and its interquartile spread (samples), the median correlation of the sides at the throw's
-        shift and its gain over no shift, the fraction of points measured, the sides' continuity.
+        shift and its gain over no shift, the fraction of points measured, the sides' continuity, and the two
+        strengths as given.
 
     Raises
     ------
@@ -168,16 +262,20 @@ def fault_evidence(throw) -> FaultEvidence:
     return FaultEvidence(fault_id=int(throw.fault_id), median_throw=median_throw, throw_spread=spread,
                          correlation=_median(c), correlation_gain=_median(c - c0),
                          measured_fraction=float(measured.mean()) if t.size else 0.0,
-                         side_coherence=_median(coherence))
+                         side_coherence=_median(coherence), vote_ratio=float(vote_ratio),
+                         mean_likelihood=float(mean_likelihood))
 
 
 def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | None = None,
-                     sensitivity: float = 0.5) -> tuple[list, list, list]:
-    """Drop the candidates across which the reflectors continue unbroken; renumber the others 1, 2, ... in order.
+                     sensitivity: float = 0.5, vote_ratios=None, mean_likelihoods=None) -> tuple[list, list, list]:
+    """Keep the candidates that show what a fault must show; renumber them 1, 2, ... in order.
 
-    A fault is kept when its two sides line up better after a shift of at least ``options.min_throw`` samples than
-    with none, or do not match without a shift (:meth:`FaultEvidence.supports`). A candidate whose sides match with
-    no shift and no better with one is not a fault, however strong its likelihood.
+    A fault is kept (:meth:`FaultEvidence.supports`) when its thinned votes hold along it (their mean at least
+    ``options.min_vote_ratio`` of the upper vote threshold) and its two sides line up better after a shift of at
+    least ``options.min_throw`` samples than with none; or, with the votes holding, when the fault likelihood along it
+    averages at least ``options.min_probability`` (the learned likelihood, a probability) or, with
+    ``min_probability=None`` (the scan), when its sides do not match without a shift. A candidate whose sides match
+    with no shift and no better with one, and which the network does not call a fault, is not a fault.
 
     Parameters
     ----------
@@ -186,9 +284,13 @@ def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | N
     throws : list of FaultThrow
         Their throws, in the same order (:func:`~seismo3d.seismic.faults.throw.fault_throws`).
     options : EvidenceOptions, optional
-        The evidence asked for.
+        The evidence asked for (default: the learned likelihood's).
     sensitivity : float, optional
         In [0, 1]: higher keeps faults with smaller displacements (see :class:`EvidenceOptions`).
+    vote_ratios, mean_likelihoods : sequence of float, optional
+        Per fault, in the same order: its mean thinned votes over the run's upper vote threshold, and its mean fault
+        likelihood (:func:`~seismo3d.seismic.faults.surface_steps.faults_from_cells` measures both). Needed when
+        ``options`` ask for them.
 
     Returns
     -------
@@ -200,16 +302,23 @@ def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | N
     Raises
     ------
     InputError
-        ``faults`` and ``throws`` differ in length or ids.
+        ``faults``, ``throws`` and the strengths differ in length or ids; ``options`` ask for a strength not given.
     """
     opt = options or EvidenceOptions()
-    if len(faults) != len(throws):
-        raise InputError(f"{len(faults)} faults but {len(throws)} throws; pass the throws of these faults")
+    n = len(faults)
+    if len(throws) != n:
+        raise InputError(f"{n} faults but {len(throws)} throws; pass the throws of these faults")
+    nan = [float("nan")] * n
+    vote_ratios = nan if vote_ratios is None else [float(v) for v in vote_ratios]
+    mean_likelihoods = nan if mean_likelihoods is None else [float(v) for v in mean_likelihoods]
+    if len(vote_ratios) != n or len(mean_likelihoods) != n:
+        raise InputError(f"{n} faults but {len(vote_ratios)} vote ratios and {len(mean_likelihoods)} mean "
+                         "likelihoods; pass one of each per fault")
     kept_faults, kept_throws, kept_evidence = [], [], []
-    for fault, throw in zip(faults, throws):
+    for fault, throw, ratio, mean in zip(faults, throws, vote_ratios, mean_likelihoods):
         if int(throw.fault_id) != int(fault.id):
             raise InputError(f"throw of fault {throw.fault_id} paired with fault {fault.id}; pass them in one order")
-        evidence = fault_evidence(throw)
+        evidence = fault_evidence(throw, vote_ratio=ratio, mean_likelihood=mean)
         if not evidence.supports(opt, sensitivity):
             continue
         new_id = len(kept_faults) + 1

@@ -53,8 +53,9 @@ class FaultTracingOptions:
         The optimal surface voting.
     skins : SkinOptions
         The linking into fault skins.
-    evidence : EvidenceOptions
-        The displacement a fault must show to be kept (:func:`~seismo3d.seismic.faults.evidence.supported_faults`).
+    evidence : EvidenceOptions or None
+        What a fault must show to be kept (:func:`~seismo3d.seismic.faults.evidence.supported_faults`); None: the
+        likelihood's defaults (:meth:`~seismo3d.seismic.faults.evidence.EvidenceOptions.for_likelihood`).
     min_traces : (int, int)
         Fewest traces along the longer and the shorter lateral axis (2D: along the section) for the scan and the
         voting boxes to see a fault's continuity; smaller data is refused.
@@ -81,7 +82,7 @@ class FaultTracingOptions:
     learned: LearnedOptions = field(default_factory=LearnedOptions)
     voting: VotingOptions = field(default_factory=VotingOptions)
     skins: SkinOptions = field(default_factory=SkinOptions)
-    evidence: EvidenceOptions = field(default_factory=EvidenceOptions)
+    evidence: EvidenceOptions | None = None
     min_traces: tuple = (32, 8)
     min_samples: int = 32
     min_crossings: float = 3.0
@@ -95,6 +96,8 @@ class FaultTracingOptions:
         if not 0.0 < float(self.max_fault_fraction) <= 1.0:
             raise InputError(f"max_fault_fraction must be in (0, 1]; got {self.max_fault_fraction!r}")
         check_choice(self.likelihood, "likelihood", LIKELIHOODS)
+        if self.evidence is None:
+            object.__setattr__(self, "evidence", EvidenceOptions.for_likelihood(self.likelihood))
         for name, cls in (("scan", FaultScanOptions), ("learned", LearnedOptions), ("voting", VotingOptions),
                           ("skins", SkinOptions), ("evidence", EvidenceOptions)):
             if not isinstance(getattr(self, name), cls):

@@ -7,15 +7,17 @@ inlines only. The steps (the output equals the in-memory
 
 1. The amplitude scale (median and standard deviation) from the regular subsample of traces that
    :func:`~seismo3d.seismic.faults.learned.amplitude_scale` uses in memory too.
-2. Per direction the network runs on (``network_inline``, ``network_crossline``): blocks of the whole cube's network
+2. Per network grid (``LearnedOptions.resample``, numbered 0, 1, ... in its order) and per direction the network
+   runs on (``network_inline_0``, ``network_crossline_0``, ...): blocks of the whole cube's network
    grid (:mod:`~seismo3d.seismic.faults.network_grid`), ``k`` sections of ``w`` network traces each, read with the
    receptive half of halo (:data:`~seismo3d.seismic.faults.unet.RECEPTIVE_HALF` network traces, the block's grid on
    the whole cube's pooling grid) along the sections and only the resampling's few traces across them; every sample
    of each trace. The blocks are as long along the sections as the memory limit allows (the whole cube's width
    when it fits: no halo at all), so the halo adds little. Each direction's probability is written on the network
    grid to a work array.
-3. Strike and dip: on blocks with the tensor smoothing's halo, the larger of the two directions' probabilities on the
-   network grid is interpolated onto the block's samples (as in memory: the maximum before the interpolation), its
+3. Strike and dip: on blocks with the tensor smoothing's halo, the larger of the two directions' probabilities on
+   each network grid is interpolated onto the block's samples (as in memory: the maximum before the interpolation)
+   and the grids' are averaged in their order; its
    structure tensor gives strike and dip, written with the likelihood to the output Zarr group (``likelihood``,
    ``strike_deg``, ``dip_deg``: what :func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces` reads,
    as from the scan's chunked run).
@@ -37,7 +39,7 @@ from ..._options import resolve_options
 from ...errors import InputError
 from ..blocks import (SchedulerClient, block_budget, largest_block, limit_for_blocks, serial_step_blocks,
                       write_marker)
-from .learned import (LearnedOptions, amplitude_scale, cube_directions, direction_probability,
+from .learned import (LearnedOptions, amplitude_scale, cube_directions, direction_probability, grids_mean,
                       orientation_from_likelihood, scale_subsample)
 from .likelihood_blocks import (ChunkedLikelihood, ChunkOptions, LikelihoodRun, _write_coords, lateral_blocks,
                                 trace_cube)
@@ -100,8 +102,8 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     Returns
     -------
     ChunkedLikelihood
-        Steps ``'network_inline'`` and / or ``'network_crossline'`` (as ``options.directions`` says) and
-        ``'orientation'``.
+        Steps ``'network_inline_K'`` and / or ``'network_crossline_K'`` (as ``options.directions`` says) for each
+        network grid K = 0, 1, ... of ``options.resample``, and ``'orientation'``.
 
     Raises
     ------
@@ -127,8 +129,9 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     with SchedulerClient(chunking.scheduler) as client:
         run.client = client
         scale = run.scale(x)
-        for axis in cube_directions(opt):
-            run.network(x, scale, axis)
+        for k in range(len(opt.resample)):
+            for axis in cube_directions(opt):
+                run.network(x, scale, axis, k)
         saturated = run.orientation(coords)
     run.finish()
     return ChunkedLikelihood(out, shape, dict(run.computed), dict(run.resumed), saturated, dict(run.seconds))
@@ -219,22 +222,19 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
         by :func:`chunked_learned_likelihood`.
     """
     shape = tuple(int(n) for n in shape)
-    factor = float(opt.resample)
-    grid = _network_shape(shape, factor)
     c = _NETWORK_CHUNK
-    network = max(_largest_network_bytes(grid, c, c, axis, shape, factor, int(opt.sections_per_batch))
-                  for axis in cube_directions(opt))
+    network = max(_largest_network_bytes(_network_shape(shape, factor), c, c, axis, shape, factor,
+                                         int(opt.sections_per_batch))
+                  for factor in opt.resample for axis in cube_directions(opt))
     return max(network, _orientation_block_bytes(tile, shape[2], opt))
 
 
 def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> dict:
-    """The network blocks of each direction (network traces, multiples of 16 or the whole width) and the
+    """The network blocks of each grid and direction (network traces, multiples of 16 or the whole width) and the
     strike-and-dip blocks (traces, multiples of the tile) under the memory limit, planned with
     :func:`~seismo3d.seismic.blocks.block_budget` as the scan's and the surfaces' blocks are."""
     nt = shape[2]
     tile = int(chunking.tile)
-    factor = float(opt.resample)
-    grid = _network_shape(shape, factor)
     halo_o = _orientation_halo(opt)
     cap = max(tile, (max(shape[0], shape[1]) + tile - 1) // tile * tile)
     limit = int(chunking.memory_limit or default_memory_limit())
@@ -242,12 +242,19 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
     batch = int(opt.sections_per_batch)
     if chunking.block and int(chunking.block) % tile:
         raise InputError(f"block must be a multiple of the tile ({tile} traces); got {chunking.block}")
-    fixed = None
-    if chunking.block:
-        fixed = max(_NETWORK_CHUNK, -(-math.ceil(int(chunking.block) * factor) // _NETWORK_CHUNK) * _NETWORK_CHUNK)
-    network = {}
-    for axis in cube_directions(opt):
-        network[_DIRECTION_NAMES[axis]] = list(_largest_network_block(grid, axis, shape, factor, batch, budget, fixed))
+    grids, biggest = [], 0
+    for factor in opt.resample:
+        grid = _network_shape(shape, factor)
+        fixed = None
+        if chunking.block:
+            fixed = max(_NETWORK_CHUNK,
+                        -(-math.ceil(int(chunking.block) * factor) // _NETWORK_CHUNK) * _NETWORK_CHUNK)
+        network = {}
+        for axis in cube_directions(opt):
+            size = _largest_network_block(grid, axis, shape, factor, batch, budget, fixed)
+            network[_DIRECTION_NAMES[axis]] = list(size)
+            biggest = max(biggest, _largest_network_bytes(grid, *size, axis, shape, factor, batch))
+        grids.append({"factor": factor, "network_shape": list(grid), "network_blocks": network})
 
     def bytes_o(b):
         return _orientation_block_bytes(b, nt, opt)
@@ -257,16 +264,13 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
     else:  # its kernels are mostly serial (scipy's Gaussian filters): blocks at once on the idle cores
         workers_o, block_o = serial_step_blocks(limit, baseline, int(chunking.workers), chunking.scheduler, tile,
                                                 min(cap, 256), halo_o, bytes_o)
-    biggest = max(_largest_network_bytes(grid, *network[_DIRECTION_NAMES[axis]], axis, shape, factor, batch)
-                  for axis in cube_directions(opt))
     if not (biggest <= budget and bytes_o(block_o) <= block_budget(limit, baseline, workers_o)):
         need = limit_for_blocks(learned_block_bytes(shape, opt, tile), baseline, int(chunking.workers))
         raise InputError(f"the memory limit ({limit / 2**30:.2f} GiB) is below what the smallest blocks of the "
                          f"learned likelihood need ({need / 2**30:.2f} GiB for {nt} samples per trace and "
                          f"{int(chunking.workers)} worker(s)); raise memory_limit (--memory-limit on the command line)")
-    return {"shape": list(shape), "tile": tile, "network_shape": list(grid), "network_chunk": _NETWORK_CHUNK,
-            "network_blocks": network, "block_orientation": int(block_o), "workers_orientation": int(workers_o),
-            "halo_orientation": halo_o}
+    return {"shape": list(shape), "tile": tile, "grids": grids, "network_chunk": _NETWORK_CHUNK,
+            "block_orientation": int(block_o), "workers_orientation": int(workers_o), "halo_orientation": halo_o}
 
 
 class _Run(LikelihoodRun):
@@ -279,12 +283,14 @@ class _Run(LikelihoodRun):
     def start(self, manifest: dict) -> None:
         import zarr
         self.start_output(manifest, tuple(self.plan["shape"]), self.plan["tile"], ())
-        grid, c = self.plan["network_shape"], self.plan["network_chunk"]
-        for name in self.plan["network_blocks"]:
-            path = self.work / f"network_{name}"
-            if not path.exists():
-                zarr.create_array(str(path), shape=tuple(grid), chunks=(c, c, grid[2]), dtype="float32",
-                                  compressors=None, fill_value=0)
+        c = self.plan["network_chunk"]
+        for k, g in enumerate(self.plan["grids"]):
+            grid = g["network_shape"]
+            for name in g["network_blocks"]:
+                path = self.work / f"network_{name}_{k}"
+                if not path.exists():
+                    zarr.create_array(str(path), shape=tuple(grid), chunks=(c, c, grid[2]), dtype="float32",
+                                      compressors=None, fill_value=0)
 
     def scale(self, x) -> tuple:
         path = self.work / "scale.json"
@@ -299,17 +305,20 @@ class _Run(LikelihoodRun):
         path.write_text(json.dumps(list(scale)))
         return scale
 
-    def network(self, x, scale, axis: int) -> None:
+    def network(self, x, scale, axis: int, k: int) -> None:
         p = self.plan
+        g = p["grids"][k]
         name = _DIRECTION_NAMES[axis]
-        step = f"network_{name}"
-        todo, _ = self.pending(step, _network_blocks(p["network_shape"], *p["network_blocks"][name], axis))
+        step = f"network_{name}_{k}"
+        factor = float(g["factor"])
+        todo, _ = self.pending(step, _network_blocks(g["network_shape"], *g["network_blocks"][name], axis))
         tasks = []
         for b in todo:
-            a0, a1, b0, b1 = _network_region(b, axis, p["shape"], float(self.opt.resample))
+            a0, a1, b0, b1 = _network_region(b, axis, p["shape"], factor)
             tasks.append(self.task(_network_block, x[a0:a1, b0:b1, :], b, axis, (a0, b0), str(self.work / step),
-                                   self.opt, scale, str(self.marker(step, b))))
-        self.compute(tasks, f"fault network on {name}s", step)
+                                   self.opt, factor, scale, str(self.marker(step, b))))
+        label = f"fault network on {name}s" + (f" (grid {factor:g})" if len(p["grids"]) > 1 else "")
+        self.compute(tasks, label, step)
 
     def orientation(self, coords) -> float:
         import zarr
@@ -326,7 +335,7 @@ class _Run(LikelihoodRun):
         return fraction
 
 
-def _network_block(f, block, axis, origin, array, opt, scale, marker) -> dict:
+def _network_block(f, block, axis, origin, array, opt, factor, scale, marker) -> dict:
     """The network's probability on the sections of one network block (direction ``axis``), read with its halo;
     written to the direction's work array on the network grid."""
     import zarr
@@ -337,7 +346,7 @@ def _network_block(f, block, axis, origin, array, opt, scale, marker) -> dict:
         raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {lo}-{hi - 1} (indices); "
                          "replace them (e.g. by 0) before tracing faults")
     aligns = (1, POOLING_MULTIPLE) if axis == 0 else (POOLING_MULTIPLE, 1)
-    small, first = to_network_grid(f, float(opt.resample), origin=origin, align=aligns)
+    small, first = to_network_grid(f, factor, origin=origin, align=aligns)
     del f
     r0, r1, c0, c1 = u0 - first[0], u1 - first[0], v0 - first[1], v1 - first[1]
     assert min(r0, c0) >= 0 and r1 <= small.shape[0] and c1 <= small.shape[1], "network block outside its region"
@@ -349,24 +358,28 @@ def _network_block(f, block, axis, origin, array, opt, scale, marker) -> dict:
 
 
 def _probability(plan: dict, work, region, opt: LearnedOptions) -> np.ndarray:
-    """The network's probability on the input samples of ``region`` ``(a0, a1, b0, b1)``: the larger of the two
-    directions' on the network grid, interpolated (as :func:`~seismo3d.seismic.faults.learned.fault_probability`
-    does on the whole cube)."""
+    """The network's probability on the input samples of ``region`` ``(a0, a1, b0, b1)``: on each network grid the
+    larger of the two directions', interpolated, then the grids' mean in their order (as
+    :func:`~seismo3d.seismic.faults.learned.fault_probability` does on the whole cube)."""
     import zarr
     a0, a1, b0, b1 = region
-    factor = float(opt.resample)
-    grid = plan["network_shape"]
-    if factor == 1.0:
-        u, v = (a0, a1), (b0, b1)
-    else:  # the network samples either side of every input sample of the region
-        u = (math.floor(a0 * factor), min(math.floor((a1 - 1) * factor) + 2, grid[0]))
-        v = (math.floor(b0 * factor), min(math.floor((b1 - 1) * factor) + 2, grid[1]))
-    small = None
-    for name in plan["network_blocks"]:
-        one = zarr.open_array(f"{work}/network_{name}", mode="r")[u[0]:u[1], v[0]:v[1]]
-        small = one if small is None else np.maximum(small, one)
-    return from_network_grid(small, (a1 - a0, b1 - b0, plan["shape"][2]), factor, origin=(a0, b0),
-                             first=(u[0], v[0], 0))
+    total = None
+    for k, g in enumerate(plan["grids"]):
+        factor, grid = float(g["factor"]), g["network_shape"]
+        if factor == 1.0:
+            u, v = (a0, a1), (b0, b1)
+        else:  # the network samples either side of every input sample of the region
+            u = (math.floor(a0 * factor), min(math.floor((a1 - 1) * factor) + 2, grid[0]))
+            v = (math.floor(b0 * factor), min(math.floor((b1 - 1) * factor) + 2, grid[1]))
+        small = None
+        for name in g["network_blocks"]:
+            one = zarr.open_array(f"{work}/network_{name}_{k}", mode="r")[u[0]:u[1], v[0]:v[1]]
+            small = one if small is None else np.maximum(small, one)
+        prob = from_network_grid(small, (a1 - a0, b1 - b0, plan["shape"][2]), factor, origin=(a0, b0),
+                                 first=(u[0], v[0], 0))
+        del small
+        total = prob if total is None else np.add(total, prob, out=total)
+    return grids_mean(total, len(plan["grids"]))
 
 
 def _orientation_block(block, plan: dict, work, partial, opt, marker) -> dict:

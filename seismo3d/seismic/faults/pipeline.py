@@ -173,7 +173,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         del fl
         found = surface_cells(run, opt, bar)
         faults, throws, evidence = faults_from_cells(run.cell_arrays, arr.shape, arr, found.thresholds, opt,
-                                                     bar=bar, progress=progress)
+                                                     likelihood=run.likelihood, bar=bar, progress=progress)
     votes = run.fault_votes
     return FaultInterpretation(likelihood=run.likelihood, strike_deg=run.strike_deg, dip_deg=run.dip_deg,
                                votes=votes.votes, thin=run.thin, thresholds=found.thresholds, faults=faults,

@@ -200,7 +200,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     stored = zarr.open_group(str(run.out), mode="r")
     windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
     faults, throws, evidence = faults_from_cells(_stored_cells(run.out), shape, windows, (lower, upper), opt,
-                                                 progress=progress)
+                                                 likelihood=group["likelihood"], progress=progress)
     return ChunkedFaults(run.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]), int(attrs["n_cells"]),
                          float(attrs["saturated_fraction"]), dict(run.computed), dict(run.resumed), dict(run.seconds))
 

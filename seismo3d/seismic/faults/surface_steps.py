@@ -111,8 +111,8 @@ def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> Surfac
 
 
 def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, opt: FaultTracingOptions, *,
-                      bar=None, progress: bool = False) -> tuple[list, list, list]:
-    """Fault skins of the cells, their throws, and the faults their evidence supports.
+                      likelihood=None, bar=None, progress: bool = False) -> tuple[list, list, list]:
+    """Fault skins of the cells, their throws, their strength along them, and the faults their evidence supports.
 
     Parameters
     ----------
@@ -125,6 +125,10 @@ def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, op
     thresholds : (float, float)
         Lower and upper thresholds of the skins' hysteresis.
     opt : FaultTracingOptions
+    likelihood : ndarray or zarr.Array, optional
+        The fault likelihood of the run, the shape of the image: its mean along each fault
+        (:attr:`~seismo3d.seismic.faults.evidence.FaultEvidence.mean_likelihood`) is read at the fault's points.
+        Needed when ``opt.evidence.min_probability`` is set.
     bar : progress bar, optional
         Advanced once per step (fault skins, throw, evidence).
     progress : bool
@@ -134,6 +138,11 @@ def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, op
     -------
     (faults, throws, evidence) : lists
         As :attr:`~seismo3d.seismic.faults.FaultInterpretation.faults`, ``throws`` and ``evidence``.
+
+    Raises
+    ------
+    InputError
+        ``opt.evidence`` asks for the mean likelihood and ``likelihood`` is not given.
     """
     bar = bar or no_progress()
     lower, upper = thresholds
@@ -144,7 +153,40 @@ def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, op
     throws = fault_throws(windows, faults, progress=progress) if faults else []
     bar.advance()
     bar.start("evidence")
+    ratios = [float(np.mean(f.likelihood)) / float(upper) for f in faults]  # a skin's values are its thinned votes
+    means = _values_along(likelihood, faults) if likelihood is not None else None
     faults, throws, evidence = supported_faults(faults, list(throws), options=opt.evidence,
-                                                sensitivity=opt.sensitivity)
+                                                sensitivity=opt.sensitivity, vote_ratios=ratios,
+                                                mean_likelihoods=means)
     bar.advance()
     return faults, throws, evidence
+
+
+def _values_along(image, faults: list) -> list[float]:
+    """The mean of ``image`` over each fault's points.
+
+    Parameters
+    ----------
+    image : ndarray or zarr.Array
+        An image of the faults' data (2D or 3D), e.g. the fault likelihood; a Zarr array is read at the points only
+        (coordinate selection), all faults at once.
+    faults : list of Fault
+        Faults with ``points`` (n, ndim) integer indices into ``image``.
+
+    Returns
+    -------
+    list of float
+        One mean per fault (NaN for a fault without points).
+    """
+    if not faults:
+        return []
+    points = np.concatenate([np.asarray(f.points, np.int64) for f in faults])
+    index = tuple(points.T)
+    values = (np.asarray(image[index]) if isinstance(image, np.ndarray)
+              else np.asarray(image.get_coordinate_selection(index)))
+    out, start = [], 0
+    for f in faults:
+        n = len(f.points)
+        out.append(float(values[start:start + n].astype(np.float64).mean()) if n else float("nan"))
+        start += n
+    return out

@@ -46,7 +46,9 @@ Three tables (each can be skipped):
 
 Tables of the learned likelihood: ``--only f3`` (the F3 inlines drawn by a person, both likelihoods, the skeleton,
 FaultNet's figures, and the cross-validated choice of likelihood and evidence), ``--only counts`` (fault counts of
-both on every real section), ``--only generated`` (generated sections and cubes never trained on, both).
+both on every real section), ``--only checks`` (what an interpreter sees: teapot_tpd's three visible faults, no fault
+through the Volve line's continuous reflectors at 2300-2500 ms, Penobscot xl1155's large fault as one fault),
+``--only generated`` (generated sections and cubes never trained on, both).
 
 Run: ``python benchmarks/faults.py`` (about 10 minutes on 2 cores); ``--sizes 64 128`` for a quicker speed table,
 ``--no-speed``, ``--no-real``, ``--synthetic`` to choose the tables, ``--no-bruges`` to skip bruges.
@@ -127,18 +129,14 @@ def xl1155_coverage(labels: np.ndarray, inlines: np.ndarray, samples_ms: np.ndar
                     span=(1000.0, 2400.0)) -> tuple[float, int]:
     """The largest fraction of the xl1155 fault's samples within ``span`` (ms) held by one label within 10 traces of
     the line through its ends, and that label (0: none)."""
+    from seismo3d.seismic import fault_line_coverage
+
     (il0, t0), (il1, t1) = XL1155_ENDS
-    counts: dict = {}
-    ks = np.nonzero((samples_ms >= span[0]) & (samples_ms <= span[1]))[0]
-    for k in ks:
-        il = il0 + (il1 - il0) * (samples_ms[k] - t0) / (t1 - t0)
-        i0 = int(np.argmin(np.abs(inlines - il)))
-        for label in set(labels[max(i0 - 10, 0):i0 + 11, k].tolist()) - {0}:
-            counts[label] = counts.get(label, 0) + 1
-    if not counts:
-        return 0.0, 0
-    label = max(counts, key=counts.get)
-    return counts[label] / ks.size, label
+    index = np.arange(len(inlines), dtype=np.float64)
+    ends = [(float(np.interp(il0 + (il1 - il0) * (t - t0) / (t1 - t0), inlines, index)),
+             float(np.interp(t, samples_ms, np.arange(len(samples_ms), dtype=np.float64)))) for t in span]
+    c = fault_line_coverage(labels, ends, tolerance=10)
+    return c.one_fault, c.fault_id
 
 
 def real_sections(data_dir: Path, out_dir: Path) -> None:
@@ -223,11 +221,22 @@ SECTIONS = {  # every real 2D section of the data folder: (file, n_traces, n_sam
     "costarica_gx809": (825, 210), "f3_f3d178sub2": (951, 242), "f3_f3d75s": (440, 222), "teapot_tp73": (357, 240),
     "teapot_tpd": (357, 315),
 }
-# the evidence options tried by the cross-validation on the F3 inlines (min_throw in samples, min_correlation_gain)
 LIKELIHOODS = ("learned", "scan")
-# the learned likelihood's network grids tried by the cross-validation on the F3 inlines (LearnedOptions.resample)
-RESAMPLE_GRID = (1.0, 0.85, 0.7, 0.6, 0.5)
-EVIDENCE_GRID = [(t, g) for t in (0.0, 0.5, 1.0, 1.5, 2.0, 3.0) for g in (-1.0, 0.0, 0.05, 0.1, 0.2)]
+# the learned likelihood's network grids (LearnedOptions.resample) tried by the cross-validation on the F3 inlines:
+# one grid each, and the means of several (the default among them)
+RESAMPLE_GRID = ((1.0,), (0.85,), (0.7,), (0.6,), (0.5,), (0.5, 0.7, 1.0), (0.6, 0.7, 0.85, 1.0),
+                 (0.5, 0.6, 0.7, 0.85, 1.0))
+# the evidence options tried by the cross-validation (EvidenceOptions: min_throw samples, min_correlation_gain,
+# min_vote_ratio, min_probability (None: the unshifted mismatch of the sides as evidence, the scan's rule),
+# clear_throw (None: no throw clear enough to stand without the vote ratio on a likely fault))
+EVIDENCE_FIELDS = ("min_throw", "min_correlation_gain", "min_vote_ratio", "min_probability", "clear_throw")
+EVIDENCE_GRID = [(t, g, v, p, c) for t in (1.0, 1.5) for g in (0.0, 0.1) for v in (0.0, 0.75, 0.9, 1.0, 1.1)
+                 for p in (0.5, 0.6, 0.7, None) for c in (None, 2.0, 3.0, 4.0)]
+# every candidate: each measured fault, nothing asked
+EVERY = dict(min_throw=0.0, min_correlation_gain=-1.0, min_vote_ratio=0.0, min_probability=None, clear_throw=None)
+# the defaults before issue 35's rules (stop 49): one network grid of 0.7, a displacement or sides not matching
+# unshifted, no vote ratio
+BEFORE = dict(resample=0.7, evidence=dict(min_vote_ratio=0.0, min_probability=None, clear_throw=None))
 
 
 def _kept_mask(faults, evidence, shape, options=None):
@@ -240,15 +249,14 @@ def _kept_mask(faults, evidence, shape, options=None):
 
 
 def _candidates(section, likelihood="scan", resample=None, **unit):
-    """The faults of the whole pipeline before the evidence is asked (only unmeasured ones dropped), their evidence,
-    and the seconds of the run; the defaults' faults are those whose evidence ``EvidenceOptions()`` accepts.
-    ``resample``: the learned likelihood's network grid (default: LearnedOptions's)."""
+    """Every measured candidate of the whole pipeline before the evidence is asked, their evidence (throw, vote
+    ratio, mean likelihood), and the seconds of the run. ``resample``: the learned likelihood's network grids
+    (default: LearnedOptions's)."""
     from seismo3d.seismic import trace_faults
     from seismo3d.seismic.faults import EvidenceOptions, FaultTracingOptions, LearnedOptions
 
     learned = LearnedOptions() if resample is None else LearnedOptions(resample=resample)
-    every = FaultTracingOptions(likelihood=likelihood, learned=learned,
-                                evidence=EvidenceOptions(min_throw=0.0, min_correlation_gain=-1.0))
+    every = FaultTracingOptions(likelihood=likelihood, learned=learned, evidence=EvidenceOptions(**EVERY))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # muted tops and clipped amplitudes are reported
         t = time.perf_counter()
@@ -257,91 +265,104 @@ def _candidates(section, likelihood="scan", resample=None, **unit):
     return res.faults, res.evidence, seconds
 
 
+def _grid_name(resample) -> str:
+    return "learned@" + "+".join(f"{f:g}" for f in resample)
+
+
 def f3_people() -> None:
-    """The five F3 inlines with faults drawn by a person: scores per inline of the learned and the scanned
-    likelihood's faults (defaults), the plain skeleton at its single best threshold, and the likelihood and evidence
-    options chosen by cross-validation (chosen on three inlines, scored on the other two, every split)."""
+    """The five F3 inlines with faults drawn by a person: scores per inline of the defaults (learned), the scan's
+    defaults, the defaults before issue 35, the plain skeleton at its single best threshold; each network grid with
+    the default evidence; and the cross-validation of the grids and the evidence options (chosen on three inlines,
+    scored on the other two, every split)."""
     import itertools
 
     from seismo3d.data import load_f3_fault_sections
-    from seismo3d.seismic.faults import EvidenceOptions
-
-    from seismo3d.seismic.faults import LearnedOptions
+    from seismo3d.seismic.faults import EvidenceOptions, LearnedOptions
 
     data = load_f3_fault_sections()
     n = len(data.inlines)
+    unit = dict(sample_interval=4.0, sample_unit="ms")
     candidates, seconds = {}, {}
-    variants = [("scan", None)] + [("learned", r) for r in RESAMPLE_GRID]
-    for likelihood, resample in variants:
-        runs = [_candidates(data.sections[k], likelihood, resample, sample_interval=4.0, sample_unit="ms")
-                for k in range(n)]
-        name = likelihood if resample is None else f"learned@{resample:g}"
+    for name, lk, resample in [("scan", "scan", None)] + [(_grid_name(r), "learned", r) for r in RESAMPLE_GRID]:
+        runs = [_candidates(data.sections[k], lk, resample, **unit) for k in range(n)]
         candidates[name] = [(f, e) for f, e, _ in runs]
-        seconds[name] = [sec for _, _, sec in runs]
-    default_resample = LearnedOptions().resample
-    shown = {"learned": f"learned@{default_resample:g}", "scan": "scan"}  # each likelihood's defaults
-    # the peer: one quantile of 1 - plain semblance for all five inlines, the best mean F1
-    best = None
+        seconds[name] = float(np.mean([sec for _, _, sec in runs]))
+    default_grid = _grid_name(LearnedOptions().resample)
+    before_grid = _grid_name(LearnedOptions(resample=BEFORE["resample"]).resample)
+    shown = {"defaults (learned)": (default_grid, EvidenceOptions()),
+             "scan defaults": ("scan", EvidenceOptions.for_likelihood("scan")),
+             "before (stop 49)": (before_grid, EvidenceOptions(**BEFORE["evidence"]))}
+
+    cache: dict = {}  # (candidates, inline, the ids kept) -> scores: most choices keep the same faults
+
+    def score(name, opt):
+        out = []
+        for k in range(n):
+            faults, evidence = candidates[name][k]
+            kept = tuple(e.supports(opt) for e in evidence)
+            key = (name, k, kept)
+            if key not in cache:
+                cache[key] = _scores(_kept_mask(faults, evidence, data.sections[k].shape, opt), data.faults[k])
+            out.append(cache[key])
+        return out
+
+    ours = {label: score(*v) for label, v in shown.items()}
+    counts = {label: [sum(e.supports(v[1]) for e in candidates[v[0]][k][1]) for k in range(n)]
+              for label, v in shown.items()}
+    best = None  # the peer: one quantile of 1 - plain semblance for all five inlines, the best mean F1
     for q in np.concatenate([np.linspace(0.50, 0.98, 25), [0.985, 0.99, 0.993, 0.996, 0.998]]):
-        scores = [_scores(semblance_skeleton(data.sections[k], float(np.quantile(
+        sk = [_scores(semblance_skeleton(data.sections[k], float(np.quantile(
             1.0 - plain_semblance(data.sections[k]), q))), data.faults[k]) for k in range(n)]
-        if best is None or np.mean([s[2] for s in scores]) > np.mean([s[2] for s in best[1]]):
-            best = (q, scores)
-    # every (likelihood, evidence) grid point's scores on every inline (the defaults' among them)
-    default = EvidenceOptions()
-    grid = {(lk, t, g): EvidenceOptions(min_throw=t, min_correlation_gain=g)
-            for lk in candidates for t, g in EVIDENCE_GRID}
-    grid_scores = {key: [_scores(_kept_mask(*candidates[key[0]][k], data.sections[k].shape, opt), data.faults[k])
-                         for k in range(n)] for key, opt in grid.items()}
-    ours = {lk: grid_scores[(shown[lk], default.min_throw, default.min_correlation_gain)] for lk in LIKELIHOODS}
-    n_ours = {lk: [sum(e.supports(default) for e in candidates[shown[lk]][k][1]) for k in range(n)]
-              for lk in LIKELIHOODS}
-    print("\nF3 inlines with faults drawn by a person (951 x 462 each), tolerance 3 samples: precision / recall / F1 "
-          "of the defaults' faults with each likelihood; FaultNet (Dou et al. 2022, released weights) F1 from the "
-          "issue for reference\n")
+        if best is None or np.mean([s[2] for s in sk]) > np.mean([s[2] for s in best[1]]):
+            best = (q, sk)
     faultnet = (0.33, 0.28, 0.15, 0.14, 0.19)
-    head = (f"{'inline':>6s} | {'learned likelihood':>24s} {'faults':>6s} | {'scan likelihood':>24s} {'faults':>6s} | "
-            f"{'1-semblance skeleton':>24s} | {'FaultNet F1':>11s}")
-    print(head + "\n" + "-" * len(head))
-    fmt = lambda s: f"{s[0]:6.3f} / {s[1]:5.3f} / {s[2]:5.3f}"  # noqa: E731
-    for k in range(n):
-        print(f"{data.inlines[k]:6d} | {fmt(ours['learned'][k]):>24s} {n_ours['learned'][k]:6d} | "
-              f"{fmt(ours['scan'][k]):>24s} {n_ours['scan'][k]:6d} | {fmt(best[1][k]):>24s} | {faultnet[k]:11.2f}")
+    fmt = lambda s: f"{s[0]:5.3f} / {s[1]:5.3f} / {s[2]:5.3f}"  # noqa: E731
     mean = lambda scores: tuple(float(np.mean([s[i] for s in scores])) for i in range(3))  # noqa: E731
-    print(f"{'mean':>6s} | {fmt(mean(ours['learned'])):>24s} {'':6s} | {fmt(mean(ours['scan'])):>24s} {'':6s} | "
-          f"{fmt(mean(best[1])):>24s} | {np.mean(faultnet):11.2f}")
-    print(f"(learned: network grid resample={default_resample:g}, the default)")
-    print("\nThe learned likelihood's network grid (LearnedOptions.resample), default evidence: mean precision / "
-          "recall / F1 over the five inlines, F1 per inline, seconds per inline")
-    for r in RESAMPLE_GRID:
-        key = (f"learned@{r:g}", default.min_throw, default.min_correlation_gain)
-        sc = grid_scores[key]
-        print(f"  resample {r:4.2f}: {fmt(mean(sc))}   F1 " + " ".join(f"{x[2]:.3f}" for x in sc)
-              + f"   {np.mean(seconds[key[0]]):.1f} s")
-    print(f"skeleton threshold: the {best[0]:.1%} quantile of 1 - semblance on every inline; seconds per inline: "
-          + ", ".join(f"{lk} {np.mean(seconds[shown[lk]]):.1f}" for lk in LIKELIHOODS))
-    print(f"\nCross-validation of the likelihood (scan, or learned at each network grid) and the evidence options "
-          f"(min_throw samples, min_correlation_gain), {len(grid)} choices: chosen by mean F1 on three inlines, "
-          f"scored on the other two; the defaults are (learned@{default_resample:g}, {default.min_throw:g}, "
-          f"{default.min_correlation_gain:g})\n")
-    head = f"{'chosen on':>16s} {'held out':>10s} {'choice':>30s} {'held-out F1':>11s} {'default F1':>10s}"
+    print("\nF3 inlines with faults drawn by a person (951 x 462 each), tolerance 3 samples: precision / recall / F1 "
+          "and fault count; FaultNet (Dou et al. 2022, released weights) F1 from the issue\n")
+    head = (f"{'inline':>6s} | " + " | ".join(f"{label:>28s}" for label in shown)
+            + f" | {'1-semblance skeleton':>21s} | {'FaultNet F1':>11s}")
     print(head + "\n" + "-" * len(head))
-    held_chosen, held_default = [], []
+    for k in range(n):
+        print(f"{data.inlines[k]:6d} | " + " | ".join(f"{fmt(ours[label][k])} {counts[label][k]:4d}" for label in shown)
+              + f" | {fmt(best[1][k]):>21s} | {faultnet[k]:11.2f}")
+    print(f"{'mean':>6s} | " + " | ".join(f"{fmt(mean(ours[label]))}     " for label in shown)
+          + f" | {fmt(mean(best[1])):>21s} | {np.mean(faultnet):11.2f}")
+    beaten = all(ours["defaults (learned)"][k][2] > max(best[1][k][2], faultnet[k]) for k in range(n))
+    print(f"defaults: network grids {LearnedOptions().resample}, {EvidenceOptions()}; F1 above both peers on every "
+          f"inline: {'yes' if beaten else 'NO'}; skeleton threshold: the {best[0]:.1%} quantile of 1 - semblance on "
+          "every inline")
+    print("\nEach likelihood with its default evidence: mean precision / recall / F1 over the five inlines, F1 per "
+          "inline, seconds per inline (the pipeline without the evidence)")
+    for name in candidates:
+        sc = score(name, EvidenceOptions.for_likelihood("scan" if name == "scan" else "learned"))
+        print(f"  {name:28s} {fmt(mean(sc))}   F1 " + " ".join(f"{x[2]:.3f}" for x in sc) + f"   {seconds[name]:.1f} s")
+    # the cross-validation: every (likelihood, evidence) choice's scores on every inline
+    grid = {(name, e): EvidenceOptions(**dict(zip(EVIDENCE_FIELDS, e))) for name in candidates for e in EVIDENCE_GRID}
+    grid_scores = {key: score(key[0], opt) for key, opt in grid.items()}
+    print(f"\nCross-validation of the likelihood (the scan, or the network on each set of grids) and the evidence "
+          f"({', '.join(EVIDENCE_FIELDS)}), {len(grid)} choices: chosen by mean "
+          "F1 on three inlines, scored on the other two; beside them the defaults on the same two\n")
+    head = (f"{'chosen on':>12s} {'held out':>9s} {'choice':>52s} {'held-out P / R / F1':>21s} "
+            f"{'defaults P / R / F1':>21s}")
+    print(head + "\n" + "-" * len(head))
+    held, held_default = [], []
     names = lambda ks: ",".join(str(data.inlines[k]) for k in ks)  # noqa: E731
     for train in itertools.combinations(range(n), 3):
         test = [k for k in range(n) if k not in train]
         choice = max(grid, key=lambda g: np.mean([grid_scores[g][k][2] for k in train]))
-        held_chosen.append(float(np.mean([grid_scores[choice][k][2] for k in test])))
-        held_default.append(float(np.mean([ours["learned"][k][2] for k in test])))
-        print(f"{names(train):>16s} {names(test):>10s} {str(choice):>30s} {held_chosen[-1]:11.3f} "
-              f"{held_default[-1]:10.3f}")
-    print(f"{'mean':>16s} {'':>10s} {'':>30s} {np.mean(held_chosen):11.3f} {np.mean(held_default):10.3f}")
+        held.append(mean([grid_scores[choice][k] for k in test]))
+        held_default.append(mean([ours["defaults (learned)"][k] for k in test]))
+        print(f"{names(train):>12s} {names(test):>9s} {str(choice[0]) + ' ' + str(choice[1]):>52s} "
+              f"{fmt(held[-1]):>21s} {fmt(held_default[-1]):>21s}")
+    print(f"{'mean':>12s} {'':>9s} {'':>52s} {fmt(mean(held)):>21s} {fmt(mean(held_default)):>21s}")
+    on_all = max(grid, key=lambda g: np.mean([grid_scores[g][k][2] for k in range(n)]))
+    print(f"chosen on all five inlines: {on_all[0]} {on_all[1]}, {fmt(mean(grid_scores[on_all]))}")
 
 
-def real_section_counts(data_dir: Path) -> None:
-    """Fault counts on every real 2D section of the data folder, with the defaults and with no evidence asked."""
+def _real_sections(data_dir: Path) -> dict:
+    """Every real 2D section of the data folder: name -> (traces x samples float32, sample interval ms or None)."""
     from seismo3d.seismic import open_segy
-    from seismo3d.seismic.faults import EvidenceOptions
 
     inputs = {name: (_f32be(data_dir, f"sections/{name}.f32be", shape), None) for name, shape in SECTIONS.items()}
     for name in ("penobscot_xl1155", "volve_fullstack_twt_arbline"):
@@ -351,23 +372,91 @@ def real_section_counts(data_dir: Path) -> None:
                 arr = cube.read()
                 dt = float(cube.samples[1] - cube.samples[0])
         inputs[name] = (arr.reshape(-1, arr.shape[-1]), dt)
-    print("\nFaults on every real section of the data folder with each likelihood (defaults; candidates: no "
-          "displacement asked)\n")
-    head = f"{'section':30s} {'shape':>10s}" + "".join(f" | {lk + ' faults':>14s} {'candidates':>10s} {'s':>5s}"
-                                                       for lk in LIKELIHOODS)
+    return inputs
+
+
+def real_section_counts(data_dir: Path) -> None:
+    """Fault counts on every real 2D section of the data folder: the defaults now and before issue 35's rules (stop
+    49: one network grid of 0.7, no vote ratio, the unshifted mismatch as evidence), the scan's defaults, and the
+    candidates (nothing asked)."""
+    from seismo3d.seismic.faults import EvidenceOptions
+
+    print("\nFaults on every real section of the data folder: the defaults, the defaults before issue 35's rules, "
+          "the scan's defaults; candidates: every measured fault of each run, nothing asked\n")
+    runs = {"defaults": ("learned", None, EvidenceOptions()),
+            "before": ("learned", BEFORE["resample"], EvidenceOptions(**BEFORE["evidence"])),
+            "scan": ("scan", None, EvidenceOptions.for_likelihood("scan"))}
+    head = f"{'section':30s} {'shape':>10s}" + "".join(f" | {name:>8s} {'of':>4s} {'s':>5s}" for name in runs)
     print(head + "\n" + "-" * len(head))
-    default = EvidenceOptions()
-    for name, (arr, dt) in inputs.items():
+    for name, (arr, dt) in _real_sections(data_dir).items():
         row = f"{name:30s} {'x'.join(map(str, arr.shape)):>10s}"
-        for lk in LIKELIHOODS:
-            faults, evidence, seconds = _candidates(arr, lk, **({"sample_interval": dt, "sample_unit": "ms"}
-                                                                if dt else {}))
-            row += f" | {sum(e.supports(default) for e in evidence):14d} {len(faults):10d} {seconds:5.1f}"
+        for lk, resample, opt in runs.values():
+            faults, evidence, seconds = _candidates(arr, lk, resample, **({"sample_interval": dt, "sample_unit": "ms"}
+                                                                          if dt else {}))
+            row += f" | {sum(e.supports(opt) for e in evidence):8d} {len(faults):4d} {seconds:5.1f}"
         print(row)
 
 
 # --------------------------------------------------------------------------------------------------------------------
 # 2. generated cubes
+
+
+# the faults an interpreter sees (issue 35), as (trace, sample) vertices of each section's indices
+TEAPOT_TPD_FAULTS = {"near trace 20 below sample 240": ((20, 240), (20, 314)),
+                     "trace 115 at sample 20 to 145 at 280": ((115, 20), (145, 280)),
+                     "near-vertical at traces 210-220": ((208, 0), (222, 314))}
+VOLVE_CONTINUOUS_MS = (2300.0, 2500.0)  # continuous reflectors on the Volve arbitrary line
+
+
+def interpreter_checks(data_dir: Path) -> None:
+    """The defaults on the real sections against what an interpreter sees (issue 35): the three visible faults of
+    teapot_tpd (the fraction of each line's samples with a fault within 8 traces, and the one fault holding most),
+    faults crossing the Volve line's continuous reflectors at 2300-2500 ms, and Penobscot xl1155's large fault (one
+    fault id along 900-2550 ms within 10 traces, faults of the opposite dip within 20 traces along 900-1700 ms)."""
+    from seismo3d.seismic import fault_labels, fault_line_coverage, trace_faults
+
+    sections = _real_sections(data_dir)
+    runs = {}
+    for name in ("teapot_tpd", "volve_fullstack_twt_arbline", "penobscot_xl1155"):
+        arr, dt = sections[name]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            runs[name] = trace_faults(arr, progress=False,
+                                      **({"sample_interval": dt, "sample_unit": "ms"} if dt else {}))
+    print("\nWhat an interpreter sees, with the defaults\n")
+    res = runs["teapot_tpd"]
+    labels = fault_labels(res.faults, sections["teapot_tpd"][0].shape)
+    print(f"teapot_tpd: {len(res.faults)} faults (target <= 8); its three visible faults, within 8 traces:")
+    for name, line in TEAPOT_TPD_FAULTS.items():
+        c = fault_line_coverage(labels, line, tolerance=8)
+        print(f"  {name:38s} covered {c.covered:4.0%}, fault {c.fault_id} holds {c.one_fault:4.0%} "
+              f"({c.n_faults} faults near it){'' if c.covered >= 0.5 else '  NOT TRACED (< 50 %)'}")
+    res = runs["volve_fullstack_twt_arbline"]
+    k0, k1 = (int(round(t / 4.0)) - 1 for t in VOLVE_CONTINUOUS_MS)  # samples at 4, 8, ... 3400 ms
+    crossing = [f.id for f in res.faults if np.any((f.points[:, -1] >= k0) & (f.points[:, -1] <= k1))]
+    print(f"volve_fullstack_twt_arbline: {len(res.faults)} faults; crossing {VOLVE_CONTINUOUS_MS[0]:g}-"
+          f"{VOLVE_CONTINUOUS_MS[1]:g} ms: {crossing or 'none'}")
+    res = runs["penobscot_xl1155"]
+    (il0, t0), (il1, t1) = XL1155_ENDS
+    line = ((il0 - 1000.0, t0 / 4.0), (il1 - 1000.0, t1 / 4.0))  # inlines 1000-1600, samples at 0, 4, ... ms
+    c = fault_line_coverage(fault_labels(res.faults, sections["penobscot_xl1155"][0].shape), line, tolerance=10)
+    print(f"penobscot_xl1155: {len(res.faults)} faults; the large fault: fault {c.fault_id} holds {c.one_fault:.0%} "
+          f"of 900-2550 ms (target >= 80 %), {c.covered:.0%} covered by {c.n_faults} faults")
+    print(f"  faults of the opposite dip along its upper part (900-1700 ms): {_opposite_dip(res.faults, line)}")
+
+
+def _opposite_dip(faults, line, upper_ms=1700.0) -> list:
+    """Ids of faults with at least 10 points within 20 traces of ``line`` ((trace, sample) ends) from its top to
+    ``upper_ms`` whose trend (traces per sample, least squares) has the other sign than the line's."""
+    (x0, k0), (x1, k1) = line
+    slope = (x1 - x0) / (k1 - k0)
+    out = []
+    for f in faults:
+        x, k = f.points[:, 0].astype(float), f.points[:, -1].astype(float)
+        near = (k >= k0) & (k <= upper_ms / 4.0) & (np.abs(x - (x0 + slope * (k - k0))) <= 20)
+        if np.count_nonzero(near) >= 10 and np.ptp(k[near]) > 0 and np.polyfit(k[near], x[near], 1)[0] * slope < 0:
+            out.append(f.id)
+    return out
 
 
 def generated_sections(n: int = 20) -> None:
@@ -568,8 +657,9 @@ def main(argv=None) -> None:
     ap.add_argument("--no-bruges", action="store_true", help="skip bruges.attribute.discontinuity")
     ap.add_argument("--no-speed", action="store_true", help="skip the speed and memory table")
     ap.add_argument("--no-real", action="store_true", help="skip the real sections")
-    ap.add_argument("--only", choices=("f3", "counts", "generated"), help="only the F3 inlines drawn by a person, "
-                    "the fault counts on every real section, or the generated sections and cubes (both likelihoods)")
+    ap.add_argument("--only", choices=("f3", "counts", "checks", "generated"),
+                    help="only the F3 inlines drawn by a person, the fault counts on every real section, what an "
+                    "interpreter sees on teapot_tpd, Volve and xl1155, or the generated sections and cubes")
     ap.add_argument("--synthetic", action="store_true", help="also the accuracy on five generated cubes")
     ap.add_argument("--out", default="out/benchmarks", help="folder of the pictures (default: out/benchmarks)")
     ap.add_argument("--worker", nargs=2, metavar=("METHOD", "NPY"), help=argparse.SUPPRESS)
@@ -586,12 +676,14 @@ def main(argv=None) -> None:
     if args.only:
         if not root:
             sys.exit("set SEISMO3D_DATA_DIR to the data folder")
-        f3_people() if args.only == "f3" else real_section_counts(Path(root))
+        {"f3": f3_people, "counts": lambda: real_section_counts(Path(root)),
+         "checks": lambda: interpreter_checks(Path(root))}[args.only]()
         return
     if not args.no_real:
         if root:
             f3_people()
             real_section_counts(Path(root))
+            interpreter_checks(Path(root))
             real_sections(Path(root), Path(args.out))
         else:
             print("real sections skipped: set SEISMO3D_DATA_DIR to the data folder", file=sys.stderr)

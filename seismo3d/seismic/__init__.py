@@ -57,7 +57,8 @@ from .attributes import (ReflectorOrientation, discontinuity, eigen_coherence, s
                          structure_tensor_slopes)
 from .blocks import BlockRun, SchedulerClient, run_block
 from .evaluation import (
-    FaultScores, HorizonErrors, RegistrationErrors, evaluate_faults, horizon_errors, registration_errors,
+    FaultLineCoverage, FaultScores, HorizonErrors, RegistrationErrors, evaluate_faults, fault_line_coverage,
+    horizon_errors, registration_errors,
 )
 from .faults import (
     BlockRunOptions, ChunkedFaults, ChunkedLikelihood, ChunkOptions, CleanTraces, CubeWindow, EvidenceOptions, Fault,
@@ -87,7 +88,8 @@ __all__ = [
     "FaultTracingOptions", "FaultVotes", "LazyCube", "open_lazy", "SkinOptions", "VotingOptions", "fault_skins",
     "vote_faults", "FaultScores", "FaultThrow", "Horizon", "HorizonErrors", "ReflectorOrientation",
     "RegistrationErrors", "SeismicCube", "ThrowOptions", "TrackingOptions", "VolumeOptions", "VolumeRegistration",
-    "autotrack", "discontinuity", "eigen_coherence", "evaluate_faults", "fault_labels", "fault_likelihood",
+    "autotrack", "discontinuity", "eigen_coherence", "evaluate_faults", "FaultLineCoverage", "fault_line_coverage",
+    "fault_labels", "fault_likelihood",
     "fault_normals", "fault_throw", "fault_throws", "fill_horizon", "horizon_errors", "link_faults", "open_segy",
     "read_ascii_lines", "read_section", "read_segy", "reflector_picks", "reflector_points", "register_volumes",
     "registration_errors", "reliable_throw", "resample_volume", "semblance", "structure_tensor_orientation",

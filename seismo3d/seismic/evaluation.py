@@ -1,7 +1,8 @@
-"""Evaluation against ground truth: fault detection scores, horizon errors and sub-volume registration errors.
+"""Evaluation against ground truth: fault detection scores, an interpreted fault line's coverage, horizon errors and
+sub-volume registration errors.
 
-Each function compares a result with a reference (labelled fault samples, people's or a generator's horizon picks, a
-known resampling transform) and returns a small frozen dataclass of the measures; the benchmarks print them.
+Each function compares a result with a reference (labelled fault samples, a fault line an interpreter sees, people's
+or a generator's horizon picks, a known resampling transform) and returns a small frozen dataclass of the measures; the benchmarks print them.
 """
 
 from __future__ import annotations
@@ -15,8 +16,8 @@ from .._validation import check_positive
 from ..errors import InputError
 from ..geometry.transforms import apply_transform, as_transform, rotation_error_deg
 
-__all__ = ["FaultScores", "HorizonErrors", "RegistrationErrors", "evaluate_faults", "horizon_errors",
-           "registration_errors"]
+__all__ = ["FaultScores", "FaultLineCoverage", "HorizonErrors", "RegistrationErrors", "evaluate_faults",
+           "fault_line_coverage", "horizon_errors", "registration_errors"]
 
 
 @dataclass(frozen=True)
@@ -134,6 +135,81 @@ def evaluate_faults(thin_mask, labels, *, tolerance=2.0, border=0) -> FaultScore
     precision = float(np.mean(d_to_lab[p_sel] <= tolerance)) if p_sel.any() else 0.0
     recall = float(np.mean(d_to_pred[l_sel] <= tolerance)) if l_sel.any() else 1.0
     return FaultScores(precision=precision, recall=recall)
+
+
+@dataclass(frozen=True)
+class FaultLineCoverage:
+    """Result of :func:`fault_line_coverage`.
+
+    Attributes
+    ----------
+    covered : float
+        Fraction of the line's samples with a point of any fault within the tolerance, in [0, 1].
+    one_fault : float
+        The largest fraction of the line's samples that one fault id holds within the tolerance, in [0, 1].
+    fault_id : int
+        That fault's id (0: no fault near the line).
+    n_faults : int
+        Number of fault ids with a point within the tolerance of the line.
+    """
+
+    covered: float
+    one_fault: float
+    fault_id: int
+    n_faults: int
+
+
+def fault_line_coverage(labels, line, *, tolerance=10.0) -> FaultLineCoverage:
+    """How much of a fault line that an interpreter sees on a section the traced faults follow, and whether one
+    fault follows it or several pieces do.
+
+    The line runs through its vertices (trace, sample), straight between them, one point per sample from the first
+    vertex's sample to the last's; a line sample is covered by a fault whose points lie on that sample within
+    ``tolerance`` traces of the line.
+
+    Parameters
+    ----------
+    labels : (n_traces, n_samples) array_like of int
+        Fault ids of a section (:func:`~seismo3d.seismic.fault_labels`), 0 off the faults.
+    line : (k, 2) array_like of float, k >= 2
+        Vertices (trace index, sample index) of the interpreted fault, samples increasing.
+    tolerance : float, optional
+        Largest distance along the section between the line and a fault point on the same sample, traces.
+
+    Returns
+    -------
+    FaultLineCoverage
+        Fractions in [0, 1] of the line's samples; 0 where the line lies outside the section.
+
+    Raises
+    ------
+    InputError
+        ``labels`` is not 2D, ``line`` is not (k, 2) with k >= 2 and samples increasing, or ``tolerance`` < 0.
+    """
+    lab = np.asarray(labels)
+    vertices = np.asarray(line, dtype=np.float64)
+    if lab.ndim != 2:
+        raise InputError(f"labels must be a section's (n_traces, n_samples) fault ids; got shape {lab.shape}")
+    if vertices.ndim != 2 or vertices.shape[0] < 2 or vertices.shape[1] != 2 or np.any(np.diff(vertices[:, 1]) <= 0):
+        raise InputError("line must be (k, 2) vertices (trace, sample), k >= 2, samples increasing; got "
+                         f"{vertices.tolist()!r}")
+    tolerance = check_positive(tolerance, "tolerance", allow_zero=True)
+    samples = np.arange(int(np.ceil(vertices[0, 1])), int(np.floor(vertices[-1, 1])) + 1)
+    traces = np.interp(samples, vertices[:, 1], vertices[:, 0])
+    counts: dict = {}
+    covered = 0
+    for k, x in zip(samples, traces):
+        if not 0 <= k < lab.shape[1]:
+            continue
+        lo, hi = max(int(np.ceil(x - tolerance)), 0), min(int(np.floor(x + tolerance)), lab.shape[0] - 1)
+        ids = set(lab[lo:hi + 1, k].tolist()) - {0} if lo <= hi else set()
+        covered += bool(ids)
+        for fid in ids:
+            counts[fid] = counts.get(fid, 0) + 1
+    n = max(samples.size, 1)
+    fid = max(counts, key=counts.get) if counts else 0
+    return FaultLineCoverage(covered=covered / n, one_fault=counts.get(fid, 0) / n, fault_id=int(fid),
+                             n_faults=len(counts))
 
 
 def horizon_errors(times, reference) -> HorizonErrors:

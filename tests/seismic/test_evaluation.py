@@ -53,3 +53,25 @@ def test_registration_errors():
     assert err.corner_error == pytest.approx(np.hypot(0.1, 0.25))  # corner inline 10: 0.1 off, all 0.25 deeper
     with pytest.raises(InputError, match="moving_shape"):
         registration_errors(est, truth, (11, 11))
+
+
+def test_fault_line_coverage_of_one_fault_and_of_pieces():
+    """A fault drawn along the line covers it; two pieces cover it together but each holds only its own part; a
+    fault farther than the tolerance covers nothing; bad input is refused."""
+    from seismo3d.seismic import fault_line_coverage
+
+    labels = np.zeros((60, 101), np.int32)
+    labels[22, :60] = 1  # 2 traces off the line (20, 0) -> (20, 50) -> (20, 100)
+    labels[17, 60:] = 2  # 3 traces off it
+    labels[55, :] = 3  # parallel and far
+    line = [(20, 0), (20, 50), (20, 100)]
+    c = fault_line_coverage(labels, line, tolerance=4)
+    assert c.covered == pytest.approx(1.0) and c.one_fault == pytest.approx(60 / 101) and c.fault_id == 1
+    assert c.n_faults == 2
+    c = fault_line_coverage(labels, line, tolerance=2.5)
+    assert c.covered == pytest.approx(60 / 101) and c.n_faults == 1
+    assert fault_line_coverage(np.zeros((5, 5), int), [(1, 0), (1, 4)]).fault_id == 0
+    with pytest.raises(InputError, match="samples increasing"):
+        fault_line_coverage(labels, [(10, 50), (40, 10)])
+    with pytest.raises(InputError, match="section"):
+        fault_line_coverage(labels[None], [(10, 0), (40, 100)])

@@ -110,6 +110,27 @@ def test_a_likely_fault_needs_no_measured_displacement():
         EvidenceOptions(min_vote_ratio=-1.0)
 
 
+def test_a_clear_throw_on_a_likely_fault_needs_no_vote_ratio():
+    """A throw of at least 3 samples that aligns the sides, on a fault whose mean probability reaches 0.5, is kept
+    whatever its vote ratio (the generated section of seed 3's faults of throw 6.7 / 6.8: vote ratio 0.71 / 0.90);
+    either alone is not (chance alignments of periodic reflectors on real data); both scale with the sensitivity;
+    the scan (no probability) and ``clear_throw=None`` never use it."""
+    opt = EvidenceOptions()
+    assert opt.clear_throw == 3.0
+    assert _evidence(-3.0, 0.0, vote_ratio=0.1, mean_likelihood=0.5).supports(opt)
+    assert not _evidence(2.9, 0.5, vote_ratio=0.1, mean_likelihood=0.9).supports(opt)  # throw under 3
+    assert not _evidence(6.0, 0.5, vote_ratio=0.1, mean_likelihood=0.49).supports(opt)  # not likely
+    assert not _evidence(6.0, -0.01, vote_ratio=0.1, mean_likelihood=0.9).supports(opt)  # the shift aligns worse
+    assert _evidence(1.5, 0.0, vote_ratio=0.1, mean_likelihood=0.25).supports(opt, 1.0)  # half of both asked
+    assert not _evidence(5.9, 0.0, vote_ratio=0.1, mean_likelihood=0.9).supports(opt, 0.0)  # twice the throw
+    assert not _evidence(6.0, 0.5, vote_ratio=0.1, mean_likelihood=0.9).supports(EvidenceOptions(clear_throw=None))
+    no_probability = EvidenceOptions(min_vote_ratio=0.5, min_probability=None)  # the scan's rule, votes asked
+    assert not _evidence(6.0, 0.5, vote_ratio=0.1, mean_likelihood=0.9).supports(no_probability)
+    for bad in (0.0, -1.0):
+        with pytest.raises(InputError, match="clear_throw"):
+            EvidenceOptions(clear_throw=bad)
+
+
 def test_side_coherence_of_layers_against_noise():
     """A vertical line between layered reflectors and incoherent noise: the sides do not match and the noise side is
     not continuous in itself (side coherence near 0); a line through the layers alone has continuous sides."""

@@ -45,16 +45,20 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
 
     The steps, with their defaults chosen from the data (no per-file tuning):
 
-    1. :func:`~seismo3d.seismic.faults.fault_likelihood`: scan of fault strikes and dips of the semblance of balanced
-       amplitudes (Hale 2013);
+    1. the fault likelihood: by default the fault network's probability (:func:`~seismo3d.seismic.faults.
+       learned_fault_likelihood`, the mean over three network grids), or with ``options.likelihood='scan'``
+       :func:`~seismo3d.seismic.faults.fault_likelihood`, a scan of fault strikes and dips of the semblance of
+       balanced amplitudes (Hale 2013);
     2. :func:`~seismo3d.seismic.thin_faults`: its ridges (non-maximum suppression across the fault), the seeds;
     3. :func:`~seismo3d.seismic.vote_faults`: optimal surface voting (Wu & Fomel 2018), which makes faults
        continuous across gaps of the likelihood and leaves isolated noise weak;
     4. the votes thinned, and thresholded from the data (Otsu, see :class:`FaultTracingOptions`);
     5. :func:`~seismo3d.seismic.faults.fault_skins`: the thinned votes linked into fault surfaces (curves in 2D);
     6. :func:`~seismo3d.seismic.fault_throws`: vertical throw by registering the reflectors on both sides;
-    7. :func:`~seismo3d.seismic.faults.evidence.supported_faults`: only the faults across which the reflectors are
-       displaced are kept (a throw of at least a sample that aligns the sides better than no shift).
+    7. :func:`~seismo3d.seismic.faults.evidence.supported_faults`: only the faults that show the evidence of
+       :class:`~seismo3d.seismic.faults.EvidenceOptions` are kept: votes that hold along them, and displaced
+       reflectors (a throw of at least a sample that aligns the sides at least as well as no shift) or a likely
+       fault (mean probability at least 0.5); or a throw of 3 samples or more on a likely fault.
 
     NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Dead samples (runs of 5 or
     more equal values along a trace: dead traces, mutes, gaps, NaN runs) are skipped, with a warning: the likelihood

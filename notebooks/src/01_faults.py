@@ -3,15 +3,15 @@
 #
 # Fault interpretation of 18 consecutive real inlines of the Penobscot 3D survey (Nova Scotia), with the seven
 # horizons people picked on them (Baroni et al. 2020, CC BY 4.0), in one call: `trace_faults` computes the fault
-# likelihood (a scan over fault strikes and dips, Hale 2013), makes it continuous by optimal surface voting (Wu &
-# Fomel 2018), links the thinned faults into fault skins and measures each fault's throw by registering the
-# reflectors on its two sides.
+# likelihood (a fault network trained only on generated sections, run on every inline and crossline at three
+# grids), makes it continuous by optimal surface voting (Wu & Fomel 2018), links the thinned faults into fault skins,
+# measures each fault's throw by registering the reflectors on its two sides, and keeps the faults that show the
+# evidence of one (votes that hold along it, and displaced reflectors or a likely fault).
 #
 # The slab is read from the seismo3d data folder (`SEISMO3D_DATA_DIR`) or, without it, made again from its public
 # origin (the 8-bit images and colour masks, downloaded and hash-checked, stacked into the same bytes). The 8-bit
-# images are heavily clipped (two thirds of the samples sit at the extremes), which makes the tracer find more,
-# smaller faults here than on a float cube (the fault likelihood is high almost everywhere on this slab; a known
-# limitation being worked on).
+# images are heavily clipped (two thirds of the samples sit at the extremes); the network was trained with such
+# clipping and 8-bit quantisation among its degradations.
 #
 # To run in about a minute, the notebook traces a window of the slab: the middle 256 traces and samples 450-1089,
 # which hold the two deepest of the people's horizons and the top of the faulted interval below them. The whole

@@ -120,7 +120,7 @@ def test_costarica_crf_against_the_published_osv_faults(data_dir):
     """Our faults on the Costa Rica section against X. Wu's optimal-surface-voting result (a reference from another
     algorithm, thresholded at 0.3 as published), tolerance 3 samples: recall >= 0.70 at precision >= 0.80.
     Before the voting and skins: precision 0.79, recall 0.34. With the scan likelihood: the default learned one
-    finds fewer of OSV's dense faults (precision 0.90, recall 0.28: README, "The learned fault likelihood")."""
+    finds fewer of OSV's dense faults (precision 0.93, recall 0.27: README, "The learned fault likelihood")."""
     section = _read_f32be(data_dir, "sections/costarica_crf.f32be", (500, 180))
     reference = _read_f32be(data_dir, "references/costarica_crf_osv_fvt.f32be", (500, 180)) > 0.3
     res = trace_faults(section, progress=False, options=FaultTracingOptions(likelihood="scan"))
@@ -226,19 +226,19 @@ def test_volve_line_has_no_fault_through_its_continuous_reflectors(data_dir):
 
 @pytest.mark.slow
 def test_teapot_tpd_what_an_interpreter_sees(data_dir):
-    """Teapot tpd, where an interpreter sees three faults: the one dipping from trace 115 at sample 20 to 145 at 280
-    is traced (88 % of it within 8 traces); the near-vertical one at traces 210-220 is covered along 57 % by two
-    pieces; 9 faults in all. Not reached (issue 35): <= 8 faults, the fault near trace 20 below sample 240 (43 %)
-    and the near-vertical one as one fault."""
+    """Teapot tpd, where an interpreter sees three faults: at most 8 faults (issue 35; the scan: 49); the one dipping
+    from trace 115 at sample 20 to 145 at 280 is traced (88 % of it within 8 traces), the near-vertical one at traces
+    210-220 is one fault along 57 % of it. Not reached: the fault near trace 20 below sample 240 (43 %, the issue
+    asks it traced)."""
     bench = _benchmark_faults()
     section, _ = bench._real_sections(Path(data_dir))["teapot_tpd"]
     res = trace_faults(section, progress=False)
     labels = fault_labels(res.faults, section.shape)
     coverage = {name: fault_line_coverage(labels, line, tolerance=8) for name, line in bench.TEAPOT_TPD_FAULTS.items()}
     print("teapot_tpd:", len(res.faults), {name: round(c.covered, 2) for name, c in coverage.items()})
-    assert len(res.faults) <= 9, len(res.faults)  # the scan: 49
+    assert len(res.faults) <= 8, len(res.faults)
     assert coverage["trace 115 at sample 20 to 145 at 280"].covered >= 0.8
-    assert coverage["near-vertical at traces 210-220"].covered >= 0.5
+    assert coverage["near-vertical at traces 210-220"].one_fault >= 0.5
     assert coverage["near trace 20 below sample 240"].covered >= 0.4
 
 

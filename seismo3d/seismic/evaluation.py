@@ -2,7 +2,8 @@
 sub-volume registration errors.
 
 Each function compares a result with a reference (labelled fault samples, a fault line an interpreter sees, people's
-or a generator's horizon picks, a known resampling transform) and returns a small frozen dataclass of the measures; the benchmarks print them.
+or a generator's horizon picks, a known resampling transform) and returns a small frozen dataclass of the measures;
+the benchmarks print them.
 """
 
 from __future__ import annotations

@@ -304,7 +304,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       say less of a fault when they are not continuous themselves). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
       median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_correlation, correlation_gain,
-      side_coherence, vote_ratio, mean_likelihood``: the
+      side_coherence, vote_ratio, mean_likelihood`` (``throw_spread_samples`` is empty on a 2D line: its faults'
+      throws are one shift each, with no spread measured): the
       evidence each fault shows (:class:`~seismo3d.seismic.faults.evidence.FaultEvidence`; only faults whose votes
       hold along them and whose reflectors are displaced, or which the network calls likely, are kept:
       :func:`~seismo3d.seismic.faults.evidence.supported_faults`), to sort and filter on; ``vote_ratio`` is the

@@ -13,6 +13,9 @@ package runs (``python -m seismo3d.training.export_onnx seismo3d/seismic/faults/
 seismo3d/seismic/faults/fault_unet.onnx``) and put the sha256 it prints into
 :data:`seismo3d.seismic.faults.learned.WEIGHTS_SHA256`.
 
+``--init-weights NPZ`` fine-tunes exported weights (e.g. the shipped ``fault_unet.npz``) instead of starting
+from random ones; the record keeps their sha256.
+
 Data: every step draws a new batch of sections from :func:`seismo3d.data.synthetic_sections.synthetic_fault_section`
 (seeds ``seed * 1_000_003 + i`` for the i-th training section), so the network never sees a section twice; the
 validation sections use seeds of another range (``VALIDATION_SEED``) that training never draws.
@@ -86,6 +89,10 @@ class TrainingOptions:
         Steps between loss log lines (and validation every 10 of them).
     threads : int
         PyTorch threads.
+    init_weights : str or None
+        Exported weights (``fault_unet.npz``) to start from: fine-tuning. Their batch normalisations are folded
+        into the convolutions, so they stay the identity (frozen) while the convolutions train; ``None`` trains a
+        new network from a random start.
     """
 
     channels: tuple = (12, 24, 48, 96)
@@ -98,6 +105,7 @@ class TrainingOptions:
     n_validation: int = 96
     log_every: int = 50
     threads: int = 2
+    init_weights: str | None = None
 
 
 def _conv_block(c_in: int, c_out: int) -> nn.Sequential:
@@ -226,13 +234,25 @@ def _loss(logits, target, positive_weight: float):
     return bce + dice
 
 
+def _training_mode(model: FaultUNet) -> None:
+    """Training mode, except for a fine-tuned network's batch normalisations: folded weights leave them the
+    identity, which batch statistics would undo (their running statistics stay those of the identity)."""
+    model.train()
+    if getattr(model, "frozen_batch_norm", False):
+        for module in model.modules():
+            if isinstance(module, nn.BatchNorm2d):
+                module.eval()
+                module.weight.requires_grad_(False)
+                module.bias.requires_grad_(False)
+
+
 def validate(model: FaultUNet, x: torch.Tensor, y: np.ndarray) -> dict:
     """Tolerant precision / recall / F1 (2 samples) of the probability above 0.5 on the validation sections, and
     the share of unfaulted sections with no sample above 0.5."""
     model.eval()
     with torch.no_grad():
         prob = torch.sigmoid(torch.cat([model(x[i:i + 16]) for i in range(0, len(x), 16)])).numpy()[:, 0]
-    model.train()
+    _training_mode(model)
     hits_p = hits_r = n_pred = n_label = 0.0
     clean, n_unfaulted = 0, 0
     for p, lab in zip(prob > 0.5, y):
@@ -277,8 +297,17 @@ def train(options: TrainingOptions, out_dir: Path, *, section_options: FaultSect
     sec = section_options or FaultSectionOptions()
     torch.manual_seed(options.seed)
     torch.set_num_threads(options.threads)
-    model = FaultUNet(options.channels)
-    optimiser = torch.optim.Adam(model.parameters(), lr=options.learning_rate)
+    if options.init_weights:
+        with np.load(options.init_weights) as start:
+            model = model_from_weights(dict(start))
+        model.frozen_batch_norm = True
+        options = dataclasses.replace(options, channels=model.channels)  # the start's, whatever was asked
+        start_sha256 = hashlib.sha256(Path(options.init_weights).read_bytes()).hexdigest()
+        log.info("fine-tuning from %s (sha256 %s)", options.init_weights, start_sha256)
+    else:
+        model, start_sha256 = FaultUNet(options.channels), None
+    _training_mode(model)
+    optimiser = torch.optim.Adam([p for p in model.parameters() if p.requires_grad], lr=options.learning_rate)
     schedule = torch.optim.lr_scheduler.CosineAnnealingLR(optimiser, options.steps, eta_min=0.05 * options.learning_rate)
     xv, yv = _batch(VALIDATION_SEED, 0, options.n_validation, options.patch, sec)
     yv = yv.numpy()[:, 0] > 0.5
@@ -302,7 +331,7 @@ def train(options: TrainingOptions, out_dir: Path, *, section_options: FaultSect
                 entry["validation"] = validate(model, xv, yv)
                 model.eval()
                 np.savez(out_dir / "checkpoint.npz", **export_weights(model))  # partial result of a long run
-                model.train()
+                _training_mode(model)
             history.append(entry)
             log.info(json.dumps(entry))
     model.eval()
@@ -313,7 +342,7 @@ def train(options: TrainingOptions, out_dir: Path, *, section_options: FaultSect
     write_check(weights, out_dir / "fault_unet_check.npz")
     record = {"training": {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(options).items()},
               "generator": {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(sec).items()},
-              "parameters": n_params, "torch": torch.__version__, "minutes": round((time.perf_counter() - t0) / 60, 2),
+              "parameters": n_params, "init_weights_sha256": start_sha256, "torch": torch.__version__, "minutes": round((time.perf_counter() - t0) / 60, 2),
               "validation": history[-1].get("validation"), "weights_sha256": digest, "history": history}
     (out_dir / "fault_unet.json").write_text(json.dumps(record, indent=1))
     log.info("weights %s sha256 %s", npz, digest)
@@ -348,6 +377,8 @@ def main(argv=None) -> None:
     parser.add_argument("--threads", type=int, default=defaults.threads)
     parser.add_argument("--n-validation", type=int, default=defaults.n_validation)
     parser.add_argument("--log-every", type=int, default=defaults.log_every)
+    parser.add_argument("--init-weights", default=None, metavar="NPZ",
+                        help="fine-tune from these exported weights (e.g. seismo3d/seismic/faults/fault_unet.npz)")
     parser.add_argument("--generator", action="append", default=[], metavar="NAME=VALUE",
                         help="a FaultSectionOptions field of the generated sections (repeatable), e.g. "
                              "p_fault_system=0.7")
@@ -355,7 +386,8 @@ def main(argv=None) -> None:
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s")
     options = TrainingOptions(channels=tuple(int(v) for v in a.channels.split(",")), steps=a.steps,
                               batch_size=a.batch_size, patch=a.patch, learning_rate=a.learning_rate, seed=a.seed,
-                              threads=a.threads, n_validation=a.n_validation, log_every=a.log_every)
+                              threads=a.threads, n_validation=a.n_validation, log_every=a.log_every,
+                              init_weights=a.init_weights)
     record = train(options, a.out, section_options=_generator_options(a.generator))
     print(f"validation {record['validation']}; weights sha256 {record['weights_sha256']}")
 

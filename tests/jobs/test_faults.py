@@ -278,8 +278,11 @@ def test_segy_line(section, tmp_path, along):
     assert {int(r[fixed]) for r in points} == ({1155} if along == "inline" else {500})
     assert all(first <= int(r[lateral]) < first + 160 for r in points)
     # the line's two faults are found (each at least 30 samples long)
-    sizes = [int(r["n_points"]) for r in _rows(written["summary"])]
+    summary = _rows(written["summary"])
+    sizes = [int(r["n_points"]) for r in summary]
     assert len(sizes) >= 2 and sizes[1] >= 30
+    # a line's fault has one throw (one shift): its spread is not measured, so it is empty, not 0
+    assert all(r["median_throw_samples"] != "" and r["throw_spread_samples"] == "" for r in summary)
 
 
 @pytest.mark.slow  # 1.4 s in the fast lane, whose budget is 60 s

@@ -38,6 +38,23 @@ def test_true_faults_show_a_displacement_and_unbroken_layers_do_not(seed):
     assert not evidence.supports(EvidenceOptions.for_likelihood("scan"))  # and its sides match unshifted
 
 
+def test_throw_spread_is_measured_only_where_the_throw_is_measured_more_than_once():
+    """A section's fault is one patch: its throw is one shift, so its spread is unknown (NaN, a blank cell in
+    fault_summary.csv), not a consistency of 0. A 3D fault of several patches has its spread measured."""
+    syn = synthetic_cube((192, 128), seed=0, noise=0.1, n_faults=2)
+    tf = max(syn.faults, key=lambda f: abs(f.throw_samples))
+    thr = fault_throw(syn.cube, np.argwhere(syn.fault_labels == tf.id))
+    assert thr.n_patches_measured == 1 and np.isfinite(thr.median_throw)
+    evidence = fault_evidence(thr)
+    assert np.isfinite(evidence.median_throw) and np.isnan(evidence.throw_spread), evidence
+    cube = synthetic_cube((96, 96, 96), seed=1, noise=0.1, n_faults=1)
+    thr = fault_throw(cube.cube, np.argwhere(cube.fault_labels == 1))
+    assert thr.n_patches_measured >= 2
+    evidence = fault_evidence(thr)
+    # one fault of constant throw: its patches agree within a sample
+    assert np.isfinite(evidence.throw_spread) and 0.0 <= evidence.throw_spread < 1.0, evidence
+
+
 def test_unmeasured_fault_has_no_evidence():
     syn = synthetic_cube((64, 64), n_faults=1, seed=0, noise=0.1)
     pts = np.argwhere(syn.fault_labels == 1)

@@ -176,6 +176,17 @@ def test_training_smoke(tmp_path):
     check = np.load(out / "fault_unet_check.npz")
     assert np.abs(unet_forward(check["section"][None], weights)[0] - check["probability"]).max() <= 1e-5
     assert [h["step"] for h in record["history"]] == [1, 2]
+    # fine-tuning starts from those weights: their folded batch normalisations stay the identity, so at a vanishing
+    # learning rate the run returns them (batch statistics in training mode would change every layer's output)
+    tuned = tmp_path / "tuned"
+    subprocess.run([sys.executable, "-m", "seismo3d.training.fault_unet", "--out", str(tuned), "--steps", "2",
+                    "--batch-size", "2", "--patch", "32", "--threads", "1", "--n-validation", "2", "--log-every", "1",
+                    "--learning-rate", "1e-12", "--init-weights", str(out / "fault_unet.npz")],
+                   check=True, capture_output=True, timeout=300)
+    again = dict(np.load(tuned / "fault_unet.npz"))
+    assert again.keys() == weights.keys()
+    assert max(float(np.abs(again[k] - weights[k]).max()) for k in weights) <= 1e-6
+    assert json.loads((tuned / "fault_unet.json").read_text())["training"]["init_weights"] == str(out / "fault_unet.npz")
 
 
 # slow: forced blocks, each network block reading most of the cube along its sections

@@ -150,6 +150,9 @@ class FaultThrow:
         Root-mean-square distance between those corresponding peaks, in samples (same averaging); NaN if none.
     n_points_used : int
         Number of footwall reflector-peak points registered (summed over the registered patches).
+    n_patches_measured : int
+        Patches whose throw was measured (-1: not counted, a ``FaultThrow`` made without it). A 2D fault is one
+        patch: its throw is one shift for the whole line, which says nothing of how the throw varies along it.
     """
 
     fault_id: int
@@ -162,6 +165,7 @@ class FaultThrow:
     inlier_rmse: float
     n_points_used: int
     side_coherence: np.ndarray | None = None
+    n_patches_measured: int = -1
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -520,6 +524,7 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
     coherence = np.full(n, np.nan)
     registered = np.zeros(n, bool)
     fits, rmses, counts = [], [], []
+    n_measured = 0
 
     # patches along the mean strike
     mean_n = nrm3.mean(axis=0)
@@ -550,6 +555,7 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
                                     opt.min_overlap[0 if two_d else 1], opt) if reach >= 1 else (np.nan,) * 3
         if not np.isfinite(shift):
             continue
+        n_measured += 1
         throw[sel] = shift
         corr[sel] = cc
         corr0[sel] = cc0
@@ -572,4 +578,5 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         fault_id=fid, throw=throw.astype(np.float32), registered=registered, correlation=corr.astype(np.float32),
         correlation_unshifted=corr0.astype(np.float32), median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=fitness,
         inlier_rmse=rmse, n_points_used=int(sum(counts)), side_coherence=coherence.astype(np.float32),
+        n_patches_measured=n_measured,
     )

@@ -342,7 +342,8 @@ def train(options: TrainingOptions, out_dir: Path, *, section_options: FaultSect
     write_check(weights, out_dir / "fault_unet_check.npz")
     record = {"training": {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(options).items()},
               "generator": {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(sec).items()},
-              "parameters": n_params, "init_weights_sha256": start_sha256, "torch": torch.__version__, "minutes": round((time.perf_counter() - t0) / 60, 2),
+              "parameters": n_params, "init_weights_sha256": start_sha256, "torch": torch.__version__,
+              "minutes": round((time.perf_counter() - t0) / 60, 2),
               "validation": history[-1].get("validation"), "weights_sha256": digest, "history": history}
     (out_dir / "fault_unet.json").write_text(json.dumps(record, indent=1))
     log.info("weights %s sha256 %s", npz, digest)

@@ -186,7 +186,9 @@ def test_training_smoke(tmp_path):
     again = dict(np.load(tuned / "fault_unet.npz"))
     assert again.keys() == weights.keys()
     assert max(float(np.abs(again[k] - weights[k]).max()) for k in weights) <= 1e-6
-    assert json.loads((tuned / "fault_unet.json").read_text())["training"]["init_weights"] == str(out / "fault_unet.npz")
+    tuned_record = json.loads((tuned / "fault_unet.json").read_text())
+    assert tuned_record["training"]["init_weights"] == str(out / "fault_unet.npz")
+    assert tuned_record["init_weights_sha256"] == hashlib.sha256((out / "fault_unet.npz").read_bytes()).hexdigest()
 
 
 # slow: forced blocks, each network block reading most of the cube along its sections

@@ -73,6 +73,9 @@ METHODS = ("fault_likelihood", "learned_likelihood", "voting+skins", "trace_faul
            "faults command scan", "faults command learned", "semblance", "plain_semblance", "bruges")
 PEERS = {"plain_semblance", "bruges"}
 XL1155_ENDS = ((1385.0, 900.0), (1222.0, 2550.0))  # (inline, ms) of the fault's two ends
+# the same ends as (trace, sample) indices of penobscot_xl1155.sgy: inlines 1000-1600, samples every 4 ms from 0
+XL1155_FIRST_INLINE, XL1155_MS = 1000.0, 4.0
+XL1155_LINE = tuple((il - XL1155_FIRST_INLINE, t / XL1155_MS) for il, t in XL1155_ENDS)
 
 
 def plain_semblance(cube: np.ndarray, half_samples: int = 4) -> np.ndarray:
@@ -125,18 +128,14 @@ def _best_skeleton(section, reference):
     return best
 
 
-def xl1155_coverage(labels: np.ndarray, inlines: np.ndarray, samples_ms: np.ndarray,
-                    span=(1000.0, 2400.0)) -> tuple[float, int]:
-    """The largest fraction of the xl1155 fault's samples within ``span`` (ms) held by one label within 10 traces of
-    the line through its ends, and that label (0: none)."""
+def xl1155_coverage(labels: np.ndarray, span=(1000.0, 2400.0)):
+    """How the faults ``labels`` (penobscot_xl1155's fault ids) follow its large fault within ``span`` (ms): the
+    :func:`~seismo3d.seismic.fault_line_coverage` of :data:`XL1155_LINE` between those times, 10 traces either side."""
     from seismo3d.seismic import fault_line_coverage
 
-    (il0, t0), (il1, t1) = XL1155_ENDS
-    index = np.arange(len(inlines), dtype=np.float64)
-    ends = [(float(np.interp(il0 + (il1 - il0) * (t - t0) / (t1 - t0), inlines, index)),
-             float(np.interp(t, samples_ms, np.arange(len(samples_ms), dtype=np.float64)))) for t in span]
-    c = fault_line_coverage(labels, ends, tolerance=10)
-    return c.one_fault, c.fault_id
+    (x0, k0), (x1, k1) = XL1155_LINE
+    ends = [(x0 + (x1 - x0) * (t / XL1155_MS - k0) / (k1 - k0), t / XL1155_MS) for t in span]
+    return fault_line_coverage(labels, ends, tolerance=10)
 
 
 def real_sections(data_dir: Path, out_dir: Path) -> None:
@@ -176,21 +175,23 @@ def real_sections(data_dir: Path, out_dir: Path) -> None:
 
     with open_segy(data_dir / "seismic" / "penobscot_xl1155.sgy") as cube:
         line = cube.read()[:, 0, :]
-        inlines = np.asarray(cube.inlines, dtype=np.float64)
-        samples = np.asarray(cube.samples, dtype=np.float64)
+        if cube.inlines[0] != XL1155_FIRST_INLINE or cube.samples[0] != 0 or cube.samples[1] != XL1155_MS:
+            raise SystemExit("penobscot_xl1155.sgy's axes differ from XL1155_LINE's: update XL1155_FIRST_INLINE and "
+                             "XL1155_MS")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # its muted corner is reported
         t = time.perf_counter()
         res = trace_faults(line, sample_interval=4.0, sample_unit="ms", progress=False)
         seconds = time.perf_counter() - t
     labels = fault_labels(res.faults, line.shape)
-    cov, fid = xl1155_coverage(labels, inlines, samples)
-    cov_issue, fid_issue = xl1155_coverage(labels, inlines, samples, span=(900.0, 2550.0))
+    main, whole = xl1155_coverage(labels), xl1155_coverage(labels, span=(900.0, 2550.0))
+    cov, fid, cov_issue, fid_issue = main.one_fault, main.fault_id, whole.one_fault, whole.fault_id
     # the peer at the same relative threshold as its best crf F1: connected skeleton pieces as its "faults"
     skel = semblance_skeleton(line, float(np.quantile(1.0 - plain_semblance(line), q)))
     pieces, n_pieces = ndi.label(skel, structure=np.ones((3, 3)))
-    cov_peer, piece = xl1155_coverage(pieces, inlines, samples)
-    cov_peer_issue, _ = xl1155_coverage(pieces, inlines, samples, span=(900.0, 2550.0))
+    peer = xl1155_coverage(pieces)
+    cov_peer, piece = peer.one_fault, peer.fault_id
+    cov_peer_issue = xl1155_coverage(pieces, span=(900.0, 2550.0)).one_fault
     share = float(np.count_nonzero(pieces == piece)) / max(int(np.count_nonzero(pieces)), 1)
     print("\nPenobscot crossline 1155: the large normal fault (inline 1385 at 900 ms to 1222 at 2550 ms), fraction of "
           "1000-2400 ms and of 900-2550 ms held by one fault within 10 traces of that line (targets >= 70 % and, "
@@ -447,12 +448,10 @@ def interpreter_checks(data_dir: Path) -> None:
     print(f"volve_fullstack_twt_arbline: {len(res.faults)} faults; crossing {VOLVE_CONTINUOUS_MS[0]:g}-"
           f"{VOLVE_CONTINUOUS_MS[1]:g} ms: {crossing or 'none'}")
     res = runs["penobscot_xl1155"]
-    (il0, t0), (il1, t1) = XL1155_ENDS
-    line = ((il0 - 1000.0, t0 / 4.0), (il1 - 1000.0, t1 / 4.0))  # inlines 1000-1600, samples at 0, 4, ... ms
-    c = fault_line_coverage(fault_labels(res.faults, sections["penobscot_xl1155"][0].shape), line, tolerance=10)
+    c = xl1155_coverage(fault_labels(res.faults, sections["penobscot_xl1155"][0].shape), span=(900.0, 2550.0))
     print(f"penobscot_xl1155: {len(res.faults)} faults; the large fault: fault {c.fault_id} holds {c.one_fault:.0%} "
           f"of 900-2550 ms (target >= 80 %), {c.covered:.0%} covered by {c.n_faults} faults")
-    print(f"  faults of the opposite dip along its upper part (900-1700 ms): {_opposite_dip(res.faults, line)}")
+    print(f"  faults of the opposite dip along its upper part (900-1700 ms): {_opposite_dip(res.faults, XL1155_LINE)}")
 
 
 def _opposite_dip(faults, line, upper_ms=1700.0) -> list:

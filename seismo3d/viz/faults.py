@@ -99,6 +99,7 @@ class _FaultColours:
 
     def __init__(self, ids: np.ndarray, fault_values, label):
         from matplotlib import colormaps
+        from matplotlib.cm import ScalarMappable
         from matplotlib.colors import Normalize
 
         self.label = label
@@ -116,8 +117,6 @@ class _FaultColours:
         norm = Normalize(vmin=lo, vmax=hi if hi > lo else lo + 1.0)
         cmap = colormaps["viridis"].with_extremes(bad="0.6")
         self.rgba = cmap(norm(np.ma.masked_invalid(per_point)))
-        from matplotlib.cm import ScalarMappable
-
         self.mappable = ScalarMappable(norm=norm, cmap=cmap)
 
     def title(self) -> str:

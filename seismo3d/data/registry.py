@@ -74,6 +74,8 @@ _SOURCES = types.MappingProxyType({
                    "research code repository without a data licence; public survey data"),
     "osv_f3": _Source("xinwucwp/osv", "f4e2564fc27b9539edc4caff0944b1ddb94997b8",
                       "F3 Netherlands (dGB Earth Sciences / TNO): CC BY-SA"),
+    "gsb": _Source("augustoicaro/SFD-CNN-TL", "17eb64e1a870a48991f509492cd5d502a260262e",
+                   "MIT (the repository, Cunha et al. 2020); Great South Basin 3D: New Zealand public petroleum data"),
     "igi": _Source("xinwucwp/igi", "4fed4c63c56d0a421cd4c9e30c21c2740874e8aa", "Teapot Dome: public (US DOE, RMOTC)"),
     "mhe_teapot": _Source("xinwucwp/mhe", "a458d9bd5185cde0e03fc95dd4df3f91174f4872",
                           "Teapot Dome: public (US DOE, RMOTC)"),

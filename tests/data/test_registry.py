@@ -23,6 +23,9 @@ EXPECTED_DERIVED = {
     "scans/bunny/bun.conf.reference.txt",
     "scans/bunny/bun000_clean.ply",
     "scans/bunny/bun045_clean.ply",
+    "seismic/gsb_fault_sticks/gsb_crl_2600.sgy",
+    "seismic/gsb_fault_sticks/gsb_crl_2800.sgy",
+    "seismic/gsb_fault_sticks/gsb_crl_2800_second_mask.png",
     "seismic/penobscot_sections/penobscot_sections_1075_1092.npz",
 }
 SMALL_FILE = "rgbd/tum_fr1xyz_pair/kinect_params.txt"  # not derived, 29 bytes
@@ -108,7 +111,7 @@ def test_list_files_prefix():
                      "scans/bunny/bun045_clean.ply"]
     assert len(list_files("rgbd/7scenes_redkitchen_0000_0495/depth/")) == 100
     assert list_files("no/such/prefix") == []
-    assert len(list_files()) == len(REGISTRY) == 347 + 91 + 10
+    assert len(list_files()) == len(REGISTRY) == 347 + 91 + 10 + 5
     segyio_tests = list_files("seismic/segyio_test_data/")
     assert len(segyio_tests) == 91 and len(list_files("seismic/segyio_test_data/multiformats/")) == 28
     assert list_files("seismic/f3_fault_masks/") == sorted(

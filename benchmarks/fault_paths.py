@@ -38,7 +38,7 @@ import zarr
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.jobs.faults import run_faults_job
 from seismo3d.errors import InputError
-from seismo3d.seismic.faults import in_memory_bytes, parse_memory_limit, resident_memory
+from seismo3d.seismic.blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory
 
 
 def _timed(*args, **kwargs):
@@ -82,7 +82,8 @@ def forced_blocks(name: str, npy: pathlib.Path, out: pathlib.Path, smallest: int
     them all), so that no ``--memory-limit`` of the job picks blocks: ``trace_faults`` in memory and by blocks
     (``BlockRunOptions(in_memory=False)`` at the smallest limit that works) compared fault by fault (ids, points,
     likelihood, throws, evidence) and sample by sample (fault likelihood, votes)."""
-    from seismo3d.seismic.faults import BlockRunOptions, trace_faults
+    from seismo3d.seismic.blocks.options import BlockRunOptions
+    from seismo3d.seismic.faults import trace_faults
 
     data = np.load(npy)
     work = out / "forced"

@@ -23,10 +23,11 @@ import numpy as np
 import zarr
 
 from seismo3d.data.synthetic import synthetic_cube
-from seismo3d.seismic.faults import learned_blocks as lb
-from seismo3d.seismic.faults.learned import (LearnedOptions, amplitude_scale, fault_probability,
-                                             orientation_from_likelihood)
-from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions
+from seismo3d.seismic.faults.blocks import learned_blocks as lb
+from seismo3d.seismic.faults.likelihood.learned import (
+    LearnedOptions, amplitude_scale, fault_probability, orientation_from_likelihood,
+)
+from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions
 
 
 def network_blocks(opt: LearnedOptions) -> None:

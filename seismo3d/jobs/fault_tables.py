@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from .._atomic import atomic_path
-from ..seismic.faults.pipeline import FaultInterpretation
+from ..seismic.faults.result import FaultInterpretation
 
 __all__ = ["sample_position", "write_points", "write_summary"]
 

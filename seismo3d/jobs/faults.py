@@ -4,7 +4,7 @@
 makes a synthetic cube, runs :func:`seismo3d.seismic.trace_faults` and writes the outputs of ``seismo3d faults`` (see
 its docstring for the list of files and their columns). Every file is written atomically; the input is only read.
 
-Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood`.
+Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood.scan`.
 """
 
 from __future__ import annotations
@@ -22,9 +22,11 @@ from .._atomic import SetAside, StagedFolder, atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import EarlierStoresError, InputError, Seismo3dWarning
-from ..seismic.faults.memory import fits_in_memory, parse_memory_limit, resident_memory
-from ..seismic.faults.block_run import BlockRunOptions
-from ..seismic.faults.pipeline import FaultInterpretation, FaultTracingOptions, trace_faults
+from ..seismic.blocks.memory import fits_in_memory, parse_memory_limit, resident_memory
+from ..seismic.blocks.options import BlockRunOptions
+from ..seismic.faults.result import FaultInterpretation
+from ..seismic.faults.options import FaultTracingOptions
+from ..seismic.faults.pipeline import trace_faults
 from ..seismic.io.lazy import open_lazy
 from ..seismic.io.segy import open_segy
 from ..seismic.io.writer import write_like, write_like_blocks
@@ -221,7 +223,7 @@ class LazyInput:
 
 def _lazy_if_too_large(path, limit: int, held: int, *, iline, xline, sample_unit, endian) -> LazyInput | None:
     """The input read lazily when it is a Zarr store, or a 3D SEG-Y cube or ``.npy`` array whose in-memory run does
-    not fit ``limit`` beside the ``held`` bytes of the process (:func:`~seismo3d.seismic.faults.fits_in_memory`);
+    not fit ``limit`` beside the ``held`` bytes of the process (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`);
     else None (the in-memory run)."""
 
     if path is None:
@@ -312,7 +314,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       fault's mean thinned votes over the run's upper vote threshold, ``mean_likelihood`` its mean fault likelihood;
       for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
       replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline
-      axis toward the crossline axis, see :mod:`seismo3d.seismic.faults.likelihood`).
+      axis toward the crossline axis, see :mod:`seismo3d.seismic.faults.likelihood.scan`).
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
       the seismic, coloured by their |median throw| (in the sample unit), above the same slices of the fault
       likelihood; for 2D inputs the section, cropped to its live traces and samples.
@@ -321,9 +323,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     ------------------------
     A 3D SEG-Y cube, Zarr store (``seismo3d convert``) or ``.npy`` array that would need more than ``memory_limit``
     in memory is read lazily and traced block by block, with the same results as in memory: the fault likelihood,
-    strike and dip (:func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood`) into
+    strike and dip (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood`) into
     ``fault_likelihood.zarr``, then the votes, thinned faults, skins and throws
-    (:func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces`) into ``fault_surfaces.zarr`` (arrays
+    (:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`) into ``fault_surfaces.zarr`` (arrays
     ``likelihood``, ``votes``, ``thin``; both opened by ``xarray.open_zarr``), then the same ``faults.vtp``, CSV
     files and picture as in memory (the picture reads only its three slices). Both stores are resumable (an
     interrupted run started again with the same arguments skips the finished blocks) and reused when finished. For

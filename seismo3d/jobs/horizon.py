@@ -227,7 +227,7 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         Trace the faults first (:func:`seismo3d.seismic.trace_faults`) and let the tracker take their jumps where the
         correlation across them supports it. None (default): on 3D cubes yes (a cube the fault tracer refuses is
         tracked without them); on 2D lines no. True: always, and a refusal is raised. In memory, or block by block
-        when the cube's fault run does not fit ``memory_limit`` (:func:`seismo3d.seismic.faults.fits_in_memory`).
+        when the cube's fault run does not fit ``memory_limit`` (:func:`seismo3d.seismic.blocks.memory.fits_in_memory`).
     fill : bool
         Fill empty traces by interpolation after tracking (:func:`seismo3d.seismic.fill_horizon`).
     surface : str or path-like, optional

@@ -14,17 +14,12 @@ Sub-packages:
 
 - :mod:`~seismo3d.seismic.faults`: fault interpretation.
 
-  - :mod:`~seismo3d.seismic.faults.likelihood`: the scan over fault strikes and dips.
-  - :mod:`~seismo3d.seismic.faults.learned`: the learned fault likelihood (a U-Net trained on generated sections).
-  - :mod:`~seismo3d.seismic.faults.dead_samples`: dead traces and samples, and their fill values.
-  - :mod:`~seismo3d.seismic.faults.windows`: windows of a cube around points (in memory, lazy or stored).
-  - :mod:`~seismo3d.seismic.faults.surfaces`: faults as point sets, thinning (and the older region-growing linker).
-  - :mod:`~seismo3d.seismic.faults.voting`: optimal surface voting (Wu & Fomel 2018).
-  - :mod:`~seismo3d.seismic.faults.skins`: thinned faults linked into fault skins (Hale 2013).
-  - :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides of a fault.
-  - :mod:`~seismo3d.seismic.faults.pipeline`: the whole fault interpretation of an array (:func:`trace_faults`).
-  - :mod:`~seismo3d.seismic.faults.likelihood_blocks`: the likelihood scan of a stored cube by blocks, resumable.
-  - :mod:`~seismo3d.seismic.faults.pipeline_blocks`: the fault surfaces of a stored cube by blocks.
+  - :mod:`~seismo3d.seismic.faults.likelihood`: the fault likelihood (the fault network, or the scan of strikes and
+    dips).
+  - :mod:`~seismo3d.seismic.faults.surfaces`: dead samples, ridges and thinning, voting, fault skins.
+  - :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides of a fault;
+    :mod:`~seismo3d.seismic.faults.evidence`: the evidence a fault must show.
+  - :mod:`~seismo3d.seismic.faults.pipeline`: the whole fault interpretation (:func:`trace_faults`).
 
 - :mod:`~seismo3d.seismic.horizons`: horizon tracking.
 
@@ -48,27 +43,33 @@ Modules shared by the sub-packages:
 - :mod:`~seismo3d.seismic.attributes`: structure tensor (reflector orientation), semblance, coherence.
 - :mod:`~seismo3d.seismic.traces`: trace primitives (sub-sample peaks, waveform windows, NCC, lag search).
 - :mod:`~seismo3d.seismic.reflectors`: reflector picks along traces, reflector slices, reflector points.
-- :mod:`~seismo3d.seismic.blocks`: resumable runs over the blocks of a cube (markers, memory, schedulers).
+- :mod:`~seismo3d.seismic.blocks`: running a cube larger than memory block by block into resumable Zarr stores
+  (options, memory, the resumable block run, windows of a cube).
 - :mod:`~seismo3d.seismic.evaluation`: fault scores, horizon errors, registration errors against ground truth.
 - ``seismo3d.seismic._kernels``: the numba kernels shared by attributes, faults and horizons (private).
 """
 
 from .attributes import (ReflectorOrientation, discontinuity, eigen_coherence, semblance, structure_tensor_orientation,
                          structure_tensor_slopes)
-from .blocks import BlockRun, SchedulerClient, run_block
 from .evaluation import (
     FaultLineCoverage, FaultScores, HorizonErrors, RegistrationErrors, evaluate_faults, fault_line_coverage,
     horizon_errors, registration_errors,
 )
 from .faults import (
-    BlockRunOptions, ChunkedFaults, ChunkedLikelihood, ChunkOptions, CleanTraces, CubeWindow, EvidenceOptions, Fault,
-    FaultEvidence, FaultInterpretation,
-    FaultLikelihood, FaultScanOptions, FaultThrow, FaultTracingOptions, FaultVotes, LearnedOptions, SkinOptions,
-    ThrowOptions, VotingOptions, chunked_fault_likelihood, chunked_learned_likelihood, learned_fault_likelihood, chunked_fault_surfaces, clean_traces, cube_windows, fault_labels,
-    fault_likelihood, fault_normals, fault_skins, fault_throw, fault_throws, fill_values, link_faults,
-    near_dead_samples, supported_faults, thin_faults, trace_faults, vote_faults,
+    EvidenceOptions, Fault, FaultEvidence, FaultInterpretation, FaultLikelihood, FaultScanOptions, FaultThrow,
+    FaultTracingOptions, FaultVotes, LearnedOptions, SkinOptions, ThrowOptions, VotingOptions, fault_likelihood,
+    fault_skins, fault_throws, learned_fault_likelihood, thin_faults, trace_faults, vote_faults,
 )
-from .faults.dead_samples import dead_samples
+from .faults.evidence import supported_faults
+from .faults.result import fault_normals
+from .faults.surfaces.dead_samples import CleanTraces, clean_traces, dead_samples, fill_values, near_dead_samples
+from .faults.surfaces.ridges import fault_labels
+from .faults.throw import fault_throw
+from .blocks import BlockRun, BlockRunOptions, SchedulerClient, run_block
+from .faults.blocks.learned_blocks import chunked_learned_likelihood
+from .faults.blocks.scan_blocks import ChunkedLikelihood, ChunkOptions, chunked_fault_likelihood
+from .faults.blocks.surface_blocks import ChunkedFaults, chunked_fault_surfaces
+from .blocks.windows import CubeWindow, cube_windows
 from .horizons import (
     CycleCut, FaultCrossings, Horizon, TrackingOptions, autotrack, fill_horizon, reliable_throw, track_horizon,
     write_horizon_text,
@@ -90,7 +91,7 @@ __all__ = [
     "RegistrationErrors", "SeismicCube", "ThrowOptions", "TrackingOptions", "VolumeOptions", "VolumeRegistration",
     "autotrack", "discontinuity", "eigen_coherence", "evaluate_faults", "FaultLineCoverage", "fault_line_coverage",
     "fault_labels", "fault_likelihood",
-    "fault_normals", "fault_throw", "fault_throws", "fill_horizon", "horizon_errors", "link_faults", "open_segy",
+    "fault_normals", "fault_throw", "fault_throws", "fill_horizon", "horizon_errors", "open_segy",
     "read_ascii_lines", "read_section", "read_segy", "reflector_picks", "reflector_points", "register_volumes",
     "registration_errors", "reliable_throw", "resample_volume", "semblance", "structure_tensor_orientation",
     "structure_tensor_slopes", "thin_faults", "trace_faults", "track_horizon", "volume_spacing", "write_horizon_text", "write_like",

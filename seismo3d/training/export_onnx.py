@@ -1,9 +1,9 @@
 """Export the fault network's trained weights to the ONNX model the package runs (``fault_unet.onnx``).
 
 Run: ``python -m seismo3d.training.export_onnx WEIGHTS.npz OUT.onnx`` (needs the ``onnx`` package of the ``train``
-extra). The export is deterministic: the shipped ``seismo3d/seismic/faults/fault_unet.onnx`` is the export of the
+extra). The export is deterministic: the shipped ``seismo3d/seismic/faults/likelihood/fault_unet.onnx`` is the export of the
 shipped ``fault_unet.npz`` byte for byte (tested), and its sha256, printed here, is
-:data:`seismo3d.seismic.faults.learned.WEIGHTS_SHA256`.
+:data:`seismo3d.seismic.faults.likelihood.learned.WEIGHTS_SHA256`.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from .._atomic import atomic_path
-from ..seismic.faults.unet import onnx_model
+from ..seismic.faults.likelihood.network import onnx_model
 
 __all__ = ["export_onnx"]
 

@@ -5,13 +5,13 @@ Run (the ``train`` extra installs PyTorch)::
     python -m seismo3d.training.fault_unet --out /tmp/fault_unet --steps 1200
 
 writes ``fault_unet.npz`` (the weights, batch normalisation folded in, float32: what
-:mod:`seismo3d.seismic.faults.unet` runs), ``fault_unet.json`` (options, seed, time, the loss every
+:mod:`seismo3d.seismic.faults.likelihood.network` runs), ``fault_unet.json`` (options, seed, time, the loss every
 ``--log-every`` steps and the validation scores), ``fault_unet_check.npz`` (a small section and PyTorch's output for
 it) and ``train.log``. To ship a retrained network: copy the two ``fault_unet.*`` files to
-``seismo3d/seismic/faults/``, the check file to ``tests/seismic/data/``, export the weights to the ONNX model the
-package runs (``python -m seismo3d.training.export_onnx seismo3d/seismic/faults/fault_unet.npz
-seismo3d/seismic/faults/fault_unet.onnx``) and put the sha256 it prints into
-:data:`seismo3d.seismic.faults.learned.WEIGHTS_SHA256`.
+``seismo3d/seismic/faults/likelihood/``, the check file to ``tests/seismic/data/``, export the weights to the ONNX model the
+package runs (``python -m seismo3d.training.export_onnx seismo3d/seismic/faults/likelihood/fault_unet.npz
+seismo3d/seismic/faults/likelihood/fault_unet.onnx``) and put the sha256 it prints into
+:data:`seismo3d.seismic.faults.likelihood.learned.WEIGHTS_SHA256`.
 
 ``--init-weights NPZ`` fine-tunes exported weights (e.g. the shipped ``fault_unet.npz``) instead of starting
 from random ones; the record keeps their sha256.
@@ -54,7 +54,7 @@ from torch import nn
 
 from ..data.synthetic_sections import FaultSectionOptions, synthetic_fault_section
 from ..seismic.evaluation import evaluate_faults
-from ..seismic.faults.unet import BLOCKS, normalise_section
+from ..seismic.faults.likelihood.network import BLOCKS, normalise_section
 
 __all__ = ["TrainingOptions", "FaultUNet", "train", "export_weights", "model_from_weights", "write_check",
            "validate", "main"]
@@ -114,7 +114,7 @@ def _conv_block(c_in: int, c_out: int) -> nn.Sequential:
 
 
 class FaultUNet(nn.Module):
-    """The U-Net of :mod:`seismo3d.seismic.faults.unet` in PyTorch (logits out; the sigmoid is in the loss).
+    """The U-Net of :mod:`seismo3d.seismic.faults.likelihood.network` in PyTorch (logits out; the sigmoid is in the loss).
 
     Parameters
     ----------
@@ -147,7 +147,7 @@ class FaultUNet(nn.Module):
 
 
 def export_weights(model: FaultUNet) -> dict:
-    """The weights of ``model`` as numpy float32 arrays for :func:`~seismo3d.seismic.faults.unet.unet_forward`,
+    """The weights of ``model`` as numpy float32 arrays for :func:`~seismo3d.seismic.faults.likelihood.network.unet_forward`,
     each batch normalisation folded into the convolution before it (evaluation statistics).
 
     Returns
@@ -379,7 +379,7 @@ def main(argv=None) -> None:
     parser.add_argument("--n-validation", type=int, default=defaults.n_validation)
     parser.add_argument("--log-every", type=int, default=defaults.log_every)
     parser.add_argument("--init-weights", default=None, metavar="NPZ",
-                        help="fine-tune from these exported weights (e.g. seismo3d/seismic/faults/fault_unet.npz)")
+                        help="fine-tune from these exported weights (e.g. seismo3d/seismic/faults/likelihood/fault_unet.npz)")
     parser.add_argument("--generator", action="append", default=[], metavar="NAME=VALUE",
                         help="a FaultSectionOptions field of the generated sections (repeatable), e.g. "
                              "p_fault_system=0.7")

@@ -11,7 +11,7 @@ import pytest
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.jobs.faults import run_faults_job
-from seismo3d.seismic.faults.likelihood_blocks import resident_memory
+from seismo3d.seismic.faults.blocks.scan_blocks import resident_memory
 
 # in memory 216 MiB beyond the process (in_memory_bytes); the smallest blocks of the learned likelihood ~92 MiB and of
 # the surfaces less (minimum_memory_limit): a 128^3 cube leaves no limit between the two, its halo of 96 traces
@@ -80,7 +80,7 @@ def test_tight_limit_traces_the_surfaces_block_by_block(cube_npy, in_memory, tmp
 def test_segy_cube_is_read_lazily(write_segy_cube, tmp_path, caplog):
     """A SEG-Y cube over the limit: read block by block, its likelihood equal to the in-memory one, its volumes
     written as SEG-Y with the input's headers."""
-    from seismo3d.seismic.faults.learned import LearnedOptions, learned_fault_likelihood
+    from seismo3d.seismic.faults.likelihood.learned import LearnedOptions, learned_fault_likelihood
 
     cube = synthetic_cube((192, 160, 64), seed=5).cube.astype(np.float32)
     path = write_segy_cube(tmp_path / "cube.sgy", cube, sorting="crossline")

@@ -11,12 +11,12 @@ import segyio
 from typer.testing import CliRunner
 
 import seismo3d.jobs.faults as job
-import seismo3d.seismic.faults.cube_run as cube_run
+import seismo3d.seismic.faults.blocks.cube_run as cube_run
 import seismo3d.seismic.faults.pipeline as pipeline
 from seismo3d.cli import app
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import UnsupportedDataError
-from seismo3d.seismic.faults.preflight import CubeSample
+from seismo3d.seismic.faults.blocks.preflight import CubeSample
 
 runner = CliRunner()
 

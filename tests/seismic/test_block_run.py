@@ -1,11 +1,11 @@
-"""BlockRunOptions (seismo3d.seismic.faults.block_run): the options of trace_faults' run by blocks, checked when made,
+"""BlockRunOptions (seismo3d.seismic.blocks.options): the options of trace_faults' run by blocks, checked when made,
 and the memory decision they apply."""
 
 import pytest
 
 from seismo3d.errors import InputError
 from seismo3d.seismic import BlockRunOptions, trace_faults
-from seismo3d.seismic.faults import in_memory_bytes
+from seismo3d.seismic.blocks.memory import in_memory_bytes
 
 
 @pytest.mark.parametrize("kwargs, match", [

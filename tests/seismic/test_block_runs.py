@@ -1,4 +1,4 @@
-"""Tests of seismo3d.seismic.blocks: block tasks on a dask.distributed cluster use the worker's share of the
+"""Tests of seismo3d.seismic.blocks.executor: block tasks on a dask.distributed cluster use the worker's share of the
 host's cores for their numba kernels, and leave the worker's setting as it was."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import os
 import numba
 import pytest
 
-from seismo3d.seismic.blocks import BlockRun, kernel_threads, run_block
+from seismo3d.seismic.blocks.executor import BlockRun, kernel_threads, run_block
 
 
 def _kernel_thread_count(_block):
@@ -37,7 +37,7 @@ def test_block_tasks_share_the_cores_between_workers(tmp_path):
 
 
 def test_serial_step_blocks_trade_halo_for_idle_cores(monkeypatch):
-    from seismo3d.seismic import blocks
+    from seismo3d.seismic.blocks import executor as blocks
 
     monkeypatch.setattr(blocks, "_usable_cores", lambda: 2)
     mib = 1 << 20

@@ -1,4 +1,4 @@
-"""Chunked fault surfaces (seismo3d.seismic.faults.pipeline_blocks): voting, thinning, thresholds, skins and throws
+"""Chunked fault surfaces (seismo3d.seismic.faults.blocks.surface_blocks): voting, thinning, thresholds, skins and throws
 block by block give the faults of the in-memory run, on a cube with dead traces and a mute; resumable; refusals."""
 
 from __future__ import annotations
@@ -9,13 +9,13 @@ import numpy as np
 import pytest
 import zarr
 
-import seismo3d.seismic.faults.pipeline_blocks as chunked_faults
+import seismo3d.seismic.faults.blocks.surface_blocks as chunked_faults
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
-from seismo3d.seismic.faults.pipeline_blocks import chunked_fault_surfaces
-from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions, chunked_fault_likelihood
-from seismo3d.seismic.faults.likelihood import FaultLikelihood
-from seismo3d.seismic.faults.surface_steps import surface_cells
+from seismo3d.seismic.faults.blocks.surface_blocks import chunked_fault_surfaces
+from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions, chunked_fault_likelihood
+from seismo3d.seismic.faults.result import FaultLikelihood
+from seismo3d.seismic.faults.steps import surface_cells
 from seismo3d.seismic.faults import FaultTracingOptions, trace_faults
 
 pytestmark = pytest.mark.slow

@@ -1,4 +1,4 @@
-"""Fault likelihood (seismo3d.seismic.faults.likelihood): orientation against synthetic ground truth, conventions,
+"""Fault likelihood (seismo3d.seismic.faults.likelihood.scan): orientation against synthetic ground truth, conventions,
 options and bad input."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from numpy.testing import assert_allclose
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, Seismo3dWarning
 from seismo3d.seismic import FaultScanOptions, fault_likelihood, fault_normals
-from seismo3d.seismic.faults.likelihood import fault_strike_dip
+from seismo3d.seismic.faults.result import fault_strike_dip
 
 
 def test_normals_match_synthetic_convention():

@@ -7,13 +7,13 @@ import warnings
 import numpy as np
 import pytest
 
-import seismo3d.seismic.faults.cube_run as cube_run
+import seismo3d.seismic.faults.blocks.cube_run as cube_run
 import seismo3d.seismic.faults.pipeline as pipeline
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, Seismo3dWarning, UnsupportedDataError
-from seismo3d.seismic.faults import (
-    BlockRunOptions, fits_in_memory, in_memory_bytes, parse_memory_limit, trace_faults,
-)
+from seismo3d.seismic.blocks.options import BlockRunOptions
+from seismo3d.seismic.blocks.memory import fits_in_memory, in_memory_bytes, parse_memory_limit
+from seismo3d.seismic.faults import trace_faults
 
 
 class _Likelihood(Exception):

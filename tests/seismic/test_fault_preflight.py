@@ -1,16 +1,16 @@
 """Judging a cube from a sample of blocks before tracing its faults, and the smallest memory limit of a block-by-block
-run (seismo3d.seismic.faults.preflight)."""
+run (seismo3d.seismic.faults.blocks.preflight)."""
 
 import numpy as np
 import pytest
 
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, UnsupportedDataError
-from seismo3d.seismic.faults import learned_blocks, likelihood_blocks, surface_plan
-from seismo3d.seismic.faults.likelihood import FaultScanOptions
-from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions
-from seismo3d.seismic.faults.pipeline import FaultTracingOptions
-from seismo3d.seismic.faults.preflight import CubeSample, SampleOptions, judge_sample, minimum_memory_limit
+from seismo3d.seismic.faults.blocks import learned_blocks, scan_blocks as likelihood_blocks, surface_plan
+from seismo3d.seismic.faults.likelihood.scan import FaultScanOptions
+from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions
+from seismo3d.seismic.faults.options import FaultTracingOptions
+from seismo3d.seismic.faults.blocks.preflight import CubeSample, SampleOptions, judge_sample, minimum_memory_limit
 
 
 class Recording:

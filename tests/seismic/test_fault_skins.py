@@ -1,4 +1,4 @@
-"""Fault skins (seismo3d.seismic.faults.skins): gaps bridged, crossing faults kept apart, pieces of one fault cut by
+"""Fault skins (seismo3d.seismic.faults.surfaces.skins): gaps bridged, crossing faults kept apart, pieces of one fault cut by
 another merged, hysteresis and sizes, options."""
 
 import numpy as np
@@ -6,7 +6,7 @@ import pytest
 
 from seismo3d.errors import InputError
 from seismo3d.seismic import Fault, SkinOptions, fault_normals, fault_skins
-from seismo3d.seismic.faults.skins import skins_from_cells
+from seismo3d.seismic.faults.surfaces.skins import skins_from_cells
 
 
 def _plane(shape, strike, dip, centre):
@@ -103,7 +103,7 @@ def test_options_and_errors():
 def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d):
     # the merge step's search (compiled, bucketed) against every pair: for each two skins, the closest (edge cell,
     # cell of the other skin) within the gap, ties to the lower edge cell, then the lower other cell
-    from seismo3d.seismic.faults.skins import _closest_pairs  # the kernel itself: its public caller merges skins
+    from seismo3d.seismic.faults.surfaces.skins import closest_pairs
 
     rng = np.random.default_rng(7)
     pts = rng.integers(0, 30, (600, 3)).astype(np.float64)
@@ -120,6 +120,6 @@ def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d):
             if lab[i] != lab[j] and d <= gap:
                 key = (min(lab[i], lab[j]), max(lab[i], lab[j]))
                 best[key] = min(best.get(key, (np.inf, 0, 0)), (d, int(i), j))
-    got = _closest_pairs(pts, lab, edge, gap, 12)
+    got = closest_pairs(pts, lab, edge, gap, 12)
     assert len(best) > 20
     assert sorted(map(tuple, got.tolist())) == sorted((i, j) for _, i, j in best.values())

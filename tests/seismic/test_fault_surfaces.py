@@ -1,4 +1,4 @@
-"""Fault surfaces (seismo3d.seismic.faults.surfaces): thinning and linking against synthetic ground truth, real
+"""Fault surfaces (seismo3d.seismic.faults.surfaces.ridges): thinning and linking against synthetic ground truth, real
 sections, bad input. The five 128^3 cubes are traced once per session (tests/conftest.py, shared with the throw
 tests)."""
 
@@ -15,7 +15,7 @@ from scipy import ndimage as ndi
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import (
-    Fault, FaultLikelihood, SkinOptions, evaluate_faults, fault_labels, fault_likelihood, link_faults, thin_faults,
+    Fault, FaultLikelihood, SkinOptions, evaluate_faults, fault_labels, fault_likelihood, thin_faults,
     trace_faults,
 )
 
@@ -121,54 +121,13 @@ def test_no_faults_in_unfaulted_cube():
 # building blocks
 
 
-def test_link_faults_separates_crossing_planes():
-    """Thin faults built from the labels, with exact orientations: every linked fault is one true fault."""
-    syn = synthetic_cube((96, 96, 96), seed=2)
-    lab = syn.fault_labels
-    strike = np.zeros(lab.shape, np.float32)
-    dip = np.zeros(lab.shape, np.float32)
-    for plane in syn.faults:
-        strike[lab == plane.id] = plane.strike_deg
-        dip[lab == plane.id] = plane.dip_deg
-    faults = link_faults((lab > 0).astype(np.float32), strike, dip)
-    assert len(faults) >= len(syn.faults)
-    for f in faults:
-        ids = lab[tuple(f.points.T)]
-        assert np.mean(ids == np.bincount(ids).argmax()) > 0.99
-        assert f.points.dtype == np.int64 and f.normals.shape == (f.size, 3)
-    assert sorted(f.size for f in faults)[::-1] == [f.size for f in faults]
-    assert [f.id for f in faults] == list(range(1, len(faults) + 1))
-
-
-def test_link_faults_min_size_and_labels_roundtrip():
-    thin = np.zeros((30, 30, 30), np.float32)
-    thin[10, 5:25, 5:25] = 0.9  # a 400-sample vertical plane
-    thin[20, 3:5, 3:5] = 0.9  # 4 samples
-    strike = np.full(thin.shape, 90.0, np.float32)
-    dip = np.full(thin.shape, 90.0, np.float32)
-    faults = link_faults(thin, strike, dip, min_size=10)
-    assert [f.size for f in faults] == [400]
-    f = faults[0]
-    assert f.mean_dip_deg == pytest.approx(90.0)
-    assert_allclose(np.abs(f.mean_normal), [1, 0, 0], atol=1e-6)
-    labels = fault_labels(faults, thin.shape)
-    assert np.count_nonzero(labels) == 400 and labels[10, 10, 10] == 1 and labels[20, 3, 3] == 0
-    assert len(link_faults(thin, strike, dip, min_size=2)) == 2
-
-
-def test_link_faults_default_size_keeps_a_fault_across_a_slab():
-    # A slab of 6 inlines cut from a survey (as the 18 Penobscot sections): a fault striking across the inlines
-    # spans at most 6 x its height. Sized by the largest face (1 % of 200 x 300 = 600 samples) this 6 x 80 = 480
-    # sample fault was dropped; the smaller vertical face (1 % of 6 x 300, at least 100) keeps it, and still drops
-    # a 4 x 20 = 80 sample patch.
-    thin = np.zeros((6, 200, 300), np.float32)
-    thin[:, 100, 100:180] = 0.9
-    thin[1:5, 40, 10:30] = 0.9
-    strike = np.zeros(thin.shape, np.float32)
-    dip = np.full(thin.shape, 90.0, np.float32)
-    faults = link_faults(thin, strike, dip)
-    assert [f.size for f in faults] == [480]
-    assert set(faults[0].points[:, 1]) == {100}
+def test_fault_labels_paint_each_fault_with_its_id():
+    points = np.argwhere(np.ones((1, 20, 20), bool)) + [10, 5, 5]  # a 400-sample vertical plane at inline 10
+    plane = Fault(1, points, np.full(400, 0.9), np.full(400, 90.0), np.full(400, 90.0), np.tile([1.0, 0, 0], (400, 1)))
+    small = Fault(2, np.array([[20, 3, 3]]), np.ones(1), np.zeros(1), np.ones(1), np.ones((1, 3)))
+    labels = fault_labels([plane, small], (30, 30, 30))
+    assert np.count_nonzero(labels == 1) == 400 and labels[10, 10, 10] == 1 and labels[20, 3, 3] == 2
+    assert np.count_nonzero(labels) == 401
 
 
 def test_thin_faults_is_one_sample_wide():
@@ -188,8 +147,7 @@ def test_ridges_above_a_floor_are_those_of_the_whole_ranking_image():
     keep what the hysteresis of the whole ridge image keeps."""
     from skimage.filters import apply_hysteresis_threshold
 
-    from seismo3d.seismic.faults.steps import ridges
-    from seismo3d.seismic.faults.surfaces import ridge_image
+    from seismo3d.seismic.faults.surfaces.ridges import ridge_image, ridges
 
     syn = synthetic_cube((32, 32, 72), n_faults=2, seed=3)
     fl = fault_likelihood(syn.cube)
@@ -212,8 +170,6 @@ def test_bad_input():
         thin_faults(good, good, good[:5])
     with pytest.raises(InputError, match="threshold"):
         thin_faults(good, good, good, threshold=(0.8, 0.2))
-    with pytest.raises(ValueError):  # InputError is a ValueError
-        link_faults(good, good, good, max_angle=-1)
     with pytest.raises(InputError, match="outside"):
         fault_labels([Fault(1, np.array([[0, 0, 12]]), np.ones(1), np.zeros(1), np.ones(1), np.ones((1, 3)))],
                      good.shape)

@@ -21,7 +21,7 @@ from scipy.spatial import cKDTree
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import (
-    FaultThrow, ThrowOptions, fault_likelihood, fault_throw, fault_throws, link_faults, structure_tensor_orientation,
+    FaultThrow, ThrowOptions, fault_likelihood, fault_skins, fault_throw, fault_throws, structure_tensor_orientation,
     thin_faults,
 )
 from seismo3d.seismic.faults.throw import hanging_wall_normals
@@ -171,7 +171,9 @@ def test_sections(seed):
         assert not r.registered.any() and r.n_points_used == 0  # 2D: no registration, correlation only
     # detected faults
     fl = fault_likelihood(syn.cube)
-    faults = link_faults(thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg), fl.strike_deg, fl.dip_deg)
+    thin = thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg)
+    lower = float(np.min(thin[thin > 0]))  # every thinned sample, linked into fault skins
+    faults = fault_skins(thin, fl.strike_deg, fl.dip_deg, lower=lower, upper=lower)
     matched = _errors_detected(syn, faults, fault_throws(syn.cube, faults, orientation=orientation))
     pooled = np.concatenate([e for _, _, e in matched])
     print(f"section seed {seed}: detected pooled median |err| {np.median(pooled):.3f} over {pooled.size} points")

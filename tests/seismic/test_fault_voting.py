@@ -1,11 +1,11 @@
-"""Optimal surface voting (seismo3d.seismic.faults.voting): gaps bridged, noise left weak, 3D surfaces, options."""
+"""Optimal surface voting (seismo3d.seismic.faults.surfaces.voting): gaps bridged, noise left weak, 3D surfaces, options."""
 
 import numpy as np
 import pytest
 
 from seismo3d.errors import InputError
 from seismo3d.seismic import FaultVotes, VotingOptions, fault_normals, thin_faults, vote_faults
-from seismo3d.seismic.faults.voting import fault_frames
+from seismo3d.seismic.faults.result import fault_frames
 
 
 def _line_image(shape=(120, 160), dip=75.0, x0=40.0, gap=(70, 90), noise=0.0, seed=0):
@@ -92,7 +92,7 @@ def test_options():
 def test_greedy_seeds_match_the_brute_force_and_ignore_the_input_order():
     """Seeds filed in cells of spacing + 1 samples are those of the plain greedy rule (strongest first, none within
     the spacing of a seed taken before), whatever order the candidates come in (block by block)."""
-    from seismo3d.seismic.faults.voting import greedy_seeds
+    from seismo3d.seismic.faults.surfaces.voting_kernels import greedy_seeds
 
     rng = np.random.default_rng(4)
     shape = (30, 25, 40)
@@ -130,7 +130,8 @@ def test_strongest_surface_does_not_depend_on_the_threads():
     seed id): the same on 1 and 2 numba threads and from run to run (the threads no longer race for it)."""
     import numba
 
-    from seismo3d.seismic.faults.voting import greedy_seeds, surface_votes
+    from seismo3d.seismic.faults.surfaces.voting_kernels import greedy_seeds
+    from seismo3d.seismic.faults.surfaces.voting import surface_votes
 
     fl = _crossing_faults()
     points = np.argwhere(fl > 0.6)
@@ -158,7 +159,8 @@ def test_votes_from_surfaces_computed_in_other_blocks_equal_the_whole_images():
     """Each seed's surface computed once, in a block holding the seed with the voting's reach around it, then cast
     into another block's core in batches (VoteSum, as the run by blocks does): the votes, strike and dip of the
     whole image over that core, bit for bit; seeds out of id order are refused."""
-    from seismo3d.seismic.faults.voting import VoteSum, greedy_seeds, seed_surfaces, surface_votes
+    from seismo3d.seismic.faults.surfaces.voting import VoteSum, seed_surfaces, surface_votes
+    from seismo3d.seismic.faults.surfaces.voting_kernels import greedy_seeds
 
     fl = _crossing_faults()
     points = np.argwhere(fl > 0.6)

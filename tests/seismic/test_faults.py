@@ -14,7 +14,8 @@ from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, Seismo3dWarning
 from seismo3d.seismic import (FaultInterpretation, evaluate_faults, fault_labels, fault_line_coverage, open_segy,
                               trace_faults)
-from seismo3d.seismic.faults import FaultTracingOptions, clean_traces
+from seismo3d.seismic.faults import FaultTracingOptions
+from seismo3d.seismic.faults.surfaces.dead_samples import clean_traces
 
 
 @pytest.fixture(scope="module")
@@ -67,7 +68,7 @@ def test_runs_of_equal_samples_are_scipys_opening():
     and length (traces shorter than the line included)."""
     from scipy.ndimage import binary_opening
 
-    from seismo3d.seismic.faults.dead_samples import _runs
+    from seismo3d.seismic.faults.surfaces.dead_samples import _runs
 
     rng = np.random.default_rng(0)
     for _ in range(50):

@@ -17,13 +17,15 @@ from seismo3d.data.synthetic_sections import synthetic_fault_section
 from seismo3d.errors import InputError, Seismo3dError
 from seismo3d.seismic import evaluate_faults, fault_labels, trace_faults
 from seismo3d.seismic.faults import FaultTracingOptions
-from seismo3d.seismic.faults import learned
-from seismo3d.seismic.faults.learned import (LearnedOptions, WEIGHTS_SHA256, amplitude_scale, fault_probability,
-                                             learned_fault_likelihood, load_fault_network,
-                                             orientation_from_likelihood)
-from seismo3d.seismic.faults.network_grid import grid_halo
-from seismo3d.seismic.faults.unet import (POOLING_MULTIPLE, RECEPTIVE_HALF, normalise_section, onnx_model,
-                                          unet_forward)
+from seismo3d.seismic.faults.likelihood import learned
+from seismo3d.seismic.faults.likelihood.learned import (
+    LearnedOptions, WEIGHTS_SHA256, amplitude_scale, fault_probability, learned_fault_likelihood, load_fault_network,
+    orientation_from_likelihood,
+)
+from seismo3d.seismic.faults.likelihood.network import grid_halo
+from seismo3d.seismic.faults.likelihood.network import (
+    POOLING_MULTIPLE, RECEPTIVE_HALF, normalise_section, onnx_model, unet_forward,
+)
 
 CHECK = Path(__file__).parent / "data" / "fault_unet_check.npz"
 LEARNED = FaultTracingOptions(likelihood="learned")
@@ -31,7 +33,7 @@ TEST_SEED = 31_000_000  # generator seeds the training never draws (it draws see
 
 
 def test_shipped_network_has_the_recorded_sha256_and_is_the_export_of_the_trained_weights():
-    files = resources.files("seismo3d.seismic.faults")
+    files = resources.files("seismo3d.seismic.faults.likelihood")
     raw = files.joinpath("fault_unet.onnx").read_bytes()
     assert hashlib.sha256(raw).hexdigest() == WEIGHTS_SHA256
     assert len(raw) <= 10 * 2 ** 20  # ships in <= 10 MB
@@ -202,8 +204,8 @@ def test_training_smoke(tmp_path):
     (LearnedOptions().resample, (120, 128, 32), 96),
 ])
 def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block):
-    from seismo3d.seismic.faults.learned_blocks import chunked_learned_likelihood
-    from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions
+    from seismo3d.seismic.faults.blocks.learned_blocks import chunked_learned_likelihood
+    from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions
 
     cube = synthetic_cube(shape, seed=2, noise=0.1).cube
     opt = LearnedOptions(resample=resample)
@@ -245,8 +247,8 @@ def test_a_block_on_the_whole_cubes_network_grid_equals_the_whole_cube():
 def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
     # the network is 2D: a block of sections needs the receptive half of halo along them only, so the plan makes
     # them as long as the limit allows (the whole width: no halo) and only then stacks sections
-    from seismo3d.seismic.faults import learned_blocks
-    from seismo3d.seismic.faults.likelihood_blocks import ChunkOptions
+    from seismo3d.seismic.faults.blocks import learned_blocks
+    from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions
 
     opt = LearnedOptions()
     baseline = 300 << 20
@@ -267,7 +269,7 @@ def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
 
 
 def test_network_grid_alignment_per_axis():
-    from seismo3d.seismic.faults.network_grid import to_network_grid
+    from seismo3d.seismic.faults.likelihood.network import to_network_grid
 
     block = np.random.default_rng(0).standard_normal((40, 40, 16)).astype(np.float32)
     _, first = to_network_grid(block, 0.7, origin=(13, 13), align=(1, 8))

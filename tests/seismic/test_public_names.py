@@ -28,6 +28,7 @@ def test_all_has_no_duplicates(package):
 
 
 def test_the_package_exports_what_it_did_before_the_sub_packages():
+    # link_faults, the region-growing linker that fault skins replaced, was removed (dead code; issue 53)
     before = {
         "POLARITIES", "Fault", "FaultCrossings", "FaultInterpretation", "FaultLikelihood", "FaultScanOptions",
         "FaultTracingOptions", "FaultVotes", "LazyCube", "open_lazy", "SkinOptions", "VotingOptions", "fault_skins",
@@ -35,7 +36,7 @@ def test_the_package_exports_what_it_did_before_the_sub_packages():
         "RegistrationErrors", "SeismicCube", "ThrowOptions", "TrackingOptions", "VolumeOptions",
         "VolumeRegistration", "autotrack", "discontinuity", "eigen_coherence", "evaluate_faults", "fault_labels",
         "fault_likelihood", "fault_normals", "fault_throw", "fault_throws", "fill_horizon", "horizon_errors",
-        "link_faults", "open_segy", "read_ascii_lines", "read_section", "read_segy", "reflector_picks",
+        "open_segy", "read_ascii_lines", "read_section", "read_segy", "reflector_picks",
         "reflector_points", "register_volumes", "registration_errors", "reliable_throw", "resample_volume",
         "semblance", "structure_tensor_orientation", "thin_faults", "trace_faults", "track_horizon",
         "volume_spacing", "write_horizon_text", "write_like",

@@ -248,5 +248,5 @@ def test_faults_job_reads_or_refuses_in_one_line(conformance_files, tmp_path, na
             assert "\n" not in str(exc), str(exc)
             assert not out.exists()  # a refusal leaves nothing behind
         else:  # pragma: no cover - every file here is too small to trace faults in (32 traces, 32 samples)
-            assert written["likelihood"].is_file()
+            assert written.written["likelihood"].is_file()  # FaultsJobResult.written: output name -> path
     assert hashlib.sha256(conformance_files[name].read_bytes()).hexdigest() == file_info(PREFIX + name).sha256

@@ -5,12 +5,14 @@ give."""
 import numpy as np
 import pytest
 
-import seismo3d.seismic.faults.surface_steps as surface_steps
+import seismo3d.seismic.faults.steps as surface_steps
 from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.seismic.faults.blocks.array_run import ArrayRun
 from seismo3d.seismic.faults import (
-    ArrayRun, FaultTracingOptions, fault_likelihood, fault_skins, skins_from_cells, surface_cells,
-    thin_faults, trace_faults, vote_faults,
+    FaultTracingOptions, fault_likelihood, fault_skins, thin_faults, trace_faults, vote_faults,
 )
+from seismo3d.seismic.faults.surfaces.skins import skins_from_cells
+from seismo3d.seismic.faults.steps import surface_cells
 
 STEPS = ["ridges", "seeds", "votes", "thresholds", "cells"]
 

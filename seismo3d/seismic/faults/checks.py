@@ -1,17 +1,20 @@
 """The refusals of fault tracing: data too small, not seismic amplitudes, or without lateral coherence.
 
 One function a check, called by every way a fault run goes: in memory (:func:`~seismo3d.seismic.faults.trace_faults`),
-block by block (:mod:`~seismo3d.seismic.faults.pipeline_blocks`) and on a sample of blocks
-(:mod:`~seismo3d.seismic.faults.preflight`). The warnings about NaN, dead and clipped samples are those of
-:mod:`~seismo3d.seismic.faults.dead_samples`.
+block by block (:mod:`~seismo3d.seismic.faults.blocks.surface_blocks`) and on a sample of blocks
+(:mod:`~seismo3d.seismic.faults.blocks.preflight`). The warnings about NaN, dead and clipped samples are those of
+:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`.
 """
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ...errors import UnsupportedDataError
-from .interpretation import FaultTracingOptions
+if TYPE_CHECKING:
+    from .options import FaultTracingOptions
 
 __all__ = ["check_amplitudes", "check_saturation", "check_size", "no_coherence_message"]
 
@@ -50,7 +53,7 @@ def check_amplitudes(arr: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions
     Parameters
     ----------
     arr : (..., n_samples) float ndarray
-        Amplitudes (NaN-free, as :func:`~seismo3d.seismic.faults.dead_samples.clean_traces` returns them).
+        Amplitudes (NaN-free, as :func:`~seismo3d.seismic.faults.surfaces.dead_samples.clean_traces` returns them).
     dead : bool ndarray of ``arr``'s shape
         Dead samples.
     opt : FaultTracingOptions
@@ -82,7 +85,7 @@ def check_saturation(high: int, live: int, opt: FaultTracingOptions) -> float:
     ----------
     high, live : int
         Live samples (not near dead ones) with a likelihood above 0.9, and all live samples: counted over the whole
-        array in memory, summed over the blocks of a run by blocks (:func:`~seismo3d.seismic.faults.steps.live_likelihood`).
+        array in memory, summed over the blocks of a run by blocks (:func:`~seismo3d.seismic.faults.surfaces.ridges.live_likelihood`).
     opt : FaultTracingOptions
 
     Returns

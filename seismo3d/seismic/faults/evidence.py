@@ -322,7 +322,7 @@ def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | N
     Parameters
     ----------
     faults : list of Fault
-        Fault skins (:func:`~seismo3d.seismic.faults.skins.fault_skins`), ids 1, 2, ... in decreasing size.
+        Fault skins (:func:`~seismo3d.seismic.faults.surfaces.skins.fault_skins`), ids 1, 2, ... in decreasing size.
     throws : list of FaultThrow
         Their throws, in the same order (:func:`~seismo3d.seismic.faults.throw.fault_throws`).
     options : EvidenceOptions, optional
@@ -331,7 +331,7 @@ def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | N
         In [0, 1]: higher keeps faults with smaller displacements (see :class:`EvidenceOptions`).
     vote_ratios, mean_likelihoods : sequence of float, optional
         Per fault, in the same order: its mean thinned votes over the run's upper vote threshold, and its mean fault
-        likelihood (:func:`~seismo3d.seismic.faults.surface_steps.faults_from_cells` measures both). Needed when
+        likelihood (:func:`~seismo3d.seismic.faults.steps.faults_from_cells` measures both). Needed when
         ``options`` ask for them.
 
     Returns

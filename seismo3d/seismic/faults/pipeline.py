@@ -2,12 +2,12 @@
 
 After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the steps with the defaults every seismo3d
 command uses and returns a :class:`FaultInterpretation`: the checks and the likelihood, then the one sequence of
-steps of :mod:`~seismo3d.seismic.faults.surface_steps`, on the whole array as one block
-(:class:`~seismo3d.seismic.faults.array_run.ArrayRun`) or block by block (:mod:`~seismo3d.seismic.faults.cube_run`);
+steps of :mod:`~seismo3d.seismic.faults.steps`, on the whole array as one block
+(:class:`~seismo3d.seismic.faults.blocks.array_run.ArrayRun`) or block by block (:mod:`~seismo3d.seismic.faults.blocks.cube_run`);
 :func:`clean_traces` finds the dead samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped
 amplitudes. Reading files and writing results is the ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
 
-Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood`.
+Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood.scan`.
 """
 
 from __future__ import annotations
@@ -20,16 +20,17 @@ import numpy as np
 from ..._progress import progress_steps
 from ..._validation import check_choice, check_positive
 from ...errors import InputError, Seismo3dWarning
-from .array_run import ArrayRun
-from .block_run import BlockRunOptions
+from .blocks.array_run import ArrayRun
+from ..blocks.options import BlockRunOptions
 from .checks import check_amplitudes, check_size, no_coherence_message
-from .cube_run import trace_faults_by_blocks
-from .dead_samples import CleanTraces, clean_traces, near_dead_samples
-from .interpretation import LIKELIHOODS, FaultInterpretation, FaultTracingOptions
-from .learned import learned_fault_likelihood
-from .likelihood import FaultLikelihood, fault_likelihood
-from .preflight import SampleOptions, judge_sample
-from .surface_steps import faults_from_cells, surface_cells
+from .surfaces.dead_samples import CleanTraces, clean_traces, near_dead_samples
+from .options import LIKELIHOODS, FaultTracingOptions
+from .result import FaultInterpretation
+from .likelihood.learned import learned_fault_likelihood
+from .result import FaultLikelihood
+from .likelihood.scan import fault_likelihood
+from .blocks.preflight import SampleOptions, judge_sample
+from .steps import faults_from_cells, surface_cells
 
 # check_size, check_amplitudes, no_coherence_message and LIKELIHOODS are imported here by older callers
 __all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "LIKELIHOODS", "check_amplitudes",
@@ -70,11 +71,11 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
 
     Memory and time: time and memory linear in the number of samples (see ``benchmarks/faults.py`` for the figures
     at 64^3 to 256^3). A 3D cube whose run in memory would need more than ``blocks.memory_limit`` beside the process
-    (:func:`~seismo3d.seismic.faults.memory.fits_in_memory`: about 24 times its float32 size) is traced block by
-    block (:mod:`~seismo3d.seismic.faults.cube_run`) into Zarr stores in ``blocks.work_dir``, with the same checks,
+    (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`: about 24 times its float32 size) is traced block by
+    block (:mod:`~seismo3d.seismic.faults.blocks.cube_run`) into Zarr stores in ``blocks.work_dir``, with the same checks,
     warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of blocks
-    first (:meth:`~seismo3d.seismic.faults.SampleOptions.worth_sampling`) is refused from that sample before the
-    whole likelihood (:func:`~seismo3d.seismic.faults.judge_sample`), on either path.
+    first (:meth:`~seismo3d.seismic.faults.blocks.preflight.SampleOptions.worth_sampling`) is refused from that sample before the
+    whole likelihood (:func:`~seismo3d.seismic.faults.blocks.preflight.judge_sample`), on either path.
 
     Parameters
     ----------
@@ -90,7 +91,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         Options of every step.
     likelihood : FaultLikelihood, optional
         The result of step 1 computed elsewhere with ``options.scan`` (e.g. block by block by
-        :func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood`), arrays of the data's shape; the
+        :func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood`), arrays of the data's shape; the
         scan is then skipped.
     blocks : BlockRunOptions, optional
         How a cube is run: the memory limit (default half of the RAM), a forced choice between the run in memory and
@@ -157,6 +158,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
             raise InputError(f"a {' x '.join(str(n) for n in np.shape(data))} cube beyond the memory limit is traced "
                              "block by block into Zarr stores: pass blocks=BlockRunOptions(work_dir=...) (an "
                              "existing folder), or a larger memory_limit")
+        from .blocks.cube_run import trace_faults_by_blocks
+
         return trace_faults_by_blocks(data, opt, sample_interval=sample_interval, sample_unit=sample_unit,
                                       memory_limit=run.limit, work_dir=run.work_dir, scheduler=run.scheduler,
                                       source=run.source, coords=run.coords, progress=progress)

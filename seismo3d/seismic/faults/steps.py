@@ -1,80 +1,192 @@
-"""The steps of :func:`~seismo3d.seismic.faults.trace_faults` after the fault likelihood, each on a whole array or on
-a block with the halo its operator needs.
+"""The one sequence of the steps of :func:`~seismo3d.seismic.faults.trace_faults` after the fault likelihood, for a
+run on the whole array in memory and a run block by block.
 
-The run in memory calls them on the whole array; the run by blocks
-(:mod:`~seismo3d.seismic.faults.pipeline_blocks`) calls the same functions on each block read with its halo and keeps
-the block's core. Halos (traces) are in :mod:`~seismo3d.seismic.faults.surface_plan`.
+A run is an object with the named steps of :class:`SurfaceRun`; :func:`surface_cells` calls them in their order with
+the saturation refusal between them, and :func:`faults_from_cells` links the cells into fault skins, measures their
+throws and keeps the faults the evidence supports. Two runs implement the steps:
+
+- :class:`~seismo3d.seismic.faults.blocks.array_run.ArrayRun`: the whole array as one block, in memory (2D or 3D);
+- ``_SurfaceRun`` of :mod:`~seismo3d.seismic.faults.blocks.surface_blocks`: block by block on dask into Zarr stores,
+  each block read with the halo of its step (a cube larger than memory).
+
+Both call the same step functions (:mod:`~seismo3d.seismic.faults.surfaces.ridges`, :func:`~seismo3d.seismic.faults.surfaces.voting.
+greedy_seeds`, :func:`~seismo3d.seismic.faults.surfaces.voting.surface_votes`, :func:`~seismo3d.seismic.faults.surfaces.skins.
+skins_from_cells`), so the faults do not depend on which run traced them.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import Protocol
+
 import numpy as np
 
-from .surfaces import check_fault_arrays, ridge_image
+from ..._progress import no_progress
+from .checks import check_saturation
+from .evidence import supported_faults
+from .options import FaultTracingOptions
+from .surfaces.skins import skins_from_cells
+from .throw import fault_throws
 
-__all__ = ["live_likelihood", "ridges", "thin_votes", "without_dead_edges"]
+__all__ = ["SurfaceCells", "SurfaceRun", "faults_from_cells", "surface_cells"]
 
 
-def live_likelihood(likelihood: np.ndarray, near_dead, core=None) -> tuple[int, int]:
-    """Set the likelihood next to dead samples to 0 (the edge of a dead zone is not a fault), in place; count the
-    saturated and the live samples of ``core`` for :func:`~seismo3d.seismic.faults.checks.check_saturation`.
+class SurfaceRun(Protocol):
+    """The steps after the fault likelihood, on the whole array or block by block."""
+
+    def ridges(self) -> tuple[int, int]:
+        """Dead samples and their reach, the likelihood set to 0 there, its ridges (the seed candidates); returns
+        (live samples with a likelihood above 0.9, live samples) for the saturation refusal."""
+
+    def seeds(self) -> tuple[np.ndarray, np.ndarray]:
+        """The voting seeds (k, 3) int64, strongest first, and their fault frames (k, 3, 3)."""
+
+    def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
+        """The seeds' optimal-surface votes, 0 near dead samples."""
+
+    def thresholds(self) -> tuple[float, float]:
+        """The votes thinned; (lower, upper) thresholds of the thinned votes."""
+
+    def cells(self, lower: float) -> int:
+        """The thinned votes below ``lower`` set to 0; the rest kept as cells; their number."""
+
+
+@dataclass(frozen=True)
+class SurfaceCells:
+    """What :func:`surface_cells` found.
+
+    Attributes
+    ----------
+    thresholds : (float, float)
+        Lower and upper thresholds on the thinned votes.
+    n_seeds, n_cells : int
+        Voting seeds, and thinned-vote samples linked into skins.
+    saturated_fraction : float
+        Fraction of the live samples with a likelihood above 0.9.
+    """
+
+    thresholds: tuple
+    n_seeds: int
+    n_cells: int
+    saturated_fraction: float
+
+
+def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> SurfaceCells:
+    """Ridges, saturation refusal, seeds, votes, thresholds and cells, in this order (Hale 2013; Wu & Fomel 2018).
 
     Parameters
     ----------
-    likelihood : float32 ndarray
-        Fault likelihood of an array or of a block with its halo; modified.
-    near_dead : bool ndarray of the same shape, or None
-        Samples near dead ones (:func:`~seismo3d.seismic.faults.dead_samples.near_dead_samples`); None: none.
-    core : tuple of slice, optional
-        The block's core within ``likelihood`` (default: all of it).
+    run : SurfaceRun
+        The whole array or the blocks.
+    opt : FaultTracingOptions
+    bar : progress bar, optional
+        Of :func:`seismo3d._progress.progress_steps`, advanced once per named step (ridges, voting, thinning);
+        default none (a run by blocks reports per block).
 
     Returns
     -------
-    (int, int)
-        Live samples of the core with a likelihood above 0.9, and live samples of the core.
+    SurfaceCells
+
+    Raises
+    ------
+    UnsupportedDataError
+        The likelihood is saturated (:func:`~seismo3d.seismic.faults.checks.check_saturation`).
+    InputError
+        A run by blocks whose seed candidates or cells need more than its memory limit.
     """
-    core = core or (slice(None),)
-    if near_dead is not None:
-        likelihood[near_dead] = 0.0
-    values = likelihood[core] if near_dead is None else likelihood[core][~near_dead[core]]
-    return int(np.count_nonzero(values > 0.9)), int(values.size)
+    bar = bar or no_progress()
+    bar.start("ridges")
+    high, live = run.ridges()
+    saturated = check_saturation(high, live, opt)
+    bar.advance()
+    bar.start("voting")
+    seeds, frames = run.seeds()
+    run.votes(seeds, frames)
+    bar.advance()
+    bar.start("thinning")
+    lower, upper = run.thresholds()
+    n_cells = run.cells(lower)
+    bar.advance()
+    return SurfaceCells((float(lower), float(upper)), int(len(seeds)), int(n_cells), float(saturated))
 
 
-def ridges(likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray, floor: float = 0.0) -> np.ndarray:
-    """The ridges of the fault likelihood (non-maximum suppression across the fault, smoothed): the voting's seed
-    candidates.
+def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, opt: FaultTracingOptions, *,
+                      likelihood=None, bar=None, progress: bool = False) -> tuple[list, list, list]:
+    """Fault skins of the cells, their throws, their strength along them, and the faults their evidence supports.
 
     Parameters
     ----------
-    likelihood, strike_deg, dip_deg : ndarray, one shape, float32
-        The (live) fault likelihood, its strike and dip in degrees.
-    floor : float
-        Ridge samples with a likelihood at or below it are left out (0): pass the voting's seed threshold, the
-        only ridges used (:attr:`~seismo3d.seismic.faults.VotingOptions.seed_threshold`); the ridges above it are
-        those of :func:`~seismo3d.seismic.thin_faults` with ``threshold=0``, computed on their neighbourhood only.
+    cells : tuple
+        (points (n, 3) int, values, strike_deg, dip_deg (n,) float32) of the run's cells, in C order.
+    shape : tuple of int
+        Shape of the image (2D or 3D).
+    windows : ndarray or window source
+        The amplitudes, for :func:`~seismo3d.seismic.fault_throws`.
+    thresholds : (float, float)
+        Lower and upper thresholds of the skins' hysteresis.
+    opt : FaultTracingOptions
+    likelihood : ndarray or zarr.Array, optional
+        The fault likelihood of the run, the shape of the image: its mean along each fault
+        (:attr:`~seismo3d.seismic.faults.evidence.FaultEvidence.mean_likelihood`) is read at the fault's points.
+        Needed when ``opt.evidence.min_probability`` is set.
+    bar : progress bar, optional
+        Advanced once per step (fault skins, throw, evidence).
+    progress : bool
+        Progress of the throws per fault.
 
     Returns
     -------
-    ndarray of the likelihood's shape, float32
-        The likelihood on its ridge samples above ``floor``, 0 elsewhere. Halo: ``RIDGE_HALO`` traces.
+    (faults, throws, evidence) : lists
+        As :attr:`~seismo3d.seismic.faults.FaultInterpretation.faults`, ``throws`` and ``evidence``.
+
+    Raises
+    ------
+    InputError
+        ``opt.evidence`` asks for the mean likelihood and ``likelihood`` is not given.
     """
-    fl, st, dp = check_fault_arrays(likelihood, strike_deg, dip_deg)
-    return ridge_image(fl, st, dp, floor=float(floor))
+    bar = bar or no_progress()
+    lower, upper = thresholds
+    bar.start("fault skins")
+    faults = skins_from_cells(*cells, shape=shape, lower=lower, upper=upper, options=opt.skins)
+    bar.advance()
+    bar.start("throw")
+    throws = fault_throws(windows, faults, progress=progress) if faults else []
+    bar.advance()
+    bar.start("evidence")
+    ratios = [float(np.mean(f.likelihood)) / float(upper) for f in faults]  # a skin's values are its thinned votes
+    means = _values_along(likelihood, faults) if likelihood is not None else None
+    faults, throws, evidence = supported_faults(faults, list(throws), options=opt.evidence,
+                                                sensitivity=opt.sensitivity, vote_ratios=ratios,
+                                                mean_likelihoods=means)
+    bar.advance()
+    return faults, throws, evidence
 
 
-def without_dead_edges(votes: np.ndarray, near_dead) -> np.ndarray:
-    """The votes set to 0 near dead samples, in place: voting surfaces bridge gaps, but a fault is not drawn across
-    dead traces. ``near_dead``: bool array of the votes' shape, or None (nothing to do)."""
-    if near_dead is not None:
-        votes[near_dead] = 0.0
-    return votes
+def _values_along(image, faults: list) -> list[float]:
+    """The mean of ``image`` over each fault's points.
 
+    Parameters
+    ----------
+    image : ndarray or zarr.Array
+        An image of the faults' data (2D or 3D), e.g. the fault likelihood; a Zarr array is read at the points only
+        (coordinate selection), all faults at once.
+    faults : list of Fault
+        Faults with ``points`` (n, ndim) integer indices into ``image``.
 
-def thin_votes(votes: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray) -> np.ndarray:
-    """The votes thinned to 1-sample-wide faults (no smoothing: the votes are smooth already).
-
-    Halo: ``THIN_HALO`` traces. Arrays of one shape, float32; returns the thinned votes, float32 (0 off the faults).
+    Returns
+    -------
+    list of float
+        One mean per fault (NaN for a fault without points).
     """
-    fv, st, dp = check_fault_arrays(votes, strike_deg, dip_deg)
-    return ridge_image(fv, st, dp, floor=0.0, sigma=0.0, dip_smoothing=0)
-
+    if not faults:
+        return []
+    points = np.concatenate([np.asarray(f.points, np.int64) for f in faults])
+    index = tuple(points.T)
+    values = (np.asarray(image[index]) if isinstance(image, np.ndarray)
+              else np.asarray(image.get_coordinate_selection(index)))
+    out, start = [], 0
+    for f in faults:
+        n = len(f.points)
+        out.append(float(values[start:start + n].astype(np.float64).mean()) if n else float("nan"))
+        start += n
+    return out

@@ -7,7 +7,7 @@ a global search of the normalised cross-correlation over integer shifts (immune 
 reflectors), then a registration of the reflector peaks of the two images with the ICP engine
 (:func:`seismo3d.registration.icp`, method.md section 1), which models throw varying linearly along strike.
 
-Conventions (index space, as in :mod:`seismo3d.seismic.faults.likelihood` and :mod:`seismo3d.data.synthetic`): axis 0
+Conventions (index space, as in :mod:`seismo3d.seismic.faults.likelihood.scan` and :mod:`seismo3d.data.synthetic`): axis 0
 inline, axis 1 crossline, the last axis the sample (downward); one trace spacing and one sample both count as 1. Throw
 is the vertical component of the fault slip, in samples: **positive when the hanging wall moved down** (normal fault),
 negative when it moved up (reverse fault). The hanging wall is the block above the fault plane, on the side the fault
@@ -17,23 +17,18 @@ the sample interval to get the throw in ms or m.
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from ..._options import resolve_options
 from ..._progress import progress_steps
 from ..._validation import as_normals, as_points, check_positive
-from ...errors import DegenerateGeometryWarning, InputError, RegistrationError
+from ...errors import InputError
 from ...geometry.normals import estimate_normals
-from ...geometry.transforms import make_transform
-from ...registration import ICPOptions, icp
 from ..attributes import ReflectorOrientation
-from ..traces import parabolic_offset, subsample_peak
-from .windows import cube_windows
-from .throw_patches import _patch_grid, _read_box, _patch_images
+from ..blocks.windows import cube_windows
+from .throw_patches import ncc_shift, patch_grid, patch_images, read_box, register_patch
 
 __all__ = ["FaultThrow", "ThrowOptions", "fault_throw", "fault_throws", "hanging_wall_normals"]
 
@@ -238,121 +233,6 @@ def hanging_wall_normals(normals3) -> np.ndarray:
 # correlation start and registration refinement
 
 
-def _ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt: ThrowOptions):
-    """Shift k maximising the normalised cross-correlation of f(u, t - k) with h(u, t), refined by a parabola.
-
-    The search uses the cross-correlation normalised by the energies of the *whole* images (zero outside the
-    overlap), which penalises shifts where the images barely overlap (on a short fault, a large shift would otherwise
-    correlate a few samples by chance). Returns (shift in samples, normalised correlation over the overlap at that
-    shift), or (nan, nan) when no shift overlaps enough.
-    """
-    nt = f.shape[1]
-    ks = np.arange(-max_throw, max_throw + 1)
-    cc = np.full(ks.size, np.nan)
-    local = np.full(ks.size, np.nan)
-    ef = np.dot(f[vf], f[vf])
-    eh = np.dot(h[vh], h[vh])
-    if ef <= 0 or eh <= 0:
-        return np.nan, np.nan, np.nan
-    for i, k in enumerate(ks):
-        if abs(k) >= nt:
-            continue
-        if k >= 0:
-            a, va, b, vb = f[:, :nt - k], vf[:, :nt - k], h[:, k:], vh[:, k:]
-        else:
-            a, va, b, vb = f[:, -k:], vf[:, -k:], h[:, :nt + k], vh[:, :nt + k]
-        m = va & vb
-        if m.sum() < min_overlap or np.count_nonzero(m.any(axis=0)) < opt.min_rows:
-            continue
-        am, bm = a[m], b[m]
-        num = np.dot(am, bm)
-        cc[i] = num / np.sqrt(ef * eh)
-        den = np.sqrt(np.dot(am, am) * np.dot(bm, bm))
-        local[i] = num / den if den > 0 else 0.0
-    if not np.any(np.isfinite(cc)):
-        return np.nan, np.nan, np.nan
-    # pick the peak with a mild preference for small shifts (weight 1 at zero, 0.75 at max_throw): when two shifts
-    # correlate about equally (a reflector sequence repeating by chance), the smaller displacement is kept
-    i = int(np.nanargmax(cc * (1.0 - opt.small_shift_prior * np.abs(ks) / (max_throw + 1.0))))
-    return float(ks[i]) + subsample_peak(cc, i), float(local[i]), float(local[max_throw])
-
-
-def _peaks(img, valid, u0, t0):
-    """Reflector-peak points (u, t) of a fault-plane image: local maxima along t above half the image's RMS."""
-    inner = valid[:, 1:-1] & valid[:, :-2] & valid[:, 2:]
-    if not inner.any():
-        return np.zeros((0, 2))
-    c, up, dn = img[:, 1:-1], img[:, :-2], img[:, 2:]
-    rms = np.sqrt(np.mean(img[valid] ** 2))
-    is_peak = inner & (c > up) & (c >= dn) & (c > 0.5 * rms)
-    r, k = np.nonzero(is_peak)
-    off = parabolic_offset(up[r, k], c[r, k], dn[r, k])
-    return np.column_stack([r + u0, k + 1 + t0 + off]).astype(np.float64)
-
-
-@dataclass(frozen=True)
-class _PatchFit:
-    """A patch's registered throw ``a + b u`` and the registration's quality."""
-
-    a: float  # throw at u = 0, samples
-    b: float  # throw gradient along strike, samples per trace
-    fitness: float
-    inlier_rmse: float
-    n_points: int  # footwall peaks registered
-
-
-def _register(patch, shift, opt: ThrowOptions):
-    """ICP of footwall peaks onto hanging-wall peaks in the (u, t) plane; a :class:`_PatchFit`, or None.
-
-    The throw model is ``a + b u`` (pure dip-slip: the slip is along t in the fault plane, linear along strike).
-    """
-    src = _peaks(patch.img[0], patch.valid[0], patch.u0, patch.t0)
-    dst = _peaks(patch.img[1], patch.valid[1], patch.u0, patch.t0)
-    if len(src) < opt.min_peaks or len(dst) < opt.min_peaks or np.ptp(src[:, 0]) < 4:
-        return None
-    nrm = estimate_normals(dst, k=min(5, len(dst)), orient="none")
-    try:
-        with warnings.catch_warnings():
-            # sliding along the reflectors (along strike) is unconstrained when they are parallel; the throw is
-            # measured at constant u below, so that direction does not matter
-            warnings.simplefilter("ignore", DegenerateGeometryWarning)
-            res = icp(src, dst, method="point_to_plane", model="rigid", target_normals=nrm,
-                      init=make_transform(np.eye(2), [0.0, shift]),
-                      options=ICPOptions(max_distance=opt.icp_distances, max_iterations=20, tolerance=1e-4))
-    except RegistrationError:
-        return None
-    m = res.transform
-    angle = float(np.arctan2(m[1, 0], m[0, 0]))
-    if abs(angle) > opt.max_rotation or res.fitness < 0.5:
-        return None
-    # Throw at each registered footwall peak: the t offset, at the peak's own u, of the hanging-wall reflector it lands
-    # on (the target line through the moved point, with the nearest target normal): removes any slide along strike.
-    moved = src @ m[:2, :2].T + m[:2, 2]
-    dist, j = cKDTree(dst).query(moved, k=1, distance_upper_bound=opt.icp_distances[-1])
-    ok = np.isfinite(dist)
-    if ok.sum() < opt.min_peaks:
-        return None
-    n_u, n_t = nrm[j[ok], 0], nrm[j[ok], 1]
-    flat = np.abs(n_t) > 0.5  # reflector lines within 60 degrees of the strike direction
-    mv, sp = moved[ok][flat], src[ok][flat]
-    if len(sp) < opt.min_peaks:
-        return None
-    thr = mv[:, 1] - n_u[flat] / n_t[flat] * (sp[:, 0] - mv[:, 0]) - sp[:, 1]
-    # robust straight line thr = a + b u: least squares, drop residuals beyond 3 MAD, least squares again
-    design = np.column_stack([np.ones(len(sp)), sp[:, 0]])
-    coef = np.linalg.lstsq(design, thr, rcond=None)[0]
-    r = thr - design @ coef
-    keep = np.abs(r - np.median(r)) <= 3.0 * 1.4826 * np.median(np.abs(r - np.median(r))) + 1e-3
-    if keep.sum() < opt.min_peaks:
-        return None
-    coef = np.linalg.lstsq(design[keep], thr[keep], rcond=None)[0]
-    a, b = float(coef[0]), float(coef[1])
-    u_mid = 0.5 * (sp[:, 0].min() + sp[:, 0].max())
-    if abs(b) > opt.max_rotation or abs(a + b * u_mid - shift) > 1.5:
-        return None  # the refinement moved to another reflector: keep the correlation start
-    return _PatchFit(a, b, float(res.fitness), float(res.inlier_rmse), int(len(src)))
-
-
 # --------------------------------------------------------------------------------------------------------------------
 # public API
 
@@ -455,7 +335,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     trace for the linear interpolation and one against rounding), assembled from tiles of 64 x 64 traces (every
     sample) whose reflector slopes are computed with the halo of the structure tensor's filters
     (:func:`~seismo3d.seismic.attributes.structure_tensor_halo`: 9 traces), clipped at the cube's edges; the tiles
-    last used (up to 256 MiB) are kept for the next patches (:class:`~seismo3d.seismic.faults.windows.LazyWindows`).
+    last used (up to 256 MiB) are kept for the next patches (:class:`~seismo3d.seismic.blocks.windows.LazyWindows`).
     Those slopes equal the whole cube's and the bounds tests use the cube's shape, so the throws are the in-memory
     ones (bit for bit on the generated cubes of the tests). Memory: the tile cache, one window (about 150 x 150
     traces for a fault dipping 60-70 degrees over 256 samples) and one tile's orientation workspace, plus the
@@ -465,7 +345,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, or 3D dask.array.Array
         Seismic amplitudes, the last axis the sample. Must be finite (for a dask array: the traces read, checked as
-        they are read). Or a window source of :mod:`seismo3d.seismic.faults.windows` (e.g.
+        they are read). Or a window source of :mod:`seismo3d.seismic.blocks.windows` (e.g.
         ``LazyWindows(dask_array, tile=32, cache_mb=64)`` for another memory / speed trade-off).
     faults : sequence of Fault or of (n_points, ndim) array_like
         Faults from :func:`seismo3d.seismic.link_faults`.
@@ -502,7 +382,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
 
 
 def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
-    """Throw along one fault, reading ``source`` (:func:`~seismo3d.seismic.faults.windows.cube_windows`) one patch
+    """Throw along one fault, reading ``source`` (:func:`~seismo3d.seismic.blocks.windows.cube_windows`) one patch
     window at a time."""
     shape = source.shape
     two_d = len(shape) == 2
@@ -542,16 +422,16 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         sel = np.nonzero(pid == k)[0]
         if len(sel) < 3:
             continue
-        grid = _patch_grid(pts3[sel], nrm3[sel])
+        grid = patch_grid(pts3[sel], nrm3[sel])
         if grid is None:
             continue
         # the patch's traces (plus the halo of their reflector slopes) only; the whole array when in memory
-        win = source.window(*_read_box(grid, opt.side_traces[1] + opt.slope_margin, cube_shape))
-        patch = _patch_images(grid, win, opt.side_traces, opt.slope_margin)
+        win = source.window(*read_box(grid, opt.side_traces[1] + opt.slope_margin, cube_shape))
+        patch = patch_images(grid, win, opt.side_traces, opt.slope_margin)
         coherence[sel] = float(np.min(patch.coherence))  # NaN when either side is NaN
         ut = grid.ut
         reach = min(max_throw, int(opt.max_throw_per_height * patch.img[0].shape[1]))
-        shift, cc, cc0 = _ncc_shift(patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach,
+        shift, cc, cc0 = ncc_shift(patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach,
                                     opt.min_overlap[0 if two_d else 1], opt) if reach >= 1 else (np.nan,) * 3
         if not np.isfinite(shift):
             continue
@@ -560,7 +440,7 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         corr[sel] = cc
         corr0[sel] = cc0
         if opt.refine and not two_d:
-            fit = _register(patch, shift, opt)
+            fit = register_patch(patch, shift, opt)
             if fit is not None:
                 throw[sel] = fit.a + fit.b * ut[:, 0]
                 registered[sel] = True

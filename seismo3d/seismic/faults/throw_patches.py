@@ -3,14 +3,21 @@ its plane, the box of the cube each patch reads, and the images of the reflector
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .windows import CubeWindow
+from ...errors import DegenerateGeometryWarning, RegistrationError
+from ...geometry.normals import estimate_normals
+from ...geometry.transforms import make_transform
+from ...registration import ICPOptions, icp
+from ..blocks.windows import CubeWindow
+from ..traces import parabolic_offset, subsample_peak
 
-__all__ = []  # private to the throw
+# used by the throw module; not part of the package's public face
+__all__ = ["PatchFit", "ncc_shift", "patch_grid", "patch_images", "read_box", "reflector_peaks", "register_patch"]
 
 
 def _side_slope(win: CubeWindow, il, xl, t, h, d_slope):
@@ -81,7 +88,7 @@ class _PatchGrid:
     ut: np.ndarray  # (n_points, 2) the fault points' (u, t)
 
 
-def _patch_grid(pts3, nrm3) -> _PatchGrid | None:
+def patch_grid(pts3, nrm3) -> _PatchGrid | None:
     """The fault-plane grid of one patch of fault points (None for a horizontal fault).
 
     Frame: origin at the points' mean lateral position, ``h`` the horizontal part of the mean normal (into the
@@ -118,8 +125,8 @@ def _patch_grid(pts3, nrm3) -> _PatchGrid | None:
     return _PatchGrid(h, il, xl, nodes[:, 1], rows, cols, u_lo, t_lo, gu.shape, ut)
 
 
-def _read_box(grid: _PatchGrid, reach: float, cube_shape) -> tuple[int, int, int, int]:
-    """Inline and crossline ranges ``(i0, i1, j0, j1)`` (half-open) of the traces :func:`_patch_images` reads for
+def read_box(grid: _PatchGrid, reach: float, cube_shape) -> tuple[int, int, int, int]:
+    """Inline and crossline ranges ``(i0, i1, j0, j1)`` (half-open) of the traces :func:`patch_images` reads for
     ``grid``: every read is at ``node + d h`` with ``|d| <= reach`` traces (the slopes at ``side_traces[1] +
     slope_margin``, the amplitudes nearer), interpolated linearly from the traces ``floor`` and ``floor + 1``; one
     trace more on each side against rounding; clipped to the cube (beyond it reads clamp to the edge trace)."""
@@ -135,9 +142,9 @@ def _read_box(grid: _PatchGrid, reach: float, cube_shape) -> tuple[int, int, int
     return i0, max(min(i1, n0), i0 + 1), j0, max(min(j1, n1), j0 + 1)
 
 
-def _patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Patch:
+def patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Patch:
     """The footwall and hanging-wall fault-plane images of one patch, read from ``win`` (which holds the traces of
-    :func:`_read_box`)."""
+    :func:`read_box`)."""
     images, valids, coherence = [], [], []
     for sign in (-1.0, 1.0):
         p = _side_slope(win, grid.il, grid.xl, grid.t, grid.h, sign * (sides[1] + slope_margin))
@@ -153,3 +160,118 @@ def _patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Pa
         images.append(img)
         valids.append(val)
     return _Patch(grid.u0, grid.t0, tuple(images), tuple(valids), tuple(coherence))
+
+
+def ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt):
+    """Shift k maximising the normalised cross-correlation of f(u, t - k) with h(u, t), refined by a parabola.
+
+    The search uses the cross-correlation normalised by the energies of the *whole* images (zero outside the
+    overlap), which penalises shifts where the images barely overlap (on a short fault, a large shift would otherwise
+    correlate a few samples by chance). Returns (shift in samples, normalised correlation over the overlap at that
+    shift), or (nan, nan) when no shift overlaps enough.
+    """
+    nt = f.shape[1]
+    ks = np.arange(-max_throw, max_throw + 1)
+    cc = np.full(ks.size, np.nan)
+    local = np.full(ks.size, np.nan)
+    ef = np.dot(f[vf], f[vf])
+    eh = np.dot(h[vh], h[vh])
+    if ef <= 0 or eh <= 0:
+        return np.nan, np.nan, np.nan
+    for i, k in enumerate(ks):
+        if abs(k) >= nt:
+            continue
+        if k >= 0:
+            a, va, b, vb = f[:, :nt - k], vf[:, :nt - k], h[:, k:], vh[:, k:]
+        else:
+            a, va, b, vb = f[:, -k:], vf[:, -k:], h[:, :nt + k], vh[:, :nt + k]
+        m = va & vb
+        if m.sum() < min_overlap or np.count_nonzero(m.any(axis=0)) < opt.min_rows:
+            continue
+        am, bm = a[m], b[m]
+        num = np.dot(am, bm)
+        cc[i] = num / np.sqrt(ef * eh)
+        den = np.sqrt(np.dot(am, am) * np.dot(bm, bm))
+        local[i] = num / den if den > 0 else 0.0
+    if not np.any(np.isfinite(cc)):
+        return np.nan, np.nan, np.nan
+    # pick the peak with a mild preference for small shifts (weight 1 at zero, 0.75 at max_throw): when two shifts
+    # correlate about equally (a reflector sequence repeating by chance), the smaller displacement is kept
+    i = int(np.nanargmax(cc * (1.0 - opt.small_shift_prior * np.abs(ks) / (max_throw + 1.0))))
+    return float(ks[i]) + subsample_peak(cc, i), float(local[i]), float(local[max_throw])
+
+
+def reflector_peaks(img, valid, u0, t0):
+    """Reflector-peak points (u, t) of a fault-plane image: local maxima along t above half the image's RMS."""
+    inner = valid[:, 1:-1] & valid[:, :-2] & valid[:, 2:]
+    if not inner.any():
+        return np.zeros((0, 2))
+    c, up, dn = img[:, 1:-1], img[:, :-2], img[:, 2:]
+    rms = np.sqrt(np.mean(img[valid] ** 2))
+    is_peak = inner & (c > up) & (c >= dn) & (c > 0.5 * rms)
+    r, k = np.nonzero(is_peak)
+    off = parabolic_offset(up[r, k], c[r, k], dn[r, k])
+    return np.column_stack([r + u0, k + 1 + t0 + off]).astype(np.float64)
+
+
+@dataclass(frozen=True)
+class PatchFit:
+    """A patch's registered throw ``a + b u`` and the registration's quality."""
+
+    a: float  # throw at u = 0, samples
+    b: float  # throw gradient along strike, samples per trace
+    fitness: float
+    inlier_rmse: float
+    n_points: int  # footwall peaks registered
+
+
+def register_patch(patch, shift, opt):
+    """ICP of footwall peaks onto hanging-wall peaks in the (u, t) plane; a :class:`PatchFit`, or None.
+
+    The throw model is ``a + b u`` (pure dip-slip: the slip is along t in the fault plane, linear along strike).
+    """
+    src = reflector_peaks(patch.img[0], patch.valid[0], patch.u0, patch.t0)
+    dst = reflector_peaks(patch.img[1], patch.valid[1], patch.u0, patch.t0)
+    if len(src) < opt.min_peaks or len(dst) < opt.min_peaks or np.ptp(src[:, 0]) < 4:
+        return None
+    nrm = estimate_normals(dst, k=min(5, len(dst)), orient="none")
+    try:
+        with warnings.catch_warnings():
+            # sliding along the reflectors (along strike) is unconstrained when they are parallel; the throw is
+            # measured at constant u below, so that direction does not matter
+            warnings.simplefilter("ignore", DegenerateGeometryWarning)
+            res = icp(src, dst, method="point_to_plane", model="rigid", target_normals=nrm,
+                      init=make_transform(np.eye(2), [0.0, shift]),
+                      options=ICPOptions(max_distance=opt.icp_distances, max_iterations=20, tolerance=1e-4))
+    except RegistrationError:
+        return None
+    m = res.transform
+    angle = float(np.arctan2(m[1, 0], m[0, 0]))
+    if abs(angle) > opt.max_rotation or res.fitness < 0.5:
+        return None
+    # Throw at each registered footwall peak: the t offset, at the peak's own u, of the hanging-wall reflector it lands
+    # on (the target line through the moved point, with the nearest target normal): removes any slide along strike.
+    moved = src @ m[:2, :2].T + m[:2, 2]
+    dist, j = cKDTree(dst).query(moved, k=1, distance_upper_bound=opt.icp_distances[-1])
+    ok = np.isfinite(dist)
+    if ok.sum() < opt.min_peaks:
+        return None
+    n_u, n_t = nrm[j[ok], 0], nrm[j[ok], 1]
+    flat = np.abs(n_t) > 0.5  # reflector lines within 60 degrees of the strike direction
+    mv, sp = moved[ok][flat], src[ok][flat]
+    if len(sp) < opt.min_peaks:
+        return None
+    thr = mv[:, 1] - n_u[flat] / n_t[flat] * (sp[:, 0] - mv[:, 0]) - sp[:, 1]
+    # robust straight line thr = a + b u: least squares, drop residuals beyond 3 MAD, least squares again
+    design = np.column_stack([np.ones(len(sp)), sp[:, 0]])
+    coef = np.linalg.lstsq(design, thr, rcond=None)[0]
+    r = thr - design @ coef
+    keep = np.abs(r - np.median(r)) <= 3.0 * 1.4826 * np.median(np.abs(r - np.median(r))) + 1e-3
+    if keep.sum() < opt.min_peaks:
+        return None
+    coef = np.linalg.lstsq(design[keep], thr[keep], rcond=None)[0]
+    a, b = float(coef[0]), float(coef[1])
+    u_mid = 0.5 * (sp[:, 0].min() + sp[:, 0].max())
+    if abs(b) > opt.max_rotation or abs(a + b * u_mid - shift) > 1.5:
+        return None  # the refinement moved to another reflector: keep the correlation start
+    return PatchFit(a, b, float(res.fitness), float(res.inlier_rmse), int(len(src)))

@@ -16,11 +16,11 @@ from .dp import sample_at
 __all__ = ["window_correlation", "neighbour_confidence"]
 
 
-_PAIR_CHUNK = 256  # pairs per parallel task of _pair_lags
+_PAIR_CHUNK = 256  # pairs per parallel task of pair_lags
 
 
 @nb.njit(cache=True, parallel=True)
-def _pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
+def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
     """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
     of trace a around ``ta``; returns (lag relative to centre, score), NaN where not measured
     (:func:`_one_pair_lag`); the pairs in parallel chunks."""
@@ -246,7 +246,7 @@ def window_correlation(traces: np.ndarray, a: np.ndarray, ta: np.ndarray, b: np.
     (n_pairs,) float64 ndarray
         In [-1, 1]; NaN where a centre is NaN or the windows overlap the traces too little.
     """
-    _, score = _pair_lags(traces, np.asarray(a, np.intp), np.asarray(ta, np.float64), np.asarray(b, np.intp),
+    _, score = pair_lags(traces, np.asarray(a, np.intp), np.asarray(ta, np.float64), np.asarray(b, np.intp),
                           np.asarray(tb, np.float64), int(half), 0, 0.8)
     return score
 

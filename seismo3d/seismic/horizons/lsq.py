@@ -45,17 +45,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numba as nb
 import numpy as np
 from scipy import sparse
 from scipy.sparse.csgraph import connected_components
 
 from ..._progress import progress_steps
 from ..reflectors import nearest_pick, nearest_reflector, reflector_picks
-from .correlation import _pair_lags, neighbour_confidence, window_correlation
+from .correlation import pair_lags, neighbour_confidence, window_correlation
 from .cycle_cut import cycle_cut
 from .dp import dp_picks, line_slopes, reflector_period, settle_lone_departures
 from .fault_crossings import FaultCrossings
+from .laplacian import coarse_labels, solve_weighted
 from .result import no_pick_error
 
 __all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "window_correlation", "solve_horizon", "cycle_skips",
@@ -152,7 +152,7 @@ def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndar
     PairShifts
     """
     ta, tb = times[a], times[b]
-    lag, score = _pair_lags(traces, a, ta, b, tb, int(half), int(max_lag), 0.8)
+    lag, score = pair_lags(traces, a, ta, b, tb, int(half), int(max_lag), 0.8)
     shift = tb + lag - ta
     if jumps is not None:
         # pairs across traced faults: long windows straddle the fault where it dips, and its throw varies with
@@ -162,8 +162,8 @@ def pair_shifts(traces: np.ndarray, times: np.ndarray, a: np.ndarray, b: np.ndar
         alt = np.nonzero(np.isfinite(jumps) & (jumps != 0.0))[0]
         if alt.size:
             short = max(4, int(half) // 4)
-            _, score1 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt], short, int(max_lag), 0.8)
-            lag2, score2 = _pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt] + jumps[alt], short,
+            _, score1 = pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt], short, int(max_lag), 0.8)
+            lag2, score2 = pair_lags(traces, a[alt], ta[alt], b[alt], tb[alt] + jumps[alt], short,
                                       int(max(3, max_lag // 4)), 0.8)
             better = np.nan_to_num(score2, nan=-2.0) > np.nan_to_num(score1, nan=-2.0)
             take = alt[better]
@@ -201,7 +201,7 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
         Weights of the seed and damping equations.
     lateral_shape : tuple of int, optional
         The grid of the ``n`` traces (default ``(n,)``): the blocks of neighbouring traces whose common shift the
-        solver's coarse level corrects (:func:`_coarse_labels`).
+        solver's coarse level corrects (:func:`coarse_labels`).
 
     Returns
     -------
@@ -221,148 +221,16 @@ def solve_horizon(n: int, pairs: PairShifts, seeds: np.ndarray, seed_times: np.n
     w0 = pairs.score[ok] ** 2 / pairs.distance[ok].astype(np.float64) ** distance_power
     prev = np.full(n, float(np.mean(seed_times))) if previous is None else np.where(np.isfinite(previous), previous,
                                                                                         float(np.mean(seed_times)))
-    labels, n_coarse = _coarse_labels((n,) if lateral_shape is None else tuple(lateral_shape))
+    labels, n_coarse = coarse_labels((n,) if lateral_shape is None else tuple(lateral_shape))
     t = prev
     for _ in range(robust_iterations + 1):
         w = w0 if robust is None else w0 / (1.0 + ((t[b] - t[a] - s) / robust) ** 2)
-        t = _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start=t, labels=labels,
+        t = solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start=t, labels=labels,
                             n_coarse=n_coarse)
     graph = sparse.coo_matrix((np.ones(a.size), (a, b)), shape=(n, n))
     _, label = connected_components(graph, directed=False)
     reached = np.isin(label, label[seeds])
     return np.where(reached, t, np.nan)
-
-
-_AGGREGATE = 64  # traces per aggregate of the solver's coarse level
-_MAX_COARSE = 512  # aggregates at most (their system is solved densely)
-
-
-def _coarse_labels(lateral_shape: tuple) -> tuple[np.ndarray, int]:
-    """Aggregates of the solver's coarse level: compact blocks of about :data:`_AGGREGATE` neighbouring traces (as
-    square as the grid allows; larger where there would be more than :data:`_MAX_COARSE`), as (n,) int64 labels (C
-    order over ``lateral_shape``) and their count."""
-    n = int(np.prod(lateral_shape))
-    if n == 0:
-        return np.zeros(0, np.int64), 1
-    size = max(_AGGREGATE, n / _MAX_COARSE)  # traces per aggregate
-    labels = np.zeros(lateral_shape, np.int64)
-    for axis, length in enumerate(lateral_shape):
-        # the side the aggregate's remaining traces would have on the remaining axes: a short axis is taken whole
-        # and the aggregates grow along the others
-        side = size ** (1.0 / (len(lateral_shape) - axis))
-        count = max(1, min(length, int(round(length / side))))
-        size /= length / count
-        shape = [1] * len(lateral_shape)
-        shape[axis] = length
-        labels = labels * count + (np.arange(length) * count // length).reshape(shape)  # blocks of equal length
-    labels = labels.ravel()  # every block holds a trace (count <= length): the labels are 0 .. n_coarse - 1
-    return labels, int(labels.max()) + 1
-
-
-def _solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start, labels, n_coarse):
-    """One weighted solve of the normal equations by two-level preconditioned conjugate gradients (started at
-    ``start``: the last re-weighted solution, which the next one differs little from)."""
-    # normal equations of the pair rows (a graph Laplacian, applied from the pair list) plus the seeds and the damping
-    ws = w * s
-    rhs = np.bincount(b, ws, minlength=n) - np.bincount(a, ws, minlength=n) + damping ** 2 * prev
-    diag = np.full(n, damping ** 2) + np.bincount(seeds, minlength=n) * seed_weight ** 2
-    rhs += np.bincount(seeds, seed_weight ** 2 * seed_times, minlength=n)
-    # the right-hand side is dominated by the seed rows (seed_weight^2 x time, ~1e6), so a residual relative to it
-    # must be small for the pair rows (weights ~1) to be solved to a fraction of a sample
-    return _laplacian_cg(a, b, w, diag, rhs, np.array(start, np.float64), 1e-10, 2000, labels, n_coarse)
-
-
-@nb.njit(cache=True)
-def _laplacian_matvec(a, b, w, diag, x, out):
-    """``out = (L + diag(diag)) x`` with ``L`` the weighted graph Laplacian of the pairs ``a, b`` (weights ``w``)."""
-    for k in range(x.size):
-        out[k] = diag[k] * x[k]
-    for e in range(a.size):
-        d = w[e] * (x[a[e]] - x[b[e]])
-        out[a[e]] += d
-        out[b[e]] -= d
-
-
-@nb.njit(cache=True)
-def _coarse_factor(a, b, w, diag, labels, n_coarse):
-    """Cholesky factor (lower) of the aggregates' system ``P^T (L + diag(diag)) P`` (``P`` the 0/1 matrix of
-    ``labels``): the pairs inside an aggregate drop out, those between two add to the Laplacian of the aggregates."""
-    coarse = np.zeros((n_coarse, n_coarse))
-    for k in range(diag.size):
-        coarse[labels[k], labels[k]] += diag[k]
-    for e in range(a.size):
-        i, j = labels[a[e]], labels[b[e]]
-        if i != j:
-            coarse[i, i] += w[e]
-            coarse[j, j] += w[e]
-            coarse[i, j] -= w[e]
-            coarse[j, i] -= w[e]
-    return np.linalg.cholesky(coarse)
-
-
-@nb.njit(cache=True)
-def _precondition(r, inv, labels, chol, rc, z):
-    """``z = D^-1 r + P (P^T A P)^-1 P^T r``: Jacobi plus the aggregates' correction (``chol`` the factor of
-    :func:`_coarse_factor`; ``rc`` work array)."""
-    nc = rc.size
-    rc[:] = 0.0
-    for k in range(r.size):
-        rc[labels[k]] += r[k]
-    for i in range(nc):  # forward: chol y = rc
-        v = rc[i]
-        for j in range(i):
-            v -= chol[i, j] * rc[j]
-        rc[i] = v / chol[i, i]
-    for i in range(nc - 1, -1, -1):  # backward: chol^T x = y
-        v = rc[i]
-        for j in range(i + 1, nc):
-            v -= chol[j, i] * rc[j]
-        rc[i] = v / chol[i, i]
-    for k in range(r.size):
-        z[k] = inv[k] * r[k] + rc[labels[k]]
-
-
-@nb.njit(cache=True)
-def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter, labels, n_coarse):
-    """Preconditioned conjugate gradients on ``(L + diag(diag)) x = rhs`` from ``x`` (overwritten), stopped when the
-    residual's norm falls below ``rtol`` times the right-hand side's (the iteration of :func:`scipy.sparse.linalg.cg`,
-    compiled, with the Laplacian applied from the pair list); preconditioned by :func:`_precondition`."""
-    n = rhs.size
-    inv = diag.copy()
-    for e in range(a.size):
-        inv[a[e]] += w[e]
-        inv[b[e]] += w[e]
-    inv = 1.0 / inv
-    bnrm = np.sqrt(np.dot(rhs, rhs))
-    if bnrm == 0.0:
-        return rhs.copy()
-    chol = _coarse_factor(a, b, w, diag, labels, n_coarse)
-    rc = np.empty(n_coarse)
-    atol = rtol * bnrm
-    q = np.empty(n)
-    _laplacian_matvec(a, b, w, diag, x, q)
-    r = rhs - q
-    p = np.empty(n)
-    z = np.empty(n)
-    rho_prev = 1.0
-    for it in range(maxiter):
-        if np.sqrt(np.dot(r, r)) < atol:
-            break
-        _precondition(r, inv, labels, chol, rc, z)
-        rho = np.dot(r, z)
-        if it > 0:
-            beta = rho / rho_prev
-            for k in range(n):
-                p[k] = beta * p[k] + z[k]
-        else:
-            p[:] = z
-        _laplacian_matvec(a, b, w, diag, p, q)
-        alpha = rho / np.dot(p, q)
-        for k in range(n):
-            x[k] += alpha * p[k]
-            r[k] -= alpha * q[k]
-        rho_prev = rho
-    return x
 
 
 # --------------------------------------------------------------------------------------------------------------------

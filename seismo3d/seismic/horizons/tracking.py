@@ -47,7 +47,7 @@ pick it came from. Picks below ``min_confidence``, and picks with no extremum of
 window, are left empty (NaN); tracking goes on from their predicted position. :func:`~seismo3d.seismic.fill_horizon`
 interpolates the gaps as a separate, explicit step. The tuning values are the fields of :class:`TrackingOptions`.
 
-Conventions: index space as in :mod:`seismo3d.seismic.faults.likelihood` (axis 0 inline, axis 1 crossline, last axis
+Conventions: index space as in :mod:`seismo3d.seismic.faults.likelihood.scan` (axis 0 inline, axis 1 crossline, last axis
 sample, downward; a 2D section is ``(n_traces, n_samples)``). Horizon times are fractional sample indices; convert with
 the cube's ``samples`` axis (ms or m).
 """

@@ -20,10 +20,10 @@ from ...errors import InputError, SegyFormatError, SegyGeometryError
 __all__ = ["SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle"]
 
 _RUN_TRACES = 1024  # traces read per segyio call into a block (a few MB of temporaries, not a block's worth)
-_TRACE_HEADER_BYTES = 240
+TRACE_HEADER_BYTES = 240
 # Bytes of each trace header field: up to the next field's first byte (SEG-Y rev 1 Table 3; 2 or 4)
-_FIELD_STARTS = sorted(int(k) for k in segyio.TraceField.enums())
-_FIELD_BYTES = dict(zip(_FIELD_STARTS, np.diff(_FIELD_STARTS + [_TRACE_HEADER_BYTES + 1]).tolist()))
+FIELD_STARTS = sorted(int(k) for k in segyio.TraceField.enums())
+_FIELD_BYTES = dict(zip(FIELD_STARTS, np.diff(FIELD_STARTS + [TRACE_HEADER_BYTES + 1]).tolist()))
 # Bytes per sample of the sample formats (SEG-Y rev 2 Table 1; binary header bytes 3225-3226)
 _IEEE_FLOAT32 = 5
 _ENDIAN = {"big": ">", "little": "<"}
@@ -183,7 +183,7 @@ def _read_amplitudes(f, table, grid: SegyGrid, inline_start, inline_stop, xline_
     runs = grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop)
     if table is not None and int(f.format) == _IEEE_FLOAT32:
         # IEEE floats: the samples as they are, byte order swapped by numpy as segyio does
-        samples = table[:, _TRACE_HEADER_BYTES:].view(_ENDIAN[grid.endian] + "f4")
+        samples = table[:, TRACE_HEADER_BYTES:].view(_ENDIAN[grid.endian] + "f4")
         for first, last, where in runs:
             out[where] = samples[first:last].reshape(out[where].shape)
         return out
@@ -198,22 +198,22 @@ def _read_amplitudes(f, table, grid: SegyGrid, inline_start, inline_stop, xline_
     return out
 
 
-def _header_dtype(fields, endian: str) -> np.dtype:
+def header_dtype(fields, endian: str) -> np.dtype:
     """The listed trace header fields as one structured 240-byte record: 4- or 2-byte signed integers at their byte
     positions (SEG-Y rev 1 Table 3, as segyio decodes them), in the file's byte order."""
     order = _ENDIAN[endian]
     return np.dtype({"names": [str(k) for k in fields], "formats": [f"{order}i{_FIELD_BYTES[k]}" for k in fields],
-                     "offsets": [k - 1 for k in fields], "itemsize": _TRACE_HEADER_BYTES})
+                     "offsets": [k - 1 for k in fields], "itemsize": TRACE_HEADER_BYTES})
 
 
-def _trace_layout(f, path, n_samples: int, n_traces: int) -> tuple | None:
+def trace_layout(f, path, n_samples: int, n_traces: int) -> tuple | None:
     """``(byte of the first trace, bytes per trace)`` of the open SEG-Y ``f`` at ``path``, or None when its size does
     not match traces of one fixed length (or its sample format is unknown)."""
     sample_bytes = _SAMPLE_BYTES.get(int(f.format))
     if sample_bytes is None:
         return None
     first = 3600 + 3200 * int(f.ext_headers)
-    stride = _TRACE_HEADER_BYTES + int(n_samples) * sample_bytes
+    stride = TRACE_HEADER_BYTES + int(n_samples) * sample_bytes
     if Path(path).stat().st_size != first + stride * int(n_traces):
         return None
     return first, stride
@@ -222,7 +222,7 @@ def _trace_layout(f, path, n_samples: int, n_traces: int) -> tuple | None:
 def _trace_table(f, grid: SegyGrid):
     """The file's traces as a read-only ``(n_traces, trace_bytes)`` uint8 memory map (header then samples), or None
     when the file's size does not match that layout (then the headers are read through segyio)."""
-    layout = _trace_layout(f, grid.path, grid.n_samples, grid.n_traces)
+    layout = trace_layout(f, grid.path, grid.n_samples, grid.n_traces)
     if layout is None:
         return None
     first, stride = layout
@@ -269,7 +269,7 @@ def read_segy_block_headers(grid: SegyGrid, fields, inline_start: int, inline_st
             f.close()
 
 
-def _read_block_and_headers(grid: SegyGrid, fields, inline_start: int, inline_stop: int, xline_start: int,
+def read_block_and_headers(grid: SegyGrid, fields, inline_start: int, inline_stop: int, xline_start: int,
                             xline_stop: int, segyfile) -> tuple:
     """:func:`read_segy_block` and :func:`read_segy_block_headers` of one block in bounds, through one memory map
     of the file (its pages faulted in once, not twice): ``(amplitudes, headers)``. The Zarr conversion's reader."""
@@ -284,13 +284,13 @@ def _read_headers(f, table, grid: SegyGrid, fields, inline_start, inline_stop, x
     if table is None:
         return _read_headers_segyio(f, grid, fields, inline_start, inline_stop, xline_start, xline_stop)
     shape = (inline_stop - inline_start, xline_stop - xline_start)
-    raw = np.empty(shape + (_TRACE_HEADER_BYTES,), np.uint8)
+    raw = np.empty(shape + (TRACE_HEADER_BYTES,), np.uint8)
     for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
-        raw[where] = table[first:last, :_TRACE_HEADER_BYTES].reshape(raw[where].shape)
+        raw[where] = table[first:last, :TRACE_HEADER_BYTES].reshape(raw[where].shape)
     # a field is zero on every trace when all of its bytes are: only the others are decoded
-    used = raw.reshape(-1, _TRACE_HEADER_BYTES).any(axis=0)
+    used = raw.reshape(-1, TRACE_HEADER_BYTES).any(axis=0)
     decoded = [k for k in fields if used[k - 1:k - 1 + _FIELD_BYTES[k]].any()]
-    records = raw.view(_header_dtype(decoded, grid.endian))[..., 0]
+    records = raw.view(header_dtype(decoded, grid.endian))[..., 0]
     out = {k: np.zeros(shape, np.int32) for k in fields}
     for k in decoded:
         out[k][...] = records[str(k)]

@@ -15,7 +15,7 @@ import segyio
 from ..._atomic import atomic_path
 from ..._progress import progress_steps
 from ...errors import InputError, TraceListWarning
-from .blocks import _FIELD_STARTS, _TRACE_HEADER_BYTES, SegyGrid, _header_dtype, _trace_layout
+from .blocks import FIELD_STARTS, TRACE_HEADER_BYTES, SegyGrid, header_dtype, trace_layout
 from .segy import open_segy
 
 __all__ = ["write_like", "write_like_blocks"]
@@ -189,7 +189,7 @@ def _start_like(src, dst, template_path: Path) -> bool:
         dst.text[i] = src.text[i]
     dst.bin = src.bin
     dst.bin.update({segyio.BinField.Format: int(segyio.SegySampleFormat.IEEE_FLOAT_4_BYTE)})
-    if _trace_layout(src, template_path, len(src.samples), src.tracecount) is None:
+    if trace_layout(src, template_path, len(src.samples), src.tracecount) is None:
         dst.header = src.header
         return False
     return True
@@ -209,11 +209,11 @@ class _TraceWriter:
 
     def __init__(self, template_path: Path, src, endian: str, out_path):
         self.n = src.tracecount
-        self.first, self.stride = _trace_layout(src, template_path, len(src.samples), self.n)
+        self.first, self.stride = trace_layout(src, template_path, len(src.samples), self.n)
         self.n_samples = len(src.samples)
-        self.out_stride = _TRACE_HEADER_BYTES + 4 * self.n_samples  # IEEE float samples
-        self.swap = None if endian == "big" else (_header_dtype(_FIELD_STARTS, "little"),
-                                                  _header_dtype(_FIELD_STARTS, "big"))
+        self.out_stride = TRACE_HEADER_BYTES + 4 * self.n_samples  # IEEE float samples
+        self.swap = None if endian == "big" else (header_dtype(FIELD_STARTS, "little"),
+                                                  header_dtype(FIELD_STARTS, "big"))
         self.template_path, self.out_path = template_path, out_path
 
     def __enter__(self) -> "_TraceWriter":
@@ -237,13 +237,13 @@ class _TraceWriter:
         for a in range(0, traces.shape[0], _COPY_TRACES):
             m = min(_COPY_TRACES, traces.shape[0] - a)
             self._fin.seek(self.first + (first + a) * self.stride)
-            raw = np.fromfile(self._fin, np.uint8, m * self.stride).reshape(m, self.stride)[:, :_TRACE_HEADER_BYTES]
+            raw = np.fromfile(self._fin, np.uint8, m * self.stride).reshape(m, self.stride)[:, :TRACE_HEADER_BYTES]
             out = np.empty((m, self.out_stride), np.uint8)
             if self.swap is not None:
                 raw = np.ascontiguousarray(raw).view(self.swap[0]).reshape(-1).astype(self.swap[1]).view(np.uint8)
-                raw = raw.reshape(m, _TRACE_HEADER_BYTES)
-            out[:, :_TRACE_HEADER_BYTES] = raw
-            out[:, _TRACE_HEADER_BYTES:].view(">f4")[:] = traces[a:a + m]
+                raw = raw.reshape(m, TRACE_HEADER_BYTES)
+            out[:, :TRACE_HEADER_BYTES] = raw
+            out[:, TRACE_HEADER_BYTES:].view(">f4")[:] = traces[a:a + m]
             self._fout.seek(self.first + (first + a) * self.out_stride)
             out.tofile(self._fout)
 

@@ -44,7 +44,7 @@ import numpy as np
 import segyio
 
 from ...errors import InputError
-from .blocks import SegyGrid, _read_block_and_headers, segyio_handle
+from .blocks import SegyGrid, read_block_and_headers, segyio_handle
 from .geometry import scale_coordinates
 
 __all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate", "open_seismic_zarr",
@@ -299,7 +299,7 @@ class SeismicZarrWriter:
     def _copy_chunk(self, f, a: int, b: int, c: int, d: int) -> dict:
         """On a background thread: the chunk of inlines ``a:b`` and crosslines ``c:d`` read from the open SEG-Y
         ``f`` and its amplitudes written to the store unless all zero; its trace headers."""
-        chunk, headers = _read_block_and_headers(self.grid, _TRACE_FIELDS, a, b, c, d, f)
+        chunk, headers = read_block_and_headers(self.grid, _TRACE_FIELDS, a, b, c, d, f)
         if chunk.view(np.uint32).max():  # bit patterns, as zarr: -0.0 is not the fill value 0.0 (max: no cast)
             self._chunk_files.write(chunk, a, c, 0)
         return headers

@@ -17,14 +17,14 @@ from scipy import sparse
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from ..._validation import check_positive
-from ...errors import InputError
-from .. import _kernels
-from ._kernels import grow_by_mean_normal
-from .likelihood import fault_normals
-from .surfaces import Fault, check_fault_arrays
-from .voting import fault_frames
-from .skin_pairs import _closest_pairs
+from ...._validation import check_positive
+from ....errors import InputError
+from ... import _kernels
+from .skin_kernels import grow_by_mean_normal
+from ..result import fault_normals
+from ..result import Fault, check_fault_arrays
+from ..result import fault_frames
+from .skin_kernels import closest_pairs
 
 __all__ = ["SkinOptions", "fault_skins", "image_cells", "skins_from_cells"]
 
@@ -268,7 +268,7 @@ def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, min
     # the closest pair (an edge cell of one skin, any cell of another) within merge_gap for every pair of skins: a
     # piece's end near another's end or side
     pts, lab = points[big].astype(np.float64), label[big]
-    closest = _closest_pairs(pts, lab, np.nonzero(edge[big])[0], float(opt.merge_gap), n_labels)
+    closest = closest_pairs(pts, lab, np.nonzero(edge[big])[0], float(opt.merge_gap), n_labels)
     if closest.size == 0:
         return label
     radius = 2.0 * float(opt.merge_gap)
@@ -344,7 +344,7 @@ def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
     thin : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
         Thinned fault image (> 0 on fault samples), e.g. thinned votes of :func:`~seismo3d.seismic.vote_faults`.
     strike_deg, dip_deg : array_like of float, same shape
-        Fault strike and dip of each sample, degrees (conventions of :mod:`~seismo3d.seismic.faults.likelihood`).
+        Fault strike and dip of each sample, degrees (conventions of :mod:`~seismo3d.seismic.faults.likelihood.scan`).
     lower, upper : float
         Hysteresis thresholds on ``thin``, ``0 < lower <= upper``.
     options : SkinOptions, optional

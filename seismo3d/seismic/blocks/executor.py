@@ -19,9 +19,9 @@ import sys
 import time
 import uuid
 
-from .._atomic import atomic_path
-from .._progress import progress_steps
-from ..errors import EarlierStoresError, InputError
+from ..._atomic import atomic_path
+from ..._progress import progress_steps
+from ...errors import EarlierStoresError, InputError
 
 __all__ = ["BlockRun", "SchedulerClient", "MEMORY_HEADROOM", "block_budget", "kernel_threads", "largest_block",
            "limit_for_blocks", "release_memory", "run_block", "serial_step_blocks", "write_marker"]
@@ -42,7 +42,7 @@ def block_budget(limit: int, baseline: int, workers: int) -> int:
     limit : int
         Memory limit, bytes.
     baseline : int
-        Bytes the process holds before its blocks (:func:`~seismo3d.seismic.faults.memory.worker_baseline`).
+        Bytes the process holds before its blocks (:func:`~seismo3d.seismic.blocks.memory.worker_baseline`).
     workers : int
         Blocks computed at once (>= 1).
 

@@ -1,4 +1,4 @@
-"""The closest cells of different fault skins within a gap (:mod:`~seismo3d.seismic.faults.skins`): edge cells matched to
+"""The closest cells of different fault skins within a gap (:mod:`~seismo3d.seismic.faults.surfaces.skins`): edge cells matched to
 the nearest cell of every other skin through a grid of buckets, in parallel; the pairs the merging of coplanar skins
 considers."""
 
@@ -7,9 +7,9 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .. import _kernels
+from ... import _kernels
 
-__all__ = []  # private to the skins
+__all__ = []
 
 
 @nb.njit(cache=True)
@@ -124,7 +124,7 @@ def _edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, g
     return first, second, dist
 
 
-def _closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
+def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
     """(m, 2) int64 indices into ``pts`` (n, 3): for every pair of labels, the closest (edge cell, cell of the other
     label) pair within ``gap`` (ties: the lower edge cell, then the lower other cell). Cells are binned in buckets
     of side ``gap / 2`` (memory: three int64 arrays of n besides the cells), so each edge cell compares itself with
@@ -148,3 +148,47 @@ def _closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: 
     keep[1:] = key[order][1:] != key[order][:-1]
     sel = order[keep]
     return np.stack([first[sel], second[sel]], axis=1)
+
+
+@nb.njit(cache=True)
+def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):
+    # Region growing over the neighbour graph (whose edges already join only compatible normals): from the
+    # unassigned sample of highest likelihood, add neighbours whose normal is within acos(cos_mean) of the growing
+    # fault's mean normal, breadth first. The mean keeps a fault from drifting into another one through samples of
+    # intermediate orientation where two faults meet.
+    n_pts, dim = normals.shape
+    label = -np.ones(n_pts, np.int64)
+    queue = np.empty(n_pts, np.int64)
+    mean = np.zeros(dim)
+    n_lab = 0
+    for seed in order:
+        if label[seed] >= 0:
+            continue
+        label[seed] = n_lab
+        for d in range(dim):
+            mean[d] = normals[seed, d]
+        head = 0
+        tail = 1
+        queue[0] = seed
+        while head < tail:
+            i = queue[head]
+            head += 1
+            for e in range(indptr[i], indptr[i + 1]):
+                j = indices[e]
+                if label[j] >= 0:
+                    continue
+                dot = 0.0
+                nm = 0.0
+                for d in range(dim):
+                    dot += normals[j, d] * mean[d]
+                    nm += mean[d] * mean[d]
+                if abs(dot) < cos_mean * np.sqrt(nm):
+                    continue
+                label[j] = n_lab
+                sgn = 1.0 if dot >= 0 else -1.0
+                for d in range(dim):
+                    mean[d] += sgn * normals[j, d]
+                queue[tail] = j
+                tail += 1
+        n_lab += 1
+    return label

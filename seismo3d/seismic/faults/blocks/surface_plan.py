@@ -1,4 +1,4 @@
-"""The blocks of a fault-surface run by blocks (:mod:`~seismo3d.seismic.faults.pipeline_blocks`): the halo each
+"""The blocks of a fault-surface run by blocks (:mod:`~seismo3d.seismic.faults.blocks.surface_blocks`): the halo each
 step reads, the memory a block of each step needs, and the largest blocks a memory limit allows."""
 
 from __future__ import annotations
@@ -7,12 +7,13 @@ from dataclasses import dataclass
 
 import numba
 
-from ...errors import InputError
-from ..attributes import structure_tensor_halo
-from ..blocks import block_budget, largest_block
-from .dead_samples import DEAD_REACH
-from .interpretation import FaultTracingOptions
-from .likelihood_blocks import ChunkOptions, default_memory_limit
+from ....errors import InputError
+from ...attributes import structure_tensor_halo
+from ...blocks.executor import block_budget, largest_block
+from ..surfaces.dead_samples import DEAD_REACH
+from ..options import FaultTracingOptions
+from .scan_blocks import ChunkOptions
+from ...blocks.memory import default_memory_limit
 
 __all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "RIDGE_HALO", "SURFACE_BATCH_BYTES", "SurfacePlan", "THIN_HALO",
            "amplitude_halo", "around", "plan_blocks", "smallest_block_bytes", "square_blocks"]
@@ -107,7 +108,7 @@ def smallest_block_bytes(shape, options: FaultTracingOptions | None = None, tile
         ``(n_inlines, n_xlines, n_samples)``.
     options : FaultTracingOptions, optional
     tile : int
-        Traces a side of the smallest block (:attr:`~seismo3d.seismic.faults.likelihood_blocks.ChunkOptions.tile`).
+        Traces a side of the smallest block (:attr:`~seismo3d.seismic.faults.blocks.scan_blocks.ChunkOptions.tile`).
 
     Returns
     -------

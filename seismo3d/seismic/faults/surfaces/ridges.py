@@ -1,90 +1,28 @@
-"""Fault surfaces: thinning fault likelihood to 1-sample-wide traces and linking them into faults.
+"""Ridges of a fault image: thinning fault likelihood (or votes) to 1-sample-wide traces, after Hale 2013.
 
-Surfaces in 3D cubes, curves in 2D sections, after Hale 2013:
+- :func:`ridge_image`: non-maximum suppression across the fault plane (the ridges, the voting's seeds);
+- :func:`thin_faults`: the ridges thresholded by hysteresis from the data (Otsu on the ridge values);
+- the pipeline's steps on them (:func:`live_likelihood`, :func:`ridges`, :func:`without_dead_edges`,
+  :func:`thin_votes`);
+- :func:`fault_labels`: faults painted into a label array.
 
-1. :func:`thin_faults`: non-maximum suppression across the fault plane, then a hysteresis threshold chosen from the
-   data (Otsu on the ridge values) leaves 1-sample-wide fault traces.
-2. :func:`link_faults`: thinned samples with compatible orientations are grown into separate faults; tiny ones are
-   dropped. Each :class:`Fault` carries its points and their normals, the input for measuring throw across it
-   (:mod:`seismo3d.seismic.faults.throw`).
-3. :func:`fault_labels`: faults painted into a label array.
-
-Conventions (strike, dip, normals, index space) are those of :mod:`seismo3d.seismic.faults.likelihood`.
+Conventions (strike, dip, normals, index space) are those of :mod:`seismo3d.seismic.faults.likelihood.scan`.
 """
 
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
 
 import numba as nb
 import numpy as np
-from scipy import sparse
 
-from ..._validation import as_seismic, check_positive
-from ...errors import InputError
-from .. import _kernels
-from ._kernels import grow_by_mean_normal
-from .likelihood import fault_normals, fault_strike_dip
+from ...._validation import check_positive
+from ....errors import InputError
+from ... import _kernels
+from ..result import check_fault_arrays
+from .thresholds import otsu
 
-__all__ = ["Fault", "check_fault_arrays", "thin_faults", "link_faults", "fault_labels"]
-
-
-@dataclass(frozen=True, eq=False)
-class Fault:
-    """One linked fault: a surface of thinned samples in 3D, a curve in 2D.
-
-    Attributes
-    ----------
-    id : int
-        Fault id, 1, 2, ... in decreasing size.
-    points : (n, ndim) int64 ndarray
-        Index coordinates (inline, xline, sample) or (trace, sample) of the fault's samples.
-    likelihood : (n,) float32 ndarray
-        The value at each point of the thinned fault image the fault was linked from
-        (:func:`~seismo3d.seismic.faults.skins.fault_skins`): in
-        :func:`~seismo3d.seismic.trace_faults`, the thinned votes of the optimal-surface voting, not the fault
-        likelihood itself (Hale's skins, whose cells carry a thinned likelihood, give the name).
-    strike_deg, dip_deg : (n,) float32 ndarray
-        Strike and dip at each point, degrees (module conventions).
-    normals : (n, ndim) float32 ndarray
-        Unit fault normal at each point, pointing into the footwall. The two sides of the fault at point ``p`` are
-        near ``p + d * normal`` (footwall) and ``p - d * normal`` (hanging wall): the hook for measuring throw by
-        registering the reflectors of the two sides.
-    """
-
-    id: int
-    points: np.ndarray
-    likelihood: np.ndarray
-    strike_deg: np.ndarray
-    dip_deg: np.ndarray
-    normals: np.ndarray
-
-    @property
-    def size(self) -> int:
-        """Number of samples on the fault."""
-        return int(self.points.shape[0])
-
-    @property
-    def mean_normal(self) -> np.ndarray:
-        """(ndim,) float64 unit mean normal (likelihood-weighted, sign-aligned, sample component >= 0)."""
-        n = self.normals.astype(np.float64)
-        ref = n[np.argmax(self.likelihood)]
-        sgn = np.where(n @ ref < 0, -1.0, 1.0)
-        m = (n * (sgn * self.likelihood)[:, None]).sum(axis=0)
-        m /= max(np.linalg.norm(m), 1e-12)
-        return -m if m[-1] < 0 else m
-
-    @property
-    def mean_strike_deg(self) -> float:
-        """Strike of :attr:`mean_normal`, degrees in [0, 360)."""
-        return float(fault_strike_dip(self.mean_normal)[0])
-
-    @property
-    def mean_dip_deg(self) -> float:
-        """Dip of :attr:`mean_normal`, degrees in [0, 90]."""
-        return float(fault_strike_dip(self.mean_normal)[1])
-
+__all__ = ["thin_faults", "fault_labels", "live_likelihood", "ridges", "thin_votes", "without_dead_edges"]
 
 
 @nb.njit(cache=True, inline="always")
@@ -269,50 +207,6 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
     return ridge[:, 0, :] if two_d else ridge
 
 
-# --------------------------------------------------------------------------------------------------------------------
-# thinning
-
-
-def check_fault_arrays(likelihood, strike, dip):
-    """A fault image and its strike and dip as float32 arrays of one shape, or :class:`InputError`.
-
-    Parameters
-    ----------
-    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Fault likelihood, votes or thinned faults; finite.
-    strike, dip : array_like of float, same shape
-        Strike and dip, degrees.
-
-    Returns
-    -------
-    likelihood, strike, dip : float32 ndarray
-
-    Raises
-    ------
-    InputError
-        Shapes differ or values are not finite.
-    """
-    fl = as_seismic(likelihood, "likelihood", min_size=1)
-    st = np.asarray(strike, dtype=np.float32)
-    dp = np.asarray(dip, dtype=np.float32)
-    if st.shape != fl.shape or dp.shape != fl.shape:
-        raise InputError(
-            f"likelihood {fl.shape}, strike {st.shape} and dip {dp.shape} must have the same shape; pass the fields "
-            "of one FaultLikelihood"
-        )
-    if not (np.all(np.isfinite(st)) and np.all(np.isfinite(dp))):
-        raise InputError("strike and dip have NaN or inf values; pass the strike_deg and dip_deg of a FaultLikelihood")
-    return fl, st, dp
-
-
-def _otsu(values: np.ndarray) -> float:
-    from skimage.filters import threshold_otsu
-
-    if values.size == 0 or float(values.max()) <= float(values.min()):
-        return float(values.max()) if values.size else 1.0
-    return float(threshold_otsu(values))
-
-
 def thin_faults(likelihood, strike, dip, *, threshold=None, sigma=1.5, dip_smoothing=4) -> np.ndarray:
     """Thin fault likelihood to 1-sample-wide fault traces.
 
@@ -373,115 +267,12 @@ def thin_faults(likelihood, strike, dip, *, threshold=None, sigma=1.5, dip_smoot
     floor = -1.0 if threshold is None else float(thr[0])
     ridge = ridge_image(fl, st, dp, floor=floor, sigma=sigma, dip_smoothing=along)
     if threshold is None:
-        lo = _otsu(ridge[ridge > 0])
+        lo = otsu(ridge[ridge > 0])
         hi = 0.5 * (lo + 1.0)
     else:
         lo, hi = float(thr[0]), float(thr[-1])
     keep = apply_hysteresis_threshold(ridge, lo, hi) & (ridge > 0)
     return np.where(keep, fl, 0.0).astype(np.float32)
-
-
-# --------------------------------------------------------------------------------------------------------------------
-# linking
-
-
-def link_faults(thin, strike, dip, *, min_size=None, max_angle=20.0) -> list[Fault]:
-    """Link thinned fault samples into separate faults.
-
-    Thinned samples are linked to their neighbours (26-connectivity in 3D, 8 in 2D) when the angle between their
-    fault normals is below ``max_angle``, and to samples two steps away that also lie within one sample of each
-    other's fault plane (this bridges one-sample gaps left by the thinning). Faults grow over these links from the
-    sample of highest likelihood, breadth first, accepting a sample only if its normal is also within
-    1.5 ``max_angle`` of the growing fault's mean normal: this keeps two faults that cross or meet (linked through
-    samples of intermediate orientation) apart, as fault skins are kept apart in Hale (2013). Faults with fewer than
-    ``min_size`` samples are dropped.
-
-    Parameters
-    ----------
-    thin : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Thinned fault likelihood from :func:`thin_faults` (> 0 on fault samples).
-    strike, dip : array_like of float, same shape
-        Fault strike and dip in degrees.
-    min_size : int, optional
-        Smallest fault kept, in samples. Default: in 2D, 10 % of the samples per trace (at least 10); in 3D, 1 % of
-        n_samples x min(n_inlines, n_xlines), the smaller vertical face (at least 100).
-    max_angle : float, optional
-        Largest angle between the normals of linked neighbours, degrees. The default 20 lets neighbours differ by
-        one step of the default strike / dip scan.
-
-    Returns
-    -------
-    list of Fault
-        Sorted by decreasing size, ids 1, 2, ... in that order.
-
-    Raises
-    ------
-    InputError
-        If the shapes differ or an argument is out of range.
-
-    References
-    ----------
-    .. [1] D. Hale, Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1 (fault skins grown from seeds of
-       high likelihood).
-    """
-    fl, st, dp = check_fault_arrays(thin, strike, dip)
-    max_angle = check_positive(max_angle, "max_angle")
-    ndim = fl.ndim
-    if min_size is None:
-        # a fault must span about a tenth of the data: 10 % of the samples of a trace in 2D; in 3D, 1 % of the
-        # smaller vertical face (samples x the shorter of inlines and crosslines), which a fault striking across
-        # the narrow side of a slab (a few inlines cut from a survey) cannot outgrow
-        if ndim == 2:
-            min_size = max(10, int(round(0.1 * fl.shape[-1])))
-        else:
-            min_size = max(100, int(round(0.01 * fl.shape[-1] * min(fl.shape[:2]))))
-    min_size = int(check_positive(min_size, "min_size"))
-    mask = fl > 0
-    pts = np.argwhere(mask)
-    if pts.shape[0] == 0:
-        return []
-    n = fault_normals(st[mask], dp[mask], ndim=ndim)
-    index = np.full(fl.shape, -1, dtype=np.int32 if pts.shape[0] < 2**31 - 1 else np.int64)
-    index[mask] = np.arange(pts.shape[0])
-    cos_max = np.cos(np.radians(max_angle))
-    rows, cols = [], []
-    # half of the offsets within 2 samples (the other half gives the same edges reversed): immediate neighbours link
-    # when their normals agree; samples two steps apart (bridging one-sample gaps in a thinned fault) must also lie
-    # in each other's fault plane (within one sample of it)
-    offsets = [np.array(o) - 2 for o in np.ndindex(*(5,) * ndim) if o > (2,) * ndim]
-    for d in offsets:
-        q = pts + d
-        ok = np.all((q >= 0) & (q < np.array(fl.shape)), axis=1)
-        src = np.nonzero(ok)[0]
-        dst = index[tuple(q[ok].T)]
-        has = dst >= 0
-        src, dst = src[has], dst[has]
-        compatible = np.abs(np.einsum("ij,ij->i", n[src], n[dst])) >= cos_max
-        if np.abs(d).max() > 1:
-            compatible &= (np.abs(n[src] @ d) <= 1.0) & (np.abs(n[dst] @ d) <= 1.0)
-        rows.append(src[compatible])
-        cols.append(dst[compatible])
-    rows = np.concatenate(rows)
-    cols = np.concatenate(cols)
-    n_pts = pts.shape[0]
-    graph = sparse.coo_matrix((np.ones(rows.size, dtype=np.int8), (rows, cols)), shape=(n_pts, n_pts)).tocsr()
-    graph = (graph + graph.T).tocsr()
-    vals, svals, dvals = fl[mask], st[mask], dp[mask]
-    order = np.argsort(-vals, kind="stable")
-    comp = grow_by_mean_normal(graph.indptr.astype(np.int64), graph.indices.astype(np.int64),
-                               n.astype(np.float64), order,
-                               float(np.cos(np.radians(1.5 * max_angle))))
-    sizes = np.bincount(comp)
-    keep = np.nonzero(sizes >= min_size)[0]
-    keep = keep[np.argsort(-sizes[keep], kind="stable")]
-    srt = np.argsort(comp, kind="stable")
-    bounds = np.searchsorted(comp[srt], np.arange(sizes.size + 1))
-    groups = [srt[bounds[c]:bounds[c + 1]] for c in keep]
-    return [
-        Fault(id=i + 1, points=pts[g].astype(np.int64), likelihood=vals[g].astype(np.float32),
-              strike_deg=svals[g].astype(np.float32), dip_deg=dvals[g].astype(np.float32), normals=n[g])
-        for i, g in enumerate(groups)
-    ]
 
 
 def fault_labels(faults, shape) -> np.ndarray:
@@ -512,3 +303,67 @@ def fault_labels(faults, shape) -> np.ndarray:
             raise InputError(f"fault {f.id} has points outside an array of shape {shape}")
         labels[tuple(p.T)] = f.id
     return labels
+
+
+def live_likelihood(likelihood: np.ndarray, near_dead, core=None) -> tuple[int, int]:
+    """Set the likelihood next to dead samples to 0 (the edge of a dead zone is not a fault), in place; count the
+    saturated and the live samples of ``core`` for :func:`~seismo3d.seismic.faults.checks.check_saturation`.
+
+    Parameters
+    ----------
+    likelihood : float32 ndarray
+        Fault likelihood of an array or of a block with its halo; modified.
+    near_dead : bool ndarray of the same shape, or None
+        Samples near dead ones (:func:`~seismo3d.seismic.faults.surfaces.dead_samples.near_dead_samples`); None: none.
+    core : tuple of slice, optional
+        The block's core within ``likelihood`` (default: all of it).
+
+    Returns
+    -------
+    (int, int)
+        Live samples of the core with a likelihood above 0.9, and live samples of the core.
+    """
+    core = core or (slice(None),)
+    if near_dead is not None:
+        likelihood[near_dead] = 0.0
+    values = likelihood[core] if near_dead is None else likelihood[core][~near_dead[core]]
+    return int(np.count_nonzero(values > 0.9)), int(values.size)
+
+
+def ridges(likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray, floor: float = 0.0) -> np.ndarray:
+    """The ridges of the fault likelihood (non-maximum suppression across the fault, smoothed): the voting's seed
+    candidates.
+
+    Parameters
+    ----------
+    likelihood, strike_deg, dip_deg : ndarray, one shape, float32
+        The (live) fault likelihood, its strike and dip in degrees.
+    floor : float
+        Ridge samples with a likelihood at or below it are left out (0): pass the voting's seed threshold, the
+        only ridges used (:attr:`~seismo3d.seismic.faults.VotingOptions.seed_threshold`); the ridges above it are
+        those of :func:`~seismo3d.seismic.thin_faults` with ``threshold=0``, computed on their neighbourhood only.
+
+    Returns
+    -------
+    ndarray of the likelihood's shape, float32
+        The likelihood on its ridge samples above ``floor``, 0 elsewhere. Halo: ``RIDGE_HALO`` traces.
+    """
+    fl, st, dp = check_fault_arrays(likelihood, strike_deg, dip_deg)
+    return ridge_image(fl, st, dp, floor=float(floor))
+
+
+def without_dead_edges(votes: np.ndarray, near_dead) -> np.ndarray:
+    """The votes set to 0 near dead samples, in place: voting surfaces bridge gaps, but a fault is not drawn across
+    dead traces. ``near_dead``: bool array of the votes' shape, or None (nothing to do)."""
+    if near_dead is not None:
+        votes[near_dead] = 0.0
+    return votes
+
+
+def thin_votes(votes: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray) -> np.ndarray:
+    """The votes thinned to 1-sample-wide faults (no smoothing: the votes are smooth already).
+
+    Halo: ``THIN_HALO`` traces. Arrays of one shape, float32; returns the thinned votes, float32 (0 off the faults).
+    """
+    fv, st, dp = check_fault_arrays(votes, strike_deg, dip_deg)
+    return ridge_image(fv, st, dp, floor=0.0, sigma=0.0, dip_smoothing=0)

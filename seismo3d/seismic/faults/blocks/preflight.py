@@ -10,8 +10,8 @@ density of the voting's seed candidates, from which :func:`minimum_memory_limit`
 step of a block-by-block run.
 
 :func:`minimum_memory_limit` is the smallest ``memory_limit`` with which both block-by-block stages
-(:func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood` and
-:func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces`) can plan their smallest blocks, and, with a
+(:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` and
+:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`) can plan their smallest blocks, and, with a
 sample, hold the seed candidates. The thinned fault cells linked into skins come from the voting and cannot be judged
 from a sample; a limit too small for them is still reported when they are counted.
 """
@@ -23,16 +23,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..._validation import check_int, check_positive
-from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
-from ..blocks import limit_for_blocks
-from .dead_samples import clean_traces, near_dead_samples
-from .likelihood import fault_likelihood
-from .likelihood_blocks import smallest_block_bytes as likelihood_block_bytes
-from .checks import check_amplitudes, check_size, no_coherence_message
-from .interpretation import FaultTracingOptions
+from ...._validation import check_int, check_positive
+from ....errors import InputError, Seismo3dWarning, UnsupportedDataError
+from ...blocks.executor import limit_for_blocks
+from ..surfaces.dead_samples import clean_traces, near_dead_samples
+from ..likelihood.scan import fault_likelihood
+from .scan_blocks import smallest_block_bytes as likelihood_block_bytes
+from ..checks import check_amplitudes, check_size, no_coherence_message
+from ..options import FaultTracingOptions
 from .learned_blocks import learned_block_bytes
-from .steps import live_likelihood, ridges
+from ..surfaces.ridges import live_likelihood, ridges
 from .surface_plan import CANDIDATE_BYTES
 from .surface_plan import smallest_block_bytes as surfaces_block_bytes
 
@@ -232,7 +232,7 @@ def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions |
         ``(n_inlines, n_xlines, n_samples)``.
     baseline : int
         Bytes the process holds before its blocks
-        (:func:`~seismo3d.seismic.faults.likelihood_blocks.worker_baseline`).
+        (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.worker_baseline`).
     options : FaultTracingOptions, optional
     tile : int
         Traces a side of the smallest blocks.

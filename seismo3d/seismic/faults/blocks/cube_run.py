@@ -3,11 +3,11 @@ block by block on dask into two resumable Zarr stores of a work folder.
 
 The checks are those of the run in memory, from the same functions: the data's size; the memory the run needs and
 the data judged from a sample of blocks (not seismic amplitudes, no lateral coherence:
-:func:`~seismo3d.seismic.faults.judge_sample`), before any pass over the whole cube; its NaN / inf samples (read as
+:func:`~seismo3d.seismic.faults.blocks.preflight.judge_sample`), before any pass over the whole cube; its NaN / inf samples (read as
 0, with the same warning), constant data, clipped amplitudes and dead samples (the same refusal and warnings, from
 passes over the blocks); then the fault likelihood
-(:func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood` or the learned one) into
-``fault_likelihood.zarr`` and the fault surfaces (:func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces`:
+(:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` or the learned one) into
+``fault_likelihood.zarr`` and the fault surfaces (:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`:
 dead samples, saturation, ridges, voting, thinning, thresholds, skins, throws, evidence) into
 ``fault_surfaces.zarr``. A finished likelihood of the same source is reused; an unfinished one resumes.
 """
@@ -19,18 +19,20 @@ import uuid
 
 import numpy as np
 
-from ..._progress import LOGGER
-from ...errors import EarlierStoresError, InputError
-from ..blocks import release_memory
-from ..io.zarr_store import consolidate
-from .checks import check_size
-from .dead_samples import (check_varies, clipped_count, dead_samples, fill_values, warn_clipped, warn_dead,
-                           warn_non_finite)
-from .interpretation import FaultInterpretation, FaultTracingOptions
+from ...._progress import LOGGER
+from ....errors import EarlierStoresError, InputError
+from ...blocks.executor import release_memory
+from ...io.zarr_store import consolidate
+from ..checks import check_size
+from ..surfaces.dead_samples import (
+    check_varies, clipped_count, dead_samples, fill_values, warn_clipped, warn_dead, warn_non_finite,
+)
+from ..result import FaultInterpretation
+from ..options import FaultTracingOptions
 from .learned_blocks import chunked_learned_likelihood
-from .likelihood_blocks import ChunkOptions, chunked_fault_likelihood
-from .memory import in_memory_bytes, resident_memory, size_text, worker_baseline
-from .pipeline_blocks import chunked_fault_surfaces
+from .scan_blocks import ChunkOptions, chunked_fault_likelihood
+from ...blocks.memory import in_memory_bytes, resident_memory, size_text, worker_baseline
+from .surface_blocks import chunked_fault_surfaces
 from .preflight import judge_sample, minimum_memory_limit
 
 __all__ = ["LIKELIHOOD_STORE", "SURFACES_STORE", "check_block_run", "finite_cube", "trace_faults_by_blocks"]
@@ -134,7 +136,7 @@ def _whole_traces(x):
 
 def finite_cube(x):
     """The cube with NaN / inf read as 0 (warned, as in memory); constant data refused, clipped amplitudes and dead
-    samples warned about (:mod:`~seismo3d.seismic.faults.dead_samples`), from three passes over the blocks (the dead
+    samples warned about (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`), from three passes over the blocks (the dead
     samples need the fill values of the whole cube).
 
     Parameters
@@ -155,7 +157,7 @@ def finite_cube(x):
     Warns
     -----
     Seismo3dWarning
-        NaN / inf, clipped or dead samples (:func:`~seismo3d.seismic.faults.dead_samples.clean_traces`' warnings).
+        NaN / inf, clipped or dead samples (:func:`~seismo3d.seismic.faults.surfaces.dead_samples.clean_traces`' warnings).
     """
     import dask
     import dask.array as da

@@ -1,7 +1,7 @@
 """Fault likelihood: a scan over fault strikes and dips (after Hale 2013), in 3D cubes and 2D sections.
 
 The structure-oriented semblance is summed within each candidate fault plane; each sample keeps the largest likelihood
-``1 - s^8`` of the scanned planes through it, and that plane's strike and dip. :mod:`seismo3d.seismic.faults.surfaces`
+``1 - s^8`` of the scanned planes through it, and that plane's strike and dip. :mod:`seismo3d.seismic.faults.surfaces.ridges`
 thins and links the likelihood into faults.
 
 Conventions (index space: one trace spacing and one sample both count as 1, the sample axis points down; the same
@@ -29,15 +29,16 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from ..._options import resolve_options
-from ..._progress import progress_steps
-from ..._validation import as_seismic, as_sigma_pair, check_int, check_positive
-from ...errors import InputError, Seismo3dWarning
-from .. import _kernels
-from .scan_kernels import _CODE_BITS, _FL_LEVELS, _exponential_coefficient, _box_half, _smooth_strike, _scan_dip
-from .fault_planes import fault_normals, fault_strike_dip
+from ...._options import resolve_options
+from ...._progress import progress_steps
+from ...._validation import as_seismic, as_sigma_pair, check_int, check_positive
+from ....errors import InputError, Seismo3dWarning
+from ... import _kernels
+from .scan_kernels import (CODE_BITS, FL_LEVELS, box_half, default_angles, exponential_coefficient, orientation_table,
+                           scan_dip, smooth_strike, sum_samples)
+from ..result import FaultLikelihood
 
-__all__ = ["FaultLikelihood", "FaultScanOptions", "fault_likelihood", "fault_normals", "fault_strike_dip"]
+__all__ = ["FaultScanOptions", "fault_likelihood"]
 
 
 @dataclass(frozen=True)
@@ -135,86 +136,8 @@ class FaultScanOptions:
 
     def angles(self) -> tuple[np.ndarray, np.ndarray]:
         """The (strikes, dips) scanned, degrees: the given ones or the defaults."""
-        return _default_angles(self.strikes, self.dips, float(self.strike_smoothing), float(self.min_dip),
+        return default_angles(self.strikes, self.dips, float(self.strike_smoothing), float(self.min_dip),
                                float(self.dip_smoothing))
-
-
-@dataclass(frozen=True, eq=False)
-class FaultLikelihood:
-    """Result of :func:`fault_likelihood`.
-
-    Attributes
-    ----------
-    likelihood : (*shape) float32 ndarray
-        Fault likelihood in [0, 1]: ``1 - s^power`` of the fault-plane semblance ``s``, maximised over the scan.
-    strike_deg : (*shape) float32 ndarray
-        Strike of the most likely fault plane at each sample, degrees in [0, 360) (see the module conventions).
-    dip_deg : (*shape) float32 ndarray
-        Dip of the most likely fault plane at each sample, degrees in (0, 90], index space.
-    """
-
-    likelihood: np.ndarray
-    strike_deg: np.ndarray
-    dip_deg: np.ndarray
-
-    @property
-    def normals(self) -> np.ndarray:
-        """(*shape, ndim) float32 unit fault normals from the strike and dip (see :func:`fault_normals`)."""
-        return fault_normals(self.strike_deg, self.dip_deg, ndim=self.likelihood.ndim)
-
-
-def _orientation_table(strikes, dips, two_d):
-    """Unique (strike, dip) pairs, with for each its shear axis, strike slope, dip slope and strike-group key."""
-    if two_d:
-        strikes = np.array([90.0, 270.0])
-    pairs = []
-    seen = set()
-    for phi in np.asarray(strikes, dtype=np.float64) % 360.0:
-        for theta in np.asarray(dips, dtype=np.float64):
-            key_phi = phi % 180.0 if theta >= 90.0 - 1e-9 else phi
-            key = (round(key_phi, 6), round(theta, 6))
-            if key in seen:
-                continue
-            seen.add(key)
-            pairs.append((key_phi, theta))
-    rows = []
-    for phi, theta in pairs:
-        p = np.radians(phi)
-        t = np.radians(theta)
-        cot = np.cos(t) / np.sin(t)
-        if two_d or abs(np.sin(p)) >= abs(np.cos(p)) - 1e-12:
-            axis = 0
-            alpha = np.cos(p) / np.sin(p)
-            beta = -cot / np.sin(p)
-            lateral = abs(np.sin(p))
-        else:
-            axis = 1
-            alpha = np.sin(p) / np.cos(p)
-            beta = cot / np.cos(p)
-            lateral = abs(np.cos(p))
-        rows.append((phi, theta, axis, alpha, beta, lateral))
-    return rows
-
-
-def _default_angles(strikes, dips, strike_smoothing, min_dip=60.0, dip_smoothing=20.0):
-    if strikes is None:
-        # a plane misoriented by d radians leaves the fault by ~ sigma * d at one smoothing width from the centre:
-        # a step of 1 / strike_smoothing radians (15 degrees for the default 4 traces) keeps that under half a trace
-        n = max(8, int(np.ceil(6.0 * strike_smoothing)))
-        strikes = np.arange(n) * (360.0 / n)
-    if dips is None:
-        # evenly spaced in cot(dip), the lateral shift per sample down the fault, by 1 / dip_smoothing: neighbouring
-        # planes part by one trace at one smoothing width (13 dips from 90 to 60 degrees for the defaults)
-        cot_max = 1.0 / np.tan(np.radians(min_dip))
-        n = 1 + int(np.ceil(cot_max * dip_smoothing - 1e-9))
-        dips = np.degrees(np.arctan2(1.0, np.linspace(0.0, cot_max, n)))
-    strikes = np.atleast_1d(np.asarray(strikes, dtype=np.float64))
-    dips = np.atleast_1d(np.asarray(dips, dtype=np.float64))
-    if strikes.ndim != 1 or strikes.size == 0 or not np.all(np.isfinite(strikes)):
-        raise InputError(f"strikes must be a non-empty 1D array of finite angles in degrees; got {strikes!r}")
-    if dips.ndim != 1 or dips.size == 0 or not np.all((dips > 0) & (dips <= 90)):
-        raise InputError(f"dips must be a non-empty 1D array of angles in (0, 90] degrees; got {dips!r}")
-    return strikes, dips
 
 
 def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress: bool = False,
@@ -312,7 +235,7 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     return FaultLikelihood(fl, strike, dip)
 
 
-# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.faults.likelihood_blocks): a block's
+# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.faults.blocks.scan_blocks): a block's
 # result equals the whole cube's over the block when the block carries the halo each step needs.
 
 @dataclass(frozen=True)
@@ -371,7 +294,7 @@ def semblance_halo(options: FaultScanOptions) -> int:
 
 def strike_halo(options: FaultScanOptions) -> int:
     """Traces on each side of a block that the smoothing along strike needs (two passes of a box, widest strike)."""
-    return 2 * _box_half(float(options.strike_smoothing))
+    return 2 * box_half(float(options.strike_smoothing))
 
 
 def balance_amplitudes(f3: np.ndarray, options: FaultScanOptions, stats: AmplitudeStatistics, *,
@@ -436,23 +359,13 @@ def semblance_terms(f3: np.ndarray, options: FaultScanOptions, *,
         del planarity
     step = scan_step(options, f3.shape[2])
     if step > 1:
-        sn, sd = _sum_samples(sn, step), _sum_samples(sd, step)
+        sn, sd = sum_samples(sn, step), sum_samples(sd, step)
     return sn, sd
 
 
 def semblance_floor(sum_denominator: float, count: int) -> float:
     """Denominators at or below this (1e-6 of their mean over the cube) are dead samples: semblance 1, likelihood 0."""
     return float(1e-6 * sum_denominator / max(int(count), 1)) + 1e-30
-
-
-def _sum_samples(x: np.ndarray, step: int) -> np.ndarray:
-    """Sums of ``step`` consecutive samples along the last axis (the last, partial group summed too)."""
-    n = x.shape[-1]
-    m = -(-n // step)
-    pad = m * step - n
-    if pad:
-        x = np.concatenate([x, np.repeat(x[..., -1:], pad, axis=-1)], axis=-1)
-    return np.ascontiguousarray(x.reshape(x.shape[:-1] + (m, step)).sum(axis=-1, dtype=np.float32))
 
 
 def scan_planes(sn: np.ndarray, sd: np.ndarray, options: FaultScanOptions, tiny: float, *, n_samples: int,
@@ -487,9 +400,9 @@ def scan_planes(sn: np.ndarray, sd: np.ndarray, options: FaultScanOptions, tiny:
         Packed ``likelihood << 11 | plane`` of the best plane at each grouped sample: decode with
         :func:`decode_scan`; the maximum of two keys is the key of the union of their planes.
     """
-    table = _orientation_table(*options.angles(), two_d)
-    if len(table) > (1 << _CODE_BITS):
-        raise InputError(f"{len(table)} fault planes to scan but at most {1 << _CODE_BITS} are supported; pass fewer "
+    table = orientation_table(*options.angles(), two_d)
+    if len(table) > (1 << CODE_BITS):
+        raise InputError(f"{len(table)} fault planes to scan but at most {1 << CODE_BITS} are supported; pass fewer "
                          "strikes or dips")
     step = scan_step(options, n_samples)
     if sheared_layout and len(axes) != 1:
@@ -499,7 +412,7 @@ def scan_planes(sn: np.ndarray, sd: np.ndarray, options: FaultScanOptions, tiny:
 
 def saturation_counts(key: np.ndarray, live: np.ndarray) -> tuple[int, int]:
     """Live (grouped) samples whose likelihood exceeds 0.9, and live samples: for the saturation warning."""
-    return (int(np.count_nonzero((key >> _CODE_BITS)[live] > int(0.9 * _FL_LEVELS))),
+    return (int(np.count_nonzero((key >> CODE_BITS)[live] > int(0.9 * FL_LEVELS))),
             int(np.count_nonzero(live)))
 
 
@@ -522,9 +435,9 @@ def decode_scan(key: np.ndarray, options: FaultScanOptions, *, n_samples: int,
     step = scan_step(options, n_samples)
     if step > 1:
         key = key[..., np.minimum(np.arange(n_samples) // step, key.shape[2] - 1)]
-    table = _orientation_table(*options.angles(), two_d)
-    code = key & ((1 << _CODE_BITS) - 1)
-    fl = (key >> _CODE_BITS).astype(np.float32) * np.float32(1.0 / _FL_LEVELS)
+    table = orientation_table(*options.angles(), two_d)
+    code = key & ((1 << CODE_BITS) - 1)
+    fl = (key >> CODE_BITS).astype(np.float32) * np.float32(1.0 / FL_LEVELS)
     strike = np.array([r[0] for r in table], dtype=np.float32)[code]
     dip = np.array([r[1] for r in table], dtype=np.float32)[code]
     np.clip(fl, 0.0, 1.0, out=fl)
@@ -532,7 +445,7 @@ def decode_scan(key: np.ndarray, options: FaultScanOptions, *, n_samples: int,
 
 
 def _scan(sn, sd, table, two_d, opt, tiny, step, progress, axes=(0, 1), core=None, origin=0, sheared_layout=False):
-    """The packed (likelihood << _CODE_BITS | orientation code) int32 maximum over the scanned planes, on samples
+    """The packed (likelihood << CODE_BITS | orientation code) int32 maximum over the scanned planes, on samples
     grouped by ``step``."""
     squarings = int(opt.power).bit_length() - 1
     strike_smoothing = float(opt.strike_smoothing)
@@ -567,14 +480,14 @@ def _scan(sn, sd, table, two_d, opt, tiny, step, progress, axes=(0, 1), core=Non
             for members in groups[axis].values():
                 alpha, lateral = members[0][1][3], members[0][1][5]
                 if smooth_lateral:
-                    hs = _box_half(strike_smoothing * lateral)
-                    _smooth_strike(xn, float(alpha), hs, origin, n_threads, yn)
-                    _smooth_strike(xd, float(alpha), hs, origin, n_threads, yd)
+                    hs = box_half(strike_smoothing * lateral)
+                    smooth_strike(xn, float(alpha), hs, origin, n_threads, yn)
+                    smooth_strike(xd, float(alpha), hs, origin, n_threads, yd)
                 for k, r in members:
                     # lateral shift per (grouped) sample, and the smoothing width down the dip in grouped samples
                     beta = float(r[4]) * step
                     sigma = float(opt.dip_smoothing) * float(np.sin(np.radians(r[1]))) / step
-                    _scan_dip(yn, yd, beta, _exponential_coefficient(max(sigma, 0.5)), np.int32(k), squarings,
+                    scan_dip(yn, yd, beta, exponential_coefficient(max(sigma, 0.5)), np.int32(k), squarings,
                               tiny, n_threads, keya, b0)
                 bar.advance()
             del xn, xd, yn, yd

@@ -21,8 +21,8 @@ import numpy as np
 import numba as nb
 from scipy.ndimage import maximum_filter1d
 
-from ..._validation import check_seismic_layout
-from ...errors import InputError, Seismo3dWarning
+from ...._validation import check_seismic_layout
+from ....errors import InputError, Seismo3dWarning
 
 __all__ = ["CleanTraces", "clean_traces", "check_varies", "clipped_count", "fill_values", "dead_samples",
            "near_dead_samples", "warn_clipped", "warn_dead", "warn_non_finite", "DEAD_REACH"]

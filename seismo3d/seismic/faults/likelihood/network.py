@@ -16,7 +16,7 @@ Sizes: the input's two axes must be multiples of 8 (:func:`unet_forward` pads th
 so the weights give the same numbers here (float32, differences of the order of 1e-6).
 
 The network ships as an ONNX model (:class:`FaultNetwork`, loaded by
-:func:`~seismo3d.seismic.faults.learned.load_fault_network`), exported from the trained weights by
+:func:`~seismo3d.seismic.faults.likelihood.learned.load_fault_network`), exported from the trained weights by
 :func:`onnx_model` (``python -m seismo3d.training.export_onnx``; the ``onnx`` package of the ``train`` extra). The
 weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape ``(c_out, c_in, 3, 3)`` (PyTorch's
 ``Conv2d`` layout) and ``'{block}.{i}.bias'`` ``(c_out,)``, for the blocks ``enc0, enc1, enc2, bottleneck, dec2,
@@ -34,25 +34,29 @@ doi:10.1190/geo2018-0646.1
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from scipy.ndimage import gaussian_filter
 
-from ...errors import InputError, Seismo3dError
+from ....errors import InputError, Seismo3dError
 
-__all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "FaultNetwork", "onnx_model", "unet_forward",
-           "normalise_section"]
+__all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "FaultNetwork", "onnx_model", "unet_forward", "normalise_section", "anti_alias_sigma", "grid_size", "grid_halo", "to_network_grid", "from_network_grid"]
+
 
 BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
+
+
 # two 3x3 convolutions per level: 2 samples of context each at level k cost 2 * 2**k input samples; encoder and
 # decoder levels 0-2 and the bottleneck (level 3): 2 * (1 + 2 + 4) * 2 + 2 * 8 = 44 (measured: 44 from an impulse at
 # an aligned position), plus up to 7 from where a sample sits in the pooling grid: 51, rounded up to a multiple of 8
 # so that a block starting at a multiple of it keeps the whole input's pooling grid
 RECEPTIVE_HALF = 56
+
+
 # three 2x2 poolings: sections are padded to a multiple of this, and blocks keep the whole input's pooling grid
 # when they start at a multiple of it
 POOLING_MULTIPLE = 8
-# the forward pass runs in ONNX Runtime: on batches of 1-8 sections of 184-672 x 184-328 samples it took a third of
-# the time of the compiled numba loop this module used before (0.11-0.13 s against 0.33-0.39 s; onnxruntime 1.32,
-# 2 cores), with the same numbers (differences of 3e-6); its output for a section does not depend on the batch
 
 
 class FaultNetwork:
@@ -196,7 +200,7 @@ def unet_forward(sections: np.ndarray, network) -> np.ndarray:
         Sections scaled by :func:`normalise_section`. Any size: each axis is padded by reflection to a multiple
         of 8 and the output cropped back.
     network : FaultNetwork or mapping of str to ndarray
-        The network (:func:`~seismo3d.seismic.faults.learned.load_fault_network`), or trained weights (see the
+        The network (:func:`~seismo3d.seismic.faults.likelihood.learned.load_fault_network`), or trained weights (see the
         module docstring; turned into a :class:`FaultNetwork` by :func:`onnx_model`, which needs the ``onnx``
         package).
 
@@ -221,3 +225,197 @@ def unet_forward(sections: np.ndarray, network) -> np.ndarray:
         x = np.pad(x, ((0, 0), (0, ph), (0, pw)), mode="reflect" if min(h, w) > max(ph, pw) else "edge")
     prob = network(x[:, None])[:, 0]
     return np.ascontiguousarray(prob[:, :h, :w], dtype=np.float32)
+
+
+def _check_factor(factor) -> float:
+    f = float(factor)
+    if not 0.25 <= f <= 1.0:
+        raise InputError(f"the network's resampling factor must be in [0.25, 1]; got {factor!r}")
+    return f
+
+
+def anti_alias_sigma(factor: float) -> float:
+    """Standard deviation (input samples) of the Gaussian filter applied before resampling by ``factor``.
+
+    Parameters
+    ----------
+    factor : float
+        Resampling factor in [0.25, 1] (1: no filter).
+
+    Returns
+    -------
+    float
+        ``0.5 / factor - 0.5``: 0 at 1, 0.5 samples at 0.5.
+
+    Raises
+    ------
+    InputError
+        ``factor`` is outside [0.25, 1].
+    """
+    return 0.5 / _check_factor(factor) - 0.5
+
+
+def grid_size(n: int, factor: float) -> int:
+    """Samples of the network grid along an axis of ``n`` input samples (the last at ``(n - 1) * factor``).
+
+    Parameters
+    ----------
+    n : int
+        Input samples along the axis.
+    factor : float
+        Resampling factor in [0.25, 1].
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    InputError
+        ``factor`` is outside [0.25, 1].
+    """
+    return int(math.floor((int(n) - 1) * _check_factor(factor) + 1e-9)) + 1
+
+
+def grid_halo(network_halo: int, factor: float, align: int) -> int:
+    """Input samples of halo a block needs so that its core's probability equals the whole cube's.
+
+    Parameters
+    ----------
+    network_halo : int
+        Halo the network needs on its own grid (its receptive half).
+    factor : float
+        Resampling factor in [0.25, 1].
+    align : int
+        The network grid of a block starts at a multiple of this (up to ``align - 1`` network samples lost).
+
+    Returns
+    -------
+    int
+        Input samples: ``network_halo`` itself at factor 1 (the data's own grid, whose blocks start at multiples of
+        ``align``), else a multiple of ``align``.
+
+    Raises
+    ------
+    InputError
+        ``factor`` is outside [0.25, 1].
+    """
+    f = _check_factor(factor)
+    if f == 1.0:
+        return int(network_halo)
+    need = (int(network_halo) + int(align)) / f + 2 + 4 * anti_alias_sigma(f)
+    return int(math.ceil(need / align)) * int(align)
+
+
+def _first(origin: int, factor: float, align: int) -> int:
+    """First network sample of a block whose first input sample is ``origin`` (a multiple of ``align``)."""
+    return int(math.ceil(origin * factor / align - 1e-9)) * align
+
+
+def _full_origin(origin, ndim: int) -> tuple:
+    """The block's global index along every axis: ``origin`` along the lateral axes (0 when None), 0 along the
+    sample axis."""
+    return tuple(int(o) for o in (origin or (0,) * (ndim - 1))) + (0,)
+
+
+def _lateral_aligns(align, n_lateral: int) -> tuple:
+    """``align`` (an int, or one per lateral axis) as a tuple of ``n_lateral`` positive ints."""
+    aligns = tuple(int(a) for a in align) if np.ndim(align) else (int(align),) * n_lateral
+    if len(aligns) != n_lateral or min(aligns) < 1:
+        raise InputError(f"align must be a positive int or one per lateral axis ({n_lateral}); got {align!r}")
+    return aligns
+
+
+def _interpolate_axis(a: np.ndarray, axis: int, positions: np.ndarray) -> np.ndarray:
+    """Values of ``a`` at fractional ``positions`` (local indices, within [0, n - 1]) along ``axis``, linearly."""
+    lo = np.floor(positions).astype(np.int64)
+    lo = np.clip(lo, 0, max(a.shape[axis] - 2, 0))
+    w = (positions - lo).astype(np.float32)
+    hi = np.minimum(lo + 1, a.shape[axis] - 1)
+    shape = [1] * a.ndim
+    shape[axis] = -1
+    w = w.reshape(shape)
+    return np.take(a, lo, axis=axis) * (1 - w) + np.take(a, hi, axis=axis) * w
+
+
+def to_network_grid(data: np.ndarray, factor: float, *, origin=None, align: int = 8) -> tuple[np.ndarray, tuple]:
+    """Resample a section, cube or block onto the network grid.
+
+    Parameters
+    ----------
+    data : (n_traces, n_samples) or (n_inlines, n_xlines, n_samples) float32 ndarray
+        Amplitudes (a block of a larger cube when ``origin`` is given).
+    factor : float
+        Resampling factor in [0.25, 1] along every axis.
+    origin : sequence of int, optional
+        Global index of ``data``'s first sample along each lateral axis (default 0: the whole input).
+    align : int or sequence of int, optional
+        Along the lateral axes the block's network grid starts at a multiple of this (one value per lateral axis,
+        or one for all): the network's pooling multiple along an axis the network convolves over, 1 along an axis
+        its sections are stacked on (no pooling grid to keep).
+
+    Returns
+    -------
+    small : float32 ndarray
+        The data on the network grid.
+    first : tuple of int
+        Global network index of ``small``'s first sample along each axis (0 along the sample axis).
+
+    Raises
+    ------
+    InputError
+        ``factor`` is outside [0.25, 1].
+    """
+    f = _check_factor(factor)
+    arr = np.asarray(data, dtype=np.float32)
+    origin = _full_origin(origin, arr.ndim)
+    aligns = _lateral_aligns(align, arr.ndim - 1)
+    if f == 1.0:
+        return arr, origin
+    out = gaussian_filter(arr, anti_alias_sigma(f), truncate=4.0)
+    first = []
+    for axis, (n, o) in enumerate(zip(arr.shape, origin)):
+        lateral = axis < arr.ndim - 1
+        u0 = _first(o, f, aligns[axis]) if lateral else 0
+        u1 = grid_size(o + n, f)  # one past the last network sample inside the data
+        u = np.arange(u0, u1, dtype=np.float64)
+        out = _interpolate_axis(out, axis, u / f - o)
+        first.append(u0)
+    return np.ascontiguousarray(out, dtype=np.float32), tuple(first)
+
+
+def from_network_grid(small: np.ndarray, shape, factor: float, *, origin=None, first=None) -> np.ndarray:
+    """Interpolate a probability on the network grid back onto the input's samples.
+
+    Parameters
+    ----------
+    small : float32 ndarray
+        Values on the network grid (:func:`to_network_grid`'s ``small``).
+    shape : tuple of int
+        Shape of the input block.
+    factor : float
+        The resampling factor.
+    origin : sequence of int, optional
+        Global lateral index of the input block's first sample (default 0).
+    first : sequence of int, optional
+        Global network index of ``small``'s first sample along each axis (:func:`to_network_grid`'s ``first``).
+
+    Returns
+    -------
+    float32 ndarray of ``shape``
+
+    Raises
+    ------
+    InputError
+        ``factor`` is outside [0.25, 1].
+    """
+    f = _check_factor(factor)
+    out = np.asarray(small, dtype=np.float32)
+    if f == 1.0:
+        return out
+    origin = _full_origin(origin, len(shape))
+    first = tuple(first or (0,) * len(shape))
+    for axis, (n, o, u0) in enumerate(zip(shape, origin, first)):
+        i = np.arange(o, o + n, dtype=np.float64)
+        out = _interpolate_axis(out, axis, np.clip(i * f - u0, 0, out.shape[axis] - 1))
+    return np.ascontiguousarray(out, dtype=np.float32)

@@ -1,32 +1,32 @@
 """The steps after the fault likelihood on an array in memory: the whole array as the one block of a run.
 
-:class:`ArrayRun` implements the named steps of :class:`~seismo3d.seismic.faults.surface_steps.SurfaceRun` on
+:class:`ArrayRun` implements the named steps of :class:`~seismo3d.seismic.faults.steps.SurfaceRun` on
 numpy arrays, 2D or 3D; :func:`~seismo3d.seismic.faults.trace_faults` calls them through
-:func:`~seismo3d.seismic.faults.surface_steps.surface_cells`, the sequence the run by blocks
-(:mod:`~seismo3d.seismic.faults.pipeline_blocks`) calls on each block with its halo.
+:func:`~seismo3d.seismic.faults.steps.surface_cells`, the sequence the run by blocks
+(:mod:`~seismo3d.seismic.faults.blocks.surface_blocks`) calls on each block with its halo.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .interpretation import FaultTracingOptions
-from .skins import image_cells
-from .steps import live_likelihood, ridges, thin_votes, without_dead_edges
-from .voting import image_seeds, seed_votes
+from ..options import FaultTracingOptions
+from ..surfaces.skins import image_cells
+from ..surfaces.ridges import live_likelihood, ridges, thin_votes, without_dead_edges
+from ..surfaces.voting import image_seeds, seed_votes
 
 __all__ = ["ArrayRun"]
 
 
 class ArrayRun:
-    """The steps of :class:`~seismo3d.seismic.faults.surface_steps.SurfaceRun` on arrays in memory.
+    """The steps of :class:`~seismo3d.seismic.faults.steps.SurfaceRun` on arrays in memory.
 
     Parameters
     ----------
     likelihood, strike_deg, dip_deg : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
         Fault likelihood (set to 0 near dead samples, in place), strike and dip (degrees).
     near_dead : bool ndarray of the same shape, or None
-        Samples near dead ones (:func:`~seismo3d.seismic.faults.dead_samples.near_dead_samples`).
+        Samples near dead ones (:func:`~seismo3d.seismic.faults.surfaces.dead_samples.near_dead_samples`).
     opt : FaultTracingOptions
     progress : bool
         Progress of the voting over its seeds.
@@ -65,7 +65,7 @@ class ArrayRun:
         return high, live
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:
-        """The voting seeds of the ridges, strongest first (:func:`~seismo3d.seismic.faults.voting.image_seeds`).
+        """The voting seeds of the ridges, strongest first (:func:`~seismo3d.seismic.faults.surfaces.voting.image_seeds`).
 
         Returns
         -------
@@ -79,7 +79,7 @@ class ArrayRun:
         return seeds, frames
 
     def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
-        """The seeds' optimal-surface votes over the whole array (:func:`~seismo3d.seismic.faults.voting.seed_votes`),
+        """The seeds' optimal-surface votes over the whole array (:func:`~seismo3d.seismic.faults.surfaces.voting.seed_votes`),
         0 near dead samples, in :attr:`fault_votes`.
 
         Parameters

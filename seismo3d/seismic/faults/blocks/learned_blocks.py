@@ -3,14 +3,14 @@
 The network is 2D: an inline section's probability depends on that section alone, so a block of inline sections
 needs the network's receptive half of halo along the crosslines only, and a block of crossline sections along the
 inlines only. The steps (the output equals the in-memory
-:func:`~seismo3d.seismic.faults.learned.learned_fault_likelihood` up to float rounding):
+:func:`~seismo3d.seismic.faults.likelihood.learned.learned_fault_likelihood` up to float rounding):
 
 1. The amplitude scale (median and standard deviation) from the regular subsample of traces that
-   :func:`~seismo3d.seismic.faults.learned.amplitude_scale` uses in memory too.
+   :func:`~seismo3d.seismic.faults.likelihood.learned.amplitude_scale` uses in memory too.
 2. Per network grid (``LearnedOptions.resample``, numbered 0, 1, ... in its order) and per direction the network
    runs on (``network_inline_0``, ``network_crossline_0``, ...): blocks of the whole cube's network
-   grid (:mod:`~seismo3d.seismic.faults.network_grid`), ``k`` sections of ``w`` network traces each, read with the
-   receptive half of halo (:data:`~seismo3d.seismic.faults.unet.RECEPTIVE_HALF` network traces, the block's grid on
+   grid (:mod:`~seismo3d.seismic.faults.likelihood.network`), ``k`` sections of ``w`` network traces each, read with the
+   receptive half of halo (:data:`~seismo3d.seismic.faults.likelihood.network.RECEPTIVE_HALF` network traces, the block's grid on
    the whole cube's pooling grid) along the sections and only the resampling's few traces across them; every sample
    of each trace. The blocks are as long along the sections as the memory limit allows (the whole cube's width
    when it fits: no halo at all), so the halo adds little. Each direction's probability is written on the network
@@ -19,11 +19,11 @@ inlines only. The steps (the output equals the in-memory
    each network grid is interpolated onto the block's samples (as in memory: the maximum before the interpolation)
    and the grids' are averaged in their order; its
    structure tensor gives strike and dip, written with the likelihood to the output Zarr group (``likelihood``,
-   ``strike_deg``, ``dip_deg``: what :func:`~seismo3d.seismic.faults.pipeline_blocks.chunked_fault_surfaces` reads,
+   ``strike_deg``, ``dip_deg``: what :func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces` reads,
    as from the scan's chunked run).
 
 Markers, resumption, the ``.partial`` output and the schedulers are those of
-:mod:`~seismo3d.seismic.faults.likelihood_blocks`.
+:mod:`~seismo3d.seismic.faults.blocks.scan_blocks`.
 """
 
 from __future__ import annotations
@@ -35,17 +35,19 @@ from dataclasses import asdict
 
 import numpy as np
 
-from ..._options import resolve_options
-from ...errors import InputError
-from ..blocks import (SchedulerClient, block_budget, largest_block, limit_for_blocks, serial_step_blocks,
-                      write_marker)
-from .learned import (LearnedOptions, amplitude_scale, cube_directions, direction_probability, grids_mean,
-                      orientation_from_likelihood, scale_subsample)
-from .likelihood_blocks import (ChunkedLikelihood, ChunkOptions, LikelihoodRun, _write_coords, lateral_blocks,
-                                trace_cube)
-from .memory import default_memory_limit, worker_baseline
-from .network_grid import anti_alias_sigma, from_network_grid, grid_size, to_network_grid
-from .unet import POOLING_MULTIPLE, RECEPTIVE_HALF
+from ...._options import resolve_options
+from ....errors import InputError
+from ...blocks.executor import (
+    SchedulerClient, block_budget, largest_block, limit_for_blocks, serial_step_blocks, write_marker,
+)
+from ..likelihood.learned import (
+    LearnedOptions, amplitude_scale, cube_directions, direction_probability, grids_mean, orientation_from_likelihood,
+    scale_subsample,
+)
+from .scan_blocks import ChunkedLikelihood, ChunkOptions, LikelihoodRun, write_coords, lateral_blocks, trace_cube
+from ...blocks.memory import default_memory_limit, worker_baseline
+from ..likelihood.network import anti_alias_sigma, from_network_grid, grid_size, to_network_grid
+from ..likelihood.network import POOLING_MULTIPLE, RECEPTIVE_HALF
 
 __all__ = ["chunked_learned_likelihood", "learned_block_bytes"]
 
@@ -97,7 +99,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     progress : bool
         Report progress per block.
     **overrides
-        Fields of :class:`~seismo3d.seismic.faults.learned.LearnedOptions` by name.
+        Fields of :class:`~seismo3d.seismic.faults.likelihood.learned.LearnedOptions` by name.
 
     Returns
     -------
@@ -218,7 +220,7 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
     Returns
     -------
     int
-        Bytes per worker: a ``memory_limit`` below :func:`~seismo3d.seismic.blocks.limit_for_blocks` of it is refused
+        Bytes per worker: a ``memory_limit`` below :func:`~seismo3d.seismic.blocks.executor.limit_for_blocks` of it is refused
         by :func:`chunked_learned_likelihood`.
     """
     shape = tuple(int(n) for n in shape)
@@ -232,7 +234,7 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
 def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> dict:
     """The network blocks of each grid and direction (network traces, multiples of 16 or the whole width) and the
     strike-and-dip blocks (traces, multiples of the tile) under the memory limit, planned with
-    :func:`~seismo3d.seismic.blocks.block_budget` as the scan's and the surfaces' blocks are."""
+    :func:`~seismo3d.seismic.blocks.executor.block_budget` as the scan's and the surfaces' blocks are."""
     nt = shape[2]
     tile = int(chunking.tile)
     halo_o = _orientation_halo(opt)
@@ -328,7 +330,7 @@ class _Run(LikelihoodRun):
                                   str(self.work), str(self.partial), self.opt, workers=p["workers_orientation"])
         high = sum(r["high"] for r in results)
         group = zarr.open_group(str(self.partial), mode="r+")
-        _write_coords(group, tuple(p["shape"]), coords)
+        write_coords(group, tuple(p["shape"]), coords)
         fraction = high / float(np.prod(p["shape"]))
         group.attrs.update({"method": "learned fault likelihood (seismo3d fault network), chunked run",
                             "saturated_fraction": fraction})
@@ -360,7 +362,7 @@ def _network_block(f, block, axis, origin, array, opt, factor, scale, marker) ->
 def _probability(plan: dict, work, region, opt: LearnedOptions) -> np.ndarray:
     """The network's probability on the input samples of ``region`` ``(a0, a1, b0, b1)``: on each network grid the
     larger of the two directions', interpolated, then the grids' mean in their order (as
-    :func:`~seismo3d.seismic.faults.learned.fault_probability` does on the whole cube)."""
+    :func:`~seismo3d.seismic.faults.likelihood.learned.fault_probability` does on the whole cube)."""
     import zarr
     a0, a1, b0, b1 = region
     total = None

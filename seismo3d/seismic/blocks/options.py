@@ -2,8 +2,8 @@
 (:class:`BlockRunOptions`): the memory limit, a forced choice, the folder of the Zarr stores, the dask scheduler, and
 the input's name and coordinates recorded in the stores.
 
-The decision itself is :func:`~seismo3d.seismic.faults.memory.fits_in_memory`'s (:meth:`BlockRunOptions.in_memory_for`
-applies it); the run by blocks is :func:`~seismo3d.seismic.faults.cube_run.trace_faults_by_blocks`.
+The decision itself is :func:`~seismo3d.seismic.blocks.memory.fits_in_memory`'s (:meth:`BlockRunOptions.in_memory_for`
+applies it); the run by blocks is :func:`~seismo3d.seismic.faults.blocks.cube_run.trace_faults_by_blocks`.
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ class BlockRunOptions:
         Memory the run may use, bytes or a size such as ``'4GB'`` (at least 64 MB; default half of the RAM).
     in_memory : bool, optional
         Force the run in memory (True) or block by block (False, 3D cubes only); default (None): decided from
-        ``memory_limit`` (:func:`~seismo3d.seismic.faults.memory.fits_in_memory`).
+        ``memory_limit`` (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`).
     work_dir : str or os.PathLike, optional
         Existing folder of the Zarr stores of a run by blocks (``fault_likelihood.zarr``, ``fault_surfaces.zarr``:
         reused when finished, resumed when interrupted); required when the cube is traced block by block.

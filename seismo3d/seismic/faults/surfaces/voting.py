@@ -15,15 +15,15 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from ..._options import resolve_options
-from ..._progress import progress_steps
-from ..._validation import check_positive
-from ...errors import InputError
-from .. import _kernels
-from .surfaces import check_fault_arrays
-from .voting_kernels import _cast_votes, _seed_surfaces, _strongest
+from ...._options import resolve_options
+from ...._progress import progress_steps
+from ...._validation import check_positive
+from ....errors import InputError
+from ... import _kernels
+from ..result import FaultVotes, check_fault_arrays, fault_frames
+from .voting_kernels import cast_votes, greedy_seeds, strongest, surface_kernel
 
-__all__ = ["VotingOptions", "FaultVotes", "SeedSurfaces", "VoteSum", "vote_faults", "fault_frames", "greedy_seeds",
+__all__ = ["VotingOptions", "SeedSurfaces", "VoteSum", "vote_faults",
            "image_seeds", "seed_surfaces", "seed_votes", "surface_votes"]
 
 
@@ -113,134 +113,6 @@ class VotingOptions:
 def _check_int(value, name, minimum):
     if isinstance(value, bool) or int(value) != value or value < minimum:
         raise InputError(f"{name} must be an integer >= {minimum}; got {value!r}")
-
-
-@dataclass(frozen=True, eq=False)
-class FaultVotes:
-    """Result of :func:`vote_faults`.
-
-    Attributes
-    ----------
-    votes : (*shape) float32 ndarray
-        Accumulated votes divided by :meth:`VotingOptions.full_vote`, clipped to [0, 1]: about the mean likelihood
-        of the fault surfaces through a sample, scaled down where fewer surfaces than on a long fault pass.
-    strike_deg, dip_deg : (*shape) float32 ndarray
-        Orientation of the best voting surface through each sample (degrees, conventions of
-        :mod:`~seismo3d.seismic.faults.likelihood`); 0 where no surface passed.
-    n_seeds : int
-        Number of seeds that voted.
-    """
-
-    votes: np.ndarray
-    strike_deg: np.ndarray
-    dip_deg: np.ndarray
-    n_seeds: int
-
-
-@nb.njit(cache=True)
-def _greedy_seeds(cand, shape, d):
-    # keep candidates (sorted strongest first) with no kept seed within Chebyshev distance d. Kept seeds are filed in
-    # cells of d + 1 samples per side: a cell holds at most one (two points of a cell are within d of each other),
-    # and a seed within d of a candidate lies in the candidate's cell or a neighbouring one.
-    size = d + 1
-    g0 = (shape[0] + size - 1) // size
-    g1 = (shape[1] + size - 1) // size
-    g2 = (shape[2] + size - 1) // size
-    cells = -np.ones((g0, g1, g2), np.int64)
-    out = np.empty_like(cand)
-    n = 0
-    for c in range(cand.shape[0]):
-        i, j, k = cand[c, 0], cand[c, 1], cand[c, 2]
-        a, bb, cc = i // size, j // size, k // size
-        ok = True
-        for x in range(max(a - 1, 0), min(a + 2, g0)):
-            for y in range(max(bb - 1, 0), min(bb + 2, g1)):
-                for z in range(max(cc - 1, 0), min(cc + 2, g2)):
-                    s = cells[x, y, z]
-                    if s >= 0 and abs(out[s, 0] - i) <= d and abs(out[s, 1] - j) <= d and abs(out[s, 2] - k) <= d:
-                        ok = False
-                        break
-                if not ok:
-                    break
-            if not ok:
-                break
-        if ok:
-            cells[a, bb, cc] = n
-            out[n] = cand[c]
-            n += 1
-    return out[:n]
-
-
-def greedy_seeds(points, values, shape, spacing: int) -> np.ndarray:
-    """Voting seeds: candidate samples taken strongest first, each more than ``spacing`` samples (Chebyshev distance)
-    from every seed taken before it (Wu & Fomel 2018).
-
-    The order is by decreasing value, ties by position (inline, then crossline, then sample), so the seeds do not
-    depend on the order the candidates come in: candidates gathered block by block from a cube larger than memory
-    give the seeds of the whole cube. Memory: the candidates and one int64 per cell of ``spacing + 1`` samples a side.
-
-    Parameters
-    ----------
-    points : (n, 3) array_like of int
-        Candidate samples (inline, crossline, sample indices; a 2D section's crossline index 0).
-    values : (n,) array_like of float
-        Their thinned fault likelihood.
-    shape : (int, int, int)
-        Shape of the cube (a section as (n_traces, 1, n_samples)).
-    spacing : int
-        Seeds are more than this many samples apart (:meth:`VotingOptions.spacing`).
-
-    Returns
-    -------
-    (m, 3) int64 ndarray
-        The seeds, strongest first.
-
-    Raises
-    ------
-    InputError
-        Points and values differ in length, or a point lies outside ``shape``.
-
-    References
-    ----------
-    .. [1] X. Wu and S. Fomel, Geophysics 83(5), O67-O82, 2018, doi:10.1190/geo2018-0115.1 (seed picking).
-    """
-    pts = np.asarray(points, dtype=np.int64).reshape(-1, 3)
-    vals = np.asarray(values, dtype=np.float32).ravel()
-    shape = tuple(int(n) for n in shape)
-    if vals.size != pts.shape[0]:
-        raise InputError(f"greedy_seeds got {pts.shape[0]} points but {vals.size} values; pass one value per point")
-    if pts.shape[0] == 0:
-        return np.zeros((0, 3), np.int64)
-    if pts.min() < 0 or np.any(pts.max(axis=0) >= np.asarray(shape)):
-        raise InputError(f"greedy_seeds got points outside a cube of shape {shape}; pass indices of that cube")
-    key = np.ravel_multi_index(tuple(pts.T), shape)
-    order = np.lexsort((key, -vals))
-    return _greedy_seeds(np.ascontiguousarray(pts[order]), np.asarray(shape, np.int64), int(spacing))
-
-
-def fault_frames(strike_deg, dip_deg) -> np.ndarray:
-    """Orthonormal frames of fault planes: unit normal, dip vector and strike vector.
-
-    Parameters
-    ----------
-    strike_deg, dip_deg : (n,) array_like of float
-        Fault strikes and dips, degrees (conventions of :mod:`~seismo3d.seismic.faults.likelihood`; a 2D section's
-        strike is 90 or 270).
-
-    Returns
-    -------
-    (n, 3, 3) float64 ndarray
-        Rows: the normal ``(sin(dip) sin(strike), -sin(dip) cos(strike), cos(dip))`` (into the footwall), the dip
-        vector ``(-cos(dip) sin(strike), cos(dip) cos(strike), sin(dip))`` (down the fault) and the strike vector
-        ``(cos(strike), sin(strike), 0)``, in (inline, xline, sample) components.
-    """
-    phi = np.radians(np.asarray(strike_deg, np.float64))
-    theta = np.radians(np.asarray(dip_deg, np.float64))
-    sp, cp, st, ct = np.sin(phi), np.cos(phi), np.sin(theta), np.cos(theta)
-    u = np.stack([st * sp, -st * cp, ct], -1)
-    v = np.stack([-ct * sp, ct * cp, st], -1)
-    w = np.stack([cp, sp, np.zeros_like(sp)], -1)
-    return np.stack([u, v, w], axis=-2)
 
 
 def _strike_dip(normal: np.ndarray, two_d: bool) -> tuple[np.ndarray, np.ndarray]:
@@ -523,7 +395,7 @@ def seed_surfaces(likelihood, seeds, frames, *, image_shape, options: VotingOpti
     fa = np.full(len(seeds), -1.0)
     normals = np.zeros((len(seeds), 3), np.float32)
     g0, g1 = (int(v) for v in origin)
-    _seed_surfaces(att, g0, g1, shape3, seeds, frames, ru, rv, rw, b, a_smooth, nb.get_num_threads(), offsets, fa,
+    surface_kernel(att, g0, g1, shape3, seeds, frames, ru, rv, rw, b, a_smooth, nb.get_num_threads(), offsets, fa,
                    normals)
     return SeedSurfaces(offsets, fa, normals)
 
@@ -583,7 +455,7 @@ class VoteSum:
         # the strongest surface is recorded by its position in the seeds added so far (increasing with the ids:
         # the same tie-breaks)
         positions = np.arange(self._count, self._count + len(ids), dtype=np.int64)
-        _cast_votes(seeds, ids, positions, np.ascontiguousarray(surfaces.offsets),
+        cast_votes(seeds, ids, positions, np.ascontiguousarray(surfaces.offsets),
                     np.ascontiguousarray(surfaces.mean_likelihood, dtype=np.float64), self.i0, self.j0,
                     self._votes, self._best, self._best_seed)
         self._normals.append(np.asarray(surfaces.normals, np.float32))
@@ -606,7 +478,7 @@ class VoteSum:
         positions = np.arange(self._count, dtype=np.int64)
         strike = np.zeros(total.shape, np.float32)
         dip = np.zeros(total.shape, np.float32)
-        _strongest(self._best, self._best_seed, positions, seed_strike, seed_dip, strike, dip)
+        strongest(self._best, self._best_seed, positions, seed_strike, seed_dip, strike, dip)
         self._best = self._best_seed = None
         np.multiply(total, np.float32(1.0 / self.opt.full_vote(self.image_shape)), out=total)
         np.clip(total, 0.0, 1.0, out=total)

@@ -1,19 +1,19 @@
-"""Fault likelihood of a cube larger than memory: the scan of :mod:`~seismo3d.seismic.faults.likelihood` run block by
+"""Fault likelihood of a cube larger than memory: the scan of :mod:`~seismo3d.seismic.faults.likelihood.scan` run block by
 block on dask, with the halo each step needs, results written block by block to Zarr, resumable.
 
 The steps and their blocks (every block carries exactly the halo its step needs, so the result equals the in-memory
 :func:`~seismo3d.seismic.faults.fault_likelihood` up to float rounding):
 
 1. Amplitude statistics (peak, mean square) of the whole cube: one pass of sums over its chunks.
-2. Amplitude balancing on square blocks of traces with :func:`~seismo3d.seismic.faults.likelihood.balance_halo`
+2. Amplitude balancing on square blocks of traces with :func:`~seismo3d.seismic.faults.likelihood.scan.balance_halo`
    traces of halo (every sample of a trace in the block), written to an intermediate Zarr array; then the semblance
    terms (structure tensors, structure-oriented semblance; finite Gaussian windows) on square blocks with
-   :func:`~seismo3d.seismic.faults.likelihood.semblance_halo` of halo, written at half the vertical resolution.
+   :func:`~seismo3d.seismic.faults.likelihood.scan.semblance_halo` of halo, written at half the vertical resolution.
    Two steps rather than one: each block carries only its own step's halo, so blocks can be larger for the same
    memory.
 3. The scan of the planes sheared along inlines on blocks that hold every inline (the exponential smoothing down the
    dip follows a fault plane laterally without bound, so that axis is never cut) and a few crosslines with
-   :func:`~seismo3d.seismic.faults.likelihood.strike_halo` of halo; then the planes sheared along crosslines on blocks
+   :func:`~seismo3d.seismic.faults.likelihood.scan.strike_halo` of halo; then the planes sheared along crosslines on blocks
    that hold every crossline. The packed keys of both are combined by their maximum.
 4. Likelihood, strike and dip decoded block by block into the output Zarr group.
 
@@ -38,15 +38,16 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from ..._options import resolve_options
-from ..._validation import check_int
-from ...errors import InputError
-from ..blocks import BlockRun, SchedulerClient, block_budget, largest_block, write_marker
-from .likelihood import (AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan,
-                               saturation_counts, scan_planes, scan_step, semblance_floor, semblance_halo,
-                               semblance_terms, strike_halo)
-from ..io.zarr_store import SEISMIC_CODEC, consolidate
-from .memory import default_memory_limit, in_memory_bytes, resident_memory, worker_baseline
+from ...._options import resolve_options
+from ...._validation import check_int
+from ....errors import InputError
+from ...blocks.executor import BlockRun, SchedulerClient, block_budget, largest_block, write_marker
+from ..likelihood.scan import (
+    AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan, saturation_counts,
+    scan_planes, scan_step, semblance_floor, semblance_halo, semblance_terms, strike_halo,
+)
+from ...io.zarr_store import SEISMIC_CODEC, consolidate
+from ...blocks.memory import default_memory_limit, in_memory_bytes, resident_memory, worker_baseline
 
 __all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
            "in_memory_bytes", "resident_memory", "smallest_block_bytes", "worker_baseline"]
@@ -453,14 +454,14 @@ class _Run(LikelihoodRun):
         high = sum(r["high"] for r in results)
         live = sum(r["live"] for r in results)
         group = zarr.open_group(str(self.partial), mode="r+")
-        _write_coords(group, p.shape, coords)
+        write_coords(group, p.shape, coords)
         fraction = high / live if live else 0.0
         group.attrs.update({"method": "fault likelihood (Hale 2013), seismo3d chunked run",
                             "saturated_fraction": fraction})
         return fraction
 
 
-def _write_coords(group, shape, coords) -> None:
+def write_coords(group, shape, coords) -> None:
     coords = dict(coords or {})
     unit = coords.pop("sample_unit", None)
     for name, n in zip(("inline", "crossline", "sample"), shape):

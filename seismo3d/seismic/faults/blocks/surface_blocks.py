@@ -1,34 +1,34 @@
 """Fault surfaces of a cube larger than memory: the steps of :func:`~seismo3d.seismic.faults.trace_faults` after the
 fault likelihood, run block by block on dask from a chunked likelihood, with the same faults as the in-memory run.
 
-``_SurfaceRun`` implements the named steps of :class:`~seismo3d.seismic.faults.surface_steps.SurfaceRun` on blocks;
-:func:`~seismo3d.seismic.faults.surface_steps.surface_cells` calls them in the order the run in memory does
-(:class:`~seismo3d.seismic.faults.array_run.ArrayRun`: the whole array as one block), and
-:func:`~seismo3d.seismic.faults.surface_steps.faults_from_cells` makes the faults of the stored cells.
+``_SurfaceRun`` implements the named steps of :class:`~seismo3d.seismic.faults.steps.SurfaceRun` on blocks;
+:func:`~seismo3d.seismic.faults.steps.surface_cells` calls them in the order the run in memory does
+(:class:`~seismo3d.seismic.faults.blocks.array_run.ArrayRun`: the whole array as one block), and
+:func:`~seismo3d.seismic.faults.steps.faults_from_cells` makes the faults of the stored cells.
 
 Every step reads what it needs around its block (the halo of its operator) from Zarr work arrays and writes its
 block's core, so the result does not depend on where the blocks are cut:
 
-1. **Fill values** of the dead-sample rules (:mod:`~seismo3d.seismic.faults.dead_samples`): gathered over every block,
+1. **Fill values** of the dead-sample rules (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`): gathered over every block,
    from the cube's smallest and largest amplitudes.
 2. **Ridges**: per block, dead samples and their reach, the likelihood zeroed there (the ``live`` likelihood) and
    its ridges (:func:`~seismo3d.seismic.thin_faults`, halo ``RIDGE_HALO``); the ridge samples above the voting's seed
    threshold are kept as a sparse list of seed candidates.
 3. **Seeds**: the candidates of all blocks, taken strongest first by
-   :func:`~seismo3d.seismic.faults.voting.greedy_seeds` (a sparse list: a few percent of the samples).
+   :func:`~seismo3d.seismic.faults.surfaces.voting_kernels.greedy_seeds` (a sparse list: a few percent of the samples).
 4. **Surfaces, then votes**: each seed's optimal surface once, in the block holding the seed, on the live likelihood
    read with the voting's reach (``VotingOptions.reach``) around it
-   (:func:`~seismo3d.seismic.faults.voting.seed_surfaces`, stored as the samples each surface passes); then per block
-   the votes of the surfaces of the seeds reaching it (:class:`~seismo3d.seismic.faults.voting.VoteSum`: each seed's
+   (:func:`~seismo3d.seismic.faults.surfaces.voting.seed_surfaces`, stored as the samples each surface passes); then per block
+   the votes of the surfaces of the seeds reaching it (:class:`~seismo3d.seismic.faults.surfaces.voting.VoteSum`: each seed's
    votes are summed by the same thread, in the same order, as in memory).
 5. **Thinning** of the votes (halo 2), with the count, smallest and largest positive thinned vote per block; then
    their histogram (Otsu's threshold on the same 256 bins as in memory) and, when they are dense, their exact
    quantile: the thresholds of :meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`.
 6. **Cells**: the thinned votes at or above the lower threshold, gathered as a sparse list, linked into fault skins
-   by :func:`~seismo3d.seismic.faults.skins.skins_from_cells` (no array of the cube's size).
+   by :func:`~seismo3d.seismic.faults.surfaces.skins.skins_from_cells` (no array of the cube's size).
 7. **Throws** read the amplitudes around each fault patch (:func:`~seismo3d.seismic.fault_throws` on the lazy cube).
 
-Resume, progress and schedulers are those of :mod:`~seismo3d.seismic.faults.likelihood_blocks`: a marker per finished
+Resume, progress and schedulers are those of :mod:`~seismo3d.seismic.faults.blocks.scan_blocks`: a marker per finished
 block in ``OUTPUT.work``, the output assembled in ``OUTPUT.partial`` and renamed when complete.
 """
 
@@ -42,23 +42,25 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from ..._atomic import atomic_path
-from ...errors import EarlierStoresError, InputError
-from ..attributes import structure_tensor_slopes
-from ..blocks import BlockRun, SchedulerClient, write_marker
-from ..io.zarr_store import SEISMIC_CODEC, consolidate
-from .dead_samples import dead_samples, fill_values, near_dead_samples
-from .interpretation import FaultTracingOptions
-from .likelihood_blocks import ChunkOptions
-from .memory import default_memory_limit, resident_memory, worker_baseline
-from .steps import live_likelihood, ridges, thin_votes, without_dead_edges
-from .surface_plan import (CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, SURFACE_BATCH_BYTES, THIN_HALO, SurfacePlan,
-                           amplitude_halo, around, plan_blocks, smallest_block_bytes, square_blocks)
-from .surface_steps import faults_from_cells, surface_cells
-from .thresholds import (HISTOGRAM_BINS, QUANTILE_BINS, block_histogram, otsu_of_histogram, quantile_of_window,
-                         quantile_window)
-from .voting import SeedSurfaces, VoteSum, fault_frames, greedy_seeds, seed_surfaces
-from .windows import StoredWindows
+from ...._atomic import atomic_path
+from ....errors import EarlierStoresError, InputError
+from ...blocks.executor import BlockRun, SchedulerClient, write_marker
+from ...io.zarr_store import SEISMIC_CODEC, consolidate
+from ..options import FaultTracingOptions
+from .scan_blocks import ChunkOptions
+from ...blocks.memory import default_memory_limit, resident_memory, worker_baseline
+from .surface_plan import (
+    CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, SurfacePlan, amplitude_halo, around, plan_blocks, smallest_block_bytes,
+    square_blocks,
+)
+from ..steps import faults_from_cells, surface_cells
+from ..surfaces.thresholds import HISTOGRAM_BINS, QUANTILE_BINS, otsu_of_histogram, quantile_of_window, quantile_window
+from ..result import fault_frames
+from ..surfaces.voting_kernels import greedy_seeds
+from .surface_block_steps import (
+    cell_block, fill_block, gather_block, histogram_block, ridge_block, surface_block, thin_block, vote_block,
+)
+from ...blocks.windows import StoredWindows
 
 __all__ = ["CANDIDATE_BYTES", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO", "smallest_block_bytes"]
 
@@ -123,7 +125,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     cube : (n_inlines, n_xlines, n_samples) dask.array.Array or array_like
         Amplitudes (e.g. ``open_lazy(path).data``), finite, samples along the last axis.
     likelihood : str or os.PathLike
-        Zarr group of :func:`~seismo3d.seismic.faults.likelihood_blocks.chunked_fault_likelihood` of this cube (arrays
+        Zarr group of :func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` of this cube (arrays
         ``likelihood``, ``strike_deg``, ``dip_deg``).
     output : str or os.PathLike
         Output Zarr group, created. When it is the finished output of the same run (cube shape, likelihood, options)
@@ -317,7 +319,7 @@ class _SurfaceRun(BlockRun):
     def fill_values(self, x, lo: float, hi: float) -> np.ndarray:
         p = self.plan
         todo, done = self.pending("fill", square_blocks(p.shape, p.dead))
-        tasks = [self.task(_fill_block, x[b[0]:b[1], b[2]:b[3]], lo, hi, str(self.marker("fill", b)))
+        tasks = [self.task(fill_block, x[b[0]:b[1], b[2]:b[3]], lo, hi, str(self.marker("fill", b)))
                  for b in todo]
         results = self.compute(tasks, "fill values", "fill") + done
         return np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
@@ -335,7 +337,7 @@ class _SurfaceRun(BlockRun):
         tasks = []
         for b in todo:
             a0, a1, b0, b1 = around(b, h, p.shape)
-            tasks.append(self.task(_ridge_block, x[a0:a1, b0:b1], (a0, b0), b, fill, lo, hi, self.likelihood,
+            tasks.append(self.task(ridge_block, x[a0:a1, b0:b1], (a0, b0), b, fill, lo, hi, self.likelihood,
                                    str(self.work), str(self.partial), p, self.opt, str(self.marker("ridges", b))))
         results = self.compute(tasks, "fault ridges", "ridges") + done
         return sum(r["high"] for r in results), sum(r["live"] for r in results)
@@ -375,22 +377,22 @@ class _SurfaceRun(BlockRun):
         for b in todo:
             i0, i1, j0, j1 = b
             sel = np.nonzero((seeds[:, 0] >= i0) & (seeds[:, 0] < i1) & (seeds[:, 1] >= j0) & (seeds[:, 1] < j1))[0]
-            tasks.append(self.task(_surface_block, b, seeds[sel], sel, frames[sel], str(self.work), str(self.partial),
+            tasks.append(self.task(surface_block, b, seeds[sel], sel, frames[sel], str(self.work), str(self.partial),
                                    p, self.opt, str(self.marker("surfaces", b))))
         self.compute(tasks, "fault surfaces", "surfaces")
         todo, _ = self.pending("votes", blocks)
         # threads=False: the votes are summed per numba thread (voting.VoteSum), so a block's kernel keeps the
         # process's threads, as the in-memory run
-        tasks = [self.task(_vote_block, b, seeds, blocks, str(self.work), str(self.partial), p, self.opt,
+        tasks = [self.task(vote_block, b, seeds, blocks, str(self.work), str(self.partial), p, self.opt,
                            str(self.marker("votes", b)), threads=False) for b in todo]
         self.compute(tasks, "fault voting", "votes")
 
     def thresholds(self) -> tuple[float, float]:
         """The thresholds from the thinned votes of every block: their count and range, their histogram (Otsu) and,
-        when they are dense, their exact quantile (:mod:`~seismo3d.seismic.faults.thresholds`)."""
+        when they are dense, their exact quantile (:mod:`~seismo3d.seismic.faults.surfaces.thresholds`)."""
         p = self.plan
         blocks = square_blocks(p.shape, p.thin)
-        stats = self.each_block("thin", "thinning", _thin_block, blocks, str(self.work), str(self.partial), p)
+        stats = self.each_block("thin", "thinning", thin_block, blocks, str(self.work), str(self.partial), p)
         n_values = sum(r["count"] for r in stats)
         n_samples = int(np.prod(p.shape, dtype=np.int64))
         if n_values == 0:
@@ -402,7 +404,7 @@ class _SurfaceRun(BlockRun):
                                         lambda q: self._quantile(blocks, q, n_values, vmin, vmax))
 
     def _histogram(self, blocks, vmin, vmax, bins, step) -> np.ndarray:
-        results = self.each_block(step, "histogram of the thinned votes", _histogram_block, blocks, str(self.work),
+        results = self.each_block(step, "histogram of the thinned votes", histogram_block, blocks, str(self.work),
                                    vmin, vmax, bins)
         return np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)
 
@@ -411,7 +413,7 @@ class _SurfaceRun(BlockRun):
         interpolates, found by a fine histogram and a pass that gathers the values of their bins."""
         counts = self._histogram(blocks, vmin, vmax, QUANTILE_BINS, "quantile_histogram")
         window = quantile_window(counts, n, q, vmin, vmax)
-        results = self.each_block("quantile", "quantile of the thinned votes", _gather_block, blocks, str(self.work),
+        results = self.each_block("quantile", "quantile of the thinned votes", gather_block, blocks, str(self.work),
                                    window[3], window[4])
         values = np.concatenate([np.asarray(r["values"], np.float32) for r in results])
         return quantile_of_window(window, sum(r["below"] for r in results), values)
@@ -423,7 +425,7 @@ class _SurfaceRun(BlockRun):
         import zarr
         p = self.plan
         blocks = square_blocks(p.shape, p.thin)
-        results = self.each_block("cells", "fault cells", _cell_block, blocks, str(self.work), str(self.partial),
+        results = self.each_block("cells", "fault cells", cell_block, blocks, str(self.work), str(self.partial),
                                    lower)
         n = sum(r["count"] for r in results)
         if n * CELL_BYTES > self.memory - resident_memory():
@@ -450,199 +452,6 @@ class _SurfaceRun(BlockRun):
         return n
 
 
-def _save_npz(path: pathlib.Path, **arrays) -> None:
-    with atomic_path(str(path)) as tmp, open(tmp, "wb") as fh:
-        np.savez(fh, **arrays)
-
-
 # -- block tasks --------------------------------------------------------------------------------------------------
 
-def _fill_block(f, lo, hi, marker) -> dict:
-    result = {"fill": [float(v) for v in fill_values(np.asarray(f, np.float32), lo, hi)]}
-    write_marker(marker, result)
-    return result
 
-
-def _ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan: SurfacePlan, opt: FaultTracingOptions,
-                 marker) -> dict:
-    """Dead samples, live likelihood and ridges of one block; seed candidates of its core saved."""
-    import zarr
-    n0, n1, _ = plan.shape
-    i0, i1, j0, j1 = block
-    f = np.asarray(f, np.float32)
-    _write_slopes(f, origin, block, partial)
-    dead = dead_samples(f, fill, lo, hi)
-    del f
-    near = near_dead_samples(dead) if dead.any() else None
-    del dead
-    a0, a1, b0, b1 = around(block, RIDGE_HALO, plan.shape)
-    group = zarr.open_group(likelihood, mode="r")
-    fl = group["likelihood"][a0:a1, b0:b1]
-    st = group["strike_deg"][a0:a1, b0:b1]
-    dp = group["dip_deg"][a0:a1, b0:b1]
-    if near is not None:
-        near = near[a0 - origin[0]:a1 - origin[0], b0 - origin[1]:b1 - origin[1]]
-    core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
-    high, live = live_likelihood(fl, near, core)
-    zarr.open_group(partial, mode="r+")["likelihood"][i0:i1, j0:j1] = fl[core]
-    if near is not None:
-        zarr.open_array(f"{work}/near", mode="r+")[i0:i1, j0:j1] = near[core].view(np.uint8)
-    ridge = ridges(fl, st, dp, opt.voting.seed_threshold)[core]
-    cand = np.argwhere(ridge > float(opt.voting.seed_threshold))
-    at = tuple(cand.T)
-    local = (cand[:, 0] + i0 - a0, cand[:, 1] + j0 - b0, cand[:, 2])
-    _save_npz(pathlib.Path(work) / "candidates" / f"{i0}-{j0}.npz",
-              points=(cand + np.array([i0, j0, 0])).astype(np.int64), values=ridge[at].astype(np.float32),
-              angles=np.stack([st[local], dp[local]], axis=-1).astype(np.float32))
-    result = {"high": high, "live": live}
-    write_marker(marker, result)
-    return result
-
-
-def _write_slopes(f: np.ndarray, origin, block, partial) -> None:
-    """Reflector slopes (:func:`structure_tensor_slopes`, as the throws read them in memory) of a block's core,
-    from its amplitudes read with at least :func:`structure_tensor_halo` traces of halo."""
-    import zarr
-    i0, i1, j0, j1 = block
-    core = (slice(i0 - origin[0], i1 - origin[0]), slice(j0 - origin[1], j1 - origin[1]))
-    slopes = structure_tensor_slopes(f)
-    group = zarr.open_group(partial, mode="r+")
-    group["slope_inline"][i0:i1, j0:j1] = slopes[0][core]
-    group["slope_xline"][i0:i1, j0:j1] = slopes[1][core]
-
-
-def _surface_block(block, seeds, ids, frames, work, partial, plan: SurfacePlan, opt: FaultTracingOptions,
-                   marker) -> dict:
-    """The optimal surfaces of the seeds of one block, on the live likelihood read with the voting's reach around
-    it, saved in ``work/surfaces`` (offsets as a .npy, read back row by row; ids, votes and normals)."""
-    import zarr
-    a0, a1, b0, b1 = around(block, plan.reach, plan.shape)
-    att = zarr.open_group(partial, mode="r")["likelihood"][a0:a1, b0:b1]
-    found = seed_surfaces(att, seeds, frames, image_shape=plan.shape, options=opt.voting, origin=(a0, b0))
-    del att
-    stem = pathlib.Path(work) / "surfaces" / f"{block[0]}-{block[2]}"
-    with atomic_path(str(stem) + ".offsets.npy") as tmp, open(tmp, "wb") as fh:
-        np.save(fh, found.offsets)
-    _save_npz(stem.with_suffix(".npz"), ids=np.asarray(ids, np.int64), mean_likelihood=found.mean_likelihood,
-              normals=found.normals)
-    write_marker(marker, {})
-    return {}
-
-
-def _vote_block(block, seeds, blocks, work, partial, plan: SurfacePlan, opt: FaultTracingOptions, marker) -> dict:
-    """Votes over one block's core of the surfaces of the seeds reaching it, added in id order (as in memory), a
-    batch of at most ``SURFACE_BATCH_BYTES`` of surfaces at a time."""
-    import zarr
-    i0, i1, j0, j1 = block
-    r = plan.reach
-    total = VoteSum(plan.shape, (i0, j0, i1 - i0, j1 - j0), options=opt.voting)
-    parts = []  # (ids, file, rows, stored votes and normals) of the seeds reaching the block, per seed block
-    for b in blocks:  # seed blocks within reach
-        if b[1] <= i0 - r or b[0] >= i1 + r or b[3] <= j0 - r or b[2] >= j1 + r:
-            continue
-        stem = pathlib.Path(work) / "surfaces" / f"{b[0]}-{b[2]}"
-        with np.load(stem.with_suffix(".npz")) as saved:
-            stored = dict(saved)
-        at = seeds[stored["ids"]]
-        rows = np.nonzero((at[:, 0] >= i0 - r) & (at[:, 0] < i1 + r) & (at[:, 1] >= j0 - r) &
-                          (at[:, 1] < j1 + r))[0]
-        if rows.size:
-            parts.append((stored["ids"][rows], stem, rows, stored))
-    if parts:
-        ids = np.concatenate([q[0] for q in parts])
-        which = np.concatenate([np.full(q[0].size, n) for n, q in enumerate(parts)])
-        rows = np.concatenate([q[2] for q in parts])
-        order = np.argsort(ids)
-        ids, which, rows = ids[order], which[order], rows[order]
-        per_seed = np.load(str(parts[0][1]) + ".offsets.npy", mmap_mode="r")[:1].nbytes + 32
-        batch = max(1, SURFACE_BATCH_BYTES // per_seed)
-        for lo in range(0, ids.size, batch):
-            hi = min(lo + batch, ids.size)
-            surfaces = _surfaces_of(parts, which[lo:hi], rows[lo:hi])
-            total.add(seeds[ids[lo:hi]], ids[lo:hi], surfaces)
-            del surfaces
-    votes = total.votes()
-    del total
-    without_dead_edges(votes.votes, zarr.open_array(f"{work}/near", mode="r")[i0:i1, j0:j1].view(bool))
-    group = zarr.open_group(partial, mode="r+")
-    group["votes"][i0:i1, j0:j1] = votes.votes
-    group["vote_strike_deg"][i0:i1, j0:j1] = votes.strike_deg
-    group["vote_dip_deg"][i0:i1, j0:j1] = votes.dip_deg
-    write_marker(marker, {})
-    return {}
-
-
-def _surfaces_of(parts, which, rows) -> SeedSurfaces:
-    """The stored surfaces of a batch of seeds, in the batch's order: seed k is row ``rows[k]`` of seed block
-    ``which[k]`` (an item of ``parts``)."""
-    out = None
-    for n, (_, stem, _, stored) in enumerate(parts):
-        mine = np.nonzero(which == n)[0]
-        if not mine.size:
-            continue
-        offsets = np.load(str(stem) + ".offsets.npy", mmap_mode="r")
-        if out is None:
-            out = SeedSurfaces(np.empty((which.size,) + offsets.shape[1:], offsets.dtype), np.empty(which.size),
-                               np.empty((which.size, 3), np.float32))
-        out.offsets[mine] = offsets[rows[mine]]
-        del offsets
-        out.mean_likelihood[mine] = stored["mean_likelihood"][rows[mine]]
-        out.normals[mine] = stored["normals"][rows[mine]]
-    return out
-
-
-def _thin_block(block, work, partial, plan: SurfacePlan, marker) -> dict:
-    """Thinned votes of one block; the count, smallest and largest of the positive ones."""
-    import zarr
-    i0, i1, j0, j1 = block
-    a0, a1, b0, b1 = around(block, THIN_HALO, plan.shape)
-    group = zarr.open_group(partial, mode="r")
-    votes = group["votes"][a0:a1, b0:b1]
-    thin = thin_votes(votes, group["vote_strike_deg"][a0:a1, b0:b1],
-                      group["vote_dip_deg"][a0:a1, b0:b1])[i0 - a0:i1 - a0, j0 - b0:j1 - b0]
-    del votes
-    zarr.open_array(f"{work}/thin_raw", mode="r+")[i0:i1, j0:j1] = thin
-    positive = thin[thin > 0]
-    result = {"count": int(positive.size), "min": float(positive.min()) if positive.size else 0.0,
-              "max": float(positive.max()) if positive.size else 0.0}
-    write_marker(marker, result)
-    return result
-
-
-def _positive_thin(block, work) -> np.ndarray:
-    import zarr
-    i0, i1, j0, j1 = block
-    thin = zarr.open_array(f"{work}/thin_raw", mode="r")[i0:i1, j0:j1]
-    return thin[thin > 0]
-
-
-def _histogram_block(block, work, vmin, vmax, bins, marker) -> dict:
-    result = {"counts": block_histogram(_positive_thin(block, work), vmin, vmax, bins).tolist()}
-    write_marker(marker, result)
-    return result
-
-
-def _gather_block(block, work, lo_edge, hi_edge, marker) -> dict:
-    values = _positive_thin(block, work)
-    result = {"below": int(np.count_nonzero(values < lo_edge)),
-              "values": values[(values >= lo_edge) & (values <= hi_edge)].tolist()}
-    write_marker(marker, result)
-    return result
-
-
-def _cell_block(block, work, partial, lower, marker) -> dict:
-    """The thinned votes at or above ``lower`` of one block, written to the output and saved as cells."""
-    import zarr
-    i0, i1, j0, j1 = block
-    thin = zarr.open_array(f"{work}/thin_raw", mode="r")[i0:i1, j0:j1]
-    thin[thin < lower] = 0.0
-    group = zarr.open_group(partial, mode="r+")
-    group["thin"][i0:i1, j0:j1] = thin
-    cells = np.argwhere(thin >= lower)
-    at = tuple(cells.T)
-    _save_npz(pathlib.Path(work) / "cells" / f"{i0}-{j0}.npz",
-              points=(cells + np.array([i0, j0, 0])).astype(np.int64), values=thin[at],
-              strike=group["vote_strike_deg"][i0:i1, j0:j1][at], dip=group["vote_dip_deg"][i0:i1, j0:j1][at])
-    result = {"count": int(len(cells))}
-    write_marker(marker, result)
-    return result

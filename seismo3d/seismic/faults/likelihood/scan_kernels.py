@@ -1,4 +1,4 @@
-"""The numba kernels of the fault-likelihood scan (:mod:`~seismo3d.seismic.faults.likelihood`): the packed scan key, the
+"""The numba kernels of the fault-likelihood scan (:mod:`~seismo3d.seismic.faults.likelihood.scan`): the packed scan key, the
 smoothing along strike and the exponential smoothing down the dip with the semblance's power, and their coefficients."""
 
 from __future__ import annotations
@@ -6,13 +6,17 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-__all__ = []  # the kernels are private to the scan
+from ....errors import InputError
+
+# used by the scan module; not part of the package's public face
+__all__ = ["CODE_BITS", "FL_LEVELS", "box_half", "default_angles", "exponential_coefficient", "orientation_table", "scan_dip",
+           "smooth_strike", "sum_samples"]
 
 
 # numba kernels of the scan
 
-_CODE_BITS = 11  # orientation code in the low bits of the packed scan key (at most 2048 orientations)
-_FL_LEVELS = (1 << 20) - 1  # likelihood quantised to 20 bits in the high bits
+CODE_BITS = 11  # orientation code in the low bits of the packed scan key (at most 2048 orientations)
+FL_LEVELS = (1 << 20) - 1  # likelihood quantised to 20 bits in the high bits
 
 
 @nb.njit(cache=True)
@@ -55,7 +59,7 @@ def _box_rows(x, y, c, m, n, h):
 
 
 @nb.njit(cache=True, parallel=True)
-def _smooth_strike(x, alpha, h, origin, n_threads, out):
+def smooth_strike(x, alpha, h, origin, n_threads, out):
     # x in layout (na, nt, nb). Smooth along the staircase lines a = a0 + round(alpha * b) of every time slice with
     # two passes of a box of half-width h (a triangle filter), zero outside the cube; each output sample is written
     # once. `origin`: the cube index of b = 0 (blocks of a cube). Work is split in chunks of lines with one workspace
@@ -90,7 +94,7 @@ def _smooth_strike(x, alpha, h, origin, n_threads, out):
 
 
 @nb.njit(cache=True, parallel=True)
-def _scan_dip(sn, sd, beta, a, code_k, power_squarings, tiny, n_threads, key, b0):
+def scan_dip(sn, sd, beta, a, code_k, power_squarings, tiny, n_threads, key, b0):
     # sn, sd, key in layout (na, nt, nb). Along the staircase lines a = a0 + round(beta * t) of every (a, t) slice
     # (vectorised over b), smooth the semblance numerator and denominator with a two-sided recursive exponential
     # filter of coefficient `a` (zero-slope ends; Hale's RecursiveExponentialFilter), and keep the maximum of
@@ -147,11 +151,11 @@ def _scan_dip(sn, sd, beta, a, code_k, power_squarings, tiny, n_threads, key, b0
                         s = s * s
                     if power_squarings >= 5:
                         s = s * s
-                    q = np.int32((np.float32(1.0) - s) * np.float32(_FL_LEVELS) + np.float32(0.5))
-                    key[aa, t, j] = max(key[aa, t, j], (q << _CODE_BITS) | code_k)
+                    q = np.int32((np.float32(1.0) - s) * np.float32(FL_LEVELS) + np.float32(0.5))
+                    key[aa, t, j] = max(key[aa, t, j], (q << CODE_BITS) | code_k)
 
 
-def _exponential_coefficient(sigma: float) -> float:
+def exponential_coefficient(sigma: float) -> float:
     """Coefficient of the two-sided recursive exponential filter whose impulse response has standard deviation
     ``sigma`` samples (Hale's RecursiveExponentialFilter)."""
     ss = sigma * sigma
@@ -162,6 +166,70 @@ def _exponential_coefficient(sigma: float) -> float:
 # fault likelihood
 
 
-def _box_half(sigma: float) -> int:
+def box_half(sigma: float) -> int:
     # two passes of a box of half-width h have variance 2 h (h + 1) / 3; match it to sigma^2
     return max(1, int(round(np.sqrt(1.5 * sigma * sigma + 0.25) - 0.5)))
+
+
+def orientation_table(strikes, dips, two_d):
+    """Unique (strike, dip) pairs, with for each its shear axis, strike slope, dip slope and strike-group key."""
+    if two_d:
+        strikes = np.array([90.0, 270.0])
+    pairs = []
+    seen = set()
+    for phi in np.asarray(strikes, dtype=np.float64) % 360.0:
+        for theta in np.asarray(dips, dtype=np.float64):
+            key_phi = phi % 180.0 if theta >= 90.0 - 1e-9 else phi
+            key = (round(key_phi, 6), round(theta, 6))
+            if key in seen:
+                continue
+            seen.add(key)
+            pairs.append((key_phi, theta))
+    rows = []
+    for phi, theta in pairs:
+        p = np.radians(phi)
+        t = np.radians(theta)
+        cot = np.cos(t) / np.sin(t)
+        if two_d or abs(np.sin(p)) >= abs(np.cos(p)) - 1e-12:
+            axis = 0
+            alpha = np.cos(p) / np.sin(p)
+            beta = -cot / np.sin(p)
+            lateral = abs(np.sin(p))
+        else:
+            axis = 1
+            alpha = np.sin(p) / np.cos(p)
+            beta = cot / np.cos(p)
+            lateral = abs(np.cos(p))
+        rows.append((phi, theta, axis, alpha, beta, lateral))
+    return rows
+
+
+def default_angles(strikes, dips, strike_smoothing, min_dip=60.0, dip_smoothing=20.0):
+    if strikes is None:
+        # a plane misoriented by d radians leaves the fault by ~ sigma * d at one smoothing width from the centre:
+        # a step of 1 / strike_smoothing radians (15 degrees for the default 4 traces) keeps that under half a trace
+        n = max(8, int(np.ceil(6.0 * strike_smoothing)))
+        strikes = np.arange(n) * (360.0 / n)
+    if dips is None:
+        # evenly spaced in cot(dip), the lateral shift per sample down the fault, by 1 / dip_smoothing: neighbouring
+        # planes part by one trace at one smoothing width (13 dips from 90 to 60 degrees for the defaults)
+        cot_max = 1.0 / np.tan(np.radians(min_dip))
+        n = 1 + int(np.ceil(cot_max * dip_smoothing - 1e-9))
+        dips = np.degrees(np.arctan2(1.0, np.linspace(0.0, cot_max, n)))
+    strikes = np.atleast_1d(np.asarray(strikes, dtype=np.float64))
+    dips = np.atleast_1d(np.asarray(dips, dtype=np.float64))
+    if strikes.ndim != 1 or strikes.size == 0 or not np.all(np.isfinite(strikes)):
+        raise InputError(f"strikes must be a non-empty 1D array of finite angles in degrees; got {strikes!r}")
+    if dips.ndim != 1 or dips.size == 0 or not np.all((dips > 0) & (dips <= 90)):
+        raise InputError(f"dips must be a non-empty 1D array of angles in (0, 90] degrees; got {dips!r}")
+    return strikes, dips
+
+
+def sum_samples(x: np.ndarray, step: int) -> np.ndarray:
+    """Sums of ``step`` consecutive samples along the last axis (the last, partial group summed too)."""
+    n = x.shape[-1]
+    m = -(-n // step)
+    pad = m * step - n
+    if pad:
+        x = np.concatenate([x, np.repeat(x[..., -1:], pad, axis=-1)], axis=-1)
+    return np.ascontiguousarray(x.reshape(x.shape[:-1] + (m, step)).sum(axis=-1, dtype=np.float32))

@@ -10,13 +10,13 @@ import numpy as np
 from ..._validation import check_choice, check_positive
 from ...errors import InputError
 from .evidence import EvidenceOptions, sensitivity_factor
-from .learned import LearnedOptions
-from .likelihood import FaultScanOptions
-from .skins import SkinOptions
-from .thresholds import otsu, quantile
-from .voting import VotingOptions
+from .likelihood.learned import LearnedOptions
+from .likelihood.scan import FaultScanOptions
+from .surfaces.skins import SkinOptions
+from .surfaces.thresholds import otsu, quantile
+from .surfaces.voting import VotingOptions
 
-__all__ = ["FaultInterpretation", "FaultTracingOptions", "LIKELIHOODS"]
+__all__ = ["FaultTracingOptions", "LIKELIHOODS"]
 
 LIKELIHOODS = ("scan", "learned")
 
@@ -33,7 +33,7 @@ class FaultTracingOptions:
         default 0.5), at least ``min_vote`` times the same factor; the lower threshold is a third of the upper one.
     min_vote : float
         Floor of the upper threshold at the default sensitivity, on the absolute scale of
-        :class:`~seismo3d.seismic.faults.voting.FaultVotes` (about the mean likelihood of the surfaces through a
+        :class:`~seismo3d.seismic.faults.result.FaultVotes` (about the mean likelihood of the surfaces through a
         sample): data whose votes are all weak yield no faults rather than the strongest of its noise.
     max_fault_fraction : float
         The lower threshold leaves at most this fraction of the samples on thinned faults (scaled like the
@@ -41,7 +41,7 @@ class FaultTracingOptions:
         sections), and denser ridges are the uniform votes of incoherent data, not faults.
     likelihood : {'scan', 'learned'}
         The fault likelihood of step 1: the fault network trained on generated sections
-        (:mod:`~seismo3d.seismic.faults.learned`, ``learned``, the default) or the scan of fault-plane semblance
+        (:mod:`~seismo3d.seismic.faults.likelihood.learned`, ``learned``, the default) or the scan of fault-plane semblance
         (Hale 2013, ``scan``). The default was chosen on the F3 inlines with faults drawn by a person (mean F1 0.500
         against the scan's 0.215, cross-validated, ``python benchmarks/faults.py --only f3``); against the published
         OSV faults of the Costa Rica crf section the scan finds more (recall 0.72 against 0.27).
@@ -145,50 +145,3 @@ class FaultTracingOptions:
         return lower, upper
 
 
-@dataclass(frozen=True)
-class FaultInterpretation:
-    """Result of :func:`trace_faults`.
-
-    Attributes
-    ----------
-    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
-        Fault likelihood in [0, 1] (0 on and next to dead samples).
-    strike_deg, dip_deg : same shape, float32 ndarray
-        Strike and dip of the most likely fault plane at each sample, degrees, index space.
-    votes : same shape, float32 ndarray
-        Optimal-surface votes in [0, 1] (:func:`~seismo3d.seismic.vote_faults`): about the mean likelihood of the
-        fault surfaces through each sample.
-    thin : same shape, float32 ndarray
-        The votes on the 1-sample-wide thinned faults above the lower threshold, 0 elsewhere.
-    thresholds : (float, float)
-        The lower and upper thresholds on the thinned votes (see :class:`FaultTracingOptions`).
-    faults : list of Fault
-        Fault skins (surfaces in 3D, curves in 2D), ids 1, 2, ... by decreasing size; their ``likelihood`` holds the
-        thinned votes.
-    throws : list of FaultThrow
-        One per fault, in the order of ``faults``; ``throws[i].throw`` is the vertical throw at each point of
-        ``faults[i]``, in samples.
-    evidence : list of FaultEvidence
-        One per fault: median throw, its spread, the sides' correlation and its gain from the throw's shift.
-    sample_interval : float
-        Sample interval in ``sample_unit`` (1 for 'samples').
-    sample_unit : {'samples', 'ms', 'm', 'ft'}
-        Unit of the sample axis.
-    stores : dict of str to pathlib.Path
-        Empty for a run in memory. For a cube traced block by block, the Zarr groups its arrays are read from:
-        ``likelihood`` (fault likelihood, strike and dip of the scan) and ``surfaces``
-        (:class:`~seismo3d.seismic.faults.pipeline_blocks.ChunkedFaults`); the arrays above are then Zarr arrays.
-    """
-
-    likelihood: np.ndarray
-    strike_deg: np.ndarray
-    dip_deg: np.ndarray
-    votes: np.ndarray
-    thin: np.ndarray
-    thresholds: tuple
-    faults: list
-    throws: list
-    evidence: list
-    sample_interval: float
-    sample_unit: str
-    stores: dict = field(default_factory=dict)

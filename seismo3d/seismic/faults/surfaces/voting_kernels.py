@@ -1,13 +1,17 @@
-"""The numba kernels of optimal surface voting (:mod:`~seismo3d.seismic.faults.voting`, Wu & Fomel 2018): Hale's dynamic
-warping with a strain bound in each seed's box, the votes of the best surface summed per thread, and the strongest
-surface's orientation at each sample."""
+"""The irregular loops of optimal surface voting (:mod:`~seismo3d.seismic.faults.surfaces.voting`, Wu & Fomel 2018):
+the seeds spread greedily over the image (:func:`greedy_seeds`), Hale's dynamic warping with a strain bound in each
+seed's box (:func:`surface_kernel`), the votes of the best surface summed per thread (:func:`cast_votes`), and the
+strongest surface's orientation at each sample (:func:`strongest`)."""
 
 from __future__ import annotations
 
 import numba as nb
 import numpy as np
 
-__all__ = []  # the kernels are private to the voting
+from ....errors import InputError
+
+# used by the voting module; not part of the package's public face
+__all__ = ["cast_votes", "greedy_seeds", "strongest", "surface_kernel"]
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -143,7 +147,7 @@ def _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth,
              tmp, line, seed_normal, offsets):
     # steps 1-4 for seed s: its optimal surface in surf (nw, nv) (offsets across the fault, samples), the surface's
     # mean likelihood inside the image (returned; -1 when no sample of it is inside), its normal at the seed in
-    # seed_normal[s] and the samples it passes in offsets[s] (see _seed_surfaces). att (n_a, n_b, n2) the likelihood
+    # seed_normal[s] and the samples it passes in offsets[s] (see surface_kernel). att (n_a, n_b, n2) the likelihood
     # of the image of shape (n0, n1, n2) from inline g0 and crossline g1 on; positions in image coordinates (the
     # same float arithmetic whatever the block)
     nu = 2 * ru + 1
@@ -239,11 +243,11 @@ def _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth,
 
 
 @nb.njit(cache=True, parallel=True)
-def _seed_surfaces(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n_threads, offsets, fa, seed_normal):
+def surface_kernel(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n_threads, offsets, fa, seed_normal):
     # Steps 1-4 for every seed, each on one thread (no shared writes): fa[s] the surface's mean likelihood (-1: no
     # vote), seed_normal[s] its normal at the seed, offsets[s, iw, iv] the sample (inline, crossline, sample) the
     # surface passes at (dip step iv, strike step iw), relative to the seed, rounded in image coordinates as the
-    # votes are cast (so that _cast_votes gives the votes of the surface wherever it was computed)
+    # votes are cast (so that cast_votes gives the votes of the surface wherever it was computed)
     n0, n1, n2 = shape[0], shape[1], shape[2]
     nu = 2 * ru + 1
     nv = 2 * rv + 1
@@ -266,14 +270,14 @@ def _seed_surfaces(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n
 
 
 @nb.njit(cache=True, parallel=True)
-def _cast_votes(seeds, ids, positions, offsets, fa, o0, o1, votes, best, best_seed):
-    # Step 5: one vote fa[s] per sample of each seed's surface (offsets from _seed_surfaces) inside the core
+def cast_votes(seeds, ids, positions, offsets, fa, o0, o1, votes, best, best_seed):
+    # Step 5: one vote fa[s] per sample of each seed's surface (offsets from surface_kernel) inside the core
     # [o0:o0 + m0, o1:o1 + m1] of the image. Thread ids[s] % n_threads (ids: the seeds' indices among all seeds of
     # the image, increasing) sums seed s's votes, in the order of the list: the same sums, in the same order,
     # whether the cube is voted whole or block by block. best and best_seed (n_threads, m0, m1, n2), also per
     # thread, record the strongest surface of the thread's seeds through each sample (its mean likelihood and the
     # seed's position, positions[s], in the list of seeds the votes are summed over, increasing with the ids; equal
-    # means go to the smaller position); _strongest then takes the strongest over the threads, so the result
+    # means go to the smaller position); strongest then takes the strongest over the threads, so the result
     # depends neither on the threads' timing nor on their number.
     n_threads, m0, m1, n2 = votes.shape
     nw, nv = offsets.shape[1], offsets.shape[2]
@@ -299,7 +303,7 @@ def _cast_votes(seeds, ids, positions, offsets, fa, o0, o1, votes, best, best_se
 
 
 @nb.njit(cache=True, parallel=True)
-def _strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
+def strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
     # strike and dip (m0, m1, n2) of the strongest surface through each sample over the threads' records (the
     # larger mean likelihood, then the smaller seed id); 0 where no surface passes
     n_threads, m0 = best.shape[0], best.shape[1]
@@ -319,3 +323,84 @@ def _strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
                 if s >= 0:
                     strike[i, j, k] = seed_strike[s]
                     dip[i, j, k] = seed_dip[s]
+
+
+@nb.njit(cache=True)
+def _greedy_seeds(cand, shape, d):
+    # keep candidates (sorted strongest first) with no kept seed within Chebyshev distance d. Kept seeds are filed in
+    # cells of d + 1 samples per side: a cell holds at most one (two points of a cell are within d of each other),
+    # and a seed within d of a candidate lies in the candidate's cell or a neighbouring one.
+    size = d + 1
+    g0 = (shape[0] + size - 1) // size
+    g1 = (shape[1] + size - 1) // size
+    g2 = (shape[2] + size - 1) // size
+    cells = -np.ones((g0, g1, g2), np.int64)
+    out = np.empty_like(cand)
+    n = 0
+    for c in range(cand.shape[0]):
+        i, j, k = cand[c, 0], cand[c, 1], cand[c, 2]
+        a, bb, cc = i // size, j // size, k // size
+        ok = True
+        for x in range(max(a - 1, 0), min(a + 2, g0)):
+            for y in range(max(bb - 1, 0), min(bb + 2, g1)):
+                for z in range(max(cc - 1, 0), min(cc + 2, g2)):
+                    s = cells[x, y, z]
+                    if s >= 0 and abs(out[s, 0] - i) <= d and abs(out[s, 1] - j) <= d and abs(out[s, 2] - k) <= d:
+                        ok = False
+                        break
+                if not ok:
+                    break
+            if not ok:
+                break
+        if ok:
+            cells[a, bb, cc] = n
+            out[n] = cand[c]
+            n += 1
+    return out[:n]
+
+
+def greedy_seeds(points, values, shape, spacing: int) -> np.ndarray:
+    """Voting seeds: candidate samples taken strongest first, each more than ``spacing`` samples (Chebyshev distance)
+    from every seed taken before it (Wu & Fomel 2018).
+
+    The order is by decreasing value, ties by position (inline, then crossline, then sample), so the seeds do not
+    depend on the order the candidates come in: candidates gathered block by block from a cube larger than memory
+    give the seeds of the whole cube. Memory: the candidates and one int64 per cell of ``spacing + 1`` samples a side.
+
+    Parameters
+    ----------
+    points : (n, 3) array_like of int
+        Candidate samples (inline, crossline, sample indices; a 2D section's crossline index 0).
+    values : (n,) array_like of float
+        Their thinned fault likelihood.
+    shape : (int, int, int)
+        Shape of the cube (a section as (n_traces, 1, n_samples)).
+    spacing : int
+        Seeds are more than this many samples apart (:meth:`VotingOptions.spacing`).
+
+    Returns
+    -------
+    (m, 3) int64 ndarray
+        The seeds, strongest first.
+
+    Raises
+    ------
+    InputError
+        Points and values differ in length, or a point lies outside ``shape``.
+
+    References
+    ----------
+    .. [1] X. Wu and S. Fomel, Geophysics 83(5), O67-O82, 2018, doi:10.1190/geo2018-0115.1 (seed picking).
+    """
+    pts = np.asarray(points, dtype=np.int64).reshape(-1, 3)
+    vals = np.asarray(values, dtype=np.float32).ravel()
+    shape = tuple(int(n) for n in shape)
+    if vals.size != pts.shape[0]:
+        raise InputError(f"greedy_seeds got {pts.shape[0]} points but {vals.size} values; pass one value per point")
+    if pts.shape[0] == 0:
+        return np.zeros((0, 3), np.int64)
+    if pts.min() < 0 or np.any(pts.max(axis=0) >= np.asarray(shape)):
+        raise InputError(f"greedy_seeds got points outside a cube of shape {shape}; pass indices of that cube")
+    key = np.ravel_multi_index(tuple(pts.T), shape)
+    order = np.lexsort((key, -vals))
+    return _greedy_seeds(np.ascontiguousarray(pts[order]), np.asarray(shape, np.int64), int(spacing))

@@ -1,0 +1,18 @@
+"""Running computations on cubes larger than memory: block by block, resumably, under a memory limit.
+
+Generic pieces, knowing nothing of what a block computes:
+
+- :mod:`~seismo3d.seismic.blocks.options`: :class:`BlockRunOptions`, how a cube is run (memory limit, forced choice,
+  work folder, dask scheduler, the input's name and coordinates recorded in the stores);
+- :mod:`~seismo3d.seismic.blocks.memory`: memory limits parsed and measured, whether a run in memory fits;
+- :mod:`~seismo3d.seismic.blocks.executor`: resumable runs over the blocks of a cube (markers, budgets, dask
+  schedulers, the kernels' threads);
+- :mod:`~seismo3d.seismic.blocks.windows`: windows of a cube around points, in memory, lazy (dask) or stored (Zarr).
+
+The fault interpretation's block runs use them (:mod:`seismo3d.seismic.faults.blocks`).
+"""
+
+from .executor import BlockRun, SchedulerClient, run_block
+from .options import BlockRunOptions
+
+__all__ = ["BlockRun", "BlockRunOptions", "SchedulerClient", "run_block"]

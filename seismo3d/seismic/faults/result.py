@@ -1,0 +1,290 @@
+"""The results of the fault steps and their index-space conventions.
+
+- :class:`FaultLikelihood` (step 1), :class:`FaultVotes` (the voting), :class:`Fault` (a fault skin: points, normals,
+  likelihood), :class:`FaultInterpretation` (the whole run of :func:`~seismo3d.seismic.faults.trace_faults`);
+- :func:`check_fault_arrays`: a likelihood, strike and dip checked to be arrays of one shape (2D or 3D);
+- :func:`fault_normals`, :func:`fault_strike_dip`, :func:`fault_frames`: a fault plane's unit normal from its strike
+  and dip and back, and the plane's frame (conventions of :mod:`~seismo3d.seismic.faults.likelihood.scan`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..._validation import as_seismic
+from ...errors import InputError
+
+__all__ = ["Fault", "FaultInterpretation", "FaultLikelihood", "FaultVotes", "check_fault_arrays", "fault_frames",
+           "fault_normals", "fault_strike_dip"]
+
+
+def fault_strike_dip(normal) -> tuple[float, float]:
+    """Strike and dip of a fault normal (the inverse of :func:`fault_normals`).
+
+    Parameters
+    ----------
+    normal : (3,) or (2,) array_like of float
+        A unit fault normal, (inline, xline, sample) or (trace, sample) components, of either sign.
+
+    Returns
+    -------
+    strike_deg : float
+        Degrees in [0, 360) (90 or 270 in 2D; module conventions).
+    dip_deg : float
+        Degrees in [0, 90].
+    """
+    n = np.asarray(normal, dtype=np.float64)
+    if n[-1] < 0:
+        n = -n
+    dip = np.degrees(np.arccos(np.clip(n[-1], 0.0, 1.0)))
+    if n.shape[0] == 2:
+        strike = 90.0 if n[0] >= 0 else 270.0
+    else:
+        strike = np.degrees(np.arctan2(n[0], -n[1])) % 360.0
+    return float(strike), float(dip)
+
+
+def fault_normals(strike_deg, dip_deg, *, ndim: int = 3) -> np.ndarray:
+    """Unit fault normals from strike and dip.
+
+    Parameters
+    ----------
+    strike_deg, dip_deg : array_like of float
+        Strike in degrees [0, 360) and dip in degrees (0, 90], same shape (module conventions, index space).
+    ndim : {2, 3}, optional
+        3 for cube normals (inline, xline, sample); 2 for section normals (trace, sample).
+
+    Returns
+    -------
+    (*strike_deg.shape, ndim) float32 ndarray
+        ``(sin(dip) sin(strike), -sin(dip) cos(strike), cos(dip))``, or its (trace, sample) components in 2D.
+
+    Raises
+    ------
+    InputError
+        If the shapes differ or ``ndim`` is not 2 or 3.
+    """
+    phi = np.radians(np.asarray(strike_deg, dtype=np.float64))
+    theta = np.radians(np.asarray(dip_deg, dtype=np.float64))
+    if phi.shape != theta.shape:
+        raise InputError(f"strike_deg {phi.shape} and dip_deg {theta.shape} must have the same shape")
+    if ndim not in (2, 3):
+        raise InputError(f"ndim must be 2 or 3; got {ndim!r}")
+    st = np.sin(theta)
+    comps = [st * np.sin(phi), -st * np.cos(phi), np.cos(theta)]
+    if ndim == 2:
+        comps = [comps[0], comps[2]]
+    return np.stack(comps, axis=-1).astype(np.float32)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class Fault:
+    """One linked fault: a surface of thinned samples in 3D, a curve in 2D.
+
+    Attributes
+    ----------
+    id : int
+        Fault id, 1, 2, ... in decreasing size.
+    points : (n, ndim) int64 ndarray
+        Index coordinates (inline, xline, sample) or (trace, sample) of the fault's samples.
+    likelihood : (n,) float32 ndarray
+        The value at each point of the thinned fault image the fault was linked from
+        (:func:`~seismo3d.seismic.faults.surfaces.skins.fault_skins`): in
+        :func:`~seismo3d.seismic.trace_faults`, the thinned votes of the optimal-surface voting, not the fault
+        likelihood itself (Hale's skins, whose cells carry a thinned likelihood, give the name).
+    strike_deg, dip_deg : (n,) float32 ndarray
+        Strike and dip at each point, degrees (module conventions).
+    normals : (n, ndim) float32 ndarray
+        Unit fault normal at each point, pointing into the footwall. The two sides of the fault at point ``p`` are
+        near ``p + d * normal`` (footwall) and ``p - d * normal`` (hanging wall): the hook for measuring throw by
+        registering the reflectors of the two sides.
+    """
+
+    id: int
+    points: np.ndarray
+    likelihood: np.ndarray
+    strike_deg: np.ndarray
+    dip_deg: np.ndarray
+    normals: np.ndarray
+
+    @property
+    def size(self) -> int:
+        """Number of samples on the fault."""
+        return int(self.points.shape[0])
+
+    @property
+    def mean_normal(self) -> np.ndarray:
+        """(ndim,) float64 unit mean normal (likelihood-weighted, sign-aligned, sample component >= 0)."""
+        n = self.normals.astype(np.float64)
+        ref = n[np.argmax(self.likelihood)]
+        sgn = np.where(n @ ref < 0, -1.0, 1.0)
+        m = (n * (sgn * self.likelihood)[:, None]).sum(axis=0)
+        m /= max(np.linalg.norm(m), 1e-12)
+        return -m if m[-1] < 0 else m
+
+    @property
+    def mean_strike_deg(self) -> float:
+        """Strike of :attr:`mean_normal`, degrees in [0, 360)."""
+        return float(fault_strike_dip(self.mean_normal)[0])
+
+    @property
+    def mean_dip_deg(self) -> float:
+        """Dip of :attr:`mean_normal`, degrees in [0, 90]."""
+        return float(fault_strike_dip(self.mean_normal)[1])
+
+
+def check_fault_arrays(likelihood, strike, dip):
+    """A fault image and its strike and dip as float32 arrays of one shape, or :class:`InputError`.
+
+    Parameters
+    ----------
+    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        Fault likelihood, votes or thinned faults; finite.
+    strike, dip : array_like of float, same shape
+        Strike and dip, degrees.
+
+    Returns
+    -------
+    likelihood, strike, dip : float32 ndarray
+
+    Raises
+    ------
+    InputError
+        Shapes differ or values are not finite.
+    """
+    fl = as_seismic(likelihood, "likelihood", min_size=1)
+    st = np.asarray(strike, dtype=np.float32)
+    dp = np.asarray(dip, dtype=np.float32)
+    if st.shape != fl.shape or dp.shape != fl.shape:
+        raise InputError(
+            f"likelihood {fl.shape}, strike {st.shape} and dip {dp.shape} must have the same shape; pass the fields "
+            "of one FaultLikelihood"
+        )
+    if not (np.all(np.isfinite(st)) and np.all(np.isfinite(dp))):
+        raise InputError("strike and dip have NaN or inf values; pass the strike_deg and dip_deg of a FaultLikelihood")
+    return fl, st, dp
+
+
+@dataclass(frozen=True, eq=False)
+class FaultLikelihood:
+    """Result of :func:`fault_likelihood`.
+
+    Attributes
+    ----------
+    likelihood : (*shape) float32 ndarray
+        Fault likelihood in [0, 1]: ``1 - s^power`` of the fault-plane semblance ``s``, maximised over the scan.
+    strike_deg : (*shape) float32 ndarray
+        Strike of the most likely fault plane at each sample, degrees in [0, 360) (see the module conventions).
+    dip_deg : (*shape) float32 ndarray
+        Dip of the most likely fault plane at each sample, degrees in (0, 90], index space.
+    """
+
+    likelihood: np.ndarray
+    strike_deg: np.ndarray
+    dip_deg: np.ndarray
+
+    @property
+    def normals(self) -> np.ndarray:
+        """(*shape, ndim) float32 unit fault normals from the strike and dip (see :func:`fault_normals`)."""
+        return fault_normals(self.strike_deg, self.dip_deg, ndim=self.likelihood.ndim)
+
+
+@dataclass(frozen=True, eq=False)
+class FaultVotes:
+    """Result of :func:`vote_faults`.
+
+    Attributes
+    ----------
+    votes : (*shape) float32 ndarray
+        Accumulated votes divided by :meth:`VotingOptions.full_vote`, clipped to [0, 1]: about the mean likelihood
+        of the fault surfaces through a sample, scaled down where fewer surfaces than on a long fault pass.
+    strike_deg, dip_deg : (*shape) float32 ndarray
+        Orientation of the best voting surface through each sample (degrees, conventions of
+        :mod:`~seismo3d.seismic.faults.likelihood.scan`); 0 where no surface passed.
+    n_seeds : int
+        Number of seeds that voted.
+    """
+
+    votes: np.ndarray
+    strike_deg: np.ndarray
+    dip_deg: np.ndarray
+    n_seeds: int
+
+
+def fault_frames(strike_deg, dip_deg) -> np.ndarray:
+    """Orthonormal frames of fault planes: unit normal, dip vector and strike vector.
+
+    Parameters
+    ----------
+    strike_deg, dip_deg : (n,) array_like of float
+        Fault strikes and dips, degrees (conventions of :mod:`~seismo3d.seismic.faults.likelihood.scan`; a 2D section's
+        strike is 90 or 270).
+
+    Returns
+    -------
+    (n, 3, 3) float64 ndarray
+        Rows: the normal ``(sin(dip) sin(strike), -sin(dip) cos(strike), cos(dip))`` (into the footwall), the dip
+        vector ``(-cos(dip) sin(strike), cos(dip) cos(strike), sin(dip))`` (down the fault) and the strike vector
+        ``(cos(strike), sin(strike), 0)``, in (inline, xline, sample) components.
+    """
+    phi = np.radians(np.asarray(strike_deg, np.float64))
+    theta = np.radians(np.asarray(dip_deg, np.float64))
+    sp, cp, st, ct = np.sin(phi), np.cos(phi), np.sin(theta), np.cos(theta)
+    u = np.stack([st * sp, -st * cp, ct], -1)
+    v = np.stack([-ct * sp, ct * cp, st], -1)
+    w = np.stack([cp, sp, np.zeros_like(sp)], -1)
+    return np.stack([u, v, w], axis=-2)
+
+
+@dataclass(frozen=True)
+class FaultInterpretation:
+    """Result of :func:`trace_faults`.
+
+    Attributes
+    ----------
+    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
+        Fault likelihood in [0, 1] (0 on and next to dead samples).
+    strike_deg, dip_deg : same shape, float32 ndarray
+        Strike and dip of the most likely fault plane at each sample, degrees, index space.
+    votes : same shape, float32 ndarray
+        Optimal-surface votes in [0, 1] (:func:`~seismo3d.seismic.vote_faults`): about the mean likelihood of the
+        fault surfaces through each sample.
+    thin : same shape, float32 ndarray
+        The votes on the 1-sample-wide thinned faults above the lower threshold, 0 elsewhere.
+    thresholds : (float, float)
+        The lower and upper thresholds on the thinned votes (see :class:`FaultTracingOptions`).
+    faults : list of Fault
+        Fault skins (surfaces in 3D, curves in 2D), ids 1, 2, ... by decreasing size; their ``likelihood`` holds the
+        thinned votes.
+    throws : list of FaultThrow
+        One per fault, in the order of ``faults``; ``throws[i].throw`` is the vertical throw at each point of
+        ``faults[i]``, in samples.
+    evidence : list of FaultEvidence
+        One per fault: median throw, its spread, the sides' correlation and its gain from the throw's shift.
+    sample_interval : float
+        Sample interval in ``sample_unit`` (1 for 'samples').
+    sample_unit : {'samples', 'ms', 'm', 'ft'}
+        Unit of the sample axis.
+    stores : dict of str to pathlib.Path
+        Empty for a run in memory. For a cube traced block by block, the Zarr groups its arrays are read from:
+        ``likelihood`` (fault likelihood, strike and dip of the scan) and ``surfaces``
+        (:class:`~seismo3d.seismic.faults.blocks.surface_blocks.ChunkedFaults`); the arrays above are then Zarr arrays.
+    """
+
+    likelihood: np.ndarray
+    strike_deg: np.ndarray
+    dip_deg: np.ndarray
+    votes: np.ndarray
+    thin: np.ndarray
+    thresholds: tuple
+    faults: list
+    throws: list
+    evidence: list
+    sample_interval: float
+    sample_unit: str
+    stores: dict = field(default_factory=dict)

@@ -1,0 +1,16 @@
+"""From a fault likelihood to fault surfaces (curves in 2D sections).
+
+- :mod:`~seismo3d.seismic.faults.surfaces.dead_samples`: dead traces and samples (their edges are not faults).
+- :mod:`~seismo3d.seismic.faults.surfaces.ridges`: ridges (non-maximum suppression across the fault) and thinning.
+- :mod:`~seismo3d.seismic.faults.surfaces.thresholds`: the thresholds' statistics, in memory and streamed.
+- :mod:`~seismo3d.seismic.faults.surfaces.voting`: optimal surface voting (Wu & Fomel 2018); its loops in
+  :mod:`~seismo3d.seismic.faults.surfaces.voting_kernels`.
+- :mod:`~seismo3d.seismic.faults.surfaces.skins`: thinned votes linked into fault skins (Hale 2013); its loops in
+  :mod:`~seismo3d.seismic.faults.surfaces.skin_kernels`.
+"""
+
+from .ridges import thin_faults
+from .skins import SkinOptions, fault_skins
+from .voting import VotingOptions, vote_faults
+
+__all__ = ["SkinOptions", "VotingOptions", "fault_skins", "thin_faults", "vote_faults"]

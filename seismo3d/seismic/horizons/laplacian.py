@@ -1,0 +1,143 @@
+"""The weighted graph-Laplacian least-squares solve of :mod:`~seismo3d.seismic.horizons.lsq`: conjugate gradients on
+the traces' pair equations, preconditioned by a coarse level of trace aggregates solved densely."""
+
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+__all__ = ["coarse_labels", "solve_weighted"]
+
+
+_AGGREGATE = 64  # traces per aggregate of the solver's coarse level
+
+
+_MAX_COARSE = 512  # aggregates at most (their system is solved densely)
+
+
+def coarse_labels(lateral_shape: tuple) -> tuple[np.ndarray, int]:
+    """Aggregates of the solver's coarse level: compact blocks of about :data:`_AGGREGATE` neighbouring traces (as
+    square as the grid allows; larger where there would be more than :data:`_MAX_COARSE`), as (n,) int64 labels (C
+    order over ``lateral_shape``) and their count."""
+    n = int(np.prod(lateral_shape))
+    if n == 0:
+        return np.zeros(0, np.int64), 1
+    size = max(_AGGREGATE, n / _MAX_COARSE)  # traces per aggregate
+    labels = np.zeros(lateral_shape, np.int64)
+    for axis, length in enumerate(lateral_shape):
+        # the side the aggregate's remaining traces would have on the remaining axes: a short axis is taken whole
+        # and the aggregates grow along the others
+        side = size ** (1.0 / (len(lateral_shape) - axis))
+        count = max(1, min(length, int(round(length / side))))
+        size /= length / count
+        shape = [1] * len(lateral_shape)
+        shape[axis] = length
+        labels = labels * count + (np.arange(length) * count // length).reshape(shape)  # blocks of equal length
+    labels = labels.ravel()  # every block holds a trace (count <= length): the labels are 0 .. n_coarse - 1
+    return labels, int(labels.max()) + 1
+
+
+def solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping, start, labels, n_coarse):
+    """One weighted solve of the normal equations by two-level preconditioned conjugate gradients (started at
+    ``start``: the last re-weighted solution, which the next one differs little from)."""
+    # normal equations of the pair rows (a graph Laplacian, applied from the pair list) plus the seeds and the damping
+    ws = w * s
+    rhs = np.bincount(b, ws, minlength=n) - np.bincount(a, ws, minlength=n) + damping ** 2 * prev
+    diag = np.full(n, damping ** 2) + np.bincount(seeds, minlength=n) * seed_weight ** 2
+    rhs += np.bincount(seeds, seed_weight ** 2 * seed_times, minlength=n)
+    # the right-hand side is dominated by the seed rows (seed_weight^2 x time, ~1e6), so a residual relative to it
+    # must be small for the pair rows (weights ~1) to be solved to a fraction of a sample
+    return _laplacian_cg(a, b, w, diag, rhs, np.array(start, np.float64), 1e-10, 2000, labels, n_coarse)
+
+
+@nb.njit(cache=True)
+def _laplacian_matvec(a, b, w, diag, x, out):
+    """``out = (L + diag(diag)) x`` with ``L`` the weighted graph Laplacian of the pairs ``a, b`` (weights ``w``)."""
+    for k in range(x.size):
+        out[k] = diag[k] * x[k]
+    for e in range(a.size):
+        d = w[e] * (x[a[e]] - x[b[e]])
+        out[a[e]] += d
+        out[b[e]] -= d
+
+
+@nb.njit(cache=True)
+def _coarse_factor(a, b, w, diag, labels, n_coarse):
+    """Cholesky factor (lower) of the aggregates' system ``P^T (L + diag(diag)) P`` (``P`` the 0/1 matrix of
+    ``labels``): the pairs inside an aggregate drop out, those between two add to the Laplacian of the aggregates."""
+    coarse = np.zeros((n_coarse, n_coarse))
+    for k in range(diag.size):
+        coarse[labels[k], labels[k]] += diag[k]
+    for e in range(a.size):
+        i, j = labels[a[e]], labels[b[e]]
+        if i != j:
+            coarse[i, i] += w[e]
+            coarse[j, j] += w[e]
+            coarse[i, j] -= w[e]
+            coarse[j, i] -= w[e]
+    return np.linalg.cholesky(coarse)
+
+
+@nb.njit(cache=True)
+def _precondition(r, inv, labels, chol, rc, z):
+    """``z = D^-1 r + P (P^T A P)^-1 P^T r``: Jacobi plus the aggregates' correction (``chol`` the factor of
+    :func:`_coarse_factor`; ``rc`` work array)."""
+    nc = rc.size
+    rc[:] = 0.0
+    for k in range(r.size):
+        rc[labels[k]] += r[k]
+    for i in range(nc):  # forward: chol y = rc
+        v = rc[i]
+        for j in range(i):
+            v -= chol[i, j] * rc[j]
+        rc[i] = v / chol[i, i]
+    for i in range(nc - 1, -1, -1):  # backward: chol^T x = y
+        v = rc[i]
+        for j in range(i + 1, nc):
+            v -= chol[j, i] * rc[j]
+        rc[i] = v / chol[i, i]
+    for k in range(r.size):
+        z[k] = inv[k] * r[k] + rc[labels[k]]
+
+
+@nb.njit(cache=True)
+def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter, labels, n_coarse):
+    """Preconditioned conjugate gradients on ``(L + diag(diag)) x = rhs`` from ``x`` (overwritten), stopped when the
+    residual's norm falls below ``rtol`` times the right-hand side's (the iteration of :func:`scipy.sparse.linalg.cg`,
+    compiled, with the Laplacian applied from the pair list); preconditioned by :func:`_precondition`."""
+    n = rhs.size
+    inv = diag.copy()
+    for e in range(a.size):
+        inv[a[e]] += w[e]
+        inv[b[e]] += w[e]
+    inv = 1.0 / inv
+    bnrm = np.sqrt(np.dot(rhs, rhs))
+    if bnrm == 0.0:
+        return rhs.copy()
+    chol = _coarse_factor(a, b, w, diag, labels, n_coarse)
+    rc = np.empty(n_coarse)
+    atol = rtol * bnrm
+    q = np.empty(n)
+    _laplacian_matvec(a, b, w, diag, x, q)
+    r = rhs - q
+    p = np.empty(n)
+    z = np.empty(n)
+    rho_prev = 1.0
+    for it in range(maxiter):
+        if np.sqrt(np.dot(r, r)) < atol:
+            break
+        _precondition(r, inv, labels, chol, rc, z)
+        rho = np.dot(r, z)
+        if it > 0:
+            beta = rho / rho_prev
+            for k in range(n):
+                p[k] = beta * p[k] + z[k]
+        else:
+            p[:] = z
+        _laplacian_matvec(a, b, w, diag, p, q)
+        alpha = rho / np.dot(p, q)
+        for k in range(n):
+            x[k] += alpha * p[k]
+            r[k] -= alpha * q[k]
+        rho_prev = rho
+    return x

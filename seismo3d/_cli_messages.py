@@ -95,9 +95,11 @@ def friendly(flags: dict | None = None):
             except Seismo3dError as exc:
                 typer.echo(f"error: {in_flags(str(exc), flags)}", err=True)
                 raise typer.Exit(2) from None
-            except KeyboardInterrupt:
-                typer.echo("interrupted: earlier results are as they were and nothing half-written was left (an "
-                           "output folder's new files are moved in only when all are written)", err=True)
+            except KeyboardInterrupt as exc:
+                # a job that keeps partial results to resume says so (resume_hint); others leave nothing
+                hint = getattr(exc, "resume_hint", None)
+                typer.echo(hint or "interrupted: earlier results are as they were and nothing half-written was left "
+                           "(an output folder's new files are moved in only when all are written)", err=True)
                 raise typer.Exit(130) from None
 
         return wrapper

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import logging
 import sys
+import time
 from contextlib import contextmanager
 
 __all__ = ["LOGGER", "progress_steps"]
@@ -26,16 +27,28 @@ def _interactive() -> bool:
 
 
 class _Steps:
-    """What :func:`progress_steps` yields: ``start(label)`` names the step that begins, ``advance(n)`` counts done."""
+    """What :func:`progress_steps` yields: ``start(label)`` names the step that begins, ``advance(n)`` counts done;
+    ``seconds`` holds the wall time of each named step (from its ``start`` to the next one's or the end)."""
 
     def __init__(self, total: int, desc: str, unit: str, bar):
         self.total, self.desc, self.unit, self.bar = int(total), desc, unit, bar
         self.done = 0
         self._named = False
         self._next_line = 0
+        self.seconds: dict = {}
+        self._running: tuple | None = None  # (label, start time) of the named step under way
+
+    def stop(self) -> None:
+        """The named step under way, if any, ends (its time is added to ``seconds``)."""
+        if self._running is not None:
+            label, t0 = self._running
+            self.seconds[label] = self.seconds.get(label, 0.0) + time.perf_counter() - t0
+            self._running = None
 
     def start(self, label: str) -> None:
-        """A named step begins (the bar's postfix; one log line)."""
+        """A named step begins (the bar's postfix; one log line); the one before it ends."""
+        self.stop()
+        self._running = (label, time.perf_counter())
         self._named = True
         if self.bar is not None:
             self.bar.set_postfix_str(label)
@@ -92,15 +105,24 @@ def progress_steps(total: int, desc: str, *, unit: str = "step", enabled: bool =
     ------
     object
         With ``start(label)`` (a named step begins) and ``advance(n=1, status=None)`` (steps done; ``status`` an
-        optional short text such as a rate).
+        optional short text such as a rate), and ``seconds``: the wall time of each named step, complete when the
+        ``with`` block ends (reported or not).
     """
     if not enabled:
-        yield no_progress()
-        return
-    if _interactive():
+        steps = no_progress()
+    elif _interactive():
         from tqdm.auto import tqdm
 
         with tqdm(total=total, desc=desc, unit=unit, leave=False, file=sys.stderr) as bar:
-            yield _Steps(total, desc, unit, bar)
+            steps = _Steps(total, desc, unit, bar)
+            try:
+                yield steps
+            finally:
+                steps.stop()
         return
-    yield _Steps(total, desc, unit, None)
+    else:
+        steps = _Steps(total, desc, unit, None)
+    try:
+        yield steps
+    finally:
+        steps.stop()

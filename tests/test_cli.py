@@ -2,6 +2,7 @@
 flags, progress lines in logs), and the faults and point-cloud register commands end to end."""
 
 import csv
+import logging
 import json
 import subprocess
 import sys
@@ -234,6 +235,30 @@ def test_faults_interrupted(tmp_path, monkeypatch):
     result = runner.invoke(app, ["faults", "--demo", "-o", str(tmp_path / "d")])
     assert result.exit_code == 130
     assert result.stderr.startswith("interrupted:")
+
+
+def test_an_interrupted_block_run_says_what_it_keeps_and_how_to_resume(tmp_path, monkeypatch, caplog):
+    """Ctrl-C in a run by blocks: exit code 130 and one line naming the stores kept and how to resume."""
+    import seismo3d.jobs.faults as job
+
+    cube, out = tmp_path / "cube.npy", tmp_path / "out"
+    np.save(cube, np.random.default_rng(0).normal(size=(40, 40, 50)).astype(np.float32))
+
+    def interrupted(data, **kwargs):  # the likelihood's first blocks are finished when Ctrl-C comes
+        partial = out / "fault_likelihood.zarr.partial"
+        partial.mkdir(parents=True)
+        (partial / "block").write_bytes(bytes(5 * 10 ** 6))
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(job, "trace_faults", interrupted)
+    with caplog.at_level(logging.INFO, logger="seismo3d"):
+        result = runner.invoke(app, ["faults", str(cube), "-o", str(out), "--memory-limit", "100MB"])
+    assert result.exit_code == 130
+    assert "40 x 40 x 50 samples traced block by block" in caplog.text  # which way it runs, said before the work
+    line = result.stderr.strip().splitlines()[-1]  # after the log line of how it runs
+    assert line.startswith("interrupted: the blocks finished so far are kept in")
+    assert "fault_likelihood.zarr.partial; 10MB" in line and "run the same command again to resume" in line
+    assert [p.name for p in out.iterdir()] == ["fault_likelihood.zarr.partial"]  # no other output
 
 
 def test_the_demo_seed_is_not_called_seed(tmp_path):

@@ -35,3 +35,17 @@ def test_status_is_shown_beside_the_count(caplog):
                 bar.advance(status=f"{i + 1}.0 frames/s")
     lines = [r.getMessage() for r in caplog.records]
     assert lines == [f"map: {i}/4 frame, {i}.0 frames/s" for i in range(1, 5)]
+
+
+def test_each_named_step_is_timed_until_the_next_or_the_end():
+    import time
+
+    for enabled in (True, False):  # timed whether reported or not
+        with progress_steps(2, "faults", enabled=enabled) as bar:
+            bar.start("voting")
+            time.sleep(0.02)
+            bar.advance()
+            bar.start("thinning")  # ends "voting"
+            time.sleep(0.01)
+        assert list(bar.seconds) == ["voting", "thinning"]  # the last one ends with the block
+        assert 0.02 <= bar.seconds["voting"] < 0.5 and 0.01 <= bar.seconds["thinning"] < 0.5

@@ -22,7 +22,8 @@ from .._atomic import SetAside, StagedFolder, atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import EarlierStoresError, InputError, Seismo3dWarning
-from ..seismic.blocks.memory import fits_in_memory, parse_memory_limit, resident_memory
+from ..seismic.blocks.memory import fits_in_memory, in_memory_bytes, parse_memory_limit, resident_memory, size_text
+from ..seismic.faults.blocks.cube_run import LIKELIHOOD_STORE, SURFACES_STORE
 from ..seismic.blocks.options import BlockRunOptions
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
@@ -60,7 +61,8 @@ class FaultsJobResult:
     run_json : pathlib.Path
         The record of the run (:mod:`seismo3d.jobs.runinfo`).
     stage_seconds : dict
-        Wall time of each stage (``trace_and_write``: reading, tracing and writing).
+        Wall time of each stage, seconds: ``read input``, each step of the fault interpretation
+        (:attr:`~seismo3d.seismic.faults.FaultInterpretation.step_seconds`) and ``write outputs``.
     """
 
     written: dict
@@ -147,9 +149,9 @@ def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, 
     return _Input(data[0], path.stem, path, shape, np.full(xl.size, il[0]), xl, samples, unit, "crossline", sorting)
 
 
-def _demo_input(out_dir: Path, seed, *, read: bool = True) -> tuple:
+def _demo_input(out_dir: Path, seed) -> tuple[Path, Path]:
     """Write a synthetic cube as SEG-Y (4 ms, inlines / crosslines 1..128) and its true faults (CSV) into ``out_dir``;
-    read the cube back (or, with ``read=False``, return the SEG-Y file's path instead)."""
+    the two files' paths (the cube is then read like any SEG-Y input)."""
     from ..data.synthetic import synthetic_cube  # 0.5 s of imports (the data package): only for --demo
 
     syn = synthetic_cube(_DEMO_SHAPE, seed=seed)
@@ -165,10 +167,7 @@ def _demo_input(out_dir: Path, seed, *, read: bool = True) -> tuple:
             w.writerow([f.id, f.kind, f"{f.strike_deg:.1f}", f"{f.dip_deg:.1f}", f"{signed:.5g}",
                         f"{signed * _DEMO_DT_MS:.5g}", f"{f.throw_gradient:.4g}"])
     del syn
-    if not read:
-        return path, truth
-    inp = _read_input(path, iline=189, xline=193, ignore_geometry=False, sample_unit="ms", n_samples=None)
-    return inp, truth
+    return path, truth
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -433,10 +432,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     # the files moved in together when every one is written; with overwrite, another run's block-by-block stores
     # moved aside, deleted once the new files are in, moved back if the run fails
     with SetAside(out_dir) as aside, StagedFolder(out_dir) as stage:
-        with record.stage("trace_and_write"):
-            written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
-                                       n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
-                                       progress=progress, summary=summary, aside=aside if overwrite else None)
+        written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
+                                   n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
+                                   progress=progress, summary=summary, aside=aside if overwrite else None,
+                                   record=record)
         final = {key: stage.final(path) for key, path in written.items()}
         record.options["tracing_options"] = options
         final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"input": input_path},
@@ -446,32 +445,39 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
 
 def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed, segy: dict, n_samples,
                      options: FaultTracingOptions, limit: int, scheduler, progress, summary: list,
-                     aside: SetAside | None) -> dict:
+                     aside: SetAside | None, record: RunRecord) -> dict:
     """Read (or make) the input, trace its faults in memory or block by block, write the results into ``files``
     (the block-by-block run's Zarr stores into ``out_dir``, another run's stores there moved into ``aside``, or
-    refused when it is None); the files written, by key (the summary's rows appended to ``summary``)."""
+    refused when it is None); the files written, by key (the summary's rows appended to ``summary``; the seconds of
+    reading, of each step and of writing in ``record``)."""
     iline, xline, ignore_geometry, endian, sample_unit = (segy[k] for k in ("iline", "xline", "ignore_geometry",
                                                                             "endian", "sample_unit"))
     held = resident_memory()  # the process as it is now: the run may add up to the limit less this
     written = {}
     if demo:
-        inp, written["truth"] = _demo_input(files, demo_seed, read=False)
+        with record.stage("make the demo cube"):
+            inp, written["truth"] = _demo_input(files, demo_seed)
         iline, xline, ignore_geometry, endian, sample_unit, n_samples = 189, 193, False, None, "ms", None
         input_path = written["input"] = inp
-    lazy = None if ignore_geometry else _lazy_if_too_large(input_path, limit, held, iline=iline, xline=xline,
-                                                           sample_unit=sample_unit, endian=endian)
+    with record.stage("read input"):
+        lazy = None if ignore_geometry else _lazy_if_too_large(input_path, limit, held, iline=iline, xline=xline,
+                                                               sample_unit=sample_unit, endian=endian)
     if lazy is not None:
+        _say_how_it_runs(lazy.name, tuple(lazy.data.shape), limit, held, by_blocks=True)
         written.update(_run_chunked(lazy, out_dir, files, memory_limit=limit, scheduler=scheduler,
-                                    options=options, progress=progress, summary=summary, aside=aside))
+                                    options=options, progress=progress, summary=summary, aside=aside, record=record))
         return written
-    inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
-                      n_samples=n_samples, endian=endian)
+    with record.stage("read input"):
+        inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
+                          sample_unit=sample_unit, n_samples=n_samples, endian=endian)
+    _say_how_it_runs(inp.name, inp.data.shape, limit, held, by_blocks=False)
     dt = float(inp.samples[1] - inp.samples[0]) if inp.samples.size > 1 else 1.0
     if inp.unit != "samples" and not dt > 0:
         raise InputError(f"the sample interval of {inp.name} is {dt:g} {inp.unit}; it must be > 0 (check the "
                          "binary header's sample interval, bytes 3217-3218)")
     result = trace_faults(inp.data, sample_interval=None if inp.unit == "samples" else dt, sample_unit=inp.unit,
                           options=options, blocks=BlockRunOptions(in_memory=True), progress=progress)
+    record.stage_seconds.update(result.step_seconds)
 
     geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
     steps = [
@@ -481,8 +487,25 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
         ("dip", lambda: _write_volume(inp, files, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
         ("votes", lambda: _write_volume(inp, files, "fault_votes", result.votes, like=written["likelihood"], **geo)),
     ]
-    _write_steps(steps + _surface_steps(inp, result, files, summary), written, progress)
+    with record.stage("write outputs"):
+        _write_steps(steps + _surface_steps(inp, result, files, summary), written, progress)
     return written
+
+
+def _say_how_it_runs(name: str, shape: tuple, limit: int, held: int, *, by_blocks: bool) -> None:
+    """One log line: whether the input is traced in memory or block by block, and why (the memory it needs)."""
+    samples = " x ".join(str(int(n)) for n in shape)
+    if len(shape) == 2:
+        LOGGER.info("%s: a section of %s samples, traced in memory", name, samples)
+        return
+    need = f"about {size_text(in_memory_bytes(shape))} beside the {size_text(held)} this process holds"
+    if by_blocks:
+        LOGGER.info("%s: %s samples traced block by block into %s and %s in the output folder (its run in memory "
+                    "needs %s, more than the memory limit of %s); run the same command again to resume an "
+                    "interrupted run", name, samples, LIKELIHOOD_STORE, SURFACES_STORE, need, size_text(limit))
+    else:
+        LOGGER.info("%s: %s samples traced in memory (%s, within the memory limit of %s)", name, samples, need,
+                    size_text(limit))
 
 
 def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summary: list) -> list:
@@ -523,7 +546,8 @@ _TILE = 32  # traces per side of the lazy input's chunks: a block of the chunked
 
 
 def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: int, scheduler,
-                 options: FaultTracingOptions, progress, summary: list, aside: SetAside | None) -> dict:
+                 options: FaultTracingOptions, progress, summary: list, aside: SetAside | None,
+                 record: RunRecord) -> dict:
     """The faults of a cube traced block by block (:func:`~seismo3d.seismic.faults.trace_faults`) into
     ``fault_likelihood.zarr`` and ``fault_surfaces.zarr`` in ``out_dir`` (reused when finished, resumed when
     interrupted; those of another run moved into ``aside``, or refused without it); the same files as in memory,
@@ -536,15 +560,32 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: i
         return trace_faults(lazy.data, sample_interval=dt, sample_unit=lazy.unit, options=options, blocks=blocks,
                             progress=progress)
 
-    result = _replacing_earlier_stores(trace, out_dir, aside)
+    try:
+        result = _replacing_earlier_stores(trace, out_dir, aside)
+    except KeyboardInterrupt as exc:
+        exc.resume_hint = _resume_hint(out_dir)  # the CLI's one line (seismo3d._cli_messages.friendly)
+        raise
+    record.stage_seconds.update(result.step_seconds)
     written = {"likelihood": result.stores["likelihood"], "surfaces_zarr": result.stores["surfaces"]}
     inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
-    _write_steps(_surface_steps(inp, result, files, summary), written, progress)
-    written.update(_segy_volumes(lazy, result.stores["surfaces"], files, {"likelihood": "likelihood",
-                                                                          "votes": "votes"}, progress))
-    written.update(_segy_volumes(lazy, result.stores["likelihood"], files, {"strike": "strike_deg", "dip": "dip_deg"},
-                                 progress))
+    with record.stage("write outputs"):
+        _write_steps(_surface_steps(inp, result, files, summary), written, progress)
+        written.update(_segy_volumes(lazy, result.stores["surfaces"], files, {"likelihood": "likelihood",
+                                                                              "votes": "votes"}, progress))
+        written.update(_segy_volumes(lazy, result.stores["likelihood"], files,
+                                     {"strike": "strike_deg", "dip": "dip_deg"}, progress))
     return written
+
+
+def _resume_hint(out_dir: Path) -> str:
+    """What an interrupted block-by-block run leaves in ``out_dir`` and how to resume it, in one line."""
+    kept = sorted(p for name in (LIKELIHOOD_STORE, SURFACES_STORE) for p in out_dir.glob(name + "*"))
+    if not kept:
+        return "interrupted before any block was finished: nothing was written"
+    size = sum(f.stat().st_size for p in kept for f in ([p] if p.is_file() else p.rglob("*")) if f.is_file())
+    return (f"interrupted: the blocks finished so far are kept in {out_dir} ({', '.join(p.name for p in kept)}; "
+            f"{size_text(size)}) and no other output was written; run the same command again to resume (finished "
+            "blocks are skipped), or delete them to start over")
 
 
 def _replacing_earlier_stores(trace, out_dir: Path, aside: SetAside | None):

@@ -2,6 +2,7 @@
 
 import csv
 import hashlib
+import json
 import shutil
 import warnings
 from pathlib import Path
@@ -62,6 +63,17 @@ def test_demo_writes_every_output(demo):
     assert {p.name for p in out.iterdir()} == names
     assert {Path(p).name for p in written.values()} == names
     assert Path(written["figure"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.slow
+def test_run_json_holds_the_seconds_of_each_step(demo):
+    out, _ = demo
+    seconds = json.loads((out / "run.json").read_text())["stage_seconds"]
+    steps = ["make the demo cube", "read input", "fault likelihood", "ridges", "voting", "thinning", "fault skins",
+             "throw", "evidence", "write outputs"]
+    assert list(seconds) == steps
+    assert all(seconds[k] > 0 for k in steps)
+    assert seconds["fault likelihood"] > seconds["read input"]  # the network's pass costs more than a 8 MB read
 
 
 @pytest.mark.slow

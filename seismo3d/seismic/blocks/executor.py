@@ -20,7 +20,7 @@ import time
 import uuid
 
 from ..._atomic import atomic_path
-from ..._progress import progress_steps
+from ..._progress import LOGGER, progress_steps
 from ...errors import EarlierStoresError, InputError
 
 __all__ = ["BlockRun", "SchedulerClient", "MEMORY_HEADROOM", "block_budget", "kernel_threads", "largest_block",
@@ -376,6 +376,9 @@ class BlockRun:
         todo = [b for b in blocks if not self.marker(step, b).exists()]
         self.resumed[step] = len(done)
         self.computed[step] = len(todo)
+        if done:
+            LOGGER.info("%s: %d of %d blocks finished by an earlier run, skipped; %d to compute", step, len(done),
+                        len(done) + len(todo), len(todo))
         return todo, [json.loads(self.marker(step, b).read_text()) for b in done]
 
     def each_block(self, step: str, label: str, fn, blocks, *args, workers: int | None = None) -> list:

@@ -185,7 +185,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     return FaultInterpretation(likelihood=run.likelihood, strike_deg=run.strike_deg, dip_deg=run.dip_deg,
                                votes=votes.votes, thin=run.thin, thresholds=found.thresholds, faults=faults,
                                throws=throws, evidence=evidence, sample_interval=float(sample_interval),
-                               sample_unit=sample_unit)
+                               sample_unit=sample_unit, step_seconds=dict(bar.seconds))
 
 
 def _block_run(blocks) -> BlockRunOptions:

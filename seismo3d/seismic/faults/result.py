@@ -274,6 +274,12 @@ class FaultInterpretation:
         Empty for a run in memory. For a cube traced block by block, the Zarr groups its arrays are read from:
         ``likelihood`` (fault likelihood, strike and dip of the scan) and ``surfaces``
         (:class:`~seismo3d.seismic.faults.blocks.surface_blocks.ChunkedFaults`); the arrays above are then Zarr arrays.
+    step_seconds : dict of str to float
+        Wall time of each step, seconds, in the order they ran: in memory ``fault likelihood``, ``ridges``,
+        ``voting``, ``thinning``, ``fault skins``, ``throw``, ``evidence``; by blocks ``fault likelihood`` (0 when
+        a finished one was reused), the block steps of the fault surfaces (:attr:`ChunkedFaults.seconds`:
+        ``fill``, ``ridges``, ``surfaces``, ``votes``, ``thin``, ... for the blocks computed in this call) and
+        ``fault skins, throw and evidence``.
     """
 
     likelihood: np.ndarray
@@ -288,3 +294,4 @@ class FaultInterpretation:
     sample_interval: float
     sample_unit: str
     stores: dict = field(default_factory=dict)
+    step_seconds: dict = field(default_factory=dict)

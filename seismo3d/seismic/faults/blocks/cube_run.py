@@ -15,6 +15,7 @@ dead samples, saturation, ridges, voting, thinning, thresholds, skins, throws, e
 from __future__ import annotations
 
 import pathlib
+import time
 import uuid
 
 import numpy as np
@@ -90,6 +91,7 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     if not work_dir.is_dir():
         raise InputError(f"cannot write the fault stores into {work_dir}: it is not a folder; create it first")
     path = work_dir / LIKELIHOOD_STORE
+    started = time.perf_counter()
     chunking = ChunkOptions(memory_limit=memory_limit, scheduler=scheduler)
     if path.exists():  # a finished likelihood of an earlier run of the same input: reused
         group = zarr.open_group(str(path), mode="r")
@@ -112,8 +114,12 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
         zarr.open_group(str(path), mode="r+").attrs.update({"source": source, "likelihood": opt.likelihood,
                                                             "id": uuid.uuid4().hex})
         consolidate(path)
+    seconds = {"fault likelihood": time.perf_counter() - started}
+    started = time.perf_counter()
     surfaces = chunked_fault_surfaces(x, path, work_dir / SURFACES_STORE, options=opt, chunking=chunking,
                                       progress=progress)
+    seconds.update(surfaces.seconds)  # the block steps computed in this call
+    seconds["fault skins, throw and evidence"] = time.perf_counter() - started - sum(surfaces.seconds.values())
     zarr.open_group(str(surfaces.path), mode="r+").attrs["source"] = source
     consolidate(surfaces.path)
     LOGGER.info("%s: %d faults from %d seeds and %d thinned fault samples (thresholds %.3f, %.3f)", source,
@@ -124,7 +130,8 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
                                dip_deg=scan["dip_deg"], votes=traced["votes"], thin=traced["thin"],
                                thresholds=surfaces.thresholds, faults=surfaces.faults, throws=surfaces.throws,
                                evidence=surfaces.evidence, sample_interval=float(sample_interval),
-                               sample_unit=sample_unit, stores={"likelihood": path, "surfaces": surfaces.path})
+                               sample_unit=sample_unit, stores={"likelihood": path, "surfaces": surfaces.path},
+                               step_seconds=seconds)
 
 
 def _whole_traces(x):

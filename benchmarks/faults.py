@@ -69,35 +69,14 @@ from pathlib import Path
 
 import numpy as np
 
+from seismo3d.data.interpretations import (TEAPOT_TPD_FAULTS, VOLVE_CONTINUOUS_MS, XL1155_FIRST_INLINE,
+                                           XL1155_LINE, XL1155_MS, load_real_sections, opposite_dip_faults,
+                                           xl1155_coverage)
+from seismo3d.seismic.evaluation import evaluate_faults, plain_semblance, semblance_skeleton
+
 METHODS = ("fault_likelihood", "learned_likelihood", "voting+skins", "trace_faults scan", "trace_faults learned",
            "faults command scan", "faults command learned", "semblance", "plain_semblance", "bruges")
 PEERS = {"plain_semblance", "bruges"}
-XL1155_ENDS = ((1385.0, 900.0), (1222.0, 2550.0))  # (inline, ms) of the fault's two ends
-# the same ends as (trace, sample) indices of penobscot_xl1155.sgy: inlines 1000-1600, samples every 4 ms from 0
-XL1155_FIRST_INLINE, XL1155_MS = 1000.0, 4.0
-XL1155_LINE = tuple((il - XL1155_FIRST_INLINE, t / XL1155_MS) for il, t in XL1155_ENDS)
-
-
-def plain_semblance(cube: np.ndarray, half_samples: int = 4) -> np.ndarray:
-    """Marfurt (1998) semblance over 3 x 3 traces (3 in 2D) and 2 * half_samples + 1 samples, flat windows."""
-    from scipy.ndimage import uniform_filter, uniform_filter1d
-
-    f = cube.astype(np.float32)
-    lateral = (3,) * (f.ndim - 1) + (1,)
-    n_tr = 3 ** (f.ndim - 1)
-    n = 2 * half_samples + 1
-    trace_sum = uniform_filter(f, size=lateral, mode="nearest") * n_tr
-    energy_sum = uniform_filter(f * f, size=lateral, mode="nearest") * n_tr
-    num = uniform_filter1d(trace_sum * trace_sum, n, axis=-1, mode="nearest")
-    den = n_tr * uniform_filter1d(energy_sum, n, axis=-1, mode="nearest")
-    return np.where(den > 0, num / np.maximum(den, 1e-30), 1.0).astype(np.float32)
-
-
-def semblance_skeleton(section: np.ndarray, threshold: float) -> np.ndarray:
-    """The plain peer: 1 - plain semblance above ``threshold``, skeletonised (scikit-image)."""
-    from skimage.morphology import skeletonize
-
-    return skeletonize((1.0 - plain_semblance(section)) > threshold)
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -109,11 +88,9 @@ def _f32be(data_dir: Path, name: str, shape) -> np.ndarray:
 
 
 def _scores(pred, ref, tol=3.0):
-    from seismo3d.seismic import evaluate_faults
-
+    """(precision, recall, F1) of a fault mask against a reference (:func:`seismo3d.seismic.evaluate_faults`)."""
     s = evaluate_faults(pred, ref, tolerance=tol)
-    f1 = 2 * s.precision * s.recall / (s.precision + s.recall) if s.precision + s.recall else 0.0
-    return s.precision, s.recall, f1
+    return s.precision, s.recall, s.f1
 
 
 def _best_skeleton(section, reference):
@@ -126,16 +103,6 @@ def _best_skeleton(section, reference):
         if best is None or f > best[4]:
             best = (q, thr, p, r, f)
     return best
-
-
-def xl1155_coverage(labels: np.ndarray, span=(1000.0, 2400.0)):
-    """How the faults ``labels`` (penobscot_xl1155's fault ids) follow its large fault within ``span`` (ms): the
-    :func:`~seismo3d.seismic.fault_line_coverage` of :data:`XL1155_LINE` between those times, 10 traces either side."""
-    from seismo3d.seismic import fault_line_coverage
-
-    (x0, k0), (x1, k1) = XL1155_LINE
-    ends = [(x0 + (x1 - x0) * (t / XL1155_MS - k0) / (k1 - k0), t / XL1155_MS) for t in span]
-    return fault_line_coverage(labels, ends, tolerance=10)
 
 
 def real_sections(data_dir: Path, out_dir: Path) -> None:
@@ -227,11 +194,6 @@ def real_sections(data_dir: Path, out_dir: Path) -> None:
     print(f"picture: {png}")
 
 
-SECTIONS = {  # every real 2D section of the data folder: (file, n_traces, n_samples)
-    "campos_gx373": (550, 300), "costarica_crf": (500, 180), "costarica_gx808": (825, 210),
-    "costarica_gx809": (825, 210), "f3_f3d178sub2": (951, 242), "f3_f3d75s": (440, 222), "teapot_tp73": (357, 240),
-    "teapot_tpd": (357, 315),
-}
 LIKELIHOODS = ("learned", "scan")
 # the learned likelihood's network grids (LearnedOptions.resample) tried by the cross-validation on the F3 inlines:
 # one grid each, and the means of several (the default among them)
@@ -371,21 +333,6 @@ def f3_people() -> None:
     print(f"chosen on all five inlines: {on_all[0]} {on_all[1]}, {fmt(mean(grid_scores[on_all]))}")
 
 
-def _real_sections(data_dir: Path) -> dict:
-    """Every real 2D section of the data folder: name -> (traces x samples float32, sample interval ms or None)."""
-    from seismo3d.seismic import open_segy
-
-    inputs = {name: (_f32be(data_dir, f"sections/{name}.f32be", shape), None) for name, shape in SECTIONS.items()}
-    for name in ("penobscot_xl1155", "volve_fullstack_twt_arbline"):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            with open_segy(data_dir / "seismic" / f"{name}.sgy") as cube:
-                arr = cube.read()
-                dt = float(cube.samples[1] - cube.samples[0])
-        inputs[name] = (arr.reshape(-1, arr.shape[-1]), dt)
-    return inputs
-
-
 def real_section_counts(data_dir: Path) -> None:
     """Fault counts on every real 2D section of the data folder: the defaults now and before issue 35's rules (stop
     49: one network grid of 0.7, no vote ratio, the unshifted mismatch as evidence), the scan's defaults, and the
@@ -399,7 +346,7 @@ def real_section_counts(data_dir: Path) -> None:
             "scan": ("scan", None, EvidenceOptions.for_likelihood("scan"))}
     head = f"{'section':30s} {'shape':>10s}" + "".join(f" | {name:>8s} {'of':>4s} {'s':>5s}" for name in runs)
     print(head + "\n" + "-" * len(head))
-    for name, (arr, dt) in _real_sections(data_dir).items():
+    for name, (arr, dt) in load_real_sections().items():
         row = f"{name:30s} {'x'.join(map(str, arr.shape)):>10s}"
         for lk, resample, opt in runs.values():
             faults, evidence, seconds = _candidates(arr, lk, resample, **({"sample_interval": dt, "sample_unit": "ms"}
@@ -412,13 +359,6 @@ def real_section_counts(data_dir: Path) -> None:
 # 2. generated cubes
 
 
-# the faults an interpreter sees (issue 35), as (trace, sample) vertices of each section's indices
-TEAPOT_TPD_FAULTS = {"near trace 20 below sample 240": ((20, 240), (20, 314)),
-                     "trace 115 at sample 20 to 145 at 280": ((115, 20), (145, 280)),
-                     "near-vertical at traces 210-220": ((208, 0), (222, 314))}
-VOLVE_CONTINUOUS_MS = (2300.0, 2500.0)  # continuous reflectors on the Volve arbitrary line
-
-
 def interpreter_checks(data_dir: Path) -> None:
     """The defaults on the real sections against what an interpreter sees (issue 35): the three visible faults of
     teapot_tpd (the fraction of each line's samples with a fault within 8 traces, and the one fault holding most),
@@ -426,7 +366,7 @@ def interpreter_checks(data_dir: Path) -> None:
     fault id along 900-2550 ms within 10 traces, faults of the opposite dip within 20 traces along 900-1700 ms)."""
     from seismo3d.seismic import fault_labels, fault_line_coverage, trace_faults
 
-    sections = _real_sections(data_dir)
+    sections = load_real_sections()
     runs = {}
     for name in ("teapot_tpd", "volve_fullstack_twt_arbline", "penobscot_xl1155"):
         arr, dt = sections[name]
@@ -451,21 +391,7 @@ def interpreter_checks(data_dir: Path) -> None:
     c = xl1155_coverage(fault_labels(res.faults, sections["penobscot_xl1155"][0].shape), span=(900.0, 2550.0))
     print(f"penobscot_xl1155: {len(res.faults)} faults; the large fault: fault {c.fault_id} holds {c.one_fault:.0%} "
           f"of 900-2550 ms (target >= 80 %), {c.covered:.0%} covered by {c.n_faults} faults")
-    print(f"  faults of the opposite dip along its upper part (900-1700 ms): {_opposite_dip(res.faults, XL1155_LINE)}")
-
-
-def _opposite_dip(faults, line, upper_ms=1700.0) -> list:
-    """Ids of faults with at least 10 points within 20 traces of ``line`` ((trace, sample) ends) from its top to
-    ``upper_ms`` whose trend (traces per sample, least squares) has the other sign than the line's."""
-    (x0, k0), (x1, k1) = line
-    slope = (x1 - x0) / (k1 - k0)
-    out = []
-    for f in faults:
-        x, k = f.points[:, 0].astype(float), f.points[:, -1].astype(float)
-        near = (k >= k0) & (k <= upper_ms / 4.0) & (np.abs(x - (x0 + slope * (k - k0))) <= 20)
-        if np.count_nonzero(near) >= 10 and np.ptp(k[near]) > 0 and np.polyfit(k[near], x[near], 1)[0] * slope < 0:
-            out.append(f.id)
-    return out
+    print(f"  faults of the opposite dip along its upper part (900-1700 ms): {opposite_dip_faults(res.faults, XL1155_LINE)}")
 
 
 def generated_sections(n: int = 20) -> None:

@@ -21,7 +21,6 @@ from .evaluation import (
 from .hog_pyramid import (
     HogPyramidParams,
     dense_ring_histograms,
-    direct_ring_histograms,
     disc_half_widths,
     hog_pyramid_features,
     orientation_votes,
@@ -50,7 +49,7 @@ from .verification import (
 
 __all__ = [
     "METHODS", "OPENCV_METHODS", "Features", "HogPyramidParams", "MatchEvaluation", "MatchResult",
-    "dense_ring_histograms", "detect_and_describe", "direct_ring_histograms", "disc_half_widths", "evaluate_matches",
+    "dense_ring_histograms", "detect_and_describe", "disc_half_widths", "evaluate_matches",
     "fit_homography", "fit_similarity_2d", "harris_peaks", "harris_response", "hog_pyramid_features",
     "image_pyramid", "lift_match_pairs", "lift_matches_depth", "lift_matches_section", "match_descriptors",
     "match_features", "match_images", "opencv_features", "orientation_votes", "reprojection_errors",

@@ -119,16 +119,6 @@ def point_disc_histograms(bins, weights, half_widths, pad, ys, xs, max_gap, out)
             i += 1
 
 
-@njit(cache=True, nogil=True)
-def direct_disc_histogram(bins, weights, radius2, pad, y, x, n_bins, out):
-    """Reference: histogram of the disc dx^2 + dy^2 <= radius2 at (y, x) by visiting every pixel (O(r^2))."""
-    out[:] = 0
-    n_votes = bins.shape[2]
-    for dy in range(-pad, pad + 1):
-        for dx in range(-pad, pad + 1):
-            if dx * dx + dy * dy <= radius2:
-                for p in range(n_votes):
-                    out[bins[y + pad + dy, x + pad + dx, p]] += weights[y + pad + dy, x + pad + dx, p]
 
 
 @njit(cache=True, nogil=True, inline="always")

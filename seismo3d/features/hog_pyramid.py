@@ -50,7 +50,6 @@ __all__ = [
     "orientation_votes",
     "dense_ring_histograms",
     "ring_histograms",
-    "direct_ring_histograms",
     "ring_descriptors",
     "hog_pyramid_features",
 ]
@@ -333,7 +332,7 @@ def ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int, max_gap: i
     Returns
     -------
     hist : (N, K, Q) int64 or float64 ndarray
-        Ring histograms; identical to :func:`direct_ring_histograms` (exactly, for integer weights).
+        Ring histograms; identical to the sums over each ring's pixels (exactly, for integer weights).
     """
     b, w = _check_votes(bins, weights, int(n_bins))
     radii = _check_radii(radii)
@@ -356,28 +355,6 @@ def ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int, max_gap: i
     result = np.empty_like(out)
     result[order] = out
     return result
-
-
-def direct_ring_histograms(bins, weights, radii, rows, cols, *, n_bins: int) -> np.ndarray:
-    """Reference ring histograms summed pixel by pixel over each ring (O(r^2) per point; for tests).
-
-    Same parameters and result as :func:`ring_histograms`; ring k holds the offsets with
-    ``r_{k-1}^2 < dx^2 + dy^2 <= r_k^2``.
-    """
-    b, w = _check_votes(bins, weights, int(n_bins))
-    radii = _check_radii(radii)
-    pad = int(np.floor(radii.max()))
-    bp, wp = _pad_votes(b, w, pad)
-    rows = np.asarray(rows, dtype=np.int64).ravel()
-    cols = np.asarray(cols, dtype=np.int64).ravel()
-    out = np.zeros((rows.size, radii.size, int(n_bins)), dtype=_hist_dtype(wp))
-    disc = np.zeros(int(n_bins), dtype=_hist_dtype(wp))
-    for i in range(rows.size):
-        for k, rad in enumerate(radii):
-            _kernels.direct_disc_histogram(bp, wp, rad * rad, pad, rows[i], cols[i], int(n_bins), disc)
-            out[i, k] = disc
-    out[:, 1:] -= out[:, :-1].copy()
-    return out
 
 
 def ring_descriptors(hist, radii, *, clip: float = 0.0, peak_ratio: float = 0.9, max_orientations: int = 4):

@@ -1,6 +1,9 @@
 """Evaluation against ground truth: fault detection scores, an interpreted fault line's coverage, horizon errors and
 sub-volume registration errors.
 
+The fault measures are computed beside a plain peer any interpreter knows, a skeleton of 1 - semblance
+(:func:`semblance_skeleton`, Marfurt 1998, thinned by scikit-image).
+
 Each function compares a result with a reference (labelled fault samples, a fault line an interpreter sees, people's
 or a generator's horizon picks, a known resampling transform) and returns a small frozen dataclass of the measures;
 the benchmarks print them.
@@ -18,7 +21,7 @@ from ..errors import InputError
 from ..geometry.transforms import apply_transform, as_transform, rotation_error_deg
 
 __all__ = ["FaultScores", "FaultLineCoverage", "HorizonErrors", "RegistrationErrors", "evaluate_faults",
-           "fault_line_coverage", "horizon_errors", "registration_errors"]
+           "fault_line_coverage", "horizon_errors", "plain_semblance", "registration_errors", "semblance_skeleton"]
 
 
 @dataclass(frozen=True)
@@ -35,6 +38,12 @@ class FaultScores:
 
     precision: float
     recall: float
+
+    @property
+    def f1(self) -> float:
+        """The harmonic mean of precision and recall, 0 when both are 0."""
+        total = self.precision + self.recall
+        return 2.0 * self.precision * self.recall / total if total else 0.0
 
 
 @dataclass(frozen=True)
@@ -286,3 +295,54 @@ def registration_errors(estimate, truth, moving_shape) -> RegistrationErrors:
         centre_error=float(np.linalg.norm(apply_transform(e, centre) - apply_transform(g, centre))),
         corner_error=float(np.linalg.norm(apply_transform(e, corners) - apply_transform(g, corners), axis=1).max()),
     )
+
+
+def plain_semblance(data, half_samples: int = 4) -> np.ndarray:
+    """Semblance over 3 x 3 traces (3 in 2D) and ``2 * half_samples + 1`` flat samples: the plain peer's attribute.
+
+    Parameters
+    ----------
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        Seismic amplitudes, samples along the last axis.
+    half_samples : int
+        Half the window's length, samples.
+
+    Returns
+    -------
+    semblance : float32 ndarray, same shape
+        In [0, 1] (1 where the window holds no energy); edges by nearest padding (scipy's uniform filters).
+
+    References
+    ----------
+    .. [1] K. J. Marfurt, R. L. Kirlin, S. L. Farmer and M. S. Bahorich, "3-D seismic attributes using a
+       semblance-based coherency algorithm", Geophysics 63(4), 1150-1165, 1998, doi:10.1190/1.1444415.
+    """
+    f = np.asarray(data, dtype=np.float32)
+    lateral = (3,) * (f.ndim - 1) + (1,)
+    n_tr = 3 ** (f.ndim - 1)
+    n = 2 * int(half_samples) + 1
+    trace_sum = ndi.uniform_filter(f, size=lateral, mode="nearest") * n_tr
+    energy_sum = ndi.uniform_filter(f * f, size=lateral, mode="nearest") * n_tr
+    num = ndi.uniform_filter1d(trace_sum * trace_sum, n, axis=-1, mode="nearest")
+    den = n_tr * ndi.uniform_filter1d(energy_sum, n, axis=-1, mode="nearest")
+    return np.where(den > 0, num / np.maximum(den, 1e-30), 1.0).astype(np.float32)
+
+
+def semblance_skeleton(section, threshold: float) -> np.ndarray:
+    """The plain peer of the fault scores: 1 - :func:`plain_semblance` above ``threshold``, skeletonised.
+
+    Parameters
+    ----------
+    section : (n_traces, n_samples) array_like
+        A seismic section.
+    threshold : float
+        On 1 - semblance, in [0, 1] (the benchmarks take a quantile of it, the best single one over a survey).
+
+    Returns
+    -------
+    (n_traces, n_samples) bool ndarray
+        The 1-sample-wide skeleton (scikit-image's ``skeletonize``).
+    """
+    from skimage.morphology import skeletonize
+
+    return skeletonize((1.0 - plain_semblance(section)) > threshold)

@@ -75,3 +75,26 @@ def test_fault_line_coverage_of_one_fault_and_of_pieces():
         fault_line_coverage(labels, [(10, 50), (40, 10)])
     with pytest.raises(InputError, match="section"):
         fault_line_coverage(labels[None], [(10, 0), (40, 100)])
+
+
+def test_f1_is_the_harmonic_mean_of_precision_and_recall():
+    from seismo3d.seismic.evaluation import FaultScores
+
+    assert FaultScores(0.5, 1.0).f1 == pytest.approx(2 / 3)
+    assert FaultScores(0.0, 0.0).f1 == 0.0
+
+
+def test_the_plain_peer_finds_a_vertical_break_of_the_layers():
+    """1 - semblance is high where the layers are offset and the skeleton of it lies on the break."""
+    from seismo3d.seismic.evaluation import plain_semblance, semblance_skeleton
+
+    t = np.arange(200)
+    left = np.sin(2 * np.pi * t / 16.0)
+    section = np.vstack([np.tile(left, (50, 1)), np.tile(np.roll(left, 5), (50, 1))]).astype(np.float32)
+    s = plain_semblance(section)
+    assert s.shape == section.shape and s.dtype == np.float32
+    assert np.all(s[:45] > 0.999) and np.all(s[55:] > 0.999)  # flat layers: semblance 1
+    assert np.median(s[49:51, 10:190]) < 0.9  # the traces beside the break
+    skeleton = semblance_skeleton(section, 0.05)
+    assert skeleton.dtype == bool and skeleton[:, 10:190].any(axis=1)[48:52].any()
+    assert not skeleton[:40].any() and not skeleton[60:].any()

@@ -12,7 +12,7 @@ values of the cube at once:
 - the quantile: the two order statistics numpy interpolates, located by a fine histogram (:func:`quantile_window`),
   then the values of the blocks within that window gathered and sorted (:func:`quantile_of_window`).
 
-``tests/seismic/test_fault_thresholds.py`` checks that both equal the library's result on the whole values.
+``tests/seismic/faults/surfaces/test_thresholds.py`` checks that both equal the library's result on the whole values.
 """
 
 from __future__ import annotations

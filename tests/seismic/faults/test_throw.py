@@ -76,7 +76,7 @@ def _errors_detected(syn, faults, results):
 @pytest.fixture(params=SEEDS, ids=lambda s: f"seed{s}")
 def chain(request, traced_cube):
     """A 128^3 synthetic cube (noise 0.1), its detected faults and its reflector orientation (traced once per session,
-    shared with tests/seismic/test_fault_surfaces.py)."""
+    shared with tests/seismic/faults/surfaces/test_ridges.py)."""
     c = traced_cube(request.param)
     return request.param, c.syn, c.faults, c.orientation
 

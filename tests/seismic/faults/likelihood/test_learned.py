@@ -27,7 +27,7 @@ from seismo3d.seismic.faults.likelihood.network import (
     POOLING_MULTIPLE, RECEPTIVE_HALF, normalise_section, onnx_model, unet_forward,
 )
 
-CHECK = Path(__file__).parent / "data" / "fault_unet_check.npz"
+CHECK = Path(__file__).parents[2] / "data" / "fault_unet_check.npz"  # tests/seismic/data
 LEARNED = FaultTracingOptions(likelihood="learned")
 TEST_SEED = 31_000_000  # generator seeds the training never draws (it draws seed 0 * 1_000_003 + i, i < 20_000)
 

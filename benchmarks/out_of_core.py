@@ -5,8 +5,9 @@ Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000]
 
 1. equal: a 256^3 generated faulted cube, in memory (:func:`~seismo3d.seismic.trace_faults`) and chunked
    (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` then
-   :func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`, 64-trace blocks): the largest likelihood
-   difference, strike / dip differences, votes difference, and the faults (count, sizes, the same samples, throws).
+   :func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`, 64-trace blocks): the largest
+   likelihood difference, strike / dip differences, votes difference, and the faults (count, sizes, the same samples,
+   throws).
 2. threads / distributed: a generated cube of ``--shape`` (default 1448 x 1448 x 512 float32 = 4.29 GB) written as
    SEG-Y (a 256-trace faulted tile mirrored into a mosaic, so reflectors and faults continue across the seams),
    read lazily (:func:`seismo3d.seismic.io.lazy.open_lazy`, tiles of 32 traces) and its fault likelihood, strike

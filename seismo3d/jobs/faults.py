@@ -292,17 +292,16 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       (inline, crossline, time_or_depth) (2D: (trace label, 0, time_or_depth)), point arrays ``fault_id``,
       ``throw`` (samples) and ``likelihood``.
     * ``fault_points.csv``: one row per fault sample, columns ``inline, crossline, time_or_depth, fault_id,
-      throw_samples, throw_<unit>, throw_correlation, correlation_gain, side_coherence``; ``time_or_depth`` is in the sample unit (ms, m or ft from the
-      SEG-Y headers or ``sample_unit``; the sample index for raw sections and ``.npy``, which have no
-      ``throw_<unit>`` column).
-      For raw sections, 2D ``.npy`` arrays and trace lists whose inline / crossline header bytes hold no numbers,
-      ``inline`` is the trace index (from 0) and ``crossline`` is empty. Throw is
-      positive where the hanging wall moved down (normal fault); ``throw_correlation`` (in [-1, 1]) is the
-      normalised cross-correlation of the reflectors on the two sides once aligned, a quality measure (see
+      throw_samples, throw_<unit>, throw_correlation, correlation_gain, side_coherence``; ``time_or_depth`` is in the
+      sample unit (ms, m or ft from the SEG-Y headers or ``sample_unit``; the sample index for raw sections and
+      ``.npy``, which have no ``throw_<unit>`` column). For raw sections, 2D ``.npy`` arrays and trace lists whose
+      inline / crossline header bytes hold no numbers, ``inline`` is the trace index (from 0) and ``crossline`` is
+      empty. Throw is positive where the hanging wall moved down (normal fault); ``throw_correlation`` (in [-1, 1]) is
+      the normalised cross-correlation of the reflectors on the two sides once aligned, a quality measure (see
       :class:`~seismo3d.seismic.faults.throw.FaultThrow`); ``correlation_gain`` is that correlation less the sides'
-      correlation with no shift (the evidence of a displacement); ``side_coherence`` how continuous the reflectors
-      are along each side in itself (the smaller of the two sides; reported, not asked for: sides that do not match
-      say less of a fault when they are not continuous themselves). An unmeasured throw is empty.
+      correlation with no shift (the evidence of a displacement); ``side_coherence`` how continuous the reflectors are
+      along each side in itself (the smaller of the two sides; reported, not asked for: sides that do not match say less
+      of a fault when they are not continuous themselves). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
       median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_correlation, correlation_gain,
       side_coherence, vote_ratio, mean_likelihood`` (``throw_spread_samples`` is empty on a 2D line: its faults'

@@ -4,7 +4,8 @@ Sub-packages:
 
 - :mod:`~seismo3d.seismic.io`: reading and writing seismic data.
 
-  - :mod:`~seismo3d.seismic.io.segy`: SEG-Y cubes and lines (sections: raw sections, ASCII lines; writer: SEG-Y like a template).
+  - :mod:`~seismo3d.seismic.io.segy`: SEG-Y cubes and lines (sections: raw sections, ASCII lines; writer: SEG-Y like a
+    template).
   - :mod:`~seismo3d.seismic.io.layout`: byte order, sample format and rev-2 headers of a SEG-Y file.
   - :mod:`~seismo3d.seismic.io.geometry`: the traces of a file without an inline / crossline grid.
   - :mod:`~seismo3d.seismic.io.blocks`: a 3D SEG-Y cube read by blocks of inlines (:class:`SegyGrid`).

@@ -1,8 +1,8 @@
 """Export the fault network's trained weights to the ONNX model the package runs (``fault_unet.onnx``).
 
 Run: ``python -m seismo3d.training.export_onnx WEIGHTS.npz OUT.onnx`` (needs the ``onnx`` package of the ``train``
-extra). The export is deterministic: the shipped ``seismo3d/seismic/faults/likelihood/fault_unet.onnx`` is the export of the
-shipped ``fault_unet.npz`` byte for byte (tested), and its sha256, printed here, is
+extra). The export is deterministic: the shipped ``seismo3d/seismic/faults/likelihood/fault_unet.onnx`` is the export of
+the shipped ``fault_unet.npz`` byte for byte (tested), and its sha256, printed here, is
 :data:`seismo3d.seismic.faults.likelihood.learned.WEIGHTS_SHA256`.
 """
 

@@ -8,8 +8,8 @@ writes ``fault_unet.npz`` (the weights, batch normalisation folded in, float32: 
 :mod:`seismo3d.seismic.faults.likelihood.network` runs), ``fault_unet.json`` (options, seed, time, the loss every
 ``--log-every`` steps and the validation scores), ``fault_unet_check.npz`` (a small section and PyTorch's output for
 it) and ``train.log``. To ship a retrained network: copy the two ``fault_unet.*`` files to
-``seismo3d/seismic/faults/likelihood/``, the check file to ``tests/seismic/data/``, export the weights to the ONNX model the
-package runs (``python -m seismo3d.training.export_onnx seismo3d/seismic/faults/likelihood/fault_unet.npz
+``seismo3d/seismic/faults/likelihood/``, the check file to ``tests/seismic/data/``, export the weights to the ONNX model
+the package runs (``python -m seismo3d.training.export_onnx seismo3d/seismic/faults/likelihood/fault_unet.npz
 seismo3d/seismic/faults/likelihood/fault_unet.onnx``) and put the sha256 it prints into
 :data:`seismo3d.seismic.faults.likelihood.learned.WEIGHTS_SHA256`.
 
@@ -114,7 +114,8 @@ def _conv_block(c_in: int, c_out: int) -> nn.Sequential:
 
 
 class FaultUNet(nn.Module):
-    """The U-Net of :mod:`seismo3d.seismic.faults.likelihood.network` in PyTorch (logits out; the sigmoid is in the loss).
+    """The U-Net of :mod:`seismo3d.seismic.faults.likelihood.network` in PyTorch (logits out; the sigmoid is in the
+    loss).
 
     Parameters
     ----------
@@ -147,8 +148,9 @@ class FaultUNet(nn.Module):
 
 
 def export_weights(model: FaultUNet) -> dict:
-    """The weights of ``model`` as numpy float32 arrays for :func:`~seismo3d.seismic.faults.likelihood.network.unet_forward`,
-    each batch normalisation folded into the convolution before it (evaluation statistics).
+    """The weights of ``model`` as numpy float32 arrays for
+    :func:`~seismo3d.seismic.faults.likelihood.network.unet_forward`, each batch normalisation folded into the
+    convolution before it (evaluation statistics).
 
     Returns
     -------

@@ -7,8 +7,8 @@ import pytest
 import segyio
 
 from seismo3d.data import fetch
-from seismo3d.data.interpretations import (REAL_SECTIONS, TEAPOT_TPD_FAULTS, XL1155_FIRST_INLINE, XL1155_LINE, XL1155_MS,
-                                           load_real_sections, opposite_dip_faults, xl1155_coverage)
+from seismo3d.data.interpretations import (REAL_SECTIONS, TEAPOT_TPD_FAULTS, XL1155_FIRST_INLINE, XL1155_LINE,
+                                           XL1155_MS, load_real_sections, opposite_dip_faults, xl1155_coverage)
 from seismo3d.seismic import Fault
 
 
@@ -33,7 +33,8 @@ def test_every_real_section_with_its_shape_and_sample_interval(sections):
     arr, _ = sections["penobscot_xl1155"]
     with segyio.open(fetch("seismic/penobscot_xl1155.sgy"), ignore_geometry=True) as f:
         first_inline = f.header[0][segyio.TraceField.INLINE_3D]
-    assert arr.shape == (601, 1501) and first_inline == XL1155_FIRST_INLINE and sections["penobscot_xl1155"][1] == XL1155_MS
+    assert arr.shape == (601, 1501) and first_inline == XL1155_FIRST_INLINE
+    assert sections["penobscot_xl1155"][1] == XL1155_MS
 
 
 def test_the_lines_lie_inside_their_sections():

@@ -85,7 +85,8 @@ def check_saturation(high: int, live: int, opt: FaultTracingOptions) -> float:
     ----------
     high, live : int
         Live samples (not near dead ones) with a likelihood above 0.9, and all live samples: counted over the whole
-        array in memory, summed over the blocks of a run by blocks (:func:`~seismo3d.seismic.faults.surfaces.ridges.live_likelihood`).
+        array in memory, summed over the blocks of a run by blocks
+        (:func:`~seismo3d.seismic.faults.surfaces.ridges.live_likelihood`).
     opt : FaultTracingOptions
 
     Returns

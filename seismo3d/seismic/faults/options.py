@@ -12,6 +12,7 @@ from ...errors import InputError
 from .evidence import EvidenceOptions, sensitivity_factor
 from .likelihood.learned import LearnedOptions
 from .likelihood.scan import FaultScanOptions
+from .surfaces.dead_samples import DeadSampleOptions
 from .surfaces.skins import SkinOptions
 from .surfaces.thresholds import otsu, quantile
 from .surfaces.voting import VotingOptions
@@ -41,10 +42,10 @@ class FaultTracingOptions:
         sections), and denser ridges are the uniform votes of incoherent data, not faults.
     likelihood : {'scan', 'learned'}
         The fault likelihood of step 1: the fault network trained on generated sections
-        (:mod:`~seismo3d.seismic.faults.likelihood.learned`, ``learned``, the default) or the scan of fault-plane semblance
-        (Hale 2013, ``scan``). The default was chosen on the F3 inlines with faults drawn by a person (mean F1 0.500
-        against the scan's 0.215, cross-validated, ``python benchmarks/faults.py --only f3``); against the published
-        OSV faults of the Costa Rica crf section the scan finds more (recall 0.72 against 0.27).
+        (:mod:`~seismo3d.seismic.faults.likelihood.learned`, ``learned``, the default) or the scan of fault-plane
+        semblance (Hale 2013, ``scan``). The default was chosen on the F3 inlines with faults drawn by a person (mean F1
+        0.500 against the scan's 0.215, cross-validated, ``python benchmarks/faults.py --only f3``); against the
+        published OSV faults of the Costa Rica crf section the scan finds more (recall 0.72 against 0.27).
     scan : FaultScanOptions
         The fault likelihood scan.
     learned : LearnedOptions
@@ -53,6 +54,9 @@ class FaultTracingOptions:
         The optimal surface voting.
     skins : SkinOptions
         The linking into fault skins.
+    dead : DeadSampleOptions
+        What counts as a dead sample (mutes, dead traces, gaps), whose edges are not faults, and how far the
+        likelihood is cleared around them (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`).
     evidence : EvidenceOptions or None
         What a fault must show to be kept (:func:`~seismo3d.seismic.faults.evidence.supported_faults`); None: the
         likelihood's defaults (:meth:`~seismo3d.seismic.faults.evidence.EvidenceOptions.for_likelihood`).
@@ -82,6 +86,7 @@ class FaultTracingOptions:
     learned: LearnedOptions = field(default_factory=LearnedOptions)
     voting: VotingOptions = field(default_factory=VotingOptions)
     skins: SkinOptions = field(default_factory=SkinOptions)
+    dead: DeadSampleOptions = field(default_factory=DeadSampleOptions)
     evidence: EvidenceOptions | None = None
     min_traces: tuple = (32, 8)
     min_samples: int = 32
@@ -99,7 +104,8 @@ class FaultTracingOptions:
         if self.evidence is None:
             object.__setattr__(self, "evidence", EvidenceOptions.for_likelihood(self.likelihood))
         for name, cls in (("scan", FaultScanOptions), ("learned", LearnedOptions), ("voting", VotingOptions),
-                          ("skins", SkinOptions), ("evidence", EvidenceOptions)):
+                          ("skins", SkinOptions), ("dead", DeadSampleOptions),
+                          ("evidence", EvidenceOptions)):
             if not isinstance(getattr(self, name), cls):
                 raise InputError(f"{name} must be a {cls.__name__}; got {type(getattr(self, name)).__name__}")
         if (len(tuple(self.min_traces)) != 2 or any(int(v) != v or v < 3 for v in self.min_traces)):

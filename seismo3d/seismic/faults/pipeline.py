@@ -3,9 +3,10 @@
 After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the steps with the defaults every seismo3d
 command uses and returns a :class:`FaultInterpretation`: the checks and the likelihood, then the one sequence of
 steps of :mod:`~seismo3d.seismic.faults.steps`, on the whole array as one block
-(:class:`~seismo3d.seismic.faults.blocks.array_run.ArrayRun`) or block by block (:mod:`~seismo3d.seismic.faults.blocks.cube_run`);
-:func:`clean_traces` finds the dead samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped
-amplitudes. Reading files and writing results is the ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
+(:class:`~seismo3d.seismic.faults.blocks.array_run.ArrayRun`) or block by block
+(:mod:`~seismo3d.seismic.faults.blocks.cube_run`); :func:`clean_traces` finds the dead samples (mutes, dead traces,
+gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and writing results is the ``faults``
+command's job (:mod:`seismo3d.jobs.faults`).
 
 Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood.scan`.
 """
@@ -72,10 +73,10 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     Memory and time: time and memory linear in the number of samples (see ``benchmarks/faults.py`` for the figures
     at 64^3 to 256^3). A 3D cube whose run in memory would need more than ``blocks.memory_limit`` beside the process
     (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`: about 24 times its float32 size) is traced block by
-    block (:mod:`~seismo3d.seismic.faults.blocks.cube_run`) into Zarr stores in ``blocks.work_dir``, with the same checks,
-    warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of blocks
-    first (:meth:`~seismo3d.seismic.faults.blocks.preflight.SampleOptions.worth_sampling`) is refused from that sample before the
-    whole likelihood (:func:`~seismo3d.seismic.faults.blocks.preflight.judge_sample`), on either path.
+    block (:mod:`~seismo3d.seismic.faults.blocks.cube_run`) into Zarr stores in ``blocks.work_dir``, with the same
+    checks, warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of
+    blocks first (:meth:`~seismo3d.seismic.faults.blocks.preflight.SampleOptions.worth_sampling`) is refused from that
+    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.blocks.preflight.judge_sample`), on either path.
 
     Parameters
     ----------
@@ -173,7 +174,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
                       learned_fault_likelihood(arr, options=opt.learned, progress=progress))
         else:
             fl = _given_likelihood(likelihood, arr.shape)
-        near_dead = near_dead_samples(dead) if dead.any() else None
+        near_dead = near_dead_samples(dead, options=opt.dead) if dead.any() else None
         del dead
         bar.advance()
         run = ArrayRun(fl.likelihood, fl.strike_deg, fl.dip_deg, near_dead, opt, progress=progress)
@@ -207,7 +208,7 @@ def _cleaned(data, opt: FaultTracingOptions) -> tuple[np.ndarray, np.ndarray]:
         check_size(arr.shape, opt)  # numbers, but below clean_traces' 3 samples per axis: the size message
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", Seismo3dWarning)
-        cleaned = clean_traces(arr)
+        cleaned = clean_traces(arr, options=opt.dead)
     check_size(cleaned.data.shape, opt)
     for w in caught:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)

@@ -9,8 +9,9 @@ throws and keeps the faults the evidence supports. Two runs implement the steps:
 - ``_SurfaceRun`` of :mod:`~seismo3d.seismic.faults.blocks.surface_blocks`: block by block on dask into Zarr stores,
   each block read with the halo of its step (a cube larger than memory).
 
-Both call the same step functions (:mod:`~seismo3d.seismic.faults.surfaces.ridges`, :func:`~seismo3d.seismic.faults.surfaces.voting.
-greedy_seeds`, :func:`~seismo3d.seismic.faults.surfaces.voting.surface_votes`, :func:`~seismo3d.seismic.faults.surfaces.skins.
+Both call the same step functions (:mod:`~seismo3d.seismic.faults.surfaces.ridges`,
+:func:`~seismo3d.seismic.faults.surfaces.voting. greedy_seeds`,
+:func:`~seismo3d.seismic.faults.surfaces.voting.surface_votes`, :func:`~seismo3d.seismic.faults.surfaces.skins.
 skins_from_cells`), so the faults do not depend on which run traced them.
 """
 

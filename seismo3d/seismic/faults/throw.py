@@ -7,8 +7,8 @@ a global search of the normalised cross-correlation over integer shifts (immune 
 reflectors), then a registration of the reflector peaks of the two images with the ICP engine
 (:func:`seismo3d.registration.icp`, method.md section 1), which models throw varying linearly along strike.
 
-Conventions (index space, as in :mod:`seismo3d.seismic.faults.likelihood.scan` and :mod:`seismo3d.data.synthetic`): axis 0
-inline, axis 1 crossline, the last axis the sample (downward); one trace spacing and one sample both count as 1. Throw
+Conventions (index space, as in :mod:`seismo3d.seismic.faults.likelihood.scan` and :mod:`seismo3d.data.synthetic`): axis
+0 inline, axis 1 crossline, the last axis the sample (downward); one trace spacing and one sample both count as 1. Throw
 is the vertical component of the fault slip, in samples: **positive when the hanging wall moved down** (normal fault),
 negative when it moved up (reverse fault). The hanging wall is the block above the fault plane, on the side the fault
 dips toward; for a vertical fault (dip 90 degrees) it is undefined and the sign of the throw is arbitrary. Multiply by

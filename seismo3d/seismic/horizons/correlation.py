@@ -199,7 +199,8 @@ def _interior_scores(sig, m, lo, hi, saa, products, scores):
 
 @nb.njit(cache=True)
 def _partial_window_ncc(ref, sig, s, m, min_samples):
-    """:func:`_one_pair_lag`'s correlation over the samples where both windows are finite (the means of those); NaN with fewer than
+    """:func:`_one_pair_lag`'s correlation over the samples where both windows are finite (the means of those); NaN with
+    fewer than
     ``min_samples``."""
     sa = 0.0
     sb = 0.0

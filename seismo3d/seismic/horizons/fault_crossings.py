@@ -1,11 +1,11 @@
 """Fault crossings: which faults a step of a horizon crosses, and by how much the horizon jumps there.
 
 :class:`FaultCrossings` holds the traced fault points of an interpretation with their normals (oriented into the
-footwall as :func:`~seismo3d.seismic.faults.throw.fault_throw` measured the throw) and their throws. A step from point ``a``
-to point ``b`` crosses a fault when it pierces the fault's local plane (the least-squares plane of its points near the
-step, oriented like their normals) within ``pierce`` voxels of one of those points; the horizon then jumps by the throw,
-down into the hanging wall and up into the footwall. Two faults between the same traces add their jumps, and a fault is
-crossed once going one way (:meth:`FaultCrossings.jump`). Only faults with a reliable throw are used
+footwall as :func:`~seismo3d.seismic.faults.throw.fault_throw` measured the throw) and their throws. A step from point
+``a`` to point ``b`` crosses a fault when it pierces the fault's local plane (the least-squares plane of its points near
+the step, oriented like their normals) within ``pierce`` voxels of one of those points; the horizon then jumps by the
+throw, down into the hanging wall and up into the footwall. Two faults between the same traces add their jumps, and a
+fault is crossed once going one way (:meth:`FaultCrossings.jump`). Only faults with a reliable throw are used
 (:func:`reliable_throw`).
 
 Conventions: index space as in :mod:`seismo3d.seismic.faults.likelihood.scan` (points ``(inline, xline, sample)`` or

@@ -9,12 +9,12 @@ cycles, so the sequence of reflectors and not one cycle decides) with trace ``b`
 around the current estimate (near the ends of the traces, where the window overlaps trace ``b`` at too few lags on
 one side, the lags are cut as far on the other side: searched on one side only, the wrong-cycle matches of noisy
 pairs would all fall there and bias the solve). A pair weighs its correlation squared over its distance to
-``distance_power`` (pairs below ``min_pair_correlation`` are left out), and the solve is iteratively re-weighted with Cauchy weights (scale
-``robust`` samples) so that pairs the solution disagrees with lose their say. Because the equations hold differences
-only and the long pairs tie distant traces directly, one bad local step (a cycle skip at a pockmark's sag, a wrong
-shift across a fault) is outvoted by the pairs that span it and cannot propagate. The estimate starts flat at the
-seeds' time and is re-solved a few times with the shifts re-measured around it (short pairs first), as Wu & Fomel's
-Gauss-Newton iterations; each solve is a sparse conjugate-gradient solve of the normal equations.
+``distance_power`` (pairs below ``min_pair_correlation`` are left out), and the solve is iteratively re-weighted with
+Cauchy weights (scale ``robust`` samples) so that pairs the solution disagrees with lose their say. Because the
+equations hold differences only and the long pairs tie distant traces directly, one bad local step (a cycle skip at a
+pockmark's sag, a wrong shift across a fault) is outvoted by the pairs that span it and cannot propagate. The estimate
+starts flat at the seeds' time and is re-solved a few times with the shifts re-measured around it (short pairs first),
+as Wu & Fomel's Gauss-Newton iterations; each solve is a sparse conjugate-gradient solve of the normal equations.
 
 Faults (:class:`~seismo3d.seismic.horizons.fault_crossings.FaultCrossings`): a pair whose path crosses traced faults is
 checked with short windows around the estimate plus the faults' jump against around the estimate; it takes the jump only
@@ -58,8 +58,8 @@ from .fault_crossings import FaultCrossings
 from .laplacian import coarse_labels, solve_weighted
 from .result import no_pick_error
 
-__all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "window_correlation", "solve_horizon", "cycle_skips",
-           "pair_agreement", "lsq_horizon"]
+__all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "window_correlation", "solve_horizon",
+           "cycle_skips", "pair_agreement", "lsq_horizon"]
 
 
 # --------------------------------------------------------------------------------------------------------------------

@@ -47,9 +47,9 @@ pick it came from. Picks below ``min_confidence``, and picks with no extremum of
 window, are left empty (NaN); tracking goes on from their predicted position. :func:`~seismo3d.seismic.fill_horizon`
 interpolates the gaps as a separate, explicit step. The tuning values are the fields of :class:`TrackingOptions`.
 
-Conventions: index space as in :mod:`seismo3d.seismic.faults.likelihood.scan` (axis 0 inline, axis 1 crossline, last axis
-sample, downward; a 2D section is ``(n_traces, n_samples)``). Horizon times are fractional sample indices; convert with
-the cube's ``samples`` axis (ms or m).
+Conventions: index space as in :mod:`seismo3d.seismic.faults.likelihood.scan` (axis 0 inline, axis 1 crossline, last
+axis sample, downward; a 2D section is ``(n_traces, n_samples)``). Horizon times are fractional sample indices; convert
+with the cube's ``samples`` axis (ms or m).
 """
 
 from __future__ import annotations
@@ -364,11 +364,11 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
     neighbours; in 3D, empty traces beside tracked ones are then filled where their neighbours agree and correlate
     (:func:`close_gaps`).
 
-    With ``method='registration'``, in 2D the horizon is tracked along the section from each seed. In 3D it is tracked along each seed's inline,
-    then carried inline by inline to both ends of the cube with the fused ICP; a trace the carry leaves empty is
-    kept at its predicted position for the next inline, so a gap does not stop the horizon. A last pass fills
-    empty traces from their tracked neighbours along inlines and crosslines where they agree and correlate (module
-    docstring, step 3).
+    With ``method='registration'``, in 2D the horizon is tracked along the section from each seed. In 3D it is tracked
+    along each seed's inline, then carried inline by inline to both ends of the cube with the fused ICP; a trace the
+    carry leaves empty is kept at its predicted position for the next inline, so a gap does not stop the horizon. A last
+    pass fills empty traces from their tracked neighbours along inlines and crosslines where they agree and correlate
+    (module docstring, step 3).
 
     Parameters
     ----------

@@ -65,7 +65,8 @@ class ArrayRun:
         return high, live
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:
-        """The voting seeds of the ridges, strongest first (:func:`~seismo3d.seismic.faults.surfaces.voting.image_seeds`).
+        """The voting seeds of the ridges, strongest first
+        (:func:`~seismo3d.seismic.faults.surfaces.voting.image_seeds`).
 
         Returns
         -------
@@ -79,8 +80,8 @@ class ArrayRun:
         return seeds, frames
 
     def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
-        """The seeds' optimal-surface votes over the whole array (:func:`~seismo3d.seismic.faults.surfaces.voting.seed_votes`),
-        0 near dead samples, in :attr:`fault_votes`.
+        """The seeds' optimal-surface votes over the whole array
+        (:func:`~seismo3d.seismic.faults.surfaces.voting.seed_votes`), 0 near dead samples, in :attr:`fault_votes`.
 
         Parameters
         ----------

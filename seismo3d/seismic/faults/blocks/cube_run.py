@@ -3,13 +3,14 @@ block by block on dask into two resumable Zarr stores of a work folder.
 
 The checks are those of the run in memory, from the same functions: the data's size; the memory the run needs and
 the data judged from a sample of blocks (not seismic amplitudes, no lateral coherence:
-:func:`~seismo3d.seismic.faults.blocks.preflight.judge_sample`), before any pass over the whole cube; its NaN / inf samples (read as
-0, with the same warning), constant data, clipped amplitudes and dead samples (the same refusal and warnings, from
-passes over the blocks); then the fault likelihood
+:func:`~seismo3d.seismic.faults.blocks.preflight.judge_sample`), before any pass over the whole cube; its NaN / inf
+samples (read as 0, with the same warning), constant data, clipped amplitudes and dead samples (the same refusal and
+warnings, from passes over the blocks); then the fault likelihood
 (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` or the learned one) into
-``fault_likelihood.zarr`` and the fault surfaces (:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`:
-dead samples, saturation, ridges, voting, thinning, thresholds, skins, throws, evidence) into
-``fault_surfaces.zarr``. A finished likelihood of the same source is reused; an unfinished one resumes.
+``fault_likelihood.zarr`` and the fault surfaces
+(:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`: dead samples, saturation, ridges,
+voting, thinning, thresholds, skins, throws, evidence) into ``fault_surfaces.zarr``. A finished likelihood of the same
+source is reused; an unfinished one resumes.
 """
 
 from __future__ import annotations
@@ -26,7 +27,8 @@ from ...blocks.executor import release_memory
 from ...io.zarr_store import consolidate
 from ..checks import check_size
 from ..surfaces.dead_samples import (
-    check_varies, clipped_count, dead_samples, fill_values, warn_clipped, warn_dead, warn_non_finite,
+    DeadSampleOptions, check_varies, clipped_count, dead_samples, fill_values, warn_clipped, warn_dead,
+    warn_non_finite,
 )
 from ..result import FaultInterpretation
 from ..options import FaultTracingOptions
@@ -141,15 +143,18 @@ def _whole_traces(x):
     return x.astype(np.float32)
 
 
-def finite_cube(x):
+def finite_cube(x, dead: DeadSampleOptions | None = None):
     """The cube with NaN / inf read as 0 (warned, as in memory); constant data refused, clipped amplitudes and dead
-    samples warned about (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`), from three passes over the blocks (the dead
-    samples need the fill values of the whole cube).
+    samples warned about (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`), from three passes over the blocks (the
+    dead samples need the fill values of the whole cube).
 
     Parameters
     ----------
     x : (n_inlines, n_xlines, n_samples) float32 dask.array.Array
         Chunks of whole traces.
+    dead : DeadSampleOptions, optional
+        What counts as a dead sample (default
+        :class:`~seismo3d.seismic.faults.surfaces.dead_samples.DeadSampleOptions`).
 
     Returns
     -------
@@ -164,7 +169,8 @@ def finite_cube(x):
     Warns
     -----
     Seismo3dWarning
-        NaN / inf, clipped or dead samples (:func:`~seismo3d.seismic.faults.surfaces.dead_samples.clean_traces`' warnings).
+        NaN / inf, clipped or dead samples (:func:`~seismo3d.seismic.faults.surfaces.dead_samples.clean_traces`'
+        warnings).
     """
     import dask
     import dask.array as da
@@ -177,24 +183,24 @@ def finite_cube(x):
     check_varies(float(lo), float(hi))
     x = cleaned if n_bad else x
     lo, hi = np.float32(lo), np.float32(hi)
-    parts = [dask.delayed(_clipped_and_fills)(b, lo, hi) for b in x.to_delayed().ravel()]
+    parts = [dask.delayed(_clipped_and_fills)(b, lo, hi, dead) for b in x.to_delayed().ravel()]
     parts = dask.compute(*parts)
-    warn_clipped(sum(p[0] for p in parts), n - int(np.prod(x.shape[:-1], dtype=np.int64)))
+    warn_clipped(sum(p[0] for p in parts), n - int(np.prod(x.shape[:-1], dtype=np.int64)), options=dead)
     fill = np.unique(np.concatenate([p[1] for p in parts]))
-    dead = dask.compute(*[dask.delayed(_dead_counts)(b, fill, lo, hi) for b in x.to_delayed().ravel()])
-    warn_dead(sum(d[0] for d in dead), n, sum(d[1] for d in dead))
+    counts = dask.compute(*[dask.delayed(_dead_counts)(b, fill, lo, hi, dead) for b in x.to_delayed().ravel()])
+    warn_dead(sum(d[0] for d in counts), n, sum(d[1] for d in counts), options=dead)
     return x
 
 
-def _clipped_and_fills(block, lo, hi) -> tuple:
+def _clipped_and_fills(block, lo, hi, dead) -> tuple:
     """(clipped samples, fill values) of a block of whole traces."""
     block = np.asarray(block, np.float32)
-    return clipped_count(block, lo, hi), fill_values(block, lo, hi)
+    return clipped_count(block, lo, hi), fill_values(block, lo, hi, options=dead)
 
 
-def _dead_counts(block, fill, lo, hi) -> tuple[int, int]:
+def _dead_counts(block, fill, lo, hi, options) -> tuple[int, int]:
     """(dead samples, dead traces) of a block of whole traces."""
-    dead = dead_samples(np.asarray(block, np.float32), fill, lo, hi)
+    dead = dead_samples(np.asarray(block, np.float32), fill, lo, hi, options=options)
     return int(np.count_nonzero(dead)), int(np.count_nonzero(dead.all(axis=-1)))
 
 
@@ -241,7 +247,7 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     need = minimum_memory_limit(shape, baseline=baseline(), options=options, sample=sample)
     _check_limit(name, shape, limit, need, f" (with the ~{sample.candidates(shape)} seed candidates a sample "
                                            "of its blocks predicts)")
-    return finite_cube(x)
+    return finite_cube(x, options.dead)
 
 
 def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:

@@ -10,17 +10,17 @@ inlines only. The steps (the output equals the in-memory
 2. Per network grid (``LearnedOptions.resample``, numbered 0, 1, ... in its order) and per direction the network
    runs on (``network_inline_0``, ``network_crossline_0``, ...): blocks of the whole cube's network
    grid (:mod:`~seismo3d.seismic.faults.likelihood.network`), ``k`` sections of ``w`` network traces each, read with the
-   receptive half of halo (:data:`~seismo3d.seismic.faults.likelihood.network.RECEPTIVE_HALF` network traces, the block's grid on
-   the whole cube's pooling grid) along the sections and only the resampling's few traces across them; every sample
-   of each trace. The blocks are as long along the sections as the memory limit allows (the whole cube's width
-   when it fits: no halo at all), so the halo adds little. Each direction's probability is written on the network
+   receptive half of halo (:data:`~seismo3d.seismic.faults.likelihood.network.RECEPTIVE_HALF` network traces, the
+   block's grid on the whole cube's pooling grid) along the sections and only the resampling's few traces across them;
+   every sample of each trace. The blocks are as long along the sections as the memory limit allows (the whole cube's
+   width when it fits: no halo at all), so the halo adds little. Each direction's probability is written on the network
    grid to a work array.
 3. Strike and dip: on blocks with the tensor smoothing's halo, the larger of the two directions' probabilities on
    each network grid is interpolated onto the block's samples (as in memory: the maximum before the interpolation)
    and the grids' are averaged in their order; its
    structure tensor gives strike and dip, written with the likelihood to the output Zarr group (``likelihood``,
-   ``strike_deg``, ``dip_deg``: what :func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces` reads,
-   as from the scan's chunked run).
+   ``strike_deg``, ``dip_deg``: what :func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`
+   reads, as from the scan's chunked run).
 
 Markers, resumption, the ``.partial`` output and the schedulers are those of
 :mod:`~seismo3d.seismic.faults.blocks.scan_blocks`.
@@ -220,8 +220,8 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
     Returns
     -------
     int
-        Bytes per worker: a ``memory_limit`` below :func:`~seismo3d.seismic.blocks.executor.limit_for_blocks` of it is refused
-        by :func:`chunked_learned_likelihood`.
+        Bytes per worker: a ``memory_limit`` below :func:`~seismo3d.seismic.blocks.executor.limit_for_blocks` of it is
+        refused by :func:`chunked_learned_likelihood`.
     """
     shape = tuple(int(n) for n in shape)
     c = _NETWORK_CHUNK

@@ -11,8 +11,8 @@ step of a block-by-block run.
 
 :func:`minimum_memory_limit` is the smallest ``memory_limit`` with which both block-by-block stages
 (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` and
-:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`) can plan their smallest blocks, and, with a
-sample, hold the seed candidates. The thinned fault cells linked into skins come from the voting and cannot be judged
+:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`) can plan their smallest blocks, and, with
+a sample, hold the seed candidates. The thinned fault cells linked into skins come from the voting and cannot be judged
 from a sample; a limit too small for them is still reported when they are counted.
 """
 
@@ -195,7 +195,7 @@ def judge_sample(cube, *, options: FaultTracingOptions | None = None,
     for region in _block_origins(shape, sample):
         with warnings.catch_warnings():  # dead or clipped samples are reported by the run itself
             warnings.simplefilter("ignore", Seismo3dWarning)
-            cleaned = clean_traces(_read(cube, region))
+            cleaned = clean_traces(_read(cube, region), options=opt.dead)
         amplitudes.append(cleaned.data)
         dead_masks.append(cleaned.dead)
         read += cleaned.data.size
@@ -215,7 +215,8 @@ def _block_measures(data: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", Seismo3dWarning)
         fl = fault_likelihood(data, options=opt.scan, progress=False)
-    high, live = live_likelihood(fl.likelihood, near_dead_samples(dead) if dead.any() else None)
+    near = near_dead_samples(dead, options=opt.dead) if dead.any() else None
+    high, live = live_likelihood(fl.likelihood, near)
     seeds = ridges(fl.likelihood, fl.strike_deg, fl.dip_deg, opt.voting.seed_threshold)
     return high, live, int(np.count_nonzero(seeds > float(opt.voting.seed_threshold)))
 

@@ -1,5 +1,5 @@
-"""Fault likelihood of a cube larger than memory: the scan of :mod:`~seismo3d.seismic.faults.likelihood.scan` run block by
-block on dask, with the halo each step needs, results written block by block to Zarr, resumable.
+"""Fault likelihood of a cube larger than memory: the scan of :mod:`~seismo3d.seismic.faults.likelihood.scan` run block
+by block on dask, with the halo each step needs, results written block by block to Zarr, resumable.
 
 The steps and their blocks (every block carries exactly the halo its step needs, so the result equals the in-memory
 :func:`~seismo3d.seismic.faults.fault_likelihood` up to float rounding):
@@ -13,8 +13,8 @@ The steps and their blocks (every block carries exactly the halo its step needs,
    memory.
 3. The scan of the planes sheared along inlines on blocks that hold every inline (the exponential smoothing down the
    dip follows a fault plane laterally without bound, so that axis is never cut) and a few crosslines with
-   :func:`~seismo3d.seismic.faults.likelihood.scan.strike_halo` of halo; then the planes sheared along crosslines on blocks
-   that hold every crossline. The packed keys of both are combined by their maximum.
+   :func:`~seismo3d.seismic.faults.likelihood.scan.strike_halo` of halo; then the planes sheared along crosslines on
+   blocks that hold every crossline. The packed keys of both are combined by their maximum.
 4. Likelihood, strike and dip decoded block by block into the output Zarr group.
 
 Every finished block leaves a marker in the run's work folder, written after its data: a run that is interrupted

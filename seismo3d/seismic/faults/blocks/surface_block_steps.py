@@ -1,5 +1,6 @@
-"""The work of each step of the fault surfaces by blocks (:mod:`~seismo3d.seismic.faults.blocks.surface_blocks`) on one block:
-fill values, ridges and seeds, seed surfaces, votes, thinned votes, the thresholds' statistics and the cells; each
+"""The work of each step of the fault surfaces by blocks (:mod:`~seismo3d.seismic.faults.blocks.surface_blocks`) on one
+block: fill values, ridges and seeds, seed surfaces, votes, thinned votes, the thresholds' statistics and the cells;
+each
 reads its inputs from the run's stores, writes its outputs there and leaves a marker when done (resumable)."""
 
 from __future__ import annotations
@@ -18,7 +19,8 @@ from .surface_plan import RIDGE_HALO, SURFACE_BATCH_BYTES, THIN_HALO, SurfacePla
 from ..surfaces.thresholds import block_histogram
 from ..surfaces.voting import SeedSurfaces, VoteSum, seed_surfaces
 
-__all__ = ["cell_block", "fill_block", "gather_block", "histogram_block", "ridge_block", "save_npz", "surface_block", "surfaces_of", "thin_block", "vote_block"]
+__all__ = ["cell_block", "fill_block", "gather_block", "histogram_block", "ridge_block", "save_npz", "surface_block",
+           "surfaces_of", "thin_block", "vote_block"]
 
 
 def save_npz(path: pathlib.Path, **arrays) -> None:
@@ -26,8 +28,8 @@ def save_npz(path: pathlib.Path, **arrays) -> None:
         np.savez(fh, **arrays)
 
 
-def fill_block(f, lo, hi, marker) -> dict:
-    result = {"fill": [float(v) for v in fill_values(np.asarray(f, np.float32), lo, hi)]}
+def fill_block(f, lo, hi, dead, marker) -> dict:
+    result = {"fill": [float(v) for v in fill_values(np.asarray(f, np.float32), lo, hi, options=dead)]}
     write_marker(marker, result)
     return result
 
@@ -40,9 +42,9 @@ def ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan:
     i0, i1, j0, j1 = block
     f = np.asarray(f, np.float32)
     write_slopes(f, origin, block, partial)
-    dead = dead_samples(f, fill, lo, hi)
+    dead = dead_samples(f, fill, lo, hi, options=opt.dead)
     del f
-    near = near_dead_samples(dead) if dead.any() else None
+    near = near_dead_samples(dead, options=opt.dead) if dead.any() else None
     del dead
     a0, a1, b0, b1 = around(block, RIDGE_HALO, plan.shape)
     group = zarr.open_group(likelihood, mode="r")

@@ -9,8 +9,8 @@ fault likelihood, run block by block on dask from a chunked likelihood, with the
 Every step reads what it needs around its block (the halo of its operator) from Zarr work arrays and writes its
 block's core, so the result does not depend on where the blocks are cut:
 
-1. **Fill values** of the dead-sample rules (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`): gathered over every block,
-   from the cube's smallest and largest amplitudes.
+1. **Fill values** of the dead-sample rules (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`): gathered over every
+   block, from the cube's smallest and largest amplitudes.
 2. **Ridges**: per block, dead samples and their reach, the likelihood zeroed there (the ``live`` likelihood) and
    its ridges (:func:`~seismo3d.seismic.thin_faults`, halo ``RIDGE_HALO``); the ridge samples above the voting's seed
    threshold are kept as a sparse list of seed candidates.
@@ -18,9 +18,9 @@ block's core, so the result does not depend on where the blocks are cut:
    :func:`~seismo3d.seismic.faults.surfaces.voting_kernels.greedy_seeds` (a sparse list: a few percent of the samples).
 4. **Surfaces, then votes**: each seed's optimal surface once, in the block holding the seed, on the live likelihood
    read with the voting's reach (``VotingOptions.reach``) around it
-   (:func:`~seismo3d.seismic.faults.surfaces.voting.seed_surfaces`, stored as the samples each surface passes); then per block
-   the votes of the surfaces of the seeds reaching it (:class:`~seismo3d.seismic.faults.surfaces.voting.VoteSum`: each seed's
-   votes are summed by the same thread, in the same order, as in memory).
+   (:func:`~seismo3d.seismic.faults.surfaces.voting.seed_surfaces`, stored as the samples each surface passes); then per
+   block the votes of the surfaces of the seeds reaching it (:class:`~seismo3d.seismic.faults.surfaces.voting.VoteSum`:
+   each seed's votes are summed by the same thread, in the same order, as in memory).
 5. **Thinning** of the votes (halo 2), with the count, smallest and largest positive thinned vote per block; then
    their histogram (Otsu's threshold on the same 256 bins as in memory) and, when they are dense, their exact
    quantile: the thresholds of :meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`.
@@ -203,8 +203,9 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
     faults, throws, evidence = faults_from_cells(_stored_cells(run.out), shape, windows, (lower, upper), opt,
                                                  likelihood=group["likelihood"], progress=progress)
-    return ChunkedFaults(run.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]), int(attrs["n_cells"]),
-                         float(attrs["saturated_fraction"]), dict(run.computed), dict(run.resumed), dict(run.seconds))
+    return ChunkedFaults(run.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]),
+                         int(attrs["n_cells"]), float(attrs["saturated_fraction"]), dict(run.computed),
+                         dict(run.resumed), dict(run.seconds))
 
 
 def _surfaces(run: _SurfaceRun, manifest: dict) -> dict:
@@ -319,7 +320,7 @@ class _SurfaceRun(BlockRun):
     def fill_values(self, x, lo: float, hi: float) -> np.ndarray:
         p = self.plan
         todo, done = self.pending("fill", square_blocks(p.shape, p.dead))
-        tasks = [self.task(fill_block, x[b[0]:b[1], b[2]:b[3]], lo, hi, str(self.marker("fill", b)))
+        tasks = [self.task(fill_block, x[b[0]:b[1], b[2]:b[3]], lo, hi, self.opt.dead, str(self.marker("fill", b)))
                  for b in todo]
         results = self.compute(tasks, "fill values", "fill") + done
         return np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
@@ -333,7 +334,7 @@ class _SurfaceRun(BlockRun):
         fill = self.fill_values(x, lo, hi)
         p = self.plan
         todo, done = self.pending("ridges", square_blocks(p.shape, p.ridge))
-        h = amplitude_halo()
+        h = amplitude_halo(self.opt)
         tasks = []
         for b in todo:
             a0, a1, b0, b1 = around(b, h, p.shape)

@@ -10,7 +10,6 @@ import numba
 from ....errors import InputError
 from ...attributes import structure_tensor_halo
 from ...blocks.executor import block_budget, largest_block
-from ..surfaces.dead_samples import DEAD_REACH
 from ..options import FaultTracingOptions
 from .scan_blocks import ChunkOptions
 from ...blocks.memory import default_memory_limit
@@ -61,10 +60,10 @@ class SurfacePlan:
     reach: int    # a voting box's reach from its seed
 
 
-def amplitude_halo() -> int:
+def amplitude_halo(opt: FaultTracingOptions) -> int:
     """Traces of amplitudes read around a block of the ridge step: the dead samples' reach around the likelihood's
     halo, and the structure tensor's halo for the reflector slopes."""
-    return max(RIDGE_HALO + DEAD_REACH[0], structure_tensor_halo()[0])
+    return max(RIDGE_HALO + opt.dead.reach[0], structure_tensor_halo()[0])
 
 
 def _step_bytes(shape, opt: FaultTracingOptions) -> dict:
@@ -78,7 +77,7 @@ def _step_bytes(shape, opt: FaultTracingOptions) -> dict:
         return b * b * nt * _DEAD_BYTES
 
     def ridge_bytes(b):
-        h = amplitude_halo()
+        h = amplitude_halo(opt)
         return (b + 2 * h) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
 
     # the surfaces of a block's seeds: at most one seed per (spacing + 1)^3 samples (greedy_seeds keeps them more

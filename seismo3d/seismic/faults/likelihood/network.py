@@ -41,7 +41,8 @@ from scipy.ndimage import gaussian_filter
 
 from ....errors import InputError, Seismo3dError
 
-__all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "FaultNetwork", "onnx_model", "unet_forward", "normalise_section", "anti_alias_sigma", "grid_size", "grid_halo", "to_network_grid", "from_network_grid"]
+__all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "FaultNetwork", "onnx_model", "unet_forward",
+           "normalise_section", "anti_alias_sigma", "grid_size", "grid_halo", "to_network_grid", "from_network_grid"]
 
 
 BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
@@ -200,8 +201,8 @@ def unet_forward(sections: np.ndarray, network) -> np.ndarray:
         Sections scaled by :func:`normalise_section`. Any size: each axis is padded by reflection to a multiple
         of 8 and the output cropped back.
     network : FaultNetwork or mapping of str to ndarray
-        The network (:func:`~seismo3d.seismic.faults.likelihood.learned.load_fault_network`), or trained weights (see the
-        module docstring; turned into a :class:`FaultNetwork` by :func:`onnx_model`, which needs the ``onnx``
+        The network (:func:`~seismo3d.seismic.faults.likelihood.learned.load_fault_network`), or trained weights (see
+        the module docstring; turned into a :class:`FaultNetwork` by :func:`onnx_model`, which needs the ``onnx``
         package).
 
     Returns

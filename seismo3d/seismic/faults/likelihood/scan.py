@@ -1,8 +1,8 @@
 """Fault likelihood: a scan over fault strikes and dips (after Hale 2013), in 3D cubes and 2D sections.
 
 The structure-oriented semblance is summed within each candidate fault plane; each sample keeps the largest likelihood
-``1 - s^8`` of the scanned planes through it, and that plane's strike and dip. :mod:`seismo3d.seismic.faults.surfaces.ridges`
-thins and links the likelihood into faults.
+``1 - s^8`` of the scanned planes through it, and that plane's strike and dip.
+:mod:`seismo3d.seismic.faults.surfaces.ridges` thins and links the likelihood into faults.
 
 Conventions (index space: one trace spacing and one sample both count as 1, the sample axis points down; the same
 as :mod:`seismo3d.data.synthetic`):
@@ -235,8 +235,8 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     return FaultLikelihood(fl, strike, dip)
 
 
-# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.faults.blocks.scan_blocks): a block's
-# result equals the whole cube's over the block when the block carries the halo each step needs.
+# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.faults.blocks.scan_blocks): a
+# block's result equals the whole cube's over the block when the block carries the halo each step needs.
 
 @dataclass(frozen=True)
 class AmplitudeStatistics:

@@ -1,4 +1,5 @@
-"""The numba kernels of the fault-likelihood scan (:mod:`~seismo3d.seismic.faults.likelihood.scan`): the packed scan key, the
+"""The numba kernels of the fault-likelihood scan (:mod:`~seismo3d.seismic.faults.likelihood.scan`): the packed scan
+key, the
 smoothing along strike and the exponential smoothing down the dip with the semblance's power, and their coefficients."""
 
 from __future__ import annotations
@@ -9,8 +10,8 @@ import numpy as np
 from ....errors import InputError
 
 # used by the scan module; not part of the package's public face
-__all__ = ["CODE_BITS", "FL_LEVELS", "box_half", "default_angles", "exponential_coefficient", "orientation_table", "scan_dip",
-           "smooth_strike", "sum_samples"]
+__all__ = ["CODE_BITS", "FL_LEVELS", "box_half", "default_angles", "exponential_coefficient", "orientation_table",
+           "scan_dip", "smooth_strike", "sum_samples"]
 
 
 # numba kernels of the scan

@@ -1,7 +1,8 @@
 """Dead samples of seismic data: mutes, dead traces, zero padding and gaps, whose edges are not faults.
 
-A sample is dead when it lies in a run of at least ``DEAD_RUN`` equal values along its trace at a *fill value*: 0, or
-a value that fills a whole trace or a run of at least ``FILL_RUN`` samples somewhere in the data (a mute's or a
+A sample is dead when it lies in a run of at least ``DeadSampleOptions.run`` equal values along its trace at a *fill
+value*: 0, or a value that fills a whole trace or a run of at least ``DeadSampleOptions.fill_run`` samples somewhere
+in the data (a mute's or a
 padding's value, such as the grey of an image export). Shorter runs at other values are the quantisation of slowly
 varying amplitudes in integer exports, and runs at the data's smallest or largest value are clipped amplitudes (8-bit
 exports of sections): neither is dead, unless it fills the whole trace.
@@ -9,7 +10,7 @@ exports of sections): neither is dead, unless it fills the whole trace.
 :func:`clean_traces` applies this to an array in memory; :func:`fill_values`, :func:`dead_samples` and
 :func:`near_dead_samples` are its steps, which also run block by block on a cube larger than memory (the fill values
 gathered over every block first, from the data's global smallest and largest values): dead samples are found along
-each trace, so a block needs no halo for them, and ``DEAD_REACH[0]`` traces of halo to grow them.
+each trace, so a block needs no halo for them, and ``DeadSampleOptions.reach[0]`` traces of halo to grow them.
 """
 
 from __future__ import annotations
@@ -18,29 +19,66 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-import numba as nb
-from scipy.ndimage import maximum_filter1d
+from scipy.ndimage import binary_opening, maximum_filter1d
 
-from ...._validation import check_seismic_layout
+from ...._validation import check_int, check_positive, check_seismic_layout
 from ....errors import InputError, Seismo3dWarning
 
-__all__ = ["CleanTraces", "clean_traces", "check_varies", "clipped_count", "fill_values", "dead_samples",
-           "near_dead_samples", "warn_clipped", "warn_dead", "warn_non_finite", "DEAD_REACH"]
+__all__ = ["CleanTraces", "DeadSampleOptions", "clean_traces", "check_varies", "clipped_count", "fill_values",
+           "dead_samples", "near_dead_samples", "warn_clipped", "warn_dead", "warn_non_finite"]
 
-# Reach (traces, samples) of a dead zone's edge in fault_likelihood: the 3 x 3-trace semblance and the reflector slopes
-# of the structure tensor (smoothed over about 2 traces and 6 samples) see the edge this far; likelihood this close to
-# a dead sample is an artefact of the edge, not a fault.
-DEAD_REACH = (3, 8)
-# Fraction of samples at the data's extremes above which the data are reported as clipped (unclipped data such as F3
-# and the synthetic cubes have a handful of such samples; 8-bit exports like the Penobscot sections, most of them).
-_CLIPPED_WARN = 0.05
-# Equal values in a row along a trace that make a run of dead samples (mute, dead trace, gap), at a fill value.
-DEAD_RUN = 5
-# A value that fills a run this long somewhere in the data (or a whole trace) is a fill value (a mute's or a padding's
-# value) besides 0. Shorter runs at other values are the quantisation of slowly varying amplitudes in integer exports:
-# in the 8-bit Penobscot sections a run of five 107s sits on a fault at inlines 1-2, and reading it as dead blanked
-# the fault's likelihood over inlines 0-5.
-FILL_RUN = 16
+
+@dataclass(frozen=True)
+class DeadSampleOptions:
+    """What counts as a dead sample (mutes, dead traces, zero padding, gaps), and how far a dead zone's edge reaches.
+
+    Attributes
+    ----------
+    run : int
+        Equal values in a row along a trace that make a run of dead samples, at a fill value (default 5).
+    fill_run : int
+        A value that fills a run this long somewhere in the data (or a whole trace) is a fill value (a mute's or a
+        padding's value) besides 0 (default 16). Shorter runs at other values are the quantisation of slowly varying
+        amplitudes in integer exports: in the 8-bit Penobscot sections a run of five 107s sits on a fault at inlines
+        1-2, and reading it as dead blanked the fault's likelihood over inlines 0-5.
+    reach : (int, int)
+        Reach (traces, samples) of a dead zone's edge in the fault likelihood (default (3, 8)): the 3 x 3-trace
+        semblance and the reflector slopes of the structure tensor (smoothed over about 2 traces and 6 samples) see
+        the edge this far; likelihood this close to a dead sample is an artefact of the edge, not a fault.
+    clipped_warning : float
+        Fraction of the samples at the data's extremes above which the data are reported as clipped (default 0.05:
+        unclipped data such as F3 and the synthetic cubes have a handful of such samples; 8-bit exports like the
+        Penobscot sections, most of them).
+
+    Raises
+    ------
+    InputError
+        On construction: a run below 2 samples, a negative reach, a fraction outside [0, 1].
+    """
+
+    run: int = 5
+    fill_run: int = 16
+    reach: tuple = (3, 8)
+    clipped_warning: float = 0.05
+
+    def __post_init__(self):
+        check_int(self.run, "DeadSampleOptions.run", minimum=2)
+        check_int(self.fill_run, "DeadSampleOptions.fill_run", minimum=2)
+        if (not isinstance(self.reach, tuple) or len(self.reach) != 2
+                or any(isinstance(r, bool) or not isinstance(r, (int, np.integer)) or r < 0 for r in self.reach)):
+            raise InputError(f"DeadSampleOptions.reach must be (traces, samples), two integers >= 0; got "
+                             f"{self.reach!r}")
+        check_positive(self.clipped_warning, "DeadSampleOptions.clipped_warning", allow_zero=True)
+        if self.clipped_warning > 1:
+            raise InputError(f"DeadSampleOptions.clipped_warning is a fraction in [0, 1]; got {self.clipped_warning!r}")
+
+
+def _options(options) -> DeadSampleOptions:
+    if options is None:
+        return DeadSampleOptions()
+    if not isinstance(options, DeadSampleOptions):
+        raise InputError(f"options must be a DeadSampleOptions; got {type(options).__name__}")
+    return options
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,48 +107,32 @@ def _flat_samples(arr: np.ndarray, lo, hi) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _runs(equal: np.ndarray, length: int) -> np.ndarray:
-    """The differences inside runs of at least ``length`` equal values along the last axis (a morphological opening
-    by a line of ``length - 1`` differences, as scipy's ``binary_opening`` gives it, in one pass per trace)."""
+    """The differences inside runs of at least ``length`` equal values along the last axis: a morphological opening
+    by a line of ``length - 1`` differences (scipy's ``binary_opening``; a trace shorter than the line is one run when
+    all its differences are)."""
     m = equal.shape[-1]
-    rows = np.ascontiguousarray(equal, dtype=bool).reshape(-1, m)
-    out = np.zeros(rows.shape, dtype=bool)
-    _true_runs(rows, min(length - 1, m), out)
-    return out.reshape(equal.shape)
+    if m == 0:
+        return np.zeros(equal.shape, dtype=bool)
+    line = np.ones((1,) * (equal.ndim - 1) + (min(length - 1, m),), dtype=bool)
+    return binary_opening(np.asarray(equal, dtype=bool), structure=line)
 
 
-@nb.njit(cache=True, parallel=True)
-def _true_runs(rows, length, out):
-    # out[r, k]: rows[r, k] lies in a run of at least `length` Trues along the row
-    m = rows.shape[1]
-    for r in nb.prange(rows.shape[0]):
-        k = 0
-        while k < m:
-            if not rows[r, k]:
-                k += 1
-                continue
-            start = k
-            while k < m and rows[r, k]:
-                k += 1
-            if k - start >= length:
-                out[r, start:k] = True
-
-
-def _fills(arr: np.ndarray, flat: np.ndarray) -> np.ndarray:
+def _fills(arr: np.ndarray, flat: np.ndarray, opt: DeadSampleOptions) -> np.ndarray:
     whole = np.broadcast_to(flat.all(axis=-1, keepdims=True), flat.shape)
-    return np.union1d([0.0], arr[..., 1:][_runs(flat, FILL_RUN) | whole]).astype(np.float32)
+    return np.union1d([0.0], arr[..., 1:][_runs(flat, opt.fill_run) | whole]).astype(np.float32)
 
 
-def _dead(arr: np.ndarray, flat: np.ndarray, fill: np.ndarray) -> np.ndarray:
-    flat = _runs(flat, DEAD_RUN) & np.isin(arr[..., 1:], fill)
+def _dead(arr: np.ndarray, flat: np.ndarray, fill: np.ndarray, opt: DeadSampleOptions) -> np.ndarray:
+    flat = _runs(flat, opt.run) & np.isin(arr[..., 1:], fill)
     dead = np.zeros(arr.shape, dtype=bool)
     dead[..., 1:] |= flat
     dead[..., :-1] |= flat
     return dead
 
 
-def fill_values(data, lo: float, hi: float) -> np.ndarray:
+def fill_values(data, lo: float, hi: float, *, options: DeadSampleOptions | None = None) -> np.ndarray:
     """The fill values of a block of traces: 0 and the values of its constant traces and of its runs of at least
-    ``FILL_RUN`` equal samples that are not clipped amplitudes.
+    ``options.fill_run`` equal samples that are not clipped amplitudes.
 
     Parameters
     ----------
@@ -119,20 +141,23 @@ def fill_values(data, lo: float, hi: float) -> np.ndarray:
     lo, hi : float
         The smallest and largest value of the whole data (not only of this block): runs at them are clipped
         amplitudes.
+    options : DeadSampleOptions, optional
+        What counts as a dead sample (default :class:`DeadSampleOptions`).
 
     Returns
     -------
     (m,) float32 ndarray
         Sorted unique fill values; the fill values of a cube are the union over its blocks.
     """
+    opt = _options(options)
     arr = np.asarray(data, dtype=np.float32)
     flat, clipped = _flat_samples(arr, lo, hi)
     flat &= ~clipped
-    return _fills(arr, flat)
+    return _fills(arr, flat, opt)
 
 
-def dead_samples(data, fill, lo: float, hi: float) -> np.ndarray:
-    """The dead samples of a block of traces: runs of at least ``DEAD_RUN`` equal values at a fill value.
+def dead_samples(data, fill, lo: float, hi: float, *, options: DeadSampleOptions | None = None) -> np.ndarray:
+    """The dead samples of a block of traces: runs of at least ``options.run`` equal values at a fill value.
 
     Parameters
     ----------
@@ -142,45 +167,52 @@ def dead_samples(data, fill, lo: float, hi: float) -> np.ndarray:
         The data's fill values (the union of :func:`fill_values` over every block).
     lo, hi : float
         The smallest and largest value of the whole data.
+    options : DeadSampleOptions, optional
+        What counts as a dead sample (default :class:`DeadSampleOptions`).
 
     Returns
     -------
     bool ndarray, the shape of ``data``
         True on dead samples.
     """
+    opt = _options(options)
     arr = np.asarray(data, dtype=np.float32)
     flat, clipped = _flat_samples(arr, lo, hi)
     flat &= ~clipped
-    return _dead(arr, flat, np.asarray(fill, dtype=np.float32))
+    return _dead(arr, flat, np.asarray(fill, dtype=np.float32), opt)
 
 
-def near_dead_samples(dead: np.ndarray) -> np.ndarray:
-    """Dead samples grown by ``DEAD_REACH`` (traces, samples): a box, by separable maximum filters.
+def near_dead_samples(dead: np.ndarray, *, options: DeadSampleOptions | None = None) -> np.ndarray:
+    """Dead samples grown by ``options.reach`` (traces, samples): a box, by separable maximum filters.
 
     Parameters
     ----------
     dead : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) bool ndarray
-        Dead samples (:func:`dead_samples`); a block of a cube needs ``DEAD_REACH[0]`` traces of halo.
+        Dead samples (:func:`dead_samples`); a block of a cube needs ``options.reach[0]`` traces of halo.
+    options : DeadSampleOptions, optional
+        What counts as a dead sample (default :class:`DeadSampleOptions`).
 
     Returns
     -------
     bool ndarray, same shape
-        True within ``DEAD_REACH`` of a dead sample: fault likelihood there is an artefact of the dead zone's edge.
+        True within ``options.reach`` of a dead sample: fault likelihood there is an artefact of the dead zone's
+        edge.
     """
+    opt = _options(options)
     near = np.ascontiguousarray(dead, dtype=bool).view(np.uint8)
     for axis in range(near.ndim):
-        reach = DEAD_REACH[1] if axis == near.ndim - 1 else DEAD_REACH[0]
+        reach = opt.reach[1] if axis == near.ndim - 1 else opt.reach[0]
         if near.shape[axis] > 1:
             near = maximum_filter1d(near, 2 * reach + 1, axis=axis, mode="constant")
     return near.view(bool)
 
 
-def clean_traces(data) -> CleanTraces:
+def clean_traces(data, *, options: DeadSampleOptions | None = None) -> CleanTraces:
     """Replace NaN / inf by 0 and find the dead samples, with a warning for each, and for clipped amplitudes.
 
-    Dead samples are those in runs of at least ``DEAD_RUN`` equal values along a trace at a *fill value*: dead
+    Dead samples are those in runs of at least ``options.run`` equal values along a trace at a *fill value*: dead
     traces, mutes (the zeroed top of a survey), zero padding and NaN gaps. The fill values are 0 and every value that
-    fills a whole trace or a run of at least ``FILL_RUN`` samples somewhere in the data (a mute or padding value
+    fills a whole trace or a run of at least ``options.fill_run`` samples somewhere in the data (a mute or padding value
     such as the grey of an image export). Short runs at other values are quantisation (integer exports), and runs at
     the data's largest or smallest value are clipped amplitudes (8-bit exports of sections): neither is dead, unless
     it fills the whole trace.
@@ -189,6 +221,8 @@ def clean_traces(data) -> CleanTraces:
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
         Seismic amplitudes, any real dtype.
+    options : DeadSampleOptions, optional
+        What counts as a dead sample (default :class:`DeadSampleOptions`).
 
     Returns
     -------
@@ -203,9 +237,10 @@ def clean_traces(data) -> CleanTraces:
     Warns
     -----
     Seismo3dWarning
-        NaN / inf samples, dead samples, or clipped amplitudes (more than 5 % of the samples at the data's smallest or
-        largest value).
+        NaN / inf samples, dead samples, or clipped amplitudes (more than ``options.clipped_warning`` of the samples
+        at the data's smallest or largest value).
     """
+    opt = _options(options)
     arr = np.asarray(data)
     check_seismic_layout(arr.shape, arr.dtype)
     arr = np.asarray(arr, dtype=np.float32)
@@ -217,12 +252,12 @@ def clean_traces(data) -> CleanTraces:
     lo, hi = arr.min(), arr.max()
     check_varies(lo, hi)
     flat, clipped = _flat_samples(arr, lo, hi)
-    warn_clipped(int(np.count_nonzero(clipped)), clipped.size)
+    warn_clipped(int(np.count_nonzero(clipped)), clipped.size, options=opt)
     flat &= ~clipped
     del clipped
-    dead = _dead(arr, flat, _fills(arr, flat))
+    dead = _dead(arr, flat, _fills(arr, flat, opt), opt)
     del flat
-    warn_dead(int(np.count_nonzero(dead)), dead.size, int(np.count_nonzero(dead.all(axis=-1))))
+    warn_dead(int(np.count_nonzero(dead)), dead.size, int(np.count_nonzero(dead.all(axis=-1))), options=opt)
     return CleanTraces(arr, dead)
 
 
@@ -264,23 +299,24 @@ def check_varies(lo: float, hi: float) -> None:
                          "check that the file is the right one and that its data format is read correctly")
 
 
-def warn_clipped(n_clipped: int, n: int) -> None:
-    """Warn when more than 5 % of the ``n`` sample steps are clipped amplitudes (:func:`clipped_count`).
+def warn_clipped(n_clipped: int, n: int, *, options: DeadSampleOptions | None = None) -> None:
+    """Warn when more than ``options.clipped_warning`` of the ``n`` sample steps are clipped amplitudes
+    (:func:`clipped_count`).
 
     Warns
     -----
     Seismo3dWarning
-        ``n_clipped / n`` above 5 %.
+        ``n_clipped / n`` above ``options.clipped_warning`` (default 5 %).
     """
     fraction = float(n_clipped) / n if n else 0.0
-    if fraction > _CLIPPED_WARN:
+    if fraction > _options(options).clipped_warning:
         warnings.warn(f"{fraction:.0%} of the samples sit at the data's smallest or largest value: clipped "
                       "amplitudes (an 8-bit export?). Fault likelihood and throws are measured on the clipped "
                       "waveforms and are less reliable; trace the unclipped data if you have it",
                       Seismo3dWarning, stacklevel=3)
 
 
-def warn_dead(n_dead: int, n: int, n_dead_traces: int) -> None:
+def warn_dead(n_dead: int, n: int, n_dead_traces: int, *, options: DeadSampleOptions | None = None) -> None:
     """Warn that ``n_dead`` of ``n`` samples are dead (``n_dead_traces`` whole traces).
 
     Warns
@@ -288,7 +324,8 @@ def warn_dead(n_dead: int, n: int, n_dead_traces: int) -> None:
     Seismo3dWarning
         When ``n_dead > 0``.
     """
+    opt = _options(options)
     if n_dead:
-        warnings.warn(f"{n_dead / n:.1%} of the samples are constant over {DEAD_RUN} or more samples "
-                      f"(mutes, gaps, {n_dead_traces} dead traces); fault likelihood within {DEAD_REACH[0]} traces "
-                      f"and {DEAD_REACH[1]} samples of them is set to 0", Seismo3dWarning, stacklevel=3)
+        warnings.warn(f"{n_dead / n:.1%} of the samples are constant over {opt.run} or more samples "
+                      f"(mutes, gaps, {n_dead_traces} dead traces); fault likelihood within {opt.reach[0]} traces "
+                      f"and {opt.reach[1]} samples of them is set to 0", Seismo3dWarning, stacklevel=3)

@@ -1,5 +1,6 @@
-"""The closest cells of different fault skins within a gap (:mod:`~seismo3d.seismic.faults.surfaces.skins`): edge cells matched to
-the nearest cell of every other skin through a grid of buckets, in parallel; the pairs the merging of coplanar skins
+"""The closest cells of different fault skins within a gap (:mod:`~seismo3d.seismic.faults.surfaces.skins`): edge cells
+matched to the nearest cell of every other skin through a grid of buckets, in parallel; the pairs the merging of
+coplanar skins
 considers."""
 
 from __future__ import annotations
@@ -15,10 +16,10 @@ __all__ = []
 @nb.njit(cache=True)
 def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, slot, labels, dist2, cells):
     # For cell e: the nearest cell (squared distance, index) of every other label within sqrt(gap2), ties to the
-    # lower index, from the buckets (cubes of ``side`` from ``origin``, :func:`~seismo3d.seismic._kernels.bucket_grid`) around e's bucket that
-    # come within the gap; ``keys`` are the cells' bucket keys in ``order``. ``labels``, ``dist2``, ``cells`` take
-    # the results (grown when full); ``slot`` (one per label, all -1) is the position of a label in them, and is left
-    # all -1 again. Returns the number of labels found and the three (grown) arrays.
+    # lower index, from the buckets (cubes of ``side`` from ``origin``, :func:`~seismo3d.seismic._kernels.bucket_grid`)
+    # around e's bucket that come within the gap; ``keys`` are the cells' bucket keys in ``order``. ``labels``,
+    # ``dist2``, ``cells`` take the results (grown when full); ``slot`` (one per label, all -1) is the position of a
+    # label in them, and is left all -1 again. Returns the number of labels found and the three (grown) arrays.
     m = 0
     gap = np.sqrt(gap2)
     own = lab[e]

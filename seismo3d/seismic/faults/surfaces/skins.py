@@ -4,7 +4,8 @@ After Hale (2013): every thinned fault sample (a *cell*, with the normal of its 
 neighbour above and below it down the fault's dip, and left and right along its strike, among the cells near its own
 plane whose normals agree with its own; skins grow over these links from the strongest cells, keeping to one mean
 orientation. The search reaches a few samples along the fault, so a skin bridges small gaps, and two faults that
-cross or meet stay apart because their cells' normals differ. Skins are kept when they hold a cell above the upper threshold and are large enough.
+cross or meet stay apart because their cells' normals differ. Skins are kept when they hold a cell above the upper
+threshold and are large enough.
 """
 
 from __future__ import annotations

@@ -1,4 +1,5 @@
-"""Chunked fault surfaces (seismo3d.seismic.faults.blocks.surface_blocks): voting, thinning, thresholds, skins and throws
+"""Chunked fault surfaces (seismo3d.seismic.faults.blocks.surface_blocks): voting, thinning, thresholds, skins and
+throws
 block by block give the faults of the in-memory run, on a cube with dead traces and a mute; resumable; refusals."""
 
 from __future__ import annotations

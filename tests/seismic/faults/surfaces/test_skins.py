@@ -1,4 +1,5 @@
-"""Fault skins (seismo3d.seismic.faults.surfaces.skins): gaps bridged, crossing faults kept apart, pieces of one fault cut by
+"""Fault skins (seismo3d.seismic.faults.surfaces.skins): gaps bridged, crossing faults kept apart, pieces of one fault
+cut by
 another merged, hysteresis and sizes, options."""
 
 import numpy as np

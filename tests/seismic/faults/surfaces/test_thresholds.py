@@ -1,5 +1,6 @@
-"""The streamed statistics of the thinned votes (seismo3d.seismic.faults.surfaces.thresholds) equal the libraries' on the whole
-values: Otsu's threshold from summed block histograms equals scikit-image's, the quantile from a fine histogram and a
+"""The streamed statistics of the thinned votes (seismo3d.seismic.faults.surfaces.thresholds) equal the libraries' on
+the whole values: Otsu's threshold from summed block histograms equals scikit-image's, the quantile from a fine
+histogram and a
 window of gathered values equals numpy's, to the bit."""
 
 import numpy as np

@@ -1,4 +1,5 @@
-"""Optimal surface voting (seismo3d.seismic.faults.surfaces.voting): gaps bridged, noise left weak, 3D surfaces, options."""
+"""Optimal surface voting (seismo3d.seismic.faults.surfaces.voting): gaps bridged, noise left weak, 3D surfaces,
+options."""
 
 import numpy as np
 import pytest

@@ -30,6 +30,7 @@ from ..seismic.io.segy import open_segy
 from ..seismic.io.writer import write_like, write_like_blocks
 from .fault_tables import write_points, write_summary
 from .inputs import read_seismic
+from .interchange import FAULT_INTERCHANGE_FILES, fault_coordinates, fault_interchange_steps
 from .outputs import check_outputs, output_folder
 from .runinfo import RUN_JSON, RunRecord
 
@@ -39,7 +40,7 @@ __all__ = ["FaultsJobResult", "RESULTS", "run_faults_job"]
 # The Zarr stores of a block-by-block run are not among them: they are reused or resumed by the next run.
 RESULTS = tuple(f"fault_{name}.{ext}" for ext in ("sgy", "npy") for name in ("likelihood", "strike", "dip", "votes")) + (
     "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "demo_seismic.sgy", "demo_truth.csv",
-    RUN_JSON)
+    RUN_JSON) + FAULT_INTERCHANGE_FILES
 
 _DEMO_SHAPE = (128, 128, 128)
 _DEMO_DT_MS = 4.0
@@ -479,24 +480,26 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
         ("dip", lambda: _write_volume(inp, files, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
         ("votes", lambda: _write_volume(inp, files, "fault_votes", result.votes, like=written["likelihood"], **geo)),
     ]
-    _write_steps(steps + _surface_steps(inp, result, files, summary), written, progress)
+    coords = fault_coordinates(inp, **geo)
+    _write_steps(steps + _surface_steps(inp, result, files, summary, coords), written, progress)
     return written
 
 
-def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summary: list) -> list:
-    """The writers of the fault surfaces, points, summary (its rows appended to ``summary``) and picture."""
+def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summary: list, coords) -> list:
+    """The writers of the fault surfaces, points (with X / Y of ``coords``), summary (its rows appended to
+    ``summary``), picture and interchange files (:mod:`seismo3d.jobs.interchange`)."""
     from ..viz.faults import fault_surfaces, plot_fault_slices, save_polydata
 
     axes = inp.axes
     return [
         ("surfaces", lambda: save_polydata(fault_surfaces(result.faults, result.throws, axes=axes),
                                            out_dir / "faults.vtp")),
-        ("points", lambda: write_points(inp, result, out_dir / "fault_points.csv")),
+        ("points", lambda: write_points(inp, result, out_dir / "fault_points.csv", coordinates=coords)),
         ("summary", lambda: write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
         ("figure", lambda: plot_fault_slices(inp.data, result.faults, path=out_dir / "faults.png",
                                              likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
                                              title=inp.name, **_throw_colours(inp, result))),
-    ]
+    ] + fault_interchange_steps(inp, result, out_dir, coords)
 
 
 def _throw_colours(inp, result) -> dict:
@@ -537,7 +540,9 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: i
     result = _replacing_earlier_stores(trace, out_dir, aside)
     written = {"likelihood": result.stores["likelihood"], "surfaces_zarr": result.stores["surfaces"]}
     inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
-    _write_steps(_surface_steps(inp, result, files, summary), written, progress)
+    coords = fault_coordinates(inp, **{k: v for k, v in (lazy.segy or {}).items() if k != "template_path"},
+                               segy_path=(lazy.segy or {}).get("template_path"))
+    _write_steps(_surface_steps(inp, result, files, summary, coords), written, progress)
     written.update(_segy_volumes(lazy, result.stores["surfaces"], files, {"likelihood": "likelihood",
                                                                           "votes": "votes"}, progress))
     written.update(_segy_volumes(lazy, result.stores["likelihood"], files, {"strike": "strike_deg", "dip": "dip_deg"},

@@ -3,7 +3,8 @@ import them.
 
 One file holds one ``GOCAD TSurf 1`` object per surface (GOCAD ASCII files may hold several objects one after the
 other), each with its name, the coordinate system block (axis names and units; ``ZPOSITIVE Depth``: time and depth
-increase downward), and a ``TFACE`` of ``VRTX`` and ``TRGL`` lines (vertex ids from 1).
+increase downward), and a ``TFACE`` of ``VRTX`` and ``TRGL`` lines (vertex ids from 1). The header holds the name only, as xtgeo's reader
+requires.
 
 xtgeo writes TSurf one surface per file (``xtgeo.TriangulatedSurface``, marked experimental, without the unit of a
 time axis); this writer puts every fault of a run into one file with its units, and the tests read each object back
@@ -13,7 +14,7 @@ References
 ----------
 GOCAD ASCII file formats, *TSurf* (Paradigm / Emerson, GOCAD Developer's Guide, appendix "ASCII file formats"):
 ``GOCAD TSurf 1``, ``HEADER { name: ... }``, ``GOCAD_ORIGINAL_COORDINATE_SYSTEM`` ... ``END_ORIGINAL_COORDINATE_SYSTEM``,
-``TFACE``, ``VRTX id x y z``, ``TRGL i j k``, ``END``.
+``TFACE``, ``VRTX id x y z CNXYZ`` (as Petrel writes it, and xtgeo requires), ``TRGL i j k``, ``END``.
 """
 
 from __future__ import annotations
@@ -75,7 +76,7 @@ def write_tsurf(path, surfaces, *, source: str = "") -> Path:
     surfaces : sequence of TriangulatedSurface
         One object each; surfaces without triangles are left out.
     source : str, optional
-        Written as a comment in each header (where the surfaces come from).
+        Written as a ``#`` comment line after each header (where the surfaces come from).
 
     Returns
     -------
@@ -101,13 +102,13 @@ def write_tsurf(path, surfaces, *, source: str = "") -> Path:
         axis_names = '"INLINE" "CROSSLINE" "Z"' if lines_units else '"X" "Y" "Z"'
         xy = "none" if lines_units else s.xy_unit
         z = {"samples": "none"}.get(s.z_unit, s.z_unit)
-        out += ["GOCAD TSurf 1", "HEADER {", f"name: {_name(s.name)}", "*solid*color: 0.8 0.2 0.2 1"]
+        out += ["GOCAD TSurf 1", "HEADER {", f"name: {_name(s.name)}", "}"]
         if source:
             out.append(f"# written by seismo3d from {source}")
-        out += ["}", "GOCAD_ORIGINAL_COORDINATE_SYSTEM", "NAME Default", f"AXIS_NAME {axis_names}",
+        out += ["GOCAD_ORIGINAL_COORDINATE_SYSTEM", "NAME Default", f"AXIS_NAME {axis_names}",
                 f'AXIS_UNIT "{xy}" "{xy}" "{z}"', "ZPOSITIVE Depth", "END_ORIGINAL_COORDINATE_SYSTEM", "TFACE"]
         v = np.asarray(s.vertices, dtype=np.float64)
-        out += [f"VRTX {i} {p[0]:.3f} {p[1]:.3f} {p[2]:.4f}" for i, p in enumerate(v, start=1)]
+        out += [f"VRTX {i} {p[0]:.3f} {p[1]:.3f} {p[2]:.4f} CNXYZ" for i, p in enumerate(v, start=1)]
         out += [f"TRGL {a} {b} {c}" for a, b, c in (np.asarray(s.triangles, dtype=np.int64) + 1)]
         out.append("END")
     path = Path(path)

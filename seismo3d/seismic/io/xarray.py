@@ -63,7 +63,8 @@ def seismic_axes(data_array) -> _Axes:
     _Axes
         ``lateral`` dimension names in the array's order, the ``sample`` dimension, its unit (the coordinate's
         ``units`` attribute, the array's ``sample_unit`` attribute, or from the dimension's name: 'ms' for twt,
-        'm' for depth; else 'samples').
+        'm' for depth; 'ms' for another sample coordinate without a unit, as for SEG-Y (segysak's ``samples``);
+        'samples' without a sample coordinate).
 
     Raises
     ------
@@ -88,7 +89,12 @@ def seismic_axes(data_array) -> _Axes:
         raise InputError(f"the lateral dimensions {lateral} must be inline then crossline")
     s = dims[-1]
     unit = (data_array.coords[s].attrs.get("units") if s in data_array.coords else None) or \
-        data_array.attrs.get("sample_unit") or _UNIT_OF_DIM.get(s.lower(), "samples")
+        data_array.attrs.get("sample_unit") or _UNIT_OF_DIM.get(s.lower())
+    if unit is None:  # segysak's 'samples' carry no unit: time in ms, as open_segy assumes for SEG-Y
+        unit = "ms" if s in data_array.coords else "samples"
+    if unit not in ("ms", "m", "ft", "samples"):
+        raise InputError(f"the sample unit {unit!r} of {s!r} is not one of ms, m, ft; set "
+                         f"da[{s!r}].attrs['units'] to one of them")
     return _Axes(lateral, s, str(unit))
 
 

@@ -497,10 +497,10 @@ def horizon(
                                                        "as a trace list (trace number in file order, from 1). Repeat "
                                                        "for more seeds."),
     seed_file: Optional[pathlib.Path] = typer.Option(None, "--seed-file", help="More seeds from a file of picks: "
-                                                     "'inline xline time' rows, an IRAP (.irap, .gri) or ZMAP+ "
+                                                     "'inline xline time' rows, an IRAP (.fgr, .gri) or ZMAP+ "
                                                      "(.zmap) grid or X Y Z points (.xyz), placed by the file's "
                                                      "coordinates (at most 64 picks, spread through the file)."),
-    maps: bool = typer.Option(False, "--maps", help="Also write the horizon beside OUTPUT as IRAP ASCII (.irap), "
+    maps: bool = typer.Option(False, "--maps", help="Also write the horizon beside OUTPUT as IRAP ASCII (.fgr), "
                                                     "IRAP binary (.gri), ZMAP+ (.zmap) grids and X Y Z points (.xyz) "
                                                     "in map coordinates, through xtgeo (a 2D line: .xyz only)."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Text file: one 'inline xline time' row per "

@@ -253,7 +253,7 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         on the survey by its coordinates (:func:`seismo3d.jobs.interchange.seeds_from_file`; at most 64 picks, spread
         through the file).
     maps : bool
-        Also write the horizon beside ``output`` as IRAP ASCII (``.irap``), IRAP binary (``.gri``), ZMAP+
+        Also write the horizon beside ``output`` as IRAP ASCII (``.fgr``), IRAP binary (``.gri``), ZMAP+
         (``.zmap``) grids and ``X Y Z`` points (``.xyz``) in map coordinates, through xtgeo (a 2D line: ``.xyz``
         only; :func:`seismo3d.jobs.interchange.write_horizon_maps`).
 

@@ -4,7 +4,7 @@ interpretation packages, in map coordinates.
 * ``seismo3d faults`` writes, beside its other outputs (:func:`fault_interchange_steps`): ``fault_sticks_opendtect.txt``
   (OpendTect fault-stick ASCII), ``fault_sticks_charisma.txt`` (Charisma fault sticks, which Petrel imports),
   ``fault_surfaces_gocad.ts`` (GOCAD TSurf, 3D inputs), and X / Y in ``fault_points.csv``.
-* ``seismo3d horizon --maps`` writes the horizon as IRAP ASCII (``.irap``), IRAP binary (``.gri``), ZMAP+ (``.zmap``)
+* ``seismo3d horizon --maps`` writes the horizon as IRAP ASCII (``.fgr``), IRAP binary (``.gri``), ZMAP+ (``.zmap``)
   grids and ``X Y Z`` points (``.xyz``) beside its text file (:func:`write_horizon_maps`); ``--seed-file`` reads seeds
   from a file of picks (:func:`seeds_from_file`).
 * ``seismo3d render --sticks`` draws fault sticks over the seismic (:func:`sticks_mesh`).
@@ -28,7 +28,7 @@ __all__ = ["FAULT_INTERCHANGE_FILES", "HORIZON_MAP_SUFFIXES", "fault_coordinates
            "horizon_map_paths", "write_horizon_maps", "seeds_from_file", "sticks_mesh"]
 
 FAULT_INTERCHANGE_FILES = ("fault_sticks_opendtect.txt", "fault_sticks_charisma.txt", "fault_surfaces_gocad.ts")
-HORIZON_MAP_SUFFIXES = {"irap_ascii": ".irap", "irap_binary": ".gri", "zmap": ".zmap", "xyz": ".xyz"}
+HORIZON_MAP_SUFFIXES = {"irap_ascii": ".fgr", "irap_binary": ".gri", "zmap": ".zmap", "xyz": ".xyz"}
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -130,7 +130,7 @@ def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates) -> 
 
 
 def horizon_map_paths(output) -> list:
-    """The files ``seismo3d horizon --maps`` writes beside ``output``: ``<stem>.irap``, ``.gri``, ``.zmap``,
+    """The files ``seismo3d horizon --maps`` writes beside ``output``: ``<stem>.fgr``, ``.gri``, ``.zmap``,
     ``.xyz``."""
     output = Path(output)
     return [output.with_suffix(s) for s in HORIZON_MAP_SUFFIXES.values()]

@@ -35,7 +35,7 @@ __all__ = ["GRID_FORMATS", "HorizonPicks", "horizon_surface", "read_horizon_pick
            "require_xtgeo"]
 
 # format -> (xtgeo fformat, file suffix)
-GRID_FORMATS = {"irap_ascii": ("irap_ascii", ".irap"), "irap_binary": ("irap_binary", ".gri"),
+GRID_FORMATS = {"irap_ascii": ("irap_ascii", ".fgr"), "irap_binary": ("irap_binary", ".gri"),
                 "zmap": ("zmap_ascii", ".zmap"), "xyz": ("xyz", ".xyz")}
 
 
@@ -130,7 +130,7 @@ def write_horizon_grids(stem, times, inlines, xlines, coordinates: SurveyCoordin
     Parameters
     ----------
     stem : str or os.PathLike
-        Path without suffix; each format appends its own (``.irap``, ``.gri``, ``.zmap``, ``.xyz``).
+        Path without suffix; each format appends its own (``.fgr``, ``.gri``, ``.zmap``, ``.xyz``).
     times : (n_inlines, n_xlines) or (n_traces,) array_like of float
         The horizon (NaN where not tracked); a 2D line's (n_traces,) horizon can only be written as ``'xyz'``.
     inlines, xlines : array_like of int
@@ -245,8 +245,8 @@ class HorizonPicks:
 
 def _format_of(path: Path) -> str:
     suffix = path.suffix.lower()
-    by_suffix = {".irap": "irap_ascii", ".irapascii": "irap_ascii", ".gri": "irap_binary", ".irapbin": "irap_binary",
-                 ".zmap": "zmap", ".zmp": "zmap", ".xyz": "xyz", ".pts": "xyz"}
+    by_suffix = {".fgr": "irap_ascii", ".irap": "irap_ascii", ".irapasc": "irap_ascii", ".gri": "irap_binary",
+                 ".irapbin": "irap_binary", ".zmap": "zmap", ".zmp": "zmap", ".xyz": "xyz", ".pts": "xyz"}
     if suffix in by_suffix:
         return by_suffix[suffix]
     first = path.read_bytes()[:4096].lstrip()[:1]
@@ -261,7 +261,7 @@ def read_horizon_picks(path, *, format: str | None = None) -> HorizonPicks:
     ----------
     path : str or os.PathLike
     format : {'irap_ascii', 'irap_binary', 'zmap', 'xyz', 'lines'}, optional
-        Default from the suffix (``.irap``, ``.gri``, ``.zmap``, ``.xyz``); other text files are read as
+        Default from the suffix (``.fgr``, ``.gri``, ``.zmap``, ``.xyz``); other text files are read as
         ``inline xline time`` rows (``#`` comments allowed; commas or white space).
 
     Returns
@@ -286,7 +286,7 @@ def read_horizon_picks(path, *, format: str | None = None) -> HorizonPicks:
             rows = np.loadtxt(path, ndmin=2, comments="#", delimiter="," if path.suffix.lower() == ".csv" else None)
         except ValueError as exc:
             raise InputError(f"{path.name} is not a table of numbers ({exc}); pass 'inline xline time' rows, or an "
-                             "IRAP (.irap, .gri), ZMAP+ (.zmap) or x y z (.xyz) file") from None
+                             "IRAP (.fgr, .gri), ZMAP+ (.zmap) or x y z (.xyz) file") from None
         if rows.shape[1] != 3:
             raise InputError(f"{path.name} has {rows.shape[1]} columns; 'inline xline time' rows have 3")
         n = rows.shape[0]

@@ -70,7 +70,7 @@ def test_penobscot_fault_points_are_at_their_traces_cdp(penobscot_faults):
     assert "surfaces_tsurf" not in job.written  # a line's faults are curves: sticks only
 
 
-@pytest.mark.slow  # the demo cube (128^3): about a minute on 2 shared cores
+@pytest.mark.slow  # the demo cube (128^3) traced, and a horizon tracked in it: about 40 s on 2 shared cores
 def test_demo_faults_interchange(tmp_path):
     """The demo cube has no coordinates: every interchange file says inline / crossline units; the TSurf read back
     by xtgeo is the faults.vtp mesh, the sticks read back hold every fault point."""
@@ -101,6 +101,21 @@ def test_demo_faults_interchange(tmp_path):
         assert_allclose(surf.vertices[:, :2], np.round(surf.vertices[:, :2]))
         assert_allclose(surf.vertices[:, 2] % 4.0, 0.0, atol=1e-3)
     assert n_vertices == vtp.n_points and n_triangles == vtp.n_cells
+    # a horizon of the demo cube as IRAP / ZMAP+ grids (unrotated, X / Y = line numbers), read back by xtgeo
+    from seismo3d.jobs.horizon import run_horizon_job
+
+    demo = job.written["input"]
+    horizon = run_horizon_job(demo, [_peak_seed(demo, 64, 64)], tmp_path / "h.txt", faults=False, maps=True,
+                              progress=False)
+    rows = np.loadtxt(tmp_path / "h.txt", ndmin=2)
+    truth = np.full((128, 128), np.nan)
+    truth[rows[:, 0].astype(int) - 1, rows[:, 1].astype(int) - 1] = rows[:, 2]
+    for fmt in ("irap_ascii", "irap_binary", "zmap"):
+        surf = xtgeo.surface_from_file(horizon.maps[fmt])
+        assert (surf.ncol, surf.nrow, surf.xori, surf.yori, surf.rotation) == (128, 128, 1.0, 1.0, 0.0)
+        values = np.ma.filled(surf.values, np.nan)
+        assert np.array_equal(np.isnan(values), np.isnan(truth))
+        assert_allclose(values, truth, atol=5e-4, equal_nan=True)  # the text rows' 3 decimals
 
 
 def _peak_seed(path, il, xl):
@@ -159,7 +174,7 @@ def test_f3_horizon_maps_and_seed_file(data_dir, tmp_path):
     assert abs(len(rows2) - len(rows)) < 0.1 * len(rows)
 
 
-@pytest.mark.slow  # the tracker on the 601 x 1501 line: about 40 s on 2 shared cores
+@pytest.mark.slow  # the tracker on the 601 x 1501 line: 2 s, up to 40 s while numba compiles on a cold cache
 def test_penobscot_horizon_points(data_dir, tmp_path):
     import xtgeo
 

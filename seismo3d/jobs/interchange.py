@@ -2,7 +2,8 @@
 interpretation packages, in map coordinates.
 
 * ``seismo3d faults`` writes, beside its other outputs (:func:`fault_interchange_steps`): ``fault_sticks_opendtect.txt``
-  (OpendTect fault-stick ASCII), ``fault_sticks_charisma.txt`` (Charisma fault sticks, which Petrel imports),
+  (OpendTect fault-stick ASCII), ``fault_sticks_charisma.txt`` and ``fault_sticks_iesx.txt`` (Charisma and IESX
+  fault sticks, which Petrel imports),
   ``fault_surfaces_gocad.ts`` (GOCAD TSurf, 3D inputs), and X / Y in ``fault_points.csv``.
 * ``seismo3d horizon --maps`` writes the horizon as IRAP ASCII (``.fgr``), IRAP binary (``.gri``), ZMAP+ (``.zmap``)
   grids and ``X Y Z`` points (``.xyz``) beside its text file (:func:`write_horizon_maps`); ``--seed-file`` reads seeds
@@ -27,7 +28,8 @@ from ..seismic.io.tsurf import TriangulatedSurface, write_tsurf
 __all__ = ["FAULT_INTERCHANGE_FILES", "HORIZON_MAP_SUFFIXES", "fault_coordinates", "fault_interchange_steps",
            "horizon_map_paths", "write_horizon_maps", "seeds_from_file", "sticks_mesh"]
 
-FAULT_INTERCHANGE_FILES = ("fault_sticks_opendtect.txt", "fault_sticks_charisma.txt", "fault_surfaces_gocad.ts")
+FAULT_INTERCHANGE_FILES = ("fault_sticks_opendtect.txt", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
+                           "fault_surfaces_gocad.ts")
 HORIZON_MAP_SUFFIXES = {"irap_ascii": ".fgr", "irap_binary": ".gri", "zmap": ".zmap", "xyz": ".xyz"}
 
 
@@ -110,18 +112,22 @@ def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates) -> 
     Returns
     -------
     list of (str, callable)
-        ``sticks_opendtect``, ``sticks_charisma`` and, for a 3D input with faults, ``surfaces_tsurf``; each callable
-        writes its file and returns its path.
+        ``sticks_opendtect``, ``sticks_charisma``, ``sticks_iesx`` and, for a 3D input with faults,
+        ``surfaces_tsurf``; each callable writes its file and returns its path.
     """
     out_dir = Path(out_dir)
-    steps = [
-        ("sticks_opendtect", lambda: write_fault_sticks(out_dir / FAULT_INTERCHANGE_FILES[0], _sticks(inp, result, coords),
-                                                        format="opendtect", source=inp.name)),
-        ("sticks_charisma", lambda: write_fault_sticks(out_dir / FAULT_INTERCHANGE_FILES[1],
-                                                       _sticks(inp, result, coords), format="charisma")),
-    ]
+    names = dict(zip(("sticks_opendtect", "sticks_charisma", "sticks_iesx"), FAULT_INTERCHANGE_FILES))
+
+    def sticks_writer(key: str, fmt: str):
+        return lambda: write_fault_sticks(out_dir / names[key], _sticks(inp, result, coords), format=fmt,
+                                          source=inp.name)
+
+    steps = [(key, sticks_writer(key, fmt)) for key, fmt in (("sticks_opendtect", "opendtect"),
+                                                              ("sticks_charisma", "charisma"),
+                                                              ("sticks_iesx", "iesx"))]
     if inp.data.ndim == 3 and len(result.faults):
-        steps.append(("surfaces_tsurf", lambda: _fault_tsurf(inp, result, coords, out_dir / FAULT_INTERCHANGE_FILES[2])))
+        tsurf = out_dir / FAULT_INTERCHANGE_FILES[3]
+        steps.append(("surfaces_tsurf", lambda: _fault_tsurf(inp, result, coords, tsurf)))
     return steps
 
 
@@ -260,7 +266,8 @@ def sticks_mesh(path, geometry, segy_path=None, *, segy_options=None):
 
     coords = None
     if segy_path is not None:
-        options = {k: v for k, v in (segy_options or {}).items() if k in ("iline", "xline", "ignore_geometry", "endian")}
+        keep = ("iline", "xline", "ignore_geometry", "endian")
+        options = {k: v for k, v in (segy_options or {}).items() if k in keep}
         coords = read_survey_coordinates(segy_path, **options)
     sticks = read_fault_sticks(path, coordinates=coords)
     il, xl = sticks.inline.copy(), sticks.crossline.copy()

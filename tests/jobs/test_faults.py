@@ -59,7 +59,8 @@ def test_demo_writes_every_output(demo):
     out, written = demo
     names = {"demo_seismic.sgy", "demo_truth.csv", "fault_likelihood.sgy", "fault_strike.sgy", "fault_dip.sgy",
              "fault_votes.sgy", "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "run.json",
-             "fault_sticks_opendtect.txt", "fault_sticks_charisma.txt", "fault_surfaces_gocad.ts"}
+             "fault_sticks_opendtect.txt", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
+             "fault_surfaces_gocad.ts"}
     assert {p.name for p in out.iterdir()} == names
     assert {Path(p).name for p in written.values()} == names
     assert Path(written["figure"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -195,7 +196,7 @@ def test_segy_outputs_keep_the_inputs_headers(tmp_path):
         fl = c.read()
     assert fl.shape == (48, 40, 80) and fl.min() >= 0 and fl.max() <= 1
     points = _rows(written["points"])
-    assert list(points[0])[:6] == POINT_COLUMNS + ["throw_ms"]
+    assert list(points[0])[:len(POINT_COLUMNS) + 1] == POINT_COLUMNS + ["throw_ms"]
     assert {int(r["inline"]) for r in points} <= set(range(111, 159))
     assert {int(r["crossline"]) for r in points} <= set(range(875, 955, 2))
 

@@ -61,7 +61,13 @@ def test_penobscot_fault_points_are_at_their_traces_cdp(penobscot_faults):
     key = lambda il, z: sorted(zip(np.round(il).astype(int).tolist(), np.round(z, 3).tolist()))  # noqa: E731
     assert key(odt.inline, odt.z) == key([int(r["inline"]) for r in points],
                                          [float(r["time_or_depth"]) for r in points])
-    for s in (odt, cha):
+    from seismo3d.seismic.io import read_survey_coordinates
+
+    iesx = read_fault_sticks(job.written["sticks_iesx"], coordinates=read_survey_coordinates(src))
+    assert iesx.n_nodes == len(points) and np.abs(iesx.inline - np.round(iesx.inline)).max() < 0.01
+    iesx = type(iesx)(iesx.fault_id, iesx.stick, iesx.x, iesx.y, iesx.z, np.round(iesx.inline), iesx.crossline,
+                      iesx.names)
+    for s in (odt, cha, iesx):
         for il, xl, x, y in zip(s.inline, s.crossline, s.x, s.y):
             assert np.hypot(x - cdp[(int(il), int(xl))][0], y - cdp[(int(il), int(xl))][1]) < 1e-3
     df = pd.read_csv(job.written["sticks_charisma"], sep=r"\s+", header=None,

@@ -2,13 +2,17 @@
 
 A :class:`FaultSticks` holds the nodes of every stick of every fault (X, Y, two-way time or depth, and the inline /
 crossline of each node). It is made from traced faults (:meth:`FaultSticks.from_faults`) or read from a file
-(:func:`read_fault_sticks`), and written in two layouts (:func:`write_fault_sticks`):
+(:func:`read_fault_sticks`), and written in three layouts (:func:`write_fault_sticks`):
 
 * ``'opendtect'``: OpendTect's fault-stick ASCII, tab-separated, one row per node: fault name (quoted), X, Y, Z,
   stick index, node index, inline, crossline; ``#`` lines first say what the columns are. OpendTect's *Import
   Fault / FaultStickSet (ASCII)* reads it with the column numbers set in its format definition.
 * ``'charisma'``: the Charisma fault-stick layout that Petrel imports (*Charisma fault sticks*), space-separated,
   one row per node: ``INLINE-``, inline, crossline, X, Y, Z, fault name, stick number.
+* ``'iesx'``: GeoQuest IESX fault sticks, fixed columns: per fault a ``PROFILE <name> TYPE ...`` line and a
+  ``SNAPPING PARAMETERS`` line, then one row per node with X in characters 0-16, Y in 16-32 (``%16.8E``: 0.01 m at
+  6 million), the stick index in 32-35, Z in 38-47 (``%9.2f``); ``EOD`` ends the file. The rows carry no line
+  numbers: a reader places them by X / Y.
 
 Readers accept both, and the export of the data folder's interpreter (``seismic/gsb_fault_sticks/*.dat``:
 tab-separated X, Y (1e30 = undefined), two-way time, three stick-orientation columns, inline, crossline; each two
@@ -19,6 +23,10 @@ References
 OpendTect User Documentation, *Import / Export Faults and FaultStickSets (ASCII)*, dGB Earth Sciences.
 Charisma fault-stick rows as read by seismiqb (``FaultSticksMixin.FAULT_STICKS_SPEC``: ``INLINE-``, inline,
 crossline, CDP X, CDP Y, depth, name, number), https://github.com/gazprom-neft/seismiqb.
+IESX fault rows: DUG Insight, *Importing a fault* (GeoQuest IESX format: X [0-16), Y [16-32), stick index [32-35),
+Z [38-47)), https://help.dugeo.com/m/Insight/l/438710-importing-a-fault; the ``PROFILE`` and ``SNAPPING
+PARAMETERS`` header lines as OpendTect's IESX (3d_ci7m) writer lays them out; ``EOD`` as the IESX loader expects
+(Schlumberger IESX FAQ 399).
 """
 
 from __future__ import annotations
@@ -35,7 +43,7 @@ from .coordinates import LINE_UNITS, SurveyCoordinates
 
 __all__ = ["FaultSticks", "STICK_FORMATS", "read_fault_sticks", "write_fault_sticks"]
 
-STICK_FORMATS = ("opendtect", "charisma")
+STICK_FORMATS = ("opendtect", "charisma", "iesx")
 _UNDEFINED = 1e29  # OpendTect writes 1e30 for an undefined X / Y
 
 
@@ -131,6 +139,39 @@ class FaultSticks:
         x[missing], y[missing] = coordinates.grid_map.to_xy(self.inline[missing], self.crossline[missing])
         return FaultSticks(self.fault_id, self.stick, x, y, self.z, self.inline, self.crossline, self.names,
                            self.z_unit, coordinates.unit)
+
+    def with_lines(self, coordinates: SurveyCoordinates) -> "FaultSticks":
+        """The sticks with missing inline / crossline numbers computed from their X / Y through the survey's grid
+        map (a map of a single line: projected onto the line).
+
+        Parameters
+        ----------
+        coordinates : SurveyCoordinates
+
+        Returns
+        -------
+        FaultSticks
+
+        Raises
+        ------
+        InputError
+            A survey without a grid map.
+        """
+        missing = ~(np.isfinite(self.inline) & np.isfinite(self.crossline))
+        if not missing.any():
+            return self
+        gm = coordinates.grid_map
+        if gm is None:
+            raise InputError("the survey's traces follow no grid map, so the sticks' X / Y cannot be placed on its "
+                             f"lines ({coordinates.grid_problem})")
+        fixed = {}
+        if gm.is_line:
+            key = "crossline" if np.any(gm.inline_vector) else "inline"
+            fixed[key] = float(np.ravel(getattr(coordinates, key))[0])
+        il, xl = self.inline.copy(), self.crossline.copy()
+        il[missing], xl[missing] = gm.to_lines(self.x[missing], self.y[missing], **fixed)
+        return FaultSticks(self.fault_id, self.stick, self.x, self.y, self.z, il, xl, self.names, self.z_unit,
+                           self.xy_unit)
 
     def section_lines(self, trace_labels, samples, *, axis: str = "inline") -> list:
         """The sticks as lines on a 2D section, in index space, for the fault evaluation
@@ -280,11 +321,12 @@ def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", 
     path : str or os.PathLike
         The file to write (its folder must exist); replaced atomically.
     sticks : FaultSticks
-    format : {'opendtect', 'charisma'}
+    format : {'opendtect', 'charisma', 'iesx'}
         ``'opendtect'``: ``#`` comment lines naming the columns and units, then tab-separated rows ``"name" X Y Z
         stick node inline crossline`` (stick and node indices from 0 per fault; undefined X / Y as 1e30).
         ``'charisma'``: no header; space-separated rows ``INLINE- inline crossline X Y Z name stick`` (stick numbers
-        from 1 per fault; inline / crossline rounded to whole numbers, as the format holds them).
+        from 1 per fault; inline / crossline rounded to whole numbers, as the format holds them). ``'iesx'``: fixed
+        columns (module docstring); stick indices from 1 per fault; nodes without X / Y are refused.
     source : str, optional
         A line for the OpendTect header saying where the sticks come from.
 
@@ -304,6 +346,8 @@ def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", 
     if format not in STICK_FORMATS:
         raise InputError(f"format={format!r} is not a fault-stick format; use one of {', '.join(STICK_FORMATS)}")
     path = Path(path)
+    if format == "iesx":
+        return _write_iesx(path, sticks)
     names = [_safe_name(n) for n in sticks.names]
     rows = []
     per_fault = {}
@@ -335,6 +379,27 @@ def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", 
     return path
 
 
+def _write_iesx(path: Path, sticks: FaultSticks) -> Path:
+    """IESX fault sticks: PROFILE / SNAPPING PARAMETERS per fault, fixed-column node rows, EOD."""
+    if not (np.all(np.isfinite(sticks.x)) and np.all(np.isfinite(sticks.y))):
+        raise InputError("IESX fault sticks need X / Y on every node; fill them first (FaultSticks.with_coordinates)")
+    unit = "ft" if sticks.xy_unit == "ft" else "m "
+    out, per_fault, current = [], {}, None
+    for fid, nodes in sticks.sticks():
+        if fid != current:
+            name = _safe_name(sticks.names[fid - 1])[:17]
+            out += [f"PROFILE {name:<17s}TYPE 1  4 {'fault sticks, seismo3d':<45s}3d_ci7m.ifdf     {unit} ms",
+                    "SNAPPING PARAMETERS 5     0 1"]
+            current = fid
+        per_fault[fid] = per_fault.get(fid, 0) + 1
+        for i in nodes:
+            out.append(f"{sticks.x[i]:16.8E}{sticks.y[i]:16.8E}{per_fault[fid] % 1000:3d}{14:3d}{sticks.z[i]:9.2f}")
+    out.append("EOD")
+    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:
+        fh.write("\n".join(out) + "\n")
+    return path
+
+
 # --------------------------------------------------------------------------------------------------------------------
 # reading
 
@@ -350,6 +415,8 @@ def _sniff(lines: list) -> str:
             continue
         if text.upper().startswith("INLINE-"):
             return "charisma"
+        if text.upper().startswith("PROFILE"):
+            return "iesx"
         if text.startswith('"'):
             return "opendtect"
         fields = text.split()
@@ -365,14 +432,15 @@ def _sniff(lines: list) -> str:
 
 def read_fault_sticks(path, *, coordinates: SurveyCoordinates | None = None, z_unit: str = "ms") -> FaultSticks:
     """Read fault sticks: OpendTect's fault-stick ASCII (as :func:`write_fault_sticks` writes it, or the
-    interpreter's export of the data folder), or Charisma fault sticks.
+    interpreter's export of the data folder), Charisma or IESX fault sticks.
 
     Parameters
     ----------
     path : str or os.PathLike
     coordinates : SurveyCoordinates, optional
         The survey's coordinates: undefined X / Y (1e30) are filled from the nodes' inline / crossline numbers
-        through its grid map (:meth:`FaultSticks.with_coordinates`); without it they stay NaN.
+        through its grid map (:meth:`FaultSticks.with_coordinates`), and nodes without line numbers (IESX) get
+        them from their X / Y; without it they stay NaN.
     z_unit : {'ms', 'm', 'ft'}
         Unit of Z in the file (the formats do not say).
 
@@ -396,10 +464,11 @@ def read_fault_sticks(path, *, coordinates: SurveyCoordinates | None = None, z_u
         raise InputError(f"{path.name} is not a fault-stick file seismo3d reads: expected OpendTect fault-stick "
                          "rows ('\"name\" X Y Z stick node [inline crossline]' or the 8 columns 'X Y Z o1 o2 o3 "
                          "inline crossline' in pairs) or Charisma rows ('INLINE- inline crossline X Y Z name stick')")
-    reader = {"charisma": _read_charisma, "opendtect": _read_opendtect, "opendtect_pairs": _read_pairs}[layout]
+    reader = {"charisma": _read_charisma, "opendtect": _read_opendtect, "opendtect_pairs": _read_pairs,
+              "iesx": _read_iesx}[layout]
     sticks = reader(path, lines, z_unit)
     if coordinates is not None:
-        sticks = sticks.with_coordinates(coordinates)
+        sticks = sticks.with_coordinates(coordinates).with_lines(coordinates)
     return sticks
 
 
@@ -488,3 +557,29 @@ def _read_charisma(path: Path, lines: list, z_unit: str) -> FaultSticks:
             names.append(name)
         records.append((name, fields[7], x, y, z, il, xl))
     return _build(records, names, z_unit, "m")
+
+
+def _read_iesx(path: Path, lines: list, z_unit: str) -> FaultSticks:
+    records, names, name = [], [], None
+    for no, line in enumerate(lines, start=1):
+        text = line.strip()
+        if not text or text.startswith("#") or text.upper().startswith("SNAPPING"):
+            continue
+        if text.upper().startswith("PROFILE"):
+            name = text.split()[1] if len(text.split()) > 1 else f"fault_{len(names) + 1}"
+            while name in names:
+                name += "_"
+            names.append(name)
+            continue
+        if text.upper().startswith("EOD"):
+            break
+        if name is None or len(line.rstrip()) < 47:
+            raise InputError(f"{path.name}, line {no}: expected an IESX node row of at least 47 characters after a "
+                             f"PROFILE line, got {text!r}")
+        stick = line[32:35] if " " in line[32:39] else line[32:39]  # DUG's rule for the stick index
+        x, y, z = _numbers([line[0:16], line[16:32], line[38:47]], path, 3, no)
+        records.append((name, stick.strip(), x, y, z, np.nan, np.nan))
+    if not records:
+        raise InputError(f"{path.name} holds no IESX fault-stick rows")
+    unit = "ft" if any(" ft " in f" {line} " for line in lines if line.upper().startswith("PROFILE")) else "m"
+    return _build(records, names, z_unit, unit)

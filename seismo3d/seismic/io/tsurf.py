@@ -3,8 +3,8 @@ import them.
 
 One file holds one ``GOCAD TSurf 1`` object per surface (GOCAD ASCII files may hold several objects one after the
 other), each with its name, the coordinate system block (axis names and units; ``ZPOSITIVE Depth``: time and depth
-increase downward), and a ``TFACE`` of ``VRTX`` and ``TRGL`` lines (vertex ids from 1). The header holds the name only, as xtgeo's reader
-requires.
+increase downward), and a ``TFACE`` of ``VRTX`` and ``TRGL`` lines (vertex ids from 1). The header holds the name
+only, as xtgeo's reader requires.
 
 xtgeo writes TSurf one surface per file (``xtgeo.TriangulatedSurface``, marked experimental, without the unit of a
 time axis); this writer puts every fault of a run into one file with its units, and the tests read each object back
@@ -13,8 +13,9 @@ with xtgeo's reader and with a parser of the format's description.
 References
 ----------
 GOCAD ASCII file formats, *TSurf* (Paradigm / Emerson, GOCAD Developer's Guide, appendix "ASCII file formats"):
-``GOCAD TSurf 1``, ``HEADER { name: ... }``, ``GOCAD_ORIGINAL_COORDINATE_SYSTEM`` ... ``END_ORIGINAL_COORDINATE_SYSTEM``,
-``TFACE``, ``VRTX id x y z CNXYZ`` (as Petrel writes it, and xtgeo requires), ``TRGL i j k``, ``END``.
+``GOCAD TSurf 1``, ``HEADER { name: ... }``, ``GOCAD_ORIGINAL_COORDINATE_SYSTEM`` ...
+``END_ORIGINAL_COORDINATE_SYSTEM``, ``TFACE``, ``VRTX id x y z CNXYZ`` (as Petrel writes it, and xtgeo requires),
+``TRGL i j k``, ``END``.
 """
 
 from __future__ import annotations

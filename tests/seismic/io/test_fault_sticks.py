@@ -66,16 +66,16 @@ def test_gsb_sticks_against_the_second_mask(gsb2800, data_dir):
         assert cov.covered > 0.95
 
 
-@pytest.mark.parametrize("fmt", ["opendtect", "charisma"])
+@pytest.mark.parametrize("fmt", ["opendtect", "charisma", "iesx"])
 def test_written_sticks_read_back(gsb2800, tmp_path, fmt):
-    _, _, sticks = gsb2800
+    _, coords, sticks = gsb2800
     path = write_fault_sticks(tmp_path / f"sticks_{fmt}.txt", sticks, format=fmt, source="gsb_crl_2800")
-    back = read_fault_sticks(path)
+    back = read_fault_sticks(path, coordinates=coords)  # IESX rows hold no line numbers: placed by X / Y
     assert (back.n_faults, back.n_sticks, back.n_nodes) == (13, 13, 26)
     assert_allclose(back.x, sticks.x, atol=5e-4)  # written with 3 decimals
     assert_allclose(back.y, sticks.y, atol=5e-4)
-    assert_allclose(back.z, sticks.z, atol=5e-5)  # 4 decimals
-    assert_allclose(back.inline, sticks.inline)
+    assert_allclose(back.z, sticks.z, atol=5e-3 if fmt == "iesx" else 5e-5)  # IESX: %9.2f; else 4 decimals
+    assert_allclose(back.inline, sticks.inline, atol=1e-6)
     assert back.names == sticks.names
 
 
@@ -120,3 +120,17 @@ def test_unknown_layout_is_refused(tmp_path):
     path.write_text("hello world\n")
     with pytest.raises(InputError, match="not a fault-stick file"):
         read_fault_sticks(path)
+
+
+def test_iesx_rows_follow_the_fixed_columns(gsb2800, tmp_path):
+    """IESX node rows as DUG Insight's import reads them: X [0-16), Y [16-32), stick index [32-35), Z [38-47);
+    a PROFILE line per fault, EOD at the end."""
+    _, _, sticks = gsb2800
+    lines = write_fault_sticks(tmp_path / "s.txt", sticks, format="iesx").read_text().splitlines()
+    assert lines[-1] == "EOD" and sum(line.startswith("PROFILE") for line in lines) == 13
+    rows = [line for line in lines if line[:1] == " "]
+    assert len(rows) == 26 and all(len(r) >= 47 for r in rows)
+    assert_allclose([float(r[0:16]) for r in rows], sticks.x)
+    assert_allclose([float(r[16:32]) for r in rows], sticks.y)
+    assert_allclose([float(r[38:47]) for r in rows], sticks.z, atol=5e-3)
+    assert {int(r[32:35]) for r in rows} == {1}  # one stick per fault on a line

@@ -314,6 +314,12 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
       replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline
       axis toward the crossline axis, see :mod:`seismo3d.seismic.faults.likelihood`).
+    * ``fault_sticks_opendtect.txt``, ``fault_sticks_charisma.txt``, ``fault_sticks_iesx.txt``: every fault's points
+      along each line that cuts it, as fault sticks in map coordinates (OpendTect ASCII, and Charisma and IESX, which
+      Petrel imports); ``fault_surfaces_gocad.ts``: the triangulated faults of ``faults.vtp`` as GOCAD TSurf, 3D
+      inputs (:mod:`seismo3d.jobs.interchange`). ``fault_points.csv`` holds ``x``, ``y`` and ``xy_unit`` after the
+      crossline: each point's trace's CDP X/Y with the coordinate scalar applied, or its inline and crossline numbers
+      with ``xy_unit`` ``inline/crossline`` for an input without coordinates.
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
       the seismic, coloured by their |median throw| (in the sample unit), above the same slices of the fault
       likelihood; for 2D inputs the section, cropped to its live traces and samples.

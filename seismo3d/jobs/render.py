@@ -413,8 +413,12 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
         from .interchange import sticks_mesh
 
         mesh = sticks_mesh(sticks, geometry, path if kind == "segy" else under, segy_options=under_options)
-        extra["faults"] = mesh if "faults" not in extra else extra["faults"].merge(mesh)
         n_faults += int(np.unique(mesh.point_data["fault_id"]).size)
+        if "faults" in extra:  # the sticks' faults numbered after the traced ones, so that their colours differ
+            traced = extra["faults"]
+            mesh.point_data["fault_id"] += int(traced.point_data["fault_id"].max()) if traced.n_points else 0
+            mesh = traced.merge(mesh)
+        extra["faults"] = mesh
     slices, camera = _slices_for(geometry.shape)
     show_seismic(cube, geometry, slices=slices, camera=camera, screenshot=output, window_size=window_size, **extra)
     return RenderJob(kind=kind, picture=output, caption=geometry.describe(), n_faults=n_faults, seismic=under)

@@ -222,3 +222,33 @@ def test_render_gsb_sticks_over_their_line(data_dir, tmp_path):
     assert mesh.n_lines == 13 and mesh.n_points == 26
     assert_allclose(mesh.points[:, 0], (raw[:, 6] - 1565) / 2)  # inline index of every node
     assert_allclose(-mesh.points[:, 2], (raw[:, 2] - 1000) / 4)  # fractional sample of its two-way time
+
+
+def test_cli_maps_seed_file_and_sticks(data_dir, tmp_path):
+    """The command line: `horizon --maps`, `horizon --seed-file` and `render --sticks` reach the jobs."""
+    from typer.testing import CliRunner
+
+    from seismo3d.cli import app
+    from seismo3d.data import fetch
+
+    runner = CliRunner()
+    src = fetch("seismic/f3_crop.sgy")
+    il, xl, t = _peak_seed(src, 122, 883)
+    out = tmp_path / "h.txt"
+    result = runner.invoke(app, ["horizon", str(src), "--seed", f"{il},{xl},{t:g}", "-o", str(out), "--maps",
+                                 "--no-faults"])
+    assert result.exit_code == 0, result.output
+    assert all((tmp_path / f"h{suffix}").is_file() for suffix in (".fgr", ".gri", ".zmap", ".xyz"))
+    assert "map -> " in result.output
+    result = runner.invoke(app, ["horizon", str(src), "--seed-file", str(tmp_path / "h.xyz"), "-o",
+                                 str(tmp_path / "h2.txt"), "--no-faults"])
+    assert result.exit_code == 0, result.output
+    assert np.loadtxt(tmp_path / "h2.txt").shape[0] > 300
+    result = runner.invoke(app, ["horizon", str(src), "-o", str(tmp_path / "h3.txt")])
+    assert result.exit_code != 0 and "--seed-file" in result.output
+    segy = fetch("seismic/gsb_fault_sticks/gsb_crl_2600.sgy")
+    sticks = fetch("seismic/gsb_fault_sticks/gsb_crl_2600_faults_opendtect.dat")
+    result = runner.invoke(app, ["render", str(segy), "--sticks", str(sticks), "-o", str(tmp_path / "g.png"),
+                                 "--size", "600x400"])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "g.png").stat().st_size > 1000

@@ -16,6 +16,7 @@ written in inline / crossline units, and every file says so.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -61,6 +62,9 @@ def fault_coordinates(inp, *, segy_path=None, iline: int = 189, xline: int = 193
     if segy_path is not None:
         coords = read_survey_coordinates(segy_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
                                          endian=endian)
+        if coords.x.ndim == 1:  # a trace list: its traces labelled as the job labels them (fault_points.csv)
+            xl = np.zeros(coords.x.size) if inp.xline is None else np.asarray(inp.xline, dtype=np.float64)
+            return replace(coords, inline=np.asarray(inp.inline, dtype=np.float64), crossline=xl)
         return coords.section() if inp.data.ndim == 2 else coords
     il = np.asarray(inp.inline, dtype=np.float64)
     if inp.data.ndim == 3:

@@ -252,3 +252,27 @@ def test_cli_maps_seed_file_and_sticks(data_dir, tmp_path):
                                  "--size", "600x400"])
     assert result.exit_code == 0, result.output
     assert (tmp_path / "g.png").stat().st_size > 1000
+
+
+@pytest.mark.slow  # the faults job on the 225-trace arbitrary line: 3-4 s
+def test_arbitrary_line_fault_points_at_their_traces(data_dir, tmp_path):
+    """A trace list (the Volve arbitrary line, no inline / crossline numbers): each fault point at the CDP X/Y of its
+    trace (0-based trace index in `inline`, as fault_points.csv labels it), in the CSV and the sticks."""
+    from seismo3d.data import fetch
+    from seismo3d.jobs.faults import run_faults_job
+
+    src = fetch("seismic/volve_fullstack_twt_arbline.sgy")
+    with segyio.open(str(src), ignore_geometry=True) as f:
+        x = f.attributes(181)[:] / 100.0  # scalar -100 on every trace
+        y = f.attributes(185)[:] / 100.0
+        assert set(f.attributes(71)[:]) == {-100}
+    job = run_faults_job(src, tmp_path / "out", progress=False)
+    points = _rows(job.written["points"])
+    assert points and all(r["crossline"] == "" for r in points)
+    for r in points:
+        t = int(r["inline"])
+        assert abs(float(r["x"]) - x[t]) < 5e-4 and abs(float(r["y"]) - y[t]) < 5e-4
+    sticks = read_fault_sticks(job.written["sticks_opendtect"])
+    t = sticks.inline.astype(int)
+    assert_allclose(sticks.x, x[t], atol=5e-4)
+    assert_allclose(sticks.y, y[t], atol=5e-4)

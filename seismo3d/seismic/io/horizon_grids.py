@@ -9,7 +9,8 @@ of ``seismo3d horizon --seed-file``.
 
 ZMAP+ has no rotation: xtgeo writes a rotated grid resampled onto an unrotated one (bilinear, over the rotated grid's
 bounding box), so a ZMAP+ file of a rotated survey holds interpolated values at other nodes; IRAP holds the grid
-as is.
+as is. The ZMAP+ file's first comment line (``!``) says what X / Y are (a unit and the headers they come from, or
+inline / crossline numbers for a survey without coordinates); IRAP and x y z files have no place for it.
 
 xtgeo is imported inside the functions (it takes seconds to import); install it with ``pip install xtgeo``.
 
@@ -178,8 +179,16 @@ def write_horizon_grids(stem, times, inlines, xlines, coordinates: SurveyCoordin
                 xtgeo.Points(np.column_stack([x, y, t[ok]])).to_file(tmp, fformat="xyz")
             else:
                 surface.to_file(tmp, fformat=fformat)
+                if fmt == "zmap":  # ZMAP+ has comment lines: say what X / Y are
+                    tmp.write_text(f"! seismo3d: X, Y {_xy_words(coordinates)}\n" + tmp.read_text())
         written[fmt] = path
     return written
+
+
+def _xy_words(coordinates: SurveyCoordinates) -> str:
+    if not coordinates.has_coordinates:
+        return "are inline and crossline numbers (the SEG-Y headers hold no coordinates)"
+    return f"in {coordinates.unit}, from {coordinates.source}"
 
 
 @dataclass(frozen=True, eq=False)

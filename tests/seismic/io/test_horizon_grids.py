@@ -81,6 +81,7 @@ def test_grid_without_coordinates_round_trips_exactly(tmp_path):
     coords = survey_coordinates(*np.meshgrid(il.astype(float), xl.astype(float), indexing="ij"))
     times = np.add.outer(np.linspace(400, 420, 10), np.linspace(0, 6, 7))
     written = write_horizon_grids(tmp_path / "h", times, il, xl, coords)
+    assert written["zmap"].read_text().startswith("! seismo3d: X, Y are inline and crossline numbers")
     for fmt, path in written.items():
         picks = read_horizon_picks(path).with_lines(coords)
         i, j = np.round(picks.inline - 1).astype(int), np.round(picks.crossline - 1).astype(int)

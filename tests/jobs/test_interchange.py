@@ -173,7 +173,7 @@ def test_f3_horizon_maps_and_seed_file(data_dir, tmp_path):
     # every seed from the file snaps to the first horizon's pick on its trace
     for i, j, k in again.horizon.seeds:
         assert abs(k - job.horizon.times[int(i), int(j)]) < 0.05
-    # the horizon tracked from the picks: the same picks on (measured) 94 % of the traces both track
+    # the horizon tracked from the picks: the same picks on most traces both track (97 % measured from the CLI)
     both = np.isfinite(again.horizon.times) & np.isfinite(job.horizon.times)
     same = np.abs(again.horizon.times - job.horizon.times)[both] < 0.05
     assert both.sum() > 0.9 * np.isfinite(job.horizon.times).sum() and same.mean() > 0.9, (both.sum(), same.mean())

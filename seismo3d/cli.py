@@ -492,10 +492,17 @@ def horizon(
                                                                     "crossline-sorted, big- or little-endian; a file "
                                                                     "without inline / crossline numbers is read as a "
                                                                     "trace list)."),
-    seed: list[str] = typer.Option(..., "--seed", help="Seed pick IL,XL,T: inline and crossline numbers and the time "
+    seed: list[str] = typer.Option([], "--seed", help="Seed pick IL,XL,T: inline and crossline numbers and the time "
                                                        "(or depth) in the file's sample unit; TRACE,T for a file read "
                                                        "as a trace list (trace number in file order, from 1). Repeat "
                                                        "for more seeds."),
+    seed_file: Optional[pathlib.Path] = typer.Option(None, "--seed-file", help="More seeds from a file of picks: "
+                                                     "'inline xline time' rows, an IRAP (.fgr, .gri) or ZMAP+ "
+                                                     "(.zmap) grid or X Y Z points (.xyz), placed by the file's "
+                                                     "coordinates (at most 64 picks, spread through the file)."),
+    maps: bool = typer.Option(False, "--maps", help="Also write the horizon beside OUTPUT as IRAP ASCII (.fgr), "
+                                                    "IRAP binary (.gri), ZMAP+ (.zmap) grids and X Y Z points (.xyz) "
+                                                    "in map coordinates, through xtgeo (a 2D line: .xyz only)."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Text file: one 'inline xline time' row per "
                                                                       "tracked trace ('trace time' for a trace list)."),
     polarity: Polarity = typer.Option(Polarity.peak, help="Event the horizon follows."),
@@ -519,7 +526,8 @@ def horizon(
     and write it as 'inline xline time' rows ('trace time' for a trace list)."""
     from .errors import InputError
 
-    check_before_import("file", output, [input], overwrite=overwrite, also=surface and output_file(surface))
+    check_before_import("file", output, [input, seed_file], overwrite=overwrite,
+                        also=surface and output_file(surface))
     from .jobs.horizon import run_horizon_job
 
     seeds = []
@@ -534,10 +542,12 @@ def horizon(
     job = run_horizon_job(input, seeds, output, polarity=polarity.value, faults=faults, fill=fill, surface=surface,
                           iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=_value(endian),
                           sample_unit=None if sample_unit is None else sample_unit.value, overwrite=overwrite,
-                          progress=True)
+                          progress=True, seed_file=seed_file, maps=maps)
     typer.echo(f"{job.n_rows} of {job.horizon.times.size} traces tracked ({job.horizon.coverage:.1%}) -> {output}")
     if job.surface is not None:
         typer.echo(f"surface -> {job.surface}")
+    for path in (job.maps or {}).values():
+        typer.echo(f"map -> {path}")
 
 
 class FaultColour(str, Enum):
@@ -559,6 +569,10 @@ def render(
                                                               "the run's SEG-Y flags, while unchanged (a faults "
                                                               "folder from --demo: its demo_seismic.sgy)."),
     color_by: FaultColour = typer.Option(FaultColour.fault_id, help="Colour of the fault surfaces."),
+    sticks: Optional[pathlib.Path] = typer.Option(None, "--sticks", help="Fault sticks to draw over the seismic "
+                                                  "(OpendTect fault-stick ASCII or Charisma fault sticks), e.g. an "
+                                                  "interpreter's, placed by the drawn SEG-Y's line numbers and "
+                                                  "coordinates."),
     vertical_exaggeration: Optional[float] = typer.Option(
         None, help="Vertical exaggeration; default: the cube's height is half its longer side."),
     size: str = typer.Option("1200x900", help="Picture size WIDTHxHEIGHT in pixels."),
@@ -578,7 +592,7 @@ def render(
     RGB-D map (mesh, trajectory, keyframes), or a DEM coloured by elevation with its lineaments and a planned path."""
     from .errors import InputError
 
-    check_before_import("file", output, [input, seismic, plan], overwrite=overwrite)
+    check_before_import("file", output, [input, seismic, plan, sticks], overwrite=overwrite)
     from .jobs.render import run_render_job
 
     try:
@@ -589,7 +603,8 @@ def render(
         job = run_render_job(input, output, seismic=seismic, color_by=color_by.value,
                              vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
                              window_size=(width, height), iline=iline, xline=xline, endian=_value(endian),
-                             ignore_geometry=ignore_geometry, sample_unit=_value(sample_unit), overwrite=overwrite)
+                             ignore_geometry=ignore_geometry, sample_unit=_value(sample_unit), overwrite=overwrite,
+                             sticks=sticks)
     what = {"segy": "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon",
             "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM", "map": "map"}[job.kind]
     typer.echo(f"{what} of {input.name}: {job.caption} -> {job.picture}")

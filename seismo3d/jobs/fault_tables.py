@@ -41,12 +41,15 @@ def _column(values, fmt: str) -> list:
     return [format(v, fmt) if v == v else "" for v in np.asarray(values, dtype=np.float64).tolist()]
 
 
-def write_points(inp, result: FaultInterpretation, path: Path) -> Path:
-    """fault_points.csv: one row per fault point (inline, crossline, time or depth, fault id, throw and its
-    evidence); ``inp`` is the job's input (its trace labels, samples and unit)."""
+def write_points(inp, result: FaultInterpretation, path: Path, coordinates=None) -> Path:
+    """fault_points.csv: one row per fault point (inline, crossline, with ``coordinates``
+    (:class:`~seismo3d.seismic.io.coordinates.SurveyCoordinates` of the traced array) its trace's ``x``, ``y`` and
+    their unit ``xy_unit`` ('m', 'ft', or 'inline/crossline' for an input without coordinates), time or depth, fault
+    id, throw and its evidence); ``inp`` is the job's input (its trace labels, samples and unit)."""
     unit = inp.unit
     extra = [] if unit == "samples" else [f"throw_{unit}"]
-    header = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation",
+    xy = [] if coordinates is None else ["x", "y", "xy_unit"]
+    header = ["inline", "crossline", *xy, "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation",
               "correlation_gain", "side_coherence"]
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         fh.write(",".join(header) + "\n")
@@ -57,6 +60,11 @@ def write_points(inp, result: FaultInterpretation, path: Path) -> Path:
             cols = [
                 [str(v) for v in lateral[0].tolist()],
                 [""] * f.size if lateral[1] is None else [str(v) for v in lateral[1].tolist()],
+            ]
+            if coordinates is not None:  # the trace's own header coordinates (scalar applied)
+                x, y = coordinates.at(p[:, :-1])
+                cols += [_column(x, ".3f"), _column(y, ".3f"), [coordinates.unit] * f.size]
+            cols += [
                 _column(sample_position(inp.samples, p[:, -1]), ".6g"),
                 [str(f.id)] * f.size,
                 _column(throw, ".5g"),

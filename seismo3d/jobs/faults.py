@@ -33,6 +33,7 @@ from ..seismic.io.segy import open_segy
 from ..seismic.io.writer import write_like, write_like_blocks
 from .fault_tables import write_points, write_summary
 from .inputs import read_seismic
+from .interchange import FAULT_INTERCHANGE_FILES, fault_coordinates, fault_interchange_steps
 from .outputs import check_outputs, output_folder
 from .runinfo import RUN_JSON, RunRecord
 
@@ -42,7 +43,7 @@ __all__ = ["FaultsJobResult", "RESULTS", "run_faults_job"]
 # The Zarr stores of a block-by-block run are not among them: they are reused or resumed by the next run.
 RESULTS = tuple(f"fault_{name}.{ext}" for ext in ("sgy", "npy") for name in ("likelihood", "strike", "dip", "votes")) + (
     "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "demo_seismic.sgy", "demo_truth.csv",
-    RUN_JSON)
+    RUN_JSON) + FAULT_INTERCHANGE_FILES
 
 _DEMO_SHAPE = (128, 128, 128)
 _DEMO_DT_MS = 4.0
@@ -313,6 +314,12 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
       replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline
       axis toward the crossline axis, see :mod:`seismo3d.seismic.faults.likelihood.scan`).
+    * ``fault_sticks_opendtect.txt``, ``fault_sticks_charisma.txt``, ``fault_sticks_iesx.txt``: every fault's points
+      along each line that cuts it, as fault sticks in map coordinates (OpendTect ASCII, and Charisma and IESX, which
+      Petrel imports); ``fault_surfaces_gocad.ts``: the triangulated faults of ``faults.vtp`` as GOCAD TSurf, 3D
+      inputs (:mod:`seismo3d.jobs.interchange`). ``fault_points.csv`` holds ``x``, ``y`` and ``xy_unit`` after the
+      crossline: each point's trace's CDP X/Y with the coordinate scalar applied, or its inline and crossline numbers
+      with ``xy_unit`` ``inline/crossline`` for an input without coordinates.
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
       the seismic, coloured by their |median throw| (in the sample unit), above the same slices of the fault
       likelihood; for 2D inputs the section, cropped to its live traces and samples.
@@ -486,8 +493,9 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
         ("dip", lambda: _write_volume(inp, files, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
         ("votes", lambda: _write_volume(inp, files, "fault_votes", result.votes, like=written["likelihood"], **geo)),
     ]
+    coords = fault_coordinates(inp, **geo)
     with record.stage("write outputs"):
-        _write_steps(steps + _surface_steps(inp, result, files, summary), written, progress)
+        _write_steps(steps + _surface_steps(inp, result, files, summary, coords), written, progress)
     return written
 
 
@@ -507,7 +515,7 @@ def _say_how_it_runs(name: str, shape: tuple, limit: int, held: int, *, by_block
                     size_text(limit))
 
 
-def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summary: list) -> list:
+def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summary: list, coords) -> list:
     """The writers of the fault surfaces, points, summary (its rows appended to ``summary``) and picture."""
     from ..viz.faults import fault_surfaces, plot_fault_slices, save_polydata
 
@@ -515,12 +523,12 @@ def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summ
     return [
         ("surfaces", lambda: save_polydata(fault_surfaces(result.faults, result.throws, axes=axes),
                                            out_dir / "faults.vtp")),
-        ("points", lambda: write_points(inp, result, out_dir / "fault_points.csv")),
+        ("points", lambda: write_points(inp, result, out_dir / "fault_points.csv", coordinates=coords)),
         ("summary", lambda: write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
         ("figure", lambda: plot_fault_slices(inp.data, result.faults, path=out_dir / "faults.png",
                                              likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
                                              title=inp.name, **_throw_colours(inp, result))),
-    ]
+    ] + fault_interchange_steps(inp, result, out_dir, coords)
 
 
 def _throw_colours(inp, result) -> dict:
@@ -567,8 +575,10 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: i
     record.stage_seconds.update(result.step_seconds)
     written = {"likelihood": result.stores["likelihood"], "surfaces_zarr": result.stores["surfaces"]}
     inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
+    coords = fault_coordinates(inp, **{k: v for k, v in (lazy.segy or {}).items() if k != "template_path"},
+                               segy_path=(lazy.segy or {}).get("template_path"))
     with record.stage("write outputs"):
-        _write_steps(_surface_steps(inp, result, files, summary), written, progress)
+        _write_steps(_surface_steps(inp, result, files, summary, coords), written, progress)
         written.update(_segy_volumes(lazy, result.stores["surfaces"], files, {"likelihood": "likelihood",
                                                                               "votes": "votes"}, progress))
         written.update(_segy_volumes(lazy, result.stores["likelihood"], files,

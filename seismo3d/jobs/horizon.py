@@ -54,6 +54,7 @@ class HorizonJob:
     run_json: pathlib.Path | None = None
     stage_seconds: dict | None = None
     n_faults: int = 0
+    maps: dict | None = None  # with maps=True: the map files written, by format (seismo3d.jobs.interchange)
 
 
 @dataclass(frozen=True, eq=False)
@@ -205,7 +206,7 @@ def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
 def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults: bool | None = None,
                     fill: bool = False, surface=None, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
                     endian=None, sample_unit=None, overwrite: bool = False, memory_limit=None,
-                    progress: bool = True) -> HorizonJob:
+                    progress: bool = True, seed_file=None, maps: bool = False) -> HorizonJob:
     """Track a horizon in a SEG-Y cube or 2D line from seed picks and write it as text rows.
 
     Parameters
@@ -247,6 +248,14 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         folder, removed at the end.
     progress : bool
         Report progress (:mod:`seismo3d._progress`).
+    seed_file : str or path-like, optional
+        More seeds from a file of picks: ``inline xline time`` rows, an IRAP / ZMAP+ grid or ``X Y Z`` points, placed
+        on the survey by its coordinates (:func:`seismo3d.jobs.interchange.seeds_from_file`; at most 64 picks, spread
+        through the file).
+    maps : bool
+        Also write the horizon beside ``output`` as IRAP ASCII (``.fgr``), IRAP binary (``.gri``), ZMAP+
+        (``.zmap``) grids and ``X Y Z`` points (``.xyz``) in map coordinates, through xtgeo (a 2D line: ``.xyz``
+        only; :func:`seismo3d.jobs.interchange.write_horizon_maps`).
 
     Returns
     -------
@@ -273,12 +282,18 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     """
     record = RunRecord("horizon", locals())  # first: the arguments as called
     from ..seismic import BlockRunOptions, fill_horizon, trace_faults, track_horizon
+    from .interchange import horizon_map_paths, seeds_from_file, write_horizon_maps
 
     input_path, output = pathlib.Path(input_path), pathlib.Path(output)
     surface = None if surface is None else pathlib.Path(surface)
     main = output_file(output, "horizon.txt")
-    check_outputs([main, run_json_output(main), surface and output_file(surface, "horizon.vtp")],
-                  [input_path], overwrite=overwrite)
+    check_outputs([main, run_json_output(main), surface and output_file(surface, "horizon.vtp"),
+                   *(output_file(p) for p in (horizon_map_paths(output) if maps else ()))],
+                  [input_path, seed_file], overwrite=overwrite)
+    segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
+    seeds = list(seeds) + (seeds_from_file(seed_file, input_path, **segy) if seed_file is not None else [])
+    if not seeds:
+        raise InputError("no seeds; pass --seed IL,XL,T or --seed-file FILE")
     # read the cube or line, and convert the seeds to index positions
     with record.stage("read"):
         survey = _read_survey(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
@@ -316,12 +331,13 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
 
             save_polydata(horizon_surface(result, inlines=survey.inlines, xlines=survey.xlines,
                                           samples=survey.samples), surface)
+        written_maps = write_horizon_maps(output, survey, result, input_path, **segy) if maps else None
     n_faults = 0 if interp is None else len(interp.faults)
-    run_json = record.write(run_json_path(main), inputs={"input": input_path}, outputs={"horizon": output,
-                                                                                        "surface": surface},
+    run_json = record.write(run_json_path(main), inputs={"input": input_path, "seed_file": seed_file},
+                            outputs={"horizon": output, "surface": surface, **(written_maps or {})},
                             results=dict(kind=survey.kind, n_rows=n, n_traces=int(result.times.size),
                                          coverage=float(result.coverage), n_faults=n_faults))
-    return HorizonJob(result, n, output, surface, run_json, dict(record.stage_seconds), n_faults)
+    return HorizonJob(result, n, output, surface, run_json, dict(record.stage_seconds), n_faults, written_maps)
 
 
 def trace_seed_index(seed, n_traces: int, samples, unit: str) -> tuple[float, float]:

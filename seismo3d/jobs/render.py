@@ -251,7 +251,7 @@ def _render_map(path: Path, output: Path, *, window_size) -> RenderJob:
 def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", vertical_exaggeration=None,
                    lineaments=False, plan=None, window_size=(1200, 900), iline: int = 189, xline: int = 193,
                    endian=None, ignore_geometry: bool = False, sample_unit=None,
-                   overwrite: bool = False) -> RenderJob:
+                   overwrite: bool = False, sticks=None) -> RenderJob:
     """Render INPUT off screen into a PNG: the ``seismo3d render`` command.
 
     Inputs
@@ -305,6 +305,10 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
         Unit of the SEG-Y sample axis; by default from the headers.
     overwrite : bool, optional
         Replace an existing ``output``.
+    sticks : str or os.PathLike, optional
+        Fault sticks to draw over a SEG-Y input, a faults folder or a horizon (OpendTect fault-stick ASCII or
+        Charisma; :func:`seismo3d.jobs.interchange.sticks_mesh`), coloured by fault; nodes given only by X / Y are
+        placed by the drawn SEG-Y's grid map.
 
     Returns
     -------
@@ -334,7 +338,7 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     path, output = Path(input_path), Path(output)
     read = [path / name for name in _FOLDER_FILES] if path.is_dir() else []  # what render reads of a folder
     main = output_file(output, "picture.png")
-    check_outputs([main, run_json_output(main)], [path, seismic, plan, *read], overwrite=overwrite)
+    check_outputs([main, run_json_output(main)], [path, seismic, plan, sticks, *read], overwrite=overwrite)
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
     kind = _kind(path)
@@ -342,8 +346,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     with record.stage("render"):
         job = _render(kind, path, output, seismic=seismic, color_by=color_by,
                       vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
-                      window_size=window_size, segy_options=segy_options, run=run)
-    inputs = {"input": path, "seismic": job.seismic, "path": plan}
+                      window_size=window_size, segy_options=segy_options, run=run, sticks=sticks)
+    inputs = {"input": path, "seismic": job.seismic, "path": plan, "sticks": sticks}
     inputs.update({name: p for name, p in zip(_FOLDER_FILES, read) if p.is_file()})
     run_json = record.write(run_json_path(main), inputs=inputs, outputs={"picture": output},
                             results=dict(kind=job.kind, caption=job.caption, n_faults=job.n_faults,
@@ -352,7 +356,7 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
 
 
 def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_exaggeration, lineaments, plan,
-            window_size, segy_options, run: _EarlierRun) -> RenderJob:
+            window_size, segy_options, run: _EarlierRun, sticks=None) -> RenderJob:
     """Read the input of ``kind`` and draw it into ``output`` (the scenes of :func:`run_render_job`; ``run``: the
     record of the faults or horizon run that wrote the input)."""
     import pyvista as pv
@@ -405,6 +409,16 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
                                      samples=geometry.samples, sample_unit=geometry.sample_unit,
                                      vertical_exaggeration=vertical_exaggeration)
         extra = dict(horizons=[times])
+    if sticks is not None:  # people's fault sticks over the seismic (drawn as the faults of the scene)
+        from .interchange import sticks_mesh
+
+        mesh = sticks_mesh(sticks, geometry, path if kind == "segy" else under, segy_options=under_options)
+        n_faults += int(np.unique(mesh.point_data["fault_id"]).size)
+        if "faults" in extra:  # the sticks' faults numbered after the traced ones, so that their colours differ
+            traced = extra["faults"]
+            mesh.point_data["fault_id"] += int(traced.point_data["fault_id"].max()) if traced.n_points else 0
+            mesh = traced.merge(mesh)
+        extra["faults"] = mesh
     slices, camera = _slices_for(geometry.shape)
     show_seismic(cube, geometry, slices=slices, camera=camera, screenshot=output, window_size=window_size, **extra)
     return RenderJob(kind=kind, picture=output, caption=geometry.describe(), n_faults=n_faults, seismic=under)

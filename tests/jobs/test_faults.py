@@ -18,7 +18,7 @@ from seismo3d.errors import (
 from seismo3d.jobs.faults import run_faults_job
 from seismo3d.seismic.io import open_segy
 
-POINT_COLUMNS = ["inline", "crossline", "time_or_depth", "fault_id", "throw_samples"]
+POINT_COLUMNS = ["inline", "crossline", "x", "y", "xy_unit", "time_or_depth", "fault_id", "throw_samples"]
 SUMMARY_COLUMNS = ["id", "n_points", "mean_strike_deg", "mean_dip_deg", "median_throw_samples"]
 EVIDENCE_COLUMNS = ["throw_spread_samples", "throw_correlation", "correlation_gain", "side_coherence",
                     "vote_ratio", "mean_likelihood"]
@@ -59,7 +59,9 @@ def demo(tmp_path_factory):
 def test_demo_writes_every_output(demo):
     out, written = demo
     names = {"demo_seismic.sgy", "demo_truth.csv", "fault_likelihood.sgy", "fault_strike.sgy", "fault_dip.sgy",
-             "fault_votes.sgy", "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "run.json"}
+             "fault_votes.sgy", "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "run.json",
+             "fault_sticks_opendtect.txt", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
+             "fault_surfaces_gocad.ts"}
     assert {p.name for p in out.iterdir()} == names
     assert {Path(p).name for p in written.values()} == names
     assert Path(written["figure"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -206,7 +208,7 @@ def test_segy_outputs_keep_the_inputs_headers(tmp_path):
         fl = c.read()
     assert fl.shape == (48, 40, 80) and fl.min() >= 0 and fl.max() <= 1
     points = _rows(written["points"])
-    assert list(points[0])[:6] == POINT_COLUMNS + ["throw_ms"]
+    assert list(points[0])[:len(POINT_COLUMNS) + 1] == POINT_COLUMNS + ["throw_ms"]
     assert {int(r["inline"]) for r in points} <= set(range(111, 159))
     assert {int(r["crossline"]) for r in points} <= set(range(875, 955, 2))
 
@@ -328,7 +330,7 @@ def test_no_faults(tmp_path):
     np.save(src, layers)
     written = run_faults_job(src, tmp_path / "out", progress=False).written
     assert len(_rows(written["summary"])) == 0 and len(_rows(written["points"])) == 0
-    assert Path(written["points"]).read_text().startswith("inline,crossline,time_or_depth,fault_id,throw_samples")
+    assert Path(written["points"]).read_text().startswith("inline,crossline,x,y,xy_unit,time_or_depth,fault_id,throw_samples")
     assert pv.read(written["surfaces"]).n_points == 0
     assert np.load(written["likelihood"]).max() < 0.1
     assert Path(written["figure"]).stat().st_size > 1000

@@ -72,8 +72,9 @@ def test_tight_limit_traces_the_surfaces_block_by_block(cube_npy, in_memory, tmp
     assert _rows(written["summary"]) == _rows(in_memory["summary"])
     assert _rows(written["points"]) == _rows(in_memory["points"])
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == [
-        "fault_likelihood.zarr", "fault_points.csv", "fault_summary.csv", "fault_surfaces.zarr", "faults.png",
-        "faults.vtp", "run.json"]
+        "fault_likelihood.zarr", "fault_points.csv", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
+        "fault_sticks_opendtect.txt",
+        "fault_summary.csv", "fault_surfaces.zarr", "fault_surfaces_gocad.ts", "faults.png", "faults.vtp", "run.json"]
 
 
 @pytest.mark.slow

@@ -13,6 +13,14 @@ as a dask array, and the Zarr v3 store of ``seismo3d convert``.
 - :mod:`~seismo3d.seismic.io.zarr_store`: the Zarr v3 layout of ``seismo3d convert`` (xarray opens it as is).
 - :mod:`~seismo3d.seismic.io.writer`: :func:`write_like` and :func:`write_like_blocks` (block by block): SEG-Y written
   with the headers of a template file.
+- :mod:`~seismo3d.seismic.io.coordinates`: CDP X/Y with their scalar and the affine map of the inline / crossline grid
+  (:func:`read_survey_coordinates`, :class:`SurveyCoordinates`, :class:`GridMap`).
+- :mod:`~seismo3d.seismic.io.fault_sticks`: OpendTect and Charisma fault sticks in and out (:class:`FaultSticks`).
+- :mod:`~seismo3d.seismic.io.tsurf`: GOCAD TSurf fault surfaces (:func:`write_tsurf`).
+- :mod:`~seismo3d.seismic.io.horizon_grids`: horizons as IRAP / ZMAP+ grids and x y z points through xtgeo, picks in
+  (:func:`write_horizon_grids`, :func:`read_horizon_picks`).
+- :mod:`~seismo3d.seismic.io.xarray`: SEG-Y or Zarr as a labelled ``xarray.DataArray``, the fault and horizon
+  trackers on one (imported on its own: ``from seismo3d.seismic.io.xarray import trace_faults_xr``).
 """
 
 from .segy import SeismicCube, open_segy, read_segy
@@ -25,11 +33,17 @@ from .zarr_store import (
     LAYOUT, TILE_TRACES, SeismicZarr, SeismicZarrWriter, consolidate, open_seismic_zarr, is_seismic_zarr,
 )
 from .writer import write_like, write_like_blocks
+from .coordinates import GridMap, SurveyCoordinates, read_survey_coordinates
+from .fault_sticks import FaultSticks, read_fault_sticks, write_fault_sticks
+from .tsurf import TriangulatedSurface, write_tsurf
+from .horizon_grids import HorizonPicks, read_horizon_picks, write_horizon_grids
 
 __all__ = [
     "SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines", "scale_coordinates",
     "TraceGeometry", "trace_geometry", "span", "SegyLayout", "read_segy_layout", "segyio_failure", "FORMAT_NAMES",
     "READABLE_FORMATS", "SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle", "LazyCube",
     "open_lazy", "inline_block_size", "LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate",
-    "open_seismic_zarr", "is_seismic_zarr", "write_like_blocks",
+    "open_seismic_zarr", "is_seismic_zarr", "write_like_blocks", "GridMap", "SurveyCoordinates",
+    "read_survey_coordinates", "FaultSticks", "read_fault_sticks", "write_fault_sticks", "TriangulatedSurface",
+    "write_tsurf", "HorizonPicks", "read_horizon_picks", "write_horizon_grids",
 ]

@@ -1,0 +1,118 @@
+"""GOCAD TSurf (``.ts``): triangulated fault surfaces in map coordinates, as Petrel, SKUA-GOCAD and OpendTect
+import them.
+
+One file holds one ``GOCAD TSurf 1`` object per surface (GOCAD ASCII files may hold several objects one after the
+other), each with its name, the coordinate system block (axis names and units; ``ZPOSITIVE Depth``: time and depth
+increase downward), and a ``TFACE`` of ``VRTX`` and ``TRGL`` lines (vertex ids from 1). The header holds the name
+only, as xtgeo's reader requires.
+
+xtgeo writes TSurf one surface per file (``xtgeo.TriangulatedSurface``, marked experimental, without the unit of a
+time axis); this writer puts every fault of a run into one file with its units, and the tests read each object back
+with xtgeo's reader and with a parser of the format's description.
+
+References
+----------
+GOCAD ASCII file formats, *TSurf* (Paradigm / Emerson, GOCAD Developer's Guide, appendix "ASCII file formats"):
+``GOCAD TSurf 1``, ``HEADER { name: ... }``, ``GOCAD_ORIGINAL_COORDINATE_SYSTEM`` ...
+``END_ORIGINAL_COORDINATE_SYSTEM``, ``TFACE``, ``VRTX id x y z CNXYZ`` (as Petrel writes it, and xtgeo requires),
+``TRGL i j k``, ``END``.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..._atomic import atomic_path
+from ...errors import InputError
+from .coordinates import LINE_UNITS
+
+__all__ = ["TriangulatedSurface", "write_tsurf"]
+
+
+@dataclass(frozen=True, eq=False)
+class TriangulatedSurface:
+    """A named triangulated surface in map coordinates.
+
+    Attributes
+    ----------
+    name : str
+    vertices : (n, 3) float64 ndarray
+        X, Y in ``xy_unit``, Z (two-way time or depth, increasing downward) in ``z_unit``.
+    triangles : (m, 3) int64 ndarray
+        Vertex indices from 0.
+    xy_unit : {'m', 'ft', 'inline/crossline'}
+    z_unit : {'ms', 'm', 'ft', 'samples'}
+    """
+
+    name: str
+    vertices: np.ndarray
+    triangles: np.ndarray
+    xy_unit: str = "m"
+    z_unit: str = "ms"
+
+    def __post_init__(self):
+        v, t = np.asarray(self.vertices), np.asarray(self.triangles)
+        if v.ndim != 2 or v.shape[1] != 3 or not np.all(np.isfinite(v)):
+            raise InputError(f"surface {self.name!r}: vertices must be a finite (n, 3) array; got {v.shape}")
+        if t.size and (t.ndim != 2 or t.shape[1] != 3 or t.min() < 0 or t.max() >= v.shape[0]):
+            raise InputError(f"surface {self.name!r}: triangles must be (m, 3) indices into its {v.shape[0]} "
+                             "vertices")
+
+
+def _name(text: str) -> str:
+    return re.sub(r"\s+", "_", str(text)) or "surface"
+
+
+def write_tsurf(path, surfaces, *, source: str = "") -> Path:
+    """Write triangulated surfaces as GOCAD TSurf objects into one ``.ts`` file, atomically.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file (its folder must exist).
+    surfaces : sequence of TriangulatedSurface
+        One object each; surfaces without triangles are left out.
+    source : str, optional
+        Written as a ``#`` comment line after each header (where the surfaces come from).
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    InputError
+        No surface with triangles.
+
+    Notes
+    -----
+    A survey without coordinates (``xy_unit='inline/crossline'``) is written with axis names ``INLINE`` and
+    ``CROSSLINE`` and unit ``"none"``, so that no reader takes line numbers for metres.
+    """
+    surfaces = [s for s in surfaces if np.asarray(s.triangles).size]
+    if not surfaces:
+        raise InputError("no surface with triangles to write; a 2D line's faults are curves (write them as fault "
+                         "sticks)")
+    out = []
+    for s in surfaces:
+        lines_units = s.xy_unit == LINE_UNITS
+        axis_names = '"INLINE" "CROSSLINE" "Z"' if lines_units else '"X" "Y" "Z"'
+        xy = "none" if lines_units else s.xy_unit
+        z = {"samples": "none"}.get(s.z_unit, s.z_unit)
+        out += ["GOCAD TSurf 1", "HEADER {", f"name: {_name(s.name)}", "}"]
+        if source:
+            out.append(f"# written by seismo3d from {source}")
+        out += ["GOCAD_ORIGINAL_COORDINATE_SYSTEM", "NAME Default", f"AXIS_NAME {axis_names}",
+                f'AXIS_UNIT "{xy}" "{xy}" "{z}"', "ZPOSITIVE Depth", "END_ORIGINAL_COORDINATE_SYSTEM", "TFACE"]
+        v = np.asarray(s.vertices, dtype=np.float64)
+        out += [f"VRTX {i} {p[0]:.3f} {p[1]:.3f} {p[2]:.4f} CNXYZ" for i, p in enumerate(v, start=1)]
+        out += [f"TRGL {a} {b} {c}" for a, b, c in (np.asarray(s.triangles, dtype=np.int64) + 1)]
+        out.append("END")
+    path = Path(path)
+    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:
+        fh.write("\n".join(out) + "\n")
+    return path

@@ -1,0 +1,278 @@
+"""The interchange files of the faults, horizon and render jobs: map coordinates from the SEG-Y headers, read back by
+the formats' readers (xtgeo for grids, points and TSurf; the Charisma column spec; seismo3d's stick reader)."""
+
+import csv
+import io
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+import segyio
+from numpy.testing import assert_allclose
+
+from seismo3d.seismic.io.fault_sticks import read_fault_sticks
+
+pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning", "ignore::FutureWarning",
+                                        "ignore:The inplace keyword", "ignore::seismo3d.errors.Seismo3dWarning")
+
+
+def _cdp(path):
+    """inline, crossline -> CDP X, CDP Y of every trace, the scalar of bytes 71-72 applied by hand."""
+    with segyio.open(str(path), ignore_geometry=True) as f:
+        il, xl = f.attributes(189)[:], f.attributes(193)[:]
+        s = f.attributes(71)[:].astype(float)
+        factor = np.where(s < 0, -1.0 / np.where(s < 0, s, -1.0), np.where(s > 0, s, 1.0))
+        x, y = f.attributes(181)[:] * factor, f.attributes(185)[:] * factor
+    return {(int(a), int(b)): (float(c), float(d)) for a, b, c, d in zip(il, xl, x, y)}
+
+
+def _rows(path):
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+@pytest.fixture(scope="module")
+def penobscot_faults(data_dir, tmp_path_factory):
+    from seismo3d.data import fetch
+    from seismo3d.jobs.faults import run_faults_job
+
+    src = fetch("seismic/penobscot_xl1155.sgy")
+    out = tmp_path_factory.mktemp("pen") / "faults"
+    return src, run_faults_job(src, out, progress=False)
+
+
+@pytest.mark.slow  # the faults job on the line: 25 s on 2 shared cores
+def test_penobscot_fault_points_are_at_their_traces_cdp(penobscot_faults):
+    src, job = penobscot_faults
+    cdp = _cdp(src)
+    points = _rows(job.written["points"])
+    assert len(points) > 100 and {r["xy_unit"] for r in points} == {"m"}
+    for r in points:  # every fault point: the CDP X/Y of its trace, to the file's 3 decimals
+        x, y = cdp[(int(r["inline"]), int(r["crossline"]))]
+        assert abs(float(r["x"]) - x) < 5e-4 and abs(float(r["y"]) - y) < 5e-4
+    # the sticks: one per fault on a line, every node a fault point, read back by seismo3d and by the Charisma spec
+    import pandas as pd
+
+    odt = read_fault_sticks(job.written["sticks_opendtect"])
+    cha = read_fault_sticks(job.written["sticks_charisma"])
+    assert odt.n_faults == odt.n_sticks == job.n_faults
+    assert odt.n_nodes == cha.n_nodes == len(points)
+    key = lambda il, z: sorted(zip(np.round(il).astype(int).tolist(), np.round(z, 3).tolist()))  # noqa: E731
+    assert key(odt.inline, odt.z) == key([int(r["inline"]) for r in points],
+                                         [float(r["time_or_depth"]) for r in points])
+    from seismo3d.seismic.io import read_survey_coordinates
+
+    iesx = read_fault_sticks(job.written["sticks_iesx"], coordinates=read_survey_coordinates(src))
+    assert iesx.n_nodes == len(points) and np.abs(iesx.inline - np.round(iesx.inline)).max() < 0.01
+    iesx = type(iesx)(iesx.fault_id, iesx.stick, iesx.x, iesx.y, iesx.z, np.round(iesx.inline), iesx.crossline,
+                      iesx.names)
+    for s in (odt, cha, iesx):
+        for il, xl, x, y in zip(s.inline, s.crossline, s.x, s.y):
+            assert np.hypot(x - cdp[(int(il), int(xl))][0], y - cdp[(int(il), int(xl))][1]) < 1e-3
+    df = pd.read_csv(job.written["sticks_charisma"], sep=r"\s+", header=None,
+                     names=["INLINE", "iline", "xline", "cdp_x", "cdp_y", "height", "name", "number"])
+    assert_allclose(df["cdp_x"], cha.x) and len(df) == len(points)
+    assert "surfaces_tsurf" not in job.written  # a line's faults are curves: sticks only
+
+
+@pytest.mark.slow  # the demo cube (128^3) traced, and a horizon tracked in it: about 40 s on 2 shared cores
+def test_demo_faults_interchange(tmp_path):
+    """The demo cube has no coordinates: every interchange file says inline / crossline units; the TSurf read back
+    by xtgeo is the faults.vtp mesh, the sticks read back hold every fault point."""
+    import pyvista as pv
+    import xtgeo
+
+    from seismo3d.jobs.faults import run_faults_job
+
+    job = run_faults_job(None, tmp_path / "demo", demo=True, progress=False)
+    points = _rows(job.written["points"])
+    assert {r["xy_unit"] for r in points} == {"inline/crossline"}
+    assert all(float(r["x"]) == float(r["inline"]) and float(r["y"]) == float(r["crossline"]) for r in points)
+    sticks = read_fault_sticks(job.written["sticks_opendtect"])
+    assert sticks.xy_unit == "inline/crossline" and sticks.n_nodes == len(points) and sticks.n_faults == job.n_faults
+    text = Path(job.written["surfaces_tsurf"]).read_text()
+    assert 'AXIS_UNIT "none" "none" "ms"' in text
+    vtp = pv.read(job.written["surfaces"])
+    chunks = ["GOCAD TSurf 1" + c for c in text.split("GOCAD TSurf 1")[1:]]
+    assert len(chunks) == job.n_faults
+    n_vertices = n_triangles = 0
+    for chunk in chunks:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            surf = xtgeo.triangulated_surface_from_file(io.BytesIO(chunk.encode()), fformat="tsurf")
+        n_vertices += surf.num_vertices
+        n_triangles += surf.num_triangles
+        # vertices: (inline, crossline, time) of fault points: whole lines, times on the 4 ms samples
+        assert_allclose(surf.vertices[:, :2], np.round(surf.vertices[:, :2]))
+        assert_allclose(surf.vertices[:, 2] % 4.0, 0.0, atol=1e-3)
+    assert n_vertices == vtp.n_points and n_triangles == vtp.n_cells
+    # a horizon of the demo cube as IRAP / ZMAP+ grids (unrotated, X / Y = line numbers), read back by xtgeo
+    from seismo3d.jobs.horizon import run_horizon_job
+
+    demo = job.written["input"]
+    horizon = run_horizon_job(demo, [_peak_seed(demo, 64, 64)], tmp_path / "h.txt", faults=False, maps=True,
+                              progress=False)
+    rows = np.loadtxt(tmp_path / "h.txt", ndmin=2)
+    truth = np.full((128, 128), np.nan)
+    truth[rows[:, 0].astype(int) - 1, rows[:, 1].astype(int) - 1] = rows[:, 2]
+    for fmt in ("irap_ascii", "irap_binary", "zmap"):
+        surf = xtgeo.surface_from_file(horizon.maps[fmt])
+        assert (surf.ncol, surf.nrow, surf.xori, surf.yori, surf.rotation) == (128, 128, 1.0, 1.0, 0.0)
+        values = np.ma.filled(surf.values, np.nan)
+        assert np.array_equal(np.isnan(values), np.isnan(truth))
+        assert_allclose(values, truth, atol=5e-4, equal_nan=True)  # the text rows' 3 decimals
+
+
+def _peak_seed(path, il, xl):
+    from seismo3d.seismic import reflector_picks
+
+    with segyio.open(str(path)) as f:
+        trace = f.iline[il][list(f.xlines).index(xl)]
+        samples = np.asarray(f.samples)
+    peaks, _ = reflector_picks(trace[None], polarity="peak")
+    k = int(round(float(peaks[len(peaks) // 2])))
+    return (il, xl, float(samples[k]))
+
+
+def test_f3_horizon_maps_and_seed_file(data_dir, tmp_path):
+    """F3: the horizon written as IRAP / ZMAP+ / xyz (read back by xtgeo equal to the text rows, at the traces' CDP
+    X/Y), then tracked again from its own .xyz as --seed-file: the same horizon."""
+    import xtgeo
+
+    from seismo3d.data import fetch
+    from seismo3d.jobs.horizon import run_horizon_job
+
+    src = fetch("seismic/f3_crop.sgy")
+    cdp = _cdp(src)
+    seed = _peak_seed(src, 122, 883)
+    job = run_horizon_job(src, [seed], tmp_path / "h.txt", faults=False, maps=True, progress=False)
+    assert sorted(p.suffix for p in job.maps.values()) == [".fgr", ".gri", ".xyz", ".zmap"]
+    rows = np.loadtxt(tmp_path / "h.txt", ndmin=2)
+    truth = {(int(a), int(b)): t for a, b, t in rows}
+    assert len(truth) > 300
+    for fmt in ("irap_ascii", "irap_binary"):
+        surf = xtgeo.surface_from_file(job.maps[fmt])
+        x, y, z = surf.get_xyz_values()
+        x, y, z = np.ma.getdata(x), np.ma.getdata(y), np.ma.filled(z, np.nan)  # every node's X / Y; z masked: NaN
+        got = 0
+        for (il, xl), t in truth.items():  # each tracked trace's node: at its CDP X/Y
+            d = np.hypot(x - cdp[(il, xl)][0], y - cdp[(il, xl)][1])
+            node = np.unravel_index(np.argmin(d), d.shape)
+            assert d[node] < 0.5 and abs(z[node] - t) < 1e-3
+            got += 1
+        assert got == len(truth) == np.isfinite(z).sum()
+    pts = xtgeo.points_from_file(job.maps["xyz"]).get_dataframe().to_numpy()[:, :3]
+    assert len(pts) == len(truth)
+    for x, y, z in pts:
+        (il, xl), _ = min(cdp.items(), key=lambda kv: np.hypot(kv[1][0] - x, kv[1][1] - y))
+        assert cdp[(il, xl)] == pytest.approx((x, y), abs=1e-3) and truth[(il, xl)] == pytest.approx(z, abs=1e-3)
+    again = run_horizon_job(src, [], tmp_path / "h2.txt", faults=False, seed_file=job.maps["xyz"], progress=False)
+    rows2 = np.loadtxt(tmp_path / "h2.txt", ndmin=2)
+    assert 50 <= len(again.horizon.seeds) <= 64  # at most 64 picks of the file, spread through it
+    # every seed from the file snaps to the first horizon's pick on its trace
+    for i, j, k in again.horizon.seeds:
+        assert abs(k - job.horizon.times[int(i), int(j)]) < 0.05
+    # the horizon tracked from the picks: the same picks on most traces both track (97 % measured from the CLI)
+    both = np.isfinite(again.horizon.times) & np.isfinite(job.horizon.times)
+    same = np.abs(again.horizon.times - job.horizon.times)[both] < 0.05
+    assert both.sum() > 0.9 * np.isfinite(job.horizon.times).sum() and same.mean() > 0.9, (both.sum(), same.mean())
+    assert abs(len(rows2) - len(rows)) < 0.1 * len(rows)
+
+
+@pytest.mark.slow  # the tracker on the 601 x 1501 line: 2 s, up to 40 s while numba compiles on a cold cache
+def test_penobscot_horizon_points(data_dir, tmp_path):
+    import xtgeo
+
+    from seismo3d.data import fetch
+    from seismo3d.jobs.horizon import run_horizon_job
+
+    src = fetch("seismic/penobscot_xl1155.sgy")
+    cdp = _cdp(src)
+    job = run_horizon_job(src, [_peak_seed(src, 1300, 1155)], tmp_path / "h.txt", maps=True, progress=False)
+    assert list(job.maps) == ["xyz"]  # a line: points only
+    rows = np.loadtxt(tmp_path / "h.txt", ndmin=2)
+    pts = xtgeo.points_from_file(job.maps["xyz"]).get_dataframe().to_numpy()[:, :3]
+    assert len(pts) == len(rows)
+    for (il, xl, t), (x, y, z) in zip(rows[np.argsort(rows[:, 0])], _by_trace(pts, cdp, rows)):
+        assert cdp[(int(il), int(xl))] == pytest.approx((x, y), abs=1e-3) and z == pytest.approx(t, abs=1e-3)
+
+
+def _by_trace(pts, cdp, rows):
+    where = {v: k for k, v in cdp.items()}
+    by = {where[min(where, key=lambda v: np.hypot(v[0] - x, v[1] - y))]: (x, y, z) for x, y, z in pts}
+    return [by[(int(il), int(xl))] for il, xl, _ in rows[np.argsort(rows[:, 0])]]
+
+
+def test_render_gsb_sticks_over_their_line(data_dir, tmp_path):
+    from seismo3d.data import fetch
+    from seismo3d.jobs.render import run_render_job
+
+    segy = fetch("seismic/gsb_fault_sticks/gsb_crl_2800.sgy")
+    sticks = fetch("seismic/gsb_fault_sticks/gsb_crl_2800_faults_opendtect.dat")
+    job = run_render_job(segy, tmp_path / "gsb.png", sticks=sticks, window_size=(800, 500))
+    assert job.n_faults == 13 and job.picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    from seismo3d.jobs.interchange import sticks_mesh
+    from seismo3d.viz.seismic import cube_geometry
+
+    geometry = cube_geometry((484, 1, 76), inlines=np.arange(1565, 2532, 2), xlines=[2800],
+                             samples=1000.0 + 4.0 * np.arange(76), sample_unit="ms")
+    mesh = sticks_mesh(sticks, geometry, segy)
+    raw = np.loadtxt(sticks)
+    assert mesh.n_lines == 13 and mesh.n_points == 26
+    assert_allclose(mesh.points[:, 0], (raw[:, 6] - 1565) / 2)  # inline index of every node
+    assert_allclose(-mesh.points[:, 2], (raw[:, 2] - 1000) / 4)  # fractional sample of its two-way time
+
+
+def test_cli_maps_seed_file_and_sticks(data_dir, tmp_path):
+    """The command line: `horizon --maps`, `horizon --seed-file` and `render --sticks` reach the jobs."""
+    from typer.testing import CliRunner
+
+    from seismo3d.cli import app
+    from seismo3d.data import fetch
+
+    runner = CliRunner()
+    src = fetch("seismic/f3_crop.sgy")
+    il, xl, t = _peak_seed(src, 122, 883)
+    out = tmp_path / "h.txt"
+    result = runner.invoke(app, ["horizon", str(src), "--seed", f"{il},{xl},{t:g}", "-o", str(out), "--maps",
+                                 "--no-faults"])
+    assert result.exit_code == 0, result.output
+    assert all((tmp_path / f"h{suffix}").is_file() for suffix in (".fgr", ".gri", ".zmap", ".xyz"))
+    assert "map -> " in result.output
+    result = runner.invoke(app, ["horizon", str(src), "--seed-file", str(tmp_path / "h.xyz"), "-o",
+                                 str(tmp_path / "h2.txt"), "--no-faults"])
+    assert result.exit_code == 0, result.output
+    assert np.loadtxt(tmp_path / "h2.txt").shape[0] > 300
+    result = runner.invoke(app, ["horizon", str(src), "-o", str(tmp_path / "h3.txt")])
+    assert result.exit_code != 0 and "--seed-file" in result.output
+    segy = fetch("seismic/gsb_fault_sticks/gsb_crl_2600.sgy")
+    sticks = fetch("seismic/gsb_fault_sticks/gsb_crl_2600_faults_opendtect.dat")
+    result = runner.invoke(app, ["render", str(segy), "--sticks", str(sticks), "-o", str(tmp_path / "g.png"),
+                                 "--size", "600x400"])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "g.png").stat().st_size > 1000
+
+
+@pytest.mark.slow  # the faults job on the 225-trace arbitrary line: 3-4 s
+def test_arbitrary_line_fault_points_at_their_traces(data_dir, tmp_path):
+    """A trace list (the Volve arbitrary line, no inline / crossline numbers): each fault point at the CDP X/Y of its
+    trace (0-based trace index in `inline`, as fault_points.csv labels it), in the CSV and the sticks."""
+    from seismo3d.data import fetch
+    from seismo3d.jobs.faults import run_faults_job
+
+    src = fetch("seismic/volve_fullstack_twt_arbline.sgy")
+    with segyio.open(str(src), ignore_geometry=True) as f:
+        x = f.attributes(181)[:] / 100.0  # scalar -100 on every trace
+        y = f.attributes(185)[:] / 100.0
+        assert set(f.attributes(71)[:]) == {-100}
+    job = run_faults_job(src, tmp_path / "out", progress=False)
+    points = _rows(job.written["points"])
+    assert points and all(r["crossline"] == "" for r in points)
+    for r in points:
+        t = int(r["inline"])
+        assert abs(float(r["x"]) - x[t]) < 5e-4 and abs(float(r["y"]) - y[t]) < 5e-4
+    sticks = read_fault_sticks(job.written["sticks_opendtect"])
+    t = sticks.inline.astype(int)
+    assert_allclose(sticks.x, x[t], atol=5e-4)
+    assert_allclose(sticks.y, y[t], atol=5e-4)

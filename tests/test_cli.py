@@ -179,6 +179,21 @@ def test_faults_errors(cube_file, tmp_path, case, message):
     assert "Traceback" not in result.output
 
 
+def test_faults_raw_section_of_unknown_shape_names_the_flag(tmp_path):
+    """A raw .f32be section whose name is not a registry file: one line naming --n-samples, the flag faults has (not
+    the library's n_traces=)."""
+    src = tmp_path / "in" / "mysection.f32be"
+    src.parent.mkdir()
+    np.zeros((100, 250), ">f4").tofile(src)
+    result = runner.invoke(app, ["faults", str(src), "-o", str(tmp_path / "x")])
+    assert result.exit_code == 2, result.output
+    assert result.stderr == ("error: the shape of mysection.f32be is unknown (a raw section of 25000 float32 values, "
+                             "no header); give its number of samples per trace: --n-samples N\n")
+    result = runner.invoke(app, ["faults", str(src), "-o", str(tmp_path / "x"), "--n-samples", "250",
+                                 "--sensitivity", "0.5"])
+    assert "--n-samples" not in result.stderr and "shape" not in result.stderr  # the shape given: read (no faults)
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("name, trace_list", [("penobscot_xl1155.sgy", False),
                                                ("volve_fullstack_twt_arbline.sgy", True)])
@@ -193,6 +208,15 @@ def test_faults_on_real_2d_lines_without_flags(data_dir, tmp_path, name, trace_l
     assert all("=" not in line for line in warn)  # flags, not argument names
     rows = _rows(tmp_path / "out" / "fault_summary.csv")
     assert f"{len(rows)} faults in {name}" in result.stdout and len(rows) >= 5
+    # the points' trace columns say what they hold: the trace index of a trace list, the survey's numbers otherwise
+    points = _rows(tmp_path / "out" / "fault_points.csv")
+    if trace_list:
+        assert list(points[0])[:2] == ["trace", "time_or_depth"]
+        assert {int(r["trace"]) for r in points} <= set(range(225))
+    else:
+        assert list(points[0])[:3] == ["inline", "crossline", "time_or_depth"]
+        assert {int(r["crossline"]) for r in points} == {1155}
+        assert {int(r["inline"]) for r in points} <= set(range(1000, 1601))
     with segyio.open(str(tmp_path / "out" / "fault_likelihood.sgy"), ignore_geometry=True) as out, \
             segyio.open(str(path), ignore_geometry=True) as src:
         assert out.tracecount == src.tracecount and len(out.samples) == len(src.samples)

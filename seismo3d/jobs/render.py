@@ -440,4 +440,4 @@ def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exagg
     return plot_section(section, path=output, traces=traces, samples=geometry.samples, trace_name=name,
                         sample_unit=geometry.sample_unit, trace_spacing=spacing,
                         vertical_exaggeration=vertical_exaggeration, faults=extra.get("faults"), horizon=horizon,
-                        dpi=dpi)
+                        width=window_size[0] / dpi, dpi=dpi)

@@ -83,7 +83,7 @@ def _smooth(points: np.ndarray, window: int = 9) -> np.ndarray:
 
 def plot_section(section, *, path, traces=None, samples=None, trace_name="trace", sample_unit="samples",
                  trace_spacing=None, velocity=2000.0, vertical_exaggeration=None, faults=None, horizon=None,
-                 title=None, clip_percentile=99.0, dpi=120):
+                 title=None, clip_percentile=99.0, width=11.0, dpi=120):
     """Draw one seismic line with labelled axes, a stated vertical exaggeration, faults as lines and a horizon, and
     save a PNG.
 
@@ -117,6 +117,8 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         First line of the title; the second states the lines, the range and the exaggeration.
     clip_percentile : float, optional
         Amplitude colour limit: this percentile of ``|amplitude|``, in (0, 100]; the colour bar says it clips.
+    width : float, optional
+        Width of the picture in inches (its height follows from the exaggeration).
     dpi : int, optional
 
     Returns
@@ -152,14 +154,17 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         vertical_exaggeration = section_exaggeration(n_tr, trace_spacing, height)
     if not np.isfinite(vertical_exaggeration) or vertical_exaggeration <= 0:
         raise InputError(f"vertical_exaggeration must be > 0; got {vertical_exaggeration!r}")
-    spacing = float(trace_spacing or 1.0)
     step = abs(float(np.median(np.diff(traces)))) or 1.0
-    # data aspect (vertical axis units per horizontal axis unit on screen): VE x depth per unit / distance per label
-    aspect = vertical_exaggeration * per_unit / (spacing / step)
-    width_units = (traces[-1] - traces[0]) or 1.0
+    width_units = abs(traces[-1] - traces[0]) or 1.0
+    if trace_spacing:
+        # data aspect (screen length of one vertical unit over one horizontal unit): VE x depth per unit / distance
+        # per trace label
+        aspect = vertical_exaggeration * per_unit / (float(trace_spacing) / step)
+    else:  # no distance between traces: no exaggeration to speak of; drawn about half as tall as wide
+        aspect = 0.55 * width_units / (abs(samples[-1] - samples[0]) or 1.0)
     ratio = abs(aspect * (samples[-1] - samples[0]) / width_units)
-    fig_w = 11.0
-    fig_h = float(np.clip(fig_w * 0.82 * ratio, 2.5, 14.0)) + 1.3
+    fig_w = float(width)
+    fig_h = float(np.clip(fig_w * 0.82 * ratio, 0.25 * fig_w, 1.3 * fig_w)) + 1.3
     fig = Figure(figsize=(fig_w, fig_h), dpi=dpi, layout="constrained")
     ax = fig.subplots()
     clip = symmetric_clip(data, clip_percentile)
@@ -170,7 +175,7 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     im = ax.imshow(data.T, extent=extent, cmap="gray_r", vmin=-clip, vmax=clip, interpolation="bilinear",
                    aspect=aspect)
     fig.colorbar(im, ax=ax, shrink=0.7, extend="both", pad=0.01,
-                 label=f"amplitude, clipped at its {clip_percentile:g}th percentile of |amplitude|")
+                 label=f"amplitude (clipped at {clip_percentile:g}th pct)")
     segments = _fault_segments(faults, n_tr)
     if segments:
         tab10 = colormaps["tab10"]
@@ -195,13 +200,16 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         how = f"vertical exaggeration {vertical_exaggeration:g}x"
         if sample_unit == "ms":
             how += f" (time as depth at {velocity:g} m/s)"
-    else:  # no trace spacing known: the aspect per trace
-        how = f"aspect {aspect:.3g} {sample_unit} per {trace_name} (trace spacing unknown)"
+    else:
+        how = "no trace spacing in the headers: no vertical exaggeration, drawn to fit"
     span = f"{samples[0]:g}-{samples[-1]:g}" + ("" if sample_unit == "samples" else f" {sample_unit}")
     lines = f"{trace_name}s {traces[0]:g}-{traces[-1]:g}, {name} {span}"
     caption = f"{lines}, {how}"
     extra = f", {len({fid for fid, _ in segments})} faults" if segments else ""
-    fig.suptitle(f"{title + chr(10) if title else ''}{caption}{extra}", fontsize=10)
+    import textwrap
+
+    heading = textwrap.fill(f"{caption}{extra}", width=max(30, int(fig_w * 11)))
+    fig.suptitle(f"{title + chr(10) if title else ''}{heading}", fontsize=10)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png")
     return caption

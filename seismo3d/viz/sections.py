@@ -15,7 +15,7 @@ from .._atomic import atomic_path
 from ..errors import InputError
 from .plotting import symmetric_clip
 
-__all__ = ["section_exaggeration", "plot_section"]
+__all__ = ["section_exaggeration", "plot_section", "plot_volume_registration"]
 
 _NAMES = {"ms": "time", "m": "depth", "ft": "depth", "samples": "sample"}
 
@@ -213,6 +213,88 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png")
     return caption
+
+
+def plot_volume_registration(fixed, moving, moving_on_fixed, *, path, inline=None, xlines=None, samples=None,
+                             sample_unit="samples", inline_number=None, title=None, clip_percentile=99.0, dpi=110):
+    """Draw a sub-volume registration on one inline: the fixed volume, the moving volume as read (the same inline
+    index, before registration) and the moving volume resampled onto the fixed grid, side by side, and save a PNG.
+
+    Parameters
+    ----------
+    fixed, moving_on_fixed : (n_inlines, n_xlines, n_samples) array_like
+        The fixed volume and the moving one resampled onto its grid
+        (:func:`seismo3d.seismic.resample_volume` with the registration's ``transform_index``); NaN outside.
+    moving : (n_inlines', n_xlines', n_samples') array_like
+        The moving volume as read.
+    path : str or os.PathLike
+        PNG to write (atomically); its folder must exist.
+    inline : int, optional
+        Inline index drawn (default the middle one; the moving volume's is clipped to its own range).
+    xlines, samples : 1D array_like, optional
+        The fixed grid's crossline numbers and times or depths (default indices); the moving volume is drawn on
+        its own indices.
+    sample_unit : {'ms', 'm', 'ft', 'samples'}, optional
+    inline_number : float, optional
+        The fixed inline's number, for the titles (default its index).
+    title : str, optional
+    clip_percentile : float, optional
+        Amplitude colour limit, the same for the three panels: this percentile of the fixed volume's
+        ``|amplitude|``.
+    dpi : int, optional
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    InputError
+        Volumes that are not 3D, grids that do not match, an inline out of range or a missing folder.
+    """
+    from matplotlib.figure import Figure
+
+    a, b, c = (np.asarray(v, dtype=np.float32) for v in (fixed, moving, moving_on_fixed))
+    if a.ndim != 3 or b.ndim != 3 or c.shape != a.shape:
+        raise InputError(f"fixed and moving_on_fixed must be 3D volumes of one shape and moving 3D; got {a.shape}, "
+                         f"{b.shape}, {c.shape}")
+    path = Path(path)
+    if not (path.parent if str(path.parent) else Path(".")).is_dir():
+        raise InputError(f"cannot write {path}: folder {path.parent} does not exist; create it first")
+    i = a.shape[0] // 2 if inline is None else int(inline)
+    if not 0 <= i < a.shape[0]:
+        raise InputError(f"inline must be an index in [0, {a.shape[0] - 1}]; got {inline!r}")
+    xl = np.arange(a.shape[1], dtype=np.float64) if xlines is None else np.asarray(xlines, np.float64).ravel()
+    tz = np.arange(a.shape[2], dtype=np.float64) if samples is None else np.asarray(samples, np.float64).ravel()
+    clip = symmetric_clip(a, clip_percentile)
+    name = _NAMES.get(sample_unit, "sample")
+    unit = "" if sample_unit == "samples" else f" ({sample_unit})"
+    number = f"{inline_number:g}" if inline_number is not None else f"index {i}"
+    fig = Figure(figsize=(12, 4.6), dpi=dpi, layout="constrained")
+    axs = fig.subplots(1, 3)
+    style = dict(cmap="gray_r", vmin=-clip, vmax=clip, aspect="auto", interpolation="bilinear")
+    dx, dt = (abs(xl[1] - xl[0]) if xl.size > 1 else 1.0) / 2, (abs(tz[1] - tz[0]) if tz.size > 1 else 1.0) / 2
+    extent = (xl[0] - dx, xl[-1] + dx, tz[-1] + dt, tz[0] - dt)
+    axs[0].imshow(a[i].T, extent=extent, **style)
+    axs[0].set_title(f"fixed, inline {number}")
+    j = min(i, b.shape[0] - 1)
+    axs[1].imshow(b[j].T, aspect="auto", cmap="gray_r", vmin=-clip, vmax=clip, interpolation="bilinear")
+    axs[1].set_title(f"moving as read, its inline index {j}")
+    axs[1].set_xlabel("crossline index")
+    axs[1].set_ylabel("sample index")
+    im = axs[2].imshow(c[i].T, extent=extent, **style)
+    axs[2].set_title(f"moving registered onto fixed, inline {number}")
+    for ax in (axs[0], axs[2]):
+        ax.set_xlabel("crossline")
+        ax.set_ylabel(f"{name}{unit}")
+    fig.colorbar(im, ax=axs.tolist(), shrink=0.8, extend="both",
+                 label=f"amplitude (clipped at {clip_percentile:g}th pct)")
+    if title:
+        fig.suptitle(title, fontsize=10)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png")
+    return path
 
 
 def _casing():

@@ -440,7 +440,7 @@ def _add_horizons(plotter, horizons, geometry):
                                           "position_x": 0.84, "position_y": 0.3, "width": 0.08})
 
 
-def _add_likelihood(plotter, likelihood, geometry, threshold):
+def _add_likelihood(plotter, likelihood, geometry, threshold, max_opacity=0.5):
     grid = seismic_grid(likelihood, geometry, name="fault likelihood")
     if threshold is None:
         values = grid.point_data["fault likelihood"]
@@ -450,7 +450,7 @@ def _add_likelihood(plotter, likelihood, geometry, threshold):
     # the data raised to the threshold (transparent anyway): VTK sizes its colour table by the data's range over the
     # colour range, and would warn (and lose resolution) for a narrow colour range
     grid.point_data["fault likelihood"] = np.maximum(grid.point_data["fault likelihood"], np.float32(threshold))
-    opacity = np.linspace(0.0, 0.5, 64)  # over [threshold, 1]; transparent below (clamped colour range)
+    opacity = np.linspace(0.0, max_opacity, 64)  # over [threshold, 1]; transparent below (clamped colour range)
     bar = {"title": "fault\nlikelihood", "vertical": True, "position_x": 0.9, "position_y": 0.3, "fmt": "%.2f"}
     if 1 in geometry.shape[:2]:  # a line: the likelihood is a plane, drawn as one over the section (a volume one
         # voxel thick takes minutes to ray-cast, for the same picture)
@@ -547,7 +547,8 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
         Horizons in fractional samples (NaN where empty), coloured by time or depth on one shared scale.
     likelihood : (n_inlines, n_xlines, n_samples) array_like, optional
         Fault likelihood in [0, 1], drawn as a semi-transparent volume (transparent below
-        ``likelihood_threshold``, rising to 50 % opaque at 1).
+        ``likelihood_threshold``, rising to 50 % opaque at 1; 20 % when ``faults`` are drawn too, so that their
+        colours show through it).
     likelihood_threshold : float, optional
         Default: the likelihood's 95th percentile (the likelihood is high wherever reflectors are weak, so a fixed
         value would fill the cube of some surveys with haze).
@@ -600,7 +601,9 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
     if horizons is not None and len(horizons):
         _add_horizons(plotter, horizons, geometry)
     if likelihood is not None:
-        _add_likelihood(plotter, likelihood, geometry, likelihood_threshold)
+        # a fainter haze over fault surfaces, whose colours it would otherwise grey out
+        _add_likelihood(plotter, likelihood, geometry, likelihood_threshold,
+                        max_opacity=0.5 if faults is None else 0.2)
     plotter.add_mesh(_outline(geometry), color="black")
     plotter.add_text(title or geometry.describe(), font_size=9, color="black")
     x_label, y_label, z_label = geometry.axis_labels()
@@ -609,6 +612,13 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
         plotter.view_vector(_section_normal(geometry), viewup=(0.0, 0.0, 1.0))
     else:
         plotter.camera_position = camera
+        if isinstance(camera, str):  # room for the tick labels between the box and the colour bars below it
+            plotter.camera.zoom(0.88)
+            cam = plotter.camera
+            up = np.asarray(cam.up, float) / (np.linalg.norm(cam.up) or 1.0)
+            lift = 0.07 * float(np.linalg.norm(np.subtract(cam.focal_point, cam.position))) * up
+            cam.position, cam.focal_point = tuple(np.subtract(cam.position, lift)), tuple(
+                np.subtract(cam.focal_point, lift))  # the camera a little lower: the scene a little higher
     _add_ticks(plotter, geometry)  # after the camera: the time ticks go on the edge it sees leftmost
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)
 

@@ -1,5 +1,5 @@
 """MkDocs hooks of seismo3d's documentation: the command reference generated from the CLI itself, and the
-docstrings' Sphinx roles shown as code.
+docstrings' Sphinx roles shown as code, and the method's equations as MathML.
 
 ``docs/cli.md`` holds the marker ``<!-- cli-reference -->``; at build time it is replaced by the ``--help`` of the
 ``seismo3d`` command and of each of its sub-commands, as click renders them from the typer app
@@ -8,6 +8,7 @@ docstrings' Sphinx roles shown as code.
 
 from __future__ import annotations
 
+import html as html_module
 import re
 
 MARKER = "<!-- cli-reference -->"
@@ -81,6 +82,22 @@ def _role(match) -> str:
 def on_page_content(html, page, config, files):  # noqa: ARG001 - MkDocs' hook signature
     """The docstrings are numpydoc, written for Sphinx too: show their cross-reference roles as plain code."""
     return _ROLE.sub(_role, html)
+
+
+_MATH = re.compile(r'<(span|div) class="arithmatex">\s*(?:\\\(|\\\[)(.*?)(?:\\\)|\\\])\s*</\1>', re.S)
+
+
+def _mathml(match) -> str:
+    """One formula of pymdownx.arithmatex (generic output) as MathML, which browsers draw without JavaScript."""
+    from latex2mathml.converter import convert
+
+    tag, tex = match.group(1), html_module.unescape(match.group(2))
+    return convert(tex.strip(), display="block" if tag == "div" else "inline")
+
+
+def on_post_page(output, page, config):  # noqa: ARG001 - MkDocs' hook signature
+    """The method's equations as MathML, made at build time (no JavaScript, no network)."""
+    return _MATH.sub(_mathml, output) if "arithmatex" in output else output
 
 
 def on_page_markdown(markdown, page, config, files):  # noqa: ARG001 - MkDocs' hook signature

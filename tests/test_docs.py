@@ -104,6 +104,15 @@ def test_docstring_roles_are_shown_as_code():
         "see <code>open_segy</code> and <code>seismo3d.errors.InputError</code>")
 
 
+def test_equations_become_mathml():
+    """The method's equations are MathML in the built page: browsers draw them with no JavaScript or network."""
+    pytest.importorskip("latex2mathml", reason='the documentation tools: pip install -e ".[docs]"')
+    page = ('<p><span class="arithmatex">\\(d = 2\\)</span></p>'
+            '<div class="arithmatex">\\[E = \\frac{1}{N} \\sum_i r_i^2\\]</div>')
+    out = _hooks().on_post_page(page, None, None)
+    assert "arithmatex" not in out and out.count("<math") == 2 and 'display="block"' in out and "<mfrac>" in out
+
+
 @pytest.mark.slow  # about 10 s
 def test_site_builds_with_warnings_as_errors(tmp_path):
     pytest.importorskip("mkdocs", reason='the documentation tools: pip install -e ".[docs]"')
@@ -119,3 +128,5 @@ def test_site_builds_with_warnings_as_errors(tmp_path):
     assert "--n-samples" in cli and "seismo3d faults" in cli
     api = (tmp_path / "site" / "api" / "registration" / "index.html").read_text(encoding="utf-8")
     assert 'id="seismo3d.registration.icp.icp"' in api and 'id="seismo3d.registration.fused_icp"' in api
+    method = (tmp_path / "site" / "method" / "index.html").read_text(encoding="utf-8")
+    assert method.count("<math") >= 20 and "arithmatex" not in method

@@ -592,7 +592,7 @@ def render(
                              vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
                              window_size=(width, height), iline=iline, xline=xline, endian=_value(endian),
                              ignore_geometry=ignore_geometry, sample_unit=_value(sample_unit), overwrite=overwrite)
-    what = {"segy": "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon",
+    what = {"segy": "SEG-Y line" if job.section else "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon",
             "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM", "map": "map"}[job.kind]
     typer.echo(f"{what} of {input.name}: {job.caption} -> {job.picture}")
 

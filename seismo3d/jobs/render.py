@@ -58,6 +58,8 @@ class RenderJob:
         The record of the run (:mod:`seismo3d.jobs.runinfo`).
     stage_seconds : dict
         Wall time of each stage (``render``: reading and drawing).
+    section : bool
+        A single line drawn as a section (:func:`seismo3d.viz.plot_section`) rather than a 3D scene.
     """
 
     kind: str
@@ -68,6 +70,7 @@ class RenderJob:
     seismic: Path | None = None
     run_json: Path | None = None
     stage_seconds: dict | None = None
+    section: bool = False
 
 
 def _kind(path: Path) -> str:
@@ -416,7 +419,7 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
     if camera == "section":  # one line: a section with its numbers and times on labelled axes (matplotlib)
         caption = _render_section(cube if cube is not None else extra.get("likelihood"), geometry, output,
                                   extra=extra, vertical_exaggeration=vertical_exaggeration, window_size=window_size)
-        return RenderJob(kind=kind, picture=output, caption=caption, n_faults=n_faults, seismic=under)
+        return RenderJob(kind=kind, picture=output, caption=caption, n_faults=n_faults, seismic=under, section=True)
     show_seismic(cube, geometry, slices=slices, camera=camera, screenshot=output, window_size=window_size, **extra)
     return RenderJob(kind=kind, picture=output, caption=geometry.describe(), n_faults=n_faults, seismic=under)
 

@@ -417,8 +417,8 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
         extra = dict(horizons=[times])
     slices, camera = _slices_for(geometry.shape)
     if camera == "section":  # one line: a section with its numbers and times on labelled axes (matplotlib)
-        caption = _render_section(cube if cube is not None else extra.get("likelihood"), geometry, output,
-                                  extra=extra, vertical_exaggeration=vertical_exaggeration, window_size=window_size)
+        caption = _render_section(cube, geometry, output, extra=extra, vertical_exaggeration=vertical_exaggeration,
+                                  window_size=window_size)
         return RenderJob(kind=kind, picture=output, caption=caption, n_faults=n_faults, seismic=under, section=True)
     show_seismic(cube, geometry, slices=slices, camera=camera, screenshot=output, window_size=window_size, **extra)
     return RenderJob(kind=kind, picture=output, caption=geometry.describe(), n_faults=n_faults, seismic=under)
@@ -434,8 +434,11 @@ def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exagg
     traces = geometry.inlines if along == 0 else geometry.xlines
     name = geometry.lateral_names[along]
     spacing = float(np.linalg.norm(geometry.axes[along])) if geometry.map_unit != "line" else None
-    if data is None:
-        data = np.zeros(geometry.shape, np.float32)
+    values = "amplitude"
+    if data is None:  # no seismic: the fault likelihood of a faults folder, or nothing under a horizon
+        data = extra.get("likelihood")
+        values = "none" if data is None else "fault likelihood"
+        data = np.zeros(geometry.shape, np.float32) if data is None else data
     section = np.asarray(data, dtype=np.float32).reshape(geometry.shape[along], geometry.shape[2])
     horizons = extra.get("horizons") or []
     horizon = np.asarray(horizons[0], dtype=np.float64).ravel() if len(horizons) else None
@@ -443,4 +446,4 @@ def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exagg
     return plot_section(section, path=output, traces=traces, samples=geometry.samples, trace_name=name,
                         sample_unit=geometry.sample_unit, trace_spacing=spacing,
                         vertical_exaggeration=vertical_exaggeration, faults=extra.get("faults"), horizon=horizon,
-                        width=window_size[0] / dpi, dpi=dpi)
+                        values=values, width=window_size[0] / dpi, dpi=dpi)

@@ -83,7 +83,7 @@ def _smooth(points: np.ndarray, window: int = 9) -> np.ndarray:
 
 def plot_section(section, *, path, traces=None, samples=None, trace_name="trace", sample_unit="samples",
                  trace_spacing=None, velocity=2000.0, vertical_exaggeration=None, faults=None, horizon=None,
-                 title=None, clip_percentile=99.0, width=11.0, dpi=120):
+                 title=None, clip_percentile=99.0, values="amplitude", width=11.0, dpi=120):
     """Draw one seismic line with labelled axes, a stated vertical exaggeration, faults as lines and a horizon, and
     save a PNG.
 
@@ -117,6 +117,9 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         First line of the title; the second states the lines, the range and the exaggeration.
     clip_percentile : float, optional
         Amplitude colour limit: this percentile of ``|amplitude|``, in (0, 100]; the colour bar says it clips.
+    values : {'amplitude', 'fault likelihood', 'none'}, optional
+        What ``section`` holds: amplitudes (grey, symmetric limits), a fault likelihood in [0, 1] (drawn when no
+        seismic is at hand), or nothing to draw (a blank section under faults or a horizon).
     width : float, optional
         Width of the picture in inches (its height follows from the exaggeration).
     dpi : int, optional
@@ -167,15 +170,26 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     fig_h = float(np.clip(fig_w * 0.82 * ratio, 0.25 * fig_w, 1.3 * fig_w)) + 1.3
     fig = Figure(figsize=(fig_w, fig_h), dpi=dpi, layout="constrained")
     ax = fig.subplots()
-    clip = symmetric_clip(data, clip_percentile)
     dh = step / 2
     extent = (traces[0] - dh if traces[-1] >= traces[0] else traces[0] + dh,
               traces[-1] + dh if traces[-1] >= traces[0] else traces[-1] - dh,
               samples[-1] + dt / 2, samples[0] - dt / 2)
-    im = ax.imshow(data.T, extent=extent, cmap="gray_r", vmin=-clip, vmax=clip, interpolation="bilinear",
-                   aspect=aspect)
-    fig.colorbar(im, ax=ax, shrink=0.7, extend="both", pad=0.01,
-                 label=f"amplitude (clipped at {clip_percentile:g}th pct)")
+    if values == "amplitude":
+        clip = symmetric_clip(data, clip_percentile)
+        im = ax.imshow(data.T, extent=extent, cmap="gray_r", vmin=-clip, vmax=clip, interpolation="bilinear",
+                       aspect=aspect)
+        fig.colorbar(im, ax=ax, shrink=0.7, extend="both", pad=0.01,
+                     label=f"amplitude (clipped at {clip_percentile:g}th pct)")
+    elif values == "fault likelihood":
+        im = ax.imshow(data.T, extent=extent, cmap="Greys", vmin=0.0, vmax=1.0, interpolation="nearest",
+                       aspect=aspect)
+        fig.colorbar(im, ax=ax, shrink=0.7, pad=0.01, label="fault likelihood (no seismic drawn)")
+    elif values == "none":
+        ax.set_xlim(extent[0], extent[1])
+        ax.set_ylim(extent[2], extent[3])
+        ax.set_aspect(aspect)
+    else:
+        raise InputError(f"values must be one of 'amplitude', 'fault likelihood', 'none'; got {values!r}")
     segments = _fault_segments(faults, n_tr)
     if segments:
         tab10 = colormaps["tab10"]

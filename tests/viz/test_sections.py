@@ -51,3 +51,6 @@ def test_section_refuses_wrong_shapes(tmp_path):
         plot_section(_section(), path=tmp_path / "s.png", traces=np.arange(10))
     with pytest.raises(InputError, match="does not exist"):
         plot_section(_section(), path=tmp_path / "nope" / "s.png")
+    with pytest.raises(InputError, match="values"):
+        plot_section(_section(), path=tmp_path / "s.png", values="velocity")
+    assert not (tmp_path / "s.png").exists()

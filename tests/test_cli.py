@@ -3,6 +3,7 @@ flags, progress lines in logs), and the faults and point-cloud register commands
 
 import csv
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -389,3 +390,30 @@ def test_render_accepts_the_segy_flags_of_faults():
         return {p.name: (tuple(p.opts), p.default) for p in commands[name].params if p.name in segy}
 
     assert set(flags("faults")) == segy and flags("render") == flags("faults")
+
+
+@pytest.mark.slow  # 3 s: three fresh processes importing numba
+def test_the_first_compilation_is_said_once_in_one_line(tmp_path):
+    """compile_note: a cached numba kernel of seismo3d compiled for the first time (an empty cache, as after a fresh
+    install) is said in one "note:" line, once however many compile; loaded from the cache the next time, nothing;
+    a kernel that is not cached (compiled on every run) says nothing either."""
+    from seismo3d._cli_messages import COMPILE_NOTE
+
+    (tmp_path / "seismo3d_probe_kernels.py").write_text(
+        "from numba import njit\n\n"
+        "@njit(cache=True)\ndef one(x):\n    return x + 1\n\n"
+        "@njit(cache=True)\ndef two(x):\n    return x * 2\n\n"
+        "@njit\ndef uncached(x):\n    return x - 1\n")
+    script = ("import sys\nfrom seismo3d._cli_messages import compile_note\nimport seismo3d_probe_kernels as k\n"
+              "with compile_note():\n    k.{calls}\n")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(tmp_path), *sys.path])}
+
+    def run(calls):
+        done = subprocess.run([sys.executable, "-c", script.format(calls=calls)], capture_output=True, text=True,
+                              env=env, cwd=tmp_path, timeout=120)
+        assert done.returncode == 0, done.stderr
+        return done.stderr
+
+    assert run("one(1); k.two(2)") == COMPILE_NOTE + "\n"  # two kernels compiled: one line
+    assert run("one(1); k.two(2)") == ""  # from numba's cache
+    assert run("uncached(1)") == ""

@@ -88,13 +88,17 @@ def horizon_xl1155(data: Path, work: Path) -> None:
 
 
 def terrain(data: Path, work: Path) -> None:
-    """The DFW DEM in 3D with its lineaments, and their rose diagram."""
+    """The DFW DEM in 3D with its lineaments, their rose diagram and map, and a path planned over it."""
     dem = data / "terrain" / "dem_hydrosheds_dfw.tif"
     _seismo3d("render", dem, "--lineaments", "-o", work / "dem.png", "--overwrite")
     _copy(work / "dem.png", "render_dem_lineaments.png")
     _seismo3d("lineaments", dem, "-o", work / "lineaments", "--overwrite")
     _copy(work / "lineaments" / "rose.png", "lineaments_rose.png")
     _copy(work / "lineaments" / "lineaments.png", "lineaments_map.png")
+    _seismo3d("plan", dem, "--start", "40,40", "--goal", "300,320", "--max-slope", "3", "-o", work / "path.csv",
+              "--overwrite")
+    _seismo3d("render", dem, "--path", work / "path.csv", "-o", work / "dem_path.png", "--overwrite")
+    _copy(work / "dem_path.png", "render_dem_path.png")
 
 
 def match_tum(data: Path, work: Path) -> None:

@@ -17,7 +17,7 @@ import typer
 from .errors import Seismo3dError
 from .jobs.runinfo import cli_call
 
-__all__ = ["friendly", "in_flags", "log_progress_to_stderr", "one_line_warnings"]
+__all__ = ["compile_note", "friendly", "in_flags", "log_progress_to_stderr", "one_line_warnings"]
 
 class _StderrHandler(logging.Handler):
     """Log records as plain lines on the current standard error (progress lines of long steps)."""
@@ -28,6 +28,41 @@ class _StderrHandler(logging.Handler):
             sys.stderr.flush()
         except (ValueError, OSError):  # pragma: no cover - stderr closed
             pass
+
+
+COMPILE_NOTE = ("note: compiling seismo3d's numba kernels; this happens once, on the first run (a minute or two), "
+                "later runs reuse them")
+
+
+@contextlib.contextmanager
+def compile_note():
+    """Say in one line on standard error, the first time within the block that one of seismo3d's cached numba
+    kernels is compiled (a fresh install: nothing in numba's cache yet), that this happens once.
+
+    Kernels loaded from numba's cache say nothing (numba's ``numba:compile`` event fires only on a cache miss), nor
+    do kernels that are not cached. Call it after the command's job is imported (numba is then loaded)."""
+    try:
+        from numba.core import event
+    except ImportError:  # pragma: no cover - numba is a dependency
+        yield
+        return
+
+    class _Once(event.Listener):
+        said = False
+
+        def on_start(self, ev):
+            dispatcher = (ev.data or {}).get("dispatcher")
+            module = getattr(getattr(dispatcher, "py_func", None), "__module__", "") or ""
+            cached = type(getattr(dispatcher, "_cache", None)).__name__ not in ("NullCache", "NoneType")
+            if not self.said and cached and module.startswith("seismo3d"):
+                self.said = True
+                typer.echo(COMPILE_NOTE, err=True)
+
+        def on_end(self, ev):
+            pass
+
+    with event.install_listener("numba:compile", _Once()):
+        yield
 
 
 def log_progress_to_stderr() -> None:

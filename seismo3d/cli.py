@@ -24,7 +24,7 @@ import typer
 from . import __version__
 from ._cli_outputs import check_before_import
 from .jobs.outputs import output_file
-from ._cli_messages import friendly as _friendly, log_progress_to_stderr
+from ._cli_messages import compile_note, friendly as _friendly, log_progress_to_stderr
 from ._cli_messages import one_line_warnings as _one_line_warnings
 
 app = typer.Typer(help="seismo3d: fault and horizon interpretation of seismic cubes, point-cloud / RGB-D / terrain "
@@ -248,7 +248,7 @@ def faults(
     check_before_import("folder", output, [input], overwrite=overwrite)
     from .jobs.faults import run_faults_job
 
-    with _one_line_warnings():
+    with _one_line_warnings(), compile_note():
         job = run_faults_job(input, output, demo=demo, demo_seed=demo_seed, iline=iline, xline=xline,
                              ignore_geometry=ignore_geometry, endian=_value(endian),
                              sample_unit=None if sample_unit is None else sample_unit.value,
@@ -335,7 +335,8 @@ def match(
     job = run_match_job(image1, image2, output, method=method.value, ratio=ratio, threshold=threshold,
                         overwrite=overwrite)
     result = job.result
-    typer.echo(f"{result.n_putative} putative matches, {job.n_written} verified ({method.value}) -> {output}")
+    typer.echo(f"{result.n_putative} putative matches, {job.n_written} verified ({method.value}) -> {output}, "
+               f"{job.picture.name} (drawn), {job.homography_file.name}")
     if result.homography is None:
         typer.echo("no homography could be fitted (too few matches)")
     else:
@@ -451,7 +452,7 @@ def map_(
     options = MapperOptions(loop_closure=loop_closure, use_features=features)
     options = replace(options, tsdf=TSDFOptions(voxel_size=voxel_size))
 
-    with _one_line_warnings():
+    with _one_line_warnings(), compile_note():
         try:
             job = run_map_job(sequence, output, options=options, max_frames=max_frames, render=render,
                               overwrite=overwrite)
@@ -539,10 +540,11 @@ def horizon(
         if len(seeds[-1]) not in (2, 3):
             raise InputError(f"--seed {text!r} must be IL,XL,T (three numbers separated by commas), or TRACE,T for a "
                              "file read as a trace list")
-    job = run_horizon_job(input, seeds, output, polarity=polarity.value, faults=faults, fill=fill, surface=surface,
-                          iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=_value(endian),
-                          sample_unit=None if sample_unit is None else sample_unit.value, overwrite=overwrite,
-                          progress=True, seed_file=seed_file, maps=maps)
+    with compile_note():
+        job = run_horizon_job(input, seeds, output, polarity=polarity.value, faults=faults, fill=fill,
+                              surface=surface, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
+                              endian=_value(endian), sample_unit=None if sample_unit is None else sample_unit.value,
+                              overwrite=overwrite, progress=True, seed_file=seed_file, maps=maps)
     typer.echo(f"{job.n_rows} of {job.horizon.times.size} traces tracked ({job.horizon.coverage:.1%}) -> {output}")
     if job.surface is not None:
         typer.echo(f"surface -> {job.surface}")
@@ -605,7 +607,8 @@ def render(
                              window_size=(width, height), iline=iline, xline=xline, endian=_value(endian),
                              ignore_geometry=ignore_geometry, sample_unit=_value(sample_unit), overwrite=overwrite,
                              sticks=sticks)
-    what = {"segy": "SEG-Y cube", "faults": f"{job.n_faults} faults", "horizon": "horizon",
+    what = {"segy": "SEG-Y line" if job.section else "SEG-Y cube", "faults": f"{job.n_faults} faults",
+            "horizon": "horizon",
             "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM", "map": "map"}[job.kind]
     typer.echo(f"{what} of {input.name}: {job.caption} -> {job.picture}")
 

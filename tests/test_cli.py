@@ -4,6 +4,7 @@ flags, progress lines in logs), and the faults and point-cloud register commands
 import csv
 import logging
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -180,6 +181,21 @@ def test_faults_errors(cube_file, tmp_path, case, message):
     assert "Traceback" not in result.output
 
 
+def test_faults_raw_section_of_unknown_shape_names_the_flag(tmp_path):
+    """A raw .f32be section whose name is not a registry file: one line naming --n-samples, the flag faults has (not
+    the library's n_traces=)."""
+    src = tmp_path / "in" / "mysection.f32be"
+    src.parent.mkdir()
+    np.zeros((100, 250), ">f4").tofile(src)
+    result = runner.invoke(app, ["faults", str(src), "-o", str(tmp_path / "x")])
+    assert result.exit_code == 2, result.output
+    assert result.stderr == ("error: the shape of mysection.f32be is unknown (a raw section of 25000 float32 values, "
+                             "no header); give its number of samples per trace: --n-samples N\n")
+    result = runner.invoke(app, ["faults", str(src), "-o", str(tmp_path / "x"), "--n-samples", "250",
+                                 "--sensitivity", "0.5"])
+    assert "--n-samples" not in result.stderr and "shape" not in result.stderr  # the shape given: read (no faults)
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("name, trace_list", [("penobscot_xl1155.sgy", False),
                                                ("volve_fullstack_twt_arbline.sgy", True)])
@@ -194,6 +210,15 @@ def test_faults_on_real_2d_lines_without_flags(data_dir, tmp_path, name, trace_l
     assert all("=" not in line for line in warn)  # flags, not argument names
     rows = _rows(tmp_path / "out" / "fault_summary.csv")
     assert f"{len(rows)} faults in {name}" in result.stdout and len(rows) >= 5
+    # the points' trace columns say what they hold: the trace index of a trace list, the survey's numbers otherwise
+    points = _rows(tmp_path / "out" / "fault_points.csv")
+    if trace_list:
+        assert list(points[0])[:2] == ["trace", "time_or_depth"]
+        assert {int(r["trace"]) for r in points} <= set(range(225))
+    else:
+        assert list(points[0])[:3] == ["inline", "crossline", "time_or_depth"]
+        assert {int(r["crossline"]) for r in points} == {1155}
+        assert {int(r["inline"]) for r in points} <= set(range(1000, 1601))
     with segyio.open(str(tmp_path / "out" / "fault_likelihood.sgy"), ignore_geometry=True) as out, \
             segyio.open(str(path), ignore_geometry=True) as src:
         assert out.tracecount == src.tracecount and len(out.samples) == len(src.samples)
@@ -390,3 +415,30 @@ def test_render_accepts_the_segy_flags_of_faults():
         return {p.name: (tuple(p.opts), p.default) for p in commands[name].params if p.name in segy}
 
     assert set(flags("faults")) == segy and flags("render") == flags("faults")
+
+
+@pytest.mark.slow  # 3 s: three fresh processes importing numba
+def test_the_first_compilation_is_said_once_in_one_line(tmp_path):
+    """compile_note: a cached numba kernel of seismo3d compiled for the first time (an empty cache, as after a fresh
+    install) is said in one "note:" line, once however many compile; loaded from the cache the next time, nothing;
+    a kernel that is not cached (compiled on every run) says nothing either."""
+    from seismo3d._cli_messages import COMPILE_NOTE
+
+    (tmp_path / "seismo3d_probe_kernels.py").write_text(
+        "from numba import njit\n\n"
+        "@njit(cache=True)\ndef one(x):\n    return x + 1\n\n"
+        "@njit(cache=True)\ndef two(x):\n    return x * 2\n\n"
+        "@njit\ndef uncached(x):\n    return x - 1\n")
+    script = ("import sys\nfrom seismo3d._cli_messages import compile_note\nimport seismo3d_probe_kernels as k\n"
+              "with compile_note():\n    k.{calls}\n")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(tmp_path), *sys.path])}
+
+    def run(calls):
+        done = subprocess.run([sys.executable, "-c", script.format(calls=calls)], capture_output=True, text=True,
+                              env=env, cwd=tmp_path, timeout=120)
+        assert done.returncode == 0, done.stderr
+        return done.stderr
+
+    assert run("one(1); k.two(2)") == COMPILE_NOTE + "\n"  # two kernels compiled: one line
+    assert run("one(1); k.two(2)") == ""  # from numba's cache
+    assert run("uncached(1)") == ""

@@ -13,12 +13,29 @@ import numpy as np
 from .._atomic import atomic_path
 from ..seismic.faults.result import FaultInterpretation
 
-__all__ = ["sample_position", "write_points", "write_summary"]
+__all__ = ["sample_position", "trace_columns", "write_points", "write_summary"]
 
 
 def sample_position(samples: np.ndarray, k) -> np.ndarray:
     """Time or depth of fractional sample indices ``k`` on the ``samples`` axis (linear between samples)."""
     return np.interp(np.asarray(k, dtype=np.float64), np.arange(samples.size), samples)
+
+
+def trace_columns(inp) -> list:
+    """The names of the trace columns of the fault tables for the job's input ``inp``.
+
+    Parameters
+    ----------
+    inp : object
+        The faults job's input: ``xline`` is None when its traces carry no inline / crossline numbers.
+
+    Returns
+    -------
+    list of str
+        ``['inline', 'crossline']`` for numbered traces, ``['trace']`` (the trace index, from 0) for raw sections,
+        2D ``.npy`` arrays and trace lists without numbers.
+    """
+    return ["trace"] if inp.xline is None else ["inline", "crossline"]
 
 
 def _fmt(v: float) -> str:
@@ -42,14 +59,19 @@ def _column(values, fmt: str) -> list:
 
 
 def write_points(inp, result: FaultInterpretation, path: Path, coordinates=None) -> Path:
-    """fault_points.csv: one row per fault point (inline, crossline, with ``coordinates``
+    """fault_points.csv: one row per fault point (its trace's labels, with ``coordinates``
     (:class:`~seismo3d.seismic.io.coordinates.SurveyCoordinates` of the traced array) its trace's ``x``, ``y`` and
     their unit ``xy_unit`` ('m', 'ft', or 'inline/crossline' for an input without coordinates), time or depth, fault
-    id, throw and its evidence); ``inp`` is the job's input (its trace labels, samples and unit)."""
+    id, throw and its evidence); ``inp`` is the job's input (its trace labels, samples and unit).
+
+    The trace columns say what they hold (:func:`trace_columns`): ``inline, crossline`` where the traces have
+    inline and crossline numbers (cubes, lines of a survey, trace lists whose headers number them), one ``trace``
+    column (the trace index, from 0) for raw sections, 2D ``.npy`` arrays and trace lists without numbers.
+    """
     unit = inp.unit
     extra = [] if unit == "samples" else [f"throw_{unit}"]
     xy = [] if coordinates is None else ["x", "y", "xy_unit"]
-    header = ["inline", "crossline", *xy, "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation",
+    header = [*trace_columns(inp), *xy, "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation",
               "correlation_gain", "side_coherence"]
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         fh.write(",".join(header) + "\n")
@@ -57,10 +79,9 @@ def write_points(inp, result: FaultInterpretation, path: Path, coordinates=None)
             p = f.points
             throw = _throw_of(result.throws, f)
             lateral = inp.inline[p[:, 0]], (None if inp.xline is None else inp.xline[p[:, 1 if p.shape[1] == 3 else 0]])
-            cols = [
-                [str(v) for v in lateral[0].tolist()],
-                [""] * f.size if lateral[1] is None else [str(v) for v in lateral[1].tolist()],
-            ]
+            cols = [[str(v) for v in lateral[0].tolist()]]
+            if lateral[1] is not None:
+                cols.append([str(v) for v in lateral[1].tolist()])
             if coordinates is not None:  # the trace's own header coordinates (scalar applied)
                 x, y = coordinates.at(p[:, :-1])
                 cols += [_column(x, ".3f"), _column(y, ".3f"), [coordinates.unit] * f.size]

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DataNotFoundError, InputError
-from ..seismic.io.sections import read_section
+from ..seismic.io.sections import known_section_shape, read_section
 from ..seismic.io.segy import open_segy
 
 __all__ = ["SEGY_SUFFIXES", "SeismicInput", "input_kind", "read_seismic"]
@@ -188,6 +188,10 @@ def _read_array(path: Path, kind: str, *, sample_unit, n_samples) -> SeismicInpu
     if not path.is_file():
         raise DataNotFoundError(f"no input file at {path}; check the path")
     if kind == "f32be":
+        if n_samples is None and known_section_shape(path) is None:  # a raw file says nothing of its shape
+            n_values = path.stat().st_size // 4
+            raise InputError(f"the shape of {path.name} is unknown (a raw section of {n_values} float32 values, "
+                             "no header); give its number of samples per trace: n_samples=N")
         data = read_section(path, n_samples=n_samples)
     else:
         try:

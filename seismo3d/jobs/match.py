@@ -11,7 +11,7 @@ from ..errors import DataNotFoundError, InputError
 from .outputs import check_outputs, output_file
 from .runinfo import RunRecord, run_json_output, run_json_path
 
-__all__ = ["MatchJob", "run_match_job", "read_image"]
+__all__ = ["MatchJob", "companion_files", "run_match_job", "read_image"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -30,6 +30,10 @@ class MatchJob:
         The record of the run (:mod:`seismo3d.jobs.runinfo`).
     stage_seconds : dict
         Wall time of each stage (``read``, ``match``, ``write``).
+    picture : pathlib.Path
+        The matches drawn between the two images (``matches.png`` beside ``matches.csv``).
+    homography_file : pathlib.Path
+        The fitted homography as JSON (``matches.homography.json``).
     """
 
     result: object
@@ -37,6 +41,8 @@ class MatchJob:
     output: pathlib.Path | None = None
     run_json: pathlib.Path | None = None
     stage_seconds: dict | None = None
+    picture: pathlib.Path | None = None
+    homography_file: pathlib.Path | None = None
 
 
 def run_match_job(image1, image2, output, *, method: str = "hog", ratio: float = 0.8,
@@ -51,7 +57,9 @@ def run_match_job(image1, image2, output, *, method: str = "hog", ratio: float =
         Images OpenCV can read (colour is converted to grey by the matcher).
     output : str or path-like
         The CSV file (written atomically); not an input, and not an existing file unless ``overwrite`` (see
-        :mod:`seismo3d.jobs.outputs`; checked before the images are read).
+        :mod:`seismo3d.jobs.outputs`; checked before the images are read). Beside it (:func:`companion_files`):
+        ``<stem>.png``, the verified matches drawn between the two images, and ``<stem>.homography.json``, the
+        fitted homography (under the same output policy).
     method : {'hog', 'sift', 'orb', 'akaze', 'brisk'}
         The HOG-pyramid matcher (method.md section 2) or an OpenCV detector.
     ratio : float
@@ -77,18 +85,68 @@ def run_match_job(image1, image2, output, *, method: str = "hog", ratio: float =
     from ..features import match_images, write_matches_csv
 
     main = output_file(output, "matches.csv")
-    check_outputs([main, run_json_output(main)], [image1, image2], overwrite=overwrite)
+    picture, homography_file = companion_files(output)
+    check_outputs([main, run_json_output(main), output_file(picture), output_file(homography_file)],
+                  [image1, image2], overwrite=overwrite)
     with record.stage("read"):
         images = [read_image(p) for p in (image1, image2)]
     with record.stage("match"):
         result = match_images(*images, method=method, ratio=ratio, threshold=threshold, verify="homography")
     with record.stage("write"):
         n_written = write_matches_csv(output, result)
-    homography = None if result.homography is None else np.asarray(result.homography)
+        homography = None if result.homography is None else np.asarray(result.homography)
+        _write_homography(homography_file, homography, n_written)
+        _draw_matches(picture, images, result, n_written, method)
     run_json = record.write(run_json_path(main), inputs={"image1": image1, "image2": image2},
-                            outputs={"matches": output},
+                            outputs={"matches": output, "picture": picture, "homography": homography_file},
                             results=dict(n_putative=result.n_putative, n_verified=n_written, homography=homography))
-    return MatchJob(result, n_written, pathlib.Path(output), run_json, dict(record.stage_seconds))
+    return MatchJob(result, n_written, pathlib.Path(output), run_json, dict(record.stage_seconds), picture,
+                    homography_file)
+
+
+def companion_files(output) -> tuple:
+    """The picture and the homography file written beside the matches CSV ``output``.
+
+    Parameters
+    ----------
+    output : str or os.PathLike
+        The CSV, e.g. ``matches.csv``.
+
+    Returns
+    -------
+    (pathlib.Path, pathlib.Path)
+        ``matches.png`` (the matches drawn between the images) and ``matches.homography.json``.
+    """
+    output = pathlib.Path(output)
+    picture = output.with_name(output.stem + ".png")
+    if picture == output:
+        picture = output.with_name(output.stem + "_matches.png")
+    return picture, output.with_name(output.stem + ".homography.json")
+
+
+def _write_homography(path: pathlib.Path, homography, n_verified: int) -> None:
+    """The fitted homography as JSON: ``homography`` (3 x 3, image1 pixel (x, y, 1) to image2's; null when none
+    could be fitted) and the number of verified matches that support it."""
+    import json
+
+    from .._atomic import atomic_path
+
+    payload = {"homography": None if homography is None else homography.tolist(),
+               "maps": "image1 pixel (x, y, 1) -> image2 pixel, x right, y down", "n_verified": int(n_verified)}
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(payload, indent=2) + "\n")
+
+
+def _draw_matches(path: pathlib.Path, images, result, n_verified: int, method: str) -> None:
+    """The verified matches drawn between the two images side by side (:func:`seismo3d.viz.plot_matches`)."""
+    from .._atomic import atomic_path
+    from ..viz import plot_matches
+
+    keep = np.asarray(result.inliers, bool) if getattr(result, "inliers", None) is not None else slice(None)
+    fig = plot_matches(images[0], images[1], np.asarray(result.xy1)[keep], np.asarray(result.xy2)[keep],
+                       title=f"{n_verified} verified matches of {result.n_putative} ({method}, RANSAC homography)")
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png", dpi=110)
 
 
 def read_image(path) -> np.ndarray:

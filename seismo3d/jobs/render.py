@@ -58,6 +58,8 @@ class RenderJob:
         The record of the run (:mod:`seismo3d.jobs.runinfo`).
     stage_seconds : dict
         Wall time of each stage (``render``: reading and drawing).
+    section : bool
+        A single line drawn as a section (:func:`seismo3d.viz.plot_section`) rather than a 3D scene.
     """
 
     kind: str
@@ -68,6 +70,7 @@ class RenderJob:
     seismic: Path | None = None
     run_json: Path | None = None
     stage_seconds: dict | None = None
+    section: bool = False
 
 
 def _kind(path: Path) -> str:
@@ -221,6 +224,11 @@ def _render_dem(path: Path, output: Path, *, lineaments, plan, vertical_exaggera
                  window_size=window_size)
     dy, dx = dem.pixel_size_m
     caption = f"{dem.shape[1]} x {dem.shape[0]} pixels of {dx:.0f} x {dy:.0f} m"
+    if vertical_exaggeration is None:
+        from ..viz.terrain3d import terrain_exaggeration
+
+        vertical_exaggeration = terrain_exaggeration(dem)
+    caption += f", vertical exaggeration {vertical_exaggeration:.2g}x"
     return RenderJob(kind="dem", picture=output, caption=caption, n_lineaments=0 if found is None else len(found))
 
 
@@ -287,7 +295,9 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     color_by : {'fault_id', 'throw'}, optional
         Colour of the fault surfaces.
     vertical_exaggeration : float, optional
-        Default: the cube's height becomes half its longer side (a DEM's relief an eighth of it).
+        Default: the cube's height becomes half its longer side; a single line gets the round factor that makes
+        its section about half as tall as wide (at least 1, :func:`seismo3d.viz.sections.section_exaggeration`);
+        a DEM's relief at most a 40th of its longer side (a factor from 1 to 5).
     lineaments : bool, optional
         DEM: extract its lineaments and draw them.
     plan : str or os.PathLike, optional
@@ -420,5 +430,34 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
             mesh = traced.merge(mesh)
         extra["faults"] = mesh
     slices, camera = _slices_for(geometry.shape)
+    if camera == "section":  # one line: a section with its numbers and times on labelled axes (matplotlib)
+        caption = _render_section(cube, geometry, output, extra=extra, vertical_exaggeration=vertical_exaggeration,
+                                  window_size=window_size)
+        return RenderJob(kind=kind, picture=output, caption=caption, n_faults=n_faults, seismic=under, section=True)
     show_seismic(cube, geometry, slices=slices, camera=camera, screenshot=output, window_size=window_size, **extra)
     return RenderJob(kind=kind, picture=output, caption=geometry.describe(), n_faults=n_faults, seismic=under)
+
+
+def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exaggeration, window_size) -> str:
+    """A single line (a 2D line of a survey or a trace list) drawn as a section: trace numbers along, time or depth
+    down, the vertical exaggeration stated, faults as lines and a horizon as a curve
+    (:func:`seismo3d.viz.sections.plot_section`); returns the caption."""
+    from ..viz.sections import plot_section
+
+    along = 0 if geometry.shape[0] > 1 else 1
+    traces = geometry.inlines if along == 0 else geometry.xlines
+    name = geometry.lateral_names[along]
+    spacing = float(np.linalg.norm(geometry.axes[along])) if geometry.map_unit != "line" else None
+    values = "amplitude"
+    if data is None:  # no seismic: the fault likelihood of a faults folder, or nothing under a horizon
+        data = extra.get("likelihood")
+        values = "none" if data is None else "fault likelihood"
+        data = np.zeros(geometry.shape, np.float32) if data is None else data
+    section = np.asarray(data, dtype=np.float32).reshape(geometry.shape[along], geometry.shape[2])
+    horizons = extra.get("horizons") or []
+    horizon = np.asarray(horizons[0], dtype=np.float64).ravel() if len(horizons) else None
+    dpi = 120
+    return plot_section(section, path=output, traces=traces, samples=geometry.samples, trace_name=name,
+                        sample_unit=geometry.sample_unit, trace_spacing=spacing,
+                        vertical_exaggeration=vertical_exaggeration, faults=extra.get("faults"), horizon=horizon,
+                        values=values, width=window_size[0] / dpi, dpi=dpi)

@@ -4,6 +4,9 @@
   colour map) with faults, horizons and the fault likelihood, placed by a :class:`CubeGeometry`
   (:func:`cube_geometry`, :func:`geometry_of_segy`: real line numbers or CDP X/Y, time or depth downward, vertical
   exaggeration); :func:`seismic_grid` gives the cube as a pyvista grid. Off screen into a PNG with ``screenshot=``.
+- :func:`plot_section`: PNG of one seismic line as an interpreter reads it (trace numbers and times on labelled axes,
+  the vertical exaggeration stated, faults as lines, a horizon); :func:`section_exaggeration` chooses the exaggeration;
+  :func:`plot_volume_registration`: one inline of a sub-volume registration (fixed, moving, moving registered).
 - :func:`plot_fault_slices`: PNG of seismic slices with the faults drawn over them (matplotlib).
 - :func:`fault_surfaces`: fault surfaces (3D) or curves (2D) as one pyvista PolyData; :func:`save_polydata` writes it.
 - :func:`horizon_surface`: a tracked horizon as a pyvista surface (holes where it is empty);
@@ -22,6 +25,7 @@ from .faults import fault_surfaces, plot_fault_slices, save_polydata, show_fault
 from .horizons import horizon_surface, plot_horizon_section
 from .maps import render_map, show_map
 from .plotting import finish_scene, jupyter_backend, new_plotter, symmetric_clip
+from .sections import plot_section, plot_volume_registration, section_exaggeration
 from .seismic import (
     CubeGeometry, cube_geometry, geometry_of_segy, grid_index, place_index_mesh, seismic_grid, show_seismic,
 )
@@ -32,4 +36,4 @@ __all__ = ["CubeGeometry", "cube_geometry", "geometry_of_segy", "grid_index", "p
            "show_seismic", "plot_fault_slices", "fault_surfaces", "horizon_surface", "save_polydata", "show_faults",
            "finish_scene", "jupyter_backend", "new_plotter", "symmetric_clip", "plot_horizon_section",
            "plot_matches", "show_point_clouds", "plot_lineament_map", "plot_rose", "render_map", "show_map",
-           "show_terrain"]
+           "show_terrain", "plot_section", "plot_volume_registration", "section_exaggeration"]

@@ -102,7 +102,8 @@ class _FaultColours:
         from matplotlib.cm import ScalarMappable
         from matplotlib.colors import Normalize
 
-        self.label = label
+        self.label = self.quantity = label
+        self.clipped = False
         if fault_values is None:
             self.rgba, self.mappable = _colors(ids), None
             return
@@ -115,16 +116,20 @@ class _FaultColours:
         hi = float(np.percentile(finite, 95)) if finite.size else 1.0
         lo = float(min(finite.min(), 0.0)) if finite.size else 0.0
         norm = Normalize(vmin=lo, vmax=hi if hi > lo else lo + 1.0)
+        self.clipped = bool(finite.size and finite.max() > norm.vmax)  # the bar then says so, with an arrow
         cmap = colormaps["viridis"].with_extremes(bad="0.6")
         self.rgba = cmap(norm(np.ma.masked_invalid(per_point)))
         self.mappable = ScalarMappable(norm=norm, cmap=cmap)
+        if self.clipped:
+            self.label = f"{label}, clipped at the 95th percentile ({hi:.3g}; max {finite.max():.3g})"
 
     def title(self) -> str:
-        return "faults, coloured by id" if self.mappable is None else f"faults, coloured by {self.label}"
+        return "faults, coloured by id" if self.mappable is None else f"faults, coloured by {self.quantity}"
 
     def bar(self, fig, ax) -> None:
         if self.mappable is not None:
-            fig.colorbar(self.mappable, ax=ax, shrink=0.8, label=self.label)
+            fig.colorbar(self.mappable, ax=ax, shrink=0.8, label=self.label,
+                         extend="max" if self.clipped else "neither")
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -143,9 +148,46 @@ def _live_window(data: np.ndarray) -> tuple[slice, slice]:
 
 
 def _dot(n_h, width_in) -> dict:
-    """Scatter style of fault samples: dots about half a cell wide, at least 1.5 pt^2."""
+    """Scatter style of isolated fault samples: dots about a cell wide, at least 4 pt^2, with a dark rim."""
     cell_pt = 72.0 * width_in / max(n_h, 1)
-    return dict(s=float(np.clip((0.5 * cell_pt) ** 2, 1.5, 12.0)), linewidths=0, marker="o")
+    return dict(s=float(np.clip(cell_pt ** 2, 4.0, 16.0)), linewidths=0.3, edgecolors="black", marker="o")
+
+
+def _draw_faults(ax, cells, h_axis, v_axis, rgba, ids, *, gap: float = 3.0) -> None:
+    """Faults over a slice as lines an interpreter reads: each fault's samples ordered along the fault's main
+    direction and joined (broken where consecutive samples are more than ``gap`` cells apart), drawn in the fault's
+    colour over a dark casing so that they stand out on grey; samples without a neighbour as dots.
+
+    ``cells``: (n, 2) positions in cells (horizontal, vertical index); ``h_axis``, ``v_axis``: the values of the
+    panel's axes at each index (inline numbers, times, ...); ``rgba``: (n, 4) colours; ``ids``: (n,) fault ids."""
+    from matplotlib.collections import LineCollection
+
+    segments, colours, lone = [], [], []
+    cells = np.asarray(cells, dtype=np.float64)
+    values = np.column_stack([_at(h_axis, cells[:, 0]), _at(v_axis, cells[:, 1])])
+    for fid in np.unique(ids):
+        sel = np.nonzero(ids == fid)[0]
+        p = cells[sel]
+        if p.shape[0] < 2:
+            lone.extend(sel.tolist())
+            continue
+        c = p - p.mean(axis=0)
+        _, _, vt = np.linalg.svd(c, full_matrices=False)
+        order = np.argsort(c @ vt[0], kind="stable")
+        p, idx = p[order], sel[order]
+        breaks = np.nonzero(np.hypot(*np.diff(p, axis=0).T) > gap)[0] + 1
+        for run in np.split(np.arange(p.shape[0]), breaks):
+            if run.size < 2:
+                lone.extend(idx[run].tolist())
+                continue
+            segments.append(values[idx[run]])
+            colours.append(rgba[idx[run[0]]])
+    if segments:
+        ax.add_collection(LineCollection(segments, colors="black", linewidths=3.0, alpha=0.55, zorder=3))
+        ax.add_collection(LineCollection(segments, colors=colours, linewidths=1.6, zorder=4))
+    if lone:
+        lone = np.asarray(lone)
+        ax.scatter(values[lone, 0], values[lone, 1], c=rgba[lone], zorder=5, **_dot(50, 4.5))
 
 
 def _extent(h, v) -> tuple:
@@ -155,7 +197,7 @@ def _extent(h, v) -> tuple:
     return (h[0] - dh, h[-1] + dh, v[-1] + dv, v[0] - dv)
 
 
-def _section_figure(data, fl, pts, colours, ax_vals, axis_labels, seis, like, dpi):
+def _section_figure(data, fl, pts, ids, colours, ax_vals, axis_labels, seis, like, dpi):
     """The 2D figure: the section, the faults over it and the likelihood, cropped to the live data and drawn with
     about one sample per trace (a tall section side by side, a wide one one above the other), so that dips show."""
     from matplotlib.figure import Figure
@@ -167,7 +209,7 @@ def _section_figure(data, fl, pts, colours, ax_vals, axis_labels, seis, like, dp
     if pts.size:
         keep = ((pts[:, 0] >= (tr.start or 0)) & (pts[:, 0] < (tr.stop or data.shape[0] + 1))
                 & (pts[:, 1] >= (sm.start or 0)) & (pts[:, 1] < (sm.stop or data.shape[1] + 1)))
-        pts, rgba = pts[keep], colours.rgba[keep]
+        pts, rgba, ids = pts[keep], colours.rgba[keep], ids[keep]
     n_panels = 3 if fl is not None else 2
     ratio = data.shape[1] / max(data.shape[0], 1)  # samples per trace
     tall = ratio > 1.0
@@ -187,8 +229,7 @@ def _section_figure(data, fl, pts, colours, ax_vals, axis_labels, seis, like, dp
     axs[0].set_title("seismic")
     axs[1].set_title(colours.title())
     if pts.size:
-        axs[1].scatter(_at(ax_vals[0], pts[:, 0]), _at(ax_vals[1], pts[:, 1]), c=rgba,
-                       **_dot(data.shape[0], width))
+        _draw_faults(axs[1], pts, ax_vals[0], ax_vals[1], rgba, ids)
     colours.bar(fig, axs[1])
     if fl is not None:
         im = axs[2].imshow(fl.T, extent=ext, **like)
@@ -216,10 +257,12 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
 
     3D: an inline, a crossline and a time (depth) slice, by default those crossing the most fault samples; 2D: the
     section without and with the faults, cropped to its live traces and samples and drawn with about one sample per
-    trace so that fault dips show (tall sections side by side, wide ones one above the other). Seismic in grey, symmetric colour limits at the ``clip_percentile`` of the
-    absolute amplitude; faults as dots coloured by fault id (10 colours, cycled), or by ``fault_values`` on one
-    colour scale (viridis from the smaller of 0 and the least value to the 95th percentile of the values, grey for
-    NaN) with its colour bar. With ``likelihood``, a row of the same slices of the fault likelihood is added below.
+    trace so that fault dips show (tall sections side by side, wide ones one above the other). Seismic in grey,
+    symmetric colour limits at the ``clip_percentile`` of the absolute amplitude; faults as lines over a dark casing
+    (each fault's samples joined along it; lone samples as dots) coloured by fault id (10 colours, cycled), or by
+    ``fault_values`` on one colour scale (viridis from the smaller of 0 and the least value to the 95th percentile of
+    the values, grey for NaN) with its colour bar, which says when it clips (an arrow and the largest value). Panel
+    titles name the slice only; the colouring is in the figure's title. With ``likelihood``, a row of the same slices of the fault likelihood is added below.
 
     Parameters
     ----------
@@ -288,7 +331,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
 
     if data.ndim == 2:
         seis.update(_symmetric_limits(data, clip_percentile))
-        fig = _section_figure(data, fl, pts, colours, ax_vals, axis_labels, seis, like, dpi)
+        fig = _section_figure(data, fl, pts, ids, colours, ax_vals, axis_labels, seis, like, dpi)
     else:
         if slices is None:
             slices = (_most_faulted(pts[:, 0], shape[0]), _most_faulted(pts[:, 1], shape[1]),
@@ -317,9 +360,8 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
             a = axs[0, c]
             a.imshow(cuts[c], extent=ext, **seis)
             if sel is not None and sel.any():
-                a.scatter(_at(ax_vals[hc], pts[sel, hc]), _at(ax_vals[vc], pts[sel, vc]), c=colours.rgba[sel],
-                          **_dot(h.size, 4.5))
-            a.set_title(name if colours.mappable is None else f"{name}, {colours.title()}")
+                _draw_faults(a, pts[sel][:, [hc, vc]], ax_vals[hc], ax_vals[vc], colours.rgba[sel], ids[sel])
+            a.set_title(name)  # short: the three panels' titles must not run into each other
             a.set_xlabel(hl)
             a.set_ylabel(vl)
             if fl is not None:
@@ -332,7 +374,8 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
         if fl is not None:
             fig.colorbar(im, ax=axs[1, :].tolist(), shrink=0.8, label="fault likelihood")
     n_f = len(np.unique(ids)) if ids.size else 0
-    fig.suptitle(f"{title + ': ' if title else ''}{n_f} faults")
+    how = "" if data.ndim == 2 else f" ({colours.title().removeprefix('faults, ')})"
+    fig.suptitle(f"{title + ': ' if title else ''}{n_f} faults{how}")
     path = Path(path)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png")

@@ -26,6 +26,7 @@ from .plotting import bar_below, finish_scene, new_plotter, symmetric_clip
 __all__ = ["CubeGeometry", "cube_geometry", "geometry_of_segy", "seismic_grid", "place_index_mesh", "show_seismic"]
 
 _UNITS = {"ms", "m", "ft", "samples"}
+_FAULT_OPACITY = 0.6  # fault surfaces let the slices behind them show
 
 
 @dataclass(frozen=True, eq=False)
@@ -407,7 +408,7 @@ def _add_faults(plotter, faults, throws, geometry, color_by):
         tab10 = colormaps["tab10"]
         colours = ListedColormap([tab10((i - 1) % 10) for i in range(1, top + 1)])  # fault i: tab10 colour i - 1
         plotter.add_mesh(mesh, scalars="fault_id", cmap=colours, clim=(0.5, top + 0.5), n_colors=top,
-                         line_width=3, ambient=0.3,
+                         line_width=3, ambient=0.3, opacity=_FAULT_OPACITY,
                          scalar_bar_args=bar_below(f"fault id 1-{top}" + (", colours cycle" if top > 10 else ""),
                                                    position_x=0.6, width=0.35, n_labels=0))
         return
@@ -416,7 +417,7 @@ def _add_faults(plotter, faults, throws, geometry, color_by):
         raise InputError("color_by='throw' needs measured throws; pass throws= (FaultInterpretation.throws)")
     lim = float(np.nanpercentile(np.abs(values), 98)) or 1.0
     plotter.add_mesh(mesh, scalars="throw", cmap="PuOr_r", clim=(-lim, lim), nan_color="lightgrey",
-                     line_width=3, ambient=0.3,
+                     line_width=3, ambient=0.3, opacity=_FAULT_OPACITY,
                      scalar_bar_args=bar_below("throw (samples, + normal)", position_x=0.6, width=0.35))
 
 
@@ -439,7 +440,7 @@ def _add_horizons(plotter, horizons, geometry):
                                           "position_x": 0.84, "position_y": 0.3, "width": 0.08})
 
 
-def _add_likelihood(plotter, likelihood, geometry, threshold):
+def _add_likelihood(plotter, likelihood, geometry, threshold, max_opacity=0.5):
     grid = seismic_grid(likelihood, geometry, name="fault likelihood")
     if threshold is None:
         values = grid.point_data["fault likelihood"]
@@ -449,8 +450,8 @@ def _add_likelihood(plotter, likelihood, geometry, threshold):
     # the data raised to the threshold (transparent anyway): VTK sizes its colour table by the data's range over the
     # colour range, and would warn (and lose resolution) for a narrow colour range
     grid.point_data["fault likelihood"] = np.maximum(grid.point_data["fault likelihood"], np.float32(threshold))
-    opacity = np.linspace(0.0, 0.5, 64)  # over [threshold, 1]; transparent below (clamped colour range)
-    bar = {"title": "fault\nlikelihood", "vertical": True, "position_x": 0.06, "position_y": 0.3, "fmt": "%.3f"}
+    opacity = np.linspace(0.0, max_opacity, 64)  # over [threshold, 1]; transparent below (clamped colour range)
+    bar = {"title": "fault\nlikelihood", "vertical": True, "position_x": 0.9, "position_y": 0.3, "fmt": "%.2f"}
     if 1 in geometry.shape[:2]:  # a line: the likelihood is a plane, drawn as one over the section (a volume one
         # voxel thick takes minutes to ray-cast, for the same picture)
         plane = grid.extract_surface(algorithm="dataset_surface")
@@ -475,6 +476,49 @@ def _outline(geometry: CubeGeometry):
     edges = [(a, b) for a in range(8) for b in range(a + 1, 8) if np.count_nonzero(corners[a] != corners[b]) == 1]
     lines = np.array([[2, a, b] for a, b in edges], dtype=np.int64).ravel()
     return pv.PolyData(geometry.to_world(corners), lines=lines)
+
+
+def _add_ticks(plotter, geometry: CubeGeometry) -> None:
+    """Labelled ticks on the cube's box: inline and crossline numbers (or map X / Y in the survey's unit when the
+    cube is placed by its CDP coordinates) and time or depth, increasing downward, in the data's own values (the
+    scene's vertical axis is exaggerated; the labels are not)."""
+    corners = geometry.to_world(np.array([[i, j, k] for i in (0, 1) for j in (0, 1) for k in (0, 1)], np.float64)
+                                * np.maximum(np.array(geometry.shape) - 1, 0))
+    lo, hi = corners.min(axis=0), corners.max(axis=0)
+    s = geometry.samples
+    name = {"ms": "time", "m": "depth", "ft": "depth"}.get(geometry.sample_unit, "sample")
+    unit = "" if geometry.sample_unit == "samples" else f" ({geometry.sample_unit})"
+    if geometry.map_unit == "line":
+        x_title, y_title = geometry.lateral_names
+        x_range = (float(min(geometry.inlines[0], geometry.inlines[-1])),
+                   float(max(geometry.inlines[0], geometry.inlines[-1])))
+        y_range = (float(min(geometry.xlines[0], geometry.xlines[-1])),
+                   float(max(geometry.xlines[0], geometry.xlines[-1])))
+    else:
+        x_title, y_title = f"X ({geometry.map_unit})", f"Y ({geometry.map_unit})"
+        x_range, y_range = (lo[0], hi[0]), (lo[1], hi[1])
+    ranges = [*x_range, *y_range, lo[2], hi[2]]
+    plotter.show_bounds(bounds=[lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]], axes_ranges=ranges, xtitle=x_title,
+                        ytitle=y_title or " ", ztitle=" ", show_zlabels=False, color="black", font_size=10,
+                        fmt="%.0f", location="outer", grid=False, ticks="outside", minor_ticks=False)
+    # time or depth downward: VTK's axes label only increasing ranges, so the vertical ticks are drawn here, on the
+    # box's vertical edge that the camera sees leftmost
+    from matplotlib.ticker import MaxNLocator
+
+    camera = plotter.camera
+    right = np.cross(np.subtract(camera.focal_point, camera.position), camera.up)
+    ends = [(i, j) for i in (0, geometry.shape[0] - 1) for j in (0, geometry.shape[1] - 1)]
+    i0, j0 = min(ends, key=lambda e: float(geometry.to_world([[e[0], e[1], 0.0]])[0] @ right))
+
+    values = [v for v in MaxNLocator(nbins=6).tick_values(s.min(), s.max()) if s.min() <= v <= s.max()]
+    k = np.interp(values, s if s[-1] >= s[0] else s[::-1], np.arange(s.size) if s[-1] >= s[0]
+                  else np.arange(s.size)[::-1])
+    edge = geometry.to_world(np.column_stack([np.full_like(k, i0), np.full_like(k, j0), k]))
+    labels = [f"{v:g}" for v in values]
+    labels[-1] = f"{labels[-1]} {geometry.sample_unit if geometry.sample_unit != 'samples' else ''}".strip()
+    labels[0] = f"{name}{unit}  {labels[0]}"
+    plotter.add_point_labels(edge, labels, font_size=11, text_color="black", shape=None, show_points=True,
+                             point_color="black", point_size=6, always_visible=True, justification_horizontal="right")
 
 
 def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, faults=None, throws=None,
@@ -503,7 +547,8 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
         Horizons in fractional samples (NaN where empty), coloured by time or depth on one shared scale.
     likelihood : (n_inlines, n_xlines, n_samples) array_like, optional
         Fault likelihood in [0, 1], drawn as a semi-transparent volume (transparent below
-        ``likelihood_threshold``, rising to 50 % opaque at 1).
+        ``likelihood_threshold``, rising to 50 % opaque at 1; 20 % when ``faults`` are drawn too, so that their
+        colours show through it).
     likelihood_threshold : float, optional
         Default: the likelihood's 95th percentile (the likelihood is high wherever reflectors are weak, so a fixed
         value would fill the cube of some surveys with haze).
@@ -556,7 +601,9 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
     if horizons is not None and len(horizons):
         _add_horizons(plotter, horizons, geometry)
     if likelihood is not None:
-        _add_likelihood(plotter, likelihood, geometry, likelihood_threshold)
+        # a fainter haze over fault surfaces, whose colours it would otherwise grey out
+        _add_likelihood(plotter, likelihood, geometry, likelihood_threshold,
+                        max_opacity=0.5 if faults is None else 0.2)
     plotter.add_mesh(_outline(geometry), color="black")
     plotter.add_text(title or geometry.describe(), font_size=9, color="black")
     x_label, y_label, z_label = geometry.axis_labels()
@@ -565,6 +612,14 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
         plotter.view_vector(_section_normal(geometry), viewup=(0.0, 0.0, 1.0))
     else:
         plotter.camera_position = camera
+        if isinstance(camera, str):  # room for the tick labels between the box and the colour bars below it
+            plotter.camera.zoom(0.88)
+            cam = plotter.camera
+            up = np.asarray(cam.up, float) / (np.linalg.norm(cam.up) or 1.0)
+            lift = 0.07 * float(np.linalg.norm(np.subtract(cam.focal_point, cam.position))) * up
+            cam.position, cam.focal_point = tuple(np.subtract(cam.position, lift)), tuple(
+                np.subtract(cam.focal_point, lift))  # the camera a little lower: the scene a little higher
+    _add_ticks(plotter, geometry)  # after the camera: the time ticks go on the edge it sees leftmost
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)
 
 

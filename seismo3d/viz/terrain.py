@@ -122,7 +122,9 @@ def plot_lineament_map(shade, extent, segments, azimuth_deg, path, *, aspect: fl
     finite = img[np.isfinite(img)]
     lo, hi = np.percentile(finite, [1.0, 99.0]) if finite.size else (0.0, 1.0)
     ax.imshow(img, cmap="gray", vmin=lo, vmax=max(hi, lo + 1e-12), extent=extent, interpolation="bilinear")
-    lines = LineCollection(segs.reshape(-1, 2, 2), array=az, cmap="twilight", linewidths=1.6)
+    # a dark casing under saturated colours (a cyclic map: strike 0 and 180 are one direction) stands out on grey
+    ax.add_collection(LineCollection(segs.reshape(-1, 2, 2), colors="black", linewidths=4.2, alpha=0.8))
+    lines = LineCollection(segs.reshape(-1, 2, 2), array=az, cmap="hsv", linewidths=2.4)
     lines.set_clim(0.0, 180.0)
     ax.add_collection(lines)
     ax.set_aspect(aspect)

@@ -239,9 +239,9 @@ def test_real_section(data_dir, tmp_path):
     points = _rows(written["points"])
     summary = _rows(written["summary"])
     assert len(summary) >= 3
-    assert list(points[0]) == POINT_COLUMNS + ["throw_correlation", "correlation_gain", "side_coherence"]  # raw sections: samples
-    assert all(r["crossline"] == "" for r in points)
-    assert all(0 <= int(r["inline"]) < 357 and 0 <= float(r["time_or_depth"]) < 240 for r in points)
+    # a raw section: its traces have no inline / crossline numbers, so one "trace" column (the index); samples
+    assert list(points[0]) == ["trace", *POINT_COLUMNS[2:], "throw_correlation", "correlation_gain", "side_coherence"]
+    assert all(0 <= int(r["trace"]) < 357 and 0 <= float(r["time_or_depth"]) < 240 for r in points)
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -317,7 +317,8 @@ def test_npy_section_with_nan_and_dead_traces(section, tmp_path):
     assert np.all(np.isfinite(fl))
     assert np.all(fl[37:44] == 0) and np.all(fl[97:106] == 0) and np.all(fl[:, :18] == 0)
     points = _rows(written["points"])
-    tr = np.array([int(r["inline"]) for r in points])
+    assert list(points[0])[:2] == ["trace", "time_or_depth"]  # a 2D .npy: traces by index, no crossline column
+    tr = np.array([int(r["trace"]) for r in points])
     assert not np.any((tr >= 37) & (tr <= 43)) and not np.any((tr >= 97) & (tr <= 105))
 
 

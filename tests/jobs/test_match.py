@@ -52,3 +52,14 @@ def test_run_match_job_writes_the_verified_matches(tmp_path):
     rows = np.loadtxt(tmp_path / "m.csv", delimiter=",", skiprows=1, ndmin=2)
     assert job.n_written == len(rows) > 50
     np.testing.assert_allclose(rows[:, :2], rows[:, 2:4], atol=1e-6)  # an image onto itself
+    # beside the CSV: the matches drawn between the two images, and the homography (the identity here)
+    import json
+
+    from matplotlib.image import imread
+
+    assert job.picture == tmp_path / "m.png" and job.homography_file == tmp_path / "m.homography.json"
+    picture = imread(job.picture)
+    assert picture.shape[1] > 2 * image.shape[1] * 0.9  # the two images side by side, at about their size
+    saved = json.loads(job.homography_file.read_text())
+    np.testing.assert_allclose(saved["homography"], np.eye(3), atol=1e-6)
+    assert saved["n_verified"] == job.n_written

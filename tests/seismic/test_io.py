@@ -276,6 +276,13 @@ def test_read_section_known_shapes(seismic_dir, stem):
     assert np.all(np.isfinite(sec)) and sec.std() > 0
 
 
+def test_known_section_shape_by_name():
+    from seismo3d.seismic.io.sections import known_section_shape
+
+    assert {stem: known_section_shape(f"/any/folder/{stem}.f32be") for stem in SECTIONS} == SECTIONS
+    assert known_section_shape("mysection.f32be") is None
+
+
 def test_read_section_unknown_file(seismic_dir, tmp_path):
     path = tmp_path / "line.f32be"
     shutil.copy(seismic_dir / "sections" / "campos_gx373.f32be", path)

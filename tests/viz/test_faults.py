@@ -53,3 +53,18 @@ def test_the_time_slice_title_has_its_unit(label, title):
     from seismo3d.viz.faults import _slice_title
 
     assert _slice_title(label, 204.0) == title
+
+
+def test_the_throw_colour_bar_says_when_it_clips():
+    """Colours by a value per fault stop at its 95th percentile; the bar's label then says so, with the largest
+    value (its arrow: extend='max'), and the figure's title names the quantity without the note."""
+    from seismo3d.viz.faults import _FaultColours
+
+    ids = np.repeat(np.arange(1, 21), 3)
+    skewed = _FaultColours(ids, {i: float(i) for i in range(1, 20)} | {20: 60.0}, "|median throw| (ms)")
+    assert skewed.clipped
+    assert skewed.label == "|median throw| (ms), clipped at the 95th percentile (21.1; max 60)"  # 19 + 0.05 * 41
+    assert skewed.title() == "faults, coloured by |median throw| (ms)"
+    even = _FaultColours(ids, {i: 5.0 for i in range(1, 21)}, "|median throw| (ms)")
+    assert not even.clipped and even.label == "|median throw| (ms)"
+    assert not _FaultColours(ids, None, "value").clipped  # colours by id: no bar

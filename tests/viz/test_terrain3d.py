@@ -8,7 +8,7 @@ from typer.testing import CliRunner
 from seismo3d.cli import app
 from seismo3d.errors import InputError
 from seismo3d.terrain import Dem, write_dem
-from seismo3d.viz.terrain3d import show_terrain, terrain_surface_mesh
+from seismo3d.viz.terrain3d import show_terrain, terrain_exaggeration, terrain_surface_mesh
 
 runner = CliRunner()
 
@@ -38,6 +38,16 @@ def test_surface_in_metres_about_the_centre():
     assert mesh.n_cells < 59 * 79  # the cells touching the hole are gone
     with pytest.raises(InputError, match="vertical_exaggeration"):
         terrain_surface_mesh(dem, vertical_exaggeration=0.0)
+
+
+@pytest.mark.parametrize("relief, expected", [(5.0, 5.0), (15.0, 4.0), (40.0, 1.5), (400.0, 1.0)])
+def test_exaggeration_shows_relief_without_inventing_mountains(relief, expected):
+    """A gentle DEM gets at most 5x (151 m over 30 km used to get 27x), a rugged one 1x; in between the relief is
+    drawn a 40th of the longer side (2370 m here: 15 m of relief gets 3.95x, 4x to two digits)."""
+    rows, cols = np.mgrid[0:60, 0:80].astype(float)
+    affine = np.array([[30.0, 0.0, 500_000.0], [0.0, -30.0, 4_000_000.0], [0.0, 0.0, 1.0]])
+    dem = Dem(elevation=100.0 + relief * cols / 79, affine=affine)
+    assert terrain_exaggeration(dem) == pytest.approx(expected, rel=0.05)
 
 
 def test_path_and_surface_colours(tmp_path):

@@ -9,7 +9,7 @@ import numpy as np
 
 from ...errors import DataNotFoundError, InputError
 
-__all__ = ["read_ascii_lines", "read_section"]
+__all__ = ["known_section_shape", "read_ascii_lines", "read_section"]
 
 # (n_traces, n_samples) of the raw sections in the data directory's seismic/sections (see its README).
 _SECTION_SHAPES = {
@@ -22,6 +22,22 @@ _SECTION_SHAPES = {
     "teapot_tp73": (357, 240),
     "f3_f3d178sub2": (951, 242),
 }
+
+
+def known_section_shape(path) -> tuple | None:
+    """The shape of a raw section of the data directory's ``seismic/sections``, known by its file name.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.f32be`` file; only its stem is used (``teapot_tpd.f32be`` -> ``teapot_tpd``).
+
+    Returns
+    -------
+    tuple of int or None
+        ``(n_traces, n_samples)``, or None for a file whose shape :func:`read_section` must be given.
+    """
+    return _SECTION_SHAPES.get(Path(path).stem)
 
 
 def read_section(path, *, n_traces=None, n_samples=None) -> np.ndarray:

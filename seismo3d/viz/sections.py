@@ -1,0 +1,317 @@
+"""A 2D seismic line as an interpreter reads it (matplotlib): the section with its trace numbers and time or depth
+on labelled axes, a stated vertical exaggeration, faults drawn as lines over it and a horizon as a curve.
+
+``seismo3d render`` draws a single line (a 2D line of a survey, a trace list) with :func:`plot_section` rather than
+as a plane in a 3D scene, which squashed a deep section into a band without ticks.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .._atomic import atomic_path
+from ..errors import InputError
+from .plotting import symmetric_clip
+
+__all__ = ["section_exaggeration", "plot_section", "plot_volume_registration"]
+
+_NAMES = {"ms": "time", "m": "depth", "ft": "depth", "samples": "sample"}
+
+
+def section_exaggeration(n_traces: int, trace_spacing, vertical_extent, *, target_ratio: float = 0.55) -> float:
+    """A vertical exaggeration that makes a section about ``target_ratio`` as tall as it is wide, rounded to a
+    round number (1, 1.5, 2, 3, 4, 5, 8, 10, ...).
+
+    Parameters
+    ----------
+    n_traces : int
+        Traces along the section.
+    trace_spacing : float or None
+        Distance between neighbouring traces (m or ft); None when unknown (then one trace counts as one unit).
+    vertical_extent : float
+        Height of the section in the same unit (a time section: its two-way time converted to depth, e.g. at
+        2000 m/s, 1 m per ms).
+    target_ratio : float, optional
+        Wanted height / width of the drawn section.
+
+    Returns
+    -------
+    float
+        At least 1 (a section is never squashed), at most 20.
+    """
+    width = max(n_traces - 1, 1) * float(trace_spacing or 1.0)
+    raw = target_ratio * width / max(float(vertical_extent), 1e-9)
+    steps = np.array([1, 1.5, 2, 3, 4, 5, 8, 10, 15, 20], dtype=np.float64)
+    return float(steps[np.argmin(np.abs(np.log(steps / np.clip(raw, 1.0, 20.0))))])
+
+
+def _fault_segments(faults, n_traces: int):
+    """(fault id, (n, 2) fractional trace index / sample index, ordered along the fault) of a 2D faults mesh in index
+    space (points ``(trace, 0, -sample)``, polylines: :func:`~seismo3d.viz.fault_surfaces`, ``faults.vtp``)."""
+    if faults is None or not faults.n_points:
+        return []
+    p = np.asarray(faults.points, dtype=np.float64)
+    ids = np.asarray(faults.point_data["fault_id"]) if "fault_id" in faults.point_data else np.ones(len(p), int)
+    lines = np.asarray(faults.lines, dtype=np.int64)
+    out, at = [], 0
+    while at < lines.size:
+        n = int(lines[at])
+        idx = lines[at + 1: at + 1 + n]
+        at += n + 1
+        if n >= 2:
+            seg = _smooth(np.column_stack([p[idx, 0], -p[idx, 2]]))
+            if np.all((seg[:, 0] >= -0.5) & (seg[:, 0] <= n_traces - 0.5)):
+                out.append((int(ids[idx[0]]), seg))
+    return out
+
+
+def _smooth(points: np.ndarray, window: int = 9) -> np.ndarray:
+    """A fault's samples ordered along its main direction and averaged over ``window`` neighbours: one clean line
+    where the samples of a braided stretch zigzag across it (display only)."""
+    c = points - points.mean(axis=0)
+    _, _, vt = np.linalg.svd(c, full_matrices=False)
+    points = points[np.argsort(c @ vt[0], kind="stable")]
+    w = min(window, points.shape[0])
+    if w < 3:
+        return points
+    kernel = np.ones(w) / w
+    pad = np.pad(points, ((w // 2, w - 1 - w // 2), (0, 0)), mode="edge")
+    return np.column_stack([np.convolve(pad[:, d], kernel, mode="valid") for d in range(2)])
+
+
+def plot_section(section, *, path, traces=None, samples=None, trace_name="trace", sample_unit="samples",
+                 trace_spacing=None, velocity=2000.0, vertical_exaggeration=None, faults=None, horizon=None,
+                 title=None, clip_percentile=99.0, values="amplitude", width=11.0, dpi=120):
+    """Draw one seismic line with labelled axes, a stated vertical exaggeration, faults as lines and a horizon, and
+    save a PNG.
+
+    Parameters
+    ----------
+    section : (n_traces, n_samples) array_like
+        Amplitudes, trace after trace.
+    path : str or os.PathLike
+        PNG to write (atomically); its folder must exist.
+    traces : (n_traces,) array_like, optional
+        Trace labels along the section (inline or crossline numbers); default 1, 2, ... (file order).
+    samples : (n_samples,) array_like, optional
+        Times or depths of the samples; default the sample indices.
+    trace_name : str, optional
+        What labels the traces: 'inline', 'crossline' or 'trace'.
+    sample_unit : {'ms', 'm', 'ft', 'samples'}, optional
+    trace_spacing : float, optional
+        Distance between traces in metres (or feet), from the CDP X/Y of the headers; None when unknown (the
+        aspect is then stated per trace, not as an exaggeration).
+    velocity : float, optional
+        m/s (or ft/s) converting two-way time to depth for the exaggeration of a time section.
+    vertical_exaggeration : float, optional
+        Default: :func:`section_exaggeration` (the section about half as tall as wide, reflectors at their dips
+        times the exaggeration).
+    faults : pyvista.PolyData, optional
+        2D fault curves in index space (``faults.vtp`` of ``seismo3d faults`` on a line), drawn as lines coloured
+        by fault id over a dark casing.
+    horizon : (n_traces,) array_like of float, optional
+        Horizon in fractional samples (NaN where empty), drawn as a curve.
+    title : str, optional
+        First line of the title; the second states the lines, the range and the exaggeration.
+    clip_percentile : float, optional
+        Amplitude colour limit: this percentile of ``|amplitude|``, in (0, 100]; the colour bar says it clips.
+    values : {'amplitude', 'fault likelihood', 'none'}, optional
+        What ``section`` holds: amplitudes (grey, symmetric limits), a fault likelihood in [0, 1] (drawn when no
+        seismic is at hand), or nothing to draw (a blank section under faults or a horizon).
+    width : float, optional
+        Width of the picture in inches (its height follows from the exaggeration).
+    dpi : int, optional
+
+    Returns
+    -------
+    str
+        The caption: lines, time or depth range and the exaggeration as stated on the picture.
+
+    Raises
+    ------
+    InputError
+        A section that is not 2D, axes of the wrong length, a non-positive exaggeration or a missing folder.
+    """
+    from matplotlib.collections import LineCollection
+    from matplotlib.figure import Figure
+    from matplotlib import colormaps
+
+    data = np.asarray(section, dtype=np.float32)
+    if data.ndim != 2 or min(data.shape) < 2:
+        raise InputError(f"section must be (n_traces, n_samples) with at least 2 of each; got shape {data.shape}")
+    n_tr, n_s = data.shape
+    traces = np.arange(1, n_tr + 1, dtype=np.float64) if traces is None else np.asarray(traces, np.float64).ravel()
+    samples = np.arange(n_s, dtype=np.float64) if samples is None else np.asarray(samples, np.float64).ravel()
+    if traces.size != n_tr or samples.size != n_s:
+        raise InputError(f"traces and samples must have {n_tr} and {n_s} values (the section's shape); got "
+                         f"{traces.size} and {samples.size}")
+    path = Path(path)
+    if not (path.parent if str(path.parent) else Path(".")).is_dir():
+        raise InputError(f"cannot write {path}: folder {path.parent} does not exist; create it first")
+    dt = abs(float(np.median(np.diff(samples)))) or 1.0
+    per_unit = velocity / 2000.0 if sample_unit == "ms" else 1.0  # depth per time or depth unit (m per ms)
+    height = (samples[-1] - samples[0]) * per_unit
+    if vertical_exaggeration is None:
+        vertical_exaggeration = section_exaggeration(n_tr, trace_spacing, height)
+    if not np.isfinite(vertical_exaggeration) or vertical_exaggeration <= 0:
+        raise InputError(f"vertical_exaggeration must be > 0; got {vertical_exaggeration!r}")
+    step = abs(float(np.median(np.diff(traces)))) or 1.0
+    width_units = abs(traces[-1] - traces[0]) or 1.0
+    if trace_spacing:
+        # data aspect (screen length of one vertical unit over one horizontal unit): VE x depth per unit / distance
+        # per trace label
+        aspect = vertical_exaggeration * per_unit / (float(trace_spacing) / step)
+    else:  # no distance between traces: no exaggeration to speak of; drawn about half as tall as wide
+        aspect = 0.55 * width_units / (abs(samples[-1] - samples[0]) or 1.0)
+    ratio = abs(aspect * (samples[-1] - samples[0]) / width_units)
+    fig_w = float(width)
+    fig_h = float(np.clip(fig_w * 0.82 * ratio, 0.25 * fig_w, 1.3 * fig_w)) + 1.3
+    fig = Figure(figsize=(fig_w, fig_h), dpi=dpi, layout="constrained")
+    ax = fig.subplots()
+    dh = step / 2
+    extent = (traces[0] - dh if traces[-1] >= traces[0] else traces[0] + dh,
+              traces[-1] + dh if traces[-1] >= traces[0] else traces[-1] - dh,
+              samples[-1] + dt / 2, samples[0] - dt / 2)
+    if values == "amplitude":
+        clip = symmetric_clip(data, clip_percentile)
+        im = ax.imshow(data.T, extent=extent, cmap="gray_r", vmin=-clip, vmax=clip, interpolation="bilinear",
+                       aspect=aspect)
+        fig.colorbar(im, ax=ax, shrink=0.7, extend="both", pad=0.01,
+                     label=f"amplitude (clipped at {clip_percentile:g}th pct)")
+    elif values == "fault likelihood":
+        im = ax.imshow(data.T, extent=extent, cmap="Greys", vmin=0.0, vmax=1.0, interpolation="nearest",
+                       aspect=aspect)
+        fig.colorbar(im, ax=ax, shrink=0.7, pad=0.01, label="fault likelihood (no seismic drawn)")
+    elif values == "none":
+        ax.set_xlim(extent[0], extent[1])
+        ax.set_ylim(extent[2], extent[3])
+        ax.set_aspect(aspect)
+    else:
+        raise InputError(f"values must be one of 'amplitude', 'fault likelihood', 'none'; got {values!r}")
+    segments = _fault_segments(faults, n_tr)
+    if segments:
+        tab10 = colormaps["tab10"]
+        lines = [np.column_stack([np.interp(s[:, 0], np.arange(n_tr), traces),
+                                  np.interp(s[:, 1], np.arange(n_s), samples)]) for _, s in segments]
+        colours = [tab10((fid - 1) % 10) for fid, _ in segments]
+        ax.add_collection(LineCollection(lines, colors="black", linewidths=3.4, alpha=0.6, zorder=3))
+        ax.add_collection(LineCollection(lines, colors=colours, linewidths=2.0, zorder=4))
+    if horizon is not None:
+        h = np.asarray(horizon, dtype=np.float64).ravel()
+        if h.size != n_tr:
+            raise InputError(f"horizon must have one value per trace ({n_tr}); got {h.size}")
+        ax.plot(traces, np.interp(h, np.arange(n_s), samples, left=np.nan, right=np.nan), color="#ffcc00",
+                lw=2.2, zorder=5, path_effects=_casing())
+    name = _NAMES.get(sample_unit, "sample")
+    unit = "" if sample_unit == "samples" else f" ({sample_unit})"
+    ax.set_xlabel(trace_name)
+    ax.set_ylabel(f"{name}{unit}")
+    ax.xaxis.set_ticks_position("both")
+    ax.tick_params(top=True, labeltop=True)
+    if trace_spacing:
+        how = f"vertical exaggeration {vertical_exaggeration:g}x"
+        if sample_unit == "ms":
+            how += f" (time as depth at {velocity:g} m/s)"
+    else:
+        how = "no trace spacing in the headers: no vertical exaggeration, drawn to fit"
+    span = f"{samples[0]:g}-{samples[-1]:g}" + ("" if sample_unit == "samples" else f" {sample_unit}")
+    lines = f"{trace_name}s {traces[0]:g}-{traces[-1]:g}, {name} {span}"
+    caption = f"{lines}, {how}"
+    extra = f", {len({fid for fid, _ in segments})} faults" if segments else ""
+    import textwrap
+
+    heading = textwrap.fill(f"{caption}{extra}", width=max(30, int(fig_w * 11)))
+    fig.suptitle(f"{title + chr(10) if title else ''}{heading}", fontsize=10)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png")
+    return caption
+
+
+def plot_volume_registration(fixed, moving, moving_on_fixed, *, path, inline=None, xlines=None, samples=None,
+                             sample_unit="samples", inline_number=None, title=None, clip_percentile=99.0, dpi=110):
+    """Draw a sub-volume registration on one inline: the fixed volume, the moving volume as read (the same inline
+    index, before registration) and the moving volume resampled onto the fixed grid, side by side, and save a PNG.
+
+    Parameters
+    ----------
+    fixed, moving_on_fixed : (n_inlines, n_xlines, n_samples) array_like
+        The fixed volume and the moving one resampled onto its grid
+        (:func:`seismo3d.seismic.resample_volume` with the registration's ``transform_index``); NaN outside.
+    moving : (n_inlines', n_xlines', n_samples') array_like
+        The moving volume as read.
+    path : str or os.PathLike
+        PNG to write (atomically); its folder must exist.
+    inline : int, optional
+        Inline index drawn (default the middle one; the moving volume's is clipped to its own range).
+    xlines, samples : 1D array_like, optional
+        The fixed grid's crossline numbers and times or depths (default indices); the moving volume is drawn on
+        its own indices.
+    sample_unit : {'ms', 'm', 'ft', 'samples'}, optional
+    inline_number : float, optional
+        The fixed inline's number, for the titles (default its index).
+    title : str, optional
+    clip_percentile : float, optional
+        Amplitude colour limit, the same for the three panels: this percentile of the fixed volume's
+        ``|amplitude|``.
+    dpi : int, optional
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    InputError
+        Volumes that are not 3D, grids that do not match, an inline out of range or a missing folder.
+    """
+    from matplotlib.figure import Figure
+
+    a, b, c = (np.asarray(v, dtype=np.float32) for v in (fixed, moving, moving_on_fixed))
+    if a.ndim != 3 or b.ndim != 3 or c.shape != a.shape:
+        raise InputError(f"fixed and moving_on_fixed must be 3D volumes of one shape and moving 3D; got {a.shape}, "
+                         f"{b.shape}, {c.shape}")
+    path = Path(path)
+    if not (path.parent if str(path.parent) else Path(".")).is_dir():
+        raise InputError(f"cannot write {path}: folder {path.parent} does not exist; create it first")
+    i = a.shape[0] // 2 if inline is None else int(inline)
+    if not 0 <= i < a.shape[0]:
+        raise InputError(f"inline must be an index in [0, {a.shape[0] - 1}]; got {inline!r}")
+    xl = np.arange(a.shape[1], dtype=np.float64) if xlines is None else np.asarray(xlines, np.float64).ravel()
+    tz = np.arange(a.shape[2], dtype=np.float64) if samples is None else np.asarray(samples, np.float64).ravel()
+    clip = symmetric_clip(a, clip_percentile)
+    name = _NAMES.get(sample_unit, "sample")
+    unit = "" if sample_unit == "samples" else f" ({sample_unit})"
+    number = f"{inline_number:g}" if inline_number is not None else f"index {i}"
+    fig = Figure(figsize=(12, 4.6), dpi=dpi, layout="constrained")
+    axs = fig.subplots(1, 3)
+    style = dict(cmap="gray_r", vmin=-clip, vmax=clip, aspect="auto", interpolation="bilinear")
+    dx, dt = (abs(xl[1] - xl[0]) if xl.size > 1 else 1.0) / 2, (abs(tz[1] - tz[0]) if tz.size > 1 else 1.0) / 2
+    extent = (xl[0] - dx, xl[-1] + dx, tz[-1] + dt, tz[0] - dt)
+    axs[0].imshow(a[i].T, extent=extent, **style)
+    axs[0].set_title(f"fixed, inline {number}")
+    j = min(i, b.shape[0] - 1)
+    axs[1].imshow(b[j].T, aspect="auto", cmap="gray_r", vmin=-clip, vmax=clip, interpolation="bilinear")
+    axs[1].set_title(f"moving as read, its inline index {j}")
+    axs[1].set_xlabel("crossline index")
+    axs[1].set_ylabel("sample index")
+    im = axs[2].imshow(c[i].T, extent=extent, **style)
+    axs[2].set_title(f"moving registered onto fixed, inline {number}")
+    for ax in (axs[0], axs[2]):
+        ax.set_xlabel("crossline")
+        ax.set_ylabel(f"{name}{unit}")
+    fig.colorbar(im, ax=axs.tolist(), shrink=0.8, extend="both",
+                 label=f"amplitude (clipped at {clip_percentile:g}th pct)")
+    if title:
+        fig.suptitle(title, fontsize=10)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png")
+    return path
+
+
+def _casing():
+    from matplotlib import patheffects
+
+    return [patheffects.Stroke(linewidth=4.0, foreground="black", alpha=0.7), patheffects.Normal()]

@@ -1,0 +1,56 @@
+"""A seismic line as a section (seismo3d.viz.sections): the vertical exaggeration, labelled axes, faults as lines."""
+
+import numpy as np
+import pytest
+
+from seismo3d.errors import InputError
+from seismo3d.viz import plot_section, section_exaggeration
+
+
+@pytest.mark.parametrize("n_traces, spacing, height, expected", [
+    (601, 12.5, 6000.0, 1.0),   # Penobscot crossline 1155: 7.5 km by 6 km, never squashed below 1x
+    (400, 25.0, 1000.0, 5.0),   # 10 km by 1 km: 5.5x rounds to 5x
+    (200, 25.0, 2000.0, 1.5),   # 5 km by 2 km: 1.4x rounds to 1.5x
+    (5000, 25.0, 100.0, 20.0),  # very long and shallow: capped at 20x
+])
+def test_exaggeration_is_a_round_factor(n_traces, spacing, height, expected):
+    assert section_exaggeration(n_traces, spacing, height) == expected
+
+
+def _section():
+    """(80, 120): dipping reflectors, offset by a fault at trace 40."""
+    traces, samples = np.mgrid[0:80, 0:120].astype(float)
+    shift = np.where(traces > 40, 6.0, 0.0)
+    return np.sin(2 * np.pi * (samples - 0.2 * traces - shift) / 12.0).astype(np.float32)
+
+
+def test_section_with_faults_and_horizon(tmp_path):
+    import pyvista as pv
+    from matplotlib.image import imread
+
+    k = np.arange(10, 110, dtype=float)
+    fault = pv.PolyData(np.column_stack([40 + 0.1 * (k - 10), np.zeros_like(k), -k]),
+                        lines=np.concatenate([[k.size], np.arange(k.size)]))
+    fault.point_data["fault_id"] = np.full(k.size, 1)
+    caption = plot_section(_section(), path=tmp_path / "s.png", traces=np.arange(1000, 1080),
+                           samples=4.0 * np.arange(120), trace_name="inline", sample_unit="ms", trace_spacing=25.0,
+                           faults=fault, horizon=np.full(80, 30.0), width=6.0, dpi=100)
+    # 1975 m along, 476 ms (476 m at 2000 m/s) down: 2.3x makes it about half as tall as wide, rounded to 2x
+    assert caption == "inlines 1000-1079, time 0-476 ms, vertical exaggeration 2x (time as depth at 2000 m/s)"
+    img = (imread(tmp_path / "s.png")[..., :3] * 255).round()
+    assert img.shape[1] == 600
+    blue = (img[..., 2] > 150) & (img[..., 0] < 80)  # fault 1 in tab10 blue, a line over the section
+    yellow = (img[..., 0] > 200) & (img[..., 1] > 150) & (img[..., 2] < 80)  # the horizon
+    rows, cols = np.nonzero(blue)
+    assert blue.sum() > 100 and np.ptp(rows) > 3 * np.ptp(cols)  # a steep line, not a blob
+    assert yellow.sum() > 100
+
+
+def test_section_refuses_wrong_shapes(tmp_path):
+    with pytest.raises(InputError, match="traces and samples"):
+        plot_section(_section(), path=tmp_path / "s.png", traces=np.arange(10))
+    with pytest.raises(InputError, match="does not exist"):
+        plot_section(_section(), path=tmp_path / "nope" / "s.png")
+    with pytest.raises(InputError, match="values"):
+        plot_section(_section(), path=tmp_path / "s.png", values="velocity")
+    assert not (tmp_path / "s.png").exists()

@@ -15,13 +15,13 @@ Conventions, the same for every command:
 from __future__ import annotations
 
 import pathlib
-from enum import Enum
 from typing import Optional
 
 import numpy as np
 import typer
 
 from . import __version__
+from ._cli_choices import Endian, FaultColour, Likelihood, MatchMethod, Method, Model, Polarity, SampleUnit
 from ._cli_outputs import check_before_import
 from .jobs.outputs import output_file
 from ._cli_messages import compile_note, friendly as _friendly, log_progress_to_stderr
@@ -45,24 +45,6 @@ def _main(version: bool = typer.Option(False, "--version", callback=_version, is
                                        help="Print the version and exit.")) -> None:
     """seismo3d: fault and horizon interpretation of seismic cubes, point-cloud / RGB-D / terrain registration."""
     log_progress_to_stderr()
-
-
-class Method(str, Enum):
-    point_to_point = "point_to_point"
-    point_to_plane = "point_to_plane"
-    fused = "fused"
-
-
-class Model(str, Enum):
-    rigid = "rigid"
-    similarity = "similarity"
-    axis_scaled = "axis_scaled"
-    affine = "affine"
-
-
-class Endian(str, Enum):
-    big = "big"
-    little = "little"
 
 
 _ENDIAN_HELP = "Byte order of the SEG-Y input; default: detected from its binary header."
@@ -196,17 +178,6 @@ def _why_not_converged(job) -> str:
     return "it stopped on its iteration limit; check the overlap, or pass a closer --init"
 
 
-class SampleUnit(str, Enum):
-    ms = "ms"
-    m = "m"
-    ft = "ft"
-
-
-class Likelihood(str, Enum):
-    scan = "scan"
-    learned = "learned"
-
-
 @app.command()
 @_friendly({"sample_unit": "--sample-unit", "n_samples": "--n-samples", "ignore_geometry": "--ignore-geometry",
             "demo_seed": "--demo-seed", "sensitivity": "--sensitivity", "likelihood": "--likelihood",
@@ -303,14 +274,6 @@ def convert(
                              sample_unit=None if sample_unit is None else sample_unit.value, chunk_mb=chunk_mb,
                              overwrite=overwrite, progress=True)
     typer.echo(f"converted {input.name}: {result.summary}")
-
-
-class MatchMethod(str, Enum):
-    hog = "hog"
-    sift = "sift"
-    orb = "orb"
-    akaze = "akaze"
-    brisk = "brisk"
 
 
 @app.command()
@@ -478,13 +441,6 @@ def _frames_tracked(summary: dict, max_frames: int | None) -> str:
     return f"{tracked} of the first {max_frames} frames tracked (--max-frames {max_frames}; the sequence has {total})"
 
 
-class Polarity(str, Enum):
-    peak = "peak"
-    trough = "trough"
-    zero_rising = "zero_rising"
-    zero_falling = "zero_falling"
-
-
 @app.command()
 @_friendly({"polarity": "--polarity", "surface": "--surface", "sample_unit": "--sample-unit",
             "ignore_geometry": "--ignore-geometry"})
@@ -550,11 +506,6 @@ def horizon(
         typer.echo(f"surface -> {job.surface}")
     for path in (job.maps or {}).values():
         typer.echo(f"map -> {path}")
-
-
-class FaultColour(str, Enum):
-    fault_id = "fault_id"
-    throw = "throw"
 
 
 @app.command()

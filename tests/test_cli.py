@@ -213,10 +213,10 @@ def test_faults_on_real_2d_lines_without_flags(data_dir, tmp_path, name, trace_l
     # the points' trace columns say what they hold: the trace index of a trace list, the survey's numbers otherwise
     points = _rows(tmp_path / "out" / "fault_points.csv")
     if trace_list:
-        assert list(points[0])[:2] == ["trace", "time_or_depth"]
+        assert list(points[0])[:5] == ["trace", "x", "y", "xy_unit", "time_or_depth"]  # CDP X/Y of the trace
         assert {int(r["trace"]) for r in points} <= set(range(225))
     else:
-        assert list(points[0])[:3] == ["inline", "crossline", "time_or_depth"]
+        assert list(points[0])[:6] == ["inline", "crossline", "x", "y", "xy_unit", "time_or_depth"]
         assert {int(r["crossline"]) for r in points} == {1155}
         assert {int(r["inline"]) for r in points} <= set(range(1000, 1601))
     with segyio.open(str(tmp_path / "out" / "fault_likelihood.sgy"), ignore_geometry=True) as out, \

@@ -9,9 +9,7 @@ Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.
 
 from __future__ import annotations
 
-import csv
 import shutil
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -21,18 +19,16 @@ import segyio
 from .._atomic import SetAside, StagedFolder, atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
-from ..errors import EarlierStoresError, InputError, Seismo3dWarning
-from ..seismic.blocks.memory import fits_in_memory, in_memory_bytes, parse_memory_limit, resident_memory, size_text
+from ..errors import EarlierStoresError, InputError
+from ..seismic.blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory, size_text
 from ..seismic.faults.blocks.cube_run import LIKELIHOOD_STORE, SURFACES_STORE
 from ..seismic.blocks.options import BlockRunOptions
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
 from ..seismic.faults.pipeline import trace_faults
-from ..seismic.io.lazy import open_lazy
-from ..seismic.io.segy import open_segy
 from ..seismic.io.writer import write_like, write_like_blocks
+from .fault_inputs import FaultsInput, LazyInput, lazy_if_too_large, read_input, write_demo_input
 from .fault_tables import write_points, write_summary
-from .inputs import read_seismic
 from .interchange import FAULT_INTERCHANGE_FILES, fault_coordinates, fault_interchange_steps
 from .outputs import check_outputs, output_folder
 from .runinfo import RUN_JSON, RunRecord
@@ -44,9 +40,6 @@ __all__ = ["FaultsJobResult", "RESULTS", "run_faults_job"]
 RESULTS = tuple(f"fault_{name}.{ext}" for ext in ("sgy", "npy") for name in ("likelihood", "strike", "dip", "votes")) + (
     "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "demo_seismic.sgy", "demo_truth.csv",
     RUN_JSON) + FAULT_INTERCHANGE_FILES
-
-_DEMO_SHAPE = (128, 128, 128)
-_DEMO_DT_MS = 4.0
 
 
 @dataclass(frozen=True)
@@ -78,104 +71,10 @@ class FaultsJobResult:
 
 
 # --------------------------------------------------------------------------------------------------------------------
-# inputs
+# the job: outputs (its inputs: seismo3d.jobs.fault_inputs)
 
 
-@dataclass(frozen=True)
-class _Input:
-    """What the job read: the array it traces and how to label and write results."""
-
-    data: np.ndarray  # (n_il, n_xl, ns) 3D or (n_traces, ns) 2D
-    name: str
-    segy_path: Path | None  # template for SEG-Y outputs
-    segy_shape: tuple | None  # the template's grid shape (cube.shape) to write 2D results back into
-    inline: np.ndarray  # inline number per inline (3D) or per trace (2D; the trace index for raw sections)
-    xline: np.ndarray | None  # crossline number per crossline (3D) or per trace (2D); None for raw sections
-    samples: np.ndarray  # (ns,) sample positions in `unit` (sample index for 'samples')
-    unit: str
-    trace_axis: str = "trace"  # 2D: what labels the traces in pictures: 'inline', 'crossline' or 'trace' (index)
-    sorting: str | None = None  # SEG-Y trace order of a grid: 'inline' or 'crossline'
-
-    def file_order(self, values: np.ndarray) -> np.ndarray:
-        """(n_traces, n_samples) of an array shaped like ``data``, in the SEG-Y file's trace order."""
-        ns = values.shape[-1]
-        if self.segy_shape is None:  # trace list: already in file order (contiguous float32 for segyio)
-            return np.ascontiguousarray(values.reshape(-1, ns), dtype=np.float32)
-        grid = values.reshape(self.segy_shape)
-        if self.sorting == "crossline":
-            grid = np.swapaxes(grid, 0, 1)
-        return np.ascontiguousarray(grid, dtype=np.float32).reshape(-1, ns)
-
-    @property
-    def axes(self) -> tuple:
-        """Annotation of each array axis: (inlines, crosslines, samples) in 3D, (trace labels, samples) in 2D."""
-        if self.data.ndim == 3:
-            return (self.inline, self.xline, self.samples)
-        lateral = {"inline": self.inline, "crossline": self.xline}.get(self.trace_axis)
-        return (np.arange(self.data.shape[0]) if lateral is None else lateral, self.samples)
-
-    @property
-    def labels(self) -> tuple:
-        """Axis names for pictures."""
-        vertical = {"samples": "sample", "ms": "time (ms)", "m": "depth (m)", "ft": "depth (ft)"}[self.unit]
-        if self.data.ndim == 3:
-            return ("inline", "crossline", vertical)
-        return (self.trace_axis, vertical)
-
-
-def _read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, endian=None) -> _Input:
-    """The input through the jobs' one reader (:func:`~seismo3d.jobs.inputs.read_seismic`), labelled for the
-    outputs."""
-    seismic = read_seismic(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
-                           n_samples=n_samples, endian=endian)
-    path, data, samples, unit = seismic.path, seismic.data, seismic.samples, seismic.sample_unit
-    if not seismic.is_segy:  # .npy, .f32be: traces labelled by their index
-        idx = [np.arange(n, dtype=np.int64) for n in data.shape]
-        return _Input(np.asarray(data), path.stem, None, None, idx[0], idx[1] if data.ndim == 3 else None, samples,
-                      unit)
-    if seismic.kind == "trace list":  # label traces with their header inline / crossline numbers, if any
-        il, xl = seismic.trace_inlines.astype(np.int64), seismic.trace_xlines.astype(np.int64)
-        if np.all(il == il[0]) and np.all(xl == xl[0]):  # no numbers there: the trace index
-            il, xl = np.arange(il.size, dtype=np.int64), None
-        return _Input(data, path.stem, path, None, il, xl, samples, unit, "trace")
-    LOGGER.info("%s: %s, %d samples of %g %s, %s, %s-endian", path.name, seismic.description, samples.size,
-                seismic.sample_interval, unit, seismic.format_name, seismic.endian)
-    il, xl = seismic.inlines.astype(np.int64), seismic.xlines.astype(np.int64)
-    shape, sorting = seismic.grid_shape, seismic.sorting
-    if seismic.kind == "cube":
-        return _Input(data, path.stem, path, shape, il, xl, samples, unit, "trace", sorting)
-    if shape[1] == 1:  # a line along inlines (one crossline), e.g. penobscot_xl1155
-        return _Input(data[:, 0, :], path.stem, path, shape, il, np.full(il.size, xl[0]), samples, unit, "inline",
-                      sorting)
-    return _Input(data[0], path.stem, path, shape, np.full(xl.size, il[0]), xl, samples, unit, "crossline", sorting)
-
-
-def _demo_input(out_dir: Path, seed) -> tuple[Path, Path]:
-    """Write a synthetic cube as SEG-Y (4 ms, inlines / crosslines 1..128) and its true faults (CSV) into ``out_dir``;
-    the two files' paths (the cube is then read like any SEG-Y input)."""
-    from ..data.synthetic import synthetic_cube  # 0.5 s of imports (the data package): only for --demo
-
-    syn = synthetic_cube(_DEMO_SHAPE, seed=seed)
-    path = out_dir / "demo_seismic.sgy"
-    with atomic_path(path) as tmp:
-        segyio.tools.from_array3D(str(tmp), syn.cube, format=5, dt=int(_DEMO_DT_MS * 1000))
-    truth = out_dir / "demo_truth.csv"
-    with atomic_path(truth) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["id", "kind", "strike_deg", "dip_deg", "throw_samples", "throw_ms", "throw_gradient"])
-        for f in syn.faults:
-            signed = f.throw_samples if f.kind == "normal" else -f.throw_samples  # + = hanging wall down
-            w.writerow([f.id, f.kind, f"{f.strike_deg:.1f}", f"{f.dip_deg:.1f}", f"{signed:.5g}",
-                        f"{signed * _DEMO_DT_MS:.5g}", f"{f.throw_gradient:.4g}"])
-    del syn
-    return path, truth
-
-
-# --------------------------------------------------------------------------------------------------------------------
-# the job: outputs
-
-
-def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, like=None, iline, xline,
+def _write_volume(inp: FaultsInput, out_dir: Path, stem: str, values: np.ndarray, *, like=None, iline, xline,
                   ignore_geometry, endian=None) -> Path:
     """SEG-Y with the input's headers for a SEG-Y input, .npy otherwise.
 
@@ -201,63 +100,6 @@ def _write_volume(inp: _Input, out_dir: Path, stem: str, values: np.ndarray, *, 
         with open(tmp, "wb") as fh:
             np.save(fh, np.asarray(values, dtype=np.float32), allow_pickle=False)
     return out
-
-
-@dataclass(frozen=True)
-class LazyInput:
-    """A 3D input read block by block: its lazy amplitudes and what labels them."""
-
-    data: object  # (n_il, n_xl, ns) float32 dask array, chunks of whole traces
-    name: str
-    inline: np.ndarray
-    xline: np.ndarray
-    samples: np.ndarray  # in `unit` (sample index for 'samples')
-    unit: str  # 'ms', 'm', 'ft' or 'samples'
-    segy: dict | None = None  # a SEG-Y input: template path and how to open it, for SEG-Y outputs
-
-    @property
-    def coords(self) -> dict:
-        """Coordinates for the output Zarr group."""
-        return {"inline": self.inline, "crossline": self.xline, "sample": self.samples, "sample_unit": self.unit}
-
-
-def _lazy_if_too_large(path, limit: int, held: int, *, iline, xline, sample_unit, endian) -> LazyInput | None:
-    """The input read lazily when it is a Zarr store, or a 3D SEG-Y cube or ``.npy`` array whose in-memory run does
-    not fit ``limit`` beside the ``held`` bytes of the process (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`);
-    else None (the in-memory run)."""
-
-    if path is None:
-        return None
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix == ".f32be" or not path.exists():
-        return None  # 2D sections; a missing file is reported by _read_input
-    if suffix == ".npy":
-        try:
-            arr = np.load(path, allow_pickle=False, mmap_mode="r")
-        except (ValueError, OSError):
-            return None  # _read_input says why
-        if arr.ndim != 3 or fits_in_memory(arr.shape, limit, held=held):
-            return None
-        if sample_unit is not None:
-            raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
-                             "in samples")
-        import dask.array as da
-
-        idx = [np.arange(n, dtype=np.int64) for n in arr.shape]
-        data = da.from_array(arr, chunks=(_TILE, _TILE, -1))
-        return LazyInput(data.astype(np.float32), path.stem, idx[0], idx[1], idx[2].astype(np.float64), "samples")
-    if not path.is_dir():
-        with warnings.catch_warnings():  # only the size is wanted here: the reading that follows warns, once
-            warnings.simplefilter("ignore", Seismo3dWarning)
-            cube = open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
-        with cube:
-            if not cube.is_3d or cube.inlines is None or fits_in_memory(cube.shape, limit, held=held):
-                return None
-    lazy = open_lazy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian, tile=_TILE)
-    segy = None if path.is_dir() else {"template_path": path, "iline": iline, "xline": xline, "endian": endian}
-    return LazyInput(lazy.data, path.stem if path.is_file() else path.name.split(".")[0], np.asarray(lazy.inlines),
-                     np.asarray(lazy.xlines), np.asarray(lazy.samples, dtype=np.float64), lazy.sample_unit, segy)
 
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
@@ -463,11 +305,11 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     written = {}
     if demo:
         with record.stage("make the demo cube"):
-            inp, written["truth"] = _demo_input(files, demo_seed)
+            inp, written["truth"] = write_demo_input(files, demo_seed)
         iline, xline, ignore_geometry, endian, sample_unit, n_samples = 189, 193, False, None, "ms", None
         input_path = written["input"] = inp
     with record.stage("read input"):
-        lazy = None if ignore_geometry else _lazy_if_too_large(input_path, limit, held, iline=iline, xline=xline,
+        lazy = None if ignore_geometry else lazy_if_too_large(input_path, limit, held, iline=iline, xline=xline,
                                                                sample_unit=sample_unit, endian=endian)
     if lazy is not None:
         _say_how_it_runs(lazy.name, tuple(lazy.data.shape), limit, held, by_blocks=True)
@@ -475,7 +317,7 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
                                     options=options, progress=progress, summary=summary, aside=aside, record=record))
         return written
     with record.stage("read input"):
-        inp = _read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
+        inp = read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
                           sample_unit=sample_unit, n_samples=n_samples, endian=endian)
     _say_how_it_runs(inp.name, inp.data.shape, limit, held, by_blocks=False)
     dt = float(inp.samples[1] - inp.samples[0]) if inp.samples.size > 1 else 1.0
@@ -516,9 +358,10 @@ def _say_how_it_runs(name: str, shape: tuple, limit: int, held: int, *, by_block
                     size_text(limit))
 
 
-def _surface_steps(inp: _Input, result: FaultInterpretation, out_dir: Path, summary: list, coords) -> list:
+def _surface_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path, summary: list, coords) -> list:
     """The writers of the fault surfaces, points, summary (its rows appended to ``summary``) and picture."""
-    from ..viz.faults import fault_surfaces, plot_fault_slices, save_polydata
+    from ..viz.fault_meshes import fault_surfaces, save_polydata
+    from ..viz.faults import plot_fault_slices
 
     axes = inp.axes
     return [
@@ -550,8 +393,6 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
 # --------------------------------------------------------------------------------------------------------------------
 # cubes larger than memory
 
-_TILE = 32  # traces per side of the lazy input's chunks: a block of the chunked run reads only the tiles around it
-
 
 def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: int, scheduler,
                  options: FaultTracingOptions, progress, summary: list, aside: SetAside | None,
@@ -575,7 +416,7 @@ def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: i
         raise
     record.stage_seconds.update(result.step_seconds)
     written = {"likelihood": result.stores["likelihood"], "surfaces_zarr": result.stores["surfaces"]}
-    inp = _Input(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
+    inp = FaultsInput(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
     coords = fault_coordinates(inp, **{k: v for k, v in (lazy.segy or {}).items() if k != "template_path"},
                                segy_path=(lazy.segy or {}).get("template_path"))
     with record.stage("write outputs"):

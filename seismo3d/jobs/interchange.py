@@ -46,7 +46,7 @@ def fault_coordinates(inp, *, segy_path=None, iline: int = 189, xline: int = 193
     ----------
     inp : the faults job's input
         ``data`` (3D cube or 2D section), ``segy_path`` (None for ``.npy`` / ``.f32be`` / Zarr inputs),
-        ``segy_shape``, ``inline``, ``xline`` (:class:`seismo3d.jobs.faults._Input`).
+        ``segy_shape``, ``inline``, ``xline`` (:class:`seismo3d.jobs.fault_inputs.FaultsInput`).
     segy_path : path-like, optional
         The SEG-Y file the input was read from, when ``inp`` does not name it (a cube read block by block).
     iline, xline, ignore_geometry, endian
@@ -81,7 +81,7 @@ def _sticks(inp, result, coords: SurveyCoordinates) -> FaultSticks:
 
 def _fault_tsurf(inp, result, coords: SurveyCoordinates, path: Path) -> Path:
     """The triangulated faults of faults.vtp (:func:`seismo3d.viz.fault_surfaces`) in map coordinates."""
-    from ..viz.faults import fault_surfaces
+    from ..viz.fault_meshes import fault_surfaces
 
     mesh = fault_surfaces(result.faults, result.throws)
     points = np.asarray(mesh.points, dtype=np.float64)

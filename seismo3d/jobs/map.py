@@ -80,7 +80,7 @@ def write_ply(path, mesh) -> None:
     """
     import pyvista as pv
 
-    from ..viz.faults import save_polydata
+    from ..viz.fault_meshes import save_polydata
 
     faces = np.asarray(mesh.faces, np.int64).reshape(-1, 3)
     poly = pv.PolyData(np.asarray(mesh.vertices, np.float32).reshape(-1, 3),

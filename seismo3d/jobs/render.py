@@ -143,7 +143,7 @@ def _run_input_to_draw(run: _EarlierRun) -> Path | None:
 def _read_segy(path: Path, vertical_exaggeration, segy_options=None):
     """The amplitudes as (n_inlines, n_xlines, n_samples) and their geometry; a trace list as one section of
     (n_traces, 1, n_samples), its traces numbered from 1 in file order (:func:`~seismo3d.jobs.inputs.read_seismic`)."""
-    from ..viz.seismic import cube_geometry
+    from ..viz.geometry import cube_geometry
 
     seismic = read_seismic(path, **(segy_options or {}), coordinates=True, arrays=False)
     if seismic.kind != "trace list":
@@ -171,7 +171,7 @@ def _horizon_grid(path: Path, geometry):
     """(n_inlines, n_xlines) fractional sample indices of an "inline xline time" text file (or "trace time" rows of
     a trace list, on a (n_traces, 1) grid) on ``geometry``'s grid (or on the grid of its own lines when ``geometry``
     is None), and the geometry."""
-    from ..viz.seismic import cube_geometry
+    from ..viz.geometry import cube_geometry
 
     try:
         rows = np.loadtxt(path, ndmin=2, comments="#", delimiter="," if path.suffix.lower() == ".csv" else None)
@@ -371,7 +371,8 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
     record of the faults or horizon run that wrote the input)."""
     import pyvista as pv
 
-    from ..viz.seismic import cube_geometry, show_seismic
+    from ..viz.geometry import cube_geometry
+    from ..viz.seismic import show_seismic
 
     if kind == "map":
         return _render_map(path, output, window_size=window_size)
@@ -419,17 +420,20 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
                                      samples=geometry.samples, sample_unit=geometry.sample_unit,
                                      vertical_exaggeration=vertical_exaggeration)
         extra = dict(horizons=[times])
-    if sticks is not None:  # people's fault sticks over the seismic (drawn as the faults of the scene)
+    slices, camera = _slices_for(geometry.shape)
+    if sticks is not None:  # people's fault sticks over the seismic
         from .interchange import sticks_mesh
 
         mesh = sticks_mesh(sticks, geometry, path if kind == "segy" else under, segy_options=under_options)
         n_faults += int(np.unique(mesh.point_data["fault_id"]).size)
-        if "faults" in extra:  # the sticks' faults numbered after the traced ones, so that their colours differ
-            traced = extra["faults"]
-            mesh.point_data["fault_id"] += int(traced.point_data["fault_id"].max()) if traced.n_points else 0
-            mesh = traced.merge(mesh)
-        extra["faults"] = mesh
-    slices, camera = _slices_for(geometry.shape)
+        if camera == "section":  # a line: drawn in a style of their own beside the traced faults
+            extra["sticks"] = mesh
+        else:  # a 3D scene: drawn as faults, numbered after the traced ones so that their colours differ
+            if "faults" in extra:
+                traced = extra["faults"]
+                mesh.point_data["fault_id"] += int(traced.point_data["fault_id"].max()) if traced.n_points else 0
+                mesh = traced.merge(mesh)
+            extra["faults"] = mesh
     if camera == "section":  # one line: a section with its numbers and times on labelled axes (matplotlib)
         caption = _render_section(cube, geometry, output, extra=extra, vertical_exaggeration=vertical_exaggeration,
                                   window_size=window_size)
@@ -459,5 +463,6 @@ def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exagg
     dpi = 120
     return plot_section(section, path=output, traces=traces, samples=geometry.samples, trace_name=name,
                         sample_unit=geometry.sample_unit, trace_spacing=spacing,
-                        vertical_exaggeration=vertical_exaggeration, faults=extra.get("faults"), horizon=horizon,
-                        values=values, width=window_size[0] / dpi, dpi=dpi)
+                        vertical_exaggeration=vertical_exaggeration, faults=extra.get("faults"),
+                        sticks=extra.get("sticks"), horizon=horizon, values=values, width=window_size[0] / dpi,
+                        dpi=dpi)

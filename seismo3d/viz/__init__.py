@@ -21,14 +21,14 @@
 """
 
 from .clouds import plot_matches, show_point_clouds
-from .faults import fault_surfaces, plot_fault_slices, save_polydata, show_faults
+from .fault_meshes import fault_surfaces, save_polydata
+from .faults import plot_fault_slices, show_faults
 from .horizons import horizon_surface, plot_horizon_section
 from .maps import render_map, show_map
 from .plotting import finish_scene, jupyter_backend, new_plotter, symmetric_clip
 from .sections import plot_section, plot_volume_registration, section_exaggeration
-from .seismic import (
-    CubeGeometry, cube_geometry, geometry_of_segy, grid_index, place_index_mesh, seismic_grid, show_seismic,
-)
+from .geometry import CubeGeometry, cube_geometry, geometry_of_segy, grid_index, place_index_mesh, seismic_grid
+from .seismic import show_seismic
 from .terrain import plot_lineament_map, plot_rose
 from .terrain3d import show_terrain
 

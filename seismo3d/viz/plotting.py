@@ -22,7 +22,7 @@ import numpy as np
 from .._atomic import atomic_path
 from ..errors import InputError
 
-__all__ = ["jupyter_backend", "new_plotter", "finish_scene", "symmetric_clip", "bar_below"]
+__all__ = ["jupyter_backend", "new_plotter", "finish_scene", "symmetric_clip", "bar_below", "axis_values"]
 
 _WINDOW_ENV = "VTK_DEFAULT_OPENGL_WINDOW"
 
@@ -150,3 +150,20 @@ def bar_below(title: str, **options) -> dict:
     dict
     """
     return {"title": f"{title}\n", **options}
+
+
+def axis_values(axis: np.ndarray, index) -> np.ndarray:
+    """The values of an axis (inline numbers, times, ...) at fractional indices, linear between its samples.
+
+    Parameters
+    ----------
+    axis : (n,) ndarray
+        The axis' values at indices 0 .. n - 1.
+    index : array_like of float
+        Fractional indices.
+
+    Returns
+    -------
+    float64 ndarray, the shape of ``index``
+    """
+    return np.interp(np.asarray(index, dtype=np.float64), np.arange(axis.size), axis)

@@ -82,8 +82,8 @@ def _smooth(points: np.ndarray, window: int = 9) -> np.ndarray:
 
 
 def plot_section(section, *, path, traces=None, samples=None, trace_name="trace", sample_unit="samples",
-                 trace_spacing=None, velocity=2000.0, vertical_exaggeration=None, faults=None, horizon=None,
-                 title=None, clip_percentile=99.0, values="amplitude", width=11.0, dpi=120):
+                 trace_spacing=None, velocity=2000.0, vertical_exaggeration=None, faults=None, sticks=None,
+                 horizon=None, title=None, clip_percentile=99.0, values="amplitude", width=11.0, dpi=120):
     """Draw one seismic line with labelled axes, a stated vertical exaggeration, faults as lines and a horizon, and
     save a PNG.
 
@@ -111,6 +111,10 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     faults : pyvista.PolyData, optional
         2D fault curves in index space (``faults.vtp`` of ``seismo3d faults`` on a line), drawn as lines coloured
         by fault id over a dark casing.
+    sticks : pyvista.PolyData, optional
+        People's fault sticks in the same index space (:func:`seismo3d.jobs.interchange.sticks_mesh`), drawn in one
+        style of their own (white dashes over a dark casing, named in a legend) so that they are told apart from the
+        traced faults.
     horizon : (n_traces,) array_like of float, optional
         Horizon in fractional samples (NaN where empty), drawn as a curve.
     title : str, optional
@@ -198,6 +202,20 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         colours = [tab10((fid - 1) % 10) for fid, _ in segments]
         ax.add_collection(LineCollection(lines, colors="black", linewidths=3.4, alpha=0.6, zorder=3))
         ax.add_collection(LineCollection(lines, colors=colours, linewidths=2.0, zorder=4))
+    people = _fault_segments(sticks, n_tr)
+    if people:
+        from matplotlib.lines import Line2D
+
+        lines = [np.column_stack([np.interp(s[:, 0], np.arange(n_tr), traces),
+                                  np.interp(s[:, 1], np.arange(n_s), samples)]) for _, s in people]
+        ax.add_collection(LineCollection(lines, colors="black", linewidths=3.6, alpha=0.7, zorder=5))
+        ax.add_collection(LineCollection(lines, colors="white", linewidths=1.8, linestyles=(0, (4, 2)), zorder=6))
+        handles = [Line2D([], [], color="white", lw=1.8, ls=(0, (4, 2)), path_effects=_casing(),
+                          label=f"people's fault sticks ({len(people)})")]
+        if segments:
+            handles.append(Line2D([], [], color=colours[0], lw=2.0, path_effects=_casing(),
+                                  label=f"traced faults ({len({fid for fid, _ in segments})})"))
+        fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=9, frameon=False)  # hides none of it
     if horizon is not None:
         h = np.asarray(horizon, dtype=np.float64).ravel()
         if h.size != n_tr:
@@ -220,6 +238,7 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     lines = f"{trace_name}s {traces[0]:g}-{traces[-1]:g}, {name} {span}"
     caption = f"{lines}, {how}"
     extra = f", {len({fid for fid, _ in segments})} faults" if segments else ""
+    extra += f", {len(people)} people's fault sticks" if people else ""
     import textwrap
 
     heading = textwrap.fill(f"{caption}{extra}", width=max(30, int(fig_w * 11)))

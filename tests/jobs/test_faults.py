@@ -317,7 +317,8 @@ def test_npy_section_with_nan_and_dead_traces(section, tmp_path):
     assert np.all(np.isfinite(fl))
     assert np.all(fl[37:44] == 0) and np.all(fl[97:106] == 0) and np.all(fl[:, :18] == 0)
     points = _rows(written["points"])
-    assert list(points[0])[:2] == ["trace", "time_or_depth"]  # a 2D .npy: traces by index, no crossline column
+    # a 2D .npy: traces by index (no crossline column); no coordinates, which xy_unit says
+    assert list(points[0])[:5] == ["trace", "x", "y", "xy_unit", "time_or_depth"]
     tr = np.array([int(r["trace"]) for r in points])
     assert not np.any((tr >= 37) & (tr <= 43)) and not np.any((tr >= 97) & (tr <= 105))
 
@@ -331,7 +332,7 @@ def test_no_faults(tmp_path):
     np.save(src, layers)
     written = run_faults_job(src, tmp_path / "out", progress=False).written
     assert len(_rows(written["summary"])) == 0 and len(_rows(written["points"])) == 0
-    assert Path(written["points"]).read_text().startswith("inline,crossline,x,y,xy_unit,time_or_depth,fault_id,throw_samples")
+    assert Path(written["points"]).read_text().startswith("trace,x,y,xy_unit,time_or_depth,fault_id,throw_samples")
     assert pv.read(written["surfaces"]).n_points == 0
     assert np.load(written["likelihood"]).max() < 0.1
     assert Path(written["figure"]).stat().st_size > 1000

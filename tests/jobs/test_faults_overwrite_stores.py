@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 import zarr
 
+import seismo3d.jobs.fault_inputs as fault_inputs
 import seismo3d.jobs.faults as job
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
@@ -20,7 +21,7 @@ STORES = ("fault_likelihood.zarr", "fault_surfaces.zarr")
 
 @pytest.fixture
 def blocks(monkeypatch):
-    monkeypatch.setattr(job, "fits_in_memory", lambda *args, **kwargs: False)
+    monkeypatch.setattr(fault_inputs, "fits_in_memory", lambda *args, **kwargs: False)  # the run by blocks
 
 
 @pytest.fixture(scope="module")

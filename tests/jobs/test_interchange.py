@@ -213,7 +213,7 @@ def test_render_gsb_sticks_over_their_line(data_dir, tmp_path):
     job = run_render_job(segy, tmp_path / "gsb.png", sticks=sticks, window_size=(800, 500))
     assert job.n_faults == 13 and job.picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     from seismo3d.jobs.interchange import sticks_mesh
-    from seismo3d.viz.seismic import cube_geometry
+    from seismo3d.viz.geometry import cube_geometry
 
     geometry = cube_geometry((484, 1, 76), inlines=np.arange(1565, 2532, 2), xlines=[2800],
                              samples=1000.0 + 4.0 * np.arange(76), sample_unit="ms")
@@ -257,7 +257,7 @@ def test_cli_maps_seed_file_and_sticks(data_dir, tmp_path):
 @pytest.mark.slow  # the faults job on the 225-trace arbitrary line: 3-4 s
 def test_arbitrary_line_fault_points_at_their_traces(data_dir, tmp_path):
     """A trace list (the Volve arbitrary line, no inline / crossline numbers): each fault point at the CDP X/Y of its
-    trace (0-based trace index in `inline`, as fault_points.csv labels it), in the CSV and the sticks."""
+    trace (the 0-based trace index in fault_points.csv's `trace` column), in the CSV and the sticks."""
     from seismo3d.data import fetch
     from seismo3d.jobs.faults import run_faults_job
 
@@ -268,9 +268,9 @@ def test_arbitrary_line_fault_points_at_their_traces(data_dir, tmp_path):
         assert set(f.attributes(71)[:]) == {-100}
     job = run_faults_job(src, tmp_path / "out", progress=False)
     points = _rows(job.written["points"])
-    assert points and all(r["crossline"] == "" for r in points)
+    assert points and "inline" not in points[0] and "crossline" not in points[0]  # one `trace` column
     for r in points:
-        t = int(r["inline"])
+        t = int(r["trace"])
         assert abs(float(r["x"]) - x[t]) < 5e-4 and abs(float(r["y"]) - y[t]) < 5e-4
     sticks = read_fault_sticks(job.written["sticks_opendtect"])
     t = sticks.inline.astype(int)

@@ -67,7 +67,7 @@ def test_segy_cube_is_placed_by_its_cdp_coordinates(tmp_path):
 
 def test_geometry_of_the_segy_headers(tmp_path):
     from seismo3d.seismic import open_segy
-    from seismo3d.viz.seismic import geometry_of_segy
+    from seismo3d.viz.geometry import geometry_of_segy
 
     _write_segy(tmp_path / "cube.sgy", _cube())
     with open_segy(tmp_path / "cube.sgy") as segy:

@@ -46,6 +46,39 @@ def test_section_with_faults_and_horizon(tmp_path):
     assert yellow.sum() > 100
 
 
+def test_people_sticks_are_drawn_apart_from_the_traced_faults(tmp_path):
+    """People's fault sticks: white dashes over a dark casing (in a legend below the section), where the traced
+    faults keep their colours; the title counts both."""
+    import pyvista as pv
+    from matplotlib.image import imread
+
+    def line(x0, fid):
+        k = np.arange(10, 110, dtype=float)
+        mesh = pv.PolyData(np.column_stack([x0 + 0.1 * (k - 10), np.zeros_like(k), -k]),
+                           lines=np.concatenate([[k.size], np.arange(k.size)]))
+        mesh.point_data["fault_id"] = np.full(k.size, fid)
+        return mesh
+
+    section = _section()
+    kw = dict(traces=np.arange(1000, 1080), samples=4.0 * np.arange(120), trace_name="inline", sample_unit="ms",
+              trace_spacing=25.0, faults=line(20, 1), width=6.0, dpi=100)
+    plot_section(section, path=tmp_path / "faults.png", **kw)
+    plot_section(section, path=tmp_path / "both.png", sticks=line(60, 1), **kw)
+    faults, both = ((imread(tmp_path / n)[..., :3] * 255).round() for n in ("faults.png", "both.png"))
+    assert faults.shape == both.shape
+    rows = slice(int(0.15 * both.shape[0]), int(0.75 * both.shape[0]))  # the section: the title above, the legend below
+    changed = np.abs(both[rows] - faults[rows]).max(axis=-1) > 60
+    white = changed & (both[rows].min(axis=-1) > 230)
+    blue = lambda img: (img[..., 2] > 150) & (img[..., 0] < 80)  # the traced fault in tab10 blue
+    _, cols = np.nonzero(changed)
+    _, fault_cols = np.nonzero(blue(faults[rows]))
+    assert white.sum() > 100 and white.sum() > 0.15 * changed.sum()  # white dashes on a twice as wide dark casing
+    assert np.percentile(cols, 5) > np.percentile(fault_cols, 95)  # drawn where the sticks are, right of the fault
+    assert abs(int(blue(both[rows]).sum()) - int(blue(faults[rows]).sum())) < 0.1 * blue(faults[rows]).sum()
+    legend = np.abs(both[int(0.8 * both.shape[0]):] - faults[int(0.8 * faults.shape[0]):]).max(axis=-1) > 60
+    assert legend.sum() > 50  # the legend below the section names them
+
+
 def test_section_refuses_wrong_shapes(tmp_path):
     with pytest.raises(InputError, match="traces and samples"):
         plot_section(_section(), path=tmp_path / "s.png", traces=np.arange(10))

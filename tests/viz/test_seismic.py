@@ -6,7 +6,8 @@ from numpy.testing import assert_allclose
 
 from seismo3d.errors import InputError, Seismo3dWarning
 from seismo3d.seismic import Fault
-from seismo3d.viz.seismic import cube_geometry, grid_index, place_index_mesh, seismic_grid, show_seismic
+from seismo3d.viz.geometry import cube_geometry, grid_index, place_index_mesh, seismic_grid
+from seismo3d.viz.seismic import show_seismic
 
 SHAPE = (24, 32, 40)
 

@@ -27,7 +27,7 @@ from seismo3d.seismic.faults.blocks import learned_blocks as lb
 from seismo3d.seismic.faults.likelihood.learned import (
     LearnedOptions, amplitude_scale, fault_probability, orientation_from_likelihood,
 )
-from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions
+from seismo3d.seismic.blocks.options import ChunkOptions
 
 
 def network_blocks(opt: LearnedOptions) -> None:

@@ -144,7 +144,8 @@ def _child(case: str, args: list) -> dict:
 # ---------------------------------------------------------------------------------------------- cases (children)
 
 def case_chunked(sgy: str, out: str, limit: int, scheduler: str) -> dict:
-    from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions, chunked_fault_likelihood
+    from seismo3d.seismic.blocks.options import ChunkOptions
+    from seismo3d.seismic.faults.blocks.scan_blocks import chunked_fault_likelihood
     from seismo3d.seismic.io.lazy import open_lazy
 
     # tiles of 16 traces on the cluster: each worker plans for half the limit, and a scan strip holds a whole
@@ -177,7 +178,7 @@ def case_surfaces(sgy: str, likelihood: str, out: str, limit: int, link_limit: i
     peak resident memory of each part is sampled in this process."""
     from seismo3d.errors import InputError
     from seismo3d.seismic.faults.blocks.surface_blocks import chunked_fault_surfaces
-    from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions
+    from seismo3d.seismic.blocks.options import ChunkOptions
     from seismo3d.seismic.io.lazy import open_lazy
 
     cube = open_lazy(sgy, tile=32)
@@ -236,7 +237,8 @@ def equal(work: Path) -> None:
     import zarr
 
     from seismo3d.seismic.faults.blocks.surface_blocks import chunked_fault_surfaces
-    from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions, chunked_fault_likelihood
+    from seismo3d.seismic.blocks.options import ChunkOptions
+    from seismo3d.seismic.faults.blocks.scan_blocks import chunked_fault_likelihood
     from seismo3d.seismic.faults.result import FaultLikelihood
 
     cube = synthetic_cube((256, 256, 256), seed=0).cube.astype(np.float32)

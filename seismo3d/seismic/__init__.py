@@ -68,7 +68,8 @@ from .faults.surfaces.ridges import fault_labels
 from .faults.throw import fault_throw
 from .blocks import BlockRun, BlockRunOptions, SchedulerClient, run_block
 from .faults.blocks.learned_blocks import chunked_learned_likelihood
-from .faults.blocks.scan_blocks import ChunkedLikelihood, ChunkOptions, chunked_fault_likelihood
+from .faults.blocks.scan_blocks import ChunkedLikelihood, chunked_fault_likelihood
+from .blocks.options import ChunkOptions
 from .faults.blocks.surface_blocks import ChunkedFaults, chunked_fault_surfaces
 from .blocks.windows import CubeWindow, cube_windows
 from .horizons import (
@@ -95,7 +96,8 @@ __all__ = [
     "fault_normals", "fault_throw", "fault_throws", "fill_horizon", "horizon_errors", "open_segy",
     "read_ascii_lines", "read_section", "read_segy", "reflector_picks", "reflector_points", "register_volumes",
     "registration_errors", "reliable_throw", "resample_volume", "semblance", "structure_tensor_orientation",
-    "structure_tensor_slopes", "thin_faults", "trace_faults", "track_horizon", "volume_spacing", "write_horizon_text", "write_like",
+    "structure_tensor_slopes", "thin_faults", "trace_faults", "track_horizon", "volume_spacing", "write_horizon_text",
+    "write_like",
     # io: SEG-Y layout and geometry, reading by blocks, the Zarr store of `seismo3d convert`, writing by blocks
     "SegyLayout", "read_segy_layout", "TraceGeometry", "trace_geometry", "SegyGrid", "read_segy_block",
     "read_segy_block_headers", "inline_block_size", "SeismicZarr", "SeismicZarrWriter", "open_seismic_zarr",

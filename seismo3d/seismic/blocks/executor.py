@@ -19,12 +19,15 @@ import sys
 import time
 import uuid
 
+import numpy as np
+
 from ..._atomic import atomic_path
 from ..._progress import LOGGER, progress_steps
 from ...errors import EarlierStoresError, InputError
 
 __all__ = ["BlockRun", "SchedulerClient", "MEMORY_HEADROOM", "block_budget", "kernel_threads", "largest_block",
-           "limit_for_blocks", "release_memory", "run_block", "serial_step_blocks", "write_marker"]
+           "lateral_blocks", "limit_for_blocks", "release_memory", "run_block", "serial_step_blocks", "trace_cube",
+           "write_marker"]
 
 # Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
 # for the allocator's fragmentation and the reads in flight (a chunked likelihood run peaked at 1.54 GB under a
@@ -426,3 +429,31 @@ class BlockRun:
             scheduler = "synchronous" if self.scheduler == "synchronous" else "threads"
             with _Count():
                 return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
+
+
+def lateral_blocks(shape, size0: int, size1: int) -> list:
+    """``(i0, i1, j0, j1)`` of the blocks of ``size0`` inlines by ``size1`` crosslines (every sample) that tile a cube
+    of ``shape``, inline-major."""
+    n0, n1 = shape[:2]
+    return [(i, min(i + size0, n0), j, min(j + size1, n1)) for i in range(0, n0, size0) for j in range(0, n1, size1)]
+
+
+def trace_cube(cube, what: str):
+    """``cube`` as a dask array whose chunks hold whole traces (3D, at least 3 samples per axis).
+
+    Raises
+    ------
+    InputError
+        The cube is not 3D with at least 3 samples per axis (``what`` names the computation in the message).
+    """
+    import dask.array as da
+
+    x = cube if isinstance(cube, da.Array) else np.asarray(cube)
+    if x.ndim != 3 or min(x.shape) < 3:
+        raise InputError(f"{what} needs a 3D cube (n_inlines, n_xlines, n_samples) with at least 3 samples per axis; "
+                         f"got shape {x.shape}")
+    if not isinstance(x, da.Array):
+        x = da.from_array(x, chunks=(64, -1, -1))
+    if len(x.chunks[2]) != 1:
+        x = x.rechunk({2: -1})
+    return x

@@ -12,10 +12,11 @@ import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+from ..._validation import check_int
 from ...errors import InputError
 from .memory import fits_in_memory, parse_memory_limit
 
-__all__ = ["BlockRunOptions"]
+__all__ = ["BlockRunOptions", "ChunkOptions"]
 
 
 @dataclass(frozen=True)
@@ -105,3 +106,53 @@ class BlockRunOptions:
         if self.in_memory is False:
             return False
         return fits_in_memory(shape, self.limit)
+
+
+@dataclass(frozen=True)
+class ChunkOptions:
+    """How a chunked run splits a cube and where it runs.
+
+    Attributes
+    ----------
+    memory_limit : int, optional
+        Bytes of memory the run may use on each worker, the blocks sized to fit (default
+        :func:`default_memory_limit`: half of the machine's RAM).
+    tile : int
+        Traces per side of a Zarr chunk of the intermediate and output arrays (32); blocks are whole tiles.
+    block : int, optional
+        Traces per side of a block of the scan's semblance and decoding steps, and of both steps of the learned
+        likelihood (a multiple of ``tile``, and of 8 for the learned likelihood); default: the largest that fits
+        ``memory_limit`` with ``workers`` blocks at once, at most 256 (512 for the network's step).
+    strip : int, optional
+        Crosslines (inlines) per block of the scan of planes sheared along inlines (crosslines), whose blocks hold
+        every inline (crossline); a multiple of ``tile``. Default: the largest that fits ``memory_limit``.
+    scheduler : str, optional
+        None or ``'threads'``: dask's local threaded scheduler; ``'synchronous'``: one block at a time in this
+        thread (debugging); ``'tcp://host:port'``: the ``dask.distributed`` scheduler at that address.
+    workers : int
+        Blocks computed at once by the threaded scheduler (1 by default: each block's kernels already use every
+        core through numba).
+    """
+
+    memory_limit: int | None = None
+    tile: int = 32
+    block: int | None = None
+    strip: int | None = None
+    scheduler: str | None = None
+    workers: int = 1
+
+    def __post_init__(self):
+        check_int(self.tile, "tile", minimum=4)
+        check_int(self.workers, "workers", minimum=1)
+        for name in ("block", "strip"):
+            value = getattr(self, name)
+            if value is not None:
+                check_int(value, name, minimum=int(self.tile))
+                if int(value) % int(self.tile):
+                    raise InputError(f"{name} must be a multiple of tile ({self.tile}); got {value}")
+        if self.memory_limit is not None:
+            check_int(self.memory_limit, "memory_limit", minimum=1 << 20)
+        if self.scheduler not in (None, "threads", "synchronous") and not str(self.scheduler).startswith(
+                ("tcp://", "tls://", "inproc://", "ucx://")):
+            raise InputError(f"scheduler must be 'threads', 'synchronous' or a dask.distributed address such as "
+                             f"tcp://127.0.0.1:8786; got {self.scheduler!r}")

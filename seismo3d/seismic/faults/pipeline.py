@@ -26,9 +26,8 @@ from ..blocks.options import BlockRunOptions
 from .checks import check_amplitudes, check_size, no_coherence_message
 from .surfaces.dead_samples import CleanTraces, clean_traces, near_dead_samples
 from .options import LIKELIHOODS, FaultTracingOptions
-from .result import FaultInterpretation
+from .result import FaultInterpretation, FaultLikelihood
 from .likelihood.learned import learned_fault_likelihood
-from .result import FaultLikelihood
 from .likelihood.scan import fault_likelihood
 from .blocks.preflight import SampleOptions, judge_sample
 from .steps import faults_from_cells, surface_cells

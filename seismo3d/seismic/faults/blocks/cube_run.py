@@ -33,7 +33,8 @@ from ..surfaces.dead_samples import (
 from ..result import FaultInterpretation
 from ..options import FaultTracingOptions
 from .learned_blocks import chunked_learned_likelihood
-from .scan_blocks import ChunkOptions, chunked_fault_likelihood
+from ...blocks.options import ChunkOptions
+from .scan_blocks import chunked_fault_likelihood
 from ...blocks.memory import in_memory_bytes, resident_memory, size_text, worker_baseline
 from .surface_blocks import chunked_fault_surfaces
 from .preflight import judge_sample, minimum_memory_limit

@@ -38,16 +38,19 @@ import numpy as np
 from ...._options import resolve_options
 from ....errors import InputError
 from ...blocks.executor import (
-    SchedulerClient, block_budget, largest_block, limit_for_blocks, serial_step_blocks, write_marker,
+    SchedulerClient, block_budget, largest_block, lateral_blocks, limit_for_blocks, serial_step_blocks, trace_cube,
+    write_marker,
 )
 from ..likelihood.learned import (
     LearnedOptions, amplitude_scale, cube_directions, direction_probability, grids_mean, orientation_from_likelihood,
     scale_subsample,
 )
-from .scan_blocks import ChunkedLikelihood, ChunkOptions, LikelihoodRun, write_coords, lateral_blocks, trace_cube
+from .scan_blocks import ChunkedLikelihood, LikelihoodRun, write_coords
+from ...blocks.options import ChunkOptions
 from ...blocks.memory import default_memory_limit, worker_baseline
-from ..likelihood.network import anti_alias_sigma, from_network_grid, grid_size, to_network_grid
-from ..likelihood.network import POOLING_MULTIPLE, RECEPTIVE_HALF
+from ..likelihood.network import (
+    POOLING_MULTIPLE, RECEPTIVE_HALF, anti_alias_sigma, from_network_grid, grid_size, to_network_grid,
+)
 
 __all__ = ["chunked_learned_likelihood", "learned_block_bytes"]
 

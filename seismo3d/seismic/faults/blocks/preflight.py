@@ -33,8 +33,7 @@ from ..checks import check_amplitudes, check_size, no_coherence_message
 from ..options import FaultTracingOptions
 from .learned_blocks import learned_block_bytes
 from ..surfaces.ridges import live_likelihood, ridges
-from .surface_plan import CANDIDATE_BYTES
-from .surface_plan import smallest_block_bytes as surfaces_block_bytes
+from .surface_plan import CANDIDATE_BYTES, smallest_block_bytes as surfaces_block_bytes
 
 __all__ = ["CubeSample", "SampleOptions", "STAGE_GROWTH", "judge_sample", "minimum_memory_limit"]
 

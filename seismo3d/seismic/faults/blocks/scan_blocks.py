@@ -39,9 +39,10 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from ...._options import resolve_options
-from ...._validation import check_int
 from ....errors import InputError
-from ...blocks.executor import BlockRun, SchedulerClient, block_budget, largest_block, write_marker
+from ...blocks.executor import (BlockRun, SchedulerClient, block_budget, largest_block, lateral_blocks, trace_cube,
+                                write_marker)
+from ...blocks.options import ChunkOptions
 from ..likelihood.scan import (
     AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan, saturation_counts,
     scan_planes, scan_step, semblance_floor, semblance_halo, semblance_terms, strike_halo,
@@ -49,7 +50,7 @@ from ..likelihood.scan import (
 from ...io.zarr_store import SEISMIC_CODEC, consolidate
 from ...blocks.memory import default_memory_limit, in_memory_bytes, resident_memory, worker_baseline
 
-__all__ = ["ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
+__all__ = ["ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
            "in_memory_bytes", "resident_memory", "smallest_block_bytes", "worker_baseline"]
 
 # Bytes of working memory per sample of a block (incl. halo), from the arrays each step holds at its peak: balancing
@@ -63,56 +64,6 @@ _BALANCE_BYTES = 20
 _SEMBLANCE_BYTES = 48
 _SCAN_BYTES = 24
 _DECODE_BYTES = 24
-
-
-@dataclass(frozen=True)
-class ChunkOptions:
-    """How a chunked run splits a cube and where it runs.
-
-    Attributes
-    ----------
-    memory_limit : int, optional
-        Bytes of memory the run may use on each worker, the blocks sized to fit (default
-        :func:`default_memory_limit`: half of the machine's RAM).
-    tile : int
-        Traces per side of a Zarr chunk of the intermediate and output arrays (32); blocks are whole tiles.
-    block : int, optional
-        Traces per side of a block of the scan's semblance and decoding steps, and of both steps of the learned
-        likelihood (a multiple of ``tile``, and of 8 for the learned likelihood); default: the largest that fits
-        ``memory_limit`` with ``workers`` blocks at once, at most 256 (512 for the network's step).
-    strip : int, optional
-        Crosslines (inlines) per block of the scan of planes sheared along inlines (crosslines), whose blocks hold
-        every inline (crossline); a multiple of ``tile``. Default: the largest that fits ``memory_limit``.
-    scheduler : str, optional
-        None or ``'threads'``: dask's local threaded scheduler; ``'synchronous'``: one block at a time in this
-        thread (debugging); ``'tcp://host:port'``: the ``dask.distributed`` scheduler at that address.
-    workers : int
-        Blocks computed at once by the threaded scheduler (1 by default: each block's kernels already use every
-        core through numba).
-    """
-
-    memory_limit: int | None = None
-    tile: int = 32
-    block: int | None = None
-    strip: int | None = None
-    scheduler: str | None = None
-    workers: int = 1
-
-    def __post_init__(self):
-        check_int(self.tile, "tile", minimum=4)
-        check_int(self.workers, "workers", minimum=1)
-        for name in ("block", "strip"):
-            value = getattr(self, name)
-            if value is not None:
-                check_int(value, name, minimum=int(self.tile))
-                if int(value) % int(self.tile):
-                    raise InputError(f"{name} must be a multiple of tile ({self.tile}); got {value}")
-        if self.memory_limit is not None:
-            check_int(self.memory_limit, "memory_limit", minimum=1 << 20)
-        if self.scheduler not in (None, "threads", "synchronous") and not str(self.scheduler).startswith(
-                ("tcp://", "tls://", "inproc://", "ucx://")):
-            raise InputError(f"scheduler must be 'threads', 'synchronous' or a dask.distributed address such as "
-                             f"tcp://127.0.0.1:8786; got {self.scheduler!r}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -164,34 +115,6 @@ class _Plan:
 
     def blocks(self, size0, size1):
         return lateral_blocks(self.shape, size0, size1)
-
-
-def lateral_blocks(shape, size0: int, size1: int) -> list:
-    """``(i0, i1, j0, j1)`` of the blocks of ``size0`` inlines by ``size1`` crosslines (every sample) that tile a cube
-    of ``shape``, inline-major."""
-    n0, n1 = shape[:2]
-    return [(i, min(i + size0, n0), j, min(j + size1, n1)) for i in range(0, n0, size0) for j in range(0, n1, size1)]
-
-
-def trace_cube(cube, what: str):
-    """``cube`` as a dask array whose chunks hold whole traces (3D, at least 3 samples per axis).
-
-    Raises
-    ------
-    InputError
-        The cube is not 3D with at least 3 samples per axis (``what`` names the computation in the message).
-    """
-    import dask.array as da
-
-    x = cube if isinstance(cube, da.Array) else np.asarray(cube)
-    if x.ndim != 3 or min(x.shape) < 3:
-        raise InputError(f"{what} needs a 3D cube (n_inlines, n_xlines, n_samples) with at least 3 samples per axis; "
-                         f"got shape {x.shape}")
-    if not isinstance(x, da.Array):
-        x = da.from_array(x, chunks=(64, -1, -1))
-    if len(x.chunks[2]) != 1:
-        x = x.rechunk({2: -1})
-    return x
 
 
 def _step_bytes(shape, options: FaultScanOptions) -> tuple:

@@ -47,7 +47,7 @@ from ....errors import EarlierStoresError, InputError
 from ...blocks.executor import BlockRun, SchedulerClient, write_marker
 from ...io.zarr_store import SEISMIC_CODEC, consolidate
 from ..options import FaultTracingOptions
-from .scan_blocks import ChunkOptions
+from ...blocks.options import ChunkOptions
 from ...blocks.memory import default_memory_limit, resident_memory, worker_baseline
 from .surface_plan import (
     CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, SurfacePlan, amplitude_halo, around, plan_blocks, smallest_block_bytes,

@@ -11,7 +11,7 @@ from ....errors import InputError
 from ...attributes import structure_tensor_halo
 from ...blocks.executor import block_budget, largest_block
 from ..options import FaultTracingOptions
-from .scan_blocks import ChunkOptions
+from ...blocks.options import ChunkOptions
 from ...blocks.memory import default_memory_limit
 
 __all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "RIDGE_HALO", "SURFACE_BATCH_BYTES", "SurfacePlan", "THIN_HALO",
@@ -107,7 +107,7 @@ def smallest_block_bytes(shape, options: FaultTracingOptions | None = None, tile
         ``(n_inlines, n_xlines, n_samples)``.
     options : FaultTracingOptions, optional
     tile : int
-        Traces a side of the smallest block (:attr:`~seismo3d.seismic.faults.blocks.scan_blocks.ChunkOptions.tile`).
+        Traces a side of the smallest block (:attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile`).
 
     Returns
     -------

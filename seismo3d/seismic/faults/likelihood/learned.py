@@ -45,8 +45,7 @@ from ...._progress import progress_steps
 from ....errors import InputError, Seismo3dError
 from ..._kernels import eig_normals
 from ..result import FaultLikelihood
-from .network import from_network_grid, to_network_grid
-from .network import POOLING_MULTIPLE, FaultNetwork, normalise_section, unet_forward
+from .network import FaultNetwork, POOLING_MULTIPLE, from_network_grid, normalise_section, to_network_grid, unet_forward
 
 __all__ = ["WEIGHTS_SHA256", "LearnedOptions", "load_fault_network", "scale_subsample", "amplitude_scale",
            "fault_probability", "cube_directions", "direction_probability", "learned_fault_likelihood",

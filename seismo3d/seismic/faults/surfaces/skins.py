@@ -21,11 +21,8 @@ from scipy.spatial import cKDTree
 from ...._validation import check_positive
 from ....errors import InputError
 from ... import _kernels
-from .skin_kernels import grow_by_mean_normal
-from ..result import fault_normals
-from ..result import Fault, check_fault_arrays
-from ..result import fault_frames
-from .skin_kernels import closest_pairs
+from ..result import Fault, check_fault_arrays, fault_frames, fault_normals
+from .skin_kernels import closest_pairs, grow_by_mean_normal
 
 __all__ = ["SkinOptions", "fault_skins", "image_cells", "skins_from_cells"]
 

@@ -8,7 +8,7 @@ from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, UnsupportedDataError
 from seismo3d.seismic.faults.blocks import learned_blocks, scan_blocks as likelihood_blocks, surface_plan
 from seismo3d.seismic.faults.likelihood.scan import FaultScanOptions
-from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions
+from seismo3d.seismic.blocks.options import ChunkOptions
 from seismo3d.seismic.faults.options import FaultTracingOptions
 from seismo3d.seismic.faults.blocks.preflight import CubeSample, SampleOptions, judge_sample, minimum_memory_limit
 

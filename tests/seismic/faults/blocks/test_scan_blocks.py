@@ -17,7 +17,8 @@ import pytest
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import fault_likelihood
-from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions, chunked_fault_likelihood
+from seismo3d.seismic.blocks.options import ChunkOptions
+from seismo3d.seismic.faults.blocks.scan_blocks import chunked_fault_likelihood
 
 
 @pytest.fixture(scope="module")

@@ -15,7 +15,8 @@ import seismo3d.seismic.faults.blocks.surface_blocks as chunked_faults
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic.faults.blocks.surface_blocks import chunked_fault_surfaces
-from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions, chunked_fault_likelihood
+from seismo3d.seismic.blocks.options import ChunkOptions
+from seismo3d.seismic.faults.blocks.scan_blocks import chunked_fault_likelihood
 from seismo3d.seismic.faults.result import FaultLikelihood
 from seismo3d.seismic.faults.steps import surface_cells
 from seismo3d.seismic.faults import FaultTracingOptions, trace_faults

@@ -205,7 +205,7 @@ def test_training_smoke(tmp_path):
 ])
 def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block):
     from seismo3d.seismic.faults.blocks.learned_blocks import chunked_learned_likelihood
-    from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions
+    from seismo3d.seismic.blocks.options import ChunkOptions
 
     cube = synthetic_cube(shape, seed=2, noise=0.1).cube
     opt = LearnedOptions(resample=resample)
@@ -248,7 +248,7 @@ def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
     # the network is 2D: a block of sections needs the receptive half of halo along them only, so the plan makes
     # them as long as the limit allows (the whole width: no halo) and only then stacks sections
     from seismo3d.seismic.faults.blocks import learned_blocks
-    from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions
+    from seismo3d.seismic.blocks.options import ChunkOptions
 
     opt = LearnedOptions()
     baseline = 300 << 20

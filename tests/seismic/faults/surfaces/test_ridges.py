@@ -9,7 +9,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from numpy.testing import assert_allclose
 from scipy import ndimage as ndi
 
 from seismo3d.data.synthetic import synthetic_cube

@@ -48,7 +48,7 @@ class RenderJob:
     caption : str
         The scene's caption (lines, samples, vertical exaggeration).
     n_faults : int
-        Fault surfaces drawn (0 without).
+        Traced faults drawn (0 without).
     n_lineaments : int
         Lineaments drawn on a DEM (0 without).
     seismic : pathlib.Path or None
@@ -60,6 +60,8 @@ class RenderJob:
         Wall time of each stage (``render``: reading and drawing).
     section : bool
         A single line drawn as a section (:func:`seismo3d.viz.plot_section`) rather than a 3D scene.
+    n_stick_faults : int
+        Faults of people's fault sticks drawn (``sticks``; 0 without).
     """
 
     kind: str
@@ -71,6 +73,7 @@ class RenderJob:
     run_json: Path | None = None
     stage_seconds: dict | None = None
     section: bool = False
+    n_stick_faults: int = 0
 
 
 def _kind(path: Path) -> str:
@@ -361,7 +364,7 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     inputs.update({name: p for name, p in zip(_FOLDER_FILES, read) if p.is_file()})
     run_json = record.write(run_json_path(main), inputs=inputs, outputs={"picture": output},
                             results=dict(kind=job.kind, caption=job.caption, n_faults=job.n_faults,
-                                         n_lineaments=job.n_lineaments))
+                                         n_stick_faults=job.n_stick_faults, n_lineaments=job.n_lineaments))
     return replace(job, run_json=run_json, stage_seconds=dict(record.stage_seconds))
 
 
@@ -382,7 +385,7 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
     if seismic is not None and not Path(seismic).is_file():
         raise DataNotFoundError(f"seismic={seismic} does not exist; pass the SEG-Y cube to draw under the input")
     cube, geometry, extra = None, None, {}
-    n_faults = 0
+    n_faults = n_stick_faults = 0
     run_options = run.segy_options or segy_options  # the run's files and input, read as the run read its input
     under, under_options = (Path(seismic), segy_options) if seismic is not None else (None, run_options)
     if kind == "segy":
@@ -425,7 +428,7 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
         from .interchange import sticks_mesh
 
         mesh = sticks_mesh(sticks, geometry, path if kind == "segy" else under, segy_options=under_options)
-        n_faults += int(np.unique(mesh.point_data["fault_id"]).size)
+        n_stick_faults = int(np.unique(mesh.point_data["fault_id"]).size)
         if camera == "section":  # a line: drawn in a style of their own beside the traced faults
             extra["sticks"] = mesh
         else:  # a 3D scene: drawn as faults, numbered after the traced ones so that their colours differ
@@ -437,9 +440,11 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
     if camera == "section":  # one line: a section with its numbers and times on labelled axes (matplotlib)
         caption = _render_section(cube, geometry, output, extra=extra, vertical_exaggeration=vertical_exaggeration,
                                   window_size=window_size)
-        return RenderJob(kind=kind, picture=output, caption=caption, n_faults=n_faults, seismic=under, section=True)
+        return RenderJob(kind=kind, picture=output, caption=caption, n_faults=n_faults, seismic=under, section=True,
+                         n_stick_faults=n_stick_faults)
     show_seismic(cube, geometry, slices=slices, camera=camera, screenshot=output, window_size=window_size, **extra)
-    return RenderJob(kind=kind, picture=output, caption=geometry.describe(), n_faults=n_faults, seismic=under)
+    return RenderJob(kind=kind, picture=output, caption=geometry.describe(), n_faults=n_faults, seismic=under,
+                     n_stick_faults=n_stick_faults)
 
 
 def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exaggeration, window_size) -> str:

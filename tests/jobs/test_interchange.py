@@ -211,7 +211,8 @@ def test_render_gsb_sticks_over_their_line(data_dir, tmp_path):
     segy = fetch("seismic/gsb_fault_sticks/gsb_crl_2800.sgy")
     sticks = fetch("seismic/gsb_fault_sticks/gsb_crl_2800_faults_opendtect.dat")
     job = run_render_job(segy, tmp_path / "gsb.png", sticks=sticks, window_size=(800, 500))
-    assert job.n_faults == 13 and job.picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert job.n_faults == 0 and job.n_stick_faults == 13  # the SEG-Y line has no traced faults; 13 people's
+    assert job.picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     from seismo3d.jobs.interchange import sticks_mesh
     from seismo3d.viz.geometry import cube_geometry
 
@@ -251,6 +252,7 @@ def test_cli_maps_seed_file_and_sticks(data_dir, tmp_path):
     result = runner.invoke(app, ["render", str(segy), "--sticks", str(sticks), "-o", str(tmp_path / "g.png"),
                                  "--size", "600x400"])
     assert result.exit_code == 0, result.output
+    assert "SEG-Y line and people's fault sticks of 18 faults of gsb_crl_2600.sgy" in result.stdout
     assert (tmp_path / "g.png").stat().st_size > 1000
 
 

@@ -52,7 +52,7 @@ def fault_surfaces(faults, throws=None, *, axes=None):
     Parameters
     ----------
     faults : sequence of Fault
-        From :func:`~seismo3d.seismic.link_faults` (3D or 2D).
+        From :func:`~seismo3d.seismic.fault_skins` (3D or 2D).
     throws : sequence of FaultThrow, optional
         From :func:`~seismo3d.seismic.faults.throw.fault_throws`, matched to faults by ``fault_id``; the ``throw`` array
         is NaN without it.

@@ -268,7 +268,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
         Seismic amplitudes; a 3D dask or Zarr array is read only on the three slices drawn (their amplitudes set the
         colour limits), for cubes larger than memory.
     faults : list of Fault or array_like of the cube's shape
-        Linked faults (:func:`~seismo3d.seismic.link_faults`) or thinned faults (> 0 on faults, drawn as one
+        Linked faults (:func:`~seismo3d.seismic.fault_skins`) or thinned faults (> 0 on faults, drawn as one
         colour).
     path : str or os.PathLike
         PNG file to write (atomically); its folder must exist.

@@ -1,6 +1,6 @@
 """Fault throw by registering the reflectors on the two sides of each fault.
 
-For every fault (from :func:`seismo3d.seismic.link_faults`, or any set of fault points), the reflectors of the
+For every fault (from :func:`seismo3d.seismic.fault_skins`, or any set of fault points), the reflectors of the
 footwall and of the hanging wall are carried onto the fault plane along their slopes, giving two *fault-plane images*;
 the vertical shift that aligns them is the throw (Hale 2013, section "Fault throws"). The shift is found in two steps:
 a global search of the normalised cross-correlation over integer shifts (immune to cycle skipping on the periodic
@@ -276,7 +276,7 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
         ``seismo3d.seismic.io.lazy.open_lazy(path).data``, any numeric dtype and chunks) is never held whole: each
         patch reads only its window of traces (see :func:`fault_throws`), with the same result as in memory.
     fault : Fault or (n_points, ndim) array_like
-        A fault from :func:`seismo3d.seismic.link_faults` (any object with ``points`` (n, ndim) index
+        A fault from :func:`seismo3d.seismic.fault_skins` (any object with ``points`` (n, ndim) index
         coordinates and ``normals`` (n, ndim) unit fault normals, of either sign; ``id`` is used when present), or a
         bare array of fault points (index coordinates) whose normals are then estimated by PCA over 16 neighbours.
     orientation : ReflectorOrientation, optional
@@ -348,7 +348,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
         they are read). Or a window source of :mod:`seismo3d.seismic.blocks.windows` (e.g.
         ``LazyWindows(dask_array, tile=32, cache_mb=64)`` for another memory / speed trade-off).
     faults : sequence of Fault or of (n_points, ndim) array_like
-        Faults from :func:`seismo3d.seismic.link_faults`.
+        Faults from :func:`seismo3d.seismic.fault_skins`.
     orientation : ReflectorOrientation, optional
         As in :func:`fault_throw`; with a dask array, its slopes are sliced per window instead of recomputed.
     options, **overrides

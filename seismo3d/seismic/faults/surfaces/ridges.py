@@ -281,7 +281,7 @@ def fault_labels(faults, shape) -> np.ndarray:
     Parameters
     ----------
     faults : sequence of Fault
-        Faults from :func:`link_faults`.
+        Faults (:func:`~seismo3d.seismic.faults.fault_skins`).
     shape : tuple of int
         Shape of the cube or section the faults came from.
 

@@ -119,15 +119,16 @@ class _FaultColours:
         self.rgba = cmap(norm(np.ma.masked_invalid(per_point)))
         self.mappable = ScalarMappable(norm=norm, cmap=cmap)
         if self.clipped:
-            self.label = f"{label}, clipped at the 95th percentile ({hi:.3g}; max {finite.max():.3g})"
+            # two lines: one beside the short bar of a section picture would run into the bar below it
+            self.label = f"{label}\nclipped: 95th pct {hi:.3g}, max {finite.max():.3g}"
 
     def title(self) -> str:
         return "faults, coloured by id" if self.mappable is None else f"faults, coloured by {self.quantity}"
 
     def bar(self, fig, ax) -> None:
         if self.mappable is not None:
-            fig.colorbar(self.mappable, ax=ax, shrink=0.8, label=self.label,
-                         extend="max" if self.clipped else "neither")
+            bar = fig.colorbar(self.mappable, ax=ax, shrink=0.8, extend="max" if self.clipped else "neither")
+            bar.set_label(self.label, fontsize=8)
 
 
 # --------------------------------------------------------------------------------------------------------------------

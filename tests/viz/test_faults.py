@@ -63,7 +63,7 @@ def test_the_throw_colour_bar_says_when_it_clips():
     ids = np.repeat(np.arange(1, 21), 3)
     skewed = _FaultColours(ids, {i: float(i) for i in range(1, 20)} | {20: 60.0}, "|median throw| (ms)")
     assert skewed.clipped
-    assert skewed.label == "|median throw| (ms), clipped at the 95th percentile (21.1; max 60)"  # 19 + 0.05 * 41
+    assert skewed.label == "|median throw| (ms)\nclipped: 95th pct 21.1, max 60"  # 19 + 0.05 * 41
     assert skewed.title() == "faults, coloured by |median throw| (ms)"
     even = _FaultColours(ids, {i: 5.0 for i in range(1, 21)}, "|median throw| (ms)")
     assert not even.clipped and even.label == "|median throw| (ms)"

@@ -106,9 +106,11 @@ def _edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, g
                 second[used] = cells[k]
                 dist[used] = dist2[k]
                 used += 1
-        firsts[c] = first[:used]
-        seconds[c] = second[:used]
-        dists[c] = dist[:used]
+        # copies: numba hoists the np.empty buffers above out of the prange loop, so the chunks a thread runs share
+        # them, and a view would be overwritten by the thread's next chunk (pairs lost and others duplicated)
+        firsts[c] = first[:used].copy()
+        seconds[c] = second[:used].copy()
+        dists[c] = dist[:used].copy()
     total = 0
     for c in range(n_chunks):
         total += firsts[c].size

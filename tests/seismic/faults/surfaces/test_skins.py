@@ -100,18 +100,20 @@ def test_options_and_errors():
     assert fault_skins(thin, thin, thin, lower=0.3, upper=0.5) == []
 
 
-@pytest.mark.parametrize("two_d", [False, True])
-def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d):
+@pytest.mark.parametrize("two_d, side, n_labels", [(False, 30, 12), (True, 30, 12), (False, 90, 60), (True, 300, 60)])
+def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels):
     # the merge step's search (compiled, bucketed) against every pair: for each two skins, the closest (edge cell,
-    # cell of the other skin) within the gap, ties to the lower edge cell, then the lower other cell
+    # cell of the other skin) within the gap, ties to the lower edge cell, then the lower other cell. Sparse cells
+    # (side 90 and 300) leave each chunk of edge cells a few pairs only: the case where the compiled search lost
+    # pairs (numba hoisted its per-chunk buffers out of the parallel loop, so a thread's next chunk overwrote them)
     from seismo3d.seismic.faults.surfaces.skins import closest_pairs
 
     rng = np.random.default_rng(7)
-    pts = rng.integers(0, 30, (600, 3)).astype(np.float64)
+    pts = rng.integers(0, side, (600, 3)).astype(np.float64)
     if two_d:
         pts[:, 1] = 0.0
     pts = np.unique(pts, axis=0)
-    lab = rng.integers(0, 12, len(pts))
+    lab = rng.integers(0, n_labels, len(pts))
     edge = np.sort(rng.choice(len(pts), len(pts) // 3, replace=False))
     gap = 5.0
     best = {}
@@ -121,6 +123,6 @@ def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d):
             if lab[i] != lab[j] and d <= gap:
                 key = (min(lab[i], lab[j]), max(lab[i], lab[j]))
                 best[key] = min(best.get(key, (np.inf, 0, 0)), (d, int(i), j))
-    got = closest_pairs(pts, lab, edge, gap, 12)
+    got = closest_pairs(pts, lab, edge, gap, n_labels)
     assert len(best) > 20
     assert sorted(map(tuple, got.tolist())) == sorted((i, j) for _, i, j in best.values())

@@ -9,7 +9,8 @@ Conventions, the same for every command:
   130. Anything else is a bug and keeps its traceback.
 - Progress goes to standard error: a bar on a terminal, one line per step otherwise (logs, CI).
 - Each command checks its output (:func:`~seismo3d._cli_outputs.check_before_import`) before it imports its job:
-  the jobs are imported inside the commands, deliberately, so that a refusal and ``--help`` need no numba / scipy.
+  the jobs are imported inside the commands, deliberately, so that a refusal and ``--help`` need no numba / scipy
+  (nor numpy: the module imports typer and the light modules that check outputs; tests/jobs/test_job_imports.py).
 """
 
 from __future__ import annotations
@@ -17,7 +18,6 @@ from __future__ import annotations
 import pathlib
 from typing import Optional
 
-import numpy as np
 import typer
 
 from . import __version__
@@ -58,6 +58,13 @@ def _overwrite_option():
     return typer.Option(False, "--overwrite", help="Replace the results of an earlier run at the output (an existing "
                                                    "output file, or an output folder's files); without it they are "
                                                    "refused, and an output is never an input.")
+
+
+def _array_text(array, *, precision: int, suppress_small: bool | None = None) -> str:
+    """An array as ``numpy.array2string`` prints it (numpy imported here: ``--help`` and refusals need none)."""
+    import numpy as np
+
+    return np.array2string(array, precision=precision, suppress_small=suppress_small)
 
 
 def _value(option):
@@ -126,11 +133,11 @@ def register(
         reg = job.result
         stages = "  ".join(f"{k} {v:.1f}" for k, v in reg.stage_seconds.items())
         typer.echo(f"map rotation {reg.rotation_deg:.2f} deg  moving scales "
-                   f"{np.array2string(reg.moving_scales, precision=4)}  fixed scales "
-                   f"{np.array2string(reg.fixed_scales[:2], precision=4)}  correlation {reg.correlation:.3f}  "
+                   f"{_array_text(reg.moving_scales, precision=4)}  fixed scales "
+                   f"{_array_text(reg.fixed_scales[:2], precision=4)}  correlation {reg.correlation:.3f}  "
                    f"overlap {reg.overlap:.0%}  converged {reg.converged}")
         typer.echo(f"seconds: {stages}")
-        typer.echo(np.array2string(reg.transform_index, precision=4, suppress_small=True))
+        typer.echo(_array_text(reg.transform_index, precision=4, suppress_small=True))
     elif job.kind == "terrain":
         _echo_terrain(job.result)
     else:
@@ -138,7 +145,7 @@ def register(
         typer.echo(f"fitness {result.fitness:.3f}  inlier RMSE {result.inlier_rmse:.4g}  iterations "
                    f"{result.n_iterations}  converged {result.converged}"
                    + ("  (DEGENERATE geometry)" if result.degenerate else ""))
-        typer.echo(np.array2string(result.transform, precision=6, suppress_small=True))
+        typer.echo(_array_text(result.transform, precision=6, suppress_small=True))
     if not job.converged:
         typer.echo(f"error: the registration did not converge ({_why_not_converged(job)}); its last estimate was "
                    f"written to {output}", err=True)
@@ -157,7 +164,7 @@ def _echo_terrain(reg) -> None:
     typer.echo(f"rotation {reg.rotation_deg:.3f} deg (heading {reg.heading_deg:.3f})  fitness {r.fitness:.3f}  "
                f"inlier RMSE {r.inlier_rmse:.4g} {reg.frame.unit}  start {reg.start} ({reg.n_feature_inliers} of "
                f"{reg.n_matches} hillshade matches)  iterations {r.n_iterations}  converged {reg.converged}" + note)
-    typer.echo(np.array2string(reg.transform, precision=6, suppress_small=True))
+    typer.echo(_array_text(reg.transform, precision=6, suppress_small=True))
 
 
 def _why_not_converged(job) -> str:
@@ -304,7 +311,7 @@ def match(
         typer.echo("no homography could be fitted (too few matches)")
     else:
         typer.echo("homography (image1 -> image2):")
-        typer.echo(np.array2string(result.homography, precision=6, suppress_small=True))
+        typer.echo(_array_text(result.homography, precision=6, suppress_small=True))
 
 
 @app.command()
@@ -324,6 +331,8 @@ def lineaments(
     found = result.lineaments
     typer.echo(f"{len(found)} lineaments in {dem.name}, {found.length_m.sum() / 1000:.1f} km in all -> {output}")
     if len(found):
+        import numpy as np
+
         from .terrain import rose_histogram
 
         edges, km = rose_histogram(found, bin_deg=10.0)

@@ -28,12 +28,11 @@ import datetime
 import enum
 import hashlib
 import json
+import math
 import os
 import sys
 import time
 from pathlib import Path
-
-import numpy as np
 
 from .. import __version__
 from .._atomic import atomic_path
@@ -120,7 +119,7 @@ def jsonable(value):
     if value is None or isinstance(value, (bool, int, str)):
         return value
     if isinstance(value, float):
-        return value if np.isfinite(value) else str(value)
+        return value if math.isfinite(value) else str(value)
     if isinstance(value, enum.Enum):
         return jsonable(value.value)
     if isinstance(value, os.PathLike):
@@ -131,6 +130,8 @@ def jsonable(value):
         return {str(k): jsonable(v) for k, v in value.items()}
     if isinstance(value, (list, tuple, set, frozenset)):
         return [jsonable(v) for v in value]
+    import numpy as np  # here, not at the top: the commands' --help and refusals import this module, not numpy
+
     if isinstance(value, np.ndarray):
         return jsonable(value.tolist())
     if isinstance(value, np.generic):

@@ -50,40 +50,49 @@ Modules shared by the sub-packages:
 - ``seismo3d.seismic._kernels``: the numba kernels shared by attributes, faults and horizons (private).
 """
 
-from .attributes import (ReflectorOrientation, discontinuity, eigen_coherence, semblance, structure_tensor_orientation,
-                         structure_tensor_slopes)
-from .evaluation import (
-    FaultLineCoverage, FaultScores, HorizonErrors, RegistrationErrors, evaluate_faults, fault_line_coverage,
-    horizon_errors, registration_errors,
-)
-from .faults import (
-    EvidenceOptions, Fault, FaultEvidence, FaultInterpretation, FaultLikelihood, FaultScanOptions, FaultThrow,
-    FaultTracingOptions, FaultVotes, LearnedOptions, SkinOptions, ThrowOptions, VotingOptions, fault_likelihood,
-    fault_skins, fault_throws, learned_fault_likelihood, thin_faults, trace_faults, vote_faults,
-)
-from .faults.evidence import supported_faults
-from .faults.result import fault_normals
-from .faults.surfaces.dead_samples import CleanTraces, clean_traces, dead_samples, fill_values, near_dead_samples
-from .faults.surfaces.ridges import fault_labels
-from .faults.throw import fault_throw
-from .blocks import BlockRun, BlockRunOptions, SchedulerClient, run_block
-from .faults.blocks.learned_blocks import chunked_learned_likelihood
-from .faults.blocks.scan_blocks import ChunkedLikelihood, chunked_fault_likelihood
-from .blocks.options import ChunkOptions
-from .faults.blocks.surface_blocks import ChunkedFaults, chunked_fault_surfaces
-from .blocks.windows import CubeWindow, cube_windows
-from .horizons import (
-    CycleCut, FaultCrossings, Horizon, TrackingOptions, autotrack, fill_horizon, reliable_throw, track_horizon,
-    write_horizon_text,
-)
-from .horizons.cycle_cut import cycle_cut
-from .io import (
-    LazyCube, SegyGrid, SegyLayout, SeismicCube, SeismicZarr, SeismicZarrWriter, TraceGeometry, inline_block_size,
-    is_seismic_zarr, open_lazy, open_seismic_zarr, open_segy, read_ascii_lines, read_section, read_segy,
-    read_segy_block, read_segy_block_headers, read_segy_layout, trace_geometry, write_like, write_like_blocks,
-)
-from .reflectors import POLARITIES, reflector_picks, reflector_points
-from .volumes import VolumeOptions, VolumeRegistration, register_volumes, resample_volume, volume_spacing
+from typing import TYPE_CHECKING
+
+from .._lazy import lazy_exports
+
+# the public names, imported on first use (seismo3d._lazy): importing one module of the package (the SEG-Y reader of
+# `seismo3d convert`) runs neither the fault and horizon modules nor scipy and numba
+if TYPE_CHECKING:
+    from .attributes import (
+        ReflectorOrientation, discontinuity, eigen_coherence, semblance, structure_tensor_orientation,
+        structure_tensor_slopes,
+    )
+    from .evaluation import (
+        FaultLineCoverage, FaultScores, HorizonErrors, RegistrationErrors, evaluate_faults, fault_line_coverage,
+        horizon_errors, registration_errors,
+    )
+    from .faults import (
+        EvidenceOptions, Fault, FaultEvidence, FaultInterpretation, FaultLikelihood, FaultScanOptions, FaultThrow,
+        FaultTracingOptions, FaultVotes, LearnedOptions, SkinOptions, ThrowOptions, VotingOptions, fault_likelihood,
+        fault_skins, fault_throws, learned_fault_likelihood, thin_faults, trace_faults, vote_faults,
+    )
+    from .faults.evidence import supported_faults
+    from .faults.result import fault_normals
+    from .faults.surfaces.dead_samples import CleanTraces, clean_traces, dead_samples, fill_values, near_dead_samples
+    from .faults.surfaces.ridges import fault_labels
+    from .faults.throw import fault_throw
+    from .blocks import BlockRun, BlockRunOptions, SchedulerClient, run_block
+    from .faults.blocks.learned_blocks import chunked_learned_likelihood
+    from .faults.blocks.scan_blocks import ChunkedLikelihood, chunked_fault_likelihood
+    from .blocks.options import ChunkOptions
+    from .faults.blocks.surface_blocks import ChunkedFaults, chunked_fault_surfaces
+    from .blocks.windows import CubeWindow, cube_windows
+    from .horizons import (
+        CycleCut, FaultCrossings, Horizon, TrackingOptions, autotrack, fill_horizon, reliable_throw, track_horizon,
+        write_horizon_text,
+    )
+    from .horizons.cycle_cut import cycle_cut
+    from .io import (
+        LazyCube, SegyGrid, SegyLayout, SeismicCube, SeismicZarr, SeismicZarrWriter, TraceGeometry, inline_block_size,
+        is_seismic_zarr, open_lazy, open_seismic_zarr, open_segy, read_ascii_lines, read_section, read_segy,
+        read_segy_block, read_segy_block_headers, read_segy_layout, trace_geometry, write_like, write_like_blocks,
+    )
+    from .reflectors import POLARITIES, reflector_picks, reflector_points
+    from .volumes import VolumeOptions, VolumeRegistration, register_volumes, resample_volume, volume_spacing
 
 __all__ = [
     # exported before the sub-packages
@@ -115,3 +124,5 @@ __all__ = [
     # resumable block runs
     "BlockRun", "SchedulerClient", "run_block",
 ]
+
+__getattr__, __dir__ = lazy_exports(__name__, __file__)

@@ -1,0 +1,116 @@
+"""Commands that import what they use (issue 58): ``seismo3d.cli`` (every ``--help``, every refusal) imports none of
+the heavy packages, and each job module imports only the heavy packages of its own path (``seismo3d convert``:
+numpy and segyio; zarr when it writes), within a CPU time near the one measured.
+
+Each import runs in a new interpreter, as a user's command does, under ``python -X importtime``: the packages
+imported are read from its report, and the cost is the CPU seconds of the import (``time.process_time``), which
+stays near its value at any load where the wall time does not (at load 5-6 on 2 cores the wall time was twice the
+CPU time; a wall-clock limit of 1.5 s on a whole command failed once under load: tests/jobs/test_output_policy.py).
+The limits are about 2.5x the CPU seconds measured at load 5-6 on 2 cores (2026-12, Python 3.11), listed beside
+them; before issue 58, ``seismo3d.cli`` took 0.16-0.19 CPU s with numpy, and ``seismo3d.jobs.convert`` 0.93-1.17
+CPU s with scipy.ndimage and numba (the whole ``seismo3d.seismic`` package).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from dataclasses import dataclass
+
+import pytest
+
+# the packages a command pays for at import (0.05-0.6 s each): the ones a module may import are listed per module
+HEAVY = frozenset({"numpy", "scipy", "numba", "dask", "distributed", "pyvista", "vtkmodules", "matplotlib", "torch",
+                   "onnxruntime", "cv2", "skimage", "sklearn", "pandas", "zarr", "xarray", "xtgeo", "laspy",
+                   "tifffile", "gtsam", "segyio"})
+
+
+@dataclass(frozen=True)
+class ImportBudget:
+    """What importing ``module`` may cost: the heavy packages of its path and a limit in CPU seconds."""
+
+    module: str
+    heavy: frozenset
+    cpu_seconds: float  # about 2.5x the measured CPU seconds (in the comment beside each)
+
+
+BUDGETS = [
+    ImportBudget("seismo3d.cli", frozenset(), 0.2),  # 0.06-0.07
+    ImportBudget("seismo3d.jobs.convert", frozenset({"numpy", "segyio"}), 0.5),  # 0.19-0.21
+    ImportBudget("seismo3d.jobs.outputs", frozenset(), 0.1),  # 0.01
+    ImportBudget("seismo3d.jobs.runinfo", frozenset(), 0.1),  # 0.02
+    ImportBudget("seismo3d.jobs.inputs", frozenset({"numpy", "segyio"}), 0.4),  # 0.13
+    ImportBudget("seismo3d.jobs.fault_inputs", frozenset({"numpy", "segyio"}), 0.5),  # 0.14-0.19
+    ImportBudget("seismo3d.jobs.interchange", frozenset({"numpy", "segyio"}), 0.5),  # 0.14-0.17
+    ImportBudget("seismo3d.jobs.match", frozenset({"numpy"}), 0.4),  # 0.10-0.14
+    ImportBudget("seismo3d.jobs.register_files", frozenset({"numpy", "scipy"}), 1.5),  # 0.52-0.53
+    ImportBudget("seismo3d.jobs.faults", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.86-0.99
+    ImportBudget("seismo3d.jobs.fault_tables", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.70-0.98
+    ImportBudget("seismo3d.jobs.horizon", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.75-0.91
+    ImportBudget("seismo3d.jobs.register", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.72-0.96
+    ImportBudget("seismo3d.jobs.map", frozenset({"numpy", "scipy", "numba", "cv2"}), 2.5),  # 0.72-0.95
+    ImportBudget("seismo3d.jobs.lineaments", frozenset({"numpy", "scipy", "numba", "cv2", "tifffile"}),
+                 2.0),  # 0.72-0.80
+    ImportBudget("seismo3d.jobs.plan", frozenset({"numpy", "scipy", "numba", "cv2", "tifffile"}), 2.0),  # 0.70-0.78
+    ImportBudget("seismo3d.jobs.register_terrain", frozenset({"numpy", "scipy", "numba", "cv2", "tifffile"}),
+                 2.5),  # 0.69-1.01
+    ImportBudget("seismo3d.jobs.render", frozenset({"numpy", "scipy", "numba", "cv2", "tifffile", "segyio"}),
+                 3.0),  # 0.72-1.11 (pyvista and matplotlib when it draws)
+]
+FAST = {"seismo3d.cli", "seismo3d.jobs.convert"}  # the fast lane's; every job's in the slow lane (0.3-1 s each)
+
+_MEASURE = "import time; t = time.process_time(); import {module}; print(time.process_time() - t)"
+
+
+def _run_importtime(args: list[str], folder) -> tuple[set, str, str]:
+    """Run ``python -X importtime ARGS`` in ``folder`` with this test's path: the top-level packages it imported, its
+    standard output and the rest of its standard error."""
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    done = subprocess.run([sys.executable, "-X", "importtime", *args], capture_output=True, text=True, env=env,
+                          cwd=folder, timeout=120)
+    report = [line for line in done.stderr.splitlines() if line.startswith("import time:")]
+    rest = "\n".join(line for line in done.stderr.splitlines() if not line.startswith("import time:"))
+    assert done.returncode == 0, rest[-2000:]
+    packages = {line.split("|")[-1].strip().split(".")[0] for line in report[1:]}  # [0] is the header
+    return packages, done.stdout, rest
+
+
+def test_the_import_report_is_read():
+    packages, out, _ = _run_importtime(["-c", _MEASURE.format(module="json")], ".")
+    assert "json" in packages and float(out) >= 0.0
+
+
+@pytest.mark.parametrize("budget", [pytest.param(b, id=b.module, marks=() if b.module in FAST else pytest.mark.slow)
+                                    for b in BUDGETS])
+def test_a_command_imports_only_its_own_path(budget, tmp_path):
+    packages, out, _ = _run_importtime(["-c", _MEASURE.format(module=budget.module)], tmp_path)
+    assert packages & HEAVY <= budget.heavy, f"{budget.module} imports {sorted(packages & HEAVY - budget.heavy)}"
+    assert float(out) <= budget.cpu_seconds
+
+
+def test_every_job_module_has_a_budget():
+    import pkgutil
+
+    import seismo3d.jobs
+
+    jobs = {f"seismo3d.jobs.{m.name}" for m in pkgutil.iter_modules(seismo3d.jobs.__path__)}
+    assert jobs <= {b.module for b in BUDGETS}
+
+
+def _commands() -> list[str]:
+    """The commands of the ``seismo3d`` app."""
+    import typer.main
+
+    from seismo3d.cli import app
+
+    return list(typer.main.get_command(app).commands)
+
+
+@pytest.mark.parametrize("command", [pytest.param(c, marks=() if c == "convert" else pytest.mark.slow)
+                                     for c in ["", *_commands()]])
+def test_help_imports_no_heavy_package(command, tmp_path):
+    """``seismo3d COMMAND --help`` as a user runs it: the help, from typer alone (no job, no numpy)."""
+    packages, out, _ = _run_importtime(["-m", "seismo3d.cli", *command.split(), "--help"], tmp_path)
+    assert "Usage: python -m seismo3d.cli" in out
+    assert not packages & HEAVY, f"--help imports {sorted(packages & HEAVY)}"

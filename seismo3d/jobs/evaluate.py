@@ -286,7 +286,8 @@ def _read_mask(path: Path, line: SeismicLine) -> SectionFaults:
 
 
 def run_evaluate_job(faults_output, *, sticks=None, mask=None, out=None, seismic=None,
-                     options: FaultScoringOptions | None = None, overwrite: bool = False) -> EvaluateJob:
+                     options: FaultScoringOptions | None = None, overwrite: bool = False,
+                     picture: bool = True) -> EvaluateJob:
     """Score the faults of a ``seismo3d faults`` run on a line against people's faults: the ``seismo3d evaluate``
     command (module notes).
 
@@ -317,6 +318,8 @@ def run_evaluate_job(faults_output, *, sticks=None, mask=None, out=None, seismic
         The tolerance (3 samples) and the share of a fault that makes a match (0.5).
     overwrite : bool, optional
         Replace an earlier evaluation in ``out``.
+    picture : bool, optional
+        Draw ``evaluation.png`` (about a second); False leaves it out (and removes an earlier one it replaces).
 
     Returns
     -------
@@ -358,19 +361,21 @@ def run_evaluate_job(faults_output, *, sticks=None, mask=None, out=None, seismic
     job = EvaluateJob(scores, line, traced, people, source, column, {})
     with StagedFolder(out) as stage:
         with record.stage("write"):
-            written = _write_files(stage.path, job, sticks if sticks is not None else mask)
+            written = _write_files(stage.path, job, sticks if sticks is not None else mask, picture)
         final = {key: stage.final(path) for key, path in written.items()}
         record.write(stage.path / RUN_JSON, inputs={"fault_points": folder / "fault_points.csv",
                                                     "fault_summary": folder / "fault_summary.csv",
                                                     "seismic": segy_path, source: sticks or mask},
                      outputs=final, results=dict(precision=scores.precision, recall=scores.recall, f1=scores.f1,
                                                  average_precision=scores.curve.average_precision))
+    if not picture:
+        (out / "evaluation.png").unlink(missing_ok=True)  # an earlier run's, replaced (overwrite was checked)
     return EvaluateJob(scores, line, traced, people, source, column, final, out / RUN_JSON,
                        dict(record.stage_seconds))
 
 
-def _write_files(folder: Path, job: EvaluateJob, people_path) -> dict:
-    """evaluation.csv, evaluation.json and evaluation.png into ``folder``, by key."""
+def _write_files(folder: Path, job: EvaluateJob, people_path, picture: bool) -> dict:
+    """evaluation.csv, evaluation.json and (``picture``) evaluation.png into ``folder``, by key."""
     from .._atomic import atomic_path
     from ..viz.fault_evaluation import plot_fault_evaluation
 
@@ -396,16 +401,19 @@ def _write_files(folder: Path, job: EvaluateJob, people_path) -> dict:
     }
     with atomic_path(folder / "evaluation.json") as tmp:
         tmp.write_text(json.dumps(_finite(jsonable(summary)), indent=1) + "\n")
+    written = {"csv": folder / "evaluation.csv", "json": folder / "evaluation.json"}
+    if not picture:
+        return written
     line = job.line
     unit = {"ms": "time (ms)", "m": "depth (m)", "ft": "depth (ft)"}.get(line.sample_unit, "sample")
     drawn = "fault sticks" if job.people_source == "sticks" else "a mask"
     title = (f"{line.name}: {len(s.people)} people's faults ({drawn}) and {len(s.traced)} traced faults\n"
              f"precision {s.precision:.3f}, recall {s.recall:.3f}, F1 {s.f1:.3f} within {s.tolerance:g} "
              "samples")
-    picture = plot_fault_evaluation(line.section, job.people.labels(), job.traced.labels(),
-                                    path=folder / "evaluation.png", traces=line.trace_labels, samples=line.samples,
-                                    axis_labels=(line.axis or "trace", unit), title=title, curve=s.curve)
-    return {"csv": folder / "evaluation.csv", "json": folder / "evaluation.json", "picture": picture}
+    drawn_to = plot_fault_evaluation(line.section, job.people.labels(), job.traced.labels(),
+                                     path=folder / "evaluation.png", traces=line.trace_labels, samples=line.samples,
+                                     axis_labels=(line.axis or "trace", unit), title=title, curve=s.curve)
+    return {**written, "picture": drawn_to}
 
 
 def _finite(value):

@@ -204,6 +204,17 @@ def test_refusals_say_what_to_do(work, tmp_path):
     assert not (work / "ev").exists()
 
 
+def test_sticks_of_other_lines_are_left_out_with_a_warning(work):
+    from seismo3d.errors import Seismo3dWarning
+
+    both = work / "both.dat"
+    both.write_text(_write_sticks(work / "a.dat").read_text()
+                    + _write_sticks(work / "b.dat", sticks=[(121, 1000.0, 1076.0)], crossline=700).read_text())
+    with pytest.warns(Seismo3dWarning, match="1 of the 3 fault sticks of both.dat are not on crossline 500"):
+        job = run_evaluate_job(work / "faults", sticks=both, out=work / "ev", picture=False)
+    assert [f.name for f in job.scores.people] == ["stick_1", "stick_2"] and job.scores.recall == 1.0
+
+
 def test_earlier_results_need_overwrite(work):
     faults, sticks, out = work / "faults", work / "sticks.dat", work / "faults" / "evaluation"
     run_evaluate_job(faults, sticks=sticks, picture=False)  # default: OUTPUT/evaluation

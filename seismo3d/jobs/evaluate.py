@@ -42,7 +42,7 @@ from .._atomic import StagedFolder
 from ..errors import DataNotFoundError, InputError, Seismo3dWarning
 from ..seismic.fault_scoring import FaultLineScores, FaultScoringOptions, SectionFaults, score_fault_line
 from .outputs import check_outputs, output_folder
-from .runinfo import RUN_JSON, RunRecord, input_changed, jsonable, read_run_json, run_json_path
+from .runinfo import RUN_JSON, RunRecord, input_changed, jsonable, read_run_json
 
 __all__ = ["CONFIDENCE_COLUMNS", "EvaluateJob", "RESULTS", "SeismicLine", "evaluation_table", "read_line",
            "run_evaluate_job"]

@@ -41,7 +41,8 @@ def _write_line(path: Path, crossline: int = 500) -> Path:
     with segyio.create(str(path), spec) as f:
         for i, il in enumerate(INLINES):
             f.header[i] = {189: int(il), 193: crossline, segyio.TraceField.DelayRecordingTime: 1000,
-                           segyio.TraceField.TRACE_SAMPLE_INTERVAL: 4000, segyio.TraceField.TRACE_SAMPLE_COUNT: N_SAMPLES}
+                           segyio.TraceField.TRACE_SAMPLE_INTERVAL: 4000,
+                           segyio.TraceField.TRACE_SAMPLE_COUNT: N_SAMPLES}
             f.trace[i] = rng.standard_normal(N_SAMPLES).astype(np.float32)
         f.bin.update(hdt=4000, hns=N_SAMPLES)
     return path

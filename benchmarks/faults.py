@@ -45,7 +45,9 @@ Three tables (each can be skipped):
      loops over windows; ``pip install -e ".[bench]"``).
 
 Tables of the learned likelihood: ``--only f3`` (the F3 inlines drawn by a person, both likelihoods, the skeleton,
-FaultNet's figures, and the cross-validated choice of likelihood and evidence), ``--only counts`` (fault counts of
+FaultNet's figures, and the cross-validated choice of likelihood and evidence), ``--only gsb`` (the two Great South
+Basin crosslines with an interpreter's fault sticks, scored by the job of ``seismo3d evaluate``, beside the skeleton
+and a second person's drawing), ``--only counts`` (fault counts of
 both on every real section), ``--only checks`` (what an interpreter sees: teapot_tpd's three visible faults, no fault
 through the Volve line's continuous reflectors at 2300-2500 ms, Penobscot xl1155's large fault as one fault),
 ``--only generated`` (generated sections and cubes never trained on, both).
@@ -333,6 +335,54 @@ def f3_people() -> None:
     print(f"chosen on all five inlines: {on_all[0]} {on_all[1]}, {fmt(mean(grid_scores[on_all]))}")
 
 
+def gsb_people(data_dir: Path) -> None:
+    """The two Great South Basin crosslines with an interpreter's fault sticks: ``seismo3d faults`` with the defaults
+    (the job of the command), scored by the job of ``seismo3d evaluate`` (``run_evaluate_job``: the computation a
+    user runs, and that of ``dev_fault_scores.py``), beside the plain 1-semblance skeleton at its single best quantile
+    for both lines and, on crossline 2800, a second person's drawing of the same faults."""
+    import warnings as _warnings
+
+    from seismo3d.jobs.evaluate import run_evaluate_job
+    from seismo3d.jobs.faults import run_faults_job
+    from seismo3d.seismic.fault_scoring import tolerant_scores
+
+    folder = data_dir / "seismic" / "gsb_fault_sticks"
+    lines, jobs = (2600, 2800), {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for line in lines:
+            out = Path(tmp) / f"faults_{line}"
+            with _warnings.catch_warnings():
+                _warnings.simplefilter("ignore")
+                run_faults_job(folder / f"gsb_crl_{line}.sgy", out, progress=False)
+            jobs[line] = run_evaluate_job(out, sticks=folder / f"gsb_crl_{line}_faults_opendtect.dat",
+                                          out=Path(tmp) / f"evaluation_{line}", picture=False)
+        second = run_evaluate_job(Path(tmp) / "faults_2800", mask=folder / "gsb_crl_2800_second_mask.png",
+                                  out=Path(tmp) / "evaluation_2800_second", picture=False)
+    best = None  # the peer: one quantile of 1 - plain semblance for both lines, the best mean F1
+    for q in np.concatenate([np.linspace(0.50, 0.98, 25), [0.985, 0.99, 0.993, 0.996, 0.998]]):
+        sk = [tolerant_scores(semblance_skeleton(jobs[n].line.section, float(np.quantile(
+            1.0 - plain_semblance(jobs[n].line.section), q))), jobs[n].people.mask()) for n in lines]
+        if best is None or np.mean([x[2] for x in sk]) > np.mean([x[2] for x in best[1]]):
+            best = (q, sk)
+    fmt = lambda s: f"{s[0]:5.3f} / {s[1]:5.3f} / {s[2]:5.3f}"  # noqa: E731
+    print("\nGreat South Basin crosslines with an interpreter's fault sticks (484 traces x 76 samples each), tolerance "
+          "3 samples: precision / recall / F1 (seismo3d evaluate), the faults' average precision over their "
+          "confidence (mean_likelihood), and the peer\n")
+    head = (f"{'crossline':>9s} | {'seismo3d defaults':>21s} {'faults':>6s} {'AP':>5s} | "
+            f"{'1-semblance skeleton':>21s} | {'a second person':>21s}")
+    print(head + "\n" + "-" * len(head))
+    for n, sk in zip(lines, best[1]):
+        s = jobs[n].scores
+        other = second.people.mask() if n == 2800 else None
+        person = fmt(tolerant_scores(other, jobs[n].people.mask())) if other is not None else ""
+        print(f"{n:9d} | {fmt((s.precision, s.recall, s.f1))} {len(s.traced):6d} {s.curve.average_precision:5.3f} | "
+              f"{fmt(sk)} | {person:>21s}")
+    mean = [float(np.mean([getattr(jobs[n].scores, k) for n in lines])) for k in ("precision", "recall", "f1")]
+    print(f"{'mean':>9s} | {fmt(mean)} {'':6s} {'':5s} | {fmt(np.mean(best[1], axis=0))} |")
+    print(f"skeleton threshold: the {best[0]:.1%} quantile of 1 - semblance on both lines; a second person: the "
+          "data folder's gsb_crl_2800_second_mask.png scored as if traced, against the sticks")
+
+
 def real_section_counts(data_dir: Path) -> None:
     """Fault counts on every real 2D section of the data folder: the defaults now and before issue 35's rules (stop
     49: one network grid of 0.7, no vote ratio, the unshifted mismatch as evidence), the scan's defaults, and the
@@ -592,9 +642,10 @@ def main(argv=None) -> None:
     ap.add_argument("--no-bruges", action="store_true", help="skip bruges.attribute.discontinuity")
     ap.add_argument("--no-speed", action="store_true", help="skip the speed and memory table")
     ap.add_argument("--no-real", action="store_true", help="skip the real sections")
-    ap.add_argument("--only", choices=("f3", "counts", "checks", "generated"),
-                    help="only the F3 inlines drawn by a person, the fault counts on every real section, what an "
-                    "interpreter sees on teapot_tpd, Volve and xl1155, or the generated sections and cubes")
+    ap.add_argument("--only", choices=("f3", "gsb", "counts", "checks", "generated"),
+                    help="only the F3 inlines drawn by a person, the GSB lines with an interpreter's sticks, the fault "
+                    "counts on every real section, what an interpreter sees on teapot_tpd, Volve and xl1155, or the "
+                    "generated sections and cubes")
     ap.add_argument("--synthetic", action="store_true", help="also the accuracy on five generated cubes")
     ap.add_argument("--out", default="out/benchmarks", help="folder of the pictures (default: out/benchmarks)")
     ap.add_argument("--worker", nargs=2, metavar=("METHOD", "NPY"), help=argparse.SUPPRESS)
@@ -611,12 +662,13 @@ def main(argv=None) -> None:
     if args.only:
         if not root:
             sys.exit("set SEISMO3D_DATA_DIR to the data folder")
-        {"f3": f3_people, "counts": lambda: real_section_counts(Path(root)),
+        {"f3": f3_people, "gsb": lambda: gsb_people(Path(root)), "counts": lambda: real_section_counts(Path(root)),
          "checks": lambda: interpreter_checks(Path(root))}[args.only]()
         return
     if not args.no_real:
         if root:
             f3_people()
+            gsb_people(Path(root))
             real_section_counts(Path(root))
             interpreter_checks(Path(root))
             real_sections(Path(root), Path(args.out))

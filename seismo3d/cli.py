@@ -574,5 +574,35 @@ def render(
     typer.echo(f"{what}{sticks_drawn} of {input.name}: {job.caption} -> {job.picture}")
 
 
+@app.command()
+@_friendly({"sticks": "--sticks", "mask": "--mask", "seismic": "--seismic", "tolerance": "--tolerance"})
+def evaluate(
+    faults_output: pathlib.Path = typer.Argument(..., metavar="OUTPUT", help="The output folder of 'seismo3d faults' "
+                                                 "on one seismic line (an inline or crossline)."),
+    sticks: Optional[pathlib.Path] = typer.Option(None, "--sticks", help="People's fault sticks: OpendTect ASCII, "
+                                                  "Charisma or IESX (sticks of other lines are left out)."),
+    mask: Optional[pathlib.Path] = typer.Option(None, "--mask", help="People's faults as a mask of the line, nonzero "
+                                                "(or alpha > 0) on faults: .npy (n_traces, n_samples), or a PNG of "
+                                                "a row per sample and a column per trace."),
+    output: Optional[pathlib.Path] = typer.Option(None, "-o", "--output", help="Folder of the evaluation (created if "
+                                                  "missing); default OUTPUT/evaluation."),
+    tolerance: float = typer.Option(3.0, min=0.0, help="Samples (a trace = a sample) within which faults match."),
+    seismic: Optional[pathlib.Path] = typer.Option(None, help="The line the faults were traced on; default: the "
+                                                   "input run.json records, while unchanged."),
+    overwrite: bool = _overwrite_option(),
+) -> None:
+    """Score the faults a 'seismo3d faults' run traced on a line against people's (--sticks or --mask), placed by the
+    SEG-Y headers: tolerant precision, recall and F1, fault-by-fault matches, the precision-recall curve over the
+    faults' confidence; evaluation.csv, evaluation.json, evaluation.png."""
+    out = output if output is not None else faults_output / "evaluation"
+    check_before_import("folder", out, [faults_output, sticks, mask, seismic], overwrite=overwrite)
+    from .jobs.evaluate import evaluation_table, run_evaluate_job
+    from .seismic.fault_scoring import FaultScoringOptions
+
+    job = run_evaluate_job(faults_output, sticks=sticks, mask=mask, out=out, seismic=seismic,
+                           options=FaultScoringOptions(tolerance=tolerance), overwrite=overwrite)
+    typer.echo("\n".join(evaluation_table(job) + [f"wrote evaluation.csv, evaluation.json, evaluation.png -> {out}"]))
+
+
 if __name__ == "__main__":  # pragma: no cover
     app()

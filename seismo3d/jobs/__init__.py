@@ -17,6 +17,7 @@ imports a job.
 - :mod:`seismo3d.jobs.map`: ``run_map_job`` (``seismo3d map``: RGB-D sequences)
 - :mod:`seismo3d.jobs.convert`: ``run_convert_job`` (``seismo3d convert``)
 - :mod:`seismo3d.jobs.render`: ``run_render_job`` (``seismo3d render``)
+- :mod:`seismo3d.jobs.evaluate`: ``run_evaluate_job`` (``seismo3d evaluate``: traced faults against people's)
 
 Shared by all: :mod:`seismo3d.jobs.outputs` (the output policy, checked before any input is read),
 :mod:`seismo3d.jobs.runinfo` (``run.json`` beside every command's outputs: :class:`~seismo3d.jobs.runinfo.RunRecord`)

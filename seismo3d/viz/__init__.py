@@ -7,7 +7,8 @@
 - :func:`plot_section`: PNG of one seismic line as an interpreter reads it (trace numbers and times on labelled axes,
   the vertical exaggeration stated, faults as lines, a horizon); :func:`section_exaggeration` chooses the exaggeration;
   :func:`plot_volume_registration`: one inline of a sub-volume registration (fixed, moving, moving registered).
-- :func:`plot_fault_slices`: PNG of seismic slices with the faults drawn over them (matplotlib).
+- :func:`plot_fault_slices`: PNG of seismic slices with the faults drawn over them (matplotlib);
+  :func:`plot_fault_evaluation`: people's and the traced faults over a line, with the precision-recall curve.
 - :func:`fault_surfaces`: fault surfaces (3D) or curves (2D) as one pyvista PolyData; :func:`save_polydata` writes it.
 - :func:`horizon_surface`: a tracked horizon as a pyvista surface (holes where it is empty);
   :func:`plot_horizon_section`: horizon picks over a section (matplotlib).
@@ -22,6 +23,7 @@
 
 from .clouds import plot_matches, show_point_clouds
 from .fault_meshes import fault_surfaces, save_polydata
+from .fault_evaluation import plot_fault_evaluation
 from .faults import plot_fault_slices, show_faults
 from .horizons import horizon_surface, plot_horizon_section
 from .maps import render_map, show_map
@@ -36,4 +38,4 @@ __all__ = ["CubeGeometry", "cube_geometry", "geometry_of_segy", "grid_index", "p
            "show_seismic", "plot_fault_slices", "fault_surfaces", "horizon_surface", "save_polydata", "show_faults",
            "finish_scene", "jupyter_backend", "new_plotter", "symmetric_clip", "plot_horizon_section",
            "plot_matches", "show_point_clouds", "plot_lineament_map", "plot_rose", "render_map", "show_map",
-           "show_terrain", "plot_section", "plot_volume_registration", "section_exaggeration"]
+           "show_terrain", "plot_section", "plot_volume_registration", "section_exaggeration", "plot_fault_evaluation"]

@@ -40,6 +40,7 @@ import numpy as np
 from ..._atomic import atomic_path
 from ...errors import DataNotFoundError, InputError
 from .coordinates import LINE_UNITS, SurveyCoordinates
+from .stick_sections import section_nodes, section_pixels
 
 __all__ = ["FaultSticks", "STICK_FORMATS", "read_fault_sticks", "write_fault_sticks"]
 
@@ -191,21 +192,12 @@ class FaultSticks:
         list of (k, 2) float64 ndarray
             Per stick, its nodes as (trace index, fractional sample index), samples increasing.
         """
-        labels = np.asarray(trace_labels, dtype=np.float64)
-        order = np.argsort(labels)
-        s = np.asarray(samples, dtype=np.float64)
-        along = self.inline if axis == "inline" else self.crossline
-        out = []
-        for _, nodes in self.sticks():
-            t = np.interp(along[nodes], labels[order], np.arange(labels.size, dtype=np.float64)[order])
-            k = np.interp(self.z[nodes], s, np.arange(s.size, dtype=np.float64))
-            line = np.column_stack([t, k])
-            out.append(line[np.argsort(line[:, 1], kind="stable")])
-        return out
+        return [line[np.argsort(line[:, 1], kind="stable")]
+                for _, line in section_nodes(self, trace_labels, samples, axis=axis)]
 
     def section_mask(self, trace_labels, samples, *, axis: str = "inline") -> np.ndarray:
-        """The sticks drawn on a 2D section as fault labels (each stick's fault id along straight segments between
-        its nodes), for :func:`~seismo3d.seismic.evaluate_faults`.
+        """The sticks drawn on a 2D section as fault labels (each stick's fault id on the samples it crosses, placed
+        by :func:`~seismo3d.seismic.io.stick_sections.section_pixels`), for :func:`~seismo3d.seismic.evaluate_faults`.
 
         Parameters
         ----------
@@ -215,19 +207,11 @@ class FaultSticks:
         Returns
         -------
         (n_traces, n_samples) int32 ndarray
-            The fault id on stick samples, 0 elsewhere.
+            The fault id on stick samples (the later stick's where two cross), 0 elsewhere.
         """
-        from skimage.draw import line as draw_line
-
-        labels = np.asarray(trace_labels)
-        mask = np.zeros((labels.size, np.asarray(samples).size), dtype=np.int32)
-        ids = [fid for fid, _ in self.sticks()]
-        for fid, vertices in zip(ids, self.section_lines(trace_labels, samples, axis=axis)):
-            v = np.round(vertices).astype(np.int64)
-            for (t0, k0), (t1, k1) in zip(v[:-1], v[1:]):
-                rr, cc = draw_line(t0, k0, t1, k1)
-                ok = (rr >= 0) & (rr < mask.shape[0]) & (cc >= 0) & (cc < mask.shape[1])
-                mask[rr[ok], cc[ok]] = fid
+        mask = np.zeros((np.asarray(trace_labels).size, np.asarray(samples).size), dtype=np.int32)
+        for fid, pixels in section_pixels(self, trace_labels, samples, axis=axis):
+            mask[pixels[:, 0], pixels[:, 1]] = fid
         return mask
 
     @classmethod

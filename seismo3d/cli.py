@@ -23,6 +23,7 @@ import typer
 from . import __version__
 from ._cli_choices import Endian, FaultColour, Likelihood, MatchMethod, Method, Model, Polarity, SampleUnit
 from ._cli_outputs import check_before_import
+from ._cli_text import array_text, echo_terrain, frames_tracked, why_not_converged
 from .jobs.outputs import output_file
 from ._cli_messages import compile_note, friendly as _friendly, log_progress_to_stderr
 from ._cli_messages import one_line_warnings as _one_line_warnings
@@ -58,13 +59,6 @@ def _overwrite_option():
     return typer.Option(False, "--overwrite", help="Replace the results of an earlier run at the output (an existing "
                                                    "output file, or an output folder's files); without it they are "
                                                    "refused, and an output is never an input.")
-
-
-def _array_text(array, *, precision: int, suppress_small: bool | None = None) -> str:
-    """An array as ``numpy.array2string`` prints it (numpy imported here: ``--help`` and refusals need none)."""
-    import numpy as np
-
-    return np.array2string(array, precision=precision, suppress_small=suppress_small)
 
 
 def _value(option):
@@ -133,56 +127,23 @@ def register(
         reg = job.result
         stages = "  ".join(f"{k} {v:.1f}" for k, v in reg.stage_seconds.items())
         typer.echo(f"map rotation {reg.rotation_deg:.2f} deg  moving scales "
-                   f"{_array_text(reg.moving_scales, precision=4)}  fixed scales "
-                   f"{_array_text(reg.fixed_scales[:2], precision=4)}  correlation {reg.correlation:.3f}  "
+                   f"{array_text(reg.moving_scales, precision=4)}  fixed scales "
+                   f"{array_text(reg.fixed_scales[:2], precision=4)}  correlation {reg.correlation:.3f}  "
                    f"overlap {reg.overlap:.0%}  converged {reg.converged}")
         typer.echo(f"seconds: {stages}")
-        typer.echo(_array_text(reg.transform_index, precision=4, suppress_small=True))
+        typer.echo(array_text(reg.transform_index, precision=4, suppress_small=True))
     elif job.kind == "terrain":
-        _echo_terrain(job.result)
+        echo_terrain(job.result)
     else:
         result = job.result
         typer.echo(f"fitness {result.fitness:.3f}  inlier RMSE {result.inlier_rmse:.4g}  iterations "
                    f"{result.n_iterations}  converged {result.converged}"
                    + ("  (DEGENERATE geometry)" if result.degenerate else ""))
-        typer.echo(_array_text(result.transform, precision=6, suppress_small=True))
+        typer.echo(array_text(result.transform, precision=6, suppress_small=True))
     if not job.converged:
-        typer.echo(f"error: the registration did not converge ({_why_not_converged(job)}); its last estimate was "
+        typer.echo(f"error: the registration did not converge ({why_not_converged(job)}); its last estimate was "
                    f"written to {output}", err=True)
         raise typer.Exit(NOT_CONVERGED)
-
-
-def _echo_terrain(reg) -> None:
-    """The summary of a terrain registration (:class:`~seismo3d.terrain.TerrainRegistration`)."""
-    r = reg.registration
-    note = ""
-    if reg.held_by_features:
-        note = (f"  (the surfaces alone fix the horizontal position weakly; {reg.n_agreeing_matches} hillshade "
-                "matches hold it)")
-    elif r.degenerate:
-        note = "  (DEGENERATE geometry)"
-    typer.echo(f"rotation {reg.rotation_deg:.3f} deg (heading {reg.heading_deg:.3f})  fitness {r.fitness:.3f}  "
-               f"inlier RMSE {r.inlier_rmse:.4g} {reg.frame.unit}  start {reg.start} ({reg.n_feature_inliers} of "
-               f"{reg.n_matches} hillshade matches)  iterations {r.n_iterations}  converged {reg.converged}" + note)
-    typer.echo(_array_text(reg.transform, precision=6, suppress_small=True))
-
-
-def _why_not_converged(job) -> str:
-    """Why a registration did not converge, and what to try, in the command's flags."""
-    if job.kind == "volumes":
-        return job.result.reason
-    result = job.result.registration if job.kind == "terrain" else job.result
-    if result.degenerate and job.kind == "terrain":
-        if job.result.n_matches == 0:
-            return ("the surfaces alone do not fix every direction (gentle or planar terrain) and no hillshade "
-                    "matches were used; drop --method point_to_plane (fused is the default) or pass a closer --init")
-        return ("the surfaces alone do not fix every direction (gentle or planar terrain) and too few hillshade "
-                f"matches agree with the fit to hold it ({job.result.n_agreeing_matches}); check that the files "
-                "overlap")
-    if result.degenerate:
-        return ("the geometry does not constrain every degree of freedom (a plane slides in itself); add --features "
-                "with --method fused")
-    return "it stopped on its iteration limit; check the overlap, or pass a closer --init"
 
 
 @app.command()
@@ -311,7 +272,7 @@ def match(
         typer.echo("no homography could be fitted (too few matches)")
     else:
         typer.echo("homography (image1 -> image2):")
-        typer.echo(_array_text(result.homography, precision=6, suppress_small=True))
+        typer.echo(array_text(result.homography, precision=6, suppress_small=True))
 
 
 @app.command()
@@ -432,22 +393,13 @@ def map_(
             typer.echo(f"interrupted: the trajectory of the frames done and the map so far are in {output}", err=True)
             raise typer.Exit(130) from None
     summary = job.summary
-    typer.echo(f"{_frames_tracked(summary, max_frames)}, {summary['keyframes']} keyframes, "
+    typer.echo(f"{frames_tracked(summary, max_frames)}, {summary['keyframes']} keyframes, "
                f"{summary['loop_closures']} loop closures, {summary['frames_per_second']:.1f} frames/s -> {output}")
     if job.evaluation:
         ev = job.evaluation
         typer.echo(f"against the sequence's reference: ATE RMSE {100 * ev['ate_rmse_m']:.2f} cm, RPE "
                    f"{100 * ev['rpe_translation_rmse_m']:.2f} cm / {ev['rpe_rotation_rmse_deg']:.2f} deg per frame")
     typer.echo("wrote " + ", ".join(pathlib.Path(p).name for p in job.written.values()))
-
-
-def _frames_tracked(summary: dict, max_frames: int | None) -> str:
-    """'98 of 100 frames tracked', or for a run limited by --max-frames, '30 of the first 30 frames tracked
-    (--max-frames 30; the sequence has 100)'."""
-    tracked, total = summary["frames_tracked"], summary["frames_in_sequence"]
-    if max_frames is None or max_frames >= total:
-        return f"{tracked} of {total} frames tracked"
-    return f"{tracked} of the first {max_frames} frames tracked (--max-frames {max_frames}; the sequence has {total})"
 
 
 @app.command()

@@ -40,6 +40,7 @@ from scipy import ndimage as ndi
 
 from .._validation import check_positive
 from ..errors import InputError
+from .evaluation import evaluate_faults
 from .io.stick_sections import section_pixels
 
 __all__ = ["FaultLineScores", "FaultPair", "FaultScoringOptions", "PeopleFaultScore", "PrecisionRecallCurve",
@@ -426,8 +427,8 @@ def tolerant_scores(traced, people, tolerance: float = 3.0) -> tuple:
 
     Notes
     -----
-    ``fault_scores.tolerant_scores`` of the project's tools, line for line; :func:`seismo3d.seismic.evaluate_faults`
-    gives the same precision and recall when both masks hold fault samples.
+    ``fault_scores.tolerant_scores`` of the project's tools, computed by :func:`seismo3d.seismic.evaluate_faults`
+    (which this equals whenever both masks hold fault samples; with an empty mask every score here is 0).
     """
     pred, ref = np.asarray(traced, dtype=bool), np.asarray(people, dtype=bool)
     if pred.shape != ref.shape:
@@ -435,9 +436,8 @@ def tolerant_scores(traced, people, tolerance: float = 3.0) -> tuple:
     tol = check_positive(tolerance, "tolerance", allow_zero=True)
     if not pred.any() or not ref.any():
         return 0.0, 0.0, 0.0
-    p = float((ndi.distance_transform_edt(~ref)[pred] <= tol).mean())
-    r = float((ndi.distance_transform_edt(~pred)[ref] <= tol).mean())
-    return p, r, (2 * p * r / (p + r) if p + r else 0.0)
+    scores = evaluate_faults(pred, ref, tolerance=tol)  # the project's one computation of the two fractions
+    return scores.precision, scores.recall, scores.f1
 
 
 def _near(mask: np.ndarray, tol: float):

@@ -45,6 +45,7 @@ BUDGETS = [
     ImportBudget("seismo3d.jobs.interchange", frozenset({"numpy", "segyio"}), 0.5),  # 0.14-0.17
     ImportBudget("seismo3d.jobs.match", frozenset({"numpy"}), 0.4),  # 0.10-0.14
     ImportBudget("seismo3d.jobs.register_files", frozenset({"numpy", "scipy"}), 1.5),  # 0.52-0.53
+    ImportBudget("seismo3d.jobs.evaluate", frozenset({"numpy", "scipy", "segyio"}), 1.2),  # 0.47-0.49
     ImportBudget("seismo3d.jobs.faults", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.86-0.99
     ImportBudget("seismo3d.jobs.fault_tables", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.70-0.98
     ImportBudget("seismo3d.jobs.horizon", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.75-0.91

@@ -37,6 +37,7 @@ from .search import MaskedNCC
 __all__ = ["MapSpectrum", "SpectralMap", "map_spectrum", "spectral_maps"]
 
 NYQUIST_MARGIN = 0.45  # cycles per sample: spectra are read inside |k| < this along each axis (resampling roll-off)
+LIVE_TAPER = 0.125  # of the smaller map size: the window's rise from dead traces (_live_taper)
 MAIN_LOBE = 2.5  # resolution cells (1 / n_traces along each axis): the window's main lobe about 0 is left out
 
 
@@ -75,7 +76,9 @@ class SpectralMap:
 
 
 def map_spectrum(volume, live, *, max_slices: int = 64, max_fft: int = 256) -> MapSpectrum:
-    """The map-view log power spectrum of a volume: Hann-windowed time (depth) slices, their means removed, summed.
+    """The map-view log power spectrum of a volume: windowed time (depth) slices, their means removed, summed.
+
+    The window is a Hann window over each map axis times a cosine rise away from dead traces.
 
     Parameters
     ----------
@@ -93,7 +96,7 @@ def map_spectrum(volume, live, *, max_slices: int = 64, max_fft: int = 256) -> M
     MapSpectrum
     """
     n0, n1, n2 = volume.shape
-    window = np.outer(windows.hann(n0 + 2)[1:-1], windows.hann(n1 + 2)[1:-1]) * live
+    window = np.outer(windows.hann(n0 + 2)[1:-1], windows.hann(n1 + 2)[1:-1]) * _live_taper(live)
     picked = np.unique(np.linspace(0, n2 - 1, min(n2, max_slices)).round().astype(int))
     size = [int(min(max(64, 2 ** np.ceil(np.log2(2 * n))), max_fft)) for n in (n0, n1)]
     power = np.zeros(size)
@@ -103,6 +106,17 @@ def map_spectrum(volume, live, *, max_slices: int = 64, max_fft: int = 256) -> M
         power += (np.abs(np.fft.fft2(s * window[:, :, None], s=size, axes=(0, 1))) ** 2).sum(axis=2)
     power = np.fft.fftshift(power)
     return MapSpectrum(np.log(power + 1e-9 * max(power.max(), 1e-30)), (n0, n1))
+
+
+def _live_taper(live) -> np.ndarray:
+    """(n0, n1) weights rising from 0 at dead traces to 1 over ``LIVE_TAPER`` of the smaller map size (a cosine of
+    the distance): the edge of a dead area (a copy's corners outside its source) would print its own orientation,
+    the other grid's, into the spectrum."""
+    if live.all():
+        return np.ones(live.shape)
+    width = max(LIVE_TAPER * min(live.shape), 1.0)
+    d = np.minimum(ndi.distance_transform_edt(live) / width, 1.0)
+    return 0.5 - 0.5 * np.cos(np.pi * d)
 
 
 def _log_polar(spectrum: MapSpectrum, anisotropy: float, angles, radii, inverse: bool):

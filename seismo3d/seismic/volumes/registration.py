@@ -70,7 +70,7 @@ class VolumeRegistration:
     stage_seconds : dict
         Seconds per stage: ``prepare``, ``search``, ``coarse``, ``fine``, ``check``.
     n_maps : int
-        Linear maps scored by the search.
+        Linear maps scored by the search (the grid's and the spectra's).
     fixed_spacing, moving_spacing : (3,) float64 ndarray
         Inline bin (m), crossline bin (m), sample interval (ms or m) used for each volume.
     spacing_note : str
@@ -146,8 +146,9 @@ def register_volumes(fixed, moving, *, model: str = "affine", fixed_spacing=None
     (a map rotation and the inline / crossline bin scales of either volume), a vertical scale and a shift, so the
     answer does not depend on which volume is passed as fixed. Coarse to fine from the start: a search over map
     rotations and the scales of either volume on the coarsest decimated level (every translation at once by masked
-    FFT correlation), the best starts refined there (Levenberg-Marquardt on the correlation of both volumes, taken
-    both ways), the best one through the finer levels to full resolution; the answer is that two-way optimum refined
+    FFT correlation; on volumes of ``spectral_min_traces`` traces or more per map axis with the maps the map-view
+    spectra tell, :mod:`~seismo3d.seismic.volumes.spectral`), the best starts refined there (Levenberg-Marquardt on
+    the correlation of both volumes, taken both ways), the best one through the finer levels to full resolution; the answer is that two-way optimum refined
     on the way that leads it alone (the one interpolating the less aliased volume), checked
     (:mod:`~seismo3d.seismic.volumes.check`) before it is called converged.
 
@@ -193,6 +194,8 @@ def register_volumes(fixed, moving, *, model: str = "affine", fixed_spacing=None
     2706-2718. doi:10.1109/TIP.2011.2181402
     Marquardt, D. W. (1963). An algorithm for least-squares estimation of nonlinear parameters. J. Soc. Ind. Appl.
     Math. 11(2), 431-441. doi:10.1137/0111030
+    Reddy, B. S., Chatterji, B. N. (1996). An FFT-based technique for translation, rotation, and scale-invariant
+    image registration. IEEE Trans. Image Process. 5(8), 1266-1271. doi:10.1109/83.506761
 
     Examples
     --------

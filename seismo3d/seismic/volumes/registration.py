@@ -148,9 +148,9 @@ def register_volumes(fixed, moving, *, model: str = "affine", fixed_spacing=None
     rotations and the scales of either volume on the coarsest decimated level (every translation at once by masked
     FFT correlation; on volumes of ``spectral_min_traces`` traces or more per map axis with the maps the map-view
     spectra tell, :mod:`~seismo3d.seismic.volumes.spectral`), the best starts refined there (Levenberg-Marquardt on
-    the correlation of both volumes, taken both ways), the best one through the finer levels to full resolution; the answer is that two-way optimum refined
-    on the way that leads it alone (the one interpolating the less aliased volume), checked
-    (:mod:`~seismo3d.seismic.volumes.check`) before it is called converged.
+    the correlation of both volumes, taken both ways), the best one through the finer levels to full resolution;
+    the answer is that two-way optimum refined on the way that leads it alone (the one interpolating the less
+    aliased volume), checked (:mod:`~seismo3d.seismic.volumes.check`) before it is called converged.
 
     Parameters
     ----------

@@ -37,9 +37,9 @@ class VolumeOptions:
         scored beside the search's grid (0: none) ...
     spectral_min_traces : int
         ... when both volumes hold at least this many traces along each map axis. On maps of 18-24 traces (f3_crop,
-        the Penobscot and Volve blocks of ``benchmarks/volumes.py``) a map within half a grid step of the right one
-        is among the 8 best candidates in 29 of 40 pairs, and the coarsest level correlates wrong candidates as well
-        as right ones (Volve: 0.99 up to 14 samples off), so they are left to the grid there.
+        the Penobscot and Volve blocks of ``benchmarks/volumes.py --only spectral``) a map within half a grid step
+        of the right one is among the 6 best candidates in 24 of 36 pairs, and the coarsest level correlates wrong
+        candidates as well as right ones (Volve: 0.99 at 9-14 samples off), so they are left to the grid there.
     min_lateral, min_vertical : int
         The coarsest level keeps at least this many traces along each map axis and samples along the traces ...
     max_factor : int

@@ -14,8 +14,10 @@ anisotropies ``a`` and ``rho`` are searched on a grid. A power spectrum is symme
 the same rotation plus 180 degrees are both candidates (the translation search tells them apart).
 
 The spectra tell the map only as far as the map view holds enough traces: on maps of 18-24 traces (f3_crop, the
-Penobscot and Volve blocks of ``benchmarks/volumes.py``) the right map is among the best few candidates in 28 of 39
-pairs; the grid of :mod:`.search` is kept beside them (:func:`~seismo3d.seismic.volumes.registration._search`).
+Penobscot and Volve blocks of ``benchmarks/volumes.py --only spectral``) a candidate within half a step of the
+search's grid of the right map is among the 6 best in 24 of 36 pairs, and the best one in 16; the registration
+scores them beside that grid, and only on volumes of ``spectral_min_traces`` traces or more per map axis
+(:class:`~seismo3d.seismic.volumes.VolumeOptions`).
 
 References
 ----------

@@ -15,7 +15,7 @@ the same rotation plus 180 degrees are both candidates (the translation search t
 
 The spectra tell the map only as far as the map view holds enough traces: on maps of 18-24 traces (f3_crop, the
 Penobscot and Volve blocks of ``benchmarks/volumes.py --only spectral``) a candidate within half a step of the
-search's grid of the right map is among the 6 best in 24 of 36 pairs, and the best one in 16; the registration
+search's grid of the right map is among the 6 best in 24 of 36 pairs, and the best one in 15; the registration
 scores them beside that grid, and only on volumes of ``spectral_min_traces`` traces or more per map axis
 (:class:`~seismo3d.seismic.volumes.VolumeOptions`).
 

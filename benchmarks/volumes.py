@@ -2,7 +2,7 @@
 unrelated pairs, and seconds per pair beside scikit-image's phase_cross_correlation on the same arrays.
 
 Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/volumes.py [--quick] [--only
-speed,grid,unrelated,masked_ncc,coordinates,spectral] [--repeat N] [--check]``
+speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral] [--repeat N] [--check]``
 
 1. speed: f3_crop onto its copy shifted by 4 inlines, 4 crosslines and 5 samples (arrays, and the command on SEG-Y
    files: ``seismo3d register f3.sgy copy.sgy``, imports included), and a 160 x 160 x 130 generated pair (moving
@@ -20,7 +20,8 @@ speed,grid,unrelated,masked_ncc,coordinates,spectral] [--repeat N] [--check]``
    unless right.
 3. unrelated: pairs with no common volume (the top and bottom of one cube, two far parts of the Penobscot inlines)
    and unrelated data (f3_crop, Penobscot, Volve, generated cubes, noise against each other), both orders: each must
-   be ``converged: false`` with its reason.
+   be ``converged: false`` with its reason (``unrelated_large``: only the pairs of 32 traces or more per map axis,
+   whose search scores the spectra's candidates too).
 4. masked_ncc: the search's masked FFT normalised cross-correlation (``MaskedNCC``, Padfield 2012, single precision)
    beside scikit-image's ``phase_cross_correlation(..., reference_mask=, moving_mask=)`` on the search's own calls
    (recorded while f3_crop pairs are searched, the overlap threshold the same for both): how often the best shift is
@@ -209,11 +210,17 @@ def unrelated_pairs() -> dict:
         "generated cube / f3_crop": (synthetic_cube((24, 24, 80), n_faults=1, seed=4).cube, f3),
         "noise / noise": (rng.normal(size=(24, 20, 64)).astype(np.float32),
                           rng.normal(size=(22, 18, 60)).astype(np.float32)),
+        # 32 traces or more per map axis: the spectra's candidates are scored too
+        "generated 96 x 96 / another generated 80 x 88 (spectral candidates on)": (
+            synthetic_cube((96, 96, 80), n_faults=2, seed=11).cube,
+            synthetic_cube((80, 88, 72), n_faults=3, seed=12).cube),
+        "noise 64 x 64 / noise 56 x 60 (spectral candidates on)": (
+            rng.normal(size=(64, 64, 48)).astype(np.float32), rng.normal(size=(56, 60, 40)).astype(np.float32)),
     }
 
 
-def unrelated(quick: bool, repeat: int) -> None:
-    pairs = unrelated_pairs()
+def unrelated(quick: bool, repeat: int, only: str = "") -> None:
+    pairs = {k: v for k, v in unrelated_pairs().items() if only in k}
     if quick:
         pairs = dict(list(pairs.items())[::3])
     print("\n## Pairs with no common volume or unrelated data (each must be converged: false)\n")
@@ -404,8 +411,13 @@ def spectral(quick: bool, repeat: int) -> None:
     print("\n" + "; ".join(f"{k}: {sum(v)} of {len(v)}" for k, v in found.items()))
 
 
+def unrelated_large(quick: bool, repeat: int) -> None:
+    """The unrelated pairs of 32 traces or more per map axis only."""
+    unrelated(quick, repeat, only="spectral candidates on")
+
+
 SECTIONS = {"speed": speed, "grid": grid, "unrelated": unrelated, "masked_ncc": masked_ncc, "coordinates": coordinates,
-            "spectral": spectral}
+            "spectral": spectral, "unrelated_large": unrelated_large}
 
 if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -177,9 +177,11 @@ def spectral_maps(fixed: MapSpectrum, moving: MapSpectrum, *, scale_range, max_r
     found = []
     for a in anisotropies:
         img, mask = _log_polar(moving, a, a_moving, radii, inverse=False)
-        need = 0.25 * mask.sum()
+        need = max(0.25 * mask.sum(), 8.0)
         for rho in anisotropies:
             f_img, f_mask = fixed_images[rho]
+            if not f_mask.any() or not mask.any():  # no trusted frequency (a map too small for its window)
+                continue
             # untrusted fixed values: 0, their mask is folded into the moving side's overlap count below
             ncc, n, origin = MaskedNCC(np.where(f_mask > 0, f_img, f_img[f_mask > 0].mean())[:, :, None]) \
                 .with_overlap(img[:, :, None], mask[:, :, None], need)

@@ -148,6 +148,20 @@ def test_penobscot_and_its_copy_without_coordinates_in_either_order(penobscot_bl
     assert both.corner_error <= 0.1
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize("order", ORDERS)
+def test_a_generated_pair_with_the_spectra_candidates(order):
+    # 64 traces per map axis: the search scores the map-view spectra's candidates beside its grid (n_maps counts
+    # both; the grid alone scores the same maps with n_spectral=0)
+    cube = synthetic_cube((96, 96, 72), n_faults=2, seed=5).cube
+    fixed, moving, truth = resampled_pair(cube, (64, 64, 56), scales=(1.25, 0.8, 1.1), angle_deg=12.0,
+                                          offset=(1.3, -2.2, 1.5), moving_fraction=0.9)
+    reg, t, shape = register_in_order(fixed, moving, truth, order)
+    assert_recovered(reg, t, shape)
+    grid_only = VolumeOptions(n_spectral=0)
+    assert 0 < reg.n_maps - register_in_order(fixed, moving, truth, order, options=grid_only)[0].n_maps <= 6
+
+
 # the grid's pairs with bins that differ on the fixed volume (or on both), whose errors in benchmarks/volumes.py are
 # the largest of the f3_crop grid, besides the two pairs above; the whole grid (24 registrations per data set) is the
 # benchmark's, out of the test suite's 10 minutes

@@ -15,7 +15,7 @@ the same rotation plus 180 degrees are both candidates (the translation search t
 
 The spectra tell the map only as far as the map view holds enough traces: on maps of 18-24 traces (f3_crop, the
 Penobscot and Volve blocks of ``benchmarks/volumes.py --only spectral``) a candidate within half a step of the
-search's grid of the right map is among the 6 best in 24 of 36 pairs, and the best one in 15; the registration
+search's grid of the right map is among the 6 best in 24 of 36 pairs, and the best one in 16; the registration
 scores them beside that grid, and only on volumes of ``spectral_min_traces`` traces or more per map axis
 (:class:`~seismo3d.seismic.volumes.VolumeOptions`).
 
@@ -163,7 +163,7 @@ def spectral_maps(fixed: MapSpectrum, moving: MapSpectrum, *, scale_range, max_r
     lo, hi = scale_range
     n_angles = int(round(180.0 / angle_step))
     step = np.radians(180.0 / n_angles)
-    r_min = 0.5 / max(max(fixed.n_traces), max(moving.n_traces))
+    r_min = MAIN_LOBE / max(max(fixed.n_traces), max(moving.n_traces))  # below: the window's main lobe only
     radii = np.exp(np.linspace(np.log(r_min), np.log(0.5), n_radii))
     dr = np.log(radii[1] / radii[0])
     # moving: one half plane; fixed: wider by the rotations and scales searched (shifts of the moving image in it)

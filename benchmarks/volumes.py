@@ -1,8 +1,8 @@
 """Sub-volume registration: accuracy on pairs generated from real seismic in both argument orders, honest failures on
 unrelated pairs, and seconds per pair beside scikit-image's phase_cross_correlation on the same arrays.
 
-Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/volumes.py [--quick] [--only speed,grid,unrelated,masked_ncc]
-[--repeat N]``
+Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/volumes.py [--quick] [--only
+speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral] [--repeat N] [--check]``
 
 1. speed: f3_crop onto its copy shifted by 4 inlines, 4 crosslines and 5 samples (arrays, and the command on SEG-Y
    files: ``seismo3d register f3.sgy copy.sgy``, imports included), and a 160 x 160 x 130 generated pair (moving
@@ -20,12 +20,23 @@ Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/volumes.py [--quick] [
    unless right.
 3. unrelated: pairs with no common volume (the top and bottom of one cube, two far parts of the Penobscot inlines)
    and unrelated data (f3_crop, Penobscot, Volve, generated cubes, noise against each other), both orders: each must
-   be ``converged: false`` with its reason.
+   be ``converged: false`` with its reason (``unrelated_large``: only the pairs of 32 traces or more per map axis,
+   whose search scores the spectra's candidates too).
 4. masked_ncc: the search's masked FFT normalised cross-correlation (``MaskedNCC``, Padfield 2012, single precision)
    beside scikit-image's ``phase_cross_correlation(..., reference_mask=, moving_mask=)`` on the search's own calls
    (recorded while f3_crop pairs are searched, the overlap threshold the same for both): how often the best shift is
    the same, the largest difference of the correlation maps (skimage's ``cross_correlate_masked``, the function
    behind it), and milliseconds per call.
+5. coordinates (issue 57): a volume and its copy at a map rotation of 12 degrees, bins 1.25 / 0.8, vertical 1.1 and
+   a shift, both written as SEG-Y without CDP coordinates or bin sizes (only the amplitudes tell the map), opened
+   with ``open_segy`` and registered in both orders: the Penobscot and Volve blocks of the grid (copies from
+   :func:`seismo3d.data.resampled_pair`), and a generated 160 x 160 x 130 volume clipped to 8 bits with a copy of the
+   same size resampled trilinearly (the issue's survey is not in the data folder). ``--check`` exits 1 unless the
+   Penobscot pair is right in both orders.
+6. spectral: the map-view candidates of the two volumes' spectra alone (Fourier-Mellin,
+   :mod:`seismo3d.seismic.volumes.spectral`) on the grid's pairs and the generated 160 x 160 pair: the rank of the
+   first candidate within half a step of the search's grid of the right map (a relative error of the map-view
+   matrix of 0.19 or less), and the best candidate's errors.
 """
 
 from __future__ import annotations
@@ -42,8 +53,8 @@ import warnings
 import numpy as np
 
 from seismo3d.data import fetch, load_penobscot_sections, resampled_pair, synthetic_cube
-from seismo3d.seismic import read_segy, register_volumes, registration_errors
-from seismo3d.seismic.volumes import decompose_map
+from seismo3d.seismic import open_segy, read_segy, register_volumes, registration_errors
+from seismo3d.seismic.volumes import VolumeOptions, decompose_map
 
 TOLERANCES = (0.5, 1.0, 0.5)  # rotation deg, scale %, corners samples
 
@@ -199,11 +210,17 @@ def unrelated_pairs() -> dict:
         "generated cube / f3_crop": (synthetic_cube((24, 24, 80), n_faults=1, seed=4).cube, f3),
         "noise / noise": (rng.normal(size=(24, 20, 64)).astype(np.float32),
                           rng.normal(size=(22, 18, 60)).astype(np.float32)),
+        # 32 traces or more per map axis: the spectra's candidates are scored too
+        "generated 96 x 96 / another generated 80 x 88 (spectral candidates on)": (
+            synthetic_cube((96, 96, 80), n_faults=2, seed=11).cube,
+            synthetic_cube((80, 88, 72), n_faults=3, seed=12).cube),
+        "noise 64 x 64 / noise 56 x 60 (spectral candidates on)": (
+            rng.normal(size=(64, 64, 48)).astype(np.float32), rng.normal(size=(56, 60, 40)).astype(np.float32)),
     }
 
 
-def unrelated(quick: bool, repeat: int) -> None:
-    pairs = unrelated_pairs()
+def unrelated(quick: bool, repeat: int, only: str = "") -> None:
+    pairs = {k: v for k, v in unrelated_pairs().items() if only in k}
     if quick:
         pairs = dict(list(pairs.items())[::3])
     print("\n## Pairs with no common volume or unrelated data (each must be converged: false)\n")
@@ -274,14 +291,143 @@ def masked_ncc(quick: bool, repeat: int) -> None:
           f"{1e3 * t_sk / n:.2f} |", flush=True)
 
 
-SECTIONS = {"speed": speed, "grid": grid, "unrelated": unrelated, "masked_ncc": masked_ncc}
+def generated_survey():
+    """A generated 160 x 160 x 130 volume clipped to 8 bits (two thirds of the samples at 0 or 255, as the Penobscot
+    sections) and a copy of the same size resampled trilinearly on a grid at 12 degrees, bins 1.25 / 0.8, vertical
+    1.1, shifted: (fixed, moving, moving index -> fixed index)."""
+    from scipy import ndimage as ndi
+
+    base = synthetic_cube((220, 220, 170), n_faults=3, seed=2).cube
+    q = np.quantile(np.abs(base), 0.35)
+    eight = np.clip(np.round(127.5 + 127.5 * base / q), 0, 255).astype(np.float32)
+    corner, shape = np.array([30, 30, 20]), np.array([160, 160, 130])
+    fixed = np.ascontiguousarray(eight[30:190, 30:190, 20:150])
+    th = np.radians(12.0)
+    a = np.diag([1.25, 0.8, 1.1])
+    a[:2, :2] = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]]) @ np.diag([1.25, 0.8])
+    centre = corner + (shape - 1) / 2 + np.array([3.3, -4.2, 2.5])
+    offset = centre - a @ ((shape - 1) / 2)  # moving index m -> base index a m + offset
+    moving = ndi.affine_transform(eight, a, offset=offset, output_shape=tuple(shape), order=1, mode="constant",
+                                  cval=0.0).astype(np.float32)
+    truth = np.eye(4)
+    truth[:3, :3], truth[:3, 3] = a, offset - corner
+    return fixed, moving, truth
+
+
+def copy_pairs(quick: bool) -> dict:
+    """The issue's pairs: a block and its copy at 12 degrees, bins 1.25 / 0.8, vertical 1.1, shifted."""
+    blocks = real_blocks()
+    pairs = {name: resampled_pair(blocks[name], blocks[name].shape, scales=(1.25, 0.8, 1.1), angle_deg=12.0,
+                                  offset=(0.3, 1.2, 1.5), moving_fraction=1.0)
+             for name in ("penobscot", "volve (velocity)")}
+    if not quick:
+        pairs["generated 160 x 160 x 130, 8-bit, trilinear copy"] = generated_survey()
+    return pairs
+
+
+def _right(reg, truth, moving_shape):
+    e = registration_errors(reg.transform_index, truth, moving_shape)
+    true_rotation = decompose_map(truth).rotation_deg
+    right = (e.rotation_deg <= TOLERANCES[0] and abs(reg.rotation_deg - true_rotation) <= TOLERANCES[0]
+             and e.max_scale_pct <= TOLERANCES[1] and e.corner_error <= TOLERANCES[2])
+    return e, right
+
+
+def coordinates(quick: bool, repeat: int) -> bool:
+    import segyio
+
+    print("\n## A volume and its copy (12 deg, bins 1.25 / 0.8, vertical 1.1, shifted), both SEG-Y without "
+          f"coordinates, both orders ({_load()})\n")
+    print("| pair | order | s | rotation err deg | scale err % (inline, crossline, sample) | corner err | "
+          "correlation | converged | right | spacing | reason |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    ok = True
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, (fixed, moving, truth) in copy_pairs(quick).items():
+            paths = [os.path.join(tmp, f"{k}.sgy") for k in ("fixed", "moving")]
+            for path, volume in zip(paths, (fixed, moving)):
+                segyio.tools.from_array(path, volume, dt=4000)  # no CDP X/Y
+            for order in ("moving onto fixed", "fixed onto moving"):
+                first, second, t, shape = ((paths[0], paths[1], truth, moving.shape) if order == "moving onto fixed"
+                                           else (paths[1], paths[0], np.linalg.inv(truth), fixed.shape))
+                t0 = time.perf_counter()
+                with open_segy(first) as a, open_segy(second) as b:
+                    reg = register_volumes(a, b)
+                seconds = time.perf_counter() - t0
+                e, right = _right(reg, t, shape)
+                if name == "penobscot":
+                    ok &= bool(right and reg.converged)
+                print(f"| {name} | {order} | {seconds:.1f} | {e.rotation_deg:.3f} | {np.round(e.scale_pct, 2)} | "
+                      f"{e.corner_error:.3f} | {reg.correlation:.3f} | {'yes' if reg.converged else 'no'} | "
+                      f"{'yes' if right else 'no'} | {reg.fixed_spacing.tolist()} | {reg.reason} |", flush=True)
+    return ok
+
+
+def spectral(quick: bool, repeat: int) -> None:
+    from seismo3d.seismic.reflectors import normalise_amplitudes
+    from seismo3d.seismic.volumes.spectral import map_spectrum, spectral_maps
+
+    opt = VolumeOptions()
+
+    def spectrum(v, derivative):
+        live = np.ptp(v, axis=2) > 0
+        d = normalise_amplitudes(np.gradient(v, axis=2).astype(np.float32) if derivative else v, "volume")
+        d[~live] = 0.0
+        return map_spectrum(d, live)
+
+    def rotation_scales(linear):
+        t = np.eye(4)
+        t[:2, :2] = linear
+        return decompose_map(t).rotation_deg, np.linalg.norm(linear, axis=0)
+
+    cases = [(name, make_pair(base, *g)) for name, base in real_blocks().items()
+             for g in ([GRID[i] for i in QUICK] if quick else GRID)]
+    cases.append(("generated 160 x 160, 8-bit", generated_survey()))
+    print(f"\n## Map-view candidates of the spectra alone ({opt.n_spectral} per pair, moving onto fixed; "
+          f"{_load()})\n")
+    print("| data | true rotation | true moving scales | s | rank of the first candidate within 0.19 | smallest "
+          "matrix error | best candidate's (rotation, scale errors) |")
+    print("|---|---|---|---|---|---|---|")
+    found = {}
+    for name, (fixed, moving, truth) in cases:
+        derivative = name.startswith("volve")
+        t0 = time.perf_counter()
+        candidates = spectral_maps(spectrum(fixed, derivative), spectrum(moving, derivative),
+                                   scale_range=opt.scale_range, max_rotation=opt.max_rotation,
+                                   max_anisotropy=opt.max_anisotropy, n_best=opt.n_spectral)
+        seconds = time.perf_counter() - t0
+        rt, st = rotation_scales(truth[:2, :2])
+        # how far a candidate is from the map: the largest singular value of the difference of the (2, 2)
+        # map-view matrices over that of the map (half a step of the search's grid: 0.13 for 7.5 degrees, 0.19
+        # for 19 %); rotation and per-axis scales trade off when a map rotation is small
+        errors = [np.linalg.norm(c.linear - truth[:2, :2], 2) / np.linalg.norm(truth[:2, :2], 2) for c in candidates]
+        near = [i for i, e in enumerate(errors) if e <= 0.19]
+        rank = near[0] if near else None
+        found.setdefault(name, []).append(rank is not None)
+        best = rotation_scales(candidates[0].linear) if candidates else (np.nan, np.full(2, np.nan))
+        print(f"| {name} | {rt:.1f} | {np.round(st, 2)} | {seconds:.2f} | {rank if rank is not None else '-'} | "
+              f"{min(errors, default=np.nan):.3f} | {errors[0] if errors else np.nan:.3f} "
+              f"({best[0] - rt:+.1f} deg, {np.round(100 * (best[1] / st - 1))} %) |", flush=True)
+    print("\n" + "; ".join(f"{k}: {sum(v)} of {len(v)}" for k, v in found.items()))
+
+
+def unrelated_large(quick: bool, repeat: int) -> None:
+    """The unrelated pairs of 32 traces or more per map axis only."""
+    unrelated(quick, repeat, only="spectral candidates on")
+
+
+SECTIONS = {"speed": speed, "grid": grid, "unrelated": unrelated, "masked_ncc": masked_ncc, "coordinates": coordinates,
+            "spectral": spectral, "unrelated_large": unrelated_large}
 
 if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer cases")
     ap.add_argument("--only", default=",".join(SECTIONS), help="comma-separated sections: " + ", ".join(SECTIONS))
     ap.add_argument("--repeat", type=int, default=5, help="runs per timed pair (speed)")
+    ap.add_argument("--check", action="store_true", help="exit 1 when a section's check fails (coordinates)")
     args = ap.parse_args()
     warnings.simplefilter("ignore")
-    for name in args.only.split(","):
-        SECTIONS[name.strip()](args.quick, args.repeat)
+    failed = [name for name in args.only.split(",") if SECTIONS[name.strip()](args.quick, args.repeat) is False]
+    if args.check and failed:
+        print(f"check failed: {', '.join(failed)}")
+        sys.exit(1)

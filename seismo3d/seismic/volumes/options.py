@@ -32,6 +32,14 @@ class VolumeOptions:
         of 2.7, need 2.83, the next step).
     n_starts : int
         Distinct best starts of the search refined on the coarsest level.
+    n_spectral : int
+        Map-view candidates of the two volumes' spectra (Fourier-Mellin, :mod:`~seismo3d.seismic.volumes.spectral`)
+        scored beside the search's grid (0: none) ...
+    spectral_min_traces : int
+        ... when both volumes hold at least this many traces along each map axis. On maps of 18-24 traces (f3_crop,
+        the Penobscot and Volve blocks of ``benchmarks/volumes.py --only spectral``) a map within half a grid step
+        of the right one is among the 6 best candidates in 24 of 36 pairs, and the coarsest level correlates wrong
+        candidates as well as right ones (Volve: 0.99 at 9-14 samples off), so they are left to the grid there.
     min_lateral, min_vertical : int
         The coarsest level keeps at least this many traces along each map axis and samples along the traces ...
     max_factor : int
@@ -91,6 +99,8 @@ class VolumeOptions:
     scale_step: float = 2.0 ** 0.5
     max_anisotropy: float = 2.0 ** 1.5
     n_starts: int = 6
+    n_spectral: int = 6
+    spectral_min_traces: int = 32
     min_lateral: int = 16
     min_vertical: int = 8
     max_factor: int = 8
@@ -117,6 +127,8 @@ class VolumeOptions:
         if not 0 < lo <= 1 <= hi or not hi < float("inf"):
             raise InputError(f"scale_range must satisfy 0 < smallest <= 1 <= largest; got {self.scale_range!r}")
         object.__setattr__(self, "scale_range", (lo, hi))
+        check_int(self.n_spectral, "n_spectral", minimum=0)
+        check_int(self.spectral_min_traces, "spectral_min_traces", minimum=8)
         for name in ("n_starts", "min_lateral", "min_vertical", "n_points", "max_iterations"):
             check_int(getattr(self, name), name, minimum=1)
         factor = check_int(self.max_factor, "max_factor", minimum=1)

@@ -25,6 +25,7 @@ from .pyramid import (Sampled, build_level, envelope, from_level, level_factors,
                       smoothing_measures, to_level)
 from .refine import PairCorrelation, Refined, refine
 from .search import Start, correlation_search, distinct_starts
+from .spectral import map_spectrum, spectral_maps
 from .vertical import vertical_scale
 
 __all__ = ["VolumeRegistration", "register_volumes"]
@@ -69,7 +70,7 @@ class VolumeRegistration:
     stage_seconds : dict
         Seconds per stage: ``prepare``, ``search``, ``coarse``, ``fine``, ``check``.
     n_maps : int
-        Linear maps scored by the search.
+        Linear maps scored by the search (the grid's and the spectra's).
     fixed_spacing, moving_spacing : (3,) float64 ndarray
         Inline bin (m), crossline bin (m), sample interval (ms or m) used for each volume.
     spacing_note : str
@@ -145,10 +146,11 @@ def register_volumes(fixed, moving, *, model: str = "affine", fixed_spacing=None
     (a map rotation and the inline / crossline bin scales of either volume), a vertical scale and a shift, so the
     answer does not depend on which volume is passed as fixed. Coarse to fine from the start: a search over map
     rotations and the scales of either volume on the coarsest decimated level (every translation at once by masked
-    FFT correlation), the best starts refined there (Levenberg-Marquardt on the correlation of both volumes, taken
-    both ways), the best one through the finer levels to full resolution; the answer is that two-way optimum refined
-    on the way that leads it alone (the one interpolating the less aliased volume), checked
-    (:mod:`~seismo3d.seismic.volumes.check`) before it is called converged.
+    FFT correlation; on volumes of ``spectral_min_traces`` traces or more per map axis with the maps the map-view
+    spectra tell, :mod:`~seismo3d.seismic.volumes.spectral`), the best starts refined there (Levenberg-Marquardt on
+    the correlation of both volumes, taken both ways), the best one through the finer levels to full resolution;
+    the answer is that two-way optimum refined on the way that leads it alone (the one interpolating the less
+    aliased volume), checked (:mod:`~seismo3d.seismic.volumes.check`) before it is called converged.
 
     Parameters
     ----------
@@ -192,6 +194,8 @@ def register_volumes(fixed, moving, *, model: str = "affine", fixed_spacing=None
     2706-2718. doi:10.1109/TIP.2011.2181402
     Marquardt, D. W. (1963). An algorithm for least-squares estimation of nonlinear parameters. J. Soc. Ind. Appl.
     Math. 11(2), 431-441. doi:10.1137/0111030
+    Reddy, B. S., Chatterji, B. N. (1996). An FFT-based technique for translation, rotation, and scale-invariant
+    image registration. IEEE Trans. Image Process. 5(8), 1266-1271. doi:10.1109/83.506761
 
     Examples
     --------
@@ -318,7 +322,9 @@ def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: V
     """The distinct best starts of the search on level ``top`` over map rotations and the lateral scales of either
     volume, with the vertical scale of the trace spectra (full resolution), and the number of maps scored.
 
-    Maps with the scales on the moving volume's axes resample it onto the fixed grid; maps with the scales on the
+    The maps the two volumes' map-view spectra tell (:mod:`.spectral`, volumes of ``spectral_min_traces`` traces or
+    more along each map axis) are scored beside them: they are not bound to the grid's steps. Maps with the scales
+    on the moving volume's axes resample it onto the fixed grid; maps with the scales on the
     fixed volume's axes are the same search with the volumes' roles swapped, inverted (only the rotated ones
     anisotropic by two scale steps or more: the others are, or start the refinement as close as, maps of the first
     kind). Lateral anisotropies above ``max_anisotropy`` are left out.
@@ -326,10 +332,13 @@ def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: V
     fixed, moving = pf.at(top), pm.at(top)
     ratio = sp_m[2] / sp_f[2]  # moving sample interval in fixed samples, by the spacings
     lo, hi = opt.scale_range
+    spectral = []
     if model == "rigid":
         vertical, axis_scales = ratio, np.ones(1)
     else:
         vertical = vertical_scale(pf.at(0).data, pm.at(0).data, lo * ratio, hi * ratio)
+        # the maps the map-view spectra tell (Fourier-Mellin, off the grid below), with their best translations
+        spectral = _spectral_starts(pf, pm, top, vertical, opt)
         n = int(np.floor(np.log(hi / lo) / np.log(opt.scale_step) + 1e-9))
         axis_scales = lo * opt.scale_step ** np.arange(n + 1)
         axis_scales = np.unique(np.r_[axis_scales, hi] if hi / axis_scales[-1] > opt.scale_step ** 0.5 else
@@ -345,11 +354,30 @@ def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: V
             # on either side starts the refinement close enough)
             if theta != 0 and max(lateral) / min(lateral) > opt.scale_step ** 1.5:
                 backward.append(_level_map(theta, lateral, 1.0 / vertical, sp_m, sp_f, moving, fixed))
-    starts = correlation_search(fixed, moving, forward, opt.min_fraction)
-    starts += [Start(s.correlation, np.linalg.inv(s.transform))
+    starts = correlation_search(fixed, moving, forward, opt.min_fraction) + spectral
+    starts += [Start(s.correlation, np.linalg.inv(s.transform), s.ncc)
                for s in correlation_search(moving, fixed, backward, opt.min_fraction)]
     starts.sort(key=lambda s: -s.correlation)
-    return distinct_starts(starts, moving.shape, opt.n_starts, 2.0), len(forward) + len(backward)
+    return distinct_starts(starts, moving.shape, opt.n_starts, 2.0), len(forward) + len(backward) + len(spectral)
+
+
+def _spectral_starts(pf: _Pyramid, pm: _Pyramid, top: int, vertical: float, opt: VolumeOptions) -> list:
+    """The map-view candidates of the two volumes' spectra (:mod:`.spectral`, full resolution) with the vertical
+    scale, each with its best translation on level ``top`` (:func:`~.search.correlation_search`), best first; none
+    when ``n_spectral`` is 0 or a volume has fewer than ``spectral_min_traces`` traces along a map axis."""
+    f0, m0 = pf.at(0), pm.at(0)
+    if opt.n_spectral == 0 or min(*f0.shape[:2], *m0.shape[:2]) < opt.spectral_min_traces:
+        return []
+    candidates = spectral_maps(map_spectrum(f0.data, f0.live), map_spectrum(m0.data, m0.live),
+                               scale_range=opt.scale_range, max_rotation=opt.max_rotation,
+                               max_anisotropy=opt.max_anisotropy, n_best=opt.n_spectral)
+    fixed, moving = pf.at(top), pm.at(top)
+    maps = []
+    for c in candidates:
+        lin = np.eye(3)
+        lin[:2, :2], lin[2, 2] = c.linear, vertical
+        maps.append(np.diag(1.0 / fixed.factors) @ lin @ np.diag(moving.factors))
+    return correlation_search(fixed, moving, maps, opt.min_fraction)
 
 
 def _level_map(theta, lateral, vertical, sp_to, sp_from, to: Sampled, frm: Sampled) -> np.ndarray:

@@ -25,6 +25,7 @@ class Start:
 
     correlation: float  # Fisher z-score of the masked NCC
     transform: np.ndarray  # (4, 4) moving level index -> fixed level index
+    ncc: float = float("nan")  # the masked NCC itself at the best translation
 
 
 class MaskedNCC:
@@ -133,7 +134,7 @@ def correlation_search(fixed: Sampled, moving: Sampled, linear_maps, min_fractio
             continue
         t = np.eye(4)
         t[:3, :3], t[:3, 3] = lin, np.array(k) - origin - g_lo
-        out.append(Start(float(z[k]), t))
+        out.append(Start(float(z[k]), t, float(ncc[k])))
     return sorted(out, key=lambda s: -s.correlation)
 
 

@@ -44,7 +44,7 @@ class FaultTracingOptions:
         The fault likelihood of step 1: the fault network trained on generated sections
         (:mod:`~seismo3d.seismic.faults.likelihood.learned`, ``learned``, the default) or the scan of fault-plane
         semblance (Hale 2013, ``scan``). The default was chosen on the F3 inlines with faults drawn by a person (mean F1
-        0.500 against the scan's 0.215, cross-validated, ``python benchmarks/faults.py --only f3``); against the
+        0.474 against the scan's 0.204, cross-validated, ``python benchmarks/faults.py --only f3``); against the
         published OSV faults of the Costa Rica crf section the scan finds more (recall 0.72 against 0.27).
     scan : FaultScanOptions
         The fault likelihood scan.

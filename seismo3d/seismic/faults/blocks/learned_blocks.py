@@ -7,7 +7,7 @@ inlines only. The steps (the output equals the in-memory
 
 1. The amplitude scale (median and standard deviation) from the regular subsample of traces that
    :func:`~seismo3d.seismic.faults.likelihood.learned.amplitude_scale` uses in memory too.
-2. Per network grid (``LearnedOptions.resample``, numbered 0, 1, ... in its order) and per direction the network
+2. Per network grid (``LearnedOptions.grids``, numbered 0, 1, ... in its order) and per direction the network
    runs on (``network_inline_0``, ``network_crossline_0``, ...): blocks of the whole cube's network
    grid (:mod:`~seismo3d.seismic.faults.likelihood.network`), ``k`` sections of ``w`` network traces each, read with the
    receptive half of halo (:data:`~seismo3d.seismic.faults.likelihood.network.RECEPTIVE_HALF` network traces, the
@@ -108,7 +108,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     -------
     ChunkedLikelihood
         Steps ``'network_inline_K'`` and / or ``'network_crossline_K'`` (as ``options.directions`` says) for each
-        network grid K = 0, 1, ... of ``options.resample``, and ``'orientation'``.
+        network grid K = 0, 1, ... of ``options.grids(n_samples)``, and ``'orientation'``.
 
     Raises
     ------
@@ -134,7 +134,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     with SchedulerClient(chunking.scheduler) as client:
         run.client = client
         scale = run.scale(x)
-        for k in range(len(opt.resample)):
+        for k in range(len(plan["grids"])):
             for axis in cube_directions(opt):
                 run.network(x, scale, axis, k)
         saturated = run.orientation(coords)
@@ -230,7 +230,7 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
     c = _NETWORK_CHUNK
     network = max(_largest_network_bytes(_network_shape(shape, factor), c, c, axis, shape, factor,
                                          int(opt.sections_per_batch))
-                  for factor in opt.resample for axis in cube_directions(opt))
+                  for factor in opt.grids(shape[2]) for axis in cube_directions(opt))
     return max(network, _orientation_block_bytes(tile, shape[2], opt))
 
 
@@ -248,7 +248,7 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
     if chunking.block and int(chunking.block) % tile:
         raise InputError(f"block must be a multiple of the tile ({tile} traces); got {chunking.block}")
     grids, biggest = [], 0
-    for factor in opt.resample:
+    for factor in opt.grids(nt):
         grid = _network_shape(shape, factor)
         fixed = None
         if chunking.block:

@@ -45,7 +45,10 @@ from ...._progress import progress_steps
 from ....errors import InputError, Seismo3dError
 from ..._kernels import eig_normals
 from ..result import FaultLikelihood
-from .network import FaultNetwork, POOLING_MULTIPLE, from_network_grid, normalise_section, to_network_grid, unet_forward
+from .network import (
+    RECEPTIVE_HALF, FaultNetwork, POOLING_MULTIPLE, from_network_grid, grid_size, normalise_section, to_network_grid,
+    unet_forward,
+)
 
 __all__ = ["WEIGHTS_SHA256", "LearnedOptions", "load_fault_network", "scale_subsample", "amplitude_scale",
            "fault_probability", "cube_directions", "direction_probability", "learned_fault_likelihood",
@@ -82,7 +85,13 @@ class LearnedOptions:
         half an octave apart (0.5, 0.7, 1) keeps what the network finds at several scales and loses what it finds at one
         only. Each grid costs ``factor**2`` (sections) or ``factor**3`` (cubes) of the samples: the default costs 1.7
         times the data's own grid in a section, 1.5 times in a cube. The grids are chosen by cross-validation on the F3
-        inlines drawn by a person (``python benchmarks/faults.py --only f3``).
+        inlines drawn by a person (``python benchmarks/faults.py --only f3``). A grid that leaves the traces fewer
+        than ``min_grid_samples`` samples is not run (:meth:`grids`).
+    min_grid_samples : int
+        Fewest samples per trace on a network grid for it to be run; the finest grid is always run. The default,
+        the network's receptive half (:data:`~seismo3d.seismic.faults.likelihood.network.RECEPTIVE_HALF`, 56),
+        leaves out the grids on which every output sample's receptive field runs past both ends of the traces
+        (see :meth:`grids`); 0 runs every grid.
     """
 
     directions: str = "both"
@@ -90,6 +99,7 @@ class LearnedOptions:
     min_dip: float = 40.0
     sections_per_batch: int = 4
     resample: tuple = (0.5, 0.7, 1.0)
+    min_grid_samples: int = RECEPTIVE_HALF
 
     def __post_init__(self):
         if self.directions not in ("both", "inline", "crossline"):
@@ -109,6 +119,33 @@ class LearnedOptions:
         object.__setattr__(self, "resample", factors)
         if int(self.sections_per_batch) < 1:
             raise InputError(f"sections_per_batch must be >= 1; got {self.sections_per_batch!r}")
+        if (isinstance(self.min_grid_samples, bool) or int(self.min_grid_samples) != self.min_grid_samples
+                or self.min_grid_samples < 0):
+            raise InputError(f"min_grid_samples must be an integer >= 0; got {self.min_grid_samples!r}")
+
+    def grids(self, n_samples: int) -> tuple:
+        """The network grids run on traces of ``n_samples`` samples: the factors of ``resample`` (in their order)
+        whose grid holds at least ``min_grid_samples`` samples per trace, and always the finest one.
+
+        With the default (the network's receptive half, 56 network samples), on a coarser grid every output
+        sample's receptive field (2 x 56 + 1 network samples) runs past both ends of the trace into the zero
+        padding, which the network never saw in training (128-sample patches). On the 76-sample Great South
+        Basin lines (grids of 38, 53 and 76 samples) the data's own grid gives a probability of 0.74-0.99 at 8
+        small faults an interpreter drew on crossline 2600 where the 0.5 grid gives 0.00-0.03; the mean over the
+        three grids, a third to two thirds of it, was lost to the vote thresholds and the evidence. Traces of 111
+        samples or more (F3: 462) keep the default's three grids.
+
+        Parameters
+        ----------
+        n_samples : int
+            Samples per trace of the input.
+
+        Returns
+        -------
+        tuple of float
+        """
+        kept = tuple(f for f in self.resample if grid_size(n_samples, f) >= int(self.min_grid_samples))
+        return kept or (max(self.resample),)
 
 
 @functools.lru_cache(maxsize=1)
@@ -212,20 +249,21 @@ def fault_probability(data: np.ndarray, *, options: LearnedOptions | None = None
     Returns
     -------
     ndarray, float32, the shape of ``data``
-        Probability in [0, 1]: the mean over the network grids of ``options.resample`` (in their order) of the
+        Probability in [0, 1]: the mean over the network grids of ``options.grids`` (in their order) of the
         probability on each grid (the larger of the two directions' in a cube), interpolated back.
     """
     opt = options or LearnedOptions()
     arr = np.asarray(data, dtype=np.float32)
     scale = amplitude_scale(arr) if scale is None else scale
     total = None
-    for factor in opt.resample:
+    factors = opt.grids(arr.shape[-1])
+    for factor in factors:
         small, first = to_network_grid(arr, factor, origin=origin, align=POOLING_MULTIPLE)
         prob = from_network_grid(_network_probability(small, opt, scale, progress), arr.shape, factor,
                                  origin=origin, first=first)
         del small
         total = prob if total is None else np.add(total, prob, out=total)
-    return grids_mean(total, len(opt.resample))
+    return grids_mean(total, len(factors))
 
 
 def grids_mean(total: np.ndarray, n_grids: int) -> np.ndarray:
@@ -235,7 +273,7 @@ def grids_mean(total: np.ndarray, n_grids: int) -> np.ndarray:
     Parameters
     ----------
     total : float32 ndarray
-        The sum of the grids' probabilities, in the order of ``LearnedOptions.resample``.
+        The sum of the grids' probabilities, in the order of ``LearnedOptions.grids``.
     n_grids : int
 
     Returns

@@ -352,11 +352,13 @@ def _network_block(f, block, axis, origin, array, opt, factor, scale, marker) ->
                          "replace them (e.g. by 0) before tracing faults")
     aligns = (1, POOLING_MULTIPLE) if axis == 0 else (POOLING_MULTIPLE, 1)
     small, first = to_network_grid(f, factor, origin=origin, align=aligns)
+    n_samples = f.shape[2]
     del f
     r0, r1, c0, c1 = u0 - first[0], u1 - first[0], v0 - first[1], v1 - first[1]
     assert min(r0, c0) >= 0 and r1 <= small.shape[0] and c1 <= small.shape[1], "network block outside its region"
     sections = small[r0:r1] if axis == 0 else small[:, c0:c1]
-    prob = direction_probability(sections, axis, scale=scale, batch=int(opt.sections_per_batch))
+    prob = direction_probability(sections, axis, scale=scale, batch=int(opt.sections_per_batch),
+                                 stretch_to=opt.stretch(n_samples, factor))
     zarr.open_array(array, mode="r+")[u0:u1, v0:v1, :] = prob[:, c0:c1] if axis == 0 else prob[r0:r1]
     write_marker(marker, {})
     return {}

@@ -7,7 +7,7 @@ inlines only. The steps (the output equals the in-memory
 
 1. The amplitude scale (median and standard deviation) from the regular subsample of traces that
    :func:`~seismo3d.seismic.faults.likelihood.learned.amplitude_scale` uses in memory too.
-2. Per network grid (``LearnedOptions.resample``, numbered 0, 1, ... in its order) and per direction the network
+2. Per network grid (``LearnedOptions.grids``, numbered 0, 1, ... in its order) and per direction the network
    runs on (``network_inline_0``, ``network_crossline_0``, ...): blocks of the whole cube's network
    grid (:mod:`~seismo3d.seismic.faults.likelihood.network`), ``k`` sections of ``w`` network traces each, read with the
    receptive half of halo (:data:`~seismo3d.seismic.faults.likelihood.network.RECEPTIVE_HALF` network traces, the
@@ -108,7 +108,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     -------
     ChunkedLikelihood
         Steps ``'network_inline_K'`` and / or ``'network_crossline_K'`` (as ``options.directions`` says) for each
-        network grid K = 0, 1, ... of ``options.resample``, and ``'orientation'``.
+        network grid K = 0, 1, ... of ``options.grids(n_samples)``, and ``'orientation'``.
 
     Raises
     ------
@@ -134,7 +134,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     with SchedulerClient(chunking.scheduler) as client:
         run.client = client
         scale = run.scale(x)
-        for k in range(len(opt.resample)):
+        for k in range(len(plan["grids"])):
             for axis in cube_directions(opt):
                 run.network(x, scale, axis, k)
         saturated = run.orientation(coords)
@@ -230,7 +230,7 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
     c = _NETWORK_CHUNK
     network = max(_largest_network_bytes(_network_shape(shape, factor), c, c, axis, shape, factor,
                                          int(opt.sections_per_batch))
-                  for factor in opt.resample for axis in cube_directions(opt))
+                  for factor in opt.grids(shape[2]) for axis in cube_directions(opt))
     return max(network, _orientation_block_bytes(tile, shape[2], opt))
 
 
@@ -248,7 +248,7 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
     if chunking.block and int(chunking.block) % tile:
         raise InputError(f"block must be a multiple of the tile ({tile} traces); got {chunking.block}")
     grids, biggest = [], 0
-    for factor in opt.resample:
+    for factor in opt.grids(nt):
         grid = _network_shape(shape, factor)
         fixed = None
         if chunking.block:
@@ -352,11 +352,13 @@ def _network_block(f, block, axis, origin, array, opt, factor, scale, marker) ->
                          "replace them (e.g. by 0) before tracing faults")
     aligns = (1, POOLING_MULTIPLE) if axis == 0 else (POOLING_MULTIPLE, 1)
     small, first = to_network_grid(f, factor, origin=origin, align=aligns)
+    n_samples = f.shape[2]
     del f
     r0, r1, c0, c1 = u0 - first[0], u1 - first[0], v0 - first[1], v1 - first[1]
     assert min(r0, c0) >= 0 and r1 <= small.shape[0] and c1 <= small.shape[1], "network block outside its region"
     sections = small[r0:r1] if axis == 0 else small[:, c0:c1]
-    prob = direction_probability(sections, axis, scale=scale, batch=int(opt.sections_per_batch))
+    prob = direction_probability(sections, axis, scale=scale, batch=int(opt.sections_per_batch),
+                                 stretch_to=opt.stretch(n_samples, factor))
     zarr.open_array(array, mode="r+")[u0:u1, v0:v1, :] = prob[:, c0:c1] if axis == 0 else prob[r0:r1]
     write_marker(marker, {})
     return {}

@@ -39,13 +39,16 @@ from dataclasses import dataclass
 from importlib import resources
 
 import numpy as np
-from scipy.ndimage import gaussian_filter
+from scipy.ndimage import gaussian_filter, zoom
 
 from ...._progress import progress_steps
 from ....errors import InputError, Seismo3dError
 from ..._kernels import eig_normals
 from ..result import FaultLikelihood
-from .network import FaultNetwork, POOLING_MULTIPLE, from_network_grid, normalise_section, to_network_grid, unet_forward
+from .network import (
+    RECEPTIVE_HALF, FaultNetwork, POOLING_MULTIPLE, from_network_grid, grid_size, normalise_section, to_network_grid,
+    unet_forward,
+)
 
 __all__ = ["WEIGHTS_SHA256", "LearnedOptions", "load_fault_network", "scale_subsample", "amplitude_scale",
            "fault_probability", "cube_directions", "direction_probability", "learned_fault_likelihood",
@@ -82,7 +85,19 @@ class LearnedOptions:
         half an octave apart (0.5, 0.7, 1) keeps what the network finds at several scales and loses what it finds at one
         only. Each grid costs ``factor**2`` (sections) or ``factor**3`` (cubes) of the samples: the default costs 1.7
         times the data's own grid in a section, 1.5 times in a cube. The grids are chosen by cross-validation on the F3
-        inlines drawn by a person (``python benchmarks/faults.py --only f3``).
+        inlines drawn by a person (``python benchmarks/faults.py --only f3``). A grid that leaves the traces fewer
+        than ``min_grid_samples`` samples is not run (:meth:`grids`).
+    min_grid_samples : int
+        Fewest samples per trace on a network grid for it to be run; the finest grid is always run. The default,
+        the network's receptive half (:data:`~seismo3d.seismic.faults.likelihood.network.RECEPTIVE_HALF`, 56),
+        leaves out the grids on which every output sample's receptive field runs past both ends of the traces
+        (see :meth:`grids`); 0 runs every grid.
+    patch_samples : int
+        Samples per trace of the training patches (128): on traces shorter than this the finest grid's sections are
+        stretched to it along the samples (cubic), and the probability shrunk back (:meth:`stretch`); 0: never.
+        On the 76-sample Great South Basin lines the network finds faults of a sample's throw or less there that it
+        does not see on the traces as they are (crossline 2600: 6 of the 18 faults an interpreter drew, probability
+        0.93-1.0 against 0.00-0.39).
     """
 
     directions: str = "both"
@@ -90,6 +105,8 @@ class LearnedOptions:
     min_dip: float = 40.0
     sections_per_batch: int = 4
     resample: tuple = (0.5, 0.7, 1.0)
+    min_grid_samples: int = RECEPTIVE_HALF
+    patch_samples: int = 128
 
     def __post_init__(self):
         if self.directions not in ("both", "inline", "crossline"):
@@ -109,6 +126,34 @@ class LearnedOptions:
         object.__setattr__(self, "resample", factors)
         if int(self.sections_per_batch) < 1:
             raise InputError(f"sections_per_batch must be >= 1; got {self.sections_per_batch!r}")
+        if isinstance(self.patch_samples, bool) or int(self.patch_samples) != self.patch_samples \
+                or self.patch_samples < 0:
+            raise InputError(f"patch_samples must be an integer >= 0; got {self.patch_samples!r}")
+        if (isinstance(self.min_grid_samples, bool) or int(self.min_grid_samples) != self.min_grid_samples
+                or self.min_grid_samples < 0):
+            raise InputError(f"min_grid_samples must be an integer >= 0; got {self.min_grid_samples!r}")
+
+    def grids(self, n_samples: int) -> tuple:
+        """The network grids run on traces of ``n_samples`` samples: the factors of ``resample`` (in their order)
+        whose grid holds at least ``min_grid_samples`` samples per trace, and always the finest one.
+
+        With the default (the network's receptive half, 56 network samples), on a coarser grid every output
+        sample's receptive field (2 x 56 + 1 network samples) runs past both ends of the trace into the zero
+        padding, which the network never saw in training (128-sample patches). On the 76-sample Great South
+        Basin lines (grids of 38, 53 and 76 samples) the data's own grid gives a probability of 0.74-0.99 at 8
+        small faults an interpreter drew on crossline 2600 where the 0.5 grid gives 0.00-0.03; the mean over the
+        three grids, a third to two thirds of it, was lost to the vote thresholds and the evidence. Traces of 111
+        samples or more (F3: 462) keep the default's three grids. ``n_samples``: samples per trace of the input.
+        """
+        kept = tuple(f for f in self.resample if grid_size(n_samples, f) >= int(self.min_grid_samples))
+        return kept or (max(self.resample),)
+
+    def stretch(self, n_samples: int, factor: float) -> int:
+        """The samples per trace the network runs the grid ``factor`` of traces of ``n_samples`` samples on:
+        ``patch_samples`` for the finest of :meth:`grids` when its traces are shorter, else 0 (as they are)."""
+        n = grid_size(n_samples, factor)
+        finest = float(factor) == max(self.grids(n_samples))
+        return int(self.patch_samples) if finest and n < int(self.patch_samples) else 0
 
 
 @functools.lru_cache(maxsize=1)
@@ -184,10 +229,16 @@ def amplitude_scale(data, *, subsample: bool = True) -> tuple[float, float]:
     return centre, (std if std > 0 else 1.0)
 
 
-def _sections_probability(stack: np.ndarray, scale, weights, batch: int, bar) -> np.ndarray:
+def _sections_probability(stack: np.ndarray, scale, weights, batch: int, bar, stretch_to: int = 0) -> np.ndarray:
     out = np.empty(stack.shape, np.float32)
+    n = stack.shape[-1]
     for i in range(0, stack.shape[0], batch):
-        out[i:i + batch] = unet_forward(normalise_section(stack[i:i + batch], scale=scale), weights)
+        x = normalise_section(stack[i:i + batch], scale=scale)
+        if stretch_to > n:  # stretched along the samples to the training patches' length, the probability shrunk back
+            p = unet_forward(zoom(x, (1.0, 1.0, stretch_to / n), order=3), weights)
+            out[i:i + batch] = np.clip(zoom(p, (1.0, 1.0, n / p.shape[-1]), order=1), 0.0, 1.0)
+        else:
+            out[i:i + batch] = unet_forward(x, weights)
         bar.advance(min(batch, stack.shape[0] - i))
     return out
 
@@ -212,20 +263,21 @@ def fault_probability(data: np.ndarray, *, options: LearnedOptions | None = None
     Returns
     -------
     ndarray, float32, the shape of ``data``
-        Probability in [0, 1]: the mean over the network grids of ``options.resample`` (in their order) of the
+        Probability in [0, 1]: the mean over the network grids of ``options.grids`` (in their order) of the
         probability on each grid (the larger of the two directions' in a cube), interpolated back.
     """
     opt = options or LearnedOptions()
     arr = np.asarray(data, dtype=np.float32)
     scale = amplitude_scale(arr) if scale is None else scale
     total = None
-    for factor in opt.resample:
+    factors = opt.grids(arr.shape[-1])
+    for factor in factors:
         small, first = to_network_grid(arr, factor, origin=origin, align=POOLING_MULTIPLE)
-        prob = from_network_grid(_network_probability(small, opt, scale, progress), arr.shape, factor,
-                                 origin=origin, first=first)
+        prob = from_network_grid(_network_probability(small, opt, scale, progress, opt.stretch(arr.shape[-1], factor)),
+                                 arr.shape, factor, origin=origin, first=first)
         del small
         total = prob if total is None else np.add(total, prob, out=total)
-    return grids_mean(total, len(opt.resample))
+    return grids_mean(total, len(factors))
 
 
 def grids_mean(total: np.ndarray, n_grids: int) -> np.ndarray:
@@ -235,7 +287,7 @@ def grids_mean(total: np.ndarray, n_grids: int) -> np.ndarray:
     Parameters
     ----------
     total : float32 ndarray
-        The sum of the grids' probabilities, in the order of ``LearnedOptions.resample``.
+        The sum of the grids' probabilities, in the order of ``LearnedOptions.grids``.
     n_grids : int
 
     Returns
@@ -248,19 +300,20 @@ def grids_mean(total: np.ndarray, n_grids: int) -> np.ndarray:
     return total
 
 
-def _network_probability(arr: np.ndarray, opt: LearnedOptions, scale, progress: bool) -> np.ndarray:
+def _network_probability(arr: np.ndarray, opt: LearnedOptions, scale, progress: bool,
+                         stretch_to: int = 0) -> np.ndarray:
     """The network's probability of a section or cube on its own grid (every inline and crossline section)."""
     weights = load_fault_network()
     batch = int(opt.sections_per_batch)
     if arr.ndim == 2:
         with progress_steps(1, "fault network", unit="section", enabled=progress) as bar:
-            return _sections_probability(arr[None], scale, weights, batch, bar)[0]
+            return _sections_probability(arr[None], scale, weights, batch, bar, stretch_to)[0]
     directions = cube_directions(opt)
     prob = None
     with progress_steps(sum(arr.shape[a] for a in directions), "fault network", unit="section",
                         enabled=progress) as bar:
         for axis in directions:
-            one = direction_probability(arr, axis, scale=scale, batch=batch, bar=bar)
+            one = direction_probability(arr, axis, scale=scale, batch=batch, bar=bar, stretch_to=stretch_to)
             prob = one if prob is None else np.maximum(prob, one)
     return np.ascontiguousarray(prob)
 
@@ -280,7 +333,8 @@ def cube_directions(options: LearnedOptions) -> tuple:
     return {"both": (0, 1), "inline": (0,), "crossline": (1,)}[options.directions]
 
 
-def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4, bar=None) -> np.ndarray:
+def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4, bar=None,
+                          stretch_to: int = 0) -> np.ndarray:
     """The network's probability on the sections of a cube stacked along one lateral axis.
 
     Parameters
@@ -295,6 +349,9 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
         Sections through the network at a time.
     bar : optional
         A progress bar of :func:`seismo3d._progress.progress_steps`, advanced per section.
+    stretch_to : int, optional
+        Samples per trace the sections are stretched to before the network (:meth:`LearnedOptions.stretch`); 0:
+        as they are.
 
     Returns
     -------
@@ -320,10 +377,11 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
     weights = load_fault_network()
     if bar is None:
         with progress_steps(small.shape[axis], "fault network", unit="section", enabled=False) as quiet:
-            return direction_probability(small, axis, scale=scale, batch=batch, bar=quiet)
+            return direction_probability(small, axis, scale=scale, batch=batch, bar=quiet, stretch_to=stretch_to)
     if axis == 0:
-        return _sections_probability(small, scale, weights, batch, bar)
-    return _sections_probability(small.transpose(1, 0, 2), scale, weights, batch, bar).transpose(1, 0, 2)
+        return _sections_probability(small, scale, weights, batch, bar, stretch_to)
+    return _sections_probability(small.transpose(1, 0, 2), scale, weights, batch, bar,
+                                 stretch_to).transpose(1, 0, 2)
 
 
 def _normals_to_strike_dip(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

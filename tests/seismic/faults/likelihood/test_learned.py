@@ -208,7 +208,7 @@ def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block)
     from seismo3d.seismic.blocks.options import ChunkOptions
 
     cube = synthetic_cube(shape, seed=2, noise=0.1).cube
-    opt = LearnedOptions(resample=resample)
+    opt = LearnedOptions(resample=resample, min_grid_samples=0)  # every grid, on traces of 32 and 48 samples too
     mem = learned_fault_likelihood(cube, options=opt)
     run = chunked_learned_likelihood(cube, tmp_path / "l.zarr", options=opt,
                                      chunking=ChunkOptions(block=block, scheduler="synchronous"))
@@ -282,12 +282,53 @@ def test_the_likelihood_of_several_grids_is_the_mean_of_each_grids():
     # sections and cubes: the mean of the grids' probabilities, in the order given, each as one grid gives it
     sec = synthetic_cube((96, 80), seed=1, noise=0.1).cube
     cube = synthetic_cube((24, 40, 48), seed=1, noise=0.1).cube
+    # every grid, none stretched: traces of 80 and 48 samples are shorter than the default's three grids need
     for data in (sec, cube):
-        grids = fault_probability(data, options=LearnedOptions(resample=(0.5, 0.7, 1.0)))
-        each = [fault_probability(data, options=LearnedOptions(resample=f)) for f in (0.5, 0.7, 1.0)]
+        grids = fault_probability(data, options=LearnedOptions(resample=(0.5, 0.7, 1.0), min_grid_samples=0,
+                                                               patch_samples=0))
+        each = [fault_probability(data, options=LearnedOptions(resample=f, patch_samples=0)) for f in (0.5, 0.7, 1.0)]
         expected = (each[0] + each[1] + each[2]) * np.float32(1.0 / 3.0)
         assert grids.dtype == np.float32 and np.array_equal(grids, expected)
     assert LearnedOptions(resample=0.7).resample == (0.7,)
     for bad in ((), (0.7, 0.7), (0.2, 0.7), 1.5, "fine"):
         with pytest.raises(InputError, match="resample"):
             LearnedOptions(resample=bad)
+
+
+def test_grids_that_leave_the_traces_fewer_samples_than_the_receptive_half_are_not_run():
+    # a 76-sample line (Great South Basin) on grids of 38, 53 and 76 samples: only its own grid; 80 samples (40, 56,
+    # 80): 0.7 and 1; the 462 samples of an F3 inline: the three; the finest grid always, whatever the traces
+    from seismo3d.seismic.faults.blocks import learned_blocks
+    from seismo3d.seismic.blocks.options import ChunkOptions
+
+    opt = LearnedOptions()
+    assert opt.min_grid_samples == RECEPTIVE_HALF
+    assert opt.grids(76) == (1.0,) and opt.grids(80) == (0.7, 1.0) and opt.grids(111) == opt.grids(462) == opt.resample
+    assert LearnedOptions(resample=(0.5, 0.7)).grids(20) == (0.7,)
+    assert LearnedOptions(min_grid_samples=0).grids(8) == opt.resample
+    for bad in (-1, 2.5, True):
+        with pytest.raises(InputError, match="min_grid_samples"):
+            LearnedOptions(min_grid_samples=bad)
+    sec = synthetic_cube((96, 76), seed=1, noise=0.1).cube
+    own = fault_probability(sec, options=LearnedOptions(resample=1.0))
+    assert np.array_equal(fault_probability(sec, options=opt), own)
+    # the run by blocks plans the same grids
+    plan = learned_blocks._plan((400, 400, 76), opt, ChunkOptions(memory_limit=10**9), 300 << 20)
+    assert [g["factor"] for g in plan["grids"]] == [1.0]
+
+
+def test_the_finest_grid_of_traces_shorter_than_the_training_patches_is_stretched_to_them():
+    # 76 samples (Great South Basin): its one grid runs on 128; 96 samples: the grid 1 (not 0.7) on 128; traces of
+    # 128 samples or more, and coarser grids, as they are; patch_samples=0: never
+    opt = LearnedOptions()
+    assert opt.patch_samples == 128
+    assert opt.stretch(76, 1.0) == 128 and opt.stretch(96, 1.0) == 128 and opt.stretch(96, 0.7) == 0
+    assert opt.stretch(128, 1.0) == opt.stretch(128, 0.5) == opt.stretch(462, 1.0) == 0
+    assert LearnedOptions(patch_samples=0).stretch(76, 1.0) == 0
+    for bad in (-1, 2.5, True):
+        with pytest.raises(InputError, match="patch_samples"):
+            LearnedOptions(patch_samples=bad)
+    sec = synthetic_cube((96, 76), seed=1, noise=0.1).cube
+    prob = fault_probability(sec, options=opt)
+    assert prob.shape == sec.shape and prob.dtype == np.float32 and 0.0 <= prob.min() and prob.max() <= 1.0
+    assert not np.array_equal(prob, fault_probability(sec, options=LearnedOptions(patch_samples=0)))

@@ -79,6 +79,12 @@ def test_options():
     assert VotingOptions().box((100, 200)) == (15, 30, 0)
     assert VotingOptions().box((100, 120, 200)) == (10, 20, 30)
     assert VotingOptions().box((18, 512, 1536)) == (10, 20, 8)  # a slab of 18 inlines holds no longer fault
+    # down the dip at most a fifth of the samples per trace: 15 on a 76-sample line (issue 54), the defaults from
+    # 150 samples (2D) and 100 (3D) on; a value given is kept (within half the samples)
+    assert VotingOptions().box((484, 76)) == (15, 15, 0)
+    assert VotingOptions().box((484, 150)) == (15, 30, 0) and VotingOptions().box((96, 96, 96)) == (10, 19, 30)
+    assert VotingOptions().box((64, 64, 100)) == (10, 20, 30)
+    assert VotingOptions(half_length_dip=30).box((484, 76)) == (15, 30, 0)
     assert VotingOptions().spacing(2) == 4 and VotingOptions().spacing(3) == 6
     for bad in (dict(max_strain=0.0), dict(seed_threshold=1.0), dict(half_width=0), dict(seed_spacing=1.5)):
         with pytest.raises(InputError):

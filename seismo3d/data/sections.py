@@ -5,7 +5,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import cv2
 import numpy as np
 
 from .registry import fetch
@@ -137,9 +136,10 @@ def load_f3_fault_sections() -> F3FaultSections:
             # resampling, as tools/dev_fault_scores.py reads the pictures); OpenCV's INTER_LINEAR keeps two taps
             # and aliases the rendering's fine texture: with it the defaults' mean F1 read 0.496 instead of 0.474
             grey = np.asarray(picture.convert("L").resize(_F3_SHAPE, Image.BILINEAR))  # (samples, crosslines)
-        rgba = cv2.imread(str(fetch(_F3_MASKS.format(kind="mask", inline=inline))), cv2.IMREAD_UNCHANGED)
+        with Image.open(fetch(_F3_MASKS.format(kind="mask", inline=inline))) as drawing:
+            alpha = np.asarray(drawing.convert("RGBA"))[..., 3]
         sections.append(((grey.astype(np.float32) - 127.5) / 127.5).T)
-        faults.append((rgba[..., 3] > 0).T)
+        faults.append((alpha > 0).T)
     out = F3FaultSections(sections=np.ascontiguousarray(np.stack(sections)), faults=np.stack(faults),
                           inlines=np.array(F3_MASK_INLINES))
     for array in (out.sections, out.faults, out.inlines):

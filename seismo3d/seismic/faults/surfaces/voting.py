@@ -40,7 +40,8 @@ class VotingOptions:
         Half-length of the box down the fault's dip, samples. None: 30 in 2D, 20 in 3D, at most a fifth of the
         samples per trace: a vote is a surface's mean likelihood, so a fault shorter than the surfaces gets its
         votes times its length over theirs, and surfaces of 61 samples on the 76-sample Great South Basin lines
-        left their small faults below the thresholds (issue 54; traces of 150 samples or more keep 30).
+        left their small faults below the thresholds (issue 54; traces of 150 samples or more keep 30, of 100 or more
+        in 3D keep 20).
     half_length_strike : int
         Half-length of the box along the fault's strike, traces (3D only).
     seed_spacing : int, optional

@@ -21,7 +21,7 @@ from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import EarlierStoresError, InputError
 from ..seismic.blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory, size_text
-from ..seismic.faults.blocks.cube_run import LIKELIHOOD_STORE, SURFACES_STORE
+from ..seismic.faults.pipeline import LIKELIHOOD_STORE, SURFACES_STORE
 from ..seismic.blocks.options import BlockRunOptions
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions

@@ -7,6 +7,8 @@ Generic pieces, knowing nothing of what a block computes:
 - :mod:`~seismo3d.seismic.blocks.memory`: memory limits parsed and measured, whether a run in memory fits;
 - :mod:`~seismo3d.seismic.blocks.executor`: resumable runs over the blocks of a cube (markers, budgets, dask
   schedulers, the kernels' threads);
+- :mod:`~seismo3d.seismic.blocks.stores`: the Zarr stores of such a run (the work folder, the output assembled in
+  ``OUTPUT.partial`` and renamed when complete, its coordinates);
 - :mod:`~seismo3d.seismic.blocks.windows`: windows of a cube around points, in memory, lazy (dask) or stored (Zarr).
 
 The fault interpretation's block runs use them (:mod:`seismo3d.seismic.faults.blocks`).

@@ -3,7 +3,7 @@
 the input's name and coordinates recorded in the stores.
 
 The decision itself is :func:`~seismo3d.seismic.blocks.memory.fits_in_memory`'s (:meth:`BlockRunOptions.in_memory_for`
-applies it); the run by blocks is :func:`~seismo3d.seismic.faults.blocks.cube_run.trace_faults_by_blocks`.
+applies it); the run by blocks is :func:`~seismo3d.seismic.faults.pipeline.trace_faults_by_blocks`.
 """
 
 from __future__ import annotations

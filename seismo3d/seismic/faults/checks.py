@@ -84,7 +84,7 @@ def check_saturation(high: int, live: int, opt: FaultTracingOptions) -> float:
     Parameters
     ----------
     high, live : int
-        Live samples (not near dead ones) with a likelihood above 0.9, and all live samples: counted over the whole
+        Live samples (not near dead ones) with a likelihood above ``opt.saturation_level``, and all live samples: counted over the whole
         array in memory, summed over the blocks of a run by blocks
         (:func:`~seismo3d.seismic.faults.surfaces.ridges.live_likelihood`).
     opt : FaultTracingOptions
@@ -101,12 +101,13 @@ def check_saturation(high: int, live: int, opt: FaultTracingOptions) -> float:
     """
     fraction = float(high) / float(live) if live else 0.0
     if fraction > opt.max_saturated:
-        raise UnsupportedDataError(no_coherence_message(fraction))
+        raise UnsupportedDataError(no_coherence_message(fraction, opt.saturation_level))
     return fraction
 
 
-def no_coherence_message(fraction: float) -> str:
-    """The refusal of data without lateral coherence, its likelihood above 0.9 at ``fraction`` of the samples."""
-    return (f"the fault likelihood is above 0.9 at {fraction:.0%} of the samples: the data has no lateral coherence "
-            "to trace faults in (noise, chaotic reflections, or traces out of order); check the inline/crossline "
-            "geometry or the file")
+def no_coherence_message(fraction: float, level: float) -> str:
+    """The refusal of data without lateral coherence, its likelihood above ``level`` (the options'
+    ``saturation_level``) at ``fraction`` of the samples."""
+    return (f"the fault likelihood is above {level:g} at {fraction:.0%} of the samples: the data has no lateral "
+            "coherence to trace faults in (noise, chaotic reflections, or traces out of order); check the "
+            "inline/crossline geometry or the file")

@@ -69,8 +69,10 @@ class FaultTracingOptions:
         Fewest zero crossings per 100 samples of a trace with its mean removed (median over traces): seismic
         amplitudes oscillate (a reflection every few samples), velocity or impedance models do not.
     max_saturated : float
-        Largest fraction of the live samples with a likelihood above 0.9; beyond it the data has no lateral
-        coherence to trace faults in (noise, or traces out of order) and is refused.
+        Largest fraction of the live samples with a likelihood above ``saturation_level``; beyond it the data has no
+        lateral coherence to trace faults in (noise, or traces out of order) and is refused.
+    saturation_level : float
+        In (0, 1): a likelihood above it counts as saturated (0.9).
 
     Raises
     ------
@@ -92,6 +94,7 @@ class FaultTracingOptions:
     min_samples: int = 32
     min_crossings: float = 3.0
     max_saturated: float = 0.95
+    saturation_level: float = 0.9
 
     def __post_init__(self):
         if not 0.0 <= float(self.sensitivity) <= 1.0:
@@ -115,6 +118,8 @@ class FaultTracingOptions:
         check_positive(self.min_crossings, "min_crossings", allow_zero=True)
         if not 0.0 < float(self.max_saturated) <= 1.0:
             raise InputError(f"max_saturated must be a fraction in (0, 1]; got {self.max_saturated!r}")
+        if not 0.0 < float(self.saturation_level) < 1.0:
+            raise InputError(f"saturation_level must be a likelihood in (0, 1); got {self.saturation_level!r}")
 
     def thresholds(self, thinned_votes: np.ndarray) -> tuple[float, float]:
         """(lower, upper) thresholds on the thinned votes (see ``sensitivity`` and ``max_fault_fraction``)."""

@@ -3,10 +3,10 @@
 After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the steps with the defaults every seismo3d
 command uses and returns a :class:`FaultInterpretation`: the checks and the likelihood, then the one sequence of
 steps of :mod:`~seismo3d.seismic.faults.steps`, on the whole array as one block
-(:class:`~seismo3d.seismic.faults.blocks.array_run.ArrayRun`) or block by block
-(:mod:`~seismo3d.seismic.faults.blocks.cube_run`); :func:`clean_traces` finds the dead samples (mutes, dead traces,
-gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and writing results is the ``faults``
-command's job (:mod:`seismo3d.jobs.faults`).
+(:class:`~seismo3d.seismic.faults.steps.ArrayRun`) or block by block into Zarr stores (:func:`trace_faults_by_blocks`,
+the checks before it in :mod:`~seismo3d.seismic.faults.blocks.preflight`); :func:`clean_traces` finds the dead
+samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and
+writing results is the ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
 
 Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood.scan`.
 """
@@ -14,29 +14,39 @@ Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.
 from __future__ import annotations
 
 import dataclasses
+import pathlib
+import time
+import uuid
 import warnings
 
 import numpy as np
 
-from ..._progress import progress_steps
+from ..._progress import LOGGER, progress_steps
 from ..._validation import check_choice, check_positive
-from ...errors import InputError, Seismo3dWarning
-from .blocks.array_run import ArrayRun
-from ..blocks.options import BlockRunOptions
+from ...errors import EarlierStoresError, InputError, Seismo3dWarning
+from ..blocks.memory import in_memory_bytes, resident_memory
+from ..blocks.options import BlockRunOptions, ChunkOptions
+from ..io.zarr_store import consolidate
+from .blocks.learned_blocks import chunked_learned_likelihood
+from .blocks.preflight import SampleOptions, check_block_run, judge_sample
+from .blocks.scan_blocks import chunked_fault_likelihood
+from .blocks.surface_blocks import chunked_fault_surfaces
 from .checks import check_amplitudes, check_size, no_coherence_message
-from .surfaces.dead_samples import CleanTraces, clean_traces, near_dead_samples
-from .options import LIKELIHOODS, FaultTracingOptions
-from .result import FaultInterpretation, FaultLikelihood
 from .likelihood.learned import learned_fault_likelihood
 from .likelihood.scan import fault_likelihood
-from .blocks.preflight import SampleOptions, judge_sample
-from .steps import faults_from_cells, surface_cells
+from .options import LIKELIHOODS, FaultTracingOptions
+from .result import FaultInterpretation, FaultLikelihood
+from .steps import ArrayRun, faults_from_cells, surface_cells
+from .surfaces.dead_samples import CleanTraces, clean_traces, near_dead_samples
 
 # check_size, check_amplitudes, no_coherence_message and LIKELIHOODS are imported here by older callers
-__all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "LIKELIHOODS", "check_amplitudes",
-           "check_size", "clean_traces", "no_coherence_message", "trace_faults"]
+__all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "LIKELIHOOD_STORE", "LIKELIHOODS",
+           "SURFACES_STORE", "check_amplitudes", "check_size", "clean_traces", "no_coherence_message", "trace_faults",
+           "trace_faults_by_blocks"]
 
 _UNITS = {"samples", "ms", "m", "ft"}
+LIKELIHOOD_STORE = "fault_likelihood.zarr"
+SURFACES_STORE = "fault_surfaces.zarr"
 
 
 def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivity=None,
@@ -72,7 +82,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     Memory and time: time and memory linear in the number of samples (see ``benchmarks/faults.py`` for the figures
     at 64^3 to 256^3). A 3D cube whose run in memory would need more than ``blocks.memory_limit`` beside the process
     (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`: about 24 times its float32 size) is traced block by
-    block (:mod:`~seismo3d.seismic.faults.blocks.cube_run`) into Zarr stores in ``blocks.work_dir``, with the same
+    block (:func:`trace_faults_by_blocks`) into Zarr stores in ``blocks.work_dir``, with the same
     checks, warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of
     blocks first (:meth:`~seismo3d.seismic.faults.blocks.preflight.SampleOptions.worth_sampling`) is refused from that
     sample before the whole likelihood (:func:`~seismo3d.seismic.faults.blocks.preflight.judge_sample`), on either path.
@@ -158,8 +168,6 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
             raise InputError(f"a {' x '.join(str(n) for n in np.shape(data))} cube beyond the memory limit is traced "
                              "block by block into Zarr stores: pass blocks=BlockRunOptions(work_dir=...) (an "
                              "existing folder), or a larger memory_limit")
-        from .blocks.cube_run import trace_faults_by_blocks
-
         return trace_faults_by_blocks(data, opt, sample_interval=sample_interval, sample_unit=sample_unit,
                                       memory_limit=run.limit, work_dir=run.work_dir, scheduler=run.scheduler,
                                       source=run.source, coords=run.coords, progress=progress)
@@ -186,6 +194,110 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
                                votes=votes.votes, thin=run.thin, thresholds=found.thresholds, faults=faults,
                                throws=throws, evidence=evidence, sample_interval=float(sample_interval),
                                sample_unit=sample_unit, step_seconds=dict(bar.seconds))
+
+
+def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: float, sample_unit: str,
+                           memory_limit: int, work_dir, scheduler=None, source: str = "cube", coords=None,
+                           progress: bool = True) -> FaultInterpretation:
+    """Trace the faults of a 3D cube block by block (called by :func:`trace_faults`): the checks before any block
+    (:func:`~seismo3d.seismic.faults.blocks.preflight.check_block_run`), the fault likelihood
+    (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` or the learned one) into
+    ``fault_likelihood.zarr`` (a finished likelihood of the same source is reused; an unfinished one resumes), the
+    fault surfaces (:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`) into
+    ``fault_surfaces.zarr``.
+
+    Parameters
+    ----------
+    cube : (n_inlines, n_xlines, n_samples) dask.array.Array or array_like
+        Amplitudes, samples along the last axis (e.g. ``open_lazy(path).data``).
+    opt : FaultTracingOptions
+    sample_interval : float
+    sample_unit : str
+    memory_limit : int
+        Bytes.
+    work_dir : str or os.PathLike
+        Existing folder of the Zarr stores ``fault_likelihood.zarr`` and ``fault_surfaces.zarr``.
+    scheduler : str, optional
+        ``dask.distributed`` scheduler address; default the local threads.
+    source : str
+        Name of the input, recorded in the stores (a likelihood of another source is not reused).
+    coords : dict, optional
+        Coordinates of the likelihood store (``inline``, ``crossline``, ``sample``, ``sample_unit``).
+    progress : bool
+
+    Returns
+    -------
+    FaultInterpretation
+        Its arrays are Zarr arrays of the stores (``stores``).
+
+    Raises
+    ------
+    InputError
+        Constant data, a memory limit too small (the message names one that works), or stores of another input in
+        ``work_dir``.
+    UnsupportedDataError
+        As :func:`~seismo3d.seismic.faults.trace_faults`.
+    """
+    import dask.array as da
+    import zarr
+
+    chunking = ChunkOptions(memory_limit=memory_limit, scheduler=scheduler)
+    tile = chunking.tile  # an array given in memory: chunks of the runs' tile
+    x = cube if isinstance(cube, da.Array) else da.from_array(np.asarray(cube), chunks=(tile, tile, -1))
+    shape = tuple(int(n) for n in x.shape)
+    check_size(shape, opt)
+    x = check_block_run(_whole_traces(x), source, memory_limit, scheduler, opt)
+    work_dir = pathlib.Path(work_dir)
+    if not work_dir.is_dir():
+        raise InputError(f"cannot write the fault stores into {work_dir}: it is not a folder; create it first")
+    path = work_dir / LIKELIHOOD_STORE
+    started = time.perf_counter()
+    if path.exists():  # a finished likelihood of an earlier run of the same input: reused
+        group = zarr.open_group(str(path), mode="r")
+        if (group.attrs.get("source") != source or tuple(group["likelihood"].shape) != shape
+                or group.attrs.get("likelihood", "scan") != opt.likelihood):
+            raise EarlierStoresError(f"{path} holds the fault likelihood of another input; pick another output "
+                                     "folder (-o) or delete it", [path])
+        LOGGER.info("%s: reusing the finished fault likelihood in %s", source, path)
+    else:
+        held = resident_memory()
+        LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory besides this process (%.2f GiB), more "
+                    "than the memory limit of %.2f GiB allows: fault likelihood block by block into %s", source,
+                    *shape, in_memory_bytes(shape) / 2**30, held / 2**30, memory_limit / 2**30, path.name)
+        if opt.likelihood == "learned":
+            chunked_learned_likelihood(x, path, options=opt.learned, coords=coords, progress=progress,
+                                       chunking=chunking)
+        else:
+            chunked_fault_likelihood(x, path, options=opt.scan, coords=coords, progress=progress, chunking=chunking)
+        # "id": this store, told apart from a later one at the same path (fault_surfaces.zarr records whose it is)
+        zarr.open_group(str(path), mode="r+").attrs.update({"source": source, "likelihood": opt.likelihood,
+                                                            "id": uuid.uuid4().hex})
+        consolidate(path)
+    seconds = {"fault likelihood": time.perf_counter() - started}
+    started = time.perf_counter()
+    surfaces = chunked_fault_surfaces(x, path, work_dir / SURFACES_STORE, options=opt, chunking=chunking,
+                                      progress=progress)
+    seconds.update(surfaces.seconds)  # the block steps computed in this call
+    seconds["fault skins, throw and evidence"] = time.perf_counter() - started - sum(surfaces.seconds.values())
+    zarr.open_group(str(surfaces.path), mode="r+").attrs["source"] = source
+    consolidate(surfaces.path)
+    LOGGER.info("%s: %d faults from %d seeds and %d thinned fault samples (thresholds %.3f, %.3f)", source,
+                len(surfaces.faults), surfaces.n_seeds, surfaces.n_cells, *surfaces.thresholds)
+    scan = zarr.open_group(str(path), mode="r")
+    traced = zarr.open_group(str(surfaces.path), mode="r")
+    return FaultInterpretation(likelihood=traced["likelihood"], strike_deg=scan["strike_deg"],
+                               dip_deg=scan["dip_deg"], votes=traced["votes"], thin=traced["thin"],
+                               thresholds=surfaces.thresholds, faults=surfaces.faults, throws=surfaces.throws,
+                               evidence=surfaces.evidence, sample_interval=float(sample_interval),
+                               sample_unit=sample_unit, stores={"likelihood": path, "surfaces": surfaces.path},
+                               step_seconds=seconds)
+
+
+def _whole_traces(x):
+    """The lazy cube as float32 chunks of whole traces."""
+    if len(x.chunks[2]) != 1:
+        x = x.rechunk({2: -1})
+    return x.astype(np.float32)
 
 
 def _block_run(blocks) -> BlockRunOptions:

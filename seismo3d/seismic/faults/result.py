@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+import pathlib
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -16,8 +17,8 @@ import numpy as np
 from ..._validation import as_seismic
 from ...errors import InputError
 
-__all__ = ["Fault", "FaultInterpretation", "FaultLikelihood", "FaultVotes", "check_fault_arrays", "fault_frames",
-           "fault_normals", "fault_strike_dip"]
+__all__ = ["ChunkedLikelihood", "Fault", "FaultInterpretation", "FaultLikelihood", "FaultVotes", "check_fault_arrays",
+           "fault_frames", "fault_normals", "fault_strike_dip"]
 
 
 def fault_strike_dip(normal) -> tuple[float, float]:
@@ -295,3 +296,40 @@ class FaultInterpretation:
     sample_unit: str
     stores: dict = field(default_factory=dict)
     step_seconds: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False)
+class ChunkedLikelihood:
+    """Result of a fault likelihood computed block by block into a Zarr group
+    (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood`,
+    :func:`~seismo3d.seismic.faults.blocks.learned_blocks.chunked_learned_likelihood`).
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The output Zarr group: arrays ``likelihood``, ``strike_deg``, ``dip_deg`` (float32, dims inline, crossline,
+        sample) and the coordinates ``inline``, ``crossline``, ``sample``; opened as is by ``xarray.open_zarr``.
+    shape : tuple of int
+        ``(n_inlines, n_xlines, n_samples)``.
+    blocks_computed, blocks_resumed : dict
+        Per step (the scan's ``'balance'``, ``'semblance'``, ``'scan_inline'``, ``'scan_crossline'``, ``'decode'``;
+        the network's ``'network_inline_0'``, ..., ``'orientation'``), blocks computed by this run and blocks found
+        finished by an earlier, interrupted run.
+    saturated_fraction : float
+        Fraction of the live samples with likelihood above the saturation level (see ``FaultScanOptions.saturated``).
+    seconds : dict
+        Wall-clock seconds of each step of this run (``'statistics'`` and the steps above).
+    """
+
+    path: pathlib.Path
+    shape: tuple
+    blocks_computed: dict
+    blocks_resumed: dict
+    saturated_fraction: float
+    seconds: dict
+
+    def open(self):
+        """The output arrays as a dict of read-only ``zarr.Array`` (name -> array)."""
+        import zarr
+        group = zarr.open_group(str(self.path), mode="r")
+        return {name: group[name] for name in ("likelihood", "strike_deg", "dip_deg")}

@@ -7,7 +7,6 @@ import warnings
 import numpy as np
 import pytest
 
-import seismo3d.seismic.faults.blocks.cube_run as cube_run
 import seismo3d.seismic.faults.pipeline as pipeline
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, Seismo3dWarning, UnsupportedDataError
@@ -63,7 +62,7 @@ def test_both_runs_give_the_same_refusal_or_warning(case, seismic, tmp_path, mon
     same warning before the likelihood starts (where the test stops both runs)."""
     data, (error, message) = case(seismic)
     for module, name in ((pipeline, "fault_likelihood"), (pipeline, "learned_fault_likelihood"),
-                         (cube_run, "chunked_fault_likelihood"), (cube_run, "chunked_learned_likelihood")):
+                         (pipeline, "chunked_fault_likelihood"), (pipeline, "chunked_learned_likelihood")):
         monkeypatch.setattr(module, name, _stop)
     outcomes = []
     for in_memory in (True, False):

@@ -7,7 +7,7 @@ import pytest
 
 import seismo3d.seismic.faults.steps as surface_steps
 from seismo3d.data.synthetic import synthetic_cube
-from seismo3d.seismic.faults.blocks.array_run import ArrayRun
+from seismo3d.seismic.faults.steps import ArrayRun
 from seismo3d.seismic.faults import (
     FaultTracingOptions, fault_likelihood, fault_skins, thin_faults, trace_faults, vote_faults,
 )

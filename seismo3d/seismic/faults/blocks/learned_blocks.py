@@ -45,7 +45,8 @@ from ..likelihood.learned import (
     LearnedOptions, amplitude_scale, cube_directions, direction_probability, grids_mean, orientation_from_likelihood,
     scale_subsample,
 )
-from .scan_blocks import ChunkedLikelihood, LikelihoodRun, write_coords
+from ..result import ChunkedLikelihood
+from ...blocks.stores import StoreRun, write_coords
 from ...blocks.options import ChunkOptions
 from ...blocks.memory import default_memory_limit, worker_baseline
 from ..likelihood.network import (
@@ -278,7 +279,7 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
             "block_orientation": int(block_o), "workers_orientation": int(workers_o), "halo_orientation": halo_o}
 
 
-class _Run(LikelihoodRun):
+class _Run(StoreRun):
     """One chunked learned-likelihood run: its steps."""
 
     def __init__(self, out: pathlib.Path, plan: dict, opt: LearnedOptions, chunking: ChunkOptions, progress: bool):
@@ -404,6 +405,6 @@ def _orientation_block(block, plan: dict, work, partial, opt, marker) -> dict:
     group["likelihood"][i0:i1, j0:j1] = likelihood
     group["strike_deg"][i0:i1, j0:j1] = strike[core]
     group["dip_deg"][i0:i1, j0:j1] = dip[core]
-    result = {"high": int(np.count_nonzero(likelihood > 0.9))}
+    result = {"high": int(np.count_nonzero(likelihood > float(opt.saturation_level)))}
     write_marker(marker, result)
     return result

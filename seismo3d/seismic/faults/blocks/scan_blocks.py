@@ -30,9 +30,7 @@ output folder must be on storage every worker can reach.
 from __future__ import annotations
 
 import json
-import os
 import pathlib
-import shutil
 import time
 from dataclasses import asdict, dataclass
 
@@ -40,14 +38,14 @@ import numpy as np
 
 from ...._options import resolve_options
 from ....errors import InputError
-from ...blocks.executor import (BlockRun, SchedulerClient, block_budget, largest_block, lateral_blocks, trace_cube,
-                                write_marker)
+from ...blocks.executor import SchedulerClient, block_budget, largest_block, lateral_blocks, trace_cube, write_marker
 from ...blocks.options import ChunkOptions
+from ...blocks.stores import StoreRun, write_coords
 from ..likelihood.scan import (
     AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan, saturation_counts,
     scan_planes, scan_step, semblance_floor, semblance_halo, semblance_terms, strike_halo,
 )
-from ...io.zarr_store import SEISMIC_CODEC, consolidate
+from ..result import ChunkedLikelihood
 from ...blocks.memory import default_memory_limit, in_memory_bytes, resident_memory, worker_baseline
 
 __all__ = ["ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
@@ -64,41 +62,6 @@ _BALANCE_BYTES = 20
 _SEMBLANCE_BYTES = 48
 _SCAN_BYTES = 24
 _DECODE_BYTES = 24
-
-
-@dataclass(frozen=True, eq=False)
-class ChunkedLikelihood:
-    """Result of :func:`chunked_fault_likelihood`.
-
-    Attributes
-    ----------
-    path : pathlib.Path
-        The output Zarr group: arrays ``likelihood``, ``strike_deg``, ``dip_deg`` (float32, dims inline, crossline,
-        sample) and the coordinates ``inline``, ``crossline``, ``sample``; opened as is by ``xarray.open_zarr``.
-    shape : tuple of int
-        ``(n_inlines, n_xlines, n_samples)``.
-    blocks_computed, blocks_resumed : dict
-        Per step (``'balance'``, ``'semblance'``, ``'scan_inline'``, ``'scan_crossline'``, ``'decode'``), blocks
-        computed by this
-        run and blocks found finished by an earlier, interrupted run.
-    saturated_fraction : float
-        Fraction of the live samples with likelihood above 0.9 (see ``FaultScanOptions.saturated``).
-    seconds : dict
-        Wall-clock seconds of each step of this run (``'statistics'`` and the steps above).
-    """
-
-    path: pathlib.Path
-    shape: tuple
-    blocks_computed: dict
-    blocks_resumed: dict
-    saturated_fraction: float
-    seconds: dict
-
-    def open(self):
-        """The output arrays as a dict of read-only ``zarr.Array`` (name -> array)."""
-        import zarr
-        group = zarr.open_group(str(self.path), mode="r")
-        return {name: group[name] for name in ("likelihood", "strike_deg", "dip_deg")}
 
 
 @dataclass(frozen=True)
@@ -137,7 +100,7 @@ def _step_bytes(shape, options: FaultScanOptions) -> tuple:
     return semblance_bytes, balance_bytes, scan_bytes
 
 
-def smallest_block_bytes(shape, options: FaultScanOptions | None = None, tile: int = 32) -> int:
+def smallest_block_bytes(shape, options: FaultScanOptions | None, tile: int) -> int:
     """Bytes the largest step of :func:`chunked_fault_likelihood` needs with its smallest blocks (one ``tile`` a
     side), on top of the process itself: what ``memory_limit`` must leave for it (before the headroom).
 
@@ -145,7 +108,8 @@ def smallest_block_bytes(shape, options: FaultScanOptions | None = None, tile: i
     ----------
     shape : (int, int, int)
         ``(n_inlines, n_xlines, n_samples)``.
-    options : FaultScanOptions, optional
+    options : FaultScanOptions or None
+        The scan's options (None: the defaults).
     tile : int
         Traces a side of the smallest block (:attr:`ChunkOptions.tile`).
 
@@ -257,56 +221,7 @@ def _manifest(shape, opt, plan) -> dict:
             "plan": json.loads(json.dumps(asdict(plan)))}
 
 
-class LikelihoodRun(BlockRun):
-    """The folders of a chunked likelihood run (the scan's or the learned one's): the work folder with its
-    intermediate arrays, the output assembled in ``OUTPUT.partial`` (``likelihood``, ``strike_deg``, ``dip_deg``) and
-    renamed to ``OUTPUT`` when complete.
-
-    Parameters
-    ----------
-    out : pathlib.Path
-        The output Zarr group.
-    chunking : ChunkOptions
-    progress : bool
-    """
-
-    def __init__(self, out: pathlib.Path, chunking: ChunkOptions, progress: bool):
-        super().__init__(out.with_name(out.name + ".work"), scheduler=chunking.scheduler, workers=chunking.workers,
-                         progress=progress)
-        self.out, self.chunking = out, chunking
-        self.partial = out.with_name(out.name + ".partial")
-
-    def start_output(self, manifest: dict, shape, tile: int, work_arrays) -> None:
-        """Refuse an existing output or a missing folder, open the work folder with ``manifest``, and create the
-        work arrays ``(name, dtype, samples per trace)`` and the output arrays that do not exist yet."""
-        import zarr
-        if self.out.exists():
-            raise InputError(f"output {self.out} already exists; pick another output or delete it")
-        if not self.out.parent.is_dir():
-            raise InputError(f"cannot write {self.out}: folder {self.out.parent} does not exist; create it first")
-        self.open(manifest, f"{self.work} and {self.partial}")
-        n0, n1, nt = shape
-        t = tile
-        for name, dtype, n in work_arrays:
-            if not (self.work / name).exists():
-                zarr.create_array(str(self.work / name), shape=(n0, n1, n), chunks=(t, t, n), dtype=dtype,
-                                  compressors=None, fill_value=0)
-        if not self.partial.exists():
-            group = zarr.open_group(str(self.partial), mode="w")
-            for name in ("likelihood", "strike_deg", "dip_deg"):
-                group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
-                                   compressors=SEISMIC_CODEC, dimension_names=("inline", "crossline", "sample"))
-
-    def finish(self) -> None:
-        """Mark the output complete, rename it into place and delete the work folder."""
-        import zarr
-        zarr.open_group(str(self.partial), mode="r+").attrs["complete"] = True
-        consolidate(self.partial)
-        os.replace(self.partial, self.out)
-        shutil.rmtree(self.work, ignore_errors=True)
-
-
-class _Run(LikelihoodRun):
+class _Run(StoreRun):
     """One chunked likelihood run: its block lists and steps."""
 
     def __init__(self, out: pathlib.Path, plan: _Plan, opt: FaultScanOptions, chunking: ChunkOptions,
@@ -382,19 +297,6 @@ class _Run(LikelihoodRun):
         group.attrs.update({"method": "fault likelihood (Hale 2013), seismo3d chunked run",
                             "saturated_fraction": fraction})
         return fraction
-
-
-def write_coords(group, shape, coords) -> None:
-    coords = dict(coords or {})
-    unit = coords.pop("sample_unit", None)
-    for name, n in zip(("inline", "crossline", "sample"), shape):
-        values = np.asarray(coords.get(name, np.arange(n)))
-        if values.shape != (n,):
-            raise InputError(f"coordinate {name!r} must have {n} values; got shape {values.shape}")
-        arr = group.create_array(name, shape=(n,), dtype=values.dtype, dimension_names=(name,), overwrite=True)
-        arr[:] = values
-        if name == "sample" and unit:
-            arr.attrs["units"] = unit
 
 
 def _balance_block(f, core, block, work, opt, stats, marker) -> dict:
@@ -480,7 +382,7 @@ def _decode_block(block, plan: _Plan, work, partial, opt, tiny, marker) -> dict:
     i0, i1, j0, j1 = block
     key = zarr.open_array(f"{work}/key", mode="r")[i0:i1, j0:j1]
     live = zarr.open_array(f"{work}/denominator", mode="r")[i0:i1, j0:j1] > tiny
-    high, n_live = saturation_counts(key, live)
+    high, n_live = saturation_counts(key, live, opt.saturation_level)
     del live
     fl, strike, dip = decode_scan(key, opt, n_samples=plan.shape[2])
     group = zarr.open_group(partial, mode="r+")

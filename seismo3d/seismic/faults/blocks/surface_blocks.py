@@ -3,7 +3,7 @@ fault likelihood, run block by block on dask from a chunked likelihood, with the
 
 ``_SurfaceRun`` implements the named steps of :class:`~seismo3d.seismic.faults.steps.SurfaceRun` on blocks;
 :func:`~seismo3d.seismic.faults.steps.surface_cells` calls them in the order the run in memory does
-(:class:`~seismo3d.seismic.faults.blocks.array_run.ArrayRun`: the whole array as one block), and
+(:class:`~seismo3d.seismic.faults.steps.ArrayRun`: the whole array as one block), and
 :func:`~seismo3d.seismic.faults.steps.faults_from_cells` makes the faults of the stored cells.
 
 Every step reads what it needs around its block (the halo of its operator) from Zarr work arrays and writes its
@@ -49,16 +49,14 @@ from ...io.zarr_store import SEISMIC_CODEC, consolidate
 from ..options import FaultTracingOptions
 from ...blocks.options import ChunkOptions
 from ...blocks.memory import default_memory_limit, resident_memory, worker_baseline
-from .surface_plan import (
-    CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, SurfacePlan, amplitude_halo, around, plan_blocks, smallest_block_bytes,
-    square_blocks,
-)
 from ..steps import faults_from_cells, surface_cells
 from ..surfaces.thresholds import HISTOGRAM_BINS, QUANTILE_BINS, otsu_of_histogram, quantile_of_window, quantile_window
 from ..result import fault_frames
 from ..surfaces.voting_kernels import greedy_seeds
-from .surface_block_steps import (
-    cell_block, fill_block, gather_block, histogram_block, ridge_block, surface_block, thin_block, vote_block,
+from .surface_steps import (
+    CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, SurfacePlan, amplitude_halo, around, cell_block, fill_block, gather_block,
+    histogram_block, plan_blocks, ridge_block, smallest_block_bytes, square_blocks, surface_block, thin_block,
+    vote_block,
 )
 from ...blocks.windows import StoredWindows
 
@@ -91,7 +89,7 @@ class ChunkedFaults:
     n_seeds, n_cells : int
         Voting seeds, and thinned-vote samples linked into skins.
     saturated_fraction : float
-        Fraction of the live samples (not near dead ones) with a likelihood above 0.9.
+        Fraction of the live samples (not near dead ones) with a likelihood above ``saturation_level``.
     blocks_computed, blocks_resumed : dict
         Blocks per step computed in this call and found finished by an earlier one.
     seconds : dict
@@ -150,7 +148,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         of the same cube and options, or the memory limit is too small for the smallest blocks or for the seed
         candidates and cells.
     UnsupportedDataError
-        The likelihood is above 0.9 at more than ``options.max_saturated`` of the live samples (as in memory).
+        The likelihood is above ``options.saturation_level`` at more than ``options.max_saturated`` of the live samples (as in memory).
 
     References
     ----------
@@ -166,7 +164,8 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     if not isinstance(opt, FaultTracingOptions):
         raise InputError(f"options must be a FaultTracingOptions; got {type(opt).__name__}")
     chunking = chunking or ChunkOptions()
-    x = cube if isinstance(cube, da.Array) else da.from_array(np.asarray(cube), chunks=(64, 64, -1))
+    tile = chunking.tile  # an array given in memory: chunks of the run's tile
+    x = cube if isinstance(cube, da.Array) else da.from_array(np.asarray(cube), chunks=(tile, tile, -1))
     if x.ndim != 3 or min(x.shape) < 3:
         raise InputError(f"chunked fault surfaces need a 3D cube (n_inlines, n_xlines, n_samples); got shape {x.shape}")
     if len(x.chunks[2]) != 1:

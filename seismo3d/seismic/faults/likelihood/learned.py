@@ -98,6 +98,8 @@ class LearnedOptions:
         On the 76-sample Great South Basin lines the network finds faults of a sample's throw or less there that it
         does not see on the traces as they are (crossline 2600: 6 of the 18 faults an interpreter drew, probability
         0.93-1.0 against 0.00-0.39).
+    saturation_level : float
+        In (0, 1): a probability above it counts as saturated (0.9; the saturated fraction of a run by blocks).
     """
 
     directions: str = "both"
@@ -107,6 +109,7 @@ class LearnedOptions:
     resample: tuple = (0.5, 0.7, 1.0)
     min_grid_samples: int = RECEPTIVE_HALF
     patch_samples: int = 128
+    saturation_level: float = 0.9
 
     def __post_init__(self):
         if self.directions not in ("both", "inline", "crossline"):
@@ -115,6 +118,8 @@ class LearnedOptions:
             raise InputError(f"orientation_sigma must be > 0 samples; got {self.orientation_sigma!r}")
         if not 0.0 <= float(self.min_dip) < 90.0:
             raise InputError(f"min_dip must be in [0, 90) degrees; got {self.min_dip!r}")
+        if not 0.0 < float(self.saturation_level) < 1.0:
+            raise InputError(f"saturation_level must be a probability in (0, 1); got {self.saturation_level!r}")
         factors = (self.resample,) if np.ndim(self.resample) == 0 else tuple(self.resample)
         try:
             factors = tuple(float(f) for f in factors)

@@ -87,8 +87,10 @@ class FaultScanOptions:
         so the scan loses nothing at half the vertical resolution and runs twice as fast; the result is brought
         back to every sample.
     saturated : float
-        A :class:`~seismo3d.errors.Seismo3dWarning` is issued when the likelihood exceeds 0.9 at more than this
-        fraction of the live samples (data without lateral coherence: noise, or traces out of order).
+        A :class:`~seismo3d.errors.Seismo3dWarning` is issued when the likelihood exceeds ``saturation_level`` at
+        more than this fraction of the live samples (data without lateral coherence: noise, or traces out of order).
+    saturation_level : float
+        In (0, 1): a likelihood above it counts as saturated (0.9).
 
     Raises
     ------
@@ -108,6 +110,7 @@ class FaultScanOptions:
     balance: tuple | None = (4.0, 20.0)
     decimation: int = 2
     saturated: float = 0.95
+    saturation_level: float = 0.9
 
     def __post_init__(self):
         check_positive(self.strike_smoothing, "strike_smoothing")
@@ -128,6 +131,8 @@ class FaultScanOptions:
             raise InputError(f"power must be one of 1, 2, 4, 8, 16, 32; got {self.power!r}")
         if not 0.0 < float(self.saturated) <= 1.0:
             raise InputError(f"saturated must be a fraction in (0, 1]; got {self.saturated!r}")
+        if not 0.0 < float(self.saturation_level) < 1.0:
+            raise InputError(f"saturation_level must be a likelihood in (0, 1); got {self.saturation_level!r}")
         strikes, dips = self.angles()
         if self.strikes is not None:
             object.__setattr__(self, "strikes", tuple(float(v) for v in strikes))
@@ -191,7 +196,7 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     Warns
     -----
     Seismo3dWarning
-        If the likelihood exceeds 0.9 at more than ``saturated`` of the live samples (data without lateral
+        If the likelihood exceeds ``saturation_level`` at more than ``saturated`` of the live samples (data without lateral
         coherence).
 
     References
@@ -227,7 +232,7 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     # the scan: each plane's semblance smoothed within it; the best plane per sample, packed into one int32 key
     key = scan_planes(sn, sd, opt, tiny, n_samples=f3.shape[2], two_d=two_d, progress=progress)
     del sn, sd
-    _warn_if_saturated(*saturation_counts(key, live), opt.saturated)
+    _warn_if_saturated(*saturation_counts(key, live, opt.saturation_level), opt)
     fl, strike, dip = decode_scan(key, opt, n_samples=f3.shape[2], two_d=two_d)
     del key
     if two_d:
@@ -410,16 +415,15 @@ def scan_planes(sn: np.ndarray, sd: np.ndarray, options: FaultScanOptions, tiny:
     return _scan(sn, sd, table, two_d, options, tiny, step, progress, axes, core, origin, sheared_layout)
 
 
-def saturation_counts(key: np.ndarray, live: np.ndarray) -> tuple[int, int]:
-    """Live (grouped) samples whose likelihood exceeds 0.9, and live samples: for the saturation warning."""
-    return (int(np.count_nonzero((key >> CODE_BITS)[live] > int(0.9 * FL_LEVELS))),
-            int(np.count_nonzero(live)))
+def saturation_counts(key: np.ndarray, live: np.ndarray, level: float) -> tuple[int, int]:
+    """Live (grouped) samples whose likelihood exceeds ``level``, and live samples: for the saturation warning."""
+    return int(np.count_nonzero((key >> CODE_BITS)[live] > int(level * FL_LEVELS))), int(np.count_nonzero(live))
 
 
-def _warn_if_saturated(high: int, live: int, saturated: float) -> None:
-    if live and high / live > saturated:
+def _warn_if_saturated(high: int, live: int, opt: FaultScanOptions) -> None:
+    if live and high / live > opt.saturated:
         warnings.warn(
-            f"fault likelihood exceeds 0.9 at {high / live:.0%} of the samples: the data has no lateral coherence "
+            f"fault likelihood exceeds {opt.saturation_level:g} at {high / live:.0%} of the samples: the data has no lateral coherence "
             "(noise, chaotic reflections, or traces out of order), so faults traced from it are unreliable; "
             "check the inline/crossline geometry or filter the data first", Seismo3dWarning, stacklevel=3)
 

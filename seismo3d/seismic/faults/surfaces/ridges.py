@@ -305,7 +305,7 @@ def fault_labels(faults, shape) -> np.ndarray:
     return labels
 
 
-def live_likelihood(likelihood: np.ndarray, near_dead, core=None) -> tuple[int, int]:
+def live_likelihood(likelihood: np.ndarray, near_dead, core=None, *, level: float) -> tuple[int, int]:
     """Set the likelihood next to dead samples to 0 (the edge of a dead zone is not a fault), in place; count the
     saturated and the live samples of ``core`` for :func:`~seismo3d.seismic.faults.checks.check_saturation`.
 
@@ -317,17 +317,19 @@ def live_likelihood(likelihood: np.ndarray, near_dead, core=None) -> tuple[int, 
         Samples near dead ones (:func:`~seismo3d.seismic.faults.surfaces.dead_samples.near_dead_samples`); None: none.
     core : tuple of slice, optional
         The block's core within ``likelihood`` (default: all of it).
+    level : float
+        A likelihood above it counts as saturated (``FaultTracingOptions.saturation_level``).
 
     Returns
     -------
     (int, int)
-        Live samples of the core with a likelihood above 0.9, and live samples of the core.
+        Live samples of the core with a likelihood above ``level``, and live samples of the core.
     """
     core = core or (slice(None),)
     if near_dead is not None:
         likelihood[near_dead] = 0.0
     values = likelihood[core] if near_dead is None else likelihood[core][~near_dead[core]]
-    return int(np.count_nonzero(values > 0.9)), int(values.size)
+    return int(np.count_nonzero(values > level)), int(values.size)
 
 
 def ridges(likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray, floor: float = 0.0) -> np.ndarray:

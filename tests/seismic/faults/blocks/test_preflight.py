@@ -6,7 +6,7 @@ import pytest
 
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, UnsupportedDataError
-from seismo3d.seismic.faults.blocks import learned_blocks, scan_blocks as likelihood_blocks, surface_plan
+from seismo3d.seismic.faults.blocks import learned_blocks, scan_blocks as likelihood_blocks, surface_steps
 from seismo3d.seismic.faults.likelihood.scan import FaultScanOptions
 from seismo3d.seismic.blocks.options import ChunkOptions
 from seismo3d.seismic.faults.options import FaultTracingOptions
@@ -77,7 +77,7 @@ def test_minimum_memory_limit_is_what_both_stages_plan_with(shape, likelihood):
             likelihood_blocks._plan(shape, FaultScanOptions(), chunking, baseline)
         else:
             learned_blocks._plan(shape, opt.learned, chunking, baseline)
-        surface_plan.plan_blocks(shape, opt, chunking, baseline + growth)
+        surface_steps.plan_blocks(shape, opt, chunking, baseline + growth)
 
     plans(limit)
     with pytest.raises(InputError, match="raise (--)?memory_limit"):
@@ -89,7 +89,7 @@ def test_minimum_memory_limit_holds_the_predicted_seed_candidates():
     plain = minimum_memory_limit(shape, baseline=0, growth=0)
     dense = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.2)
     with_candidates = minimum_memory_limit(shape, baseline=0, sample=dense, growth=0)
-    assert with_candidates == dense.candidates(shape) * surface_plan.CANDIDATE_BYTES > plain
+    assert with_candidates == dense.candidates(shape) * surface_steps.CANDIDATE_BYTES > plain
     sparse = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1e-6)
     assert minimum_memory_limit(shape, baseline=0, sample=sparse, growth=0) == plain
 

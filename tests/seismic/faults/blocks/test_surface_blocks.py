@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 import zarr
 
-import seismo3d.seismic.faults.blocks.surface_block_steps as block_steps
+import seismo3d.seismic.faults.blocks.surface_steps as block_steps
 import seismo3d.seismic.faults.blocks.surface_blocks as chunked_faults
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError

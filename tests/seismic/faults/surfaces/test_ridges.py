@@ -17,6 +17,7 @@ from seismo3d.seismic import (
     Fault, FaultLikelihood, SkinOptions, evaluate_faults, fault_labels, fault_likelihood, thin_faults,
     trace_faults,
 )
+from seismo3d.seismic.faults.surfaces.ridges import live_likelihood
 
 SEEDS = (0, 1, 2, 3, 4)
 
@@ -193,3 +194,12 @@ def test_real_sections_run(name):
     assert 10 <= len(faults) <= 400
     assert all(f.size >= SkinOptions().smallest(section.shape) for f in faults)
     assert np.count_nonzero(thin) < 0.15 * thin.size  # thinned votes: 12 % on the densely faulted gx808
+
+
+def test_live_likelihood_counts_the_saturated_live_samples_of_the_core_above_the_level():
+    fl = np.array([[0.95, 0.5, 0.91], [0.2, 0.99, 0.85]], np.float32)
+    near = np.array([[False, False, True], [False, False, False]])
+    high, live = live_likelihood(fl, near, level=0.9)
+    assert (high, live) == (2, 5) and fl[0, 2] == 0.0  # 0.95 and 0.99; the sample near dead ones is zeroed
+    assert live_likelihood(fl.copy(), None, level=0.8) == (3, 6)
+    assert live_likelihood(fl.copy(), None, (slice(1, 2),), level=0.8) == (2, 3)  # the core: the second trace

@@ -1,0 +1,127 @@
+"""The resumable Zarr stores of a run by blocks: a work folder of intermediate arrays and markers, the output
+assembled in ``OUTPUT.partial`` and renamed to ``OUTPUT`` only when every block is done (an output that exists is
+complete), and its coordinates.
+
+:class:`StoreRun` adds the stores to :class:`~seismo3d.seismic.blocks.executor.BlockRun` (markers, tasks, schedulers);
+what the blocks compute is the caller's (the fault likelihoods' runs by blocks,
+:mod:`seismo3d.seismic.faults.blocks.scan_blocks` and :mod:`seismo3d.seismic.faults.blocks.learned_blocks`).
+"""
+
+from __future__ import annotations
+
+import os
+import pathlib
+import shutil
+
+import numpy as np
+
+from ...errors import InputError
+from ..io.zarr_store import SEISMIC_CODEC, consolidate
+from .executor import BlockRun
+from .options import ChunkOptions
+
+__all__ = ["StoreRun", "write_coords"]
+
+
+class StoreRun(BlockRun):
+    """The folders of a run by blocks into one output Zarr group: the work folder (``OUTPUT.work``) with its
+    intermediate arrays and markers, the output assembled in ``OUTPUT.partial`` and renamed to ``OUTPUT`` when
+    complete.
+
+    Parameters
+    ----------
+    out : pathlib.Path
+        The output Zarr group.
+    chunking : ChunkOptions
+        The scheduler and the blocks computed at once.
+    progress : bool
+        Report progress per finished block.
+    outputs : tuple of str
+        Names of the output arrays, each ``(n_inlines, n_xlines, n_samples)`` float32 with dimensions inline,
+        crossline, sample.
+    """
+
+    def __init__(self, out: pathlib.Path, chunking: ChunkOptions, progress: bool,
+                 outputs: tuple = ("likelihood", "strike_deg", "dip_deg")):
+        super().__init__(out.with_name(out.name + ".work"), scheduler=chunking.scheduler, workers=chunking.workers,
+                         progress=progress)
+        self.out, self.chunking, self.outputs = out, chunking, tuple(outputs)
+        self.partial = out.with_name(out.name + ".partial")
+
+    def start_output(self, manifest: dict, shape, tile: int, work_arrays) -> None:
+        """Refuse an existing output or a missing folder, open the work folder with ``manifest``, and create the
+        work arrays ``(name, dtype, samples per trace)`` and the output arrays that do not exist yet.
+
+        Parameters
+        ----------
+        manifest : dict
+            What is computed (:meth:`~seismo3d.seismic.blocks.executor.BlockRun.open`).
+        shape : (int, int, int)
+            ``(n_inlines, n_xlines, n_samples)``.
+        tile : int
+            Traces a side of the arrays' chunks (:attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile`).
+        work_arrays : iterable of (str, str, int)
+            Name, dtype and samples per trace of each intermediate array (uncompressed, in the work folder).
+
+        Raises
+        ------
+        InputError
+            The output exists, or its folder does not.
+        EarlierStoresError
+            The work folder holds an unfinished run of something else.
+        """
+        import zarr
+        if self.out.exists():
+            raise InputError(f"output {self.out} already exists; pick another output or delete it")
+        if not self.out.parent.is_dir():
+            raise InputError(f"cannot write {self.out}: folder {self.out.parent} does not exist; create it first")
+        self.open(manifest, f"{self.work} and {self.partial}")
+        n0, n1, nt = shape
+        t = tile
+        for name, dtype, n in work_arrays:
+            if not (self.work / name).exists():
+                zarr.create_array(str(self.work / name), shape=(n0, n1, n), chunks=(t, t, n), dtype=dtype,
+                                  compressors=None, fill_value=0)
+        if not self.partial.exists():
+            group = zarr.open_group(str(self.partial), mode="w")
+            for name in self.outputs:
+                group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
+                                   compressors=SEISMIC_CODEC, dimension_names=("inline", "crossline", "sample"))
+
+    def finish(self) -> None:
+        """Mark the output complete, rename it into place and delete the work folder."""
+        import zarr
+        zarr.open_group(str(self.partial), mode="r+").attrs["complete"] = True
+        consolidate(self.partial)
+        os.replace(self.partial, self.out)
+        shutil.rmtree(self.work, ignore_errors=True)
+
+
+def write_coords(group, shape, coords) -> None:
+    """Write the 1-D coordinates ``inline``, ``crossline`` and ``sample`` beside a group's arrays.
+
+    Parameters
+    ----------
+    group : zarr.Group
+        Opened for writing.
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    coords : dict or None
+        ``inline``, ``crossline`` (numbers) and ``sample`` (times or depths), with an optional ``sample_unit``
+        string; a coordinate left out is written as indices.
+
+    Raises
+    ------
+    InputError
+        A coordinate whose length is not its axis's.
+    """
+    coords = dict(coords or {})
+    unit = coords.pop("sample_unit", None)
+    for name, n in zip(("inline", "crossline", "sample"), shape):
+        values = np.asarray(coords.get(name, np.arange(n)))
+        if values.shape != (n,):
+            raise InputError(f"coordinate {name!r} must have {n} values; got shape {values.shape}")
+        arr = group.create_array(name, shape=(n,), dtype=values.dtype, dimension_names=(name,), overwrite=True)
+        arr[:] = values
+        if name == "sample" and unit:
+            arr.attrs["units"] = unit

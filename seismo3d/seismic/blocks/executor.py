@@ -5,6 +5,9 @@ marker per finished block, written atomically after the block's data. Started ag
 skips the blocks whose markers exist; with another manifest it is refused, so an unfinished run of one cube is never
 completed with the blocks of another. Blocks are dask delayed tasks run on the local threaded scheduler, one thread
 (``'synchronous'``), or a ``dask.distributed`` cluster given by its address, with progress per finished block.
+
+The blocks are planned once, before the run, from the steps' declarations (:class:`BlockStep`: whether a step maps,
+reduces or gathers, its halo, the bytes of a block) and the memory limit (:func:`block_budget`, :func:`plan_steps`).
 """
 
 from __future__ import annotations
@@ -18,6 +21,8 @@ import pathlib
 import sys
 import time
 import uuid
+from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -25,9 +30,9 @@ from ..._atomic import atomic_path
 from ..._progress import LOGGER, progress_steps
 from ...errors import EarlierStoresError, InputError
 
-__all__ = ["BlockRun", "SchedulerClient", "MEMORY_HEADROOM", "block_budget", "kernel_threads", "largest_block",
-           "lateral_blocks", "limit_for_blocks", "release_memory", "run_block", "serial_step_blocks", "trace_cube",
-           "write_marker"]
+__all__ = ["BlockRun", "BlockStep", "SchedulerClient", "MEMORY_HEADROOM", "block_budget", "kernel_threads",
+           "largest_block", "lateral_blocks", "limit_for_blocks", "plan_steps", "release_memory", "run_block",
+           "serial_step_blocks", "trace_cube", "write_marker"]
 
 # Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
 # for the allocator's fragmentation and the reads in flight (a chunked likelihood run peaked at 1.54 GB under a
@@ -128,6 +133,70 @@ def largest_block(tile: int, cap: int, fits) -> int:
     while size + tile <= cap and fits(size + tile):
         size += tile
     return size
+
+
+STEP_KINDS = ("map", "reduce", "gather")
+
+
+@dataclass(frozen=True)
+class BlockStep:
+    """A step of a run by blocks, declared with what the executor needs to plan it; what the step computes on a
+    block is its caller's.
+
+    Attributes
+    ----------
+    name : str
+        The step's name (its key in the plan, its markers' prefix).
+    kind : {'map', 'reduce', 'gather'}
+        ``'map'``: each block writes its core of an output; ``'reduce'``: each block returns a small statistic
+        combined over the blocks (sums, a histogram, a range); ``'gather'``: each block returns a sparse list
+        gathered in memory (seed candidates, cells). A step may also return what a later step reduces or gathers
+        (its ``kind`` names what it is planned for).
+    halo : int
+        Traces read on each lateral side of a block's core.
+    block_bytes : callable
+        ``block_bytes(side) -> int``: bytes at the step's peak for a block of ``side`` traces a side (its halo
+        included), the model of the step's arrays.
+    cap : int
+        Largest side considered, traces.
+    fixed : int, optional
+        A side forced by the caller (``ChunkOptions.block`` or ``strip``): used as is, and refused by the caller
+        when it does not fit.
+    """
+
+    name: str
+    kind: str
+    halo: int
+    block_bytes: Callable[[int], int]
+    cap: int
+    fixed: int | None = None
+
+    def __post_init__(self):
+        if self.kind not in STEP_KINDS:
+            raise InputError(f"BlockStep(kind=...) must be one of {', '.join(STEP_KINDS)}; got {self.kind!r}")
+
+
+def plan_steps(steps, *, tile: int, budget: int) -> dict:
+    """The side of each step's blocks: its ``fixed`` side, else the largest multiple of ``tile`` up to its ``cap``
+    whose :attr:`BlockStep.block_bytes` fit ``budget`` (``tile`` at least: the caller refuses a step whose smallest
+    block does not fit, with its own message).
+
+    Parameters
+    ----------
+    steps : iterable of BlockStep
+    tile : int
+        Traces a side of a chunk; blocks are whole chunks.
+    budget : int
+        Bytes one worker's block may use (:func:`block_budget`).
+
+    Returns
+    -------
+    dict
+        ``{step name: side}``, traces, in the steps' order.
+    """
+    return {s.name: int(s.fixed) if s.fixed else largest_block(int(tile), int(s.cap),
+                                                                lambda b, s=s: s.block_bytes(b) <= budget)
+            for s in steps}
 
 
 def serial_step_blocks(limit: int, baseline: int, workers: int, scheduler, tile: int, cap: int, halo: int,

@@ -3,8 +3,8 @@ assembled in ``OUTPUT.partial`` and renamed to ``OUTPUT`` only when every block 
 complete), and its coordinates.
 
 :class:`StoreRun` adds the stores to :class:`~seismo3d.seismic.blocks.executor.BlockRun` (markers, tasks, schedulers);
-what the blocks compute is the caller's (the fault likelihoods' runs by blocks,
-:mod:`seismo3d.seismic.faults.blocks.scan_blocks` and :mod:`seismo3d.seismic.faults.blocks.learned_blocks`).
+what the blocks compute is the caller's (the fault runs by blocks: :mod:`seismo3d.seismic.faults.blocks.scan_blocks`,
+:mod:`seismo3d.seismic.faults.blocks.learned_blocks`, :mod:`seismo3d.seismic.faults.blocks.surface_blocks`).
 """
 
 from __future__ import annotations
@@ -60,8 +60,9 @@ class StoreRun(BlockRun):
             ``(n_inlines, n_xlines, n_samples)``.
         tile : int
             Traces a side of the arrays' chunks (:attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile`).
-        work_arrays : iterable of (str, str, int)
-            Name, dtype and samples per trace of each intermediate array (uncompressed, in the work folder).
+        work_arrays : iterable of (str, str, int) or (str, str, int, bool)
+            Name, dtype and samples per trace of each intermediate array in the work folder, and whether it is
+            compressed (default: not).
 
         Raises
         ------
@@ -78,20 +79,21 @@ class StoreRun(BlockRun):
         self.open(manifest, f"{self.work} and {self.partial}")
         n0, n1, nt = shape
         t = tile
-        for name, dtype, n in work_arrays:
+        for name, dtype, n, *compressed in work_arrays:
             if not (self.work / name).exists():
                 zarr.create_array(str(self.work / name), shape=(n0, n1, n), chunks=(t, t, n), dtype=dtype,
-                                  compressors=None, fill_value=0)
+                                  fill_value=0, **({} if compressed and compressed[0] else {"compressors": None}))
         if not self.partial.exists():
             group = zarr.open_group(str(self.partial), mode="w")
             for name in self.outputs:
                 group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
                                    compressors=SEISMIC_CODEC, dimension_names=("inline", "crossline", "sample"))
 
-    def finish(self) -> None:
-        """Mark the output complete, rename it into place and delete the work folder."""
+    def finish(self, attrs: dict | None = None) -> None:
+        """Mark the output complete (with ``attrs``, its other attributes), rename it into place and delete the work
+        folder."""
         import zarr
-        zarr.open_group(str(self.partial), mode="r+").attrs["complete"] = True
+        zarr.open_group(str(self.partial), mode="r+").attrs.update(dict(attrs or {}, complete=True))
         consolidate(self.partial)
         os.replace(self.partial, self.out)
         shutil.rmtree(self.work, ignore_errors=True)

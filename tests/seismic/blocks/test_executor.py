@@ -8,7 +8,8 @@ import os
 import numba
 import pytest
 
-from seismo3d.seismic.blocks.executor import BlockRun, kernel_threads, run_block
+from seismo3d.errors import InputError
+from seismo3d.seismic.blocks.executor import BlockRun, BlockStep, kernel_threads, plan_steps, run_block
 
 
 def _kernel_thread_count(_block):
@@ -55,3 +56,17 @@ def test_serial_step_blocks_trade_halo_for_idle_cores(monkeypatch):
     assert blocks.serial_step_blocks(limit, 0, 1, "tcp://127.0.0.1:8786", 32, 256, 9, block_bytes) == (1, 96)
     # two blocks at once asked for: never fewer
     assert blocks.serial_step_blocks(limit, 0, 2, None, 32, 256, 9, block_bytes) == (2, 64)
+
+
+def test_the_plan_gives_each_step_its_largest_block_that_fits_or_its_forced_side():
+    def square(b):  # bytes of a block of b traces a side with a halo of 2
+        return (b + 4) ** 2
+
+    steps = (BlockStep("a", "map", 2, square, 512), BlockStep("b", "reduce", 0, lambda b: 10 * b * b, 48),
+             BlockStep("c", "gather", 2, square, 512, fixed=16), BlockStep("d", "map", 0, lambda b: 10**9, 512))
+    sizes = plan_steps(steps, tile=8, budget=10_000)
+    # a: (96 + 4)^2 = 10000 fits, 104 does not; b: 10 * 24^2 = 5760 fits, 32 does not (10240), below its cap of 48;
+    # c: forced; d: nothing fits, so the tile (the caller refuses it)
+    assert sizes == {"a": 96, "b": 24, "c": 16, "d": 8}
+    with pytest.raises(InputError, match="BlockStep\\(kind=...\\) must be one of map, reduce, gather"):
+        BlockStep("x", "scatter", 0, square, 8)

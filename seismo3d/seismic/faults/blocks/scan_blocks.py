@@ -38,7 +38,8 @@ import numpy as np
 
 from ...._options import resolve_options
 from ....errors import InputError
-from ...blocks.executor import SchedulerClient, block_budget, largest_block, lateral_blocks, trace_cube, write_marker
+from ...blocks.executor import (BlockStep, SchedulerClient, block_budget, lateral_blocks, plan_steps, trace_cube,
+                                write_marker)
 from ...blocks.options import ChunkOptions
 from ...blocks.stores import StoreRun, write_coords
 from ..likelihood.scan import (
@@ -80,13 +81,16 @@ class _Plan:
         return lateral_blocks(self.shape, size0, size1)
 
 
-def _step_bytes(shape, options: FaultScanOptions) -> tuple:
-    """Bytes a block of ``b`` traces a side needs in the semblance (and decoding), balancing and scan steps: three
-    functions of ``b``."""
+def _block_steps(shape, options: FaultScanOptions, chunking: ChunkOptions | None = None) -> tuple:
+    """The semblance (its denominators reduced into the semblance floor; the decoding uses its square blocks),
+    balancing and scan steps declared for the executor's plan (:func:`~seismo3d.seismic.blocks.executor.plan_steps`):
+    halo, bytes of a block of ``b`` traces a side (the scan: ``b`` crosslines or inlines of blocks that hold every
+    trace along the other axis), largest and forced sides."""
     n0, n1, nt = shape
     m = -(-nt // scan_step(options, nt))
     bhalo, halo, shalo = balance_halo(options), semblance_halo(options), strike_halo(options)
     n_axis = max(n0, n1)
+    chunking = chunking or ChunkOptions()
 
     def semblance_bytes(b):
         return max((b + 2 * halo) ** 2 * nt * _SEMBLANCE_BYTES, b ** 2 * nt * _DECODE_BYTES)
@@ -97,7 +101,9 @@ def _step_bytes(shape, options: FaultScanOptions) -> tuple:
     def scan_bytes(w):
         return n_axis * (w + 2 * shalo) * m * _SCAN_BYTES
 
-    return semblance_bytes, balance_bytes, scan_bytes
+    return (BlockStep("semblance", "reduce", halo, semblance_bytes, 256, chunking.block),
+            BlockStep("balance", "map", bhalo, balance_bytes, 512),
+            BlockStep("scan", "map", shalo, scan_bytes, n_axis, chunking.strip))
 
 
 def smallest_block_bytes(shape, options: FaultScanOptions | None, tile: int) -> int:
@@ -117,7 +123,8 @@ def smallest_block_bytes(shape, options: FaultScanOptions | None, tile: int) -> 
     -------
     int
     """
-    return int(max(f(int(tile)) for f in _step_bytes(tuple(int(n) for n in shape), options or FaultScanOptions())))
+    steps = _block_steps(tuple(int(n) for n in shape), options or FaultScanOptions())
+    return int(max(step.block_bytes(int(tile)) for step in steps))
 
 
 def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
@@ -129,13 +136,10 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
     # what the blocks may use: the limit less the process itself, less a fifth for the allocator's fragmentation
     # (freed blocks that threads' arenas keep) and the reads in flight; measured 1.54 GB peak for 1.4 GB without it
     budget = block_budget(limit, baseline, int(chunking.workers))
-    n_axis = max(n0, n1)
-    semblance_bytes, balance_bytes, scan_bytes = _step_bytes(shape, options)
-
-    block = int(chunking.block or largest_block(tile, 256, lambda b: semblance_bytes(b) <= budget))
-    balance = largest_block(tile, 512, lambda b: balance_bytes(b) <= budget)
-    strip = int(chunking.strip or largest_block(tile, n_axis, lambda w: scan_bytes(w) <= budget))
-    need = max(semblance_bytes(block), balance_bytes(balance), scan_bytes(strip))
+    steps = _block_steps(shape, options, chunking)
+    sizes = plan_steps(steps, tile=tile, budget=budget)
+    block, balance, strip = sizes["semblance"], sizes["balance"], sizes["scan"]
+    need = max(step.block_bytes(sizes[step.name]) for step in steps)
     if need > budget:
         raise InputError(
             f"a chunked run of a {n0} x {n1} x {nt} cube needs about "

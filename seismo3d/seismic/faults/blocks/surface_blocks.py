@@ -35,17 +35,15 @@ block in ``OUTPUT.work``, the output assembled in ``OUTPUT.partial`` and renamed
 from __future__ import annotations
 
 import json
-import os
 import pathlib
-import shutil
 from dataclasses import asdict, dataclass
 
 import numpy as np
 
 from ...._atomic import atomic_path
 from ....errors import EarlierStoresError, InputError
-from ...blocks.executor import BlockRun, SchedulerClient, write_marker
-from ...io.zarr_store import SEISMIC_CODEC, consolidate
+from ...blocks.executor import SchedulerClient, write_marker
+from ...blocks.stores import StoreRun
 from ..options import FaultTracingOptions
 from ...blocks.options import ChunkOptions
 from ...blocks.memory import default_memory_limit, resident_memory, worker_baseline
@@ -61,6 +59,9 @@ from .surface_steps import (
 from ...blocks.windows import StoredWindows
 
 __all__ = ["CANDIDATE_BYTES", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO", "smallest_block_bytes"]
+
+# the output's arrays, (n_inlines, n_xlines, n_samples) float32 (ChunkedFaults.path)
+_OUTPUTS = ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg", "slope_inline", "slope_xline")
 
 
 @dataclass(frozen=True, eq=False)
@@ -216,7 +217,7 @@ def _surfaces(run: _SurfaceRun, manifest: dict) -> dict:
         found = surface_cells(run, run.opt)
     attrs = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,
              "saturated_fraction": found.saturated_fraction, "run": manifest}
-    run.finish(attrs)
+    run.finish(dict(attrs, method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run"))
     return attrs
 
 
@@ -228,15 +229,13 @@ def _stored_cells(path: pathlib.Path) -> tuple:
             group["cell_dip_deg"][:])
 
 
-class _SurfaceRun(BlockRun):
-    """One chunked fault-surface run: folders, steps and their blocks."""
+class _SurfaceRun(StoreRun):
+    """One chunked fault-surface run: its steps and their blocks (its stores: :class:`StoreRun`)."""
 
     def __init__(self, out: pathlib.Path, likelihood: pathlib.Path, x, plan: SurfacePlan, opt: FaultTracingOptions,
                  chunking: ChunkOptions, memory: int, progress: bool):
-        super().__init__(out.with_name(out.name + ".work"), scheduler=chunking.scheduler, workers=chunking.workers,
-                         progress=progress)
-        self.out, self.likelihood, self.plan, self.opt = out, str(likelihood), plan, opt
-        self.partial = out.with_name(out.name + ".partial")
+        super().__init__(out, chunking, progress, outputs=_OUTPUTS)
+        self.likelihood, self.plan, self.opt = str(likelihood), plan, opt
         self.x, self.memory = x, memory  # the cube (dask, whole traces) and the memory limit, bytes
 
     def finished(self, manifest: dict) -> dict | None:
@@ -262,34 +261,13 @@ class _SurfaceRun(BlockRun):
         return attrs
 
     def start(self, manifest: dict) -> None:
-        import zarr
-        if not self.out.parent.is_dir():
-            raise InputError(f"cannot write {self.out}: folder {self.out.parent} does not exist; create it first")
-        self.open(manifest, f"{self.work} and {self.partial}")
-        (self.work / "candidates").mkdir(exist_ok=True)
-        (self.work / "cells").mkdir(exist_ok=True)
-        (self.work / "surfaces").mkdir(exist_ok=True)
-        n0, n1, nt = self.plan.shape
-        t = self.plan.tile
-        for name, dtype in (("near", "uint8"), ("thin_raw", "float32")):
-            if not (self.work / name).exists():
-                zarr.create_array(str(self.work / name), shape=(n0, n1, nt), chunks=(t, t, nt), dtype=dtype,
-                                  fill_value=0, **({} if name == "near" else {"compressors": None}))
-        if not self.partial.exists():
-            group = zarr.open_group(str(self.partial), mode="w")
-            for name in ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg", "slope_inline",
-                         "slope_xline"):
-                group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
-                                   compressors=SEISMIC_CODEC, dimension_names=("inline", "crossline", "sample"))
-
-    def finish(self, attrs: dict) -> None:
-        import zarr
-        group = zarr.open_group(str(self.partial), mode="r+")
-        group.attrs.update(dict(attrs, method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run",
-                                complete=True))
-        consolidate(self.partial)
-        os.replace(self.partial, self.out)
-        shutil.rmtree(self.work, ignore_errors=True)
+        """Open the work folder with ``manifest``, its folders of sparse lists and its work arrays (the masks near
+        dead samples, compressed; the thinned votes before the threshold), and the output arrays."""
+        p = self.plan
+        self.start_output(manifest, p.shape, p.tile, (("near", "uint8", p.shape[2], True),
+                                                      ("thin_raw", "float32", p.shape[2])))
+        for name in ("candidates", "cells", "surfaces"):
+            (self.work / name).mkdir(exist_ok=True)
 
     def _saved(self, name: str, compute):
         """A small JSON result of the run kept in the work folder (computed once)."""

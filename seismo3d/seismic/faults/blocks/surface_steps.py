@@ -17,7 +17,7 @@ import numpy as np
 from ...._atomic import atomic_path
 from ....errors import InputError
 from ...attributes import structure_tensor_halo, structure_tensor_slopes
-from ...blocks.executor import block_budget, largest_block, write_marker
+from ...blocks.executor import BlockStep, block_budget, plan_steps, write_marker
 from ...blocks.memory import default_memory_limit
 from ...blocks.options import ChunkOptions
 from ..surfaces.dead_samples import dead_samples, fill_values, near_dead_samples
@@ -29,7 +29,7 @@ if TYPE_CHECKING:  # annotations only: the options are passed in
     from ..options import FaultTracingOptions
 
 __all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "RIDGE_HALO", "SURFACE_BATCH_BYTES", "SurfacePlan", "THIN_HALO",
-           "amplitude_halo", "around", "cell_block", "fill_block", "gather_block", "histogram_block", "plan_blocks",
+           "amplitude_halo", "around", "block_steps", "cell_block", "fill_block", "gather_block", "histogram_block", "plan_blocks",
            "ridge_block", "save_npz", "smallest_block_bytes", "square_blocks", "surface_block", "surfaces_of",
            "thin_block", "vote_block"]
 
@@ -81,19 +81,36 @@ def amplitude_halo(opt: FaultTracingOptions) -> int:
     return max(RIDGE_HALO + opt.dead.reach[0], structure_tensor_halo()[0])
 
 
-def _step_bytes(shape, opt: FaultTracingOptions) -> dict:
-    """Bytes a block of ``b`` traces a side needs in each step (dead samples, ridges, voting, thinning): functions of
-    ``b`` by step name."""
+def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
+    """The block steps of the fault surfaces, declared for the executor's plan
+    (:func:`~seismo3d.seismic.blocks.executor.plan_steps`): the fill values of the dead-sample rules (reduced over
+    the blocks), the ridges (their seed candidates gathered), the voting (seed surfaces, then votes) and the thinning
+    (its statistics reduced into the thresholds; the histograms, the quantile and the cells use its blocks), each
+    with its halo and the bytes of a block of ``b`` traces a side.
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    opt : FaultTracingOptions
+    cap : int
+        Largest side of a block, traces.
+
+    Returns
+    -------
+    tuple of BlockStep
+        Named ``'dead'``, ``'ridge'``, ``'vote'``, ``'thin'`` (the fields of :class:`SurfacePlan`).
+    """
     nt = shape[2]
     reach = opt.voting.reach(shape)
     threads = numba.get_num_threads()
+    halo = amplitude_halo(opt)
 
     def dead_bytes(b):
         return b * b * nt * _DEAD_BYTES
 
     def ridge_bytes(b):
-        h = amplitude_halo(opt)
-        return (b + 2 * h) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
+        return (b + 2 * halo) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
 
     # the surfaces of a block's seeds: at most one seed per (spacing + 1)^3 samples (greedy_seeds keeps them more
     # than spacing apart), each (2 rw + 1) x (2 rv + 1) offsets of 3 int8, its vote (float64) and normal (3 float32)
@@ -109,7 +126,8 @@ def _step_bytes(shape, opt: FaultTracingOptions) -> dict:
     def thin_bytes(b):
         return (b + 2 * THIN_HALO) ** 2 * nt * _THIN_BYTES
 
-    return {"dead": dead_bytes, "ridge": ridge_bytes, "vote": vote_bytes, "thin": thin_bytes}
+    return (BlockStep("dead", "reduce", 0, dead_bytes, cap), BlockStep("ridge", "gather", halo, ridge_bytes, cap),
+            BlockStep("vote", "map", reach, vote_bytes, cap), BlockStep("thin", "reduce", THIN_HALO, thin_bytes, cap))
 
 
 def smallest_block_bytes(shape, options: FaultTracingOptions, tile: int) -> int:
@@ -128,13 +146,15 @@ def smallest_block_bytes(shape, options: FaultTracingOptions, tile: int) -> int:
     -------
     int
     """
-    steps = _step_bytes(tuple(int(n) for n in shape), options)
-    return int(max(need(int(tile)) for need in steps.values()))
+    steps = block_steps(tuple(int(n) for n in shape), options, int(tile))
+    return int(max(step.block_bytes(int(tile)) for step in steps))
 
 
 def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int) -> SurfacePlan:
-    """The largest blocks of each step (multiples of ``chunking.tile``, at most ``chunking.block`` or 512 traces a
-    side) whose bytes fit the budget a memory limit leaves (:func:`~seismo3d.seismic.blocks.executor.block_budget`).
+    """The largest blocks of each of :func:`block_steps` (multiples of ``chunking.tile``, at most ``chunking.block`` or
+    512 traces a side) whose bytes fit the budget a memory limit leaves
+    (:func:`~seismo3d.seismic.blocks.executor.block_budget`), by the executor's planner
+    (:func:`~seismo3d.seismic.blocks.executor.plan_steps`).
 
     Parameters
     ----------
@@ -159,18 +179,17 @@ def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baselin
     tile = int(chunking.tile)
     limit = int(chunking.memory_limit or default_memory_limit())
     budget = block_budget(limit, baseline, int(chunking.workers))
-    reach = opt.voting.reach(shape)
-    cap = max(n0, n1)
-    sizes = {}
-    for name, need in _step_bytes(shape, opt).items():
-        top = int(chunking.block) if chunking.block else min(cap, 512)
-        sizes[name] = largest_block(tile, top, lambda b, need=need: need(b) <= budget)
-        if need(sizes[name]) > budget:
+    steps = block_steps(shape, opt, int(chunking.block) if chunking.block else min(max(n0, n1), 512))
+    sizes = plan_steps(steps, tile=tile, budget=budget)
+    for step in steps:
+        need = step.block_bytes(sizes[step.name])
+        if need > budget:
             raise InputError(
                 f"the fault surfaces of a {n0} x {n1} x {nt} cube need about "
-                f"{(need(sizes[name]) * int(chunking.workers) + baseline) / 2**30:.2f} GiB per block but the memory "
+                f"{(need * int(chunking.workers) + baseline) / 2**30:.2f} GiB per block but the memory "
                 f"limit is {limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
-    return SurfacePlan((n0, n1, nt), tile, sizes["dead"], sizes["ridge"], sizes["vote"], sizes["thin"], reach)
+    return SurfacePlan((n0, n1, nt), tile, sizes["dead"], sizes["ridge"], sizes["vote"], sizes["thin"],
+                       opt.voting.reach(shape))
 
 
 def square_blocks(shape, size):

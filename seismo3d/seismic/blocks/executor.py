@@ -199,8 +199,8 @@ def plan_steps(steps, *, tile: int, budget: int) -> dict:
             for s in steps}
 
 
-def serial_step_blocks(limit: int, baseline: int, workers: int, scheduler, tile: int, cap: int, halo: int,
-                       block_bytes) -> tuple[int, int]:
+def serial_step_blocks(step: BlockStep, *, limit: int, baseline: int, workers: int, scheduler,
+                       tile: int) -> tuple[int, int]:
     """Blocks at once and their side for a step whose kernels are mostly serial (numpy, ``scipy.ndimage``): on the
     local threaded scheduler, up to one block per core, each planned for its share of the memory.
 
@@ -215,18 +215,17 @@ def serial_step_blocks(limit: int, baseline: int, workers: int, scheduler, tile:
 
     Parameters
     ----------
+    step : BlockStep
+        The step: its halo (traces on each side of a block), the bytes of a block of ``side`` traces a side (its
+        halo included) and the largest side (``cap``); its ``fixed`` side is not used (the caller's).
     limit, baseline : int
         Memory limit and the process's own bytes (:func:`block_budget`).
     workers : int
         Blocks at once asked for (the run's ``ChunkOptions.workers``).
     scheduler : str or None
         The run's scheduler: only the local threaded one (None, ``'threads'``) runs more blocks at once.
-    tile, cap : int
-        Blocks are multiples of ``tile`` traces a side, at most ``cap``.
-    halo : int
-        Traces of halo on each side of a block.
-    block_bytes : callable
-        ``block_bytes(side) -> int``: bytes of a block of ``side`` traces a side, its halo included.
+    tile : int
+        Blocks are multiples of ``tile`` traces a side.
 
     Returns
     -------
@@ -234,6 +233,7 @@ def serial_step_blocks(limit: int, baseline: int, workers: int, scheduler, tile:
         Blocks at once and their side (``tile`` at least; the caller refuses a limit below what it needs).
     """
     cores = _usable_cores() if scheduler in (None, "threads") else 1
+    cap, halo, block_bytes = int(step.cap), int(step.halo), step.block_bytes
     best = None
     for n in range(int(workers), max(int(workers), cores) + 1):
         budget = block_budget(limit, baseline, n)

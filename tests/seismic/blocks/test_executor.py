@@ -46,16 +46,19 @@ def test_serial_step_blocks_trade_halo_for_idle_cores(monkeypatch):
     def block_bytes(side):  # 1 MiB per trace of a block with 9 traces of halo
         return (side + 18) ** 2 * mib
 
+    step = blocks.BlockStep("orientation", "reduce", 9, block_bytes, 256)
+
     # room for one block of 96 or two of 64 (each within half the budget): (82 / 64)^2 / 2 < (114 / 96)^2
     limit = int(2 * 82 ** 2 * mib / blocks.MEMORY_HEADROOM) + 1
-    assert blocks.serial_step_blocks(limit, 0, 1, None, 32, 256, 9, block_bytes) == (2, 64)
+    assert blocks.serial_step_blocks(step, limit=limit, baseline=0, workers=1, scheduler=None, tile=32) == (2, 64)
     # a third of that: one block of 32 (50^2 MiB) or two of 32 (each over half the budget: not allowed)
     small = int(50 ** 2 * mib / blocks.MEMORY_HEADROOM) + 1
-    assert blocks.serial_step_blocks(small, 0, 1, None, 32, 256, 9, block_bytes) == (1, 32)
+    assert blocks.serial_step_blocks(step, limit=small, baseline=0, workers=1, scheduler=None, tile=32) == (1, 32)
     # a cluster runs the blocks its workers take: the count asked for
-    assert blocks.serial_step_blocks(limit, 0, 1, "tcp://127.0.0.1:8786", 32, 256, 9, block_bytes) == (1, 96)
+    cluster = "tcp://127.0.0.1:8786"
+    assert blocks.serial_step_blocks(step, limit=limit, baseline=0, workers=1, scheduler=cluster, tile=32) == (1, 96)
     # two blocks at once asked for: never fewer
-    assert blocks.serial_step_blocks(limit, 0, 2, None, 32, 256, 9, block_bytes) == (2, 64)
+    assert blocks.serial_step_blocks(step, limit=limit, baseline=0, workers=2, scheduler=None, tile=32) == (2, 64)
 
 
 def test_the_plan_gives_each_step_its_largest_block_that_fits_or_its_forced_side():

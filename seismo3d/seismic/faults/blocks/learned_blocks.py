@@ -38,8 +38,8 @@ import numpy as np
 from ...._options import resolve_options
 from ....errors import InputError
 from ...blocks.executor import (
-    SchedulerClient, block_budget, largest_block, lateral_blocks, limit_for_blocks, serial_step_blocks, trace_cube,
-    write_marker,
+    BlockStep, SchedulerClient, block_budget, largest_block, lateral_blocks, limit_for_blocks, serial_step_blocks,
+    trace_cube, write_marker,
 )
 from ..likelihood.learned import (
     LearnedOptions, amplitude_scale, cube_directions, direction_probability, grids_mean, orientation_from_likelihood,
@@ -262,15 +262,15 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
             biggest = max(biggest, _largest_network_bytes(grid, *size, axis, shape, factor, batch))
         grids.append({"factor": factor, "network_shape": list(grid), "network_blocks": network})
 
-    def bytes_o(b):
-        return _orientation_block_bytes(b, nt, opt)
-
+    # strike and dip: square blocks (the probability reduced into the saturated fraction)
+    orientation = BlockStep("orientation", "reduce", halo_o, lambda b: _orientation_block_bytes(b, nt, opt),
+                            min(cap, 256), chunking.block)
     if chunking.block:
         workers_o, block_o = int(chunking.workers), int(chunking.block)
     else:  # its kernels are mostly serial (scipy's Gaussian filters): blocks at once on the idle cores
-        workers_o, block_o = serial_step_blocks(limit, baseline, int(chunking.workers), chunking.scheduler, tile,
-                                                min(cap, 256), halo_o, bytes_o)
-    if not (biggest <= budget and bytes_o(block_o) <= block_budget(limit, baseline, workers_o)):
+        workers_o, block_o = serial_step_blocks(orientation, limit=limit, baseline=baseline,
+                                                workers=int(chunking.workers), scheduler=chunking.scheduler, tile=tile)
+    if not (biggest <= budget and orientation.block_bytes(block_o) <= block_budget(limit, baseline, workers_o)):
         need = limit_for_blocks(learned_block_bytes(shape, opt, tile), baseline, int(chunking.workers))
         raise InputError(f"the memory limit ({limit / 2**30:.2f} GiB) is below what the smallest blocks of the "
                          f"learned likelihood need ({need / 2**30:.2f} GiB for {nt} samples per trace and "

@@ -437,6 +437,29 @@ class BlockRun:
         name = f"{fn.__name__.strip('_')}-{uuid.uuid4().hex}"
         return dask.delayed(run_block, pure=False)(fn, share, *args, dask_key_name=name)
 
+    def saved(self, name: str, compute):
+        """A small result of the whole run (a statistic of the cube), computed once: ``compute()`` the first time,
+        kept in the work folder as ``name.json`` (written atomically, like a marker) and read from there by a
+        resumed run.
+
+        Parameters
+        ----------
+        name : str
+            The result's name (its file's stem).
+        compute : callable
+            ``compute() -> value``, a JSON-serialisable value.
+
+        Returns
+        -------
+        The computed value, or the value as read back from JSON (lists for tuples).
+        """
+        path = self.work / f"{name}.json"
+        if path.exists():
+            return json.loads(path.read_text())
+        value = compute()
+        write_marker(path, value)
+        return value
+
     def marker(self, step: str, block) -> pathlib.Path:
         """The marker file of ``block`` (a tuple whose items 0 and 2 are its first inline and crossline) in
         ``step``."""

@@ -73,3 +73,18 @@ def test_the_plan_gives_each_step_its_largest_block_that_fits_or_its_forced_side
     assert sizes == {"a": 96, "b": 24, "c": 16, "d": 8}
     with pytest.raises(InputError, match="BlockStep\\(kind=...\\) must be one of map, reduce, gather"):
         BlockStep("x", "scatter", 0, square, 8)
+
+
+def test_a_saved_result_is_computed_once_and_read_back_by_a_resumed_run(tmp_path):
+    calls = []
+
+    def compute():
+        calls.append(1)
+        return [0.5, 2.0]
+
+    run = BlockRun(tmp_path / "work")
+    run.open({"shape": [4, 4, 4]}, "the work folder")
+    assert run.saved("scale", compute) == [0.5, 2.0]
+    resumed = BlockRun(tmp_path / "work")
+    assert resumed.saved("scale", compute) == [0.5, 2.0] and calls == [1]  # read back, not computed again
+    assert (tmp_path / "work" / "scale.json").read_text() == "[0.5, 2.0]"

@@ -299,17 +299,15 @@ class _Run(StoreRun):
                                       compressors=None, fill_value=0)
 
     def scale(self, x) -> tuple:
-        path = self.work / "scale.json"
-        if path.exists():
-            return tuple(json.loads(path.read_text()))
-        s0, s1 = scale_subsample(x.shape)
-        sample = np.asarray(x[::s0, ::s1, :].compute(), dtype=np.float32)
-        if not np.isfinite(sample).all():
-            raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
-                             "faults")
-        scale = amplitude_scale(sample, subsample=False)
-        path.write_text(json.dumps(list(scale)))
-        return scale
+        def compute() -> list:
+            s0, s1 = scale_subsample(x.shape)
+            sample = np.asarray(x[::s0, ::s1, :].compute(), dtype=np.float32)
+            if not np.isfinite(sample).all():
+                raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
+                                 "faults")
+            return list(amplitude_scale(sample, subsample=False))
+
+        return tuple(self.saved("scale", compute))
 
     def network(self, x, scale, axis: int, k: int) -> None:
         p = self.plan

@@ -242,23 +242,24 @@ class _Run(StoreRun):
     def amplitude_statistics(self, x) -> AmplitudeStatistics:
         import dask
         import dask.array as da
-        path = self.work / "amplitudes.json"
-        if path.exists():
-            return AmplitudeStatistics(**json.loads(path.read_text()))
-        start = time.perf_counter()
-        peak = da.max(da.fabs(x))
-        squares = da.sum(x.astype(np.float64) ** 2)
-        if self.client is not None:
-            peak, squares = self.client.compute([peak, squares], sync=True)
-        else:
-            peak, squares = dask.compute(peak, squares, scheduler="threads", num_workers=int(self.chunking.workers))
-        stats = AmplitudeStatistics.from_sums(float(peak), float(squares), int(np.prod(x.shape, dtype=np.int64)))
-        if not np.isfinite(float(peak)) or not np.isfinite(float(squares)):
-            raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
-                             "faults")
-        path.write_text(json.dumps(asdict(stats)))
-        self.seconds["statistics"] = round(time.perf_counter() - start, 2)
-        return stats
+
+        def compute() -> dict:
+            start = time.perf_counter()
+            peak = da.max(da.fabs(x))
+            squares = da.sum(x.astype(np.float64) ** 2)
+            if self.client is not None:
+                peak, squares = self.client.compute([peak, squares], sync=True)
+            else:
+                peak, squares = dask.compute(peak, squares, scheduler="threads",
+                                             num_workers=int(self.chunking.workers))
+            if not np.isfinite(float(peak)) or not np.isfinite(float(squares)):
+                raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
+                                 "faults")
+            self.seconds["statistics"] = round(time.perf_counter() - start, 2)
+            return asdict(AmplitudeStatistics.from_sums(float(peak), float(squares),
+                                                        int(np.prod(x.shape, dtype=np.int64))))
+
+        return AmplitudeStatistics(**self.saved("amplitudes", compute))
 
     def balance(self, x, stats: AmplitudeStatistics) -> None:
         p = self.plan

@@ -42,7 +42,7 @@ import numpy as np
 
 from ...._atomic import atomic_path
 from ....errors import EarlierStoresError, InputError
-from ...blocks.executor import SchedulerClient, write_marker
+from ...blocks.executor import SchedulerClient
 from ...blocks.stores import StoreRun
 from ..options import FaultTracingOptions
 from ...blocks.options import ChunkOptions
@@ -269,15 +269,6 @@ class _SurfaceRun(StoreRun):
         for name in ("candidates", "cells", "surfaces"):
             (self.work / name).mkdir(exist_ok=True)
 
-    def _saved(self, name: str, compute):
-        """A small JSON result of the run kept in the work folder (computed once)."""
-        path = self.work / f"{name}.json"
-        if path.exists():
-            return json.loads(path.read_text())
-        value = compute()
-        write_marker(path, value)
-        return value
-
     # -- steps ----------------------------------------------------------------------------------------------------
     def amplitude_range(self, x) -> tuple[float, float]:
         import dask
@@ -291,7 +282,7 @@ class _SurfaceRun(StoreRun):
                 lo, hi = dask.compute(*parts, scheduler="threads", num_workers=self.workers)
             return [float(lo), float(hi)]
 
-        lo, hi = self._saved("amplitude_range", compute)
+        lo, hi = self.saved("amplitude_range", compute)
         return lo, hi
 
     def fill_values(self, x, lo: float, hi: float) -> np.ndarray:

@@ -227,15 +227,18 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         (:attr:`~seismo3d.seismic.FaultTracingOptions.likelihood`).
     memory_limit : int or str, optional
         Memory the job may use, bytes or a size such as ``'4GB'`` (default: half of the machine's RAM). A 3D cube
-        whose in-memory run would need more (about 24 times its float32 size) is processed block by block (see
-        *Cubes larger than memory* below).
+        whose in-memory run would need more beside what the process holds (160 MiB and 24 times its float32 size:
+        :func:`~seismo3d.seismic.blocks.memory.in_memory_bytes`) is processed block by block (see *Cubes larger
+        than memory* below); the decision is :meth:`~seismo3d.seismic.BlockRunOptions.in_memory_for`'s, asked once
+        when the input is opened.
     scheduler : str, optional
         A ``dask.distributed`` scheduler address (``tcp://host:port``) for the block-by-block run; default: dask's
         local threaded scheduler.
     overwrite : bool, optional
         Replace the files of an earlier run in ``out_dir``, and the block-by-block stores of another input or other
-        options (moved aside while this run writes its own, deleted when it has finished, moved back if it fails;
-        without ``overwrite`` they are refused, and those of the same input and options reused or resumed).
+        options (found from what they record before the work, moved aside while this run writes its own, deleted
+        when it has finished, moved back if it fails or is interrupted; without ``overwrite`` they are refused, and
+        those of the same input and options reused or resumed).
     progress : bool, optional
         Report progress (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step otherwise).
 

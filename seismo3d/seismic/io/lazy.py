@@ -37,8 +37,8 @@ from .blocks import SegyGrid, read_segy_block, read_segy_block_headers, segyio_h
 from .segy import open_segy
 from .zarr_store import open_seismic_zarr
 
-__all__ = ["LazyCube", "SegyGrid", "lazy_segy_cube", "open_lazy", "read_segy_block", "read_segy_block_headers", "segyio_handle",
-           "inline_block_size"]
+__all__ = ["LazyCube", "SegyGrid", "inline_block_size", "lazy_segy_cube", "open_lazy", "read_segy_block",
+           "read_segy_block_headers", "segyio_handle"]
 
 _BYTES_PER_SAMPLE = 4  # float32
 

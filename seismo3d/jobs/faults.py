@@ -434,19 +434,22 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
 def _set_aside_earlier_stores(out_dir: Path, aside: SetAside, inp: FaultsInput, options: FaultTracingOptions) -> None:
     """With ``overwrite``, before the work: the stores (and work folders) of another input, shape or options that an
     earlier run by blocks left in ``out_dir`` moved aside, deleted once this run's files are in, put back if it fails
-    or is interrupted; this input's own are left to be reused or resumed (:func:`_of_another_run`)."""
-    earlier = _of_another_run(out_dir, inp.name, tuple(int(n) for n in inp.data.shape), options)
-    if earlier:
+    or is interrupted (with this run's entries of the same names removed); this input's own are left to be reused or
+    resumed (:func:`_of_another_run`)."""
+    stores = _of_another_run(out_dir, inp.name, tuple(int(n) for n in inp.data.shape), options)
+    if stores:
         LOGGER.info("%s: moving the earlier run's %s aside (deleted when this run has finished)", out_dir,
-                    " and ".join(earlier))
-        aside.move(earlier)
+                    " and ".join(name for name in STORE_ENTRIES if name.startswith(stores)
+                                 and os.path.lexists(out_dir / name)))
+        aside.move([name for name in STORE_ENTRIES if name.startswith(stores)])
 
 
-def _of_another_run(out_dir: Path, source: str, shape: tuple, options: FaultTracingOptions) -> list:
-    """The entries of :data:`STORE_ENTRIES` in ``out_dir`` recorded for another run: a finished store of another
-    source, shape or likelihood (the fault surfaces: other options), an unfinished one (its work folder's manifest)
-    of another shape or options; the fault surfaces go with a likelihood of another run. What this misses the block
-    run itself refuses, before touching the store (:func:`_stores_in_the_way`)."""
+def _of_another_run(out_dir: Path, source: str, shape: tuple, options: FaultTracingOptions) -> tuple:
+    """The stores in ``out_dir`` (``fault_likelihood.zarr``, ``fault_surfaces.zarr``, with their unfinished
+    ``.partial`` and ``.work``) recorded for another run: a finished store of another source, shape or likelihood (the
+    fault surfaces: other options), an unfinished one (its work folder's manifest) of another shape or options; the
+    fault surfaces go with a likelihood of another run. What this misses the block run itself refuses, before
+    touching the store (:func:`_stores_in_the_way`)."""
     import json
     from dataclasses import asdict
 
@@ -463,9 +466,6 @@ def _of_another_run(out_dir: Path, source: str, shape: tuple, options: FaultTrac
         except (OSError, ValueError, KeyError):
             return None
 
-    def entries(store: str) -> list:
-        return [name for name in STORE_ENTRIES if name.startswith(store) and os.path.lexists(out_dir / name)]
-
     wanted = json.loads(json.dumps(asdict(options), default=str))
     likelihood, surfaces = recorded(out_dir / LIKELIHOOD_STORE), recorded(out_dir / SURFACES_STORE)
     another = False
@@ -473,12 +473,12 @@ def _of_another_run(out_dir: Path, source: str, shape: tuple, options: FaultTrac
         attrs, found = likelihood
         another = found != shape or attrs.get("source", source) != source or (
             attrs.get("likelihood", options.likelihood) != options.likelihood)
-    other = entries(LIKELIHOOD_STORE) if another else []
+    other = (LIKELIHOOD_STORE,) if another else ()
     if surfaces is not None:
         attrs, found = surfaces
         run = attrs.get("run") or {}
         if another or found != shape or attrs.get("source", source) != source or run.get("options", wanted) != wanted:
-            other += entries(SURFACES_STORE)
+            other += (SURFACES_STORE,)
     return other
 
 

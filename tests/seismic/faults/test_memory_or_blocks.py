@@ -86,9 +86,9 @@ def test_the_memory_decision():
     """fits_in_memory: the in-memory need (160 MiB and 24 bytes a float32 sample) against the limit less what the
     process holds; 2D sections always fit; limits parsed as the commands take them."""
     # the peaks of `seismo3d faults` beyond the process that decides, measured (/usr/bin/time, 2026-11-26): the need
-    # covers each, by at most 25 % (the 128^3 demo, 192^3 generated, 18 x 512 x 1536 Penobscot inlines; MiB)
+    # covers each, by at most 30 % (the 128^3 demo, 192^3 generated, 18 x 512 x 1536 Penobscot inlines; MiB)
     for measured_shape, peak in (((128, 128, 128), 319), ((192, 192, 192), 627), ((18, 512, 1536), 1441)):
-        assert peak << 20 <= in_memory_bytes(measured_shape) <= 1.25 * (peak << 20)
+        assert peak << 20 <= in_memory_bytes(measured_shape) <= 1.3 * (peak << 20)
     shape = (256, 256, 256)
     need = in_memory_bytes(shape)
     assert fits_in_memory(shape, need + (100 << 20), held=100 << 20)

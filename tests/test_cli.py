@@ -286,6 +286,34 @@ def test_an_interrupted_block_run_says_what_it_keeps_and_how_to_resume(tmp_path,
     assert [p.name for p in out.iterdir()] == ["fault_likelihood.zarr.partial"]  # no other output
 
 
+def test_an_interrupted_overwrite_puts_the_earlier_stores_back_and_says_so(tmp_path, monkeypatch):
+    """Ctrl-C in a run by blocks with --overwrite over another input's stores: they were set aside before the work
+    and are put back, this run's partial store removed; the line says exactly that."""
+    import zarr
+
+    import seismo3d.jobs.faults as job
+
+    cube, out = tmp_path / "cube.npy", tmp_path / "out"
+    np.save(cube, np.random.default_rng(0).normal(size=(40, 40, 50)).astype(np.float32))
+    earlier = zarr.open_group(str(out / "fault_likelihood.zarr"), mode="w")
+    earlier.create_array("likelihood", shape=(40, 40, 50), dtype="float32")
+    earlier.attrs.update({"source": "another", "likelihood": "learned"})
+
+    def interrupted(data, **kwargs):  # the earlier store is already aside when the work starts
+        assert not (out / "fault_likelihood.zarr").exists()
+        (out / "fault_likelihood.zarr.partial").mkdir()
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(job, "trace_faults", interrupted)
+    result = runner.invoke(app, ["faults", str(cube), "-o", str(out), "--memory-limit", "100MB", "--overwrite"])
+    assert result.exit_code == 130
+    line = result.stderr.strip().splitlines()[-1]
+    assert line.startswith("interrupted: the earlier run's fault_likelihood.zarr are back in") and "nothing of this " \
+        "run was kept" in line
+    assert sorted(p.name for p in out.iterdir()) == ["fault_likelihood.zarr"]
+    assert zarr.open_group(str(out / "fault_likelihood.zarr"), mode="r").attrs["source"] == "another"
+
+
 def test_the_demo_seed_is_not_called_seed(tmp_path):
     # --seed is a seed pick in `seismo3d horizon`; the demo's random seed has its own name
     result = runner.invoke(app, ["faults", "--demo", "--seed", "7", "-o", str(tmp_path / "d")])

@@ -1,14 +1,14 @@
-"""The inputs of the ``seismo3d faults`` job: the file read whole (:class:`FaultsInput`, labelled for the outputs)
-or lazily when its run in memory does not fit the memory limit (:class:`LazyInput`), and the demo's generated cube.
+"""The inputs of the ``seismo3d faults`` job: the file opened once, read whole or lazily as the memory decision says
+(:class:`FaultsInput`, labelled for the outputs), and the demo's generated cube.
 
-Every input goes through the jobs' one reader (:func:`seismo3d.jobs.inputs.read_seismic`) or, for a cube larger than
-memory, :func:`seismo3d.seismic.io.lazy.open_lazy`; this module only labels what they read for the job's outputs.
+Every input goes through the jobs' one reader (:func:`seismo3d.jobs.inputs.read_seismic`), which asks the memory
+decision (``lazy_if``) with a 3D cube's shape before reading its samples; this module only labels what it read for
+the job's outputs.
 """
 
 from __future__ import annotations
 
 import csv
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -17,14 +17,9 @@ import segyio
 
 from .._atomic import atomic_path
 from .._progress import LOGGER
-from ..errors import InputError, Seismo3dWarning
-from ..seismic.blocks.memory import fits_in_memory
-from ..seismic.io.lazy import open_lazy
-from ..seismic.io.segy import open_segy
 from .inputs import read_seismic
 
-__all__ = ["DEMO_DT_MS", "DEMO_SHAPE", "FaultsInput", "LAZY_TILE", "LazyInput", "lazy_if_too_large", "read_input",
-           "write_demo_input"]
+__all__ = ["DEMO_DT_MS", "DEMO_SHAPE", "FaultsInput", "LAZY_TILE", "read_input", "write_demo_input"]
 
 
 DEMO_SHAPE = (128, 128, 128)  # the --demo cube: inlines x crosslines x samples
@@ -34,9 +29,9 @@ LAZY_TILE = 32  # traces a side of a lazy input's chunks: a block of the run by 
 
 @dataclass(frozen=True)
 class FaultsInput:
-    """What the job read: the array it traces and how to label and write results."""
+    """What the job read: the array it traces (in memory or lazy) and how to label and write results."""
 
-    data: np.ndarray  # (n_il, n_xl, ns) 3D or (n_traces, ns) 2D
+    data: np.ndarray  # (n_il, n_xl, ns) 3D or (n_traces, ns) 2D; a float32 dask array (3D) when `lazy`
     name: str
     segy_path: Path | None  # template for SEG-Y outputs
     segy_shape: tuple | None  # the template's grid shape (cube.shape) to write 2D results back into
@@ -46,6 +41,19 @@ class FaultsInput:
     unit: str
     trace_axis: str = "trace"  # 2D: what labels the traces in pictures: 'inline', 'crossline' or 'trace' (index)
     sorting: str | None = None  # SEG-Y trace order of a grid: 'inline' or 'crossline'
+    lazy: bool = False  # `data` is read block by block: the cube is traced by blocks
+
+    @property
+    def sample_interval(self) -> float | None:
+        """The sample step in :attr:`unit`, None for an input in samples (``trace_faults``' ``sample_interval``)."""
+        if self.unit == "samples":
+            return None
+        return float(self.samples[1] - self.samples[0]) if self.samples.size > 1 else 1.0
+
+    @property
+    def coords(self) -> dict:
+        """Coordinates of a run by blocks' Zarr stores (``BlockRunOptions.coords``)."""
+        return {"inline": self.inline, "crossline": self.xline, "sample": self.samples, "sample_unit": self.unit}
 
     def file_order(self, values: np.ndarray) -> np.ndarray:
         """(n_traces, n_samples) of an array shaped like ``data``, in the SEG-Y file's trace order."""
@@ -74,16 +82,22 @@ class FaultsInput:
         return (self.trace_axis, vertical)
 
 
-def read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, endian=None) -> FaultsInput:
-    """The input through the jobs' one reader (:func:`~seismo3d.jobs.inputs.read_seismic`), labelled for the
+def read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, endian=None,
+               lazy_if=None) -> FaultsInput:
+    """The input through the jobs' one reader (:func:`~seismo3d.jobs.inputs.read_seismic`, opened once; a 3D cube
+    lazily when ``lazy_if(shape)`` says so, with chunks of :data:`LAZY_TILE` traces a side), labelled for the
     outputs."""
     seismic = read_seismic(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
-                           n_samples=n_samples, endian=endian)
-    path, data, samples, unit = seismic.path, seismic.data, seismic.samples, seismic.sample_unit
+                           n_samples=n_samples, endian=endian, lazy_if=None if ignore_geometry else lazy_if,
+                           tile=LAZY_TILE)
+    path, data, samples, unit, lazy = seismic.path, seismic.data, seismic.samples, seismic.sample_unit, seismic.lazy
+    if seismic.kind == "store":  # a Zarr store of seismo3d convert: labelled by its inline / crossline numbers
+        return FaultsInput(data, path.name.split(".")[0], None, None, seismic.inlines.astype(np.int64),
+                           seismic.xlines.astype(np.int64), samples, unit, lazy=lazy)
     if not seismic.is_segy:  # .npy, .f32be: traces labelled by their index
         idx = [np.arange(n, dtype=np.int64) for n in data.shape]
-        return FaultsInput(np.asarray(data), path.stem, None, None, idx[0], idx[1] if data.ndim == 3 else None, samples,
-                      unit)
+        return FaultsInput(data if lazy else np.asarray(data), path.stem, None, None, idx[0],
+                           idx[1] if data.ndim == 3 else None, samples, unit, lazy=lazy)
     if seismic.kind == "trace list":  # label traces with their header inline / crossline numbers, if any
         il, xl = seismic.trace_inlines.astype(np.int64), seismic.trace_xlines.astype(np.int64)
         if np.all(il == il[0]) and np.all(xl == xl[0]):  # no numbers there: the trace index
@@ -94,7 +108,7 @@ def read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, e
     il, xl = seismic.inlines.astype(np.int64), seismic.xlines.astype(np.int64)
     shape, sorting = seismic.grid_shape, seismic.sorting
     if seismic.kind == "cube":
-        return FaultsInput(data, path.stem, path, shape, il, xl, samples, unit, "trace", sorting)
+        return FaultsInput(data, path.stem, path, shape, il, xl, samples, unit, "trace", sorting, lazy)
     if shape[1] == 1:  # a line along inlines (one crossline), e.g. penobscot_xl1155
         return FaultsInput(data[:, 0, :], path.stem, path, shape, il, np.full(il.size, xl[0]), samples, unit, "inline",
                       sorting)
@@ -120,60 +134,3 @@ def write_demo_input(out_dir: Path, seed) -> tuple[Path, Path]:
                         f"{signed * DEMO_DT_MS:.5g}", f"{f.throw_gradient:.4g}"])
     del syn
     return path, truth
-
-
-@dataclass(frozen=True)
-class LazyInput:
-    """A 3D input read block by block: its lazy amplitudes and what labels them."""
-
-    data: object  # (n_il, n_xl, ns) float32 dask array, chunks of whole traces
-    name: str
-    inline: np.ndarray
-    xline: np.ndarray
-    samples: np.ndarray  # in `unit` (sample index for 'samples')
-    unit: str  # 'ms', 'm', 'ft' or 'samples'
-    segy: dict | None = None  # a SEG-Y input: template path and how to open it, for SEG-Y outputs
-
-    @property
-    def coords(self) -> dict:
-        """Coordinates for the output Zarr group."""
-        return {"inline": self.inline, "crossline": self.xline, "sample": self.samples, "sample_unit": self.unit}
-
-
-def lazy_if_too_large(path, limit: int, held: int, *, iline, xline, sample_unit, endian) -> LazyInput | None:
-    """The input read lazily when it is a Zarr store, or a 3D SEG-Y cube or ``.npy`` array whose in-memory run does
-    not fit ``limit`` beside the ``held`` bytes of the process (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`);
-    else None (the in-memory run)."""
-
-    if path is None:
-        return None
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix == ".f32be" or not path.exists():
-        return None  # 2D sections; a missing file is reported by read_input
-    if suffix == ".npy":
-        try:
-            arr = np.load(path, allow_pickle=False, mmap_mode="r")
-        except (ValueError, OSError):
-            return None  # read_input says why
-        if arr.ndim != 3 or fits_in_memory(arr.shape, limit, held=held):
-            return None
-        if sample_unit is not None:
-            raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
-                             "in samples")
-        import dask.array as da
-
-        idx = [np.arange(n, dtype=np.int64) for n in arr.shape]
-        data = da.from_array(arr, chunks=(LAZY_TILE, LAZY_TILE, -1))
-        return LazyInput(data.astype(np.float32), path.stem, idx[0], idx[1], idx[2].astype(np.float64), "samples")
-    if not path.is_dir():
-        with warnings.catch_warnings():  # only the size is wanted here: the reading that follows warns, once
-            warnings.simplefilter("ignore", Seismo3dWarning)
-            cube = open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
-        with cube:
-            if not cube.is_3d or cube.inlines is None or fits_in_memory(cube.shape, limit, held=held):
-                return None
-    lazy = open_lazy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian, tile=LAZY_TILE)
-    segy = None if path.is_dir() else {"template_path": path, "iline": iline, "xline": xline, "endian": endian}
-    return LazyInput(lazy.data, path.stem if path.is_file() else path.name.split(".")[0], np.asarray(lazy.inlines),
-                     np.asarray(lazy.xlines), np.asarray(lazy.samples, dtype=np.float64), lazy.sample_unit, segy)

@@ -9,8 +9,9 @@ Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.
 
 from __future__ import annotations
 
+import os
 import shutil
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -27,7 +28,7 @@ from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
 from ..seismic.faults.pipeline import trace_faults
 from ..seismic.io.writer import write_like, write_like_blocks
-from .fault_inputs import FaultsInput, LazyInput, lazy_if_too_large, read_input, write_demo_input
+from .fault_inputs import FaultsInput, read_input, write_demo_input
 from .fault_tables import write_points, write_summary
 from .interchange import FAULT_INTERCHANGE_FILES, fault_coordinates, fault_interchange_steps
 from .outputs import check_outputs, output_folder
@@ -40,6 +41,9 @@ __all__ = ["FaultsJobResult", "RESULTS", "run_faults_job"]
 RESULTS = tuple(f"fault_{name}.{ext}" for ext in ("sgy", "npy") for name in ("likelihood", "strike", "dip", "votes")) + (
     "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "demo_seismic.sgy", "demo_truth.csv",
     RUN_JSON) + FAULT_INTERCHANGE_FILES
+# What a run by blocks keeps in the output folder: its Zarr stores, and while unfinished their work folders and
+# partial stores (resumed by the next run of the same input and options)
+STORE_ENTRIES = tuple(name + end for name in (LIKELIHOOD_STORE, SURFACES_STORE) for end in ("", ".partial", ".work"))
 
 
 @dataclass(frozen=True)
@@ -74,15 +78,22 @@ class FaultsJobResult:
 # the job: outputs (its inputs: seismo3d.jobs.fault_inputs)
 
 
-def _write_volume(inp: FaultsInput, out_dir: Path, stem: str, values: np.ndarray, *, like=None, iline, xline,
-                  ignore_geometry, endian=None) -> Path:
-    """SEG-Y with the input's headers for a SEG-Y input, .npy otherwise.
+def _write_volume(inp: FaultsInput, out_dir: Path, stem: str, values, *, like: Path | None, progress: bool, iline,
+                  xline, ignore_geometry, endian) -> Path:
+    """One volume (numpy or Zarr array of the input's shape): SEG-Y with the input's headers for a SEG-Y input,
+    ``.npy`` otherwise.
 
-    With ``like`` (a SEG-Y file this job already wrote with :func:`~seismo3d.seismic.io.write_like`), the file is a
-    copy of it with the trace data replaced: the same headers, without copying them field by field again.
+    A 3D SEG-Y cube is written by blocks of inlines (:func:`~seismo3d.seismic.io.write_like_blocks`, whatever the
+    array). A SEG-Y line or trace list is written with :func:`~seismo3d.seismic.io.write_like`, or, given ``like``
+    (a SEG-Y file this job already wrote so), as a copy of it with the trace data replaced: the same headers, without
+    copying them field by field again.
     """
+    if inp.segy_path is not None and len(inp.segy_shape or ()) == 3 and np.ndim(values) == 3:
+        return write_like_blocks(inp.segy_path, out_dir / f"{stem}.sgy", values, iline=iline, xline=xline,
+                                 endian=endian, progress=progress)
     if inp.segy_path is not None:
         out = out_dir / f"{stem}.sgy"
+        values = np.asarray(values)
         if like is None:
             grid = values.reshape(inp.segy_shape) if inp.segy_shape is not None else values
             return write_like(inp.segy_path, out, grid, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
@@ -216,15 +227,18 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         (:attr:`~seismo3d.seismic.FaultTracingOptions.likelihood`).
     memory_limit : int or str, optional
         Memory the job may use, bytes or a size such as ``'4GB'`` (default: half of the machine's RAM). A 3D cube
-        whose in-memory run would need more (about 24 times its float32 size) is processed block by block (see
-        *Cubes larger than memory* below).
+        whose in-memory run would need more beside what the process holds (160 MiB and 24 times its float32 size:
+        :func:`~seismo3d.seismic.blocks.memory.in_memory_bytes`) is processed block by block (see *Cubes larger
+        than memory* below); the decision is :meth:`~seismo3d.seismic.BlockRunOptions.in_memory_for`'s, asked once
+        when the input is opened.
     scheduler : str, optional
         A ``dask.distributed`` scheduler address (``tcp://host:port``) for the block-by-block run; default: dask's
         local threaded scheduler.
     overwrite : bool, optional
         Replace the files of an earlier run in ``out_dir``, and the block-by-block stores of another input or other
-        options (moved aside while this run writes its own, deleted when it has finished, moved back if it fails;
-        without ``overwrite`` they are refused, and those of the same input and options reused or resumed).
+        options (found from what they record before the work, moved aside while this run writes its own, deleted
+        when it has finished, moved back if it fails or is interrupted; without ``overwrite`` they are refused, and
+        those of the same input and options reused or resumed).
     progress : bool, optional
         Report progress (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step otherwise).
 
@@ -278,67 +292,67 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     limit = parse_memory_limit(memory_limit)
     segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian, sample_unit=sample_unit)
     summary = []  # the rows of fault_summary.csv, as written
-    # the files moved in together when every one is written; with overwrite, another run's block-by-block stores
-    # moved aside, deleted once the new files are in, moved back if the run fails
-    with SetAside(out_dir) as aside, StagedFolder(out_dir) as stage:
-        written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
-                                   n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
-                                   progress=progress, summary=summary, aside=aside if overwrite else None,
-                                   record=record)
-        final = {key: stage.final(path) for key, path in written.items()}
-        record.options["tracing_options"] = options
-        final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"input": input_path},
-                                                     outputs=final, results={"n_faults": len(summary)}))
+    how = {"by_blocks": False}  # the memory decision, once made (the hint of an interrupted run by blocks)
+    # the files moved in together when every one is written; with overwrite, an earlier run's block-by-block stores
+    # set aside before the work, deleted once the new files are in, put back if the run fails or is interrupted
+    aside = SetAside(out_dir)
+    try:
+        with aside, StagedFolder(out_dir) as stage:
+            written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
+                                       n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
+                                       progress=progress, summary=summary, aside=aside if overwrite else None,
+                                       record=record, how=how)
+            final = {key: stage.final(path) for key, path in written.items()}
+            record.options["tracing_options"] = options
+            final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"input": input_path},
+                                                         outputs=final, results={"n_faults": len(summary)}))
+    except KeyboardInterrupt as exc:
+        if how["by_blocks"]:  # the CLI's one line (seismo3d._cli_messages.friendly), once the folder is cleaned up
+            exc.resume_hint = _resume_hint(out_dir, aside if overwrite else None)
+        raise
     return FaultsJobResult(final, tuple(summary), final["run_json"], dict(record.stage_seconds))
 
 
 def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed, segy: dict, n_samples,
                      options: FaultTracingOptions, limit: int, scheduler, progress, summary: list,
-                     aside: SetAside | None, record: RunRecord) -> dict:
-    """Read (or make) the input, trace its faults in memory or block by block, write the results into ``files``
-    (the block-by-block run's Zarr stores into ``out_dir``, another run's stores there moved into ``aside``, or
-    refused when it is None); the files written, by key (the summary's rows appended to ``summary``; the seconds of
-    reading, of each step and of writing in ``record``)."""
-    iline, xline, ignore_geometry, endian, sample_unit = (segy[k] for k in ("iline", "xline", "ignore_geometry",
-                                                                            "endian", "sample_unit"))
-    held = resident_memory()  # the process as it is now: the run may add up to the limit less this
+                     aside: SetAside | None, record: RunRecord, how: dict) -> dict:
+    """Read (or make) the input once, decide once whether it is traced in memory or block by block, trace it, and
+    write the results into ``files`` (a run by blocks keeps its Zarr stores in ``out_dir``; with ``aside``, the
+    stores of an earlier run there are set aside before the work); the files written, by key (the summary's rows
+    appended to ``summary``, the seconds of each stage and step in ``record``, the decision in ``how``)."""
     written = {}
     if demo:
         with record.stage("make the demo cube"):
-            inp, written["truth"] = write_demo_input(files, demo_seed)
-        iline, xline, ignore_geometry, endian, sample_unit, n_samples = 189, 193, False, None, "ms", None
-        input_path = written["input"] = inp
-    with record.stage("read input"):
-        lazy = None if ignore_geometry else lazy_if_too_large(input_path, limit, held, iline=iline, xline=xline,
-                                                               sample_unit=sample_unit, endian=endian)
-    if lazy is not None:
-        _say_how_it_runs(lazy.name, tuple(lazy.data.shape), limit, held, by_blocks=True)
-        written.update(_run_chunked(lazy, out_dir, files, memory_limit=limit, scheduler=scheduler,
-                                    options=options, progress=progress, summary=summary, aside=aside, record=record))
-        return written
-    with record.stage("read input"):
-        inp = read_input(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
-                          sample_unit=sample_unit, n_samples=n_samples, endian=endian)
-    _say_how_it_runs(inp.name, inp.data.shape, limit, held, by_blocks=False)
-    dt = float(inp.samples[1] - inp.samples[0]) if inp.samples.size > 1 else 1.0
-    if inp.unit != "samples" and not dt > 0:
-        raise InputError(f"the sample interval of {inp.name} is {dt:g} {inp.unit}; it must be > 0 (check the "
-                         "binary header's sample interval, bytes 3217-3218)")
-    result = trace_faults(inp.data, sample_interval=None if inp.unit == "samples" else dt, sample_unit=inp.unit,
-                          options=options, blocks=BlockRunOptions(in_memory=True), progress=progress)
+            written["input"], written["truth"] = write_demo_input(files, demo_seed)
+        input_path = written["input"]
+        segy = dict(iline=189, xline=193, ignore_geometry=False, endian=None, sample_unit="ms")
+        n_samples = None
+    blocks = BlockRunOptions(memory_limit=limit, work_dir=out_dir, scheduler=scheduler)
+    held = resident_memory()  # the process before the input is read: what the decision and its message use
+    with record.stage("read input"):  # the one opening of the input; a cube beyond the limit is read lazily
+        inp = read_input(input_path, n_samples=n_samples, **segy,
+                         lazy_if=lambda shape: not blocks.in_memory_for(shape, held=held))
+    if inp.unit != "samples" and not inp.sample_interval > 0:
+        raise InputError(f"the sample interval of {inp.name} is {inp.sample_interval:g} {inp.unit}; it must be > 0 "
+                         "(check the binary header's sample interval, bytes 3217-3218)")
+    how["by_blocks"] = inp.lazy
+    _say_how_it_runs(inp.name, tuple(inp.data.shape), limit, held, by_blocks=inp.lazy)
+    if inp.lazy and aside is not None:
+        _set_aside_earlier_stores(out_dir, aside, inp, options)
+    blocks = replace(blocks, in_memory=not inp.lazy, source=inp.name, coords=inp.coords)  # decided: not again
+    try:
+        result = trace_faults(inp.data, sample_interval=inp.sample_interval, sample_unit=inp.unit, options=options,
+                              blocks=blocks, progress=progress)
+    except EarlierStoresError as exc:  # without overwrite: stores of another input or other options are kept
+        raise _stores_in_the_way(out_dir, exc) from None
     record.stage_seconds.update(result.step_seconds)
-
-    geo = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
-    steps = [
-        ("likelihood", lambda: _write_volume(inp, files, "fault_likelihood", result.likelihood, **geo)),
-        ("strike", lambda: _write_volume(inp, files, "fault_strike", result.strike_deg,
-                                         like=written["likelihood"], **geo)),
-        ("dip", lambda: _write_volume(inp, files, "fault_dip", result.dip_deg, like=written["likelihood"], **geo)),
-        ("votes", lambda: _write_volume(inp, files, "fault_votes", result.votes, like=written["likelihood"], **geo)),
-    ]
-    coords = fault_coordinates(inp, **geo)
+    if result.stores:  # a run by blocks: its Zarr stores, in out_dir
+        written.update(likelihood=result.stores["likelihood"], surfaces_zarr=result.stores["surfaces"])
+    coords = fault_coordinates(inp, iline=segy["iline"], xline=segy["xline"],
+                               ignore_geometry=segy["ignore_geometry"], endian=segy["endian"])
     with record.stage("write outputs"):
-        _write_steps(steps + _surface_steps(inp, result, files, summary, coords), written, progress)
+        _write_steps(_volume_steps(inp, result, files, segy, progress) + _surface_steps(inp, result, files, summary,
+                                                                                         coords), written, progress)
     return written
 
 
@@ -356,6 +370,29 @@ def _say_how_it_runs(name: str, shape: tuple, limit: int, held: int, *, by_block
     else:
         LOGGER.info("%s: %s samples traced in memory (%s, within the memory limit of %s)", name, samples, need,
                     size_text(limit))
+
+
+def _volume_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path, segy: dict, progress: bool) -> list:
+    """The writers of the four volumes (likelihood, strike, dip, votes), numpy or Zarr arrays alike: SEG-Y with the
+    input's headers for a SEG-Y input; ``.npy`` otherwise, unless the run by blocks's Zarr stores hold them (keys
+    ``likelihood`` and ``surfaces_zarr``)."""
+    volumes = {"likelihood": result.likelihood, "strike": result.strike_deg, "dip": result.dip_deg,
+               "votes": result.votes}
+    geo = {k: segy[k] for k in ("iline", "xline", "ignore_geometry", "endian")}
+    steps = []
+    if result.stores and inp.segy_path is None:  # a run by blocks: its stores are the volumes (SEG-Y ones too)
+        return steps
+    first = []  # the first volume written: the template of the others (a SEG-Y line or trace list)
+
+    def write(key, values):
+        path = _write_volume(inp, out_dir, f"fault_{key}", values, like=first[0] if first else None,
+                             progress=progress, **geo)
+        first.append(path)
+        return path
+
+    for key, values in volumes.items():
+        steps.append((f"{key}_segy" if result.stores else key, lambda key=key, values=values: write(key, values)))
+    return steps
 
 
 def _surface_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path, summary: list, coords) -> list:
@@ -391,88 +428,81 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
 
 
 # --------------------------------------------------------------------------------------------------------------------
-# cubes larger than memory
+# the stores of a run by blocks
 
 
-def _run_chunked(lazy: LazyInput, out_dir: Path, files: Path, *, memory_limit: int, scheduler,
-                 options: FaultTracingOptions, progress, summary: list, aside: SetAside | None,
-                 record: RunRecord) -> dict:
-    """The faults of a cube traced block by block (:func:`~seismo3d.seismic.faults.trace_faults`) into
-    ``fault_likelihood.zarr`` and ``fault_surfaces.zarr`` in ``out_dir`` (reused when finished, resumed when
-    interrupted; those of another run moved into ``aside``, or refused without it); the same files as in memory,
-    into ``files``."""
-    dt = float(lazy.samples[1] - lazy.samples[0]) if lazy.unit != "samples" else None
-
-    def trace():
-        blocks = BlockRunOptions(memory_limit=memory_limit, in_memory=False, work_dir=out_dir, scheduler=scheduler,
-                                 source=lazy.name, coords=lazy.coords)
-        return trace_faults(lazy.data, sample_interval=dt, sample_unit=lazy.unit, options=options, blocks=blocks,
-                            progress=progress)
-
-    try:
-        result = _replacing_earlier_stores(trace, out_dir, aside)
-    except KeyboardInterrupt as exc:
-        exc.resume_hint = _resume_hint(out_dir)  # the CLI's one line (seismo3d._cli_messages.friendly)
-        raise
-    record.stage_seconds.update(result.step_seconds)
-    written = {"likelihood": result.stores["likelihood"], "surfaces_zarr": result.stores["surfaces"]}
-    inp = FaultsInput(lazy.data, lazy.name, None, None, lazy.inline, lazy.xline, lazy.samples, lazy.unit, "trace")
-    coords = fault_coordinates(inp, **{k: v for k, v in (lazy.segy or {}).items() if k != "template_path"},
-                               segy_path=(lazy.segy or {}).get("template_path"))
-    with record.stage("write outputs"):
-        _write_steps(_surface_steps(inp, result, files, summary, coords), written, progress)
-        written.update(_segy_volumes(lazy, result.stores["surfaces"], files, {"likelihood": "likelihood",
-                                                                              "votes": "votes"}, progress))
-        written.update(_segy_volumes(lazy, result.stores["likelihood"], files,
-                                     {"strike": "strike_deg", "dip": "dip_deg"}, progress))
-    return written
+def _set_aside_earlier_stores(out_dir: Path, aside: SetAside, inp: FaultsInput, options: FaultTracingOptions) -> None:
+    """With ``overwrite``, before the work: the stores (and work folders) of another input, shape or options that an
+    earlier run by blocks left in ``out_dir`` moved aside, deleted once this run's files are in, put back if it fails
+    or is interrupted (with this run's entries of the same names removed); this input's own are left to be reused or
+    resumed (:func:`_of_another_run`)."""
+    stores = _of_another_run(out_dir, inp.name, tuple(int(n) for n in inp.data.shape), options)
+    if stores:
+        LOGGER.info("%s: moving the earlier run's %s aside (deleted when this run has finished)", out_dir,
+                    " and ".join(name for name in STORE_ENTRIES if name.startswith(stores)
+                                 and os.path.lexists(out_dir / name)))
+        aside.move([name for name in STORE_ENTRIES if name.startswith(stores)])
 
 
-def _resume_hint(out_dir: Path) -> str:
-    """What an interrupted block-by-block run leaves in ``out_dir`` and how to resume it, in one line."""
-    kept = sorted(p for name in (LIKELIHOOD_STORE, SURFACES_STORE) for p in out_dir.glob(name + "*"))
+def _of_another_run(out_dir: Path, source: str, shape: tuple, options: FaultTracingOptions) -> tuple:
+    """The stores in ``out_dir`` (``fault_likelihood.zarr``, ``fault_surfaces.zarr``, with their unfinished
+    ``.partial`` and ``.work``) recorded for another run: a finished store of another source, shape or likelihood (the
+    fault surfaces: other options), an unfinished one (its work folder's manifest) of another shape or options; the
+    fault surfaces go with a likelihood of another run. What this misses the block run itself refuses, before
+    touching the store (:func:`_stores_in_the_way`)."""
+    import json
+    from dataclasses import asdict
+
+    import zarr
+
+    def recorded(store: Path):
+        """(attrs, shape) of a finished store, or of an unfinished one's manifest; None when there is none."""
+        try:
+            if store.is_dir() and (store / "zarr.json").exists():
+                group = zarr.open_group(str(store), mode="r")
+                return dict(group.attrs), tuple(group["likelihood"].shape)
+            manifest = json.loads((store.with_name(store.name + ".work") / "manifest.json").read_text())
+            return {"run": manifest}, tuple(manifest.get("shape", ()))
+        except (OSError, ValueError, KeyError):
+            return None
+
+    wanted = json.loads(json.dumps(asdict(options), default=str))
+    likelihood, surfaces = recorded(out_dir / LIKELIHOOD_STORE), recorded(out_dir / SURFACES_STORE)
+    another = False
+    if likelihood is not None:
+        attrs, found = likelihood
+        another = found != shape or attrs.get("source", source) != source or (
+            attrs.get("likelihood", options.likelihood) != options.likelihood)
+    other = (LIKELIHOOD_STORE,) if another else ()
+    if surfaces is not None:
+        attrs, found = surfaces
+        run = attrs.get("run") or {}
+        if another or found != shape or attrs.get("source", source) != source or run.get("options", wanted) != wanted:
+            other += (SURFACES_STORE,)
+    return other
+
+
+def _stores_in_the_way(out_dir: Path, exc: EarlierStoresError) -> InputError:
+    """The refusal of a run whose folder holds the stores of another input or other options (found by the block run
+    before it touches them): without ``overwrite``, or with it when their records did not tell
+    (:func:`_of_another_run`)."""
+    stores = sorted({Path(p).name.removesuffix(".work").removesuffix(".partial") for p in exc.paths})
+    return InputError(f"output folder {out_dir} holds {' and '.join(stores)} of another input or other options "
+                      "(rerun with those to resume or reuse them); pass overwrite=True (--overwrite) to replace them "
+                      "(they are kept until this run has written its own), or choose another folder")
+
+
+def _resume_hint(out_dir: Path, aside: SetAside | None) -> str:
+    """What an interrupted run by blocks left in ``out_dir`` and what to do, in one line (after the staging folder
+    and the stores set aside have been cleaned up: what it says is what is there)."""
+    if aside is not None and aside.moved:
+        return (f"interrupted: the earlier run's {', '.join(aside.moved)} are back in {out_dir} and nothing of this "
+                "run was kept (an interrupted --overwrite leaves the folder as it was); run the same command again "
+                "to start over")
+    kept = sorted(p for name in STORE_ENTRIES for p in [out_dir / name] if os.path.lexists(p))
     if not kept:
         return "interrupted before any block was finished: nothing was written"
     size = sum(f.stat().st_size for p in kept for f in ([p] if p.is_file() else p.rglob("*")) if f.is_file())
     return (f"interrupted: the blocks finished so far are kept in {out_dir} ({', '.join(p.name for p in kept)}; "
             f"{size_text(size)}) and no other output was written; run the same command again to resume (finished "
             "blocks are skipped), or delete them to start over")
-
-
-def _replacing_earlier_stores(trace, out_dir: Path, aside: SetAside | None):
-    """``trace()``, a block-by-block run; where it finds the stores (or work folders) of another run in
-    ``out_dir``, it is refused without ``aside`` (no overwrite), else they are moved aside with their work folders
-    and the run starts again (the stores it may reuse are kept)."""
-    while True:
-        try:
-            return trace()
-        except EarlierStoresError as exc:
-            stores = sorted({Path(p).name.removesuffix(".work").removesuffix(".partial") for p in exc.paths})
-            names = [name + end for name in stores for end in ("", ".work", ".partial")]
-            if aside is None:
-                raise InputError(f"output folder {out_dir} holds {' and '.join(stores)} of another input or other "
-                                 "options (rerun with those to resume or reuse them); pass overwrite=True "
-                                 "(--overwrite) to replace them (they are kept until this run has written its "
-                                 "own), or choose another folder") from None
-            if set(names) <= set(aside.names):  # already moved aside, and still in the way: not ours to replace
-                raise
-            LOGGER.info("%s: moving the earlier run's %s aside (deleted when this run has finished)", out_dir,
-                        " and ".join(stores))
-            aside.move(names)
-
-
-def _segy_volumes(lazy: LazyInput, path: Path, out_dir: Path, names: dict, progress: bool) -> dict:
-    """For a SEG-Y input, the Zarr volumes also as SEG-Y with its headers (as the in-memory run writes them),
-    block by block; keyed ``<name>_segy``."""
-    if lazy.segy is None:
-        return {}
-    import zarr
-
-    group = zarr.open_group(str(path), mode="r")
-    stems = {"likelihood": "fault_likelihood", "strike": "fault_strike", "dip": "fault_dip", "votes": "fault_votes"}
-    options = {k: v for k, v in lazy.segy.items() if k != "template_path"}
-    written = {}
-    for key, array in names.items():
-        written[f"{key}_segy"] = write_like_blocks(lazy.segy["template_path"], out_dir / f"{stems[key]}.sgy",
-                                                   group[array], progress=progress, **options)
-    return written

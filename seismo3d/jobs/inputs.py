@@ -1,5 +1,7 @@
-"""The one reader of the jobs' seismic inputs: a SEG-Y cube, line or trace list, a ``.npy`` array or a raw ``.f32be``
-section, as a :class:`SeismicInput` (what kind, the amplitudes, their geometry and sample interval, the source path).
+"""The one reader of the jobs' seismic inputs: a SEG-Y cube, line or trace list, a ``.npy`` array, a raw ``.f32be``
+section or a Zarr store of ``seismo3d convert``, as a :class:`SeismicInput` (what kind, the amplitudes, their
+geometry and sample interval, the source path). A 3D cube is read whole or, when the caller's ``lazy_if`` says so from
+its shape (the memory decision of a fault run), as a lazy dask array: either way from one opening of the file.
 
 SEG-Y is opened by :func:`~seismo3d.seismic.io.open_segy` (the flags, errors and warnings of every command) and raw
 sections by :func:`~seismo3d.seismic.io.read_section`; this module only chooses the reader by the file's kind
@@ -65,15 +67,17 @@ class SeismicInput:
 
     Attributes
     ----------
-    kind : {'cube', 'line', 'trace list', 'array', 'section'}
+    kind : {'cube', 'line', 'trace list', 'array', 'section', 'store'}
         A SEG-Y 3D cube, a SEG-Y line of a survey (one inline or one crossline), a SEG-Y file read as a trace
-        list (no inline / crossline grid, or ``ignore_geometry``), a ``.npy`` array, a raw ``.f32be`` section.
+        list (no inline / crossline grid, or ``ignore_geometry``), a ``.npy`` array, a raw ``.f32be`` section, a
+        Zarr store of ``seismo3d convert``.
     path : pathlib.Path
         The source file.
-    data : ndarray
+    data : ndarray or dask.array.Array
         float32 for SEG-Y and raw sections: (n_inlines, n_xlines, n_samples) for a cube or a line (one of the first
         two 1), (n_traces, n_samples) for a trace list and a raw section; a ``.npy`` array as stored (2D or 3D,
-        memory-mapped).
+        memory-mapped). With ``lazy`` a (n_inlines, n_xlines, n_samples) float32 dask array, chunks of
+        ``tile`` x ``tile`` whole traces.
     samples : (n_samples,) float64 ndarray
         Sample positions in ``sample_unit`` (the sample index for ``.npy`` and ``.f32be``).
     sample_unit : {'ms', 'm', 'ft', 'samples'}
@@ -94,6 +98,8 @@ class SeismicInput:
         Unit of ``cdp_x`` / ``cdp_y`` (binary header bytes 3255-3256).
     format_name, endian : str or None
         SEG-Y sample format and byte order.
+    lazy : bool
+        ``data`` is a lazy dask array (read block by block), not the samples in memory.
     """
 
     kind: str
@@ -113,6 +119,7 @@ class SeismicInput:
     map_unit: str = "m"
     format_name: str | None = None
     endian: str | None = None
+    lazy: bool = False
 
     @property
     def sample_interval(self) -> float:
@@ -126,8 +133,9 @@ class SeismicInput:
 
 def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False, endian=None,
                  sample_unit=None, n_samples: int | None = None, coordinates: bool = False,
-                 arrays: bool = True) -> SeismicInput:
-    """Read a seismic input whole: a SEG-Y file, a ``.npy`` array or a raw ``.f32be`` section.
+                 arrays: bool = True, lazy_if=None, tile: int = 32) -> SeismicInput:
+    """Read a seismic input, opening it once: a SEG-Y file, a ``.npy`` array, a raw ``.f32be`` section, or (with
+    ``lazy_if``) a Zarr store of ``seismo3d convert``; a 3D cube whole or lazily, as ``lazy_if`` decides.
 
     Parameters
     ----------
@@ -142,6 +150,13 @@ def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: b
     arrays : bool
         Read ``.npy`` and ``.f32be`` files as arrays; False for a command that reads SEG-Y only (every file is then
         opened as SEG-Y, whose error says what the file is not).
+    lazy_if : callable, optional
+        ``lazy_if(shape) -> bool``, asked once with the shape ``(n_inlines, n_xlines, n_samples)`` of a 3D cube
+        (a SEG-Y cube, a 3D ``.npy`` array, a Zarr store) before its samples are read: True gives a lazy
+        :attr:`SeismicInput.data` (e.g. ``lambda shape: not BlockRunOptions(...).in_memory_for(shape)``). Without
+        it every input is read whole and Zarr stores are refused.
+    tile : int
+        Traces a side of the chunks of a lazy cube (a block of a run by blocks reads only the tiles around it).
 
     Returns
     -------
@@ -164,13 +179,17 @@ def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: b
     """
     path = Path(path)
     kind = input_kind(path)
+    if lazy_if is not None and kind == "zarr" and path.is_dir():
+        return _read_store(path, sample_unit=sample_unit, lazy_if=lazy_if, tile=tile)
     if arrays and kind in ("npy", "f32be"):
-        return _read_array(path, kind, sample_unit=sample_unit, n_samples=n_samples)
+        return _read_array(path, kind, sample_unit=sample_unit, n_samples=n_samples, lazy_if=lazy_if, tile=tile)
     with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
                    endian=endian) as cube:
-        fields = dict(path=path, data=cube.read(), samples=np.asarray(cube.samples, dtype=np.float64),
-                      sample_unit=cube.sample_unit, description=cube.description, format_name=cube.format_name,
-                      endian=cube.endian)
+        lazy = (lazy_if is not None and cube.is_3d and cube.inlines is not None
+                and bool(lazy_if(tuple(int(n) for n in cube.shape))))
+        fields = dict(path=path, data=_lazy_segy(cube, tile) if lazy else cube.read(),
+                      samples=np.asarray(cube.samples, dtype=np.float64), sample_unit=cube.sample_unit,
+                      description=cube.description, format_name=cube.format_name, endian=cube.endian, lazy=lazy)
         if coordinates:
             fields.update(cdp_x=cube.cdp_x, cdp_y=cube.cdp_y,
                           map_unit="ft" if int(cube.segyfile.bin[3255]) == 2 else "m")
@@ -183,8 +202,29 @@ def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: b
                             **fields)
 
 
-def _read_array(path: Path, kind: str, *, sample_unit, n_samples) -> SeismicInput:
-    """A ``.npy`` array (memory-mapped) or a raw ``.f32be`` section, in samples."""
+def _lazy_segy(cube, tile: int):
+    """The open SEG-Y cube's amplitudes as a float32 dask array of ``tile`` x ``tile`` whole traces."""
+    from ..seismic.io.lazy import lazy_segy_cube
+
+    return lazy_segy_cube(cube, tile=tile).data
+
+
+def _read_store(path: Path, *, sample_unit, lazy_if, tile: int) -> SeismicInput:
+    """A Zarr store of ``seismo3d convert``: lazily or read whole, as ``lazy_if`` decides from its shape."""
+    from ..seismic.io.lazy import open_lazy
+
+    store = open_lazy(path, sample_unit=sample_unit, tile=tile)
+    lazy = bool(lazy_if(store.shape))
+    shape = " x ".join(str(n) for n in store.shape)
+    return SeismicInput(kind="store", path=path, data=store.data if lazy else store.data.compute(),
+                        samples=np.asarray(store.samples, dtype=np.float64), sample_unit=store.sample_unit,
+                        inlines=np.asarray(store.inlines), xlines=np.asarray(store.xlines),
+                        description=f"a Zarr store of {shape} samples", grid_shape=store.shape, lazy=lazy)
+
+
+def _read_array(path: Path, kind: str, *, sample_unit, n_samples, lazy_if=None, tile: int = 32) -> SeismicInput:
+    """A ``.npy`` array (memory-mapped, or a lazy dask array as ``lazy_if`` decides for a 3D one) or a raw
+    ``.f32be`` section, in samples."""
     if not path.is_file():
         raise DataNotFoundError(f"no input file at {path}; check the path")
     if kind == "f32be":
@@ -205,6 +245,12 @@ def _read_array(path: Path, kind: str, *, sample_unit, n_samples) -> SeismicInpu
         raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
                          "in samples")
     shape = " x ".join(str(n) for n in data.shape)
+    lazy = lazy_if is not None and data.ndim == 3 and bool(lazy_if(tuple(int(n) for n in data.shape)))
+    if lazy:
+        import dask.array as da
+
+        data = da.from_array(data, chunks=(tile, tile, -1)).astype(np.float32)
     return SeismicInput(kind="section" if kind == "f32be" else "array", path=path, data=data,
                         samples=np.arange(data.shape[-1], dtype=np.float64), sample_unit="samples",
-                        description=f"{'a raw section' if kind == 'f32be' else 'an array'} of {shape} samples")
+                        description=f"{'a raw section' if kind == 'f32be' else 'an array'} of {shape} samples",
+                        lazy=lazy)

@@ -1,7 +1,8 @@
 """--overwrite on a faults folder holding the block-by-block stores of another input (issue 32): without it they are
 refused (and a run of the same input resumes or reuses them); with it they are replaced, kept until the new run has
 written its own, and moved back when the run fails. The block run is forced on a small cube by reporting that the
-in-memory run does not fit (seismo3d.jobs.faults.fits_in_memory), as a large cube under --memory-limit would."""
+in-memory run does not fit (the one memory decision, seismo3d.seismic.blocks.memory.fits_in_memory, as
+BlockRunOptions.in_memory_for asks it), as a large cube under --memory-limit would."""
 
 import hashlib
 import logging
@@ -10,7 +11,7 @@ import numpy as np
 import pytest
 import zarr
 
-import seismo3d.jobs.fault_inputs as fault_inputs
+import seismo3d.seismic.blocks.options as block_options
 import seismo3d.jobs.faults as job
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
@@ -21,7 +22,7 @@ STORES = ("fault_likelihood.zarr", "fault_surfaces.zarr")
 
 @pytest.fixture
 def blocks(monkeypatch):
-    monkeypatch.setattr(fault_inputs, "fits_in_memory", lambda *args, **kwargs: False)  # the run by blocks
+    monkeypatch.setattr(block_options, "fits_in_memory", lambda *args, **kwargs: False)  # the run by blocks
 
 
 @pytest.fixture(scope="module")

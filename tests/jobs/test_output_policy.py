@@ -294,8 +294,7 @@ def test_unwritable_destination_is_refused_before_reading_the_input(work, monkey
     def fail(*args, **kwargs):  # pragma: no cover - must not be called
         raise AssertionError("the input was read")
 
-    monkeypatch.setattr(job, "read_input", fail)
-    monkeypatch.setattr(job, "lazy_if_too_large", fail)
+    monkeypatch.setattr(job, "read_input", fail)  # the one opening of the input, lazy or whole
     line = _refused(runner.invoke(app, ["faults", str(work / "cube.sgy"), "-o", "/proc/nope"]))
     assert line.startswith("error: cannot create output folder /proc/nope: no file can be created in /proc")
 

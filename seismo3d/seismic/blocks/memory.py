@@ -18,7 +18,14 @@ from ...errors import InputError
 __all__ = ["default_memory_limit", "fits_in_memory", "in_memory_bytes", "parse_memory_limit", "resident_memory",
            "size_text", "worker_baseline"]
 
-# In-memory `seismo3d faults` (likelihood, voting, skins, throw): measured 1408 MB on a 256^3 float32 cube (64 MiB).
+# The in-memory `seismo3d faults` beyond the process that decides (its imports, about 150-160 MiB): a fixed part (the
+# fault network's ONNX session, about 60 MiB; the numba kernels loaded from their cache; the writers' pyvista and
+# matplotlib, about 70 MiB) and a part per float32 sample. Peaks measured with /usr/bin/time -f %M on 2026-11-26
+# (2 cores, other runs beside): the 128^3 demo 469 MiB (319 beyond the 150 held), the generated 192^3 cube 777 MiB
+# (627 beyond), the 18 x 512 x 1536 Penobscot inlines 1591 MiB (1441 beyond: the network's sections of 1536 samples
+# make it the most per sample), and 1408 MB on a 256^3 cube earlier; trace_faults alone 133, 241 and 626 MiB beyond
+# the process at 64^3, 128^3 and 192^3. 160 MiB + 24 bytes a sample covers every one of them.
+_IN_MEMORY_FIXED = 160 << 20
 _IN_MEMORY_FACTOR = 24
 # The smallest memory limit accepted.
 _SMALLEST_LIMIT = 64 << 20
@@ -34,8 +41,21 @@ def default_memory_limit() -> int:
 
 
 def in_memory_bytes(shape) -> int:
-    """Peak memory of the in-memory ``seismo3d faults`` on a float32 cube of this shape, bytes (measured factor)."""
-    return int(np.prod(shape, dtype=np.int64)) * 4 * _IN_MEMORY_FACTOR
+    """Peak memory of the in-memory ``seismo3d faults`` on a float32 cube of this shape beyond the process that
+    decides, bytes: 160 MiB fixed (the fault network's session, the numba kernels, the writers) and 24 times the
+    cube's float32 size, calibrated against measured peaks (the module's notes; a run of
+    :func:`~seismo3d.seismic.faults.trace_faults` without the command's writers needs less).
+
+    Parameters
+    ----------
+    shape : tuple of int
+
+    Returns
+    -------
+    int
+        Bytes.
+    """
+    return _IN_MEMORY_FIXED + int(np.prod(shape, dtype=np.int64)) * 4 * _IN_MEMORY_FACTOR
 
 
 def resident_memory() -> int:

@@ -86,8 +86,12 @@ class BlockRunOptions:
         """The memory limit in bytes (half of the RAM when ``memory_limit`` is None)."""
         return parse_memory_limit(self.memory_limit)
 
-    def in_memory_for(self, shape, *, has_likelihood: bool = False) -> bool:
-        """Whether data of this shape is traced in memory: forced by ``in_memory``, else the memory decision.
+    def in_memory_for(self, shape, *, has_likelihood: bool = False, held: int | None = None) -> bool:
+        """Whether data of this shape is traced in memory: forced by ``in_memory``, else the memory decision
+        (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`). The one decision of every caller of
+        :func:`~seismo3d.seismic.faults.trace_faults`: a job that must know it before reading its input (to read a
+        cube lazily) asks it here, then passes ``dataclasses.replace(options, in_memory=decided)`` so that the run
+        does not decide again from a process grown by the reading.
 
         Parameters
         ----------
@@ -95,6 +99,8 @@ class BlockRunOptions:
             The data's shape; 2D sections are always traced in memory.
         has_likelihood : bool
             The likelihood is given (computed elsewhere): the run is in memory.
+        held : int, optional
+            Bytes the process holds (default: its resident memory now).
 
         Returns
         -------
@@ -105,7 +111,7 @@ class BlockRunOptions:
             return True
         if self.in_memory is False:
             return False
-        return fits_in_memory(shape, self.limit)
+        return fits_in_memory(shape, self.limit, held=held)
 
 
 @dataclass(frozen=True)

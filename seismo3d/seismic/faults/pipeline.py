@@ -81,9 +81,9 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
 
     Memory and time: time and memory linear in the number of samples (see ``benchmarks/faults.py`` for the figures
     at 64^3 to 256^3). A 3D cube whose run in memory would need more than ``blocks.memory_limit`` beside the process
-    (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`: about 24 times its float32 size) is traced block by
-    block (:func:`trace_faults_by_blocks`) into Zarr stores in ``blocks.work_dir``, with the same
-    checks, warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of
+    (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`: 160 MiB and 24 times its float32 size) is traced
+    block by block (:func:`trace_faults_by_blocks`) into Zarr stores in ``blocks.work_dir``, with the same checks,
+    warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of
     blocks first (:meth:`~seismo3d.seismic.faults.blocks.preflight.SampleOptions.worth_sampling`) is refused from that
     sample before the whole likelihood (:func:`~seismo3d.seismic.faults.blocks.preflight.judge_sample`), on either path.
 

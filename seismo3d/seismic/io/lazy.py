@@ -37,8 +37,8 @@ from .blocks import SegyGrid, read_segy_block, read_segy_block_headers, segyio_h
 from .segy import open_segy
 from .zarr_store import open_seismic_zarr
 
-__all__ = ["LazyCube", "SegyGrid", "open_lazy", "read_segy_block", "read_segy_block_headers", "segyio_handle",
-           "inline_block_size"]
+__all__ = ["LazyCube", "SegyGrid", "inline_block_size", "lazy_segy_cube", "open_lazy", "read_segy_block",
+           "read_segy_block_headers", "segyio_handle"]
 
 _BYTES_PER_SAMPLE = 4  # float32
 
@@ -123,19 +123,43 @@ def _lazy_segy_array(grid: SegyGrid, block: int, token: str, tile: int | None = 
     return da.Array(graph, name, chunks, dtype=np.float32)
 
 
-def _open_segy_lazy(path: Path, *, iline, xline, sample_unit, endian, chunk_mb, tile) -> LazyCube:
+def lazy_segy_cube(cube, *, chunk_mb: float = 64, tile: int | None = None) -> LazyCube:
+    """The amplitudes of an open 3D SEG-Y cube as a lazy dask array, without opening the file again.
+
+    Parameters
+    ----------
+    cube : SeismicCube
+        An open 3D cube of :func:`~seismo3d.seismic.io.open_segy` (its geometry is read here; the graph's tasks open
+        the file themselves, read-only).
+    chunk_mb, tile
+        As :func:`open_lazy`.
+
+    Returns
+    -------
+    LazyCube
+
+    Raises
+    ------
+    SegyGeometryError
+        The file is a 2D line or a trace list (see :func:`open_lazy`).
+    """
     from dask.base import tokenize
 
+    path = Path(cube.path)
+    grid = SegyGrid.from_cube(cube)
+    stat = path.stat()
+    token = tokenize(grid, stat.st_mtime_ns, stat.st_size, chunk_mb, tile)
+    data = _lazy_segy_array(grid, inline_block_size(grid.n_xlines, grid.n_samples, chunk_mb), token, tile)
+    return LazyCube(data=data, inlines=np.array(cube.inlines), xlines=np.array(cube.xlines),
+                    samples=np.array(cube.samples), sample_unit=cube.sample_unit, source=path, format="segy")
+
+
+def _open_segy_lazy(path: Path, *, iline, xline, sample_unit, endian, chunk_mb, tile) -> LazyCube:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", TraceListWarning)  # a trace list is refused below, saying what it is
         cube = open_segy(path, iline=iline, xline=xline, sample_unit=sample_unit, endian=endian)
     with cube:
-        grid = SegyGrid.from_cube(cube)
-        stat = path.stat()
-        token = tokenize(grid, stat.st_mtime_ns, stat.st_size, chunk_mb, tile)
-        data = _lazy_segy_array(grid, inline_block_size(grid.n_xlines, grid.n_samples, chunk_mb), token, tile)
-        return LazyCube(data=data, inlines=np.array(cube.inlines), xlines=np.array(cube.xlines),
-                        samples=np.array(cube.samples), sample_unit=cube.sample_unit, source=path, format="segy")
+        return lazy_segy_cube(cube, chunk_mb=chunk_mb, tile=tile)
 
 
 def _open_zarr_lazy(path: Path, *, sample_unit, chunk_mb, tile) -> LazyCube:

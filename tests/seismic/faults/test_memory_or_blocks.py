@@ -82,11 +82,14 @@ def test_both_runs_give_the_same_refusal_or_warning(case, seismic, tmp_path, mon
 
 
 def test_the_memory_decision():
-    """fits_in_memory: the in-memory need (24 bytes a float32 sample, as measured) against the limit less what the
+    """fits_in_memory: the in-memory need (160 MiB and 24 bytes a float32 sample) against the limit less what the
     process holds; 2D sections always fit; limits parsed as the commands take them."""
+    # the peaks of `seismo3d faults` beyond the process that decides, measured (/usr/bin/time, 2026-11-26): the need
+    # covers each, by at most 30 % (the 128^3 demo, 192^3 generated, 18 x 512 x 1536 Penobscot inlines; MiB)
+    for measured_shape, peak in (((128, 128, 128), 319), ((192, 192, 192), 627), ((18, 512, 1536), 1441)):
+        assert peak << 20 <= in_memory_bytes(measured_shape) <= 1.3 * (peak << 20)
     shape = (256, 256, 256)
     need = in_memory_bytes(shape)
-    assert need == 256 ** 3 * 4 * 24
     assert fits_in_memory(shape, need + (100 << 20), held=100 << 20)
     assert not fits_in_memory(shape, need + (100 << 20), held=(100 << 20) + 1)
     assert fits_in_memory((100_000, 2000), "100MB", held=0)

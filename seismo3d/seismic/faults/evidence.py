@@ -158,8 +158,8 @@ class FaultEvidence:
     throw_spread : float
         Interquartile range of the throw along the fault, samples: a consistent displacement varies smoothly, a
         chance alignment of periodic reflectors jumps. NaN if unmeasured, or measured once: a fault of one patch
-        whose throw was not registered, as every 2D fault is (one shift for the whole line, whose spread of 0 would
-        claim a consistency nothing measured).
+        whose throw was not registered, as a 2D fault spanning fewer than two windows of its throw profile (one
+        shift for the whole fault, whose spread of 0 would claim a consistency nothing measured).
     correlation : float
         Median normalised correlation of the two sides at the throw's shift, in [-1, 1]; NaN if unmeasured.
     correlation_gain : float

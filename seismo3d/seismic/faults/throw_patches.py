@@ -18,7 +18,7 @@ from ..traces import parabolic_offset, subsample_peak
 
 # used by the throw module; not part of the package's public face
 __all__ = ["PatchFit", "ncc_curve", "ncc_shift", "patch_grid", "patch_images", "read_box", "reflector_peaks",
-           "register_patch", "small_shift_weight"]
+           "register_patch", "side_coherence", "small_shift_weight"]
 
 
 def _side_slope(win: CubeWindow, il, xl, t, h, d_slope):
@@ -49,7 +49,7 @@ def _sample(win: CubeWindow, il, xl, t, h, offsets, p):
     return np.where(inside, vals, 0.0), inside
 
 
-def _coherence(vals: np.ndarray, inside: np.ndarray) -> float:
+def side_coherence(vals: np.ndarray, inside: np.ndarray) -> float:
     """Normalised correlation, over the nodes read at every offset, of the mean of the nearer half of the offsets
     with the mean of the farther half: how continuous the reflectors are along one side of the fault (NaN when fewer
     than 16 nodes qualify)."""
@@ -151,7 +151,7 @@ def patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Pat
         p = _side_slope(win, grid.il, grid.xl, grid.t, grid.h, sign * (sides[1] + slope_margin))
         vals, inside = _sample(win, grid.il, grid.xl, grid.t, grid.h, sign * np.arange(sides[0], sides[1] + 1), p)
         acc, cnt = vals.sum(axis=0), inside.sum(axis=0)
-        coherence.append(_coherence(vals, inside))
+        coherence.append(side_coherence(vals, inside))
         n_off = sides[1] - sides[0] + 1
         img = np.zeros(grid.shape)
         val = np.zeros(grid.shape, bool)

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..blocks.windows import CubeWindow
 from ..traces import subsample_peak
-from .throw_patches import ncc_curve, small_shift_weight
+from .throw_patches import ncc_curve, side_coherence, small_shift_weight
 
 # used by the throw module; not part of the package's public face
 __all__ = ["SectionProfile", "FaultZone", "fault_zone", "section_profile", "section_read_box", "side_images"]
@@ -54,7 +54,19 @@ class SectionProfile:
 
 
 def fault_zone(pts: np.ndarray, hw: float) -> FaultZone:
-    """The fault zone of a 2D fault's points ``(n, 2)`` (trace, sample): the extent of all its strands per sample."""
+    """The fault zone of a 2D fault: the extent of all its strands at each sample.
+
+    Parameters
+    ----------
+    pts : (n, 2) float ndarray
+        The fault's points (trace index, sample index).
+    hw : float
+        +1 when the hanging wall lies toward increasing trace index, -1 otherwise.
+
+    Returns
+    -------
+    FaultZone
+    """
     t_lo, t_hi = int(np.floor(pts[:, 1].min())), int(np.ceil(pts[:, 1].max()))
     t = np.arange(t_lo, t_hi + 1, dtype=np.float64)
     lo = np.full(t.size, np.nan)
@@ -117,20 +129,8 @@ def side_images(zone: FaultZone, win: CubeWindow, sides, slope_margin):
         good = cnt >= 0.5 * d.size
         images.append(np.where(good, vals.sum(axis=0) / np.maximum(cnt, 1), 0.0))
         valids.append(good)
-        coherence.append(_side_coherence(vals, inside))
+        coherence.append(side_coherence(vals, inside))
     return tuple(images), tuple(valids), tuple(coherence)
-
-
-def _side_coherence(vals: np.ndarray, inside: np.ndarray) -> float:
-    """Normalised correlation of the mean of the nearer half of the offsets with the mean of the farther half, over
-    the samples read at every offset (NaN when fewer than 16)."""
-    half = vals.shape[0] // 2
-    both = inside.all(axis=0)
-    if half < 1 or np.count_nonzero(both) < 16:
-        return float("nan")
-    near, far = vals[:half, both].mean(axis=0), vals[half:, both].mean(axis=0)
-    den = np.sqrt(np.dot(near, near) * np.dot(far, far))
-    return float(np.dot(near, far) / den) if den > 0 else float("nan")
 
 
 def section_profile(zone: FaultZone, win: CubeWindow, *, sides, slope_margin, window: int, step: int, reach: int,
@@ -145,6 +145,38 @@ def section_profile(zone: FaultZone, win: CubeWindow, *, sides, slope_margin, wi
        warping, Hale 2013): a change of a reflector period between windows that share three quarters of their
        samples is a cycle skip, not a throw gradient.
     3. Each chosen shift is refined by a parabola through its curve's three values.
+
+    Parameters
+    ----------
+    zone : FaultZone
+        The fault's zone (:func:`fault_zone`).
+    win : CubeWindow
+        The traces of :func:`section_read_box` (a section as ``(n_traces, 1, n_samples)``).
+    sides : (int, int)
+        Nearest and farthest offsets read beyond the zone's edges, traces.
+    slope_margin : int
+        Traces beyond the farthest offset where the reflector slopes are read.
+    window, step : int
+        Window length and the distance between window starts, samples.
+    reach : int
+        Largest |shift| searched, samples.
+    min_overlap : int
+        Fewest samples seen on both sides for a shift to count.
+    smoothness : float
+        Cost of a change of shift between consecutive windows, correlation per squared sample.
+    opt : ThrowOptions
+        ``min_rows`` and ``small_shift_prior``.
+
+    Returns
+    -------
+    SectionProfile
+        Per window: its centre (samples), throw (samples, positive = hanging wall down; NaN where the sides overlap
+        too little), the correlation at that shift and at none; and the sides' continuity.
+
+    References
+    ----------
+    .. [1] D. Hale, "Methods to compute fault images, extract fault surfaces, and estimate fault throws from 3D
+       seismic images", Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1.
     """
     (f, h), (vf, vh), coh = side_images(zone, win, sides, slope_margin)
     n = zone.t.size

@@ -72,7 +72,8 @@ def write_points(inp, result: FaultInterpretation, path: Path, coordinates=None)
     extra = [] if unit == "samples" else [f"throw_{unit}"]
     xy = [] if coordinates is None else ["x", "y", "xy_unit"]
     header = [*trace_columns(inp), *xy, "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation",
-              "correlation_gain", "side_coherence"]
+              "correlation_gain", "side_coherence", "confidence"]
+    confidence = {e.fault_id: e.confidence for e in result.evidence}
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         fh.write(",".join(header) + "\n")
         for f in result.faults:
@@ -96,6 +97,7 @@ def write_points(inp, result: FaultInterpretation, path: Path, coordinates=None)
             cols.append(_column(correlation, ".3f"))
             cols.append(_column(correlation - _throw_of(result.throws, f, "correlation_unshifted"), ".3f"))
             cols.append(_column(_throw_of(result.throws, f, "side_coherence"), ".3f"))
+            cols.append(_column(np.full(f.size, confidence.get(f.id, np.nan)), ".4g"))  # the fault's, on each point
             fh.writelines(",".join(row) + "\n" for row in zip(*cols))
     return path
 
@@ -119,7 +121,7 @@ def write_summary(inp, result: FaultInterpretation, path: Path, rows: list) -> P
         w = csv.writer(fh)
         header = ["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra,
                   "throw_spread_samples", "throw_correlation", "correlation_gain", "side_coherence", "vote_ratio",
-                  "mean_likelihood"]
+                  "mean_likelihood", "confidence"]
         w.writerow(header)
         evidence = {e.fault_id: e for e in result.evidence}
         for f in result.faults:
@@ -129,7 +131,7 @@ def write_summary(inp, result: FaultInterpretation, path: Path, rows: list) -> P
             if extra:
                 row.append(_fmt(e.median_throw * result.sample_interval))
             row += [_fmt(e.throw_spread), _fmt(e.correlation), _fmt(e.correlation_gain), _fmt(e.side_coherence),
-                    _fmt(e.vote_ratio), _fmt(e.mean_likelihood)]
+                    _fmt(e.vote_ratio), _fmt(e.mean_likelihood), _fmt(e.confidence)]
             w.writerow(row)
             rows.append(dict(zip(header, (str(v) for v in row))))
     return path

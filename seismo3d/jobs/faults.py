@@ -159,8 +159,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       of a fault when they are not continuous themselves). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
       median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_correlation, correlation_gain,
-      side_coherence, vote_ratio, mean_likelihood`` (``throw_spread_samples`` is empty on a 2D line: its faults'
-      throws are one shift each, with no spread measured): the
+      side_coherence, vote_ratio, mean_likelihood, confidence`` (``throw_spread_samples`` is empty where a fault's
+      throw is one shift: a 2D fault spanning fewer than two windows of its throw profile): the
       evidence each fault shows (:class:`~seismo3d.seismic.faults.evidence.FaultEvidence`; only faults whose votes
       hold along them and whose reflectors are displaced, or which the network calls likely, are kept:
       :func:`~seismo3d.seismic.faults.evidence.supported_faults`), to sort and filter on; ``vote_ratio`` is the
@@ -175,8 +175,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       crossline: each point's trace's CDP X/Y with the coordinate scalar applied, or its inline and crossline numbers
       with ``xy_unit`` ``inline/crossline`` for an input without coordinates.
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
-      the seismic, coloured by their |median throw| (in the sample unit), above the same slices of the fault
-      likelihood; for 2D inputs the section, cropped to its live traces and samples.
+      the seismic, coloured by their ``confidence`` (the column of ``fault_summary.csv``), above the same slices of
+      the fault likelihood; for 2D inputs the section, cropped to its live traces and samples.
 
     Cubes larger than memory
     ------------------------
@@ -413,10 +413,9 @@ def _surface_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path,
 
 
 def _throw_colours(inp, result) -> dict:
-    """faults.png's colours: each fault's |median throw| (the evidence of fault_summary.csv), in the data's unit."""
-    scale = 1.0 if inp.unit == "samples" else float(result.sample_interval)
-    values = {e.fault_id: abs(e.median_throw) * scale for e in result.evidence}
-    return {"fault_values": values, "value_label": f"|median throw| ({inp.unit})"}
+    """faults.png's colours: each fault's confidence (the column of fault_summary.csv that ranks them)."""
+    values = {e.fault_id: e.confidence for e in result.evidence}
+    return {"fault_values": values, "value_label": "confidence (fault_summary.csv)"}
 
 
 def _write_steps(steps: list, written: dict, progress: bool) -> None:

@@ -342,4 +342,4 @@ def test_the_command_after_a_real_faults_run(line, data_dir, tmp_path):
     np.testing.assert_allclose([summary[k] for k in ("precision", "recall", "f1")], expected, rtol=0, atol=1e-9)
     assert f"crossline {line} of gsb_crl_{line}.sgy: precision {expected[0]:.3f}  recall {expected[1]:.3f}" in \
         result.stdout
-    assert summary["confidence_column"] == "mean_likelihood" and 0 < summary["average_precision"] <= 1
+    assert summary["confidence_column"] == "confidence" and 0 < summary["average_precision"] <= 1

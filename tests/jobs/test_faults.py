@@ -21,7 +21,7 @@ from seismo3d.seismic.io import open_segy
 POINT_COLUMNS = ["inline", "crossline", "x", "y", "xy_unit", "time_or_depth", "fault_id", "throw_samples"]
 SUMMARY_COLUMNS = ["id", "n_points", "mean_strike_deg", "mean_dip_deg", "median_throw_samples"]
 EVIDENCE_COLUMNS = ["throw_spread_samples", "throw_correlation", "correlation_gain", "side_coherence",
-                    "vote_ratio", "mean_likelihood"]
+                    "vote_ratio", "mean_likelihood", "confidence"]
 
 
 def _sha(path) -> str:
@@ -83,7 +83,8 @@ def test_demo_csv_columns_and_values(demo):
     out, _ = demo
     points = _rows(out / "fault_points.csv")
     summary = _rows(out / "fault_summary.csv")
-    assert list(points[0]) == POINT_COLUMNS + ["throw_ms", "throw_correlation", "correlation_gain", "side_coherence"]
+    assert list(points[0]) == POINT_COLUMNS + ["throw_ms", "throw_correlation", "correlation_gain", "side_coherence",
+                                               "confidence"]
     assert list(summary[0]) == SUMMARY_COLUMNS + ["median_throw_ms", *EVIDENCE_COLUMNS]
     # every summary row counts its points; ids 1..n by decreasing size
     ids = [int(r["fault_id"]) for r in points]
@@ -93,6 +94,10 @@ def test_demo_csv_columns_and_values(demo):
     assert sizes == sorted(sizes, reverse=True)
     # every kept fault's votes hold along it (the default evidence asks 0.9 of the upper threshold)
     assert all(float(r["vote_ratio"]) >= 0.9 and 0.0 <= float(r["mean_likelihood"]) <= 1.0 for r in summary)
+    # the confidence that ranks the faults: their mean likelihood (FaultEvidence.confidence), on each point too
+    assert all(r["confidence"] == r["mean_likelihood"] for r in summary)
+    by_id = {r["id"]: float(r["confidence"]) for r in summary}
+    assert all(abs(float(r["confidence"]) - by_id[r["fault_id"]]) <= 5e-4 * by_id[r["fault_id"]] for r in points)
     # geometry of the demo SEG-Y: inlines / crosslines 1..128, 4 ms samples from 0
     il = np.array([int(r["inline"]) for r in points])
     tz = np.array([float(r["time_or_depth"]) for r in points])
@@ -240,7 +245,8 @@ def test_real_section(data_dir, tmp_path):
     summary = _rows(written["summary"])
     assert len(summary) >= 3
     # a raw section: its traces have no inline / crossline numbers, so one "trace" column (the index); samples
-    assert list(points[0]) == ["trace", *POINT_COLUMNS[2:], "throw_correlation", "correlation_gain", "side_coherence"]
+    assert list(points[0]) == ["trace", *POINT_COLUMNS[2:], "throw_correlation", "correlation_gain", "side_coherence",
+                               "confidence"]
     assert all(0 <= int(r["trace"]) < 357 and 0 <= float(r["time_or_depth"]) < 240 for r in points)
 
 

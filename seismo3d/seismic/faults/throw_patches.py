@@ -17,7 +17,8 @@ from ..blocks.windows import CubeWindow
 from ..traces import parabolic_offset, subsample_peak
 
 # used by the throw module; not part of the package's public face
-__all__ = ["PatchFit", "ncc_shift", "patch_grid", "patch_images", "read_box", "reflector_peaks", "register_patch"]
+__all__ = ["PatchFit", "ncc_curve", "ncc_shift", "patch_grid", "patch_images", "read_box", "reflector_peaks",
+           "register_patch", "side_coherence", "small_shift_weight"]
 
 
 def _side_slope(win: CubeWindow, il, xl, t, h, d_slope):
@@ -48,7 +49,7 @@ def _sample(win: CubeWindow, il, xl, t, h, offsets, p):
     return np.where(inside, vals, 0.0), inside
 
 
-def _coherence(vals: np.ndarray, inside: np.ndarray) -> float:
+def side_coherence(vals: np.ndarray, inside: np.ndarray) -> float:
     """Normalised correlation, over the nodes read at every offset, of the mean of the nearer half of the offsets
     with the mean of the farther half: how continuous the reflectors are along one side of the fault (NaN when fewer
     than 16 nodes qualify)."""
@@ -150,7 +151,7 @@ def patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Pat
         p = _side_slope(win, grid.il, grid.xl, grid.t, grid.h, sign * (sides[1] + slope_margin))
         vals, inside = _sample(win, grid.il, grid.xl, grid.t, grid.h, sign * np.arange(sides[0], sides[1] + 1), p)
         acc, cnt = vals.sum(axis=0), inside.sum(axis=0)
-        coherence.append(_coherence(vals, inside))
+        coherence.append(side_coherence(vals, inside))
         n_off = sides[1] - sides[0] + 1
         img = np.zeros(grid.shape)
         val = np.zeros(grid.shape, bool)
@@ -162,13 +163,15 @@ def patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Pat
     return _Patch(grid.u0, grid.t0, tuple(images), tuple(valids), tuple(coherence))
 
 
-def ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt):
-    """Shift k maximising the normalised cross-correlation of f(u, t - k) with h(u, t), refined by a parabola.
+def ncc_curve(f, h, vf, vh, max_throw, min_overlap, opt):
+    """Normalised cross-correlation of f(u, t - k) with h(u, t) for every integer shift ``k`` in
+    ``[-max_throw, max_throw]``.
 
-    The search uses the cross-correlation normalised by the energies of the *whole* images (zero outside the
-    overlap), which penalises shifts where the images barely overlap (on a short fault, a large shift would otherwise
-    correlate a few samples by chance). Returns (shift in samples, normalised correlation over the overlap at that
-    shift), or (nan, nan) when no shift overlaps enough.
+    Returns ``(ks, cc, local)``: the shifts; the correlation normalised by the energies of the *whole* images (zero
+    outside the overlap), which penalises shifts where the images barely overlap (on a short fault a large shift
+    would otherwise correlate a few samples by chance); and the correlation normalised over the overlap only. NaN
+    where the overlap has fewer than ``min_overlap`` samples or ``opt.min_rows`` rows; None when either image has no
+    energy.
     """
     nt = f.shape[1]
     ks = np.arange(-max_throw, max_throw + 1)
@@ -177,7 +180,7 @@ def ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt):
     ef = np.dot(f[vf], f[vf])
     eh = np.dot(h[vh], h[vh])
     if ef <= 0 or eh <= 0:
-        return np.nan, np.nan, np.nan
+        return None
     for i, k in enumerate(ks):
         if abs(k) >= nt:
             continue
@@ -193,11 +196,28 @@ def ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt):
         cc[i] = num / np.sqrt(ef * eh)
         den = np.sqrt(np.dot(am, am) * np.dot(bm, bm))
         local[i] = num / den if den > 0 else 0.0
-    if not np.any(np.isfinite(cc)):
+    return ks, cc, local
+
+
+def small_shift_weight(ks, max_throw, opt):
+    """The preference for small shifts: weight 1 at zero, ``1 - small_shift_prior`` at ``max_throw + 1``."""
+    return 1.0 - opt.small_shift_prior * np.abs(ks) / (max_throw + 1.0)
+
+
+def ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt):
+    """Shift k maximising the normalised cross-correlation of f(u, t - k) with h(u, t) (:func:`ncc_curve`), refined
+    by a parabola.
+
+    Returns (shift in samples, normalised correlation over the overlap at that shift, the same with no shift), or
+    NaNs when no shift overlaps enough.
+    """
+    curve = ncc_curve(f, h, vf, vh, max_throw, min_overlap, opt)
+    if curve is None or not np.any(np.isfinite(curve[1])):
         return np.nan, np.nan, np.nan
+    ks, cc, local = curve
     # pick the peak with a mild preference for small shifts (weight 1 at zero, 0.75 at max_throw): when two shifts
     # correlate about equally (a reflector sequence repeating by chance), the smaller displacement is kept
-    i = int(np.nanargmax(cc * (1.0 - opt.small_shift_prior * np.abs(ks) / (max_throw + 1.0))))
+    i = int(np.nanargmax(cc * small_shift_weight(ks, max_throw, opt)))
     return float(ks[i]) + subsample_peak(cc, i), float(local[i]), float(local[max_throw])
 
 

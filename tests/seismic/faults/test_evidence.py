@@ -148,6 +148,21 @@ def test_a_clear_throw_on_a_likely_fault_needs_no_vote_ratio():
             EvidenceOptions(clear_throw=bad)
 
 
+def test_sides_must_look_alike_at_the_throw_when_asked():
+    """EvidenceOptions(min_correlation=0.5): a fault whose sides correlate under 0.5 at its throw's shift is dropped
+    (scaled by the sensitivity like the throw), unless clear and likely; the default asks nothing."""
+    assert EvidenceOptions().min_correlation is None
+    opt = EvidenceOptions(min_correlation=0.5)
+    weak = dataclasses.replace(_evidence(1.5, 0.2, mean_likelihood=0.9), correlation=0.45)
+    assert weak.supports(EvidenceOptions()) and not weak.supports(opt)
+    assert weak.supports(opt, 1.0)  # 0.25 asked at sensitivity 1
+    clear = dataclasses.replace(_evidence(4.0, 0.2, mean_likelihood=0.9), correlation=0.2)
+    assert clear.supports(opt)  # a clear throw on a likely fault
+    for bad in (-1.5, 1.5):
+        with pytest.raises(InputError, match="min_correlation"):
+            EvidenceOptions(min_correlation=bad)
+
+
 def test_side_coherence_of_layers_against_noise():
     """A vertical line between layered reflectors and incoherent noise: the sides do not match and the noise side is
     not continuous in itself (side coherence near 0); a line through the layers alone has continuous sides."""

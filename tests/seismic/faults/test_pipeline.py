@@ -170,6 +170,21 @@ def test_penobscot_xl1155_large_normal_fault_is_one_fault(data_dir):
     assert whole >= 0.70, whole  # issue 35 asks 80 %: measured 74 %, the fault's top (900-1250 ms) a fault of its own
     # no fault of the opposite dip along its upper part (900-1700 ms; before issue 35 one was drawn there)
     assert opposite_dip_faults(res.faults, XL1155_LINE) == []
+    # its throw profile (issue 54) against the offsets read by hand (traces of the section, t0 = 0 ms, 4 ms samples):
+    # at 2000 ms the strong trough lies at 2011-2012 ms in the hanging wall next to the fault (traces 262-266) and at
+    # 1950-1955 ms in the footwall beyond its two strands (traces 280-284, bending up into it): 57-62 ms, normal; at
+    # 2500 ms, the crest of an anticline, the trough at 2449-2454 ms (traces 222-226) and 2463-2469 ms (236-240): under
+    # 15 ms. Before issue 54 the whole fault had one throw, 1.2 ms, read between its strands.
+    assert samples[0] == 0.0
+    fault = next(f for f in res.faults if f.id == fid)
+    throw = next(t for t in res.throws if t.fault_id == fid)
+    ms = fault.points[:, 1] * 4.0
+    at = {level: np.median(throw.throw[np.abs(ms - level) <= 40.0]) * 4.0 for level in (2000.0, 2500.0)}
+    gain = np.median((throw.correlation - throw.correlation_unshifted)[np.abs(ms - 2000.0) <= 40.0])
+    print(f"xl1155 fault {fid} throw: {at[2000.0]:.1f} ms at 2000 ms (correlation gain {gain:.2f}), "
+          f"{at[2500.0]:.1f} ms at 2500 ms")
+    assert 49.0 <= at[2000.0] <= 70.0 and gain > 0.2  # within 2 samples of the hand reading; measured 57.4, 0.45
+    assert abs(at[2500.0]) <= 15.0  # measured 1.4
 
 
 def _prf(scores) -> tuple:

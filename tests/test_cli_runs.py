@@ -168,33 +168,3 @@ def test_large_inputs_are_identified_by_size_and_time(tmp_path, monkeypatch):
     assert entry["identity"] == "size+mtime" and entry["sha256"] is None and entry["bytes"] == 2048
     monkeypatch.setattr(runinfo, "HASH_LIMIT", 4096)
     assert runinfo.input_identity(path)["identity"] == "sha256"
-
-
-def test_inputs_identified_in_the_background_are_the_ones_recorded(tmp_path, monkeypatch):
-    """RunRecord.identify_inputs: the sha256 taken on a background thread (seismo3d convert's, while it converts) is
-    the file's, is what write() records for that role, and an input identified under another path is identified again
-    at write(); a failure of the background identity is raised by write()."""
-    import hashlib
-
-    from seismo3d.jobs import runinfo
-
-    first, second = tmp_path / "a.bin", tmp_path / "b.bin"
-    first.write_bytes(b"seismic" * 1000)
-    second.write_bytes(b"other")
-    record = runinfo.RunRecord("convert", {})
-    record.identify_inputs({"input": first, "other": first, "none": None})
-    out = record.write(tmp_path / "run.json", inputs={"input": first, "other": second}, outputs={})
-    inputs = json.loads(out.read_text())["inputs"]
-    assert inputs["input"]["sha256"] == hashlib.sha256(first.read_bytes()).hexdigest()
-    assert inputs["other"]["sha256"] == hashlib.sha256(b"other").hexdigest()  # identified again: another path
-    assert set(inputs) == {"input", "other"}
-
-    def unreadable(path):
-        raise PermissionError(f"cannot read {path}")
-
-    monkeypatch.setattr(runinfo, "input_identity", unreadable)
-    failing = runinfo.RunRecord("convert", {})
-    failing.identify_inputs({"input": first})
-    with pytest.raises(PermissionError, match="cannot read"):
-        failing.write(tmp_path / "run2.json", inputs={"input": first}, outputs={})
-    assert not (tmp_path / "run2.json").exists()

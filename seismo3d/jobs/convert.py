@@ -133,8 +133,6 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
     # 1. arguments and outputs that must not be written, before any reading
     check_positive(chunk_mb, "chunk_mb")
     main = _check_output(input, output, overwrite)
-    # the input's sha256 for run.json, read on a background thread while the job imports zarr and converts
-    record.identify_inputs({"input": input})
     # 2. the SEG-Y's geometry through the one opening path (a trace list is refused by the writer, saying what it is)
     with warnings.catch_warnings(), record.stage("open"):
         warnings.simplefilter("ignore", TraceListWarning)

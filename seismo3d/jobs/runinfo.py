@@ -1,9 +1,7 @@
 """``run.json``: what a run of a ``seismo3d`` command was, written beside its outputs by every job.
 
 Every job starts a :class:`RunRecord` with its arguments, times its stages with :meth:`RunRecord.stage` and ends
-with :meth:`RunRecord.write` (which calls :func:`write_run_json`, the one writer); a job that reads a large input
-start to end may have its identity taken on a background thread while it works (:meth:`RunRecord.identify_inputs`:
-the sha256 of the bytes as they are when the run starts, off the run's critical path). The file holds:
+with :meth:`RunRecord.write` (which calls :func:`write_run_json`, the one writer). The file holds:
 
 - ``seismo3d_version``, ``command`` (the command's name), ``argv`` (the process's command line, ``sys.argv``) and,
   when the run came from the ``seismo3d`` command, ``cli``: its ``command`` and parsed ``arguments``;
@@ -33,9 +31,7 @@ import json
 import math
 import os
 import sys
-import threading
 import time
-from concurrent.futures import Future
 from pathlib import Path
 
 from .. import __version__
@@ -238,8 +234,7 @@ def read_run_json(path) -> dict | None:
 
 
 def write_run_json(path, *, command: str, options: dict, inputs: dict, started: float, seconds: float,
-                   stage_seconds: dict, outputs: dict, results: dict | None = None,
-                   identities: dict | None = None) -> Path:
+                   stage_seconds: dict, outputs: dict, results: dict | None = None) -> Path:
     """Write the record of a run (contents in the module notes), atomically; the one writer every job uses.
 
     Parameters
@@ -262,23 +257,18 @@ def write_run_json(path, *, command: str, options: dict, inputs: dict, started: 
         Paths written, by key (None entries are left out).
     results : dict, optional
         The job's counts and measures.
-    identities : dict, optional
-        Inputs already identified by :func:`input_identity`, by role (:meth:`RunRecord.identify_inputs`); an entry
-        is used for its role when its path is that input's, the others are identified here.
 
     Returns
     -------
     pathlib.Path
     """
-    known = identities or {}
     record = {
         "seismo3d_version": __version__,
         "command": command,
         "argv": list(sys.argv),
         "cli": None,
         "options": jsonable(options),
-        "inputs": {role: (known[role] if role in known and known[role]["path"] == os.path.abspath(p)
-                          else input_identity(p)) for role, p in inputs.items() if p is not None},
+        "inputs": {role: input_identity(p) for role, p in inputs.items() if p is not None},
         "started": _utc(started),
         "seconds": round(float(seconds), 6),
         "stage_seconds": {k: round(float(v), 6) for k, v in stage_seconds.items()},
@@ -318,25 +308,6 @@ class RunRecord:
         self.started = time.time()
         self._t0 = time.perf_counter()
         self.stage_seconds: dict = {}
-        self._identities: dict = {}  # role -> Future of input_identity (identify_inputs)
-
-    def identify_inputs(self, inputs: dict) -> None:
-        """Start identifying ``inputs`` (:func:`input_identity`: size, modification time, sha256) on a background
-        thread, so that hashing a large input overlaps the job's work instead of following it; :meth:`write` waits
-        for it and records these identities. The identity is that of the file when the run starts (before the job
-        reads it), which is what the run read unless the file changed during the run.
-
-        Parameters
-        ----------
-        inputs : dict
-            Input paths by role, as later given to :meth:`write` (None entries are left out).
-        """
-        for role, path in inputs.items():
-            if path is not None:
-                future = self._identities[role] = Future()
-                # a daemon thread: a failed run exits without waiting for the hash
-                threading.Thread(target=_identify, args=(future, path), daemon=True,
-                                 name=f"seismo3d-identify-{role}").start()
 
     @contextlib.contextmanager
     def stage(self, name: str):
@@ -369,16 +340,6 @@ class RunRecord:
         -------
         pathlib.Path
         """
-        seconds = self.seconds  # the run's: waiting for a background identity is not part of it
-        identities = {role: future.result() for role, future in self._identities.items()}
         return write_run_json(path, command=self.command, options=self.options, inputs=inputs, started=self.started,
-                              seconds=seconds, stage_seconds=self.stage_seconds, outputs=outputs, results=results,
-                              identities=identities)
-
-
-def _identify(future: Future, path) -> None:
-    """:func:`input_identity` of ``path`` into ``future`` (its error, if it fails), on a background thread."""
-    try:
-        future.set_result(input_identity(path))
-    except BaseException as exc:  # handed to the waiting job, which raises it
-        future.set_exception(exc)
+                              seconds=self.seconds, stage_seconds=self.stage_seconds, outputs=outputs,
+                              results=results)

@@ -2,7 +2,7 @@
 on either volume and vertical scales, in both argument orders; pairs with no common volume or unrelated data; bad
 input. The full grid (12 pairs per data set, f3_crop, Penobscot, Volve, both orders) is in benchmarks/volumes.py; the
 pairs asserted here before the suite's 10 minutes ran out (4 f3_crop, 2 Penobscot and 3 Volve pairs, both orders:
-about 170 s) are asserted by ``python benchmarks/volumes.py --only suite_grid --check``, and one pair per data set
+150 s under load) are asserted by ``python benchmarks/volumes.py --only suite_grid --check``, and one pair per data set
 stays here in one order."""
 
 import os

@@ -1,5 +1,6 @@
-"""The notebooks run as tests through nbmake (``python -m pytest`` collects ``notebooks/*.ipynb``). Each takes a minute
-or two, so they are marked ``slow`` and left out of the fast lane (``-m "not slow"``); like the real-data tests they
+"""The notebooks run as tests through nbmake: ``python -m pytest notebooks`` collects ``notebooks/*.ipynb`` (one of
+the checks of ``benchmarks/checks.py``; the suite, ``python -m pytest``, collects ``tests/`` only: together the six
+take about 3 minutes of its 10). Each takes a minute or two, so they are marked ``slow``; like the real-data tests they
 are skipped when ``SEISMO3D_DATA_DIR`` is unset (without it they would download their data: hundreds of files)."""
 
 import os

@@ -30,8 +30,8 @@ class _StderrHandler(logging.Handler):
             pass
 
 
-COMPILE_NOTE = ("note: compiling seismo3d's numba kernels; this happens once, on the first run (a minute or two), "
-                "later runs reuse them")
+COMPILE_NOTE = ("note: compiling seismo3d's numba kernels; this happens once per install (seconds for some commands, "
+                "a minute or two for faults), later runs reuse them")
 
 
 @contextlib.contextmanager

@@ -118,7 +118,7 @@ def register(
     check_before_import("file", output, [source, target, init, features], overwrite=overwrite)
     from .jobs.register import run_register_job
 
-    with _one_line_warnings():
+    with _one_line_warnings(), compile_note():
         job = run_register_job(source, target, output, method=None if method is None else method.value,
                                model=None if model is None else model.value, init=init,
                                max_distance=max_distance or None, features=features, alpha=alpha, iline=iline,
@@ -288,7 +288,8 @@ def lineaments(
     check_before_import("folder", output, [dem], overwrite=overwrite)
     from .jobs.lineaments import run_lineaments_job
 
-    result = run_lineaments_job(dem, output, overwrite=overwrite)
+    with compile_note():
+        result = run_lineaments_job(dem, output, overwrite=overwrite)
     found = result.lineaments
     typer.echo(f"{len(found)} lineaments in {dem.name}, {found.length_m.sum() / 1000:.1f} km in all -> {output}")
     if len(found):
@@ -340,8 +341,9 @@ def plan(
 
         options = OccupancyOptions(cell_size=cell_size, robot_height=robot_height, step_height=step_height,
                                    robot_radius=robot_radius)
-    result = run_plan_job(grid, s, g, output, max_slope_deg=max_slope, options=options,
-                          corner_cutting=corner_cutting, overwrite=overwrite)
+    with compile_note():
+        result = run_plan_job(grid, s, g, output, max_slope_deg=max_slope, options=options,
+                              corner_cutting=corner_cutting, overwrite=overwrite)
     p = result.path
     typer.echo(f"path of {len(p.cells)} cells, {p.length_m:.1f} m, from {s} to {g} on a {result.grid.shape[0]} x "
                f"{result.grid.shape[1]} grid ({result.grid.description}); A* expanded {p.n_expanded} cells in "
@@ -513,7 +515,7 @@ def render(
         width, height = (int(v) for v in size.lower().split("x"))
     except ValueError:
         raise InputError(f"--size {size!r} must be WIDTHxHEIGHT, e.g. 1200x900") from None
-    with _one_line_warnings():
+    with _one_line_warnings(), compile_note():
         job = run_render_job(input, output, seismic=seismic, color_by=color_by.value,
                              vertical_exaggeration=vertical_exaggeration, lineaments=lineaments, plan=plan,
                              window_size=(width, height), iline=iline, xline=xline, endian=_value(endian),

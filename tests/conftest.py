@@ -55,19 +55,6 @@ def penobscot(data_dir):
 
 
 @pytest.fixture(scope="session")
-def penobscot_faults(penobscot):
-    """trace_faults on the Penobscot cube (86 s measured on 2 cores, 2026-11-25; traced once per test session)."""
-    import warnings
-
-    from seismo3d.errors import Seismo3dWarning
-    from seismo3d.seismic import trace_faults
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", Seismo3dWarning)  # clipped amplitudes and the muted top are reported
-        return trace_faults(penobscot.cube, progress=False)
-
-
-@pytest.fixture(scope="session")
 def autzen(data_dir):
     """The real Autzen LiDAR tile (110,000 points, feet; seismo3d.terrain.read_las)."""
     from seismo3d.data import fetch

@@ -470,3 +470,33 @@ def test_the_first_compilation_is_said_once_in_one_line(tmp_path):
     assert run("one(1); k.two(2)") == COMPILE_NOTE + "\n"  # two kernels compiled: one line
     assert run("one(1); k.two(2)") == ""  # from numba's cache
     assert run("uncached(1)") == ""
+
+
+def test_every_command_that_may_compile_says_so():
+    """Every command whose job imports numba (the heavy packages of each job in tests/jobs/test_job_imports.py, which
+    the slow lane checks against a fresh interpreter's imports) runs its job inside compile_note, so that a first
+    run on a fresh install says in one line why it is slow (issue 58); the others (convert, match, evaluate) import
+    no numba and compile nothing."""
+    import importlib.util
+    import inspect
+    import re
+
+    import typer.main
+
+    spec = importlib.util.spec_from_file_location("job_imports", Path(__file__).parent / "jobs" / "test_job_imports.py")
+    job_imports = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = job_imports  # its dataclasses look their module up
+    try:
+        spec.loader.exec_module(job_imports)
+    finally:
+        del sys.modules[spec.name]
+    compiles = {b.module.rsplit(".", 1)[-1] for b in job_imports.BUDGETS if "numba" in b.heavy}
+    checked = set()
+    for name, command in typer.main.get_command(app).commands.items():
+        source = inspect.getsource(inspect.unwrap(command.callback))
+        jobs = set(re.findall(r"from \.jobs\.(\w+) import", source))
+        assert jobs, f"{name}: no job imported"
+        if jobs & compiles:
+            assert "compile_note()" in source, f"seismo3d {name} compiles numba kernels and does not say so"
+            checked.add(name)
+    assert {"faults", "horizon", "register", "map", "lineaments", "plan", "render"} <= checked, checked

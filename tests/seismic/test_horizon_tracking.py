@@ -287,21 +287,13 @@ def test_penobscot_pockmark_passed_with_margin(penobscot):
     assert ours.within_5 >= 0.995 and ours.median_abs <= 1.0, ours
 
 
-# With the faults trace_faults finds in the clipped 8-bit slab (many of them spurious since the fault tracer of issue
-# 14), the tracker takes a fault's jump only where the correlation across it supports it: no horizon may lose more
-# than half a point against tracking without fault input, and the horizons that reach the targets without faults keep
-# them (horizon 6 needs a fault throw the traced faults do not carry: see MISSED).
-@pytest.mark.slow
-@pytest.mark.parametrize("k", range(7))
-def test_penobscot_horizons_with_traced_faults(penobscot, penobscot_faults, k):
-    ref = penobscot.horizons[:, k]
-    seed = (0, 256, ref[0, 256])
-    ours = horizon_errors(track_horizon(penobscot.cube, seed, faults=penobscot_faults).times, ref)
-    without = horizon_errors(track_horizon(penobscot.cube, seed).times, ref)
-    assert ours.within_5 >= without.within_5 - 0.005, (ours, without)
-    assert ours.median_abs <= MEDIAN_MEASURED[k], ours  # measured (see MEDIAN_MEASURED)
-    if k != 6:
-        assert ours.within_5 >= 0.99, ours
+# The Penobscot horizons with the faults trace_faults finds in the 18 inlines (many of them spurious: the clipped 8-bit
+# slab): no horizon loses more than half a point against tracking without fault input, each keeps its measured median
+# (MEDIAN_MEASURED) and, but horizon 6, 99 % within 5 samples. Tracing those faults and tracking every horizon twice
+# took about 4 minutes of the suite's 10 (2 cores, 2026-11-26): the claim is asserted by
+# `python benchmarks/horizons.py --only traced_faults --check` (the same limits). Windows of these inlines small enough
+# for the suite hold one or two traced faults that change no pick, so the suite proves tracking across traced faults on
+# the generated cubes above (and below), where the faults' throw is known.
 
 
 @pytest.mark.slow

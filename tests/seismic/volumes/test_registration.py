@@ -1,6 +1,9 @@
 """Sub-volume registration (seismo3d.seismic.volumes): pairs generated from real seismic with map rotations, bin scales
 on either volume and vertical scales, in both argument orders; pairs with no common volume or unrelated data; bad
-input. The full grid (12 pairs per data set, f3_crop, Penobscot, Volve, both orders) is in benchmarks/volumes.py."""
+input. The full grid (12 pairs per data set, f3_crop, Penobscot, Volve, both orders) is in benchmarks/volumes.py; the
+pairs asserted here before the suite's 10 minutes ran out (4 f3_crop, 2 Penobscot and 3 Volve pairs, both orders:
+150 s under load) are asserted by ``python benchmarks/volumes.py --only suite_grid --check``, and one pair per data set
+stays here in one order."""
 
 import os
 
@@ -135,52 +138,29 @@ def test_a_generated_pair_with_the_spectra_candidates():
     assert 0 < reg.n_maps - register_in_order(fixed, moving, truth, order, options=grid_only)[0].n_maps <= 6
 
 
-# the grid's pairs with bins that differ on the fixed volume (or on both), whose errors in benchmarks/volumes.py are
-# the largest of the f3_crop grid, besides the two pairs above; the whole grid (24 registrations per data set) is the
-# benchmark's, out of the test suite's 10 minutes
+# One pair per real data set in one order, beside the f3_crop pairs above: the grid's other pairs with bins that
+# differ on the fixed volume (or on both), the Penobscot and Volve pairs in both orders, are asserted by
+# `python benchmarks/volumes.py --only suite_grid --check` (SUITE_GRID there; 10-30 s a pair on 2 shared cores)
 @pytest.mark.slow
-@pytest.mark.parametrize("order", ORDERS)
-@pytest.mark.parametrize("angle, moving_scales, fixed_scales", [
-    (0.0, (1.0, 1.0, 1.25), (0.6, 1.6, 1.0)),
-    (30.0, (1.0, 1.0, 1.25), (1.6, 1.6, 1.0)),
-    (40.0, (1.0, 1.0, 1.0), (1.25, 0.8, 1.0)),
-    (35.0, (1.3, 1.3, 0.9), (0.8, 1.25, 1.0)),
-])
-def test_f3_grid(f3_crop, angle, moving_scales, fixed_scales, order):
-    fixed, moving, truth = make_pair(f3_crop, angle, moving_scales, fixed_scales)
-    assert_recovered(*register_in_order(fixed, moving, truth, order))
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("order", ORDERS)
-@pytest.mark.parametrize("angle, moving_scales, fixed_scales", [
-    (40.0, (1.6, 0.6, 0.8), (1.0, 1.0, 1.0)),
-    (30.0, (1.0, 1.0, 1.25), (1.6, 1.6, 1.0)),
-])
-def test_penobscot_pairs(penobscot_block, angle, moving_scales, fixed_scales, order):
+def test_penobscot_pair(penobscot_block):
     # clipped 8-bit amplitudes: neither their smoothing nor their envelope survives decimating the samples by 4, so
-    # the search runs on every second sample (10-50 s a pair)
-    fixed, moving, truth = make_pair(penobscot_block, angle, moving_scales, fixed_scales)
-    assert_recovered(*register_in_order(fixed, moving, truth, order))
+    # the search runs on every second sample (9-12 s on 2 shared cores; the other order and the 30-degree pair with
+    # bins 1.6 on the fixed volume: the benchmark's check)
+    fixed, moving, truth = make_pair(penobscot_block, 40.0, (1.6, 0.6, 0.8), (1.0, 1.0, 1.0))
+    assert_recovered(*register_in_order(fixed, moving, truth, ORDERS[0]))
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("order", ORDERS)
-@pytest.mark.parametrize("angle, moving_scales, fixed_scales", [
-    (10.0, (1.0, 1.0, 1.0), (1.6, 0.6, 1.0)),
-    (0.0, (1.0, 1.0, 1.25), (0.6, 1.6, 1.0)),
-    (30.0, (1.0, 1.0, 1.25), (1.6, 1.6, 1.0)),
-])
-def test_volve_velocity_pairs_are_right(volve_block, angle, moving_scales, fixed_scales, order):
+def test_volve_velocity_pair_is_right(volve_block):
     # a smooth property, registered by its derivative along the traces: the lateral position rests on small
     # anomalies, and copies with coarse bins are aliased, so the way that interpolates them is biased. The answer is
-    # the way that interpolates the less aliased volume refined alone (check.py). Among these six, the pair at 30 deg
-    # with fixed bins 1.6 was 2.2 % (moving onto fixed) and 3.4 % (fixed onto moving) off at the two-way optimum
-    # (not converged), and the 0-deg pair fixed onto moving climbed from its start to a map rotation of 118 deg with
-    # the central-difference Jacobian on the coarsest level (registration._refine_starts); all six are right and
-    # converged (24 of 24 in benchmarks/volumes.py)
-    fixed, moving, truth = make_pair(volve_block, angle, moving_scales, fixed_scales)
-    assert_recovered(*register_in_order(fixed, moving, truth, order))
+    # the way that interpolates the less aliased volume refined alone (check.py). Of the benchmark's pairs (24 of 24
+    # right and converged), the pair at 30 deg with fixed bins 1.6 was 2.2 % (moving onto fixed) and 3.4 % (fixed
+    # onto moving) off at the two-way optimum (not converged), and the 0-deg pair fixed onto moving climbed from its
+    # start to a map rotation of 118 deg with the central-difference Jacobian on the coarsest level
+    # (registration._refine_starts): those are in the check; here the pair with the fixed bins 1.6 / 0.6 (6-9 s)
+    fixed, moving, truth = make_pair(volve_block, 10.0, (1.0, 1.0, 1.0), (1.6, 0.6, 1.0))
+    assert_recovered(*register_in_order(fixed, moving, truth, ORDERS[1]))
 
 
 @pytest.mark.slow  # 3.6 s in the fast lane, whose budget is 60 s

@@ -1,4 +1,5 @@
-"""Trace primitives: the sub-sample peak of a parabola, waveform windows, NCC and the lag search built on them.
+"""Trace primitives: the sub-sample peak of a parabola, waveform windows, NCC, the lag search built on them, and the
+shift-by-shift correlation of two reflector images (the two sides of a fault) with the continuity of one side.
 
 Positions are fractional sample indices (sample ``k`` at ``k``); every function works on plain arrays and is used by
 horizon tracking, fault throw, reflector picking and volume registration alike.
@@ -8,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["parabolic_offset", "subsample_peak", "waveform", "ncc", "ncc_lag_search"]
+__all__ = ["parabolic_offset", "subsample_peak", "waveform", "ncc", "ncc_lag_search", "ncc_curve", "small_shift_weight",
+           "side_coherence"]
 
 
 def parabolic_offset(y_minus, y_0, y_plus):
@@ -145,3 +147,100 @@ def ncc_lag_search(reference, signal, max_lag: int) -> float:
         return 0.0
     k = int(np.nanargmax(scores))
     return float(k - max_lag) + subsample_peak(scores, k)
+
+
+def ncc_curve(f, h, vf, vh, max_shift: int, min_overlap: int, min_rows: int):
+    """Normalised cross-correlation of ``f(u, t - k)`` with ``h(u, t)`` for every integer shift ``k`` in
+    ``[-max_shift, max_shift]``: two images of reflectors (e.g. the two sides of a fault) compared shift by shift
+    along the sample axis.
+
+    Parameters
+    ----------
+    f, h : (n_rows, n_samples) float ndarray
+        The two images (rows: positions along the fault or traces; columns: samples).
+    vf, vh : (n_rows, n_samples) bool ndarray
+        Where each image holds data.
+    max_shift : int
+        Largest shift, samples.
+    min_overlap : int
+        Fewest samples of both images that must overlap at a shift.
+    min_rows : int
+        Fewest rows that must overlap at a shift.
+
+    Returns
+    -------
+    (ks, cc, local) or None
+        ``ks`` (2 max_shift + 1,) int64 shifts; ``cc`` float64, the correlation normalised by the energies of the
+        *whole* images (zero outside the overlap), which penalises shifts where the images barely overlap (on a
+        short fault a large shift would otherwise correlate a few samples by chance); ``local`` float64, the
+        correlation normalised over the overlap only. NaN where the overlap is below ``min_overlap`` samples or
+        ``min_rows`` rows; None when either image has no energy.
+    """
+    nt = f.shape[1]
+    ks = np.arange(-max_shift, max_shift + 1)
+    cc = np.full(ks.size, np.nan)
+    local = np.full(ks.size, np.nan)
+    ef = np.dot(f[vf], f[vf])
+    eh = np.dot(h[vh], h[vh])
+    if ef <= 0 or eh <= 0:
+        return None
+    for i, k in enumerate(ks):
+        if abs(k) >= nt:
+            continue
+        if k >= 0:
+            a, va, b, vb = f[:, :nt - k], vf[:, :nt - k], h[:, k:], vh[:, k:]
+        else:
+            a, va, b, vb = f[:, -k:], vf[:, -k:], h[:, :nt + k], vh[:, :nt + k]
+        m = va & vb
+        if m.sum() < min_overlap or np.count_nonzero(m.any(axis=0)) < min_rows:
+            continue
+        am, bm = a[m], b[m]
+        num = np.dot(am, bm)
+        cc[i] = num / np.sqrt(ef * eh)
+        den = np.sqrt(np.dot(am, am) * np.dot(bm, bm))
+        local[i] = num / den if den > 0 else 0.0
+    return ks, cc, local
+
+
+def small_shift_weight(ks, max_shift: int, prior: float) -> np.ndarray:
+    """The preference for small shifts of :func:`ncc_curve`: weight 1 at zero, ``1 - prior`` at ``max_shift + 1``.
+
+    Parameters
+    ----------
+    ks : (n,) int ndarray
+        Shifts, samples.
+    max_shift : int
+        Largest shift searched, samples.
+    prior : float
+        Weight lost at one sample beyond ``max_shift``, in [0, 1].
+
+    Returns
+    -------
+    (n,) float64 ndarray
+    """
+    return 1.0 - prior * np.abs(ks) / (max_shift + 1.0)
+
+
+def side_coherence(vals: np.ndarray, inside: np.ndarray) -> float:
+    """How continuous the reflectors are along one side of a fault: the normalised correlation, over the nodes read
+    at every offset, of the mean of the nearer half of the offsets with the mean of the farther half.
+
+    Parameters
+    ----------
+    vals : (n_offsets, n_nodes) float ndarray
+        Amplitudes read at increasing lateral offsets from the fault (rows), along the reflectors through each node.
+    inside : (n_offsets, n_nodes) bool ndarray
+        Where ``vals`` lies inside the data.
+
+    Returns
+    -------
+    float
+        In [-1, 1]; NaN when fewer than 16 nodes are read at every offset or a half has no energy.
+    """
+    half = vals.shape[0] // 2
+    both = inside.all(axis=0)
+    if half < 1 or np.count_nonzero(both) < 16:
+        return float("nan")
+    near, far = vals[:half, both].mean(axis=0), vals[half:, both].mean(axis=0)
+    den = np.sqrt(np.dot(near, near) * np.dot(far, far))
+    return float(np.dot(near, far) / den) if den > 0 else float("nan")

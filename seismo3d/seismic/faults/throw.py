@@ -28,6 +28,7 @@ from ...errors import InputError
 from ...geometry.normals import estimate_normals
 from ..attributes import ReflectorOrientation
 from ..blocks.windows import cube_windows
+from .result import FaultThrow
 from .throw_patches import ncc_shift, patch_grid, patch_images, read_box, register_patch
 from .throw_profile import fault_zone, section_profile, section_read_box
 
@@ -131,62 +132,6 @@ class ThrowOptions:
         if self.profile_window < 2 * self.min_rows:
             raise InputError(f"profile_window={self.profile_window} samples must be at least 2 * min_rows "
                              f"({2 * self.min_rows}) for a window's shift to overlap enough rows; use a longer window")
-
-
-@dataclass(frozen=True, eq=False)
-class FaultThrow:
-    """Throw along one fault (see :func:`fault_throw`).
-
-    Attributes
-    ----------
-    fault_id : int
-        The fault's ``id`` (0 for a bare point array).
-    throw : (n_points,) float32 ndarray
-        Vertical throw at each fault point, in samples; positive = hanging wall down (normal fault), negative =
-        hanging wall up (reverse fault). NaN where the fault's two sides could not be compared: a patch whose two
-        fault-plane images overlap on fewer than 16 samples along dip (a short fault, or one at the edge of the data).
-    registered : (n_points,) bool ndarray
-        True where the throw comes from the ICP registration of reflector peaks; False where the registration failed
-        or was rejected and the correlation shift (with parabolic sub-sample refinement) is used instead.
-    correlation : (n_points,) float32 ndarray
-        Peak normalised cross-correlation of the two fault-plane images of the point's patch, in [-1, 1] (a quality
-        measure: low values mean the two sides do not look alike); NaN where ``throw`` is NaN.
-    correlation_unshifted : (n_points,) float32 ndarray
-        The same correlation with no shift across the fault (NaN where it overlaps too little): the sides of a fault
-        correlate better after the throw's shift (``correlation - correlation_unshifted`` is the correlation gain);
-        sides that correlate as well unshifted are reflectors continuing across, not a fault.
-    median_throw : float
-        Median of the finite ``throw`` values, samples (NaN if none).
-    side_coherence : (n_points,) float32 ndarray
-        How continuous the reflectors are along each side of the point's patch: the normalised correlation of the
-        mean of the nearer half of the side traces with the mean of the farther half, the smaller of the two sides',
-        in [-1, 1]; NaN where a side has too few samples read at every offset (None for a ``FaultThrow`` made
-        without it). Noise or a chaotic body matches nothing, itself included:
-        sides that do not match each other say more of a fault when each is continuous in itself.
-    fitness : float
-        Fraction of footwall reflector peaks with a hanging-wall peak within 1 sample after registration, averaged over
-        the registered patches (weighted by their number of peaks); NaN if no patch was registered.
-    inlier_rmse : float
-        Root-mean-square distance between those corresponding peaks, in samples (same averaging); NaN if none.
-    n_points_used : int
-        Number of footwall reflector-peak points registered (summed over the registered patches).
-    n_patches_measured : int
-        Patches whose throw was measured (-1: not counted, a ``FaultThrow`` made without it); for a 2D fault, the
-        windows of its throw profile (1: a fault spanning fewer than two windows, one shift for the whole fault,
-        which says nothing of how the throw varies along it).
-    """
-
-    fault_id: int
-    throw: np.ndarray
-    registered: np.ndarray
-    correlation: np.ndarray
-    correlation_unshifted: np.ndarray
-    median_throw: float
-    fitness: float
-    inlier_rmse: float
-    n_points_used: int
-    side_coherence: np.ndarray | None = None
-    n_patches_measured: int = -1
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -499,7 +444,8 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         fitness = rmse = float("nan")
     return FaultThrow(
         fault_id=fid, throw=throw.astype(np.float32), registered=registered, correlation=corr.astype(np.float32),
-        correlation_unshifted=corr0.astype(np.float32), median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=fitness,
+        correlation_unshifted=corr0.astype(np.float32),
+        median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=fitness,
         inlier_rmse=rmse, n_points_used=int(sum(counts)), side_coherence=coherence.astype(np.float32),
         n_patches_measured=n_measured,
     )

@@ -14,11 +14,10 @@ from ...geometry.normals import estimate_normals
 from ...geometry.transforms import make_transform
 from ...registration import ICPOptions, icp
 from ..blocks.windows import CubeWindow
-from ..traces import parabolic_offset, subsample_peak
+from ..traces import ncc_curve, parabolic_offset, side_coherence, small_shift_weight, subsample_peak
 
 # used by the throw module; not part of the package's public face
-__all__ = ["PatchFit", "ncc_curve", "ncc_shift", "patch_grid", "patch_images", "read_box", "reflector_peaks",
-           "register_patch", "side_coherence", "small_shift_weight"]
+__all__ = ["PatchFit", "ncc_shift", "patch_grid", "patch_images", "read_box", "reflector_peaks", "register_patch"]
 
 
 def _side_slope(win: CubeWindow, il, xl, t, h, d_slope):
@@ -47,19 +46,6 @@ def _sample(win: CubeWindow, il, xl, t, h, offsets, p):
     inside = (a >= -0.01) & (a <= n0 - 0.99) & (b >= -0.01) & (b <= n1 - 0.99) & (tt >= 0) & (tt <= nt - 1)
     vals = win.amplitude_at(a.ravel(), b.ravel(), tt.ravel()).reshape(a.shape)
     return np.where(inside, vals, 0.0), inside
-
-
-def side_coherence(vals: np.ndarray, inside: np.ndarray) -> float:
-    """Normalised correlation, over the nodes read at every offset, of the mean of the nearer half of the offsets
-    with the mean of the farther half: how continuous the reflectors are along one side of the fault (NaN when fewer
-    than 16 nodes qualify)."""
-    half = vals.shape[0] // 2
-    both = inside.all(axis=0)
-    if half < 1 or np.count_nonzero(both) < 16:
-        return float("nan")
-    near, far = vals[:half, both].mean(axis=0), vals[half:, both].mean(axis=0)
-    den = np.sqrt(np.dot(near, near) * np.dot(far, far))
-    return float(np.dot(near, far) / den) if den > 0 else float("nan")
 
 
 @dataclass(frozen=True)
@@ -163,47 +149,6 @@ def patch_images(grid: _PatchGrid, win: CubeWindow, sides, slope_margin) -> _Pat
     return _Patch(grid.u0, grid.t0, tuple(images), tuple(valids), tuple(coherence))
 
 
-def ncc_curve(f, h, vf, vh, max_throw, min_overlap, opt):
-    """Normalised cross-correlation of f(u, t - k) with h(u, t) for every integer shift ``k`` in
-    ``[-max_throw, max_throw]``.
-
-    Returns ``(ks, cc, local)``: the shifts; the correlation normalised by the energies of the *whole* images (zero
-    outside the overlap), which penalises shifts where the images barely overlap (on a short fault a large shift
-    would otherwise correlate a few samples by chance); and the correlation normalised over the overlap only. NaN
-    where the overlap has fewer than ``min_overlap`` samples or ``opt.min_rows`` rows; None when either image has no
-    energy.
-    """
-    nt = f.shape[1]
-    ks = np.arange(-max_throw, max_throw + 1)
-    cc = np.full(ks.size, np.nan)
-    local = np.full(ks.size, np.nan)
-    ef = np.dot(f[vf], f[vf])
-    eh = np.dot(h[vh], h[vh])
-    if ef <= 0 or eh <= 0:
-        return None
-    for i, k in enumerate(ks):
-        if abs(k) >= nt:
-            continue
-        if k >= 0:
-            a, va, b, vb = f[:, :nt - k], vf[:, :nt - k], h[:, k:], vh[:, k:]
-        else:
-            a, va, b, vb = f[:, -k:], vf[:, -k:], h[:, :nt + k], vh[:, :nt + k]
-        m = va & vb
-        if m.sum() < min_overlap or np.count_nonzero(m.any(axis=0)) < opt.min_rows:
-            continue
-        am, bm = a[m], b[m]
-        num = np.dot(am, bm)
-        cc[i] = num / np.sqrt(ef * eh)
-        den = np.sqrt(np.dot(am, am) * np.dot(bm, bm))
-        local[i] = num / den if den > 0 else 0.0
-    return ks, cc, local
-
-
-def small_shift_weight(ks, max_throw, opt):
-    """The preference for small shifts: weight 1 at zero, ``1 - small_shift_prior`` at ``max_throw + 1``."""
-    return 1.0 - opt.small_shift_prior * np.abs(ks) / (max_throw + 1.0)
-
-
 def ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt):
     """Shift k maximising the normalised cross-correlation of f(u, t - k) with h(u, t) (:func:`ncc_curve`), refined
     by a parabola.
@@ -211,13 +156,13 @@ def ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt):
     Returns (shift in samples, normalised correlation over the overlap at that shift, the same with no shift), or
     NaNs when no shift overlaps enough.
     """
-    curve = ncc_curve(f, h, vf, vh, max_throw, min_overlap, opt)
+    curve = ncc_curve(f, h, vf, vh, max_throw, min_overlap, opt.min_rows)
     if curve is None or not np.any(np.isfinite(curve[1])):
         return np.nan, np.nan, np.nan
     ks, cc, local = curve
     # pick the peak with a mild preference for small shifts (weight 1 at zero, 0.75 at max_throw): when two shifts
     # correlate about equally (a reflector sequence repeating by chance), the smaller displacement is kept
-    i = int(np.nanargmax(cc * small_shift_weight(ks, max_throw, opt)))
+    i = int(np.nanargmax(cc * small_shift_weight(ks, max_throw, opt.small_shift_prior)))
     return float(ks[i]) + subsample_peak(cc, i), float(local[i]), float(local[max_throw])
 
 

@@ -9,8 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..blocks.windows import CubeWindow
-from ..traces import subsample_peak
-from .throw_patches import ncc_curve, side_coherence, small_shift_weight
+from ..traces import ncc_curve, side_coherence, small_shift_weight, subsample_peak
 
 # used by the throw module; not part of the package's public face
 __all__ = ["SectionProfile", "FaultZone", "fault_zone", "section_profile", "section_read_box", "side_images"]
@@ -139,7 +138,7 @@ def section_profile(zone: FaultZone, win: CubeWindow, *, sides, slope_margin, wi
     every ``step`` samples (the whole fault when it spans fewer than two windows), chosen together.
 
     1. Each window's correlation curve over the integer shifts within ``reach``
-       (:func:`~seismo3d.seismic.faults.throw_patches.ncc_curve`), weighted by the preference for small shifts.
+       (:func:`~seismo3d.seismic.traces.ncc_curve`), weighted by the preference for small shifts.
     2. The shifts of all windows maximise the sum of their weighted correlations less ``smoothness`` times the sum
        of the squared changes between consecutive windows (dynamic programming, as the smooth shifts of dynamic
        warping, Hale 2013): a change of a reflector period between windows that share three quarters of their
@@ -189,16 +188,16 @@ def section_profile(zone: FaultZone, win: CubeWindow, *, sides, slope_margin, wi
             starts.append(last)
         size = window
     ks = np.arange(-reach, reach + 1)
-    weight = small_shift_weight(ks, reach, opt)
+    weight = small_shift_weight(ks, reach, opt.small_shift_prior)
     n_w = len(starts)
     # the whole fault's curve, added to every window's: a prior against a cycle skip that one window alone prefers
-    whole = ncc_curve(f[None], h[None], vf[None], vh[None], reach, min_overlap, opt)
+    whole = ncc_curve(f[None], h[None], vf[None], vh[None], reach, min_overlap, opt.min_rows)
     prior = np.zeros(ks.size) if whole is None else np.nan_to_num(whole[1] * weight, nan=0.0)
     score = np.zeros((n_w, ks.size))  # weighted correlation; 0 (no evidence either way) where unmeasured
     curves = []
     for w, s in enumerate(starts):
         sl = slice(s, s + size)
-        curve = ncc_curve(f[None, sl], h[None, sl], vf[None, sl], vh[None, sl], reach, min_overlap, opt)
+        curve = ncc_curve(f[None, sl], h[None, sl], vf[None, sl], vh[None, sl], reach, min_overlap, opt.min_rows)
         curves.append(curve)
         if curve is not None:
             score[w] = np.nan_to_num(curve[1] * weight, nan=0.0) + prior

@@ -76,16 +76,25 @@ def test_penobscot_fault_points_are_at_their_traces_cdp(penobscot_faults):
     assert "surfaces_tsurf" not in job.written  # a line's faults are curves: sticks only
 
 
-@pytest.mark.slow  # the demo cube (128^3) traced, and a horizon tracked in it: about 40 s on 2 shared cores
-def test_demo_faults_interchange(tmp_path):
-    """The demo cube has no coordinates: every interchange file says inline / crossline units; the TSurf read back
-    by xtgeo is the faults.vtp mesh, the sticks read back hold every fault point."""
+# The demo cube (128^3) traced and a horizon tracked in it (50 s under load): `python benchmarks/fault_blocks.py --only
+# demo_interchange --check`; here a smaller cube written as the demo is (SEG-Y without coordinates, lines from 1, 4 ms)
+SMALL = (48, 56, 48)
+
+
+@pytest.mark.slow  # a 48 x 56 x 48 cube traced and a horizon tracked in it
+def test_faults_interchange_without_coordinates(tmp_path):
+    """A cube without coordinates (as the demo's): every interchange file says inline / crossline units; the TSurf
+    read back by xtgeo is the faults.vtp mesh, the sticks read back hold every fault point."""
     import pyvista as pv
     import xtgeo
 
+    from seismo3d.data.synthetic import synthetic_cube
     from seismo3d.jobs.faults import run_faults_job
 
-    job = run_faults_job(None, tmp_path / "demo", demo=True, progress=False)
+    src = tmp_path / "cube.sgy"
+    segyio.tools.from_array3D(str(src), synthetic_cube(SMALL, seed=0).cube.astype(np.float32), format=5, dt=4000)
+    job = run_faults_job(src, tmp_path / "faults", progress=False)
+    assert job.n_faults > 0
     points = _rows(job.written["points"])
     assert {r["xy_unit"] for r in points} == {"inline/crossline"}
     assert all(float(r["x"]) == float(r["inline"]) and float(r["y"]) == float(r["crossline"]) for r in points)
@@ -107,18 +116,18 @@ def test_demo_faults_interchange(tmp_path):
         assert_allclose(surf.vertices[:, :2], np.round(surf.vertices[:, :2]))
         assert_allclose(surf.vertices[:, 2] % 4.0, 0.0, atol=1e-3)
     assert n_vertices == vtp.n_points and n_triangles == vtp.n_cells
-    # a horizon of the demo cube as IRAP / ZMAP+ grids (unrotated, X / Y = line numbers), read back by xtgeo
+    # a horizon of the cube as IRAP / ZMAP+ grids (unrotated, X / Y = line numbers), read back by xtgeo
     from seismo3d.jobs.horizon import run_horizon_job
 
-    demo = job.written["input"]
-    horizon = run_horizon_job(demo, [_peak_seed(demo, 64, 64)], tmp_path / "h.txt", faults=False, maps=True,
-                              progress=False)
+    n_il, n_xl = SMALL[:2]
+    horizon = run_horizon_job(src, [_peak_seed(src, n_il // 2, n_xl // 2)], tmp_path / "h.txt", faults=False,
+                              maps=True, progress=False)
     rows = np.loadtxt(tmp_path / "h.txt", ndmin=2)
-    truth = np.full((128, 128), np.nan)
+    truth = np.full((n_il, n_xl), np.nan)
     truth[rows[:, 0].astype(int) - 1, rows[:, 1].astype(int) - 1] = rows[:, 2]
     for fmt in ("irap_ascii", "irap_binary", "zmap"):
         surf = xtgeo.surface_from_file(horizon.maps[fmt])
-        assert (surf.ncol, surf.nrow, surf.xori, surf.yori, surf.rotation) == (128, 128, 1.0, 1.0, 0.0)
+        assert (surf.ncol, surf.nrow, surf.xori, surf.yori, surf.rotation) == (n_il, n_xl, 1.0, 1.0, 0.0)
         values = np.ma.filled(surf.values, np.nan)
         assert np.array_equal(np.isnan(values), np.isnan(truth))
         assert_allclose(values, truth, atol=5e-4, equal_nan=True)  # the text rows' 3 decimals

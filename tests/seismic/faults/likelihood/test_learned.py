@@ -19,12 +19,11 @@ from seismo3d.seismic import evaluate_faults, fault_labels, trace_faults
 from seismo3d.seismic.faults import FaultTracingOptions
 from seismo3d.seismic.faults.likelihood import learned
 from seismo3d.seismic.faults.likelihood.learned import (
-    LearnedOptions, WEIGHTS_SHA256, amplitude_scale, fault_probability, learned_fault_likelihood, load_fault_network,
+    LearnedOptions, WEIGHTS_SHA256, fault_probability, learned_fault_likelihood, load_fault_network,
     orientation_from_likelihood,
 )
-from seismo3d.seismic.faults.likelihood.network import grid_halo
 from seismo3d.seismic.faults.likelihood.network import (
-    POOLING_MULTIPLE, RECEPTIVE_HALF, normalise_section, onnx_model, unet_forward,
+    RECEPTIVE_HALF, normalise_section, onnx_model, unet_forward,
 )
 
 CHECK = Path(__file__).parents[2] / "data" / "fault_unet_check.npz"  # tests/seismic/data
@@ -193,15 +192,12 @@ def test_training_smoke(tmp_path):
     assert tuned_record["init_weights_sha256"] == hashlib.sha256((out / "fault_unet.npz").read_bytes()).hexdigest()
 
 
-# slow: forced blocks, each network block reading most of the cube along its sections
+# slow: forced blocks, each network block reading most of the cube along its sections (4-11 s). The grid of
+# 0.7 (232 x 236 x 32) and the default's three grids (120 x 128 x 32), 70 s and 39 s, are asserted by
+# `python benchmarks/fault_blocks.py --only learned_blocks --check` (issue 58: a claim over 20 s leaves the suite)
 @pytest.mark.slow
 @pytest.mark.parametrize("resample, shape, block", [
     (1.0, (72, 80, 48), 64),  # the data's own grid: network blocks of 64 traces, halo 56 traces
-    # a grid of 0.7: network blocks of 80 network traces, origins off its pooling grid, the halo along the
-    # sections inside the cube at the end of block 0-80 and at the start of block 80-160 (of 163 and 166)
-    (0.7, (232, 236, 32), 96),
-    # the default's three grids (0.5, 0.7, 1), their mean: blocks of 48, 80 and 96 network traces
-    (LearnedOptions().resample, (120, 128, 32), 96),
 ])
 def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block):
     from seismo3d.seismic.faults.blocks.learned_blocks import chunked_learned_likelihood
@@ -227,20 +223,9 @@ def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block)
     assert np.abs(out["dip_deg"][:] - mem.dip_deg)[live].max() <= 0.5
 
 
-@pytest.mark.slow  # 57 CPU s (measured in the fast lane under load 12 on 2 cores)
-def test_a_block_on_the_whole_cubes_network_grid_equals_the_whole_cube():
-    # a block with the network grid's halo, its lateral origin away from 0 on both axes and not a multiple of the
-    # pooling grid on the network grid: its core equals the whole cube's probability up to float rounding
-    opt = LearnedOptions(resample=0.7)  # one grid below 1 (the default's mean of grids: the blocks test above)
-    cube = synthetic_cube((232, 236, 32), seed=4, noise=0.1).cube
-    scale = amplitude_scale(cube)
-    whole = fault_probability(cube, options=opt, scale=scale)
-    halo = grid_halo(RECEPTIVE_HALF, 0.7, POOLING_MULTIPLE)
-    i0, i1, j0, j1 = 100, 132, 107, 129
-    a0, b0 = i0 - halo, j0 - halo
-    assert a0 > 0 and b0 > 0 and i1 + halo < cube.shape[0] and j1 + halo < cube.shape[1]
-    block = fault_probability(cube[a0:i1 + halo, b0:j1 + halo], options=opt, scale=scale, origin=(a0, b0))
-    assert np.abs(block[i0 - a0:i1 - a0, j0 - b0:j1 - b0] - whole[i0:i1, j0:j1]).max() <= 1e-5
+# A block on the whole cube's network grid of 0.7 (its origin off the pooling grid) equal to the whole cube: 42 s,
+# asserted by `python benchmarks/fault_blocks.py --only network_grid --check`; the blocks above (grid 1) put their
+# origins off 0 too.
 
 
 @pytest.mark.parametrize("shape, limit", [((400, 400, 500), 10**9), ((1448, 1448, 512), 10**9)])

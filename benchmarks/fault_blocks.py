@@ -1,0 +1,376 @@
+"""The fault likelihood and the faults job by blocks equal them in memory: the claims too long for the suite (issue 58).
+
+Run: ``python benchmarks/fault_blocks.py [--only learned_blocks,network_grid,job_limit,segy_lazy,demo_blocks,
+demo_interchange] [--check]``
+
+Each section asserts what a test of the suite asserted before it moved here (each over ~20 s of a worker, so the
+suite keeps a smaller version of each claim, named below); ``--check`` exits 1 when one assertion failed, and the
+sections run on generated cubes (no data folder needed):
+
+- ``learned_blocks``: the learned likelihood by forced blocks equals it in memory on a grid of 0.7 (232 x 236 x 32,
+  blocks of 96) and on the default's three grids (120 x 128 x 32, blocks of 96): every step in more than one block,
+  the likelihood within 1e-5 except where rounding flips the min_dip mask (at most 3 samples), strike and dip within
+  0.5 deg where the likelihood is over 0.5 (from ``tests/seismic/faults/likelihood/test_learned.py``
+  ``test_blocks_equal_the_in_memory_likelihood``, which keeps the data's own grid, 72 x 80 x 48);
+- ``network_grid``: a block with the 0.7 grid's halo, its origin off the pooling grid, equals the whole cube's
+  probability within 1e-5 (``test_a_block_on_the_whole_cubes_network_grid_equals_the_whole_cube``);
+- ``job_limit``: the faults job on a 192 x 192 x 64 cube under a limit between the smallest blocks' need and the
+  in-memory need (150 MiB beyond the process): block by block, likelihood within 1e-5 and votes within 1e-6 of the
+  in-memory run, the same summary and points, reused when run again; under 130 MiB: the same faults, the same eleven
+  files (``tests/jobs/test_faults_chunked.py``, which keeps a 48 x 56 x 40 cube with the blocks forced);
+- ``segy_lazy``: a 192 x 160 x 64 crossline-sorted SEG-Y cube over the limit read block by block, its likelihood
+  equal to the in-memory one, its volumes written as SEG-Y with the input's headers (``test_segy_cube_is_read_lazily``,
+  which keeps a 40 x 48 x 40 SEG-Y cube with the blocks forced);
+- ``demo_blocks``: the 128^3 demo by forced blocks writes every file byte-identical to the in-memory run's (the
+  picture and run.json aside), run.json with each step's seconds
+  (``test_the_demo_by_blocks_writes_what_it_writes_in_memory``);
+- ``demo_interchange``: the demo's interchange files in inline / crossline units, its TSurf read back by xtgeo equal to
+  faults.vtp, its sticks holding every fault point, a horizon's IRAP / ZMAP+ grids equal to its text rows
+  (``tests/jobs/test_interchange.py`` ``test_demo_faults_interchange``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import csv
+import io
+import json
+import logging
+import pathlib
+import sys
+import tempfile
+import time
+import traceback
+import warnings
+
+import numpy as np
+
+from seismo3d.data.synthetic import synthetic_cube
+
+
+def _rows(path):
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+class _Log(logging.Handler):
+    """The seismo3d logger's messages at INFO, as pytest's caplog gathers them."""
+
+    def __init__(self):
+        super().__init__(logging.INFO)
+        self.messages = []
+
+    def emit(self, record):
+        self.messages.append(record.getMessage())
+
+    @property
+    def text(self):
+        return "\n".join(self.messages)
+
+
+@contextlib.contextmanager
+def _log():
+    logger = logging.getLogger("seismo3d")
+    handler, level = _Log(), logger.level
+    logger.addHandler(handler)
+    logger.setLevel(logging.INFO)
+    try:
+        yield handler
+    finally:
+        logger.removeHandler(handler)
+        logger.setLevel(level)
+
+
+def write_segy_cube(path, cube, *, sorting="inline", fmt=5):
+    """The suite's ``write_segy_cube`` fixture (tests/conftest.py): inlines from 101, crosslines from 20 every 2nd,
+    4 ms, CDP X / Y in centimetres with coordinate scalar -100."""
+    import segyio
+
+    n_il, n_xl, ns = cube.shape
+    spec = segyio.spec()
+    spec.format = fmt
+    spec.samples = np.arange(ns) * 4.0
+    spec.sorting = 2 if sorting == "inline" else 1
+    spec.ilines, spec.xlines = np.arange(101, 101 + n_il), np.arange(20, 20 + 2 * n_xl, 2)
+    order = ([(i, j) for i in range(n_il) for j in range(n_xl)] if sorting == "inline"
+             else [(i, j) for j in range(n_xl) for i in range(n_il)])
+    with segyio.create(str(path), spec) as f:
+        f.text[0] = segyio.tools.wrap("C 1 seismo3d generated cube")
+        for t, (i, j) in enumerate(order):
+            f.header[t] = {segyio.su.iline: 101 + i, segyio.su.xline: 20 + 2 * j, segyio.su.scalco: -100,
+                           segyio.su.cdpx: 60_500_000 + 2500 * i + 7 * j, segyio.su.cdpy: 607_300_000 + 2500 * j}
+            f.trace[t] = cube[i, j]
+        f.bin.update(hdt=4000, hns=ns)
+    return path
+
+
+def learned_blocks(tmp: pathlib.Path) -> None:
+    from seismo3d.seismic.blocks.options import ChunkOptions
+    from seismo3d.seismic.faults.blocks.learned_blocks import chunked_learned_likelihood
+    from seismo3d.seismic.faults.likelihood.learned import LearnedOptions, learned_fault_likelihood
+
+    for k, (resample, shape, block) in enumerate([
+        # a grid of 0.7: network blocks of 80 network traces, origins off its pooling grid, the halo along the
+        # sections inside the cube at the end of block 0-80 and at the start of block 80-160 (of 163 and 166)
+        (0.7, (232, 236, 32), 96),
+        # the default's three grids (0.5, 0.7, 1), their mean: blocks of 48, 80 and 96 network traces
+        (LearnedOptions().resample, (120, 128, 32), 96),
+    ]):
+        cube = synthetic_cube(shape, seed=2, noise=0.1).cube
+        opt = LearnedOptions(resample=resample, min_grid_samples=0)  # every grid, on traces of 32 samples too
+        mem = learned_fault_likelihood(cube, options=opt)
+        run = chunked_learned_likelihood(cube, tmp / f"l{k}.zarr", options=opt,
+                                         chunking=ChunkOptions(block=block, scheduler="synchronous"))
+        steps = [f"network_{d}_{g}" for g in range(len(opt.resample)) for d in ("inline", "crossline")]
+        assert set(run.blocks_computed) == set(steps) | {"orientation"}, run.blocks_computed
+        assert min(run.blocks_computed[step] for step in steps + ["orientation"]) > 1, run.blocks_computed
+        out = run.open()
+        # equal up to float rounding, except where the dip sits on min_dip and rounding flips the dip mask (1 sample
+        # of 1.75 M at resample 0.7, its dip 40.0015 deg)
+        diff = np.abs(out["likelihood"][:] - mem.likelihood)
+        on_the_mask_edge = np.abs(mem.dip_deg - opt.min_dip) <= 0.01
+        print(f"  resample {resample}, {shape}: likelihood diff off the mask edge "
+              f"{diff[~on_the_mask_edge].max():.2e}, {np.count_nonzero(diff > 1e-5)} samples over 1e-5")
+        assert diff[~on_the_mask_edge].max() <= 1e-5 and np.count_nonzero(diff > 1e-5) <= 3
+        live = mem.likelihood > 0.5  # where there is a fault, its orientation is the same
+        strike = np.abs(out["strike_deg"][:] - mem.strike_deg)[live]
+        assert np.minimum(strike, 360 - strike).max() <= 0.5
+        assert np.abs(out["dip_deg"][:] - mem.dip_deg)[live].max() <= 0.5
+
+
+def network_grid(tmp: pathlib.Path) -> None:
+    from seismo3d.seismic.faults.likelihood.learned import LearnedOptions, amplitude_scale, fault_probability
+    from seismo3d.seismic.faults.likelihood.network import POOLING_MULTIPLE, RECEPTIVE_HALF, grid_halo
+
+    # a block with the network grid's halo, its lateral origin away from 0 on both axes and not a multiple of the
+    # pooling grid on the network grid: its core equals the whole cube's probability up to float rounding
+    opt = LearnedOptions(resample=0.7)
+    cube = synthetic_cube((232, 236, 32), seed=4, noise=0.1).cube
+    scale = amplitude_scale(cube)
+    whole = fault_probability(cube, options=opt, scale=scale)
+    halo = grid_halo(RECEPTIVE_HALF, 0.7, POOLING_MULTIPLE)
+    i0, i1, j0, j1 = 100, 132, 107, 129
+    a0, b0 = i0 - halo, j0 - halo
+    assert a0 > 0 and b0 > 0 and i1 + halo < cube.shape[0] and j1 + halo < cube.shape[1]
+    block = fault_probability(cube[a0:i1 + halo, b0:j1 + halo], options=opt, scale=scale, origin=(a0, b0))
+    diff = np.abs(block[i0 - a0:i1 - a0, j0 - b0:j1 - b0] - whole[i0:i1, j0:j1]).max()
+    print(f"  block core against the whole cube: {diff:.2e}")
+    assert diff <= 1e-5
+
+
+def job_limit(tmp: pathlib.Path) -> None:
+    import zarr
+
+    from seismo3d.jobs.faults import run_faults_job
+    from seismo3d.seismic.faults.blocks.scan_blocks import resident_memory
+
+    # in memory 216 MiB beyond the process (in_memory_bytes); the smallest blocks of the learned likelihood ~92 MiB
+    # and of the surfaces less (minimum_memory_limit): a 128^3 cube leaves no limit between the two
+    cube_npy = tmp / "cube.npy"
+    np.save(cube_npy, synthetic_cube((192, 192, 64), seed=2).cube.astype(np.float32))
+    in_memory = run_faults_job(cube_npy, tmp / "mem", memory_limit=64 << 30, progress=False).written
+
+    # beyond the limit: below the in-memory run's need, above the smallest blocks'
+    limit = resident_memory() + (150 << 20)
+    with _log() as caplog:
+        written = run_faults_job(cube_npy, tmp / "out", memory_limit=limit, progress=False).written
+    assert written["likelihood"].name == "fault_likelihood.zarr"
+    assert "block by block" in caplog.text
+    group = zarr.open_group(str(written["likelihood"]), mode="r")
+    reference = np.load(in_memory["likelihood"])
+    assert np.abs(group["likelihood"][:] - reference).max() <= 1e-5
+    traced = zarr.open_group(str(written["surfaces_zarr"]), mode="r")
+    assert np.abs(traced["votes"][:] - np.load(in_memory["votes"])).max() <= 1e-6
+    assert _rows(written["summary"]) == _rows(in_memory["summary"])
+    assert _rows(written["points"]) == _rows(in_memory["points"])
+    assert written["figure"].stat().st_size > 10_000
+    # run again into the same folder (overwrite=True: it holds this run's results): the finished likelihood is
+    # reused, the same faults come out
+    limit = resident_memory() + (150 << 20)
+    with _log() as caplog:
+        again = run_faults_job(cube_npy, tmp / "out", memory_limit=limit, overwrite=True, progress=False).written
+    assert "reusing the finished fault likelihood" in caplog.text
+    assert _rows(again["summary"]) == _rows(in_memory["summary"])
+    assert _rows(again["points"]) == _rows(in_memory["points"])
+
+    # a limit far below the in-memory surfaces' need (about 76 bytes a sample, 171 MiB here): smaller blocks, the
+    # same faults and throws
+    limit = resident_memory() + (130 << 20)  # the learned likelihood's blocks 64 traces wide (3 x 3)
+    written = run_faults_job(cube_npy, tmp / "tight", memory_limit=limit, progress=False).written
+    assert _rows(written["summary"]) == _rows(in_memory["summary"])
+    assert _rows(written["points"]) == _rows(in_memory["points"])
+    assert sorted(p.name for p in (tmp / "tight").iterdir()) == [
+        "fault_likelihood.zarr", "fault_points.csv", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
+        "fault_sticks_opendtect.txt",
+        "fault_summary.csv", "fault_surfaces.zarr", "fault_surfaces_gocad.ts", "faults.png", "faults.vtp", "run.json"]
+    print(f"  {len(_rows(in_memory['summary']))} faults, the same in memory, under 150 MiB, again and under 130 MiB")
+
+
+def segy_lazy(tmp: pathlib.Path) -> None:
+    """A SEG-Y cube over the limit: read block by block, its likelihood equal to the in-memory one, its volumes
+    written as SEG-Y with the input's headers."""
+    import dask.array  # noqa: F401 - imported by the block run: measured in the process before its limit is set
+    import zarr
+
+    from seismo3d.jobs.faults import run_faults_job
+    from seismo3d.seismic.faults.blocks.scan_blocks import resident_memory
+    from seismo3d.seismic.faults.likelihood.learned import LearnedOptions, learned_fault_likelihood
+    from seismo3d.seismic.io import open_segy, read_segy
+
+    cube = synthetic_cube((192, 160, 64), seed=5).cube.astype(np.float32)
+    path = write_segy_cube(tmp / "cube.sgy", cube, sorting="crossline")
+    # the in-memory run needs 180 MiB beside the process: blocks (the learned likelihood's 96 traces wide, 2 x 2)
+    with _log() as caplog:
+        written = run_faults_job(path, tmp / "out", memory_limit=resident_memory() + (170 << 20),
+                                 progress=False).written
+    assert "block by block" in caplog.text
+    group = zarr.open_group(str(written["likelihood"]), mode="r")
+    reference = learned_fault_likelihood(cube)  # the default likelihood
+    diff = np.abs(group["likelihood"][:] - reference.likelihood)
+    # equal up to float rounding, except where rounding flips the min_dip mask (the dip within 0.01 deg of it)
+    min_dip = LearnedOptions().min_dip
+    assert diff[np.abs(reference.dip_deg - min_dip) > 0.01].max() <= 1e-5 and np.count_nonzero(diff > 1e-5) <= 3
+    assert list(group["inline"][:]) == list(range(101, 293))
+    # the SEG-Y volumes, written block by block with the input's headers, as the in-memory run writes them
+    assert np.abs(read_segy(written["likelihood_segy"])[0] - reference.likelihood).max() <= 1e-5
+    assert np.array_equal(read_segy(written["dip_segy"])[0], group["dip_deg"][:])
+    traced = zarr.open_group(str(written["surfaces_zarr"]), mode="r")
+    assert np.array_equal(read_segy(written["votes_segy"])[0], traced["votes"][:])
+    with open_segy(written["strike_segy"]) as out, open_segy(path) as src:
+        assert out.sorting == src.sorting == "crossline" and out.format == 5
+        np.testing.assert_array_equal(out.cdp_x, src.cdp_x)
+    print(f"  likelihood diff off the mask edge {diff[np.abs(reference.dip_deg - min_dip) > 0.01].max():.2e}")
+
+
+def demo_blocks(tmp: pathlib.Path) -> None:
+    """The 128^3 demo by blocks (the decision made to say so, as `--memory-limit 500MB` does in a fresh process):
+    every file byte-identical to the in-memory run's (the picture aside: its grey scale is clipped from its three
+    slices when the cube is read lazily), and run.json holds the seconds of each step by either path."""
+    import seismo3d.seismic.blocks.options as block_options
+    from seismo3d.jobs.faults import run_faults_job
+
+    memory = run_faults_job(None, tmp / "memory", demo=True, progress=False)
+    fits = block_options.fits_in_memory
+    block_options.fits_in_memory = lambda *args, **kwargs: False
+    try:
+        with _log() as caplog:
+            blocks = run_faults_job(None, tmp / "blocks", demo=True, progress=False)
+    finally:
+        block_options.fits_in_memory = fits
+    assert "samples traced block by block" in caplog.text
+    assert blocks.written["likelihood"].name == "fault_likelihood.zarr"
+    compared = sorted(p.name for p in (tmp / "memory").iterdir() if p.name not in ("run.json", "faults.png"))
+    assert len(compared) == 13, compared  # the four SEG-Y volumes, the demo's cube and truth, faults.vtp, two CSV...
+    differ = [n for n in compared if (tmp / "memory" / n).read_bytes() != (tmp / "blocks" / n).read_bytes()]
+    assert differ == [], differ
+    by_blocks = ("fault likelihood", "ridges", "votes", "cells", "fault skins, throw and evidence")
+    for result, steps in ((memory, ("fault likelihood", "voting", "fault skins", "throw")), (blocks, by_blocks)):
+        seconds = json.loads(result.run_json.read_text())["stage_seconds"]
+        assert {"read input", "write outputs", *steps} <= set(seconds) and all(v >= 0 for v in seconds.values())
+    print(f"  {len(compared)} files byte-identical, {memory.n_faults} faults")
+
+
+def _peak_seed(path, il, xl):
+    import segyio
+
+    from seismo3d.seismic import reflector_picks
+
+    with segyio.open(str(path)) as f:
+        trace = f.iline[il][list(f.xlines).index(xl)]
+        samples = np.asarray(f.samples)
+    peaks, _ = reflector_picks(trace[None], polarity="peak")
+    k = int(round(float(peaks[len(peaks) // 2])))
+    return (il, xl, float(samples[k]))
+
+
+def demo_interchange(tmp: pathlib.Path) -> None:
+    """The demo cube has no coordinates: every interchange file says inline / crossline units; the TSurf read back
+    by xtgeo is the faults.vtp mesh, the sticks read back hold every fault point."""
+    import pyvista as pv
+    import xtgeo
+    from numpy.testing import assert_allclose
+
+    from seismo3d.jobs.faults import run_faults_job
+    from seismo3d.jobs.horizon import run_horizon_job
+    from seismo3d.seismic.io.fault_sticks import read_fault_sticks
+
+    job = run_faults_job(None, tmp / "demo", demo=True, progress=False)
+    points = _rows(job.written["points"])
+    assert {r["xy_unit"] for r in points} == {"inline/crossline"}
+    assert all(float(r["x"]) == float(r["inline"]) and float(r["y"]) == float(r["crossline"]) for r in points)
+    sticks = read_fault_sticks(job.written["sticks_opendtect"])
+    assert sticks.xy_unit == "inline/crossline" and sticks.n_nodes == len(points) and sticks.n_faults == job.n_faults
+    text = pathlib.Path(job.written["surfaces_tsurf"]).read_text()
+    assert 'AXIS_UNIT "none" "none" "ms"' in text
+    vtp = pv.read(job.written["surfaces"])
+    chunks = ["GOCAD TSurf 1" + c for c in text.split("GOCAD TSurf 1")[1:]]
+    assert len(chunks) == job.n_faults
+    n_vertices = n_triangles = 0
+    for chunk in chunks:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            surf = xtgeo.triangulated_surface_from_file(io.BytesIO(chunk.encode()), fformat="tsurf")
+        n_vertices += surf.num_vertices
+        n_triangles += surf.num_triangles
+        # vertices: (inline, crossline, time) of fault points: whole lines, times on the 4 ms samples
+        assert_allclose(surf.vertices[:, :2], np.round(surf.vertices[:, :2]))
+        assert_allclose(surf.vertices[:, 2] % 4.0, 0.0, atol=1e-3)
+    assert n_vertices == vtp.n_points and n_triangles == vtp.n_cells
+    # a horizon of the demo cube as IRAP / ZMAP+ grids (unrotated, X / Y = line numbers), read back by xtgeo
+    demo = job.written["input"]
+    horizon = run_horizon_job(demo, [_peak_seed(demo, 64, 64)], tmp / "h.txt", faults=False, maps=True,
+                              progress=False)
+    rows = np.loadtxt(tmp / "h.txt", ndmin=2)
+    truth = np.full((128, 128), np.nan)
+    truth[rows[:, 0].astype(int) - 1, rows[:, 1].astype(int) - 1] = rows[:, 2]
+    for fmt in ("irap_ascii", "irap_binary", "zmap"):
+        surf = xtgeo.surface_from_file(horizon.maps[fmt])
+        assert (surf.ncol, surf.nrow, surf.xori, surf.yori, surf.rotation) == (128, 128, 1.0, 1.0, 0.0)
+        values = np.ma.filled(surf.values, np.nan)
+        assert np.array_equal(np.isnan(values), np.isnan(truth))
+        assert_allclose(values, truth, atol=5e-4, equal_nan=True)  # the text rows' 3 decimals
+    print(f"  {job.n_faults} faults, {n_vertices} TSurf vertices, {n_triangles} triangles; horizon grids 128 x 128")
+
+
+SECTIONS = {
+    "learned_blocks": learned_blocks,
+    "network_grid": network_grid,
+    "job_limit": job_limit,
+    "segy_lazy": segy_lazy,
+    "demo_blocks": demo_blocks,
+    "demo_interchange": demo_interchange,
+}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", default=",".join(SECTIONS), help="sections, comma-separated (default: all)")
+    ap.add_argument("--check", action="store_true", help="exit 1 when an assertion of a section failed")
+    args = ap.parse_args(argv)
+    names = args.only.split(",")
+    unknown = [n for n in names if n not in SECTIONS]
+    if unknown:
+        ap.error(f"unknown section(s) {', '.join(unknown)}: {', '.join(SECTIONS)}")
+    results = []
+    for name in names:
+        print(f"{name}:", flush=True)
+        start = time.perf_counter()
+        with tempfile.TemporaryDirectory(prefix=f"fault_blocks_{name}_") as tmp:
+            try:
+                SECTIONS[name](pathlib.Path(tmp))
+                ok = True
+            except AssertionError:
+                traceback.print_exc()
+                ok = False
+        results.append((name, ok, time.perf_counter() - start))
+        print(f"  {'passed' if ok else 'FAILED'} in {results[-1][2]:.0f} s", flush=True)
+    print(f"\n{'section':18s} {'result':>6s} {'s':>6s}")
+    for name, ok, seconds in results:
+        print(f"{name:18s} {'passed' if ok else 'FAILED':>6s} {seconds:6.0f}")
+    failed = [name for name, ok, _ in results if not ok]
+    return 1 if failed and args.check else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

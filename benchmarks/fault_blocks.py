@@ -160,6 +160,7 @@ def network_grid(tmp: pathlib.Path) -> None:
 
 
 def job_limit(tmp: pathlib.Path) -> None:
+    import dask.array  # noqa: F401 - imported by the block run: in the process before its limit is measured
     import zarr
 
     from seismo3d.jobs.faults import run_faults_job

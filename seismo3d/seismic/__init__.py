@@ -77,7 +77,8 @@ if TYPE_CHECKING:
     from .faults.throw import fault_throw
     from .blocks import BlockRun, BlockRunOptions, SchedulerClient, run_block
     from .faults.blocks.learned_blocks import chunked_learned_likelihood
-    from .faults.blocks.scan_blocks import ChunkedLikelihood, chunked_fault_likelihood
+    from .faults.blocks.scan_blocks import chunked_fault_likelihood
+    from .faults.result import ChunkedLikelihood
     from .blocks.options import ChunkOptions
     from .faults.blocks.surface_blocks import ChunkedFaults, chunked_fault_surfaces
     from .blocks.windows import CubeWindow, cube_windows

@@ -147,30 +147,11 @@ def faulted_cube():
 
 @pytest.fixture(scope="session")
 def write_segy_cube():
-    """A function writing a (n_il, n_xl, ns) array as a 3D SEG-Y: inlines from 101, crosslines from 20 every 2nd,
-    4 ms; CDP X / Y (trace bytes 181 / 185) in centimetres with coordinate scalar -100; ``sorting`` 'inline' or
-    'crossline', sample format ``fmt`` (5 IEEE float, 1 IBM float). A cube with one inline or crossline is a 2D line."""
-    import segyio
+    """:func:`seismo3d.data.synthetic.write_segy_cube`: a (n_il, n_xl, ns) array as a 3D SEG-Y (inlines from 101,
+    crosslines from 20 every 2nd, 4 ms, CDP X / Y in centimetres with scalar -100)."""
+    from seismo3d.data.synthetic import write_segy_cube
 
-    def write(path, cube, *, sorting="inline", fmt=5):
-        n_il, n_xl, ns = cube.shape
-        spec = segyio.spec()
-        spec.format = fmt
-        spec.samples = np.arange(ns) * 4.0
-        spec.sorting = 2 if sorting == "inline" else 1
-        spec.ilines, spec.xlines = np.arange(101, 101 + n_il), np.arange(20, 20 + 2 * n_xl, 2)
-        order = ([(i, j) for i in range(n_il) for j in range(n_xl)] if sorting == "inline"
-                 else [(i, j) for j in range(n_xl) for i in range(n_il)])
-        with segyio.create(str(path), spec) as f:
-            f.text[0] = segyio.tools.wrap("C 1 seismo3d generated cube")
-            for t, (i, j) in enumerate(order):
-                f.header[t] = {segyio.su.iline: 101 + i, segyio.su.xline: 20 + 2 * j, segyio.su.scalco: -100,
-                               segyio.su.cdpx: 60_500_000 + 2500 * i + 7 * j, segyio.su.cdpy: 607_300_000 + 2500 * j}
-                f.trace[t] = cube[i, j]
-            f.bin.update(hdt=4000, hns=ns)
-        return path
-
-    return write
+    return write_segy_cube
 
 
 @pytest.fixture

@@ -57,7 +57,7 @@ from .._validation import check_int, check_positive
 from ..errors import InputError
 from .synthetic_geology import MIN_THROW, FaultPlane, draw_faults, draw_folding
 
-__all__ = ["FaultPlane", "SyntheticCube", "synthetic_cube", "ricker", "resampled_pair"]
+__all__ = ["FaultPlane", "SyntheticCube", "synthetic_cube", "ricker", "resampled_pair", "write_segy_cube"]
 
 _MIN_SIZE = 16
 
@@ -483,3 +483,46 @@ def _lanczos_resample(volume, to_volume, shape):
     inside = (pos[0] >= -0.5) & (pos[0] <= n0 - 0.5) & (pos[1] >= -0.5) & (pos[1] <= n1 - 0.5)
     out[~inside] = 0.0
     return out.reshape(shape).astype(np.float32)
+
+
+def write_segy_cube(path, cube, *, sorting: str = "inline", fmt: int = 5):
+    """Write a generated cube as a 3D SEG-Y with a survey's headers, for tests and benchmarks of SEG-Y inputs.
+
+    Inlines are numbered from 101, crosslines from 20 every 2nd, the sample interval is 4 ms, and CDP X / Y (trace
+    bytes 181 / 185) are in centimetres with coordinate scalar -100. A cube with one inline or crossline is a 2D line.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write (replaced if it exists).
+    cube : (n_inlines, n_xlines, n_samples) float ndarray
+        Amplitudes.
+    sorting : {'inline', 'crossline'}
+        Trace order of the file.
+    fmt : int
+        SEG-Y sample format code (5 IEEE float, 1 IBM float).
+
+    Returns
+    -------
+    path
+        As given.
+    """
+    import segyio
+
+    n_il, n_xl, ns = np.shape(cube)
+    spec = segyio.spec()
+    spec.format = fmt
+    spec.samples = np.arange(ns) * 4.0
+    spec.sorting = 2 if sorting == "inline" else 1
+    spec.ilines, spec.xlines = np.arange(101, 101 + n_il), np.arange(20, 20 + 2 * n_xl, 2)
+    order = ([(i, j) for i in range(n_il) for j in range(n_xl)] if sorting == "inline"
+             else [(i, j) for j in range(n_xl) for i in range(n_il)])
+    with segyio.create(str(path), spec) as f:
+        f.text[0] = segyio.tools.wrap("C 1 seismo3d generated cube")
+        for t, (i, j) in enumerate(order):
+            f.header[t] = {segyio.su.iline: 101 + i, segyio.su.xline: 20 + 2 * j, segyio.su.scalco: -100,
+                           segyio.su.cdpx: 60_500_000 + 2500 * i + 7 * j, segyio.su.cdpy: 607_300_000 + 2500 * j}
+            f.trace[t] = cube[i, j]
+        f.bin.update(hdt=4000, hns=ns)
+    return path
+

@@ -84,7 +84,7 @@ def _log():
 
 def learned_blocks(tmp: pathlib.Path) -> None:
     from seismo3d.seismic.blocks.options import ChunkOptions
-    from seismo3d.seismic.faults.blocks.learned_blocks import chunked_learned_likelihood
+    from seismo3d.seismic.faults.likelihood.learned_blocks import chunked_learned_likelihood
     from seismo3d.seismic.faults.likelihood.learned import LearnedOptions, learned_fault_likelihood
 
     for k, (resample, shape, block) in enumerate([
@@ -141,7 +141,7 @@ def job_limit(tmp: pathlib.Path) -> None:
     import zarr
 
     from seismo3d.jobs.faults import run_faults_job
-    from seismo3d.seismic.faults.blocks.scan_blocks import resident_memory
+    from seismo3d.seismic.blocks.memory import resident_memory
 
     # in memory 216 MiB beyond the process (in_memory_bytes); the smallest blocks of the learned likelihood ~92 MiB
     # and of the surfaces less (minimum_memory_limit): a 128^3 cube leaves no limit between the two
@@ -192,7 +192,7 @@ def segy_lazy(tmp: pathlib.Path) -> None:
     import zarr
 
     from seismo3d.jobs.faults import run_faults_job
-    from seismo3d.seismic.faults.blocks.scan_blocks import resident_memory
+    from seismo3d.seismic.blocks.memory import resident_memory
     from seismo3d.seismic.faults.likelihood.learned import LearnedOptions, learned_fault_likelihood
     from seismo3d.seismic.io import open_segy, read_segy
 

@@ -23,7 +23,7 @@ import numpy as np
 import zarr
 
 from seismo3d.data.synthetic import synthetic_cube
-from seismo3d.seismic.faults.blocks import learned_blocks as lb
+from seismo3d.seismic.faults.likelihood import learned_blocks as lb
 from seismo3d.seismic.faults.likelihood.learned import (
     LearnedOptions, amplitude_scale, fault_probability, orientation_from_likelihood,
 )
@@ -55,7 +55,7 @@ def network_blocks(opt: LearnedOptions) -> None:
                 region = cube[a0:a1, b0:b1]
                 tracemalloc.start()
                 read = region.copy()  # the block as read
-                lb._network_block(read, block, axis, (a0, b0), array, opt, scale, f"{work}/marker.json")
+                lb._network_block(read, (a0, b0), block, axis, array, opt, factor, scale, f"{work}/marker.json")
                 _, peak = tracemalloc.get_traced_memory()
                 tracemalloc.stop()
                 del read

@@ -4,8 +4,8 @@ Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000]
 [--only equal,threads,surfaces,distributed,distributed-inprocess,memory,memory_surfaces] [--keep DIR]``
 
 1. equal: a 256^3 generated faulted cube, in memory (:func:`~seismo3d.seismic.trace_faults`) and chunked
-   (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` then
-   :func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`, 64-trace blocks): the largest
+   (:func:`~seismo3d.seismic.faults.likelihood.scan_blocks.chunked_fault_likelihood` then
+   :func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces`, 64-trace blocks): the largest
    likelihood difference, strike / dip differences, votes difference, and the faults (count, sizes, the same samples,
    throws).
 2. threads / distributed: a generated cube of ``--shape`` (default 1448 x 1448 x 512 float32 = 4.29 GB) written as
@@ -22,7 +22,7 @@ Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000]
    summed proportional set size (PSS, every 1 s; shared pages split between the processes that share them: the
    memory the machine gives the run). Seconds per GB of input samples (1e9 bytes).
    surfaces: then the fault surfaces of that cube
-   (:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces` on the threaded run's likelihood, same
+   (:func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces` on the threaded run's likelihood, same
    memory limit), same sampling. Its fault cells (the thinned faults linked into skins in memory, ~1 % of the samples
    here) may need more than the limit: the run then refuses after its block steps, and the benchmark runs it again with
    ``--link-memory-limit`` (the blocks resumed, the linking done); the peaks of both parts are printed.
@@ -145,7 +145,7 @@ def _child(case: str, args: list) -> dict:
 
 def case_chunked(sgy: str, out: str, limit: int, scheduler: str) -> dict:
     from seismo3d.seismic.blocks.options import ChunkOptions
-    from seismo3d.seismic.faults.blocks.scan_blocks import chunked_fault_likelihood
+    from seismo3d.seismic.faults.likelihood.scan_blocks import chunked_fault_likelihood
     from seismo3d.seismic.io.lazy import open_lazy
 
     # tiles of 16 traces on the cluster: each worker plans for half the limit, and a scan strip holds a whole
@@ -177,7 +177,7 @@ def case_surfaces(sgy: str, likelihood: str, out: str, limit: int, link_limit: i
     the same run again under ``link_limit`` (every block resumed: only the cells, skins and throws computed). The
     peak resident memory of each part is sampled in this process."""
     from seismo3d.errors import InputError
-    from seismo3d.seismic.faults.blocks.surface_blocks import chunked_fault_surfaces
+    from seismo3d.seismic.faults.surfaces.blocks import chunked_fault_surfaces
     from seismo3d.seismic.blocks.options import ChunkOptions
     from seismo3d.seismic.io.lazy import open_lazy
 
@@ -236,9 +236,9 @@ def equal(work: Path) -> None:
     from seismo3d.seismic import fault_likelihood, trace_faults
     import zarr
 
-    from seismo3d.seismic.faults.blocks.surface_blocks import chunked_fault_surfaces
+    from seismo3d.seismic.faults.surfaces.blocks import chunked_fault_surfaces
     from seismo3d.seismic.blocks.options import ChunkOptions
-    from seismo3d.seismic.faults.blocks.scan_blocks import chunked_fault_likelihood
+    from seismo3d.seismic.faults.likelihood.scan_blocks import chunked_fault_likelihood
     from seismo3d.seismic.faults.result import FaultLikelihood
 
     cube = synthetic_cube((256, 256, 256), seed=0).cube.astype(np.float32)

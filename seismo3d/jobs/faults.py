@@ -182,9 +182,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     ------------------------
     A 3D SEG-Y cube, Zarr store (``seismo3d convert``) or ``.npy`` array that would need more than ``memory_limit``
     in memory is read lazily and traced block by block, with the same results as in memory: the fault likelihood,
-    strike and dip (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood`) into
+    strike and dip (:func:`~seismo3d.seismic.faults.likelihood.scan_blocks.chunked_fault_likelihood`) into
     ``fault_likelihood.zarr``, then the votes, thinned faults, skins and throws
-    (:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`) into ``fault_surfaces.zarr`` (arrays
+    (:func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces`) into ``fault_surfaces.zarr`` (arrays
     ``likelihood``, ``votes``, ``thin``; both opened by ``xarray.open_zarr``), then the same ``faults.vtp``, CSV
     files and picture as in memory (the picture reads only its three slices). Both stores are resumable (an
     interrupted run started again with the same arguments skips the finished blocks) and reused when finished. For

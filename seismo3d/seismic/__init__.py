@@ -76,11 +76,11 @@ if TYPE_CHECKING:
     from .faults.surfaces.ridges import fault_labels
     from .faults.throw import fault_throw
     from .blocks import BlockRun, BlockRunOptions, SchedulerClient, run_block
-    from .faults.blocks.learned_blocks import chunked_learned_likelihood
-    from .faults.blocks.scan_blocks import chunked_fault_likelihood
+    from .faults.likelihood.learned_blocks import chunked_learned_likelihood
+    from .faults.likelihood.scan_blocks import chunked_fault_likelihood
     from .faults.result import ChunkedLikelihood
     from .blocks.options import ChunkOptions
-    from .faults.blocks.surface_blocks import ChunkedFaults, chunked_fault_surfaces
+    from .faults.surfaces.blocks import ChunkedFaults, chunked_fault_surfaces
     from .blocks.windows import CubeWindow, cube_windows
     from .horizons import (
         CycleCut, FaultCrossings, Horizon, TrackingOptions, autotrack, fill_horizon, reliable_throw, track_horizon,

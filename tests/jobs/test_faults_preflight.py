@@ -12,12 +12,12 @@ from typer.testing import CliRunner
 
 import seismo3d.seismic.blocks.options as block_options
 import seismo3d.jobs.faults as job
-import seismo3d.seismic.faults.blocks.preflight as preflight
+import seismo3d.seismic.faults.preflight as preflight
 import seismo3d.seismic.faults.pipeline as pipeline
 from seismo3d.cli import app
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import UnsupportedDataError
-from seismo3d.seismic.faults.blocks.preflight import CubeSample
+from seismo3d.seismic.faults.preflight import CubeSample
 
 runner = CliRunner()
 

@@ -6,8 +6,11 @@ skips the blocks whose markers exist; with another manifest it is refused, so an
 completed with the blocks of another. Blocks are dask delayed tasks run on the local threaded scheduler, one thread
 (``'synchronous'``), or a ``dask.distributed`` cluster given by its address, with progress per finished block.
 
-The blocks are planned once, before the run, from the steps' declarations (:class:`BlockStep`: whether a step maps,
-reduces or gathers, its halo, the bytes of a block) and the memory limit (:func:`block_budget`, :func:`plan_steps`).
+The blocks are planned once, before the run, from the steps' declarations and the memory limit
+(:mod:`~seismo3d.seismic.blocks.plan`); :meth:`BlockRun.run_step` runs a declared step
+(:class:`~seismo3d.seismic.blocks.plan.BlockStep`) over its blocks: the blocks finished by an earlier run skipped,
+each other block read with the step's halo from the input cube (or from the run's stores by the step's function),
+its function called on it as a dask task, its marker written by the function after its data.
 """
 
 from __future__ import annotations
@@ -15,72 +18,21 @@ from __future__ import annotations
 import ctypes
 import ctypes.util
 import json
-import math
 import os
 import pathlib
 import sys
 import time
 import uuid
-from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
 
 from ..._atomic import atomic_path
 from ..._progress import LOGGER, progress_steps
 from ...errors import EarlierStoresError, InputError
+from .plan import BlockStep, around, usable_cores
 
-__all__ = ["BlockRun", "BlockStep", "SchedulerClient", "MEMORY_HEADROOM", "block_budget", "kernel_threads",
-           "largest_block", "lateral_blocks", "limit_for_blocks", "plan_steps", "release_memory", "run_block",
-           "serial_step_blocks", "trace_cube", "write_marker"]
-
-# Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
-# for the allocator's fragmentation and the reads in flight (a chunked likelihood run peaked at 1.54 GB under a
-# 1.4 GB limit without it).
-MEMORY_HEADROOM = 0.8
-
-
-def block_budget(limit: int, baseline: int, workers: int) -> int:
-    """Bytes one worker's block may plan for under a memory limit: the limit less the process itself, times
-    :data:`MEMORY_HEADROOM`, shared by the workers. Both likelihoods (scan and learned) and the fault surfaces plan
-    with it; :func:`limit_for_blocks` is its inverse.
-
-    Parameters
-    ----------
-    limit : int
-        Memory limit, bytes.
-    baseline : int
-        Bytes the process holds before its blocks (:func:`~seismo3d.seismic.blocks.memory.worker_baseline`).
-    workers : int
-        Blocks computed at once (>= 1).
-
-    Returns
-    -------
-    int
-        Bytes; negative when the baseline is above the limit (no block fits).
-    """
-    return int((int(limit) - int(baseline)) * MEMORY_HEADROOM) // int(workers)
-
-
-def limit_for_blocks(block_bytes: int, baseline: int, workers: int) -> int:
-    """The smallest memory limit whose :func:`block_budget` holds a block of ``block_bytes`` per worker.
-
-    Parameters
-    ----------
-    block_bytes : int
-        Bytes of one block at its step's peak.
-    baseline : int
-        Bytes the process holds before its blocks.
-    workers : int
-        Blocks computed at once (>= 1).
-
-    Returns
-    -------
-    int
-        Bytes: ``baseline + ceil(block_bytes * workers / MEMORY_HEADROOM)``.
-    """
-    return int(baseline) + math.ceil(int(block_bytes) * int(workers) / MEMORY_HEADROOM)
-
+__all__ = ["BlockRun", "SchedulerClient", "kernel_threads", "release_memory", "run_block", "trace_cube",
+           "write_marker"]
 
 # glibc's malloc options (malloc.h): allocations above M_MMAP_THRESHOLD are mapped and unmapped on their own, so a
 # freed block's memory goes back to the system at once; setting it also stops glibc raising the threshold as large
@@ -113,142 +65,6 @@ def release_memory() -> None:
     libc.malloc_trim(0)
 
 
-def largest_block(tile: int, cap: int, fits) -> int:
-    """The largest multiple of ``tile`` up to ``cap`` for which ``fits(size)`` holds (``tile`` at least).
-
-    Parameters
-    ----------
-    tile : int
-        Traces per side of a chunk; blocks are whole chunks.
-    cap : int
-        Largest size considered, traces.
-    fits : callable
-        ``fits(size) -> bool``: whether a block of ``size`` traces a side fits the memory budget.
-
-    Returns
-    -------
-    int
-    """
-    size = tile
-    while size + tile <= cap and fits(size + tile):
-        size += tile
-    return size
-
-
-STEP_KINDS = ("map", "reduce", "gather")
-
-
-@dataclass(frozen=True)
-class BlockStep:
-    """A step of a run by blocks, declared with what the executor needs to plan it; what the step computes on a
-    block is its caller's.
-
-    Attributes
-    ----------
-    name : str
-        The step's name (its key in the plan, its markers' prefix).
-    kind : {'map', 'reduce', 'gather'}
-        ``'map'``: each block writes its core of an output; ``'reduce'``: each block returns a small statistic
-        combined over the blocks (sums, a histogram, a range); ``'gather'``: each block returns a sparse list
-        gathered in memory (seed candidates, cells). A step may also return what a later step reduces or gathers
-        (its ``kind`` names what it is planned for).
-    halo : int
-        Traces read on each lateral side of a block's core.
-    block_bytes : callable
-        ``block_bytes(side) -> int``: bytes at the step's peak for a block of ``side`` traces a side (its halo
-        included), the model of the step's arrays.
-    cap : int
-        Largest side considered, traces.
-    fixed : int, optional
-        A side forced by the caller (``ChunkOptions.block`` or ``strip``): used as is, and refused by the caller
-        when it does not fit.
-    """
-
-    name: str
-    kind: str
-    halo: int
-    block_bytes: Callable[[int], int]
-    cap: int
-    fixed: int | None = None
-
-    def __post_init__(self):
-        if self.kind not in STEP_KINDS:
-            raise InputError(f"BlockStep(kind=...) must be one of {', '.join(STEP_KINDS)}; got {self.kind!r}")
-
-
-def plan_steps(steps, *, tile: int, budget: int) -> dict:
-    """The side of each step's blocks: its ``fixed`` side, else the largest multiple of ``tile`` up to its ``cap``
-    whose :attr:`BlockStep.block_bytes` fit ``budget`` (``tile`` at least: the caller refuses a step whose smallest
-    block does not fit, with its own message).
-
-    Parameters
-    ----------
-    steps : iterable of BlockStep
-    tile : int
-        Traces a side of a chunk; blocks are whole chunks.
-    budget : int
-        Bytes one worker's block may use (:func:`block_budget`).
-
-    Returns
-    -------
-    dict
-        ``{step name: side}``, traces, in the steps' order.
-    """
-    return {s.name: int(s.fixed) if s.fixed else largest_block(int(tile), int(s.cap),
-                                                                lambda b, s=s: s.block_bytes(b) <= budget)
-            for s in steps}
-
-
-def serial_step_blocks(step: BlockStep, *, limit: int, baseline: int, workers: int, scheduler,
-                       tile: int) -> tuple[int, int]:
-    """Blocks at once and their side for a step whose kernels are mostly serial (numpy, ``scipy.ndimage``): on the
-    local threaded scheduler, up to one block per core, each planned for its share of the memory.
-
-    Used by the learned likelihood's strike-and-dip step (Gaussian filters: 1.18 CPU s per wall-clock s on 2 cores;
-    on the 400 x 400 x 500 cube of ``benchmarks/fault_paths.py --only target`` under a 1 GB limit, 2 blocks of 64
-    traces at once took 25 s against 35 s for 1 block of 96). The ridges' kernels (structure tensor, ridges) are
-    parallel already (1.8 CPU s per s): 2 blocks of 64 at once took 48 s there against 46 s for one of 96.
-
-    More blocks at once use the cores the serial kernels leave idle, but each is smaller, so its halo costs more.
-    The count chosen minimises the step's time per core, ``((b + 2 halo) / b)**2 / n`` for ``n`` blocks of side
-    ``b`` at once (``b`` the largest that fits the budget of ``n`` workers), never below ``workers``.
-
-    Parameters
-    ----------
-    step : BlockStep
-        The step: its halo (traces on each side of a block), the bytes of a block of ``side`` traces a side (its
-        halo included) and the largest side (``cap``); its ``fixed`` side is not used (the caller's).
-    limit, baseline : int
-        Memory limit and the process's own bytes (:func:`block_budget`).
-    workers : int
-        Blocks at once asked for (the run's ``ChunkOptions.workers``).
-    scheduler : str or None
-        The run's scheduler: only the local threaded one (None, ``'threads'``) runs more blocks at once.
-    tile : int
-        Blocks are multiples of ``tile`` traces a side.
-
-    Returns
-    -------
-    (int, int)
-        Blocks at once and their side (``tile`` at least; the caller refuses a limit below what it needs).
-    """
-    cores = _usable_cores() if scheduler in (None, "threads") else 1
-    cap, halo, block_bytes = int(step.cap), int(step.halo), step.block_bytes
-    best = None
-    for n in range(int(workers), max(int(workers), cores) + 1):
-        budget = block_budget(limit, baseline, n)
-        side = largest_block(tile, cap, lambda b: block_bytes(b) <= budget)
-        if block_bytes(side) > budget:
-            break
-        cost = ((side + 2 * halo) / side) ** 2 / min(n, cores)
-        if best is None or cost < best[0] - 1e-9:
-            best = (cost, n, side)
-    if best is None:
-        return int(workers), largest_block(tile, cap, lambda b: block_bytes(b) <= block_budget(limit, baseline,
-                                                                                                  int(workers)))
-    return best[1], best[2]
-
-
 def write_marker(path, payload: dict) -> None:
     """Write a block's marker (its small JSON result) atomically: a marker that exists is complete.
 
@@ -261,13 +77,6 @@ def write_marker(path, payload: dict) -> None:
     """
     with atomic_path(str(path)) as tmp, open(tmp, "w") as fh:
         json.dump(payload, fh)
-
-
-def _usable_cores() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not Linux
-        return os.cpu_count() or 1
 
 
 def kernel_threads(client) -> dict:
@@ -288,7 +97,7 @@ def kernel_threads(client) -> dict:
         ``{host: threads}``, host as in the scheduler's worker information.
     """
     workers = client.scheduler_info(n_workers=-1)["workers"]
-    cores = client.run(_usable_cores)
+    cores = client.run(usable_cores)
     threads_on, cores_on = {}, {}
     for address, info in workers.items():
         host = info["host"]
@@ -476,13 +285,50 @@ class BlockRun:
                         len(done) + len(todo), len(todo))
         return todo, [json.loads(self.marker(step, b).read_text()) for b in done]
 
-    def each_block(self, step: str, label: str, fn, blocks, *args, workers: int | None = None) -> list:
-        """``fn(block, *args, marker)`` on every block of ``step`` not finished yet (:meth:`task`, :meth:`compute`,
-        ``workers`` blocks at once on the threaded scheduler, default the run's); the results of the computed
-        blocks, then those of the finished ones."""
-        todo, done = self.pending(step, blocks)
-        tasks = [self.task(fn, b, *args, str(self.marker(step, b))) for b in todo]
-        return self.compute(tasks, label, step, workers=workers) + done
+    def run_step(self, step: BlockStep, blocks, *args, source=None, workers: int | None = None) -> list:
+        """Run a declared step on every block of ``blocks`` not finished by an earlier run: its function as a dask
+        task per block (:meth:`task`), ``workers`` blocks at once on the threaded scheduler (default the run's).
+
+        Parameters
+        ----------
+        step : BlockStep
+            Its name (markers, seconds), function, label, halo or region, and whether its kernels take the worker's
+            share of the cores.
+        blocks : list of tuple
+            ``(i0, i1, j0, j1)`` of the step's blocks (a step on another grid: items 0 and 2 its first rows).
+        *args
+            Passed to the function after the block (and before the marker's path).
+        source : (n_inlines, n_xlines, n_samples) dask.array.Array, optional
+            The input cube: each block's region (``step.region``, default the block grown by ``step.halo``) is
+            read from it and passed first, with the region's origin, as ``function(window, origin, block, *args,
+            marker)``; without it ``function(block, *args, marker)`` reads its own inputs from the stores.
+        workers : int, optional
+
+        Returns
+        -------
+        list
+            The function's results for the blocks computed now, then the markers' payloads of the finished ones.
+        """
+        todo, done = self.pending(step.name, blocks)
+        tasks = []
+        for b in todo:
+            marker = str(self.marker(step.name, b))
+            if source is None:
+                tasks.append(self.task(step.function, b, *args, marker, threads=step.threads))
+                continue
+            a0, a1, b0, b1 = step.region(b) if step.region is not None else around(b, step.halo, source.shape)
+            tasks.append(self.task(step.function, source[a0:a1, b0:b1], (a0, b0), b, *args, marker,
+                                   threads=step.threads))
+        return self.compute(tasks, step.label or step.name, step.name, workers=workers) + done
+
+    def reduce_cube(self, parts) -> list:
+        """Whole-cube reductions (dask arrays of a few values, e.g. ``da.max(x)``) computed together on the run's
+        scheduler (the cluster's client, else dask's threads with the run's workers)."""
+        import dask
+
+        if self.client is not None:
+            return list(self.client.compute(list(parts), sync=True))
+        return list(dask.compute(*parts, scheduler="threads", num_workers=self.workers))
 
     def compute(self, tasks: list, label: str, step: str, *, workers: int | None = None) -> list:
         """Run delayed block tasks on the chosen scheduler (``workers`` at once on the threaded one, default the
@@ -521,13 +367,6 @@ class BlockRun:
             scheduler = "synchronous" if self.scheduler == "synchronous" else "threads"
             with _Count():
                 return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
-
-
-def lateral_blocks(shape, size0: int, size1: int) -> list:
-    """``(i0, i1, j0, j1)`` of the blocks of ``size0`` inlines by ``size1`` crosslines (every sample) that tile a cube
-    of ``shape``, inline-major."""
-    n0, n1 = shape[:2]
-    return [(i, min(i + size0, n0), j, min(j + size1, n1)) for i in range(0, n0, size0) for j in range(0, n1, size1)]
 
 
 def trace_cube(cube, what: str):

@@ -4,7 +4,7 @@ block.
 :func:`fits_in_memory` is the one decision every caller of :func:`~seismo3d.seismic.faults.trace_faults` shares (the
 ``faults`` and ``horizon --faults`` commands, the Python API): a cube whose in-memory run would need more than the
 memory limit leaves beside the process is traced block by block
-(:mod:`~seismo3d.seismic.faults.blocks.surface_blocks`).
+(:mod:`~seismo3d.seismic.faults.surfaces.blocks`).
 """
 
 from __future__ import annotations

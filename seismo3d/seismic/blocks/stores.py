@@ -3,8 +3,8 @@ assembled in ``OUTPUT.partial`` and renamed to ``OUTPUT`` only when every block 
 complete), and its coordinates.
 
 :class:`StoreRun` adds the stores to :class:`~seismo3d.seismic.blocks.executor.BlockRun` (markers, tasks, schedulers);
-what the blocks compute is the caller's (the fault runs by blocks: :mod:`seismo3d.seismic.faults.blocks.scan_blocks`,
-:mod:`seismo3d.seismic.faults.blocks.learned_blocks`, :mod:`seismo3d.seismic.faults.blocks.surface_blocks`).
+what the blocks compute is the caller's (the fault runs by blocks: :mod:`seismo3d.seismic.faults.likelihood.scan_blocks`,
+:mod:`seismo3d.seismic.faults.likelihood.learned_blocks`, :mod:`seismo3d.seismic.faults.surfaces.blocks`).
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from ..io.zarr_store import SEISMIC_CODEC, consolidate
 from .executor import BlockRun
 from .options import ChunkOptions
 
-__all__ = ["StoreRun", "write_coords"]
+__all__ = ["StoreRun", "read_sheared", "write_coords"]
 
 
 class StoreRun(BlockRun):
@@ -127,3 +127,36 @@ def write_coords(group, shape, coords) -> None:
         arr[:] = values
         if name == "sample" and unit:
             arr.attrs["units"] = unit
+
+
+def read_sheared(array, region, axis: int, tile: int) -> np.ndarray:
+    """A region of a stored ``(n0, n1, m)`` array in a layout with ``axis`` first and the other lateral axis last,
+    read tile row by tile row so that only one row is held twice.
+
+    Parameters
+    ----------
+    array : zarr.Array
+        ``(n0, n1, m)``.
+    region : (slice, slice)
+        Inlines and crosslines read (``start:stop``).
+    axis : {0, 1}
+        The lateral axis put first.
+    tile : int
+        Rows read at once along ``axis``.
+
+    Returns
+    -------
+    (n_axis, m, n_other) float32 ndarray
+    """
+    rows, cols = region
+    n_a = (rows.stop - rows.start) if axis == 0 else (cols.stop - cols.start)
+    n_b = (cols.stop - cols.start) if axis == 0 else (rows.stop - rows.start)
+    out = np.empty((n_a, array.shape[2], n_b), dtype=np.float32)
+    start = rows.start if axis == 0 else cols.start
+    for a in range(0, n_a, tile):
+        b = min(a + tile, n_a)
+        if axis == 0:
+            out[a:b] = array[start + a:start + b, cols].transpose(0, 2, 1)
+        else:
+            out[a:b] = array[rows, start + a:start + b].transpose(1, 2, 0)
+    return out

@@ -261,7 +261,7 @@ class LazyWindows:
 
 class StoredWindows:
     """Windows of a cube whose reflector slopes were computed beforehand (block by block, e.g. by
-    :func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`) and stored: each window reads exactly
+    :func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces`) and stored: each window reads exactly
     its traces of the amplitudes and of the two slope arrays, and nothing is computed or cached (memory: one window).
 
     Parameters

@@ -1,8 +1,8 @@
 """The refusals of fault tracing: data too small, not seismic amplitudes, or without lateral coherence.
 
 One function a check, called by every way a fault run goes: in memory (:func:`~seismo3d.seismic.faults.trace_faults`),
-block by block (:mod:`~seismo3d.seismic.faults.blocks.surface_blocks`) and on a sample of blocks
-(:mod:`~seismo3d.seismic.faults.blocks.preflight`). The warnings about NaN, dead and clipped samples are those of
+block by block (:mod:`~seismo3d.seismic.faults.surfaces.blocks`) and on a sample of blocks
+(:mod:`~seismo3d.seismic.faults.preflight`). The warnings about NaN, dead and clipped samples are those of
 :mod:`~seismo3d.seismic.faults.surfaces.dead_samples`.
 """
 

@@ -4,7 +4,7 @@ After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the ste
 command uses and returns a :class:`FaultInterpretation`: the checks and the likelihood, then the one sequence of
 steps of :mod:`~seismo3d.seismic.faults.steps`, on the whole array as one block
 (:class:`~seismo3d.seismic.faults.steps.ArrayRun`) or block by block into Zarr stores (:func:`trace_faults_by_blocks`,
-the checks before it in :mod:`~seismo3d.seismic.faults.blocks.preflight`); :func:`clean_traces` finds the dead
+the checks before it in :mod:`~seismo3d.seismic.faults.preflight`); :func:`clean_traces` finds the dead
 samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and
 writing results is the ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
 
@@ -27,16 +27,16 @@ from ...errors import EarlierStoresError, InputError, Seismo3dWarning
 from ..blocks.memory import in_memory_bytes, resident_memory
 from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..io.zarr_store import consolidate
-from .blocks.learned_blocks import chunked_learned_likelihood
-from .blocks.preflight import SampleOptions, check_block_run, judge_sample
-from .blocks.scan_blocks import chunked_fault_likelihood
-from .blocks.surface_blocks import chunked_fault_surfaces
 from .checks import check_amplitudes, check_size, no_coherence_message
 from .likelihood.learned import learned_fault_likelihood
+from .likelihood.learned_blocks import chunked_learned_likelihood
 from .likelihood.scan import fault_likelihood
+from .likelihood.scan_blocks import chunked_fault_likelihood
 from .options import LIKELIHOODS, FaultTracingOptions
 from .result import FaultInterpretation, FaultLikelihood
+from .preflight import SampleOptions, check_block_run, judge_sample
 from .steps import ArrayRun, faults_from_cells, surface_cells
+from .surfaces.blocks import chunked_fault_surfaces
 from .surfaces.dead_samples import CleanTraces, clean_traces, near_dead_samples
 
 # check_size, check_amplitudes, no_coherence_message and LIKELIHOODS are imported here by older callers
@@ -84,8 +84,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`: 160 MiB and 24 times its float32 size) is traced
     block by block (:func:`trace_faults_by_blocks`) into Zarr stores in ``blocks.work_dir``, with the same checks,
     warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of
-    blocks first (:meth:`~seismo3d.seismic.faults.blocks.preflight.SampleOptions.worth_sampling`) is refused from that
-    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.blocks.preflight.judge_sample`), on either path.
+    blocks first (:meth:`~seismo3d.seismic.faults.preflight.SampleOptions.worth_sampling`) is refused from that
+    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.preflight.judge_sample`), on either path.
 
     Parameters
     ----------
@@ -101,7 +101,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         Options of every step.
     likelihood : FaultLikelihood, optional
         The result of step 1 computed elsewhere with ``options.scan`` (e.g. block by block by
-        :func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood`), arrays of the data's shape; the
+        :func:`~seismo3d.seismic.faults.likelihood.scan_blocks.chunked_fault_likelihood`), arrays of the data's shape; the
         scan is then skipped.
     blocks : BlockRunOptions, optional
         How a cube is run: the memory limit (default half of the RAM), a forced choice between the run in memory and
@@ -200,10 +200,10 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
                            memory_limit: int, work_dir, scheduler=None, source: str = "cube", coords=None,
                            progress: bool = True) -> FaultInterpretation:
     """Trace the faults of a 3D cube block by block (called by :func:`trace_faults`): the checks before any block
-    (:func:`~seismo3d.seismic.faults.blocks.preflight.check_block_run`), the fault likelihood
-    (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` or the learned one) into
+    (:func:`~seismo3d.seismic.faults.preflight.check_block_run`), the fault likelihood
+    (:func:`~seismo3d.seismic.faults.likelihood.scan_blocks.chunked_fault_likelihood` or the learned one) into
     ``fault_likelihood.zarr`` (a finished likelihood of the same source is reused; an unfinished one resumes), the
-    fault surfaces (:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`) into
+    fault surfaces (:func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces`) into
     ``fault_surfaces.zarr``.
 
     Parameters

@@ -275,7 +275,7 @@ class FaultInterpretation:
     stores : dict of str to pathlib.Path
         Empty for a run in memory. For a cube traced block by block, the Zarr groups its arrays are read from:
         ``likelihood`` (fault likelihood, strike and dip of the scan) and ``surfaces``
-        (:class:`~seismo3d.seismic.faults.blocks.surface_blocks.ChunkedFaults`); the arrays above are then Zarr arrays.
+        (:class:`~seismo3d.seismic.faults.surfaces.blocks.ChunkedFaults`); the arrays above are then Zarr arrays.
     step_seconds : dict of str to float
         Wall time of each step, seconds, in the order they ran: in memory ``fault likelihood``, ``ridges``,
         ``voting``, ``thinning``, ``fault skins``, ``throw``, ``evidence``; by blocks ``fault likelihood`` (0 when
@@ -358,8 +358,8 @@ class FaultThrow:
 @dataclass(frozen=True, eq=False)
 class ChunkedLikelihood:
     """Result of a fault likelihood computed block by block into a Zarr group
-    (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood`,
-    :func:`~seismo3d.seismic.faults.blocks.learned_blocks.chunked_learned_likelihood`).
+    (:func:`~seismo3d.seismic.faults.likelihood.scan_blocks.chunked_fault_likelihood`,
+    :func:`~seismo3d.seismic.faults.likelihood.learned_blocks.chunked_learned_likelihood`).
 
     Attributes
     ----------

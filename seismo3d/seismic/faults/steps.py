@@ -6,7 +6,7 @@ the saturation refusal between them, and :func:`faults_from_cells` links the cel
 throws and keeps the faults the evidence supports. Two runs implement the steps:
 
 - :class:`ArrayRun`: the whole array as one block, in memory (2D or 3D);
-- ``_SurfaceRun`` of :mod:`~seismo3d.seismic.faults.blocks.surface_blocks`: block by block on dask into Zarr stores,
+- ``_SurfaceRun`` of :mod:`~seismo3d.seismic.faults.surfaces.blocks`: block by block on dask into Zarr stores,
   each block read with the halo of its step (a cube larger than memory).
 
 Both call the same step functions (:mod:`~seismo3d.seismic.faults.surfaces.ridges`,

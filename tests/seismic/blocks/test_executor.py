@@ -9,7 +9,8 @@ import numba
 import pytest
 
 from seismo3d.errors import InputError
-from seismo3d.seismic.blocks.executor import BlockRun, BlockStep, kernel_threads, plan_steps, run_block
+from seismo3d.seismic.blocks.executor import BlockRun, kernel_threads, run_block
+from seismo3d.seismic.blocks.plan import BlockStep, plan_steps
 
 
 def _kernel_thread_count(_block):
@@ -38,9 +39,9 @@ def test_block_tasks_share_the_cores_between_workers(tmp_path):
 
 
 def test_serial_step_blocks_trade_halo_for_idle_cores(monkeypatch):
-    from seismo3d.seismic.blocks import executor as blocks
+    from seismo3d.seismic.blocks import plan as blocks
 
-    monkeypatch.setattr(blocks, "_usable_cores", lambda: 2)
+    monkeypatch.setattr(blocks, "usable_cores", lambda: 2)
     mib = 1 << 20
 
     def block_bytes(side):  # 1 MiB per trace of a block with 9 traces of halo

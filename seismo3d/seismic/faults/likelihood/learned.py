@@ -362,7 +362,7 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
     -------
     float32 ndarray, the shape of ``small``
         Probability in [0, 1]; each section's from that section alone (the network is 2D), so a block of sections
-        needs halo along its sections only (:mod:`~seismo3d.seismic.faults.blocks.learned_blocks`).
+        needs halo along its sections only (:mod:`~seismo3d.seismic.faults.likelihood.learned_blocks`).
 
     Raises
     ------

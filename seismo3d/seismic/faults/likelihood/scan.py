@@ -240,7 +240,7 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     return FaultLikelihood(fl, strike, dip)
 
 
-# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.faults.blocks.scan_blocks): a
+# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.faults.likelihood.scan_blocks): a
 # block's result equals the whole cube's over the block when the block carries the halo each step needs.
 
 @dataclass(frozen=True)

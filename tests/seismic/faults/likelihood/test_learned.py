@@ -200,7 +200,7 @@ def test_training_smoke(tmp_path):
     (1.0, (72, 80, 48), 64),  # the data's own grid: network blocks of 64 traces, halo 56 traces
 ])
 def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block):
-    from seismo3d.seismic.faults.blocks.learned_blocks import chunked_learned_likelihood
+    from seismo3d.seismic.faults.likelihood.learned_blocks import chunked_learned_likelihood
     from seismo3d.seismic.blocks.options import ChunkOptions
 
     cube = synthetic_cube(shape, seed=2, noise=0.1).cube
@@ -232,7 +232,7 @@ def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block)
 def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
     # the network is 2D: a block of sections needs the receptive half of halo along them only, so the plan makes
     # them as long as the limit allows (the whole width: no halo) and only then stacks sections
-    from seismo3d.seismic.faults.blocks import learned_blocks
+    from seismo3d.seismic.faults.likelihood import learned_blocks
     from seismo3d.seismic.blocks.options import ChunkOptions
 
     opt = LearnedOptions()
@@ -283,7 +283,7 @@ def test_the_likelihood_of_several_grids_is_the_mean_of_each_grids():
 def test_grids_that_leave_the_traces_fewer_samples_than_the_receptive_half_are_not_run():
     # a 76-sample line (Great South Basin) on grids of 38, 53 and 76 samples: only its own grid; 80 samples (40, 56,
     # 80): 0.7 and 1; the 462 samples of an F3 inline: the three; the finest grid always, whatever the traces
-    from seismo3d.seismic.faults.blocks import learned_blocks
+    from seismo3d.seismic.faults.likelihood import learned_blocks
     from seismo3d.seismic.blocks.options import ChunkOptions
 
     opt = LearnedOptions()

@@ -19,15 +19,16 @@ inlines only. The steps (the output equals the in-memory
    each network grid is interpolated onto the block's samples (as in memory: the maximum before the interpolation)
    and the grids' are averaged in their order; its
    structure tensor gives strike and dip, written with the likelihood to the output Zarr group (``likelihood``,
-   ``strike_deg``, ``dip_deg``: what :func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`
+   ``strike_deg``, ``dip_deg``: what :func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces`
    reads, as from the scan's chunked run).
 
 Markers, resumption, the ``.partial`` output and the schedulers are those of
-:mod:`~seismo3d.seismic.faults.blocks.scan_blocks`.
+:mod:`~seismo3d.seismic.faults.likelihood.scan_blocks`.
 """
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import pathlib
@@ -37,23 +38,23 @@ import numpy as np
 
 from ...._options import resolve_options
 from ....errors import InputError
-from ...blocks.executor import (
-    BlockStep, SchedulerClient, block_budget, largest_block, lateral_blocks, limit_for_blocks, serial_step_blocks,
-    trace_cube, write_marker,
+from ...blocks.executor import SchedulerClient, trace_cube, write_marker
+from ...blocks.memory import default_memory_limit, worker_baseline
+from ...blocks.options import ChunkOptions
+from ...blocks.plan import (
+    BlockStep, block_budget, largest_block, lateral_blocks, limit_for_blocks, serial_step_blocks,
 )
-from ..likelihood.learned import (
+from ...blocks.stores import StoreRun, write_coords
+from ..result import ChunkedLikelihood
+from .learned import (
     LearnedOptions, amplitude_scale, cube_directions, direction_probability, grids_mean, orientation_from_likelihood,
     scale_subsample,
 )
-from ..result import ChunkedLikelihood
-from ...blocks.stores import StoreRun, write_coords
-from ...blocks.options import ChunkOptions
-from ...blocks.memory import default_memory_limit, worker_baseline
-from ..likelihood.network import (
+from .network import (
     POOLING_MULTIPLE, RECEPTIVE_HALF, anti_alias_sigma, from_network_grid, grid_size, to_network_grid,
 )
 
-__all__ = ["chunked_learned_likelihood", "learned_block_bytes"]
+__all__ = ["block_steps", "chunked_learned_likelihood", "learned_block_bytes"]
 
 # Network-grid traces a side of the chunks of the network work arrays; the network blocks are multiples of it (or the
 # whole width), so no two blocks write one chunk
@@ -124,23 +125,66 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * shape[2]
     plan = _plan(shape, opt, chunking, worker_baseline(chunking, input_chunk))
     out = pathlib.Path(output)
-    run = _Run(out, plan, opt, chunking, progress)
+    run = StoreRun(out, chunking, progress)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt))), "plan": plan,
                 "method": "learned, network blocks per direction"}
     earlier = run.earlier_plan(manifest)
     if earlier is not None:
-        run.plan = plan = dict(earlier)
+        plan = dict(earlier)
         manifest["plan"] = plan
-    run.start(manifest)
+    _start(run, manifest, plan)
+    *networks, orientation = block_steps(plan, opt)
     with SchedulerClient(chunking.scheduler) as client:
         run.client = client
-        scale = run.scale(x)
-        for k in range(len(plan["grids"])):
+        scale = _scale(run, x)
+        networks = iter(networks)
+        for g in plan["grids"]:
             for axis in cube_directions(opt):
-                run.network(x, scale, axis, k)
-        saturated = run.orientation(coords)
+                step = next(networks)
+                blocks = _network_blocks(g["network_shape"], *g["network_blocks"][_DIRECTION_NAMES[axis]], axis)
+                run.run_step(step, blocks, axis, str(run.work / step.name), opt, float(g["factor"]), scale, source=x)
+        results = run.run_step(orientation, lateral_blocks(plan["shape"], plan["block_orientation"],
+                                                           plan["block_orientation"]),
+                               plan, str(run.work), str(run.partial), opt, workers=plan["workers_orientation"])
+        saturated = _saturated_fraction(run, results, plan, coords)
     run.finish()
     return ChunkedLikelihood(out, shape, dict(run.computed), dict(run.resumed), saturated, dict(run.seconds))
+
+
+def block_steps(plan: dict, opt: LearnedOptions) -> tuple:
+    """The steps of :func:`chunked_learned_likelihood`, declared once, in their order: per network grid K and per
+    direction the network runs on, ``'network_inline_K'`` / ``'network_crossline_K'`` (blocks of the network grid
+    read from the cube with the receptive half of halo along the sections), then ``'orientation'`` (strike and dip on
+    square blocks with the tensor smoothing's halo, its likelihood reduced into the saturated fraction), each with its
+    block function; the network's block sizes and the orientation's are planned by :func:`_plan`.
+
+    Parameters
+    ----------
+    plan : dict
+        The run's plan (:func:`_plan`).
+    opt : LearnedOptions
+
+    Returns
+    -------
+    tuple of BlockStep
+    """
+    shape = tuple(plan["shape"])
+    steps = []
+    for k, g in enumerate(plan["grids"]):
+        factor = float(g["factor"])
+        for axis in cube_directions(opt):
+            name = _DIRECTION_NAMES[axis]
+            label = f"fault network on {name}s" + (f" (grid {factor:g})" if len(plan["grids"]) > 1 else "")
+            steps.append(BlockStep(f"network_{name}_{k}", "map", RECEPTIVE_HALF, function=_network_block, label=label,
+                                   region=functools.partial(_network_region, axis=axis, shape=shape, factor=factor)))
+    return (*steps, _orientation_step(shape, opt, plan["block_orientation"], plan["block_orientation"]))
+
+
+def _orientation_step(shape, opt: LearnedOptions, cap: int, fixed=None) -> BlockStep:
+    """Strike and dip on square blocks (the probability reduced into the saturated fraction)."""
+    nt = int(shape[2])
+    return BlockStep("orientation", "reduce", _orientation_halo(opt), lambda b: _orientation_block_bytes(b, nt, opt),
+                     cap, fixed, function=_orientation_block, label="fault orientation")
 
 
 def _network_shape(shape, factor: float) -> tuple:
@@ -224,7 +268,7 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
     Returns
     -------
     int
-        Bytes per worker: a ``memory_limit`` below :func:`~seismo3d.seismic.blocks.executor.limit_for_blocks` of it is
+        Bytes per worker: a ``memory_limit`` below :func:`~seismo3d.seismic.blocks.plan.limit_for_blocks` of it is
         refused by :func:`chunked_learned_likelihood`.
     """
     shape = tuple(int(n) for n in shape)
@@ -238,7 +282,7 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
 def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> dict:
     """The network blocks of each grid and direction (network traces, multiples of 16 or the whole width) and the
     strike-and-dip blocks (traces, multiples of the tile) under the memory limit, planned with
-    :func:`~seismo3d.seismic.blocks.executor.block_budget` as the scan's and the surfaces' blocks are."""
+    :func:`~seismo3d.seismic.blocks.plan.block_budget` as the scan's and the surfaces' blocks are."""
     nt = shape[2]
     tile = int(chunking.tile)
     halo_o = _orientation_halo(opt)
@@ -262,9 +306,7 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
             biggest = max(biggest, _largest_network_bytes(grid, *size, axis, shape, factor, batch))
         grids.append({"factor": factor, "network_shape": list(grid), "network_blocks": network})
 
-    # strike and dip: square blocks (the probability reduced into the saturated fraction)
-    orientation = BlockStep("orientation", "reduce", halo_o, lambda b: _orientation_block_bytes(b, nt, opt),
-                            min(cap, 256), chunking.block)
+    orientation = _orientation_step(shape, opt, min(cap, 256), chunking.block)
     if chunking.block:
         workers_o, block_o = int(chunking.workers), int(chunking.block)
     else:  # its kernels are mostly serial (scipy's Gaussian filters): blocks at once on the idle cores
@@ -279,67 +321,46 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
             "block_orientation": int(block_o), "workers_orientation": int(workers_o), "halo_orientation": halo_o}
 
 
-class _Run(StoreRun):
-    """One chunked learned-likelihood run: its steps."""
-
-    def __init__(self, out: pathlib.Path, plan: dict, opt: LearnedOptions, chunking: ChunkOptions, progress: bool):
-        super().__init__(out, chunking, progress)
-        self.plan, self.opt = plan, opt
-
-    def start(self, manifest: dict) -> None:
-        import zarr
-        self.start_output(manifest, tuple(self.plan["shape"]), self.plan["tile"], ())
-        c = self.plan["network_chunk"]
-        for k, g in enumerate(self.plan["grids"]):
-            grid = g["network_shape"]
-            for name in g["network_blocks"]:
-                path = self.work / f"network_{name}_{k}"
-                if not path.exists():
-                    zarr.create_array(str(path), shape=tuple(grid), chunks=(c, c, grid[2]), dtype="float32",
-                                      compressors=None, fill_value=0)
-
-    def scale(self, x) -> tuple:
-        def compute() -> list:
-            s0, s1 = scale_subsample(x.shape)
-            sample = np.asarray(x[::s0, ::s1, :].compute(), dtype=np.float32)
-            if not np.isfinite(sample).all():
-                raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
-                                 "faults")
-            return list(amplitude_scale(sample, subsample=False))
-
-        return tuple(self.saved("scale", compute))
-
-    def network(self, x, scale, axis: int, k: int) -> None:
-        p = self.plan
-        g = p["grids"][k]
-        name = _DIRECTION_NAMES[axis]
-        step = f"network_{name}_{k}"
-        factor = float(g["factor"])
-        todo, _ = self.pending(step, _network_blocks(g["network_shape"], *g["network_blocks"][name], axis))
-        tasks = []
-        for b in todo:
-            a0, a1, b0, b1 = _network_region(b, axis, p["shape"], factor)
-            tasks.append(self.task(_network_block, x[a0:a1, b0:b1, :], b, axis, (a0, b0), str(self.work / step),
-                                   self.opt, factor, scale, str(self.marker(step, b))))
-        label = f"fault network on {name}s" + (f" (grid {factor:g})" if len(p["grids"]) > 1 else "")
-        self.compute(tasks, label, step)
-
-    def orientation(self, coords) -> float:
-        import zarr
-        p = self.plan
-        results = self.each_block("orientation", "fault orientation", _orientation_block,
-                                  lateral_blocks(p["shape"], p["block_orientation"], p["block_orientation"]), p,
-                                  str(self.work), str(self.partial), self.opt, workers=p["workers_orientation"])
-        high = sum(r["high"] for r in results)
-        group = zarr.open_group(str(self.partial), mode="r+")
-        write_coords(group, tuple(p["shape"]), coords)
-        fraction = high / float(np.prod(p["shape"]))
-        group.attrs.update({"method": "learned fault likelihood (seismo3d fault network), chunked run",
-                            "saturated_fraction": fraction})
-        return fraction
+def _start(run: StoreRun, manifest: dict, plan: dict) -> None:
+    """The run's folders and output, and a work array on each grid's network grid per direction."""
+    import zarr
+    run.start_output(manifest, tuple(plan["shape"]), plan["tile"], ())
+    c = plan["network_chunk"]
+    for k, g in enumerate(plan["grids"]):
+        grid = g["network_shape"]
+        for name in g["network_blocks"]:
+            path = run.work / f"network_{name}_{k}"
+            if not path.exists():
+                zarr.create_array(str(path), shape=tuple(grid), chunks=(c, c, grid[2]), dtype="float32",
+                                  compressors=None, fill_value=0)
 
 
-def _network_block(f, block, axis, origin, array, opt, factor, scale, marker) -> dict:
+def _scale(run: StoreRun, x) -> tuple:
+    """The amplitude scale from the cube's subsample of traces, kept by a resumed run."""
+    def compute() -> list:
+        s0, s1 = scale_subsample(x.shape)
+        sample = np.asarray(x[::s0, ::s1, :].compute(), dtype=np.float32)
+        if not np.isfinite(sample).all():
+            raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
+                             "faults")
+        return list(amplitude_scale(sample, subsample=False))
+
+    return tuple(run.saved("scale", compute))
+
+
+def _saturated_fraction(run: StoreRun, results: list, plan: dict, coords) -> float:
+    """The oriented blocks' saturated fraction, written with the coordinates to the output's attributes."""
+    import zarr
+    high = sum(r["high"] for r in results)
+    group = zarr.open_group(str(run.partial), mode="r+")
+    write_coords(group, tuple(plan["shape"]), coords)
+    fraction = high / float(np.prod(plan["shape"]))
+    group.attrs.update({"method": "learned fault likelihood (seismo3d fault network), chunked run",
+                        "saturated_fraction": fraction})
+    return fraction
+
+
+def _network_block(f, origin, block, axis, array, opt, factor, scale, marker) -> dict:
     """The network's probability on the sections of one network block (direction ``axis``), read with its halo;
     written to the direction's work array on the network grid."""
     import zarr

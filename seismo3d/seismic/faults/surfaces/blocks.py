@@ -28,7 +28,7 @@ block's core, so the result does not depend on where the blocks are cut:
    by :func:`~seismo3d.seismic.faults.surfaces.skins.skins_from_cells` (no array of the cube's size).
 7. **Throws** read the amplitudes around each fault patch (:func:`~seismo3d.seismic.fault_throws` on the lazy cube).
 
-Resume, progress and schedulers are those of :mod:`~seismo3d.seismic.faults.blocks.scan_blocks`: a marker per finished
+Resume, progress and schedulers are those of :mod:`~seismo3d.seismic.faults.likelihood.scan_blocks`: a marker per finished
 block in ``OUTPUT.work``, the output assembled in ``OUTPUT.partial`` and renamed when complete.
 """
 
@@ -43,20 +43,17 @@ import numpy as np
 from ...._atomic import atomic_path
 from ....errors import EarlierStoresError, InputError
 from ...blocks.executor import SchedulerClient
-from ...blocks.stores import StoreRun
-from ..options import FaultTracingOptions
-from ...blocks.options import ChunkOptions
 from ...blocks.memory import default_memory_limit, resident_memory, worker_baseline
-from ..steps import faults_from_cells, surface_cells
-from ..surfaces.thresholds import HISTOGRAM_BINS, QUANTILE_BINS, otsu_of_histogram, quantile_of_window, quantile_window
-from ..result import fault_frames
-from ..surfaces.voting_kernels import greedy_seeds
-from .surface_steps import (
-    CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, SurfacePlan, amplitude_halo, around, cell_block, fill_block, gather_block,
-    histogram_block, plan_blocks, ridge_block, smallest_block_bytes, square_blocks, surface_block, thin_block,
-    vote_block,
-)
+from ...blocks.options import ChunkOptions
+from ...blocks.plan import lateral_blocks
+from ...blocks.stores import StoreRun
 from ...blocks.windows import StoredWindows
+from ..options import FaultTracingOptions
+from ..result import fault_frames
+from ..steps import faults_from_cells, surface_cells
+from .block_steps import CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, SurfacePlan, block_steps, plan_blocks, smallest_block_bytes
+from .thresholds import HISTOGRAM_BINS, QUANTILE_BINS, otsu_of_histogram, quantile_of_window, quantile_window
+from .voting_kernels import greedy_seeds
 
 __all__ = ["CANDIDATE_BYTES", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO", "smallest_block_bytes"]
 
@@ -124,7 +121,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     cube : (n_inlines, n_xlines, n_samples) dask.array.Array or array_like
         Amplitudes (e.g. ``open_lazy(path).data``), finite, samples along the last axis.
     likelihood : str or os.PathLike
-        Zarr group of :func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` of this cube (arrays
+        Zarr group of :func:`~seismo3d.seismic.faults.likelihood.scan_blocks.chunked_fault_likelihood` of this cube (arrays
         ``likelihood``, ``strike_deg``, ``dip_deg``).
     output : str or os.PathLike
         Output Zarr group, created. When it is the finished output of the same run (cube shape, likelihood, options)
@@ -237,6 +234,7 @@ class _SurfaceRun(StoreRun):
         super().__init__(out, chunking, progress, outputs=_OUTPUTS)
         self.likelihood, self.plan, self.opt = str(likelihood), plan, opt
         self.x, self.memory = x, memory  # the cube (dask, whole traces) and the memory limit, bytes
+        self.steps = {step.name: step for step in block_steps(plan.shape, opt, 0)}
 
     def finished(self, manifest: dict) -> dict | None:
         """The attributes of the finished output of this same run (blocks aside: they do not change the result), or
@@ -271,26 +269,15 @@ class _SurfaceRun(StoreRun):
 
     # -- steps ----------------------------------------------------------------------------------------------------
     def amplitude_range(self, x) -> tuple[float, float]:
-        import dask
         import dask.array as da
 
-        def compute():
-            parts = (da.min(x), da.max(x))
-            if self.client is not None:
-                lo, hi = self.client.compute(list(parts), sync=True)
-            else:
-                lo, hi = dask.compute(*parts, scheduler="threads", num_workers=self.workers)
-            return [float(lo), float(hi)]
-
-        lo, hi = self.saved("amplitude_range", compute)
+        lo, hi = self.saved("amplitude_range", lambda: [float(v) for v in self.reduce_cube((da.min(x), da.max(x)))])
         return lo, hi
 
     def fill_values(self, x, lo: float, hi: float) -> np.ndarray:
         p = self.plan
-        todo, done = self.pending("fill", square_blocks(p.shape, p.dead))
-        tasks = [self.task(fill_block, x[b[0]:b[1], b[2]:b[3]], lo, hi, self.opt.dead, str(self.marker("fill", b)))
-                 for b in todo]
-        results = self.compute(tasks, "fill values", "fill") + done
+        results = self.run_step(self.steps["fill"], lateral_blocks(p.shape, p.dead, p.dead), lo, hi, self.opt.dead,
+                                source=x)
         return np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
                                         [np.zeros(1, np.float32)]))
 
@@ -301,14 +288,8 @@ class _SurfaceRun(StoreRun):
         lo, hi = self.amplitude_range(x)
         fill = self.fill_values(x, lo, hi)
         p = self.plan
-        todo, done = self.pending("ridges", square_blocks(p.shape, p.ridge))
-        h = amplitude_halo(self.opt)
-        tasks = []
-        for b in todo:
-            a0, a1, b0, b1 = around(b, h, p.shape)
-            tasks.append(self.task(ridge_block, x[a0:a1, b0:b1], (a0, b0), b, fill, lo, hi, self.likelihood,
-                                   str(self.work), str(self.partial), p, self.opt, str(self.marker("ridges", b))))
-        results = self.compute(tasks, "fault ridges", "ridges") + done
+        results = self.run_step(self.steps["ridges"], lateral_blocks(p.shape, p.ridge, p.ridge), fill, lo, hi,
+                                self.likelihood, str(self.work), str(self.partial), p, self.opt, source=x)
         return sum(r["high"] for r in results), sum(r["live"] for r in results)
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -340,28 +321,16 @@ class _SurfaceRun(StoreRun):
         """Each seed's optimal surface once, in the block that holds the seed (the likelihood read with the voting's
         reach around it), then the votes of every block from the surfaces of the seeds reaching it, in id order."""
         p = self.plan
-        blocks = square_blocks(p.shape, p.vote)
-        todo, _ = self.pending("surfaces", blocks)
-        tasks = []
-        for b in todo:
-            i0, i1, j0, j1 = b
-            sel = np.nonzero((seeds[:, 0] >= i0) & (seeds[:, 0] < i1) & (seeds[:, 1] >= j0) & (seeds[:, 1] < j1))[0]
-            tasks.append(self.task(surface_block, b, seeds[sel], sel, frames[sel], str(self.work), str(self.partial),
-                                   p, self.opt, str(self.marker("surfaces", b))))
-        self.compute(tasks, "fault surfaces", "surfaces")
-        todo, _ = self.pending("votes", blocks)
-        # threads=False: the votes are summed per numba thread (voting.VoteSum), so a block's kernel keeps the
-        # process's threads, as the in-memory run
-        tasks = [self.task(vote_block, b, seeds, blocks, str(self.work), str(self.partial), p, self.opt,
-                           str(self.marker("votes", b)), threads=False) for b in todo]
-        self.compute(tasks, "fault voting", "votes")
+        blocks = lateral_blocks(p.shape, p.vote, p.vote)
+        self.run_step(self.steps["surfaces"], blocks, seeds, frames, str(self.work), str(self.partial), p, self.opt)
+        self.run_step(self.steps["votes"], blocks, seeds, blocks, str(self.work), str(self.partial), p, self.opt)
 
     def thresholds(self) -> tuple[float, float]:
         """The thresholds from the thinned votes of every block: their count and range, their histogram (Otsu) and,
         when they are dense, their exact quantile (:mod:`~seismo3d.seismic.faults.surfaces.thresholds`)."""
         p = self.plan
-        blocks = square_blocks(p.shape, p.thin)
-        stats = self.each_block("thin", "thinning", thin_block, blocks, str(self.work), str(self.partial), p)
+        blocks = lateral_blocks(p.shape, p.thin, p.thin)
+        stats = self.run_step(self.steps["thin"], blocks, str(self.work), str(self.partial), p)
         n_values = sum(r["count"] for r in stats)
         n_samples = int(np.prod(p.shape, dtype=np.int64))
         if n_values == 0:
@@ -373,8 +342,7 @@ class _SurfaceRun(StoreRun):
                                         lambda q: self._quantile(blocks, q, n_values, vmin, vmax))
 
     def _histogram(self, blocks, vmin, vmax, bins, step) -> np.ndarray:
-        results = self.each_block(step, "histogram of the thinned votes", histogram_block, blocks, str(self.work),
-                                   vmin, vmax, bins)
+        results = self.run_step(self.steps[step], blocks, str(self.work), vmin, vmax, bins)
         return np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)
 
     def _quantile(self, blocks, q: float, n: int, vmin: float, vmax: float) -> float:
@@ -382,8 +350,7 @@ class _SurfaceRun(StoreRun):
         interpolates, found by a fine histogram and a pass that gathers the values of their bins."""
         counts = self._histogram(blocks, vmin, vmax, QUANTILE_BINS, "quantile_histogram")
         window = quantile_window(counts, n, q, vmin, vmax)
-        results = self.each_block("quantile", "quantile of the thinned votes", gather_block, blocks, str(self.work),
-                                   window[3], window[4])
+        results = self.run_step(self.steps["quantile"], blocks, str(self.work), window[3], window[4])
         values = np.concatenate([np.asarray(r["values"], np.float32) for r in results])
         return quantile_of_window(window, sum(r["below"] for r in results), values)
 
@@ -393,9 +360,8 @@ class _SurfaceRun(StoreRun):
         need no sorted copies); their number."""
         import zarr
         p = self.plan
-        blocks = square_blocks(p.shape, p.thin)
-        results = self.each_block("cells", "fault cells", cell_block, blocks, str(self.work), str(self.partial),
-                                   lower)
+        blocks = lateral_blocks(p.shape, p.thin, p.thin)
+        results = self.run_step(self.steps["cells"], blocks, str(self.work), str(self.partial), lower)
         n = sum(r["count"] for r in results)
         if n * CELL_BYTES > self.memory - resident_memory():
             raise InputError(f"{n} thinned fault samples need about {n * CELL_BYTES / 2**30:.2f} GiB to link into "
@@ -419,8 +385,3 @@ class _SurfaceRun(StoreRun):
                     out[name][start:start + m] = row[key][order]
             start += m
         return n
-
-
-# -- block tasks --------------------------------------------------------------------------------------------------
-
-

@@ -10,8 +10,8 @@ density of the voting's seed candidates, from which :func:`minimum_memory_limit`
 step of a block-by-block run.
 
 :func:`minimum_memory_limit` is the smallest ``memory_limit`` with which both block-by-block stages
-(:func:`~seismo3d.seismic.faults.blocks.scan_blocks.chunked_fault_likelihood` and
-:func:`~seismo3d.seismic.faults.blocks.surface_blocks.chunked_fault_surfaces`) can plan their smallest blocks, and, with
+(:func:`~seismo3d.seismic.faults.likelihood.scan_blocks.chunked_fault_likelihood` and
+:func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces`) can plan their smallest blocks, and, with
 a sample, hold the seed candidates. The thinned fault cells linked into skins come from the voting and cannot be judged
 from a sample; a limit too small for them is still reported when they are counted.
 
@@ -27,23 +27,24 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...._progress import LOGGER
-from ...._validation import check_int, check_positive
-from ....errors import InputError, Seismo3dWarning, UnsupportedDataError
-from ...blocks.executor import limit_for_blocks, release_memory
-from ...blocks.memory import resident_memory, size_text, worker_baseline
-from ...blocks.options import ChunkOptions
-from ..surfaces.dead_samples import (
+from ..._progress import LOGGER
+from ..._validation import check_int, check_positive
+from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
+from ..blocks.executor import release_memory
+from ..blocks.memory import resident_memory, size_text, worker_baseline
+from ..blocks.options import ChunkOptions
+from ..blocks.plan import limit_for_blocks
+from .checks import check_amplitudes, check_size, no_coherence_message
+from .likelihood.learned_blocks import learned_block_bytes
+from .likelihood.scan import fault_likelihood
+from .likelihood.scan_blocks import smallest_block_bytes as likelihood_block_bytes
+from .options import FaultTracingOptions
+from .surfaces.block_steps import CANDIDATE_BYTES, smallest_block_bytes as surfaces_block_bytes
+from .surfaces.dead_samples import (
     DeadSampleOptions, check_varies, clean_traces, clipped_count, dead_samples, fill_values, near_dead_samples,
     warn_clipped, warn_dead, warn_non_finite,
 )
-from ..likelihood.scan import fault_likelihood
-from .scan_blocks import smallest_block_bytes as likelihood_block_bytes
-from ..checks import check_amplitudes, check_size, no_coherence_message
-from ..options import FaultTracingOptions
-from .learned_blocks import learned_block_bytes
-from ..surfaces.ridges import live_likelihood, ridges
-from .surface_steps import CANDIDATE_BYTES, smallest_block_bytes as surfaces_block_bytes
+from .surfaces.ridges import live_likelihood, ridges
 
 __all__ = ["CubeSample", "SampleOptions", "STAGE_GROWTH", "check_block_run", "finite_cube", "judge_sample",
            "minimum_memory_limit"]
@@ -243,7 +244,7 @@ def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions |
         ``(n_inlines, n_xlines, n_samples)``.
     baseline : int
         Bytes the process holds before its blocks
-        (:func:`~seismo3d.seismic.faults.blocks.scan_blocks.worker_baseline`).
+        (:func:`~seismo3d.seismic.faults.likelihood.scan_blocks.worker_baseline`).
     options : FaultTracingOptions, optional
     tile : int, optional
         Traces a side of the smallest blocks (default :attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile`).

@@ -1,4 +1,4 @@
-"""Chunked fault surfaces (seismo3d.seismic.faults.blocks.surface_blocks): voting, thinning, thresholds, skins and
+"""Chunked fault surfaces (seismo3d.seismic.faults.surfaces.blocks): voting, thinning, thresholds, skins and
 throws
 block by block give the faults of the in-memory run, on a cube with dead traces and a mute; resumable; refusals."""
 
@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 import zarr
 
-import seismo3d.seismic.faults.blocks.surface_steps as block_steps
-import seismo3d.seismic.faults.blocks.surface_blocks as chunked_faults
+import seismo3d.seismic.faults.surfaces.block_steps as block_steps
+import seismo3d.seismic.faults.surfaces.blocks as chunked_faults
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
-from seismo3d.seismic.faults.blocks.surface_blocks import chunked_fault_surfaces
+from seismo3d.seismic.faults.surfaces.blocks import chunked_fault_surfaces
 from seismo3d.seismic.blocks.options import ChunkOptions
-from seismo3d.seismic.faults.blocks.scan_blocks import chunked_fault_likelihood
+from seismo3d.seismic.faults.likelihood.scan_blocks import chunked_fault_likelihood
 from seismo3d.seismic.faults.result import FaultLikelihood
 from seismo3d.seismic.faults.steps import surface_cells
 from seismo3d.seismic.faults import FaultTracingOptions, trace_faults
@@ -70,7 +70,7 @@ def _assert_same_faults(result, reference):
 
 def test_blocks_give_the_in_memory_faults(cube, likelihood, reference, tmp_path, monkeypatch):
     """Blocks of 64 x 64 traces (3 x 2 blocks, partial ones at the far edges; the voting halo reaches across
-    several), through the sequence of steps the run in memory calls (surface_steps.surface_cells): votes and thinned
+    several), through the sequence of steps the run in memory calls (steps.surface_cells): votes and thinned
     votes equal to the bit, the same thresholds, skins and throws."""
     runs = []
 

@@ -1,16 +1,17 @@
 """Judging a cube from a sample of blocks before tracing its faults, and the smallest memory limit of a block-by-block
-run (seismo3d.seismic.faults.blocks.preflight)."""
+run (seismo3d.seismic.faults.preflight)."""
 
 import numpy as np
 import pytest
 
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, UnsupportedDataError
-from seismo3d.seismic.faults.blocks import learned_blocks, scan_blocks as likelihood_blocks, surface_steps
+from seismo3d.seismic.faults.likelihood import learned_blocks, scan_blocks as likelihood_blocks
+from seismo3d.seismic.faults.surfaces import block_steps as surface_steps
 from seismo3d.seismic.faults.likelihood.scan import FaultScanOptions
 from seismo3d.seismic.blocks.options import ChunkOptions
 from seismo3d.seismic.faults.options import FaultTracingOptions
-from seismo3d.seismic.faults.blocks.preflight import CubeSample, SampleOptions, judge_sample, minimum_memory_limit
+from seismo3d.seismic.faults.preflight import CubeSample, SampleOptions, judge_sample, minimum_memory_limit
 
 
 class Recording:

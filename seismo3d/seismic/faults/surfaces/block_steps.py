@@ -1,4 +1,4 @@
-"""The block steps of the fault surfaces by blocks (:mod:`~seismo3d.seismic.faults.blocks.surface_blocks`), each
+"""The block steps of the fault surfaces by blocks (:mod:`~seismo3d.seismic.faults.surfaces.blocks`), each
 declared with what the run needs to plan it: the halo it reads (``RIDGE_HALO``, ``THIN_HALO``, the voting's reach,
 :func:`amplitude_halo`), the bytes a block needs (:func:`plan_blocks`: the largest blocks a memory limit allows), and
 its work on one block: fill values, ridges and seeds, seed surfaces, votes, thinned votes, the thresholds' statistics
@@ -17,20 +17,21 @@ import numpy as np
 from ...._atomic import atomic_path
 from ....errors import InputError
 from ...attributes import structure_tensor_halo, structure_tensor_slopes
-from ...blocks.executor import BlockStep, block_budget, plan_steps, write_marker
+from ...blocks.executor import write_marker
 from ...blocks.memory import default_memory_limit
 from ...blocks.options import ChunkOptions
-from ..surfaces.dead_samples import dead_samples, fill_values, near_dead_samples
-from ..surfaces.ridges import live_likelihood, ridges, thin_votes, without_dead_edges
-from ..surfaces.thresholds import block_histogram
-from ..surfaces.voting import SeedSurfaces, VoteSum, seed_surfaces
+from ...blocks.plan import BlockStep, around, block_budget, plan_steps
+from .dead_samples import dead_samples, fill_values, near_dead_samples
+from .ridges import live_likelihood, ridges, thin_votes, without_dead_edges
+from .thresholds import block_histogram
+from .voting import SeedSurfaces, VoteSum, seed_surfaces
 
 if TYPE_CHECKING:  # annotations only: the options are passed in
     from ..options import FaultTracingOptions
 
 __all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "RIDGE_HALO", "SURFACE_BATCH_BYTES", "SurfacePlan", "THIN_HALO",
-           "amplitude_halo", "around", "block_steps", "cell_block", "fill_block", "gather_block", "histogram_block", "plan_blocks",
-           "ridge_block", "save_npz", "smallest_block_bytes", "square_blocks", "surface_block", "surfaces_of",
+           "amplitude_halo", "block_steps", "cell_block", "fill_block", "gather_block", "histogram_block", "plan_blocks",
+           "ridge_block", "save_npz", "smallest_block_bytes", "surface_block", "surfaces_of",
            "thin_block", "vote_block"]
 
 # Lateral halo of the ridges (thin_faults with its defaults): the Gaussian of sigma 1.5 (5 traces), the average along
@@ -82,11 +83,11 @@ def amplitude_halo(opt: FaultTracingOptions) -> int:
 
 
 def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
-    """The block steps of the fault surfaces, declared for the executor's plan
-    (:func:`~seismo3d.seismic.blocks.executor.plan_steps`): the fill values of the dead-sample rules (reduced over
-    the blocks), the ridges (their seed candidates gathered), the voting (seed surfaces, then votes) and the thinning
-    (its statistics reduced into the thresholds; the histograms, the quantile and the cells use its blocks), each
-    with its halo and the bytes of a block of ``b`` traces a side.
+    """The block steps of the fault surfaces, declared once in their order, each with its block function, its halo
+    and (those planned by :func:`~seismo3d.seismic.blocks.plan.plan_steps`) the bytes of a block of ``b`` traces a
+    side: the fill values of the dead-sample rules (reduced over the blocks), the ridges (their seed candidates
+    gathered), the voting (seed surfaces, then votes on the surfaces' blocks) and the thinning (its statistics
+    reduced into the thresholds; the histograms, the quantile and the cells run on its blocks).
 
     Parameters
     ----------
@@ -99,7 +100,9 @@ def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
     Returns
     -------
     tuple of BlockStep
-        Named ``'dead'``, ``'ridge'``, ``'vote'``, ``'thin'`` (the fields of :class:`SurfacePlan`).
+        Named ``'fill'``, ``'ridges'``, ``'surfaces'``, ``'thin'`` (planned: the fields ``dead``, ``ridge``,
+        ``vote``, ``thin`` of :class:`SurfacePlan`), ``'votes'``, ``'histogram'``, ``'quantile_histogram'``,
+        ``'quantile'``, ``'cells'``.
     """
     nt = shape[2]
     reach = opt.voting.reach(shape)
@@ -126,8 +129,18 @@ def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
     def thin_bytes(b):
         return (b + 2 * THIN_HALO) ** 2 * nt * _THIN_BYTES
 
-    return (BlockStep("dead", "reduce", 0, dead_bytes, cap), BlockStep("ridge", "gather", halo, ridge_bytes, cap),
-            BlockStep("vote", "map", reach, vote_bytes, cap), BlockStep("thin", "reduce", THIN_HALO, thin_bytes, cap))
+    return (BlockStep("fill", "reduce", 0, dead_bytes, cap, function=fill_block, label="fill values"),
+            BlockStep("ridges", "gather", halo, ridge_bytes, cap, function=ridge_block, label="fault ridges"),
+            BlockStep("surfaces", "map", reach, vote_bytes, cap, function=surface_block, label="fault surfaces"),
+            # threads=False: the votes are summed per numba thread (voting.VoteSum), so a block's kernel keeps the
+            # process's threads, as the in-memory run
+            BlockStep("votes", "map", reach, function=vote_block, label="fault voting", threads=False),
+            BlockStep("thin", "reduce", THIN_HALO, thin_bytes, cap, function=thin_block, label="thinning"),
+            BlockStep("histogram", "reduce", function=histogram_block, label="histogram of the thinned votes"),
+            BlockStep("quantile_histogram", "reduce", function=histogram_block,
+                      label="histogram of the thinned votes"),
+            BlockStep("quantile", "gather", function=gather_block, label="quantile of the thinned votes"),
+            BlockStep("cells", "gather", function=cell_block, label="fault cells"))
 
 
 def smallest_block_bytes(shape, options: FaultTracingOptions, tile: int) -> int:
@@ -147,14 +160,14 @@ def smallest_block_bytes(shape, options: FaultTracingOptions, tile: int) -> int:
     int
     """
     steps = block_steps(tuple(int(n) for n in shape), options, int(tile))
-    return int(max(step.block_bytes(int(tile)) for step in steps))
+    return int(max(step.block_bytes(int(tile)) for step in steps if step.block_bytes is not None))
 
 
 def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int) -> SurfacePlan:
     """The largest blocks of each of :func:`block_steps` (multiples of ``chunking.tile``, at most ``chunking.block`` or
     512 traces a side) whose bytes fit the budget a memory limit leaves
-    (:func:`~seismo3d.seismic.blocks.executor.block_budget`), by the executor's planner
-    (:func:`~seismo3d.seismic.blocks.executor.plan_steps`).
+    (:func:`~seismo3d.seismic.blocks.plan.block_budget`), by the executor's planner
+    (:func:`~seismo3d.seismic.blocks.plan.plan_steps`).
 
     Parameters
     ----------
@@ -181,27 +194,15 @@ def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baselin
     budget = block_budget(limit, baseline, int(chunking.workers))
     steps = block_steps(shape, opt, int(chunking.block) if chunking.block else min(max(n0, n1), 512))
     sizes = plan_steps(steps, tile=tile, budget=budget)
-    for step in steps:
+    for step in (step for step in steps if step.block_bytes is not None):
         need = step.block_bytes(sizes[step.name])
         if need > budget:
             raise InputError(
                 f"the fault surfaces of a {n0} x {n1} x {nt} cube need about "
                 f"{(need * int(chunking.workers) + baseline) / 2**30:.2f} GiB per block but the memory "
                 f"limit is {limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
-    return SurfacePlan((n0, n1, nt), tile, sizes["dead"], sizes["ridge"], sizes["vote"], sizes["thin"],
+    return SurfacePlan((n0, n1, nt), tile, sizes["fill"], sizes["ridges"], sizes["surfaces"], sizes["thin"],
                        opt.voting.reach(shape))
-
-
-def square_blocks(shape, size):
-    """``(i0, i1, j0, j1)`` of the square blocks of ``size`` traces a side tiling a cube of ``shape``."""
-    n0, n1 = shape[:2]
-    return [(i, min(i + size, n0), j, min(j + size, n1)) for i in range(0, n0, size) for j in range(0, n1, size)]
-
-
-def around(block, halo, shape):
-    """(a0, a1, b0, b1): ``block`` grown by ``halo`` traces, clipped to the cube."""
-    i0, i1, j0, j1 = block
-    return max(i0 - halo, 0), min(i1 + halo, shape[0]), max(j0 - halo, 0), min(j1 + halo, shape[1])
 
 
 # -- the work of each step on one block ---------------------------------------------------------------------
@@ -211,7 +212,8 @@ def save_npz(path: pathlib.Path, **arrays) -> None:
         np.savez(fh, **arrays)
 
 
-def fill_block(f, lo, hi, dead, marker) -> dict:
+def fill_block(f, origin, block, lo, hi, dead, marker) -> dict:
+    """The fill values of one block (read from the cube) under the dead-sample rules."""
     result = {"fill": [float(v) for v in fill_values(np.asarray(f, np.float32), lo, hi, options=dead)]}
     write_marker(marker, result)
     return result
@@ -265,11 +267,14 @@ def write_slopes(f: np.ndarray, origin, block, partial) -> None:
     group["slope_xline"][i0:i1, j0:j1] = slopes[1][core]
 
 
-def surface_block(block, seeds, ids, frames, work, partial, plan: SurfacePlan, opt: FaultTracingOptions,
-                   marker) -> dict:
-    """The optimal surfaces of the seeds of one block, on the live likelihood read with the voting's reach around
+def surface_block(block, seeds, frames, work, partial, plan: SurfacePlan, opt: FaultTracingOptions,
+                  marker) -> dict:
+    """The optimal surfaces of the seeds in one block, on the live likelihood read with the voting's reach around
     it, saved in ``work/surfaces`` (offsets as a .npy, read back row by row; ids, votes and normals)."""
     import zarr
+    i0, i1, j0, j1 = block
+    ids = np.nonzero((seeds[:, 0] >= i0) & (seeds[:, 0] < i1) & (seeds[:, 1] >= j0) & (seeds[:, 1] < j1))[0]
+    seeds, frames = seeds[ids], frames[ids]
     a0, a1, b0, b1 = around(block, plan.reach, plan.shape)
     att = zarr.open_group(partial, mode="r")["likelihood"][a0:a1, b0:b1]
     found = seed_surfaces(att, seeds, frames, image_shape=plan.shape, options=opt.voting, origin=(a0, b0))

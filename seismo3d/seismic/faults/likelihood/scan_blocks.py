@@ -32,25 +32,24 @@ from __future__ import annotations
 import json
 import pathlib
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
 from ...._options import resolve_options
 from ....errors import InputError
-from ...blocks.executor import (BlockStep, SchedulerClient, block_budget, lateral_blocks, plan_steps, trace_cube,
-                                write_marker)
+from ...blocks.executor import SchedulerClient, trace_cube, write_marker
+from ...blocks.memory import default_memory_limit, worker_baseline
 from ...blocks.options import ChunkOptions
-from ...blocks.stores import StoreRun, write_coords
-from ..likelihood.scan import (
+from ...blocks.plan import BlockStep, block_budget, lateral_blocks, plan_steps
+from ...blocks.stores import StoreRun, read_sheared, write_coords
+from ..result import ChunkedLikelihood
+from .scan import (
     AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan, saturation_counts,
     scan_planes, scan_step, semblance_floor, semblance_halo, semblance_terms, strike_halo,
 )
-from ..result import ChunkedLikelihood
-from ...blocks.memory import default_memory_limit, in_memory_bytes, resident_memory, worker_baseline
 
-__all__ = ["ChunkedLikelihood", "chunked_fault_likelihood", "default_memory_limit",
-           "in_memory_bytes", "resident_memory", "smallest_block_bytes", "worker_baseline"]
+__all__ = ["block_steps", "chunked_fault_likelihood", "smallest_block_bytes"]
 
 # Bytes of working memory per sample of a block (incl. halo), from the arrays each step holds at its peak: balancing
 # holds the amplitudes, their squares and two smoothing passes; the semblance step the balanced amplitudes, 3
@@ -81,11 +80,20 @@ class _Plan:
         return lateral_blocks(self.shape, size0, size1)
 
 
-def _block_steps(shape, options: FaultScanOptions, chunking: ChunkOptions | None = None) -> tuple:
-    """The semblance (its denominators reduced into the semblance floor; the decoding uses its square blocks),
-    balancing and scan steps declared for the executor's plan (:func:`~seismo3d.seismic.blocks.executor.plan_steps`):
-    halo, bytes of a block of ``b`` traces a side (the scan: ``b`` crosslines or inlines of blocks that hold every
-    trace along the other axis), largest and forced sides."""
+def block_steps(shape, options: FaultScanOptions, chunking: ChunkOptions | None = None) -> tuple:
+    """The steps of :func:`chunked_fault_likelihood`, declared once, in their order: the balancing (square blocks
+    read from the cube), the semblance terms (their denominators reduced into the semblance floor), the scan along
+    inlines and along crosslines (blocks of every trace along the scanned axis and ``b`` traces across it) and the
+    decoding (on the semblance's blocks), each with its block function, halo and the bytes of a block of ``b``
+    traces a side, largest and forced sides (:func:`~seismo3d.seismic.blocks.plan.plan_steps` plans those with
+    bytes: ``'balance'``, ``'semblance'``, ``'scan'``).
+
+    Returns
+    -------
+    tuple of BlockStep
+        Named ``'balance'``, ``'semblance'``, ``'scan'`` (run as ``'scan_inline'`` and ``'scan_crossline'``),
+        ``'decode'``.
+    """
     n0, n1, nt = shape
     m = -(-nt // scan_step(options, nt))
     bhalo, halo, shalo = balance_halo(options), semblance_halo(options), strike_halo(options)
@@ -101,9 +109,13 @@ def _block_steps(shape, options: FaultScanOptions, chunking: ChunkOptions | None
     def scan_bytes(w):
         return n_axis * (w + 2 * shalo) * m * _SCAN_BYTES
 
-    return (BlockStep("semblance", "reduce", halo, semblance_bytes, 256, chunking.block),
-            BlockStep("balance", "map", bhalo, balance_bytes, 512),
-            BlockStep("scan", "map", shalo, scan_bytes, n_axis, chunking.strip))
+    return (BlockStep("balance", "map", bhalo, balance_bytes, 512, function=_balance_block,
+                      label="amplitude balancing"),
+            BlockStep("semblance", "reduce", halo, semblance_bytes, 256, chunking.block, function=_semblance_block,
+                      label="semblance"),
+            BlockStep("scan", "map", shalo, scan_bytes, n_axis, chunking.strip, function=_scan_block,
+                      label="fault scan"),
+            BlockStep("decode", "reduce", 0, function=_decode_block, label="decode"))
 
 
 def smallest_block_bytes(shape, options: FaultScanOptions | None, tile: int) -> int:
@@ -123,8 +135,8 @@ def smallest_block_bytes(shape, options: FaultScanOptions | None, tile: int) -> 
     -------
     int
     """
-    steps = _block_steps(tuple(int(n) for n in shape), options or FaultScanOptions())
-    return int(max(step.block_bytes(int(tile)) for step in steps))
+    steps = block_steps(tuple(int(n) for n in shape), options or FaultScanOptions())
+    return int(max(step.block_bytes(int(tile)) for step in steps if step.block_bytes is not None))
 
 
 def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
@@ -136,10 +148,10 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
     # what the blocks may use: the limit less the process itself, less a fifth for the allocator's fragmentation
     # (freed blocks that threads' arenas keep) and the reads in flight; measured 1.54 GB peak for 1.4 GB without it
     budget = block_budget(limit, baseline, int(chunking.workers))
-    steps = _block_steps(shape, options, chunking)
+    steps = block_steps(shape, options, chunking)
     sizes = plan_steps(steps, tile=tile, budget=budget)
     block, balance, strip = sizes["semblance"], sizes["balance"], sizes["scan"]
-    need = max(step.block_bytes(sizes[step.name]) for step in steps)
+    need = max(step.block_bytes(sizes[step.name]) for step in steps if step.block_bytes is not None)
     if need > budget:
         raise InputError(
             f"a chunked run of a {n0} x {n1} x {nt} cube needs about "
@@ -203,18 +215,29 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * x.shape[2]
     plan = _plan(x.shape, opt, chunking, worker_baseline(chunking, input_chunk))
     out = pathlib.Path(output)
-    run = _Run(out, plan, opt, chunking, progress)
+    run = StoreRun(out, chunking, progress)
     earlier = run.earlier_plan(_manifest(x.shape, opt, plan))
     if earlier is not None:  # resuming: the blocks of the interrupted run
-        run.plan = plan = _Plan(**dict(earlier, shape=tuple(earlier["shape"])))
-    run.start(_manifest(x.shape, opt, plan))
+        plan = _Plan(**dict(earlier, shape=tuple(earlier["shape"])))
+    m, nt = plan.m, plan.shape[2]
+    run.start_output(_manifest(x.shape, opt, plan), plan.shape, plan.tile,
+                     (("balanced", "float32", nt), ("numerator", "float32", m), ("denominator", "float32", m),
+                      ("key", "int32", m)))
+    steps = {step.name: step for step in block_steps(plan.shape, opt, chunking)}
+    work, n0, n1 = str(run.work), plan.shape[0], plan.shape[1]
     with SchedulerClient(chunking.scheduler) as client:
         run.client = client
-        run.balance(x, run.amplitude_statistics(x))
-        tiny = run.semblance()
-        run.scan(tiny, axis=0)
-        run.scan(tiny, axis=1)
-        saturated = run.decode(tiny, coords)
+        stats = _amplitude_statistics(run, x)
+        run.run_step(steps["balance"], plan.blocks(plan.balance, plan.balance), work, opt, stats, source=x)
+        results = run.run_step(steps["semblance"], plan.blocks(plan.block, plan.block), plan, work, opt)
+        tiny = semblance_floor(sum(r["sum_denominator"] for r in results), n0 * n1 * plan.m)
+        for axis, name in ((0, "inline"), (1, "crossline")):
+            scan = replace(steps["scan"], name=f"scan_{name}", label=f"fault scan along {name}s")
+            run.run_step(scan, plan.blocks(n0, plan.strip) if axis == 0 else plan.blocks(plan.strip, n1), axis, plan,
+                         work, opt, tiny)
+        results = run.run_step(steps["decode"], plan.blocks(plan.block, plan.block), plan, work, str(run.partial),
+                               opt, tiny)
+        saturated = _saturated_fraction(run, results, plan, coords)
     run.finish()
     return ChunkedLikelihood(out, tuple(x.shape), dict(run.computed), dict(run.resumed), saturated,
                              dict(run.seconds))
@@ -225,87 +248,38 @@ def _manifest(shape, opt, plan) -> dict:
             "plan": json.loads(json.dumps(asdict(plan)))}
 
 
-class _Run(StoreRun):
-    """One chunked likelihood run: its block lists and steps."""
+def _amplitude_statistics(run: StoreRun, x) -> AmplitudeStatistics:
+    """Peak and mean square of the whole cube (one pass of sums over its chunks), kept by a resumed run."""
+    import dask.array as da
 
-    def __init__(self, out: pathlib.Path, plan: _Plan, opt: FaultScanOptions, chunking: ChunkOptions,
-                 progress: bool):
-        super().__init__(out, chunking, progress)
-        self.plan, self.opt = plan, opt
+    def compute() -> dict:
+        start = time.perf_counter()
+        peak, squares = run.reduce_cube((da.max(da.fabs(x)), da.sum(x.astype(np.float64) ** 2)))
+        if not np.isfinite(float(peak)) or not np.isfinite(float(squares)):
+            raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
+                             "faults")
+        run.seconds["statistics"] = round(time.perf_counter() - start, 2)
+        return asdict(AmplitudeStatistics.from_sums(float(peak), float(squares),
+                                                    int(np.prod(x.shape, dtype=np.int64))))
 
-    def start(self, manifest: dict) -> None:
-        m, nt = self.plan.m, self.plan.shape[2]
-        self.start_output(manifest, self.plan.shape, self.plan.tile,
-                          (("balanced", "float32", nt), ("numerator", "float32", m), ("denominator", "float32", m),
-                           ("key", "int32", m)))
-
-    def amplitude_statistics(self, x) -> AmplitudeStatistics:
-        import dask
-        import dask.array as da
-
-        def compute() -> dict:
-            start = time.perf_counter()
-            peak = da.max(da.fabs(x))
-            squares = da.sum(x.astype(np.float64) ** 2)
-            if self.client is not None:
-                peak, squares = self.client.compute([peak, squares], sync=True)
-            else:
-                peak, squares = dask.compute(peak, squares, scheduler="threads",
-                                             num_workers=int(self.chunking.workers))
-            if not np.isfinite(float(peak)) or not np.isfinite(float(squares)):
-                raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
-                                 "faults")
-            self.seconds["statistics"] = round(time.perf_counter() - start, 2)
-            return asdict(AmplitudeStatistics.from_sums(float(peak), float(squares),
-                                                        int(np.prod(x.shape, dtype=np.int64))))
-
-        return AmplitudeStatistics(**self.saved("amplitudes", compute))
-
-    def balance(self, x, stats: AmplitudeStatistics) -> None:
-        p = self.plan
-        n0, n1, _ = p.shape
-        todo, _ = self.pending("balance", p.blocks(p.balance, p.balance))
-        tasks = []
-        for b in todo:
-            i0, i1, j0, j1 = b
-            a0, a1, b0, b1 = max(i0 - p.bhalo, 0), min(i1 + p.bhalo, n0), max(j0 - p.bhalo, 0), min(j1 + p.bhalo, n1)
-            tasks.append(self.task(_balance_block, x[a0:a1, b0:b1, :], (i0 - a0, i1 - a0, j0 - b0, j1 - b0), b,
-                                   str(self.work), self.opt, stats, str(self.marker("balance", b))))
-        self.compute(tasks, "amplitude balancing", "balance")
-
-    def semblance(self) -> float:
-        p = self.plan
-        n0, n1, _ = p.shape
-        results = self.each_block("semblance", "semblance", _semblance_block, p.blocks(p.block, p.block), p,
-                                  str(self.work), self.opt)
-        total = sum(r["sum_denominator"] for r in results)
-        return semblance_floor(total, n0 * n1 * p.m)
-
-    def scan(self, tiny: float, axis: int) -> None:
-        p = self.plan
-        n0, n1, _ = p.shape
-        step = f"scan_{'inline' if axis == 0 else 'crossline'}"
-        blocks = p.blocks(n0, p.strip) if axis == 0 else p.blocks(p.strip, n1)
-        self.each_block(step, f"fault scan along {'inlines' if axis == 0 else 'crosslines'}", _scan_block, blocks,
-                        axis, p, str(self.work), self.opt, tiny)
-
-    def decode(self, tiny: float, coords: dict | None) -> float:
-        import zarr
-        p = self.plan
-        results = self.each_block("decode", "decode", _decode_block, p.blocks(p.block, p.block), p, str(self.work),
-                                  str(self.partial), self.opt, tiny)
-        high = sum(r["high"] for r in results)
-        live = sum(r["live"] for r in results)
-        group = zarr.open_group(str(self.partial), mode="r+")
-        write_coords(group, p.shape, coords)
-        fraction = high / live if live else 0.0
-        group.attrs.update({"method": "fault likelihood (Hale 2013), seismo3d chunked run",
-                            "saturated_fraction": fraction})
-        return fraction
+    return AmplitudeStatistics(**run.saved("amplitudes", compute))
 
 
-def _balance_block(f, core, block, work, opt, stats, marker) -> dict:
-    """Balanced amplitudes of one block (read with halo), its core written to the work array."""
+def _saturated_fraction(run: StoreRun, results: list, plan: _Plan, coords: dict | None) -> float:
+    """The decoded blocks' saturated fraction, written with the coordinates to the output's attributes."""
+    import zarr
+    high = sum(r["high"] for r in results)
+    live = sum(r["live"] for r in results)
+    group = zarr.open_group(str(run.partial), mode="r+")
+    write_coords(group, plan.shape, coords)
+    fraction = high / live if live else 0.0
+    group.attrs.update({"method": "fault likelihood (Hale 2013), seismo3d chunked run",
+                        "saturated_fraction": fraction})
+    return fraction
+
+
+def _balance_block(f, origin, block, work, opt, stats, marker) -> dict:
+    """Balanced amplitudes of one block (read with halo from ``origin``), its core written to the work array."""
     import zarr
     f = np.ascontiguousarray(f, dtype=np.float32)
     if not np.all(np.isfinite(f)):
@@ -313,8 +287,8 @@ def _balance_block(f, core, block, work, opt, stats, marker) -> dict:
                          "replace them (e.g. by 0) before tracing faults")
     g = balance_amplitudes(f, opt, stats)
     del f
-    c0, c1, d0, d1 = core
     i0, i1, j0, j1 = block
+    c0, c1, d0, d1 = i0 - origin[0], i1 - origin[0], j0 - origin[1], j1 - origin[1]
     zarr.open_array(f"{work}/balanced", mode="r+")[i0:i1, j0:j1, :] = g[c0:c1, d0:d1]
     write_marker(marker, {})
     return {}
@@ -337,23 +311,6 @@ def _semblance_block(block, plan: _Plan, work, opt, marker) -> dict:
     return result
 
 
-def _read_sheared(array, region, axis: int, tile: int) -> np.ndarray:
-    """A region of a (n0, n1, m) work array in the scan's layout (sheared axis, sample, other axis), read tile row
-    by tile row so that only one row is held twice."""
-    rows, cols = region
-    n_a = (rows.stop - rows.start) if axis == 0 else (cols.stop - cols.start)
-    n_b = (cols.stop - cols.start) if axis == 0 else (rows.stop - rows.start)
-    out = np.empty((n_a, array.shape[2], n_b), dtype=np.float32)
-    start = rows.start if axis == 0 else cols.start
-    for a in range(0, n_a, tile):
-        b = min(a + tile, n_a)
-        if axis == 0:
-            out[a:b] = array[start + a:start + b, cols].transpose(0, 2, 1)
-        else:
-            out[a:b] = array[rows, start + a:start + b].transpose(1, 2, 0)
-    return out
-
-
 def _scan_block(block, axis, plan: _Plan, work, opt, tiny, marker) -> dict:
     """The planes sheared along ``axis`` on a block that holds that whole axis; the key maximised into the work
     array (idempotent: a block scanned twice leaves the same key)."""
@@ -368,8 +325,8 @@ def _scan_block(block, axis, plan: _Plan, work, opt, tiny, marker) -> dict:
         a, b = max(i0 - plan.shalo, 0), min(i1 + plan.shalo, n0)
         region = (slice(a, b), slice(0, n1))
         core, origin = (i0 - a, i1 - a), a
-    sn = _read_sheared(zarr.open_array(f"{work}/numerator", mode="r"), region, axis, plan.tile)
-    sd = _read_sheared(zarr.open_array(f"{work}/denominator", mode="r"), region, axis, plan.tile)
+    sn = read_sheared(zarr.open_array(f"{work}/numerator", mode="r"), region, axis, plan.tile)
+    sd = read_sheared(zarr.open_array(f"{work}/denominator", mode="r"), region, axis, plan.tile)
     key = scan_planes(sn, sd, opt, tiny, n_samples=nt, axes=(axis,), core=core, origin=origin, sheared_layout=True)
     del sn, sd
     store = zarr.open_array(f"{work}/key", mode="r+")

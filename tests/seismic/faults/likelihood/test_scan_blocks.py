@@ -1,4 +1,4 @@
-"""Chunked fault likelihood (seismo3d.seismic.faults.blocks.scan_blocks): equal to the in-memory scan block by block,
+"""Chunked fault likelihood (seismo3d.seismic.faults.likelihood.scan_blocks): equal to the in-memory scan block by block,
 resumable after a killed run, within its memory limit, on the threaded and the distributed scheduler."""
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import fault_likelihood
 from seismo3d.seismic.blocks.options import ChunkOptions
-from seismo3d.seismic.faults.blocks.scan_blocks import chunked_fault_likelihood
+from seismo3d.seismic.faults.likelihood.scan_blocks import chunked_fault_likelihood
 
 
 @pytest.fixture(scope="module")
@@ -110,7 +110,7 @@ def test_memory_budget_is_the_block_size(tmp_path):
 _RUN = textwrap.dedent("""
     import sys, numpy as np
     from seismo3d.data.synthetic import synthetic_cube
-    from seismo3d.seismic.faults.blocks.scan_blocks import ChunkOptions, chunked_fault_likelihood
+    from seismo3d.seismic.faults.likelihood.scan_blocks import ChunkOptions, chunked_fault_likelihood
     cube = synthetic_cube((112, 80, 72), seed=3).cube.astype(np.float32)
     r = chunked_fault_likelihood(cube, sys.argv[1], chunking=ChunkOptions(block=32, strip=32, scheduler="synchronous"))
     print(r.blocks_computed, r.blocks_resumed)

@@ -1,0 +1,243 @@
+"""The plan of a run by blocks: its steps declared once (:class:`BlockStep`: what a block computes, whether the step
+maps, reduces or gathers, the halo it reads, the bytes of a block), and the largest blocks a memory limit allows them
+(:func:`block_budget`, :func:`plan_steps`, :func:`serial_step_blocks`), decided once before the run. The run itself is
+:class:`~seismo3d.seismic.blocks.executor.BlockRun`'s (:meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step`).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from ...errors import InputError
+
+__all__ = ["BlockStep", "MEMORY_HEADROOM", "STEP_KINDS", "around", "block_budget", "largest_block", "lateral_blocks",
+           "limit_for_blocks", "plan_steps", "serial_step_blocks", "usable_cores"]
+
+# Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
+# for the allocator's fragmentation and the reads in flight (a chunked likelihood run peaked at 1.54 GB under a
+# 1.4 GB limit without it).
+MEMORY_HEADROOM = 0.8
+
+
+def block_budget(limit: int, baseline: int, workers: int) -> int:
+    """Bytes one worker's block may plan for under a memory limit: the limit less the process itself, times
+    :data:`MEMORY_HEADROOM`, shared by the workers. Both likelihoods (scan and learned) and the fault surfaces plan
+    with it; :func:`limit_for_blocks` is its inverse.
+
+    Parameters
+    ----------
+    limit : int
+        Memory limit, bytes.
+    baseline : int
+        Bytes the process holds before its blocks (:func:`~seismo3d.seismic.blocks.memory.worker_baseline`).
+    workers : int
+        Blocks computed at once (>= 1).
+
+    Returns
+    -------
+    int
+        Bytes; negative when the baseline is above the limit (no block fits).
+    """
+    return int((int(limit) - int(baseline)) * MEMORY_HEADROOM) // int(workers)
+
+
+def limit_for_blocks(block_bytes: int, baseline: int, workers: int) -> int:
+    """The smallest memory limit whose :func:`block_budget` holds a block of ``block_bytes`` per worker.
+
+    Parameters
+    ----------
+    block_bytes : int
+        Bytes of one block at its step's peak.
+    baseline : int
+        Bytes the process holds before its blocks.
+    workers : int
+        Blocks computed at once (>= 1).
+
+    Returns
+    -------
+    int
+        Bytes: ``baseline + ceil(block_bytes * workers / MEMORY_HEADROOM)``.
+    """
+    return int(baseline) + math.ceil(int(block_bytes) * int(workers) / MEMORY_HEADROOM)
+
+
+def largest_block(tile: int, cap: int, fits) -> int:
+    """The largest multiple of ``tile`` up to ``cap`` for which ``fits(size)`` holds (``tile`` at least).
+
+    Parameters
+    ----------
+    tile : int
+        Traces per side of a chunk; blocks are whole chunks.
+    cap : int
+        Largest size considered, traces.
+    fits : callable
+        ``fits(size) -> bool``: whether a block of ``size`` traces a side fits the memory budget.
+
+    Returns
+    -------
+    int
+    """
+    size = tile
+    while size + tile <= cap and fits(size + tile):
+        size += tile
+    return size
+
+
+STEP_KINDS = ("map", "reduce", "gather")
+
+
+@dataclass(frozen=True)
+class BlockStep:
+    """A step of a run by blocks, declared once with what the executor needs to plan and run it.
+
+    Attributes
+    ----------
+    name : str
+        The step's name (its key in the plan, its markers' prefix, its seconds' key).
+    kind : {'map', 'reduce', 'gather'}
+        ``'map'``: each block writes its core of an output; ``'reduce'``: each block returns a small statistic
+        combined over the blocks (sums, a histogram, a range); ``'gather'``: each block returns a sparse list
+        gathered in memory (seed candidates, cells). A step may also return what a later step reduces or gathers
+        (its ``kind`` names what it is planned for).
+    halo : int
+        Traces read on each lateral side of a block's core.
+    block_bytes : callable, optional
+        ``block_bytes(side) -> int``: bytes at the step's peak for a block of ``side`` traces a side (its halo
+        included), the model of the step's arrays; None for a step run on the blocks another step was planned for
+        (left out of :func:`plan_steps`).
+    cap : int
+        Largest side considered, traces.
+    fixed : int, optional
+        A side forced by the caller (``ChunkOptions.block`` or ``strip``): used as is, and refused by the caller
+        when it does not fit.
+    function : callable, optional
+        What the step computes on a block, run by
+        :meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step`: ``function(block, *args, marker)``, or
+        ``function(window, origin, block, *args, marker)`` when the step reads the input cube (``window`` its
+        region around the block as a numpy array, ``origin`` the region's first inline and crossline); it writes
+        its outputs to the run's stores, then its marker (:func:`~seismo3d.seismic.blocks.executor.write_marker`),
+        and returns the marker's JSON payload.
+    label : str
+        What the progress reports name the step.
+    region : callable, optional
+        ``region(block) -> (a0, a1, b0, b1)``: the input traces a block reads; default the block grown by ``halo``
+        (:func:`around`).
+    threads : bool
+        On a ``dask.distributed`` cluster, a block's kernels use the worker's share of the host's cores; False keeps
+        the process's threads (a step whose float sums depend on the number of threads, kept as in memory).
+    """
+
+    name: str
+    kind: str
+    halo: int = 0
+    block_bytes: Callable[[int], int] | None = None
+    cap: int = 0
+    fixed: int | None = None
+    function: Callable | None = None
+    label: str = ""
+    region: Callable | None = None
+    threads: bool = True
+
+    def __post_init__(self):
+        if self.kind not in STEP_KINDS:
+            raise InputError(f"BlockStep(kind=...) must be one of {', '.join(STEP_KINDS)}; got {self.kind!r}")
+
+
+def plan_steps(steps, *, tile: int, budget: int) -> dict:
+    """The side of each step's blocks: its ``fixed`` side, else the largest multiple of ``tile`` up to its ``cap``
+    whose :attr:`BlockStep.block_bytes` fit ``budget`` (``tile`` at least: the caller refuses a step whose smallest
+    block does not fit, with its own message).
+
+    Parameters
+    ----------
+    steps : iterable of BlockStep
+        Those without ``block_bytes`` are left out.
+    tile : int
+        Traces a side of a chunk; blocks are whole chunks.
+    budget : int
+        Bytes one worker's block may use (:func:`block_budget`).
+
+    Returns
+    -------
+    dict
+        ``{step name: side}``, traces, in the steps' order.
+    """
+    return {s.name: int(s.fixed) if s.fixed else largest_block(int(tile), int(s.cap),
+                                                                lambda b, s=s: s.block_bytes(b) <= budget)
+            for s in steps if s.block_bytes is not None}
+
+
+def serial_step_blocks(step: BlockStep, *, limit: int, baseline: int, workers: int, scheduler,
+                       tile: int) -> tuple[int, int]:
+    """Blocks at once and their side for a step whose kernels are mostly serial (numpy, ``scipy.ndimage``): on the
+    local threaded scheduler, up to one block per core, each planned for its share of the memory.
+
+    Used by the learned likelihood's strike-and-dip step (Gaussian filters: 1.18 CPU s per wall-clock s on 2 cores;
+    on the 400 x 400 x 500 cube of ``benchmarks/fault_paths.py --only target`` under a 1 GB limit, 2 blocks of 64
+    traces at once took 25 s against 35 s for 1 block of 96). The ridges' kernels (structure tensor, ridges) are
+    parallel already (1.8 CPU s per s): 2 blocks of 64 at once took 48 s there against 46 s for one of 96.
+
+    More blocks at once use the cores the serial kernels leave idle, but each is smaller, so its halo costs more.
+    The count chosen minimises the step's time per core, ``((b + 2 halo) / b)**2 / n`` for ``n`` blocks of side
+    ``b`` at once (``b`` the largest that fits the budget of ``n`` workers), never below ``workers``.
+
+    Parameters
+    ----------
+    step : BlockStep
+        The step: its halo (traces on each side of a block), the bytes of a block of ``side`` traces a side (its
+        halo included) and the largest side (``cap``); its ``fixed`` side is not used (the caller's).
+    limit, baseline : int
+        Memory limit and the process's own bytes (:func:`block_budget`).
+    workers : int
+        Blocks at once asked for (the run's ``ChunkOptions.workers``).
+    scheduler : str or None
+        The run's scheduler: only the local threaded one (None, ``'threads'``) runs more blocks at once.
+    tile : int
+        Blocks are multiples of ``tile`` traces a side.
+
+    Returns
+    -------
+    (int, int)
+        Blocks at once and their side (``tile`` at least; the caller refuses a limit below what it needs).
+    """
+    cores = usable_cores() if scheduler in (None, "threads") else 1
+    cap, halo, block_bytes = int(step.cap), int(step.halo), step.block_bytes
+    best = None
+    for n in range(int(workers), max(int(workers), cores) + 1):
+        budget = block_budget(limit, baseline, n)
+        side = largest_block(tile, cap, lambda b: block_bytes(b) <= budget)
+        if block_bytes(side) > budget:
+            break
+        cost = ((side + 2 * halo) / side) ** 2 / min(n, cores)
+        if best is None or cost < best[0] - 1e-9:
+            best = (cost, n, side)
+    if best is None:
+        return int(workers), largest_block(tile, cap, lambda b: block_bytes(b) <= block_budget(limit, baseline,
+                                                                                                  int(workers)))
+    return best[1], best[2]
+
+
+def usable_cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+def lateral_blocks(shape, size0: int, size1: int) -> list:
+    """``(i0, i1, j0, j1)`` of the blocks of ``size0`` inlines by ``size1`` crosslines (every sample) that tile a cube
+    of ``shape``, inline-major."""
+    n0, n1 = shape[:2]
+    return [(i, min(i + size0, n0), j, min(j + size1, n1)) for i in range(0, n0, size0) for j in range(0, n1, size1)]
+
+
+
+
+def around(block, halo: int, shape) -> tuple:
+    """``(a0, a1, b0, b1)``: ``block`` ``(i0, i1, j0, j1)`` grown by ``halo`` traces on each lateral side, clipped to
+    a cube of ``shape``."""
+    i0, i1, j0, j1 = block
+    return max(i0 - halo, 0), min(i1 + halo, shape[0]), max(j0 - halo, 0), min(j1 + halo, shape[1])

@@ -12,12 +12,11 @@ from typer.testing import CliRunner
 
 import seismo3d.seismic.blocks.options as block_options
 import seismo3d.jobs.faults as job
-import seismo3d.seismic.faults.preflight as preflight
 import seismo3d.seismic.faults.pipeline as pipeline
 from seismo3d.cli import app
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import UnsupportedDataError
-from seismo3d.seismic.faults.preflight import CubeSample
+from seismo3d.seismic.faults.checks import CubeSample
 
 runner = CliRunner()
 
@@ -54,12 +53,12 @@ def cube_file(tmp_path_factory):
 
 def test_a_limit_below_the_smallest_blocks_names_the_minimum_at_once(cube_file, tmp_path, monkeypatch):
     monkeypatch.setattr(pipeline, "chunked_fault_likelihood", _never)
-    monkeypatch.setattr(preflight, "judge_sample", _never)
+    monkeypatch.setattr(pipeline, "judge_sample", _never)
     # the process as measured by the first call for both calls: the limit named is rounded up (to 10 MB, or 0.1 GB
     # over 1 GB), and a process grown by a fraction of a MB in between could sit just above it
     baseline = {}
-    measure = preflight.worker_baseline
-    monkeypatch.setattr(preflight, "worker_baseline", lambda *a, **k: baseline.setdefault("bytes", measure(*a, **k)))
+    measure = pipeline.worker_baseline
+    monkeypatch.setattr(pipeline, "worker_baseline", lambda *a, **k: baseline.setdefault("bytes", measure(*a, **k)))
     monkeypatch.setattr(block_options, "fits_in_memory", lambda *a, **k: False)  # blocks at either limit (next test)
     line = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
                                                "--memory-limit", "100MB"]))
@@ -75,14 +74,14 @@ def test_a_limit_below_the_smallest_blocks_names_the_minimum_at_once(cube_file, 
     def sampled(*args, **kwargs):
         raise Sampled
 
-    monkeypatch.setattr(preflight, "judge_sample", sampled)  # the limit named passes this check: the sample comes next
+    monkeypatch.setattr(pipeline, "judge_sample", sampled)  # the limit named passes this check: the sample comes next
     with pytest.raises(Sampled):
         job.run_faults_job(cube_file, tmp_path / "out", memory_limit=need, progress=False)
 
 
 def test_the_seed_candidates_a_sample_predicts_raise_the_minimum(cube_file, tmp_path, monkeypatch):
     dense = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1.0)  # 2 M candidates
-    monkeypatch.setattr(preflight, "judge_sample", lambda *a, **k: dense)
+    monkeypatch.setattr(pipeline, "judge_sample", lambda *a, **k: dense)
     monkeypatch.setattr(pipeline, "chunked_fault_likelihood", _never)
     # blocks at either limit: the limit named is rounded up to 0.1 GB once this process holds over 1 GB (the whole
     # suite), which can leave room for the 200 MB in-memory run; this test is about the candidates' check
@@ -90,8 +89,8 @@ def test_the_seed_candidates_a_sample_predicts_raise_the_minimum(cube_file, tmp_
     # the process as measured by the first call for every call: a process of 2 GB (the whole suite) can give back
     # more than the 20 MB margin below between two calls (release_memory trims the heap)
     baseline = {}
-    measure = preflight.worker_baseline
-    monkeypatch.setattr(preflight, "worker_baseline", lambda *a, **k: baseline.setdefault("bytes", measure(*a, **k)))
+    measure = pipeline.worker_baseline
+    monkeypatch.setattr(pipeline, "worker_baseline", lambda *a, **k: baseline.setdefault("bytes", measure(*a, **k)))
     # the smallest blocks' own minimum, asked of the job (it depends on the size of this process), plus 20 MB: the
     # blocks fit, 168 MB of candidates do not
     # the scan's smallest blocks (the learned likelihood's, halo 96 traces, need more than the candidates here)
@@ -108,8 +107,8 @@ def test_the_seed_candidates_a_sample_predicts_raise_the_minimum(cube_file, tmp_
 
 def test_progress_lines_have_no_negative_sizes(cube_file, tmp_path, monkeypatch, caplog):
     """A limit below the process's own size: the lines say what the process holds, never a negative size left."""
-    monkeypatch.setattr(preflight, "judge_sample", lambda *a, **k: CubeSample(3, 1, 0.1, 0.0))
-    monkeypatch.setattr(preflight, "minimum_memory_limit", lambda *a, **k: 0)  # let the run reach its first step
+    monkeypatch.setattr(pipeline, "judge_sample", lambda *a, **k: CubeSample(3, 1, 0.1, 0.0))
+    monkeypatch.setattr(pipeline, "minimum_memory_limit", lambda *a, **k: 0)  # let the run reach its first step
 
     class Started(Exception):
         pass
@@ -158,7 +157,7 @@ def test_white_noise_under_1GB_is_refused_within_30_s(noise_file, tmp_path):
 @pytest.mark.slow
 def test_white_noise_under_100MB_names_the_minimum_before_any_block(noise_file, tmp_path, monkeypatch):
     monkeypatch.setattr(pipeline, "chunked_fault_likelihood", _never)
-    monkeypatch.setattr(preflight, "judge_sample", _never)
+    monkeypatch.setattr(pipeline, "judge_sample", _never)
     line = _error_line(runner.invoke(app, ["faults", str(noise_file), "-o", str(tmp_path / "out"),
                                                "--memory-limit", "100MB"]))
     size = r"\d+(\.\d)?[MG]B"  # this process's size sets the minimum: MB alone, GB after a long test session

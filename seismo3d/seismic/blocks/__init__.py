@@ -5,13 +5,17 @@ Generic pieces, knowing nothing of what a block computes:
 - :mod:`~seismo3d.seismic.blocks.options`: :class:`BlockRunOptions`, how a cube is run (memory limit, forced choice,
   work folder, dask scheduler, the input's name and coordinates recorded in the stores);
 - :mod:`~seismo3d.seismic.blocks.memory`: memory limits parsed and measured, whether a run in memory fits;
-- :mod:`~seismo3d.seismic.blocks.executor`: resumable runs over the blocks of a cube (markers, budgets, dask
-  schedulers, the kernels' threads);
+- :mod:`~seismo3d.seismic.blocks.plan`: steps declared once (:class:`~seismo3d.seismic.blocks.plan.BlockStep`: block
+  function, map / reduce / gather, halo, bytes of a block) and the largest blocks a memory limit allows them;
+- :mod:`~seismo3d.seismic.blocks.executor`: resumable runs over the blocks of a cube (markers, dask schedulers, the
+  kernels' threads), :meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step` running a declared step;
 - :mod:`~seismo3d.seismic.blocks.stores`: the Zarr stores of such a run (the work folder, the output assembled in
   ``OUTPUT.partial`` and renamed when complete, its coordinates);
 - :mod:`~seismo3d.seismic.blocks.windows`: windows of a cube around points, in memory, lazy (dask) or stored (Zarr).
 
-The fault interpretation's block runs use them (:mod:`seismo3d.seismic.faults.blocks`).
+The fault interpretation's runs by blocks are lists of declared steps run by them
+(:mod:`seismo3d.seismic.faults.likelihood.scan_blocks`, :mod:`seismo3d.seismic.faults.likelihood.learned_blocks`,
+:mod:`seismo3d.seismic.faults.surfaces.blocks`).
 """
 
 from .executor import BlockRun, SchedulerClient, run_block

@@ -4,7 +4,8 @@ After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the ste
 command uses and returns a :class:`FaultInterpretation`: the checks and the likelihood, then the one sequence of
 steps of :mod:`~seismo3d.seismic.faults.steps`, on the whole array as one block
 (:class:`~seismo3d.seismic.faults.steps.ArrayRun`) or block by block into Zarr stores (:func:`trace_faults_by_blocks`,
-the checks before it in :mod:`~seismo3d.seismic.faults.preflight`); :func:`clean_traces` finds the dead
+before any block :func:`check_block_run`: the memory its smallest blocks need, :func:`minimum_memory_limit`, and the
+data judged from a sample of blocks, :mod:`~seismo3d.seismic.faults.checks`); :func:`clean_traces` finds the dead
 samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and
 writing results is the ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
 
@@ -24,29 +25,34 @@ import numpy as np
 from ..._progress import LOGGER, progress_steps
 from ..._validation import check_choice, check_positive
 from ...errors import EarlierStoresError, InputError, Seismo3dWarning
-from ..blocks.memory import in_memory_bytes, resident_memory
+from ..blocks.executor import release_memory
+from ..blocks.memory import in_memory_bytes, resident_memory, size_text, worker_baseline
 from ..blocks.options import BlockRunOptions, ChunkOptions
+from ..blocks.plan import limit_for_blocks
 from ..io.zarr_store import consolidate
-from .checks import check_amplitudes, check_size, no_coherence_message
+from .checks import SampleOptions, check_amplitudes, check_size, finite_cube, judge_sample
 from .likelihood.learned import learned_fault_likelihood
-from .likelihood.learned_blocks import chunked_learned_likelihood
+from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
 from .likelihood.scan import fault_likelihood
-from .likelihood.scan_blocks import chunked_fault_likelihood
+from .likelihood.scan_blocks import chunked_fault_likelihood, smallest_block_bytes as likelihood_block_bytes
 from .options import LIKELIHOODS, FaultTracingOptions
 from .result import FaultInterpretation, FaultLikelihood
-from .preflight import SampleOptions, check_block_run, judge_sample
-from .steps import ArrayRun, faults_from_cells, surface_cells
+from .steps import ArrayRun, faults_from_cells, no_coherence_message, surface_cells
+from .surfaces.block_steps import CANDIDATE_BYTES, smallest_block_bytes as surfaces_block_bytes
 from .surfaces.blocks import chunked_fault_surfaces
 from .surfaces.dead_samples import CleanTraces, clean_traces, near_dead_samples
 
 # check_size, check_amplitudes, no_coherence_message and LIKELIHOODS are imported here by older callers
 __all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "LIKELIHOOD_STORE", "LIKELIHOODS",
-           "SURFACES_STORE", "check_amplitudes", "check_size", "clean_traces", "no_coherence_message", "trace_faults",
-           "trace_faults_by_blocks"]
+           "STAGE_GROWTH", "SURFACES_STORE", "check_amplitudes", "check_block_run", "check_size", "clean_traces",
+           "minimum_memory_limit", "no_coherence_message", "trace_faults", "trace_faults_by_blocks"]
 
 _UNITS = {"samples", "ms", "m", "ft"}
 LIKELIHOOD_STORE = "fault_likelihood.zarr"
 SURFACES_STORE = "fault_surfaces.zarr"
+# What the process keeps of the fault likelihood stage when the surfaces stage plans its blocks from the resident
+# memory: measured 33 MiB on a 96 x 96 x 200 cube and 46 MiB on a 160 x 160 x 256 one (glibc, 2 threads), rounded up.
+STAGE_GROWTH = 64 << 20
 
 
 def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivity=None,
@@ -84,8 +90,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`: 160 MiB and 24 times its float32 size) is traced
     block by block (:func:`trace_faults_by_blocks`) into Zarr stores in ``blocks.work_dir``, with the same checks,
     warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of
-    blocks first (:meth:`~seismo3d.seismic.faults.preflight.SampleOptions.worth_sampling`) is refused from that
-    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.preflight.judge_sample`), on either path.
+    blocks first (:meth:`~seismo3d.seismic.faults.checks.SampleOptions.worth_sampling`) is refused from that
+    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.checks.judge_sample`), on either path.
 
     Parameters
     ----------
@@ -200,7 +206,7 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
                            memory_limit: int, work_dir, scheduler=None, source: str = "cube", coords=None,
                            progress: bool = True) -> FaultInterpretation:
     """Trace the faults of a 3D cube block by block (called by :func:`trace_faults`): the checks before any block
-    (:func:`~seismo3d.seismic.faults.preflight.check_block_run`), the fault likelihood
+    (:func:`check_block_run`), the fault likelihood
     (:func:`~seismo3d.seismic.faults.likelihood.scan_blocks.chunked_fault_likelihood` or the learned one) into
     ``fault_likelihood.zarr`` (a finished likelihood of the same source is reused; an unfinished one resumes), the
     fault surfaces (:func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces`) into
@@ -338,3 +344,99 @@ def _given_likelihood(fl, shape: tuple) -> FaultLikelihood:
         raise InputError(f"the given fault likelihood has shape {arrays[0].shape} but the data {tuple(shape)}; "
                          "compute it from the same data")
     return FaultLikelihood(*arrays)
+
+
+def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions | None = None,
+                         tile: int | None = None, workers: int = 1, sample: CubeSample | None = None, growth: int = STAGE_GROWTH) -> int:
+    """The smallest ``memory_limit`` (bytes) with which a block-by-block fault run of a cube can go through: both
+    stages plan their smallest blocks (the second from a process grown by ``growth``), and (with ``sample``) the
+    seed candidates fit.
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    baseline : int
+        Bytes the process holds before its blocks
+        (:func:`~seismo3d.seismic.faults.likelihood.scan_blocks.worker_baseline`).
+    options : FaultTracingOptions, optional
+    tile : int, optional
+        Traces a side of the smallest blocks (default :attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile`).
+    workers : int
+        Blocks computed at once.
+    sample : CubeSample, optional
+        From :func:`judge_sample`: adds the seed candidates it predicts.
+    growth : int
+        Bytes the process grows by during the likelihood stage (:data:`STAGE_GROWTH`).
+
+    Returns
+    -------
+    int
+        Bytes.
+    """
+    opt = options or FaultTracingOptions()
+    tile = int(tile or ChunkOptions().tile)
+    shape = tuple(int(n) for n in shape)
+    baseline, growth = int(baseline), int(growth)
+    first = limit_for_blocks(likelihood_block_bytes(shape, opt.scan, tile) if opt.likelihood == "scan"
+                             else learned_block_bytes(shape, opt.learned, tile), baseline, workers)
+    need = max(first, limit_for_blocks(surfaces_block_bytes(shape, opt, tile), baseline + growth, workers))
+    if sample is not None:
+        need = max(need, baseline + growth + sample.candidates(shape) * CANDIDATE_BYTES)
+    return need
+
+
+def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOptions):
+    """Before any block of a run by blocks: the memory its smallest blocks need (at once); the data judged from a
+    sample of blocks (not seismic amplitudes, no lateral coherence: the refusals of the run in memory, in seconds);
+    the memory the seed candidates the sample predicts need; then the data's NaN, constant, clipped and dead samples
+    (:func:`finite_cube`, passes over the whole cube).
+
+    Parameters
+    ----------
+    x : (n_inlines, n_xlines, n_samples) dask.array.Array
+    name : str
+        The input, for messages.
+    limit : int
+        Memory limit, bytes.
+    scheduler : str or None
+    options : FaultTracingOptions
+
+    Returns
+    -------
+    dask.array.Array
+        ``x`` with NaN / inf read as 0 (:func:`finite_cube`).
+
+    Raises
+    ------
+    UnsupportedDataError
+        The sample refuses the data.
+    InputError
+        ``limit`` below what the run needs (the message names the smallest limit that works), or constant data.
+    """
+    shape = tuple(int(n) for n in x.shape)
+    chunks = x.chunks
+
+    def baseline() -> int:  # the process as it is now, and the input chunks a block reads
+        return worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler),
+                               4 * max(chunks[0]) * max(chunks[1]) * shape[2])
+
+    _check_limit(name, shape, limit, minimum_memory_limit(shape, baseline=baseline(), options=options),
+                 " for its smallest blocks alone")
+    LOGGER.info("%s: judging the data from a sample of blocks", name)
+    sample = judge_sample(x, options=options)  # before the passes over the whole cube: a refusal in seconds
+    release_memory()  # the sample's arrays, before the process is measured again
+    need = minimum_memory_limit(shape, baseline=baseline(), options=options, sample=sample)
+    _check_limit(name, shape, limit, need, f" (with the ~{sample.candidates(shape)} seed candidates a sample "
+                                           "of its blocks predicts)")
+    return finite_cube(x, options.dead)
+
+
+def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:
+    """InputError naming the smallest memory limit that works when ``limit`` is below ``need``."""
+    if need <= limit:
+        return
+    held = resident_memory()
+    raise InputError(f"{name}: a block-by-block run of its {shape[0]} x {shape[1]} x {shape[2]} samples needs a "
+                     f"memory limit of at least {size_text(need)}{why}, more than the {size_text(limit)} given "
+                     f"(this process alone holds {size_text(held)}); pass memory_limit='{size_text(need)}' or more")

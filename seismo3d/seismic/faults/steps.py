@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Protocol
 import numpy as np
 
 from ..._progress import no_progress
-from .checks import check_saturation
+from ...errors import UnsupportedDataError
 from .evidence import supported_faults
 from .surfaces.ridges import live_likelihood, ridges, thin_votes, without_dead_edges
 from .surfaces.skins import image_cells, skins_from_cells
@@ -33,7 +33,8 @@ from .throw import fault_throws
 if TYPE_CHECKING:  # annotations only: the options are passed in
     from .options import FaultTracingOptions
 
-__all__ = ["ArrayRun", "SurfaceCells", "SurfaceRun", "faults_from_cells", "surface_cells"]
+__all__ = ["ArrayRun", "SurfaceCells", "SurfaceRun", "check_saturation", "faults_from_cells", "no_coherence_message",
+           "surface_cells"]
 
 
 class SurfaceRun(Protocol):
@@ -199,7 +200,7 @@ def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> Surfac
     Raises
     ------
     UnsupportedDataError
-        The likelihood is saturated (:func:`~seismo3d.seismic.faults.checks.check_saturation`).
+        The likelihood is saturated (:func:`check_saturation`).
     InputError
         A run by blocks whose seed candidates or cells need more than its memory limit.
     """
@@ -217,6 +218,41 @@ def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> Surfac
     n_cells = run.cells(lower)
     bar.advance()
     return SurfaceCells((float(lower), float(upper)), int(len(seeds)), int(n_cells), float(saturated))
+
+
+def check_saturation(high: int, live: int, opt: FaultTracingOptions) -> float:
+    """Refuse data whose likelihood is high almost everywhere (no lateral coherence).
+
+    Parameters
+    ----------
+    high, live : int
+        Live samples (not near dead ones) with a likelihood above ``opt.saturation_level``, and all live samples: counted over the whole
+        array in memory, summed over the blocks of a run by blocks
+        (:func:`~seismo3d.seismic.faults.surfaces.ridges.live_likelihood`).
+    opt : FaultTracingOptions
+
+    Returns
+    -------
+    float
+        The fraction ``high / live`` (0 when nothing is live).
+
+    Raises
+    ------
+    UnsupportedDataError
+        The fraction exceeds ``opt.max_saturated``.
+    """
+    fraction = float(high) / float(live) if live else 0.0
+    if fraction > opt.max_saturated:
+        raise UnsupportedDataError(no_coherence_message(fraction, opt.saturation_level))
+    return fraction
+
+
+def no_coherence_message(fraction: float, level: float) -> str:
+    """The refusal of data without lateral coherence, its likelihood above ``level`` (the options'
+    ``saturation_level``) at ``fraction`` of the samples."""
+    return (f"the fault likelihood is above {level:g} at {fraction:.0%} of the samples: the data has no lateral "
+            "coherence to trace faults in (noise, chaotic reflections, or traces out of order); check the "
+            "inline/crossline geometry or the file")
 
 
 def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, opt: FaultTracingOptions, *,

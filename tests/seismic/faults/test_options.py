@@ -7,7 +7,7 @@ import pytest
 
 from seismo3d.errors import InputError
 from seismo3d.seismic.faults import FaultScanOptions, FaultTracingOptions, LearnedOptions
-from seismo3d.seismic.faults.checks import check_saturation
+from seismo3d.seismic.faults.steps import check_saturation
 
 
 @pytest.mark.parametrize("cls", [FaultTracingOptions, FaultScanOptions, LearnedOptions])

@@ -11,7 +11,8 @@ from seismo3d.seismic.faults.surfaces import block_steps as surface_steps
 from seismo3d.seismic.faults.likelihood.scan import FaultScanOptions
 from seismo3d.seismic.blocks.options import ChunkOptions
 from seismo3d.seismic.faults.options import FaultTracingOptions
-from seismo3d.seismic.faults.preflight import CubeSample, SampleOptions, judge_sample, minimum_memory_limit
+from seismo3d.seismic.faults.checks import CubeSample, SampleOptions, judge_sample
+from seismo3d.seismic.faults.pipeline import minimum_memory_limit
 
 
 class Recording:

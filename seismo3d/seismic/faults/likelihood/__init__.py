@@ -5,6 +5,9 @@
   :mod:`~seismo3d.seismic.faults.likelihood.network`.
 - :mod:`~seismo3d.seismic.faults.likelihood.scan`: the scan of fault strikes and dips of the semblance of balanced
   amplitudes (Hale 2013); its numba kernels in :mod:`~seismo3d.seismic.faults.likelihood.scan_kernels`.
+- :mod:`~seismo3d.seismic.faults.likelihood.scan_blocks`, :mod:`~seismo3d.seismic.faults.likelihood.learned_blocks`:
+  either likelihood of a cube larger than memory, as its declared steps (block functions, halos, costs) run block by
+  block by the executor of :mod:`seismo3d.seismic.blocks`.
 """
 
 from .learned import LearnedOptions, learned_fault_likelihood

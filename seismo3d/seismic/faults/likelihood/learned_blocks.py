@@ -22,8 +22,9 @@ inlines only. The steps (the output equals the in-memory
    ``strike_deg``, ``dip_deg``: what :func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces`
    reads, as from the scan's chunked run).
 
-Markers, resumption, the ``.partial`` output and the schedulers are those of
-:mod:`~seismo3d.seismic.faults.likelihood.scan_blocks`.
+The steps are declared once (:func:`block_steps`) and run by the executor of :mod:`seismo3d.seismic.blocks`
+(:meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step`: markers, resumption, schedulers), into the stores of
+:class:`~seismo3d.seismic.blocks.stores.StoreRun` (the ``.partial`` output renamed when complete).
 """
 
 from __future__ import annotations

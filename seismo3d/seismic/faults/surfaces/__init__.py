@@ -7,6 +7,9 @@
   :mod:`~seismo3d.seismic.faults.surfaces.voting_kernels`.
 - :mod:`~seismo3d.seismic.faults.surfaces.skins`: thinned votes linked into fault skins (Hale 2013); its loops in
   :mod:`~seismo3d.seismic.faults.surfaces.skin_kernels`.
+- :mod:`~seismo3d.seismic.faults.surfaces.blocks`: the same steps on a cube larger than memory, block by block; their
+  declared steps (block functions, halos, costs, plan) in :mod:`~seismo3d.seismic.faults.surfaces.block_steps`, run by
+  the executor of :mod:`seismo3d.seismic.blocks`.
 """
 
 from .ridges import thin_faults

@@ -1,5 +1,5 @@
 """The block steps of the fault surfaces by blocks (:mod:`~seismo3d.seismic.faults.surfaces.blocks`), each
-declared with what the run needs to plan it: the halo it reads (``RIDGE_HALO``, ``THIN_HALO``, the voting's reach,
+declared once (:func:`block_steps`) with what the executor needs to plan and run it: the halo it reads (``RIDGE_HALO``, ``THIN_HALO``, the voting's reach,
 :func:`amplitude_halo`), the bytes a block needs (:func:`plan_blocks`: the largest blocks a memory limit allows), and
 its work on one block: fill values, ridges and seeds, seed surfaces, votes, thinned votes, the thresholds' statistics
 and the cells. Each block function reads its inputs from the run's stores, writes its outputs there and leaves a

@@ -28,8 +28,9 @@ block's core, so the result does not depend on where the blocks are cut:
    by :func:`~seismo3d.seismic.faults.surfaces.skins.skins_from_cells` (no array of the cube's size).
 7. **Throws** read the amplitudes around each fault patch (:func:`~seismo3d.seismic.fault_throws` on the lazy cube).
 
-Resume, progress and schedulers are those of :mod:`~seismo3d.seismic.faults.likelihood.scan_blocks`: a marker per finished
-block in ``OUTPUT.work``, the output assembled in ``OUTPUT.partial`` and renamed when complete.
+The steps are declared once (:func:`~seismo3d.seismic.faults.surfaces.block_steps.block_steps`) and run by the
+executor of :mod:`seismo3d.seismic.blocks` (:meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step`): a marker per
+finished block in ``OUTPUT.work``, the output assembled in ``OUTPUT.partial`` and renamed when complete.
 """
 
 from __future__ import annotations

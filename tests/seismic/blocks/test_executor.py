@@ -1,16 +1,17 @@
-"""Tests of seismo3d.seismic.blocks.executor: block tasks on a dask.distributed cluster use the worker's share of the
-host's cores for their numba kernels, and leave the worker's setting as it was."""
+"""Tests of seismo3d.seismic.blocks.executor: a declared step runs on every block not finished yet, each read with its
+halo; block tasks on a dask.distributed cluster use the worker's share of the host's cores for their numba kernels, and
+leave the worker's setting as it was."""
 
 from __future__ import annotations
 
 import os
 
 import numba
+import numpy as np
 import pytest
 
-from seismo3d.errors import InputError
-from seismo3d.seismic.blocks.executor import BlockRun, kernel_threads, run_block
-from seismo3d.seismic.blocks.plan import BlockStep, plan_steps
+from seismo3d.seismic.blocks.executor import BlockRun, kernel_threads, run_block, write_marker
+from seismo3d.seismic.blocks.plan import BlockStep, lateral_blocks
 
 
 def _kernel_thread_count(_block):
@@ -38,44 +39,6 @@ def test_block_tasks_share_the_cores_between_workers(tmp_path):
         assert kept == [numba.config.NUMBA_NUM_THREADS]  # the process's threads: restored after the tasks above
 
 
-def test_serial_step_blocks_trade_halo_for_idle_cores(monkeypatch):
-    from seismo3d.seismic.blocks import plan as blocks
-
-    monkeypatch.setattr(blocks, "usable_cores", lambda: 2)
-    mib = 1 << 20
-
-    def block_bytes(side):  # 1 MiB per trace of a block with 9 traces of halo
-        return (side + 18) ** 2 * mib
-
-    step = blocks.BlockStep("orientation", "reduce", 9, block_bytes, 256)
-
-    # room for one block of 96 or two of 64 (each within half the budget): (82 / 64)^2 / 2 < (114 / 96)^2
-    limit = int(2 * 82 ** 2 * mib / blocks.MEMORY_HEADROOM) + 1
-    assert blocks.serial_step_blocks(step, limit=limit, baseline=0, workers=1, scheduler=None, tile=32) == (2, 64)
-    # a third of that: one block of 32 (50^2 MiB) or two of 32 (each over half the budget: not allowed)
-    small = int(50 ** 2 * mib / blocks.MEMORY_HEADROOM) + 1
-    assert blocks.serial_step_blocks(step, limit=small, baseline=0, workers=1, scheduler=None, tile=32) == (1, 32)
-    # a cluster runs the blocks its workers take: the count asked for
-    cluster = "tcp://127.0.0.1:8786"
-    assert blocks.serial_step_blocks(step, limit=limit, baseline=0, workers=1, scheduler=cluster, tile=32) == (1, 96)
-    # two blocks at once asked for: never fewer
-    assert blocks.serial_step_blocks(step, limit=limit, baseline=0, workers=2, scheduler=None, tile=32) == (2, 64)
-
-
-def test_the_plan_gives_each_step_its_largest_block_that_fits_or_its_forced_side():
-    def square(b):  # bytes of a block of b traces a side with a halo of 2
-        return (b + 4) ** 2
-
-    steps = (BlockStep("a", "map", 2, square, 512), BlockStep("b", "reduce", 0, lambda b: 10 * b * b, 48),
-             BlockStep("c", "gather", 2, square, 512, fixed=16), BlockStep("d", "map", 0, lambda b: 10**9, 512))
-    sizes = plan_steps(steps, tile=8, budget=10_000)
-    # a: (96 + 4)^2 = 10000 fits, 104 does not; b: 10 * 24^2 = 5760 fits, 32 does not (10240), below its cap of 48;
-    # c: forced; d: nothing fits, so the tile (the caller refuses it)
-    assert sizes == {"a": 96, "b": 24, "c": 16, "d": 8}
-    with pytest.raises(InputError, match="BlockStep\\(kind=...\\) must be one of map, reduce, gather"):
-        BlockStep("x", "scatter", 0, square, 8)
-
-
 def test_a_saved_result_is_computed_once_and_read_back_by_a_resumed_run(tmp_path):
     calls = []
 
@@ -89,3 +52,34 @@ def test_a_saved_result_is_computed_once_and_read_back_by_a_resumed_run(tmp_path
     resumed = BlockRun(tmp_path / "work")
     assert resumed.saved("scale", compute) == [0.5, 2.0] and calls == [1]  # read back, not computed again
     assert (tmp_path / "work" / "scale.json").read_text() == "[0.5, 2.0]"
+
+
+def _core_sum(window, origin, block, offset, marker):
+    """The sum of a block's core (cut from its window by the origin) plus ``offset``, and the window's extent."""
+    i0, i1, j0, j1 = block
+    core = window[i0 - origin[0]:i1 - origin[0], j0 - origin[1]:j1 - origin[1]]
+    result = {"sum": float(core.sum()) + offset, "window": list(window.shape[:2])}
+    write_marker(marker, result)
+    return result
+
+
+def test_run_step_reads_each_block_with_its_halo_and_skips_the_finished_ones(tmp_path):
+    da = pytest.importorskip("dask.array")
+    cube = np.arange(10 * 7 * 3, dtype=np.float32).reshape(10, 7, 3)
+    step = BlockStep("sums", "reduce", 2, function=_core_sum, label="sums")
+    blocks = lateral_blocks(cube.shape, 4, 4)  # 3 x 2 blocks, the last ones clipped
+    run = BlockRun(tmp_path / "work", scheduler="synchronous")
+    run.open({"shape": list(cube.shape)}, "the work folder")
+    results = run.run_step(step, blocks, 0.5, source=da.from_array(cube, chunks=(5, 7, 3)))
+    expected = [float(cube[i0:i1, j0:j1].sum()) + 0.5 for i0, i1, j0, j1 in blocks]
+    assert [r["sum"] for r in results] == expected
+    # the windows: each block grown by 2 traces, clipped to the cube (10 x 7 traces)
+    assert [r["window"] for r in results] == [[6, 6], [6, 5], [8, 6], [8, 5], [4, 6], [4, 5]]
+    assert run.computed == {"sums": 6} and run.resumed == {"sums": 0} and "sums" in run.seconds
+
+    (tmp_path / "work" / "done" / "sums-4-0.json").unlink()  # as if interrupted before that block's marker
+    again = BlockRun(tmp_path / "work", scheduler="synchronous")
+    results = again.run_step(step, blocks, 0.5, source=da.from_array(cube, chunks=(5, 7, 3)))
+    assert again.computed == {"sums": 1} and again.resumed == {"sums": 5}
+    assert sorted(r["sum"] for r in results) == sorted(expected)  # the computed block first, then the finished ones
+    assert results[0]["sum"] == expected[2]

@@ -1,0 +1,54 @@
+"""Tests of seismo3d.seismic.blocks.plan: each declared step gets the largest block its bytes allow under the budget
+(or its forced side), a step without bytes runs on another step's blocks, and a step of mostly serial kernels trades
+halo for idle cores."""
+
+from __future__ import annotations
+
+import pytest
+
+from seismo3d.errors import InputError
+from seismo3d.seismic.blocks.plan import BlockStep, around, plan_steps
+
+
+def test_serial_step_blocks_trade_halo_for_idle_cores(monkeypatch):
+    from seismo3d.seismic.blocks import plan as blocks
+
+    monkeypatch.setattr(blocks, "usable_cores", lambda: 2)
+    mib = 1 << 20
+
+    def block_bytes(side):  # 1 MiB per trace of a block with 9 traces of halo
+        return (side + 18) ** 2 * mib
+
+    step = blocks.BlockStep("orientation", "reduce", 9, block_bytes, 256)
+
+    # room for one block of 96 or two of 64 (each within half the budget): (82 / 64)^2 / 2 < (114 / 96)^2
+    limit = int(2 * 82 ** 2 * mib / blocks.MEMORY_HEADROOM) + 1
+    assert blocks.serial_step_blocks(step, limit=limit, baseline=0, workers=1, scheduler=None, tile=32) == (2, 64)
+    # a third of that: one block of 32 (50^2 MiB) or two of 32 (each over half the budget: not allowed)
+    small = int(50 ** 2 * mib / blocks.MEMORY_HEADROOM) + 1
+    assert blocks.serial_step_blocks(step, limit=small, baseline=0, workers=1, scheduler=None, tile=32) == (1, 32)
+    # a cluster runs the blocks its workers take: the count asked for
+    cluster = "tcp://127.0.0.1:8786"
+    assert blocks.serial_step_blocks(step, limit=limit, baseline=0, workers=1, scheduler=cluster, tile=32) == (1, 96)
+    # two blocks at once asked for: never fewer
+    assert blocks.serial_step_blocks(step, limit=limit, baseline=0, workers=2, scheduler=None, tile=32) == (2, 64)
+
+
+def test_the_plan_gives_each_step_its_largest_block_that_fits_or_its_forced_side():
+    def square(b):  # bytes of a block of b traces a side with a halo of 2
+        return (b + 4) ** 2
+
+    steps = (BlockStep("a", "map", 2, square, 512), BlockStep("b", "reduce", 0, lambda b: 10 * b * b, 48),
+             BlockStep("c", "gather", 2, square, 512, fixed=16), BlockStep("d", "map", 0, lambda b: 10**9, 512))
+    sizes = plan_steps(steps, tile=8, budget=10_000)
+    # a: (96 + 4)^2 = 10000 fits, 104 does not; b: 10 * 24^2 = 5760 fits, 32 does not (10240), below its cap of 48;
+    # c: forced; d: nothing fits, so the tile (the caller refuses it)
+    assert sizes == {"a": 96, "b": 24, "c": 16, "d": 8}
+    with pytest.raises(InputError, match="BlockStep\\(kind=...\\) must be one of map, reduce, gather"):
+        BlockStep("x", "scatter", 0, square, 8)
+
+
+def test_a_step_without_bytes_is_run_on_another_steps_blocks_not_planned():
+    steps = (BlockStep("thin", "reduce", 2, lambda b: b * b, 64), BlockStep("cells", "gather"))
+    assert plan_steps(steps, tile=8, budget=1000) == {"thin": 24}  # 24^2 = 576 fits, 32^2 = 1024 does not
+    assert around((0, 4, 4, 8), 2, (10, 7)) == (0, 6, 2, 7)  # grown by 2 traces, clipped to the cube

@@ -293,3 +293,28 @@ def test_horizon_command_on_penobscot_xl1155(data_dir, tmp_path):
     steps = np.abs(np.diff(job.horizon.times))
     assert np.nanmedian(steps) <= 1.0
     assert abs(rows[rows[:, 0] == 1100, 2][0] - 2564.0) <= 8.0  # the seed's reflector, snapped within two samples
+
+
+@pytest.mark.slow
+def test_horizon_crosses_the_large_fault_of_penobscot_xl1155_once(data_dir, tmp_path):
+    # The picture: seeded at inline 1100 on the 2056 ms peak, the horizon used to climb 35 ms at inline 1281,
+    # inside the large fault's sliver (its two strands lie near inlines 1266-1268 and 1288-1290 at 2000-2030 ms), with
+    # 2016 ms on the pale traces before it. With the traced faults the sliver is left untracked and the horizon jumps
+    # once across the fault zone: 2032 ms at inline 1263 (hanging wall) to 1984 ms at 1291 (footwall, its drag), 48 ms
+    # where the fault's 2D throw profile reads 57 ms (the footwall beyond the drag); measured: 1264-1290 empty, the
+    # largest step between neighbouring picks 6.2 ms (13.4 ms before, besides the 35 ms one), 574 of 601 traces.
+    import os
+
+    from seismo3d.jobs.horizon import run_horizon_job
+
+    path = os.path.join(data_dir, "seismic", "penobscot_xl1155.sgy")
+    job = run_horizon_job(path, [(1100, 1155, 2056.0)], tmp_path / "h.txt", faults=True, progress=False)
+    ms = 4.0 * job.horizon.times.astype(np.float64)  # samples of 4 ms from 0 ms; inline 1000 is trace 0
+    assert job.n_faults >= 1
+    assert np.isnan(ms[266:289]).all()  # between the strands
+    steps = np.abs(np.diff(ms))
+    assert np.nanmax(steps) <= 8.0  # two samples: no step inside the zone, no spike beside it
+    west = ms[:266][np.isfinite(ms[:266])][-1]
+    east = ms[289:][np.isfinite(ms[289:])][0]
+    assert abs((west - east) - 48.0) <= 4.0, (west, east)
+    assert np.isfinite(ms).sum() >= 0.95 * ms.size

@@ -7,7 +7,9 @@ import numpy as np
 import pytest
 
 from seismo3d.errors import InputError
-from seismo3d.seismic import FaultCrossings
+from seismo3d.seismic import FaultCrossings, reliable_throw
+from seismo3d.seismic.horizons.fault_pairs import fault_steps
+from seismo3d.seismic.horizons.lsq import trace_pairs
 from seismo3d.seismic.faults.throw import hanging_wall_normals
 
 
@@ -56,25 +58,30 @@ def test_crossings_finds_the_fault_block_of_a_pick():
     assert FaultCrossings.empty(3).block(on_line, 40, 14, 15.0, 0.0, 0, 39) == (0, 39)
 
 
-def test_crossings_leaves_out_faults_whose_throw_does_not_correlate():
-    # A fault whose two sides do not look alike (median throw correlation under 0.5), or has no throw at all, gives
-    # no jump: on the clipped Penobscot data such faults carry throws of 5-6 samples where people see none.
-    p1, n1 = _vertical_fault_points(10.5)
-    p2, n2 = _vertical_fault_points(20.5)
-    p3, n3 = _vertical_fault_points(30.5)
-    n = len(p1)
+def test_crossings_leaves_out_faults_whose_throw_explains_nothing():
+    # A fault whose two sides correlate no better at its throw than without it, or that has no throw at all, gives no
+    # jump; one whose throw explains its sides is used however low their correlation (the large fault of
+    # penobscot_xl1155: 0.317 at its throw, 0.113 without), unless a least correlation is asked for.
+    pts = [_vertical_fault_points(x) for x in (10.5, 20.5, 30.5, 40.5)]
+    n = len(pts[0][0])
     corr = np.linspace(0.3, 0.9, n)  # median 0.6
     interp = SimpleNamespace(
-        faults=[SimpleNamespace(points=p, normals=q) for p, q in ((p1, n1), (p2, n2), (p3, n3))],
-        throws=[SimpleNamespace(throw=np.full(n, 4.0), correlation=corr),
-                SimpleNamespace(throw=np.full(n, 6.0), correlation=corr - 0.2),  # median 0.4
-                SimpleNamespace(throw=np.full(n, np.nan), correlation=np.full(n, np.nan))])
+        faults=[SimpleNamespace(points=p, normals=q) for p, q in pts],
+        throws=[SimpleNamespace(throw=np.full(n, 4.0), correlation=corr, correlation_unshifted=corr - 0.4),
+                SimpleNamespace(throw=np.full(n, 6.0), correlation=corr, correlation_unshifted=corr + 0.1),
+                SimpleNamespace(throw=np.full(n, np.nan), correlation=np.full(n, np.nan),
+                                correlation_unshifted=np.full(n, np.nan)),
+                SimpleNamespace(throw=np.full(n, 5.0), correlation=np.full(n, 0.317),
+                                correlation_unshifted=np.full(n, 0.113))])
     idx = FaultCrossings.from_interpretation(interp, 3)
-    assert set(idx.ids) == {0}
+    assert set(idx.ids) == {0, 3}
     step = np.array([[10.0, 4.0, 20.0], [11.0, 4.0, 20.0]])
     assert idx.jump(*step) == 4.0  # a vertical fault's hanging wall is its +x side (see the next test)
     assert idx.jump(*(step + [10.0, 0.0, 0.0])) == 0.0
     assert idx.jump(*(step + [20.0, 0.0, 0.0])) == 0.0
+    assert idx.jump(*(step + [30.0, 0.0, 0.0])) == 5.0
+    assert set(FaultCrossings.from_interpretation(interp, 3, min_throw_correlation=0.5).ids) == {0}
+    assert not reliable_throw(SimpleNamespace(correlation=np.full(n, np.nan)))
 
 
 def test_crossings_orients_normals_as_the_throw_was_measured():
@@ -177,3 +184,31 @@ def test_step_jumps_equal_jump_step_by_step():
     assert np.array_equal(FaultCrossings.empty(2).step_jumps(a, b), np.zeros(len(a)))
     with pytest.raises(InputError, match=r"\(n, 2\)"):
         FaultCrossings.empty(2).step_jumps(a, b[:, :1])
+
+
+def test_a_fault_zone_is_crossed_once_and_left_untracked():
+    # A 2D fault traced as two strands (traces 10.5 and 15.5) whose throw, 4 samples, was measured across both (the
+    # sides read beyond every strand) and a one-strand fault at 30.5 (3 samples): a line of 40 traces at sample 20
+    # crosses the zone once, by 4 and not 8; the traces between the strands are not tracked; pairs that end inside
+    # the zone are left out and pairs from its nearest traces on each side span it.
+    t = np.arange(40.0)
+    strand = lambda x: np.column_stack([np.full(t.size, x), t])  # noqa: E731 - a vertical strand, (trace, sample)
+    pts = np.vstack([strand(10.5), strand(15.5), strand(30.5)])
+    ids = np.repeat([0, 0, 1], t.size)
+    faults = FaultCrossings(pts, np.tile([1.0, 0.0], (len(pts), 1)), np.where(ids == 0, 4.0, 3.0), ids)
+    steps = fault_steps(faults, (40,), np.full(40, 20.0), keep=np.array([2]), reach=2)
+    assert np.flatnonzero(steps.zone).tolist() == [11, 12, 13, 14, 15]
+    jump = steps.jumps[0]
+    assert jump[10] == pytest.approx(-4.0) and jump[30] == pytest.approx(-3.0)
+    assert np.count_nonzero(np.abs(jump) > 1e-9) == 2
+    assert sorted(zip(*steps.spans[:2].tolist())) == [(9, 16), (9, 17), (10, 16), (10, 17)]
+    a, b, dist, axis = trace_pairs((40,), (1, 2, 4, 8, 32))
+    pa, pb, pd, _, pj = steps.pairs(a, b, dist, axis, (40,))
+    assert not (steps.zone[pa] | steps.zone[pb]).any()
+    assert np.array_equal(pd, pb - pa)
+    across = (pa <= 10) & (pb >= 16) & (pb <= 30)
+    assert across.any() and np.allclose(pj[across], -4.0)  # the zone's throw once
+    beyond = (pa <= 10) & (pb > 30)
+    assert beyond.any() and np.allclose(pj[beyond], -7.0)  # and the other fault's
+    # a seed inside the zone keeps it as two strands: nothing is left untracked
+    assert not fault_steps(faults, (40,), np.full(40, 20.0), keep=np.array([12])).zone.any()

@@ -4,6 +4,8 @@ dynamic-programming trackers, the cycle-skip cut, and the plain amplitude autotr
 - :mod:`~seismo3d.seismic.horizons.result`: the horizon result (:class:`Horizon`), seeds, gap filling, text export.
 - :mod:`~seismo3d.seismic.horizons.options`: :class:`TrackingOptions`.
 - :mod:`~seismo3d.seismic.horizons.fault_crossings`: which faults a horizon step crosses and the jump there.
+- :mod:`~seismo3d.seismic.horizons.fault_pairs`: the faults between the least-squares solve's pairs of traces: their
+  jumps, and fault zones (a fault's strands) crossed once and left untracked.
 - :mod:`~seismo3d.seismic.horizons.tracking`: :func:`track_horizon`; horizon tracking by registering neighbouring
   slices.
 - :mod:`~seismo3d.seismic.horizons.lsq`: least-squares horizons from correlations of near and distant traces (the

@@ -104,8 +104,9 @@ class TrackingOptions:
     on_fault : float
         Voxels: a point this close to a fault's local plane (and its points) lies on the fault.
     min_throw_correlation : float
-        Faults whose two sides correlate less than this (median of ``FaultThrow.correlation``) are not used
-        (:func:`~seismo3d.seismic.horizons.fault_crossings.reliable_throw`).
+        Faults whose two sides correlate less than this at their throw (median of ``FaultThrow.correlation``), or not
+        better than without it, are not used (:func:`~seismo3d.seismic.horizons.fault_crossings.reliable_throw`);
+        where a horizon crosses a used fault, its pairs of traces decide whether it takes the jump.
     despike_reach : int
         Traces searched on each side for the neighbours of the lateral continuity check (:func:`despike`).
     despike_agree : float
@@ -153,7 +154,7 @@ class TrackingOptions:
     fault_zone: float = 2.0
     pierce: float = 1.5
     on_fault: float = 0.5
-    min_throw_correlation: float = 0.5
+    min_throw_correlation: float = 0.0
     despike_reach: int = 2
     despike_agree: float = 2.0
     gap_passes: int = 50

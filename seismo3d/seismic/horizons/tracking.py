@@ -36,10 +36,10 @@ pick are kept within its fault block (the traces a horizon through it reaches wi
 points past a fault belong to another block), and no step ends within two traces of a fault, where drag bends the
 reflectors towards it (on Penobscot horizon 6 the tracker had climbed 5 samples there before the jump): the step is
 carried on over that zone to the next trace of its grid. Only faults with a reliable throw are used: a fault whose
-two sides correlate less than 0.5 across it (median of its throw correlation), or which has no throw, is left out, as
-if not traced. Without fault input, a step whose panels do not fit (a discontinuity) is re-made from one side with
-the shift found by normalised cross-correlation of the two sides' stacked traces, the start the throw estimation
-uses (:mod:`seismo3d.seismic.faults.throw`). The fault geometry (piercing, walls, blocks) is
+two sides do not correlate better at its throw than without it (medians of its throw correlations), or which has no
+throw, is left out, as if not traced. Without fault input, a step whose panels do not fit (a discontinuity) is
+re-made from one side with the shift found by normalised cross-correlation of the two sides' stacked traces, the
+start the throw estimation uses (:mod:`seismo3d.seismic.faults.throw`). The fault geometry (piercing, walls, blocks) is
 :class:`~seismo3d.seismic.horizons.fault_crossings.FaultCrossings`.
 
 Each pick gets a confidence: the normalised cross-correlation of the waveform around it with the waveform around the
@@ -382,9 +382,10 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
         Which event the horizon follows (see :func:`~seismo3d.seismic.reflector_picks`).
     faults : FaultInterpretation, optional
         Faults of the same ``data`` from :func:`seismo3d.seismic.trace_faults`: steps that cross one jump by its
-        throw. Faults whose throw correlates less than 0.5 across them (median of ``FaultThrow.correlation``), or
-        that have no throw, are not used. A seed on a traced fault steps off it into the wall its waveform matches
-        (module docstring). Without it, discontinuities are found by the registration (panels that do not fit).
+        throw. Faults whose sides do not correlate better at their throw than without it (medians of
+        ``FaultThrow.correlation`` and ``correlation_unshifted``), or that have no throw, are not used. A seed on a
+        traced fault steps off it into the wall its waveform matches (module docstring). Without it, discontinuities
+        are found by the registration (panels that do not fit).
     options : TrackingOptions, optional
         Panel sizes, steps, snapping, confidence, features and the other tuning values (:class:`TrackingOptions`).
     progress : bool

@@ -91,20 +91,24 @@ class EvidenceOptions:
         reaches ``min_probability`` is kept whatever its vote ratio. None, or ``min_probability`` None (the scan):
         every fault must reach ``min_vote_ratio``.
     min_correlation : float or None
-        Smallest median correlation of the sides at the throw's shift (:attr:`FaultEvidence.correlation`), at the
-        default sensitivity (scaled like ``min_throw``), asked of every fault but a clear and likely one and one the
-        network is sure of (``sure_probability``); None asks nothing (the scan's default). Sides that do not look
-        alike at any shift are not two blocks of one layering displaced (a migration swing, the edge of a chaotic
-        body). 0.5 is the level where the aligned sides hold as much coherent as incoherent energy. Measured on
-        2026-11-26 (``tools/dev_fault_scores.py``, the learned likelihood): without it F3 mean P / R / F1 0.528 /
-        0.433 / 0.470 and the Great South Basin 0.797 / 0.865 / 0.829; with it (and ``sure_probability`` 0.75) F3
-        0.590 / 0.425 / 0.486 and the Great South Basin unchanged. Chosen on F3 (0.4, 0.45, 0.5, 0.55: F1 0.479,
-        0.484, 0.486, 0.474); the Great South Basin scores the same at each. It drops the Volve fault dipping across
-        the 1340-1400 ms package unbroken and two of the five migration-swing faults of Penobscot crossline 1155.
+        Smallest median correlation of the sides at the throw's shift (:attr:`FaultEvidence.correlation`), asked of
+        every fault but a clear and likely one and one the network is sure of (``sure_probability``); None asks
+        nothing (the scan's default). Sides that do not look alike at any shift are not two blocks of one layering
+        displaced (a migration swing, the edge of a chaotic body). 0.5 is the level where the aligned sides hold as
+        much coherent as incoherent energy. Not scaled by the sensitivity (a correlation has no room above 1 to be
+        doubled into: scaled like ``min_throw`` it asked 0.71 at sensitivity 0.25, and F3's F1 there fell from 0.431
+        to 0.360, the Costa Rica crf section's faults from 11 to 5); the sensitivity moves ``sure_probability``.
+        Measured on 2026-11-26 (``tools/dev_fault_scores.py``, the learned likelihood): without it F3 mean P / R /
+        F1 0.528 / 0.433 / 0.470 and the Great South Basin 0.797 / 0.865 / 0.829; with it (and ``sure_probability``
+        0.75) F3 0.590 / 0.425 / 0.486 and the Great South Basin unchanged. Chosen on F3 (0.4, 0.45, 0.5, 0.55: F1
+        0.479, 0.484, 0.486, 0.474); the Great South Basin scores the same at each. At sensitivity 0.25 / 0.75: F3
+        F1 0.431 -> 0.434 / 0.437 -> 0.454, the Great South Basin unchanged (0.682 / 0.802). It drops the Volve fault
+        dipping across the 1340-1400 ms package unbroken and two of the five migration-swing faults of Penobscot
+        crossline 1155.
     sure_probability : float or None
         For a probability (the learned likelihood): the mean likelihood along a fault from which the network alone
-        is trusted and ``min_correlation`` is not asked, at the default sensitivity (scaled like ``min_throw``, at
-        most 1); None: asked of every fault but a clear and likely one. Small faults of a sample's throw on short
+        is trusted and ``min_correlation`` is not asked, at the default sensitivity (scaled like ``min_probability``,
+        at most 1); None: asked of every fault but a clear and likely one. Small faults of a sample's throw on short
         windows have sides that correlate poorly at any shift (the Great South Basin's 76-sample traces): without
         it ``min_correlation`` drops a fault an interpreter drew on crossline 2600 (mean likelihood 0.91, side
         correlation 0.39; that survey's F1 0.829 -> 0.805). F3 scores the same for every value from 0.70 to 1 (the
@@ -279,8 +283,8 @@ class FaultEvidence:
                                  "or ask EvidenceOptions(min_vote_ratio=0)")
             if self.vote_ratio < options.min_vote_ratio:
                 return False  # strong only at its seeds, linked through weak votes
-        if options.min_correlation is not None and not self._sure(options, sensitivity) and not (
-                self.correlation >= min(1.0, sensitivity_factor(sensitivity) * options.min_correlation)):
+        if (options.min_correlation is not None and not self._sure(options, sensitivity)
+                and not self.correlation >= options.min_correlation):
             return False  # the sides look alike at no shift, and the network is not sure: nothing displaced
         if self.shows_displacement(options, sensitivity):
             return True

@@ -155,14 +155,17 @@ def test_a_clear_throw_on_a_likely_fault_needs_no_vote_ratio():
 
 def test_sides_must_look_alike_at_the_throw():
     """min_correlation (0.5 by default for the learned likelihood): a fault whose sides correlate under 0.5 at its
-    throw's shift is dropped (scaled by the sensitivity like the throw), unless clear and likely, or the network is
-    sure of it (mean likelihood at least sure_probability, 0.75); the scan's defaults ask nothing."""
+    throw's shift is dropped, unless clear and likely, or the network is sure of it (mean likelihood at least
+    sure_probability, 0.75, scaled by the sensitivity like min_probability; the correlation is not scaled); the
+    scan's defaults ask nothing."""
     opt = EvidenceOptions()
     assert (opt.min_correlation, opt.sure_probability) == (0.5, 0.75)
     weak = dataclasses.replace(_evidence(1.5, 0.2, mean_likelihood=0.7), correlation=0.45)
     assert not weak.supports(opt)
     assert weak.supports(EvidenceOptions(min_correlation=None))
-    assert weak.supports(opt, 1.0)  # 0.25 asked at sensitivity 1
+    small = dataclasses.replace(weak, median_throw=1.2)  # under the clear throw at sensitivity 1 too (1.5)
+    assert not small.supports(dataclasses.replace(opt, sure_probability=None), 1.0)  # 0.5 asked at every sensitivity
+    assert weak.supports(opt, 1.0)  # sure from 0.375 at sensitivity 1
     assert dataclasses.replace(weak, correlation=0.5).supports(opt)
     assert dataclasses.replace(weak, mean_likelihood=0.75).supports(opt)  # the network is sure of it
     assert not dataclasses.replace(weak, mean_likelihood=0.9).supports(EvidenceOptions(sure_probability=None))

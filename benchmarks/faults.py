@@ -207,11 +207,14 @@ RESAMPLE_GRID = ((1.0,), (0.85,), (0.7,), (0.6,), (0.5,), (0.5, 0.7, 1.0), (0.6,
 EVIDENCE_FIELDS = ("min_throw", "min_correlation_gain", "min_vote_ratio", "min_probability", "clear_throw")
 EVIDENCE_GRID = [(t, g, v, p, c) for t in (1.0, 1.5) for g in (0.0, 0.1) for v in (0.0, 0.75, 0.9, 1.0, 1.1)
                  for p in (0.5, 0.6, 0.7, None) for c in (None, 2.0, 3.0, 4.0)]
+# (min_correlation and sure_probability at their defaults)
 # every candidate: each measured fault, nothing asked
-EVERY = dict(min_throw=0.0, min_correlation_gain=-1.0, min_vote_ratio=0.0, min_probability=None, clear_throw=None)
+EVERY = dict(min_throw=0.0, min_correlation_gain=-1.0, min_vote_ratio=0.0, min_probability=None, clear_throw=None,
+             min_correlation=None)
 # the defaults before issue 35's rules (stop 49): one network grid of 0.7, a displacement or sides not matching
 # unshifted, no vote ratio
-BEFORE = dict(resample=0.7, evidence=dict(min_vote_ratio=0.0, min_probability=None, clear_throw=None))
+BEFORE = dict(resample=0.7, evidence=dict(min_vote_ratio=0.0, min_probability=None, clear_throw=None,
+                                          min_correlation=None))
 
 
 def _kept_mask(faults, evidence, shape, options=None):

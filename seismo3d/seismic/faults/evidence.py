@@ -91,15 +91,29 @@ class EvidenceOptions:
         reaches ``min_probability`` is kept whatever its vote ratio. None, or ``min_probability`` None (the scan):
         every fault must reach ``min_vote_ratio``.
     min_correlation : float or None
-        Smallest median correlation of the sides at the throw's shift (:attr:`FaultEvidence.correlation`), at the
-        default sensitivity (scaled like ``min_throw``), asked of every fault but a clear and likely one; None (the
-        default) asks nothing. Sides that do not look alike at any shift are not two blocks of one layering
-        displaced (a migration swing, the edge of a chaotic body). Measured at 0.5 (the level where the aligned sides
-        hold as much coherent as incoherent energy) on 2026-11-26, ``tools/dev_fault_scores.py``: F3 mean P / R / F1
-        0.528 / 0.433 / 0.470 -> 0.590 / 0.425 / 0.486, the Great South Basin 0.797 / 0.865 / 0.829 -> 0.795 /
-        0.819 / 0.805 (crossline 2600 loses a drawn fault); it drops the Volve fault dipping 45 degrees across the
-        1340-1400 ms package and two of the five migration-swing faults of Penobscot crossline 1155. Chosen on F3 it
-        costs the held-out survey 0.024 of F1, and the Great South Basin would not choose it: not a default.
+        Smallest median correlation of the sides at the throw's shift (:attr:`FaultEvidence.correlation`), asked of
+        every fault but a clear and likely one and one the network is sure of (``sure_probability``); None asks
+        nothing (the scan's default). Sides that do not look alike at any shift are not two blocks of one layering
+        displaced (a migration swing, the edge of a chaotic body). 0.5 is the level where the aligned sides hold as
+        much coherent as incoherent energy. Not scaled by the sensitivity (a correlation has no room above 1 to be
+        doubled into: scaled like ``min_throw`` it asked 0.71 at sensitivity 0.25, and F3's F1 there fell from 0.431
+        to 0.360, the Costa Rica crf section's faults from 11 to 5); the sensitivity moves ``sure_probability``.
+        Measured on 2026-11-26 (``tools/dev_fault_scores.py``, the learned likelihood): without it F3 mean P / R /
+        F1 0.528 / 0.433 / 0.470 and the Great South Basin 0.797 / 0.865 / 0.829; with it (and ``sure_probability``
+        0.75) F3 0.590 / 0.425 / 0.486 and the Great South Basin unchanged. Chosen on F3 (0.4, 0.45, 0.5, 0.55: F1
+        0.479, 0.484, 0.486, 0.474); the Great South Basin scores the same at each. At sensitivity 0.25 / 0.75: F3
+        F1 0.431 -> 0.434 / 0.437 -> 0.454, the Great South Basin unchanged (0.682 / 0.802). It drops the Volve fault
+        dipping across the 1340-1400 ms package unbroken and two of the five migration-swing faults of Penobscot
+        crossline 1155.
+    sure_probability : float or None
+        For a probability (the learned likelihood): the mean likelihood along a fault from which the network alone
+        is trusted and ``min_correlation`` is not asked, at the default sensitivity (scaled like ``min_probability``,
+        at most 1); None: asked of every fault but a clear and likely one. Small faults of a sample's throw on short
+        windows have sides that correlate poorly at any shift (the Great South Basin's 76-sample traces): without
+        it ``min_correlation`` drops a fault an interpreter drew on crossline 2600 (mean likelihood 0.91, side
+        correlation 0.39; that survey's F1 0.829 -> 0.805). F3 scores the same for every value from 0.70 to 1 (the
+        faults ``min_correlation`` drops there have mean likelihoods under 0.70), the Great South Basin for every
+        value up to 0.90; 0.75 (odds of 3 to 1) lies inside both.
 
     Raises
     ------
@@ -113,7 +127,8 @@ class EvidenceOptions:
     min_vote_ratio: float = 0.9
     min_probability: float | None = 0.5
     clear_throw: float | None = 3.0
-    min_correlation: float | None = None
+    min_correlation: float | None = 0.5
+    sure_probability: float | None = 0.75
 
     def __post_init__(self):
         check_positive(self.min_throw, "min_throw", allow_zero=True)
@@ -128,6 +143,9 @@ class EvidenceOptions:
             check_positive(self.clear_throw, "clear_throw")
         if self.min_correlation is not None and not -1.0 <= float(self.min_correlation) <= 1.0:
             raise InputError(f"min_correlation must be a correlation in [-1, 1] or None; got {self.min_correlation!r}")
+        if self.sure_probability is not None and not 0.0 <= float(self.sure_probability) <= 1.0:
+            raise InputError(f"sure_probability must be a probability in [0, 1] or None; got "
+                             f"{self.sure_probability!r}")
 
     @classmethod
     def for_likelihood(cls, likelihood: str) -> "EvidenceOptions":
@@ -154,7 +172,7 @@ class EvidenceOptions:
         if likelihood == "learned":
             return cls()
         if likelihood == "scan":
-            return cls(min_vote_ratio=0.0, min_probability=None)
+            return cls(min_vote_ratio=0.0, min_probability=None, min_correlation=None, sure_probability=None)
         raise InputError(f"likelihood must be 'learned' or 'scan'; got {likelihood!r}")
 
 
@@ -231,6 +249,11 @@ class FaultEvidence:
         return (self._displaced(options.clear_throw, options.min_correlation_gain, sensitivity)
                 and self._likely(options, sensitivity))
 
+    def _sure(self, options: EvidenceOptions, sensitivity: float) -> bool:
+        if options.sure_probability is None or not np.isfinite(self.mean_likelihood):
+            return False
+        return bool(self.mean_likelihood >= min(1.0, sensitivity_factor(sensitivity) * options.sure_probability))
+
     def _likely(self, options: EvidenceOptions, sensitivity: float) -> bool:
         return bool(self.mean_likelihood >= min(1.0, sensitivity_factor(sensitivity) * options.min_probability))
 
@@ -260,9 +283,9 @@ class FaultEvidence:
                                  "or ask EvidenceOptions(min_vote_ratio=0)")
             if self.vote_ratio < options.min_vote_ratio:
                 return False  # strong only at its seeds, linked through weak votes
-        if options.min_correlation is not None and not (
-                self.correlation >= min(1.0, sensitivity_factor(sensitivity) * options.min_correlation)):
-            return False  # the sides look alike at no shift: nothing displaced
+        if (options.min_correlation is not None and not self._sure(options, sensitivity)
+                and not self.correlation >= options.min_correlation):
+            return False  # the sides look alike at no shift, and the network is not sure: nothing displaced
         if self.shows_displacement(options, sensitivity):
             return True
         if options.min_probability is None:

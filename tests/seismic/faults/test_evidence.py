@@ -68,7 +68,7 @@ def _evidence(throw, gain, *, vote_ratio=1.0, mean_likelihood=0.0):
 
 
 def test_sensitivity_scales_the_throw_asked_for():
-    opt = EvidenceOptions(min_throw=1.0, min_correlation_gain=0.0)
+    opt = EvidenceOptions(min_throw=1.0, min_correlation_gain=0.0, min_correlation=None)
     assert not _evidence(0.9, 0.1).supports(opt, 0.5) and _evidence(1.0, 0.1).supports(opt, 0.5)
     assert _evidence(0.5, 0.1).supports(opt, 1.0) and not _evidence(0.49, 0.1).supports(opt, 1.0)
     assert _evidence(-2.0, 0.1).supports(opt, 0.0) and not _evidence(-1.9, 0.1).supports(opt, 0.0)
@@ -81,9 +81,11 @@ def test_sides_that_do_not_match_unshifted_are_a_discontinuity_for_the_scan():
     likelihood no probability) a discontinuity, kept; the same numbers with sides matching (0.9) are unbroken
     reflectors. For the learned likelihood the mismatch alone is not enough: the network's mean probability along
     the fault decides (on a generated section without faults, a chaotic body's edge: no match unshifted, probability
-    0.26)."""
+    0.26), and with sides that do not look alike at any shift (0.41 < ``min_correlation``) only a probability the
+    network is sure of (``sure_probability``) keeps it."""
     scan = EvidenceOptions.for_likelihood("scan")
-    assert scan == EvidenceOptions(min_vote_ratio=0.0, min_probability=None)
+    assert scan == EvidenceOptions(min_vote_ratio=0.0, min_probability=None, min_correlation=None,
+                                   sure_probability=None)
     assert FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(scan)
     assert not FaultEvidence(1, 0.1, 0.0, 0.9, 0.0, 1.0, 0.89).supports(scan)
     assert not FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(dataclasses.replace(scan, continuity=0.4))
@@ -91,7 +93,10 @@ def test_sides_that_do_not_match_unshifted_are_a_discontinuity_for_the_scan():
     assert learned == EvidenceOptions()
     mismatch = FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89, vote_ratio=1.9)
     assert not dataclasses.replace(mismatch, mean_likelihood=0.26).supports(learned)
-    assert dataclasses.replace(mismatch, mean_likelihood=0.69).supports(learned)
+    assert not dataclasses.replace(mismatch, mean_likelihood=0.69).supports(learned)
+    assert dataclasses.replace(mismatch, mean_likelihood=0.8).supports(learned)
+    assert dataclasses.replace(mismatch, mean_likelihood=0.69).supports(dataclasses.replace(learned,
+                                                                                           min_correlation=None))
     with pytest.raises(InputError, match="likelihood"):
         EvidenceOptions.for_likelihood("semblance")
 
@@ -148,19 +153,32 @@ def test_a_clear_throw_on_a_likely_fault_needs_no_vote_ratio():
             EvidenceOptions(clear_throw=bad)
 
 
-def test_sides_must_look_alike_at_the_throw_when_asked():
-    """EvidenceOptions(min_correlation=0.5): a fault whose sides correlate under 0.5 at its throw's shift is dropped
-    (scaled by the sensitivity like the throw), unless clear and likely; the default asks nothing."""
-    assert EvidenceOptions().min_correlation is None
-    opt = EvidenceOptions(min_correlation=0.5)
-    weak = dataclasses.replace(_evidence(1.5, 0.2, mean_likelihood=0.9), correlation=0.45)
-    assert weak.supports(EvidenceOptions()) and not weak.supports(opt)
-    assert weak.supports(opt, 1.0)  # 0.25 asked at sensitivity 1
-    clear = dataclasses.replace(_evidence(4.0, 0.2, mean_likelihood=0.9), correlation=0.2)
+def test_sides_must_look_alike_at_the_throw():
+    """min_correlation (0.5 by default for the learned likelihood): a fault whose sides correlate under 0.5 at its
+    throw's shift is dropped, unless clear and likely, or the network is sure of it (mean likelihood at least
+    sure_probability, 0.75, scaled by the sensitivity like min_probability; the correlation is not scaled); the
+    scan's defaults ask nothing."""
+    opt = EvidenceOptions()
+    assert (opt.min_correlation, opt.sure_probability) == (0.5, 0.75)
+    weak = dataclasses.replace(_evidence(1.5, 0.2, mean_likelihood=0.7), correlation=0.45)
+    assert not weak.supports(opt)
+    assert weak.supports(EvidenceOptions(min_correlation=None))
+    small = dataclasses.replace(weak, median_throw=1.2)  # under the clear throw at sensitivity 1 too (1.5)
+    assert not small.supports(dataclasses.replace(opt, sure_probability=None), 1.0)  # 0.5 asked at every sensitivity
+    assert weak.supports(opt, 1.0)  # sure from 0.375 at sensitivity 1
+    assert dataclasses.replace(weak, correlation=0.5).supports(opt)
+    assert dataclasses.replace(weak, mean_likelihood=0.75).supports(opt)  # the network is sure of it
+    assert not dataclasses.replace(weak, mean_likelihood=0.9).supports(EvidenceOptions(sure_probability=None))
+    assert not dataclasses.replace(weak, mean_likelihood=0.9).supports(opt, 0.0)  # sure at 1.0 only, at sensitivity 0
+    clear = dataclasses.replace(_evidence(4.0, 0.2, mean_likelihood=0.6), correlation=0.2)
     assert clear.supports(opt)  # a clear throw on a likely fault
+    scan = EvidenceOptions.for_likelihood("scan")
+    assert scan.min_correlation is None and scan.sure_probability is None
     for bad in (-1.5, 1.5):
         with pytest.raises(InputError, match="min_correlation"):
             EvidenceOptions(min_correlation=bad)
+        with pytest.raises(InputError, match="sure_probability"):
+            EvidenceOptions(sure_probability=bad)
 
 
 def test_side_coherence_of_layers_against_noise():

@@ -199,6 +199,22 @@ def test_section_profile_in_windows(seed):
         assert np.nanmedian(err) <= 0.5 and np.nanmax(err) <= 1.5
 
 
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_section_throw_bounded_by_the_fault_length(seed):
+    """A 2D fault searches throws up to a tenth of its extent (profile_max_throw_per_length, displacement-length
+    scaling): a 36-sample piece of a fault throwing 4.3-7.6 samples searches 3 and does not claim the throw; with a
+    third of it searched the piece reads its true throw (measured within 0.19 sample)."""
+    syn = synthetic_cube((192, 128), seed=seed, noise=0.1)
+    for tf in syn.faults:
+        points = np.argwhere(syn.fault_labels == tf.id)
+        piece = points[(points[:, 1] >= 40) & (points[:, 1] < 76)]  # 36 samples of a fault spanning all 128
+        true = tf.throw_samples * (1.0 if tf.kind == "normal" else -1.0)
+        bounded = fault_throws(syn.cube, [piece])[0].median_throw
+        loose = fault_throws(syn.cube, [piece], profile_max_throw_per_length=1 / 3)[0].median_throw
+        assert abs(bounded) <= 3 + 0.5 and abs(bounded - true) >= 2.0, (tf.id, true, bounded)
+        assert abs(loose - true) <= 0.3, (tf.id, true, loose)  # measured 0.02-0.19
+
 def test_sign_convention_normal_and_reverse():
     """Positive throw = hanging wall down (normal fault), negative = hanging wall up (reverse fault)."""
     for frac, sign in ((0.0, 1.0), (1.0, -1.0)):
@@ -235,6 +251,7 @@ def test_empty_fault_list():
     ({"profile_window": 20}, "profile_window"),
     ({"profile_step": 0}, "profile_step"),
     ({"profile_smoothness": -1.0}, "profile_smoothness"),
+    ({"profile_max_throw_per_length": 0.0}, "profile_max_throw_per_length"),
 ])
 def test_bad_options(kwargs, match):
     syn = synthetic_cube((64, 64), n_faults=1, seed=0)

@@ -83,8 +83,8 @@ class F3FaultSections:
     Attributes
     ----------
     sections : (5, 951, 462) float32 ndarray
-        Amplitudes (inline, crossline, sample), the 8-bit grey rendering mapped to [-1, 1] about the grey level
-        127.5; samples are 4 ms from 0 ms.
+        Amplitudes (inline, crossline, sample), the 8-bit grey rendering mapped to [-1, 1) about the grey level 128
+        (zero amplitude, as ``tools/dev_fault_scores.py`` reads the pictures); samples are 4 ms from 0 ms.
     faults : (5, 951, 462) bool ndarray
         The interpreter's fault lines (True on fault samples).
     inlines : (5,) int ndarray
@@ -138,7 +138,7 @@ def load_f3_fault_sections() -> F3FaultSections:
             grey = np.asarray(picture.convert("L").resize(_F3_SHAPE, Image.BILINEAR))  # (samples, crosslines)
         with Image.open(fetch(_F3_MASKS.format(kind="mask", inline=inline))) as drawing:
             alpha = np.asarray(drawing.convert("RGBA"))[..., 3]
-        sections.append(((grey.astype(np.float32) - 127.5) / 127.5).T)
+        sections.append(((grey.astype(np.float32) - 128.0) / 128.0).T)
         faults.append((alpha > 0).T)
     out = F3FaultSections(sections=np.ascontiguousarray(np.stack(sections)), faults=np.stack(faults),
                           inlines=np.array(F3_MASK_INLINES))

@@ -194,8 +194,9 @@ def _prf(scores) -> tuple:
 
 @pytest.mark.slow
 def test_f3_inlines_against_the_faults_a_person_drew(data_dir):
-    """Issue 35's targets on the five F3 inlines with faults drawn by a person (tolerance 3 samples), the defaults:
-    mean precision >= 0.50 and mean F1 >= 0.45 (measured 0.535 / 0.474), and on every inline an F1 above both peers':
+    """The five F3 inlines with faults drawn by a person (tolerance 3 samples), the defaults: mean precision >= 0.60
+    (issue 54's target) and mean F1 >= 0.49 (measured 0.607 / 0.425 / 0.494, as ``tools/dev_fault_scores.py`` scores
+    the command; issue 54's F1 target 0.55 is not reached), and on every inline an F1 above both peers':
     the plain 1-semblance skeleton at its single best threshold over the five inlines (computed here, F1 0.08-0.24)
     and FaultNet (Dou et al. 2022, its released weights; the issue's figures)."""
     from seismo3d.data import load_f3_fault_sections
@@ -218,7 +219,7 @@ def test_f3_inlines_against_the_faults_a_person_drew(data_dir):
     precision, recall, f1 = (float(np.mean([s[i] for s in ours])) for i in range(3))
     print(f"F3: precision {precision:.3f} recall {recall:.3f} F1 {f1:.3f}; per inline "
           + ", ".join(f"{s[2]:.3f} (skeleton {k[2]:.3f})" for s, k in zip(ours, skeleton)))
-    assert precision >= 0.50 and f1 >= 0.45, (precision, recall, f1)
+    assert precision >= 0.60 and f1 >= 0.49, (precision, recall, f1)
     for inline, s, k, fn in zip(data.inlines, ours, skeleton, faultnet):
         assert s[2] > max(k[2], fn), (inline, s, k, fn)
 

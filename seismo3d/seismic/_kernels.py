@@ -29,48 +29,47 @@ def interp_trace(f, i, j, t, nt):
     w = t - k
     return (1.0 - w) * f[i, j, k] + w * f[i, j, k + 1]
 
-@nb.njit(cache=True, parallel=True)
-def correlate_axis(x, w, axis, out):
-    # out = x correlated with the odd-length kernel w along `axis`, edges clamped (scipy.ndimage mode 'nearest');
-    # loops ordered so the innermost one runs along the contiguous sample axis (vectorised)
-    n0, n1, n2 = x.shape
+_SLAB = 1 << 17  # samples of x per pass of correlate_axis: a slab and its products stay in the processor's cache
+
+
+def correlate_axis(x: np.ndarray, w: np.ndarray, axis: int) -> np.ndarray:
+    """Correlate a cube with an odd-length kernel along one axis, edges clamped (``scipy.ndimage.correlate1d`` with
+    ``mode='nearest'``), accumulating in float32.
+
+    The sum runs in kernel order, ``out = ((0 + w[0] x[i - r]) + w[1] x[i - r + 1]) + ...``, each product and sum
+    rounded to float32: the bits of the compiled loop this replaced (``scipy.ndimage.correlate1d`` sums in float64,
+    so its results differ in the last bits). Worked in slabs of about 2^17 samples so that the terms stay in cache.
+
+    Parameters
+    ----------
+    x : (n0, n1, n2) float32 ndarray
+        The cube.
+    w : (2 r + 1,) float32 ndarray
+        Correlation weights (:func:`gaussian_kernel`), centred on index ``r``.
+    axis : {0, 1, 2}
+        The axis correlated along.
+
+    Returns
+    -------
+    (n0, n1, n2) float32 ndarray
+        The correlated cube.
+    """
+    n = x.shape[axis]
     r = (w.shape[0] - 1) // 2
-    if axis == 2:
-        for i in nb.prange(n0):
-            pad = np.empty(n2 + 2 * r, np.float32)
-            row = np.empty(n2, np.float32)
-            for j in range(n1):
-                for k in range(n2 + 2 * r):
-                    pad[k] = x[i, j, min(max(k - r, 0), n2 - 1)]
-                for k in range(n2):
-                    row[k] = 0.0
-                for m in range(2 * r + 1):
-                    wm = w[m]
-                    for k in range(n2):
-                        row[k] += wm * pad[k + m]
-                for k in range(n2):
-                    out[i, j, k] = row[k]
-    elif axis == 1:
-        for i in nb.prange(n0):
-            for j in range(n1):
-                for k in range(n2):
-                    out[i, j, k] = 0.0
-                for m in range(2 * r + 1):
-                    jj = min(max(j + m - r, 0), n1 - 1)
-                    wm = w[m]
-                    for k in range(n2):
-                        out[i, j, k] += wm * x[i, jj, k]
-    else:
-        for i in nb.prange(n0):
-            for j in range(n1):
-                for k in range(n2):
-                    out[i, j, k] = 0.0
-            for m in range(2 * r + 1):
-                ii = min(max(i + m - r, 0), n0 - 1)
-                wm = w[m]
-                for j in range(n1):
-                    for k in range(n2):
-                        out[i, j, k] += wm * x[ii, j, k]
+    out = np.zeros(x.shape, np.float32)
+    clamped = np.clip(np.arange(-r, n + r), 0, n - 1)  # the axis padded by r samples on each side, edges repeated
+    other = 1 if axis == 0 else 0  # slabs across another axis
+    step = max(1, _SLAB // max(1, x.size // max(1, x.shape[other])))
+    for a in range(0, x.shape[other], step):
+        slab = tuple(slice(a, a + step) if d == other else slice(None) for d in range(3))
+        padded = np.take(x[slab], clamped, axis=axis)
+        acc = out[slab]
+        term = np.empty(acc.shape, np.float32)
+        for m in range(2 * r + 1):
+            np.multiply(padded[tuple(slice(m, m + n) if d == axis else slice(None) for d in range(3))], w[m],
+                        out=term)
+            acc += term
+    return out
 
 
 @nb.njit(cache=True, inline="always")
@@ -283,10 +282,7 @@ def gaussian3(x: np.ndarray, sigmas, orders=(0, 0, 0)) -> np.ndarray:
     for axis, (sig, order) in enumerate(zip(sigmas, orders)):
         if sig <= 0 or x.shape[axis] == 1:
             continue
-        res = np.empty(x.shape, dtype=np.float32)
-        correlate_axis(np.ascontiguousarray(out, dtype=np.float32), gaussian_kernel(float(sig), int(order)), axis,
-                        res)
-        out = res
+        out = correlate_axis(np.asarray(out, dtype=np.float32), gaussian_kernel(float(sig), int(order)), axis)
     return out if out is not x else x.astype(np.float32, copy=True)
 
 

@@ -204,32 +204,21 @@ def _best_neighbours(t, n_threads, points, frames, keys, shape, ranks, max_plane
                         best[c, k] = q
 
 
-@nb.njit(cache=True)
-def _grow(best, normals, order, cos_mean):
-    # skins grown breadth first over the (undirected) neighbour links from the strongest cell not yet in a skin; a
-    # cell joins when its normal is within acos(cos_mean) of the skin's running mean normal (no drift through cells
-    # of intermediate orientation into another fault)
+def _grow(best: np.ndarray, normals: np.ndarray, order: np.ndarray, cos_mean: float) -> np.ndarray:
+    """Skins grown breadth first over the (undirected) neighbour links from the strongest cell not yet in a skin; a
+    cell joins when its normal is within acos(cos_mean) of the skin's running mean normal (no drift through cells
+    of intermediate orientation into another fault). ``best`` (n, 4) int32 the directed links of
+    :func:`_best_neighbours`; returns the (n,) int64 skin labels."""
     n = best.shape[0]
-    # undirected adjacency from the directed best links
-    deg = np.zeros(n + 1, np.int64)  # offsets: up to 8 links a cell
-    for c in range(n):
-        for k in range(4):
-            q = best[c, k]
-            if q >= 0:
-                deg[c + 1] += 1
-                deg[q + 1] += 1
-    for c in range(n):
-        deg[c + 1] += deg[c]
-    adj = np.empty(deg[n], np.int32)
-    fill = deg[:n].copy()
-    for c in range(n):
-        for k in range(4):
-            q = best[c, k]
-            if q >= 0:
-                adj[fill[c]] = q
-                fill[c] += 1
-                adj[fill[q]] = c
-                fill[q] += 1
+    # undirected adjacency (CSR, up to 8 links a cell) from the directed links: link (c, q) gives q to c's row and c
+    # to q's row, each row in the order of the links (c, then k), as the growth's ties follow that order
+    c, k = np.nonzero(best >= 0)  # row-major: by c, then k
+    q = best[c, k].astype(np.int64)
+    rows = np.stack([c, q], axis=1).reshape(-1)  # per link: its entry in row c, then its entry in row q
+    cols = np.stack([q, c], axis=1).reshape(-1)
+    adj = cols[np.argsort(rows, kind="stable")].astype(np.int32)
+    deg = np.zeros(n + 1, np.int64)
+    np.cumsum(np.bincount(rows, minlength=n), out=deg[1:])
     return grow_by_mean_normal(deg, adj, normals, order, cos_mean)
 
 

@@ -31,54 +31,59 @@ def _prefix(e, c):
 
 
 @nb.njit(cache=True)
-def _accumulate(e, b, forward, d, c):
-    # d[i, l]: least cost of a path over rows up to i (forward) or from i (backward) ending at lag l, the lag
-    # changing by at most one every b rows (the costs of the b - 1 rows in between are added along the new lag,
-    # from the prefix sums c of e)
+def _accumulate_forward(e, b, d, c):
+    # d[i, l]: least cost of a path over rows up to i ending at lag l, the lag changing by at most one every b rows
+    # (the costs of the b - 1 rows in between are added along the new lag, from the prefix sums c of e). Forward and
+    # backward are two kernels, not one with a flag: a constant flag compiles the kernel once per value.
     ni, nl = e.shape
     _prefix(e, c)
-    if forward:
+    for il in range(nl):
+        d[0, il] = e[0, il]
+    for ii in range(1, ni):
+        ji = ii - 1
+        jb = max(ii - b, 0)
         for il in range(nl):
-            d[0, il] = e[0, il]
-        for ii in range(1, ni):
-            ji = ii - 1
-            jb = max(ii - b, 0)
-            for il in range(nl):
-                ilm = max(il - 1, 0)
-                ilp = min(il + 1, nl - 1)
-                # rows jb + 1 .. ji on the neighbouring lag
-                dm = d[jb, ilm] + c[ji + 1, ilm] - c[jb + 1, ilm]
-                dp = d[jb, ilp] + c[ji + 1, ilp] - c[jb + 1, ilp]
-                m = d[ji, il]
-                if dm < m:
-                    m = dm
-                if dp < m:
-                    m = dp
-                d[ii, il] = m + e[ii, il]
-    else:
+            ilm = max(il - 1, 0)
+            ilp = min(il + 1, nl - 1)
+            # rows jb + 1 .. ji on the neighbouring lag
+            dm = d[jb, ilm] + c[ji + 1, ilm] - c[jb + 1, ilm]
+            dp = d[jb, ilp] + c[ji + 1, ilp] - c[jb + 1, ilp]
+            m = d[ji, il]
+            if dm < m:
+                m = dm
+            if dp < m:
+                m = dp
+            d[ii, il] = m + e[ii, il]
+
+
+@nb.njit(cache=True)
+def _accumulate_backward(e, b, d, c):
+    # d[i, l]: least cost of a path over rows from i on starting at lag l (as _accumulate_forward, rows reversed)
+    ni, nl = e.shape
+    _prefix(e, c)
+    for il in range(nl):
+        d[ni - 1, il] = e[ni - 1, il]
+    for ii in range(ni - 2, -1, -1):
+        ji = ii + 1
+        jb = min(ii + b, ni - 1)
         for il in range(nl):
-            d[ni - 1, il] = e[ni - 1, il]
-        for ii in range(ni - 2, -1, -1):
-            ji = ii + 1
-            jb = min(ii + b, ni - 1)
-            for il in range(nl):
-                ilm = max(il - 1, 0)
-                ilp = min(il + 1, nl - 1)
-                # rows ji .. jb - 1 on the neighbouring lag
-                dm = d[jb, ilm] + c[jb, ilm] - c[ji, ilm]
-                dp = d[jb, ilp] + c[jb, ilp] - c[ji, ilp]
-                m = d[ji, il]
-                if dm < m:
-                    m = dm
-                if dp < m:
-                    m = dp
-                d[ii, il] = m + e[ii, il]
+            ilm = max(il - 1, 0)
+            ilp = min(il + 1, nl - 1)
+            # rows ji .. jb - 1 on the neighbouring lag
+            dm = d[jb, ilm] + c[jb, ilm] - c[ji, ilm]
+            dp = d[jb, ilp] + c[jb, ilp] - c[ji, ilp]
+            m = d[ji, il]
+            if dm < m:
+                m = dm
+            if dp < m:
+                m = dp
+            d[ii, il] = m + e[ii, il]
 
 
 @nb.njit(cache=True)
 def _backtrack(d, e, b, u, c):
     # the least-cost path of a forward accumulation, traced back from the cheapest lag of the last row; a change of
-    # lag is spread linearly over the b rows it spans (c: prefix sums of e, as left by _accumulate)
+    # lag is spread linearly over the b rows it spans (c: prefix sums of e, as left by _accumulate_forward)
     ni, nl = d.shape
     ii = ni - 1
     il = 0
@@ -110,8 +115,8 @@ def _backtrack(d, e, b, u, c):
 def _smooth_costs(e, b, t1, t2, c, out):
     # nonlinear smoothing of the costs along axis 0: forward + backward accumulation - cost, the cost of the best
     # path through each (row, lag) (Hale 2013, dynamic warping)
-    _accumulate(e, b, True, t1, c)
-    _accumulate(e, b, False, t2, c)
+    _accumulate_forward(e, b, t1, c)
+    _accumulate_backward(e, b, t2, c)
     ni, nl = e.shape
     for i in range(ni):
         for l in range(nl):
@@ -189,7 +194,7 @@ def _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth,
                     es[iw, iv, iu] = row_s[iw, iu]
     # 3. the least-cost path down the dip in every strike slice: the surface, smoothed both ways
     for iw in range(nw):
-        _accumulate(es[iw], b, True, t1[:nv], cs[:nv + 1])
+        _accumulate_forward(es[iw], b, t1[:nv], cs[:nv + 1])
         _backtrack(t1[:nv], es[iw], b, line[:nv], cs[:nv + 1])
         for iv in range(nv):
             surf[iw, iv] = line[iv] - ru

@@ -389,6 +389,33 @@ def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_t
 
 
 @nb.njit(cache=True)
+def search_left(keys, value):
+    # np.searchsorted(keys, value) of sorted integer keys: the first index whose key is >= value (a plain binary
+    # search compiles in a fraction of numba's generic searchsorted)
+    lo, hi = 0, keys.size
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if keys[mid] < value:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@nb.njit(cache=True)
+def search_right(keys, value):
+    # np.searchsorted(keys, value, side="right") of sorted integer keys: the first index whose key is > value
+    lo, hi = 0, keys.size
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if keys[mid] <= value:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@nb.njit(cache=True)
 def _bucket_keys(points, origin, side, dims):
     # each point's bucket (cubes of ``side`` from ``origin``) as one key, C order over ``dims`` buckets
     keys = np.empty(points.shape[0], np.int64)

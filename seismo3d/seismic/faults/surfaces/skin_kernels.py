@@ -57,7 +57,7 @@ def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, 
             column = bx * dims[1] + by
             low = column * dims[2] + first_b[2]
             high = column * dims[2] + last_b[2]
-            for r in range(np.searchsorted(keys, low), np.searchsorted(keys, high, side="right")):
+            for r in range(_kernels.search_left(keys, low), _kernels.search_right(keys, high)):
                 j = order[r]
                 if lab[j] == own:
                     continue

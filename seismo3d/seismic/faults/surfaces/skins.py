@@ -174,8 +174,8 @@ def _best_neighbours(t, n_threads, points, frames, keys, shape, ranks, max_plane
                 if qy < 0 or qy >= n1:
                     continue
                 base = (qx * n1 + qy) * n2
-                first = np.searchsorted(keys, base + max(pz - vert, 0))
-                last = np.searchsorted(keys, base + min(pz + vert, n2 - 1), side="right")
+                first = _kernels.search_left(keys, base + max(pz - vert, 0))
+                last = _kernels.search_right(keys, base + min(pz + vert, n2 - 1))
                 for q in range(first, last):
                     oz = keys[q] - base - pz
                     r = ranks[ox + lat0, oy + lat1, oz + vert]

@@ -322,27 +322,29 @@ def cast_votes(seeds, ids, positions, offsets, fa, o0, o1, votes, best, best_see
                 best_seed)
 
 
-@nb.njit(cache=True)
+_SLAB = 1 << 20  # samples per slab of strongest: its temporaries stay small
+
+
 def strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
-    # strike and dip (m0, m1, n2) of the strongest surface through each sample over the threads' records (the
-    # larger mean likelihood, then the smaller seed id); 0 where no surface passes
+    """Strike and dip (m0, m1, n2) of the strongest surface through each sample over the threads' records of
+    :func:`cast_votes` (the larger mean likelihood, then the smaller seed id ``ids[q]``), written into ``strike`` and
+    ``dip``; left as they are where no surface passes. Worked in slabs of inlines of about 2^20 samples."""
     n_threads, m0 = best.shape[0], best.shape[1]
-    for i in range(m0):
-        for j in range(best.shape[2]):
-            for k in range(best.shape[3]):
-                top = 0.0
-                s = -1
-                for t in range(n_threads):
-                    q = best_seed[t, i, j, k]
-                    if q < 0:
-                        continue
-                    f = best[t, i, j, k]
-                    if s < 0 or f > top or (f == top and ids[q] < ids[s]):
-                        top = f
-                        s = q
-                if s >= 0:
-                    strike[i, j, k] = seed_strike[s]
-                    dip[i, j, k] = seed_dip[s]
+    step = max(1, _SLAB // max(1, best[0, 0].size))
+    for a in range(0, m0, step):
+        rows = slice(a, a + step)
+        top = np.zeros(best[0, rows].shape, np.float32)
+        s = np.full(top.shape, -1, np.int64)
+        for t in range(n_threads):  # in thread order, as the compiled loop took them
+            q = best_seed[t, rows]
+            f = best[t, rows]
+            tie = (f == top) & (ids[np.maximum(q, 0)] < ids[np.maximum(s, 0)])
+            take = (q >= 0) & ((s < 0) | (f > top) | tie)
+            top = np.where(take, f, top)
+            s = np.where(take, q, s)
+        found = s >= 0
+        strike[rows][found] = seed_strike[s[found]]
+        dip[rows][found] = seed_dip[s[found]]
 
 
 @nb.njit(cache=True)

@@ -7,33 +7,45 @@ the data (no shared writes), so the results are those of the ``prange`` loop it 
 
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
+import threading
 from typing import Callable
 
 __all__ = ["run_threads"]
 
 
 def run_threads(kernel: Callable, n_threads: int, *args) -> None:
-    """Call ``kernel(t, n_threads, *args)`` for ``t = 0 .. n_threads - 1``, each on its own thread.
+    """Call ``kernel(t, n_threads, *args)`` for ``t = 0 .. n_threads - 1``: share 0 in the calling thread, the others
+    each on a thread of its own, and return when all are done.
 
     Parameters
     ----------
     kernel : callable
         A numba kernel compiled with ``nogil=True`` (else the threads take turns), writing its results into the
-        arrays of ``args``; its first two arguments are the thread's index and ``n_threads``.
+        arrays of ``args``; its first two arguments are the share's index and ``n_threads``.
     n_threads : int
-        Threads (>= 1); one runs the kernel in the calling thread.
+        Shares (>= 1); one runs the kernel in the calling thread only.
     *args
         The kernel's other arguments.
 
     Raises
     ------
     Exception
-        Whatever the kernel raised, from the first thread that raised.
+        Whatever the kernel raised, from the share of lowest index that raised (after all shares ended).
     """
-    if n_threads <= 1:
-        kernel(0, 1, *args)
-        return
-    with ThreadPoolExecutor(max_workers=n_threads) as pool:
-        for future in [pool.submit(kernel, t, n_threads, *args) for t in range(n_threads)]:
-            future.result()
+    errors: list = [None] * n_threads
+
+    def share(t: int) -> None:
+        try:
+            kernel(t, n_threads, *args)
+        except BaseException as exc:  # handed to the calling thread below
+            errors[t] = exc
+
+    others = [threading.Thread(target=share, args=(t,), daemon=True) for t in range(1, n_threads)]
+    for thread in others:
+        thread.start()
+    share(0)
+    for thread in others:
+        thread.join()
+    for exc in errors:
+        if exc is not None:
+            raise exc

@@ -329,6 +329,8 @@ def strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
     """Strike and dip (m0, m1, n2) of the strongest surface through each sample over the threads' records of
     :func:`cast_votes` (the larger mean likelihood, then the smaller seed id ``ids[q]``), written into ``strike`` and
     ``dip``; left as they are where no surface passes. Worked in slabs of inlines of about 2^20 samples."""
+    if ids.size == 0:  # no seed: no surface passes anywhere
+        return
     n_threads, m0 = best.shape[0], best.shape[1]
     step = max(1, _SLAB // max(1, best[0, 0].size))
     for a in range(0, m0, step):

@@ -12,6 +12,8 @@ import math
 import numba as nb
 import numpy as np
 
+from .._threads import run_threads
+
 MAX_SLOPE = 5.0  # samples per trace; steeper "reflectors" are clipped (as in Hale's FaultScanner.slopes)
 
 
@@ -62,15 +64,20 @@ def correlate_axis(x: np.ndarray, w: np.ndarray, axis: int) -> np.ndarray:
     clamped = np.clip(np.arange(-r, n + r), 0, n - 1)  # the axis padded by r samples on each side, edges repeated
     other = 1 if axis == 0 else 0  # slabs across another axis
     step = max(1, _SLAB // max(1, x.size // max(1, x.shape[other])))
-    for a in range(0, x.shape[other], step):
-        slab = tuple(slice(a, a + step) if d == other else slice(None) for d in range(3))
-        padded = np.take(x[slab], clamped, axis=axis)
-        acc = out[slab]
-        term = np.empty(acc.shape, np.float32)
-        for m in range(2 * r + 1):
-            np.multiply(padded[tuple(slice(m, m + n) if d == axis else slice(None) for d in range(3))], w[m],
-                        out=term)
-            acc += term
+    starts = range(0, x.shape[other], step)
+
+    def slabs(t, n_threads):  # slabs t, t + n_threads, ... (numpy releases the GIL: the threads run together)
+        for a in starts[t::n_threads]:
+            slab = tuple(slice(a, a + step) if d == other else slice(None) for d in range(3))
+            padded = np.take(x[slab], clamped, axis=axis)
+            acc = out[slab]
+            term = np.empty(acc.shape, np.float32)
+            for m in range(2 * r + 1):
+                np.multiply(padded[tuple(slice(m, m + n) if d == axis else slice(None) for d in range(3))], w[m],
+                            out=term)
+                acc += term
+
+    run_threads(slabs, max(1, min(nb.get_num_threads(), len(starts))))
     return out
 
 
@@ -143,13 +150,19 @@ def eig3(a, b, c, d, e, f):
 _acos = np.frompyfunc(math.acos, 1, 1)  # the C library's acos, element by element
 
 
-def _eig_chunks(components):
-    """The tensor components (six float32 arrays of one shape) as flat arrays, in chunks of ``_EIG_CHUNK``: yields
-    (slice, six (n,) float32 arrays)."""
+def _eig_chunks(components, work):
+    """Call ``work(slice, six (n,) float32 arrays)`` on the tensor components (six float32 arrays of one shape) as flat
+    arrays, in chunks of ``_EIG_CHUNK``, the chunks shared out over numba's thread count of threads (numpy releases
+    the GIL; the C library's acos holds it)."""
     flat = [np.asarray(t, np.float32).reshape(-1) for t in components]
-    for start in range(0, flat[0].size, _EIG_CHUNK):
-        part = slice(start, start + _EIG_CHUNK)
-        yield part, [t[part] for t in flat]
+    starts = range(0, flat[0].size, _EIG_CHUNK)
+
+    def chunks(t, n_threads):
+        for start in starts[t::n_threads]:
+            part = slice(start, start + _EIG_CHUNK)
+            work(part, [c[part] for c in flat])
+
+    run_threads(chunks, max(1, min(nb.get_num_threads(), len(starts))))
 
 
 def eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
@@ -158,12 +171,15 @@ def eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
     arrays of ``shape``."""
     n_flat = normals.reshape(-1, 3)
     p_flat = planarity.reshape(-1)
-    for part, comps in _eig_chunks((t00, t01, t02, t11, t12, t22)):
+
+    def work(part, comps):
         vx, vy, vz, pl = eig3(*comps)
         n_flat[part, 0] = vx
         n_flat[part, 1] = vy
         n_flat[part, 2] = vz
         p_flat[part] = pl
+
+    _eig_chunks((t00, t01, t02, t11, t12, t22), work)
 
 
 def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_normals):
@@ -175,7 +191,8 @@ def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_norma
     p1_flat = p1.reshape(-1)
     floor32 = np.float32(1.0 / max_slope / 2.0)
     top32 = np.float32(max_slope)
-    for part, comps in _eig_chunks((t00, t01, t02, t11, t12, t22)):
+
+    def work(part, comps):
         vx, vy, vz, _ = eig3(*comps)
         if as_float32_normals:
             vz32 = vz.astype(np.float32)
@@ -191,6 +208,8 @@ def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_norma
                 ratio = -v / nz
                 ratio = np.where(-max_slope > ratio, -max_slope, ratio)
                 out[part] = np.where(max_slope < ratio, max_slope, ratio)
+
+    _eig_chunks((t00, t01, t02, t11, t12, t22), work)
 
 
 @nb.njit(cache=True, parallel=True)

@@ -17,6 +17,10 @@ def run_threads(kernel: Callable, n_threads: int, *args) -> None:
     """Call ``kernel(t, n_threads, *args)`` for ``t = 0 .. n_threads - 1``: share 0 in the calling thread, the others
     each on a thread of its own, and return when all are done.
 
+    Called from another thread than the main one (a block of a run by blocks, which runs its blocks on threads
+    already), every share runs in the calling thread, one after the other: threads inside those threads would not
+    run faster but would hold more memory (each thread's allocations go to a malloc arena of its own).
+
     Parameters
     ----------
     kernel : callable
@@ -32,6 +36,10 @@ def run_threads(kernel: Callable, n_threads: int, *args) -> None:
     Exception
         Whatever the kernel raised, from the share of lowest index that raised (after all shares ended).
     """
+    if threading.current_thread() is not threading.main_thread():
+        for t in range(n_threads):
+            kernel(t, n_threads, *args)
+        return
     errors: list = [None] * n_threads
 
     def share(t: int) -> None:

@@ -31,3 +31,17 @@ def test_an_error_in_a_share_reaches_the_caller():
 
     with pytest.raises(ValueError, match="share 1 failed"):
         run_threads(kernel, 2)
+
+
+def test_outside_the_main_thread_the_shares_run_in_the_calling_thread():
+    hits = np.zeros(10, np.int64)
+    names = set()
+
+    def kernel(t, n, out):
+        names.add(threading.current_thread().name)
+        out[t::n] += 1
+
+    worker = threading.Thread(target=run_threads, args=(kernel, 3, hits), name="block-worker")
+    worker.start()
+    worker.join()
+    assert np.array_equal(hits, np.ones(10, np.int64)) and names == {"block-worker"}

@@ -81,7 +81,7 @@ def correlate_axis(x: np.ndarray, w: np.ndarray, axis: int) -> np.ndarray:
     return out
 
 
-_EIG_CHUNK = 1 << 16  # voxels per pass of the eigen-decomposition: its float64 temporaries stay in cache
+_EIG_CHUNK = 1 << 15  # voxels per pass of the eigen-decomposition: its float64 temporaries (~10 MB a thread) stay small
 
 
 def eig3(a, b, c, d, e, f):

@@ -22,6 +22,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from .._threads import run_threads
 from .._validation import as_points, check_positive
 from ..errors import InputError
 from .neighbours import axis_bounds
@@ -30,7 +31,7 @@ __all__ = ["VoxelHashIndex"]
 
 _BITS = 21  # bits per voxel coordinate in the packed key
 _LIMIT = (1 << _BITS) - 8  # voxel coordinates allowed per axis (the cell grows beyond that)
-_CHUNKS = 64  # fixed work split of a query, run in parallel (each query point independent of the others)
+_MIN_PER_THREAD = 4096  # queries per thread at least: fewer run in the calling thread (starting threads costs more)
 
 
 class VoxelHashIndex:
@@ -111,8 +112,10 @@ class VoxelHashIndex:
         rings = int(np.ceil(dmax / self.cell))
         dist = np.empty(len(q))
         idx = np.empty(len(q), np.int64)
-        _query(np.ascontiguousarray(_as_3d(q)), self.points, self.order, self.origin, self.cell, rings, dmax,
-               self.table_keys, self.table_start, self.table_stop, dist, idx)
+        # each query point independent of the others: shares of the queries on numba's threads
+        n_threads = max(1, min(numba.get_num_threads(), len(q) // _MIN_PER_THREAD))
+        run_threads(_query, n_threads, np.ascontiguousarray(_as_3d(q)), self.points, self.order, self.origin,
+                    self.cell, rings, dmax, self.table_keys, self.table_start, self.table_stop, dist, idx)
         return dist, idx
 
 
@@ -178,62 +181,62 @@ def _gap(offset, frac):
     return 0.0
 
 
-@numba.njit(cache=True, parallel=True)
-def _query(q, pts, order, origin, cell, rings, dmax, table_keys, table_start, table_stop, dist, idx):
+@numba.njit(cache=True, nogil=True)
+def _query(t, n_threads, q, pts, order, origin, cell, rings, dmax, table_keys, table_start, table_stop, dist, idx):
+    # share t of n_threads of the queries
     n_pts = len(order)
     mask = len(table_keys) - 1
     shift = 64 - _log2(len(table_keys))
     limit = np.int64(1) << np.int64(_BITS)
     n = len(q)
-    for chunk in numba.prange(_CHUNKS):
-        for i in range(chunk * n // _CHUNKS, (chunk + 1) * n // _CHUNKS):
-            best = dmax * dmax
-            found = -1
-            fx = (q[i, 0] - origin[0]) / cell
-            fy = (q[i, 1] - origin[1]) / cell
-            fz = (q[i, 2] - origin[2]) / cell
-            cx, cy, cz = np.floor(fx), np.floor(fy), np.floor(fz)
-            fx, fy, fz = fx - cx, fy - cy, fz - cz
-            # rings outward; a voxel is opened only when its box can hold a closer point than the best so far
-            for ring in range(rings + 1):
-                if ring > 0 and (ring - 1.0) * (ring - 1.0) * cell * cell >= best:
-                    break
-                for ox in range(-ring, ring + 1):
-                    gx = _gap(ox, fx)
-                    vx = cx + ox
-                    if vx < 0 or vx >= limit:
+    for i in range(t * n // n_threads, (t + 1) * n // n_threads):
+        best = dmax * dmax
+        found = -1
+        fx = (q[i, 0] - origin[0]) / cell
+        fy = (q[i, 1] - origin[1]) / cell
+        fz = (q[i, 2] - origin[2]) / cell
+        cx, cy, cz = np.floor(fx), np.floor(fy), np.floor(fz)
+        fx, fy, fz = fx - cx, fy - cy, fz - cz
+        # rings outward; a voxel is opened only when its box can hold a closer point than the best so far
+        for ring in range(rings + 1):
+            if ring > 0 and (ring - 1.0) * (ring - 1.0) * cell * cell >= best:
+                break
+            for ox in range(-ring, ring + 1):
+                gx = _gap(ox, fx)
+                vx = cx + ox
+                if vx < 0 or vx >= limit:
+                    continue
+                for oy in range(-ring, ring + 1):
+                    gy = _gap(oy, fy)
+                    vy = cy + oy
+                    if vy < 0 or vy >= limit:
                         continue
-                    for oy in range(-ring, ring + 1):
-                        gy = _gap(oy, fy)
-                        vy = cy + oy
-                        if vy < 0 or vy >= limit:
+                    edge = ox == -ring or ox == ring or oy == -ring or oy == ring
+                    for oz in range(-ring, ring + 1):
+                        if not edge and oz != -ring and oz != ring:
+                            continue  # inner voxels belong to earlier rings
+                        vz = cz + oz
+                        if vz < 0 or vz >= limit:
                             continue
-                        edge = ox == -ring or ox == ring or oy == -ring or oy == ring
-                        for oz in range(-ring, ring + 1):
-                            if not edge and oz != -ring and oz != ring:
-                                continue  # inner voxels belong to earlier rings
-                            vz = cz + oz
-                            if vz < 0 or vz >= limit:
-                                continue
-                            gz = _gap(oz, fz)
-                            if (gx * gx + gy * gy + gz * gz) * cell * cell >= best:
-                                continue
-                            key = (np.int64(vx) << np.int64(2 * _BITS)) | (np.int64(vy) << np.int64(_BITS)) | \
-                                np.int64(vz)
-                            s = _lookup(key, table_keys, mask, shift)
-                            if s < 0:
-                                continue
-                            for j in range(table_start[s], table_stop[s]):
-                                dx = q[i, 0] - pts[j, 0]
-                                dy = q[i, 1] - pts[j, 1]
-                                dz = q[i, 2] - pts[j, 2]
-                                d2 = dx * dx + dy * dy + dz * dz
-                                if d2 < best:
-                                    best = d2
-                                    found = j
-            if found < 0:
-                dist[i] = np.inf
-                idx[i] = n_pts
-            else:
-                dist[i] = np.sqrt(best)
-                idx[i] = order[found]
+                        gz = _gap(oz, fz)
+                        if (gx * gx + gy * gy + gz * gz) * cell * cell >= best:
+                            continue
+                        key = (np.int64(vx) << np.int64(2 * _BITS)) | (np.int64(vy) << np.int64(_BITS)) | \
+                            np.int64(vz)
+                        s = _lookup(key, table_keys, mask, shift)
+                        if s < 0:
+                            continue
+                        for j in range(table_start[s], table_stop[s]):
+                            dx = q[i, 0] - pts[j, 0]
+                            dy = q[i, 1] - pts[j, 1]
+                            dz = q[i, 2] - pts[j, 2]
+                            d2 = dx * dx + dy * dy + dz * dz
+                            if d2 < best:
+                                best = d2
+                                found = j
+        if found < 0:
+            dist[i] = np.inf
+            idx[i] = n_pts
+        else:
+            dist[i] = np.sqrt(best)
+            idx[i] = order[found]

@@ -7,8 +7,12 @@ Distances are in samples and traces. The kernels are compiled on first call and 
 
 from __future__ import annotations
 
+import math
+
 import numba as nb
 import numpy as np
+
+from .._threads import run_threads
 
 MAX_SLOPE = 5.0  # samples per trace; steeper "reflectors" are clipped (as in Hale's FaultScanner.slopes)
 
@@ -29,138 +33,183 @@ def interp_trace(f, i, j, t, nt):
     w = t - k
     return (1.0 - w) * f[i, j, k] + w * f[i, j, k + 1]
 
-@nb.njit(cache=True, parallel=True)
-def correlate_axis(x, w, axis, out):
-    # out = x correlated with the odd-length kernel w along `axis`, edges clamped (scipy.ndimage mode 'nearest');
-    # loops ordered so the innermost one runs along the contiguous sample axis (vectorised)
-    n0, n1, n2 = x.shape
+_SLAB = 1 << 17  # samples of x per pass of correlate_axis: a slab and its products stay in the processor's cache
+
+
+def correlate_axis(x: np.ndarray, w: np.ndarray, axis: int) -> np.ndarray:
+    """Correlate a cube with an odd-length kernel along one axis, edges clamped (``scipy.ndimage.correlate1d`` with
+    ``mode='nearest'``), accumulating in float32.
+
+    The sum runs in kernel order, ``out = ((0 + w[0] x[i - r]) + w[1] x[i - r + 1]) + ...``, each product and sum
+    rounded to float32: the bits of the compiled loop this replaced (``scipy.ndimage.correlate1d`` sums in float64,
+    so its results differ in the last bits). Worked in slabs of about 2^17 samples so that the terms stay in cache.
+
+    Parameters
+    ----------
+    x : (n0, n1, n2) float32 ndarray
+        The cube.
+    w : (2 r + 1,) float32 ndarray
+        Correlation weights (:func:`gaussian_kernel`), centred on index ``r``.
+    axis : {0, 1, 2}
+        The axis correlated along.
+
+    Returns
+    -------
+    (n0, n1, n2) float32 ndarray
+        The correlated cube.
+    """
+    n = x.shape[axis]
     r = (w.shape[0] - 1) // 2
-    if axis == 2:
-        for i in nb.prange(n0):
-            pad = np.empty(n2 + 2 * r, np.float32)
-            row = np.empty(n2, np.float32)
-            for j in range(n1):
-                for k in range(n2 + 2 * r):
-                    pad[k] = x[i, j, min(max(k - r, 0), n2 - 1)]
-                for k in range(n2):
-                    row[k] = 0.0
-                for m in range(2 * r + 1):
-                    wm = w[m]
-                    for k in range(n2):
-                        row[k] += wm * pad[k + m]
-                for k in range(n2):
-                    out[i, j, k] = row[k]
-    elif axis == 1:
-        for i in nb.prange(n0):
-            for j in range(n1):
-                for k in range(n2):
-                    out[i, j, k] = 0.0
-                for m in range(2 * r + 1):
-                    jj = min(max(j + m - r, 0), n1 - 1)
-                    wm = w[m]
-                    for k in range(n2):
-                        out[i, j, k] += wm * x[i, jj, k]
-    else:
-        for i in nb.prange(n0):
-            for j in range(n1):
-                for k in range(n2):
-                    out[i, j, k] = 0.0
+    out = np.zeros(x.shape, np.float32)
+    clamped = np.clip(np.arange(-r, n + r), 0, n - 1)  # the axis padded by r samples on each side, edges repeated
+    other = 1 if axis == 0 else 0  # slabs across another axis
+    step = max(1, _SLAB // max(1, x.size // max(1, x.shape[other])))
+    starts = range(0, x.shape[other], step)
+
+    def slabs(t, n_threads):  # slabs t, t + n_threads, ... (numpy releases the GIL: the threads run together)
+        for a in starts[t::n_threads]:
+            slab = tuple(slice(a, a + step) if d == other else slice(None) for d in range(3))
+            padded = np.take(x[slab], clamped, axis=axis)
+            acc = out[slab]
+            term = np.empty(acc.shape, np.float32)
             for m in range(2 * r + 1):
-                ii = min(max(i + m - r, 0), n0 - 1)
-                wm = w[m]
-                for j in range(n1):
-                    for k in range(n2):
-                        out[i, j, k] += wm * x[ii, j, k]
+                np.multiply(padded[tuple(slice(m, m + n) if d == axis else slice(None) for d in range(3))], w[m],
+                            out=term)
+                acc += term
+
+    run_threads(slabs, max(1, min(nb.get_num_threads(), len(starts))))
+    return out
 
 
-@nb.njit(cache=True, inline="always")
+_EIG_CHUNK = 1 << 15  # voxels per pass of the eigen-decomposition: its float64 temporaries (~10 MB a thread) stay small
+
+
 def eig3(a, b, c, d, e, f):
-    # Largest eigenvector (unit, third component >= 0) and (l1 - l2) / l1 of the symmetric tensor
-    # [[a, b, c], [b, d, e], [c, e, f]]: closed-form eigenvalues (trigonometric solution of the characteristic
-    # cubic), eigenvector from the largest cross product of two rows of T - l1 I.
-    p1 = b * b + c * c + e * e
-    q = (a + d + f) / 3.0
-    p2 = (a - q) ** 2 + (d - q) ** 2 + (f - q) ** 2 + 2.0 * p1
-    if p2 <= 1e-30 * (q * q + 1e-300):
-        return 0.0, 0.0, 1.0, 0.0
-    p = np.sqrt(p2 / 6.0)
-    b00 = (a - q) / p
-    b11 = (d - q) / p
-    b22 = (f - q) / p
-    b01 = b / p
-    b02 = c / p
-    b12 = e / p
-    r = 0.5 * (b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02))
-    r = min(1.0, max(-1.0, r))
-    phi = np.arccos(r) / 3.0
-    l1 = q + 2.0 * p * np.cos(phi)
-    l3 = q + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
-    l2 = 3.0 * q - l1 - l3
-    r0x, r0y, r0z = a - l1, b, c
-    r1x, r1y, r1z = b, d - l1, e
-    r2x, r2y, r2z = c, e, f - l1
-    c0x = r0y * r1z - r0z * r1y
-    c0y = r0z * r1x - r0x * r1z
-    c0z = r0x * r1y - r0y * r1x
-    c1x = r0y * r2z - r0z * r2y
-    c1y = r0z * r2x - r0x * r2z
-    c1z = r0x * r2y - r0y * r2x
-    c2x = r1y * r2z - r1z * r2y
-    c2y = r1z * r2x - r1x * r2z
-    c2z = r1x * r2y - r1y * r2x
-    m0 = c0x * c0x + c0y * c0y + c0z * c0z
-    m1 = c1x * c1x + c1y * c1y + c1z * c1z
-    m2 = c2x * c2x + c2y * c2y + c2z * c2z
-    if m0 >= m1 and m0 >= m2:
-        vx, vy, vz, m = c0x, c0y, c0z, m0
-    elif m1 >= m2:
-        vx, vy, vz, m = c1x, c1y, c1z, m1
-    else:
-        vx, vy, vz, m = c2x, c2y, c2z, m2
-    if m <= 0.0:
-        return 0.0, 0.0, 1.0, 0.0
-    s = 1.0 / np.sqrt(m)
-    if vz < 0.0:
-        s = -s
-    return vx * s, vy * s, vz * s, ((l1 - l2) / l1 if l1 > 0.0 else 0.0)
+    """Largest eigenvector and planarity of the symmetric tensors ``[[a, b, c], [b, d, e], [c, e, f]]``.
+
+    Closed-form eigenvalues (Smith 1961: trigonometric solution of the characteristic cubic), the eigenvector from
+    the largest cross product of two rows of ``T - l1 I``, computed with the operations, their order and their
+    types of the compiled per-voxel loop this replaced (products of two float32 components in float32, everything
+    mixed with a float64 value in float64; ``acos`` from the C library, as that loop called it: numpy's SIMD
+    ``arccos`` differs in the last bit of about 1 value in 10), so that its results are the same bits.
+
+    Parameters
+    ----------
+    a, b, c, d, e, f : (n,) float32 ndarray
+        The tensor components ``t00, t01, t02, t11, t12, t22``.
+
+    Returns
+    -------
+    vx, vy, vz : (n,) float64 ndarray
+        The unit eigenvector of the largest eigenvalue, ``vz >= 0``; ``(0, 0, 1)`` for an isotropic or zero tensor.
+    planarity : (n,) float64 ndarray
+        ``(l1 - l2) / l1`` (0 when ``l1 <= 0`` or the tensor is isotropic).
+
+    References
+    ----------
+    .. [1] O. K. Smith, "Eigenvalues of a symmetric 3 x 3 matrix", Communications of the ACM 4(4), 168, 1961,
+       doi:10.1145/355578.366316.
+    """
+    f64 = np.float64
+    with np.errstate(all="ignore"):  # isotropic tensors divide by zero; their results are replaced below
+        p1 = (b * b + c * c + e * e).astype(f64)
+        q = (a + d + f).astype(f64) / 3.0
+        a64, b64, c64, d64, e64, f64_ = (t.astype(f64) for t in (a, b, c, d, e, f))
+        aq, dq, fq = a64 - q, d64 - q, f64_ - q
+        p2 = aq * aq + dq * dq + fq * fq + 2.0 * p1
+        isotropic = p2 <= 1e-30 * (q * q + 1e-300)
+        p = np.sqrt(p2 / 6.0)
+        b00, b11, b22, b01, b02, b12 = aq / p, dq / p, fq / p, b64 / p, c64 / p, e64 / p
+        r = 0.5 * (b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02))
+        r = np.where(r > -1.0, r, -1.0)  # min(1, max(-1, r)) as Python's max and min (NaN -> -1)
+        r = np.where(r < 1.0, r, 1.0)
+        phi = _acos(r).astype(f64) / 3.0
+        l1 = q + 2.0 * p * np.cos(phi)
+        l3 = q + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
+        l2 = 3.0 * q - l1 - l3
+        # rows of T - l1 I: (a - l1, b, c), (b, d - l1, e), (c, e, f - l1); their cross products
+        r0x, r1y, r2z = a64 - l1, d64 - l1, f64_ - l1
+        c0 = ((b * e).astype(f64) - c64 * r1y, (c * b).astype(f64) - r0x * e64, r0x * r1y - (b * b).astype(f64))
+        c1 = (b64 * r2z - (c * e).astype(f64), (c * c).astype(f64) - r0x * r2z, r0x * e64 - (b * c).astype(f64))
+        c2 = (r1y * r2z - (e * e).astype(f64), (e * c).astype(f64) - b64 * r2z, (b * e).astype(f64) - r1y * c64)
+        m0, m1, m2 = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] for v in (c0, c1, c2))
+        pick0 = (m0 >= m1) & (m0 >= m2)
+        pick1 = ~pick0 & (m1 >= m2)
+        v = [np.where(pick0, c0[k], np.where(pick1, c1[k], c2[k])) for k in range(3)]
+        m = np.where(pick0, m0, np.where(pick1, m1, m2))
+        s = 1.0 / np.sqrt(m)
+        s = np.where(v[2] < 0.0, -s, s)
+        zero = isotropic | (m <= 0.0)
+        vx = np.where(zero, 0.0, v[0] * s)
+        vy = np.where(zero, 0.0, v[1] * s)
+        vz = np.where(zero, 1.0, v[2] * s)
+        planarity = np.where(zero | ~(l1 > 0.0), 0.0, (l1 - l2) / l1)
+    return vx, vy, vz, planarity
 
 
-@nb.njit(cache=True, parallel=True)
+_acos = np.frompyfunc(math.acos, 1, 1)  # the C library's acos, element by element
+
+
+def _eig_chunks(components, work):
+    """Call ``work(slice, six (n,) float32 arrays)`` on the tensor components (six float32 arrays of one shape) as flat
+    arrays, in chunks of ``_EIG_CHUNK``, the chunks shared out over numba's thread count of threads (numpy releases
+    the GIL; the C library's acos holds it)."""
+    flat = [np.asarray(t, np.float32).reshape(-1) for t in components]
+    starts = range(0, flat[0].size, _EIG_CHUNK)
+
+    def chunks(t, n_threads):
+        for start in starts[t::n_threads]:
+            part = slice(start, start + _EIG_CHUNK)
+            work(part, [c[part] for c in flat])
+
+    run_threads(chunks, max(1, min(nb.get_num_threads(), len(starts))))
+
+
 def eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
-    # reflector normals (..., 3) and planarity of every tensor
-    n0, n1, n2 = t00.shape
-    for i in nb.prange(n0):
-        for j in range(n1):
-            for k in range(n2):
-                vx, vy, vz, pl = eig3(float(t00[i, j, k]), float(t01[i, j, k]), float(t02[i, j, k]),
-                                       float(t11[i, j, k]), float(t12[i, j, k]), float(t22[i, j, k]))
-                normals[i, j, k, 0] = vx
-                normals[i, j, k, 1] = vy
-                normals[i, j, k, 2] = vz
-                planarity[i, j, k] = pl
+    """Reflector normals and planarity of every structure tensor (:func:`eig3`), written into ``normals``
+    (``shape + (3,)`` float32, C order) and ``planarity`` (``shape`` float32, C order); the components are float32
+    arrays of ``shape``."""
+    n_flat = normals.reshape(-1, 3)
+    p_flat = planarity.reshape(-1)
+
+    def work(part, comps):
+        vx, vy, vz, pl = eig3(*comps)
+        n_flat[part, 0] = vx
+        n_flat[part, 1] = vy
+        n_flat[part, 2] = vz
+        p_flat[part] = pl
+
+    _eig_chunks((t00, t01, t02, t11, t12, t22), work)
 
 
-@nb.njit(cache=True, parallel=True)
 def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_normals):
-    # reflector slopes -n0 / n2 and -n1 / n2 (samples per trace, clipped to +-max_slope) of every tensor; with
-    # as_float32_normals, from the normals rounded to float32 and divided in float32, as slopes_from_normals takes
-    # eig_normals' normals (the same bits), else in float64
+    """Reflector slopes ``-n0 / n2`` and ``-n1 / n2`` (samples per trace, clipped to +-``max_slope``) of every
+    structure tensor, written into ``p0`` and ``p1`` (float32, C order, the components' shape). With
+    ``as_float32_normals``, from the normals rounded to float32 and divided in float32, as
+    :func:`slopes_from_normals` takes :func:`eig_normals`' normals (the same bits); else in float64."""
+    p0_flat = p0.reshape(-1)
+    p1_flat = p1.reshape(-1)
     floor32 = np.float32(1.0 / max_slope / 2.0)
     top32 = np.float32(max_slope)
-    n0, n1, n2 = t00.shape
-    for i in nb.prange(n0):
-        for j in range(n1):
-            for k in range(n2):
-                vx, vy, vz, _ = eig3(float(t00[i, j, k]), float(t01[i, j, k]), float(t02[i, j, k]),
-                                      float(t11[i, j, k]), float(t12[i, j, k]), float(t22[i, j, k]))
-                if as_float32_normals:
-                    nz = max(np.float32(vz), floor32)
-                    p0[i, j, k] = min(max(-np.float32(vx) / nz, -top32), top32)
-                    p1[i, j, k] = min(max(-np.float32(vy) / nz, -top32), top32)
-                else:
-                    vz = max(vz, 0.5 / max_slope)
-                    p0[i, j, k] = min(max(-vx / vz, -max_slope), max_slope)
-                    p1[i, j, k] = min(max(-vy / vz, -max_slope), max_slope)
+
+    def work(part, comps):
+        vx, vy, vz, _ = eig3(*comps)
+        if as_float32_normals:
+            vz32 = vz.astype(np.float32)
+            nz = np.where(floor32 > vz32, floor32, vz32)  # max(vz, floor) as Python's max
+            for v, out in ((vx, p0_flat), (vy, p1_flat)):
+                ratio = -v.astype(np.float32) / nz
+                ratio = np.where(-top32 > ratio, -top32, ratio)
+                out[part] = np.where(top32 < ratio, top32, ratio)
+        else:
+            floor = 0.5 / max_slope
+            nz = np.where(floor > vz, floor, vz)
+            for v, out in ((vx, p0_flat), (vy, p1_flat)):
+                ratio = -v / nz
+                ratio = np.where(-max_slope > ratio, -max_slope, ratio)
+                out[part] = np.where(max_slope < ratio, max_slope, ratio)
+
+    _eig_chunks((t00, t01, t02, t11, t12, t22), work)
 
 
 @nb.njit(cache=True, parallel=True)
@@ -283,10 +332,7 @@ def gaussian3(x: np.ndarray, sigmas, orders=(0, 0, 0)) -> np.ndarray:
     for axis, (sig, order) in enumerate(zip(sigmas, orders)):
         if sig <= 0 or x.shape[axis] == 1:
             continue
-        res = np.empty(x.shape, dtype=np.float32)
-        correlate_axis(np.ascontiguousarray(out, dtype=np.float32), gaussian_kernel(float(sig), int(order)), axis,
-                        res)
-        out = res
+        out = correlate_axis(np.asarray(out, dtype=np.float32), gaussian_kernel(float(sig), int(order)), axis)
     return out if out is not x else x.astype(np.float32, copy=True)
 
 
@@ -359,6 +405,33 @@ def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_t
     p1 = np.empty(f3.shape, dtype=np.float32)
     eig_slopes(*t, MAX_SLOPE, p0, p1, bool(as_float32_normals))
     return p0, p1
+
+
+@nb.njit(cache=True)
+def search_left(keys, value):
+    # np.searchsorted(keys, value) of sorted integer keys: the first index whose key is >= value (a plain binary
+    # search compiles in a fraction of numba's generic searchsorted)
+    lo, hi = 0, keys.size
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if keys[mid] < value:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@nb.njit(cache=True)
+def search_right(keys, value):
+    # np.searchsorted(keys, value, side="right") of sorted integer keys: the first index whose key is > value
+    lo, hi = 0, keys.size
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if keys[mid] <= value:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
 
 
 @nb.njit(cache=True)

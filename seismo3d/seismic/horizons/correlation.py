@@ -11,31 +11,40 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+from ..._threads import run_threads
 from .dp import sample_at
 
 __all__ = ["window_correlation", "neighbour_confidence"]
 
 
-_PAIR_CHUNK = 256  # pairs per parallel task of pair_lags
+_PAIR_CHUNK = 256  # pairs per task of pair_lags
 
 
-@nb.njit(cache=True, parallel=True)
-def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
-    """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
-    of trace a around ``ta``; returns (lag relative to centre, score), NaN where not measured
-    (:func:`_one_pair_lag`); the pairs in parallel chunks."""
+@nb.njit(cache=True, nogil=True)
+def _pair_lags_share(t, n_threads, traces, a, ta, b, centre, half, max_lag, min_fraction, lag_out, score_out):
+    # the pairs of chunks t, t + n_threads, ... (see pair_lags)
     n = a.size
-    lag_out = np.full(n, np.nan)
-    score_out = np.full(n, np.nan)
     n_chunks = (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK
-    for c in nb.prange(n_chunks):
-        ref = np.empty(2 * half + 1)
-        sig = np.empty(2 * half + 1 + 2 * max_lag)
-        scores = np.empty(2 * max_lag + 1)
-        products = np.empty(2 * max_lag + 1)
+    ref = np.empty(2 * half + 1)
+    sig = np.empty(2 * half + 1 + 2 * max_lag)
+    scores = np.empty(2 * max_lag + 1)
+    products = np.empty(2 * max_lag + 1)
+    for c in range(t, n_chunks, n_threads):
         for p in range(c * _PAIR_CHUNK, min(n, (c + 1) * _PAIR_CHUNK)):
             lag_out[p], score_out[p] = _one_pair_lag(traces, a[p], ta[p], b[p], centre[p], half, max_lag,
                                                      min_fraction, ref, sig, scores, products)
+
+
+def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
+    """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
+    of trace a around ``ta``; returns (lag relative to centre, score), NaN where not measured
+    (:func:`_one_pair_lag`); chunks of pairs shared out over numba's threads."""
+    n = len(a)
+    lag_out = np.full(n, np.nan)
+    score_out = np.full(n, np.nan)
+    n_threads = max(1, min(nb.get_num_threads(), (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK))
+    run_threads(_pair_lags_share, n_threads, traces, a, ta, b, centre, int(half), int(max_lag), float(min_fraction),
+                lag_out, score_out)
     return lag_out, score_out
 
 

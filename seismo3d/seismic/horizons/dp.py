@@ -27,6 +27,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numba as nb
 import numpy as np
 
+from ..._threads import run_threads
 from ..attributes import section_slopes, structure_tensor_orientation
 from ..reflectors import nearest_pick
 
@@ -75,31 +76,22 @@ def _trace_candidates(k, guide, fixed, picks, offsets, reach, out):
     return count
 
 
-@nb.njit(cache=True, parallel=True)
-def _candidates(traces, guide, fixed, picks, offsets, reach, half, slopes, cross_slopes):
-    """Every trace's candidate picks (:func:`_trace_candidates`) and their waveforms, once for all the programmes of
-    :func:`dp_picks`: ``(first, pick, unit, whole, slope, cross_slope)``, the candidates of trace ``k`` at
-    ``first[k]:first[k + 1]`` of ``pick``; ``unit`` (n_candidates, 2 half + 1) float32 the window ``+-half`` samples
-    around each pick centred and scaled to unit norm (zeros where flat), so that two windows' normalised
-    cross-correlation is their dot product; ``whole`` False where a window leaves the trace (its correlations are
-    :func:`window_ncc`'s of the raw windows); ``slope``, ``cross_slope`` the reflector slopes ``slopes`` and
-    ``cross_slopes`` at each candidate. About ``4 (2 half + 1) + 18`` bytes a candidate (a few candidates a trace: ~0.2
-    KB a trace at ``half`` 8)."""
-    n = guide.size
+@nb.njit(cache=True, nogil=True)
+def _count_candidates(t, n_threads, guide, fixed, picks, offsets, reach, counts):
+    # counts[k + 1]: the number of candidates of traces k = t, t + n_threads, ...
     none = np.empty(0)
-    first = np.zeros(n + 1, np.int64)
-    for k in nb.prange(n):
-        first[k + 1] = _trace_candidates(k, guide, fixed, picks, offsets, reach, none)
-    first = np.cumsum(first)
-    pick = np.empty(first[n])
+    for k in range(t, guide.size, n_threads):
+        counts[k + 1] = _trace_candidates(k, guide, fixed, picks, offsets, reach, none)
+
+
+@nb.njit(cache=True, nogil=True)
+def _fill_candidates(t, n_threads, traces, guide, fixed, picks, offsets, reach, half, slopes, cross_slopes, first,
+                     pick, unit, whole, slope, cross_slope):
+    # the candidates of traces k = t, t + n_threads, ... and their waveforms (see _candidates)
     m = 2 * half + 1
-    unit = np.zeros((first[n], m), np.float32)
-    whole = np.zeros(first[n], np.bool_)
-    slope = np.empty(first[n], np.float32)
-    cross_slope = np.empty(first[n], np.float32)
-    for k in nb.prange(n):
+    win = np.empty(m)
+    for k in range(t, guide.size, n_threads):
         _trace_candidates(k, guide, fixed, picks, offsets, reach, pick[first[k]:first[k + 1]])
-        win = np.empty(m)
         for q in range(first[k], first[k + 1]):
             slope[q] = _slope_at(slopes, k, pick[q])
             cross_slope[q] = _slope_at(cross_slopes, k, pick[q])
@@ -121,6 +113,31 @@ def _candidates(traces, guide, fixed, picks, offsets, reach, half, slopes, cross
                 scale = 1.0 / np.sqrt(ss)
                 for s in range(m):
                     unit[q, s] = win[s] * scale
+
+
+def _candidates(traces, guide, fixed, picks, offsets, reach, half, slopes, cross_slopes):
+    """Every trace's candidate picks (:func:`_trace_candidates`) and their waveforms, once for all the programmes of
+    :func:`dp_picks`: ``(first, pick, unit, whole, slope, cross_slope)``, the candidates of trace ``k`` at
+    ``first[k]:first[k + 1]`` of ``pick``; ``unit`` (n_candidates, 2 half + 1) float32 the window ``+-half`` samples
+    around each pick centred and scaled to unit norm (zeros where flat), so that two windows' normalised
+    cross-correlation is their dot product; ``whole`` False where a window leaves the trace (its correlations are
+    :func:`window_ncc`'s of the raw windows); ``slope``, ``cross_slope`` the reflector slopes ``slopes`` and
+    ``cross_slopes`` at each candidate. About ``4 (2 half + 1) + 18`` bytes a candidate (a few candidates a trace: ~0.2
+    KB a trace at ``half`` 8). The traces are shared out over numba's threads."""
+    n = guide.size
+    n_threads = nb.get_num_threads()
+    counts = np.zeros(n + 1, np.int64)
+    run_threads(_count_candidates, n_threads, guide, fixed, picks, offsets, reach, counts)
+    first = np.cumsum(counts)
+    total = int(first[n])
+    m = 2 * half + 1
+    pick = np.empty(total)
+    unit = np.zeros((total, m), np.float32)
+    whole = np.zeros(total, np.bool_)
+    slope = np.empty(total, np.float32)
+    cross_slope = np.empty(total, np.float32)
+    run_threads(_fill_candidates, n_threads, traces, guide, fixed, picks, offsets, reach, half, slopes, cross_slopes,
+                first, pick, unit, whole, slope, cross_slope)
     return first, pick, unit, whole, slope, cross_slope
 
 
@@ -316,7 +333,8 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     Raises nothing of its own: its callers (:func:`~seismo3d.seismic.horizons.lsq.lsq_horizon`) check the inputs.
     """
     g = guide.reshape(lateral_shape)
-    wg = np.ascontiguousarray(np.broadcast_to(np.asarray(w_guide, np.float64), guide.shape).reshape(lateral_shape))
+    # a writable copy: a read-only view (an (n,) w_guide broadcast) would compile the kernels taking it a second time
+    wg = np.array(np.broadcast_to(np.asarray(w_guide, np.float64), guide.shape).reshape(lateral_shape))
     ids = np.arange(g.size).reshape(lateral_shape)
     across = slopes if cross_slopes is None else cross_slopes
     *cands, slope, cross_slope = _candidates(traces, np.ascontiguousarray(guide, np.float64),

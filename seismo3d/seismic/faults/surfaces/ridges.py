@@ -15,7 +15,9 @@ import functools
 
 import numba as nb
 import numpy as np
+from scipy.ndimage import maximum_filter
 
+from ...._threads import run_threads
 from ...._validation import check_positive
 from ....errors import InputError
 from ... import _kernels
@@ -81,37 +83,15 @@ def _bilinear01(f, x, y, k):
     return (1 - u) * ((1 - v) * f[i, j, k] + v * f[i, j1, k]) + u * ((1 - v) * f[i1, j, k] + v * f[i1, j1, k])
 
 
-@nb.njit(cache=True, parallel=True)
-def _near_above(f, floor, need):
-    # need[i, j, k]: some sample of the 3 x 3 x 3 neighbourhood of (i, j, k) has f > floor (the samples whose ranking
-    # value a ridge test of a sample above floor reads: trilinear reads one sample away along the normal)
-    n0, n1, n2 = f.shape
-    for i in nb.prange(n0):
-        for j in range(n1):
-            for k in range(n2):
-                hit = False
-                for a in range(max(i - 1, 0), min(i + 2, n0)):
-                    for b in range(max(j - 1, 0), min(j + 2, n1)):
-                        for c in range(max(k - 1, 0), min(k + 2, n2)):
-                            if f[a, b, c] > floor:
-                                hit = True
-                                break
-                        if hit:
-                            break
-                    if hit:
-                        break
-                need[i, j, k] = hit
-
-
-@nb.njit(cache=True, parallel=True)
-def _smooth_along_dip(f, strike, dip, lut, h, need, out):
+@nb.njit(cache=True, nogil=True)
+def _smooth_along_dip(t, n_threads, f, strike, dip, lut, h, need, out):
     # Average f along the dip of each sample's fault plane, one sample per step down (the fault is steeper than
     # 45 degrees in the scan, so the dip vector has its largest component along the sample axis): triangle weights
     # over +-h samples, bilinear interpolation across. Joins fault ridges broken by noise before thinning. Computed
-    # where need is True, 0 elsewhere.
+    # where need is True, 0 elsewhere. Inlines t, t + n_threads, ...
     n0, n1, n2 = f.shape
     n_phi, n_theta, _ = lut.shape
-    for i in nb.prange(n0):
+    for i in range(t, n0, n_threads):
         for j in range(n1):
             for k in range(n2):
                 if not need[i, j, k]:
@@ -137,13 +117,14 @@ def _smooth_along_dip(f, strike, dip, lut, h, need, out):
                 out[i, j, k] = acc / wsum if wsum > 0 else f[i, j, k]
 
 
-@nb.njit(cache=True, parallel=True)
-def _ridges(f, g, strike, dip, lut, floor, out):
+@nb.njit(cache=True, nogil=True)
+def _ridges(t, n_threads, f, g, strike, dip, lut, floor, out):
     # Non-maximum suppression of g across the fault: keep f where g(p) > g(p - n) and g(p) >= g(p + n), n the unit
-    # fault normal of the sample (trilinear interpolation); samples with f <= floor are 0 (not tested).
+    # fault normal of the sample (trilinear interpolation); samples with f <= floor are 0 (not tested). Inlines t,
+    # t + n_threads, ...
     n0, n1, n2 = f.shape
     n_phi, n_theta, _ = lut.shape
-    for i in nb.prange(n0):
+    for i in range(t, n0, n_threads):
         for j in range(n1):
             for k in range(n2):
                 if not f[i, j, k] > floor:
@@ -194,15 +175,17 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
     floor = float(floor)
     lut = _direction_lut()
     g = _kernels.gaussian3(f3, (sigma, 0.0 if two_d else sigma, sigma)) if sigma > 0 else f3
+    n_threads = nb.get_num_threads()
     if dip_smoothing > 0:
-        need = np.empty(f3.shape, np.bool_)
-        _near_above(f3, floor, need)
+        # the samples whose ranking value a ridge test above floor reads: some sample of their 3 x 3 x 3
+        # neighbourhood has a likelihood above floor (trilinear reads one sample away along the normal)
+        need = maximum_filter(f3, size=3, mode="nearest") > np.float64(floor)
         g2 = np.empty_like(f3)
-        _smooth_along_dip(g, st3, dp3, lut, int(dip_smoothing), need, g2)
+        run_threads(_smooth_along_dip, n_threads, g, st3, dp3, lut, int(dip_smoothing), need, g2)
         del need
         g = g2
     ridge = np.empty_like(f3)
-    _ridges(f3, g, st3, dp3, lut, floor, ridge)
+    run_threads(_ridges, n_threads, f3, g, st3, dp3, lut, floor, ridge)
     del g
     return ridge[:, 0, :] if two_d else ridge
 

@@ -1,6 +1,5 @@
 """The closest cells of different fault skins within a gap (:mod:`~seismo3d.seismic.faults.surfaces.skins`): edge cells
-matched to the nearest cell of every other skin through a grid of buckets, in parallel; the pairs the merging of
-coplanar skins
+matched to the nearest cell of every other skin through a grid of buckets; the pairs the merging of coplanar skins
 considers."""
 
 from __future__ import annotations
@@ -14,6 +13,15 @@ __all__ = []
 
 
 @nb.njit(cache=True)
+def _grown(a, size):
+    # a copy of a in a longer array (the first a.size entries)
+    out = np.empty(size, a.dtype)
+    for i in range(a.size):
+        out[i] = a[i]
+    return out
+
+
+@nb.njit(cache=True)
 def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, slot, labels, dist2, cells):
     # For cell e: the nearest cell (squared distance, index) of every other label within sqrt(gap2), ties to the
     # lower index, from the buckets (cubes of ``side`` from ``origin``, :func:`~seismo3d.seismic._kernels.bucket_grid`)
@@ -23,7 +31,9 @@ def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, 
     m = 0
     gap = np.sqrt(gap2)
     own = lab[e]
-    ex = pts[e] - origin
+    ex = np.empty(3)
+    for a in range(3):
+        ex[a] = pts[e, a] - origin[a]
     # the buckets within the gap of e along each axis
     first_b = np.empty(3, np.int64)
     last_b = np.empty(3, np.int64)
@@ -47,7 +57,7 @@ def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, 
             column = bx * dims[1] + by
             low = column * dims[2] + first_b[2]
             high = column * dims[2] + last_b[2]
-            for r in range(np.searchsorted(keys, low), np.searchsorted(keys, high, side="right")):
+            for r in range(_kernels.search_left(keys, low), _kernels.search_right(keys, high)):
                 j = order[r]
                 if lab[j] == own:
                     continue
@@ -60,9 +70,9 @@ def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, 
                 k = slot[lab[j]]
                 if k < 0:
                     if m == labels.size:  # grow the lists
-                        labels = np.concatenate((labels, np.empty(m, np.int64)))
-                        dist2 = np.concatenate((dist2, np.empty(m)))
-                        cells = np.concatenate((cells, np.empty(m, np.int64)))
+                        labels = _grown(labels, 2 * m)
+                        dist2 = _grown(dist2, 2 * m)
+                        cells = _grown(cells, 2 * m)
                     slot[lab[j]] = m
                     labels[m] = lab[j]
                     dist2[m] = d2
@@ -76,55 +86,32 @@ def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, 
     return m, labels, dist2, cells
 
 
-@nb.njit(cache=True, parallel=True)
-def _edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, gap2, n_chunks):
-    # every (edge cell, nearest cell of another label within the gap, squared distance), the edge cells in
-    # ``n_chunks`` chunks (each with its own label slots), gathered in order
-    n = edge_idx.size
-    bounds = np.linspace(0, n, n_chunks + 1).astype(np.int64)
-    firsts = [np.empty(0, np.int64) for _ in range(n_chunks)]
-    seconds = [np.empty(0, np.int64) for _ in range(n_chunks)]
-    dists = [np.empty(0) for _ in range(n_chunks)]
-    for c in nb.prange(n_chunks):
-        slot = -np.ones(n_labels, np.int64)
-        labels = np.empty(16, np.int64)
-        dist2 = np.empty(16)
-        cells = np.empty(16, np.int64)
-        first = np.empty(64, np.int64)
-        second = np.empty(64, np.int64)
-        dist = np.empty(64)
-        used = 0
-        for r in range(bounds[c], bounds[c + 1]):
-            m, labels, dist2, cells = _nearest_of_other_skins(edge_idx[r], pts, lab, origin, dims, side, keys, order,
-                                                             gap2, slot, labels, dist2, cells)
-            while used + m > first.size:
-                first = np.concatenate((first, np.empty(first.size, np.int64)))
-                second = np.concatenate((second, np.empty(second.size, np.int64)))
-                dist = np.concatenate((dist, np.empty(dist.size)))
-            for k in range(m):
-                first[used] = edge_idx[r]
-                second[used] = cells[k]
-                dist[used] = dist2[k]
-                used += 1
-        # copies: numba hoists the np.empty buffers above out of the prange loop, so the chunks a thread runs share
-        # them, and a view would be overwritten by the thread's next chunk (pairs lost and others duplicated)
-        firsts[c] = first[:used].copy()
-        seconds[c] = second[:used].copy()
-        dists[c] = dist[:used].copy()
-    total = 0
-    for c in range(n_chunks):
-        total += firsts[c].size
-    first = np.empty(total, np.int64)
-    second = np.empty(total, np.int64)
-    dist = np.empty(total)
-    m = 0
-    for c in range(n_chunks):
-        k = firsts[c].size
-        first[m:m + k] = firsts[c]
-        second[m:m + k] = seconds[c]
-        dist[m:m + k] = dists[c]
-        m += k
-    return first, second, dist
+@nb.njit(cache=True)
+def _edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, gap2):
+    # every (edge cell, nearest cell of another label within the gap, squared distance), in the order of the edge
+    # cells
+    slot = np.full(n_labels, -1, np.int64)  # left all -1 by _nearest_of_other_skins
+    labels = np.empty(16, np.int64)
+    dist2 = np.empty(16)
+    cells = np.empty(16, np.int64)
+    first = np.empty(64, np.int64)
+    second = np.empty(64, np.int64)
+    dist = np.empty(64)
+    used = 0
+    for r in range(edge_idx.size):
+        m, labels, dist2, cells = _nearest_of_other_skins(edge_idx[r], pts, lab, origin, dims, side, keys, order,
+                                                         gap2, slot, labels, dist2, cells)
+        if used + m > first.size:
+            size = max(2 * first.size, used + m)
+            first = _grown(first, size)
+            second = _grown(second, size)
+            dist = _grown(dist, size)
+        for k in range(m):
+            first[used] = edge_idx[r]
+            second[used] = cells[k]
+            dist[used] = dist2[k]
+            used += 1
+    return first[:used], second[:used], dist[:used]
 
 
 def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
@@ -141,8 +128,7 @@ def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: f
     side = max(0.5 * float(gap), 0.5)
     keys, order, origin, dims = _kernels.bucket_grid(pts, side)
     first, second, dist2 = _edge_pairs(np.ascontiguousarray(edge_idx, dtype=np.int64), pts, compact,
-                                       int(compact.max()) + 1, origin, dims, side, keys, order, float(gap) ** 2,
-                                       4 * nb.get_num_threads())
+                                       int(compact.max()) + 1, origin, dims, side, keys, order, float(gap) ** 2)
     if first.size == 0:
         return np.empty((0, 2), dtype=np.int64)
     key = np.minimum(lab[first], lab[second]).astype(np.int64) * n_labels + np.maximum(lab[first], lab[second])

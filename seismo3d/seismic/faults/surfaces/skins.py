@@ -18,6 +18,7 @@ from scipy import sparse
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
+from ...._threads import run_threads
 from ...._validation import check_positive
 from ....errors import InputError
 from ... import _kernels
@@ -142,26 +143,28 @@ def _offset_ranks(two_d: bool, lateral: int, vertical: int) -> np.ndarray:
     return rank
 
 
-@nb.njit(cache=True, parallel=True)
-def _best_neighbours(points, frames, keys, shape, ranks, max_plane, cos_angle):
+@nb.njit(cache=True, nogil=True)
+def _best_neighbours(t, n_threads, points, frames, keys, shape, ranks, max_plane, cos_angle, best):
     # best[c, k]: cell c's nearest neighbour above (k = 0) and below (1) it down the dip, left (2) and right (3) of it
     # along the strike, or -1. A neighbour lies within max_plane of c's plane and c within max_plane of its plane,
     # their normals make an angle below acos(cos_angle), and the neighbour is in the direction's 90-degree cone;
     # distance is measured in c's plane, with the distance off the plane counted double, ties to the lower offset
     # rank (``ranks``, :func:`_offset_ranks`). Cells are found by their linear index in the cube of ``shape`` among
     # the sorted ``keys`` (no array of the cube's size): the cells of one trace within the vertical reach are one
-    # range of keys.
+    # range of keys. Cells t, t + n_threads, ... (best filled with -1 before).
     n = points.shape[0]
     n0, n1, n2 = shape[0], shape[1], shape[2]
     lat0, lat1, vert = ranks.shape[0] // 2, ranks.shape[1] // 2, ranks.shape[2] // 2
-    best = -np.ones((n, 4), np.int32)
-    for c in nb.prange(n):
+    score = np.empty(4)
+    rank = np.empty(4, np.int64)
+    for c in range(t, n, n_threads):
         px, py, pz = points[c, 0], points[c, 1], points[c, 2]
         ux, uy, uz = frames[c, 0, 0], frames[c, 0, 1], frames[c, 0, 2]
         vx, vy, vz = frames[c, 1, 0], frames[c, 1, 1], frames[c, 1, 2]
         wx, wy, wz = frames[c, 2, 0], frames[c, 2, 1], frames[c, 2, 2]
-        score = np.full(4, np.inf)
-        rank = np.zeros(4, np.int64)
+        for k in range(4):
+            score[k] = np.inf
+            rank[k] = 0
         for ox in range(-lat0, lat0 + 1):
             qx = px + ox
             if qx < 0 or qx >= n0:
@@ -171,8 +174,8 @@ def _best_neighbours(points, frames, keys, shape, ranks, max_plane, cos_angle):
                 if qy < 0 or qy >= n1:
                     continue
                 base = (qx * n1 + qy) * n2
-                first = np.searchsorted(keys, base + max(pz - vert, 0))
-                last = np.searchsorted(keys, base + min(pz + vert, n2 - 1), side="right")
+                first = _kernels.search_left(keys, base + max(pz - vert, 0))
+                last = _kernels.search_right(keys, base + min(pz + vert, n2 - 1))
                 for q in range(first, last):
                     oz = keys[q] - base - pz
                     r = ranks[ox + lat0, oy + lat1, oz + vert]
@@ -199,35 +202,23 @@ def _best_neighbours(points, frames, keys, shape, ranks, max_plane, cos_angle):
                         score[k] = d2
                         rank[k] = r
                         best[c, k] = q
-    return best
 
 
-@nb.njit(cache=True)
-def _grow(best, normals, order, cos_mean):
-    # skins grown breadth first over the (undirected) neighbour links from the strongest cell not yet in a skin; a
-    # cell joins when its normal is within acos(cos_mean) of the skin's running mean normal (no drift through cells
-    # of intermediate orientation into another fault)
+def _grow(best: np.ndarray, normals: np.ndarray, order: np.ndarray, cos_mean: float) -> np.ndarray:
+    """Skins grown breadth first over the (undirected) neighbour links from the strongest cell not yet in a skin; a
+    cell joins when its normal is within acos(cos_mean) of the skin's running mean normal (no drift through cells
+    of intermediate orientation into another fault). ``best`` (n, 4) int32 the directed links of
+    :func:`_best_neighbours`; returns the (n,) int64 skin labels."""
     n = best.shape[0]
-    # undirected adjacency from the directed best links
-    deg = np.zeros(n + 1, np.int64)  # offsets: up to 8 links a cell
-    for c in range(n):
-        for k in range(4):
-            q = best[c, k]
-            if q >= 0:
-                deg[c + 1] += 1
-                deg[q + 1] += 1
-    for c in range(n):
-        deg[c + 1] += deg[c]
-    adj = np.empty(deg[n], np.int32)
-    fill = deg[:n].copy()
-    for c in range(n):
-        for k in range(4):
-            q = best[c, k]
-            if q >= 0:
-                adj[fill[c]] = q
-                fill[c] += 1
-                adj[fill[q]] = c
-                fill[q] += 1
+    # undirected adjacency (CSR, up to 8 links a cell) from the directed links: link (c, q) gives q to c's row and c
+    # to q's row, each row in the order of the links (c, then k), as the growth's ties follow that order
+    c, k = np.nonzero(best >= 0)  # row-major: by c, then k
+    q = best[c, k].astype(np.int64)
+    rows = np.stack([c, q], axis=1).reshape(-1)  # per link: its entry in row c, then its entry in row q
+    cols = np.stack([q, c], axis=1).reshape(-1)
+    adj = cols[np.argsort(rows, kind="stable")].astype(np.int32)
+    deg = np.zeros(n + 1, np.int64)
+    np.cumsum(np.bincount(rows, minlength=n), out=deg[1:])
     return grow_by_mean_normal(deg, adj, normals, order, cos_mean)
 
 
@@ -462,9 +453,10 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     frames = np.empty((points.shape[0], 3, 3))
     for a in range(0, points.shape[0], 1 << 18):  # by slices: fault_frames' float64 temporaries stay small
         frames[a:a + (1 << 18)] = fault_frames(s_cell[a:a + (1 << 18)], d_cell[a:a + (1 << 18)])
-    best = _best_neighbours(points, frames, keys, np.asarray(shape3, np.int64),
-                            _offset_ranks(two_d, int(opt.lateral_reach), int(opt.vertical_reach)),
-                            float(opt.max_plane_distance), float(np.cos(np.radians(opt.max_angle))))
+    best = np.full((points.shape[0], 4), -1, np.int32)
+    run_threads(_best_neighbours, nb.get_num_threads(), points, frames, keys, np.asarray(shape3, np.int64),
+                _offset_ranks(two_d, int(opt.lateral_reach), int(opt.vertical_reach)),
+                float(opt.max_plane_distance), float(np.cos(np.radians(opt.max_angle))), best)
     del keys
     normals = np.ascontiguousarray(frames[:, 0, :])
     del frames

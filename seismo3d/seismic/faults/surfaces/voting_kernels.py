@@ -8,6 +8,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+from ...._threads import run_threads
 from ....errors import InputError
 
 # used by the voting module; not part of the package's public face
@@ -30,54 +31,59 @@ def _prefix(e, c):
 
 
 @nb.njit(cache=True)
-def _accumulate(e, b, forward, d, c):
-    # d[i, l]: least cost of a path over rows up to i (forward) or from i (backward) ending at lag l, the lag
-    # changing by at most one every b rows (the costs of the b - 1 rows in between are added along the new lag,
-    # from the prefix sums c of e)
+def _accumulate_forward(e, b, d, c):
+    # d[i, l]: least cost of a path over rows up to i ending at lag l, the lag changing by at most one every b rows
+    # (the costs of the b - 1 rows in between are added along the new lag, from the prefix sums c of e). Forward and
+    # backward are two kernels, not one with a flag: a constant flag compiles the kernel once per value.
     ni, nl = e.shape
     _prefix(e, c)
-    if forward:
+    for il in range(nl):
+        d[0, il] = e[0, il]
+    for ii in range(1, ni):
+        ji = ii - 1
+        jb = max(ii - b, 0)
         for il in range(nl):
-            d[0, il] = e[0, il]
-        for ii in range(1, ni):
-            ji = ii - 1
-            jb = max(ii - b, 0)
-            for il in range(nl):
-                ilm = max(il - 1, 0)
-                ilp = min(il + 1, nl - 1)
-                # rows jb + 1 .. ji on the neighbouring lag
-                dm = d[jb, ilm] + c[ji + 1, ilm] - c[jb + 1, ilm]
-                dp = d[jb, ilp] + c[ji + 1, ilp] - c[jb + 1, ilp]
-                m = d[ji, il]
-                if dm < m:
-                    m = dm
-                if dp < m:
-                    m = dp
-                d[ii, il] = m + e[ii, il]
-    else:
+            ilm = max(il - 1, 0)
+            ilp = min(il + 1, nl - 1)
+            # rows jb + 1 .. ji on the neighbouring lag
+            dm = d[jb, ilm] + c[ji + 1, ilm] - c[jb + 1, ilm]
+            dp = d[jb, ilp] + c[ji + 1, ilp] - c[jb + 1, ilp]
+            m = d[ji, il]
+            if dm < m:
+                m = dm
+            if dp < m:
+                m = dp
+            d[ii, il] = m + e[ii, il]
+
+
+@nb.njit(cache=True)
+def _accumulate_backward(e, b, d, c):
+    # d[i, l]: least cost of a path over rows from i on starting at lag l (as _accumulate_forward, rows reversed)
+    ni, nl = e.shape
+    _prefix(e, c)
+    for il in range(nl):
+        d[ni - 1, il] = e[ni - 1, il]
+    for ii in range(ni - 2, -1, -1):
+        ji = ii + 1
+        jb = min(ii + b, ni - 1)
         for il in range(nl):
-            d[ni - 1, il] = e[ni - 1, il]
-        for ii in range(ni - 2, -1, -1):
-            ji = ii + 1
-            jb = min(ii + b, ni - 1)
-            for il in range(nl):
-                ilm = max(il - 1, 0)
-                ilp = min(il + 1, nl - 1)
-                # rows ji .. jb - 1 on the neighbouring lag
-                dm = d[jb, ilm] + c[jb, ilm] - c[ji, ilm]
-                dp = d[jb, ilp] + c[jb, ilp] - c[ji, ilp]
-                m = d[ji, il]
-                if dm < m:
-                    m = dm
-                if dp < m:
-                    m = dp
-                d[ii, il] = m + e[ii, il]
+            ilm = max(il - 1, 0)
+            ilp = min(il + 1, nl - 1)
+            # rows ji .. jb - 1 on the neighbouring lag
+            dm = d[jb, ilm] + c[jb, ilm] - c[ji, ilm]
+            dp = d[jb, ilp] + c[jb, ilp] - c[ji, ilp]
+            m = d[ji, il]
+            if dm < m:
+                m = dm
+            if dp < m:
+                m = dp
+            d[ii, il] = m + e[ii, il]
 
 
 @nb.njit(cache=True)
 def _backtrack(d, e, b, u, c):
     # the least-cost path of a forward accumulation, traced back from the cheapest lag of the last row; a change of
-    # lag is spread linearly over the b rows it spans (c: prefix sums of e, as left by _accumulate)
+    # lag is spread linearly over the b rows it spans (c: prefix sums of e, as left by _accumulate_forward)
     ni, nl = d.shape
     ii = ni - 1
     il = 0
@@ -109,8 +115,8 @@ def _backtrack(d, e, b, u, c):
 def _smooth_costs(e, b, t1, t2, c, out):
     # nonlinear smoothing of the costs along axis 0: forward + backward accumulation - cost, the cost of the best
     # path through each (row, lag) (Hale 2013, dynamic warping)
-    _accumulate(e, b, True, t1, c)
-    _accumulate(e, b, False, t2, c)
+    _accumulate_forward(e, b, t1, c)
+    _accumulate_backward(e, b, t2, c)
     ni, nl = e.shape
     for i in range(ni):
         for l in range(nl):
@@ -188,7 +194,7 @@ def _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth,
                     es[iw, iv, iu] = row_s[iw, iu]
     # 3. the least-cost path down the dip in every strike slice: the surface, smoothed both ways
     for iw in range(nw):
-        _accumulate(es[iw], b, True, t1[:nv], cs[:nv + 1])
+        _accumulate_forward(es[iw], b, t1[:nv], cs[:nv + 1])
         _backtrack(t1[:nv], es[iw], b, line[:nv], cs[:nv + 1])
         for iv in range(nv):
             surf[iw, iv] = line[iv] - ru
@@ -242,87 +248,105 @@ def _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth,
     return fa
 
 
-@nb.njit(cache=True, parallel=True)
-def surface_kernel(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n_threads, offsets, fa, seed_normal):
-    # Steps 1-4 for every seed, each on one thread (no shared writes): fa[s] the surface's mean likelihood (-1: no
-    # vote), seed_normal[s] its normal at the seed, offsets[s, iw, iv] the sample (inline, crossline, sample) the
-    # surface passes at (dip step iv, strike step iw), relative to the seed, rounded in image coordinates as the
-    # votes are cast (so that cast_votes gives the votes of the surface wherever it was computed)
+@nb.njit(cache=True, nogil=True)
+def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, offsets, fa,
+                        seed_normal):
+    # steps 1-4 for seeds t, t + n_threads, ... (see surface_kernel), with this thread's work arrays
     n0, n1, n2 = shape[0], shape[1], shape[2]
     nu = 2 * ru + 1
     nv = 2 * rv + 1
     nw = 2 * rw + 1
     nm = max(nv, nw)
-    for t in nb.prange(n_threads):
-        e = np.empty((nw, nv, nu))
-        es = np.empty((nw, nv, nu))
-        t1 = np.empty((nm, nu))
-        t2 = np.empty((nm, nu))
-        cs = np.empty((nm + 1, nu))
-        row = np.empty((nm, nu))
-        row_s = np.empty((nm, nu))
-        surf = np.empty((nw, nv))
-        tmp = np.empty(nm)
-        line = np.empty(nm)
-        for s in range(t, seeds.shape[0], n_threads):
-            fa[s] = _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth, e, es, t1, t2, cs,
-                             row, row_s, surf, tmp, line, seed_normal, offsets)
+    e = np.empty((nw, nv, nu))
+    es = np.empty((nw, nv, nu))
+    t1 = np.empty((nm, nu))
+    t2 = np.empty((nm, nu))
+    cs = np.empty((nm + 1, nu))
+    row = np.empty((nm, nu))
+    row_s = np.empty((nm, nu))
+    surf = np.empty((nw, nv))
+    tmp = np.empty(nm)
+    line = np.empty(nm)
+    for s in range(t, seeds.shape[0], n_threads):
+        fa[s] = _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth, e, es, t1, t2, cs,
+                         row, row_s, surf, tmp, line, seed_normal, offsets)
 
 
-@nb.njit(cache=True, parallel=True)
-def cast_votes(seeds, ids, positions, offsets, fa, o0, o1, votes, best, best_seed):
-    # Step 5: one vote fa[s] per sample of each seed's surface (offsets from surface_kernel) inside the core
-    # [o0:o0 + m0, o1:o1 + m1] of the image. Thread ids[s] % n_threads (ids: the seeds' indices among all seeds of
-    # the image, increasing) sums seed s's votes, in the order of the list: the same sums, in the same order,
-    # whether the cube is voted whole or block by block. best and best_seed (n_threads, m0, m1, n2), also per
-    # thread, record the strongest surface of the thread's seeds through each sample (its mean likelihood and the
-    # seed's position, positions[s], in the list of seeds the votes are summed over, increasing with the ids; equal
-    # means go to the smaller position); strongest then takes the strongest over the threads, so the result
-    # depends neither on the threads' timing nor on their number.
-    n_threads, m0, m1, n2 = votes.shape
+def surface_kernel(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n_threads, offsets, fa, seed_normal):
+    """Steps 1-4 for every seed, seed ``s`` on thread ``s % n_threads`` (no shared writes): ``fa[s]`` the surface's
+    mean likelihood (-1: no vote), ``seed_normal[s]`` its normal at the seed, ``offsets[s, iw, iv]`` the sample
+    (inline, crossline, sample) the surface passes at (dip step iv, strike step iw), relative to the seed, rounded
+    in image coordinates as the votes are cast (so that :func:`cast_votes` gives the votes of the surface wherever it
+    was computed). Arrays as :func:`~seismo3d.seismic.faults.surfaces.voting.seed_surfaces` makes them."""
+    run_threads(_surfaces_of_thread, int(n_threads), att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth,
+                offsets, fa, seed_normal)
+
+
+@nb.njit(cache=True, nogil=True)
+def _votes_of_thread(t, n_threads, seeds, ids, positions, offsets, fa, o0, o1, votes, best, best_seed):
+    # the votes of the seeds with ids[s] % n_threads == t, into votes[t], best[t] and best_seed[t] (see cast_votes)
+    _, m0, m1, n2 = votes.shape
     nw, nv = offsets.shape[1], offsets.shape[2]
-    for t in nb.prange(n_threads):
-        for s in range(seeds.shape[0]):
-            if ids[s] % n_threads != t or fa[s] < 0:
-                continue
-            f = fa[s]
-            p = positions[s]
-            c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
-            for iw in range(nw):
-                for iv in range(nv):
-                    i = c0 + offsets[s, iw, iv, 0] - o0
-                    j = c1 + offsets[s, iw, iv, 1] - o1
-                    k = c2 + offsets[s, iw, iv, 2]
-                    if i < 0 or j < 0 or k < 0 or i >= m0 or j >= m1 or k >= n2:
-                        continue
-                    votes[t, i, j, k] += f
-                    q = best_seed[t, i, j, k]
-                    if f > best[t, i, j, k] or (f == best[t, i, j, k] and q >= 0 and p < q):
-                        best[t, i, j, k] = f
-                        best_seed[t, i, j, k] = p
+    for s in range(seeds.shape[0]):
+        if ids[s] % n_threads != t or fa[s] < 0:
+            continue
+        f = fa[s]
+        p = positions[s]
+        c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
+        for iw in range(nw):
+            for iv in range(nv):
+                i = c0 + offsets[s, iw, iv, 0] - o0
+                j = c1 + offsets[s, iw, iv, 1] - o1
+                k = c2 + offsets[s, iw, iv, 2]
+                if i < 0 or j < 0 or k < 0 or i >= m0 or j >= m1 or k >= n2:
+                    continue
+                votes[t, i, j, k] += f
+                q = best_seed[t, i, j, k]
+                if f > best[t, i, j, k] or (f == best[t, i, j, k] and q >= 0 and p < q):
+                    best[t, i, j, k] = f
+                    best_seed[t, i, j, k] = p
 
 
-@nb.njit(cache=True, parallel=True)
+def cast_votes(seeds, ids, positions, offsets, fa, o0, o1, votes, best, best_seed):
+    """Step 5: one vote ``fa[s]`` per sample of each seed's surface (``offsets`` from :func:`surface_kernel`) inside
+    the core ``[o0:o0 + m0, o1:o1 + m1]`` of the image.
+
+    Thread ``ids[s] % n_threads`` (``n_threads = votes.shape[0]``; ids: the seeds' indices among all seeds of the
+    image, increasing) sums seed s's votes, in the order of the list: the same sums, in the same order, whether the
+    cube is voted whole or block by block. ``best`` and ``best_seed`` (n_threads, m0, m1, n2), also per thread,
+    record the strongest surface of the thread's seeds through each sample (its mean likelihood and the seed's
+    position, ``positions[s]``, in the list of seeds the votes are summed over, increasing with the ids; equal means
+    go to the smaller position); :func:`strongest` then takes the strongest over the threads, so the result depends
+    neither on the threads' timing nor on their number."""
+    run_threads(_votes_of_thread, votes.shape[0], seeds, ids, positions, offsets, fa, o0, o1, votes, best,
+                best_seed)
+
+
+_SLAB = 1 << 20  # samples per slab of strongest: its temporaries stay small
+
+
 def strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
-    # strike and dip (m0, m1, n2) of the strongest surface through each sample over the threads' records (the
-    # larger mean likelihood, then the smaller seed id); 0 where no surface passes
+    """Strike and dip (m0, m1, n2) of the strongest surface through each sample over the threads' records of
+    :func:`cast_votes` (the larger mean likelihood, then the smaller seed id ``ids[q]``), written into ``strike`` and
+    ``dip``; left as they are where no surface passes. Worked in slabs of inlines of about 2^20 samples."""
+    if ids.size == 0:  # no seed: no surface passes anywhere
+        return
     n_threads, m0 = best.shape[0], best.shape[1]
-    for i in nb.prange(m0):
-        for j in range(best.shape[2]):
-            for k in range(best.shape[3]):
-                top = 0.0
-                s = -1
-                for t in range(n_threads):
-                    q = best_seed[t, i, j, k]
-                    if q < 0:
-                        continue
-                    f = best[t, i, j, k]
-                    if s < 0 or f > top or (f == top and ids[q] < ids[s]):
-                        top = f
-                        s = q
-                if s >= 0:
-                    strike[i, j, k] = seed_strike[s]
-                    dip[i, j, k] = seed_dip[s]
+    step = max(1, _SLAB // max(1, best[0, 0].size))
+    for a in range(0, m0, step):
+        rows = slice(a, a + step)
+        top = np.zeros(best[0, rows].shape, np.float32)
+        s = np.full(top.shape, -1, np.int64)
+        for t in range(n_threads):  # in thread order, as the compiled loop took them
+            q = best_seed[t, rows]
+            f = best[t, rows]
+            tie = (f == top) & (ids[np.maximum(q, 0)] < ids[np.maximum(s, 0)])
+            take = (q >= 0) & ((s < 0) | (f > top) | tie)
+            top = np.where(take, f, top)
+            s = np.where(take, q, s)
+        found = s >= 0
+        strike[rows][found] = seed_strike[s[found]]
+        dip[rows][found] = seed_dip[s[found]]
 
 
 @nb.njit(cache=True)
@@ -334,7 +358,7 @@ def _greedy_seeds(cand, shape, d):
     g0 = (shape[0] + size - 1) // size
     g1 = (shape[1] + size - 1) // size
     g2 = (shape[2] + size - 1) // size
-    cells = -np.ones((g0, g1, g2), np.int64)
+    cells = np.full((g0, g1, g2), -1, np.int64)
     out = np.empty_like(cand)
     n = 0
     for c in range(cand.shape[0]):
@@ -354,7 +378,9 @@ def _greedy_seeds(cand, shape, d):
                 break
         if ok:
             cells[a, bb, cc] = n
-            out[n] = cand[c]
+            out[n, 0] = i
+            out[n, 1] = j
+            out[n, 2] = k
             n += 1
     return out[:n]
 

@@ -201,3 +201,20 @@ def test_votes_from_surfaces_computed_in_other_blocks_equal_the_whole_images():
     again.add(seeds[5:6], [5], surfaces[5])
     with pytest.raises(InputError, match="increasing id order"):
         again.add(seeds[4:5], [4], surfaces[4])
+
+
+def test_strongest_takes_the_larger_mean_then_the_smaller_seed_id_and_nothing_without_seeds():
+    from seismo3d.seismic.faults.surfaces.voting_kernels import strongest
+
+    best = np.float32([[[[0.5, 0.5, 0.2, 0.0]]], [[[0.5, 0.7, 0.3, 0.0]]]])  # (threads, m0, m1, n2)
+    best_seed = np.int32([[[[2, 0, 1, -1]]], [[[1, 2, -1, -1]]]])
+    ids = np.int64([10, 20, 30])
+    strike = np.zeros((1, 1, 4), np.float32)
+    dip = np.zeros((1, 1, 4), np.float32)
+    strongest(best, best_seed, ids, np.float32([100, 200, 300]), np.float32([60, 70, 80]), strike, dip)
+    # a tie (0.5, 0.5) to seed 1 (id 20 < 30); the larger mean 0.7 over 0.5; a seed of one thread only; no seed
+    assert strike.ravel().tolist() == [200, 300, 200, 0] and dip.ravel().tolist() == [70, 80, 70, 0]
+    none = np.zeros((1, 1, 4), np.float32)
+    strongest(best, np.full_like(best_seed, -1), np.zeros(0, np.int64), np.zeros(0, np.float32),
+              np.zeros(0, np.float32), none, none)
+    assert not none.any()

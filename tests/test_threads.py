@@ -1,0 +1,47 @@
+"""seismo3d._threads.run_threads: every share runs once, on its own thread, and a kernel's error reaches the caller."""
+
+from __future__ import annotations
+
+import threading
+
+import numpy as np
+import pytest
+
+from seismo3d._threads import run_threads
+
+
+@pytest.mark.parametrize("n_threads", [1, 2, 3, 5])
+def test_every_share_runs_once_with_its_index(n_threads):
+    hits = np.zeros(100, np.int64)
+    names = set()
+
+    def kernel(t, n, out, step):
+        names.add(threading.current_thread().name)
+        out[t::n] += step
+
+    run_threads(kernel, n_threads, hits, 1)
+    assert np.array_equal(hits, np.ones(100, np.int64))
+    assert len(names) == n_threads
+
+
+def test_an_error_in_a_share_reaches_the_caller():
+    def kernel(t, n):
+        if t == 1:
+            raise ValueError("share 1 failed")
+
+    with pytest.raises(ValueError, match="share 1 failed"):
+        run_threads(kernel, 2)
+
+
+def test_outside_the_main_thread_the_shares_run_in_the_calling_thread():
+    hits = np.zeros(10, np.int64)
+    names = set()
+
+    def kernel(t, n, out):
+        names.add(threading.current_thread().name)
+        out[t::n] += 1
+
+    worker = threading.Thread(target=run_threads, args=(kernel, 3, hits), name="block-worker")
+    worker.start()
+    worker.join()
+    assert np.array_equal(hits, np.ones(10, np.int64)) and names == {"block-worker"}

@@ -249,13 +249,15 @@ class FaultEvidence:
         return (self._displaced(options.clear_throw, options.min_correlation_gain, sensitivity)
                 and self._likely(options, sensitivity))
 
+    def _reaches(self, probability: float, sensitivity: float) -> bool:
+        # the mean likelihood reaches a probability scaled by the sensitivity (at most 1); NaN reaches nothing
+        return bool(self.mean_likelihood >= min(1.0, sensitivity_factor(sensitivity) * probability))
+
     def _sure(self, options: EvidenceOptions, sensitivity: float) -> bool:
-        if options.sure_probability is None or not np.isfinite(self.mean_likelihood):
-            return False
-        return bool(self.mean_likelihood >= min(1.0, sensitivity_factor(sensitivity) * options.sure_probability))
+        return options.sure_probability is not None and self._reaches(options.sure_probability, sensitivity)
 
     def _likely(self, options: EvidenceOptions, sensitivity: float) -> bool:
-        return bool(self.mean_likelihood >= min(1.0, sensitivity_factor(sensitivity) * options.min_probability))
+        return self._reaches(options.min_probability, sensitivity)
 
     def _displaced(self, min_throw: float, min_gain: float, sensitivity: float) -> bool:
         factor = sensitivity_factor(sensitivity)

@@ -168,3 +168,22 @@ def test_large_inputs_are_identified_by_size_and_time(tmp_path, monkeypatch):
     assert entry["identity"] == "size+mtime" and entry["sha256"] is None and entry["bytes"] == 2048
     monkeypatch.setattr(runinfo, "HASH_LIMIT", 4096)
     assert runinfo.input_identity(path)["identity"] == "sha256"
+
+
+def test_inputs_identified_early_are_recorded_as_identified(tmp_path):
+    """RunRecord.identify_early hashes on a background thread from the start of the job: the record holds the
+    identity of the file as it was then (here: before it changed), the same entry input_identity gives."""
+    import hashlib
+
+    from seismo3d.jobs import runinfo
+
+    path = tmp_path / "input.bin"
+    path.write_bytes(b"abc" * 1000)
+    before = runinfo.input_identity(path)
+    record = runinfo.RunRecord("convert", {"input": path})
+    record.identify_early(path, None)
+    record._identities[str(path)].result()  # the hash done, then the file changes
+    path.write_bytes(b"changed")
+    written = json.loads(record.write(tmp_path / "r.run.json", inputs={"input": path}, outputs={}).read_text())
+    assert written["inputs"]["input"] == before
+    assert before["sha256"] == hashlib.sha256(b"abc" * 1000).hexdigest()

@@ -31,7 +31,9 @@ import json
 import math
 import os
 import sys
+import threading
 import time
+from concurrent.futures import Future
 from pathlib import Path
 
 from .. import __version__
@@ -234,7 +236,8 @@ def read_run_json(path) -> dict | None:
 
 
 def write_run_json(path, *, command: str, options: dict, inputs: dict, started: float, seconds: float,
-                   stage_seconds: dict, outputs: dict, results: dict | None = None) -> Path:
+                   stage_seconds: dict, outputs: dict, results: dict | None = None,
+                   identities: dict | None = None) -> Path:
     """Write the record of a run (contents in the module notes), atomically; the one writer every job uses.
 
     Parameters
@@ -257,18 +260,22 @@ def write_run_json(path, *, command: str, options: dict, inputs: dict, started: 
         Paths written, by key (None entries are left out).
     results : dict, optional
         The job's counts and measures.
+    identities : dict, optional
+        Identities already made (:func:`input_identity`), by absolute path: these inputs are not identified again.
 
     Returns
     -------
     pathlib.Path
     """
+    known = identities or {}
     record = {
         "seismo3d_version": __version__,
         "command": command,
         "argv": list(sys.argv),
         "cli": None,
         "options": jsonable(options),
-        "inputs": {role: input_identity(p) for role, p in inputs.items() if p is not None},
+        "inputs": {role: known.get(os.path.abspath(p)) or input_identity(p) for role, p in inputs.items()
+                   if p is not None},
         "started": _utc(started),
         "seconds": round(float(seconds), 6),
         "stage_seconds": {k: round(float(v), 6) for k, v in stage_seconds.items()},
@@ -308,6 +315,7 @@ class RunRecord:
         self.started = time.time()
         self._t0 = time.perf_counter()
         self.stage_seconds: dict = {}
+        self._identities: dict = {}  # absolute path -> Future of its input_identity, from identify_early
 
     @contextlib.contextmanager
     def stage(self, name: str):
@@ -317,6 +325,26 @@ class RunRecord:
             yield
         finally:
             self.stage_seconds[name] = self.stage_seconds.get(name, 0.0) + time.perf_counter() - t0
+
+    def identify_early(self, *paths) -> None:
+        """Start identifying inputs (:func:`input_identity`: the sha256 of a file up to :data:`HASH_LIMIT`, about
+        0.15 s per 200 MB) on a background thread, so that the hashing, which releases the GIL, overlaps the job's
+        imports and reading instead of following them; :meth:`write` then uses these identities.
+
+        The identity is taken when the job starts, before it reads the input, rather than after. The thread is a
+        daemon: a job that fails does not wait for it.
+
+        Parameters
+        ----------
+        *paths : str or os.PathLike or None
+            Input files or folders (None is skipped).
+        """
+        for path in paths:
+            if path is not None and os.path.abspath(path) not in self._identities:
+                future = Future()
+                self._identities[os.path.abspath(path)] = future
+                threading.Thread(target=_identify_into, args=(future, path), name="seismo3d-input-identity",
+                                 daemon=True).start()
 
     @property
     def seconds(self) -> float:
@@ -340,6 +368,15 @@ class RunRecord:
         -------
         pathlib.Path
         """
+        identities = {p: future.result() for p, future in self._identities.items()}  # raises a failed one's error
         return write_run_json(path, command=self.command, options=self.options, inputs=inputs, started=self.started,
                               seconds=self.seconds, stage_seconds=self.stage_seconds, outputs=outputs,
-                              results=results)
+                              results=results, identities=identities)
+
+
+def _identify_into(future: Future, path) -> None:
+    """On a background thread: ``future`` set to :func:`input_identity` of ``path``, or to its error."""
+    try:
+        future.set_result(input_identity(path))
+    except BaseException as exc:  # handed to RunRecord.write, which raises it
+        future.set_exception(exc)

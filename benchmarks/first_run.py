@@ -13,9 +13,13 @@ how many seismo3d kernels and specialisations (one per signature) were compiled;
 longest to compile, in CPU seconds, with their number of specialisations: with the helpers they call that were not
 compiled yet (these overlap) and without them (these add up).
 
-Commands (``--only``): ``faults`` (``seismo3d faults --demo``: the quick start) and ``horizon`` (``seismo3d horizon
-f3_crop.sgy --seed 122,883,212``, the interchange guide's example; needs ``SEISMO3D_DATA_DIR``). Targets (issue 58):
-every first run <= 2.5 x its second, ``faults --demo`` <= 20 s; ``--check`` exits 1 when one is missed.
+Commands (``--only``; all by default): ``faults`` (``seismo3d faults --demo``: the quick start), ``horizon``
+(``seismo3d horizon f3_crop.sgy --seed 122,883,212``, the interchange guide's example), and every other command on the
+inputs its guide uses (:func:`_commands`): ``register-volumes`` (segyio's f3.sgy onto f3_crop.sgy), ``register`` (the
+bunny scans), ``map`` (30 frames of 7-Scenes), ``match`` (two TUM frames), ``lineaments`` and ``plan`` (the HydroSHEDS
+DEM), ``render`` (f3_crop.sgy) and ``convert`` (f3_crop.sgy); all but ``faults`` need ``SEISMO3D_DATA_DIR``.
+Targets (issue 58): every first run <= 2.5 x its second, ``faults --demo`` <= 20 s; ``--check`` exits 1 when one is
+missed.
 """
 
 from __future__ import annotations
@@ -79,11 +83,32 @@ RATIO_LIMIT = 2.5  # first run / second run
 
 
 def _commands(out: Path) -> dict[str, list[str]]:
-    data = Path(os.environ.get("SEISMO3D_DATA_DIR", "")) / "seismic"
+    """Each command with the inputs of the data folder its guide uses (docs/), its outputs in ``out``."""
+    data = Path(os.environ.get("SEISMO3D_DATA_DIR", ""))
+    seismic, terrain = data / "seismic", data / "terrain"
+    dem = str(terrain / "dem_hydrosheds_dfw.tif")
     return {
         "faults": ["faults", "--demo", "-o", str(out / "faults")],
-        "horizon": ["horizon", str(data / "f3_crop.sgy"), "--seed", "122,883,212", "-o", str(out / "h.txt")],
+        "horizon": ["horizon", str(seismic / "f3_crop.sgy"), "--seed", "122,883,212", "-o", str(out / "h.txt")],
+        # docs/guide/volumes.md: two SEG-Y sub-volumes (segyio's f3.sgy onto the F3 crop)
+        "register-volumes": ["register", str(seismic / "segyio_test_data" / "f3.sgy"), str(seismic / "f3_crop.sgy"),
+                             "-o", str(out / "volumes.json")],
+        # docs/guide/registration.md: the Stanford bunny scans
+        "register": ["register", str(data / "scans" / "bunny" / "bun045_clean.ply"),
+                     str(data / "scans" / "bunny" / "bun000_clean.ply"), "-o", str(out / "bunny.json")],
+        "map": ["map", str(data / "rgbd" / "7scenes_redkitchen_0000_0495"), "-o", str(out / "kitchen"),
+                "--max-frames", "30"],
+        "match": ["match", str(data / "rgbd" / "tum_fr1xyz_pair" / "img_prev.png"),
+                  str(data / "rgbd" / "tum_fr1xyz_pair" / "img_curr.png"), "-o", str(out / "matches.csv")],
+        "lineaments": ["lineaments", dem, "-o", str(out / "lineaments")],
+        "plan": ["plan", dem, "--start", "40,40", "--goal", "300,320", "--max-slope", "3", "-o",
+                 str(out / "path.csv")],
+        "render": ["render", str(seismic / "f3_crop.sgy"), "-o", str(out / "f3_crop.png")],
+        "convert": ["convert", str(seismic / "f3_crop.sgy"), str(out / "f3_crop.zarr")],
     }
+
+
+COMMANDS = list(_commands(Path()))
 
 
 def _run(cache: Path, work: Path, name: str, argv: list[str]) -> tuple[float, float, dict]:
@@ -102,14 +127,14 @@ def _run(cache: Path, work: Path, name: str, argv: list[str]) -> tuple[float, fl
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--only", nargs="+", default=["faults", "horizon"], choices=["faults", "horizon"],
-                        help="commands measured")
+    parser.add_argument("--only", nargs="+", default=COMMANDS, choices=COMMANDS,
+                        help="commands measured (default: all)")
     parser.add_argument("--repeats", type=int, default=1, help="cold / warm pairs, each with a new empty cache")
     parser.add_argument("--top", type=int, default=15, help="kernels listed per command")
     parser.add_argument("--check", action="store_true", help="exit 1 when a target is missed")
     args = parser.parse_args()
     print(f"load average before: {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
-    print(f"{'command':>8} {'repeat':>6} {'cold s':>7} {'warm s':>7} {'ratio':>6} {'cold CPU':>9} {'warm CPU':>9} "
+    print(f"{'command':>16} {'repeat':>6} {'cold s':>7} {'warm s':>7} {'ratio':>6} {'cold CPU':>9} {'warm CPU':>9} "
           f"{'CPU ratio':>9} {'compile CPU':>11} {'kernels':>7} {'specialisations':>15}")
     missed = []
     for command in args.only:
@@ -125,7 +150,7 @@ def main() -> None:
             total = compiled["cpu"].pop("(all compiles, outermost)", 0.0)
             ours = {k: v for k, v in compiled["cpu"].items() if k.startswith("seismo3d")}
             n_specialisations = sum(len(compiled["signatures"][k]) for k in ours)
-            print(f"{command:>8} {r + 1:>6} {cold:7.1f} {warm:7.1f} {cold / warm:6.2f} {cold_cpu:9.1f} "
+            print(f"{command:>16} {r + 1:>6} {cold:7.1f} {warm:7.1f} {cold / warm:6.2f} {cold_cpu:9.1f} "
                   f"{warm_cpu:9.1f} {cold_cpu / warm_cpu:9.2f} {total:11.1f} {len(ours):7d} {n_specialisations:15d}"
                   + (f"  (warm run compiled {again['cpu'].get('(all compiles, outermost)', 0.0):.1f} s)"
                      if again["cpu"] else ""))

@@ -191,3 +191,22 @@ def test_global_options_are_checked(bad):
 
     with pytest.raises(InputError):
         TrackingOptions(**bad)
+
+
+def test_group_nanmedian_is_the_median_of_each_groups_finite_values():
+    """The per-node median of neighbour_confidence (numpy, was a numba kernel): np.median of each group's finite
+    values, odd and even counts, ties, NaN / inf left out, NaN for a group without one."""
+    from seismo3d.seismic.horizons.correlation import _group_nanmedian
+
+    rng = np.random.default_rng(5)
+    node = rng.integers(0, 40, 600)
+    val = np.round(rng.standard_normal(600), 1)  # ties
+    val[rng.random(600) < 0.15] = np.nan
+    val[rng.random(600) < 0.05] = np.inf
+    node[node == 7] = 8  # group 7 empty
+    node[(node == 9) & np.isfinite(val)] = 10  # group 9 without a finite value
+    got = _group_nanmedian(node, val, 41)
+    want = np.array([np.median(val[(node == k) & np.isfinite(val)]) if ((node == k) & np.isfinite(val)).any()
+                     else np.nan for k in range(41)])
+    np.testing.assert_array_equal(got, want)
+    assert np.isnan(got[[7, 9, 40]]).all()

@@ -186,8 +186,9 @@ def main() -> int:
     rest = float(np.median([c.wall - r["seconds"] for c, r in zip(runs.converts, runs.records)]))
     print(f"{'':2s}convert / read: {convert / read:.2f} (wall), "
           f"{_median(runs.converts, 'cpu') / _median(runs.reads, 'cpu'):.2f} (CPU)\n"
-          f"{'':2s}convert: the job (run.json) {job:.2f} s, of which writing {write:.2f} s; the rest of the process "
-          f"(interpreter, imports, sha256 of the input, exit) {rest:.2f} s")
+          f"{'':2s}convert: the job (run.json) {job:.2f} s, of which writing {write:.2f} s (the job imports numpy "
+          f"and segyio, and hashes the input on a thread); the rest of the process (interpreter, the CLI, exit) "
+          f"{rest:.2f} s")
     help_walls = {line: _row(line, runs, f"<= {HELP_LIMIT} s") for line, runs in helps.items()}
     _row("typer app of two commands: one --help", help_floor)
     print(f"load average after: {' '.join(f'{v:.2f}' for v in os.getloadavg())}")

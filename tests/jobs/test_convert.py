@@ -217,7 +217,8 @@ def test_the_store_is_the_files_zarr_writes(case, amplitudes, tmp_path, write_se
 
         src = fetch("seismic/f3_crop.sgy")
     else:
-        src = write_segy_cube(tmp_path / "cube.sgy", amplitudes, sorting="crossline" if case == "crossline" else "inline")
+        sorting = "crossline" if case == "crossline" else "inline"
+        src = write_segy_cube(tmp_path / "cube.sgy", amplitudes, sorting=sorting)
         if case == "source-xy":
             _source_coordinates_only(src)
     store = tmp_path / "cube.zarr"

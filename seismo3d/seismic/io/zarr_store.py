@@ -285,7 +285,8 @@ class SeismicZarrWriter:
         return self.arrays[name]
 
     def _coordinates(self, cube) -> None:
-        """inline, crossline, sample: one chunk each (the chunk zarr chooses for them up to 32768 inlines)."""
+        """inline, crossline, sample: one chunk each, the chunk zarr chooses for them below about 30000 samples or
+        60000 lines (zarr splits longer ones, from 256 KiB; one chunk is as valid, and as read)."""
         for name, values, dim, attrs in [
                 ("inline", np.asarray(cube.inlines, np.int32), "inline", {"long_name": "inline number"}),
                 ("crossline", np.asarray(cube.xlines, np.int32), "crossline", {"long_name": "crossline number"}),
@@ -469,8 +470,8 @@ class _ArrayFiles:
     def _codec_json(self) -> dict:
         """The compressor's JSON with its configuration's keys in zarr-python's order."""
         order = {"blosc": ("typesize", "cname", "clevel", "shuffle", "blocksize"), "zstd": ("level", "checksum")}
-        config = self.compressor["configuration"]
-        return {"name": self.compressor["name"], "configuration": {k: config[k] for k in order[self.compressor["name"]]}}
+        name, config = self.compressor["name"], self.compressor["configuration"]
+        return {"name": name, "configuration": {k: config[k] for k in order[name]}}
 
     def _path(self, start) -> Path:
         if len(start) != len(self.chunks):

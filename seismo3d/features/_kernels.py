@@ -15,6 +15,15 @@ import numpy as np
 from numba import njit
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _put(hist, dest):
+    """``dest[:, :] = hist`` ((K, Q) each) as a loop: an array assignment compiles numba's generic setitem, which
+    cost ``seismo3d match``'s first run about 5 CPU s of compiling."""
+    for k in range(hist.shape[0]):
+        for b in range(hist.shape[1]):
+            dest[k, b] = hist[k, b]
+
+
 @njit(cache=True, nogil=True)
 def _init_discs(bins, weights, half_widths, pad, y, x, hist):
     """Direct O(r^2) sums of every disc at (y, x) (unpadded coordinates) into hist (K, Q).
@@ -24,7 +33,9 @@ def _init_discs(bins, weights, half_widths, pad, y, x, hist):
     """
     n_discs = half_widths.shape[0]
     n_votes = bins.shape[2]
-    hist[:, :] = 0
+    for k in range(hist.shape[0]):  # hist[:, :] = 0, as a loop (see _put)
+        for b in range(hist.shape[1]):
+            hist[k, b] = 0
     for j in range(half_widths.shape[1]):
         yy = y + j  # padded row of offset dy = j - pad
         inner = -1  # half width of the previous (inner) disc on this row, -1 if it misses the row
@@ -81,10 +92,10 @@ def dense_disc_histograms(bins, weights, half_widths, pad, rows, n_cols, out):
     for i in range(rows.shape[0]):
         y = rows[i]
         _init_discs(bins, weights, half_widths, pad, y, 0, hist)
-        out[i, 0] = hist
+        _put(hist, out[i, 0])
         for x in range(n_cols - 1):
             _slide_discs(bins, weights, half_widths, pad, y, x, hist)
-            out[i, x + 1] = hist
+            _put(hist, out[i, x + 1])
 
 
 @njit(cache=True, nogil=True)
@@ -104,7 +115,7 @@ def point_disc_histograms(bins, weights, half_widths, pad, ys, xs, max_gap, out)
         y = ys[i]
         x = xs[i]
         _init_discs(bins, weights, half_widths, pad, y, x, hist)
-        out[i] = hist
+        _put(hist, out[i])
         i += 1
         while i < n and ys[i] == y:
             target = xs[i]
@@ -115,7 +126,7 @@ def point_disc_histograms(bins, weights, half_widths, pad, ys, xs, max_gap, out)
                 while x < target:
                     _slide_discs(bins, weights, half_widths, pad, y, x, hist)
                     x += 1
-            out[i] = hist
+            _put(hist, out[i])
             i += 1
 
 

@@ -83,8 +83,9 @@ def _section_picks(sec, code, plateau_start):
     m = 0
     for j in range(n_tr):
         c = _trace_picks(sec[j], code, plateau_start, buf, flag)
-        total[m:m + c] = buf[:c]
-        refine[m:m + c] = flag[:c]
+        for q in range(c):  # loops, not slice assignments: those compile numba's generic setitem (seconds)
+            total[m + q] = buf[q]
+            refine[m + q] = flag[q]
         m += c
         offsets[j + 1] = m
     return total[:m].copy(), refine[:m].copy(), offsets

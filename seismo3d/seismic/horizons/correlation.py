@@ -78,7 +78,8 @@ def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, 
                 min(hi, n_s - 1.0) - max(hi - m + 1, 0.0) + 1 < min_samples:
             reach = k - 1
             break
-    scores[:] = np.nan
+    for k in range(scores.size):  # a loop: scores[:] = nan compiles numba's generic setitem
+        scores[k] = np.nan
     best, kbest = -2.0, -1
     # trace a's window lies inside the trace (h above), so it is all finite: centred once, it serves every lag where
     # trace b's window is finite too (interior lags: the run of finite ``sig`` samples)

@@ -391,14 +391,16 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, ac
     for i in range(n_lines):
         c_ids = np.full((length, 2), -1, np.int64)
         c_t = np.full((length, 2), np.nan)
-        if i > 0:
-            c_ids[:, 0] = ids[i - 1]
-            c_t[:, 0] = out[i - 1]
-        if i + 1 < n_lines:
-            c_ids[:, 1] = ids[i + 1]
-            c_t[:, 1] = out[i + 1]
-        out[i] = _line_dp(ids[i], guide[i], first, pick, unit, whole, along_c, across_c, traces, along,
-                          w_guide[i], w_step, w_wave, half, c_ids, c_t, across)
+        # the neighbouring lines' picks, by loops (slice assignments compile numba's generic setitem: seconds)
+        for side, other in ((0, i - 1), (1, i + 1)):
+            if 0 <= other < n_lines:
+                for j in range(length):
+                    c_ids[j, side] = ids[other, j]
+                    c_t[j, side] = out[other, j]
+        line = _line_dp(ids[i], guide[i], first, pick, unit, whole, along_c, across_c, traces, along,
+                        w_guide[i], w_step, w_wave, half, c_ids, c_t, across)
+        for j in range(length):
+            out[i, j] = line[j]
 
 
 @nb.njit(cache=True)

@@ -83,7 +83,8 @@ def _precondition(r, inv, labels, chol, rc, z):
     """``z = D^-1 r + P (P^T A P)^-1 P^T r``: Jacobi plus the aggregates' correction (``chol`` the factor of
     :func:`_coarse_factor`; ``rc`` work array)."""
     nc = rc.size
-    rc[:] = 0.0
+    for i in range(nc):  # loops here, not array expressions: those compile numba's generic setitem and ufuncs
+        rc[i] = 0.0
     for k in range(r.size):
         rc[labels[k]] += r[k]
     for i in range(nc):  # forward: chol y = rc
@@ -110,7 +111,8 @@ def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter, labels, n_coarse):
     for e in range(a.size):
         inv[a[e]] += w[e]
         inv[b[e]] += w[e]
-    inv = 1.0 / inv
+    for k in range(n):
+        inv[k] = 1.0 / inv[k]
     bnrm = np.sqrt(np.dot(rhs, rhs))
     if bnrm == 0.0:
         return rhs.copy()
@@ -119,7 +121,9 @@ def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter, labels, n_coarse):
     atol = rtol * bnrm
     q = np.empty(n)
     _laplacian_matvec(a, b, w, diag, x, q)
-    r = rhs - q
+    r = np.empty(n)
+    for k in range(n):
+        r[k] = rhs[k] - q[k]
     p = np.empty(n)
     z = np.empty(n)
     rho_prev = 1.0
@@ -133,7 +137,8 @@ def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter, labels, n_coarse):
             for k in range(n):
                 p[k] = beta * p[k] + z[k]
         else:
-            p[:] = z
+            for k in range(n):
+                p[k] = z[k]
         _laplacian_matvec(a, b, w, diag, p, q)
         alpha = rho / np.dot(p, q)
         for k in range(n):

@@ -3,9 +3,8 @@
 :func:`run_convert_job` opens the SEG-Y through :func:`~seismo3d.seismic.io.open_segy` (same flags and errors as every
 command) and writes the layout of :mod:`~seismo3d.seismic.io.zarr_store` tile by tile, two threads each reading,
 compressing and writing a chunk (memory: about ``chunk_mb`` MiB of amplitudes, not the cube), with progress. The
-files are those zarr-python writes, written without it (:class:`~seismo3d.seismic.io.zarr_store.SeismicZarrWriter`),
-and the input's sha256 for ``run.json`` is computed on a thread while numpy and segyio are imported (in the run, not
-at the top of this module) and the cube is copied: on a 198 MB cube the process used 0.93 CPU s against 1.25. The
+input's sha256 for ``run.json`` is computed on a thread while numpy, segyio and zarr are imported (in the run, not
+at the top of this module) and the cube is copied. The
 store is written into a temporary directory beside OUTPUT and renamed to OUTPUT when complete, so an interrupted
 convert (error, Ctrl-C, kill) never leaves something at OUTPUT that looks finished (a killed process may leave a
 hidden ``.OUTPUT.*.tmp`` directory, never OUTPUT). The input is only read.
@@ -158,8 +157,8 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
                 writer.write_tile(tile)
                 steps.advance()
         kept = writer.finish()
-        chunks = tuple(int(c) for c in writer.chunks)
-        has_coords = writer.has_cdp_coordinates
+        chunks = tuple(int(c) for c in writer.seismic.chunks)
+        has_coords = "cdp_x" in writer.root
     shape = tuple(int(n) for n in cube.shape)
     run_json = record.write(run_json_path(main), inputs={"input": input}, outputs={"store": output},
                             results=dict(shape=shape, chunks=chunks, header_fields=list(kept),

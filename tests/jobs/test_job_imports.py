@@ -10,7 +10,7 @@ The limits are about 2.5x the CPU seconds measured at load 5-6 on 2 cores (2026-
 them; before issue 58, ``seismo3d.cli`` took 0.16-0.19 CPU s with numpy, and ``seismo3d.jobs.convert`` 0.93-1.17
 CPU s with scipy.ndimage and numba (the whole ``seismo3d.seismic`` package), then 0.19-0.21 CPU s with numpy and
 segyio; it now imports them in its run, after starting the input's sha256 on a thread, and a convert's whole run
-imports numpy and segyio, not zarr (0.2 CPU s: the store is written without it), scipy, numba nor dask.
+imports numpy, segyio and zarr, not scipy, numba nor dask.
 """
 
 from __future__ import annotations
@@ -92,14 +92,14 @@ def test_a_command_imports_only_its_own_path(budget, tmp_path):
     assert float(out) <= budget.cpu_seconds
 
 
-def test_a_convert_run_imports_only_numpy_and_segyio(tmp_path, data_dir):
-    """``seismo3d convert`` end to end, as a user runs it: of the heavy packages, numpy and segyio only."""
+def test_a_convert_run_imports_only_numpy_segyio_and_zarr(tmp_path, data_dir):
+    """``seismo3d convert`` end to end, as a user runs it: of the heavy packages, numpy, segyio and zarr only."""
     from seismo3d.data import fetch
 
     src = fetch("seismic/f3_crop.sgy")
     packages, out, _ = _run_importtime(["-m", "seismo3d.cli", "convert", str(src), "f3.zarr"], tmp_path)
     assert "converted f3_crop.sgy" in out and (tmp_path / "f3.zarr" / "zarr.json").is_file()
-    assert packages & HEAVY == {"numpy", "segyio"}
+    assert packages & HEAVY == {"numpy", "segyio", "zarr"}
 
 
 def test_every_job_module_has_a_budget():

@@ -25,6 +25,10 @@ measure alone is weak on real data: on the F3 inlines chance alignments of perio
 samples to wrong candidates, and at ``clear_throw`` 2 the clause keeps one of them (mean F1 0.500 -> 0.489); from
 2.5 to 5 it keeps the same faults there as without it.
 
+Whatever else it shows, a 2D fault whose offset is not a step at it (``flexure_step``: the reflectors' lags between
+neighbouring traces ramp up to it instead of jumping across it, while its sides match closely at the throw's shift)
+is a flexure that bends the reflectors unbroken, not a fault, and is dropped.
+
 The measures are absolute and dimensionless, the same on every input: a shift in samples (a displacement under one
 sample is not resolved by the data), normalised correlations, a probability and a ratio to the run's own threshold.
 Each fault also reports how continuous its sides are in themselves (``side_coherence``), to sort and filter on.
@@ -114,6 +118,26 @@ class EvidenceOptions:
         correlation 0.39; that survey's F1 0.829 -> 0.805). F3 scores the same for every value from 0.70 to 1 (the
         faults ``min_correlation`` drops there have mean likelihoods under 0.70), the Great South Basin for every
         value up to 0.90; 0.75 (odds of 3 to 1) lies inside both.
+    flexure_step : float or None
+        2D: a fault whose sides match closely at the throw's shift (``correlation`` at least
+        ``flexure_correlation``) but less than this fraction of whose throw is a step at the fault
+        (:attr:`FaultEvidence.step`, the lag across the fault's zone less the dip of the reflectors right beside it)
+        bends the reflectors over several traces: a flexure (drape, drag or fault-propagation fold, monocline), not
+        a fault. The throw, read from reflectors carried to the fault along the flatter dip farther out, is then the
+        fold's relief, and the fault is dropped whatever its votes and the network's probability (the network,
+        trained on offsets, calls a clean flexure a fault: 0.75-0.97 on generated ones). Not scaled by the
+        sensitivity (a ratio of two displacements). None: not asked (the scan's default, not measured; 3D faults,
+        whose step is not measured, are never dropped by it). Chosen leave-one-survey-out
+        (``tools/dev_fault_scores.py``, 2026-11-26; fractions 0.2, 0.3, 0.4, 0.5 at correlations 0.8, 0.85, 0.9,
+        0.95): on F3 the best F1 is 0.495 at 0.2 and 0.3 with 0.9 (none: 0.494; precision 0.607 -> 0.617; 0.462 at
+        0.5 with 0.8), where the Great South Basin scores 0.829, as without it; the Great South Basin scores 0.829
+        everywhere but at 0.5 with 0.8 and 0.85 (0.807) and does not choose. Its faults, one to three samples of
+        throw, show steps of 0.4-0.8 of it; generated faults of 2-3 samples 1.0, generated flexures 0.01-0.2; the
+        Teapot flexures at traces 72 and 180 0.26 (correlation 0.91-0.92).
+    flexure_correlation : float
+        The sides' correlation at the throw's shift from which ``flexure_step`` is asked: sides that match that
+        well are continuous reflectors whose lags between neighbouring traces are measured reliably (on the F3
+        inlines' noisier sides the step of faults a person drew is often under a fifth of their throw).
 
     Raises
     ------
@@ -129,6 +153,8 @@ class EvidenceOptions:
     clear_throw: float | None = 3.0
     min_correlation: float | None = 0.5
     sure_probability: float | None = 0.75
+    flexure_step: float | None = 0.3
+    flexure_correlation: float = 0.9
 
     def __post_init__(self):
         check_positive(self.min_throw, "min_throw", allow_zero=True)
@@ -146,6 +172,10 @@ class EvidenceOptions:
         if self.sure_probability is not None and not 0.0 <= float(self.sure_probability) <= 1.0:
             raise InputError(f"sure_probability must be a probability in [0, 1] or None; got "
                              f"{self.sure_probability!r}")
+        if self.flexure_step is not None and not 0.0 <= float(self.flexure_step) <= 1.0:
+            raise InputError(f"flexure_step must be a fraction in [0, 1] or None; got {self.flexure_step!r}")
+        if not -1.0 <= float(self.flexure_correlation) <= 1.0:
+            raise InputError(f"flexure_correlation must be a correlation in [-1, 1]; got {self.flexure_correlation!r}")
 
     @classmethod
     def for_likelihood(cls, likelihood: str) -> "EvidenceOptions":
@@ -155,7 +185,8 @@ class EvidenceOptions:
         ----------
         likelihood : {'learned', 'scan'}
             ``'learned'``: the class defaults. ``'scan'``: no vote ratio asked and the unshifted mismatch as
-            evidence (``min_vote_ratio=0``, ``min_probability=None``): the scan's likelihood is not a probability,
+            evidence (``min_vote_ratio=0``, ``min_probability=None``; nor ``min_correlation``, ``sure_probability``
+            and ``flexure_step``, chosen for the learned likelihood): the scan's likelihood is not a probability,
             and its dense faults on the Costa Rica crf section (against the published OSV image, tolerance 3:
             precision 0.847, recall 0.720, 44 faults) fall to recall 0.613 (27 faults) when a vote ratio of 0.9 is
             asked (measured 2026-11-25).
@@ -172,7 +203,8 @@ class EvidenceOptions:
         if likelihood == "learned":
             return cls()
         if likelihood == "scan":
-            return cls(min_vote_ratio=0.0, min_probability=None, min_correlation=None, sure_probability=None)
+            return cls(min_vote_ratio=0.0, min_probability=None, min_correlation=None, sure_probability=None,
+                       flexure_step=None)
         raise InputError(f"likelihood must be 'learned' or 'scan'; got {likelihood!r}")
 
 
@@ -221,6 +253,10 @@ class FaultEvidence:
         each: on the Great South Basin the mean likelihood is best (AP 0.782; its F3 AP 0.304, 0.008 below F3's
         best, the mean likelihood times the sides' coherence: 0.312, whose GSB AP is 0.771); the evidence's margin
         scores 0.752 and 0.289. NaN until :func:`supported_faults` sets it.
+    step : float
+        2D: the median step at the fault (:attr:`~seismo3d.seismic.faults.result.FaultThrow.step`), samples,
+        positive = hanging wall down: about the throw at a fault, a small part of it at a flexure. NaN when not
+        measured (3D).
     """
 
     fault_id: int
@@ -233,6 +269,16 @@ class FaultEvidence:
     vote_ratio: float = float("nan")
     mean_likelihood: float = float("nan")
     confidence: float = float("nan")
+    step: float = float("nan")
+
+    def is_flexure(self, options: EvidenceOptions) -> bool:
+        """True when the sides match at the throw's shift at least as well as ``options.flexure_correlation`` and the
+        step at the fault is less than ``options.flexure_step`` of the throw (see :class:`EvidenceOptions`); always
+        False when ``flexure_step`` is None or the step or throw was not measured."""
+        if options.flexure_step is None or not (np.isfinite(self.step) and np.isfinite(self.median_throw)):
+            return False
+        return bool(self.correlation >= options.flexure_correlation
+                    and abs(self.step) < options.flexure_step * abs(self.median_throw))
 
     def shows_displacement(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
         """True when the sides line up after a shift of at least ``options.min_throw`` samples at least
@@ -267,8 +313,9 @@ class FaultEvidence:
 
     def supports(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
         """True when the fault shows what ``options`` ask for at ``sensitivity`` in [0, 1] (see
-        :func:`supported_faults`): a clear displacement on a likely fault; or votes that hold along it, and a
-        displacement or, for a probability, a likely fault (for the scan: sides that do not match without a shift).
+        :func:`supported_faults`): no flexure (:meth:`is_flexure`), and a clear displacement on a likely fault; or
+        votes that hold along it, and a displacement or, for a probability, a likely fault (for the scan: sides that
+        do not match without a shift).
 
         Raises
         ------
@@ -277,6 +324,8 @@ class FaultEvidence:
         """
         if not (np.isfinite(self.median_throw) and np.isfinite(self.correlation_gain)):
             return False  # the two sides could not be compared: nothing shows a fault
+        if self.is_flexure(options):
+            return False  # the reflectors bend across it, unbroken: a fold, whatever the network says
         if self.is_clear_and_likely(options, sensitivity):
             return True  # displaced and likely: a fault beside stronger ones too, whatever its votes
         if options.min_vote_ratio > 0:
@@ -355,7 +404,7 @@ def fault_evidence(throw, *, vote_ratio: float = float("nan"),
                          correlation=_median(c), correlation_gain=_median(c - c0),
                          measured_fraction=float(measured.mean()) if t.size else 0.0,
                          side_coherence=_median(coherence), vote_ratio=float(vote_ratio),
-                         mean_likelihood=float(mean_likelihood))
+                         mean_likelihood=float(mean_likelihood), step=float(getattr(throw, "step", float("nan"))))
 
 
 def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | None = None,

@@ -340,6 +340,12 @@ class FaultThrow:
         Patches whose throw was measured (-1: not counted, a ``FaultThrow`` made without it); for a 2D fault, the
         windows of its throw profile (1: a fault spanning fewer than two windows, one shift for the whole fault,
         which says nothing of how the throw varies along it).
+    step : float
+        2D: median over the windows of the throw profile of the offset that is a step at the fault
+        (:func:`~seismo3d.seismic.faults.throw_profile.section_step`: the lag between the traces just outside the
+        fault's zone less the dip of its sides over that width), samples, positive = hanging wall down; about the
+        throw at a fault, about 0 at a flexure that bends the reflectors over several traces. NaN when unmeasured
+        (3D faults; a fault at the section's edge).
     """
 
     fault_id: int
@@ -353,6 +359,7 @@ class FaultThrow:
     n_points_used: int
     side_coherence: np.ndarray | None = None
     n_patches_measured: int = -1
+    step: float = float("nan")
 
 
 @dataclass(frozen=True, eq=False)

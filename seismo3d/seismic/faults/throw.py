@@ -94,7 +94,9 @@ class ThrowOptions:
         a fault 85 samples tall through continuous reflectors at 680-1010 ms read -16.6 samples (-66 ms) with a
         third of its height searched. Measured (``tools/dev_fault_scores.py``, 2026-11-26; 1/3, 0.2, 0.15, 0.1):
         F3 F1 0.486, 0.486, 0.489, 0.494 (precision 0.590 -> 0.607 at 0.1), the Great South Basin 0.829 at each.
-
+    step_traces : int
+        2D: traces beside each edge of a fault's zone whose neighbour lags give that side's dip for the step at the
+        fault (:func:`~seismo3d.seismic.faults.throw_profile.section_step`; at most the traces read beyond it).
     Raises
     ------
     InputError
@@ -117,6 +119,7 @@ class ThrowOptions:
     profile_step: int = 16
     profile_smoothness: float = 0.005
     profile_max_throw_per_length: float = 0.1
+    step_traces: int = 3
 
     def __post_init__(self):
         if self.max_throw is not None:
@@ -134,7 +137,7 @@ class ThrowOptions:
         check_positive(self.profile_max_throw_per_length, "profile_max_throw_per_length")
         check_positive(self.max_rotation, "max_rotation")
         check_positive(self.small_shift_prior, "small_shift_prior", allow_zero=True)
-        for name in ("profile_window", "profile_step"):
+        for name in ("profile_window", "profile_step", "step_traces"):
             value = getattr(self, name)
             if not isinstance(value, (int, np.integer)) or value < 1:
                 raise InputError(f"{name} must be a positive int of samples; got {value!r}")
@@ -493,5 +496,5 @@ def _section_throw(source, pts, nrm3, fid: int, opt: ThrowOptions, max_throw: in
         correlation_unshifted=at_points(prof.correlation_unshifted),
         median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=float("nan"),
         inlier_rmse=float("nan"), n_points_used=0, side_coherence=np.full(n, prof.coherence, np.float32),
-        n_patches_measured=int(ok.sum()),
+        n_patches_measured=int(ok.sum()), step=prof.median_step,
     )

@@ -12,7 +12,8 @@ from ..blocks.windows import CubeWindow
 from ..traces import ncc_curve, side_coherence, small_shift_weight, subsample_peak
 
 # used by the throw module; not part of the package's public face
-__all__ = ["SectionProfile", "FaultZone", "fault_zone", "section_profile", "section_read_box", "side_images"]
+__all__ = ["SectionProfile", "FaultZone", "fault_zone", "section_profile", "section_read_box", "section_step",
+           "side_images"]
 
 
 @dataclass(frozen=True)
@@ -50,6 +51,12 @@ class SectionProfile:
     correlation: np.ndarray  # (n_windows,) normalised correlation of the sides at the throw's shift
     correlation_unshifted: np.ndarray  # (n_windows,) ... with no shift
     coherence: float  # the smaller of the two sides' continuity (nearer against farther traces)
+    step: np.ndarray = None  # (n_windows,) samples, the offset that is a step at the fault (section_step)
+
+    @property
+    def median_step(self) -> float:
+        """Median of the finite ``step`` over the windows, samples; NaN if none."""
+        return _finite_median(self.step if self.step is not None else [])
 
 
 def fault_zone(pts: np.ndarray, hw: float) -> FaultZone:
@@ -164,13 +171,15 @@ def section_profile(zone: FaultZone, win: CubeWindow, *, sides, slope_margin, wi
     smoothness : float
         Cost of a change of shift between consecutive windows, correlation per squared sample.
     opt : ThrowOptions
-        ``min_rows`` and ``small_shift_prior``.
+        ``min_rows``, ``small_shift_prior`` and ``step_traces`` (the traces beside the zone whose lags give each
+        side's dip for the step at the fault, :func:`section_step`; at most ``sides[1] + slope_margin - 2``).
 
     Returns
     -------
     SectionProfile
         Per window: its centre (samples), throw (samples, positive = hanging wall down; NaN where the sides overlap
-        too little), the correlation at that shift and at none; and the sides' continuity.
+        too little), the correlation at that shift and at none, and the step at the fault; and the sides'
+        continuity.
 
     References
     ----------
@@ -213,7 +222,90 @@ def section_profile(zone: FaultZone, win: CubeWindow, *, sides, slope_margin, wi
         corr[w] = curve[2][i]
         corr0[w] = curve[2][reach]
     coherence = float(np.min(coh)) if np.all(np.isfinite(coh)) else float("nan")
-    return SectionProfile(centres, throw, corr, corr0, coherence)
+    near = min(int(opt.step_traces), int(sides[1]) + int(slope_margin) - 2)  # within the traces read
+    steps = section_step(zone, win, starts=starts, size=size, near=near, reach=reach, min_overlap=min_overlap,
+                         min_rows=opt.min_rows)
+    return SectionProfile(centres, throw, corr, corr0, coherence, steps)
+
+
+def _finite_median(values) -> float:
+    """Median of the finite values, NaN if none (no warning)."""
+    values = np.asarray(values, np.float64)
+    values = values[np.isfinite(values)]
+    return float(np.median(values)) if values.size else float("nan")
+
+
+def _lag(a, b, va, vb, reach: int, min_overlap: int, min_rows: int) -> float:
+    """Shift of column ``b`` relative to column ``a`` (samples, positive: ``b``'s reflectors deeper) where their
+    normalised correlation peaks within ``reach``, to a fraction of a sample; NaN when unmeasurable."""
+    curve = ncc_curve(a[None], b[None], va[None], vb[None], reach, min_overlap, min_rows)
+    if curve is None or not np.isfinite(curve[1]).any():
+        return float("nan")
+    i = int(np.nanargmax(curve[1]))
+    return float(curve[0][i]) + subsample_peak(curve[1], i)
+
+
+def section_step(zone: FaultZone, win: CubeWindow, *, starts, size: int, near: int, reach: int, min_overlap: int,
+                 min_rows: int) -> np.ndarray:
+    """The part of the offset across a 2D fault that is a step at the fault, per window down it.
+
+    A fault offsets the reflectors abruptly: the lag between the traces just outside its zone on either side (its
+    strands and the traces between them) is the throw plus the reflectors' dip over that width, while the lags
+    between neighbouring traces beside it are the dip alone. A flexure (a drape or drag fold, a monocline) bends
+    them over several traces instead: the lags ramp up toward its axis and the lag across the zone is the dip
+    there. The step is the lag across (between the traces one trace outside the zone's edges, each row on the
+    fault's own trace) less the zone's width times the mean dip of the two sides, each the median lag between
+    neighbouring traces within ``near`` traces of the edge (where the fold is as steep as at its axis, so a fold's
+    step stays near 0, while the throw read from reflectors carried from farther out along their flatter dip shows
+    an offset).
+
+    Parameters
+    ----------
+    zone : FaultZone
+        The fault's zone.
+    win : CubeWindow
+        The traces of :func:`section_read_box` (reaching ``near + 2`` traces beyond the zone).
+    starts : list of int
+        First row (index into ``zone.t``) of each window.
+    size : int
+        Rows per window.
+    near : int
+        Traces beside each edge whose neighbour lags give the dip of that side (>= 1).
+    reach : int
+        Largest |lag| searched across the zone, samples (the throw's search); between neighbouring traces at most 3.
+    min_overlap, min_rows : int
+        Fewest samples and distinct rows of both columns for a lag to count.
+
+    Returns
+    -------
+    (len(starts),) float64 ndarray
+        The step per window, samples, positive where the hanging wall side lies deeper; NaN where unmeasured.
+    """
+    n0 = win.cube_shape[0]
+    t = zone.t
+
+    def column(x):
+        inside = (x >= -0.01) & (x <= n0 - 0.99)
+        vals = win.amplitude_at(np.clip(x, 0, n0 - 1), np.zeros(x.size), t)
+        return np.where(inside, vals, 0.0), inside
+
+    left = [column(zone.lo - d) for d in range(1, near + 2)]  # left[0]: one trace outside the zone
+    right = [column(zone.hi + d) for d in range(1, near + 2)]
+    width = zone.hi - zone.lo + 2.0
+    near_reach = min(3, reach)
+    out = np.full(len(starts), np.nan)
+    for w, s in enumerate(starts):
+        sl = slice(s, s + size)
+
+        def lag(a, b, r):
+            return _lag(a[0][sl], b[0][sl], a[1][sl], b[1][sl], r, min_overlap, min_rows)
+
+        dip_left = _finite_median([lag(left[d + 1], left[d], near_reach) for d in range(near)])
+        dip_right = _finite_median([lag(right[d], right[d + 1], near_reach) for d in range(near)])
+        across = lag(left[0], right[0], reach + int(np.ceil(near_reach * float(width[sl].max()))))
+        if np.isfinite(dip_left) and np.isfinite(dip_right) and np.isfinite(across):
+            out[w] = zone.hw * (across - float(width[sl].mean()) * 0.5 * (dip_left + dip_right))
+    return out
 
 
 def _smooth_path(score: np.ndarray, ks: np.ndarray, smoothness: float) -> np.ndarray:

@@ -1,11 +1,18 @@
 """The closest cells of different fault skins within a gap (:mod:`~seismo3d.seismic.faults.surfaces.skins`): edge cells
 matched to the nearest cell of every other skin through a grid of buckets; the pairs the merging of coplanar skins
-considers."""
+considers. And the split of 2D skins whose branches dip opposite ways (:func:`split_opposite_dips`,
+``SkinOptions.split_angle``): a fault plane dips one way, but the linking keeps to one mean normal within
+``max_angle``, so two steep faults dipping opposite ways (a Y and its antithetic branch, an inverted V) whose normals
+lie closer than that link into one skin, whose zone then spans the block between them and whose throw compares the
+reflectors outside both."""
 
 from __future__ import annotations
 
 import numba as nb
 import numpy as np
+from scipy import sparse
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
 
 from ... import _kernels
 
@@ -180,4 +187,103 @@ def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):
                 queue[tail] = j
                 tail += 1
         n_lab += 1
+    return label
+
+
+def _dip_directions(normals: np.ndarray) -> np.ndarray:
+    """(n,) int8: +1 where a 2D cell's normal (trace, sample) points toward increasing trace when turned to point
+    down (its fault dips toward increasing trace), -1 the other way, 0 for a vertical cell."""
+    nx, nz = normals[:, 0], normals[:, 1]
+    direction = np.sign(nx) * np.where(nz < 0, -1.0, 1.0)
+    return np.where(np.abs(nz) < 1e-6, 0, direction).astype(np.int8)
+
+
+def _components(pairs: np.ndarray, group: np.ndarray, n: int) -> np.ndarray:
+    """Connected components of ``n`` cells over their adjacent ``pairs`` (m, 2) that share a ``group`` value;
+    (n,) int64 labels."""
+    same = pairs[group[pairs[:, 0]] == group[pairs[:, 1]]]
+    graph = sparse.coo_matrix((np.ones(len(same)), (same[:, 0], same[:, 1])), shape=(n, n))
+    return connected_components(graph, directed=False)[1].astype(np.int64)
+
+
+def _line_angle(xz: np.ndarray) -> float:
+    """Angle from the sample axis of the line x = a + b t fitted to the points ``xz`` (n, 2), degrees in (-90, 90)."""
+    t = xz[:, 1] - xz[:, 1].mean()
+    var = float(t @ t)
+    slope = float(t @ (xz[:, 0] - xz[:, 0].mean())) / var if var > 0 else 0.0
+    return float(np.degrees(np.arctan(slope)))
+
+
+def split_opposite_dips(xz, normals, label, minimum: int, lateral: int, vertical: int, angle: float) -> np.ndarray:
+    """Split the 2D skins whose cells dip two opposite ways into their branches (see ``SkinOptions.split_angle``).
+
+    In each skin of at least ``minimum`` cells, a cell's dip direction is its normal's (vertical cells take the
+    direction of their nearest cell that has one). The cells of one direction connected within the link reach
+    (``lateral`` traces, ``vertical`` samples) make a branch; a branch spanning fewer than ``2 * vertical`` samples
+    that meets another is a wiggle and takes the direction around it (the shortest first, until none is left). When
+    both directions then hold a branch at least that tall, and the lines fitted to the cells of each direction differ
+    by at least ``angle`` degrees, the cells dipping toward decreasing trace become a skin of their own: a Y's
+    antithetic branch leaves the fault and its other branch whole, an inverted V becomes its two faults.
+
+    Parameters
+    ----------
+    xz : (n, 2) ndarray of int
+        The cells' (trace, sample) indices.
+    normals : (n, 2) ndarray of float
+        The cells' unit fault normals (trace, sample components).
+    label : (n,) ndarray of int
+        The cells' skin labels.
+    minimum : int
+        Skins with fewer cells are left as they are (too small to be kept whatever their branches).
+    lateral, vertical : int
+        The link reach across traces and along samples.
+    angle : float
+        Smallest angle between the lines fitted to the two directions' cells for a split, degrees.
+
+    Returns
+    -------
+    (n,) ndarray of int64
+        The labels, a branch split off taking a new label (above every old one).
+    """
+    xz = np.asarray(xz, np.float64)
+    label = np.asarray(label, np.int64).copy()
+    sizes = np.bincount(label)
+    next_label = int(label.max()) + 1 if label.size else 0
+    direction_all = _dip_directions(np.asarray(normals, np.float64))
+    by_label = np.argsort(label, kind="stable")
+    starts = np.searchsorted(label[by_label], np.arange(sizes.size + 1))
+    for skin in np.nonzero(sizes >= max(int(minimum), 2))[0]:
+        cells = by_label[starts[skin]:starts[skin + 1]]
+        direction = direction_all[cells].astype(np.int64)
+        signed = direction != 0
+        if not signed.any() or np.all(direction[signed] == direction[signed][0]):
+            continue  # one dip direction: nothing to split
+        if not signed.all():  # vertical cells go with their nearest cell that has a direction
+            _, near = cKDTree(xz[cells][signed]).query(xz[cells][~signed])
+            direction[~signed] = direction[signed][near]
+        pts = xz[cells]
+        scaled = pts / np.array([float(lateral), float(vertical)])
+        pairs = cKDTree(scaled).query_pairs(1.0, p=np.inf, output_type="ndarray")
+        for _ in range(64):  # branches too short to be one take the direction around them, shortest first
+            comp = _components(pairs, direction, len(cells))
+            top = np.full(comp.max() + 1, np.inf)
+            bottom = np.full(comp.max() + 1, -np.inf)
+            np.minimum.at(top, comp, pts[:, 1])
+            np.maximum.at(bottom, comp, pts[:, 1])
+            height = bottom - top + 1
+            touching = np.zeros(height.size, bool)  # a branch that meets another (an isolated piece stays)
+            across = comp[pairs[:, 0]] != comp[pairs[:, 1]]
+            touching[comp[pairs[across].ravel()]] = True
+            short = (height < 2 * vertical) & touching
+            if not short.any():
+                break
+            direction[comp == int(np.argmin(np.where(short, height, np.inf)))] *= -1
+        long_ = height >= 2 * vertical
+        if not (long_ & np.isin(np.arange(height.size), comp[direction > 0])).any() or \
+                not (long_ & np.isin(np.arange(height.size), comp[direction < 0])).any():
+            continue  # one of the two directions holds only wiggles
+        if abs(_line_angle(pts[direction > 0]) - _line_angle(pts[direction < 0])) < angle:
+            continue  # the two directions lie along one line: a (near-vertical) fault, not two
+        label[cells[direction < 0]] = next_label
+        next_label += 1
     return label

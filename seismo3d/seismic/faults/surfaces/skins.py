@@ -23,7 +23,7 @@ from ...._validation import check_positive
 from ....errors import InputError
 from ... import _kernels
 from ..result import Fault, check_fault_arrays, fault_frames, fault_normals
-from .skin_kernels import closest_pairs, grow_by_mean_normal
+from .skin_kernels import closest_pairs, grow_by_mean_normal, split_opposite_dips
 
 __all__ = ["SkinOptions", "fault_skins", "image_cells", "skins_from_cells"]
 
@@ -75,6 +75,10 @@ class SkinOptions:
         web of crossing or en-echelon pieces does not (on the 18 clipped Penobscot inlines, webs of short steep
         pieces copied across the nearly identical inlines made sheets parallel to the inline sections, 43-61 deg
         from their cells' planes; 44 of 121 skins are within 30 deg). None: no check.
+    split_angle : float or None
+        2D: a skin whose cells dip two opposite ways, in branches whose lines differ by at least this angle (degrees),
+        is split into them, each judged by its own throw (:func:`~.skin_kernels.split_opposite_dips`); None: no split
+        (3D: never). Leave-one-survey-out: F3 F1 0.494 at 10-30 degrees, 0.490 at 5; Great South Basin 0.829 at each.
 
     Raises
     ------
@@ -92,6 +96,7 @@ class SkinOptions:
     merge_offset: float = 4.0
     merge_angle: float = 20.0
     max_shape_angle: float | None = 30.0
+    split_angle: float | None = 10.0
 
     def __post_init__(self):
         for name in ("lateral_reach", "vertical_reach"):
@@ -113,6 +118,8 @@ class SkinOptions:
             raise InputError(f"merge_angle must be in (0, 90) degrees; got {self.merge_angle!r}")
         if self.max_shape_angle is not None and not 0.0 < float(self.max_shape_angle) <= 90.0:
             raise InputError(f"max_shape_angle must be in (0, 90] degrees or None; got {self.max_shape_angle!r}")
+        if self.split_angle is not None and not 0.0 < float(self.split_angle) < 90.0:
+            raise InputError(f"split_angle must be in (0, 90) degrees or None; got {self.split_angle!r}")
 
     def smallest(self, shape: tuple) -> int:
         """The smallest skin kept in an image of ``shape``, cells."""
@@ -466,6 +473,9 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     if opt.merge_gap > 0:
         label = _merge_coplanar(points, label, _edge_cells(best, label, two_d), opt.smallest(shape), two_d, opt)
     del best
+    if two_d and opt.split_angle is not None:
+        label = split_opposite_dips(points[:, [0, 2]], normals[:, [0, 2]], label, opt.smallest(shape),
+                                    int(opt.lateral_reach), int(opt.vertical_reach), float(opt.split_angle))
     sizes = np.bincount(label, minlength=points.shape[0])
     strong = np.zeros(sizes.size, dtype=bool)
     strong[np.unique(label[vals >= upper])] = True

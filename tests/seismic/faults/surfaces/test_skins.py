@@ -126,3 +126,72 @@ def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels
     got = closest_pairs(pts, lab, edge, gap, n_labels)
     assert len(best) > 20
     assert sorted(map(tuple, got.tolist())) == sorted((i, j) for _, i, j in best.values())
+
+
+# --- branches of opposite dip (a Y, an inverted V) -------------------------------------------------------------------
+
+def _strand(image, x0, t0, t1, dip, strike, value=0.8):
+    """Cells of a straight 2D fault from (x0, t0) down to t1 at ``dip`` (degrees), dipping toward increasing trace
+    for strike 270 and decreasing trace for strike 90 (index space)."""
+    thin, st, dp = image
+    run = (1.0 if strike == 270.0 else -1.0) / np.tan(np.radians(dip))
+    for t in range(t0, t1):
+        x = int(round(x0 + run * (t - t0)))
+        thin[x, t], st[x, t], dp[x, t] = value, strike, dip
+
+
+def _section_image(shape=(96, 140)):
+    return tuple(np.zeros(shape, np.float32) for _ in range(3))
+
+
+@pytest.mark.parametrize("dip", [80.0, 82.0])
+def test_inverted_v_of_opposite_dips_is_two_faults(dip):
+    """Two faults dipping opposite ways from a common apex (an inverted V, 16-20 degrees apart) link into one skin
+    (their normals are within max_angle); split_angle parts them, each fault with one dip direction."""
+    image = _section_image()
+    _strand(image, 48, 10, 110, dip, 90.0)
+    _strand(image, 48, 10, 110, dip, 270.0)
+    whole = fault_skins(*image, lower=0.3, upper=0.5, options=SkinOptions(split_angle=None))
+    assert len(whole) == 1  # one skin over both branches without the split
+    faults = fault_skins(*image, lower=0.3, upper=0.5)
+    assert len(faults) == 2
+    for f in faults:
+        assert len(set(f.strike_deg.tolist())) == 1  # one dip direction each
+        assert f.points[:, 1].max() - f.points[:, 1].min() >= 95  # each branch whole, apex to base
+    assert {float(f.strike_deg[0]) for f in faults} == {90.0, 270.0}
+
+
+def test_y_branch_of_opposite_dip_is_split_off_and_the_fault_stays_whole():
+    """A Y: a fault (80 degrees toward decreasing trace) from whose middle a branch dips the other way. The branch
+    becomes a fault of its own; the fault keeps its cells above and below the junction."""
+    image = _section_image()
+    _strand(image, 60, 5, 125, 80.0, 90.0)
+    x_mid = int(round(60 - (60 - 5) / np.tan(np.radians(80.0))))
+    _strand(image, x_mid + 1, 61, 121, 82.0, 270.0)
+    faults = fault_skins(*image, lower=0.3, upper=0.5)
+    assert len(faults) == 2
+    main, branch = faults  # by size
+    assert set(main.strike_deg.tolist()) == {90.0} and main.points[:, 1].min() == 5 and main.points[:, 1].max() == 124
+    assert set(branch.strike_deg.tolist()) == {270.0} and branch.points[:, 1].min() >= 61
+
+
+def test_vertical_fault_whose_cells_wiggle_stays_one():
+    """A near-vertical fault whose cells' dip direction flips every few samples (dip 88 either way) is one fault:
+    the wiggles are shorter than two link reaches, and no branch dips away from the other."""
+    image = _section_image()
+    thin, st, dp = image
+    for t in range(10, 130):
+        thin[48, t], st[48, t], dp[48, t] = 0.8, (90.0 if (t // 5) % 2 else 270.0), 88.0
+    faults = fault_skins(*image, lower=0.3, upper=0.5)
+    assert len(faults) == 1 and faults[0].size == 120
+    # two long halves of opposite direction along one vertical line: their lines agree, one fault
+    st[48, 10:70], st[48, 70:130] = 90.0, 270.0
+    assert len(fault_skins(*image, lower=0.3, upper=0.5)) == 1
+
+
+def test_split_angle_option():
+    assert SkinOptions().split_angle == 10.0
+    with pytest.raises(InputError, match="split_angle"):
+        SkinOptions(split_angle=90.0)
+    with pytest.raises(InputError, match="split_angle"):
+        SkinOptions(split_angle=0.0)

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from ...errors import InputError
 
-__all__ = ["BlockStep", "MEMORY_HEADROOM", "STEP_KINDS", "around", "block_budget", "largest_block", "lateral_blocks",
+__all__ = ["BlockStep", "CUBE", "MEMORY_HEADROOM", "STEP_KINDS", "around", "block_budget", "largest_block", "lateral_blocks",
            "limit_for_blocks", "plan_steps", "serial_step_blocks", "usable_cores"]
 
 # Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
@@ -87,6 +87,8 @@ def largest_block(tile: int, cap: int, fits) -> int:
 
 
 STEP_KINDS = ("map", "reduce", "gather")
+# The name of the input cube among a step's declared inputs
+CUBE = "cube"
 
 
 @dataclass(frozen=True)
@@ -128,6 +130,27 @@ class BlockStep:
     threads : bool
         On a ``dask.distributed`` cluster, a block's kernels use the worker's share of the host's cores; False keeps
         the process's threads (a step whose float sums depend on the number of threads, kept as in memory).
+    inputs : tuple of str
+        Declared inputs: the names of the arrays a block reads, :data:`CUBE` for the input cube (read with the
+        step's ``region`` or ``halo``, like the other inputs). A step with ``inputs`` or ``outputs`` is run by
+        :func:`~seismo3d.seismic.blocks.apply.apply_block`: its ``function`` is an algorithm on arrays,
+        ``function(*arrays, *args)`` (``function(place, *arrays, *args)`` with ``place``), returning a
+        :class:`~seismo3d.seismic.blocks.apply.BlockOutput`; the executor reads, writes and leaves the marker.
+    outputs : tuple of str or of (str, str)
+        Names of the ``(n_inlines, n_xlines, ...)`` arrays whose block core the step writes (the run's stores,
+        :attr:`~seismo3d.seismic.blocks.executor.BlockRun.arrays`), each the name of an array the algorithm returns
+        or ``(returned name, store name)``.
+    place : bool
+        Pass the block's :class:`~seismo3d.seismic.blocks.apply.BlockPlace` (its core and the region read) first.
+    lazy : bool
+        Pass the stored inputs as arrays read by slicing (Zarr arrays), not read around the block: for a step that
+        reads them with other halos or layouts than its own (the algorithm slices them).
+    trim : bool
+        An output array over the region read is cut to the block's core (default); False: the outputs are the
+        core already, on another grid than the region (the fault network's).
+    combine : callable, optional
+        ``combine(new, stored) -> array``: how an output's core combines with what is stored there (e.g.
+        ``numpy.maximum``; default: replaced).
     """
 
     name: str
@@ -140,6 +163,17 @@ class BlockStep:
     label: str = ""
     region: Callable | None = None
     threads: bool = True
+    inputs: tuple = ()
+    outputs: tuple = ()
+    place: bool = False
+    lazy: bool = False
+    trim: bool = True
+    combine: Callable | None = None
+
+    @property
+    def declared(self) -> bool:
+        """Whether the executor reads and writes the step's arrays (declared ``inputs`` or ``outputs``)."""
+        return bool(self.inputs or self.outputs)
 
     def __post_init__(self):
         if self.kind not in STEP_KINDS:

@@ -62,7 +62,8 @@ class StoreRun(BlockRun):
             Traces a side of the arrays' chunks (:attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile`).
         work_arrays : iterable of (str, str, int) or (str, str, int, bool)
             Name, dtype and samples per trace of each intermediate array in the work folder, and whether it is
-            compressed (default: not).
+            compressed (default: not). Every array is named in :attr:`~seismo3d.seismic.blocks.executor.BlockRun.arrays`
+            for the declared steps.
 
         Raises
         ------
@@ -79,7 +80,10 @@ class StoreRun(BlockRun):
         self.open(manifest, f"{self.work} and {self.partial}")
         n0, n1, nt = shape
         t = tile
+        self.shape = tuple(shape)
+        self.arrays.update({name: str(self.partial / name) for name in self.outputs})
         for name, dtype, n, *compressed in work_arrays:
+            self.arrays[name] = str(self.work / name)
             if not (self.work / name).exists():
                 zarr.create_array(str(self.work / name), shape=(n0, n1, n), chunks=(t, t, n), dtype=dtype,
                                   fill_value=0, **({} if compressed and compressed[0] else {"compressors": None}))

@@ -20,7 +20,8 @@ from ...attributes import structure_tensor_halo, structure_tensor_slopes
 from ...blocks.executor import write_marker
 from ...blocks.memory import default_memory_limit
 from ...blocks.options import ChunkOptions
-from ...blocks.plan import BlockStep, around, block_budget, plan_steps
+from ...blocks.apply import BlockOutput, save_lists
+from ...blocks.plan import CUBE, BlockStep, around, block_budget, plan_steps
 from .dead_samples import dead_samples, fill_values, near_dead_samples
 from .ridges import live_likelihood, ridges, thin_votes, without_dead_edges
 from .thresholds import block_histogram
@@ -31,7 +32,7 @@ if TYPE_CHECKING:  # annotations only: the options are passed in
 
 __all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "RIDGE_HALO", "SURFACE_BATCH_BYTES", "SurfacePlan", "THIN_HALO",
            "amplitude_halo", "block_steps", "cell_block", "fill_block", "gather_block", "histogram_block", "plan_blocks",
-           "ridge_block", "save_npz", "smallest_block_bytes", "surface_block", "surfaces_of",
+           "ridge_block", "smallest_block_bytes", "surface_block", "surfaces_of",
            "thin_block", "vote_block"]
 
 # Lateral halo of the ridges (thin_faults with its defaults): the Gaussian of sigma 1.5 (5 traces), the average along
@@ -61,6 +62,10 @@ _THIN_BYTES = 44
 # the 11 M cells of a 1448 x 1448 x 512 one).
 CANDIDATE_BYTES = 80  # points, values, angles (36), the sort keys, order and sorted copy
 CELL_BYTES = 240
+
+
+# The fault likelihood's arrays the ridges read (the run's stores' names of the likelihood group's arrays)
+LIKELIHOOD_INPUTS = ("fault_likelihood", "fault_strike_deg", "fault_dip_deg")
 
 
 @dataclass(frozen=True)
@@ -129,18 +134,25 @@ def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
     def thin_bytes(b):
         return (b + 2 * THIN_HALO) ** 2 * nt * _THIN_BYTES
 
-    return (BlockStep("fill", "reduce", 0, dead_bytes, cap, function=fill_block, label="fill values"),
-            BlockStep("ridges", "gather", halo, ridge_bytes, cap, function=ridge_block, label="fault ridges"),
+    return (BlockStep("fill", "reduce", 0, dead_bytes, cap, function=fill_block, label="fill values", inputs=(CUBE,)),
+            # the amplitudes read with their halo, the likelihood (read by slicing) with the ridges'
+            BlockStep("ridges", "gather", halo, ridge_bytes, cap, function=ridge_block, label="fault ridges",
+                      inputs=(CUBE, *LIKELIHOOD_INPUTS), place=True, lazy=True,
+                      outputs=("slope_inline", "slope_xline", "likelihood", "near")),
             BlockStep("surfaces", "map", reach, vote_bytes, cap, function=surface_block, label="fault surfaces"),
             # threads=False: the votes are summed per numba thread (voting.VoteSum), so a block's kernel keeps the
             # process's threads, as the in-memory run
             BlockStep("votes", "map", reach, function=vote_block, label="fault voting", threads=False),
-            BlockStep("thin", "reduce", THIN_HALO, thin_bytes, cap, function=thin_block, label="thinning"),
-            BlockStep("histogram", "reduce", function=histogram_block, label="histogram of the thinned votes"),
+            BlockStep("thin", "reduce", THIN_HALO, thin_bytes, cap, function=thin_block, label="thinning",
+                      inputs=("votes", "vote_strike_deg", "vote_dip_deg"), outputs=("thin_raw",), place=True),
+            BlockStep("histogram", "reduce", function=histogram_block, label="histogram of the thinned votes",
+                      inputs=("thin_raw",)),
             BlockStep("quantile_histogram", "reduce", function=histogram_block,
-                      label="histogram of the thinned votes"),
-            BlockStep("quantile", "gather", function=gather_block, label="quantile of the thinned votes"),
-            BlockStep("cells", "gather", function=cell_block, label="fault cells"))
+                      label="histogram of the thinned votes", inputs=("thin_raw",)),
+            BlockStep("quantile", "gather", function=gather_block, label="quantile of the thinned votes",
+                      inputs=("thin_raw",)),
+            BlockStep("cells", "gather", function=cell_block, label="fault cells",
+                      inputs=("thin_raw", "vote_strike_deg", "vote_dip_deg"), outputs=("thin",), place=True))
 
 
 def smallest_block_bytes(shape, options: FaultTracingOptions, tile: int) -> int:
@@ -207,64 +219,61 @@ def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baselin
 
 # -- the work of each step on one block ---------------------------------------------------------------------
 
-def save_npz(path: pathlib.Path, **arrays) -> None:
-    with atomic_path(str(path)) as tmp, open(tmp, "wb") as fh:
-        np.savez(fh, **arrays)
+def fill_block(f, lo: float, hi: float, dead) -> BlockOutput:
+    """The fill values of one block of amplitudes under the dead-sample rules (:func:`fill_values`)."""
+    return BlockOutput(summary={"fill": [float(v) for v in fill_values(np.asarray(f, np.float32), lo, hi,
+                                                                        options=dead)]})
 
 
-def fill_block(f, origin, block, lo, hi, dead, marker) -> dict:
-    """The fill values of one block (read from the cube) under the dead-sample rules."""
-    result = {"fill": [float(v) for v in fill_values(np.asarray(f, np.float32), lo, hi, options=dead)]}
-    write_marker(marker, result)
-    return result
+def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, shape,
+                opt: FaultTracingOptions) -> BlockOutput:
+    """Reflector slopes, dead samples, live likelihood and ridges of one block (Hale 2013).
 
+    Parameters
+    ----------
+    place : BlockPlace
+        The block's core and the region of ``f``.
+    f : (m0, m1, n_samples) ndarray
+        Amplitudes of ``place.region`` (the block grown by :func:`amplitude_halo`).
+    likelihood, strike, dip : (n_inlines, n_xlines, n_samples) arrays read by slicing
+        The fault likelihood, strike and dip of the cube, read around the block with ``RIDGE_HALO``.
+    fill : (k,) float32 ndarray
+        Fill values of the dead-sample rules; ``lo``, ``hi`` the cube's smallest and largest amplitudes.
+    shape : (int, int, int)
+        Of the cube.
+    opt : FaultTracingOptions
 
-def ridge_block(f, origin, block, fill, lo, hi, likelihood, work, partial, plan: SurfacePlan, opt: FaultTracingOptions,
-                 marker) -> dict:
-    """Dead samples, live likelihood and ridges of one block; seed candidates of its core saved."""
-    import zarr
-    n0, n1, _ = plan.shape
-    i0, i1, j0, j1 = block
+    Returns
+    -------
+    BlockOutput
+        The core's ``slope_inline``, ``slope_xline`` (:func:`structure_tensor_slopes`, as the throws read them in
+        memory), ``likelihood`` (0 near dead samples) and ``near`` (uint8; None without dead samples); lists
+        ``points`` (k, 3) int64, ``values`` (k,) float32 and ``angles`` (k, 2) float32 of the ridge samples above
+        the seed threshold (the seed candidates); summary ``high``, ``live`` (:func:`live_likelihood`).
+    """
+    i0, i1, j0, j1 = place.block
+    origin = place.origin
     f = np.asarray(f, np.float32)
-    write_slopes(f, origin, block, partial)
+    slopes = [p[place.core] for p in structure_tensor_slopes(f)]
     dead = dead_samples(f, fill, lo, hi, options=opt.dead)
     del f
     near = near_dead_samples(dead, options=opt.dead) if dead.any() else None
     del dead
-    a0, a1, b0, b1 = around(block, RIDGE_HALO, plan.shape)
-    group = zarr.open_group(likelihood, mode="r")
-    fl = group["likelihood"][a0:a1, b0:b1]
-    st = group["strike_deg"][a0:a1, b0:b1]
-    dp = group["dip_deg"][a0:a1, b0:b1]
+    a0, a1, b0, b1 = around(place.block, RIDGE_HALO, shape)
+    fl, st, dp = (a[a0:a1, b0:b1] for a in (likelihood, strike, dip))
     if near is not None:
         near = near[a0 - origin[0]:a1 - origin[0], b0 - origin[1]:b1 - origin[1]]
     core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
     high, live = live_likelihood(fl, near, core, level=opt.saturation_level)
-    zarr.open_group(partial, mode="r+")["likelihood"][i0:i1, j0:j1] = fl[core]
-    if near is not None:
-        zarr.open_array(f"{work}/near", mode="r+")[i0:i1, j0:j1] = near[core].view(np.uint8)
     ridge = ridges(fl, st, dp, opt.voting.seed_threshold)[core]
     cand = np.argwhere(ridge > float(opt.voting.seed_threshold))
     at = tuple(cand.T)
     local = (cand[:, 0] + i0 - a0, cand[:, 1] + j0 - b0, cand[:, 2])
-    save_npz(pathlib.Path(work) / "candidates" / f"{i0}-{j0}.npz",
-              points=(cand + np.array([i0, j0, 0])).astype(np.int64), values=ridge[at].astype(np.float32),
-              angles=np.stack([st[local], dp[local]], axis=-1).astype(np.float32))
-    result = {"high": high, "live": live}
-    write_marker(marker, result)
-    return result
-
-
-def write_slopes(f: np.ndarray, origin, block, partial) -> None:
-    """Reflector slopes (:func:`structure_tensor_slopes`, as the throws read them in memory) of a block's core,
-    from its amplitudes read with at least :func:`structure_tensor_halo` traces of halo."""
-    import zarr
-    i0, i1, j0, j1 = block
-    core = (slice(i0 - origin[0], i1 - origin[0]), slice(j0 - origin[1], j1 - origin[1]))
-    slopes = structure_tensor_slopes(f)
-    group = zarr.open_group(partial, mode="r+")
-    group["slope_inline"][i0:i1, j0:j1] = slopes[0][core]
-    group["slope_xline"][i0:i1, j0:j1] = slopes[1][core]
+    candidates = {"points": (cand + np.array([i0, j0, 0])).astype(np.int64), "values": ridge[at].astype(np.float32),
+                  "angles": np.stack([st[local], dp[local]], axis=-1).astype(np.float32)}
+    arrays = {"slope_inline": slopes[0], "slope_xline": slopes[1], "likelihood": fl[core],
+              "near": None if near is None else near[core].view(np.uint8)}
+    return BlockOutput(arrays, {"high": high, "live": live}, candidates)
 
 
 def surface_block(block, seeds, frames, work, partial, plan: SurfacePlan, opt: FaultTracingOptions,
@@ -282,8 +291,8 @@ def surface_block(block, seeds, frames, work, partial, plan: SurfacePlan, opt: F
     stem = pathlib.Path(work) / "surfaces" / f"{block[0]}-{block[2]}"
     with atomic_path(str(stem) + ".offsets.npy") as tmp, open(tmp, "wb") as fh:
         np.save(fh, found.offsets)
-    save_npz(stem.with_suffix(".npz"), ids=np.asarray(ids, np.int64), mean_likelihood=found.mean_likelihood,
-              normals=found.normals)
+    save_lists(stem.with_suffix(".npz"), {"ids": np.asarray(ids, np.int64), "mean_likelihood": found.mean_likelihood,
+                                          "normals": found.normals})
     write_marker(marker, {})
     return {}
 
@@ -350,58 +359,35 @@ def surfaces_of(parts, which, rows) -> SeedSurfaces:
     return out
 
 
-def thin_block(block, work, partial, plan: SurfacePlan, marker) -> dict:
-    """Thinned votes of one block; the count, smallest and largest of the positive ones."""
-    import zarr
-    i0, i1, j0, j1 = block
-    a0, a1, b0, b1 = around(block, THIN_HALO, plan.shape)
-    group = zarr.open_group(partial, mode="r")
-    votes = group["votes"][a0:a1, b0:b1]
-    thin = thin_votes(votes, group["vote_strike_deg"][a0:a1, b0:b1],
-                      group["vote_dip_deg"][a0:a1, b0:b1])[i0 - a0:i1 - a0, j0 - b0:j1 - b0]
-    del votes
-    zarr.open_array(f"{work}/thin_raw", mode="r+")[i0:i1, j0:j1] = thin
+def thin_block(place, votes, strike, dip) -> BlockOutput:
+    """Thinned votes of one block (:func:`thin_votes`, its votes read with ``THIN_HALO``); the count, smallest and
+    largest of the positive ones of its core."""
+    thin = thin_votes(votes, strike, dip)[place.core]
     positive = thin[thin > 0]
-    result = {"count": int(positive.size), "min": float(positive.min()) if positive.size else 0.0,
-              "max": float(positive.max()) if positive.size else 0.0}
-    write_marker(marker, result)
-    return result
+    return BlockOutput({"thin_raw": thin}, {"count": int(positive.size),
+                                            "min": float(positive.min()) if positive.size else 0.0,
+                                            "max": float(positive.max()) if positive.size else 0.0})
 
 
-def positive_thin(block, work) -> np.ndarray:
-    import zarr
-    i0, i1, j0, j1 = block
-    thin = zarr.open_array(f"{work}/thin_raw", mode="r")[i0:i1, j0:j1]
-    return thin[thin > 0]
+def histogram_block(thin, vmin: float, vmax: float, bins: int) -> BlockOutput:
+    """The histogram of one block's positive thinned votes (:func:`block_histogram`)."""
+    return BlockOutput(summary={"counts": block_histogram(thin[thin > 0], vmin, vmax, bins).tolist()})
 
 
-def histogram_block(block, work, vmin, vmax, bins, marker) -> dict:
-    result = {"counts": block_histogram(positive_thin(block, work), vmin, vmax, bins).tolist()}
-    write_marker(marker, result)
-    return result
+def gather_block(thin, lo_edge: float, hi_edge: float) -> BlockOutput:
+    """One block's positive thinned votes below ``lo_edge`` counted, and those in ``[lo_edge, hi_edge]``."""
+    values = thin[thin > 0]
+    return BlockOutput(summary={"below": int(np.count_nonzero(values < lo_edge)),
+                                "values": values[(values >= lo_edge) & (values <= hi_edge)].tolist()})
 
 
-def gather_block(block, work, lo_edge, hi_edge, marker) -> dict:
-    values = positive_thin(block, work)
-    result = {"below": int(np.count_nonzero(values < lo_edge)),
-              "values": values[(values >= lo_edge) & (values <= hi_edge)].tolist()}
-    write_marker(marker, result)
-    return result
-
-
-def cell_block(block, work, partial, lower, marker) -> dict:
-    """The thinned votes at or above ``lower`` of one block, written to the output and saved as cells."""
-    import zarr
-    i0, i1, j0, j1 = block
-    thin = zarr.open_array(f"{work}/thin_raw", mode="r")[i0:i1, j0:j1]
+def cell_block(place, thin, strike, dip, lower: float) -> BlockOutput:
+    """The thinned votes at or above ``lower`` of one block (the others set to 0), and its cells (points, values,
+    strike, dip) as lists."""
     thin[thin < lower] = 0.0
-    group = zarr.open_group(partial, mode="r+")
-    group["thin"][i0:i1, j0:j1] = thin
     cells = np.argwhere(thin >= lower)
     at = tuple(cells.T)
-    save_npz(pathlib.Path(work) / "cells" / f"{i0}-{j0}.npz",
-              points=(cells + np.array([i0, j0, 0])).astype(np.int64), values=thin[at],
-              strike=group["vote_strike_deg"][i0:i1, j0:j1][at], dip=group["vote_dip_deg"][i0:i1, j0:j1][at])
-    result = {"count": int(len(cells))}
-    write_marker(marker, result)
-    return result
+    i0, j0 = place.block[0], place.block[2]
+    lists = {"points": (cells + np.array([i0, j0, 0])).astype(np.int64), "values": thin[at], "strike": strike[at],
+             "dip": dip[at]}
+    return BlockOutput({"thin": thin}, {"count": int(len(cells))}, lists)

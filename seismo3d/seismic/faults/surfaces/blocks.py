@@ -52,7 +52,7 @@ from ...blocks.windows import StoredWindows
 from ..options import FaultTracingOptions
 from ..result import fault_frames
 from ..steps import faults_from_cells, surface_cells
-from .block_steps import CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, SurfacePlan, block_steps, plan_blocks, smallest_block_bytes
+from .block_steps import CANDIDATE_BYTES, CELL_BYTES, LIKELIHOOD_INPUTS, RIDGE_HALO, SurfacePlan, block_steps, plan_blocks, smallest_block_bytes
 from .thresholds import HISTOGRAM_BINS, QUANTILE_BINS, otsu_of_histogram, quantile_of_window, quantile_window
 from .voting_kernels import greedy_seeds
 
@@ -265,8 +265,9 @@ class _SurfaceRun(StoreRun):
         p = self.plan
         self.start_output(manifest, p.shape, p.tile, (("near", "uint8", p.shape[2], True),
                                                       ("thin_raw", "float32", p.shape[2])))
-        for name in ("candidates", "cells", "surfaces"):
-            (self.work / name).mkdir(exist_ok=True)
+        (self.work / "surfaces").mkdir(exist_ok=True)
+        self.arrays.update(zip(LIKELIHOOD_INPUTS, (f"{self.likelihood}/{name}" for name in
+                                                   ("likelihood", "strike_deg", "dip_deg"))))
 
     # -- steps ----------------------------------------------------------------------------------------------------
     def amplitude_range(self, x) -> tuple[float, float]:
@@ -290,14 +291,14 @@ class _SurfaceRun(StoreRun):
         fill = self.fill_values(x, lo, hi)
         p = self.plan
         results = self.run_step(self.steps["ridges"], lateral_blocks(p.shape, p.ridge, p.ridge), fill, lo, hi,
-                                self.likelihood, str(self.work), str(self.partial), p, self.opt, source=x)
+                                p.shape, self.opt, source=x)
         return sum(r["high"] for r in results), sum(r["live"] for r in results)
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:
         memory = self.memory
         path = self.work / "seeds.npz"
         if not path.exists():
-            files = sorted((self.work / "candidates").glob("*.npz"))
+            files = sorted((self.work / "ridges").glob("*.npz"))
             n = sum(int(np.load(f)["values"].size) for f in files)
             if n * CANDIDATE_BYTES > memory - resident_memory():
                 raise InputError(f"{n} seed candidates need about {n * CANDIDATE_BYTES / 2**30:.2f} GiB, more than "
@@ -331,7 +332,7 @@ class _SurfaceRun(StoreRun):
         when they are dense, their exact quantile (:mod:`~seismo3d.seismic.faults.surfaces.thresholds`)."""
         p = self.plan
         blocks = lateral_blocks(p.shape, p.thin, p.thin)
-        stats = self.run_step(self.steps["thin"], blocks, str(self.work), str(self.partial), p)
+        stats = self.run_step(self.steps["thin"], blocks)
         n_values = sum(r["count"] for r in stats)
         n_samples = int(np.prod(p.shape, dtype=np.int64))
         if n_values == 0:
@@ -343,7 +344,7 @@ class _SurfaceRun(StoreRun):
                                         lambda q: self._quantile(blocks, q, n_values, vmin, vmax))
 
     def _histogram(self, blocks, vmin, vmax, bins, step) -> np.ndarray:
-        results = self.run_step(self.steps[step], blocks, str(self.work), vmin, vmax, bins)
+        results = self.run_step(self.steps[step], blocks, vmin, vmax, bins)
         return np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)
 
     def _quantile(self, blocks, q: float, n: int, vmin: float, vmax: float) -> float:
@@ -351,7 +352,7 @@ class _SurfaceRun(StoreRun):
         interpolates, found by a fine histogram and a pass that gathers the values of their bins."""
         counts = self._histogram(blocks, vmin, vmax, QUANTILE_BINS, "quantile_histogram")
         window = quantile_window(counts, n, q, vmin, vmax)
-        results = self.run_step(self.steps["quantile"], blocks, str(self.work), window[3], window[4])
+        results = self.run_step(self.steps["quantile"], blocks, window[3], window[4])
         values = np.concatenate([np.asarray(r["values"], np.float32) for r in results])
         return quantile_of_window(window, sum(r["below"] for r in results), values)
 
@@ -362,7 +363,7 @@ class _SurfaceRun(StoreRun):
         import zarr
         p = self.plan
         blocks = lateral_blocks(p.shape, p.thin, p.thin)
-        results = self.run_step(self.steps["cells"], blocks, str(self.work), str(self.partial), lower)
+        results = self.run_step(self.steps["cells"], blocks, lower)
         n = sum(r["count"] for r in results)
         if n * CELL_BYTES > self.memory - resident_memory():
             raise InputError(f"{n} thinned fault samples need about {n * CELL_BYTES / 2**30:.2f} GiB to link into "

@@ -14,16 +14,16 @@ graph recomputes every block of an interrupted ``to_zarr``.
 
 from __future__ import annotations
 
+import json
 import pathlib
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..._atomic import atomic_path
-from .executor import write_marker
 from .plan import CUBE, BlockStep
 
-__all__ = ["BlockOutput", "BlockPlace", "apply_block", "save_lists"]
+__all__ = ["BlockOutput", "BlockPlace", "apply_block", "gather", "load_lists", "save_lists", "write_marker"]
 
 
 @dataclass(frozen=True)
@@ -79,8 +79,8 @@ class BlockOutput:
     summary : dict
         A small JSON-serialisable result (counts, sums, a range): the block's marker, reduced by the caller.
     lists : dict
-        ``{name: ndarray}``: sparse lists of the block (seed candidates, cells), saved together in the step's folder
-        of the run (``WORK/<step>/<i0>-<j0>.npz``) and gathered by the caller.
+        ``{name: ndarray}``: sparse lists of the block (seed candidates, cells), saved in the step's folder of the
+        run (:func:`save_lists`) and read back by later steps or the caller (:func:`load_lists`, :func:`gather`).
     """
 
     arrays: dict = field(default_factory=dict)
@@ -88,17 +88,78 @@ class BlockOutput:
     lists: dict = field(default_factory=dict)
 
 
-def save_lists(path, lists: dict) -> None:
-    """Save a block's sparse lists in one ``.npz`` atomically (a file that exists is complete).
+def write_marker(path, payload: dict) -> None:
+    """Write a block's marker (its small JSON result) atomically: a marker that exists is complete.
 
     Parameters
     ----------
     path : str or os.PathLike
+        The marker file (:meth:`~seismo3d.seismic.blocks.executor.BlockRun.marker`).
+    payload : dict
+        JSON-serialisable result of the block, returned again when a resumed run skips it.
+    """
+    with atomic_path(str(path)) as tmp, open(tmp, "w") as fh:
+        json.dump(payload, fh)
+
+
+def save_lists(folder, block, lists: dict) -> None:
+    """Save a block's sparse lists, one ``.npy`` each in ``folder/<i0>-<j0>/``, atomically (a file that exists is
+    complete; the block's marker, written after them, says that all are).
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The step's folder of lists.
+    block : tuple
+        ``(i0, i1, j0, j1)``; items 0 and 2 name the block.
     lists : dict
         ``{name: ndarray}``.
     """
-    with atomic_path(str(path)) as tmp, open(tmp, "wb") as fh:
-        np.savez(fh, **lists)
+    path = pathlib.Path(folder) / f"{block[0]}-{block[2]}"
+    path.mkdir(parents=True, exist_ok=True)
+    for name, values in lists.items():
+        with atomic_path(str(path / f"{name}.npy")) as tmp, open(tmp, "wb") as fh:
+            np.save(fh, np.asarray(values))
+
+
+def load_lists(folder, block, names, *, mmap_mode=None) -> dict:
+    """A block's sparse lists saved by :func:`save_lists`.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+    block : tuple
+        ``(i0, i1, j0, j1)``.
+    names : iterable of str
+    mmap_mode : {None, 'r'}
+        ``'r'``: memory-mapped, read row by row when indexed (:func:`numpy.load`).
+
+    Returns
+    -------
+    dict
+        ``{name: ndarray}``.
+    """
+    path = pathlib.Path(folder) / f"{block[0]}-{block[2]}"
+    return {name: np.load(path / f"{name}.npy", mmap_mode=mmap_mode) for name in names}
+
+
+def gather(folder, blocks, names) -> dict:
+    """The sparse lists of ``blocks`` concatenated in the blocks' order.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The step's folder of lists.
+    blocks : list of tuple
+    names : iterable of str
+
+    Returns
+    -------
+    dict
+        ``{name: ndarray}``; None for a name when there are no blocks.
+    """
+    parts = [load_lists(folder, b, names) for b in blocks]
+    return {name: np.concatenate([q[name] for q in parts]) if parts else None for name in names}
 
 
 def apply_block(window, step: BlockStep, place: BlockPlace, paths: dict, lists, marker, *args) -> dict:
@@ -116,7 +177,7 @@ def apply_block(window, step: BlockStep, place: BlockPlace, paths: dict, lists, 
     paths : dict
         ``{array name: Zarr array path}`` of the run's stores (inputs and outputs).
     lists : str or None
-        The step's folder of sparse lists.
+        The step's folder of sparse lists (:func:`save_lists`).
     marker : str
         The block's marker file.
     *args
@@ -152,6 +213,6 @@ def apply_block(window, step: BlockStep, place: BlockPlace, paths: dict, lists, 
             value = step.combine(value, store[place.target])
         store[place.target] = value
     if out.lists:
-        save_lists(pathlib.Path(lists) / f"{place.block[0]}-{place.block[2]}.npz", out.lists)
+        save_lists(lists, place.block, out.lists)
     write_marker(marker, out.summary)
     return out.summary

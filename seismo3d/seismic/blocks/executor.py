@@ -18,7 +18,6 @@ from __future__ import annotations
 import ctypes
 import ctypes.util
 import json
-import os
 import pathlib
 import sys
 import time
@@ -26,9 +25,9 @@ import uuid
 
 import numpy as np
 
-from ..._atomic import atomic_path
 from ..._progress import LOGGER, progress_steps
 from ...errors import EarlierStoresError, InputError
+from .apply import BlockPlace, apply_block, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
 
 __all__ = ["BlockRun", "SchedulerClient", "kernel_threads", "release_memory", "run_block", "trace_cube",
@@ -63,20 +62,6 @@ def release_memory() -> None:
     libc.mallopt(_M_MMAP_THRESHOLD, _LARGE)
     libc.mallopt(_M_TRIM_THRESHOLD, _LARGE)
     libc.malloc_trim(0)
-
-
-def write_marker(path, payload: dict) -> None:
-    """Write a block's marker (its small JSON result) atomically: a marker that exists is complete.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The marker file (:meth:`BlockRun.marker`).
-    payload : dict
-        JSON-serialisable result of the block, returned again when a resumed run skips it.
-    """
-    with atomic_path(str(path)) as tmp, open(tmp, "w") as fh:
-        json.dump(payload, fh)
 
 
 def kernel_threads(client) -> dict:
@@ -325,8 +310,6 @@ class BlockRun:
             The blocks' results (summaries) for the blocks computed now, then the markers' payloads of the
             finished ones.
         """
-        from .apply import BlockPlace, apply_block
-
         todo, done = self.pending(step.name, blocks)
         shape = source.shape if source is not None else self.shape
         lists = None
@@ -399,8 +382,22 @@ class BlockRun:
                 return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
 
 
-def trace_cube(cube, what: str):
+def trace_cube(cube, what: str, *, chunks: tuple = (64, -1, -1), dtype=None):
     """``cube`` as a dask array whose chunks hold whole traces (3D, at least 3 samples per axis).
+
+    Parameters
+    ----------
+    cube : (n_inlines, n_xlines, n_samples) dask.array.Array or array_like
+    what : str
+        The computation, named in the message.
+    chunks : tuple
+        Chunks of an array given in memory (whole traces: -1 samples).
+    dtype : numpy dtype, optional
+        Cast to it (e.g. float32) unless it is the cube's.
+
+    Returns
+    -------
+    (n_inlines, n_xlines, n_samples) dask.array.Array
 
     Raises
     ------
@@ -414,7 +411,9 @@ def trace_cube(cube, what: str):
         raise InputError(f"{what} needs a 3D cube (n_inlines, n_xlines, n_samples) with at least 3 samples per axis; "
                          f"got shape {x.shape}")
     if not isinstance(x, da.Array):
-        x = da.from_array(x, chunks=(64, -1, -1))
+        x = da.from_array(x, chunks=chunks)
     if len(x.chunks[2]) != 1:
         x = x.rechunk({2: -1})
+    if dtype is not None and x.dtype != dtype:
+        x = x.astype(dtype)
     return x

@@ -14,7 +14,8 @@ from dataclasses import dataclass
 from ...errors import InputError
 
 __all__ = ["BlockStep", "CUBE", "MEMORY_HEADROOM", "STEP_KINDS", "around", "block_budget", "largest_block", "lateral_blocks",
-           "limit_for_blocks", "plan_steps", "serial_step_blocks", "usable_cores"]
+           "limit_for_blocks", "plan_steps", "refuse_over_budget", "serial_step_blocks",
+           "smallest_need", "usable_cores"]
 
 # Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
 # for the allocator's fragmentation and the reads in flight (a chunked likelihood run peaked at 1.54 GB under a
@@ -202,6 +203,48 @@ def plan_steps(steps, *, tile: int, budget: int) -> dict:
     return {s.name: int(s.fixed) if s.fixed else largest_block(int(tile), int(s.cap),
                                                                 lambda b, s=s: s.block_bytes(b) <= budget)
             for s in steps if s.block_bytes is not None}
+
+
+def smallest_need(steps, tile: int) -> int:
+    """Bytes of the largest of ``steps`` with their smallest blocks (``tile`` traces a side): what a memory limit must
+    leave beside the process (before :data:`MEMORY_HEADROOM`).
+
+    Parameters
+    ----------
+    steps : iterable of BlockStep
+        Those without ``block_bytes`` are left out.
+    tile : int
+
+    Returns
+    -------
+    int
+    """
+    return int(max(step.block_bytes(int(tile)) for step in steps if step.block_bytes is not None))
+
+
+def refuse_over_budget(steps, sizes: dict, *, budget: int, baseline: int, workers: int, limit: int,
+                       what: str) -> None:
+    """Refuse a plan whose largest block needs more than ``budget``.
+
+    Parameters
+    ----------
+    steps : iterable of BlockStep
+    sizes : dict
+        Of :func:`plan_steps`.
+    budget, baseline, workers, limit : int
+        As :func:`block_budget`'s (bytes; blocks at once).
+    what : str
+        What is computed, e.g. ``'a chunked fault likelihood of a 400 x 400 x 500 cube'``.
+
+    Raises
+    ------
+    InputError
+        Naming the memory it needs and the limit.
+    """
+    need = max(step.block_bytes(sizes[step.name]) for step in steps if step.block_bytes is not None)
+    if need > budget:
+        raise InputError(f"{what} needs about {(need * int(workers) + baseline) / 2**30:.2f} GiB but the memory limit "
+                         f"is {limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
 
 
 def serial_step_blocks(step: BlockStep, *, limit: int, baseline: int, workers: int, scheduler,

@@ -41,7 +41,7 @@ from ...._options import resolve_options
 from ....errors import InputError
 from ...blocks.apply import BlockOutput
 from ...blocks.executor import SchedulerClient, trace_cube
-from ...blocks.memory import default_memory_limit, worker_baseline
+from ...blocks.memory import chunk_bytes, default_memory_limit, worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
     CUBE, BlockStep, block_budget, largest_block, lateral_blocks, limit_for_blocks, serial_step_blocks,
@@ -124,8 +124,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     chunking = chunking or ChunkOptions()
     x = trace_cube(cube, "a chunked learned fault likelihood")
     shape = tuple(int(n) for n in x.shape)
-    input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * shape[2]
-    plan = _plan(shape, opt, chunking, worker_baseline(chunking, input_chunk))
+    plan = _plan(shape, opt, chunking, worker_baseline(chunking, chunk_bytes(x)))
     out = pathlib.Path(output)
     run = StoreRun(out, chunking, progress)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt))), "plan": plan,

@@ -40,9 +40,11 @@ from ...._options import resolve_options
 from ....errors import InputError
 from ...blocks.apply import BlockOutput
 from ...blocks.executor import SchedulerClient, trace_cube
-from ...blocks.memory import default_memory_limit, worker_baseline
+from ...blocks.memory import chunk_bytes, default_memory_limit, worker_baseline
 from ...blocks.options import ChunkOptions
-from ...blocks.plan import CUBE, BlockStep, block_budget, lateral_blocks, plan_steps
+from ...blocks.plan import (
+    CUBE, BlockStep, block_budget, lateral_blocks, plan_steps, refuse_over_budget, smallest_need,
+)
 from ...blocks.stores import StoreRun, read_sheared, write_coords
 from ..result import ChunkedLikelihood
 from .scan import (
@@ -138,8 +140,7 @@ def smallest_block_bytes(shape, options: FaultScanOptions | None, tile: int) -> 
     -------
     int
     """
-    steps = block_steps(tuple(int(n) for n in shape), options or FaultScanOptions())
-    return int(max(step.block_bytes(int(tile)) for step in steps if step.block_bytes is not None))
+    return smallest_need(block_steps(tuple(int(n) for n in shape), options or FaultScanOptions()), tile)
 
 
 def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
@@ -153,14 +154,9 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
     budget = block_budget(limit, baseline, int(chunking.workers))
     steps = block_steps(shape, options, chunking)
     sizes = plan_steps(steps, tile=tile, budget=budget)
-    block, balance, strip = sizes["semblance"], sizes["balance"], sizes["scan"]
-    need = max(step.block_bytes(sizes[step.name]) for step in steps if step.block_bytes is not None)
-    if need > budget:
-        raise InputError(
-            f"a chunked run of a {n0} x {n1} x {nt} cube needs about "
-            f"{(need * int(chunking.workers) + baseline) / 2**30:.2f} GiB but the memory limit is "
-            f"{limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
-    return _Plan((n0, n1, nt), tile, block, balance, strip, bhalo, halo, shalo, m)
+    refuse_over_budget(steps, sizes, budget=budget, baseline=baseline, workers=chunking.workers, limit=limit,
+                       what=f"a chunked run of a {n0} x {n1} x {nt} cube")
+    return _Plan((n0, n1, nt), tile, sizes["semblance"], sizes["balance"], sizes["scan"], bhalo, halo, shalo, m)
 
 
 def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None = None,
@@ -212,11 +208,8 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     """
     opt = resolve_options(FaultScanOptions, options, overrides, "chunked_fault_likelihood")
     chunking = chunking or ChunkOptions()
-    x = trace_cube(cube, "a chunked fault likelihood")
-    if x.dtype != np.float32:
-        x = x.astype(np.float32)
-    input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * x.shape[2]
-    plan = _plan(x.shape, opt, chunking, worker_baseline(chunking, input_chunk))
+    x = trace_cube(cube, "a chunked fault likelihood", dtype=np.float32)
+    plan = _plan(x.shape, opt, chunking, worker_baseline(chunking, chunk_bytes(x)))
     out = pathlib.Path(output)
     run = StoreRun(out, chunking, progress)
     earlier = run.earlier_plan(_manifest(x.shape, opt, plan))

@@ -1,4 +1,4 @@
-"""The streamed statistics of the thinned votes (seismo3d.seismic.faults.surfaces.thresholds) equal the libraries' on
+"""The streamed statistics of the thinned votes (seismo3d.seismic.blocks.statistics) equal the libraries' on
 the whole values: Otsu's threshold from summed block histograms equals scikit-image's, the quantile from a fine
 histogram and a
 window of gathered values equals numpy's, to the bit."""
@@ -8,7 +8,7 @@ import pytest
 from skimage.filters import threshold_otsu
 
 from seismo3d.seismic.faults import FaultTracingOptions
-from seismo3d.seismic.faults.surfaces.thresholds import (
+from seismo3d.seismic.blocks.statistics import (
     HISTOGRAM_BINS, QUANTILE_BINS, block_histogram, otsu, otsu_of_histogram, quantile_of_window, quantile_window,
 )
 

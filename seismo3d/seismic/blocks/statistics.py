@@ -189,7 +189,7 @@ def window_block(values, lo_edge: float, hi_edge: float) -> BlockOutput:
                                 "values": values[(values >= lo_edge) & (values <= hi_edge)].tolist()})
 
 
-def statistic_steps(array: str) -> dict:
+def statistic_steps(array: str, what: str) -> dict:
     """The steps that reduce the positive values of a stored ``array`` over blocks: ``'histogram'`` (Otsu's bins),
     ``'quantile_histogram'`` (the quantile's fine bins) and ``'quantile'`` (the values of its window gathered).
 
@@ -197,17 +197,19 @@ def statistic_steps(array: str) -> dict:
     ----------
     array : str
         The name of the array in the run's stores.
+    what : str
+        What its values are, in the progress reports' labels (e.g. ``'the thinned votes'``).
 
     Returns
     -------
     dict
         ``{name: BlockStep}``.
     """
-    label = f"histogram of {array}"
+    label = f"histogram of {what}"
     return {"histogram": BlockStep("histogram", "reduce", function=histogram_block, label=label, inputs=(array,)),
             "quantile_histogram": BlockStep("quantile_histogram", "reduce", function=histogram_block, label=label,
                                             inputs=(array,)),
-            "quantile": BlockStep("quantile", "gather", function=window_block, label=f"quantile of {array}",
+            "quantile": BlockStep("quantile", "gather", function=window_block, label=f"quantile of {what}",
                                   inputs=(array,))}
 
 

@@ -310,7 +310,7 @@ class _SurfaceRun(StoreRun):
         self.likelihood, self.plan, self.opt = str(likelihood), plan, opt
         self.x, self.memory = x, memory  # the cube (dask, whole traces) and the memory limit, bytes
         self.steps = {step.name: step for step in block_steps(plan.shape, opt, 0)}
-        self.statistics = statistic_steps("thin_raw")
+        self.statistics = statistic_steps("thin_raw", "the thinned votes")
 
     def start(self, manifest: dict) -> None:
         """Open the work folder with ``manifest``, its work arrays (the masks near dead samples, compressed; the

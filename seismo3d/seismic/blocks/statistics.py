@@ -171,19 +171,50 @@ def _float32_range(vmin: float, vmax: float) -> tuple:
 # -- over the blocks of a run --------------------------------------------------------------------------------------
 
 def positive_values(values) -> np.ndarray:
-    """The positive values of an array, flattened."""
+    """The positive values of an array, flattened.
+
+    Parameters
+    ----------
+    values : ndarray
+
+    Returns
+    -------
+    (k,) ndarray
+        Of the array's dtype.
+    """
     return values[values > 0]
 
 
 def histogram_block(values, vmin: float, vmax: float, bins: int) -> BlockOutput:
-    """The counts of one block's positive values in ``bins`` bins over ``[vmin, vmax]`` (:func:`block_histogram`),
-    as its summary ``counts``."""
+    """The counts of one block's positive values in ``bins`` bins over ``[vmin, vmax]`` (:func:`block_histogram`).
+
+    Parameters
+    ----------
+    values : ndarray
+    vmin, vmax : float
+    bins : int
+
+    Returns
+    -------
+    BlockOutput
+        Summary ``counts``: a list of ``bins`` ints.
+    """
     return BlockOutput(summary={"counts": block_histogram(positive_values(values), vmin, vmax, bins).tolist()})
 
 
 def window_block(values, lo_edge: float, hi_edge: float) -> BlockOutput:
-    """One block's positive values below ``lo_edge`` counted (``below``) and those in ``[lo_edge, hi_edge]`` listed
-    (``values``), as its summary."""
+    """One block's positive values below ``lo_edge`` counted and those in ``[lo_edge, hi_edge]`` listed.
+
+    Parameters
+    ----------
+    values : ndarray
+    lo_edge, hi_edge : float
+
+    Returns
+    -------
+    BlockOutput
+        Summary ``below`` (int) and ``values`` (list of floats).
+    """
     values = positive_values(values)
     return BlockOutput(summary={"below": int(np.count_nonzero(values < lo_edge)),
                                 "values": values[(values >= lo_edge) & (values <= hi_edge)].tolist()})

@@ -373,6 +373,20 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     (``place.block``, direction ``axis``), from the amplitudes of its input region (``place.region``, read with the
     receptive half of halo along the sections).
 
+    Parameters
+    ----------
+    place : BlockPlace
+        The block on the network grid and its input region (:func:`_network_region`).
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of ``place.region``.
+    axis : {0, 1}
+        The sections' direction (inlines, crosslines).
+    opt : LearnedOptions
+    factor : float
+        The network grid's resampling factor.
+    scale : (float, float)
+        The cube's amplitude scale (:func:`amplitude_scale`).
+
     Returns
     -------
     BlockOutput

@@ -278,6 +278,20 @@ def _saturated_fraction(run: StoreRun, results: list, plan: _Plan, coords: dict 
 def balance_block(place, f, opt: FaultScanOptions, stats: AmplitudeStatistics) -> BlockOutput:
     """Balanced amplitudes of a block read with the balancing's halo (:func:`balance_amplitudes`).
 
+    Parameters
+    ----------
+    place : BlockPlace
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of ``place.region``.
+    opt : FaultScanOptions
+    stats : AmplitudeStatistics
+        Of the whole cube.
+
+    Returns
+    -------
+    BlockOutput
+        ``balanced``: (m0, m1, n_samples) float32, cut to the core by the executor.
+
     Raises
     ------
     InputError
@@ -293,7 +307,21 @@ def balance_block(place, f, opt: FaultScanOptions, stats: AmplitudeStatistics) -
 
 def semblance_block(place, f, opt: FaultScanOptions) -> BlockOutput:
     """Semblance terms of a block of balanced amplitudes read with the semblance's halo
-    (:func:`semblance_terms`), and the sum of the core's denominators (the semblance floor's)."""
+    (:func:`semblance_terms`), and the sum of the core's denominators (the semblance floor's).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    f : (m0, m1, n_samples) float32 ndarray
+        Balanced amplitudes of ``place.region``.
+    opt : FaultScanOptions
+
+    Returns
+    -------
+    BlockOutput
+        ``numerator``, ``denominator`` of the core, float32 at the scan's grouped samples; summary
+        ``sum_denominator``.
+    """
     sn, sd = semblance_terms(f, opt)
     sn, sd = sn[place.core], sd[place.core]
     return BlockOutput({"numerator": sn, "denominator": sd}, {"sum_denominator": float(sd.sum(dtype=np.float64))})
@@ -301,8 +329,28 @@ def semblance_block(place, f, opt: FaultScanOptions) -> BlockOutput:
 
 def scan_block(place, numerator, denominator, axis: int, opt: FaultScanOptions, tiny: float, n_samples: int,
                tile: int) -> BlockOutput:
-    """The planes sheared along ``axis`` (:func:`scan_planes`) on a block that holds that whole axis, the semblance
-    terms read in the sheared layout (``numerator``, ``denominator``: arrays read by slicing); the core's key."""
+    """The planes sheared along ``axis`` (:func:`scan_planes`) on a block that holds that whole axis.
+
+    Parameters
+    ----------
+    place : BlockPlace
+        The block (every trace along ``axis``) and the region read (the strike smoothing's halo across it).
+    numerator, denominator : (n_inlines, n_xlines, m) arrays read by slicing
+        Semblance terms, read here in the sheared layout (:func:`~seismo3d.seismic.blocks.stores.read_sheared`).
+    axis : {0, 1}
+    opt : FaultScanOptions
+    tiny : float
+        The semblance floor.
+    n_samples : int
+        Samples per trace of the cube.
+    tile : int
+        Rows read at once.
+
+    Returns
+    -------
+    BlockOutput
+        ``key``: the core's packed scan keys, int32.
+    """
     a0, a1, b0, b1 = place.region
     i0, i1, j0, j1 = place.block
     core, origin = ((j0 - b0, j1 - b0), b0) if axis == 0 else ((i0 - a0, i1 - a0), a0)
@@ -315,7 +363,23 @@ def scan_block(place, numerator, denominator, axis: int, opt: FaultScanOptions, 
 
 def decode_block(key, denominator, opt: FaultScanOptions, tiny: float, n_samples: int) -> BlockOutput:
     """Likelihood, strike and dip of a block from the combined key (:func:`decode_scan`), with its saturated and
-    live samples."""
+    live samples.
+
+    Parameters
+    ----------
+    key : (m0, m1, m) int32 ndarray
+        Packed scan keys.
+    denominator : (m0, m1, m) float32 ndarray
+        Semblance denominators (live where above ``tiny``).
+    opt : FaultScanOptions
+    tiny : float
+    n_samples : int
+
+    Returns
+    -------
+    BlockOutput
+        ``likelihood``, ``strike_deg``, ``dip_deg``: (m0, m1, n_samples) float32; summary ``high``, ``live``.
+    """
     live = denominator > tiny
     high, n_live = saturation_counts(key, live, opt.saturation_level)
     del live

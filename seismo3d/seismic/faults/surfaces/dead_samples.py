@@ -333,6 +333,20 @@ def warn_dead(n_dead: int, n: int, n_dead_traces: int, *, options: DeadSampleOpt
 
 
 def fill_block(f, lo: float, hi: float, dead) -> BlockOutput:
-    """The fill values of one block of amplitudes under the dead-sample rules (:func:`fill_values`)."""
+    """The fill values of one block of amplitudes under the dead-sample rules (:func:`fill_values`).
+
+    Parameters
+    ----------
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of the block.
+    lo, hi : float
+        The cube's smallest and largest amplitude.
+    dead : DeadSampleOptions
+
+    Returns
+    -------
+    BlockOutput
+        Summary ``fill``: the fill values found, a list of floats.
+    """
     return BlockOutput(summary={"fill": [float(v) for v in fill_values(np.asarray(f, np.float32), lo, hi,
                                                                         options=dead)]})

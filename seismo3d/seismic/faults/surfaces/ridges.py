@@ -438,8 +438,20 @@ def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, s
 
 
 def thin_block(place, votes, strike, dip) -> BlockOutput:
-    """Thinned votes of one block (:func:`thin_votes`, its votes read with ``THIN_HALO``); the count, smallest and
-    largest of the positive ones of its core."""
+    """Thinned votes of one block (:func:`thin_votes`), and the count, smallest and largest of the positive ones of
+    its core (the thresholds' range).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    votes, strike, dip : (m0, m1, n_samples) float32 ndarrays
+        Votes and their strike and dip (degrees) over ``place.region``: the block grown by ``THIN_HALO``.
+
+    Returns
+    -------
+    BlockOutput
+        ``thin_raw``: (core, n_samples) float32; summary ``count``, ``min``, ``max``.
+    """
     thin = thin_votes(votes, strike, dip)[place.core]
     positive = thin[thin > 0]
     return BlockOutput({"thin_raw": thin}, {"count": int(positive.size),
@@ -448,8 +460,22 @@ def thin_block(place, votes, strike, dip) -> BlockOutput:
 
 
 def cell_block(place, thin, strike, dip, lower: float) -> BlockOutput:
-    """The thinned votes at or above ``lower`` of one block (the others set to 0), and its cells (points, values,
-    strike, dip) as lists."""
+    """The thinned votes at or above ``lower`` of one block (the others set to 0), and its cells.
+
+    Parameters
+    ----------
+    place : BlockPlace
+    thin, strike, dip : (m0, m1, n_samples) float32 ndarrays
+        Thinned votes (modified in place) and the votes' strike and dip (degrees) of the block's core.
+    lower : float
+        Lower threshold.
+
+    Returns
+    -------
+    BlockOutput
+        ``thin``; lists ``points`` (k, 3) int64 cube indices, ``values``, ``strike``, ``dip`` (k,) float32; summary
+        ``count``.
+    """
     thin[thin < lower] = 0.0
     cells = np.argwhere(thin >= lower)
     at = tuple(cells.T)

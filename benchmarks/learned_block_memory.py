@@ -3,10 +3,10 @@
 
 Measured with tracemalloc (numpy reports its arrays to it), after a warm-up that loads the weights:
 
-* network blocks of both directions, as ``learned_blocks._network_block`` runs them (the region as read, the
+* network blocks of both directions, as ``learned_blocks.network_block`` runs them (the region as read, the
   resampling, the network on the block's sections, the write of its core to a work array), for blocks of a few
   sections and of many, narrow and as wide as the cube; printed beside the bytes the plan's model gives them;
-* an interior orientation block, as ``learned_blocks._orientation_block`` runs it (both directions' probabilities
+* an interior orientation block, as ``learned_blocks.orientation_block`` runs it (both directions' probabilities
   read from their work arrays, their maximum interpolated onto the block, ``orientation_from_likelihood``, the dip
   mask, the writes), per sample of the block with its halo beside the planned constant.
 
@@ -27,6 +27,7 @@ from seismo3d.seismic.faults.likelihood import learned_blocks as lb
 from seismo3d.seismic.faults.likelihood.learned import (
     LearnedOptions, amplitude_scale, fault_probability, orientation_from_likelihood,
 )
+from seismo3d.seismic.blocks.apply import BlockPlace
 from seismo3d.seismic.blocks.options import ChunkOptions
 
 
@@ -55,7 +56,7 @@ def network_blocks(opt: LearnedOptions) -> None:
                 region = cube[a0:a1, b0:b1]
                 tracemalloc.start()
                 read = region.copy()  # the block as read
-                lb._network_block(read, (a0, b0), block, axis, array, opt, factor, scale, f"{work}/marker.json")
+                lb.network_block(BlockPlace(block, (a0, a1, b0, b1)), read, axis, opt, factor, scale)
                 _, peak = tracemalloc.get_traced_memory()
                 tracemalloc.stop()
                 del read
@@ -73,17 +74,18 @@ def orientation_blocks(opt: LearnedOptions) -> None:
         shape = (3 * core, 3 * core, nt)
         plan = lb._plan(shape, opt, ChunkOptions(block=core, memory_limit=8 << 30), 0)
         work = tempfile.mkdtemp(prefix="learned_memory_")
-        grid, c = plan["network_shape"], plan["network_chunk"]
-        for name in plan["network_blocks"]:  # the two directions' probabilities on the network grid
-            zarr.create_array(f"{work}/network_{name}", shape=tuple(grid), chunks=(c, c, grid[2]), dtype="float32",
-                              compressors=None)[:] = rng.random(tuple(grid), dtype=np.float32)
-        partial = zarr.open_group(f"{work}/out.partial", mode="w")
-        for name in ("likelihood", "strike_deg", "dip_deg"):
-            partial.create_array(name, shape=shape, chunks=(core, core, nt), dtype="float32")
+        c, networks = plan["network_chunk"], []
+        for k, g in enumerate(plan["grids"]):  # each grid's directions' probabilities on its network grid
+            grid = tuple(g["network_shape"])
+            for name in g["network_blocks"]:
+                networks.append(zarr.create_array(f"{work}/network_{name}_{k}", shape=grid, chunks=(c, c, grid[2]),
+                                                  dtype="float32", compressors=None))
+                networks[-1][:] = rng.random(grid, dtype=np.float32)
         block = (core, 2 * core, core, 2 * core)  # an interior block: its halo on every side
         side = core + 2 * halo
         tracemalloc.start()
-        lb._orientation_block(block, plan, work, f"{work}/out.partial", opt, f"{work}/marker.json")
+        region = (core - halo, 2 * core + halo, core - halo, 2 * core + halo)  # halo < core here
+        lb.orientation_block(BlockPlace(block, region), *networks, plan, opt)
         _, peak = tracemalloc.get_traced_memory()
         tracemalloc.stop()
         print(f"  block {core} + 2 x {halo} = {side}^2 traces x {nt} samples: peak {peak / 2**20:.1f} MiB, "

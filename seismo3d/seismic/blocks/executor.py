@@ -18,7 +18,6 @@ from __future__ import annotations
 import ctypes
 import ctypes.util
 import json
-import os
 import pathlib
 import sys
 import time
@@ -26,10 +25,10 @@ import uuid
 
 import numpy as np
 
-from ..._atomic import atomic_path
 from ..._progress import LOGGER, progress_steps
 from ...errors import EarlierStoresError, InputError
-from .plan import BlockStep, around, usable_cores
+from .apply import BlockPlace, apply_block, write_marker
+from .plan import CUBE, BlockStep, around, usable_cores
 
 __all__ = ["BlockRun", "SchedulerClient", "kernel_threads", "release_memory", "run_block", "trace_cube",
            "write_marker"]
@@ -63,20 +62,6 @@ def release_memory() -> None:
     libc.mallopt(_M_MMAP_THRESHOLD, _LARGE)
     libc.mallopt(_M_TRIM_THRESHOLD, _LARGE)
     libc.malloc_trim(0)
-
-
-def write_marker(path, payload: dict) -> None:
-    """Write a block's marker (its small JSON result) atomically: a marker that exists is complete.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The marker file (:meth:`BlockRun.marker`).
-    payload : dict
-        JSON-serialisable result of the block, returned again when a resumed run skips it.
-    """
-    with atomic_path(str(path)) as tmp, open(tmp, "w") as fh:
-        json.dump(payload, fh)
 
 
 def kernel_threads(client) -> dict:
@@ -190,10 +175,17 @@ class BlockRun:
     seconds : dict
         Wall-clock seconds per step.
     client : distributed.Client or None
+    arrays : dict
+        ``{name: Zarr array path}``: the stores that declared steps read and write (set by
+        :class:`~seismo3d.seismic.blocks.stores.StoreRun` and its callers).
+    shape : tuple or None
+        ``(n_inlines, n_xlines, n_samples)`` of the cube: the bounds of the regions read by declared steps that
+        read no cube.
     """
 
     def __init__(self, work: pathlib.Path, *, scheduler=None, workers: int = 1, progress: bool = False):
         self.work = pathlib.Path(work)
+        self.arrays, self.shape = {}, None
         self.scheduler, self.workers, self.progress = scheduler, int(workers), progress
         self.computed, self.resumed, self.seconds = {}, {}, {}
         self.client = None
@@ -232,10 +224,11 @@ class BlockRun:
         same = {k: v for k, v in earlier.items() if k != "plan"} == {k: v for k, v in manifest.items() if k != "plan"}
         return earlier.get("plan") if same else None
 
-    def task(self, fn, *args, threads: bool = True):
+    def task(self, fn, *args, threads: bool = True, name: str | None = None):
         """A dask delayed task ``fn(*args)`` of one block (impure: run once per compute), named after ``fn``; on a
         ``dask.distributed`` cluster its kernels use the worker's share of the host's cores (:func:`kernel_threads`)
-        unless ``threads`` is False (a step whose float sums depend on the number of threads, kept as in memory)."""
+        unless ``threads`` is False (a step whose float sums depend on the number of threads, kept as in memory);
+        ``name`` names the task instead of ``fn``."""
         import dask
 
         share = None
@@ -243,8 +236,8 @@ class BlockRun:
             if self._kernel_threads is None:
                 self._kernel_threads = kernel_threads(self.client)
             share = self._kernel_threads
-        name = f"{fn.__name__.strip('_')}-{uuid.uuid4().hex}"
-        return dask.delayed(run_block, pure=False)(fn, share, *args, dask_key_name=name)
+        key = f"{(name or fn.__name__).strip('_')}-{uuid.uuid4().hex}"
+        return dask.delayed(run_block, pure=False)(fn, share, *args, dask_key_name=key)
 
     def saved(self, name: str, compute):
         """A small result of the whole run (a statistic of the cube), computed once: ``compute()`` the first time,
@@ -286,39 +279,59 @@ class BlockRun:
         return todo, [json.loads(self.marker(step, b).read_text()) for b in done]
 
     def run_step(self, step: BlockStep, blocks, *args, source=None, workers: int | None = None) -> list:
-        """Run a declared step on every block of ``blocks`` not finished by an earlier run: its function as a dask
-        task per block (:meth:`task`), ``workers`` blocks at once on the threaded scheduler (default the run's).
+        """Run a step on every block of ``blocks`` not finished by an earlier run: a dask task per block
+        (:meth:`task`), ``workers`` blocks at once on the threaded scheduler (default the run's).
+
+        A step that declares its ``inputs`` / ``outputs`` runs as
+        :func:`~seismo3d.seismic.blocks.apply.apply_block`: each block's inputs read around it (the cube from
+        ``source``, the others from :attr:`arrays`), its algorithm called on arrays, the core of its outputs written
+        to :attr:`arrays`, its lists saved in ``WORK/<step name>/``, its marker written last. Any other step's
+        function reads and writes by itself.
 
         Parameters
         ----------
         step : BlockStep
-            Its name (markers, seconds), function, label, halo or region, and whether its kernels take the worker's
-            share of the cores.
+            Its name (markers, seconds), function, label, halo or region, declared inputs and outputs, and whether
+            its kernels take the worker's share of the cores.
         blocks : list of tuple
             ``(i0, i1, j0, j1)`` of the step's blocks (a step on another grid: items 0 and 2 its first rows).
         *args
-            Passed to the function after the block (and before the marker's path).
+            Passed to the function after the block's arrays (an undeclared step: after the block, before the
+            marker's path).
         source : (n_inlines, n_xlines, n_samples) dask.array.Array, optional
             The input cube: each block's region (``step.region``, default the block grown by ``step.halo``) is
-            read from it and passed first, with the region's origin, as ``function(window, origin, block, *args,
-            marker)``; without it ``function(block, *args, marker)`` reads its own inputs from the stores.
+            read from it; an undeclared step gets it first, with the region's origin, as ``function(window, origin,
+            block, *args, marker)``, else ``function(block, *args, marker)`` reads its own inputs.
         workers : int, optional
 
         Returns
         -------
         list
-            The function's results for the blocks computed now, then the markers' payloads of the finished ones.
+            The blocks' results (summaries) for the blocks computed now, then the markers' payloads of the
+            finished ones.
         """
         todo, done = self.pending(step.name, blocks)
+        shape = source.shape if source is not None else self.shape
+        lists = None
+        if step.declared:
+            lists = self.work / step.name
+            lists.mkdir(exist_ok=True)
         tasks = []
         for b in todo:
             marker = str(self.marker(step.name, b))
-            if source is None:
+            region = None
+            if source is not None or step.declared:
+                region = step.region(b) if step.region is not None else around(b, step.halo, shape)
+            window = None if source is None else source[region[0]:region[1], region[2]:region[3]]
+            if step.declared:
+                tasks.append(self.task(apply_block, window if CUBE in step.inputs else None, step,
+                                       BlockPlace(tuple(b), tuple(region)), self.arrays, str(lists), marker, *args,
+                                       threads=step.threads, name=step.function.__name__))
+            elif source is None:
                 tasks.append(self.task(step.function, b, *args, marker, threads=step.threads))
-                continue
-            a0, a1, b0, b1 = step.region(b) if step.region is not None else around(b, step.halo, source.shape)
-            tasks.append(self.task(step.function, source[a0:a1, b0:b1], (a0, b0), b, *args, marker,
-                                   threads=step.threads))
+            else:
+                tasks.append(self.task(step.function, window, (region[0], region[2]), b, *args, marker,
+                                       threads=step.threads))
         return self.compute(tasks, step.label or step.name, step.name, workers=workers) + done
 
     def reduce_cube(self, parts) -> list:
@@ -369,8 +382,22 @@ class BlockRun:
                 return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
 
 
-def trace_cube(cube, what: str):
+def trace_cube(cube, what: str, *, chunks: tuple = (64, -1, -1), dtype=None):
     """``cube`` as a dask array whose chunks hold whole traces (3D, at least 3 samples per axis).
+
+    Parameters
+    ----------
+    cube : (n_inlines, n_xlines, n_samples) dask.array.Array or array_like
+    what : str
+        The computation, named in the message.
+    chunks : tuple
+        Chunks of an array given in memory (whole traces: -1 samples).
+    dtype : numpy dtype, optional
+        Cast to it (e.g. float32) unless it is the cube's.
+
+    Returns
+    -------
+    (n_inlines, n_xlines, n_samples) dask.array.Array
 
     Raises
     ------
@@ -384,7 +411,9 @@ def trace_cube(cube, what: str):
         raise InputError(f"{what} needs a 3D cube (n_inlines, n_xlines, n_samples) with at least 3 samples per axis; "
                          f"got shape {x.shape}")
     if not isinstance(x, da.Array):
-        x = da.from_array(x, chunks=(64, -1, -1))
+        x = da.from_array(x, chunks=chunks)
     if len(x.chunks[2]) != 1:
         x = x.rechunk({2: -1})
+    if dtype is not None and x.dtype != dtype:
+        x = x.astype(dtype)
     return x

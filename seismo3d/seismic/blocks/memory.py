@@ -15,7 +15,7 @@ import numpy as np
 
 from ...errors import InputError
 
-__all__ = ["default_memory_limit", "fits_in_memory", "in_memory_bytes", "parse_memory_limit", "resident_memory",
+__all__ = ["chunk_bytes", "default_memory_limit", "fits_in_memory", "in_memory_bytes", "parse_memory_limit", "resident_memory",
            "size_text", "worker_baseline"]
 
 # The in-memory `seismo3d faults` beyond the process that decides (its imports, about 150-160 MiB): a fixed part (the
@@ -85,6 +85,21 @@ def worker_baseline(chunking, input_chunk: int) -> int:
     """
     local = chunking.scheduler in (None, "threads", "synchronous")
     return (resident_memory() if local else 256 << 20) + 2 * int(input_chunk)
+
+
+def chunk_bytes(x) -> int:
+    """Bytes of the largest chunk of a 3D dask array of float32 whole traces (what :func:`worker_baseline` holds
+    twice).
+
+    Parameters
+    ----------
+    x : (n_inlines, n_xlines, n_samples) dask.array.Array
+
+    Returns
+    -------
+    int
+    """
+    return 4 * max(x.chunks[0]) * max(x.chunks[1]) * int(x.shape[2])
 
 
 def parse_memory_limit(value) -> int:

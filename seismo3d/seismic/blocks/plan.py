@@ -13,8 +13,9 @@ from dataclasses import dataclass
 
 from ...errors import InputError
 
-__all__ = ["BlockStep", "MEMORY_HEADROOM", "STEP_KINDS", "around", "block_budget", "largest_block", "lateral_blocks",
-           "limit_for_blocks", "plan_steps", "serial_step_blocks", "usable_cores"]
+__all__ = ["BlockStep", "CUBE", "MEMORY_HEADROOM", "STEP_KINDS", "around", "block_budget", "largest_block", "lateral_blocks",
+           "limit_for_blocks", "plan_steps", "refuse_over_budget", "serial_step_blocks",
+           "smallest_need", "usable_cores"]
 
 # Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
 # for the allocator's fragmentation and the reads in flight (a chunked likelihood run peaked at 1.54 GB under a
@@ -87,6 +88,8 @@ def largest_block(tile: int, cap: int, fits) -> int:
 
 
 STEP_KINDS = ("map", "reduce", "gather")
+# The name of the input cube among a step's declared inputs
+CUBE = "cube"
 
 
 @dataclass(frozen=True)
@@ -128,6 +131,27 @@ class BlockStep:
     threads : bool
         On a ``dask.distributed`` cluster, a block's kernels use the worker's share of the host's cores; False keeps
         the process's threads (a step whose float sums depend on the number of threads, kept as in memory).
+    inputs : tuple of str
+        Declared inputs: the names of the arrays a block reads, :data:`CUBE` for the input cube (read with the
+        step's ``region`` or ``halo``, like the other inputs). A step with ``inputs`` or ``outputs`` is run by
+        :func:`~seismo3d.seismic.blocks.apply.apply_block`: its ``function`` is an algorithm on arrays,
+        ``function(*arrays, *args)`` (``function(place, *arrays, *args)`` with ``place``), returning a
+        :class:`~seismo3d.seismic.blocks.apply.BlockOutput`; the executor reads, writes and leaves the marker.
+    outputs : tuple of str or of (str, str)
+        Names of the ``(n_inlines, n_xlines, ...)`` arrays whose block core the step writes (the run's stores,
+        :attr:`~seismo3d.seismic.blocks.executor.BlockRun.arrays`), each the name of an array the algorithm returns
+        or ``(returned name, store name)``.
+    place : bool
+        Pass the block's :class:`~seismo3d.seismic.blocks.apply.BlockPlace` (its core and the region read) first.
+    lazy : bool
+        Pass the stored inputs as arrays read by slicing (Zarr arrays), not read around the block: for a step that
+        reads them with other halos or layouts than its own (the algorithm slices them).
+    trim : bool
+        An output array over the region read is cut to the block's core (default); False: the outputs are the
+        core already, on another grid than the region (the fault network's).
+    combine : callable, optional
+        ``combine(new, stored) -> array``: how an output's core combines with what is stored there (e.g.
+        ``numpy.maximum``; default: replaced).
     """
 
     name: str
@@ -140,6 +164,17 @@ class BlockStep:
     label: str = ""
     region: Callable | None = None
     threads: bool = True
+    inputs: tuple = ()
+    outputs: tuple = ()
+    place: bool = False
+    lazy: bool = False
+    trim: bool = True
+    combine: Callable | None = None
+
+    @property
+    def declared(self) -> bool:
+        """Whether the executor reads and writes the step's arrays (declared ``inputs`` or ``outputs``)."""
+        return bool(self.inputs or self.outputs)
 
     def __post_init__(self):
         if self.kind not in STEP_KINDS:
@@ -168,6 +203,48 @@ def plan_steps(steps, *, tile: int, budget: int) -> dict:
     return {s.name: int(s.fixed) if s.fixed else largest_block(int(tile), int(s.cap),
                                                                 lambda b, s=s: s.block_bytes(b) <= budget)
             for s in steps if s.block_bytes is not None}
+
+
+def smallest_need(steps, tile: int) -> int:
+    """Bytes of the largest of ``steps`` with their smallest blocks (``tile`` traces a side): what a memory limit must
+    leave beside the process (before :data:`MEMORY_HEADROOM`).
+
+    Parameters
+    ----------
+    steps : iterable of BlockStep
+        Those without ``block_bytes`` are left out.
+    tile : int
+
+    Returns
+    -------
+    int
+    """
+    return int(max(step.block_bytes(int(tile)) for step in steps if step.block_bytes is not None))
+
+
+def refuse_over_budget(steps, sizes: dict, *, budget: int, baseline: int, workers: int, limit: int,
+                       what: str) -> None:
+    """Refuse a plan whose largest block needs more than ``budget``.
+
+    Parameters
+    ----------
+    steps : iterable of BlockStep
+    sizes : dict
+        Of :func:`plan_steps`.
+    budget, baseline, workers, limit : int
+        As :func:`block_budget`'s (bytes; blocks at once).
+    what : str
+        What is computed, e.g. ``'a chunked fault likelihood of a 400 x 400 x 500 cube'``.
+
+    Raises
+    ------
+    InputError
+        Naming the memory it needs and the limit.
+    """
+    need = max(step.block_bytes(sizes[step.name]) for step in steps if step.block_bytes is not None)
+    if need > budget:
+        raise InputError(f"{what} needs about {(need * int(workers) + baseline) / 2**30:.2f} GiB but the memory limit "
+                         f"is {limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
 
 
 def serial_step_blocks(step: BlockStep, *, limit: int, baseline: int, workers: int, scheduler,

@@ -3,8 +3,9 @@ assembled in ``OUTPUT.partial`` and renamed to ``OUTPUT`` only when every block 
 complete), and its coordinates.
 
 :class:`StoreRun` adds the stores to :class:`~seismo3d.seismic.blocks.executor.BlockRun` (markers, tasks, schedulers);
-what the blocks compute is the caller's (the fault runs by blocks: :mod:`seismo3d.seismic.faults.likelihood.scan_blocks`,
-:mod:`seismo3d.seismic.faults.likelihood.learned_blocks`, :mod:`seismo3d.seismic.faults.surfaces.blocks`).
+what the blocks compute is the declared steps' (:mod:`~seismo3d.seismic.blocks.apply`; the fault runs by blocks:
+:mod:`seismo3d.seismic.faults.likelihood.scan_blocks`, :mod:`seismo3d.seismic.faults.likelihood.learned_blocks`,
+:mod:`seismo3d.seismic.faults.surfaces.blocks`).
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import shutil
 
 import numpy as np
 
-from ...errors import InputError
+from ...errors import EarlierStoresError, InputError
 from ..io.zarr_store import SEISMIC_CODEC, consolidate
 from .executor import BlockRun
 from .options import ChunkOptions
@@ -62,7 +63,8 @@ class StoreRun(BlockRun):
             Traces a side of the arrays' chunks (:attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile`).
         work_arrays : iterable of (str, str, int) or (str, str, int, bool)
             Name, dtype and samples per trace of each intermediate array in the work folder, and whether it is
-            compressed (default: not).
+            compressed (default: not). Every array is named in :attr:`~seismo3d.seismic.blocks.executor.BlockRun.arrays`
+            for the declared steps.
 
         Raises
         ------
@@ -79,7 +81,10 @@ class StoreRun(BlockRun):
         self.open(manifest, f"{self.work} and {self.partial}")
         n0, n1, nt = shape
         t = tile
+        self.shape = tuple(shape)
+        self.arrays.update({name: str(self.partial / name) for name in self.outputs})
         for name, dtype, n, *compressed in work_arrays:
+            self.arrays[name] = str(self.work / name)
             if not (self.work / name).exists():
                 zarr.create_array(str(self.work / name), shape=(n0, n1, n), chunks=(t, t, n), dtype=dtype,
                                   fill_value=0, **({} if compressed and compressed[0] else {"compressors": None}))
@@ -88,6 +93,63 @@ class StoreRun(BlockRun):
             for name in self.outputs:
                 group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
                                    compressors=SEISMIC_CODEC, dimension_names=("inline", "crossline", "sample"))
+
+    def finished_output(self, manifest: dict, what: str) -> dict | None:
+        """The attributes of the finished output of this same run (its ``run`` attribute equal to ``manifest``, the
+        block plan aside: blocks do not change the result), or None when there is no output yet.
+
+        Raises
+        ------
+        EarlierStoresError
+            The output exists but is not the finished output of this run (``what`` says what must be the same).
+        """
+        import zarr
+        if not self.out.exists():
+            return None
+        try:
+            attrs = dict(zarr.open_group(str(self.out), mode="r").attrs)
+        except Exception:  # noqa: BLE001 - anything that is not our Zarr group
+            attrs = {}
+        run = {k: v for k, v in dict(attrs.get("run") or {}).items() if k != "plan"}
+        if attrs.get("complete") is not True or run != {k: v for k, v in manifest.items() if k != "plan"}:
+            raise EarlierStoresError(f"output {self.out} already exists and is not the finished output of this "
+                                     f"{what}; pick another output or delete it", [self.out])
+        return attrs
+
+    def write_gathered(self, folder, blocks, columns: dict, n: int, *, points: str = "points") -> None:
+        """Gather a step's sparse lists into 1-D arrays of the output group, in the C order of their ``points``
+        (``(k, 3)`` sample indices of the cube), a row of blocks at a time.
+
+        Parameters
+        ----------
+        folder : str or os.PathLike
+            The step's folder of lists (:func:`~seismo3d.seismic.blocks.apply.save_lists`).
+        blocks : list of tuple
+            The step's blocks.
+        columns : dict
+            ``{list name: (output array name, dtype)}``; the ``points`` list is written ``(n, 3)``, the others
+            ``(n,)``.
+        n : int
+            Items over all blocks.
+        points : str
+            The list of sample indices that orders the items.
+        """
+        import zarr
+
+        from .apply import gather
+        group = zarr.open_group(str(self.partial), mode="r+")
+        out = {k: group.create_array(name, shape=(n, 3) if k == points else (n,), dtype=dtype, overwrite=True,
+                                     chunks=(1 << 20, 3) if k == points else (1 << 20,))
+               for k, (name, dtype) in columns.items()}
+        start = 0
+        for i0 in sorted({b[0] for b in blocks}):  # a row of blocks at a time: its items in C order (the cube's)
+            row = gather(folder, [b for b in blocks if b[0] == i0], columns)
+            order = np.argsort(np.ravel_multi_index(tuple(row[points].T), self.shape), kind="stable")
+            m = int(order.size)
+            if m:
+                for key, array in out.items():
+                    array[start:start + m] = row[key][order].astype(array.dtype)
+            start += m
 
     def finish(self, attrs: dict | None = None) -> None:
         """Mark the output complete (with ``attrs``, its other attributes), rename it into place and delete the work

@@ -10,8 +10,7 @@ algorithms live in folders that name them:
   :mod:`~seismo3d.seismic.faults.likelihood.scan`, its kernels in ``scan_kernels``).
 - :mod:`~seismo3d.seismic.faults.surfaces`: from likelihood to fault surfaces: dead samples
   (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`), ridges and thinning (:func:`thin_faults`,
-  :mod:`~seismo3d.seismic.faults.surfaces.ridges`), the thresholds' statistics
-  (:mod:`~seismo3d.seismic.faults.surfaces.thresholds`), optimal surface voting (:func:`vote_faults`,
+  :mod:`~seismo3d.seismic.faults.surfaces.ridges`), optimal surface voting (:func:`vote_faults`,
   :mod:`~seismo3d.seismic.faults.surfaces.voting`, its loops in ``voting_kernels``), fault skins (:func:`fault_skins`,
   :mod:`~seismo3d.seismic.faults.surfaces.skins`, its loops in ``skin_kernels``).
 - :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides (:func:`fault_throws`;

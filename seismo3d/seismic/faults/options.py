@@ -14,7 +14,7 @@ from .likelihood.learned import LearnedOptions
 from .likelihood.scan import FaultScanOptions
 from .surfaces.dead_samples import DeadSampleOptions
 from .surfaces.skins import SkinOptions
-from .surfaces.thresholds import otsu, quantile
+from ..blocks.statistics import otsu, quantile
 from .surfaces.voting import VotingOptions
 
 __all__ = ["FaultTracingOptions", "LIKELIHOODS"]

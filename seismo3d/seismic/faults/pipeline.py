@@ -38,8 +38,7 @@ from .likelihood.scan_blocks import chunked_fault_likelihood, smallest_block_byt
 from .options import LIKELIHOODS, FaultTracingOptions
 from .result import FaultInterpretation, FaultLikelihood
 from .steps import ArrayRun, faults_from_cells, no_coherence_message, surface_cells
-from .surfaces.block_steps import CANDIDATE_BYTES, smallest_block_bytes as surfaces_block_bytes
-from .surfaces.blocks import chunked_fault_surfaces
+from .surfaces.blocks import CANDIDATE_BYTES, chunked_fault_surfaces, smallest_block_bytes as surfaces_block_bytes
 from .surfaces.dead_samples import CleanTraces, clean_traces, near_dead_samples
 
 # check_size, check_amplitudes, no_coherence_message and LIKELIHOODS are imported here by older callers

@@ -18,7 +18,7 @@ import numpy as np
 from ..._validation import as_seismic
 from ...errors import InputError
 
-__all__ = ["ChunkedLikelihood", "Fault", "FaultInterpretation", "FaultLikelihood", "FaultThrow", "FaultVotes",
+__all__ = ["ChunkedFaults", "ChunkedLikelihood", "Fault", "FaultInterpretation", "FaultLikelihood", "FaultThrow", "FaultVotes",
            "check_fault_arrays", "fault_frames", "fault_normals", "fault_strike_dip"]
 
 
@@ -397,3 +397,49 @@ class ChunkedLikelihood:
         import zarr
         group = zarr.open_group(str(self.path), mode="r")
         return {name: group[name] for name in ("likelihood", "strike_deg", "dip_deg")}
+
+
+@dataclass(frozen=True, eq=False)
+class ChunkedFaults:
+    """Result of :func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces`.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The output Zarr group: ``likelihood`` (the fault likelihood, 0 near dead samples, as
+        :attr:`~seismo3d.seismic.faults.FaultInterpretation.likelihood`), ``votes`` (optimal-surface votes),
+        ``thin`` (thinned votes at or above the lower threshold, 0 elsewhere), ``vote_strike_deg`` and
+        ``vote_dip_deg``, each (n_inlines, n_xlines, n_samples) float32 with dimensions inline, crossline, sample;
+        the cells linked into skins as ``cell_points`` (n, 3) int32 and ``cell_values``, ``cell_strike_deg``,
+        ``cell_dip_deg`` (n,) float32; attrs ``thresholds``, ``n_seeds``, ``n_cells``, ``saturated_fraction``,
+        ``run`` (what was computed) and ``complete``.
+    faults : list of Fault
+        Fault skins, as :attr:`~seismo3d.seismic.faults.FaultInterpretation.faults`.
+    throws : list of FaultThrow
+        One per fault.
+    evidence : list of FaultEvidence
+        One per fault (:func:`~seismo3d.seismic.faults.evidence.supported_faults`: faults without a displacement
+        are left out, as in memory).
+    thresholds : (float, float)
+        Lower and upper thresholds on the thinned votes.
+    n_seeds, n_cells : int
+        Voting seeds, and thinned-vote samples linked into skins.
+    saturated_fraction : float
+        Fraction of the live samples (not near dead ones) with a likelihood above ``saturation_level``.
+    blocks_computed, blocks_resumed : dict
+        Blocks per step computed in this call and found finished by an earlier one.
+    seconds : dict
+        Wall-clock seconds per step.
+    """
+
+    path: pathlib.Path
+    faults: list
+    throws: list
+    evidence: list
+    thresholds: tuple
+    n_seeds: int
+    n_cells: int
+    saturated_fraction: float
+    blocks_computed: dict
+    blocks_resumed: dict
+    seconds: dict

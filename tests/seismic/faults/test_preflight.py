@@ -7,7 +7,7 @@ import pytest
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError, UnsupportedDataError
 from seismo3d.seismic.faults.likelihood import learned_blocks, scan_blocks as likelihood_blocks
-from seismo3d.seismic.faults.surfaces import block_steps as surface_steps
+from seismo3d.seismic.faults.surfaces import blocks as surface_steps
 from seismo3d.seismic.faults.likelihood.scan import FaultScanOptions
 from seismo3d.seismic.blocks.options import ChunkOptions
 from seismo3d.seismic.faults.options import FaultTracingOptions

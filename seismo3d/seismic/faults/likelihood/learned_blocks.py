@@ -39,11 +39,12 @@ import numpy as np
 
 from ...._options import resolve_options
 from ....errors import InputError
-from ...blocks.executor import SchedulerClient, trace_cube, write_marker
-from ...blocks.memory import default_memory_limit, worker_baseline
+from ...blocks.apply import BlockOutput
+from ...blocks.executor import SchedulerClient, trace_cube
+from ...blocks.memory import chunk_bytes, default_memory_limit, worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
-    BlockStep, block_budget, largest_block, lateral_blocks, limit_for_blocks, serial_step_blocks,
+    CUBE, BlockStep, block_budget, largest_block, lateral_blocks, limit_for_blocks, serial_step_blocks,
 )
 from ...blocks.stores import StoreRun, write_coords
 from ..result import ChunkedLikelihood
@@ -123,8 +124,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     chunking = chunking or ChunkOptions()
     x = trace_cube(cube, "a chunked learned fault likelihood")
     shape = tuple(int(n) for n in x.shape)
-    input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * shape[2]
-    plan = _plan(shape, opt, chunking, worker_baseline(chunking, input_chunk))
+    plan = _plan(shape, opt, chunking, worker_baseline(chunking, chunk_bytes(x)))
     out = pathlib.Path(output)
     run = StoreRun(out, chunking, progress)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt))), "plan": plan,
@@ -143,10 +143,10 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
             for axis in cube_directions(opt):
                 step = next(networks)
                 blocks = _network_blocks(g["network_shape"], *g["network_blocks"][_DIRECTION_NAMES[axis]], axis)
-                run.run_step(step, blocks, axis, str(run.work / step.name), opt, float(g["factor"]), scale, source=x)
+                run.run_step(step, blocks, axis, opt, float(g["factor"]), scale, source=x)
         results = run.run_step(orientation, lateral_blocks(plan["shape"], plan["block_orientation"],
                                                            plan["block_orientation"]),
-                               plan, str(run.work), str(run.partial), opt, workers=plan["workers_orientation"])
+                               plan, opt, workers=plan["workers_orientation"])
         saturated = _saturated_fraction(run, results, plan, coords)
     run.finish()
     return ChunkedLikelihood(out, shape, dict(run.computed), dict(run.resumed), saturated, dict(run.seconds))
@@ -176,16 +176,22 @@ def block_steps(plan: dict, opt: LearnedOptions) -> tuple:
         for axis in cube_directions(opt):
             name = _DIRECTION_NAMES[axis]
             label = f"fault network on {name}s" + (f" (grid {factor:g})" if len(plan["grids"]) > 1 else "")
-            steps.append(BlockStep(f"network_{name}_{k}", "map", RECEPTIVE_HALF, function=_network_block, label=label,
-                                   region=functools.partial(_network_region, axis=axis, shape=shape, factor=factor)))
-    return (*steps, _orientation_step(shape, opt, plan["block_orientation"], plan["block_orientation"]))
+            # the network's blocks are on the network grid: their outputs are their cores already (trim=False)
+            steps.append(BlockStep(f"network_{name}_{k}", "map", RECEPTIVE_HALF, function=network_block, label=label,
+                                   region=functools.partial(_network_region, axis=axis, shape=shape, factor=factor),
+                                   inputs=(CUBE,), outputs=(("probability", f"network_{name}_{k}"),), place=True,
+                                   trim=False))
+    networks = tuple(f"network_{name}_{k}" for k, g in enumerate(plan["grids"]) for name in g["network_blocks"])
+    return (*steps, _orientation_step(shape, opt, plan["block_orientation"], plan["block_orientation"], networks))
 
 
-def _orientation_step(shape, opt: LearnedOptions, cap: int, fixed=None) -> BlockStep:
-    """Strike and dip on square blocks (the probability reduced into the saturated fraction)."""
+def _orientation_step(shape, opt: LearnedOptions, cap: int, fixed=None, networks: tuple = ()) -> BlockStep:
+    """Strike and dip on square blocks from the network arrays ``networks`` (the probability reduced into the
+    saturated fraction)."""
     nt = int(shape[2])
     return BlockStep("orientation", "reduce", _orientation_halo(opt), lambda b: _orientation_block_bytes(b, nt, opt),
-                     cap, fixed, function=_orientation_block, label="fault orientation")
+                     cap, fixed, function=orientation_block, label="fault orientation", inputs=networks,
+                     outputs=("likelihood", "strike_deg", "dip_deg"), place=True, lazy=True)
 
 
 def _network_shape(shape, factor: float) -> tuple:
@@ -331,6 +337,7 @@ def _start(run: StoreRun, manifest: dict, plan: dict) -> None:
         grid = g["network_shape"]
         for name in g["network_blocks"]:
             path = run.work / f"network_{name}_{k}"
+            run.arrays[path.name] = str(path)
             if not path.exists():
                 zarr.create_array(str(path), shape=tuple(grid), chunks=(c, c, grid[2]), dtype="float32",
                                   compressors=None, fill_value=0)
@@ -361,18 +368,43 @@ def _saturated_fraction(run: StoreRun, results: list, plan: dict, coords) -> flo
     return fraction
 
 
-def _network_block(f, origin, block, axis, array, opt, factor, scale, marker) -> dict:
-    """The network's probability on the sections of one network block (direction ``axis``), read with its halo;
-    written to the direction's work array on the network grid."""
-    import zarr
+def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale) -> BlockOutput:
+    """The network's probability (:func:`direction_probability`) on the sections of one block of the network grid
+    (``place.block``, direction ``axis``), from the amplitudes of its input region (``place.region``, read with the
+    receptive half of halo along the sections).
+
+    Parameters
+    ----------
+    place : BlockPlace
+        The block on the network grid and its input region (:func:`_network_region`).
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of ``place.region``.
+    axis : {0, 1}
+        The sections' direction (inlines, crosslines).
+    opt : LearnedOptions
+    factor : float
+        The network grid's resampling factor.
+    scale : (float, float)
+        The cube's amplitude scale (:func:`amplitude_scale`).
+
+    Returns
+    -------
+    BlockOutput
+        ``probability``: (u1 - u0, v1 - v0, network samples) float32, the block's core on the network grid.
+
+    Raises
+    ------
+    InputError
+        The region holds NaN or inf.
+    """
     f = np.ascontiguousarray(f, dtype=np.float32)
-    u0, u1, v0, v1 = block
+    u0, u1, v0, v1 = place.block
     if not np.isfinite(f).all():
-        lo, hi = origin[0], origin[0] + f.shape[0]
+        lo, hi = place.origin[0], place.origin[0] + f.shape[0]
         raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {lo}-{hi - 1} (indices); "
                          "replace them (e.g. by 0) before tracing faults")
     aligns = (1, POOLING_MULTIPLE) if axis == 0 else (POOLING_MULTIPLE, 1)
-    small, first = to_network_grid(f, factor, origin=origin, align=aligns)
+    small, first = to_network_grid(f, factor, origin=place.origin, align=aligns)
     n_samples = f.shape[2]
     del f
     r0, r1, c0, c1 = u0 - first[0], u1 - first[0], v0 - first[1], v1 - first[1]
@@ -380,19 +412,18 @@ def _network_block(f, origin, block, axis, array, opt, factor, scale, marker) ->
     sections = small[r0:r1] if axis == 0 else small[:, c0:c1]
     prob = direction_probability(sections, axis, scale=scale, batch=int(opt.sections_per_batch),
                                  stretch_to=opt.stretch(n_samples, factor))
-    zarr.open_array(array, mode="r+")[u0:u1, v0:v1, :] = prob[:, c0:c1] if axis == 0 else prob[r0:r1]
-    write_marker(marker, {})
-    return {}
+    return BlockOutput({"probability": prob[:, c0:c1] if axis == 0 else prob[r0:r1]})
 
 
-def _probability(plan: dict, work, region, opt: LearnedOptions) -> np.ndarray:
-    """The network's probability on the input samples of ``region`` ``(a0, a1, b0, b1)``: on each network grid the
-    larger of the two directions', interpolated, then the grids' mean in their order (as
+def _probability(plan: dict, networks, region) -> np.ndarray:
+    """The network's probability on the input samples of ``region`` ``(a0, a1, b0, b1)`` from the network arrays
+    ``networks`` (read by slicing; per grid, its directions): on each network grid the larger of the two directions',
+    interpolated, then the grids' mean in their order (as
     :func:`~seismo3d.seismic.faults.likelihood.learned.fault_probability` does on the whole cube)."""
-    import zarr
     a0, a1, b0, b1 = region
     total = None
-    for k, g in enumerate(plan["grids"]):
+    arrays = iter(networks)
+    for g in plan["grids"]:
         factor, grid = float(g["factor"]), g["network_shape"]
         if factor == 1.0:
             u, v = (a0, a1), (b0, b1)
@@ -400,8 +431,8 @@ def _probability(plan: dict, work, region, opt: LearnedOptions) -> np.ndarray:
             u = (math.floor(a0 * factor), min(math.floor((a1 - 1) * factor) + 2, grid[0]))
             v = (math.floor(b0 * factor), min(math.floor((b1 - 1) * factor) + 2, grid[1]))
         small = None
-        for name in g["network_blocks"]:
-            one = zarr.open_array(f"{work}/network_{name}_{k}", mode="r")[u[0]:u[1], v[0]:v[1]]
+        for _ in g["network_blocks"]:
+            one = next(arrays)[u[0]:u[1], v[0]:v[1]]
             small = one if small is None else np.maximum(small, one)
         prob = from_network_grid(small, (a1 - a0, b1 - b0, plan["shape"][2]), factor, origin=(a0, b0),
                                  first=(u[0], v[0], 0))
@@ -410,21 +441,27 @@ def _probability(plan: dict, work, region, opt: LearnedOptions) -> np.ndarray:
     return grids_mean(total, len(plan["grids"]))
 
 
-def _orientation_block(block, plan: dict, work, partial, opt, marker) -> dict:
-    """Strike and dip of one block from the probability around it, written with the likelihood to the output."""
-    import zarr
-    n0, n1, _ = plan["shape"]
-    halo = plan["halo_orientation"]
-    i0, i1, j0, j1 = block
-    a0, a1, b0, b1 = max(i0 - halo, 0), min(i1 + halo, n0), max(j0 - halo, 0), min(j1 + halo, n1)
-    prob = _probability(plan, work, (a0, a1, b0, b1), opt)
+def orientation_block(place, *networks_plan_opt) -> BlockOutput:
+    """Strike and dip of one block (:func:`orientation_from_likelihood`) from the probability around it
+    (``place.region``, the tensor smoothing's halo), read from the network arrays; with the likelihood (0 below the
+    smallest dip) and its saturated samples.
+
+    Parameters
+    ----------
+    place : BlockPlace
+    *networks_plan_opt
+        The network arrays (read by slicing: per grid, its directions), then the run's plan (dict) and the
+        :class:`LearnedOptions`.
+
+    Returns
+    -------
+    BlockOutput
+        ``likelihood``, ``strike_deg``, ``dip_deg`` of the core; summary ``high``.
+    """
+    *networks, plan, opt = networks_plan_opt
+    prob = _probability(plan, networks, place.region)
     strike, dip = orientation_from_likelihood(prob, sigma=float(opt.orientation_sigma))
-    core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
-    group = zarr.open_group(partial, mode="r+")
+    core = place.core
     likelihood = np.where(dip[core] < float(opt.min_dip), np.float32(0.0), prob[core])
-    group["likelihood"][i0:i1, j0:j1] = likelihood
-    group["strike_deg"][i0:i1, j0:j1] = strike[core]
-    group["dip_deg"][i0:i1, j0:j1] = dip[core]
-    result = {"high": int(np.count_nonzero(likelihood > float(opt.saturation_level)))}
-    write_marker(marker, result)
-    return result
+    return BlockOutput({"likelihood": likelihood, "strike_deg": strike[core], "dip_deg": dip[core]},
+                       {"high": int(np.count_nonzero(likelihood > float(opt.saturation_level)))})

@@ -38,10 +38,13 @@ import numpy as np
 
 from ...._options import resolve_options
 from ....errors import InputError
-from ...blocks.executor import SchedulerClient, trace_cube, write_marker
-from ...blocks.memory import default_memory_limit, worker_baseline
+from ...blocks.apply import BlockOutput
+from ...blocks.executor import SchedulerClient, trace_cube
+from ...blocks.memory import chunk_bytes, default_memory_limit, worker_baseline
 from ...blocks.options import ChunkOptions
-from ...blocks.plan import BlockStep, block_budget, lateral_blocks, plan_steps
+from ...blocks.plan import (
+    CUBE, BlockStep, block_budget, lateral_blocks, plan_steps, refuse_over_budget, smallest_need,
+)
 from ...blocks.stores import StoreRun, read_sheared, write_coords
 from ..result import ChunkedLikelihood
 from .scan import (
@@ -109,13 +112,15 @@ def block_steps(shape, options: FaultScanOptions, chunking: ChunkOptions | None 
     def scan_bytes(w):
         return n_axis * (w + 2 * shalo) * m * _SCAN_BYTES
 
-    return (BlockStep("balance", "map", bhalo, balance_bytes, 512, function=_balance_block,
-                      label="amplitude balancing"),
-            BlockStep("semblance", "reduce", halo, semblance_bytes, 256, chunking.block, function=_semblance_block,
-                      label="semblance"),
-            BlockStep("scan", "map", shalo, scan_bytes, n_axis, chunking.strip, function=_scan_block,
-                      label="fault scan"),
-            BlockStep("decode", "reduce", 0, function=_decode_block, label="decode"))
+    return (BlockStep("balance", "map", bhalo, balance_bytes, 512, function=balance_block,
+                      label="amplitude balancing", inputs=(CUBE,), outputs=("balanced",), place=True),
+            BlockStep("semblance", "reduce", halo, semblance_bytes, 256, chunking.block, function=semblance_block,
+                      label="semblance", inputs=("balanced",), outputs=("numerator", "denominator"), place=True),
+            BlockStep("scan", "map", shalo, scan_bytes, n_axis, chunking.strip, function=scan_block,
+                      label="fault scan", inputs=("numerator", "denominator"), outputs=("key",), place=True,
+                      lazy=True),
+            BlockStep("decode", "reduce", 0, function=decode_block, label="decode", inputs=("key", "denominator"),
+                      outputs=("likelihood", "strike_deg", "dip_deg")))
 
 
 def smallest_block_bytes(shape, options: FaultScanOptions | None, tile: int) -> int:
@@ -135,8 +140,7 @@ def smallest_block_bytes(shape, options: FaultScanOptions | None, tile: int) -> 
     -------
     int
     """
-    steps = block_steps(tuple(int(n) for n in shape), options or FaultScanOptions())
-    return int(max(step.block_bytes(int(tile)) for step in steps if step.block_bytes is not None))
+    return smallest_need(block_steps(tuple(int(n) for n in shape), options or FaultScanOptions()), tile)
 
 
 def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
@@ -150,14 +154,9 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
     budget = block_budget(limit, baseline, int(chunking.workers))
     steps = block_steps(shape, options, chunking)
     sizes = plan_steps(steps, tile=tile, budget=budget)
-    block, balance, strip = sizes["semblance"], sizes["balance"], sizes["scan"]
-    need = max(step.block_bytes(sizes[step.name]) for step in steps if step.block_bytes is not None)
-    if need > budget:
-        raise InputError(
-            f"a chunked run of a {n0} x {n1} x {nt} cube needs about "
-            f"{(need * int(chunking.workers) + baseline) / 2**30:.2f} GiB but the memory limit is "
-            f"{limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
-    return _Plan((n0, n1, nt), tile, block, balance, strip, bhalo, halo, shalo, m)
+    refuse_over_budget(steps, sizes, budget=budget, baseline=baseline, workers=chunking.workers, limit=limit,
+                       what=f"a chunked run of a {n0} x {n1} x {nt} cube")
+    return _Plan((n0, n1, nt), tile, sizes["semblance"], sizes["balance"], sizes["scan"], bhalo, halo, shalo, m)
 
 
 def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None = None,
@@ -209,11 +208,8 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     """
     opt = resolve_options(FaultScanOptions, options, overrides, "chunked_fault_likelihood")
     chunking = chunking or ChunkOptions()
-    x = trace_cube(cube, "a chunked fault likelihood")
-    if x.dtype != np.float32:
-        x = x.astype(np.float32)
-    input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * x.shape[2]
-    plan = _plan(x.shape, opt, chunking, worker_baseline(chunking, input_chunk))
+    x = trace_cube(cube, "a chunked fault likelihood", dtype=np.float32)
+    plan = _plan(x.shape, opt, chunking, worker_baseline(chunking, chunk_bytes(x)))
     out = pathlib.Path(output)
     run = StoreRun(out, chunking, progress)
     earlier = run.earlier_plan(_manifest(x.shape, opt, plan))
@@ -224,19 +220,20 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
                      (("balanced", "float32", nt), ("numerator", "float32", m), ("denominator", "float32", m),
                       ("key", "int32", m)))
     steps = {step.name: step for step in block_steps(plan.shape, opt, chunking)}
-    work, n0, n1 = str(run.work), plan.shape[0], plan.shape[1]
+    n0, n1 = plan.shape[0], plan.shape[1]
     with SchedulerClient(chunking.scheduler) as client:
         run.client = client
         stats = _amplitude_statistics(run, x)
-        run.run_step(steps["balance"], plan.blocks(plan.balance, plan.balance), work, opt, stats, source=x)
-        results = run.run_step(steps["semblance"], plan.blocks(plan.block, plan.block), plan, work, opt)
+        run.run_step(steps["balance"], plan.blocks(plan.balance, plan.balance), opt, stats, source=x)
+        results = run.run_step(steps["semblance"], plan.blocks(plan.block, plan.block), opt)
         tiny = semblance_floor(sum(r["sum_denominator"] for r in results), n0 * n1 * plan.m)
         for axis, name in ((0, "inline"), (1, "crossline")):
-            scan = replace(steps["scan"], name=f"scan_{name}", label=f"fault scan along {name}s")
-            run.run_step(scan, plan.blocks(n0, plan.strip) if axis == 0 else plan.blocks(plan.strip, n1), axis, plan,
-                         work, opt, tiny)
-        results = run.run_step(steps["decode"], plan.blocks(plan.block, plan.block), plan, work, str(run.partial),
-                               opt, tiny)
+            # the second scan keeps the better plane of both
+            scan = replace(steps["scan"], name=f"scan_{name}", label=f"fault scan along {name}s",
+                           combine=np.maximum if axis == 1 else None)
+            run.run_step(scan, plan.blocks(n0, plan.strip) if axis == 0 else plan.blocks(plan.strip, n1), axis, opt,
+                         tiny, nt, plan.tile)
+        results = run.run_step(steps["decode"], plan.blocks(plan.block, plan.block), opt, tiny, nt)
         saturated = _saturated_fraction(run, results, plan, coords)
     run.finish()
     return ChunkedLikelihood(out, tuple(x.shape), dict(run.computed), dict(run.resumed), saturated,
@@ -278,79 +275,113 @@ def _saturated_fraction(run: StoreRun, results: list, plan: _Plan, coords: dict 
     return fraction
 
 
-def _balance_block(f, origin, block, work, opt, stats, marker) -> dict:
-    """Balanced amplitudes of one block (read with halo from ``origin``), its core written to the work array."""
-    import zarr
+def balance_block(place, f, opt: FaultScanOptions, stats: AmplitudeStatistics) -> BlockOutput:
+    """Balanced amplitudes of a block read with the balancing's halo (:func:`balance_amplitudes`).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of ``place.region``.
+    opt : FaultScanOptions
+    stats : AmplitudeStatistics
+        Of the whole cube.
+
+    Returns
+    -------
+    BlockOutput
+        ``balanced``: (m0, m1, n_samples) float32, cut to the core by the executor.
+
+    Raises
+    ------
+    InputError
+        The block holds NaN or inf.
+    """
     f = np.ascontiguousarray(f, dtype=np.float32)
     if not np.all(np.isfinite(f)):
-        raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {block[0]}-{block[1] - 1} (indices); "
+        i0, i1 = place.block[:2]
+        raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {i0}-{i1 - 1} (indices); "
                          "replace them (e.g. by 0) before tracing faults")
-    g = balance_amplitudes(f, opt, stats)
-    del f
-    i0, i1, j0, j1 = block
-    c0, c1, d0, d1 = i0 - origin[0], i1 - origin[0], j0 - origin[1], j1 - origin[1]
-    zarr.open_array(f"{work}/balanced", mode="r+")[i0:i1, j0:j1, :] = g[c0:c1, d0:d1]
-    write_marker(marker, {})
-    return {}
+    return BlockOutput({"balanced": balance_amplitudes(f, opt, stats)})
 
 
-def _semblance_block(block, plan: _Plan, work, opt, marker) -> dict:
-    """Semblance terms of one block from the balanced amplitudes around it, its core written to the work arrays."""
-    import zarr
-    n0, n1, _ = plan.shape
-    i0, i1, j0, j1 = block
-    a0, a1, b0, b1 = max(i0 - plan.halo, 0), min(i1 + plan.halo, n0), max(j0 - plan.halo, 0), min(j1 + plan.halo, n1)
-    f = zarr.open_array(f"{work}/balanced", mode="r")[a0:a1, b0:b1]
+def semblance_block(place, f, opt: FaultScanOptions) -> BlockOutput:
+    """Semblance terms of a block of balanced amplitudes read with the semblance's halo
+    (:func:`semblance_terms`), and the sum of the core's denominators (the semblance floor's).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    f : (m0, m1, n_samples) float32 ndarray
+        Balanced amplitudes of ``place.region``.
+    opt : FaultScanOptions
+
+    Returns
+    -------
+    BlockOutput
+        ``numerator``, ``denominator`` of the core, float32 at the scan's grouped samples; summary
+        ``sum_denominator``.
+    """
     sn, sd = semblance_terms(f, opt)
-    del f
-    sn, sd = sn[i0 - a0:i1 - a0, j0 - b0:j1 - b0], sd[i0 - a0:i1 - a0, j0 - b0:j1 - b0]
-    zarr.open_array(f"{work}/numerator", mode="r+")[i0:i1, j0:j1, :] = sn
-    zarr.open_array(f"{work}/denominator", mode="r+")[i0:i1, j0:j1, :] = sd
-    result = {"sum_denominator": float(sd.sum(dtype=np.float64))}
-    write_marker(marker, result)
-    return result
+    sn, sd = sn[place.core], sd[place.core]
+    return BlockOutput({"numerator": sn, "denominator": sd}, {"sum_denominator": float(sd.sum(dtype=np.float64))})
 
 
-def _scan_block(block, axis, plan: _Plan, work, opt, tiny, marker) -> dict:
-    """The planes sheared along ``axis`` on a block that holds that whole axis; the key maximised into the work
-    array (idempotent: a block scanned twice leaves the same key)."""
-    import zarr
-    n0, n1, nt = plan.shape
-    i0, i1, j0, j1 = block
-    if axis == 0:
-        a, b = max(j0 - plan.shalo, 0), min(j1 + plan.shalo, n1)
-        region = (slice(0, n0), slice(a, b))
-        core, origin = (j0 - a, j1 - a), a
-    else:
-        a, b = max(i0 - plan.shalo, 0), min(i1 + plan.shalo, n0)
-        region = (slice(a, b), slice(0, n1))
-        core, origin = (i0 - a, i1 - a), a
-    sn = read_sheared(zarr.open_array(f"{work}/numerator", mode="r"), region, axis, plan.tile)
-    sd = read_sheared(zarr.open_array(f"{work}/denominator", mode="r"), region, axis, plan.tile)
-    key = scan_planes(sn, sd, opt, tiny, n_samples=nt, axes=(axis,), core=core, origin=origin, sheared_layout=True)
-    del sn, sd
-    store = zarr.open_array(f"{work}/key", mode="r+")
-    target = (slice(i0, i1), slice(j0, j1))
-    if axis == 1:  # the second scan: keep the better plane of both
-        np.maximum(key, store[target], out=key)
-    store[target] = key
-    write_marker(marker, {})
-    return {}
+def scan_block(place, numerator, denominator, axis: int, opt: FaultScanOptions, tiny: float, n_samples: int,
+               tile: int) -> BlockOutput:
+    """The planes sheared along ``axis`` (:func:`scan_planes`) on a block that holds that whole axis.
+
+    Parameters
+    ----------
+    place : BlockPlace
+        The block (every trace along ``axis``) and the region read (the strike smoothing's halo across it).
+    numerator, denominator : (n_inlines, n_xlines, m) arrays read by slicing
+        Semblance terms, read here in the sheared layout (:func:`~seismo3d.seismic.blocks.stores.read_sheared`).
+    axis : {0, 1}
+    opt : FaultScanOptions
+    tiny : float
+        The semblance floor.
+    n_samples : int
+        Samples per trace of the cube.
+    tile : int
+        Rows read at once.
+
+    Returns
+    -------
+    BlockOutput
+        ``key``: the core's packed scan keys, int32.
+    """
+    a0, a1, b0, b1 = place.region
+    i0, i1, j0, j1 = place.block
+    core, origin = ((j0 - b0, j1 - b0), b0) if axis == 0 else ((i0 - a0, i1 - a0), a0)
+    sn = read_sheared(numerator, place.read, axis, tile)
+    sd = read_sheared(denominator, place.read, axis, tile)
+    key = scan_planes(sn, sd, opt, tiny, n_samples=n_samples, axes=(axis,), core=core, origin=origin,
+                      sheared_layout=True)
+    return BlockOutput({"key": key})
 
 
-def _decode_block(block, plan: _Plan, work, partial, opt, tiny, marker) -> dict:
-    """Likelihood, strike and dip of one block from the combined key, written to the output."""
-    import zarr
-    i0, i1, j0, j1 = block
-    key = zarr.open_array(f"{work}/key", mode="r")[i0:i1, j0:j1]
-    live = zarr.open_array(f"{work}/denominator", mode="r")[i0:i1, j0:j1] > tiny
+def decode_block(key, denominator, opt: FaultScanOptions, tiny: float, n_samples: int) -> BlockOutput:
+    """Likelihood, strike and dip of a block from the combined key (:func:`decode_scan`), with its saturated and
+    live samples.
+
+    Parameters
+    ----------
+    key : (m0, m1, m) int32 ndarray
+        Packed scan keys.
+    denominator : (m0, m1, m) float32 ndarray
+        Semblance denominators (live where above ``tiny``).
+    opt : FaultScanOptions
+    tiny : float
+    n_samples : int
+
+    Returns
+    -------
+    BlockOutput
+        ``likelihood``, ``strike_deg``, ``dip_deg``: (m0, m1, n_samples) float32; summary ``high``, ``live``.
+    """
+    live = denominator > tiny
     high, n_live = saturation_counts(key, live, opt.saturation_level)
     del live
-    fl, strike, dip = decode_scan(key, opt, n_samples=plan.shape[2])
-    group = zarr.open_group(partial, mode="r+")
-    group["likelihood"][i0:i1, j0:j1] = fl
-    group["strike_deg"][i0:i1, j0:j1] = strike
-    group["dip_deg"][i0:i1, j0:j1] = dip
-    result = {"high": high, "live": n_live}
-    write_marker(marker, result)
-    return result
+    fl, strike, dip = decode_scan(key, opt, n_samples=n_samples)
+    return BlockOutput({"likelihood": fl, "strike_deg": strike, "dip_deg": dip}, {"high": high, "live": n_live})

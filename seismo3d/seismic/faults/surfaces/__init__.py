@@ -2,13 +2,12 @@
 
 - :mod:`~seismo3d.seismic.faults.surfaces.dead_samples`: dead traces and samples (their edges are not faults).
 - :mod:`~seismo3d.seismic.faults.surfaces.ridges`: ridges (non-maximum suppression across the fault) and thinning.
-- :mod:`~seismo3d.seismic.faults.surfaces.thresholds`: the thresholds' statistics, in memory and streamed.
 - :mod:`~seismo3d.seismic.faults.surfaces.voting`: optimal surface voting (Wu & Fomel 2018); its loops in
   :mod:`~seismo3d.seismic.faults.surfaces.voting_kernels`.
 - :mod:`~seismo3d.seismic.faults.surfaces.skins`: thinned votes linked into fault skins (Hale 2013); its loops in
   :mod:`~seismo3d.seismic.faults.surfaces.skin_kernels`.
-- :mod:`~seismo3d.seismic.faults.surfaces.blocks`: the same steps on a cube larger than memory, block by block; their
-  declared steps (block functions, halos, costs, plan) in :mod:`~seismo3d.seismic.faults.surfaces.block_steps`, run by
+- :mod:`~seismo3d.seismic.faults.surfaces.blocks`: the same steps on a cube larger than memory, declared once (halos,
+  inputs and outputs, costs, plan; each one's algorithm on a block beside its algorithm) and run block by block by
   the executor of :mod:`seismo3d.seismic.blocks`.
 """
 

@@ -1,111 +1,204 @@
 """Fault surfaces of a cube larger than memory: the steps of :func:`~seismo3d.seismic.faults.trace_faults` after the
-fault likelihood, run block by block on dask from a chunked likelihood, with the same faults as the in-memory run.
+likelihood, declared once (:func:`block_steps`), run block by block from a chunked likelihood by the executor of
+:mod:`seismo3d.seismic.blocks` (``_SurfaceRun``: the named steps of :class:`~seismo3d.seismic.faults.steps.SurfaceRun`,
+called by :func:`~seismo3d.seismic.faults.steps.surface_cells` as in memory), with the in-memory run's faults. Each
+step reads its block with its halo and writes the core; its algorithm on a block is beside the one it runs:
 
-``_SurfaceRun`` implements the named steps of :class:`~seismo3d.seismic.faults.steps.SurfaceRun` on blocks;
-:func:`~seismo3d.seismic.faults.steps.surface_cells` calls them in the order the run in memory does
-(:class:`~seismo3d.seismic.faults.steps.ArrayRun`: the whole array as one block), and
-:func:`~seismo3d.seismic.faults.steps.faults_from_cells` makes the faults of the stored cells.
-
-Every step reads what it needs around its block (the halo of its operator) from Zarr work arrays and writes its
-block's core, so the result does not depend on where the blocks are cut:
-
-1. **Fill values** of the dead-sample rules (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`): gathered over every
-   block, from the cube's smallest and largest amplitudes.
-2. **Ridges**: per block, dead samples and their reach, the likelihood zeroed there (the ``live`` likelihood) and
-   its ridges (:func:`~seismo3d.seismic.thin_faults`, halo ``RIDGE_HALO``); the ridge samples above the voting's seed
-   threshold are kept as a sparse list of seed candidates.
-3. **Seeds**: the candidates of all blocks, taken strongest first by
-   :func:`~seismo3d.seismic.faults.surfaces.voting_kernels.greedy_seeds` (a sparse list: a few percent of the samples).
-4. **Surfaces, then votes**: each seed's optimal surface once, in the block holding the seed, on the live likelihood
-   read with the voting's reach (``VotingOptions.reach``) around it
-   (:func:`~seismo3d.seismic.faults.surfaces.voting.seed_surfaces`, stored as the samples each surface passes); then per
-   block the votes of the surfaces of the seeds reaching it (:class:`~seismo3d.seismic.faults.surfaces.voting.VoteSum`:
-   each seed's votes are summed by the same thread, in the same order, as in memory).
-5. **Thinning** of the votes (halo 2), with the count, smallest and largest positive thinned vote per block; then
-   their histogram (Otsu's threshold on the same 256 bins as in memory) and, when they are dense, their exact
-   quantile: the thresholds of :meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`.
-6. **Cells**: the thinned votes at or above the lower threshold, gathered as a sparse list, linked into fault skins
-   by :func:`~seismo3d.seismic.faults.surfaces.skins.skins_from_cells` (no array of the cube's size).
-7. **Throws** read the amplitudes around each fault patch (:func:`~seismo3d.seismic.fault_throws` on the lazy cube).
-
-The steps are declared once (:func:`~seismo3d.seismic.faults.surfaces.block_steps.block_steps`) and run by the
-executor of :mod:`seismo3d.seismic.blocks` (:meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step`): a marker per
-finished block in ``OUTPUT.work``, the output assembled in ``OUTPUT.partial`` and renamed when complete.
+fill values (``dead_samples.fill_block``), ridges and seed candidates (``ridges.ridge_block``), each seed's surface
+once (:func:`surface_block`) and the votes of the surfaces reaching a block in id order (:func:`vote_block`),
+thinning (``ridges.thin_block``) and thresholds from histograms (:mod:`seismo3d.seismic.blocks.statistics`), cells
+(``ridges.cell_block``) linked into skins with their throws (:func:`~seismo3d.seismic.faults.steps.faults_from_cells`).
 """
 
 from __future__ import annotations
 
+import functools
 import json
 import pathlib
 from dataclasses import asdict, dataclass
 
+import numba
 import numpy as np
 
 from ...._atomic import atomic_path
-from ....errors import EarlierStoresError, InputError
-from ...blocks.executor import SchedulerClient
-from ...blocks.memory import default_memory_limit, resident_memory, worker_baseline
+from ....errors import InputError
+from ...blocks.apply import BlockOutput, gather, load_lists
+from ...blocks.executor import SchedulerClient, trace_cube
+from ...blocks.memory import chunk_bytes, default_memory_limit, resident_memory, worker_baseline
 from ...blocks.options import ChunkOptions
-from ...blocks.plan import lateral_blocks
+from ...blocks.plan import (
+    CUBE, BlockStep, block_budget, lateral_blocks, plan_steps, refuse_over_budget, smallest_need,
+)
+from ...blocks.statistics import statistic_steps, streamed_otsu, streamed_quantile
 from ...blocks.stores import StoreRun
 from ...blocks.windows import StoredWindows
 from ..options import FaultTracingOptions
-from ..result import fault_frames
+from ..result import ChunkedFaults, fault_frames
 from ..steps import faults_from_cells, surface_cells
-from .block_steps import CANDIDATE_BYTES, CELL_BYTES, RIDGE_HALO, SurfacePlan, block_steps, plan_blocks, smallest_block_bytes
-from .thresholds import HISTOGRAM_BINS, QUANTILE_BINS, otsu_of_histogram, quantile_of_window, quantile_window
+from .dead_samples import fill_block
+from .ridges import (
+    RIDGE_HALO, THIN_HALO, amplitude_halo, cell_block, ridge_block, thin_block, without_dead_edges,
+)
+from .voting import SeedSurfaces, VoteSum, seed_surfaces
 from .voting_kernels import greedy_seeds
 
-__all__ = ["CANDIDATE_BYTES", "ChunkedFaults", "chunked_fault_surfaces", "RIDGE_HALO", "smallest_block_bytes"]
+__all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "ChunkedFaults", "SURFACE_BATCH_BYTES", "SurfacePlan",
+           "block_steps", "chunked_fault_surfaces", "plan_blocks", "smallest_block_bytes", "surface_block",
+           "vote_block"]
 
 # the output's arrays, (n_inlines, n_xlines, n_samples) float32 (ChunkedFaults.path)
 _OUTPUTS = ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg", "slope_inline", "slope_xline")
+# Bytes of working memory per sample of a block (incl. halo): amplitudes, their reflector slopes and the dead-sample
+# masks; likelihood, strike, dip, the ranking image and its smoothing passes, ridges (and, until stop 49, the
+# hysteresis labels: the ridges now peak at 21, the slopes at 36 per amplitude sample; the constants were kept); the
+# voting's core (votes, strongest surface and its seed per numba thread; the summed votes, strike, dip) and its
+# input; the thinning of the votes.
+# (tracemalloc peaks on 96-trace blocks of 512 samples: ridges 44 per sample of the likelihood's halo block, amplitudes
+# included; voting 32 per core sample with 2 threads besides the input, 8 + 12 per thread; thinning 41)
+_DEAD_BYTES = 12
+_RIDGE_BYTES = 48
+_VOTE_CORE_BYTES = 12
+_VOTE_THREAD_BYTES = 12  # per numba thread: its votes, strongest surface and seed (each thread its own arrays)
+_VOTE_HALO_BYTES = 4
+# Surfaces of seeds read back at once by a block of the voting (the others in later batches, in id order).
+SURFACE_BATCH_BYTES = 16 << 20
+_THIN_BYTES = 44
+# Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
+# frames, links, labels, the merging's KD-tree; measured 219-234 bytes a cell on 1.4 M cells of a 512^3 cube, 250 on
+# the 11 M cells of a 1448 x 1448 x 512 one).
+CANDIDATE_BYTES = 80  # points, values, angles (36), the sort keys, order and sorted copy
+CELL_BYTES = 240
+# The fault likelihood's arrays the ridges read (the run's stores' names of the likelihood group's arrays)
+LIKELIHOOD_INPUTS = ("fault_likelihood", "fault_strike_deg", "fault_dip_deg")
 
 
-@dataclass(frozen=True, eq=False)
-class ChunkedFaults:
-    """Result of :func:`chunked_fault_surfaces`.
+@dataclass(frozen=True)
+class SurfacePlan:
+    """Block sizes (traces a side) of the steps of a run by blocks, and the voting's reach."""
 
-    Attributes
+    shape: tuple
+    tile: int
+    dead: int     # block sizes (traces a side) of the steps
+    ridge: int
+    vote: int
+    thin: int
+    reach: int    # a voting box's reach from its seed
+
+
+def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
+    """The block steps of the fault surfaces, declared once in their order: algorithm, halo, inputs and outputs and
+    (those planned by :func:`~seismo3d.seismic.blocks.plan.plan_steps`) the bytes of a block of ``b`` traces a side.
+
+    Parameters
     ----------
-    path : pathlib.Path
-        The output Zarr group: ``likelihood`` (the fault likelihood, 0 near dead samples, as
-        :attr:`~seismo3d.seismic.faults.FaultInterpretation.likelihood`), ``votes`` (optimal-surface votes),
-        ``thin`` (thinned votes at or above the lower threshold, 0 elsewhere), ``vote_strike_deg`` and
-        ``vote_dip_deg``, each (n_inlines, n_xlines, n_samples) float32 with dimensions inline, crossline, sample;
-        the cells linked into skins as ``cell_points`` (n, 3) int32 and ``cell_values``, ``cell_strike_deg``,
-        ``cell_dip_deg`` (n,) float32; attrs ``thresholds``, ``n_seeds``, ``n_cells``, ``saturated_fraction``,
-        ``run`` (what was computed) and ``complete``.
-    faults : list of Fault
-        Fault skins, as :attr:`~seismo3d.seismic.faults.FaultInterpretation.faults`.
-    throws : list of FaultThrow
-        One per fault.
-    evidence : list of FaultEvidence
-        One per fault (:func:`~seismo3d.seismic.faults.evidence.supported_faults`: faults without a displacement
-        are left out, as in memory).
-    thresholds : (float, float)
-        Lower and upper thresholds on the thinned votes.
-    n_seeds, n_cells : int
-        Voting seeds, and thinned-vote samples linked into skins.
-    saturated_fraction : float
-        Fraction of the live samples (not near dead ones) with a likelihood above ``saturation_level``.
-    blocks_computed, blocks_resumed : dict
-        Blocks per step computed in this call and found finished by an earlier one.
-    seconds : dict
-        Wall-clock seconds per step.
-    """
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    opt : FaultTracingOptions
+    cap : int
+        Largest side of a block, traces.
 
-    path: pathlib.Path
-    faults: list
-    throws: list
-    evidence: list
-    thresholds: tuple
-    n_seeds: int
-    n_cells: int
-    saturated_fraction: float
-    blocks_computed: dict
-    blocks_resumed: dict
-    seconds: dict
+    Returns
+    -------
+    tuple of BlockStep
+        ``'fill'``, ``'ridges'``, ``'surfaces'``, ``'thin'`` (planned: ``dead``, ``ridge``, ``vote``, ``thin`` of
+        :class:`SurfacePlan`), ``'votes'``, ``'cells'``.
+    """
+    nt = shape[2]
+    reach = opt.voting.reach(shape)
+    threads = numba.get_num_threads()
+    halo = amplitude_halo(opt)
+
+    def dead_bytes(b):
+        return b * b * nt * _DEAD_BYTES
+
+    def ridge_bytes(b):
+        return (b + 2 * halo) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
+
+    # the surfaces of a block's seeds: at most one seed per (spacing + 1)^3 samples (greedy_seeds keeps them more
+    # than spacing apart), each (2 rw + 1) x (2 rv + 1) offsets of 3 int8, its vote (float64) and normal (3 float32)
+    _, rv, rw = opt.voting.box(shape)
+    per_seed = (2 * rw + 1) * (2 * rv + 1) * 3 * (1 if reach < 127 else 2) + 20
+    surface_density = per_seed / (opt.voting.spacing(3) + 1) ** 3  # bytes per sample of a block's core
+
+    def vote_bytes(b):
+        surfaces = (b + 2 * reach) ** 2 * nt * _VOTE_HALO_BYTES + b * b * nt * surface_density
+        votes = b * b * nt * (_VOTE_CORE_BYTES + _VOTE_THREAD_BYTES * threads) + SURFACE_BATCH_BYTES
+        return int(max(surfaces, votes))
+
+    def thin_bytes(b):
+        return (b + 2 * THIN_HALO) ** 2 * nt * _THIN_BYTES
+
+    return (BlockStep("fill", "reduce", 0, dead_bytes, cap, function=fill_block, label="fill values", inputs=(CUBE,)),
+            # the amplitudes read with their halo, the likelihood (read by slicing) with the ridges'
+            BlockStep("ridges", "gather", halo, ridge_bytes, cap, function=ridge_block, label="fault ridges",
+                      inputs=(CUBE, *LIKELIHOOD_INPUTS), place=True, lazy=True,
+                      outputs=("slope_inline", "slope_xline", "likelihood", "near")),
+            BlockStep("surfaces", "gather", reach, vote_bytes, cap, function=surface_block, label="fault surfaces",
+                      inputs=("likelihood",), place=True),
+            # threads=False: the votes are summed per numba thread (voting.VoteSum), so a block's kernel keeps the
+            # process's threads, as the in-memory run; lazy: the mask near dead samples is read at the core only
+            BlockStep("votes", "map", reach, function=vote_block, label="fault voting", threads=False,
+                      inputs=("near",), outputs=("votes", "vote_strike_deg", "vote_dip_deg"), place=True, lazy=True),
+            BlockStep("thin", "reduce", THIN_HALO, thin_bytes, cap, function=thin_block, label="thinning",
+                      inputs=("votes", "vote_strike_deg", "vote_dip_deg"), outputs=("thin_raw",), place=True),
+            BlockStep("cells", "gather", function=cell_block, label="fault cells",
+                      inputs=("thin_raw", "vote_strike_deg", "vote_dip_deg"), outputs=("thin",), place=True))
+
+
+def smallest_block_bytes(shape, options: FaultTracingOptions, tile: int) -> int:
+    """Bytes the largest step of :func:`chunked_fault_surfaces` needs with its smallest blocks (one ``tile`` a side),
+    on top of the process itself: what ``memory_limit`` must leave for it (before the headroom).
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    options : FaultTracingOptions
+    tile : int
+        Traces a side of the smallest block (:attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile`).
+
+    Returns
+    -------
+    int
+    """
+    return smallest_need(block_steps(tuple(int(n) for n in shape), options, int(tile)), tile)
+
+
+def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int) -> SurfacePlan:
+    """The largest blocks of each of :func:`block_steps` (multiples of ``chunking.tile``, at most ``chunking.block`` or
+    512 traces a side) whose bytes fit the budget a memory limit leaves
+    (:func:`~seismo3d.seismic.blocks.plan.block_budget`), by the executor's planner
+    (:func:`~seismo3d.seismic.blocks.plan.plan_steps`).
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    opt : FaultTracingOptions
+    chunking : ChunkOptions
+        Memory limit (default half of the RAM), tile, largest block and workers.
+    baseline : int
+        Bytes the process holds before its blocks (:func:`~seismo3d.seismic.blocks.memory.worker_baseline`).
+
+    Returns
+    -------
+    SurfacePlan
+
+    Raises
+    ------
+    InputError
+        The smallest blocks of a step need more than the budget (the message says by how much).
+    """
+    n0, n1, nt = shape
+    tile = int(chunking.tile)
+    limit = int(chunking.memory_limit or default_memory_limit())
+    budget = block_budget(limit, baseline, int(chunking.workers))
+    steps = block_steps(shape, opt, int(chunking.block) if chunking.block else min(max(n0, n1), 512))
+    sizes = plan_steps(steps, tile=tile, budget=budget)
+    refuse_over_budget(steps, sizes, budget=budget, baseline=baseline, workers=chunking.workers, limit=limit,
+                       what=f"a chunked run of the fault surfaces of a {n0} x {n1} x {nt} cube")
+    return SurfacePlan((n0, n1, nt), tile, sizes["fill"], sizes["ridges"], sizes["surfaces"], sizes["thin"],
+                       opt.voting.reach(shape))
 
 
 def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOptions | None = None,
@@ -144,10 +237,10 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     ------
     InputError
         The cube is not 3D, the likelihood group does not match it, ``output`` exists and is not an unfinished run
-        of the same cube and options, or the memory limit is too small for the smallest blocks or for the seed
-        candidates and cells.
+        of the same cube and options, or the memory limit is too small for the blocks, seed candidates or cells.
     UnsupportedDataError
-        The likelihood is above ``options.saturation_level`` at more than ``options.max_saturated`` of the live samples (as in memory).
+        The likelihood is above ``options.saturation_level`` at more than ``options.max_saturated`` of the live
+        samples (as in memory).
 
     References
     ----------
@@ -156,30 +249,20 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     .. [2] X. Wu and S. Fomel, "Automatic fault interpretation with optimal surface voting", Geophysics 83(5),
        O67-O82, 2018, doi:10.1190/geo2018-0115.1.
     """
-    import dask.array as da
     import zarr
 
     opt = options or FaultTracingOptions()
     if not isinstance(opt, FaultTracingOptions):
         raise InputError(f"options must be a FaultTracingOptions; got {type(opt).__name__}")
     chunking = chunking or ChunkOptions()
-    tile = chunking.tile  # an array given in memory: chunks of the run's tile
-    x = cube if isinstance(cube, da.Array) else da.from_array(np.asarray(cube), chunks=(tile, tile, -1))
-    if x.ndim != 3 or min(x.shape) < 3:
-        raise InputError(f"chunked fault surfaces need a 3D cube (n_inlines, n_xlines, n_samples); got shape {x.shape}")
-    if len(x.chunks[2]) != 1:
-        x = x.rechunk({2: -1})
-    if x.dtype != np.float32:
-        x = x.astype(np.float32)
+    x = trace_cube(cube, "chunked fault surfaces", chunks=(chunking.tile, chunking.tile, -1), dtype=np.float32)
     shape = tuple(int(n) for n in x.shape)
     group = zarr.open_group(str(likelihood), mode="r")
     for name in ("likelihood", "strike_deg", "dip_deg"):
         if name not in group or tuple(group[name].shape) != shape:
             raise InputError(f"{likelihood} has no {name!r} array of the cube's shape {shape}; pass the output of "
                              "chunked_fault_likelihood for this cube")
-    input_chunk = 4 * max(x.chunks[0]) * max(x.chunks[1]) * shape[2]
-    baseline = worker_baseline(chunking, input_chunk)
-    plan = plan_blocks(shape, opt, chunking, baseline)
+    plan = plan_blocks(shape, opt, chunking, worker_baseline(chunking, chunk_bytes(x)))
     memory = int(chunking.memory_limit or default_memory_limit())  # the cells' and candidates' checks: less the RSS
     run = _SurfaceRun(pathlib.Path(output), pathlib.Path(likelihood), x, plan, opt, chunking, memory, progress)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
@@ -189,42 +272,33 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     if earlier is not None:  # resuming: the blocks of the interrupted run
         run.plan = plan = SurfacePlan(**dict(earlier, shape=tuple(earlier["shape"])))
         manifest["plan"] = earlier
-    attrs = run.finished(manifest)
-    if attrs is None:
-        attrs = _surfaces(run, manifest)
-    elif attrs["n_cells"] * CELL_BYTES > memory - resident_memory():
-        raise InputError(f"{attrs['n_cells']} thinned fault samples need about "
-                         f"{attrs['n_cells'] * CELL_BYTES / 2**30:.2f} GiB to link into fault skins, more than the "
-                         "memory limit leaves: raise memory_limit")
+    attrs = run.finished_output(manifest, "cube, likelihood and options")
+    if attrs is None:  # the block steps up to the cells (a resumed run skips the finished blocks)
+        run.start(manifest)
+        with SchedulerClient(run.scheduler) as client:
+            run.client = client
+            found = surface_cells(run, run.opt)
+        attrs = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,
+                 "saturated_fraction": found.saturated_fraction, "run": manifest}
+        run.finish(dict(attrs, method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run"))
+    else:
+        _check_cells(attrs["n_cells"], memory)
     lower, upper = (float(v) for v in attrs["thresholds"])
     stored = zarr.open_group(str(run.out), mode="r")
     windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
-    faults, throws, evidence = faults_from_cells(_stored_cells(run.out), shape, windows, (lower, upper), opt,
+    cells = (stored["cell_points"][:].astype(np.int64), stored["cell_values"][:], stored["cell_strike_deg"][:],
+             stored["cell_dip_deg"][:])
+    faults, throws, evidence = faults_from_cells(cells, shape, windows, (lower, upper), opt,
                                                  likelihood=group["likelihood"], progress=progress)
     return ChunkedFaults(run.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]),
                          int(attrs["n_cells"]), float(attrs["saturated_fraction"]), dict(run.computed),
                          dict(run.resumed), dict(run.seconds))
 
 
-def _surfaces(run: _SurfaceRun, manifest: dict) -> dict:
-    """The block steps of a run (skipping the finished blocks of an earlier one) up to the cells, stored with the
-    thresholds in the finished output; its attributes."""
-    run.start(manifest)
-    with SchedulerClient(run.scheduler) as client:
-        run.client = client
-        found = surface_cells(run, run.opt)
-    attrs = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,
-             "saturated_fraction": found.saturated_fraction, "run": manifest}
-    run.finish(dict(attrs, method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run"))
-    return attrs
-
-
-def _stored_cells(path: pathlib.Path) -> tuple:
-    """(points (n, 3) int64, values, strike_deg, dip_deg (n,) float32) of the cells stored in a finished output."""
-    import zarr
-    group = zarr.open_group(str(path), mode="r")
-    return (group["cell_points"][:].astype(np.int64), group["cell_values"][:], group["cell_strike_deg"][:],
-            group["cell_dip_deg"][:])
+def _check_cells(n: int, memory: int) -> None:
+    if n * CELL_BYTES > memory - resident_memory():
+        raise InputError(f"{n} thinned fault samples need about {n * CELL_BYTES / 2**30:.2f} GiB to link into "
+                         "fault skins, more than the memory limit leaves: raise memory_limit")
 
 
 class _SurfaceRun(StoreRun):
@@ -236,80 +310,49 @@ class _SurfaceRun(StoreRun):
         self.likelihood, self.plan, self.opt = str(likelihood), plan, opt
         self.x, self.memory = x, memory  # the cube (dask, whole traces) and the memory limit, bytes
         self.steps = {step.name: step for step in block_steps(plan.shape, opt, 0)}
-
-    def finished(self, manifest: dict) -> dict | None:
-        """The attributes of the finished output of this same run (blocks aside: they do not change the result), or
-        None when there is no output yet.
-
-        Raises
-        ------
-        InputError
-            The output exists but is not the finished output of this run.
-        """
-        import zarr
-        if not self.out.exists():
-            return None
-        try:
-            attrs = dict(zarr.open_group(str(self.out), mode="r").attrs)
-        except Exception:  # noqa: BLE001 - anything that is not our Zarr group
-            attrs = {}
-        run = {k: v for k, v in dict(attrs.get("run") or {}).items() if k != "plan"}
-        if attrs.get("complete") is not True or run != {k: v for k, v in manifest.items() if k != "plan"}:
-            raise EarlierStoresError(f"output {self.out} already exists and is not the finished output of this "
-                                     "cube, likelihood and options; pick another output or delete it", [self.out])
-        return attrs
+        self.statistics = statistic_steps("thin_raw", "the thinned votes")
 
     def start(self, manifest: dict) -> None:
-        """Open the work folder with ``manifest``, its folders of sparse lists and its work arrays (the masks near
-        dead samples, compressed; the thinned votes before the threshold), and the output arrays."""
+        """Open the work folder with ``manifest``, its work arrays (the masks near dead samples, compressed; the
+        thinned votes before the threshold) and the output arrays; name the likelihood's arrays for the ridges."""
         p = self.plan
         self.start_output(manifest, p.shape, p.tile, (("near", "uint8", p.shape[2], True),
                                                       ("thin_raw", "float32", p.shape[2])))
-        for name in ("candidates", "cells", "surfaces"):
-            (self.work / name).mkdir(exist_ok=True)
+        self.arrays.update(zip(LIKELIHOOD_INPUTS, (f"{self.likelihood}/{name}" for name in
+                                                   ("likelihood", "strike_deg", "dip_deg"))))
 
-    # -- steps ----------------------------------------------------------------------------------------------------
-    def amplitude_range(self, x) -> tuple[float, float]:
-        import dask.array as da
-
-        lo, hi = self.saved("amplitude_range", lambda: [float(v) for v in self.reduce_cube((da.min(x), da.max(x)))])
-        return lo, hi
-
-    def fill_values(self, x, lo: float, hi: float) -> np.ndarray:
-        p = self.plan
-        results = self.run_step(self.steps["fill"], lateral_blocks(p.shape, p.dead, p.dead), lo, hi, self.opt.dead,
-                                source=x)
-        return np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
-                                        [np.zeros(1, np.float32)]))
-
+    def _blocks(self, side: int) -> list:
+        return lateral_blocks(self.plan.shape, side, side)
     def ridges(self) -> tuple[int, int]:
         """Dead samples (from the fill values of the whole cube), live likelihood and ridges of every block;
         (saturated live samples, live samples)."""
-        x = self.x
-        lo, hi = self.amplitude_range(x)
-        fill = self.fill_values(x, lo, hi)
-        p = self.plan
-        results = self.run_step(self.steps["ridges"], lateral_blocks(p.shape, p.ridge, p.ridge), fill, lo, hi,
-                                self.likelihood, str(self.work), str(self.partial), p, self.opt, source=x)
+        import dask.array as da
+
+        x, p = self.x, self.plan
+        lo, hi = self.saved("amplitude_range", lambda: [float(v) for v in self.reduce_cube((da.min(x), da.max(x)))])
+        results = self.run_step(self.steps["fill"], self._blocks(p.dead), lo, hi, self.opt.dead, source=x)
+        fill = np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
+                                        [np.zeros(1, np.float32)]))
+        results = self.run_step(self.steps["ridges"], self._blocks(p.ridge), fill, lo, hi, p.shape, self.opt,
+                                source=x)
         return sum(r["high"] for r in results), sum(r["live"] for r in results)
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:
-        memory = self.memory
+        """The seeds among the ridges' candidates, strongest first (:func:`greedy_seeds`), with their frames; kept
+        by a resumed run."""
         path = self.work / "seeds.npz"
         if not path.exists():
-            files = sorted((self.work / "candidates").glob("*.npz"))
-            n = sum(int(np.load(f)["values"].size) for f in files)
-            if n * CANDIDATE_BYTES > memory - resident_memory():
+            folder = self.work / "ridges"
+            blocks = sorted(self._blocks(self.plan.ridge), key=lambda b: f"{b[0]}-{b[2]}")  # as the files sort
+            n = sum(load_lists(folder, b, ("values",), mmap_mode="r")["values"].size for b in blocks)
+            if n * CANDIDATE_BYTES > self.memory - resident_memory():
                 raise InputError(f"{n} seed candidates need about {n * CANDIDATE_BYTES / 2**30:.2f} GiB, more than "
                                  "the memory limit leaves: raise memory_limit")
-            parts = [np.load(f) for f in files]
-            points = np.concatenate([q["points"] for q in parts]) if parts else np.zeros((0, 3), np.int64)
-            values = np.concatenate([q["values"] for q in parts]) if parts else np.zeros(0, np.float32)
-            angles = np.concatenate([q["angles"] for q in parts]) if parts else np.zeros((0, 2), np.float32)
-            del parts
-            seeds = greedy_seeds(points, values, self.plan.shape, self.opt.voting.spacing(3))
+            found = gather(folder, blocks, ("points", "values", "angles"))
+            points, angles = found["points"], found["angles"]
+            seeds = greedy_seeds(points, found.pop("values"), self.plan.shape, self.opt.voting.spacing(3))
             keys = np.ravel_multi_index(tuple(points.T), self.plan.shape)
-            del points, values
+            del points, found
             order = np.argsort(keys)
             at = order[np.searchsorted(keys, np.ravel_multi_index(tuple(seeds.T), self.plan.shape), sorter=order)]
             frames = fault_frames(angles[at, 0], angles[at, 1])
@@ -322,67 +365,132 @@ class _SurfaceRun(StoreRun):
         """Each seed's optimal surface once, in the block that holds the seed (the likelihood read with the voting's
         reach around it), then the votes of every block from the surfaces of the seeds reaching it, in id order."""
         p = self.plan
-        blocks = lateral_blocks(p.shape, p.vote, p.vote)
-        self.run_step(self.steps["surfaces"], blocks, seeds, frames, str(self.work), str(self.partial), p, self.opt)
-        self.run_step(self.steps["votes"], blocks, seeds, blocks, str(self.work), str(self.partial), p, self.opt)
+        blocks = self._blocks(p.vote)
+        self.run_step(self.steps["surfaces"], blocks, seeds, frames, p.shape, self.opt.voting)
+        surfaces = functools.partial(load_lists, self.work / "surfaces", mmap_mode="r")
+        self.run_step(self.steps["votes"], blocks, seeds, blocks, surfaces, p.shape, self.opt.voting)
 
     def thresholds(self) -> tuple[float, float]:
         """The thresholds from the thinned votes of every block: their count and range, their histogram (Otsu) and,
-        when they are dense, their exact quantile (:mod:`~seismo3d.seismic.faults.surfaces.thresholds`)."""
-        p = self.plan
-        blocks = lateral_blocks(p.shape, p.thin, p.thin)
-        stats = self.run_step(self.steps["thin"], blocks, str(self.work), str(self.partial), p)
+        when they are dense, their exact quantile (:mod:`~seismo3d.seismic.blocks.statistics`)."""
+        blocks = self._blocks(self.plan.thin)
+        stats = self.run_step(self.steps["thin"], blocks)
         n_values = sum(r["count"] for r in stats)
-        n_samples = int(np.prod(p.shape, dtype=np.int64))
+        n_samples = int(np.prod(self.plan.shape, dtype=np.int64))
         if n_values == 0:
             return self.opt.thresholds_from(1.0, 0, n_samples, None)
         vmin = min(r["min"] for r in stats if r["count"])
         vmax = max(r["max"] for r in stats if r["count"])
-        otsu = otsu_of_histogram(self._histogram(blocks, vmin, vmax, HISTOGRAM_BINS, "histogram"), vmin, vmax)
-        return self.opt.thresholds_from(otsu, n_values, n_samples,
-                                        lambda q: self._quantile(blocks, q, n_values, vmin, vmax))
-
-    def _histogram(self, blocks, vmin, vmax, bins, step) -> np.ndarray:
-        results = self.run_step(self.steps[step], blocks, str(self.work), vmin, vmax, bins)
-        return np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)
-
-    def _quantile(self, blocks, q: float, n: int, vmin: float, vmax: float) -> float:
-        """numpy.quantile(values, q) of the positive thinned votes, exactly: the two order statistics it
-        interpolates, found by a fine histogram and a pass that gathers the values of their bins."""
-        counts = self._histogram(blocks, vmin, vmax, QUANTILE_BINS, "quantile_histogram")
-        window = quantile_window(counts, n, q, vmin, vmax)
-        results = self.run_step(self.steps["quantile"], blocks, str(self.work), window[3], window[4])
-        values = np.concatenate([np.asarray(r["values"], np.float32) for r in results])
-        return quantile_of_window(window, sum(r["below"] for r in results), values)
+        return self.opt.thresholds_from(
+            streamed_otsu(self, self.statistics, blocks, vmin, vmax), n_values, n_samples,
+            lambda q: streamed_quantile(self, self.statistics, blocks, q, n_values, vmin, vmax))
 
     def cells(self, lower: float) -> int:
         """Thinned votes at or above ``lower`` into the output, and its cells gathered into 1D arrays of the output
         group (``cell_points``, ``cell_values``, ``cell_strike_deg``, ``cell_dip_deg``) in C order (the skins then
         need no sorted copies); their number."""
-        import zarr
-        p = self.plan
-        blocks = lateral_blocks(p.shape, p.thin, p.thin)
-        results = self.run_step(self.steps["cells"], blocks, str(self.work), str(self.partial), lower)
-        n = sum(r["count"] for r in results)
-        if n * CELL_BYTES > self.memory - resident_memory():
-            raise InputError(f"{n} thinned fault samples need about {n * CELL_BYTES / 2**30:.2f} GiB to link into "
-                             "fault skins, more than the memory limit leaves: raise memory_limit")
-        group = zarr.open_group(str(self.partial), mode="r+")
-        chunk = 1 << 20
-        arrays = {"cell_points": ((n, 3), "int32", (chunk, 3)), "cell_values": ((n,), "float32", (chunk,)),
-                  "cell_strike_deg": ((n,), "float32", (chunk,)), "cell_dip_deg": ((n,), "float32", (chunk,))}
-        out = {k: group.create_array(k, shape=shape, dtype=dtype, chunks=chunks, overwrite=True)
-               for k, (shape, dtype, chunks) in arrays.items()}
-        start = 0
-        for i0 in sorted({b[0] for b in blocks}):  # a row of blocks at a time, its cells in C order (the image's)
-            parts = [np.load(self.work / "cells" / f"{b[0]}-{b[2]}.npz") for b in blocks if b[0] == i0]
-            row = {k: np.concatenate([q[k] for q in parts]) for k in ("points", "values", "strike", "dip")}
-            del parts
-            order = np.argsort(np.ravel_multi_index(tuple(row["points"].T), p.shape), kind="stable")
-            m = int(order.size)
-            if m:
-                out["cell_points"][start:start + m] = row["points"][order].astype(np.int32)
-                for key, name in (("values", "cell_values"), ("strike", "cell_strike_deg"), ("dip", "cell_dip_deg")):
-                    out[name][start:start + m] = row[key][order]
-            start += m
+        blocks = self._blocks(self.plan.thin)
+        n = sum(r["count"] for r in self.run_step(self.steps["cells"], blocks, lower))
+        _check_cells(n, self.memory)
+        self.write_gathered(self.work / "cells", blocks, {"points": ("cell_points", "int32"),
+                                                          "values": ("cell_values", "float32"),
+                                                          "strike": ("cell_strike_deg", "float32"),
+                                                          "dip": ("cell_dip_deg", "float32")}, n)
         return n
+
+
+def surface_block(place, likelihood, seeds, frames, shape, opt) -> BlockOutput:
+    """The optimal surfaces (:func:`seed_surfaces`) of the seeds in one block, on the live likelihood read with the
+    voting's reach around it.
+
+    Parameters
+    ----------
+    place : BlockPlace
+    likelihood : (m0, m1, n_samples) float32 ndarray
+        The live likelihood of ``place.region``.
+    seeds, frames : (k, 3) int64 and (k, 3, 3) float64 ndarrays
+        Every seed of the cube and its fault frame.
+    shape : (int, int, int)
+    opt : VotingOptions
+
+    Returns
+    -------
+    BlockOutput
+        Lists ``ids`` (the block's seeds' indices in ``seeds``), ``mean_likelihood``, ``normals`` and ``offsets``
+        (:class:`SeedSurfaces`), read back row by row by :func:`vote_block`.
+    """
+    i0, i1, j0, j1 = place.block
+    ids = np.nonzero((seeds[:, 0] >= i0) & (seeds[:, 0] < i1) & (seeds[:, 1] >= j0) & (seeds[:, 1] < j1))[0]
+    found = seed_surfaces(likelihood, seeds[ids], frames[ids], image_shape=shape, options=opt, origin=place.origin)
+    return BlockOutput(lists={"ids": np.asarray(ids, np.int64), "mean_likelihood": found.mean_likelihood,
+                              "normals": found.normals, "offsets": found.offsets})
+
+
+def vote_block(place, near, seeds, blocks, surfaces, shape, opt) -> BlockOutput:
+    """Votes over one block's core of the surfaces of the seeds reaching it, added in id order (as in memory,
+    :class:`VoteSum`), a batch of at most ``SURFACE_BATCH_BYTES`` of surfaces at a time, 0 near dead samples.
+
+    Parameters
+    ----------
+    place : BlockPlace
+    near : (n_inlines, n_xlines, n_samples) uint8 array read by slicing
+        Samples near dead ones.
+    seeds : (k, 3) int64 ndarray
+        Every seed of the cube.
+    blocks : list of tuple
+        The blocks of the seed surfaces.
+    surfaces : callable
+        ``surfaces(block, names) -> dict``: the lists of :func:`surface_block` of a block, memory-mapped.
+    shape : (int, int, int)
+    opt : VotingOptions
+
+    Returns
+    -------
+    BlockOutput
+        ``votes``, ``vote_strike_deg``, ``vote_dip_deg`` of the core.
+    """
+    i0, i1, j0, j1 = place.block
+    r = opt.reach(shape)
+    total = VoteSum(shape, (i0, j0, i1 - i0, j1 - j0), options=opt)
+    parts = []  # (ids, rows, stored lists) of the seeds reaching the block, per seed block
+    for b in blocks:  # seed blocks within reach
+        if b[1] <= i0 - r or b[0] >= i1 + r or b[3] <= j0 - r or b[2] >= j1 + r:
+            continue
+        stored = surfaces(b, ("ids", "mean_likelihood", "normals", "offsets"))
+        at = seeds[stored["ids"]]
+        rows = np.nonzero((at[:, 0] >= i0 - r) & (at[:, 0] < i1 + r) & (at[:, 1] >= j0 - r) &
+                          (at[:, 1] < j1 + r))[0]
+        if rows.size:
+            parts.append((stored["ids"][rows], rows, stored))
+    if parts:
+        ids = np.concatenate([q[0] for q in parts])
+        which = np.concatenate([np.full(q[0].size, n) for n, q in enumerate(parts)])
+        rows = np.concatenate([q[1] for q in parts])
+        order = np.argsort(ids)
+        ids, which, rows = ids[order], which[order], rows[order]
+        batch = max(1, SURFACE_BATCH_BYTES // (parts[0][2]["offsets"][:1].nbytes + 32))
+        for lo in range(0, ids.size, batch):
+            hi = min(lo + batch, ids.size)
+            total.add(seeds[ids[lo:hi]], ids[lo:hi], _surfaces_of(parts, which[lo:hi], rows[lo:hi]))
+    votes = total.votes()
+    del total
+    without_dead_edges(votes.votes, near[place.target].view(bool))
+    return BlockOutput({"votes": votes.votes, "vote_strike_deg": votes.strike_deg, "vote_dip_deg": votes.dip_deg})
+
+
+def _surfaces_of(parts, which, rows) -> SeedSurfaces:
+    """The stored surfaces of a batch of seeds, in the batch's order: seed k is row ``rows[k]`` of seed block
+    ``which[k]`` (an item of ``parts``)."""
+    out = None
+    for n, (_, _, stored) in enumerate(parts):
+        mine = np.nonzero(which == n)[0]
+        if not mine.size:
+            continue
+        offsets = stored["offsets"]
+        if out is None:
+            out = SeedSurfaces(np.empty((which.size,) + offsets.shape[1:], offsets.dtype), np.empty(which.size),
+                               np.empty((which.size, 3), np.float32))
+        out.offsets[mine] = offsets[rows[mine]]
+        out.mean_likelihood[mine] = stored["mean_likelihood"][rows[mine]]
+        out.normals[mine] = stored["normals"][rows[mine]]
+    return out

@@ -23,8 +23,9 @@ from scipy.ndimage import binary_opening, maximum_filter1d
 
 from ...._validation import check_int, check_positive, check_seismic_layout
 from ....errors import InputError, Seismo3dWarning
+from ...blocks.apply import BlockOutput
 
-__all__ = ["CleanTraces", "DeadSampleOptions", "clean_traces", "check_varies", "clipped_count", "fill_values",
+__all__ = ["CleanTraces", "DeadSampleOptions", "clean_traces", "check_varies", "clipped_count", "fill_block", "fill_values",
            "dead_samples", "near_dead_samples", "warn_clipped", "warn_dead", "warn_non_finite"]
 
 
@@ -329,3 +330,23 @@ def warn_dead(n_dead: int, n: int, n_dead_traces: int, *, options: DeadSampleOpt
         warnings.warn(f"{n_dead / n:.1%} of the samples are constant over {opt.run} or more samples "
                       f"(mutes, gaps, {n_dead_traces} dead traces); fault likelihood within {opt.reach[0]} traces "
                       f"and {opt.reach[1]} samples of them is set to 0", Seismo3dWarning, stacklevel=3)
+
+
+def fill_block(f, lo: float, hi: float, dead) -> BlockOutput:
+    """The fill values of one block of amplitudes under the dead-sample rules (:func:`fill_values`).
+
+    Parameters
+    ----------
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of the block.
+    lo, hi : float
+        The cube's smallest and largest amplitude.
+    dead : DeadSampleOptions
+
+    Returns
+    -------
+    BlockOutput
+        Summary ``fill``: the fill values found, a list of floats.
+    """
+    return BlockOutput(summary={"fill": [float(v) for v in fill_values(np.asarray(f, np.float32), lo, hi,
+                                                                        options=dead)]})

@@ -21,10 +21,22 @@ from ...._threads import run_threads
 from ...._validation import check_positive
 from ....errors import InputError
 from ... import _kernels
+from ...attributes import structure_tensor_halo, structure_tensor_slopes
+from ...blocks.apply import BlockOutput
+from ...blocks.statistics import otsu
 from ..result import check_fault_arrays
-from .thresholds import otsu
+from .dead_samples import dead_samples, near_dead_samples
 
-__all__ = ["thin_faults", "fault_labels", "live_likelihood", "ridges", "thin_votes", "without_dead_edges"]
+__all__ = ["RIDGE_HALO", "THIN_HALO", "amplitude_halo", "cell_block", "thin_faults", "fault_labels", "live_likelihood",
+           "ridge_block", "ridges", "thin_block", "thin_votes", "without_dead_edges"]
+
+# Lateral halo of the ridges (thin_faults with its defaults): the Gaussian of sigma 1.5 (5 traces), the average along
+# the dip over +-4 samples on planes steeper than 45 degrees (4 traces, +1 for the bilinear reads), and the
+# comparison one sample across the fault (+1, +1 for the trilinear reads).
+RIDGE_HALO = 12
+# Lateral halo of the thinning of the votes (no smoothing): one sample across the fault, trilinear reads.
+THIN_HALO = 2
+
 
 
 @nb.njit(cache=True, inline="always")
@@ -352,3 +364,122 @@ def thin_votes(votes: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray) -
     """
     fv, st, dp = check_fault_arrays(votes, strike_deg, dip_deg)
     return ridge_image(fv, st, dp, floor=0.0, sigma=0.0, dip_smoothing=0)
+
+
+# -- one block of a run by blocks (declared in seismo3d.seismic.faults.surfaces.blocks) ---------------------------
+
+def amplitude_halo(opt) -> int:
+    """Traces of amplitudes read around a block of :func:`ridge_block`: the dead samples' reach around
+    ``RIDGE_HALO``, and the structure tensor's halo for the reflector slopes.
+
+    Parameters
+    ----------
+    opt : FaultTracingOptions
+        Its ``dead`` options (their reach).
+
+    Returns
+    -------
+    int
+        Traces on each lateral side.
+    """
+    return max(RIDGE_HALO + opt.dead.reach[0], structure_tensor_halo()[0])
+
+
+def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, shape, opt) -> BlockOutput:
+    """Reflector slopes, dead samples, live likelihood and ridges of one block (Hale 2013).
+
+    Parameters
+    ----------
+    place : BlockPlace
+        The block's core and the region of ``f``.
+    f : (m0, m1, n_samples) ndarray
+        Amplitudes of ``place.region``: the block grown by the dead samples' reach around ``RIDGE_HALO`` and by the
+        structure tensor's halo (:func:`amplitude_halo`).
+    likelihood, strike, dip : (n_inlines, n_xlines, n_samples) arrays read by slicing
+        The fault likelihood, strike and dip of the cube, read around the block with ``RIDGE_HALO``.
+    fill : (k,) float32 ndarray
+        Fill values of the dead-sample rules; ``lo``, ``hi`` the cube's smallest and largest amplitudes.
+    shape : (int, int, int)
+        Of the cube.
+    opt : FaultTracingOptions
+
+    Returns
+    -------
+    BlockOutput
+        The core's ``slope_inline``, ``slope_xline`` (:func:`structure_tensor_slopes`, as the throws read them in
+        memory), ``likelihood`` (0 near dead samples) and ``near`` (uint8; None without dead samples); lists
+        ``points`` (k, 3) int64, ``values`` (k,) float32 and ``angles`` (k, 2) float32 of the ridge samples above
+        the seed threshold (the seed candidates); summary ``high``, ``live`` (:func:`live_likelihood`).
+    """
+    i0, i1, j0, j1 = place.block
+    origin = place.origin
+    f = np.asarray(f, np.float32)
+    slopes = [p[place.core] for p in structure_tensor_slopes(f)]
+    dead = dead_samples(f, fill, lo, hi, options=opt.dead)
+    del f
+    near = near_dead_samples(dead, options=opt.dead) if dead.any() else None
+    del dead
+    n0, n1 = shape[:2]
+    a0, a1, b0, b1 = max(i0 - RIDGE_HALO, 0), min(i1 + RIDGE_HALO, n0), max(j0 - RIDGE_HALO, 0), min(j1 + RIDGE_HALO, n1)
+    fl, st, dp = (a[a0:a1, b0:b1] for a in (likelihood, strike, dip))
+    if near is not None:
+        near = near[a0 - origin[0]:a1 - origin[0], b0 - origin[1]:b1 - origin[1]]
+    core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
+    high, live = live_likelihood(fl, near, core, level=opt.saturation_level)
+    ridge = ridges(fl, st, dp, opt.voting.seed_threshold)[core]
+    cand = np.argwhere(ridge > float(opt.voting.seed_threshold))
+    at = tuple(cand.T)
+    local = (cand[:, 0] + i0 - a0, cand[:, 1] + j0 - b0, cand[:, 2])
+    candidates = {"points": (cand + np.array([i0, j0, 0])).astype(np.int64), "values": ridge[at].astype(np.float32),
+                  "angles": np.stack([st[local], dp[local]], axis=-1).astype(np.float32)}
+    arrays = {"slope_inline": slopes[0], "slope_xline": slopes[1], "likelihood": fl[core],
+              "near": None if near is None else near[core].view(np.uint8)}
+    return BlockOutput(arrays, {"high": high, "live": live}, candidates)
+
+
+def thin_block(place, votes, strike, dip) -> BlockOutput:
+    """Thinned votes of one block (:func:`thin_votes`), and the count, smallest and largest of the positive ones of
+    its core (the thresholds' range).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    votes, strike, dip : (m0, m1, n_samples) float32 ndarrays
+        Votes and their strike and dip (degrees) over ``place.region``: the block grown by ``THIN_HALO``.
+
+    Returns
+    -------
+    BlockOutput
+        ``thin_raw``: (core, n_samples) float32; summary ``count``, ``min``, ``max``.
+    """
+    thin = thin_votes(votes, strike, dip)[place.core]
+    positive = thin[thin > 0]
+    return BlockOutput({"thin_raw": thin}, {"count": int(positive.size),
+                                            "min": float(positive.min()) if positive.size else 0.0,
+                                            "max": float(positive.max()) if positive.size else 0.0})
+
+
+def cell_block(place, thin, strike, dip, lower: float) -> BlockOutput:
+    """The thinned votes at or above ``lower`` of one block (the others set to 0), and its cells.
+
+    Parameters
+    ----------
+    place : BlockPlace
+    thin, strike, dip : (m0, m1, n_samples) float32 ndarrays
+        Thinned votes (modified in place) and the votes' strike and dip (degrees) of the block's core.
+    lower : float
+        Lower threshold.
+
+    Returns
+    -------
+    BlockOutput
+        ``thin``; lists ``points`` (k, 3) int64 cube indices, ``values``, ``strike``, ``dip`` (k,) float32; summary
+        ``count``.
+    """
+    thin[thin < lower] = 0.0
+    cells = np.argwhere(thin >= lower)
+    at = tuple(cells.T)
+    i0, j0 = place.block[0], place.block[2]
+    lists = {"points": (cells + np.array([i0, j0, 0])).astype(np.int64), "values": thin[at], "strike": strike[at],
+             "dip": dip[at]}
+    return BlockOutput({"thin": thin}, {"count": int(len(cells))}, lists)

@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 import zarr
 
-import seismo3d.seismic.faults.surfaces.block_steps as block_steps
 import seismo3d.seismic.faults.surfaces.blocks as chunked_faults
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
@@ -122,16 +121,16 @@ def test_resume_after_an_interrupted_run(cube, likelihood, reference, tmp_path, 
         return run
 
     out = tmp_path / "surfaces.zarr"
-    monkeypatch.setattr(block_steps, "seed_surfaces", interrupted_at(block_steps.seed_surfaces, 3))
+    monkeypatch.setattr(chunked_faults, "seed_surfaces", interrupted_at(chunked_faults.seed_surfaces, 3))
     with pytest.raises(KeyboardInterrupt):
         chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS)
     assert not out.exists() and (tmp_path / "surfaces.zarr.partial").exists()
     monkeypatch.undo()
 
-    class Interrupted(block_steps.VoteSum):
-        votes = interrupted_at(block_steps.VoteSum.votes, 3)
+    class Interrupted(chunked_faults.VoteSum):
+        votes = interrupted_at(chunked_faults.VoteSum.votes, 3)
 
-    monkeypatch.setattr(block_steps, "VoteSum", Interrupted)
+    monkeypatch.setattr(chunked_faults, "VoteSum", Interrupted)
     with pytest.raises(KeyboardInterrupt):
         chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS)
     assert not out.exists()

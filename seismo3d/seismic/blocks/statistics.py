@@ -1,10 +1,10 @@
-"""The statistics of the thinned votes that set the fault thresholds, in memory and from blocks.
+"""Statistics of values spread over the blocks of a run, equal to the libraries' on the values gathered: what a
+``'reduce'`` step's blocks return and the caller combines, never holding the values of the cube at once.
 
-:func:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from` takes Otsu's threshold of the positive thinned
-votes and, for densely faulted data, one of their quantiles. In memory they come from scikit-image
-(:func:`skimage.filters.threshold_otsu`) and numpy (:func:`numpy.quantile`, linear method) on the values
-(:func:`otsu`, :func:`quantile`). Block by block the same numbers come from streaming equivalents that never hold the
-values of the cube at once:
+The fault thresholds (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`) take Otsu's threshold of
+the positive thinned votes and, for densely faulted data, one of their quantiles. In memory they come from
+scikit-image (:func:`skimage.filters.threshold_otsu`) and numpy (:func:`numpy.quantile`, linear method) on the values
+(:func:`otsu`, :func:`quantile`). Block by block the same numbers come from streaming equivalents:
 
 - Otsu: the counts of every block in the 256 bins scikit-image uses (same float32 range, so the same edges), summed,
   then scikit-image's Otsu on that histogram (:func:`histogram_edges`, :func:`block_histogram`,
@@ -12,15 +12,19 @@ values of the cube at once:
 - the quantile: the two order statistics numpy interpolates, located by a fine histogram (:func:`quantile_window`),
   then the values of the blocks within that window gathered and sorted (:func:`quantile_of_window`).
 
-``tests/seismic/faults/surfaces/test_thresholds.py`` checks that both equal the library's result on the whole values.
+``tests/seismic/blocks/test_statistics.py`` checks that both equal the library's result on the whole values.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["HISTOGRAM_BINS", "QUANTILE_BINS", "block_histogram", "histogram_edges", "otsu", "otsu_of_histogram",
-           "quantile", "quantile_of_window", "quantile_window"]
+from .apply import BlockOutput
+from .plan import BlockStep
+
+__all__ = ["HISTOGRAM_BINS", "QUANTILE_BINS", "block_histogram", "histogram_block", "histogram_edges", "otsu",
+           "otsu_of_histogram", "positive_values", "quantile", "quantile_of_window", "quantile_window",
+           "statistic_steps", "streamed_otsu", "streamed_quantile", "window_block"]
 
 # Bins of scikit-image's Otsu threshold (its default nbins).
 HISTOGRAM_BINS = 256
@@ -162,3 +166,133 @@ def _float32_range(vmin: float, vmax: float) -> tuple:
     """The histogram range as float32 scalars: numpy then computes the bin edges in float32, as for the range of a
     float32 array (what skimage's Otsu threshold uses in memory)."""
     return np.float32(vmin), np.float32(vmax)
+
+
+# -- over the blocks of a run --------------------------------------------------------------------------------------
+
+def positive_values(values) -> np.ndarray:
+    """The positive values of an array, flattened.
+
+    Parameters
+    ----------
+    values : ndarray
+
+    Returns
+    -------
+    (k,) ndarray
+        Of the array's dtype.
+    """
+    return values[values > 0]
+
+
+def histogram_block(values, vmin: float, vmax: float, bins: int) -> BlockOutput:
+    """The counts of one block's positive values in ``bins`` bins over ``[vmin, vmax]`` (:func:`block_histogram`).
+
+    Parameters
+    ----------
+    values : ndarray
+    vmin, vmax : float
+    bins : int
+
+    Returns
+    -------
+    BlockOutput
+        Summary ``counts``: a list of ``bins`` ints.
+    """
+    return BlockOutput(summary={"counts": block_histogram(positive_values(values), vmin, vmax, bins).tolist()})
+
+
+def window_block(values, lo_edge: float, hi_edge: float) -> BlockOutput:
+    """One block's positive values below ``lo_edge`` counted and those in ``[lo_edge, hi_edge]`` listed.
+
+    Parameters
+    ----------
+    values : ndarray
+    lo_edge, hi_edge : float
+
+    Returns
+    -------
+    BlockOutput
+        Summary ``below`` (int) and ``values`` (list of floats).
+    """
+    values = positive_values(values)
+    return BlockOutput(summary={"below": int(np.count_nonzero(values < lo_edge)),
+                                "values": values[(values >= lo_edge) & (values <= hi_edge)].tolist()})
+
+
+def statistic_steps(array: str, what: str) -> dict:
+    """The steps that reduce the positive values of a stored ``array`` over blocks: ``'histogram'`` (Otsu's bins),
+    ``'quantile_histogram'`` (the quantile's fine bins) and ``'quantile'`` (the values of its window gathered).
+
+    Parameters
+    ----------
+    array : str
+        The name of the array in the run's stores.
+    what : str
+        What its values are, in the progress reports' labels (e.g. ``'the thinned votes'``).
+
+    Returns
+    -------
+    dict
+        ``{name: BlockStep}``.
+    """
+    label = f"histogram of {what}"
+    return {"histogram": BlockStep("histogram", "reduce", function=histogram_block, label=label, inputs=(array,)),
+            "quantile_histogram": BlockStep("quantile_histogram", "reduce", function=histogram_block, label=label,
+                                            inputs=(array,)),
+            "quantile": BlockStep("quantile", "gather", function=window_block, label=f"quantile of {what}",
+                                  inputs=(array,))}
+
+
+def streamed_otsu(run, steps: dict, blocks, vmin: float, vmax: float) -> float:
+    """Otsu's threshold of the positive values of an array over the blocks of a run: :func:`otsu` of the values
+    gathered, from the blocks' histograms (:func:`statistic_steps`).
+
+    Parameters
+    ----------
+    run : BlockRun
+    steps : dict
+        Of :func:`statistic_steps`.
+    blocks : list of tuple
+    vmin, vmax : float
+        The smallest and largest positive value.
+
+    Returns
+    -------
+    float
+    """
+    return otsu_of_histogram(_summed_histogram(run, steps["histogram"], blocks, vmin, vmax, HISTOGRAM_BINS),
+                             vmin, vmax)
+
+
+def streamed_quantile(run, steps: dict, blocks, q: float, n: int, vmin: float, vmax: float) -> float:
+    """``numpy.quantile(values, q)`` of the ``n`` positive values of an array over the blocks of a run, exactly: the
+    two order statistics it interpolates, found by a fine histogram and a pass that gathers the values of their bins.
+
+    Parameters
+    ----------
+    run : BlockRun
+    steps : dict
+        Of :func:`statistic_steps`.
+    blocks : list of tuple
+    q : float
+        In [0, 1].
+    n : int
+        Number of positive values.
+    vmin, vmax : float
+        Their smallest and largest.
+
+    Returns
+    -------
+    float
+    """
+    counts = _summed_histogram(run, steps["quantile_histogram"], blocks, vmin, vmax, QUANTILE_BINS)
+    window = quantile_window(counts, n, q, vmin, vmax)
+    results = run.run_step(steps["quantile"], blocks, window[3], window[4])
+    values = np.concatenate([np.asarray(r["values"], np.float32) for r in results])
+    return quantile_of_window(window, sum(r["below"] for r in results), values)
+
+
+def _summed_histogram(run, step, blocks, vmin, vmax, bins) -> np.ndarray:
+    results = run.run_step(step, blocks, vmin, vmax, bins)
+    return np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)

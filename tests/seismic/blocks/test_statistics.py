@@ -1,4 +1,4 @@
-"""The streamed statistics of the thinned votes (seismo3d.seismic.faults.surfaces.thresholds) equal the libraries' on
+"""The streamed statistics of values over blocks (seismo3d.seismic.blocks.statistics) equal the libraries' on
 the whole values: Otsu's threshold from summed block histograms equals scikit-image's, the quantile from a fine
 histogram and a
 window of gathered values equals numpy's, to the bit."""
@@ -8,7 +8,7 @@ import pytest
 from skimage.filters import threshold_otsu
 
 from seismo3d.seismic.faults import FaultTracingOptions
-from seismo3d.seismic.faults.surfaces.thresholds import (
+from seismo3d.seismic.blocks.statistics import (
     HISTOGRAM_BINS, QUANTILE_BINS, block_histogram, otsu, otsu_of_histogram, quantile_of_window, quantile_window,
 )
 
@@ -78,3 +78,25 @@ def test_thresholds_from_streamed_statistics_are_the_in_memory_ones():
         expected = opt.thresholds(thin)
         assert opt.thresholds_from(otsu_of_histogram(counts, vmin, vmax), n, thin.size, streamed) == expected
     assert expected[0] > FaultTracingOptions().thresholds(thin)[0]  # the dense case took the quantile
+
+
+@pytest.mark.parametrize("q", [0.1, 0.5, 0.97])
+def test_otsu_and_quantile_over_the_blocks_of_a_run_are_the_whole_arrays(tmp_path, q):
+    zarr = pytest.importorskip("zarr")
+    from seismo3d.seismic.blocks.executor import BlockRun
+    from seismo3d.seismic.blocks.plan import lateral_blocks
+    from seismo3d.seismic.blocks.statistics import statistic_steps, streamed_otsu, streamed_quantile
+
+    rng = np.random.default_rng(4)
+    cube = np.where(rng.random((10, 7, 6)) < 0.4, rng.gamma(2.0, 0.05, (10, 7, 6)), 0.0).astype(np.float32)
+    zarr.create_array(str(tmp_path / "values"), shape=cube.shape, chunks=(4, 4, 6), dtype="float32")[:] = cube
+    run = BlockRun(tmp_path / "work", scheduler="synchronous")
+    run.open({"shape": list(cube.shape)}, "the work folder")
+    run.arrays["values"], run.shape = str(tmp_path / "values"), cube.shape
+    steps = statistic_steps("values", "the values")
+    blocks = lateral_blocks(cube.shape, 4, 4)
+    positive = cube[cube > 0]
+    vmin, vmax = float(positive.min()), float(positive.max())
+    assert streamed_otsu(run, steps, blocks, vmin, vmax) == otsu(positive)
+    assert streamed_quantile(run, steps, blocks, q, positive.size, vmin, vmax) == float(np.quantile(positive, q))
+    assert run.computed == {"histogram": 6, "quantile_histogram": 6, "quantile": 6}

@@ -1,0 +1,218 @@
+"""One block of a declared step (:class:`~seismo3d.seismic.blocks.plan.BlockStep` with ``inputs`` / ``outputs``): its
+inputs read around the block, the step's algorithm called on arrays, the block's core of what it returns written
+into the step's output stores, its sparse lists saved, and its marker written last (:func:`apply_block`).
+
+The algorithm knows nothing of stores, memory limits or resumption: it takes arrays (the block grown by the step's
+halo) and returns a :class:`BlockOutput`. The same algorithm runs on a whole array in memory.
+
+Why not :func:`dask.array.map_overlap` and ``dask.array.Array.to_zarr(region=...)``, which read blocks with a halo
+and write them into a Zarr store? A step here writes several stores at once, with per-step halos and blocks planned
+from a memory limit, reduces or gathers a small result per block alongside, and leaves a marker per block after its
+data so that an interrupted run resumes from the finished blocks (``CONTRIBUTING.md``, "Runs by blocks"); dask's
+graph recomputes every block of an interrupted ``to_zarr``.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..._atomic import atomic_path
+from .plan import CUBE, BlockStep
+
+__all__ = ["BlockOutput", "BlockPlace", "apply_block", "gather", "load_lists", "save_lists", "write_marker"]
+
+
+@dataclass(frozen=True)
+class BlockPlace:
+    """Where a block is: its core and the region read around it, trace indices of the cube.
+
+    Attributes
+    ----------
+    block : (int, int, int, int)
+        ``(i0, i1, j0, j1)``: the block's core, the traces it writes (half-open).
+    region : (int, int, int, int)
+        ``(a0, a1, b0, b1)``: the traces read (the core grown by the step's halo, clipped to the cube, or the step's
+        own ``region``).
+    """
+
+    block: tuple
+    region: tuple
+
+    @property
+    def origin(self) -> tuple:
+        """``(a0, b0)``: the first inline and crossline of the region read."""
+        return self.region[0], self.region[2]
+
+    @property
+    def core(self) -> tuple:
+        """``(rows, cols)`` slices of the core within the region read."""
+        i0, i1, j0, j1 = self.block
+        a0, b0 = self.origin
+        return slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0)
+
+    @property
+    def read(self) -> tuple:
+        """``(rows, cols)`` slices of the region read within the cube."""
+        a0, a1, b0, b1 = self.region
+        return slice(a0, a1), slice(b0, b1)
+
+    @property
+    def target(self) -> tuple:
+        """``(rows, cols)`` slices of the core within the cube."""
+        i0, i1, j0, j1 = self.block
+        return slice(i0, i1), slice(j0, j1)
+
+
+@dataclass(frozen=True, eq=False)
+class BlockOutput:
+    """What a step's algorithm returns for one block.
+
+    Attributes
+    ----------
+    arrays : dict
+        ``{output name: (m0, m1, ...) ndarray or None}``: over the region read (cut to the core by the executor) or
+        over the core; None writes nothing (the store keeps its fill value).
+    summary : dict
+        A small JSON-serialisable result (counts, sums, a range): the block's marker, reduced by the caller.
+    lists : dict
+        ``{name: ndarray}``: sparse lists of the block (seed candidates, cells), saved in the step's folder of the
+        run (:func:`save_lists`) and read back by later steps or the caller (:func:`load_lists`, :func:`gather`).
+    """
+
+    arrays: dict = field(default_factory=dict)
+    summary: dict = field(default_factory=dict)
+    lists: dict = field(default_factory=dict)
+
+
+def write_marker(path, payload: dict) -> None:
+    """Write a block's marker (its small JSON result) atomically: a marker that exists is complete.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The marker file (:meth:`~seismo3d.seismic.blocks.executor.BlockRun.marker`).
+    payload : dict
+        JSON-serialisable result of the block, returned again when a resumed run skips it.
+    """
+    with atomic_path(str(path)) as tmp, open(tmp, "w") as fh:
+        json.dump(payload, fh)
+
+
+def save_lists(folder, block, lists: dict) -> None:
+    """Save a block's sparse lists, one ``.npy`` each in ``folder/<i0>-<j0>/``, atomically (a file that exists is
+    complete; the block's marker, written after them, says that all are).
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The step's folder of lists.
+    block : tuple
+        ``(i0, i1, j0, j1)``; items 0 and 2 name the block.
+    lists : dict
+        ``{name: ndarray}``.
+    """
+    path = pathlib.Path(folder) / f"{block[0]}-{block[2]}"
+    path.mkdir(parents=True, exist_ok=True)
+    for name, values in lists.items():
+        with atomic_path(str(path / f"{name}.npy")) as tmp, open(tmp, "wb") as fh:
+            np.save(fh, np.asarray(values))
+
+
+def load_lists(folder, block, names, *, mmap_mode=None) -> dict:
+    """A block's sparse lists saved by :func:`save_lists`.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+    block : tuple
+        ``(i0, i1, j0, j1)``.
+    names : iterable of str
+    mmap_mode : {None, 'r'}
+        ``'r'``: memory-mapped, read row by row when indexed (:func:`numpy.load`).
+
+    Returns
+    -------
+    dict
+        ``{name: ndarray}``.
+    """
+    path = pathlib.Path(folder) / f"{block[0]}-{block[2]}"
+    return {name: np.load(path / f"{name}.npy", mmap_mode=mmap_mode) for name in names}
+
+
+def gather(folder, blocks, names) -> dict:
+    """The sparse lists of ``blocks`` concatenated in the blocks' order.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The step's folder of lists.
+    blocks : list of tuple
+    names : iterable of str
+
+    Returns
+    -------
+    dict
+        ``{name: ndarray}``; None for a name when there are no blocks.
+    """
+    parts = [load_lists(folder, b, names) for b in blocks]
+    return {name: np.concatenate([q[name] for q in parts]) if parts else None for name in names}
+
+
+def apply_block(window, step: BlockStep, place: BlockPlace, paths: dict, lists, marker, *args) -> dict:
+    """Run a declared step on one block: read its inputs, call its algorithm, write the core of its outputs, save
+    its lists, then its marker.
+
+    Parameters
+    ----------
+    window : (m0, m1, n_samples) ndarray or None
+        The input cube's region (:attr:`BlockPlace.region`), read by dask, when :data:`~seismo3d.seismic.blocks.plan.
+        CUBE` is among the step's inputs.
+    step : BlockStep
+        Its ``inputs``, ``outputs``, ``function`` and the flags ``place``, ``lazy``, ``trim``, ``combine``.
+    place : BlockPlace
+    paths : dict
+        ``{array name: Zarr array path}`` of the run's stores (inputs and outputs).
+    lists : str or None
+        The step's folder of sparse lists (:func:`save_lists`).
+    marker : str
+        The block's marker file.
+    *args
+        Passed to the algorithm after the arrays.
+
+    Returns
+    -------
+    dict
+        The block's summary (also its marker's payload).
+    """
+    import zarr
+
+    inputs = []
+    for name in step.inputs:
+        if name == CUBE:
+            inputs.append(window)
+            continue
+        array = zarr.open_array(paths[name], mode="r")
+        inputs.append(array if step.lazy else array[place.read])
+    del window
+    out = step.function(*((place,) if step.place else ()), *inputs, *args)
+    del inputs
+    region = (place.region[1] - place.region[0], place.region[3] - place.region[2])
+    for name in step.outputs:
+        key, name = (name, name) if isinstance(name, str) else name
+        value = out.arrays.get(key)
+        if value is None:
+            continue
+        if step.trim and tuple(value.shape[:2]) == region:
+            value = value[place.core]
+        store = zarr.open_array(paths[name], mode="r+")
+        if step.combine is not None:
+            value = step.combine(value, store[place.target])
+        store[place.target] = value
+    if out.lists:
+        save_lists(lists, place.block, out.lists)
+    write_marker(marker, out.summary)
+    return out.summary

@@ -1,0 +1,96 @@
+"""Tests of seismo3d.seismic.blocks.apply: a declared step's algorithm on arrays, run block by block by the executor,
+writes exactly what it computes on the whole array in memory (the core of each block, read with its halo), combines
+with what is stored, saves and gathers its sparse lists, and a resumed run skips the finished blocks."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy import ndimage as ndi
+
+from seismo3d.seismic.blocks.apply import BlockOutput, BlockPlace, gather, load_lists
+from seismo3d.seismic.blocks.executor import BlockRun
+from seismo3d.seismic.blocks.plan import CUBE, BlockStep, lateral_blocks
+
+zarr = pytest.importorskip("zarr")
+da = pytest.importorskip("dask.array")
+
+SHAPE = (11, 9, 5)
+HALO = 2
+
+
+def _smoothed(f) -> BlockOutput:
+    """A lateral box mean of radius HALO over the region read (clamped at its edges), and the count of its values."""
+    return BlockOutput({"smooth": ndi.uniform_filter(f, size=(2 * HALO + 1, 2 * HALO + 1, 1), mode="nearest")},
+                       {"n": int(f.size)})
+
+
+def _peaks(place, smooth, level) -> BlockOutput:
+    """The core's samples of ``smooth`` above ``level`` as a list of cube indices; doubled values written back."""
+    core = smooth[place.core]
+    points = np.argwhere(core > level) + np.array([place.block[0], place.block[2], 0])
+    return BlockOutput({"double": 2 * smooth}, {"count": int(len(points))}, {"points": points.astype(np.int64)})
+
+
+def _run(tmp_path, cube, *steps_and_args):
+    run = BlockRun(tmp_path / "work", scheduler="synchronous")
+    run.open({"shape": list(cube.shape)}, "the work folder")
+    run.shape = cube.shape
+    for name in ("smooth", "double"):
+        path = tmp_path / name
+        if not path.exists():
+            zarr.create_array(str(path), shape=cube.shape, chunks=(4, 4, 5), dtype="float32", fill_value=0)
+        run.arrays[name] = str(path)
+    source = da.from_array(cube, chunks=(4, 9, 5))
+    results = []
+    for step, args in steps_and_args:
+        results.append(run.run_step(step, lateral_blocks(cube.shape, 4, 4), *args,
+                                    source=source if CUBE in step.inputs else None))
+    return run, results
+
+
+def _cube():
+    return np.random.default_rng(0).standard_normal(SHAPE).astype(np.float32)
+
+
+def test_a_declared_step_writes_the_whole_array_result_block_by_block(tmp_path):
+    cube = _cube()
+    smooth = BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",))
+    peaks = BlockStep("peaks", "gather", HALO, function=_peaks, inputs=("smooth",), outputs=("double",), place=True)
+    run, (sizes, counts) = _run(tmp_path, cube, (smooth, ()), (peaks, (0.2,)))
+    # the same mean over the whole cube: every block's core equals it (its halo covers the filter's reach)
+    whole = ndi.uniform_filter(cube, size=(2 * HALO + 1, 2 * HALO + 1, 1), mode="nearest")
+    np.testing.assert_array_equal(zarr.open_array(str(tmp_path / "smooth"))[:], whole)
+    np.testing.assert_array_equal(zarr.open_array(str(tmp_path / "double"))[:], 2 * whole)
+    # the regions read: each block grown by HALO, clipped to the cube
+    assert sum(r["n"] for r in sizes) == sum((min(i1 + HALO, 11) - max(i0 - HALO, 0)) *
+                                             (min(j1 + HALO, 9) - max(j0 - HALO, 0)) * 5
+                                             for i0, i1, j0, j1 in lateral_blocks(SHAPE, 4, 4))
+    # the lists of every block gathered: the samples above the level, each once
+    points = gather(tmp_path / "work" / "peaks", lateral_blocks(SHAPE, 4, 4), ("points",))["points"]
+    np.testing.assert_array_equal(np.sort(np.ravel_multi_index(tuple(points.T), SHAPE)),
+                                  np.flatnonzero(whole > 0.2))
+    assert sum(r["count"] for r in counts) == int(np.count_nonzero(whole > 0.2))
+    assert load_lists(tmp_path / "work" / "peaks", (0, 4, 0, 4), ("points",), mmap_mode="r")["points"].ndim == 2
+
+
+def test_outputs_combine_with_what_is_stored_and_a_resumed_run_skips_finished_blocks(tmp_path):
+    cube = _cube()
+    smooth = BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",),
+                       combine=np.maximum)
+    zarr.create_array(str(tmp_path / "smooth"), shape=SHAPE, chunks=(4, 4, 5), dtype="float32", fill_value=0.5)
+    run, _ = _run(tmp_path, cube, (smooth, ()))
+    whole = ndi.uniform_filter(cube, size=(2 * HALO + 1, 2 * HALO + 1, 1), mode="nearest")
+    np.testing.assert_array_equal(zarr.open_array(str(tmp_path / "smooth"))[:], np.maximum(whole, 0.5))
+    assert run.computed == {"smooth": 9} and run.resumed == {"smooth": 0}
+
+    (tmp_path / "work" / "done" / "smooth-4-4.json").unlink()  # as if interrupted before this block's marker
+    again, _ = _run(tmp_path, cube, (smooth, ()))
+    assert again.computed == {"smooth": 1} and again.resumed == {"smooth": 8}
+
+
+def test_a_block_place_names_its_core_within_the_region_read():
+    place = BlockPlace((4, 8, 0, 4), (2, 10, 0, 6))
+    assert place.origin == (2, 0)
+    assert place.core == (slice(2, 6), slice(0, 4))
+    assert place.read == (slice(2, 10), slice(0, 6)) and place.target == (slice(4, 8), slice(0, 4))

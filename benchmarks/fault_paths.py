@@ -17,7 +17,10 @@ suite keeps a smaller cube's comparison (``tests/jobs/test_faults_chunked.py``);
 samples), ``seismo3d faults CUBE -o OUT`` in memory and ``seismo3d faults CUBE -o OUT --memory-limit 1GB`` by blocks,
 each a child process whose peak resident memory (RSS, with its children) is sampled every 0.2 s. Printed: seconds
 and s/GB of each, their ratio (target <= 1.3), the peaks against the limit, and whether the two runs wrote the same
-``fault_points.csv`` and ``fault_summary.csv``.
+``fault_points.csv`` and ``fault_summary.csv``. ``--baseline CODE_DIR`` (e.g. a worktree of main) runs the same two
+commands with ``PYTHONPATH=CODE_DIR`` too, each path's baseline run just before this code's (memory: baseline, ours;
+blocks: baseline, ours), and prints a row per code with the load average over each run (the 1-minute average read
+at its end), so that the two are compared in the same window.
 """
 
 from __future__ import annotations
@@ -113,9 +116,10 @@ def forced_blocks(name: str, npy: pathlib.Path, out: pathlib.Path, smallest: int
     }
 
 
-def target(root: pathlib.Path, shape=(400, 400, 500), limit: str = "1GB") -> dict:
+def target(root: pathlib.Path, shape=(400, 400, 500), limit: str = "1GB", baseline=None) -> list:
     """The faults command on a SEG-Y cube of ``shape`` in memory and under ``--memory-limit limit``, each a child
-    process; its seconds and peak memory."""
+    process; its seconds and peak memory. ``baseline``: a code folder run the same way (``PYTHONPATH``), each of
+    its runs just before this code's. Returns one row per code (the baseline's first)."""
     import sys
 
     sys.path.insert(0, str(pathlib.Path(__file__).parent))
@@ -125,35 +129,50 @@ def target(root: pathlib.Path, shape=(400, 400, 500), limit: str = "1GB") -> dic
     if not sgy.exists():
         write_mosaic_segy(sgy, shape)
     gb = float(np.prod(shape)) * 4 / 1e9
+    codes = (["baseline"] if baseline else []) + ["this code"]
     runs = {}
     for key, extra in (("memory", []), ("blocks", ["--memory-limit", limit])):
-        out = root / f"target_{key}"
-        shutil.rmtree(out, ignore_errors=True)  # an earlier benchmark's: the command would reuse its stores
-        cmd = [shutil.which("seismo3d"), "faults", str(sgy), "-o", str(out), *extra]
-        start = time.perf_counter()
-        with open(root / f"target_{key}.log", "w") as log:  # the progress the command reports
-            proc = subprocess.Popen(cmd, stderr=log)
-            sampler = _PeakRSS(proc.pid)
-            proc.wait()
-        peak = sampler.stop()
-        if proc.returncode != 0:
-            raise SystemExit(f"{' '.join(cmd)} failed (exit {proc.returncode})")
-        runs[key] = (time.perf_counter() - start, peak, out)
-    (t_m, p_m, o_m), (t_b, p_b, o_b) = runs["memory"], runs["blocks"]
-    if not (o_b / "fault_likelihood.zarr").exists():
-        raise SystemExit(f"--memory-limit {limit} did not run by blocks")
-    return {
-        "cube": "x".join(map(str, shape)) + " SEG-Y", "s/GB in memory": t_m / gb, "s/GB by blocks": t_b / gb,
-        "ratio": t_b / t_m, "peak GiB in memory": p_m / 2**30, "peak GiB by blocks": p_b / 2**30,
-        "limit": limit, "points equal": (o_b / "fault_points.csv").read_bytes() == (o_m / "fault_points.csv").read_bytes(),
-        "summary equal": (o_b / "fault_summary.csv").read_bytes() == (o_m / "fault_summary.csv").read_bytes(),
-    }
+        for code in codes:
+            tag = f"{key}_baseline" if code == "baseline" else key
+            out = root / f"target_{tag}"
+            shutil.rmtree(out, ignore_errors=True)  # an earlier benchmark's: the command would reuse its stores
+            cmd = [shutil.which("seismo3d"), "faults", str(sgy), "-o", str(out), *extra]
+            env = dict(os.environ)
+            if code == "baseline":
+                env["PYTHONPATH"] = str(baseline)
+            start = time.perf_counter()
+            with open(root / f"target_{tag}.log", "w") as log:  # the progress the command reports
+                proc = subprocess.Popen(cmd, stderr=log, env=env)
+                sampler = _PeakRSS(proc.pid)
+                proc.wait()
+            peak = sampler.stop()
+            if proc.returncode != 0:
+                raise SystemExit(f"{' '.join(cmd)} failed (exit {proc.returncode})")
+            runs[code, key] = (time.perf_counter() - start, peak, out, os.getloadavg()[0])
+            print(f"  {code} {key}: {runs[code, key][0]:.0f} s, load {runs[code, key][3]:.1f}", flush=True)
+    rows = []
+    for code in codes:
+        (t_m, p_m, o_m, l_m), (t_b, p_b, o_b, l_b) = runs[code, "memory"], runs[code, "blocks"]
+        if not (o_b / "fault_likelihood.zarr").exists():
+            raise SystemExit(f"--memory-limit {limit} did not run by blocks")
+        rows.append({
+            "code": str(baseline) if code == "baseline" else code,
+            "cube": "x".join(map(str, shape)) + " SEG-Y", "s/GB in memory": t_m / gb, "s/GB by blocks": t_b / gb,
+            "ratio": t_b / t_m, "peak GiB in memory": p_m / 2**30, "peak GiB by blocks": p_b / 2**30,
+            "limit": limit, "load in memory": l_m, "load by blocks": l_b,
+            "points equal": (o_b / "fault_points.csv").read_bytes() == (o_m / "fault_points.csv").read_bytes(),
+            "summary equal": (o_b / "fault_summary.csv").read_bytes() == (o_m / "fault_summary.csv").read_bytes(),
+        })
+    return rows
 
 
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", default="generated,penobscot")
     ap.add_argument("--keep", type=pathlib.Path, default=None, help="keep the outputs in this folder")
+    ap.add_argument("--baseline", type=pathlib.Path, default=None, metavar="CODE_DIR",
+                    help="target: also run the commands with PYTHONPATH=CODE_DIR (e.g. a worktree of main), each "
+                    "path's baseline run just before this code's")
     args = ap.parse_args(argv)
     only = set(args.only.split(","))
     root = args.keep or pathlib.Path(tempfile.mkdtemp(prefix="fault_paths_"))
@@ -171,9 +190,10 @@ def main(argv=None) -> None:
         rows.append(compare("Penobscot 18 inlines", npy, root / "penobscot"))
     print(f"load average {os.getloadavg()[0]:.1f}")
     if "target" in only:
-        row = target(root)
-        print(" | ".join(row))
-        print(" | ".join(f"{v:.3g}" if isinstance(v, float) else str(v) for v in row.values()))
+        found = target(root, baseline=args.baseline)
+        print(" | ".join(found[0]))
+        for row in found:
+            print(" | ".join(f"{v:.3g}" if isinstance(v, float) else str(v) for v in row.values()))
         print(f"load average {os.getloadavg()[0]:.1f}")
     if not rows:
         return

@@ -411,7 +411,7 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     assert min(r0, c0) >= 0 and r1 <= small.shape[0] and c1 <= small.shape[1], "network block outside its region"
     sections = small[r0:r1] if axis == 0 else small[:, c0:c1]
     prob = direction_probability(sections, axis, scale=scale, batch=int(opt.sections_per_batch),
-                                 stretch_to=opt.stretch(n_samples, factor))
+                                 stretch_to=opt.stretch(n_samples, factor), network=opt.model(3))
     return BlockOutput({"probability": prob[:, c0:c1] if axis == 0 else prob[r0:r1]})
 
 

@@ -15,12 +15,13 @@ Sizes: the input's two axes must be multiples of 8 (:func:`unet_forward` pads th
 :data:`RECEPTIVE_HALF` samples on each side. Convolutions are zero-padded ('same'), as in the training framework,
 so the weights give the same numbers here (float32, differences of the order of 1e-6).
 
-The network ships as an ONNX model (:class:`FaultNetwork`, loaded by
-:func:`~seismo3d.seismic.faults.likelihood.learned.load_fault_network`), exported from the trained weights by
-:func:`onnx_model` (``python -m seismo3d.training.export_onnx``; the ``onnx`` package of the ``train`` extra). The
-weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape ``(c_out, c_in, 3, 3)`` (PyTorch's
-``Conv2d`` layout) and ``'{block}.{i}.bias'`` ``(c_out,)``, for the blocks ``enc0, enc1, enc2, bottleneck, dec2,
-dec1, dec0`` and ``i`` in 0, 1; and ``'head.weight'`` ``(1, c0, 1, 1)``, ``'head.bias'`` ``(1,)``.
+The network ships as an ONNX model (:class:`FaultNetwork`, loaded by :func:`load_fault_network`; beside it the
+same model quantised to 8 bits, ``fault_unet_int8.onnx``, :mod:`seismo3d.training.quantize_onnx`), exported from the
+trained weights by :func:`onnx_model` (``python -m seismo3d.training.export_onnx``; the ``onnx`` package of the
+``train`` extra). The weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape
+``(c_out, c_in, 3, 3)`` (PyTorch's ``Conv2d`` layout) and ``'{block}.{i}.bias'`` ``(c_out,)``, for the blocks ``enc0,
+enc1, enc2, bottleneck, dec2, dec1, dec0`` and ``i`` in 0, 1; and ``'head.weight'`` ``(1, c0, 1, 1)``,
+``'head.bias'`` ``(1,)``.
 
 References
 ----------
@@ -34,15 +35,19 @@ doi:10.1190/geo2018-0646.1
 
 from __future__ import annotations
 
+import functools
+import hashlib
 import math
+from importlib import resources
 
 import numpy as np
 from scipy.ndimage import gaussian_filter
 
 from ....errors import InputError, Seismo3dError
 
-__all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "FaultNetwork", "onnx_model", "unet_forward",
-           "normalise_section", "anti_alias_sigma", "grid_size", "grid_halo", "to_network_grid", "from_network_grid"]
+__all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS",
+           "FaultNetwork", "load_fault_network", "onnx_model", "unet_forward", "normalise_section", "anti_alias_sigma",
+           "grid_size", "grid_halo", "to_network_grid", "from_network_grid"]
 
 
 BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
@@ -58,6 +63,13 @@ RECEPTIVE_HALF = 56
 # three 2x2 poolings: sections are padded to a multiple of this, and blocks keep the whole input's pooling grid
 # when they start at a multiple of it
 POOLING_MULTIPLE = 8
+
+WEIGHTS_FILE = "fault_unet.onnx"
+WEIGHTS_SHA256 = "534ed3ebcb7e9f05875300a705c01871aadcf0a83c5696e06633991fcbbf6b75"
+INT8_FILE = "fault_unet_int8.onnx"
+INT8_SHA256 = "a42ec2deb2b5e4cd7f94fd468465e700215fba6efebdf68406f429b1e9253f39"
+# the shipped models: LearnedOptions.network -> (file, sha256)
+NETWORKS = {"int8": (INT8_FILE, INT8_SHA256), "float": (WEIGHTS_FILE, WEIGHTS_SHA256)}
 
 
 class FaultNetwork:
@@ -89,6 +101,45 @@ class FaultNetwork:
 
     def __call__(self, x: np.ndarray) -> np.ndarray:
         return self._session.run(None, {self._input: np.ascontiguousarray(x, dtype=np.float32)})[0]
+
+
+@functools.lru_cache(maxsize=2)
+def load_fault_network(network: str = "int8") -> FaultNetwork:
+    """A shipped network, its sha256 checked, as an ONNX Runtime session.
+
+    Parameters
+    ----------
+    network : {'int8', 'float'}, optional
+        'int8': ``fault_unet_int8.onnx`` (:data:`INT8_SHA256`), the float model quantised by
+        :mod:`seismo3d.training.quantize_onnx`; 'float': ``fault_unet.onnx`` (:data:`WEIGHTS_SHA256`), exported from
+        the trained weights ``fault_unet.npz`` by :func:`~seismo3d.seismic.faults.likelihood.network.onnx_model`.
+
+    Returns
+    -------
+    FaultNetwork
+        See :mod:`seismo3d.seismic.faults.likelihood.network`.
+
+    Raises
+    ------
+    InputError
+        ``network`` is not 'int8' or 'float'.
+    Seismo3dError
+        The model file is missing or its sha256 is not the recorded one (a damaged installation: reinstall
+        seismo3d).
+    """
+    if network not in NETWORKS:
+        raise InputError(f"network must be one of {', '.join(map(repr, NETWORKS))}; got {network!r}")
+    name, sha256 = NETWORKS[network]
+    ref = resources.files(__package__).joinpath(name)
+    try:
+        raw = ref.read_bytes()
+    except FileNotFoundError as exc:
+        raise Seismo3dError(f"the fault network {name} is missing from the installation; reinstall seismo3d") from exc
+    digest = hashlib.sha256(raw).hexdigest()
+    if digest != sha256:
+        raise Seismo3dError(f"the fault network {name} has sha256 {digest}, not the released {sha256}; "
+                            "reinstall seismo3d")
+    return FaultNetwork(raw)
 
 
 def onnx_model(weights) -> bytes:

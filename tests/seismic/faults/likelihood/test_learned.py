@@ -19,8 +19,8 @@ from seismo3d.seismic import evaluate_faults, fault_labels, trace_faults
 from seismo3d.seismic.faults import FaultTracingOptions
 from seismo3d.seismic.faults.likelihood import learned
 from seismo3d.seismic.faults.likelihood.learned import (
-    LearnedOptions, WEIGHTS_SHA256, fault_probability, learned_fault_likelihood, load_fault_network,
-    orientation_from_likelihood,
+    INT8_SHA256, LearnedOptions, NETWORKS, WEIGHTS_SHA256, fault_probability, learned_fault_likelihood,
+    load_fault_network, orientation_from_likelihood,
 )
 from seismo3d.seismic.faults.likelihood.network import (
     RECEPTIVE_HALF, normalise_section, onnx_model, unet_forward,
@@ -44,25 +44,86 @@ def test_shipped_network_has_the_recorded_sha256_and_is_the_export_of_the_traine
         assert onnx_model({k: weights[k] for k in weights.files}) == raw  # a deterministic export, byte for byte
 
 
-def test_damaged_weights_are_refused(monkeypatch):
+@pytest.mark.parametrize("network", ["int8", "float"])
+def test_damaged_weights_are_refused(monkeypatch, network):
     load_fault_network.cache_clear()
-    monkeypatch.setattr(learned, "WEIGHTS_SHA256", "1" * 64)
+    monkeypatch.setitem(learned.NETWORKS, network, (NETWORKS[network][0], "1" * 64))
     try:
         with pytest.raises(Seismo3dError, match="reinstall seismo3d"):
-            load_fault_network()
+            load_fault_network(network)
     finally:
         load_fault_network.cache_clear()
 
 
+def test_auto_runs_the_int8_network_on_cubes_and_the_float_one_on_sections():
+    auto = LearnedOptions()
+    assert auto.network == "auto" and auto.model(3) == "int8" and auto.model(2) == "float"
+    assert LearnedOptions(network="float").model(3) == "float" and LearnedOptions(network="int8").model(2) == "int8"
+    section = synthetic_fault_section((64, 128), seed=TEST_SEED).section
+    float_run = fault_probability(section, options=LearnedOptions(network="float"))
+    assert np.array_equal(fault_probability(section), float_run)
+
+
+def test_an_unknown_network_is_refused():
+    with pytest.raises(InputError, match="network"):
+        LearnedOptions(network="int4")
+    with pytest.raises(InputError, match="network"):
+        load_fault_network("fp16")
+
+
 def test_onnx_inference_equals_the_stored_pytorch_output():
     check = np.load(CHECK)
-    got = unet_forward(check["section"][None], load_fault_network())[0]
+    got = unet_forward(check["section"][None], load_fault_network("float"))[0]
     assert got.shape == check["probability"].shape
     assert np.abs(got - check["probability"]).max() <= 1e-5
 
 
-def test_receptive_field_is_within_its_stated_half_width():
-    weights = load_fault_network()
+def test_shipped_int8_network_has_the_recorded_sha256_and_is_the_quantisation_of_the_float_one():
+    files = resources.files("seismo3d.seismic.faults.likelihood")
+    raw = files.joinpath("fault_unet_int8.onnx").read_bytes()
+    assert hashlib.sha256(raw).hexdigest() == INT8_SHA256 == NETWORKS["int8"][1]
+    record = json.loads(files.joinpath("fault_unet_int8.json").read_text())
+    assert record["sha256"] == INT8_SHA256 and record["float_sha256"] == WEIGHTS_SHA256
+    assert len(raw) <= 2 ** 20
+
+
+@pytest.mark.slow  # 5 s: generates 80 sections and quantises
+def test_the_quantisation_script_reproduces_the_shipped_int8_network():
+    pytest.importorskip("onnx")
+    from seismo3d.training.quantize_onnx import QuantiseOptions, calibration_sections, quantise_fault_network
+
+    files = resources.files("seismo3d.seismic.faults.likelihood")
+    made = quantise_fault_network(files.joinpath("fault_unet.onnx").read_bytes())
+    if hashlib.sha256(made).hexdigest() != INT8_SHA256:  # byte for byte on the machine that made it (ORT 1.32);
+        # elsewhere the float network's last bits move the calibration ranges a little: the same probabilities
+        opt = QuantiseOptions()
+        x = calibration_sections(opt.n_check, opt.shape, seed=opt.seed + opt.n_sections)[:, 0]
+        ours = unet_forward(x, learned.FaultNetwork(made))
+        shipped = unet_forward(x, load_fault_network("int8"))
+        assert np.abs(ours - shipped).mean() <= 1e-3
+
+
+# the int8 network's probability against the float one's on generated cubes (48 x 48 x 96, seeds 3-5, every grid and
+# both directions): mean absolute difference 0.00056-0.00063, 99th percentile 0.011-0.013, max 0.08-0.09, 99.95 % of
+# the samples on the same side of 0.5; the tolerances are twice the largest
+TOLERANCE_MEAN, TOLERANCE_P99 = 0.0013, 0.026
+
+
+@pytest.mark.slow  # 6 s: the network on every grid and both directions, twice
+def test_the_int8_probability_is_within_its_measured_tolerance_of_the_float_one():
+    # a generated faulted cube the calibration never saw (synthetic_cube, not the calibration's sections)
+    cube = synthetic_cube((48, 48, 96), n_faults=2, seed=3, noise=0.1).cube
+    a = fault_probability(cube, options=LearnedOptions(network="float"))
+    b = fault_probability(cube, options=LearnedOptions(network="int8"))
+    d = np.abs(a - b)
+    assert d.mean() <= TOLERANCE_MEAN and np.quantile(d, 0.99) <= TOLERANCE_P99
+    assert ((a > 0.5) == (b > 0.5)).mean() >= 0.999
+    assert a.max() > 0.9 and b.max() > 0.9  # the faults are there in both
+
+
+@pytest.mark.parametrize("network", ["int8", "float"])
+def test_receptive_field_is_within_its_stated_half_width(network):
+    weights = load_fault_network(network)
     x = np.zeros((1, 256, 256), np.float32)
     base = unet_forward(x, weights)
     x[0, 128, 128] = 5.0

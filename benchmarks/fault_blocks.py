@@ -244,7 +244,7 @@ def demo_blocks(tmp: pathlib.Path) -> None:
     assert len(compared) == 13, compared  # the four SEG-Y volumes, the demo's cube and truth, faults.vtp, two CSV...
     differ = [n for n in compared if (tmp / "memory" / n).read_bytes() != (tmp / "blocks" / n).read_bytes()]
     assert differ == [], differ
-    by_blocks = ("fault likelihood", "ridges", "votes", "cells", "fault skins, throw and evidence")
+    by_blocks = ("fault likelihood", "ridges", "votes", "cells", "fault skins", "throw", "evidence")
     for result, steps in ((memory, ("fault likelihood", "voting", "fault skins", "throw")), (blocks, by_blocks)):
         seconds = json.loads(result.run_json.read_text())["stage_seconds"]
         assert {"read input", "write outputs", *steps} <= set(seconds) and all(v >= 0 for v in seconds.values())

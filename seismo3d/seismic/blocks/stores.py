@@ -151,6 +151,22 @@ class StoreRun(BlockRun):
                     array[start:start + m] = row[key][order].astype(array.dtype)
             start += m
 
+    def describe(self, coords, attrs: dict) -> None:
+        """Write the 1-D coordinates (:func:`write_coords`) and ``attrs`` into the output being assembled
+        (``OUTPUT.partial``), before :meth:`finish`.
+
+        Parameters
+        ----------
+        coords : dict or None
+            As :func:`write_coords`'s.
+        attrs : dict
+            JSON-serialisable attributes of the output group (e.g. the method, a statistic of the run).
+        """
+        import zarr
+        group = zarr.open_group(str(self.partial), mode="r+")
+        write_coords(group, self.shape, coords)
+        group.attrs.update(attrs)
+
     def finish(self, attrs: dict | None = None) -> None:
         """Mark the output complete (with ``attrs``, its other attributes), rename it into place and delete the work
         folder."""

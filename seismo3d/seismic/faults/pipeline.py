@@ -30,7 +30,7 @@ from ..blocks.memory import in_memory_bytes, resident_memory, size_text, worker_
 from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
 from ..io.zarr_store import consolidate
-from .checks import SampleOptions, check_amplitudes, check_size, finite_cube, judge_sample
+from .checks import CubeSample, SampleOptions, check_amplitudes, check_size, finite_cube, judge_sample
 from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
 from .likelihood.scan import fault_likelihood
@@ -257,6 +257,7 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
         raise InputError(f"cannot write the fault stores into {work_dir}: it is not a folder; create it first")
     path = work_dir / LIKELIHOOD_STORE
     started = time.perf_counter()
+    likelihood_seconds = {}
     if path.exists():  # a finished likelihood of an earlier run of the same input: reused
         group = zarr.open_group(str(path), mode="r")
         if (group.attrs.get("source") != source or tuple(group["likelihood"].shape) != shape
@@ -270,20 +271,23 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
                     "than the memory limit of %.2f GiB allows: fault likelihood block by block into %s", source,
                     *shape, in_memory_bytes(shape) / 2**30, held / 2**30, memory_limit / 2**30, path.name)
         if opt.likelihood == "learned":
-            chunked_learned_likelihood(x, path, options=opt.learned, coords=coords, progress=progress,
-                                       chunking=chunking)
+            found = chunked_learned_likelihood(x, path, options=opt.learned, coords=coords, progress=progress,
+                                               chunking=chunking)
         else:
-            chunked_fault_likelihood(x, path, options=opt.scan, coords=coords, progress=progress, chunking=chunking)
+            found = chunked_fault_likelihood(x, path, options=opt.scan, coords=coords, progress=progress,
+                                             chunking=chunking)
+        likelihood_seconds = dict(found.seconds)  # its block steps computed in this call
         # "id": this store, told apart from a later one at the same path (fault_surfaces.zarr records whose it is)
         zarr.open_group(str(path), mode="r+").attrs.update({"source": source, "likelihood": opt.likelihood,
                                                             "id": uuid.uuid4().hex})
         consolidate(path)
-    seconds = {"fault likelihood": time.perf_counter() - started}
+    seconds = {f"fault likelihood: {name}": t for name, t in likelihood_seconds.items()}
+    seconds["fault likelihood"] = time.perf_counter() - started - sum(likelihood_seconds.values())  # the rest
     started = time.perf_counter()
     surfaces = chunked_fault_surfaces(x, path, work_dir / SURFACES_STORE, options=opt, chunking=chunking,
                                       progress=progress)
-    seconds.update(surfaces.seconds)  # the block steps computed in this call
-    seconds["fault skins, throw and evidence"] = time.perf_counter() - started - sum(surfaces.seconds.values())
+    seconds.update(surfaces.seconds)  # the block steps computed in this call, the skins, the throw, the evidence
+    seconds["fault surfaces"] = time.perf_counter() - started - sum(surfaces.seconds.values())  # the rest
     zarr.open_group(str(surfaces.path), mode="r+").attrs["source"] = source
     consolidate(surfaces.path)
     LOGGER.info("%s: %d faults from %d seeds and %d thinned fault samples (thresholds %.3f, %.3f)", source,
@@ -346,7 +350,8 @@ def _given_likelihood(fl, shape: tuple) -> FaultLikelihood:
 
 
 def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions | None = None,
-                         tile: int | None = None, workers: int = 1, sample: CubeSample | None = None, growth: int = STAGE_GROWTH) -> int:
+                         tile: int | None = None, workers: int = 1, sample: CubeSample | None = None,
+                         growth: int = STAGE_GROWTH) -> int:
     """The smallest ``memory_limit`` (bytes) with which a block-by-block fault run of a cube can go through: both
     stages plan their smallest blocks (the second from a process grown by ``growth``), and (with ``sample``) the
     seed candidates fit.
@@ -357,7 +362,7 @@ def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions |
         ``(n_inlines, n_xlines, n_samples)``.
     baseline : int
         Bytes the process holds before its blocks
-        (:func:`~seismo3d.seismic.faults.likelihood.scan_blocks.worker_baseline`).
+        (:func:`~seismo3d.seismic.blocks.memory.worker_baseline`).
     options : FaultTracingOptions, optional
     tile : int, optional
         Traces a side of the smallest blocks (default :attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile`).

@@ -278,10 +278,11 @@ class FaultInterpretation:
         (:class:`~seismo3d.seismic.faults.surfaces.blocks.ChunkedFaults`); the arrays above are then Zarr arrays.
     step_seconds : dict of str to float
         Wall time of each step, seconds, in the order they ran: in memory ``fault likelihood``, ``ridges``,
-        ``voting``, ``thinning``, ``fault skins``, ``throw``, ``evidence``; by blocks ``fault likelihood`` (0 when
-        a finished one was reused), the block steps of the fault surfaces (:attr:`ChunkedFaults.seconds`:
-        ``fill``, ``ridges``, ``surfaces``, ``votes``, ``thin``, ... for the blocks computed in this call) and
-        ``fault skins, throw and evidence``.
+        ``voting``, ``thinning``, ``fault skins``, ``throw``, ``evidence``; by blocks the likelihood's block steps
+        computed in this call (``fault likelihood: network_inline_0``, ... ``orientation``, or the scan's), then
+        ``fault likelihood`` (the rest: its checks and stores; all of it when a finished one was reused), the
+        fault surfaces' (:attr:`ChunkedFaults.seconds`: ``fill``, ``ridges``, ``surfaces``, ``votes``, ``thin``,
+        ..., ``fault skins``, ``throw``, ``evidence``) and ``fault surfaces`` (the rest).
     """
 
     likelihood: np.ndarray

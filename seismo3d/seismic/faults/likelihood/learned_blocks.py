@@ -46,7 +46,7 @@ from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
     CUBE, BlockStep, block_budget, largest_block, lateral_blocks, limit_for_blocks, serial_step_blocks,
 )
-from ...blocks.stores import StoreRun, write_coords
+from ...blocks.stores import StoreRun
 from ..result import ChunkedLikelihood
 from .learned import (
     LearnedOptions, amplitude_scale, cube_directions, direction_probability, grids_mean, orientation_from_likelihood,
@@ -147,7 +147,9 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
         results = run.run_step(orientation, lateral_blocks(plan["shape"], plan["block_orientation"],
                                                            plan["block_orientation"]),
                                plan, opt, workers=plan["workers_orientation"])
-        saturated = _saturated_fraction(run, results, plan, coords)
+    saturated = sum(r["high"] for r in results) / float(np.prod(plan["shape"]))
+    run.describe(coords, {"method": "learned fault likelihood (seismo3d fault network), chunked run",
+                          "saturated_fraction": saturated})
     run.finish()
     return ChunkedLikelihood(out, shape, dict(run.computed), dict(run.resumed), saturated, dict(run.seconds))
 
@@ -354,18 +356,6 @@ def _scale(run: StoreRun, x) -> tuple:
         return list(amplitude_scale(sample, subsample=False))
 
     return tuple(run.saved("scale", compute))
-
-
-def _saturated_fraction(run: StoreRun, results: list, plan: dict, coords) -> float:
-    """The oriented blocks' saturated fraction, written with the coordinates to the output's attributes."""
-    import zarr
-    high = sum(r["high"] for r in results)
-    group = zarr.open_group(str(run.partial), mode="r+")
-    write_coords(group, tuple(plan["shape"]), coords)
-    fraction = high / float(np.prod(plan["shape"]))
-    group.attrs.update({"method": "learned fault likelihood (seismo3d fault network), chunked run",
-                        "saturated_fraction": fraction})
-    return fraction
 
 
 def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale) -> BlockOutput:

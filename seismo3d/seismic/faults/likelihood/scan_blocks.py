@@ -45,7 +45,7 @@ from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
     CUBE, BlockStep, block_budget, lateral_blocks, plan_steps, refuse_over_budget, smallest_need,
 )
-from ...blocks.stores import StoreRun, read_sheared, write_coords
+from ...blocks.stores import StoreRun, read_sheared
 from ..result import ChunkedLikelihood
 from .scan import (
     AmplitudeStatistics, FaultScanOptions, balance_amplitudes, balance_halo, decode_scan, saturation_counts,
@@ -234,7 +234,10 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
             run.run_step(scan, plan.blocks(n0, plan.strip) if axis == 0 else plan.blocks(plan.strip, n1), axis, opt,
                          tiny, nt, plan.tile)
         results = run.run_step(steps["decode"], plan.blocks(plan.block, plan.block), opt, tiny, nt)
-        saturated = _saturated_fraction(run, results, plan, coords)
+    live = sum(r["live"] for r in results)
+    saturated = sum(r["high"] for r in results) / live if live else 0.0
+    run.describe(coords, {"method": "fault likelihood (Hale 2013), seismo3d chunked run",
+                          "saturated_fraction": saturated})
     run.finish()
     return ChunkedLikelihood(out, tuple(x.shape), dict(run.computed), dict(run.resumed), saturated,
                              dict(run.seconds))
@@ -260,19 +263,6 @@ def _amplitude_statistics(run: StoreRun, x) -> AmplitudeStatistics:
                                                     int(np.prod(x.shape, dtype=np.int64))))
 
     return AmplitudeStatistics(**run.saved("amplitudes", compute))
-
-
-def _saturated_fraction(run: StoreRun, results: list, plan: _Plan, coords: dict | None) -> float:
-    """The decoded blocks' saturated fraction, written with the coordinates to the output's attributes."""
-    import zarr
-    high = sum(r["high"] for r in results)
-    live = sum(r["live"] for r in results)
-    group = zarr.open_group(str(run.partial), mode="r+")
-    write_coords(group, plan.shape, coords)
-    fraction = high / live if live else 0.0
-    group.attrs.update({"method": "fault likelihood (Hale 2013), seismo3d chunked run",
-                        "saturated_fraction": fraction})
-    return fraction
 
 
 def balance_block(place, f, opt: FaultScanOptions, stats: AmplitudeStatistics) -> BlockOutput:

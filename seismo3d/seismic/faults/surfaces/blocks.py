@@ -21,6 +21,7 @@ import numba
 import numpy as np
 
 from ...._atomic import atomic_path
+from ...._progress import no_progress
 from ....errors import InputError
 from ...blocks.apply import BlockOutput, gather, load_lists
 from ...blocks.executor import SchedulerClient, trace_cube
@@ -288,8 +289,11 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
     cells = (stored["cell_points"][:].astype(np.int64), stored["cell_values"][:], stored["cell_strike_deg"][:],
              stored["cell_dip_deg"][:])
+    bar = no_progress()  # the seconds of the skins, the throw and the evidence
     faults, throws, evidence = faults_from_cells(cells, shape, windows, (lower, upper), opt,
-                                                 likelihood=group["likelihood"], progress=progress)
+                                                 likelihood=group["likelihood"], bar=bar, progress=progress)
+    bar.stop()
+    run.seconds.update({name: round(t, 2) for name, t in bar.seconds.items()})
     return ChunkedFaults(run.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]),
                          int(attrs["n_cells"]), float(attrs["saturated_fraction"]), dict(run.computed),
                          dict(run.resumed), dict(run.seconds))

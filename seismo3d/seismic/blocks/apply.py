@@ -3,7 +3,8 @@ inputs read around the block, the step's algorithm called on arrays, the block's
 into the step's output stores, its sparse lists saved, and its marker written last (:func:`apply_block`).
 
 The algorithm knows nothing of stores, memory limits or resumption: it takes arrays (the block grown by the step's
-halo) and returns a :class:`BlockOutput`. The same algorithm runs on a whole array in memory.
+halo) and returns a :class:`BlockOutput`. The same declared step runs on a whole array in memory as one block
+(:func:`apply_in_memory`: its inputs and outputs arrays in a dict, no marker, its lists returned).
 
 Why not :func:`dask.array.map_overlap` and ``dask.array.Array.to_zarr(region=...)``, which read blocks with a halo
 and write them into a Zarr store? A step here writes several stores at once, with per-step halos and blocks planned
@@ -23,7 +24,8 @@ import numpy as np
 from ..._atomic import atomic_path
 from .plan import CUBE, BlockStep
 
-__all__ = ["BlockOutput", "BlockPlace", "apply_block", "gather", "load_lists", "save_lists", "write_marker"]
+__all__ = ["BlockOutput", "BlockPlace", "apply_block", "apply_in_memory", "gather", "load_lists", "save_lists",
+           "whole_place", "write_marker"]
 
 
 @dataclass(frozen=True)
@@ -198,14 +200,10 @@ def apply_block(window, step: BlockStep, place: BlockPlace, paths: dict, lists, 
         array = zarr.open_array(paths[name], mode="r")
         inputs.append(array if step.lazy else array[place.read])
     del window
-    out = step.function(*((place,) if step.place else ()), *inputs, *args)
+    out = _compute(step, place, inputs, args)
     del inputs
     region = (place.region[1] - place.region[0], place.region[3] - place.region[2])
-    for name in step.outputs:
-        key, name = (name, name) if isinstance(name, str) else name
-        value = out.arrays.get(key)
-        if value is None:
-            continue
+    for name, value in _outputs(step, out):
         if step.trim and tuple(value.shape[:2]) == region:
             value = value[place.core]
         store = zarr.open_array(paths[name], mode="r+")
@@ -216,3 +214,66 @@ def apply_block(window, step: BlockStep, place: BlockPlace, paths: dict, lists, 
         save_lists(lists, place.block, out.lists)
     write_marker(marker, out.summary)
     return out.summary
+
+
+def whole_place(shape) -> BlockPlace:
+    """The one block of a whole array: its core and the region read are all of its first two axes.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        Of the array: ``(n_inlines, n_xlines, ...)`` (a section's ``(n_traces, n_samples)``: the block is then the
+        whole section).
+
+    Returns
+    -------
+    BlockPlace
+    """
+    n0, n1 = int(shape[0]), int(shape[1])
+    return BlockPlace((0, n0, 0, n1), (0, n0, 0, n1))
+
+
+def apply_in_memory(step: BlockStep, arrays: dict, *args) -> BlockOutput:
+    """Run a declared step on the whole array in memory as one block (:func:`whole_place` of its first input): the
+    algorithm of :func:`apply_block` on the same inputs, its outputs set in ``arrays`` (combined with what is there
+    when the step declares ``combine``), no marker written and no list saved.
+
+    Parameters
+    ----------
+    step : BlockStep
+        Its ``inputs``, ``outputs``, ``function`` and the flags ``place`` and ``combine`` (its halo is not needed:
+        the block is the whole array).
+    arrays : dict
+        ``{array name: ndarray}``: the step's inputs by their declared names
+        (:data:`~seismo3d.seismic.blocks.plan.CUBE` for the amplitudes); its outputs are set in it by name.
+    *args
+        Passed to the algorithm after the arrays.
+
+    Returns
+    -------
+    BlockOutput
+        What the algorithm returned: its ``summary`` and ``lists`` (its arrays are in ``arrays``).
+
+    Raises
+    ------
+    KeyError
+        An input of the step is not in ``arrays``.
+    """
+    inputs = [arrays[name] for name in step.inputs]
+    out = _compute(step, whole_place(inputs[0].shape), inputs, args)
+    for name, value in _outputs(step, out):
+        arrays[name] = value if step.combine is None or name not in arrays else step.combine(value, arrays[name])
+    return out
+
+
+def _compute(step: BlockStep, place: BlockPlace, inputs: list, args: tuple) -> BlockOutput:
+    """The step's algorithm on the block's arrays (the place first when the step asks for it)."""
+    return step.function(*((place,) if step.place else ()), *inputs, *args)
+
+
+def _outputs(step: BlockStep, out: BlockOutput):
+    """``(store name, array)`` of each declared output the algorithm returned (None: not written)."""
+    for name in step.outputs:
+        key, name = (name, name) if isinstance(name, str) else name
+        if out.arrays.get(key) is not None:
+            yield name, out.arrays[key]

@@ -38,7 +38,9 @@ from .likelihood.scan_blocks import chunked_fault_likelihood, smallest_block_byt
 from .options import LIKELIHOODS, FaultTracingOptions
 from .result import FaultInterpretation, FaultLikelihood
 from .steps import ArrayRun, faults_from_cells, no_coherence_message, surface_cells
-from .surfaces.blocks import CANDIDATE_BYTES, chunked_fault_surfaces, smallest_block_bytes as surfaces_block_bytes
+from .surfaces.blocks import (
+    CANDIDATE_BYTES, block_steps as surface_steps, chunked_fault_surfaces, smallest_block_bytes as surfaces_block_bytes,
+)
 from .surfaces.dead_samples import CleanTraces, clean_traces, near_dead_samples
 
 # check_size, check_amplitudes, no_coherence_message and LIKELIHOODS are imported here by older callers
@@ -189,7 +191,9 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         near_dead = near_dead_samples(dead, options=opt.dead) if dead.any() else None
         del dead
         bar.advance()
-        run = ArrayRun(fl.likelihood, fl.strike_deg, fl.dip_deg, near_dead, opt, progress=progress)
+        cube = arr.shape if arr.ndim == 3 else (arr.shape[0], 1, arr.shape[1])  # a section: one crossline
+        steps = {step.name: step for step in surface_steps(cube, opt, max(cube[:2]))}  # one block: the whole array
+        run = ArrayRun(fl.likelihood, fl.strike_deg, fl.dip_deg, near_dead, opt, steps, progress=progress)
         del fl
         found = surface_cells(run, opt, bar)
         faults, throws, evidence = faults_from_cells(run.cell_arrays, arr.shape, arr, found.thresholds, opt,

@@ -5,7 +5,8 @@ A run is an object with the named steps of :class:`SurfaceRun`; :func:`surface_c
 the saturation refusal between them, and :func:`faults_from_cells` links the cells into fault skins, measures their
 throws and keeps the faults the evidence supports. Two runs implement the steps:
 
-- :class:`ArrayRun`: the whole array as one block, in memory (2D or 3D);
+- :class:`ArrayRun`: the whole array as one block, in memory (2D or 3D); its thinning and cells are the declared
+  steps of the run by blocks on that one block (:func:`~seismo3d.seismic.blocks.apply.apply_in_memory`);
 - ``_SurfaceRun`` of :mod:`~seismo3d.seismic.faults.surfaces.blocks`: block by block on dask into Zarr stores,
   each block read with the halo of its step (a cube larger than memory).
 
@@ -23,10 +24,12 @@ from typing import TYPE_CHECKING, Protocol
 import numpy as np
 
 from ..._progress import no_progress
+from .. import _kernels
+from ..blocks.apply import apply_in_memory
 from ...errors import UnsupportedDataError
 from .evidence import supported_faults
-from .surfaces.ridges import live_likelihood, ridges, thin_votes, without_dead_edges
-from .surfaces.skins import image_cells, skins_from_cells
+from .surfaces.ridges import live_likelihood, ridges, without_dead_edges
+from .surfaces.skins import skins_from_cells
 from .surfaces.voting import image_seeds, seed_votes
 from .throw import fault_throws
 
@@ -67,6 +70,10 @@ class ArrayRun:
     near_dead : bool ndarray of the same shape, or None
         Samples near dead ones (:func:`~seismo3d.seismic.faults.surfaces.dead_samples.near_dead_samples`).
     opt : FaultTracingOptions
+    steps : dict of str to BlockStep
+        The declared steps of the fault surfaces by name
+        (:func:`~seismo3d.seismic.faults.surfaces.blocks.block_steps`): ``'thin'`` and ``'cells'`` run here on the
+        whole array as one block (:func:`~seismo3d.seismic.blocks.apply.apply_in_memory`).
     progress : bool
         Progress of the voting over its seeds.
 
@@ -83,9 +90,9 @@ class ArrayRun:
     """
 
     def __init__(self, likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray, near_dead,
-                 opt: FaultTracingOptions, *, progress: bool = False):
+                 opt: FaultTracingOptions, steps: dict, *, progress: bool = False):
         self.likelihood, self.strike_deg, self.dip_deg = likelihood, strike_deg, dip_deg
-        self.near_dead, self.opt, self.progress = near_dead, opt, progress
+        self.near_dead, self.opt, self.steps, self.progress = near_dead, opt, steps, progress
         self._ridges = None
         self.fault_votes = None
         self.thin = None
@@ -132,19 +139,29 @@ class ArrayRun:
         without_dead_edges(self.fault_votes.votes, self.near_dead)
 
     def thresholds(self) -> tuple[float, float]:
-        """The votes thinned (:attr:`thin`) and their thresholds, by numpy and scikit-image
-        (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds`).
+        """The votes thinned (:attr:`thin`: the declared step ``'thin'`` on the whole array) and their thresholds,
+        by numpy and scikit-image (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds`).
 
         Returns
         -------
         (float, float)
             Lower and upper thresholds.
         """
-        self.thin = thin_votes(self.fault_votes.votes, self.fault_votes.strike_deg, self.fault_votes.dip_deg)
+        arrays = self._vote_arrays(as_3d=False)
+        apply_in_memory(self.steps["thin"], arrays)
+        self.thin = arrays["thin_raw"]
         return self.opt.thresholds(self.thin)
 
+    def _vote_arrays(self, *, as_3d: bool) -> dict:
+        """The votes and their strike and dip by their declared names (a section's as a cube of one crossline)."""
+        view = _kernels.as_3d if as_3d else (lambda a: a)
+        votes = self.fault_votes
+        return {"votes": view(votes.votes), "vote_strike_deg": view(votes.strike_deg),
+                "vote_dip_deg": view(votes.dip_deg)}
+
     def cells(self, lower: float) -> int:
-        """The thinned votes below ``lower`` set to 0; the rest as cells in :attr:`cell_arrays`.
+        """The thinned votes below ``lower`` set to 0; the rest as cells in :attr:`cell_arrays` (the declared step
+        ``'cells'`` on the whole array).
 
         Parameters
         ----------
@@ -156,9 +173,10 @@ class ArrayRun:
         int
             Number of cells.
         """
-        self.thin[self.thin < lower] = 0.0
-        self.cell_arrays = image_cells(self.thin, self.fault_votes.strike_deg, self.fault_votes.dip_deg, lower)
-        return int(len(self.cell_arrays[0]))
+        arrays = dict(self._vote_arrays(as_3d=True), thin_raw=_kernels.as_3d(self.thin))  # views: thin is set
+        found = apply_in_memory(self.steps["cells"], arrays, float(lower))       # to 0 below lower in place
+        self.cell_arrays = tuple(found.lists[name] for name in ("points", "values", "strike", "dip"))
+        return int(found.summary["count"])
 
 
 @dataclass(frozen=True)

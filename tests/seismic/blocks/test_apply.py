@@ -1,6 +1,7 @@
 """Tests of seismo3d.seismic.blocks.apply: a declared step's algorithm on arrays, run block by block by the executor,
 writes exactly what it computes on the whole array in memory (the core of each block, read with its halo), combines
-with what is stored, saves and gathers its sparse lists, and a resumed run skips the finished blocks."""
+with what is stored, saves and gathers its sparse lists, and a resumed run skips the finished blocks; the same
+declared steps on the whole array in memory, one block without markers, give what the blocks wrote."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import numpy as np
 import pytest
 from scipy import ndimage as ndi
 
-from seismo3d.seismic.blocks.apply import BlockOutput, BlockPlace, gather, load_lists
+from seismo3d.seismic.blocks.apply import BlockOutput, BlockPlace, apply_in_memory, gather, load_lists, whole_place
 from seismo3d.seismic.blocks.executor import BlockRun
 from seismo3d.seismic.blocks.plan import CUBE, BlockStep, lateral_blocks
 
@@ -94,3 +95,24 @@ def test_a_block_place_names_its_core_within_the_region_read():
     assert place.origin == (2, 0)
     assert place.core == (slice(2, 6), slice(0, 4))
     assert place.read == (slice(2, 10), slice(0, 6)) and place.target == (slice(4, 8), slice(0, 4))
+
+
+def test_the_same_steps_on_the_whole_array_in_memory_are_one_block(tmp_path):
+    cube = _cube()
+    smooth = BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",))
+    peaks = BlockStep("peaks", "gather", HALO, function=_peaks, inputs=("smooth",), outputs=("double",), place=True)
+    _run(tmp_path, cube, (smooth, ()), (peaks, (0.2,)))
+    arrays = {CUBE: cube}
+    sized = apply_in_memory(smooth, arrays)
+    found = apply_in_memory(peaks, arrays, 0.2)
+    assert set(arrays) == {CUBE, "smooth", "double"} and sized.summary == {"n": cube.size}
+    np.testing.assert_array_equal(arrays["smooth"], zarr.open_array(str(tmp_path / "smooth"))[:])
+    np.testing.assert_array_equal(arrays["double"], zarr.open_array(str(tmp_path / "double"))[:])
+    blocks = gather(tmp_path / "work" / "peaks", lateral_blocks(SHAPE, 4, 4), ("points",))["points"]
+    np.testing.assert_array_equal(found.lists["points"], blocks[np.lexsort(blocks.T[::-1])])  # in C order
+    assert found.summary == {"count": len(blocks)}
+    assert whole_place(SHAPE) == BlockPlace((0, 11, 0, 9), (0, 11, 0, 9))
+    # a declared combine applies to what the dictionary holds
+    apply_in_memory(BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",),
+                              combine=np.maximum), arrays)
+    np.testing.assert_array_equal(arrays["smooth"], zarr.open_array(str(tmp_path / "smooth"))[:])

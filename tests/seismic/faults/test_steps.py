@@ -8,6 +8,7 @@ import pytest
 import seismo3d.seismic.faults.steps as surface_steps
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.seismic.faults.steps import ArrayRun
+from seismo3d.seismic.faults.surfaces.blocks import block_steps
 from seismo3d.seismic.faults import (
     FaultTracingOptions, fault_likelihood, fault_skins, thin_faults, trace_faults, vote_faults,
 )
@@ -48,7 +49,9 @@ def test_the_run_in_memory_is_the_whole_image_functions(cube, ndim):
     data = cube if ndim == 3 else cube[:, 20, :]
     opt = FaultTracingOptions()
     fl = fault_likelihood(data, options=opt.scan, progress=False)
-    run = ArrayRun(fl.likelihood.copy(), fl.strike_deg, fl.dip_deg, None, opt)
+    cube_shape = data.shape if ndim == 3 else (data.shape[0], 1, data.shape[1])
+    steps = {step.name: step for step in block_steps(cube_shape, opt, max(cube_shape[:2]))}
+    run = ArrayRun(fl.likelihood.copy(), fl.strike_deg, fl.dip_deg, None, opt, steps)
     found = surface_cells(run, opt)
 
     seeds = thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg, threshold=0.0)

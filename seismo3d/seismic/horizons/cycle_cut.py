@@ -88,8 +88,9 @@ def neighbour_cycle(picks: np.ndarray, offsets: np.ndarray, times: np.ndarray, d
 @nb.njit(cache=True)
 def _neighbour_cycle(picks, offsets, times, direction, min_gap):
     """:func:`neighbour_cycle`, compiled."""
-    out = np.full(times.size, np.nan)
+    out = np.empty(times.size)
     for j in range(times.size):
+        out[j] = np.nan  # a loop, not np.full: it compiles numba's generic fill
         if not np.isfinite(times[j]):
             continue
         p = picks[offsets[j]:offsets[j + 1]]

@@ -169,37 +169,6 @@ def nearest_pick(times: np.ndarray, offsets: np.ndarray, trace: int, t: float, w
     return float(p[i]) if abs(p[i] - t) <= window else np.nan
 
 
-@nb.njit(cache=True, nogil=True)
-def picks_before(times, lo: int, hi: int, t: float, right: bool) -> int:
-    """Where ``t`` falls among one trace's picks ``times[lo:hi]`` (sorted): the index, from ``lo``, of the first pick
-    at or after ``t`` (after it when ``right``): ``lo + np.searchsorted(times[lo:hi], t, side)``, by bisection in a
-    loop (``np.searchsorted`` in a kernel compiles for about half a CPU second on a first run).
-
-    Parameters
-    ----------
-    times : (n_picks,) float64 ndarray
-        Picks of a section, as :func:`reflector_picks` returns them (each trace's sorted).
-    lo, hi : int
-        The trace's picks, ``offsets[trace]`` and ``offsets[trace + 1]``.
-    t : float
-        Position, fractional samples (a NaN pick counts as after every ``t``, as np.searchsorted orders it).
-    right : bool
-        Side: ``'right'`` if True, else ``'left'``.
-
-    Returns
-    -------
-    int
-        In ``[lo, hi]``.
-    """
-    while lo < hi:
-        mid = (lo + hi) // 2
-        if times[mid] < t or (right and times[mid] == t):
-            lo = mid + 1
-        else:
-            hi = mid
-    return lo
-
-
 def nearest_reflector(times: np.ndarray, offsets: np.ndarray, lateral_shape: tuple, position) -> tuple | None:
     """The pick nearest to ``position`` with no distance limit: on its own trace the pick nearest in time; when that
     trace has none, the nearest trace that has picks (lateral distance, in traces), and its pick nearest in time.

@@ -81,20 +81,3 @@ def test_nearest_reflector_on_the_trace_or_the_nearest_trace_with_picks():
     assert nearest_reflector(times, offsets, (2, 2), (0.9, 1.2, 0.0)) == (1.0, 1.0, 25.0)
     assert nearest_reflector(np.zeros(0), np.zeros(3, np.int64), (2,), (0, 5.0)) is None
 
-
-def test_picks_before_is_searchsorted_on_the_traces_picks():
-    """The compiled bisection of the horizon kernels equals np.searchsorted on a trace's picks (both sides, ties,
-    empty traces, t outside the picks, a NaN pick last as np.sort puts it)."""
-    from seismo3d.seismic.reflectors import picks_before
-
-    rng = np.random.default_rng(11)
-    for _ in range(2000):
-        p = np.sort(rng.integers(0, 6, rng.integers(0, 8)).astype(float))
-        if p.size and rng.random() < 0.2:
-            p[-1] = np.nan
-        before, after = rng.normal(size=rng.integers(0, 3)), rng.normal(size=rng.integers(0, 3))
-        times = np.concatenate([before, p, after])
-        t = float(rng.integers(-1, 7)) + (0.5 if rng.random() < 0.3 else 0.0)
-        for side in ("left", "right"):
-            assert picks_before(times, before.size, before.size + p.size, t, side == "right") == \
-                before.size + np.searchsorted(p, t, side)

@@ -44,7 +44,7 @@ import numpy as np
 from scipy import ndimage, sparse
 from scipy.sparse.csgraph import breadth_first_order, maximum_flow
 
-from ..reflectors import picks_before
+from .. import _kernels
 from .correlation import neighbour_confidence, window_correlation
 
 __all__ = ["CycleCut", "neighbour_cycle", "binary_min_cut", "cycle_cut"]
@@ -94,15 +94,16 @@ def _neighbour_cycle(picks, offsets, times, direction, min_gap):
         out[j] = np.nan  # a loop, not np.full: it compiles numba's generic fill
         if not np.isfinite(times[j]):
             continue
-        lo, hi = offsets[j], offsets[j + 1]
+        p = picks[offsets[j]:offsets[j + 1]]
+        # search_left / right: np.searchsorted's sides, in loops (numba's np.searchsorted compiles for half a second)
         if direction > 0:
-            k = picks_before(picks, lo, hi, times[j] + min_gap, False)
-            if k < hi:
-                out[j] = picks[k]
+            k = _kernels.search_left(p, times[j] + min_gap)
+            if k < p.size:
+                out[j] = p[k]
         else:
-            k = picks_before(picks, lo, hi, times[j] - min_gap, True)
-            if k > lo:
-                out[j] = picks[k - 1]
+            k = _kernels.search_right(p, times[j] - min_gap)
+            if k > 0:
+                out[j] = p[k - 1]
     return out
 
 

@@ -29,7 +29,8 @@ import numpy as np
 
 from ..._threads import run_threads
 from ..attributes import section_slopes, structure_tensor_orientation
-from ..reflectors import nearest_pick, picks_before
+from .. import _kernels
+from ..reflectors import nearest_pick
 
 __all__ = ["sample_at", "window_ncc", "dp_picks", "line_slopes", "reflector_period", "settle_lone_departures"]
 
@@ -537,7 +538,7 @@ def _pick_gaps(picks, offsets, traces, times):
         lo, hi = offsets[j], offsets[j + 1]
         if hi - lo < 2 or not np.isfinite(times[i]):
             continue
-        k = picks_before(picks, lo, hi, times[i], False)
+        k = lo + _kernels.search_left(picks[lo:hi], times[i])  # not np.searchsorted: it compiles for half a CPU second
         k = min(max(k, lo + 1), hi - 1)
         gaps[count] = picks[k] - picks[k - 1]
         count += 1

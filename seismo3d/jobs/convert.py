@@ -114,9 +114,10 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
         The amplitudes' compressor, recorded in the store's metadata (every Zarr reader decodes it): none by default,
         Blosc LZ4 with byte shuffle, or Zstd level 0 (Zarr's default). Float32 seismic barely compresses
         losslessly: on the data folder's field sections (Volve's full stack, Campos, Costa Rica, Teapot, an F3
-        section) LZ4 stores 1.10-1.13x fewer bytes and Zstd 1.07-1.08x, while encoding would cost about a third of
-        the conversion; amplitudes that were integers or are smooth compress more (LZ4 1.7-1.8x on the F3 crop,
-        Penobscot xl1155 and Volve's velocities), where a compressor may pay for the disk it saves.
+        section) LZ4 stores 1.10-1.13x fewer bytes and Zstd 1.07-1.08x, while encoding costs CPU (LZ4: 0.22-0.41
+        CPU s for a 198 MB cube whose conversion takes about 1.2 CPU s in all); amplitudes that were integers or are
+        smooth compress more (LZ4 1.5-1.8x on the F3 crop and another F3 section, Penobscot xl1155 and Volve's
+        velocities), where a compressor may pay for the disk it saves.
     overwrite : bool
         Replace an existing ``output`` written by ``seismo3d convert``.
     progress : bool

@@ -69,14 +69,16 @@ SEISMIC_CODEC = ({"name": "blosc", "configuration": {"cname": "lz4", "clevel": 5
                                                       "typesize": 4, "blocksize": 0}},)
 # The amplitudes of ``seismo3d convert``, by ``compression``: uncompressed by default, because float32 seismic barely
 # compresses losslessly (LZ4 + shuffle 1.10-1.13x, Zstd level 0 1.07-1.08x on the data folder's field sections: Volve's
-# full stack, Campos, Costa Rica, Teapot, an F3 section) while encoding costs about a third of convert's time;
-# amplitudes that were integers or are smooth compress more (1.5-1.8x: the F3 crop, Penobscot xl1155, Volve's
-# velocities), where ``'lz4'`` or ``'zstd'`` (Zarr's default codec) may pay.
+# full stack, Campos, Costa Rica, Teapot, an F3 section) while encoding costs CPU (LZ4 0.22-0.41 CPU s for the
+# 198 MB cube of benchmarks/commands.py, whose convert takes about 1.2 CPU s in all); amplitudes that were integers or
+# are smooth compress more (1.5-1.8x: the F3 crop and section f3d178sub2, Penobscot xl1155, Volve's velocities),
+# where ``'lz4'`` or ``'zstd'`` (Zarr's default codec) may pay.
 AMPLITUDE_COMPRESSORS = {
     "none": (),
     "lz4": SEISMIC_CODEC,
     "zstd": ({"name": "zstd", "configuration": {"level": 0, "checksum": False}},),
 }
+
 
 @dataclass(frozen=True)
 class SeismicZarr:
@@ -211,8 +213,9 @@ class SeismicZarrWriter:
     A tile is copied chunk by chunk (64 x 64 traces) on two threads: each reads its chunk's headers and amplitudes
     through one memory map, encodes the amplitudes with the array's codecs (little-endian bytes, then the compressor
     if any) and writes them to the chunk's key in the store, so that both cores read, encode and write (zarr's array
-    API would add about a quarter to the CPU time with LZ4, 0.59 against 0.47 CPU s for the same chunks, and about
-    half uncompressed: its asyncio tasks and buffer copies). At
+    API would add about a quarter to the CPU time with LZ4, 0.59 against 0.47 CPU s for the same chunks, and more
+    uncompressed, 0.50-0.62 against 0.28-0.35 CPU s for the 198 MB bench cube: its asyncio tasks and buffer
+    copies). At
     most ``chunk_mb`` of amplitudes, and no more than three chunks, are held at a time (with each its encoded bytes).
     Chunks of zeros are not written (left to the fill value, as zarr does). The trace header fields of a row of chunks
     (64 inlines, every crossline) are gathered from its tiles and written through zarr once the row is complete, with

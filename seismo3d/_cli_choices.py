@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from enum import Enum
 
-__all__ = ["Endian", "FaultColour", "Likelihood", "MatchMethod", "Method", "Model", "Polarity", "SampleUnit"]
+__all__ = ["Compression", "Endian", "FaultColour", "Likelihood", "MatchMethod", "Method", "Model", "Polarity", "SampleUnit"]
 
 
 class Method(str, Enum):
@@ -23,6 +23,12 @@ class Model(str, Enum):
 class Endian(str, Enum):
     big = "big"
     little = "little"
+
+
+class Compression(str, Enum):
+    none = "none"
+    lz4 = "lz4"
+    zstd = "zstd"
 
 
 class SampleUnit(str, Enum):

@@ -15,7 +15,6 @@ import warnings
 import typer
 
 from .errors import Seismo3dError
-from .jobs.runinfo import cli_call
 
 __all__ = ["compile_note", "friendly", "in_flags", "log_progress_to_stderr", "one_line_warnings"]
 
@@ -124,6 +123,8 @@ def friendly(flags: dict | None = None):
     def decorate(fn):
         @functools.wraps(fn)
         def wrapper(*args, **kwargs):
+            from .jobs.runinfo import cli_call  # here: --help needs no run record (hashlib, json: 15 ms)
+
             try:  # the command's name is its function's (map_ for map)
                 with one_line_warnings(flags), cli_call(fn.__name__.rstrip("_"), kwargs):
                     return fn(*args, **kwargs)

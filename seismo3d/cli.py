@@ -21,7 +21,7 @@ from typing import Optional
 import typer
 
 from . import __version__
-from ._cli_choices import Endian, FaultColour, Likelihood, MatchMethod, Method, Model, Polarity, SampleUnit
+from ._cli_choices import Compression, Endian, FaultColour, Likelihood, MatchMethod, Method, Model, Polarity, SampleUnit
 from ._cli_outputs import check_before_import
 from ._cli_text import array_text, echo_terrain, frames_tracked, why_not_converged
 from .jobs.outputs import output_file
@@ -214,7 +214,7 @@ def faults(
 
 
 @app.command()
-@_friendly({"overwrite": "--overwrite", "chunk_mb": "--chunk-mb"})
+@_friendly({"overwrite": "--overwrite", "chunk_mb": "--chunk-mb", "compression": "--compression"})
 def convert(
     input: pathlib.Path = typer.Argument(..., metavar="INPUT", help="3D SEG-Y cube (inline- or crossline-sorted).",
                                          show_default=False),
@@ -227,6 +227,9 @@ def convert(
                                                                 "headers (ms unless they speak of depth)."),
     chunk_mb: float = typer.Option(64.0, "--chunk-mb", min=0.001, help="MiB of amplitudes read or being written at "
                                                                        "a time (the memory bound)."),
+    compression: Compression = typer.Option(Compression.none, help="Compressor of the amplitudes: none (float32 "
+                                            "seismic barely compresses losslessly, 1.1x on field data, and none "
+                                            "converts fastest), Blosc LZ4 or Zstd."),
     overwrite: bool = typer.Option(False, "--overwrite", help="Replace OUTPUT if it is a store written by "
                                                               "'seismo3d convert' (anything else is refused; an "
                                                               "output is never the input)."),
@@ -240,7 +243,7 @@ def convert(
 
     result = run_convert_job(input, output, iline=iline, xline=xline, endian=_value(endian),
                              sample_unit=None if sample_unit is None else sample_unit.value, chunk_mb=chunk_mb,
-                             overwrite=overwrite, progress=True)
+                             compression=compression.value, overwrite=overwrite, progress=True)
     typer.echo(f"converted {input.name}: {result.summary}")
 
 

@@ -409,8 +409,8 @@ def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_t
 
 @nb.njit(cache=True)
 def search_left(keys, value):
-    # np.searchsorted(keys, value) of sorted integer keys: the first index whose key is >= value (a plain binary
-    # search compiles in a fraction of numba's generic searchsorted)
+    # np.searchsorted(keys, value) of sorted keys (integers, or floats with NaN last): the first index whose key is
+    # >= value (a plain binary search compiles in a fraction of numba's generic searchsorted)
     lo, hi = 0, keys.size
     while lo < hi:
         mid = (lo + hi) >> 1
@@ -423,7 +423,7 @@ def search_left(keys, value):
 
 @nb.njit(cache=True)
 def search_right(keys, value):
-    # np.searchsorted(keys, value, side="right") of sorted integer keys: the first index whose key is > value
+    # np.searchsorted(keys, value, side="right") of sorted keys (as search_left): the first index whose key is > value
     lo, hi = 0, keys.size
     while lo < hi:
         mid = (lo + hi) >> 1

@@ -146,24 +146,56 @@ def test_failed_background_write_leaves_no_output(amplitudes, tmp_path, write_se
     assert _no_temporaries(tmp_path) == []
 
 
-def test_chunk_files_are_the_bytes_zarr_writes(converted, tmp_path):
-    """convert encodes and writes the amplitude chunks itself (zarr's array API costs a quarter more CPU): every chunk
-    file, edge chunks included, holds the bytes zarr's own write of the same values gives, under the same key."""
+def test_amplitudes_are_stored_uncompressed_by_default(converted):
+    """The default: no compressor in the array's metadata, and every chunk file the chunk's float32 values as they are
+    (little-endian bytes, edge chunks padded with zeros)."""
     import zarr
 
-    from seismo3d.seismic.io.zarr_store import SEISMIC_CODEC
-
     _, store, _ = converted
+    seismic = zarr.open_group(str(store), mode="r")["seismic"]
+    assert seismic.metadata.to_dict()["codecs"] == ({"name": "bytes", "configuration": {"endian": "little"}},)
+    values = seismic[:]
+    padded = np.zeros((128, 128, SHAPE[2]), "<f4")
+    padded[:SHAPE[0], :SHAPE[1]] = values
+    for i in range(2):
+        for j in range(2):
+            raw = (store / "seismic" / "c" / str(i) / str(j) / "0").read_bytes()
+            assert raw == padded[64 * i:64 * i + 64, 64 * j:64 * j + 64].tobytes()
+
+
+@pytest.mark.parametrize("compression", ["none", "lz4", "zstd"])
+def test_chunk_files_are_the_bytes_zarr_writes(amplitudes, tmp_path, write_segy_cube, compression):
+    """convert encodes and writes the amplitude chunks itself (zarr's array API costs a quarter to a half more CPU):
+    with each compressor, every chunk file, edge chunks included, holds the bytes zarr's own write of the same values
+    gives, under the same key, and the array's metadata names the compressor."""
+    import zarr
+
+    from seismo3d.seismic.io.zarr_store import AMPLITUDE_COMPRESSORS
+
+    src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
+    store = tmp_path / "cube.zarr"
+    run_convert_job(src, store, chunk_mb=0.01, compression=compression)
     ours = zarr.open_group(str(store), mode="r")["seismic"]
     values = ours[:]
+    assert_array_equal(values, amplitudes)
     theirs = zarr.create_array(str(tmp_path / "zarr.zarr"), shape=values.shape, chunks=ours.chunks, dtype="float32",
-                               fill_value=0.0, compressors=SEISMIC_CODEC)
+                               fill_value=0.0, compressors=AMPLITUDE_COMPRESSORS[compression])
     theirs[:] = values
+    assert ours.metadata.to_dict()["codecs"] == theirs.metadata.to_dict()["codecs"]
+    assert [c["name"] for c in ours.metadata.to_dict()["codecs"]] == ["bytes"] + {"none": [], "lz4": ["blosc"],
+                                                                                  "zstd": ["zstd"]}[compression]
     files = sorted(p.relative_to(store / "seismic") for p in (store / "seismic").rglob("*") if p.is_file()
                    and p.name != "zarr.json")
     assert [str(p) for p in files] == ["c/0/0/0", "c/0/1/0", "c/1/0/0", "c/1/1/0"]  # 2 x 2 chunks, 3 at an edge
     for name in files:
         assert (store / "seismic" / name).read_bytes() == (tmp_path / "zarr.zarr" / name).read_bytes(), name
+
+
+def test_unknown_compression_is_refused(amplitudes, tmp_path, write_segy_cube):
+    src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
+    with pytest.raises(InputError, match="compression must be one of 'none', 'lz4', 'zstd'; got 'gzip'"):
+        run_convert_job(src, tmp_path / "out.zarr", compression="gzip")
+    assert not (tmp_path / "out.zarr").exists() and _no_temporaries(tmp_path) == []
 
 
 def test_existing_output(amplitudes, tmp_path, write_segy_cube):

@@ -70,3 +70,17 @@ def test_search_left_and_right_are_numpys_searchsorted():
         assert _kernels.search_left(keys, value) == np.searchsorted(keys, value)
         assert _kernels.search_right(keys, value) == np.searchsorted(keys, value, side="right")
     assert _kernels.search_left(keys[:0], 3) == 0 and _kernels.search_right(keys[:0], 3) == 0
+
+
+def test_search_left_and_right_on_a_traces_picks():
+    """As the horizon kernels use them: float picks of one trace (a slice), ties, times outside the picks, a NaN
+    pick last (where np.sort puts it)."""
+    rng = np.random.default_rng(11)
+    for _ in range(2000):
+        p = np.sort(rng.integers(0, 6, rng.integers(0, 8)).astype(float))
+        if p.size and rng.random() < 0.2:
+            p[-1] = np.nan
+        times = np.concatenate([rng.normal(size=2), p, rng.normal(size=1)])
+        t = float(rng.integers(-1, 7)) + (0.5 if rng.random() < 0.3 else 0.0)
+        assert 2 + _kernels.search_left(times[2:2 + p.size], t) == 2 + np.searchsorted(p, t)
+        assert _kernels.search_right(times[2:2 + p.size], t) == np.searchsorted(p, t, side="right")

@@ -80,3 +80,4 @@ def test_nearest_reflector_on_the_trace_or_the_nearest_trace_with_picks():
     assert nearest_reflector(times, offsets, (2, 2), (1, 0, 12.0)) == (0.0, 0.0, 10.0)  # tie (0, 0) / (1, 1): first
     assert nearest_reflector(times, offsets, (2, 2), (0.9, 1.2, 0.0)) == (1.0, 1.0, 25.0)
     assert nearest_reflector(np.zeros(0), np.zeros(3, np.int64), (2,), (0, 5.0)) is None
+

@@ -44,6 +44,7 @@ import numpy as np
 from scipy import ndimage, sparse
 from scipy.sparse.csgraph import breadth_first_order, maximum_flow
 
+from .. import _kernels
 from .correlation import neighbour_confidence, window_correlation
 
 __all__ = ["CycleCut", "neighbour_cycle", "binary_min_cut", "cycle_cut"]
@@ -88,17 +89,19 @@ def neighbour_cycle(picks: np.ndarray, offsets: np.ndarray, times: np.ndarray, d
 @nb.njit(cache=True)
 def _neighbour_cycle(picks, offsets, times, direction, min_gap):
     """:func:`neighbour_cycle`, compiled."""
-    out = np.full(times.size, np.nan)
+    out = np.empty(times.size)
     for j in range(times.size):
+        out[j] = np.nan  # a loop, not np.full: it compiles numba's generic fill
         if not np.isfinite(times[j]):
             continue
         p = picks[offsets[j]:offsets[j + 1]]
+        # search_left / right: np.searchsorted's sides, in loops (numba's np.searchsorted compiles for half a second)
         if direction > 0:
-            k = np.searchsorted(p, times[j] + min_gap, side="left")
+            k = _kernels.search_left(p, times[j] + min_gap)
             if k < p.size:
                 out[j] = p[k]
         else:
-            k = np.searchsorted(p, times[j] - min_gap, side="right")
+            k = _kernels.search_right(p, times[j] - min_gap)
             if k > 0:
                 out[j] = p[k - 1]
     return out

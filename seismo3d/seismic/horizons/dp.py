@@ -29,6 +29,7 @@ import numpy as np
 
 from ..._threads import run_threads
 from ..attributes import section_slopes, structure_tensor_orientation
+from .. import _kernels
 from ..reflectors import nearest_pick
 
 __all__ = ["sample_at", "window_ncc", "dp_picks", "line_slopes", "reflector_period", "settle_lone_departures"]
@@ -188,12 +189,17 @@ def _line_dp(trace_ids, guide, first, pick, unit, whole, slope, cross_slope, tra
     candidate's guide term. ``slope``, ``cross_slope``: ``slopes`` and ``cross_slopes`` at each candidate. Returns the
     chosen pick per trace (NaN where the trace has no candidate; the line restarts after it)."""
     n = trace_ids.size
-    out = np.full(n, np.nan)
+    out = np.empty(n)
     width = 1
     for j in range(n):
+        out[j] = np.nan  # loops, not np.full: it compiles numba's generic fill (about 1 CPU s on a first run)
         width = max(width, first[trace_ids[j] + 1] - first[trace_ids[j]])
-    cost = np.full((n, width), np.inf)
-    back = np.full((n, width), -1, np.int64)
+    cost = np.empty((n, width))
+    back = np.empty((n, width), np.int64)
+    for j in range(n):
+        for c in range(width):
+            cost[j, c] = np.inf
+            back[j, c] = -1
     wa = np.empty(2 * half + 1)
     wb = np.empty(2 * half + 1)
     n_cross = cross_ids.shape[1]
@@ -388,10 +394,15 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, ac
     """The lines (rows of the (n_lines, length) arrays) re-chosen in order by :func:`_line_dp`, each with the picks
     of the line before it (already re-chosen) and after it held; ``out`` updated in place."""
     n_lines, length = guide.shape
+    c_ids = np.empty((length, 2), np.int64)
+    c_t = np.empty((length, 2))
     for i in range(n_lines):
-        c_ids = np.full((length, 2), -1, np.int64)
-        c_t = np.full((length, 2), np.nan)
-        # the neighbouring lines' picks, by loops (slice assignments compile numba's generic setitem: seconds)
+        # the neighbouring lines' picks, by loops (slice assignments and np.full compile numba's generic setitem and
+        # fill: seconds)
+        for j in range(length):
+            for side in range(2):
+                c_ids[j, side] = -1
+                c_t[j, side] = np.nan
         for side, other in ((0, i - 1), (1, i + 1)):
             if 0 <= other < n_lines:
                 for j in range(length):
@@ -406,8 +417,9 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, ac
 @nb.njit(cache=True)
 def _nearest_picks(picks, offsets, times, reach):
     """Each trace's pick nearest to ``times`` ((n,) samples) within ``reach`` samples, NaN where none."""
-    out = np.full(times.size, np.nan)
+    out = np.empty(times.size)
     for k in range(times.size):
+        out[k] = np.nan  # a loop, not np.full: it compiles numba's generic fill
         t = times[k]
         if not np.isfinite(t):
             continue
@@ -526,7 +538,7 @@ def _pick_gaps(picks, offsets, traces, times):
         lo, hi = offsets[j], offsets[j + 1]
         if hi - lo < 2 or not np.isfinite(times[i]):
             continue
-        k = lo + np.searchsorted(picks[lo:hi], times[i])
+        k = lo + _kernels.search_left(picks[lo:hi], times[i])  # not np.searchsorted: it compiles for half a CPU second
         k = min(max(k, lo + 1), hi - 1)
         gaps[count] = picks[k] - picks[k - 1]
         count += 1

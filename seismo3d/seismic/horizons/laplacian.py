@@ -61,21 +61,26 @@ def _laplacian_matvec(a, b, w, diag, x, out):
         out[b[e]] -= d
 
 
-@nb.njit(cache=True)
 def _coarse_factor(a, b, w, diag, labels, n_coarse):
     """Cholesky factor (lower) of the aggregates' system ``P^T (L + diag(diag)) P`` (``P`` the 0/1 matrix of
-    ``labels``): the pairs inside an aggregate drop out, those between two add to the Laplacian of the aggregates."""
-    coarse = np.zeros((n_coarse, n_coarse))
-    for k in range(diag.size):
-        coarse[labels[k], labels[k]] += diag[k]
-    for e in range(a.size):
-        i, j = labels[a[e]], labels[b[e]]
-        if i != j:
-            coarse[i, i] += w[e]
-            coarse[j, j] += w[e]
-            coarse[i, j] -= w[e]
-            coarse[j, i] -= w[e]
-    return np.linalg.cholesky(coarse)
+    ``labels``): the pairs inside an aggregate drop out, those between two add to the Laplacian of the aggregates.
+    Factored by LAPACK's ``dpotrf`` through scipy as numba's ``np.linalg.cholesky`` calls it (the upper factor of the
+    symmetric matrix, transposed: the same bits; the lower one differs in the last bits)."""
+    from scipy.linalg.lapack import dpotrf
+
+    i, j = labels[a], labels[b]
+    between = i != j
+    i, j, we = i[between], j[between], w[between]
+    # the traces' diag, then each pair between two aggregates, added in that order (as a loop over them would)
+    cells = np.concatenate([labels * (n_coarse + 1),
+                            np.stack([i * (n_coarse + 1), j * (n_coarse + 1), i * n_coarse + j, j * n_coarse + i],
+                                     axis=1).ravel()])
+    values = np.concatenate([diag, np.stack([we, we, -we, -we], axis=1).ravel()])
+    coarse = np.bincount(cells, values, minlength=n_coarse * n_coarse)
+    upper, info = dpotrf(coarse.reshape(n_coarse, n_coarse), lower=0, clean=1)
+    if info != 0:
+        raise np.linalg.LinAlgError("the aggregates' system is not positive definite")
+    return np.ascontiguousarray(upper.T)
 
 
 @nb.njit(cache=True)
@@ -101,19 +106,19 @@ def _precondition(r, inv, labels, chol, rc, z):
         z[k] = inv[k] * r[k] + rc[labels[k]]
 
 
-@nb.njit(cache=True)
 def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter, labels, n_coarse):
     """Preconditioned conjugate gradients on ``(L + diag(diag)) x = rhs`` from ``x`` (overwritten), stopped when the
     residual's norm falls below ``rtol`` times the right-hand side's (the iteration of :func:`scipy.sparse.linalg.cg`,
-    compiled, with the Laplacian applied from the pair list); preconditioned by :func:`_precondition`."""
+    with the Laplacian applied from the pair list by :func:`_laplacian_matvec`); preconditioned by
+    :func:`_precondition`. The loop is numpy's, its dot products BLAS's ``ddot`` through scipy (the routine numba's
+    ``np.dot`` calls: a compiled loop gave the same bits and cost 1.5-2 CPU s of compiling on a first run)."""
+    from scipy.linalg.blas import ddot
+
     n = rhs.size
-    inv = diag.copy()
-    for e in range(a.size):
-        inv[a[e]] += w[e]
-        inv[b[e]] += w[e]
-    for k in range(n):
-        inv[k] = 1.0 / inv[k]
-    bnrm = np.sqrt(np.dot(rhs, rhs))
+    # the diagonal of the system: diag, then each pair's weight at both of its traces, added in that order
+    inv = 1.0 / np.bincount(np.concatenate([np.arange(n), np.stack([a, b], axis=1).ravel()]),
+                            np.concatenate([diag, np.repeat(w, 2)]), minlength=n)
+    bnrm = np.sqrt(ddot(rhs, rhs))
     if bnrm == 0.0:
         return rhs.copy()
     chol = _coarse_factor(a, b, w, diag, labels, n_coarse)
@@ -121,28 +126,23 @@ def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter, labels, n_coarse):
     atol = rtol * bnrm
     q = np.empty(n)
     _laplacian_matvec(a, b, w, diag, x, q)
-    r = np.empty(n)
-    for k in range(n):
-        r[k] = rhs[k] - q[k]
+    r = rhs - q
     p = np.empty(n)
     z = np.empty(n)
     rho_prev = 1.0
     for it in range(maxiter):
-        if np.sqrt(np.dot(r, r)) < atol:
+        if np.sqrt(ddot(r, r)) < atol:
             break
         _precondition(r, inv, labels, chol, rc, z)
-        rho = np.dot(r, z)
+        rho = ddot(r, z)
         if it > 0:
-            beta = rho / rho_prev
-            for k in range(n):
-                p[k] = beta * p[k] + z[k]
+            p *= rho / rho_prev
+            p += z
         else:
-            for k in range(n):
-                p[k] = z[k]
+            p[:] = z
         _laplacian_matvec(a, b, w, diag, p, q)
-        alpha = rho / np.dot(p, q)
-        for k in range(n):
-            x[k] += alpha * p[k]
-            r[k] -= alpha * q[k]
+        alpha = rho / ddot(p, q)
+        x += alpha * p
+        r -= alpha * q
         rho_prev = rho
     return x

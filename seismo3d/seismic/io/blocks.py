@@ -93,6 +93,28 @@ class SegyGrid:
             for j in range(xline_start, xline_stop):
                 yield j * n_il + inline_start, j * n_il + inline_stop, (slice(None), j - xline_start)
 
+    def trace_block(self, table: np.ndarray, inline_start: int, inline_stop: int, xline_start: int,
+                    xline_stop: int) -> np.ndarray:
+        """The block's traces in a table of the file's traces, without copying them.
+
+        Parameters
+        ----------
+        table : (n_traces, trace_bytes) uint8 ndarray
+            Every trace of the file in file order (header then samples), e.g. a memory map.
+        inline_start, inline_stop, xline_start, xline_stop : int
+            The block, array indices.
+
+        Returns
+        -------
+        (inline_stop - inline_start, xline_stop - xline_start, trace_bytes) uint8 ndarray
+            A strided view of ``table`` (the traces as :meth:`trace_runs` lays them out: the grid is regular, so the
+            block is one view, copied by the caller in one numpy call rather than a run at a time).
+        """
+        if self.sorting == "inline":
+            return table.reshape(self.n_inlines, self.n_xlines, -1)[inline_start:inline_stop, xline_start:xline_stop]
+        by_xline = table.reshape(self.n_xlines, self.n_inlines, -1)
+        return by_xline[xline_start:xline_stop, inline_start:inline_stop].transpose(1, 0, 2)
+
 
 def segyio_handle(grid: SegyGrid):
     """Open the file of ``grid`` read-only without scanning its geometry, memory-mapped.
@@ -182,10 +204,9 @@ def _read_amplitudes(f, table, grid: SegyGrid, inline_start, inline_stop, xline_
     out = np.empty((inline_stop - inline_start, xline_stop - xline_start, grid.n_samples), np.float32)
     runs = grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop)
     if table is not None and int(f.format) == _IEEE_FLOAT32:
-        # IEEE floats: the samples as they are, byte order swapped by numpy as segyio does
-        samples = table[:, TRACE_HEADER_BYTES:].view(_ENDIAN[grid.endian] + "f4")
-        for first, last, where in runs:
-            out[where] = samples[first:last].reshape(out[where].shape)
+        # IEEE floats: the samples as they are, byte order swapped by numpy as segyio does, in one copy
+        block = grid.trace_block(table, inline_start, inline_stop, xline_start, xline_stop)
+        out[...] = block[..., TRACE_HEADER_BYTES:].view(_ENDIAN[grid.endian] + "f4")
         return out
     for first, last, where in runs:
         flat = out[where].reshape(last - first, grid.n_samples)
@@ -284,9 +305,8 @@ def _read_headers(f, table, grid: SegyGrid, fields, inline_start, inline_stop, x
     if table is None:
         return _read_headers_segyio(f, grid, fields, inline_start, inline_stop, xline_start, xline_stop)
     shape = (inline_stop - inline_start, xline_stop - xline_start)
-    raw = np.empty(shape + (TRACE_HEADER_BYTES,), np.uint8)
-    for first, last, where in grid.trace_runs(inline_start, inline_stop, xline_start, xline_stop):
-        raw[where] = table[first:last, :TRACE_HEADER_BYTES].reshape(raw[where].shape)
+    raw = np.ascontiguousarray(grid.trace_block(table, inline_start, inline_stop, xline_start,
+                                                xline_stop)[..., :TRACE_HEADER_BYTES])
     # a field is zero on every trace when all of its bytes are: only the others are decoded
     used = raw.reshape(-1, TRACE_HEADER_BYTES).any(axis=0)
     decoded = [k for k in fields if used[k - 1:k - 1 + _FIELD_BYTES[k]].any()]

@@ -5,7 +5,9 @@ Layout (one Zarr v3 group; the idea is MDIO's: amplitudes, their coordinates and
 
     OUTPUT.zarr/
       seismic      (n_inlines, n_xlines, n_samples) float32, dimension_names (inline, crossline, sample),
-                   chunks (64, 64, n_samples), attrs {long_name, coordinates: "cdp_x cdp_y" when present}
+                   chunks (64, 64, n_samples), attrs {long_name, coordinates: "cdp_x cdp_y" when present};
+                   uncompressed unless written with a compressor (``AMPLITUDE_COMPRESSORS``; the codecs are in the
+                   array's metadata, so that every Zarr reader decodes either)
       inline       (n_inlines,) int32, dims (inline,)          inline numbers
       crossline    (n_xlines,) int32, dims (crossline,)        crossline numbers
       sample       (n_samples,) float64, dims (sample,)        time or depth, attrs {units: 'ms' | 'm' | 'ft'}
@@ -47,8 +49,8 @@ from ...errors import InputError
 from .blocks import SegyGrid, read_block_and_headers, segyio_handle
 from .geometry import scale_coordinates
 
-__all__ = ["LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate", "open_seismic_zarr",
-           "is_seismic_zarr"]
+__all__ = ["LAYOUT", "TILE_TRACES", "AMPLITUDE_COMPRESSORS", "SeismicZarr", "SeismicZarrWriter", "consolidate",
+           "open_seismic_zarr", "is_seismic_zarr"]
 
 LAYOUT = {"layout": "seismic-zarr", "version": 1}
 TILE_TRACES = 64  # traces per chunk along inline and crossline
@@ -57,15 +59,25 @@ _BIN_FIELDS = {int(f): str(f) for f in segyio.BinField.enums()}
 _COORDINATE_FIELDS = ((segyio.TraceField.CDP_X, segyio.TraceField.CDP_Y),
                       (segyio.TraceField.SourceX, segyio.TraceField.SourceY))
 _UNITS = {1: "m", 2: "ft"}  # binary header bytes 3255-3256, measurement system
-_COPY_THREADS = 2  # threads reading, compressing and writing chunks (numpy copies, Blosc, file writes: GIL free)
-# Amplitudes: Blosc LZ4 with byte shuffle compresses float32 seismic as well as Zarr's default (Zstd level 0) at about
-# three times its speed, so that convert runs at the speed of reading the SEG-Y (benchmarks/convert.py). The chunked
-# fault runs store their cubes with it too: on the 400 x 400 x 500 target of benchmarks/fault_paths.py it encodes the
+_COPY_THREADS = 2  # threads reading, encoding and writing chunks (numpy copies, codecs, file writes: GIL free)
+# Stores of the chunked fault runs: Blosc LZ4 with byte shuffle compresses float32 as well as Zarr's default (Zstd
+# level 0) at about three times its speed. On the 400 x 400 x 500 target of benchmarks/fault_paths.py it encodes the
 # learned likelihood 5x faster (416 against 83 MB/s), strike and slopes 3x, decodes 1.5-3x faster, at the same or a
 # better ratio (1.30 against 1.28 for the likelihood, 1.43 against 1.15 for the slopes; 23 against 50 for the sparse
 # votes).
 SEISMIC_CODEC = ({"name": "blosc", "configuration": {"cname": "lz4", "clevel": 5, "shuffle": "shuffle",
                                                       "typesize": 4, "blocksize": 0}},)
+# The amplitudes of ``seismo3d convert``, by ``compression``: uncompressed by default, because float32 seismic barely
+# compresses losslessly (LZ4 + shuffle 1.10-1.13x, Zstd level 0 1.07-1.08x on the data folder's field sections: Volve's
+# full stack, Campos, Costa Rica, Teapot, an F3 section) while encoding costs CPU (LZ4 0.22-0.41 CPU s for the
+# 198 MB cube of benchmarks/commands.py, whose convert takes about 1.2 CPU s in all); amplitudes that were integers or
+# are smooth compress more (1.5-1.8x: the F3 crop and section f3d178sub2, Penobscot xl1155, Volve's velocities),
+# where ``'lz4'`` or ``'zstd'`` (Zarr's default codec) may pay.
+AMPLITUDE_COMPRESSORS = {
+    "none": (),
+    "lz4": SEISMIC_CODEC,
+    "zstd": ({"name": "zstd", "configuration": {"level": 0, "checksum": False}},),
+}
 
 
 @dataclass(frozen=True)
@@ -199,9 +211,11 @@ class SeismicZarrWriter:
     ``with`` waits for the writes under way (after an error too), so that the store can then be removed.
 
     A tile is copied chunk by chunk (64 x 64 traces) on two threads: each reads its chunk's headers and amplitudes
-    through one memory map, encodes the amplitudes with the array's codecs (little-endian bytes, then Blosc) and writes
-    them to the chunk's key in the store, so that both cores read, compress and write (zarr's array API would add about
-    a quarter to the CPU time: its asyncio tasks and buffer copies; 0.59 against 0.47 CPU s for the same chunks). At
+    through one memory map, encodes the amplitudes with the array's codecs (little-endian bytes, then the compressor
+    if any) and writes them to the chunk's key in the store, so that both cores read, encode and write (zarr's array
+    API would add about a quarter to the CPU time with LZ4, 0.59 against 0.47 CPU s for the same chunks, and more
+    uncompressed, 0.50-0.62 against 0.28-0.35 CPU s for the 198 MB bench cube: its asyncio tasks and buffer
+    copies). At
     most ``chunk_mb`` of amplitudes, and no more than three chunks, are held at a time (with each its encoded bytes).
     Chunks of zeros are not written (left to the fill value, as zarr does). The trace header fields of a row of chunks
     (64 inlines, every crossline) are gathered from its tiles and written through zarr once the row is complete, with
@@ -217,6 +231,9 @@ class SeismicZarrWriter:
     chunk_mb : float
         Upper bound in MiB of the amplitudes read or being written at a time, and of a tile (at least one 64 x
         64-trace chunk).
+    compression : {'none', 'lz4', 'zstd'}
+        The amplitudes' compressor (:data:`AMPLITUDE_COMPRESSORS`): none (the default), Blosc LZ4 with byte shuffle, or
+        Zstd level 0 (Zarr's default).
 
     Attributes
     ----------
@@ -227,10 +244,16 @@ class SeismicZarrWriter:
     ------
     SegyGeometryError
         ``cube`` is not a 3D cube.
+    InputError
+        ``compression`` is not one of :data:`AMPLITUDE_COMPRESSORS`.
     """
 
-    def __init__(self, cube, store, *, chunk_mb: float = 64):
+    def __init__(self, cube, store, *, chunk_mb: float = 64, compression: str = "none"):
         import zarr
+
+        if compression not in AMPLITUDE_COMPRESSORS:
+            raise InputError(f"compression must be one of {', '.join(map(repr, AMPLITUDE_COMPRESSORS))}; got "
+                             f"{compression!r}")
 
         self.cube = cube
         self.grid = SegyGrid.from_cube(cube)
@@ -240,7 +263,8 @@ class SeismicZarrWriter:
         self._coordinates(cube)
         self.seismic = self.root.create_array("seismic", shape=cube.shape, chunks=chunk, dtype="float32",
                                               dimension_names=("inline", "crossline", "sample"), fill_value=0.0,
-                                              compressors=SEISMIC_CODEC, attributes={"long_name": "amplitude"})
+                                              compressors=AMPLITUDE_COMPRESSORS[compression],
+                                              attributes={"long_name": "amplitude"})
         self._chunk_files = _ChunkFiles(self.seismic, store)
         self._header_chunks = (chunk[0], n_xl)  # one chunk file per field and row (64 x 64 chunks: 7x the files)
         self.headers = {}  # TraceField -> zarr array, created at the field's first non-zero value (before it: fill 0)
@@ -376,19 +400,13 @@ class SeismicZarrWriter:
 
 class _ChunkFiles:
     """The chunk files of a Zarr v3 array in a local store, written as zarr would write them: the values encoded by
-    the array's codecs (little-endian bytes, then its Blosc compressor), at the chunk's key (the array's chunk key
-    encoding), an edge chunk padded with the fill value to the full chunk shape (as the Zarr v3 specification
-    stores it). For the amplitudes only (``SEISMIC_CODEC``); thread-safe: each call writes its own file."""
+    the array's codecs (little-endian bytes, then its compressor if it has one: a Blosc or Zstd configuration of
+    :data:`AMPLITUDE_COMPRESSORS`, encoded by numcodecs as zarr does), at the chunk's key (the array's chunk key
+    encoding), an edge chunk padded with the fill value to the full chunk shape (as the Zarr v3 specification stores
+    it). For the amplitudes only; thread-safe: each call writes its own file."""
 
     def __init__(self, array, store: Path):
-        import numcodecs
-
-        blosc = SEISMIC_CODEC[0]["configuration"]
-        shuffle = {"noshuffle": numcodecs.Blosc.NOSHUFFLE, "shuffle": numcodecs.Blosc.SHUFFLE,
-                   "bitshuffle": numcodecs.Blosc.BITSHUFFLE}[blosc["shuffle"]]
-        # typesize: the item size of the float32 values encoded (as the codec's "typesize": 4)
-        self._codec = numcodecs.Blosc(cname=blosc["cname"], clevel=blosc["clevel"], shuffle=shuffle,
-                                      blocksize=blosc["blocksize"])
+        self._codec = _numcodecs_compressor(array.metadata.to_dict()["codecs"][1:])
         self._array, self._folder = array, Path(store) / array.path
 
     def write(self, values: np.ndarray, *start: int) -> None:
@@ -405,7 +423,25 @@ class _ChunkFiles:
         key = self._array.metadata.encode_chunk_key(tuple(i // n for i, n in zip(start, shape)))
         path = self._folder / key
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_bytes(self._codec.encode(np.ascontiguousarray(values, dtype="<f4")))
+        values = np.ascontiguousarray(values, dtype="<f4")
+        path.write_bytes(values.data if self._codec is None else self._codec.encode(values))
+
+
+def _numcodecs_compressor(compressors):
+    """The numcodecs codec that zarr uses for the compressor of an array's codecs after ``bytes`` (None: none)."""
+    import numcodecs
+
+    if not compressors:
+        return None
+    (codec,) = compressors
+    config = codec["configuration"]
+    if codec["name"] == "zstd":
+        return numcodecs.Zstd(level=config["level"], checksum=config["checksum"])
+    shuffle = {"noshuffle": numcodecs.Blosc.NOSHUFFLE, "shuffle": numcodecs.Blosc.SHUFFLE,
+               "bitshuffle": numcodecs.Blosc.BITSHUFFLE}[config["shuffle"]]
+    # typesize: the item size of the float32 values encoded (as the codec's "typesize": 4)
+    return numcodecs.Blosc(cname=config["cname"], clevel=config["clevel"], shuffle=shuffle,
+                           blocksize=config["blocksize"])
 
 
 class _BackgroundWork:

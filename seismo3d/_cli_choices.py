@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from enum import Enum
 
-__all__ = ["Compression", "Endian", "FaultColour", "Likelihood", "MatchMethod", "Method", "Model", "Polarity", "SampleUnit"]
+__all__ = ["Compression", "Endian", "FaultColour", "Likelihood", "MatchMethod", "Method", "Model", "Polarity",
+           "SampleUnit"]
 
 
 class Method(str, Enum):

@@ -21,7 +21,8 @@ from typing import Optional
 import typer
 
 from . import __version__
-from ._cli_choices import Compression, Endian, FaultColour, Likelihood, MatchMethod, Method, Model, Polarity, SampleUnit
+from ._cli_choices import (Compression, Endian, FaultColour, Likelihood, MatchMethod, Method, Model, Polarity,
+                           SampleUnit)
 from ._cli_outputs import check_before_import
 from ._cli_text import array_text, echo_terrain, frames_tracked, why_not_converged
 from .jobs.outputs import output_file

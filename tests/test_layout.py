@@ -67,8 +67,10 @@ def test_the_fault_package_is_no_larger_or_deeper_than_reached():
     def chain(name: str, seen: frozenset = frozenset()) -> int:
         return 1 + max([chain(m, seen | {name}) for m in edges[name] if m not in seen and m != name] or [0])
 
-    assert len(inside) <= 25  # 33 before issue 53, 31 on main 628e870, 28 with the block runs regrouped, 29 with the
+    assert len(inside) <= 23  # 33 before issue 53, 31 on main 628e870, 28 with the block runs regrouped, 29 with the
     # 2D throw profile (throw_profile, issue 54), 27 with one block executor (faults/blocks/ dissolved into likelihood/,
     # surfaces/, checks and pipeline), 25 with the executor's read-compute-write layer (seismic/blocks/apply.py:
-    # surfaces/block_steps dissolved, the thresholds' statistics in seismic/blocks/statistics); the target is 22
+    # surfaces/block_steps dissolved, the thresholds' statistics in seismic/blocks/statistics), 23 with the preflight
+    # out of faults/ (checks dissolved: the sampled blocks and the size check in seismic/blocks/preflight, the dead
+    # samples and the amplitude checks in seismic/amplitudes, the fault refusals on a sample in steps); the target is 22
     assert chain("seismo3d.seismic.faults") <= 6  # 12 before issue 53, 9 on main 628e870; 6 is the target

@@ -72,7 +72,7 @@ if TYPE_CHECKING:
     )
     from .faults.evidence import supported_faults
     from .faults.result import fault_normals
-    from .faults.surfaces.dead_samples import CleanTraces, clean_traces, dead_samples, fill_values, near_dead_samples
+    from .amplitudes import CleanTraces, clean_traces, dead_samples, fill_values, near_dead_samples
     from .faults.surfaces.ridges import fault_labels
     from .faults.throw import fault_throw
     from .blocks import BlockRun, BlockRunOptions, SchedulerClient, run_block

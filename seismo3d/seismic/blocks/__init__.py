@@ -5,6 +5,8 @@ Generic pieces, knowing nothing of what a block computes:
 - :mod:`~seismo3d.seismic.blocks.options`: :class:`BlockRunOptions`, how a cube is run (memory limit, forced choice,
   work folder, dask scheduler, the input's name and coordinates recorded in the stores);
 - :mod:`~seismo3d.seismic.blocks.memory`: memory limits parsed and measured, whether a run in memory fits;
+- :mod:`~seismo3d.seismic.blocks.preflight`: the checks before a run (data too small for its windows, a few blocks
+  spread over a large cube read for the run to judge it from);
 - :mod:`~seismo3d.seismic.blocks.plan`: steps declared once (:class:`~seismo3d.seismic.blocks.plan.BlockStep`: block
   function, map / reduce / gather, halo, bytes of a block) and the largest blocks a memory limit allows them;
 - :mod:`~seismo3d.seismic.blocks.executor`: resumable runs over the blocks of a cube (markers, dask schedulers, the

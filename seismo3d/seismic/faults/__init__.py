@@ -8,8 +8,8 @@ algorithms live in folders that name them:
   (:func:`learned_fault_likelihood`, :mod:`~seismo3d.seismic.faults.likelihood.learned`, its forward pass and grids in
   :mod:`~seismo3d.seismic.faults.likelihood.network`) or the scan of fault strikes and dips (:func:`fault_likelihood`,
   :mod:`~seismo3d.seismic.faults.likelihood.scan`, its kernels in ``scan_kernels``).
-- :mod:`~seismo3d.seismic.faults.surfaces`: from likelihood to fault surfaces: dead samples
-  (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`), ridges and thinning (:func:`thin_faults`,
+- :mod:`~seismo3d.seismic.faults.surfaces`: from likelihood to fault surfaces (the likelihood cleared near the dead
+  samples of :mod:`~seismo3d.seismic.amplitudes`): ridges and thinning (:func:`thin_faults`,
   :mod:`~seismo3d.seismic.faults.surfaces.ridges`), optimal surface voting (:func:`vote_faults`,
   :mod:`~seismo3d.seismic.faults.surfaces.voting`, its loops in ``voting_kernels``), fault skins (:func:`fault_skins`,
   :mod:`~seismo3d.seismic.faults.surfaces.skins`, its loops in ``skin_kernels``).
@@ -17,9 +17,8 @@ algorithms live in folders that name them:
   its patches in :mod:`~seismo3d.seismic.faults.throw_patches`); :mod:`~seismo3d.seismic.faults.evidence`: the
   evidence a fault must show.
 - :mod:`~seismo3d.seismic.faults.options` (:class:`FaultTracingOptions`), :mod:`~seismo3d.seismic.faults.result`
-  (the results and the index-space conventions), :mod:`~seismo3d.seismic.faults.checks` (data refused before the
-  work, in memory or from a sample of blocks), :mod:`~seismo3d.seismic.faults.steps` (the steps after the likelihood,
-  over any run), :mod:`~seismo3d.seismic.faults.pipeline` (:func:`trace_faults`, in memory or by blocks).
+  (the results and the index-space conventions), :mod:`~seismo3d.seismic.faults.steps` (the steps after the likelihood,
+  over any run, and the refusals: before the work, between the steps, from a sample of blocks), :mod:`~seismo3d.seismic.faults.pipeline` (:func:`trace_faults`, in memory or by blocks).
 
 How a cube is run, in memory or by blocks into resumable Zarr stores under a memory limit, is the executor's
 (:mod:`seismo3d.seismic.blocks`, its options :class:`~seismo3d.seismic.blocks.BlockRunOptions`): the algorithms here

@@ -12,7 +12,7 @@ from ...errors import InputError
 from .evidence import EvidenceOptions, sensitivity_factor
 from .likelihood.learned import LearnedOptions
 from .likelihood.scan import FaultScanOptions
-from .surfaces.dead_samples import DeadSampleOptions
+from ..amplitudes import DeadSampleOptions
 from .surfaces.skins import SkinOptions
 from ..blocks.statistics import otsu, quantile
 from .surfaces.voting import VotingOptions
@@ -56,7 +56,7 @@ class FaultTracingOptions:
         The linking into fault skins.
     dead : DeadSampleOptions
         What counts as a dead sample (mutes, dead traces, gaps), whose edges are not faults, and how far the
-        likelihood is cleared around them (:mod:`~seismo3d.seismic.faults.surfaces.dead_samples`).
+        likelihood is cleared around them (:mod:`~seismo3d.seismic.amplitudes`).
     evidence : EvidenceOptions or None
         What a fault must show to be kept (:func:`~seismo3d.seismic.faults.evidence.supported_faults`); None: the
         likelihood's defaults (:meth:`~seismo3d.seismic.faults.evidence.EvidenceOptions.for_likelihood`).

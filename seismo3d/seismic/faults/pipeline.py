@@ -5,8 +5,9 @@ command uses and returns a :class:`FaultInterpretation`: the checks and the like
 steps of :mod:`~seismo3d.seismic.faults.steps`, on the whole array as one block
 (:class:`~seismo3d.seismic.faults.steps.ArrayRun`) or block by block into Zarr stores (:func:`trace_faults_by_blocks`,
 before any block :func:`check_block_run`: the memory its smallest blocks need, :func:`minimum_memory_limit`, and the
-data judged from a sample of blocks, :mod:`~seismo3d.seismic.faults.checks`); :func:`clean_traces` finds the dead
-samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped amplitudes. Reading files and
+data judged from a sample of blocks, :func:`~seismo3d.seismic.faults.steps.judge_sample`); :func:`clean_traces` finds
+the dead samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped amplitudes
+(:mod:`~seismo3d.seismic.amplitudes`). Reading files and
 writing results is the ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
 
 Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood.scan`.
@@ -25,23 +26,25 @@ import numpy as np
 from ..._progress import LOGGER, progress_steps
 from ..._validation import check_choice, check_positive
 from ...errors import EarlierStoresError, InputError, Seismo3dWarning
+from ..amplitudes import CleanTraces, check_amplitudes, clean_traces, finite_cube, near_dead_samples
 from ..blocks.executor import release_memory
 from ..blocks.memory import in_memory_bytes, resident_memory, size_text, worker_baseline
 from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
+from ..blocks.preflight import SampleOptions
 from ..io.zarr_store import consolidate
-from .checks import CubeSample, SampleOptions, check_amplitudes, check_size, finite_cube, judge_sample
 from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
 from .likelihood.scan import fault_likelihood
 from .likelihood.scan_blocks import chunked_fault_likelihood, smallest_block_bytes as likelihood_block_bytes
 from .options import LIKELIHOODS, FaultTracingOptions
 from .result import FaultInterpretation, FaultLikelihood
-from .steps import ArrayRun, faults_from_cells, no_coherence_message, surface_cells
+from .steps import (
+    ArrayRun, CubeSample, check_size, faults_from_cells, judge_sample, no_coherence_message, surface_cells,
+)
 from .surfaces.blocks import (
     CANDIDATE_BYTES, block_steps as surface_steps, chunked_fault_surfaces, smallest_block_bytes as surfaces_block_bytes,
 )
-from .surfaces.dead_samples import CleanTraces, clean_traces, near_dead_samples
 
 # check_size, check_amplitudes, no_coherence_message and LIKELIHOODS are imported here by older callers
 __all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "LIKELIHOOD_STORE", "LIKELIHOODS",
@@ -91,8 +94,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`: 160 MiB and 24 times its float32 size) is traced
     block by block (:func:`trace_faults_by_blocks`) into Zarr stores in ``blocks.work_dir``, with the same checks,
     warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of
-    blocks first (:meth:`~seismo3d.seismic.faults.checks.SampleOptions.worth_sampling`) is refused from that
-    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.checks.judge_sample`), on either path.
+    blocks first (:meth:`~seismo3d.seismic.blocks.preflight.SampleOptions.worth_sampling`) is refused from that
+    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.steps.judge_sample`), on either path.
 
     Parameters
     ----------
@@ -338,7 +341,7 @@ def _cleaned(data, opt: FaultTracingOptions) -> tuple[np.ndarray, np.ndarray]:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     if SampleOptions().worth_sampling(cleaned.data.shape):  # refused from a sample, not after the whole likelihood
         judge_sample(cleaned.data, options=opt)
-    check_amplitudes(cleaned.data, cleaned.dead, opt)
+    check_amplitudes(cleaned.data, cleaned.dead, opt.min_crossings)
     return cleaned.data, cleaned.dead
 
 
@@ -398,7 +401,7 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     """Before any block of a run by blocks: the memory its smallest blocks need (at once); the data judged from a
     sample of blocks (not seismic amplitudes, no lateral coherence: the refusals of the run in memory, in seconds);
     the memory the seed candidates the sample predicts need; then the data's NaN, constant, clipped and dead samples
-    (:func:`finite_cube`, passes over the whole cube).
+    (:func:`~seismo3d.seismic.amplitudes.finite_cube`, passes over the whole cube).
 
     Parameters
     ----------
@@ -413,7 +416,7 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     Returns
     -------
     dask.array.Array
-        ``x`` with NaN / inf read as 0 (:func:`finite_cube`).
+        ``x`` with NaN / inf read as 0 (:func:`~seismo3d.seismic.amplitudes.finite_cube`).
 
     Raises
     ------

@@ -14,10 +14,18 @@ Both call the same step functions (:mod:`~seismo3d.seismic.faults.surfaces.ridge
 :func:`~seismo3d.seismic.faults.surfaces.voting. greedy_seeds`,
 :func:`~seismo3d.seismic.faults.surfaces.voting.surface_votes`, :func:`~seismo3d.seismic.faults.surfaces.skins.
 skins_from_cells`), so the faults do not depend on which run traced them.
+
+The refusals of fault tracing are here too, one function each, called by both runs: data too small for the scan and
+the voting boxes (:func:`check_size`), the saturation refusal between the steps (:func:`check_saturation`), and the
+same refusals made early on a sample of blocks of a large cube (:func:`judge_sample`, on the blocks the executor's
+preflight reads: :func:`~seismo3d.seismic.blocks.preflight.sample_blocks`), which also gives the density of the
+voting's seed candidates from which :func:`~seismo3d.seismic.faults.pipeline.minimum_memory_limit` estimates the
+memory of the seeds step of a block-by-block run.
 """
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
 
@@ -25,9 +33,13 @@ import numpy as np
 
 from ..._progress import no_progress
 from .. import _kernels
+from ..amplitudes import check_amplitudes, clean_traces, near_dead_samples
+from ..blocks import preflight
 from ..blocks.apply import apply_in_memory
-from ...errors import UnsupportedDataError
+from ..blocks.preflight import SampleOptions
+from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .evidence import supported_faults
+from .likelihood.scan import fault_likelihood
 from .surfaces.ridges import live_likelihood, ridges, without_dead_edges
 from .surfaces.skins import skins_from_cells
 from .surfaces.voting import image_seeds, seed_votes
@@ -36,8 +48,8 @@ from .throw import fault_throws
 if TYPE_CHECKING:  # annotations only: the options are passed in
     from .options import FaultTracingOptions
 
-__all__ = ["ArrayRun", "SurfaceCells", "SurfaceRun", "check_saturation", "faults_from_cells", "no_coherence_message",
-           "surface_cells"]
+__all__ = ["ArrayRun", "CubeSample", "SurfaceCells", "SurfaceRun", "check_saturation", "check_size",
+           "faults_from_cells", "judge_sample", "no_coherence_message", "surface_cells"]
 
 
 class SurfaceRun(Protocol):
@@ -68,7 +80,7 @@ class ArrayRun:
     likelihood, strike_deg, dip_deg : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
         Fault likelihood (set to 0 near dead samples, in place), strike and dip (degrees).
     near_dead : bool ndarray of the same shape, or None
-        Samples near dead ones (:func:`~seismo3d.seismic.faults.surfaces.dead_samples.near_dead_samples`).
+        Samples near dead ones (:func:`~seismo3d.seismic.amplitudes.near_dead_samples`).
     opt : FaultTracingOptions
     steps : dict of str to BlockStep
         The declared steps of the fault surfaces by name
@@ -238,6 +250,25 @@ def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> Surfac
     return SurfaceCells((float(lower), float(upper)), int(len(seeds)), int(n_cells), float(saturated))
 
 
+def check_size(shape: tuple, opt: FaultTracingOptions) -> None:
+    """Refuse data too small for the scan and the voting boxes (the executor's preflight check,
+    :func:`~seismo3d.seismic.blocks.preflight.check_size`, with ``opt.min_traces`` and ``opt.min_samples``).
+
+    Parameters
+    ----------
+    shape : tuple of int
+        ``(n_inlines, n_xlines, n_samples)`` or ``(n_traces, n_samples)``.
+    opt : FaultTracingOptions
+
+    Raises
+    ------
+    UnsupportedDataError
+        Fewer traces or samples than ``opt.min_traces`` / ``opt.min_samples``.
+    """
+    preflight.check_size(shape, min_traces=opt.min_traces, min_samples=opt.min_samples, task="fault tracing",
+                         spans="the fault-plane windows and voting boxes")
+
+
 def check_saturation(high: int, live: int, opt: FaultTracingOptions) -> float:
     """Refuse data whose likelihood is high almost everywhere (no lateral coherence).
 
@@ -271,6 +302,104 @@ def no_coherence_message(fraction: float, level: float) -> str:
     return (f"the fault likelihood is above {level:g} at {fraction:.0%} of the samples: the data has no lateral "
             "coherence to trace faults in (noise, chaotic reflections, or traces out of order); check the "
             "inline/crossline geometry or the file")
+
+
+@dataclass(frozen=True)
+class CubeSample:
+    """What :func:`judge_sample` measured.
+
+    Attributes
+    ----------
+    n_blocks : int
+        Blocks read.
+    n_samples : int
+        Samples read.
+    saturated_fraction : float
+        Fraction of the live samples whose fault likelihood exceeds ``saturation_level``.
+    candidate_density : float
+        Seed candidates of the voting (fault-likelihood ridges above ``VotingOptions.seed_threshold``) per sample.
+    """
+
+    n_blocks: int
+    n_samples: int
+    saturated_fraction: float
+    candidate_density: float
+
+    def candidates(self, shape) -> int:
+        """The seed candidates expected in a cube of ``shape``.
+
+        Parameters
+        ----------
+        shape : tuple of int
+
+        Returns
+        -------
+        int
+        """
+        return int(np.ceil(self.candidate_density * float(np.prod(shape, dtype=np.float64))))
+
+
+def judge_sample(cube, *, options: FaultTracingOptions, sample: SampleOptions | None = None) -> CubeSample:
+    """Judge a 3D cube from a few blocks before tracing its faults: refuse data that is not seismic amplitudes or has
+    no lateral coherence, and measure the density of the voting's seed candidates.
+
+    Parameters
+    ----------
+    cube : (n_inlines, n_xlines, n_samples) array_like or dask.array.Array
+        Amplitudes; only the sampled blocks are read.
+    options : FaultTracingOptions
+        The run's options (the amplitude check, the scan, the voting's seed threshold).
+    sample : SampleOptions, optional
+        The blocks read (:class:`~seismo3d.seismic.blocks.preflight.SampleOptions`).
+
+    Returns
+    -------
+    CubeSample
+
+    Raises
+    ------
+    UnsupportedDataError
+        Too few traces or samples, traces that do not oscillate like seismic amplitudes, or a sample whose fault
+        likelihood is saturated (no lateral coherence); the message says what the sample showed.
+    InputError
+        ``cube`` is not 3D.
+    """
+    opt = options
+    sample = sample or SampleOptions()
+    shape = tuple(int(n) for n in getattr(cube, "shape", ()))
+    if len(shape) != 3:
+        raise InputError(f"judge_sample needs a 3D cube (n_inlines, n_xlines, n_samples); got shape {shape}")
+    check_size(shape, opt)
+    high = live = candidates = read = 0
+    amplitudes, dead_masks = [], []
+    for block in preflight.sample_blocks(cube, sample):
+        with warnings.catch_warnings():  # dead or clipped samples are reported by the run itself
+            warnings.simplefilter("ignore", Seismo3dWarning)
+            cleaned = clean_traces(block, options=opt.dead)
+        amplitudes.append(cleaned.data)
+        dead_masks.append(cleaned.dead)
+        read += cleaned.data.size
+    check_amplitudes(np.concatenate(amplitudes), np.concatenate(dead_masks), opt.min_crossings)
+    for data, dead in zip(amplitudes, dead_masks):
+        block_high, block_live, block_candidates = _block_measures(data, dead, opt)
+        high, live, candidates = high + block_high, live + block_live, candidates + block_candidates
+    fraction = high / live if live else 0.0
+    if fraction > sample.saturated:
+        raise UnsupportedDataError(f"in a sample of {len(amplitudes)} blocks of {amplitudes[0].shape[0]} x "
+                                   f"{amplitudes[0].shape[1]} traces, "
+                                   + no_coherence_message(fraction, opt.saturation_level))
+    return CubeSample(len(amplitudes), read, float(fraction), candidates / read if read else 0.0)
+
+
+def _block_measures(data: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions) -> tuple[int, int, int]:
+    """(saturated live samples, live samples, seed candidates) of one block, as the full run counts them."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        fl = fault_likelihood(data, options=opt.scan, progress=False)
+    near = near_dead_samples(dead, options=opt.dead) if dead.any() else None
+    high, live = live_likelihood(fl.likelihood, near, level=opt.saturation_level)
+    seeds = ridges(fl.likelihood, fl.strike_deg, fl.dip_deg, opt.voting.seed_threshold)
+    return high, live, int(np.count_nonzero(seeds > float(opt.voting.seed_threshold)))
 
 
 def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, opt: FaultTracingOptions, *,

@@ -18,7 +18,7 @@ from seismo3d.seismic import (FaultInterpretation, evaluate_faults, fault_labels
 from seismo3d.seismic.evaluation import plain_semblance, semblance_skeleton
 from seismo3d.seismic.faults import FaultTracingOptions
 from seismo3d.seismic.faults.surfaces.skins import SkinOptions
-from seismo3d.seismic.faults.surfaces.dead_samples import clean_traces
+from seismo3d.seismic.amplitudes import clean_traces
 
 
 @pytest.fixture(scope="module")
@@ -89,7 +89,7 @@ def test_runs_of_equal_samples_are_counted_as_by_hand():
     """The runs of at least n equal samples along each trace (scipy's binary opening by a line of n - 1 differences)
     are the runs counted one by one, on random masks of every density and length (traces shorter than the line
     included)."""
-    from seismo3d.seismic.faults.surfaces.dead_samples import _runs
+    from seismo3d.seismic.amplitudes import _runs
 
     rng = np.random.default_rng(0)
     for _ in range(50):

@@ -1,5 +1,5 @@
 """Judging a cube from a sample of blocks before tracing its faults, and the smallest memory limit of a block-by-block
-run (seismo3d.seismic.faults.preflight)."""
+run (seismo3d.seismic.faults.steps.judge_sample, seismo3d.seismic.faults.pipeline.minimum_memory_limit)."""
 
 import numpy as np
 import pytest
@@ -11,7 +11,8 @@ from seismo3d.seismic.faults.surfaces import blocks as surface_steps
 from seismo3d.seismic.faults.likelihood.scan import FaultScanOptions
 from seismo3d.seismic.blocks.options import ChunkOptions
 from seismo3d.seismic.faults.options import FaultTracingOptions
-from seismo3d.seismic.faults.checks import CubeSample, SampleOptions, judge_sample
+from seismo3d.seismic.blocks.preflight import SampleOptions
+from seismo3d.seismic.faults.steps import CubeSample, judge_sample
 from seismo3d.seismic.faults.pipeline import minimum_memory_limit
 
 
@@ -36,7 +37,7 @@ def test_noise_is_refused_from_a_sample_reading_only_the_sample():
     with pytest.raises(UnsupportedDataError, match=r"^in a sample of 2 blocks of 32 x 32 traces, the fault likelihood "
                                                    r"is above 0.9 at 100% of the samples: the data has no lateral "
                                                    r"coherence"):
-        judge_sample(noise, sample=SMALL)
+        judge_sample(noise, sample=SMALL, options=FaultTracingOptions())
     assert noise.read == 2 * 32 * 32 * 96
 
 
@@ -44,20 +45,20 @@ def test_a_velocity_model_is_refused_from_a_sample():
     t = np.linspace(0.0, 1.0, 200)
     model = 1500.0 + 2500.0 * t[None, None, :] + np.linspace(0, 50, 64)[:, None, None] + np.zeros((64, 64, 1))
     with pytest.raises(UnsupportedDataError, match="not seismic amplitude data"):
-        judge_sample(model.astype(np.float32))
+        judge_sample(model.astype(np.float32), options=FaultTracingOptions())
 
 
 def test_a_cube_too_small_is_refused_before_reading():
     tiny = Recording(np.zeros((20, 6, 100), np.float32))
     with pytest.raises(UnsupportedDataError, match="fault tracing needs at least 32 traces"):
-        judge_sample(tiny)
+        judge_sample(tiny, options=FaultTracingOptions())
     assert tiny.read == 0
 
 
 @pytest.mark.slow
 def test_seismic_passes_with_its_seed_candidates():
     cube = synthetic_cube((64, 64, 160), seed=2).cube
-    sample = judge_sample(cube, sample=SMALL)
+    sample = judge_sample(cube, sample=SMALL, options=FaultTracingOptions())
     assert sample.n_blocks == 2 and sample.n_samples == 2 * 32 * 32 * 96
     assert sample.saturated_fraction < 0.5  # far from the refusal
     assert 0.0 < sample.candidate_density < 0.2
@@ -94,11 +95,3 @@ def test_minimum_memory_limit_holds_the_predicted_seed_candidates():
     assert with_candidates == dense.candidates(shape) * surface_steps.CANDIDATE_BYTES > plain
     sparse = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1e-6)
     assert minimum_memory_limit(shape, baseline=0, sample=sparse, growth=0) == plain
-
-
-def test_sample_options_are_checked():
-    with pytest.raises(InputError, match="n_blocks"):
-        SampleOptions(n_blocks=9)
-    with pytest.raises(InputError, match="saturated"):
-        SampleOptions(saturated=1.5)
-    assert SampleOptions().worth_sampling((400, 400, 500)) and not SampleOptions().worth_sampling((128, 128, 128))

@@ -1,6 +1,7 @@
 """From a fault likelihood to fault surfaces (curves in 2D sections).
 
-- :mod:`~seismo3d.seismic.faults.surfaces.dead_samples`: dead traces and samples (their edges are not faults).
+Dead traces and samples, whose edges are not faults, are the amplitudes' (:mod:`seismo3d.seismic.amplitudes`).
+
 - :mod:`~seismo3d.seismic.faults.surfaces.ridges`: ridges (non-maximum suppression across the fault) and thinning.
 - :mod:`~seismo3d.seismic.faults.surfaces.voting`: optimal surface voting (Wu & Fomel 2018); its loops in
   :mod:`~seismo3d.seismic.faults.surfaces.voting_kernels`.

@@ -4,7 +4,7 @@ likelihood, declared once (:func:`block_steps`), run block by block from a chunk
 called by :func:`~seismo3d.seismic.faults.steps.surface_cells` as in memory), with the in-memory run's faults. Each
 step reads its block with its halo and writes the core; its algorithm on a block is beside the one it runs:
 
-fill values (``dead_samples.fill_block``), ridges and seed candidates (``ridges.ridge_block``), each seed's surface
+fill values (``amplitudes.fill_block``), ridges and seed candidates (``ridges.ridge_block``), each seed's surface
 once (:func:`surface_block`) and the votes of the surfaces reaching a block in id order (:func:`vote_block`),
 thinning (``ridges.thin_block``) and thresholds from histograms (:mod:`seismo3d.seismic.blocks.statistics`), cells
 (``ridges.cell_block``) linked into skins with their throws (:func:`~seismo3d.seismic.faults.steps.faults_from_cells`).
@@ -36,7 +36,7 @@ from ...blocks.windows import StoredWindows
 from ..options import FaultTracingOptions
 from ..result import ChunkedFaults, fault_frames
 from ..steps import faults_from_cells, surface_cells
-from .dead_samples import fill_block
+from ...amplitudes import fill_block
 from .ridges import (
     RIDGE_HALO, THIN_HALO, amplitude_halo, cell_block, ridge_block, thin_block, without_dead_edges,
 )

@@ -25,7 +25,7 @@ from ...attributes import structure_tensor_halo, structure_tensor_slopes
 from ...blocks.apply import BlockOutput
 from ...blocks.statistics import otsu
 from ..result import check_fault_arrays
-from .dead_samples import dead_samples, near_dead_samples
+from ...amplitudes import dead_samples, near_dead_samples
 
 __all__ = ["RIDGE_HALO", "THIN_HALO", "amplitude_halo", "cell_block", "thin_faults", "fault_labels", "live_likelihood",
            "ridge_block", "ridges", "thin_block", "thin_votes", "without_dead_edges"]
@@ -302,14 +302,14 @@ def fault_labels(faults, shape) -> np.ndarray:
 
 def live_likelihood(likelihood: np.ndarray, near_dead, core=None, *, level: float) -> tuple[int, int]:
     """Set the likelihood next to dead samples to 0 (the edge of a dead zone is not a fault), in place; count the
-    saturated and the live samples of ``core`` for :func:`~seismo3d.seismic.faults.checks.check_saturation`.
+    saturated and the live samples of ``core`` for :func:`~seismo3d.seismic.faults.steps.check_saturation`.
 
     Parameters
     ----------
     likelihood : float32 ndarray
         Fault likelihood of an array or of a block with its halo; modified.
     near_dead : bool ndarray of the same shape, or None
-        Samples near dead ones (:func:`~seismo3d.seismic.faults.surfaces.dead_samples.near_dead_samples`); None: none.
+        Samples near dead ones (:func:`~seismo3d.seismic.amplitudes.near_dead_samples`); None: none.
     core : tuple of slice, optional
         The block's core within ``likelihood`` (default: all of it).
     level : float

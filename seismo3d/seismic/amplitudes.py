@@ -1,4 +1,6 @@
-"""Dead samples of seismic data: mutes, dead traces, zero padding and gaps, whose edges are not faults.
+"""What the amplitudes of a seismic cube are worth before it is interpreted: NaN / inf, constant data, clipped
+amplitudes, dead samples (mutes, dead traces, zero padding and gaps, whose edges are not faults), and whether the
+traces oscillate like seismic amplitudes at all (not a velocity or impedance model).
 
 A sample is dead when it lies in a run of at least ``DeadSampleOptions.run`` equal values along its trace at a *fill
 value*: 0, or a value that fills a whole trace or a run of at least ``DeadSampleOptions.fill_run`` samples somewhere
@@ -11,6 +13,8 @@ exports of sections): neither is dead, unless it fills the whole trace.
 :func:`near_dead_samples` are its steps, which also run block by block on a cube larger than memory (the fill values
 gathered over every block first, from the data's global smallest and largest values): dead samples are found along
 each trace, so a block needs no halo for them, and ``DeadSampleOptions.reach[0]`` traces of halo to grow them.
+:func:`finite_cube` makes the checks :func:`clean_traces` makes in memory from passes over the blocks of a lazy cube;
+:func:`check_amplitudes` refuses traces that do not cross their mean like seismic reflections.
 """
 
 from __future__ import annotations
@@ -21,12 +25,13 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.ndimage import binary_opening, maximum_filter1d
 
-from ...._validation import check_int, check_positive, check_seismic_layout
-from ....errors import InputError, Seismo3dWarning
-from ...blocks.apply import BlockOutput
+from .._validation import check_int, check_positive, check_seismic_layout
+from ..errors import InputError, Seismo3dWarning, UnsupportedDataError
+from .blocks.apply import BlockOutput
 
-__all__ = ["CleanTraces", "DeadSampleOptions", "clean_traces", "check_varies", "clipped_count", "fill_block", "fill_values",
-           "dead_samples", "near_dead_samples", "warn_clipped", "warn_dead", "warn_non_finite"]
+__all__ = ["CleanTraces", "DeadSampleOptions", "check_amplitudes", "check_varies", "clean_traces", "clipped_count",
+           "dead_samples", "fill_block", "fill_values", "finite_cube", "near_dead_samples", "warn_clipped", "warn_dead",
+           "warn_non_finite"]
 
 
 @dataclass(frozen=True)
@@ -330,6 +335,99 @@ def warn_dead(n_dead: int, n: int, n_dead_traces: int, *, options: DeadSampleOpt
         warnings.warn(f"{n_dead / n:.1%} of the samples are constant over {opt.run} or more samples "
                       f"(mutes, gaps, {n_dead_traces} dead traces); fault likelihood within {opt.reach[0]} traces "
                       f"and {opt.reach[1]} samples of them is set to 0", Seismo3dWarning, stacklevel=3)
+
+
+def check_amplitudes(arr: np.ndarray, dead: np.ndarray, min_crossings: float) -> None:
+    """Refuse data whose traces do not oscillate like seismic amplitudes (median zero crossings per 100 samples below
+    ``min_crossings``, over up to about 4000 live traces).
+
+    Parameters
+    ----------
+    arr : (..., n_samples) float ndarray
+        Amplitudes (NaN-free, as :func:`clean_traces` returns them).
+    dead : bool ndarray of ``arr``'s shape
+        Dead samples.
+    min_crossings : float
+        Median crossings of a trace's mean per 100 samples below which the data is refused
+        (:attr:`~seismo3d.seismic.FaultTracingOptions.min_crossings` for fault tracing).
+
+    Raises
+    ------
+    UnsupportedDataError
+        Every trace dead, or too few zero crossings.
+    """
+    live = ~dead.all(axis=-1)
+    traces = arr[live] if arr.ndim == 2 else arr.reshape(-1, arr.shape[-1])[live.ravel()]
+    traces = traces[:: max(1, traces.shape[0] // 4000)].astype(np.float64)
+    if traces.shape[0] == 0:
+        raise UnsupportedDataError("every trace is dead (constant): there is nothing to trace faults in")
+    centred = traces - traces.mean(axis=1, keepdims=True)
+    crossings = float(np.median(np.count_nonzero(np.diff(np.signbit(centred), axis=1), axis=1)))
+    per_100 = 100.0 * crossings / traces.shape[1]
+    if per_100 < min_crossings:
+        raise UnsupportedDataError(
+            f"the traces cross their mean {per_100:.1f} times per 100 samples (seismic reflections: 10-30 times): "
+            "this is not seismic amplitude data (a velocity or impedance model?); fault tracing needs a stacked, "
+            "migrated seismic image")
+
+
+def finite_cube(x, dead: DeadSampleOptions | None = None):
+    """The cube with NaN / inf read as 0 (warned, as in memory); constant data refused, clipped amplitudes and dead
+    samples warned about, from three passes over the blocks (the
+    dead samples need the fill values of the whole cube).
+
+    Parameters
+    ----------
+    x : (n_inlines, n_xlines, n_samples) float32 dask.array.Array
+        Chunks of whole traces.
+    dead : DeadSampleOptions, optional
+        What counts as a dead sample (default :class:`DeadSampleOptions`).
+
+    Returns
+    -------
+    dask.array.Array
+        ``x``, or ``x`` with its NaN / inf samples read as 0.
+
+    Raises
+    ------
+    InputError
+        Every sample equal (NaN read as 0).
+
+    Warns
+    -----
+    Seismo3dWarning
+        NaN / inf, clipped or dead samples (:func:`clean_traces`' warnings).
+    """
+    import dask
+    import dask.array as da
+
+    finite = da.isfinite(x)
+    cleaned = da.where(finite, x, np.float32(0.0))
+    n_bad, lo, hi = dask.compute(da.sum(~finite), da.min(cleaned), da.max(cleaned))
+    n = int(np.prod(x.shape, dtype=np.int64))
+    warn_non_finite(int(n_bad), n)
+    check_varies(float(lo), float(hi))
+    x = cleaned if n_bad else x
+    lo, hi = np.float32(lo), np.float32(hi)
+    parts = [dask.delayed(_clipped_and_fills)(b, lo, hi, dead) for b in x.to_delayed().ravel()]
+    parts = dask.compute(*parts)
+    warn_clipped(sum(p[0] for p in parts), n - int(np.prod(x.shape[:-1], dtype=np.int64)), options=dead)
+    fill = np.unique(np.concatenate([p[1] for p in parts]))
+    counts = dask.compute(*[dask.delayed(_dead_counts)(b, fill, lo, hi, dead) for b in x.to_delayed().ravel()])
+    warn_dead(sum(d[0] for d in counts), n, sum(d[1] for d in counts), options=dead)
+    return x
+
+
+def _clipped_and_fills(block, lo, hi, dead) -> tuple:
+    """(clipped samples, fill values) of a block of whole traces."""
+    block = np.asarray(block, np.float32)
+    return clipped_count(block, lo, hi), fill_values(block, lo, hi, options=dead)
+
+
+def _dead_counts(block, fill, lo, hi, options) -> tuple[int, int]:
+    """(dead samples, dead traces) of a block of whole traces."""
+    dead = dead_samples(np.asarray(block, np.float32), fill, lo, hi, options=options)
+    return int(np.count_nonzero(dead)), int(np.count_nonzero(dead.all(axis=-1)))
 
 
 def fill_block(f, lo: float, hi: float, dead) -> BlockOutput:

@@ -1,4 +1,4 @@
-"""Dead samples (seismo3d.seismic.faults.surfaces.dead_samples): the rules as options (DeadSampleOptions)."""
+"""The amplitudes' dead samples (seismo3d.seismic.amplitudes): the rules as options (DeadSampleOptions)."""
 
 import warnings
 
@@ -7,7 +7,7 @@ import pytest
 
 from seismo3d.errors import InputError, Seismo3dWarning
 from seismo3d.seismic.faults import FaultTracingOptions
-from seismo3d.seismic.faults.surfaces.dead_samples import DeadSampleOptions, clean_traces, near_dead_samples
+from seismo3d.seismic.amplitudes import DeadSampleOptions, clean_traces, near_dead_samples
 
 
 def _section_with_a_gap(gap: int) -> np.ndarray:

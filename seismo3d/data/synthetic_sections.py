@@ -84,6 +84,15 @@ class FaultSectionOptions:
         steep as faults (diapir flanks, drag folds) that offset nothing and are not faults.
     steep_fold_dip : float
         Steepest reflector dip of a steeply folded section, degrees.
+    p_small_throw : float
+        Probability that a fault's throw at its centre is drawn from ``small_throw_range`` instead of
+        0-``max_throw``: the small faults people draw on real sections (F3's steep faults offset reflectors by a few
+        samples). The default 0 leaves the draws unchanged.
+    small_throw_range : (float, float)
+        Throws of the small faults, samples.
+    fault_length_range : (float, float)
+        Lengths of the faults that die out within the section (tapered throw), fractions of the section's
+        samples; shorter faults are those of a few tens of samples people draw below F3's strong reflectors.
     """
 
     max_faults: int = 8
@@ -100,15 +109,26 @@ class FaultSectionOptions:
     p_antithetic: float = 0.25
     p_steep_fold: float = 0.0
     steep_fold_dip: float = 55.0
+    p_small_throw: float = 0.0
+    small_throw_range: tuple = (1.5, 5.0)
+    fault_length_range: tuple = (0.3, 1.2)
 
     def __post_init__(self):
-        for name in ("p_unfaulted", "reverse_fraction", "p_fault_system", "p_antithetic", "p_steep_fold"):
+        for name in ("p_unfaulted", "reverse_fraction", "p_fault_system", "p_antithetic", "p_steep_fold",
+                     "p_small_throw"):
             if not 0.0 <= float(getattr(self, name)) <= 1.0:
                 raise InputError(f"{name} must be a probability in [0, 1]; got {getattr(self, name)!r}")
         if not 0.0 <= float(self.system_dip_spread) <= 45.0:
             raise InputError(f"system_dip_spread must be in [0, 45] degrees; got {self.system_dip_spread!r}")
         if not 0.0 <= float(self.steep_fold_dip) < 90.0:
             raise InputError(f"steep_fold_dip must be in [0, 90) degrees; got {self.steep_fold_dip!r}")
+        low, high = (float(v) for v in self.fault_length_range)
+        if not 0.0 < low <= high:
+            raise InputError(f"fault_length_range must be (low, high) with 0 < low <= high; got {self.fault_length_range!r}")
+        low, high = (float(v) for v in self.small_throw_range)
+        if not 0.0 <= low <= high:
+            raise InputError(f"small_throw_range must be (low, high) with 0 <= low <= high samples; "
+                             f"got {self.small_throw_range!r}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -208,10 +228,12 @@ def _draw_fault(rng, nx: int, nz: int, opt: FaultSectionOptions, system=None) ->
         dip = float(np.clip(rng.normal(system[0], opt.system_dip_spread), *opt.dip_range))
         direction = -system[1] if rng.random() < opt.p_antithetic else system[1]
     throw = rng.uniform(0.0, opt.max_throw) * (-1.0 if rng.random() < opt.reverse_fraction else 1.0)
+    if opt.p_small_throw > 0 and rng.random() < opt.p_small_throw:  # drawn only when asked: defaults unchanged
+        throw = float(np.copysign(rng.uniform(*opt.small_throw_range), throw))
     z0 = rng.uniform(0.2, 0.8) * nz
     tapered = rng.random() < 0.6
     if tapered:
-        length = rng.uniform(0.3, 1.2) * nz
+        length = rng.uniform(*opt.fault_length_range) * nz
         top = z0 - rng.uniform(0.3, 0.7) * length
         bottom, top = top + length, top
     else:

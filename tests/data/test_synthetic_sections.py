@@ -1,5 +1,5 @@
 """The generated training sections of the learned fault likelihood (seismo3d.data.synthetic_sections): the options
-of fault systems and steep folds (used by ``python -m seismo3d.training.fault_unet --generator NAME=VALUE``)."""
+of fault systems, steep folds, small throws and short faults (used by ``python -m seismo3d.training.fault_unet --generator NAME=VALUE``)."""
 
 import numpy as np
 import pytest
@@ -12,8 +12,8 @@ def test_the_new_options_off_by_default_leave_the_sections_unchanged():
     # the shipped network was trained on these sections: the defaults draw nothing more from the generator
     for seed in range(6):
         a = synthetic_fault_section((64, 48), seed=seed)
-        b = synthetic_fault_section((64, 48), seed=seed, options=FaultSectionOptions(p_fault_system=0.0,
-                                                                                     p_steep_fold=0.0))
+        b = synthetic_fault_section((64, 48), seed=seed, options=FaultSectionOptions(
+            p_fault_system=0.0, p_steep_fold=0.0, p_small_throw=0.0, fault_length_range=(0.3, 1.2)))
         assert np.array_equal(a.section, b.section) and np.array_equal(a.faults, b.faults)
 
 
@@ -46,7 +46,27 @@ def test_steep_folds_dip_more_than_the_default_folds():
     assert steepest(steep) > steepest(flat) + 5.0
 
 
-@pytest.mark.parametrize("kwargs", [dict(p_fault_system=1.5), dict(p_steep_fold=-0.1), dict(p_antithetic=2.0),
+def test_small_throws_are_drawn_in_their_range_with_the_fault_sense_kept():
+    opt = FaultSectionOptions(p_small_throw=1.0, small_throw_range=(1.5, 5.0), reverse_fraction=0.3)
+    rng = np.random.default_rng(1)
+    throws = np.array([_draw_fault(rng, 128, 128, opt).throw for _ in range(2000)])
+    assert np.all((np.abs(throws) >= 1.5) & (np.abs(throws) <= 5.0))
+    assert 0.25 < np.mean(throws < 0) < 0.35  # reverse faults keep their share
+    half = FaultSectionOptions(p_small_throw=0.5)
+    small = np.mean([abs(_draw_fault(rng, 128, 128, half).throw) <= 5.0 for _ in range(4000)])
+    assert 0.5 + 0.5 * 0.25 - 0.03 < small < 0.5 + 0.5 * 0.25 + 0.03  # half small, a quarter of the rest <= 5 of 20
+
+
+def test_fault_length_range_sets_the_length_of_the_faults_that_die_out():
+    rng = np.random.default_rng(2)
+    short = FaultSectionOptions(fault_length_range=(0.1, 0.2))
+    lengths = np.array([f.bottom - f.top for f in (_draw_fault(rng, 128, 100, short) for _ in range(500))
+                        if f.tapered])
+    assert len(lengths) > 200 and lengths.min() >= 10.0 - 1e-9 and lengths.max() <= 20.0 + 1e-9
+
+
+@pytest.mark.parametrize("kwargs", [dict(p_small_throw=1.5), dict(small_throw_range=(5.0, 1.0)),
+                                    dict(fault_length_range=(0.0, 1.0)), dict(p_fault_system=1.5), dict(p_steep_fold=-0.1), dict(p_antithetic=2.0),
                                     dict(system_dip_spread=50.0), dict(steep_fold_dip=90.0), dict(p_unfaulted=1.2)])
 def test_bad_options_are_refused(kwargs):
     with pytest.raises(InputError, match=next(iter(kwargs))):

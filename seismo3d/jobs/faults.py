@@ -21,6 +21,7 @@ from .._atomic import SetAside, StagedFolder, atomic_path
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import EarlierStoresError, InputError
+from ..seismic.blocks.executor import release_memory
 from ..seismic.blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory, size_text
 from ..seismic.faults.pipeline import LIKELIHOOD_STORE, SURFACES_STORE
 from ..seismic.blocks.options import BlockRunOptions
@@ -425,6 +426,7 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
         for key, write in steps:
             bar.start(key)
             written[key] = write()
+            release_memory()  # a writer's freed temporaries, before the next writer's
             bar.advance()
 
 

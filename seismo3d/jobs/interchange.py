@@ -16,6 +16,7 @@ written in inline / crossline units, and every file says so.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 from pathlib import Path
 
@@ -122,9 +123,10 @@ def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates) -> 
     out_dir = Path(out_dir)
     names = dict(zip(("sticks_opendtect", "sticks_charisma", "sticks_iesx"), FAULT_INTERCHANGE_FILES))
 
+    sticks = functools.cache(lambda: _sticks(inp, result, coords))  # made once for the three formats
+
     def sticks_writer(key: str, fmt: str):
-        return lambda: write_fault_sticks(out_dir / names[key], _sticks(inp, result, coords), format=fmt,
-                                          source=inp.name)
+        return lambda: write_fault_sticks(out_dir / names[key], sticks(), format=fmt, source=inp.name)
 
     steps = [(key, sticks_writer(key, fmt)) for key, fmt in (("sticks_opendtect", "opendtect"),
                                                               ("sticks_charisma", "charisma"),

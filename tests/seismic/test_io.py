@@ -61,6 +61,22 @@ def test_f3_geometry_and_values(f3):
         assert_array_equal(data, segyio.tools.cube(f).astype(np.float32))
 
 
+def test_open_without_mmap_reads_the_same(f3, seismic_dir):
+    """mmap=False (file reads: a pass over every header does not map the whole file) reads the same traces,
+    coordinates and lines as the default memory-mapped file, a grid and a trace list alike."""
+    for path in (f3, seismic_dir / "volve_fullstack_twt_arbline.sgy"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", TraceListWarning)
+            with open_segy(path) as mapped, open_segy(path, mmap=False) as read:
+                assert_array_equal(read.read(), mapped.read())
+                assert_array_equal(read.cdp_x, mapped.cdp_x)
+                assert_array_equal(read.cdp_y, mapped.cdp_y)
+                assert (read.inlines is None) == (mapped.inlines is None)
+                if mapped.inlines is not None:
+                    assert_array_equal(read.inlines, mapped.inlines)
+                    assert_array_equal(read.xlines, mapped.xlines)
+
+
 def test_f3_alternative_header_bytes(f3):
     # F3 also stores the inline in bytes 9 (field record) and the crossline in bytes 21 (CDP)
     with open_segy(f3, iline=9, xline=21) as cube:

@@ -398,7 +398,8 @@ def read_survey_coordinates(path, *, iline: int = 189, xline: int = 193, ignore_
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", Seismo3dWarning)  # the reader of the data says it once
-        cube = open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
+        # read, not mapped: a pass over every trace header would map the whole file into the resident memory
+        cube = open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian, mmap=False)
     with cube:
         f = cube.segyfile
         scalars = np.asarray(f.attributes(segyio.TraceField.SourceGroupScalar)[:])

@@ -31,6 +31,7 @@ PARAMETERS`` header lines as OpendTect's IESX (3d_ci7m) writer lays them out; ``
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -294,7 +295,7 @@ def _safe_name(name: str) -> str:
 
 
 def _fmt(v: float) -> str:
-    return "1e30" if not np.isfinite(v) else f"{v:.3f}"
+    return "1e30" if not math.isfinite(v) else f"{v:.3f}"
 
 
 def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", source: str = "") -> Path:
@@ -332,24 +333,6 @@ def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", 
     path = Path(path)
     if format == "iesx":
         return _write_iesx(path, sticks)
-    names = [_safe_name(n) for n in sticks.names]
-    rows = []
-    per_fault = {}
-    for fid, nodes in sticks.sticks():
-        stick_no = per_fault.get(fid, -1) + 1
-        per_fault[fid] = stick_no
-        for node_no, i in enumerate(nodes):
-            name = names[fid - 1]
-            if format == "opendtect":
-                rows.append("\t".join([f'"{name}"', _fmt(sticks.x[i]), _fmt(sticks.y[i]), f"{sticks.z[i]:.4f}",
-                                       str(stick_no), str(node_no), f"{sticks.inline[i]:g}",
-                                       f"{sticks.crossline[i]:g}"]))
-            else:
-                if not (np.isfinite(sticks.inline[i]) and np.isfinite(sticks.crossline[i])):
-                    raise InputError("Charisma fault sticks need inline / crossline numbers; these sticks have none")
-                rows.append(" ".join(["INLINE-", str(int(round(sticks.inline[i]))),
-                                      str(int(round(sticks.crossline[i]))), _fmt(sticks.x[i]), _fmt(sticks.y[i]),
-                                      f"{sticks.z[i]:.4f}", name, str(stick_no + 1)]))
     header = []
     if format == "opendtect":
         xy = ("X, Y: inline and crossline numbers (the SEG-Y headers hold no coordinates)"
@@ -358,8 +341,12 @@ def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", 
         header = ["# OpendTect fault sticks (ASCII), written by seismo3d" + (f" from {source}" if source else ""),
                   f"# columns: fault name, X, Y, Z, stick index, node index, inline, crossline; {xy}; Z: {zname}",
                   f"# {sticks.n_faults} faults, {sticks.n_sticks} sticks, {sticks.n_nodes} nodes"]
-    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:
-        fh.writelines(line + "\n" for line in header + rows)
+    elif not (np.all(np.isfinite(sticks.inline)) and np.all(np.isfinite(sticks.crossline))):
+        raise InputError("Charisma fault sticks need inline / crossline numbers; these sticks have none")
+    rows = _opendtect_rows(sticks) if format == "opendtect" else _charisma_rows(sticks)
+    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:  # row by row: never the whole text at once
+        fh.writelines(line + "\n" for line in header)
+        fh.writelines(line + "\n" for line in rows)
     return path
 
 
@@ -367,21 +354,48 @@ def _write_iesx(path: Path, sticks: FaultSticks) -> Path:
     """IESX fault sticks: PROFILE / SNAPPING PARAMETERS per fault, fixed-column node rows, EOD."""
     if not (np.all(np.isfinite(sticks.x)) and np.all(np.isfinite(sticks.y))):
         raise InputError("IESX fault sticks need X / Y on every node; fill them first (FaultSticks.with_coordinates)")
-    unit = "ft" if sticks.xy_unit == "ft" else "m "
-    out, per_fault, current = [], {}, None
+    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:  # row by row: never the whole text at once
+        fh.writelines(line + "\n" for line in _iesx_rows(sticks))
+    return path
+
+
+def _stick_nodes(sticks: FaultSticks):
+    """Yield ``(fault_id, stick number within its fault from 0, node number within its stick from 0, x, y, z,
+    inline, crossline)`` per node in stick order, as Python numbers (formatted as numpy's scalars, faster)."""
+    per_fault = {}
+    columns = (sticks.x, sticks.y, sticks.z, sticks.inline, sticks.crossline)
     for fid, nodes in sticks.sticks():
+        stick_no = per_fault.get(fid, -1) + 1
+        per_fault[fid] = stick_no
+        for node_no, values in enumerate(zip(*(c[nodes].tolist() for c in columns))):
+            yield (fid, stick_no, node_no, *values)
+
+
+def _opendtect_rows(sticks: FaultSticks):
+    names = [_safe_name(n) for n in sticks.names]
+    for fid, stick_no, node_no, x, y, z, il, xl in _stick_nodes(sticks):
+        yield "\t".join([f'"{names[fid - 1]}"', _fmt(x), _fmt(y), f"{z:.4f}", str(stick_no), str(node_no), f"{il:g}",
+                         f"{xl:g}"])
+
+
+def _charisma_rows(sticks: FaultSticks):
+    names = [_safe_name(n) for n in sticks.names]
+    for fid, stick_no, _, x, y, z, il, xl in _stick_nodes(sticks):
+        yield " ".join(["INLINE-", str(int(round(il))), str(int(round(xl))), _fmt(x), _fmt(y), f"{z:.4f}",
+                        names[fid - 1], str(stick_no + 1)])
+
+
+def _iesx_rows(sticks: FaultSticks):
+    unit = "ft" if sticks.xy_unit == "ft" else "m "
+    current = None
+    for fid, stick_no, _, x, y, z, _, _ in _stick_nodes(sticks):
         if fid != current:
             name = _safe_name(sticks.names[fid - 1])[:17]
-            out += [f"PROFILE {name:<17s}TYPE 1  4 {'fault sticks, seismo3d':<45s}3d_ci7m.ifdf     {unit} ms",
-                    "SNAPPING PARAMETERS 5     0 1"]
+            yield f"PROFILE {name:<17s}TYPE 1  4 {'fault sticks, seismo3d':<45s}3d_ci7m.ifdf     {unit} ms"
+            yield "SNAPPING PARAMETERS 5     0 1"
             current = fid
-        per_fault[fid] = per_fault.get(fid, 0) + 1
-        for i in nodes:
-            out.append(f"{sticks.x[i]:16.8E}{sticks.y[i]:16.8E}{per_fault[fid] % 1000:3d}{14:3d}{sticks.z[i]:9.2f}")
-    out.append("EOD")
-    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:
-        fh.write("\n".join(out) + "\n")
-    return path
+        yield f"{x:16.8E}{y:16.8E}{(stick_no + 1) % 1000:3d}{14:3d}{z:9.2f}"
+    yield "EOD"
 
 
 # --------------------------------------------------------------------------------------------------------------------

@@ -124,7 +124,8 @@ class FaultSectionOptions:
             raise InputError(f"steep_fold_dip must be in [0, 90) degrees; got {self.steep_fold_dip!r}")
         low, high = (float(v) for v in self.fault_length_range)
         if not 0.0 < low <= high:
-            raise InputError(f"fault_length_range must be (low, high) with 0 < low <= high; got {self.fault_length_range!r}")
+            raise InputError(f"fault_length_range must be (low, high) with 0 < low <= high; got "
+                             f"{self.fault_length_range!r}")
         low, high = (float(v) for v in self.small_throw_range)
         if not 0.0 <= low <= high:
             raise InputError(f"small_throw_range must be (low, high) with 0 <= low <= high samples; "

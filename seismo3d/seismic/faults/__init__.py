@@ -18,7 +18,8 @@ algorithms live in folders that name them:
   evidence a fault must show.
 - :mod:`~seismo3d.seismic.faults.options` (:class:`FaultTracingOptions`), :mod:`~seismo3d.seismic.faults.result`
   (the results and the index-space conventions), :mod:`~seismo3d.seismic.faults.steps` (the steps after the likelihood,
-  over any run, and the refusals: before the work, between the steps, from a sample of blocks), :mod:`~seismo3d.seismic.faults.pipeline` (:func:`trace_faults`, in memory or by blocks).
+  over any run, and the refusals: before the work, between the steps, from a sample of blocks),
+  :mod:`~seismo3d.seismic.faults.pipeline` (:func:`trace_faults`, in memory or by blocks).
 
 How a cube is run, in memory or by blocks into resumable Zarr stores under a memory limit, is the executor's
 (:mod:`seismo3d.seismic.blocks`, its options :class:`~seismo3d.seismic.blocks.BlockRunOptions`): the algorithms here

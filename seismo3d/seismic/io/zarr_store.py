@@ -215,9 +215,9 @@ class SeismicZarrWriter:
     if any) and writes them to the chunk's key in the store, so that both cores read, encode and write (zarr's array
     API would add about a quarter to the CPU time with LZ4, 0.59 against 0.47 CPU s for the same chunks, and more
     uncompressed, 0.50-0.62 against 0.28-0.35 CPU s for the 198 MB bench cube: its asyncio tasks and buffer
-    copies). At
-    most ``chunk_mb`` of amplitudes, and no more than three chunks, are held at a time (with each its encoded bytes).
-    Chunks of zeros are not written (left to the fill value, as zarr does). The trace header fields of a row of chunks
+    copies). At most ``chunk_mb`` of amplitudes, and no more than three chunks, are held at a time (with each its
+    encoded bytes). Chunks of zeros are not written (left to the fill value, as zarr does). The trace header fields of
+    a row of chunks
     (64 inlines, every crossline) are gathered from its tiles and written through zarr once the row is complete, with
     ``cdp_x`` / ``cdp_y`` of that row: one write and one chunk file per field and row (memory: 64 x n_xlines int32 per
     field that is not zero, e.g. 1 MiB per field for 4000 crosslines).

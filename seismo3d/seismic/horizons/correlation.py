@@ -21,24 +21,102 @@ _PAIR_CHUNK = 256  # pairs per task of pair_lags
 
 
 @nb.njit(cache=True, nogil=True)
-def _pair_lags_share(t, n_threads, traces, a, ta, b, centre, half, max_lag, min_fraction, lag_out, score_out):
-    # the pairs of chunks t, t + n_threads, ... (see pair_lags)
+def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_lag, min_fraction, lag_out,
+                     score_out):
+    # the pairs of chunks t, t + n_threads, ... (see pair_lags): for pair p, the lag around centre_all[p] on trace
+    # b[p] at which it correlates best with the window of trace a[p] around ta_all[p], refined by a parabola, and its
+    # correlation; (NaN, NaN) where not measured. Near the ends of the traces the window is shortened to the samples
+    # trace a[p] has (at least 4 each side); a lag is scored where at least min_fraction of the window lies on trace
+    # b[p]. ref, sig, scores, products: work arrays. One kernel, not a loop calling a kernel per pair: numba compiles
+    # a called kernel on its own and again inside its caller
     n = a.size
     n_chunks = (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK
     ref = np.empty(2 * half + 1)
     sig = np.empty(2 * half + 1 + 2 * max_lag)
     scores = np.empty(2 * max_lag + 1)
     products = np.empty(2 * max_lag + 1)
-    for c in range(t, n_chunks, n_threads):
-        for p in range(c * _PAIR_CHUNK, min(n, (c + 1) * _PAIR_CHUNK)):
-            lag_out[p], score_out[p] = _one_pair_lag(traces, a[p], ta[p], b[p], centre[p], half, max_lag,
-                                                     min_fraction, ref, sig, scores, products)
+    for chunk in range(t, n_chunks, n_threads):
+        for p in range(chunk * _PAIR_CHUNK, min(n, (chunk + 1) * _PAIR_CHUNK)):
+            ka, kb = a[p], b[p]
+            ta, centre = ta_all[p], centre_all[p]
+            n_s = traces.shape[1]
+            if not (np.isfinite(ta) and np.isfinite(centre)):
+                lag_out[p], score_out[p] = np.nan, np.nan
+                continue
+            h = min(half, int(np.floor(ta)), int(np.floor(n_s - 1 - ta)))
+            if h < 4:
+                lag_out[p], score_out[p] = np.nan, np.nan
+                continue
+            m = 2 * h + 1
+            min_samples = max(5, int(min_fraction * m))
+            ra = traces[ka]
+            rb = traces[kb]
+            _read_window(ra, ta - h, m, ref)
+            _read_window(rb, centre - h - max_lag, m + 2 * max_lag, sig)
+            # lags are scored only where the window overlaps trace b enough: near the trace ends that cuts the range on
+            # one side; it is cut on the other side as well, or a pair's wrong-cycle matches (more of them on the
+            # longer side) would bias the shifts towards it
+            reach = max_lag
+            inside = centre - h - max_lag >= 0.0 and centre + h + max_lag <= n_s - 1.0  # every lag overlaps wholly
+            for k in range(0 if inside else max_lag + 1):
+                lo = centre - h - k
+                hi = centre + h + k
+                if min(lo + m - 1, n_s - 1.0) - max(lo, 0.0) + 1 < min_samples or \
+                        min(hi, n_s - 1.0) - max(hi - m + 1, 0.0) + 1 < min_samples:
+                    reach = k - 1
+                    break
+            for k in range(scores.size):  # a loop: scores[:] = nan compiles numba's generic setitem
+                scores[k] = np.nan
+            best, kbest = -2.0, -1
+            # trace a's window lies inside the trace (h above), so it is all finite: centred once, it serves every lag
+            # where trace b's window is finite too (interior lags: the run of finite ``sig`` samples)
+            ma = 0.0
+            for k in range(m):
+                ma += ref[k]
+            ma /= m
+            saa = 0.0
+            for k in range(m):
+                ref[k] -= ma
+                saa += ref[k] * ref[k]
+            first = 0  # sig[first:last] is finite
+            while first < m + 2 * max_lag and not np.isfinite(sig[first]):
+                first += 1
+            last = first
+            while last < m + 2 * max_lag and np.isfinite(sig[last]):
+                last += 1
+            # the interior lags (trace b's window finite): their products with the window of a at once, the sums of
+            # trace b's window and of its squares slid from lag to lag
+            lo = max(max_lag - reach, first)
+            hi = min(max_lag + reach, last - m)  # inclusive
+            if hi >= lo:
+                _window_products(ref, sig, m, lo, hi + 1, products)
+                _interior_scores(sig, m, lo, hi + 1, saa, products, scores)
+            for s in range(max_lag - reach, max_lag + reach + 1):
+                if lo <= s <= hi:
+                    c = scores[s]
+                else:
+                    c = _partial_window_ncc(ref, sig, s, m, min_samples)
+                    if np.isnan(c):
+                        continue
+                    scores[s] = c
+                if c > best:
+                    best, kbest = c, s
+            if kbest < 0:
+                lag_out[p], score_out[p] = np.nan, np.nan
+                continue
+            off = 0.0
+            if 0 < kbest < 2 * max_lag and np.isfinite(scores[kbest - 1]) and np.isfinite(scores[kbest + 1]):
+                y0, y1, y2 = scores[kbest - 1], scores[kbest], scores[kbest + 1]
+                den = y0 - 2 * y1 + y2
+                if den < 0:
+                    off = min(max(0.5 * (y0 - y2) / den, -0.5), 0.5)
+            lag_out[p], score_out[p] = kbest - max_lag + off, best
 
 
 def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
     """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
     of trace a around ``ta``; returns (lag relative to centre, score), NaN where not measured
-    (:func:`_one_pair_lag`); chunks of pairs shared out over numba's threads."""
+    (``_pair_lags_share``); chunks of pairs shared out over numba's threads."""
     n = len(a)
     lag_out = np.full(n, np.nan)
     score_out = np.full(n, np.nan)
@@ -46,83 +124,6 @@ def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
     run_threads(_pair_lags_share, n_threads, traces, a, ta, b, centre, int(half), int(max_lag), float(min_fraction),
                 lag_out, score_out)
     return lag_out, score_out
-
-
-@nb.njit(cache=True)
-def _one_pair_lag(traces, ka, ta, kb, centre, half, max_lag, min_fraction, ref, sig, scores, products):
-    """The lag around ``centre`` on trace ``kb`` at which it correlates best with the window of trace ``ka`` around
-    ``ta``, refined by a parabola, and its correlation; (NaN, NaN) where not measured. Near the ends of the traces
-    the window is shortened to the samples trace ``ka`` has (at least 4 each side); a lag is scored where at least
-    ``min_fraction`` of the window lies on trace ``kb``. ``ref``, ``sig``, ``scores``, ``products``: work arrays."""
-    n_s = traces.shape[1]
-    if not (np.isfinite(ta) and np.isfinite(centre)):
-        return np.nan, np.nan
-    h = min(half, int(np.floor(ta)), int(np.floor(n_s - 1 - ta)))
-    if h < 4:
-        return np.nan, np.nan
-    m = 2 * h + 1
-    min_samples = max(5, int(min_fraction * m))
-    ra = traces[ka]
-    rb = traces[kb]
-    _read_window(ra, ta - h, m, ref)
-    _read_window(rb, centre - h - max_lag, m + 2 * max_lag, sig)
-    # lags are scored only where the window overlaps trace b enough: near the trace ends that cuts the range on one
-    # side; it is cut on the other side as well, or a pair's wrong-cycle matches (more of them on the longer side)
-    # would bias the shifts towards it
-    reach = max_lag
-    inside = centre - h - max_lag >= 0.0 and centre + h + max_lag <= n_s - 1.0  # every lag overlaps it wholly
-    for k in range(0 if inside else max_lag + 1):
-        lo = centre - h - k
-        hi = centre + h + k
-        if min(lo + m - 1, n_s - 1.0) - max(lo, 0.0) + 1 < min_samples or \
-                min(hi, n_s - 1.0) - max(hi - m + 1, 0.0) + 1 < min_samples:
-            reach = k - 1
-            break
-    for k in range(scores.size):  # a loop: scores[:] = nan compiles numba's generic setitem
-        scores[k] = np.nan
-    best, kbest = -2.0, -1
-    # trace a's window lies inside the trace (h above), so it is all finite: centred once, it serves every lag where
-    # trace b's window is finite too (interior lags: the run of finite ``sig`` samples)
-    ma = 0.0
-    for k in range(m):
-        ma += ref[k]
-    ma /= m
-    saa = 0.0
-    for k in range(m):
-        ref[k] -= ma
-        saa += ref[k] * ref[k]
-    first = 0  # sig[first:last] is finite
-    while first < m + 2 * max_lag and not np.isfinite(sig[first]):
-        first += 1
-    last = first
-    while last < m + 2 * max_lag and np.isfinite(sig[last]):
-        last += 1
-    # the interior lags (trace b's window finite): their products with the window of a at once, the sums of trace
-    # b's window and of its squares slid from lag to lag
-    lo = max(max_lag - reach, first)
-    hi = min(max_lag + reach, last - m)  # inclusive
-    if hi >= lo:
-        _window_products(ref, sig, m, lo, hi + 1, products)
-        _interior_scores(sig, m, lo, hi + 1, saa, products, scores)
-    for s in range(max_lag - reach, max_lag + reach + 1):
-        if lo <= s <= hi:
-            c = scores[s]
-        else:
-            c = _partial_window_ncc(ref, sig, s, m, min_samples)
-            if np.isnan(c):
-                continue
-            scores[s] = c
-        if c > best:
-            best, kbest = c, s
-    if kbest < 0:
-        return np.nan, np.nan
-    off = 0.0
-    if 0 < kbest < 2 * max_lag and np.isfinite(scores[kbest - 1]) and np.isfinite(scores[kbest + 1]):
-        y0, y1, y2 = scores[kbest - 1], scores[kbest], scores[kbest + 1]
-        den = y0 - 2 * y1 + y2
-        if den < 0:
-            off = min(max(0.5 * (y0 - y2) / den, -0.5), 0.5)
-    return kbest - max_lag + off, best
 
 
 @nb.njit(cache=True)
@@ -209,9 +210,8 @@ def _interior_scores(sig, m, lo, hi, saa, products, scores):
 
 @nb.njit(cache=True)
 def _partial_window_ncc(ref, sig, s, m, min_samples):
-    """:func:`_one_pair_lag`'s correlation over the samples where both windows are finite (the means of those); NaN with
-    fewer than
-    ``min_samples``."""
+    """A pair's correlation at lag ``s`` (``_pair_lags_share``) over the samples where both windows are finite (the
+    means of those); NaN with fewer than ``min_samples``."""
     sa = 0.0
     sb = 0.0
     cnt = 0

@@ -180,88 +180,6 @@ def _slope_at(slopes, k, t):
 
 
 @nb.njit(cache=True)
-def _line_dp(trace_ids, guide, first, pick, unit, whole, slope, cross_slope, traces, slopes, w_guide, w_step, w_wave,
-             half, cross_ids, cross_t, cross_slopes):
-    """Viterbi along one line of traces: one candidate pick per trace (:func:`_candidates`), minimising the sum of
-    ``w_guide |p - guide|`` per trace and ``w_step (step - slope)^2 + w_wave (1 - ncc)`` per step. ``cross_ids`` /
-    ``cross_t`` ((n, k), -1 / NaN where none) are picks of neighbouring lines held fixed, the previous line's in
-    column 0 and the next line's in column 1: their pair costs (slopes ``cross_slopes`` across the lines) join each
-    candidate's guide term. ``slope``, ``cross_slope``: ``slopes`` and ``cross_slopes`` at each candidate. Returns the
-    chosen pick per trace (NaN where the trace has no candidate; the line restarts after it)."""
-    n = trace_ids.size
-    out = np.empty(n)
-    width = 1
-    for j in range(n):
-        out[j] = np.nan  # loops, not np.full: it compiles numba's generic fill (about 1 CPU s on a first run)
-        width = max(width, first[trace_ids[j] + 1] - first[trace_ids[j]])
-    cost = np.empty((n, width))
-    back = np.empty((n, width), np.int64)
-    for j in range(n):
-        for c in range(width):
-            cost[j, c] = np.inf
-            back[j, c] = -1
-    wa = np.empty(2 * half + 1)
-    wb = np.empty(2 * half + 1)
-    n_cross = cross_ids.shape[1]
-    held = np.empty(n_cross, np.int64)
-    for j in range(n):
-        kb = trace_ids[j]
-        # the neighbouring lines' picks: the same for every candidate of the trace (-2: none held)
-        for e in range(n_cross):
-            held[e] = -2
-            if cross_ids[j, e] >= 0 and np.isfinite(cross_t[j, e]):
-                held[e] = _candidate_at(first, pick, cross_ids[j, e], cross_t[j, e])
-        ka = trace_ids[j - 1] if j > 0 else -1
-        n_prev = first[ka + 1] - first[ka] if j > 0 else 0
-        for c in range(first[kb + 1] - first[kb]):
-            qb = first[kb] + c
-            tb = pick[qb]
-            sb = slope[qb]
-            u = w_guide[j] * abs(tb - guide[j])
-            for e in range(n_cross):
-                if held[e] == -2:
-                    continue
-                ko = cross_ids[j, e]
-                to = cross_t[j, e]
-                so = cross_slope[held[e]] if held[e] >= 0 else _slope_at(cross_slopes, ko, to)
-                sc = cross_slope[qb]
-                # the previous line's pick before this one (e = 0), the next line's after it
-                step = (tb - to) - 0.5 * (so + sc) if e == 0 else (to - tb) - 0.5 * (sc + so)
-                r = _pick_ncc(traces, unit, whole, ko, to, held[e], kb, tb, qb, half, wa, wb)
-                u += w_step * step * step + w_wave * (1.0 - r)
-            if n_prev == 0:
-                cost[j, c] = u
-                continue
-            best, arg = np.inf, -1
-            for p in range(n_prev):
-                qa = first[ka] + p
-                ta = pick[qa]
-                step = (tb - ta) - 0.5 * (slope[qa] + sb)
-                r = _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb)
-                v = cost[j - 1, p] + w_step * step * step + w_wave * (1.0 - r)
-                if v < best:
-                    best, arg = v, p
-            cost[j, c] = best + u
-            back[j, c] = arg
-    # backtrack each run of traces with candidates from its end
-    j = n - 1
-    while j >= 0:
-        count = first[trace_ids[j] + 1] - first[trace_ids[j]]
-        if count == 0:
-            j -= 1
-            continue
-        c = 0
-        for q in range(count):
-            if cost[j, q] < cost[j, c]:
-                c = q
-        while j >= 0 and first[trace_ids[j] + 1] > first[trace_ids[j]] and c >= 0:
-            out[j] = pick[first[trace_ids[j]] + c]
-            c = back[j, c]
-            j -= 1
-    return out
-
-
-@nb.njit(cache=True)
 def window_ncc(a, b):
     """Normalised cross-correlation of two equally long windows over their finite samples (0 with fewer than 5)."""
     sa = 0.0
@@ -346,16 +264,12 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     *cands, slope, cross_slope = _candidates(traces, np.ascontiguousarray(guide, np.float64),
                                              np.ascontiguousarray(fixed, np.float64), picks, offsets, float(reach),
                                              int(half), slopes, across)
-    no_ids = np.full((g.shape[-1], 0), -1, np.int64)
-    no_t = np.full((g.shape[-1], 0), np.nan)
-    if len(lateral_shape) == 1:
-        return _line_dp(ids, g, *cands, slope, cross_slope, traces, slopes, wg, w_step, w_wave, half, no_ids, no_t,
-                        across)
+    # every line alone (no neighbouring line held), as a section's single line or a cube's first picks
     lines = np.full(lateral_shape, np.nan)
-    for i in range(lateral_shape[0]):
-        lines[i] = _line_dp(ids[i], g[i], *cands, slope, cross_slope, traces, slopes, wg[i], w_step, w_wave, half,
-                            no_ids, no_t, across)
-    if cross_slopes is None or sweeps <= 0:
+    _sweep_lines(lines.reshape(-1, g.shape[-1]), np.ascontiguousarray(g.reshape(-1, g.shape[-1])),
+                 wg.reshape(-1, g.shape[-1]), ids.reshape(-1, g.shape[-1]), *cands, slope, cross_slope, traces,
+                 slopes, across, w_step, w_wave, half, False)
+    if len(lateral_shape) == 1 or cross_slopes is None or sweeps <= 0:
         return lines.ravel()
     nearest = _nearest_picks(picks, offsets, np.where(np.isfinite(fixed), fixed, guide), reach)
     nearest[~np.isfinite(guide)] = np.nan
@@ -378,21 +292,30 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
 
 def _sweep(out, g, wg, ids, cands, at_candidates, traces, slopes, cross_slopes, w_step, w_wave, half):
     """One coordinate-descent sweep: every line along the first lateral axis, then along the last, re-chosen by
-    :func:`_line_dp` with the picks of its two neighbouring lines held (``out``, (n_inlines, n_xlines), updated in
+    :func:`_sweep_lines` with the picks of its two neighbouring lines held (``out``, (n_inlines, n_xlines), updated in
     place; ``cands``: :func:`_candidates`' candidates and waveforms, ``at_candidates`` its two slopes)."""
     for axis in (0, 1):
         along, across = (cross_slopes, slopes) if axis == 0 else (slopes, cross_slopes)
         along_c, across_c = at_candidates[::-1] if axis == 0 else at_candidates
         g_t, w_t, ids_t, out_t = (np.ascontiguousarray(np.moveaxis(x, axis, -1)) for x in (g, wg, ids, out))
-        _sweep_lines(out_t, g_t, w_t, ids_t, *cands, along_c, across_c, traces, along, across, w_step, w_wave, half)
+        _sweep_lines(out_t, g_t, w_t, ids_t, *cands, along_c, across_c, traces, along, across, w_step, w_wave, half,
+                     True)
         np.moveaxis(out, axis, -1)[...] = out_t
 
 
 @nb.njit(cache=True, nogil=True)
 def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across, w_step,
-                 w_wave, half):
-    """The lines (rows of the (n_lines, length) arrays) re-chosen in order by :func:`_line_dp`, each with the picks
-    of the line before it (already re-chosen) and after it held; ``out`` updated in place."""
+                 w_wave, half, hold):
+    """The lines (rows of the (n_lines, length) arrays) chosen in order, into ``out``; with ``hold``, each with the
+    picks in ``out`` of the line before it (already re-chosen) and of the line after it held, else each alone.
+
+    Viterbi along each line of traces: one candidate pick per trace (:func:`_candidates`), minimising the sum of
+    ``w_guide |p - guide|`` per trace and ``w_step (step - slope)^2 + w_wave (1 - ncc)`` per step. The picks of the
+    neighbouring lines held (``c_ids`` / ``c_t`` (length, 2), -1 / NaN where none; the previous line's in column 0
+    and the next line's in column 1) add their pair costs (slopes ``across`` across the lines) to each candidate's
+    guide term. ``along_c``, ``across_c``: ``along`` and ``across`` at each candidate. A line's pick is NaN where the
+    trace has no candidate; the line restarts after it. One kernel, not a loop calling a kernel per line: numba
+    compiles a called kernel on its own and again inside its caller."""
     n_lines, length = guide.shape
     c_ids = np.empty((length, 2), np.int64)
     c_t = np.empty((length, 2))
@@ -404,14 +327,80 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, ac
                 c_ids[j, side] = -1
                 c_t[j, side] = np.nan
         for side, other in ((0, i - 1), (1, i + 1)):
-            if 0 <= other < n_lines:
+            if hold and 0 <= other < n_lines:
                 for j in range(length):
                     c_ids[j, side] = ids[other, j]
                     c_t[j, side] = out[other, j]
-        line = _line_dp(ids[i], guide[i], first, pick, unit, whole, along_c, across_c, traces, along,
-                        w_guide[i], w_step, w_wave, half, c_ids, c_t, across)
-        for j in range(length):
-            out[i, j] = line[j]
+        trace_ids, g_line, wg_line = ids[i], guide[i], w_guide[i]
+        n = trace_ids.size
+        width = 1
+        for j in range(n):
+            out[i, j] = np.nan  # loops, not np.full: it compiles numba's generic fill (about 1 CPU s)
+            width = max(width, first[trace_ids[j] + 1] - first[trace_ids[j]])
+        cost = np.empty((n, width))
+        back = np.empty((n, width), np.int64)
+        for j in range(n):
+            for c in range(width):
+                cost[j, c] = np.inf
+                back[j, c] = -1
+        wa = np.empty(2 * half + 1)
+        wb = np.empty(2 * half + 1)
+        n_cross = c_ids.shape[1]
+        held = np.empty(n_cross, np.int64)
+        for j in range(n):
+            kb = trace_ids[j]
+            # the neighbouring lines' picks: the same for every candidate of the trace (-2: none held)
+            for e in range(n_cross):
+                held[e] = -2
+                if c_ids[j, e] >= 0 and np.isfinite(c_t[j, e]):
+                    held[e] = _candidate_at(first, pick, c_ids[j, e], c_t[j, e])
+            ka = trace_ids[j - 1] if j > 0 else -1
+            n_prev = first[ka + 1] - first[ka] if j > 0 else 0
+            for c in range(first[kb + 1] - first[kb]):
+                qb = first[kb] + c
+                tb = pick[qb]
+                sb = along_c[qb]
+                u = wg_line[j] * abs(tb - g_line[j])
+                for e in range(n_cross):
+                    if held[e] == -2:
+                        continue
+                    ko = c_ids[j, e]
+                    to = c_t[j, e]
+                    so = across_c[held[e]] if held[e] >= 0 else _slope_at(across, ko, to)
+                    sc = across_c[qb]
+                    # the previous line's pick before this one (e = 0), the next line's after it
+                    step = (tb - to) - 0.5 * (so + sc) if e == 0 else (to - tb) - 0.5 * (sc + so)
+                    r = _pick_ncc(traces, unit, whole, ko, to, held[e], kb, tb, qb, half, wa, wb)
+                    u += w_step * step * step + w_wave * (1.0 - r)
+                if n_prev == 0:
+                    cost[j, c] = u
+                    continue
+                best, arg = np.inf, -1
+                for p in range(n_prev):
+                    qa = first[ka] + p
+                    ta = pick[qa]
+                    step = (tb - ta) - 0.5 * (along_c[qa] + sb)
+                    r = _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb)
+                    v = cost[j - 1, p] + w_step * step * step + w_wave * (1.0 - r)
+                    if v < best:
+                        best, arg = v, p
+                cost[j, c] = best + u
+                back[j, c] = arg
+        # backtrack each run of traces with candidates from its end
+        j = n - 1
+        while j >= 0:
+            count = first[trace_ids[j] + 1] - first[trace_ids[j]]
+            if count == 0:
+                j -= 1
+                continue
+            c = 0
+            for q in range(count):
+                if cost[j, q] < cost[j, c]:
+                    c = q
+            while j >= 0 and first[trace_ids[j] + 1] > first[trace_ids[j]] and c >= 0:
+                out[i, j] = pick[first[trace_ids[j]] + c]
+                c = back[j, c]
+                j -= 1
 
 
 @nb.njit(cache=True)

@@ -148,110 +148,12 @@ def _nearest(f, x, y, z, g0, g1):
     return f[i, j, k]
 
 
-@nb.njit(cache=True)
-def _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth, e, es, t1, t2, cs, row, row_s, surf,
-             tmp, line, seed_normal, offsets):
-    # steps 1-4 for seed s: its optimal surface in surf (nw, nv) (offsets across the fault, samples), the surface's
-    # mean likelihood inside the image (returned; -1 when no sample of it is inside), its normal at the seed in
-    # seed_normal[s] and the samples it passes in offsets[s] (see surface_kernel). att (n_a, n_b, n2) the likelihood
-    # of the image of shape (n0, n1, n2) from inline g0 and crossline g1 on; positions in image coordinates (the
-    # same float arithmetic whatever the block)
-    nu = 2 * ru + 1
-    nv = 2 * rv + 1
-    nw = 2 * rw + 1
-    c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
-    ux, uy, uz = frames[s, 0, 0], frames[s, 0, 1], frames[s, 0, 2]
-    vx, vy, vz = frames[s, 1, 0], frames[s, 1, 1], frames[s, 1, 2]
-    wx, wy, wz = frames[s, 2, 0], frames[s, 2, 1], frames[s, 2, 2]
-    # 1. costs 1 - likelihood in the box; outside the cone |u| <= distance from the seed, cost 1, so that the
-    #    surface passes near the seed
-    for iw in range(nw):
-        dw = iw - rw
-        for iv in range(nv):
-            dv = iv - rv
-            r = np.sqrt(dv * dv + dw * dw)
-            lim = int(np.floor(r + 0.5)) if r > 2.0 else 0
-            x0 = c0 + dv * vx + dw * wx
-            y0 = c1 + dv * vy + dw * wy
-            z0 = c2 + dv * vz + dw * wz
-            for iu in range(nu):
-                du = iu - ru
-                if du < -lim or du > lim:
-                    e[iw, iv, iu] = 1.0
-                else:
-                    e[iw, iv, iu] = 1.0 - _nearest(att, x0 + du * ux, y0 + du * uy, z0 + du * uz, g0, g1)
-    # 2. nonlinear smoothing of the costs down the dip, then along the strike
-    for iw in range(nw):
-        _smooth_costs(e[iw], b, t1[:nv], t2[:nv], cs[:nv + 1], es[iw])
-    if nw > 1:
-        for iv in range(nv):
-            for iw in range(nw):
-                for iu in range(nu):
-                    row[iw, iu] = es[iw, iv, iu]
-            _smooth_costs(row[:nw], b, t1[:nw], t2[:nw], cs[:nw + 1], row_s[:nw])
-            for iw in range(nw):
-                for iu in range(nu):
-                    es[iw, iv, iu] = row_s[iw, iu]
-    # 3. the least-cost path down the dip in every strike slice: the surface, smoothed both ways
-    for iw in range(nw):
-        _accumulate_forward(es[iw], b, t1[:nv], cs[:nv + 1])
-        _backtrack(t1[:nv], es[iw], b, line[:nv], cs[:nv + 1])
-        for iv in range(nv):
-            surf[iw, iv] = line[iv] - ru
-        _smooth_exponential(surf[iw], a_smooth, tmp[:nv])
-    if nw > 1:
-        for iv in range(nv):
-            for iw in range(nw):
-                line[iw] = surf[iw, iv]
-            _smooth_exponential(line[:nw], a_smooth, tmp[:nw])
-            for iw in range(nw):
-                surf[iw, iv] = line[iw]
-    # 4. the surface's mean likelihood inside the image, and its normal at the seed
-    total = 0.0
-    count = 0
-    for iw in range(nw):
-        dw = iw - rw
-        for iv in range(nv):
-            dv = iv - rv
-            du = surf[iw, iv]
-            x = c0 + du * ux + dv * vx + dw * wx
-            y = c1 + du * uy + dv * vy + dw * wy
-            z = c2 + du * uz + dv * vz + dw * wz
-            if x < -0.5 or y < -0.5 or z < -0.5 or x > n0 - 0.5 or y > n1 - 0.5 or z > n2 - 0.5:
-                continue
-            total += _nearest(att, x, y, z, g0, g1)
-            count += 1
-    if count == 0:
-        return -1.0
-    fa = total / count
-    gv = 0.5 * (surf[rw, rv + 1] - surf[rw, rv - 1])
-    gw = 0.5 * (surf[min(rw + 1, nw - 1), rv] - surf[max(rw - 1, 0), rv]) if nw > 1 else 0.0
-    nx = ux - gv * vx - gw * wx
-    ny = uy - gv * vy - gw * wy
-    nz = uz - gv * vz - gw * wz
-    nn = np.sqrt(nx * nx + ny * ny + nz * nz)
-    nx /= nn
-    ny /= nn
-    nz /= nn
-    seed_normal[s, 0] = nx
-    seed_normal[s, 1] = ny
-    seed_normal[s, 2] = nz
-    # 5. the samples the surface passes, rounded in image coordinates as its votes are cast
-    for iw in range(nw):
-        dw = iw - rw
-        for iv in range(nv):
-            dv = iv - rv
-            du = surf[iw, iv]
-            offsets[s, iw, iv, 0] = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5)) - c0
-            offsets[s, iw, iv, 1] = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5)) - c1
-            offsets[s, iw, iv, 2] = int(np.floor(c2 + du * uz + dv * vz + dw * wz + 0.5)) - c2
-    return fa
-
-
 @nb.njit(cache=True, nogil=True)
 def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, offsets, fa,
                         seed_normal):
-    # steps 1-4 for seeds t, t + n_threads, ... (see surface_kernel), with this thread's work arrays
+    # steps 1-4 for seeds t, t + n_threads, ... (see surface_kernel), with this thread's work arrays. One kernel, not a
+    # loop calling a kernel per seed: numba compiles a called kernel on its own and again inside its caller (0.8 CPU s
+    # more on a first run)
     n0, n1, n2 = shape[0], shape[1], shape[2]
     nu = 2 * ru + 1
     nv = 2 * rv + 1
@@ -268,8 +170,98 @@ def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv,
     tmp = np.empty(nm)
     line = np.empty(nm)
     for s in range(t, seeds.shape[0], n_threads):
-        fa[s] = _surface(att, g0, g1, n0, n1, n2, seeds, frames, s, ru, rv, rw, b, a_smooth, e, es, t1, t2, cs,
-                         row, row_s, surf, tmp, line, seed_normal, offsets)
+        # seed s: its optimal surface in surf (nw, nv) (offsets across the fault, samples), the surface's mean
+        # likelihood inside the image in fa[s] (-1 when no sample of it is inside), its normal at the seed in
+        # seed_normal[s] and the samples it passes in offsets[s]. att (n_a, n_b, n2) the likelihood of the image of
+        # shape (n0, n1, n2) from inline g0 and crossline g1 on; positions in image coordinates (the same float
+        # arithmetic whatever the block)
+        c0, c1, c2 = seeds[s, 0], seeds[s, 1], seeds[s, 2]
+        ux, uy, uz = frames[s, 0, 0], frames[s, 0, 1], frames[s, 0, 2]
+        vx, vy, vz = frames[s, 1, 0], frames[s, 1, 1], frames[s, 1, 2]
+        wx, wy, wz = frames[s, 2, 0], frames[s, 2, 1], frames[s, 2, 2]
+        # 1. costs 1 - likelihood in the box; outside the cone |u| <= distance from the seed, cost 1, so that the
+        #    surface passes near the seed
+        for iw in range(nw):
+            dw = iw - rw
+            for iv in range(nv):
+                dv = iv - rv
+                r = np.sqrt(dv * dv + dw * dw)
+                lim = int(np.floor(r + 0.5)) if r > 2.0 else 0
+                x0 = c0 + dv * vx + dw * wx
+                y0 = c1 + dv * vy + dw * wy
+                z0 = c2 + dv * vz + dw * wz
+                for iu in range(nu):
+                    du = iu - ru
+                    if du < -lim or du > lim:
+                        e[iw, iv, iu] = 1.0
+                    else:
+                        e[iw, iv, iu] = 1.0 - _nearest(att, x0 + du * ux, y0 + du * uy, z0 + du * uz, g0, g1)
+        # 2. nonlinear smoothing of the costs down the dip, then along the strike
+        for iw in range(nw):
+            _smooth_costs(e[iw], b, t1[:nv], t2[:nv], cs[:nv + 1], es[iw])
+        if nw > 1:
+            for iv in range(nv):
+                for iw in range(nw):
+                    for iu in range(nu):
+                        row[iw, iu] = es[iw, iv, iu]
+                _smooth_costs(row[:nw], b, t1[:nw], t2[:nw], cs[:nw + 1], row_s[:nw])
+                for iw in range(nw):
+                    for iu in range(nu):
+                        es[iw, iv, iu] = row_s[iw, iu]
+        # 3. the least-cost path down the dip in every strike slice: the surface, smoothed both ways
+        for iw in range(nw):
+            _accumulate_forward(es[iw], b, t1[:nv], cs[:nv + 1])
+            _backtrack(t1[:nv], es[iw], b, line[:nv], cs[:nv + 1])
+            for iv in range(nv):
+                surf[iw, iv] = line[iv] - ru
+            _smooth_exponential(surf[iw], a_smooth, tmp[:nv])
+        if nw > 1:
+            for iv in range(nv):
+                for iw in range(nw):
+                    line[iw] = surf[iw, iv]
+                _smooth_exponential(line[:nw], a_smooth, tmp[:nw])
+                for iw in range(nw):
+                    surf[iw, iv] = line[iw]
+        # 4. the surface's mean likelihood inside the image, and its normal at the seed
+        total = 0.0
+        count = 0
+        for iw in range(nw):
+            dw = iw - rw
+            for iv in range(nv):
+                dv = iv - rv
+                du = surf[iw, iv]
+                x = c0 + du * ux + dv * vx + dw * wx
+                y = c1 + du * uy + dv * vy + dw * wy
+                z = c2 + du * uz + dv * vz + dw * wz
+                if x < -0.5 or y < -0.5 or z < -0.5 or x > n0 - 0.5 or y > n1 - 0.5 or z > n2 - 0.5:
+                    continue
+                total += _nearest(att, x, y, z, g0, g1)
+                count += 1
+        if count == 0:
+            fa[s] = -1.0
+            continue
+        fa[s] = total / count
+        gv = 0.5 * (surf[rw, rv + 1] - surf[rw, rv - 1])
+        gw = 0.5 * (surf[min(rw + 1, nw - 1), rv] - surf[max(rw - 1, 0), rv]) if nw > 1 else 0.0
+        nx = ux - gv * vx - gw * wx
+        ny = uy - gv * vy - gw * wy
+        nz = uz - gv * vz - gw * wz
+        nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+        nx /= nn
+        ny /= nn
+        nz /= nn
+        seed_normal[s, 0] = nx
+        seed_normal[s, 1] = ny
+        seed_normal[s, 2] = nz
+        # 5. the samples the surface passes, rounded in image coordinates as its votes are cast
+        for iw in range(nw):
+            dw = iw - rw
+            for iv in range(nv):
+                dv = iv - rv
+                du = surf[iw, iv]
+                offsets[s, iw, iv, 0] = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5)) - c0
+                offsets[s, iw, iv, 1] = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5)) - c1
+                offsets[s, iw, iv, 2] = int(np.floor(c2 + du * uz + dv * vz + dw * wz + 0.5)) - c2
 
 
 def surface_kernel(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n_threads, offsets, fa, seed_normal):

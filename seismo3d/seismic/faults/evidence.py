@@ -138,6 +138,18 @@ class EvidenceOptions:
         The sides' correlation at the throw's shift from which ``flexure_step`` is asked: sides that match that
         well are continuous reflectors whose lags between neighbouring traces are measured reliably (on the F3
         inlines' noisier sides the step of faults a person drew is often under a fifth of their throw).
+    unseeded_correlation_gain : float or None
+        Faults beside stronger ones whose thinned votes reach the lower hysteresis threshold along them but the upper
+        one nowhere (the upper threshold is relative to the run's strongest faults) are traced too, by a second
+        hysteresis seeded at the lower threshold on the cells the first left (``seeded`` False in
+        :func:`supported_faults`); such a fault is kept on its displacement alone: no flexure, a clear throw (at
+        least ``clear_throw``) and a gain of the sides' correlation from that shift of at least this, at the default
+        sensitivity (scaled like ``min_throw``). None (the scan's default, not measured): no second pass. On
+        generated sections the network's mean probability along such faults is 0.33-0.48 (the votes are about the
+        likelihood), their throws 4.8-9 samples with gains of 0.31-0.50: recall 0.871 -> 0.882. Chosen
+        leave-one-survey-out (``tools/dev_fault_scores.py``, 2026-11-26; 0, 0.1, 0.2, 0.3): F3 has one such
+        candidate with a clear throw (-6 samples, gain 0.25, inline 100, on a person's fault): F1 0.495 -> 0.496 at
+        0 to 0.2, 0.495 at 0.3; the Great South Basin has none (0.829 at each) and does not choose.
 
     Raises
     ------
@@ -155,6 +167,7 @@ class EvidenceOptions:
     sure_probability: float | None = 0.75
     flexure_step: float | None = 0.3
     flexure_correlation: float = 0.9
+    unseeded_correlation_gain: float | None = 0.2
 
     def __post_init__(self):
         check_positive(self.min_throw, "min_throw", allow_zero=True)
@@ -174,6 +187,9 @@ class EvidenceOptions:
                              f"{self.sure_probability!r}")
         if self.flexure_step is not None and not 0.0 <= float(self.flexure_step) <= 1.0:
             raise InputError(f"flexure_step must be a fraction in [0, 1] or None; got {self.flexure_step!r}")
+        if self.unseeded_correlation_gain is not None and not -1.0 <= float(self.unseeded_correlation_gain) <= 2.0:
+            raise InputError(f"unseeded_correlation_gain must be in [-1, 2] or None; got "
+                             f"{self.unseeded_correlation_gain!r}")
         if not -1.0 <= float(self.flexure_correlation) <= 1.0:
             raise InputError(f"flexure_correlation must be a correlation in [-1, 1]; got {self.flexure_correlation!r}")
 
@@ -185,11 +201,11 @@ class EvidenceOptions:
         ----------
         likelihood : {'learned', 'scan'}
             ``'learned'``: the class defaults. ``'scan'``: no vote ratio asked and the unshifted mismatch as
-            evidence (``min_vote_ratio=0``, ``min_probability=None``; nor ``min_correlation``, ``sure_probability``
-            and ``flexure_step``, chosen for the learned likelihood): the scan's likelihood is not a probability,
-            and its dense faults on the Costa Rica crf section (against the published OSV image, tolerance 3:
-            precision 0.847, recall 0.720, 44 faults) fall to recall 0.613 (27 faults) when a vote ratio of 0.9 is
-            asked (measured 2026-11-25).
+            evidence (``min_vote_ratio=0``, ``min_probability=None``; nor ``min_correlation``, ``sure_probability``,
+            ``flexure_step`` and ``unseeded_correlation_gain``, chosen for the learned likelihood): the scan's
+            likelihood is not a probability, and its dense faults on the Costa Rica crf section (against the
+            published OSV image, tolerance 3: precision 0.847, recall 0.720, 44 faults) fall to recall 0.613 (27
+            faults) when a vote ratio of 0.9 is asked (measured 2026-11-25).
 
         Returns
         -------
@@ -204,7 +220,7 @@ class EvidenceOptions:
             return cls()
         if likelihood == "scan":
             return cls(min_vote_ratio=0.0, min_probability=None, min_correlation=None, sure_probability=None,
-                       flexure_step=None)
+                       flexure_step=None, unseeded_correlation_gain=None)
         raise InputError(f"likelihood must be 'learned' or 'scan'; got {likelihood!r}")
 
 
@@ -311,6 +327,14 @@ class FaultEvidence:
                     and abs(self.median_throw) >= factor * min_throw
                     and self.correlation_gain >= factor * min_gain)
 
+    def is_clearly_displaced(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
+        """What a fault no vote seeded must show (``options.unseeded_correlation_gain``): no flexure, a throw of at
+        least ``options.clear_throw`` and a correlation gain of at least ``unseeded_correlation_gain`` (both scaled by
+        the sensitivity); always False when either option is None."""
+        if options.unseeded_correlation_gain is None or options.clear_throw is None or self.is_flexure(options):
+            return False
+        return self._displaced(options.clear_throw, options.unseeded_correlation_gain, sensitivity)
+
     def supports(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
         """True when the fault shows what ``options`` ask for at ``sensitivity`` in [0, 1] (see
         :func:`supported_faults`): no flexure (:meth:`is_flexure`), and a clear displacement on a likely fault; or
@@ -408,7 +432,8 @@ def fault_evidence(throw, *, vote_ratio: float = float("nan"),
 
 
 def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | None = None,
-                     sensitivity: float = 0.5, vote_ratios=None, mean_likelihoods=None) -> tuple[list, list, list]:
+                     sensitivity: float = 0.5, vote_ratios=None, mean_likelihoods=None,
+                     seeded=None) -> tuple[list, list, list]:
     """Keep the candidates that show what a fault must show; renumber them 1, 2, ... in order.
 
     A fault is kept (:meth:`FaultEvidence.supports`) when its thinned votes hold along it (their mean at least
@@ -434,6 +459,9 @@ def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | N
         Per fault, in the same order: its mean thinned votes over the run's upper vote threshold, and its mean fault
         likelihood (:func:`~seismo3d.seismic.faults.steps.faults_from_cells` measures both). Needed when
         ``options`` ask for them.
+    seeded : sequence of bool, optional
+        Per fault: False for a fault whose votes reach the upper hysteresis threshold nowhere, kept only when
+        :meth:`FaultEvidence.is_clearly_displaced`; default all True.
 
     Returns
     -------
@@ -454,15 +482,16 @@ def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | N
     nan = [float("nan")] * n
     vote_ratios = nan if vote_ratios is None else [float(v) for v in vote_ratios]
     mean_likelihoods = nan if mean_likelihoods is None else [float(v) for v in mean_likelihoods]
-    if len(vote_ratios) != n or len(mean_likelihoods) != n:
-        raise InputError(f"{n} faults but {len(vote_ratios)} vote ratios and {len(mean_likelihoods)} mean "
-                         "likelihoods; pass one of each per fault")
+    seeded = [True] * n if seeded is None else [bool(v) for v in seeded]
+    if len(vote_ratios) != n or len(mean_likelihoods) != n or len(seeded) != n:
+        raise InputError(f"{n} faults but {len(vote_ratios)} vote ratios, {len(mean_likelihoods)} mean likelihoods "
+                         f"and {len(seeded)} seeded flags; pass one of each per fault")
     kept_faults, kept_throws, kept_evidence = [], [], []
-    for fault, throw, ratio, mean in zip(faults, throws, vote_ratios, mean_likelihoods):
+    for fault, throw, ratio, mean, by_seed in zip(faults, throws, vote_ratios, mean_likelihoods, seeded):
         if int(throw.fault_id) != int(fault.id):
             raise InputError(f"throw of fault {throw.fault_id} paired with fault {fault.id}; pass them in one order")
         evidence = fault_evidence(throw, vote_ratio=ratio, mean_likelihood=mean)
-        if not evidence.supports(opt, sensitivity):
+        if not (evidence.supports if by_seed else evidence.is_clearly_displaced)(opt, sensitivity):
             continue
         new_id = len(kept_faults) + 1
         kept_faults.append(dataclasses.replace(fault, id=new_id))

@@ -86,7 +86,7 @@ def test_sides_that_do_not_match_unshifted_are_a_discontinuity_for_the_scan():
     network is sure of (``sure_probability``) keeps it."""
     scan = EvidenceOptions.for_likelihood("scan")
     assert scan == EvidenceOptions(min_vote_ratio=0.0, min_probability=None, min_correlation=None,
-                                   sure_probability=None, flexure_step=None)
+                                   sure_probability=None, flexure_step=None, unseeded_correlation_gain=None)
     assert FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(scan)
     assert not FaultEvidence(1, 0.1, 0.0, 0.9, 0.0, 1.0, 0.89).supports(scan)
     assert not FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(dataclasses.replace(scan, continuity=0.4))
@@ -268,3 +268,65 @@ def test_a_flexure_is_not_a_fault_whatever_the_network_says():
     for bad in ({"flexure_step": -0.1}, {"flexure_step": 1.5}, {"flexure_correlation": 1.5}):
         with pytest.raises(InputError, match=next(iter(bad))):
             EvidenceOptions(**bad)
+
+
+def test_a_fault_no_vote_seeded_is_kept_on_a_clear_displacement_alone():
+    """A fault whose votes reach the upper threshold nowhere (``seeded`` False, traced by the second hysteresis) is
+    kept on a clear throw (at least clear_throw, 3) whose shift gains at least unseeded_correlation_gain (0.2) of
+    the sides' correlation, whatever its votes and probability; not on a likely fault with a small throw, nor on a
+    flexure; both scale with the sensitivity; the scan and ``unseeded_correlation_gain=None`` never keep one."""
+    opt = EvidenceOptions()
+    assert opt.unseeded_correlation_gain == 0.2
+    assert EvidenceOptions.for_likelihood("scan").unseeded_correlation_gain is None
+    weak = {"vote_ratio": 0.5, "mean_likelihood": 0.34}  # generated seed 31000018's fault of throw -9, gain 0.50
+    assert _evidence(-9.0, 0.5, **weak).is_clearly_displaced(opt)
+    assert not _evidence(2.9, 0.5, **weak).is_clearly_displaced(opt)  # throw under 3
+    assert not _evidence(-9.0, 0.19, **weak).is_clearly_displaced(opt)  # the shift gains too little
+    assert not _evidence(1.0, 0.5, vote_ratio=0.5, mean_likelihood=0.95).is_clearly_displaced(opt)  # only likely
+    assert _evidence(1.5, 0.1, **weak).is_clearly_displaced(opt, 1.0)  # half of both asked
+    assert not _evidence(5.9, 0.4, **weak).is_clearly_displaced(opt, 0.0)  # twice both
+    flexure = dataclasses.replace(_evidence(-9.0, 0.5, **weak), correlation=0.95, step=-0.5)
+    assert not flexure.is_clearly_displaced(opt)
+    assert not _evidence(-9.0, 0.5, **weak).is_clearly_displaced(EvidenceOptions(unseeded_correlation_gain=None))
+    with pytest.raises(InputError, match="unseeded_correlation_gain"):
+        EvidenceOptions(unseeded_correlation_gain=3.0)
+
+
+def test_supported_faults_asks_unseeded_faults_for_a_clear_displacement():
+    """supported_faults keeps an unseeded fault only on a clear displacement, a seeded one on the usual evidence."""
+    syn = synthetic_cube((192, 128), seed=1, noise=0.1, n_faults=2)
+    result = trace_faults(syn.cube, progress=False)
+    assert len(result.faults) >= 2
+    faults, throws = result.faults[:2], result.throws[:2]
+    small = dataclasses.replace(throws[1], throw=np.ones_like(throws[1].throw), median_throw=1.0)
+    ratios, means = [1.5, 1.5], [0.9, 0.9]  # both strong and likely: kept when seeded
+    assert len(supported_faults(faults, [throws[0], small], vote_ratios=ratios, mean_likelihoods=means)[0]) == 2
+    kept, _, evidence = supported_faults(faults, [throws[0], small], vote_ratios=ratios, mean_likelihoods=means,
+                                         seeded=[True, False])
+    assert [f.id for f in kept] == [1] and np.array_equal(kept[0].points, faults[0].points)
+    with pytest.raises(InputError, match="seeded"):
+        supported_faults(faults, throws, vote_ratios=ratios, mean_likelihoods=means, seeded=[True])
+
+
+def test_a_fault_beside_stronger_ones_is_traced_from_the_lower_threshold():
+    """Generated section 31000018 (never trained on): its fault of throw 8.5 samples crossing a stronger one has
+    thinned votes above the lower hysteresis threshold but nowhere above the upper one (the network's mean
+    probability along it 0.34); the second hysteresis traces it and its clear displacement (measured -9 samples,
+    correlation gain 0.50) keeps it. Without the second pass no fault lies along its lower part."""
+    from seismo3d.data.synthetic_sections import synthetic_fault_section
+    from seismo3d.seismic import fault_labels
+
+    sec = synthetic_fault_section((256, 256), seed=31_000_018)
+    part = np.zeros(sec.faults.shape, bool)
+    part[145:185, 165:215] = sec.faults[145:185, 165:215]  # the weak fault's lower part, away from the others
+    assert part.sum() > 100
+
+    def covered(options):
+        labels = fault_labels(trace_faults(sec.section, options=options, progress=False).faults, part.shape) > 0
+        near = np.zeros_like(labels)
+        for dx in range(-2, 3):
+            near |= np.roll(labels, dx, axis=0)
+        return float(near[part].mean())
+
+    assert covered(None) > 0.95  # measured 0.98
+    assert covered(FaultTracingOptions(evidence=EvidenceOptions(unseeded_correlation_gain=None))) < 0.05  # 0

@@ -45,6 +45,7 @@ from .surfaces.ridges import live_likelihood, ridges, without_dead_edges
 from .surfaces.skins import skins_from_cells
 from .surfaces.voting import image_seeds, seed_votes
 from .throw import fault_throws
+from .throw_patches import half_period
 
 if TYPE_CHECKING:  # annotations only: the options are passed in
     from .options import FaultTracingOptions
@@ -454,6 +455,8 @@ def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, op
     bar.advance()
     bar.start("throw")
     throws = fault_throws(windows, faults, progress=progress) if faults else []
+    if opt.evidence.clear_half_periods is not None:  # the reflectors' half period around each fault
+        throws = [dataclasses.replace(t, half_period=half_period(windows, f.points)) for f, t in zip(faults, throws)]
     bar.advance()
     bar.start("evidence")
     ratios = [float(np.mean(f.likelihood)) / float(upper) for f in faults]  # a skin's values are its thinned votes

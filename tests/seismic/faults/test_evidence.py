@@ -330,3 +330,56 @@ def test_a_fault_beside_stronger_ones_is_traced_from_the_lower_threshold():
 
     assert covered(None) > 0.95  # measured 0.98
     assert covered(FaultTracingOptions(evidence=EvidenceOptions(unseeded_correlation_gain=None))) < 0.05  # 0
+
+
+def test_a_clear_throw_of_unlike_sides_must_reach_their_half_period():
+    """clear_half_periods (1 by default): a clear throw whose sides correlate under min_correlation (0.5) at its shift
+    and which is no step at the fault (2D: a step under flexure_step, 0.3, of the throw; 3D: not measured) is evidence
+    only when it reaches the half period of the reflectors around the fault (the correlation of unlike sides peaks
+    within half a period of any shift). Penobscot crossline 1155's faults along migration swings at 4300-5400 ms
+    (throw 4.84 samples, correlation 0.37, step -0.25, half period about 6) are then not clear; its large fault (12.98
+    samples, correlation 0.32, half period about 5) is; a Costa Rica crf fault (3.81 samples, correlation 0.36, step
+    2.84, half period about 6) is a step; sides that look alike, an unmeasured half period and None ask nothing."""
+    opt = EvidenceOptions()
+    assert opt.clear_half_periods == 1.0
+
+    def fault(throw, correlation, gain, half, ml=0.68, vr=1.7, step=float("nan")):
+        return FaultEvidence(1, throw, float("nan"), correlation, gain, 1.0, vote_ratio=vr, mean_likelihood=ml,
+                             half_period=half, step=step)
+
+    swing = fault(4.84, 0.37, 0.57, 6.0)
+    assert not swing.is_clear_and_likely(opt) and not swing.supports(opt)  # 3D: no step measured
+    assert not fault(4.84, 0.37, 0.57, 6.0, step=-0.25).supports(opt)
+    assert fault(3.81, 0.36, 0.58, 6.0, ml=0.73, vr=1.43, step=2.84).supports(opt)  # a step at the fault
+    assert fault(12.98, 0.32, 0.12, 5.0, ml=0.69).supports(opt)
+    assert fault(4.84, 0.6, 0.57, 6.0).supports(opt)  # sides alike at the shift: not asked
+    assert fault(4.84, 0.37, 0.57, float("nan")).supports(opt)  # not measured
+    assert swing.supports(EvidenceOptions(clear_half_periods=None))
+    assert fault(3.1, 0.37, 0.57, 6.0).supports(EvidenceOptions(clear_half_periods=0.5))
+    unseeded = fault(4.84, 0.37, 0.57, 6.0, ml=0.3, vr=0.5)
+    assert not unseeded.is_clearly_displaced(opt) and fault(6.1, 0.37, 0.57, 6.0).is_clearly_displaced(opt)
+    with pytest.raises(InputError, match="clear_half_periods"):
+        EvidenceOptions(clear_half_periods=-1.0)
+
+
+def test_half_period_of_the_reflectors_around_a_fault():
+    """The lag of the first trough of the traces' mean autocorrelation: 6 samples for a cosine of period 12, the
+    same from a section, a cube and a window source of either; read about the points only."""
+    from seismo3d.seismic.blocks.windows import cube_windows
+    from seismo3d.seismic.faults.throw_patches import half_period
+
+    t = np.arange(200)
+    rng = np.random.default_rng(0)
+    section = np.cos(2 * np.pi * t / 12.0)[None, :] * (1 + 0.1 * rng.normal(size=(40, 1))) + 0.01 * rng.normal(
+        size=(40, 200))
+    points = np.array([[18, 50], [20, 120], [22, 150]])
+    value = half_period(section, points)
+    assert value == pytest.approx(6.0, abs=0.2)
+    assert half_period(cube_windows(section), points) == pytest.approx(value, abs=1e-9)
+    cube = np.repeat(section[:, None, :], 5, axis=1)
+    points3 = np.array([[18, 2, 50], [20, 2, 120], [22, 2, 150]])
+    assert half_period(cube, points3) == pytest.approx(value, rel=1e-6)
+    assert np.isnan(half_period(section, np.array([[20, 10], [20, 11]])))  # two samples: no trough
+    far = section.copy()
+    far[:10] = np.cos(2 * np.pi * t / 30.0)  # other traces, beyond the points' margin, do not count
+    assert half_period(far, points) == pytest.approx(value, abs=1e-9)

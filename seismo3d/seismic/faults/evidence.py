@@ -141,12 +141,12 @@ class EvidenceOptions:
         well are continuous reflectors whose lags between neighbouring traces are measured reliably (on the F3
         inlines' noisier sides the step of faults a person drew is often under a fifth of their throw).
     unseeded_correlation_gain : float or None
-        Faults whose thinned votes reach the lower hysteresis threshold but nowhere the upper one (relative to the run's
-        strongest faults) are traced by a second hysteresis from the lower one on the cells the first left, and kept on
-        a clear displacement (:meth:`FaultEvidence.is_clearly_displaced`): a throw of ``clear_throw`` whose shift gains
-        at least this correlation (scaled like ``min_throw``). None (the scan's): no second pass. Chosen leave-one-
-        survey-out (``tools/dev_fault_scores.py``, 2026-11-26; 0, 0.1, 0.2, 0.3): F3 F1 0.496 from 0 to 0.2 (0.495 at
-        0.3, None); the Great South Basin 0.829 at each does not choose. Generated recall 0.871 -> 0.882.
+        2D: faults whose thinned votes reach the lower hysteresis threshold but nowhere the (run-relative) upper one are
+        traced by a second hysteresis from the lower one on the cells the first left, and kept on a clear displacement:
+        a throw of ``clear_throw`` gaining at least this correlation (scaled like ``min_throw``). None (the scan's): no
+        second pass (never in 3D: it doubled the skins' time on the 18 Penobscot inlines, 17 -> 32 s, for no fault).
+        Chosen leave-one-survey-out (``tools/dev_fault_scores.py``, 2026-11-26; 0, 0.1, 0.2, 0.3): F3 F1 0.496 from 0 to
+        0.2 (0.495 at 0.3, None); the Great South Basin (0.829 at each) does not choose.
     clear_half_periods : float or None
         A clear throw of sides unlike at its shift (correlation under ``min_correlation``) that is no step at the fault
         (2D: :attr:`FaultEvidence.step` under ``flexure_step`` of it; 3D: not measured) must reach this many half

@@ -443,7 +443,7 @@ def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, op
     bar.start("fault skins")
     faults = skins_from_cells(*cells, shape=shape, lower=lower, upper=upper, options=opt.skins)
     seeded = [True] * len(faults)
-    if opt.evidence.unseeded_correlation_gain is not None and faults:  # faults beside stronger ones, never seeded:
+    if opt.evidence.unseeded_correlation_gain is not None and faults and len(shape) == 2:  # never seeded (2D):
         shape3 = (shape[0], 1, shape[1]) if len(shape) == 2 else tuple(shape)  # a second hysteresis from the lower
         used = np.concatenate([np.insert(f.points, 1, 0, axis=1) if len(shape) == 2 else f.points for f in faults])
         free = ~np.isin(np.ravel_multi_index(tuple(np.asarray(cells[0]).T), shape3),

@@ -26,8 +26,10 @@ samples to wrong candidates, and at ``clear_throw`` 2 the clause keeps one of th
 2.5 to 5 it keeps the same faults there as without it.
 
 Whatever else it shows, a 2D fault whose offset is not a step at it (``flexure_step``: the reflectors' lags between
-neighbouring traces ramp up to it instead of jumping across it, while its sides match closely at the throw's shift)
-is a flexure that bends the reflectors unbroken, not a fault, and is dropped.
+neighbouring traces ramp up to it instead of jumping across it, while its sides match closely at the throw's shift) is a
+flexure that bends the reflectors unbroken, not a fault, and is dropped. A clear throw of unlike sides with no step must
+reach their half period (``clear_half_periods``); faults whose votes reach the upper threshold nowhere are kept on a
+clear displacement alone (``unseeded_correlation_gain``).
 
 The measures are absolute and dimensionless, the same on every input: a shift in samples (a displacement under one
 sample is not resolved by the data), normalised correlations, a probability and a ratio to the run's own threshold.
@@ -138,7 +140,20 @@ class EvidenceOptions:
         The sides' correlation at the throw's shift from which ``flexure_step`` is asked: sides that match that
         well are continuous reflectors whose lags between neighbouring traces are measured reliably (on the F3
         inlines' noisier sides the step of faults a person drew is often under a fifth of their throw).
-
+    unseeded_correlation_gain : float or None
+        2D: faults whose thinned votes reach the lower hysteresis threshold but nowhere the (run-relative) upper one are
+        traced by a second hysteresis from the lower one on the cells the first left, and kept on a clear displacement:
+        a throw of ``clear_throw`` gaining at least this correlation (scaled like ``min_throw``). None (the scan's): no
+        second pass (never in 3D: it doubled the skins' time on the 18 Penobscot inlines, 17 -> 32 s, for no fault).
+        Chosen leave-one-survey-out (``tools/dev_fault_scores.py``, 2026-11-26; 0, 0.1, 0.2, 0.3): F3 F1 0.496 from 0 to
+        0.2 (0.495 at 0.3, None); the Great South Basin (0.829 at each) does not choose.
+    clear_half_periods : float or None
+        A clear throw of sides unlike at its shift (correlation under ``min_correlation``) that is no step at the fault
+        (2D: :attr:`FaultEvidence.step` under ``flexure_step`` of it; 3D: not measured) must reach this many half
+        periods of the reflectors around it (:attr:`FaultEvidence.half_period`): the correlation of unlike sides
+        (crossing events: migration swings) peaks within half a period of any shift. Not scaled by the sensitivity;
+        None: not asked. 1, the half period itself: neither dev survey chooses (``tools/dev_fault_scores.py``,
+        2026-11-26: F3 F1 0.496, the Great South Basin 0.829 at 0.5, 1 and 1.5).
     Raises
     ------
     InputError
@@ -155,6 +170,8 @@ class EvidenceOptions:
     sure_probability: float | None = 0.75
     flexure_step: float | None = 0.3
     flexure_correlation: float = 0.9
+    unseeded_correlation_gain: float | None = 0.2
+    clear_half_periods: float | None = 1.0
 
     def __post_init__(self):
         check_positive(self.min_throw, "min_throw", allow_zero=True)
@@ -162,7 +179,8 @@ class EvidenceOptions:
             raise InputError(f"min_correlation_gain must be in [-1, 2]; got {self.min_correlation_gain!r}")
         if not -1.0 <= float(self.continuity) <= 1.0:
             raise InputError(f"continuity must be a correlation in [-1, 1]; got {self.continuity!r}")
-        check_positive(self.min_vote_ratio, "min_vote_ratio", allow_zero=True)
+        for name in ("min_vote_ratio",) + (("clear_half_periods",) if self.clear_half_periods is not None else ()):
+            check_positive(getattr(self, name), name, allow_zero=True)
         if self.min_probability is not None and not 0.0 <= float(self.min_probability) <= 1.0:
             raise InputError(f"min_probability must be a probability in [0, 1] or None; got {self.min_probability!r}")
         if self.clear_throw is not None:
@@ -174,6 +192,8 @@ class EvidenceOptions:
                              f"{self.sure_probability!r}")
         if self.flexure_step is not None and not 0.0 <= float(self.flexure_step) <= 1.0:
             raise InputError(f"flexure_step must be a fraction in [0, 1] or None; got {self.flexure_step!r}")
+        if (gain := self.unseeded_correlation_gain) is not None and not -1.0 <= float(gain) <= 2.0:
+            raise InputError(f"unseeded_correlation_gain must be in [-1, 2] or None; got {gain!r}")
         if not -1.0 <= float(self.flexure_correlation) <= 1.0:
             raise InputError(f"flexure_correlation must be a correlation in [-1, 1]; got {self.flexure_correlation!r}")
 
@@ -184,11 +204,11 @@ class EvidenceOptions:
         Parameters
         ----------
         likelihood : {'learned', 'scan'}
-            ``'learned'``: the class defaults. ``'scan'``: no vote ratio asked and the unshifted mismatch as
-            evidence (``min_vote_ratio=0``, ``min_probability=None``; nor ``min_correlation``, ``sure_probability``
-            and ``flexure_step``, chosen for the learned likelihood): the scan's likelihood is not a probability,
-            and its dense faults on the Costa Rica crf section (against the published OSV image, tolerance 3:
-            precision 0.847, recall 0.720, 44 faults) fall to recall 0.613 (27 faults) when a vote ratio of 0.9 is
+            ``'learned'``: the class defaults. ``'scan'``: no vote ratio asked and the unshifted mismatch as evidence
+            (``min_vote_ratio=0``, ``min_probability=None``; not ``min_correlation``, ``sure_probability``,
+            ``flexure_step``, ``unseeded_correlation_gain``, chosen for the learned one): its likelihood is not a
+            probability, and its dense faults on the Costa Rica crf section (against the published OSV image, tolerance
+            3: precision 0.847, recall 0.720, 44 faults) fall to recall 0.613 (27 faults) when a vote ratio of 0.9 is
             asked (measured 2026-11-25).
 
         Returns
@@ -204,7 +224,7 @@ class EvidenceOptions:
             return cls()
         if likelihood == "scan":
             return cls(min_vote_ratio=0.0, min_probability=None, min_correlation=None, sure_probability=None,
-                       flexure_step=None)
+                       flexure_step=None, unseeded_correlation_gain=None)
         raise InputError(f"likelihood must be 'learned' or 'scan'; got {likelihood!r}")
 
 
@@ -257,6 +277,8 @@ class FaultEvidence:
         2D: the median step at the fault (:attr:`~seismo3d.seismic.faults.result.FaultThrow.step`), samples,
         positive = hanging wall down: about the throw at a fault, a small part of it at a flexure. NaN when not
         measured (3D).
+    half_period : float
+        The reflectors' half period around the fault (:attr:`FaultThrow.half_period`), samples; NaN: not measured.
     """
 
     fault_id: int
@@ -270,11 +292,11 @@ class FaultEvidence:
     mean_likelihood: float = float("nan")
     confidence: float = float("nan")
     step: float = float("nan")
+    half_period: float = float("nan")
 
     def is_flexure(self, options: EvidenceOptions) -> bool:
-        """True when the sides match at the throw's shift at least as well as ``options.flexure_correlation`` and the
-        step at the fault is less than ``options.flexure_step`` of the throw (see :class:`EvidenceOptions`); always
-        False when ``flexure_step`` is None or the step or throw was not measured."""
+        """True when the sides match at the throw's shift at least as well as ``flexure_correlation`` and the step at
+        the fault is under ``flexure_step`` of the throw; False when ``flexure_step`` is None or either unmeasured."""
         if options.flexure_step is None or not (np.isfinite(self.step) and np.isfinite(self.median_throw)):
             return False
         return bool(self.correlation >= options.flexure_correlation
@@ -286,14 +308,12 @@ class FaultEvidence:
         return self._displaced(options.min_throw, options.min_correlation_gain, sensitivity)
 
     def is_clear_and_likely(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
-        """True when a clear displacement (a shift of at least ``options.clear_throw`` samples, at least
-        ``options.min_correlation_gain`` better than none) and a likely fault (mean likelihood at least
-        ``options.min_probability``) agree, all scaled by the sensitivity in [0, 1]; always False when either option
-        is None or the mean likelihood was not measured."""
+        """True when a clear displacement (``clear_throw``, ``min_correlation_gain``, ``clear_half_periods``) and a
+        likely fault (``min_probability``) agree; False when either option is None or the mean likelihood unmeasured."""
         if options.clear_throw is None or options.min_probability is None or not np.isfinite(self.mean_likelihood):
             return False
-        return (self._displaced(options.clear_throw, options.min_correlation_gain, sensitivity)
-                and self._likely(options, sensitivity))
+        return (self._clear(options, options.min_correlation_gain, sensitivity)
+                and self._reaches(options.min_probability, sensitivity))
 
     def _reaches(self, probability: float, sensitivity: float) -> bool:
         # the mean likelihood reaches a probability scaled by the sensitivity (at most 1); NaN reaches nothing
@@ -302,20 +322,30 @@ class FaultEvidence:
     def _sure(self, options: EvidenceOptions, sensitivity: float) -> bool:
         return options.sure_probability is not None and self._reaches(options.sure_probability, sensitivity)
 
-    def _likely(self, options: EvidenceOptions, sensitivity: float) -> bool:
-        return self._reaches(options.min_probability, sensitivity)
-
     def _displaced(self, min_throw: float, min_gain: float, sensitivity: float) -> bool:
         factor = sensitivity_factor(sensitivity)
         return bool(np.isfinite(self.median_throw) and np.isfinite(self.correlation_gain)
                     and abs(self.median_throw) >= factor * min_throw
                     and self.correlation_gain >= factor * min_gain)
 
+    def is_clearly_displaced(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
+        """What a fault no vote seeded must show: no flexure, a clear throw gaining ``unseeded_correlation_gain``
+        (:class:`EvidenceOptions`); always False when it or ``clear_throw`` is None."""
+        return (gain := options.unseeded_correlation_gain) is not None and options.clear_throw is not None and \
+            not self.is_flexure(options) and self._clear(options, gain, sensitivity)
+
+    def _clear(self, options: EvidenceOptions, min_gain: float, sensitivity: float) -> bool:
+        step = options.flexure_step is not None and abs(self.step) >= options.flexure_step * abs(self.median_throw)
+        if (options.clear_half_periods is not None and options.min_correlation is not None and not step  # unlike
+                and not self.correlation >= options.min_correlation  # sides, no step (3D: NaN, not asked): a throw
+                and abs(self.median_throw) < options.clear_half_periods * self.half_period):  # within their half
+            return False  # period is their phase (a NaN half period asks nothing)
+        return self._displaced(options.clear_throw, min_gain, sensitivity)
+
     def supports(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
-        """True when the fault shows what ``options`` ask for at ``sensitivity`` in [0, 1] (see
-        :func:`supported_faults`): no flexure (:meth:`is_flexure`), and a clear displacement on a likely fault; or
-        votes that hold along it, and a displacement or, for a probability, a likely fault (for the scan: sides that
-        do not match without a shift).
+        """True when the fault shows what ``options`` ask for at ``sensitivity`` in [0, 1]: no flexure, and a clear
+        displacement on a likely fault; or votes that hold, and a displacement or a likely fault (the scan: sides
+        that do not match without a shift).
 
         Raises
         ------
@@ -344,7 +374,7 @@ class FaultEvidence:
         if not np.isfinite(self.mean_likelihood):
             raise InputError("this evidence has no mean likelihood: measure it (fault_evidence(throw, "
                              "mean_likelihood=...)) or ask EvidenceOptions(min_probability=None)")
-        return self._likely(options, sensitivity)
+        return self._reaches(options.min_probability, sensitivity)
 
 
 def _median(values: np.ndarray) -> float:
@@ -404,21 +434,17 @@ def fault_evidence(throw, *, vote_ratio: float = float("nan"),
                          correlation=_median(c), correlation_gain=_median(c - c0),
                          measured_fraction=float(measured.mean()) if t.size else 0.0,
                          side_coherence=_median(coherence), vote_ratio=float(vote_ratio),
-                         mean_likelihood=float(mean_likelihood), step=float(getattr(throw, "step", float("nan"))))
+                         mean_likelihood=float(mean_likelihood), step=float(getattr(throw, "step", float("nan"))),
+                         half_period=float(getattr(throw, "half_period", float("nan"))))
 
 
 def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | None = None,
-                     sensitivity: float = 0.5, vote_ratios=None, mean_likelihoods=None) -> tuple[list, list, list]:
+                     sensitivity: float = 0.5, vote_ratios=None, mean_likelihoods=None,
+                     seeded=None) -> tuple[list, list, list]:
     """Keep the candidates that show what a fault must show; renumber them 1, 2, ... in order.
 
-    A fault is kept (:meth:`FaultEvidence.supports`) when its thinned votes hold along it (their mean at least
-    ``options.min_vote_ratio`` of the upper vote threshold) and its two sides line up better after a shift of at
-    least ``options.min_throw`` samples than with none; or, with the votes holding, when the fault likelihood along it
-    averages at least ``options.min_probability`` (the learned likelihood, a probability) or, with
-    ``min_probability=None`` (the scan), when its sides do not match without a shift; or, whatever its votes, when
-    a throw of at least ``options.clear_throw`` samples and a mean likelihood of at least ``options.min_probability``
-    agree. A candidate whose sides match with no shift and no better with one, and which the network does not call a
-    fault, is not a fault.
+    A fault is kept when :meth:`FaultEvidence.supports` (see the module's description), a fault no vote seeded when
+    :meth:`FaultEvidence.is_clearly_displaced`.
 
     Parameters
     ----------
@@ -434,6 +460,8 @@ def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | N
         Per fault, in the same order: its mean thinned votes over the run's upper vote threshold, and its mean fault
         likelihood (:func:`~seismo3d.seismic.faults.steps.faults_from_cells` measures both). Needed when
         ``options`` ask for them.
+    seeded : sequence of bool, optional
+        Per fault: False for one whose votes reach the upper hysteresis threshold nowhere; default all True.
 
     Returns
     -------
@@ -454,15 +482,16 @@ def supported_faults(faults: list, throws: list, *, options: EvidenceOptions | N
     nan = [float("nan")] * n
     vote_ratios = nan if vote_ratios is None else [float(v) for v in vote_ratios]
     mean_likelihoods = nan if mean_likelihoods is None else [float(v) for v in mean_likelihoods]
-    if len(vote_ratios) != n or len(mean_likelihoods) != n:
-        raise InputError(f"{n} faults but {len(vote_ratios)} vote ratios and {len(mean_likelihoods)} mean "
-                         "likelihoods; pass one of each per fault")
+    seeded = [True] * n if seeded is None else [bool(v) for v in seeded]
+    if len(vote_ratios) != n or len(mean_likelihoods) != n or len(seeded) != n:
+        raise InputError(f"{n} faults but {len(vote_ratios)} vote ratios, {len(mean_likelihoods)} mean likelihoods "
+                         f"and {len(seeded)} seeded flags; pass one of each per fault")
     kept_faults, kept_throws, kept_evidence = [], [], []
-    for fault, throw, ratio, mean in zip(faults, throws, vote_ratios, mean_likelihoods):
+    for fault, throw, ratio, mean, by_seed in zip(faults, throws, vote_ratios, mean_likelihoods, seeded):
         if int(throw.fault_id) != int(fault.id):
             raise InputError(f"throw of fault {throw.fault_id} paired with fault {fault.id}; pass them in one order")
         evidence = fault_evidence(throw, vote_ratio=ratio, mean_likelihood=mean)
-        if not evidence.supports(opt, sensitivity):
+        if not (evidence.supports if by_seed else evidence.is_clearly_displaced)(opt, sensitivity):
             continue
         new_id = len(kept_faults) + 1
         kept_faults.append(dataclasses.replace(fault, id=new_id))

@@ -347,6 +347,10 @@ class FaultThrow:
         fault's zone less the dip of its sides over that width), samples, positive = hanging wall down; about the
         throw at a fault, about 0 at a flexure that bends the reflectors over several traces. NaN when unmeasured
         (3D faults; a fault at the section's edge).
+    half_period : float
+        The half period of the reflectors around the fault, samples
+        (:func:`~seismo3d.seismic.faults.throw_patches.half_period`); NaN when not measured (set by
+        :func:`~seismo3d.seismic.faults.steps.faults_from_cells` when the evidence asks for it).
     """
 
     fault_id: int
@@ -361,6 +365,7 @@ class FaultThrow:
     side_coherence: np.ndarray | None = None
     n_patches_measured: int = -1
     step: float = float("nan")
+    half_period: float = float("nan")
 
 
 @dataclass(frozen=True, eq=False)

@@ -25,6 +25,7 @@ memory of the seeds step of a block-by-block run.
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
@@ -44,6 +45,7 @@ from .surfaces.ridges import live_likelihood, ridges, without_dead_edges
 from .surfaces.skins import skins_from_cells
 from .surfaces.voting import image_seeds, seed_votes
 from .throw import fault_throws
+from .throw_patches import half_period
 
 if TYPE_CHECKING:  # annotations only: the options are passed in
     from .options import FaultTracingOptions
@@ -440,16 +442,28 @@ def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, op
     lower, upper = thresholds
     bar.start("fault skins")
     faults = skins_from_cells(*cells, shape=shape, lower=lower, upper=upper, options=opt.skins)
+    seeded = [True] * len(faults)
+    if opt.evidence.unseeded_correlation_gain is not None and faults and len(shape) == 2:  # never seeded (2D):
+        shape3 = (shape[0], 1, shape[1]) if len(shape) == 2 else tuple(shape)  # a second hysteresis from the lower
+        used = np.concatenate([np.insert(f.points, 1, 0, axis=1) if len(shape) == 2 else f.points for f in faults])
+        free = ~np.isin(np.ravel_multi_index(tuple(np.asarray(cells[0]).T), shape3),
+                        np.ravel_multi_index(tuple(used.T), shape3))  # threshold, on the cells the first one left
+        more = skins_from_cells(*(np.asarray(c)[free] for c in cells), shape=shape, lower=lower, upper=lower,
+                                options=opt.skins) if free.any() else []
+        faults += [dataclasses.replace(f, id=len(faults) + i + 1) for i, f in enumerate(more)]
+        seeded += [False] * len(more)
     bar.advance()
     bar.start("throw")
     throws = fault_throws(windows, faults, progress=progress) if faults else []
+    if opt.evidence.clear_half_periods is not None:  # the reflectors' half period around each fault
+        throws = [dataclasses.replace(t, half_period=half_period(windows, f.points)) for f, t in zip(faults, throws)]
     bar.advance()
     bar.start("evidence")
     ratios = [float(np.mean(f.likelihood)) / float(upper) for f in faults]  # a skin's values are its thinned votes
     means = _values_along(likelihood, faults) if likelihood is not None else None
     faults, throws, evidence = supported_faults(faults, list(throws), options=opt.evidence,
                                                 sensitivity=opt.sensitivity, vote_ratios=ratios,
-                                                mean_likelihoods=means)
+                                                mean_likelihoods=means, seeded=seeded)
     bar.advance()
     return faults, throws, evidence
 

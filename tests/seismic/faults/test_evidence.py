@@ -86,7 +86,7 @@ def test_sides_that_do_not_match_unshifted_are_a_discontinuity_for_the_scan():
     network is sure of (``sure_probability``) keeps it."""
     scan = EvidenceOptions.for_likelihood("scan")
     assert scan == EvidenceOptions(min_vote_ratio=0.0, min_probability=None, min_correlation=None,
-                                   sure_probability=None, flexure_step=None)
+                                   sure_probability=None, flexure_step=None, unseeded_correlation_gain=None)
     assert FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(scan)
     assert not FaultEvidence(1, 0.1, 0.0, 0.9, 0.0, 1.0, 0.89).supports(scan)
     assert not FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(dataclasses.replace(scan, continuity=0.4))
@@ -268,3 +268,118 @@ def test_a_flexure_is_not_a_fault_whatever_the_network_says():
     for bad in ({"flexure_step": -0.1}, {"flexure_step": 1.5}, {"flexure_correlation": 1.5}):
         with pytest.raises(InputError, match=next(iter(bad))):
             EvidenceOptions(**bad)
+
+
+def test_a_fault_no_vote_seeded_is_kept_on_a_clear_displacement_alone():
+    """A fault whose votes reach the upper threshold nowhere (``seeded`` False, traced by the second hysteresis) is
+    kept on a clear throw (at least clear_throw, 3) whose shift gains at least unseeded_correlation_gain (0.2) of
+    the sides' correlation, whatever its votes and probability; not on a likely fault with a small throw, nor on a
+    flexure; both scale with the sensitivity; the scan and ``unseeded_correlation_gain=None`` never keep one."""
+    opt = EvidenceOptions()
+    assert opt.unseeded_correlation_gain == 0.2
+    assert EvidenceOptions.for_likelihood("scan").unseeded_correlation_gain is None
+    weak = {"vote_ratio": 0.5, "mean_likelihood": 0.34}  # generated seed 31000018's fault of throw -9, gain 0.50
+    assert _evidence(-9.0, 0.5, **weak).is_clearly_displaced(opt)
+    assert not _evidence(2.9, 0.5, **weak).is_clearly_displaced(opt)  # throw under 3
+    assert not _evidence(-9.0, 0.19, **weak).is_clearly_displaced(opt)  # the shift gains too little
+    assert not _evidence(1.0, 0.5, vote_ratio=0.5, mean_likelihood=0.95).is_clearly_displaced(opt)  # only likely
+    assert _evidence(1.5, 0.1, **weak).is_clearly_displaced(opt, 1.0)  # half of both asked
+    assert not _evidence(5.9, 0.4, **weak).is_clearly_displaced(opt, 0.0)  # twice both
+    flexure = dataclasses.replace(_evidence(-9.0, 0.5, **weak), correlation=0.95, step=-0.5)
+    assert not flexure.is_clearly_displaced(opt)
+    assert not _evidence(-9.0, 0.5, **weak).is_clearly_displaced(EvidenceOptions(unseeded_correlation_gain=None))
+    with pytest.raises(InputError, match="unseeded_correlation_gain"):
+        EvidenceOptions(unseeded_correlation_gain=3.0)
+
+
+def test_supported_faults_asks_unseeded_faults_for_a_clear_displacement():
+    """supported_faults keeps an unseeded fault only on a clear displacement, a seeded one on the usual evidence."""
+    syn = synthetic_cube((192, 128), seed=1, noise=0.1, n_faults=2)
+    result = trace_faults(syn.cube, progress=False)
+    assert len(result.faults) >= 2
+    faults, throws = result.faults[:2], result.throws[:2]
+    small = dataclasses.replace(throws[1], throw=np.ones_like(throws[1].throw), median_throw=1.0)
+    ratios, means = [1.5, 1.5], [0.9, 0.9]  # both strong and likely: kept when seeded
+    assert len(supported_faults(faults, [throws[0], small], vote_ratios=ratios, mean_likelihoods=means)[0]) == 2
+    kept, _, evidence = supported_faults(faults, [throws[0], small], vote_ratios=ratios, mean_likelihoods=means,
+                                         seeded=[True, False])
+    assert [f.id for f in kept] == [1] and np.array_equal(kept[0].points, faults[0].points)
+    with pytest.raises(InputError, match="seeded"):
+        supported_faults(faults, throws, vote_ratios=ratios, mean_likelihoods=means, seeded=[True])
+
+
+def test_a_fault_beside_stronger_ones_is_traced_from_the_lower_threshold():
+    """Generated section 31000018 (never trained on): its fault of throw 8.5 samples crossing a stronger one has
+    thinned votes above the lower hysteresis threshold but nowhere above the upper one (the network's mean
+    probability along it 0.34); the second hysteresis traces it and its clear displacement (measured -9 samples,
+    correlation gain 0.50) keeps it. Without the second pass no fault lies along its lower part."""
+    from seismo3d.data.synthetic_sections import synthetic_fault_section
+    from seismo3d.seismic import fault_labels
+
+    sec = synthetic_fault_section((256, 256), seed=31_000_018)
+    part = np.zeros(sec.faults.shape, bool)
+    part[145:185, 165:215] = sec.faults[145:185, 165:215]  # the weak fault's lower part, away from the others
+    assert part.sum() > 100
+
+    def covered(options):
+        labels = fault_labels(trace_faults(sec.section, options=options, progress=False).faults, part.shape) > 0
+        near = np.zeros_like(labels)
+        for dx in range(-2, 3):
+            near |= np.roll(labels, dx, axis=0)
+        return float(near[part].mean())
+
+    assert covered(None) > 0.95  # measured 0.98
+    assert covered(FaultTracingOptions(evidence=EvidenceOptions(unseeded_correlation_gain=None))) < 0.05  # 0
+
+
+def test_a_clear_throw_of_unlike_sides_must_reach_their_half_period():
+    """clear_half_periods (1 by default): a clear throw whose sides correlate under min_correlation (0.5) at its shift
+    and which is no step at the fault (2D: a step under flexure_step, 0.3, of the throw; 3D: not measured) is evidence
+    only when it reaches the half period of the reflectors around the fault (the correlation of unlike sides peaks
+    within half a period of any shift). Penobscot crossline 1155's faults along migration swings at 4300-5400 ms
+    (throw 4.84 samples, correlation 0.37, step -0.25, half period about 6) are then not clear; its large fault (12.98
+    samples, correlation 0.32, half period about 5) is; a Costa Rica crf fault (3.81 samples, correlation 0.36, step
+    2.84, half period about 6) is a step; sides that look alike, an unmeasured half period and None ask nothing."""
+    opt = EvidenceOptions()
+    assert opt.clear_half_periods == 1.0
+
+    def fault(throw, correlation, gain, half, ml=0.68, vr=1.7, step=float("nan")):
+        return FaultEvidence(1, throw, float("nan"), correlation, gain, 1.0, vote_ratio=vr, mean_likelihood=ml,
+                             half_period=half, step=step)
+
+    swing = fault(4.84, 0.37, 0.57, 6.0)
+    assert not swing.is_clear_and_likely(opt) and not swing.supports(opt)  # 3D: no step measured
+    assert not fault(4.84, 0.37, 0.57, 6.0, step=-0.25).supports(opt)
+    assert fault(3.81, 0.36, 0.58, 6.0, ml=0.73, vr=1.43, step=2.84).supports(opt)  # a step at the fault
+    assert fault(12.98, 0.32, 0.12, 5.0, ml=0.69).supports(opt)
+    assert fault(4.84, 0.6, 0.57, 6.0).supports(opt)  # sides alike at the shift: not asked
+    assert fault(4.84, 0.37, 0.57, float("nan")).supports(opt)  # not measured
+    assert swing.supports(EvidenceOptions(clear_half_periods=None))
+    assert fault(3.1, 0.37, 0.57, 6.0).supports(EvidenceOptions(clear_half_periods=0.5))
+    unseeded = fault(4.84, 0.37, 0.57, 6.0, ml=0.3, vr=0.5)
+    assert not unseeded.is_clearly_displaced(opt) and fault(6.1, 0.37, 0.57, 6.0).is_clearly_displaced(opt)
+    with pytest.raises(InputError, match="clear_half_periods"):
+        EvidenceOptions(clear_half_periods=-1.0)
+
+
+def test_half_period_of_the_reflectors_around_a_fault():
+    """The lag of the first trough of the traces' mean autocorrelation: 6 samples for a cosine of period 12, the
+    same from a section, a cube and a window source of either; read about the points only."""
+    from seismo3d.seismic.blocks.windows import cube_windows
+    from seismo3d.seismic.faults.throw_patches import half_period
+
+    t = np.arange(200)
+    rng = np.random.default_rng(0)
+    section = np.cos(2 * np.pi * t / 12.0)[None, :] * (1 + 0.1 * rng.normal(size=(40, 1))) + 0.01 * rng.normal(
+        size=(40, 200))
+    points = np.array([[18, 50], [20, 120], [22, 150]])
+    value = half_period(section, points)
+    assert value == pytest.approx(6.0, abs=0.2)
+    assert half_period(cube_windows(section), points) == pytest.approx(value, abs=1e-9)
+    cube = np.repeat(section[:, None, :], 5, axis=1)
+    points3 = np.array([[18, 2, 50], [20, 2, 120], [22, 2, 150]])
+    assert half_period(cube, points3) == pytest.approx(value, rel=1e-6)
+    assert np.isnan(half_period(section, np.array([[20, 10], [20, 11]])))  # two samples: no trough
+    far = section.copy()
+    far[:10] = np.cos(2 * np.pi * t / 30.0)  # other traces, beyond the points' margin, do not count
+    assert half_period(far, points) == pytest.approx(value, abs=1e-9)

@@ -188,6 +188,32 @@ def test_penobscot_xl1155_large_normal_fault_is_one_fault(data_dir):
     assert abs(at[2500.0]) <= 15.0  # measured 1.4
 
 
+@pytest.mark.slow
+def test_faults_along_crossing_events_are_not_clear_displacements(data_dir, penobscot):
+    """Faults an interpreter rejects (issue 54), traced where dipping events cross (migration swings, a crosshatch)
+    and kept as clear and likely though their sides look alike at no shift: Penobscot crossline 1155's two at
+    4300-5400 ms (traces 102-230; throws 4.84 and -3.71 samples, side correlations 0.37 and 0.20, the reflectors'
+    half period about 6 samples there) and the 18 Penobscot inlines' one fault (crosslines 312-383, samples 838-1033:
+    throw 5.07, correlation 0.20, half period 5.31). Their throws are under the half period (``clear_half_periods``);
+    the large fault of crossline 1155 (12.98 samples, correlation 0.32, half period about 5) stays (test above)."""
+    with open_segy(Path(data_dir) / "seismic" / "penobscot_xl1155.sgy") as cube:
+        section = cube.read()[:, 0, :]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        res = trace_faults(section, sample_interval=4.0, sample_unit="ms", progress=False)
+    deep = [f.id for f in res.faults if 100 <= np.median(f.points[:, 0]) <= 235
+            and 1075 <= np.median(f.points[:, 1]) <= 1355]
+    print("xl1155:", len(res.faults), "faults; along the swings at 4300-5400 ms:", deep)
+    assert deep == []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        res = trace_faults(penobscot.cube, progress=False)
+    crosshatch = [f.id for f in res.faults if 300 <= np.median(f.points[:, 1]) <= 390
+                  and 830 <= np.median(f.points[:, 2]) <= 1040]
+    print("Penobscot inlines:", len(res.faults), "faults; in the crosshatch:", crosshatch)
+    assert crosshatch == []
+
+
 def _prf(scores) -> tuple:
     """(precision, recall, F1) of a FaultScores."""
     return scores.precision, scores.recall, scores.f1

@@ -444,10 +444,10 @@ def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, op
     faults = skins_from_cells(*cells, shape=shape, lower=lower, upper=upper, options=opt.skins)
     seeded = [True] * len(faults)
     if opt.evidence.unseeded_correlation_gain is not None and faults and len(shape) == 2:  # never seeded (2D):
-        shape3 = (shape[0], 1, shape[1]) if len(shape) == 2 else tuple(shape)  # a second hysteresis from the lower
-        used = np.concatenate([np.insert(f.points, 1, 0, axis=1) if len(shape) == 2 else f.points for f in faults])
+        shape3 = (shape[0], 1, shape[1])  # a second hysteresis from the lower threshold, on the cells the first left
+        used = np.concatenate([np.insert(f.points, 1, 0, axis=1) for f in faults])
         free = ~np.isin(np.ravel_multi_index(tuple(np.asarray(cells[0]).T), shape3),
-                        np.ravel_multi_index(tuple(used.T), shape3))  # threshold, on the cells the first one left
+                        np.ravel_multi_index(tuple(used.T), shape3))
         more = skins_from_cells(*(np.asarray(c)[free] for c in cells), shape=shape, lower=lower, upper=lower,
                                 options=opt.skins) if free.any() else []
         faults += [dataclasses.replace(f, id=len(faults) + i + 1) for i, f in enumerate(more)]

@@ -404,15 +404,20 @@ def _surface_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path,
     from ..viz.faults import plot_fault_slices
 
     axes = inp.axes
+    meshes = []  # faults.vtp's mesh, until fault_surfaces_gocad.ts takes it: the same points and triangles
+
+    def surfaces():
+        meshes.append(fault_surfaces(result.faults, result.throws, axes=axes))
+        return save_polydata(meshes[-1], out_dir / "faults.vtp")
+
     return [
-        ("surfaces", lambda: save_polydata(fault_surfaces(result.faults, result.throws, axes=axes),
-                                           out_dir / "faults.vtp")),
+        ("surfaces", surfaces),
         ("points", lambda: write_points(inp, result, out_dir / "fault_points.csv", coordinates=coords)),
         ("summary", lambda: write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
         ("figure", lambda: plot_fault_slices(inp.data, result.faults, path=out_dir / "faults.png",
                                              likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
                                              title=inp.name, **_throw_colours(inp, result))),
-    ] + fault_interchange_steps(inp, result, out_dir, coords)
+    ] + fault_interchange_steps(inp, result, out_dir, coords, mesh=lambda: meshes.pop() if meshes else None)
 
 
 def _throw_colours(inp, result) -> dict:

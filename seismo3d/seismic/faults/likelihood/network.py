@@ -387,7 +387,12 @@ def _interpolate_axis(a: np.ndarray, axis: int, positions: np.ndarray) -> np.nda
     shape = [1] * a.ndim
     shape[axis] = -1
     w = w.reshape(shape)
-    return np.take(a, lo, axis=axis) * (1 - w) + np.take(a, hi, axis=axis) * w
+    out = np.take(a, lo, axis=axis)  # in place: two arrays of the result's size at a time, not four
+    out *= 1 - w
+    upper = np.take(a, hi, axis=axis)
+    upper *= w
+    out += upper
+    return out
 
 
 def to_network_grid(data: np.ndarray, factor: float, *, origin=None, align: int = 8) -> tuple[np.ndarray, tuple]:

@@ -150,18 +150,19 @@ def eig3(a, b, c, d, e, f):
 @nb.njit(cache=True, nogil=True)
 def _acos(x):
     # the C library's acos (math.acos, as numba calls it: the same bits as Python's math.acos), element by element,
-    # without the GIL and without the Python objects of np.frompyfunc (five times faster); numpy's SIMD arccos
-    # differs in the last bit of about 1 value in 10
-    out = np.empty(x.shape, np.float64)
-    for k in range(x.size):
-        out[k] = math.acos(x[k])
-    return out
+    # without the GIL and without the Python objects of np.frompyfunc (four times faster); numpy's SIMD arccos
+    # differs in the last bit of about 1 value in 10, so numpy offers no array function with these bits
+    flat = x.ravel()
+    out = np.empty(flat.size, np.float64)
+    for k in range(flat.size):
+        out[k] = math.acos(flat[k])
+    return out.reshape(x.shape)
 
 
 def _eig_chunks(components, work):
     """Call ``work(slice, six (n,) float32 arrays)`` on the tensor components (six float32 arrays of one shape) as flat
-    arrays, in chunks of ``_EIG_CHUNK``, the chunks shared out over numba's thread count of threads (numpy and :func:`_acos` release
-    the GIL)."""
+    arrays, in chunks of ``_EIG_CHUNK``, the chunks shared out over numba's thread count of threads (numpy and
+    :func:`_acos` release the GIL)."""
     flat = [np.asarray(t, np.float32).reshape(-1) for t in components]
     starts = range(0, flat[0].size, _EIG_CHUNK)
 

@@ -418,15 +418,25 @@ def _surface_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path,
     from ..viz.faults import plot_fault_slices
 
     axes = inp.axes
-    return [
-        ("surfaces", lambda: save_polydata(fault_surfaces(result.faults, result.throws, axes=axes),
-                                           out_dir / "faults.vtp")),
-        ("points", lambda: write_points(inp, result, out_dir / "fault_points.csv", coordinates=coords)),
-        ("summary", lambda: write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
-        ("figure", lambda: plot_fault_slices(inp.data, result.faults, path=out_dir / "faults.png",
-                                             likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
-                                             title=inp.name, **_throw_colours(inp, result))),
-    ] + fault_interchange_steps(inp, result, out_dir, coords)
+    meshes = []  # faults.vtp's mesh for fault_surfaces_gocad.ts (the same points and triangles), written next
+
+    def surfaces():
+        mesh = fault_surfaces(result.faults, result.throws, axes=axes)
+        if tsurf:
+            meshes.append(mesh)
+        return save_polydata(mesh, out_dir / "faults.vtp")
+
+    interchange = fault_interchange_steps(inp, result, out_dir, coords, mesh=lambda: meshes.pop() if meshes else None)
+    # the TSurf file right after faults.vtp: its mesh is not held while the other files are written (the peak of a
+    # run by blocks is in the writing)
+    tsurf = [step for step in interchange if step[0] == "surfaces_tsurf"]
+    return [("surfaces", surfaces), *tsurf,
+            ("points", lambda: write_points(inp, result, out_dir / "fault_points.csv", coordinates=coords)),
+            ("summary", lambda: write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
+            ("figure", lambda: plot_fault_slices(inp.data, result.faults, path=out_dir / "faults.png",
+                                                 likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
+                                                 title=inp.name, **_throw_colours(inp, result))),
+            ] + [step for step in interchange if step[0] != "surfaces_tsurf"]
 
 
 def _throw_colours(inp, result) -> dict:

@@ -80,11 +80,12 @@ def _sticks(inp, result, coords: SurveyCoordinates) -> FaultSticks:
     return FaultSticks.from_faults(result.faults, coords, inp.samples, z_unit=unit)
 
 
-def _fault_tsurf(inp, result, coords: SurveyCoordinates, path: Path) -> Path:
-    """The triangulated faults of faults.vtp (:func:`seismo3d.viz.fault_surfaces`) in map coordinates."""
+def _fault_tsurf(inp, result, coords: SurveyCoordinates, path: Path, mesh=None) -> Path:
+    """The triangulated faults of faults.vtp (:func:`seismo3d.viz.fault_surfaces`) in map coordinates; ``mesh``:
+    that mesh when the job already made it (its points, ``fault_id`` and triangles are all this reads)."""
     from ..viz.fault_meshes import fault_surfaces
 
-    mesh = fault_surfaces(result.faults, result.throws)
+    mesh = fault_surfaces(result.faults, result.throws) if mesh is None else mesh
     points = np.asarray(mesh.points, dtype=np.float64)
     ids = np.asarray(mesh.point_data["fault_id"])
     faces = mesh.faces.reshape(-1, 4)[:, 1:] if mesh.n_cells else np.zeros((0, 3), np.int64)
@@ -102,7 +103,7 @@ def _fault_tsurf(inp, result, coords: SurveyCoordinates, path: Path) -> Path:
     return write_tsurf(path, surfaces, source=inp.name)
 
 
-def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates) -> list:
+def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates, *, mesh=None) -> list:
     """The writers of the faults job's interchange files, as ``(key, write)`` steps.
 
     Parameters
@@ -113,6 +114,10 @@ def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates) -> 
         Where to write (the job's staging folder).
     coords : SurveyCoordinates
         :func:`fault_coordinates` of ``inp``.
+    mesh : callable, optional
+        Returns the faults' mesh (:func:`seismo3d.viz.fault_surfaces` of ``result.faults`` and ``result.throws``,
+        with or without ``axes``) or None; ``surfaces_tsurf`` triangulates the faults itself when it is not given
+        or returns None (the job passes the mesh it wrote to ``faults.vtp``: one triangulation, not two).
 
     Returns
     -------
@@ -133,7 +138,8 @@ def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates) -> 
                                                               ("sticks_iesx", "iesx"))]
     if inp.data.ndim == 3 and len(result.faults):
         tsurf = out_dir / FAULT_INTERCHANGE_FILES[3]
-        steps.append(("surfaces_tsurf", lambda: _fault_tsurf(inp, result, coords, tsurf)))
+        steps.append(("surfaces_tsurf", lambda: _fault_tsurf(inp, result, coords, tsurf,
+                                                             None if mesh is None else mesh())))
     return steps
 
 

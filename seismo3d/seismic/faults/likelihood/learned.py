@@ -383,12 +383,17 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
 
 def _normals_to_strike_dip(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Strike and dip (degrees, module conventions of the likelihood) of (..., ndim) normals of either sign."""
-    n = np.where(normals[..., -1:] < 0, -normals, normals)
-    dip = np.degrees(np.arccos(np.clip(n[..., -1], 0.0, 1.0)))
-    if n.shape[-1] == 2:
-        strike = np.where(n[..., 0] >= 0, 90.0, 270.0)
+    flip = normals[..., -1] < 0
+
+    def turned(k):  # component k of the normals turned to nz >= 0, one component at a time (not the whole copy)
+        c = np.array(normals[..., k])
+        return np.negative(c, out=c, where=flip)
+
+    dip = np.degrees(np.arccos(np.clip(turned(-1), 0.0, 1.0)))
+    if normals.shape[-1] == 2:
+        strike = np.where(turned(0) >= 0, 90.0, 270.0)
     else:
-        strike = np.degrees(np.arctan2(n[..., 0], -n[..., 1])) % 360.0
+        strike = np.degrees(np.arctan2(turned(0), -turned(1))) % 360.0
     return strike.astype(np.float32), np.maximum(dip, 1e-3).astype(np.float32)
 
 

@@ -334,6 +334,8 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     held = [resident_memory()]  # the process before the input is read: what the decision and its message use
 
     def lazy_if(shape) -> bool:  # asked with a 3D cube's shape: by blocks when its run in memory would not fit
+        # the writers then count twice in the in-memory estimate (here and in in_memory_bytes' 160 MiB, calibrated
+        # without them): ~90 MB conservative; the block plan needs them counted (issue 53's note, stop 65)
         _load_writers()
         held[0] = resident_memory()
         return not blocks.in_memory_for(shape, held=held[0])

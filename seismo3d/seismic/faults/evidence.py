@@ -27,9 +27,11 @@ samples to wrong candidates, and at ``clear_throw`` 2 the clause keeps one of th
 
 Whatever else it shows, a 2D fault whose offset is not a step at it (``flexure_step``: the reflectors' lags between
 neighbouring traces ramp up to it instead of jumping across it, while its sides match closely at the throw's shift) is a
-flexure that bends the reflectors unbroken, not a fault, and is dropped. A clear throw of unlike sides with no step must
-reach their half period (``clear_half_periods``); faults whose votes reach the upper threshold nowhere are kept on a
-clear displacement alone (``unseeded_correlation_gain``).
+flexure that bends the reflectors unbroken, not a fault, and is dropped; so is one whose sides match with no shift
+(``unbroken_correlation``: the reflectors continue across it) and one whose resolved throw is a fraction of the
+reflectors' half period and mostly no step at it (``drag_half_periods``: drag, a migration swing). A clear throw of
+unlike sides with no step must reach their half period (``clear_half_periods``); faults whose votes reach the upper
+threshold nowhere are kept on a clear displacement alone (``unseeded_correlation_gain``).
 
 The measures are absolute and dimensionless, the same on every input: a shift in samples (a displacement under one
 sample is not resolved by the data), normalised correlations, a probability and a ratio to the run's own threshold.
@@ -129,6 +131,19 @@ class FaultEvidence:
         return bool(self.correlation >= options.flexure_correlation
                     and abs(self.step) < options.flexure_step * abs(self.median_throw))
 
+    def is_unbroken(self, options: EvidenceOptions) -> bool:
+        """True when the reflectors continue across the fault: a flexure (:meth:`is_flexure`), sides that match with
+        no shift (``unbroken_correlation``), or a throw of alike sides within their wavelet that is no step at the
+        fault (``drag_half_periods``, ``drag_step``); unmeasured values (NaN) show nothing."""
+        if self.is_flexure(options):
+            return True
+        if (u := options.unbroken_correlation) is not None and self.correlation - self.correlation_gain >= u:
+            return True
+        throw, alike = abs(self.median_throw), options.min_correlation  # unlike sides: a throw beyond the search
+        return bool(options.drag_half_periods is not None and throw >= options.min_throw
+                    and (alike is None or self.correlation >= alike) and abs(self.step) < options.drag_step * throw
+                    and throw < options.drag_half_periods * self.half_period)
+
     def shows_displacement(self, options: EvidenceOptions, sensitivity: float = 0.5) -> bool:
         """True when the sides line up after a shift of at least ``options.min_throw`` samples at least
         ``options.min_correlation_gain`` better than with none (both scaled by the sensitivity in [0, 1])."""
@@ -159,7 +174,7 @@ class FaultEvidence:
         """What a fault no vote seeded must show: no flexure, a clear throw gaining ``unseeded_correlation_gain``
         (:class:`EvidenceOptions`); always False when it or ``clear_throw`` is None."""
         return (gain := options.unseeded_correlation_gain) is not None and options.clear_throw is not None and \
-            not self.is_flexure(options) and self._clear(options, gain, sensitivity)
+            not self.is_unbroken(options) and self._clear(options, gain, sensitivity)
 
     def _clear(self, options: EvidenceOptions, min_gain: float, sensitivity: float) -> bool:
         step = options.flexure_step is not None and abs(self.step) >= options.flexure_step * abs(self.median_throw)
@@ -181,8 +196,8 @@ class FaultEvidence:
         """
         if not (np.isfinite(self.median_throw) and np.isfinite(self.correlation_gain)):
             return False  # the two sides could not be compared: nothing shows a fault
-        if self.is_flexure(options):
-            return False  # the reflectors bend across it, unbroken: a fold, whatever the network says
+        if self.is_unbroken(options):
+            return False  # the reflectors bend across it or continue, unbroken: whatever the network says
         if self.is_clear_and_likely(options, sensitivity):
             return True  # displaced and likely: a fault beside stronger ones too, whatever its votes
         if options.min_vote_ratio > 0:

@@ -113,6 +113,36 @@ class EvidenceOptions:
         (crossing events: migration swings) peaks within half a period of any shift. Not scaled by the sensitivity;
         None: not asked. 1, the half period itself: neither dev survey chooses (``tools/dev_fault_scores.py``,
         2026-11-26: F3 F1 0.496, the Great South Basin 0.829 at 0.5, 1 and 1.5).
+    unbroken_correlation : float or None
+        Sides whose median correlation with no shift (``correlation - correlation_gain``) reaches it are reflectors that
+        continue across the candidate unbroken: it is dropped whatever its votes and the network's probability (the
+        network calls the edge of a dim or noisy patch in continuous layering a fault). Not scaled by the sensitivity;
+        None: not asked. Chosen on F3 (the candidates of a ``tools/dev_fault_scores.py`` run re-scored by its scorer for
+        each value, 2026-11-26; 0.8, 0.85, 0.9, 0.95: F1 0.438, 0.452, 0.501, 0.496; 0.9 confirmed by a run of the
+        script: P / R / F1 0.615 / 0.423 / 0.496 -> 0.630 / 0.423 / 0.501): 0.9 drops the two short faults of inline 200
+        at crosslines 552-556 and 600-604 through continuous layering (unshifted correlations 0.95 and 0.92), and
+        nothing a person drew (the closest: 0.88, the large fault of inline 200); the Great South Basin scores 0.829
+        from 0.85 up and drops none, nor do the real sections of ``seismo3d faults``' golden set.
+    drag_half_periods : float or None
+        A resolved throw (at least ``min_throw``, unscaled) of sides alike at its shift (``correlation`` at least
+        ``min_correlation``: unlike sides read no reliable throw, as a large fault's beyond the search) under this many
+        half periods of the reflectors around the fault (:attr:`FaultEvidence.half_period`) of which less than
+        ``drag_step`` is a step at the fault (2D: :attr:`FaultEvidence.step`) bends the reflectors within their own
+        wavelet, not a break: drag beside a larger fault, a migration swing crossing dipping events. Dropped whatever
+        its votes and probability. Not scaled by the sensitivity; None: not asked (3D faults, whose step is not
+        measured, never are). Neither dev survey chooses (``tools/dev_fault_scores.py``'s candidates re-scored,
+        2026-11-26, with ``unbroken_correlation`` 0.9: F3 0.630 / 0.423 / 0.501 and the Great South Basin 0.797 / 0.865
+        / 0.829 at 0.2, 0.25, 0.3, 0.35 and 0.4; its faults of one to three samples step 0.46-1.3 of their throw); from
+        0.5 F3 loses faults a person drew (inline 400, crosslines 214-239 and 416-433: 0.42-0.44 half periods, steps
+        0.07-0.33 of their throw; F1 0.473). The value is set on the golden real sections, not across surveys: 0.25
+        drops Penobscot crossline 1155's migration-swing fault at inlines 1380-1450, 3700-4350 ms (throw -1.5 samples,
+        0.21 half period, step 0.34 of it, sides correlating 0.64) and teapot_tpd's short unseeded fault at traces
+        161-163 (-3 samples, 0.24 half period), and keeps teapot_tp73's small fault with visible steps at traces 324-330
+        (0.31 half period, which 0.35 drops); 0.2 drops neither. A small margin on both sides.
+    drag_step : float
+        The fraction of the throw that a step at the fault must reach for ``drag_half_periods`` not to drop it: 0.5,
+        half the throw (from 0.4 to 0.5 the same faults on the dev surveys and the golden sections; 0.3 keeps the
+        Penobscot swing, whose step is 0.34 of its throw).
     Raises
     ------
     InputError
@@ -131,6 +161,9 @@ class EvidenceOptions:
     flexure_correlation: float = 0.9
     unseeded_correlation_gain: float | None = 0.2
     clear_half_periods: float | None = 1.0
+    unbroken_correlation: float | None = 0.9
+    drag_half_periods: float | None = 0.25
+    drag_step: float = 0.5
 
     def __post_init__(self):
         check_positive(self.min_throw, "min_throw", allow_zero=True)
@@ -138,7 +171,8 @@ class EvidenceOptions:
             raise InputError(f"min_correlation_gain must be in [-1, 2]; got {self.min_correlation_gain!r}")
         if not -1.0 <= float(self.continuity) <= 1.0:
             raise InputError(f"continuity must be a correlation in [-1, 1]; got {self.continuity!r}")
-        for name in ("min_vote_ratio",) + (("clear_half_periods",) if self.clear_half_periods is not None else ()):
+        for name in ("min_vote_ratio", "drag_step") + tuple(n for n in ("clear_half_periods", "drag_half_periods")
+                                                          if getattr(self, n) is not None):
             check_positive(getattr(self, name), name, allow_zero=True)
         if self.min_probability is not None and not 0.0 <= float(self.min_probability) <= 1.0:
             raise InputError(f"min_probability must be a probability in [0, 1] or None; got {self.min_probability!r}")
@@ -153,6 +187,9 @@ class EvidenceOptions:
             raise InputError(f"flexure_step must be a fraction in [0, 1] or None; got {self.flexure_step!r}")
         if (gain := self.unseeded_correlation_gain) is not None and not -1.0 <= float(gain) <= 2.0:
             raise InputError(f"unseeded_correlation_gain must be in [-1, 2] or None; got {gain!r}")
+        if self.unbroken_correlation is not None and not -1.0 <= float(self.unbroken_correlation) <= 1.0:
+            raise InputError(f"unbroken_correlation must be a correlation in [-1, 1] or None; got "
+                             f"{self.unbroken_correlation!r}")
         if not -1.0 <= float(self.flexure_correlation) <= 1.0:
             raise InputError(f"flexure_correlation must be a correlation in [-1, 1]; got {self.flexure_correlation!r}")
 
@@ -165,7 +202,8 @@ class EvidenceOptions:
         likelihood : {'learned', 'scan'}
             ``'learned'``: the class defaults. ``'scan'``: no vote ratio asked and the unshifted mismatch as evidence
             (``min_vote_ratio=0``, ``min_probability=None``; not ``min_correlation``, ``sure_probability``,
-            ``flexure_step``, ``unseeded_correlation_gain``, chosen for the learned one): its likelihood is not a
+            ``flexure_step``, ``unseeded_correlation_gain``, ``unbroken_correlation``, ``drag_half_periods``, chosen
+            for the learned one): its likelihood is not a
             probability, and its dense faults on the Costa Rica crf section (against the published OSV image, tolerance
             3: precision 0.847, recall 0.720, 44 faults) fall to recall 0.613 (27 faults) when a vote ratio of 0.9 is
             asked (measured 2026-11-25).
@@ -183,5 +221,6 @@ class EvidenceOptions:
             return cls()
         if likelihood == "scan":
             return cls(min_vote_ratio=0.0, min_probability=None, min_correlation=None, sure_probability=None,
-                       flexure_step=None, unseeded_correlation_gain=None)
+                       flexure_step=None, unseeded_correlation_gain=None, unbroken_correlation=None,
+                       drag_half_periods=None)
         raise InputError(f"likelihood must be 'learned' or 'scan'; got {likelihood!r}")

@@ -455,7 +455,7 @@ def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, op
     bar.advance()
     bar.start("throw")
     throws = fault_throws(windows, faults, progress=progress) if faults else []
-    if opt.evidence.clear_half_periods is not None:  # the reflectors' half period around each fault
+    if opt.evidence.clear_half_periods is not None or opt.evidence.drag_half_periods is not None:  # half periods
         throws = [dataclasses.replace(t, half_period=half_period(windows, f.points)) for f, t in zip(faults, throws)]
     bar.advance()
     bar.start("evidence")

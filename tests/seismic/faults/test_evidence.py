@@ -65,7 +65,7 @@ def test_unmeasured_fault_has_no_evidence():
 
 
 def _evidence(throw, gain, *, vote_ratio=1.0, mean_likelihood=0.0):
-    return FaultEvidence(1, throw, 0.0, 0.9, gain, 1.0, vote_ratio=vote_ratio, mean_likelihood=mean_likelihood)
+    return FaultEvidence(1, throw, 0.0, 0.8, gain, 1.0, vote_ratio=vote_ratio, mean_likelihood=mean_likelihood)
 
 
 def test_sensitivity_scales_the_throw_asked_for():
@@ -86,7 +86,8 @@ def test_sides_that_do_not_match_unshifted_are_a_discontinuity_for_the_scan():
     network is sure of (``sure_probability``) keeps it."""
     scan = EvidenceOptions.for_likelihood("scan")
     assert scan == EvidenceOptions(min_vote_ratio=0.0, min_probability=None, min_correlation=None,
-                                   sure_probability=None, flexure_step=None, unseeded_correlation_gain=None)
+                                   sure_probability=None, flexure_step=None, unseeded_correlation_gain=None,
+                                   unbroken_correlation=None, drag_half_periods=None)
     assert FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(scan)
     assert not FaultEvidence(1, 0.1, 0.0, 0.9, 0.0, 1.0, 0.89).supports(scan)
     assert not FaultEvidence(1, 0.1, 0.0, 0.41, 0.0, 1.0, 0.89).supports(dataclasses.replace(scan, continuity=0.4))
@@ -383,3 +384,59 @@ def test_half_period_of_the_reflectors_around_a_fault():
     far = section.copy()
     far[:10] = np.cos(2 * np.pi * t / 30.0)  # other traces, beyond the points' margin, do not count
     assert half_period(far, points) == pytest.approx(value, abs=1e-9)
+
+
+def _measured(throw, step, correlation, gain, half_period, vote_ratio, mean_likelihood):
+    return FaultEvidence(1, throw, float("nan"), correlation, gain, 1.0, vote_ratio=vote_ratio,
+                         mean_likelihood=mean_likelihood, step=step, half_period=half_period)
+
+
+def test_sides_that_match_unshifted_are_unbroken():
+    """unbroken_correlation (0.9): sides whose correlation with no shift reaches it continue across the candidate,
+    which is dropped whatever its votes and probability. The values are those measured on F3 inline 200 (the dev
+    script's SEG-Y): two short faults through continuous layering at crosslines 552-556 and 600-604 (unshifted
+    correlations 0.95 and 0.92, the second with a probability the network is sure of, 0.77), and the large fault a
+    person drew at crosslines 560-640 (0.88), kept."""
+    opt = EvidenceOptions()
+    assert opt.unbroken_correlation == 0.9
+    short = _measured(0.5, 0.71, 0.95, 0.0, 2.7, 0.97, 0.50)
+    sure = _measured(-0.2, -0.21, 0.92, 0.0, 3.5, 1.31, 0.77)
+    large = _measured(-0.15, 0.36, 0.88, 0.0, 2.7, 1.96, 0.82)
+    assert short.is_unbroken(opt) and sure.is_unbroken(opt) and not large.is_unbroken(opt)
+    assert not short.supports(opt) and not sure.supports(opt) and large.supports(opt)
+    loose = EvidenceOptions(unbroken_correlation=None)
+    assert short.supports(loose) and sure.supports(loose)
+    assert not EvidenceOptions.for_likelihood("scan").unbroken_correlation
+    with pytest.raises(InputError, match="unbroken_correlation"):
+        EvidenceOptions(unbroken_correlation=1.5)
+
+
+def test_a_throw_within_the_wavelet_that_is_no_step_is_drag():
+    """drag_half_periods (0.25) and drag_step (0.5): a resolved throw of alike sides under 0.25 half periods of the
+    reflectors, less than half of which is a step at the fault, bends the reflectors within their wavelet and is
+    dropped. Measured values: Penobscot crossline 1155's migration-swing fault at inlines 1380-1450 (throw -1.5
+    samples, step -0.51, half period 7.3) and teapot_tpd's short fault at traces 161-163, which no vote seeded (throw
+    -3, step -1.02, half period 12.6), dropped; kept: a Great South Basin fault an interpreter drew (throw 1.08, step
+    0.83: a step), an F3 one a person drew on inline 400 (throw 1.5, step 0.5, half period 3.4: 0.44 of it),
+    teapot_tp73's small fault at traces 324-330 (-1.21, step -0.02, half period 3.9: 0.31 of it), and crossline
+    1155's large fault above 1060 ms whose throw is beyond the search (1.03 read, sides correlating 0.36: unlike);
+    3D (no step) never."""
+    opt = EvidenceOptions()
+    assert (opt.drag_half_periods, opt.drag_step) == (0.25, 0.5)
+    tp73 = _measured(-1.21, -0.02, 0.54, 0.10, 3.9, 0.92, 0.52)
+    beyond = _measured(1.03, -0.16, 0.36, 0.06, 3.7, 2.26, 0.85)
+    assert tp73.supports(opt) and beyond.supports(opt) and not tp73.supports(EvidenceOptions(drag_half_periods=0.35))
+    assert beyond.is_unbroken(EvidenceOptions(drag_half_periods=0.3, min_correlation=None))
+    swing = _measured(-1.5, -0.51, 0.64, 0.14, 7.3, 1.66, 0.65)
+    unseeded = _measured(-3.0, -1.02, 0.92, 0.86, 12.6, 0.53, 0.44)
+    gsb = _measured(1.08, 0.83, 0.93, 0.42, 3.9, 1.53, 0.89)
+    f3 = _measured(1.5, 0.5, 0.76, 0.09, 3.4, 1.33, 0.55)
+    assert swing.is_unbroken(opt) and not swing.supports(opt)
+    assert unseeded.is_unbroken(opt) and not unseeded.is_clearly_displaced(opt)
+    assert gsb.supports(opt) and f3.supports(opt)
+    off = EvidenceOptions(drag_half_periods=None)
+    assert swing.supports(off) and unseeded.is_clearly_displaced(off)
+    assert _measured(-1.5, float("nan"), 0.64, 0.14, 7.3, 1.66, 0.65).supports(opt)  # 3D: no step measured
+    assert _measured(0.9, 0.0, 0.7, 0.1, 7.3, 1.66, 0.65).supports(opt)  # under a sample: not a resolved throw
+    with pytest.raises(InputError, match="drag_step"):
+        EvidenceOptions(drag_step=-0.1)

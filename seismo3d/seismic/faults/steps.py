@@ -41,8 +41,8 @@ from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .evidence import supported_faults
 from .likelihood.scan import fault_likelihood
 from .surfaces.ridges import live_likelihood, ridges, without_dead_edges
+from .surfaces.skin_kernels import trimmed_tips
 from .surfaces.skins import skins_from_cells
-from .surfaces.tips import trimmed_tips
 from .surfaces.voting import image_seeds, seed_votes
 from .throw import fault_throws
 from .throw_patches import half_period
@@ -407,7 +407,7 @@ def _block_measures(data: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions
 def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, opt: FaultTracingOptions, *,
                       likelihood=None, bar=None, progress: bool = False) -> tuple[list, list, list]:
     """Fault skins of the cells, their throws, their strength along them, and the faults their evidence supports,
-    their tips trimmed to where the likelihood holds (2D: :func:`~seismo3d.seismic.faults.surfaces.tips.trimmed_tips`).
+    their tips trimmed to where the likelihood holds (2D: :func:`~seismo3d.seismic.faults.surfaces.skin_kernels.trimmed_tips`).
 
     Parameters
     ----------

@@ -73,6 +73,20 @@ class FaultTracingOptions:
         lateral coherence to trace faults in (noise, or traces out of order) and is refused.
     saturation_level : float
         In (0, 1): a likelihood above it counts as saturated (0.9).
+    tip_level : float or None
+        2D, the learned likelihood (a probability): after the evidence, each end of a kept fault is cut back to its
+        first point, from that end, where the network's probability (the largest within a trace) reaches this level
+        (:func:`~seismo3d.seismic.faults.surfaces.skin_kernels.trimmed_tips`; the fault count and the evidence are
+        unchanged): the voting carries a fault's votes, and its skin, up to ``half_length_dip`` samples past its tips.
+        None: not trimmed (the scan's likelihood, not a probability, and 3D faults are never trimmed). Measured
+        2026-11-26 (``tools/dev_fault_scores.py``; None, 0.1, 0.15, 0.2, 0.3, 0.4): the Great South Basin's F1 0.829,
+        0.836, 0.840, 0.841, 0.844, 0.844 (precision 0.797 -> 0.812 at 0.1, 0.828 at 0.3), F3's 0.496, 0.495, 0.496,
+        0.497, 0.496, 0.492 (precision 0.615 -> 0.623 at 0.1, 0.638 at 0.3; recall 0.423 -> 0.418, 0.413):
+        leave-one-survey-out the Great South Basin chooses 0.3 (F3 there 0.496), F3 0.2 (the Great South Basin there
+        0.841). But the generated sections' true faults fade out too (``benchmarks/faults.py --only generated``: recall
+        0.882 -> 0.881, 0.879, 0.878, 0.875; precision 0.970 -> 0.976, 0.977, 0.978, 0.979): 0.1 is the level that keeps
+        their recall. Trimmed before the evidence instead, F3 fell to 0.484 at 0.3 (the trimmed skins' higher mean
+        probability kept 6 more false faults on inline 400).
 
     Raises
     ------
@@ -95,6 +109,7 @@ class FaultTracingOptions:
     min_crossings: float = 3.0
     max_saturated: float = 0.95
     saturation_level: float = 0.9
+    tip_level: float | None = 0.1
 
     def __post_init__(self):
         if not 0.0 <= float(self.sensitivity) <= 1.0:
@@ -120,6 +135,13 @@ class FaultTracingOptions:
             raise InputError(f"max_saturated must be a fraction in (0, 1]; got {self.max_saturated!r}")
         if not 0.0 < float(self.saturation_level) < 1.0:
             raise InputError(f"saturation_level must be a likelihood in (0, 1); got {self.saturation_level!r}")
+        if self.tip_level is not None and not 0.0 <= float(self.tip_level) <= 1.0:
+            raise InputError(f"tip_level must be a probability in [0, 1] or None; got {self.tip_level!r}")
+
+    def tip_level_for(self, ndim: int) -> float | None:
+        """The level to which the ends of the faults of a ``ndim``-D image are trimmed (``tip_level``), None when they
+        are not (3D, or the scan's likelihood)."""
+        return None if ndim != 2 or self.likelihood != "learned" or self.tip_level is None else float(self.tip_level)
 
     def thresholds(self, thinned_votes: np.ndarray) -> tuple[float, float]:
         """(lower, upper) thresholds on the thinned votes (see ``sensitivity`` and ``max_fault_fraction``)."""

@@ -3,17 +3,16 @@ run on the whole array in memory and a run block by block.
 
 A run is an object with the named steps of :class:`SurfaceRun`; :func:`surface_cells` calls them in their order with
 the saturation refusal between them, and :func:`faults_from_cells` links the cells into fault skins, measures their
-throws and keeps the faults the evidence supports. Two runs implement the steps:
+throws, keeps the faults the evidence supports and trims their tips (2D). Two runs implement the steps:
 
 - :class:`ArrayRun`: the whole array as one block, in memory (2D or 3D); its thinning and cells are the declared
   steps of the run by blocks on that one block (:func:`~seismo3d.seismic.blocks.apply.apply_in_memory`);
 - ``_SurfaceRun`` of :mod:`~seismo3d.seismic.faults.surfaces.blocks`: block by block on dask into Zarr stores,
   each block read with the halo of its step (a cube larger than memory).
 
-Both call the same step functions (:mod:`~seismo3d.seismic.faults.surfaces.ridges`,
-:func:`~seismo3d.seismic.faults.surfaces.voting. greedy_seeds`,
-:func:`~seismo3d.seismic.faults.surfaces.voting.surface_votes`, :func:`~seismo3d.seismic.faults.surfaces.skins.
-skins_from_cells`), so the faults do not depend on which run traced them.
+Both call the same step functions (:mod:`~seismo3d.seismic.faults.surfaces.ridges`, :func:`~seismo3d.seismic.faults.
+surfaces.voting.greedy_seeds`, :func:`~seismo3d.seismic.faults.surfaces.voting.surface_votes`,
+:func:`~seismo3d.seismic.faults.surfaces.skins.skins_from_cells`), so the faults do not depend on which run traced them.
 
 The refusals of fault tracing are here too, one function each, called by both runs: data too small for the scan and
 the voting boxes (:func:`check_size`), the saturation refusal between the steps (:func:`check_saturation`), and the
@@ -42,6 +41,7 @@ from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .evidence import supported_faults
 from .likelihood.scan import fault_likelihood
 from .surfaces.ridges import live_likelihood, ridges, without_dead_edges
+from .surfaces.skin_kernels import trimmed_tips
 from .surfaces.skins import skins_from_cells
 from .surfaces.voting import image_seeds, seed_votes
 from .throw import fault_throws
@@ -406,7 +406,8 @@ def _block_measures(data: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions
 
 def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, opt: FaultTracingOptions, *,
                       likelihood=None, bar=None, progress: bool = False) -> tuple[list, list, list]:
-    """Fault skins of the cells, their throws, their strength along them, and the faults their evidence supports.
+    """Fault skins of the cells, their throws, their strength along them, and the faults their evidence supports,
+    their tips trimmed to where the likelihood holds (2D: :func:`~seismo3d.seismic.faults.surfaces.skin_kernels.trimmed_tips`).
 
     Parameters
     ----------
@@ -464,6 +465,7 @@ def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, op
     faults, throws, evidence = supported_faults(faults, list(throws), options=opt.evidence,
                                                 sensitivity=opt.sensitivity, vote_ratios=ratios,
                                                 mean_likelihoods=means, seeded=seeded)
+    faults, throws = trimmed_tips(faults, throws, likelihood, opt.tip_level_for(len(shape)))  # voted past the tips
     bar.advance()
     return faults, throws, evidence
 

@@ -407,7 +407,7 @@ def _block_measures(data: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions
 def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, opt: FaultTracingOptions, *,
                       likelihood=None, bar=None, progress: bool = False) -> tuple[list, list, list]:
     """Fault skins of the cells, their throws, their strength along them, and the faults their evidence supports,
-    their tips trimmed to where the likelihood holds (2D: :func:`~seismo3d.seismic.faults.surfaces.skin_kernels.trimmed_tips`).
+    their tips trimmed (2D: :func:`~seismo3d.seismic.faults.surfaces.skin_kernels.trimmed_tips`).
 
     Parameters
     ----------

@@ -412,7 +412,7 @@ def test_sides_that_match_unshifted_are_unbroken():
 
 
 def test_a_throw_within_the_wavelet_that_is_no_step_is_drag():
-    """drag_half_periods (0.25) and drag_step (0.5): a resolved throw of alike sides under 0.25 half periods of the
+    """drag_half_periods (0.3) and drag_step (0.5): a resolved throw of alike sides under 0.3 half periods of the
     reflectors, less than half of which is a step at the fault, bends the reflectors within their wavelet and is
     dropped. Measured values: Penobscot crossline 1155's migration-swing fault at inlines 1380-1450 (throw -1.5
     samples, step -0.51, half period 7.3) and teapot_tpd's short fault at traces 161-163, which no vote seeded (throw
@@ -422,7 +422,7 @@ def test_a_throw_within_the_wavelet_that_is_no_step_is_drag():
     1155's large fault above 1060 ms whose throw is beyond the search (1.03 read, sides correlating 0.36: unlike);
     3D (no step) never."""
     opt = EvidenceOptions()
-    assert (opt.drag_half_periods, opt.drag_step) == (0.25, 0.5)
+    assert (opt.drag_half_periods, opt.drag_step) == (0.3, 0.5)
     tp73 = _measured(-1.21, -0.02, 0.54, 0.10, 3.9, 0.92, 0.52)
     beyond = _measured(1.03, -0.16, 0.36, 0.06, 3.7, 2.26, 0.85)
     assert tp73.supports(opt) and beyond.supports(opt) and not tp73.supports(EvidenceOptions(drag_half_periods=0.35))

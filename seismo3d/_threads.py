@@ -13,7 +13,7 @@ from typing import Callable
 __all__ = ["run_threads"]
 
 
-def run_threads(kernel: Callable, n_threads: int, *args) -> None:
+def run_threads(kernel: Callable, n_threads: int, *args, from_any_thread: bool = False) -> None:
     """Call ``kernel(t, n_threads, *args)`` for ``t = 0 .. n_threads - 1``: share 0 in the calling thread, the others
     each on a thread of its own, and return when all are done.
 
@@ -30,13 +30,16 @@ def run_threads(kernel: Callable, n_threads: int, *args) -> None:
         Shares (>= 1); one runs the kernel in the calling thread only.
     *args
         The kernel's other arguments.
+    from_any_thread : bool, optional
+        Run the shares on threads even when called from another thread than the main one (for work whose memory
+        does not grow with the threads, e.g. one batch of sections split between them).
 
     Raises
     ------
     Exception
         Whatever the kernel raised, from the share of lowest index that raised (after all shares ended).
     """
-    if threading.current_thread() is not threading.main_thread():
+    if not from_any_thread and threading.current_thread() is not threading.main_thread():
         for t in range(n_threads):
             kernel(t, n_threads, *args)
         return

@@ -45,3 +45,17 @@ def test_outside_the_main_thread_the_shares_run_in_the_calling_thread():
     worker.start()
     worker.join()
     assert np.array_equal(hits, np.ones(10, np.int64)) and names == {"block-worker"}
+
+
+def test_from_any_thread_the_shares_run_on_threads_of_their_own():
+    hits = np.zeros(10, np.int64)
+    names = set()
+
+    def kernel(t, n, out):
+        names.add(threading.current_thread().name)
+        out[t::n] += 1
+
+    worker = threading.Thread(target=lambda: run_threads(kernel, 3, hits, from_any_thread=True), name="block-worker")
+    worker.start()
+    worker.join()
+    assert np.array_equal(hits, np.ones(10, np.int64)) and len(names) == 3 and "block-worker" in names

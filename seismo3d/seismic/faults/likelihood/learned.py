@@ -38,10 +38,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba as nb
 import numpy as np
 from scipy.ndimage import gaussian_filter, zoom
 
 from ...._progress import progress_steps
+from ...._threads import run_threads
 from ....errors import InputError
 from ..._kernels import eig_normals
 from ..result import FaultLikelihood
@@ -347,7 +349,7 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
         Samples per trace the sections are stretched to before the network (:meth:`LearnedOptions.stretch`); 0:
         as they are.
     network : {'int8', 'float'}, optional
-        The shipped model to run (:func:`load_fault_network`; ``LearnedOptions.model(3)``).
+        The shipped model (:func:`load_fault_network`; ``LearnedOptions.model(3)``), a batch's parts run on the cores.
 
     Returns
     -------
@@ -370,7 +372,7 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
     if np.ndim(small) != 3 or axis not in (0, 1):
         raise InputError(f"direction_probability needs a (n_inlines, n_xlines, n_samples) cube and axis 0 or 1; got "
                          f"shape {np.shape(small)} and axis {axis!r}")
-    weights = load_fault_network(network)
+    weights = load_fault_network(network, max(1, min(nb.get_num_threads(), batch)))
     if bar is None:
         with progress_steps(small.shape[axis], "fault network", unit="section", enabled=False) as quiet:
             return direction_probability(small, axis, scale=scale, batch=batch, bar=quiet, stretch_to=stretch_to,
@@ -406,9 +408,8 @@ def _largest_eigenvector_2d(t00, t01, t11) -> np.ndarray:
 def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
     """Strike and dip of the faults of a likelihood image, from its structure tensor.
 
-    The normal at each sample is the eigenvector of the largest eigenvalue of the Gaussian-smoothed outer product
-    of the likelihood's gradient (van Vliet and Verbeek 1995; Hale 2013 uses the same tensor on amplitudes),
-    computed in closed form.
+    The normal at each sample is the eigenvector of the largest eigenvalue of the Gaussian-smoothed outer product of
+    the likelihood's gradient (van Vliet and Verbeek 1995; Hale 2013 uses it on amplitudes), in closed form.
 
     Parameters
     ----------
@@ -432,10 +433,13 @@ def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0) -
     p = np.asarray(likelihood, dtype=np.float32)
     grads = np.gradient(p)
     nd = p.ndim
-    comps = {}
-    for a in range(nd):
-        for b in range(a, nd):
+    pairs, comps = [(a, b) for a in range(nd) for b in range(a, nd)], {}
+
+    def smooth(t: int, n: int) -> None:  # scipy's filters release the GIL: the components on the cores at once
+        for a, b in pairs[t::n]:
             comps[a, b] = gaussian_filter(grads[a] * grads[b], sigma)
+
+    run_threads(smooth, min(nb.get_num_threads(), len(pairs)))
     del grads
     if nd == 2:
         normals = _largest_eigenvector_2d(comps[0, 0], comps[0, 1], comps[1, 1])

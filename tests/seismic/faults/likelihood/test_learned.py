@@ -132,6 +132,18 @@ def test_receptive_field_is_within_its_stated_half_width(network):
     assert max(128 - rows.min(), rows.max() - 128, 128 - cols.min(), cols.max() - 128) <= RECEPTIVE_HALF
 
 
+@pytest.mark.parametrize("network", ["int8", "float"])
+def test_a_batch_run_in_parts_on_threads_gives_the_same_bits(network):
+    # FaultNetwork(calls=2), as cubes run it: a session of one thread, each call's sections in two parts at once
+    sections = np.stack([normalise_section(synthetic_fault_section(shape=(96, 104), seed=TEST_SEED + k).section)
+                         for k in range(5)]).astype(np.float32)
+    one = unet_forward(sections, load_fault_network(network))
+    parts = load_fault_network(network, 2)
+    assert parts is not load_fault_network(network) and parts._calls == 2
+    assert np.array_equal(unet_forward(sections, parts), one)
+    assert np.array_equal(unet_forward(sections[:1], parts), one[:1])  # one section: one call
+
+
 def test_input_scaling_of_a_stack_is_per_section():
     rng = np.random.default_rng(0)
     a = rng.normal(3.0, 2.0, (2, 40, 30)).astype(np.float32)

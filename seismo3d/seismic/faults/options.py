@@ -78,6 +78,8 @@ class FaultTracingOptions:
         first point, from that end, where the network's probability (the largest within a trace) reaches this level
         (:func:`~seismo3d.seismic.faults.surfaces.skin_kernels.trimmed_tips`; the fault count and the evidence are
         unchanged): the voting carries a fault's votes, and its skin, up to ``half_length_dip`` samples past its tips.
+        The points and the throw profile are the trimmed fault's; the evidence and the summary's whole-fault values
+        (median throw, step, vote ratio, mean likelihood, confidence) are those of the fault as the evidence judged it.
         None: not trimmed (the scan's likelihood, not a probability, and 3D faults are never trimmed). Measured
         2026-11-26 (``tools/dev_fault_scores.py``; None, 0.1, 0.15, 0.2, 0.3, 0.4): the Great South Basin's F1 0.829,
         0.836, 0.840, 0.841, 0.844, 0.844 (precision 0.797 -> 0.812 at 0.1, 0.828 at 0.3), F3's 0.496, 0.495, 0.496,

@@ -8,7 +8,7 @@ suite keeps a smaller version of each claim, named below); ``--check`` exits 1 w
 sections run on generated cubes (no data folder needed):
 
 - ``learned_blocks``: the learned likelihood by forced blocks equals it in memory on a grid of 0.7 (232 x 236 x 32,
-  blocks of 96) and on the default's three grids (120 x 128 x 32, blocks of 96): every step in more than one block,
+  blocks of 96) and on three grids, 0.5, 0.7 and 1 (120 x 128 x 32, blocks of 96): every step in more than one block,
   the likelihood within 1e-5 except where rounding flips the min_dip mask (at most 3 samples), strike and dip within
   0.5 deg where the likelihood is over 0.5 (from ``tests/seismic/faults/likelihood/test_learned.py``
   ``test_blocks_equal_the_in_memory_likelihood``, which keeps the data's own grid, 72 x 80 x 48);

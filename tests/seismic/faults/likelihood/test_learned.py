@@ -254,7 +254,7 @@ def test_training_smoke(tmp_path):
 
 
 # slow: forced blocks, each network block reading most of the cube along its sections (4-11 s). The grid of
-# 0.7 (232 x 236 x 32) and the default's three grids (120 x 128 x 32), 70 s and 39 s, are asserted by
+# 0.7 (232 x 236 x 32) and three grids (0.5, 0.7, 1) (120 x 128 x 32), 70 s and 39 s, are asserted by
 # `python benchmarks/fault_blocks.py --only learned_blocks --check` (issue 58: a claim over 20 s leaves the suite)
 @pytest.mark.slow
 @pytest.mark.parametrize("resample, shape, block", [
@@ -380,7 +380,8 @@ def test_a_cube_runs_the_grids_of_cube_resample_and_a_section_those_of_resample(
                           fault_probability(sec, options=LearnedOptions(cube_resample=(0.7,))))
     cube = synthetic_cube((24, 40, 128), seed=1, noise=0.1).cube
     mine = fault_probability(cube, options=opt)
-    assert np.array_equal(mine, fault_probability(cube, options=LearnedOptions(resample=(0.5, 1.0), cube_resample=None)))
+    two = LearnedOptions(resample=(0.5, 1.0), cube_resample=None)
+    assert np.array_equal(mine, fault_probability(cube, options=two))
     assert not np.array_equal(mine, fault_probability(cube, options=LearnedOptions(cube_resample=None)))
 
 

@@ -8,7 +8,7 @@ suite keeps a smaller version of each claim, named below); ``--check`` exits 1 w
 sections run on generated cubes (no data folder needed):
 
 - ``learned_blocks``: the learned likelihood by forced blocks equals it in memory on a grid of 0.7 (232 x 236 x 32,
-  blocks of 96) and on the default's three grids (120 x 128 x 32, blocks of 96): every step in more than one block,
+  blocks of 96) and on three grids, 0.5, 0.7 and 1 (120 x 128 x 32, blocks of 96): every step in more than one block,
   the likelihood within 1e-5 except where rounding flips the min_dip mask (at most 3 samples), strike and dip within
   0.5 deg where the likelihood is over 0.5 (from ``tests/seismic/faults/likelihood/test_learned.py``
   ``test_blocks_equal_the_in_memory_likelihood``, which keeps the data's own grid, 72 x 80 x 48);
@@ -91,15 +91,15 @@ def learned_blocks(tmp: pathlib.Path) -> None:
         # a grid of 0.7: network blocks of 80 network traces, origins off its pooling grid, the halo along the
         # sections inside the cube at the end of block 0-80 and at the start of block 80-160 (of 163 and 166)
         (0.7, (232, 236, 32), 96),
-        # the default's three grids (0.5, 0.7, 1), their mean: blocks of 48, 80 and 96 network traces
-        (LearnedOptions().resample, (120, 128, 32), 96),
+        # the three grids of a section's default (0.5, 0.7, 1), their mean: blocks of 48, 80 and 96 network traces
+        ((0.5, 0.7, 1.0), (120, 128, 32), 96),
     ]):
         cube = synthetic_cube(shape, seed=2, noise=0.1).cube
-        opt = LearnedOptions(resample=resample, min_grid_samples=0)  # every grid, on traces of 32 samples too
+        opt = LearnedOptions(cube_resample=resample, min_grid_samples=0)  # every grid, on traces of 32 samples too
         mem = learned_fault_likelihood(cube, options=opt)
         run = chunked_learned_likelihood(cube, tmp / f"l{k}.zarr", options=opt,
                                          chunking=ChunkOptions(block=block, scheduler="synchronous"))
-        steps = [f"network_{d}_{g}" for g in range(len(opt.resample)) for d in ("inline", "crossline")]
+        steps = [f"network_{d}_{g}" for g in range(len(opt.cube_resample)) for d in ("inline", "crossline")]
         assert set(run.blocks_computed) == set(steps) | {"orientation"}, run.blocks_computed
         assert min(run.blocks_computed[step] for step in steps + ["orientation"]) > 1, run.blocks_computed
         out = run.open()
@@ -122,7 +122,7 @@ def network_grid(tmp: pathlib.Path) -> None:
 
     # a block with the network grid's halo, its lateral origin away from 0 on both axes and not a multiple of the
     # pooling grid on the network grid: its core equals the whole cube's probability up to float rounding
-    opt = LearnedOptions(resample=0.7)
+    opt = LearnedOptions(cube_resample=0.7)
     cube = synthetic_cube((232, 236, 32), seed=4, noise=0.1).cube
     scale = amplitude_scale(cube)
     whole = fault_probability(cube, options=opt, scale=scale)

@@ -48,8 +48,8 @@ from ....errors import InputError
 from ..._kernels import eig_normals
 from ..result import FaultLikelihood
 from .network import (
-    INT8_SHA256, NETWORKS, RECEPTIVE_HALF, WEIGHTS_SHA256, FaultNetwork, POOLING_MULTIPLE, from_network_grid, grid_size,
-    load_fault_network, normalise_section, to_network_grid, unet_forward,
+    INT8_SHA256, NETWORKS, RECEPTIVE_HALF, WEIGHTS_SHA256, FaultNetwork, POOLING_MULTIPLE, from_network_grid,
+    grid_factors, grid_size, load_fault_network, normalise_section, to_network_grid, unet_forward,
 )
 
 __all__ = ["WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS", "LearnedOptions", "load_fault_network", "scale_subsample",
@@ -84,9 +84,13 @@ class LearnedOptions:
         instead of a crosshatch of short segments; at 1 it sees the short faults of a few traces. The mean over grids
         half an octave apart (0.5, 0.7, 1) keeps what the network finds at several scales and loses what it finds at one
         only. Each grid costs ``factor**2`` (sections) or ``factor**3`` (cubes) of the samples: the default costs 1.7
-        times the data's own grid in a section, 1.5 times in a cube. The grids are chosen by cross-validation on the F3
-        inlines drawn by a person (``python benchmarks/faults.py --only f3``). A grid that leaves the traces fewer
-        than ``min_grid_samples`` samples is not run (:meth:`grids`).
+        times the data's own grid in a section (a cube: ``cube_resample``). The grids are chosen by cross-validation
+        on the F3 inlines drawn by a person (``python benchmarks/faults.py --only f3``). A grid that leaves the traces
+        fewer than ``min_grid_samples`` samples is not run (:meth:`grids`).
+    cube_resample : tuple of float or None
+        The network grids on a cube (or a block of one) as ``resample`` on a section; None: ``resample``. The default
+        (0.5, 1) leaves out the 0.7 grid, 23 % of a cube's network samples (issue 58; the generated 128^3 cubes keep
+        their precision and recall, ``python benchmarks/faults.py --only generated``).
     min_grid_samples : int
         Fewest samples per trace on a network grid for it to be run; the finest grid is always run. The default,
         the network's receptive half (:data:`~seismo3d.seismic.faults.likelihood.network.RECEPTIVE_HALF`, 56),
@@ -115,6 +119,7 @@ class LearnedOptions:
     min_dip: float = 40.0
     sections_per_batch: int = 4
     resample: tuple = (0.5, 0.7, 1.0)
+    cube_resample: tuple | None = (0.5, 1.0)
     min_grid_samples: int = RECEPTIVE_HALF
     patch_samples: int = 128
     saturation_level: float = 0.9
@@ -132,15 +137,11 @@ class LearnedOptions:
             raise InputError(f"min_dip must be in [0, 90) degrees; got {self.min_dip!r}")
         if not 0.0 < float(self.saturation_level) < 1.0:
             raise InputError(f"saturation_level must be a probability in (0, 1); got {self.saturation_level!r}")
-        factors = (self.resample,) if np.ndim(self.resample) == 0 else tuple(self.resample)
-        try:
-            factors = tuple(float(f) for f in factors)
-        except (TypeError, ValueError) as exc:
-            raise InputError(f"resample must be a factor or a tuple of factors in [0.25, 1]; got "
-                             f"{self.resample!r}") from exc
-        if not factors or len(set(factors)) != len(factors) or not all(0.25 <= f <= 1.0 for f in factors):
-            raise InputError(f"resample must be one or more distinct factors in [0.25, 1]; got {self.resample!r}")
-        object.__setattr__(self, "resample", factors)
+        for name in ("resample", "cube_resample"):
+            value = getattr(self, name)
+            if value is None and name == "cube_resample":
+                continue
+            object.__setattr__(self, name, grid_factors(name, value))
         if int(self.sections_per_batch) < 1:
             raise InputError(f"sections_per_batch must be >= 1; got {self.sections_per_batch!r}")
         if isinstance(self.patch_samples, bool) or int(self.patch_samples) != self.patch_samples \
@@ -150,9 +151,10 @@ class LearnedOptions:
                 or self.min_grid_samples < 0):
             raise InputError(f"min_grid_samples must be an integer >= 0; got {self.min_grid_samples!r}")
 
-    def grids(self, n_samples: int) -> tuple:
-        """The network grids run on traces of ``n_samples`` samples: the factors of ``resample`` (in their order)
-        whose grid holds at least ``min_grid_samples`` samples per trace, and always the finest one.
+    def grids(self, n_samples: int, ndim: int = 2) -> tuple:
+        """The network grids run on traces of ``n_samples`` samples of an input of ``ndim`` dimensions (2: a section,
+        3: a cube or a block of one): the factors of ``resample`` (on a cube ``cube_resample`` when set; in their
+        order) whose grid holds at least ``min_grid_samples`` samples per trace, else the finest of ``resample``.
 
         With the default (the network's receptive half, 56 network samples), on a coarser grid every output
         sample's receptive field (2 x 56 + 1 network samples) runs past both ends of the trace into the zero
@@ -162,7 +164,8 @@ class LearnedOptions:
         three grids, a third to two thirds of it, was lost to the vote thresholds and the evidence. Traces of 111
         samples or more (F3: 462) keep the default's three grids. ``n_samples``: samples per trace of the input.
         """
-        kept = tuple(f for f in self.resample if grid_size(n_samples, f) >= int(self.min_grid_samples))
+        asked = self.cube_resample if int(ndim) == 3 and self.cube_resample is not None else self.resample
+        kept = tuple(f for f in asked if grid_size(n_samples, f) >= int(self.min_grid_samples))
         return kept or (max(self.resample),)
 
     def model(self, ndim: int) -> str:
@@ -172,11 +175,11 @@ class LearnedOptions:
             return self.network
         return "int8" if int(ndim) == 3 else "float"
 
-    def stretch(self, n_samples: int, factor: float) -> int:
-        """The samples per trace the network runs the grid ``factor`` of traces of ``n_samples`` samples on:
-        ``patch_samples`` for the finest of :meth:`grids` when its traces are shorter, else 0 (as they are)."""
+    def stretch(self, n_samples: int, factor: float, ndim: int = 2) -> int:
+        """Samples per trace the network runs the grid ``factor`` of traces of ``n_samples`` samples on (``ndim``:
+        :meth:`grids`'): ``patch_samples`` for the finest grid when its traces are shorter, else 0 (as they are)."""
         n = grid_size(n_samples, factor)
-        finest = float(factor) == max(self.grids(n_samples))
+        finest = float(factor) == max(self.grids(n_samples, ndim))
         return int(self.patch_samples) if finest and n < int(self.patch_samples) else 0
 
 
@@ -265,10 +268,11 @@ def fault_probability(data: np.ndarray, *, options: LearnedOptions | None = None
     arr = np.asarray(data, dtype=np.float32)
     scale = amplitude_scale(arr) if scale is None else scale
     total = None
-    factors = opt.grids(arr.shape[-1])
+    factors = opt.grids(arr.shape[-1], arr.ndim)
     for factor in factors:
         small, first = to_network_grid(arr, factor, origin=origin, align=POOLING_MULTIPLE)
-        prob = from_network_grid(_network_probability(small, opt, scale, progress, opt.stretch(arr.shape[-1], factor)),
+        prob = from_network_grid(_network_probability(small, opt, scale, progress,
+                                                      opt.stretch(arr.shape[-1], factor, arr.ndim)),
                                  arr.shape, factor, origin=origin, first=first)
         del small
         total = prob if total is None else np.add(total, prob, out=total)

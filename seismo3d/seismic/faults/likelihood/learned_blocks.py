@@ -112,7 +112,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     -------
     ChunkedLikelihood
         Steps ``'network_inline_K'`` and / or ``'network_crossline_K'`` (as ``options.directions`` says) for each
-        network grid K = 0, 1, ... of ``options.grids(n_samples)``, and ``'orientation'``.
+        network grid K = 0, 1, ... of ``options.grids(n_samples, 3)``, and ``'orientation'``.
 
     Raises
     ------
@@ -284,7 +284,7 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
     c = _NETWORK_CHUNK
     network = max(_largest_network_bytes(_network_shape(shape, factor), c, c, axis, shape, factor,
                                          int(opt.sections_per_batch))
-                  for factor in opt.grids(shape[2]) for axis in cube_directions(opt))
+                  for factor in opt.grids(shape[2], 3) for axis in cube_directions(opt))
     return max(network, _orientation_block_bytes(tile, shape[2], opt))
 
 
@@ -302,7 +302,7 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
     if chunking.block and int(chunking.block) % tile:
         raise InputError(f"block must be a multiple of the tile ({tile} traces); got {chunking.block}")
     grids, biggest = [], 0
-    for factor in opt.grids(nt):
+    for factor in opt.grids(nt, 3):
         grid = _network_shape(shape, factor)
         fixed = None
         if chunking.block:
@@ -401,7 +401,7 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     assert min(r0, c0) >= 0 and r1 <= small.shape[0] and c1 <= small.shape[1], "network block outside its region"
     sections = small[r0:r1] if axis == 0 else small[:, c0:c1]
     prob = direction_probability(sections, axis, scale=scale, batch=int(opt.sections_per_batch),
-                                 stretch_to=opt.stretch(n_samples, factor), network=opt.model(3))
+                                 stretch_to=opt.stretch(n_samples, factor, 3), network=opt.model(3))
     return BlockOutput({"probability": prob[:, c0:c1] if axis == 0 else prob[r0:r1]})
 
 

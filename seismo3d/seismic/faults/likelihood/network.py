@@ -48,7 +48,7 @@ from ....errors import InputError, Seismo3dError
 
 __all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS",
            "FaultNetwork", "load_fault_network", "onnx_model", "unet_forward", "normalise_section", "anti_alias_sigma",
-           "grid_size", "grid_halo", "to_network_grid", "from_network_grid"]
+           "grid_size", "grid_halo", "grid_factors", "to_network_grid", "from_network_grid"]
 
 
 BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
@@ -498,3 +498,16 @@ def from_network_grid(small: np.ndarray, shape, factor: float, *, origin=None, f
         i = np.arange(o, o + n, dtype=np.float64)
         out = _interpolate_axis(out, axis, np.clip(i * f - u0, 0, out.shape[axis] - 1))
     return np.ascontiguousarray(out, dtype=np.float32)
+
+
+def grid_factors(name: str, value) -> tuple:
+    """``value`` (a factor or factors of the network grids, each in [0.25, 1], distinct) as a tuple of floats; an
+    :class:`~seismo3d.errors.InputError` naming the option ``name`` otherwise."""
+    factors = (value,) if np.ndim(value) == 0 else tuple(value)
+    try:
+        factors = tuple(float(f) for f in factors)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{name} must be a factor or a tuple of factors in [0.25, 1]; got {value!r}") from exc
+    if not factors or len(set(factors)) != len(factors) or not all(0.25 <= f <= 1.0 for f in factors):
+        raise InputError(f"{name} must be one or more distinct factors in [0.25, 1]; got {value!r}")
+    return factors

@@ -32,7 +32,7 @@ from seismo3d.seismic.blocks.options import ChunkOptions
 
 
 def network_blocks(opt: LearnedOptions) -> None:
-    factor = float(opt.resample)
+    factor = max(opt.cube_resample or opt.resample)  # a cube's finest grid: its largest network blocks
     batch = int(opt.sections_per_batch)
     print(f"network blocks: planned {lb._NETWORK_INPUT_BYTES} bytes per input sample read (8 of them for dask's "
           "reads, not seen here) + "

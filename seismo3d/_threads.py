@@ -10,7 +10,7 @@ from __future__ import annotations
 import threading
 from typing import Callable
 
-__all__ = ["run_threads"]
+__all__ = ["run_threads", "map_parts"]
 
 
 def run_threads(kernel: Callable, n_threads: int, *args, from_any_thread: bool = False) -> None:
@@ -60,3 +60,37 @@ def run_threads(kernel: Callable, n_threads: int, *args, from_any_thread: bool =
     for exc in errors:
         if exc is not None:
             raise exc
+
+
+def map_parts(func: Callable, x, n_parts: int):
+    """``func`` on ``n_parts`` consecutive parts of ``x`` along its first axis at once, each on a thread of its own
+    (:func:`run_threads`, from any thread), the results joined along the first axis in order; one call of ``func`` on
+    ``x`` when ``n_parts`` is 1 or ``x`` holds fewer than 2 items. For work whose items are independent and whose
+    memory is that of its items (a batch of sections split between the cores).
+
+    Parameters
+    ----------
+    func : callable
+        ``func(part) -> ndarray`` with as many items along its first axis as ``part``; it should release the GIL.
+    x : ndarray
+        The items, along the first axis.
+    n_parts : int
+        Parts (>= 1), at most one per item.
+
+    Returns
+    -------
+    ndarray
+        ``func``'s results, joined in the order of the items.
+    """
+    import numpy as np
+
+    if n_parts <= 1 or len(x) < 2:
+        return func(x)
+    bounds = np.linspace(0, len(x), min(n_parts, len(x)) + 1).astype(int)
+    out = [None] * (len(bounds) - 1)
+
+    def part(t: int, n: int) -> None:
+        out[t] = func(x[bounds[t]:bounds[t + 1]])
+
+    run_threads(part, len(out), from_any_thread=True)
+    return np.concatenate(out)

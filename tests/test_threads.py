@@ -59,3 +59,13 @@ def test_from_any_thread_the_shares_run_on_threads_of_their_own():
     worker.start()
     worker.join()
     assert np.array_equal(hits, np.ones(10, np.int64)) and len(names) == 3 and "block-worker" in names
+
+
+@pytest.mark.parametrize("n_parts", [1, 2, 3, 7])
+def test_map_parts_joins_each_parts_result_in_order(n_parts):
+    from seismo3d._threads import map_parts
+
+    calls = []
+    x = np.arange(5 * 3).reshape(5, 3)
+    out = map_parts(lambda part: calls.append(len(part)) or part * 2, x, n_parts)
+    assert np.array_equal(out, x * 2) and sum(calls) == 5 and len(calls) == min(n_parts, 5)

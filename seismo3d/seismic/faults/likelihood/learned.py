@@ -138,10 +138,8 @@ class LearnedOptions:
         if not 0.0 < float(self.saturation_level) < 1.0:
             raise InputError(f"saturation_level must be a probability in (0, 1); got {self.saturation_level!r}")
         for name in ("resample", "cube_resample"):
-            value = getattr(self, name)
-            if value is None and name == "cube_resample":
-                continue
-            object.__setattr__(self, name, grid_factors(name, value))
+            if getattr(self, name) is not None or name == "resample":
+                object.__setattr__(self, name, grid_factors(name, getattr(self, name)))
         if int(self.sections_per_batch) < 1:
             raise InputError(f"sections_per_batch must be >= 1; got {self.sections_per_batch!r}")
         if isinstance(self.patch_samples, bool) or int(self.patch_samples) != self.patch_samples \
@@ -156,13 +154,12 @@ class LearnedOptions:
         3: a cube or a block of one): the factors of ``resample`` (on a cube ``cube_resample`` when set; in their
         order) whose grid holds at least ``min_grid_samples`` samples per trace, else the finest of ``resample``.
 
-        With the default (the network's receptive half, 56 network samples), on a coarser grid every output
-        sample's receptive field (2 x 56 + 1 network samples) runs past both ends of the trace into the zero
-        padding, which the network never saw in training (128-sample patches). On the 76-sample Great South
-        Basin lines (grids of 38, 53 and 76 samples) the data's own grid gives a probability of 0.74-0.99 at 8
-        small faults an interpreter drew on crossline 2600 where the 0.5 grid gives 0.00-0.03; the mean over the
-        three grids, a third to two thirds of it, was lost to the vote thresholds and the evidence. Traces of 111
-        samples or more (F3: 462) keep the default's three grids. ``n_samples``: samples per trace of the input.
+        With the default (the network's receptive half, 56 network samples), on a coarser grid every output sample's
+        receptive field runs past both ends of the trace into the zero padding, which the network never saw in training
+        (128-sample patches). On the 76-sample Great South Basin lines (grids of 38, 53 and 76 samples) the data's own
+        grid gives a probability of 0.74-0.99 at 8 small faults an interpreter drew on crossline 2600 where the 0.5 grid
+        gives 0.00-0.03; the mean over the three grids, a third to two thirds of it, was lost to the vote thresholds and
+        the evidence. Traces of 111 samples or more (F3: 462) keep the default's three grids.
         """
         asked = self.cube_resample if int(ndim) == 3 and self.cube_resample is not None else self.resample
         kept = tuple(f for f in asked if grid_size(n_samples, f) >= int(self.min_grid_samples))
@@ -271,9 +268,8 @@ def fault_probability(data: np.ndarray, *, options: LearnedOptions | None = None
     factors = opt.grids(arr.shape[-1], arr.ndim)
     for factor in factors:
         small, first = to_network_grid(arr, factor, origin=origin, align=POOLING_MULTIPLE)
-        prob = from_network_grid(_network_probability(small, opt, scale, progress,
-                                                      opt.stretch(arr.shape[-1], factor, arr.ndim)),
-                                 arr.shape, factor, origin=origin, first=first)
+        prob = _network_probability(small, opt, scale, progress, opt.stretch(arr.shape[-1], factor, arr.ndim))
+        prob = from_network_grid(prob, arr.shape, factor, origin=origin, first=first)
         del small
         total = prob if total is None else np.add(total, prob, out=total)
     return grids_mean(total, len(factors))

@@ -43,7 +43,7 @@ from importlib import resources
 import numpy as np
 from scipy.ndimage import gaussian_filter
 
-from ...._threads import run_threads
+from ...._threads import map_parts
 from ....errors import InputError, Seismo3dError
 
 __all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS",
@@ -94,14 +94,12 @@ class FaultNetwork:
     def __init__(self, model: bytes, calls: int = 1):
         import onnxruntime as ort
 
-        self._calls = max(1, int(calls))
-        options = ort.SessionOptions()
+        self._calls, options = max(1, int(calls)), ort.SessionOptions()
         options.intra_op_num_threads = 1 if self._calls > 1 else 0  # 0: ONNX Runtime's default, a thread per core
         options.enable_cpu_mem_arena = False  # no memory held between calls: the block plans count what a batch needs
         options.log_severity_level = 3
-        # the intra-op threads sleep between operators instead of spinning: the same results, the cores left to the
-        # other blocks' threads and to other processes (0.10-0.11 CPU s a section against 0.13-0.15, and 0.14-0.20
-        # wall s against 0.17-0.21, on 400 x 504 sections in batches of 4 on 2 busy cores)
+        # intra-op threads sleep between operators, not spin: the same results, the cores left to other threads and
+        # processes (0.10-0.11 CPU s a 400 x 504 section against 0.13-0.15 in batches of 4 on 2 busy cores)
         options.add_session_config_entry("session.intra_op.allow_spinning", "0")
         try:
             self._session = ort.InferenceSession(bytes(model), options, providers=["CPUExecutionProvider"])
@@ -109,18 +107,9 @@ class FaultNetwork:
             raise Seismo3dError(f"ONNX Runtime cannot load the fault network ({exc}); reinstall seismo3d") from exc
         self._input = self._session.get_inputs()[0].name
 
-    def __call__(self, x: np.ndarray) -> np.ndarray:
-        x = np.ascontiguousarray(x, dtype=np.float32)
-        if self._calls == 1 or len(x) < 2:
-            return self._session.run(None, {self._input: x})[0]
-        parts = np.array_split(np.arange(len(x)), min(self._calls, len(x)))
-        out = [None] * len(parts)
-
-        def part(t: int, n: int) -> None:  # each section's probability is its own: any split gives the same bits
-            out[t] = self._session.run(None, {self._input: x[parts[t][0]:parts[t][-1] + 1]})[0]
-
-        run_threads(part, len(parts), from_any_thread=True)
-        return np.concatenate(out)
+    def __call__(self, x: np.ndarray) -> np.ndarray:  # each section's probability is its own: the parts change no bit
+        return map_parts(lambda part: self._session.run(None, {self._input: part})[0],
+                         np.ascontiguousarray(x, dtype=np.float32), self._calls)
 
 
 @functools.lru_cache(maxsize=4)
@@ -501,11 +490,9 @@ def from_network_grid(small: np.ndarray, shape, factor: float, *, origin=None, f
 
 
 def grid_factors(name: str, value) -> tuple:
-    """``value`` (a factor or factors of the network grids, each in [0.25, 1], distinct) as a tuple of floats; an
-    :class:`~seismo3d.errors.InputError` naming the option ``name`` otherwise."""
-    factors = (value,) if np.ndim(value) == 0 else tuple(value)
+    """``value``, factors of the network grids (each in [0.25, 1], distinct), as floats; else an InputError."""
     try:
-        factors = tuple(float(f) for f in factors)
+        factors = tuple(float(f) for f in ((value,) if np.ndim(value) == 0 else value))
     except (TypeError, ValueError) as exc:
         raise InputError(f"{name} must be a factor or a tuple of factors in [0.25, 1]; got {value!r}") from exc
     if not factors or len(set(factors)) != len(factors) or not all(0.25 <= f <= 1.0 for f in factors):

@@ -17,6 +17,7 @@ from seismo3d.seismic import (FaultInterpretation, evaluate_faults, fault_labels
                               trace_faults)
 from seismo3d.seismic.evaluation import plain_semblance, semblance_skeleton
 from seismo3d.seismic.faults import FaultTracingOptions
+from seismo3d.seismic.faults.evidence import EvidenceOptions
 from seismo3d.seismic.faults.surfaces.skins import SkinOptions
 from seismo3d.seismic.amplitudes import clean_traces
 
@@ -314,12 +315,16 @@ def _layers(shift, *, n_traces=192, n_samples=160, seed=0, noise=0.05):
 def test_an_inverted_v_of_opposite_dips_is_two_faults_each_with_its_throw(seed):
     """A horst under an inverted V: two normal faults dipping 80 degrees away from an apex at trace 96, sample 30,
     throwing 4 samples. As one fault (``split_angle=None``) its zone spans the horst, and the two hanging walls it
-    compares lie at the same depth: a throw of -0.01. Split by their dips, each fault reads its own throw (measured
-    3.92-4.03)."""
+    compares lie at the same depth: they match with no shift, so the evidence drops it as reflectors continuing
+    across (``EvidenceOptions.unbroken_correlation``; a throw of -0.01 before that rule). Split by their dips, each
+    fault reads its own throw (measured 3.92-4.03)."""
     run = 1.0 / np.tan(np.radians(80.0))
     section = _layers(lambda x, z: np.where((z >= 30) & (np.abs(x - 96) <= run * (z - 30)), 0.0, 4.0), seed=seed)
     one = trace_faults(section, progress=False, options=FaultTracingOptions(skins=SkinOptions(split_angle=None)))
-    assert len(one.faults) == 1 and abs(one.evidence[0].median_throw) < 1.0
+    assert one.faults == []
+    kept = trace_faults(section, progress=False, options=FaultTracingOptions(
+        skins=SkinOptions(split_angle=None), evidence=EvidenceOptions(unbroken_correlation=None)))
+    assert len(kept.faults) == 1 and abs(kept.evidence[0].median_throw) < 1.0
     res = trace_faults(section, progress=False)
     assert len(res.faults) == 2
     for f, e in zip(res.faults, res.evidence):

@@ -91,7 +91,7 @@ def learned_blocks(tmp: pathlib.Path) -> None:
         # a grid of 0.7: network blocks of 80 network traces, origins off its pooling grid, the halo along the
         # sections inside the cube at the end of block 0-80 and at the start of block 80-160 (of 163 and 166)
         (0.7, (232, 236, 32), 96),
-        # the three grids of a section's default (0.5, 0.7, 1), their mean: blocks of 48, 80 and 96 network traces
+        # the default's three grids (0.5, 0.7, 1), their mean: blocks of 48, 80 and 96 network traces
         ((0.5, 0.7, 1.0), (120, 128, 32), 96),
     ]):
         cube = synthetic_cube(shape, seed=2, noise=0.1).cube

@@ -10,6 +10,8 @@ from __future__ import annotations
 import threading
 from typing import Callable
 
+import numpy as np
+
 __all__ = ["run_threads", "map_parts"]
 
 
@@ -82,8 +84,6 @@ def map_parts(func: Callable, x, n_parts: int):
     ndarray
         ``func``'s results, joined in the order of the items.
     """
-    import numpy as np
-
     if n_parts <= 1 or len(x) < 2:
         return func(x)
     bounds = np.linspace(0, len(x), min(n_parts, len(x)) + 1).astype(int)

@@ -204,10 +204,9 @@ class EvidenceOptions:
             ``'learned'``: the class defaults. ``'scan'``: no vote ratio asked and the unshifted mismatch as evidence
             (``min_vote_ratio=0``, ``min_probability=None``; not ``min_correlation``, ``sure_probability``,
             ``flexure_step``, ``unseeded_correlation_gain``, ``unbroken_correlation``, ``drag_half_periods``, chosen
-            for the learned one): its likelihood is not a
-            probability, and its dense faults on the Costa Rica crf section (against the published OSV image, tolerance
-            3: precision 0.847, recall 0.720, 44 faults) fall to recall 0.613 (27 faults) when a vote ratio of 0.9 is
-            asked (measured 2026-11-25).
+            for the learned one): its likelihood is not a probability, and its dense faults on the Costa Rica crf
+            section (against the published OSV image, tolerance 3: precision 0.847, recall 0.720, 44 faults) fall to
+            recall 0.613 (27 faults) when a vote ratio of 0.9 is asked (measured 2026-11-25).
 
         Returns
         -------

@@ -84,9 +84,9 @@ class LearnedOptions:
         instead of a crosshatch of short segments; at 1 it sees the short faults of a few traces. The mean over grids
         half an octave apart (0.5, 0.7, 1) keeps what the network finds at several scales and loses what it finds at one
         only. Each grid costs ``factor**2`` (sections) or ``factor**3`` (cubes) of the samples: the default costs 1.7
-        times the data's own grid in a section (a cube: ``cube_resample``). The grids are chosen by cross-validation
-        on the F3 inlines drawn by a person (``python benchmarks/faults.py --only f3``). A grid that leaves the traces
-        fewer than ``min_grid_samples`` samples is not run (:meth:`grids`).
+        times the data's own grid in a section, 1.5 in a cube (other grids on cubes: ``cube_resample``). Chosen by
+        cross-validation on the F3 inlines drawn by a person (``python benchmarks/faults.py --only f3``). A grid that
+        leaves the traces fewer than ``min_grid_samples`` samples is not run (:meth:`grids`).
     cube_resample : tuple of float or None
         The network grids on a cube (or a block of one); None (the default): ``resample``. (0.5, 1) saves 23 % of a
         cube's network samples and keeps the generated 128^3 cubes' scores, but moved a generated cube's faults so that

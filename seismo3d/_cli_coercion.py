@@ -1,9 +1,9 @@
 """The ``seismo3d`` command's values converted without pydantic when typer's result is certain.
 
-typer (0.29, installed here) converts every command-line value through a pydantic ``TypeAdapter`` built per parameter when
-the value is processed (``typer._coercion.build_runtime_param``): even ``--help`` and a parameter left at its default
-build one, so every command imported pydantic and pydantic_core and built its adapters, about 0.1 s of each process
-(0.07-0.1 s of imports, 3-10 ms per adapter). No parameter declaration avoids it: only file annotations
+typer (0.29, installed here) converts every command-line value through a pydantic ``TypeAdapter`` built per parameter
+when the value is processed (``typer._coercion.build_runtime_param``): even ``--help`` and a parameter left at its
+default build one, so every command imported pydantic and pydantic_core and built its adapters, about 0.1 s of each
+process (0.07-0.1 s of imports, 3-10 ms per adapter). No parameter declaration avoids it: only file annotations
 (``typer.FileText``, ...) are converted without an adapter.
 
 :class:`FastCoercionGroup`, the ``seismo3d`` app's group class, gives each parameter of the command being run a

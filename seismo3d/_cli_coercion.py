@@ -82,8 +82,11 @@ def fast_value(descriptor, value, *, multiple: bool = False, ctx=None):
 
 
 def _choice(annotation, value, info, ctx):
-    from typer._param_types import coerce_cli_choice
-
+    """An Enum choice through typer's own ``coerce_cli_choice`` (the function its adapter calls)."""
+    try:
+        from typer._param_types import coerce_cli_choice
+    except ImportError:  # another typer: its own converter
+        return DECLINED
     try:
         return coerce_cli_choice(value, choices=list(annotation), case_sensitive=info.case_sensitive, ctx=ctx)
     except Exception:  # noqa: BLE001 - typer says what is wrong
@@ -93,8 +96,10 @@ def _choice(annotation, value, info, ctx):
 def _path(annotation, value, info):
     """A path as typer's path adapter gives it (pydantic's ``Path(value)``, then typer's checks: existence, file or
     folder, ...), for a string or a path; a check that fails is left to typer, which says so."""
-    from typer._param_types import coerce_cli_path
-
+    try:
+        from typer._param_types import coerce_cli_path
+    except ImportError:  # another typer: its own converter
+        return DECLINED
     if isinstance(value, str) and value:
         value = annotation(value)
     if not isinstance(value, annotation):

@@ -89,18 +89,7 @@ def _candidates(traces, guide, fixed, picks, offsets, reach, half, slopes, cross
     nearest = np.clip(np.rint(pick), 0, n_s - 1).astype(np.int64)  # the sample nearest each pick (round half even)
     slope = slopes[k, nearest].astype(np.float32)
     cross_slope = cross_slopes[k, nearest].astype(np.float32)
-    # the windows, sample by sample (as sample_at: linear interpolation, NaN outside the trace)
-    win = np.empty((pick.size, m))
-    for s in range(m):
-        t = pick - half + s
-        i = np.clip(np.floor(t), 0, n_s - 1).astype(np.int64)
-        f = t - i
-        lo = traces[k, i].astype(np.float64)
-        v = (1.0 - f) * lo + f * traces[k, np.minimum(i + 1, n_s - 1)].astype(np.float64)
-        last = i >= n_s - 1
-        v[last] = lo[last]
-        v[(t < 0.0) | (t > n_s - 1)] = np.nan
-        win[:, s] = v
+    win = sample_windows(traces, k, pick, half)
     whole = np.isfinite(win).all(axis=1)
     mean = np.zeros(pick.size)
     for s in range(m):  # summed sample by sample, in the kernel's order
@@ -114,6 +103,49 @@ def _candidates(traces, guide, fixed, picks, offsets, reach, half, slopes, cross
     scaled = whole & (ss > 0)
     unit[scaled] = win[scaled] * (1.0 / np.sqrt(ss[scaled]))[:, None]
     return first, pick, unit, whole, slope, cross_slope
+
+
+def sample_windows(traces: np.ndarray, rows: np.ndarray, centres: np.ndarray, half: int) -> np.ndarray:
+    """The windows ``+-half`` samples around ``centres`` on the traces ``rows``, (n, 2 half + 1) float64:
+    ``sample_at(traces[rows[p]], centres[p] - half + s)`` (:func:`sample_at`: linear interpolation, NaN outside the
+    trace), in numpy, sample by sample."""
+    n_s = traces.shape[1]
+    win = np.empty((centres.size, 2 * half + 1))
+    for s in range(2 * half + 1):
+        t = centres - half + s
+        i = np.clip(np.floor(t), 0, n_s - 1).astype(np.int64)
+        f = t - i
+        lo = traces[rows, i].astype(np.float64)
+        v = (1.0 - f) * lo + f * traces[rows, np.minimum(i + 1, n_s - 1)].astype(np.float64)
+        last = i >= n_s - 1
+        v[last] = lo[last]
+        v[(t < 0.0) | (t > n_s - 1) | ~np.isfinite(t)] = np.nan
+        win[:, s] = v
+    return win
+
+
+def _windows_ncc(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """:func:`window_ncc` of each row of ``a`` with the same row of ``b``, in numpy (sums sample by sample, in its
+    order)."""
+    both = np.isfinite(a) & np.isfinite(b)
+    cnt = both.sum(axis=1)
+    sa = np.zeros(a.shape[0])
+    sb = np.zeros(a.shape[0])
+    for k in range(a.shape[1]):
+        sa += np.where(both[:, k], a[:, k], 0.0)
+        sb += np.where(both[:, k], b[:, k], 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ma, mb = sa / cnt, sb / cnt
+        sab = np.zeros(a.shape[0])
+        saa = np.zeros(a.shape[0])
+        sbb = np.zeros(a.shape[0])
+        for k in range(a.shape[1]):
+            dx, dy = a[:, k] - ma, b[:, k] - mb
+            sab += np.where(both[:, k], dx * dy, 0.0)
+            saa += np.where(both[:, k], dx * dx, 0.0)
+            sbb += np.where(both[:, k], dy * dy, 0.0)
+        out = np.where((saa > 0) & (sbb > 0), sab / np.sqrt(saa * sbb), 0.0)
+    return np.where(cnt < 5, 0.0, out)
 
 
 @nb.njit(cache=True)
@@ -390,34 +422,44 @@ def _nearest_picks(picks, offsets, times, reach):
     return np.where(last >= 0, picks[last], np.nan)
 
 
-@nb.njit(cache=True, nogil=True)
 def _grid_energy(out, guide, wg, first, pick, unit, whole, traces, slopes, cross_slopes, w_step, w_wave, half):
     """The energy the line sweeps lower, over a (n_inlines, n_xlines) grid of picks: guide terms plus the pair costs
     ``w_step (step - slope)^2 + w_wave (1 - ncc)`` of neighbouring traces along both axes (pairs with an empty pick
-    left out)."""
+    left out). In numpy: the terms added one after the other in the order of a loop over the grid (each trace's
+    guide term, then its pairs down the first axis and along the last), by a cumulative sum; the correlations of
+    two unit windows are dot products summed in numpy's order (the compiled loop's were reassociated)."""
     ni, nx = out.shape
-    wa = np.empty(2 * half + 1)
-    wb = np.empty(2 * half + 1)
-    e = 0.0
-    for i in range(ni):
-        for j in range(nx):
-            t = out[i, j]
-            if not np.isfinite(t):
-                continue
-            e += wg[i, j] * abs(t - guide[i, j])
-            k = i * nx + j
-            q = _candidate_at(first, pick, k, t)
-            for axis in range(2):
-                i2, j2 = (i, j + 1) if axis == 1 else (i + 1, j)
-                if i2 >= ni or j2 >= nx or not np.isfinite(out[i2, j2]):
-                    continue
-                t2 = out[i2, j2]
-                k2 = i2 * nx + j2
-                along = slopes if axis == 1 else cross_slopes
-                step = (t2 - t) - 0.5 * (_slope_at(along, k, t) + _slope_at(along, k2, t2))
-                r = _pick_ncc(traces, unit, whole, k, t, q, k2, t2, _candidate_at(first, pick, k2, t2), half, wa, wb)
-                e += w_step * step * step + w_wave * (1.0 - r)
-    return e
+    t = out.ravel()
+    live = np.isfinite(t)
+    k = np.nonzero(live)[0]
+    # each picked trace's candidate at its pick (the first equal one; -1: none)
+    owner = np.repeat(np.arange(t.size), np.diff(first))
+    hit = np.nonzero(pick == t[owner])[0]
+    q = np.full(t.size, np.iinfo(np.int64).max)
+    np.minimum.at(q, owner[hit], hit)
+    q[q == np.iinfo(np.int64).max] = -1
+    terms = np.zeros((t.size, 3))
+    terms[k, 0] = wg.ravel()[k] * np.abs(t[k] - guide.ravel()[k])
+    n_s = slopes.shape[1]
+    for col, (along, shift) in enumerate(((cross_slopes, nx), (slopes, 1)), start=1):
+        ka = k[(k % nx + 1 < nx) if shift == 1 else (k + shift < t.size)]  # the pair's second trace on the grid
+        ka = ka[live[ka + shift]]
+        kb = ka + shift
+        ta, tb = t[ka], t[kb]
+        sa = along[ka, np.clip(np.rint(ta), 0, n_s - 1).astype(np.int64)]
+        sb = along[kb, np.clip(np.rint(tb), 0, n_s - 1).astype(np.int64)]
+        step = (tb - ta) - 0.5 * (sa + sb)  # the slopes added in their dtype, as the compiled loop
+        qa, qb = q[ka], q[kb]
+        units = (qa >= 0) & (qb >= 0)
+        units[units] &= whole[qa[units]] & whole[qb[units]]
+        r = np.empty(ka.size)
+        r[units] = np.einsum("ij,ij->i", unit[qa[units]].astype(np.float64), unit[qb[units]].astype(np.float64))
+        raw = ~units
+        if raw.any():
+            r[raw] = _windows_ncc(sample_windows(traces, ka[raw], ta[raw], half),
+                                  sample_windows(traces, kb[raw], tb[raw], half))
+        terms[ka, col] = w_step * step * step + w_wave * (1.0 - r)
+    return float(np.cumsum(terms.ravel())[-1]) if terms.size else 0.0
 
 
 def line_slopes(data: np.ndarray, sigma_tensor, rows: tuple[int, int] | None = None, *, axis: int = -1) -> np.ndarray:

@@ -309,9 +309,21 @@ def _sweep(out, g, wg, ids, cands, at_candidates, traces, slopes, cross_slopes, 
         np.moveaxis(out, axis, -1)[...] = out_t
 
 
-@nb.njit(cache=True, nogil=True)
 def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across, w_step,
                  w_wave, half, hold):
+    """:func:`_choose_lines` with its work arrays allocated here (a kernel's np.empty compiles numba's allocator:
+    0.2 CPU s of a first run)."""
+    length = guide.shape[1]
+    width = max(1, int(np.diff(first).max(initial=0)))
+    _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across,
+                  w_step, w_wave, half, hold, np.empty((length, 2), np.int64), np.empty((length, 2)),
+                  np.empty((length, width)), np.empty((length, width), np.int64), np.empty(2 * half + 1),
+                  np.empty(2 * half + 1), np.empty(2, np.int64))
+
+
+@nb.njit(cache=True, nogil=True)
+def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across, w_step,
+                  w_wave, half, hold, c_ids, c_t, cost, back, wa, wb, held):
     """The lines (rows of the (n_lines, length) arrays) chosen in order, into ``out``; with ``hold``, each with the
     picks in ``out`` of the line before it (already re-chosen) and of the line after it held, else each alone.
 
@@ -320,11 +332,10 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, ac
     neighbouring lines held (``c_ids`` / ``c_t`` (length, 2), -1 / NaN where none; the previous line's in column 0
     and the next line's in column 1) add their pair costs (slopes ``across`` across the lines) to each candidate's
     guide term. ``along_c``, ``across_c``: ``along`` and ``across`` at each candidate. A line's pick is NaN where the
-    trace has no candidate; the line restarts after it. One kernel, not a loop calling a kernel per line: numba
-    compiles a called kernel on its own and again inside its caller."""
+    trace has no candidate; the line restarts after it. ``c_ids``, ``c_t``, ``cost``, ``back`` (length, at least the
+    most candidates of a trace), ``wa``, ``wb`` (2 half + 1), ``held`` (2): work arrays. One kernel, not a loop calling
+    a kernel per line: numba compiles a called kernel on its own and again inside its caller."""
     n_lines, length = guide.shape
-    c_ids = np.empty((length, 2), np.int64)
-    c_t = np.empty((length, 2))
     for i in range(n_lines):
         # the neighbouring lines' picks, by loops (slice assignments and np.full compile numba's generic setitem and
         # fill: seconds)
@@ -343,16 +354,11 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, ac
         for j in range(n):
             out[i, j] = np.nan  # loops, not np.full: it compiles numba's generic fill (about 1 CPU s)
             width = max(width, first[trace_ids[j] + 1] - first[trace_ids[j]])
-        cost = np.empty((n, width))
-        back = np.empty((n, width), np.int64)
         for j in range(n):
             for c in range(width):
                 cost[j, c] = np.inf
                 back[j, c] = -1
-        wa = np.empty(2 * half + 1)
-        wb = np.empty(2 * half + 1)
         n_cross = c_ids.shape[1]
-        held = np.empty(n_cross, np.int64)
         for j in range(n):
             kb = trace_ids[j]
             # the neighbouring lines' picks: the same for every candidate of the trace (-2: none held)

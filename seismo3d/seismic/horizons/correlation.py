@@ -8,185 +8,232 @@ Conventions: traces ``(n_traces, n_samples)``; times in fractional samples.
 
 from __future__ import annotations
 
+import numba as nb
 import numpy as np
+
+from ..._threads import run_threads
+from .dp import sample_at
 
 __all__ = ["window_correlation", "neighbour_confidence"]
 
 
-_PAIR_CHUNK = 4096  # pairs handled at once by pair_lags
+_PAIR_CHUNK = 256  # pairs per task of pair_lags
+
+
+@nb.njit(cache=True, nogil=True)
+def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_lag, min_fraction, lag_out,
+                     score_out):
+    # the pairs of chunks t, t + n_threads, ... (see pair_lags): for pair p, the lag around centre_all[p] on trace
+    # b[p] at which it correlates best with the window of trace a[p] around ta_all[p], refined by a parabola, and its
+    # correlation; (NaN, NaN) where not measured. Near the ends of the traces the window is shortened to the samples
+    # trace a[p] has (at least 4 each side); a lag is scored where at least min_fraction of the window lies on trace
+    # b[p]. ref, sig, scores, products: work arrays. One kernel, not a loop calling a kernel per pair: numba compiles
+    # a called kernel on its own and again inside its caller
+    n = a.size
+    n_chunks = (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK
+    ref = np.empty(2 * half + 1)
+    sig = np.empty(2 * half + 1 + 2 * max_lag)
+    scores = np.empty(2 * max_lag + 1)
+    products = np.empty(2 * max_lag + 1)
+    for chunk in range(t, n_chunks, n_threads):
+        for p in range(chunk * _PAIR_CHUNK, min(n, (chunk + 1) * _PAIR_CHUNK)):
+            ka, kb = a[p], b[p]
+            ta, centre = ta_all[p], centre_all[p]
+            n_s = traces.shape[1]
+            if not (np.isfinite(ta) and np.isfinite(centre)):
+                lag_out[p], score_out[p] = np.nan, np.nan
+                continue
+            h = min(half, int(np.floor(ta)), int(np.floor(n_s - 1 - ta)))
+            if h < 4:
+                lag_out[p], score_out[p] = np.nan, np.nan
+                continue
+            m = 2 * h + 1
+            min_samples = max(5, int(min_fraction * m))
+            ra = traces[ka]
+            rb = traces[kb]
+            _read_window(ra, ta - h, m, ref)
+            _read_window(rb, centre - h - max_lag, m + 2 * max_lag, sig)
+            # lags are scored only where the window overlaps trace b enough: near the trace ends that cuts the range on
+            # one side; it is cut on the other side as well, or a pair's wrong-cycle matches (more of them on the
+            # longer side) would bias the shifts towards it
+            reach = max_lag
+            inside = centre - h - max_lag >= 0.0 and centre + h + max_lag <= n_s - 1.0  # every lag overlaps wholly
+            for k in range(0 if inside else max_lag + 1):
+                lo = centre - h - k
+                hi = centre + h + k
+                if min(lo + m - 1, n_s - 1.0) - max(lo, 0.0) + 1 < min_samples or \
+                        min(hi, n_s - 1.0) - max(hi - m + 1, 0.0) + 1 < min_samples:
+                    reach = k - 1
+                    break
+            for k in range(scores.size):  # a loop: scores[:] = nan compiles numba's generic setitem
+                scores[k] = np.nan
+            best, kbest = -2.0, -1
+            # trace a's window lies inside the trace (h above), so it is all finite: centred once, it serves every lag
+            # where trace b's window is finite too (interior lags: the run of finite ``sig`` samples)
+            ma = 0.0
+            for k in range(m):
+                ma += ref[k]
+            ma /= m
+            saa = 0.0
+            for k in range(m):
+                ref[k] -= ma
+                saa += ref[k] * ref[k]
+            first = 0  # sig[first:last] is finite
+            while first < m + 2 * max_lag and not np.isfinite(sig[first]):
+                first += 1
+            last = first
+            while last < m + 2 * max_lag and np.isfinite(sig[last]):
+                last += 1
+            # the interior lags (trace b's window finite): their products with the window of a at once, the sums of
+            # trace b's window and of its squares slid from lag to lag
+            lo = max(max_lag - reach, first)
+            hi = min(max_lag + reach, last - m)  # inclusive
+            if hi >= lo:
+                _window_products(ref, sig, m, lo, hi + 1, products)
+                _interior_scores(sig, m, lo, hi + 1, saa, products, scores)
+            for s in range(max_lag - reach, max_lag + reach + 1):
+                if lo <= s <= hi:
+                    c = scores[s]
+                else:
+                    c = _partial_window_ncc(ref, sig, s, m, min_samples)
+                    if np.isnan(c):
+                        continue
+                    scores[s] = c
+                if c > best:
+                    best, kbest = c, s
+            if kbest < 0:
+                lag_out[p], score_out[p] = np.nan, np.nan
+                continue
+            off = 0.0
+            if 0 < kbest < 2 * max_lag and np.isfinite(scores[kbest - 1]) and np.isfinite(scores[kbest + 1]):
+                y0, y1, y2 = scores[kbest - 1], scores[kbest], scores[kbest + 1]
+                den = y0 - 2 * y1 + y2
+                if den < 0:
+                    off = min(max(0.5 * (y0 - y2) / den, -0.5), 0.5)
+            lag_out[p], score_out[p] = kbest - max_lag + off, best
 
 
 def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
     """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
-    of trace a around ``ta``; returns (lag relative to centre, score), NaN where not measured.
-
-    The window is ``+-half`` samples, shortened near the ends of the traces to the samples trace a has (at least 4
-    each side); a lag is scored where at least ``min_fraction`` of the window lies on trace b (:func:`_reach`), the
-    best one refined by a parabola. Array work in numpy, the pairs of one window length together in chunks of
-    :data:`_PAIR_CHUNK` (the compiled kernels it replaces cost the horizon's first run 2.7 CPU s of compiling). The
-    sums run sample by sample in the kernels' order, but the kernels' products over a window were fused
-    multiply-adds: scores can differ from theirs in the last bits."""
-    a, b = np.asarray(a, np.intp), np.asarray(b, np.intp)
-    ta, centre = np.asarray(ta, np.float64), np.asarray(centre, np.float64)
-    n = a.size
+    of trace a around ``ta``; returns (lag relative to centre, score), NaN where not measured
+    (``_pair_lags_share``); chunks of pairs shared out over numba's threads."""
+    n = len(a)
     lag_out = np.full(n, np.nan)
     score_out = np.full(n, np.nan)
-    n_s = traces.shape[1]
-    ok = np.isfinite(ta) & np.isfinite(centre)
-    h = np.full(n, -1, np.int64)
-    h[ok] = np.minimum(np.minimum(np.floor(ta[ok]), np.floor(n_s - 1 - ta[ok])), half)
-    for width in np.unique(h[h >= 4]):
-        group = np.nonzero(h == width)[0]
-        for lo in range(0, group.size, _PAIR_CHUNK):
-            p = group[lo:lo + _PAIR_CHUNK]
-            lag_out[p], score_out[p] = _pair_lags(traces, a[p], ta[p], b[p], centre[p], int(width), int(max_lag),
-                                                  float(min_fraction))
+    n_threads = max(1, min(nb.get_num_threads(), (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK))
+    run_threads(_pair_lags_share, n_threads, traces, a, ta, b, centre, int(half), int(max_lag), float(min_fraction),
+                lag_out, score_out)
     return lag_out, score_out
 
 
-def _read_windows(traces, rows, start, count):
-    """``out[p, k] = sample_at(traces[rows[p]], start[p] + k)`` for k < ``count`` (:func:`~seismo3d.seismic.horizons.
-    dp.sample_at`: linear interpolation, NaN outside the trace); a window's samples share one interpolation weight."""
-    n = traces.shape[1]
-    k0 = np.floor(start)
-    f = (start - k0)[:, None]
-    i = k0.astype(np.int64)[:, None] + np.arange(count)
-    inside = (i >= 0) & (i < n - 1)
-    j = np.clip(i, 0, n - 2)
-    r = rows[:, None]
-    out = (1.0 - f) * traces[r, j] + f * traces[r, j + 1]
-    if not inside.all():  # the ends: sample_at at start + k
-        t = start[:, None] + np.arange(count)
-        k = np.clip(np.floor(t), 0, n - 1).astype(np.int64)
-        g = t - k
-        at = (1.0 - g) * traces[r, k] + g * traces[r, np.minimum(k + 1, n - 1)]
-        at = np.where(k >= n - 1, traces[r, k], at)
-        at = np.where((t < 0.0) | (t > n - 1), np.nan, at)
-        out = np.where(inside, out, at)
-    return out
+@nb.njit(cache=True)
+def _read_window(trace, start, count, out):
+    """``out[k] = sample_at(trace, start + k)`` for k < ``count`` (:func:`~seismo3d.seismic.horizons.dp.sample_at`:
+    linear interpolation, NaN outside the trace); the samples share one interpolation weight."""
+    k0 = int(np.floor(start))
+    f = start - k0
+    n = trace.size
+    if k0 >= 0 and k0 + count < n:  # inside the trace: no sample needs the ends' rule (unsigned: no wraparound)
+        base = nb.uint64(k0)
+        for k in range(nb.uint64(count)):
+            out[k] = (1.0 - f) * trace[base + k] + f * trace[base + k + nb.uint64(1)]
+        return
+    for k in range(count):
+        i = k0 + k
+        if 0 <= i < n - 1:
+            out[k] = (1.0 - f) * trace[i] + f * trace[i + 1]
+        else:
+            out[k] = sample_at(trace, start + k)
 
 
-def _reach(centre, h, m, n_s, max_lag, min_samples):
-    """The lags scored (``+-reach``): those where at least ``min_samples`` of the window lie on trace b, on both
-    sides (near the trace ends that cuts the range on one side; it is cut on the other side as well, or a pair's
-    wrong-cycle matches, more of them on the longer side, would bias the shifts towards it); -1: none."""
-    reach = np.full(centre.size, max_lag)
-    cut = (centre - h - max_lag >= 0.0) & (centre + h + max_lag <= n_s - 1.0)  # every lag overlaps wholly
-    for k in range(max_lag + 1):
-        if cut.all():
-            break
-        lo = centre - h - k
-        hi = centre + h + k
-        short = ((np.minimum(lo + m - 1, n_s - 1.0) - np.maximum(lo, 0.0) + 1 < min_samples)
-                 | (np.minimum(hi, n_s - 1.0) - np.maximum(hi - m + 1, 0.0) + 1 < min_samples)) & ~cut
-        reach[short] = k - 1
-        cut |= short
-    return reach
+@nb.njit(cache=True, fastmath={"reassoc", "contract", "nsz", "arcp"})
+def _window_products(ref, sig, m, lo, hi, out):
+    """``out[s] = sum_k ref[k] sig[s + k]`` (k < ``m``) for lags ``lo <= s < hi``: eight lags at a time, each one
+    accumulator, so the compiler keeps them in vector registers (reassociated; unsigned indices, so that no
+    negative-index wraparound stands in the way)."""
+    one = nb.uint64(1)
+    s = nb.uint64(lo)
+    end = nb.uint64(hi)
+    width = nb.uint64(m)
+    while s + nb.uint64(8) <= end:
+        a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = 0.0
+        for k in range(width):
+            r = ref[k]
+            i = s + k
+            a0 += r * sig[i]
+            a1 += r * sig[i + one]
+            a2 += r * sig[i + nb.uint64(2)]
+            a3 += r * sig[i + nb.uint64(3)]
+            a4 += r * sig[i + nb.uint64(4)]
+            a5 += r * sig[i + nb.uint64(5)]
+            a6 += r * sig[i + nb.uint64(6)]
+            a7 += r * sig[i + nb.uint64(7)]
+        out[s], out[s + one], out[s + nb.uint64(2)], out[s + nb.uint64(3)] = a0, a1, a2, a3
+        out[s + nb.uint64(4)], out[s + nb.uint64(5)], out[s + nb.uint64(6)], out[s + nb.uint64(7)] = a4, a5, a6, a7
+        s += nb.uint64(8)
+    while s < end:
+        acc = 0.0
+        for k in range(width):
+            acc += ref[k] * sig[s + k]
+        out[s] = acc
+        s += one
 
 
-def _pair_lags(traces, ka, ta, kb, centre, h, max_lag, min_fraction):
-    """:func:`pair_lags` of pairs with one window half-length ``h``."""
-    n_s = traces.shape[1]
-    count = ka.size
-    rows = np.arange(count)
-    m = 2 * h + 1
-    n_lags = 2 * max_lag + 1
-    min_samples = max(5, int(min_fraction * m))
-    ref = _read_windows(traces, ka, ta - h, m)  # inside trace a (h above): all finite
-    sig = _read_windows(traces, kb, centre - h - max_lag, m + 2 * max_lag)
-    reach = _reach(centre, h, m, n_s, max_lag, min_samples)
-    # trace a's window centred once: it serves every lag where trace b's window is finite too (interior lags: the
-    # run of finite sig samples from the first)
-    ma = np.zeros(count)
+@nb.njit(cache=True)
+def _interior_scores(sig, m, lo, hi, saa, products, scores):
+    """``scores[s]`` for the lags ``lo <= s < hi`` where trace b's window ``sig[s:s + m]`` is finite: the products
+    (:func:`_window_products`) over the spreads of the two windows (``saa``: the centred window of a's), 0 where a
+    window is flat. The sums of b's window and of its squares are slid from lag to lag into ``scores``, then turned
+    into correlations in one loop the compiler vectorises."""
+    one = nb.uint64(1)
+    start = nb.uint64(lo)
+    end = nb.uint64(hi)
+    width = nb.uint64(m)
+    sb = 0.0
+    sbb = 0.0
+    for k in range(width):
+        y = sig[start + k]
+        sb += y
+        sbb += y * y
+    for s in range(start, end):
+        if s > start:
+            y0 = sig[s - one]
+            y1 = sig[s + width - one]
+            sb += y1 - y0
+            sbb += y1 * y1 - y0 * y0
+        var = sbb - sb * sb / m
+        scores[s] = var if saa > 0 and var > 1e-9 * sbb else -1.0  # -1: a flat window
+    for s in range(start, end):
+        v = scores[s]
+        scores[s] = products[s] / np.sqrt(saa * v) if v > 0.0 else 0.0
+
+
+@nb.njit(cache=True)
+def _partial_window_ncc(ref, sig, s, m, min_samples):
+    """A pair's correlation at lag ``s`` (``_pair_lags_share``) over the samples where both windows are finite (the
+    means of those); NaN with fewer than ``min_samples``."""
+    sa = 0.0
+    sb = 0.0
+    cnt = 0
     for k in range(m):
-        ma += ref[:, k]
-    ma /= m
-    ref -= ma[:, None]
-    saa = np.zeros(count)
-    for k in range(m):
-        saa += ref[:, k] * ref[:, k]
-    finite = np.isfinite(sig)
-    first = np.where(finite.any(axis=1), finite.argmax(axis=1), sig.shape[1])
-    gap = ~finite & (np.arange(sig.shape[1]) >= first[:, None])
-    last = np.where(gap.any(axis=1), gap.argmax(axis=1), sig.shape[1])
-    lo = np.maximum(max_lag - reach, first)
-    hi = np.minimum(max_lag + reach, last - m)  # inclusive
-    scores = np.full((count, n_lags), np.nan)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        if (hi >= lo).any():
-            # the interior lags: the products with trace a's window, over the spreads of both windows; the sums of
-            # trace b's window and of its squares slid from lag to lag (from each pair's first interior lag)
-            products = np.zeros((count, n_lags))
-            for k in range(m):
-                products += ref[:, k:k + 1] * sig[:, k:k + n_lags]
-            top = sig.shape[1] - 1
-            sb = np.zeros(count)
-            sbb = np.zeros(count)
-            for k in range(m):
-                y = sig[rows, np.minimum(lo + k, top)]
-                sb += y
-                sbb += y * y
-            for d in range(n_lags):
-                s = lo + d
-                live = s <= hi
-                if not live.any():
-                    break
-                if d:
-                    y0 = sig[rows, np.minimum(s - 1, top)]
-                    y1 = sig[rows, np.minimum(s + m - 1, top)]
-                    sb += y1 - y0
-                    sbb += y1 * y1 - y0 * y0
-                var = sbb - sb * sb / m
-                v = np.where((saa > 0) & (var > 1e-9 * sbb), var, -1.0)  # -1: a flat window
-                sc = np.where(v > 0.0, products[rows, np.minimum(s, n_lags - 1)] / np.sqrt(saa * v), 0.0)
-                scores[rows[live], s[live]] = sc[live]
-        # the other lags within reach: over the samples where both windows are finite (their means)
-        lag = np.arange(n_lags)
-        partial = ((lag >= max_lag - reach[:, None]) & (lag <= max_lag + reach[:, None])
-                   & ~((lag >= lo[:, None]) & (lag <= hi[:, None])))
-        p, s = np.nonzero(partial)
-        if p.size:
-            scores[p, s] = _partial_ncc(ref[p], sig, p, s, m, min_samples)
-    best = np.where(np.isnan(scores), -np.inf, scores)
-    kbest = best.argmax(axis=1)
-    score = best[rows, kbest]
-    found = score > -2.0
-    # the best lag refined by the parabola through it and its neighbours
-    y0 = scores[rows, np.maximum(kbest - 1, 0)]
-    y1 = scores[rows, kbest]
-    y2 = scores[rows, np.minimum(kbest + 1, n_lags - 1)]
-    den = y0 - 2 * y1 + y2
-    with np.errstate(invalid="ignore", divide="ignore"):
-        off = np.minimum(np.maximum(0.5 * (y0 - y2) / den, -0.5), 0.5)
-    bend = (kbest > 0) & (kbest < 2 * max_lag) & np.isfinite(y0) & np.isfinite(y2) & (den < 0)
-    off = np.where(bend, off, 0.0)
-    return np.where(found, kbest - max_lag + off, np.nan), np.where(found, score, np.nan)
-
-
-def _partial_ncc(ref, sig, p, s, m, min_samples):
-    """Correlations at lags ``s`` of pairs ``p`` (``ref``: their windows of trace a) over the samples where both
-    windows are finite (the means of those); NaN with fewer than ``min_samples``."""
-    sa = np.zeros(p.size)
-    sb = np.zeros(p.size)
-    cnt = np.zeros(p.size, np.int64)
-    both = np.empty((m, p.size), np.bool_)
-    for k in range(m):
-        x, y = ref[:, k], sig[p, s + k]
-        both[k] = np.isfinite(x) & np.isfinite(y)
-        sa += np.where(both[k], x, 0.0)
-        sb += np.where(both[k], y, 0.0)
-        cnt += both[k]
+        x, y = ref[k], sig[s + k]
+        if np.isfinite(x) and np.isfinite(y):
+            sa += x
+            sb += y
+            cnt += 1
+    if cnt < min_samples:
+        return np.nan
     ma, mb = sa / cnt, sb / cnt
-    sab = np.zeros(p.size)
-    saa = np.zeros(p.size)
-    sbb = np.zeros(p.size)
+    sab = 0.0
+    saa = 0.0
+    sbb = 0.0
     for k in range(m):
-        dx, dy = ref[:, k] - ma, sig[p, s + k] - mb
-        sab += np.where(both[k], dx * dy, 0.0)
-        saa += np.where(both[k], dx * dx, 0.0)
-        sbb += np.where(both[k], dy * dy, 0.0)
-    out = np.where((saa > 0) & (sbb > 0), sab / np.sqrt(saa * sbb), 0.0)
-    return np.where(cnt < min_samples, np.nan, out)
+        x, y = ref[k], sig[s + k]
+        if np.isfinite(x) and np.isfinite(y):
+            sab += (x - ma) * (y - mb)
+            saa += (x - ma) ** 2
+            sbb += (y - mb) ** 2
+    return sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
 
 
 def window_correlation(traces: np.ndarray, a: np.ndarray, ta: np.ndarray, b: np.ndarray, tb: np.ndarray, *,

@@ -11,9 +11,12 @@ runs:
   Python process reading the same file with ``segyio.tools.cube`` (segyio's memory map: the I/O floor of reading it
   from Python; the same reader as ``benchmarks/convert.py``). The runs alternate (read, convert, read, ...) after one
   untimed run of each (the file in the page cache), so that load changes hit both alike; each convert writes a new
-  store (the previous one is removed outside the clock).
+  store (the previous one is removed outside the clock). The convert also hashes an input of up to 200 MiB for its
+  run.json (sha256 on a thread, 0.11-0.16 CPU s for 198 MB; ``runinfo.HASH_LIMIT``): ``--shape 800 400 250``
+  (397 MB, "198 MB and larger") is identified by size and modification time instead, as every larger input.
 - ``seismo3d --help`` and ``seismo3d COMMAND --help`` for every command of the ``seismo3d`` app, beside the floor of
-  any typer command: ``--help`` of a command of a two-command typer app (typer imports rich and pydantic to show it).
+  any typer command: ``--help`` of a command of a two-command typer app (typer imports rich and pydantic to show it;
+  ``seismo3d`` converts its values without pydantic: :mod:`seismo3d._cli_coercion`).
 
 The command is the installed ``seismo3d`` script beside this interpreter (``python -m seismo3d.cli`` when there is
 none), run with this checkout first on ``PYTHONPATH``. Targets (issue 58): convert <= 1.5 x the segyio read, every

@@ -21,6 +21,7 @@ from typing import Optional
 import typer
 
 from . import __version__
+from ._cli_coercion import FastCoercionGroup
 from ._cli_choices import (Compression, Endian, FaultColour, Likelihood, MatchMethod, Method, Model, Polarity,
                            SampleUnit)
 from ._cli_outputs import check_before_import
@@ -31,7 +32,7 @@ from ._cli_messages import one_line_warnings as _one_line_warnings
 
 app = typer.Typer(help="seismo3d: fault and horizon interpretation of seismic cubes, point-cloud / RGB-D / terrain "
                        "registration, lineaments and path planning, on one fused-ICP engine.", no_args_is_help=True,
-                  add_completion=False)
+                  add_completion=False, cls=FastCoercionGroup)
 
 NOT_CONVERGED = 1  # exit code of a registration that did not converge (its result is written)
 

@@ -12,6 +12,7 @@ import numpy as np
 
 from .._atomic import atomic_path
 from ..seismic.faults.result import FaultInterpretation
+from ..seismic.io.text_rows import TextColumn, format_rows
 
 __all__ = ["sample_position", "trace_columns", "write_points", "write_summary"]
 
@@ -58,6 +59,11 @@ def _column(values, fmt: str) -> list:
     return [format(v, fmt) if v == v else "" for v in np.asarray(values, dtype=np.float64).tolist()]
 
 
+def _number_column(values, fmt: str) -> TextColumn:
+    """A float column of a CSV table: ``fmt`` for finite values, empty for NaN (:func:`_column`)."""
+    return TextColumn(np.asarray(values, dtype=np.float64), fmt, lambda block: _column(block, fmt))
+
+
 def write_points(inp, result: FaultInterpretation, path: Path, coordinates=None) -> Path:
     """fault_points.csv: one row per fault point (its trace's labels, with ``coordinates``
     (:class:`~seismo3d.seismic.io.coordinates.SurveyCoordinates` of the traced array) its trace's ``x``, ``y`` and
@@ -80,25 +86,22 @@ def write_points(inp, result: FaultInterpretation, path: Path, coordinates=None)
             p = f.points
             throw = _throw_of(result.throws, f)
             lateral = inp.inline[p[:, 0]], (None if inp.xline is None else inp.xline[p[:, 1 if p.shape[1] == 3 else 0]])
-            cols = [[str(v) for v in lateral[0].tolist()]]
+            cols = [TextColumn(np.asarray(lateral[0]), "s")]  # str() of the labels, as Python numbers
             if lateral[1] is not None:
-                cols.append([str(v) for v in lateral[1].tolist()])
+                cols.append(TextColumn(np.asarray(lateral[1]), "s"))
             if coordinates is not None:  # the trace's own header coordinates (scalar applied)
                 x, y = coordinates.at(p[:, :-1])
-                cols += [_column(x, ".3f"), _column(y, ".3f"), [coordinates.unit] * f.size]
-            cols += [
-                _column(sample_position(inp.samples, p[:, -1]), ".6g"),
-                [str(f.id)] * f.size,
-                _column(throw, ".5g"),
-            ]
+                cols += [_number_column(x, ".3f"), _number_column(y, ".3f"), TextColumn(coordinates.unit)]
+            cols += [_number_column(sample_position(inp.samples, p[:, -1]), ".6g"), TextColumn(str(f.id)),
+                     _number_column(throw, ".5g")]
             if extra:
-                cols.append(_column(throw * result.sample_interval, ".5g"))
+                cols.append(_number_column(throw * result.sample_interval, ".5g"))
             correlation = _throw_of(result.throws, f, "correlation")
-            cols.append(_column(correlation, ".3f"))
-            cols.append(_column(correlation - _throw_of(result.throws, f, "correlation_unshifted"), ".3f"))
-            cols.append(_column(_throw_of(result.throws, f, "side_coherence"), ".3f"))
-            cols.append(_column(np.full(f.size, confidence.get(f.id, np.nan)), ".4g"))  # the fault's, on each point
-            fh.writelines(",".join(row) + "\n" for row in zip(*cols))
+            cols.append(_number_column(correlation, ".3f"))
+            cols.append(_number_column(correlation - _throw_of(result.throws, f, "correlation_unshifted"), ".3f"))
+            cols.append(_number_column(_throw_of(result.throws, f, "side_coherence"), ".3f"))
+            cols.append(TextColumn(_column([confidence.get(f.id, np.nan)], ".4g")[0]))  # the fault's, on each point
+            fh.writelines(format_rows(cols, f.size, sep=","))  # a block of rows at a time
     return path
 
 

@@ -81,13 +81,15 @@ def correlate_axis(x: np.ndarray, w: np.ndarray, axis: int) -> np.ndarray:
     return out
 
 
-_EIG_CHUNK = 1 << 15  # voxels per pass of the eigen-decomposition: its float64 temporaries (~10 MB a thread) stay small
+# voxels per pass of the eigen-decomposition: its float64 temporaries (~40 of 64 KiB, 2.5 MB a thread) stay in the
+# processor's cache (2^15: ~10 MB a thread, about twice the CPU seconds on a 200 x 200 x 500 cube)
+_EIG_CHUNK = 1 << 13
 # tensors fewer than this take Python's math.acos (np.frompyfunc: the same bits as the compiled _acos, four times
 # slower, ~10 ms for 1e5; no compiling: a small first run, e.g. the horizon on f3_crop.sgy, spares 0.35 CPU s)
 _SMALL_ACOS = 1 << 17
 
 
-def eig3(a, b, c, d, e, f, acos=None):
+def eig3(a, b, c, d, e, f, planarity: bool = True, acos=None):
     """Largest eigenvector and planarity of the symmetric tensors ``[[a, b, c], [b, d, e], [c, e, f]]``.
 
     Closed-form eigenvalues (Smith 1961: trigonometric solution of the characteristic cubic), the eigenvector from
@@ -100,6 +102,9 @@ def eig3(a, b, c, d, e, f, acos=None):
     ----------
     a, b, c, d, e, f : (n,) float32 ndarray
         The tensor components ``t00, t01, t02, t11, t12, t22``.
+    planarity : bool, optional
+        False: the planarity and the two smaller eigenvalues it needs are not computed (None in its place); the
+        eigenvector is the same bits.
     acos : callable, optional
         The element-wise arc cosine of a float64 array: the compiled :func:`_acos` (default) or
         :func:`_python_acos` (the same bits, without compiling; :func:`_acos_for`).
@@ -108,8 +113,8 @@ def eig3(a, b, c, d, e, f, acos=None):
     -------
     vx, vy, vz : (n,) float64 ndarray
         The unit eigenvector of the largest eigenvalue, ``vz >= 0``; ``(0, 0, 1)`` for an isotropic or zero tensor.
-    planarity : (n,) float64 ndarray
-        ``(l1 - l2) / l1`` (0 when ``l1 <= 0`` or the tensor is isotropic).
+    planarity : (n,) float64 ndarray or None
+        ``(l1 - l2) / l1`` (0 when ``l1 <= 0`` or the tensor is isotropic); None when not asked for.
 
     References
     ----------
@@ -131,8 +136,6 @@ def eig3(a, b, c, d, e, f, acos=None):
         r = np.where(r < 1.0, r, 1.0)
         phi = (_acos if acos is None else acos)(r) / 3.0
         l1 = q + 2.0 * p * np.cos(phi)
-        l3 = q + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
-        l2 = 3.0 * q - l1 - l3
         # rows of T - l1 I: (a - l1, b, c), (b, d - l1, e), (c, e, f - l1); their cross products
         r0x, r1y, r2z = a64 - l1, d64 - l1, f64_ - l1
         c0 = ((b * e).astype(f64) - c64 * r1y, (c * b).astype(f64) - r0x * e64, r0x * r1y - (b * b).astype(f64))
@@ -149,8 +152,11 @@ def eig3(a, b, c, d, e, f, acos=None):
         vx = np.where(zero, 0.0, v[0] * s)
         vy = np.where(zero, 0.0, v[1] * s)
         vz = np.where(zero, 1.0, v[2] * s)
-        planarity = np.where(zero | ~(l1 > 0.0), 0.0, (l1 - l2) / l1)
-    return vx, vy, vz, planarity
+        if not planarity:
+            return vx, vy, vz, None
+        l3 = q + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
+        l2 = 3.0 * q - l1 - l3
+        return vx, vy, vz, np.where(zero | ~(l1 > 0.0), 0.0, (l1 - l2) / l1)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -222,7 +228,7 @@ def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_norma
     acos = _acos_for(p0_flat.size)
 
     def work(part, comps):
-        vx, vy, vz, _ = eig3(*comps, acos=acos)
+        vx, vy, vz, _ = eig3(*comps, planarity=False, acos=acos)
         if as_float32_normals:
             vz32 = vz.astype(np.float32)
             nz = np.where(floor32 > vz32, floor32, vz32)  # max(vz, floor) as Python's max

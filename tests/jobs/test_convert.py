@@ -228,3 +228,57 @@ def test_2d_line_is_refused(amplitudes, tmp_path, write_segy_cube):
     with pytest.raises(SegyGeometryError, match="needs a 3D cube"):
         run_convert_job(src, tmp_path / "line.zarr")
     assert not (tmp_path / "line.zarr").exists() and _no_temporaries(tmp_path) == []
+
+
+def _chunk_files(folder):
+    return {str(p.relative_to(folder)): p.read_bytes() for p in folder.rglob("*") if p.is_file()
+            and p.name != "zarr.json"}
+
+
+def _assert_zarr_writes_the_same(store, tmp_path):
+    """Every array of the store written again by zarr's array API from its values (same shape, chunks, dtype, fill
+    value and codecs) gives the same chunk files: the same keys (no file for a chunk of fill values) and bytes."""
+    import zarr
+
+    group = zarr.open_group(str(store), mode="r")
+    names = [name for name, _ in group.arrays()]
+    for name in names:
+        ours = group[name]
+        theirs = zarr.create_array(str(tmp_path / "zarr" / name), shape=ours.shape, chunks=ours.chunks,
+                                   dtype=ours.dtype, fill_value=ours.fill_value,
+                                   compressors=ours.metadata.to_dict()["codecs"][1:])
+        theirs[:] = ours[:]
+        assert _chunk_files(store / name) == _chunk_files(tmp_path / "zarr" / name), name
+    return names
+
+
+def test_header_and_coordinate_chunks_are_the_bytes_zarr_writes(amplitudes, tmp_path, write_segy_cube):
+    """The header fields and cdp_x / cdp_y are written as chunk files on the copy threads (not through zarr's array
+    API): each file is the one zarr writes, and a row of zeros (cdp_y of inlines whose CDP Y is 0) has none."""
+    src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
+    with segyio.open(src, "r+", ignore_geometry=True) as f:  # CDP Y zero on the first 64 inlines: one row of chunks
+        for t in range(64 * SHAPE[1]):
+            f.header[t] = {segyio.TraceField.CDP_Y: 0}
+    store = tmp_path / "cube.zarr"
+    run_convert_job(src, store, chunk_mb=0.01)
+    names = _assert_zarr_writes_the_same(store, tmp_path)
+    assert {"seismic", "CDP_X", "CDP_Y", "INLINE_3D", "cdp_x", "cdp_y"} <= set(names)
+    assert sorted(_chunk_files(store / "cdp_y")) == ["c/1/0"] and sorted(_chunk_files(store / "cdp_x")) == ["c/0/0",
+                                                                                                          "c/1/0"]
+
+
+def test_source_coordinates_are_the_bytes_zarr_writes(amplitudes, tmp_path, write_segy_cube):
+    """CDP X / Y zero on every trace, source X / Y not: cdp_x / cdp_y from source X / Y, as zarr writes them."""
+    src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
+    with segyio.open(src, "r+", ignore_geometry=True) as f:
+        for t in range(f.tracecount):
+            h = f.header[t]
+            f.header[t] = {segyio.TraceField.SourceX: h[segyio.TraceField.CDP_X],
+                           segyio.TraceField.SourceY: h[segyio.TraceField.CDP_Y], segyio.TraceField.CDP_X: 0,
+                           segyio.TraceField.CDP_Y: 0}
+    store = tmp_path / "cube.zarr"
+    result = run_convert_job(src, store, chunk_mb=0.01)
+    assert result.has_cdp_coordinates and "SourceX" in result.header_fields and "CDP_X" not in result.header_fields
+    _assert_zarr_writes_the_same(store, tmp_path)
+    ref, cube = read_segy(src)
+    assert_allclose(xr.open_zarr(store).cdp_x.values, cube.cdp_x, rtol=0, atol=1e-9)

@@ -87,6 +87,28 @@ def test_eig_normals_of_a_small_cube_are_the_compiled_acos_bits(monkeypatch):
     assert all(np.array_equal(a, b) for a, b in zip(*runs))
 
 
+def test_eig3_without_planarity_gives_the_same_eigenvectors(monkeypatch):
+    """The slopes' eigen-decomposition skips the planarity (two eigenvalues and a cosine): the same bits of the
+    eigenvector, and the same slopes whatever the chunks' size."""
+    rng = np.random.default_rng(6)
+    a = rng.standard_normal((3000, 3, 3))
+    t = (a @ a.transpose(0, 2, 1)).astype(np.float32)
+    comps = (t[:, 0, 0], t[:, 0, 1], t[:, 0, 2], t[:, 1, 1], t[:, 1, 2], t[:, 2, 2])
+    *full, _ = _kernels.eig3(*comps)
+    *vectors, planarity = _kernels.eig3(*comps, planarity=False)
+    assert planarity is None
+    assert all(np.array_equal(u.view(np.uint64), v.view(np.uint64)) for u, v in zip(full, vectors))
+    cube = rng.standard_normal((12, 10, 30)).astype(np.float32)
+    tensor = _kernels.structure_tensor(cube, 1.0, (2.0, 6.0), False)
+    slopes = []
+    for chunk in (1 << 13, 7):
+        monkeypatch.setattr(_kernels, "_EIG_CHUNK", chunk)
+        p0, p1 = np.empty(cube.shape, np.float32), np.empty(cube.shape, np.float32)
+        _kernels.eig_slopes(*tensor, _kernels.MAX_SLOPE, p0, p1, True)
+        slopes.append(np.stack([p0, p1]).view(np.uint32))
+    assert np.array_equal(*slopes)
+
+
 def test_search_left_and_right_are_numpys_searchsorted():
     rng = np.random.default_rng(5)
     keys = np.sort(rng.integers(0, 50, 200))

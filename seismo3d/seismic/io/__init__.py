@@ -24,20 +24,27 @@ as a dask array, and the Zarr v3 store of ``seismo3d convert``.
   trackers on one (imported on its own: ``from seismo3d.seismic.io.xarray import trace_faults_xr``).
 """
 
-from .segy import SeismicCube, open_segy, read_segy
-from .sections import read_section, read_ascii_lines
-from .geometry import TraceGeometry, trace_geometry, span, scale_coordinates
-from .layout import SegyLayout, read_segy_layout, segyio_failure, FORMAT_NAMES, READABLE_FORMATS
-from .blocks import SegyGrid, read_segy_block, read_segy_block_headers, segyio_handle
-from .lazy import LazyCube, open_lazy, inline_block_size
-from .zarr_store import (
-    LAYOUT, TILE_TRACES, SeismicZarr, SeismicZarrWriter, consolidate, open_seismic_zarr, is_seismic_zarr,
-)
-from .writer import write_like, write_like_blocks
-from .coordinates import GridMap, SurveyCoordinates, read_survey_coordinates
-from .fault_sticks import FaultSticks, read_fault_sticks, write_fault_sticks
-from .tsurf import TriangulatedSurface, write_tsurf
-from .horizon_grids import HorizonPicks, read_horizon_picks, write_horizon_grids
+from typing import TYPE_CHECKING
+
+from ..._lazy import lazy_exports
+
+# the public names, imported on first use (seismo3d._lazy): `seismo3d convert` imports the SEG-Y reader and the Zarr
+# writer without the lazy dask cube, the SEG-Y writer, fault sticks, TSurf and horizon grids (~15-25 ms)
+if TYPE_CHECKING:
+    from .segy import SeismicCube, open_segy, read_segy
+    from .sections import read_section, read_ascii_lines
+    from .geometry import TraceGeometry, trace_geometry, span, scale_coordinates
+    from .layout import SegyLayout, read_segy_layout, segyio_failure, FORMAT_NAMES, READABLE_FORMATS
+    from .blocks import SegyGrid, read_segy_block, read_segy_block_headers, segyio_handle
+    from .lazy import LazyCube, open_lazy, inline_block_size
+    from .zarr_store import (
+        LAYOUT, TILE_TRACES, SeismicZarr, SeismicZarrWriter, consolidate, open_seismic_zarr, is_seismic_zarr,
+    )
+    from .writer import write_like, write_like_blocks
+    from .coordinates import GridMap, SurveyCoordinates, read_survey_coordinates
+    from .fault_sticks import FaultSticks, read_fault_sticks, write_fault_sticks
+    from .tsurf import TriangulatedSurface, write_tsurf
+    from .horizon_grids import HorizonPicks, read_horizon_picks, write_horizon_grids
 
 __all__ = [
     "SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines", "scale_coordinates",
@@ -48,3 +55,5 @@ __all__ = [
     "read_survey_coordinates", "FaultSticks", "read_fault_sticks", "write_fault_sticks", "TriangulatedSurface",
     "write_tsurf", "HorizonPicks", "read_horizon_picks", "write_horizon_grids",
 ]
+
+__getattr__, __dir__ = lazy_exports(__name__, __file__)

@@ -31,7 +31,6 @@ PARAMETERS`` header lines as OpendTect's IESX (3d_ci7m) writer lays them out; ``
 
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,6 +41,7 @@ from ..._atomic import atomic_path
 from ...errors import DataNotFoundError, InputError
 from .coordinates import LINE_UNITS, SurveyCoordinates
 from .stick_sections import section_nodes, section_pixels
+from .stick_rows import charisma_rows, iesx_rows, opendtect_rows
 
 __all__ = ["FaultSticks", "STICK_FORMATS", "read_fault_sticks", "write_fault_sticks"]
 
@@ -289,15 +289,6 @@ class FaultSticks:
 # writing
 
 
-def _safe_name(name: str) -> str:
-    """A fault name without white space or quotes (the formats split on white space)."""
-    return re.sub(r"[\s\"']+", "_", str(name)) or "fault"
-
-
-def _fmt(v: float) -> str:
-    return "1e30" if not math.isfinite(v) else f"{v:.3f}"
-
-
 def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", source: str = "") -> Path:
     """Write fault sticks in OpendTect's fault-stick ASCII or Charisma's layout, atomically.
 
@@ -343,10 +334,10 @@ def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", 
                   f"# {sticks.n_faults} faults, {sticks.n_sticks} sticks, {sticks.n_nodes} nodes"]
     elif not (np.all(np.isfinite(sticks.inline)) and np.all(np.isfinite(sticks.crossline))):
         raise InputError("Charisma fault sticks need inline / crossline numbers; these sticks have none")
-    rows = _opendtect_rows(sticks) if format == "opendtect" else _charisma_rows(sticks)
-    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:  # row by row: never the whole text at once
+    rows = opendtect_rows(sticks) if format == "opendtect" else charisma_rows(sticks)
+    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:  # a block of rows at a time: never all the text
         fh.writelines(line + "\n" for line in header)
-        fh.writelines(line + "\n" for line in rows)
+        fh.writelines(rows)
     return path
 
 
@@ -354,48 +345,9 @@ def _write_iesx(path: Path, sticks: FaultSticks) -> Path:
     """IESX fault sticks: PROFILE / SNAPPING PARAMETERS per fault, fixed-column node rows, EOD."""
     if not (np.all(np.isfinite(sticks.x)) and np.all(np.isfinite(sticks.y))):
         raise InputError("IESX fault sticks need X / Y on every node; fill them first (FaultSticks.with_coordinates)")
-    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:  # row by row: never the whole text at once
-        fh.writelines(line + "\n" for line in _iesx_rows(sticks))
+    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:  # a block of rows at a time: never all the text
+        fh.writelines(iesx_rows(sticks))
     return path
-
-
-def _stick_nodes(sticks: FaultSticks):
-    """Yield ``(fault_id, stick number within its fault from 0, node number within its stick from 0, x, y, z,
-    inline, crossline)`` per node in stick order, as Python numbers (formatted as numpy's scalars, faster)."""
-    per_fault = {}
-    columns = (sticks.x, sticks.y, sticks.z, sticks.inline, sticks.crossline)
-    for fid, nodes in sticks.sticks():
-        stick_no = per_fault.get(fid, -1) + 1
-        per_fault[fid] = stick_no
-        for node_no, values in enumerate(zip(*(c[nodes].tolist() for c in columns))):
-            yield (fid, stick_no, node_no, *values)
-
-
-def _opendtect_rows(sticks: FaultSticks):
-    names = [_safe_name(n) for n in sticks.names]
-    for fid, stick_no, node_no, x, y, z, il, xl in _stick_nodes(sticks):
-        yield "\t".join([f'"{names[fid - 1]}"', _fmt(x), _fmt(y), f"{z:.4f}", str(stick_no), str(node_no), f"{il:g}",
-                         f"{xl:g}"])
-
-
-def _charisma_rows(sticks: FaultSticks):
-    names = [_safe_name(n) for n in sticks.names]
-    for fid, stick_no, _, x, y, z, il, xl in _stick_nodes(sticks):
-        yield " ".join(["INLINE-", str(int(round(il))), str(int(round(xl))), _fmt(x), _fmt(y), f"{z:.4f}",
-                        names[fid - 1], str(stick_no + 1)])
-
-
-def _iesx_rows(sticks: FaultSticks):
-    unit = "ft" if sticks.xy_unit == "ft" else "m "
-    current = None
-    for fid, stick_no, _, x, y, z, _, _ in _stick_nodes(sticks):
-        if fid != current:
-            name = _safe_name(sticks.names[fid - 1])[:17]
-            yield f"PROFILE {name:<17s}TYPE 1  4 {'fault sticks, seismo3d':<45s}3d_ci7m.ifdf     {unit} ms"
-            yield "SNAPPING PARAMETERS 5     0 1"
-            current = fid
-        yield f"{x:16.8E}{y:16.8E}{(stick_no + 1) % 1000:3d}{14:3d}{z:9.2f}"
-    yield "EOD"
 
 
 # --------------------------------------------------------------------------------------------------------------------

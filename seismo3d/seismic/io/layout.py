@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from importlib import metadata
 from pathlib import Path
 
 import numpy as np
@@ -219,6 +218,8 @@ def _refuse_undeclared_text_headers(path: Path, chosen: _Reading, data_offset: i
 
 
 def _segyio_version() -> str:
+    from importlib import metadata  # here: 10-15 ms to import, for a message only
+
     try:
         return metadata.version("segyio")
     except metadata.PackageNotFoundError:  # pragma: no cover - segyio imported from a source tree

@@ -29,12 +29,9 @@ import numpy as np
 from ..._atomic import atomic_path
 from ...errors import InputError
 from .coordinates import LINE_UNITS
+from .text_rows import TextColumn, format_rows
 
 __all__ = ["TriangulatedSurface", "write_tsurf"]
-
-# rows of vertices or triangles formatted at a time (as Python numbers)
-_ROWS = 1 << 15
-
 
 @dataclass(frozen=True, eq=False)
 class TriangulatedSurface:
@@ -102,29 +99,31 @@ def write_tsurf(path, surfaces, *, source: str = "") -> Path:
                          "sticks)")
     path = Path(path)
     with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:
-        for s in surfaces:  # line by line: the text of a large run's faults is never held whole
-            fh.writelines(line + "\n" for line in _tsurf_lines(s, source))
+        for s in surfaces:  # a block of rows at a time: the text of a large run's faults is never held whole
+            fh.writelines(_tsurf_text(s, source))
     return path
 
 
-def _tsurf_lines(s: TriangulatedSurface, source: str):
-    """The lines of one surface's ``GOCAD TSurf 1`` object, without their line ends."""
+def _tsurf_text(s: TriangulatedSurface, source: str):
+    """The text of one surface's ``GOCAD TSurf 1`` object: its header lines, then blocks of ``VRTX`` and ``TRGL``
+    rows (:data:`~seismo3d.seismic.io.text_rows.ROWS` at a time), every line ended by a line feed."""
     lines_units = s.xy_unit == LINE_UNITS
     axis_names = '"INLINE" "CROSSLINE" "Z"' if lines_units else '"X" "Y" "Z"'
     xy = "none" if lines_units else s.xy_unit
     z = {"samples": "none"}.get(s.z_unit, s.z_unit)
-    yield from ["GOCAD TSurf 1", "HEADER {", f"name: {_name(s.name)}", "}"]
+    header = ["GOCAD TSurf 1", "HEADER {", f"name: {_name(s.name)}", "}"]
     if source:
-        yield f"# written by seismo3d from {source}"
-    yield from ["GOCAD_ORIGINAL_COORDINATE_SYSTEM", "NAME Default", f"AXIS_NAME {axis_names}",
-                f'AXIS_UNIT "{xy}" "{xy}" "{z}"', "ZPOSITIVE Depth", "END_ORIGINAL_COORDINATE_SYSTEM", "TFACE"]
-    # Python floats and ints (tolist) format as numpy's scalars do, several times faster; a chunk of rows at a time
+        header.append(f"# written by seismo3d from {source}")
+    header += ["GOCAD_ORIGINAL_COORDINATE_SYSTEM", "NAME Default", f"AXIS_NAME {axis_names}",
+               f'AXIS_UNIT "{xy}" "{xy}" "{z}"', "ZPOSITIVE Depth", "END_ORIGINAL_COORDINATE_SYSTEM", "TFACE"]
+    yield "".join(line + "\n" for line in header)
+    # one % of the row template over a block of rows' numbers (text_rows): the same text as per-row f-strings
     vertices = np.asarray(s.vertices, dtype=np.float64)
-    for start in range(0, vertices.shape[0], _ROWS):
-        for i, (x, y, depth) in enumerate(vertices[start:start + _ROWS].tolist(), start=start + 1):
-            yield f"VRTX {i} {x:.3f} {y:.3f} {depth:.4f} CNXYZ"
-    triangles = np.asarray(s.triangles, dtype=np.int64)
-    for start in range(0, triangles.shape[0], _ROWS):
-        for a, b, c in (triangles[start:start + _ROWS] + 1).tolist():
-            yield f"TRGL {a} {b} {c}"
-    yield "END"
+    n = vertices.shape[0]
+    yield from format_rows([TextColumn("VRTX"), TextColumn(np.arange(1, n + 1), "d"), TextColumn(vertices[:, 0], ".3f"),
+                            TextColumn(vertices[:, 1], ".3f"), TextColumn(vertices[:, 2], ".4f"), TextColumn("CNXYZ")],
+                           n, sep=" ")
+    triangles = np.asarray(s.triangles, dtype=np.int64).reshape(-1, 3) + 1
+    yield from format_rows([TextColumn("TRGL"), *(TextColumn(triangles[:, i], "d") for i in range(3))],
+                           triangles.shape[0], sep=" ")
+    yield "END\n"

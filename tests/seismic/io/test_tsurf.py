@@ -108,10 +108,10 @@ def test_tsurf_refuses_nothing_to_write(tmp_path):
 def test_tsurf_written_by_chunks_of_rows_is_the_same_file(surfaces, tmp_path, monkeypatch):
     """The writer streams its rows a chunk at a time (a large run's text is never held whole): chunks of 7 rows
     give the bytes of one chunk, and every row is the format of numpy's own scalars."""
-    import seismo3d.seismic.io.tsurf as tsurf
+    import seismo3d.seismic.io.text_rows as text_rows
 
     whole = write_tsurf(tmp_path / "whole.ts", surfaces, source="test").read_bytes()
-    monkeypatch.setattr(tsurf, "_ROWS", 7)
+    monkeypatch.setattr(text_rows, "ROWS", 7)
     assert write_tsurf(tmp_path / "chunks.ts", surfaces, source="test").read_bytes() == whole
     b = surfaces[1]
     rows = [f"VRTX {i} {p[0]:.3f} {p[1]:.3f} {p[2]:.4f} CNXYZ" for i, p in enumerate(b.vertices, start=1)]

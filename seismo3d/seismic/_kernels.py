@@ -84,9 +84,12 @@ def correlate_axis(x: np.ndarray, w: np.ndarray, axis: int) -> np.ndarray:
 # voxels per pass of the eigen-decomposition: its float64 temporaries (~40 of 64 KiB, 2.5 MB a thread) stay in the
 # processor's cache (2^15: ~10 MB a thread, about twice the CPU seconds on a 200 x 200 x 500 cube)
 _EIG_CHUNK = 1 << 13
+# tensors fewer than this take Python's math.acos (np.frompyfunc: the same bits as the compiled _acos, four times
+# slower, ~10 ms for 1e5; no compiling: a small first run, e.g. the horizon on f3_crop.sgy, spares 0.35 CPU s)
+_SMALL_ACOS = 1 << 17
 
 
-def eig3(a, b, c, d, e, f, planarity: bool = True):
+def eig3(a, b, c, d, e, f, planarity: bool = True, acos=None):
     """Largest eigenvector and planarity of the symmetric tensors ``[[a, b, c], [b, d, e], [c, e, f]]``.
 
     Closed-form eigenvalues (Smith 1961: trigonometric solution of the characteristic cubic), the eigenvector from
@@ -102,6 +105,9 @@ def eig3(a, b, c, d, e, f, planarity: bool = True):
     planarity : bool, optional
         False: the planarity and the two smaller eigenvalues it needs are not computed (None in its place); the
         eigenvector is the same bits.
+    acos : callable, optional
+        The element-wise arc cosine of a float64 array: the compiled :func:`_acos` (default) or
+        :func:`_python_acos` (the same bits, without compiling; :func:`_acos_for`).
 
     Returns
     -------
@@ -128,7 +134,7 @@ def eig3(a, b, c, d, e, f, planarity: bool = True):
         r = 0.5 * (b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02))
         r = np.where(r > -1.0, r, -1.0)  # min(1, max(-1, r)) as Python's max and min (NaN -> -1)
         r = np.where(r < 1.0, r, 1.0)
-        phi = _acos(r) / 3.0
+        phi = (_acos if acos is None else acos)(r) / 3.0
         l1 = q + 2.0 * p * np.cos(phi)
         # rows of T - l1 I: (a - l1, b, c), (b, d - l1, e), (c, e, f - l1); their cross products
         r0x, r1y, r2z = a64 - l1, d64 - l1, f64_ - l1
@@ -165,6 +171,16 @@ def _acos(x):
     return out.reshape(x.shape)
 
 
+def _python_acos(x):
+    """:func:`_acos` by Python's ``math.acos`` (the same bits), without compiling."""
+    return np.frompyfunc(math.acos, 1, 1)(x).astype(np.float64)
+
+
+def _acos_for(size: int):
+    """The acos for ``size`` tensors: Python's below :data:`_SMALL_ACOS`, else the compiled one."""
+    return _python_acos if size < _SMALL_ACOS else _acos
+
+
 def _eig_chunks(components, work):
     """Call ``work(slice, six (n,) float32 arrays)`` on the tensor components (six float32 arrays of one shape) as flat
     arrays, in chunks of ``_EIG_CHUNK``, the chunks shared out over numba's thread count of threads (numpy and
@@ -187,8 +203,10 @@ def eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
     n_flat = normals.reshape(-1, 3)
     p_flat = planarity.reshape(-1)
 
+    acos = _acos_for(p_flat.size)
+
     def work(part, comps):
-        vx, vy, vz, pl = eig3(*comps)
+        vx, vy, vz, pl = eig3(*comps, acos=acos)
         n_flat[part, 0] = vx
         n_flat[part, 1] = vy
         n_flat[part, 2] = vz
@@ -207,8 +225,10 @@ def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_norma
     floor32 = np.float32(1.0 / max_slope / 2.0)
     top32 = np.float32(max_slope)
 
+    acos = _acos_for(p0_flat.size)
+
     def work(part, comps):
-        vx, vy, vz, _ = eig3(*comps, planarity=False)
+        vx, vy, vz, _ = eig3(*comps, planarity=False, acos=acos)
         if as_float32_normals:
             vz32 = vz.astype(np.float32)
             nz = np.where(floor32 > vz32, floor32, vz32)  # max(vz, floor) as Python's max

@@ -63,6 +63,30 @@ def test_eig_normals_and_eig_slopes_agree_bit_for_bit():
     assert np.all((planarity >= 0) & (planarity <= 1))
 
 
+def test_python_acos_is_the_compiled_acos_bit_for_bit():
+    # small structure tensors take Python's math.acos (no compiling on a small first run): the same bits
+    x = np.concatenate([np.random.default_rng(5).uniform(-1, 1, 20000), [-1.0, -0.5, -0.0, 0.0, 0.5, 1.0]])
+    assert np.array_equal(_kernels._python_acos(x).view(np.int64), _kernels._acos(x).view(np.int64))
+    assert _kernels._acos_for(_kernels._SMALL_ACOS - 1) is _kernels._python_acos
+    assert _kernels._acos_for(_kernels._SMALL_ACOS) is _kernels._acos
+
+
+def test_eig_normals_of_a_small_cube_are_the_compiled_acos_bits(monkeypatch):
+    cube = np.random.default_rng(6).standard_normal((12, 10, 30)).astype(np.float32)
+    t = _kernels.structure_tensor(cube, 1.0, (2.0, 6.0), False)
+    runs = []
+    for small in (_kernels._SMALL_ACOS, 1):  # Python's acos, then the compiled one
+        monkeypatch.setattr(_kernels, "_SMALL_ACOS", small)
+        normals = np.empty(cube.shape + (3,), np.float32)
+        planarity = np.empty(cube.shape, np.float32)
+        _kernels.eig_normals(*t, normals, planarity)
+        p0 = np.empty(cube.shape, np.float32)
+        p1 = np.empty(cube.shape, np.float32)
+        _kernels.eig_slopes(*t, _kernels.MAX_SLOPE, p0, p1, False)
+        runs.append((normals, planarity, p0, p1))
+    assert all(np.array_equal(a, b) for a, b in zip(*runs))
+
+
 def test_eig3_without_planarity_gives_the_same_eigenvectors(monkeypatch):
     """The slopes' eigen-decomposition skips the planarity (two eigenvalues and a cosine): the same bits of the
     eigenvector, and the same slopes whatever the chunks' size."""

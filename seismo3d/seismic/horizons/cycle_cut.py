@@ -39,13 +39,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numba as nb
 import numpy as np
 from scipy import ndimage, sparse
 from scipy.sparse.csgraph import breadth_first_order, maximum_flow
 
-from .. import _kernels
 from .correlation import neighbour_confidence, window_correlation
+from .dp import trace_search
 
 __all__ = ["CycleCut", "neighbour_cycle", "binary_min_cut", "cycle_cut"]
 
@@ -83,27 +82,17 @@ def neighbour_cycle(picks: np.ndarray, offsets: np.ndarray, times: np.ndarray, d
     (n,) float64 ndarray
         Samples; NaN where the trace is empty or has no such pick.
     """
-    return _neighbour_cycle(picks, offsets, np.asarray(times, np.float64), int(direction), float(min_gap))
-
-
-@nb.njit(cache=True)
-def _neighbour_cycle(picks, offsets, times, direction, min_gap):
-    """:func:`neighbour_cycle`, compiled."""
-    out = np.empty(times.size)
-    for j in range(times.size):
-        out[j] = np.nan  # a loop, not np.full: it compiles numba's generic fill
-        if not np.isfinite(times[j]):
-            continue
-        p = picks[offsets[j]:offsets[j + 1]]
-        # search_left / right: np.searchsorted's sides, in loops (numba's np.searchsorted compiles for half a second)
-        if direction > 0:
-            k = _kernels.search_left(p, times[j] + min_gap)
-            if k < p.size:
-                out[j] = p[k]
-        else:
-            k = _kernels.search_right(p, times[j] - min_gap)
-            if k > 0:
-                out[j] = p[k - 1]
+    times = np.asarray(times, np.float64)
+    out = np.full(times.size, np.nan)
+    j = np.nonzero(np.isfinite(times))[0]
+    if direction > 0:  # the first pick at or below the time + min_gap
+        k = trace_search(picks, offsets, j, times[j] + min_gap, "left")
+        ok = k < offsets[j + 1]
+        out[j[ok]] = picks[k[ok]]
+    else:  # the last pick at or above the time - min_gap
+        k = trace_search(picks, offsets, j, times[j] - min_gap, "right")
+        ok = k > offsets[j]
+        out[j[ok]] = picks[k[ok] - 1]
     return out
 
 

@@ -27,12 +27,11 @@ from concurrent.futures import ThreadPoolExecutor
 import numba as nb
 import numpy as np
 
-from ..._threads import run_threads
 from ..attributes import section_slopes, structure_tensor_orientation
-from .. import _kernels
 from ..reflectors import nearest_pick
 
-__all__ = ["sample_at", "window_ncc", "dp_picks", "line_slopes", "reflector_period", "settle_lone_departures"]
+__all__ = ["sample_at", "window_ncc", "dp_picks", "line_slopes", "reflector_period", "settle_lone_departures",
+           "trace_search"]
 
 
 @nb.njit(cache=True)
@@ -52,94 +51,101 @@ def sample_at(trace, t):
 _MAX_CANDIDATES = 64  # candidates per trace at most (the reach holds a few reflector cycles)
 
 
-@nb.njit(cache=True)
-def _trace_candidates(k, guide, fixed, picks, offsets, reach, out):
-    """The candidates of trace ``k``: its picks within ``reach`` of ``guide`` (at most :data:`_MAX_CANDIDATES`), or,
-    where ``fixed`` is finite, the one of them nearest to it; written to ``out`` (when given), their count returned."""
-    g = guide[k]
-    if not np.isfinite(g):
-        return 0
-    count = 0
-    best_d = 1e9
-    for q in range(offsets[k], offsets[k + 1]):
-        d = abs(picks[q] - g)
-        if d <= reach and count < _MAX_CANDIDATES:
-            if np.isfinite(fixed[k]):
-                if abs(picks[q] - fixed[k]) < best_d:
-                    best_d = abs(picks[q] - fixed[k])
-                    if out.size:
-                        out[0] = picks[q]
-                    count = 1
-            else:
-                if out.size:
-                    out[count] = picks[q]
-                count += 1
-    return count
-
-
-@nb.njit(cache=True, nogil=True)
-def _count_candidates(t, n_threads, guide, fixed, picks, offsets, reach, counts):
-    # counts[k + 1]: the number of candidates of traces k = t, t + n_threads, ...
-    none = np.empty(0)
-    for k in range(t, guide.size, n_threads):
-        counts[k + 1] = _trace_candidates(k, guide, fixed, picks, offsets, reach, none)
-
-
-@nb.njit(cache=True, nogil=True)
-def _fill_candidates(t, n_threads, traces, guide, fixed, picks, offsets, reach, half, slopes, cross_slopes, first,
-                     pick, unit, whole, slope, cross_slope):
-    # the candidates of traces k = t, t + n_threads, ... and their waveforms (see _candidates)
-    m = 2 * half + 1
-    win = np.empty(m)
-    for k in range(t, guide.size, n_threads):
-        _trace_candidates(k, guide, fixed, picks, offsets, reach, pick[first[k]:first[k + 1]])
-        for q in range(first[k], first[k + 1]):
-            slope[q] = _slope_at(slopes, k, pick[q])
-            cross_slope[q] = _slope_at(cross_slopes, k, pick[q])
-            finite = True
-            mean = 0.0
-            for s in range(m):
-                win[s] = sample_at(traces[k], pick[q] - half + s)
-                finite &= np.isfinite(win[s])
-                mean += win[s]
-            if not finite:
-                continue
-            mean /= m
-            ss = 0.0
-            for s in range(m):
-                win[s] -= mean
-                ss += win[s] * win[s]
-            whole[q] = True
-            if ss > 0:
-                scale = 1.0 / np.sqrt(ss)
-                for s in range(m):
-                    unit[q, s] = win[s] * scale
-
-
 def _candidates(traces, guide, fixed, picks, offsets, reach, half, slopes, cross_slopes):
-    """Every trace's candidate picks (:func:`_trace_candidates`) and their waveforms, once for all the programmes of
-    :func:`dp_picks`: ``(first, pick, unit, whole, slope, cross_slope)``, the candidates of trace ``k`` at
+    """Every trace's candidate picks and their waveforms, once for all the programmes of :func:`dp_picks`.
+
+    A trace's candidates are its picks within ``reach`` of ``guide`` (the first :data:`_MAX_CANDIDATES` of them), or,
+    where ``fixed`` is finite, the one of them nearest to it (the first on a tie); none where the guide is NaN.
+    Returns ``(first, pick, unit, whole, slope, cross_slope)``, the candidates of trace ``k`` at
     ``first[k]:first[k + 1]`` of ``pick``; ``unit`` (n_candidates, 2 half + 1) float32 the window ``+-half`` samples
     around each pick centred and scaled to unit norm (zeros where flat), so that two windows' normalised
     cross-correlation is their dot product; ``whole`` False where a window leaves the trace (its correlations are
     :func:`window_ncc`'s of the raw windows); ``slope``, ``cross_slope`` the reflector slopes ``slopes`` and
     ``cross_slopes`` at each candidate. About ``4 (2 half + 1) + 18`` bytes a candidate (a few candidates a trace: ~0.2
-    KB a trace at ``half`` 8). The traces are shared out over numba's threads."""
+    KB a trace at ``half`` 8). Array work in numpy (the compiled kernels it replaces cost the horizon's first run 1.2
+    CPU s of compiling); the window sums are taken sample by sample, in the kernels' order (the same bits)."""
     n = guide.size
-    n_threads = nb.get_num_threads()
-    counts = np.zeros(n + 1, np.int64)
-    run_threads(_count_candidates, n_threads, guide, fixed, picks, offsets, reach, counts)
-    first = np.cumsum(counts)
-    total = int(first[n])
+    trace = np.repeat(np.arange(n), np.diff(offsets))
+    near = np.abs(picks - guide[trace]) <= reach  # False where the guide is NaN
+    count = np.cumsum(near)
+    rank = count - 1 - np.concatenate([[0], count])[offsets[:-1]][trace]  # among the trace's near picks
+    keep = near & (rank < _MAX_CANDIDATES)
+    seeded = np.isfinite(fixed)
+    if seeded.any():
+        on_seeded = seeded[trace]
+        keep &= ~on_seeded
+        d = np.where(near & on_seeded, np.abs(picks - fixed[trace]), np.inf)
+        for k in np.nonzero(seeded)[0]:  # the seeds: a few traces
+            dk = d[offsets[k]:offsets[k + 1]]
+            if dk.size and dk.min() < 1e9:
+                keep[offsets[k] + int(np.argmin(dk))] = True  # the first of the nearest
+    chosen = np.nonzero(keep)[0]
+    k = trace[chosen]
+    first = np.zeros(n + 1, np.int64)
+    first[1:] = np.cumsum(np.bincount(k, minlength=n))
+    pick = picks[chosen].astype(np.float64)
     m = 2 * half + 1
-    pick = np.empty(total)
-    unit = np.zeros((total, m), np.float32)
-    whole = np.zeros(total, np.bool_)
-    slope = np.empty(total, np.float32)
-    cross_slope = np.empty(total, np.float32)
-    run_threads(_fill_candidates, n_threads, traces, guide, fixed, picks, offsets, reach, half, slopes, cross_slopes,
-                first, pick, unit, whole, slope, cross_slope)
+    n_s = traces.shape[1]
+    nearest = np.clip(np.rint(pick), 0, n_s - 1).astype(np.int64)  # the sample nearest each pick (round half even)
+    slope = slopes[k, nearest].astype(np.float32)
+    cross_slope = cross_slopes[k, nearest].astype(np.float32)
+    win = sample_windows(traces, k, pick, half)
+    whole = np.isfinite(win).all(axis=1)
+    mean = np.zeros(pick.size)
+    for s in range(m):  # summed sample by sample, in the kernel's order
+        mean += win[:, s]
+    mean /= m
+    win -= mean[:, None]
+    ss = np.zeros(pick.size)
+    for s in range(m):
+        ss += win[:, s] * win[:, s]
+    unit = np.zeros((pick.size, m), np.float32)
+    scaled = whole & (ss > 0)
+    unit[scaled] = win[scaled] * (1.0 / np.sqrt(ss[scaled]))[:, None]
     return first, pick, unit, whole, slope, cross_slope
+
+
+def sample_windows(traces: np.ndarray, rows: np.ndarray, centres: np.ndarray, half: int) -> np.ndarray:
+    """The windows ``+-half`` samples around ``centres`` on the traces ``rows``, (n, 2 half + 1) float64:
+    ``sample_at(traces[rows[p]], centres[p] - half + s)`` (:func:`sample_at`: linear interpolation, NaN outside the
+    trace), in numpy, sample by sample."""
+    n_s = traces.shape[1]
+    win = np.empty((centres.size, 2 * half + 1))
+    for s in range(2 * half + 1):
+        t = centres - half + s
+        i = np.clip(np.floor(t), 0, n_s - 1).astype(np.int64)
+        f = t - i
+        lo = traces[rows, i].astype(np.float64)
+        v = (1.0 - f) * lo + f * traces[rows, np.minimum(i + 1, n_s - 1)].astype(np.float64)
+        last = i >= n_s - 1
+        v[last] = lo[last]
+        v[(t < 0.0) | (t > n_s - 1) | ~np.isfinite(t)] = np.nan
+        win[:, s] = v
+    return win
+
+
+def _windows_ncc(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """:func:`window_ncc` of each row of ``a`` with the same row of ``b``, in numpy (sums sample by sample, in its
+    order)."""
+    both = np.isfinite(a) & np.isfinite(b)
+    cnt = both.sum(axis=1)
+    sa = np.zeros(a.shape[0])
+    sb = np.zeros(a.shape[0])
+    for k in range(a.shape[1]):
+        sa += np.where(both[:, k], a[:, k], 0.0)
+        sb += np.where(both[:, k], b[:, k], 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ma, mb = sa / cnt, sb / cnt
+        sab = np.zeros(a.shape[0])
+        saa = np.zeros(a.shape[0])
+        sbb = np.zeros(a.shape[0])
+        for k in range(a.shape[1]):
+            dx, dy = a[:, k] - ma, b[:, k] - mb
+            sab += np.where(both[:, k], dx * dy, 0.0)
+            saa += np.where(both[:, k], dx * dx, 0.0)
+            sbb += np.where(both[:, k], dy * dy, 0.0)
+        out = np.where((saa > 0) & (sbb > 0), sab / np.sqrt(saa * sbb), 0.0)
+    return np.where(cnt < 5, 0.0, out)
 
 
 @nb.njit(cache=True)
@@ -303,9 +309,21 @@ def _sweep(out, g, wg, ids, cands, at_candidates, traces, slopes, cross_slopes, 
         np.moveaxis(out, axis, -1)[...] = out_t
 
 
-@nb.njit(cache=True, nogil=True)
 def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across, w_step,
                  w_wave, half, hold):
+    """:func:`_choose_lines` with its work arrays allocated here (a kernel's np.empty compiles numba's allocator:
+    0.2 CPU s of a first run)."""
+    length = guide.shape[1]
+    width = max(1, int(np.diff(first).max(initial=0)))
+    _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across,
+                  w_step, w_wave, half, hold, np.empty((length, 2), np.int64), np.empty((length, 2)),
+                  np.empty((length, width)), np.empty((length, width), np.int64), np.empty(2 * half + 1),
+                  np.empty(2 * half + 1), np.empty(2, np.int64))
+
+
+@nb.njit(cache=True, nogil=True)
+def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across, w_step,
+                  w_wave, half, hold, c_ids, c_t, cost, back, wa, wb, held):
     """The lines (rows of the (n_lines, length) arrays) chosen in order, into ``out``; with ``hold``, each with the
     picks in ``out`` of the line before it (already re-chosen) and of the line after it held, else each alone.
 
@@ -314,11 +332,10 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, ac
     neighbouring lines held (``c_ids`` / ``c_t`` (length, 2), -1 / NaN where none; the previous line's in column 0
     and the next line's in column 1) add their pair costs (slopes ``across`` across the lines) to each candidate's
     guide term. ``along_c``, ``across_c``: ``along`` and ``across`` at each candidate. A line's pick is NaN where the
-    trace has no candidate; the line restarts after it. One kernel, not a loop calling a kernel per line: numba
-    compiles a called kernel on its own and again inside its caller."""
+    trace has no candidate; the line restarts after it. ``c_ids``, ``c_t``, ``cost``, ``back`` (length, at least the
+    most candidates of a trace), ``wa``, ``wb`` (2 half + 1), ``held`` (2): work arrays. One kernel, not a loop calling
+    a kernel per line: numba compiles a called kernel on its own and again inside its caller."""
     n_lines, length = guide.shape
-    c_ids = np.empty((length, 2), np.int64)
-    c_t = np.empty((length, 2))
     for i in range(n_lines):
         # the neighbouring lines' picks, by loops (slice assignments and np.full compile numba's generic setitem and
         # fill: seconds)
@@ -337,16 +354,11 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, ac
         for j in range(n):
             out[i, j] = np.nan  # loops, not np.full: it compiles numba's generic fill (about 1 CPU s)
             width = max(width, first[trace_ids[j] + 1] - first[trace_ids[j]])
-        cost = np.empty((n, width))
-        back = np.empty((n, width), np.int64)
         for j in range(n):
             for c in range(width):
                 cost[j, c] = np.inf
                 back[j, c] = -1
-        wa = np.empty(2 * half + 1)
-        wb = np.empty(2 * half + 1)
         n_cross = c_ids.shape[1]
-        held = np.empty(n_cross, np.int64)
         for j in range(n):
             kb = trace_ids[j]
             # the neighbouring lines' picks: the same for every candidate of the trace (-2: none held)
@@ -403,52 +415,57 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, ac
                 j -= 1
 
 
-@nb.njit(cache=True)
 def _nearest_picks(picks, offsets, times, reach):
-    """Each trace's pick nearest to ``times`` ((n,) samples) within ``reach`` samples, NaN where none."""
-    out = np.empty(times.size)
-    for k in range(times.size):
-        out[k] = np.nan  # a loop, not np.full: it compiles numba's generic fill
-        t = times[k]
-        if not np.isfinite(t):
-            continue
-        best = reach
-        for q in range(offsets[k], offsets[k + 1]):
-            d = abs(picks[q] - t)
-            if d <= best:
-                best = d
-                out[k] = picks[q]
-    return out
+    """Each trace's pick nearest to ``times`` ((n,) samples) within ``reach`` samples (the later one on a tie), NaN
+    where none."""
+    trace = np.repeat(np.arange(times.size), np.diff(offsets))
+    d = np.abs(picks - times[trace])  # NaN where the time is
+    best = np.full(times.size, np.inf)
+    np.minimum.at(best, trace, np.where(np.isnan(d), np.inf, d))
+    at = np.nonzero((d <= reach) & (d == best[trace]))[0]
+    last = np.full(times.size, -1)
+    np.maximum.at(last, trace[at], at)
+    return np.where(last >= 0, picks[last], np.nan)
 
 
-@nb.njit(cache=True, nogil=True)
 def _grid_energy(out, guide, wg, first, pick, unit, whole, traces, slopes, cross_slopes, w_step, w_wave, half):
     """The energy the line sweeps lower, over a (n_inlines, n_xlines) grid of picks: guide terms plus the pair costs
     ``w_step (step - slope)^2 + w_wave (1 - ncc)`` of neighbouring traces along both axes (pairs with an empty pick
-    left out)."""
+    left out). In numpy: the terms added one after the other in the order of a loop over the grid (each trace's
+    guide term, then its pairs down the first axis and along the last), by a cumulative sum; the correlations of
+    two unit windows are dot products summed in numpy's order (the compiled loop's were reassociated)."""
     ni, nx = out.shape
-    wa = np.empty(2 * half + 1)
-    wb = np.empty(2 * half + 1)
-    e = 0.0
-    for i in range(ni):
-        for j in range(nx):
-            t = out[i, j]
-            if not np.isfinite(t):
-                continue
-            e += wg[i, j] * abs(t - guide[i, j])
-            k = i * nx + j
-            q = _candidate_at(first, pick, k, t)
-            for axis in range(2):
-                i2, j2 = (i, j + 1) if axis == 1 else (i + 1, j)
-                if i2 >= ni or j2 >= nx or not np.isfinite(out[i2, j2]):
-                    continue
-                t2 = out[i2, j2]
-                k2 = i2 * nx + j2
-                along = slopes if axis == 1 else cross_slopes
-                step = (t2 - t) - 0.5 * (_slope_at(along, k, t) + _slope_at(along, k2, t2))
-                r = _pick_ncc(traces, unit, whole, k, t, q, k2, t2, _candidate_at(first, pick, k2, t2), half, wa, wb)
-                e += w_step * step * step + w_wave * (1.0 - r)
-    return e
+    t = out.ravel()
+    live = np.isfinite(t)
+    k = np.nonzero(live)[0]
+    # each picked trace's candidate at its pick (the first equal one; -1: none)
+    owner = np.repeat(np.arange(t.size), np.diff(first))
+    hit = np.nonzero(pick == t[owner])[0]
+    q = np.full(t.size, np.iinfo(np.int64).max)
+    np.minimum.at(q, owner[hit], hit)
+    q[q == np.iinfo(np.int64).max] = -1
+    terms = np.zeros((t.size, 3))
+    terms[k, 0] = wg.ravel()[k] * np.abs(t[k] - guide.ravel()[k])
+    n_s = slopes.shape[1]
+    for col, (along, shift) in enumerate(((cross_slopes, nx), (slopes, 1)), start=1):
+        ka = k[(k % nx + 1 < nx) if shift == 1 else (k + shift < t.size)]  # the pair's second trace on the grid
+        ka = ka[live[ka + shift]]
+        kb = ka + shift
+        ta, tb = t[ka], t[kb]
+        sa = along[ka, np.clip(np.rint(ta), 0, n_s - 1).astype(np.int64)]
+        sb = along[kb, np.clip(np.rint(tb), 0, n_s - 1).astype(np.int64)]
+        step = (tb - ta) - 0.5 * (sa + sb)  # the slopes added in their dtype, as the compiled loop
+        qa, qb = q[ka], q[kb]
+        units = (qa >= 0) & (qb >= 0)
+        units[units] &= whole[qa[units]] & whole[qb[units]]
+        r = np.empty(ka.size)
+        r[units] = np.einsum("ij,ij->i", unit[qa[units]].astype(np.float64), unit[qb[units]].astype(np.float64))
+        raw = ~units
+        if raw.any():
+            r[raw] = _windows_ncc(sample_windows(traces, ka[raw], ta[raw], half),
+                                  sample_windows(traces, kb[raw], tb[raw], half))
+        terms[ka, col] = w_step * step * step + w_wave * (1.0 - r)
+    return float(np.cumsum(terms.ravel())[-1]) if terms.size else 0.0
 
 
 def line_slopes(data: np.ndarray, sigma_tensor, rows: tuple[int, int] | None = None, *, axis: int = -1) -> np.ndarray:
@@ -516,19 +533,46 @@ def reflector_period(picks: np.ndarray, offsets: np.ndarray, traces: np.ndarray,
     return float(np.median(gaps)) if gaps.size else np.nan
 
 
-@nb.njit(cache=True)
+def trace_search(picks: np.ndarray, offsets: np.ndarray, traces: np.ndarray, values: np.ndarray,
+                 side: str = "left") -> np.ndarray:
+    """``np.searchsorted`` of each value in its trace's sorted picks, for many traces at once.
+
+    Parameters
+    ----------
+    picks, offsets : ndarray
+        Every trace's sorted picks (:func:`~seismo3d.seismic.reflector_picks`: trace ``j``'s picks are
+        ``picks[offsets[j]:offsets[j + 1]]``).
+    traces : (m,) int ndarray
+        The trace of each value.
+    values : (m,) float64 ndarray
+    side : {"left", "right"}
+        The first pick ``>=`` the value (left) or ``>`` it (right).
+
+    Returns
+    -------
+    (m,) int64 ndarray
+        The index into ``picks`` (from ``offsets[trace]`` to ``offsets[trace + 1]``). A binary search of all the
+        values together, in numpy (the compiled search per trace it replaces cost a first run compiling).
+    """
+    lo = offsets[traces].astype(np.int64)
+    hi = offsets[traces + 1].astype(np.int64)
+    top = max(picks.size - 1, 0)
+    while True:
+        active = lo < hi
+        if not active.any():
+            return lo
+        mid = (lo + hi) >> 1
+        key = picks[np.minimum(mid, top)] if picks.size else np.zeros(mid.size)
+        up = active & ((key < values) if side == "left" else (key <= values))
+        lo = np.where(up, mid + 1, lo)
+        hi = np.where(active & ~up, mid, hi)
+
+
 def _pick_gaps(picks, offsets, traces, times):
     """The spacing of the two picks around ``times`` on each of ``traces`` (the pair at the nearer end where the
     time lies outside them); traces with fewer than two picks or no time are left out."""
-    gaps = np.empty(traces.size)
-    count = 0
-    for i in range(traces.size):
-        j = traces[i]
-        lo, hi = offsets[j], offsets[j + 1]
-        if hi - lo < 2 or not np.isfinite(times[i]):
-            continue
-        k = lo + _kernels.search_left(picks[lo:hi], times[i])  # not np.searchsorted: it compiles for half a CPU second
-        k = min(max(k, lo + 1), hi - 1)
-        gaps[count] = picks[k] - picks[k - 1]
-        count += 1
-    return gaps[:count]
+    ok = (offsets[traces + 1] - offsets[traces] >= 2) & np.isfinite(times)
+    traces, times = traces[ok], times[ok]
+    k = trace_search(picks, offsets, traces, times)
+    k = np.minimum(np.maximum(k, offsets[traces] + 1), offsets[traces + 1] - 1)
+    return picks[k] - picks[k - 1]

@@ -1,0 +1,224 @@
+"""The horizon's array work in numpy (issue 58: no compiling on a first run) against the loops it replaced: the
+picker (seismo3d.seismic.reflectors._section_picks), the dynamic programme's candidates, nearest picks, pick gaps
+and grid energy (horizons.dp) and the neighbouring cycles (horizons.cycle_cut.neighbour_cycle). Each reference below
+is the replaced kernel's loop in plain Python; the results must be the same bits (the grid energy: within 1e-13,
+numpy's dot products). Last, a first run of the horizon compiles only the irregular loops: the pairs' lag search, the
+dynamic programme and the solver."""
+
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from seismo3d.seismic import reflectors
+from seismo3d.seismic.horizons import cycle_cut, dp
+
+from .conftest import random_layers
+
+
+def _ref_trace_picks(a, code, plateau_start):
+    # the replaced kernel's loop (reflectors._trace_picks)
+    n, out, refine = a.size, [], []
+    if code >= 2:
+        for i in range(n - 1):
+            y0, y1 = a[i], a[i + 1]
+            if (code == 2 and y0 < 0.0 <= y1) or (code == 3 and y0 > 0.0 >= y1):
+                out.append(i + y0 / (y0 - y1) if y0 != y1 else i)
+                refine.append(False)
+        return out, refine
+    sgn = 1.0 if code == 0 else -1.0
+    i = 1
+    while i < n - 1:
+        y = sgn * a[i]
+        if plateau_start:
+            if y > 0.0 and y > sgn * a[i - 1] and y >= sgn * a[i + 1]:
+                out.append(float(i))
+                refine.append(True)
+            i += 1
+            continue
+        if y > 0.0 and y > sgn * a[i - 1]:
+            j = i
+            while j + 1 < n and sgn * a[j + 1] == y:
+                j += 1
+            if j + 1 < n and sgn * a[j + 1] < y:
+                out.append(0.5 * (i + j) if j > i else float(i))
+                refine.append(j == i)
+            i = j + 1
+        else:
+            i += 1
+    return out, refine
+
+
+def test_section_picks_are_the_loops_picks_on_clipped_and_gappy_sections(monkeypatch):
+    monkeypatch.setattr(reflectors, "_CHUNK", 50)  # several chunks of traces
+    rng = np.random.default_rng(0)
+    for trial in range(60):
+        a = np.round(rng.normal(size=(int(rng.integers(1, 12)), int(rng.integers(2, 30)))) * 3, trial % 3)
+        a = np.clip(a, -2, 2) if trial % 2 else a  # clipped plateaus
+        if trial % 5 == 0:
+            a[rng.random(a.shape) < 0.1] = np.nan
+        for code, plateau_start in ((0, False), (1, False), (2, False), (3, False), (0, True)):
+            pos, refine, offsets = reflectors._section_picks(a, code, plateau_start)
+            ref = [_ref_trace_picks(row, code, plateau_start) for row in a]
+            assert np.array_equal(np.diff(offsets), [len(p) for p, _ in ref])
+            assert np.array_equal(pos, np.array([x for p, _ in ref for x in p], np.float64))
+            assert np.array_equal(refine, np.array([x for _, r in ref for x in r], np.bool_))
+
+
+def _layers_with_seeds():
+    lat = (6, 30)
+    traces, picks, offsets, _ = random_layers(lat, n_samples=50, dip=0.1, seed=2)
+    rng = np.random.default_rng(1)
+    guide = rng.uniform(-3.0, 53.0, traces.shape[0])  # some guides near or past the trace ends
+    guide[::17] = np.nan
+    fixed = np.full(guide.size, np.nan)
+    fixed[[4, 40, 77]] = guide[[4, 40, 77]] + 0.3
+    slopes = rng.normal(size=traces.shape).astype(np.float32)
+    across = rng.normal(size=traces.shape).astype(np.float32)
+    return lat, traces, picks, offsets, guide, fixed, slopes, across
+
+
+def test_candidates_are_the_loops_candidates_and_windows():
+    lat, traces, picks, offsets, guide, fixed, slopes, across = _layers_with_seeds()
+    reach, half = 6.0, 5
+    first, pick, unit, whole, slope, cross_slope = dp._candidates(traces, guide, fixed, picks, offsets, reach, half,
+                                                                  slopes, across)
+    m = 2 * half + 1
+    for k in range(guide.size):
+        # the replaced kernels' choice (dp._trace_candidates)
+        near = [p for p in picks[offsets[k]:offsets[k + 1]] if abs(p - guide[k]) <= reach][:dp._MAX_CANDIDATES]
+        if np.isfinite(fixed[k]) and near:
+            near = [near[int(np.argmin([abs(p - fixed[k]) for p in near]))]]
+        assert np.array_equal(pick[first[k]:first[k + 1]], near)
+        for q in range(first[k], first[k + 1]):
+            assert slope[q] == slopes[k, min(max(int(round(pick[q])), 0), traces.shape[1] - 1)]
+            assert cross_slope[q] == across[k, min(max(int(round(pick[q])), 0), traces.shape[1] - 1)]
+            win = np.array([dp.sample_at.py_func(traces[k], pick[q] - half + s) for s in range(m)])
+            assert whole[q] == np.isfinite(win).all()
+            if whole[q]:
+                mean = 0.0
+                for v in win:
+                    mean += v
+                win -= mean / m
+                ss = 0.0
+                for v in win:
+                    ss += v * v
+                assert np.array_equal(unit[q], (win * (1.0 / np.sqrt(ss))).astype(np.float32))
+            else:
+                assert not unit[q].any()
+    assert (np.diff(first) > 1).any() and (~whole).any()
+
+
+def test_trace_search_nearest_picks_gaps_and_cycles_are_the_loops():
+    _, traces, picks, offsets, guide, _, _, _ = _layers_with_seeds()
+    n = guide.size
+    k = np.arange(n)
+    for side in ("left", "right"):
+        got = dp.trace_search(picks, offsets, k, np.nan_to_num(guide), side)
+        want = [offsets[j] + np.searchsorted(picks[offsets[j]:offsets[j + 1]], np.nan_to_num(guide[j]), side)
+                for j in k]
+        assert np.array_equal(got, want)
+    nearest = dp._nearest_picks(picks, offsets, guide, 3.0)
+    for j in k:
+        d = np.abs(picks[offsets[j]:offsets[j + 1]] - guide[j])
+        ok = np.nonzero(d <= 3.0)[0]
+        want = picks[offsets[j] + ok[d[ok] == d[ok].min()][-1]] if ok.size else np.nan  # the later on a tie
+        assert np.array_equal(nearest[j], want, equal_nan=True)
+    gaps = dp._pick_gaps(picks, offsets, k, guide)
+    want = []
+    for j in k:
+        p = picks[offsets[j]:offsets[j + 1]]
+        if p.size >= 2 and np.isfinite(guide[j]):
+            i = min(max(int(np.searchsorted(p, guide[j])), 1), p.size - 1)
+            want.append(p[i] - p[i - 1])
+    assert np.array_equal(gaps, want)
+    for direction in (1, -1):
+        got = cycle_cut.neighbour_cycle(picks, offsets, guide, direction, 2.5)
+        for j in k:
+            p = picks[offsets[j]:offsets[j + 1]]
+            if direction > 0:
+                after = p[p >= guide[j] + 2.5]
+                want = after[0] if after.size else np.nan
+            else:
+                before = p[p <= guide[j] - 2.5]
+                want = before[-1] if before.size else np.nan
+            assert np.array_equal(got[j], want, equal_nan=True)
+
+
+def test_grid_energy_is_the_loops_energy():
+    lat, traces, picks, offsets, guide, fixed, slopes, across = _layers_with_seeds()
+    half = 5
+    cands = dp._candidates(traces, guide, fixed, picks, offsets, 6.0, half, slopes, across)
+    first, pick, unit, whole = cands[:4]
+    rng = np.random.default_rng(3)
+    count = np.diff(first)
+    for trial in range(4):
+        choice = first[:-1] + rng.integers(0, 1 << 20, count.size) % np.maximum(count, 1)
+        t = np.where(count > 0, pick[np.minimum(choice, pick.size - 1)], np.nan)
+        if trial == 3:
+            t[rng.random(t.size) < 0.2] += 0.4  # picks that are no candidate
+        out, g, wg = t.reshape(lat), guide.reshape(lat), rng.random(lat)
+        energy = dp._grid_energy(out, g, wg, first, pick, unit, whole, traces, slopes, across, 0.7, 1.9, half)
+        # the replaced kernel's loop (dp._grid_energy)
+        wa, wb, e = np.empty(2 * half + 1), np.empty(2 * half + 1), 0.0
+        ni, nx = lat
+        for i in range(ni):
+            for j in range(nx):
+                if not np.isfinite(out[i, j]):
+                    continue
+                e += wg[i, j] * abs(out[i, j] - g[i, j])
+                kk = i * nx + j
+                q = dp._candidate_at.py_func(first, pick, kk, out[i, j])
+                for i2, j2, along in ((i + 1, j, across), (i, j + 1, slopes)):
+                    if i2 >= ni or j2 >= nx or not np.isfinite(out[i2, j2]):
+                        continue
+                    k2 = i2 * nx + j2
+                    step = (out[i2, j2] - out[i, j]) - 0.5 * (dp._slope_at.py_func(along, kk, out[i, j])
+                                                              + dp._slope_at.py_func(along, k2, out[i2, j2]))
+                    q2 = dp._candidate_at.py_func(first, pick, k2, out[i2, j2])
+                    if q >= 0 and q2 >= 0 and whole[q] and whole[q2]:
+                        r = float(np.dot(unit[q].astype(np.float64), unit[q2].astype(np.float64)))
+                    else:
+                        r = dp._pick_ncc(traces, unit, whole, kk, out[i, j], q, k2, out[i2, j2], q2, half, wa, wb)
+                    e += 0.7 * step * step + 1.9 * (1.0 - r)
+        assert energy == pytest.approx(e, rel=1e-13)
+
+
+_COMPILES = r"""
+import json, sys
+import numpy as np
+from numba.core import event
+compiled = set()
+class Compiles(event.Listener):
+    def on_start(self, ev):
+        pass
+    def on_end(self, ev):
+        f = ev.data["dispatcher"].py_func
+        if f.__module__.startswith("seismo3d"):
+            compiled.add(f.__module__ + "." + f.__qualname__)
+event.register("numba:compile", Compiles())
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.seismic.horizons import track_horizon
+syn = synthetic_cube(shape=(16, 16, 64), seed=1)
+track_horizon(syn.cube, [(8, 8, 32.0)])
+json.dump(sorted(compiled), sys.stdout)
+"""
+
+
+@pytest.mark.slow
+def test_a_first_horizon_run_compiles_only_the_lag_search_the_dynamic_programme_and_the_solver(tmp_path):
+    # issue 58: a first run (numba's cache empty) compiles the irregular loops only; the array work is numpy's
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    out = subprocess.run([sys.executable, "-c", _COMPILES], env=env, check=True, capture_output=True, text=True)
+    compiled = set(json.loads(out.stdout))
+    allowed = {f"seismo3d.seismic.horizons.dp.{name}" for name in
+               ("_choose_lines", "_pick_ncc", "window_ncc", "sample_at", "_slope_at", "_unit_dot", "_candidate_at")}
+    allowed |= {"seismo3d.seismic.horizons.laplacian._laplacian_matvec",
+                "seismo3d.seismic.horizons.laplacian._precondition"}
+    allowed |= {f"seismo3d.seismic.horizons.correlation.{name}" for name in
+                ("_pair_lags_share", "_read_window", "_window_products", "_interior_scores", "_partial_window_ncc")}
+    assert "seismo3d.seismic.horizons.dp._choose_lines" in compiled
+    assert compiled <= allowed, sorted(compiled - allowed)

@@ -1,9 +1,9 @@
-"""Which evidence tells the drawn faults a person rejects from the ones a person drew, on the dev surveys (issue 54).
+"""Which evidence tells the traced faults a person rejects from the ones a person drew, on the dev surveys (issue 54).
 
 Run: ``SEISMO3D_DATA_DIR=... python benchmarks/fault_features.py [--keep DIR] [-- EXTRA FAULTS OPTIONS]``
 
 The dev lines as ``tools/dev_fault_scores.py`` (beside the data folder) builds them (F3 inlines 100-500 as SEG-Y
-lines, the Great South Basin crosslines 2600 and 2800 as they are), ``seismo3d faults`` on each, and per drawn fault:
+lines, the Great South Basin crosslines 2600 and 2800 as they are), ``seismo3d faults`` on each, and per traced fault:
 its points, the share of them within 3 samples of a person's fault (``near``: a fault with ``near`` >= 0.5 is
 counted true, else false), the columns of ``fault_summary.csv`` (dip, throw, correlations, likelihood, votes), and
 the angle between the fault and the reflectors beside it: at each point the fault's direction (the main axis of its
@@ -15,9 +15,9 @@ under any scaling of the axes, any other value is not. Printed: the table, each 
 faults) per survey, and the dev scores (the script's scorer) after dropping the faults with ``sin_med`` under each
 threshold, and after dropping every fault with ``near`` under 0.3 / 0.5 (an oracle: the most dropping faults can
 reach). Dropping is re-scored from the kept points, so the tips and throws of the faults left are the run's.
-Last, per line, where the person's fault pixels that no drawn fault comes within 3 samples of stand in the network's
+Last, per line, where the person's fault pixels that no traced fault comes within 3 samples of stand in the network's
 ``fault_likelihood.sgy`` (its largest value within 3 traces and samples): the share of all the person's pixels that
-are missed with a likelihood over 0.5 / over 0.3 / under 0.1 (the drawing's loss / the network's).
+are missed with a likelihood over 0.5 / over 0.3 / under 0.1 (lost after the network / by the network).
 """
 
 from __future__ import annotations

@@ -33,6 +33,7 @@ from .text_rows import TextColumn, format_rows
 
 __all__ = ["TriangulatedSurface", "write_tsurf"]
 
+
 @dataclass(frozen=True, eq=False)
 class TriangulatedSurface:
     """A named triangulated surface in map coordinates.

@@ -215,17 +215,18 @@ def eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
     _eig_chunks((t00, t01, t02, t11, t12, t22), work)
 
 
-def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_normals):
+def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_normals, acos=None):
     """Reflector slopes ``-n0 / n2`` and ``-n1 / n2`` (samples per trace, clipped to +-``max_slope``) of every
     structure tensor, written into ``p0`` and ``p1`` (float32, C order, the components' shape). With
     ``as_float32_normals``, from the normals rounded to float32 and divided in float32, as
-    :func:`slopes_from_normals` takes :func:`eig_normals`' normals (the same bits); else in float64."""
+    :func:`slopes_from_normals` takes :func:`eig_normals`' normals (the same bits); else in float64. ``acos``: the
+    arc cosine (:func:`_acos_for`; by default for the size of ``p0``; the same bits either way)."""
     p0_flat = p0.reshape(-1)
     p1_flat = p1.reshape(-1)
     floor32 = np.float32(1.0 / max_slope / 2.0)
     top32 = np.float32(max_slope)
 
-    acos = _acos_for(p0_flat.size)
+    acos = acos or _acos_for(p0_flat.size)
 
     def work(part, comps):
         vx, vy, vz, _ = eig3(*comps, planarity=False, acos=acos)
@@ -432,13 +433,25 @@ def slopes_from_normals(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_tensor,
-                     as_float32_normals: bool = False) -> tuple:
+                     as_float32_normals: bool = False, core=None) -> tuple:
     """Reflector slopes (p0, p1) in samples per trace of a 3D-shaped array, without storing the normals; with
-    ``as_float32_normals`` equal bit for bit to those of :func:`tensor_eig`'s normals (:func:`slopes_from_normals`)."""
+    ``as_float32_normals`` equal bit for bit to those of :func:`tensor_eig`'s normals (:func:`slopes_from_normals`).
+    ``core``: ``(rows, cols)`` slices of the first two axes; the slopes of those traces only (the tensor smoothed over
+    all of ``f3``, its eigen-decomposition, a third of the time, only there: the same bits as the whole array's
+    slopes at ``core``)."""
     t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
-    p0 = np.empty(f3.shape, dtype=np.float32)
-    p1 = np.empty(f3.shape, dtype=np.float32)
-    eig_slopes(*t, MAX_SLOPE, p0, p1, bool(as_float32_normals))
+    if core is None:
+        p0 = np.empty(f3.shape, dtype=np.float32)
+        p1 = np.empty(f3.shape, dtype=np.float32)
+        eig_slopes(*t, MAX_SLOPE, p0, p1, bool(as_float32_normals))
+        return p0, p1
+    rows, cols = (range(*s.indices(n)) for s, n in zip(core, f3.shape[:2]))
+    p0 = np.empty((len(rows), len(cols), f3.shape[2]), dtype=np.float32)
+    p1 = np.empty_like(p0)
+    acos = _acos_for(p0.size)
+    for k, i in enumerate(rows):  # row by row: each row's traces are contiguous in the components, not copied
+        eig_slopes(*(c[i, cols.start:cols.stop] for c in t), MAX_SLOPE, p0[k], p1[k], bool(as_float32_normals),
+                   acos=acos)
     return p0, p1
 
 

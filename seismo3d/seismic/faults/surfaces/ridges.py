@@ -414,7 +414,13 @@ def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, s
     i0, i1, j0, j1 = place.block
     origin = place.origin
     f = np.asarray(f, np.float32)
-    slopes = [p[place.core] for p in structure_tensor_slopes(f)]
+    # the slopes from the amplitudes within the structure tensor's halo of the core (not the dead samples' wider one:
+    # 82^2 against 94^2 traces for a 64-trace block), eigen-decomposed at the core only: the same bits, 0.9 against
+    # 1.3 CPU s for a 64 x 64 x 500 block
+    halo = structure_tensor_halo()[0]
+    crop = tuple(slice(max(s.start - halo, 0), min(s.stop + halo, n)) for s, n in zip(place.core, f.shape[:2]))
+    slopes = structure_tensor_slopes(f[crop], core=tuple(slice(s.start - c.start, s.stop - c.start)
+                                                         for s, c in zip(place.core, crop)))
     dead = dead_samples(f, fill, lo, hi, options=opt.dead)
     del f
     near = near_dead_samples(dead, options=opt.dead) if dead.any() else None

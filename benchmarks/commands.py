@@ -1,6 +1,6 @@
 """Speed a user feels: ``seismo3d convert`` as a process beside a ``segyio.tools.cube`` read, and every ``--help``.
 
-Run:  python benchmarks/commands.py [--shape 400 400 250] [--repeats 5] [--work DIR] [--check]
+Run:  python benchmarks/commands.py [--shape 400 400 250] [--repeats 5] [--work DIR] [--check] [--baseline CODE_DIR]
 
 Everything is timed as a user meets it, a whole process from start to exit (interpreter, imports, work), by wall
 clock (and the CPU seconds of the process, which change less with the machine's load), the medians of ``--repeats``
@@ -17,6 +17,9 @@ runs:
 - ``seismo3d --help`` and ``seismo3d COMMAND --help`` for every command of the ``seismo3d`` app, beside the floor of
   any typer command: ``--help`` of a command of a two-command typer app (typer imports rich and pydantic to show it;
   ``seismo3d`` converts its values without pydantic: :mod:`seismo3d._cli_coercion`).
+
+``--baseline CODE_DIR`` (e.g. ``/work/main``) times that code's ``seismo3d convert`` too (``PYTHONPATH=CODE_DIR``),
+in the same rounds (read, baseline convert, convert, ...), so that the two are paired at the same load.
 
 The command is the installed ``seismo3d`` script beside this interpreter (``python -m seismo3d.cli`` when there is
 none), run with this checkout first on ``PYTHONPATH``. Targets (issue 58): convert <= 1.5 x the segyio read, every
@@ -62,9 +65,10 @@ CONVERT_LIMIT = 1.5  # x the segyio read
 HELP_LIMIT = 0.5  # seconds
 
 
-def _environment() -> dict:
-    """This checkout first on the path, so that the command runs its code and not an installed copy's."""
-    return dict(os.environ, PYTHONPATH=str(REPO) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+def _environment(code: Path = REPO) -> dict:
+    """``code`` (this checkout by default) first on the path, so that the command runs its code and not an installed
+    copy's."""
+    return dict(os.environ, PYTHONPATH=str(code) + os.pathsep + os.environ.get("PYTHONPATH", ""))
 
 
 def seismo3d_command() -> list[str]:
@@ -96,10 +100,11 @@ def _children_cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def process_time(argv: list[str], cwd: Path) -> ProcessTime:
-    """Run one process (its output discarded; a failure raises with its standard error) and time it."""
+def process_time(argv: list[str], cwd: Path, code: Path = REPO) -> ProcessTime:
+    """Run one process with ``code`` first on the path (its output discarded; a failure raises with its standard
+    error) and time it."""
     cpu, start = _children_cpu(), time.perf_counter()
-    done = subprocess.run(argv, env=_environment(), cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+    done = subprocess.run(argv, env=_environment(code), cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                           text=True)
     wall = time.perf_counter() - start
     if done.returncode:
@@ -115,19 +120,27 @@ class ConvertRuns:
     converts: list[ProcessTime]
     reads: list[ProcessTime]
     records: list[dict]
+    baseline: list[ProcessTime]
 
 
-def convert_against_segyio(segy: Path, work: Path, repeats: int) -> ConvertRuns:
-    """``seismo3d convert SEGY STORE`` and a segyio read of SEGY, ``repeats`` each, alternating."""
+def convert_against_segyio(segy: Path, work: Path, repeats: int, baseline: Path | None = None) -> ConvertRuns:
+    """``seismo3d convert SEGY STORE`` and a segyio read of SEGY, ``repeats`` each, alternating (with the
+    ``baseline`` code's convert between them when given)."""
     store = work / "seismo3d_bench_commands.zarr"
     record = Path(f"{store}.run.json")  # the run record beside the store
     peer = [sys.executable, "-c", _SEGYIO_READ, str(segy)]
     ours = [*seismo3d_command(), "convert", str(segy), str(store)]
-    runs = ConvertRuns([], [], [])
+    runs = ConvertRuns([], [], [], [])
     for timed in [False] + [True] * repeats:  # the first pair warms the page cache
         shutil.rmtree(store, ignore_errors=True)
         record.unlink(missing_ok=True)
         read = process_time(peer, work)
+        if baseline is not None:
+            before = process_time(ours, work, baseline)
+            shutil.rmtree(store, ignore_errors=True)
+            record.unlink(missing_ok=True)
+            if timed:
+                runs.baseline.append(before)
         convert = process_time(ours, work)
         if timed:
             runs.reads.append(read)
@@ -167,6 +180,9 @@ def main() -> int:
     parser.add_argument("--work", default=Path(tempfile.gettempdir()) / "seismo3d_bench", type=Path,
                         help="folder of the generated SEG-Y (kept for reruns) and of the stores")
     parser.add_argument("--check", action="store_true", help="exit with 1 if a target is missed")
+    parser.add_argument("--baseline", type=Path, default=None, metavar="CODE_DIR",
+                        help="also time this code's convert (PYTHONPATH=CODE_DIR, e.g. a worktree of main) in the same "
+                        "rounds")
     args = parser.parse_args()
     args.work.mkdir(parents=True, exist_ok=True)
     segy = args.work / ("seismo3d_bench_%dx%dx%d.sgy" % tuple(args.shape))
@@ -176,13 +192,17 @@ def main() -> int:
     print(f"{segy.name}: {segy.stat().st_size / 1e6:.0f} MB; command: {' '.join(seismo3d_command())}; load average "
           f"before: {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
     # 1. convert beside the segyio read, alternating; 2. every --help
-    runs = convert_against_segyio(segy, args.work, args.repeats)
+    runs = convert_against_segyio(segy, args.work, args.repeats, args.baseline)
     helps = help_times(command_names(), args.work, args.repeats)
     help_floor = [process_time([sys.executable, "-c", _TYPER_HELP, "one", "--help"], args.work)
                   for _ in range(args.repeats)]
     # 3. the table (wall-clock medians: the targets; CPU medians: the work, nearly the same at any load)
     print(f"{'process':36s} {'wall s':>7s} {'CPU s':>6s} {'wall s of each run':>30s}  target")
     read = _row("python -c segyio.tools.cube(...)", runs.reads)
+    if runs.baseline:
+        before = _row(f"seismo3d convert of {args.baseline}", runs.baseline)
+        print(f"{'':2s}{args.baseline}'s convert / read: {before / read:.2f} (wall), "
+              f"{_median(runs.baseline, 'cpu') / _median(runs.reads, 'cpu'):.2f} (CPU)")
     convert = _row("seismo3d convert", runs.converts, f"<= {CONVERT_LIMIT} x the read")
     job = float(np.median([r["seconds"] for r in runs.records]))
     write = float(np.median([r["stage_seconds"]["write"] for r in runs.records]))

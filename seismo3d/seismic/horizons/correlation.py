@@ -8,6 +8,8 @@ Conventions: traces ``(n_traces, n_samples)``; times in fractional samples.
 
 from __future__ import annotations
 
+import math
+
 import numba as nb
 import numpy as np
 
@@ -42,12 +44,12 @@ def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_l
             ka, kb = a[p], b[p]
             ta, centre = ta_all[p], centre_all[p]
             n_s = traces.shape[1]
-            if not (np.isfinite(ta) and np.isfinite(centre)):
+            if not (math.isfinite(ta) and math.isfinite(centre)):
                 lag_out[p], score_out[p] = np.nan, np.nan
                 continue
             h = half
-            h0 = np.int64(np.floor(ta))
-            h1 = np.int64(np.floor(n_s - 1 - ta))
+            h0 = math.floor(ta)
+            h1 = math.floor(n_s - 1 - ta)
             h = h0 if h0 < h else h
             h = h1 if h1 < h else h
             if h < 4:
@@ -88,10 +90,10 @@ def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_l
                 ref[k] -= ma
                 saa += ref[k] * ref[k]
             first = 0  # sig[first:last] is finite
-            while first < m + 2 * max_lag and not np.isfinite(sig[first]):
+            while first < m + 2 * max_lag and not math.isfinite(sig[first]):
                 first += 1
             last = first
-            while last < m + 2 * max_lag and np.isfinite(sig[last]):
+            while last < m + 2 * max_lag and math.isfinite(sig[last]):
                 last += 1
             # the interior lags (trace b's window finite): their products with the window of a at once, the sums of
             # trace b's window and of its squares slid from lag to lag
@@ -107,7 +109,7 @@ def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_l
                     c = scores[s]
                 else:
                     c = _partial_window_ncc(ref, sig, s, m, min_samples)
-                    if np.isnan(c):
+                    if math.isnan(c):
                         continue
                     scores[s] = c
                 if c > best:
@@ -116,7 +118,7 @@ def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_l
                 lag_out[p], score_out[p] = np.nan, np.nan
                 continue
             off = 0.0
-            if 0 < kbest < 2 * max_lag and np.isfinite(scores[kbest - 1]) and np.isfinite(scores[kbest + 1]):
+            if 0 < kbest < 2 * max_lag and math.isfinite(scores[kbest - 1]) and math.isfinite(scores[kbest + 1]):
                 y0, y1, y2 = scores[kbest - 1], scores[kbest], scores[kbest + 1]
                 den = y0 - 2 * y1 + y2
                 if den < 0:
@@ -145,7 +147,7 @@ def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
 def _read_window(trace, start, count, out):
     """``out[k] = sample_at(trace, start + k)`` for k < ``count`` (:func:`~seismo3d.seismic.horizons.dp.sample_at`:
     linear interpolation, NaN outside the trace); the samples share one interpolation weight."""
-    k0 = np.int64(np.floor(start))
+    k0 = math.floor(start)
     f = start - k0
     n = trace.size
     if k0 >= 0 and k0 + count < n:  # inside the trace: no sample needs the ends' rule (unsigned: no wraparound)
@@ -220,7 +222,7 @@ def _interior_scores(sig, m, lo, hi, saa, products, scores):
         scores[s] = var if saa > 0 and var > 1e-9 * sbb else -1.0  # -1: a flat window
     for s in range(start, end):
         v = scores[s]
-        scores[s] = products[s] / np.sqrt(saa * v) if v > 0.0 else 0.0
+        scores[s] = products[s] / math.sqrt(saa * v) if v > 0.0 else 0.0
 
 
 @nb.njit(cache=True, no_cfunc_wrapper=True)
@@ -232,7 +234,7 @@ def _partial_window_ncc(ref, sig, s, m, min_samples):
     cnt = 0
     for k in range(m):
         x, y = ref[k], sig[s + k]
-        if np.isfinite(x) and np.isfinite(y):
+        if math.isfinite(x) and math.isfinite(y):
             sa += x
             sb += y
             cnt += 1
@@ -244,11 +246,13 @@ def _partial_window_ncc(ref, sig, s, m, min_samples):
     sbb = 0.0
     for k in range(m):
         x, y = ref[k], sig[s + k]
-        if np.isfinite(x) and np.isfinite(y):
-            sab += (x - ma) * (y - mb)
-            saa += (x - ma) ** 2
-            sbb += (y - mb) ** 2
-    return sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
+        if math.isfinite(x) and math.isfinite(y):
+            dx = x - ma
+            dy = y - mb
+            sab += dx * dy
+            saa += dx * dx  # not ** 2: it compiles a power function of numba's (the same bits)
+            sbb += dy * dy
+    return sab / math.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
 
 
 def window_correlation(traces: np.ndarray, a: np.ndarray, ta: np.ndarray, b: np.ndarray, tb: np.ndarray, *,

@@ -24,6 +24,8 @@ from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
 
+import math
+
 import numba as nb
 import numpy as np
 
@@ -42,7 +44,7 @@ def sample_at(trace, t):
     n = trace.size
     if t < 0.0 or t > n - 1:
         return np.nan
-    k = np.int64(np.floor(t))  # np.int64, not int(): int() compiles a function of numba's of its own
+    k = math.floor(t)  # math.floor, not int(np.floor()): int() compiles a function of numba's of its own
     if k >= n - 1:
         return trace[n - 1]
     f = t - k
@@ -196,7 +198,7 @@ def window_ncc(a, b):
     sb = 0.0
     cnt = 0
     for k in range(a.size):
-        if np.isfinite(a[k]) and np.isfinite(b[k]):
+        if math.isfinite(a[k]) and math.isfinite(b[k]):
             sa += a[k]
             sb += b[k]
             cnt += 1
@@ -207,11 +209,13 @@ def window_ncc(a, b):
     saa = 0.0
     sbb = 0.0
     for k in range(a.size):
-        if np.isfinite(a[k]) and np.isfinite(b[k]):
-            sab += (a[k] - ma) * (b[k] - mb)
-            saa += (a[k] - ma) ** 2
-            sbb += (b[k] - mb) ** 2
-    return sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
+        if math.isfinite(a[k]) and math.isfinite(b[k]):
+            da = a[k] - ma
+            db = b[k] - mb
+            sab += da * db
+            saa += da * da  # not ** 2: it compiles a power function of numba's (the same bits)
+            sbb += db * db
+    return sab / math.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
 
 
 def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: np.ndarray, lateral_shape: tuple,
@@ -347,7 +351,8 @@ def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, a
             for side in range(2):
                 c_ids[j, side] = -1
                 c_t[j, side] = np.nan
-        for side, other in ((0, i - 1), (1, i + 1)):
+        for side in range(2):  # not a loop over a tuple of tuples: numba compiles its iterator
+            other = i - 1 if side == 0 else i + 1
             if hold and 0 <= other < n_lines:
                 for j in range(length):
                     c_ids[j, side] = ids[other, j]
@@ -369,7 +374,7 @@ def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, a
             # the neighbouring lines' picks: the same for every candidate of the trace (-2: none held)
             for e in range(n_cross):
                 held[e] = -2
-                if c_ids[j, e] >= 0 and np.isfinite(c_t[j, e]):
+                if c_ids[j, e] >= 0 and math.isfinite(c_t[j, e]):
                     held[e] = _candidate_at(first, pick, c_ids[j, e], c_t[j, e])
             ka = trace_ids[j - 1] if j > 0 else -1
             n_prev = first[ka + 1] - first[ka] if j > 0 else 0

@@ -38,7 +38,7 @@ __all__ = ["sample_at", "window_ncc", "dp_picks", "line_slopes", "reflector_peri
 
 # no_cfunc_wrapper: the kernels here are called from Python and from each other, never as C callbacks, so
 # numba's C-callable wrapper of each is not compiled (0.02-0.03 CPU s a kernel on a first run)
-@nb.njit(cache=True, no_cfunc_wrapper=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def sample_at(trace, t):
     """Amplitude of ``trace`` at fractional sample ``t`` by linear interpolation; NaN outside the trace."""
     n = trace.size
@@ -152,7 +152,7 @@ def _windows_ncc(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.where(cnt < 5, 0.0, out)
 
 
-@nb.njit(cache=True, no_cfunc_wrapper=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _candidate_at(first, pick, k, t):
     """The index of trace ``k``'s candidate at ``t`` (exactly), -1 where ``t`` is none of them."""
     for q in range(first[k], first[k + 1]):
@@ -183,7 +183,7 @@ def _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb):
     return window_ncc(wa, wb)
 
 
-@nb.njit(cache=True, no_cfunc_wrapper=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _slope_at(slopes, k, t):
     """The reflector slope on trace ``k`` at the sample nearest ``t``."""
     i = round(t)  # the bounds by comparisons: min() and max() compile functions of numba's of their own

@@ -26,6 +26,7 @@ import numba
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from .._threads import run_threads
 from ..geometry.transforms import make_transform, nearest_rotation
 from .kernels import KERNELS
 
@@ -159,8 +160,10 @@ def plane_system_rigid3(moved, t0, dst, nrm, idx, kernel: str, scale: float, fac
     count : int
         Source points with a correspondence.
     """
-    sums = _plane_sums(moved, np.asarray(t0, dtype=np.float64), dst, nrm, idx, KERNELS.index(kernel), float(scale),
-                       float(factor))
+    sums = np.zeros((_CHUNKS, 28))
+    n_threads = max(1, min(numba.get_num_threads(), _CHUNKS))
+    run_threads(_plane_sums_share, n_threads, moved, np.asarray(t0, dtype=np.float64), dst, nrm, idx,
+                KERNELS.index(kernel), float(scale), float(factor), sums, np.empty((n_threads, 6)))
     total = sums.sum(axis=0)
     h = np.zeros((6, 6))
     h[np.triu_indices(6)] = total[:21]
@@ -168,15 +171,17 @@ def plane_system_rigid3(moved, t0, dst, nrm, idx, kernel: str, scale: float, fac
     return h, total[21:27].copy(), int(round(total[27]))
 
 
-@numba.njit(cache=True, parallel=True)
-def _plane_sums(moved, t0, dst, nrm, idx, kernel, scale, factor):
-    """Per-chunk sums: the 21 upper-triangle entries of H, the 6 of g and the count (chunks in parallel; the caller
-    adds them in chunk order, so the sums do not depend on the threads)."""
+@numba.njit(cache=True, nogil=True)
+def _plane_sums_share(t, n_threads, moved, t0, dst, nrm, idx, kernel, scale, factor, out, rows):
+    """Per-chunk sums into ``out`` (_CHUNKS, 28) (zeros): the 21 upper-triangle entries of H, the 6 of g and the
+    count, for chunks t, t + n_threads, ... (run_threads; the caller adds the chunks in order, so the sums do not
+    depend on the threads). ``rows`` (n_threads, 6): work arrays. Threads of run_threads, not a prange loop, and no
+    np.zeros / np.empty, max() or ** inside: each compiled more of numba's on a first run (the prange loop 1.4 CPU s
+    against 0.3)."""
     n, m = len(moved), len(dst)
-    out = np.zeros((_CHUNKS, 28))
-    for chunk in numba.prange(_CHUNKS):
+    row = rows[t]
+    for chunk in range(t, _CHUNKS, n_threads):
         acc = out[chunk]
-        row = np.empty(6)
         for i in range(chunk * n // _CHUNKS, (chunk + 1) * n // _CHUNKS):
             j = idx[i]
             if j >= m:
@@ -185,12 +190,14 @@ def _plane_sums(moved, t0, dst, nrm, idx, kernel, scale, factor):
             r = nx * (moved[i, 0] - dst[j, 0]) + ny * (moved[i, 1] - dst[j, 1]) + nz * (moved[i, 2] - dst[j, 2])
             a = abs(r)
             if kernel == 1:
-                w = 1.0 if a <= scale else scale / max(a, 1e-300)
+                w = 1.0 if a <= scale else scale / (1e-300 if 1e-300 > a else a)
             elif kernel == 2:
                 v = a / scale
-                w = (1.0 - v * v) ** 2 if v < 1.0 else 0.0
+                y = 1.0 - v * v
+                w = y * y if v < 1.0 else 0.0
             elif kernel == 3:
-                w = 1.0 / (1.0 + (a / scale) ** 2)
+                z = a / scale
+                w = 1.0 / (1.0 + z * z)
             else:
                 w = 1.0
             w *= factor
@@ -207,7 +214,6 @@ def _plane_sums(moved, t0, dst, nrm, idx, kernel, scale, factor):
                     k += 1
                 acc[21 + p] += wp * r
             acc[27] += 1.0
-    return out
 
 
 def moved_points(points, transform):

@@ -23,7 +23,7 @@ def octile(r0, c0, r1, c1, cost):
     """Cost of the shortest 8-connected path between two cells of an empty grid (the heuristic)."""
     a = abs(r0 - r1)
     b = abs(c0 - c1)
-    m = min(a, b)
+    m = b if b < a else a  # min(a, b) by a comparison: min() compiles a function of numba's of its own
     return m * cost[2] + (a - m) * cost[0] + (b - m) * cost[1]
 
 
@@ -133,7 +133,8 @@ def guide_bound(v, r, c, goal_r, goal_c, cost, back_g, certificate):
     hs = octile(certificate[3], certificate[4], r, c, cost)
     if gb < INF and gb + hs + certificate[2] < top:
         return gb
-    return max(h, top - certificate[2] - hs)
+    below = top - certificate[2] - hs
+    return below if below > h else h  # max(h, below) by a comparison (max() compiles a function of numba's)
 
 
 @njit(cache=True)
@@ -177,7 +178,8 @@ def forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, ge
     bound = guide_bound(start, start // w, start % w, goal_r, goal_c, cost, back_g, certificate)
     if bound >= INF:
         return INF, 0
-    size = _push(k1, k2, nodes, 0, bound, 0, start)
+    # np.int64(0), not 0: a literal 0 compiles _push a second time (for Literal[int](0))
+    size = _push(k1, k2, nodes, np.int64(0), bound, np.int64(0), start)
     expanded = 0
     while size > 0:
         u = nodes[0]

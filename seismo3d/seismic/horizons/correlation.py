@@ -8,6 +8,8 @@ Conventions: traces ``(n_traces, n_samples)``; times in fractional samples.
 
 from __future__ import annotations
 
+import math
+
 import numba as nb
 import numpy as np
 
@@ -20,35 +22,42 @@ __all__ = ["window_correlation", "neighbour_confidence"]
 _PAIR_CHUNK = 256  # pairs per task of pair_lags
 
 
-@nb.njit(cache=True, nogil=True)
+# no_cfunc_wrapper: the kernels here are called from Python and from each other, never as C callbacks, so
+# numba's C-callable wrapper of each is not compiled (0.02-0.03 CPU s a kernel on a first run)
+@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_lag, min_fraction, lag_out,
-                     score_out):
+                     score_out, refs, sigs, scores_all, products_all):
     # the pairs of chunks t, t + n_threads, ... (see pair_lags): for pair p, the lag around centre_all[p] on trace
     # b[p] at which it correlates best with the window of trace a[p] around ta_all[p], refined by a parabola, and its
     # correlation; (NaN, NaN) where not measured. Near the ends of the traces the window is shortened to the samples
     # trace a[p] has (at least 4 each side); a lag is scored where at least min_fraction of the window lies on trace
-    # b[p]. ref, sig, scores, products: work arrays. One kernel, not a loop calling a kernel per pair: numba compiles
-    # a called kernel on its own and again inside its caller
+    # b[p]. refs, sigs, scores_all, products_all: work arrays, a row per thread (allocated by the caller: np.empty in a
+    # kernel compiles numba's allocator). One kernel, not a loop calling a kernel per pair: numba compiles a called
+    # kernel on its own and again inside its caller. No min(), max() or int() (each compiles a function of numba's of
+    # its own): comparisons and np.int64
     n = a.size
     n_chunks = (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK
-    ref = np.empty(2 * half + 1)
-    sig = np.empty(2 * half + 1 + 2 * max_lag)
-    scores = np.empty(2 * max_lag + 1)
-    products = np.empty(2 * max_lag + 1)
+    ref, sig, scores, products = refs[t], sigs[t], scores_all[t], products_all[t]
     for chunk in range(t, n_chunks, n_threads):
-        for p in range(chunk * _PAIR_CHUNK, min(n, (chunk + 1) * _PAIR_CHUNK)):
+        end = (chunk + 1) * _PAIR_CHUNK
+        for p in range(chunk * _PAIR_CHUNK, n if n < end else end):
             ka, kb = a[p], b[p]
             ta, centre = ta_all[p], centre_all[p]
             n_s = traces.shape[1]
-            if not (np.isfinite(ta) and np.isfinite(centre)):
+            if not (math.isfinite(ta) and math.isfinite(centre)):
                 lag_out[p], score_out[p] = np.nan, np.nan
                 continue
-            h = min(half, int(np.floor(ta)), int(np.floor(n_s - 1 - ta)))
+            h = half
+            h0 = math.floor(ta)
+            h1 = math.floor(n_s - 1 - ta)
+            h = h0 if h0 < h else h
+            h = h1 if h1 < h else h
             if h < 4:
                 lag_out[p], score_out[p] = np.nan, np.nan
                 continue
             m = 2 * h + 1
-            min_samples = max(5, int(min_fraction * m))
+            min_samples = np.int64(min_fraction * m)
+            min_samples = 5 if min_samples < 5 else min_samples
             ra = traces[ka]
             rb = traces[kb]
             _read_window(ra, ta - h, m, ref)
@@ -61,8 +70,10 @@ def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_l
             for k in range(0 if inside else max_lag + 1):
                 lo = centre - h - k
                 hi = centre + h + k
-                if min(lo + m - 1, n_s - 1.0) - max(lo, 0.0) + 1 < min_samples or \
-                        min(hi, n_s - 1.0) - max(hi - m + 1, 0.0) + 1 < min_samples:
+                lo_end = lo + m - 1
+                hi_start = hi - m + 1
+                if (lo_end if lo_end < n_s - 1.0 else n_s - 1.0) - (lo if lo > 0.0 else 0.0) + 1 < min_samples or \
+                        (hi if hi < n_s - 1.0 else n_s - 1.0) - (hi_start if hi_start > 0.0 else 0.0) + 1 < min_samples:
                     reach = k - 1
                     break
             for k in range(scores.size):  # a loop: scores[:] = nan compiles numba's generic setitem
@@ -79,15 +90,17 @@ def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_l
                 ref[k] -= ma
                 saa += ref[k] * ref[k]
             first = 0  # sig[first:last] is finite
-            while first < m + 2 * max_lag and not np.isfinite(sig[first]):
+            while first < m + 2 * max_lag and not math.isfinite(sig[first]):
                 first += 1
             last = first
-            while last < m + 2 * max_lag and np.isfinite(sig[last]):
+            while last < m + 2 * max_lag and math.isfinite(sig[last]):
                 last += 1
             # the interior lags (trace b's window finite): their products with the window of a at once, the sums of
             # trace b's window and of its squares slid from lag to lag
-            lo = max(max_lag - reach, first)
-            hi = min(max_lag + reach, last - m)  # inclusive
+            lo = max_lag - reach
+            lo = first if first > lo else lo
+            hi = max_lag + reach
+            hi = last - m if last - m < hi else hi  # inclusive
             if hi >= lo:
                 _window_products(ref, sig, m, lo, hi + 1, products)
                 _interior_scores(sig, m, lo, hi + 1, saa, products, scores)
@@ -96,7 +109,7 @@ def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_l
                     c = scores[s]
                 else:
                     c = _partial_window_ncc(ref, sig, s, m, min_samples)
-                    if np.isnan(c):
+                    if math.isnan(c):
                         continue
                     scores[s] = c
                 if c > best:
@@ -105,11 +118,12 @@ def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_l
                 lag_out[p], score_out[p] = np.nan, np.nan
                 continue
             off = 0.0
-            if 0 < kbest < 2 * max_lag and np.isfinite(scores[kbest - 1]) and np.isfinite(scores[kbest + 1]):
+            if 0 < kbest < 2 * max_lag and math.isfinite(scores[kbest - 1]) and math.isfinite(scores[kbest + 1]):
                 y0, y1, y2 = scores[kbest - 1], scores[kbest], scores[kbest + 1]
                 den = y0 - 2 * y1 + y2
                 if den < 0:
-                    off = min(max(0.5 * (y0 - y2) / den, -0.5), 0.5)
+                    off = 0.5 * (y0 - y2) / den
+                    off = -0.5 if off < -0.5 else (0.5 if off > 0.5 else off)
             lag_out[p], score_out[p] = kbest - max_lag + off, best
 
 
@@ -121,16 +135,19 @@ def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
     lag_out = np.full(n, np.nan)
     score_out = np.full(n, np.nan)
     n_threads = max(1, min(nb.get_num_threads(), (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK))
-    run_threads(_pair_lags_share, n_threads, traces, a, ta, b, centre, int(half), int(max_lag), float(min_fraction),
-                lag_out, score_out)
+    half, max_lag = int(half), int(max_lag)
+    work = [np.empty((n_threads, size)) for size in (2 * half + 1, 2 * half + 1 + 2 * max_lag, 2 * max_lag + 1,
+                                                     2 * max_lag + 1)]
+    run_threads(_pair_lags_share, n_threads, traces, a, ta, b, centre, half, max_lag, float(min_fraction), lag_out,
+                score_out, *work)
     return lag_out, score_out
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _read_window(trace, start, count, out):
     """``out[k] = sample_at(trace, start + k)`` for k < ``count`` (:func:`~seismo3d.seismic.horizons.dp.sample_at`:
     linear interpolation, NaN outside the trace); the samples share one interpolation weight."""
-    k0 = int(np.floor(start))
+    k0 = math.floor(start)
     f = start - k0
     n = trace.size
     if k0 >= 0 and k0 + count < n:  # inside the trace: no sample needs the ends' rule (unsigned: no wraparound)
@@ -146,7 +163,7 @@ def _read_window(trace, start, count, out):
             out[k] = sample_at(trace, start + k)
 
 
-@nb.njit(cache=True, fastmath={"reassoc", "contract", "nsz", "arcp"})
+@nb.njit(cache=True, no_cfunc_wrapper=True, fastmath={"reassoc", "contract", "nsz", "arcp"})
 def _window_products(ref, sig, m, lo, hi, out):
     """``out[s] = sum_k ref[k] sig[s + k]`` (k < ``m``) for lags ``lo <= s < hi``: eight lags at a time, each one
     accumulator, so the compiler keeps them in vector registers (reassociated; unsigned indices, so that no
@@ -179,7 +196,7 @@ def _window_products(ref, sig, m, lo, hi, out):
         s += one
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _interior_scores(sig, m, lo, hi, saa, products, scores):
     """``scores[s]`` for the lags ``lo <= s < hi`` where trace b's window ``sig[s:s + m]`` is finite: the products
     (:func:`_window_products`) over the spreads of the two windows (``saa``: the centred window of a's), 0 where a
@@ -205,10 +222,10 @@ def _interior_scores(sig, m, lo, hi, saa, products, scores):
         scores[s] = var if saa > 0 and var > 1e-9 * sbb else -1.0  # -1: a flat window
     for s in range(start, end):
         v = scores[s]
-        scores[s] = products[s] / np.sqrt(saa * v) if v > 0.0 else 0.0
+        scores[s] = products[s] / math.sqrt(saa * v) if v > 0.0 else 0.0
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _partial_window_ncc(ref, sig, s, m, min_samples):
     """A pair's correlation at lag ``s`` (``_pair_lags_share``) over the samples where both windows are finite (the
     means of those); NaN with fewer than ``min_samples``."""
@@ -217,7 +234,7 @@ def _partial_window_ncc(ref, sig, s, m, min_samples):
     cnt = 0
     for k in range(m):
         x, y = ref[k], sig[s + k]
-        if np.isfinite(x) and np.isfinite(y):
+        if math.isfinite(x) and math.isfinite(y):
             sa += x
             sb += y
             cnt += 1
@@ -229,11 +246,13 @@ def _partial_window_ncc(ref, sig, s, m, min_samples):
     sbb = 0.0
     for k in range(m):
         x, y = ref[k], sig[s + k]
-        if np.isfinite(x) and np.isfinite(y):
-            sab += (x - ma) * (y - mb)
-            saa += (x - ma) ** 2
-            sbb += (y - mb) ** 2
-    return sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
+        if math.isfinite(x) and math.isfinite(y):
+            dx = x - ma
+            dy = y - mb
+            sab += dx * dy
+            saa += dx * dx  # not ** 2: it compiles a power function of numba's (the same bits)
+            sbb += dy * dy
+    return sab / math.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
 
 
 def window_correlation(traces: np.ndarray, a: np.ndarray, ta: np.ndarray, b: np.ndarray, tb: np.ndarray, *,

@@ -24,6 +24,8 @@ from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
 
+import math
+
 import numba as nb
 import numpy as np
 
@@ -34,13 +36,15 @@ __all__ = ["sample_at", "window_ncc", "dp_picks", "line_slopes", "reflector_peri
            "trace_search"]
 
 
-@nb.njit(cache=True)
+# no_cfunc_wrapper: the kernels here are called from Python and from each other, never as C callbacks, so
+# numba's C-callable wrapper of each is not compiled (0.02-0.03 CPU s a kernel on a first run)
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def sample_at(trace, t):
     """Amplitude of ``trace`` at fractional sample ``t`` by linear interpolation; NaN outside the trace."""
     n = trace.size
     if t < 0.0 or t > n - 1:
         return np.nan
-    k = int(np.floor(t))
+    k = math.floor(t)  # math.floor, not int(np.floor()): int() compiles a function of numba's of its own
     if k >= n - 1:
         return trace[n - 1]
     f = t - k
@@ -148,7 +152,7 @@ def _windows_ncc(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.where(cnt < 5, 0.0, out)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _candidate_at(first, pick, k, t):
     """The index of trace ``k``'s candidate at ``t`` (exactly), -1 where ``t`` is none of them."""
     for q in range(first[k], first[k + 1]):
@@ -157,7 +161,7 @@ def _candidate_at(first, pick, k, t):
     return -1
 
 
-@nb.njit(cache=True, fastmath={"reassoc", "contract", "nsz"})
+@nb.njit(cache=True, no_cfunc_wrapper=True, fastmath={"reassoc", "contract", "nsz"})
 def _unit_dot(ua, ub):
     """The dot product of two unit windows (float32, summed in float64; reassociated, so it is vectorised)."""
     r = 0.0
@@ -166,7 +170,7 @@ def _unit_dot(ua, ub):
     return r
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb):
     """Normalised cross-correlation of the windows ``+-half`` samples around ``ta`` on trace ``ka`` and ``tb`` on
     ``kb`` (:func:`window_ncc`): the dot product of the candidates' unit windows ``qa``, ``qb`` where both lie inside
@@ -179,20 +183,22 @@ def _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb):
     return window_ncc(wa, wb)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _slope_at(slopes, k, t):
     """The reflector slope on trace ``k`` at the sample nearest ``t``."""
-    return slopes[k, min(max(int(round(t)), 0), slopes.shape[1] - 1)]
+    i = round(t)  # the bounds by comparisons: min() and max() compile functions of numba's of their own
+    i = 0 if i < 0 else i
+    return slopes[k, slopes.shape[1] - 1 if i > slopes.shape[1] - 1 else i]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def window_ncc(a, b):
     """Normalised cross-correlation of two equally long windows over their finite samples (0 with fewer than 5)."""
     sa = 0.0
     sb = 0.0
     cnt = 0
     for k in range(a.size):
-        if np.isfinite(a[k]) and np.isfinite(b[k]):
+        if math.isfinite(a[k]) and math.isfinite(b[k]):
             sa += a[k]
             sb += b[k]
             cnt += 1
@@ -203,11 +209,13 @@ def window_ncc(a, b):
     saa = 0.0
     sbb = 0.0
     for k in range(a.size):
-        if np.isfinite(a[k]) and np.isfinite(b[k]):
-            sab += (a[k] - ma) * (b[k] - mb)
-            saa += (a[k] - ma) ** 2
-            sbb += (b[k] - mb) ** 2
-    return sab / np.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
+        if math.isfinite(a[k]) and math.isfinite(b[k]):
+            da = a[k] - ma
+            db = b[k] - mb
+            sab += da * db
+            saa += da * da  # not ** 2: it compiles a power function of numba's (the same bits)
+            sbb += db * db
+    return sab / math.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
 
 
 def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: np.ndarray, lateral_shape: tuple,
@@ -321,7 +329,7 @@ def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, ac
                   np.empty(2 * half + 1), np.empty(2, np.int64))
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across, w_step,
                   w_wave, half, hold, c_ids, c_t, cost, back, wa, wb, held):
     """The lines (rows of the (n_lines, length) arrays) chosen in order, into ``out``; with ``hold``, each with the
@@ -343,7 +351,8 @@ def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, a
             for side in range(2):
                 c_ids[j, side] = -1
                 c_t[j, side] = np.nan
-        for side, other in ((0, i - 1), (1, i + 1)):
+        for side in range(2):  # not a loop over a tuple of tuples: numba compiles its iterator
+            other = i - 1 if side == 0 else i + 1
             if hold and 0 <= other < n_lines:
                 for j in range(length):
                     c_ids[j, side] = ids[other, j]
@@ -353,7 +362,8 @@ def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, a
         width = 1
         for j in range(n):
             out[i, j] = np.nan  # loops, not np.full: it compiles numba's generic fill (about 1 CPU s)
-            width = max(width, first[trace_ids[j] + 1] - first[trace_ids[j]])
+            count = first[trace_ids[j] + 1] - first[trace_ids[j]]
+            width = count if count > width else width
         for j in range(n):
             for c in range(width):
                 cost[j, c] = np.inf
@@ -364,7 +374,7 @@ def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, a
             # the neighbouring lines' picks: the same for every candidate of the trace (-2: none held)
             for e in range(n_cross):
                 held[e] = -2
-                if c_ids[j, e] >= 0 and np.isfinite(c_t[j, e]):
+                if c_ids[j, e] >= 0 and math.isfinite(c_t[j, e]):
                     held[e] = _candidate_at(first, pick, c_ids[j, e], c_t[j, e])
             ka = trace_ids[j - 1] if j > 0 else -1
             n_prev = first[ka + 1] - first[ka] if j > 0 else 0

@@ -107,7 +107,9 @@ def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, 
 def _edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, gap2):
     # every (edge cell, nearest cell of another label within the gap, squared distance), in the order of the edge
     # cells
-    slot = np.full(n_labels, -1, np.int64)  # left all -1 by _nearest_of_other_skins
+    slot = np.empty(n_labels, np.int64)  # left all -1 by _nearest_of_other_skins
+    for k in range(n_labels):  # a loop, not np.full: that compiles a function of numba's of its own (0.2 CPU s)
+        slot[k] = -1
     labels = np.empty(16, np.int64)
     dist2 = np.empty(16)
     cells = np.empty(16, np.int64)
@@ -163,9 +165,14 @@ def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):
     # fault's mean normal, breadth first. The mean keeps a fault from drifting into another one through samples of
     # intermediate orientation where two faults meet.
     n_pts, dim = normals.shape
-    label = -np.ones(n_pts, np.int64)
+    # loops, not -np.ones and np.zeros: those compile functions of numba's and an array negation of their own
+    label = np.empty(n_pts, np.int64)
+    for k in range(n_pts):
+        label[k] = -1
     queue = np.empty(n_pts, np.int64)
-    mean = np.zeros(dim)
+    mean = np.empty(dim)
+    for k in range(dim):
+        mean[k] = 0.0
     n_lab = 0
     for seed in order:
         if label[seed] >= 0:

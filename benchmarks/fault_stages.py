@@ -32,7 +32,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import importlib.util
 import os
 import sys
 import warnings
@@ -55,16 +54,9 @@ from seismo3d.seismic.faults.surfaces.skins import skins_from_cells
 from seismo3d.seismic.faults.throw import fault_throws
 from seismo3d.seismic.faults.throw_patches import half_period
 
+from fault_features import _dev_script  # benchmarks/fault_features.py: the dev lines of tools/dev_fault_scores.py
+
 STAGES = ("ridge", "thin votes", "cells", "skins", "evidence", "tips")
-
-
-def _dev_script(data):
-    path = Path(data).parent / "tools" / "dev_fault_scores.py"
-    sys.path.insert(0, str(path.parent))
-    spec = importlib.util.spec_from_file_location("dev_fault_scores", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _rule(ev, opt, sensitivity, seeded):

@@ -16,6 +16,11 @@ seismo3d/seismic/faults/likelihood/fault_unet.onnx``) and put the sha256 it prin
 ``--init-weights NPZ`` fine-tunes exported weights (e.g. the shipped ``fault_unet.npz``) instead of starting
 from random ones; the record keeps their sha256.
 
+``--teacher NPZ`` distils (Hinton et al. 2015): a network of ``--channels`` (e.g. ``8,16,32,64``, the cubes'
+student of issue 58) learns the teacher's probability on the same sections as a soft target beside the labels, the
+loss ``(1 - w) * L(labels) + w * L(teacher)`` with ``w`` = ``--distill-weight`` and ``L`` the loss below; the record
+keeps the teacher's sha256 and its validation scores on the same validation sections.
+
 Data: every step draws a new batch of sections from :func:`seismo3d.data.synthetic_sections.synthetic_fault_section`
 (seeds ``seed * 1_000_003 + i`` for the i-th training section), so the network never sees a section twice; the
 validation sections use seeds of another range (``VALIDATION_SEED``) that training never draws.
@@ -32,6 +37,9 @@ References
 Wu, X., Liang, L., Shi, Y., and Fomel, S., 2019, FaultSeg3D: Using synthetic data sets to train an end-to-end
 convolutional neural network for 3D seismic fault segmentation: Geophysics, 84(3), IM35-IM45.
 doi:10.1190/geo2018-0646.1
+
+Hinton, G., Vinyals, O., and Dean, J., 2015, Distilling the knowledge in a neural network: NIPS 2014 Deep
+Learning Workshop, arXiv:1503.02531.
 
 Milletari, F., Navab, N., and Ahmadi, S.-A., 2016, V-Net: Fully convolutional neural networks for volumetric medical
 image segmentation: 3DV 2016, 565-571. doi:10.1109/3DV.2016.79
@@ -93,6 +101,11 @@ class TrainingOptions:
         Exported weights (``fault_unet.npz``) to start from: fine-tuning. Their batch normalisations are folded
         into the convolutions, so they stay the identity (frozen) while the convolutions train; ``None`` trains a
         new network from a random start.
+    teacher : str or None
+        Exported weights of a trained network to distil (``fault_unet.npz``): its probability on each batch is a
+        soft target beside the labels; ``None``: the labels alone.
+    distill_weight : float
+        Weight ``w`` in [0, 1] of the teacher's target in the loss (``(1 - w)`` for the labels' one).
     """
 
     channels: tuple = (12, 24, 48, 96)
@@ -106,6 +119,8 @@ class TrainingOptions:
     log_every: int = 50
     threads: int = 2
     init_weights: str | None = None
+    teacher: str | None = None
+    distill_weight: float = 0.5
 
 
 def _conv_block(c_in: int, c_out: int) -> nn.Sequential:
@@ -308,18 +323,35 @@ def train(options: TrainingOptions, out_dir: Path, *, section_options: FaultSect
         log.info("fine-tuning from %s (sha256 %s)", options.init_weights, start_sha256)
     else:
         model, start_sha256 = FaultUNet(options.channels), None
+    teacher, teacher_sha256 = None, None
+    if options.teacher:
+        with np.load(options.teacher) as npz:
+            teacher = model_from_weights(dict(npz))
+        teacher.requires_grad_(False)
+        teacher_sha256 = hashlib.sha256(Path(options.teacher).read_bytes()).hexdigest()
+        log.info("distilling %s (sha256 %s), weight %.2f", options.teacher, teacher_sha256, options.distill_weight)
     _training_mode(model)
     optimiser = torch.optim.Adam([p for p in model.parameters() if p.requires_grad], lr=options.learning_rate)
     schedule = torch.optim.lr_scheduler.CosineAnnealingLR(optimiser, options.steps, eta_min=0.05 * options.learning_rate)
     xv, yv = _batch(VALIDATION_SEED, 0, options.n_validation, options.patch, sec)
     yv = yv.numpy()[:, 0] > 0.5
+    teacher_validation = validate(teacher, xv, yv) if teacher is not None else None
+    if teacher is not None:
+        teacher.eval()
+        log.info("teacher validation %s", json.dumps(teacher_validation))
     n_params = sum(p.numel() for p in model.parameters())
     log.info("fault U-Net %s, %d parameters; %d steps of %d sections of %d^2", options.channels, n_params,
              options.steps, options.batch_size, options.patch)
     history, t0, running = [], time.perf_counter(), []
     for step in range(1, options.steps + 1):
         x, y = _batch(options.seed, (step - 1) * options.batch_size, options.batch_size, options.patch, sec)
-        loss = _loss(model(x), y, options.positive_weight)
+        logits = model(x)
+        loss = _loss(logits, y, options.positive_weight)
+        if teacher is not None:
+            with torch.no_grad():
+                soft = torch.sigmoid(teacher(x))
+            w = float(options.distill_weight)
+            loss = (1 - w) * loss + w * _loss(logits, soft, options.positive_weight)
         optimiser.zero_grad()
         loss.backward()
         optimiser.step()
@@ -344,7 +376,8 @@ def train(options: TrainingOptions, out_dir: Path, *, section_options: FaultSect
     write_check(weights, out_dir / "fault_unet_check.npz")
     record = {"training": {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(options).items()},
               "generator": {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(sec).items()},
-              "parameters": n_params, "init_weights_sha256": start_sha256, "torch": torch.__version__,
+              "parameters": n_params, "init_weights_sha256": start_sha256, "teacher_sha256": teacher_sha256,
+              "teacher_validation": teacher_validation, "torch": torch.__version__,
               "minutes": round((time.perf_counter() - t0) / 60, 2),
               "validation": history[-1].get("validation"), "weights_sha256": digest, "history": history}
     (out_dir / "fault_unet.json").write_text(json.dumps(record, indent=1))
@@ -382,6 +415,11 @@ def main(argv=None) -> None:
     parser.add_argument("--log-every", type=int, default=defaults.log_every)
     parser.add_argument("--init-weights", default=None, metavar="NPZ",
                         help="fine-tune from these exported weights (e.g. seismo3d/seismic/faults/likelihood/fault_unet.npz)")
+    parser.add_argument("--teacher", default=None, metavar="NPZ",
+                        help="distil these exported weights (e.g. seismo3d/seismic/faults/likelihood/fault_unet.npz) "
+                             "into a network of --channels")
+    parser.add_argument("--distill-weight", type=float, default=defaults.distill_weight,
+                        help="weight of the teacher's probability in the loss (the labels': 1 - it)")
     parser.add_argument("--generator", action="append", default=[], metavar="NAME=VALUE",
                         help="a FaultSectionOptions field of the generated sections (repeatable), e.g. "
                              "p_fault_system=0.7")
@@ -390,7 +428,7 @@ def main(argv=None) -> None:
     options = TrainingOptions(channels=tuple(int(v) for v in a.channels.split(",")), steps=a.steps,
                               batch_size=a.batch_size, patch=a.patch, learning_rate=a.learning_rate, seed=a.seed,
                               threads=a.threads, n_validation=a.n_validation, log_every=a.log_every,
-                              init_weights=a.init_weights)
+                              init_weights=a.init_weights, teacher=a.teacher, distill_weight=a.distill_weight)
     record = train(options, a.out, section_options=_generator_options(a.generator))
     print(f"validation {record['validation']}; weights sha256 {record['weights_sha256']}")
 

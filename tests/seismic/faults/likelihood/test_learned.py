@@ -260,6 +260,19 @@ def test_training_smoke(tmp_path):
     again = dict(np.load(tuned / "fault_unet.npz"))
     assert again.keys() == weights.keys()
     assert max(float(np.abs(again[k] - weights[k]).max()) for k in weights) <= 1e-6
+    # distilling: a narrower network learns the teacher's probability beside the labels; the record names the teacher
+    student = tmp_path / "student"
+    subprocess.run([sys.executable, "-m", "seismo3d.training.fault_unet", "--out", str(student), "--steps", "1",
+                    "--batch-size", "2", "--patch", "32", "--channels", "2,4,4,4", "--threads", "1",
+                    "--n-validation", "2", "--log-every", "1", "--teacher", str(out / "fault_unet.npz"),
+                    "--distill-weight", "0.7"], check=True, capture_output=True, timeout=300)
+    student_record = json.loads((student / "fault_unet.json").read_text())
+    assert student_record["training"]["teacher"] == str(out / "fault_unet.npz")
+    assert student_record["training"]["distill_weight"] == 0.7
+    assert student_record["training"]["channels"] == [2, 4, 4, 4]
+    assert student_record["teacher_sha256"] == record["weights_sha256"]
+    assert set(student_record["teacher_validation"]) == {"precision", "recall", "f1", "unfaulted_clean"}
+    assert dict(np.load(student / "fault_unet.npz"))["enc0.0.weight"].shape == (2, 1, 3, 3)
     tuned_record = json.loads((tuned / "fault_unet.json").read_text())
     assert tuned_record["training"]["init_weights"] == str(out / "fault_unet.npz")
     assert tuned_record["init_weights_sha256"] == hashlib.sha256((out / "fault_unet.npz").read_bytes()).hexdigest()

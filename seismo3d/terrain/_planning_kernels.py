@@ -52,16 +52,7 @@ def _less(a1, a2, b1, b2):
 
 # ---- binary min-heap with lazy deletion (forward searches) -------------------------------------------------------
 
-@njit(cache=True)
-def _grow(arr):
-    """``arr`` copied into an array twice as long (the rest not initialised)."""
-    out = np.empty(2 * arr.shape[0], dtype=arr.dtype)
-    for i in range(arr.shape[0]):  # a loop: a slice assignment compiles numba's generic setitem, 2 CPU s
-        out[i] = arr[i]
-    return out
-
-
-@njit(cache=True)
+@njit(cache=True, inline="always")  # inlined in its one caller: a called kernel is compiled on its own too (0.3 CPU s)
 def _push(k1, k2, nodes, size, key1, key2, node):
     """Insert (key1, key2, node) at the end and sift it up; the arrays must have room for size + 1 entries."""
     i = size
@@ -79,7 +70,7 @@ def _push(k1, k2, nodes, size, key1, key2, node):
     return size + 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")  # as _push
 def _pop(k1, k2, nodes, size):
     """Remove the top entry (read it before the call); return the new size."""
     size -= 1
@@ -156,30 +147,31 @@ def bound_field(shape_h, w, goal, cost, back_g, certificate, lower, exact):
                 exact[v] = back_g[v] < INF and back_g[v] + hs + certificate[2] < top
 
 
-@njit(cache=True)
-def forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, generation, back_g, certificate):
+@njit(cache=True, no_cfunc_wrapper=True)
+def forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, generation, back_g, certificate, k1, k2,
+                   nodes):
     """A* from ``start`` to ``goal`` (flat indices) with the bound of :func:`guide_bound` as heuristic.
 
     ``g``, ``parent`` and ``stamp`` are work arrays of N entries kept between calls: a cell's g and parent are valid
     only where ``stamp == generation`` (no O(N) reset per search). Ties on f go to the larger g (deeper cells). An
     entry popped with a g above the cell's current one is outdated and skipped; a cell whose g drops after its
     expansion is queued again, so the result is optimal for any admissible bound (with a consistent one, as here,
-    no cell is expanded twice). Returns (cost to the goal or INF, expansions); the path is read from ``parent``.
+    no cell is expanded twice). ``k1``, ``k2``, ``nodes``: the queue's arrays, allocated by the caller (numba's
+    allocator in a kernel costs a first run compiling); when the queue fills them the search stops and returns
+    expanded = -1 (call again with longer ones and a new generation: 8 N + 1 entries always suffice, each entry being
+    a cell's g lowered). Returns (cost to the goal or INF, expansions); the path is read from ``parent``.
     """
     h, w = free.shape
     goal_r, goal_c = goal // w, goal % w
-    cap = 1024
-    k1 = np.empty(cap, dtype=np.int64)
-    k2 = np.empty(cap, dtype=np.int64)
-    nodes = np.empty(cap, dtype=np.int64)
     stamp[start] = generation
     g[start] = 0
     parent[start] = -1
     bound = guide_bound(start, start // w, start % w, goal_r, goal_c, cost, back_g, certificate)
     if bound >= INF:
         return INF, 0
-    # np.int64(0), not 0: a literal 0 compiles _push a second time (for Literal[int](0))
-    size = _push(k1, k2, nodes, np.int64(0), bound, np.int64(0), start)
+    # the start alone in the queue, written here: a second call of _push would be compiled a second time
+    k1[0], k2[0], nodes[0] = bound, 0, start
+    size = np.int64(1)
     expanded = 0
     while size > 0:
         u = nodes[0]
@@ -203,28 +195,38 @@ def forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, ge
             bound = guide_bound(v, rv, cv, goal_r, goal_c, cost, back_g, certificate)
             if bound >= INF:
                 continue  # the backward search proved the goal unreachable from v
+            if size == k1.shape[0]:
+                return INF, -1  # the queue is full
             stamp[v] = generation
             g[v] = tentative
             parent[v] = u
-            if size == k1.shape[0]:
-                k1, k2, nodes = _grow(k1), _grow(k2), _grow(nodes)
             size = _push(k1, k2, nodes, size, tentative + bound, -tentative, v)
     return INF, expanded
 
 
-@njit(cache=True)
-def trace_back(parent, start, goal, n_max):
-    """Flat cells from start to goal along ``parent`` (written by :func:`forward_search`)."""
-    out = np.empty(n_max, dtype=np.int64)
-    n = 0
-    u = goal
+def run_forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, generation, back_g, certificate,
+                       queue):
+    """:func:`forward_search` with generation ``generation + 1`` and the queue's arrays in ``queue`` (a list: empty, or
+    the last search's three arrays, reused), lengthened and the search run again (next generation) when it fills
+    them. Returns (cost to the goal or INF, expansions, the generation used)."""
+    if not queue or queue[0].size < free.size + 1:  # N + 1 entries: more only where lowered g's queue a cell twice
+        queue[:] = [np.empty(max(1024, free.size + 1), dtype=np.int64) for _ in range(3)]
     while True:
-        out[n] = u
-        n += 1
-        if u == start:
-            break
-        u = parent[u]
-    return out[:n][::-1].copy()
+        generation += 1
+        total, expanded = forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, generation, back_g,
+                                         certificate, *queue)
+        if expanded >= 0:
+            return total, expanded, generation
+        queue[:] = [np.empty(2 * queue[0].size, dtype=np.int64) for _ in range(3)]
+
+
+def trace_back(parent, start, goal):
+    """Flat cells from start to goal along ``parent`` (written by :func:`forward_search`), (n,) int64: a loop over
+    the path in Python (compiled, it cost a first run 0.2 CPU s)."""
+    out = [goal]
+    while out[-1] != start:
+        out.append(int(parent[out[-1]]))
+    return np.array(out[::-1], dtype=np.int64)
 
 
 # ---- indexed binary min-heap (D* Lite: one entry per cell, keys updated in place) --------------------------------

@@ -246,12 +246,12 @@ def astar(free, start, goal, *, spacing=(1.0, 1.0), corner_cutting: bool = True)
     n, w = grid.size, grid.shape[1]
     start_flat, goal_flat = s[0] * w + s[1], g[0] * w + g[1]
     parent = np.empty(n, dtype=np.int64)
-    total, expanded = kernels.forward_search(
-        grid, start_flat, goal_flat, _step_costs(metres, n), bool(corner_cutting), np.empty(n, dtype=np.int64),
-        parent, np.zeros(n, dtype=np.int64), 1, np.zeros(1, dtype=np.int64), np.zeros(5, dtype=np.int64))
+    total, expanded, _ = kernels.run_forward_search(
+        grid, start_flat, goal_flat, _step_costs(metres, n), bool(corner_cutting), np.empty(n, dtype=np.int64), parent,
+        np.zeros(n, dtype=np.int64), 0, np.zeros(1, dtype=np.int64), np.zeros(5, dtype=np.int64), [])
     if total >= kernels.INF:
         raise _no_path(grid, s, g, corner_cutting)
-    flat = kernels.trace_back(parent, start_flat, goal_flat, n)
+    flat = kernels.trace_back(parent, start_flat, goal_flat)
     cells = np.column_stack([flat // w, flat % w])
     return GridPath(cells, path_length(cells, metres), int(expanded), "astar")
 
@@ -364,6 +364,7 @@ class DStarLite:
         self._fwd_parent = np.full(n, -1, dtype=np.int64)
         self._fwd_stamp = np.full(n, 0, dtype=np.int64)
         self._generation = 0
+        self._fwd_queue = []  # the forward search's queue (allocated at its first search)
         self.n_expanded_total = 0
 
     @property
@@ -537,10 +538,9 @@ class DStarLite:
 
     def _guided_search(self):
         """A* from the robot on the current grid, its heuristic the backward search's costs to the goal."""
-        self._generation += 1
-        total, expanded = kernels.forward_search(
+        total, expanded, self._generation = kernels.run_forward_search(
             self._free, self._start, self._goal, self._cost, self._corner, self._fwd_g, self._fwd_parent,
-            self._fwd_stamp, self._generation, self._g, self._certificate)
+            self._fwd_stamp, self._generation, self._g, self._certificate, self._fwd_queue)
         if total >= kernels.INF:
             return np.zeros(0, dtype=np.int64), expanded
-        return kernels.trace_back(self._fwd_parent, self._start, self._goal, self._free.size), expanded
+        return kernels.trace_back(self._fwd_parent, self._start, self._goal), expanded

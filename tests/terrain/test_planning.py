@@ -206,3 +206,35 @@ def test_dfw_corners_equal_mcp(dfw):
     assert path.length_m == pytest.approx(_mcp_length(grid.free, start, goal, grid.spacing), rel=1e-9)
     with pytest.raises(PlanningError, match="comes nearest to the start at"):
         astar(grid.free, (0, 0), goal, spacing=grid.spacing)
+
+
+
+def test_a_forward_search_whose_queue_fills_stops_and_runs_again_with_a_longer_one(monkeypatch):
+    # the queue's arrays come from the caller (no allocation in the kernel): a search that fills them returns -1
+    # expansions, and run_forward_search runs it again with longer ones (a new generation) to astar's path
+    from seismo3d.terrain import _planning_kernels as kernels
+    from seismo3d.terrain.planning import _step_costs
+
+    rng = np.random.default_rng(3)
+    free = rng.random((40, 50)) > 0.2
+    free[0, 0] = free[-1, -1] = True
+    want = astar(free, (0, 0), (39, 49))
+    n = free.size
+    args = (free, 0, n - 1, _step_costs((1.0, 1.0), n), True)
+    work = [np.empty(n, np.int64), np.empty(n, np.int64), np.zeros(n, np.int64)]
+    short = [np.empty(4, np.int64) for _ in range(3)]
+    total, expanded = kernels.forward_search(*args, *work, 1, np.zeros(1, np.int64), np.zeros(5, np.int64), *short)
+    assert (total, expanded) == (kernels.INF, -1)
+    search, lengths = kernels.forward_search, []
+
+    def first_fills(*a):  # the first search's queue of N + 1 entries taken as full
+        lengths.append(a[-1].size)
+        return (kernels.INF, -1) if len(lengths) == 1 else search(*a)
+
+    monkeypatch.setattr(kernels, "forward_search", first_fills)
+    queue = []
+    total, expanded, generation = kernels.run_forward_search(*args, *work, 1, np.zeros(1, np.int64),
+                                                             np.zeros(5, np.int64), queue)
+    assert generation == 3 and lengths == [n + 1, 2 * (n + 1)] and [q.size for q in queue] == [2 * (n + 1)] * 3
+    assert expanded == want.n_expanded
+    assert np.array_equal(kernels.trace_back(work[1], 0, n - 1), want.cells[:, 0] * 50 + want.cells[:, 1])

@@ -8,251 +8,166 @@ Conventions: traces ``(n_traces, n_samples)``; times in fractional samples.
 
 from __future__ import annotations
 
-import math
-
-import numba as nb
 import numpy as np
-
-from ..._threads import run_threads
-from .dp import sample_at
 
 __all__ = ["window_correlation", "neighbour_confidence"]
 
 
-_PAIR_CHUNK = 256  # pairs per task of pair_lags
-
-
-# no_cfunc_wrapper: the kernels here are called from Python and from each other, never as C callbacks, so
-# numba's C-callable wrapper of each is not compiled (0.02-0.03 CPU s a kernel on a first run)
-@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
-def _pair_lags_share(t, n_threads, traces, a, ta_all, b, centre_all, half, max_lag, min_fraction, lag_out,
-                     score_out, refs, sigs, scores_all, products_all):
-    # the pairs of chunks t, t + n_threads, ... (see pair_lags): for pair p, the lag around centre_all[p] on trace
-    # b[p] at which it correlates best with the window of trace a[p] around ta_all[p], refined by a parabola, and its
-    # correlation; (NaN, NaN) where not measured. Near the ends of the traces the window is shortened to the samples
-    # trace a[p] has (at least 4 each side); a lag is scored where at least min_fraction of the window lies on trace
-    # b[p]. refs, sigs, scores_all, products_all: work arrays, a row per thread (allocated by the caller: np.empty in a
-    # kernel compiles numba's allocator). One kernel, not a loop calling a kernel per pair: numba compiles a called
-    # kernel on its own and again inside its caller. No min(), max() or int() (each compiles a function of numba's of
-    # its own): comparisons and np.int64
-    n = a.size
-    n_chunks = (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK
-    ref, sig, scores, products = refs[t], sigs[t], scores_all[t], products_all[t]
-    for chunk in range(t, n_chunks, n_threads):
-        end = (chunk + 1) * _PAIR_CHUNK
-        for p in range(chunk * _PAIR_CHUNK, n if n < end else end):
-            ka, kb = a[p], b[p]
-            ta, centre = ta_all[p], centre_all[p]
-            n_s = traces.shape[1]
-            if not (math.isfinite(ta) and math.isfinite(centre)):
-                lag_out[p], score_out[p] = np.nan, np.nan
-                continue
-            h = half
-            h0 = math.floor(ta)
-            h1 = math.floor(n_s - 1 - ta)
-            h = h0 if h0 < h else h
-            h = h1 if h1 < h else h
-            if h < 4:
-                lag_out[p], score_out[p] = np.nan, np.nan
-                continue
-            m = 2 * h + 1
-            min_samples = np.int64(min_fraction * m)
-            min_samples = 5 if min_samples < 5 else min_samples
-            ra = traces[ka]
-            rb = traces[kb]
-            _read_window(ra, ta - h, m, ref)
-            _read_window(rb, centre - h - max_lag, m + 2 * max_lag, sig)
-            # lags are scored only where the window overlaps trace b enough: near the trace ends that cuts the range on
-            # one side; it is cut on the other side as well, or a pair's wrong-cycle matches (more of them on the
-            # longer side) would bias the shifts towards it
-            reach = max_lag
-            inside = centre - h - max_lag >= 0.0 and centre + h + max_lag <= n_s - 1.0  # every lag overlaps wholly
-            for k in range(0 if inside else max_lag + 1):
-                lo = centre - h - k
-                hi = centre + h + k
-                lo_end = lo + m - 1
-                hi_start = hi - m + 1
-                if (lo_end if lo_end < n_s - 1.0 else n_s - 1.0) - (lo if lo > 0.0 else 0.0) + 1 < min_samples or \
-                        (hi if hi < n_s - 1.0 else n_s - 1.0) - (hi_start if hi_start > 0.0 else 0.0) + 1 < min_samples:
-                    reach = k - 1
-                    break
-            for k in range(scores.size):  # a loop: scores[:] = nan compiles numba's generic setitem
-                scores[k] = np.nan
-            best, kbest = -2.0, -1
-            # trace a's window lies inside the trace (h above), so it is all finite: centred once, it serves every lag
-            # where trace b's window is finite too (interior lags: the run of finite ``sig`` samples)
-            ma = 0.0
-            for k in range(m):
-                ma += ref[k]
-            ma /= m
-            saa = 0.0
-            for k in range(m):
-                ref[k] -= ma
-                saa += ref[k] * ref[k]
-            first = 0  # sig[first:last] is finite
-            while first < m + 2 * max_lag and not math.isfinite(sig[first]):
-                first += 1
-            last = first
-            while last < m + 2 * max_lag and math.isfinite(sig[last]):
-                last += 1
-            # the interior lags (trace b's window finite): their products with the window of a at once, the sums of
-            # trace b's window and of its squares slid from lag to lag
-            lo = max_lag - reach
-            lo = first if first > lo else lo
-            hi = max_lag + reach
-            hi = last - m if last - m < hi else hi  # inclusive
-            if hi >= lo:
-                _window_products(ref, sig, m, lo, hi + 1, products)
-                _interior_scores(sig, m, lo, hi + 1, saa, products, scores)
-            for s in range(max_lag - reach, max_lag + reach + 1):
-                if lo <= s <= hi:
-                    c = scores[s]
-                else:
-                    c = _partial_window_ncc(ref, sig, s, m, min_samples)
-                    if math.isnan(c):
-                        continue
-                    scores[s] = c
-                if c > best:
-                    best, kbest = c, s
-            if kbest < 0:
-                lag_out[p], score_out[p] = np.nan, np.nan
-                continue
-            off = 0.0
-            if 0 < kbest < 2 * max_lag and math.isfinite(scores[kbest - 1]) and math.isfinite(scores[kbest + 1]):
-                y0, y1, y2 = scores[kbest - 1], scores[kbest], scores[kbest + 1]
-                den = y0 - 2 * y1 + y2
-                if den < 0:
-                    off = 0.5 * (y0 - y2) / den
-                    off = -0.5 if off < -0.5 else (0.5 if off > 0.5 else off)
-            lag_out[p], score_out[p] = kbest - max_lag + off, best
+_PAIR_CHUNK = 8192  # pairs at a time (memory: about 0.3 KB a pair per lag searched each side)
 
 
 def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
-    """For each pair: the lag around ``centre`` (times on trace b) at which trace b correlates best with the window
-    of trace a around ``ta``; returns (lag relative to centre, score), NaN where not measured
-    (``_pair_lags_share``); chunks of pairs shared out over numba's threads."""
+    """For each pair p: the lag around ``centre[p]`` (times on trace ``b[p]``) at which trace ``b[p]`` correlates best
+    with the window of trace ``a[p]`` around ``ta[p]``, refined by a parabola, and its correlation; returns (lag
+    relative to the centre, score), NaN where not measured.
+
+    Near the ends of the traces the window is shortened to the samples trace a has (at least 4 each side); a lag is
+    scored over the samples where trace b is finite (with the means of those) where they are at least
+    ``min_fraction`` of the window, and the lags are cut on both sides where one side is cut (or a pair's wrong-cycle
+    matches, more of them on the longer side, would bias the shifts towards it). Array work in numpy, pairs in chunks
+    of :data:`_PAIR_CHUNK` (the compiled kernels it replaces cost the horizon's first run 4-5 CPU s of compiling):
+    each lag's correlation from the sums over the samples (products of the windows, cumulative sums down trace b),
+    where the kernels summed the products in another order (reassociated) and the deviations from the means near the
+    trace ends: the scores agree to about 1e-14.
+    """
     n = len(a)
     lag_out = np.full(n, np.nan)
     score_out = np.full(n, np.nan)
-    n_threads = max(1, min(nb.get_num_threads(), (n + _PAIR_CHUNK - 1) // _PAIR_CHUNK))
     half, max_lag = int(half), int(max_lag)
-    work = [np.empty((n_threads, size)) for size in (2 * half + 1, 2 * half + 1 + 2 * max_lag, 2 * max_lag + 1,
-                                                     2 * max_lag + 1)]
-    run_threads(_pair_lags_share, n_threads, traces, a, ta, b, centre, half, max_lag, float(min_fraction), lag_out,
-                score_out, *work)
+    n_s = traces.shape[1]
+    ta = np.asarray(ta, np.float64)
+    centre = np.asarray(centre, np.float64)
+    ok = np.isfinite(ta) & np.isfinite(centre)
+    t = np.where(ok, ta, 0.0)
+    h = np.minimum(np.minimum(np.floor(t), np.floor((n_s - 1) - t)), half)
+    keep = np.nonzero(ok & (h >= 4))[0]  # h < 4 or a NaN time: not measured
+    with np.errstate(invalid="ignore", divide="ignore"):  # NaN windows, empty overlaps: masked
+        for s in range(0, keep.size, _PAIR_CHUNK):
+            p = keep[s:s + _PAIR_CHUNK]
+            lag_out[p], score_out[p] = _lags(traces, a[p], ta[p], b[p], centre[p], h[p].astype(np.int64), half,
+                                             max_lag, float(min_fraction))
     return lag_out, score_out
 
 
-@nb.njit(cache=True, no_cfunc_wrapper=True)
-def _read_window(trace, start, count, out):
-    """``out[k] = sample_at(trace, start + k)`` for k < ``count`` (:func:`~seismo3d.seismic.horizons.dp.sample_at`:
-    linear interpolation, NaN outside the trace); the samples share one interpolation weight."""
-    k0 = math.floor(start)
+def _read_windows(traces, rows, start, count):
+    """``out[k, p] = sample_at(traces[rows[p]], start[p] + k)`` for k < ``count`` ((count, n) float64, a window a
+    column; :func:`~seismo3d.seismic.horizons.dp.sample_at`: linear interpolation, NaN outside the trace), each
+    column's samples with one interpolation weight (as the kernel it replaces: the same bits)."""
+    n_s = traces.shape[1]
+    k0 = np.floor(start)
     f = start - k0
-    n = trace.size
-    if k0 >= 0 and k0 + count < n:  # inside the trace: no sample needs the ends' rule (unsigned: no wraparound)
-        base = nb.uint64(k0)
-        for k in range(nb.uint64(count)):
-            out[k] = (1.0 - f) * trace[base + k] + f * trace[base + k + nb.uint64(1)]
-        return
-    for k in range(count):
-        i = k0 + k
-        if 0 <= i < n - 1:
-            out[k] = (1.0 - f) * trace[i] + f * trace[i + 1]
-        else:
-            out[k] = sample_at(trace, start + k)
+    k0 = k0.astype(np.int64)
+    i = k0 + np.arange(count + 1)[:, None]  # the samples k0 .. k0 + count of each window
+    w = traces.reshape(-1).take(rows * n_s + np.clip(i, 0, n_s - 1)).astype(np.float64)
+    if k0.min(initial=0) < 0 or k0.max(initial=0) + count >= n_s:
+        w[(i < 0) | (i >= n_s)] = np.nan
+    out = (1.0 - f) * w[:-1] + f * w[1:]
+    # sample_at's rule at the last sample: its value at its time (the formula read past the trace)
+    k = n_s - 1 - k0
+    end = np.nonzero((k >= 0) & (k < count))[0]
+    if end.size:
+        end = end[start[end] + k[end] == n_s - 1]
+        out[k[end], end] = w[k[end], end]
+    return out
 
 
-@nb.njit(cache=True, no_cfunc_wrapper=True, fastmath={"reassoc", "contract", "nsz", "arcp"})
-def _window_products(ref, sig, m, lo, hi, out):
-    """``out[s] = sum_k ref[k] sig[s + k]`` (k < ``m``) for lags ``lo <= s < hi``: eight lags at a time, each one
-    accumulator, so the compiler keeps them in vector registers (reassociated; unsigned indices, so that no
-    negative-index wraparound stands in the way)."""
-    one = nb.uint64(1)
-    s = nb.uint64(lo)
-    end = nb.uint64(hi)
-    width = nb.uint64(m)
-    while s + nb.uint64(8) <= end:
-        a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = 0.0
-        for k in range(width):
-            r = ref[k]
-            i = s + k
-            a0 += r * sig[i]
-            a1 += r * sig[i + one]
-            a2 += r * sig[i + nb.uint64(2)]
-            a3 += r * sig[i + nb.uint64(3)]
-            a4 += r * sig[i + nb.uint64(4)]
-            a5 += r * sig[i + nb.uint64(5)]
-            a6 += r * sig[i + nb.uint64(6)]
-            a7 += r * sig[i + nb.uint64(7)]
-        out[s], out[s + one], out[s + nb.uint64(2)], out[s + nb.uint64(3)] = a0, a1, a2, a3
-        out[s + nb.uint64(4)], out[s + nb.uint64(5)], out[s + nb.uint64(6)], out[s + nb.uint64(7)] = a4, a5, a6, a7
-        s += nb.uint64(8)
-    while s < end:
-        acc = 0.0
-        for k in range(width):
-            acc += ref[k] * sig[s + k]
-        out[s] = acc
-        s += one
+def _cumsum(v):
+    """``np.cumsum(v, axis=0)``, row after row (numpy's walks down the columns, 5 x slower)."""
+    c = v.copy()
+    for r in range(1, c.shape[0]):
+        c[r] += c[r - 1]
+    return c
 
 
-@nb.njit(cache=True, no_cfunc_wrapper=True)
-def _interior_scores(sig, m, lo, hi, saa, products, scores):
-    """``scores[s]`` for the lags ``lo <= s < hi`` where trace b's window ``sig[s:s + m]`` is finite: the products
-    (:func:`_window_products`) over the spreads of the two windows (``saa``: the centred window of a's), 0 where a
-    window is flat. The sums of b's window and of its squares are slid from lag to lag into ``scores``, then turned
-    into correlations in one loop the compiler vectorises."""
-    one = nb.uint64(1)
-    start = nb.uint64(lo)
-    end = nb.uint64(hi)
-    width = nb.uint64(m)
-    sb = 0.0
-    sbb = 0.0
-    for k in range(width):
-        y = sig[start + k]
-        sb += y
-        sbb += y * y
-    for s in range(start, end):
-        if s > start:
-            y0 = sig[s - one]
-            y1 = sig[s + width - one]
-            sb += y1 - y0
-            sbb += y1 * y1 - y0 * y0
-        var = sbb - sb * sb / m
-        scores[s] = var if saa > 0 and var > 1e-9 * sbb else -1.0  # -1: a flat window
-    for s in range(start, end):
-        v = scores[s]
-        scores[s] = products[s] / math.sqrt(saa * v) if v > 0.0 else 0.0
+def _lags(traces, a, ta, b, centre, h, half, max_lag, min_fraction):
+    """:func:`pair_lags` of one chunk of pairs whose windows ``+-h`` (per pair, 4 <= h <= ``half``) lie on trace a.
+    Windows are columns: (samples, pairs) arrays."""
+    n_s = traces.shape[1]
+    n = a.size
+    m = 2 * h + 1  # the window of each pair
+    width = 2 * half + 1
+    n_lags = 2 * max_lag + 1
+    cols = np.arange(n)
+    live = np.arange(width)[:, None] < m  # the samples of each pair's window
+    min_samples = np.maximum((min_fraction * m).astype(np.int64), 5)
+    ref = np.where(live, _read_windows(traces, a, ta - h, width), 0.0)
+    # trace a's window is all finite (a trace's NaN samples make it all NaN): centred, summed sample by sample
+    ma = np.add.reduce(ref, axis=0, initial=0.0) / m
+    ref = np.where(live, ref - ma, 0.0)
+    sig = _read_windows(traces, b, centre - h - max_lag, width + 2 * max_lag)
+    row = np.arange(sig.shape[0])[:, None]
+    finite = np.isfinite(sig) & (row < m + 2 * max_lag)  # a pair's samples past m + 2 max_lag are not its own
+    y = np.where(finite, sig, 0.0)
+    # the lags whose windows overlap trace b enough: cut on both sides at the first lag that does not
+    reach = np.full(n, max_lag)
+    inside = (centre - h - max_lag >= 0.0) & (centre + h + max_lag <= n_s - 1.0)  # every lag overlaps wholly
+    if not inside.all():
+        kk = np.arange(max_lag + 1)[:, None]
+        lo = centre - h - kk
+        hi = centre + h + kk
+        lo_end, hi_start = lo + m - 1, hi - m + 1  # in the kernel's order: (lo + m) - 1
+        short = ((np.minimum(lo_end, n_s - 1.0) - np.maximum(lo, 0.0) + 1 < min_samples)
+                 | (np.minimum(hi, n_s - 1.0) - np.maximum(hi_start, 0.0) + 1 < min_samples))
+        cut = short.any(axis=0) & ~inside
+        reach[cut] = np.argmax(short[:, cut], axis=0) - 1
+    # every lag's sums over the samples where trace b is finite: the products of the windows and trace a's sums by
+    # products with them, trace b's by cumulative sums down it
+    lag = np.arange(n_lags)[:, None]
+    sab = np.einsum("kp,ksp->sp", ref, _shifted(y, width, n_lags))
+    window = _shifted(finite.astype(np.float64), width, n_lags)
+    sa = np.einsum("kp,ksp->sp", ref, window)
+    saa = np.einsum("kp,ksp->sp", ref * ref, window)
+    # trace b's sums, sum_k<m v[s + k] at every lag s: differences of the cumulative sums down its columns
+    if (m == m[0]).all():
+        def window_sums(v):
+            c = _cumsum(v)
+            out = c[m[0] - 1:m[0] - 1 + n_lags].copy()
+            out[1:] -= c[:n_lags - 1]
+            return out
+    else:
+        at = (lag + m - 1) * n + cols
+        before = np.maximum(lag - 1, 0) * n + cols
+
+        def window_sums(v):
+            c = _cumsum(v).reshape(-1)
+            return c.take(at) - np.where(lag > 0, c.take(before), 0)
+
+    cnt = window_sums(finite.astype(np.int64))
+    sb = window_sums(y)
+    sbb = window_sums(y * y)
+    sab -= sa * sb / cnt
+    saa -= sa * sa / cnt
+    var = sbb - sb * sb / cnt
+    spread = (saa > 1e-9 * (saa + sa * sa / cnt)) & (var > 1e-9 * sbb) & (saa > 0) & (var > 0)
+    scores = np.where(spread, sab / np.sqrt(np.where(spread, saa * var, 1.0)), 0.0)  # 0: a flat window
+    bad = np.nonzero(~np.isfinite(ma))[0]
+    if bad.size:
+        # a window of trace a with a NaN sample (all NaN once centred): the lags in trace b's first run of finite
+        # samples score 0 (a flat window), the others are not scored
+        run = finite[:, bad]
+        first = np.where(run.any(axis=0), np.argmax(run, axis=0), run.shape[0])
+        gap = ~run & (np.arange(run.shape[0])[:, None] >= first)
+        last = np.where(gap.any(axis=0), np.argmax(gap, axis=0), run.shape[0])
+        scores[:, bad] = np.where((lag >= first) & (lag <= last - m[bad]), 0.0, np.nan)
+    scores[(np.abs(lag - max_lag) > reach) | (cnt < min_samples)] = np.nan
+    # the best lag (the first of equal ones), refined by a parabola through it and its neighbours
+    best = np.where(np.isnan(scores), -np.inf, scores)
+    kbest = np.argmax(best, axis=0)
+    top = best[kbest, cols]
+    found = top > -np.inf
+    off = np.zeros(n)
+    y0 = scores[np.maximum(kbest - 1, 0), cols]
+    y2 = scores[np.minimum(kbest + 1, n_lags - 1), cols]
+    mid = found & (kbest > 0) & (kbest < n_lags - 1) & np.isfinite(y0) & np.isfinite(y2)
+    den = y0 - 2 * top + y2
+    mid &= den < 0
+    off[mid] = np.clip(0.5 * (y0[mid] - y2[mid]) / den[mid], -0.5, 0.5)
+    return np.where(found, (kbest - max_lag) + off, np.nan), np.where(found, top, np.nan)
 
 
-@nb.njit(cache=True, no_cfunc_wrapper=True)
-def _partial_window_ncc(ref, sig, s, m, min_samples):
-    """A pair's correlation at lag ``s`` (``_pair_lags_share``) over the samples where both windows are finite (the
-    means of those); NaN with fewer than ``min_samples``."""
-    sa = 0.0
-    sb = 0.0
-    cnt = 0
-    for k in range(m):
-        x, y = ref[k], sig[s + k]
-        if math.isfinite(x) and math.isfinite(y):
-            sa += x
-            sb += y
-            cnt += 1
-    if cnt < min_samples:
-        return np.nan
-    ma, mb = sa / cnt, sb / cnt
-    sab = 0.0
-    saa = 0.0
-    sbb = 0.0
-    for k in range(m):
-        x, y = ref[k], sig[s + k]
-        if math.isfinite(x) and math.isfinite(y):
-            dx = x - ma
-            dy = y - mb
-            sab += dx * dy
-            saa += dx * dx  # not ** 2: it compiles a power function of numba's (the same bits)
-            sbb += dy * dy
-    return sab / math.sqrt(saa * sbb) if saa > 0 and sbb > 0 else 0.0
+def _shifted(x, width, n_lags):
+    """The (width, n_lags, n) view ``x[k + s, p]`` of (width + n_lags - 1, n) ``x``: trace b's window at every lag."""
+    return np.lib.stride_tricks.as_strided(x, shape=(width, n_lags, x.shape[1]), strides=(x.strides[0],) + x.strides)
 
 
 def window_correlation(traces: np.ndarray, a: np.ndarray, ta: np.ndarray, b: np.ndarray, tb: np.ndarray, *,

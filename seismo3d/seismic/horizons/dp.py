@@ -170,7 +170,7 @@ def _unit_dot(ua, ub):
     return r
 
 
-@nb.njit(cache=True, no_cfunc_wrapper=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb):
     """Normalised cross-correlation of the windows ``+-half`` samples around ``ta`` on trace ``ka`` and ``tb`` on
     ``kb`` (:func:`window_ncc`): the dot product of the candidates' unit windows ``qa``, ``qb`` where both lie inside
@@ -191,7 +191,7 @@ def _slope_at(slopes, k, t):
     return slopes[k, slopes.shape[1] - 1 if i > slopes.shape[1] - 1 else i]
 
 
-@nb.njit(cache=True, no_cfunc_wrapper=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def window_ncc(a, b):
     """Normalised cross-correlation of two equally long windows over their finite samples (0 with fewer than 5)."""
     sa = 0.0
@@ -383,29 +383,36 @@ def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, a
                 tb = pick[qb]
                 sb = along_c[qb]
                 u = wg_line[j] * abs(tb - g_line[j])
-                for e in range(n_cross):
-                    if held[e] == -2:
+                best, arg = np.inf, -1
+                # the partners of the candidate: the neighbouring lines' picks held (e < n_cross), then the previous
+                # trace's candidates; one loop, so that _pick_ncc has one call site (inlined: a called kernel is
+                # compiled on its own too, and an inlined one at each call site)
+                for e in range(n_cross + n_prev):
+                    if e < n_cross:
+                        if held[e] == -2:
+                            continue
+                        ko = c_ids[j, e]
+                        to = c_t[j, e]
+                        qo = held[e]
+                        so = across_c[qo] if qo >= 0 else _slope_at(across, ko, to)
+                        sc = across_c[qb]
+                        # the previous line's pick before this one (e = 0), the next line's after it
+                        step = (tb - to) - 0.5 * (so + sc) if e == 0 else (to - tb) - 0.5 * (sc + so)
+                    else:
+                        ko = ka
+                        qo = first[ka] + e - n_cross
+                        to = pick[qo]
+                        step = (tb - to) - 0.5 * (along_c[qo] + sb)
+                    r = _pick_ncc(traces, unit, whole, ko, to, qo, kb, tb, qb, half, wa, wb)
+                    if e < n_cross:
+                        u += w_step * step * step + w_wave * (1.0 - r)
                         continue
-                    ko = c_ids[j, e]
-                    to = c_t[j, e]
-                    so = across_c[held[e]] if held[e] >= 0 else _slope_at(across, ko, to)
-                    sc = across_c[qb]
-                    # the previous line's pick before this one (e = 0), the next line's after it
-                    step = (tb - to) - 0.5 * (so + sc) if e == 0 else (to - tb) - 0.5 * (sc + so)
-                    r = _pick_ncc(traces, unit, whole, ko, to, held[e], kb, tb, qb, half, wa, wb)
-                    u += w_step * step * step + w_wave * (1.0 - r)
+                    v = cost[j - 1, e - n_cross] + w_step * step * step + w_wave * (1.0 - r)
+                    if v < best:
+                        best, arg = v, e - n_cross
                 if n_prev == 0:
                     cost[j, c] = u
                     continue
-                best, arg = np.inf, -1
-                for p in range(n_prev):
-                    qa = first[ka] + p
-                    ta = pick[qa]
-                    step = (tb - ta) - 0.5 * (along_c[qa] + sb)
-                    r = _pick_ncc(traces, unit, whole, ka, ta, qa, kb, tb, qb, half, wa, wb)
-                    v = cost[j - 1, p] + w_step * step * step + w_wave * (1.0 - r)
-                    if v < best:
-                        best, arg = v, p
                 cost[j, c] = best + u
                 back[j, c] = arg
         # backtrack each run of traces with candidates from its end

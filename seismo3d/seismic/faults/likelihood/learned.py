@@ -40,12 +40,11 @@ from dataclasses import dataclass
 
 import numba as nb
 import numpy as np
-from scipy.ndimage import gaussian_filter, zoom
+from scipy.ndimage import zoom
 
 from ...._progress import progress_steps
-from ...._threads import run_threads
 from ....errors import InputError
-from ..._kernels import eig_normals
+from ...attributes import orientation_from_likelihood
 from ..result import FaultLikelihood
 from .network import (
     INT8_SHA256, NETWORKS, RECEPTIVE_HALF, WEIGHTS_SHA256, FaultNetwork, POOLING_MULTIPLE, from_network_grid,
@@ -381,74 +380,6 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
         return _sections_probability(small, scale, weights, batch, bar, stretch_to)
     return _sections_probability(small.transpose(1, 0, 2), scale, weights, batch, bar,
                                  stretch_to).transpose(1, 0, 2)
-
-
-def _normals_to_strike_dip(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Strike and dip (degrees, module conventions of the likelihood) of (..., ndim) normals of either sign."""
-    flip = normals[..., -1] < 0
-
-    def turned(k):  # component k of the normals turned to nz >= 0, one component at a time (not the whole copy)
-        c = np.array(normals[..., k])
-        return np.negative(c, out=c, where=flip)
-
-    dip = np.degrees(np.arccos(np.clip(turned(-1), 0.0, 1.0)))
-    if normals.shape[-1] == 2:
-        strike = np.where(turned(0) >= 0, 90.0, 270.0)
-    else:
-        strike = np.degrees(np.arctan2(turned(0), -turned(1))) % 360.0
-    return strike.astype(np.float32), np.maximum(dip, 1e-3).astype(np.float32)
-
-
-def _largest_eigenvector_2d(t00, t01, t11) -> np.ndarray:
-    """Unit eigenvector of the largest eigenvalue of symmetric 2 x 2 tensors, (..., 2)."""
-    angle = 0.5 * np.arctan2(2.0 * t01, t00 - t11)
-    return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
-
-
-def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
-    """Strike and dip of the faults of a likelihood image, from its structure tensor.
-
-    The normal at each sample is the eigenvector of the largest eigenvalue of the Gaussian-smoothed outer product of
-    the likelihood's gradient (van Vliet and Verbeek 1995; Hale 2013 uses it on amplitudes), in closed form.
-
-    Parameters
-    ----------
-    likelihood : (n_traces, n_samples) or (n_inlines, n_xlines, n_samples) ndarray
-        Fault likelihood.
-    sigma : float, optional
-        Smoothing of the tensor, samples.
-
-    Returns
-    -------
-    strike_deg, dip_deg : ndarray, float32, the shape of ``likelihood``
-        Degrees (conventions of :mod:`seismo3d.seismic.faults.likelihood.scan`: strike in [0, 360), dip in (0, 90],
-        index space).
-
-    References
-    ----------
-    L. J. van Vliet and P. W. Verbeek, "Estimators for orientation and anisotropy in digitized images", ASCI'95,
-    442-450, 1995. O. K. Smith, "Eigenvalues of a symmetric 3 x 3 matrix", Communications of the ACM 4(4), 168,
-    1961, doi:10.1145/355578.366316.
-    """
-    p = np.asarray(likelihood, dtype=np.float32)
-    grads = np.gradient(p)
-    nd = p.ndim
-    pairs, comps = [(a, b) for a in range(nd) for b in range(a, nd)], {}
-
-    def smooth(t: int, n: int) -> None:  # scipy's filters release the GIL: the components on the cores at once
-        for a, b in pairs[t::n]:
-            comps[a, b] = gaussian_filter(grads[a] * grads[b], sigma)
-
-    run_threads(smooth, min(nb.get_num_threads(), len(pairs)))
-    del grads
-    if nd == 2:
-        normals = _largest_eigenvector_2d(comps[0, 0], comps[0, 1], comps[1, 1])
-    else:
-        normals = np.empty(p.shape + (3,), np.float32)
-        eig_normals(comps[0, 0], comps[0, 1], comps[0, 2], comps[1, 1], comps[1, 2], comps[2, 2], normals,
-                    np.empty(p.shape, np.float32))
-    del comps  # the tensor (6 floats a sample) is not held while the angles are computed: a lower peak
-    return _normals_to_strike_dip(normals)
 
 
 def learned_fault_likelihood(data, *, options: LearnedOptions | None = None, scale=None,

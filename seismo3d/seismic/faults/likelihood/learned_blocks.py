@@ -450,8 +450,8 @@ def orientation_block(place, *networks_plan_opt) -> BlockOutput:
     """
     *networks, plan, opt = networks_plan_opt
     prob = _probability(plan, networks, place.region)
-    strike, dip = orientation_from_likelihood(prob, sigma=float(opt.orientation_sigma))
-    core = place.core
-    likelihood = np.where(dip[core] < float(opt.min_dip), np.float32(0.0), prob[core])
-    return BlockOutput({"likelihood": likelihood, "strike_deg": strike[core], "dip_deg": dip[core]},
+    core = place.core  # the tensor smoothed over the region, eigen-decomposed at the core only (the same bits)
+    strike, dip = orientation_from_likelihood(prob, sigma=float(opt.orientation_sigma), core=core)
+    likelihood = np.where(dip < float(opt.min_dip), np.float32(0.0), prob[core])
+    return BlockOutput({"likelihood": likelihood, "strike_deg": strike, "dip_deg": dip},
                        {"high": int(np.count_nonzero(likelihood > float(opt.saturation_level)))})

@@ -50,6 +50,42 @@ def solve_weighted(n, a, b, s, w, seeds, seed_times, prev, seed_weight, damping,
     return _laplacian_cg(a, b, w, diag, rhs, np.array(start, np.float64), 1e-10, 2000, labels, n_coarse)
 
 
+_SMALL = 16  # aggregates at most for the solver's numpy path (no kernel compiled on a first run)
+
+
+def _matvec_numpy(ends, w, diag, x, out, values):
+    """:func:`_laplacian_matvec`'s ``out`` by ``np.bincount`` (a loop in C over its input's order: ``diag * x`` at
+    each trace, then each pair's ``w (x[a] - x[b])`` at ``a`` and its negation at ``b``, as the loop adds them, so the
+    same bits but for the sign of a zero); ``ends`` is ``range(n)`` then the pairs' ``a, b`` interleaved, ``values``
+    a work array of its size."""
+    n = x.size
+    np.multiply(diag, x, out=values[:n])
+    d = values[n:].reshape(-1, 2)
+    np.subtract(x[ends[n::2]], x[ends[n + 1::2]], out=d[:, 0])
+    d[:, 0] *= w
+    np.negative(d[:, 0], out=d[:, 1])
+    out[:] = np.bincount(ends, values, minlength=n)
+
+
+def _precondition_python(r, inv, labels, rows, z):
+    """:func:`_precondition` in Python floats (IEEE doubles as the kernel's, in the kernel's order: the same bits) for
+    a coarse level of a few aggregates (``rows``: the factor as nested lists), where it costs less than compiling."""
+    nc = len(rows)
+    rc = np.bincount(labels, r, minlength=nc).tolist()  # in the traces' order, from 0.0, as the kernel's loop
+    for i in range(nc):  # forward: chol y = rc
+        v, row = rc[i], rows[i]
+        for j in range(i):
+            v -= row[j] * rc[j]
+        rc[i] = v / row[i]
+    for i in range(nc - 1, -1, -1):  # backward: chol^T x = y
+        v = rc[i]
+        for j in range(i + 1, nc):
+            v -= rows[j][i] * rc[j]
+        rc[i] = v / rows[i][i]
+    np.multiply(inv, r, out=z)
+    z += np.array(rc)[labels]
+
+
 # no_cfunc_wrapper: the kernels here are called from Python and from each other, never as C callbacks, so
 # numba's C-callable wrapper of each is not compiled (0.02-0.03 CPU s a kernel on a first run)
 @nb.njit(cache=True, no_cfunc_wrapper=True)
@@ -113,7 +149,9 @@ def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter, labels, n_coarse):
     residual's norm falls below ``rtol`` times the right-hand side's (the iteration of :func:`scipy.sparse.linalg.cg`,
     with the Laplacian applied from the pair list by :func:`_laplacian_matvec`); preconditioned by
     :func:`_precondition`. The loop is numpy's, its dot products BLAS's ``ddot`` through scipy (the routine numba's
-    ``np.dot`` calls: a compiled loop gave the same bits and cost 1.5-2 CPU s of compiling on a first run)."""
+    ``np.dot`` calls: a compiled loop gave the same bits and cost 1.5-2 CPU s of compiling on a first run). With at
+    most :data:`_SMALL` aggregates (up to about 1,000 traces) the two kernels' numpy and Python twins run instead, the
+    same bits: compiling the kernels (0.8-1.2 CPU s on a first run) would cost more than they save there."""
     from scipy.linalg.blas import ddot
 
     n = rhs.size
@@ -124,10 +162,26 @@ def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter, labels, n_coarse):
     if bnrm == 0.0:
         return rhs.copy()
     chol = _coarse_factor(a, b, w, diag, labels, n_coarse)
-    rc = np.empty(n_coarse)
+    if n_coarse <= _SMALL:
+        ends = np.concatenate([np.arange(n), np.stack([a, b], axis=1).ravel()])
+        values, rows = np.empty(ends.size), chol.tolist()
+
+        def matvec(v, out):
+            _matvec_numpy(ends, w, diag, v, out, values)
+
+        def precondition(r, z):
+            _precondition_python(r, inv, labels, rows, z)
+    else:
+        rc = np.empty(n_coarse)
+
+        def matvec(v, out):
+            _laplacian_matvec(a, b, w, diag, v, out)
+
+        def precondition(r, z):
+            _precondition(r, inv, labels, chol, rc, z)
     atol = rtol * bnrm
     q = np.empty(n)
-    _laplacian_matvec(a, b, w, diag, x, q)
+    matvec(x, q)
     r = rhs - q
     p = np.empty(n)
     z = np.empty(n)
@@ -135,14 +189,14 @@ def _laplacian_cg(a, b, w, diag, rhs, x, rtol, maxiter, labels, n_coarse):
     for it in range(maxiter):
         if np.sqrt(ddot(r, r)) < atol:
             break
-        _precondition(r, inv, labels, chol, rc, z)
+        precondition(r, z)
         rho = ddot(r, z)
         if it > 0:
             p *= rho / rho_prev
             p += z
         else:
             p[:] = z
-        _laplacian_matvec(a, b, w, diag, p, q)
+        matvec(p, q)
         alpha = rho / ddot(p, q)
         x += alpha * p
         r -= alpha * q

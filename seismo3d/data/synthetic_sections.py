@@ -93,6 +93,17 @@ class FaultSectionOptions:
     fault_length_range : (float, float)
         Lengths of the faults that die out within the section (tapered throw), fractions of the section's
         samples; shorter faults are those of a few tens of samples people draw below F3's strong reflectors.
+    p_buried_faults : float
+        Probability that a faulted section's faults are older than an angular unconformity: the erosion surface
+        (depth drawn in ``buried_surface_range``) cuts the faulted layering, the package above it, laid down after
+        the faulting, is unbroken, and the surface is a strong reflector (a reflection coefficient of 2.5-8 times
+        the layering's typical one, either sign). The faults and their labels end at the surface, so the faulted
+        package is the lower part of the section, down to its last sample: the short faults at the base of F3's
+        inlines, under a strong unconformity, that run into the data's bottom edge. The default 0 leaves the draws
+        unchanged.
+    buried_surface_range : (float, float)
+        Depth of the erosion surface of a section of buried faults (its mean over the traces; the surface is wavy
+        as the other unconformities), fractions of the section's samples.
     """
 
     max_faults: int = 8
@@ -112,10 +123,12 @@ class FaultSectionOptions:
     p_small_throw: float = 0.0
     small_throw_range: tuple = (1.5, 5.0)
     fault_length_range: tuple = (0.3, 1.2)
+    p_buried_faults: float = 0.0
+    buried_surface_range: tuple = (0.4, 0.85)
 
     def __post_init__(self):
         for name in ("p_unfaulted", "reverse_fraction", "p_fault_system", "p_antithetic", "p_steep_fold",
-                     "p_small_throw"):
+                     "p_small_throw", "p_buried_faults"):
             if not 0.0 <= float(getattr(self, name)) <= 1.0:
                 raise InputError(f"{name} must be a probability in [0, 1]; got {getattr(self, name)!r}")
         if not 0.0 <= float(self.system_dip_spread) <= 45.0:
@@ -126,6 +139,10 @@ class FaultSectionOptions:
         if not 0.0 < low <= high:
             raise InputError(f"fault_length_range must be (low, high) with 0 < low <= high; got "
                              f"{self.fault_length_range!r}")
+        low, high = (float(v) for v in self.buried_surface_range)
+        if not 0.0 <= low <= high <= 1.0:
+            raise InputError(f"buried_surface_range must be (low, high) with 0 <= low <= high <= 1; got "
+                             f"{self.buried_surface_range!r}")
         low, high = (float(v) for v in self.small_throw_range)
         if not 0.0 <= low <= high:
             raise InputError(f"small_throw_range must be (low, high) with 0 <= low <= high samples; "
@@ -171,28 +188,51 @@ def _impedance_reflectivity(rng, n: int) -> np.ndarray:
     return out
 
 
-def _layering(rng, nx: int, nz: int, max_dip: float):
-    """RGT of every sample of a (nx, nz) section before faulting: folding and an optional unconformity."""
+def _folded(rng, nx: int, nz: int, dip_deg: float) -> np.ndarray:
+    """RGT of a (nx, nz) folded package (sums of Gaussian bumps and a plane, steepest dip ``dip_deg``)."""
     x = np.arange(nx, dtype=np.float64)[:, None]
     z = np.arange(nz, dtype=np.float64)[None, :]
+    g = np.zeros((nx, 1))
+    for _ in range(int(rng.integers(1, 5))):
+        c, s = rng.uniform(-0.2, 1.2) * nx, rng.uniform(0.1, 0.5) * nx
+        g += rng.uniform(-1, 1) * np.exp(-0.5 * ((x - c) / s) ** 2)
+    g += rng.uniform(-0.5, 0.5) * (x - nx / 2) / nx
+    slope = np.abs(np.gradient(g[:, 0])).max() or 1.0
+    g *= np.tan(np.radians(dip_deg)) / slope
+    growth = rng.uniform(0.2, 1.0)
+    return z + ((1 - growth) + growth * z / nz) * g
 
-    def folded(dip_deg):
-        g = np.zeros((nx, 1))
-        for _ in range(int(rng.integers(1, 5))):
-            c, s = rng.uniform(-0.2, 1.2) * nx, rng.uniform(0.1, 0.5) * nx
-            g += rng.uniform(-1, 1) * np.exp(-0.5 * ((x - c) / s) ** 2)
-        g += rng.uniform(-0.5, 0.5) * (x - nx / 2) / nx
-        slope = np.abs(np.gradient(g[:, 0])).max() or 1.0
-        g *= np.tan(np.radians(dip_deg)) / slope
-        growth = rng.uniform(0.2, 1.0)
-        return z + ((1 - growth) + growth * z / nz) * g
 
-    rgt = folded(rng.uniform(0.0, 1.0) * max_dip)
+def _wavy_surface(rng, nx: int, nz: int, depth: float) -> np.ndarray:
+    """Depth (samples) of an erosion surface along the nx traces: ``depth`` plus smooth waves."""
+    return depth + gaussian_filter1d(rng.normal(0, 1, nx), nx / 8) * nz * 0.5
+
+
+def _layering(rng, nx: int, nz: int, max_dip: float):
+    """RGT of every sample of a (nx, nz) section before faulting: folding and an optional unconformity."""
+    rgt = _folded(rng, nx, nz, rng.uniform(0.0, 1.0) * max_dip)
     if rng.random() < 0.4:  # angular unconformity: another package above a wavy erosion surface
-        upper = folded(rng.uniform(0.0, 1.0) * max_dip) - 3 * nz
-        surface = rng.uniform(0.2, 0.7) * nz + gaussian_filter1d(rng.normal(0, 1, nx), nx / 8) * nz * 0.5
-        rgt = np.where(z < surface[:, None], upper, rgt)
+        upper = _folded(rng, nx, nz, rng.uniform(0.0, 1.0) * max_dip) - 3 * nz
+        surface = _wavy_surface(rng, nx, nz, rng.uniform(0.2, 0.7) * nz)
+        rgt = np.where(np.arange(nz)[None, :] < surface[:, None], upper, rgt)
     return rgt
+
+
+def _buried_layering(rng, nx: int, nz: int, margin: int, max_dip: float, surface_range, xs, zs):
+    """RGT of a section whose faults are older than an unconformity, the erosion surface, the samples above it and
+    the strong reflector's trace-wise sample index (``nz``: below the section).
+
+    ``xs, zs``: the unfaulted positions of the section's samples; the package above the surface, laid down after the
+    faulting, is sampled at the samples' own positions, the surface is a present-day depth."""
+    nx_s, nz_s = xs.shape
+    lower = _folded(rng, nx, nz, rng.uniform(0.0, 1.0) * max_dip)
+    upper = _folded(rng, nx, nz, rng.uniform(0.0, 1.0) * max_dip) - 3 * nz
+    surface = _wavy_surface(rng, nx, nz, rng.uniform(*surface_range) * nz_s + margin)[margin:margin + nx_s] - margin
+    x0, z0 = np.meshgrid(np.arange(nx_s, dtype=np.float64), np.arange(nz_s, dtype=np.float64), indexing="ij")
+    above = z0 < surface[:, None]
+    rgt = np.where(above, map_coordinates(upper, [x0 + margin, z0 + margin], order=1, mode="nearest"),
+                   map_coordinates(lower, [xs + margin, zs + margin], order=1, mode="nearest"))
+    return rgt, above, np.clip(np.ceil(surface), 0, nz_s).astype(np.int64)
 
 
 @dataclass(frozen=True)
@@ -314,13 +354,24 @@ def synthetic_fault_section(shape=(128, 128), *, seed=0, options: FaultSectionOp
     fold_dip = opt.max_fold_dip
     if opt.p_steep_fold > 0 and rng.random() < opt.p_steep_fold:
         fold_dip = opt.steep_fold_dip
-    rgt_grid = _layering(rng, nx + 2 * margin, nz + 2 * margin, fold_dip)
-    rgt = map_coordinates(rgt_grid, [xs + margin, zs + margin], order=1, mode="nearest")
+    buried = bool(n_faults) and opt.p_buried_faults > 0 and rng.random() < opt.p_buried_faults  # drawn only if asked
+    if buried:  # the faults end at a younger erosion surface: no labels above it
+        rgt, above, surface_index = _buried_layering(rng, nx + 2 * margin, nz + 2 * margin, margin, fold_dip,
+                                                     opt.buried_surface_range, xs, zs)
+        labels &= ~above
+        throw[above] = 0.0
+    else:
+        rgt_grid = _layering(rng, nx + 2 * margin, nz + 2 * margin, fold_dip)
+        rgt = map_coordinates(rgt_grid, [xs + margin, zs + margin], order=1, mode="nearest")
     lo = float(rgt.min()) - 1
     n_rgt = int(np.ceil(float(rgt.max()) - lo)) + 2
     series = _impedance_reflectivity(rng, n_rgt)
     amplitude = 1 + 0.3 * gaussian_filter1d(rng.normal(0, 1, nx), nx / 6)[:, None] * np.sqrt(nx / 6)
     reflectivity = np.interp(rgt - lo, np.arange(n_rgt), series) * amplitude
+    if buried:  # the erosion surface a strong reflector: 2.5-8 times the layering's typical coefficient (0.08)
+        rows = np.nonzero(surface_index < nz)[0]
+        contrast = rng.uniform(0.2, 0.64) * rng.choice([-1.0, 1.0])
+        reflectivity[rows, surface_index[rows]] += contrast * amplitude[rows, 0]
 
     f = rng.uniform(*opt.frequency_range)
     wavelet = ricker(f)

@@ -4,7 +4,8 @@ of fault systems, steep folds, small throws and short faults (used by ``python -
 import numpy as np
 import pytest
 
-from seismo3d.data.synthetic_sections import FaultSectionOptions, _draw_fault, synthetic_fault_section
+from seismo3d.data.synthetic_sections import (FaultSectionOptions, _buried_layering, _draw_fault,
+                                              synthetic_fault_section)
 from seismo3d.errors import InputError
 
 
@@ -13,7 +14,8 @@ def test_the_new_options_off_by_default_leave_the_sections_unchanged():
     for seed in range(6):
         a = synthetic_fault_section((64, 48), seed=seed)
         b = synthetic_fault_section((64, 48), seed=seed, options=FaultSectionOptions(
-            p_fault_system=0.0, p_steep_fold=0.0, p_small_throw=0.0, fault_length_range=(0.3, 1.2)))
+            p_fault_system=0.0, p_steep_fold=0.0, p_small_throw=0.0, fault_length_range=(0.3, 1.2),
+            p_buried_faults=0.0))
         assert np.array_equal(a.section, b.section) and np.array_equal(a.faults, b.faults)
 
 
@@ -65,7 +67,36 @@ def test_fault_length_range_sets_the_length_of_the_faults_that_die_out():
     assert len(lengths) > 200 and lengths.min() >= 10.0 - 1e-9 and lengths.max() <= 20.0 + 1e-9
 
 
-@pytest.mark.parametrize("kwargs", [dict(p_small_throw=1.5), dict(small_throw_range=(5.0, 1.0)),
+def test_buried_faults_end_at_the_erosion_surface_and_run_to_the_bottom_edge():
+    opt = FaultSectionOptions(p_buried_faults=1.0, p_unfaulted=0.0, buried_surface_range=(0.6, 0.6))
+    top_labels = bottom_labels = 0
+    for seed in range(24):
+        buried = synthetic_fault_section((96, 128), seed=seed, options=opt)
+        assert not buried.throw[~buried.faults].any()
+        top_labels += buried.faults[:, :32].sum()  # the surface waves +-33 samples (3 sd) about sample 77
+        bottom_labels += buried.faults[:, -4:].any(axis=1).sum()
+    assert top_labels == 0
+    assert bottom_labels > 24 * 2  # faults cut the last samples, the data's edge, on more than 2 traces a section
+    default = [synthetic_fault_section((96, 128), seed=seed).faults[:, :32].sum() for seed in range(24)]
+    assert sum(default) > 1000  # the default sections' faults do reach the top
+
+
+def test_the_package_above_the_erosion_surface_ignores_the_faults():
+    nx, nz, margin = 40, 50, 8
+    xs, zs = np.meshgrid(np.arange(nx - 2 * margin, dtype=float), np.arange(nz - 2 * margin, dtype=float),
+                         indexing="ij")
+    slipped = zs - 3.0 * (xs > 12)  # a vertical fault's hanging wall moved down 3 samples
+    a = _buried_layering(np.random.default_rng(4), nx, nz, margin, 20.0, (0.5, 0.5), xs, zs)
+    b = _buried_layering(np.random.default_rng(4), nx, nz, margin, 20.0, (0.5, 0.5), xs, slipped)
+    rgt_a, above, surface = a
+    assert above.any() and (~above).any() and np.array_equal(above, b[1]) and np.array_equal(surface, b[2])
+    assert np.array_equal(rgt_a[above], b[0][above])  # unbroken above
+    assert not np.array_equal(rgt_a[~above], b[0][~above])  # offset below
+    assert np.array_equal(surface, above.sum(axis=1))  # the strong reflector: the first sample below
+
+
+@pytest.mark.parametrize("kwargs", [dict(p_small_throw=1.5), dict(p_buried_faults=1.5),
+                                    dict(buried_surface_range=(0.9, 0.2)), dict(small_throw_range=(5.0, 1.0)),
                                     dict(fault_length_range=(0.0, 1.0)), dict(p_fault_system=1.5), dict(p_steep_fold=-0.1), dict(p_antithetic=2.0),
                                     dict(system_dip_spread=50.0), dict(steep_fold_dip=90.0), dict(p_unfaulted=1.2)])
 def test_bad_options_are_refused(kwargs):

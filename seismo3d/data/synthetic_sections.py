@@ -104,6 +104,13 @@ class FaultSectionOptions:
     buried_surface_range : (float, float)
         Depth of the erosion surface of a section of buried faults (its mean over the traces; the surface is wavy
         as the other unconformities), fractions of the section's samples.
+    p_basal_fault : float
+        Probability that a fault is a short one at the base of the section: it slips from an upper tip drawn in
+        ``basal_top_range`` down past the section's last sample (the throw tapering to 0 at the upper tip only, so
+        the fault runs into the data's bottom edge still slipping), as F3's short faults at the base of inlines
+        100-400 run into its last samples. The default 0 leaves the draws unchanged.
+    basal_top_range : (float, float)
+        Depth of a basal fault's upper tip, fractions of the section's samples.
     """
 
     max_faults: int = 8
@@ -125,10 +132,12 @@ class FaultSectionOptions:
     fault_length_range: tuple = (0.3, 1.2)
     p_buried_faults: float = 0.0
     buried_surface_range: tuple = (0.4, 0.85)
+    p_basal_fault: float = 0.0
+    basal_top_range: tuple = (0.55, 0.9)
 
     def __post_init__(self):
         for name in ("p_unfaulted", "reverse_fraction", "p_fault_system", "p_antithetic", "p_steep_fold",
-                     "p_small_throw", "p_buried_faults"):
+                     "p_small_throw", "p_buried_faults", "p_basal_fault"):
             if not 0.0 <= float(getattr(self, name)) <= 1.0:
                 raise InputError(f"{name} must be a probability in [0, 1]; got {getattr(self, name)!r}")
         if not 0.0 <= float(self.system_dip_spread) <= 45.0:
@@ -139,10 +148,11 @@ class FaultSectionOptions:
         if not 0.0 < low <= high:
             raise InputError(f"fault_length_range must be (low, high) with 0 < low <= high; got "
                              f"{self.fault_length_range!r}")
-        low, high = (float(v) for v in self.buried_surface_range)
-        if not 0.0 <= low <= high <= 1.0:
-            raise InputError(f"buried_surface_range must be (low, high) with 0 <= low <= high <= 1; got "
-                             f"{self.buried_surface_range!r}")
+        for name in ("buried_surface_range", "basal_top_range"):
+            low, high = (float(v) for v in getattr(self, name))
+            if not 0.0 <= low <= high <= 1.0:
+                raise InputError(f"{name} must be (low, high) with 0 <= low <= high <= 1; got "
+                                 f"{getattr(self, name)!r}")
         low, high = (float(v) for v in self.small_throw_range)
         if not 0.0 <= low <= high:
             raise InputError(f"small_throw_range must be (low, high) with 0 <= low <= high samples; "
@@ -280,6 +290,9 @@ def _draw_fault(rng, nx: int, nz: int, opt: FaultSectionOptions, system=None) ->
     else:
         top, bottom = -np.inf, np.inf
     curvature = rng.uniform(0, 0.4) / nz * direction if rng.random() < 0.3 else 0.0
+    if opt.p_basal_fault > 0 and rng.random() < opt.p_basal_fault:  # drawn only when asked: defaults unchanged
+        top = rng.uniform(*opt.basal_top_range) * nz
+        bottom, tapered = nz + rng.uniform(0.0, 1.0) * (nz - top), True  # the lower tip below the section
     return _Fault(x0=rng.uniform(0.1, 0.9) * nx, z0=z0, cot=direction / np.tan(np.radians(dip)),
                   curvature=float(curvature), direction=float(direction), throw=float(throw), top=float(top), bottom=float(bottom),
                   tapered=bool(tapered))

@@ -15,7 +15,7 @@ def test_the_new_options_off_by_default_leave_the_sections_unchanged():
         a = synthetic_fault_section((64, 48), seed=seed)
         b = synthetic_fault_section((64, 48), seed=seed, options=FaultSectionOptions(
             p_fault_system=0.0, p_steep_fold=0.0, p_small_throw=0.0, fault_length_range=(0.3, 1.2),
-            p_buried_faults=0.0))
+            p_buried_faults=0.0, p_basal_fault=0.0))
         assert np.array_equal(a.section, b.section) and np.array_equal(a.faults, b.faults)
 
 
@@ -95,7 +95,20 @@ def test_the_package_above_the_erosion_surface_ignores_the_faults():
     assert np.array_equal(surface, above.sum(axis=1))  # the strong reflector: the first sample below
 
 
-@pytest.mark.parametrize("kwargs", [dict(p_small_throw=1.5), dict(p_buried_faults=1.5),
+def test_basal_faults_slip_from_their_upper_tip_past_the_last_sample():
+    opt = FaultSectionOptions(p_basal_fault=1.0, basal_top_range=(0.6, 0.8))
+    rng = np.random.default_rng(3)
+    faults = [_draw_fault(rng, 128, 100, opt) for _ in range(300)]
+    assert all(f.tapered and 60.0 - 1e-9 <= f.top <= 80.0 + 1e-9 and f.bottom >= 100.0 for f in faults)
+    assert all(abs(float(f.local_throw(99.0))) > 0 for f in faults if f.throw)  # still slipping at the last sample
+    labels = [synthetic_fault_section((96, 100), seed=seed, options=FaultSectionOptions(
+        p_basal_fault=1.0, basal_top_range=(0.6, 0.8), p_unfaulted=0.0)).faults for seed in range(12)]
+    assert all(not f[:, :36].any() for f in labels)  # upper tips at 60-80 samples, moved up <= 20 by reverse faults
+    assert sum(f[:, -3:].any(axis=1).sum() for f in labels) > 12 * 3
+
+
+@pytest.mark.parametrize("kwargs", [dict(p_small_throw=1.5), dict(p_buried_faults=1.5), dict(p_basal_fault=-0.5),
+                                    dict(basal_top_range=(0.5, 1.5)),
                                     dict(buried_surface_range=(0.9, 0.2)), dict(small_throw_range=(5.0, 1.0)),
                                     dict(fault_length_range=(0.0, 1.0)), dict(p_fault_system=1.5), dict(p_steep_fold=-0.1), dict(p_antithetic=2.0),
                                     dict(system_dip_spread=50.0), dict(steep_fold_dip=90.0), dict(p_unfaulted=1.2)])

@@ -11,6 +11,9 @@ Each section is built like FaultSeg3D's training cubes (Wu et al. 2019), in 2D a
    dip-slip on a planar or slightly curved (listric) trace of dip 50-88 degrees (index space), the throw tapering
    to 0 at the fault's tips (faults that die out within the section) or constant along it (faults crossing it),
    0-``max_throw`` samples at the fault's centre. Younger faults offset older ones (faults cut faults).
+   Optional draws (off by default): small throws, short faults, fault systems, steep folds, faults at the base of the
+   section running into its last sample (``p_basal_fault``) and faults older than an unconformity that ends them
+   (``p_buried_faults``).
 4. Every output sample is mapped back through the faults, youngest first, then through the layering to its RGT
    (exact labels); the reflectivity is sampled there and convolved along the trace with a Ricker wavelet of peak
    frequency 0.06-0.2 cycles per sample (15-50 Hz at 4 ms) and random phase rotation.

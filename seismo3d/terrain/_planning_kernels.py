@@ -206,11 +206,11 @@ def forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, ge
 
 def run_forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, generation, back_g, certificate,
                        queue):
-    """:func:`forward_search` with generation ``generation + 1`` and the queue's arrays in ``queue`` (a list: empty, or
-    the last search's three arrays, reused), lengthened and the search run again (next generation) when it fills
-    them. Returns (cost to the goal or INF, expansions, the generation used)."""
-    if not queue or queue[0].size < free.size + 1:  # N + 1 entries: more only where lowered g's queue a cell twice
-        queue[:] = [np.empty(max(1024, free.size + 1), dtype=np.int64) for _ in range(3)]
+    """:func:`forward_search` at generation ``generation + 1``, its queue's arrays in ``queue`` (a list: empty or the
+    last search's, reused), doubled and run again when it fills them: (cost or INF, expansions, generation used)."""
+    start_size = max(1024, min(free.size + 1, 1 << 20))  # N + 1 entries, at most 2^20 (24 MiB) on a large grid
+    if not queue or queue[0].size < start_size:
+        queue[:] = [np.empty(start_size, dtype=np.int64) for _ in range(3)]
     while True:
         generation += 1
         total, expanded = forward_search(free, start, goal, cost, corner_cutting, g, parent, stamp, generation, back_g,

@@ -10,7 +10,7 @@ import numpy as np
 from .errors import InputError
 
 __all__ = ["as_points", "as_pair", "as_weights", "as_image", "as_normals", "as_intrinsics", "as_seismic",
-           "as_sigma_pair", "check_choice", "check_int", "check_positive"]
+           "as_sigma_pair", "check_choice", "check_core", "check_int", "check_positive"]
 
 
 def as_points(points, name: str = "points", *, dims=(2, 3), min_points: int = 1) -> np.ndarray:
@@ -102,6 +102,36 @@ def check_positive(value, name: str, *, allow_zero: bool = False) -> float:
     if not np.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
         raise InputError(f"{name} must be {'>= 0' if allow_zero else '> 0'}; got {value!r}")
     return v
+
+
+def check_core(core, shape) -> tuple[int, int, int, int]:
+    """The traces ``(i0, i1, j0, j1)`` of a block's core in a cube, or raise :class:`InputError`.
+
+    Parameters
+    ----------
+    core : (slice, slice)
+        The core's inlines and crosslines (``rows, cols``): slices of step 1 (or None) whose bounds are None or
+        integers within the cube's first two axes, selecting at least one trace.
+    shape : tuple of int
+        Of the cube, ``(n_inlines, n_xlines, n_samples)`` (a 2D section's shape is refused: it has no core).
+
+    Returns
+    -------
+    (int, int, int, int)
+        ``(i0, i1, j0, j1)``, half-open, ``0 <= i0 < i1 <= n_inlines`` and ``0 <= j0 < j1 <= n_xlines``.
+    """
+    if len(shape) != 3:
+        raise InputError(f"core is for a cube's (rows, cols); got an array of shape {tuple(shape)}")
+    if not (isinstance(core, tuple) and len(core) == 2
+            and all(isinstance(s, slice) and s.step in (None, 1) for s in core)):
+        raise InputError(f"core must be two slices of step 1, (rows, cols); got {core!r}")
+    box = []
+    for s, n in zip(core, shape[:2]):
+        a, b = (0 if s.start is None else s.start), (n if s.stop is None else s.stop)
+        if not (isinstance(a, (int, np.integer)) and isinstance(b, (int, np.integer)) and 0 <= a < b <= n):
+            raise InputError(f"core {core!r} must select at least one trace within a cube of shape {tuple(shape)}")
+        box += [int(a), int(b)]
+    return tuple(box)
 
 
 def check_int(value, name: str, *, minimum: int | None = None, maximum: int | None = None,

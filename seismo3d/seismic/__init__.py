@@ -71,9 +71,8 @@ if TYPE_CHECKING:
         fault_skins, fault_throws, learned_fault_likelihood, thin_faults, trace_faults, vote_faults,
     )
     from .faults.evidence import supported_faults
-    from .faults.result import fault_normals
+    from .faults.result import fault_labels, fault_normals
     from .amplitudes import CleanTraces, clean_traces, dead_samples, fill_values, near_dead_samples
-    from .faults.surfaces.ridges import fault_labels
     from .faults.throw import fault_throw
     from .blocks import BlockRun, BlockRunOptions, SchedulerClient, run_block
     from .faults.likelihood.learned_blocks import chunked_learned_likelihood

@@ -36,7 +36,7 @@ def interp_trace(f, i, j, t, nt):
 _SLAB = 1 << 17  # samples of x per pass of correlate_axis: a slab and its products stay in the processor's cache
 
 
-def correlate_axis(x: np.ndarray, w: np.ndarray, axis: int) -> np.ndarray:
+def correlate_axis(x: np.ndarray, w: np.ndarray, axis: int, keep=None) -> np.ndarray:
     """Correlate a cube with an odd-length kernel along one axis, edges clamped (``scipy.ndimage.correlate1d`` with
     ``mode='nearest'``), accumulating in float32.
 
@@ -52,16 +52,21 @@ def correlate_axis(x: np.ndarray, w: np.ndarray, axis: int) -> np.ndarray:
         Correlation weights (:func:`gaussian_kernel`), centred on index ``r``.
     axis : {0, 1, 2}
         The axis correlated along.
+    keep : (int, int), optional
+        ``(lo, hi)``: only the outputs ``lo <= i < hi`` along ``axis``, each the same bits as the whole axis' (the
+        sum over the whole axis, edges clamped there); default all.
 
     Returns
     -------
     (n0, n1, n2) float32 ndarray
-        The correlated cube.
+        The correlated cube (``hi - lo`` along ``axis`` with ``keep``).
     """
     n = x.shape[axis]
     r = (w.shape[0] - 1) // 2
-    out = np.zeros(x.shape, np.float32)
-    clamped = np.clip(np.arange(-r, n + r), 0, n - 1)  # the axis padded by r samples on each side, edges repeated
+    lo, hi = (0, n) if keep is None else (int(keep[0]), int(keep[1]))
+    out = np.zeros(x.shape[:axis] + (hi - lo,) + x.shape[axis + 1:], np.float32)
+    clamped = np.clip(np.arange(lo - r, hi + r), 0, n - 1)  # the kept range padded by r samples, edges repeated
+    n = hi - lo
     other = 1 if axis == 0 else 0  # slabs across another axis
     step = max(1, _SLAB // max(1, x.size // max(1, x.shape[other])))
     starts = range(0, x.shape[other], step)
@@ -403,6 +408,38 @@ def structure_tensor(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[
     return t00, t01, t02, t11, t12, t22
 
 
+def structure_tensor_at(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], core):
+    """:func:`structure_tensor` of a cube at ``core`` only (``(rows, cols)`` slices of its first two axes), the same
+    bits: the same passes in the same order, each computing only the lines its later passes read (its outputs
+    within the later lateral radius of ``core``: :func:`correlate_axis` ``keep``), so the tensor's wide vertical
+    pass runs at ``core``'s traces only. Returns the six components, each of ``f3[core]``'s shape."""
+    sg, (lat, vert) = sigma_gradient, sigma_tensor
+    r = gaussian_radius(lat)
+    spans = [s.indices(n)[:2] for s, n in zip(core, f3.shape[:2])]
+    wide = [(max(a - r, 0), min(b + r, n)) for (a, b), n in zip(spans, f3.shape[:2])]  # the lines the tensor reads
+    inner = [(a - w, b - w) for (a, b), (w, _) in zip(spans, wide)]  # core within them
+
+    def gauss(x, axis, sig, order=0, keep=None):  # one pass of gaussian3, only the lines ``keep`` along ``axis``
+        if sig <= 0 or x.shape[axis] == 1:
+            return x[(slice(None),) * axis + (slice(*keep) if keep else slice(None),)]
+        return correlate_axis(np.asarray(x, np.float32), gaussian_kernel(float(sig), order), axis, keep)
+
+    f2 = gauss(f3, 2, sg)
+    g0 = gauss(gauss(f2, 1, sg, 0, wide[1]), 0, sg, 1, wide[0])
+    g1 = gauss(gauss(f2, 0, sg, 0, wide[0]), 1, sg, 1, wide[1])
+    del f2
+    g2 = gauss(gauss(gauss(f3, 0, sg, 0, wide[0]), 1, sg, 0, wide[1]), 2, sg, 1)
+
+    def smooth(t):
+        return gauss(gauss(gauss(t, 0, lat, 0, inner[0]), 1, lat, 0, inner[1]), 2, vert)
+
+    t00, t01, t02 = smooth(g0 * g0), smooth(g0 * g1), smooth(g0 * g2)
+    del g0
+    t11, t12 = smooth(g1 * g1), smooth(g1 * g2)
+    del g1
+    return t00, t01, t02, t11, t12, smooth(g2 * g2)
+
+
 def tensor_eig(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], two_d: bool):
     """Normals (n0, n1, nt, 3) and planarity of a 3D-shaped array (2D sections as (n, 1, nt))."""
     t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
@@ -436,22 +473,16 @@ def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_t
                      as_float32_normals: bool = False, core=None) -> tuple:
     """Reflector slopes (p0, p1) in samples per trace of a 3D-shaped array, without storing the normals; with
     ``as_float32_normals`` equal bit for bit to those of :func:`tensor_eig`'s normals (:func:`slopes_from_normals`).
-    ``core``: ``(rows, cols)`` slices of the first two axes; the slopes of those traces only (the tensor smoothed over
-    all of ``f3``, its eigen-decomposition, a third of the time, only there: the same bits as the whole array's
-    slopes at ``core``)."""
-    t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
+    ``core``: ``(rows, cols)`` slices of a cube's first two axes; the slopes of those traces only (the tensor
+    smoothed over the lines of ``f3`` it reads and at ``core``, :func:`structure_tensor_at`, and eigen-decomposed
+    there: the same bits as the whole array's slopes at ``core``)."""
     if core is None:
-        p0 = np.empty(f3.shape, dtype=np.float32)
-        p1 = np.empty(f3.shape, dtype=np.float32)
-        eig_slopes(*t, MAX_SLOPE, p0, p1, bool(as_float32_normals))
-        return p0, p1
-    rows, cols = (range(*s.indices(n)) for s, n in zip(core, f3.shape[:2]))
-    p0 = np.empty((len(rows), len(cols), f3.shape[2]), dtype=np.float32)
-    p1 = np.empty_like(p0)
-    acos = _acos_for(p0.size)
-    for k, i in enumerate(rows):  # row by row: each row's traces are contiguous in the components, not copied
-        eig_slopes(*(c[i, cols.start:cols.stop] for c in t), MAX_SLOPE, p0[k], p1[k], bool(as_float32_normals),
-                   acos=acos)
+        t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
+    else:
+        t = structure_tensor_at(f3, sigma_gradient, sigma_tensor, core)
+    p0 = np.empty(t[0].shape, dtype=np.float32)
+    p1 = np.empty(t[0].shape, dtype=np.float32)
+    eig_slopes(*t, MAX_SLOPE, p0, p1, bool(as_float32_normals), acos=_acos_for(p0.size))
     return p0, p1
 
 

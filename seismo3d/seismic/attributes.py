@@ -147,9 +147,9 @@ def structure_tensor_slopes(data, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)
         As in :func:`structure_tensor_orientation` (samples and traces).
     core : (slice, slice), optional
         A cube's inlines and crosslines whose slopes are returned, e.g. a block's core inside the region read
-        with :func:`structure_tensor_halo` around it: the tensor is smoothed over all of ``data`` and
-        eigen-decomposed at ``core`` only (a third of the time of the whole array's), the same bits as
-        ``structure_tensor_slopes(data)[:, rows, cols]``.
+        with :func:`structure_tensor_halo` around it: each smoothing pass keeps the lines its later passes read,
+        the tensor's at ``core`` only, eigen-decomposed there (1.1 against 1.5 CPU s, 64^2 of 82^2 traces), the
+        same bits as ``structure_tensor_slopes(data)[:, rows, cols]``.
 
     Returns
     -------

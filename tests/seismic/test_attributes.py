@@ -76,9 +76,10 @@ def test_slopes_alone_equal_the_orientations_slopes_bit_for_bit(shape):
 
 
 def test_slopes_of_a_core_equal_the_whole_cubes_bit_for_bit():
-    """``core``: the slopes of a block's core from the amplitudes within structure_tensor_halo of it (the tensor
-    smoothed over the region, eigen-decomposed at the core only, as the ridges of a run by blocks take them) are the
-    whole cube's slopes there, bit for bit: inside the cube, at its edges and at a corner; a 2D section has no core."""
+    """``core``: the slopes of a block's core from the amplitudes within structure_tensor_halo of it (each smoothing
+    pass computing only the lines its later passes read, the tensor eigen-decomposed at the core only, as the ridges
+    of a run by blocks take them) are the whole cube's slopes there, bit for bit: inside the cube, at its edges and at
+    a corner; a 2D section has no core."""
     rng = np.random.default_rng(5)
     shape = (60, 52, 96)
     data = _planar(shape, (0.4, -0.3)) + 0.3 * rng.standard_normal(shape).astype(np.float32)

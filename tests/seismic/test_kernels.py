@@ -30,6 +30,26 @@ def test_correlate_axis_is_scipys_nearest_correlation_summed_in_float32(axis, si
     assert np.array_equal(got.view(np.uint32), expected.view(np.uint32))
 
 
+@pytest.mark.parametrize("axis", [0, 1, 2])
+def test_correlate_axis_keeps_a_range_of_the_whole_axis_bit_for_bit(axis):
+    x = np.random.default_rng(7 + axis).standard_normal((13, 11, 30)).astype(np.float32)
+    w = _kernels.gaussian_kernel(2.0, 1)
+    whole = _kernels.correlate_axis(x, w, axis)
+    n = x.shape[axis]
+    for lo, hi in ((0, n), (0, 3), (4, 9), (n - 2, n), (5, 6)):
+        got = _kernels.correlate_axis(x, w, axis, keep=(lo, hi))
+        assert np.array_equal(got, np.take(whole, np.arange(lo, hi), axis=axis))
+
+
+def test_structure_tensor_at_a_core_is_the_whole_tensor_there_bit_for_bit():
+    cube = np.random.default_rng(6).standard_normal((30, 26, 50)).astype(np.float32)
+    whole = _kernels.structure_tensor(cube, 1.0, (2.0, 6.0), False)
+    for core in ((slice(8, 20), slice(9, 17)), (slice(0, 30), slice(0, 26)), (slice(0, 5), slice(24, 26)),
+                 (slice(29, 30), slice(0, 1))):
+        at = _kernels.structure_tensor_at(cube, 1.0, (2.0, 6.0), core)
+        assert all(np.array_equal(a, w[core]) for a, w in zip(at, whole))
+
+
 def test_eig3_gives_eighs_largest_eigenvector_and_planarity():
     rng = np.random.default_rng(3)
     a = rng.standard_normal((2000, 3, 3))

@@ -4,6 +4,7 @@
   likelihood), :class:`FaultThrow` (the throw along a fault), :class:`FaultInterpretation` (the whole run of
   :func:`~seismo3d.seismic.faults.trace_faults`);
 - :func:`check_fault_arrays`: a likelihood, strike and dip checked to be arrays of one shape (2D or 3D);
+  :func:`fault_labels`: faults painted into a label array;
 - :func:`fault_normals`, :func:`fault_strike_dip`, :func:`fault_frames`: a fault plane's unit normal from its strike
   and dip and back, and the plane's frame (conventions of :mod:`~seismo3d.seismic.faults.likelihood.scan`).
 """
@@ -19,7 +20,7 @@ from ..._validation import as_seismic
 from ...errors import InputError
 
 __all__ = ["ChunkedFaults", "ChunkedLikelihood", "Fault", "FaultInterpretation", "FaultLikelihood", "FaultThrow", "FaultVotes",
-           "check_fault_arrays", "fault_frames", "fault_normals", "fault_strike_dip"]
+           "check_fault_arrays", "fault_frames", "fault_labels", "fault_normals", "fault_strike_dip"]
 
 
 def fault_strike_dip(normal) -> tuple[float, float]:
@@ -170,6 +171,36 @@ def check_fault_arrays(likelihood, strike, dip):
     if not (np.all(np.isfinite(st)) and np.all(np.isfinite(dp))):
         raise InputError("strike and dip have NaN or inf values; pass the strike_deg and dip_deg of a FaultLikelihood")
     return fl, st, dp
+
+
+def fault_labels(faults, shape) -> np.ndarray:
+    """Paint faults into a label array.
+
+    Parameters
+    ----------
+    faults : sequence of Fault
+        Faults (:func:`~seismo3d.seismic.faults.fault_skins`).
+    shape : tuple of int
+        Shape of the cube or section the faults came from.
+
+    Returns
+    -------
+    shape int32 ndarray
+        0 off faults, ``fault.id`` on each fault's points.
+
+    Raises
+    ------
+    InputError
+        If a fault's points do not fit ``shape``.
+    """
+    shape = tuple(int(s) for s in shape)
+    labels = np.zeros(shape, dtype=np.int32)
+    for f in faults:
+        p = np.asarray(f.points)
+        if p.ndim != 2 or p.shape[1] != len(shape) or (p.size and (p.min() < 0 or np.any(p.max(0) >= shape))):
+            raise InputError(f"fault {f.id} has points outside an array of shape {shape}")
+        labels[tuple(p.T)] = f.id
+    return labels
 
 
 @dataclass(frozen=True, eq=False)

@@ -3,8 +3,8 @@
 - :func:`ridge_image`: non-maximum suppression across the fault plane (the ridges, the voting's seeds);
 - :func:`thin_faults`: the ridges thresholded by hysteresis from the data (Otsu on the ridge values);
 - the pipeline's steps on them (:func:`live_likelihood`, :func:`ridges`, :func:`without_dead_edges`,
-  :func:`thin_votes`);
-- :func:`fault_labels`: faults painted into a label array.
+  :func:`thin_votes`) and their blocks in a run by blocks (:func:`ridge_block`, :func:`thin_block`,
+  :func:`cell_block`).
 
 Conventions (strike, dip, normals, index space) are those of :mod:`seismo3d.seismic.faults.likelihood.scan`.
 """
@@ -18,7 +18,7 @@ import numpy as np
 from scipy.ndimage import maximum_filter
 
 from ...._threads import run_threads
-from ...._validation import check_positive
+from ...._validation import check_core, check_positive
 from ....errors import InputError
 from ... import _kernels
 from ...attributes import structure_tensor_halo, structure_tensor_slopes
@@ -27,8 +27,8 @@ from ...blocks.statistics import otsu
 from ..result import check_fault_arrays
 from ...amplitudes import dead_samples, near_dead_samples
 
-__all__ = ["RIDGE_HALO", "THIN_HALO", "amplitude_halo", "cell_block", "thin_faults", "fault_labels", "live_likelihood",
-           "ridge_block", "ridges", "thin_block", "thin_votes", "without_dead_edges"]
+__all__ = ["RIDGE_HALO", "THIN_HALO", "amplitude_halo", "cell_block", "thin_faults", "live_likelihood", "ridge_block",
+           "ridges", "thin_block", "thin_votes", "without_dead_edges"]
 
 # Lateral halo of the ridges (thin_faults with its defaults): the Gaussian of sigma 1.5 (5 traces), the average along
 # the dip over +-4 samples on planes steeper than 45 degrees (4 traces, +1 for the bilinear reads), and the
@@ -36,7 +36,6 @@ __all__ = ["RIDGE_HALO", "THIN_HALO", "amplitude_halo", "cell_block", "thin_faul
 RIDGE_HALO = 12
 # Lateral halo of the thinning of the votes (no smoothing): one sample across the fault, trilinear reads.
 THIN_HALO = 2
-
 
 
 @nb.njit(cache=True, inline="always")
@@ -96,17 +95,19 @@ def _bilinear01(f, x, y, k):
 
 
 @nb.njit(cache=True, nogil=True)
-def _smooth_along_dip(t, n_threads, f, strike, dip, lut, h, need, out):
+def _smooth_along_dip(t, n_threads, f, strike, dip, lut, h, need, box, out):
     # Average f along the dip of each sample's fault plane, one sample per step down (the fault is steeper than
     # 45 degrees in the scan, so the dip vector has its largest component along the sample axis): triangle weights
     # over +-h samples, bilinear interpolation across. Joins fault ridges broken by noise before thinning. Computed
-    # where need is True, 0 elsewhere. Inlines t, t + n_threads, ...
+    # on the traces box = (i0, i1, j0, j1) where need (the box's shape) is True, 0 elsewhere in the box (out is f's
+    # shape; the reads are f's, whatever the box). Inlines i0 + t, i0 + t + n_threads, ...
     n0, n1, n2 = f.shape
     n_phi, n_theta, _ = lut.shape
-    for i in range(t, n0, n_threads):
-        for j in range(n1):
+    i0, i1, j0, j1 = box
+    for i in range(i0 + t, i1, n_threads):
+        for j in range(j0, j1):
             for k in range(n2):
-                if not need[i, j, k]:
+                if not need[i - i0, j - j0, k]:
                     out[i, j, k] = 0.0
                     continue
                 ip, it = _lut_index(strike[i, j, k], dip[i, j, k], n_phi, n_theta)
@@ -130,17 +131,19 @@ def _smooth_along_dip(t, n_threads, f, strike, dip, lut, h, need, out):
 
 
 @nb.njit(cache=True, nogil=True)
-def _ridges(t, n_threads, f, g, strike, dip, lut, floor, out):
+def _ridges(t, n_threads, f, g, strike, dip, lut, floor, box, out):
     # Non-maximum suppression of g across the fault: keep f where g(p) > g(p - n) and g(p) >= g(p + n), n the unit
-    # fault normal of the sample (trilinear interpolation); samples with f <= floor are 0 (not tested). Inlines t,
-    # t + n_threads, ...
+    # fault normal of the sample (trilinear interpolation); samples with f <= floor are 0 (not tested). On the traces
+    # box = (i0, i1, j0, j1) only, into out (the box's shape; the reads are g's, whatever the box). Inlines i0 + t,
+    # i0 + t + n_threads, ...
     n0, n1, n2 = f.shape
     n_phi, n_theta, _ = lut.shape
-    for i in range(t, n0, n_threads):
-        for j in range(n1):
+    i0, i1, j0, j1 = box
+    for i in range(i0 + t, i1, n_threads):
+        for j in range(j0, j1):
             for k in range(n2):
                 if not f[i, j, k] > floor:
-                    out[i, j, k] = 0.0
+                    out[i - i0, j - j0, k] = 0.0
                     continue
                 ip, it = _lut_index(strike[i, j, k], dip[i, j, k], n_phi, n_theta)
                 a = lut[ip, it, 0]
@@ -149,10 +152,10 @@ def _ridges(t, n_threads, f, g, strike, dip, lut, floor, out):
                 gc = g[i, j, k]
                 gp = _trilinear(g, i + a, j + b, k + c)
                 gm = _trilinear(g, i - a, j - b, k - c)
-                out[i, j, k] = f[i, j, k] if (gc > gm and gc >= gp) else 0.0
+                out[i - i0, j - j0, k] = f[i, j, k] if (gc > gm and gc >= gp) else 0.0
 
 
-def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing=4) -> np.ndarray:
+def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing=4, core=None) -> np.ndarray:
     """Steps 1-2 of :func:`thin_faults` (ranking image, non-maximum suppression across the fault), on the samples
     whose likelihood is above ``floor`` only.
 
@@ -170,11 +173,21 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
         ``floor=t`` tests every sample it keeps.
     sigma, dip_smoothing : float, int
         As in :func:`thin_faults`.
+    core : (slice, slice), optional
+        A cube's inlines and crosslines whose ridges are returned, e.g. a block's core inside the region read with
+        ``RIDGE_HALO`` around it: the Gaussian over the whole array (the average along the dip reads it anywhere),
+        the average along the dip and the ridge test at ``core`` and the 2 traces around it that the test reads,
+        the same bits as ``ridge_image(...)[rows, cols]``.
 
     Returns
     -------
-    ndarray of the likelihood's shape, float32
+    ndarray of the likelihood's shape (of ``likelihood[core]``'s when given), float32
         The likelihood on its ridge samples above ``floor``, 0 elsewhere.
+
+    Raises
+    ------
+    InputError
+        If ``core`` is given for a 2D section, is not two slices of step 1 or selects no trace of the cube.
 
     References
     ----------
@@ -182,6 +195,8 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
     """
     two_d = likelihood.ndim == 2
     f3 = _kernels.as_3d(likelihood)
+    n0, n1 = f3.shape[:2]
+    i0, i1, j0, j1 = (0, n0, 0, n1) if core is None else check_core(core, likelihood.shape)
     st3 = np.ascontiguousarray(_kernels.as_3d(strike))
     dp3 = np.ascontiguousarray(_kernels.as_3d(dip))
     floor = float(floor)
@@ -189,15 +204,19 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
     g = _kernels.gaussian3(f3, (sigma, 0.0 if two_d else sigma, sigma)) if sigma > 0 else f3
     n_threads = nb.get_num_threads()
     if dip_smoothing > 0:
-        # the samples whose ranking value a ridge test above floor reads: some sample of their 3 x 3 x 3
-        # neighbourhood has a likelihood above floor (trilinear reads one sample away along the normal)
-        need = maximum_filter(f3, size=3, mode="nearest") > np.float64(floor)
-        g2 = np.empty_like(f3)
-        run_threads(_smooth_along_dip, n_threads, g, st3, dp3, lut, int(dip_smoothing), need, g2)
+        # the ranking image where the ridge test of the core reads it: the trilinear reads one sample away along the
+        # normal read 2 traces away at most; only where a test above floor reads it: some sample of its 3 x 3 x 3
+        # neighbourhood has a likelihood above floor (the maximum filter's edges clamped as on the whole array)
+        box = (max(i0 - 2, 0), min(i1 + 2, n0), max(j0 - 2, 0), min(j1 + 2, n1))
+        a0, a1, b0, b1 = max(box[0] - 1, 0), min(box[1] + 1, n0), max(box[2] - 1, 0), min(box[3] + 1, n1)
+        need = maximum_filter(f3[a0:a1, b0:b1], size=3, mode="nearest") > np.float64(floor)
+        need = np.ascontiguousarray(need[box[0] - a0:box[1] - a0, box[2] - b0:box[3] - b0])
+        g2 = np.zeros_like(f3) if core is not None else np.empty_like(f3)  # read in the box only
+        run_threads(_smooth_along_dip, n_threads, g, st3, dp3, lut, int(dip_smoothing), need, box, g2)
         del need
         g = g2
-    ridge = np.empty_like(f3)
-    run_threads(_ridges, n_threads, f3, g, st3, dp3, lut, floor, ridge)
+    ridge = np.empty((i1 - i0, j1 - j0, f3.shape[2]), f3.dtype)
+    run_threads(_ridges, n_threads, f3, g, st3, dp3, lut, floor, (i0, i1, j0, j1), ridge)
     del g
     return ridge[:, 0, :] if two_d else ridge
 
@@ -270,36 +289,6 @@ def thin_faults(likelihood, strike, dip, *, threshold=None, sigma=1.5, dip_smoot
     return np.where(keep, fl, 0.0).astype(np.float32)
 
 
-def fault_labels(faults, shape) -> np.ndarray:
-    """Paint faults into a label array.
-
-    Parameters
-    ----------
-    faults : sequence of Fault
-        Faults (:func:`~seismo3d.seismic.faults.fault_skins`).
-    shape : tuple of int
-        Shape of the cube or section the faults came from.
-
-    Returns
-    -------
-    shape int32 ndarray
-        0 off faults, ``fault.id`` on each fault's points.
-
-    Raises
-    ------
-    InputError
-        If a fault's points do not fit ``shape``.
-    """
-    shape = tuple(int(s) for s in shape)
-    labels = np.zeros(shape, dtype=np.int32)
-    for f in faults:
-        p = np.asarray(f.points)
-        if p.ndim != 2 or p.shape[1] != len(shape) or (p.size and (p.min() < 0 or np.any(p.max(0) >= shape))):
-            raise InputError(f"fault {f.id} has points outside an array of shape {shape}")
-        labels[tuple(p.T)] = f.id
-    return labels
-
-
 def live_likelihood(likelihood: np.ndarray, near_dead, core=None, *, level: float) -> tuple[int, int]:
     """Set the likelihood next to dead samples to 0 (the edge of a dead zone is not a fault), in place; count the
     saturated and the live samples of ``core`` for :func:`~seismo3d.seismic.faults.steps.check_saturation`.
@@ -327,7 +316,8 @@ def live_likelihood(likelihood: np.ndarray, near_dead, core=None, *, level: floa
     return int(np.count_nonzero(values > level)), int(values.size)
 
 
-def ridges(likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray, floor: float = 0.0) -> np.ndarray:
+def ridges(likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray, floor: float = 0.0,
+           core=None) -> np.ndarray:
     """The ridges of the fault likelihood (non-maximum suppression across the fault, smoothed): the voting's seed
     candidates.
 
@@ -339,14 +329,22 @@ def ridges(likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray, 
         Ridge samples with a likelihood at or below it are left out (0): pass the voting's seed threshold, the
         only ridges used (:attr:`~seismo3d.seismic.faults.VotingOptions.seed_threshold`); the ridges above it are
         those of :func:`~seismo3d.seismic.thin_faults` with ``threshold=0``, computed on their neighbourhood only.
+    core : (slice, slice), optional
+        A cube's inlines and crosslines whose ridges are returned (:func:`ridge_image`): a block's core with
+        ``RIDGE_HALO`` traces of the likelihood around it.
 
     Returns
     -------
-    ndarray of the likelihood's shape, float32
+    ndarray of the likelihood's shape (of ``likelihood[core]``'s when given), float32
         The likelihood on its ridge samples above ``floor``, 0 elsewhere. Halo: ``RIDGE_HALO`` traces.
+
+    Raises
+    ------
+    InputError
+        If the arrays' shapes differ, the likelihood has NaN, or ``core`` is bad (:func:`ridge_image`).
     """
     fl, st, dp = check_fault_arrays(likelihood, strike_deg, dip_deg)
-    return ridge_image(fl, st, dp, floor=float(floor))
+    return ridge_image(fl, st, dp, floor=float(floor), core=core)
 
 
 def without_dead_edges(votes: np.ndarray, near_dead) -> np.ndarray:
@@ -415,8 +413,8 @@ def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, s
     origin = place.origin
     f = np.asarray(f, np.float32)
     # the slopes from the amplitudes within the structure tensor's halo of the core (not the dead samples' wider one:
-    # 82^2 against 94^2 traces for a 64-trace block), eigen-decomposed at the core only: the same bits, 0.9 against
-    # 1.3 CPU s for a 64 x 64 x 500 block
+    # 82^2 against 94^2 traces for a 64-trace block), each pass at the lines it feeds, eigen-decomposed at the core
+    # only: the same bits, 1.1 against 1.5 CPU s (whole tensor) for a 64 x 64 x 500 block of a 400^2 x 500 cube
     halo = structure_tensor_halo()[0]
     crop = tuple(slice(max(s.start - halo, 0), min(s.stop + halo, n)) for s, n in zip(place.core, f.shape[:2]))
     slopes = structure_tensor_slopes(f[crop], core=tuple(slice(s.start - c.start, s.stop - c.start)
@@ -432,7 +430,7 @@ def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, s
         near = near[a0 - origin[0]:a1 - origin[0], b0 - origin[1]:b1 - origin[1]]
     core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
     high, live = live_likelihood(fl, near, core, level=opt.saturation_level)
-    ridge = ridges(fl, st, dp, opt.voting.seed_threshold)[core]
+    ridge = ridges(fl, st, dp, opt.voting.seed_threshold, core=core)  # tested and smoothed along dip at the core
     cand = np.argwhere(ridge > float(opt.voting.seed_threshold))
     at = tuple(cand.T)
     local = (cand[:, 0] + i0 - a0, cand[:, 1] + j0 - b0, cand[:, 2])

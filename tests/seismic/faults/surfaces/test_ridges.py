@@ -203,3 +203,112 @@ def test_live_likelihood_counts_the_saturated_live_samples_of_the_core_above_the
     assert (high, live) == (2, 5) and fl[0, 2] == 0.0  # 0.95 and 0.99; the sample near dead ones is zeroed
     assert live_likelihood(fl.copy(), None, level=0.8) == (3, 6)
     assert live_likelihood(fl.copy(), None, (slice(1, 2),), level=0.8) == (2, 3)  # the core: the second trace
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# the ridges of a block's core (a run by blocks): the same bits as the ridges of its whole region, cropped
+
+# blocks (i0, i1, j0, j1) of a 40 x 36 cube: inside, at an edge, at two edges, at a corner, one trace wide
+_BLOCKS = [(14, 26, 12, 24), (0, 12, 10, 22), (28, 40, 0, 36), (30, 40, 26, 36), (20, 21, 35, 36)]
+
+
+@pytest.fixture(scope="module")
+def scanned_cube():
+    syn = synthetic_cube((40, 36, 64), n_faults=3, seed=2)
+    fl = fault_likelihood(syn.cube)
+    rng = np.random.default_rng(8)
+    # strikes and dips of every kind, shallow ones included (their average along the dip reads far across)
+    strike = rng.uniform(0, 360, fl.likelihood.shape).astype(np.float32)
+    dip = rng.uniform(0.001, 90, fl.likelihood.shape).astype(np.float32)
+    return syn.cube, fl, strike, dip
+
+
+def _regions(shape, halo):
+    for i0, i1, j0, j1 in _BLOCKS:
+        a0, a1, b0, b1 = max(i0 - halo, 0), min(i1 + halo, shape[0]), max(j0 - halo, 0), min(j1 + halo, shape[1])
+        yield (slice(a0, a1), slice(b0, b1)), (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
+
+
+def test_ridges_of_a_core_are_those_of_the_whole_region_bit_for_bit(scanned_cube):
+    """``core``: the average along the dip and the ridge test at the core only (the Gaussian over the region) give
+    the ridges of the whole region at the core, bit for bit, inside the cube, at its edges and at a corner, for the
+    scan's and random (shallow) orientations, every floor, and the thinning's settings (no smoothing)."""
+    from seismo3d.seismic.faults.surfaces.ridges import RIDGE_HALO, THIN_HALO, ridge_image, ridges, thin_votes
+
+    _, fl, strike, dip = scanned_cube
+    for st, dp in ((fl.strike_deg, fl.dip_deg), (strike, dip)):
+        for region, core in _regions(fl.likelihood.shape, RIDGE_HALO):
+            like, s, d = fl.likelihood[region], st[region], dp[region]
+            for floor in (-1.0, 0.0, 0.3):
+                whole = ridge_image(like, s, d, floor=floor)[core]
+                ours = ridge_image(like, s, d, floor=floor, core=core)
+                assert ours.shape == whole.shape and ours.dtype == np.float32
+                assert np.array_equal(ours, whole)
+            assert np.array_equal(ridges(like, s, d, 0.3, core=core), ridges(like, s, d, 0.3)[core])
+            assert np.count_nonzero(ridges(like, s, d, 0.3, core=core)) > 0
+            for sigma, along in ((0.0, 0), (1.5, 0), (0.0, 4)):
+                assert np.array_equal(ridge_image(like, s, d, floor=0.0, sigma=sigma, dip_smoothing=along, core=core),
+                                      ridge_image(like, s, d, floor=0.0, sigma=sigma, dip_smoothing=along)[core])
+        for region, core in _regions(fl.likelihood.shape, THIN_HALO):
+            whole = thin_votes(fl.likelihood[region], st[region], dp[region])[core]
+            assert np.array_equal(ridge_image(fl.likelihood[region], st[region], dp[region], floor=0.0, sigma=0.0,
+                                              dip_smoothing=0, core=core), whole)
+
+
+def test_a_bad_core_of_the_ridges_is_an_input_error(scanned_cube):
+    from seismo3d.seismic.faults.surfaces.ridges import ridge_image, ridges
+
+    _, fl, _, _ = scanned_cube
+    like, st, dp = fl.likelihood, fl.strike_deg, fl.dip_deg
+    for bad in [(slice(0, 4),), (slice(0, 4), slice(0, 4), slice(0, 4)), (slice(0, 4, 2), slice(0, 4)),
+                (slice(4, 4), slice(0, 4)), (slice(0, 41), slice(0, 4)), (slice(-4, None), slice(0, 4)),
+                (slice(0, 4.0), slice(0, 4)), [slice(0, 4), slice(0, 4)], (0, slice(0, 4)), "core"]:
+        with pytest.raises(InputError, match="core"):
+            ridges(like, st, dp, 0.3, core=bad)
+    with pytest.raises(InputError, match="core"):  # a 2D section has no core
+        ridge_image(like[:, 0], st[:, 0], dp[:, 0], core=(slice(0, 4), slice(0, 1)))
+
+
+def test_ridge_block_is_the_whole_regions_ridges_and_slopes_at_its_core(scanned_cube):
+    """A block of the ridges step (dead traces and a mute in the cube) returns at its core what the region's
+    functions return cropped there: the slopes, the live likelihood, the mask near dead samples and the seed
+    candidates of the whole region's ridges."""
+    from seismo3d.seismic.amplitudes import dead_samples, fill_values, near_dead_samples
+    from seismo3d.seismic.attributes import structure_tensor_slopes
+    from seismo3d.seismic.blocks.apply import BlockPlace
+    from seismo3d.seismic.faults import FaultTracingOptions
+    from seismo3d.seismic.faults.surfaces.ridges import RIDGE_HALO, amplitude_halo, ridge_block, ridges
+
+    cube, fl, _, _ = scanned_cube
+    cube = cube.astype(np.float32)
+    cube[3:9, 20:24] = 0.0  # dead traces
+    cube[:, :, :6] = 0.0  # a mute
+    opt = FaultTracingOptions()
+    lo, hi = float(cube.min()), float(cube.max())
+    fill = np.union1d(fill_values(cube, lo, hi, options=opt.dead), [0.0]).astype(np.float32)
+    halo = amplitude_halo(opt)
+    n_near = 0
+    for i0, i1, j0, j1 in _BLOCKS:
+        n0, n1 = cube.shape[:2]
+        a0, a1, b0, b1 = max(i0 - halo, 0), min(i1 + halo, n0), max(j0 - halo, 0), min(j1 + halo, n1)
+        rows, cols = slice(a0, a1), slice(b0, b1)
+        place = BlockPlace((i0, i1, j0, j1), (a0, a1, b0, b1))
+        like = fl.likelihood.copy()
+        out = ridge_block(place, cube[rows, cols], like, fl.strike_deg, fl.dip_deg, fill, lo, hi, cube.shape, opt)
+        # the reference: the region's functions, cropped to the core
+        r = (slice(max(i0 - RIDGE_HALO, 0), min(i1 + RIDGE_HALO, cube.shape[0])),
+             slice(max(j0 - RIDGE_HALO, 0), min(j1 + RIDGE_HALO, cube.shape[1])))
+        core = (slice(i0 - r[0].start, i1 - r[0].start), slice(j0 - r[1].start, j1 - r[1].start))
+        near = near_dead_samples(dead_samples(cube[rows, cols], fill, lo, hi, options=opt.dead), options=opt.dead)
+        near = near[r[0].start - a0:r[0].stop - a0, r[1].start - b0:r[1].stop - b0]
+        live = np.where(near, 0, fl.likelihood[r]).astype(np.float32)
+        ridge = ridges(live, fl.strike_deg[r], fl.dip_deg[r], opt.voting.seed_threshold)[core]
+        points = np.argwhere(ridge > opt.voting.seed_threshold)
+        assert np.array_equal(out.arrays["likelihood"], live[core])
+        assert np.array_equal(out.arrays["near"].view(bool), near[core])
+        assert np.array_equal(np.stack([out.arrays["slope_inline"], out.arrays["slope_xline"]]),
+                              structure_tensor_slopes(cube)[:, i0:i1, j0:j1])
+        assert np.array_equal(out.lists["points"], points + [i0, j0, 0])
+        assert np.array_equal(out.lists["values"], ridge[tuple(points.T)])
+        n_near += np.count_nonzero(near[core])
+    assert n_near > 0

@@ -391,28 +391,16 @@ def structure_tensor(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[
         t22 = gaussian3(g2 * g2, sig)
         zero = np.zeros_like(t00)
         return t00, zero, t02, zero, zero, t22
-    f2 = gaussian3(f3, (0.0, 0.0, sg))
-    g0 = gaussian3(gaussian3(f2, (0.0, sg, 0.0)), (sg, 0.0, 0.0), (1, 0, 0))
-    g1 = gaussian3(gaussian3(f2, (sg, 0.0, 0.0)), (0.0, sg, 0.0), (0, 1, 0))
-    del f2
-    g2 = gaussian3(gaussian3(f3, (sg, sg, 0.0)), (0.0, 0.0, sg), (0, 0, 1))
-    # products in an order that frees each gradient as soon as possible (peak memory)
-    t00 = gaussian3(g0 * g0, sig)
-    t01 = gaussian3(g0 * g1, sig)
-    t02 = gaussian3(g0 * g2, sig)
-    del g0
-    t11 = gaussian3(g1 * g1, sig)
-    t12 = gaussian3(g1 * g2, sig)
-    del g1
-    t22 = gaussian3(g2 * g2, sig)
-    return t00, t01, t02, t11, t12, t22
+    return structure_tensor_at(f3, sg, sigma_tensor, (slice(None), slice(None)))  # a cube: at every trace
 
 
 def structure_tensor_at(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], core):
-    """:func:`structure_tensor` of a cube at ``core`` only (``(rows, cols)`` slices of its first two axes), the same
-    bits: the same passes in the same order, each computing only the lines its later passes read (its outputs
-    within the later lateral radius of ``core``: :func:`correlate_axis` ``keep``), so the tensor's wide vertical
-    pass runs at ``core``'s traces only. Returns the six components, each of ``f3[core]``'s shape."""
+    """:func:`structure_tensor` of a cube at ``core`` only (``(rows, cols)`` slices of its first two axes; all of
+    them: the whole cube's tensor), the same bits as the whole cube's there: the gradients with shared smoothing
+    passes (g0 = D0 G1 G2 f, g1 = G0 D1 G2 f, g2 = G0 G1 D2 f), each pass computing only the lines its later passes
+    read (its outputs within the later lateral radius of ``core``: :func:`correlate_axis` ``keep``), so the tensor's
+    wide vertical pass runs at ``core``'s traces only; the products in an order that frees each gradient as soon as
+    possible (peak memory). Returns the six components, each of ``f3[core]``'s shape."""
     sg, (lat, vert) = sigma_gradient, sigma_tensor
     r = gaussian_radius(lat)
     spans = [s.indices(n)[:2] for s, n in zip(core, f3.shape[:2])]

@@ -19,6 +19,8 @@ detection of deformable objects. VMV, 47-54 (the hash of the voxel coordinates).
 
 from __future__ import annotations
 
+import math
+
 import numba
 import numpy as np
 
@@ -191,7 +193,7 @@ def _query(t, n_threads, q, pts, order, origin, cell, rings, dmax, table_keys, s
         fx = (q[i, 0] - origin[0]) / cell
         fy = (q[i, 1] - origin[1]) / cell
         fz = (q[i, 2] - origin[2]) / cell
-        cx, cy, cz = np.floor(fx), np.floor(fy), np.floor(fz)
+        cx, cy, cz = math.floor(fx), math.floor(fy), math.floor(fz)  # int64 (np.floor's float: 0.15 CPU s more)
         fx, fy, fz = fx - cx, fy - cy, fz - cz
         # rings outward; a voxel is opened only when its box can hold a closer point than the best so far
         for ring in range(rings + 1):

@@ -507,17 +507,6 @@ def search_right(keys, value):
     return lo
 
 
-@nb.njit(cache=True)
-def _bucket_keys(points, origin, side, dims, keys):
-    # each point's bucket (cubes of ``side`` from ``origin``) as one key, C order over ``dims`` buckets, into keys
-    # (made by the caller, and math.floor for int(): np.empty and int() each compiled a function of numba's)
-    for c in range(points.shape[0]):
-        k = 0
-        for a in range(3):
-            k = k * dims[a] + math.floor((points[c, a] - origin[a]) / side)
-        keys[c] = k
-
-
 def bucket_grid(points: np.ndarray, side: float) -> tuple:
     """Points binned in cubes of ``side`` for neighbour searches in compiled code: the points of one column of
     buckets along the last axis are one range of sorted keys (``np.searchsorted`` on the keys of its first and last
@@ -544,7 +533,9 @@ def bucket_grid(points: np.ndarray, side: float) -> tuple:
     points = np.ascontiguousarray(points, dtype=np.float64)
     origin = points.min(axis=0)
     dims = np.floor((points.max(axis=0) - origin) / side).astype(np.int64) + 1
-    keys = np.empty(points.shape[0], np.int64)
-    _bucket_keys(points, origin, float(side), dims, keys)
+    keys = np.zeros(points.shape[0], np.int64)
+    for a in range(3):  # axis by axis (temporaries of n values), the key built as a loop over the axes builds it
+        keys *= dims[a]
+        keys += np.floor((points[:, a] - origin[a]) / float(side)).astype(np.int64)
     order = np.argsort(keys, kind="stable")
     return keys[order], order, origin, dims

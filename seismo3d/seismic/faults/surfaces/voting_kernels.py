@@ -35,10 +35,11 @@ def _prefix(e, c):
 @nb.njit(cache=True)
 def _accumulate_forward(e, b, d, c):
     # d[i, l]: least cost of a path over rows up to i ending at lag l, the lag changing by at most one every b rows
-    # (the costs of the b - 1 rows in between are added along the new lag, from the prefix sums c of e). Forward and
-    # backward are two kernels, not one with a flag: a constant flag compiles the kernel once per value.
+    # (the costs of the b - 1 rows in between are added along the new lag, from the prefix sums c of e made by
+    # _prefix before). Forward and backward are two kernels, not one with a flag: a constant flag compiles the kernel
+    # once per value; neither calls _prefix: each kernel a called kernel is linked into is compiled again with it
+    # (the caller makes c once for both).
     ni, nl = e.shape
-    _prefix(e, c)
     for il in range(nl):
         d[0, il] = e[0, il]
     for ii in range(1, ni):
@@ -62,7 +63,6 @@ def _accumulate_forward(e, b, d, c):
 def _accumulate_backward(e, b, d, c):
     # d[i, l]: least cost of a path over rows from i on starting at lag l (as _accumulate_forward, rows reversed)
     ni, nl = e.shape
-    _prefix(e, c)
     for il in range(nl):
         d[ni - 1, il] = e[ni - 1, il]
     for ii in range(ni - 2, -1, -1):
@@ -113,10 +113,12 @@ def _backtrack(d, e, b, u, c):
         il = new
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _smooth_costs(e, b, t1, t2, c, out):
     # nonlinear smoothing of the costs along axis 0: forward + backward accumulation - cost, the cost of the best
-    # path through each (row, lag) (Hale 2013, dynamic warping)
+    # path through each (row, lag) (Hale 2013, dynamic warping). Inlined into its caller by numba: a kernel of its
+    # own compiled the accumulations linked into it once more (0.5 CPU s on a first run)
+    _prefix(e, c)
     _accumulate_forward(e, b, t1, c)
     _accumulate_backward(e, b, t2, c)
     ni, nl = e.shape
@@ -212,6 +214,7 @@ def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv,
                         es[iw, iv, iu] = row_s[iw, iu]
         # 3. the least-cost path down the dip in every strike slice: the surface, smoothed both ways
         for iw in range(nw):
+            _prefix(es[iw], cs[:nv + 1])
             _accumulate_forward(es[iw], b, t1[:nv], cs[:nv + 1])
             _backtrack(t1[:nv], es[iw], b, line[:nv], cs[:nv + 1])
             for iv in range(nv):

@@ -220,18 +220,18 @@ def moved_points(points, transform):
     """``points @ A.T + t`` for ``transform = [A, t]`` in one compiled pass ((n, d) float64 -> (n, d) float64);
     the BLAS product of an (n, 3) and a (3, 3) matrix is several times slower and starts threads."""
     d = points.shape[1]
-    return _moved(np.ascontiguousarray(points), np.ascontiguousarray(transform[:d, :d]),
-                  np.ascontiguousarray(transform[:d, d]))
+    out = np.empty(points.shape)  # here, not in the kernel: np.empty there compiled a function of numba's of its own
+    _moved(np.ascontiguousarray(points), np.ascontiguousarray(transform[:d, :d]),
+           np.ascontiguousarray(transform[:d, d]), out)
+    return out
 
 
 @numba.njit(cache=True)
-def _moved(points, a, t):
+def _moved(points, a, t, out):
     n, d = points.shape
-    out = np.empty((n, d))
     for i in range(n):
         for r in range(d):
             v = t[r]
             for c in range(d):
                 v += a[r, c] * points[i, c]
             out[i, r] = v
-    return out

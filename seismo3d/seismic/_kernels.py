@@ -164,16 +164,22 @@ def eig3(a, b, c, d, e, f, planarity: bool = True, acos=None):
         return vx, vy, vz, np.where(zero | ~(l1 > 0.0), 0.0, (l1 - l2) / l1)
 
 
-@nb.njit(cache=True, nogil=True)
 def _acos(x):
+    """The C library's acos of a float64 array, element by element (:func:`_acos_into`); the array's shape."""
+    x = np.ascontiguousarray(x, dtype=np.float64)
+    out = np.empty(x.shape)
+    _acos_into(x.reshape(-1), out.reshape(-1))
+    return out
+
+
+@nb.njit(cache=True, nogil=True)
+def _acos_into(x, out):
     # the C library's acos (math.acos, as numba calls it: the same bits as Python's math.acos), element by element,
     # without the GIL and without the Python objects of np.frompyfunc (four times faster); numpy's SIMD arccos
-    # differs in the last bit of about 1 value in 10, so numpy offers no array function with these bits
-    flat = x.ravel()
-    out = np.empty(flat.size, np.float64)
-    for k in range(flat.size):
-        out[k] = math.acos(flat[k])
-    return out.reshape(x.shape)
+    # differs in the last bit of about 1 value in 10, so numpy offers no array function with these bits. Flat arrays
+    # from the caller: ravel, np.empty and reshape in here compiled 0.3-0.5 CPU s more on a first run
+    for k in range(x.size):
+        out[k] = math.acos(x[k])
 
 
 def _python_acos(x):
@@ -501,18 +507,6 @@ def search_right(keys, value):
     return lo
 
 
-@nb.njit(cache=True)
-def _bucket_keys(points, origin, side, dims):
-    # each point's bucket (cubes of ``side`` from ``origin``) as one key, C order over ``dims`` buckets
-    keys = np.empty(points.shape[0], np.int64)
-    for c in range(points.shape[0]):
-        k = 0
-        for a in range(3):
-            k = k * dims[a] + int(np.floor((points[c, a] - origin[a]) / side))
-        keys[c] = k
-    return keys
-
-
 def bucket_grid(points: np.ndarray, side: float) -> tuple:
     """Points binned in cubes of ``side`` for neighbour searches in compiled code: the points of one column of
     buckets along the last axis are one range of sorted keys (``np.searchsorted`` on the keys of its first and last
@@ -539,6 +533,9 @@ def bucket_grid(points: np.ndarray, side: float) -> tuple:
     points = np.ascontiguousarray(points, dtype=np.float64)
     origin = points.min(axis=0)
     dims = np.floor((points.max(axis=0) - origin) / side).astype(np.int64) + 1
-    keys = _bucket_keys(points, origin, float(side), dims)
+    keys = np.zeros(points.shape[0], np.int64)
+    for a in range(3):  # axis by axis (temporaries of n values), the key built as a loop over the axes builds it
+        keys *= dims[a]
+        keys += np.floor((points[:, a] - origin[a]) / float(side)).astype(np.int64)
     order = np.argsort(keys, kind="stable")
     return keys[order], order, origin, dims

@@ -12,6 +12,7 @@ Conventions (strike, dip, normals, index space) are those of :mod:`seismo3d.seis
 from __future__ import annotations
 
 import functools
+import math
 
 import numba as nb
 import numpy as np
@@ -38,15 +39,17 @@ RIDGE_HALO = 12
 THIN_HALO = 2
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True, nogil=True)
 def _trilinear(f, x, y, z):
+    # compiled once and called from _ridges' two reads (inlined there by numba it compiled twice: 0.4-0.9 CPU s more
+    # on a first run); math.floor of the clamped position, not int(): int() compiled a function of numba's
     n0, n1, n2 = f.shape
     x = min(max(x, 0.0), n0 - 1.0)
     y = min(max(y, 0.0), n1 - 1.0)
     z = min(max(z, 0.0), n2 - 1.0)
-    i = min(int(x), n0 - 2) if n0 > 1 else 0
-    j = min(int(y), n1 - 2) if n1 > 1 else 0
-    k = min(int(z), n2 - 2) if n2 > 1 else 0
+    i = min(math.floor(x), n0 - 2) if n0 > 1 else 0
+    j = min(math.floor(y), n1 - 2) if n1 > 1 else 0
+    k = min(math.floor(z), n2 - 2) if n2 > 1 else 0
     u = x - i
     v = y - j
     w = z - k
@@ -74,8 +77,8 @@ def _direction_lut() -> np.ndarray:
 
 @nb.njit(cache=True, inline="always")
 def _lut_index(strike_deg, dip_deg, n_phi, n_theta):
-    i = int(np.floor(strike_deg * _LUT_STEP + 0.5)) % n_phi
-    j = min(max(int(np.floor(dip_deg * _LUT_STEP + 0.5)), 0), n_theta - 1)
+    i = math.floor(strike_deg * _LUT_STEP + 0.5) % n_phi
+    j = min(max(math.floor(dip_deg * _LUT_STEP + 0.5), 0), n_theta - 1)
     return i, j
 
 
@@ -85,8 +88,8 @@ def _bilinear01(f, x, y, k):
     n0, n1, _ = f.shape
     x = min(max(x, 0.0), n0 - 1.0)
     y = min(max(y, 0.0), n1 - 1.0)
-    i = min(int(x), n0 - 2) if n0 > 1 else 0
-    j = min(int(y), n1 - 2) if n1 > 1 else 0
+    i = min(math.floor(x), n0 - 2) if n0 > 1 else 0
+    j = min(math.floor(y), n1 - 2) if n1 > 1 else 0
     u = x - i
     v = y - j
     i1 = i + 1 if n0 > 1 else i

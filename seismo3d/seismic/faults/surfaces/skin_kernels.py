@@ -15,6 +15,7 @@ beyond its tip the skin follows the votes of surfaces through samples where noth
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numba as nb
 import numpy as np
@@ -30,107 +31,100 @@ __all__ = []
 
 
 @nb.njit(cache=True)
-def _grown(a, size):
-    # a copy of a in a longer array (the first a.size entries)
-    out = np.empty(size, a.dtype)
-    for i in range(a.size):
-        out[i] = a[i]
-    return out
-
-
-@nb.njit(cache=True)
-def _nearest_of_other_skins(e, pts, lab, origin, dims, side, keys, order, gap2, slot, labels, dist2, cells):
-    # For cell e: the nearest cell (squared distance, index) of every other label within sqrt(gap2), ties to the
-    # lower index, from the buckets (cubes of ``side`` from ``origin``, :func:`~seismo3d.seismic._kernels.bucket_grid`)
-    # around e's bucket that come within the gap; ``keys`` are the cells' bucket keys in ``order``. ``labels``,
-    # ``dist2``, ``cells`` take the results (grown when full); ``slot`` (one per label, all -1) is the position of a
-    # label in them, and is left all -1 again. Returns the number of labels found and the three (grown) arrays.
-    m = 0
-    gap = np.sqrt(gap2)
-    own = lab[e]
-    ex = np.empty(3)
-    for a in range(3):
-        ex[a] = pts[e, a] - origin[a]
-    # the buckets within the gap of e along each axis
-    first_b = np.empty(3, np.int64)
-    last_b = np.empty(3, np.int64)
-    for a in range(3):
-        first_b[a] = max(int(np.floor((ex[a] - gap) / side)), 0)
-        last_b[a] = min(int(np.floor((ex[a] + gap) / side)), dims[a] - 1)
-    for bx in range(first_b[0], last_b[0] + 1):
-        for by in range(first_b[1], last_b[1] + 1):
-            # the column's buckets along the samples are consecutive keys: one range of cells; the column is
-            # skipped when its nearest point to e (buckets counted from the cells' lowest corner) is beyond the gap
-            box2 = 0.0
-            for a, b in ((0, bx), (1, by)):
-                lo = b * side - ex[a]
-                hi = lo + side
-                if lo > 0.0:
-                    box2 += lo * lo
-                elif hi < 0.0:
-                    box2 += hi * hi
-            if box2 > gap2:
-                continue
-            column = bx * dims[1] + by
-            low = column * dims[2] + first_b[2]
-            high = column * dims[2] + last_b[2]
-            for r in range(_kernels.search_left(keys, low), _kernels.search_right(keys, high)):
-                j = order[r]
-                if lab[j] == own:
-                    continue
-                d2 = 0.0
-                for a in range(3):
-                    t = pts[j, a] - pts[e, a]
-                    d2 += t * t
-                if d2 > gap2:
-                    continue
-                k = slot[lab[j]]
-                if k < 0:
-                    if m == labels.size:  # grow the lists
-                        labels = _grown(labels, 2 * m)
-                        dist2 = _grown(dist2, 2 * m)
-                        cells = _grown(cells, 2 * m)
-                    slot[lab[j]] = m
-                    labels[m] = lab[j]
-                    dist2[m] = d2
-                    cells[m] = j
-                    m += 1
-                elif d2 < dist2[k] or (d2 == dist2[k] and j < cells[k]):
-                    dist2[k] = d2
-                    cells[k] = j
-    for k in range(m):
-        slot[labels[k]] = -1
-    return m, labels, dist2, cells
-
-
-@nb.njit(cache=True)
-def _edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, gap2):
-    # every (edge cell, nearest cell of another label within the gap, squared distance), in the order of the edge
-    # cells
-    slot = np.empty(n_labels, np.int64)  # left all -1 by _nearest_of_other_skins
-    for k in range(n_labels):  # a loop, not np.full: that compiles a function of numba's of its own (0.2 CPU s)
-        slot[k] = -1
-    labels = np.empty(16, np.int64)
-    dist2 = np.empty(16)
-    cells = np.empty(16, np.int64)
-    first = np.empty(64, np.int64)
-    second = np.empty(64, np.int64)
-    dist = np.empty(64)
+def _edge_pairs(start, edge_idx, pts, lab, origin, dims, side, keys, order, gap2, slot, labels, dist2, cells, first,
+                second, dist):
+    # From edge cell ``start`` on: every (edge cell, nearest cell of another label within the gap, squared distance),
+    # in the order of the edge cells, into ``first``, ``second``, ``dist``; stops before an edge cell whose pairs no
+    # longer fit and returns (that edge cell, pairs written), so the caller continues with larger arrays. An edge
+    # cell e's nearest cell of every other label within sqrt(gap2), ties to the lower index, comes from the buckets
+    # (cubes of ``side`` from ``origin``, :func:`~seismo3d.seismic._kernels.bucket_grid`) around e's bucket that come
+    # within the gap; ``keys`` are the cells' bucket keys in ``order``. ``labels``, ``dist2``, ``cells`` (one entry a
+    # label) hold an edge cell's labels found; ``slot`` (one per label, all -1) is the position of a label in them,
+    # left all -1 again. One kernel, no array made inside, math.floor for int(): each compiled a function of its own
+    # on a first run (the nearest cells' kernel, its arrays' growth for two types and np.empty for two: 1.5 CPU s)
+    gap = math.sqrt(gap2)
     used = 0
-    for r in range(edge_idx.size):
-        m, labels, dist2, cells = _nearest_of_other_skins(edge_idx[r], pts, lab, origin, dims, side, keys, order,
-                                                         gap2, slot, labels, dist2, cells)
-        if used + m > first.size:
-            size = max(2 * first.size, used + m)
-            first = _grown(first, size)
-            second = _grown(second, size)
-            dist = _grown(dist, size)
+    for r in range(start, edge_idx.size):
+        e = edge_idx[r]
+        m = 0
+        own = lab[e]
+        ex0 = pts[e, 0] - origin[0]
+        ex1 = pts[e, 1] - origin[1]
+        ex2 = pts[e, 2] - origin[2]
+        # the buckets within the gap of e along each axis
+        first_b0 = max(math.floor((ex0 - gap) / side), 0)
+        first_b1 = max(math.floor((ex1 - gap) / side), 0)
+        first_b2 = max(math.floor((ex2 - gap) / side), 0)
+        last_b0 = min(math.floor((ex0 + gap) / side), dims[0] - 1)
+        last_b1 = min(math.floor((ex1 + gap) / side), dims[1] - 1)
+        last_b2 = min(math.floor((ex2 + gap) / side), dims[2] - 1)
+        for bx in range(first_b0, last_b0 + 1):
+            # the column's nearest point to e along the inlines (buckets counted from the cells' lowest corner)
+            lo = bx * side - ex0
+            hi = lo + side
+            box0 = lo * lo if lo > 0.0 else (hi * hi if hi < 0.0 else 0.0)
+            for by in range(first_b1, last_b1 + 1):
+                # the column's buckets along the samples are consecutive keys: one range of cells; the column is
+                # skipped when its nearest point to e is beyond the gap
+                lo = by * side - ex1
+                hi = lo + side
+                box2 = box0 + (lo * lo if lo > 0.0 else (hi * hi if hi < 0.0 else 0.0))
+                if box2 > gap2:
+                    continue
+                column = bx * dims[1] + by
+                low = column * dims[2] + first_b2
+                high = column * dims[2] + last_b2
+                for q in range(_kernels.search_left(keys, low), _kernels.search_right(keys, high)):
+                    j = order[q]
+                    if lab[j] == own:
+                        continue
+                    t = pts[j, 0] - pts[e, 0]
+                    d2 = t * t
+                    t = pts[j, 1] - pts[e, 1]
+                    d2 += t * t
+                    t = pts[j, 2] - pts[e, 2]
+                    d2 += t * t
+                    if d2 > gap2:
+                        continue
+                    k = slot[lab[j]]
+                    if k < 0:
+                        slot[lab[j]] = m
+                        labels[m] = lab[j]
+                        dist2[m] = d2
+                        cells[m] = j
+                        m += 1
+                    elif d2 < dist2[k] or (d2 == dist2[k] and j < cells[k]):
+                        dist2[k] = d2
+                        cells[k] = j
         for k in range(m):
-            first[used] = edge_idx[r]
+            slot[labels[k]] = -1
+        if used + m > first.size:
+            return r, used
+        for k in range(m):
+            first[used] = e
             second[used] = cells[k]
             dist[used] = dist2[k]
             used += 1
-    return first[:used], second[:used], dist[:used]
+    return edge_idx.size, used
+
+
+def _all_edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, gap2):
+    """:func:`_edge_pairs` over all the edge cells, its arrays made here: (first, second,
+    squared distance) of each pair, in the order of the edge cells."""
+    slot = np.full(n_labels, -1, np.int64)
+    labels = np.empty(n_labels, np.int64)
+    dist2 = np.empty(n_labels)
+    cells = np.empty(n_labels, np.int64)
+    size = max(64, n_labels, edge_idx.size)  # room for one edge cell's pairs at least, doubled while full
+    parts = []
+    r = 0
+    while r < edge_idx.size:
+        first, second, dist = np.empty(size, np.int64), np.empty(size, np.int64), np.empty(size)
+        r, used = _edge_pairs(r, edge_idx, pts, lab, origin, dims, side, keys, order, gap2, slot, labels, dist2,
+                              cells, first, second, dist)
+        parts.append((first[:used], second[:used], dist[:used]))
+        size *= 2
+    return tuple(np.concatenate(p) for p in zip(*parts))
 
 
 def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
@@ -146,8 +140,8 @@ def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: f
     compact = compact.astype(np.int64).ravel()
     side = max(0.5 * float(gap), 0.5)
     keys, order, origin, dims = _kernels.bucket_grid(pts, side)
-    first, second, dist2 = _edge_pairs(np.ascontiguousarray(edge_idx, dtype=np.int64), pts, compact,
-                                       int(compact.max()) + 1, origin, dims, side, keys, order, float(gap) ** 2)
+    first, second, dist2 = _all_edge_pairs(np.ascontiguousarray(edge_idx, dtype=np.int64), pts, compact,
+                                           int(compact.max()) + 1, origin, dims, side, keys, order, float(gap) ** 2)
     if first.size == 0:
         return np.empty((0, 2), dtype=np.int64)
     key = np.minimum(lab[first], lab[second]).astype(np.int64) * n_labels + np.maximum(lab[first], lab[second])
@@ -158,21 +152,23 @@ def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: f
     return np.stack([first[sel], second[sel]], axis=1)
 
 
-@nb.njit(cache=True)
 def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):
-    # Region growing over the neighbour graph (whose edges already join only compatible normals): from the
-    # unassigned sample of highest likelihood, add neighbours whose normal is within acos(cos_mean) of the growing
-    # fault's mean normal, breadth first. The mean keeps a fault from drifting into another one through samples of
-    # intermediate orientation where two faults meet.
+    """Region growing over the neighbour graph (CSR ``indptr``, ``indices``; its edges already join only compatible
+    normals): from the unassigned sample of highest likelihood (``order``), add neighbours whose normal (``normals``
+    (n, dim) float64) is within acos(cos_mean) of the growing fault's mean normal, breadth first; (n,) int64 labels.
+    The mean keeps a fault from drifting into another one through samples of intermediate orientation where two
+    faults meet."""
     n_pts, dim = normals.shape
-    # loops, not -np.ones and np.zeros: those compile functions of numba's and an array negation of their own
-    label = np.empty(n_pts, np.int64)
-    for k in range(n_pts):
-        label[k] = -1
-    queue = np.empty(n_pts, np.int64)
-    mean = np.empty(dim)
-    for k in range(dim):
-        mean[k] = 0.0
+    label = np.full(n_pts, -1, np.int64)
+    _grow_by_mean_normal(indptr, indices, normals, order, cos_mean, label, np.empty(n_pts, np.int64), np.zeros(dim))
+    return label
+
+
+@nb.njit(cache=True)
+def _grow_by_mean_normal(indptr, indices, normals, order, cos_mean, label, queue, mean):
+    # grow_by_mean_normal's loop: label (all -1) takes the labels; queue and mean are work arrays (np.empty, np.full,
+    # np.zeros in here each compiled a function of numba's of its own)
+    dim = normals.shape[1]
     n_lab = 0
     for seed in order:
         if label[seed] >= 0:
@@ -195,7 +191,7 @@ def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):
                 for d in range(dim):
                     dot += normals[j, d] * mean[d]
                     nm += mean[d] * mean[d]
-                if abs(dot) < cos_mean * np.sqrt(nm):
+                if abs(dot) < cos_mean * math.sqrt(nm):
                     continue
                 label[j] = n_lab
                 sgn = 1.0 if dot >= 0 else -1.0
@@ -204,7 +200,6 @@ def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):
                 queue[tail] = j
                 tail += 1
         n_lab += 1
-    return label
 
 
 def _dip_directions(normals: np.ndarray) -> np.ndarray:

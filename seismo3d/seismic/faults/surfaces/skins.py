@@ -151,19 +151,18 @@ def _offset_ranks(two_d: bool, lateral: int, vertical: int) -> np.ndarray:
 
 
 @nb.njit(cache=True, nogil=True)
-def _best_neighbours(t, n_threads, points, frames, keys, shape, ranks, max_plane, cos_angle, best):
+def _best_neighbours(t, n_threads, points, frames, keys, shape, ranks, max_plane, cos_angle, best, scores, ranked):
     # best[c, k]: cell c's nearest neighbour above (k = 0) and below (1) it down the dip, left (2) and right (3) of it
     # along the strike, or -1. A neighbour lies within max_plane of c's plane and c within max_plane of its plane,
     # their normals make an angle below acos(cos_angle), and the neighbour is in the direction's 90-degree cone;
     # distance is measured in c's plane, with the distance off the plane counted double, ties to the lower offset
     # rank (``ranks``, :func:`_offset_ranks`). Cells are found by their linear index in the cube of ``shape`` among
     # the sorted ``keys`` (no array of the cube's size): the cells of one trace within the vertical reach are one
-    # range of keys. Cells t, t + n_threads, ... (best filled with -1 before).
+    # range of keys. Cells t, t + n_threads, ... (best filled with -1 before); work arrays scores[t], ranked[t]
     n = points.shape[0]
     n0, n1, n2 = shape[0], shape[1], shape[2]
     lat0, lat1, vert = ranks.shape[0] // 2, ranks.shape[1] // 2, ranks.shape[2] // 2
-    score = np.empty(4)
-    rank = np.empty(4, np.int64)
+    score, rank = scores[t], ranked[t]
     for c in range(t, n, n_threads):
         px, py, pz = points[c, 0], points[c, 1], points[c, 2]
         ux, uy, uz = frames[c, 0, 0], frames[c, 0, 1], frames[c, 0, 2]
@@ -461,9 +460,10 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     for a in range(0, points.shape[0], 1 << 18):  # by slices: fault_frames' float64 temporaries stay small
         frames[a:a + (1 << 18)] = fault_frames(s_cell[a:a + (1 << 18)], d_cell[a:a + (1 << 18)])
     best = np.full((points.shape[0], 4), -1, np.int32)
-    run_threads(_best_neighbours, nb.get_num_threads(), points, frames, keys, np.asarray(shape3, np.int64),
-                _offset_ranks(two_d, int(opt.lateral_reach), int(opt.vertical_reach)),
-                float(opt.max_plane_distance), float(np.cos(np.radians(opt.max_angle))), best)
+    n_threads = nb.get_num_threads()  # work arrays from here: np.empty in the kernel compiled one of numba's
+    run_threads(_best_neighbours, n_threads, points, frames, keys, np.asarray(shape3, np.int64),
+                _offset_ranks(two_d, int(opt.lateral_reach), int(opt.vertical_reach)), float(opt.max_plane_distance),
+                float(np.cos(np.radians(opt.max_angle))), best, np.empty((n_threads, 4)), np.empty((n_threads, 4), int))
     del keys
     normals = np.ascontiguousarray(frames[:, 0, :])
     del frames

@@ -5,6 +5,8 @@ strongest surface's orientation at each sample (:func:`strongest`)."""
 
 from __future__ import annotations
 
+import math
+
 import numba as nb
 import numpy as np
 
@@ -33,10 +35,11 @@ def _prefix(e, c):
 @nb.njit(cache=True)
 def _accumulate_forward(e, b, d, c):
     # d[i, l]: least cost of a path over rows up to i ending at lag l, the lag changing by at most one every b rows
-    # (the costs of the b - 1 rows in between are added along the new lag, from the prefix sums c of e). Forward and
-    # backward are two kernels, not one with a flag: a constant flag compiles the kernel once per value.
+    # (the costs of the b - 1 rows in between are added along the new lag, from the prefix sums c of e made by
+    # _prefix before). Forward and backward are two kernels, not one with a flag: a constant flag compiles the kernel
+    # once per value; neither calls _prefix: each kernel a called kernel is linked into is compiled again with it
+    # (the caller makes c once for both).
     ni, nl = e.shape
-    _prefix(e, c)
     for il in range(nl):
         d[0, il] = e[0, il]
     for ii in range(1, ni):
@@ -60,7 +63,6 @@ def _accumulate_forward(e, b, d, c):
 def _accumulate_backward(e, b, d, c):
     # d[i, l]: least cost of a path over rows from i on starting at lag l (as _accumulate_forward, rows reversed)
     ni, nl = e.shape
-    _prefix(e, c)
     for il in range(nl):
         d[ni - 1, il] = e[ni - 1, il]
     for ii in range(ni - 2, -1, -1):
@@ -111,10 +113,12 @@ def _backtrack(d, e, b, u, c):
         il = new
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _smooth_costs(e, b, t1, t2, c, out):
     # nonlinear smoothing of the costs along axis 0: forward + backward accumulation - cost, the cost of the best
-    # path through each (row, lag) (Hale 2013, dynamic warping)
+    # path through each (row, lag) (Hale 2013, dynamic warping). Inlined into its caller by numba: a kernel of its
+    # own compiled the accumulations linked into it once more (0.5 CPU s on a first run)
+    _prefix(e, c)
     _accumulate_forward(e, b, t1, c)
     _accumulate_backward(e, b, t2, c)
     ni, nl = e.shape
@@ -141,34 +145,34 @@ def _smooth_exponential(x, a, tmp):
 def _nearest(f, x, y, z, g0, g1):
     # f's sample nearest to the image position (x, y, z), f holding the image from inline g0 and crossline g1: the
     # index is rounded in image coordinates (as when f is the whole image), then clamped to f
+    # (math.floor, not int(np.floor()): int() compiled a function of numba's of its own)
     n0, n1, n2 = f.shape
-    i = min(max(int(np.floor(x + 0.5)) - g0, 0), n0 - 1)
-    j = min(max(int(np.floor(y + 0.5)) - g1, 0), n1 - 1)
-    k = min(max(int(np.floor(z + 0.5)), 0), n2 - 1)
+    i = min(max(math.floor(x + 0.5) - g0, 0), n0 - 1)
+    j = min(max(math.floor(y + 0.5) - g1, 0), n1 - 1)
+    k = min(max(math.floor(z + 0.5), 0), n2 - 1)
     return f[i, j, k]
 
 
 @nb.njit(cache=True, nogil=True)
 def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, offsets, fa,
-                        seed_normal):
-    # steps 1-4 for seeds t, t + n_threads, ... (see surface_kernel), with this thread's work arrays. One kernel, not a
-    # loop calling a kernel per seed: numba compiles a called kernel on its own and again inside its caller (0.8 CPU s
-    # more on a first run)
+                        seed_normal, work3, work2, surfs, work1):
+    # steps 1-4 for seeds t, t + n_threads, ... (see surface_kernel), with this thread's work arrays (made by the
+    # caller: np.empty here compiled a function of numba's for each shape). One kernel, not a loop calling a kernel
+    # per seed: numba compiles a called kernel on its own and again inside its caller (0.8 CPU s more on a first run)
     n0, n1, n2 = shape[0], shape[1], shape[2]
     nu = 2 * ru + 1
     nv = 2 * rv + 1
     nw = 2 * rw + 1
-    nm = max(nv, nw)
-    e = np.empty((nw, nv, nu))
-    es = np.empty((nw, nv, nu))
-    t1 = np.empty((nm, nu))
-    t2 = np.empty((nm, nu))
-    cs = np.empty((nm + 1, nu))
-    row = np.empty((nm, nu))
-    row_s = np.empty((nm, nu))
-    surf = np.empty((nw, nv))
-    tmp = np.empty(nm)
-    line = np.empty(nm)
+    e = work3[t, 0]  # (nw, nv, nu)
+    es = work3[t, 1]
+    t1 = work2[t, 0]  # (max(nv, nw) + 1, nu)
+    t2 = work2[t, 1]
+    cs = work2[t, 2]
+    row = work2[t, 3]
+    row_s = work2[t, 4]
+    surf = surfs[t]  # (nw, nv)
+    tmp = work1[t, 0]  # (max(nv, nw),)
+    line = work1[t, 1]
     for s in range(t, seeds.shape[0], n_threads):
         # seed s: its optimal surface in surf (nw, nv) (offsets across the fault, samples), the surface's mean
         # likelihood inside the image in fa[s] (-1 when no sample of it is inside), its normal at the seed in
@@ -185,8 +189,8 @@ def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv,
             dw = iw - rw
             for iv in range(nv):
                 dv = iv - rv
-                r = np.sqrt(dv * dv + dw * dw)
-                lim = int(np.floor(r + 0.5)) if r > 2.0 else 0
+                r = math.sqrt(dv * dv + dw * dw)
+                lim = math.floor(r + 0.5) if r > 2.0 else 0
                 x0 = c0 + dv * vx + dw * wx
                 y0 = c1 + dv * vy + dw * wy
                 z0 = c2 + dv * vz + dw * wz
@@ -210,6 +214,7 @@ def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv,
                         es[iw, iv, iu] = row_s[iw, iu]
         # 3. the least-cost path down the dip in every strike slice: the surface, smoothed both ways
         for iw in range(nw):
+            _prefix(es[iw], cs[:nv + 1])
             _accumulate_forward(es[iw], b, t1[:nv], cs[:nv + 1])
             _backtrack(t1[:nv], es[iw], b, line[:nv], cs[:nv + 1])
             for iv in range(nv):
@@ -246,7 +251,7 @@ def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv,
         nx = ux - gv * vx - gw * wx
         ny = uy - gv * vy - gw * wy
         nz = uz - gv * vz - gw * wz
-        nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+        nn = math.sqrt(nx * nx + ny * ny + nz * nz)
         nx /= nn
         ny /= nn
         nz /= nn
@@ -259,9 +264,9 @@ def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv,
             for iv in range(nv):
                 dv = iv - rv
                 du = surf[iw, iv]
-                offsets[s, iw, iv, 0] = int(np.floor(c0 + du * ux + dv * vx + dw * wx + 0.5)) - c0
-                offsets[s, iw, iv, 1] = int(np.floor(c1 + du * uy + dv * vy + dw * wy + 0.5)) - c1
-                offsets[s, iw, iv, 2] = int(np.floor(c2 + du * uz + dv * vz + dw * wz + 0.5)) - c2
+                offsets[s, iw, iv, 0] = math.floor(c0 + du * ux + dv * vx + dw * wx + 0.5) - c0
+                offsets[s, iw, iv, 1] = math.floor(c1 + du * uy + dv * vy + dw * wy + 0.5) - c1
+                offsets[s, iw, iv, 2] = math.floor(c2 + du * uz + dv * vz + dw * wz + 0.5) - c2
 
 
 def surface_kernel(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n_threads, offsets, fa, seed_normal):
@@ -270,8 +275,12 @@ def surface_kernel(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n
     (inline, crossline, sample) the surface passes at (dip step iv, strike step iw), relative to the seed, rounded
     in image coordinates as the votes are cast (so that :func:`cast_votes` gives the votes of the surface wherever it
     was computed). Arrays as :func:`~seismo3d.seismic.faults.surfaces.voting.seed_surfaces` makes them."""
-    run_threads(_surfaces_of_thread, int(n_threads), att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth,
-                offsets, fa, seed_normal)
+    n_threads = int(n_threads)
+    nu, nv, nw = 2 * ru + 1, 2 * rv + 1, 2 * rw + 1
+    nm = max(nv, nw)
+    run_threads(_surfaces_of_thread, n_threads, att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth,
+                offsets, fa, seed_normal, np.empty((n_threads, 2, nw, nv, nu)), np.empty((n_threads, 5, nm + 1, nu)),
+                np.empty((n_threads, nw, nv)), np.empty((n_threads, 2, nm)))
 
 
 @nb.njit(cache=True, nogil=True)
@@ -342,20 +351,14 @@ def strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
 
 
 @nb.njit(cache=True)
-def _greedy_seeds(cand, shape, d):
-    # keep candidates (sorted strongest first) with no kept seed within Chebyshev distance d. Kept seeds are filed in
-    # cells of d + 1 samples per side: a cell holds at most one (two points of a cell are within d of each other),
-    # and a seed within d of a candidate lies in the candidate's cell or a neighbouring one.
+def _greedy_seeds(cand, d, cells, out):
+    # keep candidates (sorted strongest first) with no kept seed within Chebyshev distance d, into out; returns how
+    # many. Kept seeds are filed in cells of d + 1 samples per side (cells: all -1): a cell holds at most one (two
+    # points of a cell are within d of each other), and a seed within d of a candidate lies in the candidate's cell or
+    # a neighbouring one. The arrays come from the caller: np.empty and np.full in here each compiled a function of
+    # numba's of its own
     size = d + 1
-    g0 = (shape[0] + size - 1) // size
-    g1 = (shape[1] + size - 1) // size
-    g2 = (shape[2] + size - 1) // size
-    cells = np.empty((g0, g1, g2), np.int64)
-    for x in range(g0):  # loops, not np.full: that compiles a function of numba's of its own (0.2 CPU s)
-        for y in range(g1):
-            for z in range(g2):
-                cells[x, y, z] = -1
-    out = np.empty_like(cand)
+    g0, g1, g2 = cells.shape
     n = 0
     for c in range(cand.shape[0]):
         i, j, k = cand[c, 0], cand[c, 1], cand[c, 2]
@@ -378,7 +381,7 @@ def _greedy_seeds(cand, shape, d):
             out[n, 1] = j
             out[n, 2] = k
             n += 1
-    return out[:n]
+    return n
 
 
 def greedy_seeds(points, values, shape, spacing: int) -> np.ndarray:
@@ -425,4 +428,7 @@ def greedy_seeds(points, values, shape, spacing: int) -> np.ndarray:
         raise InputError(f"greedy_seeds got points outside a cube of shape {shape}; pass indices of that cube")
     key = np.ravel_multi_index(tuple(pts.T), shape)
     order = np.lexsort((key, -vals))
-    return _greedy_seeds(np.ascontiguousarray(pts[order]), np.asarray(shape, np.int64), int(spacing))
+    size = int(spacing) + 1
+    cells = np.full(tuple((n + size - 1) // size for n in shape), -1, np.int64)
+    out = np.empty(pts.shape, np.int64)
+    return out[:_greedy_seeds(np.ascontiguousarray(pts[order]), int(spacing), cells, out)]

@@ -42,8 +42,9 @@ class ThrowOptions:
     Attributes
     ----------
     max_throw : int, optional
-        Largest |throw| searched, in samples. None: ``min(20, n_samples // 4)``. A patch searches at most
-        ``max_throw_per_height`` of the samples it spans.
+        Largest |throw| searched, in samples. None: ``min(20, n_samples // 4)`` for a 3D patch, which searches at most
+        ``max_throw_per_height`` of the samples it spans; ``n_samples // 4`` for a 2D fault, whose profile is bounded
+        by its extent (``profile_max_throw_per_length``) and its windows (``profile_max_shift``).
     side_traces : (int, int)
         Nearest and farthest lateral offsets from the fault read on each side, in traces.
     patch_traces : float
@@ -77,8 +78,7 @@ class ThrowOptions:
         2D: length of the windows down the fault whose throws make its throw profile, samples (a fault spanning
         fewer than two windows is one window: windows that all overlap do not measure apart). 64: 6-8 periods of a
         0.1-0.15 cycles/sample wavelet, so that a window's shift is not a cycle skip, and a quarter to a sixth of the
-        large faults of the real sections (250-400 samples tall). It also bounds the shifts searched to a third of
-        it (21 samples).
+        large faults of the real sections (250-400 samples tall).
     profile_step : int
         2D: distance between the starts of consecutive windows, samples.
     profile_smoothness : float
@@ -94,6 +94,13 @@ class ThrowOptions:
         a fault 85 samples tall through continuous reflectors at 680-1010 ms read -16.6 samples (-66 ms) with a
         third of its height searched. Measured (``tools/dev_fault_scores.py``, 2026-11-26; 1/3, 0.2, 0.15, 0.1):
         F3 F1 0.486, 0.486, 0.489, 0.494 (precision 0.590 -> 0.607 at 0.1), the Great South Basin 0.829 at each.
+    profile_max_shift : float
+        2D: largest |throw| searched, as a fraction of ``profile_window`` (32 samples): a window and its shifted twin
+        still share half their samples, 3-5 reflector periods. Until 2026-11-27 a third, with ``max_throw``'s 20
+        samples for 2D faults too: generated faults 224-383 samples tall throwing 21-28 samples read a cycle skip
+        or the bound, and on ``penobscot_xl1155.sgy`` the large fault read 51 ms near 1500 ms, where the strongest
+        peak of each side meets it 104-108 ms apart (now 116 ms: each side carried along its dip to the fault).
+        Every other fault of the data folder's sections and both dev surveys read the same bytes.
     step_traces : int
         2D: traces beside each edge of a fault's zone whose neighbour lags give that side's dip for the step at the
         fault (:func:`~seismo3d.seismic.faults.throw_profile.section_step`; at most the traces read beyond it).
@@ -119,6 +126,7 @@ class ThrowOptions:
     profile_step: int = 16
     profile_smoothness: float = 0.005
     profile_max_throw_per_length: float = 0.1
+    profile_max_shift: float = 0.5
     step_traces: int = 3
 
     def __post_init__(self):
@@ -135,6 +143,9 @@ class ThrowOptions:
         object.__setattr__(self, "patch_traces", float(check_positive(self.patch_traces, "patch_traces")))
         check_positive(self.max_throw_per_height, "max_throw_per_height")
         check_positive(self.profile_max_throw_per_length, "profile_max_throw_per_length")
+        if not 0.0 < float(self.profile_max_shift) <= 1.0:
+            raise InputError(f"profile_max_shift must be a fraction of profile_window in (0, 1]; got "
+                             f"{self.profile_max_shift!r}")
         check_positive(self.max_rotation, "max_rotation")
         check_positive(self.small_shift_prior, "small_shift_prior", allow_zero=True)
         for name in ("profile_window", "profile_step", "step_traces"):
@@ -172,9 +183,13 @@ def _fault_arrays(fault, ndim: int) -> tuple[np.ndarray, np.ndarray, int]:
     return pts, normals, fid
 
 
-def _max_throw(opt: ThrowOptions, n_samples: int) -> int:
-    """The largest |throw| searched: ``opt.max_throw`` or ``min(20, n_samples // 4)``, below half a trace."""
-    max_throw = min(20, n_samples // 4) if opt.max_throw is None else opt.max_throw
+def _max_throw(opt: ThrowOptions, n_samples: int, *, two_d: bool = False) -> int:
+    """The largest |throw| searched: ``opt.max_throw`` or ``min(20, n_samples // 4)`` (a 2D fault's:
+    ``n_samples // 4``), below half a trace."""
+    if opt.max_throw is None:
+        max_throw = n_samples // 4 if two_d else min(20, n_samples // 4)
+    else:
+        max_throw = opt.max_throw
     max_throw = int(round(check_positive(max_throw, "max_throw")))
     if max_throw < 1 or max_throw >= n_samples // 2:
         raise InputError(f"max_throw={max_throw} samples must be >= 1 and below half the trace length "
@@ -385,7 +400,7 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
     window at a time."""
     shape = source.shape
     two_d = len(shape) == 2
-    max_throw = _max_throw(opt, shape[-1])
+    max_throw = _max_throw(opt, shape[-1], two_d=two_d)
     pts, normals, fid = _fault_arrays(fault, len(shape))
     if np.any(pts.min(axis=0) < -0.5) or np.any(pts.max(axis=0) > np.array(shape) - 0.5):
         raise InputError(f"fault {fid} has points outside the data of shape {shape}; pass the faults of this data")
@@ -472,7 +487,8 @@ def _section_throw(source, pts, nrm3, fid: int, opt: ThrowOptions, max_throw: in
     zone = fault_zone(pts, hw)
     n_traces = source.shape[0]
     win = source.window(*section_read_box(zone, opt.side_traces[1] + opt.slope_margin, n_traces))
-    reach = min(max_throw, int(opt.profile_max_throw_per_length * zone.t.size), opt.profile_window // 3)
+    reach = min(max_throw, int(opt.profile_max_throw_per_length * zone.t.size),
+                int(opt.profile_max_shift * opt.profile_window))
     n = len(pts)
     nan = np.full(n, np.nan, np.float32)
     if reach < 1:

@@ -338,8 +338,8 @@ def test_a_clear_throw_of_unlike_sides_must_reach_their_half_period():
     and which is no step at the fault (2D: a step under flexure_step, 0.3, of the throw; 3D: not measured) is evidence
     only when it reaches the half period of the reflectors around the fault (the correlation of unlike sides peaks
     within half a period of any shift). Penobscot crossline 1155's faults along migration swings at 4300-5400 ms
-    (throw 4.84 samples, correlation 0.37, step -0.25, half period about 6) are then not clear; its large fault (12.98
-    samples, correlation 0.32, half period about 5) is; a Costa Rica crf fault (3.81 samples, correlation 0.36, step
+    (throw 4.84 samples, correlation 0.37, step -0.25, half period about 6) are then not clear; its large fault (13.9
+    samples, correlation 0.41, half period about 5; 12.98 and 0.32 before its 2D throw search reached 32 samples) is; a Costa Rica crf fault (3.81 samples, correlation 0.36, step
     2.84, half period about 6) is a step; sides that look alike, an unmeasured half period and None ask nothing."""
     opt = EvidenceOptions()
     assert opt.clear_half_periods == 1.0
@@ -353,6 +353,7 @@ def test_a_clear_throw_of_unlike_sides_must_reach_their_half_period():
     assert not fault(4.84, 0.37, 0.57, 6.0, step=-0.25).supports(opt)
     assert fault(3.81, 0.36, 0.58, 6.0, ml=0.73, vr=1.43, step=2.84).supports(opt)  # a step at the fault
     assert fault(12.98, 0.32, 0.12, 5.0, ml=0.69).supports(opt)
+    assert fault(13.9, 0.41, 0.32, 5.0, ml=0.69).supports(opt)
     assert fault(4.84, 0.6, 0.57, 6.0).supports(opt)  # sides alike at the shift: not asked
     assert fault(4.84, 0.37, 0.57, float("nan")).supports(opt)  # not measured
     assert swing.supports(EvidenceOptions(clear_half_periods=None))

@@ -215,6 +215,25 @@ def test_section_throw_bounded_by_the_fault_length(seed):
         assert abs(bounded) <= 3 + 0.5 and abs(bounded - true) >= 2.0, (tf.id, true, bounded)
         assert abs(loose - true) <= 0.3, (tf.id, true, loose)  # measured 0.02-0.19
 
+@pytest.mark.parametrize("seed", [2, 3])
+def test_section_throw_beyond_20_samples_on_a_tall_fault(seed):
+    """A 2D fault searches up to a tenth of its extent and half the profile window (32 samples), not 20: generated
+    faults 224-383 samples tall throwing 20.8-28.0 samples read within 0.1 sample of it at the median, within a sample
+    everywhere; with the former bound (20 samples, a third of the window) they read a cycle skip or the bound (6.64
+    for 27.95, 1.81 for 21.35, -20.00 for -20.83). Penobscot crossline 1155's large fault read 51 ms near 1500 ms
+    under it, against 104-108 ms by hand (tests/seismic/faults/test_pipeline.py)."""
+    syn = synthetic_cube((192, 384), seed=seed, noise=0.1, max_throw=30, n_faults=2)
+    faults = [np.argwhere(syn.fault_labels == f.id) for f in syn.faults]
+    tall = [k for k, tf in enumerate(syn.faults) if tf.throw_samples > 20]
+    assert tall  # the case exercised: seed 2 throws 27.95 and 21.35 samples, seed 3 -20.83
+    now, before = fault_throws(syn.cube, faults), fault_throws(syn.cube, faults, max_throw=20, profile_max_shift=1 / 3)
+    for k in tall:
+        true = syn.faults[k].throw_samples * (1.0 if syn.faults[k].kind == "normal" else -1.0)
+        assert abs(now[k].median_throw - true) <= 0.1  # measured 0.01-0.05
+        assert np.nanmax(np.abs(now[k].throw - true)) <= 1.0  # measured 0.20-0.65
+        assert abs(before[k].median_throw - true) >= 0.5, (true, before[k].median_throw)
+
+
 def test_sign_convention_normal_and_reverse():
     """Positive throw = hanging wall down (normal fault), negative = hanging wall up (reverse fault)."""
     for frac, sign in ((0.0, 1.0), (1.0, -1.0)):
@@ -252,6 +271,8 @@ def test_empty_fault_list():
     ({"profile_step": 0}, "profile_step"),
     ({"profile_smoothness": -1.0}, "profile_smoothness"),
     ({"profile_max_throw_per_length": 0.0}, "profile_max_throw_per_length"),
+    ({"profile_max_shift": 0.0}, "profile_max_shift"),
+    ({"profile_max_shift": 1.5}, "profile_max_shift"),
 ])
 def test_bad_options(kwargs, match):
     syn = synthetic_cube((64, 64), n_faults=1, seed=0)

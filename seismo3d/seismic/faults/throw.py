@@ -7,12 +7,10 @@ a global search of the normalised cross-correlation over integer shifts (immune 
 reflectors), then a registration of the reflector peaks of the two images with the ICP engine
 (:func:`seismo3d.registration.icp`, method.md section 1), which models throw varying linearly along strike.
 
-Conventions (index space, as in :mod:`seismo3d.seismic.faults.likelihood.scan` and :mod:`seismo3d.data.synthetic`): axis
-0 inline, axis 1 crossline, the last axis the sample (downward); one trace spacing and one sample both count as 1. Throw
-is the vertical component of the fault slip, in samples: **positive when the hanging wall moved down** (normal fault),
-negative when it moved up (reverse fault). The hanging wall is the block above the fault plane, on the side the fault
-dips toward; for a vertical fault (dip 90 degrees) it is undefined and the sign of the throw is arbitrary. Multiply by
-the sample interval to get the throw in ms or m.
+Conventions (index space, as :mod:`seismo3d.data.synthetic`): axis 0 inline, 1 crossline, the last the sample
+(down); a trace spacing and a sample count as 1. Throw is the vertical slip in samples (times the sample interval: ms
+or m): **positive when the hanging wall moved down** (normal fault), negative when it moved up (reverse). The hanging
+wall is the block above the fault plane, on the side it dips toward (undefined for a vertical fault: sign arbitrary).
 """
 
 from __future__ import annotations
@@ -42,9 +40,8 @@ class ThrowOptions:
     Attributes
     ----------
     max_throw : int, optional
-        Largest |throw| searched, in samples. None: ``min(20, n_samples // 4)`` for a 3D patch, which searches at most
-        ``max_throw_per_height`` of the samples it spans; ``n_samples // 4`` for a 2D fault, whose profile is bounded
-        by its extent (``profile_max_throw_per_length``) and its windows (``profile_max_shift``).
+        Largest |throw| searched, samples. None: ``min(20, n_samples // 4)`` (3D; a patch searches at most
+        ``max_throw_per_height`` of its height), ``n_samples // 4`` (2D: ``profile_max_*`` bound it).
     side_traces : (int, int)
         Nearest and farthest lateral offsets from the fault read on each side, in traces.
     patch_traces : float
@@ -55,8 +52,7 @@ class ThrowOptions:
         Largest |throw| searched, as a fraction of the samples a patch's fault-plane images span (the fault's height
         there): faults displace about 1-10 % of their length (displacement-length scaling, Kim & Sanderson 2005), so a
         shift of over a third of the traced height is a cycle skip between periodic reflectors rather than a throw.
-        On the 8-bit Penobscot cube, before this limit, 14 of the 282 faults whose sides correlate had such a throw:
-        9-20 samples on faults 26-45 samples tall, about one reflector period.
+        (8-bit Penobscot cube, before this limit: 14 of 282 faults read 9-20 samples on faults 26-45 samples tall.)
     min_overlap : (int, int)
         Fewest fault-plane image samples seen on both sides for a correlation shift to count (2D, 3D).
     min_rows : int
@@ -82,25 +78,20 @@ class ThrowOptions:
     profile_step : int
         2D: distance between the starts of consecutive windows, samples.
     profile_smoothness : float
-        2D: cost of a change of throw between consecutive windows, in correlation per squared sample: the windows'
-        shifts are chosen together, maximising their correlations less this times their squared changes. 0.005: a
-        jump of a reflector period (8-10 samples on the real sections) between windows that share three quarters of
-        their samples costs 0.3-0.5 of correlation, a gradient of a sample per window 0.005.
+        2D: cost of a change of throw between consecutive windows, correlation per squared sample (the windows'
+        shifts maximise their correlations less this times their squared changes): a jump of a reflector period
+        (8-10 samples) costs 0.3-0.5 of correlation, a gradient of a sample per window 0.005.
     profile_max_throw_per_length : float
         2D: largest |throw| searched, as a fraction of the fault's extent down the section, samples per sample (the
         whole fault, where ``max_throw_per_height`` bounds a 3D patch, a piece of one). Faults displace at most about
         a tenth of their length (displacement-length scaling, Kim & Sanderson 2005: 0.001-0.1), and a 2D fault's
-        extent in samples is at most its length. A larger shift between the sides is a cycle skip: on the Volve line
-        a fault 85 samples tall through continuous reflectors at 680-1010 ms read -16.6 samples (-66 ms) with a
-        third of its height searched. Measured (``tools/dev_fault_scores.py``, 2026-11-26; 1/3, 0.2, 0.15, 0.1):
-        F3 F1 0.486, 0.486, 0.489, 0.494 (precision 0.590 -> 0.607 at 0.1), the Great South Basin 0.829 at each.
+        extent in samples is at most its length (a Volve fault 85 samples tall read -66 ms with a third of it:
+        a cycle skip). ``tools/dev_fault_scores.py``, 2026-11-26, 1/3, 0.2, 0.15, 0.1: F3 F1 0.486, 0.486, 0.489,
+        0.494, the Great South Basin 0.829 at each.
     profile_max_shift : float
-        2D: largest |throw| searched, as a fraction of ``profile_window`` (32 samples): a window and its shifted twin
-        still share half their samples, 3-5 reflector periods. Until 2026-11-27 a third, with ``max_throw``'s 20
-        samples for 2D faults too: generated faults 224-383 samples tall throwing 21-28 samples read a cycle skip
-        or the bound, and on ``penobscot_xl1155.sgy`` the large fault read 51 ms near 1500 ms, where the strongest
-        peak of each side meets it 104-108 ms apart (now 116 ms: each side carried along its dip to the fault).
-        Every other fault of the data folder's sections and both dev surveys read the same bytes.
+        2D: largest |throw| searched, a fraction of ``profile_window`` (32 samples: a window and its shifted twin
+        share half their samples). A third with 20 samples at most until 2026-11-27: xl1155's large fault read 51
+        ms near 1500 ms (116 ms now; 104-108 ms by hand), generated faults throwing 21-28 samples a cycle skip.
     step_traces : int
         2D: traces beside each edge of a fault's zone whose neighbour lags give that side's dip for the step at the
         fault (:func:`~seismo3d.seismic.faults.throw_profile.section_step`; at most the traces read beyond it).
@@ -184,8 +175,7 @@ def _fault_arrays(fault, ndim: int) -> tuple[np.ndarray, np.ndarray, int]:
 
 
 def _max_throw(opt: ThrowOptions, n_samples: int, *, two_d: bool = False) -> int:
-    """The largest |throw| searched: ``opt.max_throw`` or ``min(20, n_samples // 4)`` (a 2D fault's:
-    ``n_samples // 4``), below half a trace."""
+    """The largest |throw| searched: ``opt.max_throw`` or ``min(20, n_samples // 4)`` (2D: n_samples // 4)."""
     if opt.max_throw is None:
         max_throw = n_samples // 4 if two_d else min(20, n_samples // 4)
     else:
@@ -278,10 +268,8 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
        together (dynamic programming: their correlations less ``profile_smoothness`` times their squared changes,
        the whole fault's curve added to each window's against a cycle skip), refined by a parabola and interpolated
        to the points. ``correlation`` and ``correlation_unshifted`` are then per window too. No registration.
-       On Penobscot crossline 1155's large fault (two strands at 1850-2100 ms) the profile reads 54-58 ms at
-       1900-2100 ms, where the strong trough lies at 2011-2012 ms in the hanging wall and 1950-1955 ms in the
-       footwall (57-62 ms by hand), and 0-2 ms at 2350-2550 ms (an anticline's crest: under 15 ms by hand); the one
-       shift of the whole fault read between its strands was 0.3 samples.
+       Penobscot crossline 1155's large fault reads 116 ms near 1500 ms, 54-58 ms at 1900-2100 ms and 0-2 ms at
+       2350-2550 ms, against 104-108, 57-62 and under 15 ms by hand (tests/seismic/faults/test_pipeline.py).
 
     Parameters
     ----------
@@ -344,16 +332,12 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     """Throw along each of several faults of one cube or section (see :func:`fault_throw`).
 
     For an in-memory cube the reflector orientation is computed once (when not given) and shared by all faults.
-    A 3D dask array is never held whole: each patch reads only a window holding the traces it samples (the bounding
-    box of its fault-plane nodes widened by ``side_traces[1] + slope_margin`` traces across the fault, plus one
-    trace for the linear interpolation and one against rounding), assembled from tiles of 64 x 64 traces (every
-    sample) whose reflector slopes are computed with the halo of the structure tensor's filters
-    (:func:`~seismo3d.seismic.attributes.structure_tensor_halo`: 9 traces), clipped at the cube's edges; the tiles
-    last used (up to 256 MiB) are kept for the next patches (:class:`~seismo3d.seismic.blocks.windows.LazyWindows`).
-    Those slopes equal the whole cube's and the bounds tests use the cube's shape, so the throws are the in-memory
-    ones (bit for bit on the generated cubes of the tests). Memory: the tile cache, one window (about 150 x 150
-    traces for a fault dipping 60-70 degrees over 256 samples) and one tile's orientation workspace, plus the
-    faults. The patches are cut from each whole fault as in memory.
+    A 3D dask array is never held whole: each patch reads only the traces it samples (its nodes' bounding box widened
+    by ``side_traces[1] + slope_margin`` + 2 traces), from tiles of 64 x 64 traces whose slopes are computed with the
+    structure tensor's halo (:func:`~seismo3d.seismic.attributes.structure_tensor_halo`: 9 traces) and kept (up to 256
+    MiB, :class:`~seismo3d.seismic.blocks.windows.LazyWindows`): the throws are the in-memory ones (bit for bit on the
+    tests' generated cubes). Memory: the tile cache, one window (about 150 x 150 traces for a fault dipping 60-70
+    degrees over 256 samples), one tile's orientation workspace and the faults.
 
     Parameters
     ----------

@@ -185,3 +185,44 @@ def orientation_votes(gx, gy, n_bins, pad, unit, bins, weights):
             bins[y + pad, x + pad, 1] = b1
             weights[y + pad, x + pad, 0] = np.int64(w - w1)
             weights[y + pad, x + pad, 1] = np.int64(w1)
+
+
+@njit(cache=True, nogil=True)
+def two_nearest(gram, sq1, sq2, euclidean, best_idx, best, second, col_best_idx, col_best):
+    """One pass over a (n1, n2) Gram matrix of descriptors: distances d = sq1[i] + sq2[j] - 2 gram[i, j] (their
+    square roots when ``euclidean``); per row the two smallest (and the index of the smallest), per column the
+    smallest and its row."""
+    n1, n2 = gram.shape
+    for j in range(n2):
+        col_best[j] = np.inf
+        col_best_idx[j] = -1
+    for i in range(n1):
+        b = np.inf
+        s = np.inf
+        bi = -1
+        si = sq1[i]
+        for j in range(n2):
+            d = si + sq2[j] - 2.0 * gram[i, j]  # squared distance (sqrt is monotonic: taken at the end)
+            if d < b:
+                s = b
+                b = d
+                bi = j
+            elif d < s:
+                s = d
+            if d < col_best[j]:
+                col_best[j] = d
+                col_best_idx[j] = i
+        best_idx[i] = bi
+        best[i] = _finish(b, euclidean)
+        second[i] = _finish(s, euclidean)
+    for j in range(n2):
+        col_best[j] = _finish(col_best[j], euclidean)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _finish(d, euclidean):
+    if d < 0.0:
+        d = 0.0
+    if euclidean:
+        d = np.sqrt(d)
+    return d

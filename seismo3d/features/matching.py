@@ -14,6 +14,7 @@ import numpy as np
 from .._atomic import atomic_path
 from .._validation import check_choice
 from ..errors import InputError
+from . import _kernels
 from .hog_pyramid import HogPyramidParams, hog_pyramid_features
 from .keypoints import Features
 from .opencv import OPENCV_METHODS, opencv_features
@@ -32,10 +33,8 @@ __all__ = [
 METHODS = ("hog",) + OPENCV_METHODS
 VERIFY_MODELS = ("homography", "similarity")
 
-# rows of the Gram matrix computed at once (_BLOCK * n2 * 4 bytes), and of the float64 distances taken from it at once
-# (_ROWS * n2 * 16 bytes with their partition)
+# rows of the distance matrix computed at once (bounds memory at _BLOCK * n2 * 4 bytes)
 _BLOCK = 2048
-_ROWS = 512
 
 
 @dataclass(frozen=True)
@@ -184,46 +183,24 @@ def match_descriptors(descriptors1, descriptors2, *, binary: bool = False, ratio
     second = np.empty(n1, np.float32)
     col_idx = np.full(n2, -1, np.int64)
     col_best = np.full(n2, np.inf, np.float32)
+    blk_idx = np.empty(n2, np.int64)
+    blk_best = np.empty(n2, np.float32)
     a_sq = np.einsum("ij,ij->i", a, a)
     b_sq = np.einsum("ij,ij->i", b, b)
     for start in range(0, n1, _BLOCK):
         stop = min(start + _BLOCK, n1)
-        gram = a[start:stop] @ b.T  # one product per block: BLAS rounds alike for the same shapes
-        for lo in range(start, stop, _ROWS):
-            sl = slice(lo, min(lo + _ROWS, stop))
-            nn[sl], best[sl], second[sl], blk_idx, blk_best = _two_nearest(gram[sl.start - start:sl.stop - start],
-                                                                           a_sq[sl], b_sq, not binary)
-            better = blk_best < col_best
-            col_best[better] = blk_best[better]
-            col_idx[better] = blk_idx[better] + lo
+        gram = a[start:stop] @ b.T
+        _kernels.two_nearest(gram, a_sq[start:stop], b_sq, not binary, nn[start:stop], best[start:stop],
+                             second[start:stop], blk_idx, blk_best)
+        better = blk_best < col_best
+        col_best[better] = blk_best[better]
+        col_idx[better] = blk_idx[better] + start
     ratios = np.divide(best, second, out=np.ones(n1, np.float64), where=second > 0).astype(np.float64)
     keep = ratios < ratio if ratio < 1 else np.ones(n1, bool)
     if cross_check:
         keep &= col_idx[nn] == np.arange(n1)
     idx1 = np.nonzero(keep)[0].astype(np.int64)
     return idx1, nn[idx1], ratios[idx1]
-
-
-def _finish(squared: np.ndarray, euclidean: bool) -> np.ndarray:
-    """Squared distances (float64) as distances: negative rounding set to 0, square roots when ``euclidean``."""
-    d = np.maximum(squared, 0.0)
-    return np.sqrt(d) if euclidean else d
-
-
-def _two_nearest(gram, sq1, sq2, euclidean: bool):
-    """From a (n1, n2) float32 Gram matrix of descriptors and their squared norms: per row the index of the nearest
-    column (the first of equals) and the two smallest distances (float32), per column the nearest row and its
-    distance. The squared distance of a pair is ``(sq1[i] + sq2[j]) - 2 gram[i, j]``, the norms summed in float32 and
-    the rest in float64 (the loop this replaces, so the same bits); a column's distance is rounded to float32
-    before its square root, as that loop kept it."""
-    d = (sq1[:, None] + sq2[None, :]).astype(np.float64) - 2.0 * gram.astype(np.float64)
-    rows = np.arange(d.shape[0])
-    nn = np.argmin(d, axis=1)
-    best = _finish(d[rows, nn], euclidean).astype(np.float32)
-    second = _finish(np.partition(d, 1, axis=1)[:, 1], euclidean).astype(np.float32)
-    col_idx = np.argmin(d, axis=0)
-    col_best = _finish(d[col_idx, np.arange(d.shape[1])].astype(np.float32).astype(np.float64), euclidean)
-    return nn, best, second, col_idx, col_best.astype(np.float32)
 
 
 def match_features(features1: Features, features2: Features, *, ratio: float = 0.8, cross_check: bool = True,

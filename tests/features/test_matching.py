@@ -56,7 +56,6 @@ def test_match_descriptors_equals_brute_force_hamming_and_blocks(monkeypatch):
     import seismo3d.features.matching as matching
 
     monkeypatch.setattr(matching, "_BLOCK", 7)  # several row blocks: the column minima must merge across them
-    monkeypatch.setattr(matching, "_ROWS", 3)  # and several distance slices of each
     rng = np.random.default_rng(1)
     d2 = rng.integers(0, 256, (120, 32), dtype=np.uint8)
     d1 = d2[:60].copy()
@@ -66,46 +65,6 @@ def test_match_descriptors_equals_brute_force_hamming_and_blocks(monkeypatch):
     assert np.array_equal(i1, j1) and np.array_equal(i2, j2)
     np.testing.assert_allclose(r, rr, atol=1e-6)
     assert len(i1) > 40 and np.all(i1 == i2)
-
-
-def _loop_two_nearest(gram, sq1, sq2, euclidean):
-    """The numba loop _two_nearest replaced (issue 58), written out: a scan of the rows keeping float64 running
-    minima per row and float32 ones per column (its output arrays)."""
-    n1, n2 = gram.shape
-    finish = (lambda d: np.sqrt(max(d, 0.0))) if euclidean else (lambda d: max(d, 0.0))
-    col_best = np.full(n2, np.inf, np.float32)
-    col_idx = np.full(n2, -1, np.int64)
-    nn, best, second = np.empty(n1, np.int64), np.empty(n1, np.float32), np.empty(n1, np.float32)
-    for i in range(n1):
-        b = s = np.inf
-        for j in range(n2):
-            d = float(np.float32(sq1[i] + sq2[j])) - 2.0 * float(gram[i, j])
-            if d < b:
-                s, b, nn[i] = b, d, j
-            elif d < s:
-                s = d
-            if d < col_best[j]:
-                col_best[j], col_idx[j] = d, i
-        best[i], second[i] = finish(b), finish(s)
-    return nn, best, second, col_idx, np.array([finish(float(v)) for v in col_best], np.float32)
-
-
-@pytest.mark.parametrize("euclidean", [True, False])
-def test_two_nearest_is_the_loop_it_replaced(euclidean):
-    """The distance pass of match_descriptors in numpy (regular array work; a numba kernel compiled on every first
-    run before) gives the loop's bits, ties included: repeated rows and columns, exact duplicates (distance 0)."""
-    from seismo3d.features.matching import _two_nearest
-
-    rng = np.random.default_rng(3)
-    a = rng.random((40, 16)).astype(np.float32)
-    b = np.vstack([a[:10], a[:10], rng.random((30, 16))]).astype(np.float32)  # each of a[:10] twice: ties
-    a = np.vstack([a, a[:5]])  # repeated rows: column ties
-    a_sq, b_sq = np.einsum("ij,ij->i", a, a), np.einsum("ij,ij->i", b, b)
-    gram = a @ b.T
-    got, want = _two_nearest(gram, a_sq, b_sq, euclidean), _loop_two_nearest(gram, a_sq, b_sq, euclidean)
-    for g, w in zip(got, want):
-        assert g.dtype == w.dtype and np.array_equal(g, w)
-    assert np.count_nonzero(want[1] == want[2]) >= 10  # the ties exercised: nearest and second equal
 
 
 def test_match_descriptors_edge_cases():

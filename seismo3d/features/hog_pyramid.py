@@ -43,6 +43,7 @@ from .._validation import check_positive
 from ..errors import InputError
 from . import _kernels
 from .keypoints import Features, harris_peaks, harris_response, resize_levels, to_gray
+from .orientations import dominant_orientations, shifted_descriptors
 
 __all__ = [
     "HogPyramidParams",
@@ -414,14 +415,9 @@ def ring_descriptors(hist, radii, *, clip: float = 0.0, peak_ratio: float = 0.9,
     max_peaks = int(max_orientations)
     if max_peaks < 1:
         raise InputError(f"max_orientations must be >= 1; got {max_orientations!r}")
-    desc = np.empty((n * max_peaks, k * q), np.float32)
-    index = np.empty(n * max_peaks, np.int64)
-    shift = np.empty(n * max_peaks)
-    m = _kernels.orient_and_shift(rings, disc, float(peak_ratio), 4 * q, max_peaks, smooth, float(clip), desc, index,
-                                  shift)
-    desc, index, shift = desc[:m], index[:m], shift[:m]
-    orientations = np.mod(shift * (360.0 / q), 360.0)
-    return desc, orientations, index
+    index, shift = dominant_orientations(disc, smooth, float(peak_ratio), 4 * q, max_peaks)
+    desc, kept = shifted_descriptors(rings, index, shift, float(clip))
+    return desc, np.mod(shift[kept] * (360.0 / q), 360.0), index[kept]
 
 
 def _level_gradients(level, sigma):

@@ -8,8 +8,9 @@ stays near its value at any load where the wall time does not (at load 5-6 on 2 
 CPU time; a wall-clock limit of 1.5 s on a whole command failed once under load: tests/jobs/test_output_policy.py).
 The cost is the one of a user's command after its first: Python's compiled modules written (``pip install`` writes
 them, a user's interpreter writes an editable install's; CI sets PYTHONDONTWRITEBYTECODE, so seismo3d's own modules
-were compiled from source at every import: 0.4-0.6 CPU s more for a numba job, and ``seismo3d.jobs.register`` failed at 2.52 CPU s against 2.5 on 2026-11-26) and the best of up to
-three imports, as timeit takes its best (a limit passed once passes).
+were compiled from source at every import: 0.4-0.6 CPU s more for a numba job, and ``seismo3d.jobs.register``
+failed at 2.52 CPU s against 2.5 on 2026-11-26) and the best of up to three imports, as timeit takes its best (a
+limit passed once passes).
 The limits are about 2.5x the CPU seconds measured at load 5-6 on 2 cores (2026-12, Python 3.11), listed beside
 them; before issue 58, ``seismo3d.cli`` took 0.16-0.19 CPU s with numpy, and ``seismo3d.jobs.convert`` 0.93-1.17
 CPU s with scipy.ndimage and numba (the whole ``seismo3d.seismic`` package), then 0.19-0.21 CPU s with numpy and
@@ -57,15 +58,18 @@ BUDGETS = [
     ImportBudget("seismo3d.jobs.interchange", frozenset({"numpy", "segyio"}), 0.5),  # 0.08-0.10 (0.11-0.13); 0.24
     ImportBudget("seismo3d.jobs.match", frozenset({"numpy"}), 0.5),  # 0.10-0.14; 0.19
     ImportBudget("seismo3d.jobs.register_files", frozenset({"numpy", "scipy"}), 1.5),  # 0.52-0.53; 0.73
-    ImportBudget("seismo3d.jobs.evaluate", frozenset({"numpy", "scipy", "segyio"}), 2.0),  # 0.38-0.40 (0.43-0.49); 0.81
+    ImportBudget("seismo3d.jobs.evaluate", frozenset({"numpy", "scipy", "segyio"}),
+                 2.0),  # 0.38-0.40 (0.43-0.49); 0.81
     ImportBudget("seismo3d.jobs.faults", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.86-0.99; 1.16
-    ImportBudget("seismo3d.jobs.fault_tables", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.70-0.98; 1.15
+    ImportBudget("seismo3d.jobs.fault_tables", frozenset({"numpy", "scipy", "numba", "segyio"}),
+                 2.5),  # 0.70-0.98; 1.15
     ImportBudget("seismo3d.jobs.horizon", frozenset({"numpy", "scipy", "numba", "segyio"}), 3.0),  # 0.75-0.91; 1.33
     ImportBudget("seismo3d.jobs.register", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.72-0.96; 1.13
     ImportBudget("seismo3d.jobs.map", frozenset({"numpy", "scipy", "numba", "cv2"}), 2.5),  # 0.72-0.95; 1.12
     ImportBudget("seismo3d.jobs.lineaments", frozenset({"numpy", "scipy", "numba", "cv2", "tifffile"}),
                  3.0),  # 0.72-0.80; 1.43
-    ImportBudget("seismo3d.jobs.plan", frozenset({"numpy", "scipy", "numba", "cv2", "tifffile"}), 3.0),  # 0.70-0.78; 1.27
+    ImportBudget("seismo3d.jobs.plan", frozenset({"numpy", "scipy", "numba", "cv2", "tifffile"}),
+                 3.0),  # 0.70-0.78; 1.27
     ImportBudget("seismo3d.jobs.register_terrain", frozenset({"numpy", "scipy", "numba", "cv2", "tifffile"}),
                  2.5),  # 0.69-1.01; 1.14
     ImportBudget("seismo3d.jobs.render", frozenset({"numpy", "scipy", "numba", "cv2", "tifffile", "segyio"}),

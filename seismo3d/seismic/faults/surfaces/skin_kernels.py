@@ -324,7 +324,7 @@ def _fork_groups(pts: np.ndarray, top: float, bottom: float, scale: np.ndarray, 
     ``bottom`` (0: the largest branch's), or None when its branches' lines lie within ``angle`` degrees; ``scale``
     the link reach (traces, samples)."""
     vertical = int(scale[1])
-    core = np.nonzero((pts[:, 1] >= top + vertical // 2) & (pts[:, 1] <= bottom - vertical // 2))[0]
+    core = np.nonzero((pts[:, 1] >= top + vertical) & (pts[:, 1] <= bottom - vertical))[0]
     comp = _components(cKDTree(pts[core] / scale).query_pairs(1.0, p=np.inf, output_type="ndarray"),
                        np.zeros(core.size, np.int64), core.size) if core.size else np.zeros(0, np.int64)
     spans = [np.ptp(pts[core[comp == c], 1]) + 1 for c in range(comp.max() + 1)] if core.size else []
@@ -339,10 +339,11 @@ def _fork_groups(pts: np.ndarray, top: float, bottom: float, scale: np.ndarray, 
         return None
     group = np.full(len(pts), -1, np.int64)
     group[core] = part[comp]
-    # the fork's other cells (its ends, short pieces) go with the nearest branch cell
-    held, rest = np.nonzero(group >= 0)[0], np.nonzero((group < 0) & (pts[:, 1] >= top) & (pts[:, 1] <= bottom))[0]
-    if rest.size:
-        group[rest] = group[held[cKDTree(pts[held] / scale).query(pts[rest] / scale)[1]]]
+    # the fork's other cells (its ends, short pieces) go with the branch whose line passes nearest
+    rest = np.nonzero((group < 0) & (pts[:, 1] >= top) & (pts[:, 1] <= bottom))[0]
+    lines = [(pts[core[comp == c]].mean(axis=0), np.tan(np.radians(a))) for c, a in zip(branches, angles)]
+    miss = np.stack([np.abs(m[0] + b * (pts[rest, 1] - m[1]) - pts[rest, 0]) for m, b in lines])
+    group[rest] = part[np.asarray(branches)[np.argmin(miss, axis=0)]]
     # each trunk (a linked part above or below the fork) goes with the branch that continues its line best: the
     # branch whose cell nearest the trunk lies closest to the line fitted to the trunk within 4 reaches of the fork
     rest = np.nonzero(group < 0)[0]
@@ -371,8 +372,8 @@ def split_forks(xz, label, minimum: int, lateral: int, vertical: int, angle: flo
     ``SkinOptions.split_forks``); the labels (n,) int64, each part split off a new label above every old one.
 
     In a skin of at least ``minimum`` cells, a fork is a span of at least ``2 * vertical`` samples whose samples hold
-    two or more runs of traces (cells more than ``lateral`` traces apart). In the fork less ``vertical // 2``
-    samples at each end (where branches come near), the cells linked within the reach (``lateral`` traces,
+    two or more runs of traces (cells more than ``lateral`` traces apart). In the fork less ``vertical`` samples
+    at each end (where branches come near), the cells linked within the reach (``lateral`` traces,
     ``vertical`` samples) spanning at least ``vertical`` samples are its branches, each fitted with a line. A branch
     within ``angle`` of a larger branch's line stays with it; the others become new skins with the fork's cells
     nearest them, and each linked part of the skin above or below the fork (a trunk) goes with the branch whose cell

@@ -80,8 +80,8 @@ class SkinOptions:
         is split into them, each judged by its own throw (:func:`~.skin_kernels.split_opposite_dips`); None: no split
         (3D: never). Leave-one-survey-out: F3 F1 0.494 at 10-30 degrees, 0.490 at 5; Great South Basin 0.829 at each.
     split_forks : bool
-        2D: a skin forking into branches along lines at least ``split_angle`` apart is split into them, the parts
-        above and below the fork going with the branch they continue (:func:`~.skin_kernels.split_forks`).
+        2D: a skin that forks into branches along lines at least ``split_angle`` apart (None: never) is split into
+        them, the parts above and below going with the branch they continue (:func:`~.skin_kernels.split_forks`).
 
     Raises
     ------
@@ -124,8 +124,8 @@ class SkinOptions:
             raise InputError(f"max_shape_angle must be in (0, 90] degrees or None; got {self.max_shape_angle!r}")
         if self.split_angle is not None and not 0.0 < float(self.split_angle) < 90.0:
             raise InputError(f"split_angle must be in (0, 90) degrees or None; got {self.split_angle!r}")
-        if not isinstance(self.split_forks, bool) or (self.split_forks and self.split_angle is None):
-            raise InputError(f"split_forks must be True or False, and True needs a split_angle; got {self.split_forks!r}")
+        if not isinstance(self.split_forks, bool):
+            raise InputError(f"split_forks must be True or False (a bool); got {self.split_forks!r}")
 
     def smallest(self, shape: tuple) -> int:
         """The smallest skin kept in an image of ``shape``, cells."""
@@ -470,7 +470,7 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     if opt.merge_gap > 0:
         label = _merge_coplanar(points, label, _edge_cells(best, label, two_d), opt.smallest(shape), two_d, opt)
     del best
-    if two_d and opt.split_forks:
+    if two_d and opt.split_forks and opt.split_angle is not None:
         label = split_forks(points[:, [0, 2]], label, opt.smallest(shape), int(opt.lateral_reach),
                             int(opt.vertical_reach), float(opt.split_angle))
     if two_d and opt.split_angle is not None:

@@ -108,6 +108,6 @@ def test_fault_skins_split_a_y_whose_branches_dip_the_same_way():
 def test_split_forks_option():
     with pytest.raises(InputError, match="split_forks"):
         SkinOptions(split_forks="yes")
-    with pytest.raises(InputError, match="split_angle"):
-        SkinOptions(split_forks=True, split_angle=None)
+    with pytest.raises(InputError, match="split_forks"):
+        SkinOptions(split_forks=1)
     assert SkinOptions(split_forks=False, split_angle=None).split_forks is False

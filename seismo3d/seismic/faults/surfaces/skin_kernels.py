@@ -5,8 +5,7 @@ considers. And the split of 2D skins whose branches dip opposite ways (:func:`sp
 ``max_angle``, so two steep faults dipping opposite ways (a Y and its antithetic branch, an inverted V) whose normals
 lie closer than that link into one skin, whose zone then spans the block between them and whose throw compares the
 reflectors outside both. And the split of 2D skins at a fork (:func:`split_forks`, ``SkinOptions.split_forks``):
-two faults that meet (a Y, an X, a splay) whose cells' normals agree link into one skin; the branches' lines, not
-their cells' wavering normals, tell them apart.
+two faults that meet (a Y, an X) link into one skin; their branches' lines, not their normals, tell them apart.
 
 And the tips of kept 2D faults trimmed back to where the fault likelihood holds (:func:`trimmed_tips`,
 ``FaultTracingOptions.tip_level``): optimal surface voting (:mod:`~seismo3d.seismic.faults.surfaces.voting`) casts
@@ -325,25 +324,34 @@ def _fork_groups(pts: np.ndarray, top: float, bottom: float, scale: np.ndarray, 
     the link reach (traces, samples)."""
     vertical = int(scale[1])
     core = np.nonzero((pts[:, 1] >= top + vertical) & (pts[:, 1] <= bottom - vertical))[0]
+    if core.size < 2:
+        return None
     comp = _components(cKDTree(pts[core] / scale).query_pairs(1.0, p=np.inf, output_type="ndarray"),
-                       np.zeros(core.size, np.int64), core.size) if core.size else np.zeros(0, np.int64)
-    spans = [np.ptp(pts[core[comp == c], 1]) + 1 for c in range(comp.max() + 1)] if core.size else []
-    branches = [c for c in np.argsort(-np.bincount(comp), kind="stable") if spans[c] >= vertical] if spans else []
+                       np.zeros(core.size, np.int64), core.size)
+    spans = [np.ptp(pts[core[comp == c], 1]) + 1 for c in range(comp.max() + 1)]
+    branches = [c for c in np.argsort(-np.bincount(comp), kind="stable") if spans[c] >= vertical]
     angles = [_line_angle(pts[core[comp == c]]) for c in branches]
-    heads, part = [], np.full(comp.max() + 1 if core.size else 0, -1, np.int64)
-    for c, a in zip(branches, angles):  # a branch joins the first (larger) one within ``angle`` of its line
-        near = [g for g, h in enumerate(heads) if abs(a - angles[h]) < angle]
-        part[c] = near[0] if near else len(heads)
-        heads += [] if near else [branches.index(c)]
+    heads, part = [], []  # a branch joins the first (larger) one within ``angle`` of its line
+    for a in angles:
+        part.append(next((g for g, h in enumerate(heads) if abs(a - angles[h]) < angle), len(heads)))
+        heads += [len(part) - 1] if part[-1] == len(heads) else []
     if len(heads) < 2:
         return None
-    group = np.full(len(pts), -1, np.int64)
-    group[core] = part[comp]
+    index, branch = np.full(comp.max() + 1, -1, np.int64), np.full(len(pts), -1, np.int64)  # the cells' branches
+    index[branches], branch[core] = np.arange(len(branches)), index[comp]
     # the fork's other cells (its ends, short pieces) go with the branch whose line passes nearest
-    rest = np.nonzero((group < 0) & (pts[:, 1] >= top) & (pts[:, 1] <= bottom))[0]
+    inside = (pts[:, 1] >= top) & (pts[:, 1] <= bottom)
+    rest = np.nonzero(inside & (branch < 0))[0]
     lines = [(pts[core[comp == c]].mean(axis=0), np.tan(np.radians(a))) for c, a in zip(branches, angles)]
-    miss = np.stack([np.abs(m[0] + b * (pts[rest, 1] - m[1]) - pts[rest, 0]) for m, b in lines])
-    group[rest] = part[np.asarray(branches)[np.argmin(miss, axis=0)]]
+    branch[rest] = np.argmin([np.abs(m[0] + b * (pts[rest, 1] - m[1]) - pts[rest, 0]) for m, b in lines], axis=0)
+    # a lens (branches parting and joining again, both ends of each by the skin beyond the fork) is one fault: a
+    # split needs a branch with a free end, no cell beyond the fork within two link reaches of its top or bottom
+    if (~inside).any():
+        beyond = cKDTree(pts[~inside] / scale)
+        ends = [pts[branch == i][np.argsort(pts[branch == i, 1])[[0, -1]]] for i in range(len(branches))]
+        if all(beyond.query(e / scale, p=np.inf)[0].max() <= 2.0 for e in ends):
+            return None
+    group = np.where(branch >= 0, np.asarray(part)[branch], -1)
     # each trunk (a linked part above or below the fork) goes with the branch that continues its line best: the
     # branch whose cell nearest the trunk lies closest to the line fitted to the trunk within 4 reaches of the fork
     rest = np.nonzero(group < 0)[0]
@@ -355,14 +363,11 @@ def _fork_groups(pts: np.ndarray, top: float, bottom: float, scale: np.ndarray, 
         edge = top if pts[cells[0], 1] < top else bottom
         close = cells[np.abs(pts[cells, 1] - edge) <= 4 * vertical]
         fit = pts[close if close.size >= 2 else cells]
-        t0 = fit[:, 1].mean()
-        slope = np.tan(np.radians(_line_angle(fit)))
-        miss = []
-        for g in range(len(heads)):
-            mine = np.nonzero(group == g)[0]
+        (x0, t0), slope, miss = fit.mean(axis=0), np.tan(np.radians(_line_angle(fit))), []
+        for mine in (np.nonzero(group == g)[0] for g in range(len(heads))):
             dist, j = cKDTree(pts[mine] / scale).query(pts[cells] / scale)
             x, t = pts[mine[j[np.argmin(dist)]]]
-            miss.append(abs(fit[:, 0].mean() + slope * (t - t0) - x))
+            miss.append(abs(x0 + slope * (t - t0) - x))
         group[cells] = int(np.argmin(miss))
     return group
 
@@ -372,12 +377,12 @@ def split_forks(xz, label, minimum: int, lateral: int, vertical: int, angle: flo
     ``SkinOptions.split_forks``); the labels (n,) int64, each part split off a new label above every old one.
 
     In a skin of at least ``minimum`` cells, a fork is a span of at least ``2 * vertical`` samples whose samples hold
-    two or more runs of traces (cells more than ``lateral`` traces apart). In the fork less ``vertical`` samples
-    at each end (where branches come near), the cells linked within the reach (``lateral`` traces,
-    ``vertical`` samples) spanning at least ``vertical`` samples are its branches, each fitted with a line. A branch
-    within ``angle`` of a larger branch's line stays with it; the others become new skins with the fork's cells
-    nearest them, and each linked part of the skin above or below the fork (a trunk) goes with the branch whose cell
-    nearest the trunk lies closest to the trunk's own line. The parts are looked at again (up to 8 splits a skin).
+    two or more runs of traces (cells more than ``lateral`` traces apart). In the fork less ``vertical`` samples at
+    each end, the cells linked within the reach (``lateral`` traces, ``vertical`` samples) spanning ``vertical``
+    samples or more are its branches, fitted with lines; the fork's other cells go with the nearest line. A branch
+    within ``angle`` of a larger one's line stays with it, the others become new skins, when a branch ends free (a
+    lens whose branches join again at both ends stays whole); each linked part above or below the fork (a trunk)
+    goes with the branch whose cell nearest it lies closest to its line. Parts are looked at again (up to 8 splits).
     A side spur of a few cells, a straight or gently curved fault and branches along one line stay whole.
 
     Parameters
@@ -407,8 +412,7 @@ def split_forks(xz, label, minimum: int, lateral: int, vertical: int, angle: flo
                 if group is not None:
                     for g in range(1, int(group.max()) + 1):
                         label[cells[group == g]] = next_label
-                        todo.append(next_label)
-                        next_label += 1
+                        todo, next_label = todo + [next_label], next_label + 1
                     todo.append(own)
                     splits += 1
                     break

@@ -111,3 +111,17 @@ def test_split_forks_option():
     with pytest.raises(InputError, match="split_forks"):
         SkinOptions(split_forks=1)
     assert SkinOptions(split_forks=False, split_angle=None).split_forks is False
+
+
+def test_lens_whose_branches_join_again_stays_one():
+    """A fault that parts into two strands and joins again (a lens, as in a braided fault zone) stays whole: no
+    branch ends free. Cut before they join again, the same strands end free and are split."""
+    s = np.arange(0, 50)
+    out = np.where(s < 40, 0.35 * s, 14 - 1.4 * (s - 40))  # out along a line 19 degrees off, back in 10 samples
+    left = np.stack([np.round(55 - out), 50 + s], axis=1).astype(np.int64)
+    right = np.stack([np.round(55 + out), 50 + s], axis=1).astype(np.int64)
+    top, bottom = _line(55, 5, 50, 0.0), _line(55, 100, 150, 0.0)
+    xz, label = _split(top, left, right, bottom)
+    assert np.all(label == 0)
+    xz, label = _split(top, left[:40], right[:40])
+    assert len(np.unique(label)) == 2

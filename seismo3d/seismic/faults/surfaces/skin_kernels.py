@@ -320,8 +320,7 @@ def _forks(pts: np.ndarray, lateral: int, vertical: int) -> list:
 
 def _fork_groups(pts: np.ndarray, top: float, bottom: float, scale: np.ndarray, angle: float):
     """(n,) int64 part of each of one skin's cells ``pts`` (n, 2) split at the fork from sample ``top`` to
-    ``bottom`` (0: the largest branch's), or None when its branches' lines lie within ``angle`` degrees; ``scale``
-    the link reach (traces, samples)."""
+    ``bottom`` (0: the largest branch's), or None (see :func:`split_forks`); ``scale`` the reach (traces, samples)."""
     vertical = int(scale[1])
     core = np.nonzero((pts[:, 1] >= top + vertical) & (pts[:, 1] <= bottom - vertical))[0]
     if core.size < 2:
@@ -381,9 +380,10 @@ def split_forks(xz, label, minimum: int, lateral: int, vertical: int, angle: flo
     each end, the cells linked within the reach (``lateral`` traces, ``vertical`` samples) spanning ``vertical``
     samples or more are its branches, fitted with lines; the fork's other cells go with the nearest line. A branch
     within ``angle`` of a larger one's line stays with it, the others become new skins, when a branch ends free (a
-    lens whose branches join again at both ends stays whole); each linked part above or below the fork (a trunk)
-    goes with the branch whose cell nearest it lies closest to its line. Parts are looked at again (up to 8 splits).
-    A side spur of a few cells, a straight or gently curved fault and branches along one line stay whole.
+    lens whose branches join again at both ends stays whole) and each part holds ``minimum`` cells (a piece too
+    small to be kept would only be cut off its fault); each linked part above or below the fork (a trunk) goes with
+    the branch whose cell nearest it lies closest to its line. Parts are looked at again (up to 8 splits). A side
+    spur, a straight or gently curved fault and branches along one line stay whole.
 
     Parameters
     ----------
@@ -409,7 +409,7 @@ def split_forks(xz, label, minimum: int, lateral: int, vertical: int, angle: flo
             cells = np.nonzero(label == own)[0]
             for top, bottom in _forks(xz[cells], int(lateral), int(vertical)) if cells.size >= minimum else []:
                 group = _fork_groups(xz[cells], top, bottom, scale, float(angle))
-                if group is not None:
+                if group is not None and np.bincount(group).min() >= minimum:  # each part a skin that may be kept
                     for g in range(1, int(group.max()) + 1):
                         label[cells[group == g]] = next_label
                         todo, next_label = todo + [next_label], next_label + 1

@@ -125,3 +125,14 @@ def test_lens_whose_branches_join_again_stays_one():
     assert np.all(label == 0)
     xz, label = _split(top, left[:40], right[:40])
     assert len(np.unique(label)) == 2
+
+
+def test_branch_too_small_to_be_kept_is_not_cut_off():
+    """A Y whose arm (30 cells, its first few with the trunk) is split off when a skin of its size may be kept, and
+    left on its fault when it may not."""
+    xz = np.concatenate([_line(50, 10, 60, 0.0), _line(50, 60, 130, 0.0), _line(50, 60, 90, 0.5)])
+    label = np.zeros(len(xz), np.int64)
+    arm = np.bincount(split_forks(xz, label, MINIMUM, LATERAL, VERTICAL, ANGLE)).min()
+    assert 20 <= arm <= 30
+    assert len(np.unique(split_forks(xz, label, arm, LATERAL, VERTICAL, ANGLE))) == 2
+    assert np.all(split_forks(xz, label, arm + 1, LATERAL, VERTICAL, ANGLE) == 0)

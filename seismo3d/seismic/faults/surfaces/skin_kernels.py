@@ -311,10 +311,8 @@ def _forks(pts: np.ndarray, lateral: int, vertical: int) -> list:
     starts = np.concatenate([[True], (t[1:] != t[:-1]) | (x[1:] - x[:-1] > lateral)])
     rows, first = np.unique(t, return_index=True)
     forked = rows[np.add.reduceat(starts.astype(np.int64), first) >= 2]
-    if forked.size == 0:
-        return []
     cut = np.nonzero(np.diff(forked) >= vertical)[0]
-    tops, bottoms = np.append(forked[:1], forked[cut + 1]), np.append(forked[cut], forked[-1])
+    tops, bottoms = np.append(forked[:1], forked[cut + 1]), np.append(forked[cut], forked[-1:])
     return [(a, b) for a, b in zip(tops, bottoms) if b - a + 1 >= 2 * vertical]
 
 
@@ -343,16 +341,17 @@ def _fork_groups(pts: np.ndarray, top: float, bottom: float, scale: np.ndarray, 
     rest = np.nonzero(inside & (branch < 0))[0]
     lines = [(pts[core[comp == c]].mean(axis=0), np.tan(np.radians(a))) for c, a in zip(branches, angles)]
     branch[rest] = np.argmin([np.abs(m[0] + b * (pts[rest, 1] - m[1]) - pts[rest, 0]) for m, b in lines], axis=0)
-    # a lens (branches parting and joining again, both ends of each by the skin beyond the fork) is one fault: a
-    # split needs a branch with a free end, no cell beyond the fork within two link reaches of its top or bottom
-    if (~inside).any():
-        beyond = cKDTree(pts[~inside] / scale)
-        ends = [pts[branch == i][np.argsort(pts[branch == i, 1])[[0, -1]]] for i in range(len(branches))]
-        if all(beyond.query(e / scale, p=np.inf)[0].max() <= 2.0 for e in ends):
-            return None
+    # a branch is joined at both ends when a cell beyond the fork lies within two link reaches of its top and of its
+    # bottom; a lens (every branch joined: strands parting and joining again) is one fault
+    beyond = cKDTree(pts[~inside] / scale) if (~inside).any() else None
+    ends = [pts[branch == i][np.argsort(pts[branch == i, 1])[[0, -1]]] for i in range(len(branches))]
+    joined = [beyond is not None and beyond.query(e / scale, p=np.inf)[0].max() <= 2.0 for e in ends]
+    if all(joined):
+        return None
     group = np.where(branch >= 0, np.asarray(part)[branch], -1)
-    # each trunk (a linked part above or below the fork) goes with the branch that continues its line best: the
-    # branch whose cell nearest the trunk lies closest to the line fitted to the trunk within 4 reaches of the fork
+    # each trunk (a linked part above or below the fork) goes with a branch joined at both ends (the fault through
+    # the fork) if any, the one whose cell nearest the trunk lies closest to the trunk's line (fitted within 4 reaches)
+    through = {part[i] for i in range(len(branches)) if joined[i]}
     rest = np.nonzero(group < 0)[0]
     below = np.where(pts[rest, 1] > bottom, 1e6, 0.0)[:, None]
     parts = _components(cKDTree(pts[rest] / scale + below).query_pairs(1.0, p=np.inf, output_type="ndarray"),
@@ -363,10 +362,11 @@ def _fork_groups(pts: np.ndarray, top: float, bottom: float, scale: np.ndarray, 
         close = cells[np.abs(pts[cells, 1] - edge) <= 4 * vertical]
         fit = pts[close if close.size >= 2 else cells]
         (x0, t0), slope, miss = fit.mean(axis=0), np.tan(np.radians(_line_angle(fit))), []
-        for mine in (np.nonzero(group == g)[0] for g in range(len(heads))):
+        for g in range(len(heads)):
+            mine = np.nonzero(group == g)[0]
             dist, j = cKDTree(pts[mine] / scale).query(pts[cells] / scale)
             x, t = pts[mine[j[np.argmin(dist)]]]
-            miss.append(abs(x0 + slope * (t - t0) - x))
+            miss.append(abs(x0 + slope * (t - t0) - x) if not through or g in through else np.inf)
         group[cells] = int(np.argmin(miss))
     return group
 
@@ -382,8 +382,8 @@ def split_forks(xz, label, minimum: int, lateral: int, vertical: int, angle: flo
     within ``angle`` of a larger one's line stays with it, the others become new skins, when a branch ends free (a
     lens whose branches join again at both ends stays whole) and each part holds ``minimum`` cells (a piece too
     small to be kept would only be cut off its fault); each linked part above or below the fork (a trunk) goes with
-    the branch whose cell nearest it lies closest to its line. Parts are looked at again (up to 8 splits). A side
-    spur, a straight or gently curved fault and branches along one line stay whole.
+    a branch joined at both ends if any, the one whose cell nearest it lies closest to its line. Parts are looked at
+    again (up to 8 splits). A side spur, a straight or gently curved fault and branches along one line stay whole.
 
     Parameters
     ----------

@@ -470,12 +470,12 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     if opt.merge_gap > 0:
         label = _merge_coplanar(points, label, _edge_cells(best, label, two_d), opt.smallest(shape), two_d, opt)
     del best
-    if two_d and opt.split_forks and opt.split_angle is not None:
-        label = split_forks(points[:, [0, 2]], label, opt.smallest(shape), int(opt.lateral_reach),
-                            int(opt.vertical_reach), float(opt.split_angle))
     if two_d and opt.split_angle is not None:
         label = split_opposite_dips(points[:, [0, 2]], normals[:, [0, 2]], label, opt.smallest(shape),
                                     int(opt.lateral_reach), int(opt.vertical_reach), float(opt.split_angle))
+    if two_d and opt.split_forks and opt.split_angle is not None:
+        label = split_forks(points[:, [0, 2]], label, opt.smallest(shape), int(opt.lateral_reach),
+                            int(opt.vertical_reach), float(opt.split_angle))
     sizes = np.bincount(label, minlength=points.shape[0])
     strong = np.zeros(sizes.size, dtype=bool)
     strong[np.unique(label[vals >= upper])] = True

@@ -11,12 +11,16 @@ from __future__ import annotations
 import numpy as np
 
 
-def _fourier_tables(q: int, up: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """cos / sin of 2 pi m b / q, (q // 2 + 1, q), and of 2 pi m t / up, (up, q // 2 + 1), float64."""
-    m = np.arange(q // 2 + 1, dtype=np.float64)
-    phase_q = 2.0 * np.pi * m[:, None] * np.arange(q)[None, :] / q
-    phase_up = 2.0 * np.pi * np.arange(up)[:, None] * m[None, :] / up
-    return np.cos(phase_q), np.sin(phase_q), np.cos(phase_up), np.sin(phase_up)
+def _bin_tables(q: int) -> tuple[np.ndarray, np.ndarray]:
+    """cos / sin of 2 pi m b / q, (q // 2 + 1, q) float64: the one-sided Fourier series over the ``q`` bins."""
+    phase = 2.0 * np.pi * np.arange(q // 2 + 1, dtype=np.float64)[:, None] * np.arange(q)[None, :] / q
+    return np.cos(phase), np.sin(phase)
+
+
+def _grid_tables(q: int, up: int) -> tuple[np.ndarray, np.ndarray]:
+    """cos / sin of 2 pi m t / up, (up, q // 2 + 1) float64: the series evaluated on a grid of ``up`` samples."""
+    phase = 2.0 * np.pi * np.arange(up)[:, None] * np.arange(q // 2 + 1, dtype=np.float64)[None, :] / up
+    return np.cos(phase), np.sin(phase)
 
 
 def _one_sided(q: int) -> np.ndarray:
@@ -53,8 +57,9 @@ def dominant_orientations(disc: np.ndarray, smooth: np.ndarray, peak_ratio: floa
     position : (M,) float64 ndarray
         The peak's position in bins, refined by a parabola through its grid value and neighbours.
     """
-    n, q = disc.shape
-    cos_q, sin_q, cos_f, sin_f = _fourier_tables(q, up)
+    q = disc.shape[1]
+    cos_q, sin_q = _bin_tables(q)
+    cos_f, sin_f = _grid_tables(q, up)
     w = smooth * _one_sided(q)
     re = (disc @ cos_q.T) * w
     im = -(disc @ sin_q.T) * w
@@ -97,7 +102,7 @@ def shifted_descriptors(rings: np.ndarray, window: np.ndarray, position: np.ndar
         The peaks that give a descriptor (not those whose resampled rings are all 0).
     """
     n, k, q = rings.shape
-    cos_q, sin_q, _, _ = _fourier_tables(q, 1)
+    cos_q, sin_q = _bin_tables(q)
     ring_re = rings @ cos_q.T  # (N, K, Q // 2 + 1)
     ring_im = -(rings @ sin_q.T)
     m = np.arange(q // 2 + 1)

@@ -8,8 +8,11 @@ Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/horizons.py [--quick] 
    5 samples (untracked traces count as misses; dead traces are not scored), coverage, seconds per slice; for
    track_horizon's default, the registration tracker and the plain amplitude autotracker (same extremum picks,
    +-3 samples, breadth-first), in the same run.
-2. Synthetic faulted cubes (seismo3d.data.synthetic_cube, 3 faults): faults traced with trace_faults, every
-   horizon tracked from one seed on the middle inline; median absolute error against the true horizons.
+2. Synthetic faulted cubes (seismo3d.data.synthetic_cube, 3 faults, seeds 0-2): faults traced with trace_faults,
+   every horizon tracked from one seed on the middle inline; median absolute error against the true horizons.
+   ``--check`` exits 1 unless, on every cube, every horizon's median is within 0.16 samples and the mean share of
+   traces within 2 samples is at least 0.89 (``SYNTHETIC_*_LIMIT``): the claim of
+   tests/seismic/test_horizon_tracking.py, which keeps cube 0 (about 2 min for the three cubes).
 3. Speed: seconds per tracked slice (along one inline, and inline-to-inline carry) for growing slice sizes.
 4. f3_crop (23 x 18 traces of 75 samples at 4 ms, real): no picks by people; the jitter of neighbouring picks (share
    of steps of 10 ms or more between neighbouring traces along inlines and crosslines, median step) and coverage of
@@ -21,7 +24,9 @@ Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/horizons.py [--quick] 
    traces within 5 samples against tracking without them, the median stays at the one measured (``MEDIAN_MEASURED``,
    the same as tests/seismic/test_horizon_tracking.py's) and, but on horizon 6 (whose fault throw the traced faults
    do not carry), 99 % of the traces are within 5 samples: the claim moved here from the test suite (about 4 min on 2
-   cores; the suite keeps a window of these inlines).
+   cores; the suite keeps a window of these inlines); and unless no traced fault lies in the crosshatch of dipping
+   events at crosslines 300-390, samples 830-1040 (issue 54's claim, moved from
+   tests/seismic/faults/test_pipeline.py, which keeps Penobscot crossline 1155's).
 """
 
 from __future__ import annotations
@@ -113,26 +118,48 @@ def _seed(syn, k: int, i0: int) -> tuple[tuple[float, float, float], str]:
     return (i0, j0, float(ref[i0, j0])), "peak" if syn.horizon_polarity[k] > 0 else "trough"
 
 
-def synthetic(quick: bool) -> None:
+# The generated cubes' limits (tests/seismic/test_horizon_tracking.py keeps cube 0; cubes 1 and 2 are checked here):
+# every horizon's median |error| within 0.16 samples (measured 0.083 / 0.068 / 0.106 on cubes 0-2 on 2026-11-27,
+# 1.5x the worst; the issue's target is one sample) and, per cube, the mean share of traces within 2 samples at least
+# 0.89 (measured 0.951 / 0.928 / 0.958, the worst less 3 points).
+SYNTHETIC_MEDIAN_LIMIT = 0.16
+SYNTHETIC_WITHIN_2_LIMIT = 0.89
+
+
+def synthetic(quick: bool) -> bool:
+    """Section 2: the generated faulted cubes (seeds 0-2; 0 with ``quick``), every horizon tracked with the traced
+    faults by ``track_horizon``'s defaults, beside no fault input and the plain autotracker; True when every cube
+    meets the limits above."""
     print("\n## Synthetic faulted cubes 64 x 64 x 96 (3 faults, noise 0.1), all horizons, seed on the middle inline\n")
     print("| cube seed | horizon | faults traced | median abs, with faults | within 2 % | coverage % | median abs, "
           "no fault input | plain autotracker median abs | plain within 2 % |")
     print("|---|---|---|---|---|---|---|---|---|")
+    ok = True
     for cs in range(1 if quick else 3):
         syn = synthetic_cube((64, 64, 96), n_faults=3, seed=cs)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             faults = trace_faults(syn.cube, progress=False)
         i0 = syn.shape[0] // 2
+        medians, within_2 = [], []
         for k in range(syn.horizons.shape[0]):
             ref = syn.horizons[k]
             seed, pol = _seed(syn, k, i0)
-            e = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, faults=faults, features=None).times, ref)
-            e0 = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, features=None).times, ref)
+            e = horizon_errors(track_horizon(syn.cube, seed, polarity=pol, faults=faults).times, ref)
+            e0 = horizon_errors(track_horizon(syn.cube, seed, polarity=pol).times, ref)
             ea = horizon_errors(autotrack(syn.cube, seed, polarity=pol).times, ref)
+            medians.append(e.median_abs)
+            within_2.append(e.within_2)
             print(f"| {cs} | {k} | {len(faults.faults)} | {e.median_abs:.2f} | {100 * e.within_2:.1f} | "
                   f"{100 * e.coverage:.1f} | {e0.median_abs:.2f} | {ea.median_abs:.2f} | "
                   f"{100 * ea.within_2:.1f} |", flush=True)
+        right = bool(np.all(np.isfinite(medians)) and max(medians) <= SYNTHETIC_MEDIAN_LIMIT
+                     and np.mean(within_2) >= SYNTHETIC_WITHIN_2_LIMIT)
+        ok &= right
+        print(f"cube {cs}: largest median {max(medians):.3f} samples (limit {SYNTHETIC_MEDIAN_LIMIT}), mean within 2 "
+              f"samples {np.mean(within_2):.3f} (limit {SYNTHETIC_WITHIN_2_LIMIT}): {'ok' if right else 'MISSED'}",
+              flush=True)
+    return ok
 
 
 def speed(quick: bool) -> None:
@@ -196,10 +223,17 @@ def traced_faults(quick: bool) -> bool:
         faults = trace_faults(peno.cube, progress=False)
     print(f"\n## Penobscot: the 18 inlines' horizons with the {len(faults.faults)} faults trace_faults finds in them "
           f"({time.perf_counter() - t0:.0f} s), seed inline 0, trace 256\n")
+    # no fault where dipping events cross (issue 54; moved from tests/seismic/faults/test_pipeline.py, issue 58): the
+    # one these inlines had until 2026-11-26, a crosshatch at crosslines 312-383, samples 838-1033 (throw 5.07 under
+    # the reflectors' half period 5.31, side correlation 0.20), is not a clear displacement
+    crosshatch = [f.id for f in faults.faults if 300 <= np.median(f.points[:, 1]) <= 390
+                  and 830 <= np.median(f.points[:, 2]) <= 1040]
+    ok = not crosshatch
+    print(f"faults in the crosshatch (crosslines 300-390, samples 830-1040): {crosshatch} "
+          f"({'ok' if ok else 'MISSED'}: none expected)\n")
     print("| horizon | median abs, with faults | within 5 %, with faults | median abs, no fault input | within 5 %, "
           "no fault input | median limit | check |")
     print("|---|---|---|---|---|---|---|")
-    ok = True
     for k in range(peno.horizons.shape[1]):
         ref = peno.horizons[:, k]
         seed = (0, 256, ref[0, 256])
@@ -215,7 +249,7 @@ def traced_faults(quick: bool) -> bool:
 
 SECTIONS = {"penobscot": penobscot, "synthetic": synthetic, "speed": speed, "f3_crop": f3_crop,
             "traced_faults": traced_faults}
-CHECKED = {"traced_faults"}  # the sections whose target --check asserts
+CHECKED = {"synthetic", "traced_faults"}  # the sections whose targets --check asserts
 
 
 def main() -> int:
@@ -223,7 +257,8 @@ def main() -> int:
     parser.add_argument("--quick", action="store_true", help="fewer cases (point-to-plane only on Penobscot)")
     parser.add_argument("--only", choices=list(SECTIONS))
     parser.add_argument("--check", action="store_true",
-                        help="run the checked sections (traced_faults; with --only, that one) and exit 1 when a "
+                        help="run the checked sections (synthetic, traced_faults; with --only, that one) and exit 1 "
+                             "when a "
                              "target is missed")
     args = parser.parse_args()
     names = [args.only] if args.only else (sorted(CHECKED) if args.check else list(SECTIONS))

@@ -37,10 +37,12 @@ def test_track_2d_section_without_faults_follows_true_horizons(seed):
         assert e.within_2 >= 0.99, (k, e)  # measured 1.0 on every horizon; limit: one trace of the 160 off
 
 
-# the synthetic section of benchmarks/horizons.py prints these horizons (cube seeds 0-2): the issue's target is a
-# median within one sample on every horizon (the global tracker: 0.05-0.17 samples). Before the crossing test used
-# each fault's local plane, cube 0 horizon 1 (seeded where two faults cross) was 5.4 samples off with the registration
-# tracker; before pairs across traced faults were checked with short windows, cube 0 horizon 2 was 5.0 off.
+# the synthetic section of benchmarks/horizons.py prints these horizons (cube seeds 0-2): the issue's target is a median
+# within one sample on every horizon (the global tracker: 0.05-0.17 samples). The suite keeps cube 0 (its faults are
+# traced once for three tests); cubes 1 and 2 (about 40 s each in the suite) are asserted with the same limits by
+# ``python benchmarks/horizons.py --only synthetic --check`` (benchmarks/checks.py, issue 58). Before the crossing test
+# used each fault's local plane, cube 0 horizon 1 (seeded where two faults cross) was 5.4 samples off with the
+# registration tracker; before pairs across traced faults were checked with short windows, cube 0 horizon 2 was 5.0 off.
 def _faulted_errors(syn, faults):
     out = []
     for k in range(syn.horizons.shape[0]):
@@ -64,24 +66,24 @@ def faulted_errors(faulted_cube):
     return errors
 
 
-@pytest.mark.parametrize("cube_seed", [0, 1, 2])
+@pytest.mark.parametrize("cube_seed", [0])
 @pytest.mark.slow
 def test_track_3d_across_faults_median_error_within_one_sample(faulted_errors, cube_seed):
     medians = [e.median_abs for e in faulted_errors(cube_seed)]
     assert np.all(np.isfinite(medians)) and np.max(medians) <= 1.0, medians  # the issue's target
-    assert np.max(medians) <= 0.17, medians  # measured 0.083 / 0.104 / 0.109 (cubes 0-2), limit 1.5x the worst
+    assert np.max(medians) <= 0.16, medians  # measured 0.083 / 0.068 / 0.106 (cubes 0-2), limit 1.5x the worst
 
 
-# The registration tracker kept 80 % of these horizons' traces within 2 samples on average; the global tracker keeps
-# 93 / 87 / 90 % (cubes 0-2). It kept 79 / 85 / 74 % before the lags near the trace ends were searched symmetrically
-# (82 / 83 / 82 % with that alone) and the picks chosen by sweeps over both lateral axes (regions beyond a fault a
-# cycle off on some inlines only, which the line-by-line choice could not see).
-@pytest.mark.parametrize("cube_seed", [0, 1, 2])
+# The registration tracker kept 80 % of these horizons' traces within 2 samples on average; the global tracker keeps 95
+# / 93 / 96 % (cubes 0-2; 93 / 87 / 90 % at an earlier stop). It kept 79 / 85 / 74 % before the lags near the trace ends
+# were searched symmetrically (82 / 83 / 82 % with that alone) and the picks chosen by sweeps over both lateral axes
+# (regions beyond a fault a cycle off on some inlines only, which the line-by-line choice could not see).
+@pytest.mark.parametrize("cube_seed", [0])
 @pytest.mark.slow
 def test_track_3d_across_faults_keeps_most_traces_within_two_samples(faulted_errors, cube_seed):
-    # measured 0.930 / 0.871 / 0.890 (cubes 0-2); limit the worst less 3 points (a cube's horizons moved a cycle off
-    # over 3 % of their traces fail)
-    assert np.mean([e.within_2 for e in faulted_errors(cube_seed)]) >= 0.84
+    # measured 0.951 / 0.928 / 0.958 (cubes 0-2, 2026-11-27; 0.930 / 0.871 / 0.890 before); limit the worst less 3
+    # points (a cube's horizons moved a cycle off over 3 % of their traces fail)
+    assert np.mean([e.within_2 for e in faulted_errors(cube_seed)]) >= 0.89
 
 
 @pytest.mark.slow

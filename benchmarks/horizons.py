@@ -12,7 +12,7 @@ Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/horizons.py [--quick] 
    every horizon tracked from one seed on the middle inline; median absolute error against the true horizons.
    ``--check`` exits 1 unless, on every cube, every horizon's median is within 0.16 samples and the mean share of
    traces within 2 samples is at least 0.89 (``SYNTHETIC_*_LIMIT``): the claim of
-   tests/seismic/test_horizon_tracking.py, which keeps cube 0 (about 2 min for the three cubes).
+   tests/seismic/test_horizon_tracking.py, which keeps cube 0 (2.4 min for the three cubes on 2 cores).
 3. Speed: seconds per tracked slice (along one inline, and inline-to-inline carry) for growing slice sizes.
 4. f3_crop (23 x 18 traces of 75 samples at 4 ms, real): no picks by people; the jitter of neighbouring picks (share
    of steps of 10 ms or more between neighbouring traces along inlines and crosslines, median step) and coverage of

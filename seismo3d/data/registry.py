@@ -97,6 +97,10 @@ _SOURCES = types.MappingProxyType({
     "laspy": _Source("laspy/laspy", "fbc5b375f9dad6bae499a81ca436bee361ecf047", "BSD-2-Clause (laspy test data)"),
     "pysheds": _Source("mdbartos/pysheds", "5fc9d9d244ee3f1a6fde04f69b5dd1000ba908ae",
                        "HydroSHEDS licence (WWF / USGS)"),
+    "parihaka": _Source("zuenko/seismis_analysis", "00c8ae87c3082bc9e638bce2b0d839c90674e0f5",
+                        "Parihaka 3D: New Zealand Petroleum & Minerals open data (the repository states no licence)"),
+    "faultnet": _Source("douyimin/FaultNet", "8b513733ed1461a0cd1c62cd012277193473c84a",
+                        "Apache-2.0 (FaultNet, Dou et al. 2022: a peer measured in benchmarks/, never a dependency)"),
 })
 
 

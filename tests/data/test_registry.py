@@ -26,6 +26,7 @@ EXPECTED_DERIVED = {
     "seismic/gsb_fault_sticks/gsb_crl_2600.sgy",
     "seismic/gsb_fault_sticks/gsb_crl_2800.sgy",
     "seismic/gsb_fault_sticks/gsb_crl_2800_second_mask.png",
+    "seismic/parihaka_timeslices/parihaka_timeslices_cols174_302.npz",
     "seismic/penobscot_sections/penobscot_sections_1075_1092.npz",
 }
 SMALL_FILE = "rgbd/tum_fr1xyz_pair/kinect_params.txt"  # not derived, 29 bytes
@@ -111,7 +112,7 @@ def test_list_files_prefix():
                      "scans/bunny/bun045_clean.ply"]
     assert len(list_files("rgbd/7scenes_redkitchen_0000_0495/depth/")) == 100
     assert list_files("no/such/prefix") == []
-    assert len(list_files()) == len(REGISTRY) == 347 + 91 + 10 + 5
+    assert len(list_files()) == len(REGISTRY) == 347 + 91 + 10 + 5 + 2
     segyio_tests = list_files("seismic/segyio_test_data/")
     assert len(segyio_tests) == 91 and len(list_files("seismic/segyio_test_data/multiformats/")) == 28
     assert list_files("seismic/f3_fault_masks/") == sorted(

@@ -59,12 +59,10 @@ def in_memory_bytes(shape) -> int:
 
 
 def resident_memory() -> int:
-    """Resident memory of this process, bytes (256 MiB when it cannot be read)."""
-    try:
-        import psutil
-        return int(psutil.Process().memory_info().rss)
-    except (ImportError, OSError):
-        return 256 << 20
+    """Resident memory of this process, bytes (psutil, a dependency)."""
+    import psutil
+
+    return int(psutil.Process().memory_info().rss)
 
 
 def worker_baseline(chunking, input_chunk: int) -> int:

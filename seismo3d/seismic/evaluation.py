@@ -96,7 +96,7 @@ class RegistrationErrors:
     corner_error: float
 
 
-def evaluate_faults(thin_mask, labels, *, tolerance=2.0, border=0) -> FaultScores:
+def evaluate_faults(thin_mask, labels, *, tolerance=3.0, border=0) -> FaultScores:
     """Precision and recall of thinned faults against labelled fault samples.
 
     A predicted sample is correct when a labelled sample lies within ``tolerance`` samples of it (Euclidean
@@ -110,7 +110,8 @@ def evaluate_faults(thin_mask, labels, *, tolerance=2.0, border=0) -> FaultScore
     labels : array_like of int, same shape
         Ground truth: > 0 on fault samples.
     tolerance : float, optional
-        Distance in samples within which a prediction matches.
+        Distance in samples within which a prediction matches; the default, 3 samples, is the tolerance of every fault
+        score the project reports (``seismo3d evaluate``, :func:`seismo3d.seismic.fault_scoring.tolerant_scores`).
     border : int, optional
         Samples within ``border`` of the top or bottom of the sample axis are left out of both scores. The default 0
         scores everything: the likelihood stays valid up to the top and bottom (the windows along dip are one-sided

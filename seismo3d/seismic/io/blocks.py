@@ -16,18 +16,16 @@ import numpy as np
 import segyio
 
 from ...errors import InputError, SegyFormatError, SegyGeometryError
+from .layout import SAMPLE_BYTES, TRACE_HEADER_BYTES
 
 __all__ = ["SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle"]
 
 _RUN_TRACES = 1024  # traces read per segyio call into a block (a few MB of temporaries, not a block's worth)
-TRACE_HEADER_BYTES = 240
 # Bytes of each trace header field: up to the next field's first byte (SEG-Y rev 1 Table 3; 2 or 4)
 FIELD_STARTS = sorted(int(k) for k in segyio.TraceField.enums())
 _FIELD_BYTES = dict(zip(FIELD_STARTS, np.diff(FIELD_STARTS + [TRACE_HEADER_BYTES + 1]).tolist()))
-# Bytes per sample of the sample formats (SEG-Y rev 2 Table 1; binary header bytes 3225-3226)
 _IEEE_FLOAT32 = 5
 _ENDIAN = {"big": ">", "little": "<"}
-_SAMPLE_BYTES = {1: 4, 2: 4, 3: 2, 5: 4, 6: 8, 8: 1, 9: 8, 10: 4, 11: 2, 12: 8, 15: 3, 16: 1}
 
 
 @dataclass(frozen=True)
@@ -230,7 +228,7 @@ def header_dtype(fields, endian: str) -> np.dtype:
 def trace_layout(f, path, n_samples: int, n_traces: int) -> tuple | None:
     """``(byte of the first trace, bytes per trace)`` of the open SEG-Y ``f`` at ``path``, or None when its size does
     not match traces of one fixed length (or its sample format is unknown)."""
-    sample_bytes = _SAMPLE_BYTES.get(int(f.format))
+    sample_bytes = SAMPLE_BYTES.get(int(f.format))
     if sample_bytes is None:
         return None
     first = 3600 + 3200 * int(f.ext_headers)

@@ -30,7 +30,8 @@ import numpy as np
 
 from ...errors import SegyFormatError
 
-__all__ = ["SegyLayout", "read_segy_layout", "segyio_failure", "FORMAT_NAMES", "READABLE_FORMATS"]
+__all__ = ["SegyLayout", "read_segy_layout", "segyio_failure", "FORMAT_NAMES", "READABLE_FORMATS", "SAMPLE_BYTES",
+           "TRACE_HEADER_BYTES"]
 
 TEXT_HEADER_BYTES = 3200
 BINARY_HEADER_BYTES = 400
@@ -53,7 +54,8 @@ FORMAT_NAMES = {
     15: "3-byte unsigned integer",
     16: "1-byte unsigned integer",
 }
-_SAMPLE_BYTES = {1: 4, 2: 4, 3: 2, 4: 4, 5: 4, 6: 8, 7: 3, 8: 1, 9: 8, 10: 4, 11: 2, 12: 8, 15: 3, 16: 1}
+# Bytes per sample of each sample format code (SEG-Y rev 2 Table 1; binary header bytes 3225-3226)
+SAMPLE_BYTES = {1: 4, 2: 4, 3: 2, 4: 4, 5: 4, 6: 8, 7: 3, 8: 1, 9: 8, 10: 4, 11: 2, 12: 8, 15: 3, 16: 1}
 # The codes segyio's Python reader decodes (it reads 4, 7 and 15 as IBM floats, with a warning).
 READABLE_FORMATS = frozenset({1, 2, 3, 5, 6, 8, 9, 10, 11, 12, 16})
 
@@ -127,7 +129,7 @@ class _Reading:
 
     @property
     def has_format_code(self) -> bool:
-        return self.format in _SAMPLE_BYTES
+        return self.format in SAMPLE_BYTES
 
 
 def _read_fields(binary: bytes, endian: str) -> _Reading:
@@ -282,7 +284,7 @@ def read_segy_layout(path, *, endian=None) -> SegyLayout:
                               "header is damaged or the file is not SEG-Y")
 
     data_offset = HEADER_BYTES + TEXT_HEADER_BYTES * n_text
-    trace_bytes = TRACE_HEADER_BYTES + chosen.n_samples * _SAMPLE_BYTES[chosen.format]
+    trace_bytes = TRACE_HEADER_BYTES + chosen.n_samples * SAMPLE_BYTES[chosen.format]
     rest = size - data_offset
     if rest <= 0:
         where = "its headers" if n_text == 0 else f"its headers and {n_text} extended textual headers"
@@ -293,7 +295,7 @@ def read_segy_layout(path, *, endian=None) -> SegyLayout:
         _refuse_undeclared_text_headers(path, chosen, data_offset, rest, trace_bytes)
         raise SegyFormatError(
             f"{name} is not a whole number of traces: {rest} bytes after the headers make {n_traces} traces of "
-            f"{trace_bytes} bytes ({chosen.n_samples} samples of {_SAMPLE_BYTES[chosen.format]} bytes) and {extra} "
+            f"{trace_bytes} bytes ({chosen.n_samples} samples of {SAMPLE_BYTES[chosen.format]} bytes) and {extra} "
             f"bytes more; the file is cut short, or its headers do not describe it ({chosen.endian}-endian, "
             f"{n_text} extended textual headers)")
     if chosen.format not in READABLE_FORMATS:

@@ -121,8 +121,11 @@ def network_grid(tmp: pathlib.Path) -> None:
     from seismo3d.seismic.faults.likelihood.network import POOLING_MULTIPLE, RECEPTIVE_HALF, grid_halo
 
     # a block with the network grid's halo, its lateral origin away from 0 on both axes and not a multiple of the
-    # pooling grid on the network grid: its core equals the whole cube's probability up to float rounding
-    opt = LearnedOptions(cube_resample=0.7)
+    # pooling grid on the network grid: its core equals the whole cube's probability up to float rounding. The cube's
+    # 32 samples are 23 on the 0.7 grid, fewer than the default min_grid_samples (which would run the grid of 1
+    # instead, with another halo): the check lowers it so that the 0.7 grid it names is the grid it runs
+    opt = LearnedOptions(cube_resample=0.7, min_grid_samples=16)
+    assert opt.grids(32, 3) == (0.7,)
     cube = synthetic_cube((232, 236, 32), seed=4, noise=0.1).cube
     scale = amplitude_scale(cube)
     whole = fault_probability(cube, options=opt, scale=scale)

@@ -78,7 +78,7 @@ def stick_lines(points, *, line_step: int = STICK_LINE_STEP) -> tuple:
     if int(line_step) < 1:
         raise InputError(f"line_step must be a whole number >= 1 (a stick every line_step-th line); got {line_step}")
     axis = _across_strike_axis(p)
-    lines, first = np.unique(p[:, axis], return_index=True)
+    lines = np.unique(p[:, axis])
     # lines on which the fault spans at least two samples of time: the others cannot carry a stick
     order = np.lexsort((p[:, 2], p[:, axis]))
     bounds = np.r_[np.flatnonzero(np.diff(p[order, axis])) + 1, p.shape[0]]

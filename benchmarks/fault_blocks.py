@@ -25,8 +25,8 @@ sections run on generated cubes (no data folder needed):
   picture and run.json aside), run.json with each step's seconds
   (``test_the_demo_by_blocks_writes_what_it_writes_in_memory``);
 - ``demo_interchange``: the demo's interchange files in inline / crossline units, its TSurf read back by xtgeo equal to
-  faults.vtp, its sticks holding every fault point, a horizon's IRAP / ZMAP+ grids equal to its text rows
-  (``tests/jobs/test_interchange.py`` ``test_demo_faults_interchange``).
+  faults.vtp, its sticks a few fault points each (on every 10th line), a horizon's IRAP / ZMAP+ grids equal to its
+  text rows (``tests/jobs/test_interchange.py`` ``test_demo_faults_interchange``).
 """
 
 from __future__ import annotations
@@ -269,7 +269,7 @@ def _peak_seed(path, il, xl):
 
 def demo_interchange(tmp: pathlib.Path) -> None:
     """The demo cube has no coordinates: every interchange file says inline / crossline units; the TSurf read back
-    by xtgeo is the faults.vtp mesh, the sticks read back hold every fault point."""
+    by xtgeo is the faults.vtp mesh, the sticks read back are fault points, a few a stick."""
     import pyvista as pv
     import xtgeo
     from numpy.testing import assert_allclose
@@ -283,7 +283,10 @@ def demo_interchange(tmp: pathlib.Path) -> None:
     assert {r["xy_unit"] for r in points} == {"inline/crossline"}
     assert all(float(r["x"]) == float(r["inline"]) and float(r["y"]) == float(r["crossline"]) for r in points)
     sticks = read_fault_sticks(job.written["sticks_opendtect"])
-    assert sticks.xy_unit == "inline/crossline" and sticks.n_nodes == len(points) and sticks.n_faults == job.n_faults
+    assert sticks.xy_unit == "inline/crossline" and sticks.n_faults == job.n_faults
+    assert sticks.n_nodes < len(points) / 10 and {(int(a), int(b), round(z, 3)) for a, b, z in zip(
+        sticks.inline, sticks.crossline, sticks.z)} <= {(int(r["inline"]), int(r["crossline"]),
+                                                         round(float(r["time_or_depth"]), 3)) for r in points}
     text = pathlib.Path(job.written["surfaces_tsurf"]).read_text()
     assert 'AXIS_UNIT "none" "none" "ms"' in text
     vtp = pv.read(job.written["surfaces"])

@@ -16,7 +16,8 @@ as a dask array, and the Zarr v3 store of ``seismo3d convert``.
 - :mod:`~seismo3d.seismic.io.coordinates`: CDP X/Y with their scalar and the affine map of the inline / crossline grid
   (:func:`read_survey_coordinates`, :class:`SurveyCoordinates`, :class:`GridMap`).
 - :mod:`~seismo3d.seismic.io.fault_sticks`: OpendTect and Charisma fault sticks in and out (:class:`FaultSticks`);
-  :mod:`~seismo3d.seismic.io.stick_sections`: the one placement of sticks on a section's traces and samples.
+  :mod:`~seismo3d.seismic.io.stick_sections`: the one placement of sticks on a section's traces and samples;
+  :mod:`~seismo3d.seismic.io.traced_sticks`: sticks drawn from traced faults as interpreters draw them.
 - :mod:`~seismo3d.seismic.io.tsurf`: GOCAD TSurf fault surfaces (:func:`write_tsurf`).
 - :mod:`~seismo3d.seismic.io.horizon_grids`: horizons as IRAP / ZMAP+ grids and x y z points through xtgeo, picks in
   (:func:`write_horizon_grids`, :func:`read_horizon_picks`).

@@ -42,6 +42,7 @@ from ...errors import DataNotFoundError, InputError
 from .coordinates import LINE_UNITS, SurveyCoordinates
 from .stick_sections import section_nodes, section_pixels
 from .stick_rows import charisma_rows, iesx_rows, opendtect_rows
+from .traced_sticks import STICK_LINE_STEP, stick_lines, stick_nodes
 
 __all__ = ["FaultSticks", "STICK_FORMATS", "read_fault_sticks", "write_fault_sticks"]
 
@@ -216,13 +217,17 @@ class FaultSticks:
         return mask
 
     @classmethod
-    def from_faults(cls, faults, coordinates: SurveyCoordinates, samples, *, z_unit: str = "ms",
-                    names=None) -> "FaultSticks":
-        """The sticks of traced faults: each fault's points along each line that cuts it.
+    def from_faults(cls, faults, coordinates: SurveyCoordinates, samples, *, z_unit: str = "ms", names=None,
+                    line_step: int = STICK_LINE_STEP, tolerance: float = 1.0) -> "FaultSticks":
+        """The sticks of traced faults, as an interpreter draws them: one stick per fault per section, from the
+        fault's top to its bottom, with a node where it bends.
 
-        In 3D a fault is cut by the inlines when it spans more inlines than crosslines, else by the crosslines; its
-        points on each such line are one stick, ordered by time (then along the line). On a 2D section a fault is one
-        stick. Every node is a fault point, at its trace's own coordinates.
+        On a 2D section a fault is one stick. In 3D the sticks lie on every ``line_step``-th inline or crossline,
+        whichever cuts the fault across its strike (:func:`~seismo3d.seismic.io.traced_sticks.stick_lines`). On
+        each section the fault's samples become one stick (:func:`~seismo3d.seismic.io.traced_sticks.stick_nodes`):
+        a single-valued function of time (a strand folding back is left out, not drawn as a zigzag), its nodes
+        where the fault bends, every other sample of the fault within ``tolerance`` of it, times strictly
+        increasing along it. Every node is a fault sample, at its trace's own coordinates.
 
         Parameters
         ----------
@@ -237,16 +242,21 @@ class FaultSticks:
         z_unit : {'ms', 'm', 'ft', 'samples'}
         names : sequence of str, optional
             Fault names; default ``fault_<id>``.
+        line_step : int
+            In 3D, a stick on every ``line_step``-th line of the traced array, counted from its first (>= 1).
+        tolerance : float
+            Largest distance of a fault sample from its stick, in samples (the section's index space; > 0).
 
         Returns
         -------
         FaultSticks
-            Fault ids renumbered 1.. in the order of ``faults``.
+            Fault ids renumbered 1.. in the order of ``faults``; sticks in order of their line, nodes in order of
+            time. A fault that spans one sample of time on every line has no stick.
 
         Raises
         ------
         InputError
-            Points that do not fit ``coordinates``' shape.
+            Points that do not fit ``coordinates``' shape; ``line_step`` < 1 or ``tolerance`` <= 0.
         """
         s = np.asarray(samples, dtype=np.float64)
         parts = {k: [] for k in ("fault_id", "stick", "x", "y", "z", "inline", "crossline")}
@@ -259,16 +269,13 @@ class FaultSticks:
             if lateral.shape[1] != coordinates.x.ndim or np.any(lateral.max(axis=0) >= coordinates.x.shape):
                 raise InputError(f"fault {fault.id}'s points {p.shape} do not fit coordinates of shape "
                                  f"{coordinates.x.shape}; pass the coordinates of the traced array")
-            if p.shape[1] == 3:
-                cut = 0 if np.ptp(p[:, 0]) >= np.ptp(p[:, 1]) else 1
-                along = 1 - cut
-                groups = np.unique(p[:, cut])
-                keys = [p[:, cut] == g for g in groups]
+            if p.shape[1] == 3:  # a cube: a stick on each of the lines across the fault's strike
+                axis, lines = stick_lines(p, line_step=line_step)
+                sections = [(p[p[:, axis] == line], 1 - axis) for line in lines]
             else:
-                along, keys = 0, [np.ones(p.shape[0], dtype=bool)]
-            for member in keys:
-                q = p[member]
-                q = q[np.lexsort((q[:, along], q[:, -1]))]
+                sections = [(p, 0)]
+            for q, along in sections:
+                q = q[stick_nodes(q[:, along], q[:, -1], tolerance=tolerance)[0]]
                 x, y = coordinates.at(q[:, :-1])
                 il, xl = coordinates.lines_at(q[:, :-1])
                 parts["fault_id"].append(np.full(q.shape[0], number))

@@ -96,7 +96,7 @@ def test_charisma_read_by_its_column_spec(gsb2800, tmp_path):
 
 
 def test_sticks_of_traced_faults_are_at_their_traces():
-    """3D: a fault spanning more inlines than crosslines is cut by inlines; every node at its trace's X / Y."""
+    """3D: a fault striking along the inlines is cut by inlines; every node a fault point at its trace's X / Y."""
     il, xl = np.meshgrid(np.arange(100.0, 110.0), np.arange(20.0, 26.0), indexing="ij")
     x, y = 1000.0 + 25.0 * il + 3.0 * xl, 5000.0 - 3.0 * il + 25.0 * xl
     x[4, 2] += 0.04  # header rounding: the node keeps its trace's own value
@@ -105,12 +105,16 @@ def test_sticks_of_traced_faults_are_at_their_traces():
     fault = Fault(1, points, np.ones(len(points), np.float32), np.zeros(len(points), np.float32),
                   np.zeros(len(points), np.float32), np.zeros((len(points), 3), np.float32))
     samples = 500.0 + 4.0 * np.arange(12)
-    sticks = FaultSticks.from_faults([fault], coords, samples)
-    assert sticks.n_sticks == 10 and sticks.n_nodes == len(points)
-    assert_allclose(sticks.x, x[points[:, 0], points[:, 1]][np.lexsort((points[:, 1], points[:, 2], points[:, 0]))])
+    sticks = FaultSticks.from_faults([fault], coords, samples, line_step=1)
+    assert sticks.n_sticks == 10 and sticks.n_nodes == 20  # a stick on each inline, from its top to its bottom
+    i, j = (sticks.inline - 100).astype(int), (sticks.crossline - 20).astype(int)
+    assert_allclose(sticks.x, x[i, j]) and sticks.x[(i == 4) & (j == 2)].size == 1
+    assert {(a, b, round(z)) for a, b, z in zip(i, j, (sticks.z - 500) / 4)} <= set(map(tuple, points.tolist()))
     for _, nodes in sticks.sticks():
-        assert np.all(np.diff(sticks.z[nodes]) >= 0)  # ordered down the stick
+        assert_allclose(sticks.z[nodes], [512.0, 532.0])  # ordered down the stick, its two ends
         assert np.unique(sticks.inline[nodes]).size == 1
+    # every 10th inline: inline 100 alone of the fault's, so its first and last inlines
+    assert np.array_equal(np.unique(FaultSticks.from_faults([fault], coords, samples).inline), [100.0, 109.0])
     with pytest.raises(InputError, match="do not fit"):
         FaultSticks.from_faults([fault], survey_coordinates(il[:, 0], xl[:, 0]), samples)  # a line's
 

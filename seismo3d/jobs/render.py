@@ -472,7 +472,7 @@ def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exagg
                     color_by="fault_id") -> str:
     """A single line (a 2D line of a survey or a trace list) drawn as a section: trace numbers along, time or depth
     down, the vertical exaggeration stated, faults as lines and a horizon as a curve
-    (:func:`seismo3d.viz.sections.plot_section`); returns the caption."""
+    (:func:`seismo3d.viz.sections.plot_section`), coloured by ``color_by``; returns the caption."""
     from ..viz.sections import plot_section
 
     along = 0 if geometry.shape[0] > 1 else 1
@@ -492,4 +492,4 @@ def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exagg
                         sample_unit=geometry.sample_unit, trace_spacing=spacing,
                         vertical_exaggeration=vertical_exaggeration, faults=extra.get("faults"),
                         sticks=extra.get("sticks"), horizon=horizon, values=values, width=window_size[0] / dpi,
-                        dpi=dpi)
+                        dpi=dpi, color_by=color_by)

@@ -7,6 +7,7 @@ as a plane in a 3D scene, which squashed a deep section into a band without tick
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -130,8 +131,9 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         seismic is at hand), or nothing to draw (a blank section under faults or a horizon).
     width : float, optional
         Largest width of the picture in inches. The picture follows the section's shape (its exaggeration) so that
-        the section fills it: this wide with the height the section needs, or narrower where the section would be
-        more than 1.3 times as tall as ``width``.
+        the section fills it: a wide section this wide with the height it needs; a section taller than wide with
+        its colour bars below it, in a picture at most 4 times as tall as ``width``, narrower than ``width`` where
+        the exaggeration makes the section a strip.
     dpi : int, optional
     color_by : {'fault_id', 'throw'}, optional
         Colour of the fault lines: a colour per fault, or each point's throw (``faults.vtp``'s point array
@@ -190,10 +192,23 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     else:  # no distance between traces: no exaggeration to speak of; drawn about half as tall as wide
         aspect = 0.55 * width_units / (abs(samples[-1] - samples[0]) or 1.0)
     ratio = abs(aspect * (samples[-1] - samples[0]) / width_units)  # the section's height over its width
-    fig_w, box_h, heading_width = _figure_size(ratio, width, colour_bars=(values != "none") + (color_by == "throw"))
+    n_bars = (values != "none") + (color_by == "throw" and faults is not None and faults.n_points > 0)
+    layout = _figure_size(ratio, width, colour_bars=n_bars)
+    heading_width = layout.heading_width
     caption = _caption(traces, samples, trace_name, sample_unit, trace_spacing, vertical_exaggeration, velocity)
     n_head = len(textwrap.wrap(f"{title + ' ' if title else ''}{caption}", width=heading_width)) + bool(title)
-    fig = Figure(figsize=(fig_w, box_h + _MARGIN_H + 0.2 * n_head), dpi=dpi, layout="constrained")
+    below = _BAR_H * n_bars if layout.bars_below else 0.0
+    fig = Figure(figsize=(layout.width, layout.box_height + _MARGIN_H + below + 0.2 * n_head), dpi=dpi,
+                 layout="constrained")
+    # below a tall section: the bar's thickness and gap in inches (matplotlib counts them in the section's height)
+    def bar_style() -> dict:
+        if not layout.bars_below:
+            return dict(shrink=0.7, pad=0.01)
+        from matplotlib.ticker import MaxNLocator
+
+        return dict(location="bottom", shrink=0.9, fraction=0.2 / layout.box_height, pad=0.4 / layout.box_height,
+                    aspect=12, ticks=MaxNLocator(nbins=4))
+
     ax = fig.subplots()
     dh = step / 2
     extent = (traces[0] - dh if traces[-1] >= traces[0] else traces[0] + dh,
@@ -203,12 +218,12 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         clip = symmetric_clip(data, clip_percentile)
         im = ax.imshow(data.T, extent=extent, cmap="gray_r", vmin=-clip, vmax=clip, interpolation="bilinear",
                        aspect=aspect)
-        fig.colorbar(im, ax=ax, shrink=0.7, extend="both", pad=0.01,
-                     label=f"amplitude (clipped at {clip_percentile:g}th pct)")
+        fig.colorbar(im, ax=ax, extend="both", label=f"amplitude (clipped at {clip_percentile:g}th pct)",
+                     **bar_style())
     elif values == "fault likelihood":
         im = ax.imshow(data.T, extent=extent, cmap="Greys", vmin=0.0, vmax=1.0, interpolation="nearest",
                        aspect=aspect)
-        fig.colorbar(im, ax=ax, shrink=0.7, pad=0.01, label="fault likelihood (no seismic drawn)")
+        fig.colorbar(im, ax=ax, label="fault likelihood (no seismic drawn)", **bar_style())
     elif values == "none":
         ax.set_xlim(extent[0], extent[1])
         ax.set_ylim(extent[2], extent[3])
@@ -221,7 +236,7 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
                                   np.interp(s[:, 1], np.arange(n_s), samples)]) for _, s, _ in segments]
         ax.add_collection(LineCollection(lines, colors="black", linewidths=3.4, alpha=0.6, zorder=3))
         if color_by == "throw":
-            colours = _add_throw_lines(fig, ax, lines, [v for _, _, v in segments], dt, sample_unit)
+            colours = _add_throw_lines(fig, ax, lines, [v for _, _, v in segments], dt, sample_unit, bar_style())
         else:
             tab10 = colormaps["tab10"]
             colours = [tab10((fid - 1) % 10) for fid, _, _ in segments]
@@ -345,23 +360,38 @@ def plot_volume_registration(fixed, moving, moving_on_fixed, *, path, inline=Non
 
 
 _MARGIN_W = 1.3  # inches beside the section: the time axis' label and ticks
-_BAR_W = 1.2  # inches of a colour bar with its label
-_MARGIN_H = 1.2  # inches above and below the section: the trace axis' ticks (top and bottom) and label
-_MAX_TALL = 1.3  # a picture at most this many times as tall as its largest width
+_BAR_W = 1.2  # inches of a colour bar beside the section, with its label
+_BAR_H = 1.0  # inches of a colour bar below a tall section, with its label
+_MARGIN_H = 1.5  # inches above and below the section: the trace axis' ticks (top and bottom) and label
+_MAX_TALL = 4.0  # a tall section's picture at most this many times as tall as ``width``
 
 
-def _figure_size(ratio: float, width: float, *, colour_bars: int) -> tuple[float, float, int]:
-    """The picture's width and the section's height (inches) so that the section, ``ratio`` as tall as wide, fills
-    the picture: as wide as ``width`` allows, narrower when it would be taller than :data:`_MAX_TALL` x ``width``;
-    and the title's wrapping width in characters."""
-    beside = _MARGIN_W + _BAR_W * colour_bars
-    box_w = max(float(width) - beside, 1.0)
-    box_h = box_w * ratio
-    if box_h > _MAX_TALL * float(width) - _MARGIN_H:
-        box_h = _MAX_TALL * float(width) - _MARGIN_H
-        box_w = box_h / max(ratio, 1e-9)
-    fig_w = max(box_w + beside, 4.0)  # room for the title
-    return fig_w, box_h, max(30, int(fig_w * 11))
+@dataclass(frozen=True)
+class _Layout:
+    """The picture's size around a section (inches): its width, the section's height, the colour bars below the
+    section rather than beside it (a tall section), and the title's wrapping width in characters."""
+
+    width: float
+    box_height: float
+    bars_below: bool
+    heading_width: int
+
+
+def _figure_size(ratio: float, width: float, *, colour_bars: int) -> _Layout:
+    """A picture the section fills, its shape following the section's (``ratio``: the section's height over its
+    width, from the exaggeration). A wide section is as wide as ``width`` allows, its colour bars beside it, the
+    height what the section needs. A tall one (ratio > 1) has its colour bars below it and is as wide as a picture
+    up to :data:`_MAX_TALL` times ``width`` tall allows (at most ``width``): narrower than ``width`` when the
+    exaggeration makes it a strip, so that no margin of white is left beside it."""
+    width = float(width)
+    if ratio <= 1.0:
+        box_w = max(width - _MARGIN_W - _BAR_W * colour_bars, 1.0)
+        return _Layout(max(box_w + _MARGIN_W + _BAR_W * colour_bars, 4.0), box_w * ratio, False,
+                       max(30, int(width * 11)))
+    room = _MAX_TALL * width - _MARGIN_H - _BAR_H * colour_bars
+    box_w = max(min(width - _MARGIN_W, room / ratio), 0.2)
+    fig_w = max(box_w + _MARGIN_W, 3.0)  # room for a title of a few short lines
+    return _Layout(fig_w, box_w * ratio, True, max(24, int(fig_w * 11)))
 
 
 def _caption(traces, samples, trace_name, sample_unit, trace_spacing, vertical_exaggeration, velocity):
@@ -377,7 +407,7 @@ def _caption(traces, samples, trace_name, sample_unit, trace_spacing, vertical_e
     return f"{trace_name}s {traces[0]:g}-{traces[-1]:g}, {name} {span}, {how}"
 
 
-def _add_throw_lines(fig, ax, lines, throws, dt: float, sample_unit: str) -> list:
+def _add_throw_lines(fig, ax, lines, throws, dt: float, sample_unit: str, bar_style: dict) -> list:
     """Fault lines coloured point by point by their throw (``faults.vtp``'s ``throw``, samples; converted to the
     sample unit), on a diverging scale symmetric about 0 to the 98th percentile of |throw| (as the 3D scene), with
     its colour bar; grey where a throw was not measured. Returns a colour for the legend."""
@@ -400,9 +430,9 @@ def _add_throw_lines(fig, ax, lines, throws, dt: float, sample_unit: str) -> lis
     ax.add_collection(collection)
     unit = "samples" if sample_unit == "samples" else sample_unit
     clipped = bool(finite.size and np.abs(finite).max() > lim)
-    bar = fig.colorbar(collection, ax=ax, shrink=0.7, pad=0.01, extend="both" if clipped else "neither")
-    bar.set_label(f"throw ({unit}, + normal)" + (f"; clipped at the 98th pct of |throw|, max "
-                                                   f"{np.abs(finite).max():.3g}" if clipped else ""), fontsize=8)
+    bar = fig.colorbar(collection, ax=ax, extend="both" if clipped else "neither", **bar_style)
+    bar.set_label(f"throw ({unit}, + normal)" + (f"\nclipped at 98th pct, max {np.abs(finite).max():.3g}"
+                                                   if clipped else ""), fontsize=8)
     return [cmap(norm(lim))]
 
 

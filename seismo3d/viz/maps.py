@@ -58,10 +58,10 @@ def _scale_bar(plotter, vertices, up, forward, right) -> float:
     start = (np.min(along) * right + np.min(vertices @ forward) * forward + np.min(vertices @ up) * up)
     end = start + length * right
     plotter.add_mesh(pv.Line(start, end), color="black", line_width=6)
-    ticks = np.concatenate([start, end]).reshape(2, 3)
     label = f"{length * 100:g} cm" if length < 1 else f"{length:g} m"
-    plotter.add_point_labels((ticks[:1] + ticks[1:]) / 2, [label], font_size=14, text_color="black", shape=None,
-                             show_points=False, always_visible=True)
+    above = (start + end) / 2 + 0.12 * length * forward  # beyond the bar as the camera sees it: above it
+    plotter.add_point_labels(above[None], [label], font_size=14, text_color="black", shape=None,
+                             show_points=False, always_visible=True, justification_horizontal="center")
     return length
 
 
@@ -121,16 +121,19 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
     size = 0.08
     ref = np.zeros((0, 4, 4)) if reference is None else np.asarray(reference, dtype=np.float64).reshape(-1, 4, 4)
     if len(ref) >= 2:  # under the estimate, wider: where they agree, green edges the red line
-        plotter.add_mesh(pv.lines_from_points(ref[:, :3, 3]), color="limegreen", line_width=12,
-                         label="reference (ground truth)")
+        plotter.add_mesh(pv.lines_from_points(ref[:, :3, 3]), color="limegreen", line_width=12)
     if len(traj) >= 2:
-        plotter.add_mesh(pv.lines_from_points(traj[:, :3, 3]), color="red", line_width=4, label="trajectory")
+        plotter.add_mesh(pv.lines_from_points(traj[:, :3, 3]), color="red", line_width=4)
     if len(kfs):
         seg = np.concatenate([_frustum(p, size) for p in kfs])
-        plotter.add_mesh(pv.line_segments_from_points(seg), color="blue", line_width=3, label="keyframes")
-    if len(traj) >= 2 or len(kfs):
-        plotter.add_legend(bcolor="white", face=None, size=(0.4, 0.05 * (1 + (len(ref) >= 2) + bool(len(kfs)))),
-                           loc="upper right")
+        plotter.add_mesh(pv.line_segments_from_points(seg), color="blue", line_width=3)
+    # the legend as coloured words at the top right (VTK's legend box cut its longest label off at the window's edge)
+    entries = [(name, colour) for name, colour, shown in (("ground truth", "limegreen", len(ref) >= 2),
+                                                          ("trajectory", "red", len(traj) >= 2),
+                                                          ("keyframes", "blue", len(kfs) > 0)) if shown]
+    width, height = (int(v) for v in np.ravel(window_size))
+    for n, (name, colour) in enumerate(entries):
+        plotter.add_text(name, position=(width - 150, height - 36 - 24 * n), font_size=12, color=colour)
     if title:
         plotter.add_text(title, font_size=9, color="black")
     # look down on the scene from above and behind the cameras (their mean viewing direction), everything in view

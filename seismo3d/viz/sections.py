@@ -386,11 +386,10 @@ def _figure_size(ratio: float, width: float, *, colour_bars: int) -> _Layout:
     width = float(width)
     if ratio <= 1.0:
         box_w = max(width - _MARGIN_W - _BAR_W * colour_bars, 1.0)
-        return _Layout(max(box_w + _MARGIN_W + _BAR_W * colour_bars, 4.0), box_w * ratio, False,
-                       max(30, int(width * 11)))
+        return _Layout(width, box_w * ratio, False, max(30, int(width * 11)))
     room = _MAX_TALL * width - _MARGIN_H - _BAR_H * colour_bars
     box_w = max(min(width - _MARGIN_W, room / ratio), 0.2)
-    fig_w = max(box_w + _MARGIN_W, 3.0)  # room for a title of a few short lines
+    fig_w = min(max(box_w + _MARGIN_W, 3.0), width)  # room for a title of a few short lines
     return _Layout(fig_w, box_w * ratio, True, max(24, int(fig_w * 11)))
 
 

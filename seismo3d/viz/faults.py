@@ -117,7 +117,7 @@ class _FaultColours:
 
         self.label = self.quantity = label
         self.clipped, self.extend = False, "neither"
-        if fault_values is None:
+        if fault_values is None or not ids.size:  # no faults: no colour bar to draw
             self.rgba, self.mappable = _colors(ids), None
             return
         values = {int(k): float(v) for k, v in dict(fault_values).items()}
@@ -392,7 +392,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
         if fl is not None:
             fig.colorbar(im, ax=axs[1, :].tolist(), shrink=0.8, label="fault likelihood")
     n_f = len(np.unique(ids)) if ids.size else 0
-    how = "" if data.ndim == 2 else f" ({colours.title().removeprefix('faults, ')})"
+    how = "" if data.ndim == 2 or not n_f else f" ({colours.title().removeprefix('faults, ')})"
     fig.suptitle(f"{title + ': ' if title else ''}{n_f} faults{how}")
     path = Path(path)
     with atomic_path(path) as tmp:

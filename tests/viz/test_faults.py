@@ -70,6 +70,7 @@ def test_the_throw_colour_bar_says_when_it_clips():
     even = _FaultColours(ids, {i: 5.0 for i in range(1, 21)}, "|median throw| (ms)")
     assert not even.clipped and even.label == "|median throw| (ms)"
     assert not _FaultColours(ids, None, "value").clipped  # colours by id: no bar
+    assert _FaultColours(np.zeros(0, np.int32), {}, "confidence").mappable is None  # no faults: no bar
 
 
 def test_the_colours_spread_over_the_values_the_faults_have():

@@ -198,7 +198,7 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     caption = _caption(traces, samples, trace_name, sample_unit, trace_spacing, vertical_exaggeration, velocity)
     n_head = len(textwrap.wrap(f"{title + ' ' if title else ''}{caption}", width=heading_width)) + bool(title)
     below = _BAR_H * n_bars if layout.bars_below else 0.0
-    fig = Figure(figsize=(layout.width, layout.box_height + _MARGIN_H + below + 0.2 * n_head), dpi=dpi,
+    fig = Figure(figsize=(layout.width, layout.box_height + _MARGIN_H + below + 0.22 * n_head), dpi=dpi,
                  layout="constrained")
     # below a tall section: the bar's thickness and gap in inches (matplotlib counts them in the section's height)
     def bar_style() -> dict:
@@ -362,7 +362,7 @@ def plot_volume_registration(fixed, moving, moving_on_fixed, *, path, inline=Non
 _MARGIN_W = 1.3  # inches beside the section: the time axis' label and ticks
 _BAR_W = 1.2  # inches of a colour bar beside the section, with its label
 _BAR_H = 1.0  # inches of a colour bar below a tall section, with its label
-_MARGIN_H = 1.5  # inches above and below the section: the trace axis' ticks (top and bottom) and label
+_MARGIN_H = 1.8  # inches above and below the section: the trace axis' ticks (top and bottom) and label
 _MAX_TALL = 4.0  # a tall section's picture at most this many times as tall as ``width``
 
 

@@ -60,6 +60,8 @@ def faults_xl1155(data: Path, work: Path) -> None:
     _copy(out / "faults.png", "faults_xl1155.png")
     _seismo3d("render", out, "-o", work / "xl1155_section.png", "--overwrite")
     _copy(work / "xl1155_section.png", "render_xl1155_faults.png")
+    _seismo3d("render", out, "-o", work / "xl1155_throw.png", "--color-by", "throw", "--overwrite")
+    _copy(work / "xl1155_throw.png", "render_xl1155_throw.png")
 
 
 def faults_demo(data: Path, work: Path) -> None:  # noqa: ARG001 - generated data
@@ -70,6 +72,30 @@ def faults_demo(data: Path, work: Path) -> None:  # noqa: ARG001 - generated dat
     _copy(out / "faults.png", "faults_demo.png")
     _seismo3d("render", out, "-o", work / "faults_demo_3d.png", "--overwrite")
     _copy(work / "faults_demo_3d.png", "render_faults_demo_3d.png")
+
+
+def _run_guide_example(page: str, marker: str, work: Path) -> None:
+    """Run the Python block of ``docs/guide/<page>`` that holds ``marker`` in ``work``, as the page prints it (the
+    suite runs the same block: tests/test_docs.py), so that the picture is the page's own run."""
+    import re
+
+    text = (Path(__file__).resolve().parent / "guide" / page).read_text(encoding="utf-8")
+    blocks = [b for b in re.findall(r"^```python\n(.*?)^```", text, flags=re.S | re.M) if marker in b]
+    if len(blocks) != 1:
+        sys.exit(f"docs/guide/{page} has {len(blocks)} Python blocks with {marker!r}; expected one")
+    print(f"$ python  # the block of docs/guide/{page} with {marker}", flush=True)
+    here = Path.cwd()
+    os.chdir(work)
+    try:
+        exec(compile(blocks[0], f"{page}[{marker}]", "exec"), {"__name__": "__docs__"})  # noqa: S102 - the docs' own
+    finally:
+        os.chdir(here)
+
+
+def faults_parihaka(data: Path, work: Path) -> None:  # noqa: ARG001 - the guide's example reads it
+    """The faults guide's real cube: the Parihaka example's faults.png."""
+    _run_guide_example("faults.md", "load_parihaka_timeslices", work)
+    _copy(work / "parihaka_faults" / "faults.png", "faults_parihaka.png")
 
 
 def cube_f3(data: Path, work: Path) -> None:
@@ -135,7 +161,8 @@ def volumes_f3(data: Path, work: Path) -> None:  # noqa: ARG001 - the guide's ex
     _copy(work / "volumes_f3.png", "volumes_f3.png")
 
 
-FIGURES = {"faults_xl1155": faults_xl1155, "faults_demo": faults_demo, "cube_f3": cube_f3,
+FIGURES = {"faults_xl1155": faults_xl1155, "faults_demo": faults_demo, "faults_parihaka": faults_parihaka,
+           "cube_f3": cube_f3,
            "horizon_xl1155": horizon_xl1155, "volumes_f3": volumes_f3, "terrain": terrain, "match_tum": match_tum, "mapping": mapping}
 
 

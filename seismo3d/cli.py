@@ -489,7 +489,9 @@ def render(
                                                               "the run's input recorded in its run.json, read with "
                                                               "the run's SEG-Y flags, while unchanged (a faults "
                                                               "folder from --demo: its demo_seismic.sgy)."),
-    color_by: FaultColour = typer.Option(FaultColour.fault_id, help="Colour of the fault surfaces."),
+    color_by: FaultColour = typer.Option(FaultColour.fault_id, help="Colour of the faults (surfaces in 3D, lines on "
+                                                                    "a section): by id, or by the throw measured "
+                                                                    "along them."),
     sticks: Optional[pathlib.Path] = typer.Option(None, "--sticks", help="Fault sticks to draw over the seismic "
                                                   "(OpendTect fault-stick ASCII or Charisma fault sticks), e.g. an "
                                                   "interpreter's, placed by the drawn SEG-Y's line numbers and "

@@ -70,7 +70,8 @@ def test_guide_examples_run_as_written(page, data_dir, tmp_path, monkeypatch, ca
     namespace = _run_blocks(page, tmp_path, monkeypatch)
     assert capsys.readouterr().out.strip()  # every example prints what it found
     checks = {  # what each page's example claims, checked on its results
-        "faults": lambda ns: len(ns["job"].faults) >= 3 and "summary" in ns["job"].written,
+        "faults": lambda ns: (len(ns["job"].faults) >= 3 and "summary" in ns["job"].written
+                              and _parihaka_example_is_true(ns)),
         "horizons": lambda ns: ns["job"].horizon.coverage > 0.8 and ns["job"].n_rows > 300,
         "volumes": lambda ns: ns["result"].converged and abs(ns["result"].transform_index
                                                              - np.linalg.inv(ns["stretch"])).max() < 0.05,
@@ -79,6 +80,18 @@ def test_guide_examples_run_as_written(page, data_dir, tmp_path, monkeypatch, ca
         "rendering": lambda ns: (tmp_path / "xl1155.png").stat().st_size > 10_000 and "inline" in ns["caption"],
     }
     assert checks[page.stem](namespace)
+
+
+def _parihaka_example_is_true(ns) -> bool:
+    """The faults page's real cube: the crop it says (128 x 128 x 128 samples, all but 41 of people's fault samples
+    in the window), its traced samples those of the run's faults, its counts within their bounds."""
+    parihaka, window = ns["parihaka"], ns["window"]
+    assert ns["cube"].shape == (128, 128, 128) and window.stop - window.start == 128
+    assert int(parihaka.faults[:, :, window].sum()) - int(ns["people"].sum()) == 41
+    assert ns["traced"].any() == (ns["run"].n_faults > 0)
+    assert np.count_nonzero(ns["touched"]) <= ns["n_outlines"] and ns["n_outlines"] > 100
+    assert (Path("parihaka_faults") / "faults.png").stat().st_size > 10_000  # in the page's folder (the cwd)
+    return True
 
 
 def test_cli_reference_lists_every_command_and_option():

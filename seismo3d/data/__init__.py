@@ -7,7 +7,8 @@ public origin with pooch; see ``seismo3d/data/README.md`` for every file's purpo
 from .pointclouds import BunnyPair, load_bunny, read_points, write_points
 from .registry import REGISTRY, DataFile, data_dir, fetch, fetch_folder, file_info, list_files
 from .rgbd import CameraIntrinsics, RGBDFrame, load_7scenes_frame, load_single_frame, load_tum_pair
-from .sections import F3FaultSections, PenobscotSections, load_f3_fault_sections, load_penobscot_sections
+from .sections import (F3FaultSections, ParihakaTimeSlices, PenobscotSections, load_f3_fault_sections,
+                       load_parihaka_timeslices, load_penobscot_sections)
 from .synthetic import SyntheticCube, resampled_pair, synthetic_cube
 
 __all__ = [
@@ -31,6 +32,8 @@ __all__ = [
     "PenobscotSections",
     "load_f3_fault_sections",
     "load_penobscot_sections",
+    "ParihakaTimeSlices",
+    "load_parihaka_timeslices",
     "SyntheticCube",
     "synthetic_cube",
     "resampled_pair",

@@ -1,5 +1,6 @@
-"""Loaders of the real seismic sections with people's interpretation: Penobscot (18 consecutive inlines with
-horizons) and F3 (five inlines with faults drawn by a person)."""
+"""Loaders of the real seismic data with people's interpretation: Penobscot (18 consecutive inlines with horizons),
+F3 (five inlines with faults drawn by a person) and Parihaka (a 3D cube of time slices with people's fault
+outlines)."""
 
 from __future__ import annotations
 
@@ -9,12 +10,15 @@ import numpy as np
 
 from .registry import fetch
 
-__all__ = ["F3FaultSections", "PenobscotSections", "load_f3_fault_sections", "load_penobscot_sections"]
+__all__ = ["F3FaultSections", "ParihakaTimeSlices", "PenobscotSections", "load_f3_fault_sections",
+           "load_parihaka_timeslices", "load_penobscot_sections"]
 
 _PENOBSCOT = "seismic/penobscot_sections/penobscot_sections_1075_1092.npz"
 _F3_MASKS = "seismic/f3_fault_masks/{kind}_inline_{inline}.png"
 F3_MASK_INLINES = (100, 200, 300, 400, 500)
 _F3_SHAPE = (951, 462)  # crosslines x samples of the interpreter's masks
+_PARIHAKA = "seismic/parihaka_timeslices/parihaka_timeslices_cols174_302.npz"
+_PARIHAKA_WINDOW = 128  # samples of the faulted window (as /work/shared/tools/parihaka_dev_scores.py picks it)
 
 @dataclass(frozen=True, eq=False)
 class PenobscotSections:
@@ -145,3 +149,74 @@ def load_f3_fault_sections() -> F3FaultSections:
     for array in (out.sections, out.faults, out.inlines):
         array.setflags(write=False)
     return out
+
+
+@dataclass(frozen=True, eq=False)
+class ParihakaTimeSlices:
+    """A real 3D cube of the Parihaka survey with people's fault outlines (see :func:`load_parihaka_timeslices`).
+
+    Attributes
+    ----------
+    cube : (256, 128, 591) float32 ndarray
+        Amplitudes (inline, crossline, sample): the 8-bit values of the time-slice images minus 127.5, so in
+        [-127.5, 127.5]. Each slice was rendered by its own minimum and maximum: treat the values as 8-bit data
+        whose scale jumps a little from sample to sample, not as calibrated amplitudes.
+    faults : (256, 128, 591) bool ndarray
+        People's fault polygons (bands a few traces wide, drawn on time slices in map view); False on unlabelled
+        slices.
+    labelled : (591,) bool ndarray
+        The samples (time slices) people labelled; on the others ``faults`` says nothing.
+    slices : (591,) int ndarray
+        The time-slice numbers of the origin (70 to 660), one per sample; the origin gives no time for them.
+    fault_window : slice
+        The 128 consecutive samples holding the most fault labels (samples 45-172): the window where the faults
+        are, as the project's 3D fault scores (``parihaka_dev_scores.py``) cut it.
+    """
+
+    cube: np.ndarray
+    faults: np.ndarray
+    labelled: np.ndarray
+    slices: np.ndarray
+    fault_window: slice
+
+
+def load_parihaka_timeslices() -> ParihakaTimeSlices:
+    """Load a real 3D cube of the Parihaka 3D survey (Taranaki Basin, New Zealand) with the faults people outlined.
+
+    The cube is 256 x 128 traces (rows 471-727 and columns 174-302 of the origin's time-slice images, taken as
+    inlines and crosslines) by 591 time slices of the PSTM near stack; people outlined faults, channels and amplitude
+    anomalies as polygons on 391 of the slices (faults mostly in the first 175 slices), as bands a few traces wide in
+    map view.
+
+    Returns
+    -------
+    ParihakaTimeSlices
+        ``cube`` (256, 128, 591) float32, ``faults`` (256, 128, 591) bool, ``labelled`` (591,) bool, ``slices``
+        (591,) int, ``fault_window`` (a slice of 128 samples). Arrays are read-only.
+
+    Raises
+    ------
+    DataNotFoundError
+        If the file is not in the data directory (``SEISMO3D_DATA_DIR``): it is derived from the origin's images
+        and is not downloaded.
+    DataIntegrityError
+        If the file does not match its registered SHA-256.
+
+    References
+    ----------
+    .. [1] Parihaka 3D, New Zealand Petroleum & Minerals open data; the slices and fault polygons of
+           github.com/zuenko/seismis_analysis (commit 00c8ae87, no licence stated).
+    """
+    with np.load(fetch(_PARIHAKA)) as z:
+        seismic, labels, first = z["seismic"], z["labels"], int(z["first_slice"])
+    cube = np.ascontiguousarray(seismic.transpose(1, 2, 0), dtype=np.float32)
+    cube -= np.float32(127.5)
+    labelled = (labels != 255).any(axis=(1, 2))
+    faults = np.ascontiguousarray((labels == 1).transpose(1, 2, 0))
+    per_sample = faults.sum(axis=(0, 1))
+    start = int(np.argmax(np.convolve(per_sample, np.ones(_PARIHAKA_WINDOW), "valid")))
+    slices = np.arange(first, first + cube.shape[2])
+    for array in (cube, faults, labelled, slices):
+        array.setflags(write=False)
+    return ParihakaTimeSlices(cube=cube, faults=faults, labelled=labelled, slices=slices,
+                              fault_window=slice(start, start + _PARIHAKA_WINDOW))

@@ -9,7 +9,8 @@
   frames skipped or lost and why, a summary (frames, keyframes, loops, frames per second) and, when the sequence has a
   reference trajectory, the ATE and RPE against it;
 * ``mesh.ply``: the TSDF map by marching cubes (binary PLY with vertex normals);
-* ``map.png``: the mesh with the trajectory and the keyframes, rendered off screen.
+* ``map.png``: the mesh with the trajectory, the keyframes, the reference trajectory (when the sequence has one,
+  aligned as the ATE aligns it, with the ATE in the title) and a scale bar, rendered off screen.
 
 The output folder follows the output policy of every command (:mod:`seismo3d.jobs.outputs`); the files are written
 into a staging folder and moved in together. A frame that cannot be read or used (missing file, depth of the wrong dtype or size,
@@ -32,7 +33,8 @@ from .._atomic import StagedFolder, atomic_path
 from .._progress import progress_steps
 from ..errors import DataIntegrityError, DataNotFoundError, FrameSkippedWarning, InputError, RegistrationError
 from ..mapping import RGBDMapper, open_sequence
-from ..mapping.metrics import absolute_trajectory_error, relative_pose_error, write_tum_trajectory
+from ..mapping.metrics import (absolute_trajectory_error, reference_in_map_frame, relative_pose_error,
+                               write_tum_trajectory)
 from .outputs import check_outputs, output_folder
 from .runinfo import RUN_JSON, RunRecord
 
@@ -128,6 +130,17 @@ def _evaluation(sequence, timestamps, poses):
         return None
     return dict(ate_rmse_m=ate.rmse, ate_max_m=ate.max, rpe_translation_rmse_m=rpe_t.rmse,
                 rpe_rotation_rmse_deg=rpe_r.rmse, n_associated=ate.n)
+
+
+def _reference(sequence, timestamps, poses):
+    """The sequence's ground truth in the map's frame over the mapped frames (aligned as the ATE aligns it), or
+    None without one."""
+    if sequence.groundtruth is None or len(poses) < 3:
+        return None
+    try:
+        return reference_in_map_frame(timestamps, poses, *sequence.groundtruth)
+    except InputError:
+        return None
 
 
 def run_map_job(sequence, output, *, options=None, max_frames: int | None = None, progress: bool = True,
@@ -229,5 +242,10 @@ def _write_files(out, seq, mapper, skipped, elapsed, interrupted, render):
     if render:
         from ..viz.maps import render_map
 
-        written["map"] = render_map(mesh, poses, mapper.graph.poses(), out / "map.png")
+        reference, title = _reference(seq, timestamps[keep], poses[keep]), None
+        if reference is not None and evaluation is not None:
+            title = (f"ATE RMSE {100 * evaluation['ate_rmse_m']:.1f} cm over {evaluation['n_associated']} frames "
+                     "against the ground truth (green)")
+        written["map"] = render_map(mesh, poses, mapper.graph.poses(), out / "map.png", reference=reference,
+                                    title=title)
     return written, summary, evaluation

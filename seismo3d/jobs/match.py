@@ -138,13 +138,18 @@ def _write_homography(path: pathlib.Path, homography, n_verified: int) -> None:
 
 
 def _draw_matches(path: pathlib.Path, images, result, n_verified: int, method: str) -> None:
-    """The verified matches drawn between the two images side by side (:func:`seismo3d.viz.plot_matches`)."""
+    """The verified matches drawn between the two images side by side (:func:`seismo3d.viz.plot_matches`): a spread
+    of them, the best-scored (Lowe's ratio) in each cell of a grid over the first image."""
     from .._atomic import atomic_path
     from ..viz import plot_matches
 
-    keep = np.asarray(result.inliers, bool) if getattr(result, "inliers", None) is not None else slice(None)
+    keep = np.arange(len(result.scores))
+    if getattr(result, "inliers", None) is not None:
+        keep = keep[np.asarray(result.inliers, bool)]
+    keep = keep[np.argsort(-np.asarray(result.scores)[keep], kind="stable")]  # best first: the one drawn per cell
     fig = plot_matches(images[0], images[1], np.asarray(result.xy1)[keep], np.asarray(result.xy2)[keep],
-                       title=f"{n_verified} verified matches of {result.n_putative} ({method}, RANSAC homography)")
+                       title=f"{n_verified} verified matches of {result.n_putative} putative ({method}, RANSAC "
+                             "homography)")
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png", dpi=110)
 

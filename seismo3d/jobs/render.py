@@ -99,6 +99,22 @@ def _kind(path: Path) -> str:
                      "or a DEM (.tif)")
 
 
+def _check_throws(kind: str, path: Path) -> None:
+    """Refuse ``color_by='throw'`` before any work where there is no throw to colour by: an input that is not a
+    faults folder, or one whose faults carry no measured throw."""
+    if kind != "faults":
+        what = {"segy": "a SEG-Y file", "horizon": "a horizon file", "dem": "a DEM", "map": "a map folder"}[kind]
+        raise InputError(f"color_by='throw' colours traced faults by their throw, and {path.name} is {what}; pass "
+                         "the output folder of 'seismo3d faults', or leave color_by out")
+    import pyvista as pv
+
+    surfaces = pv.read(path / "faults.vtp")
+    throw = np.asarray(surfaces.point_data["throw"], float) if "throw" in surfaces.point_data else np.zeros(0)
+    if surfaces.n_points and not np.isfinite(throw).any():
+        raise InputError(f"color_by='throw': the faults of {path.name} carry no measured throw (faults.vtp's "
+                         "'throw' is empty); leave color_by out to colour them by fault id")
+
+
 @dataclass(frozen=True)
 class _EarlierRun:
     """What the ``run.json`` of the faults or horizon run that wrote render's input says of the run's input.
@@ -296,7 +312,9 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
         A SEG-Y cube to draw under faults or a horizon (read with ``iline``, ``xline``, ... below); default: the
         input of the run that wrote them (above).
     color_by : {'fault_id', 'throw'}, optional
-        Colour of the fault surfaces.
+        Colour of the fault surfaces (3D) or lines (a line drawn as a section): by fault, or by the throw measured
+        along them; 'throw' is refused before any work for an input without traced faults or faults without a
+        measured throw.
     vertical_exaggeration : float, optional
         Default: the cube's height becomes half its longer side; a single line gets the round factor that makes
         its section about half as tall as wide (at least 1, :func:`seismo3d.viz.sections.section_exaggeration`);
@@ -339,7 +357,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
         The input (or ``seismic``) does not exist.
     InputError
         An output that is an input, exists (without ``overwrite``) or cannot be written; an input of unknown kind, a
-        folder without ``faults.vtp``, a horizon file that is not a table.
+        folder without ``faults.vtp``, a horizon file that is not a table; ``color_by='throw'`` without throws
+        (above).
     SegyFormatError, SegyGeometryError
         As :func:`seismo3d.seismic.open_segy`.
     """
@@ -355,6 +374,8 @@ def run_render_job(input_path, output, *, seismic=None, color_by="fault_id", ver
     if output.suffix.lower() != ".png":
         raise InputError(f"{output.name}: render writes a PNG; name the output picture.png")
     kind = _kind(path)
+    if color_by == "throw":
+        _check_throws(kind, path)
     run = _earlier_run(kind, path)
     with record.stage("render"):
         job = _render(kind, path, output, seismic=seismic, color_by=color_by,
@@ -439,7 +460,7 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
             extra["faults"] = mesh
     if camera == "section":  # one line: a section with its numbers and times on labelled axes (matplotlib)
         caption = _render_section(cube, geometry, output, extra=extra, vertical_exaggeration=vertical_exaggeration,
-                                  window_size=window_size)
+                                  window_size=window_size, color_by=color_by)
         return RenderJob(kind=kind, picture=output, caption=caption, n_faults=n_faults, seismic=under, section=True,
                          n_stick_faults=n_stick_faults)
     show_seismic(cube, geometry, slices=slices, camera=camera, screenshot=output, window_size=window_size, **extra)
@@ -447,10 +468,11 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
                      n_stick_faults=n_stick_faults)
 
 
-def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exaggeration, window_size) -> str:
+def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exaggeration, window_size,
+                    color_by="fault_id") -> str:
     """A single line (a 2D line of a survey or a trace list) drawn as a section: trace numbers along, time or depth
     down, the vertical exaggeration stated, faults as lines and a horizon as a curve
-    (:func:`seismo3d.viz.sections.plot_section`); returns the caption."""
+    (:func:`seismo3d.viz.sections.plot_section`), coloured by ``color_by``; returns the caption."""
     from ..viz.sections import plot_section
 
     along = 0 if geometry.shape[0] > 1 else 1
@@ -470,4 +492,4 @@ def _render_section(data, geometry, output: Path, *, extra: dict, vertical_exagg
                         sample_unit=geometry.sample_unit, trace_spacing=spacing,
                         vertical_exaggeration=vertical_exaggeration, faults=extra.get("faults"),
                         sticks=extra.get("sticks"), horizon=horizon, values=values, width=window_size[0] / dpi,
-                        dpi=dpi)
+                        dpi=dpi, color_by=color_by)

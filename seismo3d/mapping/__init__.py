@@ -13,7 +13,8 @@ from .keyframes import GraphEdge, Keyframe, KeyframeGraph, KeyframeOptions, is_n
 from .landmarks import FeatureOptions, FrameFeatures, LandmarkTable, frame_features, match_to_keyframe
 from .loop_closure import LoopClosure, LoopDetector, LoopOptions, Vocabulary
 from .mapper import FrameRecord, FrameResult, MapperOptions, RGBDMapper, Trajectory
-from .metrics import TrajectoryError, absolute_trajectory_error, relative_pose_error, write_tum_trajectory
+from .metrics import (TrajectoryError, absolute_trajectory_error, reference_in_map_frame, relative_pose_error,
+                      write_tum_trajectory)
 from .odometry import FrameMeasurement, TrackingOptions, TrackingResult, measure_frame, track_frame
 from .sequences import FrameEntry, RGBDSequence, associate_timestamps, open_sequence, read_tum_trajectory
 from .tsdf import SurfacePrediction, TriangleMesh, TSDFOptions, TSDFVolume
@@ -25,5 +26,5 @@ __all__ = [
     "TrackingOptions", "TrackingResult", "TrajectoryError", "TriangleMesh", "Vocabulary", "absolute_trajectory_error",
     "associate_timestamps", "frame_feature_matches", "frame_features", "frame_points", "is_new_keyframe",
     "match_to_keyframe", "measure_frame", "open_sequence", "read_tum_trajectory", "register_frames",
-    "relative_pose_error", "track_frame", "write_tum_trajectory",
+    "reference_in_map_frame", "relative_pose_error", "track_frame", "write_tum_trajectory",
 ]

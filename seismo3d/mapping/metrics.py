@@ -26,7 +26,8 @@ from .._atomic import atomic_path
 from .._validation import check_positive
 from ..errors import InputError
 
-__all__ = ["TrajectoryError", "absolute_trajectory_error", "relative_pose_error", "write_tum_trajectory"]
+__all__ = ["TrajectoryError", "absolute_trajectory_error", "reference_in_map_frame", "relative_pose_error",
+           "write_tum_trajectory"]
 
 
 @dataclass(frozen=True)
@@ -122,6 +123,41 @@ def absolute_trajectory_error(timestamps, poses, reference_timestamps, reference
     ape = metrics.APE(metrics.PoseRelation.translation_part)
     ape.process_data((ref, est))
     return TrajectoryError.of(ape.error)
+
+
+def reference_in_map_frame(timestamps, poses, reference_timestamps, reference_poses, *,
+                           max_time_difference: float = 0.02) -> np.ndarray:
+    """The reference trajectory over the estimate's time span, moved into the estimate's (the map's) frame by the
+    rigid transform the ATE aligns them with (Horn 1987 / Umeyama 1991 on the associated positions, no scale), to
+    draw beside the estimate.
+
+    Parameters
+    ----------
+    timestamps, poses, reference_timestamps, reference_poses, max_time_difference
+        As :func:`absolute_trajectory_error`.
+
+    Returns
+    -------
+    (K, 4, 4) float64 ndarray
+        Camera-to-world reference poses from the first to the last estimated timestamp, in the map's frame, metres.
+
+    Raises
+    ------
+    InputError
+        Malformed trajectories, or fewer than 3 associated poses.
+    """
+    ref, est = _associate(timestamps, poses, reference_timestamps, reference_poses, max_time_difference)
+    if est.num_poses < 3:
+        raise InputError(f"only {est.num_poses} poses could be associated; aligning the reference needs at least 3")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        rotation, translation, _ = ref.align(est, correct_scale=False)  # reference onto the estimate
+    moved = np.eye(4)
+    moved[:3, :3], moved[:3, 3] = rotation, translation
+    t = np.asarray(timestamps, dtype=np.float64).reshape(-1)
+    rt = np.asarray(reference_timestamps, dtype=np.float64).reshape(-1)
+    span = (rt >= t.min() - max_time_difference) & (rt <= t.max() + max_time_difference)
+    return moved @ np.asarray(reference_poses, dtype=np.float64)[span]
 
 
 def relative_pose_error(timestamps, poses, reference_timestamps, reference_poses, *, delta: int = 1,

@@ -68,8 +68,47 @@ def show_point_clouds(clouds, *, labels=None, transforms=None, point_size=2.0, s
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)
 
 
-def plot_matches(image1, image2, xy1, xy2, *, correct=None, max_lines=200, title=None, ax=None):
-    """Two images side by side with lines between matched points: green where correct, red where not.
+def _thin_matches(xy, *, shape, max_matches=80) -> np.ndarray:
+    """A spatially even subset of matches: at most one per cell of a grid over the first image, the grid fine
+    enough to hold about ``max_matches`` cells, the first match of each cell in the order given kept.
+
+    Parameters
+    ----------
+    xy : (N, 2) array_like of float
+        The matches' pixels in the first image (x right, y down).
+    shape : (int, int)
+        The first image's height and width, pixels.
+    max_matches : int, optional
+        At most this many indices are returned (at least 1).
+
+    Returns
+    -------
+    (M,) int64 ndarray
+        Indices into ``xy``, increasing, ``M <= min(N, max_matches)``.
+
+    Raises
+    ------
+    InputError
+        ``max_matches`` < 1.
+    """
+    if int(max_matches) < 1:
+        raise InputError(f"max_matches must be >= 1; got {max_matches!r}")
+    p = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
+    if not p.shape[0]:
+        return np.zeros(0, np.int64)
+    height, width = (float(v) for v in shape[:2])
+    cell = float(np.sqrt(max(height * width, 1.0) / int(max_matches)))
+    n_x = max(int(np.ceil(width / cell)), 1)
+    cells = (np.clip(p[:, 1] // cell, 0, None) * n_x + np.clip(p[:, 0] // cell, 0, n_x - 1)).astype(np.int64)
+    _, first = np.unique(cells, return_index=True)
+    return np.sort(first)[: int(max_matches)]
+
+
+def plot_matches(image1, image2, xy1, xy2, *, correct=None, max_lines=80, title=None, ax=None):
+    """Two images side by side with lines between matched points, a readable subset of them: at most one match per
+    cell of a grid over the first image (the first one in each cell, in the order given: pass them best first), each
+    line in a colour of its own (green where correct and red where not, when ``correct`` is given); the picture says
+    how many are drawn of how many.
 
     Parameters
     ----------
@@ -78,9 +117,9 @@ def plot_matches(image1, image2, xy1, xy2, *, correct=None, max_lines=200, title
     xy1, xy2 : (N, 2) array_like of float
         Matched pixel coordinates (x right, y down, origin at the centre of the top-left pixel).
     correct : (N,) array_like of bool, optional
-        Which matches are correct (e.g. reprojection error under 3 pixels); default: all drawn in one colour.
+        Which matches are correct (e.g. reprojection error under 3 pixels); default: all drawn, coloured in turn.
     max_lines : int, optional
-        At most this many matches are drawn (evenly spaced in the list).
+        At most this many matches are drawn, spread over the first image.
     title : str, optional
     ax : matplotlib.axes.Axes, optional
         Where to draw; default a new figure.
@@ -94,6 +133,7 @@ def plot_matches(image1, image2, xy1, xy2, *, correct=None, max_lines=200, title
     InputError
         ``xy1`` and ``xy2`` (and ``correct``) differ in length.
     """
+    from matplotlib import colormaps
     from matplotlib.figure import Figure
 
     a, b = np.asarray(image1), np.asarray(image2)
@@ -105,17 +145,22 @@ def plot_matches(image1, image2, xy1, xy2, *, correct=None, max_lines=200, title
     padb = [(0, height - b.shape[0]), (0, 0)] + [(0, 0)] * (b.ndim - 2)
     both = np.concatenate([np.pad(a, pad), np.pad(b, padb)], axis=1)
     if ax is None:
-        fig = Figure(figsize=(10, 10 * height / both.shape[1] + 0.6), layout="constrained")
+        fig = Figure(figsize=(10, 10 * height / both.shape[1] + 0.8), layout="constrained")
         ax = fig.subplots()
     else:
         fig = ax.figure
     ax.imshow(both, cmap="gray" if both.ndim == 2 else None)
-    keep = np.linspace(0, p.shape[0] - 1, min(max_lines, p.shape[0])).astype(int) if p.shape[0] else []
+    keep = _thin_matches(p, shape=a.shape, max_matches=max_lines)
     ok = np.ones(p.shape[0], bool) if correct is None else np.asarray(correct, bool)
-    for n in keep:
-        ax.plot([p[n, 0], q[n, 0] + a.shape[1]], [p[n, 1], q[n, 1]], lw=0.6,
-                color=("tab:green" if ok[n] else "tab:red") if correct is not None else "tab:orange")
+    tab20 = colormaps["tab20"]
+    for m, n in enumerate(keep):
+        colour = ("tab:green" if ok[n] else "tab:red") if correct is not None else tab20(m % 20)
+        ax.plot([p[n, 0], q[n, 0] + a.shape[1]], [p[n, 1], q[n, 1]], lw=1.0, color=colour, marker="o", ms=3,
+                mec="black", mew=0.4)
     ax.set_axis_off()
-    if title:
-        ax.set_title(title)
+    drawn = (f"{keep.size} of {p.shape[0]} matches drawn" if keep.size < p.shape[0]
+             else f"all {p.shape[0]} matches drawn")
+    if keep.size < p.shape[0]:
+        drawn += " (at most one per cell of a grid over the left image)"
+    ax.set_title(f"{title}\n{drawn}" if title else drawn, fontsize=10)
     return fig

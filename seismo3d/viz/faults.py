@@ -92,17 +92,32 @@ def _colors(ids: np.ndarray):
     return cmap((ids - 1) % 10)
 
 
+_FEW_FAULTS = 10  # up to this many values, the colour scale spans all of them
+
+
+def _value_range(finite: np.ndarray) -> tuple[float, float]:
+    """The colour range of the faults' values: from the least to the largest, so that the colours spread over the
+    values the faults have (the mean likelihood of a run's faults spans a tenth of [0, 1]); with more than
+    :data:`_FEW_FAULTS` values, the 5th to the 95th percentile, so that a few extreme faults (a throw read across a
+    cycle skip) do not squeeze the others into one colour."""
+    if not finite.size:
+        return 0.0, 1.0
+    if finite.size <= _FEW_FAULTS:
+        return float(finite.min()), float(finite.max())
+    return float(np.percentile(finite, 5)), float(np.percentile(finite, 95))
+
+
 class _FaultColours:
     """Colours of the fault points: by id (10 colours, cycled), or by a value per fault on one colour scale."""
 
     def __init__(self, ids: np.ndarray, fault_values, label):
         from matplotlib import colormaps
         from matplotlib.cm import ScalarMappable
-        from matplotlib.colors import Normalize
+        from matplotlib.colors import ListedColormap, Normalize
 
         self.label = self.quantity = label
-        self.clipped = False
-        if fault_values is None:
+        self.clipped, self.extend = False, "neither"
+        if fault_values is None or not ids.size:  # no faults: no colour bar to draw
             self.rgba, self.mappable = _colors(ids), None
             return
         values = {int(k): float(v) for k, v in dict(fault_values).items()}
@@ -111,23 +126,26 @@ class _FaultColours:
             raise InputError(f"fault_values has no value for faults {missing[:5]}; give one per fault id")
         per_point = np.array([values[int(i)] for i in ids], np.float64)
         finite = np.array([v for v in values.values() if np.isfinite(v)])
-        hi = float(np.percentile(finite, 95)) if finite.size else 1.0
-        lo = float(min(finite.min(), 0.0)) if finite.size else 0.0
+        lo, hi = _value_range(finite)
         norm = Normalize(vmin=lo, vmax=hi if hi > lo else lo + 1.0)
+        below = bool(finite.size and finite.min() < norm.vmin)
         self.clipped = bool(finite.size and finite.max() > norm.vmax)  # the bar then says so, with an arrow
-        cmap = colormaps["viridis"].with_extremes(bad="0.6")
+        self.extend = {(False, False): "neither", (True, False): "min", (False, True): "max"}.get(
+            (below, self.clipped), "both")
+        # viridis without its darkest fifth: the least value's lines stay visible on grey seismic and their casing
+        cmap = ListedColormap(colormaps["viridis"](np.linspace(0.2, 1.0, 256))).with_extremes(bad="0.6")
         self.rgba = cmap(norm(np.ma.masked_invalid(per_point)))
         self.mappable = ScalarMappable(norm=norm, cmap=cmap)
-        if self.clipped:
+        if below or self.clipped:
             # two lines: one beside the short bar of a section picture would run into the bar below it
-            self.label = f"{label}\nclipped: 95th pct {hi:.3g}, max {finite.max():.3g}"
+            self.label = (f"{label}\nclipped at the 5th-95th pct; values {finite.min():.3g} to {finite.max():.3g}")
 
     def title(self) -> str:
         return "faults, coloured by id" if self.mappable is None else f"faults, coloured by {self.quantity}"
 
     def bar(self, fig, ax) -> None:
         if self.mappable is not None:
-            bar = fig.colorbar(self.mappable, ax=ax, shrink=0.8, extend="max" if self.clipped else "neither")
+            bar = fig.colorbar(self.mappable, ax=ax, shrink=0.8, extend=self.extend)
             bar.set_label(self.label, fontsize=8)
 
 
@@ -259,9 +277,10 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
     trace so that fault dips show (tall sections side by side, wide ones one above the other). Seismic in grey,
     symmetric colour limits at the ``clip_percentile`` of the absolute amplitude; faults as lines over a dark casing
     (each fault's samples joined along it; lone samples as dots) coloured by fault id (10 colours, cycled), or by
-    ``fault_values`` on one colour scale (viridis from the smaller of 0 and the least value to the 95th percentile of
-    the values, grey for NaN) with its colour bar, which says when it clips (an arrow and the largest value). Panel
-    titles name the slice only; the colouring is in the figure's title. With ``likelihood``, a row of the same slices of the fault likelihood is added below.
+    ``fault_values`` on one colour scale (viridis without its darkest fifth, from the least value to the largest;
+    with more than 10 faults from the 5th to the 95th percentile; grey for NaN) with its colour bar, which says
+    when it clips (arrows, and the least and largest values). Panel titles name the slice only; the colouring is in
+    the figure's title. With ``likelihood``, a row of the same slices of the fault likelihood is added below.
 
     Parameters
     ----------
@@ -373,7 +392,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
         if fl is not None:
             fig.colorbar(im, ax=axs[1, :].tolist(), shrink=0.8, label="fault likelihood")
     n_f = len(np.unique(ids)) if ids.size else 0
-    how = "" if data.ndim == 2 else f" ({colours.title().removeprefix('faults, ')})"
+    how = "" if data.ndim == 2 or not n_f else f" ({colours.title().removeprefix('faults, ')})"
     fig.suptitle(f"{title + ': ' if title else ''}{n_f} faults{how}")
     path = Path(path)
     with atomic_path(path) as tmp:

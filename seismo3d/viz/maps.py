@@ -40,10 +40,36 @@ def _mesh_polydata(mesh):
     return surf
 
 
+def _round_length(extent: float) -> float:
+    """A round length (1, 2 or 5 times a power of ten) of about a quarter of ``extent``, for a scale bar."""
+    target = max(float(extent), 1e-6) / 4.0
+    power = 10.0 ** np.floor(np.log10(target))
+    return float(max(step * power for step in (1.0, 2.0, 5.0) if step * power <= target))
+
+
+def _scale_bar(plotter, vertices, up, forward, right) -> float:
+    """A black bar of a round length (:func:`_round_length` of the map's width across the view) on the map's floor
+    at its front left, labelled with its length; returns the length in metres. In a perspective view a length
+    reads true only at the bar's distance from the camera."""
+    import pyvista as pv
+
+    along = vertices @ right
+    length = _round_length(float(np.ptp(along)))
+    start = (np.min(along) * right + np.min(vertices @ forward) * forward + np.min(vertices @ up) * up)
+    end = start + length * right
+    plotter.add_mesh(pv.Line(start, end), color="black", line_width=6)
+    label = f"{length * 100:g} cm" if length < 1 else f"{length:g} m"
+    above = (start + end) / 2 + 0.12 * length * forward  # beyond the bar as the camera sees it: above it
+    plotter.add_point_labels(above[None], [label], font_size=14, text_color="black", shape=None,
+                             show_points=False, always_visible=True, justification_horizontal="center")
+    return length
+
+
 def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None, window_size=(1024, 768),
              jupyter_backend=None, title=None):
     """An RGB-D map: the mesh coloured by height, the camera trajectory (red), the keyframes as small camera
-    pyramids (blue) and a reference trajectory (green), seen from above and behind the cameras.
+    pyramids (blue), a reference trajectory (green, drawn wider under the red one) and a scale bar on the map's
+    floor, seen from above and behind the cameras.
 
     Parameters
     ----------
@@ -55,7 +81,8 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
     keyframes : (K, 4, 4) array_like, optional
         Keyframe poses.
     reference : (M, 4, 4) array_like, optional
-        A reference trajectory in the map's frame.
+        A reference trajectory in the map's frame (e.g. the ground truth moved there by
+        :func:`seismo3d.mapping.reference_in_map_frame`).
     screenshot : str or os.PathLike, optional
         Render off screen into this PNG instead of showing the scene.
     window_size : (int, int), optional
@@ -92,17 +119,21 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
         plotter.add_mesh(surf, scalars="height (m)", cmap="cividis", smooth_shading=True,
                          scalar_bar_args=bar_below("height (m)"))
     size = 0.08
+    ref = np.zeros((0, 4, 4)) if reference is None else np.asarray(reference, dtype=np.float64).reshape(-1, 4, 4)
+    if len(ref) >= 2:  # under the estimate, wider: where they agree, green edges the red line
+        plotter.add_mesh(pv.lines_from_points(ref[:, :3, 3]), color="limegreen", line_width=12)
     if len(traj) >= 2:
-        plotter.add_mesh(pv.lines_from_points(traj[:, :3, 3]), color="red", line_width=6, label="trajectory")
-    if reference is not None:
-        ref = np.asarray(reference, dtype=np.float64).reshape(-1, 4, 4)
-        if len(ref) >= 2:
-            plotter.add_mesh(pv.lines_from_points(ref[:, :3, 3]), color="green", line_width=3, label="reference")
+        plotter.add_mesh(pv.lines_from_points(traj[:, :3, 3]), color="red", line_width=4)
     if len(kfs):
         seg = np.concatenate([_frustum(p, size) for p in kfs])
-        plotter.add_mesh(pv.line_segments_from_points(seg), color="blue", line_width=3, label="keyframes")
-    if len(traj) >= 2 or len(kfs):
-        plotter.add_legend(bcolor="white", face=None)
+        plotter.add_mesh(pv.line_segments_from_points(seg), color="blue", line_width=3)
+    # the legend as coloured words at the top right (VTK's legend box cut its longest label off at the window's edge)
+    entries = [(name, colour) for name, colour, shown in (("ground truth", "limegreen", len(ref) >= 2),
+                                                          ("trajectory", "red", len(traj) >= 2),
+                                                          ("keyframes", "blue", len(kfs) > 0)) if shown]
+    width, height = (int(v) for v in np.ravel(window_size))
+    for n, (name, colour) in enumerate(entries):
+        plotter.add_text(name, position=(width - 150, height - 36 - 24 * n), font_size=12, color=colour)
     if title:
         plotter.add_text(title, font_size=9, color="black")
     # look down on the scene from above and behind the cameras (their mean viewing direction), everything in view
@@ -113,13 +144,15 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
         forward -= (forward @ up) * up
         forward /= max(np.linalg.norm(forward), 1e-12)
         centre = vertices.mean(axis=0) if len(vertices) else traj[:, :3, 3].mean(axis=0)
+        if len(vertices):
+            _scale_bar(plotter, vertices, up, forward, np.cross(forward, up))
         eye = centre + 3.0 * (-0.8 * forward + 1.0 * up)
         plotter.camera_position = [tuple(eye), tuple(centre), tuple(forward)]
         plotter.reset_camera()
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)
 
 
-def render_map(mesh, trajectory, keyframes, path, *, window_size=(1280, 960), reference=None):
+def render_map(mesh, trajectory, keyframes, path, *, window_size=(1280, 960), reference=None, title=None):
     """Render the map mesh, the camera trajectory and the keyframes to a PNG, off screen (:func:`show_map`).
 
     Parameters
@@ -136,6 +169,8 @@ def render_map(mesh, trajectory, keyframes, path, *, window_size=(1280, 960), re
         Pixels.
     reference : (M, 4, 4) array_like, optional
         A reference trajectory (already in the map's frame) drawn in green.
+    title : str, optional
+        A line of text at the top left.
 
     Returns
     -------
@@ -147,5 +182,5 @@ def render_map(mesh, trajectory, keyframes, path, *, window_size=(1280, 960), re
     InputError
         Malformed poses.
     """
-    show_map(mesh, trajectory, keyframes, reference=reference, screenshot=path, window_size=window_size)
+    show_map(mesh, trajectory, keyframes, reference=reference, screenshot=path, window_size=window_size, title=title)
     return Path(path)

@@ -7,6 +7,7 @@ as a plane in a 3D scene, which squashed a deep section into a band without tick
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -47,13 +48,15 @@ def section_exaggeration(n_traces: int, trace_spacing, vertical_extent, *, targe
     return float(steps[np.argmin(np.abs(np.log(steps / np.clip(raw, 1.0, 20.0))))])
 
 
-def _fault_segments(faults, n_traces: int):
-    """(fault id, (n, 2) fractional trace index / sample index, ordered along the fault) of a 2D faults mesh in index
-    space (points ``(trace, 0, -sample)``, polylines: :func:`~seismo3d.viz.fault_surfaces`, ``faults.vtp``)."""
+def _fault_segments(faults, n_traces: int, values: str | None = None):
+    """(fault id, (n, 2) fractional trace index / sample index ordered along the fault, (n,) values of the point
+    array ``values`` in the same order, or None) of a 2D faults mesh in index space (points ``(trace, 0, -sample)``,
+    polylines: :func:`~seismo3d.viz.fault_surfaces`, ``faults.vtp``)."""
     if faults is None or not faults.n_points:
         return []
     p = np.asarray(faults.points, dtype=np.float64)
     ids = np.asarray(faults.point_data["fault_id"]) if "fault_id" in faults.point_data else np.ones(len(p), int)
+    point_values = None if values is None else np.asarray(faults.point_data[values], dtype=np.float64)
     lines = np.asarray(faults.lines, dtype=np.int64)
     out, at = [], 0
     while at < lines.size:
@@ -61,29 +64,31 @@ def _fault_segments(faults, n_traces: int):
         idx = lines[at + 1: at + 1 + n]
         at += n + 1
         if n >= 2:
-            seg = _smooth(np.column_stack([p[idx, 0], -p[idx, 2]]))
+            seg, order = _smooth(np.column_stack([p[idx, 0], -p[idx, 2]]))
             if np.all((seg[:, 0] >= -0.5) & (seg[:, 0] <= n_traces - 0.5)):
-                out.append((int(ids[idx[0]]), seg))
+                out.append((int(ids[idx[0]]), seg, None if point_values is None else point_values[idx][order]))
     return out
 
 
-def _smooth(points: np.ndarray, window: int = 9) -> np.ndarray:
+def _smooth(points: np.ndarray, window: int = 9):
     """A fault's samples ordered along its main direction and averaged over ``window`` neighbours: one clean line
-    where the samples of a braided stretch zigzag across it (display only)."""
+    where the samples of a braided stretch zigzag across it (display only); and the order."""
     c = points - points.mean(axis=0)
     _, _, vt = np.linalg.svd(c, full_matrices=False)
-    points = points[np.argsort(c @ vt[0], kind="stable")]
+    order = np.argsort(c @ vt[0], kind="stable")
+    points = points[order]
     w = min(window, points.shape[0])
     if w < 3:
-        return points
+        return points, order
     kernel = np.ones(w) / w
     pad = np.pad(points, ((w // 2, w - 1 - w // 2), (0, 0)), mode="edge")
-    return np.column_stack([np.convolve(pad[:, d], kernel, mode="valid") for d in range(2)])
+    return np.column_stack([np.convolve(pad[:, d], kernel, mode="valid") for d in range(2)]), order
 
 
 def plot_section(section, *, path, traces=None, samples=None, trace_name="trace", sample_unit="samples",
                  trace_spacing=None, velocity=2000.0, vertical_exaggeration=None, faults=None, sticks=None,
-                 horizon=None, title=None, clip_percentile=99.0, values="amplitude", width=11.0, dpi=120):
+                 horizon=None, title=None, clip_percentile=99.0, values="amplitude", width=11.0, dpi=120,
+                 color_by="fault_id"):
     """Draw one seismic line with labelled axes, a stated vertical exaggeration, faults as lines and a horizon, and
     save a PNG.
 
@@ -125,8 +130,15 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         What ``section`` holds: amplitudes (grey, symmetric limits), a fault likelihood in [0, 1] (drawn when no
         seismic is at hand), or nothing to draw (a blank section under faults or a horizon).
     width : float, optional
-        Width of the picture in inches (its height follows from the exaggeration).
+        Largest width of the picture in inches. The picture follows the section's shape (its exaggeration) so that
+        the section fills it: a wide section this wide with the height it needs; a section taller than wide with
+        its colour bars below it, in a picture at most 4 times as tall as ``width``, narrower than ``width`` where
+        the exaggeration makes the section a strip.
     dpi : int, optional
+    color_by : {'fault_id', 'throw'}, optional
+        Colour of the fault lines: a colour per fault, or each point's throw (``faults.vtp``'s point array
+        ``throw``, in samples, drawn in the sample unit: + where the hanging wall moved down) on a diverging scale
+        to the 98th percentile of |throw|, with its colour bar.
 
     Returns
     -------
@@ -136,12 +148,22 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     Raises
     ------
     InputError
-        A section that is not 2D, axes of the wrong length, a non-positive exaggeration or a missing folder.
+        A section that is not 2D, axes of the wrong length, a non-positive exaggeration, a missing folder, or
+        ``color_by='throw'`` with faults that carry no measured throw.
     """
+    import textwrap
+
+    from matplotlib import colormaps
     from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
-    from matplotlib import colormaps
 
+    from .._validation import check_choice
+
+    check_choice(color_by, "color_by", {"fault_id", "throw"})
+    if color_by == "throw" and faults is not None and faults.n_points and not (
+            "throw" in faults.point_data and np.isfinite(np.asarray(faults.point_data["throw"], float)).any()):
+        raise InputError("color_by='throw' needs faults with measured throws (faults.vtp's point array 'throw'); "
+                         "colour them by fault id instead")
     data = np.asarray(section, dtype=np.float32)
     if data.ndim != 2 or min(data.shape) < 2:
         raise InputError(f"section must be (n_traces, n_samples) with at least 2 of each; got shape {data.shape}")
@@ -169,10 +191,24 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         aspect = vertical_exaggeration * per_unit / (float(trace_spacing) / step)
     else:  # no distance between traces: no exaggeration to speak of; drawn about half as tall as wide
         aspect = 0.55 * width_units / (abs(samples[-1] - samples[0]) or 1.0)
-    ratio = abs(aspect * (samples[-1] - samples[0]) / width_units)
-    fig_w = float(width)
-    fig_h = float(np.clip(fig_w * 0.82 * ratio, 0.25 * fig_w, 1.3 * fig_w)) + 1.3
-    fig = Figure(figsize=(fig_w, fig_h), dpi=dpi, layout="constrained")
+    ratio = abs(aspect * (samples[-1] - samples[0]) / width_units)  # the section's height over its width
+    n_bars = (values != "none") + (color_by == "throw" and faults is not None and faults.n_points > 0)
+    layout = _figure_size(ratio, width, colour_bars=n_bars)
+    heading_width = layout.heading_width
+    caption = _caption(traces, samples, trace_name, sample_unit, trace_spacing, vertical_exaggeration, velocity)
+    n_head = len(textwrap.wrap(f"{title + ' ' if title else ''}{caption}", width=heading_width)) + bool(title)
+    below = _BAR_H * n_bars if layout.bars_below else 0.0
+    fig = Figure(figsize=(layout.width, layout.box_height + _MARGIN_H + below + 0.22 * n_head), dpi=dpi,
+                 layout="constrained")
+    # below a tall section: the bar's thickness and gap in inches (matplotlib counts them in the section's height)
+    def bar_style() -> dict:
+        if not layout.bars_below:
+            return dict(shrink=0.7, pad=0.01)
+        from matplotlib.ticker import MaxNLocator
+
+        return dict(location="bottom", shrink=0.9, fraction=0.2 / layout.box_height, pad=0.4 / layout.box_height,
+                    aspect=12, ticks=MaxNLocator(nbins=4))
+
     ax = fig.subplots()
     dh = step / 2
     extent = (traces[0] - dh if traces[-1] >= traces[0] else traces[0] + dh,
@@ -182,39 +218,42 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         clip = symmetric_clip(data, clip_percentile)
         im = ax.imshow(data.T, extent=extent, cmap="gray_r", vmin=-clip, vmax=clip, interpolation="bilinear",
                        aspect=aspect)
-        fig.colorbar(im, ax=ax, shrink=0.7, extend="both", pad=0.01,
-                     label=f"amplitude (clipped at {clip_percentile:g}th pct)")
+        fig.colorbar(im, ax=ax, extend="both", label=f"amplitude (clipped at {clip_percentile:g}th pct)",
+                     **bar_style())
     elif values == "fault likelihood":
         im = ax.imshow(data.T, extent=extent, cmap="Greys", vmin=0.0, vmax=1.0, interpolation="nearest",
                        aspect=aspect)
-        fig.colorbar(im, ax=ax, shrink=0.7, pad=0.01, label="fault likelihood (no seismic drawn)")
+        fig.colorbar(im, ax=ax, label="fault likelihood (no seismic drawn)", **bar_style())
     elif values == "none":
         ax.set_xlim(extent[0], extent[1])
         ax.set_ylim(extent[2], extent[3])
         ax.set_aspect(aspect)
     else:
         raise InputError(f"values must be one of 'amplitude', 'fault likelihood', 'none'; got {values!r}")
-    segments = _fault_segments(faults, n_tr)
+    segments = _fault_segments(faults, n_tr, values="throw" if color_by == "throw" else None)
     if segments:
-        tab10 = colormaps["tab10"]
         lines = [np.column_stack([np.interp(s[:, 0], np.arange(n_tr), traces),
-                                  np.interp(s[:, 1], np.arange(n_s), samples)]) for _, s in segments]
-        colours = [tab10((fid - 1) % 10) for fid, _ in segments]
+                                  np.interp(s[:, 1], np.arange(n_s), samples)]) for _, s, _ in segments]
         ax.add_collection(LineCollection(lines, colors="black", linewidths=3.4, alpha=0.6, zorder=3))
-        ax.add_collection(LineCollection(lines, colors=colours, linewidths=2.0, zorder=4))
+        if color_by == "throw":
+            colours = _add_throw_lines(fig, ax, lines, [v for _, _, v in segments], dt, sample_unit, bar_style())
+        else:
+            tab10 = colormaps["tab10"]
+            colours = [tab10((fid - 1) % 10) for fid, _, _ in segments]
+            ax.add_collection(LineCollection(lines, colors=colours, linewidths=2.0, zorder=4))
     people = _fault_segments(sticks, n_tr)
     if people:
         from matplotlib.lines import Line2D
 
         lines = [np.column_stack([np.interp(s[:, 0], np.arange(n_tr), traces),
-                                  np.interp(s[:, 1], np.arange(n_s), samples)]) for _, s in people]
+                                  np.interp(s[:, 1], np.arange(n_s), samples)]) for _, s, _ in people]
         ax.add_collection(LineCollection(lines, colors="black", linewidths=3.6, alpha=0.7, zorder=5))
         ax.add_collection(LineCollection(lines, colors="white", linewidths=1.8, linestyles=(0, (4, 2)), zorder=6))
         handles = [Line2D([], [], color="white", lw=1.8, ls=(0, (4, 2)), path_effects=_casing(),
                           label=f"people's fault sticks ({len(people)})")]
         if segments:
             handles.append(Line2D([], [], color=colours[0], lw=2.0, path_effects=_casing(),
-                                  label=f"traced faults ({len({fid for fid, _ in segments})})"))
+                                  label=f"traced faults ({len({fid for fid, _, _ in segments})})"))
         fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=9, frameon=False)  # hides none of it
     if horizon is not None:
         h = np.asarray(horizon, dtype=np.float64).ravel()
@@ -228,21 +267,11 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     ax.set_ylabel(f"{name}{unit}")
     ax.xaxis.set_ticks_position("both")
     ax.tick_params(top=True, labeltop=True)
-    if trace_spacing:
-        how = f"vertical exaggeration {vertical_exaggeration:g}x"
-        if sample_unit == "ms":
-            how += f" (time as depth at {velocity:g} m/s)"
-    else:
-        how = "no trace spacing in the headers: no vertical exaggeration, drawn to fit"
-    span = f"{samples[0]:g}-{samples[-1]:g}" + ("" if sample_unit == "samples" else f" {sample_unit}")
-    lines = f"{trace_name}s {traces[0]:g}-{traces[-1]:g}, {name} {span}"
-    caption = f"{lines}, {how}"
-    extra = f", {len({fid for fid, _ in segments})} faults" if segments else ""
+    extra = f", {len({fid for fid, _, _ in segments})} faults" if segments else ""
+    extra += " coloured by throw" if segments and color_by == "throw" else ""
     extra += f", {len(people)} people's fault sticks" if people else ""
-    import textwrap
-
-    heading = textwrap.fill(f"{caption}{extra}", width=max(30, int(fig_w * 11)))
-    fig.suptitle(f"{title + chr(10) if title else ''}{heading}", fontsize=10)
+    fig.suptitle(f"{title + chr(10) if title else ''}{textwrap.fill(caption + extra, width=heading_width)}",
+                 fontsize=10)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png")
     return caption
@@ -328,6 +357,82 @@ def plot_volume_registration(fixed, moving, moving_on_fixed, *, path, inline=Non
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png")
     return path
+
+
+_MARGIN_W = 1.3  # inches beside the section: the time axis' label and ticks
+_BAR_W = 1.2  # inches of a colour bar beside the section, with its label
+_BAR_H = 1.0  # inches of a colour bar below a tall section, with its label
+_MARGIN_H = 1.8  # inches above and below the section: the trace axis' ticks (top and bottom) and label
+_MAX_TALL = 4.0  # a tall section's picture at most this many times as tall as ``width``
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """The picture's size around a section (inches): its width, the section's height, the colour bars below the
+    section rather than beside it (a tall section), and the title's wrapping width in characters."""
+
+    width: float
+    box_height: float
+    bars_below: bool
+    heading_width: int
+
+
+def _figure_size(ratio: float, width: float, *, colour_bars: int) -> _Layout:
+    """A picture the section fills, its shape following the section's (``ratio``: the section's height over its
+    width, from the exaggeration). A wide section is as wide as ``width`` allows, its colour bars beside it, the
+    height what the section needs. A tall one (ratio > 1) has its colour bars below it and is as wide as a picture
+    up to :data:`_MAX_TALL` times ``width`` tall allows (at most ``width``): narrower than ``width`` when the
+    exaggeration makes it a strip, so that no margin of white is left beside it."""
+    width = float(width)
+    if ratio <= 1.0:
+        box_w = max(width - _MARGIN_W - _BAR_W * colour_bars, 1.0)
+        return _Layout(width, box_w * ratio, False, max(30, int(width * 11)))
+    room = _MAX_TALL * width - _MARGIN_H - _BAR_H * colour_bars
+    box_w = max(min(width - _MARGIN_W, room / ratio), 0.2)
+    fig_w = min(max(box_w + _MARGIN_W, 3.0), width)  # room for a title of a few short lines
+    return _Layout(fig_w, box_w * ratio, True, max(24, int(fig_w * 11)))
+
+
+def _caption(traces, samples, trace_name, sample_unit, trace_spacing, vertical_exaggeration, velocity):
+    """The caption: the lines, the time or depth range and the exaggeration."""
+    name = _NAMES.get(sample_unit, "sample")
+    if trace_spacing:
+        how = f"vertical exaggeration {vertical_exaggeration:g}x"
+        if sample_unit == "ms":
+            how += f" (time as depth at {velocity:g} m/s)"
+    else:
+        how = "no trace spacing in the headers: no vertical exaggeration, drawn to fit"
+    span = f"{samples[0]:g}-{samples[-1]:g}" + ("" if sample_unit == "samples" else f" {sample_unit}")
+    return f"{trace_name}s {traces[0]:g}-{traces[-1]:g}, {name} {span}, {how}"
+
+
+def _add_throw_lines(fig, ax, lines, throws, dt: float, sample_unit: str, bar_style: dict) -> list:
+    """Fault lines coloured point by point by their throw (``faults.vtp``'s ``throw``, samples; converted to the
+    sample unit), on a diverging scale symmetric about 0 to the 98th percentile of |throw| (as the 3D scene), with
+    its colour bar; grey where a throw was not measured. Returns a colour for the legend."""
+    from matplotlib import colormaps
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import Normalize
+
+    scale = dt if sample_unit != "samples" else 1.0
+    values = [np.asarray(v, dtype=np.float64) * scale for v in throws]
+    finite = np.concatenate([v[np.isfinite(v)] for v in values]) if values else np.zeros(0)
+    lim = float(np.percentile(np.abs(finite), 98)) if finite.size else 1.0
+    norm = Normalize(-(lim or 1.0), lim or 1.0)
+    cmap = colormaps["PuOr_r"].with_extremes(bad="0.6")
+    segments, per_segment = [], []
+    for line, v in zip(lines, values):
+        segments.extend(np.stack([line[:-1], line[1:]], axis=1))
+        per_segment.append(0.5 * (v[:-1] + v[1:]))
+    collection = LineCollection(segments, cmap=cmap, norm=norm, linewidths=2.0, zorder=4)
+    collection.set_array(np.ma.masked_invalid(np.concatenate(per_segment)))
+    ax.add_collection(collection)
+    unit = "samples" if sample_unit == "samples" else sample_unit
+    clipped = bool(finite.size and np.abs(finite).max() > lim)
+    bar = fig.colorbar(collection, ax=ax, extend="both" if clipped else "neither", **bar_style)
+    bar.set_label(f"throw ({unit}, + normal)" + (f"\nclipped at 98th pct, max {np.abs(finite).max():.3g}"
+                                                   if clipped else ""), fontsize=8)
+    return [cmap(norm(lim))]
 
 
 def _casing():

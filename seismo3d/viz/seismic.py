@@ -172,6 +172,36 @@ def _outline(geometry: CubeGeometry):
     return pv.PolyData(geometry.to_world(corners), lines=lines)
 
 
+def _lateral_ticks(plotter, lo, hi, ranges, eye, right) -> None:
+    """Round numbers along the two lateral edges of the box's bottom nearest the camera (inline / crossline numbers
+    or map X / Y), at most 6 a side and none within 8 % of the edge's ends, so that the two rows of numbers do not
+    meet at the corner they share; a tick on the edge, its number a little outside the box."""
+    from matplotlib.ticker import MaxNLocator
+
+    near = [hi[d] if abs(eye[d] - hi[d]) < abs(eye[d] - lo[d]) else lo[d] for d in (0, 1)]  # the front edges
+    span = np.subtract(hi, lo)
+    for axis, (first, last) in enumerate(ranges):
+        other = 1 - axis
+        if last <= first or span[axis] <= 0:
+            continue
+        margin = 0.08 * (last - first)
+        values = [v for v in MaxNLocator(nbins=6, steps=[1, 2, 2.5, 5, 10]).tick_values(first, last)
+                  if first + margin <= v <= last - margin]
+        if not values:
+            continue
+        points = np.zeros((len(values), 3))
+        points[:, axis] = lo[axis] + (np.array(values) - first) / (last - first) * span[axis]
+        points[:, other], points[:, 2] = near[other], lo[2]
+        plotter.add_points(points.copy(), color="black", point_size=6, render_points_as_spheres=False)  # the ticks
+        outward = np.zeros(3)
+        outward[other] = 1.0 if near[other] == hi[other] else -1.0
+        points += outward * 0.04 * max(span[other], 1e-9)
+        leftward = float(outward @ right) < 0  # the numbers end at the tick on the left of the picture
+        plotter.add_point_labels(points, [f"{v:.0f}" for v in values], font_size=10, text_color="black",
+                                 shape=None, show_points=False, always_visible=True,
+                                 justification_horizontal="right" if leftward else "left")
+
+
 def _add_ticks(plotter, geometry: CubeGeometry) -> None:
     """Labelled ticks on the cube's box: inline and crossline numbers (or map X / Y in the survey's unit when the
     cube is placed by its CDP coordinates) and time or depth, increasing downward, in the data's own values (the
@@ -192,15 +222,19 @@ def _add_ticks(plotter, geometry: CubeGeometry) -> None:
         x_title, y_title = f"X ({geometry.map_unit})", f"Y ({geometry.map_unit})"
         x_range, y_range = (lo[0], hi[0]), (lo[1], hi[1])
     ranges = [*x_range, *y_range, lo[2], hi[2]]
+    # the box and the axes' titles by VTK; the numbers drawn here (below): VTK labels both ends of every axis, and
+    # the two lateral axes meet at the box's front corner, where their end labels ran into each other
     plotter.show_bounds(bounds=[lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]], axes_ranges=ranges, xtitle=x_title,
-                        ytitle=y_title or " ", ztitle=" ", show_zlabels=False, color="black", font_size=10,
-                        fmt="%.0f", location="outer", grid=False, ticks="outside", minor_ticks=False)
-    # time or depth downward: VTK's axes label only increasing ranges, so the vertical ticks are drawn here, on the
-    # box's vertical edge that the camera sees leftmost
+                        ytitle=y_title or " ", ztitle=" ", show_xlabels=False, show_ylabels=False,
+                        show_zlabels=False, color="black", font_size=10, location="outer", grid=False, ticks=None,
+                        minor_ticks=False)
     from matplotlib.ticker import MaxNLocator
 
     camera = plotter.camera
     right = np.cross(np.subtract(camera.focal_point, camera.position), camera.up)
+    _lateral_ticks(plotter, lo, hi, (x_range, y_range), np.asarray(camera.position, float), right)
+    # time or depth downward: VTK's axes label only increasing ranges, so the vertical ticks are drawn here, on the
+    # box's vertical edge that the camera sees leftmost
     ends = [(i, j) for i in (0, geometry.shape[0] - 1) for j in (0, geometry.shape[1] - 1)]
     i0, j0 = min(ends, key=lambda e: float(geometry.to_world([[e[0], e[1], 0.0]])[0] @ right))
 

@@ -209,3 +209,59 @@ def test_a_faults_folder_of_a_line_renders_quickly(tmp_path):
     job = run_render_job(folder, tmp_path / "f.png", window_size=(400, 300))
     assert time.perf_counter() - start < 15.0
     assert job.n_faults == 1 and _not_blank(tmp_path / "f.png", 0.02)[0]
+
+
+def _line_faults_folder(tmp_path, throw):
+    """A faults folder of a 2D line (80 traces, 120 samples): one fault whose points carry ``throw`` (samples)."""
+    from seismo3d.seismic import Fault
+    from seismo3d.viz import fault_surfaces, save_polydata
+
+    folder = tmp_path / "faults"
+    folder.mkdir()
+    k = np.arange(10, 110)
+    pts = np.column_stack([30 + k // 5, k]).astype(np.int64)  # (trace, sample): a fault of a section
+    n = pts.shape[0]
+    fault = Fault(id=1, points=pts, likelihood=np.ones(n, np.float32), strike_deg=np.zeros(n, np.float32),
+                  dip_deg=np.full(n, 80, np.float32), normals=np.tile(np.float32([1, 0]), (n, 1)))
+    mesh = fault_surfaces([fault])
+    mesh.point_data["throw"] = np.interp(-mesh.points[:, 2], [10, 109], throw)  # along the fault, by sample
+    save_polydata(mesh, folder / "faults.vtp")
+    np.save(folder / "fault_likelihood.npy", np.zeros((80, 120), np.float32))
+    return folder
+
+
+def test_a_line_s_faults_coloured_by_throw(tmp_path):
+    """--color-by throw on a line: the fault drawn point by point in the throw's colours (PuOr: purple where
+    the throw is negative, orange where positive) with its colour bar; by fault id it stays tab10 blue. Before, the
+    option left the line's picture as by fault id."""
+    folder = _line_faults_folder(tmp_path, [-8.0, 8.0])
+    pictures = {}
+    for how in ("fault_id", "throw"):
+        job = run_render_job(folder, tmp_path / f"{how}.png", color_by=how, window_size=(600, 400))
+        assert job.section and job.n_faults == 1
+        pictures[how] = (imread_rgb(tmp_path / f"{how}.png"))
+    blue = lambda img: (img[..., 2] > 150) & (img[..., 0] < 80) & (img[..., 1] > 90)  # tab10 blue (31, 119, 180)
+    orange = lambda img: (img[..., 0] > 170) & (img[..., 2] < 90) & (img[..., 1] > 60) & (img[..., 1] < 170)
+    purple = lambda img: (img[..., 2] > img[..., 1] + 40) & (img[..., 0] > img[..., 1] + 20) & (img[..., 0] < 160)
+    by_id, by_throw = pictures["fault_id"], pictures["throw"]
+    assert blue(by_id).sum() > 100 and not orange(by_id).any() and not purple(by_id).any()
+    assert orange(by_throw).sum() > 100 and purple(by_throw).sum() > 100 and blue(by_throw).sum() < 20
+
+
+def imread_rgb(path):
+    from matplotlib.image import imread
+
+    return (imread(path)[..., :3] * 255).round()
+
+
+def test_color_by_throw_refused_before_the_work_without_throws(tmp_path):
+    """Where there is no throw to colour by (a SEG-Y file, faults without a measured throw): one line, exit 2,
+    no picture."""
+    _write_segy(tmp_path / "cube.sgy", _cube())
+    folder = _line_faults_folder(tmp_path, [np.nan, np.nan])
+    for given, match in ((tmp_path / "cube.sgy", "colours traced faults by their throw, and cube.sgy is a SEG-Y"),
+                         (folder, "carry no measured throw")):
+        res = runner.invoke(app, ["render", str(given), "-o", str(tmp_path / "x.png"), "--color-by", "throw"])
+        assert res.exit_code == 2, res.output
+        assert match in res.stderr and "--color-by" in res.stderr and len(res.stderr.strip().splitlines()) == 1
+        assert not (tmp_path / "x.png").exists()

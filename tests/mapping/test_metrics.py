@@ -5,7 +5,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from seismo3d.errors import InputError
-from seismo3d.mapping import absolute_trajectory_error, read_tum_trajectory, relative_pose_error, write_tum_trajectory
+from seismo3d.mapping import (absolute_trajectory_error, read_tum_trajectory, reference_in_map_frame,
+                              relative_pose_error, write_tum_trajectory)
 
 
 def _tum_ate(est, ref):
@@ -49,6 +50,21 @@ def test_ate_removes_the_rigid_offset_and_matches_the_tum_definition(rng):
     assert ate.rmse == pytest.approx(_tum_ate(est, ref), rel=1e-9)
     assert ate.rmse < np.sqrt(np.mean(np.sum(noise**2, 1))) + 1e-9  # alignment can only lower it
     assert ate.rmse > 0.8 * np.sqrt(np.mean(np.sum(noise**2, 1)))
+
+
+def test_the_reference_moved_into_the_map_frame(rng):
+    """The ground truth over the estimate's span, moved by the ATE's alignment: on an estimate that is the
+    reference in another frame, it lands on the estimate (its positions and orientations)."""
+    t, ref = _trajectory(60, rng)
+    offset = np.eye(4)
+    offset[:3, :3] = Rotation.from_euler("zx", [40, -15], degrees=True).as_matrix()
+    offset[:3, 3] = [1.0, -2.0, 0.5]
+    est = offset @ ref[10:50]  # the map starts at frame 10 and stops at 49
+    moved = reference_in_map_frame(t[10:50], est, t, ref)
+    assert moved.shape == (40, 4, 4)
+    np.testing.assert_allclose(moved, est, atol=1e-9)
+    with pytest.raises(InputError, match="at least 3"):
+        reference_in_map_frame(t[:2], est[:2], t, ref)
 
 
 def test_rpe_matches_the_tum_definition(rng):

@@ -41,3 +41,21 @@ def test_matches_drawn_green_and_red(tmp_path):
     FigureCanvasAgg(fig).print_png(tmp_path / "m.png")
     with pytest.raises(InputError):
         plot_matches(image, image, xy1, xy2[:1])
+
+
+def test_many_matches_thinned_to_a_readable_spread_and_counted():
+    """4000 matches (a real TUM pair gives 4011 verified): at most 80 lines, at most one per grid cell, spread over
+    the image, and the picture says how many of how many it draws."""
+    rng = np.random.default_rng(1)
+    image = np.zeros((480, 640), np.uint8)
+    xy1 = np.column_stack([rng.uniform(0, 640, 4000), rng.uniform(0, 480, 4000)])
+    fig = plot_matches(image, image, xy1, xy1 + [3.0, 1.0])
+    lines = fig.axes[0].get_lines()
+    assert 40 <= len(lines) <= 80
+    starts = np.array([ln.get_xydata()[0] for ln in lines])
+    cell = np.sqrt(480 * 640 / 80)
+    assert len({(int(x // cell), int(y // cell)) for x, y in starts}) == len(lines)  # one per cell
+    assert np.ptp(starts[:, 0]) > 500 and np.ptp(starts[:, 1]) > 380  # over the whole image, not a clump
+    assert f"{len(lines)} of 4000 matches drawn" in fig.axes[0].get_title()
+    few = plot_matches(image, image, xy1[:2], xy1[:2])
+    assert len(few.axes[0].get_lines()) == 2 and "all 2 matches drawn" in few.axes[0].get_title()

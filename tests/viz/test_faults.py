@@ -56,15 +56,34 @@ def test_the_time_slice_title_has_its_unit(label, title):
 
 
 def test_the_throw_colour_bar_says_when_it_clips():
-    """Colours by a value per fault stop at its 95th percentile; the bar's label then says so, with the largest
-    value (its arrow: extend='max'), and the figure's title names the quantity without the note."""
+    """Over 10 faults, colours by a value per fault span its 5th to 95th percentile; the bar's label then says so,
+    with the least and largest values (its arrows: extend='both'), and the figure's title names the quantity without
+    the note."""
     from seismo3d.viz.faults import _FaultColours
 
     ids = np.repeat(np.arange(1, 21), 3)
     skewed = _FaultColours(ids, {i: float(i) for i in range(1, 20)} | {20: 60.0}, "|median throw| (ms)")
-    assert skewed.clipped
-    assert skewed.label == "|median throw| (ms)\nclipped: 95th pct 21.1, max 60"  # 19 + 0.05 * 41
+    assert skewed.clipped and skewed.extend == "both"
+    assert skewed.mappable.norm.vmin == pytest.approx(1.95) and skewed.mappable.norm.vmax == pytest.approx(21.05)
+    assert skewed.label == "|median throw| (ms)\nclipped at the 5th-95th pct; values 1 to 60"
     assert skewed.title() == "faults, coloured by |median throw| (ms)"
     even = _FaultColours(ids, {i: 5.0 for i in range(1, 21)}, "|median throw| (ms)")
     assert not even.clipped and even.label == "|median throw| (ms)"
     assert not _FaultColours(ids, None, "value").clipped  # colours by id: no bar
+    assert _FaultColours(np.zeros(0, np.int32), {}, "confidence").mappable is None  # no faults: no bar
+
+
+def test_the_colours_spread_over_the_values_the_faults_have():
+    """The confidences of the 5 faults traced on Teapot Dome line tp73 (0.52-0.95): the colour scale runs from the
+    least to the largest, so that no fault is in a clipped colour and the colours differ (from 0 to the 95th
+    percentile, 3 of the 5 sat in the top fifth of the colour map, the largest beyond it)."""
+    from seismo3d.viz.faults import _FaultColours
+
+    confidence = {1: 0.94949, 2: 0.73404, 3: 0.52402, 4: 0.80868, 5: 0.56657}
+    colours = _FaultColours(np.arange(1, 6), confidence, "confidence")
+    assert not colours.clipped and colours.extend == "neither"
+    norm = colours.mappable.norm
+    assert (norm.vmin, norm.vmax) == (0.52402, 0.94949)
+    position = norm(np.array(list(confidence.values())))
+    assert position.min() == 0.0 and position.max() == 1.0
+    assert np.unique(colours.rgba.round(3), axis=0).shape[0] == 5

@@ -45,6 +45,23 @@ def test_map_with_trajectory_and_keyframes(tmp_path):
     assert (img.min(axis=-1) < 250).mean() > 0.1  # the floor
 
 
+def test_map_with_its_reference_and_a_scale_bar(tmp_path):
+    """The reference trajectory in green beside the red one, and a black scale bar of a round length (0.5 m on a
+    2 m floor) labelled on the floor."""
+    from seismo3d.viz.maps import _round_length
+
+    assert [_round_length(e) for e in (2.0, 0.9, 7.0, 30.0)] == [0.5, 0.2, 1.0, 5.0]
+    reference = _poses()
+    reference[:, 2, 3] += 0.3  # 30 cm off, in the map's frame
+    plain = _pixels(render_map(_floor(), _poses(), [], tmp_path / "plain.png", window_size=(400, 300)))
+    img = _pixels(render_map(_floor(), _poses(), [], tmp_path / "map.png", window_size=(400, 300),
+                             reference=reference))
+    green = (img[..., 1] > 180) & (img[..., 0] < 100) & (img[..., 2] < 100)
+    assert green.mean() > 0.002 and not ((plain[..., 1] > 180) & (plain[..., 0] < 100) & (plain[..., 2] < 100)).any()
+    black = img[: int(0.7 * img.shape[0])].max(axis=-1) < 40  # above the colour bar's black labels
+    assert black.sum() > 100  # the scale bar and its label
+
+
 def test_render_a_map_folder(tmp_path):
     folder = tmp_path / "map"
     folder.mkdir()

@@ -87,3 +87,21 @@ def test_section_refuses_wrong_shapes(tmp_path):
     with pytest.raises(InputError, match="values"):
         plot_section(_section(), path=tmp_path / "s.png", values="velocity")
     assert not (tmp_path / "s.png").exists()
+
+
+@pytest.mark.parametrize("exaggeration", [1.0, 5.0, 20.0])
+def test_the_section_fills_the_picture_at_any_exaggeration(tmp_path, exaggeration):
+    """A section shaped like Penobscot crossline 1155 (601 traces 12.5 m apart, 0-6000 ms): at 20x it is a strip 16
+    times as tall as wide, which a picture of 1200 x 1716 pixels left 90 % white beside; the picture now follows
+    the section's shape, so that the section covers most of it (its colour bar below it when it is tall)."""
+    from matplotlib.image import imread
+
+    rng = np.random.default_rng(0)
+    section = rng.normal(size=(601, 1501)).astype(np.float32)
+    plot_section(section, path=tmp_path / "s.png", traces=np.arange(1000, 1601), samples=4.0 * np.arange(1501),
+                 trace_name="inline", sample_unit="ms", trace_spacing=12.5, vertical_exaggeration=exaggeration,
+                 width=10.0, dpi=60)
+    img = imread(tmp_path / "s.png")[..., :3]
+    covered = (img.min(axis=-1) < 0.95).mean()  # the section's noise is grey: not white
+    assert covered > 0.5, covered
+    assert img.shape[0] <= 4 * 10 * 60 + 60 and img.shape[1] <= 10 * 60  # at most 4x as tall as the width given

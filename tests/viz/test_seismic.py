@@ -245,3 +245,33 @@ def test_the_orientation_widget_arrow_points_up_and_says_so():
     trace_list = cube_geometry((10, 1, 20), lateral_names=("trace", ""), samples=4.0 * np.arange(20), sample_unit="ms")
     assert trace_list.axis_labels()[0] == "trace"
     assert trace_list.describe().startswith("traces 0-9, time 0-76 ms (down)")
+
+
+def test_the_lateral_numbers_stay_clear_of_the_corner_they_share():
+    """The f3_crop scene (X 620182-620622 m, Y 6074233-6074795 m): round numbers every 100 m on the two lateral
+    edges nearest the camera, none within 8 % of an edge's ends, so that X's and Y's numbers do not run into each
+    other at the box's front corner (VTK labelled both ends of both axes: '6074795' and '620622' overlapped)."""
+    from seismo3d.viz.seismic import _lateral_ticks
+
+    class Recorder:
+        def __init__(self):
+            self.labels, self.ticks = [], []
+
+        def add_points(self, points, **kw):
+            self.ticks.append(np.asarray(points))
+
+        def add_point_labels(self, points, labels, **kw):
+            self.labels.append((np.asarray(points), list(labels)))
+
+    lo, hi = np.array([620182.0, 6074233.0, -300.0]), np.array([620622.0, 6074795.0, -4.0])
+    eye = np.array([621500.0, 6075600.0, 400.0])  # in front of the (hi, hi) corner, above
+    plotter = Recorder()
+    _lateral_ticks(plotter, lo, hi, ((lo[0], hi[0]), (lo[1], hi[1])), eye, np.array([1.0, -1.0, 0.0]))
+    (x_at, x_labels), (y_at, y_labels) = plotter.labels
+    assert x_labels == ["620300", "620400", "620500"]
+    assert y_labels == ["6074300", "6074400", "6074500", "6074600", "6074700"]
+    np.testing.assert_allclose(plotter.ticks[0][:, 1], hi[1])  # X's ticks on the front edge (y = max) ...
+    np.testing.assert_allclose(plotter.ticks[1][:, 0], hi[0])  # ... and Y's on the other front edge (x = max)
+    corner = hi[:2]
+    for at, span in ((x_at[:, :2], hi[0] - lo[0]), (y_at[:, :2], hi[1] - lo[1])):
+        assert np.linalg.norm(at - corner, axis=1).min() > 0.08 * span

@@ -432,8 +432,11 @@ def horizon(
                                                                       "tracked trace ('trace time' for a trace list)."),
     polarity: Polarity = typer.Option(Polarity.peak, help="Event the horizon follows."),
     faults: Optional[bool] = typer.Option(None, "--faults/--no-faults", help="Trace the faults first and take their "
-                                          "jumps where the correlation across them supports it (the whole fault job "
-                                          "runs in memory). Default: on for 3D cubes, off for 2D lines."),
+                                          "jumps where the correlation across them supports it, so that the horizon "
+                                          "steps across a fault or stops at it (the fault job on the whole input; "
+                                          "seconds on a line, minutes on a large cube). Default: on, and data the "
+                                          "fault tracer refuses is tracked without them (said in one line); "
+                                          "--faults: a refusal is an error; --no-faults: skip them."),
     fill: bool = typer.Option(False, "--fill", help="Fill empty traces by interpolation after tracking."),
     surface: Optional[pathlib.Path] = typer.Option(None, help="Also write the horizon as a surface (.vtp or .vtk); "
                                                               "3D cubes only."),

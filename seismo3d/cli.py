@@ -287,9 +287,10 @@ def lineaments(
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing)."),
     overwrite: bool = _overwrite_option(),
 ) -> None:
-    """Extract the lineaments of DEM (linear terrain structures: scarps, fracture-controlled valleys) and write
-    lineaments.csv (x0, y0, x1, y1 in the raster's CRS, azimuth_deg in [0, 180), length_m, contrast), rose.png (a
-    length-weighted rose diagram) and lineaments.png (the lineaments over the multidirectional hillshade)."""
+    """Extract the lineaments of DEM (linear terrain structures: escarpments, valley walls, fracture-controlled
+    valleys; at the DEM's pixel and at about 200 and 400 m; nodata and flat water kept out) and write lineaments.csv
+    (x0, y0, x1, y1 in the raster's CRS, azimuth_deg in [0, 180), length_m, contrast; the strongest first), rose.png
+    (a length-weighted rose diagram) and lineaments.png (the lineaments over the multidirectional hillshade)."""
     check_before_import("folder", output, [dem], overwrite=overwrite)
     from .jobs.lineaments import run_lineaments_job
 

@@ -29,6 +29,7 @@ from .lineaments import (
     Lineaments,
     detect_lineaments,
     extract_lineaments,
+    flat_water,
     rose_histogram,
     write_lineaments_csv,
 )
@@ -51,7 +52,7 @@ __all__ = [
     "LAS_SUFFIXES", "LidarScan", "LineamentEvaluation", "LineamentOptions", "Lineaments", "LocalFrame",
     "OccupancyGrid", "OccupancyOptions", "TERRAIN_SUFFIXES", "TerrainGradient", "TerrainRegistration",
     "TerrainRegistrationOptions", "TerrainSurface", "TransformErrors", "aspect_deg", "astar", "detect_lineaments",
-    "evaluate_lineaments", "extract_lineaments", "fill_holes", "grid_normals", "hillshade", "hillshades",
+    "evaluate_lineaments", "extract_lineaments", "fill_holes", "flat_water", "grid_normals", "hillshade", "hillshades",
     "is_terrain_file", "match_hillshades", "metres_per_degree", "multidirectional_hillshade", "occupancy_from_dem",
     "occupancy_from_points", "path_length", "point_spacing", "rasterize_points", "read_dem", "read_las",
     "read_map_folder", "read_terrain", "register_terrain", "rose_histogram", "sample_grid", "slope_deg",

@@ -495,8 +495,8 @@ def _break_support(segments, distance, f: int) -> np.ndarray:
 
 def _detect_level(z: np.ndarray, ok: np.ndarray, opts: LineamentOptions, f: int = 1):
     """Steps 1-6 on one grid (``ok`` where data), the DEM averaged over blocks of ``f`` cells: segments ``row0,
-    col0, row1, col1`` in its pixels and their contrast; the length and evidence kept are measured in the DEM's
-    pixels (``f`` per pixel of the grid), so that a lineament is the same at every level."""
+    col0, row1, col1`` in its pixels, their contrast, and the grid's edges; the length and evidence kept are
+    measured in the DEM's pixels (``f`` per pixel of the grid), so that a lineament is the same at every level."""
     relief, edges = _level_edges(z, ok, opts)
     classes = orientation_classes(relief, smoothing_px=opts.smoothing_px, n_orientations=opts.n_orientations)
     # 4-5: Hough segments per class, linked into lineaments
@@ -506,7 +506,7 @@ def _detect_level(z: np.ndarray, ok: np.ndarray, opts: LineamentOptions, f: int 
     length_px = f * np.hypot(segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1])
     contrast = lineament_contrast(relief, segments, smoothing_px=opts.smoothing_px)
     keep = (length_px >= opts.min_length_px) & ((contrast - 1.0) * length_px >= opts.min_evidence)
-    return segments[keep], contrast[keep]
+    return segments[keep], contrast[keep], edges
 
 
 def _same_structure(segments, scale, azimuth, order, overlap_px: float, angle_deg: float) -> np.ndarray:
@@ -579,13 +579,13 @@ def detect_lineaments(elevation, spacing, *, options: LineamentOptions | None = 
         zf, okf = _block_mean(z, ok, f)
         if min(zf.shape) < 16 or not okf.any():
             continue
-        segments, contrast = _detect_level(zf, okf, opts, f)
+        segments, contrast, edges = _detect_level(zf, okf, opts, f)
         segments = (segments + 0.5) * f - 0.5  # block centres, in the DEM's pixels
-        if f > 1:
+        if f == 1:
+            distance = ndimage.distance_transform_edt(~edges)
+        else:
             # a break in the terrain: a lineament seen at a coarser level follows edges of the DEM itself (a
             # ragged escarpment) over half its length at least, not the smooth flank of a hill
-            if distance is None:
-                distance = ndimage.distance_transform_edt(~_level_edges(z, ok, opts)[1])
             supported = _break_support(segments, distance, f) >= 0.5
             segments, contrast = segments[supported], contrast[supported]
         found.append(segments)

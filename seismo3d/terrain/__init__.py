@@ -5,7 +5,9 @@
 - :mod:`~seismo3d.terrain.hillshade`: gradient, slope, aspect, hillshades;
 - :mod:`~seismo3d.terrain.surface`: height grids from points, normals from grids;
 - :mod:`~seismo3d.terrain.registration`: scan / DEM registration with the fused ICP;
-- :mod:`~seismo3d.terrain.lineaments`: lineaments (oriented gradients, Hough, linking), rose histograms;
+- :mod:`~seismo3d.terrain.lineaments`: lineaments (oriented gradients, Hough, linking, at several scales), rose
+  histograms; their straight segments in :mod:`~seismo3d.terrain.lineament_segments`;
+- :mod:`~seismo3d.terrain.water`: flat water (lakes and reservoirs flattened to one height);
 - :mod:`~seismo3d.terrain.occupancy`, :mod:`~seismo3d.terrain.planning`: occupancy grids, A* and D* Lite;
 - :mod:`~seismo3d.terrain.evaluation`: scores against ground truth.
 """

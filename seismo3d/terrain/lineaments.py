@@ -56,7 +56,9 @@ from ..errors import InputError
 from ..features import orientation_votes
 from .dem import Dem
 from .hillshade import as_metric_axes
+from .lineament_segments import break_support, hough_segments, link_segments, same_structure
 from .surface import fill_holes
+from .water import flat_water
 
 __all__ = ["LineamentOptions", "Lineaments", "extract_lineaments", "detect_lineaments", "flat_water", "residual_relief",
            "terrain_edges", "orientation_classes", "hough_segments", "link_segments", "lineament_contrast",
@@ -266,111 +268,6 @@ def orientation_classes(relief, *, smoothing_px: float, n_orientations: int) -> 
     return dominant % int(n_orientations)
 
 
-def hough_segments(edges, classes, options: LineamentOptions) -> np.ndarray:
-    """Probabilistic Hough segments of each orientation class (normals within 1.5 class widths of the class's).
-
-    Parameters
-    ----------
-    edges : (H, W) bool ndarray
-    classes : (H, W) int ndarray
-        From :func:`orientation_classes`.
-    options : LineamentOptions
-
-    Returns
-    -------
-    (M, 4) float64 ndarray
-        ``row0, col0, row1, col1`` per segment.
-    """
-    from skimage.transform import probabilistic_hough_line
-
-    n = int(options.n_orientations)
-    width = np.pi / n
-    out = []
-    for k in range(n):
-        near = np.abs((classes - k + n // 2) % n - n // 2) <= 1  # this class and its two neighbours
-        sel = edges & near
-        if np.count_nonzero(sel) < options.hough_threshold:
-            continue
-        theta = k * width + np.linspace(-1.5 * width, 1.5 * width, 31)
-        theta = np.sort((theta + np.pi / 2) % np.pi - np.pi / 2)
-        lines = probabilistic_hough_line(sel, threshold=int(options.hough_threshold),
-                                         line_length=int(options.hough_length_px), line_gap=int(options.hough_gap_px),
-                                         theta=theta, rng=int(options.seed) + k)
-        out.extend((y0, x0, y1, x1) for (x0, y0), (x1, y1) in lines)
-    return np.asarray(out, dtype=np.float64).reshape(-1, 4)
-
-
-def _fit(points, weights):
-    """Total-least-squares line of weighted points: centre, unit direction, extent along it."""
-    w = weights / weights.sum()
-    centre = w @ points
-    q = points - centre
-    _, vecs = np.linalg.eigh((q * w[:, None]).T @ q)
-    u = vecs[:, -1]
-    t = q @ u
-    return centre, u, float(t.min()), float(t.max())
-
-
-def link_segments(segments, *, angle_deg: float, offset_px: float, gap_px: float) -> np.ndarray:
-    """Merge collinear segments into lineaments, repeatedly, longest first.
-
-    Two groups merge when their fitted directions differ by at most ``angle_deg``, both ends of the other lie within
-    ``offset_px`` of one's line, and the gap between them along it is at most ``gap_px``; a merged group is refitted
-    by total least squares over its segments' end points, weighted by segment length.
-
-    Parameters
-    ----------
-    segments : (M, 4) array_like
-        ``row0, col0, row1, col1``.
-    angle_deg, offset_px, gap_px : float
-
-    Returns
-    -------
-    (K, 4) float64 ndarray
-        The lineaments' end points (extreme projections of their segments' ends), K <= M.
-    """
-    segs = np.asarray(segments, dtype=np.float64).reshape(-1, 4)
-    order = np.argsort(-np.hypot(segs[:, 2] - segs[:, 0], segs[:, 3] - segs[:, 1]))
-    groups = [[s] for s in segs[order]]
-    cos_tol = np.cos(np.radians(angle_deg))
-
-    def line(group):
-        """The group's fitted line from its segments' end points, weighted by segment length."""
-        g = np.asarray(group)
-        pts = np.concatenate([g[:, :2], g[:, 2:]])
-        w = np.tile(np.hypot(g[:, 2] - g[:, 0], g[:, 3] - g[:, 1]) + 1e-9, 2)
-        return _fit(pts, w)
-
-    lines = [line(g) for g in groups]
-    merged = True
-    while merged:
-        merged = False
-        i = 0
-        while i < len(groups):
-            c, u, t0, t1 = lines[i]
-            n = np.array([-u[1], u[0]])
-            others = range(i + 1, len(groups))
-            for j in others:
-                c2, u2, s0, s1 = lines[j]
-                if abs(u @ u2) < cos_tol:
-                    continue
-                ends = np.array([c2 + s0 * u2, c2 + s1 * u2]) - c
-                if np.any(np.abs(ends @ n) > offset_px):
-                    continue
-                along = ends @ u
-                if max(along.min() - t1, t0 - along.max(), 0.0) > gap_px:
-                    continue
-                groups[i] = groups[i] + groups.pop(j)
-                lines.pop(j)
-                lines[i] = line(groups[i])
-                merged = True
-                break
-            else:
-                i += 1
-    out = [np.r_[c + t0 * u, c + t1 * u] for c, u, t0, t1 in lines]
-    return np.asarray(out, dtype=np.float64).reshape(-1, 4)
-
-
 def lineament_contrast(relief, segments, *, smoothing_px: float) -> np.ndarray:
     """Median across-line slope along each segment over the median slope of the relief.
 
@@ -408,56 +305,6 @@ def lineament_contrast(relief, segments, *, smoothing_px: float) -> np.ndarray:
     return out
 
 
-def flat_water(elevation, cell_area_m2: float, min_area_m2: float, valid=None) -> np.ndarray:
-    """Flat water: the 4-connected regions of exactly one elevation that cover at least ``min_area_m2``.
-
-    Lakes and reservoirs are one height in SRTM-derived DEMs (HydroSHEDS) and in hydro-flattened LiDAR DEMs; their
-    shores are edges of the flattening, not of the terrain (:class:`LineamentOptions`' ``water_min_area_m2``).
-
-    Parameters
-    ----------
-    elevation : (H, W) array_like
-        Heights, metres (NaN = nodata, never water).
-    cell_area_m2 : float
-        Area of one cell, m^2.
-    min_area_m2 : float
-        Least area of a water surface, m^2 (0: no water).
-    valid : (H, W) bool array_like, optional
-        Cells with data (default: finite elevations).
-
-    Returns
-    -------
-    (H, W) bool ndarray
-    """
-    z = np.asarray(elevation, dtype=np.float64)
-    ok = np.isfinite(z) if valid is None else np.asarray(valid, dtype=bool) & np.isfinite(z)
-    water = np.zeros(z.shape, dtype=bool)
-    if min_area_m2 <= 0:
-        return water
-    min_cells = max(int(np.ceil(min_area_m2 / float(cell_area_m2))), 2)
-    # equal neighbours, 4-connected: regions of one height are the components of the graph of equal pairs
-    same_row = ok[:, 1:] & ok[:, :-1] & (z[:, 1:] == z[:, :-1])
-    same_col = ok[1:, :] & ok[:-1, :] & (z[1:, :] == z[:-1, :])
-    flat = np.zeros(z.shape, dtype=bool)
-    flat[:, 1:] |= same_row
-    flat[:, :-1] |= same_row
-    flat[1:, :] |= same_col
-    flat[:-1, :] |= same_col
-    if np.count_nonzero(flat) < min_cells:
-        return water
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    index = np.arange(z.size).reshape(z.shape)
-    a = np.concatenate([index[:, :-1][same_row], index[:-1, :][same_col]])
-    b = np.concatenate([index[:, 1:][same_row], index[1:, :][same_col]])
-    graph = coo_matrix((np.ones(a.size, dtype=np.int8), (a, b)), shape=(z.size, z.size))
-    _, labels = connected_components(graph, directed=False)
-    sizes = np.bincount(labels)
-    water = (sizes[labels] >= min_cells).reshape(z.shape) & flat
-    return water
-
-
 def _block_mean(z: np.ndarray, ok: np.ndarray, f: int):
     """The grid averaged over blocks of ``f x f`` cells (a partial block at the far edges averaged over what it
     holds) and the blocks that are mostly data."""
@@ -481,18 +328,6 @@ def _level_edges(z: np.ndarray, ok: np.ndarray, opts: LineamentOptions):
     return relief, edges
 
 
-def _break_support(segments, distance, f: int) -> np.ndarray:
-    """The fraction of each segment (DEM pixels) that lies within ``f`` pixels of an edge of the DEM itself
-    (``distance``: the distance of every cell to the nearest one)."""
-    out = np.zeros(len(segments))
-    for k, (r0, c0, r1, c1) in enumerate(segments):
-        m = max(int(np.ceil(np.hypot(r1 - r0, c1 - c0))), 2)
-        d = ndimage.map_coordinates(distance, [np.linspace(r0, r1, m), np.linspace(c0, c1, m)], order=1,
-                                    mode="nearest")
-        out[k] = float(np.mean(d <= f))
-    return out
-
-
 def _detect_level(z: np.ndarray, ok: np.ndarray, opts: LineamentOptions, f: int = 1):
     """Steps 1-6 on one grid (``ok`` where data), the DEM averaged over blocks of ``f`` cells: segments ``row0,
     col0, row1, col1`` in its pixels, their contrast, and the grid's edges; the length and evidence kept are
@@ -507,32 +342,6 @@ def _detect_level(z: np.ndarray, ok: np.ndarray, opts: LineamentOptions, f: int 
     contrast = lineament_contrast(relief, segments, smoothing_px=opts.smoothing_px)
     keep = (length_px >= opts.min_length_px) & ((contrast - 1.0) * length_px >= opts.min_evidence)
     return segments[keep], contrast[keep], edges
-
-
-def _same_structure(segments, scale, azimuth, order, overlap_px: float, angle_deg: float) -> np.ndarray:
-    """Which lineaments to keep, in rank ``order``: a lineament lying over half its length within ``overlap_px``
-    pixels of its own level of a kept one of similar strike is dropped."""
-    keep = np.zeros(len(segments), dtype=bool)
-    kept = []
-    for k in order:
-        r0, c0, r1, c1 = segments[k]
-        m = max(int(np.ceil(np.hypot(r1 - r0, c1 - c0) / 2.0)), 2)
-        pts = np.column_stack([np.linspace(r0, r1, m), np.linspace(c0, c1, m)])
-        duplicate = False
-        for j in kept:
-            if abs((azimuth[k] - azimuth[j] + 90.0) % 180.0 - 90.0) > angle_deg:
-                continue
-            a, b = segments[j, :2], segments[j, 2:]
-            u = b - a
-            t = np.clip((pts - a) @ u / max(u @ u, 1e-12), 0.0, 1.0)
-            d = np.hypot(*(pts - (a + t[:, None] * u)).T)
-            if np.mean(d <= overlap_px * scale[k]) > 0.5:
-                duplicate = True
-                break
-        if not duplicate:
-            keep[k] = True
-            kept.append(k)
-    return keep
 
 
 def detect_lineaments(elevation, spacing, *, options: LineamentOptions | None = None, valid=None) -> Lineaments:
@@ -586,7 +395,7 @@ def detect_lineaments(elevation, spacing, *, options: LineamentOptions | None = 
         else:
             # a break in the terrain: a lineament seen at a coarser level follows edges of the DEM itself (a
             # ragged escarpment) over half its length at least, not the smooth flank of a hill
-            supported = _break_support(segments, distance, f) >= 0.5
+            supported = break_support(segments, distance, f) >= 0.5
             segments, contrast = segments[supported], contrast[supported]
         found.append(segments)
         contrasts.append(contrast)
@@ -600,7 +409,7 @@ def detect_lineaments(elevation, spacing, *, options: LineamentOptions | None = 
     # ranked by evidence; the same structure found at several levels kept once, at its best rank
     length_px = np.hypot(segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1])
     order = np.lexsort((-length_m, -(contrast - 1.0) * length_px))
-    keep = _same_structure(segments, scale, azimuth, order, opts.overlap_px, 2.0 * opts.link_angle_deg)
+    keep = same_structure(segments, scale, azimuth, order, opts.overlap_px, 2.0 * opts.link_angle_deg)
     order = order[keep[order]]
     segments, contrast, length_m, azimuth = (a[order] for a in (segments, contrast, length_m, azimuth))
     r0, c0, r1, c1 = segments.T if len(segments) else (np.zeros(0),) * 4

@@ -358,8 +358,9 @@ def test_horizon_command_on_penobscot_xl1155(data_dir, tmp_path):
 def test_horizon_steps_across_the_large_fault_of_penobscot_xl1155_without_a_flag(data_dir, tmp_path):
     # The user guide's first example (seed inline 1300, 2040 ms, on the footwall of the large fault near inlines
     # 1264-1290) with no flag: the faults are traced first, as --faults did. Reference: the --faults run of the same
-    # seed on main d82246e, before faults became the default on lines (ms, by inline); without faults the horizon ran
-    # through the fault with no step and sat 29-30 ms above these on the hanging wall (2031.2 ms at 1250, 2080.8 at 1000).
+    # seed on main d82246e, before faults became the default on lines (ms, by inline); without faults the horizon
+    # ran through the fault with no step and sat 29-30 ms above these on the hanging wall (2031.2 ms at 1250, 2080.8
+    # at 1000).
     import os
 
     from seismo3d.jobs.horizon import run_horizon_job

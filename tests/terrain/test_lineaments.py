@@ -86,8 +86,8 @@ def _share_near(found, mask, within_px: float = 2.0) -> float:
 def test_a_lake_with_straight_shores_gives_no_lineament_and_the_scarps_are_found():
     """A generated DEM (seed 310) with a reservoir: a 90 x 20 pixel rectangle (1.6 km^2 at 30 m) flattened to the
     height of its lowest shore cell, its long shores striking 60 degrees, away from the 8 scarps. Kept out as flat
-    water: no lineament within 2 pixels of it, 7 of the 8 scarps found at least, with at most one false lineament. Without the rule (water 0 m^2)
-    its straight shores are lineaments: the test can fail."""
+    water: no lineament within 2 pixels of it, 7 of the 8 scarps found at least, with at most one false lineament.
+    Without the rule (water 0 m^2) its straight shores are lineaments: the test can fail."""
     truth = synthetic_scarp_dem(seed=310)
     z = truth.elevation.copy()
     rows, cols = np.mgrid[0:z.shape[0], 0:z.shape[1]].astype(float)

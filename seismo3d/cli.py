@@ -412,7 +412,7 @@ def map_(
 
 @app.command()
 @_friendly({"polarity": "--polarity", "surface": "--surface", "sample_unit": "--sample-unit",
-            "ignore_geometry": "--ignore-geometry"})
+            "ignore_geometry": "--ignore-geometry", "faults_from": "--faults-from"})
 def horizon(
     input: pathlib.Path = typer.Argument(..., metavar="INPUT", help="SEG-Y cube or 2D line (inline- or "
                                                                     "crossline-sorted, big- or little-endian; a file "
@@ -438,6 +438,9 @@ def horizon(
                                           "seconds on a line, minutes on a large cube). Default: on, and data the "
                                           "fault tracer refuses is tracked without them (said in one line); "
                                           "--faults: a refusal is an error; --no-faults: skip them."),
+    faults_from: Optional[pathlib.Path] = typer.Option(None, "--faults-from", help="The output folder of "
+                                                       "'seismo3d faults' run on this INPUT: its faults are used "
+                                                       "instead of being traced again (checked by its run.json)."),
     fill: bool = typer.Option(False, "--fill", help="Fill empty traces by interpolation after tracking."),
     surface: Optional[pathlib.Path] = typer.Option(None, help="Also write the horizon as a surface (.vtp or .vtk); "
                                                               "3D cubes only."),
@@ -472,7 +475,8 @@ def horizon(
         job = run_horizon_job(input, seeds, output, polarity=polarity.value, faults=faults, fill=fill,
                               surface=surface, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
                               endian=_value(endian), sample_unit=None if sample_unit is None else sample_unit.value,
-                              overwrite=overwrite, progress=True, seed_file=seed_file, maps=maps)
+                              overwrite=overwrite, progress=True, seed_file=seed_file, maps=maps,
+                              faults_from=faults_from)
     typer.echo(f"{job.n_rows} of {job.horizon.times.size} traces tracked ({job.horizon.coverage:.1%}) -> {output}")
     if job.surface is not None:
         typer.echo(f"surface -> {job.surface}")

@@ -162,6 +162,56 @@ def test_horizon_maps_without_xtgeo_are_refused_before_the_work(tmp_path, monkey
     assert sorted(p.name for p in tmp_path.iterdir()) == ["cube.sgy"]
 
 
+def test_faults_from_another_run_are_checked_before_the_work(tmp_path, monkeypatch):
+    # --faults-from: a folder without a faults run, a faults run of another file, and --no-faults with it are
+    # refused in one line before anything is read or tracked
+    import seismo3d.seismic as seismic
+    from seismo3d.jobs.runinfo import write_run_json
+
+    syn = synthetic_cube((16, 16, 48), n_faults=0, seed=0)
+    _write_cube(tmp_path / "cube.sgy", syn.cube)
+    _write_cube(tmp_path / "other.sgy", syn.cube[::-1].copy())
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("worked before --faults-from was checked")
+
+    monkeypatch.setattr(seismic, "track_horizon", no_work)
+    monkeypatch.setattr(seismic, "trace_faults", no_work)
+    (tmp_path / "empty").mkdir()
+    run = tmp_path / "other_faults"
+    run.mkdir()
+    (run / "fault_points.csv").write_text("inline,crossline,time_or_depth,fault_id,throw_samples\n")
+    write_run_json(run / "run.json", command="faults", options={}, inputs={"input": tmp_path / "other.sgy"},
+                   started=0.0, seconds=1.0, stage_seconds={}, outputs={})
+    cube = str(tmp_path / "cube.sgy")
+    for extra, message in ((["--faults-from", str(tmp_path / "empty")], "holds no `seismo3d faults` run"),
+                           (["--faults-from", str(run)], "traced " + str(tmp_path / "other.sgy")),
+                           (["--faults-from", str(run), "--no-faults"], "--no-faults and --faults-from contradict")):
+        res = runner.invoke(app, ["horizon", cube, "--seed", "8,8,40", *extra, "-o", str(tmp_path / "h.txt")])
+        assert res.exit_code == 2 and message in _one_error_line(res), res.output
+    assert not (tmp_path / "h.txt").exists()
+
+
+@pytest.mark.slow
+def test_faults_from_a_faults_run_give_the_horizon_of_traced_faults(data_dir, tmp_path):
+    # `seismo3d faults` on the line, then the horizon from its folder: the faults are not traced again and the
+    # horizon is the one of the faults traced by the horizon command (0.0 ms apart, measured)
+    import os
+
+    from seismo3d.jobs.faults import run_faults_job
+    from seismo3d.jobs.horizon import run_horizon_job
+
+    path = os.path.join(data_dir, "seismic", "penobscot_xl1155.sgy")
+    run_faults_job(path, tmp_path / "xl1155", progress=False)
+    reused = run_horizon_job(path, [(1300, 1155, 2040.0)], tmp_path / "r.txt", faults_from=tmp_path / "xl1155",
+                             progress=False)
+    traced = run_horizon_job(path, [(1300, 1155, 2040.0)], tmp_path / "t.txt", progress=False)
+    assert reused.n_faults == traced.n_faults >= 1
+    both = np.isfinite(reused.horizon.times) & np.isfinite(traced.horizon.times)
+    assert both.sum() >= 0.95 * np.isfinite(traced.horizon.times).sum()
+    np.testing.assert_allclose(reused.horizon.times[both], traced.horizon.times[both], atol=0.25)  # samples
+
+
 def test_horizon_traces_the_faults_by_default_and_says_so(tmp_path, monkeypatch):
     # No flag: the faults are traced first on a line too, said in one line; data the fault tracer refuses is
     # tracked without them, said in one line; --no-faults does not trace them.

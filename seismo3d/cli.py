@@ -287,9 +287,10 @@ def lineaments(
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="Output folder (created if missing)."),
     overwrite: bool = _overwrite_option(),
 ) -> None:
-    """Extract the lineaments of DEM (linear terrain structures: scarps, fracture-controlled valleys) and write
-    lineaments.csv (x0, y0, x1, y1 in the raster's CRS, azimuth_deg in [0, 180), length_m, contrast), rose.png (a
-    length-weighted rose diagram) and lineaments.png (the lineaments over the multidirectional hillshade)."""
+    """Extract the lineaments of DEM (linear terrain structures: escarpments, valley walls, fracture-controlled
+    valleys; at the DEM's pixel and at about 200 and 400 m; nodata and flat water kept out) and write lineaments.csv
+    (x0, y0, x1, y1 in the raster's CRS, azimuth_deg in [0, 180), length_m, contrast; the strongest first), rose.png
+    (a length-weighted rose diagram) and lineaments.png (the lineaments over the multidirectional hillshade)."""
     check_before_import("folder", output, [dem], overwrite=overwrite)
     from .jobs.lineaments import run_lineaments_job
 
@@ -411,7 +412,7 @@ def map_(
 
 @app.command()
 @_friendly({"polarity": "--polarity", "surface": "--surface", "sample_unit": "--sample-unit",
-            "ignore_geometry": "--ignore-geometry"})
+            "ignore_geometry": "--ignore-geometry", "faults_from": "--faults-from"})
 def horizon(
     input: pathlib.Path = typer.Argument(..., metavar="INPUT", help="SEG-Y cube or 2D line (inline- or "
                                                                     "crossline-sorted, big- or little-endian; a file "
@@ -432,8 +433,14 @@ def horizon(
                                                                       "tracked trace ('trace time' for a trace list)."),
     polarity: Polarity = typer.Option(Polarity.peak, help="Event the horizon follows."),
     faults: Optional[bool] = typer.Option(None, "--faults/--no-faults", help="Trace the faults first and take their "
-                                          "jumps where the correlation across them supports it (the whole fault job "
-                                          "runs in memory). Default: on for 3D cubes, off for 2D lines."),
+                                          "jumps where the correlation across them supports it, so that the horizon "
+                                          "steps across a fault or stops at it (the fault job on the whole input; "
+                                          "seconds on a line, minutes on a large cube). Default: on, and data the "
+                                          "fault tracer refuses is tracked without them (said in one line); "
+                                          "--faults: a refusal is an error; --no-faults: skip them."),
+    faults_from: Optional[pathlib.Path] = typer.Option(None, "--faults-from", help="The output folder of "
+                                                       "'seismo3d faults' run on this INPUT: its faults are used "
+                                                       "instead of being traced again (checked by its run.json)."),
     fill: bool = typer.Option(False, "--fill", help="Fill empty traces by interpolation after tracking."),
     surface: Optional[pathlib.Path] = typer.Option(None, help="Also write the horizon as a surface (.vtp or .vtk); "
                                                               "3D cubes only."),
@@ -468,7 +475,8 @@ def horizon(
         job = run_horizon_job(input, seeds, output, polarity=polarity.value, faults=faults, fill=fill,
                               surface=surface, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
                               endian=_value(endian), sample_unit=None if sample_unit is None else sample_unit.value,
-                              overwrite=overwrite, progress=True, seed_file=seed_file, maps=maps)
+                              overwrite=overwrite, progress=True, seed_file=seed_file, maps=maps,
+                              faults_from=faults_from)
     typer.echo(f"{job.n_rows} of {job.horizon.times.size} traces tracked ({job.horizon.coverage:.1%}) -> {output}")
     if job.surface is not None:
         typer.echo(f"surface -> {job.surface}")

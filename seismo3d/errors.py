@@ -19,6 +19,7 @@ __all__ = [
     "UnsupportedDataError",
     "RegistrationError",
     "PlanningError",
+    "MissingDependencyError",
     "Seismo3dWarning",
     "DegenerateGeometryWarning",
     "TraceListWarning",
@@ -103,6 +104,11 @@ class RegistrationError(Seismo3dError, RuntimeError):
 
 class PlanningError(Seismo3dError, RuntimeError):
     """No path exists between a start and a goal through traversable cells."""
+
+
+class MissingDependencyError(Seismo3dError, ImportError):
+    """An optional package that what was asked needs is not installed; the message names the package and the
+    ``pip install`` that brings it."""
 
 
 class Seismo3dWarning(UserWarning):

@@ -14,7 +14,7 @@ from .._atomic import atomic_path
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.io.text_rows import TextColumn, format_rows
 
-__all__ = ["sample_position", "trace_columns", "write_points", "write_summary"]
+__all__ = ["read_points", "sample_position", "trace_columns", "write_points", "write_summary"]
 
 
 def sample_position(samples: np.ndarray, k) -> np.ndarray:
@@ -139,3 +139,37 @@ def write_summary(inp, result: FaultInterpretation, path: Path, rows: list) -> P
             w.writerow(row)
             rows.append(dict(zip(header, (str(v) for v in row))))
     return path
+
+
+def read_points(path: Path) -> dict:
+    """The columns of a ``fault_points.csv`` (:func:`write_points`) as arrays, by name: float64, NaN where empty;
+    ``xy_unit`` as strings.
+
+    Parameters
+    ----------
+    path : path-like
+        A ``fault_points.csv`` written by ``seismo3d faults``.
+
+    Returns
+    -------
+    dict of str to (n,) ndarray
+
+    Raises
+    ------
+    InputError
+        The file is not such a table (a column it needs is missing or a value is not a number).
+    """
+    from ..errors import InputError
+
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    names = rows[0].keys() if rows else []
+    if not {"time_or_depth", "fault_id", "throw_samples"} <= set(names):
+        raise InputError(f"{path} is not the fault_points.csv of a `seismo3d faults` run (columns "
+                         f"{', '.join(names) or 'none'}); pass the run's output folder")
+    try:
+        return {name: (np.array([r[name] for r in rows]) if name == "xy_unit" else
+                       np.array([float(r[name]) if r[name] != "" else np.nan for r in rows], dtype=np.float64))
+                for name in names}
+    except ValueError as exc:
+        raise InputError(f"{path}: {exc}; pass the fault_points.csv a `seismo3d faults` run wrote") from None

@@ -2,8 +2,9 @@
 surface).
 
 Seeds are given in the survey's terms (inline and crossline numbers, or the trace number of a file without them, and
-the time or depth in the file's sample unit) and converted to index positions; on cubes the faults are traced first
-(:func:`seismo3d.seismic.trace_faults`; their jumps are taken only where the correlation across them supports it), and
+the time or depth in the file's sample unit) and converted to index positions; the faults are traced first, on cubes and
+lines alike unless turned off (:func:`seismo3d.seismic.trace_faults`; their jumps are taken only where the correlation
+across them supports it), and
 the horizon is tracked by :func:`seismo3d.seismic.track_horizon` (global least squares over correlations between near
 and distant traces, then dynamic programming over candidate picks), on a cube or a line.
 """
@@ -12,17 +13,20 @@ from __future__ import annotations
 
 import pathlib
 import tempfile
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, SeedError, SegyGeometryError, UnsupportedDataError
+from .._progress import LOGGER
+from ..errors import (InputError, MissingDependencyError, SeedError, SegyGeometryError, Seismo3dWarning,
+                      UnsupportedDataError)
 from ..seismic.horizons.result import Horizon
 from .inputs import read_seismic
 from .outputs import check_outputs, output_file
 from .runinfo import RunRecord, run_json_output, run_json_path
 
-__all__ = ["HorizonJob", "run_horizon_job", "seed_index", "trace_seed_index"]
+__all__ = ["HorizonJob", "check_faults_run", "run_horizon_job", "seed_index", "trace_seed_index"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -191,6 +195,96 @@ def _seed_error(exc: SeedError, survey: _Survey, seeds, index_seeds, polarity: s
                       + ("" if exc.window is None else " (or another --polarity)"))
 
 
+@dataclass(frozen=True)
+class _RecordedFaults:
+    """The faults of a ``seismo3d faults`` run read back in index space, as :func:`track_horizon` reads an
+    interpretation: ``faults`` (objects with ``points`` and ``normals``) and ``throws`` (``throw``, ``correlation``,
+    ``correlation_unshifted``), in the same order."""
+
+    faults: list
+    throws: list
+
+
+@dataclass(frozen=True)
+class _Piece:
+    points: np.ndarray | None = None
+    normals: np.ndarray | None = None
+    throw: np.ndarray | None = None
+    correlation: np.ndarray | None = None
+    correlation_unshifted: np.ndarray | None = None
+
+
+def check_faults_run(folder, input_path) -> dict:
+    """The record (``run.json``) of the ``seismo3d faults`` run whose output folder is ``folder``, checked to have
+    read the file ``input_path`` as it is now (size and sha256, or size and modification time above
+    :data:`~seismo3d.jobs.runinfo.HASH_LIMIT`).
+
+    Parameters
+    ----------
+    folder : path-like
+        The output folder of ``seismo3d faults``.
+    input_path : path-like
+        The SEG-Y file the horizon is tracked in.
+
+    Returns
+    -------
+    dict
+        The run's record (:func:`~seismo3d.jobs.runinfo.read_run_json`).
+
+    Raises
+    ------
+    InputError
+        No faults run's record or points in ``folder``, or a run of another input (or of this file before it
+        changed).
+    """
+    from .runinfo import RUN_JSON, input_identity, read_run_json
+
+    folder = pathlib.Path(folder)
+    record = read_run_json(folder / RUN_JSON)
+    if record is None or record.get("command") != "faults" or not (folder / "fault_points.csv").is_file():
+        raise InputError(f"faults_from folder {folder} holds no `seismo3d faults` run (run.json and "
+                         "fault_points.csv); pass the output folder of `seismo3d faults` run on this input")
+    then = (record.get("inputs") or {}).get("input") or {}
+    now = input_identity(input_path)
+    hashed = bool(then.get("sha256") and now["sha256"])
+    same = then.get("bytes") == now["bytes"] and (then.get("sha256") == now["sha256"] if hashed
+                                                  else then.get("mtime") == now["mtime"])
+    if not same:
+        raise InputError(f"the faults run in faults_from folder {folder} traced {then.get('path', 'another file')}, "
+                         f"not {pathlib.Path(input_path).name} as it is now; leave out faults_from to trace its "
+                         "faults again, or run `seismo3d faults` on it")
+    return record
+
+
+def _recorded_faults(folder: pathlib.Path, survey: _Survey, segy: dict) -> _RecordedFaults:
+    """The faults of a checked ``seismo3d faults`` run (:func:`check_faults_run`) on this survey, in index space:
+    points from ``fault_points.csv``, normals from the strike and dip volumes at them, throws and their correlations
+    from the table."""
+    from ..seismic.faults.result import fault_normals
+    from .fault_tables import read_points
+
+    table = read_points(folder / "fault_points.csv")
+    k = np.interp(table["time_or_depth"], survey.samples, np.arange(survey.samples.size))
+    if survey.kind == "trace list":
+        lateral = [table["trace"]]
+    else:
+        where = [np.searchsorted(labels, table[name]) for name, labels in
+                 (("inline", survey.inlines), ("crossline", survey.xlines))]
+        lateral = where if survey.kind == "cube" else [where[0] if survey.inlines.size > 1 else where[1]]
+    points = np.column_stack([*lateral, k])
+    grid = tuple(np.rint(points).astype(np.int64).T)
+    angles = [read_seismic(folder / f"fault_{name}.sgy", **segy, arrays=False).data.reshape(survey.data.shape)[grid]
+              for name in ("strike", "dip")]
+    normals = fault_normals(*angles, ndim=survey.data.ndim)
+    faults, throws = [], []
+    for fid in dict.fromkeys(table["fault_id"].tolist()):
+        sel = table["fault_id"] == fid
+        faults.append(_Piece(points=points[sel], normals=normals[sel]))
+        throws.append(_Piece(throw=table["throw_samples"][sel], correlation=table["throw_correlation"][sel],
+                             correlation_unshifted=table["throw_correlation"][sel] - table["correlation_gain"][sel]))
+    return _RecordedFaults(faults, throws)
+
+
 def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
     """'inline xline time' rows (a cube, or a line of a survey), or 'trace time' rows (a trace list)."""
     from ..seismic import write_horizon_text
@@ -206,7 +300,7 @@ def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
 def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults: bool | None = None,
                     fill: bool = False, surface=None, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
                     endian=None, sample_unit=None, overwrite: bool = False, memory_limit=None,
-                    progress: bool = True, seed_file=None, maps: bool = False) -> HorizonJob:
+                    progress: bool = True, seed_file=None, maps: bool = False, faults_from=None) -> HorizonJob:
     """Track a horizon in a SEG-Y cube or 2D line from seed picks and write it as text rows.
 
     Parameters
@@ -226,9 +320,14 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         The event the horizon follows.
     faults : bool or None
         Trace the faults first (:func:`seismo3d.seismic.trace_faults`) and let the tracker take their jumps where the
-        correlation across them supports it. None (default): on 3D cubes yes (a cube the fault tracer refuses is
-        tracked without them); on 2D lines no. True: always, and a refusal is raised. In memory, or block by block
-        when the cube's fault run does not fit ``memory_limit`` (:func:`seismo3d.seismic.blocks.memory.fits_in_memory`).
+        correlation across them supports it, so that the horizon steps across a fault or stops at it instead of
+        running through it. None (default): yes, on cubes, lines and trace lists alike, said in one log line; data
+        the fault tracer refuses (e.g. a cube too small to trace) is tracked without them, said in one log line.
+        True: always, and a refusal is raised. False: no faults (the tracker's own check of discontinuities only).
+        In memory, or block by block when the cube's fault run does not fit ``memory_limit``
+        (:func:`seismo3d.seismic.blocks.memory.fits_in_memory`). The cost: on Penobscot crossline 1155 (601 x 1501
+        samples) about 8 s more than the 5 s of tracking alone on 2 cores; on a cube, minutes
+        (``seismo3d faults``' times).
     fill : bool
         Fill empty traces by interpolation after tracking (:func:`seismo3d.seismic.fill_horizon`).
     surface : str or path-like, optional
@@ -252,6 +351,10 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         More seeds from a file of picks: ``inline xline time`` rows, an IRAP / ZMAP+ grid or ``X Y Z`` points, placed
         on the survey by its coordinates (:func:`seismo3d.jobs.interchange.seeds_from_file`; at most 64 picks, spread
         through the file).
+    faults_from : str or path-like, optional
+        The output folder of a ``seismo3d faults`` run on this same file (checked by its ``run.json``): its faults are
+        used instead of being traced again (their points, throws and the strike and dip volumes at them; in seconds
+        where tracing a cube takes minutes). Not with ``faults=False``.
     maps : bool
         Also write the horizon beside ``output`` as IRAP ASCII (``.fgr``), IRAP binary (``.gri``), ZMAP+
         (``.zmap``) grids and ``X Y Z`` points (``.xyz``) in map coordinates, through xtgeo (a 2D line: ``.xyz``
@@ -274,6 +377,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         The file is not SEG-Y or cannot be read (see :func:`~seismo3d.seismic.open_segy`).
     UnsupportedDataError
         ``faults=True`` on data the fault tracer refuses.
+    MissingDependencyError
+        ``maps=True`` without xtgeo installed (before anything is read or written).
 
     Warns
     -----
@@ -281,7 +386,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         The file has no inline / crossline grid and is read as a trace list (one line).
     """
     record = RunRecord("horizon", locals())  # first: the arguments as called
-    from ..seismic import BlockRunOptions, fill_horizon, trace_faults, track_horizon
+    from ..seismic import BlockRunOptions, TrackingOptions, fill_horizon, trace_faults, track_horizon
+    from ..seismic.horizons import as_seeds, snap_seeds
     from .interchange import horizon_map_paths, seeds_from_file, write_horizon_maps
 
     input_path, output = pathlib.Path(input_path), pathlib.Path(output)
@@ -290,6 +396,20 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     check_outputs([main, run_json_output(main), surface and output_file(surface, "horizon.vtp"),
                    *(output_file(p) for p in (horizon_map_paths(output) if maps else ()))],
                   [input_path, seed_file], overwrite=overwrite)
+    if maps:  # the maps are written through xtgeo: refused before the work when it is not installed
+        from ..seismic.io.horizon_grids import require_xtgeo
+
+        try:
+            require_xtgeo()
+        except MissingDependencyError:
+            raise MissingDependencyError("maps=True (--maps) writes the horizon's maps through xtgeo, which is not "
+                                         "installed: pip install \"seismo3d[interchange]\", or leave out maps=True "
+                                         "(--maps); nothing was written") from None
+    if faults_from is not None:  # checked before the work
+        if faults is False:
+            raise InputError("faults=False (--no-faults) and faults_from contradict each other; leave out one")
+        faults_from = pathlib.Path(faults_from)
+        check_faults_run(faults_from, input_path)
     segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
     seeds = list(seeds) + (seeds_from_file(seed_file, input_path, **segy) if seed_file is not None else [])
     if not seeds:
@@ -302,20 +422,39 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         raise InputError(f"a horizon surface needs a 3D cube and {survey.name} is {survey.description}; leave out "
                          f"surface={surface} (--surface)")
     index_seeds = _seed_indices(survey, seeds)
-    # the faults first (by default on cubes; a cube the fault tracer refuses is tracked without them unless they
-    # were asked for); then the horizon
+    # the seeds' picks checked before the faults are traced (the tracker checks them again)
+    try:
+        snap_seeds(survey.data, as_seeds(index_seeds, survey.data.shape), polarity=polarity,
+                   window=TrackingOptions().seed_snap)
+    except SeedError as exc:  # the library speaks of index positions: the user's inline, crossline and time
+        raise _seed_error(exc, survey, seeds, index_seeds, polarity) from None
+    # the faults first (by default; data the fault tracer refuses is tracked without them unless they were asked
+    # for); then the horizon
     interp = None
     with tempfile.TemporaryDirectory(prefix="seismo3d-faults-") as work:  # the stores of a run by blocks
-        if faults or (faults is None and survey.kind == "cube"):
+        if faults_from is not None:
+            with record.stage("faults"):
+                interp = _recorded_faults(faults_from, survey, segy)
+            LOGGER.info("%s: the %d faults of %s reused (not traced again)", survey.name, len(interp.faults),
+                        faults_from)
+        elif faults is None or faults:
+            if faults is None:
+                LOGGER.info("%s: tracing its faults first so that the horizon steps across them (%s; --no-faults "
+                            "skips them)", survey.name, "seconds on a line" if survey.kind != "cube" else
+                            "minutes on a large cube")
             try:
-                with record.stage("faults"):
+                with record.stage("faults"), warnings.catch_warnings():
+                    if faults is None:  # the fault tracer's notes on its likelihood (e.g. muted samples) are
+                        warnings.simplefilter("ignore", Seismo3dWarning)  # for those who asked for the faults
                     interp = trace_faults(survey.data, sample_interval=float(survey.samples[1] - survey.samples[0]),
                                           sample_unit=survey.unit, progress=progress,
                                           blocks=BlockRunOptions(memory_limit=memory_limit, work_dir=work,
                                                                  source=survey.name))
-            except (InputError, UnsupportedDataError):
+            except (InputError, UnsupportedDataError) as exc:
                 if faults:  # asked for: the refusal (e.g. a cube too small to trace) is the user's to see
                     raise
+                LOGGER.info("%s: faults not traced (%s); the horizon is tracked without them", survey.name,
+                            str(exc).splitlines()[0].rstrip("."))
         try:
             with record.stage("track"):
                 result = track_horizon(survey.data, index_seeds, polarity=polarity, faults=interp, progress=progress)
@@ -333,7 +472,9 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
                                           samples=survey.samples), surface)
         written_maps = write_horizon_maps(output, survey, result, input_path, **segy) if maps else None
     n_faults = 0 if interp is None else len(interp.faults)
-    run_json = record.write(run_json_path(main), inputs={"input": input_path, "seed_file": seed_file},
+    run_json = record.write(run_json_path(main), inputs={"input": input_path, "seed_file": seed_file,
+                                                         **({"faults_from": faults_from / "fault_points.csv"}
+                                                            if faults_from is not None else {})},
                             outputs={"horizon": output, "surface": surface, **(written_maps or {})},
                             results=dict(kind=survey.kind, n_rows=n, n_traces=int(result.times.size),
                                          coverage=float(result.coverage), n_faults=n_faults))

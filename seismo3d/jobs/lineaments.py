@@ -52,7 +52,7 @@ def run_lineaments_job(dem_path, outdir, *, options: LineamentOptions | None = N
     Writes into ``outdir`` (created if missing; the files moved in together once all are written):
 
     - ``lineaments.csv``: ``x0, y0, x1, y1`` (end points in the raster's CRS), ``azimuth_deg`` (strike in [0, 180),
-      clockwise from north), ``length_m``, ``contrast`` (see :class:`~seismo3d.terrain.Lineaments`), longest first;
+      clockwise from north), ``length_m``, ``contrast`` (see :class:`~seismo3d.terrain.Lineaments`), ranked (the strongest evidence first);
     - ``rose.png``: the length-weighted rose diagram of the strikes (10-degree bins);
     - ``lineaments.png``: the lineaments over the multidirectional hillshade, coloured by strike;
     - ``run.json``: the record of the run (options, inputs' sha256, stage times; :mod:`seismo3d.jobs.runinfo`).

@@ -5,7 +5,9 @@
 - :mod:`~seismo3d.terrain.hillshade`: gradient, slope, aspect, hillshades;
 - :mod:`~seismo3d.terrain.surface`: height grids from points, normals from grids;
 - :mod:`~seismo3d.terrain.registration`: scan / DEM registration with the fused ICP;
-- :mod:`~seismo3d.terrain.lineaments`: lineaments (oriented gradients, Hough, linking), rose histograms;
+- :mod:`~seismo3d.terrain.lineaments`: lineaments (oriented gradients, Hough, linking, at several scales), rose
+  histograms; their straight segments in :mod:`~seismo3d.terrain.lineament_segments`;
+- :mod:`~seismo3d.terrain.water`: flat water (lakes and reservoirs flattened to one height);
 - :mod:`~seismo3d.terrain.occupancy`, :mod:`~seismo3d.terrain.planning`: occupancy grids, A* and D* Lite;
 - :mod:`~seismo3d.terrain.evaluation`: scores against ground truth.
 """
@@ -29,6 +31,7 @@ from .lineaments import (
     Lineaments,
     detect_lineaments,
     extract_lineaments,
+    flat_water,
     rose_histogram,
     write_lineaments_csv,
 )
@@ -51,7 +54,7 @@ __all__ = [
     "LAS_SUFFIXES", "LidarScan", "LineamentEvaluation", "LineamentOptions", "Lineaments", "LocalFrame",
     "OccupancyGrid", "OccupancyOptions", "TERRAIN_SUFFIXES", "TerrainGradient", "TerrainRegistration",
     "TerrainRegistrationOptions", "TerrainSurface", "TransformErrors", "aspect_deg", "astar", "detect_lineaments",
-    "evaluate_lineaments", "extract_lineaments", "fill_holes", "grid_normals", "hillshade", "hillshades",
+    "evaluate_lineaments", "extract_lineaments", "fill_holes", "flat_water", "grid_normals", "hillshade", "hillshades",
     "is_terrain_file", "match_hillshades", "metres_per_degree", "multidirectional_hillshade", "occupancy_from_dem",
     "occupancy_from_points", "path_length", "point_spacing", "rasterize_points", "read_dem", "read_las",
     "read_map_folder", "read_terrain", "register_terrain", "rose_histogram", "sample_grid", "slope_deg",

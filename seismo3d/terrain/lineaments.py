@@ -3,6 +3,11 @@ structures), found by oriented gradients, the Hough transform and linking.
 
 The pipeline (:func:`extract_lineaments`), each step a named function:
 
+0. :func:`flat_water`: lakes and reservoirs (a connected region of exactly one elevation over a least area) are kept
+   out with the nodata: their shores are edges of the DEM's flattening, not of the terrain. Steps 1-5 then run on the
+   DEM itself and on the DEM averaged to pixels of about 200 and 400 m (``level_pixels_m``), where a valley wall
+   dissected by gullies is a straight edge; a lineament of a coarser level must follow edges of the DEM itself over
+   half its length;
 1. :func:`residual_relief`: the DEM minus its regional relief (a Gaussian of ``regional_px``): a lineament is a local
    break in the surface, and the long slopes of hills would otherwise take the strongest gradients;
 2. :func:`terrain_edges`: Canny edges of that residual relief (non-maximum suppression of the gradient across the
@@ -18,7 +23,9 @@ The pipeline (:func:`extract_lineaments`), each step a named function:
    into lineaments fitted by total least squares;
 6. :func:`lineament_contrast`: each lineament's contrast, the median across-line slope along it over the median
    slope of the residual relief; lineaments shorter than ``min_length_px`` or with too little evidence
-   ``(contrast - 1) * length`` are dropped.
+   ``(contrast - 1) * length`` are dropped (lengths in the DEM's pixels at every level);
+7. the lineaments of all levels ranked by evidence, and one that lies along a higher-ranked one of similar strike
+   (the same structure at another level) dropped.
 
 Azimuths and lengths are measured in metres in the map (pixel sizes of geographic rasters converted), so they do not
 depend on the pixel aspect ratio.
@@ -49,16 +56,18 @@ from ..errors import InputError
 from ..features import orientation_votes
 from .dem import Dem
 from .hillshade import as_metric_axes
+from .lineament_segments import break_support, hough_segments, link_segments, same_structure
 from .surface import fill_holes
+from .water import flat_water
 
-__all__ = ["LineamentOptions", "Lineaments", "extract_lineaments", "detect_lineaments", "residual_relief",
+__all__ = ["LineamentOptions", "Lineaments", "extract_lineaments", "detect_lineaments", "flat_water", "residual_relief",
            "terrain_edges", "orientation_classes", "hough_segments", "link_segments", "lineament_contrast",
            "write_lineaments_csv", "rose_histogram"]
 
 
 @dataclass(frozen=True)
 class LineamentOptions:
-    """Options of :func:`extract_lineaments` (pixels of the DEM; the same defaults on every DEM).
+    """Options of :func:`extract_lineaments` (pixels of the DEM, or metres where named; the same defaults on every DEM).
 
     The defaults were chosen on generated DEMs (seeds 0-9 and 100-119 of
     :func:`seismo3d.data.terrain.synthetic_scarp_dem`) and checked on others (seeds 200-249; benchmarks/terrain.py).
@@ -83,14 +92,34 @@ class LineamentOptions:
         Two lineaments merge when their directions differ by at most ``link_angle_deg``, the other's ends lie within
         ``link_offset_px`` of one's line and the gap between them along it is at most ``link_gap_px``.
     min_length_px : float
-        Shortest lineament kept.
+        Shortest lineament kept, in the DEM's pixels (at every level).
     min_evidence : float
-        Smallest ``(contrast - 1) * length_px`` kept.
+        Smallest ``(contrast - 1) * length_px`` kept (the length in the DEM's pixels, at every level).
     border_px : int
         Edges this close to the raster's border or to nodata are ignored (smoothing artefacts).
     seed : int
         Seed of the probabilistic Hough transform (the result is deterministic given it).
-    """
+    level_pixels_m : tuple of float
+        The coarser scales searched besides the DEM itself, as pixel sizes in metres: steps 1-5 also run on the DEM
+        averaged over blocks of ``f x f`` cells, ``f`` the whole number nearest to the ratio of each size to the
+        DEM's pixel (levels of fewer than 16 x 16 blocks, or ``f`` of 1, are left out), the pixel values above in
+        pixels of that level but the shortest lineament and its evidence in the DEM's pixels. A geologist reads an
+        escarpment on the hillshade at the zoom where it is straight: a valley wall dissected by gullies is ragged
+        at a 90 m pixel and a straight edge at 200-400 m, where the shortest Hough segment (10 pixels) is 2-4 km,
+        the valley walls and escarpments of a regional map. A lineament of a coarser level must follow edges of the
+        DEM itself over half its length (a break in the terrain, not the smooth flank of a hill).
+    water_min_area_m2 : float
+        Flat water: a 4-connected region of exactly one elevation of at least this area (m^2) is a water surface
+        (lakes and reservoirs are flattened to one height in SRTM-derived DEMs such as HydroSHEDS and in LiDAR
+        DEMs with hydro-flattening) and is treated like nodata: filled smoothly, and no edge within ``border_px`` of
+        it. 1 km^2: land stays at one integer metre over 1 km^2 only where it is flatter than 1 m per km every way,
+        which a DEM of metre steps shows only on the flattest floodplains, where no escarpment is; smaller ponds
+        cannot line a lineament of the shortest length. 0 turns it off.
+    overlap_px : float
+        A lineament of one level that lies, over half its length, within this many pixels of its level (and within
+        ``2 * link_angle_deg`` of strike) of a higher-ranked lineament of any level is the same structure seen
+        at another scale, and is dropped.
+"""
 
     regional_px: float = 8.0
     smoothing_px: float = 1.0
@@ -107,6 +136,9 @@ class LineamentOptions:
     min_evidence: float = 45.0
     border_px: int = 4
     seed: int = 0
+    level_pixels_m: tuple = (200.0, 400.0)
+    water_min_area_m2: float = 1.0e6
+    overlap_px: float = 3.0
 
     def __post_init__(self):
         check_positive(self.regional_px, "regional_px", allow_zero=True)
@@ -121,13 +153,17 @@ class LineamentOptions:
                 raise InputError(f"{name} must be >= 1; got {getattr(self, name)!r}")
         for name in ("link_angle_deg", "link_offset_px", "min_length_px"):
             check_positive(getattr(self, name), name)
-        for name in ("hough_gap_px", "link_gap_px", "min_evidence", "border_px"):
+        for name in ("hough_gap_px", "link_gap_px", "min_evidence", "border_px", "water_min_area_m2"):
             check_positive(getattr(self, name), name, allow_zero=True)
+        check_positive(self.overlap_px, "overlap_px")
+        for size in self.level_pixels_m:
+            check_positive(size, "level_pixels_m")
 
 
 @dataclass(frozen=True)
 class Lineaments:
-    """Lineaments of a raster, K of them, longest first.
+    """Lineaments of a raster, K of them, ranked: the strongest evidence first (``(contrast - 1) * length``, the
+    length in the raster's pixels), the longest first among equals.
 
     Attributes
     ----------
@@ -232,111 +268,6 @@ def orientation_classes(relief, *, smoothing_px: float, n_orientations: int) -> 
     return dominant % int(n_orientations)
 
 
-def hough_segments(edges, classes, options: LineamentOptions) -> np.ndarray:
-    """Probabilistic Hough segments of each orientation class (normals within 1.5 class widths of the class's).
-
-    Parameters
-    ----------
-    edges : (H, W) bool ndarray
-    classes : (H, W) int ndarray
-        From :func:`orientation_classes`.
-    options : LineamentOptions
-
-    Returns
-    -------
-    (M, 4) float64 ndarray
-        ``row0, col0, row1, col1`` per segment.
-    """
-    from skimage.transform import probabilistic_hough_line
-
-    n = int(options.n_orientations)
-    width = np.pi / n
-    out = []
-    for k in range(n):
-        near = np.abs((classes - k + n // 2) % n - n // 2) <= 1  # this class and its two neighbours
-        sel = edges & near
-        if np.count_nonzero(sel) < options.hough_threshold:
-            continue
-        theta = k * width + np.linspace(-1.5 * width, 1.5 * width, 31)
-        theta = np.sort((theta + np.pi / 2) % np.pi - np.pi / 2)
-        lines = probabilistic_hough_line(sel, threshold=int(options.hough_threshold),
-                                         line_length=int(options.hough_length_px), line_gap=int(options.hough_gap_px),
-                                         theta=theta, rng=int(options.seed) + k)
-        out.extend((y0, x0, y1, x1) for (x0, y0), (x1, y1) in lines)
-    return np.asarray(out, dtype=np.float64).reshape(-1, 4)
-
-
-def _fit(points, weights):
-    """Total-least-squares line of weighted points: centre, unit direction, extent along it."""
-    w = weights / weights.sum()
-    centre = w @ points
-    q = points - centre
-    _, vecs = np.linalg.eigh((q * w[:, None]).T @ q)
-    u = vecs[:, -1]
-    t = q @ u
-    return centre, u, float(t.min()), float(t.max())
-
-
-def link_segments(segments, *, angle_deg: float, offset_px: float, gap_px: float) -> np.ndarray:
-    """Merge collinear segments into lineaments, repeatedly, longest first.
-
-    Two groups merge when their fitted directions differ by at most ``angle_deg``, both ends of the other lie within
-    ``offset_px`` of one's line, and the gap between them along it is at most ``gap_px``; a merged group is refitted
-    by total least squares over its segments' end points, weighted by segment length.
-
-    Parameters
-    ----------
-    segments : (M, 4) array_like
-        ``row0, col0, row1, col1``.
-    angle_deg, offset_px, gap_px : float
-
-    Returns
-    -------
-    (K, 4) float64 ndarray
-        The lineaments' end points (extreme projections of their segments' ends), K <= M.
-    """
-    segs = np.asarray(segments, dtype=np.float64).reshape(-1, 4)
-    order = np.argsort(-np.hypot(segs[:, 2] - segs[:, 0], segs[:, 3] - segs[:, 1]))
-    groups = [[s] for s in segs[order]]
-    cos_tol = np.cos(np.radians(angle_deg))
-
-    def line(group):
-        """The group's fitted line from its segments' end points, weighted by segment length."""
-        g = np.asarray(group)
-        pts = np.concatenate([g[:, :2], g[:, 2:]])
-        w = np.tile(np.hypot(g[:, 2] - g[:, 0], g[:, 3] - g[:, 1]) + 1e-9, 2)
-        return _fit(pts, w)
-
-    lines = [line(g) for g in groups]
-    merged = True
-    while merged:
-        merged = False
-        i = 0
-        while i < len(groups):
-            c, u, t0, t1 = lines[i]
-            n = np.array([-u[1], u[0]])
-            others = range(i + 1, len(groups))
-            for j in others:
-                c2, u2, s0, s1 = lines[j]
-                if abs(u @ u2) < cos_tol:
-                    continue
-                ends = np.array([c2 + s0 * u2, c2 + s1 * u2]) - c
-                if np.any(np.abs(ends @ n) > offset_px):
-                    continue
-                along = ends @ u
-                if max(along.min() - t1, t0 - along.max(), 0.0) > gap_px:
-                    continue
-                groups[i] = groups[i] + groups.pop(j)
-                lines.pop(j)
-                lines[i] = line(groups[i])
-                merged = True
-                break
-            else:
-                i += 1
-    out = [np.r_[c + t0 * u, c + t1 * u] for c, u, t0, t1 in lines]
-    return np.asarray(out, dtype=np.float64).reshape(-1, 4)
-
-
 def lineament_contrast(relief, segments, *, smoothing_px: float) -> np.ndarray:
     """Median across-line slope along each segment over the median slope of the relief.
 
@@ -374,6 +305,45 @@ def lineament_contrast(relief, segments, *, smoothing_px: float) -> np.ndarray:
     return out
 
 
+def _block_mean(z: np.ndarray, ok: np.ndarray, f: int):
+    """The grid averaged over blocks of ``f x f`` cells (a partial block at the far edges averaged over what it
+    holds) and the blocks that are mostly data."""
+    if f == 1:
+        return z, ok
+    from skimage.measure import block_reduce
+
+    weight = block_reduce(ok.astype(np.float64), (f, f), np.mean)
+    total = block_reduce(np.where(ok, z, 0.0), (f, f), np.mean)
+    keep = weight > 0.5
+    return np.where(keep, total / np.maximum(weight, 1e-12), np.nan), keep
+
+
+def _level_edges(z: np.ndarray, ok: np.ndarray, opts: LineamentOptions):
+    """Steps 1-2 on one grid (``ok`` where data): its residual relief and the edges of it away from borders, nodata
+    and water."""
+    relief = residual_relief(fill_holes(z, ok), opts.regional_px)
+    inside = ndimage.binary_erosion(np.pad(ok, 1), iterations=int(opts.border_px) + 1)[1:-1, 1:-1]
+    edges = terrain_edges(relief, smoothing_px=opts.smoothing_px, high_quantile=opts.high_quantile,
+                          low_quantile=opts.low_quantile, mask=inside)
+    return relief, edges
+
+
+def _detect_level(z: np.ndarray, ok: np.ndarray, opts: LineamentOptions, f: int = 1):
+    """Steps 1-6 on one grid (``ok`` where data), the DEM averaged over blocks of ``f`` cells: segments ``row0,
+    col0, row1, col1`` in its pixels, their contrast, and the grid's edges; the length and evidence kept are
+    measured in the DEM's pixels (``f`` per pixel of the grid), so that a lineament is the same at every level."""
+    relief, edges = _level_edges(z, ok, opts)
+    classes = orientation_classes(relief, smoothing_px=opts.smoothing_px, n_orientations=opts.n_orientations)
+    # 4-5: Hough segments per class, linked into lineaments
+    segments = link_segments(hough_segments(edges, classes, opts), angle_deg=opts.link_angle_deg,
+                             offset_px=opts.link_offset_px, gap_px=opts.link_gap_px)
+    # 6: keep the long, contrasted ones
+    length_px = f * np.hypot(segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1])
+    contrast = lineament_contrast(relief, segments, smoothing_px=opts.smoothing_px)
+    keep = (length_px >= opts.min_length_px) & ((contrast - 1.0) * length_px >= opts.min_evidence)
+    return segments[keep], contrast[keep], edges
+
+
 def detect_lineaments(elevation, spacing, *, options: LineamentOptions | None = None, valid=None) -> Lineaments:
     """Lineaments of an elevation grid (steps 1-6 of the module docstring), with pixel coordinates only.
 
@@ -405,26 +375,43 @@ def detect_lineaments(elevation, spacing, *, options: LineamentOptions | None = 
     ok = np.isfinite(z) if valid is None else np.asarray(valid, dtype=bool) & np.isfinite(z)
     if not ok.any():
         raise InputError("the DEM has no valid cells; nothing to extract lineaments from")
-    z = fill_holes(z, ok)
-    # 1-3: residual relief, its edges away from borders and nodata, their orientation classes
-    relief = residual_relief(z, opts.regional_px)
-    inside = ndimage.binary_erosion(np.pad(ok, 1), iterations=int(opts.border_px) + 1)[1:-1, 1:-1]
-    edges = terrain_edges(relief, smoothing_px=opts.smoothing_px, high_quantile=opts.high_quantile,
-                          low_quantile=opts.low_quantile, mask=inside)
-    classes = orientation_classes(relief, smoothing_px=opts.smoothing_px, n_orientations=opts.n_orientations)
-    # 4-5: Hough segments per class, linked into lineaments
-    segments = link_segments(hough_segments(edges, classes, opts), angle_deg=opts.link_angle_deg,
-                             offset_px=opts.link_offset_px, gap_px=opts.link_gap_px)
-    # 6: keep the long, contrasted ones
-    length_px = np.hypot(segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1])
-    contrast = lineament_contrast(relief, segments, smoothing_px=opts.smoothing_px)
-    keep = (length_px >= opts.min_length_px) & ((contrast - 1.0) * length_px >= opts.min_evidence)
-    segments, contrast = segments[keep], contrast[keep]
+    # flat water is no terrain: kept out like nodata
+    cell_area = abs(float(np.linalg.det(axes)))
+    ok = ok & ~flat_water(z, cell_area, opts.water_min_area_m2, valid=ok)
+    if not ok.any():
+        raise InputError("the DEM holds only nodata and flat water; nothing to extract lineaments from")
+    # steps 1-6 at each level, the segments back in the DEM's pixels
+    found, contrasts, scales = [], [], []
+    distance = None  # to the DEM's own edges, for the lineaments of coarser levels
+    pixel_m = float(np.sqrt(cell_area))
+    for f in sorted({1} | {int(round(size / pixel_m)) for size in opts.level_pixels_m} - {0}):
+        zf, okf = _block_mean(z, ok, f)
+        if min(zf.shape) < 16 or not okf.any():
+            continue
+        segments, contrast, edges = _detect_level(zf, okf, opts, f)
+        segments = (segments + 0.5) * f - 0.5  # block centres, in the DEM's pixels
+        if f == 1:
+            distance = ndimage.distance_transform_edt(~edges)
+        else:
+            # a break in the terrain: a lineament seen at a coarser level follows edges of the DEM itself (a
+            # ragged escarpment) over half its length at least, not the smooth flank of a hill
+            supported = break_support(segments, distance, f) >= 0.5
+            segments, contrast = segments[supported], contrast[supported]
+        found.append(segments)
+        contrasts.append(contrast)
+        scales.append(np.full(len(contrast), float(f)))
+    segments = np.concatenate(found).reshape(-1, 4) if found else np.zeros((0, 4))
+    contrast = np.concatenate(contrasts) if found else np.zeros(0)
+    scale = np.concatenate(scales) if found else np.zeros(0)
     east, north = _metric(segments, axes)
     length_m = np.hypot(east, north)
-    order = np.argsort(-length_m, kind="stable")
-    segments, contrast, east, north, length_m = (a[order] for a in (segments, contrast, east, north, length_m))
     azimuth = np.mod(np.degrees(np.arctan2(east, north)), 180.0)
+    # ranked by evidence; the same structure found at several levels kept once, at its best rank
+    length_px = np.hypot(segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1])
+    order = np.lexsort((-length_m, -(contrast - 1.0) * length_px))
+    keep = same_structure(segments, scale, azimuth, order, opts.overlap_px, 2.0 * opts.link_angle_deg)
+    order = order[keep[order]]
+    segments, contrast, length_m, azimuth = (a[order] for a in (segments, contrast, length_m, azimuth))
     r0, c0, r1, c1 = segments.T if len(segments) else (np.zeros(0),) * 4
     return Lineaments(r0, c0, r1, c1, azimuth, length_m, contrast, c0.copy(), r0.copy(), c1.copy(), r1.copy())
 
@@ -472,7 +459,7 @@ def extract_lineaments(dem: Dem, *, options: LineamentOptions | None = None) -> 
 
 
 def write_lineaments_csv(path, lineaments: Lineaments) -> pathlib.Path:
-    """Write ``x0, y0, x1, y1, azimuth_deg, length_m, contrast`` (one lineament a row, longest first), atomically.
+    """Write ``x0, y0, x1, y1, azimuth_deg, length_m, contrast`` (one lineament a row, in rank order), atomically.
 
     Parameters
     ----------

@@ -138,6 +138,114 @@ def test_horizon_command_refuses_a_missing_output_folder_before_tracking(tmp_pat
     assert not (tmp_path / "h.txt").exists()
 
 
+def test_horizon_maps_without_xtgeo_are_refused_before_the_work(tmp_path, monkeypatch):
+    # issue 77's trap: --maps without xtgeo tracked, then exited 1 with a traceback and left h.txt, which blocked
+    # the retry. Now: one error line naming the install, exit 2, nothing tracked or written.
+    import sys
+
+    import seismo3d.seismic as seismic
+
+    syn = synthetic_cube((16, 16, 48), n_faults=0, seed=0)
+    _write_cube(tmp_path / "cube.sgy", syn.cube)
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("worked before xtgeo was checked")
+
+    monkeypatch.setitem(sys.modules, "xtgeo", None)  # `import xtgeo` raises ImportError, as when not installed
+    monkeypatch.setattr(seismic, "track_horizon", no_work)
+    monkeypatch.setattr(seismic, "trace_faults", no_work)
+    res = runner.invoke(app, ["horizon", str(tmp_path / "cube.sgy"), "--seed", "8,8,40", "--maps",
+                              "-o", str(tmp_path / "h.txt")])
+    assert res.exit_code == 2, res.output
+    assert _one_error_line(res) == ('error: --maps writes the horizon\'s maps through xtgeo, which is not installed: '
+                                    'pip install "seismo3d[interchange]", or leave out --maps; nothing was written')
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cube.sgy"]
+
+
+def test_faults_from_another_run_are_checked_before_the_work(tmp_path, monkeypatch):
+    # --faults-from: a folder without a faults run, a faults run of another file, and --no-faults with it are
+    # refused in one line before anything is read or tracked
+    import seismo3d.seismic as seismic
+    from seismo3d.jobs.runinfo import write_run_json
+
+    syn = synthetic_cube((16, 16, 48), n_faults=0, seed=0)
+    _write_cube(tmp_path / "cube.sgy", syn.cube)
+    _write_cube(tmp_path / "other.sgy", syn.cube[::-1].copy())
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("worked before --faults-from was checked")
+
+    monkeypatch.setattr(seismic, "track_horizon", no_work)
+    monkeypatch.setattr(seismic, "trace_faults", no_work)
+    (tmp_path / "empty").mkdir()
+    run = tmp_path / "other_faults"
+    run.mkdir()
+    (run / "fault_points.csv").write_text("inline,crossline,time_or_depth,fault_id,throw_samples\n")
+    write_run_json(run / "run.json", command="faults", options={}, inputs={"input": tmp_path / "other.sgy"},
+                   started=0.0, seconds=1.0, stage_seconds={}, outputs={})
+    cube = str(tmp_path / "cube.sgy")
+    for extra, message in ((["--faults-from", str(tmp_path / "empty")], "holds no `seismo3d faults` run"),
+                           (["--faults-from", str(run)], "traced " + str(tmp_path / "other.sgy")),
+                           (["--faults-from", str(run), "--no-faults"], "--no-faults and --faults-from contradict")):
+        res = runner.invoke(app, ["horizon", cube, "--seed", "8,8,40", *extra, "-o", str(tmp_path / "h.txt")])
+        assert res.exit_code == 2 and message in _one_error_line(res), res.output
+    assert not (tmp_path / "h.txt").exists()
+
+
+@pytest.mark.slow
+def test_faults_from_a_faults_run_give_the_horizon_of_traced_faults(data_dir, tmp_path):
+    # `seismo3d faults` on the line, then the horizon from its folder: the faults are not traced again and the
+    # horizon is the one of the faults traced by the horizon command (0.0 ms apart, measured)
+    import os
+
+    from seismo3d.jobs.faults import run_faults_job
+    from seismo3d.jobs.horizon import run_horizon_job
+
+    path = os.path.join(data_dir, "seismic", "penobscot_xl1155.sgy")
+    run_faults_job(path, tmp_path / "xl1155", progress=False)
+    reused = run_horizon_job(path, [(1300, 1155, 2040.0)], tmp_path / "r.txt", faults_from=tmp_path / "xl1155",
+                             progress=False)
+    traced = run_horizon_job(path, [(1300, 1155, 2040.0)], tmp_path / "t.txt", progress=False)
+    assert reused.n_faults == traced.n_faults >= 1
+    both = np.isfinite(reused.horizon.times) & np.isfinite(traced.horizon.times)
+    assert both.sum() >= 0.95 * np.isfinite(traced.horizon.times).sum()
+    np.testing.assert_allclose(reused.horizon.times[both], traced.horizon.times[both], atol=0.25)  # samples
+
+
+def test_horizon_traces_the_faults_by_default_and_says_so(tmp_path, monkeypatch):
+    # No flag: the faults are traced first on a line too, said in one line; data the fault tracer refuses is
+    # tracked without them, said in one line; --no-faults does not trace them.
+    import seismo3d.seismic as seismic
+    from seismo3d.errors import UnsupportedDataError
+
+    syn = synthetic_cube((120, 96), n_faults=0, seed=2, noise=0.1)
+    _write_line(tmp_path / "line.sgy", syn.cube, np.arange(1000, 1120), 1155)
+    ref = syn.horizons[2]
+    seed = ["--seed", f"1060,1155,{4.0 * ref[60]:.2f}", "--polarity",
+            "peak" if syn.horizon_polarity[2] > 0 else "trough"]
+    calls = []
+
+    def refused(data, **kwargs):
+        calls.append(np.shape(data))
+        raise UnsupportedDataError("too few traces to trace faults in")
+
+    monkeypatch.setattr(seismic, "trace_faults", refused)
+    res = runner.invoke(app, ["horizon", str(tmp_path / "line.sgy"), *seed, "-o", str(tmp_path / "h.txt")])
+    assert res.exit_code == 0, res.output
+    assert calls == [(120, 96)]
+    notes = [line for line in res.stderr.splitlines() if line.startswith("line.sgy: ")]
+    assert notes == ["line.sgy: tracing its faults first so that the horizon steps across them (seconds on a line; "
+                     "--no-faults skips them)",
+                     "line.sgy: faults not traced (too few traces to trace faults in); the horizon is tracked "
+                     "without them"], res.stderr
+    res = runner.invoke(app, ["horizon", str(tmp_path / "line.sgy"), *seed, "--no-faults", "-o",
+                              str(tmp_path / "h2.txt")])
+    assert res.exit_code == 0 and calls == [(120, 96)] and "faults" not in res.stderr, res.stderr
+    res = runner.invoke(app, ["horizon", str(tmp_path / "line.sgy"), *seed, "--faults", "-o",
+                              str(tmp_path / "h3.txt")])
+    assert res.exit_code == 2 and "too few traces" in res.stderr and not (tmp_path / "h3.txt").exists()
+
+
 @pytest.mark.slow
 @pytest.mark.filterwarnings("error::RuntimeWarning")
 def test_horizon_command_with_faults_raises_no_runtime_warning(tmp_path):
@@ -174,6 +282,7 @@ def test_seed_index_converts_line_numbers_and_time():
 # 2D lines with no flags: a line of a 3D survey, and an arbitrary line read as a trace list
 
 
+@pytest.mark.slow  # two runs on the 601 x 1501 line, its faults traced first (the default): 17 s
 def test_horizon_on_a_2d_line_follows_the_picks_people_made(data_dir, penobscot, tmp_path):
     # Crossline 1155 of Penobscot crosses the 18 inlines (1075-1092) of the interpreted sections at their column 165
     # (1501 x 481 samples upscaled to 1536 x 512: xline 1000 + 480 / 511 * column; checked: the column's amplitudes
@@ -293,6 +402,28 @@ def test_horizon_command_on_penobscot_xl1155(data_dir, tmp_path):
     steps = np.abs(np.diff(job.horizon.times))
     assert np.nanmedian(steps) <= 1.0
     assert abs(rows[rows[:, 0] == 1100, 2][0] - 2564.0) <= 8.0  # the seed's reflector, snapped within two samples
+
+
+@pytest.mark.slow
+def test_horizon_steps_across_the_large_fault_of_penobscot_xl1155_without_a_flag(data_dir, tmp_path):
+    # The user guide's first example (seed inline 1300, 2040 ms, on the footwall of the large fault near inlines
+    # 1264-1290) with no flag: the faults are traced first, as --faults did. Reference: the --faults run of the same
+    # seed on main d82246e, before faults became the default on lines (ms, by inline); without faults the horizon
+    # ran through the fault with no step and sat 29-30 ms above these on the hanging wall (2031.2 ms at 1250, 2080.8
+    # at 1000).
+    import os
+
+    from seismo3d.jobs.horizon import run_horizon_job
+
+    faults_run = {1000: 2109.908, 1100: 2086.6, 1200: 2053.991, 1250: 2061.029, 1260: 2069.929,  # hanging wall
+                  1291: 2034.954, 1300: 2042.023, 1400: 2054.168, 1500: 2103.397, 1600: 2117.95}  # footwall
+    path = os.path.join(data_dir, "seismic", "penobscot_xl1155.sgy")
+    job = run_horizon_job(path, [(1300, 1155, 2040.0)], tmp_path / "h.txt", progress=False)
+    ms = 4.0 * job.horizon.times.astype(np.float64)  # samples of 4 ms from 0 ms; inline 1000 is trace 0
+    assert job.n_faults >= 1
+    got = {il: ms[il - 1000] for il in faults_run}
+    for il, want in faults_run.items():
+        assert abs(got[il] - want) <= 4.0, (il, got[il], want)  # one sample
 
 
 @pytest.mark.slow

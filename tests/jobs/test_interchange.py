@@ -202,7 +202,8 @@ def test_penobscot_horizon_points(data_dir, tmp_path):
 
     src = fetch("seismic/penobscot_xl1155.sgy")
     cdp = _cdp(src)
-    job = run_horizon_job(src, [_peak_seed(src, 1300, 1155)], tmp_path / "h.txt", maps=True, progress=False)
+    job = run_horizon_job(src, [_peak_seed(src, 1300, 1155)], tmp_path / "h.txt", faults=False, maps=True,
+                          progress=False)
     assert list(job.maps) == ["xyz"]  # a line: points only
     rows = np.loadtxt(tmp_path / "h.txt", ndmin=2)
     pts = xtgeo.points_from_file(job.maps["xyz"]).get_dataframe().to_numpy()[:, :3]

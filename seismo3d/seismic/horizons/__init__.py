@@ -20,7 +20,7 @@ The function :func:`~seismo3d.seismic.horizons.cycle_cut.cycle_cut` is not re-ex
 module's.
 """
 
-from .result import Horizon, as_seeds, check_live_seed, fill_horizon, write_horizon_text
+from .result import Horizon, as_seeds, check_live_seed, fill_horizon, snap_seeds, write_horizon_text
 from .options import TrackingOptions
 from .fault_crossings import FaultCrossings, footwall_normals, reliable_throw
 from .dp import sample_at, window_ncc, dp_picks, line_slopes, reflector_period, settle_lone_departures
@@ -34,7 +34,7 @@ from .lateral_check import close_gaps, despike
 from .tracking import track_horizon
 
 __all__ = [
-    "Horizon", "as_seeds", "check_live_seed", "fill_horizon", "write_horizon_text", "TrackingOptions",
+    "Horizon", "as_seeds", "check_live_seed", "fill_horizon", "snap_seeds", "write_horizon_text", "TrackingOptions",
     "FaultCrossings", "footwall_normals", "reliable_throw", "sample_at", "window_ncc", "dp_picks", "line_slopes",
     "reflector_period", "settle_lone_departures", "window_correlation", "neighbour_confidence", "CycleCut",
     "neighbour_cycle", "binary_min_cut", "PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "solve_horizon",

@@ -55,14 +55,14 @@ from scipy import sparse
 from scipy.sparse.csgraph import connected_components
 
 from ..._progress import progress_steps
-from ..reflectors import nearest_pick, nearest_reflector, reflector_picks
+from ..reflectors import reflector_picks
 from .correlation import pair_lags, neighbour_confidence, window_correlation
 from .cycle_cut import cycle_cut
 from .dp import dp_picks, line_slopes, reflector_period, settle_lone_departures
 from .fault_crossings import FaultCrossings
 from .fault_pairs import fault_steps
 from .laplacian import coarse_labels, solve_weighted
-from .result import no_pick_error
+from .result import snap_seeds
 
 __all__ = ["PairShifts", "LsqHorizon", "trace_pairs", "pair_shifts", "window_correlation", "solve_horizon",
            "cycle_skips", "pair_agreement", "lsq_horizon"]
@@ -362,10 +362,7 @@ def lsq_horizon(data: np.ndarray, seeds: np.ndarray, *, polarity: str, faults: F
     picks, offsets = picks_of(data, polarity) if picks is None else picks
     # seeds: flat index and snapped time
     seed_idx = np.array([np.ravel_multi_index(tuple(int(round(v)) for v in s[:-1]), lat) for s in seeds], np.intp)
-    seed_t = np.array([nearest_pick(picks, offsets, k, s[-1], opt.seed_snap) for k, s in zip(seed_idx, seeds)])
-    for s, t0 in zip(seeds, seed_t):
-        if not np.isfinite(t0):
-            raise no_pick_error(s, opt.seed_snap, nearest_reflector(picks, offsets, lat, s))
+    seed_t = snap_seeds(data, seeds, polarity=polarity, window=opt.seed_snap, picks=(picks, offsets))
     a, b, dist, axis = trace_pairs(lat, opt.pair_distances)
     # start flat at the seeds' time; the first solves use the short pairs only (coarse to fine)
     t = np.full(n, float(np.mean(seed_t)))

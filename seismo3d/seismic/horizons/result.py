@@ -17,7 +17,7 @@ from ..._atomic import atomic_path
 from ..._validation import check_positive
 from ...errors import InputError, SeedError
 
-__all__ = ["Horizon", "as_seeds", "check_live_seed", "fill_horizon", "write_horizon_text"]
+__all__ = ["Horizon", "as_seeds", "check_live_seed", "fill_horizon", "snap_seeds", "write_horizon_text"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -107,6 +107,54 @@ def check_live_seed(data: np.ndarray, seed: np.ndarray) -> None:
             nearest = (*at, seed[-1])
         raise SeedError(f"seed {_position(seed)} is on a dead trace (all samples equal {trace[0]}); move the seed to "
                         "a live trace" + ("" if nearest is None else f", e.g. {_position(nearest)}"), seed, nearest)
+
+
+def snap_seeds(data: np.ndarray, seeds: np.ndarray, *, polarity: str, window: float, picks=None) -> np.ndarray:
+    """The seeds' times snapped to the nearest reflector pick of ``polarity`` on their traces, or the error a user
+    needs: the check every tracker makes of its seeds, which a caller can also make before costly work (the
+    ``seismo3d horizon`` job, before tracing the faults).
+
+    Parameters
+    ----------
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) ndarray
+        Seismic amplitudes, zero-mean, the last axis the sample.
+    seeds : (n_seeds, data.ndim) ndarray of float
+        Index positions, the sample last (:func:`as_seeds`).
+    polarity : {'peak', 'trough', 'zero_rising', 'zero_falling'}
+        The event (:func:`~seismo3d.seismic.reflector_picks`).
+    window : float
+        The largest distance from a seed to its pick, samples (``TrackingOptions.seed_snap``).
+    picks : (ndarray, ndarray), optional
+        ``(times, offsets)``: the picks of every trace of ``data`` (lateral axes flattened), when the caller has
+        them; default: those of the seeds' traces, and of every trace only to name the nearest pick in an error.
+
+    Returns
+    -------
+    (n_seeds,) float64 ndarray
+        The snapped fractional sample index of each seed.
+
+    Raises
+    ------
+    SeedError
+        A seed on a dead trace (:func:`check_live_seed`), or with no pick within ``window`` samples; its ``nearest``
+        is the nearest position that has one (:func:`~seismo3d.seismic.reflectors.nearest_reflector`).
+    """
+    from ..reflectors import nearest_pick, nearest_reflector, reflector_picks
+
+    lat = data.shape[:-1]
+    traces = data.reshape(-1, data.shape[-1])
+    out = np.empty(len(seeds))
+    for k, s in enumerate(seeds):
+        check_live_seed(data, s)
+        flat = int(np.ravel_multi_index(tuple(int(round(v)) for v in s[:-1]), lat))
+        if picks is None:
+            out[k] = nearest_pick(*reflector_picks(traces[flat][None], polarity=polarity), 0, s[-1], window)
+        else:
+            out[k] = nearest_pick(*picks, flat, s[-1], window)
+        if not np.isfinite(out[k]):
+            every = reflector_picks(traces, polarity=polarity) if picks is None else picks
+            raise no_pick_error(s, window, nearest_reflector(*every, lat, s))
+    return out
 
 
 def no_pick_error(seed, window: float, nearest) -> SeedError:

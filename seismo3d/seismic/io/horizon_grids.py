@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from ..._atomic import atomic_path
-from ...errors import DataNotFoundError, InputError
+from ...errors import DataNotFoundError, InputError, MissingDependencyError
 from .coordinates import SurveyCoordinates
 
 __all__ = ["GRID_FORMATS", "HorizonPicks", "horizon_surface", "read_horizon_picks", "write_horizon_grids",
@@ -49,14 +49,14 @@ def require_xtgeo():
 
     Raises
     ------
-    ImportError
-        xtgeo is not installed (``pip install xtgeo`` or ``pip install "seismo3d[interchange]"``).
+    MissingDependencyError
+        xtgeo is not installed (``pip install "seismo3d[interchange]"``); an ``ImportError``.
     """
     try:
         import xtgeo
-    except ImportError as exc:  # pragma: no cover - xtgeo is in the interchange extra
-        raise ImportError("horizon grids (IRAP, ZMAP+, xyz) need xtgeo: pip install xtgeo (or pip install "
-                          "'seismo3d[interchange]')") from exc
+    except ImportError as exc:  # xtgeo is in the interchange extra
+        raise MissingDependencyError("horizon grids (IRAP, ZMAP+, xyz) need xtgeo, which is not installed: pip "
+                                     "install \"seismo3d[interchange]\" (or pip install xtgeo)") from exc
     return xtgeo
 
 

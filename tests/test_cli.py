@@ -493,6 +493,10 @@ def test_the_first_compilation_is_said_once_in_one_line(tmp_path):
     assert run("one(1); k.two(2)") == COMPILE_NOTE + "\n"  # two kernels compiled: one line
     assert run("one(1); k.two(2)") == ""  # from numba's cache
     assert run("uncached(1)") == ""
+    # a new kind of input (another signature: what a 2D line is after 3D cubes) compiles again and says so, as the
+    # note says (issue 77: it promised "once per install" and came once per command)
+    assert run("one(1.5)") == COMPILE_NOTE + "\n"
+    assert run("one(1.5); k.one(1)") == ""
 
 
 def test_every_command_that_may_compile_says_so():

@@ -30,7 +30,7 @@ class _StderrHandler(logging.Handler):
 
 
 # said when a kernel is really compiled (not found in numba's cache): the first run of each command, and of a new kind
-# of input (a 2D line after 3D cubes), compiles the kernels it needs and no others, so it is no promise of "once"
+# of input (a 2D line after 3D cubes), compiles the kernels it needs and no others
 COMPILE_NOTE = ("note: compiling the numba kernels this run needs for the first time (seconds; a minute or two for a "
                 "first faults run); numba's cache keeps them for later runs")
 

@@ -404,9 +404,8 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     :func:`minimum_memory_limit`), refused once with that limit named; then the data's NaN, constant, clipped and
     dead samples (:func:`~seismo3d.seismic.amplitudes.finite_cube`, passes over the whole cube).
 
-    The sample comes first, whatever the limit: a limit refused before it (for the smallest blocks alone) named a
-    minimum that the candidates then raised again (the demo cube: 300MB -> "460MB or more", then at 460MB "630MB or
-    more"), and data the sample refuses needs no memory advice. The sample reads a few blocks of
+    The sample comes first, whatever the limit, so that the one limit named covers the seed candidates too (a run
+    given it goes through), and data the sample refuses gets no memory advice. The sample reads a few blocks of
     :attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile` traces (a few MB), whatever the limit.
 
     Parameters

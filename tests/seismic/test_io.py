@@ -343,7 +343,7 @@ def test_trace_length_correlations_of_a_generated_section():
     assert max(r, key=r.get) == 90 and r[90] > 0.8 and abs(r[120]) < 0.2, (r[90], r[120])
     noise = trace_length_correlations(np.random.default_rng(0).standard_normal(120 * 90))
     assert max(abs(v) for v in noise.values()) < 0.05
-    assert all(120 * 90 % m == 0 and 8 <= m <= 120 * 90 // 8 for m in r)
+    assert all(120 * 90 % m == 0 and 32 <= m <= 120 * 90 // 8 for m in r)
 
 
 def test_read_ascii_lines(seismic_dir, tmp_path):

@@ -102,7 +102,7 @@ def read_section(path, *, n_traces=None, n_samples=None) -> np.ndarray:
 _NEIGHBOUR_CORRELATION = 0.5
 
 
-def trace_length_correlations(values, *, min_count: int = 8) -> dict:
+def trace_length_correlations(values, *, min_traces: int = 8, min_samples: int = 32) -> dict:
     """How well neighbouring traces of a raw section correlate at each trace length its values allow.
 
     A section stored trace after trace and read with its own trace length has neighbouring traces that look alike
@@ -114,8 +114,10 @@ def trace_length_correlations(values, *, min_count: int = 8) -> dict:
     ----------
     values : (n,) array_like of float
         The file's values in their order.
-    min_count : int
-        The fewest traces and the fewest samples per trace a length is tried with.
+    min_traces, min_samples : int
+        The fewest traces and the fewest samples per trace a length is tried with (fault tracing needs 32 samples:
+        :class:`~seismo3d.seismic.faults.options.FaultTracingOptions` ``min_samples``; shorter lags would measure
+        the wavelet along a trace, not neighbouring traces).
 
     Returns
     -------
@@ -134,7 +136,7 @@ def trace_length_correlations(values, *, min_count: int = 8) -> dict:
     x = np.asarray(values, dtype=np.float64).ravel()
     n = x.size
     divisors = {d for k in range(1, int(np.sqrt(n)) + 1) if n % k == 0 for d in (k, n // k)}
-    lengths = sorted(m for m in divisors if min_count <= m <= n // min_count)
+    lengths = sorted(m for m in divisors if min_samples <= m <= n // min_traces)
     if not lengths:
         return {}
     x = np.where(np.isfinite(x), x, 0.0)

@@ -122,14 +122,15 @@ def trace_length_correlations(values, *, min_traces: int = 8, min_samples: int =
     Returns
     -------
     dict of int to float
-        Trace length (a divisor of ``n``) -> Pearson correlation of the values with themselves that many values
-        later (sample k of a trace with sample k of the next), from one FFT autocorrelation.
+        Trace length (a divisor of ``n``) -> the normalised autocorrelation of the values at that lag (sample k of
+        a trace with sample k of the next; 1 for identical neighbours, about 0 for unrelated ones), in [-1, 1].
 
     References
     ----------
-    Wiener-Khinchin: the autocorrelation as the inverse FFT of the power spectrum (zero-padded to ``2 n``, no
-    wrap-around); each lag's sum divided by its number of products (Bendat & Piersol, *Random Data*, 4th ed., 2010,
-    eq. 11.93).
+    Wiener-Khinchin theorem: the autocorrelation as the inverse FFT of the power spectrum, zero-padded to at least
+    ``2 n`` values so that no lag wraps around; each lag's sum divided by its number of products (the unbiased
+    estimate) and by the variance (J. S. Bendat and A. G. Piersol, *Random Data: Analysis and Measurement
+    Procedures*, Wiley, 4th ed., 2010, the correlation estimates computed through the FFT).
     """
     from scipy import fft
 

@@ -123,7 +123,7 @@ def trace_length_correlations(values, *, min_traces: int = 8, min_samples: int =
     -------
     dict of int to float
         Trace length (a divisor of ``n``) -> the normalised autocorrelation of the values at that lag (sample k of
-        a trace with sample k of the next; 1 for identical neighbours, about 0 for unrelated ones), in [-1, 1].
+        a trace with sample k of the next; 1 for identical neighbours, about 0 for unrelated ones).
 
     References
     ----------

@@ -135,12 +135,18 @@ class StagedFolder:
         try:
             if exc_type is None:
                 for item in sorted(self.path.iterdir()):
-                    final = self.folder / item.name
+                    final, earlier = self.folder / item.name, None
                     if item.is_dir() and final.is_dir() and not final.is_symlink():
                         # a folder of files (a TSurf per fault): rename() cannot replace a folder that is not empty,
                         # so the earlier one goes into the staging folder first, removed with it
-                        os.replace(final, self.path / f".earlier-{item.name}")
-                    os.replace(item, final)
+                        earlier = self.path / f".earlier-{item.name}"
+                        os.replace(final, earlier)
+                    try:
+                        os.replace(item, final)
+                    except BaseException:
+                        if earlier is not None:  # put the earlier folder back
+                            os.replace(earlier, final)
+                        raise
         finally:
             shutil.rmtree(self.path, ignore_errors=True)
             if exc_type is not None and self._created and not any(self.folder.iterdir()):

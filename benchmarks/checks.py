@@ -2,7 +2,7 @@
 
 Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/checks.py [--list] [NAME ...]``
 
-Each check is a benchmark run with ``--check`` (or the notebooks run by nbmake), which exits non-zero when its
+Each check is a benchmark run with ``--check`` (or the notebooks run again by ``notebooks/build.py --check``), which exits non-zero when its
 target is missed. They run one after the other, each in its own process (so that one check's memory and threads do
 not disturb the next one's timing), with this checkout first on ``PYTHONPATH``; the table gives each one's exit code
 and minutes, and this script exits 1 when any check failed. ``CHECKS`` is the list ``CONTRIBUTING.md`` gives: a claim
@@ -46,8 +46,9 @@ CHECKS = [
     Check("horizons-generated", ("benchmarks/horizons.py", "--only", "synthetic", "--check"),
           "the generated faulted cubes 0-2 (the suite keeps cube 0): every horizon tracked across the traced faults "
           "within 0.16 samples at the median, at least 89 % of the traces within 2 samples"),
-    Check("notebooks", ("-m", "pytest", "notebooks", "-n", "0", "-p", "no:cacheprovider", "-q"),
-          "the six notebooks run from start to end (nbmake; 3 min in CI, 5.8 min under load)"),
+    Check("notebooks", ("notebooks/build.py", "--check"),
+          "the six notebooks' cells equal their sources, their outputs hold no warning, error or absolute path, and "
+          "a fresh run of each prints what the saved notebook shows"),
     Check("commands", ("benchmarks/commands.py", "--check"),
           "seismo3d convert <= 1.5 x a segyio read of the same file, every --help <= 0.5 s (about 1 min)"),
     Check("fault-blocks", ("benchmarks/fault_blocks.py", "--check"),

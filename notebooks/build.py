@@ -56,7 +56,10 @@ def notebook_of(source: pathlib.Path):
     """The notebook of a ``# %%`` source, not run."""
     meta = {"kernelspec": {"name": "python3", "display_name": "Python 3", "language": "python"},
             "language_info": {"name": "python"}}
-    return nbformat.v4.new_notebook(cells=cells_of(source.read_text()), metadata=meta)
+    cells = cells_of(source.read_text())
+    for n, cell in enumerate(cells):  # ids by position: a notebook written again differs only where its source does
+        cell.id = f"cell-{n:02d}"
+    return nbformat.v4.new_notebook(cells=cells, metadata=meta)
 
 
 def execute(notebook) -> None:

@@ -41,8 +41,8 @@ print(f"window (inlines, traces, samples): {cube.shape}; people's horizons insid
 
 # %% [markdown]
 # ## Trace the faults
-# One call with the defaults every command uses (`seismo3d faults` runs the same function). The warnings say that
-# the slab is clipped and that its top is muted; they are expected for this file.
+# One call with the defaults every command uses (`seismo3d faults` runs the same function). seismo3d warns that the
+# slab is clipped and that its top is muted; both are expected for this file, so the cell silences those warnings.
 
 # %%
 with warnings.catch_warnings():

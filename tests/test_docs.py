@@ -128,7 +128,7 @@ def test_guides_for_users_stay_short(path, limit):
     assert size <= limit, f"{path}: {size} bytes, over {limit}"
 
 
-@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.stem)
+@pytest.mark.parametrize("page", PAGES + [ROOT / "CONTRIBUTING.md"], ids=lambda p: p.stem)
 def test_no_development_log_in_the_docs(page):
     """History belongs in commit messages (and a short CHANGELOG.md): no rounds of work in what users read."""
     text = page.read_text(encoding="utf-8")

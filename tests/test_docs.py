@@ -7,7 +7,6 @@ import doctest
 import importlib.util
 import os
 import re
-import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -22,9 +21,9 @@ _FENCE = re.compile(r"^```([\w-]*)[^\n]*\n(.*?)^```[ \t]*$", flags=re.S | re.M)
 # Pages whose examples fail today, and who fixes them: a strict xfail, so that the fix turns it into a failure that
 # says "remove the entry".
 KNOWN_BROKEN = {
-    "interchange": "issue 77: the round trip prints 3 3 887 where the page says 8 8 2216, the next block reads "
-                   "pen_faults/fault_sticks_charisma.txt that no Python block writes, the xarray block raises "
-                   "UnsupportedDataError (the fault sticks' and the interchange files' changes rewrite the page)",
+    "interchange": "issue 77: the round trip's Python block reads pen_faults/, which only the shell commands above it "
+                   "write (no Python block makes it), and the xarray block's trace_faults_xr raises UnsupportedDataError on "
+                   "f3_crop.sgy (23 x 18 traces, under fault tracing's 32 x 8)",
 }
 
 

@@ -2,11 +2,12 @@
 
 Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/checks.py [--list] [NAME ...]``
 
-Each check is a benchmark run with ``--check`` (or the notebooks run by nbmake), which exits non-zero when its
-target is missed. They run one after the other, each in its own process (so that one check's memory and threads do
-not disturb the next one's timing), with this checkout first on ``PYTHONPATH``; the table gives each one's exit code
-and minutes, and this script exits 1 when any check failed. ``CHECKS`` is the list ``CONTRIBUTING.md`` gives: a claim
-moved out of the suite is added here, beside the command that asserts it.
+Each check is a benchmark run with ``--check`` (or the notebooks run again by ``notebooks/build.py --check``), which
+exits non-zero when its target is missed. They run one after the other, each in its own process (so that one check's
+memory and threads do not disturb the next one's timing), with this checkout first on ``PYTHONPATH``; the table gives
+each one's exit code and minutes, and this script exits 1 when any check failed. ``CHECKS`` is the one list of them
+(``--list`` prints it, ``CONTRIBUTING.md`` points to it): a claim moved out of the suite is added here, beside the
+command that asserts it.
 """
 
 from __future__ import annotations
@@ -35,25 +36,25 @@ class Check:
 CHECKS = [
     Check("volumes-coordinates", ("benchmarks/volumes.py", "--only", "coordinates", "--check"),
           "a Penobscot block and its copy at 12 degrees (bins 1.25 / 0.8, vertical 1.1), both SEG-Y without "
-          "coordinates, right and converged in both orders, the orders within 0.1 samples (about 1 min)"),
+          "coordinates, right and converged in both orders, the orders within 0.1 samples"),
     Check("volumes-grid", ("benchmarks/volumes.py", "--only", "suite_grid", "--check"),
           "the sub-volume pairs of f3_crop, Penobscot and Volve that left the suite, right and converged in the "
-          "issue's tolerances in both orders (3.5 min under load)"),
+          "issue's tolerances in both orders"),
     Check("horizons-traced-faults", ("benchmarks/horizons.py", "--only", "traced_faults", "--check"),
           "the 18 Penobscot inlines' horizons with the faults traced in them: no loss against no fault input, the "
-          "measured medians, 99 % within 5 samples; no fault traced in those inlines' crosshatch of dipping events "
-          "(7.6 min under load)"),
+          "measured medians, 99 % within 5 samples; no fault traced in those inlines' crosshatch of dipping events"),
     Check("horizons-generated", ("benchmarks/horizons.py", "--only", "synthetic", "--check"),
           "the generated faulted cubes 0-2 (the suite keeps cube 0): every horizon tracked across the traced faults "
           "within 0.16 samples at the median, at least 89 % of the traces within 2 samples"),
-    Check("notebooks", ("-m", "pytest", "notebooks", "-n", "0", "-p", "no:cacheprovider", "-q"),
-          "the six notebooks run from start to end (nbmake; 3 min in CI, 5.8 min under load)"),
+    Check("notebooks", ("notebooks/build.py", "--check"),
+          "the six notebooks' cells equal their sources, their outputs hold no warning, error or absolute path, and "
+          "a fresh run of each prints what the saved notebook shows"),
     Check("commands", ("benchmarks/commands.py", "--check"),
-          "seismo3d convert <= 1.5 x a segyio read of the same file, every --help <= 0.5 s (about 1 min)"),
+          "seismo3d convert <= 1.5 x a segyio read of the same file, every --help <= 0.5 s"),
     Check("fault-blocks", ("benchmarks/fault_blocks.py", "--check"),
           "the learned likelihood by blocks on a grid of 0.7 and on three grids, a block on the 0.7 network grid, "
           "the faults job beyond its memory limit on a 192 x 192 x 64 cube and a SEG-Y cube, and the 128^3 demo "
-          "by blocks and its interchange files: equal to them in memory (issue 58; the suite keeps smaller cubes; 3.8 min at load 1.5)"),
+          "by blocks and its interchange files: equal to them in memory (the suite keeps smaller cubes)"),
 ]
 
 

@@ -9,8 +9,8 @@ halo) and returns a :class:`BlockOutput`. The same declared step runs on a whole
 Why not :func:`dask.array.map_overlap` and ``dask.array.Array.to_zarr(region=...)``, which read blocks with a halo
 and write them into a Zarr store? A step here writes several stores at once, with per-step halos and blocks planned
 from a memory limit, reduces or gathers a small result per block alongside, and leaves a marker per block after its
-data so that an interrupted run resumes from the finished blocks (``CONTRIBUTING.md``, "Runs by blocks"); dask's
-graph recomputes every block of an interrupted ``to_zarr``.
+data so that an interrupted run resumes from the finished blocks; dask's graph recomputes every block of an
+interrupted ``to_zarr``.
 """
 
 from __future__ import annotations

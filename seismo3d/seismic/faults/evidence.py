@@ -102,7 +102,7 @@ class EvidenceOptions:
         incoherent energy. Not scaled by the sensitivity (a correlation has no room above 1 to be doubled into: scaled
         like ``min_throw`` it asked 0.71 at sensitivity 0.25, and F3's F1 there fell from 0.431 to 0.360, the Costa Rica
         crf section's faults from 11 to 5); the sensitivity moves ``sure_probability``. Measured 2026-11-26
-        (``tools/dev_fault_scores.py``; before / after in ``docs/model-card.md``). Chosen on F3 (0.4, 0.45, 0.5, 0.55:
+        (``tools/dev_fault_scores.py``). Chosen on F3 (0.4, 0.45, 0.5, 0.55:
         F1 0.479, 0.484, 0.486, 0.474); the Great South Basin scores the same at each. At sensitivity 0.25 / 0.75: F3 F1
         0.431 -> 0.434 / 0.437 -> 0.454, the Great South Basin unchanged (0.682 / 0.802).
     sure_probability : float or None
@@ -149,14 +149,14 @@ class EvidenceOptions:
         Sides whose median correlation with no shift (``correlation - correlation_gain``) reaches it are reflectors
         continuing across the candidate, which is dropped whatever its votes and probability. Not scaled by the
         sensitivity; None: not asked. Chosen on F3 (F1 0.438, 0.452, 0.501, 0.496 at 0.8, 0.85, 0.9, 0.95; the Great
-        South Basin 0.829 from 0.85): see ``docs/model-card.md`` (issue 54, unbroken reflectors).
+        South Basin 0.829 from 0.85; ``tools/dev_fault_scores.py``).
     drag_half_periods : float or None
         A resolved throw (``min_throw``, unscaled) of sides alike at its shift (``min_correlation``: unlike sides read
         no reliable throw) under this many half periods of the reflectors (:attr:`FaultEvidence.half_period`), less than
         ``drag_step`` of which is a step at the fault (2D), bends the reflectors within their wavelet (drag, a migration
         swing): dropped whatever its votes and probability. Not scaled by the sensitivity; None: not asked (3D faults,
         with no step measured, never are). The dev surveys score the same from 0.2 to 0.4 and F3 loses faults a person
-        drew at 0.5: 0.3, the middle of that range (``docs/model-card.md``).
+        drew at 0.5: 0.3, the middle of that range.
     drag_step : float
         The fraction of the throw a step at the fault must reach for ``drag_half_periods`` not to drop it.
     Raises

@@ -20,11 +20,7 @@ PAGES = [ROOT / "README.md"] + sorted(p for p in (ROOT / "docs").rglob("*.md") i
 _FENCE = re.compile(r"^```([\w-]*)[^\n]*\n(.*?)^```[ \t]*$", flags=re.S | re.M)
 # Pages whose examples fail today, and who fixes them: a strict xfail, so that the fix turns it into a failure that
 # says "remove the entry".
-KNOWN_BROKEN = {
-    "interchange": "issue 77: the round trip's Python block reads pen_faults/, which only the shell commands above it "
-                   "write (no Python block makes it), and the xarray block's trace_faults_xr raises UnsupportedDataError on "
-                   "f3_crop.sgy (23 x 18 traces, under fault tracing's 32 x 8)",
-}
+KNOWN_BROKEN: dict = {}  # page stem -> why its examples fail today (a strict xfail: mended pages turn it red)
 
 
 def _fenced_blocks(path: Path) -> list:

@@ -33,6 +33,7 @@ from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
 from ..io.zarr_store import consolidate
+from ..time_slices import blank_slices, filled_slices, slice_extremes
 from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
 from .likelihood.scan import fault_likelihood
@@ -81,9 +82,12 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
        reflectors (a throw of at least a sample that aligns the sides at least as well as no shift) or a likely
        fault (mean probability at least 0.5); or a throw of 3 samples or more on a likely fault.
 
-    NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Dead samples (runs of 5 or
-    more equal values along a trace: dead traces, mutes, gaps, NaN runs) are skipped, with a warning: the likelihood
-    within 3 traces and 8 samples of them is set to 0, since the edge of a dead zone is not a fault.
+    NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Blank time slices (one value
+    on every trace: the missing images of a time-slice export, flat events of extreme amplitude continuous across every
+    fault) are filled from the slices above and below, with a warning (:mod:`~seismo3d.seismic.time_slices`). Dead
+    samples (runs of 5 or more equal values along a trace: dead traces, mutes, gaps, NaN runs) are skipped, with a
+    warning: the likelihood within 3 traces and 8 samples of them is set to 0, since the edge of a dead zone is not a
+    fault.
 
     Data that cannot support fault tracing is refused with an :class:`~seismo3d.errors.UnsupportedDataError`:
     too few traces or samples, data that does not oscillate like seismic amplitudes (a velocity model), or a
@@ -139,7 +143,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     -----
     Seismo3dWarning
         NaN / inf samples, dead samples (constant runs), or clipped amplitudes (more than 5 % of the samples at the
-        data's smallest or largest value).
+        data's smallest or largest value); blank time slices (one value on every trace:
+        :mod:`~seismo3d.seismic.time_slices`), filled before the likelihood.
 
     References
     ----------
@@ -339,10 +344,24 @@ def _cleaned(data, opt: FaultTracingOptions) -> tuple[np.ndarray, np.ndarray]:
     check_size(cleaned.data.shape, opt)
     for w in caught:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-    if SampleOptions().worth_sampling(cleaned.data.shape):  # refused from a sample, not after the whole likelihood
-        judge_sample(cleaned.data, options=opt)
-    check_amplitudes(cleaned.data, cleaned.dead, opt.min_crossings)
-    return cleaned.data, cleaned.dead
+    data, dead = cleaned.data, cleaned.dead
+    blank = blank_slices(*slice_extremes(data))
+    if blank.any():  # flat events of extreme amplitude continuous across every fault: filled before the likelihood
+        warn_blank_slices(blank)
+        data = filled_slices(data, blank)
+    if SampleOptions().worth_sampling(data.shape):  # refused from a sample, not after the whole likelihood
+        judge_sample(data, options=opt)
+    check_amplitudes(data, dead, opt.min_crossings)
+    return data, dead
+
+
+def warn_blank_slices(blank: np.ndarray) -> None:
+    """The Seismo3dWarning that blank time slices were filled (:mod:`~seismo3d.seismic.time_slices`)."""
+    rows = np.nonzero(blank)[0]
+    listed = ", ".join(str(int(k)) for k in rows[:8]) + (", ..." if rows.size > 8 else "")
+    warnings.warn(f"{rows.size} time slices hold one value on every trace (samples {listed}; 0 the first): blank "
+                  "images of a time-slice export, or missing data; each filled by interpolation along the traces "
+                  "between the slices above and below before tracing faults", Seismo3dWarning, stacklevel=4)
 
 
 def _given_likelihood(fl, shape: tuple) -> FaultLikelihood:
@@ -401,7 +420,8 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     """Before any block of a run by blocks: the memory its smallest blocks need (at once); the data judged from a
     sample of blocks (not seismic amplitudes, no lateral coherence: the refusals of the run in memory, in seconds);
     the memory the seed candidates the sample predicts need; then the data's NaN, constant, clipped and dead samples
-    (:func:`~seismo3d.seismic.amplitudes.finite_cube`, passes over the whole cube).
+    (:func:`~seismo3d.seismic.amplitudes.finite_cube`, passes over the whole cube), and its blank time slices,
+    filled (:mod:`~seismo3d.seismic.time_slices`, one more pass).
 
     Parameters
     ----------
@@ -416,7 +436,8 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     Returns
     -------
     dask.array.Array
-        ``x`` with NaN / inf read as 0 (:func:`~seismo3d.seismic.amplitudes.finite_cube`).
+        ``x`` with NaN / inf read as 0 (:func:`~seismo3d.seismic.amplitudes.finite_cube`), its blank time
+        slices filled (:mod:`~seismo3d.seismic.time_slices`).
 
     Raises
     ------
@@ -440,7 +461,12 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     need = minimum_memory_limit(shape, baseline=baseline(), options=options, sample=sample)
     _check_limit(name, shape, limit, need, f" (with the ~{sample.candidates(shape)} seed candidates a sample "
                                            "of its blocks predicts)")
-    return finite_cube(x, options.dead)
+    x = finite_cube(x, options.dead)
+    blank = blank_slices(*slice_extremes(x))  # as in memory (_cleaned)
+    if blank.any():
+        warn_blank_slices(blank)
+        x = filled_slices(x, blank)
+    return x
 
 
 def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:

@@ -24,7 +24,7 @@ import warnings
 import numpy as np
 
 from ..._progress import LOGGER, progress_steps
-from ..._validation import check_choice, check_positive
+from ..._validation import check_choice, check_positive, check_seismic_layout
 from ...errors import EarlierStoresError, InputError, Seismo3dWarning
 from ..amplitudes import CleanTraces, check_amplitudes, clean_traces, finite_cube, near_dead_samples
 from ..blocks.executor import release_memory
@@ -340,28 +340,53 @@ def _cleaned(data, opt: FaultTracingOptions) -> tuple[np.ndarray, np.ndarray]:
         check_size(arr.shape, opt)  # numbers, but below clean_traces' 3 samples per axis: the size message
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", Seismo3dWarning)
-        cleaned = clean_traces(arr, options=opt.dead)
+        cleaned = clean_traces(without_blank_slices(arr), options=opt.dead)
     check_size(cleaned.data.shape, opt)
     for w in caught:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-    data, dead = cleaned.data, cleaned.dead
-    blank = blank_slices(*slice_extremes(data))
-    if blank.any():  # flat events of extreme amplitude continuous across every fault: filled before the likelihood
-        warn_blank_slices(blank)
-        data = filled_slices(data, blank)
-    if SampleOptions().worth_sampling(data.shape):  # refused from a sample, not after the whole likelihood
-        judge_sample(data, options=opt)
-    check_amplitudes(data, dead, opt.min_crossings)
-    return data, dead
+    if SampleOptions().worth_sampling(cleaned.data.shape):  # refused from a sample, not after the whole likelihood
+        judge_sample(cleaned.data, options=opt)
+    check_amplitudes(cleaned.data, cleaned.dead, opt.min_crossings)
+    return cleaned.data, cleaned.dead
 
 
-def warn_blank_slices(blank: np.ndarray) -> None:
-    """The Seismo3dWarning that blank time slices were filled (:mod:`~seismo3d.seismic.time_slices`)."""
+def without_blank_slices(x):
+    """The amplitudes with their blank time slices filled, with a warning (:mod:`~seismo3d.seismic.time_slices`): flat
+    events of extreme amplitude continuous across every fault, filled before the clipped and dead samples are counted
+    and the likelihood computed; ``x`` itself when none is blank.
+
+    Parameters
+    ----------
+    x : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like or dask.array.Array
+        Amplitudes (a dask array in chunks of whole traces; one pass over it).
+
+    Returns
+    -------
+    ndarray or dask.array.Array
+        float32 when filled.
+
+    Raises
+    ------
+    InputError
+        Not a numeric 2D / 3D array.
+
+    Warns
+    -----
+    Seismo3dWarning
+        Blank time slices, named.
+    """
+    if not hasattr(x, "map_blocks"):
+        x = np.asarray(x)
+        check_seismic_layout(x.shape, x.dtype)
+    blank = blank_slices(*slice_extremes(x))
+    if not blank.any():
+        return x
     rows = np.nonzero(blank)[0]
     listed = ", ".join(str(int(k)) for k in rows[:8]) + (", ..." if rows.size > 8 else "")
     warnings.warn(f"{rows.size} time slices hold one value on every trace (samples {listed}; 0 the first): blank "
                   "images of a time-slice export, or missing data; each filled by interpolation along the traces "
                   "between the slices above and below before tracing faults", Seismo3dWarning, stacklevel=4)
+    return filled_slices(x if hasattr(x, "map_blocks") else x.astype(np.float32, copy=False), blank)
 
 
 def _given_likelihood(fl, shape: tuple) -> FaultLikelihood:
@@ -420,8 +445,8 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     """Before any block of a run by blocks: the memory its smallest blocks need (at once); the data judged from a
     sample of blocks (not seismic amplitudes, no lateral coherence: the refusals of the run in memory, in seconds);
     the memory the seed candidates the sample predicts need; then the data's NaN, constant, clipped and dead samples
-    (:func:`~seismo3d.seismic.amplitudes.finite_cube`, passes over the whole cube), and its blank time slices,
-    filled (:mod:`~seismo3d.seismic.time_slices`, one more pass).
+    (:func:`~seismo3d.seismic.amplitudes.finite_cube`, passes over the whole cube). Its blank time slices are filled
+    first (:func:`without_blank_slices`, one more pass).
 
     Parameters
     ----------
@@ -455,18 +480,14 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
 
     _check_limit(name, shape, limit, minimum_memory_limit(shape, baseline=baseline(), options=options),
                  " for its smallest blocks alone")
+    x = without_blank_slices(x)  # as in memory (_cleaned): before the sample is judged and the samples counted
     LOGGER.info("%s: judging the data from a sample of blocks", name)
     sample = judge_sample(x, options=options)  # before the passes over the whole cube: a refusal in seconds
     release_memory()  # the sample's arrays, before the process is measured again
     need = minimum_memory_limit(shape, baseline=baseline(), options=options, sample=sample)
     _check_limit(name, shape, limit, need, f" (with the ~{sample.candidates(shape)} seed candidates a sample "
                                            "of its blocks predicts)")
-    x = finite_cube(x, options.dead)
-    blank = blank_slices(*slice_extremes(x))  # as in memory (_cleaned)
-    if blank.any():
-        warn_blank_slices(blank)
-        x = filled_slices(x, blank)
-    return x
+    return finite_cube(x, options.dead)
 
 
 def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:

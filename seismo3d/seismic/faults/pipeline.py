@@ -33,7 +33,7 @@ from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
 from ..io.zarr_store import consolidate
-from ..time_slices import blank_slices, filled_slices, slice_extremes
+from ..time_slices import balanced_slices, blank_slices, filled_slices, slice_extremes
 from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
 from .likelihood.scan import fault_likelihood
@@ -84,7 +84,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
 
     NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Blank time slices (one value
     on every trace: the missing images of a time-slice export, flat events of extreme amplitude continuous across every
-    fault) are filled from the slices above and below, with a warning (:mod:`~seismo3d.seismic.time_slices`). Dead
+    fault) are filled from the slices above and below, and the export's slices balanced (each its own median and
+    spread removed), with a warning (:mod:`~seismo3d.seismic.time_slices`). Dead
     samples (runs of 5 or more equal values along a trace: dead traces, mutes, gaps, NaN runs) are skipped, with a
     warning: the likelihood within 3 traces and 8 samples of them is set to 0, since the edge of a dead zone is not a
     fault.
@@ -351,9 +352,9 @@ def _cleaned(data, opt: FaultTracingOptions) -> tuple[np.ndarray, np.ndarray]:
 
 
 def without_blank_slices(x):
-    """The amplitudes with their blank time slices filled, with a warning (:mod:`~seismo3d.seismic.time_slices`): flat
-    events of extreme amplitude continuous across every fault, filled before the clipped and dead samples are counted
-    and the likelihood computed; ``x`` itself when none is blank.
+    """The amplitudes with their blank time slices filled and, a blank slice showing a time-slice export, each slice's
+    own offset and gain removed, with a warning (:mod:`~seismo3d.seismic.time_slices`): done before the clipped and
+    dead samples are counted and the likelihood computed; ``x`` itself when no slice is blank.
 
     Parameters
     ----------
@@ -384,9 +385,11 @@ def without_blank_slices(x):
     rows = np.nonzero(blank)[0]
     listed = ", ".join(str(int(k)) for k in rows[:8]) + (", ..." if rows.size > 8 else "")
     warnings.warn(f"{rows.size} time slices hold one value on every trace (samples {listed}; 0 the first): blank "
-                  "images of a time-slice export, or missing data; each filled by interpolation along the traces "
-                  "between the slices above and below before tracing faults", Seismo3dWarning, stacklevel=4)
-    return filled_slices(x if hasattr(x, "map_blocks") else x.astype(np.float32, copy=False), blank)
+                  "images of a time-slice export, each slice scaled by its own range; the blank slices filled by "
+                  "interpolation along the traces, and every slice's own offset and gain removed (its median and "
+                  "interquartile range), before tracing faults", Seismo3dWarning, stacklevel=4)
+    filled = filled_slices(x if hasattr(x, "map_blocks") else x.astype(np.float32, copy=False), blank)
+    return balanced_slices(filled, blank)
 
 
 def _given_likelihood(fl, shape: tuple) -> FaultLikelihood:

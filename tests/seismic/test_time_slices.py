@@ -73,8 +73,8 @@ def test_balanced_slices_remove_each_slices_offset_and_gain():
     assert np.all(out[4, 5] == 9.0)
     live = np.ones((30, 20), bool)
     live[4, 5] = False
-    q25, med, q75 = np.quantile(out[live], [0.25, 0.5, 0.75], axis=0)
-    np.testing.assert_allclose(med, 0.0, atol=1e-4)
+    q25, q75 = np.quantile(out[live], [0.25, 0.75], axis=0)
+    np.testing.assert_allclose(out[live].mean(axis=0), 0.0, atol=1e-4)
     np.testing.assert_allclose(q75 - q25, np.median(q75 - q25), rtol=1e-4)  # one spread for every slice
     # each slice a linear map of the original: correlation 1 with it
     assert min(np.corrcoef(out[live][:, k], cube[live][:, k])[0, 1] for k in range(16)) > 0.9999

@@ -84,7 +84,7 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
 
     NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Blank time slices (one value
     on every trace: the missing images of a time-slice export, flat events of extreme amplitude continuous across every
-    fault) are filled from the slices above and below, and the export's slices balanced (each its own median and
+    fault) are filled from the slices above and below, and the export's slices balanced (each its own mean and
     spread removed), with a warning (:mod:`~seismo3d.seismic.time_slices`). Dead
     samples (runs of 5 or more equal values along a trace: dead traces, mutes, gaps, NaN runs) are skipped, with a
     warning: the likelihood within 3 traces and 8 samples of them is set to 0, since the edge of a dead zone is not a
@@ -386,7 +386,7 @@ def without_blank_slices(x):
     listed = ", ".join(str(int(k)) for k in rows[:8]) + (", ..." if rows.size > 8 else "")
     warnings.warn(f"{rows.size} time slices hold one value on every trace (samples {listed}; 0 the first): blank "
                   "images of a time-slice export, each slice scaled by its own range; the blank slices filled by "
-                  "interpolation along the traces, and every slice's own offset and gain removed (its median and "
+                  "interpolation along the traces, and every slice's own offset and gain removed (its mean and "
                   "interquartile range), before tracing faults", Seismo3dWarning, stacklevel=4)
     filled = filled_slices(x if hasattr(x, "map_blocks") else x.astype(np.float32, copy=False), blank)
     return balanced_slices(filled, blank)

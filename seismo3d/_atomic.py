@@ -98,7 +98,8 @@ def atomic_directory(path):
 
 class StagedFolder:
     """The files of an output folder written into a hidden staging folder inside it, and moved in together when the
-    block ends without an error (each by a rename over any earlier file); on an error, nothing of them is kept.
+    block ends without an error (each by a rename over any earlier file; a staged folder replaces an earlier folder of
+    its name whole); on an error, nothing of them is kept.
 
     A run that fails while writing its files (a full disk, a renderer that cannot start) leaves the earlier files of
     the folder as they were, not a mix of old and new ones. The folder is created (with its parents) on entering,
@@ -134,7 +135,18 @@ class StagedFolder:
         try:
             if exc_type is None:
                 for item in sorted(self.path.iterdir()):
-                    os.replace(item, self.folder / item.name)
+                    final, earlier = self.folder / item.name, None
+                    if item.is_dir() and final.is_dir() and not final.is_symlink():
+                        # a folder of files (a TSurf per fault): rename() cannot replace a folder that is not empty,
+                        # so the earlier one goes into the staging folder first, removed with it
+                        earlier = self.path / f".earlier-{item.name}"
+                        os.replace(final, earlier)
+                    try:
+                        os.replace(item, final)
+                    except BaseException:
+                        if earlier is not None:  # put the earlier folder back
+                            os.replace(earlier, final)
+                        raise
         finally:
             shutil.rmtree(self.path, ignore_errors=True)
             if exc_type is not None and self._created and not any(self.folder.iterdir()):

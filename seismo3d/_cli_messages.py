@@ -29,17 +29,21 @@ class _StderrHandler(logging.Handler):
             pass
 
 
-COMPILE_NOTE = ("note: compiling seismo3d's numba kernels; this happens once per install (seconds for some commands, "
-                "a minute or two for faults), later runs reuse them")
+# said when a kernel is really compiled (not found in numba's cache): the first run of each command, and of a new kind
+# of input (a 2D line after 3D cubes), compiles the kernels it needs and no others
+COMPILE_NOTE = ("note: compiling the numba kernels this run needs for the first time (seconds; a minute or two for a "
+                "first faults run); numba's cache keeps them for later runs")
 
 
 @contextlib.contextmanager
 def compile_note():
     """Say in one line on standard error, the first time within the block that one of seismo3d's cached numba
-    kernels is compiled (a fresh install: nothing in numba's cache yet), that this happens once.
+    kernels is compiled (not in numba's cache yet: a fresh install, or the first run of a command or of a kind of
+    input), that numba's cache keeps them.
 
-    Kernels loaded from numba's cache say nothing (numba's ``numba:compile`` event fires only on a cache miss), nor
-    do kernels that are not cached. Call it after the command's job is imported (numba is then loaded)."""
+    Kernels loaded from numba's cache say nothing (numba's ``numba:compile`` event fires only on a cache miss, after
+    the cache index was looked up), nor do kernels that are not cached. Call it after the command's job is imported
+    (numba is then loaded)."""
     try:
         from numba.core import event
     except ImportError:  # pragma: no cover - numba is a dependency

@@ -5,6 +5,7 @@ import csv
 import logging
 import json
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -194,6 +195,21 @@ def test_faults_raw_section_of_unknown_shape_names_the_flag(tmp_path):
     result = runner.invoke(app, ["faults", str(src), "-o", str(tmp_path / "x"), "--n-samples", "250",
                                  "--sensitivity", "0.5"])
     assert "--n-samples" not in result.stderr and "shape" not in result.stderr  # the shape given: read (no faults)
+
+
+def test_faults_raw_section_with_its_shape_swapped_is_refused(data_dir, tmp_path):
+    """A raw section read with its numbers of traces and samples swapped (campos_gx373, 550 traces of 300 samples,
+    given --n-samples 550) once traced it to "0 faults" with exit 0: now one line naming --n-samples 300, exit 2,
+    before any work, and no output folder left behind."""
+    src = tmp_path / "in" / "line.f32be"
+    src.parent.mkdir()
+    shutil.copy(Path(data_dir) / "seismic" / "sections" / "campos_gx373.f32be", src)
+    result = runner.invoke(app, ["faults", str(src), "-o", str(tmp_path / "x"), "--n-samples", "550"])
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith("error: line.f32be read as 300 traces of 550 samples has neighbouring traces that "
+                                    "do not look alike")
+    assert result.stderr.endswith("; pass --n-samples 300\n") and len(result.stderr.splitlines()) == 1
+    assert not (tmp_path / "x").exists()
 
 
 @pytest.mark.slow
@@ -477,6 +493,10 @@ def test_the_first_compilation_is_said_once_in_one_line(tmp_path):
     assert run("one(1); k.two(2)") == COMPILE_NOTE + "\n"  # two kernels compiled: one line
     assert run("one(1); k.two(2)") == ""  # from numba's cache
     assert run("uncached(1)") == ""
+    # a new kind of input (another signature: what a 2D line is after 3D cubes) compiles again and says so, as the
+    # note says (issue 77: it promised "once per install" and came once per command)
+    assert run("one(1.5)") == COMPILE_NOTE + "\n"
+    assert run("one(1.5); k.one(1)") == ""
 
 
 def test_every_command_that_may_compile_says_so():

@@ -173,10 +173,11 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       axis toward the crossline axis, see :mod:`seismo3d.seismic.faults.likelihood.scan`).
     * ``fault_sticks_opendtect.txt``, ``fault_sticks_charisma.txt``, ``fault_sticks_iesx.txt``: every fault's points
       along each line that cuts it, as fault sticks in map coordinates (OpendTect ASCII, and Charisma and IESX, which
-      Petrel imports); ``fault_surfaces_gocad.ts``: the triangulated faults of ``faults.vtp`` as GOCAD TSurf, 3D
-      inputs (:mod:`seismo3d.jobs.interchange`). ``fault_points.csv`` holds ``x``, ``y`` and ``xy_unit`` after the
-      crossline: each point's trace's CDP X/Y with the coordinate scalar applied, or its inline and crossline numbers
-      with ``xy_unit`` ``inline/crossline`` for an input without coordinates.
+      Petrel imports); ``fault_surfaces_gocad/``: the triangulated faults of ``faults.vtp``, a GOCAD TSurf file per
+      fault (``fault_<id>.ts``, as xtgeo reads and Petrel imports them), 3D inputs (:mod:`seismo3d.jobs.interchange`).
+      ``fault_points.csv`` holds ``x``, ``y`` and ``xy_unit`` after the crossline: each point's trace's CDP X/Y with
+      the coordinate scalar applied, or its inline and crossline numbers with ``xy_unit`` ``inline/crossline`` for an
+      input without coordinates (the TSurf files alike; ``run.json``'s ``results`` name the unit, ``xy_unit``).
     * ``faults.png``: an inline, a crossline and a time slice (the most faulted of each) with the faults drawn over
       the seismic, coloured by their ``confidence`` (the column of ``fault_summary.csv``), above the same slices of
       the fault likelihood; for 2D inputs the section, cropped to its live traces and samples.
@@ -295,7 +296,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     limit = parse_memory_limit(memory_limit)
     segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian, sample_unit=sample_unit)
     summary = []  # the rows of fault_summary.csv, as written
-    how = {"by_blocks": False}  # the memory decision, once made (the hint of an interrupted run by blocks)
+    how = {"by_blocks": False}  # the memory decision, once made (the hint of an interrupted run by blocks); xy_unit
     # the files moved in together when every one is written; with overwrite, an earlier run's block-by-block stores
     # set aside before the work, deleted once the new files are in, put back if the run fails or is interrupted
     aside = SetAside(out_dir)
@@ -308,7 +309,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
             final = {key: stage.final(path) for key, path in written.items()}
             record.options["tracing_options"] = options
             final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"input": input_path},
-                                                         outputs=final, results={"n_faults": len(summary)}))
+                                                         outputs=final, results={"n_faults": len(summary),
+                                                                                 "xy_unit": how["xy_unit"]}))
     except KeyboardInterrupt as exc:
         if how["by_blocks"]:  # the CLI's one line (seismo3d._cli_messages.friendly), once the folder is cleaned up
             exc.resume_hint = _resume_hint(out_dir, aside if overwrite else None)
@@ -322,7 +324,8 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     """Read (or make) the input once, decide once whether it is traced in memory or block by block, trace it, and
     write the results into ``files`` (a run by blocks keeps its Zarr stores in ``out_dir``; with ``aside``, the
     stores of an earlier run there are set aside before the work); the files written, by key (the summary's rows
-    appended to ``summary``, the seconds of each stage and step in ``record``, the decision in ``how``)."""
+    appended to ``summary``, the seconds of each stage and step in ``record``, the decision and the unit of X / Y in
+    ``how``)."""
     written = {}
     if demo:
         with record.stage("make the demo cube"):
@@ -360,6 +363,7 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
         written.update(likelihood=result.stores["likelihood"], surfaces_zarr=result.stores["surfaces"])
     coords = fault_coordinates(inp, iline=segy["iline"], xline=segy["xline"],
                                ignore_geometry=segy["ignore_geometry"], endian=segy["endian"])
+    how["xy_unit"] = coords.unit  # the unit of X / Y in every interchange file, for run.json
     with record.stage("write outputs"):
         _write_steps(_volume_steps(inp, result, files, segy, progress) + _surface_steps(inp, result, files, summary,
                                                                                          coords), written, progress)
@@ -420,7 +424,7 @@ def _surface_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path,
     from ..viz.faults import plot_fault_slices
 
     axes = inp.axes
-    meshes = []  # faults.vtp's mesh for fault_surfaces_gocad.ts (the same points and triangles), written next
+    meshes = []  # faults.vtp's mesh for fault_surfaces_gocad/ (the same points and triangles), written next
 
     def surfaces():
         mesh = fault_surfaces(result.faults, result.throws, axes=axes)
@@ -429,7 +433,7 @@ def _surface_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path,
         return save_polydata(mesh, out_dir / "faults.vtp")
 
     interchange = fault_interchange_steps(inp, result, out_dir, coords, mesh=lambda: meshes.pop() if meshes else None)
-    # the TSurf file right after faults.vtp: its mesh is not held while the other files are written (the peak of a
+    # the TSurf files right after faults.vtp: its mesh is not held while the other files are written (the peak of a
     # run by blocks is in the writing)
     tsurf = [step for step in interchange if step[0] == "surfaces_tsurf"]
     return [("surfaces", surfaces), *tsurf,

@@ -4,7 +4,7 @@ interpretation packages, in map coordinates.
 * ``seismo3d faults`` writes, beside its other outputs (:func:`fault_interchange_steps`): ``fault_sticks_opendtect.txt``
   (OpendTect fault-stick ASCII), ``fault_sticks_charisma.txt`` and ``fault_sticks_iesx.txt`` (Charisma and IESX
   fault sticks, which Petrel imports),
-  ``fault_surfaces_gocad.ts`` (GOCAD TSurf, 3D inputs), and X / Y in ``fault_points.csv``.
+  ``fault_surfaces_gocad/`` (a GOCAD TSurf file per fault, 3D inputs), and X / Y in ``fault_points.csv``.
 * ``seismo3d horizon --maps`` writes the horizon as IRAP ASCII (``.fgr``), IRAP binary (``.gri``), ZMAP+ (``.zmap``)
   grids and ``X Y Z`` points (``.xyz``) beside its text file (:func:`write_horizon_maps`); ``--seed-file`` reads seeds
   from a file of picks (:func:`seeds_from_file`).
@@ -25,13 +25,13 @@ import numpy as np
 from ..errors import InputError
 from ..seismic.io.coordinates import SurveyCoordinates, read_survey_coordinates, survey_coordinates
 from ..seismic.io.fault_sticks import FaultSticks, read_fault_sticks, write_fault_sticks
-from ..seismic.io.tsurf import TriangulatedSurface, write_tsurf
+from ..seismic.io.tsurf import TriangulatedSurface, write_tsurf_folder
 
 __all__ = ["FAULT_INTERCHANGE_FILES", "HORIZON_MAP_SUFFIXES", "fault_coordinates", "fault_interchange_steps",
            "horizon_map_paths", "write_horizon_maps", "seeds_from_file", "sticks_mesh"]
 
 FAULT_INTERCHANGE_FILES = ("fault_sticks_opendtect.txt", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
-                           "fault_surfaces_gocad.ts")
+                           "fault_surfaces_gocad")
 HORIZON_MAP_SUFFIXES = {"irap_ascii": ".fgr", "irap_binary": ".gri", "zmap": ".zmap", "xyz": ".xyz"}
 
 
@@ -81,8 +81,10 @@ def _sticks(inp, result, coords: SurveyCoordinates) -> FaultSticks:
 
 
 def _fault_tsurf(inp, result, coords: SurveyCoordinates, path: Path, mesh=None) -> Path:
-    """The triangulated faults of faults.vtp (:func:`seismo3d.viz.fault_surfaces`) in map coordinates; ``mesh``:
-    that mesh when the job already made it (its points, ``fault_id`` and triangles are all this reads)."""
+    """The triangulated faults of faults.vtp (:func:`seismo3d.viz.fault_surfaces`) as a folder of GOCAD TSurf files,
+    ``fault_<id>.ts`` per fault: vertices at their traces' map X / Y (the CDP X / Y of the headers, scalar applied;
+    inline / crossline numbers for an input without coordinates) and Z in the input's two-way time or depth;
+    ``mesh``: that mesh when the job already made it (its points, ``fault_id`` and triangles are all this reads)."""
     from ..viz.fault_meshes import fault_surfaces
 
     mesh = fault_surfaces(result.faults, result.throws) if mesh is None else mesh
@@ -100,7 +102,7 @@ def _fault_tsurf(inp, result, coords: SurveyCoordinates, path: Path, mesh=None) 
         remap[keep] = np.arange(keep.size)
         surfaces.append(TriangulatedSurface(f"fault_{int(fid)}", np.column_stack([x[keep], y[keep], z[keep]]),
                                             remap[tri], coords.unit, inp.unit))
-    return write_tsurf(path, surfaces, source=inp.name)
+    return write_tsurf_folder(path, surfaces, source=inp.name)
 
 
 def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates, *, mesh=None) -> list:
@@ -123,7 +125,7 @@ def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates, *, 
     -------
     list of (str, callable)
         ``sticks_opendtect``, ``sticks_charisma``, ``sticks_iesx`` and, for a 3D input with faults,
-        ``surfaces_tsurf``; each callable writes its file and returns its path.
+        ``surfaces_tsurf`` (a folder of a TSurf file per fault); each callable writes its file and returns its path.
     """
     out_dir = Path(out_dir)
     names = dict(zip(("sticks_opendtect", "sticks_charisma", "sticks_iesx"), FAULT_INTERCHANGE_FILES))

@@ -6,6 +6,7 @@ BlockRunOptions.in_memory_for asks it), as a large cube under --memory-limit wou
 
 import hashlib
 import logging
+import shutil
 
 import numpy as np
 import pytest
@@ -43,6 +44,14 @@ def _source(folder, store="fault_likelihood.zarr"):
     return zarr.open_group(str(folder / store), mode="r").attrs["source"]
 
 
+def _results(folder):
+    """The bytes of every file of a run's results (:data:`RESULTS`, the TSurf folder's files among them), by relative
+    path."""
+    paths = [folder / n for n in job.RESULTS]
+    files = [q for p in paths if p.is_dir() for q in sorted(p.rglob("*")) if q.is_file()]
+    return {str(q.relative_to(folder)): q.read_bytes() for q in files + [p for p in paths if p.is_file()]}
+
+
 def _leftovers(folder):
     return sorted(p.name for p in folder.iterdir() if p.name.startswith(".") or p.name.endswith((".work", ".partial")))
 
@@ -53,6 +62,8 @@ def test_stores_of_another_input_are_refused_without_overwrite(blocks, cubes, tm
     run_faults_job(cubes / "a.npy", out, progress=False)
     assert _source(out) == "a" and _source(out, "fault_surfaces.zarr") == "a"
     for name in job.RESULTS:  # the earlier run's files gone: only its stores are left in the way
+        if (out / name).is_dir():
+            shutil.rmtree(out / name)
         (out / name).unlink(missing_ok=True)
     before = _digest(out)
     with pytest.raises(InputError, match=r"holds fault_likelihood.zarr of another input .*--overwrite"):
@@ -64,7 +75,8 @@ def test_stores_of_another_input_are_refused_without_overwrite(blocks, cubes, tm
 def test_overwrite_replaces_the_stores_and_a_failed_run_puts_them_back(blocks, cubes, tmp_path, monkeypatch):
     out = tmp_path / "out"
     first = run_faults_job(cubes / "a.npy", out, progress=False)
-    before, files = _digest(out), {n: (out / n).read_bytes() for n in job.RESULTS if (out / n).exists()}
+    before, files = _digest(out), _results(out)
+    assert "fault_surfaces_gocad/fault_1.ts" in files
 
     def fail(*args, **kwargs):  # the new stores are written, the run fails on writing its files
         assert _source(out) == "b" and _source(out, "fault_surfaces.zarr") == "b"
@@ -75,11 +87,14 @@ def test_overwrite_replaces_the_stores_and_a_failed_run_puts_them_back(blocks, c
         with pytest.raises(OSError, match="No space"):
             run_faults_job(cubes / "b.npy", out, overwrite=True, progress=False)
     assert _digest(out) == before and _leftovers(out) == []  # the earlier stores as they were, nothing else
-    assert {n: (out / n).read_bytes() for n in files} == files
+    assert _results(out) == files
 
     second = run_faults_job(cubes / "b.npy", out, overwrite=True, progress=False)
     assert _source(out) == "b" and _source(out, "fault_surfaces.zarr") == "b" and _leftovers(out) == []
     assert (out / "fault_summary.csv").read_text() != files["fault_summary.csv"].decode()
+    # the TSurf folder replaced whole: a file per fault of this run, none of the earlier run's left
+    assert sorted(p.name for p in (out / "fault_surfaces_gocad").iterdir()) == sorted(
+        f"fault_{r['id']}.ts" for r in second.faults)
     assert first.written["likelihood"] == second.written["likelihood"] == out / "fault_likelihood.zarr"
 
 

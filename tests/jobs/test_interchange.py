@@ -2,7 +2,6 @@
 the formats' readers (xtgeo for grids, points and TSurf; the Charisma column spec; seismo3d's stick reader)."""
 
 import csv
-import io
 import warnings
 from pathlib import Path
 
@@ -73,68 +72,143 @@ def test_penobscot_fault_points_are_at_their_traces_cdp(penobscot_faults):
             assert np.hypot(x - cdp[(int(il), int(xl))][0], y - cdp[(int(il), int(xl))][1]) < 1e-3
     df = pd.read_csv(job.written["sticks_charisma"], sep=r"\s+", header=None,
                      names=["INLINE", "iline", "xline", "cdp_x", "cdp_y", "height", "name", "number"])
-    assert_allclose(df["cdp_x"], cha.x) and len(df) == cha.n_nodes
+    assert_allclose(df["cdp_x"], cha.x)
+    assert len(df) == cha.n_nodes
     assert "surfaces_tsurf" not in job.written  # a line's faults are curves: sticks only
 
 
 # The demo cube (128^3) traced and a horizon tracked in it (50 s under load): `python benchmarks/fault_blocks.py --only
-# demo_interchange --check`; here a smaller cube written as the demo is (SEG-Y without coordinates, lines from 1, 4 ms)
+# demo_interchange --check`; here a smaller cube written as the demo is (SEG-Y, lines from 1, 4 ms), without
+# coordinates or with CDP X / Y on a rotated grid
 SMALL = (48, 56, 48)
+# the rotated survey: inline 1, crossline 1 at (ORIGIN), inlines 25 m apart along AZIMUTH degrees from north (X east),
+# crosslines 12.5 m apart at right angles; the headers store centimetres (scalar -100)
+ORIGIN, AZIMUTH, BINS = (612345.67, 6078901.23), 32.0, (25.0, 12.5)
 
 
-@pytest.mark.slow  # a 48 x 56 x 48 cube traced and a horizon tracked in it
-def test_faults_interchange_without_coordinates(tmp_path):
-    """A cube without coordinates (as the demo's): every interchange file says inline / crossline units; the TSurf
-    read back by xtgeo is the faults.vtp mesh, the sticks read back are fault points, a few a stick."""
+def _map_xy(inline, crossline):
+    """The survey's map X / Y of (fractional) inline and crossline numbers, from its definition above."""
+    a = np.radians(AZIMUTH)
+    il, xl = np.asarray(inline, float) - 1, np.asarray(crossline, float) - 1
+    x = ORIGIN[0] + il * BINS[0] * np.sin(a) + xl * BINS[1] * np.cos(a)
+    y = ORIGIN[1] + il * BINS[0] * np.cos(a) - xl * BINS[1] * np.sin(a)
+    return x, y
+
+
+def _map_lines(x, y):
+    """The inverse of :func:`_map_xy`: fractional inline and crossline numbers of map X / Y."""
+    a = np.radians(AZIMUTH)
+    dx, dy = np.asarray(x, float) - ORIGIN[0], np.asarray(y, float) - ORIGIN[1]
+    return 1 + (dx * np.sin(a) + dy * np.cos(a)) / BINS[0], 1 + (dx * np.cos(a) - dy * np.sin(a)) / BINS[1]
+
+
+def _small_cube(path, coordinates: bool):
+    from seismo3d.data.synthetic import synthetic_cube
+
+    segyio.tools.from_array3D(str(path), synthetic_cube(SMALL, seed=0).cube.astype(np.float32), format=5, dt=4000)
+    if coordinates:
+        with segyio.open(str(path), "r+") as f:
+            il, xl = f.attributes(189)[:], f.attributes(193)[:]
+            x, y = _map_xy(il, xl)
+            for i in range(f.tracecount):
+                f.header[i].update({segyio.TraceField.SourceGroupScalar: -100,
+                                    segyio.TraceField.CDP_X: int(round(x[i] * 100)),
+                                    segyio.TraceField.CDP_Y: int(round(y[i] * 100))})
+            f.bin.update({segyio.BinField.MeasurementSystem: 1})
+    return path
+
+
+@pytest.fixture(scope="module", params=[False, True], ids=["line-numbers", "rotated-map"])
+def small_faults(request, tmp_path_factory):
+    from seismo3d.jobs.faults import run_faults_job
+
+    tmp = tmp_path_factory.mktemp("small")
+    src = _small_cube(tmp / "cube.sgy", request.param)
+    return request.param, src, run_faults_job(src, tmp / "faults", progress=False)
+
+
+@pytest.mark.slow  # a 48 x 56 x 48 cube traced (twice: without and with coordinates)
+def test_every_fault_surface_read_by_xtgeo(small_faults):
+    """A TSurf file per traced fault, each read by xtgeo's reader; its vertices are faults.vtp's points of the fault
+    at their trace's map X / Y (the rotated survey's CDP X / Y, scalar -100 applied; inline / crossline numbers
+    without coordinates, the axes named so) and two-way time in ms; run.json names the unit."""
+    import json
+
     import pyvista as pv
     import xtgeo
 
-    from seismo3d.data.synthetic import synthetic_cube
-    from seismo3d.jobs.faults import run_faults_job
-
-    src = tmp_path / "cube.sgy"
-    segyio.tools.from_array3D(str(src), synthetic_cube(SMALL, seed=0).cube.astype(np.float32), format=5, dt=4000)
-    job = run_faults_job(src, tmp_path / "faults", progress=False)
+    coordinates, _, job = small_faults
     assert job.n_faults > 0
+    folder = Path(job.written["surfaces_tsurf"])
+    vtp = pv.read(job.written["surfaces"])
+    ids = np.asarray(vtp.point_data["fault_id"])
+    assert sorted(p.name for p in folder.iterdir()) == sorted(f"fault_{i}.ts" for i in np.unique(ids))
+    assert len(list(folder.iterdir())) == job.n_faults
+    n_triangles = 0
+    for fid in np.unique(ids):
+        path = folder / f"fault_{fid}.ts"
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # xtgeo: 'uncommon AXIS_UNIT combination' (m, m, ms)
+            surf = xtgeo.triangulated_surface_from_file(path, fformat="tsurf")
+        points = vtp.points[ids == fid]  # (inline index, crossline index, -sample index), in the file's order
+        il, xl, t = points[:, 0] + 1, points[:, 1] + 1, -points[:, 2] * 4.0
+        x, y = _map_xy(il, xl) if coordinates else (il, xl)
+        assert surf.num_vertices == len(points)
+        assert_allclose(surf.vertices[:, 0], x, atol=0.006)  # the headers' 0.01 m steps, the file's 3 decimals
+        assert_allclose(surf.vertices[:, 1], y, atol=0.006)
+        assert_allclose(surf.vertices[:, 2], t, atol=5e-5)
+        n_triangles += surf.num_triangles
+        unit = '"m" "m" "ms"' if coordinates else '"none" "none" "ms"'
+        assert f"AXIS_UNIT {unit}" in path.read_text()
+    assert n_triangles == vtp.n_cells
+    record = json.loads(Path(job.run_json).read_text())
+    assert record["results"]["xy_unit"] == ("m" if coordinates else "inline/crossline")
+
+
+@pytest.mark.slow  # the cubes of small_faults; a horizon tracked in each (1 s)
+def test_small_cube_sticks_and_grids(small_faults, tmp_path):
+    """The same runs: the fault sticks' nodes are fault points (a few a stick) at their map X / Y; a horizon's IRAP / ZMAP+ grids read
+    back by xtgeo hold the text rows' times, on the survey's rotated grid at the traces' X / Y."""
+    import xtgeo
+
+    from seismo3d.jobs.horizon import run_horizon_job
+
+    coordinates, src, job = small_faults
     points = _rows(job.written["points"])
-    assert {r["xy_unit"] for r in points} == {"inline/crossline"}
-    assert all(float(r["x"]) == float(r["inline"]) and float(r["y"]) == float(r["crossline"]) for r in points)
+    assert {r["xy_unit"] for r in points} == {"m" if coordinates else "inline/crossline"}
     sticks = read_fault_sticks(job.written["sticks_opendtect"])
-    assert sticks.xy_unit == "inline/crossline" and sticks.n_faults == job.n_faults
+    assert sticks.n_faults == job.n_faults
     assert sticks.n_nodes < len(points) / 10 and {(int(a), int(b), round(z, 3)) for a, b, z in zip(
         sticks.inline, sticks.crossline, sticks.z)} <= {(int(r["inline"]), int(r["crossline"]),
                                                          round(float(r["time_or_depth"]), 3)) for r in points}
-    text = Path(job.written["surfaces_tsurf"]).read_text()
-    assert 'AXIS_UNIT "none" "none" "ms"' in text
-    vtp = pv.read(job.written["surfaces"])
-    chunks = ["GOCAD TSurf 1" + c for c in text.split("GOCAD TSurf 1")[1:]]
-    assert len(chunks) == job.n_faults
-    n_vertices = n_triangles = 0
-    for chunk in chunks:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", UserWarning)
-            surf = xtgeo.triangulated_surface_from_file(io.BytesIO(chunk.encode()), fformat="tsurf")
-        n_vertices += surf.num_vertices
-        n_triangles += surf.num_triangles
-        # vertices: (inline, crossline, time) of fault points: whole lines, times on the 4 ms samples
-        assert_allclose(surf.vertices[:, :2], np.round(surf.vertices[:, :2]))
-        assert_allclose(surf.vertices[:, 2] % 4.0, 0.0, atol=1e-3)
-    assert n_vertices == vtp.n_points and n_triangles == vtp.n_cells
-    # a horizon of the cube as IRAP / ZMAP+ grids (unrotated, X / Y = line numbers), read back by xtgeo
-    from seismo3d.jobs.horizon import run_horizon_job
-
+    x, y = _map_xy(sticks.inline, sticks.crossline) if coordinates else (sticks.inline, sticks.crossline)
+    assert_allclose(sticks.x, x, atol=0.006)
+    assert_allclose(sticks.y, y, atol=0.006)
+    # a horizon of the cube as IRAP / ZMAP+ grids, read back by xtgeo
     n_il, n_xl = SMALL[:2]
     horizon = run_horizon_job(src, [_peak_seed(src, n_il // 2, n_xl // 2)], tmp_path / "h.txt", faults=False,
                               maps=True, progress=False)
     rows = np.loadtxt(tmp_path / "h.txt", ndmin=2)
     truth = np.full((n_il, n_xl), np.nan)
     truth[rows[:, 0].astype(int) - 1, rows[:, 1].astype(int) - 1] = rows[:, 2]
-    for fmt in ("irap_ascii", "irap_binary", "zmap"):
+    for fmt in ("irap_ascii", "irap_binary"):
         surf = xtgeo.surface_from_file(horizon.maps[fmt])
-        assert (surf.ncol, surf.nrow, surf.xori, surf.yori, surf.rotation) == (n_il, n_xl, 1.0, 1.0, 0.0)
-        values = np.ma.filled(surf.values, np.nan)
-        assert np.array_equal(np.isnan(values), np.isnan(truth))
-        assert_allclose(values, truth, atol=5e-4, equal_nan=True)  # the text rows' 3 decimals
+        assert surf.ncol * surf.nrow == n_il * n_xl
+        gx, gy, gz = surf.get_xyz_values()
+        gx, gy, gz = np.ma.getdata(gx).ravel(), np.ma.getdata(gy).ravel(), np.ma.filled(gz, np.nan).ravel()
+        # each node's inline and crossline from its X / Y by the survey's definition: whole lines (IRAP binary's
+        # float32 origin: 0.5 m at 6 million), every trace once, the text rows' time there (3 decimals)
+        il, xl = _map_lines(gx, gy) if coordinates else (gx, gy)
+        tol = (0.6 if fmt == "irap_binary" else 0.01) / min(BINS) if coordinates else 1e-6
+        assert np.abs(il - np.round(il)).max() < tol and np.abs(xl - np.round(xl)).max() < tol
+        il, xl = np.round(il).astype(int), np.round(xl).astype(int)
+        assert len(set(zip(il.tolist(), xl.tolist()))) == n_il * n_xl
+        assert_allclose(gz, truth[il - 1, xl - 1], atol=5e-4, equal_nan=True)
+        if not coordinates:
+            assert (surf.ncol, surf.nrow, surf.xori, surf.yori, surf.rotation) == (n_il, n_xl, 1.0, 1.0, 0.0)
+    if not coordinates:  # ZMAP+ holds no rotation: the unrotated grid only
+        surf = xtgeo.surface_from_file(horizon.maps["zmap"])
+        assert_allclose(np.ma.filled(surf.values, np.nan), truth, atol=5e-4, equal_nan=True)
 
 
 def _peak_seed(path, il, xl):

@@ -4,8 +4,8 @@ After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the ste
 command uses and returns a :class:`FaultInterpretation`: the checks and the likelihood, then the one sequence of
 steps of :mod:`~seismo3d.seismic.faults.steps`, on the whole array as one block
 (:class:`~seismo3d.seismic.faults.steps.ArrayRun`) or block by block into Zarr stores (:func:`trace_faults_by_blocks`,
-before any block :func:`check_block_run`: the memory its smallest blocks need, :func:`minimum_memory_limit`, and the
-data judged from a sample of blocks, :func:`~seismo3d.seismic.faults.steps.judge_sample`); :func:`clean_traces` finds
+before any block :func:`check_block_run`: the data judged from a sample of blocks,
+:func:`~seismo3d.seismic.faults.steps.judge_sample`, then the memory the run needs, :func:`minimum_memory_limit`); :func:`clean_traces` finds
 the dead samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped amplitudes
 (:mod:`~seismo3d.seismic.amplitudes`). Reading files and
 writing results is the ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
@@ -445,11 +445,17 @@ def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions |
 
 
 def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOptions):
-    """Before any block of a run by blocks: the memory its smallest blocks need (at once); the data judged from a
-    sample of blocks (not seismic amplitudes, no lateral coherence: the refusals of the run in memory, in seconds);
-    the memory the seed candidates the sample predicts need; then the data's NaN, constant, clipped and dead samples
-    (:func:`~seismo3d.seismic.amplitudes.finite_cube`, passes over the whole cube). Its blank time slices are filled
-    first (:func:`without_blank_slices`, one more pass).
+    """Before any block of a run by blocks: the data judged from a sample of blocks (not seismic amplitudes, no
+    lateral coherence: the refusals of the run in memory, in seconds), then the one memory decision: the smallest
+    limit the run goes through with (its smallest blocks in both stages and the seed candidates the sample predicts,
+    :func:`minimum_memory_limit`), refused once with that limit named; then the data's NaN, constant, clipped and
+    dead samples (:func:`~seismo3d.seismic.amplitudes.finite_cube`, passes over the whole cube), after its blank time
+    slices are filled (:func:`without_blank_slices`, one more pass; the sample is judged before it, on the data as
+    read, so that a refusal stays a matter of seconds).
+
+    The sample comes first, whatever the limit, so that the one limit named covers the seed candidates too (a run
+    given it goes through), and data the sample refuses gets no memory advice. The sample reads a few blocks of
+    :attr:`~seismo3d.seismic.blocks.options.ChunkOptions.tile` traces (a few MB), whatever the limit.
 
     Parameters
     ----------
@@ -476,21 +482,16 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     """
     shape = tuple(int(n) for n in x.shape)
     chunks = x.chunks
-
-    def baseline() -> int:  # the process as it is now, and the input chunks a block reads
-        return worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler),
-                               4 * max(chunks[0]) * max(chunks[1]) * shape[2])
-
-    _check_limit(name, shape, limit, minimum_memory_limit(shape, baseline=baseline(), options=options),
-                 " for its smallest blocks alone")
-    x = without_blank_slices(x)  # as in memory (_cleaned): before the sample is judged and the samples counted
     LOGGER.info("%s: judging the data from a sample of blocks", name)
     sample = judge_sample(x, options=options)  # before the passes over the whole cube: a refusal in seconds
-    release_memory()  # the sample's arrays, before the process is measured again
-    need = minimum_memory_limit(shape, baseline=baseline(), options=options, sample=sample)
-    _check_limit(name, shape, limit, need, f" (with the ~{sample.candidates(shape)} seed candidates a sample "
-                                           "of its blocks predicts)")
-    return finite_cube(x, options.dead)
+    release_memory()  # the sample's arrays, before the process is measured
+    # the process as it is now, and the input chunks a block reads
+    baseline = worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler),
+                               4 * max(chunks[0]) * max(chunks[1]) * shape[2])
+    need = minimum_memory_limit(shape, baseline=baseline, options=options, sample=sample)
+    _check_limit(name, shape, limit, need, f" (its smallest blocks, and the ~{sample.candidates(shape)} seed "
+                                           "candidates a sample of its blocks predicts)")
+    return finite_cube(without_blank_slices(x), options.dead)  # filled as in memory (_cleaned), before the counts
 
 
 def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:

@@ -18,7 +18,8 @@ as a dask array, and the Zarr v3 store of ``seismo3d convert``.
 - :mod:`~seismo3d.seismic.io.fault_sticks`: OpendTect and Charisma fault sticks in and out (:class:`FaultSticks`);
   :mod:`~seismo3d.seismic.io.stick_sections`: the one placement of sticks on a section's traces and samples;
   :mod:`~seismo3d.seismic.io.traced_sticks`: sticks drawn from traced faults as interpreters draw them.
-- :mod:`~seismo3d.seismic.io.tsurf`: GOCAD TSurf fault surfaces (:func:`write_tsurf`).
+- :mod:`~seismo3d.seismic.io.tsurf`: GOCAD TSurf fault surfaces, one per file (:func:`write_tsurf`,
+  :func:`write_tsurf_folder`).
 - :mod:`~seismo3d.seismic.io.horizon_grids`: horizons as IRAP / ZMAP+ grids and x y z points through xtgeo, picks in
   (:func:`write_horizon_grids`, :func:`read_horizon_picks`).
 - :mod:`~seismo3d.seismic.io.xarray`: SEG-Y or Zarr as a labelled ``xarray.DataArray``, the fault and horizon
@@ -44,7 +45,7 @@ if TYPE_CHECKING:
     from .writer import write_like, write_like_blocks
     from .coordinates import GridMap, SurveyCoordinates, read_survey_coordinates
     from .fault_sticks import FaultSticks, read_fault_sticks, write_fault_sticks
-    from .tsurf import TriangulatedSurface, write_tsurf
+    from .tsurf import TriangulatedSurface, write_tsurf, write_tsurf_folder
     from .horizon_grids import HorizonPicks, read_horizon_picks, write_horizon_grids
 
 __all__ = [
@@ -54,7 +55,7 @@ __all__ = [
     "open_lazy", "inline_block_size", "LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate",
     "open_seismic_zarr", "is_seismic_zarr", "write_like_blocks", "GridMap", "SurveyCoordinates",
     "read_survey_coordinates", "FaultSticks", "read_fault_sticks", "write_fault_sticks", "TriangulatedSurface",
-    "write_tsurf", "HorizonPicks", "read_horizon_picks", "write_horizon_grids",
+    "write_tsurf", "write_tsurf_folder", "HorizonPicks", "read_horizon_picks", "write_horizon_grids",
 ]
 
 __getattr__, __dir__ = lazy_exports(__name__, __file__)

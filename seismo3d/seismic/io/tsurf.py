@@ -1,21 +1,23 @@
-"""GOCAD TSurf (``.ts``): triangulated fault surfaces in map coordinates, as Petrel, SKUA-GOCAD and OpendTect
-import them.
+"""GOCAD TSurf (``.ts``): triangulated fault surfaces in map coordinates, one surface per file, as xtgeo reads them
+and Petrel, SKUA-GOCAD and OpendTect import them.
 
-One file holds one ``GOCAD TSurf 1`` object per surface (GOCAD ASCII files may hold several objects one after the
-other), each with its name, the coordinate system block (axis names and units; ``ZPOSITIVE Depth``: time and depth
-increase downward), and a ``TFACE`` of ``VRTX`` and ``TRGL`` lines (vertex ids from 1). The header holds the name
-only, as xtgeo's reader requires.
+Each file holds one ``GOCAD TSurf 1`` object: its name, the coordinate system block (axis names and units;
+``ZPOSITIVE Depth``: time and depth increase downward), and a ``TFACE`` of ``VRTX`` and ``TRGL`` lines (vertex ids
+from 1). The header holds the name only, as xtgeo's reader requires. GOCAD's format lets one file hold several
+objects one after the other, but xtgeo's reader (``xtgeo.triangulated_surface_from_file``) reads one object and
+refuses the file at the second (``invalid line ... GOCAD TSurf 1``), so :func:`write_tsurf_folder` writes a folder of
+one file per surface, which Petrel and OpendTect import together (a multiple selection in their import dialogs).
 
-xtgeo writes TSurf one surface per file (``xtgeo.TriangulatedSurface``, marked experimental, without the unit of a
-time axis); this writer puts every fault of a run into one file with its units, and the tests read each object back
-with xtgeo's reader and with a parser of the format's description.
+xtgeo writes TSurf too (``xtgeo.TriangulatedSurface``, marked experimental, without the unit of a time axis); this
+writer adds the units (two-way time in ms) and needs no xtgeo; the tests read every file back with xtgeo's reader and
+with a parser of the format's description.
 
 References
 ----------
 GOCAD ASCII file formats, *TSurf* (Paradigm / Emerson, GOCAD Developer's Guide, appendix "ASCII file formats"):
 ``GOCAD TSurf 1``, ``HEADER { name: ... }``, ``GOCAD_ORIGINAL_COORDINATE_SYSTEM`` ...
 ``END_ORIGINAL_COORDINATE_SYSTEM``, ``TFACE``, ``VRTX id x y z CNXYZ`` (as Petrel writes it, and xtgeo requires),
-``TRGL i j k``, ``END``.
+``TRGL i j k``, ``END``. xtgeo's reader: ``xtgeo/io/tsurf/_tsurf_io.py`` (xtgeo 4.x, one object per file).
 """
 
 from __future__ import annotations
@@ -26,12 +28,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..._atomic import atomic_path
+from ..._atomic import atomic_directory, atomic_path
 from ...errors import InputError
 from .coordinates import LINE_UNITS
 from .text_rows import TextColumn, format_rows
 
-__all__ = ["TriangulatedSurface", "write_tsurf"]
+__all__ = ["TriangulatedSurface", "write_tsurf", "write_tsurf_folder"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,17 +70,17 @@ def _name(text: str) -> str:
     return re.sub(r"\s+", "_", str(text)) or "surface"
 
 
-def write_tsurf(path, surfaces, *, source: str = "") -> Path:
-    """Write triangulated surfaces as GOCAD TSurf objects into one ``.ts`` file, atomically.
+def write_tsurf(path, surface: TriangulatedSurface, *, source: str = "") -> Path:
+    """Write one triangulated surface as a GOCAD TSurf file (one ``GOCAD TSurf 1`` object), atomically.
 
     Parameters
     ----------
     path : str or os.PathLike
         The file (its folder must exist).
-    surfaces : sequence of TriangulatedSurface
-        One object each; surfaces without triangles are left out.
+    surface : TriangulatedSurface
+        With at least one triangle.
     source : str, optional
-        Written as a ``#`` comment line after each header (where the surfaces come from).
+        Written as a ``#`` comment line after the header (where the surface comes from).
 
     Returns
     -------
@@ -87,22 +89,58 @@ def write_tsurf(path, surfaces, *, source: str = "") -> Path:
     Raises
     ------
     InputError
-        No surface with triangles.
+        A surface without triangles.
 
     Notes
     -----
     A survey without coordinates (``xy_unit='inline/crossline'``) is written with axis names ``INLINE`` and
     ``CROSSLINE`` and unit ``"none"``, so that no reader takes line numbers for metres.
     """
+    if not np.asarray(surface.triangles).size:
+        raise InputError(f"surface {surface.name!r} has no triangles to write; a 2D line's faults are curves (write "
+                         "them as fault sticks)")
+    path = Path(path)
+    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:
+        fh.writelines(_tsurf_text(surface, source))  # a block of rows at a time: a large fault is never held whole
+    return path
+
+
+def write_tsurf_folder(folder, surfaces, *, source: str = "") -> Path:
+    """Write triangulated surfaces as a folder of GOCAD TSurf files, ``<name>.ts`` per surface, written whole.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The folder to make (its parent must exist); an existing one is replaced once every file is written.
+    surfaces : sequence of TriangulatedSurface
+        One file each (white space in names replaced by ``_``); surfaces without triangles are left out.
+    source : str, optional
+        Written as a ``#`` comment line after each header.
+
+    Returns
+    -------
+    pathlib.Path
+        The folder.
+
+    Raises
+    ------
+    InputError
+        No surface with triangles, or two surfaces of one name.
+    """
     surfaces = [s for s in surfaces if np.asarray(s.triangles).size]
     if not surfaces:
         raise InputError("no surface with triangles to write; a 2D line's faults are curves (write them as fault "
                          "sticks)")
-    path = Path(path)
-    with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:
-        for s in surfaces:  # a block of rows at a time: the text of a large run's faults is never held whole
-            fh.writelines(_tsurf_text(s, source))
-    return path
+    names = [_name(s.name) for s in surfaces]
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice:
+        raise InputError(f"surfaces named {', '.join(twice)} more than once; give each surface its own name (one "
+                         "file per name)")
+    folder = Path(folder)
+    with atomic_directory(folder) as tmp:
+        for name, s in zip(names, surfaces):
+            write_tsurf(tmp / f"{name}.ts", s, source=source)
+    return folder
 
 
 def _tsurf_text(s: TriangulatedSurface, source: str):

@@ -55,6 +55,10 @@ CHECKS = [
           "the learned likelihood by blocks on a grid of 0.7 and on three grids, a block on the 0.7 network grid, "
           "the faults job beyond its memory limit on a 192 x 192 x 64 cube and a SEG-Y cube, and the 128^3 demo "
           "by blocks and its interchange files: equal to them in memory (the suite keeps smaller cubes)"),
+    Check("faults-3d", ("benchmarks/faults_3d.py", "--only", "parihaka", "--check"),
+          "the real Parihaka 3D cube (the 128 most-labelled time slices), defaults: at least 0.80 of the fault bands "
+          "people outlined hit with at least 0.60 of the traced points inside bands, ahead of the 1-semblance "
+          "skeleton on both"),
 ]
 
 

@@ -24,7 +24,7 @@ import warnings
 import numpy as np
 
 from ..._progress import LOGGER, progress_steps
-from ..._validation import check_choice, check_positive
+from ..._validation import check_choice, check_positive, check_seismic_layout
 from ...errors import EarlierStoresError, InputError, Seismo3dWarning
 from ..amplitudes import CleanTraces, check_amplitudes, clean_traces, finite_cube, near_dead_samples
 from ..blocks.executor import release_memory
@@ -33,6 +33,7 @@ from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
 from ..io.zarr_store import consolidate
+from ..time_slices import balanced_slices, blank_slices, filled_slices, slice_extremes
 from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
 from .likelihood.scan import fault_likelihood
@@ -81,9 +82,13 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
        reflectors (a throw of at least a sample that aligns the sides at least as well as no shift) or a likely
        fault (mean probability at least 0.5); or a throw of 3 samples or more on a likely fault.
 
-    NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Dead samples (runs of 5 or
-    more equal values along a trace: dead traces, mutes, gaps, NaN runs) are skipped, with a warning: the likelihood
-    within 3 traces and 8 samples of them is set to 0, since the edge of a dead zone is not a fault.
+    NaN / inf samples are read as 0 (with a :class:`~seismo3d.errors.Seismo3dWarning`). Blank time slices (one value
+    on every trace: the missing images of a time-slice export, flat events of extreme amplitude continuous across every
+    fault) are filled from the slices above and below, and the export's slices balanced (each its own mean and
+    spread removed), with a warning (:mod:`~seismo3d.seismic.time_slices`). Dead
+    samples (runs of 5 or more equal values along a trace: dead traces, mutes, gaps, NaN runs) are skipped, with a
+    warning: the likelihood within 3 traces and 8 samples of them is set to 0, since the edge of a dead zone is not a
+    fault.
 
     Data that cannot support fault tracing is refused with an :class:`~seismo3d.errors.UnsupportedDataError`:
     too few traces or samples, data that does not oscillate like seismic amplitudes (a velocity model), or a
@@ -139,7 +144,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     -----
     Seismo3dWarning
         NaN / inf samples, dead samples (constant runs), or clipped amplitudes (more than 5 % of the samples at the
-        data's smallest or largest value).
+        data's smallest or largest value); blank time slices (one value on every trace:
+        :mod:`~seismo3d.seismic.time_slices`), filled before the likelihood.
 
     References
     ----------
@@ -335,7 +341,7 @@ def _cleaned(data, opt: FaultTracingOptions) -> tuple[np.ndarray, np.ndarray]:
         check_size(arr.shape, opt)  # numbers, but below clean_traces' 3 samples per axis: the size message
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", Seismo3dWarning)
-        cleaned = clean_traces(arr, options=opt.dead)
+        cleaned = clean_traces(without_blank_slices(arr), options=opt.dead)
     check_size(cleaned.data.shape, opt)
     for w in caught:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
@@ -343,6 +349,47 @@ def _cleaned(data, opt: FaultTracingOptions) -> tuple[np.ndarray, np.ndarray]:
         judge_sample(cleaned.data, options=opt)
     check_amplitudes(cleaned.data, cleaned.dead, opt.min_crossings)
     return cleaned.data, cleaned.dead
+
+
+def without_blank_slices(x):
+    """The amplitudes with their blank time slices filled and, a blank slice showing a time-slice export, each slice's
+    own offset and gain removed, with a warning (:mod:`~seismo3d.seismic.time_slices`): done before the clipped and
+    dead samples are counted and the likelihood computed; ``x`` itself when no slice is blank.
+
+    Parameters
+    ----------
+    x : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like or dask.array.Array
+        Amplitudes (a dask array in chunks of whole traces; one pass over it).
+
+    Returns
+    -------
+    ndarray or dask.array.Array
+        float32 when filled.
+
+    Raises
+    ------
+    InputError
+        Not a numeric 2D / 3D array.
+
+    Warns
+    -----
+    Seismo3dWarning
+        Blank time slices, named.
+    """
+    if not hasattr(x, "map_blocks"):
+        x = np.asarray(x)
+        check_seismic_layout(x.shape, x.dtype)
+    blank = blank_slices(*slice_extremes(x))
+    if not blank.any():
+        return x
+    rows = np.nonzero(blank)[0]
+    listed = ", ".join(str(int(k)) for k in rows[:8]) + (", ..." if rows.size > 8 else "")
+    warnings.warn(f"{rows.size} time slices hold one value on every trace (samples {listed}; 0 the first): blank "
+                  "images of a time-slice export, each slice scaled by its own range; the blank slices filled by "
+                  "interpolation along the traces, and every slice's own offset and gain removed (its mean and "
+                  "interquartile range), before tracing faults", Seismo3dWarning, stacklevel=4)
+    filled = filled_slices(x if hasattr(x, "map_blocks") else x.astype(np.float32, copy=False), blank)
+    return balanced_slices(filled, blank)
 
 
 def _given_likelihood(fl, shape: tuple) -> FaultLikelihood:
@@ -402,7 +449,9 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     lateral coherence: the refusals of the run in memory, in seconds), then the one memory decision: the smallest
     limit the run goes through with (its smallest blocks in both stages and the seed candidates the sample predicts,
     :func:`minimum_memory_limit`), refused once with that limit named; then the data's NaN, constant, clipped and
-    dead samples (:func:`~seismo3d.seismic.amplitudes.finite_cube`, passes over the whole cube).
+    dead samples (:func:`~seismo3d.seismic.amplitudes.finite_cube`, passes over the whole cube), after its blank time
+    slices are filled (:func:`without_blank_slices`, one more pass; the sample is judged before it, on the data as
+    read, so that a refusal stays a matter of seconds).
 
     The sample comes first, whatever the limit, so that the one limit named covers the seed candidates too (a run
     given it goes through), and data the sample refuses gets no memory advice. The sample reads a few blocks of
@@ -421,7 +470,8 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     Returns
     -------
     dask.array.Array
-        ``x`` with NaN / inf read as 0 (:func:`~seismo3d.seismic.amplitudes.finite_cube`).
+        ``x`` with NaN / inf read as 0 (:func:`~seismo3d.seismic.amplitudes.finite_cube`), its blank time
+        slices filled (:mod:`~seismo3d.seismic.time_slices`).
 
     Raises
     ------
@@ -441,7 +491,7 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     need = minimum_memory_limit(shape, baseline=baseline, options=options, sample=sample)
     _check_limit(name, shape, limit, need, f" (its smallest blocks, and the ~{sample.candidates(shape)} seed "
                                            "candidates a sample of its blocks predicts)")
-    return finite_cube(x, options.dead)
+    return finite_cube(without_blank_slices(x), options.dead)  # filled as in memory (_cleaned), before the counts
 
 
 def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:

@@ -51,12 +51,18 @@ def _clipped(cube):
                                                                       r"value: clipped amplitudes")
 
 
+def _blank(cube):
+    out = cube.copy()
+    out[..., [20, 21, 40]] = [out.max(), out.min(), out.max()]  # blank images of a time-slice export
+    return out, (None, r"3 time slices hold one value on every trace \(samples 20, 21, 40; 0 the first\)")
+
+
 def _constant(cube):
     return np.full(cube.shape, 3.0, np.float32), (InputError, r"every sample has the same value")
 
 
 @pytest.mark.slow  # 1.0-2.5 s per input in the fast lane, whose budget is 60 s
-@pytest.mark.parametrize("case", [_nan, _tiny, _velocity, _clipped, _constant], ids=lambda f: f.__name__[1:])
+@pytest.mark.parametrize("case", [_nan, _tiny, _velocity, _clipped, _blank, _constant], ids=lambda f: f.__name__[1:])
 def test_both_runs_give_the_same_refusal_or_warning(case, seismic, tmp_path, monkeypatch):
     """The in-memory run and the run by blocks (forced) of the same array: the same exception and message, or the
     same warning before the likelihood starts (where the test stops both runs)."""

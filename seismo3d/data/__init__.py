@@ -8,7 +8,7 @@ from .pointclouds import BunnyPair, load_bunny, read_points, write_points
 from .registry import REGISTRY, DataFile, data_dir, fetch, fetch_folder, file_info, list_files
 from .rgbd import CameraIntrinsics, RGBDFrame, load_7scenes_frame, load_single_frame, load_tum_pair
 from .sections import F3FaultSections, PenobscotSections, load_f3_fault_sections, load_penobscot_sections
-from .synthetic import SyntheticCube, resampled_pair, synthetic_cube
+from .synthetic import GridPair, SyntheticCube, random_grid_pair, resampled_pair, synthetic_cube
 
 __all__ = [
     "REGISTRY",
@@ -34,4 +34,6 @@ __all__ = [
     "SyntheticCube",
     "synthetic_cube",
     "resampled_pair",
+    "GridPair",
+    "random_grid_pair",
 ]

@@ -526,3 +526,114 @@ def write_segy_cube(path, cube, *, sorting: str = "inline", fmt: int = 5):
         f.bin.update(hdt=4000, hns=ns)
     return path
 
+
+
+@dataclass(frozen=True)
+class GridPair:
+    """A pair of :func:`random_grid_pair`: a fixed block of a real cube and a moving block resampled from it.
+
+    Attributes
+    ----------
+    fixed : (n_inlines, n_xlines, n_samples) float32 ndarray
+        A block of the source cube on its own grid.
+    moving : (n_inlines', n_xlines', n_samples') float32 ndarray
+        The source resampled (Lanczos-3) on a grid rotated ``rotation_deg`` in map view with bins ``scales``,
+        its whole footprint inside the fixed block's.
+    transform_index : (4, 4) float64 ndarray
+        The exact map from moving index coordinates to fixed index coordinates.
+    rotation_deg : float
+        Map rotation of the moving grid, degrees (inline towards crossline).
+    scales : (3,) float64 ndarray
+        Moving inline bin, crossline bin and sample interval in source traces / samples.
+    corner : (3,) int ndarray
+        Index of the fixed block's first sample in the source cube.
+    """
+
+    fixed: np.ndarray
+    moving: np.ndarray
+    transform_index: np.ndarray
+    rotation_deg: float
+    scales: np.ndarray
+    corner: np.ndarray
+
+
+def random_grid_pair(volume, fixed_shape, rng, *, max_rotation: float = 30.0, lateral_scales=(0.7, 1.4),
+                     vertical_scales=(0.9, 1.1), fill=(0.6, 1.0), margin: float = 1.0) -> GridPair:
+    """A fixed block of a real cube and a moving block on another grid inside it, drawn at random.
+
+    The fixed block (``fixed_shape``) is cut at a random place of ``volume``, on its own grid. The moving grid has a
+    map rotation uniform in +-``max_rotation`` degrees, inline and crossline bins drawn independently (log-uniform)
+    from ``lateral_scales``, a sample interval uniform in ``vertical_scales`` (in source traces / samples), and an
+    extent along each of its axes between ``fill`` of the largest whose footprint (rotated, in map view) and time
+    range fit inside the fixed block, ``margin`` samples in from its edges, at least 8 samples; it is placed at a
+    random position inside. Both registration orders are then well posed: the whole moving block lies in the fixed
+    one. The moving samples are interpolated by :func:`resampled_pair` (Lanczos-3, from up to 3 samples of the source
+    around the fixed block where the source has them).
+
+    Parameters
+    ----------
+    volume : (n_inlines, n_xlines, n_samples) array_like
+        The source cube (real amplitudes); finite.
+    fixed_shape : tuple of 3 int
+        Shape of the fixed block, at most ``volume.shape``.
+    rng : numpy.random.Generator
+        The random draws (a seeded generator makes the pairs again).
+    max_rotation : float
+        Degrees.
+    lateral_scales, vertical_scales : (float, float)
+        Ranges of the moving bins and sample interval, source traces / samples.
+    fill : (float, float)
+        Range of the moving extent as a fraction of the largest that fits (per axis, drawn uniformly).
+    margin : float
+        Samples kept between the moving footprint and the fixed block's edges.
+
+    Returns
+    -------
+    GridPair
+
+    Raises
+    ------
+    InputError
+        A fixed block larger than the volume, or one too small to hold a rotated moving block of 8 traces per axis
+        at the largest scale.
+    """
+    arr = np.asarray(volume, dtype=np.float32)
+    nb, nf = np.array(arr.shape), np.array(fixed_shape, dtype=int)
+    if arr.ndim != 3 or nf.shape != (3,) or np.any(nf > nb) or np.any(nf < 8):
+        raise InputError(f"fixed_shape must be 3 ints >= 8 within volume.shape {arr.shape}; got {fixed_shape}")
+    room = nf - 1 - 2.0 * margin  # the fixed block's extent the moving footprint may use, source samples
+    for _ in range(1000):  # draws whose smallest moving block (8 samples per axis) does not fit are drawn again
+        theta = rng.uniform(-max_rotation, max_rotation)
+        scales = np.r_[np.exp(rng.uniform(*np.log(lateral_scales), size=2)), rng.uniform(*vertical_scales)]
+        c, s = abs(np.cos(np.radians(theta))), abs(np.sin(np.radians(theta)))
+        least = 7.0 * scales  # extents of 8 samples per axis
+        if c * least[0] + s * least[1] > room[0] or s * least[0] + c * least[1] > room[1] or least[2] > room[2]:
+            continue
+        # the footprint's extents along the fixed map axes are ``foot @ e`` for moving extents e: e in the fixed
+        # block's proportions times a random aspect (0.5-2), ``fill`` of the largest that fits, at least ``least``
+        foot = np.array([[c, s], [s, c]])
+        aspect = np.exp(rng.uniform(np.log(0.5), np.log(2.0)))
+        e = room[:2] * np.array([aspect ** 0.5, aspect ** -0.5])
+        e = np.maximum(least[:2], rng.uniform(*fill) * e * (room[:2] / (foot @ e)).min())
+        for axis in (0, 1):  # an axis raised to its least: the other shrunk to fit beside it
+            left = room[:2] - foot[:, 1 - axis] * e[1 - axis]
+            e[axis] = min(e[axis], (left / foot[:, axis]).min())
+        if np.any(e < least[:2] - 1e-9):
+            continue
+        ex, ey = e
+        ez = max(least[2], rng.uniform(*fill) * room[2])
+        n_moving = (np.floor(np.array([ex, ey, ez]) / scales + 1e-9) + 1).astype(int)
+        extent = (n_moving - 1) * scales
+        half = np.array([c * extent[0] + s * extent[1], s * extent[0] + c * extent[1], extent[2]]) / 2.0
+        centre = margin + half + rng.uniform(0.0, 1.0, size=3) * (room - 2.0 * half)  # fixed index
+        break
+    else:
+        raise InputError(f"fixed_shape {tuple(nf)} is too small for a moving block of 8 samples per axis at scales "
+                         f"up to {max(lateral_scales)} rotated {max_rotation} degrees; pass a larger fixed_shape")
+    # the fixed block at a random place, with up to 3 source samples around it for the interpolation
+    corner = np.array([rng.integers(0, nb[k] - nf[k] + 1) for k in range(3)])
+    pad = np.minimum(np.minimum(corner, nb - nf - corner), _LANCZOS)
+    block = arr[tuple(slice(corner[k] - pad[k], corner[k] + nf[k] + pad[k]) for k in range(3))]
+    fixed, moving, truth = resampled_pair(block, tuple(nf), scales=scales, angle_deg=theta,
+                                          offset=centre - (nf - 1) / 2.0, moving_shape=tuple(n_moving))
+    return GridPair(fixed, moving, truth, float(theta), scales, corner)

@@ -22,7 +22,7 @@ from .inputs import VolumeInput, as_volume
 from .model import VOLUME_MODELS, Reparam, corner_distance, decompose_map, homogeneous_diag, map_matrix
 from .options import VolumeOptions
 from .pyramid import (Sampled, build_level, envelope, from_level, level_factors, level_kind, live_traces,
-                      smoothing_measures, to_level)
+                      smoothing_measures, to_level, without_mean_trace)
 from .refine import PairCorrelation, Refined, refine
 from .search import Start, correlation_search, distinct_starts
 from .spectral import map_spectrum, spectral_maps
@@ -312,9 +312,7 @@ def _pyramids(volumes, derivative: bool, opt: VolumeOptions) -> list[_Pyramid]:
             last_vertical = k - 1  # neither kind survives: the samples stay as on the level before
     out = []
     for i, (data, env, live, _) in enumerate(prepared):
-        # the mean trace kept only for smooth properties (a velocity's trend with depth is their contrast)
-        levels = [build_level(env if kind == "envelope" else data, live, factors[i], opt.taper,
-                              mean_trace=derivative)
+        levels = [build_level(env if kind == "envelope" else data, live, factors[i], opt.taper)
                   for factors, kind in plan]
         out.append(_Pyramid(levels))
     return out
@@ -332,7 +330,8 @@ def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: V
     as, maps of the first kind). Which volume is passed as fixed does not change the maps scored, only their
     direction. Lateral anisotropies above ``max_anisotropy`` are left out.
     """
-    fixed, moving = pf.at(top), pm.at(top)
+    # scored without the mean traces: they tell nothing of the map view (the refinement keeps them)
+    fixed, moving = without_mean_trace(pf.at(top)), without_mean_trace(pm.at(top))
     ratio = sp_m[2] / sp_f[2]  # moving sample interval in fixed samples, by the spacings
     lo, hi = opt.scale_range
     spectral = []
@@ -387,7 +386,7 @@ def _spectral_starts(pf: _Pyramid, pm: _Pyramid, top: int, vertical: float, opt:
     candidates = spectral_maps(map_spectrum(f0.data, f0.live), map_spectrum(m0.data, m0.live),
                                scale_range=opt.scale_range, max_rotation=opt.max_rotation,
                                max_anisotropy=opt.max_anisotropy, n_best=opt.n_spectral)
-    fixed, moving = pf.at(top), pm.at(top)
+    fixed, moving = without_mean_trace(pf.at(top)), without_mean_trace(pm.at(top))
     maps = []
     for c in candidates:
         lin = np.eye(3)

@@ -8,7 +8,8 @@ from .pointclouds import BunnyPair, load_bunny, read_points, write_points
 from .registry import REGISTRY, DataFile, data_dir, fetch, fetch_folder, file_info, list_files
 from .rgbd import CameraIntrinsics, RGBDFrame, load_7scenes_frame, load_single_frame, load_tum_pair
 from .sections import F3FaultSections, PenobscotSections, load_f3_fault_sections, load_penobscot_sections
-from .synthetic import GridPair, SyntheticCube, random_grid_pair, resampled_pair, synthetic_cube
+from .synthetic import SyntheticCube, synthetic_cube
+from .volume_pairs import GridPair, random_grid_pair, resampled_pair
 
 __all__ = [
     "REGISTRY",

@@ -2,7 +2,7 @@
 unrelated pairs, and seconds per pair beside scikit-image's phase_cross_correlation on the same arrays.
 
 Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/volumes.py [--quick] [--only
-speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral,suite_grid] [--repeat N] [--check]``
+speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral,suite_grid,any_grid] [--pairs N] [--repeat N] [--check]``
 
 1. speed: f3_crop onto its copy shifted by 4 inlines, 4 crosslines and 5 samples (arrays, and the command on SEG-Y
    files: ``seismo3d register f3.sgy copy.sgy``, imports included), and a 160 x 160 x 130 generated pair (moving
@@ -42,6 +42,16 @@ speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral,suite_grid]
    per data set in one order): 4 f3_crop pairs with bins that differ on the fixed volume or on both, 2 Penobscot
    pairs, 3 Volve velocity pairs (``SUITE_GRID``), each registered in both orders. ``--check`` exits 1 unless every
    registration is right within the issue's tolerances (the grid's "right") and converged (about 4 min on 2 cores).
+8. any_grid (issue 78): ``--pairs N`` pairs (50 by default, 5 with ``--quick``) drawn with a fixed seed by
+   :func:`seismo3d.data.random_grid_pair` from each of three real cubes: the Parihaka time slices (fixed blocks of
+   96 x 96 traces x 128 slices), the 18 Penobscot inlines (18 x 64 x 200, every second sample) and f3_crop whole
+   (23 x 18 x 75, the only real 3D F3 cube in the data folder); the moving block on a grid rotated up to 30 degrees,
+   bins 0.7-1.4 per map axis independently, samples 0.9-1.1, inside the fixed block; no coordinates (arrays, unit
+   spacings); both orders. Printed: every registration that is not right and converged, then per cube the share
+   right (the issue's tolerances) and converged, the median and worst errors, wall and CPU seconds; then unrelated
+   pairs (blocks of two cubes, one cube's blocks far apart in place or time). ``--check`` exits 1 unless each cube
+   has 95 % right and converged, none converged but wrong, each registration within 5 s (wall), and no unrelated
+   pair converged.
 """
 
 from __future__ import annotations

@@ -43,7 +43,7 @@ CHECKS = [
           "50 pairs from each of three real cubes (Parihaka, Penobscot, f3_crop) on grids rotated up to 30 degrees, "
           "bins 0.7-1.4 per map axis, samples 0.9-1.1, without coordinates, in both orders: 95 % right in the "
           "issue's tolerances and converged, each within 5 s, none converged wrongly; unrelated pairs refused "
-          "(issue 78; about 75 CPU minutes)"),
+          "(issue 78; about 45 CPU minutes: 8 pairs per cube took 24 min at load 6-12)"),
     Check("horizons-traced-faults", ("benchmarks/horizons.py", "--only", "traced_faults", "--check"),
           "the 18 Penobscot inlines' horizons with the faults traced in them: no loss against no fault input, the "
           "measured medians, 99 % within 5 samples; no fault traced in those inlines' crosshatch of dipping events "

@@ -9,7 +9,8 @@ from .registry import REGISTRY, DataFile, data_dir, fetch, fetch_folder, file_in
 from .rgbd import CameraIntrinsics, RGBDFrame, load_7scenes_frame, load_single_frame, load_tum_pair
 from .sections import (F3FaultSections, ParihakaTimeSlices, PenobscotSections, load_f3_fault_sections,
                        load_parihaka_timeslices, load_penobscot_sections)
-from .synthetic import SyntheticCube, resampled_pair, synthetic_cube
+from .synthetic import SyntheticCube, synthetic_cube
+from .volume_pairs import GridPair, random_grid_pair, resampled_pair
 
 __all__ = [
     "REGISTRY",
@@ -37,4 +38,6 @@ __all__ = [
     "SyntheticCube",
     "synthetic_cube",
     "resampled_pair",
+    "GridPair",
+    "random_grid_pair",
 ]

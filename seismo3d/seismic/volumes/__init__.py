@@ -16,9 +16,11 @@ passed as fixed. :func:`register_volumes` (:mod:`.registration`) runs, coarse to
    scales of each axis of either volume over ``scale_range`` (``scale_step`` apart), with the vertical scale where
    the mean trace spectra agree (:mod:`.vertical`), and, on volumes of ``spectral_min_traces`` traces or more per
    map axis, the maps their map-view power spectra tell off that grid (Fourier-Mellin over the anisotropies of both
-   volumes, :mod:`.spectral`: the amplitudes alone, no coordinates); for each map the moving volume (or, for the
-   fixed volume's scales, the fixed one) is resampled and correlated with the other at every translation at once
-   (masked FFT normalised cross-correlation, Padfield 2012).
+   volumes, :mod:`.spectral`: the amplitudes alone, no coordinates); for each map the smaller volume (or, for the
+   larger volume's scales, the larger one) is resampled and correlated with the other at every translation at once
+   (masked FFT normalised cross-correlation, Padfield 2012): the same maps in either argument order. The search
+   correlates the levels without their mean traces, which tell nothing of the map view (in time slices rendered
+   each by its own range they are most of the variance).
 3. **Refinement** (:mod:`.refine`). The ``n_starts`` best distinct starts, Levenberg-Marquardt on the correlation of
    the two volumes taken both ways (at the moving samples with the fixed volume interpolated, and the reverse, each
    weighted by the inverse of its misfit: symmetric in the two volumes) over the 8 parameters of the map, on the

@@ -47,7 +47,9 @@ class Evaluation:
     @property
     def cost(self) -> float:
         """``sum r^2``: 2 (1 - NCC) per way, times the way's weight."""
-        return float(self.residuals @ self.residuals)
+        # einsum: OpenBLAS's threaded dot takes 400 times as long on a loaded machine (7.6 ms CPU against 0.02 ms
+        # for 40,000 values, 2 cores at load 14)
+        return float(np.einsum("n,n->", self.residuals, self.residuals))
 
 
 def _ncc_residuals(src, samples, dv):
@@ -165,7 +167,8 @@ class PairCorrelation:
                 jac.append(np.zeros((n, len(q))))
                 corr.append(np.nan)
                 continue
-            r, j, c = _ncc_residuals(src, samples, dv @ dp)
+            # einsum: a thin (N, 8) x (8, n) product, 5 times faster than OpenBLAS's threaded one under load
+            r, j, c = _ncc_residuals(src, samples, np.einsum("np,pq->nq", dv, dp))
             w = np.sqrt(self.way_weights[len(res)])
             res.append(w * r)
             jac.append(w * j)

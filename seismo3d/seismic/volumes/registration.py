@@ -22,7 +22,7 @@ from .inputs import VolumeInput, as_volume
 from .model import VOLUME_MODELS, Reparam, corner_distance, decompose_map, homogeneous_diag, map_matrix
 from .options import VolumeOptions
 from .pyramid import (Sampled, build_level, envelope, from_level, level_factors, level_kind, live_traces,
-                      smoothing_measures, to_level)
+                      smoothing_measures, to_level, without_mean_trace)
 from .refine import PairCorrelation, Refined, refine
 from .search import Start, correlation_search, distinct_starts
 from .spectral import map_spectrum, spectral_maps
@@ -324,12 +324,14 @@ def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: V
 
     The maps the two volumes' map-view spectra tell (:mod:`.spectral`, volumes of ``spectral_min_traces`` traces or
     more along each map axis) are scored beside them: they are not bound to the grid's steps. Maps with the scales
-    on the moving volume's axes resample it onto the fixed grid; maps with the scales on the
-    fixed volume's axes are the same search with the volumes' roles swapped, inverted (only the rotated ones
-    anisotropic by two scale steps or more: the others are, or start the refinement as close as, maps of the first
-    kind). Lateral anisotropies above ``max_anisotropy`` are left out.
+    on the smaller volume's axes (physical volume of the live samples) resample it onto the larger one's grid;
+    maps with the scales on the larger volume's axes are the same search with the volumes' roles swapped, inverted
+    (only the rotated ones anisotropic by two scale steps or more: the others are, or start the refinement as close
+    as, maps of the first kind). Which volume is passed as fixed does not change the maps scored, only their
+    direction. Lateral anisotropies above ``max_anisotropy`` are left out.
     """
-    fixed, moving = pf.at(top), pm.at(top)
+    # scored without the mean traces: they tell nothing of the map view (the refinement keeps them)
+    fixed, moving = without_mean_trace(pf.at(top)), without_mean_trace(pm.at(top))
     ratio = sp_m[2] / sp_f[2]  # moving sample interval in fixed samples, by the spacings
     lo, hi = opt.scale_range
     spectral = []
@@ -346,19 +348,32 @@ def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: V
     angles = np.arange(-opt.max_rotation, opt.max_rotation + 1e-9, opt.rotation_step)
     pairs = [(sx, sy) for sx in axis_scales for sy in axis_scales
              if max(sx, sy) / min(sx, sy) <= opt.max_anisotropy * (1 + 1e-9)]
-    forward, backward = [], []
+    # the full grid resamples the smaller volume onto the larger one's grid (the template inside the search
+    # image, as the masked NCC is posed best), the other direction only the maps it adds: the search, and so the
+    # answer, is the same in either argument order
+    swap = _footprint(moving, sp_m) > _footprint(fixed, sp_f)
+    full, extra = [], []  # (3, 3) maps from the smaller volume's level index to the larger one's
+    small, large = ((moving, sp_m, vertical), (fixed, sp_f, 1.0)) if not swap else ((fixed, sp_f, 1.0),
+                                                                                      (moving, sp_m, vertical))
     for theta in angles:
         for lateral in pairs:
-            forward.append(_level_map(theta, lateral, vertical, sp_f, sp_m, fixed, moving))
-            # rotated and anisotropic by two steps or more: also on the fixed volume's axes (a milder anisotropy
+            full.append(_level_map(theta, lateral, small[2] / large[2], large[1], small[1], large[0], small[0]))
+            # rotated and anisotropic by two steps or more: also on the larger volume's axes (a milder anisotropy
             # on either side starts the refinement close enough)
             if theta != 0 and max(lateral) / min(lateral) > opt.scale_step ** 1.5:
-                backward.append(_level_map(theta, lateral, 1.0 / vertical, sp_m, sp_f, moving, fixed))
+                extra.append(_level_map(theta, lateral, large[2] / small[2], small[1], large[1], small[0],
+                                        large[0]))
+    forward, backward = (full, extra) if not swap else (extra, full)
     starts = correlation_search(fixed, moving, forward, opt.min_fraction) + spectral
     starts += [Start(s.correlation, np.linalg.inv(s.transform), s.ncc)
                for s in correlation_search(moving, fixed, backward, opt.min_fraction)]
     starts.sort(key=lambda s: -s.correlation)
     return distinct_starts(starts, moving.shape, opt.n_starts, 2.0), len(forward) + len(backward) + len(spectral)
+
+
+def _footprint(level: Sampled, spacing) -> float:
+    """The volume of a level's live samples in physical units (full-resolution spacings)."""
+    return float(level.live.sum()) * level.shape[2] * float(np.prod(np.asarray(spacing) * level.factors))
 
 
 def _spectral_starts(pf: _Pyramid, pm: _Pyramid, top: int, vertical: float, opt: VolumeOptions) -> list:
@@ -371,7 +386,7 @@ def _spectral_starts(pf: _Pyramid, pm: _Pyramid, top: int, vertical: float, opt:
     candidates = spectral_maps(map_spectrum(f0.data, f0.live), map_spectrum(m0.data, m0.live),
                                scale_range=opt.scale_range, max_rotation=opt.max_rotation,
                                max_anisotropy=opt.max_anisotropy, n_best=opt.n_spectral)
-    fixed, moving = pf.at(top), pm.at(top)
+    fixed, moving = without_mean_trace(pf.at(top)), without_mean_trace(pm.at(top))
     maps = []
     for c in candidates:
         lin = np.eye(3)

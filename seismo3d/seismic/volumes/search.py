@@ -96,8 +96,16 @@ def _resampled_onto(target: Sampled, source: Sampled, lin):
     offset = inv @ g_lo
     img = ndi.affine_transform(source.data, inv, offset=offset, output_shape=shape, order=1, mode="constant",
                                cval=0.0)
-    live = np.broadcast_to(source.live_weights[:, :, None], source.shape)
-    mask = ndi.affine_transform(live, inv, offset=offset, output_shape=shape, order=0, mode="constant", cval=0.0)
+    if np.any(lin[2, :2]) or np.any(lin[:2, 2]):  # the traces tilted: the live samples resampled in 3D
+        live = np.broadcast_to(source.live_weights[:, :, None], source.shape)
+        mask = ndi.affine_transform(live, inv, offset=offset, output_shape=shape, order=0, mode="constant",
+                                    cval=0.0)
+    else:  # map view and traces apart: the live traces in map view times the samples inside (the same values)
+        live = ndi.affine_transform(source.live_weights, inv[:2, :2], offset=offset[:2], output_shape=shape[:2],
+                                    order=0, mode="constant", cval=0.0)
+        inside = ndi.affine_transform(np.ones(source.shape[2], np.float32), inv[2:, 2:], offset=offset[2:],
+                                      output_shape=shape[2:], order=0, mode="constant", cval=0.0)
+        mask = live[:, :, None] * inside[None, None, :]
     return img * mask, mask, g_lo
 
 

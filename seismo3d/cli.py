@@ -182,11 +182,14 @@ def faults(
                                                "with the same faults."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="dask.distributed scheduler address "
                                             "(tcp://host:port) for block-by-block runs; default: local threads."),
+    model: Optional[pathlib.Path] = typer.Option(None, "--model", help="A MODEL folder written by 'seismo3d adapt': "
+                                                 "the fault network adapted to this survey replaces the shipped one.",
+                                                 show_default=False),
     overwrite: bool = _overwrite_option(),
 ) -> None:
     """Trace the faults of INPUT and write fault likelihood, strike, dip and votes (SEG-Y for SEG-Y input), fault
     surfaces (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT."""
-    check_before_import("folder", output, [input], overwrite=overwrite)
+    check_before_import("folder", output, [input, model], overwrite=overwrite)
     from .jobs.faults import run_faults_job
 
     with _one_line_warnings(), compile_note():
@@ -194,7 +197,8 @@ def faults(
                              ignore_geometry=ignore_geometry, endian=_value(endian),
                              sample_unit=None if sample_unit is None else sample_unit.value,
                              n_samples=n_samples, sensitivity=sensitivity, likelihood=likelihood.value,
-                             memory_limit=memory_limit, scheduler=scheduler, overwrite=overwrite, progress=True)
+                             memory_limit=memory_limit, scheduler=scheduler, overwrite=overwrite, progress=True,
+                             **({"model": model} if model is not None else {}))
     rows = job.faults
     source = "the demo cube" if demo else input.name
     typer.echo(f"{len(rows)} faults in {source} -> {output}")
@@ -561,6 +565,58 @@ def evaluate(
     job = run_evaluate_job(faults_output, sticks=sticks, mask=mask, out=out, seismic=seismic,
                            options=FaultScoringOptions(tolerance=tolerance), overwrite=overwrite)
     typer.echo("\n".join(evaluation_table(job) + [f"wrote evaluation.csv, evaluation.json, evaluation.png -> {out}"]))
+
+
+@app.command()
+@_friendly({"picks": "--sticks / --mask", "model": "-o"})
+def adapt(
+    inputs: list[pathlib.Path] = typer.Argument(..., metavar="INPUT...", help="The picked lines: SEG-Y inlines or "
+                                                "crosslines, .npy (n_traces, n_samples) or .f32be sections.",
+                                                show_default=False),
+    sticks: Optional[list[pathlib.Path]] = typer.Option(None, "--sticks", help="The interpreter's fault sticks "
+                                                        "(OpendTect, Charisma, IESX) of the i-th INPUT; one file for "
+                                                        "every INPUT when given once.", show_default=False),
+    mask: Optional[list[pathlib.Path]] = typer.Option(None, "--mask", help="The interpreter's faults on the i-th "
+                                                      "INPUT as a mask: .npy (n_traces, n_samples) or a PNG of a row "
+                                                      "per sample (alpha > 0 or nonzero on faults).",
+                                                      show_default=False),
+    model: pathlib.Path = typer.Option(..., "-o", "--output", help="The MODEL folder to write (must not exist): "
+                                       "the adapted network and its record; trace with 'seismo3d faults --model'.",
+                                       show_default=False),
+    iline: int = typer.Option(189, help=_ILINE_HELP),
+    xline: int = typer.Option(193, help=_XLINE_HELP),
+    endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
+    steps: int = typer.Option(150, min=1, help="Training steps (8 patches each)."),
+    seed: int = typer.Option(0, help="Seed of the training patches and of PyTorch."),
+) -> None:
+    """Adapt the fault network to your survey from an interpreter's faults on a few lines, and write MODEL.
+
+    Each picked line is taken as fully interpreted: every fault on it is drawn, and a sample away from the drawn
+    faults is taught as no fault. A quarter of each line's traces is held back from the training; the faults traced in
+    it with the shipped and the adapted network are scored against the picks (F1 at 3 samples) and printed, and
+    MODEL keeps the shipped network when adapting does not score higher there. Needs PyTorch and onnx (pip
+    install torch onnx, or the train extra of seismo3d); tracing with MODEL does not."""
+    given = [("sticks", p) for p in sticks or []] + [("mask", p) for p in mask or []]
+    if sticks and mask:
+        from .errors import InputError
+
+        raise InputError("pass the picks of every INPUT one way: all --sticks or all --mask")
+    check_before_import("folder", model, [*inputs, *(p for _, p in given)], overwrite=False)
+    from .jobs.adapt import run_adapt_job
+    from .training.adapt import AdaptOptions
+
+    with compile_note():
+        job = run_adapt_job(inputs, given, model, iline=iline, xline=xline, endian=_value(endian),
+                            options=AdaptOptions(steps=steps, seed=seed), progress=True)
+    for line, b, a in zip(job.lines, job.before, job.after):
+        typer.echo(f"  {line['line']}: held back traces {line['held_back_traces'][0]}-{line['held_back_traces'][1] - 1}"
+                   f", F1 {b['f1']:.3f} -> {a['f1']:.3f} (P {b['precision']:.2f} -> {a['precision']:.2f}, "
+                   f"R {b['recall']:.2f} -> {a['recall']:.2f})")
+    typer.echo(f"held-back F1: shipped network {job.mean('before'):.3f}, adapted {job.mean('after'):.3f}")
+    if job.kept == "default":
+        typer.echo("adapting did not help on the held-back traces: MODEL keeps the shipped network")
+    typer.echo(f"wrote {job.model} (fault_unet.onnx, adapt.json); trace with: seismo3d faults INPUT -o OUT "
+               f"--model {job.model}")
 
 
 if __name__ == "__main__":  # pragma: no cover

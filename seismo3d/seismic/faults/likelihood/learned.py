@@ -111,6 +111,10 @@ class LearnedOptions:
         probabilities differ by 0.0013 on average, by 0.033 at the 99th percentile (``fault_unet_int8.json``); on
         the real sections 'int8' kept the F3 and Great South Basin scores within 0.005 but lost the fault of teapot
         tpd near trace 20 below sample 240 (covered 0.43 -> 0.0) and changed the fault counts of 6 of 10 lines.
+    adapted : str or None
+        The path of a MODEL folder written by ``seismo3d adapt`` (the network fine-tuned on an interpreter's faults,
+        :mod:`~seismo3d.seismic.faults.likelihood.adapted`): run instead of the shipped network, in float32, on
+        sections and cubes alike (``network`` is then not used); None (the default): the shipped network.
     """
 
     directions: str = "both"
@@ -123,8 +127,11 @@ class LearnedOptions:
     patch_samples: int = 128
     saturation_level: float = 0.9
     network: str = "auto"
+    adapted: str | None = None
 
     def __post_init__(self):
+        if self.adapted is not None:
+            object.__setattr__(self, "adapted", str(self.adapted))
         if self.network != "auto" and self.network not in NETWORKS:
             raise InputError(f"network must be 'auto' or one of {', '.join(map(repr, NETWORKS))}; got "
                              f"{self.network!r}")
@@ -166,7 +173,10 @@ class LearnedOptions:
 
     def model(self, ndim: int) -> str:
         """The shipped model (a key of :data:`NETWORKS`) run on an input of ``ndim`` dimensions (2: a section, 3: a
-        cube or a block of one): ``network``, or for 'auto' 'int8' on a cube and 'float' on a section."""
+        cube or a block of one): ``network``, or for 'auto' 'int8' on a cube and 'float' on a section; ``adapted``
+        (a MODEL path, which :func:`load_fault_network` also loads) when set."""
+        if self.adapted is not None:
+            return self.adapted
         if self.network != "auto":
             return self.network
         return "int8" if int(ndim) == 3 else "float"
@@ -347,8 +357,9 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
     stretch_to : int, optional
         Samples per trace the sections are stretched to before the network (:meth:`LearnedOptions.stretch`); 0:
         as they are.
-    network : {'int8', 'float'}, optional
-        The shipped model (:func:`load_fault_network`; ``LearnedOptions.model(3)``), a batch's parts run on the cores.
+    network : {'int8', 'float'} or str, optional
+        The shipped model, or an adapted MODEL's path (:func:`load_fault_network`; ``LearnedOptions.model(3)``), a
+        batch's parts run on the cores.
 
     Returns
     -------

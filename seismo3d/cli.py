@@ -586,7 +586,7 @@ def adapt(
     iline: int = typer.Option(189, help=_ILINE_HELP),
     xline: int = typer.Option(193, help=_XLINE_HELP),
     endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
-    steps: int = typer.Option(150, min=1, help="Training steps (8 patches each)."),
+    steps: int = typer.Option(100, min=1, help="Training steps (4 patches each)."),
     seed: int = typer.Option(0, help="Seed of the training patches and of PyTorch."),
 ) -> None:
     """Adapt the fault network to your survey from an interpreter's faults on a few lines, and write MODEL.

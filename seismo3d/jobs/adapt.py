@@ -23,7 +23,8 @@ from __future__ import annotations
 
 import hashlib
 import importlib.util
-import time
+import tempfile
+from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -37,7 +38,7 @@ from ..seismic.fault_scoring import tolerant_scores
 from ..seismic.faults.likelihood.adapted import MODEL_NETWORK, MODEL_RECORD
 from .runinfo import RunRecord
 
-__all__ = ["AdaptJobResult", "HELD_BACK", "TORCH_HINT", "held_back_band", "run_adapt_job"]
+__all__ = ["AdaptJobResult", "HELD_BACK", "TORCH_HINT", "held_back_band", "run_adapt_job", "write_model"]
 
 HELD_BACK = 0.25  # share of each line's traces held back for validation
 TORCH_HINT = ("seismo3d adapt trains the fault network with PyTorch, which is not installed: "
@@ -77,8 +78,8 @@ class AdaptJobResult:
 
 def held_back_band(picks: np.ndarray, share: float = HELD_BACK) -> tuple[int, int]:
     """The band of traces held back from the training: ``share`` of the line's traces, placed where its share of the
-    picked fault samples is closest to ``share`` (the leftmost of equals; starts on a grid of a sixteenth of the
-    line).
+    picked fault samples is closest to ``share`` among the bands that leave picks both in and out of it (any band
+    when none does; the leftmost of equals; starts on a grid of a sixteenth of the line).
 
     Parameters
     ----------
@@ -99,7 +100,8 @@ def held_back_band(picks: np.ndarray, share: float = HELD_BACK) -> tuple[int, in
     cum = np.concatenate([[0], np.cumsum(per_trace)])
     starts = np.unique(np.linspace(0, n - width, 17).round().astype(int))
     shares = (cum[starts + width] - cum[starts]) / total
-    first = int(starts[np.argmin(np.abs(shares - share))])
+    gap = np.abs(shares - share) + 2.0 * ((shares <= 0) | (shares >= 1))  # picks on both sides of the band first
+    first = int(starts[np.argmin(gap)])
     return first, first + width
 
 
@@ -117,7 +119,7 @@ class _Line:
 
 
 def _check_before_work(inputs, picks, model: Path) -> None:
-    """The refusals that need no reading: MODEL present, counts that do not pair, PyTorch or onnx missing."""
+    """The refusals that need no reading: MODEL present, counts that do not pair."""
     if model.exists():
         raise InputError(f"{model} exists; adapt writes a new MODEL folder: pass another -o or remove it")
     if not inputs:
@@ -125,6 +127,10 @@ def _check_before_work(inputs, picks, model: Path) -> None:
     if len(picks) not in (1, len(inputs)) or (len(picks) == 1 and len(inputs) > 1 and picks[0][0] != "sticks"):
         raise InputError(f"{len(inputs)} inputs and {len(picks)} --sticks / --mask: pass one per input, in the same "
                          "order (or one --sticks file for every input)")
+
+
+def _check_training_framework() -> None:
+    """PyTorch and onnx (the ``train`` extra) present, else one line saying how to install them."""
     for needed in ("torch", "onnx"):
         if importlib.util.find_spec(needed) is None:
             raise InputError(TORCH_HINT)
@@ -191,13 +197,35 @@ def _training_grids(line: _Line) -> list:
     return grids
 
 
-def _write_model(model: Path, network: bytes, record: RunRecord, inputs: dict, results: dict) -> None:
-    """MODEL written atomically: the network and its record (the network's sha256 in it)."""
+def write_model(model, network: bytes, record: RunRecord, inputs: dict, results: dict) -> Path:
+    """Write a MODEL folder atomically: the network and its record (the network's sha256 added to ``results``).
+
+    Parameters
+    ----------
+    model : str or os.PathLike
+        The folder (replaced if present: the caller refuses an existing one first).
+    network : bytes
+        A serialised ONNX model of the fault network's architecture
+        (:func:`~seismo3d.seismic.faults.likelihood.network.onnx_model`).
+    record : RunRecord
+        The run's record (written as ``adapt.json``).
+    inputs : dict
+        Input paths by role, identified with their sha256 in the record.
+    results : dict
+        What the run measured (:func:`run_adapt_job`'s record).
+
+    Returns
+    -------
+    pathlib.Path
+        The MODEL folder.
+    """
+    model = Path(model)
     results = dict(results, network_sha256=hashlib.sha256(network).hexdigest())
     with atomic_directory(model) as tmp:
         (tmp / MODEL_NETWORK).write_bytes(network)
         record.write(tmp / MODEL_RECORD, inputs=inputs,
                      outputs={"network": model / MODEL_NETWORK, "record": model / MODEL_RECORD}, results=results)
+    return model
 
 
 def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ignore_geometry=False,
@@ -218,7 +246,7 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
     iline, xline, endian, ignore_geometry, sample_unit : optional
         How the SEG-Y inputs are read (as ``seismo3d faults`` reads them).
     options : seismo3d.training.adapt.AdaptOptions, optional
-        The fine-tuning (default: every layer, 150 steps of 8 patches, seed 0).
+        The fine-tuning (default: every layer, 100 steps of 4 patches, seed 0).
     progress : bool, optional
         Log the stages and a progress bar over the training steps.
 
@@ -245,6 +273,7 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
     segy = {k: v for k, v in segy.items() if v is not None}
     with record.stage("read lines and picks"):
         lines = _read_lines(list(inputs), picks, segy)
+    _check_training_framework()
     from ..seismic.faults.likelihood.network import onnx_model, WEIGHTS_FILE
     from ..training.adapt import AdaptOptions, fine_tune
 
@@ -277,30 +306,13 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
                "training": {**asdict(opt), "loss": tuned["loss"]}}
     roles = {f"input_{i}": line.input for i, line in enumerate(lines)}
     roles.update({f"{kind}_{i}": path for i, (kind, path) in enumerate(picks)})
-    _write_model(model, network, record, roles, results)
+    write_model(model, network, record, roles, results)
     return AdaptJobResult(kept, before, after, described, model, dict(record.stage_seconds))
 
 
-class _staged_model:
+@contextmanager
+def _staged_model(model: Path, network: bytes):
     """A MODEL folder of the trial network in a temporary folder beside MODEL (removed after), for the tracing that
     scores it."""
-
-    def __init__(self, model: Path, network: bytes):
-        self.model, self.network = model, network
-
-    def __enter__(self) -> Path:
-        import tempfile
-
-        self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.model.name}.trial.", dir=self.model.parent))
-        (self.tmp / MODEL_NETWORK).write_bytes(self.network)
-        results = {"network_sha256": hashlib.sha256(self.network).hexdigest(), "kept": "trial"}
-        import json
-
-        (self.tmp / MODEL_RECORD).write_text(json.dumps({"command": "adapt", "results": results}))
-        return self.tmp
-
-    def __exit__(self, *exc):
-        import shutil
-
-        shutil.rmtree(self.tmp, ignore_errors=True)
-        return False
+    with tempfile.TemporaryDirectory(prefix=f".{model.name}.trial.", dir=model.parent) as tmp:
+        yield write_model(Path(tmp) / "trial", network, RunRecord("adapt", {}), {}, {"kept": "trial"})

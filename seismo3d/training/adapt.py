@@ -66,10 +66,10 @@ class AdaptOptions:
     """
 
     layers: str = "all"
-    steps: int = 150
-    batch_size: int = 8
+    steps: int = 100
+    batch_size: int = 4
     patch: int = 128
-    learning_rate: float = 5e-4
+    learning_rate: float = 2e-3
     positive_weight: float = 4.0
     seed: int = 0
     threads: int = 2

@@ -182,9 +182,8 @@ def faults(
                                                "with the same faults."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="dask.distributed scheduler address "
                                             "(tcp://host:port) for block-by-block runs; default: local threads."),
-    model: Optional[pathlib.Path] = typer.Option(None, "--model", help="A MODEL folder written by 'seismo3d adapt': "
-                                                 "the fault network adapted to this survey replaces the shipped one.",
-                                                 show_default=False),
+    model: Optional[pathlib.Path] = typer.Option(None, "--model", show_default=False, help="A MODEL folder of "
+                                                 "'seismo3d adapt': its network replaces the shipped one."),
     overwrite: bool = _overwrite_option(),
 ) -> None:
     """Trace the faults of INPUT and write fault likelihood, strike, dip and votes (SEG-Y for SEG-Y input), fault
@@ -570,53 +569,31 @@ def evaluate(
 @app.command()
 @_friendly({"picks": "--sticks / --mask", "model": "-o"})
 def adapt(
-    inputs: list[pathlib.Path] = typer.Argument(..., metavar="INPUT...", help="The picked lines: SEG-Y inlines or "
-                                                "crosslines, .npy (n_traces, n_samples) or .f32be sections.",
-                                                show_default=False),
-    sticks: Optional[list[pathlib.Path]] = typer.Option(None, "--sticks", help="The interpreter's fault sticks "
-                                                        "(OpendTect, Charisma, IESX) of the i-th INPUT; one file for "
-                                                        "every INPUT when given once.", show_default=False),
-    mask: Optional[list[pathlib.Path]] = typer.Option(None, "--mask", help="The interpreter's faults on the i-th "
-                                                      "INPUT as a mask: .npy (n_traces, n_samples) or a PNG of a row "
-                                                      "per sample (alpha > 0 or nonzero on faults).",
-                                                      show_default=False),
-    model: pathlib.Path = typer.Option(..., "-o", "--output", help="The MODEL folder to write (must not exist): "
-                                       "the adapted network and its record; trace with 'seismo3d faults --model'.",
-                                       show_default=False),
+    inputs: list[pathlib.Path] = typer.Argument(..., metavar="INPUT...", show_default=False, help="The picked lines: "
+                                                "SEG-Y inlines or crosslines, .npy (traces, samples) or .f32be."),
+    sticks: Optional[list[pathlib.Path]] = typer.Option(None, "--sticks", show_default=False, help="Fault sticks of "
+                                                        "the i-th INPUT (OpendTect, Charisma, IESX); once: of all."),
+    mask: Optional[list[pathlib.Path]] = typer.Option(None, "--mask", show_default=False, help="Faults of the i-th "
+                                                      "INPUT: .npy (traces, samples) or PNG (a row per sample)."),
+    model: pathlib.Path = typer.Option(..., "-o", "--output", show_default=False, help="The MODEL folder to write "
+                                       "(must not exist); trace with 'seismo3d faults --model MODEL'."),
     iline: int = typer.Option(189, help=_ILINE_HELP),
     xline: int = typer.Option(193, help=_XLINE_HELP),
     endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
-    steps: int = typer.Option(100, min=1, help="Training steps (4 patches each)."),
-    seed: int = typer.Option(0, help="Seed of the training patches and of PyTorch."),
+    steps: int = typer.Option(100, min=1, help="Training steps (4 patches each, seed 0)."),
 ) -> None:
-    """Adapt the fault network to your survey from an interpreter's faults on a few lines, and write MODEL.
-
-    Each picked line is taken as fully interpreted: every fault on it is drawn, and a sample away from the drawn
-    faults is taught as no fault. A quarter of each line's traces is held back from the training; the faults traced in
-    it with the shipped and the adapted network are scored against the picks (F1 at 3 samples) and printed, and
-    MODEL keeps the shipped network when adapting does not score higher there. Needs PyTorch and onnx (pip
-    install torch onnx, or the train extra of seismo3d); tracing with MODEL does not."""
-    given = [("sticks", p) for p in sticks or []] + [("mask", p) for p in mask or []]
-    if sticks and mask:
-        from .errors import InputError
-
-        raise InputError("pass the picks of every INPUT one way: all --sticks or all --mask")
-    check_before_import("folder", model, [*inputs, *(p for _, p in given)], overwrite=False)
-    from .jobs.adapt import run_adapt_job
+    """Adapt the fault network to your survey from an interpreter's faults on a few lines, each taken as fully
+    interpreted (a sample away from the drawn faults is taught as no fault); write MODEL. A quarter of each line's
+    traces is held back: the F1 there with the shipped and the adapted network is printed, and MODEL keeps the shipped
+    one when adapting does not score higher. Needs PyTorch and onnx (pip install torch onnx); tracing does not."""
+    check_before_import("folder", model, [*inputs, *(sticks or []), *(mask or [])], overwrite=False)
+    from .jobs.adapt import adapt_report, paired_picks, run_adapt_job
     from .training.adapt import AdaptOptions
 
     with compile_note():
-        job = run_adapt_job(inputs, given, model, iline=iline, xline=xline, endian=_value(endian),
-                            options=AdaptOptions(steps=steps, seed=seed), progress=True)
-    for line, b, a in zip(job.lines, job.before, job.after):
-        typer.echo(f"  {line['line']}: held back traces {line['held_back_traces'][0]}-{line['held_back_traces'][1] - 1}"
-                   f", F1 {b['f1']:.3f} -> {a['f1']:.3f} (P {b['precision']:.2f} -> {a['precision']:.2f}, "
-                   f"R {b['recall']:.2f} -> {a['recall']:.2f})")
-    typer.echo(f"held-back F1: shipped network {job.mean('before'):.3f}, adapted {job.mean('after'):.3f}")
-    if job.kept == "default":
-        typer.echo("adapting did not help on the held-back traces: MODEL keeps the shipped network")
-    typer.echo(f"wrote {job.model} (fault_unet.onnx, adapt.json); trace with: seismo3d faults INPUT -o OUT "
-               f"--model {job.model}")
+        job = run_adapt_job(inputs, paired_picks(sticks, mask), model, iline=iline, xline=xline,
+                            endian=_value(endian), options=AdaptOptions(steps=steps), progress=True)
+    typer.echo("\n".join(adapt_report(job)))
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -12,7 +12,7 @@ or a mask, :func:`~seismo3d.jobs.evaluate.read_people_faults`), then:
    extra): every sample outside the band counts, a sample away from the picks as no fault, so **each picked line is
    taken as fully interpreted** (a fault left undrawn is taught as none);
 4. traces the lines again with the fine-tuned network and scores the band: **after**;
-5. writes MODEL (:mod:`~seismo3d.seismic.faults.likelihood.adapted`): the fine-tuned network when its mean held-back
+5. writes MODEL (:mod:`~seismo3d.seismic.adapted_network`): the fine-tuned network when its mean held-back
    F1 is above the shipped network's, else the shipped float network itself (the default kept, said in one line),
    and the record ``adapt.json``.
 
@@ -35,10 +35,11 @@ from .._atomic import atomic_directory
 from .._progress import LOGGER
 from ..errors import InputError
 from ..seismic.fault_scoring import tolerant_scores
-from ..seismic.faults.likelihood.adapted import MODEL_NETWORK, MODEL_RECORD
+from ..seismic.adapted_network import MODEL_NETWORK, MODEL_RECORD
 from .runinfo import RunRecord
 
-__all__ = ["AdaptJobResult", "HELD_BACK", "TORCH_HINT", "held_back_band", "run_adapt_job", "write_model"]
+__all__ = ["AdaptJobResult", "HELD_BACK", "TORCH_HINT", "adapt_report", "held_back_band", "paired_picks",
+           "run_adapt_job", "write_model"]
 
 HELD_BACK = 0.25  # share of each line's traces held back for validation
 TORCH_HINT = ("seismo3d adapt trains the fault network with PyTorch, which is not installed: "
@@ -74,6 +75,53 @@ class AdaptJobResult:
     def mean(self, which: str, score: str = "f1") -> float:
         """The mean over the lines of a held-back score of ``which`` ('before' or 'after')."""
         return float(np.mean([s[score] for s in getattr(self, which)]))
+
+
+def paired_picks(sticks, mask) -> list:
+    """The picks of ``seismo3d adapt``'s ``--sticks`` and ``--mask`` as :func:`run_adapt_job` takes them:
+    ``[('sticks', path), ...]`` or ``[('mask', path), ...]``.
+
+    Parameters
+    ----------
+    sticks, mask : list of str or os.PathLike, or None
+
+    Returns
+    -------
+    list of (str, pathlib.Path)
+
+    Raises
+    ------
+    InputError
+        Both given (the command line does not tell which of them belongs to which input) or neither.
+    """
+    if sticks and mask:
+        raise InputError("pass the picks of every INPUT one way: all --sticks or all --mask")
+    if not sticks and not mask:
+        raise InputError("pass the interpreter's faults of each INPUT: --sticks FILE or --mask FILE")
+    return [("sticks", Path(p)) for p in sticks or []] + [("mask", Path(p)) for p in mask or []]
+
+
+def adapt_report(job: "AdaptJobResult") -> list:
+    """The lines ``seismo3d adapt`` prints: each line's held-back band and scores before -> after, their means,
+    the network kept (one line when the shipped one), and where MODEL is.
+
+    Parameters
+    ----------
+    job : AdaptJobResult
+
+    Returns
+    -------
+    list of str
+    """
+    out = [f"  {line['line']}: held back traces {line['held_back_traces'][0]}-{line['held_back_traces'][1] - 1}, F1 "
+           f"{b['f1']:.3f} -> {a['f1']:.3f} (P {b['precision']:.2f} -> {a['precision']:.2f}, R {b['recall']:.2f} -> "
+           f"{a['recall']:.2f})" for line, b, a in zip(job.lines, job.before, job.after)]
+    out.append(f"held-back F1: shipped network {job.mean('before'):.3f}, adapted {job.mean('after'):.3f}")
+    if job.kept == "default":
+        out.append("adapting did not help on the held-back traces: MODEL keeps the shipped network")
+    out.append(f"wrote {job.model} ({MODEL_NETWORK}, {MODEL_RECORD}); trace with: seismo3d faults INPUT -o OUT "
+               f"--model {job.model}")
+    return out
 
 
 def held_back_band(picks: np.ndarray, share: float = HELD_BACK) -> tuple[int, int]:

@@ -28,7 +28,7 @@ from ..seismic.blocks.options import BlockRunOptions
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
 from ..seismic.faults.pipeline import trace_faults
-from ..seismic.faults.likelihood.adapted import MODEL_NETWORK, check_adapted_model
+from ..seismic.adapted_network import MODEL_NETWORK, check_adapted_model
 from ..seismic.io.writer import write_like, write_like_blocks
 from .fault_inputs import FaultsInput, read_input, write_demo_input
 from .fault_tables import write_points, write_summary

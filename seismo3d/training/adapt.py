@@ -34,7 +34,7 @@ import torch
 
 from .._progress import progress_steps
 from ..errors import InputError
-from .fault_unet import _loss, _training_mode, export_weights, model_from_weights
+from .fault_unet import export_weights, model_from_weights, segmentation_loss, training_mode
 
 __all__ = ["AdaptOptions", "LAYERS", "fine_tune"]
 
@@ -139,7 +139,7 @@ def fine_tune(weights: dict, grids: list, *, options: AdaptOptions | None = None
     model.frozen_batch_norm = True  # folded weights: the batch normalisations stay the identity
     for name in LAYERS[opt.layers]:
         getattr(model, name).requires_grad_(False)
-    _training_mode(model)
+    training_mode(model)
     optimiser = torch.optim.Adam([p for p in model.parameters() if p.requires_grad], lr=float(opt.learning_rate))
     losses, running, every = [], [], max(1, int(opt.steps) // 10)
     try:
@@ -166,8 +166,8 @@ def fine_tune(weights: dict, grids: list, *, options: AdaptOptions | None = None
 
 
 def _weighted_loss(logits, target, weight, positive_weight: float):
-    """:func:`~seismo3d.training.fault_unet._loss` on the counted samples only (``weight`` > 0)."""
+    """:func:`~seismo3d.training.fault_unet.segmentation_loss` on the counted samples only (``weight`` > 0)."""
     keep = weight > 0
     if bool(keep.all()):
-        return _loss(logits, target, positive_weight)
-    return _loss(logits[keep], target[keep], positive_weight)
+        return segmentation_loss(logits, target, positive_weight)
+    return segmentation_loss(logits[keep], target[keep], positive_weight)

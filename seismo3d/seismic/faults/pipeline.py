@@ -33,7 +33,7 @@ from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
 from ..io.zarr_store import consolidate
-from .likelihood.adapted import check_adapted_model
+from ..adapted_network import check_adapted_model
 from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
 from .likelihood.scan import fault_likelihood

@@ -39,7 +39,6 @@ import functools
 import hashlib
 import math
 from importlib import resources
-from pathlib import Path
 
 import numpy as np
 from scipy.ndimage import gaussian_filter
@@ -113,17 +112,16 @@ class FaultNetwork:
                          np.ascontiguousarray(x, dtype=np.float32), self._calls)
 
 
+@functools.lru_cache(maxsize=4)
 def load_fault_network(network: str = "int8", calls: int = 1) -> FaultNetwork:
-    """A shipped network, or one adapted by ``seismo3d adapt``, its sha256 checked, as an ONNX Runtime session.
+    """A shipped network, its sha256 checked, as an ONNX Runtime session.
 
     Parameters
     ----------
-    network : {'int8', 'float'} or str, optional
+    network : {'int8', 'float'}, optional
         'int8': ``fault_unet_int8.onnx`` (:data:`INT8_SHA256`), the float model quantised by
         :mod:`seismo3d.training.quantize_onnx`; 'float': ``fault_unet.onnx`` (:data:`WEIGHTS_SHA256`), exported from
-        the trained weights ``fault_unet.npz`` by :func:`~seismo3d.seismic.faults.likelihood.network.onnx_model`;
-        any other string: the path of a MODEL folder written by ``seismo3d adapt``
-        (:mod:`~seismo3d.seismic.faults.likelihood.adapted`, its sha256 checked against its record).
+        the trained weights ``fault_unet.npz`` by :func:`~seismo3d.seismic.faults.likelihood.network.onnx_model`.
     calls : int, optional
         Parts each call runs at once (:class:`FaultNetwork`).
 
@@ -135,45 +133,13 @@ def load_fault_network(network: str = "int8", calls: int = 1) -> FaultNetwork:
     Raises
     ------
     InputError
-        ``network`` is not 'int8' or 'float', nor a MODEL folder of ``seismo3d adapt`` (or one changed since).
-    DataNotFoundError
-        No MODEL folder at the path.
+        ``network`` is not 'int8' or 'float'.
     Seismo3dError
         The model file is missing or its sha256 is not the recorded one (a damaged installation: reinstall
         seismo3d).
     """
-    if network not in NETWORKS and (Path(network).exists() or any(c in str(network) for c in "/\\")):
-        from .adapted import MODEL_NETWORK
-
-        model = Path(network)
-        model = model.parent if model.name == MODEL_NETWORK and model.is_file() else model
-        stamp = (model / MODEL_NETWORK).stat().st_mtime_ns if (model / MODEL_NETWORK).is_file() else 0
-        return _adapted_network(str(model.resolve()), stamp, int(calls))
-    return _shipped_network(network, int(calls))
-
-
-def _clear_networks() -> None:
-    """Forget the loaded networks (``load_fault_network.cache_clear()``, as for a cached function)."""
-    _shipped_network.cache_clear()
-    _adapted_network.cache_clear()
-
-
-load_fault_network.cache_clear = _clear_networks
-
-
-@functools.lru_cache(maxsize=4)
-def _adapted_network(path: str, stamp: int, calls: int) -> FaultNetwork:
-    """An adapted MODEL folder's network (cached by its path and the network file's time of change)."""
-    from .adapted import read_adapted_model
-
-    return FaultNetwork(read_adapted_model(path)[0], calls)
-
-
-@functools.lru_cache(maxsize=4)
-def _shipped_network(network: str, calls: int) -> FaultNetwork:
     if network not in NETWORKS:
-        raise InputError(f"network must be one of {', '.join(map(repr, NETWORKS))}, or the path of a MODEL folder "
-                         f"written by 'seismo3d adapt'; got {network!r}")
+        raise InputError(f"network must be one of {', '.join(map(repr, NETWORKS))}; got {network!r}")
     name, sha256 = NETWORKS[network]
     ref = resources.files(__package__).joinpath(name)
     try:

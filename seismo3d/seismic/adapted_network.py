@@ -11,7 +11,8 @@ A MODEL folder holds two files:
   sha256 of ``fault_unet.onnx``.
 
 Reading one needs ONNX Runtime only (no training framework); the sha256 of the network is checked against the
-record when it is loaded. Writing one is :mod:`seismo3d.jobs.adapt`'s.
+record when it is loaded (:func:`seismo3d.seismic.faults.likelihood.learned.load_network`). Writing one is
+:mod:`seismo3d.jobs.adapt`'s.
 """
 
 from __future__ import annotations
@@ -20,9 +21,9 @@ import hashlib
 import json
 from pathlib import Path
 
-from ....errors import DataNotFoundError, InputError
+from ..errors import DataNotFoundError, InputError
 
-__all__ = ["MODEL_NETWORK", "MODEL_RECORD", "read_adapted_model", "check_adapted_model"]
+__all__ = ["MODEL_NETWORK", "MODEL_RECORD", "read_adapted_model", "check_adapted_model", "is_model_path"]
 
 MODEL_NETWORK = "fault_unet.onnx"
 MODEL_RECORD = "adapt.json"
@@ -57,6 +58,13 @@ def check_adapted_model(path) -> dict:
         raise InputError(f"{folder / MODEL_NETWORK} has sha256 {digest}, not the {recorded} its {MODEL_RECORD} "
                          "records: the model was changed after 'seismo3d adapt' wrote it; adapt again")
     return record
+
+
+def is_model_path(network) -> bool:
+    """Whether ``network`` (``LearnedOptions.model``'s answer) names a MODEL folder rather than a shipped network
+    ('int8', 'float'): a path with a folder separator, or one that exists."""
+    text = str(network)
+    return any(c in text for c in "/\\") or Path(text).exists()
 
 
 def read_adapted_model(path) -> tuple[bytes, dict]:

@@ -10,7 +10,8 @@ or a mask, :func:`~seismo3d.jobs.evaluate.read_people_faults`), then:
    precision / recall / F1 at 3 samples, :func:`~seismo3d.seismic.fault_scoring.tolerant_scores`): **before**;
 3. fine-tunes the network on the rest of each line (:func:`seismo3d.training.adapt.fine_tune`, PyTorch, the ``train``
    extra): every sample outside the band counts, a sample away from the picks as no fault, so **each picked line is
-   taken as fully interpreted** (a fault left undrawn is taught as none);
+   taken as fully interpreted** (a fault left undrawn is taught as none); the picks thinned to lines a sample wide
+   (:func:`skimage.morphology.skeletonize`), as the network's training labels are;
 4. traces the lines again with the fine-tuned network and scores the band: **after**;
 5. writes MODEL (:mod:`~seismo3d.seismic.adapted_network`): the fine-tuned network when its mean held-back
    F1 is above the shipped network's, else the shipped float network itself (the default kept, said in one line),
@@ -170,6 +171,9 @@ def _check_before_work(inputs, picks, model: Path) -> None:
     """The refusals that need no reading: MODEL present, counts that do not pair."""
     if model.exists():
         raise InputError(f"{model} exists; adapt writes a new MODEL folder: pass another -o or remove it")
+    if not model.parent.is_dir():
+        raise InputError(f"the folder {model.parent} that is to hold MODEL does not exist; create it or pass another "
+                         "-o")
     if not inputs:
         raise InputError("pass at least one picked line (INPUT)")
     if len(picks) not in (1, len(inputs)) or (len(picks) == 1 and len(inputs) > 1 and picks[0][0] != "sticks"):
@@ -225,9 +229,13 @@ def _training_grids(line: _Line) -> list:
     """The line on each network grid the tracing runs it on, with its picks and the loss weights (0 in the band),
     as :func:`seismo3d.training.adapt.fine_tune` takes them."""
     from ..seismic.faults.likelihood.learned import LearnedOptions, amplitude_scale
+    from skimage.morphology import skeletonize
+
     from ..seismic.faults.likelihood.network import POOLING_MULTIPLE, normalise_section, to_network_grid
 
     opt = LearnedOptions()
+    picks = skeletonize(line.picks)  # thin, as the network's training labels: a drawn band a few samples wide would
+    # teach it to spread its probability, which the tracing's thresholds read as more faults
     weight = np.ones(line.section.shape, np.float32)
     weight[line.band[0]:line.band[1]] = 0.0
     scale = amplitude_scale(line.section)
@@ -240,7 +248,7 @@ def _training_grids(line: _Line) -> list:
         if size != x.shape:  # the short traces stretched along the samples, as the tracing does
             x = zoom(x, (1.0, size[1] / x.shape[1]), order=3).astype(np.float32)
         labels = [zoom(a.astype(np.float32), (size[0] / a.shape[0], size[1] / a.shape[1]), order=1)
-                  for a in (line.picks, weight)]
+                  for a in (picks, weight)]
         grids.append((x, (labels[0] > 0.25).astype(np.float32), (labels[1] > 0.5).astype(np.float32)))
     return grids
 

@@ -10,8 +10,7 @@ or a mask, :func:`~seismo3d.jobs.evaluate.read_people_faults`), then:
    precision / recall / F1 at 3 samples, :func:`~seismo3d.seismic.fault_scoring.tolerant_scores`): **before**;
 3. fine-tunes the network on the rest of each line (:func:`seismo3d.training.adapt.fine_tune`, PyTorch, the ``train``
    extra): every sample outside the band counts, a sample away from the picks as no fault, so **each picked line is
-   taken as fully interpreted** (a fault left undrawn is taught as none); the picks thinned to lines a sample wide
-   (:func:`skimage.morphology.skeletonize`), as the network's training labels are;
+   taken as fully interpreted** (a fault left undrawn is taught as none);
 4. traces the lines again with the fine-tuned network and scores the band: **after**;
 5. writes MODEL (:mod:`~seismo3d.seismic.adapted_network`): the fine-tuned network when its mean held-back
    F1 is above the shipped network's, else the shipped float network itself (the default kept, said in one line),
@@ -40,7 +39,7 @@ from ..seismic.adapted_network import MODEL_NETWORK, MODEL_RECORD
 from .runinfo import RunRecord
 
 __all__ = ["AdaptJobResult", "HELD_BACK", "TORCH_HINT", "adapt_report", "held_back_band", "paired_picks",
-           "run_adapt_job", "write_model"]
+           "run_adapt_job", "training_grids", "write_model"]
 
 HELD_BACK = 0.25  # share of each line's traces held back for validation
 TORCH_HINT = ("seismo3d adapt trains the fault network with PyTorch, which is not installed: "
@@ -225,25 +224,38 @@ def _band_scores(line: _Line, traced: np.ndarray) -> dict:
     return {"precision": round(p, 4), "recall": round(r, 4), "f1": round(f1, 4)}
 
 
-def _training_grids(line: _Line) -> list:
-    """The line on each network grid the tracing runs it on, with its picks and the loss weights (0 in the band),
-    as :func:`seismo3d.training.adapt.fine_tune` takes them."""
-    from ..seismic.faults.likelihood.learned import LearnedOptions, amplitude_scale
-    from skimage.morphology import skeletonize
+def training_grids(section: np.ndarray, picks: np.ndarray, band: tuple) -> list:
+    """A picked line on each network grid the tracing runs it on, with its picks and the loss weights (0 in the
+    held-back band), as :func:`seismo3d.training.adapt.fine_tune` takes them.
 
+    Parameters
+    ----------
+    section : (n_traces, n_samples) float32 ndarray
+        Amplitudes.
+    picks : (n_traces, n_samples) bool ndarray
+        The interpreter's fault samples.
+    band : (int, int)
+        The held-back traces [first, end) (:func:`held_back_band`).
+
+    Returns
+    -------
+    list of (x, y, w) float32 ndarrays
+        Per grid (``LearnedOptions().grids``): the normalised amplitudes resampled as
+        :func:`~seismo3d.seismic.faults.likelihood.network.to_network_grid` does (stretched along the samples when the
+        tracing stretches them), the picks and the weights resampled with them.
+    """
+    from ..seismic.faults.likelihood.learned import LearnedOptions, amplitude_scale
     from ..seismic.faults.likelihood.network import POOLING_MULTIPLE, normalise_section, to_network_grid
 
     opt = LearnedOptions()
-    picks = skeletonize(line.picks)  # thin, as the network's training labels: a drawn band a few samples wide would
-    # teach it to spread its probability, which the tracing's thresholds read as more faults
-    weight = np.ones(line.section.shape, np.float32)
-    weight[line.band[0]:line.band[1]] = 0.0
-    scale = amplitude_scale(line.section)
+    weight = np.ones(section.shape, np.float32)
+    weight[band[0]:band[1]] = 0.0
+    scale = amplitude_scale(section)
     grids = []
-    for factor in opt.grids(line.section.shape[1], 2):
-        small, _ = to_network_grid(line.section, factor, align=POOLING_MULTIPLE)
+    for factor in opt.grids(section.shape[1], 2):
+        small, _ = to_network_grid(section, factor, align=POOLING_MULTIPLE)
         x = normalise_section(small, scale=scale)
-        stretch = opt.stretch(line.section.shape[1], factor, 2)
+        stretch = opt.stretch(section.shape[1], factor, 2)
         size = (x.shape[0], stretch or x.shape[1])
         if size != x.shape:  # the short traces stretched along the samples, as the tracing does
             x = zoom(x, (1.0, size[1] / x.shape[1]), order=3).astype(np.float32)
@@ -344,7 +356,7 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
     with shipped.joinpath("fault_unet.npz").open("rb") as fh, np.load(fh) as npz:
         start = {k: npz[k] for k in npz.files}
     with record.stage("fine-tune"):
-        grids = [g for line in lines for g in _training_grids(line)]
+        grids = [g for line in lines for g in training_grids(line.section, line.picks, line.band)]
         tuned = fine_tune(start, grids, options=opt, progress=progress)
     network = onnx_model(tuned["weights"])
     with record.stage("held-back score after"), _staged_model(model, network) as trial:

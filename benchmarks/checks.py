@@ -63,6 +63,10 @@ CHECKS = [
           "the real Parihaka 3D cube (the 128 most-labelled time slices), defaults: at least 0.80 of the fault bands "
           "people outlined hit with at least 0.60 of the traced points inside bands, ahead of the 1-semblance "
           "skeleton on both"),
+    Check("adapt", ("benchmarks/adapt.py", "--check"),
+          "seismo3d adapt (needs PyTorch and onnx): F3 adapted on inline 100 (500), the four other inlines traced with "
+          "MODEL: mean F1 >= 0.62 and mean precision >= 0.60 in both folds; Great South Basin adapted on crossline "
+          "2600 (2800), the other traced: F1 above the shipped network's"),
 ]
 
 

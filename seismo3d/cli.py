@@ -182,11 +182,13 @@ def faults(
                                                "with the same faults."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="dask.distributed scheduler address "
                                             "(tcp://host:port) for block-by-block runs; default: local threads."),
+    model: Optional[pathlib.Path] = typer.Option(None, "--model", show_default=False, help="A MODEL folder of "
+                                                 "'seismo3d adapt': its network replaces the shipped one."),
     overwrite: bool = _overwrite_option(),
 ) -> None:
     """Trace the faults of INPUT and write fault likelihood, strike, dip and votes (SEG-Y for SEG-Y input), fault
     surfaces (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT."""
-    check_before_import("folder", output, [input], overwrite=overwrite)
+    check_before_import("folder", output, [input, model], overwrite=overwrite)
     from .jobs.faults import run_faults_job
 
     with _one_line_warnings(), compile_note():
@@ -194,7 +196,8 @@ def faults(
                              ignore_geometry=ignore_geometry, endian=_value(endian),
                              sample_unit=None if sample_unit is None else sample_unit.value,
                              n_samples=n_samples, sensitivity=sensitivity, likelihood=likelihood.value,
-                             memory_limit=memory_limit, scheduler=scheduler, overwrite=overwrite, progress=True)
+                             memory_limit=memory_limit, scheduler=scheduler, overwrite=overwrite, progress=True,
+                             **({"model": model} if model is not None else {}))
     rows = job.faults
     source = "the demo cube" if demo else input.name
     typer.echo(f"{len(rows)} faults in {source} -> {output}")
@@ -571,6 +574,36 @@ def evaluate(
     job = run_evaluate_job(faults_output, sticks=sticks, mask=mask, out=out, seismic=seismic,
                            options=FaultScoringOptions(tolerance=tolerance), overwrite=overwrite)
     typer.echo("\n".join(evaluation_table(job) + [f"wrote evaluation.csv, evaluation.json, evaluation.png -> {out}"]))
+
+
+@app.command()
+@_friendly({"picks": "--sticks / --mask", "model": "-o"})
+def adapt(
+    inputs: list[pathlib.Path] = typer.Argument(..., metavar="INPUT...", show_default=False, help="The picked lines: "
+                                                "SEG-Y inlines or crosslines, .npy (traces, samples) or .f32be."),
+    sticks: Optional[list[pathlib.Path]] = typer.Option(None, "--sticks", show_default=False, help="Fault sticks of "
+                                                        "the i-th INPUT (OpendTect, Charisma, IESX); once: of all."),
+    mask: Optional[list[pathlib.Path]] = typer.Option(None, "--mask", show_default=False, help="Faults of the i-th "
+                                                      "INPUT: .npy (traces, samples) or PNG (a row per sample)."),
+    model: pathlib.Path = typer.Option(..., "-o", "--output", show_default=False, help="The MODEL folder to write "
+                                       "(must not exist); trace with 'seismo3d faults --model MODEL'."),
+    iline: int = typer.Option(189, help=_ILINE_HELP),
+    xline: int = typer.Option(193, help=_XLINE_HELP),
+    endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
+    steps: int = typer.Option(100, min=1, help="Training steps (4 patches each, seed 0)."),
+) -> None:
+    """Adapt the fault network to your survey from an interpreter's faults on a few lines, each taken as fully
+    interpreted (a sample away from the drawn faults is taught as no fault); write MODEL. A quarter of each line's
+    traces is held back: the F1 there with the shipped and the adapted network is printed, and MODEL keeps the shipped
+    one when adapting does not score higher. Needs PyTorch and onnx (pip install torch onnx); tracing does not."""
+    check_before_import("folder", model, [*inputs, *(sticks or []), *(mask or [])], overwrite=False)
+    from .jobs.adapt import adapt_report, paired_picks, run_adapt_job
+    from .training.adapt import AdaptOptions
+
+    with compile_note():
+        job = run_adapt_job(inputs, paired_picks(sticks, mask), model, iline=iline, xline=xline,
+                            endian=_value(endian), options=AdaptOptions(steps=steps), progress=True)
+    typer.echo("\n".join(adapt_report(job)))
 
 
 if __name__ == "__main__":  # pragma: no cover

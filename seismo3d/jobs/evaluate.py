@@ -45,7 +45,7 @@ from .outputs import check_outputs, output_folder
 from .runinfo import RUN_JSON, RunRecord, input_changed, jsonable, read_run_json
 
 __all__ = ["CONFIDENCE_COLUMNS", "EvaluateJob", "RESULTS", "SeismicLine", "evaluation_table", "read_line",
-           "run_evaluate_job"]
+           "read_people_faults", "run_evaluate_job"]
 
 RESULTS = ("evaluation.csv", "evaluation.json", "evaluation.png", RUN_JSON)  # what a run writes into its folder
 CONFIDENCE_COLUMNS = ("confidence", "mean_likelihood")  # of fault_summary.csv, the first present is read
@@ -218,6 +218,38 @@ def _read_confidence(folder: Path) -> tuple:
     if column is None:
         return None, {}
     return column, {int(r["id"]): float(r[column]) if r[column] else float("nan") for r in rows}
+
+
+def read_people_faults(line: SeismicLine, *, sticks=None, mask=None) -> SectionFaults:
+    """People's faults on a line, from fault sticks or a raster mask (the module notes), as evaluate places them.
+
+    Parameters
+    ----------
+    line : SeismicLine
+        From :func:`read_line`.
+    sticks, mask : str or os.PathLike, optional
+        One of them: an OpendTect, Charisma or IESX fault-stick file (sticks of other lines left out with a
+        warning), or a mask of the line's shape (.npy or an image).
+
+    Returns
+    -------
+    SectionFaults
+
+    Raises
+    ------
+    InputError
+        Both or neither given; no stick on the line; a mask of another shape; a line without inline / crossline
+        numbers for sticks.
+    DataNotFoundError
+        No file at the path.
+    """
+    if (sticks is None) == (mask is None):
+        raise InputError("pass people's faults as either sticks=FILE (--sticks) or mask=FILE (--mask)")
+    if sticks is not None:
+        if not Path(sticks).is_file():
+            raise DataNotFoundError(f"no fault-stick file at {sticks}; check the path")
+        return _read_sticks(Path(sticks), line)
+    return _read_mask(Path(mask), line)
 
 
 def _read_sticks(path: Path, line: SeismicLine) -> SectionFaults:

@@ -28,6 +28,7 @@ from ..seismic.blocks.options import BlockRunOptions
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
 from ..seismic.faults.pipeline import trace_faults
+from ..seismic.adapted_network import MODEL_NETWORK, check_adapted_model
 from ..seismic.io.writer import write_like, write_like_blocks
 from .fault_inputs import FaultsInput, read_input, write_demo_input
 from .fault_tables import write_points, write_summary
@@ -116,7 +117,7 @@ def _write_volume(inp: FaultsInput, out_dir: Path, stem: str, values, *, like: P
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
                    endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, likelihood="learned",
-                   memory_limit=None, scheduler=None, overwrite=False, progress=True) -> FaultsJobResult:
+                   memory_limit=None, scheduler=None, overwrite=False, progress=True, model=None) -> FaultsJobResult:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 
     Inputs
@@ -238,6 +239,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     scheduler : str, optional
         A ``dask.distributed`` scheduler address (``tcp://host:port``) for the block-by-block run; default: dask's
         local threaded scheduler.
+    model : str or os.PathLike, optional
+        A MODEL folder written by ``seismo3d adapt``: the fault network adapted to the survey replaces the shipped one
+        (:attr:`~seismo3d.seismic.faults.LearnedOptions.adapted`; with ``likelihood='learned'`` only); its network
+        file is recorded with its sha256 among the run's inputs. Default: the shipped network.
     overwrite : bool, optional
         Replace the files of an earlier run in ``out_dir``, and the block-by-block stores of another input or other
         options (found from what they record before the work, moved aside while this run writes its own, deleted
@@ -285,6 +290,14 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
     options = FaultTracingOptions(sensitivity=sensitivity, likelihood=likelihood)
+    inputs = {"input": input_path}
+    if model is not None:  # the adapted network, checked before any work
+        if likelihood != "learned":
+            raise InputError(f"--model is the adapted fault network, which the learned likelihood runs; drop "
+                             f"--likelihood {likelihood} or --model")
+        check_adapted_model(model)
+        options = replace(options, learned=replace(options.learned, adapted=str(model)))
+        inputs["model"] = Path(model) / MODEL_NETWORK if Path(model).is_dir() else Path(model)
     if demo and input_path is not None:
         raise InputError("pass either an input file or demo=True (--demo), not both")
     if not demo and input_path is None:
@@ -308,7 +321,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
                                        record=record, how=how)
             final = {key: stage.final(path) for key, path in written.items()}
             record.options["tracing_options"] = options
-            final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs={"input": input_path},
+            final["run_json"] = stage.final(record.write(stage.path / RUN_JSON, inputs=inputs,
                                                          outputs=final, results={"n_faults": len(summary),
                                                                                  "xy_unit": how["xy_unit"]}))
     except KeyboardInterrupt as exc:

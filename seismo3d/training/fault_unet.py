@@ -65,7 +65,7 @@ from ..seismic.evaluation import evaluate_faults
 from ..seismic.faults.likelihood.network import BLOCKS, normalise_section
 
 __all__ = ["TrainingOptions", "FaultUNet", "train", "export_weights", "model_from_weights", "write_check",
-           "validate", "main"]
+           "validate", "main", "segmentation_loss", "training_mode"]
 
 VALIDATION_SEED = 7_777_777
 log = logging.getLogger("seismo3d.training")
@@ -242,7 +242,9 @@ def _batch(seed: int, first: int, n: int, patch: int, options: FaultSectionOptio
     return torch.from_numpy(x), torch.from_numpy(y)
 
 
-def _loss(logits, target, positive_weight: float):
+def segmentation_loss(logits, target, positive_weight: float):
+    """Binary cross-entropy with the fault samples weighted by ``positive_weight`` plus the soft Dice loss (Milletari
+    et al. 2016), of logits against targets in [0, 1] (tensors of one shape)."""
     weight = torch.tensor(float(positive_weight))
     bce = nn.functional.binary_cross_entropy_with_logits(logits, target, pos_weight=weight)
     prob = torch.sigmoid(logits)
@@ -251,7 +253,7 @@ def _loss(logits, target, positive_weight: float):
     return bce + dice
 
 
-def _training_mode(model: FaultUNet) -> None:
+def training_mode(model: FaultUNet) -> None:
     """Training mode, except for a fine-tuned network's batch normalisations: folded weights leave them the
     identity, which batch statistics would undo (their running statistics stay those of the identity)."""
     model.train()
@@ -269,7 +271,7 @@ def validate(model: FaultUNet, x: torch.Tensor, y: np.ndarray) -> dict:
     model.eval()
     with torch.no_grad():
         prob = torch.sigmoid(torch.cat([model(x[i:i + 16]) for i in range(0, len(x), 16)])).numpy()[:, 0]
-    _training_mode(model)
+    training_mode(model)
     hits_p = hits_r = n_pred = n_label = 0.0
     clean, n_unfaulted = 0, 0
     for p, lab in zip(prob > 0.5, y):
@@ -330,7 +332,7 @@ def train(options: TrainingOptions, out_dir: Path, *, section_options: FaultSect
         teacher.requires_grad_(False)
         teacher_sha256 = hashlib.sha256(Path(options.teacher).read_bytes()).hexdigest()
         log.info("distilling %s (sha256 %s), weight %.2f", options.teacher, teacher_sha256, options.distill_weight)
-    _training_mode(model)
+    training_mode(model)
     optimiser = torch.optim.Adam([p for p in model.parameters() if p.requires_grad], lr=options.learning_rate)
     schedule = torch.optim.lr_scheduler.CosineAnnealingLR(optimiser, options.steps, eta_min=0.05 * options.learning_rate)
     xv, yv = _batch(VALIDATION_SEED, 0, options.n_validation, options.patch, sec)
@@ -346,12 +348,12 @@ def train(options: TrainingOptions, out_dir: Path, *, section_options: FaultSect
     for step in range(1, options.steps + 1):
         x, y = _batch(options.seed, (step - 1) * options.batch_size, options.batch_size, options.patch, sec)
         logits = model(x)
-        loss = _loss(logits, y, options.positive_weight)
+        loss = segmentation_loss(logits, y, options.positive_weight)
         if teacher is not None:
             with torch.no_grad():
                 soft = torch.sigmoid(teacher(x))
             w = float(options.distill_weight)
-            loss = (1 - w) * loss + w * _loss(logits, soft, options.positive_weight)
+            loss = (1 - w) * loss + w * segmentation_loss(logits, soft, options.positive_weight)
         optimiser.zero_grad()
         loss.backward()
         optimiser.step()
@@ -365,7 +367,7 @@ def train(options: TrainingOptions, out_dir: Path, *, section_options: FaultSect
                 entry["validation"] = validate(model, xv, yv)
                 model.eval()
                 np.savez(out_dir / "checkpoint.npz", **export_weights(model))  # partial result of a long run
-                _training_mode(model)
+                training_mode(model)
             history.append(entry)
             log.info(json.dumps(entry))
     model.eval()

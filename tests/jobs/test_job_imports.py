@@ -61,6 +61,7 @@ BUDGETS = [
     ImportBudget("seismo3d.jobs.evaluate", frozenset({"numpy", "scipy", "segyio"}),
                  2.0),  # 0.38-0.40 (0.43-0.49); 0.81
     ImportBudget("seismo3d.jobs.faults", frozenset({"numpy", "scipy", "numba", "segyio"}), 2.5),  # 0.86-0.99; 1.16
+    ImportBudget("seismo3d.jobs.adapt", frozenset({"numpy", "scipy", "segyio"}), 2.0),  # PyTorch only when it trains
     ImportBudget("seismo3d.jobs.fault_tables", frozenset({"numpy", "scipy", "numba", "segyio"}),
                  2.5),  # 0.70-0.98; 1.15
     ImportBudget("seismo3d.jobs.horizon", frozenset({"numpy", "scipy", "numba", "segyio"}), 3.0),  # 0.75-0.91; 1.33

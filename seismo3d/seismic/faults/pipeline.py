@@ -33,6 +33,7 @@ from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
 from ..io.zarr_store import consolidate
+from ..adapted_network import check_adapted_model
 from ..time_slices import balanced_slices, blank_slices, filled_slices, slice_extremes
 from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
@@ -62,7 +63,7 @@ STAGE_GROWTH = 64 << 20
 
 def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivity=None,
                  options: FaultTracingOptions | None = None, likelihood: FaultLikelihood | None = None,
-                 blocks: BlockRunOptions | None = None, progress=True) -> FaultInterpretation:
+                 blocks: BlockRunOptions | None = None, progress=True, model=None) -> FaultInterpretation:
     """Trace the faults of a seismic cube or section: likelihood, voting, skins, throw.
 
     The steps, with their defaults chosen from the data (no per-file tuning):
@@ -125,6 +126,10 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
         otherwise; the likelihood, the voting and the throw report their own progress too).
+    model : str or os.PathLike, optional
+        A MODEL folder written by ``seismo3d adapt`` (the fault network adapted to a survey from an interpreter's
+        faults): the learned likelihood runs it instead of the shipped network (``LearnedOptions.adapted``);
+        default: ``options.learned.adapted`` (the shipped network unless set).
 
     Returns
     -------
@@ -136,7 +141,10 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     InputError
         ``data`` is not a numeric 2D / 3D array with at least 3 samples per axis, all samples are equal, the
         sample interval / unit or an option is invalid, a run by blocks without ``blocks.work_dir`` or with a
-        ``blocks.memory_limit`` too small for its blocks (the message names one that works).
+        ``blocks.memory_limit`` too small for its blocks (the message names one that works), or ``model`` is not a
+        MODEL folder of ``seismo3d adapt`` (or one changed since).
+    DataNotFoundError
+        No folder at ``model``.
     UnsupportedDataError
         The data cannot support fault tracing (see above); the message says why and what to do.
 
@@ -177,6 +185,10 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         raise InputError(f"trace_faults(options=...) must be a FaultTracingOptions; got {type(opt).__name__}")
     if sensitivity is not None:
         opt = dataclasses.replace(opt, sensitivity=sensitivity)
+    if model is not None:
+        check_adapted_model(model)  # before any work: a missing or changed MODEL
+        opt = dataclasses.replace(opt, likelihood="learned",
+                                  learned=dataclasses.replace(opt.learned, adapted=str(model)))
 
     run = _block_run(blocks)
     if not run.in_memory_for(np.shape(data), has_likelihood=likelihood is not None):

@@ -36,7 +36,9 @@ MICCAI 2015, LNCS 9351, 234-241. doi:10.1007/978-3-319-24574-4_28
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
+from pathlib import Path
 
 import numba as nb
 import numpy as np
@@ -44,6 +46,7 @@ from scipy.ndimage import zoom
 
 from ...._progress import progress_steps
 from ....errors import InputError
+from ...adapted_network import MODEL_NETWORK, is_model_path, read_adapted_model
 from ...attributes import orientation_from_likelihood
 from ..result import FaultLikelihood
 from .network import (
@@ -53,7 +56,7 @@ from .network import (
 
 __all__ = ["WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS", "LearnedOptions", "load_fault_network", "scale_subsample",
            "amplitude_scale", "fault_probability", "cube_directions", "direction_probability",
-           "learned_fault_likelihood", "orientation_from_likelihood", "grids_mean"]
+           "learned_fault_likelihood", "orientation_from_likelihood", "grids_mean", "load_network"]
 
 _SCALE_SAMPLES = 4_000_000
 
@@ -111,6 +114,10 @@ class LearnedOptions:
         probabilities differ by 0.0013 on average, by 0.033 at the 99th percentile (``fault_unet_int8.json``); on
         the real sections 'int8' kept the F3 and Great South Basin scores within 0.005 but lost the fault of teapot
         tpd near trace 20 below sample 240 (covered 0.43 -> 0.0) and changed the fault counts of 6 of 10 lines.
+    adapted : str or None
+        The path of a MODEL folder written by ``seismo3d adapt`` (the network fine-tuned on an interpreter's faults,
+        :mod:`~seismo3d.seismic.adapted_network`): run instead of the shipped network, in float32, on
+        sections and cubes alike (``network`` is then not used); None (the default): the shipped network.
     """
 
     directions: str = "both"
@@ -123,8 +130,11 @@ class LearnedOptions:
     patch_samples: int = 128
     saturation_level: float = 0.9
     network: str = "auto"
+    adapted: str | None = None
 
     def __post_init__(self):
+        if self.adapted is not None:
+            object.__setattr__(self, "adapted", str(self.adapted))
         if self.network != "auto" and self.network not in NETWORKS:
             raise InputError(f"network must be 'auto' or one of {', '.join(map(repr, NETWORKS))}; got "
                              f"{self.network!r}")
@@ -166,7 +176,10 @@ class LearnedOptions:
 
     def model(self, ndim: int) -> str:
         """The shipped model (a key of :data:`NETWORKS`) run on an input of ``ndim`` dimensions (2: a section, 3: a
-        cube or a block of one): ``network``, or for 'auto' 'int8' on a cube and 'float' on a section."""
+        cube or a block of one): ``network``, or for 'auto' 'int8' on a cube and 'float' on a section; ``adapted``
+        (a MODEL path, which :func:`load_network` loads) when set."""
+        if self.adapted is not None:
+            return self.adapted
         if self.network != "auto":
             return self.network
         return "int8" if int(ndim) == 3 else "float"
@@ -177,6 +190,46 @@ class LearnedOptions:
         n = grid_size(n_samples, factor)
         finest = float(factor) == max(self.grids(n_samples, ndim))
         return int(self.patch_samples) if finest and n < int(self.patch_samples) else 0
+
+
+def load_network(network: str, calls: int = 1) -> FaultNetwork:
+    """The network :meth:`LearnedOptions.model` names, as an ONNX Runtime session: a shipped one
+    (:func:`load_fault_network`), or the network of a MODEL folder written by ``seismo3d adapt`` (its sha256 checked
+    against its record, :func:`~seismo3d.seismic.adapted_network.read_adapted_model`; loaded again when the file
+    changes).
+
+    Parameters
+    ----------
+    network : {'int8', 'float'} or str
+        A key of :data:`NETWORKS`, or the path of a MODEL folder.
+    calls : int, optional
+        Parts each call runs at once (:class:`~seismo3d.seismic.faults.likelihood.network.FaultNetwork`).
+
+    Returns
+    -------
+    FaultNetwork
+
+    Raises
+    ------
+    InputError
+        An unknown network, or a folder that is not a MODEL of ``seismo3d adapt`` (or was changed since).
+    DataNotFoundError
+        No MODEL folder at the path.
+    Seismo3dError
+        The shipped network is missing or damaged.
+    """
+    if network in NETWORKS or not is_model_path(network):
+        return load_fault_network(network, calls)
+    folder = Path(network)
+    folder = folder.parent if folder.name == MODEL_NETWORK else folder
+    stamp = (folder / MODEL_NETWORK).stat().st_mtime_ns if (folder / MODEL_NETWORK).is_file() else 0
+    return _adapted_network(str(folder.resolve()), stamp, int(calls))
+
+
+@functools.lru_cache(maxsize=4)
+def _adapted_network(folder: str, stamp: int, calls: int) -> FaultNetwork:
+    """A MODEL folder's network, cached by its path and its network file's time of change (``stamp``)."""
+    return FaultNetwork(read_adapted_model(folder)[0], calls)
 
 
 def scale_subsample(shape) -> tuple:
@@ -297,7 +350,7 @@ def grids_mean(total: np.ndarray, n_grids: int) -> np.ndarray:
 def _network_probability(arr: np.ndarray, opt: LearnedOptions, scale, progress: bool,
                          stretch_to: int = 0) -> np.ndarray:
     """The network's probability of a section or cube on its own grid (every inline and crossline section)."""
-    weights = load_fault_network(opt.model(arr.ndim))
+    weights = load_network(opt.model(arr.ndim))
     batch = int(opt.sections_per_batch)
     if arr.ndim == 2:
         with progress_steps(1, "fault network", unit="section", enabled=progress) as bar:
@@ -347,8 +400,9 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
     stretch_to : int, optional
         Samples per trace the sections are stretched to before the network (:meth:`LearnedOptions.stretch`); 0:
         as they are.
-    network : {'int8', 'float'}, optional
-        The shipped model (:func:`load_fault_network`; ``LearnedOptions.model(3)``), a batch's parts run on the cores.
+    network : {'int8', 'float'} or str, optional
+        The shipped model, or an adapted MODEL's path (:func:`load_network`; ``LearnedOptions.model(3)``), a batch's
+        parts run on the cores.
 
     Returns
     -------
@@ -371,7 +425,7 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
     if np.ndim(small) != 3 or axis not in (0, 1):
         raise InputError(f"direction_probability needs a (n_inlines, n_xlines, n_samples) cube and axis 0 or 1; got "
                          f"shape {np.shape(small)} and axis {axis!r}")
-    weights = load_fault_network(network, max(1, min(nb.get_num_threads(), batch)))
+    weights = load_network(network, max(1, min(nb.get_num_threads(), batch)))
     if bar is None:
         with progress_steps(small.shape[axis], "fault network", unit="section", enabled=False) as quiet:
             return direction_probability(small, axis, scale=scale, batch=batch, bar=quiet, stretch_to=stretch_to,

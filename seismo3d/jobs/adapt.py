@@ -1,0 +1,386 @@
+"""The ``seismo3d adapt`` job: the fault network adapted to a survey from an interpreter's faults on a few lines.
+
+:func:`run_adapt_job` reads each picked line (a SEG-Y inline or crossline, or a 2D ``.npy`` / ``.f32be`` section,
+through evaluate's reader :func:`~seismo3d.jobs.evaluate.read_line`) and the interpreter's faults on it (fault sticks
+or a mask, :func:`~seismo3d.jobs.evaluate.read_people_faults`), then:
+
+1. **holds back** a band of a quarter of each line's traces (:func:`held_back_band`: the band holding the share of
+   the line's picked fault samples closest to a quarter), whose picks the training never sees;
+2. traces the faults of each line with the shipped network and scores them in the band (the project's tolerant
+   precision / recall / F1 at 3 samples, :func:`~seismo3d.seismic.fault_scoring.tolerant_scores`): **before**;
+3. fine-tunes the network on the rest of each line (:func:`seismo3d.training.adapt.fine_tune`, PyTorch, the ``train``
+   extra): every sample outside the band counts, a sample away from the picks as no fault, so **each picked line is
+   taken as fully interpreted** (a fault left undrawn is taught as none);
+4. traces the lines again with the fine-tuned network and scores the band: **after**;
+5. writes MODEL (:mod:`~seismo3d.seismic.adapted_network`): the fine-tuned network when its mean held-back
+   F1 is above the shipped network's, else the shipped float network itself (the default kept, said in one line),
+   and the record ``adapt.json``.
+
+The network is fine-tuned once, without the band: the model written is the one validated.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import tempfile
+from contextlib import contextmanager
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy.ndimage import zoom
+
+from .._atomic import atomic_directory
+from .._progress import LOGGER
+from ..errors import InputError
+from ..seismic.fault_scoring import tolerant_scores
+from ..seismic.adapted_network import MODEL_NETWORK, MODEL_RECORD
+from .runinfo import RunRecord
+
+__all__ = ["AdaptJobResult", "HELD_BACK", "TORCH_HINT", "adapt_report", "held_back_band", "paired_picks",
+           "run_adapt_job", "training_grids", "write_model"]
+
+HELD_BACK = 0.25  # share of each line's traces held back for validation
+TORCH_HINT = ("seismo3d adapt trains the fault network with PyTorch, which is not installed: "
+              "pip install 'seismo3d[train]' (CPU only: pip install torch==2.13.0 onnx)")
+
+
+@dataclass(frozen=True)
+class AdaptJobResult:
+    """What :func:`run_adapt_job` measured and wrote.
+
+    Attributes
+    ----------
+    kept : {'adapted', 'default'}
+        The network MODEL holds: the fine-tuned one, or the shipped one (adapting did not help on the held-back band).
+    before, after : list of dict
+        Per line: the held-back band's ``precision``, ``recall``, ``f1`` with the shipped and the fine-tuned network.
+    lines : list of dict
+        Per line: ``input``, ``line`` (its name), ``n_traces``, ``n_samples``, ``picked_samples``,
+        ``held_back_traces`` ([first, end)).
+    model : pathlib.Path
+        The MODEL folder written.
+    seconds : dict
+        Wall time of each stage.
+    """
+
+    kept: str
+    before: list
+    after: list
+    lines: list
+    model: Path
+    seconds: dict = field(default_factory=dict)
+
+    def mean(self, which: str, score: str = "f1") -> float:
+        """The mean over the lines of a held-back score of ``which`` ('before' or 'after')."""
+        return float(np.mean([s[score] for s in getattr(self, which)]))
+
+
+def paired_picks(sticks, mask) -> list:
+    """The picks of ``seismo3d adapt``'s ``--sticks`` and ``--mask`` as :func:`run_adapt_job` takes them:
+    ``[('sticks', path), ...]`` or ``[('mask', path), ...]``.
+
+    Parameters
+    ----------
+    sticks, mask : list of str or os.PathLike, or None
+
+    Returns
+    -------
+    list of (str, pathlib.Path)
+
+    Raises
+    ------
+    InputError
+        Both given (the command line does not tell which of them belongs to which input) or neither.
+    """
+    if sticks and mask:
+        raise InputError("pass the picks of every INPUT one way: all --sticks or all --mask")
+    if not sticks and not mask:
+        raise InputError("pass the interpreter's faults of each INPUT: --sticks FILE or --mask FILE")
+    return [("sticks", Path(p)) for p in sticks or []] + [("mask", Path(p)) for p in mask or []]
+
+
+def adapt_report(job: "AdaptJobResult") -> list:
+    """The lines ``seismo3d adapt`` prints: each line's held-back band and scores before -> after, their means,
+    the network kept (one line when the shipped one), and where MODEL is.
+
+    Parameters
+    ----------
+    job : AdaptJobResult
+
+    Returns
+    -------
+    list of str
+    """
+    out = [f"  {line['line']}: held back traces {line['held_back_traces'][0]}-{line['held_back_traces'][1] - 1}, F1 "
+           f"{b['f1']:.3f} -> {a['f1']:.3f} (P {b['precision']:.2f} -> {a['precision']:.2f}, R {b['recall']:.2f} -> "
+           f"{a['recall']:.2f})" for line, b, a in zip(job.lines, job.before, job.after)]
+    out.append(f"held-back F1: shipped network {job.mean('before'):.3f}, adapted {job.mean('after'):.3f}")
+    if job.kept == "default":
+        out.append("adapting did not help on the held-back traces: MODEL keeps the shipped network")
+    out.append(f"wrote {job.model} ({MODEL_NETWORK}, {MODEL_RECORD}); trace with: seismo3d faults INPUT -o OUT "
+               f"--model {job.model}")
+    return out
+
+
+def held_back_band(picks: np.ndarray, share: float = HELD_BACK) -> tuple[int, int]:
+    """The band of traces held back from the training: ``share`` of the line's traces, placed where its share of the
+    picked fault samples is closest to ``share`` among the bands that leave picks both in and out of it (any band
+    when none does; the leftmost of equals; starts on a grid of a sixteenth of the line).
+
+    Parameters
+    ----------
+    picks : (n_traces, n_samples) bool ndarray
+        The interpreter's fault samples on the line.
+    share : float, optional
+        In (0, 1).
+
+    Returns
+    -------
+    (int, int)
+        First trace of the band and one past its last.
+    """
+    n = picks.shape[0]
+    width = max(1, int(round(n * share)))
+    per_trace = np.asarray(picks, bool).sum(axis=1)
+    total = max(int(per_trace.sum()), 1)
+    cum = np.concatenate([[0], np.cumsum(per_trace)])
+    starts = np.unique(np.linspace(0, n - width, 17).round().astype(int))
+    shares = (cum[starts + width] - cum[starts]) / total
+    gap = np.abs(shares - share) + 2.0 * ((shares <= 0) | (shares >= 1))  # picks on both sides of the band first
+    first = int(starts[np.argmin(gap)])
+    return first, first + width
+
+
+@dataclass(frozen=True)
+class _Line:
+    """A picked line: where it comes from, its amplitudes and the interpreter's fault samples."""
+
+    input: Path
+    name: str
+    section: np.ndarray
+    picks: np.ndarray
+    sample_interval: float
+    sample_unit: str
+    band: tuple
+
+
+def _check_before_work(inputs, picks, model: Path) -> None:
+    """The refusals that need no reading: MODEL present, counts that do not pair."""
+    if model.exists():
+        raise InputError(f"{model} exists; adapt writes a new MODEL folder: pass another -o or remove it")
+    if not model.parent.is_dir():
+        raise InputError(f"the folder {model.parent} that is to hold MODEL does not exist; create it or pass another "
+                         "-o")
+    if not inputs:
+        raise InputError("pass at least one picked line (INPUT)")
+    if len(picks) not in (1, len(inputs)) or (len(picks) == 1 and len(inputs) > 1 and picks[0][0] != "sticks"):
+        raise InputError(f"{len(inputs)} inputs and {len(picks)} --sticks / --mask: pass one per input, in the same "
+                         "order (or one --sticks file for every input)")
+
+
+def _check_training_framework() -> None:
+    """PyTorch and onnx (the ``train`` extra) present, else one line saying how to install them."""
+    for needed in ("torch", "onnx"):
+        if importlib.util.find_spec(needed) is None:
+            raise InputError(TORCH_HINT)
+
+
+def _read_lines(inputs, picks, segy: dict) -> list:
+    """Every picked line and its picks, read and placed before any work (a stick off its line, a mask of another
+    shape, a line without faults are refused here)."""
+    from .evaluate import read_line, read_people_faults
+
+    lines = []
+    for i, path in enumerate(inputs):
+        kind, pick_path = picks[i if len(picks) > 1 else 0]
+        line = read_line(path, segy_options=segy)
+        people = read_people_faults(line, **{kind: pick_path}).mask()
+        if not people.any():
+            raise InputError(f"the {kind} {Path(pick_path).name} draw no fault sample on {line.name}; adapt learns "
+                             "from lines with faults drawn")
+        step = np.diff(line.samples)
+        unit = line.sample_unit if line.sample_unit in ("ms", "m", "ft") else "samples"
+        interval = float(np.median(step)) if unit != "samples" and step.size else 1.0
+        lines.append(_Line(Path(path), line.name, line.section, people, interval, unit, held_back_band(people)))
+    return lines
+
+
+def _traced(line: _Line, model=None) -> np.ndarray:
+    """The faults traced on the line (the shipped network, or a MODEL folder), as a mask of its samples."""
+    from ..seismic.faults.pipeline import trace_faults
+    from ..seismic.faults.result import fault_labels
+
+    result = trace_faults(line.section, sample_interval=line.sample_interval, sample_unit=line.sample_unit,
+                          progress=False, model=model)
+    return fault_labels(result.faults, line.section.shape) > 0
+
+
+def _band_scores(line: _Line, traced: np.ndarray) -> dict:
+    """Tolerant precision / recall / F1 (3 samples) of the traced faults in the line's held-back band."""
+    a, b = line.band
+    p, r, f1 = tolerant_scores(traced[a:b], line.picks[a:b], 3.0)
+    return {"precision": round(p, 4), "recall": round(r, 4), "f1": round(f1, 4)}
+
+
+def training_grids(section: np.ndarray, picks: np.ndarray, band: tuple) -> list:
+    """A picked line on each network grid the tracing runs it on, with its picks and the loss weights (0 in the
+    held-back band), as :func:`seismo3d.training.adapt.fine_tune` takes them.
+
+    Parameters
+    ----------
+    section : (n_traces, n_samples) float32 ndarray
+        Amplitudes.
+    picks : (n_traces, n_samples) bool ndarray
+        The interpreter's fault samples.
+    band : (int, int)
+        The held-back traces [first, end) (:func:`held_back_band`).
+
+    Returns
+    -------
+    list of (x, y, w) float32 ndarrays
+        Per grid (``LearnedOptions().grids``): the normalised amplitudes resampled as
+        :func:`~seismo3d.seismic.faults.likelihood.network.to_network_grid` does (stretched along the samples when the
+        tracing stretches them), the picks and the weights resampled with them.
+    """
+    from ..seismic.faults.likelihood.learned import LearnedOptions, amplitude_scale
+    from ..seismic.faults.likelihood.network import POOLING_MULTIPLE, normalise_section, to_network_grid
+
+    opt = LearnedOptions()
+    weight = np.ones(section.shape, np.float32)
+    weight[band[0]:band[1]] = 0.0
+    scale = amplitude_scale(section)
+    grids = []
+    for factor in opt.grids(section.shape[1], 2):
+        small, _ = to_network_grid(section, factor, align=POOLING_MULTIPLE)
+        x = normalise_section(small, scale=scale)
+        stretch = opt.stretch(section.shape[1], factor, 2)
+        size = (x.shape[0], stretch or x.shape[1])
+        if size != x.shape:  # the short traces stretched along the samples, as the tracing does
+            x = zoom(x, (1.0, size[1] / x.shape[1]), order=3).astype(np.float32)
+        labels = [zoom(a.astype(np.float32), (size[0] / a.shape[0], size[1] / a.shape[1]), order=1)
+                  for a in (picks, weight)]
+        grids.append((x, (labels[0] > 0.25).astype(np.float32), (labels[1] > 0.5).astype(np.float32)))
+    return grids
+
+
+def write_model(model, network: bytes, record: RunRecord, inputs: dict, results: dict) -> Path:
+    """Write a MODEL folder atomically: the network and its record (the network's sha256 added to ``results``).
+
+    Parameters
+    ----------
+    model : str or os.PathLike
+        The folder (replaced if present: the caller refuses an existing one first).
+    network : bytes
+        A serialised ONNX model of the fault network's architecture
+        (:func:`~seismo3d.seismic.faults.likelihood.network.onnx_model`).
+    record : RunRecord
+        The run's record (written as ``adapt.json``).
+    inputs : dict
+        Input paths by role, identified with their sha256 in the record.
+    results : dict
+        What the run measured (:func:`run_adapt_job`'s record).
+
+    Returns
+    -------
+    pathlib.Path
+        The MODEL folder.
+    """
+    model = Path(model)
+    results = dict(results, network_sha256=hashlib.sha256(network).hexdigest())
+    with atomic_directory(model) as tmp:
+        (tmp / MODEL_NETWORK).write_bytes(network)
+        record.write(tmp / MODEL_RECORD, inputs=inputs,
+                     outputs={"network": model / MODEL_NETWORK, "record": model / MODEL_RECORD}, results=results)
+    return model
+
+
+def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ignore_geometry=False,
+                  sample_unit=None, options=None, progress=True) -> AdaptJobResult:
+    """Adapt the fault network to a survey from an interpreter's faults on a few lines: the ``seismo3d adapt``
+    command (module notes).
+
+    Parameters
+    ----------
+    inputs : sequence of str or os.PathLike
+        The picked lines: SEG-Y inlines or crosslines, ``.npy`` (n_traces, n_samples) or ``.f32be`` sections.
+    picks : sequence of ('sticks' or 'mask', path)
+        The interpreter's faults, the i-th on the i-th input (or one fault-stick file for every input): fault sticks
+        (OpendTect, Charisma, IESX; sticks of other lines left out) or a mask of the line (.npy (n_traces,
+        n_samples) or an image of a row per sample).
+    model : str or os.PathLike
+        The MODEL folder to write (must not exist).
+    iline, xline, endian, ignore_geometry, sample_unit : optional
+        How the SEG-Y inputs are read (as ``seismo3d faults`` reads them).
+    options : seismo3d.training.adapt.AdaptOptions, optional
+        The fine-tuning (default: every layer, 100 steps of 4 patches, seed 0).
+    progress : bool, optional
+        Log the stages and a progress bar over the training steps.
+
+    Returns
+    -------
+    AdaptJobResult
+
+    Raises
+    ------
+    InputError
+        MODEL exists; inputs and picks do not pair; PyTorch or onnx is missing (the message says how to install
+        them); a line is not one line (a cube); sticks not on their line; a mask of another shape; a line without
+        picked faults. All before the work.
+    DataNotFoundError
+        An input or pick file is missing.
+    """
+    record = RunRecord("adapt", locals())
+    model = Path(model)
+    picks = [(str(k), Path(p)) for k, p in picks]
+    if any(k not in ("sticks", "mask") for k, _ in picks):
+        raise InputError("each pick must be ('sticks', path) or ('mask', path)")
+    _check_before_work(list(inputs), picks, model)
+    segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian, sample_unit=sample_unit)
+    segy = {k: v for k, v in segy.items() if v is not None}
+    with record.stage("read lines and picks"):
+        lines = _read_lines(list(inputs), picks, segy)
+    _check_training_framework()
+    from ..seismic.faults.likelihood.network import onnx_model, WEIGHTS_FILE
+    from ..training.adapt import AdaptOptions, fine_tune
+
+    opt = options or AdaptOptions()
+    say = LOGGER.info if progress else (lambda *a: None)
+    with record.stage("held-back score before"):
+        before = [_band_scores(line, _traced(line)) for line in lines]
+    say("held-back F1 with the shipped network: %.3f", float(np.mean([s["f1"] for s in before])))
+    from importlib import resources
+
+    shipped = resources.files("seismo3d.seismic.faults.likelihood")
+    with shipped.joinpath("fault_unet.npz").open("rb") as fh, np.load(fh) as npz:
+        start = {k: npz[k] for k in npz.files}
+    with record.stage("fine-tune"):
+        grids = [g for line in lines for g in training_grids(line.section, line.picks, line.band)]
+        tuned = fine_tune(start, grids, options=opt, progress=progress)
+    network = onnx_model(tuned["weights"])
+    with record.stage("held-back score after"), _staged_model(model, network) as trial:
+        after = [_band_scores(line, _traced(line, trial)) for line in lines]
+    gain = float(np.mean([s["f1"] for s in after]) - np.mean([s["f1"] for s in before]))
+    kept = "adapted" if gain > 0 else "default"
+    if kept == "default":
+        network = shipped.joinpath(WEIGHTS_FILE).read_bytes()
+    described = [{"input": str(line.input), "line": line.name, "n_traces": int(line.section.shape[0]),
+                  "n_samples": int(line.section.shape[1]), "picked_samples": int(line.picks.sum()),
+                  "held_back_traces": list(line.band)} for line in lines]
+    results = {"kept": kept, "held_back_before": before, "held_back_after": after,
+               "held_back_f1_before": round(float(np.mean([s["f1"] for s in before])), 4),
+               "held_back_f1_after": round(float(np.mean([s["f1"] for s in after])), 4), "lines": described,
+               "training": {**asdict(opt), "loss": tuned["loss"]}}
+    roles = {f"input_{i}": line.input for i, line in enumerate(lines)}
+    roles.update({f"{kind}_{i}": path for i, (kind, path) in enumerate(picks)})
+    write_model(model, network, record, roles, results)
+    return AdaptJobResult(kept, before, after, described, model, dict(record.stage_seconds))
+
+
+@contextmanager
+def _staged_model(model: Path, network: bytes):
+    """A MODEL folder of the trial network in a temporary folder beside MODEL (removed after), for the tracing that
+    scores it."""
+    with tempfile.TemporaryDirectory(prefix=f".{model.name}.trial.", dir=model.parent) as tmp:
+        yield write_model(Path(tmp) / "trial", network, RunRecord("adapt", {}), {}, {"kept": "trial"})

@@ -21,9 +21,14 @@ _MAX_LINES = 20  # log lines of a loop over items (every 5 %)
 def _interactive() -> bool:
     """Standard error is a terminal, or this runs in a Jupyter kernel (where tqdm draws a widget)."""
     try:
-        return bool(sys.stderr.isatty()) or "ipykernel" in sys.modules
+        if sys.stderr.isatty():
+            return True
     except (AttributeError, ValueError):  # a closed or replaced stderr
-        return False
+        pass
+    # a kernel, not a process that merely imported ipykernel (nbclient, a test running notebooks)
+    ipython = sys.modules.get("IPython")
+    shell = ipython.get_ipython() if ipython is not None and hasattr(ipython, "get_ipython") else None
+    return shell is not None and "IPKernelApp" in getattr(shell, "config", {})
 
 
 class _Steps:

@@ -31,7 +31,6 @@ Bellman, R. (1957). *Dynamic Programming*. Princeton University Press (the path 
 from __future__ import annotations
 
 import numpy as np
-from skimage.measure import approximate_polygon
 
 from ...errors import InputError
 
@@ -140,6 +139,8 @@ def stick_nodes(trace, sample, *, tolerance: float = 1.0) -> tuple:
         raise InputError(f"tolerance must be > 0 samples; got {tolerance}")
     path = _smoothest_path(t, k)
     xy = np.column_stack([t, k]).astype(np.float64)
+    from skimage.measure import approximate_polygon  # on first use: a job importing the sticks' writer loads no skimage
+
     kept = approximate_polygon(xy[path], tolerance)  # rows of xy[path]; the path's samples are unique
     nodes = path[np.isin(k[path], kept[:, 1])]
     near = distance_to_stick(xy, xy[path]) <= tolerance  # samples the stick can hold: near the path it follows

@@ -542,7 +542,7 @@ def render(
     what = {"segy": "SEG-Y line" if job.section else "SEG-Y cube", "faults": f"{job.n_faults} faults",
             "horizon": "horizon",
             "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM", "map": "map"}[job.kind]
-    sticks_drawn = f" and people's fault sticks of {job.n_stick_faults} faults" if job.n_stick_faults else ""
+    sticks_drawn = f" and the --sticks file's {job.n_stick_faults} faults" if job.n_stick_faults else ""
     typer.echo(f"{what}{sticks_drawn} of {input.name}: {job.caption} -> {job.picture}")
 
 

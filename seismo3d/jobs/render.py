@@ -445,7 +445,7 @@ def _render(kind: str, path: Path, output: Path, *, seismic, color_by, vertical_
                                      vertical_exaggeration=vertical_exaggeration)
         extra = dict(horizons=[times])
     slices, camera = _slices_for(geometry.shape)
-    if sticks is not None:  # people's fault sticks over the seismic
+    if sticks is not None:  # the --sticks file's faults over the seismic
         from .interchange import sticks_mesh
 
         mesh = sticks_mesh(sticks, geometry, path if kind == "segy" else under, segy_options=under_options)

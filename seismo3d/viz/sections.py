@@ -250,7 +250,7 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
         ax.add_collection(LineCollection(lines, colors="black", linewidths=3.6, alpha=0.7, zorder=5))
         ax.add_collection(LineCollection(lines, colors="white", linewidths=1.8, linestyles=(0, (4, 2)), zorder=6))
         handles = [Line2D([], [], color="white", lw=1.8, ls=(0, (4, 2)), path_effects=_casing(),
-                          label=f"people's fault sticks ({len(people)})")]
+                          label=f"given fault sticks ({len(people)})")]
         if segments:
             handles.append(Line2D([], [], color=colours[0], lw=2.0, path_effects=_casing(),
                                   label=f"traced faults ({len({fid for fid, _, _ in segments})})"))
@@ -269,7 +269,7 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     ax.tick_params(top=True, labeltop=True)
     extra = f", {len({fid for fid, _, _ in segments})} faults" if segments else ""
     extra += " coloured by throw" if segments and color_by == "throw" else ""
-    extra += f", {len(people)} people's fault sticks" if people else ""
+    extra += f", {len(people)} given fault sticks" if people else ""
     fig.suptitle(f"{title + chr(10) if title else ''}{textwrap.fill(caption + extra, width=heading_width)}",
                  fontsize=10)
     with atomic_path(path) as tmp:

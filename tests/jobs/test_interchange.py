@@ -340,7 +340,7 @@ def test_cli_maps_seed_file_and_sticks(data_dir, tmp_path):
     result = runner.invoke(app, ["render", str(segy), "--sticks", str(sticks), "-o", str(tmp_path / "g.png"),
                                  "--size", "600x400"])
     assert result.exit_code == 0, result.output
-    assert "SEG-Y line and people's fault sticks of 18 faults of gsb_crl_2600.sgy" in result.stdout
+    assert "SEG-Y line and the --sticks file's 18 faults of gsb_crl_2600.sgy" in result.stdout
     assert (tmp_path / "g.png").stat().st_size > 1000
 
 

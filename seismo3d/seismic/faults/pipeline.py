@@ -133,7 +133,8 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
         scan is then skipped.
     blocks : BlockRunOptions, optional
         How a cube is run: the memory limit (default half of the RAM), a forced choice between the run in memory and
-        the run by blocks, the folder of the Zarr stores of a run by blocks (required for one), its dask scheduler,
+        the run by blocks, the folder of the Zarr stores of a run by blocks (default a new temporary folder), its
+        dask scheduler,
         and the input's name and coordinates recorded in the stores (:class:`BlockRunOptions`).
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
@@ -214,14 +215,9 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
 
     run = _block_run(blocks, memory_limit)
     if not run.in_memory_for(np.shape(data), has_likelihood=likelihood is not None):
-        work_dir = run.work_dir
-        if work_dir is None:  # kept: the result's volumes are read from its stores
-            work_dir = tempfile.mkdtemp(prefix="seismo3d-faults-")
-            LOGGER.info("the fault stores of this run by blocks go to %s (pass blocks=BlockRunOptions(work_dir=...) "
-                        "to choose the folder)", work_dir)
         coords = run.coords if run.coords is not None or labels is None else labels.store_coords()
         found = trace_faults_by_blocks(data, opt, sample_interval=sample_interval, sample_unit=sample_unit,
-                                       memory_limit=run.limit, work_dir=work_dir, scheduler=run.scheduler,
+                                       memory_limit=run.limit, work_dir=run.work_dir, scheduler=run.scheduler,
                                        source=run.source, coords=coords, progress=progress)
         return found if labels is None else labels.label(found)
     arr, dead = _cleaned(data, opt)
@@ -326,8 +322,9 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     sample_unit : str
     memory_limit : int
         Bytes.
-    work_dir : str or os.PathLike
-        Existing folder of the Zarr stores ``fault_likelihood.zarr`` and ``fault_surfaces.zarr``.
+    work_dir : str or os.PathLike or None
+        Existing folder of the Zarr stores ``fault_likelihood.zarr`` and ``fault_surfaces.zarr``; None: a new
+        temporary folder, made after the checks and kept (the result reads its volumes from it).
     scheduler : str, optional
         ``dask.distributed`` scheduler address; default the local threads.
     source : str
@@ -358,6 +355,10 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     shape = tuple(int(n) for n in x.shape)
     check_size(shape, opt)
     x = check_block_run(_whole_traces(x), source, memory_limit, scheduler, opt)
+    if work_dir is None:  # after the checks; kept: the result's volumes are read from its stores
+        work_dir = tempfile.mkdtemp(prefix="seismo3d-faults-")
+        LOGGER.info("%s: the fault stores of this run by blocks go to %s (pass blocks=BlockRunOptions(work_dir=...) "
+                    "to choose the folder)", source, work_dir)
     work_dir = pathlib.Path(work_dir)
     if not work_dir.is_dir():
         raise InputError(f"cannot write the fault stores into {work_dir}: it is not a folder; create it first")

@@ -214,5 +214,7 @@ def seismic_input(cube, path, *, lazy_if=None, coordinates: bool = False) -> Sei
     grid_shape = (inlines.size, xlines.size, samples.size)
     if cube.ndim == 2:  # a line of a survey: (n_inlines, n_xlines, n_samples), one of the first two 1
         data = data.reshape(grid_shape)
+        if fields.get("cdp_x") is not None:
+            fields.update(cdp_x=fields["cdp_x"].reshape(grid_shape[:2]), cdp_y=fields["cdp_y"].reshape(grid_shape[:2]))
     return SeismicInput(kind=kind, data=data, inlines=inlines, xlines=xlines, grid_shape=grid_shape,
                         sorting=attrs.get("segy_sorting") or None, **fields)

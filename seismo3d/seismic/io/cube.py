@@ -225,7 +225,7 @@ def _open_segy(path: Path, *, iline, xline, ignore_geometry, endian, sample_unit
     else:
         dims = ("iline", "xline", name)
         coords.update(iline=inlines, xline=xlines)
-        xy = x, y
+        xy = None if x is None else (x, y)
     if xy is not None:
         coords.update(cdp_x=(dims[:-1], np.asarray(xy[0], dtype=np.float64), {"units": xy_unit}),
                       cdp_y=(dims[:-1], np.asarray(xy[1], dtype=np.float64), {"units": xy_unit}))

@@ -28,6 +28,7 @@ segysak (T. Hallam), https://segysak.readthedocs.io: ``xr.open_dataset(path, eng
 
 from __future__ import annotations
 
+import sys
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
@@ -36,7 +37,8 @@ import numpy as np
 
 from ...errors import DataNotFoundError, InputError, Seismo3dWarning
 
-__all__ = ["SEGY_SUFFIXES", "CubeAxes", "open_cube", "seismic_axes", "seismic_kind", "sample_dim", "as_cube"]
+__all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "open_cube", "sample_dim", "sample_interval", "sample_positions",
+           "seismic_axes", "seismic_kind"]
 
 SEGY_SUFFIXES = (".sgy", ".segy")
 _ALIASES = {"inline": ("inline", "iline", "il", "inline_3d"), "crossline": ("crossline", "xline", "xl", "crossline_3d"),
@@ -365,14 +367,43 @@ def seismic_axes(cube) -> CubeAxes:
 
 
 def sample_positions(cube, axes: CubeAxes) -> np.ndarray:
-    """(n_samples,) float64 positions of the samples in ``axes.sample_unit`` (the index without a coordinate)."""
+    """The positions of a cube's samples.
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+
+    Returns
+    -------
+    (n_samples,) float64 ndarray
+        In ``axes.sample_unit``; the sample index without a sample coordinate.
+    """
     if axes.sample in cube.coords:
         return np.asarray(cube.coords[axes.sample].values, dtype=np.float64)
     return np.arange(cube.sizes[axes.sample], dtype=np.float64)
 
 
 def sample_interval(cube, axes: CubeAxes) -> tuple:
-    """``(interval, unit)`` of a cube's samples: ``(None, 'samples')`` without a sample interval."""
+    """The sample interval of a cube and its unit.
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+
+    Returns
+    -------
+    (float or None, str)
+        ``(interval, unit)``; ``(None, 'samples')`` without a sample interval (no unit, or a single sample).
+
+    Raises
+    ------
+    InputError
+        The sample coordinate is not regularly sampled.
+    """
     samples = sample_positions(cube, axes)
     if axes.sample_unit == "samples" or samples.size < 2:
         return None, "samples"
@@ -400,7 +431,8 @@ def as_cube(values, like=None, *, name: str | None = None):
         Numpy- or dask-backed as ``values``; ``like``'s attributes (sample interval and unit, source) kept.
     """
     xr = _xarray()
-    if hasattr(values, "store") and not hasattr(values, "compute") and not isinstance(values, np.ndarray):
+    zarr = sys.modules.get("zarr")  # a zarr.Array's class is imported whenever there is one
+    if zarr is not None and isinstance(values, zarr.Array):
         import dask.array as da
 
         values = da.from_zarr(values)

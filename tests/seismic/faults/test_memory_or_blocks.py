@@ -104,6 +104,7 @@ def test_the_memory_decision():
         fits_in_memory(shape, "1MB")
 
 
+@pytest.mark.slow  # the sample of blocks judged first (its scan): 30-50 s on 2 shared cores
 def test_a_memory_limit_too_small_for_the_blocks_is_refused_before_any(seismic, monkeypatch, tmp_path):
     """trace_faults(memory_limit=...) below what the cube's run in memory needs goes by blocks; below what its blocks
     need, it is refused before any block, naming a limit that works."""

@@ -1,7 +1,7 @@
 """The fault likelihood and the faults job by blocks equal them in memory: the claims too long for the suite (issue 58).
 
 Run: ``python benchmarks/fault_blocks.py [--only learned_blocks,network_grid,job_limit,segy_lazy,demo_blocks,
-demo_interchange] [--check]``
+demo_interchange,labelled_cube] [--check]``
 
 Each section asserts what a test of the suite asserted before it moved here (each over ~20 s of a worker, so the
 suite keeps a smaller version of each claim, named below); ``--check`` exits 1 when one assertion failed, and the
@@ -28,6 +28,11 @@ sections run on generated cubes (no data folder needed):
   back by xtgeo equal to faults.vtp, its sticks a few fault points each (on every 10th line), a horizon's IRAP / ZMAP+
   grids equal to its text rows (``tests/jobs/test_interchange.py`` keeps a 48 x 56 x 48 cube, without coordinates
   and on a rotated map grid: ``test_every_fault_surface_read_by_xtgeo``, ``test_small_cube_sticks_and_grids``).
+- ``labelled_cube``: a 192 x 160 x 128 SEG-Y cube with CDP X/Y opened by ``seismo3d.open`` (lazy, dims iline, xline,
+  twt, cdp_x / cdp_y), traced by ``trace_faults(cube)`` and by ``trace_faults(cube, memory_limit=...)`` under a limit
+  between the smallest blocks' need and the in-memory need: one result type, the volumes DataArrays on the cube's
+  coordinates (numpy-backed, then dask over the stores), equal within 1e-5, the same faults
+  (``tests/seismic/faults/test_memory_or_blocks.py`` keeps a 48 x 56 x 48 cube with the blocks forced).
 """
 
 from __future__ import annotations
@@ -323,6 +328,50 @@ def demo_interchange(tmp: pathlib.Path) -> None:
     print(f"  {job.n_faults} faults, {n_vertices} TSurf vertices, {n_triangles} triangles; horizon grids 128 x 128")
 
 
+def labelled_cube(tmp: pathlib.Path) -> None:
+    """seismo3d.open's cube traced in memory and by blocks: one result type, on the cube's coordinates, equal."""
+    import dask.array as da
+    import xarray as xr
+
+    import seismo3d
+    from seismo3d.seismic import FaultInterpretation, trace_faults
+    from seismo3d.seismic.blocks.memory import in_memory_bytes, resident_memory, size_text
+    from seismo3d.seismic.blocks.options import BlockRunOptions
+
+    shape = (192, 160, 128)
+    path = write_segy_cube(tmp / "cube.sgy", synthetic_cube(shape, seed=0).cube.astype(np.float32))
+    cube = seismo3d.open(path)
+    assert isinstance(cube.data, da.Array) and cube.dims == ("iline", "xline", "twt")
+    assert {"cdp_x", "cdp_y"} <= set(cube.coords) and cube.attrs["sample_interval"] == 4.0
+    started = time.perf_counter()
+    in_memory = trace_faults(cube, progress=False)
+    memory_seconds = time.perf_counter() - started
+    # between the blocks' need (~100 MB beyond the process) and the run in memory's (160 MiB + 24 x the cube)
+    limit = resident_memory() + (300 << 20)
+    assert 300 << 20 < in_memory_bytes(shape)
+    started = time.perf_counter()
+    with _log() as caplog:
+        by_blocks = trace_faults(cube, memory_limit=limit, blocks=BlockRunOptions(work_dir=tmp), progress=False)
+    blocks_seconds = time.perf_counter() - started
+    assert "block by block" in caplog.text and by_blocks.stores
+    assert type(in_memory) is type(by_blocks) is FaultInterpretation
+    diffs = {}
+    for name in ("likelihood", "strike_deg", "dip_deg", "votes", "thin"):
+        a, b = getattr(in_memory, name), getattr(by_blocks, name)
+        assert isinstance(a, xr.DataArray) and isinstance(b, xr.DataArray) and a.dims == b.dims == cube.dims
+        assert isinstance(a.data, np.ndarray) and isinstance(b.data, da.Array)
+        for c in ("iline", "xline", "twt", "cdp_x", "cdp_y"):
+            assert np.array_equal(a[c].values, cube[c].values) and np.array_equal(b[c].values, cube[c].values)
+        diffs[name] = float(np.abs(a.values - b.values).max())
+    assert diffs["likelihood"] <= 1e-5 and diffs["votes"] <= 1e-5, diffs
+    assert len(in_memory.faults) == len(by_blocks.faults) > 0
+    for f, g in zip(in_memory.faults, by_blocks.faults):
+        assert np.array_equal(f.points, g.points)
+    print(f"  {len(in_memory.faults)} faults, the same in memory ({memory_seconds:.0f} s) and by blocks under "
+          f"{size_text(limit)} ({blocks_seconds:.0f} s); largest differences "
+          + ", ".join(f"{k} {v:.1e}" for k, v in diffs.items()))
+
+
 SECTIONS = {
     "learned_blocks": learned_blocks,
     "network_grid": network_grid,
@@ -330,6 +379,7 @@ SECTIONS = {
     "segy_lazy": segy_lazy,
     "demo_blocks": demo_blocks,
     "demo_interchange": demo_interchange,
+    "labelled_cube": labelled_cube,
 }
 
 

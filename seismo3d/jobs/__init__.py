@@ -21,6 +21,7 @@ imports a job.
 
 Shared by all: :mod:`seismo3d.jobs.outputs` (the output policy, checked before any input is read),
 :mod:`seismo3d.jobs.runinfo` (``run.json`` beside every command's outputs: :class:`~seismo3d.jobs.runinfo.RunRecord`)
-and :mod:`seismo3d.jobs.inputs` (the one reader of seismic inputs, ``read_seismic``, and ``input_kind``). Each job
+and :mod:`seismo3d.jobs.inputs` (seismic inputs opened by :func:`seismo3d.open`, ``read_seismic``, and every
+input's kind, ``input_kind``). Each job
 returns a result dataclass (paths written, counts, ``stage_seconds``, ``run_json``).
 """

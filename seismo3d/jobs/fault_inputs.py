@@ -42,6 +42,7 @@ class FaultsInput:
     trace_axis: str = "trace"  # 2D: what labels the traces in pictures: 'inline', 'crossline' or 'trace' (index)
     sorting: str | None = None  # SEG-Y trace order of a grid: 'inline' or 'crossline'
     lazy: bool = False  # `data` is read block by block: the cube is traced by blocks
+    cube: object = None  # `data` labelled: the xarray.DataArray of seismo3d.open (the input of trace_faults)
 
     @property
     def sample_interval(self) -> float | None:
@@ -84,35 +85,37 @@ class FaultsInput:
 
 def read_input(path, *, iline, xline, ignore_geometry, sample_unit, n_samples, endian=None,
                lazy_if=None) -> FaultsInput:
-    """The input through the jobs' one reader (:func:`~seismo3d.jobs.inputs.read_seismic`, opened once; a 3D cube
-    lazily when ``lazy_if(shape)`` says so, with chunks of :data:`LAZY_TILE` traces a side), labelled for the
-    outputs."""
+    """The input through :func:`seismo3d.open` (:func:`~seismo3d.jobs.inputs.read_seismic`: its headers read once; a
+    3D cube kept lazy when ``lazy_if(shape)`` says so, with chunks of :data:`LAZY_TILE` traces a side), labelled for
+    the outputs."""
     seismic = read_seismic(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
                            n_samples=n_samples, endian=endian, lazy_if=None if ignore_geometry else lazy_if,
                            tile=LAZY_TILE)
     path, data, samples, unit, lazy = seismic.path, seismic.data, seismic.samples, seismic.sample_unit, seismic.lazy
+    cube = seismic.cube
     if seismic.kind == "store":  # a Zarr store of seismo3d convert: labelled by its inline / crossline numbers
         return FaultsInput(data, path.name.split(".")[0], None, None, seismic.inlines.astype(np.int64),
-                           seismic.xlines.astype(np.int64), samples, unit, lazy=lazy)
+                           seismic.xlines.astype(np.int64), samples, unit, lazy=lazy, cube=cube)
     if not seismic.is_segy:  # .npy, .f32be: traces labelled by their index
         idx = [np.arange(n, dtype=np.int64) for n in data.shape]
-        return FaultsInput(data if lazy else np.asarray(data), path.stem, None, None, idx[0],
-                           idx[1] if data.ndim == 3 else None, samples, unit, lazy=lazy)
+        return FaultsInput(data, path.stem, None, None, idx[0], idx[1] if data.ndim == 3 else None, samples, unit,
+                           lazy=lazy, cube=cube)
     if seismic.kind == "trace list":  # label traces with their header inline / crossline numbers, if any
         il, xl = seismic.trace_inlines.astype(np.int64), seismic.trace_xlines.astype(np.int64)
         if np.all(il == il[0]) and np.all(xl == xl[0]):  # no numbers there: the trace index
             il, xl = np.arange(il.size, dtype=np.int64), None
-        return FaultsInput(data, path.stem, path, None, il, xl, samples, unit, "trace")
+        return FaultsInput(data, path.stem, path, None, il, xl, samples, unit, "trace", cube=cube)
     LOGGER.info("%s: %s, %d samples of %g %s, %s, %s-endian", path.name, seismic.description, samples.size,
                 seismic.sample_interval, unit, seismic.format_name, seismic.endian)
     il, xl = seismic.inlines.astype(np.int64), seismic.xlines.astype(np.int64)
     shape, sorting = seismic.grid_shape, seismic.sorting
     if seismic.kind == "cube":
-        return FaultsInput(data, path.stem, path, shape, il, xl, samples, unit, "trace", sorting, lazy)
+        return FaultsInput(data, path.stem, path, shape, il, xl, samples, unit, "trace", sorting, lazy, cube)
     if shape[1] == 1:  # a line along inlines (one crossline), e.g. penobscot_xl1155
         return FaultsInput(data[:, 0, :], path.stem, path, shape, il, np.full(il.size, xl[0]), samples, unit, "inline",
-                      sorting)
-    return FaultsInput(data[0], path.stem, path, shape, np.full(xl.size, il[0]), xl, samples, unit, "crossline", sorting)
+                           sorting, cube=cube)
+    return FaultsInput(data[0], path.stem, path, shape, np.full(xl.size, il[0]), xl, samples, unit, "crossline", sorting,
+                       cube=cube)
 
 
 def write_demo_input(out_dir: Path, seed) -> tuple[Path, Path]:

@@ -86,11 +86,13 @@ def _write_volume(inp: FaultsInput, out_dir: Path, stem: str, values, *, like: P
     ``.npy`` otherwise.
 
     A 3D SEG-Y cube is written by blocks of inlines (:func:`~seismo3d.seismic.io.write_like_blocks`, whatever the
-    array). A SEG-Y line or trace list is written with :func:`~seismo3d.seismic.io.write_like`, or, given ``like``
-    (a SEG-Y file this job already wrote so), as a copy of it with the trace data replaced: the same headers, without
-    copying them field by field again.
+    array), with the headers of ``like`` when given (a SEG-Y file this job already wrote so, whose headers are the
+    input's). A SEG-Y line or trace list is written with :func:`~seismo3d.seismic.io.write_like`, or, given ``like``,
+    as a copy of it with the trace data replaced: the same headers, without copying them field by field again.
     """
     if inp.segy_path is not None and len(inp.segy_shape or ()) == 3 and np.ndim(values) == 3:
+        if like is not None:  # the headers of the first volume written, the input's: the input is not opened again
+            return write_like_blocks(like, out_dir / f"{stem}.sgy", values, progress=progress)
         return write_like_blocks(inp.segy_path, out_dir / f"{stem}.sgy", values, iline=iline, xline=xline,
                                  endian=endian, progress=progress)
     if inp.segy_path is not None:
@@ -356,7 +358,7 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
         held[0] = resident_memory()
         return not blocks.in_memory_for(shape, held=held[0])
 
-    with record.stage("read input"):  # the one opening of the input; a cube beyond the limit is read lazily
+    with record.stage("read input"):  # seismo3d.open: its headers read once; a cube beyond the limit is kept lazy
         inp = read_input(input_path, n_samples=n_samples, **segy, lazy_if=lazy_if)
     if inp.unit != "samples" and not inp.sample_interval > 0:
         raise InputError(f"the sample interval of {inp.name} is {inp.sample_interval:g} {inp.unit}; it must be > 0 "
@@ -367,8 +369,7 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
         _set_aside_earlier_stores(out_dir, aside, inp, options)
     blocks = replace(blocks, in_memory=not inp.lazy, source=inp.name, coords=inp.coords)  # decided: not again
     try:
-        result = trace_faults(inp.data, sample_interval=inp.sample_interval, sample_unit=inp.unit, options=options,
-                              blocks=blocks, progress=progress)
+        result = trace_faults(inp.cube, options=options, blocks=blocks, progress=progress)
     except EarlierStoresError as exc:  # without overwrite: stores of another input or other options are kept
         raise _stores_in_the_way(out_dir, exc) from None
     record.stage_seconds.update(result.step_seconds)

@@ -1,12 +1,12 @@
-"""The one reader of the jobs' seismic inputs: a SEG-Y cube, line or trace list, a ``.npy`` array, a raw ``.f32be``
-section or a Zarr store of ``seismo3d convert``, as a :class:`SeismicInput` (what kind, the amplitudes, their
-geometry and sample interval, the source path). A 3D cube is read whole or, when the caller's ``lazy_if`` says so from
-its shape (the memory decision of a fault run), as a lazy dask array: either way from one opening of the file.
+"""The jobs' seismic inputs: a SEG-Y cube, line or trace list, a ``.npy`` array, a raw ``.f32be`` section or a Zarr
+store of ``seismo3d convert``, opened by :func:`seismo3d.open` (the one place that maps a file to its reader: its
+headers read once) and gathered into a :class:`SeismicInput` (what kind, the amplitudes, their geometry and sample
+interval, the source path, the labelled cube). A 3D cube is read whole or, when the caller's ``lazy_if`` says so from
+its shape (the memory decision of a fault run), kept as a lazy dask array.
 
-SEG-Y is opened by :func:`~seismo3d.seismic.io.open_segy` (the flags, errors and warnings of every command) and raw
-sections by :func:`~seismo3d.seismic.io.read_section`; this module only chooses the reader by the file's kind
-(:func:`input_kind`, also used for point clouds and terrain files) and gathers what the jobs need into one object,
-so that ``faults``, ``horizon`` and ``render`` do not each work it out their own way.
+:func:`input_kind` names every job input by its file (seismic files by :func:`seismo3d.seismic.io.cube.seismic_kind`,
+point clouds and terrain files here), so that ``faults``, ``horizon`` and ``render`` do not each work it out their own
+way.
 """
 
 from __future__ import annotations
@@ -16,13 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import DataNotFoundError, InputError
-from ..seismic.io.sections import known_section_shape, read_section
-from ..seismic.io.segy import open_segy
+from ..seismic.io.cube import SEGY_SUFFIXES, open_cube, seismic_axes, seismic_kind
 
-__all__ = ["SEGY_SUFFIXES", "SeismicInput", "input_kind", "read_seismic"]
+__all__ = ["SEGY_SUFFIXES", "SeismicInput", "input_kind", "read_seismic", "seismic_input"]
 
-SEGY_SUFFIXES = (".sgy", ".segy")
 _TERRAIN_SUFFIXES = (".las", ".laz", ".tif", ".tiff")
 _CLOUD_SUFFIXES = (".ply", ".xyz", ".txt", ".csv", ".pts", ".npy")
 
@@ -43,17 +40,14 @@ def input_kind(path) -> str:
         another folder (the output folder of a command).
     """
     path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix in SEGY_SUFFIXES:
-        return "segy"
-    if suffix == ".zarr":
-        return "zarr"
+    kind = seismic_kind(path)  # the seismic files: the rule of seismo3d.open
+    if kind in ("segy", "zarr"):
+        return kind
     if path.is_dir():
         return "folder"
-    if suffix == ".f32be":
-        return "f32be"
-    if suffix == ".npy":
-        return "npy"
+    if kind is not None:
+        return kind
+    suffix = path.suffix.lower()
     if suffix in _TERRAIN_SUFFIXES:
         return "terrain"
     if suffix in _CLOUD_SUFFIXES:
@@ -100,6 +94,8 @@ class SeismicInput:
         SEG-Y sample format and byte order.
     lazy : bool
         ``data`` is a lazy dask array (read block by block), not the samples in memory.
+    cube : xarray.DataArray
+        The input as :func:`seismo3d.open` labels it (a line with its one lateral dimension), backed by ``data``.
     """
 
     kind: str
@@ -120,6 +116,7 @@ class SeismicInput:
     format_name: str | None = None
     endian: str | None = None
     lazy: bool = False
+    cube: object = None
 
     @property
     def sample_interval(self) -> float:
@@ -134,8 +131,9 @@ class SeismicInput:
 def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False, endian=None,
                  sample_unit=None, n_samples: int | None = None, coordinates: bool = False,
                  arrays: bool = True, lazy_if=None, tile: int = 32) -> SeismicInput:
-    """Read a seismic input, opening it once: a SEG-Y file, a ``.npy`` array, a raw ``.f32be`` section, or (with
-    ``lazy_if``) a Zarr store of ``seismo3d convert``; a 3D cube whole or lazily, as ``lazy_if`` decides.
+    """Read a seismic input through :func:`seismo3d.open` (one opening of its headers): a SEG-Y file, a ``.npy``
+    array, a raw ``.f32be`` section, or (with ``lazy_if``) a Zarr store of ``seismo3d convert``; a 3D cube whole or
+    lazily, as ``lazy_if`` decides.
 
     Parameters
     ----------
@@ -146,15 +144,14 @@ def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: b
     n_samples : int, optional
         Samples per trace of a raw ``.f32be`` section whose shape is not known by name.
     coordinates : bool
-        SEG-Y: also read the trace coordinates (``cdp_x``, ``cdp_y``; one pass over the trace headers).
+        SEG-Y: also give the trace coordinates (``cdp_x``, ``cdp_y``).
     arrays : bool
         Read ``.npy`` and ``.f32be`` files as arrays; False for a command that reads SEG-Y only (every file is then
         opened as SEG-Y, whose error says what the file is not).
     lazy_if : callable, optional
         ``lazy_if(shape) -> bool``, asked once with the shape ``(n_inlines, n_xlines, n_samples)`` of a 3D cube
         (a SEG-Y cube, a 3D ``.npy`` array, a Zarr store) before its samples are read: True gives a lazy
-        :attr:`SeismicInput.data` (e.g. ``lambda shape: not BlockRunOptions(...).in_memory_for(shape)``). Without
-        it every input is read whole and Zarr stores are refused.
+        :attr:`SeismicInput.data`. Without it every input is read whole and Zarr stores are refused.
     tile : int
         Traces a side of the chunks of a lazy cube (a block of a run by blocks reads only the tiles around it).
 
@@ -179,78 +176,45 @@ def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: b
     """
     path = Path(path)
     kind = input_kind(path)
-    if lazy_if is not None and kind == "zarr" and path.is_dir():
-        return _read_store(path, sample_unit=sample_unit, lazy_if=lazy_if, tile=tile)
-    if arrays and kind in ("npy", "f32be"):
-        return _read_array(path, kind, sample_unit=sample_unit, n_samples=n_samples, lazy_if=lazy_if, tile=tile)
-    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
-                   endian=endian) as cube:
-        lazy = (lazy_if is not None and cube.is_3d and cube.inlines is not None
-                and bool(lazy_if(tuple(int(n) for n in cube.shape))))
-        fields = dict(path=path, data=_lazy_segy(cube, tile) if lazy else cube.read(),
-                      samples=np.asarray(cube.samples, dtype=np.float64), sample_unit=cube.sample_unit,
-                      description=cube.description, format_name=cube.format_name, endian=cube.endian, lazy=lazy)
-        if coordinates:
-            fields.update(cdp_x=cube.cdp_x, cdp_y=cube.cdp_y,
-                          map_unit="ft" if int(cube.segyfile.bin[3255]) == 2 else "m")
-        if cube.inlines is None:  # a trace list (announced by open_segy's warning unless ignore_geometry)
-            f = cube.segyfile
-            return SeismicInput(kind="trace list", trace_inlines=np.asarray(f.attributes(cube.iline_byte)[:]),
-                                trace_xlines=np.asarray(f.attributes(cube.xline_byte)[:]), **fields)
-        return SeismicInput(kind="cube" if cube.is_3d else "line", inlines=np.asarray(cube.inlines),
-                            xlines=np.asarray(cube.xlines), grid_shape=tuple(cube.shape), sorting=cube.sorting,
+    fmt = kind if (kind in ("npy", "f32be") and arrays) or (kind == "zarr" and lazy_if is not None) else "segy"
+    cube = open_cube(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
+                     sample_unit=sample_unit, n_samples=n_samples, tile=tile, format=fmt)
+    return seismic_input(cube, path, lazy_if=lazy_if, coordinates=coordinates)
+
+
+def seismic_input(cube, path, *, lazy_if=None, coordinates: bool = False) -> SeismicInput:
+    """A cube of :func:`seismo3d.open` as a :class:`SeismicInput`: read whole, or kept lazy when ``lazy_if(shape)``
+    says so for a 3D cube (see :func:`read_seismic`)."""
+    path = Path(path)
+    attrs = cube.attrs
+    kind = attrs["kind"]
+    axes = seismic_axes(cube)
+    samples = np.asarray(cube.coords[axes.sample].values, dtype=np.float64)
+    lazy = (lazy_if is not None and cube.ndim == 3 and kind in ("cube", "store", "array")
+            and bool(lazy_if(tuple(int(n) for n in cube.shape))))
+    if not lazy:
+        cube = cube.copy(data=cube.values)  # read whole, once
+    data = cube.data
+    fields = dict(cube=cube, path=path, samples=samples, sample_unit=axes.sample_unit, description=attrs.get("description", ""),
+                  format_name=attrs.get("segy_format"), endian=attrs.get("segy_endian"), lazy=lazy)
+    if coordinates and "cdp_x" in cube.coords:
+        fields.update(cdp_x=cube.coords["cdp_x"].values, cdp_y=cube.coords["cdp_y"].values,
+                      map_unit=attrs.get("xy_unit", "m"))
+    if kind in ("array", "section"):
+        return SeismicInput(kind=kind, data=data, **fields)
+    if kind == "trace list":
+        n = cube.shape[0]
+        have = "iline" in cube.coords and cube.coords["iline"].dims == ("trace",)
+        return SeismicInput(kind=kind, data=data,
+                            trace_inlines=np.asarray(cube.coords["iline"].values) if have else np.zeros(n, np.int64),
+                            trace_xlines=np.asarray(cube.coords["xline"].values) if have else np.zeros(n, np.int64),
                             **fields)
-
-
-def _lazy_segy(cube, tile: int):
-    """The open SEG-Y cube's amplitudes as a float32 dask array of ``tile`` x ``tile`` whole traces."""
-    from ..seismic.io.lazy import lazy_segy_cube
-
-    return lazy_segy_cube(cube, tile=tile).data
-
-
-def _read_store(path: Path, *, sample_unit, lazy_if, tile: int) -> SeismicInput:
-    """A Zarr store of ``seismo3d convert``: lazily or read whole, as ``lazy_if`` decides from its shape."""
-    from ..seismic.io.lazy import open_lazy
-
-    store = open_lazy(path, sample_unit=sample_unit, tile=tile)
-    lazy = bool(lazy_if(store.shape))
-    shape = " x ".join(str(n) for n in store.shape)
-    return SeismicInput(kind="store", path=path, data=store.data if lazy else store.data.compute(),
-                        samples=np.asarray(store.samples, dtype=np.float64), sample_unit=store.sample_unit,
-                        inlines=np.asarray(store.inlines), xlines=np.asarray(store.xlines),
-                        description=f"a Zarr store of {shape} samples", grid_shape=store.shape, lazy=lazy)
-
-
-def _read_array(path: Path, kind: str, *, sample_unit, n_samples, lazy_if=None, tile: int = 32) -> SeismicInput:
-    """A ``.npy`` array (memory-mapped, or a lazy dask array as ``lazy_if`` decides for a 3D one) or a raw
-    ``.f32be`` section, in samples."""
-    if not path.is_file():
-        raise DataNotFoundError(f"no input file at {path}; check the path")
-    if kind == "f32be":
-        if n_samples is None and known_section_shape(path) is None:  # a raw file says nothing of its shape
-            n_values = path.stat().st_size // 4
-            raise InputError(f"the shape of {path.name} is unknown (a raw section of {n_values} float32 values, "
-                             "no header); give its number of samples per trace: n_samples=N")
-        data = read_section(path, n_samples=n_samples)
-    else:
-        try:
-            data = np.load(path, allow_pickle=False, mmap_mode="r")
-        except (ValueError, OSError) as exc:
-            raise InputError(f"{path.name} is not a readable .npy array ({exc}); save it with numpy.save") from exc
-        if data.ndim not in (2, 3):
-            raise InputError(f"{path.name} holds an array of shape {data.shape}; expected a 2D section "
-                             "(n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, n_samples)")
-    if sample_unit is not None:
-        raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
-                         "in samples")
-    shape = " x ".join(str(n) for n in data.shape)
-    lazy = lazy_if is not None and data.ndim == 3 and bool(lazy_if(tuple(int(n) for n in data.shape)))
-    if lazy:
-        import dask.array as da
-
-        data = da.from_array(data, chunks=(tile, tile, -1)).astype(np.float32)
-    return SeismicInput(kind="section" if kind == "f32be" else "array", path=path, data=data,
-                        samples=np.arange(data.shape[-1], dtype=np.float64), sample_unit="samples",
-                        description=f"{'a raw section' if kind == 'f32be' else 'an array'} of {shape} samples",
-                        lazy=lazy)
+    inlines = np.atleast_1d(np.asarray(cube.coords["iline"].values))
+    xlines = np.atleast_1d(np.asarray(cube.coords["xline"].values))
+    grid_shape = (inlines.size, xlines.size, samples.size)
+    if cube.ndim == 2:  # a line of a survey: (n_inlines, n_xlines, n_samples), one of the first two 1
+        data = data.reshape(grid_shape)
+        if fields.get("cdp_x") is not None:
+            fields.update(cdp_x=fields["cdp_x"].reshape(grid_shape[:2]), cdp_y=fields["cdp_y"].reshape(grid_shape[:2]))
+    return SeismicInput(kind=kind, data=data, inlines=inlines, xlines=xlines, grid_shape=grid_shape,
+                        sorting=attrs.get("segy_sorting") or None, **fields)

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..seismic.io.coordinates import SurveyCoordinates, read_survey_coordinates, survey_coordinates
+from ..seismic.io.coordinates import SurveyCoordinates, cube_coordinates, read_survey_coordinates, survey_coordinates
 from ..seismic.io.fault_sticks import FaultSticks, read_fault_sticks, write_fault_sticks
 from ..seismic.io.tsurf import TriangulatedSurface, write_tsurf_folder
 
@@ -59,10 +59,11 @@ def fault_coordinates(inp, *, segy_path=None, iline: int = 189, xline: int = 193
         (n_inlines, n_crosslines) for a cube, (n_traces,) for a 2D section; in inline / crossline units for inputs
         without coordinates.
     """
+    cube = getattr(inp, "cube", None)
     segy_path = segy_path or getattr(inp, "segy_path", None)
-    if segy_path is not None:
-        coords = read_survey_coordinates(segy_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
-                                         endian=endian)
+    if segy_path is not None:  # from the cube seismo3d.open read (its headers read once), or from the file
+        coords = cube_coordinates(cube) if cube is not None else read_survey_coordinates(
+            segy_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
         if coords.x.ndim == 1:  # a trace list: its traces labelled as the job labels them (fault_points.csv)
             xl = np.zeros(coords.x.size) if inp.xline is None else np.asarray(inp.xline, dtype=np.float64)
             return replace(coords, inline=np.asarray(inp.inline, dtype=np.float64), crossline=xl)

@@ -186,14 +186,22 @@ def _write_cube(path, cube, *, sorting=segyio.TraceSortingFormat.CROSSLINE_SORTI
 
 
 @pytest.mark.slow
-def test_segy_outputs_keep_the_inputs_headers(tmp_path):
+def test_segy_outputs_keep_the_inputs_headers(tmp_path, monkeypatch):
     """The likelihood, strike, dip and votes SEG-Y read back with the input's geometry, textual, binary and trace
-    headers (a crossline-sorted IBM-float cube written here)."""
+    headers (a crossline-sorted IBM-float cube written here); the input's headers are read twice: by seismo3d.open
+    and as the first volume's template (the other three copy the first's), its samples tile by tile."""
     src = tmp_path / "in" / "cube.sgy"
     src.parent.mkdir()
     _write_cube(src, synthetic_cube((48, 40, 80), n_faults=2, seed=5).cube)
     before = _sha(src)
+    opened, real_open = [], segyio.open
+    monkeypatch.setattr(segyio, "open", lambda path, *a, **k: opened.append((Path(path), k.get("ignore_geometry")))
+                        or real_open(path, *a, **k))
     written = run_faults_job(src, tmp_path / "out", progress=False).written
+    monkeypatch.undo()
+    headers = [p for p, ignore in opened if p.name == "cube.sgy" and not ignore]
+    tiles = [p for p, ignore in opened if p.name == "cube.sgy" and ignore]
+    assert len(headers) == 2 and len(tiles) == 4  # 2 x 2 tiles of 32 traces (6 header readings before seismo3d.open)
     assert _sha(src) == before
     with segyio.open(src) as a:
         for key in ("likelihood", "strike", "dip", "votes"):

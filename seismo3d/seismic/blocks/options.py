@@ -32,7 +32,7 @@ class BlockRunOptions:
         ``memory_limit`` (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`).
     work_dir : str or os.PathLike, optional
         Existing folder of the Zarr stores of a run by blocks (``fault_likelihood.zarr``, ``fault_surfaces.zarr``:
-        reused when finished, resumed when interrupted); required when the cube is traced block by block.
+        reused when finished, resumed when interrupted); default a new temporary folder, kept.
     scheduler : str, optional
         A ``dask.distributed`` scheduler address for a run by blocks; default dask's local threads.
     source : str

@@ -17,9 +17,12 @@ from __future__ import annotations
 
 import dataclasses
 import pathlib
+import sys
+import tempfile
 import time
 import uuid
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -28,10 +31,11 @@ from ..._validation import check_choice, check_positive, check_seismic_layout
 from ...errors import EarlierStoresError, InputError, Seismo3dWarning
 from ..amplitudes import CleanTraces, check_amplitudes, clean_traces, finite_cube, near_dead_samples
 from ..blocks.executor import release_memory
-from ..blocks.memory import in_memory_bytes, resident_memory, size_text, worker_baseline
+from ..blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory, size_text, worker_baseline
 from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
+from ..io.cube import as_cube, sample_interval as cube_sample_interval, seismic_axes
 from ..io.zarr_store import consolidate
 from ..adapted_network import check_adapted_model
 from ..time_slices import balanced_slices, blank_slices, filled_slices, slice_extremes
@@ -61,7 +65,7 @@ SURFACES_STORE = "fault_surfaces.zarr"
 STAGE_GROWTH = 64 << 20
 
 
-def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivity=None,
+def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=None, sensitivity=None,
                  options: FaultTracingOptions | None = None, likelihood: FaultLikelihood | None = None,
                  blocks: BlockRunOptions | None = None, progress=True, model=None) -> FaultInterpretation:
     """Trace the faults of a seismic cube or section: likelihood, voting, skins, throw.
@@ -96,21 +100,29 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     likelihood saturated everywhere (no lateral coherence).
 
     Memory and time: time and memory linear in the number of samples (see ``benchmarks/faults.py`` for the figures
-    at 64^3 to 256^3). A 3D cube whose run in memory would need more than ``blocks.memory_limit`` beside the process
+    at 64^3 to 256^3). A 3D cube whose run in memory would need more than ``memory_limit`` beside the process
     (:func:`~seismo3d.seismic.blocks.memory.fits_in_memory`: 160 MiB and 24 times its float32 size) is traced
-    block by block (:func:`trace_faults_by_blocks`) into Zarr stores in ``blocks.work_dir``, with the same checks,
-    warnings and results: its arrays are then Zarr arrays. A cube large enough to be judged from a sample of
+    block by block (:func:`trace_faults_by_blocks`) into Zarr stores in ``blocks.work_dir`` (default: a new
+    temporary folder, kept: its path is in :attr:`FaultInterpretation.stores`), with the same checks, warnings and
+    results: its volumes are then read lazily from the stores. A cube large enough to be judged from a sample of
     blocks first (:meth:`~seismo3d.seismic.blocks.preflight.SampleOptions.worth_sampling`) is refused from that
     sample before the whole likelihood (:func:`~seismo3d.seismic.faults.steps.judge_sample`), on either path.
 
     Parameters
     ----------
-    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Seismic amplitudes; the last axis is the sample (time or depth, downward).
+    cube : xarray.DataArray or (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        Seismic amplitudes, the sample (time or depth, downward) last: a cube of :func:`seismo3d.open` or a segysak
+        Dataset's variable (dims ``(iline, xline, twt | depth)`` or ``(line or trace, twt | depth)``, numpy- or
+        dask-backed; its sample interval and unit from its sample coordinate, :func:`~seismo3d.seismic.io.cube.
+        seismic_axes`; a cube of a single inline or crossline is traced as its 2D section), or a plain array.
+    memory_limit : int or str, optional
+        Memory the run may use, bytes or a size such as ``'4GB'`` (default ``blocks.memory_limit``: half of the
+        RAM): a 3D cube whose run in memory needs more is traced block by block.
     sample_interval : float, optional
-        Sample interval in ``sample_unit``; required unless ``sample_unit`` is 'samples'.
+        Plain arrays: the sample interval in ``sample_unit``; required unless ``sample_unit`` is 'samples'.
     sample_unit : {'samples', 'ms', 'm', 'ft'}, optional
-        Unit of the sample axis (for converting throws, see :attr:`FaultInterpretation.sample_interval`).
+        Plain arrays: the unit of the sample axis (for converting throws, see
+        :attr:`FaultInterpretation.sample_interval`); default 'samples'.
     sensitivity : float, optional
         In [0, 1], more faults when higher; replaces ``options.sensitivity`` (default 0.5).
     options : FaultTracingOptions, optional
@@ -121,7 +133,8 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         scan is then skipped.
     blocks : BlockRunOptions, optional
         How a cube is run: the memory limit (default half of the RAM), a forced choice between the run in memory and
-        the run by blocks, the folder of the Zarr stores of a run by blocks (required for one), its dask scheduler,
+        the run by blocks, the folder of the Zarr stores of a run by blocks (default a new temporary folder), its
+        dask scheduler,
         and the input's name and coordinates recorded in the stores (:class:`BlockRunOptions`).
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
@@ -134,15 +147,20 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     Returns
     -------
     FaultInterpretation
-        Likelihood, strike, dip, votes, thinned faults, fault skins and their throws.
+        Likelihood, strike, dip, votes, thinned faults, fault skins and their throws; one type however the run
+        went. For a DataArray ``cube`` the volumes (``likelihood``, ``strike_deg``, ``dip_deg``, ``votes``,
+        ``thin``) are DataArrays on the cube's own dimensions and coordinates (``cdp_x`` / ``cdp_y`` included),
+        numpy-backed in memory, dask-backed over the Zarr stores by blocks; for a plain array they are arrays
+        (numpy in memory, Zarr arrays of the stores by blocks), as the input.
 
     Raises
     ------
     InputError
-        ``data`` is not a numeric 2D / 3D array with at least 3 samples per axis, all samples are equal, the
-        sample interval / unit or an option is invalid, a run by blocks without ``blocks.work_dir`` or with a
-        ``blocks.memory_limit`` too small for its blocks (the message names one that works), or ``model`` is not a
-        MODEL folder of ``seismo3d adapt`` (or one changed since).
+        ``cube`` is not a numeric 2D / 3D array with at least 3 samples per axis or a seismic DataArray
+        (:func:`~seismo3d.seismic.io.cube.seismic_axes`), all samples are equal, the sample interval / unit or an
+        option is invalid (or given beside a DataArray, which carries its own), a ``memory_limit`` too small for
+        the blocks (the message names one that works), or ``model`` is not a MODEL folder of ``seismo3d adapt``
+        (or one changed since).
     DataNotFoundError
         No folder at ``model``.
     UnsupportedDataError
@@ -172,6 +190,11 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
     >>> len(result.faults) >= 1
     True
     """
+    labels = _Labels.of(cube, sample_interval, sample_unit)
+    data = cube if labels is None else labels.values
+    if labels is not None:
+        sample_interval, sample_unit = labels.interval, labels.unit
+    sample_unit = "samples" if sample_unit is None else sample_unit
     check_choice(sample_unit, "sample_unit", _UNITS)
     if sample_unit == "samples":
         if sample_interval not in (None, 1, 1.0):
@@ -190,15 +213,16 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         opt = dataclasses.replace(opt, likelihood="learned",
                                   learned=dataclasses.replace(opt.learned, adapted=str(model)))
 
-    run = _block_run(blocks)
+    run = _block_run(blocks, memory_limit)
     if not run.in_memory_for(np.shape(data), has_likelihood=likelihood is not None):
-        if run.work_dir is None:
-            raise InputError(f"a {' x '.join(str(n) for n in np.shape(data))} cube beyond the memory limit is traced "
-                             "block by block into Zarr stores: pass blocks=BlockRunOptions(work_dir=...) (an "
-                             "existing folder), or a larger memory_limit")
-        return trace_faults_by_blocks(data, opt, sample_interval=sample_interval, sample_unit=sample_unit,
-                                      memory_limit=run.limit, work_dir=run.work_dir, scheduler=run.scheduler,
-                                      source=run.source, coords=run.coords, progress=progress)
+        coords, source = run.coords, run.source
+        if labels is not None:  # the cube's own coordinates and file name in the stores, unless given
+            coords = labels.store_coords() if coords is None else coords
+            source = labels.cube.attrs.get("source_file", source) if source == BlockRunOptions.source else source
+        found = trace_faults_by_blocks(data, opt, sample_interval=sample_interval, sample_unit=sample_unit,
+                                       memory_limit=run.limit, work_dir=run.work_dir, scheduler=run.scheduler,
+                                       source=source, coords=coords, progress=progress)
+        return found if labels is None else labels.label(found)
     arr, dead = _cleaned(data, opt)
     with progress_steps(7, "faults", enabled=progress) as bar:
         bar.start("fault likelihood")
@@ -220,10 +244,66 @@ def trace_faults(data, *, sample_interval=None, sample_unit="samples", sensitivi
         faults, throws, evidence = faults_from_cells(run.cell_arrays, arr.shape, arr, found.thresholds, opt,
                                                      likelihood=run.likelihood, bar=bar, progress=progress)
     votes = run.fault_votes
-    return FaultInterpretation(likelihood=run.likelihood, strike_deg=run.strike_deg, dip_deg=run.dip_deg,
-                               votes=votes.votes, thin=run.thin, thresholds=found.thresholds, faults=faults,
-                               throws=throws, evidence=evidence, sample_interval=float(sample_interval),
-                               sample_unit=sample_unit, step_seconds=dict(bar.seconds))
+    result = FaultInterpretation(likelihood=run.likelihood, strike_deg=run.strike_deg, dip_deg=run.dip_deg,
+                                 votes=votes.votes, thin=run.thin, thresholds=found.thresholds, faults=faults,
+                                 throws=throws, evidence=evidence, sample_interval=float(sample_interval),
+                                 sample_unit=sample_unit, step_seconds=dict(bar.seconds))
+    return result if labels is None else labels.label(result)
+
+
+_VOLUMES = ("likelihood", "strike_deg", "dip_deg", "votes", "thin")
+
+
+@dataclass(frozen=True)
+class _Labels:
+    """A DataArray input of :func:`trace_faults`: what is traced (its values, a single line squeezed to its 2D
+    section), its sample interval and unit, and how the results get its dimensions and coordinates back."""
+
+    cube: object
+    values: object  # numpy or dask array
+    interval: float | None
+    unit: str
+    squeezed: int | None  # the lateral axis of length 1 taken out of a grid of one line
+
+    @classmethod
+    def of(cls, cube, sample_interval, sample_unit):
+        """None for a plain array; the labels of a seismic DataArray (refused with a sample interval or unit beside
+        it: it carries its own)."""
+        xr = sys.modules.get("xarray")  # a DataArray's class is imported whenever there is one
+        if xr is None or not isinstance(cube, xr.DataArray):
+            return None
+        axes = seismic_axes(cube)
+        if sample_interval is not None or sample_unit is not None:
+            raise InputError(f"a DataArray carries its sample interval and unit (its {axes.sample!r} coordinate and "
+                             "its units attribute); drop sample_interval= and sample_unit=, or set them on the cube")
+        interval, unit = cube_sample_interval(cube, axes)
+        values, squeezed = cube.data, None
+        if len(axes.lateral) == 2 and 1 in values.shape[:2]:  # a grid of one line: its 2D section
+            squeezed = 0 if values.shape[0] == 1 else 1
+            values = values[0] if squeezed == 0 else values[:, 0]
+        return cls(cube, values, interval, unit, squeezed)
+
+    def store_coords(self) -> dict | None:
+        """The coordinates recorded in the Zarr stores of a run by blocks."""
+        lateral = [np.asarray(self.cube.coords[d].values) if d in self.cube.coords else None
+                   for d in self.cube.dims[:-1]]
+        if len(lateral) != 2:
+            return None
+        sample = self.cube.dims[-1]
+        return {"inline": lateral[0], "crossline": lateral[1],
+                "sample": np.asarray(self.cube.coords[sample].values) if sample in self.cube.coords else None,
+                "sample_unit": self.unit}
+
+    def label(self, result: FaultInterpretation) -> FaultInterpretation:
+        """``result`` with its volumes as DataArrays on the cube's dimensions and coordinates (dask-backed over
+        the stores of a run by blocks)."""
+        volumes = {}
+        for name in _VOLUMES:
+            v = getattr(result, name)
+            if self.squeezed is not None:
+                v = np.expand_dims(np.asarray(v), self.squeezed)
+            volumes[name] = as_cube(v, self.cube, name=name)
+        return dataclasses.replace(result, **volumes)
 
 
 def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: float, sample_unit: str,
@@ -245,8 +325,9 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     sample_unit : str
     memory_limit : int
         Bytes.
-    work_dir : str or os.PathLike
-        Existing folder of the Zarr stores ``fault_likelihood.zarr`` and ``fault_surfaces.zarr``.
+    work_dir : str or os.PathLike or None
+        Existing folder of the Zarr stores ``fault_likelihood.zarr`` and ``fault_surfaces.zarr``; None: a new
+        temporary folder, made after the checks and kept (the result reads its volumes from it).
     scheduler : str, optional
         ``dask.distributed`` scheduler address; default the local threads.
     source : str
@@ -277,6 +358,10 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     shape = tuple(int(n) for n in x.shape)
     check_size(shape, opt)
     x = check_block_run(_whole_traces(x), source, memory_limit, scheduler, opt)
+    if work_dir is None:  # after the checks; kept: the result's volumes are read from its stores
+        work_dir = tempfile.mkdtemp(prefix="seismo3d-faults-")
+        LOGGER.info("%s: the fault stores of this run by blocks go to %s (pass blocks=BlockRunOptions(work_dir=...) "
+                    "to choose the folder)", source, work_dir)
     work_dir = pathlib.Path(work_dir)
     if not work_dir.is_dir():
         raise InputError(f"cannot write the fault stores into {work_dir}: it is not a folder; create it first")
@@ -334,13 +419,19 @@ def _whole_traces(x):
     return x.astype(np.float32)
 
 
-def _block_run(blocks) -> BlockRunOptions:
-    """The block-run options given to :func:`trace_faults` (its defaults when None), checked for their type."""
+def _block_run(blocks, memory_limit=None) -> BlockRunOptions:
+    """The block-run options given to :func:`trace_faults` (its defaults when None), checked for their type, with
+    ``memory_limit`` when given."""
     if blocks is None:
-        return BlockRunOptions()
+        blocks = BlockRunOptions()
     if not isinstance(blocks, BlockRunOptions):
         raise InputError(f"trace_faults(blocks=...) must be a BlockRunOptions (memory_limit, in_memory, work_dir, "
                          f"scheduler, source, coords); got {type(blocks).__name__}")
+    if memory_limit is not None:
+        try:
+            blocks = dataclasses.replace(blocks, memory_limit=parse_memory_limit(memory_limit))
+        except InputError as exc:
+            raise InputError(f"trace_faults(memory_limit=...): {exc}") from exc
     return blocks
 
 

@@ -276,18 +276,23 @@ def fault_frames(strike_deg, dip_deg) -> np.ndarray:
 
 @dataclass(frozen=True)
 class FaultInterpretation:
-    """Result of :func:`trace_faults`.
+    """Result of :func:`trace_faults`: one type however the run went (in memory or block by block).
+
+    The volumes (``likelihood``, ``strike_deg``, ``dip_deg``, ``votes``, ``thin``) follow the input: for a seismic
+    ``xarray.DataArray`` (:func:`seismo3d.open`) they are DataArrays on its dimensions and coordinates (``cdp_x`` /
+    ``cdp_y`` included; numpy-backed in memory, dask-backed over the Zarr stores by blocks); for a plain array,
+    arrays (numpy in memory, Zarr arrays of the stores by blocks).
 
     Attributes
     ----------
-    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
+    likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 DataArray or array
         Fault likelihood in [0, 1] (0 on and next to dead samples).
-    strike_deg, dip_deg : same shape, float32 ndarray
+    strike_deg, dip_deg : same shape and type, float32
         Strike and dip of the most likely fault plane at each sample, degrees, index space.
-    votes : same shape, float32 ndarray
+    votes : same shape and type, float32
         Optimal-surface votes in [0, 1] (:func:`~seismo3d.seismic.vote_faults`): about the mean likelihood of the
         fault surfaces through each sample.
-    thin : same shape, float32 ndarray
+    thin : same shape and type, float32
         The votes on the 1-sample-wide thinned faults above the lower threshold, 0 elsewhere.
     thresholds : (float, float)
         The lower and upper thresholds on the thinned votes (see :class:`FaultTracingOptions`).
@@ -306,7 +311,8 @@ class FaultInterpretation:
     stores : dict of str to pathlib.Path
         Empty for a run in memory. For a cube traced block by block, the Zarr groups its arrays are read from:
         ``likelihood`` (fault likelihood, strike and dip of the scan) and ``surfaces``
-        (:class:`~seismo3d.seismic.faults.surfaces.blocks.ChunkedFaults`); the arrays above are then Zarr arrays.
+        (:class:`~seismo3d.seismic.faults.surfaces.blocks.ChunkedFaults`); the volumes above are then read from
+        them.
     step_seconds : dict of str to float
         Wall time of each step, seconds, in the order they ran: in memory ``fault likelihood``, ``ridges``,
         ``voting``, ``thinning``, ``fault skins``, ``throw``, ``evidence``; by blocks the likelihood's block steps

@@ -1,6 +1,8 @@
 """Reading and writing seismic data: SEG-Y cubes, lines and trace lists, raw sections, ASCII lines, a cube read lazily
 as a dask array, and the Zarr v3 store of ``seismo3d convert``.
 
+- :mod:`~seismo3d.seismic.io.cube`: :func:`open_cube` (``seismo3d.open``), any seismic input as the one cube type, a
+  lazy ``xarray.DataArray`` with segysak's dimensions; :func:`seismic_axes` of any such DataArray.
 - :mod:`~seismo3d.seismic.io.segy`: :func:`open_segy`, :func:`read_segy`.
 - :mod:`~seismo3d.seismic.io.sections`: raw sections (:func:`read_section`), ASCII lines (:func:`read_ascii_lines`).
 - :mod:`~seismo3d.seismic.io.layout`: byte order, sample format and the rev-2 headers of a SEG-Y file
@@ -22,8 +24,7 @@ as a dask array, and the Zarr v3 store of ``seismo3d convert``.
   :func:`write_tsurf_folder`).
 - :mod:`~seismo3d.seismic.io.horizon_grids`: horizons as IRAP / ZMAP+ grids and x y z points through xtgeo, picks in
   (:func:`write_horizon_grids`, :func:`read_horizon_picks`).
-- :mod:`~seismo3d.seismic.io.xarray`: SEG-Y or Zarr as a labelled ``xarray.DataArray``, the fault and horizon
-  trackers on one (imported on its own: ``from seismo3d.seismic.io.xarray import trace_faults_xr``).
+- :mod:`~seismo3d.seismic.io.xarray`: the horizon tracker on a labelled cube (``track_horizon_xr``).
 """
 
 from typing import TYPE_CHECKING
@@ -33,6 +34,7 @@ from ..._lazy import lazy_exports
 # the public names, imported on first use (seismo3d._lazy): `seismo3d convert` imports the SEG-Y reader and the Zarr
 # writer without the lazy dask cube, the SEG-Y writer, fault sticks, TSurf and horizon grids (~15-25 ms)
 if TYPE_CHECKING:
+    from .cube import open_cube, seismic_axes
     from .segy import SeismicCube, open_segy, read_segy
     from .sections import read_section, read_ascii_lines
     from .geometry import TraceGeometry, trace_geometry, span, scale_coordinates
@@ -43,17 +45,17 @@ if TYPE_CHECKING:
         LAYOUT, TILE_TRACES, SeismicZarr, SeismicZarrWriter, consolidate, open_seismic_zarr, is_seismic_zarr,
     )
     from .writer import write_like, write_like_blocks
-    from .coordinates import GridMap, SurveyCoordinates, read_survey_coordinates
+    from .coordinates import GridMap, SurveyCoordinates, cube_coordinates, read_survey_coordinates
     from .fault_sticks import FaultSticks, read_fault_sticks, write_fault_sticks
     from .tsurf import TriangulatedSurface, write_tsurf, write_tsurf_folder
     from .horizon_grids import HorizonPicks, read_horizon_picks, write_horizon_grids
 
 __all__ = [
-    "SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines", "scale_coordinates",
+    "open_cube", "seismic_axes", "SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines", "scale_coordinates",
     "TraceGeometry", "trace_geometry", "span", "SegyLayout", "read_segy_layout", "segyio_failure", "FORMAT_NAMES",
     "READABLE_FORMATS", "SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle", "LazyCube",
     "open_lazy", "inline_block_size", "LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate",
-    "open_seismic_zarr", "is_seismic_zarr", "write_like_blocks", "GridMap", "SurveyCoordinates",
+    "open_seismic_zarr", "is_seismic_zarr", "write_like_blocks", "GridMap", "SurveyCoordinates", "cube_coordinates",
     "read_survey_coordinates", "FaultSticks", "read_fault_sticks", "write_fault_sticks", "TriangulatedSurface",
     "write_tsurf", "write_tsurf_folder", "HorizonPicks", "read_horizon_picks", "write_horizon_grids",
 ]

@@ -23,8 +23,8 @@ import numpy as np
 
 from ...errors import InputError, Seismo3dWarning, SegyGeometryError
 
-__all__ = ["GridMap", "SurveyCoordinates", "LINE_UNITS", "fit_grid_map", "survey_coordinates",
-           "read_survey_coordinates"]
+__all__ = ["GridMap", "SurveyCoordinates", "LINE_UNITS", "cube_coordinates", "fit_grid_map", "header_resolution",
+           "survey_coordinates", "read_survey_coordinates"]
 
 LINE_UNITS = "inline/crossline"  # the unit of X / Y when the headers hold no coordinates
 
@@ -130,9 +130,19 @@ class GridMap:
         return np.full(base.shape[:-1], float(inline)), base @ b / (b @ b)
 
 
-def _header_resolution(scalars: np.ndarray) -> float:
-    """The step of the stored coordinates once scaled: 1 / |scalar| for a negative scalar, the scalar for a
-    positive one, 1 for 0."""
+def header_resolution(scalars: np.ndarray) -> float:
+    """The step of SEG-Y coordinates once scaled (SEG-Y rev 1, trace bytes 71-72).
+
+    Parameters
+    ----------
+    scalars : array_like of int
+        The coordinate scalar of each trace.
+
+    Returns
+    -------
+    float
+        The largest step: 1 / |scalar| for a negative scalar, the scalar for a positive one, 1 for 0.
+    """
     s = np.asarray(scalars, dtype=np.float64).ravel()
     steps = np.where(s < 0, 1.0 / np.abs(np.where(s < 0, s, -1.0)), np.where(s > 0, s, 1.0))
     return float(steps.max()) if steps.size else 1.0
@@ -416,4 +426,53 @@ def read_survey_coordinates(path, *, iline: int = 189, xline: int = 193, ignore_
             xl = np.asarray(f.attributes(cube.xline_byte)[:], dtype=np.float64)
             if np.ptp(il) == 0 and np.ptp(xl) == 0:
                 il, xl = np.arange(1.0, il.size + 1.0), np.zeros(il.size)
-    return survey_coordinates(il, xl, x, y, unit=unit, resolution=_header_resolution(scalars), source=source)
+    return survey_coordinates(il, xl, x, y, unit=unit, resolution=header_resolution(scalars), source=source)
+
+
+def cube_coordinates(cube) -> SurveyCoordinates:
+    """The coordinates of a cube opened by :func:`~seismo3d.seismic.io.cube.open_cube` (``seismo3d.open``), from
+    its ``cdp_x`` / ``cdp_y`` and line numbers, without reading the file again.
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+        A cube ``(iline, xline, sample)``, a line of a survey ``(iline | xline, sample)`` with the other line number
+        a scalar coordinate, or a trace list ``(trace, sample)`` (its ``iline`` / ``xline`` coordinates per trace
+        when the headers hold them, else the trace number from 1 as inlines); ``cdp_x`` / ``cdp_y`` optional, their
+        unit and step in the attributes ``xy_unit``, ``xy_resolution`` and ``xy_source``.
+
+    Returns
+    -------
+    SurveyCoordinates
+        (n_inlines, n_crosslines) for a cube, (n_traces,) for a line (its grid map fitted along it) or a trace list;
+        in inline / crossline units without ``cdp_x`` / ``cdp_y``.
+    """
+    dims = cube.dims[:-1]
+    xy = (cube.coords["cdp_x"].values, cube.coords["cdp_y"].values) if "cdp_x" in cube.coords else (None, None)
+    kwargs = dict(unit=cube.attrs.get("xy_unit", "m") if xy[0] is not None else "m",
+                  resolution=float(cube.attrs.get("xy_resolution", 1.0)))
+    if "xy_source" in cube.attrs:
+        kwargs["source"] = cube.attrs["xy_source"]
+
+    def numbers(name, n):
+        return np.asarray(cube.coords[name].values if name in cube.coords else np.arange(n), dtype=np.float64)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)  # the reader of the data says it once
+        if len(dims) == 2:
+            il, xl = np.meshgrid(numbers(dims[0], cube.shape[0]), numbers(dims[1], cube.shape[1]), indexing="ij")
+            return survey_coordinates(il, xl, *xy, **kwargs)
+        n = cube.shape[0]
+        if dims[0] in ("iline", "xline") and ("xline" if dims[0] == "iline" else "iline") in cube.coords:
+            along = numbers(dims[0], n)
+            fixed = np.full(n, float(cube.coords["xline" if dims[0] == "iline" else "iline"].values))
+            il, xl = (along, fixed) if dims[0] == "iline" else (fixed, along)
+            shape = (n, 1) if dims[0] == "iline" else (1, n)
+            grid = survey_coordinates(il.reshape(shape), xl.reshape(shape),
+                                      *(None if v is None else v.reshape(shape) for v in xy), **kwargs)
+            return grid.section()
+        if "iline" in cube.coords and cube.coords["iline"].dims == (dims[0],):
+            il, xl = numbers("iline", n), numbers("xline", n)
+        else:
+            il, xl = np.arange(1.0, n + 1.0), np.zeros(n)
+        return survey_coordinates(il, xl, *xy, **kwargs)

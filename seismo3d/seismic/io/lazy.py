@@ -38,7 +38,7 @@ from .segy import open_segy
 from .zarr_store import open_seismic_zarr
 
 __all__ = ["LazyCube", "SegyGrid", "inline_block_size", "lazy_segy_cube", "open_lazy", "read_segy_block",
-           "read_segy_block_headers", "segyio_handle"]
+           "read_segy_block_headers", "segy_dask_array", "segyio_handle"]
 
 _BYTES_PER_SAMPLE = 4  # float32
 
@@ -109,12 +109,28 @@ def _block_edges(n: int, size: int) -> list:
     return [(a, min(a + size, n)) for a in range(0, n, size)]
 
 
-def _lazy_segy_array(grid: SegyGrid, block: int, token: str, tile: int | None = None):
-    """The dask array of ``grid``: one :func:`read_segy_block` task per block of ``block`` inlines, or per tile of
-    ``tile`` x ``tile`` traces."""
-    import dask.array as da
+def segy_dask_array(grid: SegyGrid, *, tile: int | None = None, block: int | None = None):
+    """The amplitudes of a SEG-Y grid as a float32 dask array: one :func:`read_segy_block` task per tile of ``tile``
+    x ``tile`` traces (every sample), or per block of ``block`` whole inlines.
 
-    name = f"segy-{token}"
+    Parameters
+    ----------
+    grid : SegyGrid
+        The file and its grid (a 2D line is a grid of one inline or crossline; a trace list one of ``n_traces``
+        inlines and one crossline, inline-sorted).
+    tile, block : int, optional
+        One of them: traces a side of a tile, or inlines of a block.
+
+    Returns
+    -------
+    (n_inlines, n_xlines, n_samples) float32 dask.array.Array
+        Its graph holds no open file (each task opens it read-only), and its name the file's size and time.
+    """
+    import dask.array as da
+    from dask.base import tokenize
+
+    stat = Path(grid.path).stat()
+    name = f"segy-{tokenize(grid, stat.st_mtime_ns, stat.st_size, tile, block)}"
     edges = _block_edges(grid.n_inlines, block if tile is None else tile)
     xedges = [(0, grid.n_xlines)] if tile is None else _block_edges(grid.n_xlines, tile)
     graph = {(name, k, q, 0): (read_segy_block, grid, a, b, c, d) for k, (a, b) in enumerate(edges)
@@ -143,13 +159,10 @@ def lazy_segy_cube(cube, *, chunk_mb: float = 64, tile: int | None = None) -> La
     SegyGeometryError
         The file is a 2D line or a trace list (see :func:`open_lazy`).
     """
-    from dask.base import tokenize
-
     path = Path(cube.path)
     grid = SegyGrid.from_cube(cube)
-    stat = path.stat()
-    token = tokenize(grid, stat.st_mtime_ns, stat.st_size, chunk_mb, tile)
-    data = _lazy_segy_array(grid, inline_block_size(grid.n_xlines, grid.n_samples, chunk_mb), token, tile)
+    data = segy_dask_array(grid, tile=tile, block=None if tile is not None else
+                           inline_block_size(grid.n_xlines, grid.n_samples, chunk_mb))
     return LazyCube(data=data, inlines=np.array(cube.inlines), xlines=np.array(cube.xlines),
                     samples=np.array(cube.samples), sample_unit=cube.sample_unit, source=path, format="segy")
 

@@ -36,5 +36,5 @@ def test_the_decision():
 def test_trace_faults_takes_only_block_run_options():
     with pytest.raises(InputError, match=r"trace_faults\(blocks=...\) must be a BlockRunOptions"):
         trace_faults([[0.0] * 8] * 8, blocks={"in_memory": True}, progress=False)
-    with pytest.raises(TypeError, match="memory_limit"):
-        trace_faults([[0.0] * 8] * 8, memory_limit="4GB", progress=False)  # the keyword moved into BlockRunOptions
+    with pytest.raises(InputError, match=r"trace_faults\(memory_limit=...\): .*at least 64 MB"):
+        trace_faults([[0.0] * 8] * 8, memory_limit="1MB", progress=False)  # refused before any work

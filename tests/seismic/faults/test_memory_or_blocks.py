@@ -104,6 +104,41 @@ def test_the_memory_decision():
         fits_in_memory(shape, "1MB")
 
 
-def test_a_cube_beyond_the_limit_needs_a_work_folder(seismic):
-    with pytest.raises(InputError, match=r"pass blocks=BlockRunOptions\(work_dir=\.\.\.\)"):
-        trace_faults(seismic, blocks=BlockRunOptions(in_memory=False), progress=False)
+@pytest.mark.slow  # the sample of blocks judged first (its scan): 30-50 s on 2 shared cores
+def test_a_memory_limit_too_small_for_the_blocks_is_refused_before_any(seismic, monkeypatch, tmp_path):
+    """trace_faults(memory_limit=...) below what the cube's run in memory needs goes by blocks; below what its blocks
+    need, it is refused before any block, naming a limit that works."""
+    monkeypatch.setattr(pipeline, "chunked_learned_likelihood", _stop)
+    with pytest.raises(InputError, match=r"needs a memory limit of at least .*; pass memory_limit='\d+MB' or more"):
+        trace_faults(seismic, memory_limit="100MB", blocks=BlockRunOptions(work_dir=tmp_path), progress=False)
+    assert not any(tmp_path.iterdir())
+
+
+@pytest.mark.slow  # two fault runs of a 48 x 56 x 48 cube, one by blocks
+def test_a_labelled_cube_gives_one_result_type_in_memory_and_by_blocks(write_segy_cube, tmp_path):
+    """seismo3d.open's lazy cube traced in memory and by (forced) blocks: the same FaultInterpretation, its volumes
+    DataArrays on the cube's coordinates (numpy-backed, then dask over the Zarr stores), equal, the same faults
+    (benchmarks/fault_blocks.py --only labelled_cube: the same at 192 x 160 x 128 under a memory limit)."""
+    import dask.array as da
+    import xarray as xr
+
+    import seismo3d
+    from seismo3d.seismic import FaultInterpretation
+
+    path = write_segy_cube(tmp_path / "cube.sgy", synthetic_cube((48, 56, 48), seed=2).cube.astype(np.float32))
+    cube = seismo3d.open(path)
+    in_memory = trace_faults(cube, progress=False)
+    by_blocks = trace_faults(cube, blocks=BlockRunOptions(in_memory=False, work_dir=tmp_path), progress=False)
+    assert type(in_memory) is type(by_blocks) is FaultInterpretation and by_blocks.stores
+    assert by_blocks.sample_unit == "ms" and by_blocks.sample_interval == 4.0
+    for name in ("likelihood", "strike_deg", "dip_deg", "votes", "thin"):
+        a, b = getattr(in_memory, name), getattr(by_blocks, name)
+        assert isinstance(a, xr.DataArray) and isinstance(b, xr.DataArray) and a.dims == b.dims == cube.dims
+        assert isinstance(a.data, np.ndarray) and isinstance(b.data, da.Array)
+        for c in ("iline", "xline", "twt", "cdp_x", "cdp_y"):
+            np.testing.assert_array_equal(b[c].values, cube[c].values)
+            np.testing.assert_array_equal(a[c].values, cube[c].values)
+        np.testing.assert_allclose(b.values, a.values, atol=1e-5, rtol=0)
+    assert len(in_memory.faults) == len(by_blocks.faults) > 0
+    for f, g in zip(in_memory.faults, by_blocks.faults):
+        np.testing.assert_array_equal(f.points, g.points)

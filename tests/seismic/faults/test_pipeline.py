@@ -38,6 +38,33 @@ def test_trace_faults_units_and_result(section):
     assert 0 < res.thresholds[0] <= res.thresholds[1] < 1
 
 
+def test_a_labelled_cube_gives_the_results_of_its_values_on_its_coordinates(section):
+    """A DataArray of one crossline (segysak's dims; a grid of one line is traced as its section) gives the numpy
+    run's results, its volumes DataArrays on its own coordinates, its sample interval and unit from its twt."""
+    xr = pytest.importorskip("xarray")
+    dt = 4.0
+    ref = trace_faults(section.cube, sample_interval=dt, sample_unit="ms", progress=False)
+    inlines = np.arange(2001, 2001 + 2 * section.cube.shape[0], 2)
+    cube = xr.DataArray(section.cube[:, None, :], dims=("iline", "xline", "twt"),
+                        coords={"iline": inlines, "xline": [7],
+                                "twt": ("twt", 500 + dt * np.arange(section.cube.shape[1]), {"units": "ms"}),
+                                "cdp_x": (("iline", "xline"), 1000.0 + 12.5 * inlines[:, None]),
+                                "cdp_y": (("iline", "xline"), 5000.0 + 0.0 * inlines[:, None])})
+    got = trace_faults(cube, progress=False)
+    assert type(got) is FaultInterpretation and got.sample_unit == "ms" and got.sample_interval == dt
+    assert len(got.faults) == len(ref.faults) >= 2
+    for a, b in zip(got.faults, ref.faults):
+        np.testing.assert_array_equal(a.points, b.points)
+    for name in ("likelihood", "strike_deg", "dip_deg", "votes", "thin"):
+        volume = getattr(got, name)
+        assert isinstance(volume, xr.DataArray) and volume.dims == cube.dims and isinstance(volume.data, np.ndarray)
+        np.testing.assert_array_equal(volume.values[:, 0, :], getattr(ref, name))
+        np.testing.assert_array_equal(volume["cdp_x"].values, cube["cdp_x"].values)
+        np.testing.assert_array_equal(volume["twt"].values, cube["twt"].values)
+    with pytest.raises(InputError, match="carries its sample interval"):
+        trace_faults(cube, sample_interval=dt, progress=False)
+
+
 @pytest.mark.parametrize("kwargs", [dict(sample_unit="ms"), dict(sample_unit="s", sample_interval=1.0),
                                     dict(sample_interval=4.0), dict(sample_unit="ms", sample_interval=-4.0)])
 def test_trace_faults_rejects_bad_units(section, kwargs):

@@ -1,0 +1,444 @@
+"""The one cube type of seismo3d and the one place that opens a seismic input as one: :func:`open_cube`
+(``seismo3d.open``).
+
+A seismic cube or line is an ``xarray.DataArray`` with segysak's conventions:
+
+- dimensions ``('iline', 'xline', 'twt')`` for a 3D cube in time (``'depth'`` for a cube in depth, ``'samples'``
+  for an input without a sample interval: ``.npy`` arrays and raw sections); a 2D line has one lateral dimension:
+  ``'iline'`` or ``'xline'`` for a line of a survey (the other line number a scalar coordinate), ``'trace'`` for a
+  trace list, a raw section or a 2D array;
+- coordinates of the same names (inline and crossline numbers, times or depths with a ``units`` attribute) and
+  ``cdp_x``, ``cdp_y`` on the lateral dimensions when the trace headers hold them (the coordinate scalar applied);
+- attributes: ``sample_interval`` and ``sample_unit`` ('ms', 'm', 'ft' or 'samples'; segysak's ``sample_rate`` and
+  ``d3_domain`` too), ``source_file``, ``kind`` ('cube', 'line', 'trace list', 'array', 'section', 'store'),
+  ``description`` and, for SEG-Y, the layout found (``segy_format``, ``segy_endian``, ``segy_sorting``,
+  ``iline_byte``, ``xline_byte``) and the unit of X / Y (``xy_unit``, ``xy_source``, ``xy_resolution``).
+
+Files are opened lazily: the amplitudes are a dask array of tiles of whole traces, each task opening the file
+read-only itself (a SEG-Y through :func:`~seismo3d.seismic.io.blocks.read_segy_block`, a Zarr store of ``seismo3d
+convert`` through ``xarray.open_zarr``, a ``.npy`` array through its memory map), so the same graph runs on a
+``dask.distributed`` cluster. Only the headers are read here, once. A segysak Dataset's variable (a DataArray with
+these dimensions) is taken as it is by every seismic function (:func:`seismic_axes`).
+
+References
+----------
+segysak (T. Hallam), https://segysak.readthedocs.io: ``xr.open_dataset(path, engine='sgy')``, dimensions ``iline``,
+``xline``, ``twt`` / ``depth``, ``cdp``, coordinates ``cdp_x`` / ``cdp_y``. xarray, https://docs.xarray.dev.
+"""
+
+from __future__ import annotations
+
+import sys
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import DataNotFoundError, InputError, Seismo3dWarning
+
+__all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "open_cube", "sample_dim", "sample_interval", "sample_positions",
+           "seismic_axes", "seismic_kind"]
+
+SEGY_SUFFIXES = (".sgy", ".segy")
+_ALIASES = {"inline": ("inline", "iline", "il", "inline_3d"), "crossline": ("crossline", "xline", "xl", "crossline_3d"),
+            "sample": ("sample", "samples", "twt", "time", "depth", "z"), "trace": ("trace", "cdp", "traces")}
+_UNIT_OF_DIM = {"twt": "ms", "time": "ms", "depth": "m"}
+_SAMPLE_DIMS = {"ms": "twt", "m": "depth", "ft": "depth", "samples": "samples"}
+_DOMAINS = {"ms": "TWT", "m": "DEPTH", "ft": "DEPTH", "samples": "SAMPLES"}
+DEFAULT_TILE = 64  # traces a side of a chunk (as the Zarr store of seismo3d convert)
+
+
+def _xarray():
+    try:
+        import xarray as xr
+    except ImportError as exc:  # pragma: no cover - xarray is a dependency
+        raise ImportError("seismic cubes need xarray: pip install xarray") from exc
+    return xr
+
+
+def seismic_kind(path) -> str | None:
+    """What kind of seismic file ``path`` is, by its name: the one rule of every command.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    {'segy', 'zarr', 'f32be', 'npy'} or None
+        ``'segy'``: .sgy / .segy; ``'zarr'``: a .zarr store; ``'f32be'``: a raw big-endian float32 section;
+        ``'npy'``: a numpy array; None otherwise.
+    """
+    suffix = Path(path).suffix.lower()
+    if suffix in SEGY_SUFFIXES:
+        return "segy"
+    return {".zarr": "zarr", ".f32be": "f32be", ".npy": "npy"}.get(suffix)
+
+
+def sample_dim(unit: str) -> str:
+    """The sample dimension's name for a sample unit: 'twt' (ms), 'depth' (m, ft) or 'samples'."""
+    return _SAMPLE_DIMS[unit]
+
+
+def open_cube(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False, endian=None,
+              sample_unit=None, n_samples: int | None = None, tile: int = DEFAULT_TILE, format: str | None = None):
+    """Open a seismic input as a lazy, labelled cube: a SEG-Y cube, line or trace list, a Zarr store of ``seismo3d
+    convert``, a ``.npy`` array or a raw ``.f32be`` section (``seismo3d.open``).
+
+    Only the headers are read (once: the SEG-Y geometry, CDP X/Y and layout in one opening); the amplitudes are a
+    dask array read tile by tile when computed (``cube.values``, ``cube.load()``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    iline, xline : int
+        SEG-Y: trace header bytes of the inline and crossline numbers (:func:`~seismo3d.seismic.io.open_segy`).
+    ignore_geometry : bool
+        SEG-Y: read the file as a trace list (dimension ``trace``) without the warning a file without a grid gets.
+    endian : {'big', 'little'}, optional
+        SEG-Y: byte order; by default detected from the binary header.
+    sample_unit : {'ms', 'm', 'ft'}, optional
+        SEG-Y and Zarr: the unit of the sample axis, instead of the one the headers suggest. Refused for ``.npy`` and
+        ``.f32be`` (they have no sample interval).
+    n_samples : int, optional
+        Samples per trace of a raw ``.f32be`` section whose shape is not known by name.
+    tile : int
+        Traces a side of the dask chunks (every sample of a trace in one chunk): a block of a run by blocks reads
+        only the tiles around it.
+    format : {'segy', 'zarr', 'npy', 'f32be'}, optional
+        The kind of file; by default from its name (:func:`seismic_kind`; any other name is opened as SEG-Y, whose
+        error then says what the file is not).
+
+    Returns
+    -------
+    xarray.DataArray
+        float32 (a ``.npy`` array keeps its dtype), dask-backed, named ``'seismic'``, dims, coordinates and
+        attributes as the module docstring says: ``('iline', 'xline', 'twt' | 'depth' | 'samples')`` for a cube,
+        ``('iline' | 'xline' | 'trace', ...)`` for a line.
+
+    Raises
+    ------
+    DataNotFoundError
+        No such file.
+    InputError
+        A ``.npy`` file numpy cannot read, or not 2D / 3D; ``sample_unit`` for a file without a sample interval; a
+        raw section of unknown shape; a folder that is not a store of ``seismo3d convert``.
+    SegyFormatError, SegyGeometryError
+        As :func:`~seismo3d.seismic.io.open_segy`.
+
+    Warns
+    -----
+    TraceListWarning
+        A SEG-Y file without an inline / crossline grid, read as a trace list (one line).
+
+    Examples
+    --------
+    >>> import seismo3d
+    >>> cube = seismo3d.open("f3_crop.sgy")            # doctest: +SKIP
+    >>> cube.dims, cube.attrs["sample_interval"]        # doctest: +SKIP
+    (('iline', 'xline', 'twt'), 4.0)
+    """
+    from ..._validation import check_choice, check_int
+
+    path = Path(path)
+    check_int(tile, "tile", minimum=1)
+    if sample_unit is not None:
+        check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
+    kind = format or seismic_kind(path) or "segy"
+    check_choice(kind, "format", {"segy", "zarr", "npy", "f32be"})
+    if kind == "zarr":
+        return _open_store(path, sample_unit=sample_unit, tile=tile)
+    if kind in ("npy", "f32be"):
+        return _open_array(path, kind, sample_unit=sample_unit, n_samples=n_samples, tile=tile)
+    return _open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
+                      sample_unit=sample_unit, tile=tile)
+
+
+def _sample_coord(samples, unit: str) -> tuple:
+    xr = _xarray()
+    return sample_dim(unit), xr.Variable((sample_dim(unit),), np.asarray(samples, dtype=np.float64),
+                                         attrs={"units": unit})
+
+
+def _sample_attrs(samples, unit: str) -> dict:
+    interval = float(samples[1] - samples[0]) if len(samples) > 1 else 1.0
+    return {"sample_interval": interval, "sample_unit": unit, "sample_rate": interval, "d3_domain": _DOMAINS[unit]}
+
+
+def _open_segy(path: Path, *, iline, xline, ignore_geometry, endian, sample_unit, tile: int):
+    """A SEG-Y file: geometry, layout and coordinates from one opening; amplitudes read tile by tile."""
+    import segyio
+
+    from .blocks import SegyGrid
+    from .coordinates import header_resolution
+    from .lazy import segy_dask_array
+    from .segy import open_segy
+
+    xr = _xarray()
+    # read, not mapped: a pass over every trace header of a mapped file would count in the resident memory
+    with open_segy(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, sample_unit=sample_unit,
+                   endian=endian, mmap=False) as cube:
+        f = cube.segyfile
+        unit = cube.sample_unit
+        samples = np.asarray(cube.samples, dtype=np.float64)
+        lateral = (cube.inlines.size, cube.xlines.size) if cube.inlines is not None else (cube.n_traces, 1)
+        grid = SegyGrid(path=str(path.resolve()), endian=cube.endian, sorting=cube.sorting or "inline",
+                        n_inlines=int(lateral[0]), n_xlines=int(lateral[1]), n_samples=int(samples.size))
+        x, y = cube.cdp_x, cube.cdp_y
+        cdp = bool(np.any(f.attributes(segyio.TraceField.CDP_X)[:]) or np.any(f.attributes(segyio.TraceField.CDP_Y)[:]))
+        resolution = header_resolution(np.asarray(f.attributes(segyio.TraceField.SourceGroupScalar)[:]))
+        xy_unit = "ft" if int(f.bin[segyio.BinField.MeasurementSystem]) == 2 else "m"
+        trace_il = trace_xl = None
+        if cube.inlines is None:
+            trace_il = np.asarray(f.attributes(cube.iline_byte)[:])
+            trace_xl = np.asarray(f.attributes(cube.xline_byte)[:])
+        attrs = {"source_file": path.name, "kind": "trace list" if cube.inlines is None else
+                 ("cube" if cube.is_3d else "line"), "description": cube.description,
+                 "segy_format": cube.format_name, "segy_endian": cube.endian, "segy_sorting": cube.sorting or "",
+                 "iline_byte": int(cube.iline_byte), "xline_byte": int(cube.xline_byte),
+                 **_sample_attrs(samples, unit)}
+        inlines = None if cube.inlines is None else np.asarray(cube.inlines)
+        xlines = None if cube.xlines is None else np.asarray(cube.xlines)
+    data = segy_dask_array(grid, tile=tile)  # (n_inlines, n_xlines, n_samples); (n_traces, 1, ns) for a trace list
+    name, sample = _sample_coord(samples, unit)
+    coords = {name: sample}
+    if x is not None:
+        attrs.update(xy_unit=xy_unit, xy_resolution=resolution,
+                     xy_source=("CDP X/Y (trace bytes 181-188)" if cdp else "source X/Y (trace bytes 73-80)")
+                     + f" with the coordinate scalar of bytes 71-72, {xy_unit}")
+    else:
+        attrs.update(xy_unit="inline/crossline")
+    if inlines is None:  # a trace list: one lateral dimension, its header line numbers as coordinates
+        dims = ("trace", name)
+        data = data[:, 0, :]
+        coords["trace"] = np.arange(data.shape[0])
+        if not (np.all(trace_il == trace_il[0]) and np.all(trace_xl == trace_xl[0])):
+            coords.update(iline=("trace", trace_il), xline=("trace", trace_xl))
+        xy = None if x is None else (np.ravel(x), np.ravel(y))
+    elif 1 in lateral and not (lateral[0] == lateral[1] == 1):  # a 2D line of a survey
+        along = "iline" if lateral[1] == 1 else "xline"
+        other = "xline" if along == "iline" else "iline"
+        dims = (along, name)
+        data = data[:, 0, :] if along == "iline" else data[0]
+        coords.update({along: inlines if along == "iline" else xlines,
+                       other: int((xlines if along == "iline" else inlines)[0])})
+        xy = None if x is None else (np.ravel(x), np.ravel(y))
+    else:
+        dims = ("iline", "xline", name)
+        coords.update(iline=inlines, xline=xlines)
+        xy = None if x is None else (x, y)
+    if xy is not None:
+        coords.update(cdp_x=(dims[:-1], np.asarray(xy[0], dtype=np.float64), {"units": xy_unit}),
+                      cdp_y=(dims[:-1], np.asarray(xy[1], dtype=np.float64), {"units": xy_unit}))
+    return xr.DataArray(data, dims=dims, coords=coords, attrs=attrs, name="seismic")
+
+
+def _open_store(path: Path, *, sample_unit, tile: int):
+    """A Zarr store of ``seismo3d convert``, lazily, renamed to segysak's dimensions."""
+    from .zarr_store import open_seismic_zarr
+
+    xr = _xarray()
+    if not path.exists():
+        raise DataNotFoundError(f"no Zarr store at {path}; check the path")
+    meta = open_seismic_zarr(path)  # checks the layout
+    unit = sample_unit or meta.sample_unit
+    ds = xr.open_zarr(str(path), consolidated=None)
+    keep = ["seismic"] + [c for c in ("cdp_x", "cdp_y") if c in ds]
+    da = ds[keep].set_coords(keep[1:])["seismic"]
+    name = sample_dim(unit)
+    da = da.rename({"inline": "iline", "crossline": "xline", "sample": name})
+    da = da.chunk({"iline": tile, "xline": tile, name: -1})
+    da.coords[name].attrs["units"] = unit
+    xy_unit = str(ds["cdp_x"].attrs.get("units", "m")) if "cdp_x" in ds else "inline/crossline"
+    layout = meta.attrs.get("seismo3d", {})
+    shape = " x ".join(str(n) for n in da.shape)
+    da.attrs = {"source_file": path.name, "kind": "store", "description": f"a Zarr store of {shape} samples",
+                "segy_endian": layout.get("endian", ""), "segy_sorting": layout.get("sorting", ""),
+                "xy_unit": xy_unit, **_sample_attrs(meta.samples, unit)}
+    return da
+
+
+def _open_array(path: Path, kind: str, *, sample_unit, n_samples, tile: int):
+    """A ``.npy`` array (through its memory map) or a raw ``.f32be`` section, in samples; traces labelled by their
+    index."""
+    import dask.array as da
+
+    from .sections import known_section_shape, read_section
+
+    xr = _xarray()
+    if not path.is_file():
+        raise DataNotFoundError(f"no input file at {path}; check the path")
+    if kind == "f32be":
+        if n_samples is None and known_section_shape(path) is None:  # a raw file says nothing of its shape
+            n_values = path.stat().st_size // 4
+            raise InputError(f"the shape of {path.name} is unknown (a raw section of {n_values} float32 values, "
+                             "no header); give its number of samples per trace: n_samples=N")
+        data = read_section(path, n_samples=n_samples)
+    else:
+        try:
+            data = np.load(path, allow_pickle=False, mmap_mode="r")
+        except (ValueError, OSError) as exc:
+            raise InputError(f"{path.name} is not a readable .npy array ({exc}); save it with numpy.save") from exc
+        if data.ndim not in (2, 3):
+            raise InputError(f"{path.name} holds an array of shape {data.shape}; expected a 2D section "
+                             "(n_traces, n_samples) or a 3D cube (n_inlines, n_xlines, n_samples)")
+    if sample_unit is not None:
+        raise InputError(f"{path.name} has no sample interval, so --sample-unit cannot be used; its results are "
+                         "in samples")
+    shape = " x ".join(str(n) for n in data.shape)
+    lateral = ("iline", "xline") if data.ndim == 3 else ("trace",)
+    chunks = (tile,) * len(lateral) + (-1,)
+    name, sample = _sample_coord(np.arange(data.shape[-1]), "samples")
+    coords = {d: np.arange(n) for d, n in zip(lateral, data.shape)}
+    coords[name] = sample
+    what = "a raw section" if kind == "f32be" else "an array"
+    return xr.DataArray(da.from_array(data, chunks=chunks), dims=(*lateral, name), coords=coords, name="seismic",
+                        attrs={"source_file": path.name, "kind": "section" if kind == "f32be" else "array",
+                               "description": f"{what} of {shape} samples", "xy_unit": "inline/crossline",
+                               **_sample_attrs(np.arange(data.shape[-1]), "samples")})
+
+
+@dataclass(frozen=True)
+class CubeAxes:
+    """Which dimension of a seismic DataArray is what.
+
+    Attributes
+    ----------
+    lateral : tuple of str
+        The lateral dimension names in the array's order: ``('iline', 'xline')``, or one for a line.
+    sample : str
+        The sample dimension (the last).
+    sample_unit : {'ms', 'm', 'ft', 'samples'}
+    """
+
+    lateral: tuple
+    sample: str
+    sample_unit: str
+
+
+def seismic_axes(cube) -> CubeAxes:
+    """Find the inline / crossline (or trace) and sample dimensions of a seismic DataArray.
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+        3D (inline, crossline, sample) or 2D (line or trace, sample), under segysak's names (``iline``, ``xline``,
+        ``twt`` / ``depth`` / ``samples``, ``cdp`` / ``trace``) or those of a ``seismo3d convert`` store
+        (``inline``, ``crossline``, ``sample``).
+
+    Returns
+    -------
+    CubeAxes
+        The sample unit from the sample coordinate's ``units`` attribute, the array's ``sample_unit`` attribute, or
+        the dimension's name ('ms' for twt, 'm' for depth); 'ms' for another sample coordinate without a unit, as
+        for SEG-Y (segysak's ``samples``); 'samples' without a sample coordinate.
+
+    Raises
+    ------
+    InputError
+        Not a DataArray, a sample dimension that is not last, or dimensions without these names.
+    """
+    xr = _xarray()
+    if not isinstance(cube, xr.DataArray):
+        raise InputError(f"expected an xarray.DataArray; got {type(cube).__name__} (for a Dataset, pass its "
+                         "amplitude variable, e.g. ds['data'] or ds['seismic'])")
+    dims = list(cube.dims)
+    role = {}
+    for d in dims:
+        for name, aliases in _ALIASES.items():
+            if str(d).lower() in aliases:
+                role[d] = name
+    if len(dims) not in (2, 3) or role.get(dims[-1]) != "sample":
+        raise InputError(f"a seismic DataArray has dimensions (iline, xline, twt) or (trace, twt), the sample "
+                         f"last; got {tuple(dims)} (transpose it, e.g. cube.transpose(..., 'twt'))")
+    lateral = tuple(dims[:-1])
+    if len(lateral) == 2 and [role.get(d) for d in lateral] != ["inline", "crossline"]:
+        raise InputError(f"the lateral dimensions {lateral} must be inline then crossline (iline, xline)")
+    s = dims[-1]
+    unit = (cube.coords[s].attrs.get("units") if s in cube.coords else None) or cube.attrs.get("sample_unit") or \
+        _UNIT_OF_DIM.get(str(s).lower())
+    if unit is None:  # segysak's 'samples' carry no unit: time in ms, as open_segy assumes for SEG-Y
+        unit = "ms" if s in cube.coords else "samples"
+    if unit not in ("ms", "m", "ft", "samples"):
+        raise InputError(f"the sample unit {unit!r} of {s!r} is not one of ms, m, ft; set "
+                         f"cube[{s!r}].attrs['units'] to one of them")
+    return CubeAxes(lateral, s, str(unit))
+
+
+def sample_positions(cube, axes: CubeAxes) -> np.ndarray:
+    """The positions of a cube's samples.
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+
+    Returns
+    -------
+    (n_samples,) float64 ndarray
+        In ``axes.sample_unit``; the sample index without a sample coordinate.
+    """
+    if axes.sample in cube.coords:
+        return np.asarray(cube.coords[axes.sample].values, dtype=np.float64)
+    return np.arange(cube.sizes[axes.sample], dtype=np.float64)
+
+
+def sample_interval(cube, axes: CubeAxes) -> tuple:
+    """The sample interval of a cube and its unit.
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+
+    Returns
+    -------
+    (float or None, str)
+        ``(interval, unit)``; ``(None, 'samples')`` without a sample interval (no unit, or a single sample).
+
+    Raises
+    ------
+    InputError
+        The sample coordinate is not regularly sampled.
+    """
+    samples = sample_positions(cube, axes)
+    if axes.sample_unit == "samples" or samples.size < 2:
+        return None, "samples"
+    steps = np.diff(samples)
+    if not np.allclose(steps, steps[0], rtol=1e-6, atol=0):
+        raise InputError(f"the {axes.sample} coordinate is not regularly sampled (steps {steps.min():g} to "
+                         f"{steps.max():g} {axes.sample_unit}); resample the cube to one sample interval")
+    return float(steps[0]), axes.sample_unit
+
+
+def as_cube(values, like=None, *, name: str | None = None):
+    """``values`` as a DataArray on the dimensions and coordinates of the cube ``like`` (a DataArray of the same
+    shape), or on segysak's dimensions with index coordinates without one.
+
+    Parameters
+    ----------
+    values : (..., n_samples) ndarray, dask.array.Array or zarr.Array
+        A zarr array is wrapped lazily (``dask.array.from_zarr``).
+    like : xarray.DataArray, optional
+    name : str, optional
+
+    Returns
+    -------
+    xarray.DataArray
+        Numpy- or dask-backed as ``values``; ``like``'s attributes (sample interval and unit, source) kept.
+    """
+    xr = _xarray()
+    zarr = sys.modules.get("zarr")  # a zarr.Array's class is imported whenever there is one
+    if zarr is not None and isinstance(values, zarr.Array):
+        import dask.array as da
+
+        values = da.from_zarr(values)
+    if like is not None:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", Seismo3dWarning)
+            return xr.DataArray(values, dims=like.dims, coords=like.coords, attrs=dict(like.attrs), name=name)
+    dims = ("iline", "xline", "samples") if np.ndim(values) == 3 else ("trace", "samples")
+    return xr.DataArray(values, dims=dims, name=name)

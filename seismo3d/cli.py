@@ -601,7 +601,7 @@ def adapt(
     pick every fault of a line you pass. A 3D cube with one --sticks file: the inlines and crosslines its sticks lie
     on (placed by their inline / crossline numbers, or by X / Y through the cube's coordinates) are taken out of it
     and learned from as picked lines; a stick on no single line of the cube, between its lines or outside it is
-    refused. A line needs the traces the network's grids need (16 to 31: 31 for traces of 111 samples or more).
+    refused, and so is a line of fewer than 32 traces or 32 samples (what fault tracing needs).
     A quarter of each line's traces is held back: the F1 there with the shipped and the adapted network is printed,
     and MODEL keeps the shipped one when adapting does not score higher. Needs PyTorch and onnx (pip install
     'seismo3d[train]');

@@ -229,10 +229,11 @@ def _read_lines(inputs, picks, segy: dict) -> list:
 
 
 def min_traces(n_samples: int) -> int:
-    """The fewest traces of a picked line of ``n_samples`` samples that ``seismo3d adapt`` learns from: every network
-    grid the tracing runs the line on (``LearnedOptions().grids``) must hold at least ``MIN_GRID_TRACES`` traces, the
-    smallest section the fine-tuning draws patches from (two of the network's pooling multiples, so that its
-    coarsest level keeps two samples a side).
+    """The fewest traces of a picked line of ``n_samples`` samples that ``seismo3d adapt`` learns from: what fault
+    tracing needs of a section (:attr:`~seismo3d.seismic.FaultTracingOptions.min_traces`, 32: the line is traced
+    before and after adapting), and on every network grid the tracing runs the line on (``LearnedOptions().grids``)
+    at least ``MIN_GRID_TRACES`` traces, the smallest section the fine-tuning draws patches from (two of the network's
+    pooling multiples, so that its coarsest level keeps two samples a side).
 
     Parameters
     ----------
@@ -245,20 +246,25 @@ def min_traces(n_samples: int) -> int:
     """
     from ..seismic.faults.likelihood.learned import LearnedOptions
     from ..seismic.faults.likelihood.network import grid_size
+    from ..seismic.faults.options import FaultTracingOptions
 
-    n = MIN_GRID_TRACES
+    n = max(MIN_GRID_TRACES, int(FaultTracingOptions().min_traces[0]))
     while any(grid_size(n, f) < MIN_GRID_TRACES for f in LearnedOptions().grids(int(n_samples), 2)):
         n += 1
     return n
 
 
 def _check_line_size(line, picks: str) -> None:
-    """A picked line with enough traces to learn from (:func:`min_traces`), or an InputError in the CLI's terms."""
+    """A picked line with enough traces (:func:`min_traces`) and samples to trace and learn from, or an InputError in
+    the CLI's terms."""
+    from ..seismic.faults.options import FaultTracingOptions
+
     n_traces, n_samples = line.section.shape
-    need = min_traces(n_samples)
-    if n_traces < need:
-        raise InputError(f"{line.name} ({picks}) has {n_traces} traces; adapt learns from lines of at least {need} "
-                         f"traces of {n_samples} samples: pick longer lines (of a larger cube), or leave this one out")
+    need, need_samples = min_traces(n_samples), int(FaultTracingOptions().min_samples)
+    if n_traces < need or n_samples < need_samples:
+        raise InputError(f"{line.name} ({picks}) has {n_traces} traces of {n_samples} samples; adapt traces and learns "
+                         f"from lines of at least {need} traces of {need_samples} samples or more: pick longer lines "
+                         "(of a larger cube), or leave this one out")
 
 
 def _traced(line: _Line, model=None) -> np.ndarray:

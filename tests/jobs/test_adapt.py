@@ -147,8 +147,8 @@ def test_sticks_off_the_cube_s_lines_are_refused_in_one_line_before_the_work(pic
                 "outside the cube": "is on inline 160, outside the survey's inlines 101-140",
                 "oblique": "is on no single inline or crossline",
                 "mask": "cube.sgy is a 3D cube and a mask is of one line: pass the fault sticks",
-                "too few traces": "inline 110 of narrow.sgy \\(--sticks picks.dat\\) has 12 traces; adapt learns "
-                                  "from lines of at least 16"}[case]
+                "too few traces": "inline 110 of narrow.sgy \\(--sticks picks.dat\\) has 12 traces of 64 samples; "
+                                  "adapt traces and learns from lines of at least 32 traces"}[case]
     assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1, result.output
     assert re.search(expected, result.output), result.output
     assert not calls and not (tmp_path / "model").exists()  # nothing traced, nothing written

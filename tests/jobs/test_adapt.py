@@ -154,6 +154,26 @@ def test_sticks_off_the_cube_s_lines_are_refused_in_one_line_before_the_work(pic
     assert not calls and not (tmp_path / "model").exists()  # nothing traced, nothing written
 
 
+@pytest.mark.slow
+def test_adapt_on_a_cube_learns_from_every_line_its_sticks_were_picked_on(picked_cube, tmp_path):
+    pytest.importorskip("torch")
+    pytest.importorskip("onnx")
+    folder, syn, sticks = picked_cube
+    write_fault_sticks(tmp_path / "picks.dat", sticks, format="opendtect")
+    model = tmp_path / "model"
+    result = runner.invoke(app, ["adapt", str(folder / "cube.sgy"), "--sticks", str(tmp_path / "picks.dat"), "-o",
+                                 str(model), "--steps", "2"])
+    assert result.exit_code == 0, result.output
+    record = json.loads((model / "adapt.json").read_text())
+    lines = record["results"]["lines"]
+    assert [line["line"] for line in lines] == ["inline 110 of cube.sgy", "inline 125 of cube.sgy",
+                                                "crossline 44 of cube.sgy"]
+    assert [(line["n_traces"], line["n_samples"]) for line in lines] == [(48, 64), (48, 64), (40, 64)]
+    people = [p.mask().sum() for _, p in read_picked_lines(folder / "cube.sgy", sticks=tmp_path / "picks.dat")]
+    assert [line["picked_samples"] for line in lines] == people
+    assert all(f"{line['line']}: held back traces" in result.output for line in lines)
+
+
 @pytest.fixture
 def shipped_model(tmp_path) -> Path:
     """A MODEL folder holding the shipped float network, as adapt writes one when adapting did not help."""

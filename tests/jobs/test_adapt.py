@@ -1,7 +1,9 @@
 """The ``seismo3d adapt`` command (seismo3d.jobs.adapt) and tracing with its MODEL (``faults --model``,
-``trace_faults(model=...)``): the refusals before the work, the held-back band, the MODEL round trip (a MODEL holding
-the shipped network traces the same bits as no MODEL; a changed one is refused), and a generated fault style the
-shipped network misses that adapting on a sibling section learns (PyTorch: the ``train`` extra)."""
+``trace_faults(model=...)``): its inputs (lines paired with their picks; a generated 3D SEG-Y cube whose one sticks
+file, OpendTect, Charisma or IESX, was picked on two inlines and a crossline), the refusals before the work, the
+held-back band, the one line without PyTorch, the MODEL round trip (a MODEL holding the shipped network traces the
+same bits as no MODEL; a changed one is refused), and a generated fault style the shipped network misses that
+adapting on a sibling section learns (PyTorch: the ``train`` extra)."""
 
 from __future__ import annotations
 
@@ -174,6 +176,27 @@ def test_adapt_on_a_cube_learns_from_every_line_its_sticks_were_picked_on(picked
     assert all(f"{line['line']}: held back traces" in result.output for line in lines)
 
 
+def test_the_i_th_mask_belongs_to_the_i_th_line(tmp_path, monkeypatch):
+    class Read(Exception):
+        """Raised where the training would start: every line and its picks were read."""
+
+    def stop():
+        raise Read
+
+    monkeypatch.setattr("seismo3d.jobs.adapt.training_module", stop)
+    (a, pa), (b, pb) = dimmed_section(1), dimmed_section(2)
+    b, pb = b[:120], pb[:120]  # another line, of 120 traces
+    for name, array in (("a", a), ("pa", pa), ("b", b), ("pb", pb)):
+        np.save(tmp_path / f"{name}.npy", array)
+    lines = [tmp_path / "a.npy", tmp_path / "b.npy"]
+    with pytest.raises(Read):
+        run_adapt_job(lines, [("mask", tmp_path / "pa.npy"), ("mask", tmp_path / "pb.npy")], tmp_path / "m",
+                      progress=False)
+    with pytest.raises(InputError, match=r"the mask pb.npy is 120 x 128, but the section of a.npy has 160 traces"):
+        run_adapt_job(lines, [("mask", tmp_path / "pb.npy"), ("mask", tmp_path / "pa.npy")], tmp_path / "m",
+                      progress=False)
+
+
 @pytest.fixture
 def shipped_model(tmp_path) -> Path:
     """A MODEL folder holding the shipped float network, as adapt writes one when adapting did not help."""
@@ -278,3 +301,39 @@ def test_the_network_fine_tuned_on_a_sibling_section_traces_a_fault_style_the_sh
                         {"kept": "adapted"})
     p, r, f1 = tolerant_scores(_traced(sibling, model), sibling_picks, 3.0)
     assert p >= 0.9 and f1 >= 0.4, (p, r, f1)  # measured: P 1.0, R 0.33 (one zone of three), F1 0.5
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason=(
+    "the tracing drops every dimmed zone: its evidence keeps no fault whose reflectors continue unbroken, whatever the "
+    "network says (FaultEvidence.is_unbroken). The network adapted on the section finds the zones (its thinned ridges "
+    "match the picks at F1 0.99 on the section and 0.97 on the sibling), yet it traces no fault on the section (with "
+    "is_unbroken's three rules off: two zones of three, F1 0.80, precision 1.0), so the held-back band scores 0.0 -> "
+    "0.0 and MODEL rightly keeps the shipped network (measured 2026-11-27, 433 s under load 13)"))
+def test_adapt_on_a_section_makes_the_faults_command_trace_a_style_the_shipped_network_misses_on_its_sibling(
+        tmp_path):
+    """Through the commands, whatever the fine-tuning: MODEL from 'seismo3d adapt' on one section traces more of the
+    sibling's dimmed zones than the shipped network (none). Measured with the network fine-tuned on the section
+    (seed 0, 100 steps, the held-back band left out; the test above): F1 0.50 on the sibling (one zone of three,
+    precision 1.0) against 0.0, so a margin of 0.3."""
+    pytest.importorskip("torch")
+    pytest.importorskip("onnx")
+    section, picks = dimmed_section(1)
+    sibling, sibling_picks = dimmed_section(2)
+    np.save(tmp_path / "line.npy", section)
+    np.save(tmp_path / "picks.npy", picks)
+    np.save(tmp_path / "sibling.npy", sibling)
+    np.save(tmp_path / "sibling_picks.npy", sibling_picks)
+    result = runner.invoke(app, ["adapt", str(tmp_path / "line.npy"), "--mask", str(tmp_path / "picks.npy"), "-o",
+                                 str(tmp_path / "model")])
+    assert result.exit_code == 0, result.output
+    scores = {}
+    for name, extra in (("default", []), ("adapted", ["--model", str(tmp_path / "model")])):
+        traced = runner.invoke(app, ["faults", str(tmp_path / "sibling.npy"), "-o", str(tmp_path / name), *extra])
+        assert traced.exit_code == 0, traced.output
+        evaluated = runner.invoke(app, ["evaluate", str(tmp_path / name), "--mask",
+                                        str(tmp_path / "sibling_picks.npy")])  # F1 within 3 samples
+        assert evaluated.exit_code == 0, evaluated.output
+        scores[name] = json.loads((tmp_path / name / "evaluation" / "evaluation.json").read_text())
+    assert scores["default"]["f1"] <= 0.05  # the shipped network traces none of the zones (measured 0.0)
+    assert scores["adapted"]["f1"] >= scores["default"]["f1"] + 0.3, scores

@@ -601,11 +601,10 @@ def adapt(
     pick every fault of a line you pass. A 3D cube with one --sticks file: the inlines and crosslines its sticks lie
     on (placed by their inline / crossline numbers, or by X / Y through the cube's coordinates) are taken out of it
     and learned from as picked lines; a stick on no single line of the cube, between its lines or outside it is
-    refused, and so is a line of fewer than 32 traces or 32 samples (what fault tracing needs).
-    A quarter of each line's traces is held back: the F1 there with the shipped and the adapted network is printed,
-    and MODEL keeps the shipped one when adapting does not score higher. Needs PyTorch and onnx (pip install
-    'seismo3d[train]');
-    tracing does not."""
+    refused, and so is a line of fewer than 32 traces or 32 samples (what fault tracing needs). A quarter of each
+    line's traces is held back: the F1 there with the shipped and the adapted network is printed, and MODEL keeps
+    the shipped one when adapting does not score higher. Needs PyTorch and onnx (pip install torch onnx, or the
+    train extra); tracing does not."""
     check_before_import("folder", model, [*inputs, *(sticks or []), *(mask or [])], overwrite=False)
     from .jobs.adapt import adapt_report, paired_picks, run_adapt_job
 

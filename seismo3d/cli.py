@@ -580,11 +580,14 @@ def evaluate(
 @_friendly({"picks": "--sticks / --mask", "model": "-o"})
 def adapt(
     inputs: list[pathlib.Path] = typer.Argument(..., metavar="INPUT...", show_default=False, help="The picked lines: "
-                                                "SEG-Y inlines or crosslines, .npy (traces, samples) or .f32be."),
+                                                "SEG-Y inlines or crosslines, .npy (traces, samples) or .f32be; or a "
+                                                "3D SEG-Y cube with one --sticks file picked on some of its lines."),
     sticks: Optional[list[pathlib.Path]] = typer.Option(None, "--sticks", show_default=False, help="Fault sticks of "
-                                                        "the i-th INPUT (OpendTect, Charisma, IESX); once: of all."),
+                                                        "the i-th INPUT (OpendTect, Charisma, IESX); once: of all. "
+                                                        "On a cube, each stick on one of its inlines or crosslines."),
     mask: Optional[list[pathlib.Path]] = typer.Option(None, "--mask", show_default=False, help="Faults of the i-th "
-                                                      "INPUT: .npy (traces, samples) or PNG (a row per sample)."),
+                                                      "INPUT, a line: .npy (traces, samples) or PNG (a row per "
+                                                      "sample)."),
     model: pathlib.Path = typer.Option(..., "-o", "--output", show_default=False, help="The MODEL folder to write "
                                        "(must not exist); trace with 'seismo3d faults --model MODEL'."),
     iline: int = typer.Option(189, help=_ILINE_HELP),
@@ -592,17 +595,22 @@ def adapt(
     endian: Optional[Endian] = typer.Option(None, help=_ENDIAN_HELP),
     steps: int = typer.Option(100, min=1, help="Training steps (4 patches each, seed 0)."),
 ) -> None:
-    """Adapt the fault network to your survey from an interpreter's faults on a few lines, each taken as fully
-    interpreted (a sample away from the drawn faults is taught as no fault); write MODEL. A quarter of each line's
-    traces is held back: the F1 there with the shipped and the adapted network is printed, and MODEL keeps the shipped
-    one when adapting does not score higher. Needs PyTorch and onnx (pip install torch onnx); tracing does not."""
+    """Adapt the fault network to your survey from an interpreter's faults on a few lines; write MODEL.
+
+    Each picked line is taken as fully interpreted: a sample away from the drawn faults is taught as no fault, so
+    pick every fault of a line you pass. A 3D cube with one --sticks file: the inlines and crosslines its sticks lie
+    on (placed by their inline / crossline numbers, or by X / Y through the cube's coordinates) are taken out of it
+    and learned from as picked lines; a stick on no single line of the cube, between its lines or outside it is
+    refused, and so is a line of fewer than 32 traces or 32 samples (what fault tracing needs). A quarter of each
+    line's traces is held back: the F1 there with the shipped and the adapted network is printed, and MODEL keeps
+    the shipped one when adapting does not score higher. Needs PyTorch and onnx (pip install torch onnx, or the
+    train extra); tracing does not."""
     check_before_import("folder", model, [*inputs, *(sticks or []), *(mask or [])], overwrite=False)
     from .jobs.adapt import adapt_report, paired_picks, run_adapt_job
-    from .training.adapt import AdaptOptions
 
     with compile_note():
         job = run_adapt_job(inputs, paired_picks(sticks, mask), model, iline=iline, xline=xline,
-                            endian=_value(endian), options=AdaptOptions(steps=steps), progress=True)
+                            endian=_value(endian), steps=steps, progress=True)
     typer.echo("\n".join(adapt_report(job)))
 
 

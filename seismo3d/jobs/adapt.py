@@ -1,8 +1,8 @@
 """The ``seismo3d adapt`` job: the fault network adapted to a survey from an interpreter's faults on a few lines.
 
-:func:`run_adapt_job` reads each picked line (a SEG-Y inline or crossline, or a 2D ``.npy`` / ``.f32be`` section,
-through evaluate's reader :func:`~seismo3d.jobs.evaluate.read_line`) and the interpreter's faults on it (fault sticks
-or a mask, :func:`~seismo3d.jobs.evaluate.read_people_faults`), then:
+:func:`run_adapt_job` reads each picked line (a SEG-Y inline or crossline, a 2D ``.npy`` / ``.f32be`` section, or the
+inlines and crosslines of a 3D SEG-Y cube that one fault-stick file was picked on) and the interpreter's faults on it
+(fault sticks or a mask), through evaluate's reader :func:`~seismo3d.jobs.evaluate.read_picked_lines`, then:
 
 1. **holds back** a band of a quarter of each line's traces (:func:`held_back_band`: the band holding the share of
    the line's picked fault samples closest to a quarter), whose picks the training never sees;
@@ -22,10 +22,9 @@ The network is fine-tuned once, without the band: the model written is the one v
 from __future__ import annotations
 
 import hashlib
-import importlib.util
 import tempfile
 from contextlib import contextmanager
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -33,15 +32,16 @@ from scipy.ndimage import zoom
 
 from .._atomic import atomic_directory
 from .._progress import LOGGER
-from ..errors import InputError
+from ..errors import InputError, MissingDependencyError
 from ..seismic.fault_scoring import tolerant_scores
 from ..seismic.adapted_network import MODEL_NETWORK, MODEL_RECORD
 from .runinfo import RunRecord
 
-__all__ = ["AdaptJobResult", "HELD_BACK", "TORCH_HINT", "adapt_report", "held_back_band", "paired_picks",
-           "run_adapt_job", "training_grids", "write_model"]
+__all__ = ["AdaptJobResult", "HELD_BACK", "MIN_GRID_TRACES", "TORCH_HINT", "adapt_report", "held_back_band",
+           "min_traces", "paired_picks", "run_adapt_job", "training_grids", "training_module", "write_model"]
 
 HELD_BACK = 0.25  # share of each line's traces held back for validation
+MIN_GRID_TRACES = 16  # the fewest traces of a section on a network grid that the fine-tuning draws patches from
 TORCH_HINT = ("seismo3d adapt trains the fault network with PyTorch, which is not installed: "
               "pip install 'seismo3d[train]' (CPU only: pip install torch==2.13.0 onnx)")
 
@@ -180,31 +180,91 @@ def _check_before_work(inputs, picks, model: Path) -> None:
                          "order (or one --sticks file for every input)")
 
 
-def _check_training_framework() -> None:
-    """PyTorch and onnx (the ``train`` extra) present, else one line saying how to install them."""
-    for needed in ("torch", "onnx"):
-        if importlib.util.find_spec(needed) is None:
-            raise InputError(TORCH_HINT)
+def training_module():
+    """The fine-tuning (:mod:`seismo3d.training.adapt`, which imports PyTorch; onnx exports its network), imported
+    when the inputs have been read; one line saying how to install them when either is missing.
+
+    Returns
+    -------
+    module
+        :mod:`seismo3d.training.adapt`.
+
+    Raises
+    ------
+    MissingDependencyError
+        PyTorch or onnx cannot be imported (not installed), with :data:`TORCH_HINT`.
+    """
+    import importlib
+
+    try:
+        importlib.import_module("onnx")  # the adapted network leaves as ONNX
+        adapt = importlib.import_module("seismo3d.training.adapt")
+    except ImportError as exc:
+        if (exc.name or "").split(".")[0] not in ("torch", "onnx"):
+            raise  # not the framework: a bug of ours, with its traceback
+        raise MissingDependencyError(TORCH_HINT) from None
+    return adapt
 
 
 def _read_lines(inputs, picks, segy: dict) -> list:
-    """Every picked line and its picks, read and placed before any work (a stick off its line, a mask of another
-    shape, a line without faults are refused here)."""
-    from .evaluate import read_line, read_people_faults
+    """Every picked line and its picks, read and placed before any work: an input's one line, or the lines of a cube
+    its sticks were picked on (:func:`~seismo3d.jobs.evaluate.read_picked_lines`; a stick off the cube's lines, a
+    mask of another shape, a line without faults or with too few traces are refused here)."""
+    from .evaluate import read_picked_lines
 
     lines = []
     for i, path in enumerate(inputs):
         kind, pick_path = picks[i if len(picks) > 1 else 0]
-        line = read_line(path, segy_options=segy)
-        people = read_people_faults(line, **{kind: pick_path}).mask()
-        if not people.any():
-            raise InputError(f"the {kind} {Path(pick_path).name} draw no fault sample on {line.name}; adapt learns "
-                             "from lines with faults drawn")
-        step = np.diff(line.samples)
-        unit = line.sample_unit if line.sample_unit in ("ms", "m", "ft") else "samples"
-        interval = float(np.median(step)) if unit != "samples" and step.size else 1.0
-        lines.append(_Line(Path(path), line.name, line.section, people, interval, unit, held_back_band(people)))
+        for line, people in read_picked_lines(path, segy_options=segy, **{kind: pick_path}):
+            people = people.mask()
+            if not people.any():
+                raise InputError(f"the {kind} {Path(pick_path).name} draw no fault sample on {line.name}; adapt "
+                                 "learns from lines with faults drawn")
+            _check_line_size(line, f"--{kind} {Path(pick_path).name}")
+            step = np.diff(line.samples)
+            unit = line.sample_unit if line.sample_unit in ("ms", "m", "ft") else "samples"
+            interval = float(np.median(step)) if unit != "samples" and step.size else 1.0
+            lines.append(_Line(Path(path), line.name, line.section, people, interval, unit, held_back_band(people)))
     return lines
+
+
+def min_traces(n_samples: int) -> int:
+    """The fewest traces of a picked line of ``n_samples`` samples that ``seismo3d adapt`` learns from: what fault
+    tracing needs of a section (:attr:`~seismo3d.seismic.FaultTracingOptions.min_traces`, 32: the line is traced
+    before and after adapting), and on every network grid the tracing runs the line on (``LearnedOptions().grids``)
+    at least ``MIN_GRID_TRACES`` traces, the smallest section the fine-tuning draws patches from (two of the network's
+    pooling multiples, so that its coarsest level keeps two samples a side).
+
+    Parameters
+    ----------
+    n_samples : int
+        Samples per trace of the line.
+
+    Returns
+    -------
+    int
+    """
+    from ..seismic.faults.likelihood.learned import LearnedOptions
+    from ..seismic.faults.likelihood.network import grid_size
+    from ..seismic.faults.options import FaultTracingOptions
+
+    n = max(MIN_GRID_TRACES, int(FaultTracingOptions().min_traces[0]))
+    while any(grid_size(n, f) < MIN_GRID_TRACES for f in LearnedOptions().grids(int(n_samples), 2)):
+        n += 1
+    return n
+
+
+def _check_line_size(line, picks: str) -> None:
+    """A picked line with enough traces (:func:`min_traces`) and samples to trace and learn from, or an InputError in
+    the CLI's terms."""
+    from ..seismic.faults.options import FaultTracingOptions
+
+    n_traces, n_samples = line.section.shape
+    need, need_samples = min_traces(n_samples), int(FaultTracingOptions().min_samples)
+    if n_traces < need or n_samples < need_samples:
+        raise InputError(f"{line.name} ({picks}) has {n_traces} traces of {n_samples} samples; adapt traces and learns "
+                         f"from lines of at least {need} traces of {need_samples} samples or more: pick longer lines "
+                         "(of a larger cube), or leave this one out")
 
 
 def _traced(line: _Line, model=None) -> np.ndarray:
@@ -297,24 +357,29 @@ def write_model(model, network: bytes, record: RunRecord, inputs: dict, results:
 
 
 def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ignore_geometry=False,
-                  sample_unit=None, options=None, progress=True) -> AdaptJobResult:
+                  sample_unit=None, options=None, steps=None, progress=True) -> AdaptJobResult:
     """Adapt the fault network to a survey from an interpreter's faults on a few lines: the ``seismo3d adapt``
     command (module notes).
 
     Parameters
     ----------
     inputs : sequence of str or os.PathLike
-        The picked lines: SEG-Y inlines or crosslines, ``.npy`` (n_traces, n_samples) or ``.f32be`` sections.
+        The picked lines: SEG-Y inlines or crosslines, ``.npy`` (n_traces, n_samples) or ``.f32be`` sections, or a 3D
+        SEG-Y cube whose fault sticks were picked on some of its inlines and crosslines (each such line taken out of
+        the cube and learned from as a picked line; :func:`~seismo3d.jobs.evaluate.read_picked_lines`).
     picks : sequence of ('sticks' or 'mask', path)
         The interpreter's faults, the i-th on the i-th input (or one fault-stick file for every input): fault sticks
-        (OpendTect, Charisma, IESX; sticks of other lines left out) or a mask of the line (.npy (n_traces,
-        n_samples) or an image of a row per sample).
+        (OpendTect, Charisma, IESX; on a line, sticks of other lines left out; on a cube, every stick on one of its
+        inlines or crosslines) or a mask of the line (.npy (n_traces, n_samples) or an image of a row per sample).
     model : str or os.PathLike
         The MODEL folder to write (must not exist).
     iline, xline, endian, ignore_geometry, sample_unit : optional
         How the SEG-Y inputs are read (as ``seismo3d faults`` reads them).
     options : seismo3d.training.adapt.AdaptOptions, optional
         The fine-tuning (default: every layer, 100 steps of 4 patches, seed 0).
+    steps : int, optional
+        Training steps, in place of ``options``' (``--steps``: the command passes plain values, so that it imports
+        PyTorch only once the inputs have been read).
     progress : bool, optional
         Log the stages and a progress bar over the training steps.
 
@@ -325,9 +390,12 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
     Raises
     ------
     InputError
-        MODEL exists; inputs and picks do not pair; PyTorch or onnx is missing (the message says how to install
-        them); a line is not one line (a cube); sticks not on their line; a mask of another shape; a line without
-        picked faults. All before the work.
+        MODEL exists; inputs and picks do not pair; an input neither a line nor a SEG-Y cube (a trace list, a 3D
+        array), or a cube with a mask; sticks not on their line; on a cube, a stick on no single inline or crossline,
+        between two of its lines or outside it; a mask of another shape; a line without picked faults or with fewer
+        traces than :func:`min_traces`. All before the work.
+    MissingDependencyError
+        PyTorch or onnx missing (the message says how to install them), after the inputs' checks, before the work.
     DataNotFoundError
         An input or pick file is missing.
     """
@@ -341,11 +409,12 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
     segy = {k: v for k, v in segy.items() if v is not None}
     with record.stage("read lines and picks"):
         lines = _read_lines(list(inputs), picks, segy)
-    _check_training_framework()
+    training = training_module()
     from ..seismic.faults.likelihood.network import onnx_model, WEIGHTS_FILE
-    from ..training.adapt import AdaptOptions, fine_tune
 
-    opt = options or AdaptOptions()
+    opt = options or training.AdaptOptions()
+    if steps is not None:
+        opt = replace(opt, steps=int(steps))
     say = LOGGER.info if progress else (lambda *a: None)
     with record.stage("held-back score before"):
         before = [_band_scores(line, _traced(line)) for line in lines]
@@ -357,7 +426,7 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
         start = {k: npz[k] for k in npz.files}
     with record.stage("fine-tune"):
         grids = [g for line in lines for g in training_grids(line.section, line.picks, line.band)]
-        tuned = fine_tune(start, grids, options=opt, progress=progress)
+        tuned = training.fine_tune(start, grids, options=opt, progress=progress)
     network = onnx_model(tuned["weights"])
     with record.stage("held-back score after"), _staged_model(model, network) as trial:
         after = [_band_scores(line, _traced(line, trial)) for line in lines]

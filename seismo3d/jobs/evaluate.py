@@ -45,7 +45,7 @@ from .outputs import check_outputs, output_folder
 from .runinfo import RUN_JSON, RunRecord, input_changed, jsonable, read_run_json
 
 __all__ = ["CONFIDENCE_COLUMNS", "EvaluateJob", "RESULTS", "SeismicLine", "evaluation_table", "read_line",
-           "read_people_faults", "run_evaluate_job"]
+           "read_people_faults", "read_picked_lines", "run_evaluate_job"]
 
 RESULTS = ("evaluation.csv", "evaluation.json", "evaluation.png", RUN_JSON)  # what a run writes into its folder
 CONFIDENCE_COLUMNS = ("confidence", "mean_likelihood")  # of fault_summary.csv, the first present is read
@@ -144,20 +144,110 @@ def read_line(path, *, segy_options: dict | None = None) -> SeismicLine:
     from .inputs import read_seismic
 
     seismic = read_seismic(path, **(segy_options or {}))
-    data, samples = np.asarray(seismic.data), np.asarray(seismic.samples, dtype=np.float64)
+    line = _as_line(seismic)
+    if line is None:
+        raise InputError(f"{Path(path).name} is {seismic.description}, not one line: evaluate scores the faults of one "
+                         "seismic line (an inline or crossline as SEG-Y, or a 2D array); trace a line and evaluate "
+                         "that run")
+    return line
+
+
+def _as_line(seismic) -> SeismicLine | None:
+    """A :class:`~seismo3d.jobs.inputs.SeismicInput` of one line as a :class:`SeismicLine`; None for anything else."""
+    data, samples = seismic.data, np.asarray(seismic.samples, dtype=np.float64)
     if seismic.kind == "line":
         along_inlines = data.shape[1] == 1  # one crossline, many inlines
-        labels = np.asarray(seismic.inlines if along_inlines else seismic.xlines, dtype=np.float64)
-        fixed = ("crossline", float(seismic.xlines[0])) if along_inlines else ("inline", float(seismic.inlines[0]))
-        section = data[:, 0, :] if along_inlines else data[0]
-        return SeismicLine(Path(path), section.astype(np.float32), labels, "inline" if along_inlines else "crossline",
-                           fixed, samples, seismic.sample_unit)
+        index = ("crossline", 0) if along_inlines else ("inline", 0)
+        return _grid_line(seismic, *index)
     if seismic.kind in ("array", "section") and data.ndim == 2:
-        return SeismicLine(Path(path), np.asarray(data, dtype=np.float32), np.arange(data.shape[0], dtype=np.float64),
-                           None, None, samples, seismic.sample_unit)
-    raise InputError(f"{Path(path).name} is {seismic.description}, not one line: evaluate scores the faults of one "
-                     "seismic line (an inline or crossline as SEG-Y, or a 2D array); trace a line and evaluate that "
-                     "run")
+        return SeismicLine(seismic.path, np.asarray(data, dtype=np.float32), np.arange(data.shape[0],
+                           dtype=np.float64), None, None, samples, seismic.sample_unit)
+    return None
+
+
+def _grid_line(seismic, fixed: str, index: int) -> SeismicLine:
+    """The inline (``fixed='inline'``) or crossline at ``index`` of a SEG-Y grid (a cube or a line), its traces in
+    the file's order, read from a lazy cube only there."""
+    if fixed == "inline":
+        section, labels, number = seismic.data[index], seismic.xlines, seismic.inlines[index]
+    else:
+        section, labels, number = seismic.data[:, index], seismic.inlines, seismic.xlines[index]
+    return SeismicLine(seismic.path, np.asarray(section, dtype=np.float32), np.asarray(labels, dtype=np.float64),
+                       "crossline" if fixed == "inline" else "inline", (fixed, float(number)),
+                       np.asarray(seismic.samples, dtype=np.float64), seismic.sample_unit)
+
+
+def read_picked_lines(path, *, sticks=None, mask=None, segy_options: dict | None = None) -> list:
+    """The lines of a seismic file that people's faults were drawn on, each with its faults: the file's one line
+    (a SEG-Y inline or crossline, a 2D ``.npy`` / ``.f32be`` section) with its sticks or mask
+    (:func:`read_people_faults`), or the inlines and crosslines of a 3D SEG-Y cube that the fault sticks were picked
+    on (:func:`~seismo3d.seismic.io.stick_sections.picked_sections`), taken out of it as sections (the cube is read
+    lazily: only the picked lines' traces).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The seismic file.
+    sticks, mask : str or os.PathLike, optional
+        One of them: a fault-stick file (OpendTect, Charisma, IESX: the only kind for a cube), or a mask of the line
+        (module notes).
+    segy_options : dict, optional
+        ``iline``, ``xline``, ``endian``, ``ignore_geometry``, ``sample_unit``.
+
+    Returns
+    -------
+    list of (SeismicLine, SectionFaults)
+        For a cube, its picked inlines by increasing number, then its crosslines.
+
+    Raises
+    ------
+    InputError
+        Both or neither of ``sticks`` and ``mask``; a trace list or a 3D array without line numbers; a mask for a
+        cube; for a cube, a stick on no single inline or crossline, between two of them, outside the cube, or above
+        or below its samples (the message names the stick); for a line, as :func:`read_people_faults`.
+    DataNotFoundError, SegyFormatError, SegyGeometryError
+        As :func:`~seismo3d.jobs.inputs.read_seismic`.
+    """
+    from .inputs import read_seismic
+
+    if (sticks is None) == (mask is None):
+        raise InputError("pass people's faults as either sticks=FILE (--sticks) or mask=FILE (--mask)")
+    seismic = read_seismic(path, **(segy_options or {}), lazy_if=lambda shape: True)
+    line = _as_line(seismic)
+    if line is not None:
+        return [(line, read_people_faults(line, sticks=sticks, mask=mask))]
+    name = Path(path).name
+    if seismic.kind != "cube":
+        raise InputError(f"{name} is {seismic.description}, neither one line nor a 3D SEG-Y cube with inline / "
+                         "crossline numbers to place fault sticks on; pass a SEG-Y line or cube, or a 2D section")
+    if mask is not None:
+        raise InputError(f"{name} is a 3D cube and a mask is of one line: pass the fault sticks picked on the cube's "
+                         f"lines (--sticks FILE), or the picked line as its own SEG-Y or .npy with its mask")
+    return _cube_picked_lines(seismic, Path(sticks), segy_options or {})
+
+
+def _cube_picked_lines(seismic, path: Path, segy_options: dict) -> list:
+    """The inlines and crosslines of a SEG-Y cube that the sticks of ``path`` were picked on, with their sticks."""
+    from ..seismic.io.coordinates import read_survey_coordinates
+    from ..seismic.io.fault_sticks import read_fault_sticks
+    from ..seismic.io.stick_sections import picked_sections
+
+    if not path.is_file():
+        raise DataNotFoundError(f"no fault-stick file at {path}; check the path")
+    sticks = read_fault_sticks(path)
+    if np.isnan(sticks.inline).any() or np.isnan(sticks.crossline).any():  # IESX: placed by X / Y
+        keep = {k: v for k, v in segy_options.items() if k in ("iline", "xline", "ignore_geometry", "endian")}
+        sticks = read_fault_sticks(path, coordinates=read_survey_coordinates(seismic.path, **keep))
+    try:
+        sections = picked_sections(sticks, seismic.inlines, seismic.xlines, seismic.samples)
+    except InputError as exc:
+        raise InputError(f"{path.name} on {seismic.path.name}: {exc}") from None
+    out = []
+    for picked in sections:
+        line = _grid_line(seismic, picked.fixed, picked.index)
+        out.append((line, SectionFaults.from_sticks(sticks.take(picked.nodes), line.trace_labels, line.samples,
+                                                    axis=line.axis)))
+    return out
 
 
 def _run_input(folder: Path, seismic) -> tuple:
@@ -255,7 +345,7 @@ def read_people_faults(line: SeismicLine, *, sticks=None, mask=None) -> SectionF
 def _read_sticks(path: Path, line: SeismicLine) -> SectionFaults:
     """People's fault sticks on the line; sticks of other lines left out with a warning."""
     from ..seismic.io.coordinates import read_survey_coordinates
-    from ..seismic.io.fault_sticks import FaultSticks, read_fault_sticks
+    from ..seismic.io.fault_sticks import read_fault_sticks
 
     if line.axis is None:
         raise InputError(f"fault sticks are placed by inline / crossline numbers, and {line.path.name} has none; draw "
@@ -272,10 +362,7 @@ def _read_sticks(path: Path, line: SeismicLine) -> SectionFaults:
     if len(keep) < sticks.n_sticks:
         warnings.warn(f"{sticks.n_sticks - len(keep)} of the {sticks.n_sticks} fault sticks of {path.name} are not on "
                       f"{line.name} and were left out", Seismo3dWarning, stacklevel=3)
-        nodes = np.concatenate(keep)
-        sticks = FaultSticks(sticks.fault_id[nodes], sticks.stick[nodes], sticks.x[nodes], sticks.y[nodes],
-                             sticks.z[nodes], sticks.inline[nodes], sticks.crossline[nodes], sticks.names,
-                             sticks.z_unit, sticks.xy_unit)
+        sticks = sticks.take(np.concatenate(keep))
     return SectionFaults.from_sticks(sticks, line.trace_labels, line.samples, axis=line.axis)
 
 

@@ -1,12 +1,16 @@
 """The ``seismo3d adapt`` command (seismo3d.jobs.adapt) and tracing with its MODEL (``faults --model``,
-``trace_faults(model=...)``): the refusals before the work, the held-back band, the MODEL round trip (a MODEL holding
-the shipped network traces the same bits as no MODEL; a changed one is refused), and a generated fault style the
-shipped network misses that adapting on a sibling section learns (PyTorch: the ``train`` extra)."""
+``trace_faults(model=...)``): its inputs (lines paired with their picks; a generated 3D SEG-Y cube whose one sticks
+file, OpendTect, Charisma or IESX, was picked on two inlines and a crossline), the refusals before the work, the
+held-back band, the one line without PyTorch, the MODEL round trip (a MODEL holding the shipped network traces the
+same bits as no MODEL; a changed one is refused), and a generated fault style the shipped network misses that
+adapting on a sibling section learns (PyTorch: the ``train`` extra)."""
 
 from __future__ import annotations
 
 import hashlib
 import json
+import re
+import sys
 from importlib import resources
 from pathlib import Path
 
@@ -15,16 +19,22 @@ import pytest
 from typer.testing import CliRunner
 
 from seismo3d.cli import app
+from seismo3d.data.synthetic import synthetic_cube, write_segy_cube
 from seismo3d.data.synthetic_sections import FaultSectionOptions, synthetic_fault_section
 from seismo3d.errors import DataNotFoundError, InputError
 from seismo3d.jobs.adapt import TORCH_HINT, held_back_band, run_adapt_job, training_grids, write_model
+from seismo3d.jobs.evaluate import read_picked_lines
 from seismo3d.jobs.runinfo import RunRecord
+from seismo3d.seismic.io.coordinates import read_survey_coordinates
+from seismo3d.seismic.io.fault_sticks import STICK_FORMATS, FaultSticks, write_fault_sticks
+from seismo3d.seismic.io.traced_sticks import stick_nodes
 from seismo3d.seismic.fault_scoring import tolerant_scores
 from seismo3d.seismic.faults import trace_faults
 from seismo3d.seismic.faults.result import fault_labels
 
 runner = CliRunner()
 SHAPE = (160, 128)  # traces, samples
+PICKED = (("inline", 9), ("inline", 24), ("crossline", 12))  # the lines of the generated cube picked, by index
 
 
 def dimmed_section(seed: int):
@@ -57,6 +67,134 @@ def line(tmp_path):
     np.save(tmp_path / "line.npy", section)
     np.save(tmp_path / "picks.npy", picks)
     return tmp_path / "line.npy", tmp_path / "picks.npy"
+
+
+def truth_sticks(syn, picked, coords) -> FaultSticks:
+    """The generated cube's faults as an interpreter picks them on some of its lines: on each line, one stick per
+    fault through its samples on the line (:func:`~seismo3d.seismic.io.traced_sticks.stick_nodes`), at the traces'
+    X / Y and line numbers and the samples' times (4 ms)."""
+    parts = []
+    for fixed, index in picked:
+        labels = syn.fault_labels[index] if fixed == "inline" else syn.fault_labels[:, index]
+        for fid in np.unique(labels[labels > 0]):
+            trace, sample = np.nonzero(labels == fid)
+            if np.ptp(sample) < 2:
+                continue
+            nodes = stick_nodes(trace, sample)[0]
+            lateral = np.column_stack([np.full(nodes.size, index), trace[nodes]])[:, ::1 if fixed == "inline" else -1]
+            parts.append((fid, lateral, 4.0 * sample[nodes]))
+    x, y = zip(*(coords.at(lat) for _, lat, _ in parts))
+    il, xl = zip(*(coords.lines_at(lat) for _, lat, _ in parts))
+    fault = np.concatenate([np.full(len(z), fid) for fid, _, z in parts])
+    stick = np.concatenate([np.full(len(z), k) for k, (_, _, z) in enumerate(parts)])
+    return FaultSticks(fault.astype(np.int64), stick.astype(np.int64), np.concatenate(x), np.concatenate(y),
+                       np.concatenate([z for _, _, z in parts]), np.concatenate(il), np.concatenate(xl),
+                       tuple(f"fault_{k}" for k in range(1, int(fault.max()) + 1)))
+
+
+@pytest.fixture(scope="module")
+def picked_cube(tmp_path_factory):
+    """A generated 3D SEG-Y cube (40 inlines x 48 crosslines x 64 samples, three faults) and its faults' sticks on
+    inlines 110 and 125 and crossline 44 (:data:`PICKED`), as a folder: cube.sgy, and the truth (syn, sticks)."""
+    folder = tmp_path_factory.mktemp("picked_cube")
+    syn = synthetic_cube((40, 48, 64), n_faults=3, seed=3)
+    write_segy_cube(folder / "cube.sgy", syn.cube)
+    sticks = truth_sticks(syn, PICKED, read_survey_coordinates(folder / "cube.sgy"))
+    return folder, syn, sticks
+
+
+@pytest.mark.parametrize("layout", STICK_FORMATS)
+def test_the_lines_of_a_cube_its_sticks_were_picked_on_are_read_with_their_picks(picked_cube, tmp_path, layout):
+    folder, syn, sticks = picked_cube
+    write_fault_sticks(tmp_path / f"picks.{layout}", sticks, format=layout)  # IESX: placed by X / Y only
+    lines = read_picked_lines(folder / "cube.sgy", sticks=tmp_path / f"picks.{layout}")
+    assert [(line.fixed, line.axis, line.section.shape) for line, _ in lines] == [
+        (("inline", 110.0), "crossline", (48, 64)), (("inline", 125.0), "crossline", (48, 64)),
+        (("crossline", 44.0), "inline", (40, 64))]
+    for (line, people), (fixed, index) in zip(lines, PICKED):
+        truth = syn.fault_labels[index] if fixed == "inline" else syn.fault_labels[:, index]
+        cube_line = syn.cube[index] if fixed == "inline" else syn.cube[:, index]
+        np.testing.assert_allclose(line.section, cube_line, rtol=0, atol=0)  # IEEE float: the same bits
+        p, r, _ = tolerant_scores(people.mask(), truth > 0, 1.5)
+        assert p >= 0.99 and r >= 0.95, (line.name, p, r)  # measured: P 1.0, R 0.98-1.0
+
+
+@pytest.mark.parametrize("case", ["between lines", "outside the cube", "oblique", "mask", "too few traces"])
+def test_sticks_off_the_cube_s_lines_are_refused_in_one_line_before_the_work(picked_cube, tmp_path, case,
+                                                                              monkeypatch):
+    folder, syn, sticks = picked_cube
+    cube, picks = folder / "cube.sgy", tmp_path / "picks.dat"
+    calls = []
+    monkeypatch.setattr("seismo3d.jobs.adapt._traced", lambda *a, **k: calls.append(a))
+    moved = {"between lines": ("crossline", 45.0), "outside the cube": ("inline", 160.0)}.get(case)
+    first = next(nodes for _, nodes in sticks.sticks())
+    if moved is not None:  # the first stick moved off the cube's lines
+        numbers = {"inline": sticks.inline.copy(), "crossline": sticks.crossline.copy()}
+        numbers[moved[0]][first] = moved[1]
+        sticks = FaultSticks(sticks.fault_id, sticks.stick, sticks.x, sticks.y, sticks.z, numbers["inline"],
+                             numbers["crossline"], sticks.names)
+    elif case == "oblique":
+        inline = sticks.inline.copy()
+        inline[first] += np.arange(first.size)  # the stick of inline 110 across inlines: an arbitrary line
+        sticks = FaultSticks(sticks.fault_id, sticks.stick, sticks.x, sticks.y, sticks.z, inline, sticks.crossline,
+                             sticks.names)
+    elif case == "too few traces":
+        cube = write_segy_cube(tmp_path / "narrow.sgy", syn.cube[:, :12])  # inlines of 12 traces
+        sticks = sticks.take(np.flatnonzero((sticks.inline == 110) & (sticks.crossline < 44)))
+    write_fault_sticks(picks, sticks, format="charisma")
+    flag = "--mask" if case == "mask" else "--sticks"
+    result = runner.invoke(app, ["adapt", str(cube), flag, str(picks), "-o", str(tmp_path / "model")])
+    expected = {"between lines": "picks.dat on cube.sgy: stick 1 .* is on crossline 45, between the survey's "
+                                 "crosslines 44 and 46",
+                "outside the cube": "is on inline 160, outside the survey's inlines 101-140",
+                "oblique": "is on no single inline or crossline",
+                "mask": "cube.sgy is a 3D cube and a mask is of one line: pass the fault sticks",
+                "too few traces": "inline 110 of narrow.sgy \\(--sticks picks.dat\\) has 12 traces of 64 samples; "
+                                  "adapt traces and learns from lines of at least 32 traces"}[case]
+    assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1, result.output
+    assert re.search(expected, result.output), result.output
+    assert not calls and not (tmp_path / "model").exists()  # nothing traced, nothing written
+
+
+@pytest.mark.slow
+def test_adapt_on_a_cube_learns_from_every_line_its_sticks_were_picked_on(picked_cube, tmp_path):
+    pytest.importorskip("torch")
+    pytest.importorskip("onnx")
+    folder, syn, sticks = picked_cube
+    write_fault_sticks(tmp_path / "picks.dat", sticks, format="opendtect")
+    model = tmp_path / "model"
+    result = runner.invoke(app, ["adapt", str(folder / "cube.sgy"), "--sticks", str(tmp_path / "picks.dat"), "-o",
+                                 str(model), "--steps", "2"])
+    assert result.exit_code == 0, result.output
+    record = json.loads((model / "adapt.json").read_text())
+    lines = record["results"]["lines"]
+    assert [line["line"] for line in lines] == ["inline 110 of cube.sgy", "inline 125 of cube.sgy",
+                                                "crossline 44 of cube.sgy"]
+    assert [(line["n_traces"], line["n_samples"]) for line in lines] == [(48, 64), (48, 64), (40, 64)]
+    people = [p.mask().sum() for _, p in read_picked_lines(folder / "cube.sgy", sticks=tmp_path / "picks.dat")]
+    assert [line["picked_samples"] for line in lines] == people
+    assert all(f"{line['line']}: held back traces" in result.output for line in lines)
+
+
+def test_the_i_th_mask_belongs_to_the_i_th_line(tmp_path, monkeypatch):
+    class Read(Exception):
+        """Raised where the training would start: every line and its picks were read."""
+
+    def stop():
+        raise Read
+
+    monkeypatch.setattr("seismo3d.jobs.adapt.training_module", stop)
+    (a, pa), (b, pb) = dimmed_section(1), dimmed_section(2)
+    b, pb = b[:120], pb[:120]  # another line, of 120 traces
+    for name, array in (("a", a), ("pa", pa), ("b", b), ("pb", pb)):
+        np.save(tmp_path / f"{name}.npy", array)
+    lines = [tmp_path / "a.npy", tmp_path / "b.npy"]
+    with pytest.raises(Read):
+        run_adapt_job(lines, [("mask", tmp_path / "pa.npy"), ("mask", tmp_path / "pb.npy")], tmp_path / "m",
+                      progress=False)
+    with pytest.raises(InputError, match=r"the mask pb.npy is 120 x 128, but the section of a.npy has 160 traces"):
+        run_adapt_job(lines, [("mask", tmp_path / "pb.npy"), ("mask", tmp_path / "pa.npy")], tmp_path / "m",
+                      progress=False)
 
 
 @pytest.fixture
@@ -103,14 +241,16 @@ def test_bad_input_is_refused_before_the_work(tmp_path, line, case, monkeypatch)
     assert not calls and not (model.exists() and any(model.iterdir()))  # nothing traced, nothing written
 
 
-def test_without_pytorch_adapt_says_how_to_install_it(tmp_path, line, monkeypatch):
-    import importlib.util
-
-    real = importlib.util.find_spec
-    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "torch" else real(name, *a))
+@pytest.mark.parametrize("hidden", ["torch", "onnx"])
+def test_without_pytorch_adapt_says_how_to_install_it(tmp_path, line, monkeypatch, hidden):
+    for name in [m for m in sys.modules if m == hidden or m.startswith(f"{hidden}.") or m.startswith(
+            "seismo3d.training")]:
+        monkeypatch.delitem(sys.modules, name)  # imported again, as in a fresh process
+    monkeypatch.setitem(sys.modules, hidden, None)  # and the framework not installed: its import fails
     result = runner.invoke(app, ["adapt", str(line[0]), "--mask", str(line[1]), "-o", str(tmp_path / "m")])
-    assert result.exit_code == 2 and "pip install" in result.output and "torch" in result.output
-    assert len(result.output.strip().splitlines()) == 1 and TORCH_HINT.split(":")[0] in result.output
+    assert result.exit_code == 2, (result.output, result.exception)
+    assert result.output.strip() == f"error: {TORCH_HINT}" or result.output.strip().endswith(TORCH_HINT), result.output
+    assert len(result.output.strip().splitlines()) == 1 and "pip install 'seismo3d[train]'" in result.output
     assert not (tmp_path / "m").exists()
 
 
@@ -161,3 +301,39 @@ def test_the_network_fine_tuned_on_a_sibling_section_traces_a_fault_style_the_sh
                         {"kept": "adapted"})
     p, r, f1 = tolerant_scores(_traced(sibling, model), sibling_picks, 3.0)
     assert p >= 0.9 and f1 >= 0.4, (p, r, f1)  # measured: P 1.0, R 0.33 (one zone of three), F1 0.5
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason=(
+    "the tracing drops every dimmed zone: its evidence keeps no fault whose reflectors continue unbroken, whatever the "
+    "network says (FaultEvidence.is_unbroken). The network adapted on the section finds the zones (its thinned ridges "
+    "match the picks at F1 0.99 on the section and 0.97 on the sibling), yet it traces no fault on the section (with "
+    "is_unbroken's three rules off: two zones of three, F1 0.80, precision 1.0), so the held-back band scores 0.0 -> "
+    "0.0 and MODEL rightly keeps the shipped network (measured 2026-11-27, 433 s under load 13)"))
+def test_adapt_on_a_section_makes_the_faults_command_trace_a_style_the_shipped_network_misses_on_its_sibling(
+        tmp_path):
+    """Through the commands, whatever the fine-tuning: MODEL from 'seismo3d adapt' on one section traces more of the
+    sibling's dimmed zones than the shipped network (none). Measured with the network fine-tuned on the section
+    (seed 0, 100 steps, the held-back band left out; the test above): F1 0.50 on the sibling (one zone of three,
+    precision 1.0) against 0.0, so a margin of 0.3."""
+    pytest.importorskip("torch")
+    pytest.importorskip("onnx")
+    section, picks = dimmed_section(1)
+    sibling, sibling_picks = dimmed_section(2)
+    np.save(tmp_path / "line.npy", section)
+    np.save(tmp_path / "picks.npy", picks)
+    np.save(tmp_path / "sibling.npy", sibling)
+    np.save(tmp_path / "sibling_picks.npy", sibling_picks)
+    result = runner.invoke(app, ["adapt", str(tmp_path / "line.npy"), "--mask", str(tmp_path / "picks.npy"), "-o",
+                                 str(tmp_path / "model")])
+    assert result.exit_code == 0, result.output
+    scores = {}
+    for name, extra in (("default", []), ("adapted", ["--model", str(tmp_path / "model")])):
+        traced = runner.invoke(app, ["faults", str(tmp_path / "sibling.npy"), "-o", str(tmp_path / name), *extra])
+        assert traced.exit_code == 0, traced.output
+        evaluated = runner.invoke(app, ["evaluate", str(tmp_path / name), "--mask",
+                                        str(tmp_path / "sibling_picks.npy")])  # F1 within 3 samples
+        assert evaluated.exit_code == 0, evaluated.output
+        scores[name] = json.loads((tmp_path / name / "evaluation" / "evaluation.json").read_text())
+    assert scores["default"]["f1"] <= 0.05  # the shipped network traces none of the zones (measured 0.0)
+    assert scores["adapted"]["f1"] >= scores["default"]["f1"] + 0.3, scores

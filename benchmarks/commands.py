@@ -16,7 +16,8 @@ runs:
   (397 MB, "198 MB and larger") is identified by size and modification time instead, as every larger input.
 - ``seismo3d --help`` and ``seismo3d COMMAND --help`` for every command of the ``seismo3d`` app, beside the floor of
   any typer command: ``--help`` of a command of a two-command typer app (typer imports rich and pydantic to show it;
-  ``seismo3d`` converts its values without pydantic: :mod:`seismo3d._cli_coercion`).
+  ``seismo3d`` converts its values without pydantic, :mod:`seismo3d._cli_coercion`, and prints its help in click's
+  plain text, without rich).
 
 ``--baseline CODE_DIR`` (e.g. ``/work/main``) times that code's ``seismo3d convert`` too (``PYTHONPATH=CODE_DIR``),
 in the same rounds (read, baseline convert, convert, ...), so that the two are paired at the same load.

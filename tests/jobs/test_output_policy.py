@@ -302,24 +302,28 @@ def test_unwritable_destination_is_refused_before_reading_the_input(work, monkey
 @pytest.mark.parametrize("command", [pytest.param(BY_NAME[n], id=n) for n in ("faults", "render")])
 def test_unwritable_destination_is_refused_in_a_fresh_process_before_the_heavy_imports(command, work, tmp_path):
     """In a new interpreter, as a user starts the command: one line, exit code 2, none of numpy, numba, scipy, pyvista
-    imported (the command checks its output before it imports its job: seismo3d._cli_outputs), in under 1.5 s.
-    Measured 0.41-0.65 s per command at load average 3 on 2 cores (1.1-1.9 s before, importing the job first)."""
+    imported (the command checks its output before it imports its job: seismo3d._cli_outputs), in under 0.75 CPU s
+    (the process's user + system time, which stays near its value at any load where the wall time does not: the
+    wall-clock limit of 1.5 s failed at 1.9 s at load 12 on 2 cores). Measured 0.19-0.30 CPU s (0.47-0.93 s wall)
+    per command at load 12 under ``-X importtime`` (1.1-1.9 s wall before, at load 3, importing the job first)."""
     import os
+    import resource
     import subprocess
     import sys
 
     args = command.args([str(work / n) for n in command.inputs], "/proc/nope" + ("/x.png" if command.name ==
                                                                                    "render" else ""))
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
-    start = time.perf_counter()  # the working folder is not a checkout: python -m puts it first on sys.path
-    done = subprocess.run([sys.executable, "-X", "importtime", "-m", "seismo3d.cli", *args], capture_output=True,
-                          text=True, env=env, cwd=tmp_path, timeout=60)
-    seconds = time.perf_counter() - start
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)  # the working folder is not a checkout: python -m puts it
+    done = subprocess.run([sys.executable, "-X", "importtime", "-m", "seismo3d.cli", *args],  # first on sys.path
+                          capture_output=True, text=True, env=env, cwd=tmp_path, timeout=60)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu_seconds = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
     imported = {line.split("|")[-1].strip() for line in done.stderr.splitlines() if line.startswith("import time:")}
     said = [line for line in done.stderr.splitlines() if line.strip() and not line.startswith("import time:")]
     assert done.returncode == 2 and len(said) == 1 and said[0].startswith("error: cannot "), done.stderr[-2000:]
     assert "typer" in imported and not {"numpy", "numba", "scipy", "pyvista", "segyio"} & imported
-    assert seconds < 1.5
+    assert cpu_seconds < 0.75
 
 
 @pytest.mark.slow

@@ -7,6 +7,7 @@ to pack code against)."""
 from __future__ import annotations
 
 import ast
+import functools
 import pathlib
 
 import seismo3d
@@ -21,14 +22,22 @@ def _name(path: pathlib.Path) -> str:
 MODULES = {_name(p): p for p in ROOT.rglob("*.py")}
 
 
-def _imports(name: str, *, top_level: bool = False) -> list[tuple[str, str]]:
-    """(module, imported name) of every import of a module, outside ``if TYPE_CHECKING:`` blocks; with
-    ``top_level``, only the imports run when the module is imported (not those inside functions)."""
-    path = MODULES[name]
-    tree = ast.parse(path.read_text())
+@functools.cache  # each module parsed once for the tests of this file
+def _tree(name: str) -> ast.Module:
+    """A module's syntax tree without its ``if TYPE_CHECKING:`` blocks' bodies."""
+    tree = ast.parse(MODULES[name].read_text())
     for node in ast.walk(tree):
         if isinstance(node, ast.If) and getattr(node.test, "id", "") == "TYPE_CHECKING":
             node.body = []
+    return tree
+
+
+@functools.cache
+def _imports(name: str, *, top_level: bool = False) -> tuple[tuple[str, str], ...]:
+    """(module, imported name) of every import of a module, outside ``if TYPE_CHECKING:`` blocks; with
+    ``top_level``, only the imports run when the module is imported (not those inside functions)."""
+    path = MODULES[name]
+    tree = _tree(name)
     here = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
     nodes = list(_module_level(tree)) if top_level else list(ast.walk(tree))
     out = []
@@ -39,7 +48,7 @@ def _imports(name: str, *, top_level: bool = False) -> list[tuple[str, str]]:
             out += [(module, alias.name) for alias in node.names]
         elif isinstance(node, ast.Import):
             out += [(alias.name, "") for alias in node.names]
-    return out
+    return tuple(out)
 
 
 def _module_level(tree: ast.AST):

@@ -222,6 +222,7 @@ def _same_fault_likelihood(conformance_files, big, little):
     assert float(be.likelihood.max()) > 0
 
 
+@pytest.mark.slow  # 22 s at load 12; the fast lane keeps its premise: the twins read as the same bits (above)
 def test_little_endian_twin_gives_the_same_fault_likelihood(conformance_files):
     _same_fault_likelihood(conformance_files, "small.sgy", "small-lsb.sgy")
 

@@ -30,9 +30,11 @@ from .jobs.outputs import output_file
 from ._cli_messages import compile_note, friendly as _friendly, log_progress_to_stderr
 from ._cli_messages import one_line_warnings as _one_line_warnings
 
+# rich_markup_mode=None: help and usage errors in click's plain text, as every click command prints them; typer's rich
+# panels import rich, markdown-it and pygments, 0.2 CPU s of a 0.3 s --help (benchmarks/commands.py)
 app = typer.Typer(help="seismo3d: fault and horizon interpretation of seismic cubes, point-cloud / RGB-D / terrain "
                        "registration, lineaments and path planning, on one fused-ICP engine.", no_args_is_help=True,
-                  add_completion=False, cls=FastCoercionGroup)
+                  add_completion=False, cls=FastCoercionGroup, rich_markup_mode=None)
 
 NOT_CONVERGED = 1  # exit code of a registration that did not converge (its result is written)
 

@@ -435,36 +435,3 @@ def search_right(keys, value):
             hi = mid
     return lo
 
-
-def bucket_grid(points: np.ndarray, side: float) -> tuple:
-    """Points binned in cubes of ``side`` for neighbour searches in compiled code: the points of one column of
-    buckets along the last axis are one range of sorted keys (``np.searchsorted`` on the keys of its first and last
-    bucket).
-
-    Parameters
-    ----------
-    points : (n, 3) float64 ndarray
-        Point coordinates (a 2D section's with a constant middle coordinate), n >= 1.
-    side : float
-        Side of the buckets, in the points' units (> 0).
-
-    Returns
-    -------
-    keys : (n,) int64 ndarray
-        Bucket keys, sorted: ``(bx * dims[1] + by) * dims[2] + bz`` with ``b = floor((p - origin) / side)``.
-    order : (n,) int64 ndarray
-        The points in key order (``keys`` = the points' keys [order]; ties keep the points' order).
-    origin : (3,) float64 ndarray
-        The lowest corner (the points' minimum).
-    dims : (3,) int64 ndarray
-        Buckets along each axis.
-    """
-    points = np.ascontiguousarray(points, dtype=np.float64)
-    origin = points.min(axis=0)
-    dims = np.floor((points.max(axis=0) - origin) / side).astype(np.int64) + 1
-    keys = np.zeros(points.shape[0], np.int64)
-    for a in range(3):  # axis by axis (temporaries of n values), the key built as a loop over the axes builds it
-        keys *= dims[a]
-        keys += np.floor((points[:, a] - origin[a]) / float(side)).astype(np.int64)
-    order = np.argsort(keys, kind="stable")
-    return keys[order], order, origin, dims

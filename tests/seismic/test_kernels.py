@@ -127,23 +127,3 @@ def test_search_left_and_right_on_a_traces_picks():
         assert 2 + _kernels.search_left(times[2:2 + p.size], t) == 2 + np.searchsorted(p, t)
         assert _kernels.search_right(times[2:2 + p.size], t) == np.searchsorted(p, t, side="right")
 
-
-@pytest.mark.parametrize("side", [0.5, 1.0, 6.0, 7.3])
-def test_bucket_grid_keys_are_the_compiled_loops(side):
-    # bucket_grid's keys in numpy, axis by axis (issue 58: the loop compiled 0.3 CPU s on a first run), against the
-    # loop it replaced, point by point in Python: k = k * dims[a] + floor((p[a] - origin[a]) / side) over the axes
-    import math
-
-    rng = np.random.default_rng(int(side * 10))
-    pts = np.concatenate([rng.integers(0, 40, (300, 3)).astype(np.float64), rng.uniform(-20, 90, (300, 3))])
-    pts[:50, 1] = 0.0  # a section's constant middle coordinate among them
-    keys, order, origin, dims = _kernels.bucket_grid(pts, side)
-    expected = []
-    for p in pts:
-        k = 0
-        for a in range(3):
-            k = k * int(dims[a]) + math.floor((p[a] - origin[a]) / side)
-        expected.append(k)
-    expected = np.array(expected, np.int64)
-    assert np.array_equal(keys, expected[order]) and np.all(np.diff(keys) >= 0)
-    assert np.array_equal(order, np.argsort(expected, kind="stable"))

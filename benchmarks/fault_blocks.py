@@ -15,10 +15,13 @@ sections run on generated cubes (no data folder needed):
 - ``network_grid``: a block with the 0.7 grid's halo, its origin off the pooling grid, equals the whole cube's
   probability within 1e-5 (``test_a_block_on_the_whole_cubes_network_grid_equals_the_whole_cube``);
 - ``job_limit``: the faults job on a 192 x 192 x 64 cube under a limit between the smallest blocks' need and the
-  in-memory need (150 MiB beyond the process): block by block, likelihood within 1e-5 and votes within 1e-6 of the
-  in-memory run, the same summary and points, reused when run again; under 130 MiB: the same faults, the same eleven
-  files (``tests/jobs/test_faults_chunked.py``, which keeps a 48 x 56 x 40 cube with the blocks forced);
-- ``segy_lazy``: a 192 x 160 x 64 crossline-sorted SEG-Y cube over the limit read block by block, its likelihood
+  in-memory need, both the job's own decision in the process as it stands (:func:`_limits`: a third of the way from
+  the limit the job's refusal names to the limit above which it runs in memory): block by block, likelihood within
+  1e-5 and votes within 1e-6 of the in-memory run, the same summary and points, reused when run again; under the
+  limit the refusal names (an eighth of the way): smaller blocks, the same faults, the same eleven files
+  (``tests/jobs/test_faults_chunked.py``, which keeps a 48 x 56 x 40 cube with the blocks forced);
+- ``segy_lazy``: a 192 x 160 x 64 crossline-sorted SEG-Y cube over the limit (a third of the way, as in
+  ``job_limit``) read block by block, its likelihood
   equal to the in-memory one, its volumes written as SEG-Y with the input's headers (``test_segy_cube_is_read_lazily``,
   which keeps a 40 x 48 x 40 SEG-Y cube with the blocks forced);
 - ``demo_blocks``: the 128^3 demo by forced blocks writes every file byte-identical to the in-memory run's (the
@@ -43,6 +46,7 @@ import csv
 import json
 import logging
 import pathlib
+import re
 import sys
 import tempfile
 import time
@@ -85,6 +89,38 @@ def _log():
     finally:
         logger.removeHandler(handler)
         logger.setLevel(level)
+
+
+def _limits(path, shape, tmp: pathlib.Path, **job) -> tuple[int, int]:
+    """The faults job's own memory decision on ``path`` in this process as it stands: the limit its refusal names
+    (the smallest blocks and the seed candidates, with the refusal's 5 %), and the limit above which it runs in
+    memory (the process and :func:`~seismo3d.seismic.blocks.memory.in_memory_bytes`), bytes. Asked again before each
+    run: the process grows by up to ~180 MiB over a run by blocks, and a limit a fixed size beyond it sat on the
+    decision's edge (refused at 'the 710MB given' in one run of four)."""
+    from seismo3d.errors import InputError
+    from seismo3d.jobs.faults import run_faults_job
+    from seismo3d.seismic.blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory
+
+    out = pathlib.Path(tempfile.mkdtemp(prefix="refused_", dir=tmp))
+    try:  # the smallest limit accepted: the job refuses it, naming the one that works
+        run_faults_job(path, out, memory_limit=64 << 20, progress=False, overwrite=True, **job)
+    except InputError as exc:
+        named = re.search(r"memory_limit='([^']+)'", str(exc))
+        assert named, f"the refusal names no limit: {exc}"
+    else:
+        raise AssertionError("the faults job ran under a 64 MB memory limit: no refusal to derive limits from")
+    return parse_memory_limit(named.group(1)), resident_memory() + in_memory_bytes(shape)
+
+
+def _limit_between(path, shape, tmp: pathlib.Path, fraction: float, **job) -> int:
+    """A limit ``fraction`` of the way from the one the job's refusal names to the in-memory edge (:func:`_limits`),
+    bytes; printed with both edges."""
+    smallest, in_memory = _limits(path, shape, tmp, **job)
+    assert smallest < in_memory, (smallest, in_memory)
+    limit = smallest + int((in_memory - smallest) * fraction)
+    print(f"  limits: refused below {smallest / 2**20:.0f} MiB, in memory from {in_memory / 2**20:.0f} MiB: "
+          f"{limit / 2**20:.0f} MiB ({fraction:.3g} of the way)")
+    return limit
 
 
 def learned_blocks(tmp: pathlib.Path) -> None:
@@ -149,16 +185,17 @@ def job_limit(tmp: pathlib.Path) -> None:
     import zarr
 
     from seismo3d.jobs.faults import run_faults_job
-    from seismo3d.seismic.blocks.memory import resident_memory
 
-    # in memory 216 MiB beyond the process (in_memory_bytes); the smallest blocks of the learned likelihood ~92 MiB
-    # and of the surfaces less (minimum_memory_limit): a 128^3 cube leaves no limit between the two
+    # in memory 376 MiB beyond the process (in_memory_bytes); the smallest blocks and the seed candidates ~90 MiB
+    # (minimum_memory_limit): a 128^3 cube leaves no limit between the two
+    shape = (192, 192, 64)
     cube_npy = tmp / "cube.npy"
-    np.save(cube_npy, synthetic_cube((192, 192, 64), seed=2).cube.astype(np.float32))
+    np.save(cube_npy, synthetic_cube(shape, seed=2).cube.astype(np.float32))
     in_memory = run_faults_job(cube_npy, tmp / "mem", memory_limit=64 << 30, progress=False).written
 
-    # beyond the limit: below the in-memory run's need, above the smallest blocks'
-    limit = resident_memory() + (150 << 20)
+    # beyond the limit: below the in-memory run's need, above the smallest blocks' (a third of the way: ~65 MiB
+    # above the limit the refusal names, ~190 MiB below the in-memory edge)
+    limit = _limit_between(cube_npy, shape, tmp, 1 / 3)
     with _log() as caplog:
         written = run_faults_job(cube_npy, tmp / "out", memory_limit=limit, progress=False).written
     assert written["likelihood"].name == "fault_likelihood.zarr"
@@ -173,16 +210,16 @@ def job_limit(tmp: pathlib.Path) -> None:
     assert written["figure"].stat().st_size > 10_000
     # run again into the same folder (overwrite=True: it holds this run's results): the finished likelihood is
     # reused, the same faults come out
-    limit = resident_memory() + (150 << 20)
+    limit = _limit_between(cube_npy, shape, tmp, 1 / 3)
     with _log() as caplog:
         again = run_faults_job(cube_npy, tmp / "out", memory_limit=limit, overwrite=True, progress=False).written
     assert "reusing the finished fault likelihood" in caplog.text
     assert _rows(again["summary"]) == _rows(in_memory["summary"])
     assert _rows(again["points"]) == _rows(in_memory["points"])
 
-    # a limit far below the in-memory surfaces' need (about 76 bytes a sample, 171 MiB here): smaller blocks, the
-    # same faults and throws
-    limit = resident_memory() + (130 << 20)  # the learned likelihood's blocks 64 traces wide (3 x 3)
+    # a limit far below the in-memory surfaces' need, an eighth of the way from the limit the refusal names (~30
+    # MiB above it): smaller blocks, the same faults and throws
+    limit = _limit_between(cube_npy, shape, tmp, 1 / 8)
     written = run_faults_job(cube_npy, tmp / "tight", memory_limit=limit, progress=False).written
     assert _rows(written["summary"]) == _rows(in_memory["summary"])
     assert _rows(written["points"]) == _rows(in_memory["points"])
@@ -190,7 +227,7 @@ def job_limit(tmp: pathlib.Path) -> None:
         "fault_likelihood.zarr", "fault_points.csv", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
         "fault_sticks_opendtect.txt",
         "fault_summary.csv", "fault_surfaces.zarr", "fault_surfaces_gocad", "faults.png", "faults.vtp", "run.json"]
-    print(f"  {len(_rows(in_memory['summary']))} faults, the same in memory, under 150 MiB, again and under 130 MiB")
+    print(f"  {len(_rows(in_memory['summary']))} faults, the same in memory, by blocks, again and under a tighter limit")
 
 
 def segy_lazy(tmp: pathlib.Path) -> None:
@@ -200,7 +237,6 @@ def segy_lazy(tmp: pathlib.Path) -> None:
     import zarr
 
     from seismo3d.jobs.faults import run_faults_job
-    from seismo3d.seismic.blocks.memory import resident_memory
     from seismo3d.seismic.faults.likelihood.learned import LearnedOptions, learned_fault_likelihood
     from seismo3d.seismic.io import open_segy, read_segy
 
@@ -209,10 +245,10 @@ def segy_lazy(tmp: pathlib.Path) -> None:
     # the reference first: the process then holds the network's session and the kernels, as the suite's did when
     # this was its test (run alone, the limit below was too small for the surfaces' blocks)
     reference = learned_fault_likelihood(cube)  # the default likelihood
-    # the in-memory run needs 180 MiB beside the process: blocks (the learned likelihood's 96 traces wide, 2 x 2)
+    # the in-memory run needs 340 MiB beside the process: blocks, a third of the way from the refusal's limit
+    limit = _limit_between(path, cube.shape, tmp, 1 / 3)
     with _log() as caplog:
-        written = run_faults_job(path, tmp / "out", memory_limit=resident_memory() + (170 << 20),
-                                 progress=False).written
+        written = run_faults_job(path, tmp / "out", memory_limit=limit, progress=False).written
     assert "block by block" in caplog.text
     group = zarr.open_group(str(written["likelihood"]), mode="r")
     diff = np.abs(group["likelihood"][:] - reference.likelihood)

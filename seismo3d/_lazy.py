@@ -9,8 +9,9 @@ A package ``__init__`` keeps its re-exports as ordinary ``from .module import na
 Then ``from seismo3d.seismic import trace_faults`` and ``seismo3d.seismic.trace_faults`` import
 ``seismo3d.seismic.faults`` when first asked for, and ``import seismo3d.seismic.io.segy`` no longer runs the fault,
 horizon and attribute modules (scipy, numba). The ``TYPE_CHECKING`` block is the one list: :func:`lazy_exports`
-reads it from the package's source (the way ``lazy_loader.attach_stub`` reads a ``.pyi`` stub, scikit-image's lazy
-packages). The package's sub-packages and modules are also attributes on first use (``seismo3d.seismic.faults``).
+reads it from the package's source (as ``lazy_loader.attach_stub`` reads a ``.pyi`` stub, scikit-image's lazy
+packages) and hands it to ``lazy_loader.attach``, which imports each name on first use. The package's sub-packages
+and modules are also attributes on first use (``seismo3d.seismic.faults``).
 
 References
 ----------
@@ -20,8 +21,8 @@ PEP 562, "Module __getattr__ and __dir__". SPEC 1, "Lazy Loading of Submodules a
 from __future__ import annotations
 
 import ast
-import importlib
-import importlib.util
+import pkgutil
+import sys
 from pathlib import Path
 
 __all__ = ["lazy_exports", "reexports"]
@@ -81,23 +82,20 @@ def lazy_exports(package: str, init_file: str):
     -------
     getattr : callable
         ``getattr(name)``: the re-exported object (imported once, then kept in the package's namespace), or the
-        package's sub-module ``name``; AttributeError for anything else.
+        package's sub-module ``name``; AttributeError for anything else (``lazy_loader.attach``'s).
     dir : callable
         ``dir()``: the package's namespace and its re-exports.
     """
-    homes = reexports(Path(init_file).read_text(encoding="utf-8"))
+    import lazy_loader
 
-    def __getattr__(name: str):
-        namespace = vars(importlib.import_module(package))
-        if name in homes:
-            value = getattr(importlib.import_module(homes[name], package), name)
-            namespace[name] = value  # once: later lookups do not come here
-            return value
-        if importlib.util.find_spec(f"{package}.{name}") is not None:
-            return importlib.import_module(f"{package}.{name}")  # a sub-module, set on the package by the import
-        raise AttributeError(f"module {package!r} has no attribute {name!r}")
+    homes = reexports(Path(init_file).read_text(encoding="utf-8"))
+    modules = {}
+    for name, module in homes.items():
+        modules.setdefault(module[1:], []).append(name)
+    submodules = {m.name for m in pkgutil.iter_modules([str(Path(init_file).parent)])}
+    getattr_, _, _ = lazy_loader.attach(package, submodules=submodules, submod_attrs=modules)
 
     def __dir__() -> list[str]:
-        return sorted(set(vars(importlib.import_module(package))) | set(homes))
+        return sorted(set(vars(sys.modules[package])) | set(homes))
 
-    return __getattr__, __dir__
+    return getattr_, __dir__

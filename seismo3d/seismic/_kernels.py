@@ -2,12 +2,13 @@
 import it whole, ``from . import _kernels``; the kernels only the faults use are in ``faults/_kernels.py``).
 
 Arrays are 3D ``(n0, n1, n_samples)`` float32; a 2D section is viewed as ``(n_traces, 1, n_samples)`` (:func:`as_3d`).
-Distances are in samples and traces. The kernels are compiled on first call and cached on disk.
+Distances are in samples and traces. The Gaussian and derivative filters are scipy's
+(:func:`scipy.ndimage.gaussian_filter1d`, truncated at 3 sigma, edges clamped); the compiled kernels are the loops of
+our own algorithms (semblance, eigen-coherence along the reflector slopes), compiled on first call and cached on disk.
 """
 
 from __future__ import annotations
 
-import math
 
 import numba as nb
 import numpy as np
@@ -33,75 +34,17 @@ def interp_trace(f, i, j, t, nt):
     w = t - k
     return (1.0 - w) * f[i, j, k] + w * f[i, j, k + 1]
 
-_SLAB = 1 << 17  # samples of x per pass of correlate_axis: a slab and its products stay in the processor's cache
-
-
-def correlate_axis(x: np.ndarray, w: np.ndarray, axis: int, keep=None) -> np.ndarray:
-    """Correlate a cube with an odd-length kernel along one axis, edges clamped (``scipy.ndimage.correlate1d`` with
-    ``mode='nearest'``), accumulating in float32.
-
-    The sum runs in kernel order, ``out = ((0 + w[0] x[i - r]) + w[1] x[i - r + 1]) + ...``, each product and sum
-    rounded to float32: the bits of the compiled loop this replaced (``scipy.ndimage.correlate1d`` sums in float64,
-    so its results differ in the last bits). Worked in slabs of about 2^17 samples so that the terms stay in cache.
-
-    Parameters
-    ----------
-    x : (n0, n1, n2) float32 ndarray
-        The cube.
-    w : (2 r + 1,) float32 ndarray
-        Correlation weights (:func:`gaussian_kernel`), centred on index ``r``.
-    axis : {0, 1, 2}
-        The axis correlated along.
-    keep : (int, int), optional
-        ``(lo, hi)``: only the outputs ``lo <= i < hi`` along ``axis``, each the same bits as the whole axis' (the
-        sum over the whole axis, edges clamped there); default all.
-
-    Returns
-    -------
-    (n0, n1, n2) float32 ndarray
-        The correlated cube (``hi - lo`` along ``axis`` with ``keep``).
-    """
-    n = x.shape[axis]
-    r = (w.shape[0] - 1) // 2
-    lo, hi = (0, n) if keep is None else (int(keep[0]), int(keep[1]))
-    out = np.zeros(x.shape[:axis] + (hi - lo,) + x.shape[axis + 1:], np.float32)
-    clamped = np.clip(np.arange(lo - r, hi + r), 0, n - 1)  # the kept range padded by r samples, edges repeated
-    n = hi - lo
-    other = 1 if axis == 0 else 0  # slabs across another axis
-    step = max(1, _SLAB // max(1, x.size // max(1, x.shape[other])))
-    starts = range(0, x.shape[other], step)
-
-    def slabs(t, n_threads):  # slabs t, t + n_threads, ... (numpy releases the GIL: the threads run together)
-        for a in starts[t::n_threads]:
-            slab = tuple(slice(a, a + step) if d == other else slice(None) for d in range(3))
-            padded = np.take(x[slab], clamped, axis=axis)
-            acc = out[slab]
-            term = np.empty(acc.shape, np.float32)
-            for m in range(2 * r + 1):
-                np.multiply(padded[tuple(slice(m, m + n) if d == axis else slice(None) for d in range(3))], w[m],
-                            out=term)
-                acc += term
-
-    run_threads(slabs, max(1, min(nb.get_num_threads(), len(starts))))
-    return out
-
-
 # voxels per pass of the eigen-decomposition: its float64 temporaries (~40 of 64 KiB, 2.5 MB a thread) stay in the
 # processor's cache (2^15: ~10 MB a thread, about twice the CPU seconds on a 200 x 200 x 500 cube)
 _EIG_CHUNK = 1 << 13
-# tensors fewer than this take Python's math.acos (np.frompyfunc: the same bits as the compiled _acos, four times
-# slower, ~10 ms for 1e5; no compiling: a small first run, e.g. the horizon on f3_crop.sgy, spares 0.35 CPU s)
-_SMALL_ACOS = 1 << 17
 
 
-def eig3(a, b, c, d, e, f, planarity: bool = True, acos=None):
+def eig3(a, b, c, d, e, f, planarity: bool = True):
     """Largest eigenvector and planarity of the symmetric tensors ``[[a, b, c], [b, d, e], [c, e, f]]``.
 
     Closed-form eigenvalues (Smith 1961: trigonometric solution of the characteristic cubic), the eigenvector from
-    the largest cross product of two rows of ``T - l1 I``, computed with the operations, their order and their
-    types of the compiled per-voxel loop this replaced (products of two float32 components in float32, everything
-    mixed with a float64 value in float64; ``acos`` from the C library, as that loop called it: numpy's SIMD
-    ``arccos`` differs in the last bit of about 1 value in 10), so that its results are the same bits.
+    the largest cross product of two rows of ``T - l1 I``, in float64 (``np.linalg.eigh`` gives the same to
+    float rounding, at several times the time and memory on a cube's tensors).
 
     Parameters
     ----------
@@ -110,9 +53,6 @@ def eig3(a, b, c, d, e, f, planarity: bool = True, acos=None):
     planarity : bool, optional
         False: the planarity and the two smaller eigenvalues it needs are not computed (None in its place); the
         eigenvector is the same bits.
-    acos : callable, optional
-        The element-wise arc cosine of a float64 array: the compiled :func:`_acos` (default) or
-        :func:`_python_acos` (the same bits, without compiling; :func:`_acos_for`).
 
     Returns
     -------
@@ -139,7 +79,7 @@ def eig3(a, b, c, d, e, f, planarity: bool = True, acos=None):
         r = 0.5 * (b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02))
         r = np.where(r > -1.0, r, -1.0)  # min(1, max(-1, r)) as Python's max and min (NaN -> -1)
         r = np.where(r < 1.0, r, 1.0)
-        phi = (_acos if acos is None else acos)(r) / 3.0
+        phi = np.arccos(r) / 3.0
         l1 = q + 2.0 * p * np.cos(phi)
         # rows of T - l1 I: (a - l1, b, c), (b, d - l1, e), (c, e, f - l1); their cross products
         r0x, r1y, r2z = a64 - l1, d64 - l1, f64_ - l1
@@ -164,38 +104,10 @@ def eig3(a, b, c, d, e, f, planarity: bool = True, acos=None):
         return vx, vy, vz, np.where(zero | ~(l1 > 0.0), 0.0, (l1 - l2) / l1)
 
 
-def _acos(x):
-    """The C library's acos of a float64 array, element by element (:func:`_acos_into`); the array's shape."""
-    x = np.ascontiguousarray(x, dtype=np.float64)
-    out = np.empty(x.shape)
-    _acos_into(x.reshape(-1), out.reshape(-1))
-    return out
-
-
-@nb.njit(cache=True, nogil=True)
-def _acos_into(x, out):
-    # the C library's acos (math.acos, as numba calls it: the same bits as Python's math.acos), element by element,
-    # without the GIL and without the Python objects of np.frompyfunc (four times faster); numpy's SIMD arccos
-    # differs in the last bit of about 1 value in 10, so numpy offers no array function with these bits. Flat arrays
-    # from the caller: ravel, np.empty and reshape in here compiled 0.3-0.5 CPU s more on a first run
-    for k in range(x.size):
-        out[k] = math.acos(x[k])
-
-
-def _python_acos(x):
-    """:func:`_acos` by Python's ``math.acos`` (the same bits), without compiling."""
-    return np.frompyfunc(math.acos, 1, 1)(x).astype(np.float64)
-
-
-def _acos_for(size: int):
-    """The acos for ``size`` tensors: Python's below :data:`_SMALL_ACOS`, else the compiled one."""
-    return _python_acos if size < _SMALL_ACOS else _acos
-
-
 def _eig_chunks(components, work):
     """Call ``work(slice, six (n,) float32 arrays)`` on the tensor components (six float32 arrays of one shape) as flat
-    arrays, in chunks of ``_EIG_CHUNK``, the chunks shared out over numba's thread count of threads (numpy and
-    :func:`_acos` release the GIL)."""
+    arrays, in chunks of ``_EIG_CHUNK``, the chunks shared out over numba's thread count of threads (numpy
+    releases the GIL)."""
     flat = [np.asarray(t, np.float32).reshape(-1) for t in components]
     starts = range(0, flat[0].size, _EIG_CHUNK)
 
@@ -214,10 +126,8 @@ def eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
     n_flat = normals.reshape(-1, 3)
     p_flat = planarity.reshape(-1)
 
-    acos = _acos_for(p_flat.size)
-
     def work(part, comps):
-        vx, vy, vz, pl = eig3(*comps, acos=acos)
+        vx, vy, vz, pl = eig3(*comps)
         n_flat[part, 0] = vx
         n_flat[part, 1] = vy
         n_flat[part, 2] = vz
@@ -226,21 +136,18 @@ def eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
     _eig_chunks((t00, t01, t02, t11, t12, t22), work)
 
 
-def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_normals, acos=None):
+def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_normals):
     """Reflector slopes ``-n0 / n2`` and ``-n1 / n2`` (samples per trace, clipped to +-``max_slope``) of every
     structure tensor, written into ``p0`` and ``p1`` (float32, C order, the components' shape). With
     ``as_float32_normals``, from the normals rounded to float32 and divided in float32, as
-    :func:`slopes_from_normals` takes :func:`eig_normals`' normals (the same bits); else in float64. ``acos``: the
-    arc cosine (:func:`_acos_for`; by default for the size of ``p0``; the same bits either way)."""
+    :func:`slopes_from_normals` takes :func:`eig_normals`' normals (the same bits); else in float64."""
     p0_flat = p0.reshape(-1)
     p1_flat = p1.reshape(-1)
     floor32 = np.float32(1.0 / max_slope / 2.0)
     top32 = np.float32(max_slope)
 
-    acos = acos or _acos_for(p0_flat.size)
-
     def work(part, comps):
-        vx, vy, vz, _ = eig3(*comps, planarity=False, acos=acos)
+        vx, vy, vz, _ = eig3(*comps, planarity=False)
         if as_float32_normals:
             vz32 = vz.astype(np.float32)
             nz = np.where(floor32 > vz32, floor32, vz32)  # max(vz, floor) as Python's max
@@ -357,29 +264,51 @@ def eigen_coherence_kernel(f, p0, p1, r0, r1, h, out):
 
 
 def gaussian_radius(sigma: float) -> int:
-    """Half-width, in samples, of :func:`gaussian_kernel` of width ``sigma`` (truncated at 3 sigma; 0 when the
-    width is 0: no filter)."""
+    """Half-width, in samples, of the Gaussian filters of width ``sigma`` (:func:`gaussian_pass`: scipy's radius,
+    ``int(3 sigma + 0.5)``, at least 1; 0 when the width is 0: no filter)."""
     return max(1, int(3.0 * float(sigma) + 0.5)) if sigma > 0 else 0
 
 
-def gaussian_kernel(sigma: float, order: int) -> np.ndarray:
-    """Correlation weights of a Gaussian (order 0) or of its first derivative (order 1), truncated at 3 sigma."""
+def gaussian_pass(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep=None) -> np.ndarray:
+    """A Gaussian (order 0) or Gaussian derivative (order 1) filter of a float32 cube along one axis, truncated at
+    3 sigma, edges clamped (:func:`scipy.ndimage.gaussian_filter1d`, ``mode='nearest'``), float32.
+
+    Parameters
+    ----------
+    x : (n0, n1, n2) ndarray
+    axis : {0, 1, 2}
+    sigma : float
+        Width, samples (or traces); 0 leaves ``x`` alone (as does an axis of length 1).
+    order : {0, 1}
+        1: the derivative of the smoothed signal along ``axis``.
+    keep : (int, int), optional
+        ``(lo, hi)``: only the outputs ``lo <= i < hi`` along ``axis``, each equal to the whole axis' (filtered from
+        the lines within the radius of them, edges clamped at the whole axis' ends); default all.
+
+    Returns
+    -------
+    ndarray, float32
+        ``x``'s shape (``hi - lo`` along ``axis`` with ``keep``).
+    """
+    from scipy.ndimage import gaussian_filter1d
+
+    n = x.shape[axis]
+    lo, hi = (0, n) if keep is None else (int(keep[0]), int(keep[1]))
+    if sigma <= 0 or n == 1:
+        return np.asarray(x[(slice(None),) * axis + (slice(lo, hi),)], dtype=np.float32)
     r = gaussian_radius(sigma)
-    t = np.arange(-r, r + 1, dtype=np.float64)
-    g = np.exp(-0.5 * (t / sigma) ** 2)
-    g /= g.sum()
-    if order == 1:
-        g = g * t / sigma**2  # correlation with these weights = d/dx of the Gaussian-smoothed signal
-    return g.astype(np.float32)
+    a, b = max(lo - r, 0), min(hi + r, n)  # the lines the kept outputs read: clamped at the axis' ends as the whole
+    window = np.asarray(x[(slice(None),) * axis + (slice(a, b),)], dtype=np.float32)
+    out = gaussian_filter1d(window, float(sigma), axis=axis, order=int(order), mode="nearest", truncate=3.0)
+    return out[(slice(None),) * axis + (slice(lo - a, hi - a),)] if (a, b) != (lo, hi) else out
 
 
 def gaussian3(x: np.ndarray, sigmas, orders=(0, 0, 0)) -> np.ndarray:
-    """Separable Gaussian (derivative) filter of a float32 3D array; axes with sigma 0 are left alone."""
-    out = x
+    """Separable Gaussian (derivative) filter of a 3D array (:func:`gaussian_pass` along each axis), float32; axes
+    with sigma 0 are left alone."""
+    out = np.asarray(x, dtype=np.float32)
     for axis, (sig, order) in enumerate(zip(sigmas, orders)):
-        if sig <= 0 or x.shape[axis] == 1:
-            continue
-        out = correlate_axis(np.asarray(out, dtype=np.float32), gaussian_kernel(float(sig), int(order)), axis)
+        out = gaussian_pass(out, axis, float(sig), int(order))
     return out if out is not x else x.astype(np.float32, copy=True)
 
 
@@ -404,19 +333,15 @@ def structure_tensor_at(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tup
     """:func:`structure_tensor` of a cube at ``core`` only (``(rows, cols)`` slices of its first two axes; all of
     them: the whole cube's tensor), the same bits as the whole cube's there: the gradients with shared smoothing
     passes (g0 = D0 G1 G2 f, g1 = G0 D1 G2 f, g2 = G0 G1 D2 f), each pass computing only the lines its later passes
-    read (its outputs within the later lateral radius of ``core``: :func:`correlate_axis` ``keep``), so the tensor's
+    read (its outputs within the later lateral radius of ``core``: :func:`gaussian_pass` ``keep``), so the tensor's
     wide vertical pass runs at ``core``'s traces only; the products in an order that frees each gradient as soon as
     possible (peak memory). Returns the six components, each of ``f3[core]``'s shape."""
+    gauss = gaussian_pass
     sg, (lat, vert) = sigma_gradient, sigma_tensor
     r = gaussian_radius(lat)
     spans = [s.indices(n)[:2] for s, n in zip(core, f3.shape[:2])]
     wide = [(max(a - r, 0), min(b + r, n)) for (a, b), n in zip(spans, f3.shape[:2])]  # the lines the tensor reads
     inner = [(a - w, b - w) for (a, b), (w, _) in zip(spans, wide)]  # core within them
-
-    def gauss(x, axis, sig, order=0, keep=None):  # one pass of gaussian3, only the lines ``keep`` along ``axis``
-        if sig <= 0 or x.shape[axis] == 1:
-            return x[(slice(None),) * axis + (slice(*keep) if keep else slice(None),)]
-        return correlate_axis(np.asarray(x, np.float32), gaussian_kernel(float(sig), order), axis, keep)
 
     f2 = gauss(f3, 2, sg)
     g0 = gauss(gauss(f2, 1, sg, 0, wide[1]), 0, sg, 1, wide[0])
@@ -445,7 +370,9 @@ def tensor_eig(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float,
 
 def tensor_planarity(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], two_d: bool):
     """Planarity (n0, n1, nt) float32 of a 3D-shaped array (2D sections as (n, 1, nt)), without keeping the
-    normals: computed in slabs of inlines so that the normals' workspace stays small."""
+    normals: computed in slabs of inlines so that the normals' workspace stays small. Where the tensor is zero (no
+    gradient in its window: constant amplitudes) the planarity is 1, so that the semblance it weights decides alone
+    (constant data is as coherent as it gets; all-zero data is dead by its semblance denominator)."""
     t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
     planarity = np.empty(f3.shape, dtype=np.float32)
     slab = max(1, (1 << 24) // max(1, f3.shape[1] * f3.shape[2]))
@@ -453,6 +380,8 @@ def tensor_planarity(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[
         b = min(a + slab, f3.shape[0])
         normals = np.empty((b - a,) + f3.shape[1:] + (3,), dtype=np.float32)
         eig_normals(*(c[a:b] for c in t), normals, planarity[a:b])
+        flat = (t[0][a:b] == 0) & (t[3][a:b] == 0) & (t[5][a:b] == 0)  # a zero trace: a zero tensor
+        planarity[a:b][flat] = 1.0
     return planarity
 
 
@@ -476,7 +405,7 @@ def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_t
         t = structure_tensor_at(f3, sigma_gradient, sigma_tensor, core)
     p0 = np.empty(t[0].shape, dtype=np.float32)
     p1 = np.empty(t[0].shape, dtype=np.float32)
-    eig_slopes(*t, MAX_SLOPE, p0, p1, bool(as_float32_normals), acos=_acos_for(p0.size))
+    eig_slopes(*t, MAX_SLOPE, p0, p1, bool(as_float32_normals))
     return p0, p1
 
 
@@ -506,36 +435,3 @@ def search_right(keys, value):
             hi = mid
     return lo
 
-
-def bucket_grid(points: np.ndarray, side: float) -> tuple:
-    """Points binned in cubes of ``side`` for neighbour searches in compiled code: the points of one column of
-    buckets along the last axis are one range of sorted keys (``np.searchsorted`` on the keys of its first and last
-    bucket).
-
-    Parameters
-    ----------
-    points : (n, 3) float64 ndarray
-        Point coordinates (a 2D section's with a constant middle coordinate), n >= 1.
-    side : float
-        Side of the buckets, in the points' units (> 0).
-
-    Returns
-    -------
-    keys : (n,) int64 ndarray
-        Bucket keys, sorted: ``(bx * dims[1] + by) * dims[2] + bz`` with ``b = floor((p - origin) / side)``.
-    order : (n,) int64 ndarray
-        The points in key order (``keys`` = the points' keys [order]; ties keep the points' order).
-    origin : (3,) float64 ndarray
-        The lowest corner (the points' minimum).
-    dims : (3,) int64 ndarray
-        Buckets along each axis.
-    """
-    points = np.ascontiguousarray(points, dtype=np.float64)
-    origin = points.min(axis=0)
-    dims = np.floor((points.max(axis=0) - origin) / side).astype(np.int64) + 1
-    keys = np.zeros(points.shape[0], np.int64)
-    for a in range(3):  # axis by axis (temporaries of n values), the key built as a loop over the axes builds it
-        keys *= dims[a]
-        keys += np.floor((points[:, a] - origin[a]) / float(side)).astype(np.int64)
-    order = np.argsort(keys, kind="stable")
-    return keys[order], order, origin, dims

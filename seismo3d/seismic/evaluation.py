@@ -19,6 +19,7 @@ from scipy import ndimage as ndi
 from .._validation import check_positive
 from ..errors import InputError
 from ..geometry.transforms import apply_transform, as_transform, rotation_error_deg
+from .fault_scoring import tolerant_scores
 
 __all__ = ["FaultScores", "FaultLineCoverage", "HorizonErrors", "RegistrationErrors", "evaluate_faults",
            "fault_line_coverage", "horizon_errors", "plain_semblance", "registration_errors", "semblance_skeleton"]
@@ -97,7 +98,8 @@ class RegistrationErrors:
 
 
 def evaluate_faults(thin_mask, labels, *, tolerance=3.0, border=0) -> FaultScores:
-    """Precision and recall of thinned faults against labelled fault samples.
+    """Precision and recall of thinned faults against labelled fault samples: the tolerant scores of
+    :func:`~seismo3d.seismic.fault_scoring.tolerant_scores` (the project's one fault scoring), on a label image.
 
     A predicted sample is correct when a labelled sample lies within ``tolerance`` samples of it (Euclidean
     distance in index space, from :func:`scipy.ndimage.distance_transform_edt`); recall is the fraction of labelled
@@ -122,7 +124,7 @@ def evaluate_faults(thin_mask, labels, *, tolerance=3.0, border=0) -> FaultScore
     -------
     FaultScores
         ``precision`` and ``recall`` in [0, 1]; precision is 0 when nothing is predicted, recall is 1 when there are
-        no labels.
+        no labels (left by ``border``).
 
     Raises
     ------
@@ -133,18 +135,10 @@ def evaluate_faults(thin_mask, labels, *, tolerance=3.0, border=0) -> FaultScore
     lab = np.asarray(labels) > 0
     if pred.shape != lab.shape:
         raise InputError(f"thin_mask {pred.shape} and labels {lab.shape} must have the same shape")
-    tolerance = check_positive(tolerance, "tolerance", allow_zero=True)
-    border = int(check_positive(border, "border", allow_zero=True))
-    valid = np.ones(pred.shape, dtype=bool)
-    if border:
-        valid[..., :border] = False
-        valid[..., pred.shape[-1] - border:] = False
-    d_to_lab = ndi.distance_transform_edt(~lab) if lab.any() else np.full(pred.shape, np.inf)
-    d_to_pred = ndi.distance_transform_edt(~pred) if pred.any() else np.full(pred.shape, np.inf)
-    p_sel = pred & valid
-    l_sel = lab & valid
-    precision = float(np.mean(d_to_lab[p_sel] <= tolerance)) if p_sel.any() else 0.0
-    recall = float(np.mean(d_to_pred[l_sel] <= tolerance)) if l_sel.any() else 1.0
+    precision, recall, _ = tolerant_scores(pred, lab, tolerance, border=border)
+    border = int(border)
+    if not lab[..., border:max(lab.shape[-1] - border, 0)].any():  # nothing to find: nothing missed
+        recall = 1.0
     return FaultScores(precision=precision, recall=recall)
 
 

@@ -40,7 +40,6 @@ from scipy import ndimage as ndi
 
 from .._validation import check_positive
 from ..errors import InputError
-from .evaluation import evaluate_faults
 from .io.stick_sections import section_pixels
 
 __all__ = ["FaultLineScores", "FaultPair", "FaultScoringOptions", "PeopleFaultScore", "PrecisionRecallCurve",
@@ -405,39 +404,50 @@ class FaultLineScores:
     curve: PrecisionRecallCurve
 
 
-def tolerant_scores(traced, people, tolerance: float = 3.0) -> tuple:
-    """Tolerant precision, recall and F1 of one fault mask against another (the module notes' definition).
+def tolerant_scores(traced, people, tolerance: float = 3.0, *, border: int = 0) -> tuple:
+    """Tolerant precision, recall and F1 of one fault mask against another (the module notes' definition): the one
+    computation of the project's fault scores (:func:`seismo3d.seismic.evaluate_faults` calls it).
 
     Parameters
     ----------
-    traced, people : (n_traces, n_samples) array_like of bool
-        Fault samples of the traced faults and of people's, one shape.
+    traced, people : (n_traces, n_samples) or (n_inlines, n_xlines, n_samples) array_like of bool
+        Fault samples of the traced faults and of people's (or of a generator's labels), one shape.
     tolerance : float
         Samples (Euclidean, index space).
+    border : int
+        Samples within ``border`` of the first and last sample of the last axis are left out of both fractions
+        (they still count as the other mask's neighbours); 0 scores every sample.
 
     Returns
     -------
     (float, float, float)
-        Precision, recall and F1, in [0, 1]; all 0 when either mask is empty.
+        Precision, recall and F1, in [0, 1]; all 0 when either mask is empty, and a fraction is 0 when ``border``
+        leaves none of its samples.
 
     Raises
     ------
     InputError
-        Shapes differ, or ``tolerance`` < 0.
+        Shapes differ, or ``tolerance`` or ``border`` < 0.
 
     Notes
     -----
-    ``fault_scores.tolerant_scores`` of the project's tools, computed by :func:`seismo3d.seismic.evaluate_faults`
-    (which this equals whenever both masks hold fault samples; with an empty mask every score here is 0).
+    ``fault_scores.tolerant_scores`` of the project's tools, line for line when ``border`` is 0.
     """
     pred, ref = np.asarray(traced, dtype=bool), np.asarray(people, dtype=bool)
     if pred.shape != ref.shape:
         raise InputError(f"traced {pred.shape} and people {ref.shape} must have one shape")
     tol = check_positive(tolerance, "tolerance", allow_zero=True)
+    border = int(check_positive(border, "border", allow_zero=True))
     if not pred.any() or not ref.any():
         return 0.0, 0.0, 0.0
-    scores = evaluate_faults(pred, ref, tolerance=tol)  # the project's one computation of the two fractions
-    return scores.precision, scores.recall, scores.f1
+    valid = np.ones(pred.shape, dtype=bool)
+    if border:
+        valid[..., :border] = False
+        valid[..., pred.shape[-1] - border:] = False
+    scored_pred, scored_ref = pred & valid, ref & valid
+    p = float((ndi.distance_transform_edt(~ref)[scored_pred] <= tol).mean()) if scored_pred.any() else 0.0
+    r = float((ndi.distance_transform_edt(~pred)[scored_ref] <= tol).mean()) if scored_ref.any() else 0.0
+    return p, r, (2 * p * r / (p + r) if p + r else 0.0)
 
 
 def _near(mask: np.ndarray, tol: float):

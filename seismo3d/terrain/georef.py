@@ -1,10 +1,10 @@
 """Coordinate reference systems of LAS/LAZ and GeoTIFF files (GeoKeys), and the local metric frame fits run in.
 
 LAS 1.0-1.3 and GeoTIFF describe their CRS with the same GeoTIFF GeoKey directory (a table of ``(key, location,
-count, value)`` shorts with double and ASCII parameter blocks); LAS 1.4 may use OGC WKT instead. Only what seismo3d
-needs is decoded, without a projection library: whether the CRS is projected or geographic, its EPSG code, the linear
-and vertical units and their size in metres. Two files are compatible when their horizontal CRS agree; seismo3d does
-not reproject.
+count, value)`` shorts with double and ASCII parameter blocks, decoded here); LAS 1.4 may use OGC WKT instead, read by
+pyproj (PROJ), which also gives the units of a CRS the keys name only by its EPSG code. What seismo3d keeps: whether
+the CRS is projected or geographic, its EPSG code, the linear and vertical units and their size in metres. Two files
+are compatible when their horizontal CRS agree; seismo3d does not reproject.
 
 Fits never see the files' large coordinates (e.g. 849,000 ft of northing): :class:`LocalFrame` recentres them (and for
 geographic CRSs turns degrees into metres east and north on a local tangent plane), and maps transforms back.
@@ -17,7 +17,6 @@ OGC 19-008r4 (2019), OGC GeoTIFF Standard 1.1. ASPRS (2019). LAS Specification 1
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -41,8 +40,6 @@ _LINEAR_UNITS = {
     9003: ("US survey foot", 1200.0 / 3937.0),
     9036: ("kilometre", 1000.0),
 }
-_WKT_UNITS = {"metre": 1.0, "meter": 1.0, "m": 1.0, "foot": 0.3048, "international foot": 0.3048, "ft": 0.3048,
-              "us survey foot": 1200.0 / 3937.0, "foot_us": 1200.0 / 3937.0, "us_survey_foot": 1200.0 / 3937.0}
 _USER_DEFINED = 32767
 
 # WGS 84 ellipsoid (EPSG:7030): semi-major axis (m) and first eccentricity squared
@@ -173,7 +170,7 @@ def reference_from_geokeys(keys: dict) -> CoordinateReference:
     if model == 1 or _PROJECTED_TYPE in keys:
         epsg = keys.get(_PROJECTED_TYPE)
         name = str(keys.get(_PCS_CITATION, "") or keys.get(_CITATION, ""))
-        unit, um = _unit(keys.get(_PROJ_LINEAR_UNITS), ("metre", 1.0))
+        unit, um = _unit(keys.get(_PROJ_LINEAR_UNITS), _epsg_unit(_code(epsg)))
         vunit, vm = _unit(keys.get(_VERTICAL_UNITS), (unit, um))
         return CoordinateReference("projected", _code(epsg), name, unit, um, vunit, vm, dict(keys))
     return CoordinateReference(geokeys=dict(keys))
@@ -183,6 +180,20 @@ def _code(value):
     return None if value in (None, 0, _USER_DEFINED) else int(value)
 
 
+def _epsg_unit(epsg) -> tuple:
+    """(name, metres) of the linear unit of the projected CRS ``epsg`` in PROJ's database; metres when unknown."""
+    if epsg is None:
+        return "metre", 1.0
+    from pyproj import CRS
+    from pyproj.exceptions import CRSError
+
+    try:
+        axis = CRS.from_epsg(int(epsg)).axis_info
+    except CRSError:
+        return "metre", 1.0
+    return (axis[0].unit_name, float(axis[0].unit_conversion_factor)) if axis else ("metre", 1.0)
+
+
 def _unit(code, default):
     if code is None or code == _USER_DEFINED:
         return default
@@ -190,11 +201,11 @@ def _unit(code, default):
 
 
 def parse_wkt(wkt: str) -> CoordinateReference:
-    """Build a :class:`CoordinateReference` from an OGC WKT string (WKT1 or WKT2).
+    """Build a :class:`CoordinateReference` from an OGC WKT string (WKT1 or WKT2), read by ``pyproj.CRS.from_wkt``.
 
-    Only the outermost CRS is read: ``PROJCS`` / ``PROJCRS`` -> projected with the last top-level ``UNIT`` (or
-    ``LENGTHUNIT``) as the linear unit; ``GEOGCS`` / ``GEOGCRS`` -> geographic. The EPSG code is the last ``AUTHORITY``
-    / ``ID`` at the top level.
+    A projected CRS gives its axes' unit as the linear unit, a geographic one degrees; a compound CRS its horizontal
+    part, with its vertical part's unit as the vertical unit. The EPSG code is the CRS's own (PROJ's identification
+    at full confidence: a user-defined CRS has none).
 
     Parameters
     ----------
@@ -203,40 +214,39 @@ def parse_wkt(wkt: str) -> CoordinateReference:
     Returns
     -------
     CoordinateReference
+        ``kind='unknown'`` for a WKT that is neither projected nor geographic (an engineering ``LOCAL_CS``) or that
+        PROJ cannot read.
+
+    References
+    ----------
+    OGC 18-010r7 (2019), Well-known text representation of coordinate reference systems; pyproj, ``pyproj.CRS``.
     """
-    text = wkt.strip().rstrip("\x00")
-    head = text.split("[", 1)[0].strip().upper()
-    if head not in ("PROJCS", "PROJCRS", "GEOGCS", "GEOGCRS", "COMPD_CS", "COMPOUNDCRS"):
+    from pyproj import CRS
+    from pyproj.exceptions import CRSError
+
+    try:
+        crs = CRS.from_wkt(wkt.strip().rstrip("\x00"))
+    except CRSError:
         return UNKNOWN_CRS
-    if head in ("COMPD_CS", "COMPOUNDCRS"):  # horizontal part first
-        inner = text.split("[", 1)[1]
-        start = re.search(r"(PROJCS|PROJCRS|GEOGCS|GEOGCRS)\[", inner)
-        return parse_wkt(inner[start.start():]) if start else UNKNOWN_CRS
-    name_match = re.match(r'\w+\["([^"]*)"', text)
-    name = name_match.group(1) if name_match else ""
-    top = _top_level(text)
-    codes = re.findall(r'(?:AUTHORITY|ID)\["EPSG",\s*"?(\d+)"?\]', top)
-    epsg = int(codes[-1]) if codes else None
-    if head.startswith("GEOG"):
-        return CoordinateReference("geographic", epsg, name, "degree", 1.0, "metre", 1.0)
-    units = re.findall(r'(?:LENGTHUNIT|UNIT)\["([^"]+)",\s*([0-9.eE+-]+)', top)
-    unit, um = ("metre", 1.0)
-    if units:
-        unit, um = units[-1][0], float(units[-1][1])
-    return CoordinateReference("projected", epsg, name, unit, um, unit, um)
+    vertical = None
+    if crs.is_compound:
+        vertical = next((c for c in crs.sub_crs_list if c.is_vertical), None)
+        crs = next((c for c in crs.sub_crs_list if c.is_projected or c.is_geographic), crs)
+    if not (crs.is_projected or crs.is_geographic):
+        return UNKNOWN_CRS
+    epsg = crs.to_epsg(min_confidence=100)
+    if crs.is_geographic:
+        vunit, vm = _axis_unit(vertical, ("metre", 1.0))
+        return CoordinateReference("geographic", epsg, crs.name, "degree", 1.0, vunit, vm)
+    unit, um = _axis_unit(crs, ("metre", 1.0))
+    vunit, vm = _axis_unit(vertical, (unit, um))
+    return CoordinateReference("projected", epsg, crs.name, unit, um, vunit, vm)
 
 
-def _top_level(text: str) -> str:
-    """The WKT with every nested bracket group below the first level removed (keeps the top level's own nodes)."""
-    out, depth = [], 0
-    for ch in text:
-        if ch == "[":
-            depth += 1
-        if depth <= 2:
-            out.append(ch)
-        if ch == "]":
-            depth -= 1
-    return "".join(out)
+def _axis_unit(crs, default) -> tuple:
+    """(name, metres) of the first axis of a pyproj CRS, ``default`` without one."""
+    axis = crs.axis_info if crs is not None else []
+    return (axis[0].unit_name, float(axis[0].unit_conversion_factor)) if axis else default
 
 
 def metres_per_degree(latitude_deg: float) -> tuple[float, float]:

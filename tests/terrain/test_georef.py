@@ -25,12 +25,22 @@ AUTZEN_WKT = ('PROJCS["NAD_1983_HARN_Lambert_Conformal_Conic",GEOGCS["GCS_North_
 
 
 def test_parse_wkt_projected_feet_without_epsg():
+    from pyproj import CRS
+
     crs = parse_wkt(AUTZEN_WKT)
     assert crs.kind == "projected" and crs.linear_unit == "foot" and crs.unit_to_metre == pytest.approx(0.3048)
     assert crs.epsg is None  # the nested AUTHORITY nodes are not the CRS's code
-    assert parse_wkt('PROJCS["UTM 14N",UNIT["metre",1],AUTHORITY["EPSG","32614"]]').epsg == 32614
-    assert parse_wkt('GEOGCS["WGS 84",AUTHORITY["EPSG","4326"]]').is_geographic
+    # EPSG's own definitions as a LAS 1.4 writer (GDAL) puts them in a file, WKT1 and WKT2
+    assert parse_wkt(CRS.from_epsg(32614).to_wkt("WKT1_GDAL")).epsg == 32614
+    assert parse_wkt(CRS.from_epsg(4326).to_wkt("WKT2_2019")).is_geographic
+    oregon = parse_wkt(CRS.from_epsg(2992).to_wkt("WKT1_GDAL"))  # NAD83 / Oregon GIC Lambert (ft)
+    assert (oregon.epsg, oregon.linear_unit, oregon.unit_to_metre) == (2992, "foot", pytest.approx(0.3048))
+    # a compound CRS: the horizontal part, the vertical part's unit (NAVD88 height in US survey feet)
+    both = parse_wkt(CRS.from_user_input("EPSG:2992+6360").to_wkt("WKT1_GDAL"))
+    assert (both.epsg, both.vertical_unit) == (2992, "US survey foot")
+    assert both.vertical_to_metre == pytest.approx(1200 / 3937)
     assert parse_wkt("LOCAL_CS[]").kind == "unknown"
+    assert parse_wkt('PROJCS["no projection"]').kind == "unknown"  # not a CRS PROJ can read
 
 
 def test_geokeys_round_trip_and_units():
@@ -40,6 +50,8 @@ def test_geokeys_round_trip_and_units():
     crs = reference_from_geokeys(keys)
     assert (crs.kind, crs.epsg, crs.linear_unit) == ("projected", 2992, "US survey foot")
     assert crs.unit_to_metre == pytest.approx(1200 / 3937) and crs.vertical_to_metre == crs.unit_to_metre
+    # a projected CRS named by its EPSG code only: its unit from PROJ's database (EPSG:2992 is in feet)
+    assert reference_from_geokeys({1024: 1, 3072: 2992}).unit_to_metre == pytest.approx(0.3048)
     geo = reference_from_geokeys({1024: 2, 2048: 4326})
     assert geo.is_geographic and geo.vertical_unit == "metre"
     with pytest.raises(InputError, match="declares 3 keys"):

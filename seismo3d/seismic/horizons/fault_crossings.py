@@ -14,12 +14,13 @@ Conventions: index space as in :mod:`seismo3d.seismic.faults.likelihood.scan` (p
 
 from __future__ import annotations
 
+import itertools
+
 import numba as nb
 import numpy as np
 from scipy.spatial import cKDTree
 
 from ...errors import InputError
-from .. import _kernels
 from ..faults.throw import hanging_wall_normals
 
 __all__ = ["FaultCrossings", "footwall_normals", "reliable_throw"]
@@ -86,9 +87,6 @@ def reliable_throw(throw, min_correlation: float = 0.0) -> bool:
     return bool(np.nanmedian(corr) > np.nanmedian(flat))
 
 
-_BUCKET = 4.0  # voxels: the side of the buckets the step kernel finds fault points in
-
-
 @nb.njit(cache=True)
 def _group_plane(pts, nrm, cells, ndim):
     # the local plane of one fault's points ``cells`` (FaultCrossings._planes, and the compiled steps): centre and
@@ -129,36 +127,22 @@ def _group_plane(pts, nrm, cells, ndim):
 
 
 @nb.njit(cache=True)
-def _one_step_jump(a, b, pts, nrm, throws, ids, keys, order, bucket_lo, dims, pierce):
+def _one_step_jump(a, b, pts, nrm, throws, ids, candidates, pierce):
     # FaultCrossings.jump of the step a -> b (no faults crossed before): the fault points within
-    # |b - a| / 2 + pierce + 1 of the step's midpoint, by fault, each fault's local plane and its pierce point
+    # |b - a| / 2 + pierce + 1 of the step's midpoint (among ``candidates``, the k-d tree's points around it), by
+    # fault, each fault's local plane and its pierce point
     ndim = a.shape[0]
     mid = 0.5 * (a + b)
     r = 0.5 * np.sqrt(np.sum((b - a) ** 2)) + pierce + 1.0
-    lo = np.zeros(3, np.int64)
-    hi = np.zeros(3, np.int64)
-    for d in range(3):
-        if ndim == 2 and d == 1:
-            continue  # 2D: the middle bucket axis is a dummy of size 1
-        x = mid[d if ndim == 3 else d // 2]
-        lo[d] = max(int(np.floor((x - r - bucket_lo[d]) / _BUCKET)), 0)
-        hi[d] = min(int(np.floor((x + r - bucket_lo[d]) / _BUCKET)), dims[d] - 1)
-    found = np.empty(64, np.int64)
+    found = np.empty(candidates.size, np.int64)
     m = 0
-    for bx in range(lo[0], hi[0] + 1):
-        for by in range(lo[1], hi[1] + 1):
-            column = (bx * dims[1] + by) * dims[2]
-            for q in range(np.searchsorted(keys, column + lo[2]),
-                           np.searchsorted(keys, column + hi[2], side="right")):
-                k = order[q]
-                d2 = 0.0
-                for d in range(ndim):
-                    d2 += (pts[k, d] - mid[d]) ** 2
-                if d2 <= r * r:
-                    if m == found.size:
-                        found = np.concatenate((found, np.empty(m, np.int64)))
-                    found[m] = k
-                    m += 1
+    for k in candidates:
+        d2 = 0.0
+        for d in range(ndim):
+            d2 += (pts[k, d] - mid[d]) ** 2
+        if d2 <= r * r:
+            found[m] = k
+            m += 1
     if m == 0:
         return 0.0
     near = found[:m].copy()
@@ -192,11 +176,11 @@ def _one_step_jump(a, b, pts, nrm, throws, ids, keys, order, bucket_lo, dims, pi
 
 
 @nb.njit(cache=True, parallel=True)
-def _step_jumps(a, b, pts, nrm, throws, ids, keys, order, bucket_lo, dims, pierce):
-    # _one_step_jump of every step a[s] -> b[s]
+def _step_jumps(a, b, pts, nrm, throws, ids, indptr, indices, pierce):
+    # _one_step_jump of every step a[s] -> b[s], its candidate points indices[indptr[s]:indptr[s + 1]]
     out = np.zeros(a.shape[0])
     for s in nb.prange(a.shape[0]):
-        out[s] = _one_step_jump(a[s], b[s], pts, nrm, throws, ids, keys, order, bucket_lo, dims, pierce)
+        out[s] = _one_step_jump(a[s], b[s], pts, nrm, throws, ids, indices[indptr[s]:indptr[s + 1]], pierce)
     return out
 
 
@@ -237,7 +221,6 @@ class FaultCrossings:
         self.throws = throws
         self.ids = np.zeros(len(points), np.int64) if ids is None else np.asarray(ids, np.int64)
         self.tree = cKDTree(points) if len(points) else None
-        self._buckets = None  # for step_jumps, built when first needed
 
     @classmethod
     def empty(cls, ndim: int, **kwargs) -> "FaultCrossings":
@@ -421,12 +404,13 @@ class FaultCrossings:
                              f"{b.shape}")
         if self.tree is None or len(a) == 0:
             return np.zeros(len(a))
-        if self._buckets is None:
-            pts3 = self.points if self.points.shape[1] == 3 else np.insert(self.points, 1, 0.0, axis=1)
-            self._buckets = _kernels.bucket_grid(pts3, _BUCKET)
-        keys, order, lo, dims = self._buckets
-        return _step_jumps(a, b, self.points, self.normals, self.throws, self.ids, keys, order, lo, dims,
-                           self.pierce)
+        # each step's candidate points from the tree: within a hair more than the kernel's radius (which decides)
+        radius = 0.5 * np.sqrt(np.sum((b - a) ** 2, axis=1)) + self.pierce + 1.0
+        near = self.tree.query_ball_point(0.5 * (a + b), radius * (1 + 1e-9) + 1e-9)
+        counts = np.fromiter((len(n) for n in near), np.int64, len(near))
+        indptr = np.concatenate([[0], np.cumsum(counts)])
+        indices = np.fromiter(itertools.chain.from_iterable(near), np.int64, int(indptr[-1]))
+        return _step_jumps(a, b, self.points, self.normals, self.throws, self.ids, indptr, indices, self.pierce)
 
     def jump(self, a: np.ndarray, b: np.ndarray, crossed: set | None = None) -> float:
         """Vertical jump (samples) of a horizon going from ``a`` to ``b``: the sum over the faults crossed (two faults

@@ -1,5 +1,5 @@
 """The closest cells of different fault skins within a gap (:mod:`~seismo3d.seismic.faults.surfaces.skins`): edge cells
-matched to the nearest cell of every other skin through a grid of buckets; the pairs the merging of coplanar skins
+matched to the nearest cell of every other skin through a k-d tree; the pairs the merging of coplanar skins
 considers. And the split of 2D skins whose branches dip opposite ways (:func:`split_opposite_dips`,
 ``SkinOptions.split_angle``): a fault plane dips one way, but the linking keeps to one mean normal within
 ``max_angle``, so two steep faults dipping opposite ways (a Y and its antithetic branch, an inverted V) whose normals
@@ -25,132 +25,54 @@ from scipy.ndimage import maximum_filter
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from ... import _kernels
 from ....errors import InputError
 
 __all__ = []
 
 
-@nb.njit(cache=True)
-def _edge_pairs(start, edge_idx, pts, lab, origin, dims, side, keys, order, gap2, slot, labels, dist2, cells, first,
-                second, dist):
-    # From edge cell ``start`` on: every (edge cell, nearest cell of another label within the gap, squared distance),
-    # in the order of the edge cells, into ``first``, ``second``, ``dist``; stops before an edge cell whose pairs no
-    # longer fit and returns (that edge cell, pairs written), so the caller continues with larger arrays. An edge
-    # cell e's nearest cell of every other label within sqrt(gap2), ties to the lower index, comes from the buckets
-    # (cubes of ``side`` from ``origin``, :func:`~seismo3d.seismic._kernels.bucket_grid`) around e's bucket that come
-    # within the gap; ``keys`` are the cells' bucket keys in ``order``. ``labels``, ``dist2``, ``cells`` (one entry a
-    # label) hold an edge cell's labels found; ``slot`` (one per label, all -1) is the position of a label in them,
-    # left all -1 again. One kernel, no array made inside, math.floor for int(): each compiled a function of its own
-    # on a first run (the nearest cells' kernel, its arrays' growth for two types and np.empty for two: 1.5 CPU s)
-    gap = math.sqrt(gap2)
-    used = 0
-    for r in range(start, edge_idx.size):
-        e = edge_idx[r]
-        m = 0
-        own = lab[e]
-        ex0 = pts[e, 0] - origin[0]
-        ex1 = pts[e, 1] - origin[1]
-        ex2 = pts[e, 2] - origin[2]
-        # the buckets within the gap of e along each axis
-        first_b0 = max(math.floor((ex0 - gap) / side), 0)
-        first_b1 = max(math.floor((ex1 - gap) / side), 0)
-        first_b2 = max(math.floor((ex2 - gap) / side), 0)
-        last_b0 = min(math.floor((ex0 + gap) / side), dims[0] - 1)
-        last_b1 = min(math.floor((ex1 + gap) / side), dims[1] - 1)
-        last_b2 = min(math.floor((ex2 + gap) / side), dims[2] - 1)
-        for bx in range(first_b0, last_b0 + 1):
-            # the column's nearest point to e along the inlines (buckets counted from the cells' lowest corner)
-            lo = bx * side - ex0
-            hi = lo + side
-            box0 = lo * lo if lo > 0.0 else (hi * hi if hi < 0.0 else 0.0)
-            for by in range(first_b1, last_b1 + 1):
-                # the column's buckets along the samples are consecutive keys: one range of cells; the column is
-                # skipped when its nearest point to e is beyond the gap
-                lo = by * side - ex1
-                hi = lo + side
-                box2 = box0 + (lo * lo if lo > 0.0 else (hi * hi if hi < 0.0 else 0.0))
-                if box2 > gap2:
-                    continue
-                column = bx * dims[1] + by
-                low = column * dims[2] + first_b2
-                high = column * dims[2] + last_b2
-                for q in range(_kernels.search_left(keys, low), _kernels.search_right(keys, high)):
-                    j = order[q]
-                    if lab[j] == own:
-                        continue
-                    t = pts[j, 0] - pts[e, 0]
-                    d2 = t * t
-                    t = pts[j, 1] - pts[e, 1]
-                    d2 += t * t
-                    t = pts[j, 2] - pts[e, 2]
-                    d2 += t * t
-                    if d2 > gap2:
-                        continue
-                    k = slot[lab[j]]
-                    if k < 0:
-                        slot[lab[j]] = m
-                        labels[m] = lab[j]
-                        dist2[m] = d2
-                        cells[m] = j
-                        m += 1
-                    elif d2 < dist2[k] or (d2 == dist2[k] and j < cells[k]):
-                        dist2[k] = d2
-                        cells[k] = j
-        for k in range(m):
-            slot[labels[k]] = -1
-        if used + m > first.size:
-            return r, used
-        for k in range(m):
-            first[used] = e
-            second[used] = cells[k]
-            dist[used] = dist2[k]
-            used += 1
-    return edge_idx.size, used
-
-
-def _all_edge_pairs(edge_idx, pts, lab, n_labels, origin, dims, side, keys, order, gap2):
-    """:func:`_edge_pairs` over all the edge cells, its arrays made here: (first, second,
-    squared distance) of each pair, in the order of the edge cells."""
-    slot = np.full(n_labels, -1, np.int64)
-    labels = np.empty(n_labels, np.int64)
-    dist2 = np.empty(n_labels)
-    cells = np.empty(n_labels, np.int64)
-    size = max(64, n_labels, edge_idx.size)  # room for one edge cell's pairs at least, doubled while full
-    parts = []
-    r = 0
-    while r < edge_idx.size:
-        first, second, dist = np.empty(size, np.int64), np.empty(size, np.int64), np.empty(size)
-        r, used = _edge_pairs(r, edge_idx, pts, lab, origin, dims, side, keys, order, gap2, slot, labels, dist2,
-                              cells, first, second, dist)
-        parts.append((first[:used], second[:used], dist[:used]))
-        size *= 2
-    return tuple(np.concatenate(p) for p in zip(*parts))
+# edge cells per query of :func:`closest_pairs`: their pairs within the gap (a few hundred each on a thick skin) stay
+# a few MB
+_EDGE_CHUNK = 1 << 12
 
 
 def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
     """(m, 2) int64 indices into ``pts`` (n, 3): for every pair of labels, the closest (edge cell, cell of the other
-    label) pair within ``gap`` (ties: the lower edge cell, then the lower other cell). Cells are binned in buckets
-    of side ``gap / 2`` (memory: three int64 arrays of n besides the cells), so each edge cell compares itself with
-    the cells of the buckets that come within the gap only and keeps the nearest cell of each other label (no list
-    of all the pairs)."""
+    label) pair within ``gap`` (ties: the lower edge cell, then the lower other cell). The pairs within the gap come
+    from a k-d tree of the cells (:meth:`scipy.spatial.cKDTree.sparse_distance_matrix`), a chunk of edge cells at a
+    time, each chunk's reduced to the closest pair of each pair of labels (no list of all the pairs)."""
     if edge_idx.size == 0 or pts.shape[0] == 0:
         return np.empty((0, 2), dtype=np.int64)
     pts = np.ascontiguousarray(pts, dtype=np.float64)
-    _, compact = np.unique(lab, return_inverse=True)  # labels 0..k-1: one slot each
-    compact = compact.astype(np.int64).ravel()
-    side = max(0.5 * float(gap), 0.5)
-    keys, order, origin, dims = _kernels.bucket_grid(pts, side)
-    first, second, dist2 = _all_edge_pairs(np.ascontiguousarray(edge_idx, dtype=np.int64), pts, compact,
-                                           int(compact.max()) + 1, origin, dims, side, keys, order, float(gap) ** 2)
-    if first.size == 0:
-        return np.empty((0, 2), dtype=np.int64)
-    key = np.minimum(lab[first], lab[second]).astype(np.int64) * n_labels + np.maximum(lab[first], lab[second])
+    lab = np.asarray(lab).astype(np.int64, copy=False)
+    edge_idx = np.asarray(edge_idx, dtype=np.int64)
+    tree = cKDTree(pts)
+    gap2 = float(gap) ** 2
+    kept = []
+    for start in range(0, edge_idx.size, _EDGE_CHUNK):
+        edge = edge_idx[start:start + _EDGE_CHUNK]
+        # a hair beyond the gap: the squared distances below decide, summed as the loop this replaced summed them
+        near = cKDTree(pts[edge]).sparse_distance_matrix(tree, float(gap) * (1 + 1e-9), output_type="ndarray")
+        first, second = edge[near["i"]], near["j"].astype(np.int64)
+        other = lab[first] != lab[second]
+        first, second = first[other], second[other]
+        d = pts[second] - pts[first]
+        dist2 = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] + d[:, 2] * d[:, 2]
+        within = dist2 <= gap2
+        kept.append(_closest_per_key(first[within], second[within], dist2[within], lab, n_labels))
+    first, second, dist2 = (np.concatenate(a) for a in zip(*kept))
+    first, second, _ = _closest_per_key(first, second, dist2, lab, n_labels)
+    return np.stack([first, second], axis=1)
+
+
+def _closest_per_key(first, second, dist2, lab, n_labels):
+    """The pairs ``(first, second, dist2)`` reduced to the closest of each pair of labels (ties: the lower first,
+    then the lower second cell)."""
+    key = np.minimum(lab[first], lab[second]) * n_labels + np.maximum(lab[first], lab[second])
     order = np.lexsort((second, first, dist2, key))
     keep = np.ones(order.size, dtype=bool)
     keep[1:] = key[order][1:] != key[order][:-1]
     sel = order[keep]
-    return np.stack([first[sel], second[sel]], axis=1)
+    return first[sel], second[sel], dist2[sel]
 
 
 def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):

@@ -100,13 +100,18 @@ def test_options_and_errors():
     assert fault_skins(thin, thin, thin, lower=0.3, upper=0.5) == []
 
 
-@pytest.mark.parametrize("two_d, side, n_labels", [(False, 30, 12), (True, 30, 12), (False, 90, 60), (True, 300, 60)])
-def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels):
-    # the merge step's search (compiled, bucketed) against every pair: for each two skins, the closest (edge cell,
-    # cell of the other skin) within the gap, ties to the lower edge cell, then the lower other cell. Sparse cells
-    # (side 90 and 300) leave each chunk of edge cells a few pairs only: the case where the compiled search lost
-    # pairs (numba hoisted its per-chunk buffers out of the parallel loop, so a thread's next chunk overwrote them)
+@pytest.mark.parametrize("two_d, side, n_labels, chunk", [(False, 30, 12, None), (True, 30, 12, None),
+                                                          (False, 90, 60, 7), (True, 300, 60, None)])
+def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels, chunk, monkeypatch):
+    # the merge step's search (a k-d tree, a chunk of edge cells at a time) against every pair: for each two skins,
+    # the closest (edge cell, cell of the other skin) within the gap, ties to the lower edge cell, then the lower
+    # other cell. Sparse cells (side 90 and 300) leave each chunk of edge cells a few pairs only; chunks of 7 edge
+    # cells: the closest pair of two skins found across chunks
+    from seismo3d.seismic.faults.surfaces import skin_kernels
     from seismo3d.seismic.faults.surfaces.skins import closest_pairs
+
+    if chunk is not None:
+        monkeypatch.setattr(skin_kernels, "_EDGE_CHUNK", chunk)
 
     rng = np.random.default_rng(7)
     pts = rng.integers(0, side, (600, 3)).astype(np.float64)
@@ -196,41 +201,3 @@ def test_split_angle_option():
     with pytest.raises(InputError, match="split_angle"):
         SkinOptions(split_angle=0.0)
 
-
-def test_edge_pairs_continue_where_their_arrays_filled():
-    # the merge step's kernel stops before an edge cell whose pairs no longer fit and is called again from there with
-    # larger arrays: the pairs of calls with arrays of 1, 2, 4, ... entries are those of one call with room for all
-    from seismo3d.seismic import _kernels
-    from seismo3d.seismic.faults.surfaces.skin_kernels import _edge_pairs
-
-    rng = np.random.default_rng(3)
-    pts = np.unique(rng.integers(0, 30, (500, 3)).astype(np.float64), axis=0)
-    lab = rng.integers(0, 9, len(pts)).astype(np.int64)
-    edge = np.sort(rng.choice(len(pts), 200, replace=False)).astype(np.int64)
-    gap = 4.0
-    keys, order, origin, dims = _kernels.bucket_grid(pts, 0.5 * gap)
-
-    def pairs(first_size):
-        slot = np.full(9, -1, np.int64)
-        work = np.empty(9, np.int64), np.empty(9), np.empty(9, np.int64)
-        out, r, size = [], 0, first_size
-        while r < edge.size:
-            arrays = np.empty(size, np.int64), np.empty(size, np.int64), np.empty(size)
-            start = r
-            r, used = _edge_pairs(r, edge, pts, lab, origin, dims, 0.5 * gap, keys, order, gap * gap, slot, *work,
-                                  *arrays)
-            assert r > start or used == 0 and size < 9  # progress once there is room for one edge cell's pairs
-            assert np.all(slot == -1)  # left all -1 between calls
-            out.extend(zip(*(a[:used].tolist() for a in arrays)))
-            size *= 2
-        return out
-
-    whole = pairs(10 ** 5)
-    assert len(whole) > 100
-    assert pairs(1) == whole
-    # each pair is the edge cell's nearest cell of that other skin within the gap, ties to the lower cell
-    for e, j, d2 in whole[:50]:
-        assert lab[j] != lab[e] and d2 == float(np.sum((pts[j] - pts[e]) ** 2)) <= gap * gap
-        same = np.nonzero(lab == lab[j])[0]
-        d = np.sum((pts[same] - pts[e]) ** 2, axis=1)
-        assert j == same[np.flatnonzero(d == d.min())[0]]

@@ -45,7 +45,8 @@ Three tables (each can be skipped):
      loops over windows; ``pip install -e ".[bench]"``).
 
 Tables of the learned likelihood: ``--only f3`` (the F3 inlines drawn by a person, both likelihoods, the skeleton,
-FaultNet's figures, and the cross-validated choice of likelihood and evidence), ``--only gsb`` (the two Great South
+FaultNet run in this process on each inline, ``benchmarks/faultnet.py``, without torch a line saying so, and the
+cross-validated choice of likelihood and evidence), ``--only gsb`` (the two Great South
 Basin crosslines with an interpreter's fault sticks, scored by the job of ``seismo3d evaluate``, beside the skeleton
 and a second person's drawing), ``--only counts`` (fault counts of
 both on every real section), ``--only checks`` (what an interpreter sees: teapot_tpd's three visible faults, no fault

@@ -353,17 +353,19 @@ def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
     plan = learned_blocks._plan(shape, opt, ChunkOptions(memory_limit=limit), baseline)
     budget = int((limit - baseline) * 0.8)
     assert [g["factor"] for g in plan["grids"]] == list(opt.resample) == [0.5, 0.7, 1.0]
+    step = int(opt.section_step)  # the blocks read the computed sections their others are interpolated from
     for g in plan["grids"]:
         grid, factor = g["network_shape"], g["factor"]
         for axis, name in enumerate(("inline", "crossline")):
             across, along = g["network_blocks"][name]
-            assert learned_blocks._largest_network_bytes(grid, across, along, axis, shape, factor, 4) <= budget
+            assert learned_blocks._largest_network_bytes(grid, across, along, axis, shape, factor, 4, step) <= budget
             if along < grid[1 - axis]:  # longer sections would not fit, even one chunk of them
                 assert along % 16 == 0 and across == 16
-                assert learned_blocks._largest_network_bytes(grid, 16, along + 16, axis, shape, factor, 4) > budget
+                assert learned_blocks._largest_network_bytes(grid, 16, along + 16, axis, shape, factor, 4,
+                                                             step) > budget
             else:  # whole sections: as many as fit
                 assert learned_blocks._largest_network_bytes(grid, across + 16, along, axis, shape, factor,
-                                                             4) > budget or across >= grid[axis]
+                                                             4, step) > budget or across >= grid[axis]
 
 
 def test_network_grid_alignment_per_axis():

@@ -221,6 +221,13 @@ def test_generated_faulted_cubes_precision_and_recall():
         assert s.precision >= 0.90 and s.recall >= 0.90, (seed, s)
 
 
+def test_section_step_is_a_positive_integer():
+    assert LearnedOptions().section_step == 2
+    for bad in (0, -1, 1.5, True):
+        with pytest.raises(InputError, match="section_step"):
+            LearnedOptions(section_step=bad)
+
+
 def test_section_span_reads_the_computed_sections_around_a_block():
     span, computed, positions = learned.section_span(3, 7, 2, 10)
     assert span == (2, 7) and computed.tolist() == [2, 4, 6]

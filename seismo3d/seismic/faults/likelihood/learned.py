@@ -112,7 +112,7 @@ class LearnedOptions:
         interpolated linearly along that direction (:func:`section_span`); 1: every section. A fault crossing the
         sections is seen on the computed ones and moves little between them; one nearly parallel to a direction's
         sections is seen by the other direction's (the larger of the two is kept). The default, 2, halves the
-        network's time on a cube (the fault likelihood of a generated 256^3 cube: 38 -> 22 CPU seconds on 2 threads,
+        network's time on a cube (the fault likelihood of a generated 256^3 cube: 36.8 -> 24.2 CPU seconds on 2 threads,
         ``python benchmarks/fault_speed.py``) and kept the scores of the generated faulted cubes (precision and
         recall 0.93-1.00, within 0.01 of every section's) and of the Parihaka cube (``benchmarks/faults_3d.py``:
         0.81 of the bands hit, 0.82-0.83 of the points in bands); 3 kept them too.

@@ -214,7 +214,8 @@ def main(argv=None) -> int:
     if len(results) > 1:
         per_gb = [r["ours"]["cpu"] / r["gb"] for r in results.values()]
         growth = max(per_gb) / min(per_gb) - 1.0
-        print(f"\nCPU s/GB of the whole command in memory: {', '.join(f'{v:.0f}' for v in per_gb)} ({growth:.0%} apart; "
+        shown = ", ".join(f"{v:.0f}" for v in per_gb)
+        print(f"\nCPU s/GB of the whole command in memory: {shown} ({growth:.0%} apart; "
               f"target <= {TARGETS['growth']:.0%})")
         ok &= growth <= TARGETS["growth"]
     if args.check:

@@ -1,12 +1,13 @@
 """FaultNet, the peer the fault benchmarks run in their own process: its released TorchScript weights on a cube or a
 section, with torch on the CPU.
 
-FaultNet (Dou, Li, Zhu and Li 2022, "Efficient training of 3D seismic image fault segmentation network under sparse
-labels by weakening anomaly annotation", IEEE Transactions on Geoscience and Remote Sensing 60) is a 3D CNN; its weights are the
-data folder's ``peers/FaultNet_Gamma0.7.pt`` (douyimin/FaultNet @ 8b51373, Apache-2.0), called as the data README's row
-says: a (1, 1, n_samples, n_inlines, n_crosslines) float32 cube scaled to [0, 1], each size a multiple of 16 (here
-padded by reflection and cropped back), the fault probability of the same shape. A section is run as a cube of 16
-copies of itself side by side (a fault of the section is then a fault plane across the copies), the middle copy kept.
+FaultNet (Dou et al. 2022, "Efficient training of 3D seismic image fault segmentation network under sparse labels
+by weakening anomaly annotation", IEEE Transactions on Geoscience and Remote Sensing 60) is a 3D CNN; its weights
+are the data folder's ``peers/FaultNet_Gamma0.7.pt`` (douyimin/FaultNet @ 8b51373, Apache-2.0), called as the data
+README's row says: a (1, 1, n_samples, n_inlines, n_crosslines) float32 cube scaled to [0, 1], each size a multiple
+of 16 (here padded by reflection and cropped back), the fault probability of the same shape. A section is run as a
+cube of 16 copies of itself side by side (a fault of the section is then a fault plane across the copies), the
+middle copy kept.
 
 torch is a peer's dependency, never seismo3d's: without it :func:`load_faultnet` returns None and the benchmarks say
 so in one line.

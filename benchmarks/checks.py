@@ -55,6 +55,10 @@ CHECKS = [
           "a fresh run of each prints what the saved notebook shows"),
     Check("commands", ("benchmarks/commands.py", "--check"),
           "seismo3d convert <= 1.5 x a segyio read of the same file, every --help <= 0.5 s"),
+    Check("fault-speed", ("benchmarks/fault_speed.py", "--check"),
+          "issue 76, in CPU seconds of the processes on 2 threads (a wall-time ratio moves with the load of a shared "
+          "machine): the whole seismo3d faults command on a generated 256^3 cube in no more than FaultNet's fault "
+          "probability of the same cube, its fault likelihood in no more than half of it"),
     Check("fault-blocks", ("benchmarks/fault_blocks.py", "--check"),
           "the learned likelihood by blocks on a grid of 0.7 and on three grids, a block on the 0.7 network grid, "
           "the faults job beyond its memory limit on a 192 x 192 x 64 cube and a SEG-Y cube, and the 128^3 demo "

@@ -36,9 +36,10 @@ from skimage.morphology import skeletonize
 from seismo3d.data.registry import fetch
 from seismo3d.seismic import trace_faults
 
+from faultnet import NOT_RUN, faultnet_probability, load_faultnet  # benchmarks/faultnet.py: the peer
+
 SECTIONS = ("parihaka",)
 PARIHAKA = "seismic/parihaka_timeslices/parihaka_timeslices_cols174_302.npz"
-FAULTNET = "peers/FaultNet_Gamma0.7.pt"
 TARGET = (0.80, 0.60)  # bands hit, points in bands (issue 74)
 
 
@@ -103,17 +104,10 @@ def semblance_peer(cube: np.ndarray, labels: np.ndarray) -> tuple[float, float, 
 
 def faultnet_peer(cube: np.ndarray, labels: np.ndarray):
     """(bands hit, in bands) of FaultNet's probability above 0.5 skeletonised per slice, or None without torch."""
-    try:
-        import torch
-    except ImportError:
+    net = load_faultnet()
+    if net is None:
         return None
-    net = torch.jit.load(str(fetch(FAULTNET)), map_location="cpu").eval()
-    x = (cube - cube.min()) / max(float(cube.max() - cube.min()), 1e-12)
-    x = torch.from_numpy(np.ascontiguousarray(x.transpose(2, 0, 1))[None, None].astype(np.float32))
-    with torch.no_grad():
-        out = net(x)
-    prob = (out[0] if isinstance(out, (tuple, list)) else out).numpy()[0, 0].transpose(1, 2, 0)
-    hit, inside, _, _ = band_scores(slice_skeleton(prob > 0.5), labels)
+    hit, inside, _, _ = band_scores(slice_skeleton(faultnet_probability(net, cube) > 0.5), labels)
     return hit, inside
 
 
@@ -136,7 +130,7 @@ def parihaka(check: bool) -> bool:
     print(f"  {f'1-semblance skeleton (best quantile {q:.3f})':44s} {s_hit:9.2f} {s_inside:9.2f}")
     fn = faultnet_peer(cube, labels)
     if fn is None:
-        print("  FaultNet: not run (torch is not installed; pip install torch)")
+        print(f"  {NOT_RUN}")
     else:
         print(f"  {'FaultNet (probability > 0.5, skeleton)':44s} {fn[0]:9.2f} {fn[1]:9.2f}")
     ok = hit >= TARGET[0] and inside >= TARGET[1] and hit > s_hit and inside > s_inside

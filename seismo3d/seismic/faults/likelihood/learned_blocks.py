@@ -50,7 +50,7 @@ from ...blocks.stores import StoreRun
 from ..result import ChunkedLikelihood
 from .learned import (
     LearnedOptions, amplitude_scale, cube_directions, direction_probability, grids_mean, orientation_from_likelihood,
-    scale_subsample,
+    scale_subsample, section_span,
 )
 from .network import (
     POOLING_MULTIPLE, RECEPTIVE_HALF, anti_alias_sigma, from_network_grid, grid_size, to_network_grid,
@@ -143,7 +143,8 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
             for axis in cube_directions(opt):
                 step = next(networks)
                 blocks = _network_blocks(g["network_shape"], *g["network_blocks"][_DIRECTION_NAMES[axis]], axis)
-                run.run_step(step, blocks, axis, opt, float(g["factor"]), scale, source=x)
+                run.run_step(step, blocks, axis, opt, float(g["factor"]), scale, int(g["network_shape"][axis]),
+                             source=x)
         results = run.run_step(orientation, lateral_blocks(plan["shape"], plan["block_orientation"],
                                                            plan["block_orientation"]),
                                plan, opt, workers=plan["workers_orientation"])
@@ -180,7 +181,8 @@ def block_steps(plan: dict, opt: LearnedOptions) -> tuple:
             label = f"fault network on {name}s" + (f" (grid {factor:g})" if len(plan["grids"]) > 1 else "")
             # the network's blocks are on the network grid: their outputs are their cores already (trim=False)
             steps.append(BlockStep(f"network_{name}_{k}", "map", RECEPTIVE_HALF, function=network_block, label=label,
-                                   region=functools.partial(_network_region, axis=axis, shape=shape, factor=factor),
+                                   region=functools.partial(_network_region, axis=axis, shape=shape, factor=factor,
+                                                            step=int(opt.section_step)),
                                    inputs=(CUBE,), outputs=(("probability", f"network_{name}_{k}"),), place=True,
                                    trim=False))
     networks = tuple(f"network_{name}_{k}" for k, g in enumerate(plan["grids"]) for name in g["network_blocks"])
@@ -213,17 +215,22 @@ def _input_span(u0: int, u1: int, need: int, factor: float, n: int) -> tuple:
             min(math.floor((u1 - 1 + need) / factor) + 1 + margin, n))
 
 
-def _network_region(block, axis: int, shape, factor: float) -> tuple:
+def _network_region(block, axis: int, shape, factor: float, step: int = 1) -> tuple:
     """``(a0, a1, b0, b1)``: the input traces a network block of direction ``axis`` reads (the receptive half along
-    its sections, the resampling's margin across them)."""
+    its sections, the resampling's margin across them, and the computed sections its others are interpolated from
+    when ``step`` > 1: :func:`~seismo3d.seismic.faults.likelihood.learned.section_span`)."""
     u0, u1, v0, v1 = block
+    if axis == 0:
+        u0, u1 = section_span(u0, u1, step, grid_size(int(shape[0]), factor))[0]
+    else:
+        v0, v1 = section_span(v0, v1, step, grid_size(int(shape[1]), factor))[0]
     need = (0, RECEPTIVE_HALF) if axis == 0 else (RECEPTIVE_HALF, 0)
     return _input_span(u0, u1, need[0], factor, shape[0]) + _input_span(v0, v1, need[1], factor, shape[1])
 
 
-def _network_block_bytes(block, axis: int, shape, factor: float, batch: int) -> int:
+def _network_block_bytes(block, axis: int, shape, factor: float, batch: int, step: int = 1) -> int:
     """Bytes at the peak of one network block (the model of ``_NETWORK_INPUT_BYTES`` and ``_NETWORK_BATCH_BYTES``)."""
-    a0, a1, b0, b1 = _network_region(block, axis, shape, factor)
+    a0, a1, b0, b1 = _network_region(block, axis, shape, factor, step)
     nt = int(shape[2])
     along = grid_size(b1 - b0, factor) if axis == 0 else grid_size(a1 - a0, factor)  # network traces per section
     sections = block[1] - block[0] if axis == 0 else block[3] - block[2]
@@ -238,16 +245,18 @@ def _network_blocks(grid, across: int, along: int, axis: int) -> list:
     return lateral_blocks(grid, *size)
 
 
-def _largest_network_bytes(grid, across: int, along: int, axis: int, shape, factor: float, batch: int) -> int:
+def _largest_network_bytes(grid, across: int, along: int, axis: int, shape, factor: float, batch: int,
+                           step: int = 1) -> int:
     """Bytes of the largest block of a network block plan: the first, second and last blocks along each axis hold
     every size of region there is (clipped at the cube's two edges or not)."""
     size = (across, along) if axis == 0 else (along, across)
     starts = [sorted({0, min(s, (n - 1) // s * s), (n - 1) // s * s}) for n, s in zip(grid[:2], size)]
     return max(_network_block_bytes((u, min(u + size[0], grid[0]), v, min(v + size[1], grid[1])), axis, shape,
-                                    factor, batch) for u in starts[0] for v in starts[1])
+                                    factor, batch, step) for u in starts[0] for v in starts[1])
 
 
-def _largest_network_block(grid, axis: int, shape, factor: float, batch: int, budget: int, fixed=None) -> tuple:
+def _largest_network_block(grid, axis: int, shape, factor: float, batch: int, budget: int, fixed=None,
+                           step: int = 1) -> tuple:
     """``(across, along)`` network traces of the blocks of direction ``axis``: as long along the sections as the
     budget allows (the whole width when it fits), then as many sections as it allows; ``fixed`` forces both."""
     if fixed is not None:
@@ -256,7 +265,7 @@ def _largest_network_block(grid, axis: int, shape, factor: float, batch: int, bu
     width = grid[1 - axis]
 
     def fits(across, along):
-        return _largest_network_bytes(grid, across, along, axis, shape, factor, batch) <= budget
+        return _largest_network_bytes(grid, across, along, axis, shape, factor, batch, step) <= budget
 
     along = max((w for w in [*range(c, width, c), width] if fits(c, w)), default=c)
     across = largest_block(c, max(c, -(-grid[axis] // c) * c), lambda k: fits(k, along))
@@ -283,7 +292,7 @@ def learned_block_bytes(shape, opt: LearnedOptions, tile: int) -> int:
     shape = tuple(int(n) for n in shape)
     c = _NETWORK_CHUNK
     network = max(_largest_network_bytes(_network_shape(shape, factor), c, c, axis, shape, factor,
-                                         int(opt.sections_per_batch))
+                                         int(opt.sections_per_batch), int(opt.section_step))
                   for factor in opt.grids(shape[2], 3) for axis in cube_directions(opt))
     return max(network, _orientation_block_bytes(tile, shape[2], opt))
 
@@ -310,9 +319,10 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
                         -(-math.ceil(int(chunking.block) * factor) // _NETWORK_CHUNK) * _NETWORK_CHUNK)
         network = {}
         for axis in cube_directions(opt):
-            size = _largest_network_block(grid, axis, shape, factor, batch, budget, fixed)
+            size = _largest_network_block(grid, axis, shape, factor, batch, budget, fixed, int(opt.section_step))
             network[_DIRECTION_NAMES[axis]] = list(size)
-            biggest = max(biggest, _largest_network_bytes(grid, *size, axis, shape, factor, batch))
+            biggest = max(biggest, _largest_network_bytes(grid, *size, axis, shape, factor, batch,
+                                                          int(opt.section_step)))
         grids.append({"factor": factor, "network_shape": list(grid), "network_blocks": network})
 
     orientation = _orientation_step(shape, opt, min(cap, 256), chunking.block)
@@ -358,7 +368,7 @@ def _scale(run: StoreRun, x) -> tuple:
     return tuple(run.saved("scale", compute))
 
 
-def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale) -> BlockOutput:
+def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale, n_sections: int) -> BlockOutput:
     """The network's probability (:func:`direction_probability`) on the sections of one block of the network grid
     (``place.block``, direction ``axis``), from the amplitudes of its input region (``place.region``, read with the
     receptive half of halo along the sections).
@@ -376,6 +386,8 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
         The network grid's resampling factor.
     scale : (float, float)
         The cube's amplitude scale (:func:`amplitude_scale`).
+    n_sections : int
+        Sections of the whole cube's network grid along ``axis`` (``LearnedOptions.section_step``'s last one).
 
     Returns
     -------
@@ -397,12 +409,19 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     small, first = to_network_grid(f, factor, origin=place.origin, align=aligns)
     n_samples = f.shape[2]
     del f
+    step = int(opt.section_step)
+    (s0, s1) = section_span(*((u0, u1) if axis == 0 else (v0, v1)), step, n_sections)[0]  # with the computed ones
     r0, r1, c0, c1 = u0 - first[0], u1 - first[0], v0 - first[1], v1 - first[1]
-    assert min(r0, c0) >= 0 and r1 <= small.shape[0] and c1 <= small.shape[1], "network block outside its region"
-    sections = small[r0:r1] if axis == 0 else small[:, c0:c1]
+    k0, k1 = s0 - first[axis], s1 - first[axis]
+    assert min(r0, c0, k0) >= 0 and max(r1, k1 if axis == 0 else 0) <= small.shape[0] \
+        and max(c1, k1 if axis == 1 else 0) <= small.shape[1], "network block outside its region"
+    sections = small[k0:k1] if axis == 0 else small[:, k0:k1]
     prob = direction_probability(sections, axis, scale=scale, batch=int(opt.sections_per_batch),
-                                 stretch_to=opt.stretch(n_samples, factor, 3), network=opt.model(3))
-    return BlockOutput({"probability": prob[:, c0:c1] if axis == 0 else prob[r0:r1]})
+                                 stretch_to=opt.stretch(n_samples, factor, 3), network=opt.model(3), step=step,
+                                 origin=s0, n_sections=n_sections)
+    if axis == 0:
+        return BlockOutput({"probability": prob[u0 - s0:u1 - s0, c0:c1]})
+    return BlockOutput({"probability": prob[r0:r1, v0 - s0:v1 - s0]})
 
 
 def _probability(plan: dict, networks, region) -> np.ndarray:

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from numpy.testing import assert_allclose
 
 from seismo3d.data.degradations import add_noise, chaotic_interval, clip_and_quantise
 from seismo3d.data.synthetic import synthetic_cube
@@ -220,6 +221,37 @@ def test_generated_faulted_cubes_precision_and_recall():
         assert s.precision >= 0.90 and s.recall >= 0.90, (seed, s)
 
 
+def test_section_step_is_a_positive_integer():
+    assert LearnedOptions().section_step == 2
+    for bad in (0, -1, 1.5, True):
+        with pytest.raises(InputError, match="section_step"):
+            LearnedOptions(section_step=bad)
+
+
+def test_section_span_reads_the_computed_sections_around_a_block():
+    span, computed, positions = learned.section_span(3, 7, 2, 10)
+    assert span == (2, 7) and computed.tolist() == [2, 4, 6]
+    assert_allclose(positions, [0.5, 1.0, 1.5, 2.0])  # sections 3-6 between 2, 4 and 6
+    span, computed, positions = learned.section_span(7, 10, 2, 10)  # the cube's last section, 9, is computed
+    assert span == (6, 10) and computed.tolist() == [6, 8, 9]
+    assert_allclose(positions, [0.5, 1.0, 2.0])
+    assert learned.section_span(3, 7, 1, 10)[2] is None
+
+
+@pytest.mark.slow  # 2 s: the network on 32 + 40 sections twice
+def test_every_second_section_equals_every_section_where_computed():
+    syn = synthetic_cube((32, 40, 48), seed=3, noise=0.1)
+    scale = learned.amplitude_scale(syn.cube)
+    for axis in (0, 1):
+        every = learned.direction_probability(syn.cube, axis, scale=scale)
+        second = learned.direction_probability(syn.cube, axis, scale=scale, step=2)
+        computed = [slice(None)] * 3
+        computed[axis] = slice(0, None, 2)
+        assert_allclose(second[tuple(computed)], every[tuple(computed)], atol=1e-6)
+        between = np.take(second, [1], axis=axis)  # the mean of its neighbours
+        assert_allclose(between, 0.5 * (np.take(every, [0], axis=axis) + np.take(every, [2], axis=axis)), atol=1e-6)
+
+
 @pytest.mark.slow  # 1.2 s in the fast lane, whose budget is 60 s
 def test_cube_directions_keep_the_larger_probability():
     # on the data's own grid (resample 1): with resampling the maximum is taken on the network's grid, before the
@@ -282,15 +314,17 @@ def test_training_smoke(tmp_path):
 # 0.7 (232 x 236 x 32) and three grids (0.5, 0.7, 1) (120 x 128 x 32), 70 s and 39 s, are asserted by
 # `python benchmarks/fault_blocks.py --only learned_blocks --check` (issue 58: a claim over 20 s leaves the suite)
 @pytest.mark.slow
-@pytest.mark.parametrize("resample, shape, block", [
-    (1.0, (72, 80, 48), 64),  # the data's own grid: network blocks of 64 traces, halo 56 traces
-])
-def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block):
+@pytest.mark.parametrize("resample, shape, block, step", [
+    (1.0, (72, 80, 48), 64, 1),  # the data's own grid: network blocks of 64 traces, halo 56 traces
+    (1.0, (72, 80, 48), 64, 2),  # every 2nd section: blocks read the computed sections around theirs (the last,
+])                               # 71 and 79, computed too)
+def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block, step):
     from seismo3d.seismic.faults.likelihood.learned_blocks import chunked_learned_likelihood
     from seismo3d.seismic.blocks.options import ChunkOptions
 
     cube = synthetic_cube(shape, seed=2, noise=0.1).cube
-    opt = LearnedOptions(cube_resample=resample, min_grid_samples=0)  # every grid, on traces of 32 and 48 samples too
+    opt = LearnedOptions(cube_resample=resample, min_grid_samples=0,  # every grid, on traces of 32 and 48 samples too
+                         section_step=step)
     mem = learned_fault_likelihood(cube, options=opt)
     run = chunked_learned_likelihood(cube, tmp_path / "l.zarr", options=opt,
                                      chunking=ChunkOptions(block=block, scheduler="synchronous"))
@@ -326,17 +360,19 @@ def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
     plan = learned_blocks._plan(shape, opt, ChunkOptions(memory_limit=limit), baseline)
     budget = int((limit - baseline) * 0.8)
     assert [g["factor"] for g in plan["grids"]] == list(opt.resample) == [0.5, 0.7, 1.0]
+    step = int(opt.section_step)  # the blocks read the computed sections their others are interpolated from
     for g in plan["grids"]:
         grid, factor = g["network_shape"], g["factor"]
         for axis, name in enumerate(("inline", "crossline")):
             across, along = g["network_blocks"][name]
-            assert learned_blocks._largest_network_bytes(grid, across, along, axis, shape, factor, 4) <= budget
+            assert learned_blocks._largest_network_bytes(grid, across, along, axis, shape, factor, 4, step) <= budget
             if along < grid[1 - axis]:  # longer sections would not fit, even one chunk of them
                 assert along % 16 == 0 and across == 16
-                assert learned_blocks._largest_network_bytes(grid, 16, along + 16, axis, shape, factor, 4) > budget
+                assert learned_blocks._largest_network_bytes(grid, 16, along + 16, axis, shape, factor, 4,
+                                                             step) > budget
             else:  # whole sections: as many as fit
                 assert learned_blocks._largest_network_bytes(grid, across + 16, along, axis, shape, factor,
-                                                             4) > budget or across >= grid[axis]
+                                                             4, step) > budget or across >= grid[axis]
 
 
 def test_network_grid_alignment_per_axis():

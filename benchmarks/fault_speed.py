@@ -1,0 +1,227 @@
+"""The whole ``seismo3d faults`` command step by step beside FaultNet's fault probability on the same generated cube,
+in CPU seconds and wall seconds, and per GB (issue 76).
+
+Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/fault_speed.py [--shapes 256 512x512x256] [--by-blocks]
+[--check]``
+
+For each shape (``256``: 256^3; ``512x512x256``: 512 x 512 x 256) a generated faulted cube
+(:func:`~seismo3d.data.synthetic.synthetic_cube`, seed 0, noise 0.1) is saved as ``.npy`` and, back to back, each in
+a process of its own on 2 threads (numba, ONNX Runtime and torch: ``NUMBA_NUM_THREADS``, ``OMP_NUM_THREADS``,
+``torch.set_num_threads``):
+
+- ``seismo3d faults``: the job of the command (:func:`~seismo3d.jobs.faults.run_faults_job`, its defaults: read the
+  ``.npy``, trace, write every output), in memory, and with ``--by-blocks`` by blocks under a memory limit of half of
+  what its run in memory needs (cubes of 256^3 and more; the executor of :mod:`seismo3d.seismic.blocks`); numba's
+  kernels compiled on a small cube first, outside the measurement. Its steps: the job's own wall seconds per step
+  (``stage_seconds``: read input, fault likelihood, ridges, voting, thinning, fault skins, throw, evidence, write
+  outputs) and, in memory, the CPU seconds of the process over each step of the tracing and each file written
+  (``time.process_time`` read at each step's start and end by a wrapper of the job's step timer that this script
+  installs in the worker; the rest: reading and the checks before the tracing). By blocks the steps run on dask's
+  threads: only the whole job's CPU seconds are shown;
+- FaultNet (Dou et al. 2022, its released TorchScript weights, ``benchmarks/faultnet.py``): its fault probability of
+  the same cube, the network alone (the cube in memory; torch loaded and one small cube run first).
+
+The machine may be shared: the CPU seconds of a process (all its threads) move little when other jobs load the
+cores, its wall seconds a lot, so the comparison and ``--check`` use CPU seconds. s/GB: seconds per 10^9 bytes of
+the cube in float32 (256^3: 0.067 GB).
+
+``--check`` asserts the targets of issue 76 in CPU seconds, on each shape run: the whole command in no more than
+FaultNet's probability, the fault likelihood in no more than half of it; and, when both shapes run, the command's
+CPU s/GB at 512 x 512 x 256 within 15 % of 256^3's. Exit 1 when one is missed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+THREADS = 2
+TARGETS = {"command": 1.0, "likelihood": 0.5, "growth": 0.15}  # issue 76, in CPU seconds
+# the job's steps in its order (FaultsJobResult.stage_seconds); by blocks the executor's steps replace the middle
+STEPS = ("read input", "fault likelihood", "ridges", "voting", "thinning", "fault skins", "throw", "evidence",
+         "write outputs")
+
+
+def _shape(text: str) -> tuple:
+    parts = [int(p) for p in text.lower().split("x")]
+    return tuple(parts * 3) if len(parts) == 1 else tuple(parts)
+
+
+def _gb(shape) -> float:
+    return 4.0 * float(np.prod(shape)) / 1e9
+
+
+def _cpu_per_step():
+    """Wrap the job's step timer (:mod:`seismo3d._progress`) so that each named step's CPU seconds of the process are
+    recorded beside its wall seconds; returns the dict they are added to."""
+    from seismo3d import _progress
+
+    cpu: dict = {}
+    start, stop = _progress._Steps.start, _progress._Steps.stop
+
+    def timed_stop(self):
+        running = getattr(self, "_cpu_running", None)
+        if running is not None:
+            cpu[running[0]] = cpu.get(running[0], 0.0) + time.process_time() - running[1]
+            self._cpu_running = None
+        stop(self)
+
+    def timed_start(self, label):
+        start(self, label)  # calls stop (timed) first
+        self._cpu_running = (label, time.process_time())
+
+    _progress._Steps.start, _progress._Steps.stop = timed_start, timed_stop
+    return cpu
+
+
+def _ours(path: str, limit: str | None) -> dict:
+    from seismo3d.jobs.faults import run_faults_job
+
+    cpu = _cpu_per_step()
+    warnings.simplefilter("ignore")
+    with tempfile.TemporaryDirectory() as tmp:
+        small = Path(tmp) / "warmup.npy"
+        np.save(small, np.ascontiguousarray(np.load(path, mmap_mode="r")[:48, :48, :64]))
+        run_faults_job(small, Path(tmp) / "warmup", progress=False)  # numba's kernels compiled outside the measurement
+        cpu.clear()
+        t_wall, t_cpu = time.perf_counter(), time.process_time()
+        res = run_faults_job(path, Path(tmp) / "out", progress=False, memory_limit=limit)
+        wall, total = time.perf_counter() - t_wall, time.process_time() - t_cpu
+    return {"wall": wall, "cpu": total, "steps": dict(res.stage_seconds), "cpu_steps": cpu if limit is None else {}}
+
+
+def _faultnet(path: str) -> dict:
+    from faultnet import faultnet_probability, load_faultnet  # benchmarks/faultnet.py: the peer
+
+    net = load_faultnet(THREADS)
+    if net is None:
+        return {}
+    cube = np.load(path)
+    faultnet_probability(net, cube[:32, :32, :32])  # torch's first call outside the measurement
+    t_wall, t_cpu = time.perf_counter(), time.process_time()
+    faultnet_probability(net, cube)
+    return {"wall": time.perf_counter() - t_wall, "cpu": time.process_time() - t_cpu}
+
+
+def _run(what: str, path: Path, limit: str | None = None) -> dict:
+    env = dict(os.environ, NUMBA_NUM_THREADS=str(THREADS), OMP_NUM_THREADS=str(THREADS))
+    proc = subprocess.run([sys.executable, __file__, "--worker", what, str(path), limit or ""], capture_output=True,
+                          text=True, check=False, env=env, cwd=Path(__file__).parent)
+    if proc.returncode != 0:
+        raise SystemExit(f"{what} on {path.name} failed:\n{proc.stderr[-3000:]}")
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def _blocks_limit(shape) -> str:
+    """A memory limit half of what the cube's run in memory needs: a run by blocks (for cubes of 256^3 and more;
+    below, the smallest blocks need more)."""
+    from seismo3d.seismic.blocks.memory import in_memory_bytes
+
+    return f"{in_memory_bytes(shape) // 2 >> 20}MB"
+
+
+def _step_cpu(run: dict, step: str) -> float | None:
+    """CPU seconds of one of the job's steps (None when not timed): the writing's are those of the files it writes,
+    each a step of its own."""
+    cpu = run["cpu_steps"]
+    if step == "write outputs" and cpu:
+        return sum(v for k, v in cpu.items() if k not in run["steps"])
+    return cpu.get(step)
+
+
+def profile(shape, by_blocks: bool) -> dict:
+    """Ours (in memory, and by blocks when asked) and FaultNet on one generated cube, back to back; the table
+    printed, the CPU seconds returned."""
+    from seismo3d.data.synthetic import synthetic_cube
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "cube.npy"
+        np.save(path, synthetic_cube(shape, seed=0, noise=0.1).cube)
+        runs = {"in memory": _run("ours", path)}
+        if by_blocks:
+            limit = _blocks_limit(shape)
+            runs[f"by blocks ({limit})"] = _run("ours", path, limit)
+        peer = _run("faultnet", path)
+    gb = _gb(shape)
+    name = " x ".join(map(str, shape))
+    print(f"\n`seismo3d faults` on a generated {name} faulted cube ({gb:.3f} GB float32), {THREADS} threads, load "
+          f"average {os.getloadavg()[0]:.1f}: wall and CPU seconds (the process's, all threads), and CPU s/GB\n")
+    labels = list(runs)
+    head = f"{'step':40s}" + "".join(f" | {label:>27s}" for label in labels)
+    sub = f"{'':40s}" + "".join(f" | {'wall s':>8s} {'CPU s':>8s} {'CPU s/GB':>9s}" for _ in labels)
+    print(head + "\n" + sub + "\n" + "-" * len(sub))
+    names = []
+    for r in runs.values():
+        names += [k for k in r["steps"] if k not in names]
+    for step in names:
+        row = f"{step:40s}"
+        for r in runs.values():
+            wall, cpu = r["steps"].get(step), _step_cpu(r, step)
+            row += (f" | {wall:8.1f} " if wall is not None else f" | {'':8s} ")
+            row += f"{cpu:8.1f} {cpu / gb:9.0f}" if cpu is not None else f"{'':8s} {'':9s}"
+        print(row)
+    rest = ""  # the CPU seconds outside the timed steps: reading, the job's checks
+    for r in runs.values():
+        cpu = r["cpu"] - sum(r["cpu_steps"].values()) if r["cpu_steps"] else None
+        rest += f" | {'':8s} {cpu:8.1f} {cpu / gb:9.0f}" if cpu is not None else f" | {'':8s} {'':8s} {'':9s}"
+    print(f"{'read input and the rest (CPU)':40s}{rest}")
+    print(f"{'whole command':40s}" + "".join(f" | {r['wall']:8.1f} {r['cpu']:8.1f} {r['cpu'] / gb:9.0f}"
+                                             for r in runs.values()))
+    if not peer:
+        from faultnet import NOT_RUN
+
+        print(NOT_RUN)
+        return {"ours": runs["in memory"], "peer": None}
+    print(f"{'FaultNet probability (peer)':40s} | {peer['wall']:8.1f} {peer['cpu']:8.1f} {peer['cpu'] / gb:9.0f}")
+    ours = runs["in memory"]
+    likelihood = ours["cpu_steps"].get("fault likelihood", float("nan"))
+    print(f"ratios to FaultNet in CPU seconds: whole command {ours['cpu'] / peer['cpu']:.2f} (target <= "
+          f"{TARGETS['command']:.2f}), fault likelihood {likelihood / peer['cpu']:.2f} (target <= "
+          f"{TARGETS['likelihood']:.2f}); in wall seconds {ours['wall'] / peer['wall']:.2f} and "
+          f"{ours['steps'].get('fault likelihood', float('nan')) / peer['wall']:.2f}")
+    return {"ours": ours, "peer": peer, "gb": gb, "blocks": [r for k, r in runs.items() if k != "in memory"]}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--shapes", nargs="+", default=["256"], help="cube shapes: N (N^3) or NIxNXxNS (default: 256)")
+    ap.add_argument("--by-blocks", action="store_true", help="also the run by blocks under half of its memory")
+    ap.add_argument("--check", action="store_true", help="exit 1 when a target of issue 76 is missed (CPU seconds)")
+    ap.add_argument("--worker", nargs=3, help=argparse.SUPPRESS)
+    args = ap.parse_args(argv)
+    if args.worker:
+        what, path, limit = args.worker
+        print(json.dumps(_ours(path, limit or None) if what == "ours" else _faultnet(path)))
+        return 0
+    results = {tuple(_shape(s)): profile(_shape(s), args.by_blocks) for s in args.shapes}
+    ok = True
+    for shape, r in results.items():
+        if r["peer"] is None:
+            ok = False
+            continue
+        ratio = r["ours"]["cpu"] / r["peer"]["cpu"]
+        lk = r["ours"]["cpu_steps"].get("fault likelihood", float("inf")) / r["peer"]["cpu"]
+        ok &= ratio <= TARGETS["command"] and lk <= TARGETS["likelihood"]
+    if len(results) > 1:
+        per_gb = [r["ours"]["cpu"] / r["gb"] for r in results.values()]
+        growth = max(per_gb) / min(per_gb) - 1.0
+        shown = ", ".join(f"{v:.0f}" for v in per_gb)
+        print(f"\nCPU s/GB of the whole command in memory: {shown} ({growth:.0%} apart; "
+              f"target <= {TARGETS['growth']:.0%})")
+        ok &= growth <= TARGETS["growth"]
+    if args.check:
+        print(f"check (CPU seconds): {'passed' if ok else 'FAILED'}")
+    return 1 if args.check and not ok else 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

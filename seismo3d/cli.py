@@ -169,9 +169,10 @@ def faults(
     sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
                                                                 "headers (ms unless they speak of depth)."),
     n_samples: Optional[int] = typer.Option(None, help="Samples per trace of a raw .f32be section of unknown shape."),
-    sensitivity: float = typer.Option(0.5, min=0.0, max=1.0, help="How readily faults are traced, 0-1: higher for "
-                                                                  "more (and weaker) faults, lower for fewer; the "
-                                                                  "thresholds scale by up to 2x either way."),
+    sensitivity: Optional[float] = typer.Option(None, min=0.0, max=1.0, show_default=False, help="How readily faults "
+                                                "are traced, 0-1 (default 0.5, or the one --model MODEL records): "
+                                                "higher for more (and weaker) faults, lower for fewer; the "
+                                                "thresholds scale by up to 2x either way."),
     likelihood: Likelihood = typer.Option(Likelihood.learned, "--likelihood", help="Fault likelihood: 'learned' "
                                           "(seismo3d's fault network, trained on generated sections; the default, "
                                           "chosen on faults drawn by people) or 'scan' (fault-plane semblance, "

@@ -594,9 +594,10 @@ def adapt(
     steps: int = typer.Option(100, min=1, help="Training steps (4 patches each, seed 0)."),
 ) -> None:
     """Adapt the fault network to your survey from an interpreter's faults on a few lines, each taken as fully
-    interpreted (a sample away from the drawn faults is taught as no fault); write MODEL. A quarter of each line's
-    traces is held back: the F1 there with the shipped and the adapted network is printed, and MODEL keeps the shipped
-    one when adapting does not score higher. Needs PyTorch and onnx (pip install torch onnx); tracing does not."""
+    interpreted (a sample away from the drawn faults is taught as no fault); write MODEL. Picks are held back (the
+    line with the fewest when several are picked, else a quarter of the line's traces): the F1 there with the shipped
+    and the adapted network is printed, and MODEL keeps the shipped one when adapting does not score higher. Needs
+    PyTorch and onnx (pip install torch onnx); tracing does not."""
     check_before_import("folder", model, [*inputs, *(sticks or []), *(mask or [])], overwrite=False)
     from .jobs.adapt import adapt_report, paired_picks, run_adapt_job
     from .training.adapt import AdaptOptions

@@ -2,18 +2,26 @@
 trains (:mod:`seismo3d.jobs.adapt` holds the picks back, validates and writes the model).
 
 The shipped weights (``fault_unet.npz``, batch normalisations folded in and kept the identity) start; every
-convolution is trained (``AdaptOptions.layers='all'``), or the decoder and head only (``'decoder'``), on patches of
-the picked lines drawn on each network grid the tracing runs (:class:`~seismo3d.seismic.faults.LearnedOptions`'s
-``resample``: the line resampled as :func:`~seismo3d.seismic.faults.likelihood.network.to_network_grid` does, the
-picks with it), mirrored left-right at random, with the loss of the original training (binary cross-entropy with the
-fault samples weighted, plus the soft Dice loss; :mod:`seismo3d.training.fault_unet`). Every sample of a picked line
-counts: a sample away from the picks is taught as no fault (the line is taken as fully interpreted); the samples of
-the held-back band count for nothing (``weight`` 0).
+convolution is trained (``AdaptOptions.layers='all'``, the default), or the decoder and head only (``'decoder'``), or
+the last decoder level and head (``'last'``), on patches of the picked lines drawn on each network grid the tracing
+runs (:class:`~seismo3d.seismic.faults.LearnedOptions`'s ``resample``: the line resampled as
+:func:`~seismo3d.seismic.faults.likelihood.network.to_network_grid` does, the picks with it), mirrored left-right at
+random, with the loss of the original training (binary cross-entropy with the fault samples weighted, plus the soft
+Dice loss; :mod:`seismo3d.training.fault_unet`). Every sample of a picked line counts: a sample away from the picks is
+taught as no fault (the line is taken as fully interpreted); the held-back samples count for nothing (``weight`` 0).
 
-Why the whole network: on F3, a linear head refitted on the network's frozen last decoder features (12 channels,
-the head fitted with scipy) lost against the shipped network on the other inlines (mean F1 0.28-0.39 against 0.50):
-what this interpreter calls a fault and what they leave out is not a linear function of features trained to find
-every fault of the generator. See ``docs/faults.md`` (Adapting the network to your survey) for the measurements.
+Against forgetting: most patches are placed around a picked fault (``focus``), since most of a line holds none and
+patches drawn anywhere teach mostly "no fault"; a share of each batch is generated sections of the network's own
+training with their true faults (``rehearsal``; Robins 1995), so the network keeps its idea of a fault while it
+learns the interpreter's. ``anchor`` adds the L2-SP penalty (Li et al. 2018), and ``labels='thin'`` trains on the
+picks' skeleton with the samples beside it not counted; neither is on by default.
+
+The defaults were chosen on the F3 inlines a person drew, adapted on inline 100 and scored on inlines 200-500
+(``docs/guide/faults.md``, Teaching it your survey): mean F1 0.50 with the shipped network, 0.57 with the defaults
+(traced at ``sensitivity`` 0.35), 0.34 with every layer at a learning rate of 0.002 and patches drawn anywhere, 0.37
+with the decoder alone, 0.28 with a linear head on the frozen last decoder features. Adapted on inline 500, the
+same defaults scored 0.40 on inlines 100-400 against the shipped network's 0.49: what one line teaches does not
+always carry to the next.
 
 References
 ----------
@@ -23,6 +31,12 @@ synthetic-trained network on a few field labels). doi:10.1190/geo2018-0646.1
 
 Yosinski, J., Clune, J., Bengio, Y., and Lipson, H., 2014, How transferable are features in deep neural networks?:
 NIPS 2014, arXiv:1411.1792.
+
+Li, X., Grandvalet, Y., and Davoine, F., 2018, Explicit inductive bias for transfer learning with convolutional
+networks: ICML 2018, PMLR 80, 2825-2834, arXiv:1802.01483 (L2-SP).
+
+Robins, A., 1995, Catastrophic forgetting, rehearsal and pseudorehearsal: Connection Science, 7(2), 123-146.
+doi:10.1080/09540099550039318
 """
 
 from __future__ import annotations

@@ -17,7 +17,9 @@ from typer.testing import CliRunner
 from seismo3d.cli import app
 from seismo3d.data.synthetic_sections import FaultSectionOptions, synthetic_fault_section
 from seismo3d.errors import DataNotFoundError, InputError
-from seismo3d.jobs.adapt import TORCH_HINT, held_back_band, run_adapt_job, training_grids, write_model
+from seismo3d.jobs.adapt import (
+    TORCH_HINT, held_back_band, held_back_traces, run_adapt_job, training_grids, write_model,
+)
 from seismo3d.jobs.runinfo import RunRecord
 from seismo3d.seismic.fault_scoring import tolerant_scores
 from seismo3d.seismic.faults import trace_faults
@@ -76,6 +78,13 @@ def test_held_back_band_holds_a_quarter_of_the_traces_and_its_share_of_the_picks
     picks[[20, 150]] = True  # two faults far apart: the band holds one of them, never none
     first, end = held_back_band(picks)
     assert picks[first:end].sum() == 50
+
+
+def test_with_several_lines_the_line_with_fewest_picks_is_held_back_whole():
+    one, two, three = (np.zeros((100 + 10 * i, 40), bool) for i in range(3))
+    one[[10, 60]], two[[5]], three[[7]] = True, True, True  # two and three: one fault each, two first
+    assert held_back_traces([one, two, three]) == [(0, 0), (0, 110), (0, 0)]
+    assert held_back_traces([one]) == [held_back_band(one)]  # one line: a band of it
 
 
 @pytest.mark.parametrize("case", ["model exists", "counts", "mask shape", "no picks", "sticks on no line"])

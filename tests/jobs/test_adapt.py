@@ -169,4 +169,4 @@ def test_the_network_fine_tuned_on_a_sibling_section_traces_a_fault_style_the_sh
     model = write_model(tmp_path / "model", onnx_model(tuned["weights"]), RunRecord("adapt", {}), {},
                         {"kept": "adapted"})
     p, r, f1 = tolerant_scores(_traced(sibling, model), sibling_picks, 3.0)
-    assert p >= 0.9 and f1 >= 0.4, (p, r, f1)  # measured: P 1.0, R 0.33 (one zone of three), F1 0.5
+    assert p >= 0.9 and f1 >= 0.85, (p, r, f1)  # measured: P 1.0, R 0.93, F1 0.96 (adapt's defaults)

@@ -63,8 +63,9 @@ class AdaptOptions:
 
     Attributes
     ----------
-    layers : {'all', 'decoder'}
-        The convolutions trained: every one, or the decoder's and the head (the encoder and bottleneck frozen).
+    layers : {'all', 'decoder', 'last'}
+        The convolutions trained: every one, the decoder's and the head (the encoder and bottleneck frozen), or the
+        last decoder level's and the head.
     steps : int
         Optimiser steps (each on ``batch_size`` new patches).
     batch_size : int

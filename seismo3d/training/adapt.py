@@ -19,7 +19,8 @@ picks' skeleton with the samples beside it not counted; neither is on by default
 The defaults were chosen on the F3 inlines a person drew, adapted on inline 100 and scored on inlines 200-500
 (``docs/guide/faults.md``, Teaching it your survey): mean F1 0.50 with the shipped network, 0.57 with the defaults
 (traced at ``sensitivity`` 0.35), 0.34 with every layer at a learning rate of 0.002 and patches drawn anywhere, 0.37
-with the decoder alone, 0.31 with thin labels, 0.28 with a linear head on the frozen last decoder features. Adapted on inline 500, the
+with the decoder alone, 0.31 with thin labels, 0.55 with the L2-SP penalty (``anchor`` 0.001) added, 0.28 with a
+linear head on the frozen last decoder features. Adapted on inline 500, the
 same defaults scored 0.40 on inlines 100-400 against the shipped network's 0.49: what one line teaches does not
 always carry to the next.
 

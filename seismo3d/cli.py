@@ -171,9 +171,10 @@ def faults(
     sample_unit: Optional[SampleUnit] = typer.Option(None, help="Unit of the SEG-Y sample axis; default: from the "
                                                                 "headers (ms unless they speak of depth)."),
     n_samples: Optional[int] = typer.Option(None, help="Samples per trace of a raw .f32be section of unknown shape."),
-    sensitivity: float = typer.Option(0.5, min=0.0, max=1.0, help="How readily faults are traced, 0-1: higher for "
-                                                                  "more (and weaker) faults, lower for fewer; the "
-                                                                  "thresholds scale by up to 2x either way."),
+    sensitivity: Optional[float] = typer.Option(None, min=0.0, max=1.0, show_default=False, help="How readily faults "
+                                                "are traced, 0-1 (default 0.5, or the one --model MODEL records): "
+                                                "higher for more (and weaker) faults, lower for fewer; the "
+                                                "thresholds scale by up to 2x either way."),
     likelihood: Likelihood = typer.Option(Likelihood.learned, "--likelihood", help="Fault likelihood: 'learned' "
                                           "(seismo3d's fault network, trained on generated sections; the default, "
                                           "chosen on faults drawn by people) or 'scan' (fault-plane semblance, "
@@ -603,10 +604,10 @@ def adapt(
     pick every fault of a line you pass. A 3D cube with one --sticks file: the inlines and crosslines its sticks lie
     on (placed by their inline / crossline numbers, or by X / Y through the cube's coordinates) are taken out of it
     and learned from as picked lines; a stick on no single line of the cube, between its lines or outside it is
-    refused, and so is a line of fewer than 32 traces or 32 samples (what fault tracing needs). A quarter of each
-    line's traces is held back: the F1 there with the shipped and the adapted network is printed, and MODEL keeps
-    the shipped one when adapting does not score higher. Needs PyTorch and onnx (pip install torch onnx, or the
-    train extra); tracing does not."""
+    refused, and so is a line of fewer than 32 traces or 32 samples (what fault tracing needs). Picks are held back
+    (the line with the fewest when several are picked, else a quarter of the line's traces): the F1 there with the
+    shipped and the adapted network is printed, and MODEL keeps the shipped one when adapting does not score
+    higher. Needs PyTorch and onnx (pip install torch onnx, or the train extra); tracing does not."""
     check_before_import("folder", model, [*inputs, *(sticks or []), *(mask or [])], overwrite=False)
     from .jobs.adapt import adapt_report, paired_picks, run_adapt_job
 

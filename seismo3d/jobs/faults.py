@@ -28,7 +28,7 @@ from ..seismic.blocks.options import BlockRunOptions
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
 from ..seismic.faults.pipeline import trace_faults
-from ..seismic.adapted_network import MODEL_NETWORK, check_adapted_model
+from ..seismic.adapted_network import MODEL_NETWORK, check_adapted_model, model_sensitivity
 from ..seismic.io.writer import write_like, write_like_blocks
 from .fault_inputs import FaultsInput, read_input, write_demo_input
 from .fault_tables import write_points, write_summary
@@ -118,7 +118,7 @@ def _write_volume(inp: FaultsInput, out_dir: Path, stem: str, values, *, like: P
 
 
 def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, xline=193, ignore_geometry=False,
-                   endian=None, sample_unit=None, n_samples=None, sensitivity=0.5, likelihood="learned",
+                   endian=None, sample_unit=None, n_samples=None, sensitivity=None, likelihood="learned",
                    memory_limit=None, scheduler=None, overwrite=False, progress=True, model=None) -> FaultsJobResult:
     """Trace the faults of a seismic file and write the results: the ``seismo3d faults`` command.
 
@@ -228,7 +228,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     n_samples : int, optional
         Samples per trace of a raw ``.f32be`` section whose shape is not known by name.
     sensitivity : float, optional
-        In [0, 1]: more faults when higher (see :class:`~seismo3d.seismic.FaultTracingOptions`).
+        In [0, 1]: more faults when higher (see :class:`~seismo3d.seismic.FaultTracingOptions`); default 0.5, or
+        with ``model`` the sensitivity its record holds (:func:`~seismo3d.seismic.adapted_network.model_sensitivity`).
     likelihood : {'scan', 'learned'}, optional
         The fault likelihood: the scan of fault-plane semblance or the fault network
         (:attr:`~seismo3d.seismic.FaultTracingOptions.likelihood`).
@@ -291,6 +292,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     record = RunRecord("faults", locals())  # first: the arguments as called
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
+    if sensitivity is None and model is not None:
+        sensitivity = model_sensitivity(model)
+    if sensitivity is None:
+        sensitivity = FaultTracingOptions().sensitivity
     options = FaultTracingOptions(sensitivity=sensitivity, likelihood=likelihood)
     inputs = {"input": input_path}
     if model is not None:  # the adapted network, checked before any work

@@ -7,8 +7,9 @@ A MODEL folder holds two files:
   the held-back picks: the record says so), run by ONNX Runtime like the shipped one;
 * ``adapt.json``: the record, a ``run.json`` of the ``adapt`` command (:mod:`seismo3d.jobs.runinfo`: the inputs with
   their sha256, the options) whose ``results`` hold the lines and picks, the training steps and loss, the held-back
-  validation before and after, the decision (``kept``: ``'adapted'`` or ``'default'``) and ``network_sha256``, the
-  sha256 of ``fault_unet.onnx``.
+  validation before and after, the decision (``kept``: ``'adapted'`` or ``'default'``), ``sensitivity`` (the
+  tracing's sensitivity MODEL traces with unless one is given: :func:`model_sensitivity`) and ``network_sha256``,
+  the sha256 of ``fault_unet.onnx``.
 
 Reading one needs ONNX Runtime only (no training framework); the sha256 of the network is checked against the
 record when it is loaded (:func:`seismo3d.seismic.faults.likelihood.learned.load_network`). Writing one is
@@ -23,7 +24,8 @@ from pathlib import Path
 
 from ..errors import DataNotFoundError, InputError
 
-__all__ = ["MODEL_NETWORK", "MODEL_RECORD", "read_adapted_model", "check_adapted_model", "is_model_path"]
+__all__ = ["MODEL_NETWORK", "MODEL_RECORD", "read_adapted_model", "check_adapted_model", "is_model_path",
+           "model_sensitivity"]
 
 MODEL_NETWORK = "fault_unet.onnx"
 MODEL_RECORD = "adapt.json"
@@ -58,6 +60,35 @@ def check_adapted_model(path) -> dict:
         raise InputError(f"{folder / MODEL_NETWORK} has sha256 {digest}, not the {recorded} its {MODEL_RECORD} "
                          "records: the model was changed after 'seismo3d adapt' wrote it; adapt again")
     return record
+
+
+def model_sensitivity(path) -> float | None:
+    """The sensitivity a MODEL folder traces with when none is given (``seismo3d faults --model MODEL`` without
+    ``--sensitivity``): the record's ``sensitivity`` (``seismo3d adapt`` stores it with the network it keeps), None
+    when the record holds none (the tracing's default then).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The MODEL folder (or its ``fault_unet.onnx``).
+
+    Returns
+    -------
+    float or None
+        In [0, 1].
+
+    Raises
+    ------
+    DataNotFoundError, InputError
+        As :func:`check_adapted_model`; a recorded sensitivity outside [0, 1].
+    """
+    value = check_adapted_model(path)["results"].get("sensitivity")
+    if value is None:
+        return None
+    if not 0.0 <= float(value) <= 1.0:
+        raise InputError(f"{_folder(path) / MODEL_RECORD} records a sensitivity of {value!r}, outside [0, 1]; adapt "
+                         "again")
+    return float(value)
 
 
 def is_model_path(network) -> bool:

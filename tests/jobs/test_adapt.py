@@ -22,7 +22,9 @@ from seismo3d.cli import app
 from seismo3d.data.synthetic import synthetic_cube, write_segy_cube
 from seismo3d.data.synthetic_sections import FaultSectionOptions, synthetic_fault_section
 from seismo3d.errors import DataNotFoundError, InputError
-from seismo3d.jobs.adapt import TORCH_HINT, held_back_band, run_adapt_job, training_grids, write_model
+from seismo3d.jobs.adapt import (
+    TORCH_HINT, held_back_band, held_back_traces, run_adapt_job, training_grids, write_model,
+)
 from seismo3d.jobs.evaluate import read_picked_lines
 from seismo3d.jobs.runinfo import RunRecord
 from seismo3d.seismic.io.coordinates import read_survey_coordinates
@@ -216,6 +218,13 @@ def test_held_back_band_holds_a_quarter_of_the_traces_and_its_share_of_the_picks
     assert picks[first:end].sum() == 50
 
 
+def test_with_several_lines_the_line_with_fewest_picks_is_held_back_whole():
+    one, two, three = (np.zeros((100 + 10 * i, 40), bool) for i in range(3))
+    one[[10, 60]], two[[5]], three[[7]] = True, True, True  # two and three: one fault each, two first
+    assert held_back_traces([one, two, three]) == [(0, 0), (0, 110), (0, 0)]
+    assert held_back_traces([one]) == [held_back_band(one)]  # one line: a band of it
+
+
 @pytest.mark.parametrize("case", ["model exists", "counts", "mask shape", "no picks", "sticks on no line"])
 def test_bad_input_is_refused_before_the_work(tmp_path, line, case, monkeypatch):
     section, picks = line
@@ -300,7 +309,7 @@ def test_the_network_fine_tuned_on_a_sibling_section_traces_a_fault_style_the_sh
     model = write_model(tmp_path / "model", onnx_model(tuned["weights"]), RunRecord("adapt", {}), {},
                         {"kept": "adapted"})
     p, r, f1 = tolerant_scores(_traced(sibling, model), sibling_picks, 3.0)
-    assert p >= 0.9 and f1 >= 0.4, (p, r, f1)  # measured: P 1.0, R 0.33 (one zone of three), F1 0.5
+    assert p >= 0.9 and f1 >= 0.85, (p, r, f1)  # measured: P 1.0, R 0.93, F1 0.96 (adapt's defaults)
 
 
 @pytest.mark.slow

@@ -37,7 +37,7 @@ from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
 from ..io.cube import as_cube, sample_interval as cube_sample_interval, seismic_axes
 from ..io.zarr_store import consolidate
-from ..adapted_network import check_adapted_model
+from ..adapted_network import check_adapted_model, model_sensitivity
 from ..time_slices import balanced_slices, blank_slices, filled_slices, slice_extremes
 from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
@@ -124,7 +124,8 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
         Plain arrays: the unit of the sample axis (for converting throws, see
         :attr:`FaultInterpretation.sample_interval`); default 'samples'.
     sensitivity : float, optional
-        In [0, 1], more faults when higher; replaces ``options.sensitivity`` (default 0.5).
+        In [0, 1], more faults when higher; replaces ``options.sensitivity`` (default 0.5). None with ``model``: the
+        sensitivity the MODEL records (:func:`~seismo3d.seismic.adapted_network.model_sensitivity`), if any.
     options : FaultTracingOptions, optional
         Options of every step.
     likelihood : FaultLikelihood, optional
@@ -206,6 +207,8 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
     opt = options or FaultTracingOptions()
     if not isinstance(opt, FaultTracingOptions):
         raise InputError(f"trace_faults(options=...) must be a FaultTracingOptions; got {type(opt).__name__}")
+    if sensitivity is None and model is not None:
+        sensitivity = model_sensitivity(model)  # before any work: a missing or changed MODEL is refused here
     if sensitivity is not None:
         opt = dataclasses.replace(opt, sensitivity=sensitivity)
     if model is not None:

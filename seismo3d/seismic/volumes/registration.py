@@ -377,14 +377,16 @@ def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: V
 
 def _screened(fixed: Sampled, moving: Sampled, forward: list, backward: list, opt: VolumeOptions):
     """The ``screen_keep`` best of the search's maps (MOVING onto FIXED, and FIXED onto MOVING), scored together on
-    the two levels decimated along the traces (:func:`~.search.screen_scores`) by the largest of 4 and 2 that leaves
-    ``2 * min_vertical`` samples of the shorter level; all of them when neither does or when ``screen_keep`` is 0."""
+    the two levels decimated (:func:`~.search.screen_scores`): along the traces by the largest of 4 and 2 that
+    leaves ``2 * min_vertical`` samples of the shorter level, along a map axis by 2 where the smaller level keeps
+    ``min_lateral / 2`` traces; all of them when nothing is decimated or when ``screen_keep`` is 0."""
     n_samples = min(fixed.shape[2], moving.shape[2])
-    factor = next((f for f in (4, 2) if n_samples // f >= 2 * opt.min_vertical), 1)
-    if factor == 1 or not 0 < opt.screen_keep < len(forward) + len(backward):
+    factors = [2 if min(fixed.shape[a], moving.shape[a]) // 2 >= opt.min_lateral / 2 else 1 for a in (0, 1)]
+    factors.append(next((f for f in (4, 2) if n_samples // f >= 2 * opt.min_vertical), 1))
+    if max(factors) == 1 or not 0 < opt.screen_keep < len(forward) + len(backward):
         return forward, backward
-    scores = np.r_[screen_scores(fixed, moving, forward, opt.min_fraction, factor),
-                   screen_scores(moving, fixed, backward, opt.min_fraction, factor)]
+    scores = np.r_[screen_scores(fixed, moving, forward, opt.min_fraction, factors),
+                   screen_scores(moving, fixed, backward, opt.min_fraction, factors)]
     kept = set(np.argsort(-scores, kind="stable")[:opt.screen_keep].tolist())
     return ([m for i, m in enumerate(forward) if i in kept],
             [m for i, m in enumerate(backward) if i + len(forward) in kept])

@@ -16,7 +16,7 @@ from scipy import fft, ndimage as ndi
 from .model import corner_distance, transform_corners
 from .pyramid import Sampled
 
-__all__ = ["Start", "MaskedNCC", "along_traces", "correlation_search", "distinct_starts", "screen_scores"]
+__all__ = ["Start", "MaskedNCC", "decimated", "correlation_search", "distinct_starts", "screen_scores"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,12 +132,12 @@ def correlation_search(fixed: Sampled, moving: Sampled, linear_maps, min_fractio
                   key=lambda st: -st.correlation)
 
 
-def screen_scores(fixed: Sampled, moving: Sampled, linear_maps, min_fraction: float, factor: int) -> np.ndarray:
+def screen_scores(fixed: Sampled, moving: Sampled, linear_maps, min_fraction: float, factors) -> np.ndarray:
     """The scores of :func:`correlation_search` of each map (-inf without an admissible translation), in the maps'
-    order, with both levels decimated by ``factor`` along the traces (:func:`along_traces`): a cheaper first
-    scoring that tells which maps to score on the levels themselves."""
-    d = np.array([1.0, 1.0, float(factor)])
-    scored = _scored(along_traces(fixed, factor), along_traces(moving, factor),
+    order, with both levels decimated by ``factors`` (3 ints: inline, crossline, sample; :func:`decimated`): a
+    cheaper first scoring that tells which maps to score on the levels themselves."""
+    d = np.asarray(factors, dtype=np.float64)
+    scored = _scored(decimated(fixed, factors), decimated(moving, factors),
                      [np.diag(1.0 / d) @ lin @ np.diag(d) for lin in linear_maps], min_fraction)
     return np.array([-np.inf if st is None else st.correlation for st in scored])
 
@@ -163,12 +163,14 @@ def _scored(fixed: Sampled, moving: Sampled, linear_maps, min_fraction: float) -
     return out
 
 
-def along_traces(level: Sampled, factor: int) -> Sampled:
-    """A level decimated by ``factor`` along the traces after a Gaussian of ``factor / 2`` samples (as
+def decimated(level: Sampled, factors) -> Sampled:
+    """A level decimated by ``factors`` (3 ints) after a Gaussian of ``factor / 2`` along each decimated axis (as
     :func:`~seismo3d.seismic.volumes.pyramid.build_level` decimates)."""
-    data = ndi.gaussian_filter1d(level.data, 0.5 * factor, axis=2, mode="nearest")[:, :, ::factor]
-    return Sampled(np.ascontiguousarray(data, dtype=np.float32), level.live,
-                   level.factors * np.array([1.0, 1.0, factor]), level.taper)
+    f = [int(v) for v in factors]
+    data = ndi.gaussian_filter(level.data, [0.5 * v if v > 1 else 0.0 for v in f], mode="nearest")
+    return Sampled(np.ascontiguousarray(data[::f[0], ::f[1], ::f[2]], dtype=np.float32),
+                   np.ascontiguousarray(level.live[::f[0], ::f[1]]), level.factors * np.array(f, dtype=np.float64),
+                   level.taper)
 
 
 def distinct_starts(starts: list[Start], moving_shape, n: int, separation: float) -> list[Start]:

@@ -254,3 +254,7 @@ def test_volume_options_are_checked():
         VolumeOptions(n_spectral=-1)
     with pytest.raises(InputError, match="spectral_min_traces"):
         VolumeOptions(spectral_min_traces=4)
+    with pytest.raises(InputError, match="screen_keep"):
+        VolumeOptions(screen_keep=-1)
+    with pytest.raises(InputError, match="n_points_coarse"):
+        VolumeOptions(n_points_coarse=0)

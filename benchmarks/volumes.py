@@ -546,6 +546,9 @@ def any_grid(quick: bool, repeat: int, n_pairs: int | None = None) -> bool:
         wall, cpu = np.array([s[2] for s in stats]), np.array([s[3] for s in stats])
         wrong = sum(s[4] for s in stats)
         rows.append((name, base.shape, shape, found, err, wall, cpu, wrong))
+        print(f"\n{name}: {found.sum()} of {len(found)} right and converged, {wrong} converged but wrong, CPU s median "
+              f"{np.median(cpu):.1f} / worst {cpu.max():.1f}, {int((cpu > 5.0).sum())} over 5 ({_load()})\n",
+              flush=True)
         ok &= bool(found.mean() >= 0.95 and cpu.max() <= 5.0 and wrong == 0)
     print(f"\n| cube | fixed block | right and converged | converged but wrong | rotation err deg (median / worst) | "
           "scale err % | corner err samples | wall s (median / worst) | CPU s (median / worst) | over 5 CPU s |")

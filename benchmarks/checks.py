@@ -44,7 +44,7 @@ CHECKS = [
           "50 pairs from each of three real cubes (Parihaka, Penobscot, f3_crop) on grids rotated up to 30 degrees, "
           "bins 0.7-1.4 per map axis, samples 0.9-1.1, without coordinates, in both orders (300 registrations): "
           "95 % right in the issue's tolerances and converged, each within 5 CPU s, none converged wrongly; "
-          "unrelated pairs refused"),
+          "unrelated pairs refused (35.8 min at load 5-12 on 2 cores)"),
     Check("horizons-traced-faults", ("benchmarks/horizons.py", "--only", "traced_faults", "--check"),
           "the 18 Penobscot inlines' horizons with the faults traced in them: no loss against no fault input, the "
           "measured medians, 99 % within 5 samples; no fault traced in those inlines' crosshatch of dipping events"),

@@ -145,7 +145,8 @@ def consistency_check(final: PairCorrelation, two_way, runner_up, spacings, opt:
     one_way = {way: refine(PairCorrelation(final.fixed, final.moving, final.reparam, opt.n_points, ways=(way,)),
                            two_way, max_iterations=opt.max_iterations, tolerance=opt.tolerance).transform
                for way in WAYS}
-    lead = WAYS[int(np.argmax(final.weights_for(1.0 - final.evaluate(final.params(two_way), jacobian=False).correlations)))]
+    at_two_way = final.evaluate(final.params(two_way), jacobian=False)
+    lead = WAYS[int(np.argmax(final.weights_for(1.0 - at_two_way.correlations)))]
 
     def apart(t, ref):  # corner distance, rotation difference (deg) and largest relative scale difference
         rotation = abs((decompose_map(physical(t)).rotation_deg - decompose_map(physical(ref)).rotation_deg

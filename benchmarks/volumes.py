@@ -47,14 +47,17 @@ speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral,suite_grid,
    96 x 96 traces x 128 slices), the 18 Penobscot inlines (18 x 64 x 200, every second sample) and f3_crop whole
    (23 x 18 x 75, the only real 3D F3 cube in the data folder); the moving block on a grid rotated up to 30 degrees,
    bins 0.7-1.4 per map axis independently, samples 0.9-1.1, inside the fixed block; no coordinates (arrays, unit
-   spacings); both orders. Printed: every registration that is not right and converged, then per cube the share
+   spacings); both orders. Printed: every registration, then per cube the share
    right (the issue's tolerances) and converged, the median and worst errors, wall and CPU seconds; then unrelated
    pairs (blocks of two cubes, one cube's blocks far apart in place or time). ``--check`` exits 1 unless each cube
-   has 95 % right and converged, none converged but wrong, each registration within 5 s (wall), and no unrelated
-   pair converged. Measured 2026-11-27 with ``--pairs 8`` (load 6-12 on 2 cores): right and converged 15 of 16
-   (Parihaka; the other right and refused by the shifted controls), 16 of 16 (Penobscot), 16 of 16 (f3_crop), none
-   converged but wrong, the 12 unrelated registrations refused; CPU seconds median 9.7 / 10.2 / 1.9, wall 35 / 33 /
-   3.9: the 5 s is missed on the two larger cubes.
+   has 95 % right and converged, none converged but wrong, each registration within 5 CPU s (the process's own
+   seconds: on the shared 2-core machine of the project, wall time grows with the other processes' load, which
+   the table prints), and no unrelated pair converged. Measured 2026-11-27 with the 50 pairs (load 5-12 on 2 cores,
+   35.8 min): right and converged 81 of 100 (Parihaka: all 100 within the tolerances, 19 refused by the shifted
+   controls, their misfit 0.71-0.93 of the controls' against the 0.7 allowed), 95 of 100 (Penobscot), 98 of 100
+   (f3_crop), none converged but wrong, the 12 unrelated registrations refused; CPU seconds median 4.3 / 3.8 / 1.5,
+   worst 7.1 / 6.8 / 2.8, over 5 s 26 / 13 / 0 of 100: the check fails on Parihaka's 95 % and on the 5 s of
+   Parihaka and Penobscot.
 """
 
 from __future__ import annotations
@@ -523,10 +526,10 @@ def any_grid(quick: bool, repeat: int, n_pairs: int | None = None) -> bool:
     cubes = any_grid_cubes()
     rng = np.random.default_rng(ANY_GRID_SEED)
     print(f"\n## Pairs on any grid: {n_pairs} pairs per cube, both orders, seed {ANY_GRID_SEED} ({_load()})\n")
-    print("Registrations that are not right and converged:\n")
+    print("Every registration (right: within the issue's tolerances):\n")
     print("| cube | pair | rotation | moving scales | moving shape | order | wall s | CPU s | rotation err | "
-          "scale err % | corner err | converged | reason |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "scale err % | corner err | right | converged | reason |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     rows, ok = [], True
     for name, (base, shape) in cubes.items():
         stats = []
@@ -538,25 +541,28 @@ def any_grid(quick: bool, repeat: int, n_pairs: int | None = None) -> bool:
                 reg, wall, cpu = _timed_registration(a, b)
                 e, right = _right(reg, t, b.shape)
                 stats.append((right and reg.converged, e, wall, cpu, reg.converged and not right))
-                if not (right and reg.converged):
-                    print(f"| {name} | {i} | {pair.rotation_deg:.1f} | {np.round(pair.scales, 2).tolist()} | "
-                          f"{pair.moving.shape} | {order} | {wall:.1f} | {cpu:.1f} | {e.rotation_deg:.3f} | "
-                          f"{e.max_scale_pct:.2f} | {e.corner_error:.3f} | {'yes' if reg.converged else 'no'} | "
-                          f"{reg.reason} |", flush=True)
+                print(f"| {name} | {i} | {pair.rotation_deg:.1f} | {np.round(pair.scales, 2).tolist()} | "
+                      f"{pair.moving.shape} | {order} | {wall:.1f} | {cpu:.1f} | {e.rotation_deg:.3f} | "
+                      f"{e.max_scale_pct:.2f} | {e.corner_error:.3f} | {'yes' if right else 'no'} | "
+                      f"{'yes' if reg.converged else 'no'} | {reg.reason} |", flush=True)
         found = np.array([s[0] for s in stats])
         err = np.array([(s[1].rotation_deg, s[1].max_scale_pct, s[1].corner_error) for s in stats])
         wall, cpu = np.array([s[2] for s in stats]), np.array([s[3] for s in stats])
         wrong = sum(s[4] for s in stats)
         rows.append((name, base.shape, shape, found, err, wall, cpu, wrong))
-        ok &= bool(found.mean() >= 0.95 and wall.max() <= 5.0 and wrong == 0)
+        print(f"\n{name}: {found.sum()} of {len(found)} right and converged, {wrong} converged but wrong, CPU s median "
+              f"{np.median(cpu):.1f} / worst {cpu.max():.1f}, {int((cpu > 5.0).sum())} over 5 ({_load()})\n",
+              flush=True)
+        ok &= bool(found.mean() >= 0.95 and cpu.max() <= 5.0 and wrong == 0)
     print(f"\n| cube | fixed block | right and converged | converged but wrong | rotation err deg (median / worst) | "
-          "scale err % | corner err samples | wall s (median / worst) | CPU s (median / worst) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "scale err % | corner err samples | wall s (median / worst) | CPU s (median / worst) | over 5 CPU s |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for name, full, shape, found, err, wall, cpu, wrong in rows:
         med, worst = np.median(err, axis=0), err.max(axis=0)
         print(f"| {name} {full} | {shape} | {found.sum()} of {len(found)} ({100 * found.mean():.0f} %) | {wrong} | "
               f"{med[0]:.3f} / {worst[0]:.3f} | {med[1]:.2f} / {worst[1]:.2f} | {med[2]:.3f} / {worst[2]:.3f} | "
-              f"{np.median(wall):.1f} / {wall.max():.1f} | {np.median(cpu):.1f} / {cpu.max():.1f} |")
+              f"{np.median(wall):.1f} / {wall.max():.1f} | {np.median(cpu):.1f} / {cpu.max():.1f} | "
+              f"{int((cpu > 5.0).sum())} |")
     print(f"\n### Unrelated pairs (each must be converged: false; {_load()})\n")
     print("| pair | order | wall s | CPU s | correlation | control | overlap | converged | reason |")
     print("|---|---|---|---|---|---|---|---|---|")

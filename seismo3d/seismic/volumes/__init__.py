@@ -20,12 +20,14 @@ passed as fixed. :func:`register_volumes` (:mod:`.registration`) runs, coarse to
    larger volume's scales, the larger one) is resampled and correlated with the other at every translation at once
    (masked FFT normalised cross-correlation, Padfield 2012): the same maps in either argument order. The search
    correlates the levels without their mean traces, which tell nothing of the map view (in time slices rendered
-   each by its own range they are most of the variance).
+   each by its own range they are most of the variance), and scores every map first on the level decimated
+   further, then the ``screen_keep`` best ones on the level itself.
 3. **Refinement** (:mod:`.refine`). The ``n_starts`` best distinct starts, Levenberg-Marquardt on the correlation of
    the two volumes taken both ways (at the moving samples with the fixed volume interpolated, and the reverse, each
    weighted by the inverse of its misfit: symmetric in the two volumes) over the 8 parameters of the map, on the
    coarsest level (the Jacobian from the spline's own derivative there: the starts are furthest off), the best one on
-   each finer level, full resolution last.
+   each finer level, full resolution last (``n_points_coarse`` samples on the decimated levels, ``n_points`` at
+   full resolution).
 4. **Answer and check** (:mod:`.check`). The two-way optimum refined again on the way that leads it alone (the one
    interpolating the less aliased volume: the other is biased) is the answer; ``converged`` only with enough overlap
    and correlation, scales within the range, the two estimates on one peak (the leading way's optimum within the

@@ -145,7 +145,8 @@ def consistency_check(final: PairCorrelation, two_way, runner_up, spacings, opt:
     one_way = {way: refine(PairCorrelation(final.fixed, final.moving, final.reparam, opt.n_points, ways=(way,)),
                            two_way, max_iterations=opt.max_iterations, tolerance=opt.tolerance).transform
                for way in WAYS}
-    lead = WAYS[int(np.argmax(final.weights_for(1.0 - final.evaluate(final.params(two_way)).correlations)))]
+    at_two_way = final.evaluate(final.params(two_way), jacobian=False)
+    lead = WAYS[int(np.argmax(final.weights_for(1.0 - at_two_way.correlations)))]
 
     def apart(t, ref):  # corner distance, rotation difference (deg) and largest relative scale difference
         rotation = abs((decompose_map(physical(t)).rotation_deg - decompose_map(physical(ref)).rotation_deg
@@ -158,7 +159,7 @@ def consistency_check(final: PairCorrelation, two_way, runner_up, spacings, opt:
     # the leading way's optimum, unless it left the two-way optimum's peak (then the two-way optimum, not converged)
     shared = disagreement <= opt.max_disagreement and rotation <= opt.max_rotation_disagreement
     answer = one_way[lead] if shared else np.asarray(two_way, dtype=np.float64)
-    ev = final.evaluate(final.params(answer))
+    ev = final.evaluate(final.params(answer), jacobian=False)
     correlation = _mean_correlation(ev.correlations)
     overlap = float(np.max(ev.overlaps))  # the larger way's: of the smaller volume
     other_distance, _, other_scale = apart(one_way[WAYS[1 - WAYS.index(lead)]], answer)
@@ -178,7 +179,7 @@ def consistency_check(final: PairCorrelation, two_way, runner_up, spacings, opt:
 
 def _correlation(pair: PairCorrelation, t_index) -> float:
     """The two-way correlation at a transform (-1 for a way without overlap)."""
-    return _mean_correlation(pair.evaluate(pair.params(t_index)).correlations)
+    return _mean_correlation(pair.evaluate(pair.params(t_index), jacobian=False).correlations)
 
 
 def _mean_correlation(correlations) -> float:

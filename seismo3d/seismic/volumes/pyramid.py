@@ -112,7 +112,7 @@ class Samples:
 
     weights: np.ndarray  # (N,) in [0, 1]: 0 outside the volume or on dead traces, tapered at its edges
     values: np.ndarray  # (N,) cubic B-spline interpolation
-    gradients: np.ndarray  # (3, N) per index unit
+    gradients: np.ndarray | None  # (3, N) per index unit (None: not computed)
 
 
 class Sampled:
@@ -177,7 +177,7 @@ class Sampled:
         grid = np.array(np.unravel_index(flat, self.shape))
         return grid.astype(np.float64), self.data.ravel()[flat].astype(np.float64)
 
-    def sample(self, pts, gradient: str = "central") -> Samples:
+    def sample(self, pts, gradient: str = "central", *, gradients: bool = True) -> Samples:
         """Weights, values (cubic B-spline) and gradients at (3, N) index coordinates.
 
         ``gradient``: ``'central'``, the :attr:`gradient_volumes` interpolated linearly (smoother near the Nyquist
@@ -186,15 +186,24 @@ class Sampled:
         correlation the refinement climbs. On aliased volumes the two differ by much of their size (the Volve
         velocity pairs of ``benchmarks/volumes.py`` at 0 and 30 degrees, on a grid of points between the samples:
         24-126 % along the map axes depending on the level, the sign differing at 4-24 % of the points).
+        Without ``gradients`` the samples' gradients are None (:meth:`with_gradients` adds them).
         """
         n = pts.shape[1]
         edge = np.minimum(pts, self.hi[:, None] - pts)
         w = np.clip((edge + 0.5) / self.taper, 0.0, 1.0).prod(axis=0)
         inside = w > 0
         p = pts[:, inside]
-        weights, values, grads = np.zeros(n), np.zeros(n), np.zeros((3, n))
+        weights, values = np.zeros(n), np.zeros(n)
         weights[inside] = w[inside] * ndi.map_coordinates(self.live_weights, p[:2], order=1, mode="nearest")
         values[inside] = ndi.map_coordinates(self.coefficients, p, order=3, prefilter=False, mode="mirror")
+        out = Samples(weights, values, None)
+        return self.with_gradients(pts, out, gradient) if gradients else out
+
+    def with_gradients(self, pts, samples: Samples, gradient: str = "central") -> Samples:
+        """``samples`` of :meth:`sample` at the (3, N) ``pts`` with their gradients (see :meth:`sample`)."""
+        inside = samples.weights > 0
+        p = pts[:, inside]
+        grads = np.zeros((3, pts.shape[1]))
         if gradient == "spline":
             for k in range(3):
                 step = np.zeros((3, 1))
@@ -205,7 +214,7 @@ class Sampled:
         else:
             for k, g in enumerate(self.gradient_volumes):
                 grads[k, inside] = ndi.map_coordinates(g, p, order=1, mode="nearest")
-        return Samples(weights, values, grads)
+        return Samples(samples.weights, samples.values, grads)
 
 
 def _high_fraction(data, axis: int, live) -> float:

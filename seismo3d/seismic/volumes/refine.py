@@ -40,7 +40,7 @@ class Evaluation:
     """The two-way correlation at one parameter vector."""
 
     residuals: np.ndarray  # (N,)
-    jacobian: np.ndarray  # (N, n_params)
+    jacobian: np.ndarray | None  # (N, n_params); None when not asked for
     correlations: np.ndarray  # (n_ways,): forward (moving samples), backward (fixed samples); NaN without overlap
     overlaps: np.ndarray  # (n_ways,): fraction of each way's points inside the other volume (summed weights)
 
@@ -53,7 +53,8 @@ class Evaluation:
 
 
 def _ncc_residuals(src, samples, dv):
-    """Residuals, Jacobian ((N, n)) and NCC of one way; ``dv`` ((N, n)) the derivatives of the sampled values."""
+    """Residuals, Jacobian ((N, n); None without ``dv``) and NCC of one way; ``dv`` ((N, n)) the derivatives of the
+    sampled values."""
     w, v = samples.weights, samples.values
     total = w.sum()
     m = src - np.sum(w * src) / total
@@ -62,9 +63,11 @@ def _ncc_residuals(src, samples, dv):
     sig = max(np.sqrt(np.sum(w * vm * vm) / total), 1e-12)
     vh = vm / sig
     sw = np.sqrt(w / total)
-    dvm = dv - np.einsum("n,np->p", w, dv) / total  # einsum: no BLAS threads for these thin products
-    dsig = np.einsum("n,np->p", w * vh, dvm) / total
-    jac = sw[:, None] * (dvm / sig - vh[:, None] * (dsig / sig)[None, :])
+    jac = None
+    if dv is not None:
+        dvm = dv - np.einsum("n,np->p", w, dv) / total  # einsum: no BLAS threads for these thin products
+        dsig = np.einsum("n,np->p", w * vh, dvm) / total
+        jac = sw[:, None] * (dvm / sig - vh[:, None] * (dsig / sig)[None, :])
     return sw * (vh - m), jac, float(np.sum(w * vh * m) / total)
 
 
@@ -103,13 +106,13 @@ class PairCorrelation:
         self.centre = moving.hi / 2.0
         self.min_points = float(min_points)
         self.way_weights = np.ones(len(self.ways))
-        self._cache = (None, None)
+        self._cache = (None, None, {})
 
     def weigh_ways(self, misfits) -> None:
         """Weight each way's residuals by :meth:`way_weights` of its misfit ``1 - NCC`` ((n_ways,), at the start of a
         refinement)."""
         self.way_weights = self.weights_for(misfits)
-        self._cache = (None, None)
+        self._cache = (self._cache[0], None, self._cache[2])  # the samples hold, the weighted residuals not
 
     def weights_for(self, misfits) -> np.ndarray:
         """The ways' weights for their misfits ``1 - NCC`` ((n_ways,) array_like; NaN: no overlap): the inverse of
@@ -137,29 +140,40 @@ class PairCorrelation:
         """The (4, 4) level transform of the fitted parameters ``q``."""
         return model_matrix(self.reparam.affine(q)[0], self.centre)
 
-    def evaluate(self, q) -> Evaluation:
-        """Residuals, Jacobian, correlations and overlaps at ``q`` (the last evaluation is cached)."""
+    def evaluate(self, q, *, jacobian: bool = True) -> Evaluation:
+        """Residuals, Jacobian (None without ``jacobian``: a trial step needs only its cost), correlations and
+        overlaps at ``q`` (the last evaluation is cached; its samples serve a Jacobian asked for afterwards)."""
         key = np.asarray(q, dtype=np.float64).tobytes()
-        if self._cache[0] == key:
-            return self._cache[1]
+        cached_key, cached, samples = self._cache
+        if cached_key == key and cached is not None and (cached.jacobian is not None or not jacobian):
+            return cached
+        if cached_key != key:
+            samples = {}
         p, dp = self.reparam.affine(q)
         t = model_matrix(p, self.centre)
         t_inv = np.linalg.inv(t)
         parts = []
-        if "forward" in self.ways:  # moving samples, the fixed volume interpolated at their images
-            s = self.fixed.sample(t[:3, :3] @ self.xm + t[:3, 3:], self.gradient)
-            dv = np.einsum("kn,pkn->np", s.gradients, point_derivatives(self.xm, self.centre))
-            parts.append((self.vm, s, dv))
-        if "backward" in self.ways:
-            # fixed samples, the moving volume at their pre-images x = A^-1 (y - b) + c,
-            # dx/dp = -A^-1 (dA/dp (x - c) + db/dp)
-            x = t_inv[:3, :3] @ self.xf + t_inv[:3, 3:]
-            s = self.moving.sample(x, self.gradient)
-            dv = -np.einsum("kn,pkn->np", t_inv[:3, :3].T @ s.gradients, point_derivatives(x, self.centre))
-            parts.append((self.vf, s, dv))
+        for way in self.ways:
+            if way == "forward":  # moving samples, the fixed volume interpolated at their images
+                volume, src, x = self.fixed, self.vm, self.xm
+                pts = t[:3, :3] @ x + t[:3, 3:]
+            else:
+                # fixed samples, the moving volume at their pre-images x = A^-1 (y - b) + c,
+                # dx/dp = -A^-1 (dA/dp (x - c) + db/dp)
+                volume, src = self.moving, self.vf
+                pts = x = t_inv[:3, :3] @ self.xf + t_inv[:3, 3:]
+            s = samples.get(way) or volume.sample(pts, self.gradient, gradients=jacobian)
+            dv = None
+            if jacobian:
+                if s.gradients is None:
+                    s = volume.with_gradients(pts, s, self.gradient)
+                grads = s.gradients if way == "forward" else -(t_inv[:3, :3].T @ s.gradients)
+                dv = np.einsum("kn,pkn->np", grads, point_derivatives(x, self.centre))
+            samples[way] = s
+            parts.append((src, s, dv))
         res, jac, corr, over = [], [], [], []
-        for src, samples, dv in parts:
-            total = float(samples.weights.sum())
+        for src, smp, dv in parts:
+            total = float(smp.weights.sum())
             over.append(total / len(src))
             if total < self.min_points:  # too little overlap: uncorrelated, and no direction out of it
                 n = len(src)
@@ -168,13 +182,13 @@ class PairCorrelation:
                 corr.append(np.nan)
                 continue
             # einsum: a thin (N, 8) x (8, n) product, 5 times faster than OpenBLAS's threaded one under load
-            r, j, c = _ncc_residuals(src, samples, np.einsum("np,pq->nq", dv, dp))
+            r, j, c = _ncc_residuals(src, smp, None if dv is None else np.einsum("np,pq->nq", dv, dp))
             w = np.sqrt(self.way_weights[len(res)])
             res.append(w * r)
-            jac.append(w * j)
+            jac.append(None if j is None else w * j)
             corr.append(c)
-        out = Evaluation(np.concatenate(res), np.vstack(jac), np.array(corr), np.array(over))
-        self._cache = (key, out)
+        out = Evaluation(np.concatenate(res), np.vstack(jac) if jacobian else None, np.array(corr), np.array(over))
+        self._cache = (key, out, samples)
         return out
 
 
@@ -206,7 +220,7 @@ def refine(pair: PairCorrelation, t_level, *, max_iterations: int, tolerance: fl
     """
     q = pair.params(t_level)
     if len(pair.ways) > 1:
-        pair.weigh_ways(1.0 - pair.evaluate(q).correlations)
+        pair.weigh_ways(1.0 - pair.evaluate(q, jacobian=False).correlations)
     ev = pair.evaluate(q)
     floor = min_overlap_ratio * ev.overlaps
     corners = transform_corners(pair.moving.shape)
@@ -225,7 +239,7 @@ def refine(pair: PairCorrelation, t_level, *, max_iterations: int, tolerance: fl
             if moved(step) < tolerance:
                 converged = True  # the next step would not move the corners: a (local) maximum
                 break
-            trial = pair.evaluate(q + step)
+            trial = pair.evaluate(q + step, jacobian=False)  # its Jacobian only when the step is taken
             if trial.cost < ev.cost and np.all(trial.overlaps >= floor):
                 accepted = True
                 lam = max(lam / 3.0, 1e-7)
@@ -235,7 +249,7 @@ def refine(pair: PairCorrelation, t_level, *, max_iterations: int, tolerance: fl
             converged = converged or lam > 1e2  # damped to a standstill
             break
         move = moved(step)
-        q, ev = q + step, trial
+        q, ev = q + step, pair.evaluate(q + step)
         if move < tolerance:
             converged = True
             break

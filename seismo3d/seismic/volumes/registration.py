@@ -24,7 +24,7 @@ from .options import VolumeOptions
 from .pyramid import (Sampled, build_level, envelope, from_level, level_factors, level_kind, live_traces,
                       smoothing_measures, to_level, without_mean_trace)
 from .refine import PairCorrelation, Refined, refine
-from .search import Start, correlation_search, distinct_starts
+from .search import Start, correlation_search, distinct_starts, screen_scores
 from .spectral import map_spectrum, spectral_maps
 from .vertical import vertical_scale
 
@@ -239,11 +239,12 @@ def register_volumes(fixed, moving, *, model: str = "affine", fixed_spacing=None
         done("coarse")
         # stage 3: the best one through the finer levels, and the best distinct other one (for the check)
         bar.start("fine")
-        t_index, final = _refine_down(pf, pm, coarse.best.transform, top, sp_f, sp_m, model, opt)
+        t_index, final, path = _refine_down(pf, pm, coarse.best.transform, top, sp_f, sp_m, model, opt)
         runner_up = None
         if coarse.runner_up is not None and _close(coarse.best, coarse.runner_up, opt):
-            # as good on the coarsest level: which one is better only full resolution tells
-            runner_up = _refine_down(pf, pm, coarse.runner_up.transform, top, sp_f, sp_m, model, opt)[0]
+            # as good on the coarsest level: which one is better only full resolution tells (unless it joins the
+            # best one's peak on the way down)
+            runner_up = _refine_down(pf, pm, coarse.runner_up.transform, top, sp_f, sp_m, model, opt, path)[0]
         done("fine")
         # stage 4: the answer from the way that leads (refined alone from the two-way optimum), and the check
         bar.start("check")
@@ -364,11 +365,31 @@ def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: V
                 extra.append(_level_map(theta, lateral, large[2] / small[2], small[1], large[1], small[0],
                                         large[0]))
     forward, backward = (full, extra) if not swap else (extra, full)
+    # every map scored first along coarser traces (long traces: Penobscot's 100 samples), the best ones again
+    n_maps = len(forward) + len(backward) + len(spectral)
+    forward, backward = _screened(fixed, moving, forward, backward, opt)
     starts = correlation_search(fixed, moving, forward, opt.min_fraction) + spectral
     starts += [Start(s.correlation, np.linalg.inv(s.transform), s.ncc)
                for s in correlation_search(moving, fixed, backward, opt.min_fraction)]
     starts.sort(key=lambda s: -s.correlation)
-    return distinct_starts(starts, moving.shape, opt.n_starts, 2.0), len(forward) + len(backward) + len(spectral)
+    return distinct_starts(starts, moving.shape, opt.n_starts, 2.0), n_maps
+
+
+def _screened(fixed: Sampled, moving: Sampled, forward: list, backward: list, opt: VolumeOptions):
+    """The ``screen_keep`` best of the search's maps (MOVING onto FIXED, and FIXED onto MOVING), scored together on
+    the two levels decimated (:func:`~.search.screen_scores`): along the traces by the largest of 4 and 2 that
+    leaves ``2 * min_vertical`` samples of the shorter level, along a map axis by 2 where the smaller level keeps
+    ``min_lateral / 2`` traces; all of them when nothing is decimated or when ``screen_keep`` is 0."""
+    n_samples = min(fixed.shape[2], moving.shape[2])
+    factors = [2 if min(fixed.shape[a], moving.shape[a]) // 2 >= opt.min_lateral / 2 else 1 for a in (0, 1)]
+    factors.append(next((f for f in (4, 2) if n_samples // f >= 2 * opt.min_vertical), 1))
+    if max(factors) == 1 or not 0 < opt.screen_keep < len(forward) + len(backward):
+        return forward, backward
+    scores = np.r_[screen_scores(fixed, moving, forward, opt.min_fraction, factors),
+                   screen_scores(moving, fixed, backward, opt.min_fraction, factors)]
+    kept = set(np.argsort(-scores, kind="stable")[:opt.screen_keep].tolist())
+    return ([m for i, m in enumerate(forward) if i in kept],
+            [m for i, m in enumerate(backward) if i + len(forward) in kept])
 
 
 def _footprint(level: Sampled, spacing) -> float:
@@ -414,7 +435,7 @@ def _refine_starts(fixed: Sampled, moving: Sampled, starts: list, sp_f, sp_m, mo
     1.6, FIXED onto MOVING) climbed out of it to a map rotation of 118 degrees. The finer levels start on the peak
     and keep the central differences (:attr:`~seismo3d.seismic.volumes.pyramid.Sampled.gradient_volumes`)."""
     pair = PairCorrelation(fixed, moving, Reparam(model, sp_f * fixed.factors, sp_m * moving.factors),
-                           opt.n_points, gradient="spline")
+                           opt.n_points_coarse, gradient="spline")
     results = sorted((refine(pair, s.transform, max_iterations=opt.max_iterations, tolerance=tolerance)
                       for s in starts), key=lambda r: -r.correlation)
     if not results:  # no map overlaps enough anywhere: the identity, which the check reports
@@ -429,21 +450,30 @@ def _close(best: Refined, other: Refined, opt: VolumeOptions) -> bool:
     return 1.0 - best.correlation > opt.control_ratio * (1.0 - other.correlation)
 
 
-def _refine_down(pf: _Pyramid, pm: _Pyramid, t_top, top: int, sp_f, sp_m, model: str,
-                 opt: VolumeOptions) -> tuple[np.ndarray, PairCorrelation]:
-    """A transform of level ``top`` refined on every finer level down to full resolution; the full-resolution
-    transform and correlation."""
+def _refine_down(pf: _Pyramid, pm: _Pyramid, t_top, top: int, sp_f, sp_m, model: str, opt: VolumeOptions,
+                 path: list | None = None) -> tuple[np.ndarray | None, PairCorrelation | None, list]:
+    """A transform of level ``top`` refined on every finer level down to full resolution: the full-resolution
+    transform, the full-resolution correlation and the transform after each level (full-resolution indices, finest
+    last).
+
+    With the ``path`` of another refinement, one that reaches within ``max_disagreement`` full-resolution samples of
+    it on a level has climbed the same peak: (None, None, its path so far)."""
     t_index = from_level(t_top, pf.at(top), pm.at(top))
-    pair = None
+    pair, steps = None, []
+    full_shape = pm.at(0).shape
     for k in range(top - 1, -1, -1):
         fixed, moving = pf.at(k), pm.at(k)
         pair = PairCorrelation(fixed, moving, Reparam(model, sp_f * fixed.factors, sp_m * moving.factors),
-                               opt.n_points)
+                               opt.n_points if k == 0 else opt.n_points_coarse)
         # the finer levels only need to bring the next one into its peak: a tenth of a sample of theirs
         r = refine(pair, to_level(t_index, fixed, moving), max_iterations=opt.max_iterations,
                    tolerance=opt.tolerance if k == 0 else 5 * opt.tolerance)
         t_index = from_level(r.transform, fixed, moving)
+        steps.append(t_index)
+        if path is not None and len(path) >= len(steps) and \
+                corner_distance(t_index, path[len(steps) - 1], full_shape) <= opt.max_disagreement:
+            return None, None, steps
     if pair is None:  # a single level
         fixed, moving = pf.at(0), pm.at(0)
         pair = PairCorrelation(fixed, moving, Reparam(model, sp_f, sp_m), opt.n_points)
-    return t_index, pair
+    return t_index, pair, steps

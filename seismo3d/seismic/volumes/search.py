@@ -16,7 +16,7 @@ from scipy import fft, ndimage as ndi
 from .model import corner_distance, transform_corners
 from .pyramid import Sampled
 
-__all__ = ["Start", "MaskedNCC", "correlation_search", "distinct_starts"]
+__all__ = ["Start", "MaskedNCC", "decimated", "correlation_search", "distinct_starts", "screen_scores"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -128,6 +128,22 @@ def correlation_search(fixed: Sampled, moving: Sampled, linear_maps, min_fractio
         ``sqrt(n / n_min) atanh(ncc)`` of the overlap's ``n`` samples (a high correlation over a small overlap is
         likelier by chance than over a large one), which ``Start.correlation`` holds.
     """
+    return sorted((st for st in _scored(fixed, moving, list(linear_maps), min_fraction) if st is not None),
+                  key=lambda st: -st.correlation)
+
+
+def screen_scores(fixed: Sampled, moving: Sampled, linear_maps, min_fraction: float, factors) -> np.ndarray:
+    """The scores of :func:`correlation_search` of each map (-inf without an admissible translation), in the maps'
+    order, with both levels decimated by ``factors`` (3 ints: inline, crossline, sample; :func:`decimated`): a
+    cheaper first scoring that tells which maps to score on the levels themselves."""
+    d = np.asarray(factors, dtype=np.float64)
+    scored = _scored(decimated(fixed, factors), decimated(moving, factors),
+                     [np.diag(1.0 / d) @ lin @ np.diag(d) for lin in linear_maps], min_fraction)
+    return np.array([-np.inf if st is None else st.correlation for st in scored])
+
+
+def _scored(fixed: Sampled, moving: Sampled, linear_maps, min_fraction: float) -> list:
+    """Each map's best translation as a Start (None without an admissible one), in the maps' order."""
     shifts = MaskedNCC(fixed.data)
     n_fixed = float(fixed.live.sum()) * fixed.shape[2]
     n_moving = float(moving.live.sum()) * moving.shape[2]
@@ -139,11 +155,22 @@ def correlation_search(fixed: Sampled, moving: Sampled, linear_maps, min_fractio
         z = np.sqrt(n / need) * np.arctanh(np.clip(ncc, -0.999, 0.999))
         k = np.unravel_index(int(np.argmax(z)), z.shape)
         if not np.isfinite(z[k]):
+            out.append(None)
             continue
         t = np.eye(4)
         t[:3, :3], t[:3, 3] = lin, np.array(k) - origin - g_lo
         out.append(Start(float(z[k]), t, float(ncc[k])))
-    return sorted(out, key=lambda s: -s.correlation)
+    return out
+
+
+def decimated(level: Sampled, factors) -> Sampled:
+    """A level decimated by ``factors`` (3 ints) after a Gaussian of ``factor / 2`` along each decimated axis (as
+    :func:`~seismo3d.seismic.volumes.pyramid.build_level` decimates)."""
+    f = [int(v) for v in factors]
+    data = ndi.gaussian_filter(level.data, [0.5 * v if v > 1 else 0.0 for v in f], mode="nearest")
+    return Sampled(np.ascontiguousarray(data[::f[0], ::f[1], ::f[2]], dtype=np.float32),
+                   np.ascontiguousarray(level.live[::f[0], ::f[1]]), level.factors * np.array(f, dtype=np.float64),
+                   level.taper)
 
 
 def distinct_starts(starts: list[Start], moving_shape, n: int, separation: float) -> list[Start]:

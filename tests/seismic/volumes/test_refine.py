@@ -102,3 +102,17 @@ def test_the_way_that_interpolates_the_less_aliased_volume_leads(smooth_pair):
     np.testing.assert_allclose(back.way_weights, there.way_weights[::-1])
     there.weigh_ways([0.01, 0.04])  # a way with four times the misfit weighs four times less
     assert there.way_weights[0] / there.way_weights[1] == pytest.approx(4 * ratio)
+
+
+def test_a_trial_without_its_jacobian_costs_the_same(smooth_pair):
+    # the refinement's trial steps sample only the values; the Jacobian asked for afterwards reuses them
+    fixed, moving, truth = smooth_pair
+    pair = PairCorrelation(fixed, moving, Reparam("affine", None, None), 3000)
+    q = pair.params(truth) + 0.05
+    fresh = PairCorrelation(fixed, moving, Reparam("affine", None, None), 3000).evaluate(q)
+    trial = pair.evaluate(q, jacobian=False)
+    assert trial.jacobian is None
+    full = pair.evaluate(q)
+    np.testing.assert_array_equal(trial.residuals, fresh.residuals)
+    np.testing.assert_array_equal(full.jacobian, fresh.jacobian)
+    assert trial.cost == fresh.cost

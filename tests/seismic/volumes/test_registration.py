@@ -192,7 +192,10 @@ def test_unrelated_volumes_are_not_converged(f3_crop):
     assert not reg.converged
     assert reg.reason and "\n" not in reg.reason
     print(reg.reason, reg.correlation, reg.check.control_correlation)
-    assert reg.correlation < 0.5  # resampled pairs of f3_crop: 0.88-1.0
+    # resampled pairs of f3_crop: 0.88-1.0; the spurious optimum here depends on the search's path: -0.09 with every
+    # map scored on the coarsest level and 20,000 points per level, 0.57 (refused by the shifted controls, 0.56)
+    # with the first scoring on decimated levels and 5000 points on them
+    assert reg.correlation < 0.65
 
 
 @pytest.mark.slow
@@ -254,3 +257,7 @@ def test_volume_options_are_checked():
         VolumeOptions(n_spectral=-1)
     with pytest.raises(InputError, match="spectral_min_traces"):
         VolumeOptions(spectral_min_traces=4)
+    with pytest.raises(InputError, match="screen_keep"):
+        VolumeOptions(screen_keep=-1)
+    with pytest.raises(InputError, match="n_points_coarse"):
+        VolumeOptions(n_points_coarse=0)

@@ -35,8 +35,9 @@ class BlockRunOptions:
         reused when finished, resumed when interrupted); default a new temporary folder, kept.
     scheduler : str, optional
         A ``dask.distributed`` scheduler address for a run by blocks; default dask's local threads.
-    source : str
-        The input's name, recorded in the stores of a run by blocks (a likelihood of another source is not reused).
+    source : str, optional
+        The input's name, recorded in the stores of a run by blocks (a likelihood of another source is not reused);
+        default the cube's file name when ``trace_faults`` is given a cube opened from a file, else ``'cube'``.
     coords : dict, optional
         ``inline``, ``crossline``, ``sample`` and ``sample_unit`` coordinates of the stores of a run by blocks.
 
@@ -57,7 +58,7 @@ class BlockRunOptions:
     in_memory: bool | None = None
     work_dir: str | os.PathLike | None = None
     scheduler: str | None = None
-    source: str = "cube"
+    source: str | None = None
     coords: Mapping | None = None
 
     def __post_init__(self):
@@ -74,7 +75,7 @@ class BlockRunOptions:
         if self.scheduler is not None and not isinstance(self.scheduler, str):
             raise InputError(f"BlockRunOptions(scheduler=...) must be a dask.distributed scheduler address (a string) "
                              f"or None; got {type(self.scheduler).__name__}")
-        if not isinstance(self.source, str):
+        if self.source is not None and not isinstance(self.source, str):
             raise InputError(f"BlockRunOptions(source=...) must be the input's name (a string); got "
                              f"{type(self.source).__name__}")
         if self.coords is not None and not isinstance(self.coords, Mapping):

@@ -221,10 +221,10 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
         coords, source = run.coords, run.source
         if labels is not None:  # the cube's own coordinates and file name in the stores, unless given
             coords = labels.store_coords() if coords is None else coords
-            source = labels.cube.attrs.get("source_file", source) if source == BlockRunOptions.source else source
+            source = labels.cube.attrs.get("source_file") if source is None else source
         found = trace_faults_by_blocks(data, opt, sample_interval=sample_interval, sample_unit=sample_unit,
                                        memory_limit=run.limit, work_dir=run.work_dir, scheduler=run.scheduler,
-                                       source=source, coords=coords, progress=progress)
+                                       source=source or "cube", coords=coords, progress=progress)
         return found if labels is None else labels.label(found)
     arr, dead = _cleaned(data, opt)
     with progress_steps(7, "faults", enabled=progress) as bar:

@@ -109,7 +109,7 @@ def test_a_memory_limit_too_small_for_the_blocks_is_refused_before_any(seismic, 
     """trace_faults(memory_limit=...) below what the cube's run in memory needs goes by blocks; below what its blocks
     need, it is refused before any block, naming a limit that works."""
     monkeypatch.setattr(pipeline, "chunked_learned_likelihood", _stop)
-    with pytest.raises(InputError, match=r"needs a memory limit of at least .*; pass memory_limit='\d+MB' or more"):
+    with pytest.raises(InputError, match=r"needs a memory limit of at least .*; pass memory_limit='[\d.]+[MG]B' or more"):
         trace_faults(seismic, memory_limit="100MB", blocks=BlockRunOptions(work_dir=tmp_path), progress=False)
     assert not any(tmp_path.iterdir())
 

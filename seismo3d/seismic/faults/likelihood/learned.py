@@ -111,11 +111,12 @@ class LearnedOptions:
         network grid (the sections at multiples of it, and the last), and the probability of the sections between is
         interpolated linearly along that direction (:func:`section_span`); 1: every section. A fault crossing the
         sections is seen on the computed ones and moves little between them; one nearly parallel to a direction's
-        sections is seen by the other direction's (the larger of the two is kept). The default, 2, halves the
-        network's time on a cube (the fault likelihood of a generated 256^3 cube: 36.8 -> 24.2 CPU seconds on 2 threads,
-        ``python benchmarks/fault_speed.py``) and kept the scores of the generated faulted cubes (precision and
-        recall 0.93-1.00, within 0.01 of every section's) and of the Parihaka cube (``benchmarks/faults_3d.py``:
-        0.81 of the bands hit, 0.82-0.83 of the points in bands); 3 kept them too.
+        sections is seen by the other direction's (the larger of the two is kept). The default, 1: 2 makes the
+        network's part of a cube about a third cheaper (the fault likelihood of a generated 256^3 cube: 36.8 -> 24.2
+        CPU seconds on 2 threads, ``python benchmarks/fault_speed.py``) and keeps the scores of the generated faulted
+        cubes (precision and recall 0.93-1.00) and of the Parihaka cube (0.81 of the bands hit, 0.82-0.83 of the
+        points in bands), but on the 18 Penobscot inlines of notebook 01 it changes the largest fault (1043 -> 2705
+        samples, median throw +8.7 -> -19.1 samples): not the default until that is understood.
     network : {'auto', 'int8', 'float'}
         The model ONNX Runtime runs: 'int8', the network quantised to 8-bit integers (``fault_unet_int8.onnx``,
         :mod:`seismo3d.training.quantize_onnx`; 2.2 times faster), or 'float', the float32 export of the trained
@@ -139,7 +140,7 @@ class LearnedOptions:
     min_grid_samples: int = RECEPTIVE_HALF
     patch_samples: int = 128
     saturation_level: float = 0.9
-    section_step: int = 2
+    section_step: int = 1
     network: str = "auto"
     adapted: str | None = None
 

@@ -14,7 +14,7 @@ from seismo3d.seismic.blocks.memory import in_memory_bytes
     ({"in_memory": "yes"}, r"BlockRunOptions\(in_memory=...\)"),
     ({"work_dir": 3}, r"BlockRunOptions\(work_dir=...\)"),
     ({"scheduler": 8786}, r"BlockRunOptions\(scheduler=...\)"),
-    ({"source": None}, r"BlockRunOptions\(source=...\)"),
+    ({"source": 3}, r"BlockRunOptions\(source=...\)"),
     ({"coords": [1, 2]}, r"BlockRunOptions\(coords=...\)"),
 ])
 def test_bad_options_are_refused_when_made(kwargs, match):

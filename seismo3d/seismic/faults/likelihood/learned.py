@@ -50,7 +50,7 @@ from ...adapted_network import MODEL_NETWORK, is_model_path, read_adapted_model
 from ...attributes import orientation_from_likelihood
 from ..result import FaultLikelihood
 from .network import (
-    INT8_SHA256, NETWORKS, RECEPTIVE_HALF, WEIGHTS_SHA256, FaultNetwork, POOLING_MULTIPLE, _interpolate_axis,
+    INT8_SHA256, NETWORKS, RECEPTIVE_HALF, WEIGHTS_SHA256, FaultNetwork, POOLING_MULTIPLE, interpolate_axis,
     from_network_grid, grid_factors, grid_size, load_fault_network, normalise_section, to_network_grid, unet_forward,
 )
 
@@ -467,7 +467,7 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
             raise InputError(f"direction_probability: sections {origin}-{origin + m - 1} miss the computed sections "
                              f"{computed[0]}-{computed[-1]} they are interpolated from; read them (section_span)")
         prob = _sections_probability(np.ascontiguousarray(sections[local]), scale, weights, batch, bar, stretch_to)
-        prob = np.clip(_interpolate_axis(prob, 0, positions), 0.0, 1.0)
+        prob = np.clip(interpolate_axis(prob, 0, positions), 0.0, 1.0)
     return prob if axis == 0 else prob.transpose(1, 0, 2)
 
 

@@ -48,7 +48,7 @@ from ....errors import InputError, Seismo3dError
 
 __all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS",
            "FaultNetwork", "load_fault_network", "onnx_model", "unet_forward", "normalise_section", "anti_alias_sigma",
-           "grid_size", "grid_halo", "grid_factors", "to_network_grid", "from_network_grid"]
+           "grid_size", "grid_halo", "grid_factors", "to_network_grid", "from_network_grid", "interpolate_axis"]
 
 
 BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
@@ -389,8 +389,23 @@ def _lateral_aligns(align, n_lateral: int) -> tuple:
     return aligns
 
 
-def _interpolate_axis(a: np.ndarray, axis: int, positions: np.ndarray) -> np.ndarray:
-    """Values of ``a`` at fractional ``positions`` (local indices, within [0, n - 1]) along ``axis``, linearly."""
+def interpolate_axis(a: np.ndarray, axis: int, positions: np.ndarray) -> np.ndarray:
+    """Values of ``a`` at fractional ``positions`` along ``axis``, interpolated linearly.
+
+    Parameters
+    ----------
+    a : ndarray
+        The values (float32 probabilities here).
+    axis : int
+        The axis interpolated along.
+    positions : (m,) ndarray of float
+        Local indices along ``axis``, within [0, n - 1].
+
+    Returns
+    -------
+    ndarray
+        ``a`` with ``m`` values along ``axis``, float32.
+    """
     lo = np.floor(positions).astype(np.int64)
     lo = np.clip(lo, 0, max(a.shape[axis] - 2, 0))
     w = (positions - lo).astype(np.float32)
@@ -447,7 +462,7 @@ def to_network_grid(data: np.ndarray, factor: float, *, origin=None, align: int 
         u0 = _first(o, f, aligns[axis]) if lateral else 0
         u1 = grid_size(o + n, f)  # one past the last network sample inside the data
         u = np.arange(u0, u1, dtype=np.float64)
-        out = _interpolate_axis(out, axis, u / f - o)
+        out = interpolate_axis(out, axis, u / f - o)
         first.append(u0)
     return np.ascontiguousarray(out, dtype=np.float32), tuple(first)
 
@@ -485,7 +500,7 @@ def from_network_grid(small: np.ndarray, shape, factor: float, *, origin=None, f
     first = tuple(first or (0,) * len(shape))
     for axis, (n, o, u0) in enumerate(zip(shape, origin, first)):
         i = np.arange(o, o + n, dtype=np.float64)
-        out = _interpolate_axis(out, axis, np.clip(i * f - u0, 0, out.shape[axis] - 1))
+        out = interpolate_axis(out, axis, np.clip(i * f - u0, 0, out.shape[axis] - 1))
     return np.ascontiguousarray(out, dtype=np.float32)
 
 

@@ -225,7 +225,7 @@ def job_limit(tmp: pathlib.Path) -> None:
     assert _rows(written["points"]) == _rows(in_memory["points"])
     assert sorted(p.name for p in (tmp / "tight").iterdir()) == [
         "fault_likelihood.zarr", "fault_points.csv", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
-        "fault_sticks_opendtect.txt",
+        "fault_sticks_opendtect.txt", "fault_sticks_rms.pol",
         "fault_summary.csv", "fault_surfaces.zarr", "fault_surfaces_gocad", "faults.png", "faults.vtp", "run.json"]
     print(f"  {len(_rows(in_memory['summary']))} faults, the same in memory, by blocks, again and under a tighter limit")
 

@@ -174,9 +174,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       for 2D inputs ``dips_toward`` (e.g. ``increasing inline``)
       replaces the strike. Strike and dip are in index space (one trace step = one sample; strike from the inline
       axis toward the crossline axis, see :mod:`seismo3d.seismic.faults.likelihood.scan`).
-    * ``fault_sticks_opendtect.txt``, ``fault_sticks_charisma.txt``, ``fault_sticks_iesx.txt``: every fault's points
-      along each line that cuts it, as fault sticks in map coordinates (OpendTect ASCII, and Charisma and IESX, which
-      Petrel imports); ``fault_surfaces_gocad/``: the triangulated faults of ``faults.vtp``, a GOCAD TSurf file per
+    * ``fault_sticks_opendtect.txt``, ``fault_sticks_charisma.txt``, ``fault_sticks_iesx.txt``,
+      ``fault_sticks_rms.pol``: every fault's points along each line that cuts it, as fault sticks in map coordinates
+      (OpendTect ASCII; Charisma and IESX, which Petrel imports; RMS's XYZ polygons, which xtgeo reads);
+      ``fault_surfaces_gocad/``: the triangulated faults of ``faults.vtp``, a GOCAD TSurf file per
       fault (``fault_<id>.ts``, as xtgeo reads and Petrel imports them), 3D inputs (:mod:`seismo3d.jobs.interchange`).
       ``fault_points.csv`` holds ``x``, ``y`` and ``xy_unit`` after the crossline: each point's trace's CDP X/Y with
       the coordinate scalar applied, or its inline and crossline numbers with ``xy_unit`` ``inline/crossline`` for an

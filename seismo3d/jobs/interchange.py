@@ -3,7 +3,7 @@ interpretation packages, in map coordinates.
 
 * ``seismo3d faults`` writes, beside its other outputs (:func:`fault_interchange_steps`): ``fault_sticks_opendtect.txt``
   (OpendTect fault-stick ASCII), ``fault_sticks_charisma.txt`` and ``fault_sticks_iesx.txt`` (Charisma and IESX
-  fault sticks, which Petrel imports),
+  fault sticks, which Petrel imports), ``fault_sticks_rms.pol`` (RMS's XYZ polygons, which xtgeo reads),
   ``fault_surfaces_gocad/`` (a GOCAD TSurf file per fault, 3D inputs), and X / Y in ``fault_points.csv``.
 * ``seismo3d horizon --maps`` writes the horizon as IRAP ASCII (``.fgr``), IRAP binary (``.gri``), ZMAP+ (``.zmap``)
   grids and ``X Y Z`` points (``.xyz``) beside its text file (:func:`write_horizon_maps`); ``--seed-file`` reads seeds
@@ -31,7 +31,9 @@ __all__ = ["FAULT_INTERCHANGE_FILES", "HORIZON_MAP_SUFFIXES", "fault_coordinates
            "horizon_map_paths", "write_horizon_maps", "seeds_from_file", "sticks_mesh"]
 
 FAULT_INTERCHANGE_FILES = ("fault_sticks_opendtect.txt", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
-                           "fault_surfaces_gocad")
+                           "fault_sticks_rms.pol", "fault_surfaces_gocad")
+_STICK_FORMATS = {"sticks_opendtect": "opendtect", "sticks_charisma": "charisma", "sticks_iesx": "iesx",
+                  "sticks_rms": "rms"}  # the stick files' keys in the job's outputs, in FAULT_INTERCHANGE_FILES' order
 HORIZON_MAP_SUFFIXES = {"irap_ascii": ".fgr", "irap_binary": ".gri", "zmap": ".zmap", "xyz": ".xyz"}
 
 
@@ -125,22 +127,20 @@ def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates, *, 
     Returns
     -------
     list of (str, callable)
-        ``sticks_opendtect``, ``sticks_charisma``, ``sticks_iesx`` and, for a 3D input with faults,
+        ``sticks_opendtect``, ``sticks_charisma``, ``sticks_iesx``, ``sticks_rms`` and, for a 3D input with faults,
         ``surfaces_tsurf`` (a folder of a TSurf file per fault); each callable writes its file and returns its path.
     """
     out_dir = Path(out_dir)
-    names = dict(zip(("sticks_opendtect", "sticks_charisma", "sticks_iesx"), FAULT_INTERCHANGE_FILES))
+    names = dict(zip(_STICK_FORMATS, FAULT_INTERCHANGE_FILES))
 
-    sticks = functools.cache(lambda: _sticks(inp, result, coords))  # made once for the three formats
+    sticks = functools.cache(lambda: _sticks(inp, result, coords))  # made once for the four layouts
 
     def sticks_writer(key: str, fmt: str):
         return lambda: write_fault_sticks(out_dir / names[key], sticks(), format=fmt, source=inp.name)
 
-    steps = [(key, sticks_writer(key, fmt)) for key, fmt in (("sticks_opendtect", "opendtect"),
-                                                              ("sticks_charisma", "charisma"),
-                                                              ("sticks_iesx", "iesx"))]
+    steps = [(key, sticks_writer(key, fmt)) for key, fmt in _STICK_FORMATS.items()]
     if inp.data.ndim == 3 and len(result.faults):
-        tsurf = out_dir / FAULT_INTERCHANGE_FILES[3]
+        tsurf = out_dir / FAULT_INTERCHANGE_FILES[-1]
         steps.append(("surfaces_tsurf", lambda: _fault_tsurf(inp, result, coords, tsurf,
                                                              None if mesh is None else mesh())))
     return steps

@@ -61,7 +61,7 @@ def test_demo_writes_every_output(demo):
     names = {"demo_seismic.sgy", "demo_truth.csv", "fault_likelihood.sgy", "fault_strike.sgy", "fault_dip.sgy",
              "fault_votes.sgy", "faults.vtp", "fault_points.csv", "fault_summary.csv", "faults.png", "run.json",
              "fault_sticks_opendtect.txt", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
-             "fault_surfaces_gocad"}
+             "fault_sticks_rms.pol", "fault_surfaces_gocad"}
     assert {p.name for p in out.iterdir()} == names
     assert {Path(p).name for p in written.values()} == names
     assert Path(written["figure"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

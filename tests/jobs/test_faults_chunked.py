@@ -58,7 +58,7 @@ def test_cube_by_blocks_gives_the_same_faults(cube_npy, tmp_path, monkeypatch, c
     assert written["figure"].stat().st_size > 10_000
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == [
         "fault_likelihood.zarr", "fault_points.csv", "fault_sticks_charisma.txt", "fault_sticks_iesx.txt",
-        "fault_sticks_opendtect.txt",
+        "fault_sticks_opendtect.txt", "fault_sticks_rms.pol",
         "fault_summary.csv", "fault_surfaces.zarr", "fault_surfaces_gocad", "faults.png", "faults.vtp", "run.json"]
     # run again into the same folder (overwrite=True: it holds this run's results): the finished likelihood is
     # reused, the same faults come out

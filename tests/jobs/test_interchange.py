@@ -167,8 +167,8 @@ def test_every_fault_surface_read_by_xtgeo(small_faults):
 
 @pytest.mark.slow  # the cubes of small_faults; a horizon tracked in each (1 s)
 def test_small_cube_sticks_and_grids(small_faults, tmp_path):
-    """The same runs: the fault sticks' nodes are fault points (a few a stick) at their map X / Y; a horizon's IRAP / ZMAP+ grids read
-    back by xtgeo hold the text rows' times, on the survey's rotated grid at the traces' X / Y."""
+    """The same runs: the fault sticks' nodes are fault points (a few a stick) at their map X / Y, read back by xtgeo
+    from the RMS polygons; a horizon's IRAP / ZMAP+ grids read back by xtgeo hold the text rows' times, on the survey's rotated grid at the traces' X / Y."""
     import xtgeo
 
     from seismo3d.jobs.horizon import run_horizon_job
@@ -184,6 +184,13 @@ def test_small_cube_sticks_and_grids(small_faults, tmp_path):
     x, y = _map_xy(sticks.inline, sticks.crossline) if coordinates else (sticks.inline, sticks.crossline)
     assert_allclose(sticks.x, x, atol=0.006)
     assert_allclose(sticks.y, y, atol=0.006)
+    # the same sticks as RMS polygons, read by xtgeo: a polygon per stick, its nodes in the OpendTect file's order
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # xtgeo's pandas deprecation warnings
+        rms = xtgeo.polygons_from_file(job.written["sticks_rms"], fformat="xyz").get_dataframe()
+    assert rms["POLY_ID"].nunique() == sticks.n_sticks
+    order = np.argsort(sticks.stick, kind="stable")  # the files' order: stick by stick
+    assert_allclose(rms.iloc[:, :3].to_numpy(), np.column_stack([sticks.x, sticks.y, sticks.z])[order], atol=6e-4)
     # a horizon of the cube as IRAP / ZMAP+ grids, read back by xtgeo
     n_il, n_xl = SMALL[:2]
     horizon = run_horizon_job(src, [_peak_seed(src, n_il // 2, n_xl // 2)], tmp_path / "h.txt", faults=False,

@@ -2,7 +2,7 @@
 
 A :class:`FaultSticks` holds the nodes of every stick of every fault (X, Y, two-way time or depth, and the inline /
 crossline of each node). It is made from traced faults (:meth:`FaultSticks.from_faults`) or read from a file
-(:func:`read_fault_sticks`), and written in three layouts (:func:`write_fault_sticks`):
+(:func:`read_fault_sticks`), and written in four layouts (:func:`write_fault_sticks`):
 
 * ``'opendtect'``: OpendTect's fault-stick ASCII, tab-separated, one row per node: fault name (quoted), X, Y, Z,
   stick index, node index, inline, crossline; ``#`` lines first say what the columns are. OpendTect's *Import
@@ -13,8 +13,11 @@ crossline of each node). It is made from traced faults (:meth:`FaultSticks.from_
   ``SNAPPING PARAMETERS`` line, then one row per node with X in characters 0-16, Y in 16-32 (``%16.8E``: 0.01 m at
   6 million), the stick index in 32-35, Z in 38-47 (``%9.2f``); ``EOD`` ends the file. The rows carry no line
   numbers: a reader places them by X / Y.
+* ``'rms'``: RMS's XYZ polygons, as xtgeo reads them (``xtgeo.polygons_from_file(path, fformat="xyz")``): one
+  ``X Y Z`` row per node, each stick one polygon ended by ``999.0 999.0 999.0``. The rows carry no fault names and no
+  line numbers; seismo3d writes this layout but does not read it.
 
-Readers accept both, and the export of the data folder's interpreter (``seismic/gsb_fault_sticks/*.dat``:
+Readers accept the first three, and the export of the data folder's interpreter (``seismic/gsb_fault_sticks/*.dat``:
 tab-separated X, Y (1e30 = undefined), two-way time, three stick-orientation columns, inline, crossline; each two
 consecutive rows are the two ends of one stick, one fault per stick).
 
@@ -27,6 +30,8 @@ IESX fault rows: DUG Insight, *Importing a fault* (GeoQuest IESX format: X [0-16
 Z [38-47)), https://help.dugeo.com/m/Insight/l/438710-importing-a-fault; the ``PROFILE`` and ``SNAPPING
 PARAMETERS`` header lines as OpendTect's IESX (3d_ci7m) writer lays them out; ``EOD`` as the IESX loader expects
 (Schlumberger IESX FAQ 399).
+RMS XYZ polygons: xtgeo's ``Polygons`` text format (``xtgeo.xyz._xyz_io``, the ``999.0`` polygon terminator),
+https://github.com/equinor/xtgeo.
 """
 
 from __future__ import annotations
@@ -41,12 +46,12 @@ from ..._atomic import atomic_path
 from ...errors import DataNotFoundError, InputError
 from .coordinates import LINE_UNITS, SurveyCoordinates
 from .stick_sections import section_nodes, section_pixels
-from .stick_rows import charisma_rows, iesx_rows, opendtect_rows
+from .stick_rows import charisma_rows, iesx_rows, opendtect_rows, rms_rows
 from .traced_sticks import STICK_LINE_STEP, stick_lines, stick_nodes
 
 __all__ = ["FaultSticks", "STICK_FORMATS", "read_fault_sticks", "write_fault_sticks"]
 
-STICK_FORMATS = ("opendtect", "charisma", "iesx")
+STICK_FORMATS = ("opendtect", "charisma", "iesx", "rms")
 _UNDEFINED = 1e29  # OpendTect writes 1e30 for an undefined X / Y
 
 
@@ -313,19 +318,20 @@ class FaultSticks:
 
 
 def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", source: str = "") -> Path:
-    """Write fault sticks in OpendTect's fault-stick ASCII or Charisma's layout, atomically.
+    """Write fault sticks in OpendTect's fault-stick ASCII, Charisma's, IESX's or RMS's polygon layout, atomically.
 
     Parameters
     ----------
     path : str or os.PathLike
         The file to write (its folder must exist); replaced atomically.
     sticks : FaultSticks
-    format : {'opendtect', 'charisma', 'iesx'}
+    format : {'opendtect', 'charisma', 'iesx', 'rms'}
         ``'opendtect'``: ``#`` comment lines naming the columns and units, then tab-separated rows ``"name" X Y Z
         stick node inline crossline`` (stick and node indices from 0 per fault; undefined X / Y as 1e30).
         ``'charisma'``: no header; space-separated rows ``INLINE- inline crossline X Y Z name stick`` (stick numbers
         from 1 per fault; inline / crossline rounded to whole numbers, as the format holds them). ``'iesx'``: fixed
-        columns (module docstring); stick indices from 1 per fault; nodes without X / Y are refused.
+        columns (module docstring); stick indices from 1 per fault; nodes without X / Y are refused. ``'rms'``: ``X Y
+        Z`` rows, each stick ended by ``999.0 999.0 999.0`` (xtgeo's XYZ polygons); nodes without X / Y are refused.
     source : str, optional
         A line for the OpendTect header saying where the sticks come from.
 
@@ -336,7 +342,8 @@ def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", 
     Raises
     ------
     InputError
-        An unknown ``format``, or ``'charisma'`` for sticks without inline / crossline numbers.
+        An unknown ``format``, ``'charisma'`` for sticks without inline / crossline numbers, or ``'iesx'`` / ``'rms'``
+        for sticks without X / Y.
 
     References
     ----------
@@ -345,8 +352,8 @@ def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", 
     if format not in STICK_FORMATS:
         raise InputError(f"format={format!r} is not a fault-stick format; use one of {', '.join(STICK_FORMATS)}")
     path = Path(path)
-    if format == "iesx":
-        return _write_iesx(path, sticks)
+    if format in ("iesx", "rms"):
+        return _write_xyz_rows(path, sticks, format)
     header = []
     if format == "opendtect":
         xy = ("X, Y: inline and crossline numbers (the SEG-Y headers hold no coordinates)"
@@ -364,12 +371,15 @@ def write_fault_sticks(path, sticks: FaultSticks, *, format: str = "opendtect", 
     return path
 
 
-def _write_iesx(path: Path, sticks: FaultSticks) -> Path:
-    """IESX fault sticks: PROFILE / SNAPPING PARAMETERS per fault, fixed-column node rows, EOD."""
+def _write_xyz_rows(path: Path, sticks: FaultSticks, format: str) -> Path:
+    """The layouts placed by X / Y alone: IESX fault sticks (PROFILE / SNAPPING PARAMETERS per fault, fixed-column
+    node rows, EOD) and RMS's XYZ polygons."""
     if not (np.all(np.isfinite(sticks.x)) and np.all(np.isfinite(sticks.y))):
-        raise InputError("IESX fault sticks need X / Y on every node; fill them first (FaultSticks.with_coordinates)")
+        raise InputError(f"{format.upper()} fault sticks need X / Y on every node; fill them first "
+                         "(FaultSticks.with_coordinates)")
+    rows = iesx_rows(sticks) if format == "iesx" else rms_rows(sticks)
     with atomic_path(path) as tmp, open(tmp, "w", newline="\n") as fh:  # a block of rows at a time: never all the text
-        fh.writelines(iesx_rows(sticks))
+        fh.writelines(rows)
     return path
 
 
@@ -436,7 +446,9 @@ def read_fault_sticks(path, *, coordinates: SurveyCoordinates | None = None, z_u
     if layout == "unknown":
         raise InputError(f"{path.name} is not a fault-stick file seismo3d reads: expected OpendTect fault-stick "
                          "rows ('\"name\" X Y Z stick node [inline crossline]' or the 8 columns 'X Y Z o1 o2 o3 "
-                         "inline crossline' in pairs) or Charisma rows ('INLINE- inline crossline X Y Z name stick')")
+                         "inline crossline' in pairs), Charisma rows ('INLINE- inline crossline X Y Z name stick') or "
+                         "IESX rows (PROFILE lines, fixed columns); RMS polygons ('X Y Z' rows, as "
+                         "fault_sticks_rms.pol) name no faults: give the run's fault_sticks_opendtect.txt instead")
     reader = {"charisma": _read_charisma, "opendtect": _read_opendtect, "opendtect_pairs": _read_pairs,
               "iesx": _read_iesx}[layout]
     sticks = reader(path, lines, z_unit)

@@ -1,5 +1,5 @@
-"""The rows of the three fault-stick layouts of :func:`~seismo3d.seismic.io.fault_sticks.write_fault_sticks`
-(OpendTect, Charisma, IESX; the module docstring of :mod:`~seismo3d.seismic.io.fault_sticks` describes them), as blocks
+"""The rows of the fault-stick layouts of :func:`~seismo3d.seismic.io.fault_sticks.write_fault_sticks`
+(OpendTect, Charisma, IESX, RMS polygons; the module docstring of :mod:`~seismo3d.seismic.io.fault_sticks` describes them), as blocks
 of text: the nodes' columns in stick order, formatted a block of rows at a time (:mod:`.text_rows`)."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import numpy as np
 
 from .text_rows import TextColumn, format_rows
 
-__all__ = ["charisma_rows", "iesx_rows", "opendtect_rows"]
+__all__ = ["charisma_rows", "iesx_rows", "opendtect_rows", "rms_rows"]
 
 
 def _safe_name(name: str) -> str:
@@ -124,3 +124,31 @@ def iesx_rows(sticks):
                                 TextColumn((c["stick_no"][lo:hi] + 1) % 1000, "3d"), TextColumn(" 14"),
                                 TextColumn(c["z"][lo:hi], "9.2f")], hi - lo)
     yield "EOD\n"
+
+
+def rms_rows(sticks):
+    """The rows of RMS's XYZ polygons: one ``X Y Z`` row per node, space-separated, each stick (one polygon) ended by
+    the row ``999.0 999.0 999.0``, in blocks.
+
+    Parameters
+    ----------
+    sticks : FaultSticks
+
+    Returns
+    -------
+    iterator of str
+        Blocks of rows, each row ended by a line feed (:func:`~seismo3d.seismic.io.text_rows.format_rows`).
+
+    References
+    ----------
+    xtgeo's ``Polygons`` XYZ format (``xtgeo.polygons_from_file(path, fformat="xyz")``), which RMS imports and exports
+    as *IRAP RMS internal* / *XYZ* polygons.
+    """
+    c = _stick_nodes(sticks)
+    bounds = np.flatnonzero((np.diff(c["fault_id"]) != 0) | (np.diff(c["stick_no"]) != 0)) + 1
+    for lo, hi in zip(np.r_[0, bounds], np.r_[bounds, c["x"].size]):
+        if lo == hi:
+            continue
+        yield from format_rows([TextColumn(c["x"][lo:hi], ".3f"), TextColumn(c["y"][lo:hi], ".3f"),
+                                TextColumn(c["z"][lo:hi], ".4f")], hi - lo, sep=" ")
+        yield "999.0 999.0 999.0\n"

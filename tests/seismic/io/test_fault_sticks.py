@@ -138,3 +138,26 @@ def test_iesx_rows_follow_the_fixed_columns(gsb2800, tmp_path):
     assert_allclose([float(r[16:32]) for r in rows], sticks.y)
     assert_allclose([float(r[38:47]) for r in rows], sticks.z, atol=5e-3)
     assert {int(r[32:35]) for r in rows} == {1}  # one stick per fault on a line
+
+
+def test_rms_polygons_read_by_xtgeo(gsb2800, tmp_path):
+    """The interpreter's 13 sticks written as RMS XYZ polygons: xtgeo reads a polygon per stick, its nodes' X / Y / Z
+    those of the sticks (3 and 4 decimals); sticks without X / Y are refused before anything is written."""
+    import warnings
+
+    xtgeo = pytest.importorskip("xtgeo")
+    _, _, sticks = gsb2800
+    path = write_fault_sticks(tmp_path / "s.pol", sticks, format="rms")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # xtgeo's pandas deprecation warnings
+        df = xtgeo.polygons_from_file(path, fformat="xyz").get_dataframe()
+    assert df["POLY_ID"].nunique() == sticks.n_sticks == 13
+    assert len(df) == sticks.n_nodes
+    for (_, nodes), (_, poly) in zip(sticks.sticks(), df.groupby("POLY_ID", sort=True)):
+        assert_allclose(poly.iloc[:, :3].to_numpy(), np.column_stack([sticks.x, sticks.y, sticks.z])[nodes],
+                        atol=6e-4)
+    no_xy = FaultSticks(sticks.fault_id, sticks.stick, np.full(sticks.n_nodes, np.nan), sticks.y, sticks.z,
+                        sticks.inline, sticks.crossline, sticks.names)
+    with pytest.raises(InputError, match="RMS fault sticks need X / Y"):
+        write_fault_sticks(tmp_path / "t.pol", no_xy, format="rms")
+    assert not (tmp_path / "t.pol").exists()

@@ -23,7 +23,8 @@ from ...._validation import check_positive
 from ....errors import InputError
 from ... import _kernels
 from ..result import Fault, check_fault_arrays, fault_frames, fault_normals
-from .skin_kernels import closest_pairs, grow_by_mean_normal, heights, split_forks, split_opposite_dips
+from .skin_kernels import closest_pairs, grow_by_mean_normal, heights
+from .skin_splits import split_forks, split_opposite_dips
 
 __all__ = ["SkinOptions", "fault_skins", "image_cells", "skins_from_cells"]
 
@@ -77,11 +78,11 @@ class SkinOptions:
         from their cells' planes; 44 of 121 skins are within 30 deg). None: no check.
     split_angle : float or None
         2D: a skin whose cells dip two opposite ways, in branches whose lines differ by at least this angle (degrees),
-        is split into them, each judged by its own throw (:func:`~.skin_kernels.split_opposite_dips`); None: no split
+        is split into them, each judged by its own throw (:func:`~.skin_splits.split_opposite_dips`); None: no split
         (3D: never). Leave-one-survey-out: F3 F1 0.494 at 10-30 degrees, 0.490 at 5; Great South Basin 0.829 at each.
     split_forks : bool
         2D: a skin that forks into branches along lines at least ``split_angle`` apart (None: never) is split into
-        them, the parts above and below going with the branch they continue (:func:`~.skin_kernels.split_forks`).
+        them, the parts above and below going with the branch they continue (:func:`~.skin_splits.split_forks`).
 
     Raises
     ------

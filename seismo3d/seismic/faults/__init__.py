@@ -12,7 +12,7 @@ algorithms live in folders that name them:
   samples of :mod:`~seismo3d.seismic.amplitudes`): ridges and thinning (:func:`thin_faults`,
   :mod:`~seismo3d.seismic.faults.surfaces.ridges`), optimal surface voting (:func:`vote_faults`,
   :mod:`~seismo3d.seismic.faults.surfaces.voting`, its loops in ``voting_kernels``), fault skins (:func:`fault_skins`,
-  :mod:`~seismo3d.seismic.faults.surfaces.skins`, its loops in ``skin_kernels``).
+  :mod:`~seismo3d.seismic.faults.surfaces.skins`, its merges in ``skin_merging``, its 2D splits in ``skin_splits``).
 - :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides (:func:`fault_throws`;
   its patches in :mod:`~seismo3d.seismic.faults.throw_patches`); :mod:`~seismo3d.seismic.faults.evidence`: the
   evidence a fault must show; :mod:`~seismo3d.seismic.faults.tips`: the tips of the kept 2D faults cut back to where

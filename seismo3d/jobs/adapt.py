@@ -379,7 +379,7 @@ def write_model(model, network: bytes, record: RunRecord, inputs: dict, results:
         The folder (replaced if present: the caller refuses an existing one first).
     network : bytes
         A serialised ONNX model of the fault network's architecture
-        (:func:`~seismo3d.seismic.faults.likelihood.network.onnx_model`).
+        (:func:`~seismo3d.training.export_onnx.onnx_model`).
     record : RunRecord
         The run's record (written as ``adapt.json``).
     inputs : dict
@@ -457,7 +457,8 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
     lines = [replace(line, band=band) for line, band in zip(lines, held_back_traces([ln.picks for ln in lines]))]
     held = [line for line in lines if line.band[1] > line.band[0]]
     training = training_module()
-    from ..seismic.faults.likelihood.network import onnx_model, WEIGHTS_FILE
+    from ..seismic.faults.likelihood.network import WEIGHTS_FILE
+    from ..training.export_onnx import onnx_model
 
     opt = options or training.AdaptOptions()
     if steps is not None:

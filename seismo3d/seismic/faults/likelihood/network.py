@@ -17,8 +17,8 @@ so the weights give the same numbers here (float32, differences of the order of 
 
 The network ships as an ONNX model (:class:`FaultNetwork`, loaded by :func:`load_fault_network`; beside it the
 same model quantised to 8 bits, ``fault_unet_int8.onnx``, :mod:`seismo3d.training.quantize_onnx`), exported from the
-trained weights by :func:`onnx_model` (``python -m seismo3d.training.export_onnx``; the ``onnx`` package of the
-``train`` extra). The weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape
+trained weights by :func:`seismo3d.training.export_onnx.onnx_model` (``python -m seismo3d.training.export_onnx``; the
+``onnx`` package of the ``train`` extra). The weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape
 ``(c_out, c_in, 3, 3)`` (PyTorch's ``Conv2d`` layout) and ``'{block}.{i}.bias'`` ``(c_out,)``, for the blocks ``enc0,
 enc1, enc2, bottleneck, dec2, dec1, dec0`` and ``i`` in 0, 1; and ``'head.weight'`` ``(1, c0, 1, 1)``,
 ``'head.bias'`` ``(1,)``.
@@ -47,7 +47,7 @@ from ...._threads import map_parts
 from ....errors import InputError, Seismo3dError
 
 __all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS",
-           "FaultNetwork", "load_fault_network", "onnx_model", "unet_forward", "normalise_section", "anti_alias_sigma",
+           "FaultNetwork", "load_fault_network", "unet_forward", "normalise_section", "anti_alias_sigma",
            "grid_size", "grid_halo", "grid_factors", "to_network_grid", "from_network_grid", "interpolate_axis"]
 
 
@@ -80,7 +80,8 @@ class FaultNetwork:
     Parameters
     ----------
     model : bytes
-        A serialised ONNX model (:func:`onnx_model`, or the shipped ``fault_unet.onnx``).
+        A serialised ONNX model (:func:`seismo3d.training.export_onnx.onnx_model`, or the shipped
+        ``fault_unet.onnx``).
     calls : int, optional
         > 1: a session of one thread whose calls run their sections in that many parts at once, on threads (the same
         bits; on 2 cores 1.3 times faster than one call of two threads, which wait between operators); 1: one call.
@@ -121,7 +122,7 @@ def load_fault_network(network: str = "int8", calls: int = 1) -> FaultNetwork:
     network : {'int8', 'float'}, optional
         'int8': ``fault_unet_int8.onnx`` (:data:`INT8_SHA256`), the float model quantised by
         :mod:`seismo3d.training.quantize_onnx`; 'float': ``fault_unet.onnx`` (:data:`WEIGHTS_SHA256`), exported from
-        the trained weights ``fault_unet.npz`` by :func:`~seismo3d.seismic.faults.likelihood.network.onnx_model`.
+        the trained weights ``fault_unet.npz`` by :func:`~seismo3d.training.export_onnx.onnx_model`.
     calls : int, optional
         Parts each call runs at once (:class:`FaultNetwork`).
 
@@ -151,82 +152,6 @@ def load_fault_network(network: str = "int8", calls: int = 1) -> FaultNetwork:
         raise Seismo3dError(f"the fault network {name} has sha256 {digest}, not the released {sha256}; "
                             "reinstall seismo3d")
     return FaultNetwork(raw, calls)
-
-
-def onnx_model(weights) -> bytes:
-    """The ONNX model (opset 17) of the network with these weights: the architecture of this module's docstring,
-    3 x 3 convolutions zero-padded, nearest-neighbour upsampling, a logistic sigmoid at the end.
-
-    Parameters
-    ----------
-    weights : mapping of str to ndarray
-        The trained weights (see the module docstring), float32.
-
-    Returns
-    -------
-    bytes
-        The serialised model: input ``sections`` (n, 1, H, W) float32, output ``probability`` of the same shape.
-
-    Raises
-    ------
-    InputError
-        The weights miss an entry.
-    Seismo3dError
-        The ``onnx`` package is missing (``pip install 'seismo3d[train]'``).
-    """
-    try:
-        import onnx
-        from onnx import TensorProto, helper, numpy_helper
-    except ImportError as exc:
-        raise Seismo3dError("exporting the fault network needs the onnx package: pip install 'seismo3d[train]'") \
-            from exc
-    _check_weights(weights)
-    nodes, initialisers = [], []
-
-    def conv(x: str, name: str, relu: bool = True) -> str:
-        w = np.asarray(weights[f"{name}.weight"], np.float32)
-        initialisers.extend([numpy_helper.from_array(w, f"{name}.weight"),
-                             numpy_helper.from_array(np.asarray(weights[f"{name}.bias"], np.float32), f"{name}.bias")])
-        k = int(w.shape[-1])
-        out = f"{name}.conv" if relu else f"{name}.out"
-        nodes.append(helper.make_node("Conv", [x, f"{name}.weight", f"{name}.bias"], [out], kernel_shape=[k, k],
-                                      pads=[k // 2] * 4))
-        if relu:
-            nodes.append(helper.make_node("Relu", [out], [f"{name}.out"]))
-        return f"{name}.out"
-
-    def block(x: str, name: str) -> str:
-        return conv(conv(x, f"{name}.0"), f"{name}.1")
-
-    x, skips = "sections", []
-    for k in range(3):
-        x = block(x, f"enc{k}")
-        skips.append(x)
-        nodes.append(helper.make_node("MaxPool", [x], [f"pool{k}"], kernel_shape=[2, 2], strides=[2, 2]))
-        x = f"pool{k}"
-    x = block(x, "bottleneck")
-    initialisers.append(numpy_helper.from_array(np.array([1, 1, 2, 2], np.float32), "up_scales"))
-    for k in (2, 1, 0):
-        nodes.append(helper.make_node("Resize", [x, "", "up_scales"], [f"up{k}"], mode="nearest"))
-        nodes.append(helper.make_node("Concat", [f"up{k}", skips[k]], [f"cat{k}"], axis=1))
-        x = block(f"cat{k}", f"dec{k}")
-    logits = conv(x, "head", relu=False)
-    nodes.append(helper.make_node("Sigmoid", [logits], ["probability"]))
-    shape = ["n", 1, "height", "width"]
-    graph = helper.make_graph(nodes, "seismo3d_fault_unet",
-                              [helper.make_tensor_value_info("sections", TensorProto.FLOAT, shape)],
-                              [helper.make_tensor_value_info("probability", TensorProto.FLOAT, shape)], initialisers)
-    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 17)], producer_name="seismo3d")
-    model.ir_version = 8
-    onnx.checker.check_model(model)
-    return model.SerializeToString()
-
-
-def _check_weights(weights) -> None:
-    missing = [f"{b}.{i}.{p}" for b in BLOCKS for i in (0, 1) for p in ("weight", "bias")
-               if f"{b}.{i}.{p}" not in weights] + [n for n in ("head.weight", "head.bias") if n not in weights]
-    if missing:
-        raise InputError(f"the fault network's weights miss {missing}")
 
 
 def normalise_section(section, *, scale=None) -> np.ndarray:
@@ -262,10 +187,9 @@ def unet_forward(sections: np.ndarray, network) -> np.ndarray:
     sections : (n, n_traces, n_samples) float32 ndarray
         Sections scaled by :func:`normalise_section`. Any size: each axis is padded by reflection to a multiple
         of 8 and the output cropped back.
-    network : FaultNetwork or mapping of str to ndarray
-        The network (:func:`~seismo3d.seismic.faults.likelihood.learned.load_fault_network`), or trained weights (see
-        the module docstring; turned into a :class:`FaultNetwork` by :func:`onnx_model`, which needs the ``onnx``
-        package).
+    network : FaultNetwork
+        The network (:func:`~seismo3d.seismic.faults.likelihood.learned.load_fault_network`; trained weights become
+        one as ``FaultNetwork(onnx_model(weights))``, :func:`seismo3d.training.export_onnx.onnx_model`).
 
     Returns
     -------
@@ -275,13 +199,15 @@ def unet_forward(sections: np.ndarray, network) -> np.ndarray:
     Raises
     ------
     InputError
-        ``sections`` is not a 3D stack or the weights miss an entry.
+        ``sections`` is not a 3D stack, or ``network`` is not a :class:`FaultNetwork`.
     """
     x = np.asarray(sections, dtype=np.float32)
     if x.ndim != 3:
         raise InputError(f"sections must be a (n, n_traces, n_samples) stack; got shape {x.shape}")
     if not isinstance(network, FaultNetwork):
-        network = FaultNetwork(onnx_model(network))
+        raise InputError(f"unet_forward needs a FaultNetwork; got {type(network).__name__}: pass "
+                         "load_fault_network(), or FaultNetwork(onnx_model(weights)) for trained weights "
+                         "(seismo3d.training.export_onnx.onnx_model)")
     n, h, w = x.shape
     ph, pw = (-h) % POOLING_MULTIPLE, (-w) % POOLING_MULTIPLE
     if ph or pw:

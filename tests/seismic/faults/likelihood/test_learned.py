@@ -23,9 +23,8 @@ from seismo3d.seismic.faults.likelihood.learned import (
     INT8_SHA256, LearnedOptions, NETWORKS, WEIGHTS_SHA256, fault_probability, learned_fault_likelihood,
     load_fault_network, orientation_from_likelihood,
 )
-from seismo3d.seismic.faults.likelihood.network import (
-    RECEPTIVE_HALF, normalise_section, onnx_model, unet_forward,
-)
+from seismo3d.seismic.faults.likelihood.network import RECEPTIVE_HALF, FaultNetwork, normalise_section, unet_forward
+from seismo3d.training.export_onnx import onnx_model
 
 CHECK = Path(__file__).parents[2] / "data" / "fault_unet_check.npz"  # tests/seismic/data
 LEARNED = FaultTracingOptions(likelihood="learned")
@@ -70,6 +69,8 @@ def test_an_unknown_network_is_refused():
         LearnedOptions(network="int4")
     with pytest.raises(InputError, match="network"):
         load_fault_network("fp16")
+    with pytest.raises(InputError, match="FaultNetwork"):  # trained weights: FaultNetwork(onnx_model(weights))
+        unet_forward(np.zeros((1, 8, 8), np.float32), {"head.weight": np.zeros((1, 12, 1, 1), np.float32)})
 
 
 def test_onnx_inference_equals_the_stored_pytorch_output():
@@ -280,7 +281,8 @@ def test_training_smoke(tmp_path):
     weights = dict(np.load(out / "fault_unet.npz"))
     assert record["weights_sha256"] == hashlib.sha256((out / "fault_unet.npz").read_bytes()).hexdigest()
     check = np.load(out / "fault_unet_check.npz")
-    assert np.abs(unet_forward(check["section"][None], weights)[0] - check["probability"]).max() <= 1e-5
+    got = unet_forward(check["section"][None], FaultNetwork(onnx_model(weights)))[0]
+    assert np.abs(got - check["probability"]).max() <= 1e-5
     assert [h["step"] for h in record["history"]] == [1, 2]
     # fine-tuning starts from those weights: their folded batch normalisations stay the identity, so at a vanishing
     # learning rate the run returns them (batch statistics in training mode would change every layer's output)

@@ -278,7 +278,7 @@ def min_traces(n_samples: int) -> int:
     int
     """
     from ..seismic.faults.likelihood.learned import LearnedOptions
-    from ..seismic.faults.likelihood.network import grid_size
+    from ..seismic.faults.likelihood.network_grid import grid_size
     from ..seismic.faults.options import FaultTracingOptions
 
     n = max(MIN_GRID_TRACES, int(FaultTracingOptions().min_traces[0]))
@@ -337,11 +337,12 @@ def training_grids(section: np.ndarray, picks: np.ndarray, band: tuple, labels: 
     -------
     list of (x, y, w) float32 ndarrays
         Per grid (``LearnedOptions().grids``): the normalised amplitudes resampled as
-        :func:`~seismo3d.seismic.faults.likelihood.network.to_network_grid` does (stretched along the samples when the
-        tracing stretches them), the picks and the weights resampled with them.
+        :func:`~seismo3d.seismic.faults.likelihood.network_grid.to_network_grid` does (stretched along the samples when
+        the tracing stretches them), the picks and the weights resampled with them.
     """
     from ..seismic.faults.likelihood.learned import LearnedOptions, amplitude_scale
-    from ..seismic.faults.likelihood.network import POOLING_MULTIPLE, normalise_section, to_network_grid
+    from ..seismic.faults.likelihood.network import POOLING_MULTIPLE, normalise_section
+    from ..seismic.faults.likelihood.network_grid import to_network_grid
 
     thin = {"band": False, "thin": True}[labels]
     opt = LearnedOptions()

@@ -5,9 +5,9 @@ section (:mod:`~seismo3d.seismic.faults.pipeline`); the names below are what a u
 algorithms live in folders that name them:
 
 - :mod:`~seismo3d.seismic.faults.likelihood`: step 1, the fault likelihood: the fault network
-  (:func:`learned_fault_likelihood`, :mod:`~seismo3d.seismic.faults.likelihood.learned`, its forward pass and grids in
-  :mod:`~seismo3d.seismic.faults.likelihood.network`) or the scan of fault strikes and dips (:func:`fault_likelihood`,
-  :mod:`~seismo3d.seismic.faults.likelihood.scan`, its kernels in ``scan_kernels``).
+  (:func:`learned_fault_likelihood`, :mod:`~seismo3d.seismic.faults.likelihood.learned`, its forward pass in
+  :mod:`~seismo3d.seismic.faults.likelihood.network`, its grids in ``network_grid``) or the scan of fault strikes and
+  dips (:func:`fault_likelihood`, :mod:`~seismo3d.seismic.faults.likelihood.scan`, its kernels in ``scan_kernels``).
 - :mod:`~seismo3d.seismic.faults.surfaces`: from likelihood to fault surfaces (the likelihood cleared near the dead
   samples of :mod:`~seismo3d.seismic.amplitudes`): ridges and thinning (:func:`thin_faults`,
   :mod:`~seismo3d.seismic.faults.surfaces.ridges`), optimal surface voting (:func:`vote_faults`,

@@ -377,16 +377,6 @@ def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
                                                              4, step) > budget or across >= grid[axis]
 
 
-def test_network_grid_alignment_per_axis():
-    from seismo3d.seismic.faults.likelihood.network import to_network_grid
-
-    block = np.random.default_rng(0).standard_normal((40, 40, 16)).astype(np.float32)
-    _, first = to_network_grid(block, 0.7, origin=(13, 13), align=(1, 8))
-    assert first == (10, 16, 0)  # ceil(13 * 0.7) = 10; the first multiple of 8 at or after 9.1
-    with pytest.raises(InputError, match="align"):
-        to_network_grid(block, 0.7, origin=(13, 13), align=(1, 8, 8))
-
-
 def test_the_likelihood_of_several_grids_is_the_mean_of_each_grids():
     # sections and cubes: the mean of the grids' probabilities, in the order given, each as one grid gives it
     sec = synthetic_cube((96, 80), seed=1, noise=0.1).cube

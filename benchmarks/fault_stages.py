@@ -47,12 +47,12 @@ from seismo3d.seismic.faults.evidence import fault_evidence
 from seismo3d.seismic.faults.likelihood.learned import learned_fault_likelihood
 from seismo3d.seismic.faults.options import FaultTracingOptions
 from seismo3d.seismic.faults.pipeline import trace_faults
+from seismo3d.seismic.faults.reflector_period import half_period
 from seismo3d.seismic.faults.steps import ArrayRun, surface_cells
 from seismo3d.seismic.faults.surfaces.blocks import block_steps
-from seismo3d.seismic.faults.tips import trimmed_tips
 from seismo3d.seismic.faults.surfaces.skins import skins_from_cells
 from seismo3d.seismic.faults.throw import fault_throws
-from seismo3d.seismic.faults.throw_patches import half_period
+from seismo3d.seismic.faults.tips import trimmed_tips
 
 from fault_features import _dev_script  # benchmarks/fault_features.py: the dev lines of tools/dev_fault_scores.py
 

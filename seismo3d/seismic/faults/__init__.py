@@ -15,8 +15,9 @@ algorithms live in folders that name them:
   :mod:`~seismo3d.seismic.faults.surfaces.skins`, its merges in ``skin_merging``, its 2D splits in ``skin_splits``).
 - :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides (:func:`fault_throws`;
   its patches in :mod:`~seismo3d.seismic.faults.throw_patches`); :mod:`~seismo3d.seismic.faults.evidence`: the
-  evidence a fault must show; :mod:`~seismo3d.seismic.faults.tips`: the tips of the kept 2D faults cut back to where
-  the likelihood holds.
+  evidence a fault must show, with the reflectors' half period it compares a throw with
+  (:mod:`~seismo3d.seismic.faults.reflector_period`); :mod:`~seismo3d.seismic.faults.tips`: the tips of the kept 2D
+  faults cut back to where the likelihood holds.
 - :mod:`~seismo3d.seismic.faults.options` (:class:`FaultTracingOptions`), :mod:`~seismo3d.seismic.faults.result`
   (the results and the index-space conventions), :mod:`~seismo3d.seismic.faults.steps` (the steps after the likelihood,
   over any run, and the refusals: before the work, between the steps, from a sample of blocks),

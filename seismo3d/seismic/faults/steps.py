@@ -45,7 +45,7 @@ from .tips import trimmed_tips
 from .surfaces.skins import skins_from_cells
 from .surfaces.voting import image_seeds, seed_votes
 from .throw import fault_throws
-from .throw_patches import half_period
+from .reflector_period import half_period
 
 if TYPE_CHECKING:  # annotations only: the options are passed in
     from .options import FaultTracingOptions

@@ -6,15 +6,10 @@ them decide."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 from scipy import sparse
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
-
-if TYPE_CHECKING:  # annotations only: the options are passed in
-    from .skins import SkinOptions
 
 __all__ = ["closest_pairs", "local_normal", "merge_coplanar"]
 
@@ -75,15 +70,15 @@ def local_normal(points: np.ndarray, two_d: bool) -> np.ndarray:
     return vt[-1]
 
 
-def merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, minimum: int, two_d: bool,
-                   opt: SkinOptions) -> np.ndarray:
+def merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, minimum: int, two_d: bool, *,
+                   gap: float, offset: float, angle: float) -> np.ndarray:
     """Labels of skins merged where they continue each other (see
     :class:`~seismo3d.seismic.faults.surfaces.skins.SkinOptions`): the pieces of one fault cut by a younger fault or
-    broken by a long gap. For two skins of at least ``minimum`` cells whose edge cells come within ``merge_gap``,
-    planes are fitted to each skin's cells near the two closest edge cells; they merge when the planes agree within
-    ``merge_angle`` and the gap between the cells lies within ``merge_offset`` of both planes, i.e. runs along the
-    fault, not across it (two parallel faults side by side stay apart). An edge cell of one skin is compared with
-    every cell of the other, so a piece ending on the side of another (a fork) is found too.
+    broken by a long gap. For two skins of at least ``minimum`` cells whose edge cells come within ``gap``, planes are
+    fitted to each skin's cells near the two closest edge cells; they merge when the planes agree within ``angle`` and
+    the gap between the cells lies within ``offset`` of both planes, i.e. runs along the fault, not across it (two
+    parallel faults side by side stay apart). An edge cell of one skin is compared with every cell of the other, so a
+    piece ending on the side of another (a fork) is found too.
 
     Parameters
     ----------
@@ -97,8 +92,10 @@ def merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, mini
         Skins with fewer cells are neither merged nor merged into.
     two_d : bool
         The cells are a section's: lines, not planes, are fitted.
-    opt : SkinOptions
-        ``merge_gap``, ``merge_offset`` (samples) and ``merge_angle`` (degrees).
+    gap, offset : float
+        ``SkinOptions.merge_gap`` and ``merge_offset``, samples.
+    angle : float
+        ``SkinOptions.merge_angle``, degrees.
 
     Returns
     -------
@@ -117,11 +114,11 @@ def merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, mini
     # the closest pair (an edge cell of one skin, any cell of another) within merge_gap for every pair of skins: a
     # piece's end near another's end or side
     pts, lab = points[big].astype(np.float64), label[big]
-    closest = closest_pairs(pts, lab, np.nonzero(edge[big])[0], float(opt.merge_gap), n_labels)
+    closest = closest_pairs(pts, lab, np.nonzero(edge[big])[0], float(gap), n_labels)
     if closest.size == 0:
         return label
-    radius = 2.0 * float(opt.merge_gap)
-    cos_angle = np.cos(np.radians(opt.merge_angle))
+    radius = 2.0 * float(gap)
+    cos_angle = np.cos(np.radians(angle))
     # each skin's cells near a cell are searched among that skin's cells only (one KD-tree a skin, built when first
     # needed): a search among all cells returns mostly other skins' cells
     by_label = np.argsort(lab, kind="stable")
@@ -144,7 +141,7 @@ def merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, mini
         na = local_normal(pts[near_p], two_d)
         nb_ = local_normal(pts[near_q], two_d)
         d = pts[j] - pts[i]
-        if abs(na @ nb_) >= cos_angle and abs(na @ d) <= opt.merge_offset and abs(nb_ @ d) <= opt.merge_offset:
+        if abs(na @ nb_) >= cos_angle and abs(na @ d) <= offset and abs(nb_ @ d) <= offset:
             rows.append(lab[i])
             cols.append(lab[j])
     if not rows:

@@ -462,7 +462,8 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     label = _grow(best, normals, order, float(np.cos(np.radians(opt.max_angle))))
     del order
     if opt.merge_gap > 0:
-        label = merge_coplanar(points, label, _edge_cells(best, label, two_d), opt.smallest(shape), two_d, opt)
+        label = merge_coplanar(points, label, _edge_cells(best, label, two_d), opt.smallest(shape), two_d,
+                               gap=opt.merge_gap, offset=opt.merge_offset, angle=opt.merge_angle)
     del best
     if two_d and opt.split_angle is not None:
         label = split_opposite_dips(points[:, [0, 2]], normals[:, [0, 2]], label, opt.smallest(shape),

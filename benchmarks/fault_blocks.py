@@ -159,7 +159,8 @@ def learned_blocks(tmp: pathlib.Path) -> None:
 
 def network_grid(tmp: pathlib.Path) -> None:
     from seismo3d.seismic.faults.likelihood.learned import LearnedOptions, amplitude_scale, fault_probability
-    from seismo3d.seismic.faults.likelihood.network import POOLING_MULTIPLE, RECEPTIVE_HALF, grid_halo
+    from seismo3d.seismic.faults.likelihood.network import POOLING_MULTIPLE, RECEPTIVE_HALF
+    from seismo3d.seismic.faults.likelihood.network_grid import grid_halo
 
     # a block with the network grid's halo, its lateral origin away from 0 on both axes and not a multiple of the
     # pooling grid on the network grid: its core equals the whole cube's probability up to float rounding. The cube's

@@ -19,7 +19,7 @@ tolerance, Euclidean). It is charged to the first step whose output has no point
    planarity of :class:`~seismo3d.seismic.faults.surfaces.skins.SkinOptions`);
 5. ``evidence``: the skins :func:`~seismo3d.seismic.faults.evidence.supported_faults` keeps (the rule that dropped
    each skin is named: vote ratio, probability, flexure, unbroken, drag, low correlation, unseeded);
-6. ``tips``: the kept faults after :func:`~seismo3d.seismic.faults.surfaces.skin_kernels.trimmed_tips`.
+6. ``tips``: the kept faults after :func:`~seismo3d.seismic.faults.tips.trimmed_tips`.
 
 Printed per line and per survey: the scores, the person's pixels, those missed, those lost after the network and the
 step that lost them, the evidence rules behind the ``evidence`` column, the person's faults (8-connected pixels)
@@ -47,12 +47,12 @@ from seismo3d.seismic.faults.evidence import fault_evidence
 from seismo3d.seismic.faults.likelihood.learned import learned_fault_likelihood
 from seismo3d.seismic.faults.options import FaultTracingOptions
 from seismo3d.seismic.faults.pipeline import trace_faults
+from seismo3d.seismic.faults.reflector_period import half_period
 from seismo3d.seismic.faults.steps import ArrayRun, surface_cells
 from seismo3d.seismic.faults.surfaces.blocks import block_steps
-from seismo3d.seismic.faults.surfaces.skin_kernels import trimmed_tips
 from seismo3d.seismic.faults.surfaces.skins import skins_from_cells
 from seismo3d.seismic.faults.throw import fault_throws
-from seismo3d.seismic.faults.throw_patches import half_period
+from seismo3d.seismic.faults.tips import trimmed_tips
 
 from fault_features import _dev_script  # benchmarks/fault_features.py: the dev lines of tools/dev_fault_scores.py
 

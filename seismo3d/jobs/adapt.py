@@ -278,7 +278,7 @@ def min_traces(n_samples: int) -> int:
     int
     """
     from ..seismic.faults.likelihood.learned import LearnedOptions
-    from ..seismic.faults.likelihood.network import grid_size
+    from ..seismic.faults.likelihood.network_grid import grid_size
     from ..seismic.faults.options import FaultTracingOptions
 
     n = max(MIN_GRID_TRACES, int(FaultTracingOptions().min_traces[0]))
@@ -337,11 +337,12 @@ def training_grids(section: np.ndarray, picks: np.ndarray, band: tuple, labels: 
     -------
     list of (x, y, w) float32 ndarrays
         Per grid (``LearnedOptions().grids``): the normalised amplitudes resampled as
-        :func:`~seismo3d.seismic.faults.likelihood.network.to_network_grid` does (stretched along the samples when the
-        tracing stretches them), the picks and the weights resampled with them.
+        :func:`~seismo3d.seismic.faults.likelihood.network_grid.to_network_grid` does (stretched along the samples when
+        the tracing stretches them), the picks and the weights resampled with them.
     """
     from ..seismic.faults.likelihood.learned import LearnedOptions, amplitude_scale
-    from ..seismic.faults.likelihood.network import POOLING_MULTIPLE, normalise_section, to_network_grid
+    from ..seismic.faults.likelihood.network import POOLING_MULTIPLE, normalise_section
+    from ..seismic.faults.likelihood.network_grid import to_network_grid
 
     thin = {"band": False, "thin": True}[labels]
     opt = LearnedOptions()
@@ -379,7 +380,7 @@ def write_model(model, network: bytes, record: RunRecord, inputs: dict, results:
         The folder (replaced if present: the caller refuses an existing one first).
     network : bytes
         A serialised ONNX model of the fault network's architecture
-        (:func:`~seismo3d.seismic.faults.likelihood.network.onnx_model`).
+        (:func:`~seismo3d.training.export_onnx.onnx_model`).
     record : RunRecord
         The run's record (written as ``adapt.json``).
     inputs : dict
@@ -457,7 +458,8 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
     lines = [replace(line, band=band) for line, band in zip(lines, held_back_traces([ln.picks for ln in lines]))]
     held = [line for line in lines if line.band[1] > line.band[0]]
     training = training_module()
-    from ..seismic.faults.likelihood.network import onnx_model, WEIGHTS_FILE
+    from ..seismic.faults.likelihood.network import WEIGHTS_FILE
+    from ..training.export_onnx import onnx_model
 
     opt = options or training.AdaptOptions()
     if steps is not None:

@@ -3,6 +3,9 @@
 * :mod:`seismo3d.training.fault_unet`: the fault network of
   :func:`seismo3d.seismic.faults.likelihood.learned.learned_fault_likelihood`, trained on generated sections
   (:mod:`seismo3d.data.synthetic_sections`); ``python -m seismo3d.training.fault_unet --help``.
+* :mod:`seismo3d.training.export_onnx`: the ONNX model of trained weights (:func:`~.export_onnx.onnx_model`), the file
+  the package ships; ``python -m seismo3d.training.export_onnx --help``.
 
-Nothing in seismo3d imports this package: inference runs in numpy (:mod:`seismo3d.seismic.faults.likelihood.network`).
+No application imports this package (the ``adapt`` command's job does): inference runs in ONNX Runtime
+(:mod:`seismo3d.seismic.faults.likelihood.network`).
 """

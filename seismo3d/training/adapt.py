@@ -5,8 +5,8 @@ The shipped weights (``fault_unet.npz``, batch normalisations folded in and kept
 convolution is trained (``AdaptOptions.layers='all'``, the default), or the decoder and head only (``'decoder'``), or
 the last decoder level and head (``'last'``), on patches of the picked lines drawn on each network grid the tracing
 runs (:class:`~seismo3d.seismic.faults.LearnedOptions`'s ``resample``: the line resampled as
-:func:`~seismo3d.seismic.faults.likelihood.network.to_network_grid` does, the picks with it), mirrored left-right at
-random, with the loss of the original training (binary cross-entropy with the fault samples weighted, plus the soft
+:func:`~seismo3d.seismic.faults.likelihood.network_grid.to_network_grid` does, the picks with it), mirrored left-right
+at random, with the loss of the original training (binary cross-entropy with the fault samples weighted, plus the soft
 Dice loss; :mod:`seismo3d.training.fault_unet`). Every sample of a picked line counts: a sample away from the picks is
 taught as no fault (the line is taken as fully interpreted); the held-back samples count for nothing (``weight`` 0).
 

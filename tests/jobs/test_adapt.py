@@ -299,7 +299,7 @@ def test_faults_command_records_the_model_and_refuses_a_changed_one(tmp_path, sh
 def test_the_network_fine_tuned_on_a_sibling_section_traces_a_fault_style_the_shipped_network_misses(tmp_path):
     pytest.importorskip("torch")
     pytest.importorskip("onnx")
-    from seismo3d.seismic.faults.likelihood.network import onnx_model
+    from seismo3d.training.export_onnx import onnx_model
     from seismo3d.training.adapt import fine_tune
 
     section, picks = dimmed_section(1)

@@ -5,17 +5,19 @@ section (:mod:`~seismo3d.seismic.faults.pipeline`); the names below are what a u
 algorithms live in folders that name them:
 
 - :mod:`~seismo3d.seismic.faults.likelihood`: step 1, the fault likelihood: the fault network
-  (:func:`learned_fault_likelihood`, :mod:`~seismo3d.seismic.faults.likelihood.learned`, its forward pass and grids in
-  :mod:`~seismo3d.seismic.faults.likelihood.network`) or the scan of fault strikes and dips (:func:`fault_likelihood`,
-  :mod:`~seismo3d.seismic.faults.likelihood.scan`, its kernels in ``scan_kernels``).
+  (:func:`learned_fault_likelihood`, :mod:`~seismo3d.seismic.faults.likelihood.learned`, its forward pass in
+  :mod:`~seismo3d.seismic.faults.likelihood.network`, its grids in ``network_grid``) or the scan of fault strikes and
+  dips (:func:`fault_likelihood`, :mod:`~seismo3d.seismic.faults.likelihood.scan`, its kernels in ``scan_kernels``).
 - :mod:`~seismo3d.seismic.faults.surfaces`: from likelihood to fault surfaces (the likelihood cleared near the dead
   samples of :mod:`~seismo3d.seismic.amplitudes`): ridges and thinning (:func:`thin_faults`,
   :mod:`~seismo3d.seismic.faults.surfaces.ridges`), optimal surface voting (:func:`vote_faults`,
   :mod:`~seismo3d.seismic.faults.surfaces.voting`, its loops in ``voting_kernels``), fault skins (:func:`fault_skins`,
-  :mod:`~seismo3d.seismic.faults.surfaces.skins`, its loops in ``skin_kernels``).
+  :mod:`~seismo3d.seismic.faults.surfaces.skins`, its merges in ``skin_merging``, its 2D splits in ``skin_splits``).
 - :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides (:func:`fault_throws`;
   its patches in :mod:`~seismo3d.seismic.faults.throw_patches`); :mod:`~seismo3d.seismic.faults.evidence`: the
-  evidence a fault must show.
+  evidence a fault must show, with the reflectors' half period it compares a throw with
+  (:mod:`~seismo3d.seismic.faults.reflector_period`); :mod:`~seismo3d.seismic.faults.tips`: the tips of the kept 2D
+  faults cut back to where the likelihood holds.
 - :mod:`~seismo3d.seismic.faults.options` (:class:`FaultTracingOptions`), :mod:`~seismo3d.seismic.faults.result`
   (the results and the index-space conventions), :mod:`~seismo3d.seismic.faults.steps` (the steps after the likelihood,
   over any run, and the refusals: before the work, between the steps, from a sample of blocks),

@@ -76,7 +76,7 @@ class FaultTracingOptions:
     tip_level : float or None
         2D, the learned likelihood (a probability): after the evidence, each end of a kept fault is cut back to its
         first point, from that end, where the network's probability (the largest within a trace) reaches this level
-        (:func:`~seismo3d.seismic.faults.surfaces.skin_kernels.trimmed_tips`; the fault count and the evidence are
+        (:func:`~seismo3d.seismic.faults.tips.trimmed_tips`; the fault count and the evidence are
         unchanged): the voting carries a fault's votes, and its skin, up to ``half_length_dip`` samples past its tips.
         The points and the throw profile are the trimmed fault's; the evidence and the summary's whole-fault values
         (median throw, step, vote ratio, mean likelihood, confidence) are those of the fault as the evidence judged it.

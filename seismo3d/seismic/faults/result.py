@@ -386,7 +386,7 @@ class FaultThrow:
         (3D faults; a fault at the section's edge).
     half_period : float
         The half period of the reflectors around the fault, samples
-        (:func:`~seismo3d.seismic.faults.throw_patches.half_period`); NaN when not measured (set by
+        (:func:`~seismo3d.seismic.faults.reflector_period.half_period`); NaN when not measured (set by
         :func:`~seismo3d.seismic.faults.steps.faults_from_cells` when the evidence asks for it).
     """
 

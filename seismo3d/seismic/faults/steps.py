@@ -41,11 +41,11 @@ from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .evidence import supported_faults
 from .likelihood.scan import fault_likelihood
 from .surfaces.ridges import live_likelihood, ridges, without_dead_edges
-from .surfaces.skin_kernels import trimmed_tips
+from .tips import trimmed_tips
 from .surfaces.skins import skins_from_cells
 from .surfaces.voting import image_seeds, seed_votes
 from .throw import fault_throws
-from .throw_patches import half_period
+from .reflector_period import half_period
 
 if TYPE_CHECKING:  # annotations only: the options are passed in
     from .options import FaultTracingOptions
@@ -407,7 +407,7 @@ def _block_measures(data: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions
 def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, opt: FaultTracingOptions, *,
                       likelihood=None, bar=None, progress: bool = False) -> tuple[list, list, list]:
     """Fault skins of the cells, their throws, their strength along them, and the faults their evidence supports,
-    their tips trimmed (2D: :func:`~seismo3d.seismic.faults.surfaces.skin_kernels.trimmed_tips`).
+    their tips trimmed (2D: :func:`~seismo3d.seismic.faults.tips.trimmed_tips`).
 
     Parameters
     ----------

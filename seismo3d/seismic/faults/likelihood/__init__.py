@@ -1,8 +1,9 @@
 """Step 1 of the fault interpretation, the fault likelihood of every sample with the strike and dip of its fault.
 
 - :mod:`~seismo3d.seismic.faults.likelihood.learned`: the fault network's probability (the default), a U-Net trained on
-  generated sections, run by ONNX Runtime on the mean of three network grids; its forward pass and grids in
-  :mod:`~seismo3d.seismic.faults.likelihood.network`.
+  generated sections, run by ONNX Runtime on the mean of three network grids; its forward pass in
+  :mod:`~seismo3d.seismic.faults.likelihood.network`, its grids in
+  :mod:`~seismo3d.seismic.faults.likelihood.network_grid`.
 - :mod:`~seismo3d.seismic.faults.likelihood.scan`: the scan of fault strikes and dips of the semblance of balanced
   amplitudes (Hale 2013); its numba kernels in :mod:`~seismo3d.seismic.faults.likelihood.scan_kernels`.
 - :mod:`~seismo3d.seismic.faults.likelihood.scan_blocks`, :mod:`~seismo3d.seismic.faults.likelihood.learned_blocks`:

@@ -50,9 +50,10 @@ from ...adapted_network import MODEL_NETWORK, is_model_path, read_adapted_model
 from ...attributes import orientation_from_likelihood
 from ..result import FaultLikelihood
 from .network import (
-    INT8_SHA256, NETWORKS, RECEPTIVE_HALF, WEIGHTS_SHA256, FaultNetwork, POOLING_MULTIPLE, interpolate_axis,
-    from_network_grid, grid_factors, grid_size, load_fault_network, normalise_section, to_network_grid, unet_forward,
+    INT8_SHA256, NETWORKS, RECEPTIVE_HALF, WEIGHTS_SHA256, FaultNetwork, POOLING_MULTIPLE, load_fault_network,
+    normalise_section, unet_forward,
 )
+from .network_grid import from_network_grid, grid_factors, grid_size, interpolate_axis, to_network_grid
 
 __all__ = ["WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS", "LearnedOptions", "load_fault_network", "scale_subsample",
            "amplitude_scale", "fault_probability", "cube_directions", "direction_probability",
@@ -320,7 +321,7 @@ def fault_probability(data: np.ndarray, *, options: LearnedOptions | None = None
         A progress bar over the sections.
     origin : sequence of int, optional
         Global lateral index of ``data``'s first trace when it is a block of a larger cube (the network grid is the
-        whole cube's: :func:`~seismo3d.seismic.faults.likelihood.network.to_network_grid`); default 0.
+        whole cube's: :func:`~seismo3d.seismic.faults.likelihood.network_grid.to_network_grid`); default 0.
 
     Returns
     -------
@@ -405,7 +406,7 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
     Parameters
     ----------
     small : (n_inlines, n_xlines, n_samples) float32 ndarray
-        Amplitudes on the network grid (:func:`~seismo3d.seismic.faults.likelihood.network.to_network_grid`).
+        Amplitudes on the network grid (:func:`~seismo3d.seismic.faults.likelihood.network_grid.to_network_grid`).
     axis : {0, 1}
         0: the inline sections ``small[i]``; 1: the crossline sections ``small[:, j]``.
     scale : (float, float)
@@ -493,8 +494,8 @@ def section_span(start: int, stop: int, step: int, n_sections: int) -> tuple:
         Global indices of the sections the network runs on.
     positions : (stop - start,) float64 ndarray or None
         Position of each wanted section among ``computed`` (fractional: linear interpolation between two of them,
-        :func:`~seismo3d.seismic.faults.likelihood.network.from_network_grid`'s rule); None when ``step`` is 1 (every
-        section computed).
+        :func:`~seismo3d.seismic.faults.likelihood.network_grid.from_network_grid`'s rule); None when ``step`` is 1
+        (every section computed).
     """
     start, stop, step, n = int(start), int(stop), int(step), int(n_sections)
     if step <= 1:

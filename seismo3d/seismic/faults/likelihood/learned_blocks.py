@@ -52,9 +52,8 @@ from .learned import (
     LearnedOptions, amplitude_scale, cube_directions, direction_probability, grids_mean, orientation_from_likelihood,
     scale_subsample, section_span,
 )
-from .network import (
-    POOLING_MULTIPLE, RECEPTIVE_HALF, anti_alias_sigma, from_network_grid, grid_size, to_network_grid,
-)
+from .network import POOLING_MULTIPLE, RECEPTIVE_HALF
+from .network_grid import anti_alias_sigma, from_network_grid, grid_size, to_network_grid
 
 __all__ = ["block_steps", "chunked_learned_likelihood", "learned_block_bytes"]
 

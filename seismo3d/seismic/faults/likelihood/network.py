@@ -17,8 +17,8 @@ so the weights give the same numbers here (float32, differences of the order of 
 
 The network ships as an ONNX model (:class:`FaultNetwork`, loaded by :func:`load_fault_network`; beside it the
 same model quantised to 8 bits, ``fault_unet_int8.onnx``, :mod:`seismo3d.training.quantize_onnx`), exported from the
-trained weights by :func:`onnx_model` (``python -m seismo3d.training.export_onnx``; the ``onnx`` package of the
-``train`` extra). The weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape
+trained weights by :func:`seismo3d.training.export_onnx.onnx_model` (``python -m seismo3d.training.export_onnx``; the
+``onnx`` package of the ``train`` extra). The weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape
 ``(c_out, c_in, 3, 3)`` (PyTorch's ``Conv2d`` layout) and ``'{block}.{i}.bias'`` ``(c_out,)``, for the blocks ``enc0,
 enc1, enc2, bottleneck, dec2, dec1, dec0`` and ``i`` in 0, 1; and ``'head.weight'`` ``(1, c0, 1, 1)``,
 ``'head.bias'`` ``(1,)``.
@@ -37,18 +37,15 @@ from __future__ import annotations
 
 import functools
 import hashlib
-import math
 from importlib import resources
 
 import numpy as np
-from scipy.ndimage import gaussian_filter
 
 from ...._threads import map_parts
 from ....errors import InputError, Seismo3dError
 
 __all__ = ["BLOCKS", "RECEPTIVE_HALF", "POOLING_MULTIPLE", "WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS",
-           "FaultNetwork", "load_fault_network", "onnx_model", "unet_forward", "normalise_section", "anti_alias_sigma",
-           "grid_size", "grid_halo", "grid_factors", "to_network_grid", "from_network_grid", "interpolate_axis"]
+           "FaultNetwork", "load_fault_network", "unet_forward", "normalise_section"]
 
 
 BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
@@ -80,7 +77,8 @@ class FaultNetwork:
     Parameters
     ----------
     model : bytes
-        A serialised ONNX model (:func:`onnx_model`, or the shipped ``fault_unet.onnx``).
+        A serialised ONNX model (:func:`seismo3d.training.export_onnx.onnx_model`, or the shipped
+        ``fault_unet.onnx``).
     calls : int, optional
         > 1: a session of one thread whose calls run their sections in that many parts at once, on threads (the same
         bits; on 2 cores 1.3 times faster than one call of two threads, which wait between operators); 1: one call.
@@ -121,7 +119,7 @@ def load_fault_network(network: str = "int8", calls: int = 1) -> FaultNetwork:
     network : {'int8', 'float'}, optional
         'int8': ``fault_unet_int8.onnx`` (:data:`INT8_SHA256`), the float model quantised by
         :mod:`seismo3d.training.quantize_onnx`; 'float': ``fault_unet.onnx`` (:data:`WEIGHTS_SHA256`), exported from
-        the trained weights ``fault_unet.npz`` by :func:`~seismo3d.seismic.faults.likelihood.network.onnx_model`.
+        the trained weights ``fault_unet.npz`` by :func:`~seismo3d.training.export_onnx.onnx_model`.
     calls : int, optional
         Parts each call runs at once (:class:`FaultNetwork`).
 
@@ -151,82 +149,6 @@ def load_fault_network(network: str = "int8", calls: int = 1) -> FaultNetwork:
         raise Seismo3dError(f"the fault network {name} has sha256 {digest}, not the released {sha256}; "
                             "reinstall seismo3d")
     return FaultNetwork(raw, calls)
-
-
-def onnx_model(weights) -> bytes:
-    """The ONNX model (opset 17) of the network with these weights: the architecture of this module's docstring,
-    3 x 3 convolutions zero-padded, nearest-neighbour upsampling, a logistic sigmoid at the end.
-
-    Parameters
-    ----------
-    weights : mapping of str to ndarray
-        The trained weights (see the module docstring), float32.
-
-    Returns
-    -------
-    bytes
-        The serialised model: input ``sections`` (n, 1, H, W) float32, output ``probability`` of the same shape.
-
-    Raises
-    ------
-    InputError
-        The weights miss an entry.
-    Seismo3dError
-        The ``onnx`` package is missing (``pip install 'seismo3d[train]'``).
-    """
-    try:
-        import onnx
-        from onnx import TensorProto, helper, numpy_helper
-    except ImportError as exc:
-        raise Seismo3dError("exporting the fault network needs the onnx package: pip install 'seismo3d[train]'") \
-            from exc
-    _check_weights(weights)
-    nodes, initialisers = [], []
-
-    def conv(x: str, name: str, relu: bool = True) -> str:
-        w = np.asarray(weights[f"{name}.weight"], np.float32)
-        initialisers.extend([numpy_helper.from_array(w, f"{name}.weight"),
-                             numpy_helper.from_array(np.asarray(weights[f"{name}.bias"], np.float32), f"{name}.bias")])
-        k = int(w.shape[-1])
-        out = f"{name}.conv" if relu else f"{name}.out"
-        nodes.append(helper.make_node("Conv", [x, f"{name}.weight", f"{name}.bias"], [out], kernel_shape=[k, k],
-                                      pads=[k // 2] * 4))
-        if relu:
-            nodes.append(helper.make_node("Relu", [out], [f"{name}.out"]))
-        return f"{name}.out"
-
-    def block(x: str, name: str) -> str:
-        return conv(conv(x, f"{name}.0"), f"{name}.1")
-
-    x, skips = "sections", []
-    for k in range(3):
-        x = block(x, f"enc{k}")
-        skips.append(x)
-        nodes.append(helper.make_node("MaxPool", [x], [f"pool{k}"], kernel_shape=[2, 2], strides=[2, 2]))
-        x = f"pool{k}"
-    x = block(x, "bottleneck")
-    initialisers.append(numpy_helper.from_array(np.array([1, 1, 2, 2], np.float32), "up_scales"))
-    for k in (2, 1, 0):
-        nodes.append(helper.make_node("Resize", [x, "", "up_scales"], [f"up{k}"], mode="nearest"))
-        nodes.append(helper.make_node("Concat", [f"up{k}", skips[k]], [f"cat{k}"], axis=1))
-        x = block(f"cat{k}", f"dec{k}")
-    logits = conv(x, "head", relu=False)
-    nodes.append(helper.make_node("Sigmoid", [logits], ["probability"]))
-    shape = ["n", 1, "height", "width"]
-    graph = helper.make_graph(nodes, "seismo3d_fault_unet",
-                              [helper.make_tensor_value_info("sections", TensorProto.FLOAT, shape)],
-                              [helper.make_tensor_value_info("probability", TensorProto.FLOAT, shape)], initialisers)
-    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 17)], producer_name="seismo3d")
-    model.ir_version = 8
-    onnx.checker.check_model(model)
-    return model.SerializeToString()
-
-
-def _check_weights(weights) -> None:
-    missing = [f"{b}.{i}.{p}" for b in BLOCKS for i in (0, 1) for p in ("weight", "bias")
-               if f"{b}.{i}.{p}" not in weights] + [n for n in ("head.weight", "head.bias") if n not in weights]
-    if missing:
-        raise InputError(f"the fault network's weights miss {missing}")
 
 
 def normalise_section(section, *, scale=None) -> np.ndarray:
@@ -262,10 +184,9 @@ def unet_forward(sections: np.ndarray, network) -> np.ndarray:
     sections : (n, n_traces, n_samples) float32 ndarray
         Sections scaled by :func:`normalise_section`. Any size: each axis is padded by reflection to a multiple
         of 8 and the output cropped back.
-    network : FaultNetwork or mapping of str to ndarray
-        The network (:func:`~seismo3d.seismic.faults.likelihood.learned.load_fault_network`), or trained weights (see
-        the module docstring; turned into a :class:`FaultNetwork` by :func:`onnx_model`, which needs the ``onnx``
-        package).
+    network : FaultNetwork
+        The network (:func:`~seismo3d.seismic.faults.likelihood.learned.load_fault_network`; trained weights become
+        one as ``FaultNetwork(onnx_model(weights))``, :func:`seismo3d.training.export_onnx.onnx_model`).
 
     Returns
     -------
@@ -275,241 +196,18 @@ def unet_forward(sections: np.ndarray, network) -> np.ndarray:
     Raises
     ------
     InputError
-        ``sections`` is not a 3D stack or the weights miss an entry.
+        ``sections`` is not a 3D stack, or ``network`` is not a :class:`FaultNetwork`.
     """
     x = np.asarray(sections, dtype=np.float32)
     if x.ndim != 3:
         raise InputError(f"sections must be a (n, n_traces, n_samples) stack; got shape {x.shape}")
     if not isinstance(network, FaultNetwork):
-        network = FaultNetwork(onnx_model(network))
+        raise InputError(f"unet_forward needs a FaultNetwork; got {type(network).__name__}: pass "
+                         "load_fault_network(), or FaultNetwork(onnx_model(weights)) for trained weights "
+                         "(seismo3d.training.export_onnx.onnx_model)")
     n, h, w = x.shape
     ph, pw = (-h) % POOLING_MULTIPLE, (-w) % POOLING_MULTIPLE
     if ph or pw:
         x = np.pad(x, ((0, 0), (0, ph), (0, pw)), mode="reflect" if min(h, w) > max(ph, pw) else "edge")
     prob = network(x[:, None])[:, 0]
     return np.ascontiguousarray(prob[:, :h, :w], dtype=np.float32)
-
-
-def _check_factor(factor) -> float:
-    f = float(factor)
-    if not 0.25 <= f <= 1.0:
-        raise InputError(f"the network's resampling factor must be in [0.25, 1]; got {factor!r}")
-    return f
-
-
-def anti_alias_sigma(factor: float) -> float:
-    """Standard deviation (input samples) of the Gaussian filter applied before resampling by ``factor``.
-
-    Parameters
-    ----------
-    factor : float
-        Resampling factor in [0.25, 1] (1: no filter).
-
-    Returns
-    -------
-    float
-        ``0.5 / factor - 0.5``: 0 at 1, 0.5 samples at 0.5.
-
-    Raises
-    ------
-    InputError
-        ``factor`` is outside [0.25, 1].
-    """
-    return 0.5 / _check_factor(factor) - 0.5
-
-
-def grid_size(n: int, factor: float) -> int:
-    """Samples of the network grid along an axis of ``n`` input samples (the last at ``(n - 1) * factor``).
-
-    Parameters
-    ----------
-    n : int
-        Input samples along the axis.
-    factor : float
-        Resampling factor in [0.25, 1].
-
-    Returns
-    -------
-    int
-
-    Raises
-    ------
-    InputError
-        ``factor`` is outside [0.25, 1].
-    """
-    return int(math.floor((int(n) - 1) * _check_factor(factor) + 1e-9)) + 1
-
-
-def grid_halo(network_halo: int, factor: float, align: int) -> int:
-    """Input samples of halo a block needs so that its core's probability equals the whole cube's.
-
-    Parameters
-    ----------
-    network_halo : int
-        Halo the network needs on its own grid (its receptive half).
-    factor : float
-        Resampling factor in [0.25, 1].
-    align : int
-        The network grid of a block starts at a multiple of this (up to ``align - 1`` network samples lost).
-
-    Returns
-    -------
-    int
-        Input samples: ``network_halo`` itself at factor 1 (the data's own grid, whose blocks start at multiples of
-        ``align``), else a multiple of ``align``.
-
-    Raises
-    ------
-    InputError
-        ``factor`` is outside [0.25, 1].
-    """
-    f = _check_factor(factor)
-    if f == 1.0:
-        return int(network_halo)
-    need = (int(network_halo) + int(align)) / f + 2 + 4 * anti_alias_sigma(f)
-    return int(math.ceil(need / align)) * int(align)
-
-
-def _first(origin: int, factor: float, align: int) -> int:
-    """First network sample of a block whose first input sample is ``origin`` (a multiple of ``align``)."""
-    return int(math.ceil(origin * factor / align - 1e-9)) * align
-
-
-def _full_origin(origin, ndim: int) -> tuple:
-    """The block's global index along every axis: ``origin`` along the lateral axes (0 when None), 0 along the
-    sample axis."""
-    return tuple(int(o) for o in (origin or (0,) * (ndim - 1))) + (0,)
-
-
-def _lateral_aligns(align, n_lateral: int) -> tuple:
-    """``align`` (an int, or one per lateral axis) as a tuple of ``n_lateral`` positive ints."""
-    aligns = tuple(int(a) for a in align) if np.ndim(align) else (int(align),) * n_lateral
-    if len(aligns) != n_lateral or min(aligns) < 1:
-        raise InputError(f"align must be a positive int or one per lateral axis ({n_lateral}); got {align!r}")
-    return aligns
-
-
-def interpolate_axis(a: np.ndarray, axis: int, positions: np.ndarray) -> np.ndarray:
-    """Values of ``a`` at fractional ``positions`` along ``axis``, interpolated linearly.
-
-    Parameters
-    ----------
-    a : ndarray
-        The values (float32 probabilities here).
-    axis : int
-        The axis interpolated along.
-    positions : (m,) ndarray of float
-        Local indices along ``axis``, within [0, n - 1].
-
-    Returns
-    -------
-    ndarray
-        ``a`` with ``m`` values along ``axis``, float32.
-    """
-    lo = np.floor(positions).astype(np.int64)
-    lo = np.clip(lo, 0, max(a.shape[axis] - 2, 0))
-    w = (positions - lo).astype(np.float32)
-    hi = np.minimum(lo + 1, a.shape[axis] - 1)
-    shape = [1] * a.ndim
-    shape[axis] = -1
-    w = w.reshape(shape)
-    out = np.take(a, lo, axis=axis)  # in place: two arrays of the result's size at a time, not four
-    out *= 1 - w
-    upper = np.take(a, hi, axis=axis)
-    upper *= w
-    out += upper
-    return out
-
-
-def to_network_grid(data: np.ndarray, factor: float, *, origin=None, align: int = 8) -> tuple[np.ndarray, tuple]:
-    """Resample a section, cube or block onto the network grid.
-
-    Parameters
-    ----------
-    data : (n_traces, n_samples) or (n_inlines, n_xlines, n_samples) float32 ndarray
-        Amplitudes (a block of a larger cube when ``origin`` is given).
-    factor : float
-        Resampling factor in [0.25, 1] along every axis.
-    origin : sequence of int, optional
-        Global index of ``data``'s first sample along each lateral axis (default 0: the whole input).
-    align : int or sequence of int, optional
-        Along the lateral axes the block's network grid starts at a multiple of this (one value per lateral axis,
-        or one for all): the network's pooling multiple along an axis the network convolves over, 1 along an axis
-        its sections are stacked on (no pooling grid to keep).
-
-    Returns
-    -------
-    small : float32 ndarray
-        The data on the network grid.
-    first : tuple of int
-        Global network index of ``small``'s first sample along each axis (0 along the sample axis).
-
-    Raises
-    ------
-    InputError
-        ``factor`` is outside [0.25, 1].
-    """
-    f = _check_factor(factor)
-    arr = np.asarray(data, dtype=np.float32)
-    origin = _full_origin(origin, arr.ndim)
-    aligns = _lateral_aligns(align, arr.ndim - 1)
-    if f == 1.0:
-        return arr, origin
-    out = gaussian_filter(arr, anti_alias_sigma(f), truncate=4.0)
-    first = []
-    for axis, (n, o) in enumerate(zip(arr.shape, origin)):
-        lateral = axis < arr.ndim - 1
-        u0 = _first(o, f, aligns[axis]) if lateral else 0
-        u1 = grid_size(o + n, f)  # one past the last network sample inside the data
-        u = np.arange(u0, u1, dtype=np.float64)
-        out = interpolate_axis(out, axis, u / f - o)
-        first.append(u0)
-    return np.ascontiguousarray(out, dtype=np.float32), tuple(first)
-
-
-def from_network_grid(small: np.ndarray, shape, factor: float, *, origin=None, first=None) -> np.ndarray:
-    """Interpolate a probability on the network grid back onto the input's samples.
-
-    Parameters
-    ----------
-    small : float32 ndarray
-        Values on the network grid (:func:`to_network_grid`'s ``small``).
-    shape : tuple of int
-        Shape of the input block.
-    factor : float
-        The resampling factor.
-    origin : sequence of int, optional
-        Global lateral index of the input block's first sample (default 0).
-    first : sequence of int, optional
-        Global network index of ``small``'s first sample along each axis (:func:`to_network_grid`'s ``first``).
-
-    Returns
-    -------
-    float32 ndarray of ``shape``
-
-    Raises
-    ------
-    InputError
-        ``factor`` is outside [0.25, 1].
-    """
-    f = _check_factor(factor)
-    out = np.asarray(small, dtype=np.float32)
-    if f == 1.0:
-        return out
-    origin = _full_origin(origin, len(shape))
-    first = tuple(first or (0,) * len(shape))
-    for axis, (n, o, u0) in enumerate(zip(shape, origin, first)):
-        i = np.arange(o, o + n, dtype=np.float64)
-        out = interpolate_axis(out, axis, np.clip(i * f - u0, 0, out.shape[axis] - 1))
-    return np.ascontiguousarray(out, dtype=np.float32)
-
-
-def grid_factors(name: str, value) -> tuple:
-    """``value``, factors of the network grids (each in [0.25, 1], distinct), as floats; else an InputError."""
-    try:
-        factors = tuple(float(f) for f in ((value,) if np.ndim(value) == 0 else value))
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"{name} must be a factor or a tuple of factors in [0.25, 1]; got {value!r}") from exc
-    if not factors or len(set(factors)) != len(factors) or not all(0.25 <= f <= 1.0 for f in factors):
-        raise InputError(f"{name} must be one or more distinct factors in [0.25, 1]; got {value!r}")
-    return factors

@@ -5,9 +5,9 @@ Dead traces and samples, whose edges are not faults, are the amplitudes' (:mod:`
 - :mod:`~seismo3d.seismic.faults.surfaces.ridges`: ridges (non-maximum suppression across the fault) and thinning.
 - :mod:`~seismo3d.seismic.faults.surfaces.voting`: optimal surface voting (Wu & Fomel 2018); its loops in
   :mod:`~seismo3d.seismic.faults.surfaces.voting_kernels`.
-- :mod:`~seismo3d.seismic.faults.surfaces.skins`: thinned votes linked into fault skins (Hale 2013); its loops, and
-  the ends of kept 2D faults cut back to where the network's probability holds, in
-  :mod:`~seismo3d.seismic.faults.surfaces.skin_kernels`.
+- :mod:`~seismo3d.seismic.faults.surfaces.skins`: thinned votes linked into fault skins (Hale 2013); the skins
+  that continue each other merged in :mod:`~seismo3d.seismic.faults.surfaces.skin_merging`, the 2D skins that linked
+  two faults split apart in :mod:`~seismo3d.seismic.faults.surfaces.skin_splits`.
 - :mod:`~seismo3d.seismic.faults.surfaces.blocks`: the same steps on a cube larger than memory, declared once (halos,
   inputs and outputs, costs, plan; each one's algorithm on a block beside its algorithm) and run block by block by
   the executor of :mod:`seismo3d.seismic.blocks`.

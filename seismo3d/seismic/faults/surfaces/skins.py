@@ -10,20 +10,19 @@ threshold and are large enough.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numba as nb
 import numpy as np
-from scipy import sparse
-from scipy.sparse.csgraph import connected_components
-from scipy.spatial import cKDTree
 
 from ...._threads import run_threads
 from ...._validation import check_positive
 from ....errors import InputError
 from ... import _kernels
 from ..result import Fault, check_fault_arrays, fault_frames, fault_normals
-from .skin_kernels import closest_pairs, grow_by_mean_normal, heights, split_forks, split_opposite_dips
+from .skin_merging import local_normal, merge_coplanar
+from .skin_splits import split_forks, split_opposite_dips
 
 __all__ = ["SkinOptions", "fault_skins", "image_cells", "skins_from_cells"]
 
@@ -77,11 +76,11 @@ class SkinOptions:
         from their cells' planes; 44 of 121 skins are within 30 deg). None: no check.
     split_angle : float or None
         2D: a skin whose cells dip two opposite ways, in branches whose lines differ by at least this angle (degrees),
-        is split into them, each judged by its own throw (:func:`~.skin_kernels.split_opposite_dips`); None: no split
+        is split into them, each judged by its own throw (:func:`~.skin_splits.split_opposite_dips`); None: no split
         (3D: never). Leave-one-survey-out: F3 F1 0.494 at 10-30 degrees, 0.490 at 5; Great South Basin 0.829 at each.
     split_forks : bool
         2D: a skin that forks into branches along lines at least ``split_angle`` apart (None: never) is split into
-        them, the parts above and below going with the branch they continue (:func:`~.skin_kernels.split_forks`).
+        them, the parts above and below going with the branch they continue (:func:`~.skin_splits.split_forks`).
 
     Raises
     ------
@@ -216,6 +215,56 @@ def _best_neighbours(t, n_threads, points, frames, keys, shape, ranks, max_plane
                         best[c, k] = q
 
 
+def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):
+    """Region growing over the neighbour graph (CSR ``indptr``, ``indices``; its edges already join only compatible
+    normals): from the unassigned sample of highest likelihood (``order``), add neighbours whose normal (``normals``
+    (n, dim) float64) is within acos(cos_mean) of the growing fault's mean normal, breadth first; (n,) int64 labels.
+    The mean keeps a fault from drifting into another one through samples of intermediate orientation where two
+    faults meet."""
+    n_pts, dim = normals.shape
+    label = np.full(n_pts, -1, np.int64)
+    _grow_by_mean_normal(indptr, indices, normals, order, cos_mean, label, np.empty(n_pts, np.int64), np.zeros(dim))
+    return label
+
+
+@nb.njit(cache=True)
+def _grow_by_mean_normal(indptr, indices, normals, order, cos_mean, label, queue, mean):
+    # grow_by_mean_normal's loop: label (all -1) takes the labels; queue and mean are work arrays (np.empty, np.full,
+    # np.zeros in here each compiled a function of numba's of its own)
+    dim = normals.shape[1]
+    n_lab = 0
+    for seed in order:
+        if label[seed] >= 0:
+            continue
+        label[seed] = n_lab
+        for d in range(dim):
+            mean[d] = normals[seed, d]
+        head = 0
+        tail = 1
+        queue[0] = seed
+        while head < tail:
+            i = queue[head]
+            head += 1
+            for e in range(indptr[i], indptr[i + 1]):
+                j = indices[e]
+                if label[j] >= 0:
+                    continue
+                dot = 0.0
+                nm = 0.0
+                for d in range(dim):
+                    dot += normals[j, d] * mean[d]
+                    nm += mean[d] * mean[d]
+                if abs(dot) < cos_mean * math.sqrt(nm):
+                    continue
+                label[j] = n_lab
+                sgn = 1.0 if dot >= 0 else -1.0
+                for d in range(dim):
+                    mean[d] += sgn * normals[j, d]
+                queue[tail] = j
+                tail += 1
+        n_lab += 1
+
+
 def _grow(best: np.ndarray, normals: np.ndarray, order: np.ndarray, cos_mean: float) -> np.ndarray:
     """Skins grown breadth first over the (undirected) neighbour links from the strongest cell not yet in a skin; a
     cell joins when its normal is within acos(cos_mean) of the skin's running mean normal (no drift through cells
@@ -242,80 +291,25 @@ def _edge_cells(best: np.ndarray, label: np.ndarray, two_d: bool) -> np.ndarray:
     return ~same.all(axis=1)
 
 
-def _local_normal(points: np.ndarray, two_d: bool) -> np.ndarray:
-    """Unit normal of the plane (line in 2D sections, whose crossline coordinate is constant) fitted to
-    ``points`` (n, 3), n >= 3."""
-    centred = points - points.mean(axis=0)
-    if two_d:
-        _, _, vt = np.linalg.svd(centred[:, [0, 2]], full_matrices=False)
-        return np.array([vt[-1, 0], 0.0, vt[-1, 1]])
-    _, _, vt = np.linalg.svd(centred, full_matrices=False)
-    return vt[-1]
-
-
-def _merge_coplanar(points: np.ndarray, label: np.ndarray, edge: np.ndarray, minimum: int, two_d: bool,
-                    opt: SkinOptions) -> np.ndarray:
-    """Labels of skins merged where they continue each other (see :class:`SkinOptions`): the pieces of one fault cut
-    by a younger fault or broken by a long gap. For two skins of at least ``minimum`` cells whose edge cells come
-    within ``merge_gap``, planes are fitted to each skin's cells near the two closest edge cells; they merge when the
-    planes agree within ``merge_angle`` and the gap between the cells lies within ``merge_offset`` of both planes,
-    i.e. runs along the fault, not across it (two parallel faults side by side stay apart). An edge cell of one skin
-    is compared with every cell of the other, so a piece ending on the side of another (a fork) is found too."""
-    n_labels = int(label.max()) + 1
-    sizes = np.bincount(label, minlength=n_labels)
-    big = sizes[label] >= minimum
-    if np.count_nonzero(big & edge) == 0:
-        return label
-    # the closest pair (an edge cell of one skin, any cell of another) within merge_gap for every pair of skins: a
-    # piece's end near another's end or side
-    pts, lab = points[big].astype(np.float64), label[big]
-    closest = closest_pairs(pts, lab, np.nonzero(edge[big])[0], float(opt.merge_gap), n_labels)
-    if closest.size == 0:
-        return label
-    radius = 2.0 * float(opt.merge_gap)
-    cos_angle = np.cos(np.radians(opt.merge_angle))
-    # each skin's cells near a cell are searched among that skin's cells only (one KD-tree a skin, built when first
-    # needed): a search among all cells returns mostly other skins' cells
-    by_label = np.argsort(lab, kind="stable")
-    starts = np.searchsorted(lab[by_label], np.arange(n_labels + 1))
-    trees: dict = {}
-
-    def own_skin_near(i):
-        skin = int(lab[i])
-        if skin not in trees:
-            cells = by_label[starts[skin]:starts[skin + 1]]
-            trees[skin] = (cells, cKDTree(pts[cells]))
-        cells, tree = trees[skin]
-        return cells[np.sort(np.asarray(tree.query_ball_point(pts[i], radius), dtype=np.int64))]
-
-    rows, cols = [], []
-    for i, j in closest:
-        near_p, near_q = own_skin_near(i), own_skin_near(j)
-        if near_p.size < 3 or near_q.size < 3:
-            continue
-        na = _local_normal(pts[near_p], two_d)
-        nb_ = _local_normal(pts[near_q], two_d)
-        d = pts[j] - pts[i]
-        if abs(na @ nb_) >= cos_angle and abs(na @ d) <= opt.merge_offset and abs(nb_ @ d) <= opt.merge_offset:
-            rows.append(lab[i])
-            cols.append(lab[j])
-    if not rows:
-        return label
-    graph = sparse.coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_labels, n_labels))
-    _, merged = connected_components(graph, directed=False)
-    return merged[label]
-
-
 def _fits_its_cells(points: np.ndarray, normals: np.ndarray, two_d: bool, cos_max: float) -> bool:
     """Whether the plane (line in 2D) fitted to a skin's ``points`` (n, 3) lies within ``arccos(cos_max)`` of the
     mean of its cells' ``normals`` (n, 3; signs aligned to the first cell's)."""
     if points.shape[0] < 3:
         return True
-    fitted = _local_normal(points, two_d)
+    fitted = local_normal(points, two_d)
     normals = np.asarray(normals, dtype=np.float64)
     mean = (normals * np.sign(normals @ normals[0])[:, None]).sum(axis=0)
     norm = float(np.linalg.norm(mean))
     return norm == 0.0 or abs(float(fitted @ mean)) >= cos_max * norm
+
+
+def heights(samples: np.ndarray, label: np.ndarray, roots: np.ndarray) -> np.ndarray:
+    """Extent along the sample axis (max - min + 1) of the skins ``roots``, samples."""
+    top = np.full(label.size, np.iinfo(np.int64).max, dtype=np.int64)
+    bottom = np.full(label.size, -1, dtype=np.int64)
+    np.minimum.at(top, label, samples)
+    np.maximum.at(bottom, label, samples)
+    return bottom[roots] - top[roots] + 1
 
 
 def fault_skins(thin, strike_deg, dip_deg, *, lower: float, upper: float,
@@ -468,7 +462,8 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
     label = _grow(best, normals, order, float(np.cos(np.radians(opt.max_angle))))
     del order
     if opt.merge_gap > 0:
-        label = _merge_coplanar(points, label, _edge_cells(best, label, two_d), opt.smallest(shape), two_d, opt)
+        label = merge_coplanar(points, label, _edge_cells(best, label, two_d), opt.smallest(shape), two_d,
+                               gap=opt.merge_gap, offset=opt.merge_offset, angle=opt.merge_angle)
     del best
     if two_d and opt.split_angle is not None:
         label = split_opposite_dips(points[:, [0, 2]], normals[:, [0, 2]], label, opt.smallest(shape),

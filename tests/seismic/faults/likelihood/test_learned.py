@@ -23,9 +23,8 @@ from seismo3d.seismic.faults.likelihood.learned import (
     INT8_SHA256, LearnedOptions, NETWORKS, WEIGHTS_SHA256, fault_probability, learned_fault_likelihood,
     load_fault_network, orientation_from_likelihood,
 )
-from seismo3d.seismic.faults.likelihood.network import (
-    RECEPTIVE_HALF, normalise_section, onnx_model, unet_forward,
-)
+from seismo3d.seismic.faults.likelihood.network import RECEPTIVE_HALF, FaultNetwork, normalise_section, unet_forward
+from seismo3d.training.export_onnx import onnx_model
 
 CHECK = Path(__file__).parents[2] / "data" / "fault_unet_check.npz"  # tests/seismic/data
 LEARNED = FaultTracingOptions(likelihood="learned")
@@ -70,6 +69,8 @@ def test_an_unknown_network_is_refused():
         LearnedOptions(network="int4")
     with pytest.raises(InputError, match="network"):
         load_fault_network("fp16")
+    with pytest.raises(InputError, match="FaultNetwork"):  # trained weights: FaultNetwork(onnx_model(weights))
+        unet_forward(np.zeros((1, 8, 8), np.float32), {"head.weight": np.zeros((1, 12, 1, 1), np.float32)})
 
 
 def test_onnx_inference_equals_the_stored_pytorch_output():
@@ -280,7 +281,8 @@ def test_training_smoke(tmp_path):
     weights = dict(np.load(out / "fault_unet.npz"))
     assert record["weights_sha256"] == hashlib.sha256((out / "fault_unet.npz").read_bytes()).hexdigest()
     check = np.load(out / "fault_unet_check.npz")
-    assert np.abs(unet_forward(check["section"][None], weights)[0] - check["probability"]).max() <= 1e-5
+    got = unet_forward(check["section"][None], FaultNetwork(onnx_model(weights)))[0]
+    assert np.abs(got - check["probability"]).max() <= 1e-5
     assert [h["step"] for h in record["history"]] == [1, 2]
     # fine-tuning starts from those weights: their folded batch normalisations stay the identity, so at a vanishing
     # learning rate the run returns them (batch statistics in training mode would change every layer's output)
@@ -373,16 +375,6 @@ def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
             else:  # whole sections: as many as fit
                 assert learned_blocks._largest_network_bytes(grid, across + 16, along, axis, shape, factor,
                                                              4, step) > budget or across >= grid[axis]
-
-
-def test_network_grid_alignment_per_axis():
-    from seismo3d.seismic.faults.likelihood.network import to_network_grid
-
-    block = np.random.default_rng(0).standard_normal((40, 40, 16)).astype(np.float32)
-    _, first = to_network_grid(block, 0.7, origin=(13, 13), align=(1, 8))
-    assert first == (10, 16, 0)  # ceil(13 * 0.7) = 10; the first multiple of 8 at or after 9.1
-    with pytest.raises(InputError, match="align"):
-        to_network_grid(block, 0.7, origin=(13, 13), align=(1, 8, 8))
 
 
 def test_the_likelihood_of_several_grids_is_the_mean_of_each_grids():

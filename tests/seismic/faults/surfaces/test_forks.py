@@ -1,4 +1,4 @@
-"""The split of 2D fault skins at a fork (seismo3d.seismic.faults.surfaces.skin_kernels.split_forks,
+"""The split of 2D fault skins at a fork (seismo3d.seismic.faults.surfaces.skin_splits.split_forks,
 SkinOptions.split_forks): a Y is split into its branches, each trunk going with the branch it continues; straight
 and gently curved faults, a short side spur and two branches along one line stay whole."""
 
@@ -7,7 +7,7 @@ import pytest
 
 from seismo3d.errors import InputError
 from seismo3d.seismic import SkinOptions, fault_skins
-from seismo3d.seismic.faults.surfaces.skin_kernels import split_forks
+from seismo3d.seismic.faults.surfaces.skin_splits import split_forks
 
 LATERAL, VERTICAL, ANGLE, MINIMUM = 2, 6, 10.0, 15
 

@@ -100,39 +100,6 @@ def test_options_and_errors():
     assert fault_skins(thin, thin, thin, lower=0.3, upper=0.5) == []
 
 
-@pytest.mark.parametrize("two_d, side, n_labels, chunk", [(False, 30, 12, None), (True, 30, 12, None),
-                                                          (False, 90, 60, 7), (True, 300, 60, None)])
-def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels, chunk, monkeypatch):
-    # the merge step's search (a k-d tree, a chunk of edge cells at a time) against every pair: for each two skins,
-    # the closest (edge cell, cell of the other skin) within the gap, ties to the lower edge cell, then the lower
-    # other cell. Sparse cells (side 90 and 300) leave each chunk of edge cells a few pairs only; chunks of 7 edge
-    # cells: the closest pair of two skins found across chunks
-    from seismo3d.seismic.faults.surfaces import skin_kernels
-    from seismo3d.seismic.faults.surfaces.skins import closest_pairs
-
-    if chunk is not None:
-        monkeypatch.setattr(skin_kernels, "_EDGE_CHUNK", chunk)
-
-    rng = np.random.default_rng(7)
-    pts = rng.integers(0, side, (600, 3)).astype(np.float64)
-    if two_d:
-        pts[:, 1] = 0.0
-    pts = np.unique(pts, axis=0)
-    lab = rng.integers(0, n_labels, len(pts))
-    edge = np.sort(rng.choice(len(pts), len(pts) // 3, replace=False))
-    gap = 5.0
-    best = {}
-    for i in edge:
-        for j in range(len(pts)):
-            d = float(np.linalg.norm(pts[i] - pts[j]))
-            if lab[i] != lab[j] and d <= gap:
-                key = (min(lab[i], lab[j]), max(lab[i], lab[j]))
-                best[key] = min(best.get(key, (np.inf, 0, 0)), (d, int(i), j))
-    got = closest_pairs(pts, lab, edge, gap, n_labels)
-    assert len(best) > 20
-    assert sorted(map(tuple, got.tolist())) == sorted((i, j) for _, i, j in best.values())
-
-
 # --- branches of opposite dip (a Y, an inverted V) -------------------------------------------------------------------
 
 def _strand(image, x0, t0, t1, dip, strike, value=0.8):
@@ -200,4 +167,3 @@ def test_split_angle_option():
         SkinOptions(split_angle=90.0)
     with pytest.raises(InputError, match="split_angle"):
         SkinOptions(split_angle=0.0)
-

@@ -1,128 +1,20 @@
-"""The closest cells of different fault skins within a gap (:mod:`~seismo3d.seismic.faults.surfaces.skins`): edge cells
-matched to the nearest cell of every other skin through a k-d tree; the pairs the merging of coplanar skins
-considers. And the split of 2D skins whose branches dip opposite ways (:func:`split_opposite_dips`,
-``SkinOptions.split_angle``): a fault plane dips one way, but the linking keeps to one mean normal within
-``max_angle``, so two steep faults dipping opposite ways (a Y and its antithetic branch, an inverted V) whose normals
-lie closer than that link into one skin, whose zone then spans the block between them and whose throw compares the
-reflectors outside both. And the split of 2D skins at a fork (:func:`split_forks`, ``SkinOptions.split_forks``):
-two faults that meet (a Y, an X) link into one skin; their branches' lines, not their normals, tell them apart.
+"""The splits of 2D fault skins (:mod:`~seismo3d.seismic.faults.surfaces.skins`) that linked two faults into one.
 
-And the tips of kept 2D faults trimmed back to where the fault likelihood holds (:func:`trimmed_tips`,
-``FaultTracingOptions.tip_level``): optimal surface voting (:mod:`~seismo3d.seismic.faults.surfaces.voting`) casts
-each seed's votes along a path of ``2 * half_length_dip + 1`` samples, so a fault's votes, and the skin linked from
-them, run on past the fault's last likely sample by up to ``half_length_dip`` samples (30 on a long section), fading:
-beyond its tip the skin follows the votes of surfaces through samples where nothing is displaced."""
+- :func:`split_opposite_dips` (``SkinOptions.split_angle``): a fault plane dips one way, but the linking keeps to one
+  mean normal within ``max_angle``, so two steep faults dipping opposite ways (a Y and its antithetic branch, an
+  inverted V) whose normals lie closer than that link into one skin, whose zone then spans the block between them and
+  whose throw compares the reflectors outside both.
+- :func:`split_forks` (``SkinOptions.split_forks``): two faults that meet (a Y, an X) link into one skin; their
+  branches' lines, not their normals, tell them apart."""
 
 from __future__ import annotations
 
-import dataclasses
-import math
-
-import numba as nb
 import numpy as np
 from scipy import sparse
-from scipy.ndimage import maximum_filter
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from ....errors import InputError
-
-__all__ = []
-
-
-# edge cells per query of :func:`closest_pairs`: their pairs within the gap (a few hundred each on a thick skin) stay
-# a few MB
-_EDGE_CHUNK = 1 << 12
-
-
-def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
-    """(m, 2) int64 indices into ``pts`` (n, 3): for every pair of labels, the closest (edge cell, cell of the other
-    label) pair within ``gap`` (ties: the lower edge cell, then the lower other cell). The pairs within the gap come
-    from a k-d tree of the cells (:meth:`scipy.spatial.cKDTree.sparse_distance_matrix`), a chunk of edge cells at a
-    time, each chunk's reduced to the closest pair of each pair of labels (no list of all the pairs)."""
-    if edge_idx.size == 0 or pts.shape[0] == 0:
-        return np.empty((0, 2), dtype=np.int64)
-    pts = np.ascontiguousarray(pts, dtype=np.float64)
-    lab = np.asarray(lab).astype(np.int64, copy=False)
-    edge_idx = np.asarray(edge_idx, dtype=np.int64)
-    tree = cKDTree(pts)
-    gap2 = float(gap) ** 2
-    kept = []
-    for start in range(0, edge_idx.size, _EDGE_CHUNK):
-        edge = edge_idx[start:start + _EDGE_CHUNK]
-        # a hair beyond the gap: the squared distances below decide, summed as the loop this replaced summed them
-        near = cKDTree(pts[edge]).sparse_distance_matrix(tree, float(gap) * (1 + 1e-9), output_type="ndarray")
-        first, second = edge[near["i"]], near["j"].astype(np.int64)
-        other = lab[first] != lab[second]
-        first, second = first[other], second[other]
-        d = pts[second] - pts[first]
-        dist2 = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] + d[:, 2] * d[:, 2]
-        within = dist2 <= gap2
-        kept.append(_closest_per_key(first[within], second[within], dist2[within], lab, n_labels))
-    first, second, dist2 = (np.concatenate(a) for a in zip(*kept))
-    first, second, _ = _closest_per_key(first, second, dist2, lab, n_labels)
-    return np.stack([first, second], axis=1)
-
-
-def _closest_per_key(first, second, dist2, lab, n_labels):
-    """The pairs ``(first, second, dist2)`` reduced to the closest of each pair of labels (ties: the lower first,
-    then the lower second cell)."""
-    key = np.minimum(lab[first], lab[second]) * n_labels + np.maximum(lab[first], lab[second])
-    order = np.lexsort((second, first, dist2, key))
-    keep = np.ones(order.size, dtype=bool)
-    keep[1:] = key[order][1:] != key[order][:-1]
-    sel = order[keep]
-    return first[sel], second[sel], dist2[sel]
-
-
-def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):
-    """Region growing over the neighbour graph (CSR ``indptr``, ``indices``; its edges already join only compatible
-    normals): from the unassigned sample of highest likelihood (``order``), add neighbours whose normal (``normals``
-    (n, dim) float64) is within acos(cos_mean) of the growing fault's mean normal, breadth first; (n,) int64 labels.
-    The mean keeps a fault from drifting into another one through samples of intermediate orientation where two
-    faults meet."""
-    n_pts, dim = normals.shape
-    label = np.full(n_pts, -1, np.int64)
-    _grow_by_mean_normal(indptr, indices, normals, order, cos_mean, label, np.empty(n_pts, np.int64), np.zeros(dim))
-    return label
-
-
-@nb.njit(cache=True)
-def _grow_by_mean_normal(indptr, indices, normals, order, cos_mean, label, queue, mean):
-    # grow_by_mean_normal's loop: label (all -1) takes the labels; queue and mean are work arrays (np.empty, np.full,
-    # np.zeros in here each compiled a function of numba's of its own)
-    dim = normals.shape[1]
-    n_lab = 0
-    for seed in order:
-        if label[seed] >= 0:
-            continue
-        label[seed] = n_lab
-        for d in range(dim):
-            mean[d] = normals[seed, d]
-        head = 0
-        tail = 1
-        queue[0] = seed
-        while head < tail:
-            i = queue[head]
-            head += 1
-            for e in range(indptr[i], indptr[i + 1]):
-                j = indices[e]
-                if label[j] >= 0:
-                    continue
-                dot = 0.0
-                nm = 0.0
-                for d in range(dim):
-                    dot += normals[j, d] * mean[d]
-                    nm += mean[d] * mean[d]
-                if abs(dot) < cos_mean * math.sqrt(nm):
-                    continue
-                label[j] = n_lab
-                sgn = 1.0 if dot >= 0 else -1.0
-                for d in range(dim):
-                    mean[d] += sgn * normals[j, d]
-                queue[tail] = j
-                tail += 1
-        n_lab += 1
+__all__ = ["split_forks", "split_opposite_dips"]
 
 
 def _dip_directions(normals: np.ndarray) -> np.ndarray:
@@ -339,84 +231,3 @@ def split_forks(xz, label, minimum: int, lateral: int, vertical: int, angle: flo
                     splits += 1
                     break
     return label
-
-
-def heights(samples: np.ndarray, label: np.ndarray, roots: np.ndarray) -> np.ndarray:
-    """Extent along the sample axis (max - min + 1) of the skins ``roots``, samples."""
-    top = np.full(label.size, np.iinfo(np.int64).max, dtype=np.int64)
-    bottom = np.full(label.size, -1, dtype=np.int64)
-    np.minimum.at(top, label, samples)
-    np.maximum.at(bottom, label, samples)
-    return bottom[roots] - top[roots] + 1
-
-
-_POINT_ARRAYS = ("points", "likelihood", "strike_deg", "dip_deg", "normals")
-
-
-def trimmed_tips(faults: list, throws: list, likelihood, level: float | None) -> tuple[list, list]:
-    """The 2D faults with their ends cut back to the first point, from each end along the sample axis, whose fault
-    likelihood (the largest within a trace either side: the faults lie on the ridges of the votes, which may pass a
-    trace off the likelihood's own ridge) reaches ``level``; and their throws' per-point arrays cut alike.
-
-    A fault whose likelihood reaches ``level`` nowhere is left whole (the evidence kept it, on its displacement).
-    Its throw's values measured over the whole fault (median throw, step, fitness) are left as measured.
-
-    Parameters
-    ----------
-    faults : list of Fault
-        2D faults, points (trace, sample) into ``likelihood``.
-    throws : list of FaultThrow
-        Their throws, in the same order (per-point arrays in the order of the fault's points).
-    likelihood : (n_traces, n_samples) array_like of float, or None
-        The fault likelihood they were traced from (the network's probability); None: nothing is trimmed.
-    level : float or None
-        In [0, 1]; None: nothing is trimmed.
-
-    Returns
-    -------
-    faults, throws : list
-        In the input's order, with the same ids; the points of a trimmed fault (and its throw's per-point values)
-        in the order of their samples.
-
-    Raises
-    ------
-    InputError
-        ``likelihood`` is not 2D, ``level`` lies outside [0, 1], or faults and throws differ in number.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from seismo3d.seismic.faults.result import Fault
-    >>> lik = np.zeros((8, 40), np.float32); lik[4, 10:30] = 0.9
-    >>> pts = np.stack([np.full(40, 4), np.arange(40)], axis=1)
-    >>> f = Fault(1, pts, np.ones(40, np.float32), np.full(40, 90, np.float32), np.full(40, 80, np.float32),
-    ...           np.tile(np.float32([1, 0]), (40, 1)))
-    >>> g = trimmed_tips([f], [None], lik, 0.3)[0][0]
-    >>> int(g.points[0, 1]), int(g.points[-1, 1])
-    (10, 29)
-    """
-    if level is None or likelihood is None or not faults:
-        return list(faults), list(throws)
-    lik = np.asarray(likelihood)
-    if lik.ndim != 2:
-        raise InputError(f"trimmed_tips needs a 2D likelihood (n_traces, n_samples); got shape {lik.shape}")
-    if not 0.0 <= float(level) <= 1.0:
-        raise InputError(f"the tip level must be in [0, 1]; got {level!r}")
-    if len(faults) != len(throws):
-        raise InputError(f"{len(faults)} faults but {len(throws)} throws; pass the throws of these faults")
-    near = maximum_filter(lik, size=(3, 1), mode="nearest")
-    out_faults, out_throws = [], []
-    for f, t in zip(faults, throws):
-        n = len(f.points)
-        order = np.argsort(f.points[:, -1], kind="stable")
-        held = np.nonzero(near[f.points[order, 0], f.points[order, -1]] >= float(level))[0]
-        if held.size == 0 or (held[0] == 0 and held[-1] == n - 1):
-            out_faults.append(f)
-            out_throws.append(t)
-            continue
-        take = order[held[0]:held[-1] + 1]
-        out_faults.append(dataclasses.replace(f, **{name: getattr(f, name)[take] for name in _POINT_ARRAYS}))
-        out_throws.append(t if t is None else dataclasses.replace(t, **{
-            field.name: getattr(t, field.name)[take] for field in dataclasses.fields(t)
-            if isinstance(getattr(t, field.name), np.ndarray) and getattr(t, field.name).shape[:1] == (n,)}))
-    return out_faults, out_throws

@@ -1,5 +1,5 @@
 """The tips of 2D faults trimmed back to where the network's probability holds
-(seismo3d.seismic.faults.surfaces.skin_kernels.trimmed_tips): the voting carries a fault's votes past its tips."""
+(seismo3d.seismic.faults.tips.trimmed_tips): the voting carries a fault's votes past its tips."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import pytest
 from seismo3d.errors import InputError
 from seismo3d.seismic.faults import FaultTracingOptions, trace_faults
 from seismo3d.seismic.faults.result import Fault, FaultThrow
-from seismo3d.seismic.faults.surfaces.skin_kernels import trimmed_tips
+from seismo3d.seismic.faults.tips import trimmed_tips
 
 
 def _fault(trace: int, samples: np.ndarray, fid: int = 1) -> Fault:

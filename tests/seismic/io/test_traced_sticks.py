@@ -161,7 +161,7 @@ def test_a_strand_folding_back_is_left_out_not_zigzagged():
         stick_nodes(points[:, 0], points[:, 1], tolerance=0.0)
 
 
-@pytest.mark.parametrize("fmt", STICK_FORMATS)
+@pytest.mark.parametrize("fmt", [f for f in STICK_FORMATS if f != "rms"])  # RMS polygons: xtgeo reads them back
 def test_round_trip_of_traced_sticks(tmp_path, fmt):
     """Written, read back (IESX placed on the lines by X / Y): the same sticks, each fault sample of the line within
     one sample of the stick read back."""

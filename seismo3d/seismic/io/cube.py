@@ -37,8 +37,8 @@ import numpy as np
 
 from ...errors import DataNotFoundError, InputError, Seismo3dWarning
 
-__all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "open_cube", "sample_dim", "sample_interval", "sample_positions",
-           "seismic_axes", "seismic_kind"]
+__all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "index_positions", "is_data_array", "line_values", "on_lateral", "open_cube",
+           "sample_dim", "sample_interval", "sample_positions", "samples_at", "seismic_axes", "seismic_kind"]
 
 SEGY_SUFFIXES = (".sgy", ".segy")
 _ALIASES = {"inline": ("inline", "iline", "il", "inline_3d"), "crossline": ("crossline", "xline", "xl", "crossline_3d"),
@@ -442,3 +442,147 @@ def as_cube(values, like=None, *, name: str | None = None):
             return xr.DataArray(values, dims=like.dims, coords=like.coords, attrs=dict(like.attrs), name=name)
     dims = ("iline", "xline", "samples") if np.ndim(values) == 3 else ("trace", "samples")
     return xr.DataArray(values, dims=dims, name=name)
+
+
+def is_data_array(value) -> bool:
+    """Whether ``value`` is an ``xarray.DataArray``, without importing xarray (its class is loaded whenever there is
+    one)."""
+    xr = sys.modules.get("xarray")
+    return xr is not None and isinstance(value, xr.DataArray)
+
+
+def line_values(cube, axes: CubeAxes) -> tuple:
+    """The amplitudes of a seismic DataArray as a function of arrays takes them: a grid of a single inline or
+    crossline as its 2D section.
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+
+    Returns
+    -------
+    values : ndarray
+        The amplitudes read (``cube.values``): (n_inlines, n_xlines, n_samples), or (n_traces, n_samples) for a line
+        and for a grid of one line.
+    squeezed : int or None
+        The lateral axis of length 1 taken out of a grid of one line (0 or 1); None otherwise.
+    """
+    values = cube.values
+    if len(axes.lateral) == 2 and 1 in values.shape[:2]:
+        squeezed = 0 if values.shape[0] == 1 else 1
+        return np.take(values, 0, axis=squeezed), squeezed
+    return values, None
+
+
+def index_positions(cube, axes: CubeAxes, positions, *, what: str = "position") -> np.ndarray:
+    """Positions in a cube's own numbers (inline, crossline, time or depth; or trace label, time) to index space.
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+    positions : (ndim,) or (n, ndim) array_like of float
+        One value per dimension of ``cube``, in its coordinates: each lateral value one of the cube's line numbers
+        (the index without a coordinate), the last in its sample unit within its samples.
+    what : str
+        What the positions are, for messages (``'seed'``).
+
+    Returns
+    -------
+    (n, ndim) float64 ndarray
+        Lateral indices (whole numbers) and the fractional sample index.
+
+    Raises
+    ------
+    InputError
+        Not one value per dimension, a lateral value that is not one of the cube's, or a time or depth outside its
+        samples; the message names the dimension and the cube's range.
+    """
+    from ...errors import InputError
+
+    names = (*axes.lateral, axes.sample)
+    try:
+        rows = np.atleast_2d(np.asarray(positions, dtype=np.float64))
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{what}s must be rows of numbers ({', '.join(names)}); got {positions!r}") from exc
+    if rows.ndim != 2 or rows.shape[1] != len(names) or rows.shape[0] == 0:
+        raise InputError(f"{what}s must be ({', '.join(names)}) rows in the cube's own coordinates; got shape "
+                         f"{np.shape(positions)}")
+    out = np.empty_like(rows)
+    for column, dim in enumerate(axes.lateral):
+        labels = np.asarray(cube.coords[dim].values if dim in cube.coords else np.arange(cube.sizes[dim]),
+                            dtype=np.float64)
+        for n, value in enumerate(rows[:, column]):
+            hit = np.flatnonzero(labels == value)
+            if hit.size == 0:
+                raise InputError(f"{what} {_row(rows[n])}: {dim} {value:g} is not a {dim} of the cube "
+                                 f"({labels[0]:g}..{labels[-1]:g}); give one of its {dim} numbers")
+            out[n, column] = hit[0]
+    samples = sample_positions(cube, axes)
+    for n, t in enumerate(rows[:, -1]):
+        if not samples[0] <= t <= samples[-1]:
+            raise InputError(f"{what} {_row(rows[n])}: {axes.sample} {t:g} {axes.sample_unit} is outside the cube's "
+                             f"samples ({samples[0]:g}..{samples[-1]:g} {axes.sample_unit})")
+    out[:, -1] = np.interp(rows[:, -1], samples, np.arange(samples.size))
+    return out
+
+
+def _row(values) -> str:
+    return "(" + ", ".join(f"{float(v):g}" for v in values) + ")"
+
+
+def samples_at(cube, axes: CubeAxes, index) -> np.ndarray:
+    """Fractional sample indices as positions in a cube's sample unit (linear between samples).
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+    index : array_like of float
+        Fractional sample indices; NaN where there is none.
+
+    Returns
+    -------
+    float64 ndarray
+        Of ``index``'s shape, in ``axes.sample_unit`` (ms, m, ft; the index itself without a sample coordinate); NaN
+        where ``index`` is NaN.
+    """
+    k = np.asarray(index, dtype=np.float64)
+    samples = sample_positions(cube, axes)
+    return np.where(np.isfinite(k), np.interp(np.nan_to_num(k), np.arange(samples.size), samples), np.nan)
+
+
+def on_lateral(values, cube, axes: CubeAxes, *, squeezed: int | None = None, name: str | None = None,
+               attrs: dict | None = None):
+    """A map of one value per trace as a DataArray on a cube's lateral dimensions and coordinates.
+
+    Parameters
+    ----------
+    values : (n_inlines, n_xlines) or (n_traces,) array_like
+        One value per trace of ``cube`` (of its 2D section, with ``squeezed``).
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+    squeezed : int, optional
+        The lateral axis a grid of one line lost (:func:`line_values`): put back, of length 1.
+    name : str, optional
+    attrs : dict, optional
+
+    Returns
+    -------
+    xarray.DataArray
+        Dims ``axes.lateral``; every coordinate of ``cube`` that does not run along its samples (line numbers,
+        ``cdp_x`` / ``cdp_y``, a line's scalar line number).
+    """
+    xr = _xarray()
+    values = np.asarray(values)
+    if squeezed is not None:
+        values = np.expand_dims(values, squeezed)
+    coords = {key: c for key, c in cube.coords.items() if axes.sample not in c.dims}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        return xr.DataArray(values, dims=axes.lateral, coords=coords, name=name, attrs=dict(attrs or {}))

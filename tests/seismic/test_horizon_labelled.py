@@ -170,3 +170,25 @@ def test_track_horizon_on_segysak_dataset_equals_numpy(data_dir):
     assert_array_equal(labelled.times["cdp_x"].values, ds["cdp_x"].values)  # segysak's coordinates carried through
     with pytest.raises(InputError, match="not a iline"):
         track_horizon(da, [(99, 880, 100.0)])
+
+
+def test_a_seed_error_speaks_in_the_cubes_numbers(generated):
+    """A seed without a pick of the polarity near it, or on a dead trace: the error names the seed and the nearest
+    position that can start a horizon in the cube's inline, crossline and time."""
+    from seismo3d.errors import SeedError
+
+    syn, cube, truth, pol = generated
+    other = "trough" if pol == "peak" else "peak"
+    k0 = float(truth[6, 8])
+    with pytest.raises(SeedError) as caught:  # 5-sample snap: the other polarity is half a cycle away at most
+        track_horizon(cube, (INLINES[6], XLINES[8], T0 + DT * k0), polarity=other, seed_snap=0.5)
+    assert caught.value.seed == (INLINES[6], XLINES[8], T0 + DT * k0)
+    near = caught.value.nearest
+    assert near[0] in INLINES and near[1] in XLINES and T0 <= near[2] <= T0 + DT * 63
+    assert f"seed ({INLINES[6]}, {XLINES[8]}, {T0 + DT * k0:g})" in str(caught.value)
+    dead = cube.copy(data=cube.values.copy())
+    dead[6, 8] = 0.0
+    with pytest.raises(SeedError, match=f"on a dead trace; move the seed to a live trace, e.g. \\({INLINES[5]}, "
+                                        f"{XLINES[8]}|{INLINES[7]}, {XLINES[8]}|{INLINES[6]}, {XLINES[7]}|"
+                                        f"{INLINES[6]}, {XLINES[9]}"):
+        track_horizon(dead, (INLINES[6], XLINES[8], T0 + DT * k0), polarity=pol)

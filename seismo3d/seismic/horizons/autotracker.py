@@ -54,7 +54,8 @@ def autotrack(data, seed, *, polarity: str = "peak", window: int = 3) -> Horizon
     """
     labels = HorizonLabels.of(data, seed)
     if labels is not None:  # a labelled cube: tracked as its values, the horizon on its coordinates
-        return labels.label(autotrack(labels.values, labels.seeds, polarity=polarity, window=window))
+        with labels.seed_errors():
+            return labels.label(autotrack(labels.values, labels.seeds, polarity=polarity, window=window))
     check_choice(polarity, "polarity", POLARITIES)
     arr = as_seismic(data)
     seeds = as_seeds(seed, arr.shape)

@@ -15,12 +15,14 @@ xarray, https://docs.xarray.dev; segysak (T. Hallam), https://segysak.readthedoc
 
 from __future__ import annotations
 
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..io.cube import CubeAxes, index_positions, is_data_array, line_values, on_lateral, samples_at, seismic_axes
-from .result import Horizon
+from ...errors import SeedError
+from .result import Horizon, dead_trace_error, no_pick_error
 
 __all__ = ["HorizonLabels"]
 
@@ -79,3 +81,24 @@ class HorizonLabels:
                            attrs={"units": unit, "polarity": horizon.polarity})
         confidence = on_lateral(horizon.confidence, self.cube, self.axes, squeezed=self.squeezed, name="confidence")
         return Horizon(times, confidence, horizon.polarity, self.given)
+
+    def position(self, index) -> tuple:
+        """An index position of :attr:`values` (lateral indices, fractional sample) in the cube's own numbers."""
+        index = [float(v) for v in index]
+        if self.squeezed is not None:
+            index.insert(self.squeezed, 0.0)
+        lateral = tuple(float(self.cube.coords[d].values[int(round(v))]) if d in self.cube.coords else float(round(v))
+                        for d, v in zip(self.axes.lateral, index[:-1]))
+        return (*lateral, float(samples_at(self.cube, self.axes, index[-1])))
+
+    @contextmanager
+    def seed_errors(self):
+        """Re-raise a :class:`~seismo3d.errors.SeedError` of the tracker (index space) in the cube's own numbers."""
+        try:
+            yield
+        except SeedError as exc:
+            seed = self.position(exc.seed)
+            nearest = None if exc.nearest is None else self.position(exc.nearest)
+            if exc.window is None:
+                raise dead_trace_error(seed, nearest) from None
+            raise no_pick_error(seed, exc.window, nearest) from None

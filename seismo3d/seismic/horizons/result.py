@@ -108,8 +108,7 @@ def check_live_seed(data: np.ndarray, seed: np.ndarray) -> None:
         if live.size:
             at = live[np.argmin(((live - np.asarray(seed[:-1], np.float64)) ** 2).sum(axis=1))]
             nearest = (*at, seed[-1])
-        raise SeedError(f"seed {_position(seed)} is on a dead trace (all samples equal {trace[0]}); move the seed to "
-                        "a live trace" + ("" if nearest is None else f", e.g. {_position(nearest)}"), seed, nearest)
+        raise dead_trace_error(seed, nearest, f" (all samples equal {trace[0]})")
 
 
 def snap_seeds(data: np.ndarray, seeds: np.ndarray, *, polarity: str, window: float, picks=None) -> np.ndarray:
@@ -158,6 +157,26 @@ def snap_seeds(data: np.ndarray, seeds: np.ndarray, *, polarity: str, window: fl
             every = reflector_picks(traces, polarity=polarity) if picks is None else picks
             raise no_pick_error(s, window, nearest_reflector(*every, lat, s))
     return out
+
+
+def dead_trace_error(seed, nearest, note: str = "") -> SeedError:
+    """The error of a seed on a dead trace.
+
+    Parameters
+    ----------
+    seed : sequence of float
+        The seed's position, the sample last.
+    nearest : sequence of float or None
+        The nearest live position.
+    note : str
+        What the trace holds, in words (``' (all samples equal 0.0)'``).
+
+    Returns
+    -------
+    SeedError
+    """
+    return SeedError(f"seed {_position(seed)} is on a dead trace{note}; move the seed to a live trace"
+                     + ("" if nearest is None else f", e.g. {_position(nearest)}"), seed, nearest)
 
 
 def no_pick_error(seed, window: float, nearest) -> SeedError:

@@ -425,8 +425,9 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
     """
     labels = HorizonLabels.of(data, seeds)
     if labels is not None:  # a labelled cube: tracked as its values, the horizon on its coordinates
-        return labels.label(track_horizon(labels.values, labels.seeds, polarity=polarity, faults=faults,
-                                          options=options, progress=progress, **overrides))
+        with labels.seed_errors():
+            return labels.label(track_horizon(labels.values, labels.seeds, polarity=polarity, faults=faults,
+                                              options=options, progress=progress, **overrides))
     check_choice(polarity, "polarity", POLARITIES)
     arr = as_seismic(data)
     seeds = as_seeds(seeds, arr.shape)

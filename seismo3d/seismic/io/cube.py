@@ -37,7 +37,7 @@ import numpy as np
 
 from ...errors import DataNotFoundError, InputError, Seismo3dWarning
 
-__all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "index_positions", "is_data_array", "line_values", "on_lateral", "open_cube",
+__all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "grid_spacing", "index_positions", "is_data_array", "line_values", "on_lateral", "open_cube",
            "sample_dim", "sample_interval", "sample_positions", "samples_at", "seismic_axes", "seismic_kind"]
 
 SEGY_SUFFIXES = (".sgy", ".segy")
@@ -412,6 +412,62 @@ def sample_interval(cube, axes: CubeAxes) -> tuple:
         raise InputError(f"the {axes.sample} coordinate is not regularly sampled (steps {steps.min():g} to "
                          f"{steps.max():g} {axes.sample_unit}); resample the cube to one sample interval")
     return float(steps[0]), axes.sample_unit
+
+
+def grid_spacing(cube) -> tuple:
+    """Inline bin, crossline bin and sample interval of a 3D cube, from its ``cdp_x`` / ``cdp_y`` and its sample
+    coordinate.
+
+    The inline bin is the median distance between the CDP positions of neighbouring inlines (same crossline), the
+    crossline bin that between neighbouring crosslines (the coordinate scalar is applied when the cube is opened:
+    :func:`open_cube`).
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+        A 3D seismic cube ``(iline, xline, twt | depth | samples)`` (:func:`seismic_axes`).
+
+    Returns
+    -------
+    spacing : (3,) float64 ndarray
+        Inline bin and crossline bin in the survey's unit (m or ft: ``cube.attrs['xy_unit']``), sample interval in
+        the cube's sample unit. A bin is 1.0 when the coordinates are missing or do not change along that axis, the
+        sample interval 1.0 without one (then see ``note``).
+    note : str
+        Where each value came from, e.g. ``'bins 25.01 x 25.01 from CDP X/Y, sample interval 4 ms from the binary
+        header'``.
+
+    Raises
+    ------
+    InputError
+        Not a 3D seismic DataArray, or a sample coordinate that is not regularly sampled.
+    """
+    from ...errors import InputError
+
+    axes = seismic_axes(cube)
+    if len(axes.lateral) != 2:
+        raise InputError(f"a grid spacing needs a 3D cube (iline, xline, sample); got dimensions {cube.dims}")
+    x = cube.coords["cdp_x"].values if "cdp_x" in cube.coords else None
+    y = cube.coords["cdp_y"].values if "cdp_y" in cube.coords else None
+    bins, missing = [1.0, 1.0], []
+    for axis in (0, 1):
+        d = None
+        if x is not None and x.shape[axis] > 1:
+            d = np.hypot(np.diff(x, axis=axis), np.diff(y, axis=axis))
+            d = float(np.median(d)) if d.size else None
+        if d is None or not np.isfinite(d) or d <= 0:
+            missing.append("inline" if axis == 0 else "crossline")
+        else:
+            bins[axis] = d
+    interval, unit = sample_interval(cube, axes)
+    dt = interval if interval is not None and interval > 0 else 1.0
+    source = "from the binary header" if "segy_format" in cube.attrs else f"from its {axes.sample} coordinate"
+    note = f"sample interval {dt:g} {unit} {source}"
+    if missing:
+        note = f"{' and '.join(missing)} bin unknown (no CDP coordinates), set to 1; " + note
+    else:
+        note = f"bins {bins[0]:.4g} x {bins[1]:.4g} from CDP X/Y, " + note
+    return np.array([bins[0], bins[1], dt]), note
 
 
 def as_cube(values, like=None, *, name: str | None = None):

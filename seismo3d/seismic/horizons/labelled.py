@@ -37,8 +37,9 @@ class HorizonLabels:
         The input cube or line.
     axes : CubeAxes
         Its axes (:func:`~seismo3d.seismic.io.cube.seismic_axes`).
-    values : ndarray
-        Its amplitudes as tracked: (n_inlines, n_xlines, n_samples) or (n_traces, n_samples).
+    values : ndarray or dask.array.Array
+        Its amplitudes as tracked (read whole by the tracker): (n_inlines, n_xlines, n_samples) or (n_traces,
+        n_samples).
     seeds : (n_seeds, values.ndim) float64 ndarray
         The seeds in index space of ``values``.
     given : (n_seeds, cube.ndim) float64 ndarray

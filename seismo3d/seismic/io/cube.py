@@ -519,16 +519,16 @@ def line_values(cube, axes: CubeAxes) -> tuple:
 
     Returns
     -------
-    values : ndarray
-        The amplitudes read (``cube.values``): (n_inlines, n_xlines, n_samples), or (n_traces, n_samples) for a line
-        and for a grid of one line.
+    values : ndarray or dask.array.Array
+        The amplitudes, numpy- or dask-backed as the cube (``cube.data``, not read here): (n_inlines, n_xlines,
+        n_samples), or (n_traces, n_samples) for a line and for a grid of one line.
     squeezed : int or None
         The lateral axis of length 1 taken out of a grid of one line (0 or 1); None otherwise.
     """
-    values = cube.values
+    values = cube.data
     if len(axes.lateral) == 2 and 1 in values.shape[:2]:
         squeezed = 0 if values.shape[0] == 1 else 1
-        return np.take(values, 0, axis=squeezed), squeezed
+        return (values[0] if squeezed == 0 else values[:, 0]), squeezed
     return values, None
 
 

@@ -192,3 +192,30 @@ def test_a_seed_error_speaks_in_the_cubes_numbers(generated):
                                         f"{XLINES[8]}|{INLINES[7]}, {XLINES[8]}|{INLINES[6]}, {XLINES[7]}|"
                                         f"{INLINES[6]}, {XLINES[9]}"):
         track_horizon(dead, (INLINES[6], XLINES[8], T0 + DT * k0), polarity=pol)
+
+
+def test_a_line_takes_inline_crossline_time_seeds(generated):
+    syn, cube, truth, pol = generated
+    line = cube.isel(iline=6)
+    k0 = float(truth[6, 8])
+    three = track_horizon(line, (INLINES[6], XLINES[8], T0 + DT * k0), polarity=pol)
+    two = track_horizon(line, (XLINES[8], T0 + DT * k0), polarity=pol)
+    assert_array_equal(three.times.values, two.times.values)
+    with pytest.raises(InputError, match=f"iline {INLINES[7]} is not the line's iline \\({INLINES[6]}\\)"):
+        track_horizon(line, (INLINES[7], XLINES[8], T0 + DT * k0), polarity=pol)
+
+
+def test_penobscot_line_through_seismo3d_open_writes_the_jobs_rows(data_dir, tmp_path):
+    """Penobscot crossline 1155 opened by seismo3d.open, tracked from the guide's seed (inline 1300, crossline 1155,
+    2040 ms) without faults: the rows of `seismo3d horizon --no-faults`, byte for byte."""
+    import seismo3d
+    from seismo3d.data import fetch
+    from seismo3d.jobs.horizon import run_horizon_job
+
+    path = fetch("seismic/penobscot_xl1155.sgy")
+    line = seismo3d.open(path)
+    horizon = track_horizon(line, (1300, 1155, 2040.0))
+    assert horizon.times.dims == ("iline",) and int(horizon.times["xline"]) == 1155
+    write_horizon_text(tmp_path / "labelled.txt", horizon)
+    run_horizon_job(path, [(1300, 1155, 2040.0)], tmp_path / "job.txt", faults=False, progress=False)
+    assert (tmp_path / "labelled.txt").read_text() == (tmp_path / "job.txt").read_text()

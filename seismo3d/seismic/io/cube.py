@@ -542,7 +542,9 @@ def index_positions(cube, axes: CubeAxes, positions, *, what: str = "position") 
         Its axes (:func:`seismic_axes`).
     positions : (ndim,) or (n, ndim) array_like of float
         One value per dimension of ``cube``, in its coordinates: each lateral value one of the cube's line numbers
-        (the index without a coordinate), the last in its sample unit within its samples.
+        (the index without a coordinate), the last in its sample unit within its samples. A line of a survey (one
+        lateral dimension ``iline`` or ``xline``, the other line number a scalar coordinate) also takes (inline,
+        crossline, time) rows, its own line number in them.
     what : str
         What the positions are, for messages (``'seed'``).
 
@@ -564,6 +566,14 @@ def index_positions(cube, axes: CubeAxes, positions, *, what: str = "position") 
         rows = np.atleast_2d(np.asarray(positions, dtype=np.float64))
     except (TypeError, ValueError) as exc:
         raise InputError(f"{what}s must be rows of numbers ({', '.join(names)}); got {positions!r}") from exc
+    other = _other_line(cube, axes)
+    if other is not None and rows.ndim == 2 and rows.shape[1] == len(names) + 1:  # (inline, crossline, time)
+        column, number = other
+        for row in rows:
+            if row[column] != number:
+                name = "xline" if column else "iline"
+                raise InputError(f"{what} {_row(row)}: {name} {row[column]:g} is not the line's {name} ({number:g})")
+        rows = np.delete(rows, column, axis=1)
     if rows.ndim != 2 or rows.shape[1] != len(names) or rows.shape[0] == 0:
         raise InputError(f"{what}s must be ({', '.join(names)}) rows in the cube's own coordinates; got shape "
                          f"{np.shape(positions)}")
@@ -584,6 +594,17 @@ def index_positions(cube, axes: CubeAxes, positions, *, what: str = "position") 
                              f"samples ({samples[0]:g}..{samples[-1]:g} {axes.sample_unit})")
     out[:, -1] = np.interp(rows[:, -1], samples, np.arange(samples.size))
     return out
+
+
+def _other_line(cube, axes: CubeAxes):
+    """For a line of a survey (one lateral dimension 'iline' or 'xline', the other line number a scalar
+    coordinate): (its column in an (inline, crossline, time) row, its number); None otherwise."""
+    if len(axes.lateral) != 1 or axes.lateral[0] not in ("iline", "xline"):
+        return None
+    name = "xline" if axes.lateral[0] == "iline" else "iline"
+    if name not in cube.coords or cube.coords[name].ndim != 0:
+        return None
+    return (1 if name == "xline" else 0), float(cube.coords[name].values)
 
 
 def _row(values) -> str:

@@ -59,9 +59,10 @@ class SeedError(InputError):
     Parameters
     ----------
     message : str
-        The message, in index space (what the library was given).
+        The message, in the terms the library was given: index space, or a DataArray cube's own numbers.
     seed : tuple of float
-        The seed, index space: ``(inline, xline, sample)`` or ``(trace, sample)``.
+        The seed, index space: ``(inline, xline, sample)`` or ``(trace, sample)``; in the cube's own numbers
+        (inline, crossline, time or depth) when the horizon function was given a DataArray.
     nearest : tuple of float or None
         The nearest position (same axes) that can start a horizon (a reflector pick of the requested polarity, or a
         live trace), for a caller to offer in its own terms; None when the data has none.

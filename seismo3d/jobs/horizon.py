@@ -67,7 +67,8 @@ class _Survey:
 
     ``data`` is (n_inlines, n_xlines, n_samples) for a 3D cube and (n_traces, n_samples) for a 2D line: a line of
     a 3D survey (one inline or one crossline; ``inlines`` and ``xlines`` set) or a trace list (a file without an
-    inline / crossline grid; ``inlines`` and ``xlines`` None, traces numbered from 1 in file order)."""
+    inline / crossline grid; ``inlines`` and ``xlines`` None, traces numbered from 1 in file order). ``cube`` is the
+    file as :func:`seismo3d.open` labels it (its coordinates for ``--maps`` and ``--seed-file``)."""
 
     name: str
     description: str
@@ -76,6 +77,15 @@ class _Survey:
     xlines: np.ndarray | None
     samples: np.ndarray
     unit: str
+    cube: object = None
+
+    @property
+    def coordinates(self):
+        """The survey's X / Y and grid map, from the cube's headers as read (:func:`~seismo3d.seismic.io.coordinates.
+        cube_coordinates`): (n_inlines, n_crosslines) for a cube, (n_traces,) for a line or a trace list."""
+        from ..seismic.io.coordinates import cube_coordinates
+
+        return cube_coordinates(self.cube)
 
     @property
     def kind(self) -> str:
@@ -97,7 +107,7 @@ def _read_survey(path: pathlib.Path, *, iline, xline, ignore_geometry, endian, s
     if seismic.kind == "line":
         data = data.reshape(n_traces, n_samples)  # a line of a survey, (n, 1, ns) or (1, n, ns)
     return _Survey(path.name, seismic.description, data, seismic.inlines, seismic.xlines, seismic.samples,
-                   seismic.sample_unit)
+                   seismic.sample_unit, seismic.cube)
 
 
 def _seed_indices(survey: _Survey, seeds) -> list:
@@ -306,7 +316,8 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
     Parameters
     ----------
     input_path : str or path-like
-        SEG-Y file (either byte order), read by :func:`~seismo3d.seismic.open_segy`; only read. A 3D cube
+        SEG-Y file (either byte order), read once through :func:`seismo3d.open` (its headers, coordinates and
+        samples; :func:`~seismo3d.jobs.inputs.read_seismic`); only read. A 3D cube
         (inline- or crossline-sorted), a 2D line of a survey (one inline or one crossline, e.g.
         ``penobscot_xl1155.sgy``), or a file without an inline / crossline grid, read as a trace list (an arbitrary or
         2D line, e.g. ``volve_fullstack_twt_arbline.sgy``; one warning says so).
@@ -411,16 +422,18 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
         faults_from = pathlib.Path(faults_from)
         check_faults_run(faults_from, input_path)
     segy = dict(iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
-    seeds = list(seeds) + (seeds_from_file(seed_file, input_path, **segy) if seed_file is not None else [])
-    if not seeds:
+    if not seeds and seed_file is None:
         raise InputError("no seeds; pass --seed IL,XL,T or --seed-file FILE")
-    # read the cube or line, and convert the seeds to index positions
+    # read the cube or line (through seismo3d.open), and convert the seeds to index positions
     with record.stage("read"):
         survey = _read_survey(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
                               sample_unit=sample_unit)
     if surface is not None and survey.kind != "cube":
         raise InputError(f"a horizon surface needs a 3D cube and {survey.name} is {survey.description}; leave out "
                          f"surface={surface} (--surface)")
+    if seed_file is not None:  # placed on the survey by the coordinates of the headers read
+        seeds = list(seeds) + seeds_from_file(seed_file, survey.coordinates, survey.name,
+                                              trace_list=survey.kind == "trace list")
     index_seeds = _seed_indices(survey, seeds)
     # the seeds' picks checked before the faults are traced (the tracker checks them again)
     try:
@@ -470,7 +483,7 @@ def run_horizon_job(input_path, seeds, output, *, polarity: str = "peak", faults
 
             save_polydata(horizon_surface(result, inlines=survey.inlines, xlines=survey.xlines,
                                           samples=survey.samples), surface)
-        written_maps = write_horizon_maps(output, survey, result, input_path, **segy) if maps else None
+        written_maps = write_horizon_maps(output, survey, result, survey.coordinates) if maps else None
     n_faults = 0 if interp is None else len(interp.faults)
     run_json = record.write(run_json_path(main), inputs={"input": input_path, "seed_file": seed_file,
                                                          **({"faults_from": faults_from / "fault_points.csv"}

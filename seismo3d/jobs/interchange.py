@@ -157,8 +157,7 @@ def horizon_map_paths(output) -> list:
     return [output.with_suffix(s) for s in HORIZON_MAP_SUFFIXES.values()]
 
 
-def write_horizon_maps(output, survey, horizon, input_path, *, iline=189, xline=193, ignore_geometry=False,
-                       endian=None) -> dict:
+def write_horizon_maps(output, survey, horizon, coordinates: SurveyCoordinates) -> dict:
     """Write a tracked horizon beside ``output`` as IRAP ASCII / binary and ZMAP+ grids and ``X Y Z`` points
     (a 2D line: points only), through xtgeo.
 
@@ -170,10 +169,9 @@ def write_horizon_maps(output, survey, horizon, input_path, *, iline=189, xline=
         ``data``, ``inlines``, ``xlines``, ``samples``, ``kind``.
     horizon : Horizon
         In index space (``times``: fractional samples; NaN where empty).
-    input_path : path-like
-        The SEG-Y file, for its coordinates.
-    iline, xline, ignore_geometry, endian
-        How the job read it.
+    coordinates : SurveyCoordinates
+        The survey's coordinates (:func:`~seismo3d.seismic.io.coordinates.cube_coordinates` of the cube
+        ``seismo3d.open`` read).
 
     Returns
     -------
@@ -183,17 +181,15 @@ def write_horizon_maps(output, survey, horizon, input_path, *, iline=189, xline=
 
     k = np.asarray(horizon.times, dtype=np.float64)
     t = np.where(np.isfinite(k), np.interp(np.nan_to_num(k), np.arange(survey.samples.size), survey.samples), np.nan)
-    coords = read_survey_coordinates(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
-                                     endian=endian)
     stem = Path(output).with_suffix("")
     if survey.kind == "cube":
-        return write_horizon_grids(stem, t, survey.inlines, survey.xlines, coords, name=stem.name)
-    coords = coords.section()
+        return write_horizon_grids(stem, t, survey.inlines, survey.xlines, coordinates, name=stem.name)
+    coords = coordinates.section()
     return write_horizon_grids(stem, t.ravel(), coords.inline, coords.crossline, coords, formats=("xyz",),
                                name=stem.name)
 
 
-def seeds_from_file(path, input_path, *, iline=189, xline=193, ignore_geometry=False, endian=None,
+def seeds_from_file(path, coordinates: SurveyCoordinates, survey_name: str, *, trace_list: bool,
                     max_seeds: int = 64) -> list:
     """Horizon seeds from a file of picks, in the survey's terms, for ``seismo3d horizon --seed-file``.
 
@@ -203,10 +199,14 @@ def seeds_from_file(path, input_path, *, iline=189, xline=193, ignore_geometry=F
         Picks: ``inline xline time`` rows, an IRAP / ZMAP+ grid or ``X Y Z`` points
         (:func:`~seismo3d.seismic.io.horizon_grids.read_horizon_picks`). Map picks are placed on the survey by its
         grid map, at the nearest trace.
-    input_path : path-like
-        The SEG-Y file the horizon is tracked in.
-    iline, xline, ignore_geometry, endian
-        How the job reads it.
+    coordinates : SurveyCoordinates
+        The survey's coordinates (:func:`~seismo3d.seismic.io.coordinates.cube_coordinates` of the cube
+        ``seismo3d.open`` read).
+    survey_name : str
+        The survey's file name, for messages.
+    trace_list : bool
+        The survey is a trace list (a file without an inline / crossline grid): picks go to the nearest trace by
+        X / Y.
     max_seeds : int
         At most this many picks are used, evenly spread through the file's picks on the survey (a grid of picks
         would otherwise give one seed per trace).
@@ -224,9 +224,8 @@ def seeds_from_file(path, input_path, *, iline=189, xline=193, ignore_geometry=F
     from ..seismic.io.horizon_grids import read_horizon_picks
 
     picks = read_horizon_picks(path)
-    coords = read_survey_coordinates(input_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry,
-                                     endian=endian)
-    if coords.x.ndim == 1:  # a trace list: the nearest trace by X / Y
+    coords = coordinates
+    if trace_list:  # the nearest trace by X / Y
         d = np.hypot(coords.x[None, :] - picks.x[:, None], coords.y[None, :] - picks.y[:, None])
         trace = np.argmin(d, axis=1)
         ok = d[np.arange(trace.size), trace] <= _trace_spacing(coords)
@@ -238,7 +237,7 @@ def seeds_from_file(path, input_path, *, iline=189, xline=193, ignore_geometry=F
         on &= np.hypot(picks.inline - il, picks.crossline - xl) <= 0.5
         seeds = [(float(a), float(b), float(z)) for a, b, z, good in zip(il, xl, picks.z, on) if good]
     if not seeds:
-        raise InputError(f"no pick of {Path(path).name} falls on a trace of {Path(input_path).name}; pass picks of "
+        raise InputError(f"no pick of {Path(path).name} falls on a trace of {survey_name}; pass picks of "
                          "this survey (same coordinates or line numbers)")
     step = max(1, int(np.ceil(len(seeds) / max_seeds)))
     return seeds[::step][:max_seeds]

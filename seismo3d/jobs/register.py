@@ -9,16 +9,17 @@ transforms map the first's coordinates into the second's.
 
 from __future__ import annotations
 
-import contextlib
+import dataclasses
 import pathlib
 import warnings
 
 import numpy as np
 
 from ..errors import InputError, TraceListWarning
-from ..seismic import open_segy, register_volumes
+from ..seismic import register_volumes
+from ..seismic.io.cube import grid_spacing
 from ..seismic.volumes import VOLUME_MODELS
-from .inputs import input_kind
+from .inputs import input_kind, read_seismic
 from .outputs import check_outputs, output_file
 from .register_files import RegisterJob, finish_register_job, read_transform
 from .runinfo import RunRecord, run_json_output
@@ -63,8 +64,9 @@ def run_register_job(source, target, output, *, method: str | None = None, model
         ``method='fused'``: weight of the feature term in [0, 1] (default 0.1 for point clouds,
         :class:`~seismo3d.terrain.TerrainRegistrationOptions`'s for terrain files).
     iline, xline, endian
-        SEG-Y cubes: how to open both, as in :func:`~seismo3d.seismic.open_segy` (by default inline / crossline
-        numbers at trace header bytes 189 / 193 and the byte order detected per file).
+        SEG-Y cubes: how to open both (:func:`seismo3d.open`, as :func:`~seismo3d.seismic.open_segy`: by default
+        inline / crossline numbers at trace header bytes 189 / 193 and the byte order detected per file); their bins
+        from their CDP X / Y and sample intervals (:func:`~seismo3d.seismic.io.cube.grid_spacing`).
     overwrite : bool
         Replace an existing ``output``.
     progress : bool
@@ -155,17 +157,20 @@ def _register_volumes(moving_path, fixed_path, model, progress, segy: dict) -> R
         raise InputError(f"--model {model} is not available for SEG-Y volumes; use affine (the default: the bins of "
                          "both cubes, the map rotation and the vertical scale are estimated) or rigid (the spacings "
                          "from the headers are right)")
-    with contextlib.ExitStack() as opened:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", TraceListWarning)  # a file without a grid is refused below, saying why
-            fixed = opened.enter_context(open_segy(fixed_path, **segy))
-            moving = opened.enter_context(open_segy(moving_path, **segy))
-        for cube in (moving, fixed):
-            if not cube.is_3d:
-                raise InputError(f"{cube.path.name} is {cube.description}, not a 3D cube; register two 3D cubes")
-        first_f = (int(fixed.inlines[0]), int(fixed.xlines[0]), float(fixed.samples[0]))
-        first_m = (int(moving.inlines[0]), int(moving.xlines[0]), float(moving.samples[0]))
-        reg = register_volumes(fixed, moving, model=model, progress=progress)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TraceListWarning)  # a file without a grid is refused below, saying why
+        # through seismo3d.open: the headers now, a cube's samples when registered
+        fixed, moving = (read_seismic(path, **segy, arrays=False, lazy_if=lambda shape: True)
+                         for path in (fixed_path, moving_path))
+    for cube in (moving, fixed):
+        if cube.kind != "cube":
+            raise InputError(f"{cube.path.name} is {cube.description}, not a 3D cube; register two 3D cubes")
+    (sp_f, note_f), (sp_m, note_m) = grid_spacing(fixed.cube), grid_spacing(moving.cube)
+    first_f = (int(fixed.inlines[0]), int(fixed.xlines[0]), float(fixed.samples[0]))
+    first_m = (int(moving.inlines[0]), int(moving.xlines[0]), float(moving.samples[0]))
+    reg = register_volumes(fixed.cube.values, moving.cube.values, model=model, fixed_spacing=sp_f,
+                           moving_spacing=sp_m, progress=progress)
+    reg = dataclasses.replace(reg, spacing_note=f"fixed: {note_f}; moving: {note_m}")  # the headers, not "given"
     payload = reg.to_dict()
     payload.update(model=model, moving=str(moving_path), fixed=str(fixed_path),
                    index_axes=["inline", "crossline", "sample"],

@@ -2,6 +2,8 @@
 dynamic-programming trackers, the cycle-skip cut, and the plain amplitude autotracker.
 
 - :mod:`~seismo3d.seismic.horizons.result`: the horizon result (:class:`Horizon`), seeds, gap filling, text export.
+- :mod:`~seismo3d.seismic.horizons.labelled`: a seismic DataArray (:func:`seismo3d.open`) in, seeds in its own
+  numbers, the horizon out on its coordinates in its sample unit (:func:`track_horizon`, :func:`autotrack`).
 - :mod:`~seismo3d.seismic.horizons.options`: :class:`TrackingOptions`.
 - :mod:`~seismo3d.seismic.horizons.fault_crossings`: which faults a horizon step crosses and the jump there.
 - :mod:`~seismo3d.seismic.horizons.fault_pairs`: the faults between the least-squares solve's pairs of traces: their

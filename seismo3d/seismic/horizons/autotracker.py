@@ -13,6 +13,7 @@ import numpy as np
 from ..._validation import as_seismic, check_choice, check_int
 from ...errors import InputError
 from ..reflectors import POLARITIES, nearest_pick, reflector_picks
+from .labelled import HorizonLabels
 from .result import Horizon, as_seeds, check_live_seed
 
 __all__ = ["autotrack"]
@@ -29,10 +30,12 @@ def autotrack(data, seed, *, polarity: str = "peak", window: int = 3) -> Horizon
 
     Parameters
     ----------
-    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Seismic amplitudes, zero-mean. Must be finite.
+    data : xarray.DataArray or (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        Seismic amplitudes, zero-mean. Must be finite. A seismic DataArray as :func:`track_horizon` takes it, or a
+        plain array.
     seed : (ndim,) array_like of float
-        Seed pick in index space, snapped to the nearest extremum within ``window`` samples.
+        Seed pick, snapped to the nearest extremum within ``window`` samples: in the cube's own numbers for a
+        DataArray (inline, crossline, time), in index space for a plain array.
     polarity : {'peak', 'trough', 'zero_rising', 'zero_falling'}
         The event followed (see :func:`~seismo3d.seismic.reflector_picks`).
     window : int
@@ -41,13 +44,18 @@ def autotrack(data, seed, *, polarity: str = "peak", window: int = 3) -> Horizon
     Returns
     -------
     Horizon
-        ``times`` float32 fractional samples (NaN where empty), ``confidence`` 1 where picked.
+        ``times`` float32 fractional samples (NaN where empty), ``confidence`` 1 where picked. For a DataArray
+        ``data``: on its coordinates, times in its sample unit, as :func:`track_horizon` gives them.
 
     Raises
     ------
     InputError
         Bad ``data``, a seed outside the data, on a dead trace or with no extremum within ``window``.
     """
+    labels = HorizonLabels.of(data, seed)
+    if labels is not None:  # a labelled cube: tracked as its values, the horizon on its coordinates
+        with labels.seed_errors():
+            return labels.label(autotrack(labels.values, labels.seeds, polarity=polarity, window=window))
     check_choice(polarity, "polarity", POLARITIES)
     arr = as_seismic(data)
     seeds = as_seeds(seed, arr.shape)

@@ -16,6 +16,7 @@ from scipy.ndimage import distance_transform_edt
 from ..._atomic import atomic_path
 from ..._validation import check_positive
 from ...errors import InputError, SeedError
+from ..io.cube import is_data_array
 
 __all__ = ["Horizon", "as_seeds", "check_live_seed", "fill_horizon", "snap_seeds", "write_horizon_text"]
 
@@ -26,17 +27,19 @@ class Horizon:
 
     Attributes
     ----------
-    times : (n_inlines, n_xlines) or (n_traces,) float32 ndarray
+    times : (n_inlines, n_xlines) or (n_traces,) float32 ndarray, or float64 xarray.DataArray
         Fractional sample index of the horizon on each trace; NaN where it is empty (not reached, no extremum of
-        the polarity within the snap window, or confidence below the threshold).
-    confidence : same shape, float32 ndarray
+        the polarity within the snap window, or confidence below the threshold). Tracked in a DataArray cube
+        (:func:`seismo3d.open`): a DataArray on the cube's lateral dimensions and coordinates (line numbers,
+        ``cdp_x`` / ``cdp_y``), in the cube's sample unit (two-way time in ms, or depth; its ``units`` attribute).
+    confidence : same shape, float32 ndarray or DataArray
         Normalised cross-correlation, in [-1, 1], of the waveform (+-8 samples by default) around each pick with the
-        waveform
-        around the pick it was carried from (1 at seeds); NaN where the tracker never reached the trace.
+        waveform around the pick it was carried from (1 at seeds); NaN where the tracker never reached the trace.
     polarity : str
         One of :data:`~seismo3d.seismic.reflectors.POLARITIES`.
     seeds : (n_seeds, ndim) float64 ndarray
-        Seed positions in index space, ``(inline, xline, sample)`` or ``(trace, sample)``.
+        Seed positions in index space, ``(inline, xline, sample)`` or ``(trace, sample)``; in the cube's own
+        numbers (inline, crossline, time) for a horizon tracked in a DataArray.
     """
 
     times: np.ndarray
@@ -46,7 +49,7 @@ class Horizon:
 
     @property
     def mask(self) -> np.ndarray:
-        """Boolean array, True where the horizon has a pick."""
+        """Boolean array (a DataArray for a labelled horizon), True where the horizon has a pick."""
         return np.isfinite(self.times)
 
     @property
@@ -105,8 +108,7 @@ def check_live_seed(data: np.ndarray, seed: np.ndarray) -> None:
         if live.size:
             at = live[np.argmin(((live - np.asarray(seed[:-1], np.float64)) ** 2).sum(axis=1))]
             nearest = (*at, seed[-1])
-        raise SeedError(f"seed {_position(seed)} is on a dead trace (all samples equal {trace[0]}); move the seed to "
-                        "a live trace" + ("" if nearest is None else f", e.g. {_position(nearest)}"), seed, nearest)
+        raise dead_trace_error(seed, nearest, f" (all samples equal {trace[0]})")
 
 
 def snap_seeds(data: np.ndarray, seeds: np.ndarray, *, polarity: str, window: float, picks=None) -> np.ndarray:
@@ -157,6 +159,26 @@ def snap_seeds(data: np.ndarray, seeds: np.ndarray, *, polarity: str, window: fl
     return out
 
 
+def dead_trace_error(seed, nearest, note: str = "") -> SeedError:
+    """The error of a seed on a dead trace.
+
+    Parameters
+    ----------
+    seed : sequence of float
+        The seed's position, the sample last.
+    nearest : sequence of float or None
+        The nearest live position.
+    note : str
+        What the trace holds, in words (``' (all samples equal 0.0)'``).
+
+    Returns
+    -------
+    SeedError
+    """
+    return SeedError(f"seed {_position(seed)} is on a dead trace{note}; move the seed to a live trace"
+                     + ("" if nearest is None else f", e.g. {_position(nearest)}"), seed, nearest)
+
+
 def no_pick_error(seed, window: float, nearest) -> SeedError:
     """The error of a seed with no reflector pick of the requested polarity within ``window`` samples.
 
@@ -199,14 +221,15 @@ def fill_horizon(horizon: Horizon, *, max_gap: float | None = None) -> Horizon:
     Returns
     -------
     Horizon
-        A new horizon; the input is not modified.
+        A new horizon; the input is not modified. A labelled horizon (tracked in a DataArray) stays labelled: the
+        same coordinates and unit.
 
     Raises
     ------
     InputError
         Fewer than 2 (1D) or 3 (2D) picks to interpolate from, or ``max_gap`` <= 0.
     """
-    t = horizon.times.astype(np.float64)
+    t = np.asarray(horizon.times, dtype=np.float64)
     have = np.isfinite(t)
     need = 2 if t.ndim == 1 else 3
     if have.sum() < need:
@@ -225,8 +248,11 @@ def fill_horizon(horizon: Horizon, *, max_gap: float | None = None) -> Horizon:
         far = distance_transform_edt(~have) > max_gap
         filled[far & ~have] = np.nan
     filled[have] = t[have]
-    conf = np.where(have, horizon.confidence, np.nan)
-    return Horizon(filled.astype(np.float32), conf.astype(np.float32), horizon.polarity, horizon.seeds)
+    conf = np.where(have, horizon.confidence, np.nan).astype(np.float32)
+    if is_data_array(horizon.times):  # on the same coordinates, in the same unit
+        return Horizon(horizon.times.copy(data=filled), horizon.confidence.copy(data=conf), horizon.polarity,
+                       horizon.seeds)
+    return Horizon(filled.astype(np.float32), conf, horizon.polarity, horizon.seeds)
 
 
 def write_horizon_text(path, horizon: Horizon, *, inlines=None, xlines=None, samples=None) -> int:
@@ -240,7 +266,9 @@ def write_horizon_text(path, horizon: Horizon, *, inlines=None, xlines=None, sam
         Output text file.
     horizon : Horizon
         A 3D horizon (``times`` of shape (n_inlines, n_xlines)) or a 2D one ((n_traces,): rows are "trace time", or
-        "inline xline time" when both labels are given).
+        "inline xline time" when both labels are given). A labelled horizon (tracked in a DataArray) carries its
+        labels: its inline and crossline numbers (a line's trace labels, or inline and crossline when the line has
+        both), its times in its sample unit; ``inlines``, ``xlines`` and ``samples`` are then not given.
     inlines, xlines : (n_inlines,), (n_xlines,) array_like of int, optional
         Inline and crossline numbers of the grid (e.g. ``SeismicCube.inlines``); default: indices. For a 2D horizon,
         one number per trace each (the trace headers' inline and crossline).
@@ -256,8 +284,13 @@ def write_horizon_text(path, horizon: Horizon, *, inlines=None, xlines=None, sam
     Raises
     ------
     InputError
-        Axis lengths do not match the horizon's grid.
+        Axis lengths do not match the horizon's grid; labels given for a labelled horizon.
     """
+    if is_data_array(horizon.times):
+        if inlines is not None or xlines is not None or samples is not None:
+            raise InputError("a horizon tracked in a DataArray carries its line numbers and times; leave out "
+                             "inlines=, xlines= and samples=")
+        inlines, xlines = _line_numbers(horizon.times)
     t = np.asarray(horizon.times, np.float64)
     grid = np.indices(t.shape).reshape(t.ndim, -1).T
     have = np.isfinite(t).ravel()
@@ -289,3 +322,21 @@ def write_horizon_text(path, horizon: Horizon, *, inlines=None, xlines=None, sam
             for row in zip(*cols, tv):
                 fh.write(" ".join(str(int(v)) for v in row[:-1]) + f" {row[-1]:.3f}\n")
     return int(have.sum())
+
+
+def _line_numbers(times) -> tuple:
+    """The (inlines, xlines) labels of a labelled horizon's rows for :func:`write_horizon_text`: a grid's inline and
+    crossline numbers; a line's inline and crossline per trace when it has both (a line of a survey, a trace list
+    with line numbers), else its trace labels and None."""
+    dims = times.dims
+
+    def numbers(name):
+        return np.asarray(times.coords[name].values) if name in times.coords else None
+
+    if len(dims) == 2:
+        return (numbers(dims[0]) if dims[0] in times.coords else np.arange(times.shape[0]),
+                numbers(dims[1]) if dims[1] in times.coords else np.arange(times.shape[1]))
+    il, xl = numbers("iline"), numbers("xline")
+    if il is not None and xl is not None:
+        return np.broadcast_to(il, times.shape), np.broadcast_to(xl, times.shape)
+    return (numbers(dims[0]) if dims[0] in times.coords else np.arange(times.shape[0])), None

@@ -67,6 +67,7 @@ from ...registration import ICPOptions, fused_icp, icp
 from ..reflectors import POLARITIES, ReflectorSlice, nearest_reflector
 from ..traces import ncc, ncc_lag_search
 from .fault_crossings import FaultCrossings
+from .labelled import HorizonLabels
 from .lateral_check import close_gaps, despike, despike_lines
 from .lsq import lsq_horizon, picks_of
 from .options import TrackingOptions
@@ -372,12 +373,16 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
 
     Parameters
     ----------
-    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
-        Seismic amplitudes, zero-mean, the last axis the sample. Must be finite.
+    data : xarray.DataArray or (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
+        Seismic amplitudes, zero-mean, the last axis the sample. Must be finite. A cube of :func:`seismo3d.open` or
+        a segysak Dataset's variable (dims ``(iline, xline, twt | depth)`` or ``(line or trace, twt | depth)``,
+        :func:`~seismo3d.seismic.io.cube.seismic_axes`; a grid of a single inline or crossline is tracked as its 2D
+        section), or a plain array.
     seeds : (ndim,) or (n_seeds, ndim) array_like of float
-        Seed picks in index space: ``(inline, xline, sample)`` (3D) or ``(trace, sample)`` (2D). Each is snapped
-        to the nearest extremum of ``polarity`` within ``seed_snap`` (5) samples. Later seeds fill only traces the
-        earlier ones left empty.
+        Seed picks. For a DataArray, in the cube's own numbers: ``(inline, crossline, time or depth)`` (the time in
+        its sample unit), ``(inline or crossline or trace label, time)`` for a line; for a plain array, in index
+        space: ``(inline, xline, sample)`` (3D) or ``(trace, sample)`` (2D). Each is snapped to the nearest extremum
+        of ``polarity`` within ``seed_snap`` (5) samples. Later seeds fill only traces the earlier ones left empty.
     polarity : {'peak', 'trough', 'zero_rising', 'zero_falling'}
         Which event the horizon follows (see :func:`~seismo3d.seismic.reflector_picks`).
     faults : FaultInterpretation, optional
@@ -398,13 +403,16 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
     -------
     Horizon
         ``times`` (n_inlines, n_xlines) or (n_traces,) float32 fractional samples, NaN where empty, and
-        ``confidence``.
+        ``confidence``. For a DataArray ``data``: ``times`` a float64 DataArray in the cube's sample unit (two-way
+        time in ms, or depth; its ``units`` attribute) and ``confidence`` a float32 one, both on the cube's lateral
+        dimensions and coordinates (line numbers, ``cdp_x`` / ``cdp_y``); ``seeds`` as given.
 
     Raises
     ------
     InputError
-        ``data`` is not a finite 2D / 3D numeric array; a seed is outside the data, on a dead trace, or has no
-        extremum of ``polarity`` within ``seed_snap`` samples; an option is out of range.
+        ``data`` is not a finite 2D / 3D numeric array or a seismic DataArray; a seed is outside the data (for a
+        DataArray: not on its lines or within its samples), on a dead trace, or has no extremum of ``polarity``
+        within ``seed_snap`` samples; an option is out of range.
 
     References
     ----------
@@ -415,6 +423,11 @@ def track_horizon(data, seeds, *, polarity: str = "peak", faults=None, options: 
     .. [2] D. Hale, "Methods to compute fault images, extract fault surfaces, and estimate fault throws from 3D
        seismic images", Geophysics 78(2), O33-O43, 2013 (throw as the jump across a fault).
     """
+    labels = HorizonLabels.of(data, seeds)
+    if labels is not None:  # a labelled cube: tracked as its values, the horizon on its coordinates
+        with labels.seed_errors():
+            return labels.label(track_horizon(labels.values, labels.seeds, polarity=polarity, faults=faults,
+                                              options=options, progress=progress, **overrides))
     check_choice(polarity, "polarity", POLARITIES)
     arr = as_seismic(data)
     seeds = as_seeds(seeds, arr.shape)

@@ -2,7 +2,9 @@
 as a dask array, and the Zarr v3 store of ``seismo3d convert``.
 
 - :mod:`~seismo3d.seismic.io.cube`: :func:`open_cube` (``seismo3d.open``), any seismic input as the one cube type, a
-  lazy ``xarray.DataArray`` with segysak's dimensions; :func:`seismic_axes` of any such DataArray.
+  lazy ``xarray.DataArray`` with segysak's dimensions; :func:`seismic_axes` of any such DataArray, and the helpers a
+  function uses to take one and give labelled results (positions in its numbers to index space, maps on its lateral
+  coordinates).
 - :mod:`~seismo3d.seismic.io.segy`: :func:`open_segy`, :func:`read_segy`.
 - :mod:`~seismo3d.seismic.io.sections`: raw sections (:func:`read_section`), ASCII lines (:func:`read_ascii_lines`).
 - :mod:`~seismo3d.seismic.io.layout`: byte order, sample format and the rev-2 headers of a SEG-Y file
@@ -24,7 +26,6 @@ as a dask array, and the Zarr v3 store of ``seismo3d convert``.
   :func:`write_tsurf_folder`).
 - :mod:`~seismo3d.seismic.io.horizon_grids`: horizons as IRAP / ZMAP+ grids and x y z points through xtgeo, picks in
   (:func:`write_horizon_grids`, :func:`read_horizon_picks`).
-- :mod:`~seismo3d.seismic.io.xarray`: the horizon tracker on a labelled cube (``track_horizon_xr``).
 """
 
 from typing import TYPE_CHECKING

@@ -37,8 +37,8 @@ import numpy as np
 
 from ...errors import DataNotFoundError, InputError, Seismo3dWarning
 
-__all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "open_cube", "sample_dim", "sample_interval", "sample_positions",
-           "seismic_axes", "seismic_kind"]
+__all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "grid_spacing", "index_positions", "is_data_array", "line_values", "on_lateral", "open_cube",
+           "sample_dim", "sample_interval", "sample_positions", "samples_at", "seismic_axes", "seismic_kind"]
 
 SEGY_SUFFIXES = (".sgy", ".segy")
 _ALIASES = {"inline": ("inline", "iline", "il", "inline_3d"), "crossline": ("crossline", "xline", "xl", "crossline_3d"),
@@ -414,6 +414,62 @@ def sample_interval(cube, axes: CubeAxes) -> tuple:
     return float(steps[0]), axes.sample_unit
 
 
+def grid_spacing(cube) -> tuple:
+    """Inline bin, crossline bin and sample interval of a 3D cube, from its ``cdp_x`` / ``cdp_y`` and its sample
+    coordinate.
+
+    The inline bin is the median distance between the CDP positions of neighbouring inlines (same crossline), the
+    crossline bin that between neighbouring crosslines (the coordinate scalar is applied when the cube is opened:
+    :func:`open_cube`).
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+        A 3D seismic cube ``(iline, xline, twt | depth | samples)`` (:func:`seismic_axes`).
+
+    Returns
+    -------
+    spacing : (3,) float64 ndarray
+        Inline bin and crossline bin in the survey's unit (m or ft: ``cube.attrs['xy_unit']``), sample interval in
+        the cube's sample unit. A bin is 1.0 when the coordinates are missing or do not change along that axis, the
+        sample interval 1.0 without one (then see ``note``).
+    note : str
+        Where each value came from, e.g. ``'bins 25.01 x 25.01 from CDP X/Y, sample interval 4 ms from the binary
+        header'``.
+
+    Raises
+    ------
+    InputError
+        Not a 3D seismic DataArray, or a sample coordinate that is not regularly sampled.
+    """
+    from ...errors import InputError
+
+    axes = seismic_axes(cube)
+    if len(axes.lateral) != 2:
+        raise InputError(f"a grid spacing needs a 3D cube (iline, xline, sample); got dimensions {cube.dims}")
+    x = cube.coords["cdp_x"].values if "cdp_x" in cube.coords else None
+    y = cube.coords["cdp_y"].values if "cdp_y" in cube.coords else None
+    bins, missing = [1.0, 1.0], []
+    for axis in (0, 1):
+        d = None
+        if x is not None and x.shape[axis] > 1:
+            d = np.hypot(np.diff(x, axis=axis), np.diff(y, axis=axis))
+            d = float(np.median(d)) if d.size else None
+        if d is None or not np.isfinite(d) or d <= 0:
+            missing.append("inline" if axis == 0 else "crossline")
+        else:
+            bins[axis] = d
+    interval, unit = sample_interval(cube, axes)
+    dt = interval if interval is not None and interval > 0 else 1.0
+    source = "from the binary header" if "segy_format" in cube.attrs else f"from its {axes.sample} coordinate"
+    note = f"sample interval {dt:g} {unit} {source}"
+    if missing:
+        note = f"{' and '.join(missing)} bin unknown (no CDP coordinates), set to 1; " + note
+    else:
+        note = f"bins {bins[0]:.4g} x {bins[1]:.4g} from CDP X/Y, " + note
+    return np.array([bins[0], bins[1], dt]), note
+
+
 def as_cube(values, like=None, *, name: str | None = None):
     """``values`` as a DataArray on the dimensions and coordinates of the cube ``like`` (a DataArray of the same
     shape), or on segysak's dimensions with index coordinates without one.
@@ -442,3 +498,168 @@ def as_cube(values, like=None, *, name: str | None = None):
             return xr.DataArray(values, dims=like.dims, coords=like.coords, attrs=dict(like.attrs), name=name)
     dims = ("iline", "xline", "samples") if np.ndim(values) == 3 else ("trace", "samples")
     return xr.DataArray(values, dims=dims, name=name)
+
+
+def is_data_array(value) -> bool:
+    """Whether ``value`` is an ``xarray.DataArray``, without importing xarray (its class is loaded whenever there is
+    one)."""
+    xr = sys.modules.get("xarray")
+    return xr is not None and isinstance(value, xr.DataArray)
+
+
+def line_values(cube, axes: CubeAxes) -> tuple:
+    """The amplitudes of a seismic DataArray as a function of arrays takes them: a grid of a single inline or
+    crossline as its 2D section.
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+
+    Returns
+    -------
+    values : ndarray or dask.array.Array
+        The amplitudes, numpy- or dask-backed as the cube (``cube.data``, not read here): (n_inlines, n_xlines,
+        n_samples), or (n_traces, n_samples) for a line and for a grid of one line.
+    squeezed : int or None
+        The lateral axis of length 1 taken out of a grid of one line (0 or 1); None otherwise.
+    """
+    values = cube.data
+    if len(axes.lateral) == 2 and 1 in values.shape[:2]:
+        squeezed = 0 if values.shape[0] == 1 else 1
+        return (values[0] if squeezed == 0 else values[:, 0]), squeezed
+    return values, None
+
+
+def index_positions(cube, axes: CubeAxes, positions, *, what: str = "position") -> np.ndarray:
+    """Positions in a cube's own numbers (inline, crossline, time or depth; or trace label, time) to index space.
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+    positions : (ndim,) or (n, ndim) array_like of float
+        One value per dimension of ``cube``, in its coordinates: each lateral value one of the cube's line numbers
+        (the index without a coordinate), the last in its sample unit within its samples. A line of a survey (one
+        lateral dimension ``iline`` or ``xline``, the other line number a scalar coordinate) also takes (inline,
+        crossline, time) rows, its own line number in them.
+    what : str
+        What the positions are, for messages (``'seed'``).
+
+    Returns
+    -------
+    (n, ndim) float64 ndarray
+        Lateral indices (whole numbers) and the fractional sample index.
+
+    Raises
+    ------
+    InputError
+        Not one value per dimension, a lateral value that is not one of the cube's, or a time or depth outside its
+        samples; the message names the dimension and the cube's range.
+    """
+    from ...errors import InputError
+
+    names = (*axes.lateral, axes.sample)
+    try:
+        rows = np.atleast_2d(np.asarray(positions, dtype=np.float64))
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{what}s must be rows of numbers ({', '.join(names)}); got {positions!r}") from exc
+    other = _other_line(cube, axes)
+    if other is not None and rows.ndim == 2 and rows.shape[1] == len(names) + 1:  # (inline, crossline, time)
+        column, number = other
+        for row in rows:
+            if row[column] != number:
+                name = "xline" if column else "iline"
+                raise InputError(f"{what} {_row(row)}: {name} {row[column]:g} is not the line's {name} ({number:g})")
+        rows = np.delete(rows, column, axis=1)
+    if rows.ndim != 2 or rows.shape[1] != len(names) or rows.shape[0] == 0:
+        raise InputError(f"{what}s must be ({', '.join(names)}) rows in the cube's own coordinates; got shape "
+                         f"{np.shape(positions)}")
+    out = np.empty_like(rows)
+    for column, dim in enumerate(axes.lateral):
+        labels = np.asarray(cube.coords[dim].values if dim in cube.coords else np.arange(cube.sizes[dim]),
+                            dtype=np.float64)
+        for n, value in enumerate(rows[:, column]):
+            hit = np.flatnonzero(labels == value)
+            if hit.size == 0:
+                raise InputError(f"{what} {_row(rows[n])}: {dim} {value:g} is not a {dim} of the cube "
+                                 f"({labels[0]:g}..{labels[-1]:g}); give one of its {dim} numbers")
+            out[n, column] = hit[0]
+    samples = sample_positions(cube, axes)
+    for n, t in enumerate(rows[:, -1]):
+        if not samples[0] <= t <= samples[-1]:
+            raise InputError(f"{what} {_row(rows[n])}: {axes.sample} {t:g} {axes.sample_unit} is outside the cube's "
+                             f"samples ({samples[0]:g}..{samples[-1]:g} {axes.sample_unit})")
+    out[:, -1] = np.interp(rows[:, -1], samples, np.arange(samples.size))
+    return out
+
+
+def _other_line(cube, axes: CubeAxes):
+    """For a line of a survey (one lateral dimension 'iline' or 'xline', the other line number a scalar
+    coordinate): (its column in an (inline, crossline, time) row, its number); None otherwise."""
+    if len(axes.lateral) != 1 or axes.lateral[0] not in ("iline", "xline"):
+        return None
+    name = "xline" if axes.lateral[0] == "iline" else "iline"
+    if name not in cube.coords or cube.coords[name].ndim != 0:
+        return None
+    return (1 if name == "xline" else 0), float(cube.coords[name].values)
+
+
+def _row(values) -> str:
+    return "(" + ", ".join(f"{float(v):g}" for v in values) + ")"
+
+
+def samples_at(cube, axes: CubeAxes, index) -> np.ndarray:
+    """Fractional sample indices as positions in a cube's sample unit (linear between samples).
+
+    Parameters
+    ----------
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+    index : array_like of float
+        Fractional sample indices; NaN where there is none.
+
+    Returns
+    -------
+    float64 ndarray
+        Of ``index``'s shape, in ``axes.sample_unit`` (ms, m, ft; the index itself without a sample coordinate); NaN
+        where ``index`` is NaN.
+    """
+    k = np.asarray(index, dtype=np.float64)
+    samples = sample_positions(cube, axes)
+    return np.where(np.isfinite(k), np.interp(np.nan_to_num(k), np.arange(samples.size), samples), np.nan)
+
+
+def on_lateral(values, cube, axes: CubeAxes, *, squeezed: int | None = None, name: str | None = None,
+               attrs: dict | None = None):
+    """A map of one value per trace as a DataArray on a cube's lateral dimensions and coordinates.
+
+    Parameters
+    ----------
+    values : (n_inlines, n_xlines) or (n_traces,) array_like
+        One value per trace of ``cube`` (of its 2D section, with ``squeezed``).
+    cube : xarray.DataArray
+    axes : CubeAxes
+        Its axes (:func:`seismic_axes`).
+    squeezed : int, optional
+        The lateral axis a grid of one line lost (:func:`line_values`): put back, of length 1.
+    name : str, optional
+    attrs : dict, optional
+
+    Returns
+    -------
+    xarray.DataArray
+        Dims ``axes.lateral``; every coordinate of ``cube`` that does not run along its samples (line numbers,
+        ``cdp_x`` / ``cdp_y``, a line's scalar line number).
+    """
+    xr = _xarray()
+    values = np.asarray(values)
+    if squeezed is not None:
+        values = np.expand_dims(values, squeezed)
+    coords = {key: c for key, c in cube.coords.items() if axes.sample not in c.dims}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        return xr.DataArray(values, dims=axes.lateral, coords=coords, name=name, attrs=dict(attrs or {}))

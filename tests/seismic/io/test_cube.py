@@ -113,3 +113,25 @@ def test_arrays_and_raw_sections_are_in_samples(tmp_path):
         seismo3d.open(tmp_path / "cube.npy", sample_unit="ms")
     with pytest.raises(InputError, match="n_samples=N"):
         seismo3d.open(tmp_path / "line.f32be")
+
+
+def test_grid_spacing_is_that_of_the_segy_headers(data_dir, tmp_path):
+    """The bins from a cube's CDP X / Y and its sample interval: those volume_spacing reads from the open SEG-Y (the
+    register job's spacing before it read through seismo3d.open); without coordinates, 1 and said so."""
+
+    from seismo3d.seismic import open_segy, volume_spacing
+    from seismo3d.seismic.io.cube import grid_spacing
+
+    path = f"{data_dir}/seismic/f3_crop.sgy"
+    spacing, note = grid_spacing(seismo3d.open(path))
+    with open_segy(path) as cube:
+        reference = volume_spacing(cube)
+    assert_array_equal(spacing, reference[0])
+    assert note == reference[1] == "bins 25.01 x 25.01 from CDP X/Y, sample interval 4 ms from the binary header"
+    bare = tmp_path / "bare.sgy"
+    segyio.tools.from_array(str(bare), np.zeros((9, 8, 10), np.float32), dt=2000)
+    spacing, note = grid_spacing(seismo3d.open(bare))
+    assert_array_equal(spacing, [1.0, 1.0, 2.0])
+    assert note.startswith("inline and crossline bin unknown (no CDP coordinates), set to 1")
+    with pytest.raises(InputError, match="3D cube"):
+        grid_spacing(seismo3d.open(bare).isel(iline=0))

@@ -4,7 +4,7 @@ dask reductions over the chunks, never holding the values of the cube at once.
 The fault thresholds (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`) take Otsu's threshold of
 the positive thinned votes and, for densely faulted data, one of their quantiles. In memory they come from
 scikit-image (:func:`skimage.filters.threshold_otsu`) and numpy (:func:`numpy.quantile`, linear method) on the values
-(:func:`otsu`, :func:`quantile`). Block by block the same numbers come from streaming equivalents:
+(:func:`otsu`, :func:`quantile`). Over the chunks of a stored array the same numbers come from streaming equivalents:
 
 - Otsu: the counts of every chunk in the 256 bins scikit-image uses (same float32 range, so the same edges), summed,
   then scikit-image's Otsu on that histogram (:func:`streamed_otsu`: :func:`histogram_edges`, :func:`block_histogram`,

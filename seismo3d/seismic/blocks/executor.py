@@ -30,8 +30,8 @@ from ...errors import EarlierStoresError, InputError
 from .apply import BlockPlace, apply_block, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
 
-__all__ = ["BlockRun", "SchedulerClient", "kernel_threads", "release_memory", "run_block", "trace_cube",
-           "write_marker"]
+__all__ = ["BlockRun", "SchedulerClient", "check_finite", "kernel_threads", "release_memory", "run_block",
+           "trace_cube", "write_marker"]
 
 # glibc's malloc options (malloc.h): allocations above M_MMAP_THRESHOLD are mapped and unmapped on their own, so a
 # freed block's memory goes back to the system at once; setting it also stops glibc raising the threshold as large
@@ -401,3 +401,25 @@ def trace_cube(cube, what: str, *, chunks: tuple = (64, -1, -1), dtype=None):
     if dtype is not None and x.dtype != dtype:
         x = x.astype(dtype)
     return x
+
+
+def check_finite(values, inlines: tuple | None = None) -> None:
+    """Refuse amplitudes that hold NaN or inf, in a likelihood by blocks called directly (``trace_faults`` reads them
+    as 0 with a warning before its blocks: :func:`~seismo3d.seismic.amplitudes.finite_cube`).
+
+    Parameters
+    ----------
+    values : array_like or float
+        Amplitudes of a block, or statistics of the cube (its peak, its sum of squares).
+    inlines : (int, int), optional
+        The first and last inline (indices) of the block, named in the message.
+
+    Raises
+    ------
+    InputError
+        Naming the inlines when given.
+    """
+    if not np.all(np.isfinite(values)):
+        where = "" if inlines is None else f" in inlines {inlines[0]}-{inlines[1]} (indices)"
+        raise InputError(f"the cube holds NaN or infinite amplitudes{where}; replace them (e.g. by 0) before "
+                         "tracing faults")

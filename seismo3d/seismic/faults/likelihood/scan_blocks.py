@@ -37,9 +37,8 @@ from dataclasses import asdict, replace
 import numpy as np
 
 from ...._options import resolve_options
-from ....errors import InputError
 from ...blocks.apply import BlockOutput
-from ...blocks.executor import SchedulerClient, trace_cube
+from ...blocks.executor import SchedulerClient, check_finite, trace_cube
 from ...blocks.memory import chunk_bytes, default_memory_limit, worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
@@ -230,9 +229,7 @@ def _amplitude_statistics(run: StoreRun, x) -> AmplitudeStatistics:
     def compute() -> dict:
         start = time.perf_counter()
         peak, squares = run.reduce_cube((da.max(da.fabs(x)), da.sum(x.astype(np.float64) ** 2)))
-        if not np.isfinite(float(peak)) or not np.isfinite(float(squares)):
-            raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
-                             "faults")
+        check_finite((float(peak), float(squares)))
         run.seconds["statistics"] = round(time.perf_counter() - start, 2)
         return asdict(AmplitudeStatistics.from_sums(float(peak), float(squares),
                                                     int(np.prod(x.shape, dtype=np.int64))))
@@ -263,10 +260,7 @@ def balance_block(place, f, opt: FaultScanOptions, stats: AmplitudeStatistics) -
         The block holds NaN or inf.
     """
     f = np.ascontiguousarray(f, dtype=np.float32)
-    if not np.all(np.isfinite(f)):
-        i0, i1 = place.block[:2]
-        raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {i0}-{i1 - 1} (indices); "
-                         "replace them (e.g. by 0) before tracing faults")
+    check_finite(f, (place.block[0], place.block[1] - 1))
     return BlockOutput({"balanced": balance_amplitudes(f, opt, stats)})
 
 

@@ -12,7 +12,7 @@ from seismo3d.seismic.blocks.options import BlockRunOptions, ChunkOptions
 from seismo3d.seismic.faults import trace_faults
 
 
-@pytest.mark.slow  # two fault runs by blocks of a 64 x 72 x 48 cube and a cluster: ~40 s on 2 shared cores
+@pytest.mark.slow  # two fault runs by blocks of a 64 x 72 x 48 cube and a cluster: 57 s on 2 shared cores
 def test_blocks_on_a_local_cluster_equal_blocks_on_threads(tmp_path, monkeypatch):
     distributed = pytest.importorskip("distributed")
     # blocks of 32 traces in every step (the cube's 64 x 72 traces: 2 x 3 blocks, halos across every boundary)

@@ -357,3 +357,122 @@ def test_blocks_refuse_nan_amplitudes(tmp_path):
     with pytest.raises(InputError, match=r"NaN or infinite amplitudes in inlines 8-39 \(indices\)"):
         network_block(BlockPlace((8, 24, 0, 40), (8, 40, 0, 40)), cube[8:40] * np.inf, 0, LearnedOptions(), 1.0,
                       (0.0, 1.0), 40)
+
+
+# A block on the whole cube's network grid of 0.7 (its origin off the pooling grid) equal to the whole cube: 42 s,
+# asserted by `python benchmarks/fault_blocks.py --only network_grid --check`; the blocks above (grid 1) put their
+# origins off 0 too.
+
+
+@pytest.mark.parametrize("shape, limit", [((400, 400, 500), 10**9), ((1448, 1448, 512), 10**9)])
+def test_network_blocks_are_as_long_as_the_limit_allows(shape, limit):
+    # the network is 2D: a block of sections needs the receptive half of halo along them only, so the plan makes
+    # them as long as the limit allows (the whole width: no halo) and only then stacks sections
+    from seismo3d.seismic.faults.likelihood import learned_blocks
+    from seismo3d.seismic.blocks.options import ChunkOptions
+
+    opt = LearnedOptions()
+    baseline = 300 << 20
+    plan = learned_blocks._plan(shape, opt, ChunkOptions(memory_limit=limit), baseline)
+    budget = int((limit - baseline) * 0.8)
+    assert [g["factor"] for g in plan["grids"]] == list(opt.resample) == [0.5, 0.7, 1.0]
+    step = int(opt.section_step)  # the blocks read the computed sections their others are interpolated from
+    for g in plan["grids"]:
+        grid, factor = g["network_shape"], g["factor"]
+        for axis, name in enumerate(("inline", "crossline")):
+            across, along = g["network_blocks"][name]
+            assert learned_blocks._largest_network_bytes(grid, across, along, axis, shape, factor, 4, step) <= budget
+            if along < grid[1 - axis]:  # longer sections would not fit, even one chunk of them
+                assert along % 16 == 0 and across == 16
+                assert learned_blocks._largest_network_bytes(grid, 16, along + 16, axis, shape, factor, 4,
+                                                             step) > budget
+            else:  # whole sections: as many as fit
+                assert learned_blocks._largest_network_bytes(grid, across + 16, along, axis, shape, factor,
+                                                             4, step) > budget or across >= grid[axis]
+
+
+def test_network_grid_alignment_per_axis():
+    from seismo3d.seismic.faults.likelihood.network import to_network_grid
+
+    block = np.random.default_rng(0).standard_normal((40, 40, 16)).astype(np.float32)
+    _, first = to_network_grid(block, 0.7, origin=(13, 13), align=(1, 8))
+    assert first == (10, 16, 0)  # ceil(13 * 0.7) = 10; the first multiple of 8 at or after 9.1
+    with pytest.raises(InputError, match="align"):
+        to_network_grid(block, 0.7, origin=(13, 13), align=(1, 8, 8))
+
+
+def test_the_likelihood_of_several_grids_is_the_mean_of_each_grids():
+    # sections and cubes: the mean of the grids' probabilities, in the order given, each as one grid gives it
+    sec = synthetic_cube((96, 80), seed=1, noise=0.1).cube
+    cube = synthetic_cube((24, 40, 48), seed=1, noise=0.1).cube
+    # every grid, none stretched: traces of 80 and 48 samples are shorter than the default's three grids need
+    for data in (sec, cube):
+        grids = fault_probability(data, options=LearnedOptions(resample=(0.5, 0.7, 1.0), cube_resample=None,
+                                                               min_grid_samples=0, patch_samples=0))
+        each = [fault_probability(data, options=LearnedOptions(resample=f, cube_resample=None, patch_samples=0))
+                for f in (0.5, 0.7, 1.0)]
+        expected = (each[0] + each[1] + each[2]) * np.float32(1.0 / 3.0)
+        assert grids.dtype == np.float32 and np.array_equal(grids, expected)
+    assert LearnedOptions(resample=0.7).resample == (0.7,)
+    for bad in ((), (0.7, 0.7), (0.2, 0.7), 1.5, "fine"):
+        with pytest.raises(InputError, match="resample"):
+            LearnedOptions(resample=bad)
+
+
+def test_grids_that_leave_the_traces_fewer_samples_than_the_receptive_half_are_not_run():
+    # a 76-sample line (Great South Basin) on grids of 38, 53 and 76 samples: only its own grid; 80 samples (40, 56,
+    # 80): 0.7 and 1; the 462 samples of an F3 inline: the three; the finest grid always, whatever the traces
+    from seismo3d.seismic.faults.likelihood import learned_blocks
+    from seismo3d.seismic.blocks.options import ChunkOptions
+
+    opt = LearnedOptions()
+    assert opt.min_grid_samples == RECEPTIVE_HALF
+    assert opt.grids(76) == (1.0,) and opt.grids(80) == (0.7, 1.0) and opt.grids(111) == opt.grids(462) == opt.resample
+    assert LearnedOptions(resample=(0.5, 0.7)).grids(20) == (0.7,)
+    assert LearnedOptions(min_grid_samples=0).grids(8) == opt.resample
+    for bad in (-1, 2.5, True):
+        with pytest.raises(InputError, match="min_grid_samples"):
+            LearnedOptions(min_grid_samples=bad)
+    sec = synthetic_cube((96, 76), seed=1, noise=0.1).cube
+    own = fault_probability(sec, options=LearnedOptions(resample=1.0))
+    assert np.array_equal(fault_probability(sec, options=opt), own)
+    # the run by blocks plans the same grids
+    plan = learned_blocks._plan((400, 400, 76), opt, ChunkOptions(memory_limit=10**9), 300 << 20)
+    assert [g["factor"] for g in plan["grids"]] == [1.0]
+
+
+def test_a_cube_runs_the_grids_of_cube_resample_and_a_section_those_of_resample():
+    # issue 58: cube_resample=(0.5, 1) leaves out the 0.7 grid on cubes (23 % of the network's samples); not the
+    # default (a horizon tracked across a generated cube's faults went 5.4 samples off); sections keep resample
+    opt = LearnedOptions(cube_resample=(0.5, 1.0))
+    assert LearnedOptions().cube_resample is None and LearnedOptions().grids(462, 3) == (0.5, 0.7, 1.0)
+    assert opt.grids(462) == (0.5, 0.7, 1.0) and opt.grids(462, 3) == (0.5, 1.0) and opt.grids(76, 3) == (1.0,)
+    assert LearnedOptions(cube_resample=0.7).cube_resample == (0.7,)
+    for bad in ((), (0.7, 0.7), (0.2, 0.7), 1.5, "fine"):
+        with pytest.raises(InputError, match="cube_resample"):
+            LearnedOptions(cube_resample=bad)
+    sec = synthetic_cube((96, 128), seed=1, noise=0.1).cube
+    assert np.array_equal(fault_probability(sec, options=opt),
+                          fault_probability(sec, options=LearnedOptions(cube_resample=(0.7,))))
+    cube = synthetic_cube((24, 40, 128), seed=1, noise=0.1).cube
+    mine = fault_probability(cube, options=opt)
+    two = LearnedOptions(resample=(0.5, 1.0))
+    assert np.array_equal(mine, fault_probability(cube, options=two))
+    assert not np.array_equal(mine, fault_probability(cube, options=LearnedOptions()))
+
+
+def test_the_finest_grid_of_traces_shorter_than_the_training_patches_is_stretched_to_them():
+    # 76 samples (Great South Basin): its one grid runs on 128; 96 samples: the grid 1 (not 0.7) on 128; traces of
+    # 128 samples or more, and coarser grids, as they are; patch_samples=0: never
+    opt = LearnedOptions()
+    assert opt.patch_samples == 128
+    assert opt.stretch(76, 1.0) == 128 and opt.stretch(96, 1.0) == 128 and opt.stretch(96, 0.7) == 0
+    assert opt.stretch(128, 1.0) == opt.stretch(128, 0.5) == opt.stretch(462, 1.0) == 0
+    assert LearnedOptions(patch_samples=0).stretch(76, 1.0) == 0
+    for bad in (-1, 2.5, True):
+        with pytest.raises(InputError, match="patch_samples"):
+            LearnedOptions(patch_samples=bad)
+    sec = synthetic_cube((96, 76), seed=1, noise=0.1).cube
+    prob = fault_probability(sec, options=opt)
+    assert prob.shape == sec.shape and prob.dtype == np.float32 and 0.0 <= prob.min() and prob.max() <= 1.0
+    assert not np.array_equal(prob, fault_probability(sec, options=LearnedOptions(patch_samples=0)))

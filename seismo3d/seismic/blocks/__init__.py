@@ -11,10 +11,11 @@ Generic pieces, knowing nothing of what a block computes:
   function, map / reduce / gather, halo, bytes of a block) and the largest blocks a memory limit allows them;
 - :mod:`~seismo3d.seismic.blocks.executor`: resumable runs over the blocks of a cube (markers, dask schedulers, the
   kernels' threads), :meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step` running a declared step;
-- :mod:`~seismo3d.seismic.blocks.apply`: one block of a declared step: its inputs read around it, its algorithm on
-  arrays, the core of its outputs written into the run's stores, its sparse lists saved, its marker last;
-- :mod:`~seismo3d.seismic.blocks.statistics`: statistics over blocks equal to the libraries' on the values gathered
-  (histograms, Otsu's threshold, exact quantiles);
+- :mod:`~seismo3d.seismic.blocks.apply`: one block of a declared step: its inputs read around it (slices, not
+  ``dask.array.map_overlap``: the module says why), its algorithm on arrays, the core of its outputs written into
+  the run's stores, its sparse lists saved, its marker last;
+- :mod:`~seismo3d.seismic.blocks.statistics`: statistics of a stored array equal to the libraries' on the values
+  gathered (Otsu's threshold, exact quantiles), as dask reductions over its chunks;
 - :mod:`~seismo3d.seismic.blocks.stores`: the Zarr stores of such a run (the work folder, the output assembled in
   ``OUTPUT.partial`` and renamed when complete, its coordinates);
 - :mod:`~seismo3d.seismic.blocks.windows`: windows of a cube around points, in memory, lazy (dask) or stored (Zarr).

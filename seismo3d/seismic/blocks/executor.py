@@ -30,8 +30,8 @@ from ...errors import EarlierStoresError, InputError
 from .apply import BlockPlace, apply_block, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
 
-__all__ = ["BlockRun", "SchedulerClient", "kernel_threads", "release_memory", "run_block", "trace_cube",
-           "write_marker"]
+__all__ = ["BlockRun", "SchedulerClient", "check_finite", "kernel_threads", "release_memory", "run_block",
+           "trace_cube", "write_marker"]
 
 # glibc's malloc options (malloc.h): allocations above M_MMAP_THRESHOLD are mapped and unmapped on their own, so a
 # freed block's memory goes back to the system at once; setting it also stops glibc raising the threshold as large
@@ -279,14 +279,12 @@ class BlockRun:
         return todo, [json.loads(self.marker(step, b).read_text()) for b in done]
 
     def run_step(self, step: BlockStep, blocks, *args, source=None, workers: int | None = None) -> list:
-        """Run a step on every block of ``blocks`` not finished by an earlier run: a dask task per block
+        """Run a declared step on every block of ``blocks`` not finished by an earlier run: a dask task per block
         (:meth:`task`), ``workers`` blocks at once on the threaded scheduler (default the run's).
 
-        A step that declares its ``inputs`` / ``outputs`` runs as
-        :func:`~seismo3d.seismic.blocks.apply.apply_block`: each block's inputs read around it (the cube from
-        ``source``, the others from :attr:`arrays`), its algorithm called on arrays, the core of its outputs written
-        to :attr:`arrays`, its lists saved in ``WORK/<step name>/``, its marker written last. Any other step's
-        function reads and writes by itself.
+        Each block is :func:`~seismo3d.seismic.blocks.apply.apply_block`: its inputs read around it (the cube by
+        dask from ``source``, the others from :attr:`arrays`), the step's algorithm called on arrays, the core of its
+        outputs written to :attr:`arrays`, its lists saved in ``WORK/<step name>/``, its marker written last.
 
         Parameters
         ----------
@@ -296,42 +294,28 @@ class BlockRun:
         blocks : list of tuple
             ``(i0, i1, j0, j1)`` of the step's blocks (a step on another grid: items 0 and 2 its first rows).
         *args
-            Passed to the function after the block's arrays (an undeclared step: after the block, before the
-            marker's path).
+            Passed to the algorithm after the block's arrays.
         source : (n_inlines, n_xlines, n_samples) dask.array.Array, optional
-            The input cube: each block's region (``step.region``, default the block grown by ``step.halo``) is
-            read from it; an undeclared step gets it first, with the region's origin, as ``function(window, origin,
-            block, *args, marker)``, else ``function(block, *args, marker)`` reads its own inputs.
+            The input cube, when :data:`~seismo3d.seismic.blocks.plan.CUBE` is among the step's inputs: each block's
+            region (``step.region``, default the block grown by ``step.halo``) is read from it by dask.
         workers : int, optional
 
         Returns
         -------
         list
-            The blocks' results (summaries) for the blocks computed now, then the markers' payloads of the
-            finished ones.
+            The blocks' summaries for the blocks computed now, then the markers' payloads of the finished ones.
         """
         todo, done = self.pending(step.name, blocks)
         shape = source.shape if source is not None else self.shape
-        lists = None
-        if step.declared:
-            lists = self.work / step.name
-            lists.mkdir(exist_ok=True)
+        lists = self.work / step.name
+        lists.mkdir(exist_ok=True)
         tasks = []
         for b in todo:
-            marker = str(self.marker(step.name, b))
-            region = None
-            if source is not None or step.declared:
-                region = step.region(b) if step.region is not None else around(b, step.halo, shape)
-            window = None if source is None else source[region[0]:region[1], region[2]:region[3]]
-            if step.declared:
-                tasks.append(self.task(apply_block, window if CUBE in step.inputs else None, step,
-                                       BlockPlace(tuple(b), tuple(region)), self.arrays, str(lists), marker, *args,
-                                       threads=step.threads, name=step.function.__name__))
-            elif source is None:
-                tasks.append(self.task(step.function, b, *args, marker, threads=step.threads))
-            else:
-                tasks.append(self.task(step.function, window, (region[0], region[2]), b, *args, marker,
-                                       threads=step.threads))
+            region = step.region(b) if step.region is not None else around(b, step.halo, shape)
+            window = source[region[0]:region[1], region[2]:region[3]] if CUBE in step.inputs else None
+            tasks.append(self.task(apply_block, window, step, BlockPlace(tuple(b), tuple(region)), self.arrays,
+                                   str(lists), str(self.marker(step.name, b)), *args, threads=step.threads,
+                                   name=step.function.__name__))
         return self.compute(tasks, step.label or step.name, step.name, workers=workers) + done
 
     def reduce_cube(self, parts) -> list:
@@ -417,3 +401,25 @@ def trace_cube(cube, what: str, *, chunks: tuple = (64, -1, -1), dtype=None):
     if dtype is not None and x.dtype != dtype:
         x = x.astype(dtype)
     return x
+
+
+def check_finite(values, inlines: tuple | None = None) -> None:
+    """Refuse amplitudes that hold NaN or inf, in a likelihood by blocks called directly (``trace_faults`` reads them
+    as 0 with a warning before its blocks: :func:`~seismo3d.seismic.amplitudes.finite_cube`).
+
+    Parameters
+    ----------
+    values : array_like or float
+        Amplitudes of a block, or statistics of the cube (its peak, its sum of squares).
+    inlines : (int, int), optional
+        The first and last inline (indices) of the block, named in the message.
+
+    Raises
+    ------
+    InputError
+        Naming the inlines when given.
+    """
+    if not np.all(np.isfinite(values)):
+        where = "" if inlines is None else f" in inlines {inlines[0]}-{inlines[1]} (indices)"
+        raise InputError(f"the cube holds NaN or infinite amplitudes{where}; replace them (e.g. by 0) before "
+                         "tracing faults")

@@ -117,12 +117,11 @@ class BlockStep:
         A side forced by the caller (``ChunkOptions.block`` or ``strip``): used as is, and refused by the caller
         when it does not fit.
     function : callable, optional
-        What the step computes on a block, run by
-        :meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step`: ``function(block, *args, marker)``, or
-        ``function(window, origin, block, *args, marker)`` when the step reads the input cube (``window`` its
-        region around the block as a numpy array, ``origin`` the region's first inline and crossline); it writes
-        its outputs to the run's stores, then its marker (:func:`~seismo3d.seismic.blocks.executor.write_marker`),
-        and returns the marker's JSON payload.
+        The step's algorithm on the arrays of one block, run by
+        :meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step` (through
+        :func:`~seismo3d.seismic.blocks.apply.apply_block`, which reads, writes and leaves the marker):
+        ``function(*arrays, *args)`` (``function(place, *arrays, *args)`` with ``place``), the arrays its ``inputs``
+        read around the block, returning a :class:`~seismo3d.seismic.blocks.apply.BlockOutput`.
     label : str
         What the progress reports name the step.
     region : callable, optional
@@ -132,11 +131,8 @@ class BlockStep:
         On a ``dask.distributed`` cluster, a block's kernels use the worker's share of the host's cores; False keeps
         the process's threads (a step whose float sums depend on the number of threads, kept as in memory).
     inputs : tuple of str
-        Declared inputs: the names of the arrays a block reads, :data:`CUBE` for the input cube (read with the
-        step's ``region`` or ``halo``, like the other inputs). A step with ``inputs`` or ``outputs`` is run by
-        :func:`~seismo3d.seismic.blocks.apply.apply_block`: its ``function`` is an algorithm on arrays,
-        ``function(*arrays, *args)`` (``function(place, *arrays, *args)`` with ``place``), returning a
-        :class:`~seismo3d.seismic.blocks.apply.BlockOutput`; the executor reads, writes and leaves the marker.
+        The names of the arrays a block reads, :data:`CUBE` for the input cube (read with the step's ``region``
+        or ``halo``, like the other inputs).
     outputs : tuple of str or of (str, str)
         Names of the ``(n_inlines, n_xlines, ...)`` arrays whose block core the step writes (the run's stores,
         :attr:`~seismo3d.seismic.blocks.executor.BlockRun.arrays`), each the name of an array the algorithm returns
@@ -170,11 +166,6 @@ class BlockStep:
     lazy: bool = False
     trim: bool = True
     combine: Callable | None = None
-
-    @property
-    def declared(self) -> bool:
-        """Whether the executor reads and writes the step's arrays (declared ``inputs`` or ``outputs``)."""
-        return bool(self.inputs or self.outputs)
 
     def __post_init__(self):
         if self.kind not in STEP_KINDS:

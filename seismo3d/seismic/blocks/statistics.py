@@ -1,16 +1,17 @@
-"""Statistics of values spread over the blocks of a run, equal to the libraries' on the values gathered: what a
-``'reduce'`` step's blocks return and the caller combines, never holding the values of the cube at once.
+"""Statistics of values spread over the chunks of a stored array, equal to the libraries' on the values gathered:
+dask reductions over the chunks, never holding the values of the cube at once.
 
 The fault thresholds (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`) take Otsu's threshold of
 the positive thinned votes and, for densely faulted data, one of their quantiles. In memory they come from
 scikit-image (:func:`skimage.filters.threshold_otsu`) and numpy (:func:`numpy.quantile`, linear method) on the values
-(:func:`otsu`, :func:`quantile`). Block by block the same numbers come from streaming equivalents:
+(:func:`otsu`, :func:`quantile`). Over the chunks of a stored array the same numbers come from streaming equivalents:
 
-- Otsu: the counts of every block in the 256 bins scikit-image uses (same float32 range, so the same edges), summed,
-  then scikit-image's Otsu on that histogram (:func:`histogram_edges`, :func:`block_histogram`,
+- Otsu: the counts of every chunk in the 256 bins scikit-image uses (same float32 range, so the same edges), summed,
+  then scikit-image's Otsu on that histogram (:func:`streamed_otsu`: :func:`histogram_edges`, :func:`block_histogram`,
   :func:`otsu_of_histogram`);
 - the quantile: the two order statistics numpy interpolates, located by a fine histogram (:func:`quantile_window`),
-  then the values of the blocks within that window gathered and sorted (:func:`quantile_of_window`).
+  then the values of the chunks within that window gathered and sorted (:func:`streamed_quantile`,
+  :func:`quantile_of_window`).
 
 ``tests/seismic/blocks/test_statistics.py`` checks that both equal the library's result on the whole values.
 """
@@ -19,12 +20,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .apply import BlockOutput
-from .plan import BlockStep
-
-__all__ = ["HISTOGRAM_BINS", "QUANTILE_BINS", "block_histogram", "histogram_block", "histogram_edges", "otsu",
-           "otsu_of_histogram", "positive_values", "quantile", "quantile_of_window", "quantile_window",
-           "statistic_steps", "streamed_otsu", "streamed_quantile", "window_block"]
+__all__ = ["HISTOGRAM_BINS", "QUANTILE_BINS", "block_histogram", "histogram_edges", "otsu", "otsu_of_histogram",
+           "positive_values", "quantile", "quantile_of_window", "quantile_window", "streamed_otsu",
+           "streamed_quantile"]
 
 # Bins of scikit-image's Otsu threshold (its default nbins).
 HISTOGRAM_BINS = 256
@@ -168,7 +166,7 @@ def _float32_range(vmin: float, vmax: float) -> tuple:
     return np.float32(vmin), np.float32(vmax)
 
 
-# -- over the blocks of a run --------------------------------------------------------------------------------------
+# -- over the chunks of a stored array, by dask ------------------------------------------------------------------
 
 def positive_values(values) -> np.ndarray:
     """The positive values of an array, flattened.
@@ -185,75 +183,16 @@ def positive_values(values) -> np.ndarray:
     return values[values > 0]
 
 
-def histogram_block(values, vmin: float, vmax: float, bins: int) -> BlockOutput:
-    """The counts of one block's positive values in ``bins`` bins over ``[vmin, vmax]`` (:func:`block_histogram`).
-
-    Parameters
-    ----------
-    values : ndarray
-    vmin, vmax : float
-    bins : int
-
-    Returns
-    -------
-    BlockOutput
-        Summary ``counts``: a list of ``bins`` ints.
-    """
-    return BlockOutput(summary={"counts": block_histogram(positive_values(values), vmin, vmax, bins).tolist()})
-
-
-def window_block(values, lo_edge: float, hi_edge: float) -> BlockOutput:
-    """One block's positive values below ``lo_edge`` counted and those in ``[lo_edge, hi_edge]`` listed.
-
-    Parameters
-    ----------
-    values : ndarray
-    lo_edge, hi_edge : float
-
-    Returns
-    -------
-    BlockOutput
-        Summary ``below`` (int) and ``values`` (list of floats).
-    """
-    values = positive_values(values)
-    return BlockOutput(summary={"below": int(np.count_nonzero(values < lo_edge)),
-                                "values": values[(values >= lo_edge) & (values <= hi_edge)].tolist()})
-
-
-def statistic_steps(array: str, what: str) -> dict:
-    """The steps that reduce the positive values of a stored ``array`` over blocks: ``'histogram'`` (Otsu's bins),
-    ``'quantile_histogram'`` (the quantile's fine bins) and ``'quantile'`` (the values of its window gathered).
-
-    Parameters
-    ----------
-    array : str
-        The name of the array in the run's stores.
-    what : str
-        What its values are, in the progress reports' labels (e.g. ``'the thinned votes'``).
-
-    Returns
-    -------
-    dict
-        ``{name: BlockStep}``.
-    """
-    label = f"histogram of {what}"
-    return {"histogram": BlockStep("histogram", "reduce", function=histogram_block, label=label, inputs=(array,)),
-            "quantile_histogram": BlockStep("quantile_histogram", "reduce", function=histogram_block, label=label,
-                                            inputs=(array,)),
-            "quantile": BlockStep("quantile", "gather", function=window_block, label=f"quantile of {what}",
-                                  inputs=(array,))}
-
-
-def streamed_otsu(run, steps: dict, blocks, vmin: float, vmax: float) -> float:
-    """Otsu's threshold of the positive values of an array over the blocks of a run: :func:`otsu` of the values
-    gathered, from the blocks' histograms (:func:`statistic_steps`).
+def streamed_otsu(run, values, vmin: float, vmax: float) -> float:
+    """Otsu's threshold of the positive values of a lazy array: :func:`otsu` of the values gathered, from the
+    summed histograms of its chunks (a dask reduction on the run's scheduler).
 
     Parameters
     ----------
     run : BlockRun
-    steps : dict
-        Of :func:`statistic_steps`.
-    blocks : list of tuple
+        Whose scheduler computes (:meth:`~seismo3d.seismic.blocks.executor.BlockRun.reduce_cube`).
+    values : dask.array.Array
+        E.g. ``dask.array.from_zarr`` of a run's store.
     vmin, vmax : float
         The smallest and largest positive value.
 
@@ -261,20 +200,18 @@ def streamed_otsu(run, steps: dict, blocks, vmin: float, vmax: float) -> float:
     -------
     float
     """
-    return otsu_of_histogram(_summed_histogram(run, steps["histogram"], blocks, vmin, vmax, HISTOGRAM_BINS),
-                             vmin, vmax)
+    return otsu_of_histogram(_histogram(run, values, vmin, vmax, HISTOGRAM_BINS), vmin, vmax)
 
 
-def streamed_quantile(run, steps: dict, blocks, q: float, n: int, vmin: float, vmax: float) -> float:
-    """``numpy.quantile(values, q)`` of the ``n`` positive values of an array over the blocks of a run, exactly: the
-    two order statistics it interpolates, found by a fine histogram and a pass that gathers the values of their bins.
+def streamed_quantile(run, values, q: float, n: int, vmin: float, vmax: float) -> float:
+    """``numpy.quantile(v, q)`` of the ``n`` positive values ``v`` of a lazy array, exactly: the two order statistics
+    it interpolates, found by a fine histogram of its chunks, then the values of their bins gathered (dask
+    reductions on the run's scheduler).
 
     Parameters
     ----------
     run : BlockRun
-    steps : dict
-        Of :func:`statistic_steps`.
-    blocks : list of tuple
+    values : dask.array.Array
     q : float
         In [0, 1].
     n : int
@@ -286,13 +223,22 @@ def streamed_quantile(run, steps: dict, blocks, q: float, n: int, vmin: float, v
     -------
     float
     """
-    counts = _summed_histogram(run, steps["quantile_histogram"], blocks, vmin, vmax, QUANTILE_BINS)
-    window = quantile_window(counts, n, q, vmin, vmax)
-    results = run.run_step(steps["quantile"], blocks, window[3], window[4])
-    values = np.concatenate([np.asarray(r["values"], np.float32) for r in results])
-    return quantile_of_window(window, sum(r["below"] for r in results), values)
+    window = quantile_window(_histogram(run, values, vmin, vmax, QUANTILE_BINS), n, q, vmin, vmax)
+    lo_edge, hi_edge = window[3], window[4]  # lo_edge >= vmin > 0: the values of the window are positive
+    below, inside = run.reduce_cube((((values > 0) & (values < lo_edge)).sum(),
+                                     values[(values >= lo_edge) & (values <= hi_edge)]))
+    return quantile_of_window(window, int(below), np.asarray(inside, np.float32))
 
 
-def _summed_histogram(run, step, blocks, vmin, vmax, bins) -> np.ndarray:
-    results = run.run_step(step, blocks, vmin, vmax, bins)
-    return np.sum([np.asarray(r["counts"], np.int64) for r in results], axis=0)
+def _histogram(run, values, vmin: float, vmax: float, bins: int) -> np.ndarray:
+    """The counts of the positive values of every chunk of ``values`` in ``bins`` bins over [vmin, vmax]
+    (:func:`block_histogram`), summed."""
+    lead = tuple((1,) * len(c) for c in values.chunks[:-1])
+    counts = values.map_blocks(_chunk_histogram, vmin, vmax, bins, values.ndim, dtype=np.int64,
+                               chunks=(*lead, (bins,)))
+    (total,) = run.reduce_cube((counts.sum(axis=tuple(range(values.ndim - 1))),))
+    return np.asarray(total, np.int64)
+
+
+def _chunk_histogram(chunk, vmin, vmax, bins, ndim):
+    return block_histogram(positive_values(chunk), vmin, vmax, bins).reshape((1,) * (ndim - 1) + (bins,))

@@ -10,8 +10,9 @@ import numba
 import numpy as np
 import pytest
 
-from seismo3d.seismic.blocks.executor import BlockRun, kernel_threads, run_block, write_marker
-from seismo3d.seismic.blocks.plan import BlockStep, lateral_blocks
+from seismo3d.seismic.blocks.apply import BlockOutput
+from seismo3d.seismic.blocks.executor import BlockRun, kernel_threads, run_block
+from seismo3d.seismic.blocks.plan import CUBE, BlockStep, lateral_blocks
 
 
 def _kernel_thread_count(_block):
@@ -54,19 +55,15 @@ def test_a_saved_result_is_computed_once_and_read_back_by_a_resumed_run(tmp_path
     assert (tmp_path / "work" / "scale.json").read_text() == "[0.5, 2.0]"
 
 
-def _core_sum(window, origin, block, offset, marker):
-    """The sum of a block's core (cut from its window by the origin) plus ``offset``, and the window's extent."""
-    i0, i1, j0, j1 = block
-    core = window[i0 - origin[0]:i1 - origin[0], j0 - origin[1]:j1 - origin[1]]
-    result = {"sum": float(core.sum()) + offset, "window": list(window.shape[:2])}
-    write_marker(marker, result)
-    return result
+def _core_sum(place, window, offset):
+    """The sum of a block's core (cut from its window) plus ``offset``, and the window's extent."""
+    return BlockOutput(summary={"sum": float(window[place.core].sum()) + offset, "window": list(window.shape[:2])})
 
 
 def test_run_step_reads_each_block_with_its_halo_and_skips_the_finished_ones(tmp_path):
     da = pytest.importorskip("dask.array")
     cube = np.arange(10 * 7 * 3, dtype=np.float32).reshape(10, 7, 3)
-    step = BlockStep("sums", "reduce", 2, function=_core_sum, label="sums")
+    step = BlockStep("sums", "reduce", 2, function=_core_sum, label="sums", inputs=(CUBE,), place=True)
     blocks = lateral_blocks(cube.shape, 4, 4)  # 3 x 2 blocks, the last ones clipped
     run = BlockRun(tmp_path / "work", scheduler="synchronous")
     run.open({"shape": list(cube.shape)}, "the work folder")

@@ -81,22 +81,19 @@ def test_thresholds_from_streamed_statistics_are_the_in_memory_ones():
 
 
 @pytest.mark.parametrize("q", [0.1, 0.5, 0.97])
-def test_otsu_and_quantile_over_the_blocks_of_a_run_are_the_whole_arrays(tmp_path, q):
+def test_otsu_and_quantile_over_the_chunks_of_a_stored_array_are_the_whole_arrays(tmp_path, q):
     zarr = pytest.importorskip("zarr")
+    da = pytest.importorskip("dask.array")
     from seismo3d.seismic.blocks.executor import BlockRun
-    from seismo3d.seismic.blocks.plan import lateral_blocks
-    from seismo3d.seismic.blocks.statistics import statistic_steps, streamed_otsu, streamed_quantile
+    from seismo3d.seismic.blocks.statistics import streamed_otsu, streamed_quantile
 
     rng = np.random.default_rng(4)
     cube = np.where(rng.random((10, 7, 6)) < 0.4, rng.gamma(2.0, 0.05, (10, 7, 6)), 0.0).astype(np.float32)
     zarr.create_array(str(tmp_path / "values"), shape=cube.shape, chunks=(4, 4, 6), dtype="float32")[:] = cube
+    values = da.from_zarr(str(tmp_path / "values"))
+    assert values.numblocks == (3, 2, 1)  # the statistics of 6 chunks, reduced
     run = BlockRun(tmp_path / "work", scheduler="synchronous")
-    run.open({"shape": list(cube.shape)}, "the work folder")
-    run.arrays["values"], run.shape = str(tmp_path / "values"), cube.shape
-    steps = statistic_steps("values", "the values")
-    blocks = lateral_blocks(cube.shape, 4, 4)
     positive = cube[cube > 0]
     vmin, vmax = float(positive.min()), float(positive.max())
-    assert streamed_otsu(run, steps, blocks, vmin, vmax) == otsu(positive)
-    assert streamed_quantile(run, steps, blocks, q, positive.size, vmin, vmax) == float(np.quantile(positive, q))
-    assert run.computed == {"histogram": 6, "quantile_histogram": 6, "quantile": 6}
+    assert streamed_otsu(run, values, vmin, vmax) == otsu(positive)
+    assert streamed_quantile(run, values, q, positive.size, vmin, vmax) == float(np.quantile(positive, q))

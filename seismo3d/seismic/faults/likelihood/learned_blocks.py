@@ -40,7 +40,7 @@ import numpy as np
 from ...._options import resolve_options
 from ....errors import InputError
 from ...blocks.apply import BlockOutput
-from ...blocks.executor import SchedulerClient, trace_cube
+from ...blocks.executor import SchedulerClient, check_finite, trace_cube
 from ...blocks.memory import chunk_bytes, default_memory_limit, worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
@@ -359,9 +359,7 @@ def _scale(run: StoreRun, x) -> tuple:
     def compute() -> list:
         s0, s1 = scale_subsample(x.shape)
         sample = np.asarray(x[::s0, ::s1, :].compute(), dtype=np.float32)
-        if not np.isfinite(sample).all():
-            raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
-                             "faults")
+        check_finite(sample)
         return list(amplitude_scale(sample, subsample=False))
 
     return tuple(run.saved("scale", compute))
@@ -400,10 +398,7 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     """
     f = np.ascontiguousarray(f, dtype=np.float32)
     u0, u1, v0, v1 = place.block
-    if not np.isfinite(f).all():
-        lo, hi = place.origin[0], place.origin[0] + f.shape[0]
-        raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {lo}-{hi - 1} (indices); "
-                         "replace them (e.g. by 0) before tracing faults")
+    check_finite(f, (place.origin[0], place.origin[0] + f.shape[0] - 1))
     aligns = (1, POOLING_MULTIPLE) if axis == 0 else (POOLING_MULTIPLE, 1)
     small, first = to_network_grid(f, factor, origin=place.origin, align=aligns)
     n_samples = f.shape[2]

@@ -32,14 +32,13 @@ from __future__ import annotations
 import json
 import pathlib
 import time
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, replace
 
 import numpy as np
 
 from ...._options import resolve_options
-from ....errors import InputError
 from ...blocks.apply import BlockOutput
-from ...blocks.executor import SchedulerClient, trace_cube
+from ...blocks.executor import SchedulerClient, check_finite, trace_cube
 from ...blocks.memory import chunk_bytes, default_memory_limit, worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
@@ -65,22 +64,6 @@ _BALANCE_BYTES = 20
 _SEMBLANCE_BYTES = 48
 _SCAN_BYTES = 24
 _DECODE_BYTES = 24
-
-
-@dataclass(frozen=True)
-class _Plan:
-    shape: tuple
-    tile: int
-    block: int          # square blocks of the semblance and decoding steps
-    balance: int        # square blocks of the balancing step
-    strip: int          # crosslines (inlines) per block of the scan along inlines (crosslines)
-    bhalo: int          # lateral halo of the balancing step
-    halo: int           # lateral halo of the semblance step
-    shalo: int          # halo of the smoothing along strike
-    m: int              # grouped samples
-
-    def blocks(self, size0, size1):
-        return lateral_blocks(self.shape, size0, size1)
 
 
 def block_steps(shape, options: FaultScanOptions, chunking: ChunkOptions | None = None) -> tuple:
@@ -143,20 +126,17 @@ def smallest_block_bytes(shape, options: FaultScanOptions | None, tile: int) -> 
     return smallest_need(block_steps(tuple(int(n) for n in shape), options or FaultScanOptions()), tile)
 
 
-def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> _Plan:
-    n0, n1, nt = shape
-    tile = int(chunking.tile)
-    m = -(-nt // scan_step(options, nt))
-    bhalo, halo, shalo = balance_halo(options), semblance_halo(options), strike_halo(options)
+def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: int) -> dict:
+    """The sides of the steps' blocks under the memory limit (:func:`~seismo3d.seismic.blocks.plan.plan_steps`:
+    ``'balance'``, ``'semblance'`` (also the decoding's), ``'scan'`` (crosslines or inlines of a strip)), refused
+    when the smallest do not fit."""
     limit = int(chunking.memory_limit or default_memory_limit())
-    # what the blocks may use: the limit less the process itself, less a fifth for the allocator's fragmentation
-    # (freed blocks that threads' arenas keep) and the reads in flight; measured 1.54 GB peak for 1.4 GB without it
     budget = block_budget(limit, baseline, int(chunking.workers))
     steps = block_steps(shape, options, chunking)
-    sizes = plan_steps(steps, tile=tile, budget=budget)
+    sizes = plan_steps(steps, tile=int(chunking.tile), budget=budget)
     refuse_over_budget(steps, sizes, budget=budget, baseline=baseline, workers=chunking.workers, limit=limit,
-                       what=f"a chunked run of a {n0} x {n1} x {nt} cube")
-    return _Plan((n0, n1, nt), tile, sizes["semblance"], sizes["balance"], sizes["scan"], bhalo, halo, shalo, m)
+                       what="a chunked run of a {} x {} x {} cube".format(*shape))
+    return {"shape": list(shape), "tile": int(chunking.tile), **sizes}
 
 
 def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None = None,
@@ -209,43 +189,37 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     opt = resolve_options(FaultScanOptions, options, overrides, "chunked_fault_likelihood")
     chunking = chunking or ChunkOptions()
     x = trace_cube(cube, "a chunked fault likelihood", dtype=np.float32)
-    plan = _plan(x.shape, opt, chunking, worker_baseline(chunking, chunk_bytes(x)))
+    shape = tuple(int(n) for n in x.shape)
+    manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
+                "plan": _plan(shape, opt, chunking, worker_baseline(chunking, chunk_bytes(x)))}
     out = pathlib.Path(output)
     run = StoreRun(out, chunking, progress)
-    earlier = run.earlier_plan(_manifest(x.shape, opt, plan))
-    if earlier is not None:  # resuming: the blocks of the interrupted run
-        plan = _Plan(**dict(earlier, shape=tuple(earlier["shape"])))
-    m, nt = plan.m, plan.shape[2]
-    run.start_output(_manifest(x.shape, opt, plan), plan.shape, plan.tile,
-                     (("balanced", "float32", nt), ("numerator", "float32", m), ("denominator", "float32", m),
-                      ("key", "int32", m)))
-    steps = {step.name: step for step in block_steps(plan.shape, opt, chunking)}
-    n0, n1 = plan.shape[0], plan.shape[1]
+    manifest["plan"] = plan = run.earlier_plan(manifest) or manifest["plan"]  # resuming: the interrupted run's blocks
+    n0, n1, nt = shape
+    m = -(-nt // scan_step(opt, nt))
+    run.start_output(manifest, shape, plan["tile"], (("balanced", "float32", nt), ("numerator", "float32", m),
+                                                     ("denominator", "float32", m), ("key", "int32", m)))
+    steps = {step.name: step for step in block_steps(shape, opt, chunking)}
+    block, strip = plan["semblance"], plan["scan"]
     with SchedulerClient(chunking.scheduler) as client:
         run.client = client
         stats = _amplitude_statistics(run, x)
-        run.run_step(steps["balance"], plan.blocks(plan.balance, plan.balance), opt, stats, source=x)
-        results = run.run_step(steps["semblance"], plan.blocks(plan.block, plan.block), opt)
-        tiny = semblance_floor(sum(r["sum_denominator"] for r in results), n0 * n1 * plan.m)
+        run.run_step(steps["balance"], lateral_blocks(shape, plan["balance"], plan["balance"]), opt, stats, source=x)
+        results = run.run_step(steps["semblance"], lateral_blocks(shape, block, block), opt)
+        tiny = semblance_floor(sum(r["sum_denominator"] for r in results), n0 * n1 * m)
         for axis, name in ((0, "inline"), (1, "crossline")):
             # the second scan keeps the better plane of both
             scan = replace(steps["scan"], name=f"scan_{name}", label=f"fault scan along {name}s",
                            combine=np.maximum if axis == 1 else None)
-            run.run_step(scan, plan.blocks(n0, plan.strip) if axis == 0 else plan.blocks(plan.strip, n1), axis, opt,
-                         tiny, nt, plan.tile)
-        results = run.run_step(steps["decode"], plan.blocks(plan.block, plan.block), opt, tiny, nt)
+            run.run_step(scan, lateral_blocks(shape, n0, strip) if axis == 0 else lateral_blocks(shape, strip, n1),
+                         axis, opt, tiny, nt, plan["tile"])
+        results = run.run_step(steps["decode"], lateral_blocks(shape, block, block), opt, tiny, nt)
     live = sum(r["live"] for r in results)
     saturated = sum(r["high"] for r in results) / live if live else 0.0
     run.describe(coords, {"method": "fault likelihood (Hale 2013), seismo3d chunked run",
                           "saturated_fraction": saturated})
     run.finish()
-    return ChunkedLikelihood(out, tuple(x.shape), dict(run.computed), dict(run.resumed), saturated,
-                             dict(run.seconds))
-
-
-def _manifest(shape, opt, plan) -> dict:
-    return {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
-            "plan": json.loads(json.dumps(asdict(plan)))}
+    return ChunkedLikelihood(out, shape, dict(run.computed), dict(run.resumed), saturated, dict(run.seconds))
 
 
 def _amplitude_statistics(run: StoreRun, x) -> AmplitudeStatistics:
@@ -255,9 +229,7 @@ def _amplitude_statistics(run: StoreRun, x) -> AmplitudeStatistics:
     def compute() -> dict:
         start = time.perf_counter()
         peak, squares = run.reduce_cube((da.max(da.fabs(x)), da.sum(x.astype(np.float64) ** 2)))
-        if not np.isfinite(float(peak)) or not np.isfinite(float(squares)):
-            raise InputError("the cube holds NaN or infinite amplitudes; replace them (e.g. by 0) before tracing "
-                             "faults")
+        check_finite((float(peak), float(squares)))
         run.seconds["statistics"] = round(time.perf_counter() - start, 2)
         return asdict(AmplitudeStatistics.from_sums(float(peak), float(squares),
                                                     int(np.prod(x.shape, dtype=np.int64))))
@@ -288,10 +260,7 @@ def balance_block(place, f, opt: FaultScanOptions, stats: AmplitudeStatistics) -
         The block holds NaN or inf.
     """
     f = np.ascontiguousarray(f, dtype=np.float32)
-    if not np.all(np.isfinite(f)):
-        i0, i1 = place.block[:2]
-        raise InputError(f"the cube holds NaN or infinite amplitudes in inlines {i0}-{i1 - 1} (indices); "
-                         "replace them (e.g. by 0) before tracing faults")
+    check_finite(f, (place.block[0], place.block[1] - 1))
     return BlockOutput({"balanced": balance_amplitudes(f, opt, stats)})
 
 

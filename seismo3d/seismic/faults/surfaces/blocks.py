@@ -30,7 +30,7 @@ from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
     CUBE, BlockStep, block_budget, lateral_blocks, plan_steps, refuse_over_budget, smallest_need,
 )
-from ...blocks.statistics import statistic_steps, streamed_otsu, streamed_quantile
+from ...blocks.statistics import streamed_otsu, streamed_quantile
 from ...blocks.stores import StoreRun
 from ...blocks.windows import StoredWindows
 from ..options import FaultTracingOptions
@@ -314,7 +314,6 @@ class _SurfaceRun(StoreRun):
         self.likelihood, self.plan, self.opt = str(likelihood), plan, opt
         self.x, self.memory = x, memory  # the cube (dask, whole traces) and the memory limit, bytes
         self.steps = {step.name: step for step in block_steps(plan.shape, opt, 0)}
-        self.statistics = statistic_steps("thin_raw", "the thinned votes")
 
     def start(self, manifest: dict) -> None:
         """Open the work folder with ``manifest``, its work arrays (the masks near dead samples, compressed; the
@@ -376,7 +375,9 @@ class _SurfaceRun(StoreRun):
 
     def thresholds(self) -> tuple[float, float]:
         """The thresholds from the thinned votes of every block: their count and range, their histogram (Otsu) and,
-        when they are dense, their exact quantile (:mod:`~seismo3d.seismic.blocks.statistics`)."""
+        when they are dense, their exact quantile (dask reductions: :mod:`~seismo3d.seismic.blocks.statistics`)."""
+        import dask.array as da
+
         blocks = self._blocks(self.plan.thin)
         stats = self.run_step(self.steps["thin"], blocks)
         n_values = sum(r["count"] for r in stats)
@@ -385,9 +386,9 @@ class _SurfaceRun(StoreRun):
             return self.opt.thresholds_from(1.0, 0, n_samples, None)
         vmin = min(r["min"] for r in stats if r["count"])
         vmax = max(r["max"] for r in stats if r["count"])
-        return self.opt.thresholds_from(
-            streamed_otsu(self, self.statistics, blocks, vmin, vmax), n_values, n_samples,
-            lambda q: streamed_quantile(self, self.statistics, blocks, q, n_values, vmin, vmax))
+        values = da.from_zarr(self.arrays["thin_raw"])
+        return self.opt.thresholds_from(streamed_otsu(self, values, vmin, vmax), n_values, n_samples,
+                                        lambda q: streamed_quantile(self, values, q, n_values, vmin, vmax))
 
     def cells(self, lower: float) -> int:
         """Thinned votes at or above ``lower`` into the output, and its cells gathered into 1D arrays of the output

@@ -345,6 +345,22 @@ def test_blocks_equal_the_in_memory_likelihood(tmp_path, resample, shape, block,
     assert np.abs(out["dip_deg"][:] - mem.dip_deg)[live].max() <= 0.5
 
 
+def test_blocks_refuse_nan_amplitudes(tmp_path):
+    """NaN given to the learned likelihood by blocks directly (trace_faults reads them as 0 before its blocks): refused
+    from the amplitude scale's subsample of traces before any block, and by a network block, naming its inlines."""
+    from seismo3d.seismic.blocks.apply import BlockPlace
+    from seismo3d.seismic.faults.likelihood.learned_blocks import chunked_learned_likelihood, network_block
+
+    cube = synthetic_cube((40, 40, 32), seed=2).cube.astype(np.float32)
+    cube[0, 0, 5] = np.nan  # a trace of the subsample
+    with pytest.raises(InputError, match=r"the cube holds NaN or infinite amplitudes; replace them"):
+        chunked_learned_likelihood(cube, tmp_path / "l.zarr")
+    assert not (tmp_path / "l.zarr").exists()
+    with pytest.raises(InputError, match=r"NaN or infinite amplitudes in inlines 8-39 \(indices\)"):
+        network_block(BlockPlace((8, 24, 0, 40), (8, 40, 0, 40)), cube[8:40] * np.inf, 0, LearnedOptions(), 1.0,
+                      (0.0, 1.0), 40)
+
+
 # A block on the whole cube's network grid of 0.7 (its origin off the pooling grid) equal to the whole cube: 42 s,
 # asserted by `python benchmarks/fault_blocks.py --only network_grid --check`; the blocks above (grid 1) put their
 # origins off 0 too.

@@ -62,16 +62,16 @@ class MaskedNCC:
         ncc, _, origin = self.with_overlap(img, mask, min_overlap)
         return ncc, origin
 
-    def with_overlap(self, img, mask, min_overlap):
-        """As calling it, with the number of overlapping samples of every shift: (ncc, n, origin)."""
+    def with_overlap(self, img, mask, min_overlap, spectra=None):
+        """As calling it, with the number of overlapping samples of every shift: (ncc, n, origin). ``spectra``: those
+        of :meth:`moving_spectra` for this ``img`` and ``mask`` (reused for several fixed volumes of one shape)."""
         origin = np.array(img.shape) - 1
         valid = tuple(a + b - 1 for a, b in zip(self.f.shape, img.shape))
-        shape = tuple(fft.next_fast_len(n, real=True) for n in valid)
+        shape = self._shape(img.shape)
         if shape not in self.cache:
             self.cache[shape] = [fft.rfftn(a, shape) for a in (self.f, self.f * self.f, np.ones_like(self.f))]
         f1, f2, f0 = self.cache[shape]
-        flip = (slice(None, None, -1),) * 3
-        g1, g2, g0 = (fft.rfftn(a[flip].astype(np.float32), shape) for a in (img * mask, img * img * mask, mask))
+        g1, g2, g0 = self.moving_spectra(img, mask) if spectra is None else spectra
         crop = tuple(slice(0, n) for n in valid)
 
         def corr(a, b):  # the data are normalised (mean about 0): no cancellation in single precision below
@@ -84,6 +84,17 @@ class MaskedNCC:
         den = np.sqrt(np.maximum(sum_f2 - sum_f ** 2 / nn, 0.0) * np.maximum(sum_m2 - sum_m ** 2 / nn, 0.0))
         ok = (n >= min_overlap) & (den > 1e-4 * nn)
         return np.where(ok, num / np.where(ok, den, np.float32(1.0)), -np.inf), n, origin
+
+    def moving_spectra(self, img, mask) -> tuple:
+        """The three transforms of ``img`` (masked, squared and masked, the mask) :meth:`with_overlap` needs, for
+        any fixed volume of this one's shape."""
+        flip = (slice(None, None, -1),) * 3
+        shape = self._shape(img.shape)
+        return tuple(fft.rfftn(a[flip].astype(np.float32), shape) for a in (img * mask, img * img * mask, mask))
+
+    def _shape(self, img_shape) -> tuple:
+        """The transforms' shape for an image of ``img_shape``: every shift without wrapping, a fast length."""
+        return tuple(fft.next_fast_len(a + b - 1, real=True) for a, b in zip(self.f.shape, img_shape))
 
 
 def _resampled_onto(target: Sampled, source: Sampled, lin):

@@ -192,9 +192,11 @@ def spectral_maps(fixed: MapSpectrum, moving: MapSpectrum, *, scale_range, max_r
         if not mask.any() or not fixed_ncc:  # no trusted frequency (a map too small for its window)
             continue
         need = max(0.25 * mask.sum(), 8.0)
-        spectra = next(iter(fixed_ncc.values())).moving_spectra(img[:, :, None], mask[:, :, None])
+        # the moving image lies inside the fixed one at every rotation and scale searched (the fixed one is padded
+        # by them): only those shifts are computed
+        spectra = next(iter(fixed_ncc.values())).moving_spectra(img[:, :, None], mask[:, :, None], inside=True)
         for rho, ncc_of in fixed_ncc.items():
-            ncc, n, origin = ncc_of.with_overlap(img[:, :, None], mask[:, :, None], need, spectra)
+            ncc, n, origin = ncc_of.with_overlap(img[:, :, None], mask[:, :, None], need, spectra, inside=True)
             ncc = ncc[:, :, 0]
             # index shifts -> rotation (fixed angle = moving angle + theta) and log scale (fixed radius = r / s)
             shifts_a = (np.arange(ncc.shape[0]) - origin[0] - pad_a) * step

@@ -2,7 +2,8 @@
 unrelated pairs, and seconds per pair beside scikit-image's phase_cross_correlation on the same arrays.
 
 Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/volumes.py [--quick] [--only
-speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral,suite_grid,any_grid] [--pairs N] [--repeat N] [--check]``
+speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral,suite_grid,any_grid] [--pairs N] [--seed N] [--repeat N]
+[--check]``
 
 1. speed: f3_crop onto its copy shifted by 4 inlines, 4 crosslines and 5 samples (arrays, and the command on SEG-Y
    files: ``seismo3d register f3.sgy copy.sgy``, imports included), and a 160 x 160 x 130 generated pair (moving
@@ -517,15 +518,16 @@ def _any_grid_unrelated(cubes: dict, rng) -> dict:
     }
 
 
-def any_grid(quick: bool, repeat: int, n_pairs: int | None = None) -> bool:
+def any_grid(quick: bool, repeat: int, n_pairs: int | None = None, seed: int = ANY_GRID_SEED) -> bool:
     """Section 8 (issue 78): pairs drawn by :func:`seismo3d.data.random_grid_pair` from three real cubes (map rotations
     within +-30 degrees, moving bins 0.7-1.4 per map axis independently, sample intervals 0.9-1.1, the moving block
     inside the fixed one), registered in both orders, and unrelated pairs; True when every cube has 95 % of its
-    registrations right (the issue's tolerances) and converged, each within 5 s, and no unrelated pair converged."""
+    registrations right (the issue's tolerances) and converged, each within 5 s, and no unrelated pair converged.
+    ``seed``: the pairs' draws (the check's are those of ``ANY_GRID_SEED``; choose settings on others)."""
     n_pairs = n_pairs or (5 if quick else ANY_GRID_PAIRS)
     cubes = any_grid_cubes()
-    rng = np.random.default_rng(ANY_GRID_SEED)
-    print(f"\n## Pairs on any grid: {n_pairs} pairs per cube, both orders, seed {ANY_GRID_SEED} ({_load()})\n")
+    rng = np.random.default_rng(seed)
+    print(f"\n## Pairs on any grid: {n_pairs} pairs per cube, both orders, seed {seed} ({_load()})\n")
     print("Every registration (right: within the issue's tolerances):\n")
     print("| cube | pair | rotation | moving scales | moving shape | order | wall s | CPU s | rotation err | "
           "scale err % | corner err | right | converged | reason |")
@@ -587,13 +589,15 @@ if __name__ == "__main__":
     ap.add_argument("--repeat", type=int, default=5, help="runs per timed pair (speed)")
     ap.add_argument("--pairs", type=int, default=None,
                     help=f"pairs per cube of any_grid (default {ANY_GRID_PAIRS}, --quick 5)")
+    ap.add_argument("--seed", type=int, default=ANY_GRID_SEED,
+                    help=f"seed of any_grid's pairs (default {ANY_GRID_SEED}, the check's; choose settings on others)")
     ap.add_argument("--check", action="store_true",
                     help="exit 1 when a section's check fails (coordinates, suite_grid, any_grid)")
     args = ap.parse_args()
     warnings.simplefilter("ignore")
     failed = [name for name in args.only.split(",")
-              if SECTIONS[name.strip()](args.quick, args.repeat, **({"n_pairs": args.pairs} if name.strip() ==
-                                                                     "any_grid" else {})) is False]
+              if SECTIONS[name.strip()](args.quick, args.repeat, **({"n_pairs": args.pairs, "seed": args.seed}
+                                                                    if name.strip() == "any_grid" else {})) is False]
     if args.check and failed:
         print(f"check failed: {', '.join(failed)}")
         sys.exit(1)

@@ -96,8 +96,8 @@ class VolumeOptions:
         (:func:`~seismo3d.seismic.volumes.check.control_shifts`; 0.5, the half width of its central lobe, kept after
         pairs of :func:`~seismo3d.data.random_grid_pair` drawn with seed 1001, not the benchmark's 78, four per cube
         of ``benchmarks/volumes.py --only any_grid`` in both orders: the right answers' misfit 0.01-0.54 of the
-        controls' at 0.5 (up to 0.76 at 0.8, over the 0.7 allowed), 18 unrelated pairs cut from those draws 0.92-1.1 at every level from
-        0.2 to 0.8) ...
+        controls' at 0.5 (up to 0.76 at 0.8, over the 0.7 allowed), 18 unrelated pairs cut from those draws
+        0.92-1.1 at every level from 0.2 to 0.8) ...
     max_control_shift : float
         ... at most this fraction of the axis's length (at least 1 sample) ...
     control_ratio : float

@@ -2,8 +2,8 @@
 unrelated pairs, and seconds per pair beside scikit-image's phase_cross_correlation on the same arrays.
 
 Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/volumes.py [--quick] [--only
-speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral,suite_grid,any_grid] [--pairs N] [--seed N] [--repeat N]
-[--check]``
+speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral,suite_grid,any_grid] [--pairs N] [--seed N]
+[--repeat N] [--check]``
 
 1. speed: f3_crop onto its copy shifted by 4 inlines, 4 crosslines and 5 samples (arrays, and the command on SEG-Y
    files: ``seismo3d register f3.sgy copy.sgy``, imports included), and a 160 x 160 x 130 generated pair (moving

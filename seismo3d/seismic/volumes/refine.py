@@ -210,15 +210,13 @@ class Refined:
 
 
 def refine(pair: PairCorrelation, t_level, *, max_iterations: int, tolerance: float,
-           min_overlap_ratio: float = 0.5, joined=None) -> Refined:
+           min_overlap_ratio: float = 0.5) -> Refined:
     """Levenberg-Marquardt steps on the two-way correlation from the (4, 4) level transform ``t_level``, each way
     weighted by the inverse of its misfit there (:meth:`PairCorrelation.weigh_ways`).
 
     Stops when a step moves no corner of the moving volume by more than ``tolerance`` (level samples), after
     ``max_iterations`` steps, or when no damped step lowers the cost. A step that shrinks either way's overlap below
-    ``min_overlap_ratio`` of the start's is refused: a small overlap can correlate by chance. ``joined``, a callable
-    of the (4, 4) level transform, stops it after a step where it returns True (not converged: the refinement has
-    reached a peak another one climbed).
+    ``min_overlap_ratio`` of the start's is refused: a small overlap can correlate by chance.
     """
     q = pair.params(t_level)
     if len(pair.ways) > 1:
@@ -254,7 +252,5 @@ def refine(pair: PairCorrelation, t_level, *, max_iterations: int, tolerance: fl
         q, ev = q + step, pair.evaluate(q + step)
         if move < tolerance:
             converged = True
-            break
-        if joined is not None and joined(pair.transform(q)):
             break
     return Refined(pair.transform(q), ev.correlations, ev.overlaps, n_it, converged)

@@ -428,9 +428,6 @@ def _refine_starts(fixed: Sampled, moving: Sampled, starts: list, sp_f, sp_m, mo
                    tolerance: float) -> _Coarse:
     """Each start refined on the coarsest level; the best, and the best distinct other optimum.
 
-    The starts are refined best first; one that comes within a sample (at the moving corners) of an optimum an
-    earlier start reached stops there: it has climbed the same peak, and only distinct optima are kept.
-
     The starts lie up to half a search step from an optimum (7.5 degrees, 19 % per axis), where the direction of the
     first steps decides which peak they climb: the Jacobian here holds the derivative of the spline values the
     correlation is made of (``gradient='spline'``). With the smoother central differences, whose sign differs from
@@ -439,12 +436,8 @@ def _refine_starts(fixed: Sampled, moving: Sampled, starts: list, sp_f, sp_m, mo
     and keep the central differences (:attr:`~seismo3d.seismic.volumes.pyramid.Sampled.gradient_volumes`)."""
     pair = PairCorrelation(fixed, moving, Reparam(model, sp_f * fixed.factors, sp_m * moving.factors),
                            opt.n_points_coarse, gradient="spline")
-    results = []
-    for s in starts:  # best first: a later start that comes within a sample of an optimum found stops there
-        results.append(refine(pair, s.transform, max_iterations=opt.max_iterations, tolerance=tolerance,
-                              joined=lambda t: any(corner_distance(t, r.transform, moving.shape) <= 1.0
-                                                   for r in results if r.converged)))
-    results.sort(key=lambda r: -r.correlation)
+    results = sorted((refine(pair, s.transform, max_iterations=opt.max_iterations, tolerance=tolerance)
+                      for s in starts), key=lambda r: -r.correlation)
     if not results:  # no map overlaps enough anywhere: the identity, which the check reports
         results = [refine(pair, np.eye(4), max_iterations=1, tolerance=tolerance)]
     best = results[0]

@@ -53,12 +53,12 @@ speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral,suite_grid,
    pairs (blocks of two cubes, one cube's blocks far apart in place or time). ``--check`` exits 1 unless each cube
    has 95 % right and converged, none converged but wrong, each registration within 5 CPU s (the process's own
    seconds: on the shared 2-core machine of the project, wall time grows with the other processes' load, which
-   the table prints), and no unrelated pair converged. Measured 2026-11-27 with the 50 pairs (load 5-12 on 2 cores,
-   35.8 min): right and converged 81 of 100 (Parihaka: all 100 within the tolerances, 19 refused by the shifted
-   controls, their misfit 0.71-0.93 of the controls' against the 0.7 allowed), 95 of 100 (Penobscot), 98 of 100
-   (f3_crop), none converged but wrong, the 12 unrelated registrations refused; CPU seconds median 4.3 / 3.8 / 1.5,
-   worst 7.1 / 6.8 / 2.8, over 5 s 26 / 13 / 0 of 100: the check fails on Parihaka's 95 % and on the 5 s of
-   Parihaka and Penobscot.
+   the table prints), and no unrelated pair converged. Measured 2026-11-28 with the 50 pairs (load 3-9 on 2 cores,
+   24.1 min): right and converged 98 of 100 (Parihaka: pair 8 refused in both orders by the shifted controls,
+   0.949 against 0.934-0.935), 95 of 100 (Penobscot: pairs 9, 19 and 21 wrong and refused), 98 of 100 (f3_crop:
+   pair 7 wrong and refused), none converged but wrong, the 12 unrelated registrations refused; CPU seconds median
+   3.6 / 2.8 / 1.4, worst 5.1 / 5.0 / 2.7, over 5 s 3 / 0 / 0 of 100 (5.1 s each): the check fails on the 5 s of
+   Parihaka.
 """
 
 from __future__ import annotations

@@ -18,10 +18,10 @@ from functools import cached_property
 import numpy as np
 from scipy import fft, ndimage as ndi
 
+from ._spline import spline_gradients
 from .model import homogeneous_diag
 
 HIGH_FREQUENCY = 0.3  # cycles per sample: above it, a cubic spline interpolates poorly (Sampled.high_frequency)
-SPLINE_STEP = 0.01  # samples: the central difference of the spline for its derivative (Sampled.sample)
 GRADIENTS = ("central", "spline")
 
 __all__ = ["Sampled", "Samples", "level_factors", "smoothing_measures", "level_kind", "build_level", "envelope",
@@ -182,7 +182,7 @@ class Sampled:
 
         ``gradient``: ``'central'``, the :attr:`gradient_volumes` interpolated linearly (smoother near the Nyquist
         frequency than the values' own derivative); ``'spline'``, the derivative of the cubic B-spline that gives
-        the values (a central difference of it over +-``SPLINE_STEP`` samples): the exact gradient of the
+        the values (:func:`~seismo3d.seismic.volumes._spline.spline_gradients`): the exact gradient of the
         correlation the refinement climbs. On aliased volumes the two differ by much of their size (the Volve
         velocity pairs of ``benchmarks/volumes.py`` at 0 and 30 degrees, on a grid of points between the samples:
         24-126 % along the map axes depending on the level, the sign differing at 4-24 % of the points).
@@ -205,12 +205,7 @@ class Sampled:
         p = pts[:, inside]
         grads = np.zeros((3, pts.shape[1]))
         if gradient == "spline":
-            for k in range(3):
-                step = np.zeros((3, 1))
-                step[k] = SPLINE_STEP
-                ahead, behind = (ndi.map_coordinates(self.coefficients, p + sign * step, order=3, prefilter=False,
-                                                     mode="mirror") for sign in (1.0, -1.0))
-                grads[k, inside] = (ahead - behind) / (2.0 * SPLINE_STEP)
+            grads[:, inside] = spline_gradients(self.coefficients, p)
         else:
             for k, g in enumerate(self.gradient_volumes):
                 grads[k, inside] = ndi.map_coordinates(g, p, order=1, mode="nearest")

@@ -62,17 +62,21 @@ class MaskedNCC:
         ncc, _, origin = self.with_overlap(img, mask, min_overlap)
         return ncc, origin
 
-    def with_overlap(self, img, mask, min_overlap):
-        """As calling it, with the number of overlapping samples of every shift: (ncc, n, origin)."""
+    def with_overlap(self, img, mask, min_overlap, spectra=None, *, inside: bool = False):
+        """As calling it, with the number of overlapping samples of every shift: (ncc, n, origin). ``spectra``: those
+        of :meth:`moving_spectra` for this ``img`` and ``mask`` (reused for several fixed volumes of one shape).
+        ``inside``: only the shifts that keep the whole image inside the fixed volume are computed (the others are
+        -inf, n 0), by transforms of the fixed volume's size (a circular correlation: no wrap reaches them)."""
         origin = np.array(img.shape) - 1
-        valid = tuple(a + b - 1 for a, b in zip(self.f.shape, img.shape))
-        shape = tuple(fft.next_fast_len(n, real=True) for n in valid)
+        full = tuple(a + b - 1 for a, b in zip(self.f.shape, img.shape))
+        shape = self._shape(img.shape, inside)
         if shape not in self.cache:
             self.cache[shape] = [fft.rfftn(a, shape) for a in (self.f, self.f * self.f, np.ones_like(self.f))]
         f1, f2, f0 = self.cache[shape]
-        flip = (slice(None, None, -1),) * 3
-        g1, g2, g0 = (fft.rfftn(a[flip].astype(np.float32), shape) for a in (img * mask, img * img * mask, mask))
-        crop = tuple(slice(0, n) for n in valid)
+        g1, g2, g0 = self.moving_spectra(img, mask, inside=inside) if spectra is None else spectra
+        # full: every shift, from 0; inside: shifts origin to the fixed volume's end (img.shape - 1 to f.shape - 1)
+        crop = tuple(slice(g - 1 if inside else 0, f if inside else m)
+                     for f, g, m in zip(self.f.shape, img.shape, full))
 
         def corr(a, b):  # the data are normalised (mean about 0): no cancellation in single precision below
             return fft.irfftn(a * b, shape)[crop]
@@ -83,7 +87,26 @@ class MaskedNCC:
         num = corr(f1, g1) - sum_f * sum_m / nn
         den = np.sqrt(np.maximum(sum_f2 - sum_f ** 2 / nn, 0.0) * np.maximum(sum_m2 - sum_m ** 2 / nn, 0.0))
         ok = (n >= min_overlap) & (den > 1e-4 * nn)
-        return np.where(ok, num / np.where(ok, den, np.float32(1.0)), -np.inf), n, origin
+        ncc = np.where(ok, num / np.where(ok, den, np.float32(1.0)), -np.inf)
+        if inside:  # back into the full correlation's indices
+            ncc_full, n_full = np.full(full, -np.inf, dtype=ncc.dtype), np.zeros(full, dtype=n.dtype)
+            ncc_full[crop], n_full[crop] = ncc, n
+            ncc, n = ncc_full, n_full
+        return ncc, n, origin
+
+    def moving_spectra(self, img, mask, *, inside: bool = False) -> tuple:
+        """The three transforms of ``img`` (masked, squared and masked, the mask) :meth:`with_overlap` needs (with
+        the same ``inside``), for any fixed volume of this one's shape."""
+        flip = (slice(None, None, -1),) * 3
+        shape = self._shape(img.shape, inside)
+        return tuple(fft.rfftn(a[flip].astype(np.float32), shape) for a in (img * mask, img * img * mask, mask))
+
+    def _shape(self, img_shape, inside: bool = False) -> tuple:
+        """The transforms' shape for an image of ``img_shape``: every shift without wrapping (the fixed volume's
+        shape for the shifts ``inside`` it), a fast length."""
+        if inside and any(g > f for f, g in zip(self.f.shape, img_shape)):
+            raise ValueError(f"an image of shape {tuple(img_shape)} fits at no shift inside {self.f.shape}")
+        return tuple(fft.next_fast_len(a if inside else a + b - 1, real=True) for a, b in zip(self.f.shape, img_shape))
 
 
 def _resampled_onto(target: Sampled, source: Sampled, lin):

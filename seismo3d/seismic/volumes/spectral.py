@@ -182,17 +182,21 @@ def spectral_maps(fixed: MapSpectrum, moving: MapSpectrum, *, scale_range, max_r
     k = int(np.floor(np.log(max_anisotropy) / np.log(anisotropy_step) + 1e-9))
     anisotropies = anisotropy_step ** np.arange(-k, k + 1)
     fixed_images = {rho: _log_polar(fixed, rho, a_fixed, r_fixed, inverse=True) for rho in anisotropies}
+    # untrusted fixed values: their mean, their mask is folded into the moving side's overlap count below; each
+    # fixed image's transforms once, each moving image's once for every fixed one (all of one shape)
+    fixed_ncc = {rho: MaskedNCC(np.where(f_mask > 0, f_img, f_img[f_mask > 0].mean())[:, :, None])
+                 for rho, (f_img, f_mask) in fixed_images.items() if f_mask.any()}
     found = []
     for a in anisotropies:
         img, mask = _log_polar(moving, a, a_moving, radii, inverse=False)
+        if not mask.any() or not fixed_ncc:  # no trusted frequency (a map too small for its window)
+            continue
         need = max(0.25 * mask.sum(), 8.0)
-        for rho in anisotropies:
-            f_img, f_mask = fixed_images[rho]
-            if not f_mask.any() or not mask.any():  # no trusted frequency (a map too small for its window)
-                continue
-            # untrusted fixed values: 0, their mask is folded into the moving side's overlap count below
-            ncc, n, origin = MaskedNCC(np.where(f_mask > 0, f_img, f_img[f_mask > 0].mean())[:, :, None]) \
-                .with_overlap(img[:, :, None], mask[:, :, None], need)
+        # the moving image lies inside the fixed one at every rotation and scale searched (the fixed one is padded
+        # by them): only those shifts are computed
+        spectra = next(iter(fixed_ncc.values())).moving_spectra(img[:, :, None], mask[:, :, None], inside=True)
+        for rho, ncc_of in fixed_ncc.items():
+            ncc, n, origin = ncc_of.with_overlap(img[:, :, None], mask[:, :, None], need, spectra, inside=True)
             ncc = ncc[:, :, 0]
             # index shifts -> rotation (fixed angle = moving angle + theta) and log scale (fixed radius = r / s)
             shifts_a = (np.arange(ncc.shape[0]) - origin[0] - pad_a) * step

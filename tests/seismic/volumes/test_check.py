@@ -49,3 +49,18 @@ def test_the_answer_is_the_leading_ways_optimum_on_the_two_way_peak(f3_pair, mon
         assert "the way that leads, moves away from the two-way optimum" in reg.reason and "\n" not in reg.reason
         np.testing.assert_array_equal(reg.transform_index, reg.check.two_way)
         assert error.max_scale_pct >= 4.5, error
+
+
+def test_control_shifts_are_the_correlation_lengths():
+    # traces cos(2 pi i / 36) * s(t), s white noise, over 10 periods: along the inlines the autocorrelation is
+    # cos(2 pi k / 36) (to within the finite series), 0.5 at k = 6; the crosslines are alike (flat: the largest shift,
+    # a quarter of 12); along the traces white noise falls below 0.5 at the first lag (the least shift, 1 sample)
+    from seismo3d.seismic.volumes.check import control_shifts
+    from seismo3d.seismic.volumes.pyramid import Sampled
+
+    rng = np.random.default_rng(0)
+    data = (np.cos(2 * np.pi * np.arange(360) / 36)[:, None, None] * rng.normal(size=(1, 1, 64))
+            * np.ones((1, 12, 1))).astype(np.float32)
+    shifts = control_shifts(Sampled(data, np.ones(data.shape[:2], bool), (1, 1, 1), 2.0), level=0.5,
+                            max_fraction=0.25)
+    np.testing.assert_allclose(shifts, [6.0, 3.0, 1.0], atol=0.1)

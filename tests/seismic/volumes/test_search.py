@@ -72,3 +72,18 @@ def test_the_first_scoring_on_decimated_levels_ranks_the_right_map_first():
     scores = screen_scores(fixed, moving, maps, 0.3, (2, 2, 2))
     assert scores.shape == (4,) and np.all(np.isfinite(scores))
     assert int(np.argmax(scores)) == 1
+
+
+def test_masked_ncc_inside_equals_the_full_correlation_where_the_image_is_inside():
+    rng = np.random.default_rng(1)
+    fixed = rng.normal(size=(11, 9, 10))
+    img = rng.normal(size=(4, 3, 5))
+    mask = (rng.random(img.shape) > 0.3).astype(np.float64)
+    ncc, n, origin = MaskedNCC(fixed).with_overlap(img, mask, 12)
+    inner, n_inner, origin_inner = MaskedNCC(fixed).with_overlap(img, mask, 12, inside=True)
+    np.testing.assert_array_equal(origin_inner, origin)
+    kept = tuple(slice(g - 1, f) for f, g in zip(fixed.shape, img.shape))
+    np.testing.assert_allclose(inner[kept], ncc[kept], atol=1e-5)
+    assert np.isfinite(inner[kept]).all() and np.all(n_inner[kept] == mask.sum())
+    inner[kept] = -np.inf
+    assert np.all(inner == -np.inf)  # every shift with the image partly outside

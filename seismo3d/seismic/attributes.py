@@ -8,7 +8,6 @@ The methods:
 
 - :func:`structure_tensor_orientation`: reflector normals, slopes and planarity from the eigen-decomposition of the
   smoothed gradient outer product (the structure tensor; van Vliet & Verbeek 1995, Fehmers & Hoecker 2003).
-- :func:`orientation_from_likelihood`: fault strike and dip from the structure tensor of a fault likelihood.
 - :func:`semblance`: the ratio of the energy of the summed traces to the summed energy of the traces in a window of
   neighbouring traces (Marfurt et al. 1998), optionally following reflector slopes (structure-oriented semblance,
   Hale 2009).
@@ -21,11 +20,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numba as nb
 import numpy as np
 from scipy import ndimage as ndi
 
-from .._threads import run_threads
 from .._validation import as_seismic, as_sigma_pair, check_choice, check_positive
 from ..errors import InputError
 from . import _kernels
@@ -36,7 +33,6 @@ __all__ = [
     "structure_tensor_slopes",
     "section_slopes",
     "structure_tensor_halo",
-    "orientation_from_likelihood",
     "semblance",
     "eigen_coherence",
     "discontinuity",
@@ -264,91 +260,6 @@ def structure_tensor_halo(sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)) -> tuple[
 
     grad = _kernels.gaussian_radius(sigma_gradient)  # its smoothing and derivative passes
     return grad + _kernels.gaussian_radius(lateral), grad + _kernels.gaussian_radius(vertical)
-
-
-def _normals_to_strike_dip(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Strike and dip (degrees, conventions of the fault likelihood) of (..., ndim) normals of either sign."""
-    flip = normals[..., -1] < 0
-
-    def turned(k):  # component k of the normals turned to nz >= 0, one component at a time (not the whole copy)
-        c = np.array(normals[..., k])
-        return np.negative(c, out=c, where=flip)
-
-    dip = np.degrees(np.arccos(np.clip(turned(-1), 0.0, 1.0)))
-    if normals.shape[-1] == 2:
-        strike = np.where(turned(0) >= 0, 90.0, 270.0)
-    else:
-        strike = np.degrees(np.arctan2(turned(0), -turned(1))) % 360.0
-    return strike.astype(np.float32), np.maximum(dip, 1e-3).astype(np.float32)
-
-
-def _smoothed_at(x: np.ndarray, sigma: float, core) -> np.ndarray:
-    """``ndi.gaussian_filter(x, sigma)[core]`` bit for bit: scipy's passes in its order (axis 0, 1, 2; each rounded
-    to float32), each later pass on the lines of ``core`` only (``core``: slices of the first two axes)."""
-    if core is None:
-        return ndi.gaussian_filter(x, sigma)
-    for axis, keep in enumerate((*core, slice(None))):
-        x = ndi.gaussian_filter1d(x, sigma, axis)[(slice(None),) * axis + (keep,)]
-    return x
-
-
-def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0, core=None) -> tuple:
-    """Strike and dip of the faults of a likelihood image, from its structure tensor.
-
-    The normal at each sample is the eigenvector of the largest eigenvalue of the Gaussian-smoothed outer product of
-    the likelihood's gradient (van Vliet and Verbeek 1995; Hale 2013 uses it on amplitudes), in closed form.
-
-    Parameters
-    ----------
-    likelihood : (n_traces, n_samples) or (n_inlines, n_xlines, n_samples) ndarray
-        Fault likelihood.
-    sigma : float, optional
-        Smoothing of the tensor, samples.
-    core : (slice, slice), optional
-        A cube's inlines and crosslines whose strike and dip are returned (a block's core inside the region read
-        with the smoothing's halo, ``ceil(4 sigma) + 1``, around it): the same bits as the whole array's there, the
-        tensor smoothed along the crosslines and samples and eigen-decomposed at ``core``'s traces only.
-
-    Returns
-    -------
-    strike_deg, dip_deg : ndarray, float32, the shape of ``likelihood`` (of ``likelihood[core]`` when given)
-        Degrees (conventions of :mod:`seismo3d.seismic.faults.likelihood.scan`: strike in [0, 360), dip in (0, 90],
-        index space).
-
-    Raises
-    ------
-    InputError
-        ``core`` is given for a 2D image.
-
-    References
-    ----------
-    L. J. van Vliet and P. W. Verbeek, "Estimators for orientation and anisotropy in digitized images", ASCI'95,
-    442-450, 1995. O. K. Smith, "Eigenvalues of a symmetric 3 x 3 matrix", Communications of the ACM 4(4), 168,
-    1961, doi:10.1145/355578.366316.
-    """
-    p = np.asarray(likelihood, dtype=np.float32)
-    if core is not None and p.ndim != 3:
-        raise InputError("orientation_from_likelihood: core is for a cube's (rows, cols); got a 2D image")
-    grads = np.gradient(p)
-    nd = p.ndim
-    pairs, comps = [(a, b) for a in range(nd) for b in range(a, nd)], {}
-
-    def smooth(t: int, n: int) -> None:  # scipy's filters release the GIL: the components on the cores at once
-        for a, b in pairs[t::n]:
-            comps[a, b] = _smoothed_at(grads[a] * grads[b], sigma, core)
-
-    run_threads(smooth, min(nb.get_num_threads(), len(pairs)))
-    del grads
-    if nd == 2:
-        angle = 0.5 * np.arctan2(2.0 * comps[0, 1], comps[0, 0] - comps[1, 1])  # the largest eigenvalue's vector
-        normals = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
-    else:
-        shape = comps[0, 0].shape
-        normals = np.empty(shape + (3,), np.float32)
-        _kernels.eig_normals(comps[0, 0], comps[0, 1], comps[0, 2], comps[1, 1], comps[1, 2], comps[2, 2], normals,
-                             np.empty(shape, np.float32))
-    del comps  # the tensor (6 floats a sample) is not held while the angles are computed: a lower peak
-    return _normals_to_strike_dip(normals)
 
 
 # --------------------------------------------------------------------------------------------------------------------

@@ -12,7 +12,6 @@ from seismo3d.seismic.attributes import (
     ReflectorOrientation,
     discontinuity,
     eigen_coherence,
-    orientation_from_likelihood,
     section_slopes,
     semblance,
     structure_tensor_halo,
@@ -93,26 +92,6 @@ def test_slopes_of_a_core_equal_the_whole_cubes_bit_for_bit():
         assert np.array_equal(ours, whole[:, i0:i1, j0:j1])
     with pytest.raises(InputError, match="core"):
         structure_tensor_slopes(data[0], core=(slice(0, 4), slice(0, 4)))
-
-
-def test_fault_orientation_of_a_core_equals_the_whole_cubes_bit_for_bit():
-    """``core``: the strike and dip of a block's core from the likelihood within the smoothing's halo of it (scipy's
-    Gaussian passes cropped to the core's lines after each axis, the tensor eigen-decomposed at the core only, as the
-    orientation of a run by blocks takes them) are the whole cube's there, bit for bit: inside the cube, at its
-    edges and at a corner; a 2D image has no core."""
-    rng = np.random.default_rng(6)
-    shape = (60, 52, 96)
-    likelihood = rng.random(shape, dtype=np.float32) * (rng.random(shape) > 0.6)
-    strike, dip = orientation_from_likelihood(likelihood, sigma=2.0)
-    halo = 9  # ceil(4 sigma) + 1: the Gaussian's radius and the gradient's neighbour
-    for i0, i1, j0, j1 in [(20, 36, 18, 30), (0, 16, 0, 52), (44, 60, 40, 52)]:
-        a0, a1, b0, b1 = max(i0 - halo, 0), min(i1 + halo, shape[0]), max(j0 - halo, 0), min(j1 + halo, shape[1])
-        core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
-        s, d = orientation_from_likelihood(likelihood[a0:a1, b0:b1], sigma=2.0, core=core)
-        assert s.shape == d.shape == (i1 - i0, j1 - j0, shape[2]) and s.dtype == d.dtype == np.float32
-        assert np.array_equal(s, strike[i0:i1, j0:j1]) and np.array_equal(d, dip[i0:i1, j0:j1])
-    with pytest.raises(InputError, match="core"):
-        orientation_from_likelihood(likelihood[0], core=(slice(0, 4), slice(0, 4)))
 
 
 def test_planarity_low_on_noise():

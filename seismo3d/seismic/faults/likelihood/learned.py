@@ -47,13 +47,13 @@ from scipy.ndimage import zoom
 from ...._progress import progress_steps
 from ....errors import InputError
 from ...adapted_network import MODEL_NETWORK, is_model_path, read_adapted_model
-from ...attributes import orientation_from_likelihood
 from ..result import FaultLikelihood
 from .network import (
     INT8_SHA256, NETWORKS, RECEPTIVE_HALF, WEIGHTS_SHA256, FaultNetwork, POOLING_MULTIPLE, load_fault_network,
     normalise_section, unet_forward,
 )
 from .network_grid import from_network_grid, grid_factors, grid_size, interpolate_axis, to_network_grid
+from .orientation import orientation_from_likelihood
 
 __all__ = ["WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS", "LearnedOptions", "load_fault_network", "scale_subsample",
            "amplitude_scale", "fault_probability", "cube_directions", "direction_probability",

@@ -21,7 +21,7 @@ from seismo3d.seismic.faults import FaultTracingOptions
 from seismo3d.seismic.faults.likelihood import learned
 from seismo3d.seismic.faults.likelihood.learned import (
     INT8_SHA256, LearnedOptions, NETWORKS, WEIGHTS_SHA256, fault_probability, learned_fault_likelihood,
-    load_fault_network, orientation_from_likelihood,
+    load_fault_network,
 )
 from seismo3d.seismic.faults.likelihood.network import RECEPTIVE_HALF, FaultNetwork, normalise_section, unet_forward
 from seismo3d.training.export_onnx import onnx_model
@@ -152,20 +152,6 @@ def test_input_scaling_of_a_stack_is_per_section():
     out = normalise_section(a)
     assert np.allclose(out.std(axis=(1, 2)), 1.0, atol=0.05)
     assert np.allclose(np.median(out, axis=(1, 2)), 0.0, atol=1e-6)
-
-
-def test_orientation_of_a_dipping_line():
-    # a fault line dipping 60 degrees towards +trace: normal (sin 60, -cos 60) up to sign -> strike 90, dip 60
-    img = np.zeros((120, 120), np.float32)
-    z = np.arange(120)
-    x = (40 + z / np.tan(np.radians(60))).round().astype(int)
-    img[x, z] = 1.0
-    from scipy.ndimage import gaussian_filter
-    img = gaussian_filter(img, 1.5)
-    strike, dip = orientation_from_likelihood(img, sigma=2.0)
-    on = img > 0.5 * img.max()
-    assert abs(np.median(dip[on]) - 60.0) < 3.0
-    assert (strike[on] == 270.0).mean() > 0.9  # dips towards +trace: strike 270 (module conventions)
 
 
 def test_direction_probability_refuses_a_section():

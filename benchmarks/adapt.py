@@ -89,8 +89,10 @@ def _decision(job, default_f1: float, adapted_f1: float) -> str:
     confirm it."""
     if job.kept == "default":
         return (f"held-back F1 {job.mean('before'):.3f} -> {job.mean('after'):.3f}: MODEL keeps the shipped network")
-    return (f"held-back F1 {job.mean('before'):.3f} -> {job.mean('after'):.3f}: MODEL keeps the adapted network, "
-            f"which the lines not picked {'confirm' if adapted_f1 > default_f1 else 'CONTRADICT'}")
+    return (f"held-back F1 {job.mean('before'):.3f} -> {job.mean('after'):.3f}: MODEL keeps the adapted network "
+            f"(traced at sensitivity {job.chosen.tracing.sensitivity:g}, unbroken veto "
+            f"{'on' if job.chosen.tracing.unbroken_veto else 'off'}), which the lines not picked "
+            f"{'confirm' if adapted_f1 > default_f1 else 'CONTRADICT'}")
 
 
 def _row(label, default, adapted) -> str:

@@ -388,6 +388,10 @@ def held_back_tracings(options) -> list:
     adapted network when they draw faults where the reflectors dim or fracture without a throw (the test's generated
     sections of dimmed zones: traced by the adapted network with the veto off, dropped with it on).
 
+    The sensitivity is not chosen there: adapted on F3 inline 100, its held-back band scored best at 0.65 of 0.2,
+    0.35, 0.5 and 0.65 (F1 0.577), where the four inlines not picked scored 0.49 (0.57 at ``options.sensitivity``,
+    0.35; 2026-11-28): a band of a quarter of a line holds too few faults to choose a threshold from.
+
     Parameters
     ----------
     options : seismo3d.training.adapt.AdaptOptions

@@ -349,3 +349,44 @@ def test_adapt_on_a_section_makes_the_faults_command_trace_a_style_the_shipped_n
     assert "unbroken veto off" in result.output
     assert scores["default"]["f1"] <= 0.05  # the shipped network traces none of the zones (measured 0.0)
     assert scores["adapted"]["precision"] >= 0.9 and scores["adapted"]["f1"] >= 0.65, scores  # measured 1.0, 0.78
+
+
+def test_adapt_scores_the_adapted_network_with_the_unbroken_veto_on_and_off_and_keeps_the_best():
+    from seismo3d.jobs.adapt import HeldBackScores, HeldBackTracing, chosen_tracing, held_back_tracings
+    from seismo3d.training.adapt import AdaptOptions
+
+    tracings = held_back_tracings(AdaptOptions(sensitivity=0.35))
+    assert [(t.network, t.sensitivity, t.unbroken_veto) for t in tracings] == [
+        ("shipped", 0.5, True), ("adapted", 0.35, True), ("adapted", 0.35, False)]
+    scored = [HeldBackScores(t, [{"precision": 1.0, "recall": 1.0, "f1": f}]) for t, f in zip(tracings, (0.4, 0.6, 0.6))]
+    assert chosen_tracing(scored).tracing == tracings[1]  # equals: the first (the veto on, the tracing's own)
+    scored[2] = HeldBackScores(tracings[2], [{"precision": 1.0, "recall": 1.0, "f1": 0.61}])
+    assert chosen_tracing(scored).tracing == tracings[2]
+    assert chosen_tracing([HeldBackScores(tracings[0], [{"f1": 0.5}]), HeldBackScores(tracings[1], [{"f1": 0.5}])]
+                          ).tracing.network == "shipped"  # adapting must score higher to be kept
+    options = HeldBackTracing("shipped", 0.35, False).options()
+    assert (options.sensitivity, options.evidence.unbroken_veto, options.learned.adapted) == (0.35, False, None)
+
+
+@pytest.mark.slow
+def test_balance_weights_the_picked_faults_to_the_training_s_odds_of_a_fault():
+    torch = pytest.importorskip("torch")
+    from seismo3d.training.adapt import AdaptOptions, _weighted_loss, fine_tune, generated_fault_odds
+
+    gen = torch.Generator().manual_seed(0)
+    logits = torch.randn((3, 1, 16, 16), generator=gen)
+    target = (torch.rand((3, 1, 16, 16), generator=gen) > 0.8).float()
+    counted = (torch.rand((3, 1, 16, 16), generator=gen) > 0.3).float()
+    same = torch.tensor([4.0, 4.0, 4.0])  # one weight per patch, the same for all: pos_weight's loss
+    assert abs(_weighted_loss(logits, target, counted, same).item() - _weighted_loss(logits, target, counted, 4.0)
+               .item()) < 1e-6
+    odds = generated_fault_odds(128, n=8)
+    assert 0.03 < odds < 0.09  # measured 0.055 over 32 sections (5.2 % fault samples)
+    section, picks = dimmed_section(1)
+    grids = training_grids(section, picks, held_back_band(picks))
+    picked = sum(float(y[w > 0].sum()) for _, y, w in grids) / sum(float((w > 0).sum() - y[w > 0].sum())
+                                                                     for _, y, w in grids)
+    weights = {k: v for k, v in np.load(resources.files("seismo3d.seismic.faults.likelihood").joinpath(
+        "fault_unet.npz")).items()}
+    tuned = fine_tune(weights, grids, options=AdaptOptions(steps=1, patch=32, balance=True), progress=False)
+    np.testing.assert_allclose(tuned["picked_positive_weight"], 4.0 * generated_fault_odds(32) / picked, rtol=1e-6)

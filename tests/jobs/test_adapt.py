@@ -358,7 +358,8 @@ def test_adapt_scores_the_adapted_network_with_the_unbroken_veto_on_and_off_and_
     tracings = held_back_tracings(AdaptOptions(sensitivity=0.35))
     assert [(t.network, t.sensitivity, t.unbroken_veto) for t in tracings] == [
         ("shipped", 0.5, True), ("adapted", 0.35, True), ("adapted", 0.35, False)]
-    scored = [HeldBackScores(t, [{"precision": 1.0, "recall": 1.0, "f1": f}]) for t, f in zip(tracings, (0.4, 0.6, 0.6))]
+    scored = [HeldBackScores(t, [{"precision": 1.0, "recall": 1.0, "f1": f}])
+              for t, f in zip(tracings, (0.4, 0.6, 0.6))]
     assert chosen_tracing(scored).tracing == tracings[1]  # equals: the first (the veto on, the tracing's own)
     scored[2] = HeldBackScores(tracings[2], [{"precision": 1.0, "recall": 1.0, "f1": 0.61}])
     assert chosen_tracing(scored).tracing == tracings[2]

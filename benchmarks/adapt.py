@@ -89,8 +89,10 @@ def _decision(job, default_f1: float, adapted_f1: float) -> str:
     confirm it."""
     if job.kept == "default":
         return (f"held-back F1 {job.mean('before'):.3f} -> {job.mean('after'):.3f}: MODEL keeps the shipped network")
-    return (f"held-back F1 {job.mean('before'):.3f} -> {job.mean('after'):.3f}: MODEL keeps the adapted network, "
-            f"which the lines not picked {'confirm' if adapted_f1 > default_f1 else 'CONTRADICT'}")
+    return (f"held-back F1 {job.mean('before'):.3f} -> {job.mean('after'):.3f}: MODEL keeps the adapted network "
+            f"(traced at sensitivity {job.chosen.tracing.sensitivity:g}, unbroken veto "
+            f"{'on' if job.chosen.tracing.unbroken_veto else 'off'}), which the lines not picked "
+            f"{'confirm' if adapted_f1 > default_f1 else 'CONTRADICT'}")
 
 
 def _row(label, default, adapted) -> str:
@@ -100,14 +102,16 @@ def _row(label, default, adapted) -> str:
 
 def run_f3(data: Path, work: Path, only=None) -> list:
     lines = f3_lines(data, work)
-    failures = []
+    failures, shipped = [], {}  # the shipped network's scores of a line: traced once for both folds
     for source, targets in (f for f in F3_FOLDS if only in (None, f[0])):
         model = work / f"model_f3_{source}"
         job, seconds, cpu = adapt_lines([lines[source][0]], model, "mask", [lines[source][1]])
         print(f"F3: adapted on inline {source} in {seconds:.0f} s ({cpu:.0f} CPU s)", flush=True)
         rows = []
         for t in targets:
-            default = traced_scores(lines[t][0], work, mask=lines[t][1])
+            if t not in shipped:
+                shipped[t] = traced_scores(lines[t][0], work, mask=lines[t][1])
+            default = shipped[t]
             adapted = traced_scores(lines[t][0], work, mask=lines[t][1], model=model)
             rows.append((default, adapted))
             print(_row(f"inline {t}", default, adapted), flush=True)

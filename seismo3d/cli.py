@@ -186,7 +186,9 @@ def faults(
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="dask.distributed scheduler address "
                                             "(tcp://host:port) for block-by-block runs; default: local threads."),
     model: Optional[pathlib.Path] = typer.Option(None, "--model", show_default=False, help="A MODEL folder of "
-                                                 "'seismo3d adapt': its network replaces the shipped one."),
+                                                 "'seismo3d adapt': its network replaces the shipped one, traced "
+                                                 "as MODEL records (sensitivity; whether faults across unbroken "
+                                                 "reflectors are dropped)."),
     overwrite: bool = _overwrite_option(),
 ) -> None:
     """Trace the faults of INPUT and write fault likelihood, strike, dip and votes (SEG-Y for SEG-Y input), fault
@@ -607,7 +609,9 @@ def adapt(
     refused, and so is a line of fewer than 32 traces or 32 samples (what fault tracing needs). Picks are held back
     (the line with the fewest when several are picked, else a quarter of the line's traces): the F1 there with the
     shipped and the adapted network is printed, and MODEL keeps the shipped one when adapting does not score
-    higher. Needs PyTorch and onnx (pip install torch onnx, or the train extra); tracing does not."""
+    higher. The adapted network is scored there with and without the tracing's drop of faults across which the
+    reflectors continue unbroken (faults you draw where reflectors dim without a throw), and MODEL records the
+    better. Needs PyTorch and onnx (pip install torch onnx, or the train extra); tracing does not."""
     check_before_import("folder", model, [*inputs, *(sticks or []), *(mask or [])], overwrite=False)
     from .jobs.adapt import adapt_report, paired_picks, run_adapt_job
 

@@ -28,7 +28,7 @@ from ..seismic.blocks.options import BlockRunOptions
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
 from ..seismic.faults.pipeline import trace_faults
-from ..seismic.adapted_network import MODEL_NETWORK, check_adapted_model, model_sensitivity
+from ..seismic.adapted_network import MODEL_NETWORK
 from ..seismic.io.writer import write_like, write_like_blocks
 from .fault_inputs import FaultsInput, read_input, write_demo_input
 from .fault_tables import write_points, write_summary
@@ -230,7 +230,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
         Samples per trace of a raw ``.f32be`` section whose shape is not known by name.
     sensitivity : float, optional
         In [0, 1]: more faults when higher (see :class:`~seismo3d.seismic.FaultTracingOptions`); default 0.5, or
-        with ``model`` the sensitivity its record holds (:func:`~seismo3d.seismic.adapted_network.model_sensitivity`).
+        with ``model`` the sensitivity its record holds (:meth:`~seismo3d.seismic.FaultTracingOptions.with_model`).
     likelihood : {'scan', 'learned'}, optional
         The fault likelihood: the scan of fault-plane semblance or the fault network
         (:attr:`~seismo3d.seismic.FaultTracingOptions.likelihood`).
@@ -293,18 +293,14 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     record = RunRecord("faults", locals())  # first: the arguments as called
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
-    if sensitivity is None and model is not None:
-        sensitivity = model_sensitivity(model)
-    if sensitivity is None:
-        sensitivity = FaultTracingOptions().sensitivity
-    options = FaultTracingOptions(sensitivity=sensitivity, likelihood=likelihood)
+    options = FaultTracingOptions(likelihood=likelihood, **({} if sensitivity is None else
+                                                           {"sensitivity": sensitivity}))
     inputs = {"input": input_path}
     if model is not None:  # the adapted network, checked before any work
         if likelihood != "learned":
             raise InputError(f"--model is the adapted fault network, which the learned likelihood runs; drop "
                              f"--likelihood {likelihood} or --model")
-        check_adapted_model(model)
-        options = replace(options, learned=replace(options.learned, adapted=str(model)))
+        options = options.with_model(model, sensitivity=sensitivity)
         inputs["model"] = Path(model) / MODEL_NETWORK if Path(model).is_dir() else Path(model)
     if demo and input_path is not None:
         raise InputError("pass either an input file or demo=True (--demo), not both")

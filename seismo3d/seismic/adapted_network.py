@@ -7,9 +7,11 @@ A MODEL folder holds two files:
   the held-back picks: the record says so), run by ONNX Runtime like the shipped one;
 * ``adapt.json``: the record, a ``run.json`` of the ``adapt`` command (:mod:`seismo3d.jobs.runinfo`: the inputs with
   their sha256, the options) whose ``results`` hold the lines and picks, the training steps and loss, the held-back
-  validation before and after, the decision (``kept``: ``'adapted'`` or ``'default'``), ``sensitivity`` (the
-  tracing's sensitivity MODEL traces with unless one is given: :func:`model_sensitivity`) and ``network_sha256``,
-  the sha256 of ``fault_unet.onnx``.
+  validation before and after, the decision (``kept``: ``'adapted'`` or ``'default'``), how MODEL traces
+  (:func:`model_tracing`): ``sensitivity`` (the tracing's sensitivity unless one is given) and ``unbroken_veto``
+  (whether the tracing's evidence drops the faults across which the reflectors continue unbroken,
+  :attr:`~seismo3d.seismic.faults.EvidenceOptions.unbroken_veto`), and ``network_sha256``, the sha256 of
+  ``fault_unet.onnx``. A record without ``sensitivity`` or ``unbroken_veto`` (or with None) leaves the tracing's own.
 
 Reading one needs ONNX Runtime only (no training framework); the sha256 of the network is checked against the
 record when it is loaded (:func:`seismo3d.seismic.faults.likelihood.learned.load_network`). Writing one is
@@ -20,12 +22,13 @@ from __future__ import annotations
 
 import hashlib
 import json
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import DataNotFoundError, InputError
 
-__all__ = ["MODEL_NETWORK", "MODEL_RECORD", "read_adapted_model", "check_adapted_model", "is_model_path",
-           "model_sensitivity"]
+__all__ = ["MODEL_NETWORK", "MODEL_RECORD", "ModelTracing", "read_adapted_model", "check_adapted_model",
+           "is_model_path", "model_tracing"]
 
 MODEL_NETWORK = "fault_unet.onnx"
 MODEL_RECORD = "adapt.json"
@@ -33,7 +36,8 @@ MODEL_RECORD = "adapt.json"
 
 def check_adapted_model(path) -> dict:
     """The record of a MODEL folder written by ``seismo3d adapt``, checked: both files present, the network's
-    sha256 the recorded one.
+    sha256 the recorded one, the tracing it records valid (``sensitivity`` None or in [0, 1], ``unbroken_veto`` None
+    or a boolean). The network file is read and hashed once.
 
     Parameters
     ----------
@@ -50,22 +54,51 @@ def check_adapted_model(path) -> dict:
     DataNotFoundError
         No folder or file at ``path``.
     InputError
-        ``path`` is not a MODEL folder of ``seismo3d adapt``, or its network is not the one its record names.
+        ``path`` is not a MODEL folder of ``seismo3d adapt``, its network is not the one its record names, or the
+        record's sensitivity or unbroken veto is not a valid value.
     """
     folder = _folder(path)
     record = _record(folder)
-    digest, recorded = hashlib.sha256((folder / MODEL_NETWORK).read_bytes()).hexdigest(), \
-        record["results"]["network_sha256"]
+    results = record["results"]
+    digest, recorded = hashlib.sha256((folder / MODEL_NETWORK).read_bytes()).hexdigest(), results["network_sha256"]
     if digest != recorded:
         raise InputError(f"{folder / MODEL_NETWORK} has sha256 {digest}, not the {recorded} its {MODEL_RECORD} "
                          "records: the model was changed after 'seismo3d adapt' wrote it; adapt again")
+    value = results.get("sensitivity")
+    if value is not None and not (isinstance(value, (int, float)) and 0.0 <= float(value) <= 1.0):
+        raise InputError(f"{folder / MODEL_RECORD} records a sensitivity of {value!r}, outside [0, 1]; adapt again")
+    veto = results.get("unbroken_veto")
+    if veto is not None and not isinstance(veto, bool):
+        raise InputError(f"{folder / MODEL_RECORD} records an unbroken_veto of {veto!r}, not true or false; adapt "
+                         "again")
     return record
 
 
-def model_sensitivity(path) -> float | None:
-    """The sensitivity a MODEL folder traces with when none is given (``seismo3d faults --model MODEL`` without
-    ``--sensitivity``): the record's ``sensitivity`` (``seismo3d adapt`` stores it with the network it keeps), None
-    when the record holds none (the tracing's default then).
+@dataclass(frozen=True)
+class ModelTracing:
+    """How a MODEL folder traces, from its checked record (:func:`model_tracing`).
+
+    Attributes
+    ----------
+    record : dict
+        The record (``adapt.json``), checked by :func:`check_adapted_model`.
+    sensitivity : float or None
+        The sensitivity in [0, 1] MODEL traces with unless one is given (``seismo3d faults --model MODEL`` without
+        ``--sensitivity``); None: the tracing's own.
+    unbroken_veto : bool or None
+        Whether the tracing's evidence drops the faults across which the reflectors continue unbroken
+        (:attr:`~seismo3d.seismic.faults.EvidenceOptions.unbroken_veto`), as ``seismo3d adapt`` chose on the
+        held-back picks; None: the tracing's own (on).
+    """
+
+    record: dict
+    sensitivity: float | None
+    unbroken_veto: bool | None
+
+
+def model_tracing(path) -> ModelTracing:
+    """How a MODEL folder traces: its record checked once (:func:`check_adapted_model`: one read of the record, one
+    hash of the network), and the sensitivity and unbroken veto it records.
 
     Parameters
     ----------
@@ -74,21 +107,17 @@ def model_sensitivity(path) -> float | None:
 
     Returns
     -------
-    float or None
-        In [0, 1].
+    ModelTracing
 
     Raises
     ------
     DataNotFoundError, InputError
-        As :func:`check_adapted_model`; a recorded sensitivity outside [0, 1].
+        As :func:`check_adapted_model`.
     """
-    value = check_adapted_model(path)["results"].get("sensitivity")
-    if value is None:
-        return None
-    if not 0.0 <= float(value) <= 1.0:
-        raise InputError(f"{_folder(path) / MODEL_RECORD} records a sensitivity of {value!r}, outside [0, 1]; adapt "
-                         "again")
-    return float(value)
+    record = check_adapted_model(path)
+    results = record["results"]
+    sensitivity, veto = results.get("sensitivity"), results.get("unbroken_veto")
+    return ModelTracing(record, None if sensitivity is None else float(sensitivity), veto)
 
 
 def is_model_path(network) -> bool:

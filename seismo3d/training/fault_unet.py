@@ -242,11 +242,16 @@ def _batch(seed: int, first: int, n: int, patch: int, options: FaultSectionOptio
     return torch.from_numpy(x), torch.from_numpy(y)
 
 
-def segmentation_loss(logits, target, positive_weight: float):
+def segmentation_loss(logits, target, positive_weight):
     """Binary cross-entropy with the fault samples weighted by ``positive_weight`` plus the soft Dice loss (Milletari
-    et al. 2016), of logits against targets in [0, 1] (tensors of one shape)."""
-    weight = torch.tensor(float(positive_weight))
-    bce = nn.functional.binary_cross_entropy_with_logits(logits, target, pos_weight=weight)
+    et al. 2016), of logits against targets in [0, 1] (tensors of one shape); ``positive_weight`` a float, or a tensor
+    of the targets' shape (each fault sample's weight: binary targets only)."""
+    if torch.is_tensor(positive_weight):  # per sample: pos_weight's terms for binary targets
+        bce = nn.functional.binary_cross_entropy_with_logits(logits, target, weight=1.0 + (positive_weight - 1.0) *
+                                                             target)
+    else:
+        bce = nn.functional.binary_cross_entropy_with_logits(logits, target,
+                                                             pos_weight=torch.tensor(float(positive_weight)))
     prob = torch.sigmoid(logits)
     inter = (prob * target).sum()
     dice = 1 - (2 * inter + 1) / (prob.sum() + target.sum() + 1)

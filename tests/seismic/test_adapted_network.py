@@ -12,8 +12,8 @@ from seismo3d.data.synthetic_sections import synthetic_fault_section
 from seismo3d.errors import InputError
 from seismo3d.jobs.adapt import write_model
 from seismo3d.jobs.runinfo import RunRecord
-from seismo3d.seismic.adapted_network import model_sensitivity
-from seismo3d.seismic.faults import trace_faults
+from seismo3d.seismic.adapted_network import model_tracing
+from seismo3d.seismic.faults import FaultTracingOptions, trace_faults
 from seismo3d.seismic.faults.result import fault_labels
 
 
@@ -22,11 +22,30 @@ def _model(folder, **results):
     return write_model(folder, network, RunRecord("adapt", {}), {}, {"kept": "adapted", **results})
 
 
-def test_the_recorded_sensitivity_is_read_and_a_bad_one_refused(tmp_path):
-    assert model_sensitivity(_model(tmp_path / "a", sensitivity=0.35)) == 0.35
-    assert model_sensitivity(_model(tmp_path / "b")) is None  # a record without one: the tracing's default
-    with pytest.raises(InputError, match="outside"):
-        model_sensitivity(_model(tmp_path / "c", sensitivity=1.5))
+def test_the_recorded_tracing_is_read_and_a_bad_one_refused(tmp_path):
+    tracing = model_tracing(_model(tmp_path / "a", sensitivity=0.35, unbroken_veto=False))
+    assert (tracing.sensitivity, tracing.unbroken_veto) == (0.35, False)
+    assert tracing.record["results"]["kept"] == "adapted"
+    tracing = model_tracing(_model(tmp_path / "b"))  # a record without them: the tracing's own
+    assert (tracing.sensitivity, tracing.unbroken_veto) == (None, None)
+    with pytest.raises(InputError, match="records a sensitivity of 1.5, outside"):
+        model_tracing(_model(tmp_path / "c", sensitivity=1.5))
+    with pytest.raises(InputError, match="records an unbroken_veto of 'no', not true or false"):
+        model_tracing(_model(tmp_path / "d", unbroken_veto="no"))
+
+
+def test_model_tracing_reads_the_record_and_hashes_the_network_once(tmp_path, monkeypatch):
+    import hashlib
+
+    import seismo3d.seismic.adapted_network as adapted
+
+    model = _model(tmp_path / "model", sensitivity=0.35, unbroken_veto=False)
+    calls, sha256 = [], hashlib.sha256
+    monkeypatch.setattr(adapted.hashlib, "sha256", lambda data: calls.append(len(data)) or sha256(data))
+    options = FaultTracingOptions().with_model(model)
+    assert len(calls) == 1  # one hash of the network (the loading of the network hashes it again, when it runs)
+    assert (options.sensitivity, options.evidence.unbroken_veto, options.learned.adapted) == (0.35, False, str(model))
+    assert FaultTracingOptions().with_model(model, sensitivity=0.6).sensitivity == 0.6  # the one asked for wins
 
 
 def test_tracing_with_a_model_uses_its_sensitivity_unless_given_another(tmp_path):

@@ -159,6 +159,14 @@ class EvidenceOptions:
         drew at 0.5: 0.3, the middle of that range.
     drag_step : float
         The fraction of the throw a step at the fault must reach for ``drag_half_periods`` not to drop it.
+    unbroken_veto : bool
+        Drop the faults across which the reflectors continue unbroken (:meth:`FaultEvidence.is_unbroken`: a flexure,
+        sides matching unshifted, a drag) whatever their votes and probability. False: those three rules are not
+        asked, and such a fault is judged on what else it shows (a fault an interpreter draws where the reflectors
+        dim or fracture without a throw). ``seismo3d adapt`` measures on the picks it holds back whether a network
+        adapted to a survey traces better with it or without, and records the choice in MODEL
+        (:mod:`~seismo3d.seismic.adapted_network`).
+
     Raises
     ------
     InputError
@@ -180,8 +188,11 @@ class EvidenceOptions:
     unbroken_correlation: float | None = 0.9
     drag_half_periods: float | None = 0.3
     drag_step: float = 0.5
+    unbroken_veto: bool = True
 
     def __post_init__(self):
+        if not isinstance(self.unbroken_veto, (bool, np.bool_)):
+            raise InputError(f"unbroken_veto must be True or False; got {self.unbroken_veto!r}")
         for k in ("min_throw", "min_vote_ratio", "drag_step", "clear_half_periods", "drag_half_periods", "clear_throw"):
             if getattr(self, k) is not None:  # a clear throw of 0 would be no displacement
                 check_positive(getattr(self, k), k, allow_zero=k != "clear_throw")
@@ -298,7 +309,10 @@ class FaultEvidence:
 
     def is_unbroken(self, options: EvidenceOptions) -> bool:
         """True when the reflectors continue across the fault: a flexure (:meth:`is_flexure`), sides matching unshifted
-        (``unbroken_correlation``) or a throw within their wavelet (``drag_half_periods``); NaN shows nothing."""
+        (``unbroken_correlation``) or a throw within their wavelet (``drag_half_periods``); NaN shows nothing. Always
+        False when ``options.unbroken_veto`` is off."""
+        if not options.unbroken_veto:
+            return False
         throw, alike, unbroken = abs(self.median_throw), options.min_correlation, options.unbroken_correlation
         drag = (options.drag_half_periods is not None and throw >= options.min_throw  # unlike sides: no reliable throw
                 and (alike is None or self.correlation >= alike) and abs(self.step) < options.drag_step * throw

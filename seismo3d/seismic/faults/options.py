@@ -3,12 +3,13 @@ block by block)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..._validation import check_choice, check_positive
 from ...errors import InputError
+from ..adapted_network import model_tracing
 from .evidence import EvidenceOptions, sensitivity_factor
 from .likelihood.learned import LearnedOptions
 from .likelihood.scan import FaultScanOptions
@@ -139,6 +140,37 @@ class FaultTracingOptions:
             raise InputError(f"saturation_level must be a likelihood in (0, 1); got {self.saturation_level!r}")
         if self.tip_level is not None and not 0.0 <= float(self.tip_level) <= 1.0:
             raise InputError(f"tip_level must be a probability in [0, 1] or None; got {self.tip_level!r}")
+
+    def with_model(self, model, *, sensitivity: float | None = None) -> "FaultTracingOptions":
+        """These options tracing with a MODEL folder of ``seismo3d adapt``: the learned likelihood running its
+        network (:attr:`LearnedOptions.adapted`), at ``sensitivity``, else the sensitivity MODEL records, else these
+        options'; the evidence's :attr:`~seismo3d.seismic.faults.EvidenceOptions.unbroken_veto` as MODEL records it
+        (else these options'). MODEL is read and its network hashed once
+        (:func:`~seismo3d.seismic.adapted_network.model_tracing`).
+
+        Parameters
+        ----------
+        model : str or os.PathLike
+            The MODEL folder (or its ``fault_unet.onnx``).
+        sensitivity : float, optional
+            In [0, 1]: the sensitivity asked for (``--sensitivity``), which wins over MODEL's.
+
+        Returns
+        -------
+        FaultTracingOptions
+
+        Raises
+        ------
+        DataNotFoundError, InputError
+            As :func:`~seismo3d.seismic.adapted_network.check_adapted_model`; a sensitivity outside [0, 1].
+        """
+        tracing = model_tracing(model)
+        if sensitivity is None:
+            sensitivity = self.sensitivity if tracing.sensitivity is None else tracing.sensitivity
+        evidence = self.evidence if tracing.unbroken_veto is None else \
+            replace(self.evidence, unbroken_veto=tracing.unbroken_veto)
+        return replace(self, sensitivity=sensitivity, likelihood="learned", evidence=evidence,
+                       learned=replace(self.learned, adapted=str(model)))
 
     def tip_level_for(self, ndim: int) -> float | None:
         """The level to which the ends of the faults of a ``ndim``-D image are trimmed (``tip_level``), None when they

@@ -37,7 +37,6 @@ from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
 from ..io.cube import as_cube, sample_interval as cube_sample_interval, seismic_axes
 from ..io.zarr_store import consolidate
-from ..adapted_network import check_adapted_model, model_sensitivity
 from ..time_slices import balanced_slices, blank_slices, filled_slices, slice_extremes
 from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
@@ -125,7 +124,7 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
         :attr:`FaultInterpretation.sample_interval`); default 'samples'.
     sensitivity : float, optional
         In [0, 1], more faults when higher; replaces ``options.sensitivity`` (default 0.5). None with ``model``: the
-        sensitivity the MODEL records (:func:`~seismo3d.seismic.adapted_network.model_sensitivity`), if any.
+        sensitivity the MODEL records (:meth:`FaultTracingOptions.with_model`), if any.
     options : FaultTracingOptions, optional
         Options of every step.
     likelihood : FaultLikelihood, optional
@@ -142,8 +141,9 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
         otherwise; the likelihood, the voting and the throw report their own progress too).
     model : str or os.PathLike, optional
         A MODEL folder written by ``seismo3d adapt`` (the fault network adapted to a survey from an interpreter's
-        faults): the learned likelihood runs it instead of the shipped network (``LearnedOptions.adapted``);
-        default: ``options.learned.adapted`` (the shipped network unless set).
+        faults): the learned likelihood runs it instead of the shipped network (``LearnedOptions.adapted``), with the
+        evidence's unbroken veto MODEL records (:meth:`FaultTracingOptions.with_model`); default:
+        ``options.learned.adapted`` (the shipped network unless set).
 
     Returns
     -------
@@ -207,14 +207,10 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
     opt = options or FaultTracingOptions()
     if not isinstance(opt, FaultTracingOptions):
         raise InputError(f"trace_faults(options=...) must be a FaultTracingOptions; got {type(opt).__name__}")
-    if sensitivity is None and model is not None:
-        sensitivity = model_sensitivity(model)  # before any work: a missing or changed MODEL is refused here
-    if sensitivity is not None:
+    if model is not None:  # before any work: a missing or changed MODEL is refused here
+        opt = opt.with_model(model, sensitivity=sensitivity)
+    elif sensitivity is not None:
         opt = dataclasses.replace(opt, sensitivity=sensitivity)
-    if model is not None:
-        check_adapted_model(model)  # before any work: a missing or changed MODEL
-        opt = dataclasses.replace(opt, likelihood="learned",
-                                  learned=dataclasses.replace(opt.learned, adapted=str(model)))
 
     run = _block_run(blocks, memory_limit)
     if not run.in_memory_for(np.shape(data), has_likelihood=likelihood is not None):

@@ -441,3 +441,26 @@ def test_a_throw_within_the_wavelet_that_is_no_step_is_drag():
     assert _measured(0.9, 0.0, 0.7, 0.1, 7.3, 1.66, 0.65).supports(opt)  # under a sample: not a resolved throw
     with pytest.raises(InputError, match="drag_step"):
         EvidenceOptions(drag_step=-0.1)
+
+
+def test_the_unbroken_veto_switched_off_judges_such_faults_on_what_else_they_show():
+    """unbroken_veto (on by default): off, none of is_unbroken's three rules drops a fault (what seismo3d adapt
+    records in a MODEL whose network learned faults without a throw); each such fault is then judged like any other.
+    The values of the tests above: F3's short fault through continuous layering (sides matching unshifted), the
+    Teapot flexure (step 0.25 of the throw), Penobscot's migration swing (drag) and teapot_tpd's unseeded drag."""
+    on, off = EvidenceOptions(), EvidenceOptions(unbroken_veto=False)
+    assert on.unbroken_veto is True
+    short = _measured(0.5, 0.71, 0.95, 0.0, 2.7, 0.97, 0.50)
+    flexure = dataclasses.replace(_evidence(-4.0, 0.8, vote_ratio=1.5, mean_likelihood=0.97), step=-1.0,
+                                  correlation=0.92)
+    swing = _measured(-1.5, -0.51, 0.64, 0.14, 7.3, 1.66, 0.65)
+    unseeded = _measured(-3.0, -1.02, 0.92, 0.86, 12.6, 0.53, 0.44)
+    for fault in (short, flexure, swing, unseeded):
+        assert fault.is_unbroken(on) and not fault.is_unbroken(off)
+    assert not any(f.supports(on) for f in (short, flexure, swing))
+    assert all(f.supports(off) for f in (short, flexure, swing))  # votes, likelihood and throw all hold
+    assert not unseeded.is_clearly_displaced(on) and unseeded.is_clearly_displaced(off)
+    weak = _measured(0.5, 0.71, 0.95, 0.0, 2.7, 0.5, 0.30)  # votes under 0.9 of the threshold: dropped either way
+    assert not weak.supports(off)
+    with pytest.raises(InputError, match="unbroken_veto must be True or False"):
+        EvidenceOptions(unbroken_veto="off")

@@ -28,7 +28,7 @@ from seismo3d.jobs.adapt import (
 from seismo3d.jobs.evaluate import read_picked_lines
 from seismo3d.jobs.runinfo import RunRecord
 from seismo3d.seismic.io.coordinates import read_survey_coordinates
-from seismo3d.seismic.io.fault_sticks import STICK_FORMATS, FaultSticks, write_fault_sticks
+from seismo3d.seismic.io.fault_sticks import READ_STICK_FORMATS, FaultSticks, write_fault_sticks
 from seismo3d.seismic.io.traced_sticks import stick_nodes
 from seismo3d.seismic.fault_scoring import tolerant_scores
 from seismo3d.seismic.faults import trace_faults
@@ -105,7 +105,7 @@ def picked_cube(tmp_path_factory):
     return folder, syn, sticks
 
 
-@pytest.mark.parametrize("layout", STICK_FORMATS)
+@pytest.mark.parametrize("layout", READ_STICK_FORMATS)
 def test_the_lines_of_a_cube_its_sticks_were_picked_on_are_read_with_their_picks(picked_cube, tmp_path, layout):
     folder, syn, sticks = picked_cube
     write_fault_sticks(tmp_path / f"picks.{layout}", sticks, format=layout)  # IESX: placed by X / Y only

@@ -49,9 +49,10 @@ from .stick_sections import section_nodes, section_pixels
 from .stick_rows import charisma_rows, iesx_rows, opendtect_rows, rms_rows
 from .traced_sticks import STICK_LINE_STEP, stick_lines, stick_nodes
 
-__all__ = ["FaultSticks", "STICK_FORMATS", "read_fault_sticks", "write_fault_sticks"]
+__all__ = ["FaultSticks", "READ_STICK_FORMATS", "STICK_FORMATS", "read_fault_sticks", "write_fault_sticks"]
 
-STICK_FORMATS = ("opendtect", "charisma", "iesx", "rms")
+STICK_FORMATS = ("opendtect", "charisma", "iesx", "rms")  # the layouts write_fault_sticks writes
+READ_STICK_FORMATS = ("opendtect", "charisma", "iesx")  # those read_fault_sticks reads (RMS polygons name no faults)
 _UNDEFINED = 1e29  # OpendTect writes 1e30 for an undefined X / Y
 
 

@@ -9,7 +9,7 @@ import pytest
 from seismo3d.errors import InputError
 from seismo3d.seismic.faults import Fault
 from seismo3d.seismic.io.coordinates import survey_coordinates
-from seismo3d.seismic.io.fault_sticks import STICK_FORMATS, FaultSticks, read_fault_sticks, write_fault_sticks
+from seismo3d.seismic.io.fault_sticks import READ_STICK_FORMATS, FaultSticks, read_fault_sticks, write_fault_sticks
 from seismo3d.seismic.io.traced_sticks import stick_lines, stick_nodes
 
 SAMPLES = 1000.0 + 4.0 * np.arange(300)  # ms
@@ -161,7 +161,7 @@ def test_a_strand_folding_back_is_left_out_not_zigzagged():
         stick_nodes(points[:, 0], points[:, 1], tolerance=0.0)
 
 
-@pytest.mark.parametrize("fmt", [f for f in STICK_FORMATS if f != "rms"])  # RMS polygons: xtgeo reads them back
+@pytest.mark.parametrize("fmt", READ_STICK_FORMATS)
 def test_round_trip_of_traced_sticks(tmp_path, fmt):
     """Written, read back (IESX placed on the lines by X / Y): the same sticks, each fault sample of the line within
     one sample of the stick read back."""

@@ -23,8 +23,8 @@ import numpy as np
 
 from ...errors import InputError, Seismo3dWarning, SegyGeometryError
 
-__all__ = ["GridMap", "SurveyCoordinates", "LINE_UNITS", "cube_coordinates", "fit_grid_map", "header_resolution",
-           "survey_coordinates", "read_survey_coordinates"]
+__all__ = ["GridMap", "SurveyCoordinates", "LINE_UNITS", "cube_coordinates", "fit_grid_map", "grid_spacing_from_cdp",
+           "header_resolution", "survey_coordinates", "read_survey_coordinates"]
 
 LINE_UNITS = "inline/crossline"  # the unit of X / Y when the headers hold no coordinates
 
@@ -476,3 +476,45 @@ def cube_coordinates(cube) -> SurveyCoordinates:
         else:
             il, xl = np.arange(1.0, n + 1.0), np.zeros(n)
         return survey_coordinates(il, xl, *xy, **kwargs)
+
+
+def grid_spacing_from_cdp(x, y, interval: float, unit: str, source: str) -> tuple:
+    """Inline bin, crossline bin and sample interval of a cube from its traces' CDP X / Y, with where each came from.
+
+    Parameters
+    ----------
+    x, y : (n_inlines, n_crosslines) float ndarray or None
+        The traces' CDP X / Y (scalar applied), in the survey's unit; None when the cube has none.
+    interval : float
+        The sample interval (ms, m or ft); 0 or negative when unknown.
+    unit : str
+        The sample interval's unit, for the note.
+    source : str
+        Where the sample interval came from, for the note (e.g. ``'from the binary header'``).
+
+    Returns
+    -------
+    spacing : (3,) float64 ndarray
+        The median distance between neighbouring traces along the inlines and along the crosslines, and the sample
+        interval; a bin is 1.0 when the coordinates are missing or do not change along that axis, the interval 1.0
+        when unknown.
+    note : str
+        E.g. ``'bins 25.01 x 25.01 from CDP X/Y, sample interval 4 ms from the binary header'``.
+    """
+    bins, missing = [1.0, 1.0], []
+    for axis in (0, 1):
+        d = None
+        if x is not None and x.shape[axis] > 1:
+            d = np.hypot(np.diff(x, axis=axis), np.diff(y, axis=axis))
+            d = float(np.median(d)) if d.size else None
+        if d is None or not np.isfinite(d) or d <= 0:
+            missing.append("inline" if axis == 0 else "crossline")
+        else:
+            bins[axis] = d
+    dt = float(interval) if interval is not None and interval > 0 else 1.0
+    note = f"sample interval {dt:g} {unit} {source}"
+    if missing:
+        note = f"{' and '.join(missing)} bin unknown (no CDP coordinates), set to 1; " + note
+    else:
+        note = f"bins {bins[0]:.4g} x {bins[1]:.4g} from CDP X/Y, " + note
+    return np.array([bins[0], bins[1], dt]), note

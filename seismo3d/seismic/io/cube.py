@@ -37,8 +37,9 @@ import numpy as np
 
 from ...errors import DataNotFoundError, InputError, Seismo3dWarning
 
-__all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "grid_spacing", "index_positions", "is_data_array", "line_values", "on_lateral", "open_cube",
-           "sample_dim", "sample_interval", "sample_positions", "samples_at", "seismic_axes", "seismic_kind"]
+__all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "grid_spacing", "index_positions", "is_data_array", "line_values",
+           "on_lateral", "open_cube", "sample_dim", "sample_interval", "sample_positions", "samples_at",
+           "seismic_axes", "seismic_kind"]
 
 SEGY_SUFFIXES = (".sgy", ".segy")
 _ALIASES = {"inline": ("inline", "iline", "il", "inline_3d"), "crossline": ("crossline", "xline", "xl", "crossline_3d"),
@@ -447,27 +448,13 @@ def grid_spacing(cube) -> tuple:
     axes = seismic_axes(cube)
     if len(axes.lateral) != 2:
         raise InputError(f"a grid spacing needs a 3D cube (iline, xline, sample); got dimensions {cube.dims}")
+    from .coordinates import grid_spacing_from_cdp
+
     x = cube.coords["cdp_x"].values if "cdp_x" in cube.coords else None
     y = cube.coords["cdp_y"].values if "cdp_y" in cube.coords else None
-    bins, missing = [1.0, 1.0], []
-    for axis in (0, 1):
-        d = None
-        if x is not None and x.shape[axis] > 1:
-            d = np.hypot(np.diff(x, axis=axis), np.diff(y, axis=axis))
-            d = float(np.median(d)) if d.size else None
-        if d is None or not np.isfinite(d) or d <= 0:
-            missing.append("inline" if axis == 0 else "crossline")
-        else:
-            bins[axis] = d
     interval, unit = sample_interval(cube, axes)
-    dt = interval if interval is not None and interval > 0 else 1.0
     source = "from the binary header" if "segy_format" in cube.attrs else f"from its {axes.sample} coordinate"
-    note = f"sample interval {dt:g} {unit} {source}"
-    if missing:
-        note = f"{' and '.join(missing)} bin unknown (no CDP coordinates), set to 1; " + note
-    else:
-        note = f"bins {bins[0]:.4g} x {bins[1]:.4g} from CDP X/Y, " + note
-    return np.array([bins[0], bins[1], dt]), note
+    return grid_spacing_from_cdp(x, y, interval, unit, source)
 
 
 def as_cube(values, like=None, *, name: str | None = None):

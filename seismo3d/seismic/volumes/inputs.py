@@ -8,6 +8,7 @@ import numpy as np
 
 from ..._validation import as_seismic
 from ...errors import InputError
+from ..io.coordinates import grid_spacing_from_cdp
 from ..io.segy import SeismicCube
 
 __all__ = ["MIN_SIZE", "VolumeInput", "as_spacing", "as_volume", "volume_spacing"]
@@ -50,23 +51,7 @@ def volume_spacing(cube):
         x, y = cube.cdp_x, cube.cdp_y
     except InputError:  # closed before its coordinates were read
         x = y = None
-    bins, missing = [1.0, 1.0], []
-    for axis in (0, 1):
-        d = None
-        if x is not None and x.shape[axis] > 1:
-            d = np.hypot(np.diff(x, axis=axis), np.diff(y, axis=axis))
-            d = float(np.median(d)) if d.size else None
-        if d is None or not np.isfinite(d) or d <= 0:
-            missing.append("inline" if axis == 0 else "crossline")
-        else:
-            bins[axis] = d
-    dt = float(cube.sample_interval) if cube.sample_interval > 0 else 1.0
-    note = f"sample interval {dt:g} {cube.sample_unit} from the binary header"
-    if missing:
-        note = (f"{' and '.join(missing)} bin unknown (no CDP coordinates), set to 1; " + note)
-    else:
-        note = f"bins {bins[0]:.4g} x {bins[1]:.4g} from CDP X/Y, " + note
-    return np.array([bins[0], bins[1], dt]), note
+    return grid_spacing_from_cdp(x, y, cube.sample_interval, cube.sample_unit, "from the binary header")
 
 
 def as_spacing(value, name: str) -> np.ndarray:

@@ -286,7 +286,8 @@ def demo_blocks(tmp: pathlib.Path) -> None:
     assert "samples traced block by block" in caplog.text
     assert blocks.written["likelihood"].name == "fault_likelihood.zarr"
     compared = sorted(p.name for p in (tmp / "memory").iterdir() if p.name not in ("run.json", "faults.png"))
-    assert len(compared) == 13, compared  # the four SEG-Y volumes, the demo's cube and truth, faults.vtp, two CSV...
+    assert len(compared) == 14, compared  # 4 SEG-Y volumes, the demo's cube and truth, faults.vtp, 2 CSVs, 4 stick
+    # files and the TSurf folder
     files = []  # every file, the TSurf folder's one per fault among them
     for name in compared:
         path = tmp / "memory" / name

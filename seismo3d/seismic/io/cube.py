@@ -51,10 +51,8 @@ DEFAULT_TILE = 64  # traces a side of a chunk (as the Zarr store of seismo3d con
 
 
 def _xarray():
-    try:
-        import xarray as xr
-    except ImportError as exc:  # pragma: no cover - xarray is a dependency
-        raise ImportError("seismic cubes need xarray: pip install xarray") from exc
+    import xarray as xr  # on first use: a dependency, kept out of the command line's import time
+
     return xr
 
 

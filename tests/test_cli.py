@@ -527,3 +527,21 @@ def test_every_command_that_may_compile_says_so():
             assert "compile_note()" in source, f"seismo3d {name} compiles numba kernels and does not say so"
             checked.add(name)
     assert {"faults", "horizon", "register", "map", "lineaments", "plan", "render"} <= checked, checked
+
+
+def test_app_freezes_the_collector_when_the_command_ends_the_process():
+    """A command that ends the process (click's sys.exit) moves the objects left out of the garbage collector's
+    generations (gc.freeze, so that the interpreter's shut-down does not walk them); a call that returns
+    (standalone_mode=False) leaves the collector as it was."""
+    import gc
+
+    gc.unfreeze()
+    try:
+        assert app(["--version"], standalone_mode=False) == 0
+        assert gc.get_freeze_count() == 0
+        with pytest.raises(SystemExit) as exit_:
+            app(["--version"])
+        assert exit_.value.code == 0
+        assert gc.get_freeze_count() > 0
+    finally:
+        gc.unfreeze()

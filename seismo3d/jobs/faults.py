@@ -23,7 +23,7 @@ from .._validation import check_choice
 from ..errors import EarlierStoresError, InputError
 from ..seismic.blocks.executor import release_memory
 from ..seismic.blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory, size_text
-from ..seismic.faults.pipeline import LIKELIHOOD_STORE, SURFACES_STORE
+from ..seismic.faults.pipeline import LIKELIHOOD_STORE, SURFACES_STORE, stores_of_another_run
 from ..seismic.blocks.options import BlockRunOptions
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
@@ -482,59 +482,21 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
 
 def _set_aside_earlier_stores(out_dir: Path, aside: SetAside, inp: FaultsInput, options: FaultTracingOptions) -> None:
     """With ``overwrite``, before the work: the stores (and work folders) of another input, shape or options that an
-    earlier run by blocks left in ``out_dir`` moved aside, deleted once this run's files are in, put back if it fails
-    or is interrupted (with this run's entries of the same names removed); this input's own are left to be reused or
-    resumed (:func:`_of_another_run`)."""
-    stores = _of_another_run(out_dir, inp.name, tuple(int(n) for n in inp.data.shape), options)
-    if stores:
+    earlier run by blocks left in ``out_dir`` (:func:`~seismo3d.seismic.faults.pipeline.stores_of_another_run`)
+    moved aside, deleted once this run's files are in, put back if it fails or is interrupted (with this run's
+    entries of the same names removed); this input's own are left to be reused or resumed."""
+    found = stores_of_another_run(out_dir, inp.name, tuple(int(n) for n in inp.data.shape), options)
+    if found:
         LOGGER.info("%s: moving the earlier run's %s aside (deleted when this run has finished)", out_dir,
-                    " and ".join(name for name in STORE_ENTRIES if name.startswith(stores)
-                                 and os.path.lexists(out_dir / name)))
-        aside.move([name for name in STORE_ENTRIES if name.startswith(stores)])
-
-
-def _of_another_run(out_dir: Path, source: str, shape: tuple, options: FaultTracingOptions) -> tuple:
-    """The stores in ``out_dir`` (``fault_likelihood.zarr``, ``fault_surfaces.zarr``, with their unfinished
-    ``.partial`` and ``.work``) recorded for another run: a finished store of another source, shape or likelihood (the
-    fault surfaces: other options), an unfinished one (its work folder's manifest) of another shape or options; the
-    fault surfaces go with a likelihood of another run. What this misses the block run itself refuses, before
-    touching the store (:func:`_stores_in_the_way`)."""
-    import json
-    from dataclasses import asdict
-
-    import zarr
-
-    def recorded(store: Path):
-        """(attrs, shape) of a finished store, or of an unfinished one's manifest; None when there is none."""
-        try:
-            if store.is_dir() and (store / "zarr.json").exists():
-                group = zarr.open_group(str(store), mode="r")
-                return dict(group.attrs), tuple(group["likelihood"].shape)
-            manifest = json.loads((store.with_name(store.name + ".work") / "manifest.json").read_text())
-            return {"run": manifest}, tuple(manifest.get("shape", ()))
-        except (OSError, ValueError, KeyError):
-            return None
-
-    wanted = json.loads(json.dumps(asdict(options), default=str))
-    likelihood, surfaces = recorded(out_dir / LIKELIHOOD_STORE), recorded(out_dir / SURFACES_STORE)
-    another = False
-    if likelihood is not None:
-        attrs, found = likelihood
-        another = found != shape or attrs.get("source", source) != source or (
-            attrs.get("likelihood", options.likelihood) != options.likelihood)
-    other = (LIKELIHOOD_STORE,) if another else ()
-    if surfaces is not None:
-        attrs, found = surfaces
-        run = attrs.get("run") or {}
-        if another or found != shape or attrs.get("source", source) != source or run.get("options", wanted) != wanted:
-            other += (SURFACES_STORE,)
-    return other
+                    " and ".join(p.name for p in found))
+        stores = tuple({p.name.removesuffix(".work").removesuffix(".partial") for p in found})
+        aside.move([name for name in STORE_ENTRIES if name.startswith(stores)])  # this run's, if it fails, removed
 
 
 def _stores_in_the_way(out_dir: Path, exc: EarlierStoresError) -> InputError:
     """The refusal of a run whose folder holds the stores of another input or other options (found by the block run
     before it touches them): without ``overwrite``, or with it when their records did not tell
-    (:func:`_of_another_run`)."""
+    (:func:`~seismo3d.seismic.faults.pipeline.stores_of_another_run`)."""
     stores = sorted({Path(p).name.removesuffix(".work").removesuffix(".partial") for p in exc.paths})
     return InputError(f"output folder {out_dir} holds {' and '.join(stores)} of another input or other options "
                       "(rerun with those to resume or reuse them); pass overwrite=True (--overwrite) to replace them "

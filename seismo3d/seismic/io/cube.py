@@ -9,6 +9,10 @@ A seismic cube or line is an ``xarray.DataArray`` with segysak's conventions:
   trace list, a raw section or a 2D array;
 - coordinates of the same names (inline and crossline numbers, times or depths with a ``units`` attribute) and
   ``cdp_x``, ``cdp_y`` on the lateral dimensions when the trace headers hold them (the coordinate scalar applied);
+  a trace list's ``trace`` coordinate is each trace's number in file order, from 1, as every command numbers it
+  (``seismo3d horizon --seed TRACE,T`` and its rows, the pictures of ``seismo3d render``), with its header inline
+  and crossline numbers as ``iline`` / ``xline`` on it when they vary; a ``.npy`` array's or raw section's lateral
+  coordinates are its indices, from 0 (it has no numbers of its own);
 - attributes: ``sample_interval`` and ``sample_unit`` ('ms', 'm', 'ft' or 'samples'; segysak's ``sample_rate`` and
   ``d3_domain`` too), ``source_file``, ``kind`` ('cube', 'line', 'trace list', 'array', 'section', 'store'),
   ``description`` and, for SEG-Y, the layout found (``segy_format``, ``segy_endian``, ``segy_sorting``,
@@ -211,7 +215,7 @@ def _open_segy(path: Path, *, iline, xline, ignore_geometry, endian, sample_unit
     if inlines is None:  # a trace list: one lateral dimension, its header line numbers as coordinates
         dims = ("trace", name)
         data = data[:, 0, :]
-        coords["trace"] = np.arange(data.shape[0])
+        coords["trace"] = np.arange(1, data.shape[0] + 1)  # numbered from 1 in file order, as the commands do
         if not (np.all(trace_il == trace_il[0]) and np.all(trace_xl == trace_xl[0])):
             coords.update(iline=("trace", trace_il), xline=("trace", trace_xl))
         xy = None if x is None else (np.ravel(x), np.ravel(y))

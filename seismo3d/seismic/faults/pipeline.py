@@ -320,7 +320,7 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     Parameters
     ----------
     cube : (n_inlines, n_xlines, n_samples) dask.array.Array or array_like
-        Amplitudes, samples along the last axis (e.g. ``open_lazy(path).data``).
+        Amplitudes, samples along the last axis (e.g. ``seismo3d.open(path).data``).
     opt : FaultTracingOptions
     sample_interval : float
     sample_unit : str

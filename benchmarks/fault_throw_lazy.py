@@ -8,7 +8,7 @@ a child process (numba kernels warmed up on a small cube first), :func:`~seismo3
 faults on
 
 - memory: the cube read whole (:func:`~seismo3d.seismic.io.read_segy`), the orientation computed over it;
-- lazy: the dask array of :func:`~seismo3d.seismic.io.lazy.open_lazy` (chunks of 64 x 64 traces), each patch
+- lazy: the dask array of ``seismo3d.open`` (chunks of 64 x 64 traces), each patch
   reading only a window of tiles of 64 x 64 traces around it, the slopes of a tile computed with the structure
   tensor's halo, the tiles last used kept up to 256 MiB (the default of
   :class:`~seismo3d.seismic.blocks.windows.LazyWindows`);
@@ -96,7 +96,7 @@ def case(path: str, sgy: str, faults_pkl: str, out: str) -> dict:
 
     from seismo3d.seismic import fault_throws
     from seismo3d.seismic.io import read_segy
-    from seismo3d.seismic.io.lazy import open_lazy
+    import seismo3d
 
     _warm_up()
     faults = pickle.loads(Path(faults_pkl).read_bytes())
@@ -105,9 +105,9 @@ def case(path: str, sgy: str, faults_pkl: str, out: str) -> dict:
     if path == "memory":
         data = read_segy(sgy)[0]
     elif path == "lazy":
-        data = open_lazy(sgy, tile=64).data
+        data = seismo3d.open(sgy, tile=64).data
     else:
-        data = LazyWindows(open_lazy(sgy, tile=32).data, tile=32, cache_mb=128)
+        data = LazyWindows(seismo3d.open(sgy, tile=32).data, tile=32, cache_mb=128)
     rss0 = psutil.Process().memory_info().rss
     sampler = _PeakRSS()
     tracemalloc.start()

@@ -10,7 +10,7 @@ Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000]
    throws).
 2. threads / distributed: a generated cube of ``--shape`` (default 1448 x 1448 x 512 float32 = 4.29 GB) written as
    SEG-Y (a 256-trace faulted tile mirrored into a mosaic, so reflectors and faults continue across the seams),
-   read lazily (:func:`seismo3d.seismic.io.lazy.open_lazy`, tiles of 32 traces) and its fault likelihood, strike
+   read lazily (``seismo3d.open``, tiles of 32 traces) and its fault likelihood, strike
    and dip computed chunk by chunk into Zarr with ``--memory-limit`` (default 1.4 GB): on dask's threaded
    scheduler, and on a local ``dask.distributed`` cluster of 2 workers (1 thread each, blocks planned for half the
    limit each, each block's kernels on the worker's share of the cores, :func:`~seismo3d.seismic.blocks.executor.
@@ -146,12 +146,12 @@ def _child(case: str, args: list) -> dict:
 def case_chunked(sgy: str, out: str, limit: int, scheduler: str) -> dict:
     from seismo3d.seismic.blocks.options import ChunkOptions
     from seismo3d.seismic.faults.likelihood.scan_blocks import chunked_fault_likelihood
-    from seismo3d.seismic.io.lazy import open_lazy
+    import seismo3d
 
     # tiles of 16 traces on the cluster: each worker plans for half the limit, and a scan strip holds a whole
     # lateral axis (1448 traces x 32 x 256 grouped samples x 24 B = 0.65 GiB for a 32-trace strip: too much)
     tile = 32 if scheduler == "threads" else 16
-    cube = open_lazy(sgy, tile=tile)
+    cube = seismo3d.open(sgy, tile=tile)
     t0 = time.perf_counter()
     if scheduler == "threads":
         r = chunked_fault_likelihood(cube.data, out, chunking=ChunkOptions(memory_limit=limit), progress=True)
@@ -179,9 +179,9 @@ def case_surfaces(sgy: str, likelihood: str, out: str, limit: int, link_limit: i
     from seismo3d.errors import InputError
     from seismo3d.seismic.faults.surfaces.blocks import chunked_fault_surfaces
     from seismo3d.seismic.blocks.options import ChunkOptions
-    from seismo3d.seismic.io.lazy import open_lazy
+    import seismo3d
 
-    cube = open_lazy(sgy, tile=32)
+    cube = seismo3d.open(sgy, tile=32)
     sampler = _PeakRSS(os.getpid())
     t0 = time.perf_counter()
     try:

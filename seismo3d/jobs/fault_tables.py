@@ -36,7 +36,7 @@ def trace_columns(inp) -> list:
         ``['inline', 'crossline']`` for numbered traces, ``['trace']`` (the trace index, from 0) for raw sections,
         2D ``.npy`` arrays and trace lists without numbers.
     """
-    return ["trace"] if inp.xline is None else ["inline", "crossline"]
+    return ["trace"] if inp.xline_labels is None else ["inline", "crossline"]
 
 
 def _fmt(v: float) -> str:
@@ -74,7 +74,7 @@ def write_points(inp, result: FaultInterpretation, path: Path, coordinates=None)
     inline and crossline numbers (cubes, lines of a survey, trace lists whose headers number them), one ``trace``
     column (the trace index, from 0) for raw sections, 2D ``.npy`` arrays and trace lists without numbers.
     """
-    unit = inp.unit
+    unit = inp.sample_unit
     extra = [] if unit == "samples" else [f"throw_{unit}"]
     xy = [] if coordinates is None else ["x", "y", "xy_unit"]
     header = [*trace_columns(inp), *xy, "time_or_depth", "fault_id", "throw_samples", *extra, "throw_correlation",
@@ -85,7 +85,8 @@ def write_points(inp, result: FaultInterpretation, path: Path, coordinates=None)
         for f in result.faults:
             p = f.points
             throw = _throw_of(result.throws, f)
-            lateral = inp.inline[p[:, 0]], (None if inp.xline is None else inp.xline[p[:, 1 if p.shape[1] == 3 else 0]])
+            xl = inp.xline_labels
+            lateral = inp.inline_labels[p[:, 0]], (None if xl is None else xl[p[:, 1 if p.shape[1] == 3 else 0]])
             cols = [TextColumn(np.asarray(lateral[0]), "s")]  # str() of the labels, as Python numbers
             if lateral[1] is not None:
                 cols.append(TextColumn(np.asarray(lateral[1]), "s"))
@@ -116,9 +117,9 @@ def _dip_direction(inp, fault) -> str:
 
 def write_summary(inp, result: FaultInterpretation, path: Path, rows: list) -> Path:
     """fault_summary.csv; its rows are also appended to ``rows`` (column name to text) for the job's result."""
-    unit = inp.unit
+    unit = inp.sample_unit
     extra = [] if unit == "samples" else [f"median_throw_{unit}"]
-    two_d = inp.data.ndim == 2
+    two_d = inp.amplitudes.ndim == 2
     orientation = ["dips_toward"] if two_d else ["mean_strike_deg"]
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)

@@ -23,14 +23,15 @@ from .._validation import check_choice
 from ..errors import EarlierStoresError, InputError
 from ..seismic.blocks.executor import release_memory
 from ..seismic.blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory, size_text
-from ..seismic.faults.pipeline import LIKELIHOOD_STORE, SURFACES_STORE
+from ..seismic.faults.pipeline import LIKELIHOOD_STORE, SURFACES_STORE, stores_of_another_run
 from ..seismic.blocks.options import BlockRunOptions
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
 from ..seismic.faults.pipeline import trace_faults
 from ..seismic.adapted_network import MODEL_NETWORK
 from ..seismic.io.writer import write_like, write_like_blocks
-from .fault_inputs import FaultsInput, read_input, write_demo_input
+from .fault_inputs import read_input, write_demo_input
+from .inputs import SeismicInput
 from .fault_tables import write_points, write_summary
 from .interchange import FAULT_INTERCHANGE_FILES, fault_coordinates, fault_interchange_steps
 from .outputs import check_outputs, output_folder
@@ -80,7 +81,7 @@ class FaultsJobResult:
 # the job: outputs (its inputs: seismo3d.jobs.fault_inputs)
 
 
-def _write_volume(inp: FaultsInput, out_dir: Path, stem: str, values, *, like: Path | None, progress: bool, iline,
+def _write_volume(inp: SeismicInput, out_dir: Path, stem: str, values, *, like: Path | None, progress: bool, iline,
                   xline, ignore_geometry, endian) -> Path:
     """One volume (numpy or Zarr array of the input's shape): SEG-Y with the input's headers for a SEG-Y input,
     ``.npy`` otherwise.
@@ -362,11 +363,11 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
 
     with record.stage("read input"):  # seismo3d.open: its headers read once; a cube beyond the limit is kept lazy
         inp = read_input(input_path, n_samples=n_samples, **segy, lazy_if=lazy_if)
-    if inp.unit != "samples" and not inp.sample_interval > 0:
-        raise InputError(f"the sample interval of {inp.name} is {inp.sample_interval:g} {inp.unit}; it must be > 0 "
-                         "(check the binary header's sample interval, bytes 3217-3218)")
+    if inp.sample_unit != "samples" and not inp.sample_interval > 0:
+        raise InputError(f"the sample interval of {inp.name} is {inp.sample_interval:g} {inp.sample_unit}; it must be "
+                         "> 0 (check the binary header's sample interval, bytes 3217-3218)")
     how["by_blocks"] = inp.lazy
-    _say_how_it_runs(inp.name, tuple(inp.data.shape), limit, held[0], by_blocks=inp.lazy)
+    _say_how_it_runs(inp.name, tuple(inp.amplitudes.shape), limit, held[0], by_blocks=inp.lazy)
     if inp.lazy and aside is not None:
         _set_aside_earlier_stores(out_dir, aside, inp, options)
     blocks = replace(blocks, in_memory=not inp.lazy, source=inp.name, coords=inp.coords)  # decided: not again
@@ -411,7 +412,7 @@ def _load_writers() -> None:
     import pyvista  # noqa: F401
 
 
-def _volume_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path, segy: dict, progress: bool) -> list:
+def _volume_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path, segy: dict, progress: bool) -> list:
     """The writers of the four volumes (likelihood, strike, dip, votes), numpy or Zarr arrays alike: SEG-Y with the
     input's headers for a SEG-Y input; ``.npy`` otherwise, unless the run by blocks's Zarr stores hold them (keys
     ``likelihood`` and ``surfaces_zarr``)."""
@@ -434,7 +435,7 @@ def _volume_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path, 
     return steps
 
 
-def _surface_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path, summary: list, coords) -> list:
+def _surface_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path, summary: list, coords) -> list:
     """The writers of the fault surfaces, points, summary (its rows appended to ``summary``) and picture."""
     from ..viz.fault_meshes import fault_surfaces, save_polydata
     from ..viz.faults import plot_fault_slices
@@ -455,8 +456,8 @@ def _surface_steps(inp: FaultsInput, result: FaultInterpretation, out_dir: Path,
     return [("surfaces", surfaces), *tsurf,
             ("points", lambda: write_points(inp, result, out_dir / "fault_points.csv", coordinates=coords)),
             ("summary", lambda: write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
-            ("figure", lambda: plot_fault_slices(inp.data, result.faults, path=out_dir / "faults.png",
-                                                 likelihood=result.likelihood, axes=axes, axis_labels=inp.labels,
+            ("figure", lambda: plot_fault_slices(inp.amplitudes, result.faults, path=out_dir / "faults.png",
+                                                 likelihood=result.likelihood, axes=axes, axis_labels=inp.axis_titles,
                                                  title=inp.name, **_throw_colours(inp, result))),
             ] + [step for step in interchange if step[0] != "surfaces_tsurf"]
 
@@ -480,61 +481,23 @@ def _write_steps(steps: list, written: dict, progress: bool) -> None:
 # the stores of a run by blocks
 
 
-def _set_aside_earlier_stores(out_dir: Path, aside: SetAside, inp: FaultsInput, options: FaultTracingOptions) -> None:
+def _set_aside_earlier_stores(out_dir: Path, aside: SetAside, inp: SeismicInput, options: FaultTracingOptions) -> None:
     """With ``overwrite``, before the work: the stores (and work folders) of another input, shape or options that an
-    earlier run by blocks left in ``out_dir`` moved aside, deleted once this run's files are in, put back if it fails
-    or is interrupted (with this run's entries of the same names removed); this input's own are left to be reused or
-    resumed (:func:`_of_another_run`)."""
-    stores = _of_another_run(out_dir, inp.name, tuple(int(n) for n in inp.data.shape), options)
-    if stores:
+    earlier run by blocks left in ``out_dir`` (:func:`~seismo3d.seismic.faults.pipeline.stores_of_another_run`)
+    moved aside, deleted once this run's files are in, put back if it fails or is interrupted (with this run's
+    entries of the same names removed); this input's own are left to be reused or resumed."""
+    found = stores_of_another_run(out_dir, inp.name, tuple(int(n) for n in inp.amplitudes.shape), options)
+    if found:
         LOGGER.info("%s: moving the earlier run's %s aside (deleted when this run has finished)", out_dir,
-                    " and ".join(name for name in STORE_ENTRIES if name.startswith(stores)
-                                 and os.path.lexists(out_dir / name)))
-        aside.move([name for name in STORE_ENTRIES if name.startswith(stores)])
-
-
-def _of_another_run(out_dir: Path, source: str, shape: tuple, options: FaultTracingOptions) -> tuple:
-    """The stores in ``out_dir`` (``fault_likelihood.zarr``, ``fault_surfaces.zarr``, with their unfinished
-    ``.partial`` and ``.work``) recorded for another run: a finished store of another source, shape or likelihood (the
-    fault surfaces: other options), an unfinished one (its work folder's manifest) of another shape or options; the
-    fault surfaces go with a likelihood of another run. What this misses the block run itself refuses, before
-    touching the store (:func:`_stores_in_the_way`)."""
-    import json
-    from dataclasses import asdict
-
-    import zarr
-
-    def recorded(store: Path):
-        """(attrs, shape) of a finished store, or of an unfinished one's manifest; None when there is none."""
-        try:
-            if store.is_dir() and (store / "zarr.json").exists():
-                group = zarr.open_group(str(store), mode="r")
-                return dict(group.attrs), tuple(group["likelihood"].shape)
-            manifest = json.loads((store.with_name(store.name + ".work") / "manifest.json").read_text())
-            return {"run": manifest}, tuple(manifest.get("shape", ()))
-        except (OSError, ValueError, KeyError):
-            return None
-
-    wanted = json.loads(json.dumps(asdict(options), default=str))
-    likelihood, surfaces = recorded(out_dir / LIKELIHOOD_STORE), recorded(out_dir / SURFACES_STORE)
-    another = False
-    if likelihood is not None:
-        attrs, found = likelihood
-        another = found != shape or attrs.get("source", source) != source or (
-            attrs.get("likelihood", options.likelihood) != options.likelihood)
-    other = (LIKELIHOOD_STORE,) if another else ()
-    if surfaces is not None:
-        attrs, found = surfaces
-        run = attrs.get("run") or {}
-        if another or found != shape or attrs.get("source", source) != source or run.get("options", wanted) != wanted:
-            other += (SURFACES_STORE,)
-    return other
+                    " and ".join(p.name for p in found))
+        stores = tuple({p.name.removesuffix(".work").removesuffix(".partial") for p in found})
+        aside.move([name for name in STORE_ENTRIES if name.startswith(stores)])  # this run's, if it fails, removed
 
 
 def _stores_in_the_way(out_dir: Path, exc: EarlierStoresError) -> InputError:
     """The refusal of a run whose folder holds the stores of another input or other options (found by the block run
     before it touches them): without ``overwrite``, or with it when their records did not tell
-    (:func:`_of_another_run`)."""
+    (:func:`~seismo3d.seismic.faults.pipeline.stores_of_another_run`)."""
     stores = sorted({Path(p).name.removesuffix(".work").removesuffix(".partial") for p in exc.paths})
     return InputError(f"output folder {out_dir} holds {' and '.join(stores)} of another input or other options "
                       "(rerun with those to resume or reuse them); pass overwrite=True (--overwrite) to replace them "

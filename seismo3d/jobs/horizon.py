@@ -161,8 +161,8 @@ def _survey_position(survey: _Survey, position) -> _Position:
     *lateral, k = (float(v) for v in position)
     lateral = [int(round(v)) for v in lateral]
     time = float(np.interp(k, np.arange(survey.samples.size), survey.samples))
-    if survey.kind == "trace list":
-        labels = (("trace", lateral[0] + 1),)
+    if survey.kind == "trace list":  # its number in file order (seismo3d.open's trace coordinate)
+        labels = (("trace", int(survey.cube["trace"][lateral[0]])),)
     elif survey.kind == "cube":
         labels = (("inline", int(survey.inlines[lateral[0]])), ("crossline", int(survey.xlines[lateral[1]])))
     elif survey.inlines.size > 1:  # a line along the inlines of one crossline
@@ -303,7 +303,7 @@ def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:
         shape = (survey.inlines.size, survey.xlines.size)
         horizon = Horizon(horizon.times.reshape(shape), horizon.confidence.reshape(shape), horizon.polarity,
                           horizon.seeds)
-    labels = np.arange(1, survey.data.shape[0] + 1) if survey.kind == "trace list" else survey.inlines
+    labels = survey.cube["trace"].values if survey.kind == "trace list" else survey.inlines
     return write_horizon_text(output, horizon, inlines=labels, xlines=survey.xlines, samples=survey.samples)
 
 

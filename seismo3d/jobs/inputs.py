@@ -12,6 +12,7 @@ way.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -126,6 +127,100 @@ class SeismicInput:
     @property
     def is_segy(self) -> bool:
         return self.kind in ("cube", "line", "trace list")
+
+    # how the traces are named in the outputs of the faults job (its tables, sticks, surfaces and picture)
+
+    @property
+    def name(self) -> str:
+        """The input's name in messages, outputs and stores: the file's stem (a store's name before its first dot)."""
+        return self.path.name.split(".")[0] if self.kind == "store" else self.path.stem
+
+    @property
+    def amplitudes(self):
+        """The amplitudes as :func:`seismo3d.open` labels them (:attr:`cube`'s data): (n_inlines, n_xlines,
+        n_samples) for a cube, a store or a 3D array (a dask array with :attr:`lazy`), (n_traces, n_samples) for a
+        line, a trace list, a raw section or a 2D array."""
+        return self.cube.data
+
+    @property
+    def segy_path(self) -> Path | None:
+        """The SEG-Y file (the template of SEG-Y outputs); None for other inputs."""
+        return self.path if self.is_segy else None
+
+    @property
+    def segy_shape(self) -> tuple | None:
+        """The SEG-Y grid's shape of a cube or a line (to write 2D results back into); None otherwise."""
+        return self.grid_shape if self.kind in ("cube", "line") else None
+
+    @property
+    def trace_axis(self) -> str:
+        """What labels the traces of a 2D input in pictures: 'inline' or 'crossline' for a line of a survey,
+        'trace' otherwise."""
+        if self.kind != "line":
+            return "trace"
+        return "inline" if self.grid_shape[1] == 1 else "crossline"
+
+    @property
+    def inline_labels(self) -> np.ndarray:
+        """(n,) int64: the inline number of each inline (3D) or of each trace (2D); a raw section's, an array's or a
+        trace list's without numbers: the trace index, from 0."""
+        return self._trace_labels[0]
+
+    @property
+    def xline_labels(self) -> np.ndarray | None:
+        """(n,) int64: the crossline number of each crossline (3D) or of each trace (2D); None for a raw section, a
+        2D array or a trace list without numbers."""
+        return self._trace_labels[1]
+
+    @cached_property
+    def _trace_labels(self) -> tuple:
+        if self.kind == "trace list":  # its header inline / crossline numbers, if any
+            il, xl = self.trace_inlines.astype(np.int64), self.trace_xlines.astype(np.int64)
+            if np.all(il == il[0]) and np.all(xl == xl[0]):  # no numbers there: the trace index
+                return np.arange(il.size, dtype=np.int64), None
+            return il, xl
+        if not self.is_segy and self.kind != "store":  # .npy, .f32be: the indices
+            idx = [np.arange(n, dtype=np.int64) for n in self.amplitudes.shape]
+            return idx[0], idx[1] if len(idx) == 3 else None
+        il, xl = self.inlines.astype(np.int64), self.xlines.astype(np.int64)
+        if self.trace_axis == "inline":  # a line along the inlines (one crossline), e.g. penobscot_xl1155
+            return il, np.full(il.size, xl[0])
+        if self.trace_axis == "crossline":
+            return np.full(xl.size, il[0]), xl
+        return il, xl
+
+    @property
+    def coords(self) -> dict:
+        """Coordinates of a run by blocks' Zarr stores (``BlockRunOptions.coords``)."""
+        return {"inline": self.inline_labels, "crossline": self.xline_labels, "sample": self.samples,
+                "sample_unit": self.sample_unit}
+
+    def file_order(self, values: np.ndarray) -> np.ndarray:
+        """(n_traces, n_samples) of an array shaped like :attr:`amplitudes`, in the SEG-Y file's trace order."""
+        ns = values.shape[-1]
+        if self.segy_shape is None:  # trace list: already in file order (contiguous float32 for segyio)
+            return np.ascontiguousarray(values.reshape(-1, ns), dtype=np.float32)
+        grid = values.reshape(self.segy_shape)
+        if self.sorting == "crossline":
+            grid = np.swapaxes(grid, 0, 1)
+        return np.ascontiguousarray(grid, dtype=np.float32).reshape(-1, ns)
+
+    @property
+    def axes(self) -> tuple:
+        """Annotation of each axis of :attr:`amplitudes`: (inlines, crosslines, samples) in 3D, (trace labels,
+        samples) in 2D."""
+        if self.amplitudes.ndim == 3:
+            return (self.inline_labels, self.xline_labels, self.samples)
+        lateral = {"inline": self.inline_labels, "crossline": self.xline_labels}.get(self.trace_axis)
+        return (np.arange(self.amplitudes.shape[0]) if lateral is None else lateral, self.samples)
+
+    @property
+    def axis_titles(self) -> tuple:
+        """Axis names for pictures."""
+        vertical = {"samples": "sample", "ms": "time (ms)", "m": "depth (m)", "ft": "depth (ft)"}[self.sample_unit]
+        if self.amplitudes.ndim == 3:
+            return ("inline", "crossline", vertical)
+        return (self.trace_axis, vertical)
 
 
 def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False, endian=None,

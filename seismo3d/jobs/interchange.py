@@ -47,9 +47,10 @@ def fault_coordinates(inp, *, segy_path=None, iline: int = 189, xline: int = 193
 
     Parameters
     ----------
-    inp : the faults job's input
-        ``data`` (3D cube or 2D section), ``segy_path`` (None for ``.npy`` / ``.f32be`` / Zarr inputs),
-        ``segy_shape``, ``inline``, ``xline`` (:class:`seismo3d.jobs.fault_inputs.FaultsInput`).
+    inp : SeismicInput
+        The faults job's input (:class:`seismo3d.jobs.inputs.SeismicInput`): its ``amplitudes`` (3D cube or 2D
+        section), ``segy_path`` (None for ``.npy`` / ``.f32be`` / Zarr inputs), ``inline_labels``,
+        ``xline_labels``.
     segy_path : path-like, optional
         The SEG-Y file the input was read from, when ``inp`` does not name it (a cube read block by block).
     iline, xline, ignore_geometry, endian
@@ -67,19 +68,19 @@ def fault_coordinates(inp, *, segy_path=None, iline: int = 189, xline: int = 193
         coords = cube_coordinates(cube) if cube is not None else read_survey_coordinates(
             segy_path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian)
         if coords.x.ndim == 1:  # a trace list: its traces labelled as the job labels them (fault_points.csv)
-            xl = np.zeros(coords.x.size) if inp.xline is None else np.asarray(inp.xline, dtype=np.float64)
-            return replace(coords, inline=np.asarray(inp.inline, dtype=np.float64), crossline=xl)
-        return coords.section() if inp.data.ndim == 2 else coords
-    il = np.asarray(inp.inline, dtype=np.float64)
-    if inp.data.ndim == 3:
-        grid = np.meshgrid(il, np.asarray(inp.xline, dtype=np.float64), indexing="ij")
+            xl = np.zeros(coords.x.size) if inp.xline_labels is None else np.asarray(inp.xline_labels, dtype=np.float64)
+            return replace(coords, inline=np.asarray(inp.inline_labels, dtype=np.float64), crossline=xl)
+        return coords.section() if inp.amplitudes.ndim == 2 else coords
+    il = np.asarray(inp.inline_labels, dtype=np.float64)
+    if inp.amplitudes.ndim == 3:
+        grid = np.meshgrid(il, np.asarray(inp.xline_labels, dtype=np.float64), indexing="ij")
         return survey_coordinates(*grid)
-    xl = np.zeros_like(il) if inp.xline is None else np.asarray(inp.xline, dtype=np.float64)
+    xl = np.zeros_like(il) if inp.xline_labels is None else np.asarray(inp.xline_labels, dtype=np.float64)
     return survey_coordinates(il, xl)
 
 
 def _sticks(inp, result, coords: SurveyCoordinates) -> FaultSticks:
-    unit = inp.unit if inp.unit in ("ms", "m", "ft") else "samples"
+    unit = inp.sample_unit if inp.sample_unit in ("ms", "m", "ft") else "samples"
     return FaultSticks.from_faults(result.faults, coords, inp.samples, z_unit=unit)
 
 
@@ -104,7 +105,7 @@ def _fault_tsurf(inp, result, coords: SurveyCoordinates, path: Path, mesh=None) 
         remap = np.full(points.shape[0], -1)
         remap[keep] = np.arange(keep.size)
         surfaces.append(TriangulatedSurface(f"fault_{int(fid)}", np.column_stack([x[keep], y[keep], z[keep]]),
-                                            remap[tri], coords.unit, inp.unit))
+                                            remap[tri], coords.unit, inp.sample_unit))
     return write_tsurf_folder(path, surfaces, source=inp.name)
 
 
@@ -139,7 +140,7 @@ def fault_interchange_steps(inp, result, out_dir, coords: SurveyCoordinates, *, 
         return lambda: write_fault_sticks(out_dir / names[key], sticks(), format=fmt, source=inp.name)
 
     steps = [(key, sticks_writer(key, fmt)) for key, fmt in _STICK_FORMATS.items()]
-    if inp.data.ndim == 3 and len(result.faults):
+    if inp.amplitudes.ndim == 3 and len(result.faults):
         tsurf = out_dir / FAULT_INTERCHANGE_FILES[-1]
         steps.append(("surfaces_tsurf", lambda: _fault_tsurf(inp, result, coords, tsurf,
                                                              None if mesh is None else mesh())))

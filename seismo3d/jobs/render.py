@@ -171,7 +171,7 @@ def _read_segy(path: Path, vertical_exaggeration, segy_options=None):
                                            cdp_x=seismic.cdp_x, cdp_y=seismic.cdp_y, map_unit=seismic.map_unit,
                                            vertical_exaggeration=vertical_exaggeration)
     data = seismic.data[:, None, :]
-    geometry = cube_geometry(data.shape, inlines=np.arange(1, data.shape[0] + 1), xlines=[0],
+    geometry = cube_geometry(data.shape, inlines=seismic.cube["trace"].values, xlines=[0],
                              samples=seismic.samples, sample_unit=seismic.sample_unit,
                              vertical_exaggeration=vertical_exaggeration, lateral_names=("trace", ""))
     return data, geometry

@@ -8,8 +8,8 @@ Sub-packages:
     template).
   - :mod:`~seismo3d.seismic.io.layout`: byte order, sample format and rev-2 headers of a SEG-Y file.
   - :mod:`~seismo3d.seismic.io.geometry`: the traces of a file without an inline / crossline grid.
-  - :mod:`~seismo3d.seismic.io.blocks`: a 3D SEG-Y cube read by blocks of inlines (:class:`SegyGrid`).
-  - :mod:`~seismo3d.seismic.io.lazy`: :func:`open_lazy`, a 3D cube (SEG-Y or Zarr) as a dask array by inline blocks.
+  - :mod:`~seismo3d.seismic.io.blocks`: a SEG-Y cube read by blocks of traces (:class:`SegyGrid`), the dask array
+    of ``seismo3d.open``'s SEG-Y inputs.
   - :mod:`~seismo3d.seismic.io.zarr_store`: the Zarr v3 layout of ``seismo3d convert`` (xarray opens it as is).
   - :mod:`~seismo3d.seismic.io.writer`: a SEG-Y file written block by block like another.
 
@@ -87,8 +87,8 @@ if TYPE_CHECKING:
     )
     from .horizons.cycle_cut import cycle_cut
     from .io import (
-        LazyCube, SegyGrid, SegyLayout, SeismicCube, SeismicZarr, SeismicZarrWriter, TraceGeometry, inline_block_size,
-        is_seismic_zarr, open_lazy, open_seismic_zarr, open_segy, read_ascii_lines, read_section, read_segy,
+        SegyGrid, SegyLayout, SeismicCube, SeismicZarrWriter, TraceGeometry, is_seismic_zarr, open_seismic_group,
+        open_segy, read_ascii_lines, read_section, read_segy,
         read_segy_block, read_segy_block_headers, read_segy_layout, trace_geometry, write_like, write_like_blocks,
     )
     from .reflectors import POLARITIES, reflector_picks, reflector_points
@@ -97,7 +97,7 @@ if TYPE_CHECKING:
 __all__ = [
     # exported before the sub-packages
     "POLARITIES", "Fault", "FaultCrossings", "FaultInterpretation", "FaultLikelihood", "FaultScanOptions",
-    "FaultTracingOptions", "FaultVotes", "LazyCube", "open_lazy", "SkinOptions", "VotingOptions", "fault_skins",
+    "FaultTracingOptions", "FaultVotes", "SkinOptions", "VotingOptions", "fault_skins",
     "vote_faults", "FaultScores", "FaultThrow", "Horizon", "HorizonErrors", "ReflectorOrientation",
     "RegistrationErrors", "SeismicCube", "ThrowOptions", "TrackingOptions", "VolumeOptions", "VolumeRegistration",
     "autotrack", "discontinuity", "eigen_coherence", "evaluate_faults", "FaultLineCoverage", "fault_line_coverage",
@@ -109,8 +109,7 @@ __all__ = [
     "write_like",
     # io: SEG-Y layout and geometry, reading by blocks, the Zarr store of `seismo3d convert`, writing by blocks
     "SegyLayout", "read_segy_layout", "TraceGeometry", "trace_geometry", "SegyGrid", "read_segy_block",
-    "read_segy_block_headers", "inline_block_size", "SeismicZarr", "SeismicZarrWriter", "open_seismic_zarr",
-    "is_seismic_zarr", "write_like_blocks",
+    "read_segy_block_headers", "SeismicZarrWriter", "open_seismic_group", "is_seismic_zarr", "write_like_blocks",
     # faults: dead samples, cube windows, the likelihood scan and the fault surfaces by blocks
     "CleanTraces", "clean_traces", "dead_samples", "near_dead_samples", "fill_values", "CubeWindow", "cube_windows",
     "ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "ChunkedFaults", "chunked_fault_surfaces",

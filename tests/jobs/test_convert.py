@@ -8,11 +8,11 @@ import pytest
 import segyio
 from numpy.testing import assert_allclose, assert_array_equal
 
+import seismo3d
 import seismo3d.jobs.convert as convert_job
 from seismo3d.errors import InputError, SegyGeometryError
 from seismo3d.jobs.convert import run_convert_job
 from seismo3d.seismic.io import read_segy
-from seismo3d.seismic.io.lazy import open_lazy
 
 xr = pytest.importorskip("xarray")
 
@@ -63,17 +63,16 @@ def test_xarray_opens_the_store_as_is(converted):
     assert result.shape == SHAPE and result.chunks == (64, 64, SHAPE[2]) and result.has_cdp_coordinates
 
 
-def test_open_lazy_on_the_store_equals_the_segy(converted):
+def test_the_store_opens_as_the_segy(converted):
     src, store, _ = converted
     ref, _ = read_segy(src)
-    lazy = open_lazy(store, chunk_mb=20 * SHAPE[1] * SHAPE[2] * 4 / 2**20)
-    segy = open_lazy(src)
-    assert lazy.format == "zarr" and lazy.sample_unit == "ms"
-    assert lazy.data.chunks == ((20, 20, 20, 10), (SHAPE[1],), (SHAPE[2],))  # regrouped into blocks of inlines
+    lazy = seismo3d.open(store, tile=20)
+    segy = seismo3d.open(src)
+    assert lazy.attrs["kind"] == "store" and lazy.attrs["sample_unit"] == "ms"
+    assert lazy.data.chunks == ((20, 20, 20, 10), (20, 20, 20, 6), (SHAPE[2],))  # the store's chunks regrouped
     assert_array_equal(lazy.data.compute(), ref)
-    assert_array_equal(lazy.inlines, segy.inlines)
-    assert_array_equal(lazy.xlines, segy.xlines)
-    assert_array_equal(lazy.samples, segy.samples)
+    for name in ("iline", "xline", "twt", "cdp_x", "cdp_y"):
+        assert_array_equal(lazy[name].values, segy[name].values)
 
 
 def test_progress_one_step_per_tile(amplitudes, tmp_path, write_segy_cube, caplog):
@@ -95,7 +94,7 @@ def test_real_f3_crop(data_dir, tmp_path):
     assert_allclose(ds.cdp_x.values, cube.cdp_x, rtol=0, atol=1e-9)
     with segyio.open(str(src), "r") as f:
         assert_array_equal(ds.CDP_X.values.ravel(), f.attributes(segyio.TraceField.CDP_X)[:])  # inline-sorted
-    assert_array_equal(open_lazy(tmp_path / "f3.zarr").data.compute(), ref)
+    assert_array_equal(seismo3d.open(tmp_path / "f3.zarr").data.compute(), ref)
 
 
 class _Interrupted:

@@ -2,8 +2,9 @@
 
 A run owns a work folder holding a manifest (what is computed: the cube's shape, the options, the block plan) and a
 marker per finished block, written atomically after the block's data. Started again with the same manifest, a run
-skips the blocks whose markers exist; with another manifest it is refused, so an unfinished run of one cube is never
-completed with the blocks of another. Blocks are dask delayed tasks run on the local threaded scheduler, one thread
+skips the blocks whose markers exist; with another manifest it is refused
+(:func:`~seismo3d.seismic.blocks.stores.earlier_run`), so an unfinished run of one cube is never completed with the
+blocks of another. Blocks are dask delayed tasks run on the local threaded scheduler, one thread
 (``'synchronous'``), or a ``dask.distributed`` cluster given by its address, with progress per finished block.
 
 The blocks are planned once, before the run, from the steps' declarations and the memory limit
@@ -26,7 +27,7 @@ import uuid
 import numpy as np
 
 from ..._progress import LOGGER, progress_steps
-from ...errors import EarlierStoresError, InputError
+from ...errors import InputError
 from .apply import BlockPlace, apply_block, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
 
@@ -191,38 +192,12 @@ class BlockRun:
         self.client = None
         self._kernel_threads = None
 
-    def open(self, manifest: dict, what: str) -> None:
-        """Create the work folder with ``manifest``, or check that an existing one holds the same manifest.
-
-        Raises
-        ------
-        InputError
-            The folder holds an unfinished run of another cube or other options (``what`` names the folders to
-            delete to start afresh).
-        """
-        path = self.work / "manifest.json"
-        if self.work.exists():
-            try:
-                earlier = json.loads(path.read_text())
-            except (OSError, ValueError):
-                earlier = None
-            if earlier != manifest:
-                raise EarlierStoresError(f"{self.work} holds an unfinished run of another cube or other options; "
-                                         f"delete {what} to start afresh, or rerun with the same input and options "
-                                         "to resume it", [self.work])
-        else:
+    def open(self, manifest: dict) -> None:
+        """Create the work folder with ``manifest`` (what is computed), or keep an existing one: whether it may be
+        resumed is decided before, with the run's output (:func:`~seismo3d.seismic.blocks.stores.earlier_run`)."""
+        if not self.work.exists():
             (self.work / "done").mkdir(parents=True)
-            path.write_text(json.dumps(manifest))
-
-    def earlier_plan(self, manifest: dict) -> dict | None:
-        """The block plan of an unfinished run of the same work (its manifest equal to ``manifest`` but for the
-        ``plan`` key), or None: a resumed run keeps its blocks even when the memory left for it has changed."""
-        try:
-            earlier = json.loads((self.work / "manifest.json").read_text())
-        except (OSError, ValueError):
-            return None
-        same = {k: v for k, v in earlier.items() if k != "plan"} == {k: v for k, v in manifest.items() if k != "plan"}
-        return earlier.get("plan") if same else None
+            (self.work / "manifest.json").write_text(json.dumps(manifest))
 
     def task(self, fn, *args, threads: bool = True, name: str | None = None):
         """A dask delayed task ``fn(*args)`` of one block (impure: run once per compute), named after ``fn``; on a

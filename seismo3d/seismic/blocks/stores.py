@@ -1,6 +1,7 @@
 """The resumable Zarr stores of a run by blocks: a work folder of intermediate arrays and markers, the output
 assembled in ``OUTPUT.partial`` and renamed to ``OUTPUT`` only when every block is done (an output that exists is
-complete), and its coordinates.
+complete), and its coordinates; what an earlier run left there, and whether it is reused, resumed or refused
+(:func:`earlier_run`, the one place that decides it).
 
 :class:`StoreRun` adds the stores to :class:`~seismo3d.seismic.blocks.executor.BlockRun` (markers, tasks, schedulers);
 what the blocks compute is the declared steps' (:mod:`~seismo3d.seismic.blocks.apply`; the fault runs by blocks:
@@ -10,9 +11,11 @@ what the blocks compute is the declared steps' (:mod:`~seismo3d.seismic.blocks.a
 
 from __future__ import annotations
 
+import json
 import os
 import pathlib
 import shutil
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -21,7 +24,83 @@ from ..io.zarr_store import SEISMIC_CODEC, consolidate
 from .executor import BlockRun
 from .options import ChunkOptions
 
-__all__ = ["StoreRun", "read_sheared", "write_coords"]
+__all__ = ["EarlierRun", "StoreRun", "earlier_run", "read_sheared", "write_coords"]
+
+
+@dataclass(frozen=True)
+class EarlierRun:
+    """What an earlier run by blocks left where a run writes its Zarr store (:func:`earlier_run`).
+
+    Attributes
+    ----------
+    state : {'none', 'finished', 'unfinished', 'another'}
+        Nothing there; the finished store of the same run (reused); the work folder of the same run, unfinished
+        (resumed, with its block plan); the store or work folder of another run (refused, or set aside by a caller
+        that may replace it).
+    paths : tuple of pathlib.Path
+        The entries found: the store, its ``.partial`` output and its ``.work`` folder, those that exist.
+    attrs : dict
+        The finished store's attributes (state ``'finished'`` or ``'another'``), else empty.
+    record : dict
+        What the earlier run recorded of itself: the finished store's ``run`` attribute with its ``source``, or the
+        unfinished run's manifest (with its block plan, ``'plan'``); empty when unreadable.
+    """
+
+    state: str
+    paths: tuple = ()
+    attrs: dict = field(default_factory=dict)
+    record: dict = field(default_factory=dict)
+
+
+def earlier_run(out, record: dict) -> EarlierRun:
+    """What an earlier run left at the Zarr store ``out`` (and its ``OUTPUT.work`` folder), and whether it is this
+    run's: the one decision of every run by blocks between reusing a finished store, resuming an unfinished one, and
+    refusing (or, when the caller may, setting aside) the stores of another run.
+
+    A run is the same when every item of ``record`` but its block plan (``'plan'``: a resumed run keeps its own
+    blocks) equals what the earlier run recorded: the finished store its ``run`` attribute (with the ``source``
+    attribute its caller added), an unfinished one the work folder's ``manifest.json``; an item the earlier run did
+    not record is not compared (a caller that knows only the input, shape and options asks with those). A finished
+    store that records no run, or is not complete, is another run's.
+
+    Parameters
+    ----------
+    out : str or os.PathLike
+        The store a run by blocks writes.
+    record : dict
+        What the run computes from, JSON-serialisable (the shape, the options, the input's ``source``...): its
+        manifest (:meth:`StoreRun.start_output`), or the part of it a caller knows.
+
+    Returns
+    -------
+    EarlierRun
+    """
+    import zarr
+
+    out = pathlib.Path(out)
+    work, partial = out.with_name(out.name + ".work"), out.with_name(out.name + ".partial")
+    paths = tuple(p for p in (out, partial, work) if os.path.lexists(p))
+    wanted = json.loads(json.dumps(record, default=str))
+
+    def same(found) -> bool:
+        return isinstance(found, dict) and all(found[k] == v for k, v in wanted.items() if k != "plan" and k in found)
+
+    if os.path.lexists(out):
+        try:
+            attrs = dict(zarr.open_group(str(out), mode="r").attrs)
+        except Exception:  # noqa: BLE001 - anything that is not our Zarr group: another run's (or none's)
+            attrs = {}
+        run = attrs.get("run")
+        found = dict(run, **({"source": attrs["source"]} if "source" in attrs else {})) if run else None
+        state = "finished" if attrs.get("complete") is True and same(found) else "another"
+        return EarlierRun(state, paths, attrs, found or {})
+    if os.path.lexists(work):
+        try:
+            manifest = json.loads((work / "manifest.json").read_text())
+        except (OSError, ValueError):
+            manifest = None
+        return EarlierRun("unfinished" if same(manifest) else "another", paths, {}, manifest or {})
+    return EarlierRun("none", paths)
 
 
 class StoreRun(BlockRun):
@@ -48,6 +127,7 @@ class StoreRun(BlockRun):
                          progress=progress)
         self.out, self.chunking, self.outputs = out, chunking, tuple(outputs)
         self.partial = out.with_name(out.name + ".partial")
+        self.manifest = None  # what it computes (start_output), recorded in the finished output
 
     def start_output(self, manifest: dict, shape, tile: int, work_arrays) -> None:
         """Refuse an existing output or a missing folder, open the work folder with ``manifest``, and create the
@@ -71,14 +151,19 @@ class StoreRun(BlockRun):
         InputError
             The output exists, or its folder does not.
         EarlierStoresError
-            The work folder holds an unfinished run of something else.
+            The work folder holds an unfinished run of something else (:func:`earlier_run`).
         """
         import zarr
         if self.out.exists():
             raise InputError(f"output {self.out} already exists; pick another output or delete it")
         if not self.out.parent.is_dir():
             raise InputError(f"cannot write {self.out}: folder {self.out.parent} does not exist; create it first")
-        self.open(manifest, f"{self.work} and {self.partial}")
+        if earlier_run(self.out, manifest).state == "another":
+            raise EarlierStoresError(f"{self.work} holds an unfinished run of another cube or other options; delete "
+                                     f"{self.work} and {self.partial} to start afresh, or rerun with the same input "
+                                     "and options to resume it", [self.work])
+        self.open(manifest)
+        self.manifest = manifest
         n0, n1, nt = shape
         t = tile
         self.shape = tuple(shape)
@@ -94,27 +179,29 @@ class StoreRun(BlockRun):
                 group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
                                    compressors=SEISMIC_CODEC, dimension_names=("inline", "crossline", "sample"))
 
+    def earlier_plan(self, manifest: dict) -> dict | None:
+        """The block plan of an unfinished run of the same work (:func:`earlier_run`), or None: a resumed run keeps
+        its blocks even when the memory left for it has changed."""
+        earlier = earlier_run(self.out, manifest)
+        return earlier.record.get("plan") if earlier.state == "unfinished" else None
+
     def finished_output(self, manifest: dict, what: str) -> dict | None:
-        """The attributes of the finished output of this same run (its ``run`` attribute equal to ``manifest``, the
-        block plan aside: blocks do not change the result), or None when there is no output yet.
+        """The attributes of the finished output of this same run (:func:`earlier_run`: its ``run`` attribute equal
+        to ``manifest``, the block plan aside: blocks do not change the result), or None when there is no output
+        yet.
 
         Raises
         ------
         EarlierStoresError
             The output exists but is not the finished output of this run (``what`` says what must be the same).
         """
-        import zarr
         if not self.out.exists():
             return None
-        try:
-            attrs = dict(zarr.open_group(str(self.out), mode="r").attrs)
-        except Exception:  # noqa: BLE001 - anything that is not our Zarr group
-            attrs = {}
-        run = {k: v for k, v in dict(attrs.get("run") or {}).items() if k != "plan"}
-        if attrs.get("complete") is not True or run != {k: v for k, v in manifest.items() if k != "plan"}:
+        earlier = earlier_run(self.out, manifest)
+        if earlier.state != "finished":
             raise EarlierStoresError(f"output {self.out} already exists and is not the finished output of this "
                                      f"{what}; pick another output or delete it", [self.out])
-        return attrs
+        return earlier.attrs
 
     def write_gathered(self, folder, blocks, columns: dict, n: int, *, points: str = "points") -> None:
         """Gather a step's sparse lists into 1-D arrays of the output group, in the C order of their ``points``
@@ -168,10 +255,12 @@ class StoreRun(BlockRun):
         group.attrs.update(attrs)
 
     def finish(self, attrs: dict | None = None) -> None:
-        """Mark the output complete (with ``attrs``, its other attributes), rename it into place and delete the work
+        """Mark the output complete (with ``attrs``, its other attributes, and ``run``: the manifest it was computed
+        from, which a later run compares with its own, :func:`earlier_run`), rename it into place and delete the work
         folder."""
         import zarr
-        zarr.open_group(str(self.partial), mode="r+").attrs.update(dict(attrs or {}, complete=True))
+        attrs = {"run": self.manifest, **dict(attrs or {}), "complete": True}
+        zarr.open_group(str(self.partial), mode="r+").attrs.update(attrs)
         consolidate(self.partial)
         os.replace(self.partial, self.out)
         shutil.rmtree(self.work, ignore_errors=True)

@@ -7,7 +7,7 @@ equal to those of the whole cube. Two sources, one interface:
 
 - :class:`ArrayWindows`: an in-memory cube (or 2D section) and its orientation, computed once; every window is the
   whole array (nothing is copied or recomputed).
-- :class:`LazyWindows`: a 3D ``dask.array.Array`` (e.g. :func:`seismo3d.seismic.io.lazy.open_lazy`), never held
+- :class:`LazyWindows`: a 3D ``dask.array.Array`` (e.g. ``seismo3d.open(path).data``), never held
   whole: each window reads the requested traces plus the halo of the structure tensor's filters
   (:func:`structure_tensor_halo`), clipped at the cube's edges, and computes the slopes there. Away from the window's
   inner sides (the halo) they equal the whole cube's; at the cube's edges the filters clamp as on the whole cube.
@@ -162,7 +162,7 @@ class LazyWindows:
     ----------
     data : (n_inlines, n_xlines, n_samples) dask.array.Array
         Seismic amplitudes of any numeric dtype and any chunks (chunks of whole traces read fastest, e.g.
-        :func:`seismo3d.seismic.io.lazy.open_lazy` with ``tile``); converted to float32 tile by tile.
+        ``seismo3d.open`` with ``tile``); converted to float32 tile by tile.
     orientation : ReflectorOrientation, optional
         Of the whole cube, in memory: tiles then slice its slopes instead of computing them.
     tile : int

@@ -35,6 +35,7 @@ from ..blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory
 from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
+from ..blocks.stores import earlier_run
 from ..io.cube import as_cube, sample_interval as cube_sample_interval, seismic_axes
 from ..io.zarr_store import consolidate
 from ..time_slices import balanced_slices, blank_slices, filled_slices, slice_extremes
@@ -59,6 +60,7 @@ __all__ = ["FaultInterpretation", "FaultTracingOptions", "CleanTraces", "LIKELIH
 _UNITS = {"samples", "ms", "m", "ft"}
 LIKELIHOOD_STORE = "fault_likelihood.zarr"
 SURFACES_STORE = "fault_surfaces.zarr"
+_STORE_NAMES = {LIKELIHOOD_STORE: "fault likelihood", SURFACES_STORE: "fault surfaces"}
 # What the process keeps of the fault likelihood stage when the surfaces stage plans its blocks from the resident
 # memory: measured 33 MiB on a 96 x 96 x 200 cube and 46 MiB on a 160 x 160 x 256 one (glibc, 2 threads), rounded up.
 STAGE_GROWTH = 64 << 20
@@ -318,7 +320,7 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     Parameters
     ----------
     cube : (n_inlines, n_xlines, n_samples) dask.array.Array or array_like
-        Amplitudes, samples along the last axis (e.g. ``open_lazy(path).data``).
+        Amplitudes, samples along the last axis (e.g. ``seismo3d.open(path).data``).
     opt : FaultTracingOptions
     sample_interval : float
     sample_unit : str
@@ -356,23 +358,24 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     x = cube if isinstance(cube, da.Array) else da.from_array(np.asarray(cube), chunks=(tile, tile, -1))
     shape = tuple(int(n) for n in x.shape)
     check_size(shape, opt)
+    if work_dir is not None:  # the stores of another run refused before any work
+        work_dir = pathlib.Path(work_dir)
+        if not work_dir.is_dir():
+            raise InputError(f"cannot write the fault stores into {work_dir}: it is not a folder; create it first")
+        if in_the_way := stores_of_another_run(work_dir, source, shape, opt):
+            store = in_the_way[0].name.removesuffix(".work").removesuffix(".partial")  # the first one in the way
+            raise EarlierStoresError(f"{work_dir / store} holds the {_STORE_NAMES[store]} of another input or other "
+                                     "options; pick another output folder (-o) or delete it",
+                                     [p for p in in_the_way if p.name.startswith(store)])
     x = check_block_run(_whole_traces(x), source, memory_limit, scheduler, opt)
     if work_dir is None:  # after the checks; kept: the result's volumes are read from its stores
-        work_dir = tempfile.mkdtemp(prefix="seismo3d-faults-")
+        work_dir = pathlib.Path(tempfile.mkdtemp(prefix="seismo3d-faults-"))
         LOGGER.info("%s: the fault stores of this run by blocks go to %s (pass blocks=BlockRunOptions(work_dir=...) "
                     "to choose the folder)", source, work_dir)
-    work_dir = pathlib.Path(work_dir)
-    if not work_dir.is_dir():
-        raise InputError(f"cannot write the fault stores into {work_dir}: it is not a folder; create it first")
     path = work_dir / LIKELIHOOD_STORE
     started = time.perf_counter()
     likelihood_seconds = {}
-    if path.exists():  # a finished likelihood of an earlier run of the same input: reused
-        group = zarr.open_group(str(path), mode="r")
-        if (group.attrs.get("source") != source or tuple(group["likelihood"].shape) != shape
-                or group.attrs.get("likelihood", "scan") != opt.likelihood):
-            raise EarlierStoresError(f"{path} holds the fault likelihood of another input; pick another output "
-                                     "folder (-o) or delete it", [path])
+    if earlier_run(path, _store_records(source, shape, opt)[LIKELIHOOD_STORE]).state == "finished":  # reused
         LOGGER.info("%s: reusing the finished fault likelihood in %s", source, path)
     else:
         held = resident_memory()
@@ -409,6 +412,50 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
                                evidence=surfaces.evidence, sample_interval=float(sample_interval),
                                sample_unit=sample_unit, stores={"likelihood": path, "surfaces": surfaces.path},
                                step_seconds=seconds)
+
+
+def stores_of_another_run(work_dir, source: str, shape, opt: FaultTracingOptions) -> tuple:
+    """The entries of ``work_dir`` that a run by blocks of ``source`` would find of another run
+    (:func:`~seismo3d.seismic.blocks.stores.earlier_run`): the fault likelihood's store and work folders when they
+    record another input, shape or likelihood options; the fault surfaces' when they record another input, shape or
+    options, or when they go with a likelihood that is not this run's finished one. Those of this run are left to be
+    reused or resumed.
+
+    Parameters
+    ----------
+    work_dir : str or os.PathLike
+        The folder of the stores (:data:`LIKELIHOOD_STORE`, :data:`SURFACES_STORE`).
+    source : str
+        The input's name, as recorded in the stores.
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``.
+    opt : FaultTracingOptions
+
+    Returns
+    -------
+    tuple of pathlib.Path
+        The likelihood's entries first (the store, ``.partial``, ``.work``: those that exist), then the surfaces'.
+    """
+    work_dir = pathlib.Path(work_dir)
+    records = _store_records(source, shape, opt)
+    likelihood = earlier_run(work_dir / LIKELIHOOD_STORE, records[LIKELIHOOD_STORE])
+    surfaces = earlier_run(work_dir / SURFACES_STORE, records[SURFACES_STORE])
+    # the surfaces go with the likelihood they were computed from: this run's finished one (its id), or they are not
+    # this run's
+    ours = likelihood.state == "finished" and surfaces.record.get("likelihood_id") == likelihood.attrs.get("id")
+    another = likelihood.paths if likelihood.state == "another" else ()
+    if surfaces.state == "another" or (surfaces.state != "none" and not ours):
+        another += surfaces.paths
+    return another
+
+
+def _store_records(source: str, shape, opt: FaultTracingOptions) -> dict:
+    """What each store of a run by blocks records of the run it belongs to (:func:`~seismo3d.seismic.blocks.stores.
+    earlier_run`), by store name: the input, the shape, and the options the store is computed from."""
+    from dataclasses import asdict
+    used = opt.scan if opt.likelihood == "scan" else opt.learned
+    return {LIKELIHOOD_STORE: {"source": source, "shape": list(shape), "options": asdict(used)},
+            SURFACES_STORE: {"source": source, "shape": list(shape), "options": asdict(opt)}}
 
 
 def _whole_traces(x):

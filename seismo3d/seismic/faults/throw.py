@@ -275,7 +275,7 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, or 3D dask.array.Array
         Seismic amplitudes, the last axis the sample. Must be finite. A 3D dask array (e.g.
-        ``seismo3d.seismic.io.lazy.open_lazy(path).data``, any numeric dtype and chunks) is never held whole: each
+        ``seismo3d.open(path).data``, any numeric dtype and chunks) is never held whole: each
         patch reads only its window of traces (see :func:`fault_throws`), with the same result as in memory.
     fault : Fault or (n_points, ndim) array_like
         A fault from :func:`seismo3d.seismic.fault_skins` (any object with ``points`` (n, ndim) index

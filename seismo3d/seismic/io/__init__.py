@@ -1,5 +1,5 @@
-"""Reading and writing seismic data: SEG-Y cubes, lines and trace lists, raw sections, ASCII lines, a cube read lazily
-as a dask array, and the Zarr v3 store of ``seismo3d convert``.
+"""Reading and writing seismic data: SEG-Y cubes, lines and trace lists, raw sections, ASCII lines, and the Zarr v3
+store of ``seismo3d convert``; :func:`open_cube` (``seismo3d.open``) opens any of them lazily as the one cube type.
 
 - :mod:`~seismo3d.seismic.io.cube`: :func:`open_cube` (``seismo3d.open``), any seismic input as the one cube type, a
   lazy ``xarray.DataArray`` with segysak's dimensions; :func:`seismic_axes` of any such DataArray, and the helpers a
@@ -11,9 +11,8 @@ as a dask array, and the Zarr v3 store of ``seismo3d convert``.
   (:func:`read_segy_layout`).
 - :mod:`~seismo3d.seismic.io.geometry`: what the traces of a file without an inline / crossline grid are
   (:func:`trace_geometry`), coordinates with their SEG-Y scalars (:func:`scale_coordinates`).
-- :mod:`~seismo3d.seismic.io.blocks`: a 3D SEG-Y cube read by blocks of inlines (:class:`SegyGrid`,
-  :func:`read_segy_block`).
-- :mod:`~seismo3d.seismic.io.lazy`: :func:`open_lazy`, a 3D cube (SEG-Y or Zarr) as a dask array by inline blocks.
+- :mod:`~seismo3d.seismic.io.blocks`: a SEG-Y cube read by blocks of traces (:class:`SegyGrid`,
+  :func:`read_segy_block`), the dask array of ``seismo3d.open``'s SEG-Y inputs (:func:`segy_dask_array`).
 - :mod:`~seismo3d.seismic.io.zarr_store`: the Zarr v3 layout of ``seismo3d convert`` (xarray opens it as is).
 - :mod:`~seismo3d.seismic.io.writer`: :func:`write_like` and :func:`write_like_blocks` (block by block): SEG-Y written
   with the headers of a template file.
@@ -41,9 +40,8 @@ if TYPE_CHECKING:
     from .geometry import TraceGeometry, trace_geometry, span, scale_coordinates
     from .layout import SegyLayout, read_segy_layout, segyio_failure, FORMAT_NAMES, READABLE_FORMATS
     from .blocks import SegyGrid, read_segy_block, read_segy_block_headers, segyio_handle
-    from .lazy import LazyCube, open_lazy, inline_block_size
     from .zarr_store import (
-        LAYOUT, TILE_TRACES, SeismicZarr, SeismicZarrWriter, consolidate, open_seismic_zarr, is_seismic_zarr,
+        LAYOUT, TILE_TRACES, SeismicZarrWriter, consolidate, open_seismic_group, is_seismic_zarr,
     )
     from .writer import write_like, write_like_blocks
     from .coordinates import GridMap, SurveyCoordinates, cube_coordinates, read_survey_coordinates
@@ -54,9 +52,8 @@ if TYPE_CHECKING:
 __all__ = [
     "open_cube", "seismic_axes", "SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines", "scale_coordinates",
     "TraceGeometry", "trace_geometry", "span", "SegyLayout", "read_segy_layout", "segyio_failure", "FORMAT_NAMES",
-    "READABLE_FORMATS", "SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle", "LazyCube",
-    "open_lazy", "inline_block_size", "LAYOUT", "TILE_TRACES", "SeismicZarr", "SeismicZarrWriter", "consolidate",
-    "open_seismic_zarr", "is_seismic_zarr", "write_like_blocks", "GridMap", "SurveyCoordinates", "cube_coordinates",
+    "READABLE_FORMATS", "SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle", "LAYOUT", "TILE_TRACES", "SeismicZarrWriter", "consolidate",
+    "open_seismic_group", "is_seismic_zarr", "write_like_blocks", "GridMap", "SurveyCoordinates", "cube_coordinates",
     "read_survey_coordinates", "FaultSticks", "read_fault_sticks", "write_fault_sticks", "TriangulatedSurface",
     "write_tsurf", "write_tsurf_folder", "HorizonPicks", "read_horizon_picks", "write_horizon_grids",
 ]

@@ -1,6 +1,6 @@
-"""A 3D SEG-Y cube read by blocks of inlines (and crosslines), only those traces: the task functions of the lazy
-cube's dask graph (:func:`~seismo3d.seismic.io.lazy.open_lazy`) and of the Zarr conversion
-(:class:`~seismo3d.seismic.io.zarr_store.SeismicZarrWriter`).
+"""A SEG-Y cube read by blocks of inlines (and crosslines), only those traces: the dask array of ``seismo3d.open``'s
+SEG-Y cubes, lines and trace lists (:func:`segy_dask_array`, a :func:`read_segy_block` task per tile of traces) and
+the task functions of the Zarr conversion (:class:`~seismo3d.seismic.io.zarr_store.SeismicZarrWriter`).
 
 A :class:`SegyGrid` holds the file's path, byte order, trace order and shape (plain picklable values), so a block is
 read without scanning the file's geometry again: the file is opened read-only and memory-mapped by each task itself.
@@ -18,7 +18,7 @@ import segyio
 from ...errors import InputError, SegyFormatError, SegyGeometryError
 from .layout import SAMPLE_BYTES, TRACE_HEADER_BYTES
 
-__all__ = ["SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle"]
+__all__ = ["SegyGrid", "read_segy_block", "read_segy_block_headers", "segy_dask_array", "segyio_handle"]
 
 _RUN_TRACES = 1024  # traces read per segyio call into a block (a few MB of temporaries, not a block's worth)
 # Bytes of each trace header field: up to the next field's first byte (SEG-Y rev 1 Table 3; 2 or 4)
@@ -159,7 +159,7 @@ def read_segy_block(grid: SegyGrid, inline_start: int, inline_stop: int, xline_s
                     xline_stop: int | None = None, *, segyfile=None) -> np.ndarray:
     """Read the amplitudes of a block of inlines (and crosslines) of a 3D SEG-Y cube, only those traces.
 
-    The task function of :func:`open_lazy`'s graph: module-level and picklable; it opens the file itself unless an
+    The task function of :func:`segy_dask_array`'s graph: module-level and picklable; it opens the file itself unless an
     open ``segyfile`` is given, and reads one run of consecutive traces at a time (one run for whole inlines of an
     inline-sorted file, one per crossline of a crossline-sorted file): IEEE float samples (format 5) straight out of
     a numpy memory map of the file (byte order swapped by numpy, the same values as segyio; about twice its speed),
@@ -195,6 +195,40 @@ def read_segy_block(grid: SegyGrid, inline_start: int, inline_stop: int, xline_s
     finally:
         if segyfile is None:
             f.close()
+
+
+def segy_dask_array(grid: SegyGrid, *, tile: int):
+    """The amplitudes of a SEG-Y grid as a float32 dask array: one :func:`read_segy_block` task per tile of ``tile``
+    x ``tile`` traces (every sample; partial tiles at the far edges).
+
+    Parameters
+    ----------
+    grid : SegyGrid
+        The file and its grid (a 2D line is a grid of one inline or crossline; a trace list one of ``n_traces``
+        inlines and one crossline, inline-sorted).
+    tile : int
+        Traces a side of a tile.
+
+    Returns
+    -------
+    (n_inlines, n_xlines, n_samples) float32 dask.array.Array
+        Its graph holds no open file (each task opens the file read-only, so it runs on a ``dask.distributed``
+        cluster whose workers see the file at the same path), and its name the file's size and time.
+
+    References
+    ----------
+    Dask array, https://docs.dask.org/en/stable/array.html (an array from a task graph).
+    """
+    import dask.array as da
+    from dask.base import tokenize
+
+    stat = Path(grid.path).stat()
+    name = f"segy-{tokenize(grid, stat.st_mtime_ns, stat.st_size, tile)}"
+    edges = [[(a, min(a + tile, n)) for a in range(0, n, tile)] for n in (grid.n_inlines, grid.n_xlines)]
+    graph = {(name, k, q, 0): (read_segy_block, grid, a, b, c, d) for k, (a, b) in enumerate(edges[0])
+             for q, (c, d) in enumerate(edges[1])}
+    chunks = (tuple(b - a for a, b in edges[0]), tuple(d - c for c, d in edges[1]), (grid.n_samples,))
+    return da.Array(graph, name, chunks, dtype=np.float32)
 
 
 def _read_amplitudes(f, table, grid: SegyGrid, inline_start, inline_stop, xline_start, xline_stop) -> np.ndarray:

@@ -9,6 +9,10 @@ A seismic cube or line is an ``xarray.DataArray`` with segysak's conventions:
   trace list, a raw section or a 2D array;
 - coordinates of the same names (inline and crossline numbers, times or depths with a ``units`` attribute) and
   ``cdp_x``, ``cdp_y`` on the lateral dimensions when the trace headers hold them (the coordinate scalar applied);
+  a trace list's ``trace`` coordinate is each trace's number in file order, from 1, as every command numbers it
+  (``seismo3d horizon --seed TRACE,T`` and its rows, the pictures of ``seismo3d render``), with its header inline
+  and crossline numbers as ``iline`` / ``xline`` on it when they vary; a ``.npy`` array's or raw section's lateral
+  coordinates are its indices, from 0 (it has no numbers of its own);
 - attributes: ``sample_interval`` and ``sample_unit`` ('ms', 'm', 'ft' or 'samples'; segysak's ``sample_rate`` and
   ``d3_domain`` too), ``source_file``, ``kind`` ('cube', 'line', 'trace list', 'array', 'section', 'store'),
   ``description`` and, for SEG-Y, the layout found (``segy_format``, ``segy_endian``, ``segy_sorting``,
@@ -144,7 +148,8 @@ def open_cube(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool
     check_int(tile, "tile", minimum=1)
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
-    kind = format or seismic_kind(path) or "segy"
+    # by its name; another folder is read as a store (refused, if it is not one, with how to make one)
+    kind = format or seismic_kind(path) or ("zarr" if path.is_dir() else "segy")
     check_choice(kind, "format", {"segy", "zarr", "npy", "f32be"})
     if kind == "zarr":
         return _open_store(path, sample_unit=sample_unit, tile=tile)
@@ -169,9 +174,8 @@ def _open_segy(path: Path, *, iline, xline, ignore_geometry, endian, sample_unit
     """A SEG-Y file: geometry, layout and coordinates from one opening; amplitudes read tile by tile."""
     import segyio
 
-    from .blocks import SegyGrid
+    from .blocks import SegyGrid, segy_dask_array
     from .coordinates import header_resolution
-    from .lazy import segy_dask_array
     from .segy import open_segy
 
     xr = _xarray()
@@ -211,7 +215,7 @@ def _open_segy(path: Path, *, iline, xline, ignore_geometry, endian, sample_unit
     if inlines is None:  # a trace list: one lateral dimension, its header line numbers as coordinates
         dims = ("trace", name)
         data = data[:, 0, :]
-        coords["trace"] = np.arange(data.shape[0])
+        coords["trace"] = np.arange(1, data.shape[0] + 1)  # numbered from 1 in file order, as the commands do
         if not (np.all(trace_il == trace_il[0]) and np.all(trace_xl == trace_xl[0])):
             coords.update(iline=("trace", trace_il), xline=("trace", trace_xl))
         xy = None if x is None else (np.ravel(x), np.ravel(y))
@@ -235,13 +239,13 @@ def _open_segy(path: Path, *, iline, xline, ignore_geometry, endian, sample_unit
 
 def _open_store(path: Path, *, sample_unit, tile: int):
     """A Zarr store of ``seismo3d convert``, lazily, renamed to segysak's dimensions."""
-    from .zarr_store import open_seismic_zarr
+    from .zarr_store import open_seismic_group
 
     xr = _xarray()
     if not path.exists():
         raise DataNotFoundError(f"no Zarr store at {path}; check the path")
-    meta = open_seismic_zarr(path)  # checks the layout
-    unit = sample_unit or meta.sample_unit
+    meta = open_seismic_group(path)  # checks the layout
+    unit = sample_unit or str(meta.attrs.get("sample_unit", "ms"))
     ds = xr.open_zarr(str(path), consolidated=None)
     keep = ["seismic"] + [c for c in ("cdp_x", "cdp_y") if c in ds]
     da = ds[keep].set_coords(keep[1:])["seismic"]
@@ -254,7 +258,7 @@ def _open_store(path: Path, *, sample_unit, tile: int):
     shape = " x ".join(str(n) for n in da.shape)
     da.attrs = {"source_file": path.name, "kind": "store", "description": f"a Zarr store of {shape} samples",
                 "segy_endian": layout.get("endian", ""), "segy_sorting": layout.get("sorting", ""),
-                "xy_unit": xy_unit, **_sample_attrs(meta.samples, unit)}
+                "xy_unit": xy_unit, **_sample_attrs(np.asarray(meta["sample"][:], dtype=np.float64), unit)}
     return da
 
 

@@ -1,5 +1,5 @@
-"""The Zarr v3 layout of a seismic cube (written by ``seismo3d convert``, read by
-:func:`~seismo3d.seismic.io.lazy.open_lazy` and by ``xarray.open_zarr`` as is).
+"""The Zarr v3 layout of a seismic cube (written by ``seismo3d convert``, opened by ``seismo3d.open``,
+:func:`~seismo3d.seismic.io.cube.open_cube`, and by ``xarray.open_zarr`` as is).
 
 Layout (one Zarr v3 group; the idea is MDIO's: amplitudes, their coordinates and the SEG-Y headers in one store)::
 
@@ -24,7 +24,7 @@ Layout (one Zarr v3 group; the idea is MDIO's: amplitudes, their coordinates and
 Chunks: (64, 64, n_samples) tiles of whole traces. The fault scan and the attributes need every sample of a trace,
 so a chunk never splits a trace; 64 x 64 traces keep a chunk at 8-40 MB for 500-2500 samples, small enough for a
 worker, large enough for few files (a 10 GB cube makes about 500 chunks), and square so that inline, crossline and
-map views read alike. :func:`~seismo3d.seismic.io.lazy.open_lazy` rechunks to blocks of whole inlines.
+map views read alike. ``seismo3d.open`` rechunks to its tiles (``tile``).
 
 References
 ----------
@@ -39,7 +39,6 @@ import os
 import warnings
 from collections import deque
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -49,8 +48,8 @@ from ...errors import InputError
 from .blocks import SegyGrid, read_block_and_headers, segyio_handle
 from .geometry import scale_coordinates
 
-__all__ = ["LAYOUT", "TILE_TRACES", "AMPLITUDE_COMPRESSORS", "SeismicZarr", "SeismicZarrWriter", "consolidate",
-           "open_seismic_zarr", "is_seismic_zarr"]
+__all__ = ["LAYOUT", "TILE_TRACES", "AMPLITUDE_COMPRESSORS", "SeismicZarrWriter", "consolidate", "is_seismic_zarr",
+           "open_seismic_group"]
 
 LAYOUT = {"layout": "seismic-zarr", "version": 1}
 TILE_TRACES = 64  # traces per chunk along inline and crossline
@@ -80,41 +79,38 @@ AMPLITUDE_COMPRESSORS = {
 }
 
 
-@dataclass(frozen=True)
-class SeismicZarr:
-    """A seismic Zarr store opened for reading.
-
-    Attributes
-    ----------
-    seismic : zarr.Array
-        (n_inlines, n_xlines, n_samples) float32.
-    inlines, xlines : (n,) int32 ndarray
-    samples : (n_samples,) float64 ndarray, in ``sample_unit``
-    sample_unit : {'ms', 'm', 'ft'}
-    attrs : dict
-        The group attributes (textual and binary headers, see the module docstring).
-    """
-
-    seismic: object
-    inlines: np.ndarray
-    xlines: np.ndarray
-    samples: np.ndarray
-    sample_unit: str
-    attrs: dict
-
-
 def is_seismic_zarr(path) -> bool:
     """Whether ``path`` is a directory holding a Zarr group written in this layout (reads only its metadata)."""
     try:
-        _open_group(Path(path))
+        open_seismic_group(path)
     except InputError:
         return False
     return True
 
 
-def _open_group(path: Path):
+def open_seismic_group(path):
+    """The Zarr group of a store written by ``seismo3d convert``, checked, for reading (``seismo3d.open`` opens the
+    store as a cube: :func:`~seismo3d.seismic.io.cube.open_cube`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The store's directory.
+
+    Returns
+    -------
+    zarr.Group
+        Opened read-only; its arrays and attributes as the module docstring says.
+
+    Raises
+    ------
+    InputError
+        Not a Zarr group, not this layout (the message says how to make one), another layout version, or arrays
+        missing.
+    """
     import zarr
 
+    path = Path(path)
     not_ours = (f"{path} is not a seismic Zarr store written by 'seismo3d convert'; convert the SEG-Y with "
                 f"'seismo3d convert INPUT.sgy {path.name}'")
     try:
@@ -153,33 +149,6 @@ def consolidate(store) -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # ZarrUserWarning: consolidated metadata is not in the v3 specification
         zarr.consolidate_metadata(store if not isinstance(store, (str, os.PathLike)) else str(store))
-
-
-def open_seismic_zarr(path) -> SeismicZarr:
-    """Open a store written by ``seismo3d convert`` for reading (metadata and coordinates only).
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The store's directory.
-
-    Returns
-    -------
-    SeismicZarr
-
-    Raises
-    ------
-    InputError
-        Not a Zarr group, not this layout (the message says how to make one), another layout version, or arrays
-        missing.
-    """
-    path = Path(path)
-    group = _open_group(path)
-    seismic = group["seismic"]
-    return SeismicZarr(seismic=seismic, inlines=np.asarray(group["inline"][:], dtype=np.int32),
-                       xlines=np.asarray(group["crossline"][:], dtype=np.int32),
-                       samples=np.asarray(group["sample"][:], dtype=np.float64),
-                       sample_unit=str(group.attrs.get("sample_unit", "ms")), attrs=dict(group.attrs))
 
 
 def _text(raw: bytes) -> str:

@@ -35,7 +35,7 @@ def _peaks(place, smooth, level) -> BlockOutput:
 
 def _run(tmp_path, cube, *steps_and_args):
     run = BlockRun(tmp_path / "work", scheduler="synchronous")
-    run.open({"shape": list(cube.shape)}, "the work folder")
+    run.open({"shape": list(cube.shape)})
     run.shape = cube.shape
     for name in ("smooth", "double"):
         path = tmp_path / name

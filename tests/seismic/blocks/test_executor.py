@@ -48,7 +48,7 @@ def test_a_saved_result_is_computed_once_and_read_back_by_a_resumed_run(tmp_path
         return [0.5, 2.0]
 
     run = BlockRun(tmp_path / "work")
-    run.open({"shape": [4, 4, 4]}, "the work folder")
+    run.open({"shape": [4, 4, 4]})
     assert run.saved("scale", compute) == [0.5, 2.0]
     resumed = BlockRun(tmp_path / "work")
     assert resumed.saved("scale", compute) == [0.5, 2.0] and calls == [1]  # read back, not computed again
@@ -66,7 +66,7 @@ def test_run_step_reads_each_block_with_its_halo_and_skips_the_finished_ones(tmp
     step = BlockStep("sums", "reduce", 2, function=_core_sum, label="sums", inputs=(CUBE,), place=True)
     blocks = lateral_blocks(cube.shape, 4, 4)  # 3 x 2 blocks, the last ones clipped
     run = BlockRun(tmp_path / "work", scheduler="synchronous")
-    run.open({"shape": list(cube.shape)}, "the work folder")
+    run.open({"shape": list(cube.shape)})
     results = run.run_step(step, blocks, 0.5, source=da.from_array(cube, chunks=(5, 7, 3)))
     expected = [float(cube[i0:i1, j0:j1].sum()) + 0.5 for i0, i1, j0, j1 in blocks]
     assert [r["sum"] for r in results] == expected

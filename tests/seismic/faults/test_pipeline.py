@@ -3,6 +3,7 @@ clipped amplitudes (clean_traces), bad arrays, sensitivity, and the targets on r
 faults drawn by a person, Costa Rica against the published OSV faults, the large Penobscot fault, what an interpreter
 sees on Teapot and Volve)."""
 
+import json
 import warnings
 from pathlib import Path
 
@@ -384,3 +385,35 @@ def test_a_flexure_is_no_fault_and_a_small_fault_is_kept(seed):
         assert len(res.faults) == 1, len(res.faults)
         e = res.evidence[0]
         assert abs(abs(e.median_throw) - throw) <= 0.1 and abs(abs(e.step) - throw) <= 0.15, e
+
+
+def test_the_stores_of_another_run_are_told_from_what_they_record(tmp_path):
+    """A finished likelihood is this run's when it records the same input, shape and likelihood options (another
+    sensitivity reuses it, another network does not); the surfaces go with that likelihood and the run's options."""
+    import dataclasses
+
+    import zarr
+
+    from seismo3d.seismic.blocks.options import ChunkOptions
+    from seismo3d.seismic.blocks.stores import StoreRun
+    from seismo3d.seismic.faults.pipeline import LIKELIHOOD_STORE, SURFACES_STORE, stores_of_another_run
+
+    opt, shape = FaultTracingOptions(), (4, 4, 4)
+    as_json = lambda o: json.loads(json.dumps(dataclasses.asdict(o), default=str))  # noqa: E731
+    for name, manifest, attrs in ((LIKELIHOOD_STORE, {"options": as_json(opt.learned)}, {"id": "L1"}),
+                                  (SURFACES_STORE, {"options": as_json(opt), "likelihood_id": "L1"}, {})):
+        run = StoreRun(tmp_path / name, ChunkOptions(), progress=False)
+        run.start_output(dict(manifest, shape=list(shape), plan={}), shape, 32, ())
+        run.finish(attrs)
+        zarr.open_group(str(tmp_path / name), mode="r+").attrs["source"] = "a"
+
+    def another(source="a", shape=shape, options=opt):
+        return [p.name for p in stores_of_another_run(tmp_path, source, shape, options)]
+
+    assert another() == []
+    assert another(options=dataclasses.replace(opt, sensitivity=0.7)) == [SURFACES_STORE]
+    network = dataclasses.replace(opt, learned=dataclasses.replace(opt.learned, adapted="model/network.onnx"))
+    assert another(options=network) == [LIKELIHOOD_STORE, SURFACES_STORE]
+    assert another(source="b") == another(shape=(4, 4, 5)) == [LIKELIHOOD_STORE, SURFACES_STORE]
+    zarr.open_group(str(tmp_path / LIKELIHOOD_STORE), mode="r+").attrs["id"] = "L2"  # a likelihood written since
+    assert another() == [SURFACES_STORE]

@@ -38,8 +38,8 @@ def _touches_edge(points, shape):
 
 @pytest.mark.slow
 def test_lazy_equals_in_memory_on_traced_faults(traced_cube):
-    """128^3 cube, faults from trace_faults (all reach the cube's sides): chunks of whole traces (blocks of inlines,
-    as open_lazy makes) and tiles of 24 x 24 traces."""
+    """128^3 cube, faults from trace_faults (all reach the cube's sides): chunks of whole traces, blocks of 16
+    inlines and tiles of 24 x 24 traces (as seismo3d.open makes them)."""
     c = traced_cube(0)
     cube = c.syn.cube
     assert len(c.faults) >= 3 and all(_touches_edge(f.points, cube.shape) for f in c.faults)

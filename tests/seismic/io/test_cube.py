@@ -12,6 +12,7 @@ import seismo3d
 from seismo3d.errors import InputError, TraceListWarning
 from seismo3d.seismic.io import read_segy
 from seismo3d.seismic.io.coordinates import cube_coordinates, read_survey_coordinates
+from seismo3d.seismic.io.cube import index_positions, seismic_axes
 
 xr = pytest.importorskip("xarray")
 da = pytest.importorskip("dask.array")
@@ -74,6 +75,10 @@ def test_lines_and_trace_lists_have_one_lateral_dimension(data_dir):
     with pytest.warns(TraceListWarning):
         traces = seismo3d.open(arb)
     assert traces.dims == ("trace", "twt") and traces.shape == (225, 850) and traces.attrs["kind"] == "trace list"
+    # its traces numbered from 1 in file order, as the commands number them (horizon --seed TRACE,T, its rows)
+    assert_array_equal(traces["trace"].values, np.arange(1, 226))
+    t0 = float(traces["twt"][0])
+    assert_array_equal(index_positions(traces, seismic_axes(traces), [[1, t0], [225, t0]]), [[0, 0], [224, 0]])
     with warnings.catch_warnings():
         warnings.simplefilter("error", TraceListWarning)  # ignore_geometry: the same, without the warning
         quiet = seismo3d.open(arb, ignore_geometry=True)

@@ -232,11 +232,12 @@ def test_faults_on_real_2d_lines_without_flags(data_dir, tmp_path, name, trace_l
     # on Volve the fault at 1200-1570 ms and three deep ones (4 traced since branches of opposite dip are split and the
     # inverted V at 2800-3150 ms, without offset, dropped)
     assert f"{len(rows)} faults in {name}" in result.stdout and len(rows) >= (4 if trace_list else 3)
-    # the points' trace columns say what they hold: the trace index of a trace list, the survey's numbers otherwise
+    # the points' trace columns say what they hold: a trace list's trace number (from 1, as seismo3d.open numbers
+    # it), the survey's numbers otherwise
     points = _rows(tmp_path / "out" / "fault_points.csv")
     if trace_list:
         assert list(points[0])[:5] == ["trace", "x", "y", "xy_unit", "time_or_depth"]  # CDP X/Y of the trace
-        assert {int(r["trace"]) for r in points} <= set(range(225))
+        assert {int(r["trace"]) for r in points} <= set(range(1, 226)) and min(int(r["trace"]) for r in points) > 0
     else:
         assert list(points[0])[:6] == ["inline", "crossline", "x", "y", "xy_unit", "time_or_depth"]
         assert {int(r["crossline"]) for r in points} == {1155}

@@ -33,8 +33,8 @@ def trace_columns(inp) -> list:
     Returns
     -------
     list of str
-        ``['inline', 'crossline']`` for numbered traces, ``['trace']`` (the trace index, from 0) for raw sections,
-        2D ``.npy`` arrays and trace lists without numbers.
+        ``['inline', 'crossline']`` for numbered traces, ``['trace']`` for raw sections, 2D ``.npy`` arrays (the
+        trace index, from 0) and trace lists without numbers (the trace number, from 1 in file order).
     """
     return ["trace"] if inp.xline_labels is None else ["inline", "crossline"]
 
@@ -72,7 +72,8 @@ def write_points(inp, result: FaultInterpretation, path: Path, coordinates=None)
 
     The trace columns say what they hold (:func:`trace_columns`): ``inline, crossline`` where the traces have
     inline and crossline numbers (cubes, lines of a survey, trace lists whose headers number them), one ``trace``
-    column (the trace index, from 0) for raw sections, 2D ``.npy`` arrays and trace lists without numbers.
+    column for raw sections, 2D ``.npy`` arrays (the trace index, from 0) and trace lists without numbers (the trace
+    number, from 1 in file order, as :func:`seismo3d.open` numbers them).
     """
     unit = inp.sample_unit
     extra = [] if unit == "samples" else [f"throw_{unit}"]

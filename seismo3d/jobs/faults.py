@@ -154,8 +154,8 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       throw_samples, throw_<unit>, throw_correlation, correlation_gain, side_coherence``; ``time_or_depth`` is in the
       sample unit (ms, m or ft from the SEG-Y headers or ``sample_unit``; the sample index for raw sections and
       ``.npy``, which have no ``throw_<unit>`` column). For raw sections, 2D ``.npy`` arrays and trace lists whose
-      inline / crossline header bytes hold no numbers, one ``trace`` column (the trace index, from 0) replaces
-      ``inline, crossline``. Throw is positive where the hanging wall moved down (normal fault); ``throw_correlation``
+      inline / crossline header bytes hold no numbers, one ``trace`` column replaces ``inline, crossline``:
+      the trace index from 0 for arrays and raw sections, the trace number from 1 in file order for a trace list. Throw is positive where the hanging wall moved down (normal fault); ``throw_correlation``
       (in [-1, 1]) is the normalised cross-correlation of the reflectors on the two sides once aligned, a quality
       measure (see
       :class:`~seismo3d.seismic.faults.throw.FaultThrow`); ``correlation_gain`` is that correlation less the sides'

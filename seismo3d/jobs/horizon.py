@@ -275,8 +275,12 @@ def _recorded_faults(folder: pathlib.Path, survey: _Survey, segy: dict) -> _Reco
 
     table = read_points(folder / "fault_points.csv")
     k = np.interp(table["time_or_depth"], survey.samples, np.arange(survey.samples.size))
-    if survey.kind == "trace list":
-        lateral = [table["trace"]]
+    if survey.kind == "trace list" and "trace" in table:  # numbered as seismo3d.open numbers them: from 1
+        lateral = [np.searchsorted(survey.cube["trace"].values, table["trace"])]
+    elif survey.kind == "trace list":  # traces the headers number: each point's trace by its inline and crossline
+        cube = survey.cube
+        trace_of = {(int(i), int(x)): k for k, (i, x) in enumerate(zip(cube["iline"].values, cube["xline"].values))}
+        lateral = [np.array([trace_of[(int(i), int(x))] for i, x in zip(table["inline"], table["crossline"])])]
     else:
         where = [np.searchsorted(labels, table[name]) for name, labels in
                  (("inline", survey.inlines), ("crossline", survey.xlines))]

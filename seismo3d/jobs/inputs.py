@@ -162,8 +162,9 @@ class SeismicInput:
 
     @property
     def inline_labels(self) -> np.ndarray:
-        """(n,) int64: the inline number of each inline (3D) or of each trace (2D); a raw section's, an array's or a
-        trace list's without numbers: the trace index, from 0."""
+        """(n,) int64: the inline number of each inline (3D) or of each trace (2D); a trace list's without numbers:
+        its trace number, from 1 in file order (:func:`seismo3d.open`'s ``trace`` coordinate); a raw section's or an
+        array's: the trace index, from 0."""
         return self._trace_labels[0]
 
     @property
@@ -176,8 +177,8 @@ class SeismicInput:
     def _trace_labels(self) -> tuple:
         if self.kind == "trace list":  # its header inline / crossline numbers, if any
             il, xl = self.trace_inlines.astype(np.int64), self.trace_xlines.astype(np.int64)
-            if np.all(il == il[0]) and np.all(xl == xl[0]):  # no numbers there: the trace index
-                return np.arange(il.size, dtype=np.int64), None
+            if np.all(il == il[0]) and np.all(xl == xl[0]):  # no numbers there: seismo3d.open's trace number
+                return self.cube["trace"].values.astype(np.int64), None
             return il, xl
         if not self.is_segy and self.kind != "store":  # .npy, .f32be: the indices
             idx = [np.arange(n, dtype=np.int64) for n in self.amplitudes.shape]
@@ -211,7 +212,8 @@ class SeismicInput:
         samples) in 2D."""
         if self.amplitudes.ndim == 3:
             return (self.inline_labels, self.xline_labels, self.samples)
-        lateral = {"inline": self.inline_labels, "crossline": self.xline_labels}.get(self.trace_axis)
+        lateral = {"inline": self.inline_labels, "crossline": self.xline_labels,
+                   "trace": self.inline_labels if self.kind == "trace list" else None}.get(self.trace_axis)
         return (np.arange(self.amplitudes.shape[0]) if lateral is None else lateral, self.samples)
 
     @property

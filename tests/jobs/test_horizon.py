@@ -212,6 +212,40 @@ def test_faults_from_a_faults_run_give_the_horizon_of_traced_faults(data_dir, tm
     np.testing.assert_allclose(reused.horizon.times[both], traced.horizon.times[both], atol=0.25)  # samples
 
 
+@pytest.mark.slow  # a faults run and two horizon runs on the 225-trace line: about 20 s
+def test_faults_from_a_trace_list_run_find_their_traces(data_dir, tmp_path):
+    # A trace list without inline / crossline numbers (the Volve arbitrary line): fault_points.csv numbers its traces
+    # from 1 as seismo3d.open and the horizon's seeds do (each point's trace number = its trace index + 1 in the faults
+    # traced on the same samples), and --faults-from places every fault point on its trace, giving the horizon of the
+    # faults the horizon command traces itself (one trace of 223 steps across a fault one trace later: the table's
+    # rounded throws; measured 5.5 ms there, 0.0 elsewhere)
+    import os
+
+    import seismo3d
+    from seismo3d.jobs.fault_tables import read_points
+    from seismo3d.jobs.faults import run_faults_job
+    from seismo3d.jobs.horizon import run_horizon_job
+    from seismo3d.seismic import trace_faults
+
+    path = os.path.join(data_dir, "seismic", "volve_fullstack_twt_arbline.sgy")
+    run_faults_job(path, tmp_path / "arb", progress=False)
+    table = read_points(tmp_path / "arb" / "fault_points.csv")
+    cube = seismo3d.open(path)
+    traced_here = trace_faults(np.asarray(cube.values, dtype=np.float32), sample_interval=4.0, sample_unit="ms",
+                               progress=False)
+    index = np.concatenate([f.points for f in traced_here.faults])
+    assert table["trace"].size == len(index)
+    np.testing.assert_array_equal(np.sort(table["trace"]), np.sort(index[:, 0] + 1))
+    reused = run_horizon_job(path, [(100, 1500.0)], tmp_path / "r.txt", faults_from=tmp_path / "arb",
+                             progress=False)
+    traced = run_horizon_job(path, [(100, 1500.0)], tmp_path / "t.txt", progress=False)
+    assert reused.n_faults == traced.n_faults >= 1
+    both = np.isfinite(reused.horizon.times) & np.isfinite(traced.horizon.times)
+    assert both.sum() >= 0.95 * np.isfinite(traced.horizon.times).sum()
+    within = np.abs(reused.horizon.times[both] - traced.horizon.times[both]) <= 0.25  # samples
+    assert within.mean() >= 0.99
+
+
 def test_horizon_traces_the_faults_by_default_and_says_so(tmp_path, monkeypatch):
     # No flag: the faults are traced first on a line too, said in one line; data the fault tracer refuses is
     # tracked without them, said in one line; --no-faults does not trace them.

@@ -354,7 +354,8 @@ def test_cli_maps_seed_file_and_sticks(data_dir, tmp_path):
 @pytest.mark.slow  # the faults job on the 225-trace arbitrary line: 3-4 s
 def test_arbitrary_line_fault_points_at_their_traces(data_dir, tmp_path):
     """A trace list (the Volve arbitrary line, no inline / crossline numbers): each fault point at the CDP X/Y of its
-    trace (the 0-based trace index in fault_points.csv's `trace` column), in the CSV and the sticks."""
+    trace (fault_points.csv's `trace` column numbers the traces from 1 in file order, as seismo3d.open does), in the
+    CSV and the sticks."""
     from seismo3d.data import fetch
     from seismo3d.jobs.faults import run_faults_job
 
@@ -367,9 +368,10 @@ def test_arbitrary_line_fault_points_at_their_traces(data_dir, tmp_path):
     points = _rows(job.written["points"])
     assert points and "inline" not in points[0] and "crossline" not in points[0]  # one `trace` column
     for r in points:
-        t = int(r["trace"])
-        assert abs(float(r["x"]) - x[t]) < 5e-4 and abs(float(r["y"]) - y[t]) < 5e-4
+        t = int(r["trace"]) - 1
+        assert t >= 0 and abs(float(r["x"]) - x[t]) < 5e-4 and abs(float(r["y"]) - y[t]) < 5e-4
     sticks = read_fault_sticks(job.written["sticks_opendtect"])
-    t = sticks.inline.astype(int)
+    t = sticks.inline.astype(int) - 1
+    assert t.min() >= 0
     assert_allclose(sticks.x, x[t], atol=5e-4)
     assert_allclose(sticks.y, y[t], atol=5e-4)

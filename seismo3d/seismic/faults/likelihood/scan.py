@@ -24,7 +24,7 @@ Dips are in index space; to convert them to true dips use ``atan(tan(dip) * dz /
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numba as nb
 import numpy as np
@@ -34,11 +34,15 @@ from ...._progress import progress_steps
 from ...._validation import as_seismic, as_sigma_pair, check_int, check_positive
 from ....errors import InputError, Seismo3dWarning
 from ... import _kernels
+from ...blocks.apply import BlockOutput
+from ...blocks.executor import MemoryRun, check_finite
+from ...blocks.plan import CUBE, BlockStep, lateral_blocks
+from ...blocks.stores import read_sheared
 from .scan_kernels import (CODE_BITS, FL_LEVELS, box_half, default_angles, exponential_coefficient, orientation_table,
                            scan_dip, smooth_strike, sum_samples)
 from ..result import FaultLikelihood
 
-__all__ = ["FaultScanOptions", "fault_likelihood"]
+__all__ = ["FaultScanOptions", "block_steps", "fault_likelihood", "run_scan", "whole_plan"]
 
 
 @dataclass(frozen=True)
@@ -169,6 +173,10 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     linear in the number of samples and in the number of scanned planes (300 by default in 3D: 24 strikes x 13
     dips, vertical planes counted once; 25 in 2D).
 
+    The steps are those of the run by blocks (:func:`block_steps`, run in their order by :func:`run_scan`), here on
+    one block, the whole array (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`); a section runs as a cube of
+    one crossline, its steps told that it is 2D (3 traces in the semblance, the planes of a section).
+
     Parameters
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
@@ -177,8 +185,7 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
         The scanned strikes and dips, smoothing, balancing and power (see :class:`FaultScanOptions` for the
         defaults).
     progress : bool, optional
-        Report the scan's progress over strikes (:mod:`seismo3d._progress`: a bar on a terminal, log lines
-        otherwise).
+        Report the progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, log lines otherwise).
     **overrides
         Fields of :class:`FaultScanOptions` by name, replacing those of ``options``.
 
@@ -223,18 +230,10 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     opt = resolve_options(FaultScanOptions, options, overrides, "fault_likelihood")
     two_d = arr.ndim == 2
     f3 = _kernels.as_3d(arr)
-    stats = AmplitudeStatistics.of(f3)
-    # structure-oriented semblance numerator and denominator of each sample (3 x 3 traces along the reflector),
-    # summed over pairs of samples (the scan's vertical step)
-    sn, sd = semblance_terms(balance_amplitudes(f3, opt, stats, two_d=two_d), opt, two_d=two_d)
-    tiny = semblance_floor(float(sd.sum(dtype=np.float64)), sd.size)
-    live = sd > tiny
-    # the scan: each plane's semblance smoothed within it; the best plane per sample, packed into one int32 key
-    key = scan_planes(sn, sd, opt, tiny, n_samples=f3.shape[2], two_d=two_d, progress=progress)
-    del sn, sd
-    _warn_if_saturated(*saturation_counts(key, live, opt.saturation_level), opt)
-    fl, strike, dip = decode_scan(key, opt, n_samples=f3.shape[2], two_d=two_d)
-    del key
+    run = MemoryRun(f3.shape, progress=progress)
+    saturated = run_scan(run, f3, opt, whole_plan(f3.shape), two_d=two_d)
+    _warn_if_saturated(saturated, opt)
+    fl, strike, dip = (run.arrays.pop(name) for name in ("likelihood", "strike_deg", "dip_deg"))
     if two_d:
         fl, strike, dip = fl[:, 0, :], strike[:, 0, :], dip[:, 0, :]
     return FaultLikelihood(fl, strike, dip)
@@ -420,10 +419,10 @@ def saturation_counts(key: np.ndarray, live: np.ndarray, level: float) -> tuple[
     return int(np.count_nonzero((key >> CODE_BITS)[live] > int(level * FL_LEVELS))), int(np.count_nonzero(live))
 
 
-def _warn_if_saturated(high: int, live: int, opt: FaultScanOptions) -> None:
-    if live and high / live > opt.saturated:
+def _warn_if_saturated(saturated: float, opt: FaultScanOptions) -> None:
+    if saturated > opt.saturated:
         warnings.warn(
-            f"fault likelihood exceeds {opt.saturation_level:g} at {high / live:.0%} of the samples: the data has no lateral coherence "
+            f"fault likelihood exceeds {opt.saturation_level:g} at {saturated:.0%} of the samples: the data has no lateral coherence "
             "(noise, chaotic reflections, or traces out of order), so faults traced from it are unreliable; "
             "check the inline/crossline geometry or filter the data first", Seismo3dWarning, stacklevel=3)
 
@@ -498,3 +497,273 @@ def _scan(sn, sd, table, two_d, opt, tiny, step, progress, axes=(0, 1), core=Non
             np.maximum(key, keya.transpose(tuple(np.argsort(perm))), out=key)
             del keya
     return key
+
+
+def sheared_axes(options: FaultScanOptions, two_d: bool = False) -> tuple:
+    """The shear axes (0: along inlines, 1: along crosslines) that hold planes of the scan: both in 3D by default,
+    axis 0 alone in a section."""
+    table = orientation_table(*options.angles(), two_d)
+    return tuple(axis for axis in (0, 1) if any(r[2] == axis for r in table))
+
+
+# The scan's steps declared once (:func:`block_steps`) and run in their order by :func:`run_scan`, by blocks
+# (:mod:`~seismo3d.seismic.faults.likelihood.scan_blocks`) or on the whole array in memory (:func:`fault_likelihood`).
+# Bytes of working memory per sample of a block (incl. halo), from the arrays each step holds at its peak: balancing
+# holds the amplitudes, their squares and two smoothing passes; the semblance step the balanced amplitudes, 3
+# gradients, 6 tensor components, the planarity and the outputs; the scan 2 inputs read in its layout, 2 smoothed
+# copies and the keys of the block's core (a third of it or less); decoding the key brought back to every sample
+# and likelihood, strike and dip.
+# (tracemalloc peaks of the steps on a 96 x 96 x 512 block: balance 12 + the input 4 and the tiles it is cut from 4,
+# semblance 40 + the input 4, scan 23 per grouped sample, decoding 20; the semblance and decoding rounded up)
+_BALANCE_BYTES = 20
+_SEMBLANCE_BYTES = 48
+_SCAN_BYTES = 24
+_DECODE_BYTES = 24
+
+
+def block_steps(shape, options: FaultScanOptions, *, block: int | None = None, strip: int | None = None) -> tuple:
+    """The steps of the scan, declared once, in their order: the amplitude statistics and the balancing (square
+    blocks read from the cube), the semblance terms (their denominators reduced into the semblance floor), the scan
+    along inlines and along crosslines (blocks of every trace along the scanned axis and ``b`` traces across it)
+    and the decoding (on the semblance's blocks), each with its block function, halo and the bytes of a block of
+    ``b`` traces a side, largest and forced sides (:func:`~seismo3d.seismic.blocks.plan.plan_steps` plans those
+    with bytes: ``'balance'``, ``'semblance'``, ``'scan'``).
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)`` (a section: ``(n_traces, 1, n_samples)``).
+    options : FaultScanOptions
+    block, strip : int, optional
+        Sides forced by the caller (``ChunkOptions.block``, ``ChunkOptions.strip``), traces.
+
+    Returns
+    -------
+    tuple of BlockStep
+        Named ``'amplitudes'``, ``'balance'``, ``'semblance'``, ``'scan'`` (run as ``'scan_inline'`` and
+        ``'scan_crossline'``), ``'decode'``.
+    """
+    n0, n1, nt = shape
+    m = -(-nt // scan_step(options, nt))
+    bhalo, halo, shalo = balance_halo(options), semblance_halo(options), strike_halo(options)
+    n_axis = max(n0, n1)
+
+    def semblance_bytes(b):
+        return max((b + 2 * halo) ** 2 * nt * _SEMBLANCE_BYTES, b ** 2 * nt * _DECODE_BYTES)
+
+    def balance_bytes(b):
+        return (b + 2 * bhalo) ** 2 * nt * _BALANCE_BYTES
+
+    def scan_bytes(w):
+        return n_axis * (w + 2 * shalo) * m * _SCAN_BYTES
+
+    return (BlockStep("amplitudes", "reduce", 0, function=amplitude_block, label="amplitude statistics",
+                      inputs=(CUBE,), place=True),
+            BlockStep("balance", "map", bhalo, balance_bytes, 512, function=balance_block,
+                      label="amplitude balancing", inputs=(CUBE,), outputs=("balanced",), place=True),
+            BlockStep("semblance", "reduce", halo, semblance_bytes, 256, block, function=semblance_block,
+                      label="semblance", inputs=("balanced",), outputs=("numerator", "denominator"), place=True),
+            BlockStep("scan", "map", shalo, scan_bytes, n_axis, strip, function=scan_block,
+                      label="fault scan", inputs=("numerator", "denominator"), outputs=("key",), place=True,
+                      lazy=True),
+            BlockStep("decode", "reduce", 0, function=decode_block, label="decode", inputs=("key", "denominator"),
+                      outputs=("likelihood", "strike_deg", "dip_deg")))
+
+
+def whole_plan(shape) -> dict:
+    """The plan of a run in memory: every step on one block, the whole cube (sides as :func:`run_scan` reads them).
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+
+    Returns
+    -------
+    dict
+    """
+    side = max(int(shape[0]), int(shape[1]))
+    return {"shape": [int(n) for n in shape], "tile": side, "balance": side, "semblance": side, "scan": side}
+
+
+def run_scan(run, x, opt: FaultScanOptions, plan: dict, *, two_d: bool = False) -> float:
+    """The scan's declared steps (:func:`block_steps`) in their order on a run: by blocks
+    (:class:`~seismo3d.seismic.blocks.stores.StoreRun`) or in memory on one block
+    (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`), the likelihood, strike and dip left in its arrays.
+
+    Parameters
+    ----------
+    run : StoreRun or MemoryRun
+    x : (n_inlines, n_xlines, n_samples) float32 dask.array.Array or ndarray
+        The amplitudes (a section as a cube of one crossline, with ``two_d``).
+    opt : FaultScanOptions
+    plan : dict
+        ``shape``, ``tile`` and the sides of the blocks of ``'balance'`` (also the statistics'), ``'semblance'``
+        (also the decoding's) and ``'scan'`` (traces across the scanned axis) (:func:`whole_plan` in memory).
+    two_d : bool
+        ``x`` is a section.
+
+    Returns
+    -------
+    float
+        The saturated fraction: live samples with a likelihood above ``opt.saturation_level``, of the live ones.
+    """
+    shape = tuple(int(n) for n in plan["shape"])
+    n0, n1, nt = shape
+    m = -(-nt // scan_step(opt, nt))
+    steps = {step.name: step for step in block_steps(shape, opt)}
+    side, block, strip = plan["balance"], plan["semblance"], plan["scan"]
+    # whole-cube amplitude statistics, then the balanced amplitudes and the semblance terms
+    sums = run.run_step(steps["amplitudes"], lateral_blocks(shape, side, side), source=x)
+    stats = AmplitudeStatistics.from_sums(max(r["peak"] for r in sums), sum(r["sum_squares"] for r in sums),
+                                          n0 * n1 * nt)
+    run.run_step(steps["balance"], lateral_blocks(shape, side, side), opt, stats, two_d, source=x)
+    results = run.run_step(steps["semblance"], lateral_blocks(shape, block, block), opt, two_d)
+    run.release("balanced")
+    tiny = semblance_floor(sum(r["sum_denominator"] for r in results), n0 * n1 * m)
+    # the planes sheared along each axis; a later axis keeps the better plane of both
+    for k, axis in enumerate(sheared_axes(opt, two_d)):
+        name = ("inline", "crossline")[axis]
+        scan = replace(steps["scan"], name=f"scan_{name}", label=f"fault scan along {name}s",
+                       combine=np.maximum if k else None)
+        run.run_step(scan, lateral_blocks(shape, n0, strip) if axis == 0 else lateral_blocks(shape, strip, n1),
+                     axis, opt, tiny, nt, plan["tile"], two_d)
+    run.release("numerator")
+    results = run.run_step(steps["decode"], lateral_blocks(shape, block, block), opt, tiny, nt, two_d)
+    run.release("key", "denominator")
+    live = sum(r["live"] for r in results)
+    return sum(r["high"] for r in results) / live if live else 0.0
+
+
+def amplitude_block(place, f) -> BlockOutput:
+    """The peak absolute amplitude and the float64 sum of squares of a block (:meth:`AmplitudeStatistics.of`).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of the block.
+
+    Returns
+    -------
+    BlockOutput
+        Summary ``peak``, ``sum_squares``.
+
+    Raises
+    ------
+    InputError
+        The block holds NaN or inf.
+    """
+    f = np.ascontiguousarray(f, dtype=np.float32)
+    check_finite(f, (place.block[0], place.block[1] - 1))
+    return BlockOutput(summary={"peak": float(np.max(np.abs(f))) if f.size else 0.0,
+                                "sum_squares": float(np.einsum("ijk,ijk->", f, f, dtype=np.float64))})
+
+
+def balance_block(place, f, opt: FaultScanOptions, stats: AmplitudeStatistics, two_d: bool = False) -> BlockOutput:
+    """Balanced amplitudes of a block read with the balancing's halo (:func:`balance_amplitudes`).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of ``place.region``.
+    opt : FaultScanOptions
+    stats : AmplitudeStatistics
+        Of the whole cube.
+    two_d : bool
+        A section as a cube of one crossline.
+
+    Returns
+    -------
+    BlockOutput
+        ``balanced``: (m0, m1, n_samples) float32, cut to the core by the executor.
+    """
+    return BlockOutput({"balanced": balance_amplitudes(np.ascontiguousarray(f, dtype=np.float32), opt, stats,
+                                                       two_d=two_d)})
+
+
+def semblance_block(place, f, opt: FaultScanOptions, two_d: bool = False) -> BlockOutput:
+    """Semblance terms of a block of balanced amplitudes read with the semblance's halo
+    (:func:`semblance_terms`), and the sum of the core's denominators (the semblance floor's).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    f : (m0, m1, n_samples) float32 ndarray
+        Balanced amplitudes of ``place.region``.
+    opt : FaultScanOptions
+    two_d : bool
+
+    Returns
+    -------
+    BlockOutput
+        ``numerator``, ``denominator`` of the core, float32 at the scan's grouped samples; summary
+        ``sum_denominator``.
+    """
+    sn, sd = semblance_terms(f, opt, two_d=two_d)
+    sn, sd = sn[place.core], sd[place.core]
+    return BlockOutput({"numerator": sn, "denominator": sd}, {"sum_denominator": float(sd.sum(dtype=np.float64))})
+
+
+def scan_block(place, numerator, denominator, axis: int, opt: FaultScanOptions, tiny: float, n_samples: int,
+               tile: int, two_d: bool = False) -> BlockOutput:
+    """The planes sheared along ``axis`` (:func:`scan_planes`) on a block that holds that whole axis.
+
+    Parameters
+    ----------
+    place : BlockPlace
+        The block (every trace along ``axis``) and the region read (the strike smoothing's halo across it).
+    numerator, denominator : (n_inlines, n_xlines, m) arrays read by slicing
+        Semblance terms (Zarr arrays by blocks, ndarrays in memory), read here in the sheared layout
+        (:func:`~seismo3d.seismic.blocks.stores.read_sheared`).
+    axis : {0, 1}
+    opt : FaultScanOptions
+    tiny : float
+        The semblance floor.
+    n_samples : int
+        Samples per trace of the cube.
+    tile : int
+        Rows read at once.
+    two_d : bool
+
+    Returns
+    -------
+    BlockOutput
+        ``key``: the core's packed scan keys, int32.
+    """
+    a0, a1, b0, b1 = place.region
+    i0, i1, j0, j1 = place.block
+    core, origin = ((j0 - b0, j1 - b0), b0) if axis == 0 else ((i0 - a0, i1 - a0), a0)
+    sn = read_sheared(numerator, place.read, axis, tile)
+    sd = read_sheared(denominator, place.read, axis, tile)
+    key = scan_planes(sn, sd, opt, tiny, n_samples=n_samples, two_d=two_d, axes=(axis,), core=core, origin=origin,
+                      sheared_layout=True)
+    return BlockOutput({"key": key})
+
+
+def decode_block(key, denominator, opt: FaultScanOptions, tiny: float, n_samples: int,
+                 two_d: bool = False) -> BlockOutput:
+    """Likelihood, strike and dip of a block from the combined key (:func:`decode_scan`), with its saturated and
+    live samples.
+
+    Parameters
+    ----------
+    key : (m0, m1, m) int32 ndarray
+        Packed scan keys.
+    denominator : (m0, m1, m) float32 ndarray
+        Semblance denominators (live where above ``tiny``).
+    opt : FaultScanOptions
+    tiny : float
+    n_samples : int
+    two_d : bool
+
+    Returns
+    -------
+    BlockOutput
+        ``likelihood``, ``strike_deg``, ``dip_deg``: (m0, m1, n_samples) float32; summary ``high``, ``live``.
+    """
+    live = denominator > tiny
+    high, n_live = saturation_counts(key, live, opt.saturation_level)
+    del live
+    fl, strike, dip = decode_scan(key, opt, n_samples=n_samples, two_d=two_d)
+    return BlockOutput({"likelihood": fl, "strike_deg": strike, "dip_deg": dip}, {"high": high, "live": n_live})

@@ -520,13 +520,13 @@ def block_steps(plan: dict, opt: LearnedOptions) -> tuple:
     steps = []
     for k, g in enumerate(plan["grids"]):
         factor = float(g["factor"])
-        for axis in plan_directions(plan, opt):
+        for axis in _plan_directions(plan, opt):
             name = DIRECTION_NAMES[axis]
             label = f"fault network on {name}s" + (f" (grid {factor:g})" if len(plan["grids"]) > 1 else "")
             # the network's blocks are on the network grid: their outputs are their cores already (trim=False)
             steps.append(BlockStep(f"network_{name}_{k}", "map", RECEPTIVE_HALF, function=network_block, label=label,
                                    region=functools.partial(network_region, axis=axis, shape=shape, factor=factor,
-                                                            step=section_step(plan, opt)),
+                                                            step=_section_step(plan, opt)),
                                    inputs=(CUBE,), outputs=(("probability", f"network_{name}_{k}"),), place=True,
                                    trim=False))
     networks = tuple(f"network_{name}_{k}" for k, g in enumerate(plan["grids"]) for name in g["network_blocks"])
@@ -704,14 +704,13 @@ def orientation_block(place, *networks_plan_opt) -> BlockOutput:
                        {"high": int(np.count_nonzero(likelihood > float(opt.saturation_level)))})
 
 
-def plan_directions(plan: dict, opt: LearnedOptions) -> tuple:
-    """The lateral axes whose sections the network runs on: :func:`cube_directions` in a cube, the crossline axis
-    (1) in a section run as a cube of one crossline (``plan['ndim']`` 2: the section itself)."""
+def _plan_directions(plan: dict, opt: LearnedOptions) -> tuple:
+    """:func:`cube_directions` in a cube; the crossline axis in a section (a cube of one crossline: its section)."""
     return (1,) if plan.get("ndim", 3) == 2 else cube_directions(opt)
 
 
-def section_step(plan: dict, opt: LearnedOptions) -> int:
-    """``LearnedOptions.section_step`` in a cube; 1 in a section (its one section is computed)."""
+def _section_step(plan: dict, opt: LearnedOptions) -> int:
+    """``LearnedOptions.section_step`` in a cube; 1 in a section (its one section computed)."""
     return int(opt.section_step) if plan.get("ndim", 3) == 3 else 1
 
 
@@ -736,29 +735,14 @@ def whole_plan(shape, opt: LearnedOptions, ndim: int = 3) -> dict:
     for factor in opt.grids(shape[2], ndim):
         grid = network_shape(shape, factor)
         plan["grids"].append({"factor": factor, "network_shape": list(grid), "network_blocks": {
-            DIRECTION_NAMES[axis]: [grid[axis], grid[1 - axis]] for axis in plan_directions(plan, opt)}})
+            DIRECTION_NAMES[axis]: [grid[axis], grid[1 - axis]] for axis in _plan_directions(plan, opt)}})
     side = max(shape[0], shape[1])
     return dict(plan, tile=side, block_orientation=side, workers_orientation=1)
 
 
-def cube_scale(x, ndim: int = 3) -> tuple:
-    """:func:`amplitude_scale` of a cube given in memory or lazily (dask): the regular subsample of its traces read,
-    checked finite (a section as a cube of one crossline, ``ndim`` 2, subsampled as the section).
-
-    Parameters
-    ----------
-    x : (n_inlines, n_xlines, n_samples) ndarray or dask.array.Array
-    ndim : {3, 2}
-
-    Returns
-    -------
-    (float, float)
-
-    Raises
-    ------
-    InputError
-        The subsample holds NaN or inf.
-    """
+def _cube_scale(x, ndim: int) -> tuple:
+    """:func:`amplitude_scale` of a cube in memory or lazy (dask) from its subsample of traces, checked finite (a
+    section as a cube of one crossline, ``ndim`` 2, subsampled as the section)."""
     s0, s1 = scale_subsample(x.shape) if ndim == 3 else (scale_subsample((x.shape[0], x.shape[2]))[0], 1)
     sample = np.asarray(x[::s0, ::s1, :], dtype=np.float32)
     check_finite(sample)
@@ -778,7 +762,7 @@ def run_networks(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> tupl
     plan : dict
         As :func:`block_steps` reads it.
     scale : (float, float), optional
-        The amplitude scale; default :func:`cube_scale` of ``x`` (kept by a resumed run).
+        The amplitude scale; default :func:`amplitude_scale` of ``x``'s subsample (kept by a resumed run).
 
     Returns
     -------
@@ -787,11 +771,11 @@ def run_networks(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> tupl
     """
     ndim = int(plan.get("ndim", 3))
     if scale is None:
-        scale = tuple(run.saved("scale", lambda: list(cube_scale(x, ndim))))
+        scale = tuple(run.saved("scale", lambda: list(_cube_scale(x, ndim))))
     steps = iter(block_steps(plan, opt)[:-1])
     names = []
     for g in plan["grids"]:
-        for axis in plan_directions(plan, opt):
+        for axis in _plan_directions(plan, opt):
             step = next(steps)
             blocks = network_blocks(g["network_shape"], *g["network_blocks"][DIRECTION_NAMES[axis]], axis)
             run.run_step(step, blocks, axis, opt, float(g["factor"]), tuple(scale), int(g["network_shape"][axis]),

@@ -30,7 +30,6 @@ import numba as nb
 import numpy as np
 
 from ...._options import resolve_options
-from ...._progress import progress_steps
 from ...._validation import as_seismic, as_sigma_pair, check_int, check_positive
 from ....errors import InputError, Seismo3dWarning
 from ... import _kernels
@@ -239,8 +238,8 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     return FaultLikelihood(fl, strike, dip)
 
 
-# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.faults.likelihood.scan_blocks): a
-# block's result equals the whole cube's over the block when the block carries the halo each step needs.
+# The scan in steps, each of which runs on a block of a cube (the whole cube in memory): a block's result equals the
+# whole cube's over the block when the block carries the halo each step needs.
 
 @dataclass(frozen=True)
 class AmplitudeStatistics:
@@ -268,11 +267,6 @@ class AmplitudeStatistics:
         mean_square = sum_squares / max(int(count), 1) * scale * scale
         return cls(scale, float(1e-6 * mean_square + 1e-30))
 
-    @classmethod
-    def of(cls, f3: np.ndarray) -> "AmplitudeStatistics":
-        """The statistics of a whole (n0, n1, n_samples) array of amplitudes."""
-        peak = float(np.max(np.abs(f3))) if f3.size else 0.0
-        return cls.from_sums(peak, float(np.einsum("ijk,ijk->", f3, f3, dtype=np.float64)), f3.size)
 
 
 def scan_step(options: FaultScanOptions, n_samples: int) -> int:
@@ -373,45 +367,69 @@ def semblance_floor(sum_denominator: float, count: int) -> float:
 
 
 def scan_planes(sn: np.ndarray, sd: np.ndarray, options: FaultScanOptions, tiny: float, *, n_samples: int,
-                two_d: bool = False, axes: tuple = (0, 1), core: tuple | None = None, origin: int = 0,
-                sheared_layout: bool = False, progress: bool = False) -> np.ndarray:
-    """The scan (step 4 of :func:`fault_likelihood`) over the planes sheared along ``axes``.
+                axis: int, two_d: bool = False, core: tuple | None = None, origin: int = 0) -> np.ndarray:
+    """The scan (step 4 of :func:`fault_likelihood`) over the planes sheared along ``axis``, on a block that holds
+    that whole axis and :func:`strike_halo` traces of halo along the other one.
 
     Parameters
     ----------
-    sn, sd : (n0, n1, m) float32 ndarray
-        From :func:`semblance_terms`.
+    sn, sd : (n_axis, m, n_other) float32 ndarray
+        From :func:`semblance_terms`, in the scan's own layout (the sheared axis, the grouped samples, the other
+        lateral axis; :func:`~seismo3d.seismic.blocks.stores.read_sheared`), C-contiguous, used in place.
     options : FaultScanOptions
     tiny : float
         From :func:`semblance_floor` over the whole cube.
     n_samples : int
         Samples per trace before grouping.
+    axis : {0, 1}
+        The shear axis of the planes scanned (:func:`sheared_axes`).
     two_d : bool
-    axes : tuple of {0, 1}
-        Shear axes of the planes to scan. A block of a cube scanned for the planes sheared along one axis must hold
-        that whole axis, and :func:`strike_halo` traces of halo along the other one.
     core, origin : optional
-        For a block: the ``(start, stop)`` along the other axis whose result is returned, and the cube index of the
-        block's first trace along that axis.
-    sheared_layout : bool
-        With one axis: ``sn`` and ``sd`` are given in the scan's own layout, (sheared axis, sample, other axis),
-        C-contiguous, and are used (and overwritten) in place: no copies, for blocks read to fit a memory limit.
-    progress : bool
+        The ``(start, stop)`` along the other axis whose result is returned (default all), and the cube index of
+        the block's first trace along that axis.
 
     Returns
     -------
-    (n0, n1, m) int32 ndarray (``core`` taken along the other axis)
+    (n0, n1, m) int32 ndarray, the cube's layout (``core`` taken along the other axis)
         Packed ``likelihood << 11 | plane`` of the best plane at each grouped sample: decode with
         :func:`decode_scan`; the maximum of two keys is the key of the union of their planes.
+
+    Raises
+    ------
+    InputError
+        More planes than the key's code holds.
     """
     table = orientation_table(*options.angles(), two_d)
     if len(table) > (1 << CODE_BITS):
         raise InputError(f"{len(table)} fault planes to scan but at most {1 << CODE_BITS} are supported; pass fewer "
                          "strikes or dips")
     step = scan_step(options, n_samples)
-    if sheared_layout and len(axes) != 1:
-        raise InputError("sheared_layout=True scans the planes of one shear axis; pass axes=(0,) or axes=(1,)")
-    return _scan(sn, sd, table, two_d, options, tiny, step, progress, axes, core, origin, sheared_layout)
+    squarings = int(options.power).bit_length() - 1
+    n_threads = nb.get_num_threads()
+    # planes sheared along `axis`, grouped by strike (mod 180): one smoothing along strike serves a group
+    groups = {}
+    for k, r in enumerate(table):
+        if r[2] == axis:
+            groups.setdefault(round(r[0] % 180.0, 6), []).append((k, r))
+    # the kernels work in the layout (na, nt, nb): na = the sheared horizontal axis, nb = the other one
+    smooth_lateral = not two_d and sn.shape[2] > 1
+    yn = np.empty_like(sn) if smooth_lateral else sn
+    yd = np.empty_like(sd) if smooth_lateral else sd
+    b0, b1 = (0, yn.shape[2]) if core is None else core
+    key = np.zeros(yn.shape[:2] + (b1 - b0,), dtype=np.int32)
+    for members in groups.values():
+        alpha, lateral = members[0][1][3], members[0][1][5]
+        if smooth_lateral:
+            hs = box_half(float(options.strike_smoothing) * lateral)
+            smooth_strike(sn, float(alpha), hs, origin, n_threads, yn)
+            smooth_strike(sd, float(alpha), hs, origin, n_threads, yd)
+        for k, r in members:
+            # lateral shift per (grouped) sample, and the smoothing width down the dip in grouped samples
+            beta = float(r[4]) * step
+            sigma = float(options.dip_smoothing) * float(np.sin(np.radians(r[1]))) / step
+            scan_dip(yn, yd, beta, exponential_coefficient(max(sigma, 0.5)), np.int32(k), squarings, tiny,
+                     n_threads, key, b0)
+    return np.ascontiguousarray(key.transpose((0, 2, 1) if axis == 0 else (2, 0, 1)))
 
 
 def saturation_counts(key: np.ndarray, live: np.ndarray, level: float) -> tuple[int, int]:
@@ -445,58 +463,6 @@ def decode_scan(key: np.ndarray, options: FaultScanOptions, *, n_samples: int,
     dip = np.array([r[1] for r in table], dtype=np.float32)[code]
     np.clip(fl, 0.0, 1.0, out=fl)
     return fl, strike, dip
-
-
-def _scan(sn, sd, table, two_d, opt, tiny, step, progress, axes=(0, 1), core=None, origin=0, sheared_layout=False):
-    """The packed (likelihood << CODE_BITS | orientation code) int32 maximum over the scanned planes, on samples
-    grouped by ``step``."""
-    squarings = int(opt.power).bit_length() - 1
-    strike_smoothing = float(opt.strike_smoothing)
-    n_threads = nb.get_num_threads()
-    shape = list(sn.shape)
-    if sheared_layout:  # (na, nt, nb) -> the cube's axes
-        shape = [shape[0], shape[2], shape[1]] if axes[0] == 0 else [shape[2], shape[0], shape[1]]
-    if core is not None:  # a block scanned along one axis, kept on `core` of the other
-        shape[1 - axes[0]] = core[1] - core[0]
-    key = np.zeros(shape, dtype=np.int32)
-    # planes sheared along axis 0 or 1, grouped by strike (mod 180): one smoothing along strike serves a group
-    groups = {axis: {} for axis in (0, 1)}
-    for k, r in enumerate(table):
-        groups[r[2]].setdefault(round(r[0] % 180.0, 6), []).append((k, r))
-    with progress_steps(sum(len(groups[a]) for a in axes), "fault likelihood", unit="strike",
-                        enabled=progress) as bar:
-        for axis in axes:
-            if not groups[axis]:
-                continue
-            # kernels work in the layout (na, nt, nb): na = the sheared horizontal axis, nb = the other one
-            perm = (0, 2, 1) if axis == 0 else (1, 2, 0)
-            if sheared_layout:
-                xn, xd = sn, sd
-            else:
-                xn = np.ascontiguousarray(sn.transpose(perm))
-                xd = np.ascontiguousarray(sd.transpose(perm))
-            smooth_lateral = not two_d and xn.shape[2] > 1
-            yn = np.empty_like(xn) if smooth_lateral else xn
-            yd = np.empty_like(xd) if smooth_lateral else xd
-            b0, b1 = (0, yn.shape[2]) if core is None else core
-            keya = np.zeros(yn.shape[:2] + (b1 - b0,), dtype=np.int32)
-            for members in groups[axis].values():
-                alpha, lateral = members[0][1][3], members[0][1][5]
-                if smooth_lateral:
-                    hs = box_half(strike_smoothing * lateral)
-                    smooth_strike(xn, float(alpha), hs, origin, n_threads, yn)
-                    smooth_strike(xd, float(alpha), hs, origin, n_threads, yd)
-                for k, r in members:
-                    # lateral shift per (grouped) sample, and the smoothing width down the dip in grouped samples
-                    beta = float(r[4]) * step
-                    sigma = float(opt.dip_smoothing) * float(np.sin(np.radians(r[1]))) / step
-                    scan_dip(yn, yd, beta, exponential_coefficient(max(sigma, 0.5)), np.int32(k), squarings,
-                              tiny, n_threads, keya, b0)
-                bar.advance()
-            del xn, xd, yn, yd
-            np.maximum(key, keya.transpose(tuple(np.argsort(perm))), out=key)
-            del keya
-    return key
 
 
 def sheared_axes(options: FaultScanOptions, two_d: bool = False) -> tuple:
@@ -635,7 +601,8 @@ def run_scan(run, x, opt: FaultScanOptions, plan: dict, *, two_d: bool = False) 
 
 
 def amplitude_block(place, f) -> BlockOutput:
-    """The peak absolute amplitude and the float64 sum of squares of a block (:meth:`AmplitudeStatistics.of`).
+    """The peak absolute amplitude and the float64 sum of squares of a block, reduced into the cube's
+    :class:`AmplitudeStatistics` (:meth:`AmplitudeStatistics.from_sums`).
 
     Parameters
     ----------
@@ -736,8 +703,7 @@ def scan_block(place, numerator, denominator, axis: int, opt: FaultScanOptions, 
     core, origin = ((j0 - b0, j1 - b0), b0) if axis == 0 else ((i0 - a0, i1 - a0), a0)
     sn = read_sheared(numerator, place.read, axis, tile)
     sd = read_sheared(denominator, place.read, axis, tile)
-    key = scan_planes(sn, sd, opt, tiny, n_samples=n_samples, two_d=two_d, axes=(axis,), core=core, origin=origin,
-                      sheared_layout=True)
+    key = scan_planes(sn, sd, opt, tiny, n_samples=n_samples, axis=axis, two_d=two_d, core=core, origin=origin)
     return BlockOutput({"key": key})
 
 

@@ -65,6 +65,7 @@ from .network_grid import (
     anti_alias_sigma, from_network_grid, grid_factors, grid_size, interpolate_axis, to_network_grid,
 )
 from .orientation import orientation_from_likelihood
+from .runs import likelihood_in_memory
 
 __all__ = ["WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS", "LearnedOptions", "load_fault_network", "scale_subsample",
            "amplitude_scale", "fault_probability", "cube_directions", "direction_probability",
@@ -893,9 +894,6 @@ def learned_fault_likelihood(data, *, options: LearnedOptions | None = None, sca
     if not np.isfinite(arr).all():
         raise InputError("data holds NaN or inf samples; replace them (trace_faults reads them as 0)")
     f3 = arr[:, None, :] if arr.ndim == 2 else arr
-    run = MemoryRun(f3.shape, progress=progress)
-    run_learned(run, f3, opt, whole_plan(f3.shape, opt, arr.ndim), scale=scale)
-    fl, strike, dip = (run.arrays.pop(name) for name in ("likelihood", "strike_deg", "dip_deg"))
-    if arr.ndim == 2:
-        fl, strike, dip = fl[:, 0], strike[:, 0], dip[:, 0]
+    fl, strike, dip, _ = likelihood_in_memory(f3, opt=opt, plan=whole_plan(f3.shape, opt, arr.ndim), steps=run_learned,
+                                              section=arr.ndim == 2, progress=progress, scale=scale)
     return FaultLikelihood(likelihood=fl, strike_deg=strike, dip_deg=dip)

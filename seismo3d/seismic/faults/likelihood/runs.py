@@ -1,4 +1,5 @@
-"""The one driver of both fault likelihoods (the scan and the network) by blocks: the output Zarr group and its work
+"""The one driver of both fault likelihoods (the scan and the network), in memory (:func:`likelihood_in_memory`: the
+declared steps on one block, the whole cube) and by blocks (:func:`likelihood_by_blocks`): the output Zarr group and its work
 folder (:class:`~seismo3d.seismic.blocks.stores.StoreRun`), the manifest that a resumed run must match, the plan of
 an interrupted run kept, the dask scheduler, the likelihood's declared steps run in their order, the coordinates and
 the saturated fraction written, and the output renamed into place when complete.
@@ -18,12 +19,48 @@ import pathlib
 from collections.abc import Callable
 from dataclasses import asdict
 
-from ...blocks.executor import SchedulerClient
+from ...blocks.executor import MemoryRun, SchedulerClient
 from ...blocks.options import ChunkOptions
 from ...blocks.stores import StoreRun
 from ..result import ChunkedLikelihood
 
-__all__ = ["likelihood_by_blocks"]
+__all__ = ["likelihood_by_blocks", "likelihood_in_memory"]
+
+
+def likelihood_in_memory(x, *, opt, plan: dict, steps: Callable, section: bool = False, progress: bool = False,
+                         **kwargs) -> tuple:
+    """Run a fault likelihood's declared steps in memory, each on one block, the whole cube
+    (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`).
+
+    Parameters
+    ----------
+    x : (n_inlines, n_xlines, n_samples) float32 ndarray
+        The amplitudes; a section as ``(n_traces, 1, n_samples)`` with ``section``.
+    opt : dataclass
+        The likelihood's options.
+    plan : dict
+        The plan of one block, the whole cube (the likelihood's ``whole_plan``).
+    steps : callable
+        ``steps(run, x, opt, plan, **kwargs) -> float``: the likelihood's steps in their order, returning the
+        saturated fraction (as for :func:`likelihood_by_blocks`).
+    section : bool
+        ``x`` is a section: the results are returned as ``(n_traces, n_samples)``.
+    progress : bool
+        Report progress per step.
+    **kwargs
+        Passed to ``steps``.
+
+    Returns
+    -------
+    likelihood, strike_deg, dip_deg : float32 ndarray
+        Of ``x``'s shape (a section's without its crossline axis).
+    saturated : float
+        The saturated fraction ``steps`` returned.
+    """
+    run = MemoryRun(x.shape, progress=progress)
+    saturated = steps(run, x, opt, plan, **kwargs)
+    arrays = [run.arrays.pop(name) for name in ("likelihood", "strike_deg", "dip_deg")]
+    return (*(a[:, 0] if section else a for a in arrays), saturated)
 
 
 def likelihood_by_blocks(x, output, *, opt, plan: dict, steps: Callable, start: Callable, method: str,

@@ -34,12 +34,13 @@ from ...._validation import as_seismic, as_sigma_pair, check_int, check_positive
 from ....errors import InputError, Seismo3dWarning
 from ... import _kernels
 from ...blocks.apply import BlockOutput
-from ...blocks.executor import MemoryRun, check_finite
+from ...blocks.executor import check_finite
 from ...blocks.plan import CUBE, BlockStep, lateral_blocks
 from ...blocks.stores import read_sheared
 from .scan_kernels import (CODE_BITS, FL_LEVELS, box_half, default_angles, exponential_coefficient, orientation_table,
                            scan_dip, smooth_strike, sum_samples)
 from ..result import FaultLikelihood
+from .runs import likelihood_in_memory
 
 __all__ = ["FaultScanOptions", "block_steps", "fault_likelihood", "run_scan", "whole_plan"]
 
@@ -229,13 +230,10 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     opt = resolve_options(FaultScanOptions, options, overrides, "fault_likelihood")
     two_d = arr.ndim == 2
     f3 = _kernels.as_3d(arr)
-    run = MemoryRun(f3.shape, progress=progress)
-    saturated = run_scan(run, f3, opt, whole_plan(f3.shape), two_d=two_d)
+    *found, saturated = likelihood_in_memory(f3, opt=opt, plan=whole_plan(f3.shape), steps=run_scan, section=two_d,
+                                             progress=progress, two_d=two_d)
     _warn_if_saturated(saturated, opt)
-    fl, strike, dip = (run.arrays.pop(name) for name in ("likelihood", "strike_deg", "dip_deg"))
-    if two_d:
-        fl, strike, dip = fl[:, 0, :], strike[:, 0, :], dip[:, 0, :]
-    return FaultLikelihood(fl, strike, dip)
+    return FaultLikelihood(*found)
 
 
 # The scan in steps, each of which runs on a block of a cube (the whole cube in memory): a block's result equals the

@@ -14,7 +14,8 @@ sections run on generated cubes (no data folder needed):
   ``test_blocks_equal_the_in_memory_likelihood``, which keeps the data's own grid, 72 x 80 x 48);
 - ``network_grid``: a block of the 0.7 network grid, its origin off the pooling grid, run as the run by blocks runs
   it (the network step on the region it reads, both directions, then their probability on the block's traces),
-  equals the whole cube's probability within 1e-5 (``test_a_block_on_the_whole_cubes_network_grid_equals_the_whole_cube``);
+  equals the whole cube's probability within 1e-5
+  (``test_a_block_on_the_whole_cubes_network_grid_equals_the_whole_cube``);
 - ``job_limit``: the faults job on a 192 x 192 x 64 cube under a limit between the smallest blocks' need and the
   in-memory need, both the job's own decision in the process as it stands (:func:`_limits`: a third of the way from
   the limit the job's refusal names to the limit above which it runs in memory): block by block, likelihood within

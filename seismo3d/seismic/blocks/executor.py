@@ -11,6 +11,9 @@ The blocks are planned once, before the run, from the steps' declarations and th
 (:class:`~seismo3d.seismic.blocks.plan.BlockStep`) over its blocks: the blocks finished by an earlier run skipped,
 each other block read with the step's halo from the input cube (or from the run's stores by the step's function),
 its function called on it as a dask task, its marker written by the function after its data.
+
+:class:`MemoryRun` runs the same declared steps in memory, each on one block, the whole cube: a computation written
+once against ``run_step`` (the fault likelihoods' ``run_scan``, ``run_learned``) runs in memory and by blocks.
 """
 
 from __future__ import annotations
@@ -30,8 +33,8 @@ from ...errors import EarlierStoresError, InputError
 from .apply import BlockPlace, apply_block, apply_in_memory, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
 
-__all__ = ["BlockRun", "MemoryRun", "SchedulerClient", "check_finite", "kernel_threads", "release_memory", "run_block",
-           "trace_cube", "write_marker"]
+__all__ = ["BlockRun", "MemoryRun", "SchedulerClient", "check_finite", "kernel_threads", "release_memory",
+           "run_block", "trace_cube", "write_marker"]
 
 # glibc's malloc options (malloc.h): allocations above M_MMAP_THRESHOLD are mapped and unmapped on their own, so a
 # freed block's memory goes back to the system at once; setting it also stops glibc raising the threshold as large

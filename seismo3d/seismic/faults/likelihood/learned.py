@@ -498,8 +498,8 @@ def orientation_block_bytes(side: int, n_samples: int, opt: LearnedOptions) -> i
 
 
 def block_steps(plan: dict, opt: LearnedOptions) -> tuple:
-    """The steps of the learned likelihood, declared once, in their order: per network grid K and per
-    direction the network runs on (:func:`plan_directions`), ``'network_inline_K'`` / ``'network_crossline_K'`` (blocks of the network grid
+    """The steps of the learned likelihood, declared once, in their order: per network grid K and per direction the
+    network runs on, ``'network_inline_K'`` / ``'network_crossline_K'`` (blocks of the network grid
     read from the cube with the receptive half of halo along the sections), then ``'orientation'`` (strike and dip on
     square blocks with the tensor smoothing's halo, its likelihood reduced into the saturated fraction), each with its
     block function; the network's block sizes and the orientation's are planned by

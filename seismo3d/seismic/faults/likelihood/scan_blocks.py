@@ -2,7 +2,8 @@
 (:func:`~seismo3d.seismic.faults.likelihood.scan.block_steps`, run in their order by
 :func:`~seismo3d.seismic.faults.likelihood.scan.run_scan`, the same steps the run in memory makes on one block) run
 block by block on dask, with the halo each step needs, results written block by block to Zarr, resumable; the
-blocks planned here under the memory limit, the run by :func:`~seismo3d.seismic.faults.likelihood.runs.likelihood_by_blocks`.
+blocks planned here under the memory limit, the run by
+:func:`~seismo3d.seismic.faults.likelihood.runs.likelihood_by_blocks`.
 
 The steps and their blocks (every block carries exactly the halo its step needs, so the result equals the in-memory
 :func:`~seismo3d.seismic.faults.fault_likelihood` up to float rounding):

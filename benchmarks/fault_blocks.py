@@ -12,8 +12,10 @@ sections run on generated cubes (no data folder needed):
   the likelihood within 1e-5 except where rounding flips the min_dip mask (at most 3 samples), strike and dip within
   0.5 deg where the likelihood is over 0.5 (from ``tests/seismic/faults/likelihood/test_learned.py``
   ``test_blocks_equal_the_in_memory_likelihood``, which keeps the data's own grid, 72 x 80 x 48);
-- ``network_grid``: a block with the 0.7 grid's halo, its origin off the pooling grid, equals the whole cube's
-  probability within 1e-5 (``test_a_block_on_the_whole_cubes_network_grid_equals_the_whole_cube``);
+- ``network_grid``: a block of the 0.7 network grid, its origin off the pooling grid, run as the run by blocks runs
+  it (the network step on the region it reads, both directions, then their probability on the block's traces),
+  equals the whole cube's probability within 1e-5
+  (``test_a_block_on_the_whole_cubes_network_grid_equals_the_whole_cube``);
 - ``job_limit``: the faults job on a 192 x 192 x 64 cube under a limit between the smallest blocks' need and the
   in-memory need, both the job's own decision in the process as it stands (:func:`_limits`: a third of the way from
   the limit the job's refusal names to the limit above which it runs in memory): block by block, likelihood within
@@ -158,25 +160,38 @@ def learned_blocks(tmp: pathlib.Path) -> None:
 
 
 def network_grid(tmp: pathlib.Path) -> None:
-    from seismo3d.seismic.faults.likelihood.learned import LearnedOptions, amplitude_scale, fault_probability
-    from seismo3d.seismic.faults.likelihood.network import POOLING_MULTIPLE, RECEPTIVE_HALF
-    from seismo3d.seismic.faults.likelihood.network_grid import grid_halo
+    import math
 
-    # a block with the network grid's halo, its lateral origin away from 0 on both axes and not a multiple of the
-    # pooling grid on the network grid: its core equals the whole cube's probability up to float rounding. The cube's
-    # 32 samples are 23 on the 0.7 grid, fewer than the default min_grid_samples (which would run the grid of 1
-    # instead, with another halo): the check lowers it so that the 0.7 grid it names is the grid it runs
+    from seismo3d.seismic.blocks.apply import BlockPlace
+    from seismo3d.seismic.faults.likelihood.learned import (
+        LearnedOptions, amplitude_scale, fault_probability, network_block, network_probability, network_region,
+        whole_plan,
+    )
+
+    # a block of the 0.7 network grid, its origin away from 0 on both axes and not a multiple of the pooling grid,
+    # run as the run by blocks runs it (network_block on the region network_region reads, for each direction, then
+    # network_probability on the block's input traces): it equals the whole cube's probability up to float rounding.
+    # The cube's 32 samples are 23 on the 0.7 grid, fewer than the default min_grid_samples (which would run the grid
+    # of 1 instead): the check lowers it so that the 0.7 grid it names is the grid it runs
     opt = LearnedOptions(cube_resample=0.7, min_grid_samples=16)
     assert opt.grids(32, 3) == (0.7,)
     cube = synthetic_cube((232, 236, 32), seed=4, noise=0.1).cube
     scale = amplitude_scale(cube)
     whole = fault_probability(cube, options=opt, scale=scale)
-    halo = grid_halo(RECEPTIVE_HALF, 0.7, POOLING_MULTIPLE)
-    i0, i1, j0, j1 = 100, 132, 107, 129
-    a0, b0 = i0 - halo, j0 - halo
-    assert a0 > 0 and b0 > 0 and i1 + halo < cube.shape[0] and j1 + halo < cube.shape[1]
-    block = fault_probability(cube[a0:i1 + halo, b0:j1 + halo], options=opt, scale=scale, origin=(a0, b0))
-    diff = np.abs(block[i0 - a0:i1 - a0, j0 - b0:j1 - b0] - whole[i0:i1, j0:j1]).max()
+    plan = whole_plan(cube.shape, opt)
+    grid = tuple(plan["grids"][0]["network_shape"])
+    i0, i1, j0, j1 = 100, 132, 107, 129  # input traces; the network samples either side of them:
+    block = (math.floor(i0 * 0.7), math.floor((i1 - 1) * 0.7) + 2, math.floor(j0 * 0.7), math.floor((j1 - 1) * 0.7) + 2)
+    assert block[0] % 8 and block[2] % 8, block  # off the pooling grid (8)
+    networks = []
+    for axis in (0, 1):
+        a0, a1, b0, b1 = region = network_region(block, axis, cube.shape, 0.7)
+        assert a0 > 0 and b0 > 0 and a1 < cube.shape[0] and b1 < cube.shape[1], region  # inside the cube
+        probability = np.zeros(grid, np.float32)
+        out = network_block(BlockPlace(block, region), cube[a0:a1, b0:b1], axis, opt, 0.7, scale, grid[axis])
+        probability[block[0]:block[1], block[2]:block[3]] = out.arrays["probability"]
+        networks.append(probability)
+    diff = np.abs(network_probability(plan, networks, (i0, i1, j0, j1)) - whole[i0:i1, j0:j1]).max()
     print(f"  block core against the whole cube: {diff:.2e}")
     assert diff <= 1e-5
 

@@ -1,12 +1,13 @@
 """Peak memory of the learned likelihood's two block steps, the figures behind ``_NETWORK_INPUT_BYTES``,
-``_NETWORK_BATCH_BYTES`` and ``_ORIENTATION_BYTES`` in seismo3d/seismic/faults/learned_blocks.py.
+``_NETWORK_BATCH_BYTES`` (seismo3d/seismic/faults/likelihood/learned_blocks.py) and ``_ORIENTATION_BYTES``
+(seismo3d/seismic/faults/likelihood/learned.py, beside the step it plans).
 
 Measured with tracemalloc (numpy reports its arrays to it), after a warm-up that loads the weights:
 
-* network blocks of both directions, as ``learned_blocks.network_block`` runs them (the region as read, the
+* network blocks of both directions, as ``learned.network_block`` runs them (the region as read, the
   resampling, the network on the block's sections, the write of its core to a work array), for blocks of a few
   sections and of many, narrow and as wide as the cube; printed beside the bytes the plan's model gives them;
-* an interior orientation block, as ``learned_blocks.orientation_block`` runs it (both directions' probabilities
+* an interior orientation block, as ``learned.orientation_block`` runs it (both directions' probabilities
   read from their work arrays, their maximum interpolated onto the block, ``orientation_from_likelihood``, the dip
   mask, the writes), per sample of the block with its halo beside the planned constant.
 
@@ -23,7 +24,7 @@ import numpy as np
 import zarr
 
 from seismo3d.data.synthetic import synthetic_cube
-from seismo3d.seismic.faults.likelihood import learned_blocks as lb
+from seismo3d.seismic.faults.likelihood import learned, learned_blocks as lb
 from seismo3d.seismic.faults.likelihood.learned import (
     LearnedOptions, amplitude_scale, fault_probability, orientation_from_likelihood,
 )
@@ -43,7 +44,7 @@ def network_blocks(opt: LearnedOptions) -> None:
         cube = synthetic_cube(shape, seed=0, n_faults=2).cube.astype(np.float32)
         scale = amplitude_scale(cube)
         fault_probability(cube[:40, :40, :32], options=opt, scale=scale)  # warm-up: the weights loaded
-        grid = lb._network_shape(shape, factor)
+        grid = learned.network_shape(shape, factor)
         array = f"{work}/net_{shape[2]}"
         zarr.create_array(array, shape=grid, chunks=(16, 16, grid[2]), dtype="float32", fill_value=0,
                           compressors=None)
@@ -52,11 +53,11 @@ def network_blocks(opt: LearnedOptions) -> None:
                 size = (across, along) if axis == 0 else (along, across)
                 block = (16, 16 + size[0], 16, min(16 + size[1], grid[1])) if along < grid[1 - axis] else \
                     ((16, 16 + size[0], 0, grid[1]) if axis == 0 else (0, grid[0], 16, 16 + size[1]))
-                a0, a1, b0, b1 = lb._network_region(block, axis, shape, factor)
+                a0, a1, b0, b1 = learned.network_region(block, axis, shape, factor)
                 region = cube[a0:a1, b0:b1]
                 tracemalloc.start()
                 read = region.copy()  # the block as read
-                lb.network_block(BlockPlace(block, (a0, a1, b0, b1)), read, axis, opt, factor, scale)
+                learned.network_block(BlockPlace(block, (a0, a1, b0, b1)), read, axis, opt, factor, scale)
                 _, peak = tracemalloc.get_traced_memory()
                 tracemalloc.stop()
                 del read
@@ -66,10 +67,10 @@ def network_blocks(opt: LearnedOptions) -> None:
 
 
 def orientation_blocks(opt: LearnedOptions) -> None:
-    halo = lb._orientation_halo(opt)
+    halo = learned.orientation_halo(opt)
     rng = np.random.default_rng(0)
     orientation_from_likelihood(rng.random((20, 20, 32), dtype=np.float32), sigma=float(opt.orientation_sigma))
-    print(f"orientation: halo {halo} traces, planned {lb._ORIENTATION_BYTES} bytes per sample")
+    print(f"orientation: halo {halo} traces, planned {learned._ORIENTATION_BYTES} bytes per sample")
     for core, nt in ((32, 128), (64, 128), (64, 256)):
         shape = (3 * core, 3 * core, nt)
         plan = lb._plan(shape, opt, ChunkOptions(block=core, memory_limit=8 << 30), 0)
@@ -85,11 +86,11 @@ def orientation_blocks(opt: LearnedOptions) -> None:
         side = core + 2 * halo
         tracemalloc.start()
         region = (core - halo, 2 * core + halo, core - halo, 2 * core + halo)  # halo < core here
-        lb.orientation_block(BlockPlace(block, region), *networks, plan, opt)
+        learned.orientation_block(BlockPlace(block, region), *networks, plan, opt)
         _, peak = tracemalloc.get_traced_memory()
         tracemalloc.stop()
         print(f"  block {core} + 2 x {halo} = {side}^2 traces x {nt} samples: peak {peak / 2**20:.1f} MiB, "
-              f"{peak / (side * side * nt):.1f} bytes per sample (planned {lb._ORIENTATION_BYTES})")
+              f"{peak / (side * side * nt):.1f} bytes per sample (planned {learned._ORIENTATION_BYTES})")
 
 
 def main() -> None:

@@ -239,7 +239,7 @@ def whole_place(shape) -> BlockPlace:
     return BlockPlace((0, n0, 0, n1), (0, n0, 0, n1))
 
 
-def apply_in_memory(step: BlockStep, arrays: dict, *args) -> BlockOutput:
+def apply_in_memory(step: BlockStep, arrays: dict, *args, place: BlockPlace | None = None) -> BlockOutput:
     """Run a declared step on the whole array in memory as one block (:func:`whole_place` of its first input): the
     algorithm of :func:`apply_block` on the same inputs, its outputs set in ``arrays`` (combined with what is there
     when the step declares ``combine``), no marker written and no list saved.
@@ -254,6 +254,10 @@ def apply_in_memory(step: BlockStep, arrays: dict, *args) -> BlockOutput:
         (:data:`~seismo3d.seismic.blocks.plan.CUBE` for the amplitudes); its outputs are set in it by name.
     *args
         Passed to the algorithm after the arrays.
+    place : BlockPlace, optional
+        The one block and the region it reads, when they are not :func:`whole_place` of the first input (a step on
+        another grid than the cube's, e.g. the fault network's: its block is the whole network grid, its region the
+        whole cube); the inputs are used whole.
 
     Returns
     -------
@@ -266,7 +270,8 @@ def apply_in_memory(step: BlockStep, arrays: dict, *args) -> BlockOutput:
         An input of the step is not in ``arrays``.
     """
     inputs = [arrays[name] for name in step.inputs]
-    out = _compute(step, whole_place(inputs[0].shape), inputs, args)
+    out = _compute(step, whole_place(inputs[0].shape) if place is None else place, inputs, args)
+    del inputs
     for name, value in _outputs(step, out):
         arrays[name] = value if step.combine is None or name not in arrays else step.combine(value, arrays[name])
     return out

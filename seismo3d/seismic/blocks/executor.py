@@ -12,6 +12,9 @@ The blocks are planned once, before the run, from the steps' declarations and th
 (:class:`~seismo3d.seismic.blocks.plan.BlockStep`) over its blocks: the blocks finished by an earlier run skipped,
 each other block read with the step's halo from the input cube (or from the run's stores by the step's function),
 its function called on it as a dask task, its marker written by the function after its data.
+
+:class:`MemoryRun` runs the same declared steps in memory, each on one block, the whole cube: a computation written
+once against ``run_step`` (the fault likelihoods' ``run_scan``, ``run_learned``) runs in memory and by blocks.
 """
 
 from __future__ import annotations
@@ -28,11 +31,11 @@ import numpy as np
 
 from ..._progress import LOGGER, progress_steps
 from ...errors import InputError
-from .apply import BlockPlace, apply_block, write_marker
+from .apply import BlockPlace, apply_block, apply_in_memory, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
 
-__all__ = ["BlockRun", "SchedulerClient", "check_finite", "kernel_threads", "release_memory", "run_block",
-           "trace_cube", "write_marker"]
+__all__ = ["BlockRun", "MemoryRun", "SchedulerClient", "check_finite", "kernel_threads", "release_memory",
+           "run_block", "trace_cube", "write_marker"]
 
 # glibc's malloc options (malloc.h): allocations above M_MMAP_THRESHOLD are mapped and unmapped on their own, so a
 # freed block's memory goes back to the system at once; setting it also stops glibc raising the threshold as large
@@ -199,6 +202,10 @@ class BlockRun:
             (self.work / "done").mkdir(parents=True)
             (self.work / "manifest.json").write_text(json.dumps(manifest))
 
+    def release(self, *names) -> None:
+        """Nothing: the arrays of a run by blocks stay in its work folder until it finishes
+        (:meth:`MemoryRun.release`'s counterpart)."""
+
     def task(self, fn, *args, threads: bool = True, name: str | None = None):
         """A dask delayed task ``fn(*args)`` of one block (impure: run once per compute), named after ``fn``; on a
         ``dask.distributed`` cluster its kernels use the worker's share of the host's cores (:func:`kernel_threads`)
@@ -339,6 +346,88 @@ class BlockRun:
             scheduler = "synchronous" if self.scheduler == "synchronous" else "threads"
             with _Count():
                 return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
+
+
+class MemoryRun:
+    """The run in memory of the declared steps that :class:`BlockRun` runs by blocks: each step on one block, the
+    whole cube (:func:`~seismo3d.seismic.blocks.apply.apply_in_memory`), its arrays held in :attr:`arrays`; no work
+    folder, no marker, no scheduler. A computation written once against :meth:`run_step` runs by blocks with a
+    :class:`~seismo3d.seismic.blocks.stores.StoreRun` and in memory with this, the blocks of its plan then the whole
+    cube.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        ``(n_inlines, n_xlines, n_samples)`` of the cube (a section: ``(n_traces, 1, n_samples)``).
+    progress : bool
+        Report progress per step.
+
+    Attributes
+    ----------
+    arrays : dict
+        ``{name: ndarray}``: the steps' inputs and outputs by their declared names.
+    computed, resumed, seconds : dict
+        As :class:`BlockRun`'s: one block computed per step, none resumed; wall-clock seconds per step.
+    """
+
+    client = None
+
+    def __init__(self, shape, *, progress: bool = False):
+        self.shape = tuple(int(n) for n in shape)
+        self.arrays, self.progress = {}, progress
+        self.computed, self.resumed, self.seconds = {}, {}, {}
+
+    def saved(self, name: str, compute):
+        """``compute()``: a run in memory is never resumed (:meth:`BlockRun.saved`'s counterpart)."""
+        return compute()
+
+    def release(self, *names) -> None:
+        """Drop the arrays ``names`` that no later step reads (a run by blocks keeps them in its work folder)."""
+        for name in names:
+            self.arrays.pop(name, None)
+
+    def run_step(self, step: BlockStep, blocks, *args, source=None, workers: int | None = None) -> list:
+        """Run a declared step on its one block, in memory: :meth:`BlockRun.run_step`'s counterpart.
+
+        Parameters
+        ----------
+        step : BlockStep
+        blocks : list of tuple
+            The step's blocks: one, the whole cube (or the whole grid of a step on another grid), with its region
+            (``step.region``, default the block grown by ``step.halo``) the whole cube.
+        *args
+            Passed to the algorithm after the arrays.
+        source : (n_inlines, n_xlines, n_samples) ndarray, optional
+            The input cube, when :data:`~seismo3d.seismic.blocks.plan.CUBE` is among the step's inputs.
+        workers : int, optional
+            Not used (one block).
+
+        Returns
+        -------
+        list
+            The block's summary, in a list as :meth:`BlockRun.run_step` returns them.
+
+        Raises
+        ------
+        ValueError
+            More than one block, or a region that is not the whole cube: a plan made for a run by blocks.
+        """
+        if len(blocks) != 1:
+            raise ValueError(f"a run in memory computes one block per step; {step.name!r} has {len(blocks)}")
+        block = tuple(int(v) for v in blocks[0])
+        region = step.region(block) if step.region is not None else around(block, step.halo, self.shape)
+        if tuple(region) != (0, self.shape[0], 0, self.shape[1]):
+            raise ValueError(f"step {step.name!r} reads traces {region} in memory, not the whole cube {self.shape}")
+        start = time.perf_counter()
+        arrays = dict(self.arrays, **({CUBE: source} if source is not None else {}))
+        with progress_steps(1, step.label or step.name, unit="step", enabled=self.progress) as bar:
+            out = apply_in_memory(step, arrays, *args, place=BlockPlace(block, tuple(region)))
+            bar.advance()
+        arrays.pop(CUBE, None)
+        self.arrays = arrays
+        self.computed[step.name], self.resumed[step.name] = 1, 0
+        self.seconds[step.name] = round(self.seconds.get(step.name, 0.0) + time.perf_counter() - start, 2)
+        return [out.summary]
 
 
 def trace_cube(cube, what: str, *, chunks: tuple = (64, -1, -1), dtype=None):

@@ -10,7 +10,7 @@ import pytest
 from scipy import ndimage as ndi
 
 from seismo3d.seismic.blocks.apply import BlockOutput, BlockPlace, apply_in_memory, gather, load_lists, whole_place
-from seismo3d.seismic.blocks.executor import BlockRun
+from seismo3d.seismic.blocks.executor import BlockRun, MemoryRun
 from seismo3d.seismic.blocks.plan import CUBE, BlockStep, lateral_blocks
 
 zarr = pytest.importorskip("zarr")
@@ -116,3 +116,28 @@ def test_the_same_steps_on_the_whole_array_in_memory_are_one_block(tmp_path):
     apply_in_memory(BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",),
                               combine=np.maximum), arrays)
     np.testing.assert_array_equal(arrays["smooth"], zarr.open_array(str(tmp_path / "smooth"))[:])
+
+
+def test_a_memory_run_is_the_block_run_of_the_same_steps_on_one_block(tmp_path):
+    """MemoryRun.run_step, the run in memory of the likelihoods, gives what BlockRun.run_step writes block by block:
+    the same declared steps, one block (the whole cube), the summaries as a list, no work folder."""
+    cube = _cube()
+    smooth = BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",))
+    peaks = BlockStep("peaks", "gather", HALO, function=_peaks, inputs=("smooth",), outputs=("double",), place=True)
+    _, (_, by_blocks) = _run(tmp_path, cube, (smooth, ()), (peaks, (0.2,)))
+    run = MemoryRun(SHAPE)
+    whole = lateral_blocks(SHAPE, 11, 11)
+    assert whole == [(0, 11, 0, 9)]
+    assert run.run_step(smooth, whole, source=cube) == [{"n": cube.size}]
+    found = run.run_step(peaks, whole, 0.2)
+    assert found == [{"count": sum(r["count"] for r in by_blocks)}]
+    assert set(run.arrays) == {"smooth", "double"} and run.computed == {"smooth": 1, "peaks": 1}
+    np.testing.assert_array_equal(run.arrays["smooth"], zarr.open_array(str(tmp_path / "smooth"))[:])
+    np.testing.assert_array_equal(run.arrays["double"], zarr.open_array(str(tmp_path / "double"))[:])
+    run.release("smooth")
+    assert set(run.arrays) == {"double"}
+    # a plan of several blocks, or a region short of the whole cube, is a plan for a run by blocks
+    with pytest.raises(ValueError, match="one block per step"):
+        run.run_step(smooth, lateral_blocks(SHAPE, 4, 4), source=cube)
+    with pytest.raises(ValueError, match="not the whole cube"):
+        run.run_step(smooth, [(0, 4, 0, 4)], source=cube)

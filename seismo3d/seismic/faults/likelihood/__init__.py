@@ -6,9 +6,12 @@
   :mod:`~seismo3d.seismic.faults.likelihood.network_grid`.
 - :mod:`~seismo3d.seismic.faults.likelihood.scan`: the scan of fault strikes and dips of the semblance of balanced
   amplitudes (Hale 2013); its numba kernels in :mod:`~seismo3d.seismic.faults.likelihood.scan_kernels`.
-- :mod:`~seismo3d.seismic.faults.likelihood.scan_blocks`, :mod:`~seismo3d.seismic.faults.likelihood.learned_blocks`:
-  either likelihood of a cube larger than memory, as its declared steps (block functions, halos, costs) run block by
-  block by the executor of :mod:`seismo3d.seismic.blocks`.
+- Each likelihood declares its steps once beside its algorithm (``block_steps``: block functions, halos, costs) and
+  runs them in their order in one function of a run (``run_scan``, ``run_learned``): in memory on one block, the
+  whole cube (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`), or block by block
+  (:mod:`~seismo3d.seismic.faults.likelihood.scan_blocks`, :mod:`~seismo3d.seismic.faults.likelihood.learned_blocks`:
+  the blocks planned under a memory limit; :mod:`~seismo3d.seismic.faults.likelihood.runs`: the one driver of both
+  into a resumable Zarr group).
 """
 
 from .learned import LearnedOptions, learned_fault_likelihood

@@ -20,6 +20,11 @@ How it is run:
   is the eigenvector of the largest eigenvalue of the smoothed outer products of its gradient (the likelihood changes
   fastest across a fault).
 
+The steps are declared once (:func:`block_steps`: per network grid and direction the network on blocks of the
+network grid, then strike and dip) and run in their order by :func:`run_learned`: in memory on one block, the whole
+cube or section (a section as a cube of one crossline, the network on its one section), or block by block
+(:mod:`~seismo3d.seismic.faults.likelihood.learned_blocks`).
+
 The result is a :class:`~seismo3d.seismic.faults.result.FaultLikelihood`, like the scan's, so the rest of
 :func:`~seismo3d.seismic.faults.pipeline.trace_faults` (ridges, voting, skins, throw, evidence) runs after it
 unchanged.
@@ -37,6 +42,7 @@ MICCAI 2015, LNCS 9351, 234-241. doi:10.1007/978-3-319-24574-4_28
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -47,17 +53,26 @@ from scipy.ndimage import zoom
 from ...._progress import progress_steps
 from ....errors import InputError
 from ...adapted_network import MODEL_NETWORK, is_model_path, read_adapted_model
+from ...blocks.apply import BlockOutput
+from ...blocks.executor import MemoryRun, check_finite
+from ...blocks.plan import CUBE, BlockStep, lateral_blocks
 from ..result import FaultLikelihood
 from .network import (
     INT8_SHA256, NETWORKS, RECEPTIVE_HALF, WEIGHTS_SHA256, FaultNetwork, POOLING_MULTIPLE, load_fault_network,
     normalise_section, unet_forward,
 )
-from .network_grid import from_network_grid, grid_factors, grid_size, interpolate_axis, to_network_grid
+from .network_grid import (
+    anti_alias_sigma, from_network_grid, grid_factors, grid_size, interpolate_axis, to_network_grid,
+)
 from .orientation import orientation_from_likelihood
+from .runs import likelihood_in_memory
 
 __all__ = ["WEIGHTS_SHA256", "INT8_SHA256", "NETWORKS", "LearnedOptions", "load_fault_network", "scale_subsample",
            "amplitude_scale", "fault_probability", "cube_directions", "direction_probability",
-           "learned_fault_likelihood", "orientation_from_likelihood", "grids_mean", "load_network", "section_span"]
+           "learned_fault_likelihood", "orientation_from_likelihood", "grids_mean", "load_network", "section_span",
+           "DIRECTION_NAMES", "block_steps", "network_block", "network_blocks", "network_probability",
+           "network_region", "network_shape", "orientation_block", "orientation_block_bytes", "orientation_halo",
+           "orientation_step", "run_learned", "whole_plan"]
 
 _SCALE_SAMPLES = 4_000_000
 
@@ -311,43 +326,6 @@ def _sections_probability(stack: np.ndarray, scale, weights, batch: int, bar, st
     return out
 
 
-def fault_probability(data: np.ndarray, *, options: LearnedOptions | None = None, scale=None,
-                      progress: bool = False, origin=None) -> np.ndarray:
-    """The network's fault probability of a section or cube (no orientation).
-
-    Parameters
-    ----------
-    data : (n_traces, n_samples) or (n_inlines, n_xlines, n_samples) ndarray
-        Amplitudes.
-    options : LearnedOptions, optional
-    scale : (float, float), optional
-        (median, standard deviation) of the amplitudes (:func:`amplitude_scale`); default: of ``data``.
-    progress : bool, optional
-        A progress bar over the sections.
-    origin : sequence of int, optional
-        Global lateral index of ``data``'s first trace when it is a block of a larger cube (the network grid is the
-        whole cube's: :func:`~seismo3d.seismic.faults.likelihood.network_grid.to_network_grid`); default 0.
-
-    Returns
-    -------
-    ndarray, float32, the shape of ``data``
-        Probability in [0, 1]: the mean over the network grids of ``options.grids`` (in their order) of the
-        probability on each grid (the larger of the two directions' in a cube), interpolated back.
-    """
-    opt = options or LearnedOptions()
-    arr = np.asarray(data, dtype=np.float32)
-    scale = amplitude_scale(arr) if scale is None else scale
-    total = None
-    factors = opt.grids(arr.shape[-1], arr.ndim)
-    for factor in factors:
-        small, first = to_network_grid(arr, factor, origin=origin, align=POOLING_MULTIPLE)
-        prob = _network_probability(small, opt, scale, progress, opt.stretch(arr.shape[-1], factor, arr.ndim))
-        prob = from_network_grid(prob, arr.shape, factor, origin=origin, first=first)
-        del small
-        total = prob if total is None else np.add(total, prob, out=total)
-    return grids_mean(total, len(factors))
-
-
 def grids_mean(total: np.ndarray, n_grids: int) -> np.ndarray:
     """The mean of the network grids' probabilities from their sum (in place): the one division both the run in
     memory and the run by blocks make, so that their likelihoods are the same bits.
@@ -366,26 +344,6 @@ def grids_mean(total: np.ndarray, n_grids: int) -> np.ndarray:
     if n_grids > 1:
         total *= np.float32(1.0 / n_grids)
     return total
-
-
-def _network_probability(arr: np.ndarray, opt: LearnedOptions, scale, progress: bool,
-                         stretch_to: int = 0) -> np.ndarray:
-    """The network's probability of a section or cube on its own grid (every inline and crossline section)."""
-    weights = load_network(opt.model(arr.ndim))
-    batch = int(opt.sections_per_batch)
-    if arr.ndim == 2:
-        with progress_steps(1, "fault network", unit="section", enabled=progress) as bar:
-            return _sections_probability(arr[None], scale, weights, batch, bar, stretch_to)[0]
-    directions = cube_directions(opt)
-    prob = None
-    with progress_steps(sum(len(section_span(0, arr.shape[a], int(opt.section_step), arr.shape[a])[1])
-                            for a in directions), "fault network", unit="section",
-                        enabled=progress) as bar:
-        for axis in directions:
-            one = direction_probability(arr, axis, scale=scale, batch=batch, bar=bar, stretch_to=stretch_to,
-                                        network=opt.model(3), step=int(opt.section_step))
-            prob = one if prob is None else np.maximum(prob, one)
-    return np.ascontiguousarray(prob)
 
 
 def cube_directions(options: LearnedOptions) -> tuple:
@@ -518,9 +476,383 @@ def section_span(start: int, stop: int, step: int, n_sections: int) -> tuple:
     return (int(first), int(last) + 1), computed, positions
 
 
+# The learned likelihood's steps, declared once (:func:`block_steps`) and run in their order by :func:`run_learned`,
+# by blocks (:mod:`~seismo3d.seismic.faults.likelihood.learned_blocks`) or on the whole cube in memory.
+# bytes per sample of an orientation block (halo included) at its peak: the probability, its gradients, the tensor
+# components, the normals (measured 48.0 with tracemalloc on an 82 x 82 x 500 block of the fault_paths target; 72.0
+# while the tensor was still held as the angles were computed); the headroom for the allocator is block_budget's
+_ORIENTATION_BYTES = 54
+
+DIRECTION_NAMES = {0: "inline", 1: "crossline"}
+
+
+def orientation_halo(opt: LearnedOptions) -> int:
+    """Traces on each side of a strike-and-dip block (the tensor's Gaussian radius at truncate 4, and the
+    gradient's neighbour)."""
+    return int(np.ceil(4 * float(opt.orientation_sigma))) + 1  # Gaussian radius (truncate 4) and the gradient
+
+
+def orientation_block_bytes(side: int, n_samples: int, opt: LearnedOptions) -> int:
+    """Bytes of a strike-and-dip block of ``side`` traces a side, its halo included."""
+    return (int(side) + 2 * orientation_halo(opt)) ** 2 * int(n_samples) * _ORIENTATION_BYTES
+
+
+def block_steps(plan: dict, opt: LearnedOptions) -> tuple:
+    """The steps of the learned likelihood, declared once, in their order: per network grid K and per direction the
+    network runs on, ``'network_inline_K'`` / ``'network_crossline_K'`` (blocks of the network grid
+    read from the cube with the receptive half of halo along the sections), then ``'orientation'`` (strike and dip on
+    square blocks with the tensor smoothing's halo, its likelihood reduced into the saturated fraction), each with its
+    block function; the network's block sizes and the orientation's are planned by
+    :func:`~seismo3d.seismic.faults.likelihood.learned_blocks.chunked_learned_likelihood` (or are the whole cube:
+    :func:`whole_plan`).
+
+    Parameters
+    ----------
+    plan : dict
+        The run's plan: ``shape``, ``grids`` (``factor``, ``network_shape``, ``network_blocks`` by direction name),
+        ``block_orientation``; ``ndim`` 2 for a section (a cube of one crossline), else 3.
+    opt : LearnedOptions
+
+    Returns
+    -------
+    tuple of BlockStep
+    """
+    shape = tuple(plan["shape"])
+    steps = []
+    for k, g in enumerate(plan["grids"]):
+        factor = float(g["factor"])
+        for axis in _plan_directions(plan, opt):
+            name = DIRECTION_NAMES[axis]
+            label = f"fault network on {name}s" + (f" (grid {factor:g})" if len(plan["grids"]) > 1 else "")
+            # the network's blocks are on the network grid: their outputs are their cores already (trim=False)
+            steps.append(BlockStep(f"network_{name}_{k}", "map", RECEPTIVE_HALF, function=network_block, label=label,
+                                   region=functools.partial(network_region, axis=axis, shape=shape, factor=factor,
+                                                            step=_section_step(plan, opt)),
+                                   inputs=(CUBE,), outputs=(("probability", f"network_{name}_{k}"),), place=True,
+                                   trim=False))
+    networks = tuple(f"network_{name}_{k}" for k, g in enumerate(plan["grids"]) for name in g["network_blocks"])
+    return (*steps, orientation_step(shape, opt, plan["block_orientation"], plan["block_orientation"], networks))
+
+
+def orientation_step(shape, opt: LearnedOptions, cap: int, fixed=None, networks: tuple = ()) -> BlockStep:
+    """Strike and dip on square blocks from the network arrays ``networks`` (the probability reduced into the
+    saturated fraction)."""
+    nt = int(shape[2])
+    return BlockStep("orientation", "reduce", orientation_halo(opt), lambda b: orientation_block_bytes(b, nt, opt),
+                     cap, fixed, function=orientation_block, label="fault orientation", inputs=networks,
+                     outputs=("likelihood", "strike_deg", "dip_deg"), place=True, lazy=True)
+
+
+def network_shape(shape, factor: float) -> tuple:
+    """The whole cube's network grid: samples per axis."""
+    return tuple(grid_size(int(n), factor) for n in shape)
+
+
+def _input_span(u0: int, u1: int, need: int, factor: float, n: int) -> tuple:
+    """Input samples ``[a0, a1)`` along one lateral axis whose resampling gives the whole cube's network samples
+    ``[u0 - need, u1 + need)`` (within the cube) exactly: the anti-alias filter's radius and the linear
+    interpolation's neighbour on both sides. ``u0 - need`` is a multiple of the pooling multiple, so at factor 1
+    ``a0`` is too (the block's pooling grid is the cube's)."""
+    if factor == 1.0:
+        return max(u0 - need, 0), min(u1 + need, n)
+    margin = int(4.0 * anti_alias_sigma(factor) + 0.5) + 2  # scipy's Gaussian radius at truncate 4, and one more
+    return (max(math.floor((u0 - need) / factor) - margin, 0),
+            min(math.floor((u1 - 1 + need) / factor) + 1 + margin, n))
+
+
+def network_region(block, axis: int, shape, factor: float, step: int = 1) -> tuple:
+    """``(a0, a1, b0, b1)``: the input traces a network block of direction ``axis`` reads (the receptive half along
+    its sections, the resampling's margin across them, and the computed sections its others are interpolated from
+    when ``step`` > 1: :func:`~seismo3d.seismic.faults.likelihood.learned.section_span`)."""
+    u0, u1, v0, v1 = block
+    if axis == 0:
+        u0, u1 = section_span(u0, u1, step, grid_size(int(shape[0]), factor))[0]
+    else:
+        v0, v1 = section_span(v0, v1, step, grid_size(int(shape[1]), factor))[0]
+    need = (0, RECEPTIVE_HALF) if axis == 0 else (RECEPTIVE_HALF, 0)
+    return _input_span(u0, u1, need[0], factor, shape[0]) + _input_span(v0, v1, need[1], factor, shape[1])
+
+
+def network_blocks(grid, across: int, along: int, axis: int) -> list:
+    """``(u0, u1, v0, v1)`` network-grid blocks of ``across`` sections by ``along`` traces for direction ``axis``."""
+    size = (across, along) if axis == 0 else (along, across)
+    return lateral_blocks(grid, *size)
+
+
+def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale, n_sections: int,
+                  ndim: int = 3) -> BlockOutput:
+    """The network's probability (:func:`direction_probability`) on the sections of one block of the network grid
+    (``place.block``, direction ``axis``), from the amplitudes of its input region (``place.region``, read with the
+    receptive half of halo along the sections).
+
+    Parameters
+    ----------
+    place : BlockPlace
+        The block on the network grid and its input region (:func:`network_region`).
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of ``place.region``.
+    axis : {0, 1}
+        The sections' direction (inlines, crosslines).
+    opt : LearnedOptions
+    factor : float
+        The network grid's resampling factor.
+    scale : (float, float)
+        The cube's amplitude scale (:func:`amplitude_scale`).
+    n_sections : int
+        Sections of the whole cube's network grid along ``axis`` (``LearnedOptions.section_step``'s last one).
+    ndim : {3, 2}
+        2: the cube is a section (one crossline, ``axis`` 1), run as a section is
+        (:meth:`LearnedOptions.model`, :meth:`LearnedOptions.stretch`, every section).
+
+    Returns
+    -------
+    BlockOutput
+        ``probability``: (u1 - u0, v1 - v0, network samples) float32, the block's core on the network grid.
+
+    Raises
+    ------
+    InputError
+        The region holds NaN or inf.
+    """
+    f = np.ascontiguousarray(f, dtype=np.float32)
+    u0, u1, v0, v1 = place.block
+    check_finite(f, (place.origin[0], place.origin[0] + f.shape[0] - 1))
+    aligns = (1, POOLING_MULTIPLE) if axis == 0 else (POOLING_MULTIPLE, 1)
+    small, first = to_network_grid(f, factor, origin=place.origin, align=aligns)
+    n_samples = f.shape[2]
+    del f
+    step = int(opt.section_step) if ndim == 3 else 1
+    (s0, s1) = section_span(*((u0, u1) if axis == 0 else (v0, v1)), step, n_sections)[0]  # with the computed ones
+    r0, r1, c0, c1 = u0 - first[0], u1 - first[0], v0 - first[1], v1 - first[1]
+    k0, k1 = s0 - first[axis], s1 - first[axis]
+    assert min(r0, c0, k0) >= 0 and max(r1, k1 if axis == 0 else 0) <= small.shape[0] \
+        and max(c1, k1 if axis == 1 else 0) <= small.shape[1], "network block outside its region"
+    sections = small[k0:k1] if axis == 0 else small[:, k0:k1]
+    prob = direction_probability(sections, axis, scale=scale, batch=int(opt.sections_per_batch),
+                                 stretch_to=opt.stretch(n_samples, factor, ndim), network=opt.model(ndim), step=step,
+                                 origin=s0, n_sections=n_sections)
+    if axis == 0:
+        return BlockOutput({"probability": prob[u0 - s0:u1 - s0, c0:c1]})
+    return BlockOutput({"probability": prob[r0:r1, v0 - s0:v1 - s0]})
+
+
+def network_probability(plan: dict, networks, region) -> np.ndarray:
+    """The network's probability on the input samples of ``region`` ``(a0, a1, b0, b1)`` from the network arrays
+    ``networks`` (read by slicing; per grid, its directions): on each network grid the larger of the two directions',
+    interpolated, then the grids' mean in their order (:func:`grids_mean`).
+
+    Parameters
+    ----------
+    plan : dict
+        As :func:`block_steps`'.
+    networks : sequence of arrays
+        ``(grid0, grid1, network samples)`` float32 (Zarr arrays by blocks, ndarrays in memory), per grid its
+        directions in the order of ``network_blocks``.
+    region : (int, int, int, int)
+        Input traces.
+
+    Returns
+    -------
+    (a1 - a0, b1 - b0, n_samples) float32 ndarray
+    """
+    a0, a1, b0, b1 = region
+    total = None
+    arrays = iter(networks)
+    for g in plan["grids"]:
+        factor, grid = float(g["factor"]), g["network_shape"]
+        if factor == 1.0:
+            u, v = (a0, a1), (b0, b1)
+        else:  # the network samples either side of every input sample of the region
+            u = (math.floor(a0 * factor), min(math.floor((a1 - 1) * factor) + 2, grid[0]))
+            v = (math.floor(b0 * factor), min(math.floor((b1 - 1) * factor) + 2, grid[1]))
+        small = None
+        for _ in g["network_blocks"]:
+            one = next(arrays)[u[0]:u[1], v[0]:v[1]]
+            small = one if small is None else np.maximum(small, one)
+        prob = from_network_grid(small, (a1 - a0, b1 - b0, plan["shape"][2]), factor, origin=(a0, b0),
+                                 first=(u[0], v[0], 0))
+        del small
+        total = prob if total is None else np.add(total, prob, out=total)
+    return grids_mean(total, len(plan["grids"]))
+
+
+def orientation_block(place, *networks_plan_opt) -> BlockOutput:
+    """Strike and dip of one block (:func:`orientation_from_likelihood`) from the probability around it
+    (``place.region``, the tensor smoothing's halo), read from the network arrays; with the likelihood (0 below the
+    smallest dip) and its saturated samples.
+
+    Parameters
+    ----------
+    place : BlockPlace
+    *networks_plan_opt
+        The network arrays (read by slicing: per grid, its directions), then the run's plan (dict; ``ndim`` 2: a
+        section, one block, its orientation from the 2D structure tensor) and the :class:`LearnedOptions`.
+
+    Returns
+    -------
+    BlockOutput
+        ``likelihood``, ``strike_deg``, ``dip_deg`` of the core; summary ``high``.
+    """
+    *networks, plan, opt = networks_plan_opt
+    prob = network_probability(plan, networks, place.region)
+    core = place.core  # the tensor smoothed over the region, eigen-decomposed at the core only (the same bits)
+    if plan.get("ndim", 3) == 2:  # a section (one crossline): its own 2D structure tensor
+        strike, dip = (a[:, None] for a in orientation_from_likelihood(prob[:, 0], sigma=float(opt.orientation_sigma)))
+    else:
+        strike, dip = orientation_from_likelihood(prob, sigma=float(opt.orientation_sigma), core=core)
+    likelihood = np.where(dip < float(opt.min_dip), np.float32(0.0), prob[core])
+    return BlockOutput({"likelihood": likelihood, "strike_deg": strike, "dip_deg": dip},
+                       {"high": int(np.count_nonzero(likelihood > float(opt.saturation_level)))})
+
+
+def _plan_directions(plan: dict, opt: LearnedOptions) -> tuple:
+    """:func:`cube_directions` in a cube; the crossline axis in a section (a cube of one crossline: its section)."""
+    return (1,) if plan.get("ndim", 3) == 2 else cube_directions(opt)
+
+
+def _section_step(plan: dict, opt: LearnedOptions) -> int:
+    """``LearnedOptions.section_step`` in a cube; 1 in a section (its one section computed)."""
+    return int(opt.section_step) if plan.get("ndim", 3) == 3 else 1
+
+
+def whole_plan(shape, opt: LearnedOptions, ndim: int = 3) -> dict:
+    """The plan of a run in memory: every step on one block, the whole cube (on each network grid, the whole grid).
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)``; a section as ``(n_traces, 1, n_samples)`` with ``ndim`` 2.
+    opt : LearnedOptions
+    ndim : {3, 2}
+        Of the input: a section runs the grids, model and stretch of a section (:meth:`LearnedOptions.grids`).
+
+    Returns
+    -------
+    dict
+        As :func:`block_steps` reads it.
+    """
+    shape = tuple(int(n) for n in shape)
+    plan = {"shape": list(shape), "ndim": int(ndim), "grids": []}
+    for factor in opt.grids(shape[2], ndim):
+        grid = network_shape(shape, factor)
+        plan["grids"].append({"factor": factor, "network_shape": list(grid), "network_blocks": {
+            DIRECTION_NAMES[axis]: [grid[axis], grid[1 - axis]] for axis in _plan_directions(plan, opt)}})
+    side = max(shape[0], shape[1])
+    return dict(plan, tile=side, block_orientation=side, workers_orientation=1)
+
+
+def _cube_scale(x, ndim: int) -> tuple:
+    """:func:`amplitude_scale` of a cube in memory or lazy (dask) from its subsample of traces, checked finite (a
+    section as a cube of one crossline, ``ndim`` 2, subsampled as the section)."""
+    s0, s1 = scale_subsample(x.shape) if ndim == 3 else (scale_subsample((x.shape[0], x.shape[2]))[0], 1)
+    sample = np.asarray(x[::s0, ::s1, :], dtype=np.float32)
+    check_finite(sample)
+    return amplitude_scale(sample, subsample=False)
+
+
+def run_networks(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> tuple:
+    """The network steps of :func:`block_steps` (every grid, every direction) in their order on a run.
+
+    Parameters
+    ----------
+    run : StoreRun or MemoryRun
+        By blocks, or in memory on one block (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`).
+    x : (n_inlines, n_xlines, n_samples) ndarray or dask.array.Array
+        Amplitudes (a section as a cube of one crossline, ``plan['ndim']`` 2).
+    opt : LearnedOptions
+    plan : dict
+        As :func:`block_steps` reads it.
+    scale : (float, float), optional
+        The amplitude scale; default :func:`amplitude_scale` of ``x``'s subsample (kept by a resumed run).
+
+    Returns
+    -------
+    tuple of str
+        The names of the network arrays in :attr:`run.arrays`, per grid its directions.
+    """
+    ndim = int(plan.get("ndim", 3))
+    if scale is None:
+        scale = tuple(run.saved("scale", lambda: list(_cube_scale(x, ndim))))
+    steps = iter(block_steps(plan, opt)[:-1])
+    names = []
+    for g in plan["grids"]:
+        for axis in _plan_directions(plan, opt):
+            step = next(steps)
+            blocks = network_blocks(g["network_shape"], *g["network_blocks"][DIRECTION_NAMES[axis]], axis)
+            run.run_step(step, blocks, axis, opt, float(g["factor"]), tuple(scale), int(g["network_shape"][axis]),
+                         ndim, source=x)
+            names.append(step.name)
+    return tuple(names)
+
+
+def run_learned(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> float:
+    """The learned likelihood's declared steps (:func:`block_steps`) in their order on a run: the network on every
+    grid and direction (:func:`run_networks`), then strike, dip and the likelihood (0 below ``opt.min_dip``) left in
+    the run's arrays.
+
+    Parameters
+    ----------
+    run : StoreRun or MemoryRun
+    x : (n_inlines, n_xlines, n_samples) ndarray or dask.array.Array
+    opt : LearnedOptions
+    plan : dict
+        As :func:`block_steps` reads it (:func:`whole_plan` in memory).
+    scale : (float, float), optional
+        As :func:`run_networks`'.
+
+    Returns
+    -------
+    float
+        The saturated fraction: samples with a likelihood above ``opt.saturation_level``.
+    """
+    networks = run_networks(run, x, opt, plan, scale=scale)
+    side = plan["block_orientation"]
+    results = run.run_step(block_steps(plan, opt)[-1], lateral_blocks(plan["shape"], side, side), plan, opt,
+                           workers=plan["workers_orientation"])
+    run.release(*networks)
+    return sum(r["high"] for r in results) / float(np.prod(plan["shape"]))
+
+
+def fault_probability(data: np.ndarray, *, options: LearnedOptions | None = None, scale=None,
+                      progress: bool = False) -> np.ndarray:
+    """The network's fault probability of a section or cube (no orientation): the network steps of the learned
+    likelihood (:func:`run_networks`) on one block, the whole input, and their grids' mean
+    (:func:`network_probability`).
+
+    Parameters
+    ----------
+    data : (n_traces, n_samples) or (n_inlines, n_xlines, n_samples) ndarray
+        Amplitudes.
+    options : LearnedOptions, optional
+    scale : (float, float), optional
+        (median, standard deviation) of the amplitudes (:func:`amplitude_scale`); default: of ``data``.
+    progress : bool, optional
+        Report progress over the steps.
+
+    Returns
+    -------
+    ndarray, float32, the shape of ``data``
+        Probability in [0, 1]: the mean over the network grids of ``options.grids`` (in their order) of the
+        probability on each grid (the larger of the two directions' in a cube), interpolated back.
+    """
+    opt = options or LearnedOptions()
+    arr = np.asarray(data, dtype=np.float32)
+    f3 = arr[:, None, :] if arr.ndim == 2 else arr
+    plan = whole_plan(f3.shape, opt, arr.ndim)
+    run = MemoryRun(f3.shape, progress=progress)
+    networks = run_networks(run, f3, opt, plan, scale=scale)
+    prob = network_probability(plan, [run.arrays[name] for name in networks], (0, f3.shape[0], 0, f3.shape[1]))
+    return prob[:, 0] if arr.ndim == 2 else prob
+
+
 def learned_fault_likelihood(data, *, options: LearnedOptions | None = None, scale=None,
                              progress: bool = False) -> FaultLikelihood:
     """Fault likelihood, strike and dip of a section or cube from the shipped fault network.
+
+    The steps are those of the run by blocks (:func:`block_steps`, run in their order by :func:`run_learned`), here
+    on one block, the whole input (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`); a section runs as a cube
+    of one crossline whose one section the network sees, with the model, grids and stretch of a section
+    (:meth:`LearnedOptions.model`) and its orientation from the 2D structure tensor.
 
     Parameters
     ----------
@@ -532,7 +864,7 @@ def learned_fault_likelihood(data, *, options: LearnedOptions | None = None, sca
         (median, standard deviation) of the whole input's amplitudes, when ``data`` is a block of it
         (:func:`amplitude_scale`); default: of ``data``.
     progress : bool, optional
-        A progress bar over the sections.
+        Report progress over the steps.
 
     Returns
     -------
@@ -561,7 +893,7 @@ def learned_fault_likelihood(data, *, options: LearnedOptions | None = None, sca
     arr = arr.astype(np.float32, copy=False)
     if not np.isfinite(arr).all():
         raise InputError("data holds NaN or inf samples; replace them (trace_faults reads them as 0)")
-    prob = fault_probability(arr, options=opt, scale=scale, progress=progress)
-    strike, dip = orientation_from_likelihood(prob, sigma=float(opt.orientation_sigma))
-    prob[dip < float(opt.min_dip)] = 0.0
-    return FaultLikelihood(likelihood=prob, strike_deg=strike, dip_deg=dip)
+    f3 = arr[:, None, :] if arr.ndim == 2 else arr
+    fl, strike, dip, _ = likelihood_in_memory(f3, opt=opt, plan=whole_plan(f3.shape, opt, arr.ndim), steps=run_learned,
+                                              section=arr.ndim == 2, progress=progress, scale=scale)
+    return FaultLikelihood(likelihood=fl, strike_deg=strike, dip_deg=dip)

@@ -24,21 +24,25 @@ Dips are in index space; to convert them to true dips use ``atan(tan(dip) * dz /
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numba as nb
 import numpy as np
 
 from ...._options import resolve_options
-from ...._progress import progress_steps
 from ...._validation import as_seismic, as_sigma_pair, check_int, check_positive
 from ....errors import InputError, Seismo3dWarning
 from ... import _kernels
+from ...blocks.apply import BlockOutput
+from ...blocks.executor import check_finite
+from ...blocks.plan import CUBE, BlockStep, lateral_blocks
+from ...blocks.stores import read_sheared
 from .scan_kernels import (CODE_BITS, FL_LEVELS, box_half, default_angles, exponential_coefficient, orientation_table,
                            scan_dip, smooth_strike, sum_samples)
 from ..result import FaultLikelihood
+from .runs import likelihood_in_memory
 
-__all__ = ["FaultScanOptions", "fault_likelihood"]
+__all__ = ["FaultScanOptions", "block_steps", "fault_likelihood", "run_scan", "whole_plan"]
 
 
 @dataclass(frozen=True)
@@ -169,6 +173,10 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     linear in the number of samples and in the number of scanned planes (300 by default in 3D: 24 strikes x 13
     dips, vertical planes counted once; 25 in 2D).
 
+    The steps are those of the run by blocks (:func:`block_steps`, run in their order by :func:`run_scan`), here on
+    one block, the whole array (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`); a section runs as a cube of
+    one crossline, its steps told that it is 2D (3 traces in the semblance, the planes of a section).
+
     Parameters
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
@@ -177,8 +185,7 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
         The scanned strikes and dips, smoothing, balancing and power (see :class:`FaultScanOptions` for the
         defaults).
     progress : bool, optional
-        Report the scan's progress over strikes (:mod:`seismo3d._progress`: a bar on a terminal, log lines
-        otherwise).
+        Report the progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, log lines otherwise).
     **overrides
         Fields of :class:`FaultScanOptions` by name, replacing those of ``options``.
 
@@ -223,25 +230,14 @@ def fault_likelihood(data, *, options: FaultScanOptions | None = None, progress:
     opt = resolve_options(FaultScanOptions, options, overrides, "fault_likelihood")
     two_d = arr.ndim == 2
     f3 = _kernels.as_3d(arr)
-    stats = AmplitudeStatistics.of(f3)
-    # structure-oriented semblance numerator and denominator of each sample (3 x 3 traces along the reflector),
-    # summed over pairs of samples (the scan's vertical step)
-    sn, sd = semblance_terms(balance_amplitudes(f3, opt, stats, two_d=two_d), opt, two_d=two_d)
-    tiny = semblance_floor(float(sd.sum(dtype=np.float64)), sd.size)
-    live = sd > tiny
-    # the scan: each plane's semblance smoothed within it; the best plane per sample, packed into one int32 key
-    key = scan_planes(sn, sd, opt, tiny, n_samples=f3.shape[2], two_d=two_d, progress=progress)
-    del sn, sd
-    _warn_if_saturated(*saturation_counts(key, live, opt.saturation_level), opt)
-    fl, strike, dip = decode_scan(key, opt, n_samples=f3.shape[2], two_d=two_d)
-    del key
-    if two_d:
-        fl, strike, dip = fl[:, 0, :], strike[:, 0, :], dip[:, 0, :]
-    return FaultLikelihood(fl, strike, dip)
+    *found, saturated = likelihood_in_memory(f3, opt=opt, plan=whole_plan(f3.shape), steps=run_scan, section=two_d,
+                                             progress=progress, two_d=two_d)
+    _warn_if_saturated(saturated, opt)
+    return FaultLikelihood(*found)
 
 
-# The scan in steps, each of which also runs on a block of a cube (seismo3d.seismic.faults.likelihood.scan_blocks): a
-# block's result equals the whole cube's over the block when the block carries the halo each step needs.
+# The scan in steps, each of which runs on a block of a cube (the whole cube in memory): a block's result equals the
+# whole cube's over the block when the block carries the halo each step needs.
 
 @dataclass(frozen=True)
 class AmplitudeStatistics:
@@ -269,11 +265,6 @@ class AmplitudeStatistics:
         mean_square = sum_squares / max(int(count), 1) * scale * scale
         return cls(scale, float(1e-6 * mean_square + 1e-30))
 
-    @classmethod
-    def of(cls, f3: np.ndarray) -> "AmplitudeStatistics":
-        """The statistics of a whole (n0, n1, n_samples) array of amplitudes."""
-        peak = float(np.max(np.abs(f3))) if f3.size else 0.0
-        return cls.from_sums(peak, float(np.einsum("ijk,ijk->", f3, f3, dtype=np.float64)), f3.size)
 
 
 def scan_step(options: FaultScanOptions, n_samples: int) -> int:
@@ -374,45 +365,69 @@ def semblance_floor(sum_denominator: float, count: int) -> float:
 
 
 def scan_planes(sn: np.ndarray, sd: np.ndarray, options: FaultScanOptions, tiny: float, *, n_samples: int,
-                two_d: bool = False, axes: tuple = (0, 1), core: tuple | None = None, origin: int = 0,
-                sheared_layout: bool = False, progress: bool = False) -> np.ndarray:
-    """The scan (step 4 of :func:`fault_likelihood`) over the planes sheared along ``axes``.
+                axis: int, two_d: bool = False, core: tuple | None = None, origin: int = 0) -> np.ndarray:
+    """The scan (step 4 of :func:`fault_likelihood`) over the planes sheared along ``axis``, on a block that holds
+    that whole axis and :func:`strike_halo` traces of halo along the other one.
 
     Parameters
     ----------
-    sn, sd : (n0, n1, m) float32 ndarray
-        From :func:`semblance_terms`.
+    sn, sd : (n_axis, m, n_other) float32 ndarray
+        From :func:`semblance_terms`, in the scan's own layout (the sheared axis, the grouped samples, the other
+        lateral axis; :func:`~seismo3d.seismic.blocks.stores.read_sheared`), C-contiguous, used in place.
     options : FaultScanOptions
     tiny : float
         From :func:`semblance_floor` over the whole cube.
     n_samples : int
         Samples per trace before grouping.
+    axis : {0, 1}
+        The shear axis of the planes scanned (:func:`sheared_axes`).
     two_d : bool
-    axes : tuple of {0, 1}
-        Shear axes of the planes to scan. A block of a cube scanned for the planes sheared along one axis must hold
-        that whole axis, and :func:`strike_halo` traces of halo along the other one.
     core, origin : optional
-        For a block: the ``(start, stop)`` along the other axis whose result is returned, and the cube index of the
-        block's first trace along that axis.
-    sheared_layout : bool
-        With one axis: ``sn`` and ``sd`` are given in the scan's own layout, (sheared axis, sample, other axis),
-        C-contiguous, and are used (and overwritten) in place: no copies, for blocks read to fit a memory limit.
-    progress : bool
+        The ``(start, stop)`` along the other axis whose result is returned (default all), and the cube index of
+        the block's first trace along that axis.
 
     Returns
     -------
-    (n0, n1, m) int32 ndarray (``core`` taken along the other axis)
+    (n0, n1, m) int32 ndarray, the cube's layout (``core`` taken along the other axis)
         Packed ``likelihood << 11 | plane`` of the best plane at each grouped sample: decode with
         :func:`decode_scan`; the maximum of two keys is the key of the union of their planes.
+
+    Raises
+    ------
+    InputError
+        More planes than the key's code holds.
     """
     table = orientation_table(*options.angles(), two_d)
     if len(table) > (1 << CODE_BITS):
         raise InputError(f"{len(table)} fault planes to scan but at most {1 << CODE_BITS} are supported; pass fewer "
                          "strikes or dips")
     step = scan_step(options, n_samples)
-    if sheared_layout and len(axes) != 1:
-        raise InputError("sheared_layout=True scans the planes of one shear axis; pass axes=(0,) or axes=(1,)")
-    return _scan(sn, sd, table, two_d, options, tiny, step, progress, axes, core, origin, sheared_layout)
+    squarings = int(options.power).bit_length() - 1
+    n_threads = nb.get_num_threads()
+    # planes sheared along `axis`, grouped by strike (mod 180): one smoothing along strike serves a group
+    groups = {}
+    for k, r in enumerate(table):
+        if r[2] == axis:
+            groups.setdefault(round(r[0] % 180.0, 6), []).append((k, r))
+    # the kernels work in the layout (na, nt, nb): na = the sheared horizontal axis, nb = the other one
+    smooth_lateral = not two_d and sn.shape[2] > 1
+    yn = np.empty_like(sn) if smooth_lateral else sn
+    yd = np.empty_like(sd) if smooth_lateral else sd
+    b0, b1 = (0, yn.shape[2]) if core is None else core
+    key = np.zeros(yn.shape[:2] + (b1 - b0,), dtype=np.int32)
+    for members in groups.values():
+        alpha, lateral = members[0][1][3], members[0][1][5]
+        if smooth_lateral:
+            hs = box_half(float(options.strike_smoothing) * lateral)
+            smooth_strike(sn, float(alpha), hs, origin, n_threads, yn)
+            smooth_strike(sd, float(alpha), hs, origin, n_threads, yd)
+        for k, r in members:
+            # lateral shift per (grouped) sample, and the smoothing width down the dip in grouped samples
+            beta = float(r[4]) * step
+            sigma = float(options.dip_smoothing) * float(np.sin(np.radians(r[1]))) / step
+            scan_dip(yn, yd, beta, exponential_coefficient(max(sigma, 0.5)), np.int32(k), squarings, tiny,
+                     n_threads, key, b0)
+    return np.ascontiguousarray(key.transpose((0, 2, 1) if axis == 0 else (2, 0, 1)))
 
 
 def saturation_counts(key: np.ndarray, live: np.ndarray, level: float) -> tuple[int, int]:
@@ -420,10 +435,10 @@ def saturation_counts(key: np.ndarray, live: np.ndarray, level: float) -> tuple[
     return int(np.count_nonzero((key >> CODE_BITS)[live] > int(level * FL_LEVELS))), int(np.count_nonzero(live))
 
 
-def _warn_if_saturated(high: int, live: int, opt: FaultScanOptions) -> None:
-    if live and high / live > opt.saturated:
+def _warn_if_saturated(saturated: float, opt: FaultScanOptions) -> None:
+    if saturated > opt.saturated:
         warnings.warn(
-            f"fault likelihood exceeds {opt.saturation_level:g} at {high / live:.0%} of the samples: the data has no lateral coherence "
+            f"fault likelihood exceeds {opt.saturation_level:g} at {saturated:.0%} of the samples: the data has no lateral coherence "
             "(noise, chaotic reflections, or traces out of order), so faults traced from it are unreliable; "
             "check the inline/crossline geometry or filter the data first", Seismo3dWarning, stacklevel=3)
 
@@ -448,53 +463,271 @@ def decode_scan(key: np.ndarray, options: FaultScanOptions, *, n_samples: int,
     return fl, strike, dip
 
 
-def _scan(sn, sd, table, two_d, opt, tiny, step, progress, axes=(0, 1), core=None, origin=0, sheared_layout=False):
-    """The packed (likelihood << CODE_BITS | orientation code) int32 maximum over the scanned planes, on samples
-    grouped by ``step``."""
-    squarings = int(opt.power).bit_length() - 1
-    strike_smoothing = float(opt.strike_smoothing)
-    n_threads = nb.get_num_threads()
-    shape = list(sn.shape)
-    if sheared_layout:  # (na, nt, nb) -> the cube's axes
-        shape = [shape[0], shape[2], shape[1]] if axes[0] == 0 else [shape[2], shape[0], shape[1]]
-    if core is not None:  # a block scanned along one axis, kept on `core` of the other
-        shape[1 - axes[0]] = core[1] - core[0]
-    key = np.zeros(shape, dtype=np.int32)
-    # planes sheared along axis 0 or 1, grouped by strike (mod 180): one smoothing along strike serves a group
-    groups = {axis: {} for axis in (0, 1)}
-    for k, r in enumerate(table):
-        groups[r[2]].setdefault(round(r[0] % 180.0, 6), []).append((k, r))
-    with progress_steps(sum(len(groups[a]) for a in axes), "fault likelihood", unit="strike",
-                        enabled=progress) as bar:
-        for axis in axes:
-            if not groups[axis]:
-                continue
-            # kernels work in the layout (na, nt, nb): na = the sheared horizontal axis, nb = the other one
-            perm = (0, 2, 1) if axis == 0 else (1, 2, 0)
-            if sheared_layout:
-                xn, xd = sn, sd
-            else:
-                xn = np.ascontiguousarray(sn.transpose(perm))
-                xd = np.ascontiguousarray(sd.transpose(perm))
-            smooth_lateral = not two_d and xn.shape[2] > 1
-            yn = np.empty_like(xn) if smooth_lateral else xn
-            yd = np.empty_like(xd) if smooth_lateral else xd
-            b0, b1 = (0, yn.shape[2]) if core is None else core
-            keya = np.zeros(yn.shape[:2] + (b1 - b0,), dtype=np.int32)
-            for members in groups[axis].values():
-                alpha, lateral = members[0][1][3], members[0][1][5]
-                if smooth_lateral:
-                    hs = box_half(strike_smoothing * lateral)
-                    smooth_strike(xn, float(alpha), hs, origin, n_threads, yn)
-                    smooth_strike(xd, float(alpha), hs, origin, n_threads, yd)
-                for k, r in members:
-                    # lateral shift per (grouped) sample, and the smoothing width down the dip in grouped samples
-                    beta = float(r[4]) * step
-                    sigma = float(opt.dip_smoothing) * float(np.sin(np.radians(r[1]))) / step
-                    scan_dip(yn, yd, beta, exponential_coefficient(max(sigma, 0.5)), np.int32(k), squarings,
-                              tiny, n_threads, keya, b0)
-                bar.advance()
-            del xn, xd, yn, yd
-            np.maximum(key, keya.transpose(tuple(np.argsort(perm))), out=key)
-            del keya
-    return key
+def sheared_axes(options: FaultScanOptions, two_d: bool = False) -> tuple:
+    """The shear axes (0: along inlines, 1: along crosslines) that hold planes of the scan: both in 3D by default,
+    axis 0 alone in a section."""
+    table = orientation_table(*options.angles(), two_d)
+    return tuple(axis for axis in (0, 1) if any(r[2] == axis for r in table))
+
+
+# The scan's steps declared once (:func:`block_steps`) and run in their order by :func:`run_scan`, by blocks
+# (:mod:`~seismo3d.seismic.faults.likelihood.scan_blocks`) or on the whole array in memory (:func:`fault_likelihood`).
+# Bytes of working memory per sample of a block (incl. halo), from the arrays each step holds at its peak: balancing
+# holds the amplitudes, their squares and two smoothing passes; the semblance step the balanced amplitudes, 3
+# gradients, 6 tensor components, the planarity and the outputs; the scan 2 inputs read in its layout, 2 smoothed
+# copies and the keys of the block's core (a third of it or less); decoding the key brought back to every sample
+# and likelihood, strike and dip.
+# (tracemalloc peaks of the steps on a 96 x 96 x 512 block: balance 12 + the input 4 and the tiles it is cut from 4,
+# semblance 40 + the input 4, scan 23 per grouped sample, decoding 20; the semblance and decoding rounded up)
+_BALANCE_BYTES = 20
+_SEMBLANCE_BYTES = 48
+_SCAN_BYTES = 24
+_DECODE_BYTES = 24
+
+
+def block_steps(shape, options: FaultScanOptions, *, block: int | None = None, strip: int | None = None) -> tuple:
+    """The steps of the scan, declared once, in their order: the amplitude statistics and the balancing (square
+    blocks read from the cube), the semblance terms (their denominators reduced into the semblance floor), the scan
+    along inlines and along crosslines (blocks of every trace along the scanned axis and ``b`` traces across it)
+    and the decoding (on the semblance's blocks), each with its block function, halo and the bytes of a block of
+    ``b`` traces a side, largest and forced sides (:func:`~seismo3d.seismic.blocks.plan.plan_steps` plans those
+    with bytes: ``'balance'``, ``'semblance'``, ``'scan'``).
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)`` (a section: ``(n_traces, 1, n_samples)``).
+    options : FaultScanOptions
+    block, strip : int, optional
+        Sides forced by the caller (``ChunkOptions.block``, ``ChunkOptions.strip``), traces.
+
+    Returns
+    -------
+    tuple of BlockStep
+        Named ``'amplitudes'``, ``'balance'``, ``'semblance'``, ``'scan'`` (run as ``'scan_inline'`` and
+        ``'scan_crossline'``), ``'decode'``.
+    """
+    n0, n1, nt = shape
+    m = -(-nt // scan_step(options, nt))
+    bhalo, halo, shalo = balance_halo(options), semblance_halo(options), strike_halo(options)
+    n_axis = max(n0, n1)
+
+    def semblance_bytes(b):
+        return max((b + 2 * halo) ** 2 * nt * _SEMBLANCE_BYTES, b ** 2 * nt * _DECODE_BYTES)
+
+    def balance_bytes(b):
+        return (b + 2 * bhalo) ** 2 * nt * _BALANCE_BYTES
+
+    def scan_bytes(w):
+        return n_axis * (w + 2 * shalo) * m * _SCAN_BYTES
+
+    return (BlockStep("amplitudes", "reduce", 0, function=amplitude_block, label="amplitude statistics",
+                      inputs=(CUBE,), place=True),
+            BlockStep("balance", "map", bhalo, balance_bytes, 512, function=balance_block,
+                      label="amplitude balancing", inputs=(CUBE,), outputs=("balanced",), place=True),
+            BlockStep("semblance", "reduce", halo, semblance_bytes, 256, block, function=semblance_block,
+                      label="semblance", inputs=("balanced",), outputs=("numerator", "denominator"), place=True),
+            BlockStep("scan", "map", shalo, scan_bytes, n_axis, strip, function=scan_block,
+                      label="fault scan", inputs=("numerator", "denominator"), outputs=("key",), place=True,
+                      lazy=True),
+            BlockStep("decode", "reduce", 0, function=decode_block, label="decode", inputs=("key", "denominator"),
+                      outputs=("likelihood", "strike_deg", "dip_deg")))
+
+
+def whole_plan(shape) -> dict:
+    """The plan of a run in memory: every step on one block, the whole cube (sides as :func:`run_scan` reads them).
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+
+    Returns
+    -------
+    dict
+    """
+    side = max(int(shape[0]), int(shape[1]))
+    return {"shape": [int(n) for n in shape], "tile": side, "balance": side, "semblance": side, "scan": side}
+
+
+def run_scan(run, x, opt: FaultScanOptions, plan: dict, *, two_d: bool = False) -> float:
+    """The scan's declared steps (:func:`block_steps`) in their order on a run: by blocks
+    (:class:`~seismo3d.seismic.blocks.stores.StoreRun`) or in memory on one block
+    (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`), the likelihood, strike and dip left in its arrays.
+
+    Parameters
+    ----------
+    run : StoreRun or MemoryRun
+    x : (n_inlines, n_xlines, n_samples) float32 dask.array.Array or ndarray
+        The amplitudes (a section as a cube of one crossline, with ``two_d``).
+    opt : FaultScanOptions
+    plan : dict
+        ``shape``, ``tile`` and the sides of the blocks of ``'balance'`` (also the statistics'), ``'semblance'``
+        (also the decoding's) and ``'scan'`` (traces across the scanned axis) (:func:`whole_plan` in memory).
+    two_d : bool
+        ``x`` is a section.
+
+    Returns
+    -------
+    float
+        The saturated fraction: live samples with a likelihood above ``opt.saturation_level``, of the live ones.
+    """
+    shape = tuple(int(n) for n in plan["shape"])
+    n0, n1, nt = shape
+    m = -(-nt // scan_step(opt, nt))
+    steps = {step.name: step for step in block_steps(shape, opt)}
+    side, block, strip = plan["balance"], plan["semblance"], plan["scan"]
+    # whole-cube amplitude statistics, then the balanced amplitudes and the semblance terms
+    sums = run.run_step(steps["amplitudes"], lateral_blocks(shape, side, side), source=x)
+    stats = AmplitudeStatistics.from_sums(max(r["peak"] for r in sums), sum(r["sum_squares"] for r in sums),
+                                          n0 * n1 * nt)
+    run.run_step(steps["balance"], lateral_blocks(shape, side, side), opt, stats, two_d, source=x)
+    results = run.run_step(steps["semblance"], lateral_blocks(shape, block, block), opt, two_d)
+    run.release("balanced")
+    tiny = semblance_floor(sum(r["sum_denominator"] for r in results), n0 * n1 * m)
+    # the planes sheared along each axis; a later axis keeps the better plane of both
+    for k, axis in enumerate(sheared_axes(opt, two_d)):
+        name = ("inline", "crossline")[axis]
+        scan = replace(steps["scan"], name=f"scan_{name}", label=f"fault scan along {name}s",
+                       combine=np.maximum if k else None)
+        run.run_step(scan, lateral_blocks(shape, n0, strip) if axis == 0 else lateral_blocks(shape, strip, n1),
+                     axis, opt, tiny, nt, plan["tile"], two_d)
+    run.release("numerator")
+    results = run.run_step(steps["decode"], lateral_blocks(shape, block, block), opt, tiny, nt, two_d)
+    run.release("key", "denominator")
+    live = sum(r["live"] for r in results)
+    return sum(r["high"] for r in results) / live if live else 0.0
+
+
+def amplitude_block(place, f) -> BlockOutput:
+    """The peak absolute amplitude and the float64 sum of squares of a block, reduced into the cube's
+    :class:`AmplitudeStatistics` (:meth:`AmplitudeStatistics.from_sums`).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of the block.
+
+    Returns
+    -------
+    BlockOutput
+        Summary ``peak``, ``sum_squares``.
+
+    Raises
+    ------
+    InputError
+        The block holds NaN or inf.
+    """
+    f = np.ascontiguousarray(f, dtype=np.float32)
+    check_finite(f, (place.block[0], place.block[1] - 1))
+    return BlockOutput(summary={"peak": float(np.max(np.abs(f))) if f.size else 0.0,
+                                "sum_squares": float(np.einsum("ijk,ijk->", f, f, dtype=np.float64))})
+
+
+def balance_block(place, f, opt: FaultScanOptions, stats: AmplitudeStatistics, two_d: bool = False) -> BlockOutput:
+    """Balanced amplitudes of a block read with the balancing's halo (:func:`balance_amplitudes`).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    f : (m0, m1, n_samples) array_like
+        Amplitudes of ``place.region``.
+    opt : FaultScanOptions
+    stats : AmplitudeStatistics
+        Of the whole cube.
+    two_d : bool
+        A section as a cube of one crossline.
+
+    Returns
+    -------
+    BlockOutput
+        ``balanced``: (m0, m1, n_samples) float32, cut to the core by the executor.
+    """
+    return BlockOutput({"balanced": balance_amplitudes(np.ascontiguousarray(f, dtype=np.float32), opt, stats,
+                                                       two_d=two_d)})
+
+
+def semblance_block(place, f, opt: FaultScanOptions, two_d: bool = False) -> BlockOutput:
+    """Semblance terms of a block of balanced amplitudes read with the semblance's halo
+    (:func:`semblance_terms`), and the sum of the core's denominators (the semblance floor's).
+
+    Parameters
+    ----------
+    place : BlockPlace
+    f : (m0, m1, n_samples) float32 ndarray
+        Balanced amplitudes of ``place.region``.
+    opt : FaultScanOptions
+    two_d : bool
+
+    Returns
+    -------
+    BlockOutput
+        ``numerator``, ``denominator`` of the core, float32 at the scan's grouped samples; summary
+        ``sum_denominator``.
+    """
+    sn, sd = semblance_terms(f, opt, two_d=two_d)
+    sn, sd = sn[place.core], sd[place.core]
+    return BlockOutput({"numerator": sn, "denominator": sd}, {"sum_denominator": float(sd.sum(dtype=np.float64))})
+
+
+def scan_block(place, numerator, denominator, axis: int, opt: FaultScanOptions, tiny: float, n_samples: int,
+               tile: int, two_d: bool = False) -> BlockOutput:
+    """The planes sheared along ``axis`` (:func:`scan_planes`) on a block that holds that whole axis.
+
+    Parameters
+    ----------
+    place : BlockPlace
+        The block (every trace along ``axis``) and the region read (the strike smoothing's halo across it).
+    numerator, denominator : (n_inlines, n_xlines, m) arrays read by slicing
+        Semblance terms (Zarr arrays by blocks, ndarrays in memory), read here in the sheared layout
+        (:func:`~seismo3d.seismic.blocks.stores.read_sheared`).
+    axis : {0, 1}
+    opt : FaultScanOptions
+    tiny : float
+        The semblance floor.
+    n_samples : int
+        Samples per trace of the cube.
+    tile : int
+        Rows read at once.
+    two_d : bool
+
+    Returns
+    -------
+    BlockOutput
+        ``key``: the core's packed scan keys, int32.
+    """
+    a0, a1, b0, b1 = place.region
+    i0, i1, j0, j1 = place.block
+    core, origin = ((j0 - b0, j1 - b0), b0) if axis == 0 else ((i0 - a0, i1 - a0), a0)
+    sn = read_sheared(numerator, place.read, axis, tile)
+    sd = read_sheared(denominator, place.read, axis, tile)
+    key = scan_planes(sn, sd, opt, tiny, n_samples=n_samples, axis=axis, two_d=two_d, core=core, origin=origin)
+    return BlockOutput({"key": key})
+
+
+def decode_block(key, denominator, opt: FaultScanOptions, tiny: float, n_samples: int,
+                 two_d: bool = False) -> BlockOutput:
+    """Likelihood, strike and dip of a block from the combined key (:func:`decode_scan`), with its saturated and
+    live samples.
+
+    Parameters
+    ----------
+    key : (m0, m1, m) int32 ndarray
+        Packed scan keys.
+    denominator : (m0, m1, m) float32 ndarray
+        Semblance denominators (live where above ``tiny``).
+    opt : FaultScanOptions
+    tiny : float
+    n_samples : int
+    two_d : bool
+
+    Returns
+    -------
+    BlockOutput
+        ``likelihood``, ``strike_deg``, ``dip_deg``: (m0, m1, n_samples) float32; summary ``high``, ``live``.
+    """
+    live = denominator > tiny
+    high, n_live = saturation_counts(key, live, opt.saturation_level)
+    del live
+    fl, strike, dip = decode_scan(key, opt, n_samples=n_samples, two_d=two_d)
+    return BlockOutput({"likelihood": fl, "strike_deg": strike, "dip_deg": dip}, {"high": high, "live": n_live})

@@ -14,10 +14,10 @@ a process of its own on 2 threads (numba, ONNX Runtime and torch: ``NUMBA_NUM_TH
   what its run in memory needs (cubes of 256^3 and more; the executor of :mod:`seismo3d.seismic.blocks`); numba's
   kernels compiled on a small cube first, outside the measurement. Its steps: the job's own wall seconds per step
   (``stage_seconds``: read input, fault likelihood, ridges, voting, thinning, fault skins, throw, evidence, write
-  outputs) and, in memory, the CPU seconds of the process over each step of the tracing and each file written
-  (``time.process_time`` read at each step's start and end by a wrapper of the job's step timer that this script
-  installs in the worker; the rest: reading and the checks before the tracing). By blocks the steps run on dask's
-  threads: only the whole job's CPU seconds are shown;
+  outputs) and, in memory, the CPU seconds of the process over each step of the tracing and each file written (a
+  row each under the writing, largest first; ``time.process_time`` read at each step's start and end by a wrapper of
+  the job's step timer that this script installs in the worker; the rest: reading and the checks before the
+  tracing). By blocks the steps run on dask's threads: only the whole job's CPU seconds are shown;
 - FaultNet (Dou et al. 2022, its released TorchScript weights, ``benchmarks/faultnet.py``): its fault probability of
   the same cube, the network alone (the cube in memory; torch loaded and one small cube run first).
 
@@ -138,6 +138,21 @@ def _step_cpu(run: dict, step: str) -> float | None:
     return cpu.get(step)
 
 
+def _print_files(runs: dict, gb: float) -> None:
+    """The writing's rows, a file (or store) each: CPU seconds of the runs in memory, largest first."""
+    files = {}
+    for label, r in runs.items():
+        for key, cpu in r["cpu_steps"].items():
+            if key not in r["steps"]:
+                files.setdefault(key, {})[label] = cpu
+    for key in sorted(files, key=lambda k: -max(files[k].values())):
+        row = f"{'  ' + key:40s}"
+        for label in runs:
+            cpu = files[key].get(label)
+            row += f" | {'':8s} " + (f"{cpu:8.1f} {cpu / gb:9.0f}" if cpu is not None else f"{'':8s} {'':9s}")
+        print(row)
+
+
 def profile(shape, by_blocks: bool) -> dict:
     """Ours (in memory, and by blocks when asked) and FaultNet on one generated cube, back to back; the table
     printed, the CPU seconds returned."""
@@ -169,6 +184,8 @@ def profile(shape, by_blocks: bool) -> dict:
             row += (f" | {wall:8.1f} " if wall is not None else f" | {'':8s} ")
             row += f"{cpu:8.1f} {cpu / gb:9.0f}" if cpu is not None else f"{'':8s} {'':9s}"
         print(row)
+        if step == "write outputs":
+            _print_files(runs, gb)
     rest = ""  # the CPU seconds outside the timed steps: reading, the job's checks
     for r in runs.values():
         cpu = r["cpu"] - sum(r["cpu_steps"].values()) if r["cpu_steps"] else None

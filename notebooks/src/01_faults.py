@@ -3,10 +3,11 @@
 #
 # Fault interpretation of 18 consecutive real inlines of the Penobscot 3D survey (Nova Scotia), with the seven
 # horizons people picked on them (Baroni et al. 2020, CC BY 4.0), in one call: `trace_faults` computes the fault
-# likelihood (a fault network trained only on generated sections, run on every inline and crossline at three
-# grids), makes it continuous by optimal surface voting (Wu & Fomel 2018), links the thinned faults into fault skins,
-# measures each fault's throw by registering the reflectors on its two sides, and keeps the faults that show the
-# evidence of one (votes that hold along it, and displaced reflectors or a likely fault).
+# likelihood (a fault network trained only on generated sections, run on every second inline and crossline at three
+# grids, the sections between interpolated), makes it continuous by optimal surface voting (Wu & Fomel 2018), links
+# the thinned faults into fault skins, measures each fault's throw by registering the reflectors on its two sides,
+# and keeps the faults that show the evidence of one (votes that hold along it, and displaced reflectors or a likely
+# fault).
 #
 # The slab is read from the seismo3d data folder (`SEISMO3D_DATA_DIR`) or, without it, made again from its public
 # origin (the 8-bit images and colour masks, downloaded and hash-checked, stacked into the same bytes). The 8-bit

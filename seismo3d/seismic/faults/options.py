@@ -50,8 +50,9 @@ class FaultTracingOptions:
     scan : FaultScanOptions
         The fault likelihood scan.
     learned : LearnedOptions
-        The learned fault likelihood. By default here its network runs on every second inline and crossline section
-        of a cube, the sections between interpolated (``section_step=2``; a 2D line is one section, run whole): the
+        The learned fault likelihood. By default its network runs on every second inline and crossline section of
+        a cube, the sections between interpolated (``LearnedOptions.section_step``, 2; a 2D line is one section,
+        run whole): the
         fault likelihood of a generated 256^3 cube 43.7 -> 27.7 CPU seconds on 2 threads, the whole command 73.3 ->
         54.0 (``python benchmarks/fault_speed.py``), for the same scores: the Parihaka cube 0.81 of the fault bands
         hit and 0.83 of the traced points in bands at step 1 and 2 (``python benchmarks/faults_3d.py --only
@@ -108,7 +109,7 @@ class FaultTracingOptions:
     max_fault_fraction: float = 0.15
     likelihood: str = "learned"
     scan: FaultScanOptions = field(default_factory=FaultScanOptions)
-    learned: LearnedOptions = field(default_factory=lambda: LearnedOptions(section_step=2))
+    learned: LearnedOptions = field(default_factory=LearnedOptions)
     voting: VotingOptions = field(default_factory=VotingOptions)
     skins: SkinOptions = field(default_factory=SkinOptions)
     dead: DeadSampleOptions = field(default_factory=DeadSampleOptions)

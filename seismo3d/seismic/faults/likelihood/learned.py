@@ -127,8 +127,8 @@ class LearnedOptions:
         network grid (the sections at multiples of it, and the last), and the probability of the sections between is
         interpolated linearly along that direction (:func:`section_span`); 1: every section. A fault crossing the
         sections is seen on the computed ones and moves little between them; one nearly parallel to a direction's
-        sections is seen by the other direction's (the larger of the two is kept). The default, 1: 2 makes the
-        network's part of a cube about a third cheaper (the fault likelihood of a generated 256^3 cube: 36.8 -> 24.2
+        sections is seen by the other direction's (the larger of the two is kept). The default, 2, makes the
+        network's part of a cube about a third cheaper than 1 (the fault likelihood of a generated 256^3 cube: 36.8 -> 24.2
         CPU seconds on 2 threads, ``python benchmarks/fault_speed.py``) and keeps the scores of the generated faulted
         cubes (precision and recall 0.93-1.00) and of the Parihaka cube (0.81 of the bands hit, 0.82-0.83 of the
         points in bands). On the window of the 18 Penobscot inlines of notebook 01 the faults kept change (1043 and
@@ -161,7 +161,7 @@ class LearnedOptions:
     min_grid_samples: int = RECEPTIVE_HALF
     patch_samples: int = 128
     saturation_level: float = 0.9
-    section_step: int = 1
+    section_step: int = 2
     network: str = "auto"
     adapted: str | None = None
 

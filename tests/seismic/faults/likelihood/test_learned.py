@@ -209,7 +209,7 @@ def test_generated_faulted_cubes_precision_and_recall():
 
 
 def test_section_step_is_a_positive_integer():
-    assert LearnedOptions().section_step == 1
+    assert LearnedOptions().section_step == 2  # every second section of a cube (the tracing default)
     for bad in (0, -1, 1.5, True):
         with pytest.raises(InputError, match="section_step"):
             LearnedOptions(section_step=bad)

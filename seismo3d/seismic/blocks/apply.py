@@ -4,7 +4,10 @@ into the step's output stores, its sparse lists saved, and its marker written la
 
 The algorithm knows nothing of stores, memory limits or resumption: it takes arrays (the block grown by the step's
 halo) and returns a :class:`BlockOutput`. The same declared step runs on a whole array in memory as one block
-(:func:`apply_in_memory`: its inputs and outputs arrays in a dict, no marker, its lists returned).
+(:func:`apply_in_memory`: its inputs and outputs arrays in a dict, no marker, its lists returned), and
+:class:`MemoryRun` runs declared steps so behind the interface of the executor's
+:class:`~seismo3d.seismic.blocks.executor.BlockRun` (``run_step``, ``reduce_cube``, the steps' lists): one run of
+the steps serves a cube in memory and a cube by blocks.
 
 Why not :func:`dask.array.map_overlap` to read the blocks? Its halo is cut from the neighbouring chunks, so each
 block's task depends on its 8 neighbours' whole chunks: with chunks the size of the blocks, the inputs of 9 blocks are
@@ -23,15 +26,17 @@ from __future__ import annotations
 
 import json
 import pathlib
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..._atomic import atomic_path
+from ...errors import InputError
 from .plan import CUBE, BlockStep
 
-__all__ = ["BlockOutput", "BlockPlace", "apply_block", "apply_in_memory", "gather", "load_lists", "save_lists",
-           "whole_place", "write_marker"]
+__all__ = ["BlockOutput", "BlockPlace", "MemoryRun", "apply_block", "apply_in_memory", "gather", "load_lists",
+           "save_lists", "whole_place", "write_marker"]
 
 
 @dataclass(frozen=True)
@@ -283,3 +288,100 @@ def _outputs(step: BlockStep, out: BlockOutput):
         key, name = (name, name) if isinstance(name, str) else name
         if out.arrays.get(key) is not None:
             yield name, out.arrays[key]
+
+
+class MemoryRun:
+    """The executor of declared steps on arrays in memory: every step on one block, the whole array (no work folder,
+    no marker, no resumption); the interface of :class:`~seismo3d.seismic.blocks.executor.BlockRun` that a run of
+    declared steps calls (:meth:`run_step`, :meth:`reduce_cube`, :meth:`saved`, :meth:`saved_arrays`,
+    :meth:`step_lists`, :meth:`gathered_lists`), so that the same run serves a cube in memory and by blocks.
+
+    Parameters
+    ----------
+    arrays : dict
+        ``{name: ndarray}``: the arrays the steps read by their declared names; the steps' outputs are set in it
+        (views of their inputs where the algorithm returns them, e.g. an input modified in place).
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)`` of the arrays (a section's as a cube of one crossline).
+
+    Attributes
+    ----------
+    arrays : dict
+    shape : tuple
+    computed, resumed, seconds : dict
+        Blocks computed (1 per step run), skipped (none) and wall-clock seconds per step, as a block run's.
+    lists : dict
+        ``{step name: {block: {list name: ndarray}}}``: the sparse lists of each step's block.
+    """
+
+    def __init__(self, arrays: dict, shape):
+        self.arrays, self.shape = arrays, tuple(int(n) for n in shape)
+        self.computed, self.resumed, self.seconds = {}, {}, {}
+        self.lists = {}
+
+    def run_step(self, step: BlockStep, blocks, *args, source=None, workers=None) -> list:
+        """Run a declared step on the whole array as one block (:func:`apply_in_memory`'s contract): its inputs
+        from :attr:`arrays` (None for an input that no step wrote: its store would hold the fill value, 0), the
+        cube from ``source``, its outputs set in :attr:`arrays`, its lists kept in :attr:`lists`.
+
+        Parameters
+        ----------
+        step : BlockStep
+        blocks : list of tuple
+            One block, ``(0, n_inlines, 0, n_xlines)`` (a plan of one block a step).
+        *args
+            Passed to the algorithm after the block's arrays.
+        source : (n_inlines, n_xlines, n_samples) ndarray, optional
+            The cube, when :data:`~seismo3d.seismic.blocks.plan.CUBE` is among the step's inputs.
+        workers : int, optional
+            Ignored (one block).
+
+        Returns
+        -------
+        list
+            The block's summary, in a list of one.
+
+        Raises
+        ------
+        InputError
+            ``blocks`` is not the one block of the whole array.
+        """
+        place = whole_place(self.shape)
+        if [tuple(b) for b in blocks] != [place.block]:
+            raise InputError(f"a run in memory computes one block, the whole array {place.block}; got {len(blocks)} "
+                             f"blocks: plan its steps with blocks of the whole array")
+        start = time.perf_counter()
+        inputs = [source if name == CUBE else self.arrays.get(name) for name in step.inputs]
+        out = _compute(step, place, inputs, args)
+        del inputs
+        for name, value in _outputs(step, out):
+            held = self.arrays.get(name)
+            self.arrays[name] = value if step.combine is None or held is None else step.combine(value, held)
+        self.lists[step.name] = {place.block: out.lists}
+        self.computed[step.name], self.resumed[step.name] = 1, 0
+        self.seconds[step.name] = round(self.seconds.get(step.name, 0.0) + time.perf_counter() - start, 2)
+        return [out.summary]
+
+    def reduce_cube(self, parts) -> list:
+        """Whole-array reductions (dask arrays of a few values) computed here, on dask's threads."""
+        import dask
+
+        return list(dask.compute(*parts, scheduler="threads"))
+
+    def saved(self, name: str, compute):
+        """``compute()``: a small result of the run (nothing to keep: there is no resumed run in memory)."""
+        return compute()
+
+    def saved_arrays(self, name: str, compute) -> dict:
+        """``compute()``: arrays of the run (nothing to keep: there is no resumed run in memory)."""
+        return compute()
+
+    def step_lists(self, step: str, block, names, *, mmap_mode=None) -> dict:
+        """The lists ``names`` of ``block`` of the step named ``step``."""
+        held = self.lists[step][tuple(block)]
+        return {name: held[name] for name in names}
+
+    def gathered_lists(self, step: str, blocks, names) -> dict:
+        """The lists ``names`` of the step named ``step``, concatenated in the blocks' order (:func:`gather`)."""
+        parts = [self.step_lists(step, b, names) for b in blocks]
+        return {name: np.concatenate([q[name] for q in parts]) if parts else None for name in names}

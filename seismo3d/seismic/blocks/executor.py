@@ -25,9 +25,10 @@ import uuid
 
 import numpy as np
 
+from ..._atomic import atomic_path
 from ..._progress import LOGGER, progress_steps
 from ...errors import EarlierStoresError, InputError
-from .apply import BlockPlace, apply_block, write_marker
+from .apply import BlockPlace, apply_block, gather, load_lists, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
 
 __all__ = ["BlockRun", "SchedulerClient", "check_finite", "kernel_threads", "release_memory", "run_block",
@@ -261,6 +262,40 @@ class BlockRun:
         value = compute()
         write_marker(path, value)
         return value
+
+    def saved_arrays(self, name: str, compute) -> dict:
+        """Arrays of the whole run (e.g. the voting's seeds), computed once: ``compute()`` the first time, kept in
+        the work folder as ``name.npz`` (written atomically) and read from there by a resumed run.
+
+        Parameters
+        ----------
+        name : str
+            The file's stem.
+        compute : callable
+            ``compute() -> {name: ndarray}``.
+
+        Returns
+        -------
+        dict
+            ``{name: ndarray}``.
+        """
+        path = self.work / f"{name}.npz"
+        if not path.exists():
+            arrays = compute()
+            with atomic_path(str(path)) as tmp, open(tmp, "wb") as fh:
+                np.savez(fh, **arrays)
+        with np.load(path) as saved:
+            return {key: saved[key] for key in saved.files}
+
+    def step_lists(self, step: str, block, names, *, mmap_mode=None) -> dict:
+        """The sparse lists ``names`` of ``block`` saved by the step named ``step``
+        (:func:`~seismo3d.seismic.blocks.apply.load_lists` of ``WORK/<step>/``)."""
+        return load_lists(self.work / step, block, names, mmap_mode=mmap_mode)
+
+    def gathered_lists(self, step: str, blocks, names) -> dict:
+        """The sparse lists ``names`` of the step named ``step`` concatenated in the blocks' order
+        (:func:`~seismo3d.seismic.blocks.apply.gather`)."""
+        return gather(self.work / step, blocks, names)
 
     def marker(self, step: str, block) -> pathlib.Path:
         """The marker file of ``block`` (a tuple whose items 0 and 2 are its first inline and crossline) in

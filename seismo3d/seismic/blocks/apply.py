@@ -3,11 +3,10 @@ inputs read around the block, the step's algorithm called on arrays, the block's
 into the step's output stores, its sparse lists saved, and its marker written last (:func:`apply_block`).
 
 The algorithm knows nothing of stores, memory limits or resumption: it takes arrays (the block grown by the step's
-halo) and returns a :class:`BlockOutput`. The same declared step runs on a whole array in memory as one block
-(:func:`apply_in_memory`: its inputs and outputs arrays in a dict, no marker, its lists returned), and
-:class:`MemoryRun` runs declared steps so behind the interface of the executor's
-:class:`~seismo3d.seismic.blocks.executor.BlockRun` (``run_step``, ``reduce_cube``, the steps' lists): one run of
-the steps serves a cube in memory and a cube by blocks.
+halo) and returns a :class:`BlockOutput`. The same declared steps run on a whole array in memory as one block
+(:class:`MemoryRun`: inputs and outputs in a dict, no marker, the lists kept), behind the interface of the
+executor's :class:`~seismo3d.seismic.blocks.executor.BlockRun` (``run_step``, ``reduce_cube``, the steps' lists):
+one run of the steps serves a cube in memory and a cube by blocks.
 
 Why not :func:`dask.array.map_overlap` to read the blocks? Its halo is cut from the neighbouring chunks, so each
 block's task depends on its 8 neighbours' whole chunks: with chunks the size of the blocks, the inputs of 9 blocks are
@@ -35,8 +34,8 @@ from ..._atomic import atomic_path
 from ...errors import InputError
 from .plan import CUBE, BlockStep
 
-__all__ = ["BlockOutput", "BlockPlace", "MemoryRun", "apply_block", "apply_in_memory", "gather", "load_lists",
-           "save_lists", "whole_place", "write_marker"]
+__all__ = ["BlockOutput", "BlockPlace", "MemoryRun", "apply_block", "gather", "load_lists", "save_lists",
+           "whole_place", "write_marker"]
 
 
 @dataclass(frozen=True)
@@ -244,39 +243,6 @@ def whole_place(shape) -> BlockPlace:
     return BlockPlace((0, n0, 0, n1), (0, n0, 0, n1))
 
 
-def apply_in_memory(step: BlockStep, arrays: dict, *args) -> BlockOutput:
-    """Run a declared step on the whole array in memory as one block (:func:`whole_place` of its first input): the
-    algorithm of :func:`apply_block` on the same inputs, its outputs set in ``arrays`` (combined with what is there
-    when the step declares ``combine``), no marker written and no list saved.
-
-    Parameters
-    ----------
-    step : BlockStep
-        Its ``inputs``, ``outputs``, ``function`` and the flags ``place`` and ``combine`` (its halo is not needed:
-        the block is the whole array).
-    arrays : dict
-        ``{array name: ndarray}``: the step's inputs by their declared names
-        (:data:`~seismo3d.seismic.blocks.plan.CUBE` for the amplitudes); its outputs are set in it by name.
-    *args
-        Passed to the algorithm after the arrays.
-
-    Returns
-    -------
-    BlockOutput
-        What the algorithm returned: its ``summary`` and ``lists`` (its arrays are in ``arrays``).
-
-    Raises
-    ------
-    KeyError
-        An input of the step is not in ``arrays``.
-    """
-    inputs = [arrays[name] for name in step.inputs]
-    out = _compute(step, whole_place(inputs[0].shape), inputs, args)
-    for name, value in _outputs(step, out):
-        arrays[name] = value if step.combine is None or name not in arrays else step.combine(value, arrays[name])
-    return out
-
-
 def _compute(step: BlockStep, place: BlockPlace, inputs: list, args: tuple) -> BlockOutput:
     """The step's algorithm on the block's arrays (the place first when the step asks for it)."""
     return step.function(*((place,) if step.place else ()), *inputs, *args)
@@ -320,9 +286,10 @@ class MemoryRun:
         self.lists = {}
 
     def run_step(self, step: BlockStep, blocks, *args, source=None, workers=None) -> list:
-        """Run a declared step on the whole array as one block (:func:`apply_in_memory`'s contract): its inputs
-        from :attr:`arrays` (None for an input that no step wrote: its store would hold the fill value, 0), the
-        cube from ``source``, its outputs set in :attr:`arrays`, its lists kept in :attr:`lists`.
+        """Run a declared step on the whole array as one block (:func:`apply_block`'s algorithm, its halo not
+        needed): its inputs from :attr:`arrays` (None for an input that no step wrote: its store would hold the
+        fill value, 0), the cube from ``source``, its outputs set in :attr:`arrays` (combined with what is there
+        when the step declares ``combine``), its lists kept in :attr:`lists`, no marker.
 
         Parameters
         ----------

@@ -137,7 +137,7 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
         and the input's name and coordinates recorded in the stores (:class:`BlockRunOptions`).
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
-        otherwise; the likelihood, the voting and the throw report their own progress too).
+        otherwise; the likelihood and the throw report their own progress too).
     model : str or os.PathLike, optional
         A MODEL folder written by ``seismo3d adapt`` (the fault network adapted to a survey from an interpreter's
         faults): the learned likelihood runs it instead of the shipped network (``LearnedOptions.adapted``), with the

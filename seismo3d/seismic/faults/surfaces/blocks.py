@@ -327,7 +327,8 @@ def memory_surface_run(cube: np.ndarray, likelihood: np.ndarray, strike_deg: np.
     cube : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
         Amplitudes, finite (:func:`~seismo3d.seismic.amplitudes.clean_traces`).
     likelihood, strike_deg, dip_deg : float32 ndarrays of the cube's shape
-        Fault likelihood (set to 0 near dead samples in place by the ridges), strike and dip (degrees).
+        Fault likelihood, strike and dip (degrees); the likelihood is set to 0 near dead samples by the ridges (in
+        place when it is C-contiguous; :meth:`SurfaceRun.volume` ``('likelihood')`` in any case).
     opt : FaultTracingOptions
 
     Returns

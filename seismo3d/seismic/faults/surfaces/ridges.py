@@ -403,30 +403,28 @@ def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, s
     fill : (k,) float32 ndarray
         Fill values of the dead-sample rules; ``lo``, ``hi`` the cube's smallest and largest amplitudes.
     shape : (int, int, int) or (int, int)
-        Of the image: a 2D shape for a section (one block, the whole section; its ridges and slopes those of the
-        section, :func:`ridges` and :func:`structure_tensor_slopes` in 2D).
+        Of the image: a 2D shape for a section (one block, the whole section, in memory; its ridges those of the
+        section, :func:`ridges` in 2D).
     opt : FaultTracingOptions
     slopes : bool
-        Compute the reflector slopes (the throws of a run by blocks read them from its stores; in memory they are
-        computed from the amplitudes when a throw needs them).
+        Compute the reflector slopes of a cube (the throws of a run by blocks read them from its stores; in memory
+        they are computed from the amplitudes when a throw needs them); never for a section.
 
     Returns
     -------
     BlockOutput
         The core's ``slope_inline``, ``slope_xline`` (:func:`structure_tensor_slopes`, as the throws read them in
-        memory; None without ``slopes``, and ``slope_xline`` None for a section), ``likelihood`` (0 near dead
-        samples) and ``near`` (uint8; None without dead samples); lists ``points`` (k, 3) int64 (a section's as
-        (trace, 0, sample)), ``values`` (k,) float32 and ``angles`` (k, 2) float32 of the ridge samples above the
-        seed threshold (the seed candidates); summary ``high``, ``live`` (:func:`live_likelihood`).
+        memory; None without ``slopes`` or for a section), ``likelihood`` (0 near dead samples) and ``near``
+        (uint8; None without dead samples); lists ``points`` (k, 3) int64 (a section's as (trace, 0, sample)),
+        ``values`` (k,) float32 and ``angles`` (k, 2) float32 of the ridge samples above the seed threshold (the
+        seed candidates); summary ``high``, ``live`` (:func:`live_likelihood`).
     """
     i0, i1, j0, j1 = place.block
     origin = place.origin
     section = len(shape) == 2
     f = np.asarray(f, np.float32)
     arrays = {"slope_inline": None, "slope_xline": None}
-    if slopes and section:
-        arrays["slope_inline"] = structure_tensor_slopes(f[:, 0])[0][:, None]
-    elif slopes:
+    if slopes and not section:
         # the slopes from the amplitudes within the structure tensor's halo of the core (not the dead samples' wider
         # one: 82^2 against 94^2 traces for a 64-trace block), each pass at the lines it feeds, eigen-decomposed at the
         # core only: the same bits, 1.1 against 1.5 CPU s (whole tensor) for a 64 x 64 x 500 block of a 400^2 x 500

@@ -5,7 +5,7 @@ into the step's output stores, its sparse lists saved, and its marker written la
 The algorithm knows nothing of stores, memory limits or resumption: it takes arrays (the block grown by the step's
 halo) and returns a :class:`BlockOutput`. The same declared steps run on a whole array in memory as one block
 (:class:`MemoryRun`: inputs and outputs in a dict, no marker, the lists kept), behind the interface of the
-executor's :class:`~seismo3d.seismic.blocks.executor.BlockRun` (``run_step``, ``reduce_cube``, the steps' lists):
+executor's :class:`~seismo3d.seismic.blocks.executor.BlockRun` (``run_step``, the steps' lists):
 one run of the steps serves a cube in memory and a cube by blocks.
 
 Why not :func:`dask.array.map_overlap` to read the blocks? Its halo is cut from the neighbouring chunks, so each
@@ -258,9 +258,9 @@ def _outputs(step: BlockStep, out: BlockOutput):
 
 class MemoryRun:
     """The executor of declared steps on arrays in memory: every step on one block, the whole array (no work folder,
-    no marker, no resumption); the interface of :class:`~seismo3d.seismic.blocks.executor.BlockRun` that a run of
-    declared steps calls (:meth:`run_step`, :meth:`reduce_cube`, :meth:`saved`, :meth:`saved_arrays`,
-    :meth:`step_lists`, :meth:`gathered_lists`), so that the same run serves a cube in memory and by blocks.
+    no marker, no resumption, no dask); the interface of :class:`~seismo3d.seismic.blocks.executor.BlockRun` that a
+    run of declared steps calls (:meth:`run_step`, :meth:`saved`, :meth:`saved_arrays`, :meth:`step_lists`,
+    :meth:`gathered_lists`), so that the same run serves a cube in memory and by blocks.
 
     Parameters
     ----------
@@ -328,12 +328,6 @@ class MemoryRun:
         self.computed[step.name], self.resumed[step.name] = 1, 0
         self.seconds[step.name] = round(self.seconds.get(step.name, 0.0) + time.perf_counter() - start, 2)
         return [out.summary]
-
-    def reduce_cube(self, parts) -> list:
-        """Whole-array reductions (dask arrays of a few values) computed here, on dask's threads."""
-        import dask
-
-        return list(dask.compute(*parts, scheduler="threads"))
 
     def saved(self, name: str, compute):
         """``compute()``: a small result of the run (nothing to keep: there is no resumed run in memory)."""

@@ -354,8 +354,8 @@ class SurfaceRun:
     Parameters
     ----------
     run : StoreRun or MemoryRun
-        The executor: ``run_step``, ``reduce_cube``, ``saved``, ``saved_arrays``, ``step_lists``,
-        ``gathered_lists`` and ``arrays``.
+        The executor: ``run_step``, ``saved``, ``saved_arrays``, ``step_lists``, ``gathered_lists`` and ``arrays``
+        (and a store run's ``reduce_cube``).
     cube : (n_inlines, n_xlines, n_samples) dask.array.Array or ndarray
         Amplitudes (a section's as a cube of one crossline).
     plan : SurfacePlan
@@ -386,11 +386,8 @@ class SurfaceRun:
     def ridges(self) -> tuple[int, int]:
         """Dead samples (from the fill values of the whole cube), live likelihood and ridges of every block;
         (saturated live samples, live samples)."""
-        import dask.array as da
-
         x = self.x
-        lo, hi = self.run.saved("amplitude_range",
-                                lambda: [float(v) for v in self.run.reduce_cube((da.min(x), da.max(x)))])
+        lo, hi = self.run.saved("amplitude_range", lambda: _amplitude_range(self.run, x))
         results = self.run.run_step(self.steps["fill"], self.blocks("fill"), lo, hi, self.opt.dead, source=x)
         fill = np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
                                         [np.zeros(1, np.float32)]))
@@ -431,18 +428,21 @@ class SurfaceRun:
 
     def thresholds(self) -> tuple[float, float]:
         """The thresholds from the thinned votes of every block: their count and range, their histogram (Otsu) and,
-        when they are dense, their exact quantile (dask reductions: :mod:`~seismo3d.seismic.blocks.statistics`)."""
-        import dask.array as da
-
+        when they are dense, their exact quantile (dask reductions over a store's chunks:
+        :mod:`~seismo3d.seismic.blocks.statistics`; in memory the libraries' on the values, which they equal)."""
         stats = self.run.run_step(self.steps["thin"], self.blocks("thin"), self.image_shape)
+        thin = self.run.arrays["thin_raw"]  # an array in memory, or a Zarr store's path
+        if isinstance(thin, np.ndarray):
+            return self.opt.thresholds(thin)
         n_values = sum(r["count"] for r in stats)
         n_samples = int(np.prod(self.plan.shape, dtype=np.int64))
         if n_values == 0:
             return self.opt.thresholds_from(1.0, 0, n_samples, None)
         vmin = min(r["min"] for r in stats if r["count"])
         vmax = max(r["max"] for r in stats if r["count"])
-        thin = self.run.arrays["thin_raw"]  # an array in memory (one chunk), or a Zarr store's path
-        values = da.from_array(thin, chunks=thin.shape) if isinstance(thin, np.ndarray) else da.from_zarr(thin)
+        import dask.array as da
+
+        values = da.from_zarr(thin)
         return self.opt.thresholds_from(streamed_otsu(self.run, values, vmin, vmax), n_values, n_samples,
                                         lambda q: streamed_quantile(self.run, values, q, n_values, vmin, vmax))
 
@@ -464,6 +464,16 @@ class SurfaceRun:
         """The array ``name`` of the run (``'votes'``, ``'thin'``, ...) in the image's shape (a section's 2D)."""
         array = self.run.arrays[name]
         return array.reshape(self.image_shape) if len(self.image_shape) == 2 else array
+
+
+def _amplitude_range(run, x) -> list:
+    """[smallest, largest] amplitude of the cube: numpy's on an array in memory, else a dask reduction on the run's
+    scheduler."""
+    if isinstance(x, np.ndarray):
+        return [float(x.min()), float(x.max())]
+    import dask.array as da
+
+    return [float(v) for v in run.reduce_cube((da.min(x), da.max(x)))]
 
 
 def surface_block(place, likelihood, seeds, frames, shape, opt) -> BlockOutput:

@@ -4,7 +4,7 @@ Run: ``SEISMO3D_DATA_DIR=... python benchmarks/fault_stages.py [--sensitivity S]
 
 The dev lines as ``tools/dev_fault_scores.py`` (beside the data folder) builds them (F3 inlines 100-500, 951 x 462;
 the Great South Basin crosslines 2600 and 2800, 484 x 76), traced in this process with the steps of
-:func:`seismo3d.seismic.trace_faults` run one at a time (:class:`~seismo3d.seismic.faults.steps.ArrayRun`, then
+:func:`seismo3d.seismic.trace_faults` run one at a time (:func:`~seismo3d.seismic.faults.surfaces.blocks.memory_surface_run`, then
 :func:`~seismo3d.seismic.faults.steps.faults_from_cells`' skins, throws, evidence and tips written out here), so that
 what each step keeps can be seen; the final faults are checked to be those of ``trace_faults`` on the same line.
 
@@ -42,14 +42,14 @@ from scipy import ndimage as ndi
 from scipy.ndimage import distance_transform_edt
 
 from seismo3d.errors import Seismo3dWarning
-from seismo3d.seismic.amplitudes import clean_traces, near_dead_samples
+from seismo3d.seismic.amplitudes import clean_traces
 from seismo3d.seismic.faults.evidence import fault_evidence
 from seismo3d.seismic.faults.likelihood.learned import learned_fault_likelihood
 from seismo3d.seismic.faults.options import FaultTracingOptions
 from seismo3d.seismic.faults.pipeline import trace_faults
 from seismo3d.seismic.faults.reflector_period import half_period
-from seismo3d.seismic.faults.steps import ArrayRun, surface_cells
-from seismo3d.seismic.faults.surfaces.blocks import block_steps
+from seismo3d.seismic.faults.steps import surface_cells
+from seismo3d.seismic.faults.surfaces.blocks import memory_surface_run
 from seismo3d.seismic.faults.surfaces.skins import skins_from_cells
 from seismo3d.seismic.faults.throw import fault_throws
 from seismo3d.seismic.faults.tips import trimmed_tips
@@ -88,28 +88,27 @@ def traced_steps(section, opt):
         cleaned = clean_traces(np.asarray(section, np.float32), options=opt.dead)
         arr = cleaned.data
         fl = learned_fault_likelihood(arr, options=opt.learned, progress=False)
-    near_dead = near_dead_samples(cleaned.dead, options=opt.dead) if cleaned.dead.any() else None
-    cube = (arr.shape[0], 1, arr.shape[1])
-    steps = {step.name: step for step in block_steps(cube, opt, max(cube[:2]))}
-    run = ArrayRun(fl.likelihood, fl.strike_deg, fl.dip_deg, near_dead, opt, steps)
+    run = memory_surface_run(arr, fl.likelihood, fl.strike_deg, fl.dip_deg, opt)  # trace_faults' run in memory
     out = {}
     original = run.seeds
 
-    def seeds():  # the ridges, kept before the seeds step frees them
-        out["ridge"] = run._ridges > 0
+    def seeds():  # the ridges above the seed threshold: the seed candidates the ridges step listed
+        points = run.run.gathered_lists("ridges", run.blocks("ridges"), ("points",))["points"]
+        out["ridge"] = _mask(arr.shape, [points[:, [0, 2]]])
         return original()
 
     run.seeds = seeds
     original_cells = run.cells
 
     def cells(lower):  # the thinned votes, kept before the cells step zeroes those below the lower threshold
-        out["thin votes"] = run.thin > 0
+        out["thin votes"] = run.volume("thin_raw") > 0
         return original_cells(lower)
 
     run.cells = cells
     found = surface_cells(run, opt)
     lower, upper = found.thresholds
-    shape, cell_arrays = arr.shape, run.cell_arrays
+    likelihood = run.volume("likelihood")
+    shape, cell_arrays = arr.shape, run.cells_found()
     points = np.asarray(cell_arrays[0])
     out["cells"] = _mask(shape, [points[:, [0, 2]]])
     faults = skins_from_cells(*cell_arrays, shape=shape, lower=lower, upper=upper, options=opt.skins)
@@ -128,16 +127,16 @@ def traced_steps(section, opt):
     kept, kept_throws, rules = [], [], []
     for f, t, by_seed in zip(faults, throws, seeded):
         ev = fault_evidence(t, vote_ratio=float(np.mean(f.likelihood)) / float(upper),
-                            mean_likelihood=float(run.likelihood[tuple(f.points.T)].astype(np.float64).mean()))
+                            mean_likelihood=float(likelihood[tuple(f.points.T)].astype(np.float64).mean()))
         rule = _rule(ev, opt.evidence, opt.sensitivity, by_seed)
         rules.append((rule, f))
         if rule == "kept":
             kept.append(dataclasses.replace(f, id=len(kept) + 1))
             kept_throws.append(dataclasses.replace(t, fault_id=len(kept)))
     out["evidence"] = _mask(shape, [f.points for f in kept])
-    final, _ = trimmed_tips(kept, kept_throws, run.likelihood, opt.tip_level_for(2))
+    final, _ = trimmed_tips(kept, kept_throws, likelihood, opt.tip_level_for(2))
     out["tips"] = _mask(shape, [f.points for f in final])
-    return out, run.likelihood, rules, final
+    return out, likelihood, rules, final
 
 
 def _mask(shape, point_lists):

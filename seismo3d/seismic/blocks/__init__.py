@@ -13,7 +13,8 @@ Generic pieces, knowing nothing of what a block computes:
   kernels' threads), :meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step` running a declared step;
 - :mod:`~seismo3d.seismic.blocks.apply`: one block of a declared step: its inputs read around it (slices, not
   ``dask.array.map_overlap``: the module says why), its algorithm on arrays, the core of its outputs written into
-  the run's stores, its sparse lists saved, its marker last;
+  the run's stores, its sparse lists saved, its marker last; and :class:`~seismo3d.seismic.blocks.executor.MemoryRun`,
+  the same declared steps on a whole array in memory as one block, behind the executor's interface;
 - :mod:`~seismo3d.seismic.blocks.statistics`: statistics of a stored array equal to the libraries' on the values
   gathered (Otsu's threshold, exact quantiles), as dask reductions over its chunks;
 - :mod:`~seismo3d.seismic.blocks.stores`: the Zarr stores of such a run (the work folder, the output assembled in

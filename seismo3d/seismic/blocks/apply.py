@@ -3,8 +3,11 @@ inputs read around the block, the step's algorithm called on arrays, the block's
 into the step's output stores, its sparse lists saved, and its marker written last (:func:`apply_block`).
 
 The algorithm knows nothing of stores, memory limits or resumption: it takes arrays (the block grown by the step's
-halo) and returns a :class:`BlockOutput`. The same declared step runs on a whole array in memory as one block
-(:func:`apply_in_memory`: its inputs and outputs arrays in a dict, no marker, its lists returned).
+halo) and returns a :class:`BlockOutput`. The same declared steps run on a whole array in memory as one block
+(:func:`apply_in_memory`: inputs and outputs in a dict, no marker), which
+:class:`~seismo3d.seismic.blocks.executor.MemoryRun` runs behind the interface of the executor's
+:class:`~seismo3d.seismic.blocks.executor.BlockRun` (``run_step``, the steps' lists): one run of the steps serves a
+cube in memory and a cube by blocks.
 
 Why not :func:`dask.array.map_overlap` to read the blocks? Its halo is cut from the neighbouring chunks, so each
 block's task depends on its 8 neighbours' whole chunks: with chunks the size of the blocks, the inputs of 9 blocks are
@@ -251,7 +254,8 @@ def apply_in_memory(step: BlockStep, arrays: dict, *args, place: BlockPlace | No
         the block is the whole array).
     arrays : dict
         ``{array name: ndarray}``: the step's inputs by their declared names
-        (:data:`~seismo3d.seismic.blocks.plan.CUBE` for the amplitudes); its outputs are set in it by name.
+        (:data:`~seismo3d.seismic.blocks.plan.CUBE` for the amplitudes; an input missing is None to the algorithm,
+        as a store no step wrote holds only its fill value); its outputs are set in it by name.
     *args
         Passed to the algorithm after the arrays.
     place : BlockPlace, optional
@@ -264,12 +268,8 @@ def apply_in_memory(step: BlockStep, arrays: dict, *args, place: BlockPlace | No
     BlockOutput
         What the algorithm returned: its ``summary`` and ``lists`` (its arrays are in ``arrays``).
 
-    Raises
-    ------
-    KeyError
-        An input of the step is not in ``arrays``.
     """
-    inputs = [arrays[name] for name in step.inputs]
+    inputs = [arrays.get(name) for name in step.inputs]
     out = _compute(step, whole_place(inputs[0].shape) if place is None else place, inputs, args)
     del inputs
     for name, value in _outputs(step, out):

@@ -29,9 +29,10 @@ import uuid
 
 import numpy as np
 
+from ..._atomic import atomic_path
 from ..._progress import LOGGER, progress_steps
 from ...errors import InputError
-from .apply import BlockPlace, apply_block, apply_in_memory, write_marker
+from .apply import BlockPlace, apply_block, apply_in_memory, gather, load_lists, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
 
 __all__ = ["BlockRun", "MemoryRun", "SchedulerClient", "check_finite", "kernel_threads", "release_memory",
@@ -244,6 +245,40 @@ class BlockRun:
         write_marker(path, value)
         return value
 
+    def saved_arrays(self, name: str, compute) -> dict:
+        """Arrays of the whole run (e.g. the voting's seeds), computed once: ``compute()`` the first time, kept in
+        the work folder as ``name.npz`` (written atomically) and read from there by a resumed run.
+
+        Parameters
+        ----------
+        name : str
+            The file's stem.
+        compute : callable
+            ``compute() -> {name: ndarray}``.
+
+        Returns
+        -------
+        dict
+            ``{name: ndarray}``.
+        """
+        path = self.work / f"{name}.npz"
+        if not path.exists():
+            arrays = compute()
+            with atomic_path(str(path)) as tmp, open(tmp, "wb") as fh:
+                np.savez(fh, **arrays)
+        with np.load(path) as saved:
+            return {key: saved[key] for key in saved.files}
+
+    def step_lists(self, step: str, block, names, *, mmap_mode=None) -> dict:
+        """The sparse lists ``names`` of ``block`` saved by the step named ``step``
+        (:func:`~seismo3d.seismic.blocks.apply.load_lists` of ``WORK/<step>/``)."""
+        return load_lists(self.work / step, block, names, mmap_mode=mmap_mode)
+
+    def gathered_lists(self, step: str, blocks, names) -> dict:
+        """The sparse lists ``names`` of the step named ``step`` concatenated in the blocks' order
+        (:func:`~seismo3d.seismic.blocks.apply.gather`)."""
+        return gather(self.work / step, blocks, names)
+
     def marker(self, step: str, block) -> pathlib.Path:
         """The marker file of ``block`` (a tuple whose items 0 and 2 are its first inline and crossline) in
         ``step``."""
@@ -359,6 +394,10 @@ class MemoryRun:
     ----------
     shape : tuple of int
         ``(n_inlines, n_xlines, n_samples)`` of the cube (a section: ``(n_traces, 1, n_samples)``).
+    arrays : dict, optional
+        ``{name: ndarray}``: arrays the steps read by their declared names, given before the first step (the
+        steps' outputs are set in it; an input no step wrote is None to the algorithm, as a store holding only its
+        fill value).
     progress : bool
         Report progress per step.
 
@@ -368,18 +407,37 @@ class MemoryRun:
         ``{name: ndarray}``: the steps' inputs and outputs by their declared names.
     computed, resumed, seconds : dict
         As :class:`BlockRun`'s: one block computed per step, none resumed; wall-clock seconds per step.
+    lists : dict
+        ``{step name: {block: {list name: ndarray}}}``: the sparse lists of each step's one block.
     """
 
     client = None
 
-    def __init__(self, shape, *, progress: bool = False):
+    def __init__(self, shape, *, arrays: dict | None = None, progress: bool = False):
         self.shape = tuple(int(n) for n in shape)
-        self.arrays, self.progress = {}, progress
+        self.arrays, self.progress = ({} if arrays is None else arrays), progress
         self.computed, self.resumed, self.seconds = {}, {}, {}
+        self.lists = {}
 
     def saved(self, name: str, compute):
         """``compute()``: a run in memory is never resumed (:meth:`BlockRun.saved`'s counterpart)."""
         return compute()
+
+    def saved_arrays(self, name: str, compute) -> dict:
+        """``compute()``: arrays of the run, nothing kept (:meth:`BlockRun.saved_arrays`' counterpart)."""
+        return compute()
+
+    def step_lists(self, step: str, block, names, *, mmap_mode=None) -> dict:
+        """The lists ``names`` of the one block ``block`` of the step named ``step`` (:meth:`BlockRun.step_lists`'
+        counterpart; ``mmap_mode`` not used)."""
+        held = self.lists[step][tuple(int(v) for v in block)]
+        return {name: held[name] for name in names}
+
+    def gathered_lists(self, step: str, blocks, names) -> dict:
+        """The lists ``names`` of the step named ``step`` over ``blocks`` (its one block), as
+        :meth:`BlockRun.gathered_lists` concatenates them."""
+        parts = [self.step_lists(step, b, names) for b in blocks]
+        return {name: np.concatenate([q[name] for q in parts]) if parts else None for name in names}
 
     def release(self, *names) -> None:
         """Drop the arrays ``names`` that no later step reads (a run by blocks keeps them in its work folder)."""
@@ -424,7 +482,9 @@ class MemoryRun:
             out = apply_in_memory(step, arrays, *args, place=BlockPlace(block, tuple(region)))
             bar.advance()
         arrays.pop(CUBE, None)
-        self.arrays = arrays
+        self.arrays.clear()
+        self.arrays.update(arrays)  # the caller's dict too
+        self.lists[step.name] = {block: out.lists}
         self.computed[step.name], self.resumed[step.name] = 1, 0
         self.seconds[step.name] = round(self.seconds.get(step.name, 0.0) + time.perf_counter() - start, 2)
         return [out.summary]

@@ -3,7 +3,8 @@
 After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the steps with the defaults every seismo3d
 command uses and returns a :class:`FaultInterpretation`: the checks and the likelihood, then the one sequence of
 steps of :mod:`~seismo3d.seismic.faults.steps`, on the whole array as one block
-(:class:`~seismo3d.seismic.faults.steps.ArrayRun`) or block by block into Zarr stores (:func:`trace_faults_by_blocks`,
+(:func:`~seismo3d.seismic.faults.surfaces.blocks.memory_surface_run`) or block by block into Zarr stores
+(:func:`trace_faults_by_blocks`,
 before any block :func:`check_block_run`: the data judged from a sample of blocks,
 :func:`~seismo3d.seismic.faults.steps.judge_sample`, then the memory the run needs, :func:`minimum_memory_limit`); :func:`clean_traces` finds
 the dead samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped amplitudes
@@ -29,7 +30,7 @@ import numpy as np
 from ..._progress import LOGGER, progress_steps
 from ..._validation import check_choice, check_positive, check_seismic_layout
 from ...errors import EarlierStoresError, InputError, Seismo3dWarning
-from ..amplitudes import CleanTraces, check_amplitudes, clean_traces, finite_cube, near_dead_samples
+from ..amplitudes import CleanTraces, check_amplitudes, clean_traces, finite_cube
 from ..blocks.executor import release_memory
 from ..blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory, size_text, worker_baseline
 from ..blocks.options import BlockRunOptions, ChunkOptions
@@ -45,11 +46,9 @@ from .likelihood.scan import fault_likelihood
 from .likelihood.scan_blocks import chunked_fault_likelihood, smallest_block_bytes as likelihood_block_bytes
 from .options import LIKELIHOODS, FaultTracingOptions
 from .result import FaultInterpretation, FaultLikelihood
-from .steps import (
-    ArrayRun, CubeSample, check_size, faults_from_cells, judge_sample, no_coherence_message, surface_cells,
-)
+from .steps import CubeSample, check_size, faults_from_cells, judge_sample, no_coherence_message, surface_cells
 from .surfaces.blocks import (
-    CANDIDATE_BYTES, block_steps as surface_steps, chunked_fault_surfaces, smallest_block_bytes as surfaces_block_bytes,
+    CANDIDATE_BYTES, chunked_fault_surfaces, memory_surface_run, smallest_block_bytes as surfaces_block_bytes,
 )
 
 # check_size, check_amplitudes, no_coherence_message and LIKELIHOODS are imported here by older callers
@@ -140,7 +139,7 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
         and the input's name and coordinates recorded in the stores (:class:`BlockRunOptions`).
     progress : bool, optional
         Report progress over the steps (:mod:`seismo3d._progress`: a bar on a terminal, one log line per step
-        otherwise; the likelihood, the voting and the throw report their own progress too).
+        otherwise; the likelihood and the throw report their own progress too).
     model : str or os.PathLike, optional
         A MODEL folder written by ``seismo3d adapt`` (the fault network adapted to a survey from an interpreter's
         faults): the learned likelihood runs it instead of the shipped network (``LearnedOptions.adapted``), with the
@@ -234,19 +233,17 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
                       learned_fault_likelihood(arr, options=opt.learned, progress=progress))
         else:
             fl = _given_likelihood(likelihood, arr.shape)
-        near_dead = near_dead_samples(dead, options=opt.dead) if dead.any() else None
-        del dead
+        del dead  # the steps find the dead samples again, as by blocks (the same fill values: the whole array's)
         bar.advance()
-        cube = arr.shape if arr.ndim == 3 else (arr.shape[0], 1, arr.shape[1])  # a section: one crossline
-        steps = {step.name: step for step in surface_steps(cube, opt, max(cube[:2]))}  # one block: the whole array
-        run = ArrayRun(fl.likelihood, fl.strike_deg, fl.dip_deg, near_dead, opt, steps, progress=progress)
+        run = memory_surface_run(arr, fl.likelihood, fl.strike_deg, fl.dip_deg, opt)  # one block: the whole array
         del fl
         found = surface_cells(run, opt, bar)
-        faults, throws, evidence = faults_from_cells(run.cell_arrays, arr.shape, arr, found.thresholds, opt,
-                                                     likelihood=run.likelihood, bar=bar, progress=progress)
-    votes = run.fault_votes
-    result = FaultInterpretation(likelihood=run.likelihood, strike_deg=run.strike_deg, dip_deg=run.dip_deg,
-                                 votes=votes.votes, thin=run.thin, thresholds=found.thresholds, faults=faults,
+        likelihood = run.volume("likelihood")
+        faults, throws, evidence = faults_from_cells(run.cells_found(), arr.shape, arr, found.thresholds, opt,
+                                                     likelihood=likelihood, bar=bar, progress=progress)
+    result = FaultInterpretation(likelihood=likelihood, strike_deg=run.volume("fault_strike_deg"),
+                                 dip_deg=run.volume("fault_dip_deg"), votes=run.volume("votes"),
+                                 thin=run.volume("thin"), thresholds=found.thresholds, faults=faults,
                                  throws=throws, evidence=evidence, sample_interval=float(sample_interval),
                                  sample_unit=sample_unit, step_seconds=dict(bar.seconds))
     return result if labels is None else labels.label(result)

@@ -1,25 +1,16 @@
-"""The one sequence of the steps of :func:`~seismo3d.seismic.faults.trace_faults` after the fault likelihood, for a
-run on the whole array in memory and a run block by block.
+"""The one sequence of the steps of :func:`~seismo3d.seismic.faults.trace_faults` after the fault likelihood.
 
-A run is an object with the named steps of :class:`SurfaceRun`; :func:`surface_cells` calls them in their order with
-the saturation refusal between them, and :func:`faults_from_cells` links the cells into fault skins, measures their
-throws, keeps the faults the evidence supports and trims their tips (2D). Two runs implement the steps:
+:func:`surface_cells` calls the steps of a :class:`~seismo3d.seismic.faults.surfaces.blocks.SurfaceRun` (the
+declared block steps of the fault surfaces, run by blocks into Zarr stores or on the whole array in memory as one
+block) in their order with the saturation refusal between them, and :func:`faults_from_cells` links the cells into
+fault skins, measures their throws, keeps the faults the evidence supports and trims their tips (2D).
 
-- :class:`ArrayRun`: the whole array as one block, in memory (2D or 3D); its thinning and cells are the declared
-  steps of the run by blocks on that one block (:func:`~seismo3d.seismic.blocks.apply.apply_in_memory`);
-- ``_SurfaceRun`` of :mod:`~seismo3d.seismic.faults.surfaces.blocks`: block by block on dask into Zarr stores,
-  each block read with the halo of its step (a cube larger than memory).
-
-Both call the same step functions (:mod:`~seismo3d.seismic.faults.surfaces.ridges`, :func:`~seismo3d.seismic.faults.
-surfaces.voting.greedy_seeds`, :func:`~seismo3d.seismic.faults.surfaces.voting.surface_votes`,
-:func:`~seismo3d.seismic.faults.surfaces.skins.skins_from_cells`), so the faults do not depend on which run traced them.
-
-The refusals of fault tracing are here too, one function each, called by both runs: data too small for the scan and
-the voting boxes (:func:`check_size`), the saturation refusal between the steps (:func:`check_saturation`), and the
-same refusals made early on a sample of blocks of a large cube (:func:`judge_sample`, on the blocks the executor's
-preflight reads: :func:`~seismo3d.seismic.blocks.preflight.sample_blocks`), which also gives the density of the
-voting's seed candidates from which :func:`~seismo3d.seismic.faults.pipeline.minimum_memory_limit` estimates the
-memory of the seeds step of a block-by-block run.
+The refusals of fault tracing are here too, one function each: data too small for the scan and the voting boxes
+(:func:`check_size`), the saturation refusal between the steps (:func:`check_saturation`), and the same refusals
+made early on a sample of blocks of a large cube (:func:`judge_sample`, on the blocks the executor's preflight reads:
+:func:`~seismo3d.seismic.blocks.preflight.sample_blocks`), which also gives the density of the voting's seed
+candidates from which :func:`~seismo3d.seismic.faults.pipeline.minimum_memory_limit` estimates the memory of the
+seeds step of a block-by-block run.
 """
 
 from __future__ import annotations
@@ -27,170 +18,29 @@ from __future__ import annotations
 import dataclasses
 import warnings
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..._progress import no_progress
-from .. import _kernels
 from ..amplitudes import check_amplitudes, clean_traces, near_dead_samples
 from ..blocks import preflight
-from ..blocks.apply import apply_in_memory
 from ..blocks.preflight import SampleOptions
 from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .evidence import supported_faults
 from .likelihood.scan import fault_likelihood
-from .surfaces.ridges import live_likelihood, ridges, without_dead_edges
+from .surfaces.ridges import live_likelihood, ridges
 from .tips import trimmed_tips
 from .surfaces.skins import skins_from_cells
-from .surfaces.voting import image_seeds, seed_votes
 from .throw import fault_throws
 from .reflector_period import half_period
 
-if TYPE_CHECKING:  # annotations only: the options are passed in
+if TYPE_CHECKING:  # annotations only: the options and the run are passed in
     from .options import FaultTracingOptions
+    from .surfaces.blocks import SurfaceRun
 
-__all__ = ["ArrayRun", "CubeSample", "SurfaceCells", "SurfaceRun", "check_saturation", "check_size",
-           "faults_from_cells", "judge_sample", "no_coherence_message", "surface_cells"]
-
-
-class SurfaceRun(Protocol):
-    """The steps after the fault likelihood, on the whole array or block by block."""
-
-    def ridges(self) -> tuple[int, int]:
-        """Dead samples and their reach, the likelihood set to 0 there, its ridges (the seed candidates); returns
-        (live samples with a likelihood above ``saturation_level``, live samples) for the saturation refusal."""
-
-    def seeds(self) -> tuple[np.ndarray, np.ndarray]:
-        """The voting seeds (k, 3) int64, strongest first, and their fault frames (k, 3, 3)."""
-
-    def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
-        """The seeds' optimal-surface votes, 0 near dead samples."""
-
-    def thresholds(self) -> tuple[float, float]:
-        """The votes thinned; (lower, upper) thresholds of the thinned votes."""
-
-    def cells(self, lower: float) -> int:
-        """The thinned votes below ``lower`` set to 0; the rest kept as cells; their number."""
-
-
-class ArrayRun:
-    """The steps of :class:`SurfaceRun` on arrays in memory.
-
-    Parameters
-    ----------
-    likelihood, strike_deg, dip_deg : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
-        Fault likelihood (set to 0 near dead samples, in place), strike and dip (degrees).
-    near_dead : bool ndarray of the same shape, or None
-        Samples near dead ones (:func:`~seismo3d.seismic.amplitudes.near_dead_samples`).
-    opt : FaultTracingOptions
-    steps : dict of str to BlockStep
-        The declared steps of the fault surfaces by name
-        (:func:`~seismo3d.seismic.faults.surfaces.blocks.block_steps`): ``'thin'`` and ``'cells'`` run here on the
-        whole array as one block (:func:`~seismo3d.seismic.blocks.apply.apply_in_memory`).
-    progress : bool
-        Progress of the voting over its seeds.
-
-    Attributes
-    ----------
-    likelihood, strike_deg, dip_deg : ndarray
-        As given (the likelihood 0 near dead samples after :meth:`ridges`).
-    fault_votes : FaultVotes
-        After :meth:`votes`: the votes (0 near dead samples) and the orientation of their best surfaces.
-    thin : ndarray
-        After :meth:`thresholds`; 0 below the lower threshold after :meth:`cells`.
-    cell_arrays : tuple
-        After :meth:`cells`: (points, values, strike_deg, dip_deg) of the cells.
-    """
-
-    def __init__(self, likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray, near_dead,
-                 opt: FaultTracingOptions, steps: dict, *, progress: bool = False):
-        self.likelihood, self.strike_deg, self.dip_deg = likelihood, strike_deg, dip_deg
-        self.near_dead, self.opt, self.steps, self.progress = near_dead, opt, steps, progress
-        self._ridges = None
-        self.fault_votes = None
-        self.thin = None
-        self.cell_arrays = None
-
-    def ridges(self) -> tuple[int, int]:
-        """The likelihood set to 0 near dead samples (in place) and its ridges, the seed candidates.
-
-        Returns
-        -------
-        (int, int)
-            Live samples with a likelihood above ``opt.saturation_level``, and live samples (for the saturation
-            refusal).
-        """
-        high, live = live_likelihood(self.likelihood, self.near_dead, level=self.opt.saturation_level)
-        self._ridges = ridges(self.likelihood, self.strike_deg, self.dip_deg, self.opt.voting.seed_threshold)
-        return high, live
-
-    def seeds(self) -> tuple[np.ndarray, np.ndarray]:
-        """The voting seeds of the ridges, strongest first
-        (:func:`~seismo3d.seismic.faults.surfaces.voting.image_seeds`).
-
-        Returns
-        -------
-        seeds : (k, 3) int64 ndarray
-            Sample indices (a section's as (trace, 0, sample)).
-        frames : (k, 3, 3) float64 ndarray
-            Their fault frames.
-        """
-        seeds, frames = image_seeds(self._ridges, self.strike_deg, self.dip_deg, self.opt.voting)
-        self._ridges = None
-        return seeds, frames
-
-    def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
-        """The seeds' optimal-surface votes over the whole array
-        (:func:`~seismo3d.seismic.faults.surfaces.voting.seed_votes`), 0 near dead samples, in :attr:`fault_votes`.
-
-        Parameters
-        ----------
-        seeds : (k, 3) int64 ndarray
-        frames : (k, 3, 3) float64 ndarray
-        """
-        self.fault_votes = seed_votes(self.likelihood, seeds, frames, options=self.opt.voting, progress=self.progress)
-        without_dead_edges(self.fault_votes.votes, self.near_dead)
-
-    def thresholds(self) -> tuple[float, float]:
-        """The votes thinned (:attr:`thin`: the declared step ``'thin'`` on the whole array) and their thresholds,
-        by numpy and scikit-image (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds`).
-
-        Returns
-        -------
-        (float, float)
-            Lower and upper thresholds.
-        """
-        arrays = self._vote_arrays(as_3d=False)
-        apply_in_memory(self.steps["thin"], arrays)
-        self.thin = arrays["thin_raw"]
-        return self.opt.thresholds(self.thin)
-
-    def _vote_arrays(self, *, as_3d: bool) -> dict:
-        """The votes and their strike and dip by their declared names (a section's as a cube of one crossline)."""
-        view = _kernels.as_3d if as_3d else (lambda a: a)
-        votes = self.fault_votes
-        return {"votes": view(votes.votes), "vote_strike_deg": view(votes.strike_deg),
-                "vote_dip_deg": view(votes.dip_deg)}
-
-    def cells(self, lower: float) -> int:
-        """The thinned votes below ``lower`` set to 0; the rest as cells in :attr:`cell_arrays` (the declared step
-        ``'cells'`` on the whole array).
-
-        Parameters
-        ----------
-        lower : float
-            Lower threshold.
-
-        Returns
-        -------
-        int
-            Number of cells.
-        """
-        arrays = dict(self._vote_arrays(as_3d=True), thin_raw=_kernels.as_3d(self.thin))  # views: thin is set
-        found = apply_in_memory(self.steps["cells"], arrays, float(lower))       # to 0 below lower in place
-        self.cell_arrays = tuple(found.lists[name] for name in ("points", "values", "strike", "dip"))
-        return int(found.summary["count"])
+__all__ = ["CubeSample", "SurfaceCells", "check_saturation", "check_size", "faults_from_cells", "judge_sample",
+           "no_coherence_message", "surface_cells"]
 
 
 @dataclass(frozen=True)
@@ -219,7 +69,7 @@ def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> Surfac
     Parameters
     ----------
     run : SurfaceRun
-        The whole array or the blocks.
+        The fault surfaces' steps on their executor: by blocks, or the whole array in memory as one block.
     opt : FaultTracingOptions
     bar : progress bar, optional
         Of :func:`seismo3d._progress.progress_steps`, advanced once per named step (ridges, voting, thinning);

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy import ndimage as ndi
 
-from seismo3d.seismic.blocks.apply import BlockOutput, BlockPlace, apply_in_memory, gather, load_lists, whole_place
+from seismo3d.seismic.blocks.apply import BlockOutput, BlockPlace, gather, load_lists, whole_place
 from seismo3d.seismic.blocks.executor import BlockRun, MemoryRun
 from seismo3d.seismic.blocks.plan import CUBE, BlockStep, lateral_blocks
 
@@ -98,24 +98,32 @@ def test_a_block_place_names_its_core_within_the_region_read():
 
 
 def test_the_same_steps_on_the_whole_array_in_memory_are_one_block(tmp_path):
+    """MemoryRun, the executor in memory: the declared steps on one block, the whole array, give what the blocks of
+    the run by blocks give; its lists in the executor's interface; several blocks refused."""
     cube = _cube()
     smooth = BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",))
     peaks = BlockStep("peaks", "gather", HALO, function=_peaks, inputs=("smooth",), outputs=("double",), place=True)
     _run(tmp_path, cube, (smooth, ()), (peaks, (0.2,)))
-    arrays = {CUBE: cube}
-    sized = apply_in_memory(smooth, arrays)
-    found = apply_in_memory(peaks, arrays, 0.2)
-    assert set(arrays) == {CUBE, "smooth", "double"} and sized.summary == {"n": cube.size}
-    np.testing.assert_array_equal(arrays["smooth"], zarr.open_array(str(tmp_path / "smooth"))[:])
-    np.testing.assert_array_equal(arrays["double"], zarr.open_array(str(tmp_path / "double"))[:])
-    blocks = gather(tmp_path / "work" / "peaks", lateral_blocks(SHAPE, 4, 4), ("points",))["points"]
-    np.testing.assert_array_equal(found.lists["points"], blocks[np.lexsort(blocks.T[::-1])])  # in C order
-    assert found.summary == {"count": len(blocks)}
+    run = MemoryRun(SHAPE)
+    whole = [whole_place(SHAPE).block]
     assert whole_place(SHAPE) == BlockPlace((0, 11, 0, 9), (0, 11, 0, 9))
-    # a declared combine applies to what the dictionary holds
-    apply_in_memory(BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",),
-                              combine=np.maximum), arrays)
-    np.testing.assert_array_equal(arrays["smooth"], zarr.open_array(str(tmp_path / "smooth"))[:])
+    sized = run.run_step(smooth, whole, source=cube)
+    found = run.run_step(peaks, whole, 0.2)
+    assert set(run.arrays) == {"smooth", "double"} and sized == [{"n": cube.size}]
+    assert run.computed == {"smooth": 1, "peaks": 1}
+    np.testing.assert_array_equal(run.arrays["smooth"], zarr.open_array(str(tmp_path / "smooth"))[:])
+    np.testing.assert_array_equal(run.arrays["double"], zarr.open_array(str(tmp_path / "double"))[:])
+    blocks = gather(tmp_path / "work" / "peaks", lateral_blocks(SHAPE, 4, 4), ("points",))["points"]
+    points = run.gathered_lists("peaks", whole, ("points",))["points"]
+    np.testing.assert_array_equal(points, blocks[np.lexsort(blocks.T[::-1])])  # in C order
+    np.testing.assert_array_equal(run.step_lists("peaks", whole[0], ("points",))["points"], points)
+    assert found == [{"count": len(blocks)}]
+    # a declared combine applies to what the run holds
+    run.run_step(BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",),
+                           combine=np.maximum), whole, source=cube)
+    np.testing.assert_array_equal(run.arrays["smooth"], zarr.open_array(str(tmp_path / "smooth"))[:])
+    with pytest.raises(ValueError, match="one block per step"):
+        run.run_step(smooth, lateral_blocks(SHAPE, 4, 4), source=cube)
 
 
 def test_a_memory_run_is_the_block_run_of_the_same_steps_on_one_block(tmp_path):

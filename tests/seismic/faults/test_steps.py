@@ -1,14 +1,13 @@
-"""The steps after the fault likelihood are one sequence (issue 30): surface_steps.surface_cells calls the named steps
-of the run in memory (the whole array as one block) in their order, and that run gives what the whole-image functions
-give."""
+"""The steps after the fault likelihood are one sequence run by one executor (issues 30, 75): surface_cells calls the
+named steps of the one run of the fault surfaces (SurfaceRun, on the whole array as one block in memory: MemoryRun) in
+their order, and that run gives what the whole-image functions give."""
 
 import numpy as np
 import pytest
 
 import seismo3d.seismic.faults.steps as surface_steps
 from seismo3d.data.synthetic import synthetic_cube
-from seismo3d.seismic.faults.steps import ArrayRun
-from seismo3d.seismic.faults.surfaces.blocks import block_steps
+from seismo3d.seismic.faults.surfaces.blocks import memory_surface_run
 from seismo3d.seismic.faults import (
     FaultTracingOptions, fault_likelihood, fault_skins, thin_faults, trace_faults, vote_faults,
 )
@@ -24,7 +23,7 @@ def cube():
 
 
 def _recording(monkeypatch):
-    """Record the steps surface_cells calls, and on which run class."""
+    """Record the steps surface_cells calls, on which run class and executor."""
     calls = []
     original = surface_steps.surface_cells
 
@@ -33,7 +32,7 @@ def _recording(monkeypatch):
             method = getattr(run, name)
 
             def step(*args, _name=name, _method=method):
-                calls.append((type(run).__name__, _name))
+                calls.append((type(run).__name__, type(run.run).__name__, _name))
                 return _method(*args)
             setattr(run, name, step)
         return original(run, opt, bar)
@@ -44,15 +43,15 @@ def _recording(monkeypatch):
 
 @pytest.mark.parametrize("ndim", [pytest.param(3, marks=pytest.mark.slow), 2])
 def test_the_run_in_memory_is_the_whole_image_functions(cube, ndim):
-    """ArrayRun through surface_cells gives the votes, thinned votes and skins of vote_faults and fault_skins on the
-    whole image (the composition the run in memory had before the sequence was shared)."""
+    """The run in memory (the declared block steps on one block, the whole array) through surface_cells gives the
+    votes, thinned votes and skins of vote_faults and fault_skins on the whole image (the composition the run in
+    memory had before the sequence was shared)."""
     data = cube if ndim == 3 else cube[:, 20, :]
     opt = FaultTracingOptions()
     fl = fault_likelihood(data, options=opt.scan, progress=False)
-    cube_shape = data.shape if ndim == 3 else (data.shape[0], 1, data.shape[1])
-    steps = {step.name: step for step in block_steps(cube_shape, opt, max(cube_shape[:2]))}
-    run = ArrayRun(fl.likelihood.copy(), fl.strike_deg, fl.dip_deg, None, opt, steps)
+    run = memory_surface_run(data, fl.likelihood.copy(), fl.strike_deg, fl.dip_deg, opt)
     found = surface_cells(run, opt)
+    assert run.run.computed == {name: 1 for name in ("fill", "ridges", "surfaces", "votes", "thin", "cells")}
 
     seeds = thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg, threshold=0.0)
     votes = vote_faults(fl.likelihood, fl.strike_deg, fl.dip_deg, seeds, options=opt.voting)
@@ -61,10 +60,11 @@ def test_the_run_in_memory_is_the_whole_image_functions(cube, ndim):
     thin[thin < lower] = 0.0
     assert found.thresholds == (lower, upper)
     assert found.n_seeds == votes.n_seeds > 0
-    np.testing.assert_array_equal(run.fault_votes.votes, votes.votes)
-    np.testing.assert_array_equal(run.thin, thin)
+    np.testing.assert_array_equal(run.volume("votes"), votes.votes)
+    np.testing.assert_array_equal(run.volume("vote_strike_deg"), votes.strike_deg)
+    np.testing.assert_array_equal(run.volume("thin"), thin)
     skins = fault_skins(thin, votes.strike_deg, votes.dip_deg, lower=lower, upper=upper, options=opt.skins)
-    faults = skins_from_cells(*run.cell_arrays, shape=data.shape, lower=lower, upper=upper, options=opt.skins)
+    faults = skins_from_cells(*run.cells_found(), shape=data.shape, lower=lower, upper=upper, options=opt.skins)
     assert len(skins) > 0 and [f.points.tolist() for f in faults] == [f.points.tolist() for f in skins]
 
 
@@ -73,4 +73,4 @@ def test_the_run_in_memory_calls_the_one_sequence(cube, monkeypatch):
     blocks goes through it too: test_chunked_faults.test_blocks_give_the_in_memory_faults)."""
     calls = _recording(monkeypatch)
     trace_faults(cube[:, 20, :], progress=False)
-    assert calls == [("ArrayRun", s) for s in STEPS]
+    assert calls == [("SurfaceRun", "MemoryRun", s) for s in STEPS]

@@ -8,9 +8,10 @@ Dead traces and samples, whose edges are not faults, are the amplitudes' (:mod:`
 - :mod:`~seismo3d.seismic.faults.surfaces.skins`: thinned votes linked into fault skins (Hale 2013); the skins
   that continue each other merged in :mod:`~seismo3d.seismic.faults.surfaces.skin_merging`, the 2D skins that linked
   two faults split apart in :mod:`~seismo3d.seismic.faults.surfaces.skin_splits`.
-- :mod:`~seismo3d.seismic.faults.surfaces.blocks`: the same steps on a cube larger than memory, declared once (halos,
-  inputs and outputs, costs, plan; each one's algorithm on a block beside its algorithm) and run block by block by
-  the executor of :mod:`seismo3d.seismic.blocks`.
+- :mod:`~seismo3d.seismic.faults.surfaces.blocks`: these steps declared once (halos, inputs and outputs, costs, plan;
+  each one's algorithm on a block beside its algorithm) and run once (``SurfaceRun``): block by block by the
+  executor of :mod:`seismo3d.seismic.blocks` for a cube larger than memory, or on the whole array as one block in
+  memory.
 """
 
 from .ridges import thin_faults

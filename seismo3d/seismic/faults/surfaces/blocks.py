@@ -1,13 +1,16 @@
-"""Fault surfaces of a cube larger than memory: the steps of :func:`~seismo3d.seismic.faults.trace_faults` after the
-likelihood, declared once (:func:`block_steps`), run block by block from a chunked likelihood by the executor of
-:mod:`seismo3d.seismic.blocks` (``_SurfaceRun``: the named steps of :class:`~seismo3d.seismic.faults.steps.SurfaceRun`,
-called by :func:`~seismo3d.seismic.faults.steps.surface_cells` as in memory), with the in-memory run's faults. Each
-step reads its block with its halo and writes the core; its algorithm on a block is beside the one it runs:
+"""Fault surfaces: the steps of :func:`~seismo3d.seismic.faults.trace_faults` after the likelihood, declared once
+(:func:`block_steps`) and run once (:class:`SurfaceRun`, in the order of
+:func:`~seismo3d.seismic.faults.steps.surface_cells`) by either executor: block by block from a chunked likelihood
+into Zarr stores (:func:`chunked_fault_surfaces`, the executor of :mod:`seismo3d.seismic.blocks`), or on the whole
+array in memory as one block (:func:`memory_surface_run`, :class:`~seismo3d.seismic.blocks.executor.MemoryRun`), so
+the faults do not depend on how the cube was run. Each step reads its block with its halo and writes the core; its
+algorithm on a block is beside the one it runs:
 
 fill values (``amplitudes.fill_block``), ridges and seed candidates (``ridges.ridge_block``), each seed's surface
 once (:func:`surface_block`) and the votes of the surfaces reaching a block in id order (:func:`vote_block`),
 thinning (``ridges.thin_block``) and thresholds from histograms (:mod:`seismo3d.seismic.blocks.statistics`), cells
 (``ridges.cell_block``) linked into skins with their throws (:func:`~seismo3d.seismic.faults.steps.faults_from_cells`).
+A section runs as a cube of one crossline (its ridges and thinning in 2D).
 """
 
 from __future__ import annotations
@@ -20,11 +23,10 @@ from dataclasses import asdict, dataclass
 import numba
 import numpy as np
 
-from ...._atomic import atomic_path
 from ...._progress import no_progress
 from ....errors import InputError
-from ...blocks.apply import BlockOutput, gather, load_lists
-from ...blocks.executor import SchedulerClient, trace_cube
+from ...blocks.apply import BlockOutput
+from ...blocks.executor import MemoryRun, SchedulerClient, trace_cube
 from ...blocks.memory import chunk_bytes, default_memory_limit, resident_memory, worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
@@ -43,9 +45,9 @@ from .ridges import (
 from .voting import SeedSurfaces, VoteSum, seed_surfaces
 from .voting_kernels import greedy_seeds
 
-__all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "ChunkedFaults", "SURFACE_BATCH_BYTES", "SurfacePlan",
-           "block_steps", "chunked_fault_surfaces", "plan_blocks", "smallest_block_bytes", "surface_block",
-           "vote_block"]
+__all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "ChunkedFaults", "SURFACE_BATCH_BYTES", "SurfacePlan", "SurfaceRun",
+           "block_steps", "chunked_fault_surfaces", "memory_surface_run", "plan_blocks", "smallest_block_bytes",
+           "surface_block", "vote_block"]
 
 # the output's arrays, (n_inlines, n_xlines, n_samples) float32 (ChunkedFaults.path)
 _OUTPUTS = ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg", "slope_inline", "slope_xline")
@@ -265,27 +267,37 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
                              "chunked_fault_likelihood for this cube")
     plan = plan_blocks(shape, opt, chunking, worker_baseline(chunking, chunk_bytes(x)))
     memory = int(chunking.memory_limit or default_memory_limit())  # the cells' and candidates' checks: less the RSS
-    run = _SurfaceRun(pathlib.Path(output), pathlib.Path(likelihood), x, plan, opt, chunking, memory, progress)
+    store = StoreRun(pathlib.Path(output), chunking, progress, outputs=_OUTPUTS)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
                 "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve()),
                 "likelihood_id": group.attrs.get("id")}  # another likelihood written at the same path is not this
-    earlier = run.earlier_plan(manifest)
+    earlier = store.earlier_plan(manifest)
     if earlier is not None:  # resuming: the blocks of the interrupted run
-        run.plan = plan = SurfacePlan(**dict(earlier, shape=tuple(earlier["shape"])))
+        plan = SurfacePlan(**dict(earlier, shape=tuple(earlier["shape"])))
         manifest["plan"] = earlier
-    attrs = run.finished_output(manifest, "cube, likelihood and options")
+    attrs = store.finished_output(manifest, "cube, likelihood and options")
     if attrs is None:  # the block steps up to the cells (a resumed run skips the finished blocks)
-        run.start(manifest)
-        with SchedulerClient(run.scheduler) as client:
-            run.client = client
-            found = surface_cells(run, run.opt)
+        # the work arrays (the masks near dead samples, compressed; the thinned votes before the threshold), the
+        # output arrays, and the likelihood's arrays the ridges read
+        store.start_output(manifest, plan.shape, plan.tile, (("near", "uint8", plan.shape[2], True),
+                                                             ("thin_raw", "float32", plan.shape[2])))
+        store.arrays.update(zip(LIKELIHOOD_INPUTS, (f"{likelihood}/{name}" for name in
+                                                    ("likelihood", "strike_deg", "dip_deg"))))
+        with SchedulerClient(store.scheduler) as client:
+            store.client = client
+            run = SurfaceRun(store, x, plan, opt, shape, memory=memory)
+            found = surface_cells(run, opt)
+            # the cells gathered into 1D arrays of the output group, in C order (the skins then need no sorted copies)
+            store.write_gathered(store.work / "cells", run.blocks("cells"), {
+                "points": ("cell_points", "int32"), "values": ("cell_values", "float32"),
+                "strike": ("cell_strike_deg", "float32"), "dip": ("cell_dip_deg", "float32")}, found.n_cells)
         attrs = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,
                  "saturated_fraction": found.saturated_fraction, "run": manifest}
-        run.finish(dict(attrs, method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run"))
+        store.finish(dict(attrs, method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run"))
     else:
         _check_cells(attrs["n_cells"], memory)
     lower, upper = (float(v) for v in attrs["thresholds"])
-    stored = zarr.open_group(str(run.out), mode="r")
+    stored = zarr.open_group(str(store.out), mode="r")
     windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
     cells = (stored["cell_points"][:].astype(np.int64), stored["cell_values"][:], stored["cell_strike_deg"][:],
              stored["cell_dip_deg"][:])
@@ -293,10 +305,10 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     faults, throws, evidence = faults_from_cells(cells, shape, windows, (lower, upper), opt,
                                                  likelihood=group["likelihood"], bar=bar, progress=progress)
     bar.stop()
-    run.seconds.update({name: round(t, 2) for name, t in bar.seconds.items()})
-    return ChunkedFaults(run.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]),
-                         int(attrs["n_cells"]), float(attrs["saturated_fraction"]), dict(run.computed),
-                         dict(run.resumed), dict(run.seconds))
+    store.seconds.update({name: round(t, 2) for name, t in bar.seconds.items()})
+    return ChunkedFaults(store.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]),
+                         int(attrs["n_cells"]), float(attrs["saturated_fraction"]), dict(store.computed),
+                         dict(store.resumed), dict(store.seconds))
 
 
 def _check_cells(n: int, memory: int) -> None:
@@ -305,103 +317,164 @@ def _check_cells(n: int, memory: int) -> None:
                          "fault skins, more than the memory limit leaves: raise memory_limit")
 
 
-class _SurfaceRun(StoreRun):
-    """One chunked fault-surface run: its steps and their blocks (its stores: :class:`StoreRun`)."""
+def memory_surface_run(cube: np.ndarray, likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray,
+                       opt: FaultTracingOptions) -> SurfaceRun:
+    """The run of the fault surfaces on arrays in memory: the steps of :func:`block_steps` on one block, the whole
+    array (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`).
 
-    def __init__(self, out: pathlib.Path, likelihood: pathlib.Path, x, plan: SurfacePlan, opt: FaultTracingOptions,
-                 chunking: ChunkOptions, memory: int, progress: bool):
-        super().__init__(out, chunking, progress, outputs=_OUTPUTS)
-        self.likelihood, self.plan, self.opt = str(likelihood), plan, opt
-        self.x, self.memory = x, memory  # the cube (dask, whole traces) and the memory limit, bytes
+    Parameters
+    ----------
+    cube : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
+        Amplitudes, finite (:func:`~seismo3d.seismic.amplitudes.clean_traces`).
+    likelihood, strike_deg, dip_deg : float32 ndarrays of the cube's shape
+        Fault likelihood, strike and dip (degrees); the likelihood is set to 0 near dead samples by the ridges (in
+        place when it is C-contiguous; :meth:`SurfaceRun.volume` ``('likelihood')`` in any case).
+    opt : FaultTracingOptions
+
+    Returns
+    -------
+    SurfaceRun
+        To run with :func:`~seismo3d.seismic.faults.steps.surface_cells`; its cells
+        (:meth:`SurfaceRun.cells_found`) and volumes (:meth:`SurfaceRun.volume`) after.
+    """
+    image = tuple(int(n) for n in cube.shape)
+    shape = image if len(image) == 3 else (image[0], 1, image[1])  # a section: a cube of one crossline
+    arrays = dict(zip(LIKELIHOOD_INPUTS, (a.reshape(shape) for a in (likelihood, strike_deg, dip_deg))))
+    side = max(shape[:2])
+    plan = SurfacePlan(shape, side, side, side, side, side, opt.voting.reach(image))
+    return SurfaceRun(MemoryRun(shape, arrays=arrays), np.asarray(cube).reshape(shape), plan, opt, image,
+                      slopes=False)
+
+
+class SurfaceRun:
+    """The fault surfaces' steps (:func:`block_steps`) run by an executor, in the order of
+    :func:`~seismo3d.seismic.faults.steps.surface_cells`: by blocks into Zarr stores
+    (:class:`~seismo3d.seismic.blocks.stores.StoreRun`, :func:`chunked_fault_surfaces`) or on the whole array in
+    memory as one block (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`, :func:`memory_surface_run`).
+
+    Parameters
+    ----------
+    run : StoreRun or MemoryRun
+        The executor: ``run_step``, ``saved``, ``saved_arrays``, ``step_lists``, ``gathered_lists`` and ``arrays``
+        (and a store run's ``reduce_cube``).
+    cube : (n_inlines, n_xlines, n_samples) dask.array.Array or ndarray
+        Amplitudes (a section's as a cube of one crossline).
+    plan : SurfacePlan
+        Block sides of the steps (a run in memory: the whole array).
+    opt : FaultTracingOptions
+    image_shape : tuple of int
+        Of the image, 2D for a section.
+    memory : int, optional
+        The memory limit, bytes: seed candidates and cells that need more than it leaves are refused (a run by
+        blocks); None: not checked (a run in memory, sized before the run).
+    slopes : bool
+        Keep the reflector slopes for the throws (a run by blocks, whose throws read them from its stores).
+    """
+
+    def __init__(self, run, cube, plan: SurfacePlan, opt: FaultTracingOptions, image_shape, *, memory=None,
+                 slopes: bool = True):
+        self.run, self.x, self.plan, self.opt = run, cube, plan, opt
+        self.image_shape = tuple(int(n) for n in image_shape)
+        self.memory, self.slopes = memory, slopes
         self.steps = {step.name: step for step in block_steps(plan.shape, opt, 0)}
 
-    def start(self, manifest: dict) -> None:
-        """Open the work folder with ``manifest``, its work arrays (the masks near dead samples, compressed; the
-        thinned votes before the threshold) and the output arrays; name the likelihood's arrays for the ridges."""
+    def blocks(self, step: str) -> list:
+        """The blocks of the step named ``step`` (the cells' are the thinning's)."""
         p = self.plan
-        self.start_output(manifest, p.shape, p.tile, (("near", "uint8", p.shape[2], True),
-                                                      ("thin_raw", "float32", p.shape[2])))
-        self.arrays.update(zip(LIKELIHOOD_INPUTS, (f"{self.likelihood}/{name}" for name in
-                                                   ("likelihood", "strike_deg", "dip_deg"))))
+        side = {"fill": p.dead, "ridges": p.ridge, "surfaces": p.vote, "votes": p.vote}.get(step, p.thin)
+        return lateral_blocks(p.shape, side, side)
 
-    def _blocks(self, side: int) -> list:
-        return lateral_blocks(self.plan.shape, side, side)
     def ridges(self) -> tuple[int, int]:
         """Dead samples (from the fill values of the whole cube), live likelihood and ridges of every block;
         (saturated live samples, live samples)."""
-        import dask.array as da
-
-        x, p = self.x, self.plan
-        lo, hi = self.saved("amplitude_range", lambda: [float(v) for v in self.reduce_cube((da.min(x), da.max(x)))])
-        results = self.run_step(self.steps["fill"], self._blocks(p.dead), lo, hi, self.opt.dead, source=x)
+        x = self.x
+        lo, hi = self.run.saved("amplitude_range", lambda: _amplitude_range(self.run, x))
+        results = self.run.run_step(self.steps["fill"], self.blocks("fill"), lo, hi, self.opt.dead, source=x)
         fill = np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
                                         [np.zeros(1, np.float32)]))
-        results = self.run_step(self.steps["ridges"], self._blocks(p.ridge), fill, lo, hi, p.shape, self.opt,
-                                source=x)
+        results = self.run.run_step(self.steps["ridges"], self.blocks("ridges"), fill, lo, hi, self.image_shape,
+                                    self.opt, self.slopes, source=x)
         return sum(r["high"] for r in results), sum(r["live"] for r in results)
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:
         """The seeds among the ridges' candidates, strongest first (:func:`greedy_seeds`), with their frames; kept
         by a resumed run."""
-        path = self.work / "seeds.npz"
-        if not path.exists():
-            folder = self.work / "ridges"
-            blocks = sorted(self._blocks(self.plan.ridge), key=lambda b: f"{b[0]}-{b[2]}")  # as the files sort
-            n = sum(load_lists(folder, b, ("values",), mmap_mode="r")["values"].size for b in blocks)
+        saved = self.run.saved_arrays("seeds", self._seeds)
+        return saved["seeds"], saved["frames"]
+
+    def _seeds(self) -> dict:
+        shape = self.plan.shape
+        blocks = sorted(self.blocks("ridges"), key=lambda b: f"{b[0]}-{b[2]}")  # as the files sort
+        if self.memory is not None:
+            n = sum(self.run.step_lists("ridges", b, ("values",), mmap_mode="r")["values"].size for b in blocks)
             if n * CANDIDATE_BYTES > self.memory - resident_memory():
                 raise InputError(f"{n} seed candidates need about {n * CANDIDATE_BYTES / 2**30:.2f} GiB, more than "
                                  "the memory limit leaves: raise memory_limit")
-            found = gather(folder, blocks, ("points", "values", "angles"))
-            points, angles = found["points"], found["angles"]
-            seeds = greedy_seeds(points, found.pop("values"), self.plan.shape, self.opt.voting.spacing(3))
-            keys = np.ravel_multi_index(tuple(points.T), self.plan.shape)
-            del points, found
-            order = np.argsort(keys)
-            at = order[np.searchsorted(keys, np.ravel_multi_index(tuple(seeds.T), self.plan.shape), sorter=order)]
-            frames = fault_frames(angles[at, 0], angles[at, 1])
-            with atomic_path(str(path)) as tmp, open(tmp, "wb") as fh:
-                np.savez(fh, seeds=seeds, frames=frames)
-        saved = np.load(path)
-        return saved["seeds"], saved["frames"]
+        found = self.run.gathered_lists("ridges", blocks, ("points", "values", "angles"))
+        points, angles = found["points"], found["angles"]
+        seeds = greedy_seeds(points, found.pop("values"), shape, self.opt.voting.spacing(len(self.image_shape)))
+        keys = np.ravel_multi_index(tuple(points.T), shape)
+        del points, found
+        order = np.argsort(keys)
+        at = order[np.searchsorted(keys, np.ravel_multi_index(tuple(seeds.T), shape), sorter=order)]
+        return {"seeds": seeds, "frames": fault_frames(angles[at, 0], angles[at, 1])}
 
     def votes(self, seeds: np.ndarray, frames: np.ndarray) -> None:
         """Each seed's optimal surface once, in the block that holds the seed (the likelihood read with the voting's
         reach around it), then the votes of every block from the surfaces of the seeds reaching it, in id order."""
-        p = self.plan
-        blocks = self._blocks(p.vote)
-        self.run_step(self.steps["surfaces"], blocks, seeds, frames, p.shape, self.opt.voting)
-        surfaces = functools.partial(load_lists, self.work / "surfaces", mmap_mode="r")
-        self.run_step(self.steps["votes"], blocks, seeds, blocks, surfaces, p.shape, self.opt.voting)
+        blocks = self.blocks("votes")
+        self.run.run_step(self.steps["surfaces"], blocks, seeds, frames, self.image_shape, self.opt.voting)
+        surfaces = functools.partial(self.run.step_lists, "surfaces", mmap_mode="r")
+        self.run.run_step(self.steps["votes"], blocks, seeds, blocks, surfaces, self.image_shape, self.opt.voting)
 
     def thresholds(self) -> tuple[float, float]:
         """The thresholds from the thinned votes of every block: their count and range, their histogram (Otsu) and,
-        when they are dense, their exact quantile (dask reductions: :mod:`~seismo3d.seismic.blocks.statistics`)."""
-        import dask.array as da
-
-        blocks = self._blocks(self.plan.thin)
-        stats = self.run_step(self.steps["thin"], blocks)
+        when they are dense, their exact quantile (dask reductions over a store's chunks:
+        :mod:`~seismo3d.seismic.blocks.statistics`; in memory the libraries' on the values, which they equal)."""
+        stats = self.run.run_step(self.steps["thin"], self.blocks("thin"), self.image_shape)
+        thin = self.run.arrays["thin_raw"]  # an array in memory, or a Zarr store's path
+        if isinstance(thin, np.ndarray):
+            return self.opt.thresholds(thin)
         n_values = sum(r["count"] for r in stats)
         n_samples = int(np.prod(self.plan.shape, dtype=np.int64))
         if n_values == 0:
             return self.opt.thresholds_from(1.0, 0, n_samples, None)
         vmin = min(r["min"] for r in stats if r["count"])
         vmax = max(r["max"] for r in stats if r["count"])
-        values = da.from_zarr(self.arrays["thin_raw"])
-        return self.opt.thresholds_from(streamed_otsu(self, values, vmin, vmax), n_values, n_samples,
-                                        lambda q: streamed_quantile(self, values, q, n_values, vmin, vmax))
+        import dask.array as da
+
+        values = da.from_zarr(thin)
+        return self.opt.thresholds_from(streamed_otsu(self.run, values, vmin, vmax), n_values, n_samples,
+                                        lambda q: streamed_quantile(self.run, values, q, n_values, vmin, vmax))
 
     def cells(self, lower: float) -> int:
-        """Thinned votes at or above ``lower`` into the output, and its cells gathered into 1D arrays of the output
-        group (``cell_points``, ``cell_values``, ``cell_strike_deg``, ``cell_dip_deg``) in C order (the skins then
-        need no sorted copies); their number."""
-        blocks = self._blocks(self.plan.thin)
-        n = sum(r["count"] for r in self.run_step(self.steps["cells"], blocks, lower))
-        _check_cells(n, self.memory)
-        self.write_gathered(self.work / "cells", blocks, {"points": ("cell_points", "int32"),
-                                                          "values": ("cell_values", "float32"),
-                                                          "strike": ("cell_strike_deg", "float32"),
-                                                          "dip": ("cell_dip_deg", "float32")}, n)
+        """Thinned votes at or above ``lower`` kept (``thin``), the others set to 0, and its cells listed per
+        block; their number."""
+        n = sum(r["count"] for r in self.run.run_step(self.steps["cells"], self.blocks("cells"), lower))
+        if self.memory is not None:
+            _check_cells(n, self.memory)
         return n
+
+    def cells_found(self) -> tuple:
+        """(points (n, 3) int64, values, strike_deg, dip_deg (n,) float32) of the cells, the blocks' in their
+        order (C order for one block)."""
+        found = self.run.gathered_lists("cells", self.blocks("cells"), ("points", "values", "strike", "dip"))
+        return tuple(found[name] for name in ("points", "values", "strike", "dip"))
+
+    def volume(self, name: str):
+        """The array ``name`` of the run (``'votes'``, ``'thin'``, ...) in the image's shape (a section's 2D)."""
+        array = self.run.arrays[name]
+        return array.reshape(self.image_shape) if len(self.image_shape) == 2 else array
+
+
+def _amplitude_range(run, x) -> list:
+    """[smallest, largest] amplitude of the cube: numpy's on an array in memory, else a dask reduction on the run's
+    scheduler."""
+    if isinstance(x, np.ndarray):
+        return [float(x.min()), float(x.max())]
+    import dask.array as da
+
+    return [float(v) for v in run.reduce_cube((da.min(x), da.max(x)))]
 
 
 def surface_block(place, likelihood, seeds, frames, shape, opt) -> BlockOutput:
@@ -438,8 +511,8 @@ def vote_block(place, near, seeds, blocks, surfaces, shape, opt) -> BlockOutput:
     Parameters
     ----------
     place : BlockPlace
-    near : (n_inlines, n_xlines, n_samples) uint8 array read by slicing
-        Samples near dead ones.
+    near : (n_inlines, n_xlines, n_samples) uint8 array read by slicing, or None
+        Samples near dead ones (None: none).
     seeds : (k, 3) int64 ndarray
         Every seed of the cube.
     blocks : list of tuple
@@ -479,7 +552,8 @@ def vote_block(place, near, seeds, blocks, surfaces, shape, opt) -> BlockOutput:
             total.add(seeds[ids[lo:hi]], ids[lo:hi], _surfaces_of(parts, which[lo:hi], rows[lo:hi]))
     votes = total.votes()
     del total
-    without_dead_edges(votes.votes, near[place.target].view(bool))
+    if near is not None:  # None: no dead sample (a run in memory)
+        without_dead_edges(votes.votes, near[place.target].view(bool))
     return BlockOutput({"votes": votes.votes, "vote_strike_deg": votes.strike_deg, "vote_dip_deg": votes.dip_deg})
 
 

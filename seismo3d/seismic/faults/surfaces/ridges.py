@@ -386,7 +386,8 @@ def amplitude_halo(opt) -> int:
     return max(RIDGE_HALO + opt.dead.reach[0], structure_tensor_halo()[0])
 
 
-def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, shape, opt) -> BlockOutput:
+def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, shape, opt, slopes: bool = True
+                ) -> BlockOutput:
     """Reflector slopes, dead samples, live likelihood and ridges of one block (Hale 2013).
 
     Parameters
@@ -395,56 +396,70 @@ def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, s
         The block's core and the region of ``f``.
     f : (m0, m1, n_samples) ndarray
         Amplitudes of ``place.region``: the block grown by the dead samples' reach around ``RIDGE_HALO`` and by the
-        structure tensor's halo (:func:`amplitude_halo`).
+        structure tensor's halo (:func:`amplitude_halo`); a section as a cube of one crossline.
     likelihood, strike, dip : (n_inlines, n_xlines, n_samples) arrays read by slicing
-        The fault likelihood, strike and dip of the cube, read around the block with ``RIDGE_HALO``.
+        The fault likelihood, strike and dip of the cube, read around the block with ``RIDGE_HALO``; the likelihood
+        is set to 0 near dead samples in place when it is an array in memory.
     fill : (k,) float32 ndarray
         Fill values of the dead-sample rules; ``lo``, ``hi`` the cube's smallest and largest amplitudes.
-    shape : (int, int, int)
-        Of the cube.
+    shape : (int, int, int) or (int, int)
+        Of the image: a 2D shape for a section (one block, the whole section, in memory; its ridges those of the
+        section, :func:`ridges` in 2D).
     opt : FaultTracingOptions
+    slopes : bool
+        Compute the reflector slopes of a cube (the throws of a run by blocks read them from its stores; in memory
+        they are computed from the amplitudes when a throw needs them); never for a section.
 
     Returns
     -------
     BlockOutput
         The core's ``slope_inline``, ``slope_xline`` (:func:`structure_tensor_slopes`, as the throws read them in
-        memory), ``likelihood`` (0 near dead samples) and ``near`` (uint8; None without dead samples); lists
-        ``points`` (k, 3) int64, ``values`` (k,) float32 and ``angles`` (k, 2) float32 of the ridge samples above
-        the seed threshold (the seed candidates); summary ``high``, ``live`` (:func:`live_likelihood`).
+        memory; None without ``slopes`` or for a section), ``likelihood`` (0 near dead samples) and ``near``
+        (uint8; None without dead samples); lists ``points`` (k, 3) int64 (a section's as (trace, 0, sample)),
+        ``values`` (k,) float32 and ``angles`` (k, 2) float32 of the ridge samples above the seed threshold (the
+        seed candidates); summary ``high``, ``live`` (:func:`live_likelihood`).
     """
     i0, i1, j0, j1 = place.block
     origin = place.origin
+    section = len(shape) == 2
     f = np.asarray(f, np.float32)
-    # the slopes from the amplitudes within the structure tensor's halo of the core (not the dead samples' wider one:
-    # 82^2 against 94^2 traces for a 64-trace block), each pass at the lines it feeds, eigen-decomposed at the core
-    # only: the same bits, 1.1 against 1.5 CPU s (whole tensor) for a 64 x 64 x 500 block of a 400^2 x 500 cube
-    halo = structure_tensor_halo()[0]
-    crop = tuple(slice(max(s.start - halo, 0), min(s.stop + halo, n)) for s, n in zip(place.core, f.shape[:2]))
-    slopes = structure_tensor_slopes(f[crop], core=tuple(slice(s.start - c.start, s.stop - c.start)
-                                                         for s, c in zip(place.core, crop)))
+    arrays = {"slope_inline": None, "slope_xline": None}
+    if slopes and not section:
+        # the slopes from the amplitudes within the structure tensor's halo of the core (not the dead samples' wider
+        # one: 82^2 against 94^2 traces for a 64-trace block), each pass at the lines it feeds, eigen-decomposed at the
+        # core only: the same bits, 1.1 against 1.5 CPU s (whole tensor) for a 64 x 64 x 500 block of a 400^2 x 500
+        # cube
+        halo = structure_tensor_halo()[0]
+        crop = tuple(slice(max(s.start - halo, 0), min(s.stop + halo, n)) for s, n in zip(place.core, f.shape[:2]))
+        found = structure_tensor_slopes(f[crop], core=tuple(slice(s.start - c.start, s.stop - c.start)
+                                                            for s, c in zip(place.core, crop)))
+        arrays["slope_inline"], arrays["slope_xline"] = found[0], found[1]
+        del found
     dead = dead_samples(f, fill, lo, hi, options=opt.dead)
     del f
     near = near_dead_samples(dead, options=opt.dead) if dead.any() else None
     del dead
-    n0, n1 = shape[:2]
+    n0, n1 = likelihood.shape[:2]
     a0, a1, b0, b1 = max(i0 - RIDGE_HALO, 0), min(i1 + RIDGE_HALO, n0), max(j0 - RIDGE_HALO, 0), min(j1 + RIDGE_HALO, n1)
     fl, st, dp = (a[a0:a1, b0:b1] for a in (likelihood, strike, dip))
     if near is not None:
         near = near[a0 - origin[0]:a1 - origin[0], b0 - origin[1]:b1 - origin[1]]
     core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
     high, live = live_likelihood(fl, near, core, level=opt.saturation_level)
-    ridge = ridges(fl, st, dp, opt.voting.seed_threshold, core=core)  # tested and smoothed along dip at the core
+    if section:  # the section's ridges (2D: no smoothing across the one crossline)
+        ridge = ridges(fl[:, 0], st[:, 0], dp[:, 0], opt.voting.seed_threshold)[:, None]
+    else:  # tested and smoothed along dip at the core
+        ridge = ridges(fl, st, dp, opt.voting.seed_threshold, core=core)
     cand = np.argwhere(ridge > float(opt.voting.seed_threshold))
     at = tuple(cand.T)
     local = (cand[:, 0] + i0 - a0, cand[:, 1] + j0 - b0, cand[:, 2])
     candidates = {"points": (cand + np.array([i0, j0, 0])).astype(np.int64), "values": ridge[at].astype(np.float32),
                   "angles": np.stack([st[local], dp[local]], axis=-1).astype(np.float32)}
-    arrays = {"slope_inline": slopes[0], "slope_xline": slopes[1], "likelihood": fl[core],
-              "near": None if near is None else near[core].view(np.uint8)}
+    arrays.update({"likelihood": fl[core], "near": None if near is None else near[core].view(np.uint8)})
     return BlockOutput(arrays, {"high": high, "live": live}, candidates)
 
 
-def thin_block(place, votes, strike, dip) -> BlockOutput:
+def thin_block(place, votes, strike, dip, shape) -> BlockOutput:
     """Thinned votes of one block (:func:`thin_votes`), and the count, smallest and largest of the positive ones of
     its core (the thresholds' range).
 
@@ -452,14 +467,20 @@ def thin_block(place, votes, strike, dip) -> BlockOutput:
     ----------
     place : BlockPlace
     votes, strike, dip : (m0, m1, n_samples) float32 ndarrays
-        Votes and their strike and dip (degrees) over ``place.region``: the block grown by ``THIN_HALO``.
+        Votes and their strike and dip (degrees) over ``place.region``: the block grown by ``THIN_HALO`` (a section
+        as a cube of one crossline).
+    shape : (int, int, int) or (int, int)
+        Of the image: a 2D shape for a section (thinned in 2D).
 
     Returns
     -------
     BlockOutput
         ``thin_raw``: (core, n_samples) float32; summary ``count``, ``min``, ``max``.
     """
-    thin = thin_votes(votes, strike, dip)[place.core]
+    if len(shape) == 2:  # a section: thinned in 2D
+        thin = thin_votes(votes[:, 0], strike[:, 0], dip[:, 0])[:, None]
+    else:
+        thin = thin_votes(votes, strike, dip)[place.core]
     positive = thin[thin > 0]
     return BlockOutput({"thin_raw": thin}, {"count": int(positive.size),
                                             "min": float(positive.min()) if positive.size else 0.0,

@@ -74,11 +74,11 @@ def test_blocks_give_the_in_memory_faults(cube, likelihood, reference, tmp_path,
     runs = []
 
     def recorded(run, opt, bar=None):
-        runs.append(type(run).__name__)
+        runs.append((type(run).__name__, type(run.run).__name__))
         return surface_cells(run, opt, bar)
     monkeypatch.setattr(chunked_faults, "surface_cells", recorded)
     result = chunked_fault_surfaces(cube, likelihood, tmp_path / "surfaces.zarr", chunking=BLOCKS)
-    assert runs == ["_SurfaceRun"]
+    assert runs == [("SurfaceRun", "StoreRun")]  # the run in memory's, on the executor by blocks
     assert result.blocks_computed["votes"] == 6 and result.blocks_computed["ridges"] == 6
     assert sum(result.blocks_resumed.values()) == 0
     # the seconds of every step: the block steps, then the skins, the throw and the evidence (run.json's)

@@ -74,22 +74,15 @@ if TYPE_CHECKING:
     from .faults.result import fault_labels, fault_normals
     from .amplitudes import CleanTraces, clean_traces, dead_samples, fill_values, near_dead_samples
     from .faults.throw import fault_throw
-    from .blocks import BlockRun, BlockRunOptions, SchedulerClient, run_block
-    from .faults.likelihood.learned_blocks import chunked_learned_likelihood
-    from .faults.likelihood.scan_blocks import chunked_fault_likelihood
-    from .faults.result import ChunkedLikelihood
-    from .blocks.options import ChunkOptions
-    from .faults.surfaces.blocks import ChunkedFaults, chunked_fault_surfaces
-    from .blocks.windows import CubeWindow, cube_windows
+    from .blocks import BlockRunOptions
     from .horizons import (
         CycleCut, FaultCrossings, Horizon, TrackingOptions, autotrack, fill_horizon, reliable_throw, track_horizon,
         write_horizon_text,
     )
     from .horizons.cycle_cut import cycle_cut
     from .io import (
-        SegyGrid, SegyLayout, SeismicCube, SeismicZarrWriter, TraceGeometry, is_seismic_zarr, open_seismic_group,
-        open_segy, read_ascii_lines, read_section, read_segy,
-        read_segy_block, read_segy_block_headers, read_segy_layout, trace_geometry, write_like, write_like_blocks,
+        SegyLayout, SeismicCube, TraceGeometry, open_segy, read_ascii_lines, read_section, read_segy, read_segy_layout,
+        trace_geometry, write_like,
     )
     from .reflectors import POLARITIES, reflector_picks, reflector_points
     from .volumes import VolumeOptions, VolumeRegistration, register_volumes, resample_volume, volume_spacing
@@ -107,21 +100,18 @@ __all__ = [
     "registration_errors", "reliable_throw", "resample_volume", "semblance", "structure_tensor_orientation",
     "structure_tensor_slopes", "thin_faults", "trace_faults", "track_horizon", "volume_spacing", "write_horizon_text",
     "write_like",
-    # io: SEG-Y layout and geometry, reading by blocks, the Zarr store of `seismo3d convert`, writing by blocks
-    "SegyLayout", "read_segy_layout", "TraceGeometry", "trace_geometry", "SegyGrid", "read_segy_block",
-    "read_segy_block_headers", "SeismicZarrWriter", "open_seismic_group", "is_seismic_zarr", "write_like_blocks",
-    # faults: dead samples, cube windows, the likelihood scan and the fault surfaces by blocks
-    "CleanTraces", "clean_traces", "dead_samples", "near_dead_samples", "fill_values", "CubeWindow", "cube_windows",
-    "ChunkOptions", "ChunkedLikelihood", "chunked_fault_likelihood", "ChunkedFaults", "chunked_fault_surfaces",
-    "LearnedOptions", "learned_fault_likelihood", "chunked_learned_likelihood",
-    # faults: how trace_faults runs a cube (in memory or by blocks)
+    # io: SEG-Y layout and geometry (reading and writing by blocks, the Zarr store of `seismo3d convert`: in
+    # seismo3d.seismic.io, behind seismo3d.open and the commands)
+    "SegyLayout", "read_segy_layout", "TraceGeometry", "trace_geometry",
+    # faults: dead samples, the learned likelihood
+    "CleanTraces", "clean_traces", "dead_samples", "near_dead_samples", "fill_values",
+    "LearnedOptions", "learned_fault_likelihood",
+    # faults: how trace_faults runs a cube (in memory or by blocks; the executor itself is seismo3d.seismic.blocks')
     "BlockRunOptions",
     # faults: the evidence a fault must show
     "EvidenceOptions", "FaultEvidence", "supported_faults",
     # horizons: the cycle-skip cut
     "CycleCut", "cycle_cut",
-    # resumable block runs
-    "BlockRun", "SchedulerClient", "run_block",
 ]
 
 __getattr__, __dir__ = lazy_exports(__name__, __file__)

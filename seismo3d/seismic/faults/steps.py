@@ -35,9 +35,8 @@ from .surfaces.skins import skins_from_cells
 from .throw import fault_throws
 from .reflector_period import half_period
 
-if TYPE_CHECKING:  # annotations only: the options and the run are passed in
-    from .options import FaultTracingOptions
-    from .surfaces.blocks import SurfaceRun
+if TYPE_CHECKING:  # annotations only: the options are passed in (the run, a surfaces.blocks.SurfaceRun, imports
+    from .options import FaultTracingOptions  # this module, so it is named in the docstring only)
 
 __all__ = ["CubeSample", "SurfaceCells", "check_saturation", "check_size", "faults_from_cells", "judge_sample",
            "no_coherence_message", "surface_cells"]
@@ -63,12 +62,12 @@ class SurfaceCells:
     saturated_fraction: float
 
 
-def surface_cells(run: SurfaceRun, opt: FaultTracingOptions, bar=None) -> SurfaceCells:
+def surface_cells(run, opt: FaultTracingOptions, bar=None) -> SurfaceCells:
     """Ridges, saturation refusal, seeds, votes, thresholds and cells, in this order (Hale 2013; Wu & Fomel 2018).
 
     Parameters
     ----------
-    run : SurfaceRun
+    run : seismo3d.seismic.faults.surfaces.blocks.SurfaceRun
         The fault surfaces' steps on their executor: by blocks, or the whole array in memory as one block.
     opt : FaultTracingOptions
     bar : progress bar, optional

@@ -50,7 +50,9 @@ def _weights(t: float, w, d) -> None:
 
 
 @numba.njit(cache=True, nogil=True)
-def _gradients(coefficients, pts, out):
+def _spline(coefficients, pts, values, gradients, with_gradients):
+    """Values (and with ``with_gradients`` the gradients) of the spline at the (3, N) points into ``values`` (N,)
+    and ``gradients`` (3, N): one kernel for both (each numba kernel compiles once per install, about 1 CPU s)."""
     n0, n1, n2 = coefficients.shape
     w = np.empty((3, 4))
     d = np.empty((3, 4))
@@ -63,6 +65,7 @@ def _gradients(coefficients, pts, out):
             _weights(x - f, w[a], d[a])
             for k in range(4):
                 idx[a, k] = _mirror(int(f) - 1 + k, dims[a])
+        v = 0.0
         g0 = 0.0
         g1 = 0.0
         g2 = 0.0
@@ -73,13 +76,18 @@ def _gradients(coefficients, pts, out):
                 for k in range(4):
                     c = coefficients[idx[0, i], idx[1, j], idx[2, k]]
                     c0 += w[2, k] * c
-                    c2 += d[2, k] * c
-                g0 += d[0, i] * w[1, j] * c0
-                g1 += w[0, i] * d[1, j] * c0
-                g2 += w[0, i] * w[1, j] * c2
-        out[0, p] = g0
-        out[1, p] = g1
-        out[2, p] = g2
+                    if with_gradients:
+                        c2 += d[2, k] * c
+                v += w[0, i] * w[1, j] * c0
+                if with_gradients:
+                    g0 += d[0, i] * w[1, j] * c0
+                    g1 += w[0, i] * d[1, j] * c0
+                    g2 += w[0, i] * w[1, j] * c2
+        values[p] = v
+        if with_gradients:
+            gradients[0, p] = g0
+            gradients[1, p] = g1
+            gradients[2, p] = g2
 
 
 def spline_gradients(coefficients, pts) -> np.ndarray:
@@ -99,32 +107,9 @@ def spline_gradients(coefficients, pts) -> np.ndarray:
         Derivatives along the three axes, per index unit.
     """
     out = np.empty((3, pts.shape[1]))
-    _gradients(np.ascontiguousarray(coefficients), np.ascontiguousarray(pts, dtype=np.float64), out)
+    _spline(np.ascontiguousarray(coefficients), np.ascontiguousarray(pts, dtype=np.float64), np.empty(pts.shape[1]),
+            out, True)
     return out
-
-
-@numba.njit(cache=True, nogil=True)
-def _values(coefficients, pts, out):
-    n0, n1, n2 = coefficients.shape
-    w = np.empty((3, 4))
-    d = np.empty((3, 4))
-    idx = np.empty((3, 4), dtype=np.int64)
-    dims = (n0, n1, n2)
-    for p in range(pts.shape[1]):
-        for a in range(3):
-            x = pts[a, p]
-            f = np.floor(x)
-            _weights(x - f, w[a], d[a])
-            for k in range(4):
-                idx[a, k] = _mirror(int(f) - 1 + k, dims[a])
-        v = 0.0
-        for i in range(4):
-            for j in range(4):
-                c0 = 0.0
-                for k in range(4):
-                    c0 += w[2, k] * coefficients[idx[0, i], idx[1, j], idx[2, k]]
-                v += w[0, i] * w[1, j] * c0
-        out[p] = v
 
 
 def spline_values(coefficients, pts) -> np.ndarray:
@@ -144,7 +129,8 @@ def spline_values(coefficients, pts) -> np.ndarray:
     (N,) float64 ndarray
     """
     out = np.empty(pts.shape[1])
-    _values(np.ascontiguousarray(coefficients), np.ascontiguousarray(pts, dtype=np.float64), out)
+    _spline(np.ascontiguousarray(coefficients), np.ascontiguousarray(pts, dtype=np.float64), out, np.empty((3, 0)),
+            False)
     return out
 
 

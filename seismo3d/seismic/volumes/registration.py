@@ -364,11 +364,10 @@ def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: V
             if theta != 0 and max(lateral) / min(lateral) > opt.scale_step ** 1.5:
                 extra.append(_level_map(theta, lateral, large[2] / small[2], small[1], large[1], small[0],
                                         large[0]))
-    # every map scored first on the levels decimated further (long traces: Penobscot's 100 samples), the best ones
-    # again on the levels themselves
-    n_maps = len(full) + len(extra) + len(spectral)
-    full, extra = _screened(large[0], small[0], full, extra, opt)
     forward, backward = (full, extra) if not swap else (extra, full)
+    # every map scored first along coarser traces (long traces: Penobscot's 100 samples), the best ones again
+    n_maps = len(forward) + len(backward) + len(spectral)
+    forward, backward = _screened(fixed, moving, forward, backward, opt)
     starts = correlation_search(fixed, moving, forward, opt.min_fraction) + spectral
     starts += [Start(s.correlation, np.linalg.inv(s.transform), s.ncc)
                for s in correlation_search(moving, fixed, backward, opt.min_fraction)]
@@ -376,26 +375,21 @@ def _search(pf: _Pyramid, pm: _Pyramid, top: int, sp_f, sp_m, model: str, opt: V
     return distinct_starts(starts, moving.shape, opt.n_starts, 2.0), n_maps
 
 
-def _screened(large: Sampled, small: Sampled, full: list, extra: list, opt: VolumeOptions):
-    """The ``screen_keep`` best of the search's maps, ``full`` (the smaller volume's level index to the larger
-    one's) and ``extra`` (the reverse), scored together on the two levels decimated
-    (:func:`~.search.screen_scores`): along the traces by the largest of 4 and 2 that leaves ``2 * min_vertical``
-    samples of the shorter level, along a map axis by 2 where the smaller level keeps ``min_lateral / 2`` traces;
-    all of them when nothing is decimated or when ``screen_keep`` is 0.
-
-    Every map is scored with the smaller volume resampled onto the larger one's grid (the ``extra`` maps inverted):
-    the same maps, and a template of the smaller volume's size. Resampled the other way, the larger volume stretched
-    by the anisotropic scales of the ``extra`` maps made transforms 3-6 times the size (Penobscot's levels of
-    ``benchmarks/volumes.py --only any_grid``, pairs of seed 1001: 60 maps cost 0.8 CPU s, twice the other 161)."""
-    n_samples = min(large.shape[2], small.shape[2])
-    factors = [2 if min(large.shape[a], small.shape[a]) // 2 >= opt.min_lateral / 2 else 1 for a in (0, 1)]
+def _screened(fixed: Sampled, moving: Sampled, forward: list, backward: list, opt: VolumeOptions):
+    """The ``screen_keep`` best of the search's maps (MOVING onto FIXED, and FIXED onto MOVING), scored together on
+    the two levels decimated (:func:`~.search.screen_scores`): along the traces by the largest of 4 and 2 that
+    leaves ``2 * min_vertical`` samples of the shorter level, along a map axis by 2 where the smaller level keeps
+    ``min_lateral / 2`` traces; all of them when nothing is decimated or when ``screen_keep`` is 0."""
+    n_samples = min(fixed.shape[2], moving.shape[2])
+    factors = [2 if min(fixed.shape[a], moving.shape[a]) // 2 >= opt.min_lateral / 2 else 1 for a in (0, 1)]
     factors.append(next((f for f in (4, 2) if n_samples // f >= 2 * opt.min_vertical), 1))
-    if max(factors) == 1 or not 0 < opt.screen_keep < len(full) + len(extra):
-        return full, extra
-    scores = screen_scores(large, small, full + [np.linalg.inv(m) for m in extra], opt.min_fraction, factors)
+    if max(factors) == 1 or not 0 < opt.screen_keep < len(forward) + len(backward):
+        return forward, backward
+    scores = np.r_[screen_scores(fixed, moving, forward, opt.min_fraction, factors),
+                   screen_scores(moving, fixed, backward, opt.min_fraction, factors)]
     kept = set(np.argsort(-scores, kind="stable")[:opt.screen_keep].tolist())
-    return ([m for i, m in enumerate(full) if i in kept],
-            [m for i, m in enumerate(extra) if i + len(full) in kept])
+    return ([m for i, m in enumerate(forward) if i in kept],
+            [m for i, m in enumerate(backward) if i + len(forward) in kept])
 
 
 def _footprint(level: Sampled, spacing) -> float:

@@ -53,12 +53,11 @@ speed,grid,unrelated,unrelated_large,masked_ncc,coordinates,spectral,suite_grid,
    pairs (blocks of two cubes, one cube's blocks far apart in place or time). ``--check`` exits 1 unless each cube
    has 95 % right and converged, none converged but wrong, each registration within 5 CPU s (the process's own
    seconds: on the shared 2-core machine of the project, wall time grows with the other processes' load, which
-   the table prints), and no unrelated pair converged. Measured 2026-11-28 with the 50 pairs (load 3-9 on 2 cores,
-   24.1 min): right and converged 98 of 100 (Parihaka: pair 8 refused in both orders by the shifted controls,
+   the table prints), and no unrelated pair converged. Measured 2026-11-28 with the 50 pairs (load 1-8 on 2 cores,
+   11.6 min): right and converged 98 of 100 (Parihaka: pair 8 refused in both orders by the shifted controls,
    0.949 against 0.934-0.935), 95 of 100 (Penobscot: pairs 9, 19 and 21 wrong and refused), 98 of 100 (f3_crop:
    pair 7 wrong and refused), none converged but wrong, the 12 unrelated registrations refused; CPU seconds median
-   3.6 / 2.8 / 1.4, worst 5.1 / 5.0 / 2.7, over 5 s 3 / 0 / 0 of 100 (5.1 s each): the check fails on the 5 s of
-   Parihaka.
+   2.3 / 2.1 / 1.0, worst 4.4 / 4.0 / 1.8, none over 5 s: the check passes.
 """
 
 from __future__ import annotations

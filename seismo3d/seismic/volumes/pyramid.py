@@ -18,7 +18,7 @@ from functools import cached_property
 import numpy as np
 from scipy import fft, ndimage as ndi
 
-from ._spline import spline_gradients
+from ._spline import linear_values, spline_gradients, spline_values
 from .model import homogeneous_diag
 
 HIGH_FREQUENCY = 0.3  # cycles per sample: above it, a cubic spline interpolates poorly (Sampled.high_frequency)
@@ -144,14 +144,14 @@ class Sampled:
         return ndi.spline_filter(self.data, order=3, output=np.float32, mode="mirror")
 
     @cached_property
-    def gradient_volumes(self) -> list:
-        """Central differences of the data along the three axes (float32). Smoother than the cubic B-spline's own
-        derivative near the Nyquist frequency, they give the refinement steps that keep to the main correlation
-        peak from a start on it: with the spline's derivative on every level, the f3_crop pair of
+    def gradient_volumes(self) -> np.ndarray:
+        """Central differences of the data along the three axes, (3, n0, n1, n2) float32. Smoother than the cubic
+        B-spline's own derivative near the Nyquist frequency, they give the refinement steps that keep to the main
+        correlation peak from a start on it: with the spline's derivative on every level, the f3_crop pair of
         ``benchmarks/volumes.py`` rotated 40 degrees with fixed bins 1.25 / 0.8 (FIXED onto MOVING) converged 49 % off
         in scale (the coarsest level, whose starts are further off, uses the spline's derivative:
         :func:`~seismo3d.seismic.volumes.registration._refine_starts`)."""
-        return [np.ascontiguousarray(g, dtype=np.float32) for g in np.gradient(self.data)]
+        return np.stack(np.gradient(self.data)).astype(np.float32)  # (3, n0, n1, n2)
 
     @cached_property
     def high_frequency(self) -> float:
@@ -195,7 +195,7 @@ class Sampled:
         p = pts[:, inside]
         weights, values = np.zeros(n), np.zeros(n)
         weights[inside] = w[inside] * ndi.map_coordinates(self.live_weights, p[:2], order=1, mode="nearest")
-        values[inside] = ndi.map_coordinates(self.coefficients, p, order=3, prefilter=False, mode="mirror")
+        values[inside] = spline_values(self.coefficients, p)
         out = Samples(weights, values, None)
         return self.with_gradients(pts, out, gradient) if gradients else out
 
@@ -207,8 +207,7 @@ class Sampled:
         if gradient == "spline":
             grads[:, inside] = spline_gradients(self.coefficients, p)
         else:
-            for k, g in enumerate(self.gradient_volumes):
-                grads[k, inside] = ndi.map_coordinates(g, p, order=1, mode="nearest")
+            grads[:, inside] = linear_values(self.gradient_volumes, p)
         return Samples(samples.weights, samples.values, grads)
 
 

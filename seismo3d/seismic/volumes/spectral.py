@@ -30,7 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import ndimage as ndi
+from scipy import fft, ndimage as ndi
 
 from .model import rotation_2d
 from .search import MaskedNCC
@@ -100,11 +100,15 @@ def map_spectrum(volume, live, *, max_slices: int = 64, max_fft: int = 256) -> M
     window = np.outer(_hann(n0 + 2)[1:-1], _hann(n1 + 2)[1:-1]) * _live_taper(live)
     picked = np.unique(np.linspace(0, n2 - 1, min(n2, max_slices)).round().astype(int))
     size = [int(min(max(64, 2 ** np.ceil(np.log2(2 * n))), max_fft)) for n in (n0, n1)]
-    power = np.zeros(size)
+    half = np.zeros((size[0], size[1] // 2 + 1))  # the non-negative crossline frequencies (real slices)
     for chunk in np.array_split(picked, max(1, len(picked) // 16)):  # 16 slices at a time: little memory
         s = volume[:, :, chunk].astype(np.float64)
         s = s - (window[:, :, None] * s).sum(axis=(0, 1)) / max(window.sum(), 1e-12)
-        power += (np.abs(np.fft.fft2(s * window[:, :, None], s=size, axes=(0, 1))) ** 2).sum(axis=2)
+        spectrum = fft.rfft2((s * window[:, :, None]).astype(np.float32), s=size, axes=(0, 1))
+        half += (spectrum.real ** 2 + spectrum.imag ** 2).sum(axis=2)
+    # the other half by the symmetry of a real slice's spectrum: P(k0, k1) = P(-k0, -k1)
+    mirrored = half[(-np.arange(size[0])) % size[0]][:, size[1] - np.arange(size[1] // 2 + 1, size[1])]
+    power = np.concatenate([half, mirrored], axis=1)
     power = np.fft.fftshift(power)
     return MapSpectrum(np.log(power + 1e-9 * max(power.max(), 1e-30)), (n0, n1))
 

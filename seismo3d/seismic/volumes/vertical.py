@@ -41,13 +41,18 @@ def vertical_scale(fixed, moving, lo: float, hi: float) -> float:
     n_fft = int(2 ** np.ceil(np.log2(4 * max(fixed.shape[2], moving.shape[2]))))
     freqs = np.fft.rfftfreq(n_fft)
     sf, sm = trace_spectrum(fixed, n_fft), trace_spectrum(moving, n_fft)
-    best, best_c = 1.0, -np.inf
-    for s2 in np.exp(np.linspace(np.log(lo), np.log(hi), 361)):
-        f = freqs[1:] / s2  # moving frequency (cycles per moving sample) in cycles per fixed sample
-        ok = f < 0.5
-        if ok.sum() < 8:
-            continue
-        c = np.corrcoef(np.interp(f[ok], freqs, sf), sm[1:][ok])[0, 1]
-        if c > best_c:
-            best, best_c = float(s2), c
-    return best
+    stretches = np.exp(np.linspace(np.log(lo), np.log(hi), 361))
+    # every candidate at once: the fixed spectrum read at each moving frequency (cycles per moving sample, in cycles
+    # per fixed sample), correlated with the moving spectrum over the frequencies below the fixed Nyquist
+    f = freqs[1:][None, :] / stretches[:, None]
+    ok = f < 0.5
+    a = np.where(ok, np.interp(f, freqs, sf), 0.0)
+    b = np.where(ok, sm[1:][None, :], 0.0)
+    n = ok.sum(axis=1)
+    nn = np.maximum(n, 1)
+    a_c = np.where(ok, a - (a.sum(axis=1) / nn)[:, None], 0.0)
+    b_c = np.where(ok, b - (b.sum(axis=1) / nn)[:, None], 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        c = (a_c * b_c).sum(axis=1) / np.sqrt((a_c ** 2).sum(axis=1) * (b_c ** 2).sum(axis=1))
+    c = np.where((n >= 8) & np.isfinite(c), c, -np.inf)  # fewer than 8 frequencies: not a candidate
+    return float(stretches[int(np.argmax(c))]) if np.isfinite(c).any() else 1.0

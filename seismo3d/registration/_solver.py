@@ -162,7 +162,7 @@ def plane_system_rigid3(moved, t0, dst, nrm, idx, kernel: str, scale: float, fac
     """
     sums = np.zeros((_CHUNKS, 28))
     n_threads = max(1, min(numba.get_num_threads(), _CHUNKS))
-    run_threads(_plane_sums_share, n_threads, moved, np.asarray(t0, dtype=np.float64), dst, nrm, idx,
+    run_threads(_plane_sums_share, n_threads, moved, np.ascontiguousarray(t0, dtype=np.float64), dst, nrm, idx,
                 KERNELS.index(kernel), float(scale), float(factor), sums, np.empty((n_threads, 6)))
     total = sums.sum(axis=0)
     h = np.zeros((6, 6))

@@ -41,9 +41,10 @@ def direct_ring_histograms(bins, weights, radii, rows, cols, *, n_bins):
 
 
 def _random_votes(rng, shape, n_bins, n_votes=2, integer=True):
-    bins = rng.integers(0, n_bins, shape + (n_votes,))
+    # the dtypes of orientation_votes (uint8 bins, int32 fixed-point weights): the kernels' signature of the matcher
+    bins = rng.integers(0, n_bins, shape + (n_votes,), dtype=np.uint8)
     if integer:
-        weights = rng.integers(0, 2 ** 20, shape + (n_votes,))
+        weights = rng.integers(0, 2 ** 20, shape + (n_votes,), dtype=np.int32)
     else:
         weights = rng.random(shape + (n_votes,))
     return bins, weights

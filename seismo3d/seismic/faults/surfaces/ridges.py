@@ -197,7 +197,7 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
     .. [1] D. Hale, Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1 (thinning of fault images).
     """
     two_d = likelihood.ndim == 2
-    f3 = _kernels.as_3d(likelihood)
+    f3 = np.ascontiguousarray(_kernels.as_3d(likelihood))  # C order: one compiled signature of the kernels below
     n0, n1 = f3.shape[:2]
     i0, i1, j0, j1 = (0, n0, 0, n1) if core is None else check_core(core, likelihood.shape)
     st3 = np.ascontiguousarray(_kernels.as_3d(strike))

@@ -441,7 +441,8 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
         raise InputError(f"skins_from_cells got cells outside an image of shape {shape}; pass indices of that image")
     if not 0.0 < lower <= upper:
         raise InputError(f"fault skins need 0 < lower <= upper; got lower={lower!r}, upper={upper!r}")
-    points = points.astype(np.int32, copy=False)  # memory: a cube larger than memory has tens of millions of cells
+    # int32 for memory (a cube larger than memory has tens of millions of cells), C order: one compiled signature
+    points = np.ascontiguousarray(points, dtype=np.int32)
     keys = np.ravel_multi_index(tuple(points.T), shape3)
     if np.any(keys[1:] <= keys[:-1]):  # the order of the image's cells, which the growth's ties follow
         order = np.argsort(keys, kind="stable")

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import ctypes
 import ctypes.util
+import functools
 import json
 import pathlib
 import sys
@@ -274,6 +275,12 @@ class BlockRun:
         (:func:`~seismo3d.seismic.blocks.apply.load_lists` of ``WORK/<step>/``)."""
         return load_lists(self.work / step, block, names, mmap_mode=mmap_mode)
 
+    def lists_reader(self, step: str, *, mmap_mode=None):
+        """``reader(block, names)``: :meth:`step_lists` of the step named ``step`` as a function that a block task
+        takes along (it holds the work folder only, never the run and its scheduler client, so that it pickles for
+        a ``dask.distributed`` worker)."""
+        return functools.partial(load_lists, self.work / step, mmap_mode=mmap_mode)
+
     def gathered_lists(self, step: str, blocks, names) -> dict:
         """The sparse lists ``names`` of the step named ``step`` concatenated in the blocks' order
         (:func:`~seismo3d.seismic.blocks.apply.gather`)."""
@@ -432,6 +439,11 @@ class MemoryRun:
         counterpart; ``mmap_mode`` not used)."""
         held = self.lists[step][tuple(int(v) for v in block)]
         return {name: held[name] for name in names}
+
+    def lists_reader(self, step: str, *, mmap_mode=None):
+        """``reader(block, names)``: :meth:`step_lists` of the step named ``step`` (:meth:`BlockRun.lists_reader`'
+        counterpart; ``mmap_mode`` not used)."""
+        return functools.partial(self.step_lists, step)
 
     def gathered_lists(self, step: str, blocks, names) -> dict:
         """The lists ``names`` of the step named ``step`` over ``blocks`` (its one block), as

@@ -235,7 +235,8 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
             fl = _given_likelihood(likelihood, arr.shape)
         del dead  # the steps find the dead samples again, as by blocks (the same fill values: the whole array's)
         bar.advance()
-        run = memory_surface_run(arr, fl.likelihood, fl.strike_deg, fl.dip_deg, opt)  # one block: the whole array
+        run = memory_surface_run(arr, fl.likelihood, fl.strike_deg, fl.dip_deg, opt,  # one block: the whole array
+                                 progress=progress)
         del fl
         found = surface_cells(run, opt, bar)
         likelihood = run.volume("likelihood")

@@ -523,7 +523,8 @@ def block_steps(plan: dict, opt: LearnedOptions) -> tuple:
         factor = float(g["factor"])
         for axis in _plan_directions(plan, opt):
             name = DIRECTION_NAMES[axis]
-            label = f"fault network on {name}s" + (f" (grid {factor:g})" if len(plan["grids"]) > 1 else "")
+            label = ("fault network" if plan.get("ndim", 3) == 2 else f"fault network on {name}s") \
+                + (f" (grid {factor:g})" if len(plan["grids"]) > 1 else "")  # a section: its one section
             # the network's blocks are on the network grid: their outputs are their cores already (trim=False)
             steps.append(BlockStep(f"network_{name}_{k}", "map", RECEPTIVE_HALF, function=network_block, label=label,
                                    region=functools.partial(network_region, axis=axis, shape=shape, factor=factor,

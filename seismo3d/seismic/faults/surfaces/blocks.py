@@ -318,7 +318,7 @@ def _check_cells(n: int, memory: int) -> None:
 
 
 def memory_surface_run(cube: np.ndarray, likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray,
-                       opt: FaultTracingOptions) -> SurfaceRun:
+                       opt: FaultTracingOptions, *, progress: bool = False) -> SurfaceRun:
     """The run of the fault surfaces on arrays in memory: the steps of :func:`block_steps` on one block, the whole
     array (:class:`~seismo3d.seismic.blocks.executor.MemoryRun`).
 
@@ -330,6 +330,8 @@ def memory_surface_run(cube: np.ndarray, likelihood: np.ndarray, strike_deg: np.
         Fault likelihood, strike and dip (degrees); the likelihood is set to 0 near dead samples by the ridges (in
         place when it is C-contiguous; :meth:`SurfaceRun.volume` ``('likelihood')`` in any case).
     opt : FaultTracingOptions
+    progress : bool, optional
+        Report each step (its label, one block) as :class:`~seismo3d.seismic.blocks.executor.MemoryRun` does.
 
     Returns
     -------
@@ -342,8 +344,8 @@ def memory_surface_run(cube: np.ndarray, likelihood: np.ndarray, strike_deg: np.
     arrays = dict(zip(LIKELIHOOD_INPUTS, (a.reshape(shape) for a in (likelihood, strike_deg, dip_deg))))
     side = max(shape[:2])
     plan = SurfacePlan(shape, side, side, side, side, side, opt.voting.reach(image))
-    return SurfaceRun(MemoryRun(shape, arrays=arrays), np.asarray(cube).reshape(shape), plan, opt, image,
-                      slopes=False)
+    return SurfaceRun(MemoryRun(shape, arrays=arrays, progress=progress), np.asarray(cube).reshape(shape), plan, opt,
+                      image, slopes=False)
 
 
 class SurfaceRun:
@@ -355,7 +357,7 @@ class SurfaceRun:
     Parameters
     ----------
     run : StoreRun or MemoryRun
-        The executor: ``run_step``, ``saved``, ``saved_arrays``, ``step_lists``, ``gathered_lists`` and ``arrays``
+        The executor: ``run_step``, ``saved``, ``saved_arrays``, ``step_lists``, ``lists_reader``, ``gathered_lists`` and ``arrays``
         (and a store run's ``reduce_cube``).
     cube : (n_inlines, n_xlines, n_samples) dask.array.Array or ndarray
         Amplitudes (a section's as a cube of one crossline).
@@ -424,7 +426,7 @@ class SurfaceRun:
         reach around it), then the votes of every block from the surfaces of the seeds reaching it, in id order."""
         blocks = self.blocks("votes")
         self.run.run_step(self.steps["surfaces"], blocks, seeds, frames, self.image_shape, self.opt.voting)
-        surfaces = functools.partial(self.run.step_lists, "surfaces", mmap_mode="r")
+        surfaces = self.run.lists_reader("surfaces", mmap_mode="r")  # taken along by each block's task
         self.run.run_step(self.steps["votes"], blocks, seeds, blocks, surfaces, self.image_shape, self.opt.voting)
 
     def thresholds(self) -> tuple[float, float]:

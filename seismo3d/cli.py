@@ -41,9 +41,9 @@ class _App(typer.Typer):
     (numpy, zarr, typer, ...) once more, to free memory the ending process returns anyway: 0.14 of 1.38 CPU s of
     ``seismo3d convert`` of the 198 MB cube and 0.04 of 0.19 CPU s of ``seismo3d --help`` (medians of 12 paired runs,
     load 8-9). Objects are still freed by their reference counts, and ``atexit`` handlers run as before; only a
-    reference cycle left at the end is not collected nor finalized (its memory goes with the process). A caller that catches the
-    ``SystemExit`` and goes on (a notebook calling ``app()``) keeps those cycles; ``typer.testing.CliRunner`` does
-    not go through here.
+    reference cycle left at the end is not collected nor finalized (its memory goes with the process). A caller that
+    catches the ``SystemExit`` and goes on (a notebook calling ``app()``) keeps those cycles;
+    ``typer.testing.CliRunner`` does not go through here.
     """
 
     def __call__(self, *args, **kwargs):

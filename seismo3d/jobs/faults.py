@@ -155,8 +155,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       sample unit (ms, m or ft from the SEG-Y headers or ``sample_unit``; the sample index for raw sections and
       ``.npy``, which have no ``throw_<unit>`` column). For raw sections, 2D ``.npy`` arrays and trace lists whose
       inline / crossline header bytes hold no numbers, one ``trace`` column replaces ``inline, crossline``:
-      the trace index from 0 for arrays and raw sections, the trace number from 1 in file order for a trace list. Throw is positive where the hanging wall moved down (normal fault); ``throw_correlation``
-      (in [-1, 1]) is the normalised cross-correlation of the reflectors on the two sides once aligned, a quality
+      the trace index from 0 for arrays and raw sections, the trace number from 1 in file order for a trace list.
+      Throw is positive where the hanging wall moved down (normal fault); ``throw_correlation`` (in [-1, 1]) is the
+      normalised cross-correlation of the reflectors on the two sides once aligned, a quality
       measure (see
       :class:`~seismo3d.seismic.faults.throw.FaultThrow`); ``correlation_gain`` is that correlation less the sides'
       correlation with no shift (the evidence of a displacement); ``side_coherence`` how continuous the reflectors are

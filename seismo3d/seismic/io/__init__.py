@@ -50,9 +50,11 @@ if TYPE_CHECKING:
     from .horizon_grids import HorizonPicks, read_horizon_picks, write_horizon_grids
 
 __all__ = [
-    "open_cube", "seismic_axes", "SeismicCube", "open_segy", "read_segy", "write_like", "read_section", "read_ascii_lines", "scale_coordinates",
+    "open_cube", "seismic_axes", "SeismicCube", "open_segy", "read_segy", "write_like", "read_section",
+    "read_ascii_lines", "scale_coordinates",
     "TraceGeometry", "trace_geometry", "span", "SegyLayout", "read_segy_layout", "segyio_failure", "FORMAT_NAMES",
-    "READABLE_FORMATS", "SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle", "LAYOUT", "TILE_TRACES", "SeismicZarrWriter", "consolidate",
+    "READABLE_FORMATS", "SegyGrid", "read_segy_block", "read_segy_block_headers", "segyio_handle", "LAYOUT",
+    "TILE_TRACES", "SeismicZarrWriter", "consolidate",
     "open_seismic_group", "is_seismic_zarr", "write_like_blocks", "GridMap", "SurveyCoordinates", "cube_coordinates",
     "read_survey_coordinates", "FaultSticks", "read_fault_sticks", "write_fault_sticks", "TriangulatedSurface",
     "write_tsurf", "write_tsurf_folder", "HorizonPicks", "read_horizon_picks", "write_horizon_grids",

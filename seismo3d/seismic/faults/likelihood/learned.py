@@ -128,9 +128,9 @@ class LearnedOptions:
         interpolated linearly along that direction (:func:`section_span`); 1: every section. A fault crossing the
         sections is seen on the computed ones and moves little between them; one nearly parallel to a direction's
         sections is seen by the other direction's (the larger of the two is kept). The default, 2, makes the
-        network's part of a cube about a third cheaper than 1 (the fault likelihood of a generated 256^3 cube: 36.8 -> 24.2
-        CPU seconds on 2 threads, ``python benchmarks/fault_speed.py``) and keeps the scores of the generated faulted
-        cubes (precision and recall 0.93-1.00) and of the Parihaka cube (0.81 of the bands hit, 0.82-0.83 of the
+        network's part of a cube about a third cheaper than 1 (the fault likelihood of a generated 256^3 cube: 36.8
+        -> 24.2 CPU seconds on 2 threads, ``python benchmarks/fault_speed.py``) and keeps the scores of the generated
+        faulted cubes (precision and recall 0.93-1.00) and of the Parihaka cube (0.81 of the bands hit, 0.82-0.83 of the
         points in bands). On the window of the 18 Penobscot inlines of notebook 01 the faults kept change (1043 and
         675 samples -> 2705 and 659, the largest's median throw +8.7 -> -19.1 samples): not one fault grown by the
         interpolation but another fault kept, at the window's bottom-right corner, which the default also keeps when

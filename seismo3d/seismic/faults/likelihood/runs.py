@@ -1,8 +1,8 @@
 """The one driver of both fault likelihoods (the scan and the network), in memory (:func:`likelihood_in_memory`: the
 declared steps on one block, the whole cube) and by blocks (:func:`likelihood_by_blocks`): the output Zarr group
-and its work folder (:class:`~seismo3d.seismic.blocks.stores.StoreRun`), the manifest that a resumed run must match, the plan of
-an interrupted run kept, the dask scheduler, the likelihood's declared steps run in their order, the coordinates and
-the saturated fraction written, and the output renamed into place when complete.
+and its work folder (:class:`~seismo3d.seismic.blocks.stores.StoreRun`), the manifest that a resumed run must match,
+the plan of an interrupted run kept, the dask scheduler, the likelihood's declared steps run in their order, the
+coordinates and the saturated fraction written, and the output renamed into place when complete.
 
 Each likelihood writes its steps once, as a function of a run (:func:`~seismo3d.seismic.faults.likelihood.scan.
 run_scan`, :func:`~seismo3d.seismic.faults.likelihood.learned.run_learned`): given a

@@ -438,8 +438,9 @@ def saturation_counts(key: np.ndarray, live: np.ndarray, level: float) -> tuple[
 def _warn_if_saturated(saturated: float, opt: FaultScanOptions) -> None:
     if saturated > opt.saturated:
         warnings.warn(
-            f"fault likelihood exceeds {opt.saturation_level:g} at {saturated:.0%} of the samples: the data has no lateral coherence "
-            "(noise, chaotic reflections, or traces out of order), so faults traced from it are unreliable; "
+            f"fault likelihood exceeds {opt.saturation_level:g} at {saturated:.0%} of the samples: the data has no "
+            "lateral coherence (noise, chaotic reflections, or traces out of order), so faults traced from it are "
+            "unreliable; "
             "check the inline/crossline geometry or filter the data first", Seismo3dWarning, stacklevel=3)
 
 

@@ -357,8 +357,8 @@ class SurfaceRun:
     Parameters
     ----------
     run : StoreRun or MemoryRun
-        The executor: ``run_step``, ``saved``, ``saved_arrays``, ``step_lists``, ``lists_reader``, ``gathered_lists`` and ``arrays``
-        (and a store run's ``reduce_cube``).
+        The executor: ``run_step``, ``saved``, ``saved_arrays``, ``step_lists``, ``lists_reader``, ``gathered_lists``
+        and ``arrays`` (and a store run's ``reduce_cube``).
     cube : (n_inlines, n_xlines, n_samples) dask.array.Array or ndarray
         Amplitudes (a section's as a cube of one crossline).
     plan : SurfacePlan

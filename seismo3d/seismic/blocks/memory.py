@@ -9,8 +9,6 @@ memory limit leaves beside the process is traced block by block
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
 from ...errors import InputError
@@ -32,12 +30,10 @@ _SMALLEST_LIMIT = 64 << 20
 
 
 def default_memory_limit() -> int:
-    """Half of the machine's physical memory, bytes (the default ``--memory-limit``)."""
-    try:
-        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    except (ValueError, OSError, AttributeError):
-        total = 8 << 30
-    return int(total // 2)
+    """Half of the machine's physical memory, bytes (the default ``--memory-limit``; psutil, a dependency)."""
+    import psutil
+
+    return int(psutil.virtual_memory().total // 2)
 
 
 def in_memory_bytes(shape) -> int:

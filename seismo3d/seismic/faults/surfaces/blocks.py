@@ -34,7 +34,7 @@ from ...blocks.plan import (
 )
 from ...blocks.statistics import streamed_otsu, streamed_quantile
 from ...blocks.stores import StoreRun
-from ...blocks.windows import StoredWindows
+from ..windows import StoredWindows
 from ..options import FaultTracingOptions
 from ..result import ChunkedFaults, fault_frames
 from ..steps import faults_from_cells, surface_cells

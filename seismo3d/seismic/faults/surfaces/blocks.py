@@ -283,7 +283,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
             run = SurfaceRun(store, x, plan, opt, shape, memory=memory)
             found = surface_cells(run, opt)
             # the cells gathered into 1D arrays of the output group, in C order (the skins then need no sorted copies)
-            store.write_gathered(store.work / "cells", run.blocks("cells"), {
+            store.write_gathered("cells", run.blocks("cells"), {
                 "points": ("cell_points", "int32"), "values": ("cell_values", "float32"),
                 "strike": ("cell_strike_deg", "float32"), "dip": ("cell_dip_deg", "float32")}, found.n_cells)
         attrs = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,

@@ -21,14 +21,9 @@ The steps and their blocks (every block carries exactly the halo its step needs,
    blocks that hold every crossline. The packed keys of both are combined by their maximum.
 4. Likelihood, strike and dip decoded block by block into the output Zarr group.
 
-Every finished block leaves a marker in the run's work folder, written after its data: a run that is interrupted
-(Ctrl-C, a killed process, a lost worker) and started again with the same input, options and output skips the
-finished blocks. The output is assembled in ``OUTPUT.partial`` and renamed to ``OUTPUT`` only when every block is
-done, so an output that exists is complete.
-
-The same code runs on dask's local threaded scheduler (default) and on a ``dask.distributed`` cluster (pass its
-address): the tasks read their input from the lazy cube's graph and the intermediate Zarr arrays by path, so the
-output folder must be on storage every worker can reach.
+Resumption (a marker per finished block), the output renamed into place when complete and the schedulers (local
+threads or a ``dask.distributed`` cluster, whose workers must reach the output folder) are the executor's
+(:func:`~seismo3d.seismic.faults.likelihood.runs.likelihood_by_blocks`).
 """
 
 from __future__ import annotations

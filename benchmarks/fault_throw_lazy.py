@@ -11,7 +11,7 @@ faults on
 - lazy: the dask array of ``seismo3d.open`` (chunks of 64 x 64 traces), each patch
   reading only a window of tiles of 64 x 64 traces around it, the slopes of a tile computed with the structure
   tensor's halo, the tiles last used kept up to 256 MiB (the default of
-  :class:`~seismo3d.seismic.blocks.windows.LazyWindows`);
+  :class:`~seismo3d.seismic.faults.windows.LazyWindows`);
 - lazy-32: the same with tiles of 32 traces and a 128 MiB tile cache (a window of about 5 x 5 tiles: smaller cache
   thrashes).
 
@@ -100,7 +100,7 @@ def case(path: str, sgy: str, faults_pkl: str, out: str) -> dict:
 
     _warm_up()
     faults = pickle.loads(Path(faults_pkl).read_bytes())
-    from seismo3d.seismic.blocks.windows import LazyWindows
+    from seismo3d.seismic.faults.windows import LazyWindows
 
     if path == "memory":
         data = read_segy(sgy)[0]

@@ -29,9 +29,9 @@ from .._validation import check_int, check_positive, check_seismic_layout
 from ..errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .blocks.apply import BlockOutput
 
-__all__ = ["CleanTraces", "DeadSampleOptions", "check_amplitudes", "check_varies", "clean_traces", "clipped_count",
-           "dead_samples", "fill_block", "fill_values", "finite_cube", "near_dead_samples", "warn_clipped", "warn_dead",
-           "warn_non_finite"]
+__all__ = ["CleanTraces", "DeadSampleOptions", "check_amplitudes", "check_finite", "check_varies", "clean_traces",
+           "clipped_count", "dead_samples", "fill_block", "fill_values", "finite_cube", "near_dead_samples",
+           "warn_clipped", "warn_dead", "warn_non_finite"]
 
 
 @dataclass(frozen=True)
@@ -290,6 +290,28 @@ def warn_non_finite(n_bad: int, n: int) -> None:
     if n_bad:
         warnings.warn(f"data has {n_bad} NaN or inf samples ({n_bad / n:.1%}); they are read as 0, and "
                       "runs of them are skipped like dead traces", Seismo3dWarning, stacklevel=3)
+
+
+def check_finite(values, inlines: tuple | None = None) -> None:
+    """Refuse amplitudes that hold NaN or inf, in a likelihood by blocks called directly (``trace_faults`` reads them
+    as 0 with a warning before its blocks: :func:`finite_cube`).
+
+    Parameters
+    ----------
+    values : array_like or float
+        Amplitudes of a block, or statistics of the cube (its peak, its sum of squares).
+    inlines : (int, int), optional
+        The first and last inline (indices) of the block, named in the message.
+
+    Raises
+    ------
+    InputError
+        Naming the inlines when given.
+    """
+    if not np.all(np.isfinite(values)):
+        where = "" if inlines is None else f" in inlines {inlines[0]}-{inlines[1]} (indices)"
+        raise InputError(f"the cube holds NaN or infinite amplitudes{where}; replace them (e.g. by 0) before "
+                         "tracing faults")
 
 
 def check_varies(lo: float, hi: float) -> None:

@@ -19,7 +19,6 @@ Generic pieces, knowing nothing of what a block computes:
   gathered (Otsu's threshold, exact quantiles), as dask reductions over its chunks;
 - :mod:`~seismo3d.seismic.blocks.stores`: the Zarr stores of such a run (the work folder, the output assembled in
   ``OUTPUT.partial`` and renamed when complete, its coordinates);
-- :mod:`~seismo3d.seismic.blocks.windows`: windows of a cube around points, in memory, lazy (dask) or stored (Zarr).
 
 The fault interpretation's runs by blocks are lists of declared steps run by them
 (:mod:`seismo3d.seismic.faults.likelihood.scan_blocks`, :mod:`seismo3d.seismic.faults.likelihood.learned_blocks`,

@@ -154,13 +154,14 @@ def load_lists(folder, block, names, *, mmap_mode=None) -> dict:
     return {name: np.load(path / f"{name}.npy", mmap_mode=mmap_mode) for name in names}
 
 
-def gather(folder, blocks, names) -> dict:
+def gather(reader, blocks, names) -> dict:
     """The sparse lists of ``blocks`` concatenated in the blocks' order.
 
     Parameters
     ----------
-    folder : str or os.PathLike
-        The step's folder of lists.
+    reader : callable
+        ``reader(block, names) -> {name: ndarray}``: a block's lists (a run's ``lists_reader``, e.g.
+        :func:`load_lists` of the step's folder).
     blocks : list of tuple
     names : iterable of str
 
@@ -169,7 +170,7 @@ def gather(folder, blocks, names) -> dict:
     dict
         ``{name: ndarray}``; None for a name when there are no blocks.
     """
-    parts = [load_lists(folder, b, names) for b in blocks]
+    parts = [reader(b, names) for b in blocks]
     return {name: np.concatenate([q[name] for q in parts]) if parts else None for name in names}
 
 

@@ -36,8 +36,8 @@ from ...errors import InputError
 from .apply import BlockPlace, apply_block, apply_in_memory, gather, load_lists, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
 
-__all__ = ["BlockRun", "MemoryRun", "SchedulerClient", "check_finite", "kernel_threads", "release_memory",
-           "run_block", "trace_cube", "write_marker"]
+__all__ = ["BlockRun", "MemoryRun", "SchedulerClient", "kernel_threads", "release_memory", "run_block",
+           "trace_cube"]
 
 # glibc's malloc options (malloc.h): allocations above M_MMAP_THRESHOLD are mapped and unmapped on their own, so a
 # freed block's memory goes back to the system at once; setting it also stops glibc raising the threshold as large
@@ -159,7 +159,21 @@ class SchedulerClient:
             self.client.close()
 
 
-class BlockRun:
+class _StepRun:
+    """What both executors share: a step's sparse lists read through the executor's ``lists_reader``."""
+
+    def step_lists(self, step: str, block, names, *, mmap_mode=None) -> dict:
+        """The sparse lists ``names`` of ``block`` saved by the step named ``step`` (``mmap_mode='r'``: memory-mapped
+        by a run by blocks, :func:`~seismo3d.seismic.blocks.apply.load_lists`)."""
+        return self.lists_reader(step, mmap_mode=mmap_mode)(block, names)
+
+    def gathered_lists(self, step: str, blocks, names) -> dict:
+        """The sparse lists ``names`` of the step named ``step`` concatenated in the blocks' order
+        (:func:`~seismo3d.seismic.blocks.apply.gather`)."""
+        return gather(self.lists_reader(step), blocks, names)
+
+
+class BlockRun(_StepRun):
     """The work folder, markers and task execution of one resumable chunked run.
 
     Parameters
@@ -270,21 +284,12 @@ class BlockRun:
         with np.load(path) as saved:
             return {key: saved[key] for key in saved.files}
 
-    def step_lists(self, step: str, block, names, *, mmap_mode=None) -> dict:
-        """The sparse lists ``names`` of ``block`` saved by the step named ``step``
-        (:func:`~seismo3d.seismic.blocks.apply.load_lists` of ``WORK/<step>/``)."""
-        return load_lists(self.work / step, block, names, mmap_mode=mmap_mode)
-
     def lists_reader(self, step: str, *, mmap_mode=None):
-        """``reader(block, names)``: :meth:`step_lists` of the step named ``step`` as a function that a block task
-        takes along (it holds the work folder only, never the run and its scheduler client, so that it pickles for
-        a ``dask.distributed`` worker)."""
+        """``reader(block, names)``: the sparse lists of a block saved by the step named ``step``
+        (:func:`~seismo3d.seismic.blocks.apply.load_lists` of ``WORK/<step>/``), a function that a block task takes
+        along (it holds the work folder only, never the run and its scheduler client, so that it pickles for a
+        ``dask.distributed`` worker)."""
         return functools.partial(load_lists, self.work / step, mmap_mode=mmap_mode)
-
-    def gathered_lists(self, step: str, blocks, names) -> dict:
-        """The sparse lists ``names`` of the step named ``step`` concatenated in the blocks' order
-        (:func:`~seismo3d.seismic.blocks.apply.gather`)."""
-        return gather(self.work / step, blocks, names)
 
     def marker(self, step: str, block) -> pathlib.Path:
         """The marker file of ``block`` (a tuple whose items 0 and 2 are its first inline and crossline) in
@@ -390,7 +395,7 @@ class BlockRun:
                 return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
 
 
-class MemoryRun:
+class MemoryRun(_StepRun):
     """The run in memory of the declared steps that :class:`BlockRun` runs by blocks: each step on one block, the
     whole cube (:func:`~seismo3d.seismic.blocks.apply.apply_in_memory`), its arrays held in :attr:`arrays`; no work
     folder, no marker, no scheduler. A computation written once against :meth:`run_step` runs by blocks with a
@@ -434,22 +439,11 @@ class MemoryRun:
         """``compute()``: arrays of the run, nothing kept (:meth:`BlockRun.saved_arrays`' counterpart)."""
         return compute()
 
-    def step_lists(self, step: str, block, names, *, mmap_mode=None) -> dict:
-        """The lists ``names`` of the one block ``block`` of the step named ``step`` (:meth:`BlockRun.step_lists`'
-        counterpart; ``mmap_mode`` not used)."""
-        held = self.lists[step][tuple(int(v) for v in block)]
-        return {name: held[name] for name in names}
-
     def lists_reader(self, step: str, *, mmap_mode=None):
-        """``reader(block, names)``: :meth:`step_lists` of the step named ``step`` (:meth:`BlockRun.lists_reader`'
-        counterpart; ``mmap_mode`` not used)."""
-        return functools.partial(self.step_lists, step)
-
-    def gathered_lists(self, step: str, blocks, names) -> dict:
-        """The lists ``names`` of the step named ``step`` over ``blocks`` (its one block), as
-        :meth:`BlockRun.gathered_lists` concatenates them."""
-        parts = [self.step_lists(step, b, names) for b in blocks]
-        return {name: np.concatenate([q[name] for q in parts]) if parts else None for name in names}
+        """``reader(block, names)``: the lists of the one block of the step named ``step``, held
+        (:meth:`BlockRun.lists_reader`'s counterpart; ``mmap_mode`` not used)."""
+        held = self.lists[step]
+        return lambda block, names: {name: held[tuple(int(v) for v in block)][name] for name in names}
 
     def release(self, *names) -> None:
         """Drop the arrays ``names`` that no later step reads (a run by blocks keeps them in its work folder)."""
@@ -537,25 +531,3 @@ def trace_cube(cube, what: str, *, chunks: tuple = (64, -1, -1), dtype=None):
     if dtype is not None and x.dtype != dtype:
         x = x.astype(dtype)
     return x
-
-
-def check_finite(values, inlines: tuple | None = None) -> None:
-    """Refuse amplitudes that hold NaN or inf, in a likelihood by blocks called directly (``trace_faults`` reads them
-    as 0 with a warning before its blocks: :func:`~seismo3d.seismic.amplitudes.finite_cube`).
-
-    Parameters
-    ----------
-    values : array_like or float
-        Amplitudes of a block, or statistics of the cube (its peak, its sum of squares).
-    inlines : (int, int), optional
-        The first and last inline (indices) of the block, named in the message.
-
-    Raises
-    ------
-    InputError
-        Naming the inlines when given.
-    """
-    if not np.all(np.isfinite(values)):
-        where = "" if inlines is None else f" in inlines {inlines[0]}-{inlines[1]} (indices)"
-        raise InputError(f"the cube holds NaN or infinite amplitudes{where}; replace them (e.g. by 0) before "
-                         "tracing faults")

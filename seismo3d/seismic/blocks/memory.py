@@ -9,13 +9,11 @@ memory limit leaves beside the process is traced block by block
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
 from ...errors import InputError
 
-__all__ = ["chunk_bytes", "default_memory_limit", "fits_in_memory", "in_memory_bytes", "parse_memory_limit", "resident_memory",
+__all__ = ["default_memory_limit", "fits_in_memory", "in_memory_bytes", "parse_memory_limit", "resident_memory",
            "size_text", "worker_baseline"]
 
 # The in-memory `seismo3d faults` beyond the process that decides (its imports, about 150-160 MiB): a fixed part (the
@@ -32,12 +30,10 @@ _SMALLEST_LIMIT = 64 << 20
 
 
 def default_memory_limit() -> int:
-    """Half of the machine's physical memory, bytes (the default ``--memory-limit``)."""
-    try:
-        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    except (ValueError, OSError, AttributeError):
-        total = 8 << 30
-    return int(total // 2)
+    """Half of the machine's physical memory, bytes (the default ``--memory-limit``; psutil, a dependency)."""
+    import psutil
+
+    return int(psutil.virtual_memory().total // 2)
 
 
 def in_memory_bytes(shape) -> int:
@@ -65,16 +61,16 @@ def resident_memory() -> int:
     return int(psutil.Process().memory_info().rss)
 
 
-def worker_baseline(chunking, input_chunk: int) -> int:
+def worker_baseline(chunking, x) -> int:
     """Memory of a worker before its blocks: the process itself (this one's size on the local schedulers, 256 MiB
-    assumed for a distributed worker) and two input chunks being read.
+    assumed for a distributed worker) and two of the input's largest chunks being read.
 
     Parameters
     ----------
     chunking : ChunkOptions
         Its scheduler says whether the blocks run in this process.
-    input_chunk : int
-        Bytes of one chunk of the lazy input.
+    x : (n_inlines, n_xlines, n_samples) dask.array.Array
+        The lazy input, chunks of whole traces, counted as float32.
 
     Returns
     -------
@@ -82,22 +78,7 @@ def worker_baseline(chunking, input_chunk: int) -> int:
         Bytes.
     """
     local = chunking.scheduler in (None, "threads", "synchronous")
-    return (resident_memory() if local else 256 << 20) + 2 * int(input_chunk)
-
-
-def chunk_bytes(x) -> int:
-    """Bytes of the largest chunk of a 3D dask array of float32 whole traces (what :func:`worker_baseline` holds
-    twice).
-
-    Parameters
-    ----------
-    x : (n_inlines, n_xlines, n_samples) dask.array.Array
-
-    Returns
-    -------
-    int
-    """
-    return 4 * max(x.chunks[0]) * max(x.chunks[1]) * int(x.shape[2])
+    return (resident_memory() if local else 256 << 20) + 2 * 4 * max(x.chunks[0]) * max(x.chunks[1]) * int(x.shape[2])
 
 
 def parse_memory_limit(value) -> int:

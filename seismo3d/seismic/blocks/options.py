@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from ..._validation import check_int
 from ...errors import InputError
-from .memory import fits_in_memory, parse_memory_limit
+from .memory import default_memory_limit, fits_in_memory, parse_memory_limit
 
 __all__ = ["BlockRunOptions", "ChunkOptions"]
 
@@ -163,3 +163,8 @@ class ChunkOptions:
                 ("tcp://", "tls://", "inproc://", "ucx://")):
             raise InputError(f"scheduler must be 'threads', 'synchronous' or a dask.distributed address such as "
                              f"tcp://127.0.0.1:8786; got {self.scheduler!r}")
+
+    @property
+    def limit(self) -> int:
+        """The memory limit per worker in bytes: ``memory_limit``, else half of the machine's RAM."""
+        return int(self.memory_limit or default_memory_limit())

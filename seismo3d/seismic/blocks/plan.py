@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from ...errors import InputError
 
 __all__ = ["BlockStep", "CUBE", "MEMORY_HEADROOM", "STEP_KINDS", "around", "block_budget", "largest_block", "lateral_blocks",
-           "limit_for_blocks", "plan_steps", "refuse_over_budget", "serial_step_blocks",
+           "limit_for_blocks", "plan_steps", "serial_step_blocks",
            "smallest_need", "usable_cores"]
 
 # Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
@@ -172,28 +172,44 @@ class BlockStep:
             raise InputError(f"BlockStep(kind=...) must be one of {', '.join(STEP_KINDS)}; got {self.kind!r}")
 
 
-def plan_steps(steps, *, tile: int, budget: int) -> dict:
-    """The side of each step's blocks: its ``fixed`` side, else the largest multiple of ``tile`` up to its ``cap``
-    whose :attr:`BlockStep.block_bytes` fit ``budget`` (``tile`` at least: the caller refuses a step whose smallest
-    block does not fit, with its own message).
+def plan_steps(steps, chunking, *, baseline: int, what: str) -> dict:
+    """The side of each step's blocks under a run's memory limit: its ``fixed`` side, else the largest multiple of
+    the tile up to its ``cap`` whose :attr:`BlockStep.block_bytes` fit the :func:`block_budget`; refused when the
+    largest block still needs more (a step whose smallest block does not fit gets the tile, then the refusal).
 
     Parameters
     ----------
     steps : iterable of BlockStep
         Those without ``block_bytes`` are left out.
-    tile : int
-        Traces a side of a chunk; blocks are whole chunks.
-    budget : int
-        Bytes one worker's block may use (:func:`block_budget`).
+    chunking : ChunkOptions
+        Its memory limit (:attr:`~seismo3d.seismic.blocks.options.ChunkOptions.limit`), tile (blocks are whole
+        chunks) and workers (blocks at once).
+    baseline : int
+        Bytes the process holds before its blocks (:func:`~seismo3d.seismic.blocks.memory.worker_baseline`).
+    what : str
+        What is computed, for the message, e.g. ``'a chunked run of a 400 x 400 x 500 cube'``.
 
     Returns
     -------
     dict
         ``{step name: side}``, traces, in the steps' order.
+
+    Raises
+    ------
+    InputError
+        A block needs more than the budget: the message names the memory it needs and the limit.
     """
-    return {s.name: int(s.fixed) if s.fixed else largest_block(int(tile), int(s.cap),
-                                                                lambda b, s=s: s.block_bytes(b) <= budget)
-            for s in steps if s.block_bytes is not None}
+    limit, workers, tile = chunking.limit, int(chunking.workers), int(chunking.tile)
+    budget = block_budget(limit, baseline, workers)
+    planned = [s for s in steps if s.block_bytes is not None]
+    sizes = {s.name: int(s.fixed) if s.fixed else largest_block(tile, int(s.cap),
+                                                                 lambda b, s=s: s.block_bytes(b) <= budget)
+             for s in planned}
+    need = max(s.block_bytes(sizes[s.name]) for s in planned)
+    if need > budget:
+        raise InputError(f"{what} needs about {(need * workers + baseline) / 2**30:.2f} GiB but the memory limit "
+                         f"is {limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
+    return sizes
 
 
 def smallest_need(steps, tile: int) -> int:
@@ -211,31 +227,6 @@ def smallest_need(steps, tile: int) -> int:
     int
     """
     return int(max(step.block_bytes(int(tile)) for step in steps if step.block_bytes is not None))
-
-
-def refuse_over_budget(steps, sizes: dict, *, budget: int, baseline: int, workers: int, limit: int,
-                       what: str) -> None:
-    """Refuse a plan whose largest block needs more than ``budget``.
-
-    Parameters
-    ----------
-    steps : iterable of BlockStep
-    sizes : dict
-        Of :func:`plan_steps`.
-    budget, baseline, workers, limit : int
-        As :func:`block_budget`'s (bytes; blocks at once).
-    what : str
-        What is computed, e.g. ``'a chunked fault likelihood of a 400 x 400 x 500 cube'``.
-
-    Raises
-    ------
-    InputError
-        Naming the memory it needs and the limit.
-    """
-    need = max(step.block_bytes(sizes[step.name]) for step in steps if step.block_bytes is not None)
-    if need > budget:
-        raise InputError(f"{what} needs about {(need * int(workers) + baseline) / 2**30:.2f} GiB but the memory limit "
-                         f"is {limit / 2**30:.2f} GiB: raise memory_limit (or use fewer workers)")
 
 
 def serial_step_blocks(step: BlockStep, *, limit: int, baseline: int, workers: int, scheduler,

@@ -6,8 +6,8 @@ the positive thinned votes and, for densely faulted data, one of their quantiles
 scikit-image (:func:`skimage.filters.threshold_otsu`) and numpy (:func:`numpy.quantile`, linear method) on the values
 (:func:`otsu`, :func:`quantile`). Over the chunks of a stored array the same numbers come from streaming equivalents:
 
-- Otsu: the counts of every chunk in the 256 bins scikit-image uses (same float32 range, so the same edges), summed,
-  then scikit-image's Otsu on that histogram (:func:`streamed_otsu`: :func:`histogram_edges`, :func:`block_histogram`,
+- Otsu: the counts in the 256 bins scikit-image uses (same float32 range, so the same edges: :func:`histogram_edges`),
+  by :func:`dask.array.histogram` over the chunks, then scikit-image's Otsu on that histogram (:func:`streamed_otsu`,
   :func:`otsu_of_histogram`);
 - the quantile: the two order statistics numpy interpolates, located by a fine histogram (:func:`quantile_window`),
   then the values of the chunks within that window gathered and sorted (:func:`streamed_quantile`,
@@ -20,9 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["HISTOGRAM_BINS", "QUANTILE_BINS", "block_histogram", "histogram_edges", "otsu", "otsu_of_histogram",
-           "positive_values", "quantile", "quantile_of_window", "quantile_window", "streamed_otsu",
-           "streamed_quantile"]
+__all__ = ["HISTOGRAM_BINS", "QUANTILE_BINS", "histogram_edges", "otsu", "otsu_of_histogram", "quantile",
+           "quantile_of_window", "quantile_window", "streamed_otsu", "streamed_quantile"]
 
 # Bins of scikit-image's Otsu threshold (its default nbins).
 HISTOGRAM_BINS = 256
@@ -55,30 +54,21 @@ def quantile(values: np.ndarray, q: float) -> float:
 
 def histogram_edges(vmin: float, vmax: float, bins: int) -> np.ndarray:
     """The edges of ``bins`` bins over [vmin, vmax] as numpy computes them for a float32 array of that range (what
-    scikit-image's Otsu threshold uses in memory).
+    scikit-image's Otsu threshold uses in memory): the range as float32 scalars, so the edges are float32.
 
     Returns
     -------
-    (bins + 1,) ndarray
+    (bins + 1,) float32 ndarray
+        ``numpy.histogram(values, bins=edges)`` counts the values in the bins of ``bins=bins, range=(vmin, vmax)``;
+        values outside [vmin, vmax] are not counted.
     """
-    return np.histogram_bin_edges(np.array([vmin, vmax], np.float32), bins=bins, range=_float32_range(vmin, vmax))
-
-
-def block_histogram(values: np.ndarray, vmin: float, vmax: float, bins: int) -> np.ndarray:
-    """Counts of one block's ``values`` in the ``bins`` bins over the whole data's [vmin, vmax].
-
-    Returns
-    -------
-    (bins,) int64 ndarray
-        Summed over the blocks: the histogram of all the values.
-    """
-    counts, _ = np.histogram(values, bins=bins, range=_float32_range(vmin, vmax))
-    return counts.astype(np.int64)
+    return np.histogram_bin_edges(np.array([vmin, vmax], np.float32), bins=bins,
+                                  range=(np.float32(vmin), np.float32(vmax)))
 
 
 def otsu_of_histogram(counts: np.ndarray, vmin: float, vmax: float) -> float:
-    """Otsu's threshold from the summed :func:`block_histogram` counts (``HISTOGRAM_BINS`` bins over the values'
-    [vmin, vmax]): :func:`otsu` of the values themselves.
+    """Otsu's threshold from the counts of the values in the bins of :func:`histogram_edges` (``HISTOGRAM_BINS``
+    bins over the values' [vmin, vmax]): :func:`otsu` of the values themselves.
 
     Returns
     -------
@@ -93,8 +83,8 @@ def otsu_of_histogram(counts: np.ndarray, vmin: float, vmax: float) -> float:
 
 
 def quantile_window(counts: np.ndarray, n: int, q: float, vmin: float, vmax: float) -> tuple:
-    """Where the ``q``-quantile of ``n`` values lies, from their fine histogram (``QUANTILE_BINS`` summed
-    :func:`block_histogram` counts over [vmin, vmax]).
+    """Where the ``q``-quantile of ``n`` values lies, from their fine histogram (counts in the ``QUANTILE_BINS`` bins
+    of :func:`histogram_edges` over [vmin, vmax]).
 
     Returns
     -------
@@ -160,32 +150,11 @@ def _lerp(a, b, gamma: float) -> float:
     return float(b - d * np.float32(1.0 - gamma)) if gamma >= 0.5 else float(a + d * np.float32(gamma))
 
 
-def _float32_range(vmin: float, vmax: float) -> tuple:
-    """The histogram range as float32 scalars: numpy then computes the bin edges in float32, as for the range of a
-    float32 array (what skimage's Otsu threshold uses in memory)."""
-    return np.float32(vmin), np.float32(vmax)
-
-
 # -- over the chunks of a stored array, by dask ------------------------------------------------------------------
-
-def positive_values(values) -> np.ndarray:
-    """The positive values of an array, flattened.
-
-    Parameters
-    ----------
-    values : ndarray
-
-    Returns
-    -------
-    (k,) ndarray
-        Of the array's dtype.
-    """
-    return values[values > 0]
-
 
 def streamed_otsu(run, values, vmin: float, vmax: float) -> float:
     """Otsu's threshold of the positive values of a lazy array: :func:`otsu` of the values gathered, from the
-    summed histograms of its chunks (a dask reduction on the run's scheduler).
+    histogram of its chunks (a dask reduction on the run's scheduler).
 
     Parameters
     ----------
@@ -194,7 +163,7 @@ def streamed_otsu(run, values, vmin: float, vmax: float) -> float:
     values : dask.array.Array
         E.g. ``dask.array.from_zarr`` of a run's store.
     vmin, vmax : float
-        The smallest and largest positive value.
+        The smallest and largest positive value (``vmin > 0``: the other values fall outside the bins).
 
     Returns
     -------
@@ -231,14 +200,10 @@ def streamed_quantile(run, values, q: float, n: int, vmin: float, vmax: float) -
 
 
 def _histogram(run, values, vmin: float, vmax: float, bins: int) -> np.ndarray:
-    """The counts of the positive values of every chunk of ``values`` in ``bins`` bins over [vmin, vmax]
-    (:func:`block_histogram`), summed."""
-    lead = tuple((1,) * len(c) for c in values.chunks[:-1])
-    counts = values.map_blocks(_chunk_histogram, vmin, vmax, bins, values.ndim, dtype=np.int64,
-                               chunks=(*lead, (bins,)))
-    (total,) = run.reduce_cube((counts.sum(axis=tuple(range(values.ndim - 1))),))
+    """The counts of the values of ``values`` in the ``bins`` bins of :func:`histogram_edges` over [vmin, vmax]
+    (:func:`dask.array.histogram` on the run's scheduler; with ``vmin > 0`` the zeros fall outside)."""
+    import dask.array as da
+
+    counts, _ = da.histogram(values, bins=histogram_edges(vmin, vmax, bins))
+    (total,) = run.reduce_cube((counts,))
     return np.asarray(total, np.int64)
-
-
-def _chunk_histogram(chunk, vmin, vmax, bins, ndim):
-    return block_histogram(positive_values(chunk), vmin, vmax, bins).reshape((1,) * (ndim - 1) + (bins,))

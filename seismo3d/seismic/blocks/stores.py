@@ -203,14 +203,14 @@ class StoreRun(BlockRun):
                                      f"{what}; pick another output or delete it", [self.out])
         return earlier.attrs
 
-    def write_gathered(self, folder, blocks, columns: dict, n: int, *, points: str = "points") -> None:
+    def write_gathered(self, step: str, blocks, columns: dict, n: int, *, points: str = "points") -> None:
         """Gather a step's sparse lists into 1-D arrays of the output group, in the C order of their ``points``
         (``(k, 3)`` sample indices of the cube), a row of blocks at a time.
 
         Parameters
         ----------
-        folder : str or os.PathLike
-            The step's folder of lists (:func:`~seismo3d.seismic.blocks.apply.save_lists`).
+        step : str
+            The step's name (its lists: :meth:`~seismo3d.seismic.blocks.executor.BlockRun.lists_reader`).
         blocks : list of tuple
             The step's blocks.
         columns : dict
@@ -223,14 +223,13 @@ class StoreRun(BlockRun):
         """
         import zarr
 
-        from .apply import gather
         group = zarr.open_group(str(self.partial), mode="r+")
         out = {k: group.create_array(name, shape=(n, 3) if k == points else (n,), dtype=dtype, overwrite=True,
                                      chunks=(1 << 20, 3) if k == points else (1 << 20,))
                for k, (name, dtype) in columns.items()}
         start = 0
         for i0 in sorted({b[0] for b in blocks}):  # a row of blocks at a time: its items in C order (the cube's)
-            row = gather(folder, [b for b in blocks if b[0] == i0], columns)
+            row = self.gathered_lists(step, [b for b in blocks if b[0] == i0], columns)
             order = np.argsort(np.ravel_multi_index(tuple(row[points].T), self.shape), kind="stable")
             m = int(order.size)
             if m:

@@ -14,7 +14,8 @@ algorithms live in folders that name them:
   :mod:`~seismo3d.seismic.faults.surfaces.voting`, its loops in ``voting_kernels``), fault skins (:func:`fault_skins`,
   :mod:`~seismo3d.seismic.faults.surfaces.skins`, its merges in ``skin_merging``, its 2D splits in ``skin_splits``).
 - :mod:`~seismo3d.seismic.faults.throw`: throw by registering the reflectors on both sides (:func:`fault_throws`;
-  its patches in :mod:`~seismo3d.seismic.faults.throw_patches`); :mod:`~seismo3d.seismic.faults.evidence`: the
+  its patches in :mod:`~seismo3d.seismic.faults.throw_patches`, the cube read near a fault, in memory, lazy or
+  stored, in :mod:`~seismo3d.seismic.faults.windows`); :mod:`~seismo3d.seismic.faults.evidence`: the
   evidence a fault must show, with the reflectors' half period it compares a throw with
   (:mod:`~seismo3d.seismic.faults.reflector_period`); :mod:`~seismo3d.seismic.faults.tips`: the tips of the kept 2D
   faults cut back to where the likelihood holds.

@@ -628,13 +628,11 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
         ``limit`` below what the run needs (the message names the smallest limit that works), or constant data.
     """
     shape = tuple(int(n) for n in x.shape)
-    chunks = x.chunks
     LOGGER.info("%s: judging the data from a sample of blocks", name)
     sample = judge_sample(x, options=options)  # before the passes over the whole cube: a refusal in seconds
     release_memory()  # the sample's arrays, before the process is measured
     # the process as it is now, and the input chunks a block reads
-    baseline = worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler),
-                               4 * max(chunks[0]) * max(chunks[1]) * shape[2])
+    baseline = worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler), x)
     need = minimum_memory_limit(shape, baseline=baseline, options=options, sample=sample)
     _check_limit(name, shape, limit, need, f" (its smallest blocks, and the ~{sample.candidates(shape)} seed "
                                            "candidates a sample of its blocks predicts)")

@@ -21,7 +21,7 @@ def half_period(data, points, *, margin: int = 4, max_traces: int = 64) -> float
     ----------
     data : ndarray or window source
         The amplitudes, 2D ``(n_traces, n_samples)`` or 3D, or a window source of
-        :mod:`~seismo3d.seismic.blocks.windows` (``window(i0, i1, j0, j1)``): the same traces either way.
+        :mod:`~seismo3d.seismic.faults.windows` (``window(i0, i1, j0, j1)``): the same traces either way.
     points : (n, ndim) array_like of int
         The fault's points, the sample last.
     margin : int

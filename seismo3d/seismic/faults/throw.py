@@ -25,7 +25,7 @@ from ..._validation import as_normals, as_points, check_positive
 from ...errors import InputError
 from ...geometry.normals import estimate_normals
 from ..attributes import ReflectorOrientation
-from ..blocks.windows import cube_windows
+from .windows import cube_windows
 from .result import FaultThrow
 from .throw_patches import ncc_shift, patch_grid, patch_images, read_box, register_patch
 from .throw_profile import fault_zone, section_profile, section_read_box
@@ -335,7 +335,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     A 3D dask array is never held whole: each patch reads only the traces it samples (its nodes' bounding box widened
     by ``side_traces[1] + slope_margin`` + 2 traces), from tiles of 64 x 64 traces whose slopes are computed with the
     structure tensor's halo (:func:`~seismo3d.seismic.attributes.structure_tensor_halo`: 9 traces) and kept (up to 256
-    MiB, :class:`~seismo3d.seismic.blocks.windows.LazyWindows`): the throws are the in-memory ones (bit for bit on the
+    MiB, :class:`~seismo3d.seismic.faults.windows.LazyWindows`): the throws are the in-memory ones (bit for bit on the
     tests' generated cubes). Memory: the tile cache, one window (about 150 x 150 traces for a fault dipping 60-70
     degrees over 256 samples), one tile's orientation workspace and the faults.
 
@@ -343,7 +343,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, or 3D dask.array.Array
         Seismic amplitudes, the last axis the sample. Must be finite (for a dask array: the traces read, checked as
-        they are read). Or a window source of :mod:`seismo3d.seismic.blocks.windows` (e.g.
+        they are read). Or a window source of :mod:`seismo3d.seismic.faults.windows` (e.g.
         ``LazyWindows(dask_array, tile=32, cache_mb=64)`` for another memory / speed trade-off).
     faults : sequence of Fault or of (n_points, ndim) array_like
         Faults from :func:`seismo3d.seismic.fault_skins`.
@@ -380,7 +380,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
 
 
 def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
-    """Throw along one fault, reading ``source`` (:func:`~seismo3d.seismic.blocks.windows.cube_windows`) one patch
+    """Throw along one fault, reading ``source`` (:func:`~seismo3d.seismic.faults.windows.cube_windows`) one patch
     window at a time."""
     shape = source.shape
     two_d = len(shape) == 2

@@ -13,7 +13,7 @@ from ...errors import DegenerateGeometryWarning, RegistrationError
 from ...geometry.normals import estimate_normals
 from ...geometry.transforms import make_transform
 from ...registration import ICPOptions, icp
-from ..blocks.windows import CubeWindow
+from .windows import CubeWindow
 from ..traces import ncc_curve, parabolic_offset, side_coherence, small_shift_weight, subsample_peak
 
 # used by the throw module; not part of the package's public face

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..blocks.windows import CubeWindow
+from .windows import CubeWindow
 from ..traces import ncc_curve, side_coherence, small_shift_weight, subsample_peak
 
 # used by the throw module; not part of the package's public face

@@ -68,7 +68,7 @@ def test_a_declared_step_writes_the_whole_array_result_block_by_block(tmp_path):
                                              (min(j1 + HALO, 9) - max(j0 - HALO, 0)) * 5
                                              for i0, i1, j0, j1 in lateral_blocks(SHAPE, 4, 4))
     # the lists of every block gathered: the samples above the level, each once
-    points = gather(tmp_path / "work" / "peaks", lateral_blocks(SHAPE, 4, 4), ("points",))["points"]
+    points = run.gathered_lists("peaks", lateral_blocks(SHAPE, 4, 4), ("points",))["points"]
     np.testing.assert_array_equal(np.sort(np.ravel_multi_index(tuple(points.T), SHAPE)),
                                   np.flatnonzero(whole > 0.2))
     assert sum(r["count"] for r in counts) == int(np.count_nonzero(whole > 0.2))
@@ -103,7 +103,7 @@ def test_the_same_steps_on_the_whole_array_in_memory_are_one_block(tmp_path):
     cube = _cube()
     smooth = BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",))
     peaks = BlockStep("peaks", "gather", HALO, function=_peaks, inputs=("smooth",), outputs=("double",), place=True)
-    _run(tmp_path, cube, (smooth, ()), (peaks, (0.2,)))
+    by_blocks, _ = _run(tmp_path, cube, (smooth, ()), (peaks, (0.2,)))
     run = MemoryRun(SHAPE)
     whole = [whole_place(SHAPE).block]
     assert whole_place(SHAPE) == BlockPlace((0, 11, 0, 9), (0, 11, 0, 9))
@@ -113,7 +113,7 @@ def test_the_same_steps_on_the_whole_array_in_memory_are_one_block(tmp_path):
     assert run.computed == {"smooth": 1, "peaks": 1}
     np.testing.assert_array_equal(run.arrays["smooth"], zarr.open_array(str(tmp_path / "smooth"))[:])
     np.testing.assert_array_equal(run.arrays["double"], zarr.open_array(str(tmp_path / "double"))[:])
-    blocks = gather(tmp_path / "work" / "peaks", lateral_blocks(SHAPE, 4, 4), ("points",))["points"]
+    blocks = gather(by_blocks.lists_reader("peaks"), lateral_blocks(SHAPE, 4, 4), ("points",))["points"]
     points = run.gathered_lists("peaks", whole, ("points",))["points"]
     np.testing.assert_array_equal(points, blocks[np.lexsort(blocks.T[::-1])])  # in C order
     np.testing.assert_array_equal(run.step_lists("peaks", whole[0], ("points",))["points"], points)

@@ -7,7 +7,16 @@ from __future__ import annotations
 import pytest
 
 from seismo3d.errors import InputError
-from seismo3d.seismic.blocks.plan import BlockStep, around, plan_steps
+from seismo3d.seismic.blocks.options import ChunkOptions
+from seismo3d.seismic.blocks.plan import MEMORY_HEADROOM, BlockStep, around, plan_steps
+
+
+def _plan(steps, budget: int) -> dict:
+    """The plan of ``steps`` in blocks of whole 8-trace tiles, one worker, whose block budget is ``budget`` bytes (a
+    1 MiB limit, the process holding the rest)."""
+    limit = 1 << 20
+    return plan_steps(steps, ChunkOptions(memory_limit=limit, tile=8), baseline=limit - round(budget / MEMORY_HEADROOM),
+                      what="x")
 
 
 def test_serial_step_blocks_trade_halo_for_idle_cores(monkeypatch):
@@ -40,15 +49,18 @@ def test_the_plan_gives_each_step_its_largest_block_that_fits_or_its_forced_side
 
     steps = (BlockStep("a", "map", 2, square, 512), BlockStep("b", "reduce", 0, lambda b: 10 * b * b, 48),
              BlockStep("c", "gather", 2, square, 512, fixed=16), BlockStep("d", "map", 0, lambda b: 10**9, 512))
-    sizes = plan_steps(steps, tile=8, budget=10_000)
+    sizes = _plan(steps[:3], 10_000)
     # a: (96 + 4)^2 = 10000 fits, 104 does not; b: 10 * 24^2 = 5760 fits, 32 does not (10240), below its cap of 48;
-    # c: forced; d: nothing fits, so the tile (the caller refuses it)
-    assert sizes == {"a": 96, "b": 24, "c": 16, "d": 8}
+    # c: forced
+    assert sizes == {"a": 96, "b": 24, "c": 16}
+    # d: nothing fits, not even the tile: refused, naming the memory it needs and the limit
+    with pytest.raises(InputError, match=r"x needs about 0.93 GiB but the memory limit is 0.00 GiB: raise memory_limit"):
+        _plan(steps, 10_000)
     with pytest.raises(InputError, match="BlockStep\\(kind=...\\) must be one of map, reduce, gather"):
         BlockStep("x", "scatter", 0, square, 8)
 
 
 def test_a_step_without_bytes_is_run_on_another_steps_blocks_not_planned():
     steps = (BlockStep("thin", "reduce", 2, lambda b: b * b, 64), BlockStep("cells", "gather"))
-    assert plan_steps(steps, tile=8, budget=1000) == {"thin": 24}  # 24^2 = 576 fits, 32^2 = 1024 does not
+    assert _plan(steps, 1000) == {"thin": 24}  # 24^2 = 576 fits, 32^2 = 1024 does not
     assert around((0, 4, 4, 8), 2, (10, 7)) == (0, 6, 2, 7)  # grown by 2 traces, clipped to the cube

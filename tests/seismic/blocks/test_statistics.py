@@ -9,8 +9,13 @@ from skimage.filters import threshold_otsu
 
 from seismo3d.seismic.faults import FaultTracingOptions
 from seismo3d.seismic.blocks.statistics import (
-    HISTOGRAM_BINS, QUANTILE_BINS, block_histogram, otsu, otsu_of_histogram, quantile_of_window, quantile_window,
+    HISTOGRAM_BINS, QUANTILE_BINS, histogram_edges, otsu, otsu_of_histogram, quantile_of_window, quantile_window,
 )
+
+
+def block_histogram(values, vmin, vmax, bins):
+    """One block's counts in the bins of the whole values' [vmin, vmax], as each chunk's in dask.array.histogram."""
+    return np.histogram(values, bins=histogram_edges(vmin, vmax, bins))[0]
 
 
 def _values(seed: int, n: int) -> np.ndarray:

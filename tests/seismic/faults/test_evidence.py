@@ -367,7 +367,7 @@ def test_a_clear_throw_of_unlike_sides_must_reach_their_half_period():
 def test_half_period_of_the_reflectors_around_a_fault():
     """The lag of the first trough of the traces' mean autocorrelation: 6 samples for a cosine of period 12, the
     same from a section, a cube and a window source of either; read about the points only."""
-    from seismo3d.seismic.blocks.windows import cube_windows
+    from seismo3d.seismic.faults.windows import cube_windows
     from seismo3d.seismic.faults.reflector_period import half_period
 
     t = np.arange(200)

@@ -53,8 +53,9 @@ from scipy.ndimage import zoom
 from ...._progress import progress_steps
 from ....errors import InputError
 from ...adapted_network import MODEL_NETWORK, is_model_path, read_adapted_model
+from ...amplitudes import check_finite
 from ...blocks.apply import BlockOutput
-from ...blocks.executor import MemoryRun, check_finite
+from ...blocks.executor import MemoryRun
 from ...blocks.plan import CUBE, BlockStep, lateral_blocks
 from ..result import FaultLikelihood
 from .network import (

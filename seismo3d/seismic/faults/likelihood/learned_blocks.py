@@ -36,7 +36,7 @@ import math
 from ...._options import resolve_options
 from ....errors import InputError
 from ...blocks.executor import trace_cube
-from ...blocks.memory import chunk_bytes, default_memory_limit, worker_baseline
+from ...blocks.memory import worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import block_budget, largest_block, limit_for_blocks, serial_step_blocks
 from ...blocks.stores import StoreRun
@@ -103,7 +103,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     opt = resolve_options(LearnedOptions, options, overrides, "chunked_learned_likelihood")
     chunking = chunking or ChunkOptions()
     x = trace_cube(cube, "a chunked learned fault likelihood")
-    plan = _plan(tuple(int(n) for n in x.shape), opt, chunking, worker_baseline(chunking, chunk_bytes(x)))
+    plan = _plan(tuple(int(n) for n in x.shape), opt, chunking, worker_baseline(chunking, x))
     return likelihood_by_blocks(x, output, opt=opt, plan=plan, steps=run_learned, start=_start, chunking=chunking,
                                 coords=coords, progress=progress,
                                 method="learned fault likelihood (seismo3d fault network), chunked run",
@@ -181,7 +181,7 @@ def _plan(shape, opt: LearnedOptions, chunking: ChunkOptions, baseline: int) -> 
     tile = int(chunking.tile)
     halo_o = orientation_halo(opt)
     cap = max(tile, (max(shape[0], shape[1]) + tile - 1) // tile * tile)
-    limit = int(chunking.memory_limit or default_memory_limit())
+    limit = chunking.limit
     budget = block_budget(limit, baseline, int(chunking.workers))
     batch = int(opt.sections_per_batch)
     if chunking.block and int(chunking.block) % tile:

@@ -33,8 +33,8 @@ from ...._options import resolve_options
 from ...._validation import as_seismic, as_sigma_pair, check_int, check_positive
 from ....errors import InputError, Seismo3dWarning
 from ... import _kernels
+from ...amplitudes import check_finite
 from ...blocks.apply import BlockOutput
-from ...blocks.executor import check_finite
 from ...blocks.plan import CUBE, BlockStep, lateral_blocks
 from ...blocks.stores import read_sheared
 from .scan_kernels import (CODE_BITS, FL_LEVELS, box_half, default_angles, exponential_coefficient, orientation_table,

@@ -21,14 +21,9 @@ The steps and their blocks (every block carries exactly the halo its step needs,
    blocks that hold every crossline. The packed keys of both are combined by their maximum.
 4. Likelihood, strike and dip decoded block by block into the output Zarr group.
 
-Every finished block leaves a marker in the run's work folder, written after its data: a run that is interrupted
-(Ctrl-C, a killed process, a lost worker) and started again with the same input, options and output skips the
-finished blocks. The output is assembled in ``OUTPUT.partial`` and renamed to ``OUTPUT`` only when every block is
-done, so an output that exists is complete.
-
-The same code runs on dask's local threaded scheduler (default) and on a ``dask.distributed`` cluster (pass its
-address): the tasks read their input from the lazy cube's graph and the intermediate Zarr arrays by path, so the
-output folder must be on storage every worker can reach.
+Resumption (a marker per finished block), the output renamed into place when complete and the schedulers (local
+threads or a ``dask.distributed`` cluster, whose workers must reach the output folder) are the executor's
+(:func:`~seismo3d.seismic.faults.likelihood.runs.likelihood_by_blocks`).
 """
 
 from __future__ import annotations
@@ -37,9 +32,9 @@ import numpy as np
 
 from ...._options import resolve_options
 from ...blocks.executor import trace_cube
-from ...blocks.memory import chunk_bytes, default_memory_limit, worker_baseline
+from ...blocks.memory import worker_baseline
 from ...blocks.options import ChunkOptions
-from ...blocks.plan import block_budget, plan_steps, refuse_over_budget, smallest_need
+from ...blocks.plan import plan_steps, smallest_need
 from ..result import ChunkedLikelihood
 from .runs import likelihood_by_blocks
 from .scan import FaultScanOptions, block_steps, run_scan, scan_step
@@ -71,12 +66,8 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
     """The sides of the steps' blocks under the memory limit (:func:`~seismo3d.seismic.blocks.plan.plan_steps`:
     ``'balance'`` (also the statistics'), ``'semblance'`` (also the decoding's), ``'scan'`` (crosslines or inlines
     of a strip)), refused when the smallest do not fit."""
-    limit = int(chunking.memory_limit or default_memory_limit())
-    budget = block_budget(limit, baseline, int(chunking.workers))
     steps = block_steps(shape, options, block=chunking.block, strip=chunking.strip)
-    sizes = plan_steps(steps, tile=int(chunking.tile), budget=budget)
-    refuse_over_budget(steps, sizes, budget=budget, baseline=baseline, workers=chunking.workers, limit=limit,
-                       what="a chunked run of a {} x {} x {} cube".format(*shape))
+    sizes = plan_steps(steps, chunking, baseline=baseline, what="a chunked run of a {} x {} x {} cube".format(*shape))
     return {"shape": list(shape), "tile": int(chunking.tile), **sizes}
 
 
@@ -131,7 +122,7 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     chunking = chunking or ChunkOptions()
     x = trace_cube(cube, "a chunked fault likelihood", dtype=np.float32)
     shape = tuple(int(n) for n in x.shape)
-    plan = _plan(shape, opt, chunking, worker_baseline(chunking, chunk_bytes(x)))
+    plan = _plan(shape, opt, chunking, worker_baseline(chunking, x))
     m = -(-shape[2] // scan_step(opt, shape[2]))
     work = (("balanced", "float32", shape[2]), ("numerator", "float32", m), ("denominator", "float32", m),
             ("key", "int32", m))

@@ -27,14 +27,14 @@ from ...._progress import no_progress
 from ....errors import InputError
 from ...blocks.apply import BlockOutput
 from ...blocks.executor import MemoryRun, SchedulerClient, trace_cube
-from ...blocks.memory import chunk_bytes, default_memory_limit, resident_memory, worker_baseline
+from ...blocks.memory import resident_memory, worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
-    CUBE, BlockStep, block_budget, lateral_blocks, plan_steps, refuse_over_budget, smallest_need,
+    CUBE, BlockStep, lateral_blocks, plan_steps, smallest_need,
 )
 from ...blocks.statistics import streamed_otsu, streamed_quantile
 from ...blocks.stores import StoreRun
-from ...blocks.windows import StoredWindows
+from ..windows import StoredWindows
 from ..options import FaultTracingOptions
 from ..result import ChunkedFaults, fault_frames
 from ..steps import faults_from_cells, surface_cells
@@ -169,8 +169,7 @@ def smallest_block_bytes(shape, options: FaultTracingOptions, tile: int) -> int:
 
 def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baseline: int) -> SurfacePlan:
     """The largest blocks of each of :func:`block_steps` (multiples of ``chunking.tile``, at most ``chunking.block`` or
-    512 traces a side) whose bytes fit the budget a memory limit leaves
-    (:func:`~seismo3d.seismic.blocks.plan.block_budget`), by the executor's planner
+    512 traces a side) whose bytes fit the budget a memory limit leaves, by the executor's planner
     (:func:`~seismo3d.seismic.blocks.plan.plan_steps`).
 
     Parameters
@@ -193,14 +192,10 @@ def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baselin
         The smallest blocks of a step need more than the budget (the message says by how much).
     """
     n0, n1, nt = shape
-    tile = int(chunking.tile)
-    limit = int(chunking.memory_limit or default_memory_limit())
-    budget = block_budget(limit, baseline, int(chunking.workers))
     steps = block_steps(shape, opt, int(chunking.block) if chunking.block else min(max(n0, n1), 512))
-    sizes = plan_steps(steps, tile=tile, budget=budget)
-    refuse_over_budget(steps, sizes, budget=budget, baseline=baseline, workers=chunking.workers, limit=limit,
+    sizes = plan_steps(steps, chunking, baseline=baseline,
                        what=f"a chunked run of the fault surfaces of a {n0} x {n1} x {nt} cube")
-    return SurfacePlan((n0, n1, nt), tile, sizes["fill"], sizes["ridges"], sizes["surfaces"], sizes["thin"],
+    return SurfacePlan((n0, n1, nt), int(chunking.tile), sizes["fill"], sizes["ridges"], sizes["surfaces"], sizes["thin"],
                        opt.voting.reach(shape))
 
 
@@ -265,8 +260,8 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         if name not in group or tuple(group[name].shape) != shape:
             raise InputError(f"{likelihood} has no {name!r} array of the cube's shape {shape}; pass the output of "
                              "chunked_fault_likelihood for this cube")
-    plan = plan_blocks(shape, opt, chunking, worker_baseline(chunking, chunk_bytes(x)))
-    memory = int(chunking.memory_limit or default_memory_limit())  # the cells' and candidates' checks: less the RSS
+    plan = plan_blocks(shape, opt, chunking, worker_baseline(chunking, x))
+    memory = chunking.limit  # the cells' and candidates' checks: less the RSS
     store = StoreRun(pathlib.Path(output), chunking, progress, outputs=_OUTPUTS)
     manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
                 "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve()),
@@ -288,7 +283,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
             run = SurfaceRun(store, x, plan, opt, shape, memory=memory)
             found = surface_cells(run, opt)
             # the cells gathered into 1D arrays of the output group, in C order (the skins then need no sorted copies)
-            store.write_gathered(store.work / "cells", run.blocks("cells"), {
+            store.write_gathered("cells", run.blocks("cells"), {
                 "points": ("cell_points", "int32"), "values": ("cell_values", "float32"),
                 "strike": ("cell_strike_deg", "float32"), "dip": ("cell_dip_deg", "float32")}, found.n_cells)
         attrs = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,

@@ -1,4 +1,4 @@
-"""Window sources of seismo3d.seismic.blocks.windows: a lazy cube's windows hold the requested traces plus the halo,
+"""Window sources of seismo3d.seismic.faults.windows: a lazy cube's windows hold the requested traces plus the halo,
 clipped at the cube's edges, with the whole cube's amplitudes and slopes over the requested traces."""
 
 import dask.array as da
@@ -9,7 +9,7 @@ from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import structure_tensor_orientation
 from seismo3d.seismic.attributes import structure_tensor_halo
-from seismo3d.seismic.blocks.windows import ArrayWindows, LazyWindows, cube_windows
+from seismo3d.seismic.faults.windows import ArrayWindows, LazyWindows, cube_windows
 
 
 @pytest.fixture(scope="module")

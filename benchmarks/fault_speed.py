@@ -17,7 +17,11 @@ a process of its own on 2 threads (numba, ONNX Runtime and torch: ``NUMBA_NUM_TH
   outputs) and, in memory, the CPU seconds of the process over each step of the tracing and each file written (a
   row each under the writing, largest first; ``time.process_time`` read at each step's start and end by a wrapper of
   the job's step timer that this script installs in the worker; the rest: reading and the checks before the
-  tracing). By blocks the steps run on dask's threads: only the whole job's CPU seconds are shown;
+  tracing). Under the fault likelihood, its own steps' CPU seconds in memory (each declared step of
+  :func:`~seismo3d.seismic.faults.likelihood.learned.block_steps`: the network per grid and direction, then strike
+  and dip), and of the network steps' the CPU seconds inside ONNX Runtime (the rest: resampling onto the network
+  grid, scaling, the interpolation between sections). By blocks the steps run on dask's threads: only the whole
+  job's CPU seconds are shown;
 - FaultNet (Dou et al. 2022, its released TorchScript weights, ``benchmarks/faultnet.py``): its fault probability of
   the same cube, the network alone (the cube in memory; torch loaded and one small cube run first).
 
@@ -83,20 +87,47 @@ def _cpu_per_step():
     return cpu
 
 
+def _cpu_in_likelihood():
+    """Wrap the run in memory's step runner and the fault network's call so that the CPU seconds of the process in
+    each declared step of the likelihood (by its label) and inside ONNX Runtime are recorded; returns the dict they
+    are added to (``'ONNX Runtime'``: the network's calls)."""
+    from seismo3d.seismic.blocks.executor import MemoryRun
+    from seismo3d.seismic.faults.likelihood.network import FaultNetwork
+
+    cpu: dict = {}
+    run_step, call = MemoryRun.run_step, FaultNetwork.__call__
+
+    def timed(key, function, *args, **kwargs):
+        t0 = time.process_time()
+        try:
+            return function(*args, **kwargs)
+        finally:
+            cpu[key] = cpu.get(key, 0.0) + time.process_time() - t0
+
+    MemoryRun.run_step = lambda self, step, *a, **k: timed(step.label or step.name, run_step, self, step, *a, **k)
+    FaultNetwork.__call__ = lambda self, x: timed("ONNX Runtime", call, self, x)
+    return cpu
+
+
 def _ours(path: str, limit: str | None) -> dict:
     from seismo3d.jobs.faults import run_faults_job
 
     cpu = _cpu_per_step()
+    inner = _cpu_in_likelihood()
     warnings.simplefilter("ignore")
     with tempfile.TemporaryDirectory() as tmp:
         small = Path(tmp) / "warmup.npy"
         np.save(small, np.ascontiguousarray(np.load(path, mmap_mode="r")[:48, :48, :64]))
         run_faults_job(small, Path(tmp) / "warmup", progress=False)  # numba's kernels compiled outside the measurement
         cpu.clear()
+        inner.clear()
         t_wall, t_cpu = time.perf_counter(), time.process_time()
         res = run_faults_job(path, Path(tmp) / "out", progress=False, memory_limit=limit)
         wall, total = time.perf_counter() - t_wall, time.process_time() - t_cpu
-    return {"wall": wall, "cpu": total, "steps": dict(res.stage_seconds), "cpu_steps": cpu if limit is None else {}}
+    likelihood = {k: v for k, v in inner.items()  # the likelihood's steps (the later steps run on MemoryRun too)
+                  if k.startswith("fault network") or k in ("fault orientation", "ONNX Runtime")}
+    return {"wall": wall, "cpu": total, "steps": dict(res.stage_seconds), "cpu_steps": cpu if limit is None else {},
+            "cpu_likelihood": likelihood if limit is None else {}}
 
 
 def _faultnet(path: str) -> dict:
@@ -153,6 +184,27 @@ def _print_files(runs: dict, gb: float) -> None:
         print(row)
 
 
+def _print_likelihood(runs: dict, gb: float) -> None:
+    """The fault likelihood's rows, a declared step each, then the network's CPU seconds inside ONNX Runtime and
+    outside it (resampling, scaling, interpolation between sections): CPU seconds of the runs in memory."""
+    rows: dict = {}
+    for label, r in runs.items():
+        inner = r.get("cpu_likelihood", {})
+        for key, cpu in inner.items():
+            if key != "ONNX Runtime":
+                rows.setdefault("  " + key, {})[label] = cpu
+        if inner:
+            network = sum(v for k, v in inner.items() if k.startswith("fault network"))
+            rows.setdefault("  network: inside ONNX Runtime", {})[label] = inner.get("ONNX Runtime", 0.0)
+            rows.setdefault("  network: outside it", {})[label] = network - inner.get("ONNX Runtime", 0.0)
+    for key, cpus in rows.items():
+        row = f"{key:40s}"
+        for label in runs:
+            cpu = cpus.get(label)
+            row += f" | {'':8s} " + (f"{cpu:8.1f} {cpu / gb:9.0f}" if cpu is not None else f"{'':8s} {'':9s}")
+        print(row)
+
+
 def profile(shape, by_blocks: bool) -> dict:
     """Ours (in memory, and by blocks when asked) and FaultNet on one generated cube, back to back; the table
     printed, the CPU seconds returned."""
@@ -184,6 +236,8 @@ def profile(shape, by_blocks: bool) -> dict:
             row += (f" | {wall:8.1f} " if wall is not None else f" | {'':8s} ")
             row += f"{cpu:8.1f} {cpu / gb:9.0f}" if cpu is not None else f"{'':8s} {'':9s}"
         print(row)
+        if step == "fault likelihood":
+            _print_likelihood(runs, gb)
         if step == "write outputs":
             _print_files(runs, gb)
     rest = ""  # the CPU seconds outside the timed steps: reading, the job's checks

@@ -454,3 +454,10 @@ def test_the_finest_grid_of_traces_shorter_than_the_training_patches_is_stretche
     prob = fault_probability(sec, options=opt)
     assert prob.shape == sec.shape and prob.dtype == np.float32 and 0.0 <= prob.min() and prob.max() <= 1.0
     assert not np.array_equal(prob, fault_probability(sec, options=LearnedOptions(patch_samples=0)))
+
+
+def test_orientation_sample_step_is_a_positive_integer():
+    assert LearnedOptions().orientation_sample_step == 2  # strike and dip on every second sample of a cube
+    for bad in (0, -1, 1.5, True):
+        with pytest.raises(InputError, match="orientation_sample_step"):
+            LearnedOptions(orientation_sample_step=bad)

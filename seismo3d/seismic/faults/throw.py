@@ -332,7 +332,9 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
                  progress: bool = False, **overrides) -> list[FaultThrow]:
     """Throw along each of several faults of one cube or section (see :func:`fault_throw`).
 
-    For an in-memory cube the reflector orientation is computed once (when not given) and shared by all faults.
+    For an in-memory cube the reflector orientation is computed once (when not given) and shared by all faults: the
+    structure tensor smoothed over the whole cube, its slopes eigen-decomposed only at the samples the throws read
+    (:class:`~seismo3d.seismic.faults.throw_windows.TensorWindows`, the whole cube's slopes bit for bit there).
     A 3D dask array is never held whole: each patch reads only the traces it samples (its nodes' bounding box widened
     by ``side_traces[1] + slope_margin`` + 2 traces), from tiles of 64 x 64 traces whose slopes are computed with the
     structure tensor's halo (:func:`~seismo3d.seismic.attributes.structure_tensor_halo`: 9 traces) and kept (up to 256

@@ -25,10 +25,11 @@ from ..._validation import as_normals, as_points, check_positive
 from ...errors import InputError
 from ...geometry.normals import estimate_normals
 from ..attributes import ReflectorOrientation
-from .windows import cube_windows
+from .windows import ArrayWindows, LazyWindows, StoredWindows, cube_windows, is_dask_array
 from .result import FaultThrow
 from .throw_patches import ncc_shift, patch_grid, patch_images, read_box, register_patch
 from .throw_profile import fault_zone, section_profile, section_read_box
+from .throw_windows import TensorWindows
 
 __all__ = ["FaultThrow", "ThrowOptions", "fault_throw", "fault_throws", "hanging_wall_normals"]
 
@@ -322,7 +323,7 @@ def fault_throw(data, fault, *, orientation: ReflectorOrientation | None = None,
     >>> bool(abs(res.median_throw - sign * syn.faults[0].throw_samples) < 1)
     True
     """
-    source = cube_windows(data, orientation)
+    source = _windows(data, orientation)
     opt = resolve_options(ThrowOptions, options, overrides, "fault_throw")
     return _fault_throw(source, fault, opt)
 
@@ -331,7 +332,9 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
                  progress: bool = False, **overrides) -> list[FaultThrow]:
     """Throw along each of several faults of one cube or section (see :func:`fault_throw`).
 
-    For an in-memory cube the reflector orientation is computed once (when not given) and shared by all faults.
+    For an in-memory cube the reflector orientation is computed once (when not given) and shared by all faults: the
+    structure tensor smoothed over the whole cube, its slopes eigen-decomposed only at the samples the throws read
+    (:class:`~seismo3d.seismic.faults.throw_windows.TensorWindows`, the whole cube's slopes bit for bit there).
     A 3D dask array is never held whole: each patch reads only the traces it samples (its nodes' bounding box widened
     by ``side_traces[1] + slope_margin`` + 2 traces), from tiles of 64 x 64 traces whose slopes are computed with the
     structure tensor's halo (:func:`~seismo3d.seismic.attributes.structure_tensor_halo`: 9 traces) and kept (up to 256
@@ -368,7 +371,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     ----------
     .. [1] D. Hale, Geophysics 78(2), O33-O43, 2013, doi:10.1190/geo2012-0331.1.
     """
-    source = cube_windows(data, orientation)
+    source = _windows(data, orientation)
     opt = resolve_options(ThrowOptions, options, overrides, "fault_throws")
     faults = list(faults)
     out = []
@@ -377,6 +380,18 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
             out.append(_fault_throw(source, f, opt))
             bar.advance()
     return out
+
+
+def _windows(data, orientation):
+    """The window source the throws read: an in-memory cube without its orientation, its slopes decomposed where
+    they are read (:class:`~seismo3d.seismic.faults.throw_windows.TensorWindows`); else
+    :func:`~seismo3d.seismic.faults.windows.cube_windows` (a section, a given orientation, a dask array or a source)."""
+    if isinstance(data, TensorWindows) and orientation is None:
+        return data
+    if (orientation is None and not isinstance(data, (ArrayWindows, LazyWindows, StoredWindows))
+            and not is_dask_array(data) and np.ndim(data) == 3):
+        return TensorWindows(data)
+    return cube_windows(data, orientation)
 
 
 def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:

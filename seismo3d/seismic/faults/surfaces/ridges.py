@@ -209,10 +209,11 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
     if dip_smoothing > 0:
         # the ranking image where the ridge test of the core reads it: the trilinear reads one sample away along the
         # normal read 2 traces away at most; only where a test above floor reads it: some sample of its 3 x 3 x 3
-        # neighbourhood has a likelihood above floor (the maximum filter's edges clamped as on the whole array)
+        # neighbourhood has a likelihood above floor (the maximum filter's edges clamped as on the whole array; of the
+        # samples above floor, a bool array: the same mask as the likelihood's maximum above floor, at half the time)
         box = (max(i0 - 2, 0), min(i1 + 2, n0), max(j0 - 2, 0), min(j1 + 2, n1))
         a0, a1, b0, b1 = max(box[0] - 1, 0), min(box[1] + 1, n0), max(box[2] - 1, 0), min(box[3] + 1, n1)
-        need = maximum_filter(f3[a0:a1, b0:b1], size=3, mode="nearest") > np.float64(floor)
+        need = maximum_filter(f3[a0:a1, b0:b1] > np.float64(floor), size=3, mode="nearest")
         need = np.ascontiguousarray(need[box[0] - a0:box[1] - a0, box[2] - b0:box[3] - b0])
         g2 = np.zeros_like(f3) if core is not None else np.empty_like(f3)  # read in the box only
         run_threads(_smooth_along_dip, n_threads, g, st3, dp3, lut, int(dip_smoothing), need, box, g2)

@@ -336,9 +336,11 @@ def strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
     step = max(1, _SLAB // max(1, best[0, 0].size))
     for a in range(0, m0, step):
         rows = slice(a, a + step)
-        top = np.zeros(best[0, rows].shape, np.float32)
-        s = np.full(top.shape, -1, np.int64)
-        for t in range(n_threads):  # in thread order, as the compiled loop took them
+        # the first thread's records as they are (no surface: seed -1 and mean 0, as recorded), then the others in
+        # thread order, as the compiled loop took them
+        top = best[0, rows].copy()
+        s = best_seed[0, rows].astype(np.int64)
+        for t in range(1, n_threads):
             q = best_seed[t, rows]
             f = best[t, rows]
             tie = (f == top) & (ids[np.maximum(q, 0)] < ids[np.maximum(s, 0)])

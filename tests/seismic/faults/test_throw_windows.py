@@ -1,0 +1,55 @@
+"""The throw's window source of an in-memory cube (seismo3d.seismic.faults.throw_windows): its slopes decomposed only
+where they are read, bit for bit those of the whole cube's structure tensor (issue 76)."""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from seismo3d.data.synthetic import synthetic_cube
+from seismo3d.errors import InputError
+from seismo3d.seismic import fault_throws
+from seismo3d.seismic.faults.windows import ArrayWindows
+from seismo3d.seismic.faults.throw_windows import TensorWindows
+
+
+@pytest.fixture(scope="module")
+def cube():
+    return synthetic_cube((40, 36, 60), seed=1, noise=0.1).cube
+
+
+def test_reads_equal_the_whole_cubes_slopes_bit_for_bit(cube):
+    """Positions inside, on the last sample and trace, on integers and beyond every edge (clamped reads)."""
+    whole = ArrayWindows(cube).window(0, 1, 0, 1)
+    source = TensorWindows(cube)
+    win = source.window(0, 1, 0, 1)
+    rng = np.random.default_rng(0)
+    il, xl, t = rng.uniform(-2, 42, 4000), rng.uniform(-2, 38, 4000), rng.uniform(-3, 63, 4000)
+    il[:10], xl[:10], t[:10] = np.arange(10) * 4.0, 35.0, 59.0
+    for direction in ([1.0, 0.0], [0.0, 1.0], [0.6, -0.8]):
+        np.testing.assert_array_equal(win.slope_along(il, xl, t, direction),
+                                      whole.slope_along(il, xl, t, direction))
+    decomposed = np.isfinite(win.slope_inline)
+    assert 0.05 < decomposed.mean() < 0.6  # only the samples read: the others are NaN, never read
+    np.testing.assert_array_equal(win.slope_inline[decomposed], whole.slope_inline[decomposed])
+    np.testing.assert_array_equal(win.slope_xline[decomposed], whole.slope_xline[decomposed])
+    assert source.window(5, 9, 5, 9) is win  # every window is the whole cube, decomposed once
+
+
+def test_throws_equal_those_of_the_whole_cubes_slopes():
+    """fault_throws on an in-memory cube (TensorWindows) and on ArrayWindows: the same throws, bit for bit."""
+    syn = synthetic_cube((64, 64, 96), n_faults=2, seed=1, noise=0.1)
+    faults = [SimpleNamespace(id=f.id, points=np.argwhere(syn.fault_labels == f.id),
+                              normals=np.tile(f.normal, (int((syn.fault_labels == f.id).sum()), 1)))
+              for f in syn.faults]
+    ours, whole = fault_throws(syn.cube, faults), fault_throws(ArrayWindows(syn.cube), faults)
+    assert sum(int(np.isfinite(r.throw).sum()) for r in whole) > 1000  # there are throws to compare
+    for a, b in zip(ours, whole):
+        np.testing.assert_array_equal(a.throw, b.throw)
+        np.testing.assert_array_equal(a.correlation, b.correlation)
+        np.testing.assert_array_equal(a.registered, b.registered)
+
+
+def test_a_section_is_refused(cube):
+    with pytest.raises(InputError, match="3D cube"):
+        TensorWindows(cube[:, 0, :])

@@ -18,7 +18,9 @@ runs:
   zarr (the library that writes the store's metadata), computes the file's sha256 (run.json's identity of an input
   up to ``runinfo.HASH_LIMIT``) and writes nothing. ``floor / read`` is the least ``convert / read`` can be while
   the convert writes with zarr-python and hashes its input; on a loaded machine, where a process's wall time follows
-  its CPU time, the convert cannot come nearer the read than that.
+  its CPU time, the convert cannot come nearer the read than that. Beside it, a process that only imports what a
+  convert imports (the ``seismo3d`` CLI, numpy, segyio, zarr): ``convert - imports`` is the CPU its work takes (the
+  read, the sha256, the copy and the writes).
 - ``seismo3d --help`` and ``seismo3d COMMAND --help`` for every command of the ``seismo3d`` app, beside the floor of
   any typer command: ``--help`` of a command of a two-command typer app (typer imports rich and pydantic to show it;
   ``seismo3d`` converts its values without pydantic, :mod:`seismo3d._cli_coercion`, and prints its help in click's
@@ -26,6 +28,10 @@ runs:
 
 ``--baseline CODE_DIR`` (e.g. ``/work/main``) times that code's ``seismo3d convert`` too (``PYTHONPATH=CODE_DIR``),
 in the same rounds (read, baseline convert, convert, ...), so that the two are paired at the same load.
+
+Every process caches its bytecode in ``--work``'s ``bytecode`` folder, filled by the untimed first round (a checkout
+run where ``PYTHONDONTWRITEBYTECODE`` is set would otherwise compile its seismo3d modules in every timed run, as an
+installed package never does).
 
 The command is the installed ``seismo3d`` script beside this interpreter (``python -m seismo3d.cli`` when there is
 none), run with this checkout first on ``PYTHONPATH``. Targets (issues 58, 76): convert <= 1.5 x the segyio read (wall
@@ -60,6 +66,9 @@ with open(sys.argv[1], "rb") as fh, mmap.mmap(fh.fileno(), 0, access=mmap.ACCESS
     hashlib.sha256(whole).hexdigest()
 """
 
+# what a convert imports, and nothing else
+_IMPORTS = "import seismo3d.cli, numpy, segyio, zarr"
+
 # the floor of any typer command's --help: a two-command typer app (typer imports rich and pydantic to show it)
 _TYPER_HELP = """
 import pathlib, typer
@@ -81,10 +90,16 @@ CONVERT_LIMIT = 1.5  # x the segyio read
 HELP_LIMIT = 0.5  # seconds
 
 
-def _environment(code: Path = REPO) -> dict:
-    """``code`` (this checkout by default) first on the path, so that the command runs its code and not an installed
-    copy's."""
-    return dict(os.environ, PYTHONPATH=str(code) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+def _environment(code: Path, cwd: Path) -> dict:
+    """``code`` first on the path, so that the command runs its code and not an installed copy's; Python's bytecode
+    cached in ``cwd/bytecode`` (``PYTHONPYCACHEPREFIX``), also where the caller's environment says not to write it
+    (``PYTHONDONTWRITEBYTECODE``): an installed package has its modules compiled, and without a cache every timed run
+    of a checkout would compile each seismo3d module it imports (0.05-0.07 CPU s of a convert), which the peer's
+    segyio and numpy never do. The untimed first round fills the cache, outside the checkouts."""
+    env = dict(os.environ, PYTHONPATH=str(code) + os.pathsep + os.environ.get("PYTHONPATH", ""),
+               PYTHONPYCACHEPREFIX=str(cwd / "bytecode"))
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    return env
 
 
 def seismo3d_command() -> list[str]:
@@ -120,7 +135,7 @@ def process_time(argv: list[str], cwd: Path, code: Path = REPO) -> ProcessTime:
     """Run one process with ``code`` first on the path (its output discarded; a failure raises with its standard
     error) and time it."""
     cpu, start = _children_cpu(), time.perf_counter()
-    done = subprocess.run(argv, env=_environment(code), cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+    done = subprocess.run(argv, env=_environment(code, cwd), cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                           text=True)
     wall = time.perf_counter() - start
     if done.returncode:
@@ -138,6 +153,7 @@ class ConvertRuns:
     records: list[dict]
     baseline: list[ProcessTime]
     floors: list[ProcessTime]
+    imports: list[ProcessTime]
 
 
 def convert_against_segyio(segy: Path, work: Path, repeats: int, baseline: Path | None = None) -> ConvertRuns:
@@ -147,13 +163,15 @@ def convert_against_segyio(segy: Path, work: Path, repeats: int, baseline: Path 
     record = Path(f"{store}.run.json")  # the run record beside the store
     peer = [sys.executable, "-c", _SEGYIO_READ, str(segy)]
     floor = [sys.executable, "-c", _FLOOR, str(segy)]
+    imports = [sys.executable, "-c", _IMPORTS]
     ours = [*seismo3d_command(), "convert", str(segy), str(store)]
-    runs = ConvertRuns([], [], [], [], [])
+    runs = ConvertRuns([], [], [], [], [], [])
     for timed in [False] + [True] * repeats:  # the first pair warms the page cache
         shutil.rmtree(store, ignore_errors=True)
         record.unlink(missing_ok=True)
         read = process_time(peer, work)
         least = process_time(floor, work)
+        imported = process_time(imports, work)
         if baseline is not None:
             before = process_time(ours, work, baseline)
             shutil.rmtree(store, ignore_errors=True)
@@ -164,6 +182,7 @@ def convert_against_segyio(segy: Path, work: Path, repeats: int, baseline: Path 
         if timed:
             runs.reads.append(read)
             runs.floors.append(least)
+            runs.imports.append(imported)
             runs.converts.append(convert)
             runs.records.append(json.loads(record.read_text()))
     shutil.rmtree(store, ignore_errors=True)
@@ -223,6 +242,7 @@ def main() -> int:
     print(f"{'':2s}floor / read: {least / read:.2f} (wall), "
           f"{_median(runs.floors, 'cpu') / _median(runs.reads, 'cpu'):.2f} (CPU): the least convert / read can be "
           "while it imports zarr and hashes its input")
+    _row("a convert's imports, no work", runs.imports)
     if runs.baseline:
         before = _row(f"seismo3d convert of {args.baseline}", runs.baseline)
         print(f"{'':2s}{args.baseline}'s convert / read: {before / read:.2f} (wall), "
@@ -233,6 +253,8 @@ def main() -> int:
     rest = float(np.median([c.wall - r["seconds"] for c, r in zip(runs.converts, runs.records)]))
     print(f"{'':2s}convert / read: {convert / read:.2f} (wall), "
           f"{_median(runs.converts, 'cpu') / _median(runs.reads, 'cpu'):.2f} (CPU)\n"
+          f"{'':2s}convert - imports: {_median(runs.converts, 'cpu') - _median(runs.imports, 'cpu'):.3f} CPU s (the "
+          f"read, the sha256, the copy and the writes)\n"
           f"{'':2s}convert: the job (run.json) {job:.2f} s, of which writing {write:.2f} s (the job imports numpy "
           f"and segyio, and hashes the input on a thread); the rest of the process (interpreter, the CLI, exit) "
           f"{rest:.2f} s")

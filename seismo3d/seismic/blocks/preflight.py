@@ -77,6 +77,12 @@ class SampleOptions:
         ``saturation_level`` (0.9) at more than this fraction of its live samples. Stricter than
         :attr:`~seismo3d.seismic.FaultTracingOptions.max_saturated` (0.95), because a small block's edges raise its
         likelihood: real seismic blocks of 18-64 traces measured 0.50-0.90, white noise 1.00.
+    min_coherence : float
+        Fault tracing refuses the data from the sample when neighbouring traces correlate below this (the median of
+        their best correlation within ``max_lag`` samples, :func:`~seismo3d.seismic.faults.steps.lateral_coherence`):
+        white noise measures about ``1.3 / sqrt(samples)``, 0.08 on 256 samples, 0.23 on the fewest (32).
+    max_lag : int
+        Largest shift between neighbouring traces tried by that correlation, samples.
     worth : float
         A cube is worth judging from a sample (:meth:`worth_sampling`) when it holds at least this many times the
         samples of the sample: a smaller cube is run in about the time its sample would save.
@@ -91,6 +97,8 @@ class SampleOptions:
     traces: int = 48
     samples: int = 256
     saturated: float = 0.99
+    min_coherence: float = 0.3
+    max_lag: int = 4
     worth: float = 16.0
 
     def worth_sampling(self, shape) -> bool:
@@ -113,6 +121,9 @@ class SampleOptions:
         check_int(self.samples, "samples", minimum=32)
         if not 0.0 < float(self.saturated) <= 1.0:
             raise InputError(f"saturated must be a fraction in (0, 1]; got {self.saturated!r}")
+        if not -1.0 <= float(self.min_coherence) < 1.0:
+            raise InputError(f"min_coherence must be a correlation in [-1, 1); got {self.min_coherence!r}")
+        check_int(self.max_lag, "max_lag", minimum=0)
         check_positive(self.worth, "worth")
 
 

@@ -141,9 +141,9 @@ def test_white_noise_under_1GB_is_refused_within_30_s(noise_file, tmp_path):
     print(f"refused in {wall:.1f} s, {seconds:.1f} CPU s")
     assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
     assert done.stderr.splitlines()[-1] == (
-        "error: in a sample of 3 blocks of 48 x 48 traces, the fault likelihood is above 0.9 at 100% of the samples: "
-        "the data has no lateral coherence to trace faults in (noise, chaotic reflections, or traces out of order); "
-        "check the inline/crossline geometry or the file")
+        "error: in a sample of 3 blocks of 48 x 48 traces, neighbouring traces correlate at 0.09 (the median of their "
+        "best correlation within 4 samples; below 0.3): the data has no lateral coherence to trace faults in (noise, "
+        "chaotic reflections, or traces out of order); check the inline/crossline geometry or the file")
     assert seconds <= 30.0
     assert not (tmp_path / "out").exists()
 
@@ -164,7 +164,6 @@ def test_noise_in_memory_is_refused_from_a_sample(tmp_path, monkeypatch):
     """A cube traced in memory but large enough to sample: refused before its whole likelihood."""
     path = tmp_path / "noise.npy"
     np.save(path, np.random.default_rng(1).standard_normal((300, 300, 320), dtype=np.float32))
-    monkeypatch.setattr(pipeline, "fault_likelihood", _never)
-    monkeypatch.setattr(pipeline, "learned_fault_likelihood", _never)
+    monkeypatch.setattr(pipeline, "run_likelihood", _never)  # the whole cube's likelihood
     with pytest.raises(UnsupportedDataError, match="in a sample of 3 blocks"):
         job.run_faults_job(path, tmp_path / "out", progress=False)

@@ -40,13 +40,13 @@ from ..blocks.stores import earlier_run
 from ..io.cube import as_cube, sample_interval as cube_sample_interval, seismic_axes
 from ..io.zarr_store import consolidate
 from ..time_slices import balanced_slices, blank_slices, filled_slices, slice_extremes
-from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
-from .likelihood.scan import fault_likelihood
 from .likelihood.scan_blocks import chunked_fault_likelihood, smallest_block_bytes as likelihood_block_bytes
 from .options import LIKELIHOODS, FaultTracingOptions
 from .result import FaultInterpretation, FaultLikelihood
-from .steps import CubeSample, check_size, faults_from_cells, judge_sample, no_coherence_message, surface_cells
+from .steps import (
+    CubeSample, check_size, faults_from_cells, judge_sample, no_coherence_message, run_likelihood, surface_cells,
+)
 from .surfaces.blocks import (
     CANDIDATE_BYTES, chunked_fault_surfaces, memory_surface_run, smallest_block_bytes as surfaces_block_bytes,
 )
@@ -227,10 +227,7 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
     with progress_steps(7, "faults", enabled=progress) as bar:
         bar.start("fault likelihood")
         if likelihood is None:
-            with warnings.catch_warnings():  # saturation is decided by the steps, on the live samples
-                warnings.simplefilter("ignore", Seismo3dWarning)
-                fl = (fault_likelihood(arr, options=opt.scan, progress=progress) if opt.likelihood == "scan" else
-                      learned_fault_likelihood(arr, options=opt.learned, progress=progress))
+            fl = run_likelihood(arr, opt, progress=progress)
         else:
             fl = _given_likelihood(likelihood, arr.shape)
         del dead  # the steps find the dead samples again, as by blocks (the same fill values: the whole array's)

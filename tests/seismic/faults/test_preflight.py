@@ -36,9 +36,9 @@ SMALL = SampleOptions(n_blocks=2, traces=32, samples=96)  # a quick sample for t
 
 def test_noise_is_refused_from_a_sample_reading_only_the_sample():
     noise = Recording(np.random.default_rng(0).standard_normal((160, 160, 400)).astype(np.float32))
-    with pytest.raises(UnsupportedDataError, match=r"^in a sample of 2 blocks of 32 x 32 traces, neighbouring traces "
-                                                   r"correlate at 0.1\d \(the median of their best correlation within 4 "
-                                                   r"samples; below 0.3\): the data has no lateral coherence"):
+    message = (r"^in a sample of 2 blocks of 32 x 32 traces, neighbouring traces correlate at 0.1\d \(the median of "
+               r"their best correlation within 4 samples; below 0.3\): the data has no lateral coherence")
+    with pytest.raises(UnsupportedDataError, match=message):
         judge_sample(noise, sample=SMALL, options=FaultTracingOptions())
     assert noise.read == 2 * 32 * 32 * 96
 

@@ -123,8 +123,9 @@ def noise_file(tmp_path_factory):
 def test_white_noise_under_1GB_is_refused_within_30_s(noise_file, tmp_path):
     """As a user runs it: a fresh process (this one is larger than 1 GB after a test session), imports included.
     Its CPU seconds (user + system, the child's and its threads'), which stay near their value under load where the
-    wall time does not: alone 10-18 s wall, 12.5-19.9 CPU s (2026-11-27, the slow machine); 45 s wall in a CI run
-    beside three other heavy processes on 2 cores (the wall-clock limit failed there)."""
+    wall time does not: alone 10-18 s wall, 12.5-19.9 CPU s (2026-11-27, the slow machine, the sample's scan); 45 s
+    wall in a CI run beside three other heavy processes on 2 cores (the wall-clock limit failed there); 13.1 s wall,
+    4.5 CPU s refused by the traces' coherence before any likelihood (2026-11-28, load 9-13)."""
     import os
     import resource
     import subprocess

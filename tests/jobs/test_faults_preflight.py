@@ -16,7 +16,7 @@ import seismo3d.seismic.faults.pipeline as pipeline
 from seismo3d.cli import app
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import UnsupportedDataError
-from seismo3d.seismic.faults.steps import CubeSample
+from seismo3d.seismic.faults.preflight import CubeSample
 
 runner = CliRunner()
 

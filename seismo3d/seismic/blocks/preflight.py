@@ -4,7 +4,7 @@ refuse is refused before its first pass over the whole cube. Data too small for 
 (:class:`SampleOptions`, :func:`sample_blocks`).
 
 What a run judges in the sample is its own: fault tracing refuses from it data that is not seismic amplitudes or has no
-lateral coherence and predicts the seeds of its voting (:func:`~seismo3d.seismic.faults.steps.judge_sample`). The
+lateral coherence and predicts the seeds of its voting (:func:`~seismo3d.seismic.faults.preflight.judge_sample`). The
 checks of the amplitudes themselves (NaN / inf, constant, clipped and dead samples, of an array in memory or of a lazy
 cube by blocks) are :mod:`~seismo3d.seismic.amplitudes`'.
 """
@@ -79,7 +79,8 @@ class SampleOptions:
         likelihood: real seismic blocks of 18-64 traces measured 0.50-0.90, white noise 1.00.
     min_coherence : float
         Fault tracing refuses the data from the sample when neighbouring traces correlate below this (the median of
-        their best correlation within ``max_lag`` samples, :func:`~seismo3d.seismic.faults.steps.lateral_coherence`):
+        their best correlation within ``max_lag`` samples,
+        :func:`~seismo3d.seismic.faults.preflight.lateral_coherence`):
         white noise measures about ``1.3 / sqrt(samples)``, 0.08 on 256 samples, 0.23 on the fewest (32).
     max_lag : int
         Largest shift between neighbouring traces tried by that correlation, samples.

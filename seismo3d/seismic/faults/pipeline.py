@@ -4,12 +4,11 @@ After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the ste
 command uses and returns a :class:`FaultInterpretation`: the checks and the likelihood, then the one sequence of
 steps of :mod:`~seismo3d.seismic.faults.steps`, on the whole array as one block
 (:func:`~seismo3d.seismic.faults.surfaces.blocks.memory_surface_run`) or block by block into Zarr stores
-(:func:`trace_faults_by_blocks`,
-before any block :func:`check_block_run`: the data judged from a sample of blocks,
-:func:`~seismo3d.seismic.faults.steps.judge_sample`, then the memory the run needs, :func:`minimum_memory_limit`); :func:`clean_traces` finds
-the dead samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped amplitudes
-(:mod:`~seismo3d.seismic.amplitudes`). Reading files and
-writing results is the ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
+(:func:`trace_faults_by_blocks`, before any block :func:`check_block_run`: the data judged from a sample of blocks,
+:func:`~seismo3d.seismic.faults.preflight.judge_sample`, then the memory the run needs, :func:`minimum_memory_limit`);
+:func:`clean_traces` finds the dead samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped
+amplitudes (:mod:`~seismo3d.seismic.amplitudes`). Reading files and writing results is the ``faults`` command's job
+(:mod:`seismo3d.jobs.faults`).
 
 Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood.scan`.
 """
@@ -44,9 +43,8 @@ from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block
 from .likelihood.scan_blocks import chunked_fault_likelihood, smallest_block_bytes as likelihood_block_bytes
 from .options import LIKELIHOODS, FaultTracingOptions
 from .result import FaultInterpretation, FaultLikelihood
-from .steps import (
-    CubeSample, check_size, faults_from_cells, judge_sample, no_coherence_message, run_likelihood, surface_cells,
-)
+from .preflight import CubeSample, judge_sample
+from .steps import check_size, faults_from_cells, no_coherence_message, run_likelihood, surface_cells
 from .surfaces.blocks import (
     CANDIDATE_BYTES, chunked_fault_surfaces, memory_surface_run, smallest_block_bytes as surfaces_block_bytes,
 )
@@ -106,7 +104,7 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
     temporary folder, kept: its path is in :attr:`FaultInterpretation.stores`), with the same checks, warnings and
     results: its volumes are then read lazily from the stores. A cube large enough to be judged from a sample of
     blocks first (:meth:`~seismo3d.seismic.blocks.preflight.SampleOptions.worth_sampling`) is refused from that
-    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.steps.judge_sample`), on either path.
+    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.preflight.judge_sample`), on either path.
 
     Parameters
     ----------

@@ -1,5 +1,5 @@
 """Judging a cube from a sample of blocks before tracing its faults, and the smallest memory limit of a block-by-block
-run (seismo3d.seismic.faults.steps.judge_sample, seismo3d.seismic.faults.pipeline.minimum_memory_limit)."""
+run (seismo3d.seismic.faults.preflight.judge_sample, seismo3d.seismic.faults.pipeline.minimum_memory_limit)."""
 
 import numpy as np
 import pytest
@@ -12,9 +12,10 @@ from seismo3d.seismic.faults.likelihood.scan import FaultScanOptions
 from seismo3d.seismic.blocks.options import ChunkOptions
 from seismo3d.seismic.faults.options import FaultTracingOptions
 from seismo3d.seismic.blocks.preflight import SampleOptions
-from seismo3d.seismic.faults import steps
+from seismo3d.seismic.faults import preflight as fault_preflight
 from seismo3d.seismic.faults.result import FaultLikelihood
-from seismo3d.seismic.faults.steps import CubeSample, judge_sample, lateral_coherence, run_likelihood
+from seismo3d.seismic.faults.preflight import CubeSample, judge_sample, lateral_coherence
+from seismo3d.seismic.faults.steps import run_likelihood
 from seismo3d.seismic.faults.surfaces.ridges import ridges
 from seismo3d.seismic.faults.pipeline import minimum_memory_limit
 
@@ -81,7 +82,7 @@ def test_a_saturated_likelihood_is_refused_from_the_sample(monkeypatch):
         return FaultLikelihood(np.full(data.shape, 0.95, np.float32), np.zeros(data.shape, np.float32),
                                np.full(data.shape, 90.0, np.float32))
 
-    monkeypatch.setattr(steps, "run_likelihood", saturated)
+    monkeypatch.setattr(fault_preflight, "run_likelihood", saturated)
     with pytest.raises(UnsupportedDataError, match=r"^in a sample of 2 blocks of 32 x 32 traces, the fault likelihood "
                                                    r"is above 0.9 at 100% of the samples"):
         judge_sample(cube, sample=SMALL, options=FaultTracingOptions())

@@ -3,6 +3,10 @@
 A bar redrawn with carriage returns is unreadable in a log file or a CI console, so when standard error is not a
 terminal the steps are written as lines to the ``seismo3d`` logger (level INFO) instead; the ``seismo3d`` command
 sends that logger to standard error. Loops over many items (inlines, scanned planes) log at most about twenty lines.
+
+A step of a run computed on one block reports the loop within that block (the network's sections, the voting's
+seeds) with :func:`progress_within`, under the step's name, when its executor asks for it with
+:func:`reporting_within` (the run in memory, one block per step); a run by blocks reports its blocks, not within them.
 """
 
 from __future__ import annotations
@@ -11,11 +15,15 @@ import logging
 import sys
 import time
 from contextlib import contextmanager
+from contextvars import ContextVar
 
-__all__ = ["LOGGER", "progress_steps"]
+__all__ = ["LOGGER", "progress_steps", "progress_within", "reporting_within"]
 
 LOGGER = logging.getLogger("seismo3d")
 _MAX_LINES = 20  # log lines of a loop over items (every 5 %)
+# The name under which the loops of the block step under way report (reporting_within), None: they do not. A context
+# variable: the threads of a run by blocks start without it.
+_WITHIN: ContextVar = ContextVar("seismo3d_progress_within", default=None)
 
 
 def _interactive() -> bool:
@@ -131,3 +139,42 @@ def progress_steps(total: int, desc: str, *, unit: str = "step", enabled: bool =
         yield steps
     finally:
         steps.stop()
+
+
+@contextmanager
+def reporting_within(desc: str | None):
+    """Within this ``with`` block, the loops of the step under way (:func:`progress_within`) report under ``desc``.
+
+    Parameters
+    ----------
+    desc : str or None
+        The step's name, e.g. ``'fault voting'``; None: they report nothing (the default).
+    """
+    token = _WITHIN.set(desc)
+    try:
+        yield
+    finally:
+        _WITHIN.reset(token)
+
+
+@contextmanager
+def progress_within(total: int, *, unit: str):
+    """The progress of a loop inside a block step (:func:`progress_steps`, under the step's name), reported when the
+    step's executor asks for it (:func:`reporting_within`: a run in memory), silent otherwise (a run by blocks, whose
+    executor reports per block).
+
+    Parameters
+    ----------
+    total : int
+        Items of the loop.
+    unit : str
+        What an item is, e.g. ``'section'``, ``'seed'``.
+
+    Yields
+    ------
+    object
+        As :func:`progress_steps`: ``advance(n)`` counts items done.
+    """
+    desc = _WITHIN.get()
+    with progress_steps(total, desc or "", unit=unit, enabled=desc is not None) as bar:
+        yield bar

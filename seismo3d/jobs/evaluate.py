@@ -223,21 +223,20 @@ def read_picked_lines(path, *, sticks=None, mask=None, segy_options: dict | None
     if mask is not None:
         raise InputError(f"{name} is a 3D cube and a mask is of one line: pass the fault sticks picked on the cube's "
                          f"lines (--sticks FILE), or the picked line as its own SEG-Y or .npy with its mask")
-    return _cube_picked_lines(seismic, Path(sticks), segy_options or {})
+    return _cube_picked_lines(seismic, Path(sticks))
 
 
-def _cube_picked_lines(seismic, path: Path, segy_options: dict) -> list:
+def _cube_picked_lines(seismic, path: Path) -> list:
     """The inlines and crosslines of a SEG-Y cube that the sticks of ``path`` were picked on, with their sticks."""
-    from ..seismic.io.coordinates import read_survey_coordinates
+    from ..seismic.io.coordinates import cube_coordinates
     from ..seismic.io.fault_sticks import read_fault_sticks
     from ..seismic.io.stick_sections import picked_sections
 
     if not path.is_file():
         raise DataNotFoundError(f"no fault-stick file at {path}; check the path")
     sticks = read_fault_sticks(path)
-    if np.isnan(sticks.inline).any() or np.isnan(sticks.crossline).any():  # IESX: placed by X / Y
-        keep = {k: v for k, v in segy_options.items() if k in ("iline", "xline", "ignore_geometry", "endian")}
-        sticks = read_fault_sticks(path, coordinates=read_survey_coordinates(seismic.path, **keep))
+    if np.isnan(sticks.inline).any() or np.isnan(sticks.crossline).any():  # IESX: placed by X / Y, the cube's own
+        sticks = read_fault_sticks(path, coordinates=cube_coordinates(seismic.cube))
     try:
         sections = picked_sections(sticks, seismic.inlines, seismic.xlines, seismic.samples)
     except InputError as exc:

@@ -1,8 +1,8 @@
 """The jobs' seismic inputs: a SEG-Y cube, line or trace list, a ``.npy`` array, a raw ``.f32be`` section or a Zarr
 store of ``seismo3d convert``, opened by :func:`seismo3d.open` (the one place that maps a file to its reader: its
-headers read once) and gathered into a :class:`SeismicInput` (what kind, the amplitudes, their geometry and sample
-interval, the source path, the labelled cube). A 3D cube is read whole or, when the caller's ``lazy_if`` says so from
-its shape (the memory decision of a fault run), kept as a lazy dask array.
+headers read once) and held as a :class:`SeismicInput`: the labelled cube and its file, every other attribute (what
+kind, the amplitudes, their geometry and sample interval) read from the cube. A 3D cube is read whole or, when the
+caller's ``lazy_if`` says so from its shape (the memory decision of a fault run), kept as a lazy dask array.
 
 :func:`input_kind` names every job input by its file (seismic files by :func:`seismo3d.seismic.io.cube.seismic_kind`,
 point clouds and terrain files here), so that ``faults``, ``horizon`` and ``render`` do not each work it out their own
@@ -58,66 +58,145 @@ def input_kind(path) -> str:
 
 @dataclass(frozen=True, eq=False)
 class SeismicInput:
-    """A seismic input as read: the amplitudes and how their traces and samples are named.
+    """A seismic input as a job reads it: the cube of :func:`seismo3d.open` and its file. The cube is the one record of
+    the input: every other attribute is read from it (its ``kind``, ``description``, ``segy_*`` and ``xy_unit``
+    attributes, its dimensions and coordinates), none is kept beside it.
 
     Attributes
     ----------
+    cube : xarray.DataArray
+        The input as :func:`seismo3d.open` labels it (a line with its one lateral dimension), read whole (numpy) or
+        lazy (dask, chunks of ``tile`` x ``tile`` whole traces).
+    path : pathlib.Path
+        The source file.
     kind : {'cube', 'line', 'trace list', 'array', 'section', 'store'}
         A SEG-Y 3D cube, a SEG-Y line of a survey (one inline or one crossline), a SEG-Y file read as a trace
         list (no inline / crossline grid, or ``ignore_geometry``), a ``.npy`` array, a raw ``.f32be`` section, a
-        Zarr store of ``seismo3d convert``.
-    path : pathlib.Path
-        The source file.
+        Zarr store of ``seismo3d convert`` (the cube's ``kind`` attribute).
     data : ndarray or dask.array.Array
-        float32 for SEG-Y and raw sections: (n_inlines, n_xlines, n_samples) for a cube or a line (one of the first
-        two 1), (n_traces, n_samples) for a trace list and a raw section; a ``.npy`` array as stored (2D or 3D,
-        memory-mapped). With ``lazy`` a (n_inlines, n_xlines, n_samples) float32 dask array, chunks of
-        ``tile`` x ``tile`` whole traces.
+        The cube's data, a line's as (n_inlines, n_xlines, n_samples) with one of the first two 1: float32 for
+        SEG-Y and raw sections, (n_traces, n_samples) for a trace list and a raw section; a ``.npy`` array as stored
+        (2D or 3D); with :attr:`lazy` a (n_inlines, n_xlines, n_samples) float32 dask array.
     samples : (n_samples,) float64 ndarray
-        Sample positions in ``sample_unit`` (the sample index for ``.npy`` and ``.f32be``).
+        Sample positions in ``sample_unit`` (the cube's sample coordinate; the sample index for ``.npy`` and
+        ``.f32be``).
     sample_unit : {'ms', 'm', 'ft', 'samples'}
     inlines, xlines : ndarray or None
-        The grid's inline and crossline numbers (SEG-Y cubes and lines); None otherwise.
+        The grid's inline and crossline numbers (SEG-Y cubes and lines, stores); None otherwise.
     description : str
         In words, what was read (SEG-Y: :attr:`~seismo3d.seismic.io.SeismicCube.description`).
     grid_shape : tuple or None
-        The SEG-Y grid's shape ``(n_inlines, n_xlines, n_samples)``; None for a trace list and other files.
+        The grid's shape ``(n_inlines, n_xlines, n_samples)``; None for a trace list and other files.
     sorting : {'inline', 'crossline'} or None
         Trace order of a SEG-Y grid.
     trace_inlines, trace_xlines : ndarray or None
-        A trace list's inline and crossline header values per trace (at the ``iline`` / ``xline`` bytes).
+        A trace list's inline and crossline header values per trace (at the ``iline`` / ``xline`` bytes; zeros
+        when the file has none there).
     cdp_x, cdp_y : ndarray or None
-        SEG-Y trace coordinates (with ``coordinates=True``), as
-        :attr:`~seismo3d.seismic.io.SeismicCube.cdp_x`.
+        SEG-Y trace coordinates (the cube's ``cdp_x`` / ``cdp_y``; a line's on its grid, (n_inlines, n_xlines)).
     map_unit : {'m', 'ft'}
         Unit of ``cdp_x`` / ``cdp_y`` (binary header bytes 3255-3256).
     format_name, endian : str or None
         SEG-Y sample format and byte order.
     lazy : bool
         ``data`` is a lazy dask array (read block by block), not the samples in memory.
-    cube : xarray.DataArray
-        The input as :func:`seismo3d.open` labels it (a line with its one lateral dimension), backed by ``data``.
     """
 
-    kind: str
+    cube: object
     path: Path
-    data: np.ndarray
-    samples: np.ndarray
-    sample_unit: str
-    inlines: np.ndarray | None = None
-    xlines: np.ndarray | None = None
-    description: str = ""
-    grid_shape: tuple | None = None
-    sorting: str | None = None
-    trace_inlines: np.ndarray | None = None
-    trace_xlines: np.ndarray | None = None
-    cdp_x: np.ndarray | None = None
-    cdp_y: np.ndarray | None = None
-    map_unit: str = "m"
-    format_name: str | None = None
-    endian: str | None = None
-    lazy: bool = False
-    cube: object = None
+
+    @property
+    def kind(self) -> str:
+        return self.cube.attrs["kind"]
+
+    @property
+    def lazy(self) -> bool:
+        return not isinstance(self.cube.data, np.ndarray)
+
+    @property
+    def description(self) -> str:
+        return self.cube.attrs.get("description", "")
+
+    @property
+    def format_name(self) -> str | None:
+        return self.cube.attrs.get("segy_format")
+
+    @property
+    def endian(self) -> str | None:
+        return self.cube.attrs.get("segy_endian")
+
+    @property
+    def map_unit(self) -> str:
+        return self.cube.attrs.get("xy_unit", "m")
+
+    @cached_property
+    def _axes(self):
+        return seismic_axes(self.cube)
+
+    @property
+    def sample_unit(self) -> str:
+        return self._axes.sample_unit
+
+    @cached_property
+    def samples(self) -> np.ndarray:
+        return np.asarray(self.cube.coords[self._axes.sample].values, dtype=np.float64)
+
+    @property
+    def _gridded(self) -> bool:
+        """A grid of inlines and crosslines: a SEG-Y cube or line, a store."""
+        return self.kind not in ("array", "section", "trace list")
+
+    @cached_property
+    def inlines(self) -> np.ndarray | None:
+        return np.atleast_1d(np.asarray(self.cube.coords["iline"].values)) if self._gridded else None
+
+    @cached_property
+    def xlines(self) -> np.ndarray | None:
+        return np.atleast_1d(np.asarray(self.cube.coords["xline"].values)) if self._gridded else None
+
+    @property
+    def grid_shape(self) -> tuple | None:
+        return (self.inlines.size, self.xlines.size, self.samples.size) if self._gridded else None
+
+    @property
+    def sorting(self) -> str | None:
+        return (self.cube.attrs.get("segy_sorting") or None) if self._gridded else None
+
+    @property
+    def data(self):
+        data = self.cube.data
+        return data.reshape(self.grid_shape) if self._gridded and self.cube.ndim == 2 else data
+
+    def _trace_numbers(self, name: str) -> np.ndarray | None:
+        """A trace list's header values at the ``iline`` / ``xline`` bytes, per trace (zeros where it has none)."""
+        if self.kind != "trace list":
+            return None
+        coord = self.cube.coords.get(name)
+        if coord is not None and coord.dims == ("trace",):
+            return np.asarray(coord.values)
+        return np.zeros(self.cube.shape[0], np.int64)
+
+    @property
+    def trace_inlines(self) -> np.ndarray | None:
+        return self._trace_numbers("iline")
+
+    @property
+    def trace_xlines(self) -> np.ndarray | None:
+        return self._trace_numbers("xline")
+
+    def _map(self, name: str) -> np.ndarray | None:
+        if name not in self.cube.coords:
+            return None
+        values = np.asarray(self.cube.coords[name].values)
+        return values.reshape(self.grid_shape[:2]) if self._gridded and self.cube.ndim == 2 else values
+
+    @property
+    def cdp_x(self) -> np.ndarray | None:
+        return self._map("cdp_x")
+
+    @property
+    def cdp_y(self) -> np.ndarray | None:
+        return self._map("cdp_y")
 
     @property
     def sample_interval(self) -> float:
@@ -226,8 +305,8 @@ class SeismicInput:
 
 
 def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False, endian=None,
-                 sample_unit=None, n_samples: int | None = None, coordinates: bool = False,
-                 arrays: bool = True, lazy_if=None, tile: int = 32) -> SeismicInput:
+                 sample_unit=None, n_samples: int | None = None, arrays: bool = True, lazy_if=None,
+                 tile: int = 32) -> SeismicInput:
     """Read a seismic input through :func:`seismo3d.open` (one opening of its headers): a SEG-Y file, a ``.npy``
     array, a raw ``.f32be`` section, or (with ``lazy_if``) a Zarr store of ``seismo3d convert``; a 3D cube whole or
     lazily, as ``lazy_if`` decides.
@@ -240,8 +319,6 @@ def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: b
         (they have no sample interval).
     n_samples : int, optional
         Samples per trace of a raw ``.f32be`` section whose shape is not known by name.
-    coordinates : bool
-        SEG-Y: also give the trace coordinates (``cdp_x``, ``cdp_y``).
     arrays : bool
         Read ``.npy`` and ``.f32be`` files as arrays; False for a command that reads SEG-Y only (every file is then
         opened as SEG-Y, whose error says what the file is not).
@@ -276,42 +353,14 @@ def read_seismic(path, *, iline: int = 189, xline: int = 193, ignore_geometry: b
     fmt = kind if (kind in ("npy", "f32be") and arrays) or (kind == "zarr" and lazy_if is not None) else "segy"
     cube = open_cube(path, iline=iline, xline=xline, ignore_geometry=ignore_geometry, endian=endian,
                      sample_unit=sample_unit, n_samples=n_samples, tile=tile, format=fmt)
-    return seismic_input(cube, path, lazy_if=lazy_if, coordinates=coordinates)
+    return seismic_input(cube, path, lazy_if=lazy_if)
 
 
-def seismic_input(cube, path, *, lazy_if=None, coordinates: bool = False) -> SeismicInput:
+def seismic_input(cube, path, *, lazy_if=None) -> SeismicInput:
     """A cube of :func:`seismo3d.open` as a :class:`SeismicInput`: read whole, or kept lazy when ``lazy_if(shape)``
     says so for a 3D cube (see :func:`read_seismic`)."""
-    path = Path(path)
-    attrs = cube.attrs
-    kind = attrs["kind"]
-    axes = seismic_axes(cube)
-    samples = np.asarray(cube.coords[axes.sample].values, dtype=np.float64)
-    lazy = (lazy_if is not None and cube.ndim == 3 and kind in ("cube", "store", "array")
+    lazy = (lazy_if is not None and cube.ndim == 3 and cube.attrs["kind"] in ("cube", "store", "array")
             and bool(lazy_if(tuple(int(n) for n in cube.shape))))
     if not lazy:
         cube = cube.copy(data=cube.values)  # read whole, once
-    data = cube.data
-    fields = dict(cube=cube, path=path, samples=samples, sample_unit=axes.sample_unit, description=attrs.get("description", ""),
-                  format_name=attrs.get("segy_format"), endian=attrs.get("segy_endian"), lazy=lazy)
-    if coordinates and "cdp_x" in cube.coords:
-        fields.update(cdp_x=cube.coords["cdp_x"].values, cdp_y=cube.coords["cdp_y"].values,
-                      map_unit=attrs.get("xy_unit", "m"))
-    if kind in ("array", "section"):
-        return SeismicInput(kind=kind, data=data, **fields)
-    if kind == "trace list":
-        n = cube.shape[0]
-        have = "iline" in cube.coords and cube.coords["iline"].dims == ("trace",)
-        return SeismicInput(kind=kind, data=data,
-                            trace_inlines=np.asarray(cube.coords["iline"].values) if have else np.zeros(n, np.int64),
-                            trace_xlines=np.asarray(cube.coords["xline"].values) if have else np.zeros(n, np.int64),
-                            **fields)
-    inlines = np.atleast_1d(np.asarray(cube.coords["iline"].values))
-    xlines = np.atleast_1d(np.asarray(cube.coords["xline"].values))
-    grid_shape = (inlines.size, xlines.size, samples.size)
-    if cube.ndim == 2:  # a line of a survey: (n_inlines, n_xlines, n_samples), one of the first two 1
-        data = data.reshape(grid_shape)
-        if fields.get("cdp_x") is not None:
-            fields.update(cdp_x=fields["cdp_x"].reshape(grid_shape[:2]), cdp_y=fields["cdp_y"].reshape(grid_shape[:2]))
-    return SeismicInput(kind=kind, data=data, inlines=inlines, xlines=xlines, grid_shape=grid_shape,
-                        sorting=attrs.get("segy_sorting") or None, **fields)
+    return SeismicInput(cube, Path(path))

@@ -164,7 +164,7 @@ def _read_segy(path: Path, vertical_exaggeration, segy_options=None):
     (n_traces, 1, n_samples), its traces numbered from 1 in file order (:func:`~seismo3d.jobs.inputs.read_seismic`)."""
     from ..viz.geometry import cube_geometry
 
-    seismic = read_seismic(path, **(segy_options or {}), coordinates=True, arrays=False)
+    seismic = read_seismic(path, **(segy_options or {}), arrays=False)
     if seismic.kind != "trace list":
         return seismic.data, cube_geometry(seismic.data.shape, inlines=seismic.inlines, xlines=seismic.xlines,
                                            samples=seismic.samples, sample_unit=seismic.sample_unit,

@@ -16,7 +16,7 @@ import seismo3d.seismic.faults.pipeline as pipeline
 from seismo3d.cli import app
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import UnsupportedDataError
-from seismo3d.seismic.faults.steps import CubeSample
+from seismo3d.seismic.faults.preflight import CubeSample
 
 runner = CliRunner()
 
@@ -123,8 +123,9 @@ def noise_file(tmp_path_factory):
 def test_white_noise_under_1GB_is_refused_within_30_s(noise_file, tmp_path):
     """As a user runs it: a fresh process (this one is larger than 1 GB after a test session), imports included.
     Its CPU seconds (user + system, the child's and its threads'), which stay near their value under load where the
-    wall time does not: alone 10-18 s wall, 12.5-19.9 CPU s (2026-11-27, the slow machine); 45 s wall in a CI run
-    beside three other heavy processes on 2 cores (the wall-clock limit failed there)."""
+    wall time does not: alone 10-18 s wall, 12.5-19.9 CPU s (2026-11-27, the slow machine, the sample's scan); 45 s
+    wall in a CI run beside three other heavy processes on 2 cores (the wall-clock limit failed there); 13.1 s wall,
+    4.5 CPU s refused by the traces' coherence before any likelihood (2026-11-28, load 9-13)."""
     import os
     import resource
     import subprocess
@@ -141,9 +142,9 @@ def test_white_noise_under_1GB_is_refused_within_30_s(noise_file, tmp_path):
     print(f"refused in {wall:.1f} s, {seconds:.1f} CPU s")
     assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
     assert done.stderr.splitlines()[-1] == (
-        "error: in a sample of 3 blocks of 48 x 48 traces, the fault likelihood is above 0.9 at 100% of the samples: "
-        "the data has no lateral coherence to trace faults in (noise, chaotic reflections, or traces out of order); "
-        "check the inline/crossline geometry or the file")
+        "error: in a sample of 3 blocks of 48 x 48 traces, neighbouring traces correlate at 0.09 (the median of their "
+        "best correlation within 4 samples; below 0.3): the data has no lateral coherence to trace faults in (noise, "
+        "chaotic reflections, or traces out of order); check the inline/crossline geometry or the file")
     assert seconds <= 30.0
     assert not (tmp_path / "out").exists()
 
@@ -164,7 +165,6 @@ def test_noise_in_memory_is_refused_from_a_sample(tmp_path, monkeypatch):
     """A cube traced in memory but large enough to sample: refused before its whole likelihood."""
     path = tmp_path / "noise.npy"
     np.save(path, np.random.default_rng(1).standard_normal((300, 300, 320), dtype=np.float32))
-    monkeypatch.setattr(pipeline, "fault_likelihood", _never)
-    monkeypatch.setattr(pipeline, "learned_fault_likelihood", _never)
+    monkeypatch.setattr(pipeline, "run_likelihood", _never)  # the whole cube's likelihood
     with pytest.raises(UnsupportedDataError, match="in a sample of 3 blocks"):
         job.run_faults_job(path, tmp_path / "out", progress=False)

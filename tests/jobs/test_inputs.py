@@ -20,7 +20,7 @@ def cube(tmp_path_factory):
 
 def test_a_cube_with_its_grid_and_coordinates(cube):
     path, data = cube
-    seismic = read_seismic(path, coordinates=True)
+    seismic = read_seismic(path)
     assert seismic.kind == "cube" and seismic.is_segy and seismic.grid_shape == (5, 4, 30)
     np.testing.assert_array_equal(seismic.data, data)
     np.testing.assert_array_equal(seismic.inlines, np.arange(1, 6))

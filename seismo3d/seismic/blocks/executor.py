@@ -31,7 +31,7 @@ import uuid
 import numpy as np
 
 from ..._atomic import atomic_path
-from ..._progress import LOGGER, progress_steps
+from ..._progress import LOGGER, progress_steps, reporting_within
 from ...errors import InputError
 from .apply import BlockPlace, apply_block, apply_in_memory, gather, load_lists, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
@@ -411,7 +411,8 @@ class MemoryRun(_StepRun):
         steps' outputs are set in it; an input no step wrote is None to the algorithm, as a store holding only its
         fill value).
     progress : bool
-        Report progress per step.
+        Report progress per step, and the loop within its one block where the step reports one (the network's
+        sections, the voting's seeds: :func:`~seismo3d._progress.progress_within`).
 
     Attributes
     ----------
@@ -484,7 +485,9 @@ class MemoryRun(_StepRun):
             raise ValueError(f"step {step.name!r} reads traces {region} in memory, not the whole cube {self.shape}")
         start = time.perf_counter()
         arrays = dict(self.arrays, **({CUBE: source} if source is not None else {}))
-        with progress_steps(1, step.label or step.name, unit="step", enabled=self.progress) as bar:
+        label = step.label or step.name
+        with (progress_steps(1, label, unit="step", enabled=self.progress) as bar,
+              reporting_within(label if self.progress else None)):  # the loops within the one block report too
             out = apply_in_memory(step, arrays, *args, place=BlockPlace(block, tuple(region)))
             bar.advance()
         arrays.pop(CUBE, None)

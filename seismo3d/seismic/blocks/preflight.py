@@ -4,7 +4,7 @@ refuse is refused before its first pass over the whole cube. Data too small for 
 (:class:`SampleOptions`, :func:`sample_blocks`).
 
 What a run judges in the sample is its own: fault tracing refuses from it data that is not seismic amplitudes or has no
-lateral coherence and predicts the seeds of its voting (:func:`~seismo3d.seismic.faults.steps.judge_sample`). The
+lateral coherence and predicts the seeds of its voting (:func:`~seismo3d.seismic.faults.preflight.judge_sample`). The
 checks of the amplitudes themselves (NaN / inf, constant, clipped and dead samples, of an array in memory or of a lazy
 cube by blocks) are :mod:`~seismo3d.seismic.amplitudes`'.
 """
@@ -77,6 +77,13 @@ class SampleOptions:
         ``saturation_level`` (0.9) at more than this fraction of its live samples. Stricter than
         :attr:`~seismo3d.seismic.FaultTracingOptions.max_saturated` (0.95), because a small block's edges raise its
         likelihood: real seismic blocks of 18-64 traces measured 0.50-0.90, white noise 1.00.
+    min_coherence : float
+        Fault tracing refuses the data from the sample when neighbouring traces correlate below this (the median of
+        their best correlation within ``max_lag`` samples,
+        :func:`~seismo3d.seismic.faults.preflight.lateral_coherence`):
+        white noise measures about ``1.3 / sqrt(samples)``, 0.08 on 256 samples, 0.23 on the fewest (32).
+    max_lag : int
+        Largest shift between neighbouring traces tried by that correlation, samples.
     worth : float
         A cube is worth judging from a sample (:meth:`worth_sampling`) when it holds at least this many times the
         samples of the sample: a smaller cube is run in about the time its sample would save.
@@ -91,6 +98,8 @@ class SampleOptions:
     traces: int = 48
     samples: int = 256
     saturated: float = 0.99
+    min_coherence: float = 0.3
+    max_lag: int = 4
     worth: float = 16.0
 
     def worth_sampling(self, shape) -> bool:
@@ -113,6 +122,9 @@ class SampleOptions:
         check_int(self.samples, "samples", minimum=32)
         if not 0.0 < float(self.saturated) <= 1.0:
             raise InputError(f"saturated must be a fraction in (0, 1]; got {self.saturated!r}")
+        if not -1.0 <= float(self.min_coherence) < 1.0:
+            raise InputError(f"min_coherence must be a correlation in [-1, 1); got {self.min_coherence!r}")
+        check_int(self.max_lag, "max_lag", minimum=0)
         check_positive(self.worth, "worth")
 
 

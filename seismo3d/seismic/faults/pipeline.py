@@ -4,12 +4,11 @@ After Hale (2013, 2014) and Wu & Fomel (2018). :func:`trace_faults` runs the ste
 command uses and returns a :class:`FaultInterpretation`: the checks and the likelihood, then the one sequence of
 steps of :mod:`~seismo3d.seismic.faults.steps`, on the whole array as one block
 (:func:`~seismo3d.seismic.faults.surfaces.blocks.memory_surface_run`) or block by block into Zarr stores
-(:func:`trace_faults_by_blocks`,
-before any block :func:`check_block_run`: the data judged from a sample of blocks,
-:func:`~seismo3d.seismic.faults.steps.judge_sample`, then the memory the run needs, :func:`minimum_memory_limit`); :func:`clean_traces` finds
-the dead samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped amplitudes
-(:mod:`~seismo3d.seismic.amplitudes`). Reading files and
-writing results is the ``faults`` command's job (:mod:`seismo3d.jobs.faults`).
+(:func:`trace_faults_by_blocks`, before any block :func:`check_block_run`: the data judged from a sample of blocks,
+:func:`~seismo3d.seismic.faults.preflight.judge_sample`, then the memory the run needs, :func:`minimum_memory_limit`);
+:func:`clean_traces` finds the dead samples (mutes, dead traces, gaps) whose edges are not faults, and reports clipped
+amplitudes (:mod:`~seismo3d.seismic.amplitudes`). Reading files and writing results is the ``faults`` command's job
+(:mod:`seismo3d.jobs.faults`).
 
 Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.faults.likelihood.scan`.
 """
@@ -40,13 +39,12 @@ from ..blocks.stores import earlier_run
 from ..io.cube import as_cube, sample_interval as cube_sample_interval, seismic_axes
 from ..io.zarr_store import consolidate
 from ..time_slices import balanced_slices, blank_slices, filled_slices, slice_extremes
-from .likelihood.learned import learned_fault_likelihood
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
-from .likelihood.scan import fault_likelihood
 from .likelihood.scan_blocks import chunked_fault_likelihood, smallest_block_bytes as likelihood_block_bytes
 from .options import LIKELIHOODS, FaultTracingOptions
 from .result import FaultInterpretation, FaultLikelihood
-from .steps import CubeSample, check_size, faults_from_cells, judge_sample, no_coherence_message, surface_cells
+from .preflight import CubeSample, judge_sample
+from .steps import check_size, faults_from_cells, no_coherence_message, run_likelihood, surface_cells
 from .surfaces.blocks import (
     CANDIDATE_BYTES, chunked_fault_surfaces, memory_surface_run, smallest_block_bytes as surfaces_block_bytes,
 )
@@ -106,7 +104,7 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
     temporary folder, kept: its path is in :attr:`FaultInterpretation.stores`), with the same checks, warnings and
     results: its volumes are then read lazily from the stores. A cube large enough to be judged from a sample of
     blocks first (:meth:`~seismo3d.seismic.blocks.preflight.SampleOptions.worth_sampling`) is refused from that
-    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.steps.judge_sample`), on either path.
+    sample before the whole likelihood (:func:`~seismo3d.seismic.faults.preflight.judge_sample`), on either path.
 
     Parameters
     ----------
@@ -227,10 +225,7 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
     with progress_steps(7, "faults", enabled=progress) as bar:
         bar.start("fault likelihood")
         if likelihood is None:
-            with warnings.catch_warnings():  # saturation is decided by the steps, on the live samples
-                warnings.simplefilter("ignore", Seismo3dWarning)
-                fl = (fault_likelihood(arr, options=opt.scan, progress=progress) if opt.likelihood == "scan" else
-                      learned_fault_likelihood(arr, options=opt.learned, progress=progress))
+            fl = run_likelihood(arr, opt, progress=progress)
         else:
             fl = _given_likelihood(likelihood, arr.shape)
         del dead  # the steps find the dead samples again, as by blocks (the same fill values: the whole array's)

@@ -6,11 +6,9 @@ block) in their order with the saturation refusal between them, and :func:`fault
 fault skins, measures their throws, keeps the faults the evidence supports and trims their tips (2D).
 
 The refusals of fault tracing are here too, one function each: data too small for the scan and the voting boxes
-(:func:`check_size`), the saturation refusal between the steps (:func:`check_saturation`), and the same refusals
-made early on a sample of blocks of a large cube (:func:`judge_sample`, on the blocks the executor's preflight reads:
-:func:`~seismo3d.seismic.blocks.preflight.sample_blocks`), which also gives the density of the voting's seed
-candidates from which :func:`~seismo3d.seismic.faults.pipeline.minimum_memory_limit` estimates the memory of the
-seeds step of a block-by-block run.
+(:func:`check_size`) and the saturation refusal between the steps (:func:`check_saturation`); the same refusals are
+made early on a sample of blocks of a large cube by :mod:`~seismo3d.seismic.faults.preflight`, with the likelihood
+the run makes (:func:`run_likelihood`, the one choice between the network and the scan in memory).
 """
 
 from __future__ import annotations
@@ -23,23 +21,22 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..._progress import no_progress
-from ..amplitudes import check_amplitudes, clean_traces, near_dead_samples
 from ..blocks import preflight
-from ..blocks.preflight import SampleOptions
-from ...errors import InputError, Seismo3dWarning, UnsupportedDataError
+from ...errors import Seismo3dWarning, UnsupportedDataError
 from .evidence import supported_faults
+from .likelihood.learned import learned_fault_likelihood
 from .likelihood.scan import fault_likelihood
-from .surfaces.ridges import live_likelihood, ridges
 from .tips import trimmed_tips
 from .surfaces.skins import skins_from_cells
+from .result import FaultLikelihood
 from .throw import fault_throws
 from .reflector_period import half_period
 
 if TYPE_CHECKING:  # annotations only: the options are passed in (the run, a surfaces.blocks.SurfaceRun, imports
     from .options import FaultTracingOptions  # this module, so it is named in the docstring only)
 
-__all__ = ["CubeSample", "SurfaceCells", "check_saturation", "check_size", "faults_from_cells", "judge_sample",
-           "no_coherence_message", "surface_cells"]
+__all__ = ["NO_COHERENCE", "SurfaceCells", "check_saturation", "check_size", "faults_from_cells",
+           "no_coherence_message", "run_likelihood", "surface_cells"]
 
 
 @dataclass(frozen=True)
@@ -147,110 +144,41 @@ def check_saturation(high: int, live: int, opt: FaultTracingOptions) -> float:
     return fraction
 
 
+NO_COHERENCE = ("the data has no lateral coherence to trace faults in (noise, chaotic reflections, or traces out "
+                 "of order); check the inline/crossline geometry or the file")
+
+
 def no_coherence_message(fraction: float, level: float) -> str:
     """The refusal of data without lateral coherence, its likelihood above ``level`` (the options'
     ``saturation_level``) at ``fraction`` of the samples."""
-    return (f"the fault likelihood is above {level:g} at {fraction:.0%} of the samples: the data has no lateral "
-            "coherence to trace faults in (noise, chaotic reflections, or traces out of order); check the "
-            "inline/crossline geometry or the file")
+    return f"the fault likelihood is above {level:g} at {fraction:.0%} of the samples: " + NO_COHERENCE
 
 
-@dataclass(frozen=True)
-class CubeSample:
-    """What :func:`judge_sample` measured.
-
-    Attributes
-    ----------
-    n_blocks : int
-        Blocks read.
-    n_samples : int
-        Samples read.
-    saturated_fraction : float
-        Fraction of the live samples whose fault likelihood exceeds ``saturation_level``.
-    candidate_density : float
-        Seed candidates of the voting (fault-likelihood ridges above ``VotingOptions.seed_threshold``) per sample.
-    """
-
-    n_blocks: int
-    n_samples: int
-    saturated_fraction: float
-    candidate_density: float
-
-    def candidates(self, shape) -> int:
-        """The seed candidates expected in a cube of ``shape``.
-
-        Parameters
-        ----------
-        shape : tuple of int
-
-        Returns
-        -------
-        int
-        """
-        return int(np.ceil(self.candidate_density * float(np.prod(shape, dtype=np.float64))))
-
-
-def judge_sample(cube, *, options: FaultTracingOptions, sample: SampleOptions | None = None) -> CubeSample:
-    """Judge a 3D cube from a few blocks before tracing its faults: refuse data that is not seismic amplitudes or has
-    no lateral coherence, and measure the density of the voting's seed candidates.
+def run_likelihood(data: np.ndarray, opt: FaultTracingOptions, *, progress: bool = False) -> FaultLikelihood:
+    """The fault likelihood the run makes of amplitudes in memory, the one choice between the two: the fault network's
+    probability (``opt.likelihood == 'learned'``, the default, with ``opt.learned``) or the scan of strikes and dips
+    (``'scan'``, with ``opt.scan``); the run by blocks runs the same steps block by block.
 
     Parameters
     ----------
-    cube : (n_inlines, n_xlines, n_samples) array_like or dask.array.Array
-        Amplitudes; only the sampled blocks are read.
-    options : FaultTracingOptions
-        The run's options (the amplitude check, the scan, the voting's seed threshold).
-    sample : SampleOptions, optional
-        The blocks read (:class:`~seismo3d.seismic.blocks.preflight.SampleOptions`).
+    data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) float32 ndarray
+        Amplitudes, finite (:func:`~seismo3d.seismic.amplitudes.clean_traces`).
+    opt : FaultTracingOptions
+    progress : bool
+        Report the likelihood's own progress.
 
     Returns
     -------
-    CubeSample
-
-    Raises
-    ------
-    UnsupportedDataError
-        Too few traces or samples, traces that do not oscillate like seismic amplitudes, or a sample whose fault
-        likelihood is saturated (no lateral coherence); the message says what the sample showed.
-    InputError
-        ``cube`` is not 3D.
+    FaultLikelihood
+        Likelihood in [0, 1], strike and dip (degrees), float32 arrays of ``data``'s shape
+        (:func:`~seismo3d.seismic.faults.learned_fault_likelihood`, Wu et al. 2019; or
+        :func:`~seismo3d.seismic.faults.fault_likelihood`, Hale 2013).
     """
-    opt = options
-    sample = sample or SampleOptions()
-    shape = tuple(int(n) for n in getattr(cube, "shape", ()))
-    if len(shape) != 3:
-        raise InputError(f"judge_sample needs a 3D cube (n_inlines, n_xlines, n_samples); got shape {shape}")
-    check_size(shape, opt)
-    high = live = candidates = read = 0
-    amplitudes, dead_masks = [], []
-    for block in preflight.sample_blocks(cube, sample):
-        with warnings.catch_warnings():  # dead or clipped samples are reported by the run itself
-            warnings.simplefilter("ignore", Seismo3dWarning)
-            cleaned = clean_traces(block, options=opt.dead)
-        amplitudes.append(cleaned.data)
-        dead_masks.append(cleaned.dead)
-        read += cleaned.data.size
-    check_amplitudes(np.concatenate(amplitudes), np.concatenate(dead_masks), opt.min_crossings)
-    for data, dead in zip(amplitudes, dead_masks):
-        block_high, block_live, block_candidates = _block_measures(data, dead, opt)
-        high, live, candidates = high + block_high, live + block_live, candidates + block_candidates
-    fraction = high / live if live else 0.0
-    if fraction > sample.saturated:
-        raise UnsupportedDataError(f"in a sample of {len(amplitudes)} blocks of {amplitudes[0].shape[0]} x "
-                                   f"{amplitudes[0].shape[1]} traces, "
-                                   + no_coherence_message(fraction, opt.saturation_level))
-    return CubeSample(len(amplitudes), read, float(fraction), candidates / read if read else 0.0)
-
-
-def _block_measures(data: np.ndarray, dead: np.ndarray, opt: FaultTracingOptions) -> tuple[int, int, int]:
-    """(saturated live samples, live samples, seed candidates) of one block, as the full run counts them."""
-    with warnings.catch_warnings():
+    with warnings.catch_warnings():  # saturation is decided by the steps, on the live samples
         warnings.simplefilter("ignore", Seismo3dWarning)
-        fl = fault_likelihood(data, options=opt.scan, progress=False)
-    near = near_dead_samples(dead, options=opt.dead) if dead.any() else None
-    high, live = live_likelihood(fl.likelihood, near, level=opt.saturation_level)
-    seeds = ridges(fl.likelihood, fl.strike_deg, fl.dip_deg, opt.voting.seed_threshold)
-    return high, live, int(np.count_nonzero(seeds > float(opt.voting.seed_threshold)))
+        if opt.likelihood == "scan":
+            return fault_likelihood(data, options=opt.scan, progress=progress)
+        return learned_fault_likelihood(data, options=opt.learned, progress=progress)
 
 
 def faults_from_cells(cells: tuple, shape: tuple, windows, thresholds: tuple, opt: FaultTracingOptions, *,

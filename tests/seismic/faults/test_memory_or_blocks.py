@@ -67,8 +67,8 @@ def test_both_runs_give_the_same_refusal_or_warning(case, seismic, tmp_path, mon
     """The in-memory run and the run by blocks (forced) of the same array: the same exception and message, or the
     same warning before the likelihood starts (where the test stops both runs)."""
     data, (error, message) = case(seismic)
-    for module, name in ((pipeline, "fault_likelihood"), (pipeline, "learned_fault_likelihood"),
-                         (pipeline, "chunked_fault_likelihood"), (pipeline, "chunked_learned_likelihood")):
+    for module, name in ((pipeline, "run_likelihood"), (pipeline, "chunked_fault_likelihood"),
+                         (pipeline, "chunked_learned_likelihood")):
         monkeypatch.setattr(module, name, _stop)
     outcomes = []
     for in_memory in (True, False):

@@ -1,5 +1,5 @@
 """Judging a cube from a sample of blocks before tracing its faults, and the smallest memory limit of a block-by-block
-run (seismo3d.seismic.faults.steps.judge_sample, seismo3d.seismic.faults.pipeline.minimum_memory_limit)."""
+run (seismo3d.seismic.faults.preflight.judge_sample, seismo3d.seismic.faults.pipeline.minimum_memory_limit)."""
 
 import numpy as np
 import pytest
@@ -12,7 +12,11 @@ from seismo3d.seismic.faults.likelihood.scan import FaultScanOptions
 from seismo3d.seismic.blocks.options import ChunkOptions
 from seismo3d.seismic.faults.options import FaultTracingOptions
 from seismo3d.seismic.blocks.preflight import SampleOptions
-from seismo3d.seismic.faults.steps import CubeSample, judge_sample
+from seismo3d.seismic.faults import preflight as fault_preflight
+from seismo3d.seismic.faults.result import FaultLikelihood
+from seismo3d.seismic.faults.preflight import CubeSample, judge_sample, lateral_coherence
+from seismo3d.seismic.faults.steps import run_likelihood
+from seismo3d.seismic.faults.surfaces.ridges import ridges
 from seismo3d.seismic.faults.pipeline import minimum_memory_limit
 
 
@@ -31,14 +35,57 @@ class Recording:
 SMALL = SampleOptions(n_blocks=2, traces=32, samples=96)  # a quick sample for tests
 
 
-@pytest.mark.slow
 def test_noise_is_refused_from_a_sample_reading_only_the_sample():
     noise = Recording(np.random.default_rng(0).standard_normal((160, 160, 400)).astype(np.float32))
-    with pytest.raises(UnsupportedDataError, match=r"^in a sample of 2 blocks of 32 x 32 traces, the fault likelihood "
-                                                   r"is above 0.9 at 100% of the samples: the data has no lateral "
-                                                   r"coherence"):
+    message = (r"^in a sample of 2 blocks of 32 x 32 traces, neighbouring traces correlate at 0.1\d \(the median of "
+               r"their best correlation within 4 samples; below 0.3\): the data has no lateral coherence")
+    with pytest.raises(UnsupportedDataError, match=message):
         judge_sample(noise, sample=SMALL, options=FaultTracingOptions())
     assert noise.read == 2 * 32 * 32 * 96
+
+
+def test_lateral_coherence_of_noise_dipping_reflections_and_shuffled_traces():
+    """White noise measures about 1.3 / sqrt(n_samples) (the median of the largest of 9 correlations of n samples);
+    reflections dipping by 3 samples a trace are found within the lags; the same traces out of order are not."""
+    rng = np.random.default_rng(0)
+    n = 256
+    noise = rng.standard_normal((40, 40, n)).astype(np.float32)
+    assert lateral_coherence([noise]) == pytest.approx(1.3 / np.sqrt(n), abs=0.02)
+    trace = np.convolve(rng.standard_normal(n + 300), np.hanning(9), mode="same")
+    dipping = np.stack([np.stack([trace[3 * i + j: 3 * i + j + n] for j in range(20)]) for i in range(20)])
+    assert lateral_coherence([dipping.astype(np.float32)]) > 0.99
+    shuffled = dipping.reshape(400, n)[rng.permutation(400)].reshape(20, 20, n)
+    assert lateral_coherence([shuffled.astype(np.float32)]) < 0.3
+
+
+@pytest.mark.parametrize("likelihood", ["learned", pytest.param("scan", marks=pytest.mark.slow)])  # scan: 13 s
+def test_the_sample_counts_the_candidates_of_the_likelihood_the_run_makes(likelihood):
+    """One block: its seed candidates are the ridges above the seed threshold of the run's own likelihood
+    (run_likelihood: the network's or the scan), and its saturation that likelihood's."""
+    cube = synthetic_cube((64, 64, 160), seed=2).cube
+    opt = FaultTracingOptions(likelihood=likelihood)
+    one = SampleOptions(n_blocks=1, traces=32, samples=96)
+    sample = judge_sample(cube, sample=one, options=opt)
+    block = np.ascontiguousarray(cube[16:48, 16:48, 32:128], dtype=np.float32)  # the centre block
+    fl = run_likelihood(block, opt)
+    expected = ridges(fl.likelihood, fl.strike_deg, fl.dip_deg, opt.voting.seed_threshold)
+    n = int(np.count_nonzero(expected > opt.voting.seed_threshold))
+    assert sample.candidate_density * block.size == pytest.approx(n, abs=1e-6)
+    assert sample.saturated_fraction == pytest.approx(float(np.mean(fl.likelihood > opt.saturation_level)), abs=1e-9)
+
+
+def test_a_saturated_likelihood_is_refused_from_the_sample(monkeypatch):
+    """Coherent amplitudes whose likelihood (here replaced) is above the saturation level everywhere."""
+    cube = synthetic_cube((64, 64, 160), seed=2).cube
+
+    def saturated(data, opt, progress=False):
+        return FaultLikelihood(np.full(data.shape, 0.95, np.float32), np.zeros(data.shape, np.float32),
+                               np.full(data.shape, 90.0, np.float32))
+
+    monkeypatch.setattr(fault_preflight, "run_likelihood", saturated)
+    with pytest.raises(UnsupportedDataError, match=r"^in a sample of 2 blocks of 32 x 32 traces, the fault likelihood "
+                                                   r"is above 0.9 at 100% of the samples"):
+        judge_sample(cube, sample=SMALL, options=FaultTracingOptions())
 
 
 def test_a_velocity_model_is_refused_from_a_sample():

@@ -50,7 +50,7 @@ import numba as nb
 import numpy as np
 from scipy.ndimage import zoom
 
-from ...._progress import progress_steps
+from ...._progress import progress_within
 from ....errors import InputError
 from ...adapted_network import MODEL_NETWORK, is_model_path, read_adapted_model
 from ...amplitudes import check_finite
@@ -392,7 +392,8 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
     batch : int, optional
         Sections through the network at a time.
     bar : optional
-        A progress bar of :func:`seismo3d._progress.progress_steps`, advanced per section.
+        A progress bar of :func:`seismo3d._progress.progress_steps`, advanced per section computed; default: the
+        step's that runs the block, in memory (:func:`seismo3d._progress.progress_within`).
     stretch_to : int, optional
         Samples per trace the sections are stretched to before the network (:meth:`LearnedOptions.stretch`); 0:
         as they are.
@@ -431,11 +432,12 @@ def direction_probability(small: np.ndarray, axis: int, *, scale, batch: int = 4
         raise InputError(f"direction_probability needs a (n_inlines, n_xlines, n_samples) cube and axis 0 or 1; got "
                          f"shape {np.shape(small)} and axis {axis!r}")
     weights = load_network(network, max(1, min(nb.get_num_threads(), batch)))
-    if bar is None:
-        with progress_steps(small.shape[axis], "fault network", unit="section", enabled=False) as quiet:
-            return direction_probability(small, axis, scale=scale, batch=batch, bar=quiet, stretch_to=stretch_to,
-                                         network=network, step=step, origin=origin, n_sections=n_sections)
     m = small.shape[axis]
+    if bar is None:  # the sections reported within the step that runs this block, when it is run in memory
+        computed, positions = section_span(origin, origin + m, step, m if n_sections is None else n_sections)[1:]
+        with progress_within(m if positions is None else len(computed), unit="section") as within:
+            return direction_probability(small, axis, scale=scale, batch=batch, bar=within, stretch_to=stretch_to,
+                                         network=network, step=step, origin=origin, n_sections=n_sections)
     sections = small if axis == 0 else small.transpose(1, 0, 2)
     computed, positions = section_span(origin, origin + m, step, m if n_sections is None else n_sections)[1:]
     if positions is None:  # every section

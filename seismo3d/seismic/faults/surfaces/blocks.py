@@ -23,7 +23,7 @@ from dataclasses import asdict, dataclass
 import numba
 import numpy as np
 
-from ...._progress import no_progress
+from ...._progress import no_progress, progress_within
 from ....errors import InputError
 from ...blocks.apply import BlockOutput
 from ...blocks.executor import MemoryRun, SchedulerClient, trace_cube
@@ -496,9 +496,16 @@ def surface_block(place, likelihood, seeds, frames, shape, opt) -> BlockOutput:
     """
     i0, i1, j0, j1 = place.block
     ids = np.nonzero((seeds[:, 0] >= i0) & (seeds[:, 0] < i1) & (seeds[:, 1] >= j0) & (seeds[:, 1] < j1))[0]
-    found = seed_surfaces(likelihood, seeds[ids], frames[ids], image_shape=shape, options=opt, origin=place.origin)
-    return BlockOutput(lists={"ids": np.asarray(ids, np.int64), "mean_likelihood": found.mean_likelihood,
-                              "normals": found.normals, "offsets": found.offsets})
+    likelihood = np.ascontiguousarray(likelihood, dtype=np.float32)
+    parts = []  # the seeds in up to 20 parts, reported in memory (each seed's surface its own: the same bits)
+    with progress_within(ids.size, unit="seed") as bar:
+        for part in np.array_split(ids, max(1, min(20, ids.size // 200))):
+            parts.append(seed_surfaces(likelihood, seeds[part], frames[part], image_shape=shape, options=opt,
+                                       origin=place.origin))
+            bar.advance(part.size)
+    return BlockOutput(lists={"ids": np.asarray(ids, np.int64),
+                              **{name: np.concatenate([getattr(p, name) for p in parts])
+                                 for name in ("mean_likelihood", "normals", "offsets")}})
 
 
 def vote_block(place, near, seeds, blocks, surfaces, shape, opt) -> BlockOutput:
@@ -543,10 +550,14 @@ def vote_block(place, near, seeds, blocks, surfaces, shape, opt) -> BlockOutput:
         rows = np.concatenate([q[1] for q in parts])
         order = np.argsort(ids)
         ids, which, rows = ids[order], which[order], rows[order]
-        batch = max(1, SURFACE_BATCH_BYTES // (parts[0][2]["offsets"][:1].nbytes + 32))
-        for lo in range(0, ids.size, batch):
-            hi = min(lo + batch, ids.size)
-            total.add(seeds[ids[lo:hi]], ids[lo:hi], _surfaces_of(parts, which[lo:hi], rows[lo:hi]))
+        # at most SURFACE_BATCH_BYTES of surfaces, and a 20th of the seeds (reported in memory), at a time: the same
+        # sums whatever the batches (VoteSum)
+        batch = max(1, min(SURFACE_BATCH_BYTES // (parts[0][2]["offsets"][:1].nbytes + 32), -(-ids.size // 20)))
+        with progress_within(ids.size, unit="seed") as bar:
+            for lo in range(0, ids.size, batch):
+                hi = min(lo + batch, ids.size)
+                total.add(seeds[ids[lo:hi]], ids[lo:hi], _surfaces_of(parts, which[lo:hi], rows[lo:hi]))
+                bar.advance(hi - lo)
     votes = total.votes()
     del total
     if near is not None:  # None: no dead sample (a run in memory)

@@ -169,8 +169,10 @@ def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_norma
 def semblance_num_den(f, p0, p1, r0, r1, num, den):
     """Semblance numerator and denominator of every sample of ``f`` (float32, C order; ``p0``, ``p1``: its reflector
     slopes, float32) over ``(2 r0 + 1) x (2 r1 + 1)`` traces, written into ``num`` and ``den`` (float32, ``f.shape``);
-    the rows of axis 0 shared out over numba's thread count of threads (:func:`~seismo3d._threads.run_threads`)."""
-    run_threads(_semblance_rows, max(1, min(nb.get_num_threads(), f.shape[0])), f, p0, p1, r0, r1, num, den)
+    the rows of axis 0 shared out over numba's thread count of threads (:func:`~seismo3d._threads.run_threads`), also
+    inside a block's thread, as the ``prange`` loop it replaces did (its memory does not grow with the threads)."""
+    run_threads(_semblance_rows, max(1, min(nb.get_num_threads(), f.shape[0])), f, p0, p1, r0, r1, num, den,
+                from_any_thread=True)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -207,8 +209,9 @@ def eigen_coherence_kernel(f, p0, p1, r0, r1, h, out):
     """Eigenstructure coherence of every sample of ``f`` (float32, C order; ``p0``, ``p1``: its reflector slopes,
     float32) over ``(2 r0 + 1) x (2 r1 + 1)`` traces and ``2 h + 1`` samples, written into ``out`` (float32,
     ``f.shape``); the rows of axis 0 shared out over numba's thread count of threads
-    (:func:`~seismo3d._threads.run_threads`)."""
-    run_threads(_eigen_coherence_rows, max(1, min(nb.get_num_threads(), f.shape[0])), f, p0, p1, r0, r1, h, out)
+    (:func:`~seismo3d._threads.run_threads`), also inside a block's thread, as the ``prange`` loop it replaces did."""
+    run_threads(_eigen_coherence_rows, max(1, min(nb.get_num_threads(), f.shape[0])), f, p0, p1, r0, r1, h, out,
+                from_any_thread=True)
 
 
 @nb.njit(cache=True, nogil=True)

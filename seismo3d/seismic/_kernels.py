@@ -166,13 +166,23 @@ def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_norma
     _eig_chunks((t00, t01, t02, t11, t12, t22), work)
 
 
-@nb.njit(cache=True, parallel=True)
 def semblance_num_den(f, p0, p1, r0, r1, num, den):
+    """Semblance numerator and denominator of every sample of ``f`` (float32, C order; ``p0``, ``p1``: its reflector
+    slopes, float32) over ``(2 r0 + 1) x (2 r1 + 1)`` traces, written into ``num`` and ``den`` (float32, ``f.shape``);
+    the rows of axis 0 shared out over numba's thread count of threads (:func:`~seismo3d._threads.run_threads`), also
+    inside a block's thread, as the ``prange`` loop it replaces did (its memory does not grow with the threads)."""
+    run_threads(_semblance_rows, max(1, min(nb.get_num_threads(), f.shape[0])), f, p0, p1, r0, r1, num, den,
+                from_any_thread=True)
+
+
+@nb.njit(cache=True, nogil=True)
+def _semblance_rows(share, n_shares, f, p0, p1, r0, r1, num, den):
     # Semblance numerator (sum of the traces)^2 and denominator J * sum of squares, over the (2 r0 + 1) x
     # (2 r1 + 1) neighbouring traces, each read at t + p0 * di + p1 * dj (reflector slopes of the centre sample;
-    # zero slopes give plain semblance). Traces outside the cube are left out (J counts the others).
+    # zero slopes give plain semblance). Traces outside the cube are left out (J counts the others). Rows
+    # share, share + n_shares, ... of axis 0 (run_threads).
     n0, n1, nt = f.shape
-    for i in nb.prange(n0):
+    for i in range(share, n0, n_shares):
         for j in range(n1):
             for t in range(nt):
                 s = 0.0
@@ -195,18 +205,28 @@ def semblance_num_den(f, p0, p1, r0, r1, num, den):
                 num[i, j, t] = s * s
                 den[i, j, t] = cnt * s2
 
-@nb.njit(cache=True, parallel=True)
 def eigen_coherence_kernel(f, p0, p1, r0, r1, h, out):
+    """Eigenstructure coherence of every sample of ``f`` (float32, C order; ``p0``, ``p1``: its reflector slopes,
+    float32) over ``(2 r0 + 1) x (2 r1 + 1)`` traces and ``2 h + 1`` samples, written into ``out`` (float32,
+    ``f.shape``); the rows of axis 0 shared out over numba's thread count of threads
+    (:func:`~seismo3d._threads.run_threads`), also inside a block's thread, as the ``prange`` loop it replaces did."""
+    run_threads(_eigen_coherence_rows, max(1, min(nb.get_num_threads(), f.shape[0])), f, p0, p1, r0, r1, h, out,
+                from_any_thread=True)
+
+
+@nb.njit(cache=True, nogil=True)
+def _eigen_coherence_rows(share, n_shares, f, p0, p1, r0, r1, h, out):
     # Gersztenkorn & Marfurt (1999): C_kl = sum_tau f_k(t + tau) f_l(t + tau) over J traces and 2h+1 samples
-    # (traces read along the reflector slopes); coherence = lambda_max(C) / trace(C), by power iteration.
+    # (traces read along the reflector slopes); coherence = lambda_max(C) / trace(C), by power iteration. Rows
+    # share, share + n_shares, ... of axis 0 (run_threads).
     n0, n1, nt = f.shape
     jmax = (2 * r0 + 1) * (2 * r1 + 1)
     nw = 2 * h + 1
-    for i in nb.prange(n0):
-        w = np.empty((jmax, nw))
-        c = np.empty((jmax, jmax))
-        v = np.empty(jmax)
-        u = np.empty(jmax)
+    w = np.empty((jmax, nw))
+    c = np.empty((jmax, jmax))
+    v = np.empty(jmax)
+    u = np.empty(jmax)
+    for i in range(share, n0, n_shares):
         for j in range(n1):
             for t in range(nt):
                 q0 = p0[i, j, t]

@@ -18,7 +18,7 @@ _DR = np.array([-1, -1, -1, 0, 0, 1, 1, 1], dtype=np.int64)
 _DC = np.array([-1, 0, 1, -1, 1, -1, 0, 1], dtype=np.int64)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def octile(r0, c0, r1, c1, cost):
     """Cost of the shortest 8-connected path between two cells of an empty grid (the heuristic)."""
     a = abs(r0 - r1)
@@ -27,7 +27,7 @@ def octile(r0, c0, r1, c1, cost):
     return m * cost[2] + (a - m) * cost[0] + (b - m) * cost[1]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _step(free, h, w, r, c, k, cost, corner_cutting):
     """Cost of the step from (r, c) in direction k, or -1 when it leaves the grid or is blocked. Steps are
     symmetric: the step back costs the same and is allowed under the same conditions."""
@@ -44,7 +44,7 @@ def _step(free, h, w, r, c, k, cost, corner_cutting):
     return cost[0] if dr != 0 else cost[1]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _less(a1, a2, b1, b2):
     """Lexicographic order of two-component keys."""
     return a1 < b1 or (a1 == b1 and a2 < b2)
@@ -99,7 +99,7 @@ def _pop(k1, k2, nodes, size):
 
 # ---- A*, optionally guided by a backward D* Lite search -----------------------------------------------------------
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def guide_bound(v, r, c, goal_r, goal_c, cost, back_g, certificate):
     """Lower bound of the cost from cell v = (r, c) to the goal.
 
@@ -305,7 +305,7 @@ def _heap_remove(k1, k2, nodes, pos, size, node):
 
 # ---- D* Lite (Koenig & Likhachev 2002, optimised version, Fig. 4), searching from the goal ------------------------
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _key(g, rhs, s, r, c, start_r, start_c, km, cost):
     """D* Lite's key of cell s = (r, c)."""
     m = min(g[s], rhs[s])
@@ -328,7 +328,7 @@ def _rhs_from_successors(free, g, r, c, w, h, cost, corner_cutting):
     return best
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, r, c, start_r, start_c, km, cost):
     """Queue cell s = (r, c) with its key when inconsistent, else take it out of the queue."""
     if g[s] != rhs[s]:

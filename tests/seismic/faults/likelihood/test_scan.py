@@ -56,7 +56,7 @@ def test_constant_and_incoherent_data():
         fault_likelihood(noise)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        fault_likelihood(synthetic_cube((48, 48, 48), seed=1).cube)
+        fault_likelihood(synthetic_cube((32, 32, 48), seed=1).cube)
 
 
 def test_options_object_and_keywords_agree():

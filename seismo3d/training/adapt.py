@@ -99,12 +99,6 @@ class AdaptOptions:
         to leave faults out. Not the default: adapted on F3 inline 100, the mean F1 of inlines 200-500 fell from 0.57
         to 0.47 (precision 0.66 -> 0.42, recall 0.50 -> 0.59, sensitivity 0.35; 2026-11-28). False:
         ``positive_weight`` on every patch.
-    augment : bool
-        Vary each patch of the picked lines (:func:`_augmented`) so that one line teaches more than its samples: its
-        amplitudes scaled by a gain drawn log-uniformly in [2/3, 3/2], and its samples stretched or squeezed by a
-        factor drawn log-uniformly in [0.8, 1.25] (a vertical stretch, which scales the apparent frequency of the
-        reflectors and steepens or flattens the faults with it), on top of the mirroring every patch gets.
-        False: the mirroring only.
     sensitivity : float
         The tracing's sensitivity (:attr:`~seismo3d.seismic.FaultTracingOptions.sensitivity`) the adapted network
         traces with, stored in MODEL's record (``seismo3d faults --model MODEL`` uses it unless given another).
@@ -125,7 +119,6 @@ class AdaptOptions:
     focus: float = 0.75
     labels: str = "band"
     balance: bool = False
-    augment: bool = False
     sensitivity: float = 0.35
     seed: int = 0
     threads: int = 2
@@ -144,9 +137,8 @@ class AdaptOptions:
             raise InputError(f"anchor must be >= 0; got {self.anchor!r}")
         if not 0.0 <= float(self.sensitivity) <= 1.0:
             raise InputError(f"sensitivity must be in [0, 1]; got {self.sensitivity!r}")
-        for name in ("balance", "augment"):
-            if not isinstance(getattr(self, name), bool):
-                raise InputError(f"{name} must be True or False; got {getattr(self, name)!r}")
+        if not isinstance(self.balance, bool):
+            raise InputError(f"balance must be True or False; got {self.balance!r}")
         if self.labels not in ("band", "thin"):
             raise InputError(f"labels must be 'band' or 'thin'; got {self.labels!r}")
         if not 0.0 <= float(self.focus) <= 1.0:
@@ -167,24 +159,15 @@ class AdaptOptions:
             parts.append(f"L2-SP weight {self.anchor:g}")
         if self.balance:
             parts.append("the picked fault samples weighted to the training's share of faults")
-        if self.augment:
-            parts.append("the picked patches' gain and vertical scale varied")
         parts.append(f"labels: the picks {'as drawn' if self.labels == 'band' else 'thinned'}; traced at sensitivity "
                      f"{self.sensitivity:g}")
         return "; ".join(parts)
 
 
-GAIN = (2 / 3, 3 / 2)  # the range of the gain applied to an augmented patch (AdaptOptions.augment)
-STRETCH = (0.8, 1.25)  # the range of the vertical stretch of an augmented patch
-
-
-def _patch(rng, x, y, w, size: int, focus: float = 0.0, augment: bool = False):
+def _patch(rng, x, y, w, size: int, focus: float = 0.0):
     """A random patch (multiple of 8 along both axes) of one grid's section, labels and weights, mirrored at
-    random; with probability ``focus`` placed around a counted fault sample (any place when there is none); with
-    ``augment``, its gain and vertical scale varied (:func:`_augmented`)."""
+    random; with probability ``focus`` placed around a counted fault sample (any place when there is none)."""
     ph, pw = (min(size, n // 8 * 8) for n in x.shape)
-    stretch = float(np.exp(rng.uniform(*np.log(STRETCH)))) if augment else 1.0
-    pw_out, pw = pw, max(8, min(x.shape[1], int(round(pw / stretch))))  # the samples read, stretched to pw_out
     i, j = rng.integers(0, x.shape[0] - ph + 1), rng.integers(0, x.shape[1] - pw + 1)
     if focus > 0 and rng.random() < focus:
         faults = np.flatnonzero((y > 0) & (w > 0))
@@ -196,38 +179,7 @@ def _patch(rng, x, y, w, size: int, focus: float = 0.0, augment: bool = False):
     xp, yp, wp = x[cut], y[cut], w[cut]
     if rng.random() < 0.5:
         xp, yp, wp = xp[::-1], yp[::-1], wp[::-1]
-    if augment:
-        xp, yp, wp = _augmented(rng, xp, yp, wp, pw_out)
     return xp, yp, wp
-
-
-def _augmented(rng, x, y, w, n_samples: int):
-    """A patch with its amplitudes scaled by a gain drawn log-uniformly in :data:`GAIN` and resampled along the
-    samples to ``n_samples`` (a vertical stretch when the patch holds fewer; cubic amplitudes, labels and weights
-    resampled linearly and thresholded as :func:`seismo3d.jobs.adapt.training_grids` resamples them).
-
-    Parameters
-    ----------
-    rng : numpy.random.Generator
-    x, y, w : (n_traces, m) float32 ndarray
-        Normalised amplitudes, labels (1 on faults) and loss weights of the patch.
-    n_samples : int
-        Samples of the patch returned.
-
-    Returns
-    -------
-    (x, y, w) : (n_traces, n_samples) float32 ndarrays
-    """
-    from scipy.ndimage import zoom
-
-    gain = float(np.exp(rng.uniform(*np.log(GAIN))))
-    x = np.asarray(x, np.float32) * gain
-    if x.shape[1] != n_samples:
-        ratio = (1.0, n_samples / x.shape[1])
-        x = zoom(x, ratio, order=3)
-        y = (zoom(np.asarray(y, np.float32), ratio, order=1) > 0.25).astype(np.float32)
-        w = (zoom(np.asarray(w, np.float32), ratio, order=1) > 0.5).astype(np.float32)
-    return x[:, :n_samples].astype(np.float32), y[:, :n_samples], w[:, :n_samples]
 
 
 def fine_tune(weights: dict, grids: list, *, options: AdaptOptions | None = None, progress: bool = True) -> dict:
@@ -284,8 +236,8 @@ def fine_tune(weights: dict, grids: list, *, options: AdaptOptions | None = None
         with progress_steps(int(opt.steps), "adapting the fault network", unit="step", enabled=progress) as bar:
             for step in range(int(opt.steps)):
                 n_picked = int(opt.batch_size) - n_generated
-                parts = [_patch(rng, *grids[(step * n_picked + b) % len(grids)], int(opt.patch), float(opt.focus),
-                                bool(opt.augment)) for b in range(n_picked)]
+                parts = [_patch(rng, *grids[(step * n_picked + b) % len(grids)], int(opt.patch), float(opt.focus))
+                         for b in range(n_picked)]
                 parts += [_generated_patch(int(opt.seed), step * n_generated + b, int(opt.patch))
                           for b in range(n_generated)]
                 shape = min(p[0].shape[0] for p in parts), min(p[0].shape[1] for p in parts)

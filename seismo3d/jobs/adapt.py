@@ -144,8 +144,7 @@ def adapt_report(job: "AdaptJobResult") -> list:
                                                           f"F1 {t.f1:.3f}" for t in adapted))
     best = max(adapted, key=lambda t: t.f1, default=None)
     if best is not None:
-        pairs = [(c, r) for bl, rl in zip(best.lines, job.tracings[0].lines)
-                 for c, r in zip(bl["parts_f1"], rl["parts_f1"]) if c is not None and r is not None]
+        pairs = _paired_parts(best, job.tracings[0])
         out.append(f"held-back parts with picks won by the adapted network: {sum(c > r for c, r in pairs)} of "
                    f"{len(pairs)} (F1 {', '.join(f'{r:.2f} -> {c:.2f}' for c, r in pairs)})")
     if job.kept == "default":
@@ -448,7 +447,7 @@ def wins_clearly(candidate: HeldBackScores, reference: HeldBackScores) -> bool:
     tracing one fault the shipped network missed and missing one it traced (parts F1 0 / 0 / 0.655 against
     0 / 0.958 / 0.330), and lost on the four inlines not picked (0.398 against 0.489). Adapted on inline 100 it won
     both parts holding picks (0.604 / 0.180 against 0.553 / 0) and won on the four other inlines (0.566 against
-    0.497; ``benchmarks/adapt.py``, 2026-11-28).
+    0.497; measured 2026-11-28, ``benchmarks/adapt.py``'s folds).
 
     Parameters
     ----------
@@ -459,15 +458,20 @@ def wins_clearly(candidate: HeldBackScores, reference: HeldBackScores) -> bool:
     -------
     bool
     """
-    pairs = [(c, r) for cl, rl in zip(candidate.lines, reference.lines)
-             for c, r in zip(cl["parts_f1"], rl["parts_f1"]) if c is not None and r is not None]
+    pairs = _paired_parts(candidate, reference)
     won = sum(c > r for c, r in pairs)
     return candidate.f1 > reference.f1 and won > len(pairs) / 2
 
 
+def _paired_parts(candidate: HeldBackScores, reference: HeldBackScores) -> list:
+    """(candidate's F1, reference's F1) of every held-back part holding picks, line by line."""
+    return [(c, r) for cl, rl in zip(candidate.lines, reference.lines)
+            for c, r in zip(cl["parts_f1"], rl["parts_f1"]) if c is not None and r is not None]
+
+
 def held_back_parts(band: tuple, n: int = HELD_BACK_PARTS) -> list:
-    """The held-back traces of a line cut into ``n`` parts of equal width (the last parts one trace narrower when
-    they do not divide), each scored on its own (:func:`wins_clearly`).
+    """The held-back traces of a line cut into ``n`` parts of equal width (within a trace when they do not divide),
+    each scored on its own (:func:`wins_clearly`).
 
     Parameters
     ----------

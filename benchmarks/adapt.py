@@ -87,9 +87,14 @@ def adapt_lines(segys, model: Path, kind: str, paths):
 def _decision(job, default_f1: float, adapted_f1: float) -> str:
     """What adapt decided on its held-back picks and, when it kept the adapted network, whether the lines not picked
     confirm it."""
+    from seismo3d.jobs.adapt import adapt_report
+
+    parts = "".join(f", {line.removeprefix('held-back ')}" for line in adapt_report(job)
+                    if line.startswith("held-back parts"))  # the parts won, which decide with the mean F1
     if job.kept == "default":
-        return (f"held-back F1 {job.mean('before'):.3f} -> {job.mean('after'):.3f}: MODEL keeps the shipped network")
-    return (f"held-back F1 {job.mean('before'):.3f} -> {job.mean('after'):.3f}: MODEL keeps the adapted network "
+        return (f"held-back F1 {job.mean('before'):.3f} -> {job.mean('after'):.3f}{parts}: MODEL keeps the shipped "
+                "network")
+    return (f"held-back F1 {job.mean('before'):.3f} -> {job.mean('after'):.3f}{parts}: MODEL keeps the adapted network "
             f"(traced at sensitivity {job.chosen.tracing.sensitivity:g}, unbroken veto "
             f"{'on' if job.chosen.tracing.unbroken_veto else 'off'}), which the lines not picked "
             f"{'confirm' if adapted_f1 > default_f1 else 'CONTRADICT'}")

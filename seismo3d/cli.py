@@ -632,8 +632,8 @@ def adapt(
     and learned from as picked lines; a stick on no single line of the cube, between its lines or outside it is
     refused, and so is a line of fewer than 32 traces or 32 samples (what fault tracing needs). Picks are held back
     (the line with the fewest when several are picked, else a quarter of the line's traces): the F1 there with the
-    shipped and the adapted network is printed, and MODEL keeps the shipped one when adapting does not score
-    higher. The adapted network is scored there with and without the tracing's drop of faults across which the
+    shipped and the adapted network is printed, and MODEL keeps the shipped one unless the adapted one scores
+    higher there and on most quarters of the held-back traces that hold picks. The adapted network is scored there with and without the tracing's drop of faults across which the
     reflectors continue unbroken (faults you draw where reflectors dim without a throw), and MODEL records the
     better. Needs PyTorch and onnx (pip install torch onnx, or the train extra); tracing does not."""
     check_before_import("folder", model, [*inputs, *(sticks or []), *(mask or [])], overwrite=False)

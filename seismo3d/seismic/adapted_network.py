@@ -3,8 +3,8 @@
 A MODEL folder holds two files:
 
 * ``fault_unet.onnx``: the network, the architecture of :mod:`~seismo3d.seismic.faults.likelihood.network` with the
-  weights fine-tuned on an interpreter's faults (or the shipped float network itself when adapting did not help on
-  the held-back picks: the record says so), run by ONNX Runtime like the shipped one;
+  weights fine-tuned on an interpreter's faults (or the shipped float network itself when adapting did not win
+  clearly on the held-back picks: the record says so), run by ONNX Runtime like the shipped one;
 * ``adapt.json``: the record, a ``run.json`` of the ``adapt`` command (:mod:`seismo3d.jobs.runinfo`: the inputs with
   their sha256, the options) whose ``results`` hold the lines and picks, the training steps and loss, the held-back
   validation before and after, the decision (``kept``: ``'adapted'`` or ``'default'``), how MODEL traces

@@ -351,22 +351,52 @@ def test_adapt_on_a_section_makes_the_faults_command_trace_a_style_the_shipped_n
     assert scores["adapted"]["precision"] >= 0.9 and scores["adapted"]["f1"] >= 0.65, scores  # measured 1.0, 0.78
 
 
+def _scored(tracing, f1, parts):
+    from seismo3d.jobs.adapt import HeldBackScores
+
+    return HeldBackScores(tracing, [{"precision": 1.0, "recall": 1.0, "f1": f1, "parts_f1": list(parts)}])
+
+
 def test_adapt_scores_the_adapted_network_with_the_unbroken_veto_on_and_off_and_keeps_the_best():
-    from seismo3d.jobs.adapt import HeldBackScores, HeldBackTracing, chosen_tracing, held_back_tracings
+    from seismo3d.jobs.adapt import HeldBackTracing, chosen_tracing, held_back_tracings
     from seismo3d.training.adapt import AdaptOptions
 
     tracings = held_back_tracings(AdaptOptions(sensitivity=0.35))
     assert [(t.network, t.sensitivity, t.unbroken_veto) for t in tracings] == [
         ("shipped", 0.5, True), ("adapted", 0.35, True), ("adapted", 0.35, False)]
-    scored = [HeldBackScores(t, [{"precision": 1.0, "recall": 1.0, "f1": f}])
-              for t, f in zip(tracings, (0.4, 0.6, 0.6))]
+    scored = [_scored(t, f, [f, None, f]) for t, f in zip(tracings, (0.4, 0.6, 0.6))]
     assert chosen_tracing(scored).tracing == tracings[1]  # equals: the first (the veto on, the tracing's own)
-    scored[2] = HeldBackScores(tracings[2], [{"precision": 1.0, "recall": 1.0, "f1": 0.61}])
+    scored[2] = _scored(tracings[2], 0.61, [0.61, None, 0.61])
     assert chosen_tracing(scored).tracing == tracings[2]
-    assert chosen_tracing([HeldBackScores(tracings[0], [{"f1": 0.5}]), HeldBackScores(tracings[1], [{"f1": 0.5}])]
+    assert chosen_tracing([_scored(tracings[0], 0.5, [0.5]), _scored(tracings[1], 0.5, [0.5])]
                           ).tracing.network == "shipped"  # adapting must score higher to be kept
     options = HeldBackTracing("shipped", 0.35, False).options()
     assert (options.sensitivity, options.evidence.unbroken_veto, options.learned.adapted) == (0.35, False, None)
+
+
+@pytest.mark.parametrize("adapted_f1, adapted_parts, kept", [
+    (0.486, (0.0, 0.0, 0.655), "shipped"),  # F3 inline 500's band: one part won, one lost, one tie; mean F1 higher
+    (0.600, (0.0, 0.5, 0.655), "shipped"),  # one of three won (a tie is no win)
+    (0.600, (0.1, 0.96, 0.655), "adapted"),  # all three won
+    (0.600, (0.1, 0.96, 0.0), "adapted"),  # two of three won
+    (0.400, (0.1, 0.96, 0.0), "shipped"),  # two of three won, but a lower mean F1
+])
+def test_the_adapted_network_is_kept_only_when_it_wins_most_held_back_parts_holding_picks(adapted_f1, adapted_parts,
+                                                                                        kept):
+    from seismo3d.jobs.adapt import chosen_tracing, held_back_tracings
+    from seismo3d.training.adapt import AdaptOptions
+
+    shipped, adapted, _ = held_back_tracings(AdaptOptions())
+    scored = [_scored(shipped, 0.485, (None, 0.0, 0.958, 0.33)), _scored(adapted, adapted_f1, (None, *adapted_parts))]
+    assert chosen_tracing(scored).tracing.network == kept
+
+
+def test_the_held_back_traces_are_scored_in_parts_of_equal_width():
+    from seismo3d.jobs.adapt import HELD_BACK_PARTS, held_back_parts
+
+    assert held_back_parts((45, 283)) == [(45, 104), (104, 164), (164, 224), (224, 283)]
+    assert len(held_back_parts((0, 951))) == HELD_BACK_PARTS
+    assert held_back_parts((0, 2)) == [(0, 1), (1, 2)]  # no empty part
 
 
 @pytest.mark.slow

@@ -16,9 +16,8 @@ A section runs as a cube of one crossline (its ridges and thinning in 2D).
 from __future__ import annotations
 
 import functools
-import json
 import pathlib
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 import numba
 import numpy as np
@@ -26,7 +25,7 @@ import numpy as np
 from ...._progress import no_progress, progress_within
 from ....errors import InputError
 from ...blocks.apply import BlockOutput
-from ...blocks.executor import MemoryRun, SchedulerClient, trace_cube
+from ...blocks.executor import MemoryRun, trace_cube
 from ...blocks.memory import resident_memory, worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
@@ -263,13 +262,10 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     plan = plan_blocks(shape, opt, chunking, worker_baseline(chunking, x))
     memory = chunking.limit  # the cells' and candidates' checks: less the RSS
     store = StoreRun(pathlib.Path(output), chunking, progress, outputs=_OUTPUTS)
-    manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
-                "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve()),
-                "likelihood_id": group.attrs.get("id")}  # another likelihood written at the same path is not this
-    earlier = store.earlier_plan(manifest)
-    if earlier is not None:  # resuming: the blocks of the interrupted run
-        plan = SurfacePlan(**dict(earlier, shape=tuple(earlier["shape"])))
-        manifest["plan"] = earlier
+    # another likelihood written at the same path is not this one (its id)
+    manifest = store.manifest_for(shape, opt, plan, likelihood=str(pathlib.Path(likelihood).resolve()),
+                             likelihood_id=group.attrs.get("id"))
+    plan = SurfacePlan(**dict(manifest["plan"], shape=tuple(manifest["plan"]["shape"])))  # resuming: its blocks
     attrs = store.finished_output(manifest, "cube, likelihood and options")
     if attrs is None:  # the block steps up to the cells (a resumed run skips the finished blocks)
         # the work arrays (the masks near dead samples, compressed; the thinned votes before the threshold), the
@@ -278,8 +274,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
                                                              ("thin_raw", "float32", plan.shape[2])))
         store.arrays.update(zip(LIKELIHOOD_INPUTS, (f"{likelihood}/{name}" for name in
                                                     ("likelihood", "strike_deg", "dip_deg"))))
-        with SchedulerClient(store.scheduler) as client:
-            store.client = client
+        with store.scheduled():
             run = SurfaceRun(store, x, plan, opt, shape, memory=memory)
             found = surface_cells(run, opt)
             # the cells gathered into 1D arrays of the output group, in C order (the skins then need no sorted copies)

@@ -25,7 +25,7 @@ The fault interpretation's runs by blocks are lists of declared steps run by the
 :mod:`seismo3d.seismic.faults.surfaces.blocks`).
 """
 
-from .executor import BlockRun, SchedulerClient, run_block
+from .executor import BlockRun, run_block
 from .options import BlockRunOptions
 
-__all__ = ["BlockRun", "BlockRunOptions", "SchedulerClient", "run_block"]
+__all__ = ["BlockRun", "BlockRunOptions", "run_block"]

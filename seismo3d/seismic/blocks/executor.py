@@ -19,6 +19,7 @@ once against ``run_step`` (the fault likelihoods' ``run_scan``, ``run_learned``)
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import ctypes.util
 import functools
@@ -36,8 +37,7 @@ from ...errors import InputError
 from .apply import BlockPlace, apply_block, apply_in_memory, gather, load_lists, write_marker
 from .plan import CUBE, BlockStep, around, usable_cores
 
-__all__ = ["BlockRun", "MemoryRun", "SchedulerClient", "kernel_threads", "release_memory", "run_block",
-           "trace_cube"]
+__all__ = ["BlockRun", "MemoryRun", "kernel_threads", "release_memory", "run_block", "trace_cube"]
 
 # glibc's malloc options (malloc.h): allocations above M_MMAP_THRESHOLD are mapped and unmapped on their own, so a
 # freed block's memory goes back to the system at once; setting it also stops glibc raising the threshold as large
@@ -129,36 +129,6 @@ def run_block(fn, threads, *args):
         numba.set_num_threads(before)
 
 
-class SchedulerClient:
-    """Context manager: the ``dask.distributed`` client of a scheduler address, or None for the local schedulers
-    (None, ``'threads'``, ``'synchronous'``); closed on exit.
-
-    Raises
-    ------
-    InputError
-        The address cannot be reached within 5 s.
-    """
-
-    def __init__(self, scheduler):
-        self.scheduler = scheduler
-        self.client = None
-
-    def __enter__(self):
-        if self.scheduler is None or self.scheduler in ("threads", "synchronous"):
-            return None
-        from distributed import Client
-        try:
-            self.client = Client(self.scheduler, timeout="5s")
-        except (OSError, TimeoutError) as exc:
-            raise InputError(f"cannot reach the dask scheduler at {self.scheduler} ({exc}); start it (dask scheduler) "
-                             "and its workers first, or leave out the scheduler to run here") from exc
-        return self.client
-
-    def __exit__(self, *exc):
-        if self.client is not None:
-            self.client.close()
-
-
 class _StepRun:
     """What both executors share: a step's sparse lists read through the executor's ``lists_reader``."""
 
@@ -181,8 +151,8 @@ class BlockRun(_StepRun):
     work : pathlib.Path
         Work folder (created).
     scheduler : str, optional
-        None / ``'threads'``, ``'synchronous'``, or a ``dask.distributed`` address (used through :attr:`client`,
-        set by the caller inside a :class:`SchedulerClient`).
+        None / ``'threads'``, ``'synchronous'``, or a ``dask.distributed`` address (connected to by
+        :meth:`scheduled`).
     workers : int
         Blocks computed at once on the threaded scheduler.
     progress : bool
@@ -195,6 +165,7 @@ class BlockRun(_StepRun):
     seconds : dict
         Wall-clock seconds per step.
     client : distributed.Client or None
+        The client of a ``dask.distributed`` scheduler, inside :meth:`scheduled`.
     arrays : dict
         ``{name: Zarr array path}``: the stores that declared steps read and write (set by
         :class:`~seismo3d.seismic.blocks.stores.StoreRun` and its callers).
@@ -217,6 +188,32 @@ class BlockRun(_StepRun):
         if not self.work.exists():
             (self.work / "done").mkdir(parents=True)
             (self.work / "manifest.json").write_text(json.dumps(manifest))
+
+    @contextlib.contextmanager
+    def scheduled(self):
+        """Context manager: the run's blocks computed on its scheduler; for a ``dask.distributed`` address its client
+        is :attr:`client` inside, closed on exit (the local schedulers need none).
+
+        Raises
+        ------
+        InputError
+            The address cannot be reached within 5 s.
+        """
+        if self.scheduler is None or self.scheduler in ("threads", "synchronous"):
+            yield self
+            return
+        from distributed import Client
+        try:
+            client = Client(self.scheduler, timeout="5s")
+        except (OSError, TimeoutError) as exc:
+            raise InputError(f"cannot reach the dask scheduler at {self.scheduler} ({exc}); start it (dask scheduler) "
+                             "and its workers first, or leave out the scheduler to run here") from exc
+        self.client = client
+        try:
+            yield self
+        finally:
+            self.client = None
+            client.close()
 
     def release(self, *names) -> None:
         """Nothing: the arrays of a run by blocks stay in its work folder until it finishes

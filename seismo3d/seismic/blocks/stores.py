@@ -15,7 +15,7 @@ import json
 import os
 import pathlib
 import shutil
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field, is_dataclass
 
 import numpy as np
 
@@ -179,11 +179,35 @@ class StoreRun(BlockRun):
                 group.create_array(name, shape=(n0, n1, nt), chunks=(t, t, nt), dtype="float32", fill_value=0,
                                    compressors=SEISMIC_CODEC, dimension_names=("inline", "crossline", "sample"))
 
-    def earlier_plan(self, manifest: dict) -> dict | None:
-        """The block plan of an unfinished run of the same work (:func:`earlier_run`), or None: a resumed run keeps
-        its blocks even when the memory left for it has changed."""
+    def manifest_for(self, shape, options, plan, **more) -> dict:
+        """The run's manifest: what it computes from, and its block plan, the plan of an unfinished run of the same
+        work (:func:`earlier_run`) in place of ``plan``: a resumed run keeps its blocks even when the memory left for
+        it has changed.
+
+        Parameters
+        ----------
+        shape : (int, int, int)
+            ``(n_inlines, n_xlines, n_samples)``.
+        options : dataclass
+            The computation's options.
+        plan : dict or dataclass
+            The blocks planned under the memory limit.
+        **more
+            Other entries a resumed or reused run must match (e.g. the input it reads).
+
+        Returns
+        -------
+        dict
+            ``shape``, ``options``, ``plan`` and ``more``, as JSON reads them back (the plan to run: ``['plan']``);
+            for :meth:`start_output`.
+        """
+        plan = asdict(plan) if is_dataclass(plan) else plan
+        manifest = json.loads(json.dumps({"shape": list(shape), "options": asdict(options), "plan": plan, **more},
+                                         default=str))
         earlier = earlier_run(self.out, manifest)
-        return earlier.record.get("plan") if earlier.state == "unfinished" else None
+        if earlier.state == "unfinished":
+            manifest["plan"] = earlier.record["plan"]
+        return manifest
 
     def finished_output(self, manifest: dict, what: str) -> dict | None:
         """The attributes of the finished output of this same run (:func:`earlier_run`: its ``run`` attribute equal

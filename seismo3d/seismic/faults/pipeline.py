@@ -30,7 +30,7 @@ from ..._progress import LOGGER, progress_steps
 from ..._validation import check_choice, check_positive, check_seismic_layout
 from ...errors import EarlierStoresError, InputError, Seismo3dWarning
 from ..amplitudes import CleanTraces, check_amplitudes, clean_traces, finite_cube
-from ..blocks.executor import release_memory
+from ..blocks.executor import release_memory, trace_cube
 from ..blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory, size_text, worker_baseline
 from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
@@ -343,14 +343,13 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     UnsupportedDataError
         As :func:`~seismo3d.seismic.faults.trace_faults`.
     """
-    import dask.array as da
     import zarr
 
     chunking = ChunkOptions(memory_limit=memory_limit, scheduler=scheduler)
-    tile = chunking.tile  # an array given in memory: chunks of the runs' tile
-    x = cube if isinstance(cube, da.Array) else da.from_array(np.asarray(cube), chunks=(tile, tile, -1))
+    check_size(tuple(int(n) for n in np.shape(cube)), opt)
+    # float32 chunks of whole traces (an array given in memory: chunks of the runs' tile)
+    x = trace_cube(cube, "fault tracing by blocks", chunks=(chunking.tile, chunking.tile, -1), dtype=np.float32)
     shape = tuple(int(n) for n in x.shape)
-    check_size(shape, opt)
     if work_dir is not None:  # the stores of another run refused before any work
         work_dir = pathlib.Path(work_dir)
         if not work_dir.is_dir():
@@ -360,7 +359,7 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
             raise EarlierStoresError(f"{work_dir / store} holds the {_STORE_NAMES[store]} of another input or other "
                                      "options; pick another output folder (-o) or delete it",
                                      [p for p in in_the_way if p.name.startswith(store)])
-    x = check_block_run(_whole_traces(x), source, memory_limit, scheduler, opt)
+    x = check_block_run(x, source, memory_limit, scheduler, opt)
     if work_dir is None:  # after the checks; kept: the result's volumes are read from its stores
         work_dir = pathlib.Path(tempfile.mkdtemp(prefix="seismo3d-faults-"))
         LOGGER.info("%s: the fault stores of this run by blocks go to %s (pass blocks=BlockRunOptions(work_dir=...) "
@@ -449,13 +448,6 @@ def _store_records(source: str, shape, opt: FaultTracingOptions) -> dict:
     used = opt.scan if opt.likelihood == "scan" else opt.learned
     return {LIKELIHOOD_STORE: {"source": source, "shape": list(shape), "options": asdict(used)},
             SURFACES_STORE: {"source": source, "shape": list(shape), "options": asdict(opt)}}
-
-
-def _whole_traces(x):
-    """The lazy cube as float32 chunks of whole traces."""
-    if len(x.chunks[2]) != 1:
-        x = x.rechunk({2: -1})
-    return x.astype(np.float32)
 
 
 def _block_run(blocks, memory_limit=None) -> BlockRunOptions:

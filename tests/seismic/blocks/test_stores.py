@@ -5,6 +5,8 @@ refused by what it recorded."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import pytest
 import zarr
@@ -12,6 +14,11 @@ import zarr
 from seismo3d.errors import EarlierStoresError, InputError
 from seismo3d.seismic.blocks.options import ChunkOptions
 from seismo3d.seismic.blocks.stores import StoreRun, earlier_run, write_coords
+
+
+@dataclass(frozen=True)
+class _Options:
+    sigma: float = 1.0
 
 
 def test_the_output_appears_only_when_finished(tmp_path):
@@ -61,7 +68,10 @@ def test_an_earlier_run_is_reused_when_finished_resumed_when_not_and_another_one
     # unfinished: the same work (another block plan aside) resumed with its plan, other work refused
     resumed = earlier_run(out, dict(manifest, plan={"tile": 16}))
     assert resumed.state == "unfinished" and resumed.record["plan"] == {"tile": 32}
-    assert run.earlier_plan(dict(manifest, plan={"tile": 16})) == {"tile": 32}
+    # the manifest of a run: an unfinished run's plan in place of a new one, the options as JSON reads them back
+    assert run.manifest_for((4, 4, 4), _Options(), {"tile": 16}, source="a") == dict(manifest, source="a")
+    fresh = StoreRun(tmp_path / "other.zarr", ChunkOptions(), progress=False)
+    assert fresh.manifest_for((4, 4, 4), _Options(), {"tile": 16}) == dict(manifest, plan={"tile": 16})
     assert earlier_run(out, dict(manifest, options={"sigma": 2.0})).state == "another"
     assert {p.name for p in earlier_run(out, {"shape": [5, 4, 4]}).paths} == {"out.zarr.work", "out.zarr.partial"}
     run.finish()

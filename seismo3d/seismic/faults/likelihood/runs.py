@@ -14,12 +14,10 @@ run_scan`, :func:`~seismo3d.seismic.faults.likelihood.learned.run_learned`): giv
 
 from __future__ import annotations
 
-import json
 import pathlib
 from collections.abc import Callable
-from dataclasses import asdict
 
-from ...blocks.executor import MemoryRun, SchedulerClient
+from ...blocks.executor import MemoryRun
 from ...blocks.options import ChunkOptions
 from ...blocks.stores import StoreRun
 from ..result import ChunkedLikelihood
@@ -112,12 +110,10 @@ def likelihood_by_blocks(x, output, *, opt, plan: dict, steps: Callable, start: 
     shape = tuple(int(n) for n in x.shape)
     out = pathlib.Path(output)
     run = StoreRun(out, chunking, progress)
-    manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)), "plan": plan,
-                **(manifest or {})}
-    manifest["plan"] = plan = run.earlier_plan(manifest) or plan  # resuming: the interrupted run's blocks
+    manifest = run.manifest_for(shape, opt, plan, **(manifest or {}))
+    plan = manifest["plan"]  # resuming: the interrupted run's blocks
     start(run, manifest, plan)
-    with SchedulerClient(chunking.scheduler) as client:
-        run.client = client
+    with run.scheduled():
         saturated = steps(run, x, opt, plan)
     run.describe(coords, {"method": method, "saturated_fraction": saturated})
     run.finish()

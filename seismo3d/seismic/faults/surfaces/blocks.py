@@ -7,7 +7,7 @@ the faults do not depend on how the cube was run. Each step reads its block with
 algorithm on a block is beside the one it runs:
 
 fill values (``amplitudes.fill_block``), ridges and seed candidates (``ridges.ridge_block``), each seed's surface
-once (:func:`surface_block`) and the votes of the surfaces reaching a block in id order (:func:`vote_block`),
+once (``voting.surface_block``) and the votes of the surfaces reaching a block in id order (``voting.vote_block``),
 thinning (``ridges.thin_block``) and thresholds from histograms (:mod:`seismo3d.seismic.blocks.statistics`), cells
 (``ridges.cell_block``) linked into skins with their throws (:func:`~seismo3d.seismic.faults.steps.faults_from_cells`).
 A section runs as a cube of one crossline (its ridges and thinning in 2D).
@@ -15,18 +15,15 @@ A section runs as a cube of one crossline (its ridges and thinning in 2D).
 
 from __future__ import annotations
 
-import functools
-import json
 import pathlib
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 import numba
 import numpy as np
 
-from ...._progress import no_progress, progress_within
+from ...._progress import no_progress
 from ....errors import InputError
-from ...blocks.apply import BlockOutput
-from ...blocks.executor import MemoryRun, SchedulerClient, trace_cube
+from ...blocks.executor import MemoryRun, trace_cube
 from ...blocks.memory import resident_memory, worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
@@ -39,15 +36,12 @@ from ..options import FaultTracingOptions
 from ..result import ChunkedFaults, fault_frames
 from ..steps import faults_from_cells, surface_cells
 from ...amplitudes import fill_block
-from .ridges import (
-    RIDGE_HALO, THIN_HALO, amplitude_halo, cell_block, ridge_block, thin_block, without_dead_edges,
-)
-from .voting import SeedSurfaces, VoteSum, seed_surfaces
+from .ridges import RIDGE_HALO, THIN_HALO, amplitude_halo, cell_block, ridge_block, thin_block
+from .voting import surface_block, vote_block
 from .voting_kernels import greedy_seeds
 
 __all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "ChunkedFaults", "SURFACE_BATCH_BYTES", "SurfacePlan", "SurfaceRun",
-           "block_steps", "chunked_fault_surfaces", "memory_surface_run", "plan_blocks", "smallest_block_bytes",
-           "surface_block", "vote_block"]
+           "block_steps", "chunked_fault_surfaces", "memory_surface_run", "plan_blocks", "smallest_block_bytes"]
 
 # the output's arrays, (n_inlines, n_xlines, n_samples) float32 (ChunkedFaults.path)
 _OUTPUTS = ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg", "slope_inline", "slope_xline")
@@ -63,7 +57,8 @@ _RIDGE_BYTES = 48
 _VOTE_CORE_BYTES = 12
 _VOTE_THREAD_BYTES = 12  # per numba thread: its votes, strongest surface and seed (each thread its own arrays)
 _VOTE_HALO_BYTES = 4
-# Surfaces of seeds read back at once by a block of the voting (the others in later batches, in id order).
+# Surfaces of seeds read back at once by a block of the voting (voting.vote_block: the others in later batches,
+# in id order).
 SURFACE_BATCH_BYTES = 16 << 20
 _THIN_BYTES = 44
 # Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
@@ -263,13 +258,10 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     plan = plan_blocks(shape, opt, chunking, worker_baseline(chunking, x))
     memory = chunking.limit  # the cells' and candidates' checks: less the RSS
     store = StoreRun(pathlib.Path(output), chunking, progress, outputs=_OUTPUTS)
-    manifest = {"shape": list(shape), "options": json.loads(json.dumps(asdict(opt), default=str)),
-                "plan": json.loads(json.dumps(asdict(plan))), "likelihood": str(pathlib.Path(likelihood).resolve()),
-                "likelihood_id": group.attrs.get("id")}  # another likelihood written at the same path is not this
-    earlier = store.earlier_plan(manifest)
-    if earlier is not None:  # resuming: the blocks of the interrupted run
-        plan = SurfacePlan(**dict(earlier, shape=tuple(earlier["shape"])))
-        manifest["plan"] = earlier
+    # another likelihood written at the same path is not this one (its id)
+    manifest = store.manifest_for(shape, opt, plan, likelihood=str(pathlib.Path(likelihood).resolve()),
+                             likelihood_id=group.attrs.get("id"))
+    plan = SurfacePlan(**dict(manifest["plan"], shape=tuple(manifest["plan"]["shape"])))  # resuming: its blocks
     attrs = store.finished_output(manifest, "cube, likelihood and options")
     if attrs is None:  # the block steps up to the cells (a resumed run skips the finished blocks)
         # the work arrays (the masks near dead samples, compressed; the thinned votes before the threshold), the
@@ -278,8 +270,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
                                                              ("thin_raw", "float32", plan.shape[2])))
         store.arrays.update(zip(LIKELIHOOD_INPUTS, (f"{likelihood}/{name}" for name in
                                                     ("likelihood", "strike_deg", "dip_deg"))))
-        with SchedulerClient(store.scheduler) as client:
-            store.client = client
+        with store.scheduled():
             run = SurfaceRun(store, x, plan, opt, shape, memory=memory)
             found = surface_cells(run, opt)
             # the cells gathered into 1D arrays of the output group, in C order (the skins then need no sorted copies)
@@ -422,7 +413,8 @@ class SurfaceRun:
         blocks = self.blocks("votes")
         self.run.run_step(self.steps["surfaces"], blocks, seeds, frames, self.image_shape, self.opt.voting)
         surfaces = self.run.lists_reader("surfaces", mmap_mode="r")  # taken along by each block's task
-        self.run.run_step(self.steps["votes"], blocks, seeds, blocks, surfaces, self.image_shape, self.opt.voting)
+        self.run.run_step(self.steps["votes"], blocks, seeds, blocks, surfaces, self.image_shape, self.opt.voting,
+                          SURFACE_BATCH_BYTES)
 
     def thresholds(self) -> tuple[float, float]:
         """The thresholds from the thinned votes of every block: their count and range, their histogram (Otsu) and,
@@ -472,112 +464,3 @@ def _amplitude_range(run, x) -> list:
     import dask.array as da
 
     return [float(v) for v in run.reduce_cube((da.min(x), da.max(x)))]
-
-
-def surface_block(place, likelihood, seeds, frames, shape, opt) -> BlockOutput:
-    """The optimal surfaces (:func:`seed_surfaces`) of the seeds in one block, on the live likelihood read with the
-    voting's reach around it.
-
-    Parameters
-    ----------
-    place : BlockPlace
-    likelihood : (m0, m1, n_samples) float32 ndarray
-        The live likelihood of ``place.region``.
-    seeds, frames : (k, 3) int64 and (k, 3, 3) float64 ndarrays
-        Every seed of the cube and its fault frame.
-    shape : (int, int, int)
-    opt : VotingOptions
-
-    Returns
-    -------
-    BlockOutput
-        Lists ``ids`` (the block's seeds' indices in ``seeds``), ``mean_likelihood``, ``normals`` and ``offsets``
-        (:class:`SeedSurfaces`), read back row by row by :func:`vote_block`.
-    """
-    i0, i1, j0, j1 = place.block
-    ids = np.nonzero((seeds[:, 0] >= i0) & (seeds[:, 0] < i1) & (seeds[:, 1] >= j0) & (seeds[:, 1] < j1))[0]
-    likelihood = np.ascontiguousarray(likelihood, dtype=np.float32)
-    parts = []  # the seeds in up to 20 parts, reported in memory (each seed's surface its own: the same bits)
-    with progress_within(ids.size, unit="seed") as bar:
-        for part in np.array_split(ids, max(1, min(20, ids.size // 200))):
-            parts.append(seed_surfaces(likelihood, seeds[part], frames[part], image_shape=shape, options=opt,
-                                       origin=place.origin))
-            bar.advance(part.size)
-    return BlockOutput(lists={"ids": np.asarray(ids, np.int64),
-                              **{name: np.concatenate([getattr(p, name) for p in parts])
-                                 for name in ("mean_likelihood", "normals", "offsets")}})
-
-
-def vote_block(place, near, seeds, blocks, surfaces, shape, opt) -> BlockOutput:
-    """Votes over one block's core of the surfaces of the seeds reaching it, added in id order (as in memory,
-    :class:`VoteSum`), a batch of at most ``SURFACE_BATCH_BYTES`` of surfaces at a time, 0 near dead samples.
-
-    Parameters
-    ----------
-    place : BlockPlace
-    near : (n_inlines, n_xlines, n_samples) uint8 array read by slicing, or None
-        Samples near dead ones (None: none).
-    seeds : (k, 3) int64 ndarray
-        Every seed of the cube.
-    blocks : list of tuple
-        The blocks of the seed surfaces.
-    surfaces : callable
-        ``surfaces(block, names) -> dict``: the lists of :func:`surface_block` of a block, memory-mapped.
-    shape : (int, int, int)
-    opt : VotingOptions
-
-    Returns
-    -------
-    BlockOutput
-        ``votes``, ``vote_strike_deg``, ``vote_dip_deg`` of the core.
-    """
-    i0, i1, j0, j1 = place.block
-    r = opt.reach(shape)
-    total = VoteSum(shape, (i0, j0, i1 - i0, j1 - j0), options=opt)
-    parts = []  # (ids, rows, stored lists) of the seeds reaching the block, per seed block
-    for b in blocks:  # seed blocks within reach
-        if b[1] <= i0 - r or b[0] >= i1 + r or b[3] <= j0 - r or b[2] >= j1 + r:
-            continue
-        stored = surfaces(b, ("ids", "mean_likelihood", "normals", "offsets"))
-        at = seeds[stored["ids"]]
-        rows = np.nonzero((at[:, 0] >= i0 - r) & (at[:, 0] < i1 + r) & (at[:, 1] >= j0 - r) &
-                          (at[:, 1] < j1 + r))[0]
-        if rows.size:
-            parts.append((stored["ids"][rows], rows, stored))
-    if parts:
-        ids = np.concatenate([q[0] for q in parts])
-        which = np.concatenate([np.full(q[0].size, n) for n, q in enumerate(parts)])
-        rows = np.concatenate([q[1] for q in parts])
-        order = np.argsort(ids)
-        ids, which, rows = ids[order], which[order], rows[order]
-        # at most SURFACE_BATCH_BYTES of surfaces, and a 20th of the seeds (reported in memory), at a time: the same
-        # sums whatever the batches (VoteSum)
-        batch = max(1, min(SURFACE_BATCH_BYTES // (parts[0][2]["offsets"][:1].nbytes + 32), -(-ids.size // 20)))
-        with progress_within(ids.size, unit="seed") as bar:
-            for lo in range(0, ids.size, batch):
-                hi = min(lo + batch, ids.size)
-                total.add(seeds[ids[lo:hi]], ids[lo:hi], _surfaces_of(parts, which[lo:hi], rows[lo:hi]))
-                bar.advance(hi - lo)
-    votes = total.votes()
-    del total
-    if near is not None:  # None: no dead sample (a run in memory)
-        without_dead_edges(votes.votes, near[place.target].view(bool))
-    return BlockOutput({"votes": votes.votes, "vote_strike_deg": votes.strike_deg, "vote_dip_deg": votes.dip_deg})
-
-
-def _surfaces_of(parts, which, rows) -> SeedSurfaces:
-    """The stored surfaces of a batch of seeds, in the batch's order: seed k is row ``rows[k]`` of seed block
-    ``which[k]`` (an item of ``parts``)."""
-    out = None
-    for n, (_, _, stored) in enumerate(parts):
-        mine = np.nonzero(which == n)[0]
-        if not mine.size:
-            continue
-        offsets = stored["offsets"]
-        if out is None:
-            out = SeedSurfaces(np.empty((which.size,) + offsets.shape[1:], offsets.dtype), np.empty(which.size),
-                               np.empty((which.size, 3), np.float32))
-        out.offsets[mine] = offsets[rows[mine]]
-        out.mean_likelihood[mine] = stored["mean_likelihood"][rows[mine]]
-        out.normals[mine] = stored["normals"][rows[mine]]
-    return out

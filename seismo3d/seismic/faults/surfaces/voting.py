@@ -16,15 +16,17 @@ import numba as nb
 import numpy as np
 
 from ...._options import resolve_options
-from ...._progress import progress_steps
+from ...._progress import progress_steps, progress_within
 from ...._validation import check_positive
 from ....errors import InputError
 from ... import _kernels
+from ...blocks.apply import BlockOutput
 from ..result import FaultVotes, check_fault_arrays, fault_frames
+from .ridges import without_dead_edges
 from .voting_kernels import cast_votes, greedy_seeds, strongest, surface_kernel
 
 __all__ = ["VotingOptions", "SeedSurfaces", "VoteSum", "vote_faults",
-           "image_seeds", "seed_surfaces", "seed_votes", "surface_votes"]
+           "image_seeds", "seed_surfaces", "seed_votes", "surface_block", "surface_votes", "vote_block"]
 
 
 @dataclass(frozen=True)
@@ -488,3 +490,114 @@ class VoteSum:
         np.multiply(total, np.float32(1.0 / self.opt.full_vote(self.image_shape)), out=total)
         np.clip(total, 0.0, 1.0, out=total)
         return FaultVotes(total, strike, dip, self._count)
+
+
+def surface_block(place, likelihood, seeds, frames, shape, opt) -> BlockOutput:
+    """The optimal surfaces (:func:`seed_surfaces`) of the seeds in one block, on the live likelihood read with the
+    voting's reach around it.
+
+    Parameters
+    ----------
+    place : BlockPlace
+    likelihood : (m0, m1, n_samples) float32 ndarray
+        The live likelihood of ``place.region``.
+    seeds, frames : (k, 3) int64 and (k, 3, 3) float64 ndarrays
+        Every seed of the cube and its fault frame.
+    shape : (int, int, int)
+    opt : VotingOptions
+
+    Returns
+    -------
+    BlockOutput
+        Lists ``ids`` (the block's seeds' indices in ``seeds``), ``mean_likelihood``, ``normals`` and ``offsets``
+        (:class:`SeedSurfaces`), read back row by row by :func:`vote_block`.
+    """
+    i0, i1, j0, j1 = place.block
+    ids = np.nonzero((seeds[:, 0] >= i0) & (seeds[:, 0] < i1) & (seeds[:, 1] >= j0) & (seeds[:, 1] < j1))[0]
+    likelihood = np.ascontiguousarray(likelihood, dtype=np.float32)
+    parts = []  # the seeds in up to 20 parts, reported in memory (each seed's surface its own: the same bits)
+    with progress_within(ids.size, unit="seed") as bar:
+        for part in np.array_split(ids, max(1, min(20, ids.size // 200))):
+            parts.append(seed_surfaces(likelihood, seeds[part], frames[part], image_shape=shape, options=opt,
+                                       origin=place.origin))
+            bar.advance(part.size)
+    return BlockOutput(lists={"ids": np.asarray(ids, np.int64),
+                              **{name: np.concatenate([getattr(p, name) for p in parts])
+                                 for name in ("mean_likelihood", "normals", "offsets")}})
+
+
+def vote_block(place, near, seeds, blocks, surfaces, shape, opt, batch_bytes) -> BlockOutput:
+    """Votes over one block's core of the surfaces of the seeds reaching it, added in id order (as in memory,
+    :class:`VoteSum`), a batch of at most ``batch_bytes`` of surfaces at a time, 0 near dead samples.
+
+    Parameters
+    ----------
+    place : BlockPlace
+    near : (n_inlines, n_xlines, n_samples) uint8 array read by slicing, or None
+        Samples near dead ones (None: none).
+    seeds : (k, 3) int64 ndarray
+        Every seed of the cube.
+    blocks : list of tuple
+        The blocks of the seed surfaces.
+    surfaces : callable
+        ``surfaces(block, names) -> dict``: the lists of :func:`surface_block` of a block, memory-mapped.
+    shape : (int, int, int)
+    opt : VotingOptions
+    batch_bytes : int
+        Bytes of surfaces read back at once (the sums do not depend on it).
+
+    Returns
+    -------
+    BlockOutput
+        ``votes``, ``vote_strike_deg``, ``vote_dip_deg`` of the core.
+    """
+    i0, i1, j0, j1 = place.block
+    r = opt.reach(shape)
+    total = VoteSum(shape, (i0, j0, i1 - i0, j1 - j0), options=opt)
+    parts = []  # (ids, rows, stored lists) of the seeds reaching the block, per seed block
+    for b in blocks:  # seed blocks within reach
+        if b[1] <= i0 - r or b[0] >= i1 + r or b[3] <= j0 - r or b[2] >= j1 + r:
+            continue
+        stored = surfaces(b, ("ids", "mean_likelihood", "normals", "offsets"))
+        at = seeds[stored["ids"]]
+        rows = np.nonzero((at[:, 0] >= i0 - r) & (at[:, 0] < i1 + r) & (at[:, 1] >= j0 - r) &
+                          (at[:, 1] < j1 + r))[0]
+        if rows.size:
+            parts.append((stored["ids"][rows], rows, stored))
+    if parts:
+        ids = np.concatenate([q[0] for q in parts])
+        which = np.concatenate([np.full(q[0].size, n) for n, q in enumerate(parts)])
+        rows = np.concatenate([q[1] for q in parts])
+        order = np.argsort(ids)
+        ids, which, rows = ids[order], which[order], rows[order]
+        # at most batch_bytes of surfaces, and a 20th of the seeds (reported in memory), at a time: the same sums
+        # whatever the batches (VoteSum)
+        batch = max(1, min(batch_bytes // (parts[0][2]["offsets"][:1].nbytes + 32), -(-ids.size // 20)))
+        with progress_within(ids.size, unit="seed") as bar:
+            for lo in range(0, ids.size, batch):
+                hi = min(lo + batch, ids.size)
+                total.add(seeds[ids[lo:hi]], ids[lo:hi], _surfaces_of(parts, which[lo:hi], rows[lo:hi]))
+                bar.advance(hi - lo)
+    votes = total.votes()
+    del total
+    if near is not None:  # None: no dead sample (a run in memory)
+        without_dead_edges(votes.votes, near[place.target].view(bool))
+    return BlockOutput({"votes": votes.votes, "vote_strike_deg": votes.strike_deg, "vote_dip_deg": votes.dip_deg})
+
+
+def _surfaces_of(parts, which, rows) -> SeedSurfaces:
+    """The stored surfaces of a batch of seeds, in the batch's order: seed k is row ``rows[k]`` of seed block
+    ``which[k]`` (an item of ``parts``)."""
+    out = None
+    for n, (_, _, stored) in enumerate(parts):
+        mine = np.nonzero(which == n)[0]
+        if not mine.size:
+            continue
+        offsets = stored["offsets"]
+        if out is None:
+            out = SeedSurfaces(np.empty((which.size,) + offsets.shape[1:], offsets.dtype), np.empty(which.size),
+                               np.empty((which.size, 3), np.float32))
+        out.offsets[mine] = offsets[rows[mine]]
+        out.mean_likelihood[mine] = stored["mean_likelihood"][rows[mine]]
+        out.normals[mine] = stored["normals"][rows[mine]]
+    return out

@@ -13,6 +13,7 @@ import zarr
 import seismo3d.seismic.faults.surfaces.blocks as chunked_faults
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
+from seismo3d.seismic.faults.surfaces import voting
 from seismo3d.seismic.faults.surfaces.blocks import chunked_fault_surfaces
 from seismo3d.seismic.blocks.options import ChunkOptions
 from seismo3d.seismic.faults.likelihood.scan_blocks import chunked_fault_likelihood
@@ -124,16 +125,16 @@ def test_resume_after_an_interrupted_run(cube, likelihood, reference, tmp_path, 
         return run
 
     out = tmp_path / "surfaces.zarr"
-    monkeypatch.setattr(chunked_faults, "seed_surfaces", interrupted_at(chunked_faults.seed_surfaces, 3))
+    monkeypatch.setattr(voting, "seed_surfaces", interrupted_at(voting.seed_surfaces, 3))
     with pytest.raises(KeyboardInterrupt):
         chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS)
     assert not out.exists() and (tmp_path / "surfaces.zarr.partial").exists()
     monkeypatch.undo()
 
-    class Interrupted(chunked_faults.VoteSum):
-        votes = interrupted_at(chunked_faults.VoteSum.votes, 3)
+    class Interrupted(voting.VoteSum):
+        votes = interrupted_at(voting.VoteSum.votes, 3)
 
-    monkeypatch.setattr(chunked_faults, "VoteSum", Interrupted)
+    monkeypatch.setattr(voting, "VoteSum", Interrupted)
     with pytest.raises(KeyboardInterrupt):
         chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS)
     assert not out.exists()

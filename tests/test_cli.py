@@ -401,6 +401,7 @@ def test_progress_is_one_line_per_step_when_stderr_is_not_a_terminal(tmp_path):
     # its seeds
     assert any(line.startswith("fault network: ") and "section" in line for line in lines)
     assert any(line.startswith("fault voting: ") and "seed" in line for line in lines)
+    assert "fault orientation: structure tensor (2/4)" in lines  # its stages, the longest silent before
     assert any(line.startswith("writing: figure") for line in lines)
 
 

@@ -355,7 +355,8 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     options, **overrides
         As in :func:`fault_throw`.
     progress : bool
-        Report progress over the faults (:mod:`seismo3d._progress`).
+        Report progress over the faults (:mod:`seismo3d._progress`), after a line when an in-memory cube's reflector
+        slopes are prepared (its structure tensor, before the first fault).
 
     Returns
     -------
@@ -376,6 +377,9 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     faults = list(faults)
     out = []
     with progress_steps(len(faults), "throw", unit="fault", enabled=progress) as bar:
+        if isinstance(source, TensorWindows) and faults:  # the cube's structure tensor, before the first fault
+            bar.advance(0, status="reflector slopes: the structure tensor of the cube")
+            source.window(0, 0, 0, 0)
         for f in faults:
             out.append(_fault_throw(source, f, opt))
             bar.advance()

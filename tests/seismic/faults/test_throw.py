@@ -12,6 +12,7 @@ so the margin covers float and library differences, and a 2x regression fails), 
 "measured X, limit Y". Where the issue set a target (issue 3: median within 1 sample), it is asserted too.
 """
 
+import logging
 from types import SimpleNamespace
 
 import numpy as np
@@ -259,6 +260,22 @@ def test_unmeasurable_fault_gives_nan_not_error():
 def test_empty_fault_list():
     syn = synthetic_cube((32, 32), n_faults=1, seed=0)
     assert fault_throws(syn.cube, []) == []
+
+
+def test_progress_says_the_cubes_reflector_slopes_are_prepared_before_the_first_fault(caplog):
+    """With ``progress`` (a log: stderr is not a terminal under pytest), an in-memory cube's throws first say that
+    its structure tensor is under way, then count the faults; a section has no such preparation."""
+    syn = synthetic_cube((32, 32, 48), n_faults=1, seed=2)
+    pts = np.argwhere(syn.fault_labels == 1)
+    with caplog.at_level(logging.INFO, logger="seismo3d"):
+        fault_throws(syn.cube, [pts], progress=True)
+    assert caplog.messages == ["throw: 0/1 fault, reflector slopes: the structure tensor of the cube",
+                               "throw: 1/1 fault"]
+    caplog.clear()
+    section = synthetic_cube((64, 48), n_faults=1, seed=2)
+    with caplog.at_level(logging.INFO, logger="seismo3d"):
+        fault_throws(section.cube, [np.argwhere(section.fault_labels == 1)], progress=True)
+    assert caplog.messages == ["throw: 1/1 fault"]
 
 
 @pytest.mark.parametrize("kwargs, match", [

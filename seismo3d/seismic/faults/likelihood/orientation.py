@@ -17,11 +17,15 @@ import numba as nb
 import numpy as np
 from scipy import ndimage as ndi
 
+from ...._progress import progress_within
 from ...._threads import run_threads
 from ....errors import InputError
 from ... import _kernels
 
 __all__ = ["orientation_from_likelihood"]
+
+# the stages reported within the step that runs a block in memory (seismo3d._progress.progress_within)
+_STAGES = ("gradient", "structure tensor", "fault normals", "strike and dip")
 
 
 def _normals_to_strike_dip(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -97,28 +101,43 @@ def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0, c
         raise InputError("orientation_from_likelihood: core is for a cube's (rows, cols); got a 2D image")
     if isinstance(sample_step, bool) or int(sample_step) != sample_step or sample_step < 1:
         raise InputError(f"orientation_from_likelihood: sample_step must be an integer >= 1; got {sample_step!r}")
-    grads = np.gradient(p)
-    nd = p.ndim
-    pairs, comps = [(a, b) for a in range(nd) for b in range(a, nd)], {}
-    step = int(sample_step) if nd == 3 else 1
+    with progress_within(len(_STAGES), unit="stage") as stages:  # reported in a run in memory only
+        stages.start(_STAGES[0])
+        grads = np.gradient(p)
+        stages.advance()
+        nd = p.ndim
+        pairs, comps = [(a, b) for a in range(nd) for b in range(a, nd)], {}
+        step = int(sample_step) if nd == 3 else 1
 
-    def smooth(t: int, n: int) -> None:  # scipy's filters release the GIL: the components on the cores at once
-        for a, b in pairs[t::n]:
-            comps[a, b] = (ndi.gaussian_filter(grads[a] * grads[b], sigma) if nd == 2
-                           else _smoothed_at(grads[a] * grads[b], sigma, core, step))
+        def smooth(t: int, n: int) -> None:  # scipy's filters release the GIL: the components on the cores at once
+            for a, b in pairs[t::n]:
+                comps[a, b] = (ndi.gaussian_filter(grads[a] * grads[b], sigma) if nd == 2
+                               else _smoothed_at(grads[a] * grads[b], sigma, core, step))
 
-    run_threads(smooth, min(nb.get_num_threads(), len(pairs)))
-    del grads
+        stages.start(_STAGES[1])
+        run_threads(smooth, min(nb.get_num_threads(), len(pairs)))
+        stages.advance()
+        del grads
+        stages.start(_STAGES[2])
+        normals = _normals(comps, nd)
+        stages.advance()
+        del comps  # the tensor (6 floats a sample) is not held while the angles are computed: a lower peak
+        stages.start(_STAGES[3])
+        strike, dip = _normals_to_strike_dip(normals)
+        if step > 1:  # each held over the samples up to the next computed one
+            strike, dip = (np.repeat(a, step, axis=-1)[..., :p.shape[-1]] for a in (strike, dip))
+        stages.advance()
+    return strike, dip
+
+
+def _normals(comps: dict, nd: int) -> np.ndarray:
+    """(..., nd) unit normals: the eigenvector of the largest eigenvalue of the smoothed tensor ``comps`` (its
+    components by their axes ``(a, b)``, ``a <= b``), in closed form."""
     if nd == 2:
         angle = 0.5 * np.arctan2(2.0 * comps[0, 1], comps[0, 0] - comps[1, 1])  # the largest eigenvalue's vector
-        normals = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
-    else:
-        shape = comps[0, 0].shape
-        normals = np.empty(shape + (3,), np.float32)
-        _kernels.eig_normals(comps[0, 0], comps[0, 1], comps[0, 2], comps[1, 1], comps[1, 2], comps[2, 2], normals,
-                             np.empty(shape, np.float32))
-    del comps  # the tensor (6 floats a sample) is not held while the angles are computed: a lower peak
-    strike, dip = _normals_to_strike_dip(normals)
-    if step > 1:  # each held over the samples up to the next computed one
-        strike, dip = (np.repeat(a, step, axis=-1)[..., :p.shape[-1]] for a in (strike, dip))
-    return strike, dip
+        return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+    shape = comps[0, 0].shape
+    normals = np.empty(shape + (3,), np.float32)
+    _kernels.eig_normals(comps[0, 0], comps[0, 1], comps[0, 2], comps[1, 1], comps[1, 2], comps[2, 2], normals,
+                         np.empty(shape, np.float32))
+    return normals

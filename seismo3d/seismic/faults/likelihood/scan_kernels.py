@@ -7,6 +7,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+from ...._threads import run_threads
 from ....errors import InputError
 
 # used by the scan module; not part of the package's public face
@@ -59,23 +60,32 @@ def _box_rows(x, y, c, m, n, h):
             y[k, j] = c[e, j] - c[s, j]
 
 
-@nb.njit(cache=True, parallel=True)
 def smooth_strike(x, alpha, h, origin, n_threads, out):
+    """Smoothing along strike of every time slice of ``x`` ((na, nt, nb) float32, C order) into ``out`` (float32,
+    ``x.shape``): two passes of a box of half-width ``h`` traces (a triangle filter) along the staircase lines
+    ``a = a0 + round(alpha * b)``, zero outside the cube; ``origin`` is the cube index of ``b = 0`` (a block of a
+    cube). The lines are shared out in chunks over ``n_threads`` threads (:func:`~seismo3d._threads.run_threads`),
+    also inside a block's thread, as the ``prange`` loop it replaces did."""
+    run_threads(_smooth_strike_chunks, max(1, n_threads), x, alpha, h, origin, out, from_any_thread=True)
+
+
+@nb.njit(cache=True, nogil=True)
+def _smooth_strike_chunks(share, n_shares, x, alpha, h, origin, out):
     # x in layout (na, nt, nb). Smooth along the staircase lines a = a0 + round(alpha * b) of every time slice with
     # two passes of a box of half-width h (a triangle filter), zero outside the cube; each output sample is written
-    # once. `origin`: the cube index of b = 0 (blocks of a cube). Work is split in chunks of lines with one workspace
-    # per chunk.
+    # once. `origin`: the cube index of b = 0 (blocks of a cube). The lines are split in 4 chunks per share (at most
+    # one per line); this share smooths chunks share, share + n_shares, ... (run_threads) with one workspace.
     na, nt, nbb = x.shape
     sh = _shifts(alpha, nbb, origin)
     s_min = min(sh[0], sh[nbb - 1])
     s_max = max(sh[0], sh[nbb - 1])
     mono = np.abs(sh)
     n_a0 = na + s_max - s_min
-    n_chunks = min(n_a0, 4 * n_threads)
-    for ic in nb.prange(n_chunks):
-        buf = np.empty((nbb, nt), np.float32)
-        tmp = np.empty((nbb, nt), np.float32)
-        c = np.empty((nbb + 1, nt))
+    n_chunks = min(n_a0, 4 * n_shares)
+    buf = np.empty((nbb, nt), np.float32)
+    tmp = np.empty((nbb, nt), np.float32)
+    c = np.empty((nbb + 1, nt))
+    for ic in range(share, n_chunks, n_shares):
         for i in range(ic * n_a0 // n_chunks, (ic + 1) * n_a0 // n_chunks):
             a0 = i - s_max
             lo, hi = _segment(mono, alpha >= 0, a0, na)
@@ -94,13 +104,27 @@ def smooth_strike(x, alpha, h, origin, n_threads, out):
                     out[a, t, lo + k] = buf[k, t]
 
 
-@nb.njit(cache=True, parallel=True)
 def scan_dip(sn, sd, beta, a, code_k, power_squarings, tiny, n_threads, key, b0):
+    """One plane of the scan: the semblance numerator ``sn`` and denominator ``sd`` ((na, nt, nb) float32, C order)
+    smoothed down the dip along the staircase lines ``a = a0 + round(beta * t)`` by a two-sided recursive
+    exponential filter of coefficient ``a``, and ``1 - (num / den)^(2^power_squarings)`` quantised with the plane's
+    code ``code_k`` into ``key`` ((na, nt, nb') int32, the packed maximum over the planes so far; columns ``b0 ..
+    b0 + nb'`` of the inputs). The lines are shared out in chunks over ``n_threads`` threads
+    (:func:`~seismo3d._threads.run_threads`), also inside a block's thread, as the ``prange`` loop it replaces did."""
+    run_threads(_scan_dip_chunks, max(1, n_threads), sn, sd, beta, a, code_k, power_squarings, tiny, key, b0,
+                from_any_thread=True)
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _scan_dip_chunks(share, n_shares, sn, sd, beta, a, code_k, power_squarings, tiny, key, b0):
     # sn, sd, key in layout (na, nt, nb). Along the staircase lines a = a0 + round(beta * t) of every (a, t) slice
     # (vectorised over b), smooth the semblance numerator and denominator with a two-sided recursive exponential
     # filter of coefficient `a` (zero-slope ends; Hale's RecursiveExponentialFilter), and keep the maximum of
     # 1 - (num / den)^(2^p) and its orientation code, packed into one int32. Only b0 <= b < b0 + key.shape[2] is
-    # scanned (key[..., b - b0]): the core of a block, read from contiguous arrays (vectorised loads)
+    # scanned (key[..., b - b0]): the core of a block, read from contiguous arrays (vectorised loads). The lines are
+    # split in 4 chunks per share (at most one per line); this share scans chunks share, share + n_shares, ...
+    # (run_threads) with one workspace. NumPy's error model, as a prange loop's body has: the division below (by
+    # d > tiny only) then carries no ZeroDivisionError check, and the loop over b vectorises (1.6x faster a call).
     na, nt = sn.shape[0], sn.shape[1]
     nbb = key.shape[2]
     sh = _shifts(beta, nt)
@@ -108,12 +132,12 @@ def scan_dip(sn, sd, beta, a, code_k, power_squarings, tiny, n_threads, key, b0)
     s_max = max(sh[0], sh[nt - 1])
     mono = np.abs(sh)
     n_a0 = na + s_max - s_min
-    n_chunks = min(n_a0, 4 * n_threads)
+    n_chunks = min(n_a0, 4 * n_shares)
     af = np.float32(a)
     bf = np.float32(1.0 - a)
-    for ic in nb.prange(n_chunks):
-        yn = np.empty((nt, nbb), np.float32)
-        yd = np.empty((nt, nbb), np.float32)
+    yn = np.empty((nt, nbb), np.float32)
+    yd = np.empty((nt, nbb), np.float32)
+    for ic in range(share, n_chunks, n_shares):
         for i in range(ic * n_a0 // n_chunks, (ic + 1) * n_a0 // n_chunks):
             a0 = i - s_max
             lo, hi = _segment(mono, beta >= 0, a0, na)

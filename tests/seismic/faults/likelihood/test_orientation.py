@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 import pytest
 
+from seismo3d._progress import reporting_within
 from seismo3d.errors import InputError
 from seismo3d.seismic.faults.likelihood.orientation import orientation_from_likelihood
 
@@ -64,3 +67,18 @@ def test_orientation_of_a_dipping_line():
     on = img > 0.5 * img.max()
     assert abs(np.median(dip[on]) - 60.0) < 3.0
     assert (strike[on] == 270.0).mean() > 0.9  # dips towards +trace: strike 270 (module conventions)
+
+
+def test_orientation_reports_its_stages_when_its_step_asks_and_only_then(caplog):
+    """In a run in memory (the step's executor asks: ``reporting_within``) the orientation logs a line as each of its
+    four stages begins, under the step's name; called otherwise (a run by blocks, or directly) it logs nothing, and the
+    strike and dip are the same bits either way."""
+    likelihood = np.random.default_rng(3).random((20, 18, 24), dtype=np.float32)
+    with caplog.at_level(logging.INFO, logger="seismo3d"):
+        quiet = orientation_from_likelihood(likelihood)
+        assert caplog.messages == []
+        with reporting_within("fault orientation"):
+            reported = orientation_from_likelihood(likelihood)
+    assert caplog.messages == ["fault orientation: gradient (1/4)", "fault orientation: structure tensor (2/4)",
+                               "fault orientation: fault normals (3/4)", "fault orientation: strike and dip (4/4)"]
+    assert all(np.array_equal(a, b) for a, b in zip(quiet, reported))

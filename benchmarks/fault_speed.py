@@ -66,7 +66,8 @@ def _gb(shape) -> float:
 
 def _cpu_per_step():
     """Wrap the job's step timer (:mod:`seismo3d._progress`) so that each named step's CPU seconds of the process are
-    recorded beside its wall seconds; returns the dict they are added to."""
+    recorded beside its wall seconds, and each file's the job writes after them; the stages a step reports within
+    it (:func:`~seismo3d._progress.progress_within`) stay in their step's. Returns the dict they are added to."""
     from seismo3d import _progress
 
     cpu: dict = {}
@@ -79,9 +80,16 @@ def _cpu_per_step():
             self._cpu_running = None
         stop(self)
 
+    tracing = {"bar": None}  # the bar of the fault tracing's steps
+
     def timed_start(self, label):
         start(self, label)  # calls stop (timed) first
-        self._cpu_running = (label, time.process_time())
+        if label in STEPS:
+            tracing["bar"] = self
+        # the tracing's steps, and the files written after them; not the stages a step reports within it (timed in
+        # the step's)
+        if label in STEPS or tracing["bar"] is None or tracing["bar"]._running is None:
+            self._cpu_running = (label, time.process_time())
 
     _progress._Steps.start, _progress._Steps.stop = timed_start, timed_stop
     return cpu

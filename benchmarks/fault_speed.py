@@ -64,6 +64,9 @@ def _gb(shape) -> float:
     return 4.0 * float(np.prod(shape)) / 1e9
 
 
+_TRACING = {"bar": None}  # the bar of the fault tracing's steps in the run measured (None before they start)
+
+
 def _cpu_per_step():
     """Wrap the job's step timer (:mod:`seismo3d._progress`) so that each named step's CPU seconds of the process are
     recorded beside its wall seconds, and each file's the job writes after them; the stages a step reports within
@@ -80,15 +83,14 @@ def _cpu_per_step():
             self._cpu_running = None
         stop(self)
 
-    tracing = {"bar": None}  # the bar of the fault tracing's steps
-
     def timed_start(self, label):
         start(self, label)  # calls stop (timed) first
         if label in STEPS:
-            tracing["bar"] = self
+            _TRACING["bar"] = self
         # the tracing's steps, and the files written after them; not the stages a step reports within it (timed in
-        # the step's)
-        if label in STEPS or tracing["bar"] is None or tracing["bar"]._running is None:
+        # the step's), nor those of the sample judged before it (in the rest)
+        tracing = _TRACING["bar"]
+        if label in STEPS or (tracing is not None and tracing._running is None):
             self._cpu_running = (label, time.process_time())
 
     _progress._Steps.start, _progress._Steps.stop = timed_start, timed_stop
@@ -128,6 +130,7 @@ def _ours(path: str, limit: str | None) -> dict:
         np.save(small, np.ascontiguousarray(np.load(path, mmap_mode="r")[:48, :48, :64]))
         run_faults_job(small, Path(tmp) / "warmup", progress=False)  # numba's kernels compiled outside the measurement
         cpu.clear()
+        _TRACING["bar"] = None
         inner.clear()
         t_wall, t_cpu = time.perf_counter(), time.process_time()
         res = run_faults_job(path, Path(tmp) / "out", progress=False, memory_limit=limit)

@@ -598,7 +598,7 @@ def network_blocks(grid, across: int, along: int, axis: int) -> list:
 
 
 def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale, n_sections: int,
-                  ndim: int = 3) -> BlockOutput:
+                  ndim: int = 3, resampled: tuple | None = None) -> BlockOutput:
     """The network's probability (:func:`direction_probability`) on the sections of one block of the network grid
     (``place.block``, direction ``axis``), from the amplitudes of its input region (``place.region``, read with the
     receptive half of halo along the sections).
@@ -621,6 +621,9 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     ndim : {3, 2}
         2: the cube is a section (one crossline, ``axis`` 1), run as a section is
         (:meth:`LearnedOptions.model`, :meth:`LearnedOptions.stretch`, every section).
+    resampled : (ndarray, tuple), optional
+        ``f`` on the network grid already (:func:`to_network_grid`'s ``small`` and ``first``), when ``f`` is the
+        whole cube: the run in memory resamples it once for both directions (:func:`run_networks`).
 
     Returns
     -------
@@ -636,7 +639,7 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     u0, u1, v0, v1 = place.block
     check_finite(f, (place.origin[0], place.origin[0] + f.shape[0] - 1))
     aligns = (1, POOLING_MULTIPLE) if axis == 0 else (POOLING_MULTIPLE, 1)
-    small, first = to_network_grid(f, factor, origin=place.origin, align=aligns)
+    small, first = resampled or to_network_grid(f, factor, origin=place.origin, align=aligns)
     n_samples = f.shape[2]
     del f
     step = int(opt.section_step) if ndim == 3 else 1
@@ -795,13 +798,28 @@ def run_networks(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> tupl
     steps = iter(block_steps(plan, opt)[:-1])
     names = []
     for g in plan["grids"]:
-        for axis in _plan_directions(plan, opt):
+        directions = _plan_directions(plan, opt)
+        resampled = _whole_grid(run, x, float(g["factor"]), len(directions))
+        for axis in directions:
             step = next(steps)
             blocks = network_blocks(g["network_shape"], *g["network_blocks"][DIRECTION_NAMES[axis]], axis)
             run.run_step(step, blocks, axis, opt, float(g["factor"]), tuple(scale), int(g["network_shape"][axis]),
-                         ndim, source=x)
+                         ndim, resampled, source=x)
             names.append(step.name)
+        del resampled
     return tuple(names)
+
+
+def _whole_grid(run, x, factor: float, n_directions: int) -> tuple | None:
+    """In memory, where each direction's one block reads the whole cube: the cube on the network grid ``factor``
+    (:func:`to_network_grid`, the same bits as each block's own resampling, whose origin is 0), made once for the
+    ``n_directions`` directions; None by blocks (each block resamples its own region), on the data's own grid or for
+    one direction."""
+    if not isinstance(run, MemoryRun) or factor == 1.0 or n_directions < 2:
+        return None
+    f = np.ascontiguousarray(x, dtype=np.float32)
+    check_finite(f, (0, f.shape[0] - 1))
+    return to_network_grid(f, factor, origin=(0, 0), align=POOLING_MULTIPLE)
 
 
 def run_learned(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> float:

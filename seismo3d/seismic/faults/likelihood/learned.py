@@ -598,7 +598,7 @@ def network_blocks(grid, across: int, along: int, axis: int) -> list:
 
 
 def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale, n_sections: int,
-                  ndim: int = 3, resampled: tuple | None = None) -> BlockOutput:
+                  ndim: int = 3, resampled=None) -> BlockOutput:
     """The network's probability (:func:`direction_probability`) on the sections of one block of the network grid
     (``place.block``, direction ``axis``), from the amplitudes of its input region (``place.region``, read with the
     receptive half of halo along the sections).
@@ -621,9 +621,9 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     ndim : {3, 2}
         2: the cube is a section (one crossline, ``axis`` 1), run as a section is
         (:meth:`LearnedOptions.model`, :meth:`LearnedOptions.stretch`, every section).
-    resampled : (ndarray, tuple), optional
-        ``f`` on the network grid already (:func:`to_network_grid`'s ``small`` and ``first``), when ``f`` is the
-        whole cube: the run in memory resamples it once for both directions (:func:`run_networks`).
+    resampled : callable, optional
+        Resamples ``f`` onto the network grid in place of :func:`to_network_grid` (its arguments and result): in
+        memory, where ``f`` is the whole cube, :func:`run_networks` gives both directions one that resamples it once.
 
     Returns
     -------
@@ -639,7 +639,7 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     u0, u1, v0, v1 = place.block
     check_finite(f, (place.origin[0], place.origin[0] + f.shape[0] - 1))
     aligns = (1, POOLING_MULTIPLE) if axis == 0 else (POOLING_MULTIPLE, 1)
-    small, first = resampled or to_network_grid(f, factor, origin=place.origin, align=aligns)
+    small, first = (resampled or to_network_grid)(f, factor, origin=place.origin, align=aligns)
     n_samples = f.shape[2]
     del f
     step = int(opt.section_step) if ndim == 3 else 1
@@ -799,7 +799,7 @@ def run_networks(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> tupl
     names = []
     for g in plan["grids"]:
         directions = _plan_directions(plan, opt)
-        resampled = _whole_grid(run, x, float(g["factor"]), len(directions))
+        resampled = _WholeGrid() if isinstance(run, MemoryRun) and len(directions) > 1 else None
         for axis in directions:
             step = next(steps)
             blocks = network_blocks(g["network_shape"], *g["network_blocks"][DIRECTION_NAMES[axis]], axis)
@@ -810,16 +810,20 @@ def run_networks(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> tupl
     return tuple(names)
 
 
-def _whole_grid(run, x, factor: float, n_directions: int) -> tuple | None:
-    """In memory, where each direction's one block reads the whole cube: the cube on the network grid ``factor``
-    (:func:`to_network_grid`, the same bits as each block's own resampling, whose origin is 0), made once for the
-    ``n_directions`` directions; None by blocks (each block resamples its own region), on the data's own grid or for
-    one direction."""
-    if not isinstance(run, MemoryRun) or factor == 1.0 or n_directions < 2:
-        return None
-    f = np.ascontiguousarray(x, dtype=np.float32)
-    check_finite(f, (0, f.shape[0] - 1))
-    return to_network_grid(f, factor, origin=(0, 0), align=POOLING_MULTIPLE)
+class _WholeGrid:
+    """The whole cube on a network grid (:func:`to_network_grid`), made by the first direction's block that asks and
+    kept for the other's: in memory each direction's one block reads the whole cube, whose network grid is the same
+    bits for both (its origin is 0 along both axes, so both alignments start it at 0)."""
+
+    def __init__(self):
+        self._grid = None
+
+    def __call__(self, f: np.ndarray, factor: float, *, origin, align) -> tuple:
+        if tuple(origin) != (0, 0):
+            raise ValueError(f"a block at {tuple(origin)} is not the whole cube: it resamples its own region")
+        if self._grid is None:
+            self._grid = to_network_grid(f, factor, origin=origin, align=align)
+        return self._grid
 
 
 def run_learned(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> float:

@@ -18,7 +18,8 @@ so the weights give the same numbers here (float32, differences of the order of 
 The network ships as an ONNX model (:class:`FaultNetwork`, loaded by :func:`load_fault_network`; beside it the
 same model quantised to 8 bits, ``fault_unet_int8.onnx``, :mod:`seismo3d.training.quantize_onnx`), exported from the
 trained weights by :func:`seismo3d.training.export_onnx.onnx_model` (``python -m seismo3d.training.export_onnx``; the
-``onnx`` package of the ``train`` extra). The weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape
+``onnx`` package of the ``train`` extra), which computes the finest decoder level and the head on the next coarser
+grid, a fine tensor as its 4 phases (the same outputs up to float32 rounding, in less time). The weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape
 ``(c_out, c_in, 3, 3)`` (PyTorch's ``Conv2d`` layout) and ``'{block}.{i}.bias'`` ``(c_out,)``, for the blocks ``enc0,
 enc1, enc2, bottleneck, dec2, dec1, dec0`` and ``i`` in 0, 1; and ``'head.weight'`` ``(1, c0, 1, 1)``,
 ``'head.bias'`` ``(1,)``.

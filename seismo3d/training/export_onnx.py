@@ -26,8 +26,8 @@ __all__ = ["export_onnx", "onnx_model"]
 def onnx_model(weights) -> bytes:
     """The ONNX model (opset 17) of the network with these weights: the architecture of
     :mod:`seismo3d.seismic.faults.likelihood.network`, 3 x 3 convolutions zero-padded, nearest-neighbour upsampling,
-    a logistic sigmoid at the end; the finest decoder level and the head computed on the next coarser grid, the same
-    outputs up to float32 rounding (:func:`_coarse_weights`).
+    a logistic sigmoid at the end; the finest level (its encoder, decoder and the head) computed on the next coarser
+    grid, the same outputs up to float32 rounding (:func:`_coarse_weights`).
 
     Parameters
     ----------
@@ -71,8 +71,22 @@ def onnx_model(weights) -> bytes:
     def block(x: str, name: str) -> str:
         return conv(conv(x, f"{name}.0"), f"{name}.1")
 
-    x, skips = "sections", []
-    for k in range(3):
+    # the finest level (encoder and decoder) on the next coarser grid, a fine tensor held as its 4 phases (its
+    # SpaceToDepth) from the sections' to the probability's (_coarse_weights): its convolutions of few channels there
+    # with 4 times the channels, its pooling the largest of the 4 phases; on 256 x 256 sections the int8 network
+    # 41 % less time, the float32 one 27 %
+    n_skip = int(np.shape(weights["enc0.1.weight"])[0])
+    nodes.append(helper.make_node("SpaceToDepth", ["sections"], ["phases"], blocksize=2))
+    x = conv("phases", "enc0.0", weight=_coarse_weights(weights["enc0.0.weight"], weights["enc0.0.bias"], 1))
+    x = conv(x, "enc0.1", weight=_coarse_weights(weights["enc0.1.weight"], weights["enc0.1.bias"], n_skip))
+    skips = [x]
+    initialisers.append(numpy_helper.from_array(np.array([0, 4, -1, 0], np.int64), "pool0.by_phase"))
+    initialisers.append(numpy_helper.from_array(np.array([0, n_skip, -1, 0], np.int64), "pool0.shape"))
+    nodes.append(helper.make_node("Reshape", [x, "pool0.by_phase"], ["pool0.phases"]))
+    nodes.append(helper.make_node("ReduceMax", ["pool0.phases"], ["pool0.flat"], axes=[1], keepdims=1))
+    nodes.append(helper.make_node("Reshape", ["pool0.flat", "pool0.shape"], ["pool0"]))
+    x = "pool0"
+    for k in (1, 2):
         x = block(x, f"enc{k}")
         skips.append(x)
         nodes.append(helper.make_node("MaxPool", [x], [f"pool{k}"], kernel_shape=[2, 2], strides=[2, 2]))
@@ -83,12 +97,9 @@ def onnx_model(weights) -> bytes:
         nodes.append(helper.make_node("Resize", [x, "", "up_scales"], [f"up{k}"], mode="nearest"))
         nodes.append(helper.make_node("Concat", [f"up{k}", skips[k]], [f"cat{k}"], axis=1))
         x = block(f"cat{k}", f"dec{k}")
-    # the last level on the coarser grid to the end, a fine tensor held as its 4 phases (its SpaceToDepth): the
-    # upsampling, concatenation and both convolutions there, the head per phase, the probability put in place last
-    # (_coarse_weights; on 256 x 256 sections 30 % less time in int8, 27 % in float32)
-    n_skip = int(np.shape(weights["enc0.1.weight"])[0])
-    nodes.append(helper.make_node("SpaceToDepth", [skips[0]], ["skip0"], blocksize=2))
-    nodes.append(helper.make_node("Concat", [x, "skip0"], ["cat0"], axis=1))
+    # the finest decoder level: the coarse input itself (not upsampled) beside the skip's phases, the head per phase,
+    # the probability's phases put in place last
+    nodes.append(helper.make_node("Concat", [x, skips[0]], ["cat0"], axis=1))
     x = conv("cat0", "dec0.0", weight=_coarse_weights(weights["dec0.0.weight"], weights["dec0.0.bias"], n_skip))
     x = conv(x, "dec0.1", weight=_coarse_weights(weights["dec0.1.weight"], weights["dec0.1.bias"], n_skip))
     head = np.asarray(weights["head.weight"], np.float32)[:, :, 0, 0]  # (1, c0): the same 1 x 1 head on each phase
@@ -111,7 +122,8 @@ def _coarse_weights(weight, bias, n_skip: int) -> tuple[np.ndarray, np.ndarray]:
     where they are cheaper.
 
     The convolution reads the concatenation of a coarse tensor upsampled by 2 (nearest neighbour; ``c_up`` channels,
-    the decoder's) and of a fine one (``n_skip`` channels: the encoder's skip, or with ``c_up`` 0 any fine input).
+    the decoder's) and of a fine one (``n_skip`` channels: the encoder's skip, or with ``c_up`` 0 any fine input: the
+    sections, an encoder's or decoder's first convolution's output).
     Its output at fine sample ``(2h + i, 2w + j)`` reads fine samples ``2h + i + d`` (``d`` in -1, 0, 1): coarse
     sample ``h + (i + d) // 2`` and, of the fine tensor, its phase ``(i + d) % 2``. So it equals one 3 x 3
     convolution on the coarse grid of the coarse tensor (not upsampled) and the fine tensor's SpaceToDepth (its 4
@@ -120,10 +132,10 @@ def _coarse_weights(weight, bias, n_skip: int) -> tuple[np.ndarray, np.ndarray]:
     on the same coarse sample are summed: the sums run in another order, so the outputs differ from the trained
     convolution's by float32 rounding (1e-6 on the probability).
 
-    ONNX Runtime's slowest operators in this network are its finest level's convolutions of few channels (36 to 12
+    ONNX Runtime's slowest operators in this network were its finest level's convolutions of few channels (36 to 12
     channels on 256 x 256 samples: a third of the int8 network's time); on the coarse grid, with 4 times the
-    channels, the same outputs cost less although the multiplications double (the sub-pixel convolution of Shi et al.
-    2016).
+    channels, the same outputs cost less although the multiplications double or quadruple (the sub-pixel convolution
+    of Shi et al. 2016).
 
     Parameters
     ----------

@@ -16,8 +16,8 @@ finest level, held as 4 phases, its pooling over them and their rearrangement: R
 unsigned 8-bit integers with one scale and zero point per tensor, each range the minimum and maximum the float network
 reaches on the calibration sections (``percentile`` 100; ONNX Runtime runs a convolution and its ReLU as one integer
 convolution, ``QLinearConv``). The first convolution (one channel in, 4 % of the trained network's multiplications)
-stays float32, so the amplitudes are not rounded to 8 bits; so do the head (the 1 x 1 convolution to one channel) and the
-logistic sigmoid, so the probability is not rounded to 1/255 steps.
+stays float32, so the amplitudes are not rounded to 8 bits; so do the head (the 1 x 1 convolution to one channel)
+and the logistic sigmoid, so the probability is not rounded to 1/255 steps.
 
 Chosen on generated sections only (16 sections after the calibration's, 128 x 128; absolute difference of the
 probabilities from the float network's): quantising the convolutions alone (a ReLU's input then quantised over its

@@ -151,12 +151,13 @@ class LearnedOptions:
         percentile; the crossline sections, 18 traces wide, add little there).
     network : {'auto', 'int8', 'float'}
         The model ONNX Runtime runs: 'int8', the network quantised to 8-bit integers (``fault_unet_int8.onnx``,
-        :mod:`seismo3d.training.quantize_onnx`; 2.2 times faster), or 'float', the float32 export of the trained
-        weights (``fault_unet.onnx``); 'auto' (the default): 'int8' on a cube, where the network is most of the time,
-        'float' on a section, which costs a second either way (:meth:`model`). On generated sections the two
-        probabilities differ by 0.0013 on average, by 0.033 at the 99th percentile (``fault_unet_int8.json``); on
-        the real sections 'int8' kept the F3 and Great South Basin scores within 0.005 but lost the fault of teapot
-        tpd near trace 20 below sample 240 (covered 0.43 -> 0.0) and changed the fault counts of 6 of 10 lines.
+        :mod:`seismo3d.training.quantize_onnx`; 2.7 times faster on 256 x 256 sections), or 'float', the float32
+        export of the trained weights (``fault_unet.onnx``); 'auto' (the default): 'int8' on a cube, where the
+        network is most of the time, 'float' on a section, which costs a second either way (:meth:`model`). On
+        generated sections the two probabilities differ by 0.0013 on average, by 0.033 at the 99th percentile
+        (``fault_unet_int8.json``); on the real sections 'int8' kept the F3 and Great South Basin scores within
+        0.005 but lost the fault of teapot tpd near trace 20 below sample 240 (covered 0.43 -> 0.0) and changed the
+        fault counts of 6 of 10 lines.
     adapted : str or None
         The path of a MODEL folder written by ``seismo3d adapt`` (the network fine-tuned on an interpreter's faults,
         :mod:`~seismo3d.seismic.adapted_network`): run instead of the shipped network, in float32, on

@@ -108,14 +108,50 @@ def source_sections(n: int = 48, size: int = 128) -> list:
     return [normalise_section(synthetic_fault_section((size, size), seed=SOURCE_SEED + k).section) for k in range(n)]
 
 
-def target_sections(lines: list) -> list:
-    """Every network grid's normalised section of each line (what the tracing feeds the network)."""
+def fault_share(w: dict, sections: list) -> float:
+    """Share of the samples of ``sections`` the network (no affine) gives a probability above 0.5."""
+    with torch.no_grad():
+        return float(np.mean(np.concatenate([
+            (torch.sigmoid(forward(w, torch.from_numpy(_pad8(s)[None, None].copy()), {})) > 0.5).numpy().ravel()
+            for s in sections])))
+
+
+def prior_matched_stats(w: dict, targets: list, n: int = 48, size: int = 128) -> tuple:
+    """Source statistics of a mixture of generated faulted and unfaulted sections, weighted so that the shipped
+    network's share of probability above 0.5 in the mixture equals its share on ``targets`` (the target's share of
+    faults estimated by the unadapted network, as black-box shift estimation does; Lipton et al. 2018); the
+    weight of the faulted sections."""
+    from seismo3d.data.synthetic_sections import FaultSectionOptions, synthetic_fault_section
+    from seismo3d.seismic.faults.likelihood.network import normalise_section
+
+    sets = [[normalise_section(synthetic_fault_section((size, size), seed=SOURCE_SEED + k,
+                                                       options=FaultSectionOptions(p_unfaulted=p)).section)
+             for k in range(n)] for p in (0.0, 1.0)]
+    q_f, q_u, q_t = fault_share(w, sets[0]), fault_share(w, sets[1]), fault_share(w, targets)
+    mix = float(np.clip((q_t - q_u) / (q_f - q_u), 0.0, 1.0))
+    stats = {}
+    for layer in LAYERS:
+        (m_f, s_f), (m_u, s_u) = (layer_stats(w, secs, {}, layer) for secs in sets)
+        mean = mix * m_f + (1 - mix) * m_u
+        second = mix * (s_f ** 2 + m_f ** 2) + (1 - mix) * (s_u ** 2 + m_u ** 2)
+        stats[layer] = (mean, torch.sqrt(torch.clamp(second - mean ** 2, min=1e-12)))
+    return stats, mix
+
+
+def target_sections(lines: list, tile: int = 0) -> list:
+    """Every network grid's normalised section of each line (what the tracing feeds the network); with ``tile``,
+    cut into the non-overlapping ``tile`` x ``tile`` squares the grids hold (the source sections' size, so that the
+    zero padding weighs the same in both statistics)."""
     from seismo3d.jobs.adapt import training_grids
 
     out = []
     for section in lines:
         picks = np.zeros(section.shape, bool)
-        out += [g[0] for g in training_grids(section, picks, (0, 0))]
+        grids = [g[0] for g in training_grids(section, picks, (0, 0))]
+        if tile:
+            grids = [g[i:i + tile, j:j + tile] for g in grids for i in range(0, g.shape[0] - tile + 1, tile)
+                     for j in range(0, g.shape[1] - tile + 1, tile)]
+        out += grids
     return out
 
 
@@ -123,7 +159,7 @@ def aligned_weights(weights: dict, source_stats: dict, targets: list, *, blocks:
     """Folded weights with the first ``blocks`` blocks' convolutions aligned (module notes)."""
     w = {k: torch.from_numpy(np.asarray(v, np.float32)) for k, v in weights.items()}
     affine = {}
-    for layer in LAYERS[:2 * blocks]:
+    for layer in LAYERS[:int(round(2 * blocks))]:
         ms, ss = source_stats[layer]
         mt, st = layer_stats(w, targets, affine, layer)
         mt, st = ms + shrink * (mt - ms), ss + shrink * (st - ss)
@@ -135,6 +171,30 @@ def aligned_weights(weights: dict, source_stats: dict, targets: list, *, blocks:
         out[f"{layer}.bias"] = (out[f"{layer}.bias"] * a.numpy() + b.numpy()).astype(np.float32)
     gains = {layer: [round(float(a.min()), 3), round(float(a.max()), 3)] for layer, (a, _) in affine.items()}
     return out, gains
+
+
+def statistics_table(shipped: dict, data: Path, work: Path) -> None:
+    """Print, per block's first convolution, the mean over its channels of the pre-activation's standard deviation
+    relative to the generated faulted sections', on generated sections with and without faults and on the F3 and
+    Great South Basin lines; and each set's share of output probability above 0.5."""
+    from seismo3d.data.synthetic_sections import synthetic_fault_section
+    from seismo3d.seismic.faults.likelihood.network import normalise_section
+
+    w = {k: torch.from_numpy(v) for k, v in shipped.items()}
+    gen = [synthetic_fault_section((128, 128), seed=SOURCE_SEED + k) for k in range(96)]
+    gsb = data / "seismic" / "gsb_fault_sticks"
+    sets = {"generated, faulted": [normalise_section(g.section) for g in gen if g.n_faults > 0][:48],
+            "generated, unfaulted": [normalise_section(g.section) for g in gen if g.n_faults == 0],
+            "F3 inline 100": target_sections([read_line(f3_lines(data, work)[100][0])], 128),
+            "GSB crossline 2600": target_sections([read_line(gsb / "gsb_crl_2600.sgy")])}
+    ref = {layer: layer_stats(w, sets["generated, faulted"], {}, layer)[1] for layer in LAYERS[::2]}
+    print(" " * 22 + "".join(f"{layer:>13s}" for layer in LAYERS[::2]) + "   p > 0.5")
+    for name, secs in sets.items():
+        ratio = [float((layer_stats(w, secs, {}, layer)[1] / ref[layer]).mean()) for layer in LAYERS[::2]]
+        with torch.no_grad():
+            p = np.concatenate([torch.sigmoid(forward(w, torch.from_numpy(_pad8(s)[None, None].copy()), {}))
+                                .numpy().ravel() for s in secs])
+        print(f"{name:22s}" + "".join(f"{v:13.3f}" for v in ratio) + f"   {np.mean(p > 0.5):.4f}", flush=True)
 
 
 def write_model_folder(weights: dict, path: Path) -> Path:
@@ -160,6 +220,8 @@ def main(argv=None) -> None:
                     help="'identity' or BLOCKS:SHRINK (e.g. 7:1 full AdaBN, 2:1 the first two blocks, 7:0.5)")
     ap.add_argument("--folds", nargs="+", type=int, default=None)
     ap.add_argument("--no-default", action="store_true")
+    ap.add_argument("--table", action="store_true", help="print the statistics table only (module notes)")
+    ap.add_argument("--tile", type=int, default=0, help="target statistics over tiles of this side (0: whole grids)")
     a = ap.parse_args(argv)
     data = Path(os.environ["SEISMO3D_DATA_DIR"])
     torch.set_num_threads(1)
@@ -175,6 +237,8 @@ def main(argv=None) -> None:
     print(f"source statistics: {len(src)} generated sections, {time.process_time() - t0:.1f} CPU s", flush=True)
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
+        if a.table:
+            return statistics_table(shipped, data, work)
         if a.survey == "f3":
             lines = f3_lines(data, work)
             folds = [(s, [(lines[t][0], {"mask": lines[t][1]}) for t in ts], lines[s][0]) for s, ts in F3_FOLDS]
@@ -187,14 +251,18 @@ def main(argv=None) -> None:
             if a.folds and source not in a.folds:
                 continue
             c0 = time.process_time()
-            tgt = target_sections([read_line(source_segy)])
-            print(f"{a.survey} statistics of line {source}: {len(tgt)} grids", flush=True)
+            tgt = target_sections([read_line(source_segy)], a.tile)
+            print(f"{a.survey} statistics of line {source}: {len(tgt)} sections (tile {a.tile})", flush=True)
             for variant in a.variants:
                 if variant == "identity":
                     weights, gains = shipped, {}
                 else:
-                    k, s = variant.split(":")
-                    weights, gains = aligned_weights(shipped, source_stats, tgt, blocks=int(k), shrink=float(s))
+                    k, s = variant.rstrip("p").split(":")
+                    ref = source_stats
+                    if variant.endswith("p"):  # the source mixed to the target's estimated share of faults
+                        ref, mix = prior_matched_stats(w, tgt)
+                        print(f"  {variant}: faulted generated sections weighted {mix:.3f}", flush=True)
+                    weights, gains = aligned_weights(shipped, ref, tgt, blocks=float(k), shrink=float(s))
                 model = write_model_folder(weights, work / f"model_{source}_{variant.replace(':', '_')}")
                 cpu = time.process_time() - c0
                 rows = []

@@ -15,13 +15,72 @@ aligned; the target statistics shrunk toward the source's by ``shrink`` (0: the 
 
 Folds as ``benchmarks/adapt.py``'s: the statistics of F3 inline 100, the inlines 200-500 traced (and 500 -> 100-400);
 Great South Basin crossline 2600 -> 2800 and back. Every MODEL traces at the tracing's default sensitivity and
-evidence (nothing chosen on picks). ``identity`` is the folded network with no affine: it must give the shipped
-network's scores exactly (the check of the folding).
+evidence (nothing chosen on picks). ``identity`` is the folded network with no affine: it gives the shipped network's
+scores exactly (the check of the folding; on F3 inline 100 ``trace_faults``' likelihood through the identity MODEL
+equals the shipped one's, max difference 0.0; this forward against ONNX Runtime's, 1.5e-6). ``--tile 128``: the
+target statistics over the 128 x 128 squares of the grids, the size of the source sections, so that the zero padding
+weighs the same in both; ``BLOCKS:SHRINKp``: the source statistics those of a mixture of generated faulted and
+unfaulted sections weighted so that the shipped network finds on it the share of probability above 0.5 it finds on
+the survey's line (``prior_matched_stats``; 0.22 faulted for F3 inline 100, 0.19 for inline 500).
+
+Results (2026-11-28, the shared 2-core machine; mean precision / recall / F1 of the lines traced, tolerance 3 samples):
+
+=================================================  =====================  =====================
+variant (all chosen on F3)                         F3 100 -> 200-500      F3 500 -> 100-400
+=================================================  =====================  =====================
+shipped network (and ``identity``, the same bits)  0.631 / 0.419 / 0.497  0.599 / 0.418 / 0.489
+AdaBN, all 7 blocks (``7:1``)                      0.306 / 0.529 / 0.363  0.291 / 0.523 / 0.351
+all 7 blocks, shrunk halfway (``7:0.5``)           0.280 / 0.465 / 0.314  0.291 / 0.490 / 0.333
+the first 2 blocks (``2:1``)                       0.415 / 0.444 / 0.423  0.423 / 0.437 / 0.424
+tiles: all 7 blocks (``7:1``)                      0.256 / 0.544 / 0.320
+tiles: all 7 blocks shrunk to 0.25 (``7:0.25``)    0.295 / 0.496 / 0.331
+tiles: the first 4 blocks (``4:1``)                0.287 / 0.477 / 0.341
+tiles: the first block (``1:1``)                   0.552 / 0.443 / 0.487  0.513 / 0.393 / 0.436
+tiles: the first convolution only (``0.5:1``)      0.563 / 0.425 / 0.478  0.545 / 0.462 / 0.498
+tiles, fault share matched: all 7 (``7:1p``)       0.429 / 0.488 / 0.444  0.441 / 0.460 / 0.441
+tiles, fault share matched: first 2 (``2:1p``)     0.475 / 0.441 / 0.448  F3P500B
+=================================================  =====================  =====================
+
+Reported on the Great South Basin (statistics of one crossline, the other traced): the variant best on F3 over both
+folds, the first convolution only, gives 0.745 / 0.851 / 0.795 on crossline 2800 (shipped 0.781 / 0.877 / 0.826) and
+0.807 / 0.886 / 0.845 on 2600 (shipped 0.843 / 0.850 / 0.847); full AdaBN 0.749 / 0.856 / 0.799 and 0.797 / 0.844 /
+0.820. No variant helps F3 in both folds, and none is near issue 74's 0.62; every one costs precision.
+
+Why (``--table``): the spread of a deep layer's features measures how many faults a section holds, not only how the
+survey looks. Relative to the generated faulted sections, the mean over channels of each block's first convolution's
+standard deviation, and the share of probability above 0.5:
+
+=====================  ======  ======  ======  ==========  ======  ======  ======  =======
+sections               enc0    enc1    enc2    bottleneck  dec2    dec1    dec0    p > 0.5
+=====================  ======  ======  ======  ==========  ======  ======  ======  =======
+generated, faulted     1.000   1.000   1.000   1.000       1.000   1.000   1.000   0.0603
+generated, unfaulted   0.945   0.779   0.641   0.500       0.560   0.595   0.576   0.0004
+F3 inline 100          0.831   0.757   0.601   0.575       0.652   0.626   0.645   0.0132
+GSB crossline 2600     0.756   0.586   0.606   0.720       0.773   0.691   0.673   0.0484
+=====================  ======  ======  ======  ==========  ======  ======  ======  =======
+
+From the second block on, F3's features are as quiet as those of a generated section without faults: F3 holds fewer
+faults than the training's sections (label shift), and AdaBN cannot tell that from a change of look. Aligning them
+to the training's statistics amplifies every layer (the gains are mostly 1-2) and the network finds the training's
+density of faults: on F3 inline 300 aligned to inline 100's statistics, 36 faults traced against 8, most across the
+unbroken reflectors above 1200 ms that nobody drew, and the share of likelihood above 0.5 from 0.007 to 0.039.
+Mixing the source to the survey's estimated share of faults halves the loss but does not remove it. The first
+convolution (the input's spectrum, which the fault content hardly moves: 0.945 unfaulted) is the only layer whose
+alignment is neutral: F3 is not a covariate shift the statistics can undo, but another idea of a fault, which the
+picks of ``seismo3d adapt`` must teach.
+
+Commands: ``--survey f3 --variants identity 7:1 2:1 7:0.5``; ``--survey f3 --tile 128 --folds 100 --no-default
+--variants 7:1 1:1 7:0.25 4:1``; ``--survey f3 --tile 128 --no-default --variants 0.5:1 1:1``; ``--survey f3 --tile
+128 --no-default --variants 7:1p 2:1p``; ``--survey gsb --tile 128 --variants identity 0.5:1 7:1``; ``--table``.
+Each F3 fold of one variant takes 2-4 minutes on 2 loaded cores (four lines traced).
 
 References
 ----------
 Li, Y., Wang, N., Shi, J., Liu, J., and Hou, X., 2016, Revisiting batch normalization for practical domain
 adaptation: arXiv:1603.04779 (AdaBN).
+
+Lipton, Z. C., Wang, Y.-X., and Smola, A. J., 2018, Detecting and correcting for label shift with black box
+predictors: ICML 2018, PMLR 80, 3122-3130, arXiv:1802.03916.
 """
 
 from __future__ import annotations
@@ -42,40 +101,26 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from adapt import F3_FOLDS, GSB_FOLDS, f3_lines, traced_scores  # noqa: E402
 
 from seismo3d.seismic.faults.likelihood.network import BLOCKS  # noqa: E402
+from seismo3d.training.fault_unet import export_weights, model_from_weights  # noqa: E402
 
 LAYERS = tuple(f"{b}.{i}" for b in BLOCKS for i in (0, 1))
 SOURCE_SEED = 4_444_444  # generated sections for the source statistics (training drew seeds from 0)
 
 
-def forward(w: dict, x: torch.Tensor, affine: dict, upto: str | None = None):
-    """The network (folded weights ``w``, torch tensors) with a per-channel affine ``(a, b)`` after the convolutions
-    named in ``affine``; with ``upto``, the pre-activation (before its affine) of that convolution instead."""
-    def block(name, h):
-        for i in (0, 1):
-            key = f"{name}.{i}"
-            h = F.conv2d(h, w[f"{key}.weight"], w[f"{key}.bias"], padding=1)
-            if key == upto:
-                raise _Stop(h)
-            if key in affine:
-                a, b = affine[key]
-                h = h * a[None, :, None, None] + b[None, :, None, None]
-            h = F.relu(h)
-        return h
-
-    up = lambda t: F.interpolate(t, scale_factor=2, mode="nearest")  # noqa: E731
-    s0 = block("enc0", x)
-    s1 = block("enc1", F.max_pool2d(s0, 2))
-    s2 = block("enc2", F.max_pool2d(s1, 2))
-    bn = block("bottleneck", F.max_pool2d(s2, 2))
-    d2 = block("dec2", torch.cat([up(bn), s2], 1))
-    d1 = block("dec1", torch.cat([up(d2), s1], 1))
-    d0 = block("dec0", torch.cat([up(d1), s0], 1))
-    return F.conv2d(d0, w["head.weight"], w["head.bias"])
+def _batch_norm(model, layer: str):
+    """The batch normalisation after convolution ``layer`` ('enc0.1', ...) of a :class:`FaultUNet`: the identity in a
+    model of folded weights (:func:`model_from_weights`); its weight and bias hold the layer's affine."""
+    name, i = layer.split(".")
+    return getattr(model, name)[1 if i == "0" else 4]
 
 
 class _Stop(Exception):
     def __init__(self, h):
         self.h = h
+
+
+def _raise_input(module, inputs, output):
+    raise _Stop(inputs[0])
 
 
 def _pad8(x: np.ndarray) -> np.ndarray:
@@ -84,21 +129,32 @@ def _pad8(x: np.ndarray) -> np.ndarray:
     return np.pad(x, ((0, ph), (0, pw)), mode="reflect") if ph or pw else x
 
 
-def layer_stats(w: dict, sections: list, affine: dict, layer: str) -> tuple:
-    """(mean, std) per channel of ``layer``'s pre-activation over every sample of ``sections`` (float64)."""
+def layer_stats(model, sections: list, layer: str) -> tuple:
+    """(mean, std) per channel of convolution ``layer``'s output (before its affine and ReLU) in ``model`` (a
+    :class:`FaultUNet`) over every sample of ``sections`` (float64 tensors)."""
     total = sq = None
     count = 0
-    with torch.no_grad():
-        for s in sections:
-            try:
-                forward(w, torch.from_numpy(_pad8(s)[None, None].copy()), affine, upto=layer)
-            except _Stop as stop:
-                h = stop.h[0].double().reshape(stop.h.shape[1], -1)
-            total = h.sum(1) if total is None else total + h.sum(1)
-            sq = (h ** 2).sum(1) if sq is None else sq + (h ** 2).sum(1)
-            count += h.shape[1]
+    hook = _batch_norm(model, layer).register_forward_hook(_raise_input)
+    try:
+        with torch.no_grad():
+            for s in sections:
+                try:
+                    model(torch.from_numpy(_pad8(s)[None, None].copy()))
+                except _Stop as stop:
+                    h = stop.h[0].double().reshape(stop.h.shape[1], -1)
+                total = h.sum(1) if total is None else total + h.sum(1)
+                sq = (h ** 2).sum(1) if sq is None else sq + (h ** 2).sum(1)
+                count += h.shape[1]
+    finally:
+        hook.remove()
     mean = total / count
     return mean, torch.sqrt(torch.clamp(sq / count - mean ** 2, min=1e-12))
+
+
+def probability(model, section: np.ndarray) -> np.ndarray:
+    """The network's fault probability of one normalised section."""
+    with torch.no_grad():
+        return torch.sigmoid(model(torch.from_numpy(_pad8(section)[None, None].copy()))).numpy()[0, 0]
 
 
 def source_sections(n: int = 48, size: int = 128) -> list:
@@ -108,15 +164,12 @@ def source_sections(n: int = 48, size: int = 128) -> list:
     return [normalise_section(synthetic_fault_section((size, size), seed=SOURCE_SEED + k).section) for k in range(n)]
 
 
-def fault_share(w: dict, sections: list) -> float:
-    """Share of the samples of ``sections`` the network (no affine) gives a probability above 0.5."""
-    with torch.no_grad():
-        return float(np.mean(np.concatenate([
-            (torch.sigmoid(forward(w, torch.from_numpy(_pad8(s)[None, None].copy()), {})) > 0.5).numpy().ravel()
-            for s in sections])))
+def fault_share(model, sections: list) -> float:
+    """Share of the samples of ``sections`` the network gives a probability above 0.5."""
+    return float(np.mean(np.concatenate([(probability(model, s) > 0.5).ravel() for s in sections])))
 
 
-def prior_matched_stats(w: dict, targets: list, n: int = 48, size: int = 128) -> tuple:
+def prior_matched_stats(model, targets: list, n: int = 48, size: int = 128) -> tuple:
     """Source statistics of a mixture of generated faulted and unfaulted sections, weighted so that the shipped
     network's share of probability above 0.5 in the mixture equals its share on ``targets`` (the target's share of
     faults estimated by the unadapted network, as black-box shift estimation does; Lipton et al. 2018); the
@@ -127,11 +180,11 @@ def prior_matched_stats(w: dict, targets: list, n: int = 48, size: int = 128) ->
     sets = [[normalise_section(synthetic_fault_section((size, size), seed=SOURCE_SEED + k,
                                                        options=FaultSectionOptions(p_unfaulted=p)).section)
              for k in range(n)] for p in (0.0, 1.0)]
-    q_f, q_u, q_t = fault_share(w, sets[0]), fault_share(w, sets[1]), fault_share(w, targets)
+    q_f, q_u, q_t = (fault_share(model, secs) for secs in (*sets, targets))
     mix = float(np.clip((q_t - q_u) / (q_f - q_u), 0.0, 1.0))
     stats = {}
     for layer in LAYERS:
-        (m_f, s_f), (m_u, s_u) = (layer_stats(w, secs, {}, layer) for secs in sets)
+        (m_f, s_f), (m_u, s_u) = (layer_stats(model, secs, layer) for secs in sets)
         mean = mix * m_f + (1 - mix) * m_u
         second = mix * (s_f ** 2 + m_f ** 2) + (1 - mix) * (s_u ** 2 + m_u ** 2)
         stats[layer] = (mean, torch.sqrt(torch.clamp(second - mean ** 2, min=1e-12)))
@@ -155,22 +208,22 @@ def target_sections(lines: list, tile: int = 0) -> list:
     return out
 
 
-def aligned_weights(weights: dict, source_stats: dict, targets: list, *, blocks: int = 7, shrink: float = 1.0):
-    """Folded weights with the first ``blocks`` blocks' convolutions aligned (module notes)."""
-    w = {k: torch.from_numpy(np.asarray(v, np.float32)) for k, v in weights.items()}
-    affine = {}
+def aligned_weights(weights: dict, source_stats: dict, targets: list, *, blocks: float = 7, shrink: float = 1.0):
+    """Folded weights with the convolutions of the first ``blocks`` blocks aligned (module notes): each layer's
+    affine set as its batch normalisation's weight and bias in turn (the layers before it aligned), then folded
+    into the convolutions by :func:`export_weights`; and the range of each layer's gains."""
+    model = model_from_weights(weights)
+    gains = {}
     for layer in LAYERS[:int(round(2 * blocks))]:
         ms, ss = source_stats[layer]
-        mt, st = layer_stats(w, targets, affine, layer)
+        mt, st = layer_stats(model, targets, layer)
         mt, st = ms + shrink * (mt - ms), ss + shrink * (st - ss)
         a = ss / st
-        affine[layer] = (a.float(), (ms - a * mt).float())
-    out = {k: np.asarray(v, np.float32).copy() for k, v in weights.items()}
-    for layer, (a, b) in affine.items():
-        out[f"{layer}.weight"] = (out[f"{layer}.weight"] * a.numpy()[:, None, None, None]).astype(np.float32)
-        out[f"{layer}.bias"] = (out[f"{layer}.bias"] * a.numpy() + b.numpy()).astype(np.float32)
-    gains = {layer: [round(float(a.min()), 3), round(float(a.max()), 3)] for layer, (a, _) in affine.items()}
-    return out, gains
+        with torch.no_grad():
+            _batch_norm(model, layer).weight.copy_(a.float())
+            _batch_norm(model, layer).bias.copy_((ms - a * mt).float())
+        gains[layer] = [round(float(a.min()), 3), round(float(a.max()), 3)]
+    return export_weights(model), gains
 
 
 def statistics_table(shipped: dict, data: Path, work: Path) -> None:
@@ -180,21 +233,18 @@ def statistics_table(shipped: dict, data: Path, work: Path) -> None:
     from seismo3d.data.synthetic_sections import synthetic_fault_section
     from seismo3d.seismic.faults.likelihood.network import normalise_section
 
-    w = {k: torch.from_numpy(v) for k, v in shipped.items()}
+    model = model_from_weights(shipped)
     gen = [synthetic_fault_section((128, 128), seed=SOURCE_SEED + k) for k in range(96)]
     gsb = data / "seismic" / "gsb_fault_sticks"
     sets = {"generated, faulted": [normalise_section(g.section) for g in gen if g.n_faults > 0][:48],
             "generated, unfaulted": [normalise_section(g.section) for g in gen if g.n_faults == 0],
             "F3 inline 100": target_sections([read_line(f3_lines(data, work)[100][0])], 128),
             "GSB crossline 2600": target_sections([read_line(gsb / "gsb_crl_2600.sgy")])}
-    ref = {layer: layer_stats(w, sets["generated, faulted"], {}, layer)[1] for layer in LAYERS[::2]}
+    ref = {layer: layer_stats(model, sets["generated, faulted"], layer)[1] for layer in LAYERS[::2]}
     print(" " * 22 + "".join(f"{layer:>13s}" for layer in LAYERS[::2]) + "   p > 0.5")
     for name, secs in sets.items():
-        ratio = [float((layer_stats(w, secs, {}, layer)[1] / ref[layer]).mean()) for layer in LAYERS[::2]]
-        with torch.no_grad():
-            p = np.concatenate([torch.sigmoid(forward(w, torch.from_numpy(_pad8(s)[None, None].copy()), {}))
-                                .numpy().ravel() for s in secs])
-        print(f"{name:22s}" + "".join(f"{v:13.3f}" for v in ratio) + f"   {np.mean(p > 0.5):.4f}", flush=True)
+        ratio = [float((layer_stats(model, secs, layer)[1] / ref[layer]).mean()) for layer in LAYERS[::2]]
+        print(f"{name:22s}" + "".join(f"{v:13.3f}" for v in ratio) + f"   {fault_share(model, secs):.4f}", flush=True)
 
 
 def write_model_folder(weights: dict, path: Path) -> Path:
@@ -231,9 +281,9 @@ def main(argv=None) -> None:
             np.load(fh) as npz:
         shipped = {k: npz[k] for k in npz.files}
     t0 = time.process_time()
-    w = {k: torch.from_numpy(v) for k, v in shipped.items()}
+    model = model_from_weights(shipped)
     src = source_sections()
-    source_stats = {layer: layer_stats(w, src, {}, layer) for layer in LAYERS}
+    source_stats = {layer: layer_stats(model, src, layer) for layer in LAYERS}
     print(f"source statistics: {len(src)} generated sections, {time.process_time() - t0:.1f} CPU s", flush=True)
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
@@ -250,17 +300,17 @@ def main(argv=None) -> None:
         for source, targets, source_segy in folds:
             if a.folds and source not in a.folds:
                 continue
-            c0 = time.process_time()
             tgt = target_sections([read_line(source_segy)], a.tile)
             print(f"{a.survey} statistics of line {source}: {len(tgt)} sections (tile {a.tile})", flush=True)
             for variant in a.variants:
+                c0 = time.process_time()
                 if variant == "identity":
                     weights, gains = shipped, {}
                 else:
                     k, s = variant.rstrip("p").split(":")
                     ref = source_stats
                     if variant.endswith("p"):  # the source mixed to the target's estimated share of faults
-                        ref, mix = prior_matched_stats(w, tgt)
+                        ref, mix = prior_matched_stats(model, tgt)
                         print(f"  {variant}: faulted generated sections weighted {mix:.3f}", flush=True)
                     weights, gains = aligned_weights(shipped, ref, tgt, blocks=float(k), shrink=float(s))
                 model = write_model_folder(weights, work / f"model_{source}_{variant.replace(':', '_')}")

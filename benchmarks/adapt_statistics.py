@@ -300,9 +300,11 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--survey", choices=("f3", "gsb"), default="f3")
     ap.add_argument("--variants", nargs="+", default=["identity", "7:1"],
-                    help="'identity' or BLOCKS:SHRINK (e.g. 7:1 full AdaBN, 2:1 the first two blocks, 7:0.5)")
-    ap.add_argument("--folds", nargs="+", type=int, default=None)
-    ap.add_argument("--no-default", action="store_true")
+                    help="'identity' or BLOCKS:SHRINK[p] (7:1 full AdaBN, 2:1 the first two blocks, 0.5:1 the first "
+                         "convolution, 7:0.5 shrunk halfway; a trailing p: the source mixed to the line's fault share)")
+    ap.add_argument("--folds", nargs="+", type=int, default=None, help="the lines whose statistics are used "
+                    "(default: both folds)")
+    ap.add_argument("--no-default", action="store_true", help="do not trace the shipped network (its scores: nan)")
     ap.add_argument("--picture", type=Path, default=None, help="draw the picture of the module notes to this PNG")
     ap.add_argument("--table", action="store_true", help="print the statistics table only (module notes)")
     ap.add_argument("--tile", type=int, default=0, help="target statistics over tiles of this side (0: whole grids)")

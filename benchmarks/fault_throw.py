@@ -44,6 +44,7 @@ import numpy as np
 CHOOSE = tuple(range(1075, 1084))
 REPORT = tuple(range(1084, 1093))
 MIN_OFFSET = 2.0  # samples: people's median offset on a fault for its sign to count
+SKIP = 5.0  # samples: an error of about half the reflectors' period (9-12 samples here) or more is a cycle skip
 # the report half, measured 2026-11-28 (see the module docstring): lower bounds on the fractions of faults with the
 # right sign, upper bound on the median absolute error at crossings, samples
 CHECK = dict(sign_at_crossings=None, sign_of_median=None, median_abs_error=None)
@@ -147,6 +148,8 @@ class HalfScores:
     median_abs_error: float  # over their crossings, samples
     n_crossings: int
     unmeasured: int  # crossings without a throw
+    median_abs_error_all: float  # over every fault's crossings, samples
+    skips: int  # faults whose throw at the crossings is SKIP samples or more from the people's offset
 
 
 def half_scores(faults: list[FaultRow]) -> HalfScores:
@@ -155,6 +158,8 @@ def half_scores(faults: list[FaultRow]) -> HalfScores:
     def frac(values):
         return float(np.mean(values)) if values else float("nan")
 
+    every = np.concatenate([np.abs(f.ours - f.people) for f in faults]) if faults else np.zeros(0)
+    every = every[np.isfinite(every)]
     errors, unmeasured = [], 0
     for f in big:
         ok = np.isfinite(f.ours)
@@ -166,7 +171,9 @@ def half_scores(faults: list[FaultRow]) -> HalfScores:
         sign_of_median=frac([np.sign(f.median_throw) == np.sign(f.people_median) for f in big]),
         sign_of_step=frac([np.sign(f.step) == np.sign(f.people_median) for f in big if np.isfinite(f.step)]),
         median_abs_error=float(np.median(errors)) if errors else float("nan"),
-        n_crossings=len(errors) + unmeasured, unmeasured=unmeasured)
+        n_crossings=len(errors) + unmeasured, unmeasured=unmeasured,
+        median_abs_error_all=float(np.median(every)) if every.size else float("nan"),
+        skips=sum(abs(f.ours_median - f.people_median) >= SKIP for f in faults))
 
 
 def print_half(name: str, inlines, faults: list[FaultRow], seconds: float) -> HalfScores:
@@ -189,7 +196,9 @@ def print_half(name: str, inlines, faults: list[FaultRow], seconds: float) -> Ha
     print(f"{name}: {s.n_faults} faults cut a people's horizon, {s.n_offset} with a people's median offset >= "
           f"{MIN_OFFSET:g} samples; right sign: {s.sign_at_crossings:.0%} at the crossings, {s.sign_of_median:.0%} "
           f"of the median throw, {s.sign_of_step:.0%} of throw_step_samples; median |error| at their "
-          f"{s.n_crossings} crossings {s.median_abs_error:.1f} samples ({s.unmeasured} unmeasured)")
+          f"{s.n_crossings} crossings {s.median_abs_error:.1f} samples ({s.unmeasured} unmeasured); over every "
+          f"fault's crossings {s.median_abs_error_all:.1f} samples; {s.skips} of {s.n_faults} faults off by >= "
+          f"{SKIP:g} samples (a cycle skip)")
     return s
 
 

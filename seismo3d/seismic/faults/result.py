@@ -388,6 +388,17 @@ class FaultThrow:
         The half period of the reflectors around the fault, samples
         (:func:`~seismo3d.seismic.faults.reflector_period.half_period`); NaN when not measured (set by
         :func:`~seismo3d.seismic.faults.steps.faults_from_cells` when the evidence asks for it).
+    rival_ratio : (n_points,) float32 ndarray or None
+        How ambiguous the throw is at each point: the weighted correlation of the best rival shift (another peak of
+        the correlation curve that set the point's throw: its patch's, or its window's down a 2D fault; on periodic
+        reflectors usually a reflector period away) over the chosen shift's
+        (:func:`~seismo3d.seismic.traces.runner_up_peak`). Near or above 1, two shifts match the sides about equally
+        and the throw, its sign included, may be either; 0 where the curve has no rival; NaN where the throw is
+        unmeasured or its correlation is not positive.
+    alternative_throw : float
+        When the throw is ambiguous (the median ``rival_ratio`` of its measured points at least
+        :attr:`~seismo3d.seismic.faults.throw.ThrowOptions.ambiguous_ratio`): the median of the rival shifts, samples,
+        the throw the sides support nearly as well as ``median_throw``; NaN otherwise.
     """
 
     fault_id: int
@@ -403,6 +414,17 @@ class FaultThrow:
     n_patches_measured: int = -1
     step: float = float("nan")
     half_period: float = float("nan")
+    rival_ratio: np.ndarray | None = None
+    alternative_throw: float = float("nan")
+
+    @property
+    def ambiguity(self) -> float:
+        """Median of the finite :attr:`rival_ratio`; NaN if none."""
+        if self.rival_ratio is None:
+            return float("nan")
+        r = np.asarray(self.rival_ratio, np.float64)
+        r = r[np.isfinite(r)]
+        return float(np.median(r)) if r.size else float("nan")
 
 
 @dataclass(frozen=True, eq=False)

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .windows import CubeWindow
-from ..traces import ncc_curve, side_coherence, small_shift_weight, subsample_peak
+from ..traces import ncc_curve, runner_up_peak, side_coherence, small_shift_weight, subsample_peak
 
 # used by the throw module; not part of the package's public face
 __all__ = ["SectionProfile", "FaultZone", "fault_zone", "section_profile", "section_read_box", "section_step",
@@ -52,6 +52,8 @@ class SectionProfile:
     correlation_unshifted: np.ndarray  # (n_windows,) ... with no shift
     coherence: float  # the smaller of the two sides' continuity (nearer against farther traces)
     step: np.ndarray = None  # (n_windows,) samples, the offset that is a step at the fault (section_step)
+    rival: np.ndarray = None  # (n_windows,) samples, the best other peak of the window's score (runner_up_peak)
+    rival_ratio: np.ndarray = None  # (n_windows,) its score over the chosen peak's
 
     @property
     def median_step(self) -> float:
@@ -178,8 +180,9 @@ def section_profile(zone: FaultZone, win: CubeWindow, *, sides, slope_margin, wi
     -------
     SectionProfile
         Per window: its centre (samples), throw (samples, positive = hanging wall down; NaN where the sides overlap
-        too little), the correlation at that shift and at none, and the step at the fault; and the sides'
-        continuity.
+        too little), the correlation at that shift and at none, the step at the fault, and the best rival shift of
+        its score with that score over the chosen one's (:func:`~seismo3d.seismic.traces.runner_up_peak`); and the
+        sides' continuity.
 
     References
     ----------
@@ -215,17 +218,21 @@ def section_profile(zone: FaultZone, win: CubeWindow, *, sides, slope_margin, wi
     throw = np.full(n_w, np.nan)
     corr = np.full(n_w, np.nan)
     corr0 = np.full(n_w, np.nan)
+    rival = np.full(n_w, np.nan)
+    rival_ratio = np.full(n_w, np.nan)
     for w, (curve, i) in enumerate(zip(curves, k_best)):
         if curve is None or not np.isfinite(curve[1][i]):
             continue
         throw[w] = float(ks[i]) + subsample_peak(curve[1], i)
+        j, rival_ratio[w] = runner_up_peak(score[w], i)  # the shift the window's score ranks next
+        rival[w] = j - reach
         corr[w] = curve[2][i]
         corr0[w] = curve[2][reach]
     coherence = float(np.min(coh)) if np.all(np.isfinite(coh)) else float("nan")
     near = min(int(opt.step_traces), int(sides[1]) + int(slope_margin) - 2)  # within the traces read
     steps = section_step(zone, win, starts=starts, size=size, near=near, reach=reach, min_overlap=min_overlap,
                          min_rows=opt.min_rows)
-    return SectionProfile(centres, throw, corr, corr0, coherence, steps)
+    return SectionProfile(centres, throw, corr, corr0, coherence, steps, rival, rival_ratio)
 
 
 def _finite_median(values) -> float:

@@ -78,3 +78,61 @@ def test_bad_input_names_the_argument():
         horizon_offsets(points, np.zeros(3), {0: 1}, horizons)
     with pytest.raises(InputError, match="near and far"):
         horizon_offsets(points, np.zeros(len(points)), {0: 1}, horizons, near=5, far=2)
+
+
+# --------------------------------------------------------------------------------------------------------------------
+# an ambiguous throw says so (FaultThrow.rival_ratio, alternative_throw; fault_summary.csv's throw_ambiguity)
+
+
+def _faulted_section(trace, throw, *, n_traces=120):
+    """A section of one repeated ``trace`` cut by a fault line dipping toward increasing trace (0.2 traces per
+    sample), its hanging wall (beyond the line) moved down by ``throw`` samples; and the fault's points."""
+    t = np.arange(trace.size, dtype=np.float64)
+    fault_t = np.arange(20, trace.size - 20)
+    fault_x = 45.0 + 0.2 * (fault_t - 20)
+    section = np.empty((n_traces, trace.size))
+    for x in range(n_traces):
+        hanging = x > np.interp(t, fault_t, fault_x, left=fault_x[0], right=fault_x[-1])
+        section[x] = np.where(hanging, np.interp(t - throw, t, trace), trace)
+    return section, np.column_stack([np.rint(fault_x), fault_t]).astype(np.int64)
+
+
+def test_runner_up_peak_finds_the_rival_a_period_away():
+    from seismo3d.seismic.traces import runner_up_peak
+
+    k = np.arange(-20, 21)
+    curve = np.cos(2 * np.pi * (k - 4) / 10.0) * (1 - 0.25 * np.abs(k) / 21)
+    index, ratio = runner_up_peak(curve, int(np.argmax(curve)))
+    assert k[0] + index == pytest.approx(-6, abs=0.5)  # one period (10 samples) from the chosen +4
+    assert 0.9 < ratio < 1.0
+    assert runner_up_peak([0.0, 1.0, 0.0], 1) == (pytest.approx(np.nan, nan_ok=True), 0.0)  # no rival
+    index, ratio = runner_up_peak([0.2, 0.5, 0.1, 0.9, 0.2], 1)  # a chosen peak that a rival beats
+    assert index == pytest.approx(3, abs=0.5) and ratio == pytest.approx(1.8)
+
+
+def test_a_periodic_section_gives_an_ambiguous_throw_with_its_alternative():
+    from seismo3d.seismic.faults.throw import fault_throw
+
+    t = np.arange(300)
+    section, points = _faulted_section(np.sin(2 * np.pi * t / 10.0), 4.0)  # a reflector every 10 samples
+    res = fault_throw(section, points)
+    # +4 and -6 fit the sides equally (a period apart): the throw says it may be either
+    assert res.median_throw == pytest.approx(4.0, abs=0.5)
+    assert res.ambiguity > 0.8
+    assert res.alternative_throw == pytest.approx(-6.0, abs=1.0)
+
+
+def test_a_throw_of_unlike_reflectors_is_not_ambiguous():
+    from scipy.signal import fftconvolve
+
+    from seismo3d.seismic.faults.throw import fault_throw
+
+    rng = np.random.default_rng(0)
+    tw = np.arange(-12, 13)
+    ricker = (1 - 2 * (np.pi * 0.08 * tw) ** 2) * np.exp(-(np.pi * 0.08 * tw) ** 2)
+    trace = fftconvolve(rng.standard_normal(300) * (rng.random(300) < 0.3), ricker, mode="same")
+    section, points = _faulted_section(trace, 6.0)
+    res = fault_throw(section, points)
+    assert res.median_throw == pytest.approx(6.0, abs=0.5)
+    assert res.ambiguity < 0.5
+    assert np.isnan(res.alternative_throw)

@@ -71,6 +71,11 @@ class FaultRow:
         return float(np.median(self.people))
 
     @property
+    def ambiguous(self) -> bool:
+        """fault_summary.csv gives an alternative throw."""
+        return bool(np.isfinite(self.alternative))
+
+    @property
     def ours_median(self) -> float:
         ok = np.isfinite(self.ours)
         return float(np.median(self.ours[ok])) if ok.any() else float("nan")
@@ -155,6 +160,9 @@ class HalfScores:
     unmeasured: int  # crossings without a throw
     median_abs_error_all: float  # over every fault's crossings, samples
     skips: int  # faults whose throw at the crossings is SKIP samples or more from the people's offset
+    n_wrong: int  # faults off by SKIP or more, or of the wrong sign (people's offset >= MIN_OFFSET)
+    flagged_wrong: int  # ... whose throw fault_summary.csv calls ambiguous (an alternative given)
+    flagged_right: int  # the other faults called ambiguous
 
 
 def half_scores(faults: list[FaultRow]) -> HalfScores:
@@ -163,6 +171,9 @@ def half_scores(faults: list[FaultRow]) -> HalfScores:
     def frac(values):
         return float(np.mean(values)) if values else float("nan")
 
+    wrong = [abs(f.ours_median - f.people_median) >= SKIP
+             or (abs(f.people_median) >= MIN_OFFSET and np.sign(f.ours_median) != np.sign(f.people_median))
+             for f in faults]
     every = np.concatenate([np.abs(f.ours - f.people) for f in faults]) if faults else np.zeros(0)
     every = every[np.isfinite(every)]
     errors, unmeasured = [], 0
@@ -178,7 +189,9 @@ def half_scores(faults: list[FaultRow]) -> HalfScores:
         median_abs_error=float(np.median(errors)) if errors else float("nan"),
         n_crossings=len(errors) + unmeasured, unmeasured=unmeasured,
         median_abs_error_all=float(np.median(every)) if every.size else float("nan"),
-        skips=sum(abs(f.ours_median - f.people_median) >= SKIP for f in faults))
+        skips=sum(abs(f.ours_median - f.people_median) >= SKIP for f in faults),
+        n_wrong=sum(wrong), flagged_wrong=sum(w and f.ambiguous for w, f in zip(wrong, faults)),
+        flagged_right=sum(not w and f.ambiguous for w, f in zip(wrong, faults)))
 
 
 def print_half(name: str, inlines, faults: list[FaultRow], seconds: float) -> HalfScores:
@@ -203,7 +216,8 @@ def print_half(name: str, inlines, faults: list[FaultRow], seconds: float) -> Ha
           f"of the median throw, {s.sign_of_step:.0%} of throw_step_samples; median |error| at their "
           f"{s.n_crossings} crossings {s.median_abs_error:.1f} samples ({s.unmeasured} unmeasured); over every "
           f"fault's crossings {s.median_abs_error_all:.1f} samples; {s.skips} of {s.n_faults} faults off by >= "
-          f"{SKIP:g} samples (a cycle skip)")
+          f"{SKIP:g} samples (a cycle skip); called ambiguous: {s.flagged_wrong} of the {s.n_wrong} off by a skip or "
+          f"of the wrong sign, {s.flagged_right} of the {s.n_faults - s.n_wrong} others")
     return s
 
 

@@ -395,8 +395,11 @@ class FaultThrow:
         (:func:`~seismo3d.seismic.traces.runner_up_peak`). Near or above 1, two shifts match the sides about equally
         and the throw, its sign included, may be either; 0 where the curve has no rival; NaN where the throw is
         unmeasured or its correlation is not positive.
+    ambiguity : float
+        The median ``rival_ratio`` of the fault's measured points (over the whole fault, as ``median_throw``); NaN if
+        none.
     alternative_throw : float
-        When the throw is ambiguous (the median ``rival_ratio`` of its measured points at least
+        When the throw is ambiguous (``ambiguity`` at least
         :attr:`~seismo3d.seismic.faults.throw.ThrowOptions.ambiguous_ratio`): the median of the rival shifts, samples,
         the throw the sides support nearly as well as ``median_throw``; NaN otherwise.
     """
@@ -415,16 +418,8 @@ class FaultThrow:
     step: float = float("nan")
     half_period: float = float("nan")
     rival_ratio: np.ndarray | None = None
+    ambiguity: float = float("nan")
     alternative_throw: float = float("nan")
-
-    @property
-    def ambiguity(self) -> float:
-        """Median of the finite :attr:`rival_ratio`; NaN if none."""
-        if self.rival_ratio is None:
-            return float("nan")
-        r = np.asarray(self.rival_ratio, np.float64)
-        r = r[np.isfinite(r)]
-        return float(np.median(r)) if r.size else float("nan")
 
 
 @dataclass(frozen=True, eq=False)

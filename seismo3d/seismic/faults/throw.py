@@ -492,18 +492,20 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=fitness,
         inlier_rmse=rmse, n_points_used=int(sum(counts)), side_coherence=coherence.astype(np.float32),
         n_patches_measured=n_measured, rival_ratio=rival_ratio.astype(np.float32),
-        alternative_throw=_alternative(rival, rival_ratio, opt.ambiguous_ratio),
+        **_ambiguity(rival, rival_ratio, opt.ambiguous_ratio),
     )
 
 
-def _alternative(rival: np.ndarray, ratio: np.ndarray, ambiguous_ratio: float) -> float:
-    """The median rival shift of a fault whose median rival ratio reaches ``ambiguous_ratio`` (over its measured
-    points), NaN otherwise (:attr:`FaultThrow.alternative_throw`)."""
+def _ambiguity(rival: np.ndarray, ratio: np.ndarray, ambiguous_ratio: float) -> dict:
+    """The fault's ``ambiguity`` (median rival ratio of its measured points) and ``alternative_throw`` (the median
+    rival shift when that reaches ``ambiguous_ratio``, else NaN) for :class:`FaultThrow`."""
     measured = np.isfinite(ratio)
-    if not measured.any() or np.median(ratio[measured]) < ambiguous_ratio:
-        return float("nan")
+    if not measured.any():
+        return dict(ambiguity=float("nan"), alternative_throw=float("nan"))
+    ambiguity = float(np.median(ratio[measured]))
     shifts = rival[measured & np.isfinite(rival)]
-    return float(np.median(shifts)) if shifts.size else float("nan")
+    alternative = float(np.median(shifts)) if ambiguity >= ambiguous_ratio and shifts.size else float("nan")
+    return dict(ambiguity=ambiguity, alternative_throw=alternative)
 
 
 def _section_throw(source, pts, nrm3, fid: int, opt: ThrowOptions, max_throw: int) -> FaultThrow:
@@ -543,5 +545,5 @@ def _section_throw(source, pts, nrm3, fid: int, opt: ThrowOptions, max_throw: in
         median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=float("nan"),
         inlier_rmse=float("nan"), n_points_used=0, side_coherence=np.full(n, prof.coherence, np.float32),
         n_patches_measured=int(ok.sum()), step=prof.median_step, rival_ratio=rival_ratio.astype(np.float32),
-        alternative_throw=_alternative(rival, rival_ratio, opt.ambiguous_ratio),
+        **_ambiguity(rival, rival_ratio, opt.ambiguous_ratio),
     )

@@ -390,8 +390,9 @@ class FaultThrow:
         :func:`~seismo3d.seismic.faults.steps.faults_from_cells` when the evidence asks for it).
     rival_ratio : (n_points,) float32 ndarray or None
         How ambiguous the throw is at each point: the weighted correlation of the best rival shift (another peak of
-        the correlation curve that set the point's throw: its patch's, or its window's down a 2D fault; on periodic
-        reflectors usually a reflector period away) over the chosen shift's
+        the correlation curve that set the point's throw, its patch's; down a 2D fault, the whole throw profile
+        moved alike in every window, one value for the fault; on periodic reflectors usually a reflector period
+        away) over the chosen shift's
         (:func:`~seismo3d.seismic.traces.runner_up_peak`). Near or above 1, two shifts match the sides about equally
         and the throw, its sign included, may be either; 0 where the curve has no rival; NaN where the throw is
         unmeasured or its correlation is not positive.

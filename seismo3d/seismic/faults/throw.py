@@ -537,9 +537,9 @@ def _section_throw(source, pts, nrm3, fid: int, opt: ThrowOptions, max_throw: in
 
     throw = at_points(prof.throw)
     finite = np.isfinite(throw)
-    # a window's rival is its own (not interpolated between windows): each point takes its nearest window's
-    nearest = np.abs(pts[:, 1][:, None] - prof.t[None, :]).argmin(axis=1)
-    rival, rival_ratio = prof.rival[nearest], np.where(finite, prof.rival_ratio[nearest], np.nan)
+    rival = at_points(prof.rival)  # the rival profile, as the throw's
+    profile_ratio = prof.rival_ratio[ok][0] if ok.any() else np.nan  # one value for the profile
+    rival_ratio = np.where(finite, profile_ratio, np.nan)
     return FaultThrow(
         fault_id=fid, throw=throw, registered=np.zeros(n, bool), correlation=at_points(prof.correlation),
         correlation_unshifted=at_points(prof.correlation_unshifted),

@@ -136,3 +136,16 @@ def test_a_throw_of_unlike_reflectors_is_not_ambiguous():
     assert res.median_throw == pytest.approx(6.0, abs=0.5)
     assert res.ambiguity < 0.5
     assert np.isnan(res.alternative_throw)
+
+
+def test_a_periodic_cube_gives_an_ambiguous_throw_with_its_alternative():
+    from seismo3d.seismic.faults.throw import fault_throw
+
+    t = np.arange(200)
+    section, points = _faulted_section(np.sin(2 * np.pi * t / 10.0), 4.0, n_traces=100)
+    cube = np.repeat(section[None], 24, axis=0)  # the same section on 24 inlines: a fault plane along them
+    points3 = np.concatenate([np.column_stack([np.full(len(points), i), points]) for i in range(24)])
+    res = fault_throw(cube, points3)
+    assert res.median_throw == pytest.approx(4.0, abs=0.5)
+    assert res.ambiguity > 0.8
+    assert res.alternative_throw == pytest.approx(-6.0, abs=1.0)

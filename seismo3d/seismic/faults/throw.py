@@ -99,11 +99,11 @@ class ThrowOptions:
     ambiguous_ratio : float
         A fault's throw is ambiguous when the median of its points' ``rival_ratio`` (the best rival shift's weighted
         correlation over the chosen one's, :attr:`FaultThrow.rival_ratio`) reaches this; its
-        ``alternative_throw`` is then the rivals' median. 0.7, chosen on Penobscot inlines 1075-1083 only
+        ``alternative_throw`` is then the rivals' median. 0.4, chosen on Penobscot inlines 1075-1083 only
         (``benchmarks/fault_throw.py --half choose``, 2026-11-28; the largest share of wrong throws reached less
-        the share of right ones, of 0.4-0.9 by 0.1): of the 22 faults cutting a people's horizon, 3 of the 5 whose
+        the share of right ones, of 0.3-0.9 by 0.1): of the 22 faults cutting a people's horizon, 4 of the 5 whose
         throw is 5 samples or more off the horizon's offset, or of the wrong sign, reach it, and 3 of the 17 others
-        (0.4, 0.5, 0.6, 0.8, 0.9: 5, 4, 3, 2, 0 of 5 against 10, 8, 5, 2, 2 of 17); reported on inlines 1084-1092.
+        (0.3, 0.5, 0.6, 0.7: 4, 2, 1, 1 of 5 against 9, 2, 0, 0 of 17); reported on inlines 1084-1092.
 
     Raises
     ------
@@ -129,7 +129,7 @@ class ThrowOptions:
     profile_max_throw_per_length: float = 0.1
     profile_max_shift: float = 0.5
     step_traces: int = 3
-    ambiguous_ratio: float = 0.7
+    ambiguous_ratio: float = 0.4
 
     def __post_init__(self):
         if self.max_throw is not None:

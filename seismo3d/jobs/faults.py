@@ -171,8 +171,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       offset that is a step at the fault, about the throw at a fault and a small part of it at a flexure:
       :attr:`~seismo3d.seismic.faults.evidence.FaultEvidence.step`; ``throw_ambiguity``, how well the best rival
       shift, often a reflector period away, matches the sides against the throw's (0: no rival, near 1: about as
-      well; a 2D fault's whole throw profile moved alike), and ``throw_alternative_samples``, that rival throw where the ambiguity reaches 0.4 (empty otherwise):
-      the throw, its sign included, may then be either, :attr:`~seismo3d.seismic.faults.FaultThrow.rival_ratio`): the
+      well; on a 2D fault, its whole throw profile moved alike), and ``throw_alternative_samples``, that rival throw
+      where the ambiguity reaches 0.4 (empty otherwise): the throw, its sign included, may then be either,
+      :attr:`~seismo3d.seismic.faults.FaultThrow.rival_ratio`): the
       evidence each fault shows (:class:`~seismo3d.seismic.faults.evidence.FaultEvidence`; only faults whose votes
       hold along them and whose reflectors are displaced, or which the network calls likely, are kept:
       :func:`~seismo3d.seismic.faults.evidence.supported_faults`), to sort and filter on; ``vote_ratio`` is the

@@ -60,14 +60,15 @@ for f, n, span in list(zip(result.faults, sizes, spans))[:5]:
     t = throws.get(f.id)
     throw = f"{t.median_throw:+.1f} samples" if t is not None and np.isfinite(t.median_throw) else "not measured"
     if t is not None and np.isfinite(t.alternative_throw):  # another shift fits the sides about as well
-        throw += f", ambiguous: {t.alternative_throw:+.1f} fits the sides almost as well ({t.ambiguity:.2f})"
+        throw += f", ambiguous: {t.alternative_throw:+.1f} fits the sides {t.ambiguity:.0%} as well"
     print(f"  fault {f.id:>3}: {n:>6} samples over {span:>2} inlines, median throw {throw}")
 
 # %% [markdown]
 # A throw is the shift that best aligns the reflectors of the two sides. On reflectors as regular as these, shifts
-# a reflector period apart can align them almost as well: the throw then says so ("ambiguous", with the other shift
-# and how well it fits against the throw's, `fault_summary.csv`'s `throw_alternative_samples` and `throw_ambiguity`),
-# and its sign, too, may be either.
+# a reflector period apart can align them nearly as well: where the best other shift fits at least 40 % as well,
+# the throw says so ("ambiguous", with that shift and how well it fits against the throw's: `fault_summary.csv`'s
+# `throw_alternative_samples` and `throw_ambiguity`), and its sign, too, may be either. All three throws here are
+# ambiguous: check them on the sections before using them.
 
 # %% [markdown]
 # ## The slab in 3D

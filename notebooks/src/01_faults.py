@@ -52,14 +52,23 @@ with warnings.catch_warnings():
 
 sizes = np.array([f.size for f in result.faults])
 spans = np.array([np.ptp(f.points[:, 0]) + 1 for f in result.faults])
-throws = {t.fault_id: t.median_throw for t in result.throws}
+throws = {t.fault_id: t for t in result.throws}
 print(f"faults traced: {len(result.faults)}")
 print(f"faults spanning at least 10 of the 18 inlines: {int((spans >= 10).sum())}")
 print(f"fault samples: {sizes.sum()} ({100 * sizes.sum() / cube.size:.2f} % of the window)")
 for f, n, span in list(zip(result.faults, sizes, spans))[:5]:
-    t = throws.get(f.id, np.nan)
-    throw = f"{t:+.1f} samples" if np.isfinite(t) else "not measured"
+    t = throws.get(f.id)
+    throw = f"{t.median_throw:+.1f} samples" if t is not None and np.isfinite(t.median_throw) else "not measured"
+    if t is not None and np.isfinite(t.alternative_throw):  # another shift fits the sides about as well
+        throw += f", ambiguous: {t.alternative_throw:+.1f} fits the sides {t.ambiguity:.0%} as well"
     print(f"  fault {f.id:>3}: {n:>6} samples over {span:>2} inlines, median throw {throw}")
+
+# %% [markdown]
+# A throw is the shift that best aligns the reflectors of the two sides. On reflectors as regular as these, shifts
+# a reflector period apart can align them nearly as well: where the best other shift fits at least 40 % as well,
+# the throw says so ("ambiguous", with that shift and how well it fits against the throw's: `fault_summary.csv`'s
+# `throw_alternative_samples` and `throw_ambiguity`), and its sign, too, may be either. All three throws here are
+# ambiguous: check them on the sections before using them.
 
 # %% [markdown]
 # ## The slab in 3D

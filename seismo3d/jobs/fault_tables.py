@@ -125,17 +125,21 @@ def write_summary(inp, result: FaultInterpretation, path: Path, rows: list) -> P
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
         header = ["id", "n_points", *orientation, "mean_dip_deg", "median_throw_samples", *extra,
-                  "throw_spread_samples", "throw_step_samples", "throw_correlation", "correlation_gain",
+                  "throw_spread_samples", "throw_step_samples", "throw_alternative_samples", "throw_ambiguity",
+                  "throw_correlation", "correlation_gain",
                   "side_coherence", "vote_ratio", "mean_likelihood", "confidence"]
         w.writerow(header)
         evidence = {e.fault_id: e for e in result.evidence}
+        throws = {t.fault_id: t for t in result.throws}
         for f in result.faults:
-            e = evidence[f.id]
+            e, t = evidence[f.id], throws.get(f.id)
             row = [f.id, f.size, _dip_direction(inp, f) if two_d else f"{f.mean_strike_deg:.1f}",
                    f"{f.mean_dip_deg:.1f}", _fmt(e.median_throw)]
             if extra:
                 row.append(_fmt(e.median_throw * result.sample_interval))
-            row += [_fmt(e.throw_spread), _fmt(e.step), _fmt(e.correlation), _fmt(e.correlation_gain),
+            row += [_fmt(e.throw_spread), _fmt(e.step),
+                    _fmt(t.alternative_throw if t is not None else float("nan")),
+                    _fmt(t.ambiguity if t is not None else float("nan")), _fmt(e.correlation), _fmt(e.correlation_gain),
                     _fmt(e.side_coherence),
                     _fmt(e.vote_ratio), _fmt(e.mean_likelihood), _fmt(e.confidence)]
             w.writerow(row)

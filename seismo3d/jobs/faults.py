@@ -165,11 +165,16 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
       along each side in itself (the smaller of the two sides; reported, not asked for: sides that do not match say less
       of a fault when they are not continuous themselves). An unmeasured throw is empty.
     * ``fault_summary.csv``: one row per fault, columns ``id, n_points, mean_strike_deg, mean_dip_deg,
-      median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_step_samples, throw_correlation,
-      correlation_gain, side_coherence, vote_ratio, mean_likelihood, confidence`` (``throw_spread_samples`` is empty
-      where a fault's throw is one shift: a 2D fault spanning fewer than two windows of its throw profile;
-      ``throw_step_samples``, 2D only, the part of the offset that is a step at the fault, about the throw at a
-      fault and a small part of it at a flexure: :attr:`~seismo3d.seismic.faults.evidence.FaultEvidence.step`): the
+      median_throw_samples, median_throw_<unit>, throw_spread_samples, throw_step_samples,
+      throw_alternative_samples, throw_ambiguity, throw_correlation, correlation_gain, side_coherence, vote_ratio,
+      mean_likelihood, confidence`` (``throw_spread_samples`` is empty where a fault's throw is one shift: a 2D
+      fault spanning fewer than two windows of its throw profile; ``throw_step_samples``, 2D only, the part of the
+      offset that is a step at the fault, about the throw at a fault and a small part of it at a flexure:
+      :attr:`~seismo3d.seismic.faults.evidence.FaultEvidence.step`; ``throw_ambiguity``, how well the best rival
+      shift, often a reflector period away, matches the sides against the throw's (0: no rival, near 1: about as
+      well; on a 2D fault, its whole throw profile moved alike), and ``throw_alternative_samples``, that rival throw
+      where the ambiguity reaches 0.4 (empty otherwise): the throw, its sign included, may then be either,
+      :attr:`~seismo3d.seismic.faults.FaultThrow.rival_ratio`): the
       evidence each fault shows (:class:`~seismo3d.seismic.faults.evidence.FaultEvidence`; only faults whose votes
       hold along them and whose reflectors are displaced, or which the network calls likely, are kept:
       :func:`~seismo3d.seismic.faults.evidence.supported_faults`), to sort and filter on; ``vote_ratio`` is the

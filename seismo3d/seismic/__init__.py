@@ -62,8 +62,8 @@ if TYPE_CHECKING:
         structure_tensor_slopes,
     )
     from .evaluation import (
-        FaultLineCoverage, FaultScores, HorizonErrors, RegistrationErrors, evaluate_faults, fault_line_coverage,
-        horizon_errors, registration_errors,
+        FaultLineCoverage, FaultScores, HorizonErrors, HorizonOffsets, RegistrationErrors, evaluate_faults,
+        fault_line_coverage, horizon_errors, horizon_offsets, registration_errors,
     )
     from .faults import (
         EvidenceOptions, Fault, FaultEvidence, FaultInterpretation, FaultLikelihood, FaultScanOptions, FaultThrow,
@@ -95,7 +95,8 @@ __all__ = [
     "RegistrationErrors", "SeismicCube", "ThrowOptions", "TrackingOptions", "VolumeOptions", "VolumeRegistration",
     "autotrack", "discontinuity", "eigen_coherence", "evaluate_faults", "FaultLineCoverage", "fault_line_coverage",
     "fault_labels", "fault_likelihood",
-    "fault_normals", "fault_throw", "fault_throws", "fill_horizon", "horizon_errors", "open_segy",
+    "fault_normals", "fault_throw", "fault_throws", "fill_horizon", "horizon_errors", "HorizonOffsets",
+    "horizon_offsets", "open_segy",
     "read_ascii_lines", "read_section", "read_segy", "reflector_picks", "reflector_points", "register_volumes",
     "registration_errors", "reliable_throw", "resample_volume", "semblance", "structure_tensor_orientation",
     "structure_tensor_slopes", "thin_faults", "trace_faults", "track_horizon", "volume_spacing", "write_horizon_text",

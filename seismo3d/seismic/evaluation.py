@@ -1,5 +1,5 @@
-"""Evaluation against ground truth: fault detection scores, an interpreted fault line's coverage, horizon errors and
-sub-volume registration errors.
+"""Evaluation against ground truth: fault detection scores, an interpreted fault line's coverage, the offsets of
+people's horizons across traced faults (the true throw), horizon errors and sub-volume registration errors.
 
 The fault measures are computed beside a plain peer any interpreter knows, a skeleton of 1 - semblance
 (:func:`semblance_skeleton`, Marfurt 1998, thinned by scikit-image).
@@ -21,8 +21,9 @@ from ..errors import InputError
 from ..geometry.transforms import apply_transform, as_transform, rotation_error_deg
 from .fault_scoring import tolerant_scores
 
-__all__ = ["FaultScores", "FaultLineCoverage", "HorizonErrors", "RegistrationErrors", "evaluate_faults",
-           "fault_line_coverage", "horizon_errors", "plain_semblance", "registration_errors", "semblance_skeleton"]
+__all__ = ["FaultScores", "FaultLineCoverage", "HorizonErrors", "HorizonOffsets", "RegistrationErrors",
+           "evaluate_faults", "fault_line_coverage", "horizon_errors", "horizon_offsets", "plain_semblance",
+           "registration_errors", "semblance_skeleton"]
 
 
 @dataclass(frozen=True)
@@ -215,6 +216,149 @@ def fault_line_coverage(labels, line, *, tolerance=10.0) -> FaultLineCoverage:
     fid = max(counts, key=counts.get) if counts else 0
     return FaultLineCoverage(covered=covered / n, one_fault=counts.get(fid, 0) / n, fault_id=int(fid),
                              n_faults=len(counts))
+
+
+@dataclass(frozen=True)
+class HorizonOffsets:
+    """Result of :func:`horizon_offsets`: one row per crossing of a fault and a horizon.
+
+    Attributes
+    ----------
+    fault_id : (m,) int64 ndarray
+        The fault's id.
+    horizon : (m,) int64 ndarray
+        The horizon's index (row of ``horizons``).
+    trace, sample : (m,) float64 ndarray
+        Where the fault crosses the horizon: the fault's trace index there and the sample midway between the
+        horizon's two sides.
+    offset : (m,) float64 ndarray
+        The horizon's vertical offset across the fault, samples: its depth on the hanging-wall side less its depth
+        on the footwall side, each side extrapolated to the fault's trace; positive when the hanging wall moved down
+        (the sign convention of :class:`~seismo3d.seismic.FaultThrow`).
+    point : (m,) int64 ndarray
+        Index (into ``points``) of the fault point nearest the crossing, where a measured throw is read.
+    """
+
+    fault_id: np.ndarray
+    horizon: np.ndarray
+    trace: np.ndarray
+    sample: np.ndarray
+    offset: np.ndarray
+    point: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.fault_id.size)
+
+
+def horizon_offsets(points, fault_ids, hanging_wall, horizons, *, near=3, far=12, tolerance=2.0) -> HorizonOffsets:
+    """The offsets of picked horizons across the faults of a section: the true throw where a fault cuts a horizon.
+
+    At each fault point (trace ``x``, sample ``t``), the fault's zone is the traces of its points within 1 sample of
+    ``t`` (every strand). Each side's horizon picks ``near..far`` traces beyond the zone's edge are fitted by a line
+    (least squares over the traces with a pick, at least half of them) and extrapolated to ``x``: the horizon's
+    depth on that side at the fault, free of the horizon's own dip. The fault crosses the horizon at the point whose
+    sample is nearest the middle of the two sides' depths, if within half their difference plus ``tolerance``; the
+    offset there is the hanging-wall side's depth less the footwall side's.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like of float
+        Fault points (trace index, sample index) of one section, as ``fault_points.csv`` of ``seismo3d faults``.
+    fault_ids : (n,) array_like of int
+        The fault of each point.
+    hanging_wall : mapping of int to {+1, -1}
+        For each fault id, the side of its hanging wall: +1 toward increasing trace index (a fault dipping toward
+        increasing trace), -1 toward decreasing trace. Faults missing from it are skipped.
+    horizons : (k, n_traces) array_like of float
+        People's horizon picks, samples per trace, NaN where absent.
+    near, far : int, optional
+        Nearest and farthest traces beyond the fault zone's edge whose picks give each side's depth.
+    tolerance : float, optional
+        Samples beyond the two sides' depths within which a fault point counts as crossing the horizon.
+
+    Returns
+    -------
+    HorizonOffsets
+        One row per (fault, horizon) crossing, ordered by fault id then horizon; empty when none.
+
+    Raises
+    ------
+    InputError
+        ``points`` is not (n, 2), ``fault_ids`` not (n,), ``horizons`` not 2D, ``1 <= near <= far`` fails or
+        ``tolerance`` < 0.
+
+    Notes
+    -----
+    A second fault within ``far`` traces of the zone adds its offset to the one measured. Offsets are in the
+    picks' own resolution: a horizon smoothed over a fault by its interpreter shows its throw smeared over the side
+    traces (its line fit then holds part of the throw).
+    """
+    pts = np.asarray(points, dtype=np.float64)
+    ids = np.asarray(fault_ids)
+    picks = np.asarray(horizons, dtype=np.float64)
+    if pts.ndim != 2 or pts.shape[1] != 2:
+        raise InputError(f"points must be (n, 2) fault points (trace, sample); got shape {pts.shape}")
+    if ids.shape != (pts.shape[0],):
+        raise InputError(f"fault_ids must be one id per point, shape ({pts.shape[0]},); got shape {ids.shape}")
+    if picks.ndim != 2:
+        raise InputError(f"horizons must be (k, n_traces) picks in samples; got shape {picks.shape}")
+    near, far = int(near), int(far)
+    if not 1 <= near <= far:
+        raise InputError(f"near and far must satisfy 1 <= near <= far traces; got near={near}, far={far}")
+    tolerance = check_positive(tolerance, "tolerance", allow_zero=True)
+    n_traces = picks.shape[1]
+    d = np.arange(near, far + 1, dtype=np.float64)
+    rows: list = []
+    for fid in np.unique(ids):
+        if int(fid) not in hanging_wall:
+            continue
+        hw = 1.0 if hanging_wall[int(fid)] > 0 else -1.0
+        sel = np.nonzero(ids == fid)[0]
+        x, t = pts[sel, 0], pts[sel, 1]
+        lo, hi = _zone_edges(x, t)
+        for k in range(picks.shape[0]):
+            sides = [_side_depth(picks[k], edge, sign, d, x, n_traces) for edge, sign in ((lo, -1.0), (hi, 1.0))]
+            left, right = sides
+            mid = 0.5 * (left + right)
+            gap = np.abs(t - mid) - 0.5 * np.abs(right - left)
+            ok = np.isfinite(gap) & (gap <= tolerance)
+            if not ok.any():
+                continue
+            i = int(np.argmin(np.where(ok, np.abs(t - mid), np.inf)))
+            rows.append((int(fid), k, x[i], mid[i], hw * (right[i] - left[i]), int(sel[i])))
+    cols = list(zip(*rows)) if rows else [()] * 6
+    return HorizonOffsets(fault_id=np.asarray(cols[0], np.int64), horizon=np.asarray(cols[1], np.int64),
+                          trace=np.asarray(cols[2], np.float64), sample=np.asarray(cols[3], np.float64),
+                          offset=np.asarray(cols[4], np.float64), point=np.asarray(cols[5], np.int64))
+
+
+def _zone_edges(x: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Smallest and largest trace of the fault's points within 1 sample of each point's sample."""
+    rows = np.rint(t).astype(np.int64)
+    r0 = rows.min()
+    lo = np.full(rows.max() - r0 + 3, np.inf)
+    hi = np.full(lo.size, -np.inf)
+    for dr in (0, 1, 2):
+        np.minimum.at(lo, rows - r0 + dr, x)
+        np.maximum.at(hi, rows - r0 + dr, x)
+    return lo[rows - r0 + 1], hi[rows - r0 + 1]
+
+
+def _side_depth(pick: np.ndarray, edge: np.ndarray, sign: float, d: np.ndarray, x: np.ndarray,
+                n_traces: int) -> np.ndarray:
+    """Each point's horizon depth on one side (``sign`` -1: decreasing trace), the least-squares line through the
+    picks ``d`` traces beyond ``edge`` evaluated at the point's trace ``x``; NaN with picks on under half of them."""
+    xs = np.rint(edge[:, None] + sign * d[None, :])
+    inside = (xs >= 0) & (xs <= n_traces - 1)
+    h = np.where(inside, pick[np.clip(xs, 0, n_traces - 1).astype(np.int64)], np.nan)
+    w = np.isfinite(h)
+    cnt = w.sum(axis=1)
+    xm = np.where(w, xs, 0.0).sum(axis=1) / np.maximum(cnt, 1)
+    hm = np.where(w, h, 0.0).sum(axis=1) / np.maximum(cnt, 1)
+    dx = np.where(w, xs - xm[:, None], 0.0)
+    slope = (dx * np.where(w, h - hm[:, None], 0.0)).sum(axis=1) / np.maximum((dx * dx).sum(axis=1), 1e-12)
+    depth = hm + slope * (x - xm)
+    return np.where(cnt >= 0.5 * d.size, depth, np.nan)
 
 
 def horizon_errors(times, reference) -> HorizonErrors:

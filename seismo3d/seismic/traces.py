@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["parabolic_offset", "subsample_peak", "waveform", "ncc", "ncc_lag_search", "ncc_curve", "small_shift_weight",
-           "side_coherence"]
+__all__ = ["parabolic_offset", "subsample_peak", "runner_up_peak", "waveform", "ncc", "ncc_lag_search", "ncc_curve",
+           "small_shift_weight", "side_coherence"]
 
 
 def parabolic_offset(y_minus, y_0, y_plus):
@@ -63,6 +63,49 @@ def subsample_peak(scores, k: int) -> float:
     if not 0 < k < s.size - 1 or not np.isfinite(s[k - 1:k + 2]).all():
         return 0.0
     return float(parabolic_offset(s[k - 1], s[k], s[k + 1]))
+
+
+def runner_up_peak(scores, k: int) -> tuple[float, float]:
+    """The best rival of the peak of a score series that holds index ``k``: the lag and relative score of the
+    highest other local maximum.
+
+    The peak holding ``k`` is the local maximum reached by climbing from ``k`` (``k`` itself when it is one); its
+    rivals are the other local maxima inside the series (a maximum at either end is the edge of the search, not a
+    peak), e.g. the shifts a reflector period away on a correlation curve of periodic reflectors.
+
+    Parameters
+    ----------
+    scores : (n,) array_like of float
+        Scores over evenly spaced lags (e.g. a weighted correlation over shifts); NaN where a lag could not be scored.
+    k : int
+        Index of the chosen lag.
+
+    Returns
+    -------
+    index : float
+        The rival's index, refined by a parabola (:func:`subsample_peak`); NaN when there is none.
+    ratio : float
+        Its score over the chosen peak's score: near 1, two lags score about equally (the choice between them is
+        ambiguous); above 1, the rival scores higher; 0 when there is no rival (``index`` NaN); NaN when the chosen
+        peak scores <= 0.
+    """
+    s = np.asarray(scores, dtype=np.float64)
+    v = np.where(np.isfinite(s), s, -np.inf)
+    m = int(k)
+    while True:  # climb to the chosen peak
+        step = max((j for j in (m - 1, m + 1) if 0 <= j < v.size), key=lambda j: v[j], default=m)
+        if v[step] <= v[m]:
+            break
+        m = step
+    inner = np.arange(1, v.size - 1)
+    is_peak = (v[inner] > v[inner - 1]) & (v[inner] >= v[inner + 1]) & np.isfinite(v[inner])
+    rivals = inner[is_peak & (np.abs(inner - m) >= 2)]
+    if not v[m] > 0:
+        return float("nan"), float("nan")
+    if rivals.size == 0:
+        return float("nan"), 0.0
+    j = int(rivals[np.argmax(v[rivals])])
+    return j + subsample_peak(s, j), float(v[j] / v[m])
 
 
 def waveform(trace, t: float, half: int) -> np.ndarray:

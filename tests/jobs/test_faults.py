@@ -20,7 +20,8 @@ from seismo3d.seismic.io import open_segy
 
 POINT_COLUMNS = ["inline", "crossline", "x", "y", "xy_unit", "time_or_depth", "fault_id", "throw_samples"]
 SUMMARY_COLUMNS = ["id", "n_points", "mean_strike_deg", "mean_dip_deg", "median_throw_samples"]
-EVIDENCE_COLUMNS = ["throw_spread_samples", "throw_step_samples", "throw_correlation", "correlation_gain",
+EVIDENCE_COLUMNS = ["throw_spread_samples", "throw_step_samples", "throw_alternative_samples", "throw_ambiguity",
+                    "throw_correlation", "correlation_gain",
                     "side_coherence", "vote_ratio", "mean_likelihood", "confidence"]
 
 

@@ -388,6 +388,21 @@ class FaultThrow:
         The half period of the reflectors around the fault, samples
         (:func:`~seismo3d.seismic.faults.reflector_period.half_period`); NaN when not measured (set by
         :func:`~seismo3d.seismic.faults.steps.faults_from_cells` when the evidence asks for it).
+    rival_ratio : (n_points,) float32 ndarray or None
+        How ambiguous the throw is at each point: the weighted correlation of the best rival shift (another peak of
+        the correlation curve that set the point's throw, its patch's; down a 2D fault, the whole throw profile
+        moved alike in every window, one value for the fault; on periodic reflectors usually a reflector period
+        away) over the chosen shift's
+        (:func:`~seismo3d.seismic.traces.runner_up_peak`). Near or above 1, two shifts match the sides about equally
+        and the throw, its sign included, may be either; 0 where the curve has no rival; NaN where the throw is
+        unmeasured or its correlation is not positive.
+    ambiguity : float
+        The median ``rival_ratio`` of the fault's measured points (over the whole fault, as ``median_throw``); NaN if
+        none.
+    alternative_throw : float
+        When the throw is ambiguous (``ambiguity`` at least
+        :attr:`~seismo3d.seismic.faults.throw.ThrowOptions.ambiguous_ratio`): the median of the rival shifts, samples,
+        the throw the sides support nearly as well as ``median_throw``; NaN otherwise.
     """
 
     fault_id: int
@@ -403,6 +418,9 @@ class FaultThrow:
     n_patches_measured: int = -1
     step: float = float("nan")
     half_period: float = float("nan")
+    rival_ratio: np.ndarray | None = None
+    ambiguity: float = float("nan")
+    alternative_throw: float = float("nan")
 
 
 @dataclass(frozen=True, eq=False)

@@ -96,6 +96,15 @@ class ThrowOptions:
     step_traces : int
         2D: traces beside each edge of a fault's zone whose neighbour lags give that side's dip for the step at the
         fault (:func:`~seismo3d.seismic.faults.throw_profile.section_step`; at most the traces read beyond it).
+    ambiguous_ratio : float
+        A fault's throw is ambiguous when the median of its points' ``rival_ratio`` (the best rival shift's weighted
+        correlation over the chosen one's, :attr:`FaultThrow.rival_ratio`) reaches this; its
+        ``alternative_throw`` is then the rivals' median. 0.4, chosen on Penobscot inlines 1075-1083 only
+        (``benchmarks/fault_throw.py --half choose``, 2026-11-28; the largest share of wrong throws reached less
+        the share of right ones, of 0.3-0.9 by 0.1): of the 22 faults cutting a people's horizon, 4 of the 5 whose
+        throw is 5 samples or more off the horizon's offset, or of the wrong sign, reach it, and 3 of the 17 others
+        (0.3, 0.5, 0.6, 0.7: 4, 2, 1, 1 of 5 against 9, 2, 0, 0 of 17); reported on inlines 1084-1092.
+
     Raises
     ------
     InputError
@@ -120,6 +129,7 @@ class ThrowOptions:
     profile_max_throw_per_length: float = 0.1
     profile_max_shift: float = 0.5
     step_traces: int = 3
+    ambiguous_ratio: float = 0.4
 
     def __post_init__(self):
         if self.max_throw is not None:
@@ -145,6 +155,7 @@ class ThrowOptions:
             if not isinstance(value, (int, np.integer)) or value < 1:
                 raise InputError(f"{name} must be a positive int of samples; got {value!r}")
         check_positive(self.profile_smoothness, "profile_smoothness", allow_zero=True)
+        check_positive(self.ambiguous_ratio, "ambiguous_ratio")
         if self.profile_window < 2 * self.min_rows:
             raise InputError(f"profile_window={self.profile_window} samples must be at least 2 * min_rows "
                              f"({2 * self.min_rows}) for a window's shift to overlap enough rows; use a longer window")
@@ -423,6 +434,8 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
     corr = np.full(n, np.nan)
     corr0 = np.full(n, np.nan)
     coherence = np.full(n, np.nan)
+    rival = np.full(n, np.nan)
+    rival_ratio = np.full(n, np.nan)
     registered = np.zeros(n, bool)
     fits, rmses, counts = [], [], []
     n_measured = 0
@@ -452,8 +465,9 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         coherence[sel] = float(np.min(patch.coherence))  # NaN when either side is NaN
         ut = grid.ut
         reach = min(max_throw, int(opt.max_throw_per_height * patch.img[0].shape[1]))
-        shift, cc, cc0 = ncc_shift(patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach,
-                                    opt.min_overlap[0 if two_d else 1], opt) if reach >= 1 else (np.nan,) * 3
+        shift, cc, cc0, rival[sel], rival_ratio[sel] = ncc_shift(
+            patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach, opt.min_overlap[0 if two_d else 1],
+            opt) if reach >= 1 else (np.nan,) * 5
         if not np.isfinite(shift):
             continue
         n_measured += 1
@@ -480,8 +494,21 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         correlation_unshifted=corr0.astype(np.float32),
         median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=fitness,
         inlier_rmse=rmse, n_points_used=int(sum(counts)), side_coherence=coherence.astype(np.float32),
-        n_patches_measured=n_measured,
+        n_patches_measured=n_measured, rival_ratio=rival_ratio.astype(np.float32),
+        **_ambiguity(rival, rival_ratio, opt.ambiguous_ratio),
     )
+
+
+def _ambiguity(rival: np.ndarray, ratio: np.ndarray, ambiguous_ratio: float) -> dict:
+    """The fault's ``ambiguity`` (median rival ratio of its measured points) and ``alternative_throw`` (the median
+    rival shift when that reaches ``ambiguous_ratio``, else NaN) for :class:`FaultThrow`."""
+    measured = np.isfinite(ratio)
+    if not measured.any():
+        return dict(ambiguity=float("nan"), alternative_throw=float("nan"))
+    ambiguity = float(np.median(ratio[measured]))
+    shifts = rival[measured & np.isfinite(rival)]
+    alternative = float(np.median(shifts)) if ambiguity >= ambiguous_ratio and shifts.size else float("nan")
+    return dict(ambiguity=ambiguity, alternative_throw=alternative)
 
 
 def _section_throw(source, pts, nrm3, fid: int, opt: ThrowOptions, max_throw: int) -> FaultThrow:
@@ -512,10 +539,14 @@ def _section_throw(source, pts, nrm3, fid: int, opt: ThrowOptions, max_throw: in
 
     throw = at_points(prof.throw)
     finite = np.isfinite(throw)
+    rival = at_points(prof.rival)  # the rival profile, as the throw's
+    profile_ratio = prof.rival_ratio[ok][0] if ok.any() else np.nan  # one value for the profile
+    rival_ratio = np.where(finite, profile_ratio, np.nan)
     return FaultThrow(
         fault_id=fid, throw=throw, registered=np.zeros(n, bool), correlation=at_points(prof.correlation),
         correlation_unshifted=at_points(prof.correlation_unshifted),
         median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=float("nan"),
         inlier_rmse=float("nan"), n_points_used=0, side_coherence=np.full(n, prof.coherence, np.float32),
-        n_patches_measured=int(ok.sum()), step=prof.median_step,
+        n_patches_measured=int(ok.sum()), step=prof.median_step, rival_ratio=rival_ratio.astype(np.float32),
+        **_ambiguity(rival, rival_ratio, opt.ambiguous_ratio),
     )

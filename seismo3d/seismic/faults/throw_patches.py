@@ -14,7 +14,7 @@ from ...geometry.normals import estimate_normals
 from ...geometry.transforms import make_transform
 from ...registration import ICPOptions, icp
 from .windows import CubeWindow
-from ..traces import ncc_curve, parabolic_offset, side_coherence, small_shift_weight, subsample_peak
+from ..traces import ncc_curve, parabolic_offset, runner_up_peak, side_coherence, small_shift_weight, subsample_peak
 
 # used by the throw module; not part of the package's public face
 __all__ = ["PatchFit", "ncc_shift", "patch_grid", "patch_images", "read_box", "reflector_peaks", "register_patch"]
@@ -153,17 +153,21 @@ def ncc_shift(f, h, vf, vh, max_throw, min_overlap, opt):
     """Shift k maximising the normalised cross-correlation of f(u, t - k) with h(u, t) (:func:`ncc_curve`), refined
     by a parabola.
 
-    Returns (shift in samples, normalised correlation over the overlap at that shift, the same with no shift), or
-    NaNs when no shift overlaps enough.
+    Returns (shift in samples, normalised correlation over the overlap at that shift, the same with no shift, the
+    rival shift and its weighted correlation over the chosen one's: :func:`runner_up_peak`), or NaNs when no shift
+    overlaps enough.
     """
     curve = ncc_curve(f, h, vf, vh, max_throw, min_overlap, opt.min_rows)
     if curve is None or not np.any(np.isfinite(curve[1])):
-        return np.nan, np.nan, np.nan
+        return (np.nan,) * 5
     ks, cc, local = curve
     # pick the peak with a mild preference for small shifts (weight 1 at zero, 0.75 at max_throw): when two shifts
     # correlate about equally (a reflector sequence repeating by chance), the smaller displacement is kept
-    i = int(np.nanargmax(cc * small_shift_weight(ks, max_throw, opt.small_shift_prior)))
-    return float(ks[i]) + subsample_peak(cc, i), float(local[i]), float(local[max_throw])
+    weighted = cc * small_shift_weight(ks, max_throw, opt.small_shift_prior)
+    i = int(np.nanargmax(weighted))
+    rival, ratio = runner_up_peak(weighted, i)
+    return (float(ks[i]) + subsample_peak(cc, i), float(local[i]), float(local[max_throw]), rival - max_throw,
+            ratio)
 
 
 def reflector_peaks(img, valid, u0, t0):

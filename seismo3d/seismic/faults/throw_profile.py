@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .windows import CubeWindow
-from ..traces import ncc_curve, side_coherence, small_shift_weight, subsample_peak
+from ..traces import ncc_curve, runner_up_peak, side_coherence, small_shift_weight, subsample_peak
 
 # used by the throw module; not part of the package's public face
 __all__ = ["SectionProfile", "FaultZone", "fault_zone", "section_profile", "section_read_box", "section_step",
@@ -52,6 +52,8 @@ class SectionProfile:
     correlation_unshifted: np.ndarray  # (n_windows,) ... with no shift
     coherence: float  # the smaller of the two sides' continuity (nearer against farther traces)
     step: np.ndarray = None  # (n_windows,) samples, the offset that is a step at the fault (section_step)
+    rival: np.ndarray = None  # (n_windows,) samples, the throw of the best rival profile (the profile moved alike)
+    rival_ratio: np.ndarray = None  # (n_windows,) its summed score over the chosen profile's
 
     @property
     def median_step(self) -> float:
@@ -178,8 +180,9 @@ def section_profile(zone: FaultZone, win: CubeWindow, *, sides, slope_margin, wi
     -------
     SectionProfile
         Per window: its centre (samples), throw (samples, positive = hanging wall down; NaN where the sides overlap
-        too little), the correlation at that shift and at none, and the step at the fault; and the sides'
-        continuity.
+        too little), the correlation at that shift and at none, the step at the fault, and the throw of the best
+        rival profile (the chosen one moved alike in every window, e.g. by a reflector period) with its summed score
+        over the chosen one's (:func:`_profile_rival`); and the sides' continuity.
 
     References
     ----------
@@ -225,7 +228,24 @@ def section_profile(zone: FaultZone, win: CubeWindow, *, sides, slope_margin, wi
     near = min(int(opt.step_traces), int(sides[1]) + int(slope_margin) - 2)  # within the traces read
     steps = section_step(zone, win, starts=starts, size=size, near=near, reach=reach, min_overlap=min_overlap,
                          min_rows=opt.min_rows)
-    return SectionProfile(centres, throw, corr, corr0, coherence, steps)
+    offset, ratio = _profile_rival(score, k_best)
+    measured = np.isfinite(throw)
+    rival = np.where(measured, throw + offset, np.nan)
+    rival_ratio = np.where(measured, ratio, np.nan)
+    return SectionProfile(centres, throw, corr, corr0, coherence, steps, rival, rival_ratio)
+
+
+def _profile_rival(score: np.ndarray, k_best: np.ndarray) -> tuple[float, float]:
+    """The best rival of a chosen throw profile: the whole profile moved by ``d`` samples (a cycle skip moves every
+    window alike, and moving all keeps the smoothness cost). Its summed score over the windows, as a function of
+    ``d`` (the moves that keep every window within the shifts searched), and the rival peak of that function
+    (:func:`~seismo3d.seismic.traces.runner_up_peak`): the move and its summed score over the chosen profile's."""
+    n_k = score.shape[1]
+    d = np.arange(-int(k_best.min()), n_k - int(k_best.max()))  # every window stays within the shifts searched
+    rows = np.arange(score.shape[0])[:, None]
+    total = score[rows, k_best[:, None] + d[None, :]].sum(axis=0)
+    j, ratio = runner_up_peak(total, int(np.flatnonzero(d == 0)[0]))
+    return (float(d[0]) + j if np.isfinite(j) else float("nan")), ratio
 
 
 def _finite_median(values) -> float:

@@ -63,13 +63,14 @@ def allocate_blocks(z, k, rot, trans, vs, b, trunc, grid, origin, coords, stamp,
     return touched[:n_touched].copy(), n_blocks, full
 
 
-@numba.njit(parallel=True, cache=True)
-def integrate_blocks(tsdf, weight, coords, touched, z, k, rot_t, trans, vs, trunc, max_weight):
-    """Parallel over the touched blocks: project every voxel centre into the depth image and update its running
-    average (Curless and Levoy 1996, eq. 5-6; KinectFusion eq. 11-12)."""
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def integrate_blocks(share, n_threads, tsdf, weight, coords, touched, z, k, rot_t, trans, vs, trunc, max_weight):
+    """Touched blocks ``share, share + n_threads, ...`` (:func:`seismo3d._threads.run_threads`): project every
+    voxel centre into the depth image and update its running average (Curless and Levoy 1996, eq. 5-6; KinectFusion
+    eq. 11-12). Each block is written by one share only: the same values for any number of threads."""
     h, w = z.shape
     b = tsdf.shape[1]
-    for i in numba.prange(len(touched)):
+    for i in range(share, len(touched), n_threads):
         slot = touched[i]
         for a in range(b):
             gx = (coords[slot, 0] * b + a) * vs

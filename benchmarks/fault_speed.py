@@ -181,14 +181,15 @@ def _step_cpu(run: dict, step: str) -> float | None:
 
 
 def _print_files(runs: dict, gb: float) -> None:
-    """The writing's rows, a file (or store) each: CPU seconds of the runs in memory, largest first."""
+    """The writing's rows, a file (or store) each, named "write KEY" (apart from the steps by blocks named as the
+    files they compute, e.g. "surfaces", "votes"): CPU seconds of the runs in memory, largest first."""
     files = {}
     for label, r in runs.items():
         for key, cpu in r["cpu_steps"].items():
             if key not in r["steps"]:
                 files.setdefault(key, {})[label] = cpu
     for key in sorted(files, key=lambda k: -max(files[k].values())):
-        row = f"{'  ' + key:40s}"
+        row = f"{'  write ' + key:40s}"
         for label in runs:
             cpu = files[key].get(label)
             row += f" | {'':8s} " + (f"{cpu:8.1f} {cpu / gb:9.0f}" if cpu is not None else f"{'':8s} {'':9s}")

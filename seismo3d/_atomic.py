@@ -5,12 +5,14 @@ from __future__ import annotations
 import os
 import pathlib
 import shutil
+import signal
 import tempfile
+import threading
 from contextlib import contextmanager
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_directory", "existing_folder", "SetAside", "StagedFolder"]
+__all__ = ["atomic_path", "atomic_directory", "deferred_interrupt", "existing_folder", "SetAside", "StagedFolder"]
 
 
 @contextmanager
@@ -226,6 +228,34 @@ def _remove(path: pathlib.Path) -> None:
         shutil.rmtree(path)
     elif os.path.lexists(path):
         path.unlink()
+
+
+@contextmanager
+def deferred_interrupt():
+    """A Ctrl-C (SIGINT) that arrives within the block is held until it ends, then raised (KeyboardInterrupt).
+
+    For a block that must not be interrupted midway: the import of VTK's extension modules (pyvista) crashes the
+    process (a segmentation fault) when a KeyboardInterrupt is raised inside it, and a crashed process cleans up
+    nothing (a :class:`StagedFolder` left behind in the output folder). Outside the main thread, or when SIGINT is
+    not Python's default handler (ignored, or the caller's own), the block runs as it is.
+
+    Raises
+    ------
+    KeyboardInterrupt
+        On leaving the block, when a SIGINT arrived within it.
+    """
+    if threading.current_thread() is not threading.main_thread() or \
+            signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+        yield
+        return
+    arrived = []
+    signal.signal(signal.SIGINT, lambda signum, frame: arrived.append(signum))  # Python runs it between bytecodes
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    if arrived:
+        raise KeyboardInterrupt
 
 
 def existing_folder(path: pathlib.Path) -> pathlib.Path:

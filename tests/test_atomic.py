@@ -23,3 +23,21 @@ def test_staged_folder_replaces_an_earlier_folder_whole(tmp_path):
         raise RuntimeError("a writer failed")
     assert sorted(p.name for p in out.iterdir()) == ["run.json", "surfaces"]
     assert [p.name for p in (out / "surfaces").iterdir()] == ["fault_1.ts"]
+
+
+def test_a_ctrl_c_within_deferred_interrupt_is_raised_when_the_block_ends():
+    import os
+    import signal
+
+    from seismo3d._atomic import deferred_interrupt
+
+    done = []
+    with pytest.raises(KeyboardInterrupt):
+        with deferred_interrupt():
+            os.kill(os.getpid(), signal.SIGINT)  # Ctrl-C in the middle of the block
+            done.append("the rest of the block")
+    assert done == ["the rest of the block"]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # Ctrl-C raises again at once
+    with deferred_interrupt():  # no Ctrl-C: nothing raised
+        done.append("again")
+    assert done[-1] == "again"

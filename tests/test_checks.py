@@ -45,3 +45,17 @@ def test_contributing_points_to_the_list_that_names_every_check():
     assert done.returncode == 0, done.stderr
     for check in _checks():
         assert f"{check.name}: python {' '.join(check.argv)}\n" in done.stdout, check.name
+
+
+def test_fault_speed_names_the_written_files_apart_from_the_steps_by_blocks(capsys):
+    # by blocks the executor's steps "surfaces" and "votes" are rows of the table; the files written in memory under
+    # "write outputs" are "write surfaces", "write votes"
+    spec = importlib.util.spec_from_file_location("seismo3d_fault_speed", REPO / "benchmarks" / "fault_speed.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    runs = {"in memory": {"steps": {"throw": 9.0, "write outputs": 6.0},
+                          "cpu_steps": {"throw": 9.1, "write outputs": 0.0, "surfaces": 2.0, "votes": 1.5}},
+            "by blocks (900MB)": {"steps": {"surfaces": 30.0, "votes": 4.0, "write outputs": 7.0}, "cpu_steps": {}}}
+    module._print_files(runs, 0.067)
+    rows = [line.split("|")[0].rstrip() for line in capsys.readouterr().out.splitlines()]
+    assert rows == ["  write surfaces", "  write votes"]

@@ -549,3 +549,21 @@ def test_app_freezes_the_collector_when_the_command_ends_the_process():
         assert gc.get_freeze_count() > 0
     finally:
         gc.unfreeze()
+
+
+def test_a_ctrl_c_while_the_writers_load_leaves_no_staging_folder(tmp_path, monkeypatch):
+    """The writers' libraries are imported before the output folder's staging folder is made, a Ctrl-C held until
+    their import ends: a SIGINT inside VTK's import crashed the process (a segmentation fault, no clean-up), which
+    left ``.staged-*.tmp`` with the demo's input in the output folder. Here a module stands for VTK: it is imported
+    whole, then the run stops as interrupted and the output folder holds nothing."""
+    import seismo3d.jobs.faults as job
+
+    (tmp_path / "vtk_like.py").write_text("import os, signal\nos.kill(os.getpid(), signal.SIGINT)\nWHOLE = True\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(job, "WRITER_MODULES", ("vtk_like",))
+    monkeypatch.delitem(sys.modules, "vtk_like", raising=False)
+    out = tmp_path / "out"
+    result = runner.invoke(app, ["faults", "--demo", "-o", str(out)])
+    assert result.exit_code == 130 and result.stderr.startswith("interrupted:"), result.output
+    assert sys.modules["vtk_like"].WHOLE  # its import was not cut short
+    assert not out.exists() or not any(out.iterdir())

@@ -41,6 +41,7 @@ from .._progress import LOGGER
 from ..errors import InputError, MissingDependencyError
 from ..seismic.fault_scoring import tolerant_scores
 from ..seismic.adapted_network import MODEL_NETWORK, MODEL_RECORD
+from ..training.adapt_options import AdaptOptions
 from .runinfo import RunRecord
 
 __all__ = ["AdaptJobResult", "HELD_BACK", "HELD_BACK_PARTS", "HeldBackScores", "HeldBackTracing", "MIN_GRID_TRACES",
@@ -403,7 +404,7 @@ def held_back_tracings(options) -> list:
 
     Parameters
     ----------
-    options : seismo3d.training.adapt.AdaptOptions
+    options : seismo3d.training.adapt_options.AdaptOptions
 
     Returns
     -------
@@ -620,7 +621,7 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
         The MODEL folder to write (must not exist).
     iline, xline, endian, ignore_geometry, sample_unit : optional
         How the SEG-Y inputs are read (as ``seismo3d faults`` reads them).
-    options : seismo3d.training.adapt.AdaptOptions, optional
+    options : seismo3d.training.adapt_options.AdaptOptions, optional
         The fine-tuning (default: every layer, 100 steps of 4 patches, seed 0).
     steps : int, optional
         Training steps, in place of ``options``' (``--steps``: the command passes plain values, so that it imports
@@ -660,7 +661,7 @@ def run_adapt_job(inputs, picks, model, *, iline=189, xline=193, endian=None, ig
     from ..seismic.faults.likelihood.network import WEIGHTS_FILE
     from ..training.export_onnx import onnx_model
 
-    opt = options or training.AdaptOptions()
+    opt = options or AdaptOptions()
     if steps is not None:
         opt = replace(opt, steps=int(steps))
     say = LOGGER.info if progress else (lambda *a: None)

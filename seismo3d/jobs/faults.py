@@ -9,6 +9,7 @@ Index-space conventions (axes, strike, dip) are those of :mod:`seismo3d.seismic.
 
 from __future__ import annotations
 
+import importlib
 import os
 import shutil
 from dataclasses import dataclass, replace
@@ -17,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import segyio
 
-from .._atomic import SetAside, StagedFolder, atomic_path
+from .._atomic import SetAside, StagedFolder, atomic_path, deferred_interrupt
 from .._progress import LOGGER, progress_steps
 from .._validation import check_choice
 from ..errors import EarlierStoresError, InputError
@@ -319,6 +320,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     # the files moved in together when every one is written; with overwrite, an earlier run's block-by-block stores
     # set aside before the work, deleted once the new files are in, put back if the run fails or is interrupted
     aside = SetAside(out_dir)
+    _load_writers()  # before the staging folder: an interrupt here leaves nothing to clean up
     try:
         with aside, StagedFolder(out_dir) as stage:
             written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
@@ -356,9 +358,9 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     held = [resident_memory()]  # the process before the input is read: what the decision and its message use
 
     def lazy_if(shape) -> bool:  # asked with a 3D cube's shape: by blocks when its run in memory would not fit
-        # the writers then count twice in the in-memory estimate (here and in in_memory_bytes' 160 MiB, calibrated
-        # without them): ~90 MB conservative; the block plan needs them counted (issue 53's note, stop 65)
-        _load_writers()
+        # the writers (imported before the staging folder, _load_writers) count twice in the in-memory estimate
+        # (here and in in_memory_bytes' 160 MiB, calibrated without them): ~90 MB conservative; the block plan needs
+        # them counted (issue 53's note, stop 65)
         held[0] = resident_memory()
         return not blocks.in_memory_for(shape, held=held[0])
 
@@ -404,13 +406,23 @@ def _say_how_it_runs(name: str, shape: tuple, limit: int, held: int, *, by_block
                     size_text(limit))
 
 
+# the writers' libraries (_load_writers), by module name
+WRITER_MODULES = ("matplotlib.figure", "pyvista")
+
+
 def _load_writers() -> None:
     """Import the writers' libraries (pyvista with VTK for the meshes, matplotlib for the picture: about 90 MB)
     before a cube's memory decision and its blocks' plan measure the memory this process holds, so that the memory
     limit covers the writing too. Imported when the writing started, they took the 128^3 demo cube at
-    ``--memory-limit 500MB`` from about 500 MB during its blocks to 596 MB while writing."""
-    import matplotlib.figure  # noqa: F401
-    import pyvista  # noqa: F401
+    ``--memory-limit 500MB`` from about 500 MB during its blocks to 596 MB while writing.
+
+    Called before the output folder's staging folder is made, with a Ctrl-C held until the imports end
+    (:func:`~seismo3d._atomic.deferred_interrupt`): a SIGINT inside VTK's import crashed the process (a segmentation
+    fault, no clean-up), which left the staging folder (``.staged-*.tmp``, holding the demo's input) in the output
+    folder of ``seismo3d faults --demo`` interrupted in its first seconds."""
+    with deferred_interrupt():
+        for name in WRITER_MODULES:
+            importlib.import_module(name)
 
 
 def _volume_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path, segy: dict, progress: bool) -> list:

@@ -11,12 +11,13 @@ sections); the sha256 it prints is :data:`seismo3d.seismic.faults.likelihood.lea
 
 The quantisation is ONNX Runtime's static post-training quantisation (``onnxruntime.quantization.quantize_static``)
 in the QDQ format: every 3 x 3 convolution's weights as signed 8-bit integers with one scale per output channel, the
-activations (the convolutions' inputs and outputs, the ReLUs, poolings, upsamplings and concatenations) as unsigned
-8-bit integers with one scale and zero point per tensor, each range the minimum and maximum the float network reaches
-on the calibration sections (``percentile`` 100; ONNX Runtime runs a convolution and its ReLU as one integer
-convolution, ``QLinearConv``). The first convolution (one channel in, 4 % of the multiplications) stays
-float32, so the amplitudes are not rounded to 8 bits; so do the head (the 1 x 1 convolution to one channel) and the
-logistic sigmoid, so the probability is not rounded to 1/255 steps.
+activations (the convolutions' inputs and outputs, the ReLUs, poolings, upsamplings, concatenations, and on the
+finest level, held as 4 phases, its pooling over them and their rearrangement: Reshape, ReduceMax, DepthToSpace) as
+unsigned 8-bit integers with one scale and zero point per tensor, each range the minimum and maximum the float network
+reaches on the calibration sections (``percentile`` 100; ONNX Runtime runs a convolution and its ReLU as one integer
+convolution, ``QLinearConv``). The first convolution (one channel in, 4 % of the trained network's multiplications)
+stays float32, so the amplitudes are not rounded to 8 bits; so do the head (the 1 x 1 convolution to one channel)
+and the logistic sigmoid, so the probability is not rounded to 1/255 steps.
 
 Chosen on generated sections only (16 sections after the calibration's, 128 x 128; absolute difference of the
 probabilities from the float network's): quantising the convolutions alone (a ReLU's input then quantised over its
@@ -63,9 +64,11 @@ __all__ = ["CALIBRATION_SEED", "QuantiseOptions", "calibration_sections", "quant
 
 CALIBRATION_SEED = 5_555_555
 # the float nodes, named by their output: the first convolution and its ReLU (the amplitudes themselves would be
-# rounded to 8 bits), the head convolution (logits) and the sigmoid (the probability)
-_FLOAT_NODES = ("enc0.0.conv", "enc0.0.out", "head.out", "probability")
-_QUANTISED_OPS = ("Conv", "Relu", "MaxPool", "Resize", "Concat")
+# rounded to 8 bits), the head convolution (logits), the sigmoid and the DepthToSpace that puts the probability's
+# phases in place (onnx_model computes the finest level on the coarser grid); the sections' SpaceToDepth is not a
+# quantised op
+_FLOAT_NODES = ("enc0.0.conv", "enc0.0.out", "head.out", "head.probability", "probability")
+_QUANTISED_OPS = ("Conv", "Relu", "MaxPool", "Resize", "Concat", "DepthToSpace", "Reshape", "ReduceMax")
 
 
 @dataclass(frozen=True)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import hashlib
 import json
 import re
+import subprocess
 import sys
 from importlib import resources
 from pathlib import Path
@@ -267,6 +268,41 @@ def test_without_pytorch_adapt_says_how_to_install_it(tmp_path, line, monkeypatc
     assert not (tmp_path / "m").exists()
 
 
+WITHOUT_TORCH = """
+import sys
+sys.modules["torch"] = None  # PyTorch not installed: its import fails
+from typer.testing import CliRunner
+from seismo3d.cli import app
+from seismo3d.errors import InputError
+from seismo3d.jobs.adapt import held_back_tracings
+from seismo3d.training.adapt_options import AdaptOptions
+
+result = CliRunner().invoke(app, ["adapt", "--help"])
+assert result.exit_code == 0 and "Needs PyTorch" in result.output, result.output
+options = AdaptOptions(layers="decoder", steps=3)
+assert "the decoder and head fine-tuned" in options.method() and len(held_back_tracings(options)) == 3
+try:
+    AdaptOptions(patch=20)
+except InputError as exc:
+    assert "multiple of 8" in str(exc)
+else:
+    raise AssertionError("patch=20 accepted")
+try:
+    import seismo3d.training.adapt  # the training itself needs PyTorch
+except ImportError as exc:
+    assert exc.name == "torch", exc
+else:
+    raise AssertionError("the training imported without PyTorch")
+assert "torch" not in {m.split(".")[0] for m in sys.modules if sys.modules[m] is not None}
+print("ok")
+"""
+
+
+def test_the_adapt_command_s_help_and_options_need_no_pytorch():
+    done = subprocess.run([sys.executable, "-c", WITHOUT_TORCH], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr[-2000:]
+
+
 def test_a_model_of_the_shipped_network_traces_the_same_bits(shipped_model):
     section, _ = dimmed_section(3)
     section = section + 0.5 * synthetic_fault_section(SHAPE, seed=4).section  # faults for both runs to find
@@ -359,7 +395,7 @@ def _scored(tracing, f1, parts):
 
 def test_adapt_scores_the_adapted_network_with_the_unbroken_veto_on_and_off_and_keeps_the_best():
     from seismo3d.jobs.adapt import HeldBackTracing, chosen_tracing, held_back_tracings
-    from seismo3d.training.adapt import AdaptOptions
+    from seismo3d.training.adapt_options import AdaptOptions
 
     tracings = held_back_tracings(AdaptOptions(sensitivity=0.35))
     assert [(t.network, t.sensitivity, t.unbroken_veto) for t in tracings] == [
@@ -384,7 +420,7 @@ def test_adapt_scores_the_adapted_network_with_the_unbroken_veto_on_and_off_and_
 def test_the_adapted_network_is_kept_only_when_it_wins_most_held_back_parts_holding_picks(adapted_f1, adapted_parts,
                                                                                         kept):
     from seismo3d.jobs.adapt import chosen_tracing, held_back_tracings
-    from seismo3d.training.adapt import AdaptOptions
+    from seismo3d.training.adapt_options import AdaptOptions
 
     shipped, adapted, _ = held_back_tracings(AdaptOptions())
     scored = [_scored(shipped, 0.485, (None, 0.0, 0.958, 0.33)), _scored(adapted, adapted_f1, (None, *adapted_parts))]

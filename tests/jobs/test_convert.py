@@ -281,3 +281,14 @@ def test_source_coordinates_are_the_bytes_zarr_writes(amplitudes, tmp_path, writ
     _assert_zarr_writes_the_same(store, tmp_path)
     ref, cube = read_segy(src)
     assert_allclose(xr.open_zarr(store).cdp_x.values, cube.cdp_x, rtol=0, atol=1e-9)
+
+
+def test_converting_again_writes_the_same_metadata_files(converted):
+    """Every zarr.json of a second conversion of the same SEG-Y equals the first's byte for byte (keys in the same
+    order: the consolidated metadata, the attributes, the header fields' arrays made as their rows complete)."""
+    src, store, _ = converted
+    again = store.with_name("again.zarr")
+    run_convert_job(src, again, chunk_mb=0.01)
+    first = {str(p.relative_to(store)): p.read_bytes() for p in store.rglob("zarr.json")}
+    second = {str(p.relative_to(again)): p.read_bytes() for p in again.rglob("zarr.json")}
+    assert len(first) > 5 and first == second

@@ -3,9 +3,12 @@ numpy's eigh, the binary searches against numpy on generated data."""
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 import pytest
 
+from seismo3d._progress import reporting_within
 from seismo3d.seismic import _kernels
 
 
@@ -127,3 +130,24 @@ def test_search_left_and_right_on_a_traces_picks():
         assert 2 + _kernels.search_left(times[2:2 + p.size], t) == 2 + np.searchsorted(p, t)
         assert _kernels.search_right(times[2:2 + p.size], t) == np.searchsorted(p, t, side="right")
 
+
+
+@pytest.mark.parametrize("slab", [1, 7, 9, 64])
+def test_structure_tensor_by_slabs_of_inlines_is_the_one_call_s_bits(slab):
+    # slabs thinner than the 9 inlines a slab's tensor reads beyond it, a slab that ends at the cube's last inline
+    cube = np.random.default_rng(7).standard_normal((40, 26, 50)).astype(np.float32)
+    one = _kernels.structure_tensor_at(cube, 1.0, (2.0, 6.0), (slice(None), slice(None)))
+    slabs = _kernels.structure_tensor(cube, 1.0, (2.0, 6.0), False, slab=slab)
+    assert all(np.array_equal(a, b) for a, b in zip(slabs, one))
+
+
+def test_structure_tensor_reports_a_line_per_slab_when_its_step_asks(caplog):
+    cube = np.random.default_rng(8).standard_normal((40, 12, 30)).astype(np.float32)
+    with caplog.at_level(logging.INFO, logger="seismo3d"):
+        quiet = _kernels.structure_tensor(cube, 1.0, (2.0, 6.0), False, slab=16)
+        assert caplog.messages == []  # no step asks: silent
+        with reporting_within("throw"):
+            reported = _kernels.structure_tensor(cube, 1.0, (2.0, 6.0), False, slab=16)
+    assert caplog.messages == ["throw: 16/40 inline, structure tensor", "throw: 32/40 inline, structure tensor",
+                               "throw: 40/40 inline, structure tensor"]
+    assert all(np.array_equal(a, b) for a, b in zip(quiet, reported))

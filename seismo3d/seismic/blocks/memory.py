@@ -13,8 +13,8 @@ import numpy as np
 
 from ...errors import InputError
 
-__all__ = ["default_memory_limit", "fits_in_memory", "in_memory_bytes", "parse_memory_limit", "resident_memory",
-           "size_text", "worker_baseline"]
+__all__ = ["PROCESS_STEP", "default_memory_limit", "fits_in_memory", "in_memory_bytes", "parse_memory_limit",
+           "process_bytes", "resident_memory", "size_text", "worker_baseline"]
 
 # The in-memory `seismo3d faults` beyond the process that decides (its imports, about 150-160 MiB): a fixed part (the
 # fault network's ONNX session, about 60 MiB; the numba kernels loaded from their cache; the writers' pyvista and
@@ -27,6 +27,11 @@ _IN_MEMORY_FIXED = 160 << 20
 _IN_MEMORY_FACTOR = 24
 # The smallest memory limit accepted.
 _SMALLEST_LIMIT = 64 << 20
+# The process's own size in a plan is rounded up to a multiple of this (process_bytes): runs of the same command
+# measure it a few MiB apart (the allocator's state, threads; up to ~10 MB), and a plan made from the bytes left
+# would change its blocks with them. Several times that spread: the plan moves only for a process within it of a
+# multiple.
+PROCESS_STEP = 64 << 20
 
 
 def default_memory_limit() -> int:
@@ -61,14 +66,35 @@ def resident_memory() -> int:
     return int(psutil.Process().memory_info().rss)
 
 
+def process_bytes(scheduler=None) -> int:
+    """The bytes a worker's process holds before its blocks, as the plans of a run by blocks count them: this
+    process's resident memory on the local schedulers, rounded up to a multiple of :data:`PROCESS_STEP` (64 MiB) so
+    that reruns of the same command plan the same blocks; 256 MiB assumed for a ``dask.distributed`` worker.
+
+    Parameters
+    ----------
+    scheduler : str, optional
+        The run's scheduler (:attr:`~seismo3d.seismic.blocks.options.ChunkOptions.scheduler`): None, ``'threads'``
+        or ``'synchronous'`` run the blocks in this process.
+
+    Returns
+    -------
+    int
+        Bytes, a multiple of :data:`PROCESS_STEP` for this process.
+    """
+    if scheduler not in (None, "threads", "synchronous"):
+        return 256 << 20
+    return -(-resident_memory() // PROCESS_STEP) * PROCESS_STEP
+
+
 def worker_baseline(chunking, x) -> int:
-    """Memory of a worker before its blocks: the process itself (this one's size on the local schedulers, 256 MiB
-    assumed for a distributed worker) and two of the input's largest chunks being read.
+    """Memory of a worker before its blocks: the process itself (``chunking.process`` when the run measured it, else
+    :func:`process_bytes` now) and two of the input's largest chunks being read.
 
     Parameters
     ----------
     chunking : ChunkOptions
-        Its scheduler says whether the blocks run in this process.
+        Its ``process``, or its scheduler (whether the blocks run in this process).
     x : (n_inlines, n_xlines, n_samples) dask.array.Array
         The lazy input, chunks of whole traces, counted as float32.
 
@@ -77,8 +103,8 @@ def worker_baseline(chunking, x) -> int:
     int
         Bytes.
     """
-    local = chunking.scheduler in (None, "threads", "synchronous")
-    return (resident_memory() if local else 256 << 20) + 2 * 4 * max(x.chunks[0]) * max(x.chunks[1]) * int(x.shape[2])
+    process = process_bytes(chunking.scheduler) if chunking.process is None else int(chunking.process)
+    return process + 2 * 4 * max(x.chunks[0]) * max(x.chunks[1]) * int(x.shape[2])
 
 
 def parse_memory_limit(value) -> int:

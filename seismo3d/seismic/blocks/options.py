@@ -139,6 +139,10 @@ class ChunkOptions:
     workers : int
         Blocks computed at once by the threaded scheduler (1 by default: each block's kernels already use every
         core through numba).
+    process : int, optional
+        Bytes the process holds before its blocks, for the plans
+        (:func:`~seismo3d.seismic.blocks.memory.worker_baseline`): a run by blocks measures it once, so that its
+        refusal and every plan use the same number; default: measured when a plan is made.
     """
 
     memory_limit: int | None = None
@@ -147,6 +151,7 @@ class ChunkOptions:
     strip: int | None = None
     scheduler: str | None = None
     workers: int = 1
+    process: int | None = None
 
     def __post_init__(self):
         check_int(self.tile, "tile", minimum=4)
@@ -159,6 +164,8 @@ class ChunkOptions:
                     raise InputError(f"{name} must be a multiple of tile ({self.tile}); got {value}")
         if self.memory_limit is not None:
             check_int(self.memory_limit, "memory_limit", minimum=1 << 20)
+        if self.process is not None:
+            check_int(self.process, "process", minimum=0)
         if self.scheduler not in (None, "threads", "synchronous") and not str(self.scheduler).startswith(
                 ("tcp://", "tls://", "inproc://", "ucx://")):
             raise InputError(f"scheduler must be 'threads', 'synchronous' or a dask.distributed address such as "

@@ -31,7 +31,8 @@ from ..._validation import check_choice, check_positive, check_seismic_layout
 from ...errors import EarlierStoresError, InputError, Seismo3dWarning
 from ..amplitudes import CleanTraces, check_amplitudes, clean_traces, finite_cube
 from ..blocks.executor import release_memory, trace_cube
-from ..blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory, size_text, worker_baseline
+from ..blocks.memory import (in_memory_bytes, parse_memory_limit, process_bytes, resident_memory, size_text,
+                             worker_baseline)
 from ..blocks.options import BlockRunOptions, ChunkOptions
 from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
@@ -359,7 +360,11 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
             raise EarlierStoresError(f"{work_dir / store} holds the {_STORE_NAMES[store]} of another input or other "
                                      "options; pick another output folder (-o) or delete it",
                                      [p for p in in_the_way if p.name.startswith(store)])
-    x = check_block_run(x, source, memory_limit, scheduler, opt)
+    x, process = check_block_run(x, source, memory_limit, scheduler, opt)
+    # the likelihood's blocks planned from the process the refusal measured, the surfaces' from it grown by the
+    # likelihood stage (STAGE_GROWTH, as minimum_memory_limit counts it; more when the process has grown more): the
+    # same blocks for the same input and limit, run after run
+    chunking = dataclasses.replace(chunking, process=process)
     if work_dir is None:  # after the checks; kept: the result's volumes are read from its stores
         work_dir = pathlib.Path(tempfile.mkdtemp(prefix="seismo3d-faults-"))
         LOGGER.info("%s: the fault stores of this run by blocks go to %s (pass blocks=BlockRunOptions(work_dir=...) "
@@ -388,7 +393,8 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     seconds = {f"fault likelihood: {name}": t for name, t in likelihood_seconds.items()}
     seconds["fault likelihood"] = time.perf_counter() - started - sum(likelihood_seconds.values())  # the rest
     started = time.perf_counter()
-    surfaces = chunked_fault_surfaces(x, path, work_dir / SURFACES_STORE, options=opt, chunking=chunking,
+    grown = dataclasses.replace(chunking, process=max(process + STAGE_GROWTH, process_bytes(scheduler)))
+    surfaces = chunked_fault_surfaces(x, path, work_dir / SURFACES_STORE, options=opt, chunking=grown,
                                       progress=progress)
     seconds.update(surfaces.seconds)  # the block steps computed in this call, the skins, the throw, the evidence
     seconds["fault surfaces"] = time.perf_counter() - started - sum(surfaces.seconds.values())  # the rest
@@ -603,9 +609,12 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
 
     Returns
     -------
-    dask.array.Array
+    x : dask.array.Array
         ``x`` with NaN / inf read as 0 (:func:`~seismo3d.seismic.amplitudes.finite_cube`), its blank time
         slices filled (:mod:`~seismo3d.seismic.time_slices`).
+    process : int
+        Bytes of this process as the refusal counted them
+        (:func:`~seismo3d.seismic.blocks.memory.process_bytes`): what the run's plans count too.
 
     Raises
     ------
@@ -618,12 +627,13 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     LOGGER.info("%s: judging the data from a sample of blocks", name)
     sample = judge_sample(x, options=options)  # before the passes over the whole cube: a refusal in seconds
     release_memory()  # the sample's arrays, before the process is measured
-    # the process as it is now, and the input chunks a block reads
-    baseline = worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler), x)
+    # the process as it is now, measured once for the refusal and every plan of the run, and the chunks a block reads
+    process = process_bytes(scheduler)
+    baseline = worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler, process=process), x)
     need = minimum_memory_limit(shape, baseline=baseline, options=options, sample=sample)
     _check_limit(name, shape, limit, need, f" (its smallest blocks, and the ~{sample.candidates(shape)} seed "
                                            "candidates a sample of its blocks predicts)")
-    return finite_cube(without_blank_slices(x), options.dead)  # filled as in memory (_cleaned), before the counts
+    return finite_cube(without_blank_slices(x), options.dead), process  # filled as in memory (_cleaned)
 
 
 def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:

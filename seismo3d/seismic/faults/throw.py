@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..._options import resolve_options
-from ..._progress import progress_steps
+from ..._progress import progress_steps, reporting_within
 from ..._validation import as_normals, as_points, check_positive
 from ...errors import InputError
 from ...geometry.normals import estimate_normals
@@ -356,7 +356,8 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
         As in :func:`fault_throw`.
     progress : bool
         Report progress over the faults (:mod:`seismo3d._progress`), after a line when an in-memory cube's reflector
-        slopes are prepared (its structure tensor, before the first fault).
+        slopes are prepared (its structure tensor, before the first fault) and a line per slab of inlines of that
+        tensor (:func:`~seismo3d.seismic._kernels.structure_tensor`).
 
     Returns
     -------
@@ -379,7 +380,8 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     with progress_steps(len(faults), "throw", unit="fault", enabled=progress) as bar:
         if isinstance(source, TensorWindows) and faults:  # the cube's structure tensor, before the first fault
             bar.advance(0, status="reflector slopes: the structure tensor of the cube")
-            source.window(0, 0, 0, 0)
+            with reporting_within("throw" if progress else None):  # a line per slab of inlines of the tensor
+                source.window(0, 0, 0, 0)
         for f in faults:
             out.append(_fault_throw(source, f, opt))
             bar.advance()

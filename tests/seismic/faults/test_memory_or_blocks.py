@@ -142,3 +142,25 @@ def test_a_labelled_cube_gives_one_result_type_in_memory_and_by_blocks(write_seg
     assert len(in_memory.faults) == len(by_blocks.faults) > 0
     for f, g in zip(in_memory.faults, by_blocks.faults):
         np.testing.assert_array_equal(f.points, g.points)
+
+
+def test_a_run_by_blocks_plans_from_the_process_its_refusal_measured(seismic, monkeypatch, tmp_path):
+    """The process is measured once, after the sample (the refusal's), and each stage plans from it (the surfaces
+    from it grown by the likelihood stage): a process that moves between the stages moves no plan."""
+    from seismo3d.seismic.blocks import memory
+    from seismo3d.seismic.faults.preflight import CubeSample
+
+    sizes = iter(range(300 << 20, 1000 << 20, 40 << 20))  # 40 MiB more at each measurement
+    monkeypatch.setattr(memory, "resident_memory", lambda: next(sizes))
+    monkeypatch.setattr(pipeline, "judge_sample", lambda *a, **k: CubeSample(3, 1, 0.1, 0.0))
+    seen = {}
+
+    def likelihood(x, path, *, chunking, **kwargs):
+        seen["likelihood"] = chunking.process
+        raise _Likelihood
+
+    monkeypatch.setattr(pipeline, "chunked_learned_likelihood", likelihood)
+    with pytest.raises(_Likelihood):
+        trace_faults(seismic, memory_limit="2GB", blocks=BlockRunOptions(work_dir=tmp_path, in_memory=False),
+                     progress=False)
+    assert seen["likelihood"] == 320 << 20  # 300 MiB measured by the refusal, rounded up to a multiple of 64 MiB

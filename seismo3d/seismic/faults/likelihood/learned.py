@@ -151,12 +151,13 @@ class LearnedOptions:
         percentile; the crossline sections, 18 traces wide, add little there).
     network : {'auto', 'int8', 'float'}
         The model ONNX Runtime runs: 'int8', the network quantised to 8-bit integers (``fault_unet_int8.onnx``,
-        :mod:`seismo3d.training.quantize_onnx`; 2.2 times faster), or 'float', the float32 export of the trained
-        weights (``fault_unet.onnx``); 'auto' (the default): 'int8' on a cube, where the network is most of the time,
-        'float' on a section, which costs a second either way (:meth:`model`). On generated sections the two
-        probabilities differ by 0.0013 on average, by 0.033 at the 99th percentile (``fault_unet_int8.json``); on
-        the real sections 'int8' kept the F3 and Great South Basin scores within 0.005 but lost the fault of teapot
-        tpd near trace 20 below sample 240 (covered 0.43 -> 0.0) and changed the fault counts of 6 of 10 lines.
+        :mod:`seismo3d.training.quantize_onnx`; 2.7 times faster on 256 x 256 sections), or 'float', the float32
+        export of the trained weights (``fault_unet.onnx``); 'auto' (the default): 'int8' on a cube, where the
+        network is most of the time, 'float' on a section, which costs a second either way (:meth:`model`). On
+        generated sections the two probabilities differ by 0.0013 on average, by 0.033 at the 99th percentile
+        (``fault_unet_int8.json``); on the real sections 'int8' kept the F3 and Great South Basin scores within
+        0.005 but lost the fault of teapot tpd near trace 20 below sample 240 (covered 0.43 -> 0.0) and changed the
+        fault counts of 6 of 10 lines.
     adapted : str or None
         The path of a MODEL folder written by ``seismo3d adapt`` (the network fine-tuned on an interpreter's faults,
         :mod:`~seismo3d.seismic.adapted_network`): run instead of the shipped network, in float32, on
@@ -598,7 +599,7 @@ def network_blocks(grid, across: int, along: int, axis: int) -> list:
 
 
 def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale, n_sections: int,
-                  ndim: int = 3) -> BlockOutput:
+                  ndim: int = 3, resampled=None) -> BlockOutput:
     """The network's probability (:func:`direction_probability`) on the sections of one block of the network grid
     (``place.block``, direction ``axis``), from the amplitudes of its input region (``place.region``, read with the
     receptive half of halo along the sections).
@@ -621,6 +622,9 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     ndim : {3, 2}
         2: the cube is a section (one crossline, ``axis`` 1), run as a section is
         (:meth:`LearnedOptions.model`, :meth:`LearnedOptions.stretch`, every section).
+    resampled : callable, optional
+        Resamples ``f`` onto the network grid in place of :func:`to_network_grid` (its arguments and result): in
+        memory, where ``f`` is the whole cube, :func:`run_networks` gives both directions one that resamples it once.
 
     Returns
     -------
@@ -636,7 +640,7 @@ def network_block(place, f, axis: int, opt: LearnedOptions, factor: float, scale
     u0, u1, v0, v1 = place.block
     check_finite(f, (place.origin[0], place.origin[0] + f.shape[0] - 1))
     aligns = (1, POOLING_MULTIPLE) if axis == 0 else (POOLING_MULTIPLE, 1)
-    small, first = to_network_grid(f, factor, origin=place.origin, align=aligns)
+    small, first = (resampled or to_network_grid)(f, factor, origin=place.origin, align=aligns)
     n_samples = f.shape[2]
     del f
     step = int(opt.section_step) if ndim == 3 else 1
@@ -795,13 +799,32 @@ def run_networks(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> tupl
     steps = iter(block_steps(plan, opt)[:-1])
     names = []
     for g in plan["grids"]:
-        for axis in _plan_directions(plan, opt):
+        directions = _plan_directions(plan, opt)
+        resampled = _WholeGrid() if isinstance(run, MemoryRun) and len(directions) > 1 else None
+        for axis in directions:
             step = next(steps)
             blocks = network_blocks(g["network_shape"], *g["network_blocks"][DIRECTION_NAMES[axis]], axis)
             run.run_step(step, blocks, axis, opt, float(g["factor"]), tuple(scale), int(g["network_shape"][axis]),
-                         ndim, source=x)
+                         ndim, resampled, source=x)
             names.append(step.name)
+        del resampled
     return tuple(names)
+
+
+class _WholeGrid:
+    """The whole cube on a network grid (:func:`to_network_grid`), made by the first direction's block that asks and
+    kept for the other's: in memory each direction's one block reads the whole cube, whose network grid is the same
+    bits for both (its origin is 0 along both axes, so both alignments start it at 0)."""
+
+    def __init__(self):
+        self._grid = None
+
+    def __call__(self, f: np.ndarray, factor: float, *, origin, align) -> tuple:
+        if tuple(origin) != (0, 0):
+            raise ValueError(f"a block at {tuple(origin)} is not the whole cube: it resamples its own region")
+        if self._grid is None:
+            self._grid = to_network_grid(f, factor, origin=origin, align=align)
+        return self._grid
 
 
 def run_learned(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> float:

@@ -18,10 +18,11 @@ so the weights give the same numbers here (float32, differences of the order of 
 The network ships as an ONNX model (:class:`FaultNetwork`, loaded by :func:`load_fault_network`; beside it the
 same model quantised to 8 bits, ``fault_unet_int8.onnx``, :mod:`seismo3d.training.quantize_onnx`), exported from the
 trained weights by :func:`seismo3d.training.export_onnx.onnx_model` (``python -m seismo3d.training.export_onnx``; the
-``onnx`` package of the ``train`` extra). The weights are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape
-``(c_out, c_in, 3, 3)`` (PyTorch's ``Conv2d`` layout) and ``'{block}.{i}.bias'`` ``(c_out,)``, for the blocks ``enc0,
-enc1, enc2, bottleneck, dec2, dec1, dec0`` and ``i`` in 0, 1; and ``'head.weight'`` ``(1, c0, 1, 1)``,
-``'head.bias'`` ``(1,)``.
+``onnx`` package of the ``train`` extra), which computes the finest level (its encoder, decoder and the head) on the
+next coarser grid, a fine tensor as its 4 phases (the same outputs up to float32 rounding, in less time). The weights
+are a mapping ``name -> array``: ``'{block}.{i}.weight'`` of shape ``(c_out, c_in, 3, 3)`` (PyTorch's ``Conv2d``
+layout) and ``'{block}.{i}.bias'`` ``(c_out,)``, for the blocks ``enc0, enc1, enc2, bottleneck, dec2, dec1, dec0`` and
+``i`` in 0, 1; and ``'head.weight'`` ``(1, c0, 1, 1)``, ``'head.bias'`` ``(1,)``.
 
 References
 ----------
@@ -63,9 +64,9 @@ RECEPTIVE_HALF = 56
 POOLING_MULTIPLE = 8
 
 WEIGHTS_FILE = "fault_unet.onnx"
-WEIGHTS_SHA256 = "534ed3ebcb7e9f05875300a705c01871aadcf0a83c5696e06633991fcbbf6b75"
+WEIGHTS_SHA256 = "54014bd2fed21a4f729e41917a68b785747205b789f4f37a732781c2a63a951d"
 INT8_FILE = "fault_unet_int8.onnx"
-INT8_SHA256 = "a42ec2deb2b5e4cd7f94fd468465e700215fba6efebdf68406f429b1e9253f39"
+INT8_SHA256 = "2711cefd43680a97a9700fa7eb91c360becf1391e49391fdc4a6e60fc6be8324"
 # the shipped models: LearnedOptions.network -> (file, sha256)
 NETWORKS = {"int8": (INT8_FILE, INT8_SHA256), "float": (WEIGHTS_FILE, WEIGHTS_SHA256)}
 

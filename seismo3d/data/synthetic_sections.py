@@ -38,7 +38,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.ndimage import gaussian_filter1d, map_coordinates
-from scipy.signal import hilbert
 
 from .._validation import check_int
 from ..errors import InputError
@@ -392,6 +391,8 @@ def synthetic_fault_section(shape=(128, 128), *, seed=0, options: FaultSectionOp
     f = rng.uniform(*opt.frequency_range)
     wavelet = ricker(f)
     phase = np.radians(rng.uniform(-90.0, 90.0))
+    from scipy.signal import hilbert  # here: importing scipy.signal takes about 0.5 CPU s, every pytest worker's too
+
     wavelet = np.cos(phase) * wavelet + np.sin(phase) * np.imag(hilbert(wavelet))
     start = (wavelet.size - 1) // 2  # the centred part of the full convolution ('same' even for short traces)
     clean = np.apply_along_axis(lambda tr: np.convolve(tr, wavelet)[start:start + nz], 1, reflectivity)

@@ -15,7 +15,7 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True, nogil=True, inline="always")
+@njit(cache=True, no_cfunc_wrapper=True, nogil=True, inline="always")
 def _put(hist, dest):
     """``dest[:, :] = hist`` ((K, Q) each) as a loop: an array assignment compiles numba's generic setitem, which
     cost ``seismo3d match``'s first run about 5 CPU s of compiling."""
@@ -24,7 +24,7 @@ def _put(hist, dest):
             dest[k, b] = hist[k, b]
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _init_discs(bins, weights, half_widths, pad, y, x, hist):
     """Direct O(r^2) sums of every disc at (y, x) (unpadded coordinates) into hist (K, Q).
 
@@ -61,7 +61,7 @@ def _init_discs(bins, weights, half_widths, pad, y, x, hist):
             hist[k, b] += hist[k - 1, b]
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _slide_discs(bins, weights, half_widths, pad, y, x, hist):
     """Move every disc of hist from (y, x) to (y, x + 1): subtract the leaving arc, add the entering arc."""
     n_discs = half_widths.shape[0]
@@ -79,7 +79,7 @@ def _slide_discs(bins, weights, half_widths, pad, y, x, hist):
                 hist[k, bins[yy, x_in, p]] += weights[yy, x_in, p]
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def dense_disc_histograms(bins, weights, half_widths, pad, rows, n_cols, out):
     """Disc histograms at every column of the given rows, by recursion along each row.
 
@@ -98,7 +98,7 @@ def dense_disc_histograms(bins, weights, half_widths, pad, rows, n_cols, out):
             _put(hist, out[i, x + 1])
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def point_disc_histograms(bins, weights, half_widths, pad, ys, xs, max_gap, out):
     """Disc histograms at points sorted by (row, column), sliding along each row between consecutive points.
 
@@ -132,7 +132,7 @@ def point_disc_histograms(bins, weights, half_widths, pad, ys, xs, max_gap, out)
 
 
 
-@njit(cache=True, nogil=True, inline="always")
+@njit(cache=True, no_cfunc_wrapper=True, nogil=True, inline="always")
 def _angle(u, v):
     """atan2(v, u) mapped to [0, 2 pi), by octant reduction and a polynomial for atan on [0, 1].
 
@@ -158,7 +158,7 @@ def _angle(u, v):
     return r
 
 
-@njit(cache=True, nogil=True, fastmath=True)
+@njit(cache=True, no_cfunc_wrapper=True, nogil=True, fastmath=True)
 def orientation_votes(gx, gy, n_bins, pad, unit, bins, weights):
     """Soft-binned orientation votes of every pixel into the padded (H + 2 pad, W + 2 pad, 2) bins / weights.
 
@@ -187,7 +187,7 @@ def orientation_votes(gx, gy, n_bins, pad, unit, bins, weights):
             weights[y + pad, x + pad, 1] = np.int64(w1)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def two_nearest(gram, sq1, sq2, euclidean, best_idx, best, second, col_best_idx, col_best):
     """One pass over a (n1, n2) Gram matrix of descriptors: distances d = sq1[i] + sq2[j] - 2 gram[i, j] (their
     square roots when ``euclidean``); per row the two smallest (and the index of the smallest), per column the
@@ -219,7 +219,7 @@ def two_nearest(gram, sq1, sq2, euclidean, best_idx, best, second, col_best_idx,
         col_best[j] = _finish(col_best[j], euclidean)
 
 
-@njit(cache=True, nogil=True, inline="always")
+@njit(cache=True, no_cfunc_wrapper=True, nogil=True, inline="always")
 def _finish(d, euclidean):
     if d < 0.0:
         d = 0.0

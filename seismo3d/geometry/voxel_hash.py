@@ -131,7 +131,7 @@ def _voxel_keys(pts, origin, cell):
     return (ijk[:, 0] << (2 * _BITS)) | (ijk[:, 1] << _BITS) | ijk[:, 2]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _slot(key, shift):
     """Fibonacci hashing: the top bits of the key times 2^64 / golden ratio (low bits would ignore x and y)."""
     h = np.uint64(key) * np.uint64(0x9E3779B97F4A7C15)
@@ -143,7 +143,7 @@ def _log2(size: int) -> int:
     return int(size).bit_length() - 1
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def _fill_table(sorted_keys, starts, stops, shift, table_keys, table_start, table_stop):
     # shift: 64 - log2 of the table's size (a power of two)
     mask = len(table_keys) - 1
@@ -157,7 +157,7 @@ def _fill_table(sorted_keys, starts, stops, shift, table_keys, table_start, tabl
         table_stop[s] = stops[c]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _lookup(key, table_keys, mask, shift):
     s = _slot(key, shift)
     while True:
@@ -169,7 +169,7 @@ def _lookup(key, table_keys, mask, shift):
         s = (s + 1) & mask
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _gap(offset, frac):
     """Distance (in cells) from a point at fraction ``frac`` of its voxel to the voxel ``offset`` away."""
     if offset > 0:
@@ -179,7 +179,7 @@ def _gap(offset, frac):
     return 0.0
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _query(t, n_threads, q, pts, order, origin, cell, rings, dmax, table_keys, shift, table_start, table_stop, dist,
            idx):
     # share t of n_threads of the queries (shift: 64 - log2 of the table's size)

@@ -12,7 +12,7 @@ import numba
 import numpy as np
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def allocate_blocks(z, k, rot, trans, vs, b, trunc, grid, origin, coords, stamp, n_blocks, frame):
     """Serial: mark every block within the truncation band along each pixel's ray (every 2nd pixel: a block is
     8 voxels wide, far wider than two pixels' footprint). Returns the touched slots, the block count, and whether the
@@ -63,13 +63,14 @@ def allocate_blocks(z, k, rot, trans, vs, b, trunc, grid, origin, coords, stamp,
     return touched[:n_touched].copy(), n_blocks, full
 
 
-@numba.njit(parallel=True, cache=True)
-def integrate_blocks(tsdf, weight, coords, touched, z, k, rot_t, trans, vs, trunc, max_weight):
-    """Parallel over the touched blocks: project every voxel centre into the depth image and update its running
-    average (Curless and Levoy 1996, eq. 5-6; KinectFusion eq. 11-12)."""
+@numba.njit(cache=True, no_cfunc_wrapper=True, nogil=True, error_model="numpy")
+def integrate_blocks(share, n_threads, tsdf, weight, coords, touched, z, k, rot_t, trans, vs, trunc, max_weight):
+    """Touched blocks ``share, share + n_threads, ...`` (:func:`seismo3d._threads.run_threads`): project every
+    voxel centre into the depth image and update its running average (Curless and Levoy 1996, eq. 5-6; KinectFusion
+    eq. 11-12). Each block is written by one share only: the same values for any number of threads."""
     h, w = z.shape
     b = tsdf.shape[1]
-    for i in numba.prange(len(touched)):
+    for i in range(share, len(touched), n_threads):
         slot = touched[i]
         for a in range(b):
             gx = (coords[slot, 0] * b + a) * vs
@@ -99,7 +100,7 @@ def integrate_blocks(tsdf, weight, coords, touched, z, k, rot_t, trans, vs, trun
                     weight[slot, a, c, e] = min(w0 + 1.0, max_weight)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def block_slot(grid, origin, bx, by, bz):
     gx, gy, gz = bx - origin[0], by - origin[1], bz - origin[2]
     if gx < 0 or gy < 0 or gz < 0 or gx >= grid.shape[0] or gy >= grid.shape[1] or gz >= grid.shape[2]:
@@ -107,7 +108,7 @@ def block_slot(grid, origin, bx, by, bz):
     return grid[gx, gy, gz]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def trilinear(tsdf, weight, grid, origin, px, py, pz, vs):
     """TSDF at a world point by trilinear interpolation; NaN when a corner voxel has never been observed."""
     b = tsdf.shape[1]
@@ -146,7 +147,7 @@ def trilinear(tsdf, weight, grid, origin, px, py, pz, vs):
     return total
 
 
-@numba.njit(parallel=True, cache=True)
+@numba.njit(parallel=True, cache=True, no_cfunc_wrapper=True)
 def raycast(tsdf, weight, grid, origin, k, rot, trans, vs, trunc, near, far, tile, points, normals):
     """Parallel over rows: march each pixel's ray to the first + to - zero crossing of the TSDF (KinectFusion 3.4),
     within the depth range of its tile's blocks, refine it by linear interpolation and take the normal from the
@@ -225,7 +226,7 @@ def raycast(tsdf, weight, grid, origin, k, rot, trans, vs, trunc, near, far, til
                 t += step
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def block_ranges(coords, bs, k, rot_t, trans, min_depth, max_depth, tile, h, w, near, far):
     """Splat every allocated block's bounding box into the tiles of the image it covers: per tile, the nearest and
     farthest depth of its blocks (the raycast's bounds, as InfiniTAM's range image; Kaehler et al. 2015)."""
@@ -270,7 +271,7 @@ def block_ranges(coords, bs, k, rot_t, trans, min_depth, max_depth, tile, h, w, 
                     far[a, b] = z1
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def fill_dense(tsdf, weight, coords, box_lo, out):
     """Copy observed voxels of the blocks overlapping ``out`` (voxel box starting at ``box_lo``) into it."""
     b = tsdf.shape[1]

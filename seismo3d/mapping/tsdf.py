@@ -24,8 +24,10 @@ from __future__ import annotations
 import warnings
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
+from .._threads import run_threads
 from .._validation import as_intrinsics, check_positive
 from ..errors import InputError, Seismo3dWarning
 from . import _tsdf_kernels as kernels
@@ -213,8 +215,9 @@ class TSDFVolume:
         trunc = opt.truncation_distance
         self._ensure_grid(z, k, m, trunc)
         touched = self._allocate(z, k, m, trunc)
-        kernels.integrate_blocks(self._tsdf, self._weight, self._coords, touched, z, k, m[:3, :3].T.copy(),
-                                 m[:3, 3].copy(), float(opt.voxel_size), float(trunc), float(opt.max_weight))
+        run_threads(kernels.integrate_blocks, max(1, min(numba.get_num_threads(), len(touched))), self._tsdf,
+                    self._weight, self._coords, touched, z, k, m[:3, :3].T.copy(), m[:3, 3].copy(),
+                    float(opt.voxel_size), float(trunc), float(opt.max_weight))
         return int(len(touched))
 
     def raycast(self, intrinsics, pose, *, shape) -> SurfacePrediction:

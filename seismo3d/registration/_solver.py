@@ -171,7 +171,7 @@ def plane_system_rigid3(moved, t0, dst, nrm, idx, kernel: str, scale: float, fac
     return h, total[21:27].copy(), int(round(total[27]))
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _plane_sums_share(t, n_threads, moved, t0, dst, nrm, idx, kernel, scale, factor, out, rows):
     """Per-chunk sums into ``out`` (_CHUNKS, 28) (zeros): the 21 upper-triangle entries of H, the 6 of g and the
     count, for chunks t, t + n_threads, ... (run_threads; the caller adds the chunks in order, so the sums do not
@@ -226,7 +226,7 @@ def moved_points(points, transform):
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def _moved(points, a, t, out):
     n, d = points.shape
     for i in range(n):

@@ -181,7 +181,7 @@ class _ProjectiveIndex:
         return dist, idx
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def _project_and_match(moved, target, pixel_index, fx, fy, cx, cy, centre, scale, dmax, window, dist, idx):
     """Project each moved point (normalised frame) into the target image and take the closest target point within
     ``window`` pixels of that pixel (KinectFusion's projective association for window 0); ``inf`` /

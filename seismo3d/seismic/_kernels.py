@@ -24,7 +24,7 @@ def as_3d(arr: np.ndarray) -> np.ndarray:
     return arr[:, None, :] if arr.ndim == 2 else arr
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def interp_trace(f, i, j, t, nt):
     # linear interpolation along the sample axis, constant extrapolation at both ends
     if t <= 0.0:
@@ -176,7 +176,7 @@ def semblance_num_den(f, p0, p1, r0, r1, num, den):
                 from_any_thread=True)
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _semblance_rows(share, n_shares, f, p0, p1, r0, r1, num, den):
     # Semblance numerator (sum of the traces)^2 and denominator J * sum of squares, over the (2 r0 + 1) x
     # (2 r1 + 1) neighbouring traces, each read at t + p0 * di + p1 * dj (reflector slopes of the centre sample;
@@ -215,7 +215,7 @@ def eigen_coherence_kernel(f, p0, p1, r0, r1, h, out):
                 from_any_thread=True)
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _eigen_coherence_rows(share, n_shares, f, p0, p1, r0, r1, h, out):
     # Gersztenkorn & Marfurt (1999): C_kl = sum_tau f_k(t + tau) f_l(t + tau) over J traces and 2h+1 samples
     # (traces read along the reflector slopes); coherence = lambda_max(C) / trace(C), by power iteration. Rows
@@ -452,7 +452,7 @@ def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_t
     return p0, p1
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def search_left(keys, value):
     # np.searchsorted(keys, value) of sorted keys (integers, or floats with NaN last): the first index whose key is
     # >= value (a plain binary search compiles in a fraction of numba's generic searchsorted)
@@ -466,7 +466,7 @@ def search_left(keys, value):
     return lo
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def search_right(keys, value):
     # np.searchsorted(keys, value, side="right") of sorted keys (as search_left): the first index whose key is > value
     lo, hi = 0, keys.size

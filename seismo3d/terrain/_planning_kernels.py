@@ -18,7 +18,7 @@ _DR = np.array([-1, -1, -1, 0, 0, 1, 1, 1], dtype=np.int64)
 _DC = np.array([-1, 0, 1, -1, 1, -1, 0, 1], dtype=np.int64)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def octile(r0, c0, r1, c1, cost):
     """Cost of the shortest 8-connected path between two cells of an empty grid (the heuristic)."""
     a = abs(r0 - r1)
@@ -27,7 +27,7 @@ def octile(r0, c0, r1, c1, cost):
     return m * cost[2] + (a - m) * cost[0] + (b - m) * cost[1]
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _step(free, h, w, r, c, k, cost, corner_cutting):
     """Cost of the step from (r, c) in direction k, or -1 when it leaves the grid or is blocked. Steps are
     symmetric: the step back costs the same and is allowed under the same conditions."""
@@ -44,7 +44,7 @@ def _step(free, h, w, r, c, k, cost, corner_cutting):
     return cost[0] if dr != 0 else cost[1]
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _less(a1, a2, b1, b2):
     """Lexicographic order of two-component keys."""
     return a1 < b1 or (a1 == b1 and a2 < b2)
@@ -52,7 +52,8 @@ def _less(a1, a2, b1, b2):
 
 # ---- binary min-heap with lazy deletion (forward searches) -------------------------------------------------------
 
-@njit(cache=True, inline="always")  # inlined in its one caller: a called kernel is compiled on its own too (0.3 CPU s)
+# inlined in its one caller: a called kernel is compiled on its own too (0.3 CPU s)
+@njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _push(k1, k2, nodes, size, key1, key2, node):
     """Insert (key1, key2, node) at the end and sift it up; the arrays must have room for size + 1 entries."""
     i = size
@@ -70,7 +71,7 @@ def _push(k1, k2, nodes, size, key1, key2, node):
     return size + 1
 
 
-@njit(cache=True, inline="always")  # as _push
+@njit(cache=True, no_cfunc_wrapper=True, inline="always")  # as _push
 def _pop(k1, k2, nodes, size):
     """Remove the top entry (read it before the call); return the new size."""
     size -= 1
@@ -99,7 +100,7 @@ def _pop(k1, k2, nodes, size):
 
 # ---- A*, optionally guided by a backward D* Lite search -----------------------------------------------------------
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def guide_bound(v, r, c, goal_r, goal_c, cost, back_g, certificate):
     """Lower bound of the cost from cell v = (r, c) to the goal.
 
@@ -128,7 +129,7 @@ def guide_bound(v, r, c, goal_r, goal_c, cost, back_g, certificate):
     return below if below > h else h  # max(h, below) by a comparison (max() compiles a function of numba's)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def bound_field(shape_h, w, goal, cost, back_g, certificate, lower, exact):
     """:func:`guide_bound` of every cell into ``lower`` (N,), and into ``exact`` (N,) whether it is the cell's exact
     cost (settled by the backward search)."""
@@ -231,7 +232,7 @@ def trace_back(parent, start, goal):
 
 # ---- indexed binary min-heap (D* Lite: one entry per cell, keys updated in place) --------------------------------
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _place(k1, k2, nodes, pos, i, key1, key2, node):
     k1[i] = key1
     k2[i] = key2
@@ -239,7 +240,7 @@ def _place(k1, k2, nodes, pos, i, key1, key2, node):
     pos[node] = i
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _sift_up(k1, k2, nodes, pos, i):
     key1, key2, node = k1[i], k2[i], nodes[i]
     while i > 0:
@@ -251,7 +252,7 @@ def _sift_up(k1, k2, nodes, pos, i):
     _place(k1, k2, nodes, pos, i, key1, key2, node)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _sift_down(k1, k2, nodes, pos, size, i):
     key1, key2, node = k1[i], k2[i], nodes[i]
     while True:
@@ -267,7 +268,7 @@ def _sift_down(k1, k2, nodes, pos, size, i):
     _place(k1, k2, nodes, pos, i, key1, key2, node)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def heap_set(k1, k2, nodes, pos, size, node, key1, key2):
     """Insert ``node`` or change its key; return the new size."""
     i = pos[node]
@@ -287,7 +288,7 @@ def heap_set(k1, k2, nodes, pos, size, node, key1, key2):
     return size
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _heap_remove(k1, k2, nodes, pos, size, node):
     """Remove ``node`` (which must be queued); return the new size."""
     i = pos[node]
@@ -305,7 +306,7 @@ def _heap_remove(k1, k2, nodes, pos, size, node):
 
 # ---- D* Lite (Koenig & Likhachev 2002, optimised version, Fig. 4), searching from the goal ------------------------
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _key(g, rhs, s, r, c, start_r, start_c, km, cost):
     """D* Lite's key of cell s = (r, c)."""
     m = min(g[s], rhs[s])
@@ -314,7 +315,7 @@ def _key(g, rhs, s, r, c, start_r, start_c, km, cost):
     return m + octile(start_r, start_c, r, c, cost) + km, m
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _rhs_from_successors(free, g, r, c, w, h, cost, corner_cutting):
     """min over the steps out of (r, c) of step + g."""
     best = INF
@@ -328,7 +329,7 @@ def _rhs_from_successors(free, g, r, c, w, h, cost, corner_cutting):
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, r, c, start_r, start_c, km, cost):
     """Queue cell s = (r, c) with its key when inconsistent, else take it out of the queue."""
     if g[s] != rhs[s]:
@@ -339,7 +340,7 @@ def _update_vertex(g, rhs, k1, k2, nodes, pos, size, s, r, c, start_r, start_c, 
     return size
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def dstar_compute(free, g, rhs, k1, k2, nodes, pos, size, start, goal, km, cost, corner_cutting, lookahead):
     """ComputeShortestPath of D* Lite, carried on until the queue's smallest key exceeds the start's by
     ``lookahead`` times the start's cost (0: the paper's loop). Returns (heap size, expansions, the queue's smallest
@@ -391,7 +392,7 @@ def dstar_compute(free, g, rhs, k1, k2, nodes, pos, size, start, goal, km, cost,
     return size, expanded, top
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def dstar_cells_changed(free, g, rhs, k1, k2, nodes, pos, size, cells, start, goal, km, cost, corner_cutting):
     """After ``free`` changed at ``cells``: recompute the rhs of every cell whose steps changed and queue it."""
     h, w = free.shape
@@ -412,7 +413,7 @@ def dstar_cells_changed(free, g, rhs, k1, k2, nodes, pos, size, cells, start, go
     return size
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def count_raised(known, g, rhs, cells, start, cost, corner_cutting, lookahead, budget, stamp, generation):
     """How many cells the backward search would have to raise (and lower again) if ``cells`` were blocked, counted
     up to ``budget``: the cells below them in its tree (a cell hangs below a neighbour whose step plus cost to the
@@ -457,7 +458,7 @@ def count_raised(known, g, rhs, cells, start, cost, corner_cutting, lookahead, b
     return min(n, budget)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def dstar_rekey(g, rhs, k1, k2, nodes, pos, size, start, w, cost):
     """Recompute every queued key with km = 0 (when km grows large) and restore the heap order."""
     start_r, start_c = start // w, start % w
@@ -467,7 +468,7 @@ def dstar_rekey(g, rhs, k1, k2, nodes, pos, size, start, w, cost):
         _sift_down(k1, k2, nodes, pos, size, i)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def descend(free, g, rhs, start, goal, cost, corner_cutting):
     """Path start -> goal along the cost-to-goal field (each step to the successor minimising step + g); returns
     flat cells (empty when unreachable). The optimised D* Lite loop may leave the start overconsistent (g > rhs),

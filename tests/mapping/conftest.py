@@ -21,15 +21,18 @@ INTRINSICS = CameraIntrinsics(525.0, 525.0, 319.5, 239.5, 640, 480)
 
 
 def _ray_box(origin, dirs, lo, hi, inside):
-    """Distance along each ray to a box: its exit (camera inside, the room) or its entry (an object)."""
+    """Distance along each ray to a box: its exit (camera inside, the room) or its entry (an object). ``dirs``: (3, n),
+    the rays' x, y and z components, each row contiguous (numpy's reductions across the 3 columns of (n, 3) rows are
+    unvectorised)."""
+    tmin = tmax = None
     with np.errstate(divide="ignore", invalid="ignore"):
-        t1 = (lo - origin) / dirs
-        t2 = (hi - origin) / dirs
-    near, far = np.minimum(t1, t2), np.maximum(t1, t2)
-    # column by column: numpy's nanmax / nanmin across the 3 columns of (n, 3) rows are ~20x slower (unvectorised);
-    # fmax / fmin skip NaN the same way (a ray parallel to a slab)
-    tmin = np.fmax(np.fmax(near[:, 0], near[:, 1]), near[:, 2])
-    tmax = np.fmin(np.fmin(far[:, 0], far[:, 1]), far[:, 2])
+        for axis in range(3):
+            t1 = (lo[axis] - origin[axis]) / dirs[axis]
+            t2 = (hi[axis] - origin[axis]) / dirs[axis]
+            # fmax / fmin skip NaN (a ray parallel to a slab), as the slab test wants
+            near, far = np.minimum(t1, t2), np.maximum(t1, t2)
+            tmin = near if tmin is None else np.fmax(tmin, near)
+            tmax = far if tmax is None else np.fmin(tmax, far)
     if inside:
         return tmax
     hit = (tmax >= tmin) & (tmin > 0)
@@ -46,6 +49,9 @@ def corner_view():
     return m
 
 
+_RAYS_PER_CHUNK = 16384
+
+
 def render_depth(pose, intrinsics=INTRINSICS, boxes=BOXES, turn=None):
     """(H, W) float32 depth (metres, z along the optical axis) of the room seen from ``pose`` (camera-to-world),
     the whole scene first turned by ``turn`` (4, 4) when given (see :func:`corner_view`)."""
@@ -54,11 +60,16 @@ def render_depth(pose, intrinsics=INTRINSICS, boxes=BOXES, turn=None):
     k = intrinsics
     v, u = np.indices((k.height, k.width), dtype=np.float64)
     cam = np.stack([(u - k.cx) / k.fx, (v - k.cy) / k.fy, np.ones_like(u)], axis=-1).reshape(-1, 3)
-    dirs = cam @ pose[:3, :3].T
+    dirs = np.ascontiguousarray((cam @ pose[:3, :3].T).T)
     origin = pose[:3, 3]
-    t = _ray_box(origin, dirs, *ROOM, inside=True)
-    for lo, hi in boxes:
-        t = np.minimum(t, _ray_box(origin, dirs, lo, hi, inside=False))
+    t = np.empty(dirs.shape[1])
+    # chunks of rays whose temporaries stay in the CPU cache: 0.18 CPU s a 640 x 480 image, 0.30 s all rays at once
+    for start in range(0, t.size, _RAYS_PER_CHUNK):
+        d = dirs[:, start:start + _RAYS_PER_CHUNK]
+        chunk = _ray_box(origin, d, *ROOM, inside=True)
+        for lo, hi in boxes:
+            chunk = np.minimum(chunk, _ray_box(origin, d, lo, hi, inside=False))
+        t[start:start + _RAYS_PER_CHUNK] = chunk
     return t.reshape(k.height, k.width).astype(np.float32)  # t along cam (z = 1) is the depth
 
 

@@ -55,6 +55,26 @@ def test_blocks_only_near_the_surface(room_volume):
     assert room_volume.nbytes < 50 * 2**20
 
 
+def test_fusion_is_the_same_on_any_number_of_threads():
+    # each touched block is fused by one thread's share (seismo3d._threads.run_threads): the same bits on 1 thread
+    import numba
+
+    pose = pose_at(4.0, 2.0)
+    depth = render_depth(pose)
+    volumes = []
+    n_default = numba.get_num_threads()
+    for n in (1, numba.config.NUMBA_NUM_THREADS):
+        numba.set_num_threads(n)
+        try:
+            volume = TSDFVolume(TSDFOptions(voxel_size=0.02))
+            volume.integrate(depth, INTRINSICS, pose)
+        finally:
+            numba.set_num_threads(n_default)
+        volumes.append(volume)
+    for other in volumes[1:]:
+        assert np.array_equal(other._tsdf, volumes[0]._tsdf) and np.array_equal(other._weight, volumes[0]._weight)
+
+
 def test_max_blocks_bounds_memory():
     volume = TSDFVolume(TSDFOptions(voxel_size=0.02, max_blocks=50))
     pose = pose_at()

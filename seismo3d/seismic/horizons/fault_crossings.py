@@ -87,7 +87,7 @@ def reliable_throw(throw, min_correlation: float = 0.0) -> bool:
     return bool(np.nanmedian(corr) > np.nanmedian(flat))
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _group_plane(pts, nrm, cells, ndim):
     # the local plane of one fault's points ``cells`` (FaultCrossings._planes, and the compiled steps): centre and
     # unit normal (zeros when the normals cancel). The least-squares plane (line in 2D) from the scatter matrix's
@@ -126,7 +126,7 @@ def _group_plane(pts, nrm, cells, ndim):
     return c, n
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _one_step_jump(a, b, pts, nrm, throws, ids, candidates, pierce):
     # FaultCrossings.jump of the step a -> b (no faults crossed before): the fault points within
     # |b - a| / 2 + pierce + 1 of the step's midpoint (among ``candidates``, the k-d tree's points around it, sorted by
@@ -187,7 +187,7 @@ def _one_step_jump(a, b, pts, nrm, throws, ids, candidates, pierce):
     return total
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _step_jumps(a, b, pts, nrm, throws, ids, indptr, indices, pierce):
     # _one_step_jump of every step a[s] -> b[s], its candidate points indices[indptr[s]:indptr[s + 1]]. Serial: with
     # parallel=True its first run compiled for 5.2 CPU s instead of 1.3, and 20,000 steps near a 40,000-point fault

@@ -24,7 +24,7 @@ import numpy as np
 __all__ = ["linear_values", "spline_gradients", "spline_values"]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _mirror(i: int, n: int) -> int:
     """Index ``i`` of an axis of ``n`` coefficients, reflected as scipy.ndimage's mode 'mirror' (no edge repeat)."""
     if n == 1:
@@ -34,7 +34,7 @@ def _mirror(i: int, n: int) -> int:
     return period - i if i >= n else i
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _weights(t: float, w, d) -> None:
     """Cubic B-spline weights ``w`` of the 4 coefficients around a point ``t`` (in [0, 1)) past the first inner
     one, and their derivatives ``d``."""
@@ -49,7 +49,7 @@ def _weights(t: float, w, d) -> None:
     d[3] = 0.5 * t * t
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _spline(coefficients, pts, values, gradients, with_gradients):
     """Values (and with ``with_gradients`` the gradients) of the spline at the (3, N) points into ``values`` (N,)
     and ``gradients`` (3, N): one kernel for both (each numba kernel compiles once per install, about 1 CPU s)."""
@@ -134,7 +134,7 @@ def spline_values(coefficients, pts) -> np.ndarray:
     return out
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _linear(volumes, pts, out):
     n_vol = volumes.shape[0]
     dims = volumes.shape[1:]

@@ -1,6 +1,7 @@
 """Horizons as IRAP / ZMAP+ grids and x y z points through xtgeo, read back by xtgeo (and ZMAP+ by zmapio), on the
 real F3 grid (rotated, 25 m bins, coordinates with a scalar of -10) and on a grid without coordinates."""
 
+import importlib.util
 import warnings
 
 import numpy as np
@@ -11,9 +12,11 @@ from seismo3d.errors import InputError
 from seismo3d.seismic.io.coordinates import read_survey_coordinates, survey_coordinates
 from seismo3d.seismic.io.horizon_grids import horizon_surface, read_horizon_picks, write_horizon_grids
 
-pytest.importorskip("xtgeo")
-pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning", "ignore::FutureWarning",
-                                        "ignore:The inplace keyword")
+# skipped without xtgeo, found without importing it: every pytest-xdist worker collects this module, and importing
+# xtgeo takes about a CPU second (the tests import it when they run)
+pytestmark = [pytest.mark.skipif(importlib.util.find_spec("xtgeo") is None, reason="xtgeo is not installed"),
+              pytest.mark.filterwarnings("ignore::DeprecationWarning", "ignore::FutureWarning",
+                                         "ignore:The inplace keyword")]
 
 
 @pytest.fixture(scope="module")

@@ -39,7 +39,7 @@ RIDGE_HALO = 12
 THIN_HALO = 2
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _trilinear(f, x, y, z):
     # compiled once and called from _ridges' two reads (inlined there by numba it compiled twice: 0.4-0.9 CPU s more
     # on a first run); math.floor of the clamped position, not int(): int() compiled a function of numba's
@@ -75,14 +75,14 @@ def _direction_lut() -> np.ndarray:
     return out.astype(np.float32)
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _lut_index(strike_deg, dip_deg, n_phi, n_theta):
     i = math.floor(strike_deg * _LUT_STEP + 0.5) % n_phi
     j = min(max(math.floor(dip_deg * _LUT_STEP + 0.5), 0), n_theta - 1)
     return i, j
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _bilinear01(f, x, y, k):
     # bilinear interpolation of f[:, :, k] at (x, y), clamped to the array
     n0, n1, _ = f.shape
@@ -97,7 +97,7 @@ def _bilinear01(f, x, y, k):
     return (1 - u) * ((1 - v) * f[i, j, k] + v * f[i, j1, k]) + u * ((1 - v) * f[i1, j, k] + v * f[i1, j1, k])
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _smooth_along_dip(t, n_threads, f, strike, dip, lut, h, need, box, out):
     # Average f along the dip of each sample's fault plane, one sample per step down (the fault is steeper than
     # 45 degrees in the scan, so the dip vector has its largest component along the sample axis): triangle weights
@@ -133,7 +133,7 @@ def _smooth_along_dip(t, n_threads, f, strike, dip, lut, h, need, box, out):
                 out[i, j, k] = acc / wsum if wsum > 0 else f[i, j, k]
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _ridges(t, n_threads, f, g, strike, dip, lut, floor, box, out):
     # Non-maximum suppression of g across the fault: keep f where g(p) > g(p - n) and g(p) >= g(p + n), n the unit
     # fault normal of the sample (trilinear interpolation); samples with f <= floor are 0 (not tested). On the traces

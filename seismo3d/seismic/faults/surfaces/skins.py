@@ -155,7 +155,7 @@ def _offset_ranks(two_d: bool, lateral: int, vertical: int) -> np.ndarray:
     return rank
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _best_neighbours(t, n_threads, points, frames, keys, shape, ranks, max_plane, cos_angle, best, scores, ranked):
     # best[c, k]: cell c's nearest neighbour above (k = 0) and below (1) it down the dip, left (2) and right (3) of it
     # along the strike, or -1. A neighbour lies within max_plane of c's plane and c within max_plane of its plane,
@@ -227,7 +227,7 @@ def grow_by_mean_normal(indptr, indices, normals, order, cos_mean):
     return label
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _grow_by_mean_normal(indptr, indices, normals, order, cos_mean, label, queue, mean):
     # grow_by_mean_normal's loop: label (all -1) takes the labels; queue and mean are work arrays (np.empty, np.full,
     # np.zeros in here each compiled a function of numba's of its own)

@@ -21,7 +21,7 @@ __all__ = ["cast_votes", "greedy_seeds", "strongest", "surface_kernel"]
 # dynamic programming in the box: Hale's dynamic warping with a strain bound, as Wu & Fomel (2018) use it
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _prefix(e, c):
     # c[i + 1, l] = sum of e[:i + 1, l]: sums over runs of rows in O(1)
     ni, nl = e.shape
@@ -32,7 +32,7 @@ def _prefix(e, c):
             c[i + 1, l] = c[i, l] + e[i, l]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _accumulate_forward(e, b, d, c):
     # d[i, l]: least cost of a path over rows up to i ending at lag l, the lag changing by at most one every b rows
     # (the costs of the b - 1 rows in between are added along the new lag, from the prefix sums c of e made by
@@ -59,7 +59,7 @@ def _accumulate_forward(e, b, d, c):
             d[ii, il] = m + e[ii, il]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _accumulate_backward(e, b, d, c):
     # d[i, l]: least cost of a path over rows from i on starting at lag l (as _accumulate_forward, rows reversed)
     ni, nl = e.shape
@@ -82,7 +82,7 @@ def _accumulate_backward(e, b, d, c):
             d[ii, il] = m + e[ii, il]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _backtrack(d, e, b, u, c):
     # the least-cost path of a forward accumulation, traced back from the cheapest lag of the last row; a change of
     # lag is spread linearly over the b rows it spans (c: prefix sums of e, as left by _accumulate_forward)
@@ -113,7 +113,7 @@ def _backtrack(d, e, b, u, c):
         il = new
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _smooth_costs(e, b, t1, t2, c, out):
     # nonlinear smoothing of the costs along axis 0: forward + backward accumulation - cost, the cost of the best
     # path through each (row, lag) (Hale 2013, dynamic warping). Inlined into its caller by numba: a kernel of its
@@ -127,7 +127,7 @@ def _smooth_costs(e, b, t1, t2, c, out):
             out[i, l] = t1[i, l] + t2[i, l] - e[i, l]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _smooth_exponential(x, a, tmp):
     # two-sided recursive exponential smoothing with zero-slope ends, coefficient a
     n = x.shape[0]
@@ -141,7 +141,7 @@ def _smooth_exponential(x, a, tmp):
         x[i] = a * x[i + 1] + (1.0 - a) * tmp[i]
 
 
-@nb.njit(cache=True, inline="always")
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def _nearest(f, x, y, z, g0, g1):
     # f's sample nearest to the image position (x, y, z), f holding the image from inline g0 and crossline g1: the
     # index is rounded in image coordinates (as when f is the whole image), then clamped to f
@@ -153,7 +153,7 @@ def _nearest(f, x, y, z, g0, g1):
     return f[i, j, k]
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, offsets, fa,
                         seed_normal, work3, work2, surfs, work1):
     # steps 1-4 for seeds t, t + n_threads, ... (see surface_kernel), with this thread's work arrays (made by the
@@ -283,7 +283,7 @@ def surface_kernel(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n
                 np.empty((n_threads, nw, nv)), np.empty((n_threads, 2, nm)))
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _votes_of_thread(t, n_threads, seeds, ids, positions, offsets, fa, o0, o1, votes, best, best_seed):
     # the votes of the seeds with ids[s] % n_threads == t, into votes[t], best[t] and best_seed[t] (see cast_votes)
     _, m0, m1, n2 = votes.shape
@@ -352,7 +352,7 @@ def strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
         dip[rows][found] = seed_dip[s[found]]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, no_cfunc_wrapper=True)
 def _greedy_seeds(cand, d, cells, out):
     # keep candidates (sorted strongest first) with no kept seed within Chebyshev distance d, into out; returns how
     # many. Kept seeds are filed in cells of d + 1 samples per side (cells: all -1): a cell holds at most one (two

@@ -223,7 +223,9 @@ class BlockRun(_StepRun):
         """A dask delayed task ``fn(*args)`` of one block (impure: run once per compute), named after ``fn``; on a
         ``dask.distributed`` cluster its kernels use the worker's share of the host's cores (:func:`kernel_threads`)
         unless ``threads`` is False (a step whose float sums depend on the number of threads, kept as in memory);
-        ``name`` names the task instead of ``fn``."""
+        ``name`` names the task instead of ``fn``. ``fn`` may be a :func:`functools.partial` holding what every block
+        of a step shares (its options, arrays, paths): dask looks for collections in the task's arguments, rebuilding
+        every dataclass and container it walks, but not inside a partial."""
         import dask
 
         share = None
@@ -231,7 +233,8 @@ class BlockRun(_StepRun):
             if self._kernel_threads is None:
                 self._kernel_threads = kernel_threads(self.client)
             share = self._kernel_threads
-        key = f"{(name or fn.__name__).strip('_')}-{uuid.uuid4().hex}"
+        label = name or getattr(fn, "__name__", None) or fn.func.__name__
+        key = f"{label.strip('_')}-{uuid.uuid4().hex}"
         return dask.delayed(run_block, pure=False)(fn, share, *args, dask_key_name=key)
 
     def saved(self, name: str, compute):
@@ -335,13 +338,13 @@ class BlockRun(_StepRun):
         shape = source.shape if source is not None else self.shape
         lists = self.work / step.name
         lists.mkdir(exist_ok=True)
+        block_task = functools.partial(apply_block, step=step, paths=self.arrays, lists=str(lists), args=args)
         tasks = []
         for b in todo:
             region = step.region(b) if step.region is not None else around(b, step.halo, shape)
             window = source[region[0]:region[1], region[2]:region[3]] if CUBE in step.inputs else None
-            tasks.append(self.task(apply_block, window, step, BlockPlace(tuple(b), tuple(region)), self.arrays,
-                                   str(lists), str(self.marker(step.name, b)), *args, threads=step.threads,
-                                   name=step.function.__name__))
+            tasks.append(self.task(block_task, window, BlockPlace(tuple(b), tuple(region)),
+                                   str(self.marker(step.name, b)), threads=step.threads, name=step.function.__name__))
         return self.compute(tasks, step.label or step.name, step.name, workers=workers) + done
 
     def reduce_cube(self, parts) -> list:

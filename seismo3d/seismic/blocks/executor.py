@@ -359,40 +359,39 @@ class BlockRun(_StepRun):
     def compute(self, tasks: list, label: str, step: str, *, workers: int | None = None) -> list:
         """Run delayed block tasks on the chosen scheduler (``workers`` at once on the threaded one, default the
         run's), reporting each finished block; their results in order."""
+        import dask
+
         start = time.perf_counter()
         release_memory()
+        workers = self.workers if workers is None else int(workers)
         try:
-            return self._compute_tasks(tasks, label, self.workers if workers is None else int(workers))
+            if not tasks:
+                return []
+            with progress_steps(len(tasks), label, unit="block", enabled=self.progress) as bar:
+                if self.client is not None:
+                    from distributed import as_completed
+                    futures = self.client.compute(tasks)
+                    index = {f.key: i for i, f in enumerate(futures)}
+                    results = [None] * len(tasks)
+                    for fut in as_completed(futures):
+                        results[index[fut.key]] = fut.result()
+                        bar.advance()
+                    return results
+                from dask.callbacks import Callback
+
+                names = {t.key for t in tasks}
+
+                class _Count(Callback):
+                    def _posttask(self, key, result, dsk, state, worker_id):
+                        if key in names:
+                            release_memory()
+                            bar.advance()
+
+                scheduler = "synchronous" if self.scheduler == "synchronous" else "threads"
+                with _Count():
+                    return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
         finally:
             self.seconds[step] = round(self.seconds.get(step, 0.0) + time.perf_counter() - start, 2)
-
-    def _compute_tasks(self, tasks: list, label: str, workers: int) -> list:
-        import dask
-        if not tasks:
-            return []
-        with progress_steps(len(tasks), label, unit="block", enabled=self.progress) as bar:
-            if self.client is not None:
-                from distributed import as_completed
-                futures = self.client.compute(tasks)
-                index = {f.key: i for i, f in enumerate(futures)}
-                results = [None] * len(tasks)
-                for fut in as_completed(futures):
-                    results[index[fut.key]] = fut.result()
-                    bar.advance()
-                return results
-            from dask.callbacks import Callback
-
-            names = {t.key for t in tasks}
-
-            class _Count(Callback):
-                def _posttask(self, key, result, dsk, state, worker_id):
-                    if key in names:
-                        release_memory()
-                        bar.advance()
-
-            scheduler = "synchronous" if self.scheduler == "synchronous" else "threads"
-            with _Count():
-                return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
 
 
 class MemoryRun(_StepRun):

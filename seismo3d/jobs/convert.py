@@ -151,10 +151,10 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
     SegyFormatError, DataNotFoundError
         The input cannot be read or does not exist (see :func:`~seismo3d.seismic.io.open_segy`).
     InputError
-        ``input`` is a Zarr store, a ``.npy`` array or a ``.f32be`` section (by :func:`~seismo3d.seismic.io.cube.
-        reader_kind`); ``output`` is the input or holds it, exists (without ``overwrite``, or is not a store of this command), or
-        cannot be written (its folder does not exist or takes no files); invalid ``iline``, ``xline``, ``endian``,
-        ``sample_unit``, ``compression``.
+        ``input`` is a Zarr store, a ``.npy`` array or a ``.f32be`` section (by
+        :func:`~seismo3d.seismic.io.cube.reader_kind`); ``output`` is the input or holds it, exists (without
+        ``overwrite``, or is not a store of this command), or cannot be written (its folder does not exist or takes no
+        files); invalid ``iline``, ``xline``, ``endian``, ``sample_unit``, ``compression``.
 
     References
     ----------

@@ -92,9 +92,9 @@ _NOT_SEGY = {"zarr": "a Zarr store", "npy": "a numpy array (.npy)", "f32be": "a 
 
 
 def _check_segy_input(input: Path, kind: str) -> None:
-    """Refuse an input that ``seismo3d.open`` reads with another reader than SEG-Y's (:func:`~seismo3d.seismic.io.cube.
-    reader_kind`): convert writes a SEG-Y cube's amplitudes and headers into a store, and those inputs every command
-    reads as they are."""
+    """Refuse an input that ``seismo3d.open`` reads with another reader than SEG-Y's
+    (:func:`~seismo3d.seismic.io.cube.reader_kind`): convert writes a SEG-Y cube's amplitudes and headers into a store,
+    and every command reads those inputs as they are."""
     if kind != "segy":
         raise InputError(f"{input.name} is {_NOT_SEGY[kind]}, not SEG-Y: convert writes a 3D SEG-Y cube into a Zarr "
                          "store, and every command (seismo3d.open) reads this input as it is; pass it to the command "

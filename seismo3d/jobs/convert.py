@@ -1,11 +1,15 @@
 """The ``seismo3d convert`` job: a 3D SEG-Y cube into a Zarr v3 store that xarray opens as is.
 
-:func:`run_convert_job` opens the SEG-Y through :func:`~seismo3d.seismic.io.open_segy` (same flags and errors as every
-command) and writes the layout of :mod:`~seismo3d.seismic.io.zarr_store` tile by tile, two threads each reading,
-encoding and writing a chunk (memory: about ``chunk_mb`` MiB of amplitudes, not the cube), with progress; the
-amplitudes uncompressed unless ``compression`` names a compressor (float32 seismic compresses 1.1x losslessly). The
-input's sha256 for ``run.json`` is computed on a thread while numpy, segyio and zarr are imported (in the run, not
-at the top of this module) and the cube is copied. The
+:func:`run_convert_job` takes the input's kind from the rule of ``seismo3d.open``
+(:func:`~seismo3d.seismic.io.cube.reader_kind`: a store, a ``.npy`` array or a ``.f32be`` section is refused, since
+every command reads those as they are) and opens the SEG-Y through :func:`~seismo3d.seismic.io.open_segy`, the header
+reader of ``seismo3d.open`` (same flags and errors as every command; the labelled cube itself is not built, as xarray
+and dask would add about 0.8 CPU s of imports to a conversion of about 1.2 CPU s). It writes the layout of
+:mod:`~seismo3d.seismic.io.zarr_store` tile by tile, two threads each reading, encoding and writing a chunk (memory:
+about ``chunk_mb`` MiB of amplitudes, not the cube), with progress; the amplitudes uncompressed unless
+``compression`` names a compressor (float32 seismic compresses 1.1x losslessly). The input's sha256 for ``run.json``
+is computed on a thread while numpy, segyio and zarr are imported (in the run, not at the top of this module) and the
+cube is copied. The
 store is written into a temporary directory beside OUTPUT and renamed to OUTPUT when complete, so an interrupted
 convert (error, Ctrl-C, kill) never leaves something at OUTPUT that looks finished (a killed process may leave a
 hidden ``.OUTPUT.*.tmp`` directory, never OUTPUT). The input is only read.
@@ -84,6 +88,19 @@ def _check_output(input: Path, output: Path, overwrite: bool):
     return main
 
 
+_NOT_SEGY = {"zarr": "a Zarr store", "npy": "a numpy array (.npy)", "f32be": "a raw float32 section (.f32be)"}
+
+
+def _check_segy_input(input: Path, kind: str) -> None:
+    """Refuse an input that ``seismo3d.open`` reads with another reader than SEG-Y's
+    (:func:`~seismo3d.seismic.io.cube.reader_kind`): convert writes a SEG-Y cube's amplitudes and headers into a store,
+    and every command reads those inputs as they are."""
+    if kind != "segy":
+        raise InputError(f"{input.name} is {_NOT_SEGY[kind]}, not SEG-Y: convert writes a 3D SEG-Y cube into a Zarr "
+                         "store, and every command (seismo3d.open) reads this input as it is; pass it to the command "
+                         "itself, or convert the SEG-Y it came from")
+
+
 def _is_seismic_zarr(path: Path) -> bool:
     from ..seismic.io.zarr_store import is_seismic_zarr
 
@@ -134,9 +151,10 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
     SegyFormatError, DataNotFoundError
         The input cannot be read or does not exist (see :func:`~seismo3d.seismic.io.open_segy`).
     InputError
-        ``output`` is the input or holds it, exists (without ``overwrite``, or is not a store of this command), or
-        cannot be written (its folder does not exist or takes no files); invalid ``iline``, ``xline``, ``endian``,
-        ``sample_unit``, ``compression``.
+        ``input`` is a Zarr store, a ``.npy`` array or a ``.f32be`` section (by
+        :func:`~seismo3d.seismic.io.cube.reader_kind`); ``output`` is the input or holds it, exists (without
+        ``overwrite``, or is not a store of this command), or cannot be written (its folder does not exist or takes no
+        files); invalid ``iline``, ``xline``, ``endian``, ``sample_unit``, ``compression``.
 
     References
     ----------
@@ -150,10 +168,12 @@ def run_convert_job(input, output, *, iline: int = 189, xline: int = 193, endian
     main = _check_output(input, output, overwrite)
     record.identify_early(input)
     from .._validation import check_positive
+    from ..seismic.io.cube import reader_kind
     from ..seismic.io.segy import open_segy
     from ..seismic.io.zarr_store import SeismicZarrWriter
 
     check_positive(chunk_mb, "chunk_mb")
+    _check_segy_input(input, reader_kind(input))
     # 2. the SEG-Y's geometry through the one opening path (a trace list is refused by the writer, saying what it is)
     with warnings.catch_warnings(), record.stage("open"):
         warnings.simplefilter("ignore", TraceListWarning)

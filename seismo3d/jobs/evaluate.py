@@ -71,6 +71,9 @@ class SeismicLine:
     samples : (n_samples,) float64 ndarray
         Two-way times (ms), depths, or sample indices, in ``sample_unit``.
     sample_unit : {'ms', 'm', 'ft', 'samples'}
+    cube : xarray.DataArray or None
+        The line as :func:`seismo3d.open` labels it (its ``cdp_x`` / ``cdp_y`` place sticks given by X / Y); None for
+        a 2D array.
     """
 
     path: Path
@@ -80,6 +83,7 @@ class SeismicLine:
     fixed: tuple | None
     samples: np.ndarray
     sample_unit: str
+    cube: object = None
 
     @property
     def name(self) -> str:
@@ -174,7 +178,7 @@ def _grid_line(seismic, fixed: str, index: int) -> SeismicLine:
         section, labels, number = seismic.data[:, index], seismic.inlines, seismic.xlines[index]
     return SeismicLine(seismic.path, np.asarray(section, dtype=np.float32), np.asarray(labels, dtype=np.float64),
                        "crossline" if fixed == "inline" else "inline", (fixed, float(number)),
-                       np.asarray(seismic.samples, dtype=np.float64), seismic.sample_unit)
+                       np.asarray(seismic.samples, dtype=np.float64), seismic.sample_unit, seismic.cube)
 
 
 def read_picked_lines(path, *, sticks=None, mask=None, segy_options: dict | None = None) -> list:
@@ -343,15 +347,15 @@ def read_people_faults(line: SeismicLine, *, sticks=None, mask=None) -> SectionF
 
 def _read_sticks(path: Path, line: SeismicLine) -> SectionFaults:
     """People's fault sticks on the line; sticks of other lines left out with a warning."""
-    from ..seismic.io.coordinates import read_survey_coordinates
+    from ..seismic.io.coordinates import cube_coordinates
     from ..seismic.io.fault_sticks import read_fault_sticks
 
     if line.axis is None:
         raise InputError(f"fault sticks are placed by inline / crossline numbers, and {line.path.name} has none; draw "
                          "people's faults as a mask of the section instead (mask=FILE, --mask)")
     sticks = read_fault_sticks(path)
-    if np.isnan(sticks.inline).any() or np.isnan(sticks.crossline).any():  # IESX: placed by X / Y
-        sticks = read_fault_sticks(path, coordinates=read_survey_coordinates(line.path))
+    if np.isnan(sticks.inline).any() or np.isnan(sticks.crossline).any():  # IESX: placed by X / Y, the line's own
+        sticks = read_fault_sticks(path, coordinates=cube_coordinates(line.cube))
     own = getattr(sticks, line.fixed[0])
     on_line = np.abs(own - line.fixed[1]) <= 0.5
     keep = [nodes for _, nodes in sticks.sticks() if on_line[nodes].all()]

@@ -2,6 +2,8 @@
 coordinates and headers; atomic output (an interrupted convert leaves no OUTPUT); refusals."""
 
 import contextlib
+import re
+import shutil
 
 import numpy as np
 import pytest
@@ -227,6 +229,19 @@ def test_2d_line_is_refused(amplitudes, tmp_path, write_segy_cube):
     with pytest.raises(SegyGeometryError, match="needs a 3D cube"):
         run_convert_job(src, tmp_path / "line.zarr")
     assert not (tmp_path / "line.zarr").exists() and _no_temporaries(tmp_path) == []
+
+
+@pytest.mark.parametrize("name, kind", [("cube.npy", "a numpy array (.npy)"), ("cube.zarr", "a Zarr store")])
+def test_inputs_of_another_reader_are_refused(converted, amplitudes, tmp_path, name, kind):
+    """By the kind seismo3d.open gives the input (a .npy array, a store of convert), before anything is written."""
+    src = tmp_path / name
+    if name.endswith(".npy"):
+        np.save(src, amplitudes)
+    else:
+        shutil.copytree(converted[1], src)
+    with pytest.raises(InputError, match=re.escape(f"{name} is {kind}, not SEG-Y: convert writes a 3D SEG-Y cube")):
+        run_convert_job(src, tmp_path / "out.zarr")
+    assert not (tmp_path / "out.zarr").exists() and _no_temporaries(tmp_path) == []
 
 
 def _chunk_files(folder):

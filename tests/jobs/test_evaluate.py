@@ -33,22 +33,35 @@ STICKS = [(111, 1000.0, 1036.0), (161, 1040.0, 1076.0)]
 TRACED = [(115, 0, 9, 0.9), (141, 0, 9, 0.8), (163, 10, 19, 0.7)]
 
 
-def _write_line(path: Path, crossline: int = 500) -> Path:
+def _write_line(path: Path, crossline: int = 500, *, iline: int = 189, xline: int = 193, xy: bool = False) -> Path:
+    """The line's traces, their inline / crossline numbers at the bytes ``iline`` / ``xline``; with ``xy``, CDP X / Y
+    of :func:`_line_xy` (decimetres: coordinate scalar -10)."""
     rng = np.random.default_rng(0)
     spec = segyio.spec()
     spec.format, spec.sorting = 5, segyio.TraceSortingFormat.INLINE_SORTING
     spec.samples, spec.ilines, spec.xlines = TIMES, INLINES, [crossline]
     with segyio.create(str(path), spec) as f:
         for i, il in enumerate(INLINES):
-            f.header[i] = {189: int(il), 193: crossline, segyio.TraceField.DelayRecordingTime: 1000,
-                           segyio.TraceField.TRACE_SAMPLE_INTERVAL: 4000,
-                           segyio.TraceField.TRACE_SAMPLE_COUNT: N_SAMPLES}
+            header = {iline: int(il), xline: crossline, segyio.TraceField.DelayRecordingTime: 1000,
+                      segyio.TraceField.TRACE_SAMPLE_INTERVAL: 4000, segyio.TraceField.TRACE_SAMPLE_COUNT: N_SAMPLES}
+            if xy:
+                x, y = _line_xy(il, crossline)
+                header.update({segyio.TraceField.CDP_X: round(x * 10), segyio.TraceField.CDP_Y: round(y * 10),
+                               segyio.TraceField.SourceGroupScalar: -10})
+            f.header[i] = header
             f.trace[i] = rng.standard_normal(N_SAMPLES).astype(np.float32)
         f.bin.update(hdt=4000, hns=N_SAMPLES)
     return path
 
 
-def _write_faults_folder(folder: Path, segy: Path, *, traced=TRACED, crossline=500, confidence=None) -> Path:
+def _line_xy(inline, crossline) -> tuple:
+    """Map X / Y (m) of a trace of the generated line: a grid rotated 30 degrees, bins 12.5 m."""
+    c, s = np.cos(np.radians(30.0)), np.sin(np.radians(30.0))
+    return 600000.0 + 12.5 * (c * inline - s * crossline), 6500000.0 + 12.5 * (s * inline + c * crossline)
+
+
+def _write_faults_folder(folder: Path, segy: Path, *, traced=TRACED, crossline=500, confidence=None,
+                         segy_options=None) -> Path:
     """What 'seismo3d faults' writes and evaluate reads: fault_points.csv, fault_summary.csv, run.json."""
     folder.mkdir()
     with open(folder / "fault_points.csv", "w", newline="") as fh:
@@ -61,7 +74,8 @@ def _write_faults_folder(folder: Path, segy: Path, *, traced=TRACED, crossline=5
         w.writerow(["id", "n_points", "mean_likelihood"] + (["confidence"] if confidence else []))
         for fid, (_, k0, k1, c) in enumerate(traced, start=1):
             w.writerow([fid, k1 - k0 + 1, c] + ([confidence[fid - 1]] if confidence else []))
-    write_run_json(folder / "run.json", command="faults", options={"iline": 189, "xline": 193}, inputs={"input": segy},
+    write_run_json(folder / "run.json", command="faults", options=segy_options or {"iline": 189, "xline": 193},
+                   inputs={"input": segy},
                    started=0.0, seconds=1.0, stage_seconds={}, outputs={})
     return folder
 
@@ -214,6 +228,26 @@ def test_sticks_of_other_lines_are_left_out_with_a_warning(work):
     with pytest.warns(Seismo3dWarning, match="1 of the 3 fault sticks of both.dat are not on crossline 500"):
         job = run_evaluate_job(work / "faults", sticks=both, out=work / "ev", picture=False)
     assert [f.name for f in job.scores.people] == ["stick_1", "stick_2"] and job.scores.recall == 1.0
+
+
+def test_iesx_sticks_are_placed_by_the_lines_own_coordinates(tmp_path):
+    """IESX sticks hold only X / Y: placed on the line through its cube's CDP X / Y, read with the faults run's header
+    bytes (here 9 and 21), they score as the same sticks given by line numbers."""
+    from seismo3d.seismic.io.fault_sticks import FaultSticks, read_fault_sticks, write_fault_sticks
+
+    segy = _write_line(tmp_path / "line.sgy", iline=9, xline=21, xy=True)
+    faults = _write_faults_folder(tmp_path / "faults", segy, segy_options={"iline": 9, "xline": 21})
+    by_lines = read_fault_sticks(_write_sticks(tmp_path / "sticks.dat"))
+    x, y = _line_xy(by_lines.inline, by_lines.crossline)
+    placed = FaultSticks(by_lines.fault_id, by_lines.stick, x, y, by_lines.z, by_lines.inline, by_lines.crossline,
+                         by_lines.names, by_lines.z_unit, "m")
+    iesx = write_fault_sticks(tmp_path / "sticks_iesx.txt", placed, format="iesx")
+    assert np.isnan(read_fault_sticks(iesx).inline).all()  # nothing but X / Y to place them by
+    expected = run_evaluate_job(faults, sticks=tmp_path / "sticks.dat", out=tmp_path / "ev", picture=False)
+    job = run_evaluate_job(faults, sticks=iesx, out=tmp_path / "ev_iesx", picture=False)
+    np.testing.assert_array_equal(job.people.points, expected.people.points)
+    assert (job.scores.precision, job.scores.recall) == (expected.scores.precision, expected.scores.recall) == (
+        pytest.approx(20 / 30, abs=1e-12), 1.0)
 
 
 def test_earlier_results_need_overwrite(work):

@@ -174,7 +174,7 @@ def gather(reader, blocks, names) -> dict:
     return {name: np.concatenate([q[name] for q in parts]) if parts else None for name in names}
 
 
-def apply_block(window, step: BlockStep, place: BlockPlace, paths: dict, lists, marker, *args) -> dict:
+def apply_block(window, place: BlockPlace, marker, *, step: BlockStep, paths: dict, lists, args: tuple = ()) -> dict:
     """Run a declared step on one block: read its inputs, call its algorithm, write the core of its outputs, save
     its lists, then its marker.
 
@@ -183,16 +183,16 @@ def apply_block(window, step: BlockStep, place: BlockPlace, paths: dict, lists, 
     window : (m0, m1, n_samples) ndarray or None
         The input cube's region (:attr:`BlockPlace.region`), read by dask, when :data:`~seismo3d.seismic.blocks.plan.
         CUBE` is among the step's inputs.
+    place : BlockPlace
+    marker : str
+        The block's marker file.
     step : BlockStep
         Its ``inputs``, ``outputs``, ``function`` and the flags ``place``, ``lazy``, ``trim``, ``combine``.
-    place : BlockPlace
     paths : dict
         ``{array name: Zarr array path}`` of the run's stores (inputs and outputs).
     lists : str or None
         The step's folder of sparse lists (:func:`save_lists`).
-    marker : str
-        The block's marker file.
-    *args
+    args : tuple
         Passed to the algorithm after the arrays.
 
     Returns

@@ -223,7 +223,9 @@ class BlockRun(_StepRun):
         """A dask delayed task ``fn(*args)`` of one block (impure: run once per compute), named after ``fn``; on a
         ``dask.distributed`` cluster its kernels use the worker's share of the host's cores (:func:`kernel_threads`)
         unless ``threads`` is False (a step whose float sums depend on the number of threads, kept as in memory);
-        ``name`` names the task instead of ``fn``."""
+        ``name`` names the task instead of ``fn``. ``fn`` may be a :func:`functools.partial` holding what every block
+        of a step shares (its options, arrays, paths): dask looks for collections in the task's arguments, rebuilding
+        every dataclass and container it walks, but not inside a partial."""
         import dask
 
         share = None
@@ -231,7 +233,8 @@ class BlockRun(_StepRun):
             if self._kernel_threads is None:
                 self._kernel_threads = kernel_threads(self.client)
             share = self._kernel_threads
-        key = f"{(name or fn.__name__).strip('_')}-{uuid.uuid4().hex}"
+        label = name or getattr(fn, "__name__", None) or fn.func.__name__
+        key = f"{label.strip('_')}-{uuid.uuid4().hex}"
         return dask.delayed(run_block, pure=False)(fn, share, *args, dask_key_name=key)
 
     def saved(self, name: str, compute):
@@ -335,13 +338,13 @@ class BlockRun(_StepRun):
         shape = source.shape if source is not None else self.shape
         lists = self.work / step.name
         lists.mkdir(exist_ok=True)
+        block_task = functools.partial(apply_block, step=step, paths=self.arrays, lists=str(lists), args=args)
         tasks = []
         for b in todo:
             region = step.region(b) if step.region is not None else around(b, step.halo, shape)
             window = source[region[0]:region[1], region[2]:region[3]] if CUBE in step.inputs else None
-            tasks.append(self.task(apply_block, window, step, BlockPlace(tuple(b), tuple(region)), self.arrays,
-                                   str(lists), str(self.marker(step.name, b)), *args, threads=step.threads,
-                                   name=step.function.__name__))
+            tasks.append(self.task(block_task, window, BlockPlace(tuple(b), tuple(region)),
+                                   str(self.marker(step.name, b)), threads=step.threads, name=step.function.__name__))
         return self.compute(tasks, step.label or step.name, step.name, workers=workers) + done
 
     def reduce_cube(self, parts) -> list:
@@ -356,40 +359,39 @@ class BlockRun(_StepRun):
     def compute(self, tasks: list, label: str, step: str, *, workers: int | None = None) -> list:
         """Run delayed block tasks on the chosen scheduler (``workers`` at once on the threaded one, default the
         run's), reporting each finished block; their results in order."""
+        import dask
+
         start = time.perf_counter()
         release_memory()
+        workers = self.workers if workers is None else int(workers)
         try:
-            return self._compute_tasks(tasks, label, self.workers if workers is None else int(workers))
+            if not tasks:
+                return []
+            with progress_steps(len(tasks), label, unit="block", enabled=self.progress) as bar:
+                if self.client is not None:
+                    from distributed import as_completed
+                    futures = self.client.compute(tasks)
+                    index = {f.key: i for i, f in enumerate(futures)}
+                    results = [None] * len(tasks)
+                    for fut in as_completed(futures):
+                        results[index[fut.key]] = fut.result()
+                        bar.advance()
+                    return results
+                from dask.callbacks import Callback
+
+                names = {t.key for t in tasks}
+
+                class _Count(Callback):
+                    def _posttask(self, key, result, dsk, state, worker_id):
+                        if key in names:
+                            release_memory()
+                            bar.advance()
+
+                scheduler = "synchronous" if self.scheduler == "synchronous" else "threads"
+                with _Count():
+                    return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
         finally:
             self.seconds[step] = round(self.seconds.get(step, 0.0) + time.perf_counter() - start, 2)
-
-    def _compute_tasks(self, tasks: list, label: str, workers: int) -> list:
-        import dask
-        if not tasks:
-            return []
-        with progress_steps(len(tasks), label, unit="block", enabled=self.progress) as bar:
-            if self.client is not None:
-                from distributed import as_completed
-                futures = self.client.compute(tasks)
-                index = {f.key: i for i, f in enumerate(futures)}
-                results = [None] * len(tasks)
-                for fut in as_completed(futures):
-                    results[index[fut.key]] = fut.result()
-                    bar.advance()
-                return results
-            from dask.callbacks import Callback
-
-            names = {t.key for t in tasks}
-
-            class _Count(Callback):
-                def _posttask(self, key, result, dsk, state, worker_id):
-                    if key in names:
-                        release_memory()
-                        bar.advance()
-
-            scheduler = "synchronous" if self.scheduler == "synchronous" else "threads"
-            with _Count():
-                return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
 
 
 class MemoryRun(_StepRun):

@@ -42,7 +42,7 @@ import numpy as np
 from ...errors import DataNotFoundError, InputError, Seismo3dWarning
 
 __all__ = ["SEGY_SUFFIXES", "CubeAxes", "as_cube", "grid_spacing", "index_positions", "is_data_array", "line_values",
-           "on_lateral", "open_cube", "sample_dim", "sample_interval", "sample_positions", "samples_at",
+           "on_lateral", "open_cube", "reader_kind", "sample_dim", "sample_interval", "sample_positions", "samples_at",
            "seismic_axes", "seismic_kind"]
 
 SEGY_SUFFIXES = (".sgy", ".segy")
@@ -77,6 +77,35 @@ def seismic_kind(path) -> str | None:
     if suffix in SEGY_SUFFIXES:
         return "segy"
     return {".zarr": "zarr", ".f32be": "f32be", ".npy": "npy"}.get(suffix)
+
+
+def reader_kind(path, format: str | None = None) -> str:
+    """The reader :func:`open_cube` (``seismo3d.open``) opens ``path`` with: the one decision of an input's kind.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    format : {'segy', 'zarr', 'npy', 'f32be'}, optional
+        The kind given by the caller, which wins over the name.
+
+    Returns
+    -------
+    {'segy', 'zarr', 'npy', 'f32be'}
+        ``format``, else the kind by name (:func:`seismic_kind`), else ``'zarr'`` for another folder (refused by the
+        store's reader when it is not one, saying how to make one) and ``'segy'`` for another file (whose reader's
+        error then says what the file is not).
+
+    Raises
+    ------
+    InputError
+        ``format`` is not one of the four.
+    """
+    from ..._validation import check_choice
+
+    path = Path(path)
+    kind = format or seismic_kind(path) or ("zarr" if path.is_dir() else "segy")
+    check_choice(kind, "format", {"segy", "zarr", "npy", "f32be"})
+    return kind
 
 
 def sample_dim(unit: str) -> str:
@@ -148,9 +177,7 @@ def open_cube(path, *, iline: int = 189, xline: int = 193, ignore_geometry: bool
     check_int(tile, "tile", minimum=1)
     if sample_unit is not None:
         check_choice(sample_unit, "sample_unit", {"ms", "m", "ft"})
-    # by its name; another folder is read as a store (refused, if it is not one, with how to make one)
-    kind = format or seismic_kind(path) or ("zarr" if path.is_dir() else "segy")
-    check_choice(kind, "format", {"segy", "zarr", "npy", "f32be"})
+    kind = reader_kind(path, format)
     if kind == "zarr":
         return _open_store(path, sample_unit=sample_unit, tile=tile)
     if kind in ("npy", "f32be"):

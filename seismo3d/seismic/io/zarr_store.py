@@ -349,13 +349,8 @@ class SeismicZarrWriter:
         self._add_source_coordinates()
         if self._cdp is not None:
             self.seismic.attrs["coordinates"] = "cdp_x cdp_y"
-        self._consolidate()
+        consolidate(self.root.store)  # every array's metadata in the group's zarr.json (consolidate's notes)
         return [name for k, name in _TRACE_FIELDS.items() if self.nonzero[k]]
-
-    def _consolidate(self) -> None:
-        """Consolidated metadata (every array's metadata in the group's zarr.json): xarray and other readers open the
-        store with one read. Zarr-python's extension of v3, which it warns about; readers without it ignore it."""
-        consolidate(self.root.store)
 
     def _header_rows(self, field):
         """``rows(a, b)``: the field's values on inlines ``a:b`` (zeros for a field never written)."""

@@ -42,15 +42,14 @@ from ...blocks.plan import block_budget, largest_block, limit_for_blocks, serial
 from ...blocks.stores import StoreRun
 from ..result import ChunkedLikelihood
 from .learned import (
-    DIRECTION_NAMES, LearnedOptions, block_steps, cube_directions, network_block, network_region, network_shape,
-    orientation_block, orientation_block_bytes, orientation_halo, orientation_step, run_learned,
+    DIRECTION_NAMES, LearnedOptions, cube_directions, network_region, network_shape, orientation_block_bytes,
+    orientation_halo, orientation_step, run_learned,
 )
 from .network import POOLING_MULTIPLE
 from .network_grid import grid_size
 from .runs import likelihood_by_blocks
 
-# block_steps, network_block and orientation_block (the steps, in learned) are named here by older callers
-__all__ = ["block_steps", "chunked_learned_likelihood", "learned_block_bytes", "network_block", "orientation_block"]
+__all__ = ["chunked_learned_likelihood", "learned_block_bytes"]
 
 # Network-grid traces a side of the chunks of the network work arrays; the network blocks are multiples of it (or the
 # whole width), so no two blocks write one chunk

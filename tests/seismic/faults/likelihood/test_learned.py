@@ -335,7 +335,8 @@ def test_blocks_refuse_nan_amplitudes(tmp_path):
     """NaN given to the learned likelihood by blocks directly (trace_faults reads them as 0 before its blocks): refused
     from the amplitude scale's subsample of traces before any block, and by a network block, naming its inlines."""
     from seismo3d.seismic.blocks.apply import BlockPlace
-    from seismo3d.seismic.faults.likelihood.learned_blocks import chunked_learned_likelihood, network_block
+    from seismo3d.seismic.faults.likelihood.learned import network_block
+    from seismo3d.seismic.faults.likelihood.learned_blocks import chunked_learned_likelihood
 
     cube = synthetic_cube((40, 40, 32), seed=2).cube.astype(np.float32)
     cube[0, 0, 5] = np.nan  # a trace of the subsample

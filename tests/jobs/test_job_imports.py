@@ -130,10 +130,12 @@ def test_a_convert_run_imports_only_numpy_segyio_and_zarr(tmp_path, data_dir):
     packages = {name.split(".")[0] for name in modules}
     assert "converted f3_crop.sgy" in out and (tmp_path / "f3.zarr" / "zarr.json").is_file()
     assert packages & HEAVY == {"numpy", "segyio", "zarr"}
-    # of seismo3d.seismic.io, the SEG-Y reader and the Zarr writer only (the package's names are imported on first
-    # use); importlib.metadata comes with zarr (its codec registry), not with the SEG-Y reader
+    # of seismo3d.seismic.io, the rule naming an input's reader (cube.reader_kind, numpy only), the SEG-Y reader and
+    # the Zarr writer only (the package's names are imported on first use); importlib.metadata comes with zarr (its
+    # codec registry), not with the SEG-Y reader
     io_modules = {name for name in modules if name.startswith("seismo3d.seismic.io.")}
-    assert io_modules <= {f"seismo3d.seismic.io.{m}" for m in ("segy", "layout", "geometry", "blocks", "zarr_store")}
+    allowed = ("cube", "segy", "layout", "geometry", "blocks", "zarr_store")
+    assert io_modules <= {f"seismo3d.seismic.io.{m}" for m in allowed}
     assert not {"seismo3d.seismic.faults", "seismo3d.seismic.horizons"} & modules
     # typer converts values through pydantic (0.1 s of the process) unless seismo3d._cli_coercion is certain of them
     assert "pydantic" not in packages and "pydantic_core" not in packages

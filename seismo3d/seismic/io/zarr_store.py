@@ -142,13 +142,33 @@ def consolidate(store) -> None:
     Notes
     -----
     Consolidated metadata is zarr-python's extension of the Zarr v3 specification (it warns about that; the
-    warning is silenced here); readers without it ignore it.
+    warning is silenced here); readers without it ignore it. zarr lists the arrays in the order its asynchronous
+    listing finds them, which changes from run to run: in a store on disk they are put in name order, so that
+    converting the same file again writes the same ``zarr.json``.
     """
     import zarr
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # ZarrUserWarning: consolidated metadata is not in the v3 specification
         zarr.consolidate_metadata(store if not isinstance(store, (str, os.PathLike)) else str(store))
+    root = store if isinstance(store, (str, os.PathLike)) else getattr(store, "root", None)
+    if root is not None:
+        _sort_consolidated(Path(root) / "zarr.json")
+
+
+def _sort_consolidated(path: Path) -> None:
+    """The consolidated metadata of a group's ``zarr.json`` in name order, the file replaced atomically."""
+    import json
+
+    from ..._atomic import atomic_path
+
+    meta = json.loads(path.read_text())
+    members = (meta.get("consolidated_metadata") or {}).get("metadata")
+    if not isinstance(members, dict) or list(members) == sorted(members):
+        return
+    meta["consolidated_metadata"]["metadata"] = dict(sorted(members.items()))
+    with atomic_path(path) as tmp:
+        Path(tmp).write_text(json.dumps(meta, indent=2))
 
 
 def _text(raw: bytes) -> str:

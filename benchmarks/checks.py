@@ -51,6 +51,10 @@ CHECKS = [
     Check("horizons-generated", ("benchmarks/horizons.py", "--only", "synthetic", "--check"),
           "the generated faulted cubes 0-2 (the suite keeps cube 0): every horizon tracked across the traced faults "
           "within 0.16 samples at the median, at least 89 % of the traces within 2 samples"),
+    Check("fault-throw", ("benchmarks/fault_throw.py", "--check"),
+          "the faults job's throw on the 18 Penobscot inlines against the offsets of people's horizons across the "
+          "traced faults, on the report half (inlines 1084-1092): the sign, the error at the crossings, the cycle "
+          "skips and which of them are called ambiguous, as the benchmark's bounds say (about 1 min)"),
     Check("notebooks", ("notebooks/build.py", "--check"),
           "the six notebooks' cells equal their sources, their outputs hold no warning, error or absolute path, and "
           "a fresh run of each prints what the saved notebook shows"),

@@ -20,11 +20,12 @@ throw), the median absolute error over the crossings (people's offset >= 2 sampl
 are under 2 samples are counted apart (a fault people did not see offset, or one they smoothed over).
 
 The sections are split: anything chosen on the throw method is chosen on inlines 1075-1083 (``choose``) and
-reported on 1084-1092 (``report``), never fitted on the latter (``ThrowOptions.ambiguous_ratio`` was chosen so).
+reported on 1084-1092 (``report``), never fitted on the latter (``ThrowOptions.ambiguous_ratio`` was chosen on the
+first half only; the report half had been looked at before that choice, so it is not an unseen hold-out).
 Each fault's ``throw_ambiguity`` and ``throw_alternative_samples`` are printed too, and per half how many of the
 faults off by a cycle skip or of the wrong sign ``fault_summary.csv`` calls ambiguous, and how many of the others.
-``--check`` asserts the report half's figures (measured 2026-11-28, margins in ``CHECK``); it traces 9 sections,
-about 2 minutes on 2 cores, over the minute that a check of ``benchmarks/checks.py`` may take.
+``--check`` asserts the report half's figures (margins in ``CHECK``); it traces the 9 sections of the report half,
+about 40 s on 2 quiet cores, and runs in CI (``benchmarks/checks.py fault-throw``).
 
 ``--keep DIR`` keeps each section's job outputs in ``DIR/inline_N``; ``--reuse`` scores those of an earlier run
 instead of tracing again (only for the same checkout).

@@ -184,7 +184,8 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
     row at the bottom, between ``left`` and ``right`` (left of ``left`` stays free for the orientation widget). Each
     slot is measured with VTK's text renderer at the bars' font sizes, so that neighbouring bars' titles and labels
     do not run into each other (pyvista places each bar alone: two vertical bars at its default positions overlap).
-    Fonts are made smaller when the vertical bars would take over 30 % of the window's width.
+    Fonts are made smaller when the vertical bars would take over 30 % of the window's width, or the bottom row
+    over 20 % of its height.
 
     Parameters
     ----------
@@ -211,9 +212,15 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
         labels = max((_text_size(bar.GetLabelTextProperty(), t)[0] for t in _tick_labels(bar)), default=0)
         return max(_text_size(bar.GetTitleTextProperty(), bar.GetTitle())[0], _BAR_PX + _PAD_PX + labels) + _PAD_PX
 
-    need = sum(vertical_px(b) for b in vertical)
-    if need > 0.3 * width:  # a small window: smaller text rather than a squeezed scene
-        scale = 0.3 * width / need
+    def horizontal_px(bar):  # the slot's height, its end labels' width: strip, labels above it, title above them
+        sizes = [_text_size(bar.GetLabelTextProperty(), t) for t in _tick_labels(bar)]
+        title_h = _text_size(bar.GetTitleTextProperty(), bar.GetTitle())[1]
+        return _BAR_PX + max((s[1] for s in sizes), default=0) + title_h + 2 * _PAD_PX, max((s[0] for s in sizes),
+                                                                                              default=0)
+
+    scale = min(1.0, 0.3 * width / max(sum(vertical_px(b) for b in vertical), 1),
+                0.2 * height / max(max((horizontal_px(b)[0] for b in horizontal), default=0), 1))
+    if scale < 1:  # a small window: smaller text rather than a squeezed scene
         for bar in bars:
             for prop in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty(), bar.GetAnnotationTextProperty()):
                 prop.SetFontSize(max(6, int(prop.GetFontSize() * scale)))
@@ -229,10 +236,7 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
     if horizontal:
         slot = (right - left) / len(horizontal)
         for n, bar in enumerate(horizontal):
-            sizes = [_text_size(bar.GetLabelTextProperty(), t) for t in _tick_labels(bar)]
-            label_w, label_h = max((s[0] for s in sizes), default=0), max((s[1] for s in sizes), default=0)
-            title_h = _text_size(bar.GetTitleTextProperty(), bar.GetTitle())[1]
-            h = _BAR_PX + label_h + title_h + 2 * _PAD_PX
+            h, label_w = horizontal_px(bar)
             inset = (label_w / 2 + _PAD_PX) / width  # the end labels are centred on the strip's ends
             bar.SetPosition(left + n * slot + inset, bottom)
             bar.SetWidth(slot - 2 * inset)

@@ -165,17 +165,19 @@ def _corners(geometry: CubeGeometry) -> np.ndarray:
     return corners * np.maximum(np.array(geometry.shape) - 1, 0)
 
 
-_LABEL_ROOM = (0.09, 0.07)  # viewport fractions kept around the box for its tick numbers and axis titles (x, y)
+_LABEL_ROOM = (80, 45)  # pixels kept around the box for its tick numbers and axis titles (x, y): "sample 450"
+_MAX_ROOM = (0.1, 0.08)  # ... at most these viewport fractions (a small window: the box first)
 
 
 def _fit_view(plotter, corners, free, steps: int = 4) -> None:
     """Zoom and pan the camera (its direction kept) so that the box of ``corners`` (world, (8, 3)) fills the free
-    part ``free`` = (x_min, y_min, x_max, y_max) of the viewport, less :data:`_LABEL_ROOM` on every side; a few
+    part ``free`` = (x_min, y_min, x_max, y_max) of the viewport, less :data:`_LABEL_ROOM` (at most :data:`_MAX_ROOM`) on every side; a few
     steps, as the perspective makes a zoom not exactly a scaling."""
     ren, cam = plotter.renderer, plotter.camera
     width, height = (int(v) for v in plotter.window_size)
     x0, y0, x1, y1 = free
-    x0, x1, y0, y1 = x0 + _LABEL_ROOM[0], x1 - _LABEL_ROOM[0], y0 + _LABEL_ROOM[1], y1 - _LABEL_ROOM[1]
+    dx, dy = min(_LABEL_ROOM[0] / width, _MAX_ROOM[0]), min(_LABEL_ROOM[1] / height, _MAX_ROOM[1])
+    x0, x1, y0, y1 = x0 + dx, x1 - dx, y0 + dy, y1 - dy
 
     def to_view(points):  # viewport fractions of world points
         out = []
@@ -382,8 +384,8 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
         plotter.view_vector(_section_normal(geometry), viewup=(0.0, 0.0, 1.0))
     else:
         plotter.camera_position = camera
-        if isinstance(camera, str):  # the box, with room for its tick labels, where the colour bars leave room
-            _fit_view(plotter, geometry.to_world(_corners(geometry)), free)
+    if isinstance(camera, str):  # the box, with room for its tick labels, where the colour bars leave room
+        _fit_view(plotter, geometry.to_world(_corners(geometry)), free)
     _add_ticks(plotter, geometry)  # after the camera: the time ticks go on the edge it sees leftmost
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)
 

@@ -22,7 +22,8 @@ import numpy as np
 from .._atomic import atomic_path
 from ..errors import InputError
 
-__all__ = ["jupyter_backend", "new_plotter", "finish_scene", "symmetric_clip", "bar_below", "arrange_colour_bars", "axis_values"]
+__all__ = ["jupyter_backend", "new_plotter", "finish_scene", "symmetric_clip", "bar_below", "arrange_colour_bars",
+           "axis_values"]
 
 _WINDOW_ENV = "VTK_DEFAULT_OPENGL_WINDOW"
 
@@ -185,7 +186,9 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
     slot is measured with VTK's text renderer at the bars' font sizes, so that neighbouring bars' titles and labels
     do not run into each other (pyvista places each bar alone: two vertical bars at its default positions overlap).
     Fonts are made smaller when the vertical bars would take over 30 % of the window's width, or the bottom row
-    over 20 % of its height.
+    over 20 % of its height. The slots follow ``vtkScalarBarActor``'s layout with unconstrained font sizes
+    (pyvista's): a vertical bar's title above its strip and labels right of it, a horizontal bar's labels and then
+    its title above its strip, the strip ``BarRatio`` of the slot's thickness.
 
     Parameters
     ----------
@@ -213,10 +216,9 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
         return max(_text_size(bar.GetTitleTextProperty(), bar.GetTitle())[0], _BAR_PX + _PAD_PX + labels) + _PAD_PX
 
     def horizontal_px(bar):  # the slot's height, its end labels' width: strip, labels above it, title above them
-        sizes = [_text_size(bar.GetLabelTextProperty(), t) for t in _tick_labels(bar)]
+        sizes = np.array([_text_size(bar.GetLabelTextProperty(), t) for t in _tick_labels(bar)] or [(0, 0)])
         title_h = _text_size(bar.GetTitleTextProperty(), bar.GetTitle())[1]
-        return _BAR_PX + max((s[1] for s in sizes), default=0) + title_h + 2 * _PAD_PX, max((s[0] for s in sizes),
-                                                                                              default=0)
+        return _BAR_PX + int(sizes[:, 1].max()) + title_h + 2 * _PAD_PX, int(sizes[:, 0].max())
 
     scale = min(1.0, 0.3 * width / max(sum(vertical_px(b) for b in vertical), 1),
                 0.2 * height / max(max((horizontal_px(b)[0] for b in horizontal), default=0), 1))

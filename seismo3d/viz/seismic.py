@@ -57,7 +57,8 @@ def _add_slices(plotter, grid, geometry, idx, *, cmap, clim, sliders=False):
     for axis, wanted in enumerate(idx):
         if wanted is None:
             continue
-        bar = dict(show_scalar_bar=True, scalar_bar_args=bar_below("amplitude", fmt="%.3g", n_labels=3)) if first else {}
+        bar = dict(show_scalar_bar=True,
+                   scalar_bar_args=bar_below("amplitude", fmt="%.3g", n_labels=3)) if first else {}
         plotter.add_mesh(_plane(grid, geometry, axis, wanted), name=_PLANES[axis], **{**style, **bar})
         first = False
         if sliders:
@@ -165,14 +166,14 @@ def _corners(geometry: CubeGeometry) -> np.ndarray:
     return corners * np.maximum(np.array(geometry.shape) - 1, 0)
 
 
-_LABEL_ROOM = (80, 45)  # pixels kept around the box for its tick numbers and axis titles (x, y): "sample 450"
+_LABEL_ROOM = (80, 45)  # pixels kept around the box for its tick numbers and axis titles (x, y)
 _MAX_ROOM = (0.1, 0.08)  # ... at most these viewport fractions (a small window: the box first)
 
 
 def _fit_view(plotter, corners, free, steps: int = 4) -> None:
     """Zoom and pan the camera (its direction kept) so that the box of ``corners`` (world, (8, 3)) fills the free
-    part ``free`` = (x_min, y_min, x_max, y_max) of the viewport, less :data:`_LABEL_ROOM` (at most :data:`_MAX_ROOM`) on every side; a few
-    steps, as the perspective makes a zoom not exactly a scaling."""
+    part ``free`` = (x_min, y_min, x_max, y_max) of the viewport, less :data:`_LABEL_ROOM` (at most
+    :data:`_MAX_ROOM`) on every side; a few steps, as the perspective makes a zoom not exactly a scaling."""
     ren, cam = plotter.renderer, plotter.camera
     width, height = (int(v) for v in plotter.window_size)
     x0, y0, x1, y1 = free

@@ -156,6 +156,7 @@ def bar_below(title: str, **options) -> dict:
 _BAR_PX = 18  # thickness of a colour bar's colour strip, in pixels
 _PAD_PX = 6  # between a bar's strip, its tick labels and its title, and between two bars' slots, in pixels
 _BAR_LENGTH = 0.45  # a vertical bar's height, as a fraction of the window's
+_MAX_SLOT = 0.4  # a horizontal bar's slot's width at most, as a fraction of the window's (one bar: not a row)
 
 
 def _text_size(prop, text: str) -> tuple[int, int]:
@@ -182,9 +183,10 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
     """Give every colour bar of a scene its own slot, sized to hold its strip, tick labels and title.
 
     Vertical bars stand side by side at the right of the window, from ``right`` leftward; horizontal bars share one
-    row at the bottom, between ``left`` and ``right`` (left of ``left`` stays free for the orientation widget). Each
-    slot is measured with VTK's text renderer at the bars' font sizes, so that neighbouring bars' titles and labels
-    do not run into each other (pyvista places each bar alone: two vertical bars at its default positions overlap).
+    row at the bottom, from ``left`` toward ``right``, each at most 40 % of the window's width (left of ``left``
+    stays free for the orientation widget). Each slot is measured with VTK's text renderer at the bars' font sizes,
+    so that neighbouring bars' titles and labels do not run into each other (pyvista places each bar alone: two
+    vertical bars at its default positions overlap).
     Fonts are made smaller when the vertical bars would take over 30 % of the window's width, or the bottom row
     over 20 % of its height. The slots follow ``vtkScalarBarActor``'s layout with unconstrained font sizes
     (pyvista's): a vertical bar's title above its strip and labels right of it, a horizontal bar's labels and then
@@ -236,7 +238,7 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
         bar.SetBarRatio(_BAR_PX / w)
     y_max = bottom
     if horizontal:
-        slot = (right - left) / len(horizontal)
+        slot = min((right - left) / len(horizontal), _MAX_SLOT)
         for n, bar in enumerate(horizontal):
             h, label_w = horizontal_px(bar)
             inset = (label_w / 2 + _PAD_PX) / width  # the end labels are centred on the strip's ends

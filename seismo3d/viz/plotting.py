@@ -22,7 +22,8 @@ import numpy as np
 from .._atomic import atomic_path
 from ..errors import InputError
 
-__all__ = ["jupyter_backend", "new_plotter", "finish_scene", "symmetric_clip", "bar_below", "axis_values"]
+__all__ = ["jupyter_backend", "new_plotter", "finish_scene", "symmetric_clip", "bar_below", "arrange_colour_bars",
+           "axis_values"]
 
 _WINDOW_ENV = "VTK_DEFAULT_OPENGL_WINDOW"
 
@@ -150,6 +151,103 @@ def bar_below(title: str, **options) -> dict:
     dict
     """
     return {"title": f"{title}\n", **options}
+
+
+_BAR_PX = 18  # thickness of a colour bar's colour strip, in pixels
+_PAD_PX = 6  # between a bar's strip, its tick labels and its title, and between two bars' slots, in pixels
+_BAR_LENGTH = 0.45  # a vertical bar's height, as a fraction of the window's
+_MAX_SLOT = 0.4  # a horizontal bar's slot's width at most, as a fraction of the window's (one bar: not a row)
+
+
+def _text_size(prop, text: str) -> tuple[int, int]:
+    """Width and height in pixels of ``text`` drawn with the VTK text property ``prop`` (VTK's own measure)."""
+    from vtkmodules.vtkRenderingCore import vtkTextRenderer
+
+    box = [0, 0, 0, 0]
+    if not text.strip() or not vtkTextRenderer().GetBoundingBox(prop, text, box, 72):
+        return 0, 0
+    return box[1] - box[0] + 1, box[3] - box[2] + 1
+
+
+def _tick_labels(actor) -> list[str]:
+    """The tick labels VTK draws on a colour bar: its number of labels, evenly over its lookup table's range, in its
+    label format."""
+    if not actor.GetDrawTickLabels():
+        return []
+    lo, hi = actor.GetLookupTable().GetRange()
+    return [actor.GetLabelFormat() % v for v in np.linspace(lo, hi, actor.GetNumberOfLabels())]
+
+
+def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bottom: float = 0.02,
+                        vertical_bottom: float = 0.3) -> tuple[float, float, float, float]:
+    """Give every colour bar of a scene its own slot, sized to hold its strip, tick labels and title.
+
+    Vertical bars stand side by side at the right of the window, from ``right`` leftward; horizontal bars share one
+    row at the bottom, from ``left`` toward ``right``, each at most 40 % of the window's width (left of ``left``
+    stays free for the orientation widget). Each slot is measured with VTK's text renderer at the bars' font sizes,
+    so that neighbouring bars' titles and labels do not run into each other (pyvista places each bar alone: two
+    vertical bars at its default positions overlap).
+    Fonts are made smaller when the vertical bars would take over 30 % of the window's width, or the bottom row
+    over 20 % of its height. The slots follow ``vtkScalarBarActor``'s layout with unconstrained font sizes
+    (pyvista's): a vertical bar's title above its strip and labels right of it, a horizontal bar's labels and then
+    its title above its strip, the strip ``BarRatio`` of the slot's thickness.
+
+    Parameters
+    ----------
+    plotter : pyvista.Plotter
+        A scene whose colour bars are all added (``plotter.scalar_bars``), not yet rendered.
+    left, right : float, optional
+        Viewport fractions (0 at the window's left, 1 at its right) the bars keep within.
+    bottom : float, optional
+        Viewport fraction of the bottom row's lower edge.
+    vertical_bottom : float, optional
+        Viewport fraction of the vertical bars' lower edge.
+
+    Returns
+    -------
+    (x_min, y_min, x_max, y_max) : tuple of float
+        The part of the viewport the bars leave to the scene: left of the vertical bars, above the bottom row.
+    """
+    width, height = (int(v) for v in plotter.window_size)
+    bars = list(plotter.scalar_bars.values())
+    vertical = [b for b in bars if b.GetOrientation() == 1]
+    horizontal = [b for b in bars if b.GetOrientation() == 0]
+
+    def vertical_px(bar):  # the slot's width: the strip and its labels beside it, or the title above it if wider
+        labels = max((_text_size(bar.GetLabelTextProperty(), t)[0] for t in _tick_labels(bar)), default=0)
+        return max(_text_size(bar.GetTitleTextProperty(), bar.GetTitle())[0], _BAR_PX + _PAD_PX + labels) + _PAD_PX
+
+    def horizontal_px(bar):  # the slot's height, its end labels' width: strip, labels above it, title above them
+        sizes = np.array([_text_size(bar.GetLabelTextProperty(), t) for t in _tick_labels(bar)] or [(0, 0)])
+        title_h = _text_size(bar.GetTitleTextProperty(), bar.GetTitle())[1]
+        return _BAR_PX + int(sizes[:, 1].max()) + title_h + 2 * _PAD_PX, int(sizes[:, 0].max())
+
+    scale = min(1.0, 0.3 * width / max(sum(vertical_px(b) for b in vertical), 1),
+                0.2 * height / max(max((horizontal_px(b)[0] for b in horizontal), default=0), 1))
+    if scale < 1:  # a small window: smaller text rather than a squeezed scene
+        for bar in bars:
+            for prop in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty(), bar.GetAnnotationTextProperty()):
+                prop.SetFontSize(max(6, int(prop.GetFontSize() * scale)))
+    x_max = right
+    for bar in vertical:
+        w = vertical_px(bar)
+        x_max -= w / width
+        bar.SetPosition(x_max, vertical_bottom)
+        bar.SetWidth(w / width)
+        bar.SetHeight(_BAR_LENGTH)
+        bar.SetBarRatio(_BAR_PX / w)
+    y_max = bottom
+    if horizontal:
+        slot = min((right - left) / len(horizontal), _MAX_SLOT)
+        for n, bar in enumerate(horizontal):
+            h, label_w = horizontal_px(bar)
+            inset = (label_w / 2 + _PAD_PX) / width  # the end labels are centred on the strip's ends
+            bar.SetPosition(left + n * slot + inset, bottom)
+            bar.SetWidth(slot - 2 * inset)
+            bar.SetHeight(h / height)
+            bar.SetBarRatio(_BAR_PX / h)
+            y_max = max(y_max, bottom + h / height)
+    return 0.0, y_max, x_max, 1.0
 
 
 def axis_values(axis: np.ndarray, index) -> np.ndarray:

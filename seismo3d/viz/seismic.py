@@ -12,7 +12,7 @@ from ..errors import InputError
 from .fault_meshes import fault_surfaces
 from .geometry import CubeGeometry, cube_geometry, grid_index, place_index_mesh, seismic_grid
 from .horizons import horizon_surface
-from .plotting import bar_below, finish_scene, new_plotter, symmetric_clip
+from .plotting import arrange_colour_bars, bar_below, finish_scene, new_plotter, symmetric_clip
 
 __all__ = ["show_seismic"]
 
@@ -57,8 +57,8 @@ def _add_slices(plotter, grid, geometry, idx, *, cmap, clim, sliders=False):
     for axis, wanted in enumerate(idx):
         if wanted is None:
             continue
-        bar = dict(show_scalar_bar=True, scalar_bar_args=bar_below("amplitude", position_x=0.22, width=0.34,
-                                                                   fmt="%.3g", n_labels=3)) if first else {}
+        bar = dict(show_scalar_bar=True,
+                   scalar_bar_args=bar_below("amplitude", fmt="%.3g", n_labels=3)) if first else {}
         plotter.add_mesh(_plane(grid, geometry, axis, wanted), name=_PLANES[axis], **{**style, **bar})
         first = False
         if sliders:
@@ -104,7 +104,7 @@ def _add_faults(plotter, faults, throws, geometry, color_by):
         plotter.add_mesh(mesh, scalars="fault_id", cmap=colours, clim=(0.5, top + 0.5), n_colors=top,
                          line_width=3, ambient=0.3, opacity=_FAULT_OPACITY,
                          scalar_bar_args=bar_below(f"fault id 1-{top}" + (", colours cycle" if top > 10 else ""),
-                                                   position_x=0.6, width=0.35, n_labels=0))
+                                                   n_labels=0))
         return
     values = np.asarray(mesh.point_data["throw"], dtype=np.float64)
     if not np.isfinite(values).any():
@@ -112,7 +112,7 @@ def _add_faults(plotter, faults, throws, geometry, color_by):
     lim = float(np.nanpercentile(np.abs(values), 98)) or 1.0
     plotter.add_mesh(mesh, scalars="throw", cmap="PuOr_r", clim=(-lim, lim), nan_color="lightgrey",
                      line_width=3, ambient=0.3, opacity=_FAULT_OPACITY,
-                     scalar_bar_args=bar_below("throw (samples, + normal)", position_x=0.6, width=0.35))
+                     scalar_bar_args=bar_below("throw (samples, + normal)"))
 
 
 def _add_horizons(plotter, horizons, geometry):
@@ -130,8 +130,7 @@ def _add_horizons(plotter, horizons, geometry):
     for n, surf in enumerate(surfaces):
         plotter.add_mesh(surf, scalars="time_or_depth", cmap="viridis", clim=clim, show_scalar_bar=n == 0,
                          line_width=5, render_lines_as_tubes=True,  # a horizon on a 2D line is a curve
-                         scalar_bar_args={"title": f"horizon\n{name}{unit}", "vertical": True, "fmt": "%.4g",
-                                          "position_x": 0.84, "position_y": 0.3, "width": 0.08})
+                         scalar_bar_args={"title": f"horizon\n{name}{unit}", "vertical": True, "fmt": "%.4g"})
 
 
 def _add_likelihood(plotter, likelihood, geometry, threshold, max_opacity=0.5):
@@ -145,7 +144,7 @@ def _add_likelihood(plotter, likelihood, geometry, threshold, max_opacity=0.5):
     # colour range, and would warn (and lose resolution) for a narrow colour range
     grid.point_data["fault likelihood"] = np.maximum(grid.point_data["fault likelihood"], np.float32(threshold))
     opacity = np.linspace(0.0, max_opacity, 64)  # over [threshold, 1]; transparent below (clamped colour range)
-    bar = {"title": "fault\nlikelihood", "vertical": True, "position_x": 0.9, "position_y": 0.3, "fmt": "%.2f"}
+    bar = {"title": "fault\nlikelihood", "vertical": True, "fmt": "%.2f"}
     if 1 in geometry.shape[:2]:  # a line: the likelihood is a plane, drawn as one over the section (a volume one
         # voxel thick takes minutes to ray-cast, for the same picture)
         plane = grid.extract_surface(algorithm="dataset_surface")
@@ -161,12 +160,57 @@ def _add_likelihood(plotter, likelihood, geometry, threshold, max_opacity=0.5):
     volume.mapper.SetSampleDistance(0.5 * float(np.linalg.norm(geometry.axes, axis=1).min()))
 
 
+def _corners(geometry: CubeGeometry) -> np.ndarray:
+    """The (8, 3) corners of the cube in index space."""
+    corners = np.array([[i, j, k] for i in (0, 1) for j in (0, 1) for k in (0, 1)], dtype=np.float64)
+    return corners * np.maximum(np.array(geometry.shape) - 1, 0)
+
+
+_LABEL_ROOM = (80, 45)  # pixels kept around the box for its tick numbers and axis titles (x, y)
+_MAX_ROOM = (0.1, 0.08)  # ... at most these viewport fractions (a small window: the box first)
+
+
+def _fit_view(plotter, corners, free, steps: int = 4) -> None:
+    """Zoom and pan the camera (its direction kept) so that the box of ``corners`` (world, (8, 3)) fills the free
+    part ``free`` = (x_min, y_min, x_max, y_max) of the viewport, less :data:`_LABEL_ROOM` (at most
+    :data:`_MAX_ROOM`) on every side; a few steps, as the perspective makes a zoom not exactly a scaling."""
+    ren, cam = plotter.renderer, plotter.camera
+    width, height = (int(v) for v in plotter.window_size)
+    x0, y0, x1, y1 = free
+    dx, dy = min(_LABEL_ROOM[0] / width, _MAX_ROOM[0]), min(_LABEL_ROOM[1] / height, _MAX_ROOM[1])
+    x0, x1, y0, y1 = x0 + dx, x1 - dx, y0 + dy, y1 - dy
+
+    def to_view(points):  # viewport fractions of world points
+        out = []
+        for p in points:
+            ren.SetWorldPoint(*p, 1.0)
+            ren.WorldToDisplay()
+            x, y, _ = ren.GetDisplayPoint()
+            out.append((x / width, y / height))
+        return np.array(out)
+
+    for _ in range(steps):
+        uv = to_view(corners)
+        lo, hi = uv.min(axis=0), uv.max(axis=0)
+        cam.zoom(float(min((x1 - x0) / max(hi[0] - lo[0], 1e-9), (y1 - y0) / max(hi[1] - lo[1], 1e-9))))
+        uv = to_view(corners)
+        shift = np.array([(x0 + x1) / 2, (y0 + y1) / 2]) - (uv.min(axis=0) + uv.max(axis=0)) / 2
+        # the world step of the shift, measured at the focal point's depth
+        ren.SetWorldPoint(*cam.focal_point, 1.0)
+        ren.WorldToDisplay()
+        fx, fy, fz = ren.GetDisplayPoint()
+        ren.SetDisplayPoint(fx - shift[0] * width, fy - shift[1] * height, fz)
+        ren.DisplayToWorld()
+        w = np.array(ren.GetWorldPoint()[:3]) / ren.GetWorldPoint()[3]
+        step = w - np.asarray(cam.focal_point, float)
+        cam.position, cam.focal_point = tuple(np.add(cam.position, step)), tuple(np.add(cam.focal_point, step))
+
+
 def _outline(geometry: CubeGeometry):
     """The cube's 12 edges in the scene."""
     import pyvista as pv
 
-    corners = np.array([[i, j, k] for i in (0, 1) for j in (0, 1) for k in (0, 1)], dtype=np.float64)
-    corners *= np.maximum(np.array(geometry.shape) - 1, 0)
+    corners = _corners(geometry)
     edges = [(a, b) for a in range(8) for b in range(a + 1, 8) if np.count_nonzero(corners[a] != corners[b]) == 1]
     lines = np.array([[2, a, b] for a, b in edges], dtype=np.int64).ravel()
     return pv.PolyData(geometry.to_world(corners), lines=lines)
@@ -333,6 +377,7 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
         _add_likelihood(plotter, likelihood, geometry, likelihood_threshold,
                         max_opacity=0.5 if faults is None else 0.2)
     plotter.add_mesh(_outline(geometry), color="black")
+    free = arrange_colour_bars(plotter)  # every bar its own slot: amplitude, faults or throw below; the rest right
     plotter.add_text(title or geometry.describe(), font_size=9, color="black")
     x_label, y_label, z_label = geometry.axis_labels()
     plotter.add_axes(xlabel=x_label, ylabel=y_label, zlabel=z_label, color="black")
@@ -340,13 +385,8 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
         plotter.view_vector(_section_normal(geometry), viewup=(0.0, 0.0, 1.0))
     else:
         plotter.camera_position = camera
-        if isinstance(camera, str):  # room for the tick labels between the box and the colour bars below it
-            plotter.camera.zoom(0.88)
-            cam = plotter.camera
-            up = np.asarray(cam.up, float) / (np.linalg.norm(cam.up) or 1.0)
-            lift = 0.07 * float(np.linalg.norm(np.subtract(cam.focal_point, cam.position))) * up
-            cam.position, cam.focal_point = tuple(np.subtract(cam.position, lift)), tuple(
-                np.subtract(cam.focal_point, lift))  # the camera a little lower: the scene a little higher
+    if isinstance(camera, str):  # the box, with room for its tick labels, where the colour bars leave room
+        _fit_view(plotter, geometry.to_world(_corners(geometry)), free)
     _add_ticks(plotter, geometry)  # after the camera: the time ticks go on the edge it sees leftmost
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)
 

@@ -275,3 +275,65 @@ def test_the_lateral_numbers_stay_clear_of_the_corner_they_share():
     corner = hi[:2]
     for at, span in ((x_at[:, :2], hi[0] - lo[0]), (y_at[:, :2], hi[1] - lo[1])):
         assert np.linalg.norm(at - corner, axis=1).min() > 0.08 * span
+
+
+def _bar_layout(monkeypatch, **scene):
+    """The scene's colour bars as (title, (x0, y0, x1, y1)) in viewport fractions, and the box's 8 corners in them,
+    read when the scene is finished (before the plotter is closed)."""
+    import seismo3d.viz.seismic as seismic
+
+    found = {}
+
+    def record(plotter, **kw):
+        found["bars"] = [(title, (*bar.GetPosition(), *np.add(bar.GetPosition(), bar.GetPosition2())))
+                         for title, bar in plotter.scalar_bars.items()]
+        width, height = plotter.window_size
+        corners = []
+        for p in seismic._outline(scene.get("geometry") or cube_geometry(SHAPE)).points:
+            plotter.renderer.SetWorldPoint(*p, 1.0)
+            plotter.renderer.WorldToDisplay()
+            x, y, _ = plotter.renderer.GetDisplayPoint()
+            corners.append((x / width, y / height))
+        found["corners"] = np.array(corners)
+        plotter.close()
+        return plotter
+
+    monkeypatch.setattr(seismic, "finish_scene", record)
+    seismic.show_seismic(_cube(), window_size=(900, 650), **scene)
+    return found["bars"], found["corners"]
+
+
+def _throw():
+    from seismo3d.seismic import FaultThrow
+
+    n = _fault().size
+    return FaultThrow(fault_id=1, throw=np.linspace(-5, 5, n).astype(np.float32), registered=np.ones(n, bool),
+                      correlation=np.ones(n, np.float32), correlation_unshifted=np.zeros(n, np.float32),
+                      median_throw=0.0, fitness=1.0, inlier_rmse=0.0, n_points_used=n)
+
+
+_LIKELIHOOD = np.exp(-((np.arange(SHAPE[0])[:, None, None] - 0.7 * np.arange(SHAPE[1])[None, :, None]) ** 2) / 4.0
+                     + np.zeros(SHAPE))
+
+
+@pytest.mark.parametrize("scene", [
+    dict(faults=[_fault()], horizons=[np.full(SHAPE[:2], 20.0)], likelihood=_LIKELIHOOD),  # notebook 01's first
+    dict(faults=[_fault()], throws=[_throw()], color_faults_by="throw", cmap="gray"),  # and its second
+    dict(faults=[_fault()], throws=[_throw()], color_faults_by="throw", horizons=[np.full(SHAPE[:2], 20.0)],
+         likelihood=_LIKELIHOOD, geometry=cube_geometry(SHAPE, samples=1000 + 4.0 * np.arange(SHAPE[2]),
+                                                        sample_unit="ms")),
+], ids=["ids-horizon-likelihood", "throw", "throw-horizon-likelihood-ms"])
+def test_every_colour_bar_has_its_own_slot(monkeypatch, scene):
+    """Notebook 01's scenes: no two colour bars' rectangles (pyvista's scalar bar actors: position and size in
+    viewport units, each sized by VTK's measure of its title and labels) overlap, all are inside the window, and no
+    corner of the cube's box falls in one (main had the horizon's bar at x 0.84-0.92 over the likelihood's at
+    0.90-0.98, and the throw bar's title over the box's inline edge)."""
+    bars, corners = _bar_layout(monkeypatch, **scene)
+    assert len(bars) == 2 + ("horizons" in scene) + ("likelihood" in scene)
+    for n, (title, (x0, y0, x1, y1)) in enumerate(bars):
+        assert 0 <= x0 < x1 <= 1 and 0 <= y0 < y1 <= 1, title
+        for other, (u0, v0, u1, v1) in bars[n + 1:]:
+            overlap = min(x1, u1) - max(x0, u0), min(y1, v1) - max(y0, v0)
+            assert min(overlap) <= 0, f"{title!r} and {other!r} overlap by {overlap}"
+        inside = (corners[:, 0] > x0) & (corners[:, 0] < x1) & (corners[:, 1] > y0) & (corners[:, 1] < y1)
+        assert not inside.any(), f"the box's corners {corners[inside]} are in {title!r}'s bar"

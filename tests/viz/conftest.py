@@ -7,15 +7,16 @@ import pytest
 @pytest.fixture
 def colour_bars(monkeypatch):
     """``colour_bars(module, draw)``: run ``draw()``, a scene of ``module`` rendered off screen (``screenshot``
-    given: that PNG is not written, as ``module.finish_scene`` is replaced),
-    check that every colour bar and its tick labels are inside the window, that its title is drawn inside its
-    rectangle (1 pixel of anti-aliasing; pyvista's bars draw their text at its font size, whatever their
-    rectangle's size; VTK lifts a vertical bar's title 0.75 of a label's height over it) and that no bar's
-    rectangle or text lies over another's; return the bars as ``{title: (rectangle, drawn_title, drawn_labels,
-    lift)}`` in pixels ``(x0, y0, x1, y1)`` from the window's lower
-    left corner: the bar actor's rectangle (position and size) and the boxes of the pixels its title and its tick
-    labels cover on screen, found without any measure of seismo3d's: the scene is rendered with the text black,
-    then with the one part red, and the pixels that change are that part's.
+    given: that PNG is not written, as ``module.finish_scene`` is replaced), and check that every colour bar and
+    its tick labels are inside the window, that its title is drawn inside its rectangle (1 pixel of anti-aliasing;
+    pyvista's bars draw their text at its font size, whatever their rectangle's size; VTK lifts a vertical bar's
+    title 0.75 of a label's height over it), that no bar's rectangle or text lies over another's, and that a
+    horizontal bar's tick labels are half an em apart at least.
+
+    Returns the bars as ``{title: (rectangle, drawn_title, drawn_labels, lift)}``, boxes in pixels
+    ``(x0, y0, x1, y1)`` from the window's lower left corner: the bar actor's rectangle (position and size) and
+    the pixels its title and its tick labels cover on screen, found without any measure of seismo3d's: the scene
+    is rendered with the text black, then with the one part red, and the pixels that change are that part's.
     The end labels of a horizontal bar are centred on its strip's ends, so they reach past its rectangle."""
 
     def layout(module, draw):
@@ -49,6 +50,12 @@ def colour_bars(monkeypatch):
                     red = np.abs(plotter.screenshot(return_img=True)[::-1, :, :3].astype(int) - shots[0]).max(-1) > 0
                     rows, cols = np.nonzero(red & text)
                     boxes.append((cols.min(), rows.min(), cols.max() + 1, rows.max() + 1) if rows.size else None)
+                if bar.GetOrientation() == 0 and bar.GetDrawTickLabels():  # the labels side by side: as many runs of columns, half an em apart
+                    columns = np.flatnonzero((red & text).any(axis=0))
+                    em = bar.GetLabelTextProperty().GetFontSize()
+                    runs = 1 + int(np.count_nonzero(np.diff(columns) > em / 2)) if columns.size else 0
+                    assert runs == bar.GetNumberOfLabels(), \
+                        f"{title!r}: {bar.GetNumberOfLabels()} tick labels drawn as {runs} (run into each other)"
                 # a vertical bar's title is lifted 0.75 of a label's height over its rectangle's top (pyvista's
                 # unconstrained fonts: vtkScalarBarActor::LayoutForUnconstrainedFont, VTK 9)
                 lift = 0.75 * bar.GetLabelTextProperty().GetFontSize() if bar.GetOrientation() == 1 else 0.0
@@ -76,8 +83,8 @@ def _check(bars, width, height, *, tolerance=1.0):
     items = list(bars.items())
     window = (0, 0, width, height)
     for n, (title, (rectangle, drawn_title, drawn_labels, lift)) in enumerate(items):
-        assert drawn_title is not None and drawn_labels is not None, f"{title!r}: its title or labels not drawn"
-        for box in (rectangle, drawn_labels):
+        assert drawn_title is not None, f"{title!r}: its title is not drawn"
+        for box in (rectangle, drawn_labels or rectangle):
             assert min(np.subtract(_overlap(box, window), np.subtract(box[2:], box[:2]))) >= -tolerance, \
                 f"{title!r}: {box} is not inside the {width} x {height} window"
         x0, y0, x1, y1 = rectangle
@@ -87,6 +94,6 @@ def _check(bars, width, height, *, tolerance=1.0):
                                          f"{rectangle} (and {lift} pixels above it)"
         assert v1 <= height, f"{title!r}: its title covers pixels {drawn_title}, above the window"
         for other, (other_rectangle, *other_text, _) in items[n + 1:]:
-            for a in (rectangle, drawn_title, drawn_labels):
-                for b in (other_rectangle, *other_text):
+            for a in (rectangle, drawn_title, drawn_labels or rectangle):
+                for b in (other_rectangle, *(box for box in other_text if box is not None)):
                     assert min(_overlap(a, b)) <= 0, f"{title!r} and {other!r} overlap: {a} and {b}"

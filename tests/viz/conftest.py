@@ -50,7 +50,8 @@ def colour_bars(monkeypatch):
                     red = np.abs(plotter.screenshot(return_img=True)[::-1, :, :3].astype(int) - shots[0]).max(-1) > 0
                     rows, cols = np.nonzero(red & text)
                     boxes.append((cols.min(), rows.min(), cols.max() + 1, rows.max() + 1) if rows.size else None)
-                if bar.GetOrientation() == 0 and bar.GetDrawTickLabels():  # the labels side by side: as many runs of columns, half an em apart
+                if bar.GetOrientation() == 0 and bar.GetDrawTickLabels():
+                    # the labels side by side: as many runs of pixel columns, half an em apart
                     columns = np.flatnonzero((red & text).any(axis=0))
                     em = bar.GetLabelTextProperty().GetFontSize()
                     runs = 1 + int(np.count_nonzero(np.diff(columns) > em / 2)) if columns.size else 0

@@ -430,18 +430,19 @@ def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", 
     Returns
     -------
     pyvista.Plotter
-        The scene. Without ``screenshot`` it has been shown (``plotter.show()``: inline in Jupyter, a window
-        elsewhere); with it, it has been rendered off screen and closed.
+        The scene. Without ``screenshot`` it has been shown (:func:`~seismo3d.viz.plotting.finish_scene`: inline
+        in Jupyter, a window elsewhere); with it, it has been rendered off screen and closed.
 
     Raises
     ------
     InputError
-        Wrong shapes or an unknown ``color_by``.
+        Wrong shapes or an unknown ``color_by``, a ``window_size`` that is not two pixel counts, or a
+        ``screenshot`` in a folder that does not exist.
     """
     import pyvista as pv
 
     from .._validation import check_choice
-    from .plotting import bar_below
+    from .plotting import arrange_colour_bars, bar_below, finish_scene, new_plotter
 
     check_choice(color_by, "color_by", {"fault_id", "throw", "likelihood"})
     data = np.asarray(cube, dtype=np.float32)
@@ -456,7 +457,7 @@ def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", 
         slices = (ni // 2, nj // 2, nk // 2)
     i, j, k = (int(s) for s in slices)
     clip = _clip(data[:: max(1, ni // 64), :: max(1, nj // 64)].ravel(), 99.0)
-    plotter = pv.Plotter(off_screen=screenshot is not None, window_size=list(window_size))
+    plotter = new_plotter(off_screen=screenshot is not None, window_size=window_size)
     shown = [grid] if nj == 1 else grid.slice_orthogonal(x=float(i), y=float(j), z=-float(k))
     for block in shown:
         if block is not None and block.n_points:
@@ -472,16 +473,7 @@ def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", 
         else:
             plotter.add_mesh(mesh, scalars=color_by, cmap="viridis", line_width=3, nan_opacity=0.3,
                              scalar_bar_args=bar_below(color_by))
+    arrange_colour_bars(plotter)  # the fault bar's slot at the bottom, sized to its title and labels
     plotter.add_axes(xlabel="inline", ylabel="crossline", zlabel="sample (down)", color="black")
     plotter.camera_position = "xz" if nj == 1 else "iso"
-    if screenshot is None:
-        plotter.show()
-        return plotter
-    path = Path(screenshot)
-    img = plotter.screenshot(return_img=True)
-    with atomic_path(path) as tmp:
-        from matplotlib.image import imsave
-
-        imsave(tmp, img, format="png")
-    plotter.close()
-    return plotter
+    return finish_scene(plotter, screenshot=screenshot)

@@ -101,7 +101,7 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
     """
     import pyvista as pv
 
-    from .plotting import bar_below, finish_scene, new_plotter
+    from .plotting import arrange_colour_bars, bar_below, finish_scene, new_plotter
 
     traj = np.asarray(trajectory, dtype=np.float64).reshape(-1, 4, 4)
     kfs = np.asarray(keyframes, dtype=np.float64).reshape(-1, 4, 4)
@@ -127,6 +127,7 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
     if len(kfs):
         seg = np.concatenate([_frustum(p, size) for p in kfs])
         plotter.add_mesh(pv.line_segments_from_points(seg), color="blue", line_width=3)
+    arrange_colour_bars(plotter)  # the height bar's slot at the bottom, sized to its title and labels
     # the legend as coloured words at the top right (VTK's legend box cut its longest label off at the window's edge)
     entries = [(name, colour) for name, colour, shown in (("ground truth", "limegreen", len(ref) >= 2),
                                                           ("trajectory", "red", len(traj) >= 2),

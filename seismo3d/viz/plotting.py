@@ -178,6 +178,19 @@ def _tick_labels(actor) -> list[str]:
     return [actor.GetLabelFormat() % v for v in np.linspace(lo, hi, actor.GetNumberOfLabels())]
 
 
+def _fit_tick_labels(bar, length_px: float) -> None:
+    """Fewer tick labels on a horizontal bar whose labels would run into each other along its ``length_px`` long
+    strip: the most of a subset of its labels' values (every 2nd, 4th, ... of them, ends kept) that leaves a gap of
+    3/4 of the labels' font size (an em) between neighbours (VTK draws them at their font size, evenly from end to
+    end)."""
+    first, prop = bar.GetNumberOfLabels(), bar.GetLabelTextProperty()
+    for n in (k for k in range(first, 1, -1) if (first - 1) % (k - 1) == 0):
+        bar.SetNumberOfLabels(n)
+        widest = max((_text_size(prop, t)[0] for t in _tick_labels(bar)), default=0)
+        if length_px / (n - 1) >= widest + 0.75 * prop.GetFontSize():
+            return
+
+
 def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bottom: float = 0.02,
                         vertical_bottom: float = 0.3) -> tuple[float, float, float, float]:
     """Give every colour bar of a scene its own slot, sized to hold its strip, tick labels and title.
@@ -188,9 +201,10 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
     so that neighbouring bars' titles and labels do not run into each other (pyvista places each bar alone: two
     vertical bars at its default positions overlap).
     Fonts are made smaller when the vertical bars would take over 30 % of the window's width, or the bottom row
-    over 20 % of its height. The slots follow ``vtkScalarBarActor``'s layout with unconstrained font sizes
-    (pyvista's): a vertical bar's title above its strip and labels right of it, a horizontal bar's labels and then
-    its title above its strip, the strip ``BarRatio`` of the slot's thickness.
+    over 20 % of its height; a horizontal bar keeps fewer of its tick labels (every 2nd, 4th, ..., its ends kept)
+    when they would run into each other along its strip. The slots follow ``vtkScalarBarActor``'s layout with
+    unconstrained font sizes (pyvista's): a vertical bar's title above its strip and labels right of it, a
+    horizontal bar's labels and then its title above its strip, the strip ``BarRatio`` of the slot's thickness.
 
     Parameters
     ----------
@@ -242,6 +256,7 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
         for n, bar in enumerate(horizontal):
             h, label_w = horizontal_px(bar)
             inset = (label_w / 2 + _PAD_PX) / width  # the end labels are centred on the strip's ends
+            _fit_tick_labels(bar, (slot - 2 * inset) * width)
             bar.SetPosition(left + n * slot + inset, bottom)
             bar.SetWidth(slot - 2 * inset)
             bar.SetHeight(h / height)

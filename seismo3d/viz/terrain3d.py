@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from .plotting import finish_scene, new_plotter
+from .plotting import arrange_colour_bars, finish_scene, new_plotter
 
 __all__ = ["terrain_exaggeration", "terrain_surface_mesh", "show_terrain"]
 
@@ -149,8 +149,7 @@ def show_terrain(dem, *, lineaments=None, path=None, vertical_exaggeration=None,
     plotter.set_background("white")
     # the colour bar upright on the right: at the bottom it hid the goal of paths ending in a near corner
     plotter.add_mesh(surface, scalars="elevation", cmap="gist_earth", smooth_shading=True,
-                     scalar_bar_args={"title": "elevation\n(m)", "fmt": "%.0f", "vertical": True,
-                                      "position_x": 0.88, "position_y": 0.25, "height": 0.5, "width": 0.06})
+                     scalar_bar_args={"title": "elevation\n(m)", "fmt": "%.0f", "vertical": True})
     if lineaments is not None and len(lineaments):
         lines = []
         for r0, c0, r1, c1 in lineaments.segments_px:
@@ -168,6 +167,7 @@ def show_terrain(dem, *, lineaments=None, path=None, vertical_exaggeration=None,
         radius = 0.012 * max(dy * dem.shape[0], dx * dem.shape[1])
         plotter.add_mesh(pv.Sphere(radius=radius, center=line[0]), color="limegreen", label="start")
         plotter.add_mesh(pv.Sphere(radius=radius, center=line[-1]), color="crimson", label="goal")
+    arrange_colour_bars(plotter)  # the elevation bar's slot at the right, sized to its title and labels
     if lineaments is not None or path is not None:
         plotter.add_legend(bcolor="white", face="rectangle", loc="upper left", size=(0.22, 0.14))
     width_km = dx * (dem.shape[1] - 1) / 1000.0

@@ -32,6 +32,19 @@ def test_show_faults_off_screen(small_cube, tmp_path):
         show_faults(cube, res.faults, color_by="colour", screenshot=shot)
 
 
+@pytest.mark.parametrize("color_by", ["fault_id", "throw"])
+def test_the_colour_bar_has_its_own_slot(small_cube, colour_bars, color_by, tmp_path):
+    """The fault bar inside the window, its title and tick labels drawn inside its rectangle (main's pyvista
+    default, 0.35-0.95 of the width and 0.05-0.13 of the height, drew 'fault id' above it)."""
+    import seismo3d.viz.plotting as plotting
+    from seismo3d.viz.faults import show_faults
+
+    cube, res = small_cube
+    bars = colour_bars(plotting, lambda: show_faults(cube, res.faults, throws=res.throws, color_by=color_by,
+                                                     screenshot=tmp_path / "scene.png", window_size=(400, 300)))
+    assert [title.strip() for title in bars] == [{"fault_id": "fault id"}.get(color_by, color_by)]
+
+
 def test_plot_fault_slices_arguments(small_cube, tmp_path):
     from seismo3d.viz.faults import plot_fault_slices
 

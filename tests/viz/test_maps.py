@@ -3,6 +3,7 @@
 import json
 
 import numpy as np
+import pytest
 from typer.testing import CliRunner
 
 from seismo3d.cli import app
@@ -60,6 +61,18 @@ def test_map_with_its_reference_and_a_scale_bar(tmp_path):
     assert green.mean() > 0.002 and not ((plain[..., 1] > 180) & (plain[..., 0] < 100) & (plain[..., 2] < 100)).any()
     black = img[: int(0.7 * img.shape[0])].max(axis=-1) < 40  # above the colour bar's black labels
     assert black.sum() > 100  # the scale bar and its label
+
+
+@pytest.mark.parametrize("window_size", [(400, 300), (1280, 960)])
+def test_the_colour_bar_has_its_own_slot(colour_bars, window_size, tmp_path):
+    """The height bar inside the window, its title and tick labels drawn inside its rectangle (at the size of
+    `seismo3d render` and of `seismo3d map`'s map.png)."""
+    import seismo3d.viz.plotting as plotting
+    from seismo3d.viz.maps import show_map
+
+    bars = colour_bars(plotting, lambda: show_map(_floor(), _poses(), _poses()[::4], screenshot=tmp_path / "map.png",
+                                                   window_size=window_size))
+    assert [title.strip() for title in bars] == ["height (m)"]
 
 
 def test_render_a_map_folder(tmp_path):

@@ -337,3 +337,16 @@ def test_every_colour_bar_has_its_own_slot(monkeypatch, scene):
             assert min(overlap) <= 0, f"{title!r} and {other!r} overlap by {overlap}"
         inside = (corners[:, 0] > x0) & (corners[:, 0] < x1) & (corners[:, 1] > y0) & (corners[:, 1] < y1)
         assert not inside.any(), f"the box's corners {corners[inside]} are in {title!r}'s bar"
+
+
+
+def test_every_colour_bar_draws_its_text_in_its_slot(colour_bars, tmp_path):
+    """Notebook 01's throw scene seen on screen (tests/viz/conftest.py): each of its 4 bars' title drawn inside its
+    rectangle, labels inside the window and apart, no bar's text over another's."""
+    import seismo3d.viz.seismic as seismic
+
+    scene = dict(faults=[_fault()], throws=[_throw()], color_faults_by="throw", horizons=[np.full(SHAPE[:2], 20.0)],
+                 likelihood=_LIKELIHOOD)
+    bars = colour_bars(seismic, lambda: show_seismic(_cube(), screenshot=tmp_path / "scene.png", window_size=(900, 650),
+                                                     **scene))
+    assert len(bars) == 4  # amplitude, throw, horizon, likelihood

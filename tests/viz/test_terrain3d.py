@@ -63,6 +63,20 @@ def test_path_and_surface_colours(tmp_path):
         show_terrain(dem, path=[(100, 0)], screenshot=shot)
 
 
+@pytest.mark.parametrize("window_size", [(400, 300), (1024, 768)])
+def test_the_colour_bar_has_its_own_slot(colour_bars, window_size, tmp_path):
+    """The elevation bar upright at the right, inside the window, its title and tick labels drawn inside its
+    rectangle (main's fixed 0.06 of the width was 24 pixels at 400 x 300, narrower than 'elevation')."""
+    import seismo3d.viz.terrain3d as terrain3d
+
+    dem = _dem()
+    cells = np.column_stack([np.full(70, 45), np.arange(5, 75)])
+    bars = colour_bars(terrain3d, lambda: show_terrain(dem, path=cells, screenshot=tmp_path / "dem.png",
+                                                            window_size=window_size))
+    ((title, ((x0, _, x1, _), *_)),) = bars.items()
+    assert title == "elevation\n(m)" and x0 > 0.5 * window_size[0]
+
+
 def test_render_a_geotiff_with_its_lineaments_and_a_path(tmp_path):
     write_dem(tmp_path / "dem.tif", _dem())
     (tmp_path / "path.csv").write_text("row,col,x,y,z\n" + "".join(f"45,{c},0,0,0\n" for c in range(5, 75)))

@@ -1,0 +1,100 @@
+"""Fixtures of the 3D scenes' tests: the colour bars as VTK draws them."""
+
+import numpy as np
+import pytest
+
+
+@pytest.fixture
+def colour_bars(monkeypatch):
+    """``colour_bars(module, draw)``: run ``draw()``, a scene of ``module`` rendered off screen (``screenshot``
+    given: that PNG is not written, as ``module.finish_scene`` is replaced), and check that every colour bar and
+    its tick labels are inside the window, that its title is drawn inside its rectangle (1 pixel of anti-aliasing;
+    pyvista's bars draw their text at its font size, whatever their rectangle's size; VTK lifts a vertical bar's
+    title 0.75 of a label's height over it), that no bar's rectangle or text lies over another's, and that a
+    horizontal bar's tick labels are half an em apart at least.
+
+    Returns the bars as ``{title: (rectangle, drawn_title, drawn_labels, lift)}``, boxes in pixels
+    ``(x0, y0, x1, y1)`` from the window's lower left corner: the bar actor's rectangle (position and size) and
+    the pixels its title and its tick labels cover on screen, found without any measure of seismo3d's: the scene
+    is rendered with the text black, then with the one part red, and the pixels that change are that part's.
+    The end labels of a horizontal bar are centred on its strip's ends, so they reach past its rectangle."""
+
+    def layout(module, draw):
+        found, window = {}, []
+
+        def record(plotter, **kw):
+            width, height = (int(v) for v in plotter.window_size)
+            bars = list(plotter.scalar_bars.items())
+            props = [(bar.GetTitleTextProperty(), bar.GetLabelTextProperty()) for _, bar in bars]
+            plotter.screenshot(return_img=True)  # the first render (VTK places the tick labels again after it)
+            shots = []
+            for colour in ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0)):
+                for (_, bar), pair in zip(bars, props):
+                    for prop in pair:
+                        prop.SetColor(*colour)
+                        prop.SetShadow(False)
+                    bar.Modified()  # the bar lays its text out again
+                plotter.render()
+                shots.append(plotter.screenshot(return_img=True)[::-1, :, :3].astype(int))  # row 0 at the bottom
+            text = np.abs(shots[0] - shots[1]).max(axis=-1) > 0
+            for n, (title, bar) in enumerate(bars):
+                x0, y0 = np.multiply(bar.GetPosition(), (width, height))
+                x1, y1 = np.multiply(np.add(bar.GetPosition(), bar.GetPosition2()), (width, height))
+                boxes = []
+                for part in (0, 1):  # this bar's title, then its tick labels, alone in red
+                    for m, ((_, other), pair) in enumerate(zip(bars, props)):
+                        for k, prop in enumerate(pair):
+                            prop.SetColor(*((1.0, 0.0, 0.0) if (m, k) == (n, part) else (0.0, 0.0, 0.0)))
+                        other.Modified()
+                    plotter.render()
+                    red = np.abs(plotter.screenshot(return_img=True)[::-1, :, :3].astype(int) - shots[0]).max(-1) > 0
+                    rows, cols = np.nonzero(red & text)
+                    boxes.append((cols.min(), rows.min(), cols.max() + 1, rows.max() + 1) if rows.size else None)
+                if bar.GetOrientation() == 0 and bar.GetDrawTickLabels():
+                    # the labels side by side: as many runs of pixel columns, half an em apart
+                    columns = np.flatnonzero((red & text).any(axis=0))
+                    em = bar.GetLabelTextProperty().GetFontSize()
+                    runs = 1 + int(np.count_nonzero(np.diff(columns) > em / 2)) if columns.size else 0
+                    assert runs == bar.GetNumberOfLabels(), \
+                        f"{title!r}: {bar.GetNumberOfLabels()} tick labels drawn as {runs} (run into each other)"
+                # a vertical bar's title is lifted 0.75 of a label's height over its rectangle's top (pyvista's
+                # unconstrained fonts: vtkScalarBarActor::LayoutForUnconstrainedFont, VTK 9)
+                lift = 0.75 * bar.GetLabelTextProperty().GetFontSize() if bar.GetOrientation() == 1 else 0.0
+                found[title] = ((x0, y0, x1, y1), *boxes, lift)
+            window.extend((width, height))
+            plotter.close()
+            return plotter
+
+        monkeypatch.setattr(module, "finish_scene", record)
+        draw()
+        _check(found, *window)
+        return found
+
+    return layout
+
+
+def _overlap(a, b):
+    """The overlap of two boxes (x0, y0, x1, y1) along x and y (one of them <= 0: they do not overlap)."""
+    return min(a[2], b[2]) - max(a[0], b[0]), min(a[3], b[3]) - max(a[1], b[1])
+
+
+def _check(bars, width, height, *, tolerance=1.0):
+    """Every bar and its text inside the window, its title drawn inside its rectangle (``tolerance`` pixels of
+    anti-aliasing), no bar's rectangle or text over another's."""
+    items = list(bars.items())
+    window = (0, 0, width, height)
+    for n, (title, (rectangle, drawn_title, drawn_labels, lift)) in enumerate(items):
+        assert drawn_title is not None, f"{title!r}: its title is not drawn"
+        for box in (rectangle, drawn_labels or rectangle):
+            assert min(np.subtract(_overlap(box, window), np.subtract(box[2:], box[:2]))) >= -tolerance, \
+                f"{title!r}: {box} is not inside the {width} x {height} window"
+        x0, y0, x1, y1 = rectangle
+        u0, v0, u1, v1 = drawn_title
+        assert u0 >= x0 - tolerance and v0 >= y0 - tolerance and u1 <= x1 + tolerance and \
+            v1 <= y1 + lift + tolerance, f"{title!r}: its title covers pixels {drawn_title}, outside its rectangle " \
+                                         f"{rectangle} (and {lift} pixels above it)"
+        assert v1 <= height, f"{title!r}: its title covers pixels {drawn_title}, above the window"
+        for other, (other_rectangle, *other_text, _) in items[n + 1:]:
+            for a in (rectangle, drawn_title, drawn_labels or rectangle):
+                for b in (other_rectangle, *(box for box in other_text if box is not None)):
+                    assert min(_overlap(a, b)) <= 0, f"{title!r} and {other!r} overlap: {a} and {b}"

@@ -70,7 +70,11 @@ def _read(a) -> np.ndarray:
 
 def _symmetric_limits(data: np.ndarray, percentile: float) -> dict:
     """vmin / vmax at the ``percentile`` of the absolute amplitude of (at most a million of) the finite samples."""
-    clip = _clip(data[np.isfinite(data)][:: max(1, data.size // 1_000_000)], percentile)
+    flat = data.reshape(-1)
+    finite = np.isfinite(flat)
+    step = max(1, data.size // 1_000_000)
+    # every step-th finite sample; when all are finite, a strided view instead of a copy of the whole cube
+    clip = _clip(flat[::step] if finite.all() else flat[finite][::step], percentile)
     return {"vmin": -clip, "vmax": clip}
 
 
@@ -93,6 +97,9 @@ def _colors(ids: np.ndarray):
 
 
 _FEW_FAULTS = 10  # up to this many values, the colour scale spans all of them
+# zlib level of the PNG (Pillow's default: 6): the same pixels; on faults.png of a 256^3 cube (1650 x 1034 pixels)
+# encoded in 0.09 CPU s instead of 0.19, 730 KB instead of 684 (level 1: 0.07 s, 771 KB)
+_PNG_COMPRESSION = 3
 
 
 def _value_range(finite: np.ndarray) -> tuple[float, float]:
@@ -396,7 +403,7 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
     fig.suptitle(f"{title + ': ' if title else ''}{n_f} faults{how}")
     path = Path(path)
     with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png")
+        fig.savefig(tmp, format="png", pil_kwargs={"compress_level": _PNG_COMPRESSION})
     return path
 
 

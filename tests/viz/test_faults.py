@@ -100,3 +100,17 @@ def test_the_colours_spread_over_the_values_the_faults_have():
     position = norm(np.array(list(confidence.values())))
     assert position.min() == 0.0 and position.max() == 1.0
     assert np.unique(colours.rgba.round(3), axis=0).shape[0] == 5
+
+
+@pytest.mark.parametrize("dead", [False, True])
+def test_the_colour_limits_are_the_percentile_of_every_step_th_finite_sample(dead):
+    """faults.png's grey scale: +- the 99th percentile of |amplitude| over every (size // 10^6)-th finite sample, with
+    NaN (dead traces) left out before the samples are taken."""
+    from seismo3d.viz.faults import _symmetric_limits
+
+    data = np.random.default_rng(3).standard_t(3, size=(64, 64, 600)).astype(np.float32)  # 2.46 M: every 2nd
+    if dead:
+        data[5:9] = np.nan
+    finite = data[np.isfinite(data)]
+    clip = float(np.percentile(np.abs(finite[::2]), 99.0))
+    assert _symmetric_limits(data, 99.0) == {"vmin": -clip, "vmax": clip}

@@ -10,7 +10,7 @@ from seismo3d.errors import InputError
 from seismo3d.seismic.faults import Fault
 from seismo3d.seismic.io.coordinates import survey_coordinates
 from seismo3d.seismic.io.fault_sticks import READ_STICK_FORMATS, FaultSticks, read_fault_sticks, write_fault_sticks
-from seismo3d.seismic.io.traced_sticks import stick_lines, stick_nodes
+from seismo3d.seismic.io.traced_sticks import distance_to_stick, stick_lines, stick_nodes
 
 SAMPLES = 1000.0 + 4.0 * np.arange(300)  # ms
 IL0, XL0 = 100, 20  # line numbers of index 0
@@ -177,3 +177,20 @@ def test_round_trip_of_traced_sticks(tmp_path, fmt):
         _check_sticks(FaultSticks(*(getattr(back, a)[mine] for a in ("fault_id", "stick", "x", "y", "z", "inline",
                                                                      "crossline")), names=back.names),
                       fault, cube=True)
+
+
+@pytest.mark.parametrize("tolerance", [0.5, 1.0, 2.5])
+def test_samples_near_the_path_are_those_distance_to_stick_finds(tolerance):
+    """stick_nodes measures each sample against the few segments of its path that reach within the tolerance of its
+    time: the same answer as measuring it against every segment (distance_to_stick), on paths with steps of one and
+    of several samples in time and samples far off them."""
+    from seismo3d.seismic.io.traced_sticks import _near_path
+
+    rng = np.random.default_rng(7)
+    for _ in range(20):
+        times = np.cumsum(rng.integers(1, 4, size=rng.integers(1, 60)))
+        path = np.column_stack([np.cumsum(rng.integers(-2, 3, size=times.size)), times]).astype(np.float64)
+        samples = np.column_stack([rng.integers(-12, 12, 300), rng.integers(-5, times[-1] + 5, 300)]).astype(float)
+        samples = np.concatenate([samples, path + rng.uniform(-1.5, 1.5, path.shape)])
+        np.testing.assert_array_equal(_near_path(samples, path, tolerance),
+                                      distance_to_stick(samples, path) <= tolerance)

@@ -442,7 +442,7 @@ def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", 
     import pyvista as pv
 
     from .._validation import check_choice
-    from .plotting import arrange_colour_bars, bar_below, finish_scene, new_plotter
+    from .plotting import arrange_colour_bars, bar_below, finish_scene, fit_camera, new_plotter
 
     check_choice(color_by, "color_by", {"fault_id", "throw", "likelihood"})
     data = np.asarray(cube, dtype=np.float32)
@@ -473,7 +473,8 @@ def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", 
         else:
             plotter.add_mesh(mesh, scalars=color_by, cmap="viridis", line_width=3, nan_opacity=0.3,
                              scalar_bar_args=bar_below(color_by))
-    arrange_colour_bars(plotter)  # the fault bar's slot at the bottom, sized to its title and labels
+    room = arrange_colour_bars(plotter)  # the fault bar's slot at the bottom, sized to its title and labels
     plotter.add_axes(xlabel="inline", ylabel="crossline", zlabel="sample (down)", color="black")
     plotter.camera_position = "xz" if nj == 1 else "iso"
+    fit_camera(plotter, room)  # the cube fills the room the bar leaves
     return finish_scene(plotter, screenshot=screenshot)

@@ -318,7 +318,8 @@ def _viewport_fractions(renderer, points: np.ndarray) -> np.ndarray:
     return np.column_stack([x0 + (ndc[:, 0] + 1) / 2 * (x1 - x0), y0 + (ndc[:, 1] + 1) / 2 * (y1 - y0)])
 
 
-def fit_camera(plotter, room, *, points=None, margin_px=(20, 20), max_margin=(0.1, 0.08), steps: int = 4) -> None:
+def fit_camera(plotter, room, *, points=None, margin_px=(20, 20, 20, 20), max_margin=(0.1, 0.08),
+               steps: int = 4) -> None:
     """Zoom and pan a scene's camera, its viewing direction kept, so that the scene fills the room the colour bars
     leave (:func:`arrange_colour_bars`).
 
@@ -336,9 +337,9 @@ def fit_camera(plotter, room, *, points=None, margin_px=(20, 20), max_margin=(0.
     points : (N, 3) array_like, optional
         World points to bring into the room (the corners of a seismic cube's box); default: the points of every
         visible mesh and the corners of every volume in the scene (text and other 2D actors left out).
-    margin_px : (int, int), optional
-        Pixels kept free inside the room on its left and right, and at its bottom and top (for tick numbers, axis
-        titles, a caption).
+    margin_px : (int, int, int, int), optional
+        Pixels kept free inside the room at its left, bottom, right and top (for tick numbers, axis titles, a
+        caption).
     max_margin : (float, float), optional
         The margins at most these fractions of the window's width and height (a small window: the scene first).
     steps : int, optional
@@ -358,8 +359,9 @@ def fit_camera(plotter, room, *, points=None, margin_px=(20, 20), max_margin=(0.
     if not len(xyz):
         return
     width, height = (int(v) for v in plotter.window_size)
-    dx, dy = min(margin_px[0] / width, max_margin[0]), min(margin_px[1] / height, max_margin[1])
-    x0, x1, y0, y1 = x0 + dx, x1 - dx, y0 + dy, y1 - dy
+    left, bottom, right, top = (min(px / size, cap) for px, size, cap in
+                                zip(margin_px, (width, height) * 2, tuple(max_margin) * 2))
+    x0, x1, y0, y1 = x0 + left, x1 - right, y0 + bottom, y1 - top
     renderer.ResetCameraClippingRange()
     for _ in range(steps):
         uv = _viewport_fractions(renderer, xyz)

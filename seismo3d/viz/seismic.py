@@ -166,7 +166,9 @@ def _corners(geometry: CubeGeometry) -> np.ndarray:
     return corners * np.maximum(np.array(geometry.shape) - 1, 0)
 
 
-_LABEL_ROOM = (80, 45)  # pixels kept around the box for its tick numbers and axis titles (x, y)
+# pixels kept around the box (left, bottom, right, top): the time or depth numbers at its left, the lateral numbers
+# and axis titles below and right of it, the caption's line above it
+_LABEL_ROOM = (80, 45, 45, 20)
 _MAX_ROOM = (0.1, 0.08)  # ... at most these viewport fractions (a small window: the box first)
 
 

@@ -410,7 +410,8 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
 
 def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", screenshot=None,
                 window_size=(1024, 768)):
-    """A 3D scene of the cube (three orthogonal slices) and its fault surfaces, for notebooks.
+    """A 3D scene of the cube (three orthogonal slices) and its fault surfaces, for notebooks; the camera zoomed so
+    that the cube fills the room above its colour bar (:func:`~seismo3d.viz.plotting.fit_camera`).
 
     Parameters
     ----------

@@ -73,7 +73,8 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
              jupyter_backend=None, title=None):
     """An RGB-D map: the mesh coloured by height, the camera trajectory (red), the keyframes as small camera
     pyramids (blue), a reference trajectory (green, drawn wider under the red one) and a scale bar on the map's
-    floor, seen from above and behind the cameras.
+    floor, seen from above and behind the cameras and zoomed to fill the room above the height bar and the legend
+    (:func:`~seismo3d.viz.plotting.fit_camera`).
 
     Parameters
     ----------

@@ -167,8 +167,8 @@ def _corners(geometry: CubeGeometry) -> np.ndarray:
 
 
 # pixels kept around the box (left, bottom, right, top): the time or depth numbers at its left, the lateral numbers
-# and axis titles below and right of it, the caption's line above it
-_LABEL_ROOM = (80, 45, 45, 20)
+# and axis titles below and right of it, the caption's line and half a time number above it
+_LABEL_ROOM = (80, 45, 45, 30)
 _MAX_ROOM = (0.1, 0.08)  # ... at most these viewport fractions (a small window: the box first)
 
 

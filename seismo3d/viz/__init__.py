@@ -18,7 +18,7 @@
   :func:`plot_lineament_map`: PNGs of terrain lineaments (rose diagram, map over a hillshade).
 - :func:`show_faults`: a quick scene of a cube's middle slices and its fault surfaces in index space.
 - :mod:`seismo3d.viz.plotting`: how scenes are shown (window, Jupyter with trame or a static picture, off-screen PNG
-  through EGL; what a slim image needs).
+  through EGL; what a slim image needs), where their colour bars go and how the camera fills the room they leave.
 """
 
 from .clouds import plot_matches, show_point_clouds

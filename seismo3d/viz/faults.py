@@ -417,7 +417,8 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
 
 def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", screenshot=None,
                 window_size=(1024, 768)):
-    """A 3D scene of the cube (three orthogonal slices) and its fault surfaces, for notebooks.
+    """A 3D scene of the cube (three orthogonal slices) and its fault surfaces, for notebooks; the camera zoomed so
+    that the cube fills the room above its colour bar (:func:`~seismo3d.viz.plotting.fit_camera`).
 
     Parameters
     ----------
@@ -449,7 +450,7 @@ def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", 
     import pyvista as pv
 
     from .._validation import check_choice
-    from .plotting import arrange_colour_bars, bar_below, finish_scene, new_plotter
+    from .plotting import arrange_colour_bars, bar_below, finish_scene, fit_camera, new_plotter
 
     check_choice(color_by, "color_by", {"fault_id", "throw", "likelihood"})
     data = np.asarray(cube, dtype=np.float32)
@@ -480,7 +481,8 @@ def show_faults(cube, faults, *, throws=None, slices=None, color_by="fault_id", 
         else:
             plotter.add_mesh(mesh, scalars=color_by, cmap="viridis", line_width=3, nan_opacity=0.3,
                              scalar_bar_args=bar_below(color_by))
-    arrange_colour_bars(plotter)  # the fault bar's slot at the bottom, sized to its title and labels
+    room = arrange_colour_bars(plotter)  # the fault bar's slot at the bottom, sized to its title and labels
     plotter.add_axes(xlabel="inline", ylabel="crossline", zlabel="sample (down)", color="black")
     plotter.camera_position = "xz" if nj == 1 else "iso"
+    fit_camera(plotter, room)  # the cube fills the room the bar leaves
     return finish_scene(plotter, screenshot=screenshot)

@@ -65,11 +65,16 @@ def _scale_bar(plotter, vertices, up, forward, right) -> float:
     return length
 
 
+_LEGEND_PX = 150  # the legend's words start this many pixels left of the window's right edge
+_LINE_PX = 24  # ... one above the other, this many pixels apart
+
+
 def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None, window_size=(1024, 768),
              jupyter_backend=None, title=None):
     """An RGB-D map: the mesh coloured by height, the camera trajectory (red), the keyframes as small camera
     pyramids (blue), a reference trajectory (green, drawn wider under the red one) and a scale bar on the map's
-    floor, seen from above and behind the cameras.
+    floor, seen from above and behind the cameras and zoomed to fill the room above the height bar and the legend
+    (:func:`~seismo3d.viz.plotting.fit_camera`).
 
     Parameters
     ----------
@@ -101,7 +106,7 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
     """
     import pyvista as pv
 
-    from .plotting import arrange_colour_bars, bar_below, finish_scene, new_plotter
+    from .plotting import arrange_colour_bars, bar_below, finish_scene, fit_camera, new_plotter
 
     traj = np.asarray(trajectory, dtype=np.float64).reshape(-1, 4, 4)
     kfs = np.asarray(keyframes, dtype=np.float64).reshape(-1, 4, 4)
@@ -127,14 +132,17 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
     if len(kfs):
         seg = np.concatenate([_frustum(p, size) for p in kfs])
         plotter.add_mesh(pv.line_segments_from_points(seg), color="blue", line_width=3)
-    arrange_colour_bars(plotter)  # the height bar's slot at the bottom, sized to its title and labels
-    # the legend as coloured words at the top right (VTK's legend box cut its longest label off at the window's edge)
+    room = arrange_colour_bars(plotter)  # the height bar's slot at the bottom, sized to its title and labels
+    # the legend as coloured words at the lower right, beside the height bar, the map above both (VTK's legend box
+    # cut its longest label off at the window's edge)
     entries = [(name, colour) for name, colour, shown in (("ground truth", "limegreen", len(ref) >= 2),
                                                           ("trajectory", "red", len(traj) >= 2),
                                                           ("keyframes", "blue", len(kfs) > 0)) if shown]
     width, height = (int(v) for v in np.ravel(window_size))
     for n, (name, colour) in enumerate(entries):
-        plotter.add_text(name, position=(width - 150, height - 36 - 24 * n), font_size=12, color=colour)
+        plotter.add_text(name, position=(width - _LEGEND_PX, _LINE_PX * (len(entries) - 1 - n) + 6), font_size=12,
+                         color=colour)
+    room = (room[0], max(room[1], (_LINE_PX * len(entries) + 12) / height), room[2], room[3])
     if title:
         plotter.add_text(title, font_size=9, color="black")
     # look down on the scene from above and behind the cameras (their mean viewing direction), everything in view
@@ -150,6 +158,7 @@ def show_map(mesh, trajectory, keyframes=(), *, reference=None, screenshot=None,
         eye = centre + 3.0 * (-0.8 * forward + 1.0 * up)
         plotter.camera_position = [tuple(eye), tuple(centre), tuple(forward)]
         plotter.reset_camera()
+    fit_camera(plotter, room)  # the map, its trajectory and its scale bar fill the room the bar and legend leave
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)
 
 

@@ -23,7 +23,7 @@ from .._atomic import atomic_path
 from ..errors import InputError
 
 __all__ = ["jupyter_backend", "new_plotter", "finish_scene", "symmetric_clip", "bar_below", "arrange_colour_bars",
-           "axis_values"]
+           "fit_camera", "axis_values"]
 
 _WINDOW_ENV = "VTK_DEFAULT_OPENGL_WINDOW"
 
@@ -226,6 +226,13 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
     bars = list(plotter.scalar_bars.values())
     vertical = [b for b in bars if b.GetOrientation() == 1]
     horizontal = [b for b in bars if b.GetOrientation() == 0]
+    for bar in bars:
+        if not bar.GetDrawTickLabels():  # no label actors at all: VTK lifts the title by their height even unseen
+            bar.SetNumberOfLabels(0)
+    for bar in horizontal:  # VTK measures a horizontal bar's labels before it centres them on their values, and the
+        # first render draws them as measured (left-aligned at their values): centred from the start, every render
+        # draws them alike (vtkScalarBarActor::ConfigureTicks, VTK 9)
+        bar.GetLabelTextProperty().SetJustificationToCentered()
 
     def vertical_px(bar):  # the slot's width: the strip and its labels beside it, or the title above it if wider
         labels = max((_text_size(bar.GetLabelTextProperty(), t)[0] for t in _tick_labels(bar)), default=0)
@@ -263,6 +270,116 @@ def arrange_colour_bars(plotter, *, left: float = 0.22, right: float = 0.99, bot
             bar.SetBarRatio(_BAR_PX / h)
             y_max = max(y_max, bottom + h / height)
     return 0.0, y_max, x_max, 1.0
+
+
+def _scene_points(renderer) -> np.ndarray:
+    """The (N, 3) world points of every visible 3D actor of ``renderer`` (the eight corners of the bounds of a volume
+    or of a dataset without explicit points); text and other 2D actors are left out."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkCommonDataModel import vtkDataSet, vtkPointSet
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkVolume
+
+    def corners(b):
+        return np.array([[x, y, z] for x in b[:2] for y in b[2:4] for z in b[4:]], dtype=np.float64)
+
+    found = []
+    props = renderer.GetViewProps()
+    for n in range(props.GetNumberOfItems()):
+        prop = props.GetItemAsObject(n)
+        if not prop.GetVisibility():
+            continue
+        if isinstance(prop, vtkVolume):
+            found.append(corners(prop.GetBounds()))
+            continue
+        mapper = prop.GetMapper() if isinstance(prop, vtkActor) else None
+        fed = mapper is not None and mapper.GetNumberOfInputPorts() and mapper.GetNumberOfInputConnections(0)
+        data = mapper.GetInputDataObject(0, 0) if fed else None
+        if not isinstance(data, vtkDataSet) or not data.GetNumberOfPoints():
+            continue
+        if not isinstance(data, vtkPointSet):
+            found.append(corners(prop.GetBounds()))
+            continue
+        matrix = np.array([[prop.GetMatrix().GetElement(i, j) for j in range(4)] for i in range(4)])
+        xyz = vtk_to_numpy(data.GetPoints().GetData()).astype(np.float64, copy=False)
+        found.append(xyz @ matrix[:3, :3].T + matrix[:3, 3])
+    return np.concatenate(found) if found else np.zeros((0, 3))
+
+
+def _viewport_fractions(renderer, points: np.ndarray) -> np.ndarray:
+    """Where the camera of ``renderer`` draws world ``points`` (N, 3): (N, 2) fractions of the window (0 at its lower
+    left corner, 1 at its upper right); points behind the camera left out."""
+    camera = renderer.GetActiveCamera()
+    m = camera.GetCompositeProjectionTransformMatrix(renderer.GetTiledAspectRatio(), -1, 1)
+    matrix = np.array([[m.GetElement(i, j) for j in range(4)] for i in range(4)])
+    clip = points @ matrix[:, :3].T + matrix[:, 3]
+    clip = clip[clip[:, 3] > 0]
+    ndc = clip[:, :2] / clip[:, 3:]
+    x0, y0, x1, y1 = renderer.GetViewport()
+    return np.column_stack([x0 + (ndc[:, 0] + 1) / 2 * (x1 - x0), y0 + (ndc[:, 1] + 1) / 2 * (y1 - y0)])
+
+
+def fit_camera(plotter, room, *, points=None, margin_px=(20, 20, 20, 20), max_margin=(0.1, 0.08),
+               steps: int = 4) -> None:
+    """Zoom and pan a scene's camera, its viewing direction kept, so that the scene fills the room the colour bars
+    leave (:func:`arrange_colour_bars`).
+
+    The points are projected through the camera; the zoom (the view angle, or the parallel scale) scales the
+    picture about its centre, and a pan (camera and focal point moved together, square to the view) centres it in
+    the room. Under a perspective a pan also changes the picture a little, hence a few steps of both.
+
+    Parameters
+    ----------
+    plotter : pyvista.Plotter
+        A scene with its camera's direction set (``camera_position``, ``view_vector``).
+    room : (x_min, y_min, x_max, y_max) tuple of float
+        Viewport fractions (0 at the window's lower left corner, 1 at its upper right) the scene may fill, e.g. what
+        :func:`arrange_colour_bars` returns.
+    points : (N, 3) array_like, optional
+        World points to bring into the room (the corners of a seismic cube's box); default: the points of every
+        visible mesh and the corners of every volume in the scene (text and other 2D actors left out).
+    margin_px : (int, int, int, int), optional
+        Pixels kept free inside the room at its left, bottom, right and top (for tick numbers, axis titles, a
+        caption).
+    max_margin : (float, float), optional
+        The margins at most these fractions of the window's width and height (a small window: the scene first).
+    steps : int, optional
+        Rounds of zoom and pan.
+
+    Raises
+    ------
+    InputError
+        A room that is not inside the window or has no area.
+    """
+    x0, y0, x1, y1 = (float(v) for v in room)
+    if not (0 <= x0 < x1 <= 1 and 0 <= y0 < y1 <= 1):
+        raise InputError(f"room must be (x_min, y_min, x_max, y_max) fractions of the window, 0 <= min < max <= 1; "
+                         f"got {tuple(room)!r}")
+    renderer, camera = plotter.renderer, plotter.renderer.GetActiveCamera()
+    xyz = _scene_points(renderer) if points is None else np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    if not len(xyz):
+        return
+    width, height = (int(v) for v in plotter.window_size)
+    left, bottom, right, top = (min(px / size, cap) for px, size, cap in
+                                zip(margin_px, (width, height) * 2, tuple(max_margin) * 2))
+    x0, x1, y0, y1 = x0 + left, x1 - right, y0 + bottom, y1 - top
+    renderer.ResetCameraClippingRange()
+    for _ in range(steps):
+        uv = _viewport_fractions(renderer, xyz)
+        lo, hi = uv.min(axis=0), uv.max(axis=0)
+        camera.Zoom(float(min((x1 - x0) / max(hi[0] - lo[0], 1e-9), (y1 - y0) / max(hi[1] - lo[1], 1e-9))))
+        uv = _viewport_fractions(renderer, xyz)
+        shift = np.array([(x0 + x1) / 2, (y0 + y1) / 2]) - (uv.min(axis=0) + uv.max(axis=0)) / 2
+        # the world step of that shift on the screen, measured at the focal point's depth
+        renderer.SetWorldPoint(*camera.GetFocalPoint(), 1.0)
+        renderer.WorldToDisplay()
+        fx, fy, fz = renderer.GetDisplayPoint()
+        renderer.SetDisplayPoint(fx - shift[0] * width, fy - shift[1] * height, fz)
+        renderer.DisplayToWorld()
+        w = np.array(renderer.GetWorldPoint())
+        step = w[:3] / w[3] - np.asarray(camera.GetFocalPoint())
+        camera.SetPosition(*np.add(camera.GetPosition(), step))
+        camera.SetFocalPoint(*np.add(camera.GetFocalPoint(), step))
+    renderer.ResetCameraClippingRange()
 
 
 def axis_values(axis: np.ndarray, index) -> np.ndarray:

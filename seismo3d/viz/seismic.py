@@ -12,7 +12,7 @@ from ..errors import InputError
 from .fault_meshes import fault_surfaces
 from .geometry import CubeGeometry, cube_geometry, grid_index, place_index_mesh, seismic_grid
 from .horizons import horizon_surface
-from .plotting import arrange_colour_bars, bar_below, finish_scene, new_plotter, symmetric_clip
+from .plotting import arrange_colour_bars, bar_below, finish_scene, fit_camera, new_plotter, symmetric_clip
 
 __all__ = ["show_seismic"]
 
@@ -166,44 +166,10 @@ def _corners(geometry: CubeGeometry) -> np.ndarray:
     return corners * np.maximum(np.array(geometry.shape) - 1, 0)
 
 
-_LABEL_ROOM = (80, 45)  # pixels kept around the box for its tick numbers and axis titles (x, y)
+# pixels kept around the box (left, bottom, right, top): the time or depth numbers at its left, the lateral numbers
+# and axis titles below and right of it, the caption's line and half a time number above it
+_LABEL_ROOM = (80, 45, 45, 30)
 _MAX_ROOM = (0.1, 0.08)  # ... at most these viewport fractions (a small window: the box first)
-
-
-def _fit_view(plotter, corners, free, steps: int = 4) -> None:
-    """Zoom and pan the camera (its direction kept) so that the box of ``corners`` (world, (8, 3)) fills the free
-    part ``free`` = (x_min, y_min, x_max, y_max) of the viewport, less :data:`_LABEL_ROOM` (at most
-    :data:`_MAX_ROOM`) on every side; a few steps, as the perspective makes a zoom not exactly a scaling."""
-    ren, cam = plotter.renderer, plotter.camera
-    width, height = (int(v) for v in plotter.window_size)
-    x0, y0, x1, y1 = free
-    dx, dy = min(_LABEL_ROOM[0] / width, _MAX_ROOM[0]), min(_LABEL_ROOM[1] / height, _MAX_ROOM[1])
-    x0, x1, y0, y1 = x0 + dx, x1 - dx, y0 + dy, y1 - dy
-
-    def to_view(points):  # viewport fractions of world points
-        out = []
-        for p in points:
-            ren.SetWorldPoint(*p, 1.0)
-            ren.WorldToDisplay()
-            x, y, _ = ren.GetDisplayPoint()
-            out.append((x / width, y / height))
-        return np.array(out)
-
-    for _ in range(steps):
-        uv = to_view(corners)
-        lo, hi = uv.min(axis=0), uv.max(axis=0)
-        cam.zoom(float(min((x1 - x0) / max(hi[0] - lo[0], 1e-9), (y1 - y0) / max(hi[1] - lo[1], 1e-9))))
-        uv = to_view(corners)
-        shift = np.array([(x0 + x1) / 2, (y0 + y1) / 2]) - (uv.min(axis=0) + uv.max(axis=0)) / 2
-        # the world step of the shift, measured at the focal point's depth
-        ren.SetWorldPoint(*cam.focal_point, 1.0)
-        ren.WorldToDisplay()
-        fx, fy, fz = ren.GetDisplayPoint()
-        ren.SetDisplayPoint(fx - shift[0] * width, fy - shift[1] * height, fz)
-        ren.DisplayToWorld()
-        w = np.array(ren.GetWorldPoint()[:3]) / ren.GetWorldPoint()[3]
-        step = w - np.asarray(cam.focal_point, float)
-        cam.position, cam.focal_point = tuple(np.add(cam.position, step)), tuple(np.add(cam.focal_point, step))
 
 
 def _outline(geometry: CubeGeometry):
@@ -386,7 +352,8 @@ def show_seismic(cube, geometry: CubeGeometry | None = None, *, slices=None, fau
     else:
         plotter.camera_position = camera
     if isinstance(camera, str):  # the box, with room for its tick labels, where the colour bars leave room
-        _fit_view(plotter, geometry.to_world(_corners(geometry)), free)
+        fit_camera(plotter, free, points=geometry.to_world(_corners(geometry)), margin_px=_LABEL_ROOM,
+                   max_margin=_MAX_ROOM)
     _add_ticks(plotter, geometry)  # after the camera: the time ticks go on the edge it sees leftmost
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from .plotting import arrange_colour_bars, finish_scene, new_plotter
+from .plotting import arrange_colour_bars, finish_scene, fit_camera, new_plotter
 
 __all__ = ["terrain_exaggeration", "terrain_surface_mesh", "show_terrain"]
 
@@ -105,6 +105,9 @@ def _polyline(points_per_line):
     return pv.PolyData(pts, lines=np.concatenate(cells).astype(np.int64))
 
 
+_LEGEND_SIZE = (0.22, 0.14)  # the legend's box at the upper left, as fractions of the window
+
+
 def show_terrain(dem, *, lineaments=None, path=None, vertical_exaggeration=None, screenshot=None,
                  window_size=(1024, 768), jupyter_backend=None, camera=None, title=None):
     """A DEM in 3D with its lineaments and a planned path draped over the surface.
@@ -127,7 +130,9 @@ def show_terrain(dem, *, lineaments=None, path=None, vertical_exaggeration=None,
     jupyter_backend : str, optional
         See :func:`seismo3d.viz.plotting.finish_scene`.
     camera : str or camera position, optional
-        Default: from the south, looking north and down at about 35 degrees.
+        Default: from the south, looking north and down at about 35 degrees, zoomed so that the terrain fills the
+        room the colour bar and the legend leave (:func:`~seismo3d.viz.plotting.fit_camera`); a camera given is
+        kept as it is.
     title : str, optional
         Caption; default the DEM's size, relief and the exaggeration.
 
@@ -167,9 +172,10 @@ def show_terrain(dem, *, lineaments=None, path=None, vertical_exaggeration=None,
         radius = 0.012 * max(dy * dem.shape[0], dx * dem.shape[1])
         plotter.add_mesh(pv.Sphere(radius=radius, center=line[0]), color="limegreen", label="start")
         plotter.add_mesh(pv.Sphere(radius=radius, center=line[-1]), color="crimson", label="goal")
-    arrange_colour_bars(plotter)  # the elevation bar's slot at the right, sized to its title and labels
-    if lineaments is not None or path is not None:
-        plotter.add_legend(bcolor="white", face="rectangle", loc="upper left", size=(0.22, 0.14))
+    room = arrange_colour_bars(plotter)  # the elevation bar's slot at the right, sized to its title and labels
+    if lineaments is not None or path is not None:  # the legend above the terrain
+        plotter.add_legend(bcolor="white", face="rectangle", loc="upper left", size=_LEGEND_SIZE)
+        room = (room[0], room[1], room[2], min(room[3], 1 - _LEGEND_SIZE[1] - 0.01))
     width_km = dx * (dem.shape[1] - 1) / 1000.0
     height_km = dy * (dem.shape[0] - 1) / 1000.0
     plotter.add_text(title or (f"DEM {width_km:.1f} x {height_km:.1f} km, relief {np.ptp(z):.0f} m, vertical "
@@ -178,6 +184,9 @@ def show_terrain(dem, *, lineaments=None, path=None, vertical_exaggeration=None,
     if camera is None:
         side = max(dx * dem.shape[1], dy * dem.shape[0])
         top = float(np.nanmax(z)) * ve
-        camera = [(0.0, -1.3 * side, top + 0.9 * side), (0.0, 0.0, float(np.nanmin(z)) * ve), (0.0, 0.0, 1.0)]
-    plotter.camera_position = camera
+        plotter.camera_position = [(0.0, -1.3 * side, top + 0.9 * side), (0.0, 0.0, float(np.nanmin(z)) * ve),
+                                   (0.0, 0.0, 1.0)]
+        fit_camera(plotter, room)  # the terrain fills the room the bar and the legend leave
+    else:
+        plotter.camera_position = camera
     return finish_scene(plotter, screenshot=screenshot, backend=jupyter_backend)

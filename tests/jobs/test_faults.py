@@ -442,7 +442,8 @@ def test_render_draws_the_demo_output(demo, tmp_path):
     job = run_render_job(out, tmp_path / "demo.png", window_size=(480, 360))
     assert job.kind == "faults" and job.n_faults >= 3
     img = (imread(tmp_path / "demo.png")[..., :3] * 255).round()
-    assert (img.min(axis=-1) < 250).mean() > 0.25  # 0.27: in a 480 x 360 window the bars' own slots take about a third
+    # 0.275 measured: in a 480 x 360 window the colour bars' own slots take about a third, the cube fills the rest
+    assert (img.min(axis=-1) < 250).mean() > 0.27
     orange = (img[..., 0] > 150) & (img[..., 0] > img[..., 2] + 80) & (img[..., 1] > 60)  # fault 2, tab10 orange
     green = (img[..., 1] > img[..., 0] + 40) & (img[..., 1] > img[..., 2] + 40)  # fault 3, tab10 green
     assert orange.mean() > 0.005 and green.mean() > 0.005

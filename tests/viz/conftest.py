@@ -20,13 +20,22 @@ def colour_bars(monkeypatch):
     The end labels of a horizontal bar are centred on its strip's ends, so they reach past its rectangle."""
 
     def layout(module, draw):
-        found, window = {}, []
+        found, window, scene = {}, [], []
 
         def record(plotter, **kw):
             width, height = (int(v) for v in plotter.window_size)
             bars = list(plotter.scalar_bars.items())
             props = [(bar.GetTitleTextProperty(), bar.GetLabelTextProperty()) for _, bar in bars]
-            plotter.screenshot(return_img=True)  # the first render (VTK places the tick labels again after it)
+            first = plotter.screenshot(return_img=True)  # the first render: what a saved PNG shows
+            for _, bar in bars:
+                bar.Modified()  # every bar lays itself out again
+            plotter.render()
+            changed = np.any(plotter.screenshot(return_img=True) != first, axis=-1)[::-1]  # row 0 at the bottom
+            if plotter.renderer.axes_widget is not None:  # VTK's orientation widget sizes its captions anew
+                x0, y0, x1, y1 = np.multiply(plotter.renderer.axes_widget.GetViewport(), (width, height) * 2)
+                changed[int(y0):int(np.ceil(y1)), int(x0):int(np.ceil(x1))] = False
+            assert not changed.any(), \
+                f"a later render differs from the first (the saved PNG) in {np.count_nonzero(changed)} pixels"
             shots = []
             for colour in ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0)):
                 for (_, bar), pair in zip(bars, props):
@@ -62,12 +71,14 @@ def colour_bars(monkeypatch):
                 lift = 0.75 * bar.GetLabelTextProperty().GetFontSize() if bar.GetOrientation() == 1 else 0.0
                 found[title] = ((x0, y0, x1, y1), *boxes, lift)
             window.extend((width, height))
+            scene.append(_drawn_scene(plotter))
             plotter.close()
             return plotter
 
         monkeypatch.setattr(module, "finish_scene", record)
         draw()
         _check(found, *window)
+        _check_scene(found, scene[0])
         return found
 
     return layout
@@ -98,3 +109,49 @@ def _check(bars, width, height, *, tolerance=1.0):
             for a in (rectangle, drawn_title, drawn_labels or rectangle):
                 for b in (other_rectangle, *(box for box in other_text if box is not None)):
                     assert min(_overlap(a, b)) <= 0, f"{title!r} and {other!r} overlap: {a} and {b}"
+
+
+def _drawn_scene(plotter):
+    """The pixels the scene's 3D content covers, row 0 at the bottom: rendered with every colour bar, text and
+    other 2D actor and the orientation widget hidden, on a white and on a black background; the pixels that do
+    not change by the whole difference of the two backgrounds (a white part of a slice is drawn too)."""
+    for bar in plotter.scalar_bars.values():
+        bar.VisibilityOff()
+    props = plotter.renderer.GetViewProps()
+    for n in range(props.GetNumberOfItems()):
+        if props.GetItemAsObject(n).IsA("vtkActor2D"):
+            props.GetItemAsObject(n).VisibilityOff()
+    plotter.hide_axes()
+    shots = []
+    for colour in ("white", "black"):
+        plotter.set_background(colour)
+        plotter.render()
+        shots.append(plotter.screenshot(return_img=True)[::-1, :, :3].astype(int))
+    return (shots[0] - shots[1]).min(axis=-1) < 253
+
+
+def _check_scene(bars, drawn, *, share=0.75):
+    """The scene's drawn content (``drawn``: a boolean image, row 0 at the bottom) covers no bar's rectangle or
+    text, and fills at least ``share`` of the room the bars leave (left of the vertical bars, above the bottom
+    row) along one of its sides: the camera is fitted to that room with margins of at most a tenth of the
+    window's width (0.08 of its height) on each side, so a fitted scene spans at least 0.8 of it."""
+    height, width = drawn.shape
+    x_max, y_min = width, 0
+    for title, (rectangle, drawn_title, drawn_labels, _) in bars.items():
+        for box in (rectangle, drawn_title, drawn_labels):
+            if box is None:
+                continue
+            x0, y0, x1, y1 = (int(np.floor(box[0])), int(np.floor(box[1])), int(np.ceil(box[2])),
+                              int(np.ceil(box[3])))
+            covered = np.count_nonzero(drawn[max(y0, 0):y1, max(x0, 0):x1])
+            assert covered == 0, f"the scene covers {covered} pixels of {title!r}'s bar or its text {box}"
+        x0, y0, x1, y1 = rectangle
+        if x1 - x0 < y1 - y0 and x0 > width / 2:  # a vertical bar at the right
+            x_max = min(x_max, x0)
+        else:  # a bar of the bottom row
+            y_min = max(y_min, y1)
+    rows, cols = np.nonzero(drawn)
+    assert rows.size, "the scene draws nothing"
+    spans = ((cols.max() + 1 - cols.min()) / (x_max - 0), (rows.max() + 1 - rows.min()) / (height - y_min))
+    assert max(spans) >= share, f"the scene spans {spans[0]:.2f} of the room's width and {spans[1]:.2f} of its " \
+                                f"height (0 .. {x_max:.0f} x {y_min:.0f} .. {height} pixels)"

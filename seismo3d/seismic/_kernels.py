@@ -367,6 +367,11 @@ def gaussian_pass32(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep
     ndarray, float32
         ``x``'s shape (``hi - lo`` along ``axis`` with ``keep``); a view of the lines filtered with ``keep``.
 
+    Raises
+    ------
+    ValueError
+        ``out`` given with ``keep`` or of another shape than the result (a caller's bug: not for users).
+
     References
     ----------
     .. [1] OpenCV, ``cv::sepFilter2D``, https://docs.opencv.org/4.x/d4/d86/group__imgproc__filter.html.

@@ -3,8 +3,10 @@ import it whole, ``from . import _kernels``; the kernels only the faults use are
 
 Arrays are 3D ``(n0, n1, n_samples)`` float32; a 2D section is viewed as ``(n_traces, 1, n_samples)`` (:func:`as_3d`).
 Distances are in samples and traces. The Gaussian and derivative filters are scipy's
-(:func:`scipy.ndimage.gaussian_filter1d`, truncated at 3 sigma, edges clamped); the compiled kernels are the loops of
-our own algorithms (semblance, eigen-coherence along the reflector slopes), compiled on first call and cached on disk.
+(:func:`scipy.ndimage.gaussian_filter1d`, truncated at 3 sigma, edges clamped), those of the structure tensor OpenCV's
+with the same weights (:func:`gaussian_pass32`: float32 sums, a third of the CPU seconds); the compiled kernels are the
+loops of our own algorithms (semblance, eigen-coherence along the reflector slopes), compiled on first call and cached
+on disk.
 """
 
 from __future__ import annotations
@@ -324,6 +326,86 @@ def gaussian_pass(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep=N
     return out[(slice(None),) * axis + (slice(lo - a, hi - a),)] if (a, b) != (lo, hi) else out
 
 
+def _gaussian_weights(sigma: float, order: int) -> np.ndarray:
+    """Correlation weights of the Gaussian (order 0) or Gaussian derivative (order 1) filter of width ``sigma``
+    truncated at :func:`gaussian_radius`: scipy's (``scipy.ndimage.gaussian_filter1d``: the normalised Gaussian,
+    and its derivative ``-x / sigma^2`` times it, reversed for a correlation), float64."""
+    r = gaussian_radius(sigma)
+    x = np.arange(-r, r + 1, dtype=np.float64)
+    phi = np.exp(-0.5 / (float(sigma) * float(sigma)) * x * x)
+    phi = phi / phi.sum()
+    return phi if order == 0 else x / (float(sigma) * float(sigma)) * phi
+
+
+def gaussian_pass32(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep=None, *, out=None) -> np.ndarray:
+    """:func:`gaussian_pass` summed in float32: OpenCV's separable filter (``cv2.sepFilter2D``, edges replicated as
+    scipy's ``'nearest'``) with scipy's weights, a third of the CPU seconds of scipy's lines in double precision on a
+    cube (the structure tensor's passes, :func:`structure_tensor_at`), within 1e-6 of the largest value of scipy's.
+
+    Each call filters 2D images whose rows are whole traces (the sample axis, never cut): one per crossline (axis 0),
+    one per inline (axis 1 and 2), written in place. An output's arithmetic depends on its sample index only, not on
+    where the array was cut, so a part of a cube read with the filter's radius beyond it gets the whole cube's bits
+    there (a run by blocks equals the run in memory).
+
+    Parameters
+    ----------
+    x : (n0, n1, n_samples) ndarray
+        Any real dtype (filtered as float32).
+    axis : {0, 1, 2}
+    sigma : float
+        Width, traces or samples; 0 leaves ``x`` alone (as does an axis of length 1).
+    order : {0, 1}
+        1: the derivative of the smoothed signal along ``axis``.
+    keep : (int, int), optional
+        ``(lo, hi)``: only the outputs ``lo <= i < hi`` along ``axis``, each equal to the whole axis' (filtered from the
+        lines within the radius of them); default all.
+    out : (n0, n1, n_samples) float32 ndarray, optional
+        Where to write the result (whole traces: each inline's (n1, n_samples) rows contiguous); not with ``keep``.
+
+    Returns
+    -------
+    ndarray, float32
+        ``x``'s shape (``hi - lo`` along ``axis`` with ``keep``); a view of the lines filtered with ``keep``.
+
+    Raises
+    ------
+    ValueError
+        ``out`` given with ``keep`` or of another shape than the result (a caller's bug: not for users).
+
+    References
+    ----------
+    .. [1] OpenCV, ``cv::sepFilter2D``, https://docs.opencv.org/4.x/d4/d86/group__imgproc__filter.html.
+    """
+    import cv2  # a dependency of seismo3d, imported where it is used (as the features do)
+
+    n = x.shape[axis]
+    lo, hi = (0, n) if keep is None else (int(keep[0]), int(keep[1]))
+    if sigma <= 0 or n == 1:
+        kept = np.asarray(x[(slice(None),) * axis + (slice(lo, hi),)], dtype=np.float32)
+        if out is None:
+            return kept
+        out[...] = kept
+        return out
+    r = gaussian_radius(sigma)
+    a, b = max(lo - r, 0), min(hi + r, n)  # the lines the kept outputs read (as gaussian_pass)
+    window = np.asarray(x[(slice(None),) * axis + (slice(a, b),)], dtype=np.float32)
+    if window.strides[-1] != window.itemsize:
+        window = np.ascontiguousarray(window)
+    if out is None:
+        out = np.empty(window.shape, np.float32)
+    elif keep is not None or out.shape != window.shape:
+        raise ValueError(f"gaussian_pass32: out of shape {out.shape} for a result of shape {window.shape}")
+    weights, one, edge = _gaussian_weights(sigma, order), np.ones(1), cv2.BORDER_REPLICATE
+    if axis == 0:  # across the inlines: an image (inline, sample) per crossline
+        for j in range(window.shape[1]):
+            cv2.sepFilter2D(window[:, j], cv2.CV_32F, one, weights, dst=out[:, j], borderType=edge)
+    else:  # an image (crossline, sample) per inline: filtered across its rows (axis 1) or along them (axis 2)
+        kx, ky = (one, weights) if axis == 1 else (weights, one)
+        for i in range(window.shape[0]):
+            cv2.sepFilter2D(window[i], cv2.CV_32F, kx, ky, dst=out[i], borderType=edge)
+    return out[(slice(None),) * axis + (slice(lo - a, hi - a),)] if (a, b) != (lo, hi) else out
+
+
 def gaussian3(x: np.ndarray, sigmas, orders=(0, 0, 0)) -> np.ndarray:
     """Separable Gaussian (derivative) filter of a 3D array (:func:`gaussian_pass` along each axis), float32; axes
     with sigma 0 are left alone."""
@@ -333,8 +415,8 @@ def gaussian3(x: np.ndarray, sigmas, orders=(0, 0, 0)) -> np.ndarray:
     return out if out is not x else x.astype(np.float32, copy=True)
 
 
-# Inlines of a cube's structure tensor computed at once (:func:`structure_tensor`): 256^3 of noise took 4.6 CPU s in
-# slabs of 64 against 4.7-5.0 as one (5.1 in slabs of 32; 2 threads beside other jobs, 2026-11-28)
+# Inlines of a cube's structure tensor computed at once (:func:`structure_tensor`): a generated 256^3 cube took 1.0-1.25
+# CPU s in slabs of 64, 1.2 in one, 1.3-1.6 in slabs of 32 (OpenCV's passes, 2 threads beside other jobs, 2026-11-28)
 TENSOR_SLAB = 64
 
 
@@ -352,11 +434,14 @@ def structure_tensor(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[
     sig = (lat, 0.0 if two_d else lat, vert)
     # gradients with shared smoothing passes: g0 = D0 G1 G2 f, g1 = G0 D1 G2 f, g2 = G0 G1 D2 f
     if two_d:
-        g0 = gaussian3(gaussian3(f3, (0.0, 0.0, sg)), (sg, 0.0, 0.0), (1, 0, 0))
-        g2 = gaussian3(gaussian3(f3, (sg, 0.0, 0.0)), (0.0, 0.0, sg), (0, 0, 1))
-        t00 = gaussian3(g0 * g0, sig)
-        t02 = gaussian3(g0 * g2, sig)
-        t22 = gaussian3(g2 * g2, sig)
+        gauss = gaussian_pass32
+        g0 = gauss(gauss(f3, 2, sg), 0, sg, 1)
+        g2 = gauss(gauss(f3, 0, sg), 2, sg, 1)
+
+        def smooth(t):
+            return gauss(gauss(t, 0, lat), 2, vert)
+
+        t00, t02, t22 = smooth(g0 * g0), smooth(g0 * g2), smooth(g2 * g2)
         zero = np.zeros_like(t00)
         return t00, zero, t02, zero, zero, t22
     n0, reach = f3.shape[0], gaussian_radius(lat) + gaussian_radius(sg)  # the inlines a slab's tensor reads beyond it
@@ -365,21 +450,22 @@ def structure_tensor(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[
         for a in range(0, n0, max(1, int(slab))):
             b = min(a + max(1, int(slab)), n0)
             lo, hi = max(a - reach, 0), min(b + reach, n0)  # clamped at the cube's ends as the whole cube's passes
-            for whole, part in zip(out, structure_tensor_at(f3[lo:hi], sg, sigma_tensor,
-                                                            (slice(a - lo, b - lo), slice(None)))):
-                whole[a:b] = part
+            structure_tensor_at(f3[lo:hi], sg, sigma_tensor, (slice(a - lo, b - lo), slice(None)),
+                                out=tuple(whole[a:b] for whole in out))
             bar.advance(b - a, status="structure tensor")
     return out
 
 
-def structure_tensor_at(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], core):
+def structure_tensor_at(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], core, *,
+                        out=None):
     """:func:`structure_tensor` of a cube at ``core`` only (``(rows, cols)`` slices of its first two axes; all of
     them: the whole cube's tensor), the same bits as the whole cube's there: the gradients with shared smoothing
     passes (g0 = D0 G1 G2 f, g1 = G0 D1 G2 f, g2 = G0 G1 D2 f), each pass computing only the lines its later passes
     read (its outputs within the later lateral radius of ``core``: :func:`gaussian_pass` ``keep``), so the tensor's
     wide vertical pass runs at ``core``'s traces only; the products in an order that frees each gradient as soon as
-    possible (peak memory). Returns the six components, each of ``f3[core]``'s shape."""
-    gauss = gaussian_pass
+    possible (peak memory). Returns the six components, each of ``f3[core]``'s shape, float32 (written into ``out``,
+    six arrays of that shape with contiguous inlines, when given). The passes are :func:`gaussian_pass32`'s."""
+    gauss = gaussian_pass32
     sg, (lat, vert) = sigma_gradient, sigma_tensor
     r = gaussian_radius(lat)
     spans = [s.indices(n)[:2] for s, n in zip(core, f3.shape[:2])]
@@ -392,14 +478,15 @@ def structure_tensor_at(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tup
     del f2
     g2 = gauss(gauss(gauss(f3, 0, sg, 0, wide[0]), 1, sg, 0, wide[1]), 2, sg, 1)
 
-    def smooth(t):
-        return gauss(gauss(gauss(t, 0, lat, 0, inner[0]), 1, lat, 0, inner[1]), 2, vert)
+    def smooth(t, k):
+        return gauss(gauss(gauss(t, 0, lat, 0, inner[0]), 1, lat, 0, inner[1]), 2, vert,
+                     out=None if out is None else out[k])
 
-    t00, t01, t02 = smooth(g0 * g0), smooth(g0 * g1), smooth(g0 * g2)
+    t00, t01, t02 = smooth(g0 * g0, 0), smooth(g0 * g1, 1), smooth(g0 * g2, 2)
     del g0
-    t11, t12 = smooth(g1 * g1), smooth(g1 * g2)
+    t11, t12 = smooth(g1 * g1, 3), smooth(g1 * g2, 4)
     del g1
-    return t00, t01, t02, t11, t12, smooth(g2 * g2)
+    return t00, t01, t02, t11, t12, smooth(g2 * g2, 5)
 
 
 def tensor_eig(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], two_d: bool):

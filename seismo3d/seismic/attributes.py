@@ -226,12 +226,12 @@ def section_slopes(data, axis: int, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.
 def structure_tensor_halo(sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)) -> tuple[int, int]:
     """Reach of :func:`structure_tensor_orientation`: how far a sample's result depends on the data around it.
 
-    The orientation is a chain of separable Gaussian filters truncated at 3 sigma (``_kernels.gaussian_pass``): along
+    The orientation is a chain of separable Gaussian filters truncated at 3 sigma (``_kernels.gaussian_pass32``): along
     each axis one Gaussian (derivative) pass of width ``sigma_gradient`` for the gradient, then one Gaussian pass of
     ``sigma_tensor`` for the tensor. Its value at a sample therefore depends only on the data within the sum of the
     two kernel radii along each axis, and the orientation of a block of a cube equals the whole cube's at every
     sample at least that far from each block side that is not the cube's edge (at the cube's edges both clamp the
-    same way, ``scipy.ndimage`` mode ``'nearest'``).
+    same way, replicating the edge sample).
 
     Parameters
     ----------

@@ -44,6 +44,38 @@ def test_gaussian_pass_keeps_a_range_of_the_whole_axis_bit_for_bit(axis):
         assert np.array_equal(got, np.take(whole, np.arange(lo, hi), axis=axis))
 
 
+@pytest.mark.parametrize("axis", [0, 1, 2])
+@pytest.mark.parametrize("order", [0, 1])
+def test_gaussian_pass32_is_scipys_pass_within_float32_sums(axis, order):
+    """OpenCV's float32 sums against scipy's double ones (gaussian_pass): the same weights, edges and keep."""
+    x = np.random.default_rng(11 + axis).standard_normal((17, 19, 41)).astype(np.float32)
+    for sigma in (1.0, 2.0, 6.0):
+        ref = _kernels.gaussian_pass(x, axis, sigma, order=order)
+        got = _kernels.gaussian_pass32(x, axis, sigma, order=order)
+        assert got.dtype == np.float32 and got.shape == x.shape
+        np.testing.assert_allclose(got, ref, rtol=0, atol=1e-6 * float(np.abs(ref).max()))
+        kept = _kernels.gaussian_pass32(x, axis, sigma, order=order, keep=(3, 9))
+        assert np.array_equal(kept, np.take(got, np.arange(3, 9), axis=axis))
+    assert np.array_equal(_kernels.gaussian_pass32(x, axis, 0.0), x)  # no filter
+
+
+@pytest.mark.parametrize("axis", [0, 1, 2])
+def test_gaussian_pass32_of_a_part_is_the_whole_arrays_there_bit_for_bit(axis):
+    """An output's arithmetic depends on its sample index only: a part cut along the other axes (a block's traces)
+    filtered, or the whole array's filtered, give the same bits (runs by blocks rely on it)."""
+    x = np.random.default_rng(5 + axis).standard_normal((60, 70, 333)).astype(np.float32)
+    whole = _kernels.gaussian_pass32(x, axis, 2.0, order=1)
+    for rows, cols in ((slice(3, 41), slice(7, 66)), (slice(0, 1), slice(69, 70)), (slice(17, 60), slice(0, 9))):
+        part = x[rows, cols]
+        n = x.shape[axis]
+        keep = (rows, cols, slice(0, n))[axis]
+        lo, hi = max(keep.start - 6, 0), min(keep.stop + 6, n)  # the part read with the filter's radius
+        cut = [rows, cols, slice(None)]
+        cut[axis] = slice(lo, hi)
+        got = _kernels.gaussian_pass32(x[tuple(cut)], axis, 2.0, order=1, keep=(keep.start - lo, keep.stop - lo))
+        assert got.shape == part.shape and np.array_equal(got, whole[rows, cols])
+
+
 def test_structure_tensor_at_a_core_is_the_whole_tensor_there_bit_for_bit():
     cube = np.random.default_rng(6).standard_normal((30, 26, 50)).astype(np.float32)
     whole = _kernels.structure_tensor(cube, 1.0, (2.0, 6.0), False)

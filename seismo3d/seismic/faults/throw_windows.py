@@ -109,9 +109,14 @@ class TensorWindows:
         flat = np.ravel_multi_index((corners[0][:, None, None], corners[1][None, :, None], corners[2][None, None, :]),
                                     self.shape).ravel()
         p0, p1 = (s.reshape(-1) for s in self._slopes)
-        todo = np.unique(flat[np.isnan(p0[flat])])
+        todo = flat[np.isnan(p0[flat])]
         if todo.size == 0:
             return
+        # each sample once, without sorting: number the samples in p0's bits (NaN until decomposed) and keep the
+        # entry whose number its sample holds (the last written); the slopes overwrite the numbers below
+        stamp, order = p0.view(np.uint32), np.arange(todo.size, dtype=np.uint32)
+        stamp[todo] = order
+        todo = todo[stamp[todo] == order]
         out0 = np.empty(todo.size, np.float32)
         out1 = np.empty(todo.size, np.float32)
         _kernels.eig_slopes(*(c[todo] for c in self._tensor), _kernels.MAX_SLOPE, out0, out1, True)

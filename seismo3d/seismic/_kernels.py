@@ -137,6 +137,19 @@ def eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
     _eig_chunks((t00, t01, t02, t11, t12, t22), work)
 
 
+def eig_vectors(t00, t01, t02, t11, t12, t22, write):
+    """Call ``write(part, vx, vy, vz)`` with the unit eigenvectors of the largest eigenvalue (:func:`eig3`, float64,
+    planarity not computed) of the flat elements ``part`` (a slice) of the structure tensors, chunk by chunk of
+    ``_EIG_CHUNK`` on numba's thread count of threads: what is made of the vectors stays in the processor's cache
+    too. The components are float32 arrays of one shape."""
+
+    def work(part, comps):
+        vx, vy, vz, _ = eig3(*comps, planarity=False)
+        write(part, vx, vy, vz)
+
+    _eig_chunks((t00, t01, t02, t11, t12, t22), work)
+
+
 def eig_slopes(t00, t01, t02, t11, t12, t22, max_slope, p0, p1, as_float32_normals):
     """Reflector slopes ``-n0 / n2`` and ``-n1 / n2`` (samples per trace, clipped to +-``max_slope``) of every
     structure tensor, written into ``p0`` and ``p1`` (float32, C order, the components' shape). With

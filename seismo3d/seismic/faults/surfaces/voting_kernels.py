@@ -327,29 +327,32 @@ _SLAB = 1 << 20  # samples per slab of strongest: its temporaries stay small
 
 
 def strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
-    """Strike and dip (m0, m1, n2) of the strongest surface through each sample over the threads' records of
-    :func:`cast_votes` (the larger mean likelihood, then the smaller seed id ``ids[q]``), written into ``strike`` and
-    ``dip``; left as they are where no surface passes. Worked in slabs of inlines of about 2^20 samples."""
+    """Strike and dip (m0, m1, n2, C order) of the strongest surface through each sample over the threads' records
+    of :func:`cast_votes` (the larger mean likelihood, then the smaller seed id ``ids[q]``), written into ``strike``
+    and ``dip``; left as they are where no surface passes. Worked in slabs of about 2^20 samples, on the samples of
+    each that a surface passes only (a seed recorded by some thread)."""
     if ids.size == 0:  # no seed: no surface passes anywhere
         return
-    n_threads, m0 = best.shape[0], best.shape[1]
-    step = max(1, _SLAB // max(1, best[0, 0].size))
-    for a in range(0, m0, step):
-        rows = slice(a, a + step)
-        # the first thread's records as they are (no surface: seed -1 and mean 0, as recorded), then the others in
-        # thread order, as the compiled loop took them
-        top = best[0, rows].copy()
-        s = best_seed[0, rows].astype(np.int64)
+    n_threads = best.shape[0]
+    flat_best, flat_seed = best.reshape(n_threads, -1), best_seed.reshape(n_threads, -1)
+    flat_strike, flat_dip = strike.reshape(-1), dip.reshape(-1)  # views: C order
+    for a in range(0, flat_seed.shape[1], _SLAB):
+        at = a + np.flatnonzero(np.any(flat_seed[:, a:a + _SLAB] >= 0, axis=0))
+        if not at.size:
+            continue
+        # the first thread's records as they are, then the others in thread order, as the compiled loop took them
+        top = flat_best[0, at]
+        s = flat_seed[0, at].astype(np.int64)
         for t in range(1, n_threads):
-            q = best_seed[t, rows]
-            f = best[t, rows]
+            q = flat_seed[t, at]
+            f = flat_best[t, at]
             tie = (f == top) & (ids[np.maximum(q, 0)] < ids[np.maximum(s, 0)])
             take = (q >= 0) & ((s < 0) | (f > top) | tie)
             top = np.where(take, f, top)
             s = np.where(take, q, s)
         found = s >= 0
-        strike[rows][found] = seed_strike[s[found]]
-        dip[rows][found] = seed_dip[s[found]]
+        flat_strike[at[found]] = seed_strike[s[found]]
+        flat_dip[at[found]] = seed_dip[s[found]]
 
 
 @nb.njit(cache=True, no_cfunc_wrapper=True)

@@ -24,7 +24,8 @@ from ... import _kernels
 
 __all__ = ["orientation_from_likelihood"]
 
-# the stages reported within the step that runs a block in memory (seismo3d._progress.progress_within)
+# the stages reported within the step that runs a block in memory (seismo3d._progress.progress_within); in a cube
+# the strike and dip are made with the normals, chunk by chunk, and the last stage holds them over the samples between
 _STAGES = ("gradient", "structure tensor", "fault normals", "strike and dip")
 
 

@@ -71,7 +71,10 @@ def eig3(a, b, c, d, e, f, planarity: bool = True):
     """
     f64 = np.float64
     with np.errstate(all="ignore"):  # isotropic tensors divide by zero; their results are replaced below
-        p1 = (b * b + c * c + e * e).astype(f64)
+        # the float32 products of the off-diagonal components, each once (b c and c b are the same bits)
+        bb, cc, ee, be, bc, ce = b * b, c * c, e * e, b * e, b * c, c * e
+        p1 = (bb + cc + ee).astype(f64)
+        bb, cc, ee, be, bc, ce = (x.astype(f64) for x in (bb, cc, ee, be, bc, ce))
         q = (a + d + f).astype(f64) / 3.0
         a64, b64, c64, d64, e64, f64_ = (t.astype(f64) for t in (a, b, c, d, e, f))
         aq, dq, fq = a64 - q, d64 - q, f64_ - q
@@ -86,9 +89,9 @@ def eig3(a, b, c, d, e, f, planarity: bool = True):
         l1 = q + 2.0 * p * np.cos(phi)
         # rows of T - l1 I: (a - l1, b, c), (b, d - l1, e), (c, e, f - l1); their cross products
         r0x, r1y, r2z = a64 - l1, d64 - l1, f64_ - l1
-        c0 = ((b * e).astype(f64) - c64 * r1y, (c * b).astype(f64) - r0x * e64, r0x * r1y - (b * b).astype(f64))
-        c1 = (b64 * r2z - (c * e).astype(f64), (c * c).astype(f64) - r0x * r2z, r0x * e64 - (b * c).astype(f64))
-        c2 = (r1y * r2z - (e * e).astype(f64), (e * c).astype(f64) - b64 * r2z, (b * e).astype(f64) - r1y * c64)
+        c0 = (be - c64 * r1y, bc - r0x * e64, r0x * r1y - bb)
+        c1 = (b64 * r2z - ce, cc - r0x * r2z, r0x * e64 - bc)
+        c2 = (r1y * r2z - ee, ce - b64 * r2z, be - r1y * c64)
         m0, m1, m2 = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] for v in (c0, c1, c2))
         pick0 = (m0 >= m1) & (m0 >= m2)
         pick1 = ~pick0 & (m1 >= m2)
@@ -135,6 +138,19 @@ def eig_normals(t00, t01, t02, t11, t12, t22, normals, planarity):
         n_flat[part, 1] = vy
         n_flat[part, 2] = vz
         p_flat[part] = pl
+
+    _eig_chunks((t00, t01, t02, t11, t12, t22), work)
+
+
+def eig_vectors(t00, t01, t02, t11, t12, t22, write):
+    """Call ``write(part, vx, vy, vz)`` with the unit eigenvectors of the largest eigenvalue (:func:`eig3`, float64,
+    planarity not computed) of the flat elements ``part`` (a slice) of the structure tensors, chunk by chunk of
+    ``_EIG_CHUNK`` on numba's thread count of threads: what is made of the vectors stays in the processor's cache
+    too. The components are float32 arrays of one shape."""
+
+    def work(part, comps):
+        vx, vy, vz, _ = eig3(*comps, planarity=False)
+        write(part, vx, vy, vz)
 
     _eig_chunks((t00, t01, t02, t11, t12, t22), work)
 

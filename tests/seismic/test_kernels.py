@@ -118,6 +118,24 @@ def test_eig_normals_and_eig_slopes_agree_bit_for_bit():
     assert np.all((planarity >= 0) & (planarity <= 1))
 
 
+def test_eig_vectors_are_eig_normals_normals_chunk_by_chunk(monkeypatch):
+    """The eigenvectors handed out chunk by chunk (the fault orientation makes its angles of them in the cache) are
+    eig_normals' normals, rounded to float32 the same, every element once, whatever the chunks' size."""
+    cube = np.random.default_rng(8).standard_normal((12, 10, 30)).astype(np.float32)
+    t = _kernels.structure_tensor(cube, 1.0, (2.0, 6.0), False)
+    normals = np.empty(cube.shape + (3,), np.float32)
+    _kernels.eig_normals(*t, normals, np.empty(cube.shape, np.float32))
+    for chunk in (1 << 13, 7):
+        monkeypatch.setattr(_kernels, "_EIG_CHUNK", chunk)
+        got = np.full((cube.size, 3), np.nan, np.float32)
+
+        def write(part, vx, vy, vz):
+            got[part, 0], got[part, 1], got[part, 2] = vx, vy, vz
+
+        _kernels.eig_vectors(*t, write)
+        assert np.array_equal(got.view(np.uint32), normals.reshape(-1, 3).view(np.uint32))
+
+
 def test_eig3_without_planarity_gives_the_same_eigenvectors(monkeypatch):
     """The slopes' eigen-decomposition skips the planarity (two eigenvalues and a cosine): the same bits of the
     eigenvector, and the same slopes whatever the chunks' size."""

@@ -24,7 +24,8 @@ from ... import _kernels
 
 __all__ = ["orientation_from_likelihood"]
 
-# the stages reported within the step that runs a block in memory (seismo3d._progress.progress_within)
+# the stages reported within the step that runs a block in memory (seismo3d._progress.progress_within); in a cube
+# the strike and dip are made with the normals, chunk by chunk, and the last stage holds them over the samples between
 _STAGES = ("gradient", "structure tensor", "fault normals", "strike and dip")
 
 
@@ -44,15 +45,32 @@ def _normals_to_strike_dip(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     return strike.astype(np.float32), np.maximum(dip, 1e-3).astype(np.float32)
 
 
-def _smoothed_at(x: np.ndarray, sigma: float, core, sample_step: int = 1) -> np.ndarray:
+def _gradient(p: np.ndarray, axis: int) -> np.ndarray:
+    """``np.gradient(p, axis=axis)`` (central differences inside, one-sided at the ends; the same bits), float32,
+    written into one array without numpy's temporaries."""
+    out = np.empty(p.shape, np.float32)
+    inner, lo, hi = ((slice(None),) * axis + (s,) for s in (slice(1, -1), slice(None, -2), slice(2, None)))
+    np.subtract(p[hi], p[lo], out=out[inner])
+    np.multiply(out[inner], np.float32(0.5), out=out[inner])  # (f[i + 1] - f[i - 1]) / 2: halving is exact
+    for end, a, b in ((0, 1, 0), (-1, -1, -2)):
+        at = (slice(None),) * axis
+        np.subtract(p[at + (a,)], p[at + (b,)], out=out[at + (end,)])
+    return out
+
+
+def _smoothed_at(x: np.ndarray, sigma: float, core, sample_step: int = 1, work: np.ndarray | None = None
+                 ) -> np.ndarray:
     """``ndi.gaussian_filter(x, sigma)`` at the samples ``core`` (slices of the first two axes; None: every trace)
-    and ``::sample_step`` of the last axis: the pass along the samples first, on every sample, then those kept, then
-    the passes along axes 0 and 1 (each rounded to float32), each on the lines of the traces it is asked for only, so
-    a block of a cube (``core`` inside it) gets the bits of the whole cube's."""
+    and ``::sample_step`` of the last axis: the pass along the samples first, on every sample (in place: ``x`` is
+    overwritten), then those kept, then the passes along axes 0 and 1 (each rounded to float32), each on the lines
+    of the traces it is asked for only, so a block of a cube (``core`` inside it) gets the bits of the whole cube's.
+    ``work``: an array of the kept samples' shape for the pass along axis 0 (reused between calls), or None."""
     keep = (slice(None), slice(None)) if core is None else tuple(core)
-    x = ndi.gaussian_filter1d(x, sigma, x.ndim - 1)[..., ::sample_step]
+    ndi.gaussian_filter1d(x, sigma, x.ndim - 1, output=x)  # a 1D filter reads each line whole before writing it
+    x = x[..., ::sample_step]
     for axis in range(x.ndim - 1):
-        x = ndi.gaussian_filter1d(x, sigma, axis)[(slice(None),) * axis + (keep[axis],)]
+        out = work if axis == 0 and work is not None and work.shape == x.shape else None
+        x = ndi.gaussian_filter1d(x, sigma, axis, output=out)[(slice(None),) * axis + (keep[axis],)]
     return x
 
 
@@ -103,41 +121,68 @@ def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0, c
         raise InputError(f"orientation_from_likelihood: sample_step must be an integer >= 1; got {sample_step!r}")
     with progress_within(len(_STAGES), unit="stage") as stages:  # reported in a run in memory only
         stages.start(_STAGES[0])
-        grads = np.gradient(p)
+        grads = np.gradient(p) if min(p.shape) < 3 else [_gradient(p, axis) for axis in range(p.ndim)]
         stages.advance()
         nd = p.ndim
         pairs, comps = [(a, b) for a in range(nd) for b in range(a, nd)], {}
         step = int(sample_step) if nd == 3 else 1
 
         def smooth(t: int, n: int) -> None:  # scipy's filters release the GIL: the components on the cores at once
+            product = np.empty(p.shape, np.float32)  # each thread's product and pass along axis 0, reused
+            work = None if nd == 2 else np.empty(p[..., ::step].shape, np.float32)
             for a, b in pairs[t::n]:
-                comps[a, b] = (ndi.gaussian_filter(grads[a] * grads[b], sigma) if nd == 2
-                               else _smoothed_at(grads[a] * grads[b], sigma, core, step))
+                np.multiply(grads[a], grads[b], out=product)
+                comps[a, b] = (ndi.gaussian_filter(product, sigma) if nd == 2
+                               else _smoothed_at(product, sigma, core, step, work))
 
         stages.start(_STAGES[1])
         run_threads(smooth, min(nb.get_num_threads(), len(pairs)))
         stages.advance()
         del grads
         stages.start(_STAGES[2])
-        normals = _normals(comps, nd)
+        if nd == 2:
+            normals = _normals(comps)
+            del comps
+            strike, dip = _normals_to_strike_dip(normals)
+        else:  # strike and dip of each chunk of normals as it is decomposed: no cube of normals, nor temporaries
+            strike, dip = _strike_dip_of_tensors(comps)
+            del comps
         stages.advance()
-        del comps  # the tensor (6 floats a sample) is not held while the angles are computed: a lower peak
         stages.start(_STAGES[3])
-        strike, dip = _normals_to_strike_dip(normals)
         if step > 1:  # each held over the samples up to the next computed one
-            strike, dip = (np.repeat(a, step, axis=-1)[..., :p.shape[-1]] for a in (strike, dip))
+            strike, dip = (_held(a, step, p.shape[-1]) for a in (strike, dip))
         stages.advance()
     return strike, dip
 
 
-def _normals(comps: dict, nd: int) -> np.ndarray:
-    """(..., nd) unit normals: the eigenvector of the largest eigenvalue of the smoothed tensor ``comps`` (its
-    components by their axes ``(a, b)``, ``a <= b``), in closed form."""
-    if nd == 2:
-        angle = 0.5 * np.arctan2(2.0 * comps[0, 1], comps[0, 0] - comps[1, 1])  # the largest eigenvalue's vector
-        return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+def _normals(comps: dict) -> np.ndarray:
+    """(..., 2) unit normals of a 2D image: the eigenvector of the largest eigenvalue of the smoothed tensor
+    ``comps`` (its components by their axes ``(a, b)``, ``a <= b``), in closed form."""
+    angle = 0.5 * np.arctan2(2.0 * comps[0, 1], comps[0, 0] - comps[1, 1])  # the largest eigenvalue's vector
+    return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+
+
+def _strike_dip_of_tensors(comps: dict) -> tuple[np.ndarray, np.ndarray]:
+    """Strike and dip (float32, degrees) of the 3D tensors ``comps`` (components by their axes ``(a, b)``,
+    ``a <= b``): each chunk's unit normals (:func:`seismo3d.seismic._kernels.eig3`) rounded to float32 and turned
+    into angles (:func:`_normals_to_strike_dip`) while in the processor's cache, on the threads that decompose it."""
     shape = comps[0, 0].shape
-    normals = np.empty(shape + (3,), np.float32)
-    _kernels.eig_normals(comps[0, 0], comps[0, 1], comps[0, 2], comps[1, 1], comps[1, 2], comps[2, 2], normals,
-                         np.empty(shape, np.float32))
-    return normals
+    strike, dip = np.empty(shape, np.float32), np.empty(shape, np.float32)
+    flat_strike, flat_dip = strike.reshape(-1), dip.reshape(-1)
+
+    def write(part, vx, vy, vz):
+        normals = np.empty((vx.size, 3), np.float32)
+        normals[:, 0], normals[:, 1], normals[:, 2] = vx, vy, vz
+        flat_strike[part], flat_dip[part] = _normals_to_strike_dip(normals)
+
+    _kernels.eig_vectors(comps[0, 0], comps[0, 1], comps[0, 2], comps[1, 1], comps[1, 2], comps[2, 2], write)
+    return strike, dip
+
+
+def _held(values: np.ndarray, step: int, n_samples: int) -> np.ndarray:
+    """``values`` of every ``step``-th sample held over the ``step - 1`` samples after it: (..., n_samples),
+    C-contiguous."""
+    out = np.empty(values.shape[:-1] + (n_samples,), values.dtype)
+    for k in range(step):
+        out[..., k::step] = values[..., :len(range(k, n_samples, step))]
+    return out

@@ -23,7 +23,7 @@ from ... import _kernels
 from ...blocks.apply import BlockOutput
 from ..result import FaultVotes, check_fault_arrays, fault_frames
 from .ridges import without_dead_edges
-from .voting_kernels import cast_votes, greedy_seeds, strongest, surface_kernel
+from .voting_kernels import cast_votes, greedy_seeds, place_order, strongest, surface_kernel
 
 __all__ = ["VotingOptions", "SeedSurfaces", "VoteSum", "vote_faults",
            "image_seeds", "seed_surfaces", "seed_votes", "surface_block", "surface_votes", "vote_block"]
@@ -509,11 +509,12 @@ def surface_block(place, likelihood, seeds, frames, shape, opt) -> BlockOutput:
     Returns
     -------
     BlockOutput
-        Lists ``ids`` (the block's seeds' indices in ``seeds``), ``mean_likelihood``, ``normals`` and ``offsets``
-        (:class:`SeedSurfaces`), read back row by row by :func:`vote_block`.
+        Lists ``ids`` (the block's seeds' indices in ``seeds``, in :func:`place_order`), ``mean_likelihood``,
+        ``normals`` and ``offsets`` (:class:`SeedSurfaces`), read back row by row by :func:`vote_block`.
     """
     i0, i1, j0, j1 = place.block
     ids = np.nonzero((seeds[:, 0] >= i0) & (seeds[:, 0] < i1) & (seeds[:, 1] >= j0) & (seeds[:, 1] < j1))[0]
+    ids = ids[place_order(seeds[ids])]  # neighbouring seeds in one part (vote_block adds them back in id order)
     likelihood = np.ascontiguousarray(likelihood, dtype=np.float32)
     parts = []  # the seeds in up to 20 parts, reported in memory (each seed's surface its own: the same bits)
     with progress_within(ids.size, unit="seed") as bar:

@@ -14,7 +14,7 @@ from ...._threads import run_threads
 from ....errors import InputError
 
 # used by the voting module; not part of the package's public face
-__all__ = ["cast_votes", "greedy_seeds", "strongest", "surface_kernel"]
+__all__ = ["cast_votes", "greedy_seeds", "place_order", "strongest", "surface_kernel"]
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -154,8 +154,8 @@ def _nearest(f, x, y, z, g0, g1):
 
 
 @nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
-def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, offsets, fa,
-                        seed_normal, work3, work2, surfs, work1):
+def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, order, frames, ru, rv, rw, b, a_smooth, offsets,
+                        fa, seed_normal, work3, work2, surfs, work1):
     # steps 1-4 for seeds t, t + n_threads, ... (see surface_kernel), with this thread's work arrays (made by the
     # caller: np.empty here compiled a function of numba's for each shape). One kernel, not a loop calling a kernel
     # per seed: numba compiles a called kernel on its own and again inside its caller (0.8 CPU s more on a first run)
@@ -173,7 +173,8 @@ def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv,
     surf = surfs[t]  # (nw, nv)
     tmp = work1[t, 0]  # (max(nv, nw),)
     line = work1[t, 1]
-    for s in range(t, seeds.shape[0], n_threads):
+    for q in range(t, seeds.shape[0], n_threads):
+        s = order[q]  # the seeds in the order of their places (neighbouring boxes share the likelihood they read)
         # seed s: its optimal surface in surf (nw, nv) (offsets across the fault, samples), the surface's mean
         # likelihood inside the image in fa[s] (-1 when no sample of it is inside), its normal at the seed in
         # seed_normal[s] and the samples it passes in offsets[s]. att (n_a, n_b, n2) the likelihood of the image of
@@ -269,6 +270,19 @@ def _surfaces_of_thread(t, n_threads, att, g0, g1, shape, seeds, frames, ru, rv,
                 offsets[s, iw, iv, 2] = math.floor(c2 + du * uz + dv * vz + dw * wz + 0.5) - c2
 
 
+_TILE = 16  # samples a side of the tiles of place_order: a voting box (21 x 41 x 61 samples in 3D) spans a few
+
+
+def place_order(seeds: np.ndarray) -> np.ndarray:
+    """The order of ``seeds`` ((k, 3) int) by the tiles of ``_TILE`` samples a side they lie in (inline, crossline,
+    sample tile, then the seed's own indices): the boxes of seeds taken one after the other in it read much the same
+    likelihood, from the processor's cache (the cost boxes of the generated 256^3 cube's 2405 seeds filled in 0.99
+    CPU s against 1.22-1.29 in the order of strength, 1.37 in a random order). Returns (k,) int64 indices."""
+    seeds = np.asarray(seeds).reshape(-1, 3)
+    tile = seeds // _TILE
+    return np.lexsort((seeds[:, 2], seeds[:, 1], seeds[:, 0], tile[:, 2], tile[:, 1], tile[:, 0])).astype(np.int64)
+
+
 def surface_kernel(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n_threads, offsets, fa, seed_normal):
     """Steps 1-4 for every seed, seed ``s`` on thread ``s % n_threads`` (no shared writes): ``fa[s]`` the surface's
     mean likelihood (-1: no vote), ``seed_normal[s]`` its normal at the seed, ``offsets[s, iw, iv]`` the sample
@@ -278,7 +292,8 @@ def surface_kernel(att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth, n
     n_threads = int(n_threads)
     nu, nv, nw = 2 * ru + 1, 2 * rv + 1, 2 * rw + 1
     nm = max(nv, nw)
-    run_threads(_surfaces_of_thread, n_threads, att, g0, g1, shape, seeds, frames, ru, rv, rw, b, a_smooth,
+    order = place_order(seeds)  # each seed's surface is its own (written at its index), whatever the order
+    run_threads(_surfaces_of_thread, n_threads, att, g0, g1, shape, seeds, order, frames, ru, rv, rw, b, a_smooth,
                 offsets, fa, seed_normal, np.empty((n_threads, 2, nw, nv, nu)), np.empty((n_threads, 5, nm + 1, nu)),
                 np.empty((n_threads, nw, nv)), np.empty((n_threads, 2, nm)))
 
@@ -327,29 +342,32 @@ _SLAB = 1 << 20  # samples per slab of strongest: its temporaries stay small
 
 
 def strongest(best, best_seed, ids, seed_strike, seed_dip, strike, dip):
-    """Strike and dip (m0, m1, n2) of the strongest surface through each sample over the threads' records of
-    :func:`cast_votes` (the larger mean likelihood, then the smaller seed id ``ids[q]``), written into ``strike`` and
-    ``dip``; left as they are where no surface passes. Worked in slabs of inlines of about 2^20 samples."""
+    """Strike and dip (m0, m1, n2, C order) of the strongest surface through each sample over the threads' records
+    of :func:`cast_votes` (the larger mean likelihood, then the smaller seed id ``ids[q]``), written into ``strike``
+    and ``dip``; left as they are where no surface passes. Worked in slabs of about 2^20 samples, on the samples of
+    each that a surface passes only (a seed recorded by some thread)."""
     if ids.size == 0:  # no seed: no surface passes anywhere
         return
-    n_threads, m0 = best.shape[0], best.shape[1]
-    step = max(1, _SLAB // max(1, best[0, 0].size))
-    for a in range(0, m0, step):
-        rows = slice(a, a + step)
-        # the first thread's records as they are (no surface: seed -1 and mean 0, as recorded), then the others in
-        # thread order, as the compiled loop took them
-        top = best[0, rows].copy()
-        s = best_seed[0, rows].astype(np.int64)
+    n_threads = best.shape[0]
+    flat_best, flat_seed = best.reshape(n_threads, -1), best_seed.reshape(n_threads, -1)
+    flat_strike, flat_dip = strike.reshape(-1), dip.reshape(-1)  # views: C order
+    for a in range(0, flat_seed.shape[1], _SLAB):
+        at = a + np.flatnonzero(np.any(flat_seed[:, a:a + _SLAB] >= 0, axis=0))
+        if not at.size:
+            continue
+        # the first thread's records as they are, then the others in thread order, as the compiled loop took them
+        top = flat_best[0, at]
+        s = flat_seed[0, at].astype(np.int64)
         for t in range(1, n_threads):
-            q = best_seed[t, rows]
-            f = best[t, rows]
+            q = flat_seed[t, at]
+            f = flat_best[t, at]
             tie = (f == top) & (ids[np.maximum(q, 0)] < ids[np.maximum(s, 0)])
             take = (q >= 0) & ((s < 0) | (f > top) | tie)
             top = np.where(take, f, top)
             s = np.where(take, q, s)
         found = s >= 0
-        strike[rows][found] = seed_strike[s[found]]
-        dip[rows][found] = seed_dip[s[found]]
+        flat_strike[at[found]] = seed_strike[s[found]]
+        flat_dip[at[found]] = seed_dip[s[found]]
 
 
 @nb.njit(cache=True, no_cfunc_wrapper=True)

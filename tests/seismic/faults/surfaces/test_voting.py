@@ -162,6 +162,27 @@ def test_strongest_surface_does_not_depend_on_the_threads():
         np.testing.assert_allclose(other.votes, runs[0].votes, rtol=1e-5, atol=1e-6)  # sums in another order
 
 
+def test_each_seeds_surface_is_the_same_in_any_order_of_the_seeds():
+    """The seeds' surfaces are computed in the order of the tiles they lie in (place_order, for the cache), each
+    written at its seed's index: the same bits as the seeds given reversed, and place_order is a permutation that
+    keeps the seeds of one tile together."""
+    from seismo3d.seismic.faults.surfaces.voting import seed_surfaces
+    from seismo3d.seismic.faults.surfaces.voting_kernels import greedy_seeds, place_order
+
+    fl = _crossing_faults()
+    points = np.argwhere(fl > 0.6)
+    seeds = greedy_seeds(points, fl[tuple(points.T)], fl.shape, 3)
+    frames = fault_frames(np.full(len(seeds), 30.0), np.full(len(seeds), 70.0))
+    order = place_order(seeds)
+    assert len(seeds) > 20 and np.array_equal(np.sort(order), np.arange(len(seeds)))
+    tiles = [tuple(t) for t in seeds[order] // 16]
+    assert len(set(tiles)) == 1 + sum(a != b for a, b in zip(tiles[:-1], tiles[1:]))  # each tile's seeds in one run
+    forward = seed_surfaces(fl, seeds, frames, image_shape=fl.shape)
+    backward = seed_surfaces(fl, seeds[::-1], frames[::-1], image_shape=fl.shape).take(np.arange(len(seeds))[::-1])
+    for name in ("offsets", "mean_likelihood", "normals"):
+        assert np.array_equal(getattr(forward, name), getattr(backward, name))
+
+
 def test_votes_from_surfaces_computed_in_other_blocks_equal_the_whole_images():
     """Each seed's surface computed once, in a block holding the seed with the voting's reach around it, then cast
     into another block's core in batches (VoteSum, as the run by blocks does): the votes, strike and dip of the

@@ -16,11 +16,14 @@ The quantisation is ONNX Runtime's static post-training quantisation (``onnxrunt
 in the QDQ format: every 3 x 3 convolution's weights as signed 8-bit integers with one scale per output channel, the
 activations (the convolutions' inputs and outputs, the ReLUs, poolings, upsamplings, concatenations, and on the
 finest level, held as 4 phases, its pooling over them, and the rearrangements between channels first and last:
-Reshape, ReduceMax, Transpose, Unsqueeze, Expand) as unsigned 8-bit integers with one scale and zero point per tensor, each range the minimum and maximum the float network
-reaches on the calibration sections (``percentile`` 100; ONNX Runtime runs a convolution and its ReLU as one integer
-convolution, ``QLinearConv``). The first convolution (one channel in, 4 % of the trained network's multiplications)
-stays float32, so the amplitudes are not rounded to 8 bits; so do the head (the 1 x 1 convolution to one channel)
-and the logistic sigmoid, so the probability is not rounded to 1/255 steps.
+Reshape, ReduceMax, Transpose, Unsqueeze, Expand) as unsigned 8-bit integers with one scale and zero point per
+tensor, each range the minimum and maximum the float network reaches on the calibration sections (``percentile``
+100; ONNX Runtime runs a convolution and its ReLU as one integer convolution, ``QLinearConv``). The first
+convolution (one channel in, 4 % of the trained network's multiplications) stays float32, so the amplitudes are not
+rounded to 8 bits (quantising it too saves no more time than running it without ONNX Runtime's blocked layout,
+:class:`~seismo3d.seismic.faults.likelihood.network.FaultNetwork`'s ``blocked_layout``, and moves the probability
+of the 256^3 cube of ``benchmarks/fault_speed.py`` by 3.1e-4 on average instead of 2e-6); so do the head (the 1 x 1
+convolution to one channel) and the logistic sigmoid, so the probability is not rounded to 1/255 steps.
 
 Chosen on generated sections only (16 sections after the calibration's, 128 x 128; absolute difference of the
 probabilities from the float network's): quantising the convolutions alone (a ReLU's input then quantised over its

@@ -40,8 +40,10 @@ def onnx_model(weights, *, channels_last: bool = False) -> bytes:
         their tensors channels last, need no rearrangement between them: the pooling of the finest level's phases,
         the upsamplings (a broadcast of each sample to its 2 x 2 fine samples instead of ``Resize``, which ONNX
         Runtime computes sample by sample) and the head (a matrix product over the channels) on channels-last
-        tensors (:func:`_pool_phases`, :func:`_upsample`, :func:`_head`). On 256 x 256 sections the int8 network's
-        calls take 16-19 % less time; the float network's would take more (its convolutions run channels first).
+        tensors (:func:`_pool_phases`, :func:`_upsample`, :func:`_head`). The int8 network's calls on 256 x 256
+        sections take 5-19 % less time (medians of alternated runs on a loaded machine; on the 256^3 cube of
+        ``benchmarks/fault_speed.py`` 9.1 -> 8.1 CPU s); the float network's would take more (its convolutions run
+        channels first, in ONNX Runtime's blocked layout).
 
     Returns
     -------

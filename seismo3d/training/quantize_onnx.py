@@ -2,22 +2,28 @@
 
 Run (needs the ``onnx`` package of the ``train`` extra; no training framework)::
 
-    python -m seismo3d.training.quantize_onnx seismo3d/seismic/faults/likelihood/fault_unet.onnx \\
+    python -m seismo3d.training.quantize_onnx seismo3d/seismic/faults/likelihood/fault_unet.npz \\
         seismo3d/seismic/faults/likelihood/fault_unet_int8.onnx
 
-writes the quantised model and its record beside it (``fault_unet_int8.json``: the options, the sha256 of the float
-model it was made from and of the result, and the measured difference of the two probabilities on generated
-sections); the sha256 it prints is :data:`seismo3d.seismic.faults.likelihood.learned.INT8_SHA256`.
+writes the quantised model and its record beside it (``fault_unet_int8.json``: the options, the sha256 of the
+trained weights, of the float model the package ships (their export, ``fault_unet.onnx``) and of the result, and the
+measured difference of the int8 and the float probabilities on generated sections); the sha256 it prints is
+:data:`seismo3d.seismic.faults.likelihood.learned.INT8_SHA256`. What is quantised is the weights' export written
+channels last (:func:`~seismo3d.training.export_onnx.onnx_model`'s ``channels_last``): the shipped float model's
+operations and outputs, laid out as ONNX Runtime's integer kernels hold their tensors.
 
 The quantisation is ONNX Runtime's static post-training quantisation (``onnxruntime.quantization.quantize_static``)
 in the QDQ format: every 3 x 3 convolution's weights as signed 8-bit integers with one scale per output channel, the
 activations (the convolutions' inputs and outputs, the ReLUs, poolings, upsamplings, concatenations, and on the
-finest level, held as 4 phases, its pooling over them and their rearrangement: Reshape, ReduceMax, DepthToSpace) as
-unsigned 8-bit integers with one scale and zero point per tensor, each range the minimum and maximum the float network
-reaches on the calibration sections (``percentile`` 100; ONNX Runtime runs a convolution and its ReLU as one integer
-convolution, ``QLinearConv``). The first convolution (one channel in, 4 % of the trained network's multiplications)
-stays float32, so the amplitudes are not rounded to 8 bits; so do the head (the 1 x 1 convolution to one channel)
-and the logistic sigmoid, so the probability is not rounded to 1/255 steps.
+finest level, held as 4 phases, its pooling over them, and the rearrangements between channels first and last:
+Reshape, ReduceMax, Transpose, Unsqueeze, Expand) as unsigned 8-bit integers with one scale and zero point per
+tensor, each range the minimum and maximum the float network reaches on the calibration sections (``percentile``
+100; ONNX Runtime runs a convolution and its ReLU as one integer convolution, ``QLinearConv``). The first
+convolution (one channel in, 4 % of the trained network's multiplications) stays float32, so the amplitudes are not
+rounded to 8 bits (quantising it too saves no more time than running it without ONNX Runtime's blocked layout,
+:class:`~seismo3d.seismic.faults.likelihood.network.FaultNetwork`'s ``blocked_layout``, and moves the probability
+of the 256^3 cube of ``benchmarks/fault_speed.py`` by 3.1e-4 on average instead of 2e-6); so do the head (the 1 x 1
+convolution to one channel) and the logistic sigmoid, so the probability is not rounded to 1/255 steps.
 
 Chosen on generated sections only (16 sections after the calibration's, 128 x 128; absolute difference of the
 probabilities from the float network's): quantising the convolutions alone (a ReLU's input then quantised over its
@@ -64,11 +70,12 @@ __all__ = ["CALIBRATION_SEED", "QuantiseOptions", "calibration_sections", "quant
 
 CALIBRATION_SEED = 5_555_555
 # the float nodes, named by their output: the first convolution and its ReLU (the amplitudes themselves would be
-# rounded to 8 bits), the head convolution (logits), the sigmoid and the DepthToSpace that puts the probability's
-# phases in place (onnx_model computes the finest level on the coarser grid); the sections' SpaceToDepth is not a
-# quantised op
-_FLOAT_NODES = ("enc0.0.conv", "enc0.0.out", "head.out", "head.probability", "probability")
-_QUANTISED_OPS = ("Conv", "Relu", "MaxPool", "Resize", "Concat", "DepthToSpace", "Reshape", "ReduceMax")
+# rounded to 8 bits), the head's product and bias (logits), the sigmoid and the Reshape, Transpose, Reshape that put
+# the probability's phases in place (onnx_model computes the finest level on the coarser grid), and the sizes of the
+# upsampled grids (integers); the sections' SpaceToDepth is not a quantised op
+_FLOAT_NODES = ("enc0.0.conv", "enc0.0.out", "head.product", "head.out", "head.probability", "head.phases",
+                "head.placed", "probability", "up1.shape", "up2.shape")
+_QUANTISED_OPS = ("Conv", "Relu", "MaxPool", "Concat", "Reshape", "ReduceMax", "Transpose", "Unsqueeze", "Expand")
 
 
 @dataclass(frozen=True)
@@ -151,7 +158,8 @@ def quantise_fault_network(float_model: bytes, *, options: QuantiseOptions | Non
     Parameters
     ----------
     float_model : bytes
-        The float32 ONNX model (``fault_unet.onnx``).
+        The float32 ONNX model written channels last (``onnx_model(weights, channels_last=True)``,
+        :func:`seismo3d.training.export_onnx.onnx_model`).
     options : QuantiseOptions, optional
 
     Returns
@@ -220,21 +228,27 @@ def probability_difference(float_model: bytes, int8_model: bytes, sections: np.n
 
 
 def main(argv=None) -> None:
-    """Command line: ``python -m seismo3d.training.quantize_onnx FLOAT.onnx OUT.onnx [--n-sections N]``."""
+    """Command line: ``python -m seismo3d.training.quantize_onnx WEIGHTS.npz OUT.onnx [--n-sections N]``."""
+    from .export_onnx import onnx_model
+
     defaults = QuantiseOptions()
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("float_model", type=Path, help="the float32 model (fault_unet.onnx)")
+    ap.add_argument("weights", type=Path, help="the trained weights (fault_unet.npz)")
     ap.add_argument("out", type=Path, help="the quantised model to write (.onnx); its record beside it (.json)")
     ap.add_argument("--n-sections", type=int, default=defaults.n_sections)
     ap.add_argument("--seed", type=int, default=defaults.seed)
     a = ap.parse_args(argv)
     opt = QuantiseOptions(n_sections=a.n_sections, seed=a.seed)
-    raw = a.float_model.read_bytes()
-    model = quantise_fault_network(raw, options=opt)
+    raw_weights = a.weights.read_bytes()
+    with np.load(a.weights) as npz:
+        weights = {name: npz[name].astype(np.float32) for name in npz.files}
+    raw = onnx_model(weights)  # the shipped float model, the reference of the measured difference
+    model = quantise_fault_network(onnx_model(weights, channels_last=True), options=opt)
     with atomic_path(a.out) as tmp:
         Path(tmp).write_bytes(model)
     check = calibration_sections(opt.n_check, opt.shape, seed=opt.seed + opt.n_sections)
     record = {"options": {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(opt).items()},
+              "weights_sha256": hashlib.sha256(raw_weights).hexdigest(),
               "float_sha256": hashlib.sha256(raw).hexdigest(), "sha256": hashlib.sha256(model).hexdigest(),
               "onnxruntime": __import__("onnxruntime").__version__,
               "difference_on_generated_sections": probability_difference(raw, model, check)}

@@ -195,7 +195,8 @@ def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baselin
 
 
 def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOptions | None = None,
-                           chunking: ChunkOptions | None = None, progress: bool = False) -> ChunkedFaults:
+                           chunking: ChunkOptions | None = None, progress: bool = False,
+                           attrs: dict | None = None) -> ChunkedFaults:
     """Fault votes, thinned faults, fault skins and throws of a 3D cube larger than memory, block by block.
 
     The method and the defaults are those of :func:`~seismo3d.seismic.faults.trace_faults` after its first step
@@ -221,6 +222,9 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         traces a side when it is given.
     progress : bool
         Report progress per block and per fault.
+    attrs : dict, optional
+        More attributes of the output group (JSON-serialisable, e.g. the input's name), written with the others
+        before it is renamed into place.
 
     Returns
     -------
@@ -262,8 +266,8 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     manifest = store.manifest_for(shape, opt, plan, likelihood=str(pathlib.Path(likelihood).resolve()),
                              likelihood_id=group.attrs.get("id"))
     plan = SurfacePlan(**dict(manifest["plan"], shape=tuple(manifest["plan"]["shape"])))  # resuming: its blocks
-    attrs = store.finished_output(manifest, "cube, likelihood and options")
-    if attrs is None:  # the block steps up to the cells (a resumed run skips the finished blocks)
+    done = store.finished_output(manifest, "cube, likelihood and options")
+    if done is None:  # the block steps up to the cells (a resumed run skips the finished blocks)
         # the work arrays (the masks near dead samples, compressed; the thinned votes before the threshold), the
         # output arrays, and the likelihood's arrays the ridges read
         store.start_output(manifest, plan.shape, plan.tile, (("near", "uint8", plan.shape[2], True),
@@ -277,12 +281,13 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
             store.write_gathered("cells", run.blocks("cells"), {
                 "points": ("cell_points", "int32"), "values": ("cell_values", "float32"),
                 "strike": ("cell_strike_deg", "float32"), "dip": ("cell_dip_deg", "float32")}, found.n_cells)
-        attrs = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,
-                 "saturated_fraction": found.saturated_fraction, "run": manifest}
-        store.finish(dict(attrs, method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run"))
+        done = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,
+                "saturated_fraction": found.saturated_fraction, "run": manifest}
+        store.finish(dict(done, **(attrs or {}),
+                          method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run"))
     else:
-        _check_cells(attrs["n_cells"], memory)
-    lower, upper = (float(v) for v in attrs["thresholds"])
+        _check_cells(done["n_cells"], memory)
+    lower, upper = (float(v) for v in done["thresholds"])
     stored = zarr.open_group(str(store.out), mode="r")
     windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
     cells = (stored["cell_points"][:].astype(np.int64), stored["cell_values"][:], stored["cell_strike_deg"][:],
@@ -292,8 +297,8 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
                                                  likelihood=group["likelihood"], bar=bar, progress=progress)
     bar.stop()
     store.seconds.update({name: round(t, 2) for name, t in bar.seconds.items()})
-    return ChunkedFaults(store.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]),
-                         int(attrs["n_cells"]), float(attrs["saturated_fraction"]), dict(store.computed),
+    return ChunkedFaults(store.out, faults, throws, evidence, (lower, upper), int(done["n_seeds"]),
+                         int(done["n_cells"]), float(done["saturated_fraction"]), dict(store.computed),
                          dict(store.resumed), dict(store.seconds))
 
 

@@ -359,7 +359,7 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
             raise EarlierStoresError(f"{work_dir / store} holds the {_STORE_NAMES[store]} of another input or other "
                                      "options; pick another output folder (-o) or delete it",
                                      [p for p in in_the_way if p.name.startswith(store)])
-    x, process = check_block_run(x, source, memory_limit, scheduler, opt)
+    x, process, amplitudes = check_block_run(x, source, memory_limit, scheduler, opt)
     # the likelihood's blocks planned from the process the refusal measured, the surfaces' from it grown by the
     # likelihood stage (STAGE_GROWTH, as minimum_memory_limit counts it; more when the process has grown more): the
     # same blocks for the same input and limit, run after run
@@ -393,7 +393,7 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     started = time.perf_counter()
     grown = dataclasses.replace(chunking, process=max(process + STAGE_GROWTH, process_bytes(scheduler)))
     surfaces = chunked_fault_surfaces(x, path, work_dir / SURFACES_STORE, options=opt, chunking=grown,
-                                      progress=progress, attrs={"source": source})
+                                      progress=progress, amplitudes=amplitudes, attrs={"source": source})
     seconds.update(surfaces.seconds)  # the block steps computed in this call, the skins, the throw, the evidence
     seconds["fault surfaces"] = time.perf_counter() - started - sum(surfaces.seconds.values())  # the rest
     LOGGER.info("%s: %d faults from %d seeds and %d thinned fault samples (thresholds %.3f, %.3f)", source,
@@ -611,6 +611,9 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     process : int
         Bytes of this process as the refusal counted them
         (:func:`~seismo3d.seismic.blocks.memory.process_bytes`): what the run's plans count too.
+    amplitudes : CubeAmplitudes
+        The cube's smallest and largest amplitude and its fill values (:func:`~seismo3d.seismic.amplitudes.
+        finite_cube`), which the dead samples of every block of the run read.
 
     Raises
     ------
@@ -629,7 +632,8 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     need = minimum_memory_limit(shape, baseline=baseline, options=options, sample=sample)
     _check_limit(name, shape, limit, need, f" (its smallest blocks, and the ~{sample.candidates(shape)} seed "
                                            "candidates a sample of its blocks predicts)")
-    return finite_cube(without_blank_slices(x), options.dead), process  # filled as in memory (_cleaned)
+    x, amplitudes = finite_cube(without_blank_slices(x), options.dead)  # filled as in memory (_cleaned)
+    return x, process, amplitudes
 
 
 def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:

@@ -35,7 +35,7 @@ from ..windows import StoredWindows
 from ..options import FaultTracingOptions
 from ..result import ChunkedFaults, fault_frames
 from ..steps import faults_from_cells, surface_cells
-from ...amplitudes import fill_block
+from ...amplitudes import CubeAmplitudes, fill_block
 from .ridges import RIDGE_HALO, THIN_HALO, amplitude_halo, cell_block, ridge_block, thin_block
 from .voting import surface_block, vote_block
 from .voting_kernels import greedy_seeds
@@ -196,7 +196,7 @@ def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baselin
 
 def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOptions | None = None,
                            chunking: ChunkOptions | None = None, progress: bool = False,
-                           attrs: dict | None = None) -> ChunkedFaults:
+                           amplitudes: CubeAmplitudes | None = None, attrs: dict | None = None) -> ChunkedFaults:
     """Fault votes, thinned faults, fault skins and throws of a 3D cube larger than memory, block by block.
 
     The method and the defaults are those of :func:`~seismo3d.seismic.faults.trace_faults` after its first step
@@ -222,6 +222,9 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         traces a side when it is given.
     progress : bool
         Report progress per block and per fault.
+    amplitudes : CubeAmplitudes, optional
+        The cube's smallest and largest amplitude and its fill values, when measured already
+        (:func:`~seismo3d.seismic.amplitudes.finite_cube`); default: measured here, a pass over the cube.
     attrs : dict, optional
         More attributes of the output group (JSON-serialisable, e.g. the input's name), written with the others
         before it is renamed into place.
@@ -275,7 +278,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         store.arrays.update(zip(LIKELIHOOD_INPUTS, (f"{likelihood}/{name}" for name in
                                                     ("likelihood", "strike_deg", "dip_deg"))))
         with store.scheduled():
-            run = SurfaceRun(store, x, plan, opt, shape, memory=memory)
+            run = SurfaceRun(store, x, plan, opt, shape, memory=memory, amplitudes=amplitudes)
             found = surface_cells(run, opt)
             # the cells gathered into 1D arrays of the output group, in C order (the skins then need no sorted copies)
             store.write_gathered("cells", run.blocks("cells"), {
@@ -362,13 +365,16 @@ class SurfaceRun:
         blocks); None: not checked (a run in memory, sized before the run).
     slopes : bool
         Keep the reflector slopes for the throws (a run by blocks, whose throws read them from its stores).
+    amplitudes : CubeAmplitudes, optional
+        The cube's smallest and largest amplitude and its fill values, measured before the run; default: measured
+        by the run (a reduction and the ``'fill'`` step).
     """
 
     def __init__(self, run, cube, plan: SurfacePlan, opt: FaultTracingOptions, image_shape, *, memory=None,
-                 slopes: bool = True):
+                 slopes: bool = True, amplitudes: CubeAmplitudes | None = None):
         self.run, self.x, self.plan, self.opt = run, cube, plan, opt
         self.image_shape = tuple(int(n) for n in image_shape)
-        self.memory, self.slopes = memory, slopes
+        self.memory, self.slopes, self.amplitudes = memory, slopes, amplitudes
         self.steps = {step.name: step for step in block_steps(plan.shape, opt, 0)}
 
     def blocks(self, step: str) -> list:
@@ -381,13 +387,22 @@ class SurfaceRun:
         """Dead samples (from the fill values of the whole cube), live likelihood and ridges of every block;
         (saturated live samples, live samples)."""
         x = self.x
-        lo, hi = self.run.saved("amplitude_range", lambda: _amplitude_range(self.run, x))
-        results = self.run.run_step(self.steps["fill"], self.blocks("fill"), lo, hi, self.opt.dead, source=x)
-        fill = np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
-                                        [np.zeros(1, np.float32)]))
+        lo, hi, fill = self._amplitudes()
         results = self.run.run_step(self.steps["ridges"], self.blocks("ridges"), fill, lo, hi, self.image_shape,
                                     self.opt, self.slopes, source=x)
         return sum(r["high"] for r in results), sum(r["live"] for r in results)
+
+    def _amplitudes(self) -> tuple:
+        """(lo, hi, fill): the cube's smallest and largest amplitude and its fill values (float32 array), as given,
+        or measured: the range by a reduction (kept for a resumed run), the fill values by the ``'fill'`` step."""
+        if self.amplitudes is not None:
+            a = self.amplitudes
+            return float(a.lo), float(a.hi), np.asarray(a.fill, np.float32)
+        lo, hi = self.run.saved("amplitude_range", lambda: _amplitude_range(self.run, self.x))
+        results = self.run.run_step(self.steps["fill"], self.blocks("fill"), lo, hi, self.opt.dead, source=self.x)
+        fill = np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
+                                        [np.zeros(1, np.float32)]))
+        return lo, hi, fill
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:
         """The seeds among the ridges' candidates, strongest first (:func:`greedy_seeds`), with their frames; kept

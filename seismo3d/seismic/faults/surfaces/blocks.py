@@ -46,10 +46,9 @@ __all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "ChunkedFaults", "SURFACE_BATCH_BYTE
 # the output's arrays, (n_inlines, n_xlines, n_samples) float32 (ChunkedFaults.path)
 _OUTPUTS = ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg", "slope_inline", "slope_xline")
 # Bytes of working memory per sample of a block (incl. halo): amplitudes, their reflector slopes and the dead-sample
-# masks; likelihood, strike, dip, the ranking image and its smoothing passes, ridges (and, until stop 49, the
-# hysteresis labels: the ridges now peak at 21, the slopes at 36 per amplitude sample; the constants were kept); the
-# voting's core (votes, strongest surface and its seed per numba thread; the summed votes, strike, dip) and its
-# input; the thinning of the votes.
+# masks (per sample of the amplitudes read); likelihood, strike, dip, the ranking image and its smoothing passes,
+# ridges (per sample of the likelihood read); the voting's core (votes, strongest surface and its seed per numba
+# thread; the summed votes, strike, dip) and its input; the thinning of the votes.
 # (tracemalloc peaks on 96-trace blocks of 512 samples: ridges 44 per sample of the likelihood's halo block, amplitudes
 # included; voting 32 per core sample with 2 threads besides the input, 8 + 12 per thread; thinning 41)
 _DEAD_BYTES = 12

@@ -29,7 +29,7 @@ from .._validation import check_int, check_positive, check_seismic_layout
 from ..errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .blocks.apply import BlockOutput
 
-__all__ = ["CleanTraces", "DeadSampleOptions", "check_amplitudes", "check_finite", "check_varies", "clean_traces",
+__all__ = ["CleanTraces", "CubeAmplitudes", "DeadSampleOptions", "check_amplitudes", "check_finite", "check_varies", "clean_traces",
            "clipped_count", "dead_samples", "fill_block", "fill_values", "finite_cube", "near_dead_samples",
            "warn_clipped", "warn_dead", "warn_non_finite"]
 
@@ -393,7 +393,25 @@ def check_amplitudes(arr: np.ndarray, dead: np.ndarray, min_crossings: float) ->
             "migrated seismic image")
 
 
-def finite_cube(x, dead: DeadSampleOptions | None = None):
+@dataclass(frozen=True)
+class CubeAmplitudes:
+    """What the dead-sample rules need of a whole cube, measured once over its blocks (:func:`finite_cube`) and
+    given to every block after (:func:`dead_samples`).
+
+    Attributes
+    ----------
+    lo, hi : float
+        The cube's smallest and largest amplitude (NaN / inf read as 0).
+    fill : tuple of float
+        Its fill values, sorted: the union of :func:`fill_values` over its blocks (0 among them).
+    """
+
+    lo: float
+    hi: float
+    fill: tuple
+
+
+def finite_cube(x, dead: DeadSampleOptions | None = None) -> tuple:
     """The cube with NaN / inf read as 0 (warned, as in memory); constant data refused, clipped amplitudes and dead
     samples warned about, from three passes over the blocks (the
     dead samples need the fill values of the whole cube).
@@ -407,8 +425,10 @@ def finite_cube(x, dead: DeadSampleOptions | None = None):
 
     Returns
     -------
-    dask.array.Array
+    x : dask.array.Array
         ``x``, or ``x`` with its NaN / inf samples read as 0.
+    amplitudes : CubeAmplitudes
+        Its smallest and largest amplitude and its fill values, for the dead samples of its blocks.
 
     Raises
     ------
@@ -437,7 +457,7 @@ def finite_cube(x, dead: DeadSampleOptions | None = None):
     fill = np.unique(np.concatenate([p[1] for p in parts]))
     counts = dask.compute(*[dask.delayed(_dead_counts)(b, fill, lo, hi, dead) for b in x.to_delayed().ravel()])
     warn_dead(sum(d[0] for d in counts), n, sum(d[1] for d in counts), options=dead)
-    return x
+    return x, CubeAmplitudes(float(lo), float(hi), tuple(float(v) for v in fill))
 
 
 def _clipped_and_fills(block, lo, hi, dead) -> tuple:

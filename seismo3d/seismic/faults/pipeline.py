@@ -38,7 +38,6 @@ from ..blocks.plan import limit_for_blocks
 from ..blocks.preflight import SampleOptions
 from ..blocks.stores import earlier_run
 from ..io.cube import as_cube, sample_interval as cube_sample_interval, seismic_axes
-from ..io.zarr_store import consolidate
 from ..time_slices import balanced_slices, blank_slices, filled_slices, slice_extremes
 from .likelihood.learned_blocks import chunked_learned_likelihood, learned_block_bytes
 from .likelihood.scan_blocks import chunked_fault_likelihood, smallest_block_bytes as likelihood_block_bytes
@@ -360,7 +359,7 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
             raise EarlierStoresError(f"{work_dir / store} holds the {_STORE_NAMES[store]} of another input or other "
                                      "options; pick another output folder (-o) or delete it",
                                      [p for p in in_the_way if p.name.startswith(store)])
-    x, process = check_block_run(x, source, memory_limit, scheduler, opt)
+    x, process, amplitudes = check_block_run(x, source, memory_limit, scheduler, opt)
     # the likelihood's blocks planned from the process the refusal measured, the surfaces' from it grown by the
     # likelihood stage (STAGE_GROWTH, as minimum_memory_limit counts it; more when the process has grown more): the
     # same blocks for the same input and limit, run after run
@@ -379,27 +378,24 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
         LOGGER.info("%s: %d x %d x %d samples need about %.2f GiB in memory besides this process (%.2f GiB), more "
                     "than the memory limit of %.2f GiB allows: fault likelihood block by block into %s", source,
                     *shape, in_memory_bytes(shape) / 2**30, held / 2**30, memory_limit / 2**30, path.name)
+        # "id": this store, told apart from a later one at the same path (fault_surfaces.zarr records whose it is);
+        # written with the store's other attributes before it is renamed into place
+        attrs = {"source": source, "likelihood": opt.likelihood, "id": uuid.uuid4().hex}
         if opt.likelihood == "learned":
             found = chunked_learned_likelihood(x, path, options=opt.learned, coords=coords, progress=progress,
-                                               chunking=chunking)
+                                               chunking=chunking, attrs=attrs)
         else:
             found = chunked_fault_likelihood(x, path, options=opt.scan, coords=coords, progress=progress,
-                                             chunking=chunking)
+                                             chunking=chunking, attrs=attrs)
         likelihood_seconds = dict(found.seconds)  # its block steps computed in this call
-        # "id": this store, told apart from a later one at the same path (fault_surfaces.zarr records whose it is)
-        zarr.open_group(str(path), mode="r+").attrs.update({"source": source, "likelihood": opt.likelihood,
-                                                            "id": uuid.uuid4().hex})
-        consolidate(path)
     seconds = {f"fault likelihood: {name}": t for name, t in likelihood_seconds.items()}
     seconds["fault likelihood"] = time.perf_counter() - started - sum(likelihood_seconds.values())  # the rest
     started = time.perf_counter()
     grown = dataclasses.replace(chunking, process=max(process + STAGE_GROWTH, process_bytes(scheduler)))
     surfaces = chunked_fault_surfaces(x, path, work_dir / SURFACES_STORE, options=opt, chunking=grown,
-                                      progress=progress)
+                                      progress=progress, amplitudes=amplitudes, attrs={"source": source})
     seconds.update(surfaces.seconds)  # the block steps computed in this call, the skins, the throw, the evidence
     seconds["fault surfaces"] = time.perf_counter() - started - sum(surfaces.seconds.values())  # the rest
-    zarr.open_group(str(surfaces.path), mode="r+").attrs["source"] = source
-    consolidate(surfaces.path)
     LOGGER.info("%s: %d faults from %d seeds and %d thinned fault samples (thresholds %.3f, %.3f)", source,
                 len(surfaces.faults), surfaces.n_seeds, surfaces.n_cells, *surfaces.thresholds)
     scan = zarr.open_group(str(path), mode="r")
@@ -615,6 +611,9 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     process : int
         Bytes of this process as the refusal counted them
         (:func:`~seismo3d.seismic.blocks.memory.process_bytes`): what the run's plans count too.
+    amplitudes : CubeAmplitudes
+        The cube's smallest and largest amplitude and its fill values (:func:`~seismo3d.seismic.amplitudes.
+        finite_cube`), which the dead samples of every block of the run read.
 
     Raises
     ------
@@ -633,7 +632,8 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     need = minimum_memory_limit(shape, baseline=baseline, options=options, sample=sample)
     _check_limit(name, shape, limit, need, f" (its smallest blocks, and the ~{sample.candidates(shape)} seed "
                                            "candidates a sample of its blocks predicts)")
-    return finite_cube(without_blank_slices(x), options.dead), process  # filled as in memory (_cleaned)
+    x, amplitudes = finite_cube(without_blank_slices(x), options.dead)  # filled as in memory (_cleaned)
+    return x, process, amplitudes
 
 
 def _check_limit(name: str, shape: tuple, limit: int, need: int, why: str) -> None:

@@ -164,3 +164,44 @@ def test_a_run_by_blocks_plans_from_the_process_its_refusal_measured(seismic, mo
         trace_faults(seismic, memory_limit="2GB", blocks=BlockRunOptions(work_dir=tmp_path, in_memory=False),
                      progress=False)
     assert seen["likelihood"] == 320 << 20  # 300 MiB measured by the refusal, rounded up to a multiple of 64 MiB
+
+
+class _Interrupted(Exception):
+    """Raised right after the fault likelihood's store is renamed into place: a run interrupted there."""
+
+
+def test_a_likelihood_store_renamed_into_place_holds_its_id(seismic, monkeypatch, tmp_path):
+    """A run interrupted right after the likelihood's store is renamed into place leaves a store that records its
+    input and its id (written before the rename): the next run reuses it, and its surfaces record that id."""
+    import os
+
+    import zarr
+
+    from seismo3d.seismic.faults.preflight import CubeSample
+
+    monkeypatch.setattr(pipeline, "judge_sample", lambda *a, **k: CubeSample(3, 1, 0.1, 0.0))
+    rename = os.replace
+
+    def interrupted(src, dst):
+        rename(src, dst)
+        if str(src).endswith(pipeline.LIKELIHOOD_STORE + ".partial"):
+            raise _Interrupted
+
+    blocks = BlockRunOptions(work_dir=tmp_path, in_memory=False)
+    monkeypatch.setattr(os, "replace", interrupted)
+    with pytest.raises(_Interrupted):
+        trace_faults(seismic, memory_limit="2GB", blocks=blocks, progress=False)
+    monkeypatch.setattr(os, "replace", rename)
+    attrs = zarr.open_group(str(tmp_path / pipeline.LIKELIHOOD_STORE), mode="r").attrs
+    assert attrs["source"] == "cube" and attrs["likelihood"] == "learned" and len(attrs["id"]) == 32
+    seen = {}
+
+    def surfaces(x, likelihood, output, **kwargs):
+        seen["likelihood_id"] = zarr.open_group(str(likelihood), mode="r").attrs.get("id")  # what they record
+        raise _Likelihood
+
+    monkeypatch.setattr(pipeline, "chunked_learned_likelihood", _stop)  # reused: not computed again
+    monkeypatch.setattr(pipeline, "chunked_fault_surfaces", surfaces)
+    with pytest.raises(_Likelihood):
+        trace_faults(seismic, memory_limit="2GB", blocks=blocks, progress=False)
+    assert seen["likelihood_id"] == attrs["id"]

@@ -66,7 +66,8 @@ _NETWORK_BATCH_BYTES = 420
 
 def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None = None,
                                chunking: ChunkOptions | None = None, coords: dict | None = None,
-                               progress: bool = False, **overrides) -> ChunkedLikelihood:
+                               progress: bool = False, attrs: dict | None = None,
+                               **overrides) -> ChunkedLikelihood:
     """Learned fault likelihood, strike and dip of a 3D cube computed block by block and written to a Zarr group.
 
     Parameters
@@ -84,6 +85,8 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
         ``inline``, ``crossline``, ``sample`` coordinates (and ``sample_unit``) written beside the arrays.
     progress : bool
         Report progress per block.
+    attrs : dict, optional
+        More attributes of the output group (JSON-serialisable), written before it is renamed into place.
     **overrides
         Fields of :class:`~seismo3d.seismic.faults.likelihood.learned.LearnedOptions` by name.
 
@@ -106,7 +109,7 @@ def chunked_learned_likelihood(cube, output, *, options: LearnedOptions | None =
     return likelihood_by_blocks(x, output, opt=opt, plan=plan, steps=run_learned, start=_start, chunking=chunking,
                                 coords=coords, progress=progress,
                                 method="learned fault likelihood (seismo3d fault network), chunked run",
-                                manifest={"method": "learned, network blocks per direction"})
+                                manifest={"method": "learned, network blocks per direction"}, attrs=attrs)
 
 
 def _network_block_bytes(block, axis: int, shape, factor: float, batch: int, step: int = 1) -> int:

@@ -63,7 +63,7 @@ def likelihood_in_memory(x, *, opt, plan: dict, steps: Callable, section: bool =
 
 def likelihood_by_blocks(x, output, *, opt, plan: dict, steps: Callable, start: Callable, method: str,
                          chunking: ChunkOptions, coords: dict | None = None, progress: bool = False,
-                         manifest: dict | None = None) -> ChunkedLikelihood:
+                         manifest: dict | None = None, attrs: dict | None = None) -> ChunkedLikelihood:
     """Run a fault likelihood's declared steps block by block into a Zarr group, resumably.
 
     Parameters
@@ -95,6 +95,9 @@ def likelihood_by_blocks(x, output, *, opt, plan: dict, steps: Callable, start: 
         Report progress per block.
     manifest : dict, optional
         More entries of the manifest (what a resumed run must match besides the shape, options and plan).
+    attrs : dict, optional
+        More attributes of the output group (JSON-serialisable, e.g. the input's name and the store's id), written
+        with the others before it is renamed into place: a store that exists holds all of them.
 
     Returns
     -------
@@ -116,5 +119,5 @@ def likelihood_by_blocks(x, output, *, opt, plan: dict, steps: Callable, start: 
     with run.scheduled():
         saturated = steps(run, x, opt, plan)
     run.describe(coords, {"method": method, "saturated_fraction": saturated})
-    run.finish()
+    run.finish(attrs)
     return ChunkedLikelihood(out, shape, dict(run.computed), dict(run.resumed), saturated, dict(run.seconds))

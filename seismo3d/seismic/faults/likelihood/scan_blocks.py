@@ -73,7 +73,8 @@ def _plan(shape, options: FaultScanOptions, chunking: ChunkOptions, baseline: in
 
 def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None = None,
                              chunking: ChunkOptions | None = None, coords: dict | None = None,
-                             progress: bool = False, **overrides) -> ChunkedLikelihood:
+                             progress: bool = False, attrs: dict | None = None,
+                             **overrides) -> ChunkedLikelihood:
     """Fault likelihood, strike and dip of a 3D cube computed block by block and written to a Zarr group.
 
     The method is :func:`~seismo3d.seismic.faults.fault_likelihood` (Hale 2013): the same declared steps, each run
@@ -97,6 +98,8 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
         depths) with an optional ``sample_unit`` string; default: indices.
     progress : bool
         Report progress per block (a bar on a terminal, log lines otherwise).
+    attrs : dict, optional
+        More attributes of the output group (JSON-serialisable), written before it is renamed into place.
     **overrides
         Fields of :class:`FaultScanOptions` by name.
 
@@ -129,4 +132,4 @@ def chunked_fault_likelihood(cube, output, *, options: FaultScanOptions | None =
     return likelihood_by_blocks(
         x, output, opt=opt, plan=plan, steps=run_scan, chunking=chunking, coords=coords, progress=progress,
         start=lambda run, manifest, plan: run.start_output(manifest, shape, plan["tile"], work),
-        method="fault likelihood (Hale 2013), seismo3d chunked run")
+        method="fault likelihood (Hale 2013), seismo3d chunked run", attrs=attrs)

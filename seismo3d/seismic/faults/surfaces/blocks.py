@@ -29,13 +29,13 @@ from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
     CUBE, BlockStep, lateral_blocks, plan_steps, smallest_need,
 )
-from ...blocks.statistics import streamed_otsu, streamed_quantile
+from ...blocks.statistics import otsu, quantile, streamed_otsu, streamed_quantile
 from ...blocks.stores import StoreRun
 from ..windows import StoredWindows
 from ..options import FaultTracingOptions
 from ..result import ChunkedFaults, fault_frames
 from ..steps import faults_from_cells, surface_cells
-from ...amplitudes import fill_block
+from ...amplitudes import CubeAmplitudes, fill_block
 from .ridges import RIDGE_HALO, THIN_HALO, amplitude_halo, cell_block, ridge_block, thin_block
 from .voting import surface_block, vote_block
 from .voting_kernels import greedy_seeds
@@ -46,10 +46,9 @@ __all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "ChunkedFaults", "SURFACE_BATCH_BYTE
 # the output's arrays, (n_inlines, n_xlines, n_samples) float32 (ChunkedFaults.path)
 _OUTPUTS = ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg", "slope_inline", "slope_xline")
 # Bytes of working memory per sample of a block (incl. halo): amplitudes, their reflector slopes and the dead-sample
-# masks; likelihood, strike, dip, the ranking image and its smoothing passes, ridges (and, until stop 49, the
-# hysteresis labels: the ridges now peak at 21, the slopes at 36 per amplitude sample; the constants were kept); the
-# voting's core (votes, strongest surface and its seed per numba thread; the summed votes, strike, dip) and its
-# input; the thinning of the votes.
+# masks (per sample of the amplitudes read); likelihood, strike, dip, the ranking image and its smoothing passes,
+# ridges (per sample of the likelihood read); the voting's core (votes, strongest surface and its seed per numba
+# thread; the summed votes, strike, dip) and its input; the thinning of the votes.
 # (tracemalloc peaks on 96-trace blocks of 512 samples: ridges 44 per sample of the likelihood's halo block, amplitudes
 # included; voting 32 per core sample with 2 threads besides the input, 8 + 12 per thread; thinning 41)
 _DEAD_BYTES = 12
@@ -65,6 +64,9 @@ _THIN_BYTES = 44
 # frames, links, labels, the merging's KD-tree; measured 219-234 bytes a cell on 1.4 M cells of a 512^3 cube, 250 on
 # the 11 M cells of a 1448 x 1448 x 512 one).
 CANDIDATE_BYTES = 80  # points, values, angles (36), the sort keys, order and sorted copy
+# Bytes per positive thinned vote gathered for the thresholds: the value (float32), the histogram's and the quantile's
+# copies of it
+_VALUE_BYTES = 12
 CELL_BYTES = 240
 # The fault likelihood's arrays the ridges read (the run's stores' names of the likelihood group's arrays)
 LIKELIHOOD_INPUTS = ("fault_likelihood", "fault_strike_deg", "fault_dip_deg")
@@ -195,7 +197,8 @@ def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baselin
 
 
 def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOptions | None = None,
-                           chunking: ChunkOptions | None = None, progress: bool = False) -> ChunkedFaults:
+                           chunking: ChunkOptions | None = None, progress: bool = False,
+                           amplitudes: CubeAmplitudes | None = None, attrs: dict | None = None) -> ChunkedFaults:
     """Fault votes, thinned faults, fault skins and throws of a 3D cube larger than memory, block by block.
 
     The method and the defaults are those of :func:`~seismo3d.seismic.faults.trace_faults` after its first step
@@ -221,6 +224,12 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         traces a side when it is given.
     progress : bool
         Report progress per block and per fault.
+    amplitudes : CubeAmplitudes, optional
+        The cube's smallest and largest amplitude and its fill values, when measured already
+        (:func:`~seismo3d.seismic.amplitudes.finite_cube`); default: measured here, a pass over the cube.
+    attrs : dict, optional
+        More attributes of the output group (JSON-serialisable, e.g. the input's name), written with the others
+        before it is renamed into place.
 
     Returns
     -------
@@ -262,8 +271,8 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     manifest = store.manifest_for(shape, opt, plan, likelihood=str(pathlib.Path(likelihood).resolve()),
                              likelihood_id=group.attrs.get("id"))
     plan = SurfacePlan(**dict(manifest["plan"], shape=tuple(manifest["plan"]["shape"])))  # resuming: its blocks
-    attrs = store.finished_output(manifest, "cube, likelihood and options")
-    if attrs is None:  # the block steps up to the cells (a resumed run skips the finished blocks)
+    done = store.finished_output(manifest, "cube, likelihood and options")
+    if done is None:  # the block steps up to the cells (a resumed run skips the finished blocks)
         # the work arrays (the masks near dead samples, compressed; the thinned votes before the threshold), the
         # output arrays, and the likelihood's arrays the ridges read
         store.start_output(manifest, plan.shape, plan.tile, (("near", "uint8", plan.shape[2], True),
@@ -271,18 +280,19 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         store.arrays.update(zip(LIKELIHOOD_INPUTS, (f"{likelihood}/{name}" for name in
                                                     ("likelihood", "strike_deg", "dip_deg"))))
         with store.scheduled():
-            run = SurfaceRun(store, x, plan, opt, shape, memory=memory)
+            run = SurfaceRun(store, x, plan, opt, shape, memory=memory, amplitudes=amplitudes)
             found = surface_cells(run, opt)
             # the cells gathered into 1D arrays of the output group, in C order (the skins then need no sorted copies)
             store.write_gathered("cells", run.blocks("cells"), {
                 "points": ("cell_points", "int32"), "values": ("cell_values", "float32"),
                 "strike": ("cell_strike_deg", "float32"), "dip": ("cell_dip_deg", "float32")}, found.n_cells)
-        attrs = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,
-                 "saturated_fraction": found.saturated_fraction, "run": manifest}
-        store.finish(dict(attrs, method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run"))
+        done = {"thresholds": list(found.thresholds), "n_seeds": found.n_seeds, "n_cells": found.n_cells,
+                "saturated_fraction": found.saturated_fraction, "run": manifest}
+        store.finish(dict(done, **(attrs or {}),
+                          method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run"))
     else:
-        _check_cells(attrs["n_cells"], memory)
-    lower, upper = (float(v) for v in attrs["thresholds"])
+        _check_cells(done["n_cells"], memory)
+    lower, upper = (float(v) for v in done["thresholds"])
     stored = zarr.open_group(str(store.out), mode="r")
     windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
     cells = (stored["cell_points"][:].astype(np.int64), stored["cell_values"][:], stored["cell_strike_deg"][:],
@@ -292,8 +302,8 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
                                                  likelihood=group["likelihood"], bar=bar, progress=progress)
     bar.stop()
     store.seconds.update({name: round(t, 2) for name, t in bar.seconds.items()})
-    return ChunkedFaults(store.out, faults, throws, evidence, (lower, upper), int(attrs["n_seeds"]),
-                         int(attrs["n_cells"]), float(attrs["saturated_fraction"]), dict(store.computed),
+    return ChunkedFaults(store.out, faults, throws, evidence, (lower, upper), int(done["n_seeds"]),
+                         int(done["n_cells"]), float(done["saturated_fraction"]), dict(store.computed),
                          dict(store.resumed), dict(store.seconds))
 
 
@@ -357,13 +367,16 @@ class SurfaceRun:
         blocks); None: not checked (a run in memory, sized before the run).
     slopes : bool
         Keep the reflector slopes for the throws (a run by blocks, whose throws read them from its stores).
+    amplitudes : CubeAmplitudes, optional
+        The cube's smallest and largest amplitude and its fill values, measured before the run; default: measured
+        by the run (a reduction and the ``'fill'`` step).
     """
 
     def __init__(self, run, cube, plan: SurfacePlan, opt: FaultTracingOptions, image_shape, *, memory=None,
-                 slopes: bool = True):
+                 slopes: bool = True, amplitudes: CubeAmplitudes | None = None):
         self.run, self.x, self.plan, self.opt = run, cube, plan, opt
         self.image_shape = tuple(int(n) for n in image_shape)
-        self.memory, self.slopes = memory, slopes
+        self.memory, self.slopes, self.amplitudes = memory, slopes, amplitudes
         self.steps = {step.name: step for step in block_steps(plan.shape, opt, 0)}
 
     def blocks(self, step: str) -> list:
@@ -376,13 +389,22 @@ class SurfaceRun:
         """Dead samples (from the fill values of the whole cube), live likelihood and ridges of every block;
         (saturated live samples, live samples)."""
         x = self.x
-        lo, hi = self.run.saved("amplitude_range", lambda: _amplitude_range(self.run, x))
-        results = self.run.run_step(self.steps["fill"], self.blocks("fill"), lo, hi, self.opt.dead, source=x)
-        fill = np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
-                                        [np.zeros(1, np.float32)]))
+        lo, hi, fill = self._amplitudes()
         results = self.run.run_step(self.steps["ridges"], self.blocks("ridges"), fill, lo, hi, self.image_shape,
                                     self.opt, self.slopes, source=x)
         return sum(r["high"] for r in results), sum(r["live"] for r in results)
+
+    def _amplitudes(self) -> tuple:
+        """(lo, hi, fill): the cube's smallest and largest amplitude and its fill values (float32 array), as given,
+        or measured: the range by a reduction (kept for a resumed run), the fill values by the ``'fill'`` step."""
+        if self.amplitudes is not None:
+            a = self.amplitudes
+            return float(a.lo), float(a.hi), np.asarray(a.fill, np.float32)
+        lo, hi = self.run.saved("amplitude_range", lambda: _amplitude_range(self.run, self.x))
+        results = self.run.run_step(self.steps["fill"], self.blocks("fill"), lo, hi, self.opt.dead, source=self.x)
+        fill = np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
+                                        [np.zeros(1, np.float32)]))
+        return lo, hi, fill
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:
         """The seeds among the ridges' candidates, strongest first (:func:`greedy_seeds`), with their frames; kept
@@ -417,9 +439,11 @@ class SurfaceRun:
                           SURFACE_BATCH_BYTES)
 
     def thresholds(self) -> tuple[float, float]:
-        """The thresholds from the thinned votes of every block: their count and range, their histogram (Otsu) and,
-        when they are dense, their exact quantile (dask reductions over a store's chunks:
-        :mod:`~seismo3d.seismic.blocks.statistics`; in memory the libraries' on the values, which they equal)."""
+        """The thresholds from the thinned votes of every block: Otsu's threshold of the positive ones and, when they
+        are dense, their exact quantile (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`). In
+        memory, and by blocks when the positive values the blocks listed fit in what the memory limit leaves, the
+        libraries' on those values (:func:`~seismo3d.seismic.blocks.statistics.otsu`, ``quantile``); else dask
+        reductions over the store's chunks, which equal them (:mod:`~seismo3d.seismic.blocks.statistics`)."""
         stats = self.run.run_step(self.steps["thin"], self.blocks("thin"), self.image_shape)
         thin = self.run.arrays["thin_raw"]  # an array in memory, or a Zarr store's path
         if isinstance(thin, np.ndarray):
@@ -428,6 +452,9 @@ class SurfaceRun:
         n_samples = int(np.prod(self.plan.shape, dtype=np.int64))
         if n_values == 0:
             return self.opt.thresholds_from(1.0, 0, n_samples, None)
+        values = self._thinned_values(n_values)
+        if values is not None:  # the same values as the store's positive ones: the same thresholds, read at once
+            return self.opt.thresholds_from(otsu(values), n_values, n_samples, lambda q: quantile(values, q))
         vmin = min(r["min"] for r in stats if r["count"])
         vmax = max(r["max"] for r in stats if r["count"])
         import dask.array as da
@@ -435,6 +462,17 @@ class SurfaceRun:
         values = da.from_zarr(thin)
         return self.opt.thresholds_from(streamed_otsu(self.run, values, vmin, vmax), n_values, n_samples,
                                         lambda q: streamed_quantile(self.run, values, q, n_values, vmin, vmax))
+
+    def _thinned_values(self, n: int):
+        """The ``n`` positive thinned votes the blocks of the thinning listed, gathered; None when they need more
+        than the memory limit leaves (:data:`_VALUE_BYTES` each), or when a block finished by an earlier version of
+        the run left no list."""
+        if self.memory is not None and n * _VALUE_BYTES > self.memory - resident_memory():
+            return None
+        try:
+            return self.run.gathered_lists("thin", self.blocks("thin"), ("values",))["values"]
+        except FileNotFoundError:
+            return None
 
     def cells(self, lower: float) -> int:
         """Thinned votes at or above ``lower`` kept (``thin``), the others set to 0, and its cells listed per

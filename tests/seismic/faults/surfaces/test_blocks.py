@@ -98,16 +98,30 @@ def test_blocks_give_the_in_memory_faults(cube, likelihood, reference, tmp_path,
     _assert_same_faults(again, reference)
 
 
-def test_dense_faults_take_the_exact_quantile(cube, likelihood, reference, tmp_path):
+@pytest.mark.parametrize("values", ["gathered", "streamed"])
+def test_dense_faults_take_the_exact_quantile(cube, likelihood, reference, tmp_path, monkeypatch, values):
     """With a fault fraction so small that the lower threshold comes from the quantile of the thinned votes, the
-    quantile over the store's chunks (dask reductions: a histogram, then the values of its bin) equals numpy's on the
-    whole cube."""
+    quantile equals numpy's on the whole cube, from the positive thinned votes the blocks listed (gathered) or, when
+    they would not fit in the memory limit, over the store's chunks (dask reductions: a histogram, then the values of
+    its bin)."""
+    if values == "streamed":  # no positive value fits: the reductions over the store's chunks
+        monkeypatch.setattr(chunked_faults, "_VALUE_BYTES", 1 << 50)
+    monkeypatch.setattr(chunked_faults, "streamed_otsu", _counted(chunked_faults.streamed_otsu, calls := []))
     options = FaultTracingOptions(max_fault_fraction=0.02)
     dense = _reference(cube, likelihood, options)
     assert dense.thresholds[0] > reference.thresholds[0] + 1e-3  # the quantile raised the lower threshold
     reference = dense
     result = chunked_fault_surfaces(cube, likelihood, tmp_path / "dense.zarr", options=options, chunking=BLOCKS)
     _assert_same_faults(result, reference)
+    assert len(calls) == (values == "streamed")
+
+
+def _counted(function, calls: list):
+    """``function``, each call appended to ``calls``."""
+    def counted(*args, **kwargs):
+        calls.append(1)
+        return function(*args, **kwargs)
+    return counted
 
 
 def test_resume_after_an_interrupted_run(cube, likelihood, reference, tmp_path, monkeypatch):

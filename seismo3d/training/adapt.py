@@ -48,7 +48,7 @@ import torch
 
 from .._progress import progress_steps
 from ..errors import InputError
-from .adapt_options import LAYERS, AdaptOptions
+from .adapt_options import LAYERS, SCALE_SHIFT, AdaptOptions
 from .fault_unet import export_weights, model_from_weights, segmentation_loss, training_mode
 
 __all__ = ["AdaptOptions", "LAYERS", "fine_tune", "generated_fault_odds"]
@@ -112,10 +112,9 @@ def fine_tune(weights: dict, grids: list, *, options: AdaptOptions | None = None
     torch.set_num_threads(int(opt.threads))
     rng = np.random.default_rng(int(opt.seed))
     model = model_from_weights(weights)
-    model.frozen_batch_norm = True  # folded weights: the batch normalisations stay the identity
-    for name in LAYERS[opt.layers]:
-        getattr(model, name).requires_grad_(False)
+    model.frozen_batch_norm = True  # folded weights: the batch normalisations' statistics stay the identity
     training_mode(model)
+    _choose_trained(model, opt.layers)
     trained = [p for p in model.parameters() if p.requires_grad]
     start = [p.detach().clone() for p in trained]
     optimiser = torch.optim.Adam(trained, lr=float(opt.learning_rate))
@@ -151,6 +150,21 @@ def fine_tune(weights: dict, grids: list, *, options: AdaptOptions | None = None
         torch.set_num_threads(threads)
     model.eval()
     return {"weights": export_weights(model), "loss": losses, "picked_positive_weight": picked_weight}
+
+
+def _choose_trained(model, layers: str) -> None:
+    """Freeze the convolutions ``layers`` keeps frozen (:data:`~seismo3d.training.adapt_options.LAYERS`); in the
+    scale-and-shift modes, train the batch normalisations' per-channel affine instead (their statistics stay the
+    identity, so each is ``z -> scale * z + shift`` on a convolution's output, before its ReLU)."""
+    from torch import nn
+
+    for name in LAYERS[layers]:
+        getattr(model, name).requires_grad_(False)
+    if layers in SCALE_SHIFT:
+        for module in model.modules():
+            if isinstance(module, nn.BatchNorm2d):
+                module.weight.requires_grad_(True)
+                module.bias.requires_grad_(True)
 
 
 def generated_fault_odds(size: int, n: int = 32) -> float:

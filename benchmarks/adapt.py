@@ -1,7 +1,11 @@
 """``seismo3d adapt`` on the lines people drew: the fault network adapted on one line, the others traced with the
 adapted MODEL, each beside the shipped network on the same lines; and the time ``adapt`` takes.
 
-Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/adapt.py [--only f3|gsb] [--check]``
+Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/adapt.py [--only f3|gsb] [--check] [--variants ...]``
+
+``--variants all scale_shift_head:learning_rate=0.03`` adapts with each of several :class:`AdaptOptions
+<seismo3d.training.adapt_options.AdaptOptions>` (``LAYERS[:NAME=VALUE,...]``; ``all`` is adapt's default, the one
+``--check`` judges) on the same folds, each row beside the shipped network traced once in the same run.
 
 - **F3** (``seismic/f3_fault_masks/``, the lines built as ``tools/dev_fault_scores.py`` builds them: each inline's
   picture resampled bilinearly onto 951 crosslines x 462 samples, centred (value - 128), written as a SEG-Y line at

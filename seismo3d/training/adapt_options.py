@@ -28,7 +28,11 @@ class AdaptOptions:
         the last decoder level's and the head; or, every convolution frozen, only the per-channel scale and shift
         after each of the 14 convolutions (1,056 parameters: the batch normalisations' affine, folded into the
         convolutions when MODEL is written; BitFit, Ben Zaken et al. 2022; FiLM, Perez et al. 2018), and with
-        ``'scale_shift_head'`` the head's 13 as well.
+        ``'scale_shift_head'`` the head's 13 as well. Not the default: adapted on F3 inline 100, the mean F1 of
+        inlines 200-500 was 0.51 with ``'scale_shift_head'`` at learning rate 0.03 (the best of 0.003-0.03, chosen
+        there), against 0.57 with every convolution and 0.50 with the shipped network; adapted on inline 500, its
+        held-back band fell (F1 0.49 -> 0.25) and MODEL kept the shipped network (2026-11-28,
+        ``benchmarks/adapt.py --variants``).
     steps : int
         Optimiser steps (each on ``batch_size`` new patches).
     batch_size : int

@@ -18,6 +18,31 @@ Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/adapt.py [--only f3|gs
   within 2 cores x 300 s of CPU time (issue 74's 5 minutes on 2 cores; its wall time on this shared machine is
   printed beside the load average).
 
+Only the per-channel scales and shifts (``scale_shift``, ``scale_shift_head``: every convolution frozen; 2026-11-28,
+the shared 2-core machine; mean precision / recall / F1 of the lines traced with MODEL, tolerance 3 samples; the
+learning rate chosen on F3 fold 100, the other folds reported as they came):
+
+=======================================  =====================  =====================  ======================
+variant                                  F3 100 -> 200-500      F3 500 -> 100-400      GSB 2600 / 2800 bands
+=======================================  =====================  =====================  ======================
+shipped network                          0.631 / 0.419 / 0.497  0.599 / 0.418 / 0.489  F1 0.888 / 0.910
+``all`` (adapt's default)                0.660 / 0.498 / 0.566  shipped kept           0.720 / 0.536, shipped
+``scale_shift_head`` lr 0.03             0.521 / 0.514 / 0.509  shipped kept (band     0.864 / 0.803, shipped
+                                                                0.485 -> 0.249)        kept both ways
+``scale_shift_head`` lr 0.03, sens. 0.5  0.449 / 0.593 / 0.499
+``scale_shift_head`` lr 0.01             0.634 / 0.396 / 0.481
+``scale_shift_head`` lr 0.003            shipped kept
+``scale_shift`` lr 0.01                  shipped kept
+=======================================  =====================  =====================  ======================
+
+(``all`` on fold 100 from the run of 2026-11-28 before these; the others each beside the shipped network in their
+own run. GSB: the held-back band's F1 after adapting, against the shipped network's first row; with MODEL keeping
+the shipped network, crosslines 2800 and 2600 trace at 0.826 and 0.847 in every row.) Commands: ``--only f3
+--f3-source 100 --variants scale_shift_head:learning_rate=0.01 scale_shift:learning_rate=0.01
+scale_shift_head:learning_rate=0.003 scale_shift_head:learning_rate=0.03``; ``... --variants
+scale_shift_head:learning_rate=0.03,sensitivity=0.5``; ``--only f3 --f3-source 500 --variants all
+scale_shift_head:learning_rate=0.03``; ``--only gsb --no-both --variants all scale_shift_head:learning_rate=0.03``.
+
 Scores: the tolerant precision / recall / F1 at 3 samples of the project (``seismo3d evaluate``'s job,
 :func:`seismo3d.seismic.fault_scoring.tolerant_scores`), of the faults ``seismo3d faults`` traces (its job), with and
 without ``--model`` (MODEL traces at the sensitivity it records). The time of each ``adapt`` (wall, on this machine

@@ -30,6 +30,7 @@ def _grids():
     return [(x, y, np.ones_like(x))]
 
 
+@pytest.mark.slow  # 5-20 s: PyTorch's Adam imports torch._dynamo on first use
 @pytest.mark.parametrize("layers, n_trained", [("scale_shift", 2 * 528), ("scale_shift_head", 2 * 528 + 13)])
 def test_the_scale_shift_modes_train_only_the_per_channel_affine(shipped, layers, n_trained):
     model = model_from_weights(shipped)

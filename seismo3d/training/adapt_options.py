@@ -9,10 +9,12 @@ from dataclasses import dataclass
 
 from ..errors import InputError
 
-__all__ = ["AdaptOptions", "LAYERS"]
+__all__ = ["AdaptOptions", "LAYERS", "SCALE_SHIFT"]
 
-LAYERS = {"all": (), "decoder": ("enc0", "enc1", "enc2", "bottleneck"),
-          "last": ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1")}  # the blocks kept frozen
+_BLOCKS = ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0")
+LAYERS = {"all": (), "decoder": _BLOCKS[:4], "last": _BLOCKS[:6],
+          "scale_shift": _BLOCKS + ("head",), "scale_shift_head": _BLOCKS}  # the convolutions kept frozen
+SCALE_SHIFT = ("scale_shift", "scale_shift_head")  # the modes that train the per-channel scales and shifts
 
 
 @dataclass(frozen=True)
@@ -21,9 +23,16 @@ class AdaptOptions:
 
     Attributes
     ----------
-    layers : {'all', 'decoder', 'last'}
-        The convolutions trained: every one, the decoder's and the head (the encoder and bottleneck frozen), or the
-        last decoder level's and the head.
+    layers : {'all', 'decoder', 'last', 'scale_shift', 'scale_shift_head'}
+        The parameters trained: every convolution, the decoder's and the head (the encoder and bottleneck frozen),
+        the last decoder level's and the head; or, every convolution frozen, only the per-channel scale and shift
+        after each of the 14 convolutions (1,056 parameters: the batch normalisations' affine, folded into the
+        convolutions when MODEL is written; BitFit, Ben Zaken et al. 2022; FiLM, Perez et al. 2018), and with
+        ``'scale_shift_head'`` the head's 13 as well. Not the default: adapted on F3 inline 100, the mean F1 of
+        inlines 200-500 was 0.51 with ``'scale_shift_head'`` at learning rate 0.03 (the best of 0.003-0.03, chosen
+        there), against 0.57 with every convolution and 0.50 with the shipped network; adapted on inline 500, its
+        held-back band fell (F1 0.49 -> 0.25) and MODEL kept the shipped network (2026-11-28,
+        ``benchmarks/adapt.py --variants``).
     steps : int
         Optimiser steps (each on ``batch_size`` new patches).
     batch_size : int
@@ -104,7 +113,9 @@ class AdaptOptions:
 
     def method(self) -> str:
         """One sentence saying how the network is adapted (the ``method`` of MODEL's record)."""
-        trained = {"all": "every layer", "decoder": "the decoder and head", "last": "the last decoder level and head"}
+        trained = {"all": "every layer", "decoder": "the decoder and head", "last": "the last decoder level and head",
+                   "scale_shift": "the per-channel scales and shifts after each convolution",
+                   "scale_shift_head": "the per-channel scales and shifts after each convolution and the head"}
         parts = [f"{trained[self.layers]} fine-tuned from the shipped weights, {self.steps} Adam steps of "
                  f"{self.batch_size} patches at learning rate {self.learning_rate:g}",
                  f"{self.focus:.0%} of the picked patches around a picked fault"]

@@ -302,10 +302,10 @@ def _eigen_coherence_rows(share, n_shares, f, p0, p1, r0, r1, h, out):
                 out[i, j, t] = min(1.0, max(0.0, acc / tr))
 
 
-def gaussian_radius(sigma: float) -> int:
+def gaussian_radius(sigma: float, truncate: float = 3.0) -> int:
     """Half-width, in samples, of the Gaussian filters of width ``sigma`` (:func:`gaussian_pass`: scipy's radius,
-    ``int(3 sigma + 0.5)``, at least 1; 0 when the width is 0: no filter)."""
-    return max(1, int(3.0 * float(sigma) + 0.5)) if sigma > 0 else 0
+    ``int(truncate sigma + 0.5)``, at least 1; 0 when the width is 0: no filter)."""
+    return max(1, int(float(truncate) * float(sigma) + 0.5)) if sigma > 0 else 0
 
 
 def gaussian_pass(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep=None) -> np.ndarray:
@@ -342,18 +342,23 @@ def gaussian_pass(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep=N
     return out[(slice(None),) * axis + (slice(lo - a, hi - a),)] if (a, b) != (lo, hi) else out
 
 
-def _gaussian_weights(sigma: float, order: int) -> np.ndarray:
+def _gaussian_weights(sigma: float, order: int, truncate: float = 3.0) -> np.ndarray:
     """Correlation weights of the Gaussian (order 0) or Gaussian derivative (order 1) filter of width ``sigma``
     truncated at :func:`gaussian_radius`: scipy's (``scipy.ndimage.gaussian_filter1d``: the normalised Gaussian,
     and its derivative ``-x / sigma^2`` times it, reversed for a correlation), float64."""
-    r = gaussian_radius(sigma)
+    r = gaussian_radius(sigma, truncate)
     x = np.arange(-r, r + 1, dtype=np.float64)
     phi = np.exp(-0.5 / (float(sigma) * float(sigma)) * x * x)
     phi = phi / phi.sum()
     return phi if order == 0 else x / (float(sigma) * float(sigma)) * phi
 
 
-def gaussian_pass32(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep=None, *, out=None) -> np.ndarray:
+# scipy's edge modes by OpenCV's border names: 'reflect' (d c b a | a b c d) is OpenCV's BORDER_REFLECT
+_CV_BORDERS = {"nearest": "BORDER_REPLICATE", "reflect": "BORDER_REFLECT"}
+
+
+def gaussian_pass32(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep=None, *, out=None,
+                    truncate: float = 3.0, mode: str = "nearest") -> np.ndarray:
     """:func:`gaussian_pass` summed in float32: OpenCV's separable filter (``cv2.sepFilter2D``, edges replicated as
     scipy's ``'nearest'``) with scipy's weights, a third of the CPU seconds of scipy's lines in double precision on a
     cube (the structure tensor's passes, :func:`structure_tensor_at`), within 1e-6 of the largest value of scipy's.
@@ -377,6 +382,10 @@ def gaussian_pass32(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep
         lines within the radius of them); default all.
     out : (n0, n1, n_samples) float32 ndarray, optional
         Where to write the result (whole traces: each inline's (n1, n_samples) rows contiguous); not with ``keep``.
+    truncate : float, optional
+        The filter's half-width in ``sigma`` (scipy's ``truncate``; :func:`gaussian_radius`).
+    mode : {'nearest', 'reflect'}, optional
+        The edges, as scipy's modes: the end value repeated, or the line mirrored about its end (``d c b a | a b c d``).
 
     Returns
     -------
@@ -386,7 +395,8 @@ def gaussian_pass32(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep
     Raises
     ------
     ValueError
-        ``out`` given with ``keep`` or of another shape than the result (a caller's bug: not for users).
+        ``out`` given with ``keep`` or of another shape than the result, or another ``mode`` (a caller's bug: not for
+        users).
 
     References
     ----------
@@ -402,7 +412,9 @@ def gaussian_pass32(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep
             return kept
         out[...] = kept
         return out
-    r = gaussian_radius(sigma)
+    if mode not in _CV_BORDERS:
+        raise ValueError(f"gaussian_pass32: mode {mode!r} is not one of {sorted(_CV_BORDERS)}")
+    r = gaussian_radius(sigma, truncate)
     a, b = max(lo - r, 0), min(hi + r, n)  # the lines the kept outputs read (as gaussian_pass)
     window = np.asarray(x[(slice(None),) * axis + (slice(a, b),)], dtype=np.float32)
     if window.strides[-1] != window.itemsize:
@@ -411,7 +423,7 @@ def gaussian_pass32(x: np.ndarray, axis: int, sigma: float, order: int = 0, keep
         out = np.empty(window.shape, np.float32)
     elif keep is not None or out.shape != window.shape:
         raise ValueError(f"gaussian_pass32: out of shape {out.shape} for a result of shape {window.shape}")
-    weights, one, edge = _gaussian_weights(sigma, order), np.ones(1), cv2.BORDER_REPLICATE
+    weights, one, edge = _gaussian_weights(sigma, order, truncate), np.ones(1), getattr(cv2, _CV_BORDERS[mode])
     if axis == 0:  # across the inlines: an image (inline, sample) per crossline
         for j in range(window.shape[1]):
             cv2.sepFilter2D(window[:, j], cv2.CV_32F, one, weights, dst=out[:, j], borderType=edge)

@@ -24,6 +24,11 @@ from ... import _kernels
 
 __all__ = ["orientation_from_likelihood"]
 
+# the tensor's Gaussian passes: truncated at 4 sigma, edges mirrored (scipy's defaults), summed in float32; the pass
+# along the samples by slabs of inlines
+_PASSES = dict(truncate=4.0, mode="reflect")
+_SLAB = 16
+
 # the stages reported within the step that runs a block in memory (seismo3d._progress.progress_within); in a cube
 # the strike and dip are made with the normals, chunk by chunk, and the last stage holds them over the samples between
 _STAGES = ("gradient", "structure tensor", "fault normals", "strike and dip")
@@ -60,17 +65,23 @@ def _gradient(p: np.ndarray, axis: int) -> np.ndarray:
 
 def _smoothed_at(x: np.ndarray, sigma: float, core, sample_step: int = 1, work: np.ndarray | None = None
                  ) -> np.ndarray:
-    """``ndi.gaussian_filter(x, sigma)`` at the samples ``core`` (slices of the first two axes; None: every trace)
-    and ``::sample_step`` of the last axis: the pass along the samples first, on every sample (in place: ``x`` is
-    overwritten), then those kept, then the passes along axes 0 and 1 (each rounded to float32), each on the lines
-    of the traces it is asked for only, so a block of a cube (``core`` inside it) gets the bits of the whole cube's.
-    ``work``: an array of the kept samples' shape for the pass along axis 0 (reused between calls), or None."""
+    """``ndi.gaussian_filter(x, sigma)`` (truncated at 4 sigma, edges mirrored) at the samples ``core`` (slices of
+    the first two axes; None: every trace) and ``::sample_step`` of the last axis, summed in float32 by OpenCV's
+    separable filter (:func:`seismo3d.seismic._kernels.gaussian_pass32`): the pass along the samples first, on every
+    sample, ``_SLAB`` inlines at a time, then those kept (into ``work``, an array of their shape reused between
+    calls, or a new one), then the passes along axes 0 and 1, each on the lines of the traces it is asked for only,
+    so a block of a cube (``core`` inside it) gets the bits of the whole cube's."""
     keep = (slice(None), slice(None)) if core is None else tuple(core)
-    ndi.gaussian_filter1d(x, sigma, x.ndim - 1, output=x)  # a 1D filter reads each line whole before writing it
-    x = x[..., ::sample_step]
+    kept = work if work is not None and work.shape == x[..., ::sample_step].shape else np.empty(
+        x[..., ::sample_step].shape, np.float32)
+    slab = np.empty((min(_SLAB, x.shape[0]),) + x.shape[1:], np.float32)
+    for a in range(0, x.shape[0], _SLAB):  # the samples' pass needs no lines of other inlines
+        b = min(a + _SLAB, x.shape[0])
+        kept[a:b] = _kernels.gaussian_pass32(x[a:b], x.ndim - 1, sigma, out=slab[:b - a], **_PASSES)[..., ::sample_step]
+    x = kept
     for axis in range(x.ndim - 1):
-        out = work if axis == 0 and work is not None and work.shape == x.shape else None
-        x = ndi.gaussian_filter1d(x, sigma, axis, output=out)[(slice(None),) * axis + (keep[axis],)]
+        lo, hi, _ = keep[axis].indices(x.shape[axis])
+        x = _kernels.gaussian_pass32(x, axis, sigma, keep=(lo, hi), **_PASSES)
     return x
 
 
@@ -127,8 +138,8 @@ def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0, c
         pairs, comps = [(a, b) for a in range(nd) for b in range(a, nd)], {}
         step = int(sample_step) if nd == 3 else 1
 
-        def smooth(t: int, n: int) -> None:  # scipy's filters release the GIL: the components on the cores at once
-            product = np.empty(p.shape, np.float32)  # each thread's product and pass along axis 0, reused
+        def smooth(t: int, n: int) -> None:  # the filters release the GIL: the components on the cores at once
+            product = np.empty(p.shape, np.float32)  # each thread's product and kept samples, reused
             work = None if nd == 2 else np.empty(p[..., ::step].shape, np.float32)
             for a, b in pairs[t::n]:
                 np.multiply(grads[a], grads[b], out=product)

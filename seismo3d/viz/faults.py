@@ -123,7 +123,7 @@ class _FaultColours:
         from matplotlib.colors import ListedColormap, Normalize
 
         self.label = self.quantity = label
-        self.clipped, self.extend = False, "neither"
+        self.clipped, self.extend, self.single = False, "neither", None
         if fault_values is None or not ids.size:  # no faults: no colour bar to draw
             self.rgba, self.mappable = _colors(ids), None
             return
@@ -134,7 +134,11 @@ class _FaultColours:
         per_point = np.array([values[int(i)] for i in ids], np.float64)
         finite = np.array([v for v in values.values() if np.isfinite(v)])
         lo, hi = _value_range(finite)
-        norm = Normalize(vmin=lo, vmax=hi if hi > lo else lo + 1.0)
+        # one value (one fault, or faults alike): a narrow scale centred on it, its bar labelled with that value only
+        # (a span of 1 above it drew a confidence bar up to 1.9)
+        self.single = lo if hi <= lo else None
+        half = 0.05 * abs(lo) if hi <= lo and lo != 0 else 0.5
+        norm = Normalize(vmin=lo - half, vmax=lo + half) if hi <= lo else Normalize(vmin=lo, vmax=hi)
         below = bool(finite.size and finite.min() < norm.vmin)
         self.clipped = bool(finite.size and finite.max() > norm.vmax)  # the bar then says so, with an arrow
         self.extend = {(False, False): "neither", (True, False): "min", (False, True): "max"}.get(
@@ -153,6 +157,8 @@ class _FaultColours:
     def bar(self, fig, ax) -> None:
         if self.mappable is not None:
             bar = fig.colorbar(self.mappable, ax=ax, shrink=0.8, extend=self.extend)
+            if self.single is not None:
+                bar.set_ticks([self.single], labels=[f"{self.single:.3g}"])
             bar.set_label(self.label, fontsize=8)
 
 

@@ -102,6 +102,29 @@ def test_the_colours_spread_over_the_values_the_faults_have():
     assert np.unique(colours.rgba.round(3), axis=0).shape[0] == 5
 
 
+@pytest.mark.parametrize("value", [0.8637, -3.876, 0.0])
+def test_one_fault_s_colour_bar_shows_its_value_only(value, tmp_path):
+    """One fault (the Parihaka cube's): its colour scale is centred on its value within 5 % of it (0.5 for a 0),
+    and the bar is labelled with that value alone (a scale from the value to the value + 1 drew a confidence bar up
+    to 1.86)."""
+    import matplotlib.pyplot as plt
+
+    from seismo3d.viz.faults import _FaultColours
+
+    colours = _FaultColours(np.ones(7, np.int32), {1: value}, "confidence")
+    norm = colours.mappable.norm
+    half = 0.05 * abs(value) if value else 0.5
+    assert norm.vmin == pytest.approx(value - half) and norm.vmax == pytest.approx(value + half)
+    assert norm(value) == pytest.approx(0.5) and not colours.clipped and colours.extend == "neither"
+    fig, ax = plt.subplots()
+    try:
+        colours.bar(fig, ax)
+        bar_ax = fig.axes[-1]
+        assert [t.get_text() for t in bar_ax.get_yticklabels()] == [f"{value:.3g}"]
+    finally:
+        plt.close(fig)
+
+
 @pytest.mark.parametrize("dead", [False, True])
 def test_the_colour_limits_are_the_percentile_of_every_step_th_finite_sample(dead):
     """faults.png's grey scale: +- the 99th percentile of |amplitude| over every (size // 10^6)-th finite sample, with

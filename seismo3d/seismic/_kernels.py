@@ -449,19 +449,24 @@ TENSOR_SLAB = 64
 
 
 def structure_tensor(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], two_d: bool, *,
-                     slab: int = TENSOR_SLAB):
+                     slab: int = TENSOR_SLAB, float32: bool = False):
     """The six smoothed components (t00, t01, t02, t11, t12, t22) of the structure tensor of a 3D-shaped array.
 
     A cube (``two_d`` False) is computed ``slab`` inlines at a time (:func:`structure_tensor_at` on the slab and the
     lines its tensor reads, the gradients' and the tensor's lateral radii beyond it): the same bits as the whole
     cube's in one call, the gradients held for one slab only, and a progress line per slab under the name of the
     step that asks for it (:func:`seismo3d._progress.progress_within`; the throw's reflector slopes).
+
+    ``float32``: the passes summed in float32 by OpenCV (:func:`gaussian_pass32`, a third of the CPU seconds, within
+    1e-6 of the largest value), for the throw, whose correlation windows only need the slopes' direction; otherwise
+    scipy's passes in double precision (:func:`gaussian_pass`), whose bits the reflector slopes of the horizons, the
+    attributes and the fault scan keep (a horizon tracker on a generated cube skipped a cycle on the float32 slopes).
     """
     lat, vert = sigma_tensor
     sg = sigma_gradient
     sig = (lat, 0.0 if two_d else lat, vert)
     # gradients with shared smoothing passes: g0 = D0 G1 G2 f, g1 = G0 D1 G2 f, g2 = G0 G1 D2 f
-    if two_d:
+    if two_d and float32:
         gauss = gaussian_pass32
         g0 = gauss(gauss(f3, 2, sg), 0, sg, 1)
         g2 = gauss(gauss(f3, 0, sg), 2, sg, 1)
@@ -472,6 +477,12 @@ def structure_tensor(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[
         t00, t02, t22 = smooth(g0 * g0), smooth(g0 * g2), smooth(g2 * g2)
         zero = np.zeros_like(t00)
         return t00, zero, t02, zero, zero, t22
+    if two_d:
+        g0 = gaussian3(gaussian3(f3, (0.0, 0.0, sg)), (sg, 0.0, 0.0), (1, 0, 0))
+        g2 = gaussian3(gaussian3(f3, (sg, 0.0, 0.0)), (0.0, 0.0, sg), (0, 0, 1))
+        t00, t02, t22 = (gaussian3(g, sig) for g in (g0 * g0, g0 * g2, g2 * g2))
+        zero = np.zeros_like(t00)
+        return t00, zero, t02, zero, zero, t22
     n0, reach = f3.shape[0], gaussian_radius(lat) + gaussian_radius(sg)  # the inlines a slab's tensor reads beyond it
     out = tuple(np.empty(f3.shape, dtype=np.float32) for _ in range(6))
     with progress_within(n0, unit="inline") as bar:
@@ -479,21 +490,22 @@ def structure_tensor(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[
             b = min(a + max(1, int(slab)), n0)
             lo, hi = max(a - reach, 0), min(b + reach, n0)  # clamped at the cube's ends as the whole cube's passes
             structure_tensor_at(f3[lo:hi], sg, sigma_tensor, (slice(a - lo, b - lo), slice(None)),
-                                out=tuple(whole[a:b] for whole in out))
+                                out=tuple(whole[a:b] for whole in out), float32=float32)
             bar.advance(b - a, status="structure tensor")
     return out
 
 
 def structure_tensor_at(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tuple[float, float], core, *,
-                        out=None):
+                        out=None, float32: bool = False):
     """:func:`structure_tensor` of a cube at ``core`` only (``(rows, cols)`` slices of its first two axes; all of
     them: the whole cube's tensor), the same bits as the whole cube's there: the gradients with shared smoothing
     passes (g0 = D0 G1 G2 f, g1 = G0 D1 G2 f, g2 = G0 G1 D2 f), each pass computing only the lines its later passes
     read (its outputs within the later lateral radius of ``core``: :func:`gaussian_pass` ``keep``), so the tensor's
     wide vertical pass runs at ``core``'s traces only; the products in an order that frees each gradient as soon as
     possible (peak memory). Returns the six components, each of ``f3[core]``'s shape, float32 (written into ``out``,
-    six arrays of that shape with contiguous inlines, when given). The passes are :func:`gaussian_pass32`'s."""
-    gauss = gaussian_pass32
+    six arrays of that shape with contiguous inlines, when given). The passes are :func:`gaussian_pass32`'s with
+    ``float32``, else :func:`gaussian_pass`'s (as :func:`structure_tensor`)."""
+    gauss = gaussian_pass32 if float32 else gaussian_pass
     sg, (lat, vert) = sigma_gradient, sigma_tensor
     r = gaussian_radius(lat)
     spans = [s.indices(n)[:2] for s, n in zip(core, f3.shape[:2])]
@@ -507,8 +519,13 @@ def structure_tensor_at(f3: np.ndarray, sigma_gradient: float, sigma_tensor: tup
     g2 = gauss(gauss(gauss(f3, 0, sg, 0, wide[0]), 1, sg, 0, wide[1]), 2, sg, 1)
 
     def smooth(t, k):
-        return gauss(gauss(gauss(t, 0, lat, 0, inner[0]), 1, lat, 0, inner[1]), 2, vert,
-                     out=None if out is None else out[k])
+        lateral = gauss(gauss(t, 0, lat, 0, inner[0]), 1, lat, 0, inner[1])
+        if float32:
+            return gaussian_pass32(lateral, 2, vert, out=None if out is None else out[k])
+        if out is None:
+            return gaussian_pass(lateral, 2, vert)
+        out[k][...] = gaussian_pass(lateral, 2, vert)
+        return out[k]
 
     t00, t01, t02 = smooth(g0 * g0, 0), smooth(g0 * g1, 1), smooth(g0 * g2, 2)
     del g0
@@ -551,16 +568,17 @@ def slopes_from_normals(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def reflector_slopes(f3: np.ndarray, two_d: bool, sigma_gradient: float, sigma_tensor,
-                     as_float32_normals: bool = False, core=None) -> tuple:
+                     as_float32_normals: bool = False, core=None, float32: bool = False) -> tuple:
     """Reflector slopes (p0, p1) in samples per trace of a 3D-shaped array, without storing the normals; with
     ``as_float32_normals`` equal bit for bit to those of :func:`tensor_eig`'s normals (:func:`slopes_from_normals`).
     ``core``: ``(rows, cols)`` slices of a cube's first two axes; the slopes of those traces only (the tensor
     smoothed over the lines of ``f3`` it reads and at ``core``, :func:`structure_tensor_at`, and eigen-decomposed
-    there: the same bits as the whole array's slopes at ``core``)."""
+    there: the same bits as the whole array's slopes at ``core``). ``float32``: the tensor's passes in float32
+    (:func:`structure_tensor`)."""
     if core is None:
-        t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d)
+        t = structure_tensor(f3, sigma_gradient, sigma_tensor, two_d, float32=float32)
     else:
-        t = structure_tensor_at(f3, sigma_gradient, sigma_tensor, core)
+        t = structure_tensor_at(f3, sigma_gradient, sigma_tensor, core, float32=float32)
     p0 = np.empty(t[0].shape, dtype=np.float32)
     p1 = np.empty(t[0].shape, dtype=np.float32)
     eig_slopes(*t, MAX_SLOPE, p0, p1, bool(as_float32_normals))

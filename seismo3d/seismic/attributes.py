@@ -131,7 +131,8 @@ def structure_tensor_orientation(data, *, sigma_gradient=1.0, sigma_tensor=(2.0,
     return ReflectorOrientation(np.ascontiguousarray(normals), np.ascontiguousarray(slopes), planarity)
 
 
-def structure_tensor_slopes(data, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.0), core=None) -> np.ndarray:
+def structure_tensor_slopes(data, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.0), core=None,
+                            float32: bool = False) -> np.ndarray:
     """Reflector slopes from the structure tensor: ``structure_tensor_orientation(data).slopes`` bit for bit, without
     the normals and planarity (about half the time on a 110 x 110 x 500 block, two thirds on 400 x 400 x 500).
 
@@ -146,6 +147,10 @@ def structure_tensor_slopes(data, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)
         with :func:`structure_tensor_halo` around it: each smoothing pass keeps the lines its later passes read,
         the tensor's at ``core`` only, eigen-decomposed there (1.1 against 1.5 CPU s, 64^2 of 82^2 traces), the
         same bits as ``structure_tensor_slopes(data)[:, rows, cols]``.
+    float32 : bool, optional
+        The tensor's Gaussian passes summed in float32 (OpenCV, a third of the CPU seconds; slopes within float
+        rounding of the default's), as the fault surfaces and the throw read them; default: scipy's passes in double
+        precision, bit for bit :func:`structure_tensor_orientation`'s.
 
     Returns
     -------
@@ -169,7 +174,7 @@ def structure_tensor_slopes(data, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)
     if core is not None and two_d:
         raise InputError("structure_tensor_slopes: core is for a 3D cube's (rows, cols); got a 2D section")
     p0, p1 = _kernels.reflector_slopes(_kernels.as_3d(arr), two_d, float(sigma_gradient), sig_t,
-                                       as_float32_normals=True, core=core)
+                                       as_float32_normals=True, core=core, float32=float32)
     if two_d:
         return np.ascontiguousarray(p0[None, :, 0, :])
     return np.stack([p0, p1])
@@ -226,12 +231,12 @@ def section_slopes(data, axis: int, *, sigma_gradient=1.0, sigma_tensor=(2.0, 6.
 def structure_tensor_halo(sigma_gradient=1.0, sigma_tensor=(2.0, 6.0)) -> tuple[int, int]:
     """Reach of :func:`structure_tensor_orientation`: how far a sample's result depends on the data around it.
 
-    The orientation is a chain of separable Gaussian filters truncated at 3 sigma (``_kernels.gaussian_pass32``): along
+    The orientation is a chain of separable Gaussian filters truncated at 3 sigma (``_kernels.gaussian_pass``): along
     each axis one Gaussian (derivative) pass of width ``sigma_gradient`` for the gradient, then one Gaussian pass of
     ``sigma_tensor`` for the tensor. Its value at a sample therefore depends only on the data within the sum of the
     two kernel radii along each axis, and the orientation of a block of a cube equals the whole cube's at every
     sample at least that far from each block side that is not the cube's edge (at the cube's edges both clamp the
-    same way, replicating the edge sample).
+    same way, ``scipy.ndimage`` mode ``'nearest'``).
 
     Parameters
     ----------

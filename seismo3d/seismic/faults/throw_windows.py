@@ -94,7 +94,7 @@ class TensorWindows:
         """
         if self._whole is None:
             self._tensor = tuple(t.reshape(-1) for t in _kernels.structure_tensor(
-                self._arr, _SIGMA_GRADIENT, _SIGMA_TENSOR, two_d=False))
+                self._arr, _SIGMA_GRADIENT, _SIGMA_TENSOR, two_d=False, float32=True))
             self._slopes = np.full((2, *self.shape), np.nan, dtype=np.float32)
             self._whole = _TensorWindow(self._arr, self._slopes[0], self._slopes[1], (0, 0), self.shape,
                                         self._decompose)

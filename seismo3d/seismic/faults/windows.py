@@ -142,7 +142,7 @@ class ArrayWindows:
         computed at the first call when it was not given."""
         if self._whole is None:
             if self._slopes is None:
-                self._slopes = _slope_fields(structure_tensor_slopes(self._arr), self.shape)
+                self._slopes = _slope_fields(structure_tensor_slopes(self._arr, float32=True), self.shape)
             cube = self._arr[:, None, :] if self._arr.ndim == 2 else self._arr
             self._whole = CubeWindow(cube, *self._slopes, (0, 0), cube.shape)
         return self._whole
@@ -215,7 +215,7 @@ class LazyWindows:
         if self._slopes is not None:
             p0, p1 = (p[a0:a1, b0:b1] for p in self._slopes)
         else:
-            p0, p1 = structure_tensor_slopes(block)
+            p0, p1 = structure_tensor_slopes(block, float32=True)
         core = (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
         fields = tuple(np.ascontiguousarray(f[core]) for f in (block, p0, p1))
         self._cache[key] = fields

@@ -84,13 +84,14 @@ class FaultNetwork:
         > 1: a session of one thread whose calls run their sections in that many parts at once, on threads (the same
         bits; on 2 cores 1.3 times faster than one call of two threads, which wait between operators); 1: one call.
     blocked_layout : bool, optional
-        True (the default): ONNX Runtime runs the float convolutions in its blocked channel layout (NCHWc), the
-        fastest for a float network. False, for the int8 network (:func:`load_fault_network`): its one float
-        convolution, the first (4 channels in), then writes its output in the order the quantisation reads it,
-        instead of blocks reordered after it (15-20 % of an int8 call on 256 x 256 sections): the int8 network on
-        the 256^3 cube of ``benchmarks/fault_speed.py`` 8.0 -> 7.3 CPU s; its probability moves by 2e-6 on average,
-        0.019 at most (a float sum in another order, a quantisation step's rounding the other way), 99.9999 % of the
-        samples on the same side of 0.5.
+        True (the default, also for the int8 network): ONNX Runtime runs the float convolutions in its blocked
+        channel layout (NCHWc), the fastest for a float network. False: the int8 network's one float convolution, the
+        first (4 channels in), writes its output in the order the quantisation reads it, instead of blocks reordered
+        after it (15-20 % of an int8 call on 256 x 256 sections; the 256^3 cube of ``benchmarks/fault_speed.py`` 8.0
+        -> 7.3 CPU s), but its probability moves by 2e-6 on average, 0.019 at most (a float sum in another order, a
+        quantisation step's rounding the other way), and that small a change moved the faults of a generated cube
+        enough for the horizon tracked across them to skip a cycle (``benchmarks/horizons.py --only synthetic``,
+        cube 2, horizon 4: 0.095 -> 5.4 samples), so the faults job keeps the default.
 
     Raises
     ------
@@ -158,7 +159,7 @@ def load_fault_network(network: str = "int8", calls: int = 1) -> FaultNetwork:
     if digest != sha256:
         raise Seismo3dError(f"the fault network {name} has sha256 {digest}, not the released {sha256}; "
                             "reinstall seismo3d")
-    return FaultNetwork(raw, calls, blocked_layout=network != "int8")
+    return FaultNetwork(raw, calls)
 
 
 def normalise_section(section, *, scale=None) -> np.ndarray:

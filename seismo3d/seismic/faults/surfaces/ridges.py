@@ -433,7 +433,7 @@ def ridge_block(place, f, likelihood, strike, dip, fill, lo: float, hi: float, s
         halo = structure_tensor_halo()[0]
         crop = tuple(slice(max(s.start - halo, 0), min(s.stop + halo, n)) for s, n in zip(place.core, f.shape[:2]))
         found = structure_tensor_slopes(f[crop], core=tuple(slice(s.start - c.start, s.stop - c.start)
-                                                            for s, c in zip(place.core, crop)))
+                                                            for s, c in zip(place.core, crop)), float32=True)
         arrays["slope_inline"], arrays["slope_xline"] = found[0], found[1]
         del found
     dead = dead_samples(f, fill, lo, hi, options=opt.dead)

@@ -8,7 +8,7 @@ import pytest
 from seismo3d.data.synthetic import synthetic_cube
 from seismo3d.errors import InputError
 from seismo3d.seismic import structure_tensor_orientation
-from seismo3d.seismic.attributes import structure_tensor_halo
+from seismo3d.seismic.attributes import structure_tensor_halo, structure_tensor_slopes
 from seismo3d.seismic.faults.windows import ArrayWindows, LazyWindows, cube_windows
 
 
@@ -21,7 +21,7 @@ def cube():
 @pytest.mark.parametrize("box", [(20, 26, 14, 18), (0, 5, 30, 40), (40, 48, 0, 3), (10, 40, 5, 38)],
                          ids=["inside", "corner", "edge", "tiles"])
 def test_lazy_window_equals_whole_cube(cube, box, cache_mb):
-    whole = structure_tensor_orientation(cube).slopes
+    whole = structure_tensor_slopes(cube, float32=True)  # the fault windows' slopes (the tensor in float32)
     source = LazyWindows(da.from_array(cube, chunks=(7, 40, 32)), tile=16, cache_mb=cache_mb)
     assert source.shape == cube.shape and source.halo == structure_tensor_halo()[0]
     i0, i1, j0, j1 = box

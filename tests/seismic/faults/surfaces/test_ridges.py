@@ -307,7 +307,7 @@ def test_ridge_block_is_the_whole_regions_ridges_and_slopes_at_its_core(scanned_
         assert np.array_equal(out.arrays["likelihood"], live[core])
         assert np.array_equal(out.arrays["near"].view(bool), near[core])
         assert np.array_equal(np.stack([out.arrays["slope_inline"], out.arrays["slope_xline"]]),
-                              structure_tensor_slopes(cube)[:, i0:i1, j0:j1])
+                              structure_tensor_slopes(cube, float32=True)[:, i0:i1, j0:j1])
         assert np.array_equal(out.lists["points"], points + [i0, j0, 0])
         assert np.array_equal(out.lists["values"], ridge[tuple(points.T)])
         n_near += np.count_nonzero(near[core])

@@ -29,8 +29,8 @@ from .._validation import check_int, check_positive, check_seismic_layout
 from ..errors import InputError, Seismo3dWarning, UnsupportedDataError
 from .blocks.apply import BlockOutput
 
-__all__ = ["CleanTraces", "CubeAmplitudes", "DeadSampleOptions", "check_amplitudes", "check_finite", "check_varies", "clean_traces",
-           "clipped_count", "dead_samples", "fill_block", "fill_values", "finite_cube", "near_dead_samples",
+__all__ = ["CleanTraces", "CubeAmplitudes", "DeadSampleOptions", "check_amplitudes", "check_finite", "check_varies",
+           "clean_traces", "clipped_count", "dead_samples", "fill_block", "fill_values", "finite_cube", "near_dead_samples",
            "warn_clipped", "warn_dead", "warn_non_finite"]
 
 

@@ -3,8 +3,9 @@ import it whole, ``from . import _kernels``; the kernels only the faults use are
 
 Arrays are 3D ``(n0, n1, n_samples)`` float32; a 2D section is viewed as ``(n_traces, 1, n_samples)`` (:func:`as_3d`).
 Distances are in samples and traces. The Gaussian and derivative filters are scipy's
-(:func:`scipy.ndimage.gaussian_filter1d`, truncated at 3 sigma, edges clamped), those of the structure tensor OpenCV's
-with the same weights (:func:`gaussian_pass32`: float32 sums, a third of the CPU seconds); the compiled kernels are the
+(:func:`scipy.ndimage.gaussian_filter1d`, truncated at 3 sigma, edges clamped); the fault side's structure tensor
+(``float32=True``) and the fault orientation use OpenCV's with the same weights (:func:`gaussian_pass32`: float32 sums,
+a third of the CPU seconds); the compiled kernels are the
 loops of our own algorithms (semblance, eigen-coherence along the reflector slopes), compiled on first call and cached
 on disk.
 """

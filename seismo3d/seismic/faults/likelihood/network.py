@@ -83,23 +83,22 @@ class FaultNetwork:
     calls : int, optional
         > 1: a session of one thread whose calls run their sections in that many parts at once, on threads (the same
         bits; on 2 cores 1.3 times faster than one call of two threads, which wait between operators); 1: one call.
-    blocked_layout : bool, optional
-        True (the default, also for the int8 network): ONNX Runtime runs the float convolutions in its blocked
-        channel layout (NCHWc), the fastest for a float network. False: the int8 network's one float convolution, the
-        first (4 channels in), writes its output in the order the quantisation reads it, instead of blocks reordered
-        after it (15-20 % of an int8 call on 256 x 256 sections; the 256^3 cube of ``benchmarks/fault_speed.py`` 8.0
-        -> 7.3 CPU s), but its probability moves by 2e-6 on average, 0.019 at most (a float sum in another order, a
-        quantisation step's rounding the other way), and that small a change moved the faults of a generated cube
-        enough for the horizon tracked across them to skip a cycle (``benchmarks/horizons.py --only synthetic``,
-        cube 2, horizon 4: 0.095 -> 5.4 samples), so the faults job keeps the default.
 
     Raises
     ------
     Seismo3dError
         ONNX Runtime cannot load the model (a damaged file: reinstall seismo3d).
+
+    Notes
+    -----
+    The int8 network's one float convolution, the first, runs in ONNX Runtime's blocked channel layout (NCHWc)
+    like the rest: running it without (``disabled_optimizers=["NchwcTransformer"]``) took the 256^3 cube of
+    ``benchmarks/fault_speed.py`` from 8.0 to 7.3 CPU s but moved the probability by 2e-6 on average (0.019 at most),
+    and so small a change moved a generated cube's faults enough for the horizon tracked across them to skip a cycle
+    (``benchmarks/horizons.py --only synthetic``, cube 2, horizon 4: 0.095 -> 5.4 samples).
     """
 
-    def __init__(self, model: bytes, calls: int = 1, *, blocked_layout: bool = True):
+    def __init__(self, model: bytes, calls: int = 1):
         import onnxruntime as ort
 
         self._calls, options = max(1, int(calls)), ort.SessionOptions()
@@ -110,8 +109,7 @@ class FaultNetwork:
         # processes (0.10-0.11 CPU s a 400 x 504 section against 0.13-0.15 in batches of 4 on 2 busy cores)
         options.add_session_config_entry("session.intra_op.allow_spinning", "0")
         try:
-            self._session = ort.InferenceSession(bytes(model), options, providers=["CPUExecutionProvider"],
-                                                 disabled_optimizers=[] if blocked_layout else ["NchwcTransformer"])
+            self._session = ort.InferenceSession(bytes(model), options, providers=["CPUExecutionProvider"])
         except Exception as exc:  # onnxruntime raises its own types for a bad model
             raise Seismo3dError(f"ONNX Runtime cannot load the fault network ({exc}); reinstall seismo3d") from exc
         self._input = self._session.get_inputs()[0].name

@@ -147,7 +147,7 @@ def adapt_report(job: "AdaptJobResult") -> list:
     if best is not None:
         pairs = _paired_parts(best, job.tracings[0])
         out.append(f"held-back parts with picks won by the adapted network: {sum(c > r for c, r in pairs)} of "
-                   f"{len(pairs)} (F1 {', '.join(f'{r:.2f} -> {c:.2f}' for c, r in pairs)})")
+                   f"{len(pairs)} (F1 {', '.join(f'{r:.3f} -> {c:.3f}' for c, r in pairs)})")
     if job.kept == "default":
         out.append("adapting did not win clearly on the held-back traces: MODEL keeps the shipped network")
     else:

@@ -19,9 +19,9 @@ runs:
   up to ``runinfo.HASH_LIMIT``) and writes nothing. ``floor / read`` is the least ``convert / read`` can be while
   the convert writes with zarr-python and hashes its input; on a loaded machine, where a process's wall time follows
   its CPU time, the convert cannot come nearer the read than that. A second floor adds what a convert cannot skip
-  and does as a convert does it: the sha256 on a thread from the start (overlapping the imports and the read, so its
-  wall time is below the first floor's on an idle core) and the cube's bytes written (as one file): ``convert / that
-  floor`` is what the store's layout, the headers, the CLI and the metadata add. Beside them, a process that only
+  and does as a convert does it: the sha256 on a thread from the start (overlapping the imports and the read, which
+  lowers the wall time where a core is idle) and the cube's bytes written (as one file): ``convert / that floor`` is
+  what the store's layout, the headers, the CLI and the metadata add. Beside them, a process that only
   imports what a convert imports (the ``seismo3d`` CLI, numpy, segyio, zarr): ``convert - imports`` is the CPU its
   work takes (the read, the sha256, the copy and the writes).
 - ``seismo3d --help`` and ``seismo3d COMMAND --help`` for every command of the ``seismo3d`` app, beside the floor of

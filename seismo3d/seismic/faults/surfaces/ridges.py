@@ -229,7 +229,7 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
         a0, a1, b0, b1 = max(box[0] - 1, 0), min(box[1] + 1, n0), max(box[2] - 1, 0), min(box[3] + 1, n1)
         need = _grown(f3[a0:a1, b0:b1] > np.float64(floor))
         need = np.ascontiguousarray(need[box[0] - a0:box[1] - a0, box[2] - b0:box[3] - b0])
-        g2 = np.zeros_like(f3) if core is not None else np.empty_like(f3)  # read in the box only
+        g2 = np.zeros(f3.shape, f3.dtype)  # read in the box only (np.zeros, not zeros_like: no pass writing 0 first)
         run_threads(_smooth_along_dip, n_threads, g, st3, dp3, lut, int(dip_smoothing), need, box, g2)
         del need
         g = g2

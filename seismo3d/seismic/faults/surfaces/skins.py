@@ -156,18 +156,24 @@ def _offset_ranks(two_d: bool, lateral: int, vertical: int) -> np.ndarray:
 
 
 @nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
-def _best_neighbours(t, n_threads, points, frames, keys, shape, ranks, max_plane, cos_angle, best, scores, ranked):
+def _best_neighbours(t, n_threads, points, frames, keys, shape, ranks, max_plane, cos_angle, best, scores, ranked,
+                     starts, stops):
     # best[c, k]: cell c's nearest neighbour above (k = 0) and below (1) it down the dip, left (2) and right (3) of it
     # along the strike, or -1. A neighbour lies within max_plane of c's plane and c within max_plane of its plane,
     # their normals make an angle below acos(cos_angle), and the neighbour is in the direction's 90-degree cone;
     # distance is measured in c's plane, with the distance off the plane counted double, ties to the lower offset
     # rank (``ranks``, :func:`_offset_ranks`). Cells are found by their linear index in the cube of ``shape`` among
     # the sorted ``keys`` (no array of the cube's size): the cells of one trace within the vertical reach are one
-    # range of keys. Cells t, t + n_threads, ... (best filled with -1 before); work arrays scores[t], ranked[t]
+    # range of keys. Cells t, t + n_threads, ... (best filled with -1 before); work arrays scores[t], ranked[t], and
+    # starts[t], stops[t] (all 0): the range of each lateral offset, found by moving its two ends forward. The cells
+    # come in key order, so for one offset the keys that bound the range never decrease: the ends move over the keys
+    # once per offset and thread (the ranges of a binary search per cell and offset, in a tenth of its steps on the
+    # 232 k cells of the generated 256^3 cube)
     n = points.shape[0]
     n0, n1, n2 = shape[0], shape[1], shape[2]
     lat0, lat1, vert = ranks.shape[0] // 2, ranks.shape[1] // 2, ranks.shape[2] // 2
     score, rank = scores[t], ranked[t]
+    start, stop = starts[t], stops[t]
     for c in range(t, n, n_threads):
         px, py, pz = points[c, 0], points[c, 1], points[c, 2]
         ux, uy, uz = frames[c, 0, 0], frames[c, 0, 1], frames[c, 0, 2]
@@ -185,8 +191,17 @@ def _best_neighbours(t, n_threads, points, frames, keys, shape, ranks, max_plane
                 if qy < 0 or qy >= n1:
                     continue
                 base = (qx * n1 + qy) * n2
-                first = _kernels.search_left(keys, base + max(pz - vert, 0))
-                last = _kernels.search_right(keys, base + min(pz + vert, n2 - 1))
+                slot = (ox + lat0) * (2 * lat1 + 1) + oy + lat1
+                low = base + max(pz - vert, 0)  # the range: keys low .. high
+                high = base + min(pz + vert, n2 - 1)
+                first = start[slot]
+                while first < n and keys[first] < low:
+                    first += 1
+                start[slot] = first
+                last = max(stop[slot], first)
+                while last < n and keys[last] <= high:
+                    last += 1
+                stop[slot] = last
                 for q in range(first, last):
                     oz = keys[q] - base - pz
                     r = ranks[ox + lat0, oy + lat1, oz + vert]
@@ -453,9 +468,12 @@ def skins_from_cells(points, values, strike_deg, dip_deg, *, shape, lower: float
         frames[a:a + (1 << 18)] = fault_frames(s_cell[a:a + (1 << 18)], d_cell[a:a + (1 << 18)])
     best = np.full((points.shape[0], 4), -1, np.int32)
     n_threads = nb.get_num_threads()  # work arrays from here: np.empty in the kernel compiled one of numba's
-    run_threads(_best_neighbours, n_threads, points, frames, keys, np.asarray(shape3, np.int64),
-                _offset_ranks(two_d, int(opt.lateral_reach), int(opt.vertical_reach)), float(opt.max_plane_distance),
-                float(np.cos(np.radians(opt.max_angle))), best, np.empty((n_threads, 4)), np.empty((n_threads, 4), int))
+    ranks = _offset_ranks(two_d, int(opt.lateral_reach), int(opt.vertical_reach))
+    n_lateral = ranks.shape[0] * ranks.shape[1]  # the lateral offsets, each with its range of keys per thread
+    run_threads(_best_neighbours, n_threads, points, frames, keys, np.asarray(shape3, np.int64), ranks,
+                float(opt.max_plane_distance), float(np.cos(np.radians(opt.max_angle))), best,
+                np.empty((n_threads, 4)), np.empty((n_threads, 4), int), np.zeros((n_threads, n_lateral), np.int64),
+                np.zeros((n_threads, n_lateral), np.int64))
     del keys
     normals = np.ascontiguousarray(frames[:, 0, :])
     del frames

@@ -164,6 +164,16 @@ def test_ridges_above_a_floor_are_those_of_the_whole_ranking_image():
             assert np.array_equal(thin_faults(like, strike, dip, threshold=(lo, hi)), np.where(keep, like, 0))
 
 
+@pytest.mark.parametrize("shape", [(9, 7, 11), (6, 1, 13), (1, 1, 5), (2, 3, 1)])
+def test_mask_grown_by_a_sample_is_scipys_maximum_filter(shape):
+    """The mask of the samples the ridge test reads (_grown) is scipy's 3 x 3 x 3 maximum filter with clamped
+    edges, also on axes of one or two samples (a section as a cube of one crossline)."""
+    from seismo3d.seismic.faults.surfaces.ridges import _grown
+
+    mask = np.random.default_rng(sum(shape)).random(shape) > 0.85
+    assert np.array_equal(_grown(mask), ndi.maximum_filter(mask, size=3, mode="nearest"))
+
+
 def test_bad_input():
     good = np.zeros((10, 10, 10), np.float32)
     with pytest.raises(InputError, match="same shape"):

@@ -7,6 +7,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order, connected_components, minimum_spanning_tree
 from scipy.spatial import cKDTree
 
+from .._threads import query_workers
 from .._validation import as_intrinsics, as_points, check_choice
 from ..errors import InputError
 
@@ -58,7 +59,7 @@ def estimate_normals(points, *, k: int = 16, radius: float | None = None, orient
     if k < d:
         raise InputError(f"k={k} neighbours cannot define a normal in {d}D; use k >= {d + 1}")
     tree = cKDTree(pts)
-    _, idx = tree.query(pts, k=k, workers=-1)
+    _, idx = tree.query(pts, k=k, workers=query_workers(len(pts)))
     nb = pts[idx]  # (N, k, d)
     if radius is None:
         centred = nb - nb.mean(axis=1, keepdims=True)
@@ -71,7 +72,7 @@ def estimate_normals(points, *, k: int = 16, radius: float | None = None, orient
 
 
 def _radius_covariances(tree, pts, radius, knn_neighbours):
-    lists = tree.query_ball_point(pts, r=radius, workers=-1)
+    lists = tree.query_ball_point(pts, r=radius, workers=query_workers(len(pts)))
     counts = np.fromiter((len(x) for x in lists), dtype=np.int64, count=len(lists))
     flat = np.fromiter((j for x in lists for j in x), dtype=np.int64, count=int(counts.sum()))
     owner = np.repeat(np.arange(len(pts)), counts)
@@ -119,7 +120,8 @@ def orient_normals(points, normals, *, method: str = "mst", viewpoint=None, neig
         n[flip] *= -1
         return n
     if neighbours is None:
-        _, neighbours = cKDTree(points).query(points, k=min(10, len(points)), workers=-1)
+        k = min(10, len(points))
+        _, neighbours = cKDTree(points).query(points, k=k, workers=query_workers(len(points)))
     rows = np.repeat(np.arange(len(points)), neighbours.shape[1])
     cols = neighbours.reshape(-1)
     keep = rows != cols

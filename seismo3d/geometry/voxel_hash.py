@@ -24,7 +24,7 @@ import math
 import numba
 import numpy as np
 
-from .._threads import run_threads
+from .._threads import MIN_QUERIES_PER_THREAD, run_threads
 from .._validation import as_points, check_positive
 from ..errors import InputError
 from .neighbours import axis_bounds
@@ -33,7 +33,6 @@ __all__ = ["VoxelHashIndex"]
 
 _BITS = 21  # bits per voxel coordinate in the packed key
 _LIMIT = (1 << _BITS) - 8  # voxel coordinates allowed per axis (the cell grows beyond that)
-_MIN_PER_THREAD = 4096  # queries per thread at least: fewer run in the calling thread (starting threads costs more)
 
 
 class VoxelHashIndex:
@@ -115,7 +114,7 @@ class VoxelHashIndex:
         dist = np.empty(len(q))
         idx = np.empty(len(q), np.int64)
         # each query point independent of the others: shares of the queries on numba's threads
-        n_threads = max(1, min(numba.get_num_threads(), len(q) // _MIN_PER_THREAD))
+        n_threads = max(1, min(numba.get_num_threads(), len(q) // MIN_QUERIES_PER_THREAD))
         run_threads(_query, n_threads, np.ascontiguousarray(_as_3d(q)), self.points, self.order, self.origin,
                     self.cell, rings, dmax, self.table_keys, 64 - _log2(len(self.table_keys)), self.table_start,
                     self.table_stop, dist, idx)

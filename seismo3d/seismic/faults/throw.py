@@ -343,8 +343,9 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
                  progress: bool = False, **overrides) -> list[FaultThrow]:
     """Throw along each of several faults of one cube or section (see :func:`fault_throw`).
 
-    For an in-memory cube the reflector orientation is computed once (when not given) and shared by all faults: the
-    structure tensor smoothed over the whole cube, its slopes eigen-decomposed only at the samples the throws read
+    For an in-memory cube the reflector orientation is computed once (when not given) and shared by all faults: every
+    fault is cut into its patches first, the structure tensor smoothed at the traces they read, its slopes
+    eigen-decomposed only at the samples the throws read
     (:class:`~seismo3d.seismic.faults.throw_windows.TensorWindows`, the whole cube's slopes bit for bit there).
     A 3D dask array is never held whole: each patch reads only the traces it samples (its nodes' bounding box widened
     by ``side_traces[1] + slope_margin`` + 2 traces), from tiles of 64 x 64 traces whose slopes are computed with the
@@ -367,8 +368,8 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
         As in :func:`fault_throw`.
     progress : bool
         Report progress over the faults (:mod:`seismo3d._progress`), after a line when an in-memory cube's reflector
-        slopes are prepared (its structure tensor, before the first fault) and a line per slab of inlines of that
-        tensor (:func:`~seismo3d.seismic._kernels.structure_tensor`).
+        slopes are prepared (its structure tensor where the faults' patches read, before the first fault) and a line
+        per part of that tensor (:meth:`~seismo3d.seismic.faults.throw_windows.TensorWindows.prepare`).
 
     Returns
     -------
@@ -386,15 +387,15 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     """
     source = _windows(data, orientation)
     opt = resolve_options(ThrowOptions, options, overrides, "fault_throws")
-    faults = list(faults)
+    faults = [_fault_setup(source.shape, f, opt) for f in faults]  # checked, and cut into patches, before the work
     out = []
     with progress_steps(len(faults), "throw", unit="fault", enabled=progress) as bar:
-        if isinstance(source, TensorWindows) and faults:  # the cube's structure tensor, before the first fault
-            bar.advance(0, status="reflector slopes: the structure tensor of the cube")
-            with reporting_within("throw" if progress else None):  # a line per slab of inlines of the tensor
-                source.window(0, 0, 0, 0)
+        if isinstance(source, TensorWindows) and faults:  # the structure tensor where the patches read, first
+            bar.advance(0, status="reflector slopes: the structure tensor where the faults are")
+            with reporting_within("throw" if progress else None):  # a line per part of the tensor
+                source.prepare([p.box for f in faults for p in f.patches])
         for f in faults:
-            out.append(_fault_throw(source, f, opt))
+            out.append(_measure(source, f, opt))
             bar.advance()
     return out
 
@@ -411,25 +412,76 @@ def _windows(data, orientation):
     return cube_windows(data, orientation)
 
 
-def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
-    """Throw along one fault, reading ``source`` (:func:`~seismo3d.seismic.faults.windows.cube_windows`) one patch
-    window at a time."""
-    shape = source.shape
+@dataclass(frozen=True, eq=False)
+class _Patch:
+    """A patch of a 3D fault: its points (``sel``: rows of the fault's), fault-plane grid and the traces it reads."""
+
+    sel: np.ndarray
+    grid: object  # throw_patches._PatchGrid
+    box: tuple  # (i0, i1, j0, j1): read_box
+
+
+@dataclass(frozen=True, eq=False)
+class _FaultSetup:
+    """One fault checked and ready to measure: its points and hanging-wall normals (3D: (n, 3); a section's points
+    (n, 2) beside (n, 3) normals), id, largest shift searched, and patches (3D; none for a section)."""
+
+    pts: np.ndarray
+    nrm3: np.ndarray
+    fid: int
+    max_throw: int
+    patches: tuple
+
+
+def _fault_setup(shape, fault, opt: ThrowOptions) -> _FaultSetup:
+    """Check one fault against the data of ``shape`` and cut it into patches along its mean strike (3D): the
+    geometry its throw is measured on, made once."""
     two_d = len(shape) == 2
     max_throw = _max_throw(opt, shape[-1], two_d=two_d)
     pts, normals, fid = _fault_arrays(fault, len(shape))
     if np.any(pts.min(axis=0) < -0.5) or np.any(pts.max(axis=0) > np.array(shape) - 0.5):
         raise InputError(f"fault {fid} has points outside the data of shape {shape}; pass the faults of this data")
-    cube_shape = (shape[0], 1, shape[1]) if two_d else shape
     if two_d:
-        pts3 = np.column_stack([pts[:, 0], np.zeros(len(pts)), pts[:, 1]])
         nrm3 = np.column_stack([normals[:, 0], np.zeros(len(pts)), normals[:, 1]])
+        return _FaultSetup(pts, hanging_wall_normals(nrm3), fid, max_throw, ())
+    nrm3 = hanging_wall_normals(normals)
+    n = len(pts)
+    # patches along the mean strike
+    mean_n = nrm3.mean(axis=0)
+    lat = mean_n[:2]
+    if np.linalg.norm(lat) > 1e-6:
+        h = lat / np.linalg.norm(lat)
+        ug = pts[:, :2] @ np.array([-h[1], h[0]])
+        n_patch = max(1, int(round(np.ptp(ug) / opt.patch_traces)))
+        edges = np.linspace(ug.min(), ug.max(), n_patch + 1)
+        pid = np.clip(np.searchsorted(edges, ug, side="right") - 1, 0, n_patch - 1)
     else:
-        pts3, nrm3 = pts, normals
-    nrm3 = hanging_wall_normals(nrm3)
-    if two_d:
-        return _section_throw(source, pts, nrm3, fid, opt, max_throw)
-    n = len(pts3)
+        n_patch, pid = 1, np.zeros(n, np.int64)
+    patches = []
+    for k in range(n_patch):
+        sel = np.nonzero(pid == k)[0]
+        if len(sel) < 3:
+            continue
+        grid = patch_grid(pts[sel], nrm3[sel])
+        if grid is None:
+            continue
+        # the patch's traces (plus the halo of their reflector slopes) only; the whole array when in memory
+        patches.append(_Patch(sel, grid, read_box(grid, opt.side_traces[1] + opt.slope_margin, shape)))
+    return _FaultSetup(pts, nrm3, fid, max_throw, tuple(patches))
+
+
+def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
+    """Throw along one fault, reading ``source`` (:func:`~seismo3d.seismic.faults.windows.cube_windows`) one patch
+    window at a time."""
+    return _measure(source, _fault_setup(source.shape, fault, opt), opt)
+
+
+def _measure(source, setup: _FaultSetup, opt: ThrowOptions) -> FaultThrow:
+    """Throw along one fault set up by :func:`_fault_setup`, reading ``source`` one patch window at a time."""
+    if len(source.shape) == 2:
+        return _section_throw(source, setup.pts, setup.nrm3, setup.fid, opt, setup.max_throw)
+    n = len(setup.pts)
+    max_throw = setup.max_throw
     throw = np.full(n, np.nan)
     corr = np.full(n, np.nan)
     corr0 = np.full(n, np.nan)
@@ -439,34 +491,15 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
     registered = np.zeros(n, bool)
     fits, rmses, counts = [], [], []
     n_measured = 0
-
-    # patches along the mean strike
-    mean_n = nrm3.mean(axis=0)
-    lat = mean_n[:2]
-    if np.linalg.norm(lat) > 1e-6 and not two_d:
-        h = lat / np.linalg.norm(lat)
-        ug = pts3[:, :2] @ np.array([-h[1], h[0]])
-        n_patch = max(1, int(round(np.ptp(ug) / opt.patch_traces)))
-        edges = np.linspace(ug.min(), ug.max(), n_patch + 1)
-        pid = np.clip(np.searchsorted(edges, ug, side="right") - 1, 0, n_patch - 1)
-    else:
-        n_patch, pid = 1, np.zeros(n, np.int64)
-
-    for k in range(n_patch):
-        sel = np.nonzero(pid == k)[0]
-        if len(sel) < 3:
-            continue
-        grid = patch_grid(pts3[sel], nrm3[sel])
-        if grid is None:
-            continue
-        # the patch's traces (plus the halo of their reflector slopes) only; the whole array when in memory
-        win = source.window(*read_box(grid, opt.side_traces[1] + opt.slope_margin, cube_shape))
+    for p in setup.patches:
+        sel, grid = p.sel, p.grid
+        win = source.window(*p.box)
         patch = patch_images(grid, win, opt.side_traces, opt.slope_margin)
         coherence[sel] = float(np.min(patch.coherence))  # NaN when either side is NaN
         ut = grid.ut
         reach = min(max_throw, int(opt.max_throw_per_height * patch.img[0].shape[1]))
         shift, cc, cc0, rival[sel], rival_ratio[sel] = ncc_shift(
-            patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach, opt.min_overlap[0 if two_d else 1],
+            patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach, opt.min_overlap[1],
             opt) if reach >= 1 else (np.nan,) * 5
         if not np.isfinite(shift):
             continue
@@ -474,7 +507,7 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
         throw[sel] = shift
         corr[sel] = cc
         corr0[sel] = cc0
-        if opt.refine and not two_d:
+        if opt.refine:
             fit = register_patch(patch, shift, opt)
             if fit is not None:
                 throw[sel] = fit.a + fit.b * ut[:, 0]
@@ -490,8 +523,8 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
     else:
         fitness = rmse = float("nan")
     return FaultThrow(
-        fault_id=fid, throw=throw.astype(np.float32), registered=registered, correlation=corr.astype(np.float32),
-        correlation_unshifted=corr0.astype(np.float32),
+        fault_id=setup.fid, throw=throw.astype(np.float32), registered=registered,
+        correlation=corr.astype(np.float32), correlation_unshifted=corr0.astype(np.float32),
         median_throw=float(np.median(throw[finite])) if finite.any() else float("nan"), fitness=fitness,
         inlier_rmse=rmse, n_points_used=int(sum(counts)), side_coherence=coherence.astype(np.float32),
         n_patches_measured=n_measured, rival_ratio=rival_ratio.astype(np.float32),

@@ -264,14 +264,14 @@ def test_empty_fault_list():
 
 def test_progress_says_the_cubes_reflector_slopes_are_prepared_before_the_first_fault(caplog):
     """With ``progress`` (a log: stderr is not a terminal under pytest), an in-memory cube's throws first say that
-    its structure tensor is under way, with a line per slab of its inlines, then count the faults; a section has no
-    such preparation."""
+    its structure tensor is under way where the faults are, with a line per part of it, then count the faults; a
+    section has no such preparation."""
     syn = synthetic_cube((32, 32, 48), n_faults=1, seed=2)
     pts = np.argwhere(syn.fault_labels == 1)
     with caplog.at_level(logging.INFO, logger="seismo3d"):
         fault_throws(syn.cube, [pts], progress=True)
-    assert caplog.messages == ["throw: 0/1 fault, reflector slopes: the structure tensor of the cube",
-                               "throw: 32/32 inline, structure tensor", "throw: 1/1 fault"]
+    assert caplog.messages == ["throw: 0/1 fault, reflector slopes: the structure tensor where the faults are",
+                               "throw: 1/1 part, structure tensor", "throw: 1/1 fault"]
     caplog.clear()
     section = synthetic_cube((64, 48), n_faults=1, seed=2)
     with caplog.at_level(logging.INFO, logger="seismo3d"):

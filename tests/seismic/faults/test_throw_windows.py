@@ -50,6 +50,24 @@ def test_throws_equal_those_of_the_whole_cubes_slopes():
         np.testing.assert_array_equal(a.registered, b.registered)
 
 
+def test_the_tensor_is_smoothed_at_the_traces_read_only_with_the_whole_cubes_bits():
+    """prepare() smooths the tensor at its boxes' traces (by slabs of inlines and runs of crosslines, two runs here);
+    a read elsewhere smooths its own traces when it comes; every slope read equals the whole cube's, bit for bit."""
+    cube = synthetic_cube((96, 80, 40), seed=2, noise=0.1).cube
+    whole = ArrayWindows(cube).window(0, 1, 0, 1)
+    source = TensorWindows(cube)
+    source.prepare([(10, 20, 5, 15), (70, 90, 60, 70)])
+    assert source._done.sum() == 10 * 10 + 20 * 10  # those traces only
+    win = source.window(0, 1, 0, 1)
+    rng = np.random.default_rng(1)
+    for lo, hi in (((10, 5), (19, 14)), ((70, 60), (89, 69)), ((40, 30), (50, 40))):  # in each box, then elsewhere
+        il, xl = rng.uniform(lo[0], hi[0], 500), rng.uniform(lo[1], hi[1], 500)
+        t = rng.uniform(0, 39, 500)
+        for d in ([1.0, 0.0], [0.6, -0.8]):
+            np.testing.assert_array_equal(win.slope_along(il, xl, t, d), whole.slope_along(il, xl, t, d))
+    assert source._done.mean() < 0.2  # the third read added its own traces (and their corners) only
+
+
 def test_a_section_is_refused(cube):
     with pytest.raises(InputError, match="3D cube"):
         TensorWindows(cube[:, 0, :])

@@ -7,12 +7,22 @@ from importlib import resources
 import numpy as np
 import pytest
 
-torch = pytest.importorskip("torch")
-
-from seismo3d.training.adapt import AdaptOptions, _choose_trained, fine_tune  # noqa: E402
-from seismo3d.training.fault_unet import export_weights, model_from_weights, training_mode  # noqa: E402
-
 CONVS = [f"{b}.{i}" for b in ("enc0", "enc1", "enc2", "bottleneck", "dec2", "dec1", "dec0") for i in (0, 1)]
+
+
+@pytest.fixture(scope="module")
+def torch():
+    """PyTorch (the ``train`` extra), imported when a test of this file runs, not when pytest collects it: each
+    pytest-xdist worker collects every file, and importing torch costs about 2 CPU s."""
+    return pytest.importorskip("torch")
+
+
+@pytest.fixture(scope="module")
+def unet(torch):
+    """:mod:`seismo3d.training.fault_unet` (it imports torch)."""
+    from seismo3d.training import fault_unet
+
+    return fault_unet
 
 
 @pytest.fixture(scope="module")
@@ -32,7 +42,10 @@ def _grids():
 
 @pytest.mark.slow  # 5-20 s: PyTorch's Adam imports torch._dynamo on first use
 @pytest.mark.parametrize("layers, n_trained", [("scale_shift", 2 * 528), ("scale_shift_head", 2 * 528 + 13)])
-def test_the_scale_shift_modes_train_only_the_per_channel_affine(shipped, layers, n_trained):
+def test_the_scale_shift_modes_train_only_the_per_channel_affine(shipped, unet, layers, n_trained):
+    from seismo3d.training.adapt import AdaptOptions, _choose_trained, fine_tune
+
+    model_from_weights, training_mode = unet.model_from_weights, unet.training_mode
     model = model_from_weights(shipped)
     model.frozen_batch_norm = True
     training_mode(model)
@@ -52,7 +65,10 @@ def test_the_scale_shift_modes_train_only_the_per_channel_affine(shipped, layers
     assert head_moved == (layers == "scale_shift_head")
 
 
-def test_every_convolution_mode_leaves_the_per_channel_affine_the_identity(shipped):
+def test_every_convolution_mode_leaves_the_per_channel_affine_the_identity(shipped, unet):
+    from seismo3d.training.adapt import _choose_trained
+
+    model_from_weights, training_mode = unet.model_from_weights, unet.training_mode
     model = model_from_weights(shipped)
     model.frozen_batch_norm = True
     training_mode(model)
@@ -60,9 +76,10 @@ def test_every_convolution_mode_leaves_the_per_channel_affine_the_identity(shipp
     assert not any(p.requires_grad for n, p in model.named_parameters() if n.split(".")[-2] in ("1", "4"))
 
 
-def test_the_trained_scales_and_shifts_are_what_the_exported_network_computes(shipped):
+def test_the_trained_scales_and_shifts_are_what_the_exported_network_computes(shipped, torch, unet):
     """The trained model (batch normalisations an affine with identity statistics) against the network its exported
     weights rebuild (the affine folded into the convolutions, as MODEL's ONNX network runs it)."""
+    model_from_weights, export_weights = unet.model_from_weights, unet.export_weights
     model = model_from_weights(shipped)
     gen = torch.Generator().manual_seed(1)
     with torch.no_grad():

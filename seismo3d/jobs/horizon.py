@@ -268,8 +268,11 @@ def check_faults_run(folder, input_path) -> dict:
 
 def _recorded_faults(folder: pathlib.Path, survey: _Survey, segy: dict) -> _RecordedFaults:
     """The faults of a checked ``seismo3d faults`` run (:func:`check_faults_run`) on this survey, in index space:
-    points from ``fault_points.csv``, normals from the strike and dip volumes at them, throws and their correlations
-    from the table."""
+    points from ``fault_points.csv``, normals from the strike and dip volumes at them (at a point where they are NaN,
+    the fault likelihood below its orientation floor where the votes bridged a gap, the nearest point's of the same
+    fault), throws and their correlations from the table."""
+    from scipy.spatial import cKDTree
+
     from ..seismic.faults.result import fault_normals
     from .fault_tables import read_points
 
@@ -293,6 +296,13 @@ def _recorded_faults(folder: pathlib.Path, survey: _Survey, segy: dict) -> _Reco
     faults, throws = [], []
     for fid in dict.fromkeys(table["fault_id"].tolist()):
         sel = table["fault_id"] == fid
+        known = np.isfinite(normals[sel]).all(axis=1)
+        if not known.any():
+            raise InputError(f"fault {fid} of faults_from folder {folder} has no strike and dip at any of its points "
+                             "(fault_strike.sgy, fault_dip.sgy); run `seismo3d faults` on the input again")
+        if not known.all():  # each point without one takes the nearest point's of its fault
+            nearest = cKDTree(points[sel][known]).query(points[sel][~known])[1]
+            normals[np.flatnonzero(sel)[~known]] = normals[sel][known][nearest]
         faults.append(_Piece(points=points[sel], normals=normals[sel]))
         throws.append(_Piece(throw=table["throw_samples"][sel], correlation=table["throw_correlation"][sel],
                              correlation_unshifted=table["throw_correlation"][sel] - table["correlation_gain"][sel]))

@@ -99,6 +99,15 @@ class LearnedOptions:
         bands) and the generated cubes' (precision and recall >= 0.90). On the window of the 18 Penobscot inlines of
         notebook 01, whose faults change with any small change of the likelihood (``section_step``), the corner fault
         is kept (2649 samples) and two short faults (1148 and 900 samples) replace one of 659.
+    orientation_floor : float
+        Probability below which strike and dip are not computed: NaN there, and the likelihood there the network's
+        probability (the ``min_dip`` test needs a dip). The default, 0.01, is a tenth of the smallest likelihood a
+        later step of :func:`~seismo3d.seismic.faults.trace_faults` tests (the tips' 0.1 of
+        ``FaultTracingOptions.tip_level``; the evidence's probability, 0.25 at sensitivity 1; the voting's seeds, 0.3):
+        strike and dip are read at the seeds and, by the ridges, one sample around them, where the probability falls
+        off (``FaultTracingOptions`` refuses a floor at or above the seed threshold). Most of a cube is below it (90 %
+        of a generated 256^3 cube, ``python benchmarks/fault_speed.py``), and the eigen-decomposition and angles are
+        made at the other samples only; 0: at every sample.
     min_dip : float
         Degrees (index space): the likelihood is set to 0 where the orientation dips less. The network was trained
         on faults of 50-88 degrees only; a shallower ridge of its probability is a reflector or a migration swing,
@@ -167,6 +176,7 @@ class LearnedOptions:
     directions: str = "both"
     orientation_sigma: float = 2.0
     orientation_sample_step: int = 2
+    orientation_floor: float = 0.01
     min_dip: float = 40.0
     sections_per_batch: int = 4
     resample: tuple = (0.5, 0.7, 1.0)
@@ -191,6 +201,8 @@ class LearnedOptions:
         if (isinstance(self.orientation_sample_step, bool) or int(self.orientation_sample_step)
                 != self.orientation_sample_step or self.orientation_sample_step < 1):
             raise InputError(f"orientation_sample_step must be an integer >= 1; got {self.orientation_sample_step!r}")
+        if not 0.0 <= float(self.orientation_floor) < 1.0:
+            raise InputError(f"orientation_floor must be a probability in [0, 1); got {self.orientation_floor!r}")
         if not 0.0 <= float(self.min_dip) < 90.0:
             raise InputError(f"min_dip must be in [0, 90) degrees; got {self.min_dip!r}")
         if not 0.0 < float(self.saturation_level) < 1.0:
@@ -699,9 +711,10 @@ def network_probability(plan: dict, networks, region) -> np.ndarray:
 
 
 def orientation_block(place, *networks_plan_opt) -> BlockOutput:
-    """Strike and dip of one block (:func:`orientation_from_likelihood`) from the probability around it
-    (``place.region``, the tensor smoothing's halo), read from the network arrays; with the likelihood (0 below the
-    smallest dip) and its saturated samples.
+    """Strike and dip of one block (:func:`orientation_from_likelihood`, NaN where the probability is below
+    ``orientation_floor``) from the probability around it (``place.region``, the tensor smoothing's halo), read from
+    the network arrays; with the likelihood (the probability, 0 where the dip is below ``min_dip``; not tested where
+    there is no dip) and its saturated samples.
 
     Parameters
     ----------
@@ -719,10 +732,13 @@ def orientation_block(place, *networks_plan_opt) -> BlockOutput:
     prob = network_probability(plan, networks, place.region)
     core = place.core  # the tensor smoothed over the region, eigen-decomposed at the core only (the same bits)
     if plan.get("ndim", 3) == 2:  # a section (one crossline): its own 2D structure tensor
-        strike, dip = (a[:, None] for a in orientation_from_likelihood(prob[:, 0], sigma=float(opt.orientation_sigma)))
+        strike, dip = (a[:, None] for a in orientation_from_likelihood(prob[:, 0], sigma=float(opt.orientation_sigma),
+                                                                       floor=float(opt.orientation_floor)))
     else:
         strike, dip = orientation_from_likelihood(prob, sigma=float(opt.orientation_sigma), core=core,
-                                                  sample_step=int(opt.orientation_sample_step))
+                                                  sample_step=int(opt.orientation_sample_step),
+                                                  floor=float(opt.orientation_floor))
+    # 0 where the dip is below min_dip; below the orientation floor (dip NaN) the probability, untested
     likelihood = np.where(dip < float(opt.min_dip), np.float32(0.0), prob[core])
     return BlockOutput({"likelihood": likelihood, "strike_deg": strike, "dip_deg": dip},
                        {"high": int(np.count_nonzero(likelihood > float(opt.saturation_level)))})
@@ -829,8 +845,8 @@ class _WholeGrid:
 
 def run_learned(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> float:
     """The learned likelihood's declared steps (:func:`block_steps`) in their order on a run: the network on every
-    grid and direction (:func:`run_networks`), then strike, dip and the likelihood (0 below ``opt.min_dip``) left in
-    the run's arrays.
+    grid and direction (:func:`run_networks`), then strike, dip (NaN below ``opt.orientation_floor``) and the likelihood
+    (0 below ``opt.min_dip``) left in the run's arrays.
 
     Parameters
     ----------
@@ -912,7 +928,8 @@ def learned_fault_likelihood(data, *, options: LearnedOptions | None = None, sca
     -------
     FaultLikelihood
         ``likelihood`` the network's probability in [0, 1] (0 where the dip is below ``options.min_dip``);
-        ``strike_deg``, ``dip_deg`` from its structure tensor.
+        ``strike_deg``, ``dip_deg`` from its structure tensor, NaN where the probability is below
+        ``options.orientation_floor`` (the likelihood there is the probability, untested against ``min_dip``).
 
     Raises
     ------

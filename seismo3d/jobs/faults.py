@@ -147,7 +147,9 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     * ``fault_likelihood.sgy``, ``fault_strike.sgy``, ``fault_dip.sgy``, ``fault_votes.sgy``: fault likelihood in
       [0, 1], strike and dip in degrees, and the optimal-surface votes in [0, 1], as SEG-Y with the textual, binary
       and trace headers of the input (for a SEG-Y input; IEEE float). For other inputs the same volumes as float32
-      ``.npy`` arrays of the input's shape.
+      ``.npy`` arrays of the input's shape. In a cube traced with the fault network, strike and dip are NaN where its
+      probability is below ``LearnedOptions.orientation_floor`` (0.01: no fault is traced there), the likelihood
+      there the probability.
     * ``faults.vtp``: all fault surfaces (triangulated; polylines for 2D inputs) in one VTK PolyData, points at
       (inline, crossline, time_or_depth) (2D: (trace label, 0, time_or_depth)), point arrays ``fault_id``,
       ``throw`` (samples) and ``likelihood``.

@@ -468,13 +468,15 @@ def test_orientation_sample_step_is_a_positive_integer():
             LearnedOptions(orientation_sample_step=bad)
 
 
-@pytest.mark.parametrize("section", [False, True])
-def test_below_the_orientation_floor_strike_and_dip_are_nan_and_the_likelihood_the_probability(section):
-    """``orientation_floor``: where the network's probability is below it, strike and dip are NaN and the likelihood
-    is the probability (no dip to test against ``min_dip``); elsewhere all three are the bits of the orientation of
-    every sample (``orientation_floor=0``), in a cube and in a section."""
+def test_below_the_orientation_floor_strike_and_dip_are_nan_and_the_likelihood_the_probability():
+    """``orientation_floor``: in a cube, where the network's probability is below it, strike and dip are NaN and the
+    likelihood is the probability (no dip to test against ``min_dip``); elsewhere all three are the bits of the
+    orientation of every sample (``orientation_floor=0``). A section's are every sample's."""
     data = synthetic_cube((40, 40, 64), seed=3, noise=0.1).cube
-    data = data[:, 20] if section else data
+    section = data[:, 20]
+    every, floored = (learned_fault_likelihood(section, options=LearnedOptions(orientation_floor=f)) for f in (0, 0.5))
+    for name in ("likelihood", "strike_deg", "dip_deg"):
+        assert np.array_equal(getattr(floored, name), getattr(every, name))
     floor = LearnedOptions().orientation_floor
     assert floor == 0.01
     every = learned_fault_likelihood(data, options=LearnedOptions(orientation_floor=0.0))

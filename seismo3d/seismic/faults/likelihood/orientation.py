@@ -166,7 +166,7 @@ def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0, c
             del comps
             strike, dip = _normals_to_strike_dip(normals)
         else:  # strike and dip of each chunk of normals as it is decomposed: no cube of normals, nor temporaries
-            strike, dip = _strike_dip_of_tensors(comps, None if below is None else ~_held_reach(~below, step))
+            strike, dip = _strike_dip_of_tensors(comps, _skipped(below, step))
             del comps
         stages.advance()
         stages.start(_STAGES[3])
@@ -184,6 +184,16 @@ def _below_floor(p: np.ndarray, floor: float):
         return None
     below = p < np.float32(floor)
     return below if below.any() else None
+
+
+def _skipped(below, step: int):
+    """The kept samples (every ``step``-th) not to eigen-decompose: those whose held samples are all ``below`` the
+    floor; None (every one) when there are none or when they are fewer than half (gathering the others would cost
+    more memory than a run by blocks plans for an orientation block, and save little)."""
+    if below is None:
+        return None
+    skip = ~_held_reach(~below, step)
+    return skip if np.count_nonzero(skip) > skip.size // 2 else None
 
 
 def _held_reach(wanted: np.ndarray, step: int) -> np.ndarray:
@@ -215,11 +225,11 @@ def _strike_dip_of_tensors(comps: dict, skip: np.ndarray | None = None) -> tuple
     if at is None:
         strike, dip = np.empty(shape, np.float32), np.empty(shape, np.float32)
         tensors = [comps[k] for k in keys]
+        kept_strike, kept_dip = strike.reshape(-1), dip.reshape(-1)
     else:
         strike, dip = np.full(shape, np.nan, np.float32), np.full(shape, np.nan, np.float32)
         tensors = [comps.pop(k).reshape(-1)[at] for k in keys]  # each whole component let go once gathered
-    kept_strike, kept_dip = (np.empty(at.size, np.float32) for _ in range(2)) if at is not None else (
-        strike.reshape(-1), dip.reshape(-1))
+        kept_strike, kept_dip = np.empty(at.size, np.float32), np.empty(at.size, np.float32)
 
     def write(part, vx, vy, vz):
         normals = np.empty((vx.size, 3), np.float32)

@@ -149,8 +149,8 @@ class FaultTracingOptions:
             raise InputError(f"tip_level must be a probability in [0, 1] or None; got {self.tip_level!r}")
         if float(self.learned.orientation_floor) >= float(self.voting.seed_threshold):
             raise InputError(f"learned.orientation_floor {self.learned.orientation_floor!r} leaves the voting's seeds "
-                             f"(likelihood above seed_threshold {self.voting.seed_threshold!r}) without strike and dip; "
-                             "lower orientation_floor below seed_threshold")
+                             f"(likelihood above seed_threshold {self.voting.seed_threshold!r}) without strike and "
+                             "dip; lower orientation_floor below seed_threshold")
 
     def with_model(self, model, *, sensitivity: float | None = None) -> "FaultTracingOptions":
         """These options tracing with a MODEL folder of ``seismo3d adapt``: the learned likelihood running its

@@ -100,17 +100,19 @@ class LearnedOptions:
         notebook 01, whose faults change with any small change of the likelihood (``section_step``), the corner fault
         is kept (2649 samples) and two short faults (1148 and 900 samples) replace one of 659.
     orientation_floor : float
-        On a cube (or a block of one): the probability below which strike and dip are not computed, NaN there, and
-        the likelihood there the network's probability (the ``min_dip`` test needs a dip). The default, 0.01, is a tenth of the smallest likelihood a
-        later step of :func:`~seismo3d.seismic.faults.trace_faults` tests (the tips' 0.1 of
-        ``FaultTracingOptions.tip_level``; the evidence's probability, 0.25 at sensitivity 1; the voting's seeds, 0.3):
-        strike and dip are read at the seeds and, by the ridges, one sample around them, where the probability falls
-        off (``FaultTracingOptions`` refuses a floor at or above the seed threshold). Most of a cube is below it (90 %
-        of a generated 256^3 cube, ``python benchmarks/fault_speed.py``), and the eigen-decomposition and angles are
-        made at the other samples only; 0: at every sample. A section's orientation, in closed form, costs little:
-        it is made at every sample, and its likelihood tested against ``min_dip`` at every sample (on the Great South
-        Basin lines the untested probability below the floor moved the votes enough to lose a fault of crossline
-        2600: F1 0.836 -> 0.821, ``tools/dev_fault_scores.py``).
+        On a cube (or a block of one): the network's probability below which strike and dip are not computed (NaN;
+        the tensor is eigen-decomposed at the other samples only) and the likelihood is the probability, untested
+        against ``min_dip`` (which needs a dip); 0: every sample. The later steps of
+        :func:`~seismo3d.seismic.faults.trace_faults` read strike and dip at the voting's seeds (likelihood above
+        0.3, ``VotingOptions.seed_threshold``, which the floor must stay below) and, in the ridges, one sample
+        around them, and decide on the likelihood at 0.25 or more (the evidence's probability at sensitivity 1); the
+        default, 0.01, is a thirtieth of the seed threshold, as the probability falls off steeply across a fault. On
+        the generated 256^3 cube of ``benchmarks/fault_speed.py`` 89.9 % of the samples are below it; 3.2 % of the
+        samples the ridges read around the seeds are too (there the ranking image is not smoothed along the dip),
+        which changed no ridge, seed or vote. A section's orientation, in closed form, costs little: it is made and
+        tested against ``min_dip`` at every sample (with the floor, the untested probability below it moved the
+        votes of the Great South Basin lines enough to lose a fault of crossline 2600: F1 0.836 -> 0.821,
+        ``tools/dev_fault_scores.py``).
     min_dip : float
         Degrees (index space): the likelihood is set to 0 where the orientation dips less. The network was trained
         on faults of 50-88 degrees only; a shallower ridge of its probability is a reflector or a migration swing,

@@ -164,6 +164,27 @@ def test_ridges_above_a_floor_are_those_of_the_whole_ranking_image():
             assert np.array_equal(thin_faults(like, strike, dip, threshold=(lo, hi)), np.where(keep, like, 0))
 
 
+def test_ridges_without_strike_and_dip_below_the_orientation_floor():
+    """Strike and dip NaN (the learned likelihood's below its orientation floor): where the ridges do not read them
+    (away from the samples above the seed threshold) the ridges are those of the finite orientation, bit for bit; a
+    sample without them is no ridge, at any floor; inf is refused."""
+    from seismo3d.seismic.faults.surfaces.ridges import ridge_image, ridges
+
+    syn = synthetic_cube((32, 32, 72), n_faults=2, seed=3)
+    fl = fault_likelihood(syn.cube)
+    seed = float(np.quantile(fl.likelihood, 0.97))  # a seed threshold with few samples above it
+    read = ndi.maximum_filter(fl.likelihood > seed, size=3)  # where the ridges above the seed threshold read them
+    unknown = ~ndi.binary_dilation(read, iterations=2)
+    assert 0.3 < unknown.mean() < 0.95
+    strike, dip = (np.where(unknown, np.nan, a).astype(np.float32) for a in (fl.strike_deg, fl.dip_deg))
+    assert np.array_equal(ridges(fl.likelihood, strike, dip, seed), ridges(fl.likelihood, fl.strike_deg,
+                                                                             fl.dip_deg, seed))
+    everywhere = ridge_image(fl.likelihood, strike, dip)
+    assert not everywhere[unknown].any() and everywhere[~unknown].any()
+    with pytest.raises(InputError, match="inf"):
+        ridges(fl.likelihood, np.where(unknown, np.inf, fl.strike_deg), fl.dip_deg, seed)
+
+
 def test_bad_input():
     good = np.zeros((10, 10, 10), np.float32)
     with pytest.raises(InputError, match="same shape"):

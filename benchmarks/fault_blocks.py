@@ -274,7 +274,8 @@ def segy_lazy(tmp: pathlib.Path) -> None:
     assert list(group["inline"][:]) == list(range(101, 293))
     # the SEG-Y volumes, written block by block with the input's headers, as the in-memory run writes them
     assert np.abs(read_segy(written["likelihood_segy"])[0] - reference.likelihood).max() <= 1e-5
-    assert np.array_equal(read_segy(written["dip_segy"])[0], group["dip_deg"][:], equal_nan=True)
+    # strike and dip not computed (NaN in the store: the likelihood below its orientation floor) are 0 in SEG-Y
+    assert np.array_equal(read_segy(written["dip_segy"])[0], np.nan_to_num(group["dip_deg"][:], nan=0.0))
     traced = zarr.open_group(str(written["surfaces_zarr"]), mode="r")
     assert np.array_equal(read_segy(written["votes_segy"])[0], traced["votes"][:])
     with open_segy(written["strike_segy"]) as out, open_segy(path) as src:

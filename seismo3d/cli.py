@@ -216,7 +216,9 @@ def faults(
     overwrite: bool = _overwrite_option(),
 ) -> None:
     """Trace the faults of INPUT and write fault likelihood, strike, dip and votes (SEG-Y for SEG-Y input), fault
-    surfaces (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT."""
+    surfaces (faults.vtp), fault points and a per-fault summary (CSV) and a picture (faults.png) into OUTPUT. In a cube
+    strike and dip are not computed where the fault network's probability is below 0.01 (no fault is traced there):
+    0 in SEG-Y files (a computed dip is in (0, 90]), NaN in .npy files."""
     check_before_import("folder", output, [input, model], overwrite=overwrite)
     from .jobs.faults import run_faults_job
 

@@ -147,7 +147,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     * ``fault_likelihood.sgy``, ``fault_strike.sgy``, ``fault_dip.sgy``, ``fault_votes.sgy``: fault likelihood in
       [0, 1], strike and dip in degrees, and the optimal-surface votes in [0, 1], as SEG-Y with the textual, binary
       and trace headers of the input (for a SEG-Y input; IEEE float). For other inputs the same volumes as float32
-      ``.npy`` arrays of the input's shape.
+      ``.npy`` arrays of the input's shape. In a cube traced with the fault network, strike and dip are not computed
+      where its probability is below ``LearnedOptions.orientation_floor`` (0.01: no fault is traced there): NaN in
+      the ``.npy`` arrays, 0 in the SEG-Y files (which most readers take no NaN in; a computed dip is in (0, 90]),
+      the likelihood there the probability.
     * ``faults.vtp``: all fault surfaces (triangulated; polylines for 2D inputs) in one VTK PolyData, points at
       (inline, crossline, time_or_depth) (2D: (trace label, 0, time_or_depth)), point arrays ``fault_id``,
       ``throw`` (samples) and ``likelihood``.
@@ -436,6 +439,8 @@ def _volume_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path,
     ``likelihood`` and ``surfaces_zarr``)."""
     volumes = {"likelihood": result.likelihood, "strike": result.strike_deg, "dip": result.dip_deg,
                "votes": result.votes}
+    if inp.segy_path is not None:  # most SEG-Y readers take no NaN: strike and dip not computed are written as 0
+        volumes.update(strike=_NanAsZero(result.strike_deg), dip=_NanAsZero(result.dip_deg))
     geo = {k: segy[k] for k in ("iline", "xline", "ignore_geometry", "endian")}
     steps = []
     if result.stores and inp.segy_path is None:  # a run by blocks: its stores are the volumes (SEG-Y ones too)
@@ -451,6 +456,23 @@ def _volume_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path,
     for key, values in volumes.items():
         steps.append((f"{key}_segy" if result.stores else key, lambda key=key, values=values: write(key, values)))
     return steps
+
+
+class _NanAsZero:
+    """A volume (numpy, Zarr or dask array, or a DataArray of one) read by slicing, NaN read as 0: strike and dip
+    where they were not computed (the likelihood below ``LearnedOptions.orientation_floor``) in the SEG-Y files,
+    which most readers refuse NaN in; a dip of 0 is none (a computed one is in (0, 90])."""
+
+    def __init__(self, values):
+        self._values = getattr(values, "data", values)
+        self.shape = tuple(self._values.shape)
+        self.ndim = len(self.shape)
+
+    def __getitem__(self, key) -> np.ndarray:
+        return np.nan_to_num(np.asarray(self._values[key], dtype=np.float32), nan=0.0, posinf=np.inf, neginf=-np.inf)
+
+    def __array__(self, dtype=None, copy=None) -> np.ndarray:
+        return self[...] if dtype is None else self[...].astype(dtype)
 
 
 def _surface_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path, summary: list, coords) -> list:

@@ -268,8 +268,9 @@ def check_faults_run(folder, input_path) -> dict:
 
 def _recorded_faults(folder: pathlib.Path, survey: _Survey, segy: dict) -> _RecordedFaults:
     """The faults of a checked ``seismo3d faults`` run (:func:`check_faults_run`) on this survey, in index space:
-    points from ``fault_points.csv``, normals from the strike and dip volumes at them, throws and their correlations
-    from the table."""
+    points from ``fault_points.csv``, normals from the strike and dip volumes at them (at a point without them, a
+    dip of 0 or NaN where the likelihood was below its orientation floor and the votes bridged a gap, the nearest
+    point's of the same fault), throws and their correlations from the table."""
     from ..seismic.faults.result import fault_normals
     from .fault_tables import read_points
 
@@ -289,14 +290,32 @@ def _recorded_faults(folder: pathlib.Path, survey: _Survey, segy: dict) -> _Reco
     grid = tuple(np.rint(points).astype(np.int64).T)
     angles = [read_seismic(folder / f"fault_{name}.sgy", **segy, arrays=False).data.reshape(survey.data.shape)[grid]
               for name in ("strike", "dip")]
+    angles[1] = np.where(angles[1] > 0, angles[1], np.nan)  # a dip of 0: none computed (a computed one is > 0)
     normals = fault_normals(*angles, ndim=survey.data.ndim)
     faults, throws = [], []
     for fid in dict.fromkeys(table["fault_id"].tolist()):
         sel = table["fault_id"] == fid
-        faults.append(_Piece(points=points[sel], normals=normals[sel]))
+        if not np.isfinite(normals[sel]).all(axis=1).any():
+            raise InputError(f"fault {fid} of faults_from folder {folder} has no strike and dip at any of its points "
+                             "(fault_strike.sgy, fault_dip.sgy); run `seismo3d faults` on the input again")
+        faults.append(_Piece(points=points[sel], normals=_nearest_known(points[sel], normals[sel])))
         throws.append(_Piece(throw=table["throw_samples"][sel], correlation=table["throw_correlation"][sel],
                              correlation_unshifted=table["throw_correlation"][sel] - table["correlation_gain"][sel]))
     return _RecordedFaults(faults, throws)
+
+
+def _nearest_known(points: np.ndarray, normals: np.ndarray) -> np.ndarray:
+    """A fault's (n, ndim) normals with each row holding NaN (strike and dip not computed there: the likelihood
+    below its orientation floor, where the votes bridged a gap) replaced by the nearest point's (``points``, (n, ndim)
+    index space) that has one; at least one row must be finite."""
+    from scipy.spatial import cKDTree
+
+    known = np.isfinite(normals).all(axis=1)
+    if known.all():
+        return normals
+    out = normals.copy()
+    out[~known] = normals[known][cKDTree(points[known]).query(points[~known])[1]]
+    return out
 
 
 def _write_rows(output: pathlib.Path, survey: _Survey, horizon: Horizon) -> int:

@@ -16,6 +16,7 @@ from seismo3d.errors import (
     DataNotFoundError, InputError, SegyFormatError, SegyGeometryError, Seismo3dWarning, UnsupportedDataError,
 )
 from seismo3d.jobs.faults import run_faults_job
+from seismo3d.seismic.faults.likelihood.learned import LearnedOptions
 from seismo3d.seismic.io import open_segy
 
 POINT_COLUMNS = ["inline", "crossline", "x", "y", "xy_unit", "time_or_depth", "fault_id", "throw_samples"]
@@ -141,7 +142,9 @@ def test_demo_volumes_keep_the_input_geometry(demo):
     with open_segy(out / "fault_dip.sgy") as c:
         dip = c.read()
     assert fl.min() >= 0.0 and fl.max() <= 1.0 and fl.max() > 0.9
-    assert dip.min() > 0.0 and dip.max() <= 90.0
+    known = dip > 0.0  # 0 (not NaN, which most SEG-Y readers refuse) where the probability (the likelihood there)
+    assert np.isfinite(dip).all() and dip.max() <= 90.0  # is below the orientation floor
+    assert (fl[~known] < LearnedOptions().orientation_floor).all() and known[fl > 0.3].all() and (~known).any()
 
 
 @pytest.mark.slow

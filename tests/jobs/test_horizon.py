@@ -483,3 +483,15 @@ def test_horizon_crosses_the_large_fault_of_penobscot_xl1155_once(data_dir, tmp_
     east = ms[289:][np.isfinite(ms[289:])][0]
     assert abs((west - east) - 48.0) <= 4.0, (west, east)
     assert np.isfinite(ms).sum() >= 0.95 * ms.size
+
+
+def test_recorded_fault_points_without_strike_and_dip_take_the_nearest_points_normal():
+    """A fault point of a faults run whose strike and dip are NaN (the likelihood below its orientation floor) takes
+    the normal of the nearest point of its fault that has one."""
+    from seismo3d.jobs.horizon import _nearest_known
+
+    points = np.array([[0, 0, 10], [0, 0, 11], [0, 0, 12], [0, 0, 30], [0, 0, 31]], np.float64)
+    normals = np.array([[1, 0, 0], [np.nan] * 3, [np.nan] * 3, [np.nan] * 3, [0, 1, 0]], np.float64)
+    got = _nearest_known(points, normals)
+    np.testing.assert_array_equal(got, [[1, 0, 0], [1, 0, 0], [1, 0, 0], [0, 1, 0], [0, 1, 0]])
+    assert np.isnan(normals[1]).all()  # the input is not changed

@@ -147,6 +147,10 @@ class FaultTracingOptions:
             raise InputError(f"saturation_level must be a likelihood in (0, 1); got {self.saturation_level!r}")
         if self.tip_level is not None and not 0.0 <= float(self.tip_level) <= 1.0:
             raise InputError(f"tip_level must be a probability in [0, 1] or None; got {self.tip_level!r}")
+        if float(self.learned.orientation_floor) >= float(self.voting.seed_threshold):
+            raise InputError(f"learned.orientation_floor {self.learned.orientation_floor!r} leaves the voting's seeds "
+                             f"(likelihood above seed_threshold {self.voting.seed_threshold!r}) without strike and "
+                             "dip; lower orientation_floor below seed_threshold")
 
     def with_model(self, model, *, sensitivity: float | None = None) -> "FaultTracingOptions":
         """These options tracing with a MODEL folder of ``seismo3d adapt``: the learned likelihood running its

@@ -149,7 +149,8 @@ def check_fault_arrays(likelihood, strike, dip):
     likelihood : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like
         Fault likelihood, votes or thinned faults; finite.
     strike, dip : array_like of float, same shape
-        Strike and dip, degrees.
+        Strike and dip, degrees; NaN where there is none (the learned likelihood's below
+        ``LearnedOptions.orientation_floor``): the ridges neither test nor smooth along the dip there.
 
     Returns
     -------
@@ -158,7 +159,7 @@ def check_fault_arrays(likelihood, strike, dip):
     Raises
     ------
     InputError
-        Shapes differ or values are not finite.
+        Shapes differ, the likelihood is not finite, or strike or dip is infinite.
     """
     fl = as_seismic(likelihood, "likelihood", min_size=1)
     st = np.asarray(strike, dtype=np.float32)
@@ -168,8 +169,8 @@ def check_fault_arrays(likelihood, strike, dip):
             f"likelihood {fl.shape}, strike {st.shape} and dip {dp.shape} must have the same shape; pass the fields "
             "of one FaultLikelihood"
         )
-    if not (np.all(np.isfinite(st)) and np.all(np.isfinite(dp))):
-        raise InputError("strike and dip have NaN or inf values; pass the strike_deg and dip_deg of a FaultLikelihood")
+    if np.isinf(st).any() or np.isinf(dp).any():
+        raise InputError("strike and dip have inf values; pass the strike_deg and dip_deg of a FaultLikelihood")
     return fl, st, dp
 
 

@@ -99,6 +99,20 @@ class LearnedOptions:
         bands) and the generated cubes' (precision and recall >= 0.90). On the window of the 18 Penobscot inlines of
         notebook 01, whose faults change with any small change of the likelihood (``section_step``), the corner fault
         is kept (2649 samples) and two short faults (1148 and 900 samples) replace one of 659.
+    orientation_floor : float
+        On a cube (or a block of one): the network's probability below which strike and dip are not computed (NaN;
+        the tensor is eigen-decomposed at the other samples only) and the likelihood is the probability, untested
+        against ``min_dip`` (which needs a dip); 0: every sample. The later steps of
+        :func:`~seismo3d.seismic.faults.trace_faults` read strike and dip at the voting's seeds (likelihood above
+        0.3, ``VotingOptions.seed_threshold``, which the floor must stay below) and, in the ridges, one sample
+        around them, and decide on the likelihood at 0.25 or more (the evidence's probability at sensitivity 1); the
+        default, 0.01, is a thirtieth of the seed threshold, as the probability falls off steeply across a fault. On
+        the generated 256^3 cube of ``benchmarks/fault_speed.py`` 89.9 % of the samples are below it; 3.2 % of the
+        samples the ridges read around the seeds are too (there the ranking image is not smoothed along the dip),
+        which changed no ridge, seed or vote. A section's orientation, in closed form, costs little: it is made and
+        tested against ``min_dip`` at every sample (with the floor, the untested probability below it moved the
+        votes of the Great South Basin lines enough to lose a fault of crossline 2600: F1 0.836 -> 0.821,
+        ``tools/dev_fault_scores.py``).
     min_dip : float
         Degrees (index space): the likelihood is set to 0 where the orientation dips less. The network was trained
         on faults of 50-88 degrees only; a shallower ridge of its probability is a reflector or a migration swing,
@@ -167,6 +181,7 @@ class LearnedOptions:
     directions: str = "both"
     orientation_sigma: float = 2.0
     orientation_sample_step: int = 2
+    orientation_floor: float = 0.01
     min_dip: float = 40.0
     sections_per_batch: int = 4
     resample: tuple = (0.5, 0.7, 1.0)
@@ -191,6 +206,8 @@ class LearnedOptions:
         if (isinstance(self.orientation_sample_step, bool) or int(self.orientation_sample_step)
                 != self.orientation_sample_step or self.orientation_sample_step < 1):
             raise InputError(f"orientation_sample_step must be an integer >= 1; got {self.orientation_sample_step!r}")
+        if not 0.0 <= float(self.orientation_floor) < 1.0:
+            raise InputError(f"orientation_floor must be a probability in [0, 1); got {self.orientation_floor!r}")
         if not 0.0 <= float(self.min_dip) < 90.0:
             raise InputError(f"min_dip must be in [0, 90) degrees; got {self.min_dip!r}")
         if not 0.0 < float(self.saturation_level) < 1.0:
@@ -699,9 +716,10 @@ def network_probability(plan: dict, networks, region) -> np.ndarray:
 
 
 def orientation_block(place, *networks_plan_opt) -> BlockOutput:
-    """Strike and dip of one block (:func:`orientation_from_likelihood`) from the probability around it
-    (``place.region``, the tensor smoothing's halo), read from the network arrays; with the likelihood (0 below the
-    smallest dip) and its saturated samples.
+    """Strike and dip of one block (:func:`orientation_from_likelihood`; in a cube NaN where the probability is below
+    ``orientation_floor``) from the probability around it (``place.region``, the tensor smoothing's halo), read from
+    the network arrays; with the likelihood (the probability, 0 where the dip is below ``min_dip``; not tested where
+    there is no dip) and its saturated samples.
 
     Parameters
     ----------
@@ -722,7 +740,9 @@ def orientation_block(place, *networks_plan_opt) -> BlockOutput:
         strike, dip = (a[:, None] for a in orientation_from_likelihood(prob[:, 0], sigma=float(opt.orientation_sigma)))
     else:
         strike, dip = orientation_from_likelihood(prob, sigma=float(opt.orientation_sigma), core=core,
-                                                  sample_step=int(opt.orientation_sample_step))
+                                                  sample_step=int(opt.orientation_sample_step),
+                                                  floor=float(opt.orientation_floor))
+    # 0 where the dip is below min_dip; below the orientation floor (dip NaN) the probability, untested
     likelihood = np.where(dip < float(opt.min_dip), np.float32(0.0), prob[core])
     return BlockOutput({"likelihood": likelihood, "strike_deg": strike, "dip_deg": dip},
                        {"high": int(np.count_nonzero(likelihood > float(opt.saturation_level)))})
@@ -829,8 +849,8 @@ class _WholeGrid:
 
 def run_learned(run, x, opt: LearnedOptions, plan: dict, *, scale=None) -> float:
     """The learned likelihood's declared steps (:func:`block_steps`) in their order on a run: the network on every
-    grid and direction (:func:`run_networks`), then strike, dip and the likelihood (0 below ``opt.min_dip``) left in
-    the run's arrays.
+    grid and direction (:func:`run_networks`), then strike, dip (NaN below ``opt.orientation_floor``) and the likelihood
+    (0 below ``opt.min_dip``) left in the run's arrays.
 
     Parameters
     ----------
@@ -912,7 +932,8 @@ def learned_fault_likelihood(data, *, options: LearnedOptions | None = None, sca
     -------
     FaultLikelihood
         ``likelihood`` the network's probability in [0, 1] (0 where the dip is below ``options.min_dip``);
-        ``strike_deg``, ``dip_deg`` from its structure tensor.
+        ``strike_deg``, ``dip_deg`` from its structure tensor; in a cube NaN where the probability is below
+        ``options.orientation_floor`` (the likelihood there is the probability, untested against ``min_dip``).
 
     Raises
     ------

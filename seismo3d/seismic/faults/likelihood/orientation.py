@@ -9,6 +9,10 @@ then kept, smoothed across the traces and eigen-decomposed on every ``sample_ste
 held over the samples up to the next (the smoothing leaves the tensor little to change over a sample or two; a block
 of a cube never splits its traces, so this is the same in a block as in the cube). A block of a cube gets the whole
 cube's bits at its core (``core``), so a run by blocks and a run in memory give the same strike and dip.
+
+Strike and dip are computed only where the likelihood is at or above a ``floor`` (NaN elsewhere): the tensor is
+smoothed whole (it needs the neighbours), then eigen-decomposed at the kept samples that hold a sample at or above
+the floor only, the same bits as every sample's there.
 """
 
 from __future__ import annotations
@@ -86,7 +90,7 @@ def _smoothed_at(x: np.ndarray, sigma: float, core, sample_step: int = 1, work: 
 
 
 def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0, core=None,
-                                sample_step: int = 1) -> tuple:
+                                sample_step: int = 1, floor: float = 0.0) -> tuple:
     """Strike and dip of the faults of a likelihood image, from its structure tensor.
 
     The normal at each sample is the eigenvector of the largest eigenvalue of the Gaussian-smoothed outer product of
@@ -107,17 +111,20 @@ def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0, c
         samples; the smoothing across the traces is on those samples only), and each strike and dip is held over the
         ``sample_step - 1`` samples after it; 1: every sample. A Gaussian of ``sigma`` 2 keeps 0.7 % of the
         amplitude of a period of 4 samples, the shortest that 2 holds. Not used on a 2D image.
+    floor : float, optional
+        Likelihood below which strike and dip are not computed (NaN there); the tensor is eigen-decomposed only at
+        the kept samples whose held samples reach it. 0 (the default): every sample.
 
     Returns
     -------
     strike_deg, dip_deg : ndarray, float32, the shape of ``likelihood`` (of ``likelihood[core]`` when given)
         Degrees (conventions of :mod:`seismo3d.seismic.faults.likelihood.scan`: strike in [0, 360), dip in (0, 90],
-        index space).
+        index space); NaN where the likelihood is below ``floor``, elsewhere the bits of ``floor=0``.
 
     Raises
     ------
     InputError
-        ``core`` is given for a 2D image, or ``sample_step`` is not an integer >= 1.
+        ``core`` is given for a 2D image, ``sample_step`` is not an integer >= 1, or ``floor`` is not in [0, 1].
 
     References
     ----------
@@ -130,6 +137,8 @@ def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0, c
         raise InputError("orientation_from_likelihood: core is for a cube's (rows, cols); got a 2D image")
     if isinstance(sample_step, bool) or int(sample_step) != sample_step or sample_step < 1:
         raise InputError(f"orientation_from_likelihood: sample_step must be an integer >= 1; got {sample_step!r}")
+    if not 0.0 <= float(floor) <= 1.0:
+        raise InputError(f"orientation_from_likelihood: floor must be a likelihood in [0, 1]; got {floor!r}")
     with progress_within(len(_STAGES), unit="stage") as stages:  # reported in a run in memory only
         stages.start(_STAGES[0])
         grads = np.gradient(p) if min(p.shape) < 3 else [_gradient(p, axis) for axis in range(p.ndim)]
@@ -151,19 +160,50 @@ def orientation_from_likelihood(likelihood: np.ndarray, *, sigma: float = 2.0, c
         stages.advance()
         del grads
         stages.start(_STAGES[2])
+        below = _below_floor(p if core is None or nd == 2 else p[tuple(core)], float(floor))
         if nd == 2:
             normals = _normals(comps)
             del comps
             strike, dip = _normals_to_strike_dip(normals)
         else:  # strike and dip of each chunk of normals as it is decomposed: no cube of normals, nor temporaries
-            strike, dip = _strike_dip_of_tensors(comps)
+            strike, dip = _strike_dip_of_tensors(comps, _skipped(below, step))
             del comps
         stages.advance()
         stages.start(_STAGES[3])
         if step > 1:  # each held over the samples up to the next computed one
             strike, dip = (_held(a, step, p.shape[-1]) for a in (strike, dip))
+        if below is not None:
+            strike[below], dip[below] = np.nan, np.nan
         stages.advance()
     return strike, dip
+
+
+def _below_floor(p: np.ndarray, floor: float):
+    """Samples of ``p`` below ``floor`` (bool, ``p``'s shape), or None when there are none to leave out."""
+    if floor <= 0.0:
+        return None
+    below = p < np.float32(floor)
+    return below if below.any() else None
+
+
+def _skipped(below, step: int):
+    """The kept samples (every ``step``-th) not to eigen-decompose: those whose held samples are all ``below`` the
+    floor; None (every one) when there are none or when they are fewer than half (gathering the others would cost
+    more memory than a run by blocks plans for an orientation block, and save little)."""
+    if below is None:
+        return None
+    skip = ~_held_reach(~below, step)
+    return skip if np.count_nonzero(skip) > skip.size // 2 else None
+
+
+def _held_reach(wanted: np.ndarray, step: int) -> np.ndarray:
+    """The kept samples (every ``step``-th of the last axis) whose value is held over (:func:`_held`) a sample of
+    ``wanted`` (bool, (..., n_samples)): (..., ceil(n_samples / step)) bool."""
+    reach = wanted[..., ::step].copy()
+    for k in range(1, step):
+        held = wanted[..., k::step]
+        reach[..., :held.shape[-1]] |= held
+    return reach
 
 
 def _normals(comps: dict) -> np.ndarray:
@@ -173,20 +213,33 @@ def _normals(comps: dict) -> np.ndarray:
     return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
 
 
-def _strike_dip_of_tensors(comps: dict) -> tuple[np.ndarray, np.ndarray]:
+def _strike_dip_of_tensors(comps: dict, skip: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Strike and dip (float32, degrees) of the 3D tensors ``comps`` (components by their axes ``(a, b)``,
     ``a <= b``): each chunk's unit normals (:func:`seismo3d.seismic._kernels.eig3`) rounded to float32 and turned
-    into angles (:func:`_normals_to_strike_dip`) while in the processor's cache, on the threads that decompose it."""
+    into angles (:func:`_normals_to_strike_dip`) while in the processor's cache, on the threads that decompose it.
+    ``skip`` (bool, the components' shape): tensors left out, NaN in the result; the others are gathered (``comps``
+    emptied as they are), decomposed (each tensor on its own: the same bits) and scattered back."""
     shape = comps[0, 0].shape
-    strike, dip = np.empty(shape, np.float32), np.empty(shape, np.float32)
-    flat_strike, flat_dip = strike.reshape(-1), dip.reshape(-1)
+    keys = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+    at = None if skip is None else np.flatnonzero(~skip.reshape(-1))
+    if at is None:
+        strike, dip = np.empty(shape, np.float32), np.empty(shape, np.float32)
+        tensors = [comps[k] for k in keys]
+        kept_strike, kept_dip = strike.reshape(-1), dip.reshape(-1)
+    else:
+        strike, dip = np.full(shape, np.nan, np.float32), np.full(shape, np.nan, np.float32)
+        tensors = [comps.pop(k).reshape(-1)[at] for k in keys]  # each whole component let go once gathered
+        kept_strike, kept_dip = np.empty(at.size, np.float32), np.empty(at.size, np.float32)
 
     def write(part, vx, vy, vz):
         normals = np.empty((vx.size, 3), np.float32)
         normals[:, 0], normals[:, 1], normals[:, 2] = vx, vy, vz
-        flat_strike[part], flat_dip[part] = _normals_to_strike_dip(normals)
+        kept_strike[part], kept_dip[part] = _normals_to_strike_dip(normals)
 
-    _kernels.eig_vectors(comps[0, 0], comps[0, 1], comps[0, 2], comps[1, 1], comps[1, 2], comps[2, 2], write)
+    if tensors[0].size:
+        _kernels.eig_vectors(*tensors, write)
+    if at is not None:
+        strike.reshape(-1)[at], dip.reshape(-1)[at] = kept_strike, kept_dip
     return strike, dip
 
 

@@ -102,7 +102,8 @@ def _smooth_along_dip(t, n_threads, f, strike, dip, lut, h, need, box, out):
     # 45 degrees in the scan, so the dip vector has its largest component along the sample axis): triangle weights
     # over +-h samples, bilinear interpolation across. Joins fault ridges broken by noise before thinning. Computed
     # on the traces box = (i0, i1, j0, j1) where need (the box's shape) is True, 0 elsewhere in the box (out is f's
-    # shape; the reads are f's, whatever the box). Inlines i0 + t, i0 + t + n_threads, ...
+    # shape; the reads are f's, whatever the box). A sample without strike and dip (NaN: the learned likelihood
+    # below its orientation floor) keeps f. Inlines i0 + t, i0 + t + n_threads, ...
     n0, n1, n2 = f.shape
     n_phi, n_theta, _ = lut.shape
     i0, i1, j0, j1 = box
@@ -111,6 +112,9 @@ def _smooth_along_dip(t, n_threads, f, strike, dip, lut, h, need, box, out):
             for k in range(n2):
                 if not need[i - i0, j - j0, k]:
                     out[i, j, k] = 0.0
+                    continue
+                if math.isnan(strike[i, j, k]) or math.isnan(dip[i, j, k]):
+                    out[i, j, k] = f[i, j, k]
                     continue
                 ip, it = _lut_index(strike[i, j, k], dip[i, j, k], n_phi, n_theta)
                 c = max(lut[ip, it, 5], 1e-3)
@@ -135,16 +139,16 @@ def _smooth_along_dip(t, n_threads, f, strike, dip, lut, h, need, box, out):
 @nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def _ridges(t, n_threads, f, g, strike, dip, lut, floor, box, out):
     # Non-maximum suppression of g across the fault: keep f where g(p) > g(p - n) and g(p) >= g(p + n), n the unit
-    # fault normal of the sample (trilinear interpolation); samples with f <= floor are 0 (not tested). On the traces
-    # box = (i0, i1, j0, j1) only, into out (the box's shape; the reads are g's, whatever the box). Inlines i0 + t,
-    # i0 + t + n_threads, ...
+    # fault normal of the sample (trilinear interpolation); samples with f <= floor, or without strike and dip (NaN:
+    # the learned likelihood below its orientation floor), are 0 (not tested). On the traces box = (i0, i1, j0, j1)
+    # only, into out (the box's shape; the reads are g's, whatever the box). Inlines i0 + t, i0 + t + n_threads, ...
     n0, n1, n2 = f.shape
     n_phi, n_theta, _ = lut.shape
     i0, i1, j0, j1 = box
     for i in range(i0 + t, i1, n_threads):
         for j in range(j0, j1):
             for k in range(n2):
-                if not f[i, j, k] > floor:
+                if not f[i, j, k] > floor or math.isnan(strike[i, j, k]) or math.isnan(dip[i, j, k]):
                     out[i - i0, j - j0, k] = 0.0
                     continue
                 ip, it = _lut_index(strike[i, j, k], dip[i, j, k], n_phi, n_theta)
@@ -183,7 +187,9 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
     Parameters
     ----------
     likelihood, strike, dip : float32 ndarray, one shape
-        Checked by :func:`check_fault_arrays` (2D sections or 3D cubes).
+        Checked by :func:`check_fault_arrays` (2D sections or 3D cubes). Where strike or dip is NaN (the learned
+        likelihood below its orientation floor) the sample is not a ridge (0) and the ranking image there is not
+        averaged along the dip.
     floor : float
         Samples with a likelihood at or below it (compared in float64) are 0 in the result (default: none, a
         likelihood is >= 0). Whether a caller then keeps the values above a threshold ``t`` in float32 or in float64,

@@ -466,3 +466,35 @@ def test_orientation_sample_step_is_a_positive_integer():
     for bad in (0, -1, 1.5, True):
         with pytest.raises(InputError, match="orientation_sample_step"):
             LearnedOptions(orientation_sample_step=bad)
+
+
+def test_below_the_orientation_floor_strike_and_dip_are_nan_and_the_likelihood_the_probability():
+    """``orientation_floor``: in a cube, where the network's probability is below it, strike and dip are NaN and the
+    likelihood is the probability (no dip to test against ``min_dip``); elsewhere all three are the bits of the
+    orientation of every sample (``orientation_floor=0``). A section's are every sample's."""
+    data = synthetic_cube((40, 40, 64), seed=3, noise=0.1).cube
+    section = data[:, 20]
+    every, floored = (learned_fault_likelihood(section, options=LearnedOptions(orientation_floor=f)) for f in (0, 0.5))
+    for name in ("likelihood", "strike_deg", "dip_deg"):
+        assert np.array_equal(getattr(floored, name), getattr(every, name))
+    floor = LearnedOptions().orientation_floor
+    assert floor == 0.01
+    every = learned_fault_likelihood(data, options=LearnedOptions(orientation_floor=0.0))
+    floored = learned_fault_likelihood(data)
+    prob = fault_probability(data)
+    below = prob < np.float32(floor)
+    assert 0.05 < below.mean() < 0.999 and np.isfinite(every.strike_deg).all() and np.isfinite(every.dip_deg).all()
+    for name in ("strike_deg", "dip_deg"):
+        a, b = getattr(floored, name), getattr(every, name)
+        assert np.isnan(a[below]).all() and np.array_equal(a[~below], b[~below])
+    assert np.array_equal(floored.likelihood[below], prob[below]) and (every.likelihood[below] == 0).any()
+    assert np.array_equal(floored.likelihood[~below], every.likelihood[~below])
+
+
+def test_the_orientation_floor_is_a_probability_below_the_seed_threshold():
+    for bad in (-0.01, 1.0):
+        with pytest.raises(InputError, match="orientation_floor"):
+            LearnedOptions(orientation_floor=bad)
+    with pytest.raises(InputError, match="orientation_floor 0.3 leaves the voting's seeds"):
+        FaultTracingOptions(learned=LearnedOptions(orientation_floor=0.3))
+    assert FaultTracingOptions(learned=LearnedOptions(orientation_floor=0.29)).learned.orientation_floor == 0.29

@@ -94,3 +94,29 @@ def test_orientation_reports_its_stages_when_its_step_asks_and_only_then(caplog)
     assert caplog.messages == ["fault orientation: gradient (1/4)", "fault orientation: structure tensor (2/4)",
                                "fault orientation: fault normals (3/4)", "fault orientation: strike and dip (4/4)"]
     assert all(np.array_equal(a, b) for a, b in zip(quiet, reported))
+
+
+@pytest.mark.parametrize("sample_step", [1, 2, 3])
+def test_strike_and_dip_are_nan_exactly_below_the_floor_and_every_samples_above_it(sample_step):
+    """``floor``: strike and dip are NaN at the samples whose likelihood is below it and, at every other sample, the
+    bits of the orientation of every sample (``floor=0``, the tensor decomposed everywhere), in a cube, in a block's
+    core (the floor tested on the core's samples) and in a 2D image."""
+    rng = np.random.default_rng(7)
+    shape = (40, 36, 61)  # an odd number of samples: the last kept sample holds itself only
+    likelihood = (rng.random(shape, dtype=np.float32) ** 4).astype(np.float32)
+    core = (slice(9, 25), slice(9, 27))
+    for floor in (0.05, 0.5, 1.0):
+        below = likelihood < np.float32(floor)
+        assert 0 < below.mean() <= 1
+        for image, crop, at in ((likelihood, None, (slice(None), slice(None))), (likelihood[:34, :36], core, core),
+                                (likelihood[:, 0], None, (slice(None),))):
+            every = orientation_from_likelihood(image, sample_step=sample_step, core=crop)
+            got = orientation_from_likelihood(image, sample_step=sample_step, core=crop, floor=floor)
+            under = image[at] < np.float32(floor)
+            for a, b in zip(got, every):
+                assert a.dtype == np.float32 and a.shape == b.shape
+                assert np.isnan(a[under]).all() and np.isfinite(b).all()
+                assert np.array_equal(a[~under].view(np.uint32), b[~under].view(np.uint32))
+    for bad in (-0.1, 1.5):
+        with pytest.raises(InputError, match="floor"):
+            orientation_from_likelihood(likelihood, floor=bad)

@@ -83,7 +83,7 @@ def test_3d_fault_orientation(traced_cube, seed):
 def test_2d_precision_recall(traced_2d, seed):
     syn, fl, thin, faults = traced_2d[seed]
     assert fl.likelihood.shape == syn.cube.shape
-    assert set(np.unique(fl.strike_deg)) <= {90.0, 270.0}
+    assert set(np.unique(fl.strike_deg[np.isfinite(fl.strike_deg)])) <= {90.0, 270.0}
     assert all(f.points.shape[1] == 2 and f.normals.shape[1] == 2 for f in faults)
     linked = fault_labels(faults, syn.cube.shape) > 0
     linked_scores = evaluate_faults(linked, syn.fault_labels, tolerance=2)
@@ -172,6 +172,27 @@ def test_mask_grown_by_a_sample_is_scipys_maximum_filter(shape):
 
     mask = np.random.default_rng(sum(shape)).random(shape) > 0.85
     assert np.array_equal(_grown(mask), ndi.maximum_filter(mask, size=3, mode="nearest"))
+
+
+def test_ridges_without_strike_and_dip_below_the_orientation_floor():
+    """Strike and dip NaN (the learned likelihood's below its orientation floor): where the ridges do not read them
+    (away from the samples above the seed threshold) the ridges are those of the finite orientation, bit for bit; a
+    sample without them is no ridge, at any floor; inf is refused."""
+    from seismo3d.seismic.faults.surfaces.ridges import ridge_image, ridges
+
+    syn = synthetic_cube((32, 32, 72), n_faults=2, seed=3)
+    fl = fault_likelihood(syn.cube)
+    seed = float(np.quantile(fl.likelihood, 0.97))  # a seed threshold with few samples above it
+    read = ndi.maximum_filter(fl.likelihood > seed, size=3)  # where the ridges above the seed threshold read them
+    unknown = ~ndi.binary_dilation(read, iterations=2)
+    assert 0.3 < unknown.mean() < 0.95
+    strike, dip = (np.where(unknown, np.nan, a).astype(np.float32) for a in (fl.strike_deg, fl.dip_deg))
+    assert np.array_equal(ridges(fl.likelihood, strike, dip, seed), ridges(fl.likelihood, fl.strike_deg,
+                                                                             fl.dip_deg, seed))
+    everywhere = ridge_image(fl.likelihood, strike, dip)
+    assert not everywhere[unknown].any() and everywhere[~unknown].any()
+    with pytest.raises(InputError, match="inf"):
+        ridges(fl.likelihood, np.where(unknown, np.inf, fl.strike_deg), fl.dip_deg, seed)
 
 
 def test_bad_input():

@@ -16,12 +16,10 @@ __all__ = ["window_correlation", "neighbour_confidence"]
 _PAIR_CHUNK = 8192  # pairs at a time (memory: about 0.3 KB a pair per lag searched each side)
 
 
-def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction, *, runner_up=False):
+def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction):
     """For each pair p: the lag around ``centre[p]`` (times on trace ``b[p]``) at which trace ``b[p]`` correlates best
     with the window of trace ``a[p]`` around ``ta[p]``, refined by a parabola, and its correlation; returns (lag
-    relative to the centre, score), NaN where not measured. With ``runner_up``, also the correlation of the best other
-    peak over the lags searched (the next cycle: a lag whose correlation is not below either neighbour's, an end of
-    the lags counting as a peak, since the curve may rise beyond it; NaN where there is none), as a third array.
+    relative to the centre, score), NaN where not measured.
 
     Near the ends of the traces the window is shortened to the samples trace a has (at least 4 each side); a lag is
     scored over the samples where trace b is finite (with the means of those) where they are at least
@@ -35,7 +33,6 @@ def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction, *, runner_u
     n = len(a)
     lag_out = np.full(n, np.nan)
     score_out = np.full(n, np.nan)
-    second_out = np.full(n, np.nan)
     half, max_lag = int(half), int(max_lag)
     n_s = traces.shape[1]
     ta = np.asarray(ta, np.float64)
@@ -47,9 +44,9 @@ def pair_lags(traces, a, ta, b, centre, half, max_lag, min_fraction, *, runner_u
     with np.errstate(invalid="ignore", divide="ignore"):  # NaN windows, empty overlaps: masked
         for s in range(0, keep.size, _PAIR_CHUNK):
             p = keep[s:s + _PAIR_CHUNK]
-            lag_out[p], score_out[p], second_out[p] = _lags(traces, a[p], ta[p], b[p], centre[p],
-                                                            h[p].astype(np.int64), half, max_lag, float(min_fraction))
-    return (lag_out, score_out, second_out) if runner_up else (lag_out, score_out)
+            lag_out[p], score_out[p] = _lags(traces, a[p], ta[p], b[p], centre[p], h[p].astype(np.int64), half,
+                                             max_lag, float(min_fraction))
+    return lag_out, score_out
 
 
 def _read_windows(traces, rows, start, count):
@@ -165,15 +162,7 @@ def _lags(traces, a, ta, b, centre, h, half, max_lag, min_fraction):
     den = y0 - 2 * top + y2
     mid &= den < 0
     off[mid] = np.clip(0.5 * (y0[mid] - y2[mid]) / den[mid], -0.5, 0.5)
-    # the runner-up: the best other peak (not below either neighbour; an end of the lags counts, its curve may rise
-    # beyond), the best lag's own plateau left out
-    lower = np.vstack([np.full((1, n), -np.inf), best[:-1]])
-    upper = np.vstack([best[1:], np.full((1, n), -np.inf)])
-    peak = (best >= lower) & (best >= upper) & (best > -np.inf)
-    peak[np.abs(lag - kbest) <= 1] = False
-    second = np.where(peak, best, -np.inf).max(axis=0, initial=-np.inf)
-    return (np.where(found, (kbest - max_lag) + off, np.nan), np.where(found, top, np.nan),
-            np.where(found & (second > -np.inf), second, np.nan))
+    return np.where(found, (kbest - max_lag) + off, np.nan), np.where(found, top, np.nan)
 
 
 def _shifted(x, width, n_lags):

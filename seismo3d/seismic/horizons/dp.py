@@ -4,7 +4,9 @@ Given a guide (the least-squares horizon of :mod:`~seismo3d.seismic.horizons.lsq
 extrema of the horizon's polarity within ``reach`` samples of the guide as candidates; the Viterbi algorithm chooses
 one per trace minimising, along the line, ``w_guide |pick - guide|`` (per trace) + ``w_step (step - slope)^2`` (the
 step between neighbouring picks against the structure-tensor reflector slope there) + ``w_wave (1 - ncc)`` (their
-waveforms' correlation). A seed's trace keeps the candidate nearest the seed. Lines are the last lateral axis
+waveforms' correlation); where a traced fault lies between the two traces the step is expected to be the slope plus
+the fault's jump there (its throw, as the least-squares pairs take it), and a fault of unknown throw leaves the step
+free. A seed's trace keeps the candidate nearest the seed. Lines are the last lateral axis
 (crosslines of each inline). In a cube the lines are then chosen together: sweeps over inlines and crosslines lower
 the energy of the whole surface, the same terms along both lateral axes (:func:`dp_picks`). Without sweeps,
 :func:`settle_lone_departures` moves back picks that leave the guide by half a reflector period on their inline

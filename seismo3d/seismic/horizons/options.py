@@ -107,11 +107,6 @@ class TrackingOptions:
         Faults whose two sides correlate less than this at their throw (median of ``FaultThrow.correlation``), or not
         better than without it, are not used (:func:`~seismo3d.seismic.horizons.fault_crossings.reliable_throw`);
         where a horizon crosses a used fault, its pairs of traces decide whether it takes the jump.
-    jump_margin : float
-        ('global') Correlation by which a pair of traces across a traced fault must prefer its best peak (the
-        horizon's jump there) to every other cycle, or it is left out of the solve
-        (:func:`~seismo3d.seismic.horizons.lsq.pair_shifts`): about two standard errors of a correlation of 17
-        samples near 0.9, ``(1 - r^2) / sqrt(n - 3)``, so that a difference the noise can make does not decide.
     despike_reach : int
         Traces searched on each side for the neighbours of the lateral continuity check (:func:`despike`).
     despike_agree : float
@@ -160,7 +155,6 @@ class TrackingOptions:
     pierce: float = 1.5
     on_fault: float = 0.5
     min_throw_correlation: float = 0.0
-    jump_margin: float = 0.1
     despike_reach: int = 2
     despike_agree: float = 2.0
     gap_passes: int = 50
@@ -189,8 +183,6 @@ class TrackingOptions:
         for name in ("half_samples", "snap", "seed_snap", "pierce", "on_fault", "despike_agree"):
             object.__setattr__(self, name, float(check_positive(getattr(self, name), name)))
         check_positive(self.fault_zone, "fault_zone", allow_zero=True)
-        if not 0.0 <= self.jump_margin <= 2.0:
-            raise InputError(f"jump_margin is a difference of correlations in [0, 2]; got {self.jump_margin}")
         if not 0.0 <= self.cut_gain <= 1.0:
             raise InputError(f"cut_gain is a fraction in [0, 1]; got {self.cut_gain}")
         if not -1.0 <= self.min_confidence <= 1.0:

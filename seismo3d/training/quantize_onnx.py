@@ -21,8 +21,10 @@ tensor, each range the minimum and maximum the float network reaches on the cali
 100; ONNX Runtime runs a convolution and its ReLU as one integer convolution, ``QLinearConv``). The first
 convolution (one channel in, 4 % of the trained network's multiplications) stays float32, so the amplitudes are not
 rounded to 8 bits (quantising it too saves no more time than running it without ONNX Runtime's blocked layout,
-see :class:`~seismo3d.seismic.faults.likelihood.network.FaultNetwork`, and moves the probability of the 256^3 cube of ``benchmarks/fault_speed.py`` by 3.1e-4 on average instead of 2e-6); so do the head (the 1 x 1
-convolution to one channel) and the logistic sigmoid, so the probability is not rounded to 1/255 steps.
+:class:`~seismo3d.seismic.faults.likelihood.network.FaultNetwork`'s ``blocked_layout``, as the int8 network runs,
+and moves the probability of the 256^3 cube of ``benchmarks/fault_speed.py`` by 3.1e-4 on average instead of 2e-6);
+so do the head (the 1 x 1 convolution to one channel) and the logistic sigmoid, so the probability is not rounded
+to 1/255 steps.
 
 Chosen on generated sections only (16 sections after the calibration's, 128 x 128; absolute difference of the
 probabilities from the float network's): quantising the convolutions alone (a ReLU's input then quantised over its

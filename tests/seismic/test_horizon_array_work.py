@@ -164,7 +164,14 @@ def test_grid_energy_is_the_loops_energy():
         if trial == 3:
             t[rng.random(t.size) < 0.2] += 0.4  # picks that are no candidate
         out, g, wg = t.reshape(lat), guide.reshape(lat), rng.random(lat)
-        energy = dp._grid_energy(out, g, wg, first, pick, unit, whole, traces, slopes, across, 0.7, 1.9, half)
+        # faults' jumps between neighbours (trial 0: none), some of unknown throw (NaN: the step costs nothing)
+        jumps = [np.where(rng.random((lat[0] - 1, lat[1])) < 0.1, rng.normal(0.0, 4.0, (lat[0] - 1, lat[1])), 0.0),
+                 np.where(rng.random((lat[0], lat[1] - 1)) < 0.1, rng.normal(0.0, 4.0, (lat[0], lat[1] - 1)), 0.0)]
+        if trial == 0:
+            jumps = [np.zeros_like(v) for v in jumps]
+        jumps[1][rng.random(jumps[1].shape) < 0.03] = np.nan
+        steps = dp._grid_jumps(jumps, lat)
+        energy = dp._grid_energy(out, g, wg, first, pick, unit, whole, traces, slopes, across, steps, 0.7, 1.9, half)
         # the replaced kernel's loop (dp._grid_energy)
         wa, wb, e = np.empty(2 * half + 1), np.empty(2 * half + 1), 0.0
         ni, nx = lat
@@ -175,7 +182,7 @@ def test_grid_energy_is_the_loops_energy():
                 e += wg[i, j] * abs(out[i, j] - g[i, j])
                 kk = i * nx + j
                 q = dp._candidate_at.py_func(first, pick, kk, out[i, j])
-                for i2, j2, along in ((i + 1, j, across), (i, j + 1, slopes)):
+                for i2, j2, along, jump in ((i + 1, j, across, jumps[0]), (i, j + 1, slopes, jumps[1])):
                     if i2 >= ni or j2 >= nx or not np.isfinite(out[i2, j2]):
                         continue
                     k2 = i2 * nx + j2
@@ -186,7 +193,8 @@ def test_grid_energy_is_the_loops_energy():
                         r = float(np.dot(unit[q].astype(np.float64), unit[q2].astype(np.float64)))
                     else:
                         r = dp._pick_ncc(traces, unit, whole, kk, out[i, j], q, k2, out[i2, j2], q2, half, wa, wb)
-                    e += 0.7 * step * step + 1.9 * (1.0 - r)
+                    fault = jump[i, j]  # the faults' jump from (i, j) to (i2, j2)
+                    e += (0.0 if np.isnan(fault) else 0.7 * (step - fault) ** 2) + 1.9 * (1.0 - r)
         assert energy == pytest.approx(e, rel=1e-13)
 
 

@@ -4,7 +4,9 @@ Given a guide (the least-squares horizon of :mod:`~seismo3d.seismic.horizons.lsq
 extrema of the horizon's polarity within ``reach`` samples of the guide as candidates; the Viterbi algorithm chooses
 one per trace minimising, along the line, ``w_guide |pick - guide|`` (per trace) + ``w_step (step - slope)^2`` (the
 step between neighbouring picks against the structure-tensor reflector slope there) + ``w_wave (1 - ncc)`` (their
-waveforms' correlation). A seed's trace keeps the candidate nearest the seed. Lines are the last lateral axis
+waveforms' correlation); where a traced fault lies between the two traces the step is expected to be the slope plus
+the fault's jump there (its throw, as the least-squares pairs take it), and a fault of unknown throw leaves the step
+free. A seed's trace keeps the candidate nearest the seed. Lines are the last lateral axis
 (crosslines of each inline). In a cube the lines are then chosen together: sweeps over inlines and crosslines lower
 the energy of the whole surface, the same terms along both lateral axes (:func:`dp_picks`). Without sweeps,
 :func:`settle_lone_departures` moves back picks that leave the guide by half a reflector period on their inline
@@ -220,7 +222,7 @@ def window_ncc(a, b):
 
 def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: np.ndarray, lateral_shape: tuple,
              fixed: np.ndarray, slopes: np.ndarray, *, reach: float, w_guide, w_step: float, w_wave: float, half: int,
-             cross_slopes: np.ndarray | None = None, sweeps: int = 0) -> np.ndarray:
+             cross_slopes: np.ndarray | None = None, sweeps: int = 0, jumps: list | None = None) -> np.ndarray:
     """Picks of a horizon chosen by dynamic programming along lines, then (cubes) by sweeps over both lateral axes.
 
     Every line of the last lateral axis (crosslines of each inline) is chosen by the Viterbi algorithm (module
@@ -260,6 +262,11 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
         Reflector slope along the first lateral axis (cubes); without it, no sweeps.
     sweeps : int
         Coordinate-descent sweeps over both axes (cubes; 0: the line-by-line picks).
+    jumps : list of ndarray, optional
+        Traced faults' jumps between neighbouring traces, one array per lateral axis shaped like the grid less one
+        along the axis (:attr:`~seismo3d.seismic.horizons.fault_pairs.FaultSteps.jumps`, samples; 0 where no fault):
+        a step across a fault is expected to be the reflector slope plus the jump (Hale 2013: the horizon jumps by
+        the throw), and a step across a fault of unknown throw (NaN) costs nothing; default no faults.
 
     Returns
     -------
@@ -275,6 +282,7 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     wg = np.array(np.broadcast_to(np.asarray(w_guide, np.float64), guide.shape).reshape(lateral_shape))
     ids = np.arange(g.size).reshape(lateral_shape)
     across = slopes if cross_slopes is None else cross_slopes
+    steps = _grid_jumps(jumps, g.shape)  # the jump into each trace from the previous one along each axis
     *cands, slope, cross_slope = _candidates(traces, np.ascontiguousarray(guide, np.float64),
                                              np.ascontiguousarray(fixed, np.float64), picks, offsets, float(reach),
                                              int(half), slopes, across)
@@ -282,7 +290,8 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     lines = np.full(lateral_shape, np.nan)
     _sweep_lines(lines.reshape(-1, g.shape[-1]), np.ascontiguousarray(g.reshape(-1, g.shape[-1])),
                  wg.reshape(-1, g.shape[-1]), ids.reshape(-1, g.shape[-1]), *cands, slope, cross_slope, traces,
-                 slopes, across, w_step, w_wave, half, False)
+                 slopes, across, steps[-1].reshape(-1, g.shape[-1]), steps[0].reshape(-1, g.shape[-1]), w_step,
+                 w_wave, half, False)
     if len(lateral_shape) == 1 or cross_slopes is None or sweeps <= 0:
         return lines.ravel()
     nearest = _nearest_picks(picks, offsets, np.where(np.isfinite(fixed), fixed, guide), reach)
@@ -291,8 +300,9 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     def descend(start):
         cur = start.copy()
         for _ in range(sweeps):
-            _sweep(cur, g, wg, ids, cands, (slope, cross_slope), traces, slopes, cross_slopes, w_step, w_wave, half)
-        return cur, _grid_energy(cur, g, wg, *cands, traces, slopes, cross_slopes, w_step, w_wave, half)
+            _sweep(cur, g, wg, ids, cands, (slope, cross_slope), traces, slopes, cross_slopes, steps, w_step, w_wave,
+                   half)
+        return cur, _grid_energy(cur, g, wg, *cands, traces, slopes, cross_slopes, steps, w_step, w_wave, half)
 
     # the two starts are independent: one thread each (the compiled sweeps release the GIL)
     with ThreadPoolExecutor(2) as pool:
@@ -304,34 +314,58 @@ def dp_picks(traces: np.ndarray, picks: np.ndarray, offsets: np.ndarray, guide: 
     return best.ravel()
 
 
-def _sweep(out, g, wg, ids, cands, at_candidates, traces, slopes, cross_slopes, w_step, w_wave, half):
+def _grid_jumps(jumps, lateral_shape) -> list:
+    """The faults' jumps of :func:`dp_picks` as one array per lateral axis shaped like the grid: the jump into each
+    trace from the previous one along the axis (0 on the first; zeros without faults)."""
+    out = []
+    for axis in range(len(lateral_shape)):
+        grid = np.zeros(lateral_shape)
+        if jumps is not None:
+            np.moveaxis(grid, axis, 0)[1:] = np.moveaxis(np.asarray(jumps[axis], np.float64), axis, 0)
+        out.append(grid)
+    return out
+
+
+def _sweep(out, g, wg, ids, cands, at_candidates, traces, slopes, cross_slopes, steps, w_step, w_wave, half):
     """One coordinate-descent sweep: every line along the first lateral axis, then along the last, re-chosen by
     :func:`_sweep_lines` with the picks of its two neighbouring lines held (``out``, (n_inlines, n_xlines), updated in
-    place; ``cands``: :func:`_candidates`' candidates and waveforms, ``at_candidates`` its two slopes)."""
+    place; ``cands``: :func:`_candidates`' candidates and waveforms, ``at_candidates`` its two slopes; ``steps``:
+    :func:`_grid_jumps`)."""
     for axis in (0, 1):
         along, across = (cross_slopes, slopes) if axis == 0 else (slopes, cross_slopes)
         along_c, across_c = at_candidates[::-1] if axis == 0 else at_candidates
-        g_t, w_t, ids_t, out_t = (np.ascontiguousarray(np.moveaxis(x, axis, -1)) for x in (g, wg, ids, out))
-        _sweep_lines(out_t, g_t, w_t, ids_t, *cands, along_c, across_c, traces, along, across, w_step, w_wave, half,
-                     True)
+        j_along, j_across = (steps[0], steps[1]) if axis == 0 else (steps[1], steps[0])
+        g_t, w_t, ids_t, out_t, ja_t, jc_t = (np.ascontiguousarray(np.moveaxis(x, axis, -1))
+                                              for x in (g, wg, ids, out, j_along, j_across))
+        _sweep_lines(out_t, g_t, w_t, ids_t, *cands, along_c, across_c, traces, along, across, ja_t, jc_t, w_step,
+                     w_wave, half, True)
         np.moveaxis(out, axis, -1)[...] = out_t
 
 
-def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across, w_step,
-                 w_wave, half, hold):
+def _sweep_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across,
+                 jump_along, jump_across, w_step, w_wave, half, hold):
     """:func:`_choose_lines` with its work arrays allocated here (a kernel's np.empty compiles numba's allocator:
     0.2 CPU s of a first run)."""
     length = guide.shape[1]
     width = max(1, int(np.diff(first).max(initial=0)))
     _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across,
-                  w_step, w_wave, half, hold, np.empty((length, 2), np.int64), np.empty((length, 2)),
-                  np.empty((length, width)), np.empty((length, width), np.int64), np.empty(2 * half + 1),
-                  np.empty(2 * half + 1), np.empty(2, np.int64))
+                  jump_along, jump_across, w_step, w_wave, half, hold, np.empty((length, 2), np.int64),
+                  np.empty((length, 2)), np.empty((length, width)), np.empty((length, width), np.int64),
+                  np.empty(2 * half + 1), np.empty(2 * half + 1), np.empty(2, np.int64))
+
+
+@nb.njit(cache=True, no_cfunc_wrapper=True, inline="always")
+def _step_cost(step, jump, w_step):
+    """``w_step (step - jump)^2``; 0 across a fault of unknown throw (``jump`` NaN)."""
+    if not math.isfinite(jump):
+        return 0.0
+    d = step - jump
+    return w_step * d * d
 
 
 @nb.njit(cache=True, no_cfunc_wrapper=True, nogil=True)
-def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across, w_step,
-                  w_wave, half, hold, c_ids, c_t, cost, back, wa, wb, held):
+def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, across_c, traces, along, across,
+                  jump_along, jump_across, w_step, w_wave, half, hold, c_ids, c_t, cost, back, wa, wb, held):
     """The lines (rows of the (n_lines, length) arrays) chosen in order, into ``out``; with ``hold``, each with the
     picks in ``out`` of the line before it (already re-chosen) and of the line after it held, else each alone.
 
@@ -339,7 +373,9 @@ def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, a
     ``w_guide |p - guide|`` per trace and ``w_step (step - slope)^2 + w_wave (1 - ncc)`` per step. The picks of the
     neighbouring lines held (``c_ids`` / ``c_t`` (length, 2), -1 / NaN where none; the previous line's in column 0
     and the next line's in column 1) add their pair costs (slopes ``across`` across the lines) to each candidate's
-    guide term. ``along_c``, ``across_c``: ``along`` and ``across`` at each candidate. A line's pick is NaN where the
+    guide term. ``along_c``, ``across_c``: ``along`` and ``across`` at each candidate. ``jump_along[i, j]``: the
+    faults' jump from trace ``j - 1`` to ``j`` of line ``i``; ``jump_across[i, j]``: from line ``i - 1`` to line ``i``
+    at trace ``j`` (:func:`_grid_jumps`): a step is expected to be the slope plus it. A line's pick is NaN where the
     trace has no candidate; the line restarts after it. ``c_ids``, ``c_t``, ``cost``, ``back`` (length, at least the
     most candidates of a trace), ``wa``, ``wb`` (2 half + 1), ``held`` (2): work arrays. One kernel, not a loop calling
     a kernel per line: numba compiles a called kernel on its own and again inside its caller."""
@@ -398,16 +434,18 @@ def _choose_lines(out, guide, w_guide, ids, first, pick, unit, whole, along_c, a
                         sc = across_c[qb]
                         # the previous line's pick before this one (e = 0), the next line's after it
                         step = (tb - to) - 0.5 * (so + sc) if e == 0 else (to - tb) - 0.5 * (sc + so)
+                        jump = jump_across[i, j] if e == 0 else jump_across[i + 1, j]
                     else:
                         ko = ka
                         qo = first[ka] + e - n_cross
                         to = pick[qo]
                         step = (tb - to) - 0.5 * (along_c[qo] + sb)
+                        jump = jump_along[i, j]
                     r = _pick_ncc(traces, unit, whole, ko, to, qo, kb, tb, qb, half, wa, wb)
                     if e < n_cross:
-                        u += w_step * step * step + w_wave * (1.0 - r)
+                        u += _step_cost(step, jump, w_step) + w_wave * (1.0 - r)
                         continue
-                    v = cost[j - 1, e - n_cross] + w_step * step * step + w_wave * (1.0 - r)
+                    v = cost[j - 1, e - n_cross] + _step_cost(step, jump, w_step) + w_wave * (1.0 - r)
                     if v < best:
                         best, arg = v, e - n_cross
                 if n_prev == 0:
@@ -445,7 +483,8 @@ def _nearest_picks(picks, offsets, times, reach):
     return np.where(last >= 0, picks[last], np.nan)
 
 
-def _grid_energy(out, guide, wg, first, pick, unit, whole, traces, slopes, cross_slopes, w_step, w_wave, half):
+def _grid_energy(out, guide, wg, first, pick, unit, whole, traces, slopes, cross_slopes, steps, w_step, w_wave,
+                 half):
     """The energy the line sweeps lower, over a (n_inlines, n_xlines) grid of picks: guide terms plus the pair costs
     ``w_step (step - slope)^2 + w_wave (1 - ncc)`` of neighbouring traces along both axes (pairs with an empty pick
     left out). In numpy: the terms added one after the other in the order of a loop over the grid (each trace's
@@ -464,7 +503,8 @@ def _grid_energy(out, guide, wg, first, pick, unit, whole, traces, slopes, cross
     terms = np.zeros((t.size, 3))
     terms[k, 0] = wg.ravel()[k] * np.abs(t[k] - guide.ravel()[k])
     n_s = slopes.shape[1]
-    for col, (along, shift) in enumerate(((cross_slopes, nx), (slopes, 1)), start=1):
+    for col, (along, shift, jump) in enumerate(((cross_slopes, nx, steps[0].ravel()), (slopes, 1, steps[1].ravel())),
+                                               start=1):
         ka = k[(k % nx + 1 < nx) if shift == 1 else (k + shift < t.size)]  # the pair's second trace on the grid
         ka = ka[live[ka + shift]]
         kb = ka + shift
@@ -472,6 +512,9 @@ def _grid_energy(out, guide, wg, first, pick, unit, whole, traces, slopes, cross
         sa = along[ka, np.clip(np.rint(ta), 0, n_s - 1).astype(np.int64)]
         sb = along[kb, np.clip(np.rint(tb), 0, n_s - 1).astype(np.int64)]
         step = (tb - ta) - 0.5 * (sa + sb)  # the slopes added in their dtype, as the compiled loop
+        jb = jump[kb]
+        with np.errstate(invalid="ignore"):
+            step_cost = np.where(np.isfinite(jb), w_step * (step - jb) * (step - jb), 0.0)
         qa, qb = q[ka], q[kb]
         units = (qa >= 0) & (qb >= 0)
         units[units] &= whole[qa[units]] & whole[qb[units]]
@@ -481,7 +524,7 @@ def _grid_energy(out, guide, wg, first, pick, unit, whole, traces, slopes, cross
         if raw.any():
             r[raw] = _windows_ncc(sample_windows(traces, ka[raw], ta[raw], half),
                                   sample_windows(traces, kb[raw], tb[raw], half))
-        terms[ka, col] = w_step * step * step + w_wave * (1.0 - r)
+        terms[ka, col] = step_cost + w_wave * (1.0 - r)
     return float(np.cumsum(terms.ravel())[-1]) if terms.size else 0.0
 
 

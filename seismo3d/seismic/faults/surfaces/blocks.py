@@ -29,7 +29,7 @@ from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
     CUBE, BlockStep, lateral_blocks, plan_steps, smallest_need,
 )
-from ...blocks.statistics import otsu, quantile, streamed_otsu, streamed_quantile
+from ...blocks.statistics import streamed_otsu, streamed_quantile
 from ...blocks.stores import StoreRun
 from ..windows import StoredWindows
 from ..options import FaultTracingOptions
@@ -64,9 +64,6 @@ _THIN_BYTES = 44
 # frames, links, labels, the merging's KD-tree; measured 219-234 bytes a cell on 1.4 M cells of a 512^3 cube, 250 on
 # the 11 M cells of a 1448 x 1448 x 512 one).
 CANDIDATE_BYTES = 80  # points, values, angles (36), the sort keys, order and sorted copy
-# Bytes per positive thinned vote gathered for the thresholds: the value (float32), the histogram's and the quantile's
-# copies of it
-_VALUE_BYTES = 12
 CELL_BYTES = 240
 # The fault likelihood's arrays the ridges read (the run's stores' names of the likelihood group's arrays)
 LIKELIHOOD_INPUTS = ("fault_likelihood", "fault_strike_deg", "fault_dip_deg")
@@ -441,38 +438,24 @@ class SurfaceRun:
     def thresholds(self) -> tuple[float, float]:
         """The thresholds from the thinned votes of every block: Otsu's threshold of the positive ones and, when they
         are dense, their exact quantile (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`). In
-        memory, and by blocks when the positive values the blocks listed fit in what the memory limit leaves, the
-        libraries' on those values (:func:`~seismo3d.seismic.blocks.statistics.otsu`, ``quantile``); else dask
-        reductions over the store's chunks, which equal them (:mod:`~seismo3d.seismic.blocks.statistics`)."""
+        memory the libraries' on the values (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds`); by
+        blocks dask reductions over the store's chunks, which equal them
+        (:mod:`~seismo3d.seismic.blocks.statistics`)."""
         stats = self.run.run_step(self.steps["thin"], self.blocks("thin"), self.image_shape)
         thin = self.run.arrays["thin_raw"]  # an array in memory, or a Zarr store's path
         if isinstance(thin, np.ndarray):
             return self.opt.thresholds(thin)
+        import dask.array as da
+
         n_values = sum(r["count"] for r in stats)
         n_samples = int(np.prod(self.plan.shape, dtype=np.int64))
         if n_values == 0:
             return self.opt.thresholds_from(1.0, 0, n_samples, None)
-        values = self._thinned_values(n_values)
-        if values is not None:  # the same values as the store's positive ones: the same thresholds, read at once
-            return self.opt.thresholds_from(otsu(values), n_values, n_samples, lambda q: quantile(values, q))
         vmin = min(r["min"] for r in stats if r["count"])
         vmax = max(r["max"] for r in stats if r["count"])
-        import dask.array as da
-
         values = da.from_zarr(thin)
         return self.opt.thresholds_from(streamed_otsu(self.run, values, vmin, vmax), n_values, n_samples,
                                         lambda q: streamed_quantile(self.run, values, q, n_values, vmin, vmax))
-
-    def _thinned_values(self, n: int):
-        """The ``n`` positive thinned votes the blocks of the thinning listed, gathered; None when they need more
-        than the memory limit leaves (:data:`_VALUE_BYTES` each), or when a block finished by an earlier version of
-        the run left no list."""
-        if self.memory is not None and n * _VALUE_BYTES > self.memory - resident_memory():
-            return None
-        try:
-            return self.run.gathered_lists("thin", self.blocks("thin"), ("values",))["values"]
-        except FileNotFoundError:
-            return None
 
     def cells(self, lower: float) -> int:
         """Thinned votes at or above ``lower`` kept (``thin``), the others set to 0, and its cells listed per

@@ -83,7 +83,7 @@ def test_blocks_give_the_in_memory_faults(cube, likelihood, reference, tmp_path,
     assert result.blocks_computed["votes"] == 6 and result.blocks_computed["ridges"] == 6
     assert sum(result.blocks_resumed.values()) == 0
     # the seconds of every step: the block steps, then the skins, the throw and the evidence (run.json's)
-    assert {"fill", "ridges", "surfaces", "votes", "thin", "cells", "fault skins", "throw", "evidence"} <= set(
+    assert {"ridges", "surfaces", "votes", "thin", "cells", "fault skins", "throw", "evidence"} <= set(
         result.seconds) and all(v >= 0 for v in result.seconds.values())
     assert result.n_cells == int(np.count_nonzero(reference.thin))
     _assert_same_faults(result, reference)

@@ -27,10 +27,9 @@ from scipy.ndimage import binary_opening, maximum_filter1d
 
 from .._validation import check_int, check_positive, check_seismic_layout
 from ..errors import InputError, Seismo3dWarning, UnsupportedDataError
-from .blocks.apply import BlockOutput
 
 __all__ = ["CleanTraces", "CubeAmplitudes", "DeadSampleOptions", "check_amplitudes", "check_finite", "check_varies",
-           "clean_traces", "clipped_count", "dead_samples", "fill_block", "fill_values", "finite_cube", "near_dead_samples",
+           "clean_traces", "clipped_count", "dead_samples", "fill_values", "finite_cube", "near_dead_samples",
            "warn_clipped", "warn_dead", "warn_non_finite"]
 
 
@@ -471,22 +470,3 @@ def _dead_counts(block, fill, lo, hi, options) -> tuple[int, int]:
     dead = dead_samples(np.asarray(block, np.float32), fill, lo, hi, options=options)
     return int(np.count_nonzero(dead)), int(np.count_nonzero(dead.all(axis=-1)))
 
-
-def fill_block(f, lo: float, hi: float, dead) -> BlockOutput:
-    """The fill values of one block of amplitudes under the dead-sample rules (:func:`fill_values`).
-
-    Parameters
-    ----------
-    f : (m0, m1, n_samples) array_like
-        Amplitudes of the block.
-    lo, hi : float
-        The cube's smallest and largest amplitude.
-    dead : DeadSampleOptions
-
-    Returns
-    -------
-    BlockOutput
-        Summary ``fill``: the fill values found, a list of floats.
-    """
-    return BlockOutput(summary={"fill": [float(v) for v in fill_values(np.asarray(f, np.float32), lo, hi,
-                                                                        options=dead)]})

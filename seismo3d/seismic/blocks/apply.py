@@ -9,17 +9,20 @@ halo) and returns a :class:`BlockOutput`. The same declared steps run on a whole
 :class:`~seismo3d.seismic.blocks.executor.BlockRun` (``run_step``, the steps' lists): one run of the steps serves a
 cube in memory and a cube by blocks.
 
-Why not :func:`dask.array.map_overlap` to read the blocks? Its halo is cut from the neighbouring chunks, so each
-block's task depends on its 8 neighbours' whole chunks: with chunks the size of the blocks, the inputs of 9 blocks are
-held to compute one (dask 2026.8 does not fuse the slices into the reads). On a 768 x 768 x 128 float32 Zarr array in
-blocks of 128 traces with a halo of 16 (12.5 MiB a block), one worker, a block function holding 3 copies of its block,
-``map_overlap`` peaked 272 MiB above the process against 103 MiB for the same blocks read as slices of the region
-around each (dask slicing: only the chunks the region crosses, released with the task; ``benchmarks/block_reads.py``).
-A step's blocks are planned from a memory limit (:mod:`~seismo3d.seismic.blocks.plan`), so the executor reads each
-block's region by slicing (dask for the cube, Zarr for the stores), and adds what dask lacks: several stores written
-at once, per-step halos and block sizes, a small result reduced or gathered per block, and a marker per block after
-its data so that an interrupted run resumes from the finished blocks (dask recomputes every block of an interrupted
-``to_zarr``).
+Why not :func:`dask.array.map_overlap` to read the blocks? Its halo is cut from the neighbouring chunks (even with
+``boundary='none'``), so each block's task depends on its 8 neighbours' whole chunks, each held until the last block
+that needs it has run, and its halo is concatenated into a new array: with chunks the size of the blocks, the inputs of
+several blocks are held to compute one (dask 2026.8 does not fuse the slices into the reads). On a 768 x 768 x 128
+float32 Zarr array in blocks of 128 traces with a halo of 16 (12.5 MiB a block), one worker, a block function holding 3
+copies of its block (``benchmarks/block_reads.py``): ``map_overlap`` peaked 260 MiB above the process, dask holding up
+to 104 MiB of input arrays between tasks; the same blocks read as dask slices of the region around each (only the chunks
+the region crosses, released with the task) 103 MiB, 12 MiB held; :func:`dask.array.map_blocks` whose function slices
+its region from the store (``block_info``) 137 MiB, nothing held (glibc's arenas of Zarr's reading threads: 82 MiB with
+one arena, ``MALLOC_ARENA_MAX=1``). A step's blocks are planned from a memory limit
+(:mod:`~seismo3d.seismic.blocks.plan`), so the executor reads each block's region by slicing (dask for the cube, Zarr
+for the stores), and adds what dask lacks: several stores written at once, per-step halos and block sizes, a small
+result reduced or gathered per block, and a marker per block after its data so that an interrupted run resumes from the
+finished blocks (dask recomputes every block of an interrupted ``to_zarr``).
 """
 
 from __future__ import annotations

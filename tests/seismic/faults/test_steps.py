@@ -51,7 +51,7 @@ def test_the_run_in_memory_is_the_whole_image_functions(cube, ndim):
     fl = fault_likelihood(data, options=opt.scan, progress=False)
     run = memory_surface_run(data, fl.likelihood.copy(), fl.strike_deg, fl.dip_deg, opt)
     found = surface_cells(run, opt)
-    assert run.run.computed == {name: 1 for name in ("fill", "ridges", "surfaces", "votes", "thin", "cells")}
+    assert run.run.computed == {name: 1 for name in ("ridges", "surfaces", "votes", "thin", "cells")}
 
     seeds = thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg, threshold=0.0)
     votes = vote_faults(fl.likelihood, fl.strike_deg, fl.dip_deg, seeds, options=opt.voting)

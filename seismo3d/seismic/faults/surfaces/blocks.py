@@ -6,7 +6,8 @@ array in memory as one block (:func:`memory_surface_run`, :class:`~seismo3d.seis
 the faults do not depend on how the cube was run. Each step reads its block with its halo and writes the core; its
 algorithm on a block is beside the one it runs:
 
-fill values (``amplitudes.fill_block``), ridges and seed candidates (``ridges.ridge_block``), each seed's surface
+ridges and seed candidates (``ridges.ridge_block``, the dead samples from the cube's
+:class:`~seismo3d.seismic.amplitudes.CubeAmplitudes`), each seed's surface
 once (``voting.surface_block``) and the votes of the surfaces reaching a block in id order (``voting.vote_block``),
 thinning (``ridges.thin_block``) and thresholds from histograms (:mod:`seismo3d.seismic.blocks.statistics`), cells
 (``ridges.cell_block``) linked into skins with their throws (:func:`~seismo3d.seismic.faults.steps.faults_from_cells`).
@@ -29,13 +30,13 @@ from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
     CUBE, BlockStep, lateral_blocks, plan_steps, smallest_need,
 )
-from ...blocks.statistics import otsu, quantile, streamed_otsu, streamed_quantile
+from ...blocks.statistics import streamed_otsu, streamed_quantile
 from ...blocks.stores import StoreRun
 from ..windows import StoredWindows
 from ..options import FaultTracingOptions
 from ..result import ChunkedFaults, fault_frames
 from ..steps import faults_from_cells, surface_cells
-from ...amplitudes import CubeAmplitudes, fill_block
+from ...amplitudes import CubeAmplitudes, fill_values, finite_cube
 from .ridges import RIDGE_HALO, THIN_HALO, amplitude_halo, cell_block, ridge_block, thin_block
 from .voting import surface_block, vote_block
 from .voting_kernels import greedy_seeds
@@ -64,9 +65,6 @@ _THIN_BYTES = 44
 # frames, links, labels, the merging's KD-tree; measured 219-234 bytes a cell on 1.4 M cells of a 512^3 cube, 250 on
 # the 11 M cells of a 1448 x 1448 x 512 one).
 CANDIDATE_BYTES = 80  # points, values, angles (36), the sort keys, order and sorted copy
-# Bytes per positive thinned vote gathered for the thresholds: the value (float32), the histogram's and the quantile's
-# copies of it
-_VALUE_BYTES = 12
 CELL_BYTES = 240
 # The fault likelihood's arrays the ridges read (the run's stores' names of the likelihood group's arrays)
 LIKELIHOOD_INPUTS = ("fault_likelihood", "fault_strike_deg", "fault_dip_deg")
@@ -78,8 +76,7 @@ class SurfacePlan:
 
     shape: tuple
     tile: int
-    dead: int     # block sizes (traces a side) of the steps
-    ridge: int
+    ridge: int    # block sizes (traces a side) of the steps
     vote: int
     thin: int
     reach: int    # a voting box's reach from its seed
@@ -100,16 +97,13 @@ def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
     Returns
     -------
     tuple of BlockStep
-        ``'fill'``, ``'ridges'``, ``'surfaces'``, ``'thin'`` (planned: ``dead``, ``ridge``, ``vote``, ``thin`` of
-        :class:`SurfacePlan`), ``'votes'``, ``'cells'``.
+        ``'ridges'``, ``'surfaces'``, ``'thin'`` (planned: ``ridge``, ``vote``, ``thin`` of :class:`SurfacePlan`),
+        ``'votes'``, ``'cells'``.
     """
     nt = shape[2]
     reach = opt.voting.reach(shape)
     threads = numba.get_num_threads()
     halo = amplitude_halo(opt)
-
-    def dead_bytes(b):
-        return b * b * nt * _DEAD_BYTES
 
     def ridge_bytes(b):
         return (b + 2 * halo) ** 2 * nt * _DEAD_BYTES + (b + 2 * RIDGE_HALO) ** 2 * nt * _RIDGE_BYTES
@@ -128,8 +122,7 @@ def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
     def thin_bytes(b):
         return (b + 2 * THIN_HALO) ** 2 * nt * _THIN_BYTES
 
-    return (BlockStep("fill", "reduce", 0, dead_bytes, cap, function=fill_block, label="fill values", inputs=(CUBE,)),
-            # the amplitudes read with their halo, the likelihood (read by slicing) with the ridges'
+    return (# the amplitudes read with their halo, the likelihood (read by slicing) with the ridges'
             BlockStep("ridges", "gather", halo, ridge_bytes, cap, function=ridge_block, label="fault ridges",
                       inputs=(CUBE, *LIKELIHOOD_INPUTS), place=True, lazy=True,
                       outputs=("slope_inline", "slope_xline", "likelihood", "near")),
@@ -192,7 +185,7 @@ def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baselin
     steps = block_steps(shape, opt, int(chunking.block) if chunking.block else min(max(n0, n1), 512))
     sizes = plan_steps(steps, chunking, baseline=baseline,
                        what=f"a chunked run of the fault surfaces of a {n0} x {n1} x {nt} cube")
-    return SurfacePlan((n0, n1, nt), int(chunking.tile), sizes["fill"], sizes["ridges"], sizes["surfaces"], sizes["thin"],
+    return SurfacePlan((n0, n1, nt), int(chunking.tile), sizes["ridges"], sizes["surfaces"], sizes["thin"],
                        opt.voting.reach(shape))
 
 
@@ -226,7 +219,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         Report progress per block and per fault.
     amplitudes : CubeAmplitudes, optional
         The cube's smallest and largest amplitude and its fill values, when measured already
-        (:func:`~seismo3d.seismic.amplitudes.finite_cube`); default: measured here, a pass over the cube.
+        (:func:`~seismo3d.seismic.amplitudes.finite_cube`); default: measured here by it (passes over the cube).
     attrs : dict, optional
         More attributes of the output group (JSON-serialisable, e.g. the input's name), written with the others
         before it is renamed into place.
@@ -265,12 +258,16 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
             raise InputError(f"{likelihood} has no {name!r} array of the cube's shape {shape}; pass the output of "
                              "chunked_fault_likelihood for this cube")
     plan = plan_blocks(shape, opt, chunking, worker_baseline(chunking, x))
+    if amplitudes is None:
+        x, amplitudes = finite_cube(x, opt.dead)
     memory = chunking.limit  # the cells' and candidates' checks: less the RSS
     store = StoreRun(pathlib.Path(output), chunking, progress, outputs=_OUTPUTS)
     # another likelihood written at the same path is not this one (its id)
     manifest = store.manifest_for(shape, opt, plan, likelihood=str(pathlib.Path(likelihood).resolve()),
                              likelihood_id=group.attrs.get("id"))
-    plan = SurfacePlan(**dict(manifest["plan"], shape=tuple(manifest["plan"]["shape"])))  # resuming: its blocks
+    # resuming: its blocks (the plan of an older run had more steps)
+    kept = {k: v for k, v in manifest["plan"].items() if k in SurfacePlan.__dataclass_fields__}
+    plan = SurfacePlan(**dict(kept, shape=tuple(kept["shape"])))
     done = store.finished_output(manifest, "cube, likelihood and options")
     if done is None:  # the block steps up to the cells (a resumed run skips the finished blocks)
         # the work arrays (the masks near dead samples, compressed; the thinned votes before the threshold), the
@@ -280,7 +277,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         store.arrays.update(zip(LIKELIHOOD_INPUTS, (f"{likelihood}/{name}" for name in
                                                     ("likelihood", "strike_deg", "dip_deg"))))
         with store.scheduled():
-            run = SurfaceRun(store, x, plan, opt, shape, memory=memory, amplitudes=amplitudes)
+            run = SurfaceRun(store, x, plan, opt, shape, amplitudes, memory=memory)
             found = surface_cells(run, opt)
             # the cells gathered into 1D arrays of the output group, in C order (the skins then need no sorted copies)
             store.write_gathered("cells", run.blocks("cells"), {
@@ -339,9 +336,12 @@ def memory_surface_run(cube: np.ndarray, likelihood: np.ndarray, strike_deg: np.
     shape = image if len(image) == 3 else (image[0], 1, image[1])  # a section: a cube of one crossline
     arrays = dict(zip(LIKELIHOOD_INPUTS, (a.reshape(shape) for a in (likelihood, strike_deg, dip_deg))))
     side = max(shape[:2])
-    plan = SurfacePlan(shape, side, side, side, side, side, opt.voting.reach(image))
-    return SurfaceRun(MemoryRun(shape, arrays=arrays, progress=progress), np.asarray(cube).reshape(shape), plan, opt,
-                      image, slopes=False)
+    plan = SurfacePlan(shape, side, side, side, side, opt.voting.reach(image))
+    x = np.asarray(cube).reshape(shape)
+    lo, hi = float(x.min()), float(x.max())  # the whole array's, as finite_cube measures a cube by blocks
+    amplitudes = CubeAmplitudes(lo, hi, tuple(float(v) for v in fill_values(x, lo, hi, options=opt.dead)))
+    return SurfaceRun(MemoryRun(shape, arrays=arrays, progress=progress), x, plan, opt, image, amplitudes,
+                      slopes=False)
 
 
 class SurfaceRun:
@@ -367,13 +367,14 @@ class SurfaceRun:
         blocks); None: not checked (a run in memory, sized before the run).
     slopes : bool
         Keep the reflector slopes for the throws (a run by blocks, whose throws read them from its stores).
-    amplitudes : CubeAmplitudes, optional
-        The cube's smallest and largest amplitude and its fill values, measured before the run; default: measured
-        by the run (a reduction and the ``'fill'`` step).
+    amplitudes : CubeAmplitudes
+        The cube's smallest and largest amplitude and its fill values, measured before the run
+        (:func:`~seismo3d.seismic.amplitudes.finite_cube` by blocks, :func:`~seismo3d.seismic.amplitudes.fill_values`
+        in memory).
     """
 
-    def __init__(self, run, cube, plan: SurfacePlan, opt: FaultTracingOptions, image_shape, *, memory=None,
-                 slopes: bool = True, amplitudes: CubeAmplitudes | None = None):
+    def __init__(self, run, cube, plan: SurfacePlan, opt: FaultTracingOptions, image_shape,
+                 amplitudes: CubeAmplitudes, *, memory=None, slopes: bool = True):
         self.run, self.x, self.plan, self.opt = run, cube, plan, opt
         self.image_shape = tuple(int(n) for n in image_shape)
         self.memory, self.slopes, self.amplitudes = memory, slopes, amplitudes
@@ -382,29 +383,17 @@ class SurfaceRun:
     def blocks(self, step: str) -> list:
         """The blocks of the step named ``step`` (the cells' are the thinning's)."""
         p = self.plan
-        side = {"fill": p.dead, "ridges": p.ridge, "surfaces": p.vote, "votes": p.vote}.get(step, p.thin)
+        side = {"ridges": p.ridge, "surfaces": p.vote, "votes": p.vote}.get(step, p.thin)
         return lateral_blocks(p.shape, side, side)
 
     def ridges(self) -> tuple[int, int]:
         """Dead samples (from the fill values of the whole cube), live likelihood and ridges of every block;
         (saturated live samples, live samples)."""
-        x = self.x
-        lo, hi, fill = self._amplitudes()
+        a = self.amplitudes
+        lo, hi, fill = float(a.lo), float(a.hi), np.asarray(a.fill, np.float32)
         results = self.run.run_step(self.steps["ridges"], self.blocks("ridges"), fill, lo, hi, self.image_shape,
-                                    self.opt, self.slopes, source=x)
+                                    self.opt, self.slopes, source=self.x)
         return sum(r["high"] for r in results), sum(r["live"] for r in results)
-
-    def _amplitudes(self) -> tuple:
-        """(lo, hi, fill): the cube's smallest and largest amplitude and its fill values (float32 array), as given,
-        or measured: the range by a reduction (kept for a resumed run), the fill values by the ``'fill'`` step."""
-        if self.amplitudes is not None:
-            a = self.amplitudes
-            return float(a.lo), float(a.hi), np.asarray(a.fill, np.float32)
-        lo, hi = self.run.saved("amplitude_range", lambda: _amplitude_range(self.run, self.x))
-        results = self.run.run_step(self.steps["fill"], self.blocks("fill"), lo, hi, self.opt.dead, source=self.x)
-        fill = np.unique(np.concatenate([np.asarray(r["fill"], np.float32) for r in results] +
-                                        [np.zeros(1, np.float32)]))
-        return lo, hi, fill
 
     def seeds(self) -> tuple[np.ndarray, np.ndarray]:
         """The seeds among the ridges' candidates, strongest first (:func:`greedy_seeds`), with their frames; kept
@@ -441,38 +430,24 @@ class SurfaceRun:
     def thresholds(self) -> tuple[float, float]:
         """The thresholds from the thinned votes of every block: Otsu's threshold of the positive ones and, when they
         are dense, their exact quantile (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds_from`). In
-        memory, and by blocks when the positive values the blocks listed fit in what the memory limit leaves, the
-        libraries' on those values (:func:`~seismo3d.seismic.blocks.statistics.otsu`, ``quantile``); else dask
-        reductions over the store's chunks, which equal them (:mod:`~seismo3d.seismic.blocks.statistics`)."""
+        memory the libraries' on the values (:meth:`~seismo3d.seismic.faults.FaultTracingOptions.thresholds`); by
+        blocks dask reductions over the store's chunks, which equal them
+        (:mod:`~seismo3d.seismic.blocks.statistics`)."""
         stats = self.run.run_step(self.steps["thin"], self.blocks("thin"), self.image_shape)
         thin = self.run.arrays["thin_raw"]  # an array in memory, or a Zarr store's path
         if isinstance(thin, np.ndarray):
             return self.opt.thresholds(thin)
+        import dask.array as da
+
         n_values = sum(r["count"] for r in stats)
         n_samples = int(np.prod(self.plan.shape, dtype=np.int64))
         if n_values == 0:
             return self.opt.thresholds_from(1.0, 0, n_samples, None)
-        values = self._thinned_values(n_values)
-        if values is not None:  # the same values as the store's positive ones: the same thresholds, read at once
-            return self.opt.thresholds_from(otsu(values), n_values, n_samples, lambda q: quantile(values, q))
         vmin = min(r["min"] for r in stats if r["count"])
         vmax = max(r["max"] for r in stats if r["count"])
-        import dask.array as da
-
         values = da.from_zarr(thin)
         return self.opt.thresholds_from(streamed_otsu(self.run, values, vmin, vmax), n_values, n_samples,
                                         lambda q: streamed_quantile(self.run, values, q, n_values, vmin, vmax))
-
-    def _thinned_values(self, n: int):
-        """The ``n`` positive thinned votes the blocks of the thinning listed, gathered; None when they need more
-        than the memory limit leaves (:data:`_VALUE_BYTES` each), or when a block finished by an earlier version of
-        the run left no list."""
-        if self.memory is not None and n * _VALUE_BYTES > self.memory - resident_memory():
-            return None
-        try:
-            return self.run.gathered_lists("thin", self.blocks("thin"), ("values",))["values"]
-        except FileNotFoundError:
-            return None
 
     def cells(self, lower: float) -> int:
         """Thinned votes at or above ``lower`` kept (``thin``), the others set to 0, and its cells listed per
@@ -493,12 +468,3 @@ class SurfaceRun:
         array = self.run.arrays[name]
         return array.reshape(self.image_shape) if len(self.image_shape) == 2 else array
 
-
-def _amplitude_range(run, x) -> list:
-    """[smallest, largest] amplitude of the cube: numpy's on an array in memory, else a dask reduction on the run's
-    scheduler."""
-    if isinstance(x, np.ndarray):
-        return [float(x.min()), float(x.max())]
-    import dask.array as da
-
-    return [float(v) for v in run.reduce_cube((da.min(x), da.max(x)))]

@@ -496,8 +496,7 @@ def thin_block(place, votes, strike, dip, shape) -> BlockOutput:
     Returns
     -------
     BlockOutput
-        ``thin_raw``: (core, n_samples) float32; list ``values``: the positive thinned votes of the core (k,)
-        float32, in C order; summary ``count``, ``min``, ``max``.
+        ``thin_raw``: (core, n_samples) float32; summary ``count``, ``min``, ``max``.
     """
     if len(shape) == 2:  # a section: thinned in 2D
         thin = thin_votes(votes[:, 0], strike[:, 0], dip[:, 0])[:, None]
@@ -506,8 +505,7 @@ def thin_block(place, votes, strike, dip, shape) -> BlockOutput:
     positive = thin[thin > 0]
     return BlockOutput({"thin_raw": thin}, {"count": int(positive.size),
                                             "min": float(positive.min()) if positive.size else 0.0,
-                                            "max": float(positive.max()) if positive.size else 0.0},
-                       {"values": positive})
+                                            "max": float(positive.max()) if positive.size else 0.0})
 
 
 def cell_block(place, thin, strike, dip, lower: float) -> BlockOutput:

@@ -83,7 +83,7 @@ def test_blocks_give_the_in_memory_faults(cube, likelihood, reference, tmp_path,
     assert result.blocks_computed["votes"] == 6 and result.blocks_computed["ridges"] == 6
     assert sum(result.blocks_resumed.values()) == 0
     # the seconds of every step: the block steps, then the skins, the throw and the evidence (run.json's)
-    assert {"fill", "ridges", "surfaces", "votes", "thin", "cells", "fault skins", "throw", "evidence"} <= set(
+    assert {"ridges", "surfaces", "votes", "thin", "cells", "fault skins", "throw", "evidence"} <= set(
         result.seconds) and all(v >= 0 for v in result.seconds.values())
     assert result.n_cells == int(np.count_nonzero(reference.thin))
     _assert_same_faults(result, reference)
@@ -98,14 +98,10 @@ def test_blocks_give_the_in_memory_faults(cube, likelihood, reference, tmp_path,
     _assert_same_faults(again, reference)
 
 
-@pytest.mark.parametrize("values", ["gathered", "streamed"])
-def test_dense_faults_take_the_exact_quantile(cube, likelihood, reference, tmp_path, monkeypatch, values):
+def test_dense_faults_take_the_exact_quantile(cube, likelihood, reference, tmp_path, monkeypatch):
     """With a fault fraction so small that the lower threshold comes from the quantile of the thinned votes, the
-    quantile equals numpy's on the whole cube, from the positive thinned votes the blocks listed (gathered) or, when
-    they would not fit in the memory limit, over the store's chunks (dask reductions: a histogram, then the values of
-    its bin)."""
-    if values == "streamed":  # no positive value fits: the reductions over the store's chunks
-        monkeypatch.setattr(chunked_faults, "_VALUE_BYTES", 1 << 50)
+    quantile equals numpy's on the whole cube, computed over the store's chunks (dask reductions: a histogram, then
+    the values of its bin)."""
     monkeypatch.setattr(chunked_faults, "streamed_otsu", _counted(chunked_faults.streamed_otsu, calls := []))
     options = FaultTracingOptions(max_fault_fraction=0.02)
     dense = _reference(cube, likelihood, options)
@@ -113,7 +109,7 @@ def test_dense_faults_take_the_exact_quantile(cube, likelihood, reference, tmp_p
     reference = dense
     result = chunked_fault_surfaces(cube, likelihood, tmp_path / "dense.zarr", options=options, chunking=BLOCKS)
     _assert_same_faults(result, reference)
-    assert len(calls) == (values == "streamed")
+    assert len(calls) == 1
 
 
 def _counted(function, calls: list):

@@ -86,12 +86,13 @@ class FaultNetwork:
     blocked_layout : bool, optional
         True (the default): ONNX Runtime runs the float convolutions in its blocked channel layout (NCHWc), the
         fastest for a float network. False, for the int8 network (:func:`load_fault_network`): its one float
-        convolution, the first (4 channels in), then writes its output in the order the quantisation reads it,
-        instead of blocks reordered after it (15-20 % of an int8 call on 256 x 256 sections; the int8 network on the
-        256^3 cube of ``benchmarks/fault_speed.py`` 8.0 -> 7.3 CPU s); its probability moves by 2e-6 on average,
-        0.019 at most (a float sum in another order, a quantisation step's rounding the other way), 99.9999 % of the
-        samples on the same side of 0.5 (the horizons tracked across the faults of ``benchmarks/horizons.py``'s
-        generated cubes hold either way, ``tests/seismic/horizons/test_fault_robustness.py``).
+        convolution, the first (4 channels in), then writes its output in the order the quantisation reads it, instead
+        of blocks reordered after it (15-20 % of an int8 call on 256 x 256 sections; the int8 network on the 256^3
+        cube of ``benchmarks/fault_speed.py`` 8.0 -> 7.3 CPU s on a quiet machine, a difference within the noise at
+        load 4-11); its probability moves by 2e-6 on average, 0.019 at most (a float sum in another order, a
+        quantisation step's rounding the other way), 99.9999 % of the samples on the same side of 0.5 (the horizons
+        tracked across the faults of ``benchmarks/horizons.py``'s generated cubes hold either way,
+        ``tests/seismic/horizons/test_fault_robustness.py``).
 
     Raises
     ------

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from seismo3d.seismic.blocks.apply import BlockOutput
-from seismo3d.seismic.blocks.executor import BlockRun, kernel_threads, run_block
+from seismo3d.seismic.blocks.executor import BlockRun, kernel_threads, release_memory, run_block
 from seismo3d.seismic.blocks.plan import CUBE, BlockStep, lateral_blocks
 
 
@@ -80,3 +80,17 @@ def test_run_step_reads_each_block_with_its_halo_and_skips_the_finished_ones(tmp
     assert again.computed == {"sums": 1} and again.resumed == {"sums": 5}
     assert sorted(r["sum"] for r in results) == sorted(expected)  # the computed block first, then the finished ones
     assert results[0]["sum"] == expected[2]
+
+
+def test_release_memory_starts_no_process(monkeypatch):
+    # called after every block: a child process (ctypes.util.find_library runs /sbin/ldconfig -p) forks a process
+    # the size of the blocks, block after block
+    import subprocess
+
+    def refuse(*args, **kwargs):
+        raise AssertionError(f"release_memory started a process: {args[:1]}")
+
+    monkeypatch.setattr(subprocess, "Popen", refuse)
+    monkeypatch.setattr(os, "fork", refuse)
+    release_memory()
+    release_memory()

@@ -6,10 +6,16 @@ the time in Python's per-row overhead; one ``%`` of the row template repeated ``
 (``.tolist()``: Python numbers) does the same formatting in one call, a block of rows at a time, so that the text of
 a large run is never held whole. ``'%.3f' % v`` and ``f'{v:.3f}'`` (and ``%g`` / ``:g``, ``%d``, ``%s`` / ``str``)
 give the same characters for Python numbers, so the files keep their bytes.
+
+A float column of ``.Nf`` or ``.Ng`` whose block holds whole numbers only (inline / crossline numbers as X / Y
+where a survey has no coordinates, times at whole milliseconds, sample indices) is formatted as integers with the
+same characters (``%d`` and ``N`` zeros after the point for ``.Nf``, ``%d`` for ``.Ng`` below ``10**N``): an
+integer's text is a third of the CPU of a float's (232 000 values: 0.027 s instead of 0.077).
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from itertools import chain
 from typing import Callable
@@ -79,6 +85,11 @@ def format_rows(columns, n: int, *, sep: str = "", end: str = "\n", rows: int | 
             if c.fallback is not None and block.dtype.kind == "f" and not np.isfinite(block).all():
                 pieces.append("%s")
                 values.append(c.fallback(block))
+                continue
+            whole = _whole_number_spec(c.spec, block)
+            if whole is not None:  # the same text, formatted as integers
+                pieces.append(whole)
+                values.append(block.astype(np.int64).tolist())
             else:
                 pieces.append("%" + c.spec)
                 values.append(block.tolist())
@@ -87,3 +98,29 @@ def format_rows(columns, n: int, *, sep: str = "", end: str = "\n", rows: int | 
             yield (template * (stop - start)) % tuple(chain.from_iterable(zip(*values)))
         else:
             yield template * (stop - start)
+
+
+_FLOAT_SPEC = re.compile(r"(\.(\d*))?([fg])")  # f / g with at most a precision: no width, flag or sign
+
+
+def _whole_number_spec(spec: str, block: np.ndarray) -> str | None:
+    """The ``%d`` template piece giving the same characters as ``'%' + spec`` for every value of ``block``, or None.
+
+    It exists when ``spec`` is ``f`` or ``g`` with at most a precision (``f`` and ``g`` are ``.6f`` and ``.6g``,
+    ``.f`` is ``.0f``, ``.g`` and ``.0g`` are ``.1g``) and ``block`` is float and holds finite whole numbers below
+    2**53 in magnitude (exact as int64), none of them -0.0 (``%.3f`` writes ``-0.000``, ``%d`` ``0``), and for
+    ``g`` all below ``10**precision`` in magnitude (larger ones go to an exponent).
+    """
+    match = _FLOAT_SPEC.fullmatch(spec)
+    if match is None or block.dtype.kind != "f" or block.size == 0:
+        return None
+    dot, digits, kind = match.groups()
+    precision = 6 if dot is None else int(digits or 0)
+    size = np.abs(block)
+    if not (np.all(size < 2.0 ** 53) and np.all(block == np.floor(block))):  # NaN and inf fail both
+        return None
+    if np.any(np.signbit(block) & (block == 0)):
+        return None
+    if kind == "f":
+        return "%d" + ("." + "0" * precision if precision else "")
+    return "%d" if np.all(size < 10.0 ** max(precision, 1)) else None

@@ -105,3 +105,18 @@ def test_stick_files_keep_the_bytes_of_the_row_by_row_writers(sticks, tmp_path, 
     assert rows == _reference(sticks, fmt)
     monkeypatch.setattr(text_rows, "ROWS", 5)
     assert write_fault_sticks(tmp_path / "blocks.txt", sticks, format=fmt).read_text() == whole
+
+
+@pytest.mark.parametrize("spec", ["f", ".f", ".0f", ".3f", ".4f", "g", ".g", ".0g", ".1g", ".5g", ".6g", ".12g"])
+@pytest.mark.parametrize("rows", [1, 3, 1 << 14])
+def test_whole_numbers_keep_the_characters_of_their_float_format(spec, rows):
+    """Blocks of whole numbers are formatted as integers: the same text as the float format, -0.0, magnitudes at
+    the g formats' exponent limits and at 2**53, NaN and a fraction in a block included (those blocks as floats)."""
+    powers = 10.0 ** np.arange(0, 17)
+    cases = [np.arange(-1000.0, 1000.0), np.concatenate([powers - 1, powers, -powers]), np.array([0.0, -0.0, 5.0]),
+             np.array([2.0 ** 53 - 1, -(2.0 ** 53) + 1, 2.0 ** 53, 1e20]), np.array([1.5, 2.0, 3.0]),
+             np.array([np.nan, 1.0, 2.0]), np.arange(0.0, 4000.0, 4.0, dtype=np.float32)]
+    for v in cases:
+        text = "".join(format_rows([TextColumn(v, spec), TextColumn(v, spec)], v.size, sep=" ",
+                                   rows=rows))
+        assert text == "".join(f"{'%' + spec} {'%' + spec}\n" % (x, x) for x in v.tolist())  # as floats

@@ -224,7 +224,12 @@ def ridge_image(likelihood, strike, dip, *, floor=-1.0, sigma=1.5, dip_smoothing
     dp3 = np.ascontiguousarray(_kernels.as_3d(dip))
     floor = float(floor)
     lut = _direction_lut()
-    g = _kernels.gaussian3(f3, (sigma, 0.0 if two_d else sigma, sigma)) if sigma > 0 else f3
+    g = f3
+    # the ranking image's Gaussian summed in float32 by OpenCV (gaussian_pass32: each output's arithmetic its own,
+    # whatever the block; within 2e-7 of scipy's float64 passes): 0.16-0.19 against 0.58-0.85 CPU s on the generated
+    # 256^3 cube, the same ridges there
+    for axis, width in enumerate((sigma, 0.0 if two_d else sigma, sigma) if sigma > 0 else ()):
+        g = _kernels.gaussian_pass32(g, axis, float(width))
     n_threads = nb.get_num_threads()
     if dip_smoothing > 0:
         # the ranking image where the ridge test of the core reads it: the trilinear reads one sample away along the

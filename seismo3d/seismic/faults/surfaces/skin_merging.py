@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy import sparse
+from scipy.ndimage import maximum_filter, minimum_filter
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
@@ -28,15 +29,21 @@ def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: f
         return np.empty((0, 2), dtype=np.int64)
     pts = np.ascontiguousarray(pts, dtype=np.float64)
     lab = np.asarray(lab).astype(np.int64, copy=False)
+    # only the cells that may have another skin's cell within the gap, edge cells and others alike: the same pairs
+    near_other = _near_other_labels(pts, lab, gap)
     edge_idx = np.asarray(edge_idx, dtype=np.int64)
-    tree = cKDTree(pts)
+    edge_idx = edge_idx[near_other[edge_idx]]
+    if edge_idx.size == 0:
+        return np.empty((0, 2), dtype=np.int64)
+    cells = np.nonzero(near_other)[0]
+    tree = cKDTree(pts[cells])
     gap2 = float(gap) ** 2
     kept = []
     for start in range(0, edge_idx.size, _EDGE_CHUNK):
         edge = edge_idx[start:start + _EDGE_CHUNK]
         # a hair beyond the gap: the squared distances below decide, summed as the loop this replaced summed them
         near = cKDTree(pts[edge]).sparse_distance_matrix(tree, float(gap) * (1 + 1e-9), output_type="ndarray")
-        first, second = edge[near["i"]], near["j"].astype(np.int64)
+        first, second = edge[near["i"]], cells[near["j"]]
         other = lab[first] != lab[second]
         first, second = first[other], second[other]
         d = pts[second] - pts[first]
@@ -46,6 +53,28 @@ def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: f
     first, second, dist2 = (np.concatenate(a) for a in zip(*kept))
     first, second, _ = _closest_per_key(first, second, dist2, lab, n_labels)
     return np.stack([first, second], axis=1)
+
+
+def _near_other_labels(pts: np.ndarray, lab: np.ndarray, gap: float) -> np.ndarray:
+    """(n,) bool: the cells ``pts`` (n, 3) that may have a cell of another label within ``gap``: those whose cell of
+    a grid of a hair more than ``gap`` a side, or one of its 26 neighbours, holds a cell of another label (two cells
+    within the gap lie in neighbouring grid cells). The others pair only with their own skin's cells, which
+    :func:`closest_pairs` drops: left out, the pairs are the same, and the k-d tree holds and lists a fraction of them
+    (most cells within the gap of an edge cell are its own skin's)."""
+    size = float(gap) * (1.0 + 1e-6) if gap > 0 else 1.0
+    grid = np.floor(pts / size).astype(np.int64)
+    grid -= grid.min(axis=0)
+    shape = tuple(int(n) for n in grid.max(axis=0) + 1)
+    flat = np.ravel_multi_index(tuple(grid.T), shape)
+    n_labels = int(lab.max()) + 1
+    lowest = np.full(int(np.prod(shape)), n_labels, np.int64)
+    highest = np.full(lowest.size, -1, np.int64)
+    np.minimum.at(lowest, flat, lab)
+    np.maximum.at(highest, flat, lab)
+    # over the 3 x 3 x 3 grid cells around each (the edges repeated: no label of their own)
+    lowest = minimum_filter(lowest.reshape(shape), size=3, mode="nearest").ravel()[flat]
+    highest = maximum_filter(highest.reshape(shape), size=3, mode="nearest").ravel()[flat]
+    return (lowest < lab) | (highest > lab)
 
 
 def _closest_per_key(first, second, dist2, lab, n_labels):

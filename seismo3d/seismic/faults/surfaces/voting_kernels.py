@@ -39,24 +39,29 @@ def _accumulate_forward(e, b, d, c):
     # _prefix before). Forward and backward are two kernels, not one with a flag: a constant flag compiles the kernel
     # once per value; neither calls _prefix: each kernel a called kernel is linked into is compiled again with it
     # (the caller makes c once for both).
+    # Each lag's path from row jb over rows jb + 1 .. ji is summed once per row and kept while the lags on either
+    # side read it (prev, cur, nxt: the lags il - 1, il, il + 1, clamped at the ends): the same sums, in the same
+    # order, as summing it for each neighbour (the same bits), at half the additions: with _accumulate_backward's
+    # alike, the surfaces of the generated 256^3 cube's 2406 seeds took 3.18-3.98 CPU s against 3.56-4.29 (4 pairs
+    # at load 11).
     ni, nl = e.shape
     for il in range(nl):
         d[0, il] = e[0, il]
     for ii in range(1, ni):
         ji = ii - 1
         jb = max(ii - b, 0)
+        cur = d[jb, 0] + c[ji + 1, 0] - c[jb + 1, 0]
+        prev = cur
         for il in range(nl):
-            ilm = max(il - 1, 0)
-            ilp = min(il + 1, nl - 1)
-            # rows jb + 1 .. ji on the neighbouring lag
-            dm = d[jb, ilm] + c[ji + 1, ilm] - c[jb + 1, ilm]
-            dp = d[jb, ilp] + c[ji + 1, ilp] - c[jb + 1, ilp]
+            nxt = d[jb, il + 1] + c[ji + 1, il + 1] - c[jb + 1, il + 1] if il + 1 < nl else cur
             m = d[ji, il]
-            if dm < m:
-                m = dm
-            if dp < m:
-                m = dp
+            if prev < m:
+                m = prev
+            if nxt < m:
+                m = nxt
             d[ii, il] = m + e[ii, il]
+            prev = cur
+            cur = nxt
 
 
 @nb.njit(cache=True, no_cfunc_wrapper=True)
@@ -68,18 +73,19 @@ def _accumulate_backward(e, b, d, c):
     for ii in range(ni - 2, -1, -1):
         ji = ii + 1
         jb = min(ii + b, ni - 1)
+        # rows ji .. jb - 1 on each lag, summed once per row (as in _accumulate_forward)
+        cur = d[jb, 0] + c[jb, 0] - c[ji, 0]
+        prev = cur
         for il in range(nl):
-            ilm = max(il - 1, 0)
-            ilp = min(il + 1, nl - 1)
-            # rows ji .. jb - 1 on the neighbouring lag
-            dm = d[jb, ilm] + c[jb, ilm] - c[ji, ilm]
-            dp = d[jb, ilp] + c[jb, ilp] - c[ji, ilp]
+            nxt = d[jb, il + 1] + c[jb, il + 1] - c[ji, il + 1] if il + 1 < nl else cur
             m = d[ji, il]
-            if dm < m:
-                m = dm
-            if dp < m:
-                m = dp
+            if prev < m:
+                m = prev
+            if nxt < m:
+                m = nxt
             d[ii, il] = m + e[ii, il]
+            prev = cur
+            cur = nxt
 
 
 @nb.njit(cache=True, no_cfunc_wrapper=True)

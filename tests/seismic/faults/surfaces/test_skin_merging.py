@@ -36,3 +36,29 @@ def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels
     got = closest_pairs(pts, lab, edge, gap, n_labels)
     assert len(best) > 20
     assert sorted(map(tuple, got.tolist())) == sorted((i, j) for _, i, j in best.values())
+
+
+@pytest.mark.parametrize("gap", [3.0, 12.0, 12.5])
+def test_closest_pairs_of_skins_apart_equal_a_brute_force_search(gap):
+    # skins as patches of planes, most cells farther than the gap from every other skin (those the search leaves
+    # out, _near_other_labels): the same closest pairs as every pair of cells gives
+    rng = np.random.default_rng(3)
+    patches = []
+    for n, (x0, y0, z0) in enumerate([(0, 0, 0), (6, 0, 31), (13, 4, 10), (40, 0, 0), (45, 30, 60)]):
+        j, k = np.meshgrid(np.arange(25), np.arange(30), indexing="ij")
+        x = x0 + np.round(0.2 * (k - 15)).astype(int)  # a dipping plane
+        patches.append(np.stack([x.ravel(), (y0 + j).ravel(), (z0 + k).ravel()], axis=1))
+    pts = np.concatenate(patches).astype(np.float64)
+    lab = np.concatenate([np.full(len(p), n) for n, p in enumerate(patches)])
+    edge = np.sort(rng.choice(len(pts), len(pts) // 4, replace=False))
+    d = np.sqrt(((pts[edge, None, :] - pts[None, :, :]) ** 2).sum(axis=-1))
+    best = {}
+    for a, b in zip(*np.nonzero((d <= gap) & (lab[edge, None] != lab[None, :]))):
+        i, j = int(edge[a]), int(b)
+        key = (min(lab[i], lab[j]), max(lab[i], lab[j]))
+        best[key] = min(best.get(key, (np.inf, 0, 0)), (float(d[a, b]), i, j))
+    near = skin_merging._near_other_labels(pts, lab, gap)
+    assert 0 < np.count_nonzero(near) < len(pts)  # the search skips some cells
+    got = closest_pairs(pts, lab, edge, gap, len(patches))
+    assert len(best) >= (1 if gap < 12 else 2)
+    assert sorted(map(tuple, got.tolist())) == sorted((i, j) for _, i, j in best.values())

@@ -6,6 +6,8 @@ them decide."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from scipy import sparse
 from scipy.ndimage import maximum_filter, minimum_filter
@@ -55,16 +57,25 @@ def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: f
     return np.stack([first, second], axis=1)
 
 
+# Grid cells per fault cell above which _near_other_labels keeps every cell: its two int64 grids (16 bytes a grid
+# cell) stay within about the k-d tree's own memory (a 256^3 cube's 232,442 cells at the default gap: 0.03 grid
+# cells a cell; a gap of 1 sample over a 2000 x 2000 x 1500 cube would be 6e9).
+_GRID_CELLS_PER_POINT = 8
+
+
 def _near_other_labels(pts: np.ndarray, lab: np.ndarray, gap: float) -> np.ndarray:
     """(n,) bool: the cells ``pts`` (n, 3) that may have a cell of another label within ``gap``: those whose cell of
     a grid of a hair more than ``gap`` a side, or one of its 26 neighbours, holds a cell of another label (two cells
     within the gap lie in neighbouring grid cells). The others pair only with their own skin's cells, which
     :func:`closest_pairs` drops: left out, the pairs are the same, and the k-d tree holds and lists a fraction of them
-    (most cells within the gap of an edge cell are its own skin's)."""
+    (most cells within the gap of an edge cell are its own skin's). Every cell when the grid would hold more than
+    ``_GRID_CELLS_PER_POINT`` grid cells a cell (a gap small for the cloud's extent)."""
     size = float(gap) * (1.0 + 1e-6) if gap > 0 else 1.0
     grid = np.floor(pts / size).astype(np.int64)
     grid -= grid.min(axis=0)
     shape = tuple(int(n) for n in grid.max(axis=0) + 1)
+    if math.prod(shape) > _GRID_CELLS_PER_POINT * len(pts) + 4096:  # a small gap over a wide cloud: every cell
+        return np.ones(len(pts), bool)
     flat = np.ravel_multi_index(tuple(grid.T), shape)
     n_labels = int(lab.max()) + 1
     lowest = np.full(int(np.prod(shape)), n_labels, np.int64)

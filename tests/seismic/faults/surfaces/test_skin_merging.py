@@ -62,3 +62,16 @@ def test_closest_pairs_of_skins_apart_equal_a_brute_force_search(gap):
     got = closest_pairs(pts, lab, edge, gap, len(patches))
     assert len(best) >= (1 if gap < 12 else 2)
     assert sorted(map(tuple, got.tolist())) == sorted((i, j) for _, i, j in best.values())
+
+
+def test_closest_pairs_with_a_gap_small_for_the_cloud_keep_every_cell(monkeypatch):
+    # two skins 2 samples apart at the ends of a wide cloud, gap 2.5: the grid of _near_other_labels would hold more
+    # grid cells than _GRID_CELLS_PER_POINT a cell, so every cell is searched, with the same pairs as a brute force
+    line = np.arange(0, 3000, 1.0)
+    pts = np.concatenate([np.stack([line, 0 * line, 0 * line], 1), np.stack([line, 0 * line + 2, 0 * line + 3000], 1),
+                          np.array([[0.0, 2.0, 0.0]])])
+    lab = np.concatenate([np.zeros(line.size, int), np.ones(line.size + 1, int)])
+    assert skin_merging._near_other_labels(pts, lab, 2.5).all()
+    edge = np.arange(len(pts))
+    got = closest_pairs(pts, lab, edge, 2.5, 2)
+    assert got.tolist() == [[0, 2 * line.size]]  # (0, 0, 0) and (0, 2, 0), 2 apart: the closest, the lower first

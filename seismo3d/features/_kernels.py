@@ -91,7 +91,8 @@ def dense_disc_histograms(bins, weights, half_widths, pad, rows, n_cols, out):
     hist = np.zeros((n_discs, n_bins), dtype=out.dtype)
     for i in range(rows.shape[0]):
         y = rows[i]
-        _init_discs(bins, weights, half_widths, pad, y, 0, hist)
+        # np.int64(0), not 0: a literal 0 compiled _init_discs once more, for Literal[int](0) (1.1-1.5 CPU s)
+        _init_discs(bins, weights, half_widths, pad, y, np.int64(0), hist)
         _put(hist, out[i, 0])
         for x in range(n_cols - 1):
             _slide_discs(bins, weights, half_widths, pad, y, x, hist)

@@ -251,8 +251,9 @@ class TSDFVolume:
             far = np.zeros_like(near)
             kernels.block_ranges(self._coords[: self._n_blocks], float(opt.block_size * opt.voxel_size), k,
                                  rot.T.copy(), trans, float(opt.min_depth), float(opt.max_depth), tile, h, w, near, far)
-            kernels.raycast(self._tsdf, self._weight, self._grid, self._origin, k, rot, trans, float(opt.voxel_size),
-                            float(opt.truncation_distance), near, far, tile, points, normals)
+            run_threads(kernels.raycast, max(1, min(numba.get_num_threads(), h)), self._tsdf, self._weight,
+                        self._grid, self._origin, k, rot, trans, float(opt.voxel_size),
+                        float(opt.truncation_distance), near, far, tile, points, normals)
         return SurfacePrediction(points=points, normals=normals, pose=m, intrinsics=tuple(k))
 
     def extract_mesh(self, *, slab: int = 96) -> TriangleMesh:

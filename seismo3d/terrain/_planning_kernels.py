@@ -463,7 +463,8 @@ def dstar_rekey(g, rhs, k1, k2, nodes, pos, size, start, w, cost):
     """Recompute every queued key with km = 0 (when km grows large) and restore the heap order."""
     start_r, start_c = start // w, start % w
     for i in range(size):
-        k1[i], k2[i] = _key(g, rhs, nodes[i], nodes[i] // w, nodes[i] % w, start_r, start_c, 0, cost)
+        # km as np.int64(0), not 0: a literal 0 compiled _key once more, for Literal[int](0) (0.26 CPU s)
+        k1[i], k2[i] = _key(g, rhs, nodes[i], nodes[i] // w, nodes[i] % w, start_r, start_c, np.int64(0), cost)
     for i in range(size // 2 - 1, -1, -1):
         _sift_down(k1, k2, nodes, pos, size, i)
 

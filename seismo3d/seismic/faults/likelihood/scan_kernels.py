@@ -127,7 +127,7 @@ def _scan_dip_chunks(share, n_shares, sn, sd, beta, a, code_k, power_squarings, 
     # d > tiny only) then carries no ZeroDivisionError check, and the loop over b vectorises (1.6x faster a call).
     na, nt = sn.shape[0], sn.shape[1]
     nbb = key.shape[2]
-    sh = _shifts(beta, nt)
+    sh = _shifts(beta, nt, np.int64(0))  # origin int64 as smooth_strike passes it: one compile of _shifts, not two
     s_min = min(sh[0], sh[nt - 1])
     s_max = max(sh[0], sh[nt - 1])
     mono = np.abs(sh)

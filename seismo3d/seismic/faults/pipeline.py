@@ -71,7 +71,7 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
     The steps, with their defaults chosen from the data (no per-file tuning):
 
     1. the fault likelihood: by default the fault network's probability (:func:`~seismo3d.seismic.faults.
-       learned_fault_likelihood`, the mean over three network grids), or with ``options.likelihood='scan'``
+       learned_fault_likelihood`, the mean over its network grids), or with ``options.likelihood='scan'``
        :func:`~seismo3d.seismic.faults.fault_likelihood`, a scan of fault strikes and dips of the semblance of
        balanced amplitudes (Hale 2013);
     2. :func:`~seismo3d.seismic.thin_faults`: its ridges (non-maximum suppression across the fault), the seeds;

@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.ndimage import gaussian_filter, gaussian_filter1d
+from scipy.ndimage import gaussian_filter1d
 
 from ....errors import InputError
 
@@ -187,21 +187,24 @@ def to_network_grid(data: np.ndarray, factor: float, *, origin=None, align: int 
     aligns = _lateral_aligns(align, arr.ndim - 1)
     if f == 1.0:
         return arr, origin
-    # 1 / factor an integer (0.5, 1/3, 0.25): every network sample is an input sample, so the interpolation only picks
-    # samples, and the separable filter along an axis can run on what the previous axes kept: the same values (each
-    # kept line filtered as before), a filter over fewer samples (onto the 0.5 grid of a 256^3 cube 0.50 -> 0.39 CPU s)
-    picks = abs(1.0 / f - round(1.0 / f)) < 1e-12
-    out = arr if picks else gaussian_filter(arr, anti_alias_sigma(f), truncate=4.0)
-    first = []
-    for axis, (n, o) in enumerate(zip(arr.shape, origin)):
+    # The Gaussian filter is separable and each axis's interpolation reads that axis only, so each axis is filtered
+    # and interpolated in turn, the sample axis first: every later pass runs on the samples the earlier ones kept, and
+    # the filter along the inlines, scipy's slowest (lines strided across the whole array; 0.27 CPU s of a 256^3 cube
+    # against 0.08 along the samples), runs last on the smallest array. Onto the 0.7 grid of a 256^3 cube 0.60 -> 0.25
+    # CPU s, onto the 0.5 grid 0.45 -> 0.35; the same linear operator as filtering the whole cube first, the rounding
+    # of its float32 passes in another order (1e-6 of amplitudes of order 1).
+    sigma = anti_alias_sigma(f)
+    out = arr
+    first = list(origin)
+    for axis in reversed(range(arr.ndim)):
+        n, o = arr.shape[axis], origin[axis]
         lateral = axis < arr.ndim - 1
         u0 = _first(o, f, aligns[axis]) if lateral else 0
         u1 = grid_size(o + n, f)  # one past the last network sample inside the data
         u = np.arange(u0, u1, dtype=np.float64)
-        if picks:
-            out = gaussian_filter1d(out, anti_alias_sigma(f), axis=axis, truncate=4.0)
+        out = gaussian_filter1d(out, sigma, axis=axis, truncate=4.0)
         out = interpolate_axis(out, axis, u / f - o)
-        first.append(u0)
+        first[axis] = u0
     return np.ascontiguousarray(out, dtype=np.float32), tuple(first)
 
 

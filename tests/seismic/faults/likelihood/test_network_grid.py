@@ -18,8 +18,10 @@ def test_network_grid_alignment_per_axis():
 @pytest.mark.parametrize("factor", [0.5, 0.25, 0.7])
 @pytest.mark.parametrize("origin", [(0, 0), (13, 21)])
 def test_the_network_grid_is_the_filtered_cube_interpolated(factor, origin):
-    # the reference: the whole block filtered along every axis, then interpolated linearly onto the network samples
-    # (at factors whose inverse is an integer the filter runs axis by axis on the samples kept: the same bits)
+    # the reference: the whole block filtered along every axis, then interpolated linearly onto the network samples;
+    # to_network_grid filters and interpolates axis by axis, the samples first (the same operator, its float32 passes
+    # rounded in another order: measured at most 4.8e-7 on these amplitudes of up to 2.9, about 2 units in the last
+    # place; limit 1e-6)
     from scipy.ndimage import gaussian_filter
 
     from seismo3d.seismic.faults.likelihood.network_grid import anti_alias_sigma, interpolate_axis
@@ -30,4 +32,5 @@ def test_the_network_grid_is_the_filtered_cube_interpolated(factor, origin):
     for axis, (n, o, u0) in enumerate(zip(block.shape, origin + (0,), first)):
         expected = interpolate_axis(expected, axis, np.arange(u0, u0 + small.shape[axis]) / factor - o)
         assert u0 + small.shape[axis] - 1 <= (o + n - 1) * factor + 1e-9 < u0 + small.shape[axis]
-    assert small.dtype == np.float32 and np.array_equal(small, expected)
+    assert small.dtype == np.float32 and small.shape == expected.shape
+    np.testing.assert_allclose(small, expected, rtol=0, atol=1e-6)

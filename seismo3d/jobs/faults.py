@@ -330,7 +330,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     aside = SetAside(out_dir)
     _load_writers()  # before the staging folder: an interrupt here leaves nothing to clean up
     try:
-        with aside, StagedFolder(out_dir) as stage:
+        with aside, StagedFolder(out_dir, owner="seismo3d faults") as stage:
             written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
                                        n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
                                        progress=progress, summary=summary, aside=aside if overwrite else None,

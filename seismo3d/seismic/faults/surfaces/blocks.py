@@ -140,14 +140,15 @@ def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
 # process the run's refusal measured, with STAGE_GROWTH for what the earlier stages leave in it), a fixed part and a
 # part per fault cell. Measured by benchmarks/post_block_memory.py (the process's VmHWM reset at each stage's start,
 # a fresh process per cube) on generated SEG-Y cubes run by blocks; MiB beyond the process + 64 MiB:
-#                                               cells    linked into skins   throws, half periods, evidence
-#   160 x 160 x 256, 4 faults (710MB limit)   159,474          85                 146
-#   224 x 224 x 192, 8 faults (690MB)         357,331         197                 154
-#   128 x 256 x 320, 2 faults (940MB)          92,879           0                 122
-# The cells read from the store (36 bytes each) peak below the skins. The skins take 600 bytes a cell (91, 204 and 53
-# MiB there); the throws 144 MiB and 48 bytes a cell (151, 160, 148): their windows of amplitudes and slopes, not the
-# cells, make most of it.
-_SKINS_PER_CELL = 600
+#                                cells    linked into skins   throws, half periods, evidence
+#   160 x 160 x 256, 4 faults   159,474         85, 78                  146, 136
+#   224 x 224 x 192, 8 faults   357,331        197, 245                 154, 143
+#   128 x 256 x 320, 2 faults    92,879          0, 3                   122, 114
+# (two runs each, the first under the limit the refusal named before these models, the second under the one it names
+# with them). The cells read from the store (36 bytes each) peak below the skins. The skins take 750 bytes a cell
+# (114, 256 and 66 MiB there); the throws 144 MiB and 48 bytes a cell (151, 160, 148): their windows of amplitudes
+# and slopes, not the cells, make most of it.
+_SKINS_PER_CELL = 750
 _THROW_FIXED, _THROW_PER_CELL = 144 << 20, 48
 # Cells per seed candidate the preflight's sample predicts (CubeSample.candidates): the cells (thinned votes at or
 # above the lower threshold) were 0.54, 0.67 and 0.70 of the candidates predicted on the cubes above. The prediction

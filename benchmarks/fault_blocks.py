@@ -22,7 +22,7 @@ sections run on generated cubes (no data folder needed):
   1e-5 and votes within 1e-6 of the in-memory run, the same summary and points, reused when run again; under the
   limit the refusal names (an eighth of the way): smaller blocks, the same faults, the same eleven files
   (``tests/jobs/test_faults_chunked.py``, which keeps a 48 x 56 x 40 cube with the blocks forced);
-- ``segy_lazy``: a 192 x 160 x 64 crossline-sorted SEG-Y cube over the limit (a third of the way, as in
+- ``segy_lazy``: a 192 x 160 x 128 crossline-sorted SEG-Y cube over the limit (a third of the way, as in
   ``job_limit``) read block by block, its likelihood
   equal to the in-memory one, its volumes written as SEG-Y with the input's headers (``test_segy_cube_is_read_lazily``,
   which keeps a 40 x 48 x 40 SEG-Y cube with the blocks forced);
@@ -256,12 +256,14 @@ def segy_lazy(tmp: pathlib.Path) -> None:
     from seismo3d.seismic.faults.likelihood.learned import LearnedOptions, learned_fault_likelihood
     from seismo3d.seismic.io import open_segy, read_segy
 
-    cube = synthetic_cube((192, 160, 64), seed=5).cube.astype(np.float32)
+    cube = synthetic_cube((192, 160, 128), seed=5).cube.astype(np.float32)
     path = write_segy_cube(tmp / "cube.sgy", cube, sorting="crossline")
     # the reference first: the process then holds the network's session and the kernels, as the suite's did when
     # this was its test (run alone, the limit below was too small for the surfaces' blocks)
     reference = learned_fault_likelihood(cube)  # the default likelihood
-    # the in-memory run needs 340 MiB beside the process: blocks, a third of the way from the refusal's limit
+    # the in-memory run needs 520 MiB beside the process: blocks, a third of the way from the refusal's limit (128
+    # samples a trace: at 64 the stages after the blocks, the throws' window and the picture, left no limit between
+    # the refusal's and the in-memory run's)
     limit = _limit_between(path, cube.shape, tmp, 1 / 3)
     with _log() as caplog:
         written = run_faults_job(path, tmp / "out", memory_limit=limit, progress=False).written

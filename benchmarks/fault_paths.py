@@ -12,15 +12,15 @@ forced, fault by fault. Printed per cube: whether ``fault_points.csv`` and ``fau
 and votes differences (target <= 1e-6), the number of faults, and both runs' seconds with the load average. The
 suite keeps a smaller cube's comparison (``tests/jobs/test_faults_chunked.py``); these two take minutes each.
 
-``target`` (issue 34, off by default: about 10 minutes): the command a user runs on a 400 x 400 x 500 SEG-Y cube
-(a generated faulted 256-trace tile mirrored into it, as ``benchmarks/out_of_core.py`` writes it; 320 MB of
-samples), ``seismo3d faults CUBE -o OUT`` in memory and ``seismo3d faults CUBE -o OUT --memory-limit 1GB`` by blocks,
-each a child process whose peak resident memory (RSS, with its children) is sampled every 0.2 s. Printed: seconds
-and s/GB of each, their ratio (target <= 1.3), the peaks against the limit, and whether the two runs wrote the same
-``fault_points.csv`` and ``fault_summary.csv``. ``--baseline CODE_DIR`` (e.g. a worktree of main) runs the same two
-commands with ``PYTHONPATH=CODE_DIR`` too, each path's baseline run just before this code's (memory: baseline, ours;
-blocks: baseline, ours), and prints a row per code with the load average over each run (the 1-minute average read
-at its end), so that the two are compared in the same window.
+``target`` (issue 34, off by default: about 10 minutes): the command a user runs on a 400 x 400 x 500 SEG-Y cube (a
+generated faulted 256-trace tile mirrored into it, as ``benchmarks/out_of_core.py`` writes it; 320 MB of samples),
+``seismo3d faults CUBE -o OUT`` in memory and ``seismo3d faults CUBE -o OUT --memory-limit 1GB`` by blocks, each a
+child process whose own peak resident memory (its ``VmHWM``, ``benchmarks/peak_memory.py``) is reported. Printed:
+seconds and s/GB of each, their ratio (target <= 1.3), the peaks against the limit, and whether the two runs wrote the
+same ``fault_points.csv`` and ``fault_summary.csv``. ``--baseline CODE_DIR`` (e.g. a worktree of main) runs the same
+two commands with ``PYTHONPATH=CODE_DIR`` too, each path's baseline run just before this code's (memory: baseline,
+ours; blocks: baseline, ours), and prints a row per code with the load average over each run (the 1-minute average
+read at its end), so that the two are compared in the same window.
 """
 
 from __future__ import annotations
@@ -123,7 +123,8 @@ def target(root: pathlib.Path, shape=(400, 400, 500), limit: str = "1GB", baseli
     import sys
 
     sys.path.insert(0, str(pathlib.Path(__file__).parent))
-    from out_of_core import _PeakRSS, write_mosaic_segy
+    from out_of_core import write_mosaic_segy
+    from peak_memory import PeakRSS
 
     sgy = root / "target.sgy"
     if not sgy.exists():
@@ -143,7 +144,7 @@ def target(root: pathlib.Path, shape=(400, 400, 500), limit: str = "1GB", baseli
             start = time.perf_counter()
             with open(root / f"target_{tag}.log", "w") as log:  # the progress the command reports
                 proc = subprocess.Popen(cmd, stderr=log, env=env)
-                sampler = _PeakRSS(proc.pid)
+                sampler = PeakRSS(proc.pid)
                 proc.wait()
             peak = sampler.stop()
             if proc.returncode != 0:

@@ -17,8 +17,8 @@ faults on
 
 Printed: seconds of the call, its peak of traced allocations (``tracemalloc``: numpy arrays made by the call; the
 cube read before the call is not counted), its peak resident memory above the resident memory before the call
-(sampled every 0.05 s with psutil), and the largest throw difference between the two paths (target: <= 1e-4 samples,
-NaN at the same points, the same registered points).
+(the process's ``VmHWM`` from the call's start, ``benchmarks/peak_memory.py``), and the largest throw difference
+between the two paths (target: <= 1e-4 samples, NaN at the same points, the same registered points).
 """
 
 from __future__ import annotations
@@ -29,12 +29,14 @@ import pickle
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 import tracemalloc
 from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).parent))
+from peak_memory import PeakRSS  # noqa: E402
 
 
 def write_segy(path: Path, cube: np.ndarray) -> None:
@@ -54,28 +56,6 @@ def write_segy(path: Path, cube: np.ndarray) -> None:
                                segyio.su.cdpy: 25 * j, segyio.su.offset: 1}
                 k += 1
             f.iline[i + 1] = cube[i]
-
-
-class _PeakRSS:
-    """Peak resident memory of this process, sampled every 0.05 s in a thread."""
-
-    def __init__(self):
-        import psutil
-
-        self.proc, self.peak, self._stop = psutil.Process(), 0, threading.Event()
-        self.peak = self.proc.memory_info().rss
-        self._thread = threading.Thread(target=self._run, daemon=True)
-        self._thread.start()
-
-    def _run(self):
-        while not self._stop.is_set():
-            self.peak = max(self.peak, self.proc.memory_info().rss)
-            time.sleep(0.05)
-
-    def stop(self) -> int:
-        self._stop.set()
-        self._thread.join()
-        return max(self.peak, self.proc.memory_info().rss)
 
 
 def _warm_up() -> None:
@@ -109,7 +89,7 @@ def case(path: str, sgy: str, faults_pkl: str, out: str) -> dict:
     else:
         data = LazyWindows(seismo3d.open(sgy, tile=32).data, tile=32, cache_mb=128)
     rss0 = psutil.Process().memory_info().rss
-    sampler = _PeakRSS()
+    sampler = PeakRSS()
     tracemalloc.start()
     t0 = time.perf_counter()
     throws = fault_throws(data, faults)

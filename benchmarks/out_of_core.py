@@ -17,10 +17,10 @@ Run: ``python benchmarks/out_of_core.py [--shape 1024,1024,1000]
    kernel_threads`; tiles of 16 traces, so that a scan strip fits half the limit): as 2 worker processes with their
    nannies (``distributed``) and as 2 workers in
    the client's process (``distributed-inprocess``, off by default). Each run is a child process; its peak memory
-   is sampled over the process and all its children (the cluster's scheduler, nannies and workers included): the
-   summed resident memory (RSS, every 0.2 s; it counts the libraries every process maps once per process) and the
-   summed proportional set size (PSS, every 1 s; shared pages split between the processes that share them: the
-   memory the machine gives the run). Seconds per GB of input samples (1e9 bytes).
+   (``benchmarks/peak_memory.py``): the process's own peak resident memory (its ``VmHWM``, exact; a child it forks
+   is not counted) and the summed proportional set size of it and all its children (PSS, every 1 s: the cluster's
+   scheduler, nannies and workers included, shared pages split between the processes that share them: the memory
+   the machine gives the run). Seconds per GB of input samples (1e9 bytes).
    surfaces: then the fault surfaces of that cube
    (:func:`~seismo3d.seismic.faults.surfaces.blocks.chunked_fault_surfaces` on the threaded run's likelihood, same
    memory limit), same sampling. Its fault cells (the thinned faults linked into skins in memory, ~1 % of the samples
@@ -44,11 +44,13 @@ import shutil
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).parent))
+from peak_memory import PeakRSS  # noqa: E402
 
 _TILE = 256
 
@@ -86,51 +88,11 @@ def write_mosaic_segy(path: Path, shape) -> None:
                 print(f"  writing SEG-Y: inline {i + 1}/{n_il}", file=sys.stderr, flush=True)
 
 
-class _PeakRSS:
-    """Peak of the summed resident memory of a process and its children, sampled every 0.2 s; and of their summed
-    proportional set size (PSS: shared pages, such as the libraries every worker process maps, counted once over the
-    processes that share them), every 1 s (Linux)."""
-
-    def __init__(self, pid: int):
-        import psutil
-
-        self.proc, self.peak, self.peak_pss, self._stop = psutil.Process(pid), 0, 0, threading.Event()
-        self._thread = threading.Thread(target=self._run, daemon=True)
-        self._thread.start()
-
-    def _run(self):
-        import psutil
-
-        tick = 0
-        while not self._stop.is_set():
-            try:
-                procs = [self.proc] + self.proc.children(recursive=True)
-                total = pss = 0
-                for p in procs:
-                    try:
-                        total += p.memory_info().rss
-                        if tick % 5 == 0:
-                            pss += getattr(p.memory_full_info(), "pss", 0)
-                    except psutil.Error:
-                        pass
-                self.peak = max(self.peak, total)
-                self.peak_pss = max(self.peak_pss, pss)
-            except psutil.Error:
-                pass
-            tick += 1
-            time.sleep(0.2)
-
-    def stop(self) -> int:
-        self._stop.set()
-        self._thread.join()
-        return self.peak
-
-
 def _child(case: str, args: list) -> dict:
     """Run one case in a child process; its JSON result and peak memory."""
     cmd = [sys.executable, __file__, "--case", case, *args]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True)
-    sampler = _PeakRSS(proc.pid)
+    sampler = PeakRSS(proc.pid)
     out, _ = proc.communicate()
     peak = sampler.stop()
     if proc.returncode != 0:
@@ -182,7 +144,7 @@ def case_surfaces(sgy: str, likelihood: str, out: str, limit: int, link_limit: i
     import seismo3d
 
     cube = seismo3d.open(sgy, tile=32)
-    sampler = _PeakRSS(os.getpid())
+    sampler = PeakRSS(os.getpid())
     t0 = time.perf_counter()
     try:
         r = chunked_fault_surfaces(cube.data, likelihood, out, chunking=ChunkOptions(memory_limit=limit))
@@ -195,7 +157,7 @@ def case_surfaces(sgy: str, likelihood: str, out: str, limit: int, link_limit: i
     result = {"gb": float(np.prod(cube.shape)) * 4 / 1e9, "shape": list(cube.shape),
               "blocks_peak_gb": blocks_peak / 1e9, "blocks_seconds": blocks_sec, "refused": refused}
     if refused is not None:
-        sampler = _PeakRSS(os.getpid())
+        sampler = PeakRSS(os.getpid())
         r = chunked_fault_surfaces(cube.data, likelihood, out, chunking=ChunkOptions(memory_limit=link_limit))
         result.update(link_peak_gb=sampler.stop() / 1e9, link_limit_gb=link_limit / 1e9)
     result.update(seconds=time.perf_counter() - t0, blocks=r.blocks_computed, steps=r.seconds,
@@ -278,8 +240,8 @@ def _surface_notes(rows: list) -> None:
     """The two parts of a chunked surfaces run that needed a larger limit for its linking."""
     for label, r in rows:
         if r.get("refused"):
-            print(f"\n{label}: block steps {r['blocks_seconds']:.0f} s, peak {r['blocks_peak_gb']:.2f} GB (RSS of the "
-                  f"run's process); then refused: {r['refused']}; linking under {r['link_limit_gb']:.1f} GB: peak "
+            print(f"\n{label}: block steps {r['blocks_seconds']:.0f} s, peak {r['blocks_peak_gb']:.2f} GB (the run's "
+                  f"process's own); then refused: {r['refused']}; linking under {r['link_limit_gb']:.1f} GB: peak "
                   f"{r['link_peak_gb']:.2f} GB; {r['cells']} cells, {r['seeds']} seeds", flush=True)
 
 
@@ -288,7 +250,7 @@ def _table(title: str, rows: list, faults: bool = False) -> None:
     if not rows:
         return
     print(f"\n### {title}\n")
-    print(f"| path | cube | GB | s | s/GB | peak resident GB (RSS summed) | peak PSS GB |"
+    print(f"| path | cube | GB | s | s/GB | peak resident GB (the process's own) | peak PSS GB |"
           f"{' faults |' if faults else ''} seconds per step |")
     print("|---" * (9 if faults else 8) + "|")
     for label, r in rows:

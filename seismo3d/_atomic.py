@@ -2,17 +2,20 @@
 
 from __future__ import annotations
 
+import json
 import os
 import pathlib
 import shutil
 import signal
+import socket
 import tempfile
 import threading
 from contextlib import contextmanager
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_directory", "deferred_interrupt", "existing_folder", "SetAside", "StagedFolder"]
+__all__ = ["atomic_path", "atomic_directory", "deferred_interrupt", "existing_folder", "remove_stale_staging", "SetAside",
+           "STAGING_RECORD", "StagedFolder"]
 
 
 @contextmanager
@@ -98,6 +101,57 @@ def atomic_directory(path):
             shutil.rmtree(old, ignore_errors=True)
 
 
+# The record of the run that made a staging folder, inside it (StagedFolder's owner)
+STAGING_RECORD = ".staging-run.json"
+
+
+def _this_process(owner: str) -> dict:
+    """The record of a staging folder: its owner, and this process (host, id, start time: an id the system has
+    given to a later process is told apart by its start time)."""
+    import psutil
+
+    return {"owner": owner, "host": socket.gethostname(), "pid": os.getpid(),
+            "started": psutil.Process().create_time()}
+
+
+def remove_stale_staging(folder, owner: str) -> list:
+    """Remove the staging folders (``.staged-*.tmp``) of ``owner`` in ``folder`` whose run's process is no longer
+    running on this host (a run killed outright), as :class:`StagedFolder` with ``owner`` does on entering.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        An output folder.
+    owner : str
+        What writes it (:class:`StagedFolder`'s ``owner``).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The staging folders removed: only those whose record (:data:`STAGING_RECORD`) names ``owner`` and this host,
+        and a process that has ended.
+    """
+    import psutil
+
+    removed = []
+    for path in sorted(pathlib.Path(folder).glob(".staged-*.tmp")):
+        try:
+            record = json.loads((path / STAGING_RECORD).read_text())
+            if record.get("owner") != owner or record.get("host") != socket.gethostname():
+                continue
+            pid, started = int(record["pid"]), float(record["started"])
+        except (OSError, ValueError, TypeError, KeyError, AttributeError):
+            continue  # not a staging folder of this owner's: left alone
+        try:
+            if abs(psutil.Process(pid).create_time() - started) < 0.01:  # its clock ticks
+                continue  # its run is still going
+        except psutil.NoSuchProcess:
+            pass
+        shutil.rmtree(path, ignore_errors=True)
+        removed.append(path)
+    return removed
+
+
 class StagedFolder:
     """The files of an output folder written into a hidden staging folder inside it, and moved in together when the
     block ends without an error (each by a rename over any earlier file; a staged folder replaces an earlier folder of
@@ -109,10 +163,19 @@ class StagedFolder:
     behind. Files the block writes into the folder itself (e.g. the resumable stores of a chunked run) are not
     touched.
 
+    A process killed outright (``kill -9``, a crash, a power cut) cannot remove its staging folder. With ``owner``,
+    the staging folder holds a record of its run (:data:`STAGING_RECORD`: the owner, the host, the process id and
+    its start time), and entering removes the staging folders of the same ``owner`` in ``folder`` whose process is
+    no longer running on this host (:func:`remove_stale_staging`): only those; a folder without that record, of
+    another owner or host, or whose process still runs is left alone.
+
     Parameters
     ----------
     folder : str or os.PathLike
         The output folder.
+    owner : str, optional
+        What writes the folder (e.g. ``'seismo3d faults'``): its staging folders left by a killed run are removed
+        on entering.
 
     Examples
     --------
@@ -122,21 +185,26 @@ class StagedFolder:
     PosixPath('out_dir/result.csv')
     """
 
-    def __init__(self, folder):
+    def __init__(self, folder, *, owner: str | None = None):
         self.folder = pathlib.Path(folder)
+        self.owner = owner
         self.path = None
         self._created = False
 
     def __enter__(self) -> "StagedFolder":
         self._created = not self.folder.exists()
         self.folder.mkdir(parents=True, exist_ok=True)
+        if self.owner is not None:
+            remove_stale_staging(self.folder, self.owner)
         self.path = pathlib.Path(tempfile.mkdtemp(dir=self.folder, prefix=".staged-", suffix=".tmp"))
+        if self.owner is not None:
+            (self.path / STAGING_RECORD).write_text(json.dumps(_this_process(self.owner)))
         return self
 
     def __exit__(self, exc_type, exc, tb) -> None:
         try:
             if exc_type is None:
-                for item in sorted(self.path.iterdir()):
+                for item in sorted(p for p in self.path.iterdir() if p.name != STAGING_RECORD):
                     final, earlier = self.folder / item.name, None
                     if item.is_dir() and final.is_dir() and not final.is_symlink():
                         # a folder of files (a TSurf per fault): rename() cannot replace a folder that is not empty,

@@ -41,3 +41,42 @@ def test_a_ctrl_c_within_deferred_interrupt_is_raised_when_the_block_ends():
     with deferred_interrupt():  # no Ctrl-C: nothing raised
         done.append("again")
     assert done[-1] == "again"
+
+
+def test_a_run_killed_outright_leaves_a_staging_folder_the_next_run_of_its_owner_removes(tmp_path):
+    """``kill -9`` gives a run no clean-up: its ``.staged-*.tmp`` stays in the output folder. The next run of the same
+    owner into that folder removes it, and only it: a folder of that name without the run's record (the user's),
+    one of another owner, and one whose process still runs are left alone. The record is not among the outputs."""
+    import json
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    from seismo3d._atomic import STAGING_RECORD
+
+    out = tmp_path / "out"
+    child = subprocess.Popen([sys.executable, "-c", (
+        "import sys, time\nfrom seismo3d._atomic import StagedFolder\n"
+        f"with StagedFolder({str(out)!r}, owner='seismo3d faults') as stage:\n"
+        "    (stage.path / 'fault_points.csv').write_text('half')\n    print('staged', flush=True)\n"
+        "    time.sleep(60)\n")], stdout=subprocess.PIPE, text=True)
+    assert child.stdout.readline().strip() == "staged"
+    os.kill(child.pid, signal.SIGKILL)
+    child.wait()
+    stale = list(out.glob(".staged-*.tmp"))
+    assert len(stale) == 1 and (stale[0] / "fault_points.csv").exists()
+    user = out / ".staged-mine.tmp"  # the user's: no record
+    user.mkdir()
+    other = out / ".staged-other.tmp"  # another owner's
+    other.mkdir()
+    (other / STAGING_RECORD).write_text(json.dumps(dict(json.loads((stale[0] / STAGING_RECORD).read_text()),
+                                                        owner="seismo3d map")))
+    with StagedFolder(out, owner="seismo3d faults") as running:  # a run still going: its folder is kept
+        with StagedFolder(out, owner="seismo3d faults") as stage:
+            assert not stale[0].exists()
+            assert running.path.exists() and user.exists() and other.exists()
+            (stage.path / "fault_points.csv").write_text("whole")
+    assert sorted(p.name for p in out.iterdir()) == sorted([".staged-mine.tmp", ".staged-other.tmp",
+                                                            "fault_points.csv"])
+    assert (out / "fault_points.csv").read_text() == "whole"

@@ -26,6 +26,7 @@ from ..seismic.blocks.executor import release_memory
 from ..seismic.blocks.memory import in_memory_bytes, parse_memory_limit, resident_memory, size_text
 from ..seismic.faults.pipeline import LIKELIHOOD_STORE, SURFACES_STORE, stores_of_another_run
 from ..seismic.blocks.options import BlockRunOptions
+from ..seismic.blocks.plan import HeldStage
 from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
 from ..seismic.faults.pipeline import trace_faults
@@ -208,9 +209,10 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     files and picture as in memory (the picture reads only its three slices). Both stores are resumable (an
     interrupted run started again with the same arguments skips the finished blocks) and reused when finished. For
     a SEG-Y input, ``fault_likelihood.sgy``, ``fault_strike.sgy``, ``fault_dip.sgy`` and ``fault_votes.sgy`` are
-    written block by block with its headers, as in memory. Only the fault cells (the thinned faults, about 160
-    bytes each) and the seed candidates are held whole; a limit too small for them is reported with the memory
-    they need.
+    written block by block with its headers, as in memory. Only the seed candidates and the fault cells (the thinned
+    faults, their skins, throws and the outputs made of them) are held whole; a limit too small for as many as a sample
+    of blocks predicts is refused before the work, and for the cells counted after the blocks, then, with the limit
+    they need (the finished blocks are kept for the run with it).
 
     Data that cannot support fault tracing (too few traces, not seismic amplitudes, no lateral coherence: see
     :func:`~seismo3d.seismic.trace_faults`) raises :class:`~seismo3d.errors.UnsupportedDataError` before any output
@@ -330,7 +332,7 @@ def run_faults_job(input_path, out_dir, *, demo=False, demo_seed=0, iline=189, x
     aside = SetAside(out_dir)
     _load_writers()  # before the staging folder: an interrupt here leaves nothing to clean up
     try:
-        with aside, StagedFolder(out_dir) as stage:
+        with aside, StagedFolder(out_dir, owner="seismo3d faults") as stage:
             written = _trace_and_write(input_path, stage.path, out_dir, demo=demo, demo_seed=demo_seed, segy=segy,
                                        n_samples=n_samples, options=options, limit=limit, scheduler=scheduler,
                                        progress=progress, summary=summary, aside=aside if overwrite else None,
@@ -381,7 +383,9 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     _say_how_it_runs(inp.name, tuple(inp.amplitudes.shape), limit, held[0], by_blocks=inp.lazy)
     if inp.lazy and aside is not None:
         _set_aside_earlier_stores(out_dir, aside, inp, options)
-    blocks = replace(blocks, in_memory=not inp.lazy, source=inp.name, coords=inp.coords)  # decided: not again
+    # decided: not again; the writers planned with the run's stages after its blocks
+    blocks = replace(blocks, in_memory=not inp.lazy, source=inp.name, coords=inp.coords,
+                     after=_writer_stages(tuple(inp.amplitudes.shape)))
     try:
         result = trace_faults(inp.cube, options=options, blocks=blocks, progress=progress)
     except EarlierStoresError as exc:  # without overwrite: stores of another input or other options are kept
@@ -416,6 +420,40 @@ def _say_how_it_runs(name: str, shape: tuple, limit: int, held: int, *, by_block
 
 # the writers' libraries (_load_writers), by module name
 WRITER_MODULES = ("matplotlib.figure", "pyvista")
+# The writers' memory after a run by blocks, beyond the process as the run's plan counts it (as the stages before
+# them: seismo3d.seismic.faults.surfaces.blocks.held_stages, measured alike by benchmarks/post_block_memory.py on
+# the same three cubes, 159,474 / 357,331 / 92,879 cells, MiB beyond the process + 64 MiB): the SEG-Y volumes 51 / 47
+# / 47 (a block of 32 inlines of 1.31 / 1.38 / 2.62 M samples read, checked and written: 46 / 50 / 63 MiB above the
+# results held), faults.vtp then the TSurf files 83 / 150 / 30, faults.png 86 / 94 / 55. The first volume written
+# takes the heap the throws' stage left, which held_stages covers.
+_RESULTS_PER_CELL = 64  # the faults, throws and evidence held while they are written
+_SEGY_FIXED, _SEGY_PER_SAMPLE = 32 << 20, 16  # per sample of write_like_blocks' block of 32 inlines
+_SEGY_INLINES = 32
+_MESH_FIXED, _MESH_PER_CELL = 32 << 20, 480  # 105 / 196 / 75 MiB on the three cubes
+_FIGURE_FIXED = 96 << 20  # its three slices of amplitudes and likelihood, matplotlib's layout
+
+
+def _writer_stages(shape) -> tuple:
+    """The writers of a run by blocks as stages of its plan (:class:`~seismo3d.seismic.blocks.plan.HeldStage`),
+    with their memory models (the notes above): the SEG-Y volumes, the meshes, the picture.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        The input's shape; a section (2D) is traced in memory and has none.
+
+    Returns
+    -------
+    tuple of HeldStage
+        Their ``held_bytes(cells)``, bytes beyond the process as the run's plan counts it.
+    """
+    if len(shape) != 3:
+        return ()
+    block = min(_SEGY_INLINES, shape[0]) * shape[1] * shape[2]
+    return (HeldStage("writing the SEG-Y volumes", lambda cells: (_RESULTS_PER_CELL * cells + _SEGY_FIXED
+                                                                   + _SEGY_PER_SAMPLE * block)),
+            HeldStage("writing faults.vtp and the TSurf files", lambda cells: _MESH_FIXED + _MESH_PER_CELL * cells),
+            HeldStage("drawing faults.png", lambda cells: _RESULTS_PER_CELL * cells + _FIGURE_FIXED))
 
 
 def _load_writers() -> None:

@@ -356,6 +356,32 @@ def test_no_faults(tmp_path):
     assert Path(written["figure"]).stat().st_size > 1000
 
 
+def test_a_rerun_removes_the_staging_folder_of_a_run_killed_outright(tmp_path):
+    """A run killed with ``kill -9`` leaves its ``.staged-*.tmp`` (with the files written so far) in the output
+    folder; the next run into that folder removes it, and leaves a folder of that name that is not a run's alone."""
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    out = tmp_path / "out"
+    killed = subprocess.Popen([sys.executable, "-c", (
+        "import time\nfrom seismo3d._atomic import StagedFolder\n"
+        f"with StagedFolder({str(out)!r}, owner='seismo3d faults') as stage:\n"
+        "    (stage.path / 'faults.vtp').write_text('half')\n    print(flush=True)\n    time.sleep(60)\n")],
+        stdout=subprocess.PIPE, text=True)
+    killed.stdout.readline()
+    os.kill(killed.pid, signal.SIGKILL)
+    killed.wait()
+    (stale,) = out.glob(".staged-*.tmp")
+    (out / ".staged-notes.tmp").mkdir()  # the user's
+    layers = np.tile(np.sin(np.arange(64) * 0.9), (80, 1)).astype(np.float32)
+    np.save(tmp_path / "flat.npy", layers)
+    run_faults_job(tmp_path / "flat.npy", out, progress=False)
+    assert not stale.exists() and (out / ".staged-notes.tmp").is_dir()
+    assert [p.name for p in out.glob(".staged-*")] == [".staged-notes.tmp"]
+
+
 # --------------------------------------------------------------------------------------------------------------------
 # bad files and folders: our errors, input untouched, nothing left half-written
 

@@ -59,6 +59,20 @@ def _started(*args, **kwargs):
     raise _Started
 
 
+def _stop_at_the_blocks(monkeypatch) -> dict:
+    """Runs by blocks at any limit that stop at their first block (_Started), and the process (``'bytes'`` of the
+    dict returned) as measured by the first call for every call: a process of 2 GB (the whole suite) can give back
+    more than the advice's 5 % margin between two calls (release_memory trims the heap); a user's fresh process
+    differs by ~10 MB between runs."""
+    monkeypatch.setattr(pipeline, "chunked_fault_likelihood", _started)
+    monkeypatch.setattr(pipeline, "chunked_learned_likelihood", _started)
+    monkeypatch.setattr(block_options, "fits_in_memory", lambda *a, **k: False)  # blocks at either limit
+    baseline = {}
+    measure = pipeline.worker_baseline
+    monkeypatch.setattr(pipeline, "worker_baseline", lambda *a, **k: baseline.setdefault("bytes", measure(*a, **k)))
+    return baseline
+
+
 @pytest.mark.parametrize("sample", [CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.0),
                                     CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1,
                                                candidate_density=1.0)],  # 2 M seed candidates: 168 MB
@@ -69,15 +83,7 @@ def test_the_limit_named_is_one_the_run_goes_through_with(cube_file, tmp_path, m
     run passes its checks and starts its blocks (issue 77: the advice moved, 830MB, then at 830MB "1000MB or more",
     when the smallest blocks were checked before the sample's seed candidates)."""
     monkeypatch.setattr(pipeline, "judge_sample", lambda *a, **k: sample)
-    monkeypatch.setattr(pipeline, "chunked_fault_likelihood", _started)
-    monkeypatch.setattr(pipeline, "chunked_learned_likelihood", _started)
-    monkeypatch.setattr(block_options, "fits_in_memory", lambda *a, **k: False)  # blocks at either limit
-    # the process as measured by the first call for every call: a process of 2 GB (the whole suite) can give back
-    # more than the advice's 5 % margin between two calls (release_memory trims the heap); a user's fresh process
-    # differs by ~10 MB between runs
-    baseline = {}
-    measure = pipeline.worker_baseline
-    monkeypatch.setattr(pipeline, "worker_baseline", lambda *a, **k: baseline.setdefault("bytes", measure(*a, **k)))
+    _stop_at_the_blocks(monkeypatch)
     line = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
                                            "--likelihood", likelihood, "--memory-limit", "100MB"]))
     assert line.startswith("error: cube: a block-by-block run of its 128 x 128 x 128 samples needs a memory limit of "
@@ -89,6 +95,37 @@ def test_the_limit_named_is_one_the_run_goes_through_with(cube_file, tmp_path, m
     assert not (tmp_path / "out").exists()
     with pytest.raises(_Started):
         job.run_faults_job(cube_file, tmp_path / "out", memory_limit=need, likelihood=likelihood, progress=False)
+
+
+def test_a_limit_too_small_for_the_stages_after_the_blocks_is_refused_before_the_work(cube_file, tmp_path,
+                                                                                      monkeypatch):
+    """The fault cells, skins, throws and the writers hold their data whole after the blocks (issue 75): a limit that
+    the smallest blocks fit but the cells a sample predicts do not is refused before any block, naming a limit that
+    holds the largest of those stages; with it the run passes its checks and starts its blocks."""
+    from seismo3d.seismic.blocks.plan import held_need
+    from seismo3d.seismic.faults.surfaces.blocks import CELLS_PER_CANDIDATE, held_stages
+
+    shape = (128, 128, 128)
+    few = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.0)
+    many = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.5)  # 1,048,576 candidates
+    baseline = _stop_at_the_blocks(monkeypatch)
+
+    def refusal(sample, limit):
+        monkeypatch.setattr(pipeline, "judge_sample", lambda *a, **k: sample)
+        line = _error_line(runner.invoke(app, ["faults", str(cube_file), "-o", str(tmp_path / "out"),
+                                               "--memory-limit", limit]))
+        assert not (tmp_path / "out").exists()
+        return re.search(rf"pass --memory-limit {_SIZE} or more$", line).group(1)
+
+    blocks_only = refusal(few, "100MB")  # the smallest blocks' limit, or the fixed parts of the later stages
+    with pytest.raises(_Started):
+        job.run_faults_job(cube_file, tmp_path / "out", memory_limit=blocks_only, progress=False)
+    need = refusal(many, blocks_only)  # refused at a limit the blocks fit, before any block
+    cells = int(np.ceil(many.candidates(shape) * CELLS_PER_CANDIDATE))
+    stages = held_stages(shape) + job._writer_stages(shape)
+    assert _bytes(need) >= baseline["bytes"] + held_need(stages, cells)[0] > _bytes(blocks_only)
+    with pytest.raises(_Started):
+        job.run_faults_job(cube_file, tmp_path / "out", memory_limit=need, progress=False)
 
 
 def test_progress_lines_have_no_negative_sizes(cube_file, tmp_path, monkeypatch, caplog):

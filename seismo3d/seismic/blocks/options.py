@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from ..._validation import check_int
 from ...errors import InputError
 from .memory import default_memory_limit, fits_in_memory, parse_memory_limit
+from .plan import HeldStage
 
 __all__ = ["BlockRunOptions", "ChunkOptions"]
 
@@ -40,6 +41,10 @@ class BlockRunOptions:
         default the cube's file name when ``trace_faults`` is given a cube opened from a file, else ``'cube'``.
     coords : dict, optional
         ``inline``, ``crossline``, ``sample`` and ``sample_unit`` coordinates of the stores of a run by blocks.
+    after : tuple of HeldStage
+        Stages after a run by blocks that hold its results whole (the faults job's writers,
+        :class:`~seismo3d.seismic.blocks.plan.HeldStage`), planned with the run's own stages after its blocks: the
+        limit is refused before the work when they would not fit.
 
     Raises
     ------
@@ -60,6 +65,7 @@ class BlockRunOptions:
     scheduler: str | None = None
     source: str | None = None
     coords: Mapping | None = None
+    after: tuple = ()
 
     def __post_init__(self):
         try:
@@ -81,6 +87,9 @@ class BlockRunOptions:
         if self.coords is not None and not isinstance(self.coords, Mapping):
             raise InputError(f"BlockRunOptions(coords=...) must be a dict of coordinates or None; got "
                              f"{type(self.coords).__name__}")
+        if not isinstance(self.after, tuple) or not all(isinstance(s, HeldStage) for s in self.after):
+            raise InputError("BlockRunOptions(after=...) must be a tuple of HeldStage (the stages after the run that "
+                             "hold its results)")
 
     @property
     def limit(self) -> int:

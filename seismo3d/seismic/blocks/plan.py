@@ -1,6 +1,8 @@
 """The plan of a run by blocks: its steps declared once (:class:`BlockStep`: what a block computes, whether the step
 maps, reduces or gathers, the halo it reads, the bytes of a block), and the largest blocks a memory limit allows them
-(:func:`block_budget`, :func:`plan_steps`, :func:`serial_step_blocks`), decided once before the run. The run itself is
+(:func:`block_budget`, :func:`plan_steps`, :func:`serial_step_blocks`), decided once before the run; and the stages
+after the blocks that hold their data whole (:class:`HeldStage`: a gather's lists linked, the results written),
+whose memory grows with the items gathered, not with a block (:func:`held_need`). The run itself is
 :class:`~seismo3d.seismic.blocks.executor.BlockRun`'s (:meth:`~seismo3d.seismic.blocks.executor.BlockRun.run_step`).
 """
 
@@ -13,9 +15,9 @@ from dataclasses import dataclass
 
 from ...errors import InputError
 
-__all__ = ["BlockStep", "CUBE", "MEMORY_HEADROOM", "STEP_KINDS", "around", "block_budget", "largest_block", "lateral_blocks",
-           "limit_for_blocks", "plan_steps", "serial_step_blocks",
-           "smallest_need", "usable_cores"]
+__all__ = ["BlockStep", "CUBE", "HeldStage", "MEMORY_HEADROOM", "STEP_KINDS", "around", "block_budget", "held_need",
+           "largest_block", "lateral_blocks", "limit_for_blocks", "plan_steps", "serial_step_blocks", "smallest_need",
+           "usable_cores"]
 
 # Fraction of the memory left under a limit (less the process itself) that a run's blocks may plan for: the rest is
 # for the allocator's fragmentation and the reads in flight (a chunked likelihood run peaked at 1.54 GB under a
@@ -170,6 +172,46 @@ class BlockStep:
     def __post_init__(self):
         if self.kind not in STEP_KINDS:
             raise InputError(f"BlockStep(kind=...) must be one of {', '.join(STEP_KINDS)}; got {self.kind!r}")
+
+
+@dataclass(frozen=True)
+class HeldStage:
+    """A stage of a run after its blocks that holds its data whole in the process (a gather's lists linked, its
+    results written), declared once with its memory model.
+
+    Its memory does not depend on the blocks' size (the blocks' arrays are freed before it starts), so it decides
+    not the blocks but whether the run fits at all: :func:`held_need` beside the blocks' need.
+
+    Attributes
+    ----------
+    name : str
+        The stage's name (for messages).
+    held_bytes : callable
+        ``held_bytes(items) -> int``: the stage's peak bytes beyond the process as the run's plan counts it, with
+        ``items`` gathered (e.g. fault cells); the model of the stage (fixed, per item and per sample parts measured
+        on the run's data: the declaring module says where).
+    """
+
+    name: str
+    held_bytes: Callable[[int], int]
+
+
+def held_need(stages, items: int) -> tuple[int, str]:
+    """The bytes of the largest of ``stages`` with ``items`` gathered, beyond the process, and its name.
+
+    Parameters
+    ----------
+    stages : iterable of HeldStage
+    items : int
+        Items gathered (>= 0).
+
+    Returns
+    -------
+    (int, str)
+        Bytes (0 and ``''`` without stages).
+    """
+    found = [(int(stage.held_bytes(int(items))), stage.name) for stage in stages]
+    return max(found) if found else (0, "")
 
 
 def plan_steps(steps, chunking, *, baseline: int, what: str) -> dict:

@@ -45,8 +45,10 @@ from .options import LIKELIHOODS, FaultTracingOptions
 from .result import FaultInterpretation, FaultLikelihood
 from .preflight import CubeSample, judge_sample
 from .steps import check_size, faults_from_cells, no_coherence_message, run_likelihood, surface_cells
+from ..blocks.plan import held_need
 from .surfaces.blocks import (
-    CANDIDATE_BYTES, chunked_fault_surfaces, memory_surface_run, smallest_block_bytes as surfaces_block_bytes,
+    CANDIDATE_BYTES, CELLS_PER_CANDIDATE, chunked_fault_surfaces, held_stages, memory_surface_run,
+    smallest_block_bytes as surfaces_block_bytes,
 )
 
 # check_size, check_amplitudes, no_coherence_message and LIKELIHOODS are imported here by older callers
@@ -219,7 +221,7 @@ def trace_faults(cube, *, memory_limit=None, sample_interval=None, sample_unit=N
             source = labels.cube.attrs.get("source_file") if source is None else source
         found = trace_faults_by_blocks(data, opt, sample_interval=sample_interval, sample_unit=sample_unit,
                                        memory_limit=run.limit, work_dir=run.work_dir, scheduler=run.scheduler,
-                                       source=source or "cube", coords=coords, progress=progress)
+                                       source=source or "cube", coords=coords, progress=progress, after=run.after)
         return found if labels is None else labels.label(found)
     arr, dead = _cleaned(data, opt)
     with progress_steps(7, "faults", enabled=progress) as bar:
@@ -302,7 +304,7 @@ class _Labels:
 
 def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: float, sample_unit: str,
                            memory_limit: int, work_dir, scheduler=None, source: str = "cube", coords=None,
-                           progress: bool = True) -> FaultInterpretation:
+                           progress: bool = True, after: tuple = ()) -> FaultInterpretation:
     """Trace the faults of a 3D cube block by block (called by :func:`trace_faults`): the checks before any block
     (:func:`check_block_run`), the fault likelihood
     (:func:`~seismo3d.seismic.faults.likelihood.scan_blocks.chunked_fault_likelihood` or the learned one) into
@@ -329,6 +331,9 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     coords : dict, optional
         Coordinates of the likelihood store (``inline``, ``crossline``, ``sample``, ``sample_unit``).
     progress : bool
+    after : tuple of HeldStage, optional
+        Stages after the run that hold its results whole (the faults job's writers,
+        :attr:`~seismo3d.seismic.blocks.options.BlockRunOptions.after`), planned with the run's own.
 
     Returns
     -------
@@ -359,7 +364,7 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
             raise EarlierStoresError(f"{work_dir / store} holds the {_STORE_NAMES[store]} of another input or other "
                                      "options; pick another output folder (-o) or delete it",
                                      [p for p in in_the_way if p.name.startswith(store)])
-    x, process, amplitudes = check_block_run(x, source, memory_limit, scheduler, opt)
+    x, process, amplitudes = check_block_run(x, source, memory_limit, scheduler, opt, after=after)
     # the likelihood's blocks planned from the process the refusal measured, the surfaces' from it grown by the
     # likelihood stage (STAGE_GROWTH, as minimum_memory_limit counts it; more when the process has grown more): the
     # same blocks for the same input and limit, run after run
@@ -393,7 +398,8 @@ def trace_faults_by_blocks(cube, opt: FaultTracingOptions, *, sample_interval: f
     started = time.perf_counter()
     grown = dataclasses.replace(chunking, process=max(process + STAGE_GROWTH, process_bytes(scheduler)))
     surfaces = chunked_fault_surfaces(x, path, work_dir / SURFACES_STORE, options=opt, chunking=grown,
-                                      progress=progress, amplitudes=amplitudes, attrs={"source": source})
+                                      progress=progress, amplitudes=amplitudes, attrs={"source": source},
+                                      after=after)
     seconds.update(surfaces.seconds)  # the block steps computed in this call, the skins, the throw, the evidence
     seconds["fault surfaces"] = time.perf_counter() - started - sum(surfaces.seconds.values())  # the rest
     LOGGER.info("%s: %d faults from %d seeds and %d thinned fault samples (thresholds %.3f, %.3f)", source,
@@ -541,10 +547,12 @@ def _given_likelihood(fl, shape: tuple) -> FaultLikelihood:
 
 def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions | None = None,
                          tile: int | None = None, workers: int = 1, sample: CubeSample | None = None,
-                         growth: int = STAGE_GROWTH) -> int:
+                         growth: int = STAGE_GROWTH, after: tuple = ()) -> int:
     """The smallest ``memory_limit`` (bytes) with which a block-by-block fault run of a cube can go through: both
     stages plan their smallest blocks (the second from a process grown by ``growth``), and (with ``sample``) the
-    seed candidates fit.
+    seed candidates fit, and the stages after the blocks
+    (:func:`~seismo3d.seismic.faults.surfaces.blocks.held_stages` and ``after``) with the cells the sample predicts
+    (:data:`~seismo3d.seismic.faults.surfaces.blocks.CELLS_PER_CANDIDATE` per seed candidate).
 
     Parameters
     ----------
@@ -562,6 +570,8 @@ def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions |
         From :func:`judge_sample`: adds the seed candidates it predicts.
     growth : int
         Bytes the process grows by during the likelihood stage (:data:`STAGE_GROWTH`).
+    after : tuple of HeldStage, optional
+        Stages after the run that hold its results whole (the faults job's writers).
 
     Returns
     -------
@@ -576,11 +586,14 @@ def minimum_memory_limit(shape, *, baseline: int, options: FaultTracingOptions |
                              else learned_block_bytes(shape, opt.learned, tile), baseline, workers)
     need = max(first, limit_for_blocks(surfaces_block_bytes(shape, opt, tile), baseline + growth, workers))
     if sample is not None:
-        need = max(need, baseline + growth + sample.candidates(shape) * CANDIDATE_BYTES)
+        candidates = sample.candidates(shape)
+        cells = int(np.ceil(candidates * CELLS_PER_CANDIDATE))
+        held, _ = held_need(held_stages(shape) + tuple(after), cells)
+        need = max(need, baseline + growth + max(candidates * CANDIDATE_BYTES, held))
     return need
 
 
-def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOptions):
+def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOptions, *, after: tuple = ()):
     """Before any block of a run by blocks: the data judged from a sample of blocks (not seismic amplitudes, no
     lateral coherence: the refusals of the run in memory, in seconds), then the one memory decision: the smallest
     limit the run goes through with (its smallest blocks in both stages and the seed candidates the sample predicts,
@@ -602,6 +615,8 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
         Memory limit, bytes.
     scheduler : str or None
     options : FaultTracingOptions
+    after : tuple of HeldStage, optional
+        Stages after the run that hold its results whole (the faults job's writers), in the limit named.
 
     Returns
     -------
@@ -629,9 +644,10 @@ def check_block_run(x, name: str, limit: int, scheduler, options: FaultTracingOp
     # the process as it is now, measured once for the refusal and every plan of the run, and the chunks a block reads
     process = process_bytes(scheduler)
     baseline = worker_baseline(ChunkOptions(memory_limit=limit, scheduler=scheduler, process=process), x)
-    need = minimum_memory_limit(shape, baseline=baseline, options=options, sample=sample)
+    need = minimum_memory_limit(shape, baseline=baseline, options=options, sample=sample, after=after)
     _check_limit(name, shape, limit, need, f" (its smallest blocks, and the ~{sample.candidates(shape)} seed "
-                                           "candidates a sample of its blocks predicts)")
+                                           "candidates a sample of its blocks predicts and the fault cells, skins, "
+                                           "throws and outputs made of them)")
     x, amplitudes = finite_cube(without_blank_slices(x), options.dead)  # filled as in memory (_cleaned)
     return x, process, amplitudes
 

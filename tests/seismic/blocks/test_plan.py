@@ -64,3 +64,13 @@ def test_a_step_without_bytes_is_run_on_another_steps_blocks_not_planned():
     steps = (BlockStep("thin", "reduce", 2, lambda b: b * b, 64), BlockStep("cells", "gather"))
     assert _plan(steps, 1000) == {"thin": 24}  # 24^2 = 576 fits, 32^2 = 1024 does not
     assert around((0, 4, 4, 8), 2, (10, 7)) == (0, 6, 2, 7)  # grown by 2 traces, clipped to the cube
+
+
+def test_the_held_stages_need_is_their_largest_with_the_items_gathered():
+    """Stages after the blocks (HeldStage) are planned by their largest model at the items gathered, not by a block."""
+    from seismo3d.seismic.blocks.plan import HeldStage, held_need
+
+    stages = (HeldStage("cells", lambda n: 100 * n), HeldStage("writer", lambda n: 5000 + 10 * n))
+    assert held_need(stages, 10) == (5100, "writer")
+    assert held_need(stages, 1000) == (100_000, "cells")
+    assert held_need((), 1000) == (0, "")

@@ -134,11 +134,22 @@ def test_minimum_memory_limit_is_what_both_stages_plan_with(shape, likelihood):
         plans(limit - (1 << 20))
 
 
-def test_minimum_memory_limit_holds_the_predicted_seed_candidates():
+def test_minimum_memory_limit_holds_the_predicted_seed_candidates_and_cells():
+    """The seed candidates a sample predicts, and as many fault cells per candidate
+    (``CELLS_PER_CANDIDATE``) in the stages after the blocks (``held_stages``) and those given (the job's writers)."""
+    from seismo3d.seismic.blocks.plan import HeldStage, held_need
+
     shape = (400, 400, 500)
     plain = minimum_memory_limit(shape, baseline=0, growth=0)
     dense = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.2)
     with_candidates = minimum_memory_limit(shape, baseline=0, sample=dense, growth=0)
-    assert with_candidates == dense.candidates(shape) * surface_steps.CANDIDATE_BYTES > plain
-    sparse = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1e-6)
-    assert minimum_memory_limit(shape, baseline=0, sample=sparse, growth=0) == plain
+    candidates = dense.candidates(shape)
+    cells = int(np.ceil(candidates * surface_steps.CELLS_PER_CANDIDATE))
+    assert with_candidates == max(candidates * surface_steps.CANDIDATE_BYTES,
+                                  held_need(surface_steps.held_stages(shape), cells)[0]) > plain
+    writer = HeldStage("a writer", lambda n: 3 * with_candidates + n)
+    assert minimum_memory_limit(shape, baseline=0, sample=dense, growth=0,
+                                after=(writer,)) == 3 * with_candidates + cells
+    sparse = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1e-6)  # 80 candidates
+    fixed = held_need(surface_steps.held_stages(shape), 60)[0]  # the throws' windows, whatever the cells
+    assert minimum_memory_limit(shape, baseline=0, sample=sparse, growth=0) == max(plain, fixed)

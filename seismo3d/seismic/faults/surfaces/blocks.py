@@ -25,10 +25,10 @@ import numpy as np
 from ...._progress import no_progress
 from ....errors import InputError
 from ...blocks.executor import MemoryRun, trace_cube
-from ...blocks.memory import resident_memory, worker_baseline
+from ...blocks.memory import resident_memory, size_text, worker_baseline
 from ...blocks.options import ChunkOptions
 from ...blocks.plan import (
-    CUBE, BlockStep, lateral_blocks, plan_steps, smallest_need,
+    CUBE, BlockStep, HeldStage, held_need, lateral_blocks, plan_steps, smallest_need,
 )
 from ...blocks.statistics import streamed_otsu, streamed_quantile
 from ...blocks.stores import StoreRun
@@ -41,8 +41,9 @@ from .ridges import RIDGE_HALO, THIN_HALO, amplitude_halo, cell_block, ridge_blo
 from .voting import surface_block, vote_block
 from .voting_kernels import greedy_seeds
 
-__all__ = ["CANDIDATE_BYTES", "CELL_BYTES", "ChunkedFaults", "SURFACE_BATCH_BYTES", "SurfacePlan", "SurfaceRun",
-           "block_steps", "chunked_fault_surfaces", "memory_surface_run", "plan_blocks", "smallest_block_bytes"]
+__all__ = ["CANDIDATE_BYTES", "CELLS_PER_CANDIDATE", "ChunkedFaults", "SURFACE_BATCH_BYTES", "SurfacePlan",
+           "SurfaceRun", "block_steps", "chunked_fault_surfaces", "held_stages", "memory_surface_run", "plan_blocks",
+           "smallest_block_bytes"]
 
 # the output's arrays, (n_inlines, n_xlines, n_samples) float32 (ChunkedFaults.path)
 _OUTPUTS = ("likelihood", "votes", "thin", "vote_strike_deg", "vote_dip_deg", "slope_inline", "slope_xline")
@@ -61,11 +62,8 @@ _VOTE_HALO_BYTES = 4
 # in id order).
 SURFACE_BATCH_BYTES = 16 << 20
 _THIN_BYTES = 44
-# Bytes per seed candidate and per cell while they are gathered, sorted and linked (keys, values, strike, dip,
-# frames, links, labels, the merging's KD-tree; measured 219-234 bytes a cell on 1.4 M cells of a 512^3 cube, 250 on
-# the 11 M cells of a 1448 x 1448 x 512 one).
+# Bytes per seed candidate while they are gathered and sorted
 CANDIDATE_BYTES = 80  # points, values, angles (36), the sort keys, order and sorted copy
-CELL_BYTES = 240
 # The fault likelihood's arrays the ridges read (the run's stores' names of the likelihood group's arrays)
 LIKELIHOOD_INPUTS = ("fault_likelihood", "fault_strike_deg", "fault_dip_deg")
 
@@ -138,6 +136,46 @@ def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
                       inputs=("thin_raw", "vote_strike_deg", "vote_dip_deg"), outputs=("thin",), place=True))
 
 
+# The stages after the blocks (held_stages): their peak beyond the process as the surfaces' plan counts it (the
+# process the run's refusal measured, with STAGE_GROWTH for what the earlier stages leave in it), a fixed part and a
+# part per fault cell. Measured by benchmarks/post_block_memory.py (the process's VmHWM reset at each stage's start,
+# a fresh process per cube) on generated SEG-Y cubes run by blocks; MiB beyond the process + 64 MiB:
+#                                cells    linked into skins   throws, half periods, evidence
+#   160 x 160 x 256, 4 faults   159,474         85, 78                  146, 136
+#   224 x 224 x 192, 8 faults   357,331        197, 245                 154, 143
+#   128 x 256 x 320, 2 faults    92,879          0, 3                   122, 114
+# (two runs each, the first under the limit the refusal named before these models, the second under the one it names
+# with them). The cells read from the store (36 bytes each) peak below the skins. The skins take 750 bytes a cell
+# (114, 256 and 66 MiB there); the throws 144 MiB and 48 bytes a cell (151, 160, 148): their windows of amplitudes
+# and slopes, not the cells, make most of it.
+_SKINS_PER_CELL = 750
+_THROW_FIXED, _THROW_PER_CELL = 144 << 20, 48
+# Cells per seed candidate the preflight's sample predicts (CubeSample.candidates): the cells (thinned votes at or
+# above the lower threshold) were 0.54, 0.67 and 0.70 of the candidates predicted on the cubes above. The prediction
+# is a sample's: on the Parihaka cube (256 x 128 x 128) the sample found no candidate, and 17,419 cells were linked;
+# the cells counted after the blocks are checked again (chunked_fault_surfaces).
+CELLS_PER_CANDIDATE = 0.75
+
+
+def held_stages(shape) -> tuple:
+    """The stages of the fault surfaces after their blocks, which hold the cells and what is made of them whole
+    (:func:`~seismo3d.seismic.faults.steps.faults_from_cells`), with their memory models (the module's notes): the
+    cells linked into fault skins, and the skins' throws, evidence and tips.
+
+    Parameters
+    ----------
+    shape : (int, int, int)
+        ``(n_inlines, n_xlines, n_samples)`` (the models measured on cubes of 192 to 320 samples a trace).
+
+    Returns
+    -------
+    tuple of HeldStage
+        Their ``held_bytes(cells)``: bytes beyond the process as the surfaces' plan counts it.
+    """
+    return (HeldStage("linking the fault cells into skins", lambda cells: _SKINS_PER_CELL * cells),
+            HeldStage("the throws and evidence", lambda cells: _THROW_FIXED + _THROW_PER_CELL * cells))
+
+
 def smallest_block_bytes(shape, options: FaultTracingOptions, tile: int) -> int:
     """Bytes the largest step of :func:`chunked_fault_surfaces` needs with its smallest blocks (one ``tile`` a side),
     on top of the process itself: what ``memory_limit`` must leave for it (before the headroom).
@@ -191,7 +229,8 @@ def plan_blocks(shape, opt: FaultTracingOptions, chunking: ChunkOptions, baselin
 
 def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOptions | None = None,
                            chunking: ChunkOptions | None = None, progress: bool = False,
-                           amplitudes: CubeAmplitudes | None = None, attrs: dict | None = None) -> ChunkedFaults:
+                           amplitudes: CubeAmplitudes | None = None, attrs: dict | None = None,
+                           after: tuple = ()) -> ChunkedFaults:
     """Fault votes, thinned faults, fault skins and throws of a 3D cube larger than memory, block by block.
 
     The method and the defaults are those of :func:`~seismo3d.seismic.faults.trace_faults` after its first step
@@ -223,6 +262,9 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     attrs : dict, optional
         More attributes of the output group (JSON-serialisable, e.g. the input's name), written with the others
         before it is renamed into place.
+    after : tuple of HeldStage, optional
+        Stages after this run that hold its results whole (e.g. the faults job's writers), checked with its own
+        stages after the blocks (:func:`held_stages`) once the cells are counted.
 
     Returns
     -------
@@ -232,7 +274,9 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
     ------
     InputError
         The cube is not 3D, the likelihood group does not match it, ``output`` exists and is not an unfinished run
-        of the same cube and options, or the memory limit is too small for the blocks, seed candidates or cells.
+        of the same cube and options, or the memory limit is too small for the blocks, seed candidates, or the
+        stages after the blocks with the cells counted (the message names the limit that works; the finished
+        blocks are kept, and a run under it resumes them).
     UnsupportedDataError
         The likelihood is above ``options.saturation_level`` at more than ``options.max_saturated`` of the live
         samples (as in memory).
@@ -257,10 +301,12 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         if name not in group or tuple(group[name].shape) != shape:
             raise InputError(f"{likelihood} has no {name!r} array of the cube's shape {shape}; pass the output of "
                              "chunked_fault_likelihood for this cube")
-    plan = plan_blocks(shape, opt, chunking, worker_baseline(chunking, x))
+    baseline = worker_baseline(chunking, x)
+    plan = plan_blocks(shape, opt, chunking, baseline)
     if amplitudes is None:
         x, amplitudes = finite_cube(x, opt.dead)
-    memory = chunking.limit  # the cells' and candidates' checks: less the RSS
+    memory = chunking.limit  # the candidates' check: less the RSS
+    held = _HeldCheck(chunking.limit, baseline, held_stages(shape) + tuple(after))  # the cells' check
     store = StoreRun(pathlib.Path(output), chunking, progress, outputs=_OUTPUTS)
     # another likelihood written at the same path is not this one (its id)
     manifest = store.manifest_for(shape, opt, plan, likelihood=str(pathlib.Path(likelihood).resolve()),
@@ -277,7 +323,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         store.arrays.update(zip(LIKELIHOOD_INPUTS, (f"{likelihood}/{name}" for name in
                                                     ("likelihood", "strike_deg", "dip_deg"))))
         with store.scheduled():
-            run = SurfaceRun(store, x, plan, opt, shape, amplitudes, memory=memory)
+            run = SurfaceRun(store, x, plan, opt, shape, amplitudes, memory=memory, held=held)
             found = surface_cells(run, opt)
             # the cells gathered into 1D arrays of the output group, in C order (the skins then need no sorted copies)
             store.write_gathered("cells", run.blocks("cells"), {
@@ -288,7 +334,7 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
         store.finish(dict(done, **(attrs or {}),
                           method="fault surfaces (Hale 2013, Wu & Fomel 2018), seismo3d chunked run"))
     else:
-        _check_cells(done["n_cells"], memory)
+        held(int(done["n_cells"]))
     lower, upper = (float(v) for v in done["thresholds"])
     stored = zarr.open_group(str(store.out), mode="r")
     windows = StoredWindows(x, stored["slope_inline"], stored["slope_xline"])
@@ -304,10 +350,23 @@ def chunked_fault_surfaces(cube, likelihood, output, *, options: FaultTracingOpt
                          dict(store.resumed), dict(store.seconds))
 
 
-def _check_cells(n: int, memory: int) -> None:
-    if n * CELL_BYTES > memory - resident_memory():
-        raise InputError(f"{n} thinned fault samples need about {n * CELL_BYTES / 2**30:.2f} GiB to link into "
-                         "fault skins, more than the memory limit leaves: raise memory_limit")
+@dataclass(frozen=True)
+class _HeldCheck:
+    """The stages after the blocks checked with the cells counted: refused when the process as the plan counts it
+    and the largest stage's model (:func:`~seismo3d.seismic.blocks.plan.held_need`) exceed the limit."""
+
+    limit: int
+    baseline: int
+    stages: tuple
+
+    def __call__(self, n_cells: int) -> None:
+        held, name = held_need(self.stages, n_cells)
+        need = self.baseline + held
+        if need > self.limit:
+            raise InputError(f"the {n_cells} thinned fault samples (fault cells) need about {size_text(need)} in "
+                             f"{name} beside this process ({size_text(self.baseline)}), more than the memory limit "
+                             f"of {size_text(self.limit)}: pass memory_limit='{size_text(need * 21 // 20)}' (the "
+                             "finished blocks are kept and resumed)")
 
 
 def memory_surface_run(cube: np.ndarray, likelihood: np.ndarray, strike_deg: np.ndarray, dip_deg: np.ndarray,
@@ -363,8 +422,11 @@ class SurfaceRun:
     image_shape : tuple of int
         Of the image, 2D for a section.
     memory : int, optional
-        The memory limit, bytes: seed candidates and cells that need more than it leaves are refused (a run by
-        blocks); None: not checked (a run in memory, sized before the run).
+        The memory limit, bytes: seed candidates that need more than it leaves are refused (a run by blocks); None:
+        not checked (a run in memory, sized before the run).
+    held : callable, optional
+        ``held(n_cells)``: refuses cells whose stages after the blocks need more than the memory limit (a run by
+        blocks); None: not checked.
     slopes : bool
         Keep the reflector slopes for the throws (a run by blocks, whose throws read them from its stores).
     amplitudes : CubeAmplitudes
@@ -374,10 +436,10 @@ class SurfaceRun:
     """
 
     def __init__(self, run, cube, plan: SurfacePlan, opt: FaultTracingOptions, image_shape,
-                 amplitudes: CubeAmplitudes, *, memory=None, slopes: bool = True):
+                 amplitudes: CubeAmplitudes, *, memory=None, held=None, slopes: bool = True):
         self.run, self.x, self.plan, self.opt = run, cube, plan, opt
         self.image_shape = tuple(int(n) for n in image_shape)
-        self.memory, self.slopes, self.amplitudes = memory, slopes, amplitudes
+        self.memory, self.held, self.slopes, self.amplitudes = memory, held, slopes, amplitudes
         self.steps = {step.name: step for step in block_steps(plan.shape, opt, 0)}
 
     def blocks(self, step: str) -> list:
@@ -453,8 +515,8 @@ class SurfaceRun:
         """Thinned votes at or above ``lower`` kept (``thin``), the others set to 0, and its cells listed per
         block; their number."""
         n = sum(r["count"] for r in self.run.run_step(self.steps["cells"], self.blocks("cells"), lower))
-        if self.memory is not None:
-            _check_cells(n, self.memory)
+        if self.held is not None:
+            self.held(n)
         return n
 
     def cells_found(self) -> tuple:

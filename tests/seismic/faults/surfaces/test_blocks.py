@@ -156,6 +156,28 @@ def test_resume_after_an_interrupted_run(cube, likelihood, reference, tmp_path, 
     _assert_same_faults(result, reference)
 
 
+def test_cells_too_many_for_the_stages_after_the_blocks_are_refused_then_resumed(cube, likelihood, reference,
+                                                                                 tmp_path):
+    """Cells that outnumber what the limit holds in the stages after the blocks (here a writer of 8 MiB a cell) are
+    refused once counted, naming the limit they need; the blocks are kept, and the run under that limit resumes them
+    all and gives the same faults."""
+    import re
+
+    from seismo3d.seismic.blocks.memory import parse_memory_limit
+    from seismo3d.seismic.blocks.plan import HeldStage
+
+    writer = HeldStage("a writer", lambda cells: cells << 23)
+    out = tmp_path / "surfaces.zarr"
+    with pytest.raises(InputError, match=r"thinned fault samples \(fault cells\) need about \S+ in a writer") as exc:
+        chunked_fault_surfaces(cube, likelihood, out, chunking=BLOCKS, after=(writer,))
+    limit = parse_memory_limit(re.search(r"pass memory_limit='(\S+)'", str(exc.value)).group(1))
+    result = chunked_fault_surfaces(cube, likelihood, out, chunking=dataclasses.replace(BLOCKS, memory_limit=limit),
+                                    after=(writer,))
+    assert result.blocks_computed["votes"] == result.blocks_computed["cells"] == 0 < result.blocks_resumed["cells"]
+    assert limit >= result.n_cells << 23
+    _assert_same_faults(result, reference)
+
+
 def test_refusals(cube, likelihood, tmp_path):
     out = tmp_path / "surfaces.zarr"
     out.mkdir()

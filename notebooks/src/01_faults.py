@@ -3,7 +3,7 @@
 #
 # Fault interpretation of 18 consecutive real inlines of the Penobscot 3D survey (Nova Scotia), with the seven
 # horizons people picked on them (Baroni et al. 2020, CC BY 4.0), in one call: `trace_faults` computes the fault
-# likelihood (a fault network trained only on generated sections, run on every second inline and crossline at three
+# likelihood (a fault network trained only on generated sections, run on every second inline and crossline at two
 # grids, the sections between interpolated), makes it continuous by optimal surface voting (Wu & Fomel 2018), links
 # the thinned faults into fault skins, measures each fault's throw by registering the reflectors on its two sides,
 # and keeps the faults that show the evidence of one (votes that hold along it, and displaced reflectors or a likely
@@ -67,8 +67,8 @@ for f, n, span in list(zip(result.faults, sizes, spans))[:5]:
 # A throw is the shift that best aligns the reflectors of the two sides. On reflectors as regular as these, shifts
 # a reflector period apart can align them nearly as well: where the best other shift fits at least 40 % as well,
 # the throw says so ("ambiguous", with that shift and how well it fits against the throw's: `fault_summary.csv`'s
-# `throw_alternative_samples` and `throw_ambiguity`), and its sign, too, may be either. All three throws here are
-# ambiguous: check them on the sections before using them.
+# `throw_alternative_samples` and `throw_ambiguity`), and its sign, too, may be either. Two of the three throws here
+# are ambiguous: check them on the sections before using them.
 
 # %% [markdown]
 # ## The slab in 3D

@@ -14,8 +14,8 @@ from contextlib import contextmanager
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_directory", "deferred_interrupt", "existing_folder", "remove_stale_staging", "SetAside",
-           "STAGING_RECORD", "StagedFolder"]
+__all__ = ["atomic_path", "atomic_directory", "deferred_interrupt", "existing_folder", "remove_stale_staging",
+           "SetAside", "STAGING_RECORD", "StagedFolder"]
 
 
 @contextmanager

@@ -1,8 +1,8 @@
 """Step 1 of the fault interpretation, the fault likelihood of every sample with the strike and dip of its fault.
 
 - :mod:`~seismo3d.seismic.faults.likelihood.learned`: the fault network's probability (the default), a U-Net trained on
-  generated sections, run by ONNX Runtime on the mean of its network grids (three on a section, two on a cube); its forward pass in
-  :mod:`~seismo3d.seismic.faults.likelihood.network`, its grids in
+  generated sections, run by ONNX Runtime on the mean of its network grids (three on a section, two on a cube); its
+  forward pass in :mod:`~seismo3d.seismic.faults.likelihood.network`, its grids in
   :mod:`~seismo3d.seismic.faults.likelihood.network_grid`.
 - :mod:`~seismo3d.seismic.faults.likelihood.scan`: the scan of fault strikes and dips of the semblance of balanced
   amplitudes (Hale 2013); its numba kernels in :mod:`~seismo3d.seismic.faults.likelihood.scan_kernels`.

@@ -31,7 +31,7 @@ from ..seismic.faults.result import FaultInterpretation
 from ..seismic.faults.options import FaultTracingOptions
 from ..seismic.faults.pipeline import trace_faults
 from ..seismic.adapted_network import MODEL_NETWORK
-from ..seismic.io.writer import write_like, write_like_blocks
+from ..seismic.io.writer import INLINES_PER_BLOCK, write_like, write_like_blocks
 from .fault_inputs import read_input, write_demo_input
 from .inputs import SeismicInput
 from .fault_tables import write_points, write_summary
@@ -427,8 +427,7 @@ WRITER_MODULES = ("matplotlib.figure", "pyvista")
 # results held), faults.vtp then the TSurf files 83 / 150 / 30, faults.png 86 / 94 / 55. The first volume written
 # takes the heap the throws' stage left, which held_stages covers.
 _RESULTS_PER_CELL = 64  # the faults, throws and evidence held while they are written
-_SEGY_FIXED, _SEGY_PER_SAMPLE = 32 << 20, 16  # per sample of write_like_blocks' block of 32 inlines
-_SEGY_INLINES = 32
+_SEGY_FIXED, _SEGY_PER_SAMPLE = 32 << 20, 16  # per sample of write_like_blocks' block of INLINES_PER_BLOCK
 _MESH_FIXED, _MESH_PER_CELL = 32 << 20, 480  # 105 / 196 / 75 MiB on the three cubes
 _FIGURE_FIXED = 96 << 20  # its three slices of amplitudes and likelihood, matplotlib's layout
 
@@ -449,7 +448,7 @@ def _writer_stages(shape) -> tuple:
     """
     if len(shape) != 3:
         return ()
-    block = min(_SEGY_INLINES, shape[0]) * shape[1] * shape[2]
+    block = min(INLINES_PER_BLOCK, shape[0]) * shape[1] * shape[2]
     return (HeldStage("writing the SEG-Y volumes", lambda cells: (_RESULTS_PER_CELL * cells + _SEGY_FIXED
                                                                    + _SEGY_PER_SAMPLE * block)),
             HeldStage("writing faults.vtp and the TSurf files", lambda cells: _MESH_FIXED + _MESH_PER_CELL * cells),

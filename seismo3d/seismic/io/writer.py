@@ -18,7 +18,11 @@ from ...errors import InputError, TraceListWarning
 from .blocks import FIELD_STARTS, TRACE_HEADER_BYTES, SegyGrid, header_dtype, trace_layout
 from .segy import open_segy
 
-__all__ = ["write_like", "write_like_blocks"]
+__all__ = ["INLINES_PER_BLOCK", "write_like", "write_like_blocks"]
+
+# Inlines a block of write_like_blocks reads, checks and writes at a time (its default; the faults job's memory
+# plan of the SEG-Y writers counts one such block)
+INLINES_PER_BLOCK = 32
 
 
 def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 193, ignore_geometry: bool = False,
@@ -91,7 +95,7 @@ def write_like(template_path, out_path, data, *, iline: int = 189, xline: int = 
 
 
 def write_like_blocks(template_path, out_path, values, *, iline: int = 189, xline: int = 193, endian=None,
-                      inlines_per_block: int = 32, progress: bool = False) -> Path:
+                      inlines_per_block: int = INLINES_PER_BLOCK, progress: bool = False) -> Path:
     """Write an attribute of a 3D cube as SEG-Y with the template's headers, one block of inlines at a time.
 
     As :func:`~seismo3d.seismic.io.write_like`: the textual, binary and every trace header are copied from the

@@ -117,10 +117,33 @@ def fine_tune(weights: dict, grids: list, *, options: AdaptOptions | None = None
         if x.shape != y.shape or x.shape != w.shape or min(x.shape) < 16:
             raise InputError(f"each section must be at least 16 x 16 with labels and weights of its shape; got "
                              f"{x.shape}, {y.shape}, {w.shape}")
-    torch.manual_seed(int(opt.seed))
+    picked_weight = float(opt.positive_weight)
+    if opt.balance:  # the picks weighted to the generated training's odds of a fault sample
+        picked_weight *= generated_fault_odds(int(opt.patch)) / _picked_fault_odds(grids)
     threads = torch.get_num_threads()
     torch.set_num_threads(int(opt.threads))
-    rng = np.random.default_rng(int(opt.seed))
+    runs, losses = [], []
+    try:
+        with progress_steps(int(opt.runs) * int(opt.steps), "adapting the fault network", unit="step",
+                            enabled=progress) as bar:
+            for run in range(int(opt.runs)):
+                tuned, loss = _fine_tune_run(weights, grids, opt, int(opt.seed) + run, picked_weight, bar)
+                runs.append(tuned)
+                losses.append(loss)
+    finally:
+        torch.set_num_threads(threads)
+    soup = {name: np.mean([run[name] for run in runs], axis=0, dtype=np.float64).astype(np.float32)
+            for name in runs[0]}  # the uniform soup (Wortsman et al. 2022): one network, the runs' mean weights
+    return {"weights": soup, "loss": [round(float(v), 5) for v in np.mean(losses, axis=0)],
+            "picked_positive_weight": picked_weight}
+
+
+def _fine_tune_run(weights: dict, grids: list, opt: AdaptOptions, seed: int, picked_weight: float, bar) -> tuple:
+    """One run of :func:`fine_tune` from ``weights`` with its own ``seed`` (of the patches drawn, the generated
+    sections of the rehearsal and PyTorch): its exported weights (float32) and the mean loss of every tenth of its
+    steps; ``bar`` advanced once a step."""
+    torch.manual_seed(seed)
+    rng = np.random.default_rng(seed)
     model = model_from_weights(weights)
     model.frozen_batch_norm = True  # folded weights: the batch normalisations' statistics stay the identity
     training_mode(model)
@@ -129,37 +152,29 @@ def fine_tune(weights: dict, grids: list, *, options: AdaptOptions | None = None
     start = [p.detach().clone() for p in trained]
     optimiser = torch.optim.Adam(trained, lr=float(opt.learning_rate))
     n_generated = int(round(float(opt.rehearsal) * int(opt.batch_size)))
-    picked_weight = float(opt.positive_weight)
-    if opt.balance:  # the picks weighted to the generated training's odds of a fault sample
-        picked_weight *= generated_fault_odds(int(opt.patch)) / _picked_fault_odds(grids)
+    n_picked = int(opt.batch_size) - n_generated
+    positive = torch.tensor([picked_weight] * n_picked + [float(opt.positive_weight)] * n_generated)
     losses, running, every = [], [], max(1, int(opt.steps) // 10)
-    try:
-        with progress_steps(int(opt.steps), "adapting the fault network", unit="step", enabled=progress) as bar:
-            for step in range(int(opt.steps)):
-                n_picked = int(opt.batch_size) - n_generated
-                parts = [_patch(rng, *grids[(step * n_picked + b) % len(grids)], int(opt.patch), float(opt.focus))
-                         for b in range(n_picked)]
-                parts += [_generated_patch(int(opt.seed), step * n_generated + b, int(opt.patch))
-                          for b in range(n_generated)]
-                shape = min(p[0].shape[0] for p in parts), min(p[0].shape[1] for p in parts)
-                x, y, w = (torch.from_numpy(np.stack([p[k][:shape[0], :shape[1]] for p in parts])[:, None].copy())
-                           for k in range(3))
-                positive = torch.tensor([picked_weight] * n_picked + [float(opt.positive_weight)] * n_generated)
-                loss = _weighted_loss(model(x), y, w, positive if opt.balance else float(opt.positive_weight))
-                if float(opt.anchor) > 0:  # L2-SP: the distance to the shipped weights (Li et al. 2018, eq. 3)
-                    loss = loss + float(opt.anchor) * sum(((p - p0) ** 2).sum() for p, p0 in zip(trained, start))
-                optimiser.zero_grad()
-                loss.backward()
-                optimiser.step()
-                running.append(loss.item())
-                if (step + 1) % every == 0:
-                    losses.append(round(float(np.mean(running)), 5))
-                    running = []
-                bar.advance()
-    finally:
-        torch.set_num_threads(threads)
+    for step in range(int(opt.steps)):
+        parts = [_patch(rng, *grids[(step * n_picked + b) % len(grids)], int(opt.patch), float(opt.focus))
+                 for b in range(n_picked)]
+        parts += [_generated_patch(seed, step * n_generated + b, int(opt.patch)) for b in range(n_generated)]
+        shape = min(p[0].shape[0] for p in parts), min(p[0].shape[1] for p in parts)
+        x, y, w = (torch.from_numpy(np.stack([p[k][:shape[0], :shape[1]] for p in parts])[:, None].copy())
+                   for k in range(3))
+        loss = _weighted_loss(model(x), y, w, positive if opt.balance else float(opt.positive_weight))
+        if float(opt.anchor) > 0:  # L2-SP: the distance to the shipped weights (Li et al. 2018, eq. 3)
+            loss = loss + float(opt.anchor) * sum(((p - p0) ** 2).sum() for p, p0 in zip(trained, start))
+        optimiser.zero_grad()
+        loss.backward()
+        optimiser.step()
+        running.append(loss.item())
+        if (step + 1) % every == 0:
+            losses.append(float(np.mean(running)))
+            running = []
+        bar.advance()
     model.eval()
-    return {"weights": export_weights(model), "loss": losses, "picked_positive_weight": picked_weight}
+    return export_weights(model), losses
 
 
 def _choose_trained(model, layers: str) -> None:

@@ -67,8 +67,15 @@ class AdaptOptions:
     sensitivity : float
         The tracing's sensitivity (:attr:`~seismo3d.seismic.FaultTracingOptions.sensitivity`) the adapted network
         traces with, stored in MODEL's record (``seismo3d faults --model MODEL`` uses it unless given another).
+    runs : int
+        Independent fine-tunings from the shipped weights, with seeds ``seed``, ``seed + 1``, ...; with more than
+        one, the network adapted is their uniform soup, the mean of their weights (Wortsman et al. 2022). Not the
+        default: adapted on F3 inline 100, the mean F1 of inlines 200-500 fell from 0.57 to 0.48 with three runs
+        (held-back band 0.62 -> 0.48; 2026-11-28, ``benchmarks/adapt.py --only f3 --f3-source 100 --variants all
+        all:runs=3``). A run on a few picked faults depends on the patches drawn, and the soup lowered that spread
+        on generated dimmed zones, but it also averaged away what each run learned of the interpreter's faults.
     seed : int
-        Seed of the patches drawn and of PyTorch.
+        Seed of the first run (the patches drawn, the generated sections and PyTorch).
     threads : int
         PyTorch threads.
     """
@@ -85,13 +92,14 @@ class AdaptOptions:
     labels: str = "band"
     balance: bool = False
     sensitivity: float = 0.35
+    runs: int = 1
     seed: int = 0
     threads: int = 2
 
     def __post_init__(self):
         if self.layers not in LAYERS:
             raise InputError(f"layers must be one of {', '.join(map(repr, LAYERS))}; got {self.layers!r}")
-        for name in ("steps", "batch_size", "threads"):
+        for name in ("steps", "batch_size", "runs", "threads"):
             if int(getattr(self, name)) < 1:
                 raise InputError(f"{name} must be >= 1; got {getattr(self, name)!r}")
         if int(self.patch) < 16 or int(self.patch) % 8:
@@ -117,7 +125,8 @@ class AdaptOptions:
                    "scale_shift": "the per-channel scales and shifts after each convolution",
                    "scale_shift_head": "the per-channel scales and shifts after each convolution and the head"}
         parts = [f"{trained[self.layers]} fine-tuned from the shipped weights, {self.steps} Adam steps of "
-                 f"{self.batch_size} patches at learning rate {self.learning_rate:g}",
+                 f"{self.batch_size} patches at learning rate {self.learning_rate:g}" + (
+                     f", the mean of {self.runs} such runs' weights (a model soup)" if self.runs > 1 else ""),
                  f"{self.focus:.0%} of the picked patches around a picked fault"]
         if self.rehearsal:
             parts.append(f"{self.rehearsal:.0%} of each batch generated sections (rehearsal)")

@@ -332,35 +332,52 @@ def test_faults_command_records_the_model_and_refuses_a_changed_one(tmp_path, sh
 
 
 @pytest.mark.slow
-def test_the_network_fine_tuned_on_a_sibling_section_traces_a_fault_style_the_shipped_network_misses(tmp_path):
+def test_the_network_adapted_on_a_section_learns_a_fault_style_the_shipped_network_misses_on_its_sibling(tmp_path):
+    """adapt's training (its defaults, seed 0, the held-back band left out) on a section crossed by dimmed zones
+    without throw, and its sibling traced as MODEL records such zones (the unbroken veto off, sensitivity 0.35).
+
+    Measured over seeds 0-5 of the training (2026-11-28): the likelihood along the sibling's zones rises from the
+    shipped network's 0.32 to 0.40-0.61, and stays near 0 away from them (median 0.0001 at most); the sibling traces
+    at P 1.0 and F1 0.50-0.99, one to three zones of three. The shipped network (its defaults) traces none; with the
+    veto off it traces one (F1 0.50). What a run learns from two picked zones depends on the patches it draws and on
+    the CPU's rounding (seed 0 traced two zones on one machine, three on another)."""
     pytest.importorskip("torch")
     pytest.importorskip("onnx")
+    from scipy import ndimage
+
+    from seismo3d.training.adapt import AdaptOptions, fine_tune
     from seismo3d.training.export_onnx import onnx_model
-    from seismo3d.training.adapt import fine_tune
 
     section, picks = dimmed_section(1)
     sibling, sibling_picks = dimmed_section(2)  # the same style, other zones and layering
-    assert tolerant_scores(_traced(sibling), sibling_picks, 3.0)[2] == 0.0  # the shipped network traces none
+    zones = ndimage.binary_dilation(sibling_picks, iterations=1)
+    away = ~ndimage.binary_dilation(sibling_picks, structure=np.ones((17, 1), bool))  # 8 traces or more from a pick
+    shipped = trace_faults(sibling, progress=False)
+    assert tolerant_scores(fault_labels(shipped.faults, SHAPE) > 0, sibling_picks, 3.0)[2] == 0.0  # traces none
     weights_file = resources.files("seismo3d.seismic.faults.likelihood").joinpath("fault_unet.npz")
     with weights_file.open("rb") as fh, np.load(fh) as npz:
         start = {k: npz[k] for k in npz.files}
-    # the training of seismo3d adapt (its defaults, seed 0, the held-back band left out)
-    tuned = fine_tune(start, training_grids(section, picks, held_back_band(picks)), progress=False)
+    options = AdaptOptions()
+    tuned = fine_tune(start, training_grids(section, picks, held_back_band(picks)), options=options, progress=False)
     model = write_model(tmp_path / "model", onnx_model(tuned["weights"]), RunRecord("adapt", {}), {},
-                        {"kept": "adapted"})
-    p, r, f1 = tolerant_scores(_traced(sibling, model), sibling_picks, 3.0)
-    assert p >= 0.9 and f1 >= 0.85, (p, r, f1)  # measured: P 1.0, R 0.93, F1 0.96 (adapt's defaults)
+                        {"kept": "adapted", "sensitivity": options.sensitivity, "unbroken_veto": False})
+    adapted = trace_faults(sibling, progress=False, model=model)
+    likelihood, before = np.asarray(adapted.likelihood), np.asarray(shipped.likelihood)
+    assert before[zones].mean() < 0.34 and likelihood[zones].mean() >= 0.36, (before[zones].mean(),
+                                                                             likelihood[zones].mean())
+    assert np.median(likelihood[away]) <= 0.01  # measured 0-0.0001 (the shipped network 0.0008)
+    p, r, f1 = tolerant_scores(fault_labels(adapted.faults, SHAPE) > 0, sibling_picks, 3.0)
+    assert p >= 0.9 and f1 >= 0.45, (p, r, f1)  # measured P 1.0, F1 0.50-0.99 over seeds 0-5
 
 
 @pytest.mark.slow
-def test_adapt_on_a_section_makes_the_faults_command_trace_a_style_the_shipped_network_misses_on_its_sibling(
-        tmp_path):
-    """Through the commands: MODEL from 'seismo3d adapt' on one section traces the sibling's dimmed zones, which the
-    shipped network never traces. The zones offset no reflector, so the tracing's evidence drops them as faults across
-    unbroken reflectors whatever the network says (FaultEvidence.is_unbroken); adapt measures on its held-back band
-    that the adapted network traces them only with that veto off (F1 0.0 with it, 0.995 without) and records it in
-    MODEL, which 'faults --model' applies. Measured (seed 0, 100 steps, 270 s under load 9): the sibling's F1 0.78
-    (precision 1.0, recall 0.64: two zones of three whole) against the shipped network's 0.0."""
+def test_adapt_on_a_section_judges_on_its_held_back_band_and_the_faults_command_traces_as_model_records(tmp_path):
+    """Through the commands, on the dimmed zones above: adapt scores on its held-back band the shipped network, the
+    adapted one with the unbroken veto (the zones offset no reflector, so the tracing's evidence may drop them whatever
+    the network says: FaultEvidence.is_unbroken) and without it, keeps the adapted network only when it wins there,
+    with the veto as it scored best, and 'faults --model' traces the sibling as MODEL records. Which network is kept
+    depends on what the run learned of the band's zone: over seeds 0-5 the adapted network without the veto traced
+    it whole in three (band F1 0.99; kept) and missed it in the others (0.0; the shipped network kept)."""
     pytest.importorskip("torch")
     pytest.importorskip("onnx")
     section, picks = dimmed_section(1)
@@ -381,10 +398,17 @@ def test_adapt_on_a_section_makes_the_faults_command_trace_a_style_the_shipped_n
         assert evaluated.exit_code == 0, evaluated.output
         scores[name] = json.loads((tmp_path / name / "evaluation" / "evaluation.json").read_text())
     results = json.loads((tmp_path / "model" / "adapt.json").read_text())["results"]
-    assert (results["kept"], results["unbroken_veto"]) == ("adapted", False), results["held_back_tracings"]
-    assert "unbroken veto off" in result.output
-    assert scores["default"]["f1"] <= 0.05  # the shipped network traces none of the zones (measured 0.0)
-    assert scores["adapted"]["precision"] >= 0.9 and scores["adapted"]["f1"] >= 0.65, scores  # measured 1.0, 0.78
+    band = {(t["network"], t["unbroken_veto"]): t["f1"] for t in results["held_back_tracings"]}
+    assert band[("shipped", True)] == 0.0, band  # the shipped network traces none of the band's zone
+    assert scores["default"]["f1"] == 0.0  # nor of the sibling's
+    if results["kept"] == "adapted":
+        veto = results["unbroken_veto"]
+        assert band[("adapted", veto)] == max(band.values()) > 0.0, results
+        assert f"unbroken veto {'on' if veto else 'off'}" in result.output
+        assert scores["adapted"]["precision"] >= 0.9 and scores["adapted"]["f1"] >= 0.45, scores
+    else:  # the adapted network lost the band: MODEL holds the shipped network, which traces as without MODEL
+        assert results["kept"] == "default" and results["unbroken_veto"] is None, results
+        assert scores["adapted"]["f1"] == scores["default"]["f1"], scores
 
 
 def _scored(tracing, f1, parts):

@@ -90,3 +90,20 @@ def test_the_trained_scales_and_shifts_are_what_the_exported_network_computes(sh
         x = torch.randn((1, 1, 64, 48), generator=gen)
         trained, folded = model(x), model_from_weights(export_weights(model))(x)
     np.testing.assert_allclose(folded.numpy(), trained.numpy(), atol=1e-4 * float(trained.abs().max()))
+
+
+@pytest.mark.slow  # 3 short fine-tunings
+def test_the_adapted_network_is_the_mean_of_its_runs_weights(shipped, torch):
+    """AdaptOptions.runs: the runs start from the shipped weights with seeds seed, seed + 1, ... and the network
+    adapted is their weights' mean (a uniform model soup), each run the one a single run of its seed gives."""
+    from seismo3d.training.adapt import AdaptOptions, fine_tune
+
+    options = AdaptOptions(steps=2, patch=32, rehearsal=0.0, runs=3, seed=7, threads=1)
+    soup = fine_tune(shipped, _grids(), options=options, progress=False)
+    assert soup["weights"].keys() == shipped.keys() and len(soup["loss"]) == 2
+    runs = [fine_tune(shipped, _grids(), options=AdaptOptions(**{**options.__dict__, "runs": 1, "seed": 7 + k}),
+                      progress=False)["weights"] for k in range(options.runs)]
+    assert not np.array_equal(runs[0]["enc0.0.weight"], runs[1]["enc0.0.weight"])  # the seeds draw other patches
+    for name, weights in soup["weights"].items():
+        assert weights.dtype == np.float32
+        np.testing.assert_allclose(weights, np.mean([run[name] for run in runs], axis=0), rtol=1e-6, atol=1e-7)

@@ -49,6 +49,11 @@ conditioning layer: AAAI 2018, 3942-3951. arXiv:1709.07871
 
 Robins, A., 1995, Catastrophic forgetting, rehearsal and pseudorehearsal: Connection Science, 7(2), 123-146.
 doi:10.1080/09540099550039318
+
+Wortsman, M., Ilharco, G., Gadre, S. Y., Roelofs, R., Gontijo-Lopes, R., Morcos, A. S., Namkoong, H., Farhadi, A.,
+Carmon, Y., Kornblith, S., and Schmidt, L., 2022, Model soups: averaging weights of multiple fine-tuned models
+improves accuracy without increasing inference time: ICML 2022, PMLR 162, 23965-23998, arXiv:2203.05482
+(``AdaptOptions.runs``).
 """
 
 from __future__ import annotations
@@ -99,13 +104,15 @@ def fine_tune(weights: dict, grids: list, *, options: AdaptOptions | None = None
         16 x 16. Patches are drawn from the grids in turn.
     options : AdaptOptions, optional
     progress : bool, optional
-        A progress bar over the steps (:func:`seismo3d._progress.progress_steps`).
+        A progress bar over the steps of every run (:func:`seismo3d._progress.progress_steps`).
 
     Returns
     -------
     dict
-        ``'weights'``: the fine-tuned weights (float32, the layout of ``weights``); ``'loss'``: the mean loss of
-        every tenth of the steps (list of float).
+        ``'weights'``: the fine-tuned weights (float32, the layout of ``weights``; with ``options.runs`` > 1 the
+        mean of the runs' weights, a uniform model soup: Wortsman et al. 2022, ICML, arXiv:2203.05482);
+        ``'loss'``: the mean loss of every tenth of the steps, averaged over the runs (list of float);
+        ``'picked_positive_weight'``: the weight of the picked fault samples in the cross-entropy (float).
 
     Raises
     ------

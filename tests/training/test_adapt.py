@@ -2,6 +2,7 @@
 per-channel scale and shift after each convolution are trained, and what is trained is what MODEL runs (the affine
 folded into the convolutions). The command-level learning test is ``tests/jobs/test_adapt.py``'s."""
 
+from dataclasses import replace
 from importlib import resources
 
 import numpy as np
@@ -101,8 +102,8 @@ def test_the_adapted_network_is_the_mean_of_its_runs_weights(shipped, torch):
     options = AdaptOptions(steps=2, patch=32, rehearsal=0.0, runs=3, seed=7, threads=1)
     soup = fine_tune(shipped, _grids(), options=options, progress=False)
     assert soup["weights"].keys() == shipped.keys() and len(soup["loss"]) == 2
-    runs = [fine_tune(shipped, _grids(), options=AdaptOptions(**{**options.__dict__, "runs": 1, "seed": 7 + k}),
-                      progress=False)["weights"] for k in range(options.runs)]
+    runs = [fine_tune(shipped, _grids(), options=replace(options, runs=1, seed=7 + k), progress=False)["weights"]
+            for k in range(options.runs)]
     assert not np.array_equal(runs[0]["enc0.0.weight"], runs[1]["enc0.0.weight"])  # the seeds draw other patches
     for name, weights in soup["weights"].items():
         assert weights.dtype == np.float32

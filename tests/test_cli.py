@@ -152,6 +152,7 @@ def test_faults_warnings_are_one_line(tmp_path):
     assert "Seismo3dWarning" not in result.stderr  # no Python warning format
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case, message", [
     ("not_segy", "is not SEG-Y: its binary header holds no sample format code"),
     ("header_bytes", "no inline / crossline grid at trace header bytes --iline 1, --xline 5; --iline 189, --xline 193 "
@@ -182,6 +183,7 @@ def test_faults_errors(cube_file, tmp_path, case, message):
     assert "Traceback" not in result.output
 
 
+@pytest.mark.slow
 def test_faults_raw_section_of_unknown_shape_names_the_flag(tmp_path):
     """A raw .f32be section whose name is not a registry file: one line naming --n-samples, the flag faults has (not
     the library's n_traces=)."""

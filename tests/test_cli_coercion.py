@@ -73,6 +73,7 @@ def test_plain_values_are_converted_and_the_rest_declined():
         assert fast(name, value) is DECLINED, (name, value)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("args", [["--chunk-mb", "0"], ["--iline", "x"], ["--chunk-mb", "1e-9"], ["--endian", "mid"],
                                   ["--compression", "gzip"]])
 def test_a_declined_value_gets_typers_message(args, tmp_path, monkeypatch):

@@ -65,6 +65,7 @@ def test_register(tmp_path, check_run_json):
     assert record["results"]["converged"] is True and record["results"]["kind"] == "point_clouds"
 
 
+# 1.3 s: the one run of the main command the fast lane keeps (its budget is 60 s)
 def test_faults(tmp_path, check_run_json):
     section = synthetic_cube((16, 96, 96), n_faults=1, seed=3).cube[0]  # one inline: a 2D section
     np.save(tmp_path / "line.npy", section)
@@ -87,6 +88,7 @@ def test_convert(cube_file, tmp_path, check_run_json):
     assert record["results"]["shape"] == [16, 24, 64] and set(record["stage_seconds"]) == {"open", "write"}
 
 
+@pytest.mark.slow
 def test_match(tmp_path, check_run_json):
     rng = np.random.default_rng(5)
     image = cv2.GaussianBlur((rng.random((200, 240)) * 255).astype(np.uint8), (0, 0), 2.0)
@@ -101,7 +103,7 @@ def test_match(tmp_path, check_run_json):
     assert record["results"]["n_verified"] == len(np.loadtxt(tmp_path / "m.csv", delimiter=",", skiprows=1, ndmin=2))
 
 
-@pytest.mark.slow  # 1.4 s; the fast lane (budget 60 s) keeps the job: jobs/test_lineaments.py
+@pytest.mark.slow  # 1.4 s in the fast lane, whose budget is 60 s
 def test_lineaments(tmp_path, check_run_json):
     from seismo3d.data.terrain import synthetic_scarp_dem
 
@@ -150,6 +152,7 @@ def test_horizon(cube_file, tmp_path, check_run_json):
     assert record["results"]["n_rows"] == len(np.loadtxt(out, comments="#", ndmin=2))
 
 
+@pytest.mark.slow
 def test_render(wall_dem, tmp_path, check_run_json):
     since = _invoke(["render", wall_dem, "-o", tmp_path / "r.png", "--size", "200x150"])
     record = check_run_json(tmp_path / "r.png.run.json", "render", {"input": wall_dem}, ["picture"],

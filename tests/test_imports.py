@@ -110,6 +110,7 @@ def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
     return None
 
 
+@pytest.mark.slow
 def test_the_graph_sees_imports_inside_functions_and_package_inits():
     graph = import_graph()
     # a re-export from the sub-package's modules, and an import of a sibling sub-package runs its __init__

@@ -10,6 +10,8 @@ import ast
 import functools
 import pathlib
 
+import pytest
+
 import seismo3d
 
 ROOT = pathlib.Path(seismo3d.__file__).parent
@@ -70,6 +72,7 @@ def _target(module: str, imported: str) -> str | None:
     return full if full in MODULES else module if module in MODULES else None
 
 
+@pytest.mark.slow
 def test_no_module_imports_another_modules_private_name():
     private = [(name, module, imported) for name in MODULES for module, imported in _imports(name)
                if module.startswith("seismo3d") and imported.startswith("_") and not imported.startswith("__")

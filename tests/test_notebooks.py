@@ -21,6 +21,7 @@ def build():
     return module
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("source", SOURCES, ids=lambda p: p.stem)
 def test_saved_notebook_is_its_source_with_clean_outputs(build, source):
     import nbformat

@@ -209,6 +209,7 @@ def test_unsupported_extension_and_missing_file(tmp_path):
         write_points(tmp_path / "cloud.ply", np.zeros((3, 4)))
 
 
+@pytest.mark.slow
 def test_bunny_shapes_and_transform(bunny):
     assert bunny.source.shape == (40097, 3) and bunny.target.shape == (40256, 3)
     assert bunny.source.dtype == bunny.target.dtype == bunny.transform.dtype == np.float64

@@ -384,6 +384,7 @@ def test_fetch_folder_from_data_dir(shared_dir):
         fetch_folder("rgbd/no_such_sequence")
 
 
+@pytest.mark.slow
 def test_fetch_folder_gathers_a_partial_folder_in_the_cache(empty_data_dir, shared_dir, monkeypatch, tmp_path):
     """A data directory holding part of a sequence: the missing files are downloaded (served here from the shared
     folder), the index files made again, and the present ones copied, so the cache holds the whole folder."""

@@ -48,6 +48,7 @@ def test_steep_folds_dip_more_than_the_default_folds():
     assert steepest(steep) > steepest(flat) + 5.0
 
 
+@pytest.mark.slow
 def test_small_throws_are_drawn_in_their_range_with_the_fault_sense_kept():
     opt = FaultSectionOptions(p_small_throw=1.0, small_throw_range=(1.5, 5.0), reverse_fraction=0.3)
     rng = np.random.default_rng(1)
@@ -67,6 +68,7 @@ def test_fault_length_range_sets_the_length_of_the_faults_that_die_out():
     assert len(lengths) > 200 and lengths.min() >= 10.0 - 1e-9 and lengths.max() <= 20.0 + 1e-9
 
 
+@pytest.mark.slow
 def test_buried_faults_end_at_the_erosion_surface_and_run_to_the_bottom_edge():
     opt = FaultSectionOptions(p_buried_faults=1.0, p_unfaulted=0.0, buried_surface_range=(0.6, 0.6))
     top_labels = bottom_labels = 0

@@ -181,6 +181,7 @@ def test_two_peaks_give_two_descriptors():
     assert idx1.size == 1 and abs(o1[0] - 90.0) < 0.5
 
 
+@pytest.mark.slow
 def test_features_of_an_image_rotated_by_90_degrees_match_exactly():
     import skimage.data
 

@@ -40,6 +40,7 @@ def _brute_force(d1, d2, ratio, cross_check, hamming=False):
     return np.nonzero(ok)[0], nn[ok], (two[:, 0] / two[:, 1])[ok]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("cross_check", [True, False])
 @pytest.mark.parametrize("ratio", [0.6, 0.8, 0.95])
 def test_match_descriptors_equals_brute_force_euclidean(ratio, cross_check):
@@ -82,6 +83,7 @@ def test_match_descriptors_edge_cases():
         match_descriptors(bad, d)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("make_h, value", [(rotation_homography, 45), (tilt_homography, 25),
                                            (scale_homography, 0.8)])
 def test_hog_matches_a_real_photo_under_the_papers_views(make_h, value):
@@ -100,6 +102,7 @@ def test_hog_matches_a_real_photo_under_the_papers_views(make_h, value):
     assert result.n_inliers >= 0.95 * before.n_correct
 
 
+@pytest.mark.slow
 def test_match_images_on_real_seismic_neighbour_lines(data_dir):
     path = Path(data_dir) / "seismic" / "sections"
     a = np.fromfile(path / "costarica_gx808.f32be", ">f4").reshape(825, -1).T
@@ -111,6 +114,7 @@ def test_match_images_on_real_seismic_neighbour_lines(data_dir):
     assert np.all(np.abs(result.homography[:2, 2]) < 3.0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", METHODS)
 def test_every_method_shares_the_interface(method):
     image = skimage.data.camera()[::2, ::2]
@@ -169,6 +173,7 @@ def test_bad_options_raise_input_error():
         match_features(f_hog, f_orb)
 
 
+@pytest.mark.slow
 def test_write_matches_csv_writes_verified_rows_atomically(tmp_path):
     image = skimage.data.camera()
     h = rotation_homography(image.shape, 30)

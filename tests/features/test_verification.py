@@ -76,6 +76,7 @@ def test_lift_matches_depth_back_projects_through_the_pinhole_model():
         lift_matches_depth(xy, depth, np.eye(2))
 
 
+@pytest.mark.slow
 def test_lift_match_pairs_on_real_tum_frames_agrees_with_motion_capture(data_dir):
     import cv2
     from scipy.spatial.transform import Rotation

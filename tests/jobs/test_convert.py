@@ -39,6 +39,7 @@ def _no_temporaries(folder):
     return [p.name for p in folder.iterdir() if p.name.startswith(".")]
 
 
+@pytest.mark.slow
 def test_xarray_opens_the_store_as_is(converted):
     src, store, result = converted
     ref, cube = read_segy(src)
@@ -77,6 +78,7 @@ def test_the_store_opens_as_the_segy(converted):
         assert_array_equal(lazy[name].values, segy[name].values)
 
 
+@pytest.mark.slow
 def test_progress_one_step_per_tile(amplitudes, tmp_path, write_segy_cube, caplog):
     src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
     with caplog.at_level("INFO", logger="seismo3d"):
@@ -84,6 +86,7 @@ def test_progress_one_step_per_tile(amplitudes, tmp_path, write_segy_cube, caplo
     assert "convert cube.sgy: 4/4 tile" in caplog.text
 
 
+@pytest.mark.slow
 def test_real_f3_crop(data_dir, tmp_path):
     from seismo3d.data import fetch
 
@@ -111,6 +114,7 @@ class _Interrupted:
             raise KeyboardInterrupt
 
 
+@pytest.mark.slow
 def test_interrupted_convert_leaves_no_output(amplitudes, tmp_path, write_segy_cube, monkeypatch):
     src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
     monkeypatch.setattr(convert_job, "progress_steps", lambda *a, **k: contextlib.nullcontext(_Interrupted()))
@@ -120,6 +124,7 @@ def test_interrupted_convert_leaves_no_output(amplitudes, tmp_path, write_segy_c
     assert _no_temporaries(tmp_path) == []
 
 
+@pytest.mark.slow
 def test_interrupted_overwrite_keeps_the_earlier_store(amplitudes, tmp_path, write_segy_cube, monkeypatch):
     src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
     run_convert_job(src, tmp_path / "out.zarr", chunk_mb=0.01)
@@ -164,6 +169,7 @@ def test_amplitudes_are_stored_uncompressed_by_default(converted):
             assert raw == padded[64 * i:64 * i + 64, 64 * j:64 * j + 64].tobytes()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("compression", ["none", "lz4", "zstd"])
 def test_chunk_files_are_the_bytes_zarr_writes(amplitudes, tmp_path, write_segy_cube, compression):
     """convert encodes and writes the amplitude chunks itself (zarr's array API costs a quarter to a half more CPU):
@@ -199,6 +205,7 @@ def test_unknown_compression_is_refused(amplitudes, tmp_path, write_segy_cube):
     assert not (tmp_path / "out.zarr").exists() and _no_temporaries(tmp_path) == []
 
 
+@pytest.mark.slow
 def test_existing_output(amplitudes, tmp_path, write_segy_cube):
     src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)
     run_convert_job(src, tmp_path / "out.zarr", chunk_mb=0.01)
@@ -266,6 +273,7 @@ def _assert_zarr_writes_the_same(store, tmp_path):
     return names
 
 
+@pytest.mark.slow
 def test_header_and_coordinate_chunks_are_the_bytes_zarr_writes(amplitudes, tmp_path, write_segy_cube):
     """The header fields and cdp_x / cdp_y are written as chunk files on the copy threads (not through zarr's array
     API): each file is the one zarr writes, and a row of zeros (cdp_y of inlines whose CDP Y is 0) has none."""
@@ -281,6 +289,7 @@ def test_header_and_coordinate_chunks_are_the_bytes_zarr_writes(amplitudes, tmp_
                                                                                                           "c/1/0"]
 
 
+@pytest.mark.slow
 def test_source_coordinates_are_the_bytes_zarr_writes(amplitudes, tmp_path, write_segy_cube):
     """CDP X / Y zero on every trace, source X / Y not: cdp_x / cdp_y from source X / Y, as zarr writes them."""
     src = write_segy_cube(tmp_path / "cube.sgy", amplitudes)

@@ -125,6 +125,7 @@ def _error(result) -> str:
     return lines[0]
 
 
+@pytest.mark.slow
 def test_the_command_on_a_generated_line(work):
     result = _invoke(work / "faults", "--sticks", work / "sticks.dat", "-o", work / "ev")
     assert result.exit_code == 0, result.output

@@ -341,6 +341,7 @@ def test_npy_section_with_nan_and_dead_traces(section, tmp_path):
     assert not np.any((tr >= 37) & (tr <= 43)) and not np.any((tr >= 97) & (tr <= 105))
 
 
+@pytest.mark.slow
 def test_no_faults(tmp_path):
     """A section without faults (nor any thinned sample) still gets every output, with header-only tables."""
     import pyvista as pv
@@ -356,6 +357,7 @@ def test_no_faults(tmp_path):
     assert Path(written["figure"]).stat().st_size > 1000
 
 
+@pytest.mark.slow
 def test_a_rerun_removes_the_staging_folder_of_a_run_killed_outright(tmp_path):
     """A run killed with ``kill -9`` leaves its ``.staged-*.tmp`` (with the files written so far) in the output
     folder; the next run into that folder removes it, and leaves a folder of that name that is not a run's alone."""

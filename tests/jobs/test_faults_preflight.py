@@ -73,6 +73,7 @@ def _stop_at_the_blocks(monkeypatch) -> dict:
     return baseline
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sample", [CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.0),
                                     CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1,
                                                candidate_density=1.0)],  # 2 M seed candidates: 168 MB
@@ -97,6 +98,7 @@ def test_the_limit_named_is_one_the_run_goes_through_with(cube_file, tmp_path, m
         job.run_faults_job(cube_file, tmp_path / "out", memory_limit=need, likelihood=likelihood, progress=False)
 
 
+@pytest.mark.slow
 def test_a_limit_too_small_for_the_stages_after_the_blocks_is_refused_before_the_work(cube_file, tmp_path,
                                                                                       monkeypatch):
     """The fault cells, skins, throws and the writers hold their data whole after the blocks (issue 75): a limit that
@@ -128,6 +130,7 @@ def test_a_limit_too_small_for_the_stages_after_the_blocks_is_refused_before_the
         job.run_faults_job(cube_file, tmp_path / "out", memory_limit=need, progress=False)
 
 
+@pytest.mark.slow
 def test_progress_lines_have_no_negative_sizes(cube_file, tmp_path, monkeypatch, caplog):
     """A limit below the process's own size: the lines say what the process holds, never a negative size left."""
     monkeypatch.setattr(pipeline, "judge_sample", lambda *a, **k: CubeSample(3, 1, 0.1, 0.0))

@@ -52,6 +52,7 @@ def test_horizon_command_tracks_the_true_horizon(tmp_path):
     assert (tmp_path / "out" / "h.vtp").stat().st_size > 0
 
 
+@pytest.mark.slow
 def test_horizon_command_bad_seeds(tmp_path):
     syn = synthetic_cube((16, 16, 48), n_faults=0, seed=0)
     _write_cube(tmp_path / "cube.sgy", syn.cube)
@@ -338,6 +339,7 @@ def test_horizon_on_a_2d_line_follows_the_picks_people_made(data_dir, penobscot,
         assert abs(np.median(offset)) <= 4.0 and np.max(np.abs(offset - np.median(offset))) <= 4.0, offset
 
 
+@pytest.mark.slow
 def test_horizon_on_an_arbitrary_line_read_as_a_trace_list(data_dir, tmp_path):
     # No inline / crossline numbers: read as a trace list (one warning line), seeds TRACE,T, rows 'trace time'.
     # No picks by people exist for this line: the track must sit on a peak of each trace and move smoothly.
@@ -361,6 +363,7 @@ def test_horizon_on_an_arbitrary_line_read_as_a_trace_list(data_dir, tmp_path):
     assert np.median(np.abs(np.diff(k)[np.diff(trace) == 1])) <= 0.5  # samples between neighbouring traces
 
 
+@pytest.mark.slow
 def test_horizon_seeds_and_surface_on_2d_lines(data_dir, tmp_path):
     seismic = Path(data_dir) / "seismic"
     for name, args, message in (
@@ -392,6 +395,7 @@ def _write_line(path, section, inlines, xline, dt_ms=4.0):
         f.bin.update({segyio.BinField.Samples: section.shape[1], segyio.BinField.Interval: int(dt_ms * 1000)})
 
 
+@pytest.mark.slow
 def test_horizon_command_tracks_a_2d_line(tmp_path):
     syn = synthetic_cube((120, 96), n_faults=0, seed=2, noise=0.1)
     inlines = np.arange(1000, 1120)

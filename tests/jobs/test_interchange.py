@@ -229,6 +229,7 @@ def _peak_seed(path, il, xl):
     return (il, xl, float(samples[k]))
 
 
+@pytest.mark.slow
 def test_f3_horizon_maps_and_seed_file(data_dir, tmp_path):
     """F3: the horizon written as IRAP / ZMAP+ / xyz (read back by xtgeo equal to the text rows, at the traces' CDP
     X/Y), then tracked again from its own .xyz as --seed-file: the same horizon."""
@@ -299,6 +300,7 @@ def _by_trace(pts, cdp, rows):
     return [by[(int(il), int(xl))] for il, xl, _ in rows[np.argsort(rows[:, 0])]]
 
 
+@pytest.mark.slow
 def test_render_gsb_sticks_over_their_line(data_dir, tmp_path):
     from seismo3d.data import fetch
     from seismo3d.jobs.render import run_render_job
@@ -320,6 +322,7 @@ def test_render_gsb_sticks_over_their_line(data_dir, tmp_path):
     assert_allclose(-mesh.points[:, 2], (raw[:, 2] - 1000) / 4)  # fractional sample of its two-way time
 
 
+@pytest.mark.slow
 def test_cli_maps_seed_file_and_sticks(data_dir, tmp_path):
     """The command line: `horizon --maps`, `horizon --seed-file` and `render --sticks` reach the jobs."""
     from typer.testing import CliRunner

@@ -18,6 +18,7 @@ from seismo3d.terrain.georef import CoordinateReference
 UTM = CoordinateReference("projected", 32614, "WGS 84 / UTM zone 14N", "metre", 1.0, "metre", 1.0)
 
 
+@pytest.mark.slow
 def test_outputs_in_the_rasters_crs(tmp_path):
     truth = synthetic_scarp_dem(seed=12)
     affine = np.array([[30.0, 0.0, 650000.0], [0.0, -30.0, 3620000.0], [0.0, 0.0, 1.0]])

@@ -95,6 +95,7 @@ def test_interrupt_keeps_the_frames_done(sequence, tmp_path, monkeypatch):
     assert not list(out.glob(".*.tmp"))  # no half-written file left behind
 
 
+@pytest.mark.slow
 def test_cli(sequence, tmp_path, check_run_json):
     runner = CliRunner()
     out = tmp_path / "cli"

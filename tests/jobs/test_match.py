@@ -10,6 +10,7 @@ from seismo3d.jobs.match import read_image, run_match_job
 runner = CliRunner()
 
 
+@pytest.mark.slow
 def test_match_recovers_a_known_homography(tmp_path):
     """`seismo3d match` on a photo and its rotated copy: the printed homography is the true one."""
     import cv2
@@ -41,6 +42,7 @@ def test_match_errors(tmp_path, make, message):
     assert result.exit_code == 2 and message in result.output
 
 
+@pytest.mark.slow
 def test_run_match_job_writes_the_verified_matches(tmp_path):
     import cv2
     from skimage import data

@@ -242,6 +242,7 @@ def _earlier(command: Command, out: Path) -> dict:
 RUNS = [pytest.param(c, id=c.name, marks=[pytest.mark.slow] if c.name in SLOW else []) for c in COMMANDS]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("command", [pytest.param(c, id=c.name) for c in COMMANDS])
 def test_earlier_results_are_refused_without_overwrite(command, work, tmp_path):
     output = _earlier_results(command, tmp_path / "out", work)

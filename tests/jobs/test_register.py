@@ -75,6 +75,7 @@ def test_register_f3_onto_its_shifted_copy_and_unrelated_cubes(data_dir, tmp_pat
     assert f"did not converge ({payload['reason']})" in res.output
 
 
+@pytest.mark.slow
 def test_register_mixed_inputs_and_bad_model_are_clear_errors(pair, tmp_path):
     (fixed, moving), _, _ = pair
     cloud = tmp_path / "cloud.xyz"

@@ -37,7 +37,7 @@ def laz_pair(autzen, tmp_path_factory):
     return folder, pair
 
 
-@pytest.mark.slow  # 1.2 s; test_register_dem_pair stays in the fast lane, whose budget is 60 s
+@pytest.mark.slow  # 1.2 s in the fast lane, whose budget is 60 s
 def test_register_laz_pair_from_identity(laz_pair, tmp_path):
     """The issue's target: within 0.2 deg and 0.5 ft, no initial guess (measured 0.007 deg, 0.09 ft at worst)."""
     folder, pair = laz_pair
@@ -56,6 +56,7 @@ def test_register_laz_pair_from_identity(laz_pair, tmp_path):
         [pair.target.min(axis=0), pair.target.max(axis=0)], axis=0)[:2], atol=1e-6)
 
 
+@pytest.mark.slow
 def test_register_dem_pair(dfw, tmp_path):
     """A crop of the real DEM turned 12 deg and shifted: the JSON's transform maps longitude / latitude / height; a
     fit the hillshade matches hold exits 0, the same fit without them exits 1."""
@@ -90,6 +91,7 @@ def test_register_dem_pair(dfw, tmp_path):
     assert payload["converged"] is False and payload["held_by_features"] is False
 
 
+@pytest.mark.slow
 def test_register_bad_terrain_inputs(laz_pair, tmp_path):
     folder, _ = laz_pair
     laspy.LasData(laspy.LasHeader(point_format=3, version="1.2")).write(tmp_path / "empty.las")

@@ -51,6 +51,7 @@ def _not_blank(path, min_fraction=0.1):
     return (img.min(axis=-1) < 250).mean() > min_fraction, img
 
 
+@pytest.mark.slow
 def test_segy_cube_is_placed_by_its_cdp_coordinates(tmp_path):
     _write_segy(tmp_path / "cube.sgy", _cube())
     out = tmp_path / "cube.png"
@@ -78,6 +79,7 @@ def test_geometry_of_the_segy_headers(tmp_path):
     assert geo.axes[2, 2] == pytest.approx(-4.0)  # 4 ms at 2000 m/s two-way
 
 
+@pytest.mark.slow
 def test_faults_folder_and_horizon_file(tmp_path):
     from seismo3d.viz import fault_surfaces, save_polydata
     from seismo3d.seismic import Fault
@@ -128,6 +130,7 @@ def test_bad_inputs_are_one_line_errors(tmp_path, name, args, match):
     assert match in res.stderr and len(res.stderr.strip().splitlines()) == 1
 
 
+@pytest.mark.slow
 def test_segy_flags_reach_the_one_opening_path(tmp_path):
     # render opens SEG-Y like faults / horizon / register: byte order detected (big here), --endian to force it, the
     # header bytes by --iline / --xline; a wrong forced byte order is one clear line naming the flag
@@ -155,6 +158,7 @@ def _write_trace_list(path, section):
         f.bin.update({segyio.BinField.Samples: section.shape[1], segyio.BinField.Interval: 4000})
 
 
+@pytest.mark.slow
 def test_a_trace_list_is_drawn_as_one_section(tmp_path):
     """A file without an inline / crossline grid: one section, traces numbered in file order; the warning names
     --ignore-geometry, which render has: with it, the same picture and no warning."""
@@ -170,6 +174,7 @@ def test_a_trace_list_is_drawn_as_one_section(tmp_path):
     assert quiet.exit_code == 0 and quiet.stderr == "", quiet.output
 
 
+@pytest.mark.slow
 def test_a_trace_list_horizon_is_drawn_over_its_section(tmp_path):
     """'trace time' rows (seismo3d horizon on a trace list) over the trace list, drawn as a section: the horizon a
     yellow curve at its one time, across the section."""
@@ -186,6 +191,7 @@ def test_a_trace_list_horizon_is_drawn_over_its_section(tmp_path):
     assert rows.size > 100 and np.ptp(cols) > 0.3 * 400 and np.ptp(rows) <= 12
 
 
+@pytest.mark.slow
 def test_a_faults_folder_of_a_line_renders_quickly(tmp_path):
     """The likelihood of a 2D line of a survey is drawn as a plane (a volume one voxel thick, its crossline step zero,
     took minutes to ray-cast)."""
@@ -230,6 +236,7 @@ def _line_faults_folder(tmp_path, throw):
     return folder
 
 
+@pytest.mark.slow
 def test_a_line_s_faults_coloured_by_throw(tmp_path):
     """--color-by throw on a line: the fault drawn point by point in the throw's colours (PuOr: purple where
     the throw is negative, orange where positive) with its colour bar; by fault id it stays tab10 blue. Before, the

@@ -55,6 +55,7 @@ def faults_run(tmp_path_factory):
     return line, work / "faults"
 
 
+@pytest.mark.slow
 def test_the_runs_input_is_drawn_by_default(faults_run, tmp_path):
     line, folder = faults_run
     default = run_render_job(folder, tmp_path / "default.png", window_size=SIZE)
@@ -66,6 +67,7 @@ def test_the_runs_input_is_drawn_by_default(faults_run, tmp_path):
     assert _seismic_pixels(tmp_path / "default.png") > 0.2
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("change", ["changed", "gone"])
 def test_a_changed_or_missing_input_is_not_drawn_and_said_once(faults_run, tmp_path, change):
     line, folder = faults_run
@@ -97,6 +99,7 @@ def test_a_changed_or_missing_input_is_not_drawn_and_said_once(faults_run, tmp_p
         assert run_render_job(moved, tmp_path / "no2.png", window_size=SIZE).seismic is None
 
 
+@pytest.mark.slow
 def test_a_horizon_is_drawn_over_its_input_read_with_the_runs_flags(tmp_path):
     """A line whose numbers are at bytes 9 and 21: the run's --iline 9 --xline 21 (from its run.json) read it; given
     with --seismic and render's default bytes 189 / 193, it is a trace list the horizon's rows do not fall on."""

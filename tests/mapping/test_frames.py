@@ -61,6 +61,7 @@ def test_fused_icp_succeeds_from_every_perturbation(prepared, pair):
     assert all(n == TRIALS for n in successes.values()), successes
 
 
+@pytest.mark.slow
 def test_fused_icp_without_any_init(prepared):
     """The RANSAC start alone (no prior) suffices on real frames."""
     for case in prepared.values():
@@ -70,6 +71,7 @@ def test_fused_icp_without_any_init(prepared):
         assert result.info["start"] == "ransac" and result.info["n_feature_inliers"] >= 20
 
 
+@pytest.mark.slow
 def test_register_frames_pipeline(data_dir):
     from seismo3d.data import load_7scenes_frame
     from seismo3d.mapping.frames import register_frames

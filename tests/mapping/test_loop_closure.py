@@ -23,6 +23,7 @@ def graph(seven_scenes):
     return g
 
 
+@pytest.mark.slow
 def test_vocabulary_words_and_vectors(graph):
     sets = [k.features.descriptors for k in graph.keyframes]
     vocab = Vocabulary.learn(sets, 64)

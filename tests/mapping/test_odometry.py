@@ -28,6 +28,7 @@ def room_model():
     return _model([pose_at(yaw) for yaw in (-6, -3, 0, 3, 6)])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("yaw, pitch, shift", [(2.0, 1.0, (0.03, -0.02, 0.04)), (-4.0, 2.0, (-0.05, 0.03, 0.0))])
 def test_tracks_a_known_motion(room_model, yaw, pitch, shift):
     truth = pose_at(yaw, pitch, position=np.array([0.0, 0.0, -1.0]) + shift)
@@ -71,6 +72,7 @@ def tum_pair(data_dir):
     return load_tum_pair()
 
 
+@pytest.mark.slow
 def test_tum_pair_against_motion_capture(tum_pair):
     """The issue's target: relative pose within 1 cm and 0.5 degrees of the motion-capture ground truth."""
     prev, curr = tum_pair

@@ -18,6 +18,7 @@ def room_volume():
     return volume
 
 
+@pytest.mark.slow
 def test_raycast_reproduces_the_depth(room_volume):
     pose = pose_at(2.0, 3.0)
     prediction = room_volume.raycast(INTRINSICS, pose, shape=(480, 640))
@@ -83,6 +84,7 @@ def test_max_blocks_bounds_memory():
     assert volume.n_blocks == 50
 
 
+@pytest.mark.slow
 def test_mask_keeps_pixels_out():
     volume = TSDFVolume(TSDFOptions(voxel_size=0.02))
     pose = pose_at()

@@ -31,6 +31,7 @@ def bunny(data_dir):
     return pair, estimate_normals(pair.target, k=16, orient="none")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_bunny_point_to_plane_from_15_degrees(bunny, seed):
     """Real Stanford bunny scans: from ground truth perturbed by 15 degrees, end within 0.2 deg and 1 mm."""

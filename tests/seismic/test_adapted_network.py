@@ -48,6 +48,7 @@ def test_model_tracing_reads_the_record_and_hashes_the_network_once(tmp_path, mo
     assert FaultTracingOptions().with_model(model, sensitivity=0.6).sensitivity == 0.6  # the one asked for wins
 
 
+@pytest.mark.slow
 def test_tracing_with_a_model_uses_its_sensitivity_unless_given_another(tmp_path):
     section = synthetic_fault_section((160, 128), seed=4).section
     model = _model(tmp_path / "model", sensitivity=0.9)

@@ -164,6 +164,7 @@ def _dipping_fault_points(x0, dip_per_sample, n_y=9, n_t=40, jitter=0.0, rng=Non
     return pts, np.tile(n / np.linalg.norm(n), (len(pts), 1))
 
 
+@pytest.mark.slow
 def test_step_jumps_equal_jump_step_by_step():
     # the horizon tracker's many neighbour steps in one compiled call: the same jump as jump() on every step, with
     # two faults (one dipping, with jittered points and an unknown throw on part of it), in 3D and in 2D

@@ -137,6 +137,7 @@ def _fault_scores_tool():
     return module
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", range(5))
 def test_the_definition_of_the_projects_tools_on_random_masks(seed):
     """fault_scores.tolerant_scores, line for line (imported from the tools folder when it is there, else its four

@@ -239,6 +239,7 @@ def _ref_pair_lag(trace_a, ta, trace_b, centre, half, max_lag, min_fraction):
     return k - max_lag + off, scores[k]
 
 
+@pytest.mark.slow
 def test_pair_lags_are_the_loops_lags_near_the_trace_ends_and_at_nan_times():
     # the lag search in numpy against the replaced kernel's loop: shortened windows near both ends, lags cut where
     # they leave trace b, NaN times, a flat trace; the scores within 1e-12 (products summed in another order)

@@ -127,6 +127,7 @@ def test_seeds_off_the_cube_name_its_numbers(generated):
         track_horizon(cube, (105, 1100.0), polarity=pol)
 
 
+@pytest.mark.slow
 def test_an_opened_segy_cube_gives_its_horizon_in_ms(data_dir):
     """F3 through seismo3d.open: the horizon on its inlines, crosslines and CDP X / Y in ms, the job's horizon."""
     import seismo3d
@@ -205,6 +206,7 @@ def test_a_line_takes_inline_crossline_time_seeds(generated):
         track_horizon(line, (INLINES[7], XLINES[8], T0 + DT * k0), polarity=pol)
 
 
+@pytest.mark.slow
 def test_penobscot_line_through_seismo3d_open_writes_the_jobs_rows(data_dir, tmp_path):
     """Penobscot crossline 1155 opened by seismo3d.open, tracked from the guide's seed (inline 1300, crossline 1155,
     2040 ms) without faults: the rows of `seismo3d horizon --no-faults`, byte for byte."""

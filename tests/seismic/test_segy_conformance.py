@@ -236,6 +236,7 @@ def test_every_little_endian_twin_gives_the_same_fault_likelihood(conformance_fi
     _same_fault_likelihood(conformance_files, big, little)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", NAMES)
 def test_faults_job_reads_or_refuses_in_one_line(conformance_files, tmp_path, name):
     from seismo3d.jobs.faults import run_faults_job

@@ -24,6 +24,7 @@ AUTZEN_WKT = ('PROJCS["NAD_1983_HARN_Lambert_Conformal_Conic",GEOGCS["GCS_North_
               '249],UNIT["foot",0.3048,AUTHORITY["EPSG","9002"]]]')
 
 
+@pytest.mark.slow
 def test_parse_wkt_projected_feet_without_epsg():
     from pyproj import CRS
 
@@ -58,6 +59,7 @@ def test_geokeys_round_trip_and_units():
         parse_geokeys([1, 1, 0, 3, 1024, 0, 1, 1])
 
 
+@pytest.mark.slow
 def test_geokeys_for_a_wkt_crs_reads_back_compatible():
     crs = parse_wkt(AUTZEN_WKT)
     back = reference_from_geokeys(geokeys_for(crs))

@@ -7,6 +7,7 @@ from seismo3d.errors import DataIntegrityError, DataNotFoundError, InputError
 from seismo3d.terrain import read_las, write_las
 
 
+@pytest.mark.slow
 def test_autzen(autzen):
     assert len(autzen) == 110000
     assert autzen.crs.kind == "projected" and autzen.crs.linear_unit == "foot"
@@ -14,6 +15,7 @@ def test_autzen(autzen):
     assert set(np.unique(autzen.classification)) == {1, 2}
 
 
+@pytest.mark.slow
 def test_write_read_round_trip_keeps_crs(autzen, tmp_path):
     pts = autzen.points[:500] + [10.0, -20.0, 1.0]
     path = write_las(tmp_path / "part.laz", pts, like=autzen, classification=np.full(500, 2))

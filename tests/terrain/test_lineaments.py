@@ -23,6 +23,7 @@ from seismo3d.terrain.georef import CoordinateReference
 from seismo3d.terrain.lineaments import flat_water, link_segments
 
 
+@pytest.mark.slow
 def test_generated_scarps_found_with_their_strike():
     """10 generated DEMs (seeds 300-309, not used to choose the defaults): measured 77/80 found over half their
     trace, 80/80 over the middle two thirds, 2 false lineaments of 82 (with the levels of 200 and 400 m pixels; 1 of
@@ -83,6 +84,7 @@ def _share_near(found, mask, within_px: float = 2.0) -> float:
     return near / max(found.length_m.sum(), 1e-9)
 
 
+@pytest.mark.slow
 def test_a_lake_with_straight_shores_gives_no_lineament_and_the_scarps_are_found():
     """A generated DEM (seed 310) with a reservoir: a 90 x 20 pixel rectangle (1.6 km^2 at 30 m) flattened to the
     height of its lowest shore cell, its long shores striking 60 degrees, away from the 8 scarps. Kept out as flat
@@ -117,6 +119,7 @@ def test_a_lake_with_straight_shores_gives_no_lineament_and_the_scarps_are_found
     assert _share_near(unmasked, lake) > 0.1
 
 
+@pytest.mark.slow
 def test_dfw_lineaments(dfw, tmp_path):
     found = extract_lineaments(dfw)
     assert 3 <= len(found) <= 40

@@ -29,6 +29,7 @@ def room(map_folder):
     return scene, occupancy_from_points(scene.points, hint=scene.up_hint)
 
 
+@pytest.mark.slow
 def test_up_and_floor_from_the_map(room):
     scene, _ = room
     assert scene.up_hint @ [0, -1, 0] > 0.9  # minus the cameras' mean y axis
@@ -65,6 +66,7 @@ def test_path_around_the_box_and_under_the_table(room):
     assert best <= path.length_m <= 1.05 * best
 
 
+@pytest.mark.slow
 def test_robot_radius_and_errors(room, tmp_path):
     scene, _ = room
     grid = occupancy_from_points(scene.points, hint=scene.up_hint, options=OccupancyOptions(robot_radius=0.2))

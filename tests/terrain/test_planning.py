@@ -73,6 +73,7 @@ def test_astar_is_optimal(corner_cutting):
     assert checked >= 20
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("forward_search, lookahead", [(True, 0.01), (True, 0.0), (True, 0.5), (False, 0.01)])
 def test_dstar_lite_replans_like_astar_from_scratch(forward_search, lookahead):
     """Moves along the path, blocks and frees cells, replans; every plan equals A* on the current grid, whichever
@@ -112,6 +113,7 @@ def test_dstar_lite_replans_like_astar_from_scratch(forward_search, lookahead):
     assert used == ({"dstar_lite", "guided_astar"} if forward_search else {"dstar_lite"})
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("reset_km", [False, True])
 def test_cost_bounds_are_lower_bounds_and_exact_where_settled(monkeypatch, reset_km):
     """The guided search's heuristic, checked against Dijkstra on every cell: below the true cost to the goal on

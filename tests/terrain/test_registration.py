@@ -48,6 +48,7 @@ def _moved_dem(dem: Dem, *, rows, cols, angle_deg, shift_m):
     return source, frame.transform_to_file(mg.transform)
 
 
+@pytest.mark.slow
 def test_generated_dem_to_dem_without_data():
     """A generated 30 m DEM: a 120 x 120 crop turned 25 deg and shifted 400 m is registered within 0.5 pixel."""
     truth_dem = synthetic_scarp_dem((200, 200), seed=7)
@@ -64,7 +65,7 @@ def test_generated_dem_to_dem_without_data():
     assert result.heading_deg == pytest.approx(-25.0, abs=0.003)  # turned +25 deg: measured 0.0019 off, limit 1.5x
 
 
-@pytest.mark.slow  # 0.8 s; test_autzen_scan_to_dem stays in the fast lane, whose budget is 60 s
+@pytest.mark.slow  # 0.8 s in the fast lane, whose budget is 60 s
 def test_dfw_dem_to_dem(dfw):
     """A 200 x 200 crop of the real DEM turned 15 deg and shifted 1.3 km: within 0.5 pixel (measured 0.02)."""
     source, truth = _moved_dem(dfw, rows=slice(80, 280), cols=slice(90, 290), angle_deg=15.0,
@@ -85,6 +86,7 @@ def autzen_pair(autzen):
                          seed=5)
 
 
+@pytest.mark.slow
 def test_autzen_scan_to_dem(autzen, autzen_pair):
     """The moved scan onto a 3 ft DEM gridded from the other scan (mean heights): a 2.5D surface with normals."""
     g = rasterize_points(autzen_pair.target, 3.0, statistic="mean", fill=False)

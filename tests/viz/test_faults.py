@@ -14,6 +14,7 @@ def small_cube():
     return syn.cube, trace_faults(syn.cube, progress=False)
 
 
+@pytest.mark.slow
 def test_show_faults_off_screen(small_cube, tmp_path):
     """VTK renders off screen here: the picture shows the slices (grey) and fault 1 in its tab10 blue."""
     from matplotlib.image import imread
@@ -32,6 +33,7 @@ def test_show_faults_off_screen(small_cube, tmp_path):
         show_faults(cube, res.faults, color_by="colour", screenshot=shot)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("color_by", ["fault_id", "throw"])
 def test_the_colour_bar_has_its_own_slot(small_cube, colour_bars, color_by, tmp_path):
     """The fault bar inside the window, its title and tick labels drawn inside its rectangle (main's pyvista
@@ -45,6 +47,7 @@ def test_the_colour_bar_has_its_own_slot(small_cube, colour_bars, color_by, tmp_
     assert [title.strip() for title in bars] == [{"fault_id": "fault id"}.get(color_by, color_by)]
 
 
+@pytest.mark.slow
 def test_plot_fault_slices_arguments(small_cube, tmp_path):
     from seismo3d.viz.faults import plot_fault_slices
 

@@ -46,6 +46,7 @@ def test_map_with_trajectory_and_keyframes(tmp_path):
     assert (img.min(axis=-1) < 250).mean() > 0.1  # the floor
 
 
+@pytest.mark.slow
 def test_map_with_its_reference_and_a_scale_bar(tmp_path):
     """The reference trajectory in green beside the red one, and a black scale bar of a round length (0.5 m on a
     2 m floor) labelled on the floor."""
@@ -63,6 +64,7 @@ def test_map_with_its_reference_and_a_scale_bar(tmp_path):
     assert black.sum() > 100  # the scale bar and its label
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("window_size", [(400, 300), (1280, 960)])
 def test_the_colour_bar_has_its_own_slot(colour_bars, window_size, tmp_path):
     """The height bar inside the window, its title and tick labels drawn inside its rectangle (at the size of
@@ -75,6 +77,7 @@ def test_the_colour_bar_has_its_own_slot(colour_bars, window_size, tmp_path):
     assert [title.strip() for title in bars] == ["height (m)"]
 
 
+@pytest.mark.slow
 def test_render_a_map_folder(tmp_path):
     folder = tmp_path / "map"
     folder.mkdir()

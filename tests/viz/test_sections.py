@@ -24,6 +24,7 @@ def _section():
     return np.sin(2 * np.pi * (samples - 0.2 * traces - shift) / 12.0).astype(np.float32)
 
 
+@pytest.mark.slow
 def test_section_with_faults_and_horizon(tmp_path):
     import pyvista as pv
     from matplotlib.image import imread
@@ -46,6 +47,7 @@ def test_section_with_faults_and_horizon(tmp_path):
     assert yellow.sum() > 100
 
 
+@pytest.mark.slow
 def test_people_sticks_are_drawn_apart_from_the_traced_faults(tmp_path):
     """People's fault sticks: white dashes over a dark casing (in a legend below the section), where the traced
     faults keep their colours; the title counts both."""
@@ -89,6 +91,7 @@ def test_section_refuses_wrong_shapes(tmp_path):
     assert not (tmp_path / "s.png").exists()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("exaggeration", [1.0, 5.0, 20.0])
 def test_the_section_fills_the_picture_at_any_exaggeration(tmp_path, exaggeration):
     """A section shaped like Penobscot crossline 1155 (601 traces 12.5 m apart, 0-6000 ms): at 20x it is a strip 16

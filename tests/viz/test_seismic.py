@@ -109,6 +109,7 @@ def scene_dir(tmp_path_factory):
     return tmp_path_factory.mktemp("scenes")
 
 
+@pytest.mark.slow
 def test_slices_in_the_seismic_colours(scene_dir):
     shot = scene_dir / "slices.png"
     show_seismic(_cube(), screenshot=shot, window_size=(320, 240))
@@ -120,6 +121,7 @@ def test_slices_in_the_seismic_colours(scene_dir):
     assert (img.min(axis=-1) < 250).mean() > 0.15  # not blank: the white background covers under 85 %
 
 
+@pytest.mark.slow
 def test_faults_by_id_and_by_throw(scene_dir):
     from seismo3d.seismic import FaultThrow
 
@@ -159,6 +161,7 @@ def test_horizons_coloured_by_time(scene_dir):
     assert purple.mean() > 0.01 and yellow.mean() > 0.01
 
 
+@pytest.mark.slow
 def test_fault_likelihood_volume(scene_dir):
     shot = scene_dir / "likelihood.png"
     ii, jj, _ = np.meshgrid(*(np.arange(n) for n in SHAPE), indexing="ij")
@@ -179,6 +182,7 @@ def test_slices_out_of_range_and_missing_folder(tmp_path):
         show_seismic(_cube(), screenshot=tmp_path / "missing" / "x.png")
 
 
+@pytest.mark.slow
 def test_sliders_move_the_planes(tmp_path):
     """With sliders the scene renders the planes and three slider widgets; moving a slider replaces its plane by
     the one at the new index (the widget's callback, called as VTK would)."""
@@ -213,6 +217,7 @@ def _coloured(img):
     return (np.abs(img[..., 0] - img[..., 1]) > 40) | (np.abs(img[..., 1] - img[..., 2]) > 40)
 
 
+@pytest.mark.slow
 def test_a_horizon_on_a_line_is_drawn_over_its_section(scene_dir):
     """A horizon on one line is a curve (horizon_surface joins its picks), drawn over the section seen square on."""
     shot = scene_dir / "line_horizon.png"
@@ -224,6 +229,7 @@ def test_a_horizon_on_a_line_is_drawn_over_its_section(scene_dir):
     assert np.ptp(cols) > 0.3 * 320 and np.ptp(rows) <= 12  # a flat curve across the section
 
 
+@pytest.mark.slow
 def test_fault_ids_and_amplitudes_in_bars_below_the_scene(scene_dir):
     """No legend box over the data: fault ids and amplitudes are colour bars in the band below the scene."""
     shot = scene_dir / "bars.png"
@@ -340,6 +346,7 @@ def test_every_colour_bar_has_its_own_slot(monkeypatch, scene):
 
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("scene", [
     dict(color_faults_by="throw", likelihood=_LIKELIHOOD),  # notebook 01's second scene, and a likelihood bar
     dict(color_faults_by="fault_id"),  # the fault-id bar draws no tick labels (no volume: a cheaper render)

@@ -7,6 +7,7 @@ from seismo3d.errors import InputError
 from seismo3d.viz import plot_lineament_map, plot_rose
 
 
+@pytest.mark.slow
 def test_rose_and_map(tmp_path):
     az = np.array([10.0, 15.0, 100.0])
     length = np.array([1000.0, 500.0, 2000.0])

@@ -50,6 +50,7 @@ def test_exaggeration_shows_relief_without_inventing_mountains(relief, expected)
     assert terrain_exaggeration(dem) == pytest.approx(expected, rel=0.05)
 
 
+@pytest.mark.slow
 def test_path_and_surface_colours(tmp_path):
     dem = _dem()
     cells = np.column_stack([np.full(70, 45), np.arange(5, 75)])
@@ -63,6 +64,7 @@ def test_path_and_surface_colours(tmp_path):
         show_terrain(dem, path=[(100, 0)], screenshot=shot)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("window_size", [(400, 300), (1024, 768)])
 def test_the_colour_bar_has_its_own_slot(colour_bars, window_size, tmp_path):
     """The elevation bar upright at the right, inside the window, its title and tick labels drawn inside its
@@ -77,6 +79,7 @@ def test_the_colour_bar_has_its_own_slot(colour_bars, window_size, tmp_path):
     assert title == "elevation\n(m)" and x0 > 0.5 * window_size[0]
 
 
+@pytest.mark.slow
 def test_render_a_geotiff_with_its_lineaments_and_a_path(tmp_path):
     write_dem(tmp_path / "dem.tif", _dem())
     (tmp_path / "path.csv").write_text("row,col,x,y,z\n" + "".join(f"45,{c},0,0,0\n" for c in range(5, 75)))

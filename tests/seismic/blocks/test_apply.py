@@ -54,6 +54,7 @@ def _cube():
     return np.random.default_rng(0).standard_normal(SHAPE).astype(np.float32)
 
 
+@pytest.mark.slow
 def test_a_declared_step_writes_the_whole_array_result_block_by_block(tmp_path):
     cube = _cube()
     smooth = BlockStep("smooth", "map", HALO, function=_smoothed, inputs=(CUBE,), outputs=("smooth",))
@@ -97,6 +98,7 @@ def test_a_block_place_names_its_core_within_the_region_read():
     assert place.read == (slice(2, 10), slice(0, 6)) and place.target == (slice(4, 8), slice(0, 4))
 
 
+@pytest.mark.slow
 def test_the_same_steps_on_the_whole_array_in_memory_are_one_block(tmp_path):
     """MemoryRun, the executor in memory: the declared steps on one block, the whole array, give what the blocks of
     the run by blocks give; its lists in the executor's interface; several blocks refused."""
@@ -126,6 +128,7 @@ def test_the_same_steps_on_the_whole_array_in_memory_are_one_block(tmp_path):
         run.run_step(smooth, lateral_blocks(SHAPE, 4, 4), source=cube)
 
 
+@pytest.mark.slow
 def test_a_memory_run_is_the_block_run_of_the_same_steps_on_one_block(tmp_path):
     """MemoryRun.run_step, the run in memory of the likelihoods, gives what BlockRun.run_step writes block by block:
     the same declared steps, one block (the whole cube), the summaries as a list, no work folder."""

@@ -39,6 +39,7 @@ def test_true_faults_show_a_displacement_and_unbroken_layers_do_not(seed):
     assert not evidence.supports(EvidenceOptions.for_likelihood("scan"))  # and its sides match unshifted
 
 
+@pytest.mark.slow
 def test_throw_spread_is_measured_only_where_the_throw_is_measured_more_than_once():
     """A section's fault is one patch: its throw is one shift, so its spread is unknown (NaN, a blank cell in
     fault_summary.csv), not a consistency of 0. A 3D fault of several patches has its spread measured."""
@@ -309,6 +310,7 @@ def test_supported_faults_asks_unseeded_faults_for_a_clear_displacement():
         supported_faults(faults, throws, vote_ratios=ratios, mean_likelihoods=means, seeded=[True])
 
 
+@pytest.mark.slow
 def test_a_fault_beside_stronger_ones_is_traced_from_the_lower_threshold():
     """Generated section 31000018 (never trained on): its fault of throw 8.5 samples crossing a stronger one has
     thinned votes above the lower hysteresis threshold but nowhere above the upper one (the network's mean

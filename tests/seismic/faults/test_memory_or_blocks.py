@@ -170,6 +170,7 @@ class _Interrupted(Exception):
     """Raised right after the fault likelihood's store is renamed into place: a run interrupted there."""
 
 
+@pytest.mark.slow
 def test_a_likelihood_store_renamed_into_place_holds_its_id(seismic, monkeypatch, tmp_path):
     """A run interrupted right after the likelihood's store is renamed into place leaves a store that records its
     input and its id (written before the rename): the next run reuses it, and its surfaces record that id."""

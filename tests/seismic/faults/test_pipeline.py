@@ -149,6 +149,7 @@ def test_quantised_runs_are_not_dead_but_fill_values_are():
     assert not dead[live].any()
 
 
+@pytest.mark.slow
 def test_penobscot_fault_at_crossline_56_is_not_blanked(penobscot):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", Seismo3dWarning)
@@ -317,6 +318,7 @@ def test_teapot_tpd_what_an_interpreter_sees(data_dir):
     assert coverage["near trace 20 below sample 240"].covered >= 0.4
 
 
+@pytest.mark.slow
 def test_sensitivity_gives_more_or_fewer_faults(section):
     low = trace_faults(section.cube, sensitivity=0.1, progress=False)
     mid = trace_faults(section.cube, progress=False)

@@ -131,6 +131,7 @@ def test_true_fault_voxels_throw(chain):
     assert np.median(pooled) <= 0.13  # measured 0.028-0.083, limit 1.5x the worst
 
 
+@pytest.mark.slow
 def test_bare_point_array_estimates_normals():
     """A plain (n, 3) array of fault points is accepted; its normals come from PCA."""
     syn = synthetic_cube((64, 64, 96), n_faults=1, seed=2, noise=0.1)
@@ -216,6 +217,7 @@ def test_section_throw_bounded_by_the_fault_length(seed):
         assert abs(bounded) <= 3 + 0.5 and abs(bounded - true) >= 2.0, (tf.id, true, bounded)
         assert abs(loose - true) <= 0.3, (tf.id, true, loose)  # measured 0.02-0.19
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [2, 3])
 def test_section_throw_beyond_20_samples_on_a_tall_fault(seed):
     """A 2D fault searches up to a tenth of its extent and half the profile window (32 samples), not 20: generated
@@ -363,6 +365,7 @@ def flexure(relief, half_width, x0=96, dip=0.1):
     return lambda x: dip * x + relief * 0.5 * (1.0 + np.tanh((x - x0) / half_width))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1])
 def test_step_of_a_small_fault_is_its_throw_and_of_a_flexure_a_small_part_of_it(seed):
     """A 2D fault's step (the lag across its zone less the dip of the traces right beside it) is its throw: 2-3

@@ -61,6 +61,7 @@ def small():
     return syn.cube, faults, fault_throws(syn.cube, faults)
 
 
+@pytest.mark.slow
 def test_chunks_split_along_samples_give_the_same_throws(small):
     """Chunks that do not hold whole traces are read window by window all the same."""
     cube, faults, memory = small
@@ -71,6 +72,7 @@ def test_chunks_split_along_samples_give_the_same_throws(small):
     _assert_same([fault_throw(lazy, faults[0])], memory[:1])
 
 
+@pytest.mark.slow
 def test_lazy_with_given_orientation(small):
     """A whole-cube orientation given with a lazy cube is sliced, not recomputed: the same throws."""
     from seismo3d.seismic import structure_tensor_orientation

@@ -36,6 +36,7 @@ def test_reads_equal_the_whole_cubes_slopes_bit_for_bit(cube):
     assert source.window(5, 9, 5, 9) is win  # every window is the whole cube, decomposed once
 
 
+@pytest.mark.slow
 def test_throws_equal_those_of_the_whole_cubes_slopes():
     """fault_throws on an in-memory cube (TensorWindows) and on ArrayWindows: the same throws, bit for bit."""
     syn = synthetic_cube((64, 64, 96), n_faults=2, seed=1, noise=0.1)

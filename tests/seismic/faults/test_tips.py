@@ -87,6 +87,7 @@ def _gsb_sticks(data_dir, crossline):
     return sec, truth
 
 
+@pytest.mark.slow
 def test_great_south_basin_faults_stop_where_the_interpreter_stopped_them(data_dir):
     """Measured 2026-11-26: the points within 3 samples of the sticks (precision), 0.824 / 0.770 of the points
     without the trimming, 0.843 / 0.781 with the default's (crosslines 2600 / 2800; 0.855 / 0.801 at 0.3), the same

@@ -17,6 +17,7 @@ def cube():
     return synthetic_cube((48, 40, 32), n_faults=1, seed=2).cube
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("cache_mb", [0.01, 256.0], ids=["one-tile-cache", "cache"])
 @pytest.mark.parametrize("box", [(20, 26, 14, 18), (0, 5, 30, 40), (40, 48, 0, 3), (10, 40, 5, 38)],
                          ids=["inside", "corner", "edge", "tiles"])

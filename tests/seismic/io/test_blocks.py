@@ -32,6 +32,7 @@ def segy(request, amplitudes, tmp_path_factory, write_segy_cube):
     return write_segy_cube(tmp_path_factory.mktemp(sorting) / "cube.sgy", amplitudes, sorting=sorting, fmt=fmt)
 
 
+@pytest.mark.slow
 def test_lazy_segy_equals_read_segy(segy):
     ref, cube = read_segy(segy)
     lazy = seismo3d.open(segy, tile=3)

@@ -87,6 +87,7 @@ def test_lines_and_trace_lists_have_one_lateral_dimension(data_dir):
     assert_allclose(quiet["cdp_x"].values, segy.cdp_x)
 
 
+@pytest.mark.slow
 def test_a_convert_store_is_the_same_cube(data_dir, tmp_path):
     from seismo3d.data import fetch
     from seismo3d.jobs.convert import run_convert_job

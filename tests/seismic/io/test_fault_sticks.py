@@ -140,6 +140,7 @@ def test_iesx_rows_follow_the_fixed_columns(gsb2800, tmp_path):
     assert {int(r[32:35]) for r in rows} == {1}  # one stick per fault on a line
 
 
+@pytest.mark.slow
 def test_rms_polygons_read_by_xtgeo(gsb2800, tmp_path):
     """The interpreter's 13 sticks written as RMS XYZ polygons: xtgeo reads a polygon per stick, its nodes' X / Y / Z
     those of the sticks (3 and 4 decimals); sticks without X / Y are refused before anything is written."""

@@ -107,6 +107,7 @@ def test_stick_files_keep_the_bytes_of_the_row_by_row_writers(sticks, tmp_path, 
     assert write_fault_sticks(tmp_path / "blocks.txt", sticks, format=fmt).read_text() == whole
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("spec", ["f", ".f", ".0f", ".3f", ".4f", "g", ".g", ".0g", ".1g", ".5g", ".6g", ".12g"])
 @pytest.mark.parametrize("rows", [1, 3, 1 << 14])
 def test_whole_numbers_keep_the_characters_of_their_float_format(spec, rows):

@@ -81,6 +81,7 @@ def test_tsurf_read_back_by_a_spec_parser(surfaces, tmp_path):
         assert o["axis_unit"] == ["m", "m", "ms"] and o["zpositive"] == "Depth"
 
 
+@pytest.mark.slow
 def test_tsurf_files_read_by_xtgeo(surfaces, tmp_path):
     """Every file of the folder read by xtgeo's own reader from its path (the reader refuses a second object in a
     file), vertices and triangles as written."""

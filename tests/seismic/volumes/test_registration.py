@@ -99,6 +99,7 @@ def test_f3_pairs_in_either_order(f3_crop, angle, moving_scales, fixed_scales, o
     assert check.other_way_disagreement <= 0.2 and check.other_way_scale_disagreement <= 0.022, check.to_dict()
 
 
+@pytest.mark.slow
 def test_f3_onto_its_shifted_copy(f3_crop):
     copy = np.ascontiguousarray(f3_crop[4:, 4:, 5:])  # 4 inlines, 4 crosslines and 5 samples in
     reg = register_volumes(copy, f3_crop)

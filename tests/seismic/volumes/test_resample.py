@@ -35,6 +35,7 @@ def test_resampled_pair_truth_maps_moving_samples_onto_the_fixed_volume(big):
     np.testing.assert_allclose(back[ok], fixed[ok], atol=1e-4)
 
 
+@pytest.mark.slow
 def test_random_grid_pairs_lie_inside_the_fixed_block_and_their_truth_maps_them_onto_it(big):
     rng = np.random.default_rng(5)
     for _ in range(6):

@@ -10,6 +10,7 @@ from seismo3d.seismic.volumes.search import (MaskedNCC, Start, correlation_searc
                                              screen_scores)
 
 
+@pytest.mark.slow
 def test_masked_ncc_equals_the_direct_correlation_at_every_shift():
     rng = np.random.default_rng(0)
     fixed = rng.normal(size=(7, 6, 8))

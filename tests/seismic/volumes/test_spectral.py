@@ -29,6 +29,7 @@ def rotation_and_scales(linear):
     return decompose_map(t).rotation_deg, np.linalg.norm(linear, axis=0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("angle", [12.0, -20.0])
 def test_the_best_candidate_is_near_the_map(cube, angle):
     fixed, moving, truth = spectra(cube, angle)
@@ -42,6 +43,7 @@ def test_the_best_candidate_is_near_the_map(cube, angle):
     assert best.correlation > 0.95  # measured 0.994
 
 
+@pytest.mark.slow
 def test_a_map_and_its_twin_180_degrees_away_are_both_candidates(cube):
     # a power spectrum is symmetric about 0: rotations theta and theta + 180 fit it equally
     fixed, moving, _ = spectra(cube, 12.0)

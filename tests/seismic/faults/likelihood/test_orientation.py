@@ -96,6 +96,7 @@ def test_orientation_reports_its_stages_when_its_step_asks_and_only_then(caplog)
     assert all(np.array_equal(a, b) for a, b in zip(quiet, reported))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sample_step", [1, 2, 3])
 def test_strike_and_dip_are_nan_exactly_below_the_floor_and_every_samples_above_it(sample_step):
     """``floor``: strike and dip are NaN at the samples whose likelihood is below it and, at every other sample, the

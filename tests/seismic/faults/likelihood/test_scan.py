@@ -48,6 +48,7 @@ def test_likelihood_orientation_on_single_plane():
     assert np.median(ang) < 10.0
 
 
+@pytest.mark.slow
 def test_constant_and_incoherent_data():
     fl = fault_likelihood(np.ones((20, 20, 30)))
     assert fl.likelihood.max() == 0.0

@@ -75,6 +75,7 @@ def test_lazy_dask_input_with_coordinates(cube, reference, tmp_path):
     assert group.attrs["complete"] is True
 
 
+@pytest.mark.slow
 def test_refusals(cube, tmp_path):
     with pytest.raises(InputError, match="3D cube"):
         chunked_fault_likelihood(cube[:, :, 0], tmp_path / "a.zarr")

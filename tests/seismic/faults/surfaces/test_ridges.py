@@ -79,6 +79,7 @@ def test_3d_fault_orientation(traced_cube, seed):
         assert angle <= 8.0, (plane.id, angle)  # measured: 0.5-5.7 degrees
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", SEEDS)
 def test_2d_precision_recall(traced_2d, seed):
     syn, fl, thin, faults = traced_2d[seed]
@@ -141,6 +142,7 @@ def test_thin_faults_is_one_sample_wide():
     assert np.count_nonzero(thin_faults(fl.likelihood, fl.strike_deg, fl.dip_deg, threshold=1.0)) == 0
 
 
+@pytest.mark.slow
 def test_ridges_above_a_floor_are_those_of_the_whole_ranking_image():
     """The ridges computed only around the samples above a floor (the seed threshold, a fixed lower threshold) are
     those of the ranking image computed everywhere, bit for bit, in 3D and 2D; and thin_faults' fixed thresholds
@@ -174,6 +176,7 @@ def test_mask_grown_by_a_sample_is_scipys_maximum_filter(shape):
     assert np.array_equal(_grown(mask), ndi.maximum_filter(mask, size=3, mode="nearest"))
 
 
+@pytest.mark.slow
 def test_ridges_without_strike_and_dip_below_the_orientation_floor():
     """Strike and dip NaN (the learned likelihood's below its orientation floor): where the ridges do not read them
     (away from the samples above the seed threshold) the ridges are those of the finite orientation, bit for bit; a
@@ -212,6 +215,7 @@ def test_bad_input():
 _SECTIONS = {"costarica_gx808": (825, 210), "campos_gx373": (550, 300)}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(_SECTIONS))
 def test_real_sections_run(name):
     root = os.environ.get("SEISMO3D_DATA_DIR")
@@ -260,6 +264,7 @@ def _regions(shape, halo):
         yield (slice(a0, a1), slice(b0, b1)), (slice(i0 - a0, i1 - a0), slice(j0 - b0, j1 - b0))
 
 
+@pytest.mark.slow
 def test_ridges_of_a_core_are_those_of_the_whole_region_bit_for_bit(scanned_cube):
     """``core``: the average along the dip and the ridge test at the core only (the Gaussian over the region) give
     the ridges of the whole region at the core, bit for bit, inside the cube, at its edges and at a corner, for the
@@ -300,6 +305,7 @@ def test_a_bad_core_of_the_ridges_is_an_input_error(scanned_cube):
         ridge_image(like[:, 0], st[:, 0], dp[:, 0], core=(slice(0, 4), slice(0, 1)))
 
 
+@pytest.mark.slow
 def test_ridge_block_is_the_whole_regions_ridges_and_slopes_at_its_core(scanned_cube):
     """A block of the ridges step (dead traces and a mute in the cube) returns at its core what the region's
     functions return cropped there: the slopes, the live likelihood, the mask near dead samples and the seed

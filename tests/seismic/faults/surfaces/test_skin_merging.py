@@ -8,6 +8,7 @@ from seismo3d.seismic.faults.surfaces import skin_merging
 from seismo3d.seismic.faults.surfaces.skin_merging import closest_pairs
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("two_d, side, n_labels, chunk", [(False, 30, 12, None), (True, 30, 12, None),
                                                           (False, 90, 60, 7), (True, 300, 60, None)])
 def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels, chunk, monkeypatch):
@@ -38,6 +39,7 @@ def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels
     assert sorted(map(tuple, got.tolist())) == sorted((i, j) for _, i, j in best.values())
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("gap", [3.0, 12.0, 12.5])
 def test_closest_pairs_of_skins_apart_equal_a_brute_force_search(gap):
     # skins as patches of planes, most cells farther than the gap from every other skin (those the search leaves

@@ -333,11 +333,12 @@ def test_faults_command_records_the_model_and_refuses_a_changed_one(tmp_path, sh
 
 @pytest.fixture(scope="module")
 def dimmed_zone_training():
-    """adapt's training of the dimmed-zone tests, once for both (each trained the network, 100 steps of 4 patches:
-    60-70 CPU s apiece on this project's 2-core AMD EPYC): :func:`~seismo3d.training.adapt.fine_tune` with adapt's
-    defaults (seed 0) on line 1's grids with its held-back band left out, from the shipped weights. As
-    ``(start, grids, options, tuned)``: the call's arguments and what it returned. The command's test checks that the
-    command passes fine_tune these same arguments before it is given this result (:func:`shared_fine_tune`)."""
+    """adapt's training of the dimmed-zone tests, once for both: :func:`~seismo3d.training.adapt.fine_tune` with
+    adapt's defaults (seed 0, 100 steps of 4 patches on 2 threads) on line 1's grids with its held-back band left out,
+    from the shipped weights, as ``(start, grids, options, tuned)``: the call's arguments and what it returned. The
+    command's test checks that the command passes fine_tune these same arguments before it is given this result
+    (:func:`shared_fine_tune`). Each test trained the network before: the two took 146 CPU s with two trainings and 46
+    with this one in paired runs on this project's 2-core AMD EPYC, 440 and 167 at load 4 (2026-11-29)."""
     pytest.importorskip("torch")
     pytest.importorskip("onnx")
     from seismo3d.training.adapt import AdaptOptions, fine_tune

@@ -14,7 +14,7 @@ limit passed once passes). The import under ``-X importtime`` that read the pack
 is within the limit: it did the same import and more (the report; in a new checkout, the compiled modules written),
 and measured beside two plain imports of each module it was within their spread (2026-11-29: ``jobs.render`` 1.79
 CPU s against 1.53-1.75, ``jobs.faults`` 1.58 against 1.35-1.54, ``jobs.plan`` 1.64 against 1.31-1.50); a new
-interpreter less per module, 15-20 CPU s of the slow lane.
+interpreter less per module: this file's 52 CPU s became 27-29 in paired runs.
 The limits are about 2.5x the CPU seconds measured at load 5-6 on 2 cores (2026-12, Python 3.11), listed beside
 them; before issue 58, ``seismo3d.cli`` took 0.16-0.19 CPU s with numpy, and ``seismo3d.jobs.convert`` 0.93-1.17
 CPU s with scipy.ndimage and numba (the whole ``seismo3d.seismic`` package), then 0.19-0.21 CPU s with numpy and

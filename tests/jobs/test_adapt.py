@@ -331,8 +331,53 @@ def test_faults_command_records_the_model_and_refuses_a_changed_one(tmp_path, sh
         trace_faults(section, progress=False, model=tmp_path / "missing")
 
 
+@pytest.fixture(scope="module")
+def dimmed_zone_training():
+    """adapt's training of the dimmed-zone tests, once for both: :func:`~seismo3d.training.adapt.fine_tune` with
+    adapt's defaults (seed 0, 100 steps of 4 patches on 2 threads) on line 1's grids with its held-back band left out,
+    from the shipped weights, as ``(start, grids, options, tuned)``: the call's arguments and what it returned. The
+    command's test checks that the command passes fine_tune these same arguments before it is given this result
+    (:func:`shared_fine_tune`). Each test trained the network before: the two took 146 CPU s with two trainings and 46
+    with this one in paired runs on this project's 2-core AMD EPYC, 440 and 167 at load 4 (2026-11-29)."""
+    pytest.importorskip("torch")
+    pytest.importorskip("onnx")
+    from seismo3d.training.adapt import AdaptOptions, fine_tune
+
+    section, picks = dimmed_section(1)
+    weights_file = resources.files("seismo3d.seismic.faults.likelihood").joinpath("fault_unet.npz")
+    with weights_file.open("rb") as fh, np.load(fh) as npz:
+        start = {k: npz[k] for k in npz.files}
+    options = AdaptOptions()
+    grids = training_grids(section, picks, held_back_band(picks))
+    tuned = fine_tune(start, grids, options=options, progress=False)
+    return start, grids, options, tuned
+
+
+def shared_fine_tune(training, calls: list):
+    """A stand-in for :func:`seismo3d.training.adapt.fine_tune` that returns the result of ``training``
+    (:func:`dimmed_zone_training`) once it has checked that it is called with the same arguments: the same starting
+    weights, the same grids (the same bits, dtypes and shapes) and equal options; so the shared training is the one
+    the command would have run (fine_tune is seeded: the same arguments train the same weights). Each call's options
+    are appended to ``calls``."""
+    start, grids, shared_options, tuned = training
+
+    def fine_tune(weights, given_grids, *, options=None, progress=True):
+        calls.append(options)
+        assert options == shared_options, (options, shared_options)
+        assert weights.keys() == start.keys() and all(
+            weights[k].dtype == start[k].dtype and np.array_equal(weights[k], start[k]) for k in start)
+        assert len(given_grids) == len(grids)
+        for given, shared in zip(given_grids, grids):
+            for a, b in zip(given, shared):
+                assert a.dtype == b.dtype and a.shape == b.shape and np.array_equal(a, b)
+        return {**tuned, "weights": {k: v.copy() for k, v in tuned["weights"].items()}}
+
+    return fine_tune
+
+
 @pytest.mark.slow
-def test_the_network_adapted_on_a_section_learns_a_fault_style_the_shipped_network_misses_on_its_sibling(tmp_path):
+def test_the_network_adapted_on_a_section_learns_a_fault_style_the_shipped_network_misses_on_its_sibling(
+        tmp_path, dimmed_zone_training):
     """adapt's training (its defaults, seed 0, the held-back band left out) on a section crossed by dimmed zones
     without throw, and its sibling traced as MODEL records such zones (the unbroken veto off, sensitivity 0.35).
 
@@ -342,24 +387,16 @@ def test_the_network_adapted_on_a_section_learns_a_fault_style_the_shipped_netwo
     none; with the veto off it traces one (F1 0.50). What a run learns from two picked zones depends on the patches
     it draws and on the CPU's rounding (seed 0, traced with the veto on: F1 0.96 where this test was first written,
     0.76 on an AMD EPYC with AVX2)."""
-    pytest.importorskip("torch")
-    pytest.importorskip("onnx")
     from scipy import ndimage
 
-    from seismo3d.training.adapt import AdaptOptions, fine_tune
     from seismo3d.training.export_onnx import onnx_model
 
-    section, picks = dimmed_section(1)
+    _, _, options, tuned = dimmed_zone_training  # adapt's defaults, seed 0, on line 1 without its held-back band
     sibling, sibling_picks = dimmed_section(2)  # the same style, other zones and layering
     zones = ndimage.binary_dilation(sibling_picks, iterations=1)
     away = ~ndimage.binary_dilation(sibling_picks, structure=np.ones((17, 1), bool))  # 8 traces or more from a pick
     shipped = trace_faults(sibling, progress=False)
     assert tolerant_scores(fault_labels(shipped.faults, SHAPE) > 0, sibling_picks, 3.0)[2] == 0.0  # traces none
-    weights_file = resources.files("seismo3d.seismic.faults.likelihood").joinpath("fault_unet.npz")
-    with weights_file.open("rb") as fh, np.load(fh) as npz:
-        start = {k: npz[k] for k in npz.files}
-    options = AdaptOptions()
-    tuned = fine_tune(start, training_grids(section, picks, held_back_band(picks)), options=options, progress=False)
     model = write_model(tmp_path / "model", onnx_model(tuned["weights"]), RunRecord("adapt", {}), {},
                         {"kept": "adapted", "sensitivity": options.sensitivity, "unbroken_veto": False})
     adapted = trace_faults(sibling, progress=False, model=model)
@@ -372,15 +409,23 @@ def test_the_network_adapted_on_a_section_learns_a_fault_style_the_shipped_netwo
 
 
 @pytest.mark.slow
-def test_adapt_on_a_section_judges_on_its_held_back_band_and_the_faults_command_traces_as_model_records(tmp_path):
+def test_adapt_on_a_section_judges_on_its_held_back_band_and_the_faults_command_traces_as_model_records(
+        tmp_path, dimmed_zone_training, monkeypatch):
     """Through the commands, on the dimmed zones above: adapt scores on its held-back band the shipped network, the
     adapted one with the unbroken veto (the zones offset no reflector, so the tracing's evidence may drop them whatever
     the network says: FaultEvidence.is_unbroken) and without it, keeps the adapted network only when it wins there,
     with the veto as it scored best, and 'faults --model' traces the sibling as MODEL records. Which network is kept
     depends on what the run learned of the band's zone: over seeds 0-5 the adapted network without the veto traced
-    it whole in three (band F1 0.99; kept) and missed it in the others (0.0; the shipped network kept)."""
-    pytest.importorskip("torch")
-    pytest.importorskip("onnx")
+    it whole in three (band F1 0.99; kept) and missed it in the others (0.0; the shipped network kept).
+
+    The command's training is the one of the test above (:func:`dimmed_zone_training`, the same arguments: checked
+    by :func:`shared_fine_tune` when the command calls fine_tune); the command's call of the real fine_tune is run
+    by the cube's test (``--steps 2``)."""
+    import importlib
+
+    calls = []
+    training = importlib.import_module("seismo3d.training.adapt")  # the module the job's training_module() returns
+    monkeypatch.setattr(training, "fine_tune", shared_fine_tune(dimmed_zone_training, calls))
     section, picks = dimmed_section(1)
     sibling, sibling_picks = dimmed_section(2)
     np.save(tmp_path / "line.npy", section)
@@ -389,7 +434,8 @@ def test_adapt_on_a_section_judges_on_its_held_back_band_and_the_faults_command_
     np.save(tmp_path / "sibling_picks.npy", sibling_picks)
     result = runner.invoke(app, ["adapt", str(tmp_path / "line.npy"), "--mask", str(tmp_path / "picks.npy"), "-o",
                                  str(tmp_path / "model")])
-    assert result.exit_code == 0, result.output
+    assert result.exit_code == 0, (result.output, result.exception)  # an argument not the shared one: AssertionError
+    assert len(calls) == 1  # the command trained once, with the shared training's arguments
     scores = {}
     for name, extra in (("default", []), ("adapted", ["--model", str(tmp_path / "model")])):
         traced = runner.invoke(app, ["faults", str(tmp_path / "sibling.npy"), "-o", str(tmp_path / name), *extra])

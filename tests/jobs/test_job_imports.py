@@ -10,7 +10,11 @@ The cost is the one of a user's command after its first: Python's compiled modul
 them, a user's interpreter writes an editable install's; CI sets PYTHONDONTWRITEBYTECODE, so seismo3d's own modules
 were compiled from source at every import: 0.4-0.6 CPU s more for a numba job, and ``seismo3d.jobs.register``
 failed at 2.52 CPU s against 2.5 on 2026-11-26) and the best of up to three imports, as timeit takes its best (a
-limit passed once passes).
+limit passed once passes). The import under ``-X importtime`` that read the packages counts as the first of them when it
+is within the limit: it did the same import and more (the report; in a new checkout, the compiled modules written),
+and measured beside two plain imports of each module it was within their spread (2026-11-29: ``jobs.render`` 1.79
+CPU s against 1.53-1.75, ``jobs.faults`` 1.58 against 1.35-1.54, ``jobs.plan`` 1.64 against 1.31-1.50); a new
+interpreter less per module: this file's 52 CPU s became 27-29 in paired runs.
 The limits are about 2.5x the CPU seconds measured at load 5-6 on 2 cores (2026-12, Python 3.11), listed beside
 them; before issue 58, ``seismo3d.cli`` took 0.16-0.19 CPU s with numpy, and ``seismo3d.jobs.convert`` 0.93-1.17
 CPU s with scipy.ndimage and numba (the whole ``seismo3d.seismic`` package), then 0.19-0.21 CPU s with numpy and
@@ -97,11 +101,13 @@ def _run_importtime(args: list[str], folder, *, modules: bool = False, importtim
     return names if modules else {name.split(".")[0] for name in names}, done.stdout, rest
 
 
-def _import_cpu_seconds(module: str, folder, *, limit: float, tries: int = 3) -> float:
+def _import_cpu_seconds(module: str, folder, *, limit: float, tries: int = 3, first: float = float("inf")) -> float:
     """The best CPU seconds of up to ``tries`` imports of ``module`` in new interpreters (stops at one within
-    ``limit``), after an import that wrote the compiled modules."""
-    best = float("inf")
-    for _ in range(tries):
+    ``limit``), after an import that wrote the compiled modules; ``first``: that import's own CPU seconds, which
+    count as a try when within ``limit`` (an upper bound of a compiled import's: that import also wrote the compiled
+    modules and Python's import-time report)."""
+    best = first
+    for _ in range(tries if best > limit else 0):
         best = min(best, float(_run_importtime(["-c", _MEASURE.format(module=module)], folder, importtime=False)[1]))
         if best <= limit:
             break
@@ -118,7 +124,8 @@ def test_the_import_report_is_read():
 def test_a_command_imports_only_its_own_path(budget, tmp_path):
     packages, out, _ = _run_importtime(["-c", _MEASURE.format(module=budget.module)], tmp_path)  # writes the .pyc
     assert packages & HEAVY <= budget.heavy, f"{budget.module} imports {sorted(packages & HEAVY - budget.heavy)}"
-    assert _import_cpu_seconds(budget.module, tmp_path, limit=budget.cpu_seconds) <= budget.cpu_seconds
+    best = _import_cpu_seconds(budget.module, tmp_path, limit=budget.cpu_seconds, first=float(out))
+    assert best <= budget.cpu_seconds, best
 
 
 def test_a_convert_run_imports_only_numpy_segyio_and_zarr(tmp_path, data_dir):

@@ -254,19 +254,43 @@ def test_cube_directions_keep_the_larger_probability():
     assert np.array_equal(both, np.maximum(inl, xl))
 
 
-@pytest.mark.slow  # 9.7 s: imports torch and trains in the fast lane, whose budget is 60 s
+# the training script's three runs below, one after the other in one process: each as ``python -m
+# seismo3d.training.fault_unet ARGS`` runs it (runpy, its ``__main__``, its sys.argv), PyTorch imported once
+_TRAINING_RUNS = """
+import runpy, sys
+for argv in {runs!r}:
+    sys.argv = ["fault_unet.py", *argv]
+    runpy.run_module("seismo3d.training.fault_unet", run_name="__main__", alter_sys=True)
+"""
+
+
+@pytest.mark.slow  # 12-13 s, 15.5 CPU s (2026-11-29): imports torch, trains 3 times (the fast lane's budget: 60 s)
 def test_training_smoke(tmp_path):
     """A few training steps on tiny sections with the training script's command line, in its own process (PyTorch's
-    and numba's thread pools do not share one process safely)."""
+    and numba's thread pools do not share one process safely): a new network, a fine-tuning of it and a distillation
+    of it, the three runs in one process, as three ``python -m seismo3d.training.fault_unet`` commands would run them
+    (each of those paid 10-15 CPU s of imports, PyTorch's and its optimiser's torch._dynamo among them, for 2 steps:
+    30 s of the test, 2026-11-29)."""
     import json
     import subprocess
     import sys
 
     pytest.importorskip("torch")
-    out = tmp_path / "run"
-    subprocess.run([sys.executable, "-m", "seismo3d.training.fault_unet", "--out", str(out), "--steps", "2",
-                    "--batch-size", "2", "--patch", "32", "--channels", "4,8,8,8", "--threads", "1",
-                    "--n-validation", "2", "--log-every", "1"], check=True, capture_output=True, timeout=300)
+    out, tuned, student = tmp_path / "run", tmp_path / "tuned", tmp_path / "student"
+    runs = [
+        ["--out", str(out), "--steps", "2", "--batch-size", "2", "--patch", "32", "--channels", "4,8,8,8", "--threads",
+         "1", "--n-validation", "2", "--log-every", "1"],
+        ["--out", str(tuned), "--steps", "2", "--batch-size", "2", "--patch", "32", "--threads", "1",
+         "--n-validation", "2", "--log-every", "1", "--learning-rate", "1e-12", "--init-weights",
+         str(out / "fault_unet.npz")],
+        ["--out", str(student), "--steps", "1", "--batch-size", "2", "--patch", "32", "--channels", "2,4,4,4",
+         "--threads", "1", "--n-validation", "2", "--log-every", "1", "--teacher", str(out / "fault_unet.npz"),
+         "--distill-weight", "0.7"],
+    ]
+    done = subprocess.run([sys.executable, "-c", _TRAINING_RUNS.format(runs=runs)], capture_output=True, text=True,
+                          timeout=600)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert done.stdout.count("weights sha256") == 3, done.stdout  # each run's last line
     record = json.loads((out / "fault_unet.json").read_text())
     weights = dict(np.load(out / "fault_unet.npz"))
     assert record["weights_sha256"] == hashlib.sha256((out / "fault_unet.npz").read_bytes()).hexdigest()
@@ -276,20 +300,10 @@ def test_training_smoke(tmp_path):
     assert [h["step"] for h in record["history"]] == [1, 2]
     # fine-tuning starts from those weights: their folded batch normalisations stay the identity, so at a vanishing
     # learning rate the run returns them (batch statistics in training mode would change every layer's output)
-    tuned = tmp_path / "tuned"
-    subprocess.run([sys.executable, "-m", "seismo3d.training.fault_unet", "--out", str(tuned), "--steps", "2",
-                    "--batch-size", "2", "--patch", "32", "--threads", "1", "--n-validation", "2", "--log-every", "1",
-                    "--learning-rate", "1e-12", "--init-weights", str(out / "fault_unet.npz")],
-                   check=True, capture_output=True, timeout=300)
     again = dict(np.load(tuned / "fault_unet.npz"))
     assert again.keys() == weights.keys()
     assert max(float(np.abs(again[k] - weights[k]).max()) for k in weights) <= 1e-6
     # distilling: a narrower network learns the teacher's probability beside the labels; the record names the teacher
-    student = tmp_path / "student"
-    subprocess.run([sys.executable, "-m", "seismo3d.training.fault_unet", "--out", str(student), "--steps", "1",
-                    "--batch-size", "2", "--patch", "32", "--channels", "2,4,4,4", "--threads", "1",
-                    "--n-validation", "2", "--log-every", "1", "--teacher", str(out / "fault_unet.npz"),
-                    "--distill-weight", "0.7"], check=True, capture_output=True, timeout=300)
     student_record = json.loads((student / "fault_unet.json").read_text())
     assert student_record["training"]["teacher"] == str(out / "fault_unet.npz")
     assert student_record["training"]["distill_weight"] == 0.7

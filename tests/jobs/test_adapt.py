@@ -106,6 +106,7 @@ def picked_cube(tmp_path_factory):
     return folder, syn, sticks
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("layout", READ_STICK_FORMATS)
 def test_the_lines_of_a_cube_its_sticks_were_picked_on_are_read_with_their_picks(picked_cube, tmp_path, layout):
     folder, syn, sticks = picked_cube
@@ -298,11 +299,13 @@ print("ok")
 """
 
 
+@pytest.mark.slow
 def test_the_adapt_command_s_help_and_options_need_no_pytorch():
     done = subprocess.run([sys.executable, "-c", WITHOUT_TORCH], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr[-2000:]
 
 
+@pytest.mark.slow
 def test_a_model_of_the_shipped_network_traces_the_same_bits(shipped_model):
     section, _ = dimmed_section(3)
     section = section + 0.5 * synthetic_fault_section(SHAPE, seed=4).section  # faults for both runs to find
@@ -312,6 +315,7 @@ def test_a_model_of_the_shipped_network_traces_the_same_bits(shipped_model):
     assert [f.points.tolist() for f in default.faults] == [f.points.tolist() for f in adapted.faults]
 
 
+@pytest.mark.slow
 def test_faults_command_records_the_model_and_refuses_a_changed_one(tmp_path, shipped_model):
     section, _ = dimmed_section(3)
     np.save(tmp_path / "s.npy", section)

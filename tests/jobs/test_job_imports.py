@@ -128,6 +128,7 @@ def test_a_command_imports_only_its_own_path(budget, tmp_path):
     assert best <= budget.cpu_seconds, best
 
 
+@pytest.mark.slow
 def test_a_convert_run_imports_only_numpy_segyio_and_zarr(tmp_path, data_dir):
     """``seismo3d convert`` end to end, as a user runs it: of the heavy packages, numpy, segyio and zarr only."""
     from seismo3d.data import fetch

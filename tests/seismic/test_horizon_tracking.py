@@ -121,6 +121,7 @@ def test_low_confidence_picks_are_empty_and_fill_is_explicit():
     assert np.nanmax(np.abs(filled.times[gap] - ref[gap])) < 0.16  # measured 0.105, limit 1.5x
 
 
+@pytest.mark.slow
 def test_gap_closing_refills_a_hole_and_leaves_noise_empty():
     syn = synthetic_cube((24, 40, 64), n_faults=0, seed=4, noise=0.05)
     k = 2
@@ -329,6 +330,7 @@ def test_seed_on_a_fault_steps_off_it_by_registration(faulted_cube):
     assert line.median_abs <= 0.07 and line.within_2 >= 0.95, line
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("ms", [132.0, 236.0])
 def test_f3_crop_picks_do_not_jitter(data_dir, ms):
     # f3_crop has no people's picks: the measure is the share of neighbouring picks (along inlines and crosslines)

@@ -66,6 +66,7 @@ def test_the_scale_shift_modes_train_only_the_per_channel_affine(shipped, unet, 
     assert head_moved == (layers == "scale_shift_head")
 
 
+@pytest.mark.slow
 def test_every_convolution_mode_leaves_the_per_channel_affine_the_identity(shipped, unet):
     from seismo3d.training.adapt import _choose_trained
 

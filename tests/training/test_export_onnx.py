@@ -49,6 +49,7 @@ def test_a_fine_convolution_on_the_coarser_grid_gives_the_same_outputs(n_up):
     np.testing.assert_allclose(got, expected, atol=1e-5)  # the summed taps rounded to float32
 
 
+@pytest.mark.slow
 def test_the_channels_last_export_gives_the_float_export_s_probability():
     # the model quantize_onnx quantises: the shipped float model's operations laid out channels last (pooling of the
     # phases, upsampling by broadcast, the head a matrix product); the same outputs up to float32 rounding (measured:

@@ -438,6 +438,7 @@ def test_grids_that_leave_the_traces_fewer_samples_than_the_receptive_half_are_n
     assert [g["factor"] for g in plan["grids"]] == [1.0]
 
 
+@pytest.mark.slow
 def test_a_cube_runs_the_grids_of_cube_resample_and_a_section_those_of_resample():
     # issue 76: on cubes the default grids are (0.5, 0.7), the data's own grid left out (0.32 of the network's samples
     # of a 256^3 cube); (0.5, 1) was rejected (issue 58 and again at issue 76: a horizon tracked across a generated
@@ -486,6 +487,7 @@ def test_orientation_sample_step_is_a_positive_integer():
             LearnedOptions(orientation_sample_step=bad)
 
 
+@pytest.mark.slow
 def test_below_the_orientation_floor_strike_and_dip_are_nan_and_the_likelihood_the_probability():
     """``orientation_floor``: in a cube, where the network's probability is below it, strike and dip are NaN and the
     likelihood is the probability (no dip to test against ``min_dip``); elsewhere all three are the bits of the

@@ -25,7 +25,7 @@ def test_staged_folder_replaces_an_earlier_folder_whole(tmp_path):
     assert [p.name for p in (out / "surfaces").iterdir()] == ["fault_1.ts"]
 
 
-def test_a_ctrl_c_within_deferred_interrupt_is_raised_when_the_block_ends():
+def test_a_ctrl_c_within_deferred_interrupt_is_raised_when_the_block_ends(default_sigint_handler):
     import os
     import signal
 

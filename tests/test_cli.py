@@ -553,7 +553,7 @@ def test_app_freezes_the_collector_when_the_command_ends_the_process():
         gc.unfreeze()
 
 
-def test_a_ctrl_c_while_the_writers_load_leaves_no_staging_folder(tmp_path, monkeypatch):
+def test_a_ctrl_c_while_the_writers_load_leaves_no_staging_folder(tmp_path, monkeypatch, default_sigint_handler):
     """The writers' libraries are imported before the output folder's staging folder is made, a Ctrl-C held until
     their import ends: a SIGINT inside VTK's import crashed the process (a segmentation fault, no clean-up), which
     left ``.staged-*.tmp`` with the demo's input in the output folder. Here a module stands for VTK: it is imported

@@ -72,7 +72,7 @@ def _target(module: str, imported: str) -> str | None:
     return full if full in MODULES else module if module in MODULES else None
 
 
-@pytest.mark.slow
+# the file's first test: it pays the parse of the package's modules (about 3 s), which the file's tests share
 def test_no_module_imports_another_modules_private_name():
     private = [(name, module, imported) for name in MODULES for module, imported in _imports(name)
                if module.startswith("seismo3d") and imported.startswith("_") and not imported.startswith("__")

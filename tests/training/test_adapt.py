@@ -78,6 +78,7 @@ def test_every_convolution_mode_leaves_the_per_channel_affine_the_identity(shipp
     assert not any(p.requires_grad for n, p in model.named_parameters() if n.split(".")[-2] in ("1", "4"))
 
 
+@pytest.mark.slow  # imports PyTorch: 2.8 s in the fast lane, whose budget is 60 s
 def test_the_trained_scales_and_shifts_are_what_the_exported_network_computes(shipped, torch, unet):
     """The trained model (batch normalisations an affine with identity statistics) against the network its exported
     weights rebuild (the affine folded into the convolutions, as MODEL's ONNX network runs it)."""

@@ -1,5 +1,6 @@
 """Shared fixtures: the real-data directory and small generated point sets."""
 
+import collections
 import os
 import pickle
 import signal
@@ -14,6 +15,19 @@ from filelock import FileLock
 # every test module on every run, 4-5 s of each worker's collection here. The modules imported after this line (the
 # test modules and seismo3d) are written again.
 sys.dont_write_bytecode = False
+
+
+def pytest_collection_modifyitems(config, items):
+    """The test files in the order pytest-xdist hands them to its workers (``--dist loadfile``, one file at a time to
+    the first worker free, ``--no-loadscope-reorder`` in ``pyproject.toml``): the files with the most slow tests first,
+    then those with the most tests, each file's tests in their order. A file of a few long tests handed out last
+    kept one worker busy alone at the end of the suite."""
+    def file_of(item):
+        return item.nodeid.split("::")[0]
+
+    slow = collections.Counter(file_of(item) for item in items if item.get_closest_marker("slow"))
+    count = collections.Counter(file_of(item) for item in items)
+    items.sort(key=lambda item: (-slow[file_of(item)], -count[file_of(item)], file_of(item)))
 
 
 def computed_once(tmp_path_factory, key, compute):

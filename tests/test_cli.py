@@ -92,7 +92,7 @@ def cube_file(tmp_path_factory):
     return path
 
 
-@pytest.mark.slow  # 2.2 s; the fast lane (target 60 s, 110 s measured) keeps the command: test_cli_runs.py::test_faults
+@pytest.mark.slow  # 2.2 s; the fast lane (budget 60 s) keeps the command: test_cli_runs.py::test_faults
 def test_faults(cube_file, tmp_path):
     out = tmp_path / "out"
     before = cube_file.read_bytes()
@@ -109,7 +109,7 @@ def test_faults(cube_file, tmp_path):
     assert cube_file.read_bytes() == before
 
 
-@pytest.mark.slow  # 2.0 s in the fast lane (target 60 s, 110 s measured)
+@pytest.mark.slow  # 2.0 s in the fast lane (budget 60 s)
 def test_faults_sample_unit(cube_file, tmp_path):
     out = tmp_path / "out"
     result = runner.invoke(app, ["faults", str(cube_file), "-o", str(out), "--sample-unit", "m"])
@@ -139,7 +139,7 @@ def test_faults_demo_arguments(tmp_path, monkeypatch):
     assert "median throw 4.5 samples (18.0 ms)" in result.stdout
 
 
-@pytest.mark.slow  # 1.4 s in the fast lane (target 60 s, 110 s measured)
+@pytest.mark.slow  # 1.4 s in the fast lane (budget 60 s)
 def test_faults_warnings_are_one_line(tmp_path):
     data = synthetic_cube((96, 64), n_faults=1, seed=2).cube
     data[30] = np.nan
@@ -262,7 +262,7 @@ def test_register_refuses_a_2d_line_in_one_line(data_dir, tmp_path):
         assert result.stderr == f"error: {name} is {what}, not a 3D cube; register two 3D cubes\n"
 
 
-@pytest.mark.slow  # 1.8 s in the fast lane (target 60 s, 110 s measured)
+@pytest.mark.slow  # 1.8 s in the fast lane (budget 60 s)
 def test_faults_exit_code_in_a_real_process(tmp_path):
     """The installed command exits with 2 and one line of error, no traceback."""
     bad = tmp_path / "in" / "bad.segy"

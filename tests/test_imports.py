@@ -134,7 +134,6 @@ OPTIONAL = {"seismo3d.training.fault_unet": "torch", "seismo3d.training.adapt": 
 
 
 # the training modules import torch (2.4 s, 12.7 s at load 12): in the slow lane, the fast lane's target being 60 s
-# (110 s measured in a fresh clone on a quiet machine)
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in OPTIONAL else n
                                   for n in sorted(MODULES)])
 def test_every_module_imports(name):

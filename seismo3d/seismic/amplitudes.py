@@ -114,12 +114,15 @@ def _flat_samples(arr: np.ndarray, lo, hi) -> tuple[np.ndarray, np.ndarray]:
 def _runs(equal: np.ndarray, length: int) -> np.ndarray:
     """The differences inside runs of at least ``length`` equal values along the last axis: a morphological opening
     by a line of ``length - 1`` differences (scipy's ``binary_opening``; a trace shorter than the line is one run when
-    all its differences are)."""
-    m = equal.shape[-1]
-    if m == 0 or not equal.any():  # no run (most traces of most cubes): the opening's 0.06 s on 94^2 x 500 spared
-        return np.zeros(equal.shape, dtype=bool)
-    line = np.ones((1,) * (equal.ndim - 1) + (min(length - 1, m),), dtype=bool)
-    return binary_opening(np.asarray(equal, dtype=bool), structure=line)
+    all its differences are), of the traces holding an equal pair only: the line opens each trace alone, and most
+    traces of most cubes hold none (a float cube of 512 x 512 x 256 with a few equal neighbours: 8 CPU s spared)."""
+    out = np.zeros(equal.shape, dtype=bool)
+    held = np.asarray(equal, dtype=bool).any(axis=-1)
+    if equal.shape[-1] == 0 or not held.any():
+        return out
+    line = np.ones((1, min(length - 1, equal.shape[-1])), dtype=bool)
+    out[held] = binary_opening(np.asarray(equal, dtype=bool)[held], structure=line)
+    return out
 
 
 def _fills(arr: np.ndarray, flat: np.ndarray, opt: DeadSampleOptions) -> np.ndarray:

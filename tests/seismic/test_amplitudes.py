@@ -34,6 +34,34 @@ def test_a_gap_is_dead_when_it_is_as_long_as_the_run(run, dead):
     assert found[7, 30:36].all() == dead and np.count_nonzero(found) == (6 if dead else 0)
 
 
+
+def _runs_at_least(trace: np.ndarray, run: int) -> np.ndarray:
+    """Samples in runs of at least ``run`` equal values of one trace, found one run at a time."""
+    inside = np.zeros(trace.shape, bool)
+    start = 0
+    for k in range(1, trace.size + 1):
+        if k == trace.size or trace[k] != trace[start]:
+            inside[start:k] = k - start >= run
+            start = k
+    return inside
+
+
+def test_the_dead_samples_of_a_cube_are_its_runs_at_a_fill_value_trace_by_trace():
+    """Runs at 0 of 3 to 7 samples in a few traces of a cube (and the equal neighbours of one more trace): the dead
+    samples are exactly the samples of the runs of 5 or more, whichever traces hold them."""
+    rng = np.random.default_rng(3)
+    cube = rng.normal(size=(9, 11, 48)).astype(np.float32)
+    for (i, j), (k, n) in zip([(0, 0), (2, 5), (4, 10), (8, 3), (8, 4)], [(0, 7), (20, 5), (41, 7), (10, 4), (30, 3)]):
+        cube[i, j, k:k + n] = 0.0
+    cube[6, 6, 12:18] = cube[6, 6, 12]  # equal samples, not at a fill value: not dead
+    expected = np.zeros(cube.shape, bool)
+    for i, j in np.ndindex(cube.shape[:2]):
+        expected[i, j] = _runs_at_least(cube[i, j], 5) & (cube[i, j] == 0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Seismo3dWarning)
+        found = clean_traces(cube).dead
+    assert np.count_nonzero(expected) == 19 and np.array_equal(found, expected)
+
 def test_the_reach_grows_the_dead_samples_by_traces_and_samples():
     dead = np.zeros((20, 64), bool)
     dead[10, 30] = True

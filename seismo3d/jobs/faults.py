@@ -12,6 +12,7 @@ from __future__ import annotations
 import importlib
 import os
 import shutil
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -396,9 +397,10 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     coords = fault_coordinates(inp, iline=segy["iline"], xline=segy["xline"],
                                ignore_geometry=segy["ignore_geometry"], endian=segy["endian"])
     how["xy_unit"] = coords.unit  # the unit of X / Y in every interchange file, for run.json
-    with record.stage("write outputs"):
-        _write_steps(_volume_steps(inp, result, files, segy, progress) + _surface_steps(inp, result, files, summary,
-                                                                                         coords), written, progress)
+    with record.stage("write outputs"):  # in memory, faults.vtp's triangulation beside the other writers
+        _write_steps(_volume_steps(inp, result, files, segy, progress)
+                     + _surface_steps(inp, result, files, summary, coords, overlapped=not inp.lazy), written,
+                     progress, overlapped=() if inp.lazy else (_MESH_STEP,))
     return written
 
 
@@ -512,8 +514,14 @@ class _NanAsZero:
         return self[...] if dtype is None else self[...].astype(dtype)
 
 
-def _surface_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path, summary: list, coords) -> list:
-    """The writers of the fault surfaces, points, summary (its rows appended to ``summary``) and picture."""
+_MESH_STEP = "surfaces"  # faults.vtp: the meshes triangulated by VTK, which releases the GIL while it works
+
+
+def _surface_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path, summary: list, coords, *,
+                   overlapped: bool = False) -> list:
+    """The writers of the fault surfaces, points, summary (its rows appended to ``summary``) and picture; with
+    ``overlapped``, faults.vtp and the TSurf files (which reuse its mesh) last, as :func:`_write_steps` waits for
+    the mesh there while the others are written."""
     from ..viz.fault_meshes import fault_surfaces, save_polydata
     from ..viz.faults import plot_fault_slices
 
@@ -527,16 +535,18 @@ def _surface_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path
         return save_polydata(mesh, out_dir / "faults.vtp")
 
     interchange = fault_interchange_steps(inp, result, out_dir, coords, mesh=lambda: meshes.pop() if meshes else None)
-    # the TSurf files right after faults.vtp: its mesh is not held while the other files are written (the peak of a
-    # run by blocks is in the writing)
+    # the TSurf files right after faults.vtp, whose mesh they reuse: by blocks first, so that the mesh is not held
+    # while the other files are written (the run's peak is in the writing); in memory last, the mesh made meanwhile
     tsurf = [step for step in interchange if step[0] == "surfaces_tsurf"]
-    return [("surfaces", surfaces), *tsurf,
-            ("points", lambda: write_points(inp, result, out_dir / "fault_points.csv", coordinates=coords)),
-            ("summary", lambda: write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
-            ("figure", lambda: plot_fault_slices(inp.amplitudes, result.faults, path=out_dir / "faults.png",
-                                                 likelihood=result.likelihood, axes=axes, axis_labels=inp.axis_titles,
-                                                 title=inp.name, **_throw_colours(inp, result))),
-            ] + [step for step in interchange if step[0] != "surfaces_tsurf"]
+    meshed = [(_MESH_STEP, surfaces), *tsurf]
+    others = [("points", lambda: write_points(inp, result, out_dir / "fault_points.csv", coordinates=coords)),
+              ("summary", lambda: write_summary(inp, result, out_dir / "fault_summary.csv", summary)),
+              ("figure", lambda: plot_fault_slices(inp.amplitudes, result.faults, path=out_dir / "faults.png",
+                                                   likelihood=result.likelihood, axes=axes,
+                                                   axis_labels=inp.axis_titles, title=inp.name,
+                                                   **_throw_colours(inp, result))),
+              ] + [step for step in interchange if step[0] != "surfaces_tsurf"]
+    return others + meshed if overlapped else meshed + others
 
 
 def _throw_colours(inp, result) -> dict:
@@ -545,13 +555,25 @@ def _throw_colours(inp, result) -> dict:
     return {"fault_values": values, "value_label": "confidence (fault_summary.csv)"}
 
 
-def _write_steps(steps: list, written: dict, progress: bool) -> None:
-    with progress_steps(len(steps), "writing", unit="file", enabled=progress) as bar:
-        for key, write in steps:
-            bar.start(key)
-            written[key] = write()
-            release_memory()  # a writer's freed temporaries, before the next writer's
-            bar.advance()
+def _write_steps(steps: list, written: dict, progress: bool, *, overlapped: tuple = ()) -> None:
+    """Run the writers ``steps`` (``(key, write)``) in their order, a progress line each, their paths put in
+    ``written``. The writers whose keys are in ``overlapped`` start first, on a second thread, and are waited for in
+    their place (a run in memory: faults.vtp, whose triangulation in VTK releases the GIL, beside the picture and the
+    tables); by blocks, where the writing is the run's memory peak, ``overlapped`` is empty and each writer runs
+    alone. An interrupt or a writer's error waits for the thread's writer before it propagates, so that nothing is
+    written into the staging folder once it is removed."""
+    with ThreadPoolExecutor(1, thread_name_prefix="seismo3d-writer") as pool:
+        started = {key: pool.submit(write) for key, write in steps if key in overlapped}
+        try:
+            with progress_steps(len(steps), "writing", unit="file", enabled=progress) as bar:
+                for key, write in steps:
+                    bar.start(key)
+                    written[key] = started[key].result() if key in started else write()
+                    release_memory()  # a writer's freed temporaries, before the next writer's
+                    bar.advance()
+        finally:
+            for future in started.values():
+                future.cancel()  # not started yet: dropped; running: the pool's exit waits for it
 
 
 # --------------------------------------------------------------------------------------------------------------------

@@ -462,6 +462,45 @@ def test_interrupted_run_keeps_finished_files(section, tmp_path, monkeypatch):
 
 
 @pytest.mark.slow
+def test_a_run_in_memory_writes_its_meshes_beside_the_picture_and_waits_for_them(tmp_path, monkeypatch):
+    """In memory, faults.vtp is written on a second thread while the picture is drawn on the caller's; when the
+    picture fails (or is interrupted), the run waits for faults.vtp's writer before it removes its staging folder
+    and lets the error through: nothing is left in the output folder."""
+    import threading
+    import time
+
+    from matplotlib.figure import Figure
+
+    from seismo3d.viz import fault_meshes
+
+    layers = np.tile(np.sin(np.arange(64) * 0.9), (80, 1)).astype(np.float32)
+    src = tmp_path / "flat.npy"
+    np.save(src, layers)
+    threads, finished = {}, []
+    save = fault_meshes.save_polydata
+
+    def slow_save(mesh, path):
+        threads["mesh"] = threading.current_thread().name
+        time.sleep(0.5)  # still writing when the picture fails
+        written = save(mesh, path)
+        finished.append(Path(written).exists())
+        return written
+
+    def failing_savefig(self, fname, **kwargs):
+        threads["picture"] = threading.current_thread().name
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(fault_meshes, "save_polydata", slow_save)
+    monkeypatch.setattr(Figure, "savefig", failing_savefig)
+    out = tmp_path / "out"
+    with pytest.raises(KeyboardInterrupt):
+        run_faults_job(src, out, progress=False)
+    assert finished == [True]  # waited for: written into the staging folder before it was removed
+    assert threads["picture"] == threading.main_thread().name and threads["mesh"].startswith("seismo3d-writer")
+    assert not out.exists() or list(out.iterdir()) == []
+
+
+@pytest.mark.slow
 def test_render_draws_the_demo_output(demo, tmp_path):
     """`seismo3d render` on the demo's folder: slices of demo_seismic.sgy, the four fault surfaces in their tab10
     colours and the likelihood volume, in a non-blank PNG."""

@@ -77,7 +77,9 @@ def test_run_json_holds_the_seconds_of_each_step(demo):
              "throw", "evidence", "write outputs"]
     assert list(seconds) == steps
     assert all(seconds[k] > 0 for k in steps)
-    assert seconds["fault likelihood"] > seconds["read input"]  # the network's pass costs more than a 8 MB read
+    # each step's own seconds: the network's pass costs more than the thinning (about 2 s vs 0.05 s); not the read
+    # input, which holds the first imports of dask and xarray in a fresh process (1.3-2.0 s under load)
+    assert seconds["fault likelihood"] > 5 * seconds["thinning"]
 
 
 @pytest.mark.slow

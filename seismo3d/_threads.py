@@ -13,7 +13,7 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["MIN_QUERIES_PER_THREAD", "query_workers", "run_threads", "map_parts"]
+__all__ = ["MIN_QUERIES_PER_THREAD", "query_workers", "task_workers", "run_threads", "map_parts"]
 
 # Nearest-neighbour queries per thread at least (the voxel hash's shares, scipy's cKDTree ``workers``): fewer run in
 # the calling thread. Starting a thread costs about 0.2-0.4 ms of CPU (a cKDTree query of 200 and 800 points: 0.13 ->
@@ -37,6 +37,29 @@ def query_workers(n_queries: int) -> int:
     int
     """
     return max(1, min(os.cpu_count() or 1, int(n_queries) // MIN_QUERIES_PER_THREAD))
+
+
+def task_workers(n_tasks: int) -> int:
+    """Threads for ``n_tasks`` independent tasks of Python code whose heavy calls release the GIL (NumPy, SciPy's
+    interpolation and trees, OpenCV, numba ``nogil`` kernels): numba's thread count (``NUMBA_NUM_THREADS``, or
+    ``numba.set_num_threads``: the thread setting the other steps follow), at most one per task; 1 (the calling thread
+    only) when called from another thread than the main one, as :func:`run_threads` (a block of a run by blocks runs
+    on a thread already).
+
+    Parameters
+    ----------
+    n_tasks : int
+
+    Returns
+    -------
+    int
+        At least 1.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        return 1
+    import numba
+
+    return max(1, min(numba.get_num_threads(), int(n_tasks)))
 
 
 def run_threads(kernel: Callable, n_threads: int, *args, from_any_thread: bool = False) -> None:

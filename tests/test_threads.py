@@ -7,7 +7,7 @@ import threading
 import numpy as np
 import pytest
 
-from seismo3d._threads import run_threads
+from seismo3d._threads import run_threads, task_workers
 
 
 @pytest.mark.parametrize("n_threads", [1, 2, 3, 5])
@@ -69,3 +69,24 @@ def test_map_parts_joins_each_parts_result_in_order(n_parts):
     x = np.arange(5 * 3).reshape(5, 3)
     out = map_parts(lambda part: calls.append(len(part)) or part * 2, x, n_parts)
     assert np.array_equal(out, x * 2) and sum(calls) == 5 and len(calls) == min(n_parts, 5)
+
+
+def test_task_workers_follow_numbas_thread_count_in_the_main_thread_only():
+    import numba
+
+    before = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        assert task_workers(10) == 1
+        if numba.config.NUMBA_NUM_THREADS >= 2:
+            numba.set_num_threads(2)
+            assert task_workers(10) == 2
+            assert task_workers(1) == 1
+            assert task_workers(0) == 1
+            seen = []
+            thread = threading.Thread(target=lambda: seen.append(task_workers(10)))
+            thread.start()
+            thread.join()
+            assert seen == [1]
+    finally:
+        numba.set_num_threads(before)

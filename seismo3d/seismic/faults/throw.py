@@ -15,12 +15,15 @@ wall is the block above the fault plane, on the side it dips toward (undefined f
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..._options import resolve_options
 from ..._progress import progress_steps, reporting_within
+from ..._threads import task_workers
 from ..._validation import as_normals, as_points, check_positive
 from ...errors import InputError
 from ...geometry.normals import estimate_normals
@@ -354,6 +357,14 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     tests' generated cubes). Memory: the tile cache, one window (about 150 x 150 traces for a fault dipping 60-70
     degrees over 256 samples), one tile's orientation workspace and the faults.
 
+    Threads: an in-memory cube's patches are gridded and measured, and the parts of its structure tensor smoothed,
+    on numba's thread count of threads (``NUMBA_NUM_THREADS`` or ``numba.set_num_threads``; one, the calling thread,
+    when called from another thread than the main one: :func:`seismo3d._threads.task_workers`); each patch's work is
+    that of one thread and the faults are assembled in order, so the throws are the same bits whatever the count.
+    Their heavy calls (OpenCV's filters, SciPy's interpolation and trees, NumPy) release the GIL; the reflector
+    slopes are decomposed by one thread at a time. A section's faults, a dask array's and a given orientation's are
+    measured in the calling thread.
+
     Parameters
     ----------
     data : (n_inlines, n_xlines, n_samples) or (n_traces, n_samples) array_like, or 3D dask.array.Array
@@ -369,7 +380,8 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     progress : bool
         Report progress over the faults (:mod:`seismo3d._progress`), after a line when an in-memory cube's reflector
         slopes are prepared (its structure tensor where the faults' patches read, before the first fault) and a line
-        per part of that tensor (:meth:`~seismo3d.seismic.faults.throw_windows.TensorWindows.prepare`).
+        per part of that tensor (:meth:`~seismo3d.seismic.faults.throw_windows.TensorWindows.prepare`). A fault is
+        counted when all its patches are measured.
 
     Returns
     -------
@@ -387,17 +399,56 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     """
     source = _windows(data, orientation)
     opt = resolve_options(ThrowOptions, options, overrides, "fault_throws")
-    faults = [_fault_setup(source.shape, f, opt) for f in faults]  # checked, and cut into patches, before the work
+    cuts = [_fault_cut(source.shape, f, opt) for f in faults]  # checked, and cut into patches, before the work
+    # an in-memory cube's patches on numba's thread count of threads (their heavy calls release the GIL): each
+    # patch's work is the same whichever thread runs it, and the faults are assembled in order, patch by patch
+    tensor = isinstance(source, TensorWindows)
     out = []
-    with progress_steps(len(faults), "throw", unit="fault", enabled=progress) as bar:
-        if isinstance(source, TensorWindows) and faults:  # the structure tensor where the patches read, first
-            bar.advance(0, status="reflector slopes: the structure tensor where the faults are")
-            with reporting_within("throw" if progress else None):  # a line per part of the tensor
-                source.prepare([p.box for f in faults for p in f.patches])
-        for f in faults:
-            out.append(_measure(source, f, opt))
-            bar.advance()
+    with _tasks(task_workers(sum(len(c[-1]) for c in cuts)) if tensor else 1) as run:
+        faults = _fault_setups(source.shape, cuts, opt, run)
+        with progress_steps(len(faults), "throw", unit="fault", enabled=progress) as bar:
+            if tensor and faults:  # the structure tensor where the patches read, first
+                bar.advance(0, status="reflector slopes: the structure tensor where the faults are")
+                with reporting_within("throw" if progress else None):  # a line per part of the tensor
+                    source.prepare([p.box for f in faults for p in f.patches], run=run)
+            measured = [[run(_measure_patch, source, p, opt, f.max_throw) for p in f.patches] if f.patches else ()
+                        for f in faults]
+            for f, patches in zip(faults, measured):
+                out.append(_measure(source, f, opt, [p.result() for p in patches]))
+                bar.advance()
     return out
+
+
+class _Deferred:
+    """A call made when its result is asked for, in the thread that asks (:func:`_tasks` with one worker)."""
+
+    def __init__(self, func, args):
+        self._call = (func, args)
+
+    def result(self):
+        func, args = self._call
+        return func(*args)
+
+
+def _deferred(func, *args) -> _Deferred:
+    """``func(*args)``, called by ``result()`` (what :func:`_tasks` yields with one worker)."""
+    return _Deferred(func, args)
+
+
+@contextmanager
+def _tasks(workers: int):
+    """Yield ``run(func, *args)``, which returns an object whose ``result()`` is ``func(*args)``: called on a pool
+    of ``workers`` threads as soon as one is free (``workers`` > 1), or on the calling thread when its result is asked
+    for (1). On an exception or an interrupt (Ctrl-C) in the calling thread, the calls not started are cancelled and
+    those running finish before it goes on."""
+    if workers <= 1:
+        yield _deferred
+        return
+    pool = ThreadPoolExecutor(workers, thread_name_prefix="seismo3d-throw")
+    try:
+        yield pool.submit
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def _windows(data, orientation):
@@ -436,6 +487,27 @@ class _FaultSetup:
 def _fault_setup(shape, fault, opt: ThrowOptions) -> _FaultSetup:
     """Check one fault against the data of ``shape`` and cut it into patches along its mean strike (3D): the
     geometry its throw is measured on, made once."""
+    return _fault_setups(shape, [_fault_cut(shape, fault, opt)], opt, _deferred)[0]
+
+
+def _fault_setups(shape, cuts: list, opt: ThrowOptions, run) -> list[_FaultSetup]:
+    """The faults of :func:`_fault_cut` with their patches' grids (:func:`patch_grid`, each by ``run``, as
+    :func:`_tasks` yields it) and read boxes, in the order of the faults and of their patches; the horizontal
+    patches left out."""
+    grids = [[run(patch_grid, pts[sel], nrm3[sel]) for sel in sels] for pts, nrm3, _, _, sels in cuts]
+    setups = []
+    for (pts, nrm3, fid, max_throw, sels), fault_grids in zip(cuts, grids):
+        # the patch's traces (plus the halo of their reflector slopes) only; the whole array when in memory
+        patches = [_Patch(sel, grid, read_box(grid, opt.side_traces[1] + opt.slope_margin, shape))
+                   for sel, grid in zip(sels, (g.result() for g in fault_grids)) if grid is not None]
+        setups.append(_FaultSetup(pts, nrm3, fid, max_throw, tuple(patches)))
+    return setups
+
+
+def _fault_cut(shape, fault, opt: ThrowOptions) -> tuple:
+    """Check one fault against the data of ``shape`` and cut it into patches along its mean strike (3D): ``(points,
+    hanging-wall normals (n, 3), id, largest shift searched, the rows of each patch of 3 points or more)`` (no
+    patches for a section)."""
     two_d = len(shape) == 2
     max_throw = _max_throw(opt, shape[-1], two_d=two_d)
     pts, normals, fid = _fault_arrays(fault, len(shape))
@@ -443,7 +515,7 @@ def _fault_setup(shape, fault, opt: ThrowOptions) -> _FaultSetup:
         raise InputError(f"fault {fid} has points outside the data of shape {shape}; pass the faults of this data")
     if two_d:
         nrm3 = np.column_stack([normals[:, 0], np.zeros(len(pts)), normals[:, 1]])
-        return _FaultSetup(pts, hanging_wall_normals(nrm3), fid, max_throw, ())
+        return pts, hanging_wall_normals(nrm3), fid, max_throw, ()
     nrm3 = hanging_wall_normals(normals)
     n = len(pts)
     # patches along the mean strike
@@ -457,17 +529,8 @@ def _fault_setup(shape, fault, opt: ThrowOptions) -> _FaultSetup:
         pid = np.clip(np.searchsorted(edges, ug, side="right") - 1, 0, n_patch - 1)
     else:
         n_patch, pid = 1, np.zeros(n, np.int64)
-    patches = []
-    for k in range(n_patch):
-        sel = np.nonzero(pid == k)[0]
-        if len(sel) < 3:
-            continue
-        grid = patch_grid(pts[sel], nrm3[sel])
-        if grid is None:
-            continue
-        # the patch's traces (plus the halo of their reflector slopes) only; the whole array when in memory
-        patches.append(_Patch(sel, grid, read_box(grid, opt.side_traces[1] + opt.slope_margin, shape)))
-    return _FaultSetup(pts, nrm3, fid, max_throw, tuple(patches))
+    sels = (np.nonzero(pid == k)[0] for k in range(n_patch))
+    return pts, nrm3, fid, max_throw, tuple(sel for sel in sels if len(sel) >= 3)
 
 
 def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
@@ -476,12 +539,29 @@ def _fault_throw(source, fault, opt: ThrowOptions) -> FaultThrow:
     return _measure(source, _fault_setup(source.shape, fault, opt), opt)
 
 
-def _measure(source, setup: _FaultSetup, opt: ThrowOptions) -> FaultThrow:
-    """Throw along one fault set up by :func:`_fault_setup`, reading ``source`` one patch window at a time."""
+def _measure_patch(source, p: _Patch, opt: ThrowOptions, max_throw: int) -> tuple:
+    """One patch's measurements, reading ``source``: ``(side coherence, shift, correlation, correlation unshifted,
+    rival shift, rival ratio, PatchFit or None)`` (NaN from the shift on when none is found; no fit then, nor
+    without ``opt.refine``)."""
+    win = source.window(*p.box)
+    patch = patch_images(p.grid, win, opt.side_traces, opt.slope_margin)
+    coherence = float(np.min(patch.coherence))  # NaN when either side is NaN
+    reach = min(max_throw, int(opt.max_throw_per_height * patch.img[0].shape[1]))
+    shift, cc, cc0, rival, ratio = ncc_shift(
+        patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach, opt.min_overlap[1],
+        opt) if reach >= 1 else (np.nan,) * 5
+    fit = register_patch(patch, shift, opt) if opt.refine and np.isfinite(shift) else None
+    return coherence, shift, cc, cc0, rival, ratio, fit
+
+
+def _measure(source, setup: _FaultSetup, opt: ThrowOptions, measured=None) -> FaultThrow:
+    """Throw along one fault set up by :func:`_fault_setup`, reading ``source`` one patch window at a time, or
+    assembled from its patches' ``measured`` (:func:`_measure_patch`, in the order of ``setup.patches``)."""
     if len(source.shape) == 2:
         return _section_throw(source, setup.pts, setup.nrm3, setup.fid, opt, setup.max_throw)
+    if measured is None:
+        measured = [_measure_patch(source, p, opt, setup.max_throw) for p in setup.patches]
     n = len(setup.pts)
-    max_throw = setup.max_throw
     throw = np.full(n, np.nan)
     corr = np.full(n, np.nan)
     corr0 = np.full(n, np.nan)
@@ -491,30 +571,22 @@ def _measure(source, setup: _FaultSetup, opt: ThrowOptions) -> FaultThrow:
     registered = np.zeros(n, bool)
     fits, rmses, counts = [], [], []
     n_measured = 0
-    for p in setup.patches:
-        sel, grid = p.sel, p.grid
-        win = source.window(*p.box)
-        patch = patch_images(grid, win, opt.side_traces, opt.slope_margin)
-        coherence[sel] = float(np.min(patch.coherence))  # NaN when either side is NaN
-        ut = grid.ut
-        reach = min(max_throw, int(opt.max_throw_per_height * patch.img[0].shape[1]))
-        shift, cc, cc0, rival[sel], rival_ratio[sel] = ncc_shift(
-            patch.img[0], patch.img[1], patch.valid[0], patch.valid[1], reach, opt.min_overlap[1],
-            opt) if reach >= 1 else (np.nan,) * 5
+    for p, (coherence_p, shift, cc, cc0, rival_p, ratio_p, fit) in zip(setup.patches, measured):
+        sel, ut = p.sel, p.grid.ut
+        coherence[sel] = coherence_p
+        rival[sel], rival_ratio[sel] = rival_p, ratio_p
         if not np.isfinite(shift):
             continue
         n_measured += 1
         throw[sel] = shift
         corr[sel] = cc
         corr0[sel] = cc0
-        if opt.refine:
-            fit = register_patch(patch, shift, opt)
-            if fit is not None:
-                throw[sel] = fit.a + fit.b * ut[:, 0]
-                registered[sel] = True
-                fits.append(fit.fitness)
-                rmses.append(fit.inlier_rmse)
-                counts.append(fit.n_points)
+        if fit is not None:
+            throw[sel] = fit.a + fit.b * ut[:, 0]
+            registered[sel] = True
+            fits.append(fit.fitness)
+            rmses.append(fit.inlier_rmse)
+            counts.append(fit.n_points)
     finite = np.isfinite(throw)
     if counts:
         wts = np.asarray(counts, float)

@@ -13,6 +13,7 @@ bit for bit.
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -76,7 +77,11 @@ class TensorWindows:
     -----
     Memory: the six tensor components and the two slope volumes, float32 (32 bytes per sample; the components are
     written only where the tensor is smoothed), from the first window to the source's release; the whole cube's
-    slopes peak at the same (the components while the slopes are written).
+    slopes peak at the same (the components while the slopes are written); :meth:`prepare` on a pool of threads holds
+    the workspace of a part per thread.
+
+    Threads: windows may be read from several threads at once (the tensor smoothed and the slopes decomposed by one
+    thread at a time, under a lock: the same bits); :meth:`prepare` is called once, before the reads.
     """
 
     def __init__(self, data):
@@ -87,6 +92,7 @@ class TensorWindows:
         self._arr = arr
         self.shape = arr.shape
         self._tensor = self._flat = self._done = self._slopes = self._whole = None
+        self._lock = threading.Lock()  # one decomposition at a time: windows read on several threads at once
 
     def window(self, i0: int, i1: int, j0: int, j1: int) -> CubeWindow:
         """The whole cube (it holds every window ``[i0, i1) x [j0, j1)``), with origin (0, 0); the arrays of the
@@ -107,28 +113,32 @@ class TensorWindows:
                                         self._decompose)
         return self._whole
 
-    def prepare(self, boxes) -> None:
+    def prepare(self, boxes, *, run=None) -> None:
         """Smooth the structure tensor at the traces of ``boxes`` at once (the read boxes of every patch of the faults
-        measured: :func:`~seismo3d.seismic.faults.throw_patches.read_box`), a line per slab of inlines
-        (:func:`~seismo3d.seismic._kernels.structure_tensor`'s progress); reads elsewhere smooth their traces when
-        they come.
+        measured: :func:`~seismo3d.seismic.faults.throw_patches.read_box`), a line per part (a slab of inlines, or a
+        run of its crosslines; :func:`~seismo3d.seismic._kernels.structure_tensor`'s progress); reads elsewhere
+        smooth their traces when they come.
 
         Parameters
         ----------
         boxes : sequence of (int, int, int, int)
             ``(i0, i1, j0, j1)``: half-open inline and crossline ranges of the traces read.
+        run : callable, optional
+            ``run(func, *args)`` returning an object whose ``result()`` is ``func(*args)`` (e.g. a thread pool's
+            ``submit``): the parts are computed by it, several at once on a pool (each writes its own traces; the
+            same bits), and reported in order. Default: one after the other in the calling thread.
         """
         self.window(0, 0, 0, 0)
         need = np.zeros(self.shape[:2], bool)
         for i0, i1, j0, j1 in boxes:
             need[i0:i1, j0:j1] = True
-        self._smooth(need & ~self._done)
+        self._smooth(need & ~self._done, submit=run)
 
-    def _smooth(self, need: np.ndarray) -> None:
+    def _smooth(self, need: np.ndarray, submit=None) -> None:
         """The tensor at the traces ``need`` ((n0, n1) bool) marks: per slab of :data:`_kernels.TENSOR_SLAB`
         inlines, at each run of its crosslines that need it (runs closer than two filter reaches joined), the rows of
         the slab that need it (:func:`~seismo3d.seismic._kernels.structure_tensor_at` on the traces within the
-        filters' reach: the whole cube's bits there)."""
+        filters' reach: the whole cube's bits there); each part by ``submit`` (:meth:`prepare`'s ``run``) when given."""
         n0, n1 = self.shape[:2]
         reach = _kernels.gaussian_radius(_SIGMA_TENSOR[0]) + _kernels.gaussian_radius(_SIGMA_GRADIENT)
         slab = _kernels.TENSOR_SLAB
@@ -143,30 +153,44 @@ class TensorWindows:
                 work.append((int(rows[0]), int(rows[-1]) + 1, int(run[0]), int(run[-1]) + 1))
         if not work:
             return
+
+        def part(i0, i1, j0, j1):
+            lo, hi = max(i0 - reach, 0), min(i1 + reach, n0)  # clamped at the cube's edges as the whole cube's
+            c0, c1 = max(j0 - reach, 0), min(j1 + reach, n1)
+            _kernels.structure_tensor_at(self._arr[lo:hi, c0:c1], _SIGMA_GRADIENT, _SIGMA_TENSOR,
+                                         (slice(i0 - lo, i1 - lo), slice(j0 - c0, j1 - c0)),
+                                         out=tuple(t[i0:i1, j0:j1] for t in self._tensor), float32=True)
+
         with progress_within(len(work), unit="part") as bar:
-            for i0, i1, j0, j1 in work:
-                lo, hi = max(i0 - reach, 0), min(i1 + reach, n0)  # clamped at the cube's edges as the whole cube's
-                c0, c1 = max(j0 - reach, 0), min(j1 + reach, n1)
-                _kernels.structure_tensor_at(self._arr[lo:hi, c0:c1], _SIGMA_GRADIENT, _SIGMA_TENSOR,
-                                             (slice(i0 - lo, i1 - lo), slice(j0 - c0, j1 - c0)),
-                                             out=tuple(t[i0:i1, j0:j1] for t in self._tensor), float32=True)
+            parts = [submit(part, *box) for box in work] if submit is not None else None
+            for k, (i0, i1, j0, j1) in enumerate(work):
+                if parts is None:
+                    part(i0, i1, j0, j1)
+                else:
+                    parts[k].result()
                 self._done[i0:i1, j0:j1] = True
                 bar.advance(1, status="structure tensor")
 
     def _decompose(self, il, xl, t) -> None:
         """Decompose the tensors at the samples trilinear reads at ``(il, xl, t)`` interpolate from, once each (their
-        traces' tensor smoothed first when it was not)."""
+        traces' tensor smoothed first when it was not); the tensor and the slopes are changed by one call at a time
+        (the reads of several threads)."""
         corners = []  # along each axis: floor and floor + 1 of the position clamped to the cube (a superset of
         for x, n in zip((il, xl, t), self.shape):  # the two an edge-clamped linear read takes, in or beyond the cube)
             lo = np.floor(np.clip(np.asarray(x, np.float64).ravel(), 0.0, n - 1.0)).astype(np.int64)
             corners.append(np.stack([lo, np.minimum(lo + 1, n - 1)]))
         traces = (corners[0][:, None], corners[1][None, :])
+        flat = np.ravel_multi_index((corners[0][:, None, None], corners[1][None, :, None], corners[2][None, None, :]),
+                                    self.shape).ravel()
+        with self._lock:
+            self._decompose_at(traces, flat)
+
+    def _decompose_at(self, traces, flat) -> None:
+        """:meth:`_decompose` at the traces ``traces`` ((2, 2, n) index arrays) and flat sample indices ``flat``."""
         if not self._done[traces].all():
             need = np.zeros(self.shape[:2], bool)
             need[traces] = True
             self._smooth(need & ~self._done)
-        flat = np.ravel_multi_index((corners[0][:, None, None], corners[1][None, :, None], corners[2][None, None, :]),
-                                    self.shape).ravel()
         p0, p1 = (s.reshape(-1) for s in self._slopes)
         todo = flat[np.isnan(p0[flat])]
         if todo.size == 0:

@@ -12,6 +12,7 @@ so the margin covers float and library differences, and a 2x regression fails), 
 "measured X, limit Y". Where the issue set a target (issue 3: median within 1 sample), it is asserted too.
 """
 
+import dataclasses
 import logging
 from types import SimpleNamespace
 
@@ -279,6 +280,68 @@ def test_progress_says_the_cubes_reflector_slopes_are_prepared_before_the_first_
     with caplog.at_level(logging.INFO, logger="seismo3d"):
         fault_throws(section.cube, [np.argwhere(section.fault_labels == 1)], progress=True)
     assert caplog.messages == ["throw: 1/1 fault"]
+
+
+def _fields(result: FaultThrow) -> list:
+    """Every field of a throw as bytes (NaN equal to NaN, -0.0 apart from 0.0)."""
+    return [np.asarray(getattr(result, f.name)).tobytes() for f in dataclasses.fields(result)]
+
+
+def test_the_patches_on_threads_give_the_throws_of_one_thread_bit_for_bit():
+    """The patches of an in-memory cube measured on numba's thread count of threads (2) give the throws measured in
+    the calling thread (1), every field the same bits, in the faults' order."""
+    import numba
+
+    if numba.config.NUMBA_NUM_THREADS < 2:
+        pytest.skip("needs NUMBA_NUM_THREADS >= 2")
+    syn = synthetic_cube((64, 64, 64), n_faults=2, seed=3, noise=0.1)
+    faults = [np.argwhere(syn.fault_labels == k) for k in (2, 1)]
+    before = numba.get_num_threads()
+    try:
+        runs = []
+        for n in (1, 2):
+            numba.set_num_threads(n)
+            runs.append(fault_throws(syn.cube, faults, patch_traces=12.0))
+    finally:
+        numba.set_num_threads(before)
+    assert sum(r.n_patches_measured for r in runs[0]) >= 4
+    assert [_fields(r) for r in runs[0]] == [_fields(r) for r in runs[1]]
+
+
+def test_an_interrupt_while_the_patches_run_on_threads_stops_them(monkeypatch):
+    """A Ctrl-C (KeyboardInterrupt) in the calling thread while the patches are measured on threads reaches the
+    caller, the patches not started are not measured, and no thread of the pool is left."""
+    import threading
+
+    import numba
+
+    from seismo3d.seismic.faults import throw as throw_module
+
+    if numba.config.NUMBA_NUM_THREADS < 2:
+        pytest.skip("needs NUMBA_NUM_THREADS >= 2")
+    syn = synthetic_cube((64, 64, 64), n_faults=2, seed=3, noise=0.1)
+    faults = [np.argwhere(syn.fault_labels == k) for k in (2, 1)]
+    measured, measure = [], throw_module._measure_patch
+
+    def slow(*args):
+        measured.append(1)
+        return measure(*args)
+
+    def interrupted(*args, **kwargs):  # the calling thread, as it assembles the first fault
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(throw_module, "_measure_patch", slow)
+    monkeypatch.setattr(throw_module, "_measure", interrupted)
+    before = numba.get_num_threads()
+    try:
+        numba.set_num_threads(2)
+        with pytest.raises(KeyboardInterrupt):
+            fault_throws(syn.cube, faults, patch_traces=4.0)
+    finally:
+        numba.set_num_threads(before)
+    assert len(measured) < sum(len(throw_module._fault_setup(syn.cube.shape, f, ThrowOptions(patch_traces=4.0))
+                                   .patches) for f in faults)
+    assert not [t for t in threading.enumerate() if t.name.startswith("seismo3d-throw")]
 
 
 @pytest.mark.parametrize("kwargs, match", [

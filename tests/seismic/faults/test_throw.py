@@ -287,6 +287,7 @@ def _fields(result: FaultThrow) -> list:
     return [np.asarray(getattr(result, f.name)).tobytes() for f in dataclasses.fields(result)]
 
 
+@pytest.mark.slow
 def test_the_patches_on_threads_give_the_throws_of_one_thread_bit_for_bit():
     """The patches of an in-memory cube measured on numba's thread count of threads (2) give the throws measured in
     the calling thread (1), every field the same bits, in the faults' order."""
@@ -308,6 +309,7 @@ def test_the_patches_on_threads_give_the_throws_of_one_thread_bit_for_bit():
     assert [_fields(r) for r in runs[0]] == [_fields(r) for r in runs[1]]
 
 
+@pytest.mark.slow
 def test_an_interrupt_while_the_patches_run_on_threads_stops_them(monkeypatch):
     """A Ctrl-C (KeyboardInterrupt) in the calling thread while the patches are measured on threads reaches the
     caller, the patches not started are not measured, and no thread of the pool is left."""

@@ -3,17 +3,23 @@ without its compile time (a ``prange`` loop compiles 1-5 s longer than the same 
 
 The kernel is compiled with ``nogil=True`` and takes the thread's index first; each call works on its own share of
 the data (no shared writes), so the results are those of the ``prange`` loop it replaces, whatever the timing.
+
+And the thread counts the steps share (:func:`query_workers`, :func:`task_workers`), and a pool for independent
+Python tasks whose heavy calls release the GIL (:func:`task_pool`: the throw's patches).
 """
 
 from __future__ import annotations
 
 import os
 import threading
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from typing import Callable
 
 import numpy as np
 
-__all__ = ["MIN_QUERIES_PER_THREAD", "query_workers", "task_workers", "run_threads", "map_parts"]
+__all__ = ["MIN_QUERIES_PER_THREAD", "query_workers", "task_workers", "task_pool", "deferred", "run_threads",
+           "map_parts"]
 
 # Nearest-neighbour queries per thread at least (the voxel hash's shares, scipy's cKDTree ``workers``): fewer run in
 # the calling thread. Starting a thread costs about 0.2-0.4 ms of CPU (a cKDTree query of 200 and 800 points: 0.13 ->
@@ -60,6 +66,66 @@ def task_workers(n_tasks: int) -> int:
     import numba
 
     return max(1, min(numba.get_num_threads(), int(n_tasks)))
+
+
+class Deferred:
+    """A call made when its result is asked for, in the thread that asks (what :func:`deferred` returns)."""
+
+    def __init__(self, func: Callable, args: tuple):
+        self._call = (func, args)
+
+    def result(self):
+        """``func(*args)``, called now."""
+        func, args = self._call
+        return func(*args)
+
+
+def deferred(func: Callable, *args) -> Deferred:
+    """``func(*args)`` as a :class:`Deferred`, called by its ``result()``: a pool's ``submit`` without a pool
+    (:func:`task_pool` with one worker).
+
+    Parameters
+    ----------
+    func : callable
+    *args
+        Its arguments.
+
+    Returns
+    -------
+    Deferred
+    """
+    return Deferred(func, args)
+
+
+@contextmanager
+def task_pool(workers: int, name: str = "seismo3d-task"):
+    """Run independent calls on ``workers`` threads, or in the calling thread when ``workers`` is 1.
+
+    Yields ``run(func, *args)``, which returns an object whose ``result()`` is ``func(*args)``: a thread pool's
+    ``submit`` (the call starts as soon as a thread is free) when ``workers`` > 1; :func:`deferred` (the call is
+    made in the thread that asks for its result) when ``workers`` is 1. On an exception or an interrupt (Ctrl-C) in
+    the calling thread, the calls not started are cancelled and those running finish before it propagates.
+
+    Parameters
+    ----------
+    workers : int
+        Threads (:func:`task_workers`).
+    name : str, optional
+        The threads' name prefix.
+
+    Yields
+    ------
+    callable
+        ``run(func, *args)``.
+    """
+    if workers <= 1:
+        yield deferred
+        return
+    pool = ThreadPoolExecutor(workers, thread_name_prefix=name)
+    try:
+        yield pool.submit
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def run_threads(kernel: Callable, n_threads: int, *args, from_any_thread: bool = False) -> None:

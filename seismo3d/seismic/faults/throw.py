@@ -15,15 +15,13 @@ wall is the block above the fault plane, on the side it dips toward (undefined f
 
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
-from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..._options import resolve_options
 from ..._progress import progress_steps, reporting_within
-from ..._threads import task_workers
+from ..._threads import deferred, task_pool, task_workers
 from ..._validation import as_normals, as_points, check_positive
 from ...errors import InputError
 from ...geometry.normals import estimate_normals
@@ -404,7 +402,7 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
     # patch's work is the same whichever thread runs it, and the faults are assembled in order, patch by patch
     tensor = isinstance(source, TensorWindows)
     out = []
-    with _tasks(task_workers(sum(len(c[-1]) for c in cuts)) if tensor else 1) as run:
+    with task_pool(task_workers(sum(len(c[-1]) for c in cuts)) if tensor else 1, "seismo3d-throw") as run:
         faults = _fault_setups(source.shape, cuts, opt, run)
         with progress_steps(len(faults), "throw", unit="fault", enabled=progress) as bar:
             if tensor and faults:  # the structure tensor where the patches read, first
@@ -417,38 +415,6 @@ def fault_throws(data, faults, *, orientation: ReflectorOrientation | None = Non
                 out.append(_measure(source, f, opt, [p.result() for p in patches]))
                 bar.advance()
     return out
-
-
-class _Deferred:
-    """A call made when its result is asked for, in the thread that asks (:func:`_tasks` with one worker)."""
-
-    def __init__(self, func, args):
-        self._call = (func, args)
-
-    def result(self):
-        func, args = self._call
-        return func(*args)
-
-
-def _deferred(func, *args) -> _Deferred:
-    """``func(*args)``, called by ``result()`` (what :func:`_tasks` yields with one worker)."""
-    return _Deferred(func, args)
-
-
-@contextmanager
-def _tasks(workers: int):
-    """Yield ``run(func, *args)``, which returns an object whose ``result()`` is ``func(*args)``: called on a pool
-    of ``workers`` threads as soon as one is free (``workers`` > 1), or on the calling thread when its result is asked
-    for (1). On an exception or an interrupt (Ctrl-C) in the calling thread, the calls not started are cancelled and
-    those running finish before it goes on."""
-    if workers <= 1:
-        yield _deferred
-        return
-    pool = ThreadPoolExecutor(workers, thread_name_prefix="seismo3d-throw")
-    try:
-        yield pool.submit
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def _windows(data, orientation):
@@ -487,13 +453,13 @@ class _FaultSetup:
 def _fault_setup(shape, fault, opt: ThrowOptions) -> _FaultSetup:
     """Check one fault against the data of ``shape`` and cut it into patches along its mean strike (3D): the
     geometry its throw is measured on, made once."""
-    return _fault_setups(shape, [_fault_cut(shape, fault, opt)], opt, _deferred)[0]
+    return _fault_setups(shape, [_fault_cut(shape, fault, opt)], opt, deferred)[0]
 
 
 def _fault_setups(shape, cuts: list, opt: ThrowOptions, run) -> list[_FaultSetup]:
     """The faults of :func:`_fault_cut` with their patches' grids (:func:`patch_grid`, each by ``run``, as
-    :func:`_tasks` yields it) and read boxes, in the order of the faults and of their patches; the horizontal
-    patches left out."""
+    :func:`seismo3d._threads.task_pool` yields it) and read boxes, in the order of the faults and of their patches;
+    the horizontal patches left out."""
     grids = [[run(patch_grid, pts[sel], nrm3[sel]) for sel in sels] for pts, nrm3, _, _, sels in cuts]
     setups = []
     for (pts, nrm3, fid, max_throw, sels), fault_grids in zip(cuts, grids):

@@ -12,7 +12,6 @@ from __future__ import annotations
 import importlib
 import os
 import shutil
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -21,6 +20,7 @@ import segyio
 
 from .._atomic import SetAside, StagedFolder, atomic_path, deferred_interrupt
 from .._progress import LOGGER, progress_steps
+from .._threads import task_pool
 from .._validation import check_choice
 from ..errors import EarlierStoresError, InputError
 from ..seismic.blocks.executor import release_memory
@@ -397,10 +397,13 @@ def _trace_and_write(input_path, files: Path, out_dir: Path, *, demo, demo_seed,
     coords = fault_coordinates(inp, iline=segy["iline"], xline=segy["xline"],
                                ignore_geometry=segy["ignore_geometry"], endian=segy["endian"])
     how["xy_unit"] = coords.unit  # the unit of X / Y in every interchange file, for run.json
-    with record.stage("write outputs"):  # in memory, faults.vtp's triangulation beside the other writers
+    # in memory, faults.vtp's triangulation on a thread beside the other writers; by blocks, where the writing is the
+    # run's memory peak, each writer alone
+    beside = None if inp.lazy else _MESH_STEP
+    with record.stage("write outputs"):
         _write_steps(_volume_steps(inp, result, files, segy, progress)
-                     + _surface_steps(inp, result, files, summary, coords, overlapped=not inp.lazy), written,
-                     progress, overlapped=() if inp.lazy else (_MESH_STEP,))
+                     + _surface_steps(inp, result, files, summary, coords, mesh_last=beside is not None), written,
+                     progress, beside=beside)
     return written
 
 
@@ -518,10 +521,10 @@ _MESH_STEP = "surfaces"  # faults.vtp: the meshes triangulated by VTK, which rel
 
 
 def _surface_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path, summary: list, coords, *,
-                   overlapped: bool = False) -> list:
+                   mesh_last: bool = False) -> list:
     """The writers of the fault surfaces, points, summary (its rows appended to ``summary``) and picture; with
-    ``overlapped``, faults.vtp and the TSurf files (which reuse its mesh) last, as :func:`_write_steps` waits for
-    the mesh there while the others are written."""
+    ``mesh_last``, faults.vtp and the TSurf files (which reuse its mesh) last, where :func:`_write_steps` waits for
+    the mesh made beside the others; else first."""
     from ..viz.fault_meshes import fault_surfaces, save_polydata
     from ..viz.faults import plot_fault_slices
 
@@ -546,7 +549,7 @@ def _surface_steps(inp: SeismicInput, result: FaultInterpretation, out_dir: Path
                                                    axis_labels=inp.axis_titles, title=inp.name,
                                                    **_throw_colours(inp, result))),
               ] + [step for step in interchange if step[0] != "surfaces_tsurf"]
-    return others + meshed if overlapped else meshed + others
+    return others + meshed if mesh_last else meshed + others
 
 
 def _throw_colours(inp, result) -> dict:
@@ -555,25 +558,20 @@ def _throw_colours(inp, result) -> dict:
     return {"fault_values": values, "value_label": "confidence (fault_summary.csv)"}
 
 
-def _write_steps(steps: list, written: dict, progress: bool, *, overlapped: tuple = ()) -> None:
+def _write_steps(steps: list, written: dict, progress: bool, *, beside: str | None = None) -> None:
     """Run the writers ``steps`` (``(key, write)``) in their order, a progress line each, their paths put in
-    ``written``. The writers whose keys are in ``overlapped`` start first, on a second thread, and are waited for in
-    their place (a run in memory: faults.vtp, whose triangulation in VTK releases the GIL, beside the picture and the
-    tables); by blocks, where the writing is the run's memory peak, ``overlapped`` is empty and each writer runs
-    alone. An interrupt or a writer's error waits for the thread's writer before it propagates, so that nothing is
-    written into the staging folder once it is removed."""
-    with ThreadPoolExecutor(1, thread_name_prefix="seismo3d-writer") as pool:
-        started = {key: pool.submit(write) for key, write in steps if key in overlapped}
-        try:
-            with progress_steps(len(steps), "writing", unit="file", enabled=progress) as bar:
-                for key, write in steps:
-                    bar.start(key)
-                    written[key] = started[key].result() if key in started else write()
-                    release_memory()  # a writer's freed temporaries, before the next writer's
-                    bar.advance()
-        finally:
-            for future in started.values():
-                future.cancel()  # not started yet: dropped; running: the pool's exit waits for it
+    ``written``. The writer ``beside`` (a run in memory: faults.vtp, whose triangulation in VTK releases the GIL)
+    starts first, on a second thread (:func:`~seismo3d._threads.task_pool`), and is waited for in its place. An
+    interrupt or a writer's error waits for it before it propagates, so that nothing is written into the staging
+    folder once it is removed."""
+    with task_pool(1 if beside is None else 2, name="seismo3d-writer") as submit:
+        started = {key: submit(write) for key, write in steps if key == beside}  # one call: one thread
+        with progress_steps(len(steps), "writing", unit="file", enabled=progress) as bar:
+            for key, write in steps:
+                bar.start(key)
+                written[key] = started[key].result() if key in started else write()
+                release_memory()  # a writer's freed temporaries, before the next writer's
+                bar.advance()
 
 
 # --------------------------------------------------------------------------------------------------------------------

@@ -2,7 +2,7 @@
 in CPU seconds and wall seconds, and per GB (issue 76).
 
 Run: ``SEISMO3D_DATA_DIR=../shared/data python benchmarks/fault_speed.py [--shapes 256 512x512x256] [--by-blocks]
-[--check]``
+[--repeats N] [--check]``
 
 For each shape (``256``: 256^3; ``512x512x256``: 512 x 512 x 256) a generated faulted cube
 (:func:`~seismo3d.data.synthetic.synthetic_cube`, seed 0, noise 0.1) is saved as ``.npy`` and, back to back, each in
@@ -28,13 +28,19 @@ a process of its own on 2 threads (numba, ONNX Runtime and torch: ``NUMBA_NUM_TH
   the same cube, the network alone (the cube in memory; torch loaded and one small cube run first).
 
 The machine may be shared: the CPU seconds of a process (all its threads) move little when other jobs load the
-cores, its wall seconds a lot, so the comparison and ``--check`` use CPU seconds. s/GB: seconds per 10^9 bytes of
+cores, its wall seconds a lot, so the comparison and ``--check`` use CPU seconds. On a virtual machine whose speed
+changes from minute to minute (the same run's CPU seconds 21.5 and 31.1 half an hour apart), ``--repeats N`` runs
+ours and the peer back to back N times per shape: the tables show the runs of median CPU seconds, each round's ratio
+is printed, and the checks compare the medians. s/GB: seconds per 10^9 bytes of
 the cube in float32 (256^3: 0.067 GB).
 
 ``--check`` asserts the targets of issue 76 in CPU seconds, on each shape run: the whole command in no more than
 FaultNet's probability, the fault likelihood in no more than half of it; and, when both shapes run, the command's
 CPU s/GB at 512 x 512 x 256 within 15 % of 256^3's, in memory and (with ``--by-blocks``) by blocks. Exit 1 when one
-is missed.
+is missed. With both shapes, the runs in memory are also split (printed, not checked): the steps that follow the
+cube's volume per GB, those that follow the faults' area (skins, throw, evidence) per million fault points, and the
+writing; a generated cube's faults span its height, so 512 x 512 x 256 holds about twice 256^3's fault points for
+four times its samples.
 """
 
 from __future__ import annotations
@@ -150,7 +156,8 @@ def _ours(path: str, limit: str | None) -> dict:
     likelihood = {k: v for k, v in inner.items()  # the likelihood's steps (the later steps run on MemoryRun too)
                   if k.startswith("fault network") or k in ("fault orientation", "ONNX Runtime")}
     return {"wall": wall, "cpu": total, "steps": dict(res.stage_seconds), "cpu_steps": cpu if limit is None else {},
-            "cpu_likelihood": likelihood if limit is None else {}, "limit": limit}
+            "cpu_likelihood": likelihood if limit is None else {}, "limit": limit,
+            "fault_points": sum(int(row["n_points"]) for row in res.faults)}
 
 
 def _named_limit(exc, limit: str | None) -> str:
@@ -239,23 +246,37 @@ def _print_likelihood(runs: dict, gb: float) -> None:
         print(row)
 
 
-def profile(shape, by_blocks: bool) -> dict:
-    """Ours (in memory, and by blocks when asked) and FaultNet on one generated cube, back to back; the table
-    printed, the CPU seconds returned."""
+def _median_run(runs: list) -> dict:
+    """The run of median CPU seconds (the lower of the middle two of an even count)."""
+    return sorted(runs, key=lambda r: r["cpu"])[(len(runs) - 1) // 2]
+
+
+def profile(shape, by_blocks: bool, repeats: int = 1) -> dict:
+    """Ours (in memory, and by blocks when asked) and FaultNet on one generated cube, back to back, ``repeats``
+    rounds; the table of the runs of median CPU seconds printed, each round's ratios, the CPU seconds returned."""
     from seismo3d.data.synthetic import synthetic_cube
 
+    rounds = []
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "cube.npy"
         np.save(path, synthetic_cube(shape, seed=0, noise=0.1).cube)
-        runs = {"in memory": _run("ours", path)}
-        if by_blocks:
-            blocks = _run("ours", path, _blocks_limit(shape))
-            runs[f"by blocks ({blocks['limit']})"] = blocks
-        peer = _run("faultnet", path)
+        for _ in range(repeats):  # each round ours then the peer: a change of the machine's speed hits both
+            one = {"in memory": _run("ours", path)}
+            if by_blocks:
+                one["by blocks"] = _run("ours", path, _blocks_limit(shape))
+            one["peer"] = _run("faultnet", path)
+            rounds.append(one)
+    runs = {"in memory": _median_run([r["in memory"] for r in rounds])}
+    if by_blocks:
+        blocks = _median_run([r["by blocks"] for r in rounds])
+        runs[f"by blocks ({blocks['limit']})"] = blocks
+    peer = _median_run([r["peer"] for r in rounds]) if rounds[0]["peer"] else {}
     gb = _gb(shape)
     name = " x ".join(map(str, shape))
+    median = f", the runs of median CPU seconds of {repeats} rounds" if repeats > 1 else ""
     print(f"\n`seismo3d faults` on a generated {name} faulted cube ({gb:.3f} GB float32), {THREADS} threads, load "
-          f"average {os.getloadavg()[0]:.1f}: wall and CPU seconds (the process's, all threads), and CPU s/GB\n")
+          f"average {os.getloadavg()[0]:.1f}{median}: wall and CPU seconds (the process's, all threads), and CPU "
+          f"s/GB; {runs['in memory']['fault_points']:,} fault points\n")
     labels = list(runs)
     head = f"{'step':40s}" + "".join(f" | {label:>27s}" for label in labels)
     sub = f"{'':40s}" + "".join(f" | {'wall s':>8s} {'CPU s':>8s} {'CPU s/GB':>9s}" for _ in labels)
@@ -288,6 +309,10 @@ def profile(shape, by_blocks: bool) -> dict:
         return {"ours": runs["in memory"], "peer": None}
     print(f"{'FaultNet probability (peer)':40s} | {peer['wall']:8.1f} {peer['cpu']:8.1f} {peer['cpu'] / gb:9.0f}")
     ours = runs["in memory"]
+    if repeats > 1:  # each round's whole command over its own peer's
+        print("each round, the whole command over FaultNet: CPU " + " ".join(
+            f"{r['in memory']['cpu'] / r['peer']['cpu']:.2f}" for r in rounds) + "; wall " + " ".join(
+            f"{r['in memory']['wall'] / r['peer']['wall']:.2f}" for r in rounds))
     likelihood = ours["cpu_steps"].get("fault likelihood", float("nan"))
     print(f"ratios to FaultNet in CPU seconds: whole command {ours['cpu'] / peer['cpu']:.2f} (target <= "
           f"{TARGETS['command']:.2f}), fault likelihood {likelihood / peer['cpu']:.2f} (target <= "
@@ -296,18 +321,47 @@ def profile(shape, by_blocks: bool) -> dict:
     return {"ours": ours, "peer": peer, "gb": gb, "blocks": [r for k, r in runs.items() if k != "in memory"]}
 
 
+# the steps whose work follows the faults' area (their points) rather than the cube's volume (a generated cube's
+# faults span its height: x2 points for a cube x4 larger laterally)
+FAULT_STEPS = ("fault skins", "throw", "evidence")
+
+
+def _print_growth_parts(results: dict) -> None:
+    """Beside the growth per GB, the runs in memory split: the CPU seconds of the steps that follow the cube's volume
+    (reading, the likelihood, ridges, voting, thinning, the rest) per GB, of those that follow the faults' area
+    (:data:`FAULT_STEPS`) per million fault points, and the writing (volumes, fault files and the picture) apart."""
+    parts = {"volume steps, CPU s/GB": [], "fault steps, CPU s per million fault points": [],
+             "writing, CPU s/GB": []}
+    points = []
+    for r in results.values():
+        run = r["ours"]
+        fault = sum(_step_cpu(run, s) or 0.0 for s in FAULT_STEPS)
+        writing = _step_cpu(run, "write outputs") or 0.0
+        parts["volume steps, CPU s/GB"].append((run["cpu"] - fault - writing) / r["gb"])
+        parts["fault steps, CPU s per million fault points"].append(fault / run["fault_points"] * 1e6)
+        parts["writing, CPU s/GB"].append(writing / r["gb"])
+        points.append(run["fault_points"])
+    print(f"  fault points: {', '.join(f'{n:,}' for n in points)}")
+    for name, values in parts.items():
+        print(f"  {name}: {', '.join(f'{v:.0f}' for v in values)} ({max(values) / min(values) - 1.0:.0%} apart)")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--shapes", nargs="+", default=["256"], help="cube shapes: N (N^3) or NIxNXxNS (default: 256)")
     ap.add_argument("--by-blocks", action="store_true", help="also the run by blocks under half of its memory")
     ap.add_argument("--check", action="store_true", help="exit 1 when a target of issue 76 is missed (CPU seconds)")
+    ap.add_argument("--repeats", type=int, default=1,
+                    help="rounds of ours then FaultNet per shape; the runs of median CPU seconds are compared")
     ap.add_argument("--worker", nargs=3, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.worker:
         what, path, limit = args.worker
         print(json.dumps(_ours(path, limit or None) if what == "ours" else _faultnet(path)))
         return 0
-    results = {tuple(_shape(s)): profile(_shape(s), args.by_blocks) for s in args.shapes}
+    if args.repeats < 1:
+        ap.error(f"--repeats must be 1 or more; got {args.repeats}")
+    results = {tuple(_shape(s)): profile(_shape(s), args.by_blocks, args.repeats) for s in args.shapes}
     ok = True
     for shape, r in results.items():
         if r["peer"] is None:
@@ -327,6 +381,8 @@ def main(argv=None) -> int:
             print(f"{'' if way == 'by blocks' else chr(10)}CPU s/GB of the whole command {way}: {shown} "
                   f"({growth:.0%} apart; target <= {TARGETS['growth']:.0%})")
             ok &= growth <= TARGETS["growth"]
+            if way == "in memory":
+                _print_growth_parts(results)
     if args.check:
         print(f"check (CPU seconds): {'passed' if ok else 'FAILED'}")
     return 1 if args.check and not ok else 0

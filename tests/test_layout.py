@@ -1,8 +1,8 @@
 """The package's layout stays navigable: no module imports another's private name, no import cycle between modules,
 the engine imports no application, and no library package imports the renderers, the jobs or the command line.
 
-Modules are cut by concept; their sizes are not capped (STYLE.md: a size is a hint to split by concept, never a limit
-to pack code against)."""
+Modules are cut by concept; their sizes are not capped (a size is a hint to split by concept, never a limit to pack
+code against)."""
 
 from __future__ import annotations
 

@@ -231,7 +231,7 @@ def faults(
                              **({"model": model} if model is not None else {}))
     rows = job.faults
     source = "the demo cube" if demo else input.name
-    typer.echo(f"{len(rows)} faults in {source} -> {output}")
+    typer.echo(f"{len(rows)} fault{'' if len(rows) == 1 else 's'} in {source} -> {output}")
     if rows:
         unit = next((k[len("median_throw_"):] for k in rows[0] if k.startswith("median_throw_")
                      and k != "median_throw_samples"), None)
@@ -570,8 +570,8 @@ def render(
                              window_size=(width, height), iline=iline, xline=xline, endian=_value(endian),
                              ignore_geometry=ignore_geometry, sample_unit=_value(sample_unit), overwrite=overwrite,
                              sticks=sticks)
-    what = {"segy": "SEG-Y line" if job.section else "SEG-Y cube", "faults": f"{job.n_faults} faults",
-            "horizon": "horizon",
+    what = {"segy": "SEG-Y line" if job.section else "SEG-Y cube",
+            "faults": f"{job.n_faults} fault{'' if job.n_faults == 1 else 's'}", "horizon": "horizon",
             "dem": f"DEM with {job.n_lineaments} lineaments" if lineaments else "DEM", "map": "map"}[job.kind]
     sticks_drawn = f" and the --sticks file's {job.n_stick_faults} faults" if job.n_stick_faults else ""
     typer.echo(f"{what}{sticks_drawn} of {input.name}: {job.caption} -> {job.picture}")

@@ -135,7 +135,7 @@ def test_faults_demo_arguments(tmp_path, monkeypatch):
     result = runner.invoke(app, ["faults", "--demo", "--demo-seed", "7", "-o", str(tmp_path / "d")])
     assert result.exit_code == 0, result.output
     assert seen["demo"] is True and seen["demo_seed"] == 7 and seen["input_path"] is None
-    assert "1 faults in the demo cube" in result.stdout
+    assert "1 fault in the demo cube" in result.stdout
     assert "median throw 4.5 samples (18.0 ms)" in result.stdout
 
 

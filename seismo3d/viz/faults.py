@@ -405,8 +405,8 @@ def plot_fault_slices(cube, faults, *, path, likelihood=None, axes=None, axis_la
         if fl is not None:
             fig.colorbar(im, ax=axs[1, :].tolist(), shrink=0.8, label="fault likelihood")
     n_f = len(np.unique(ids)) if ids.size else 0
-    how = "" if data.ndim == 2 or not n_f else f" ({colours.title().removeprefix('faults, ')})"
-    fig.suptitle(f"{title + ': ' if title else ''}{n_f} faults{how}")
+    how = "" if data.ndim == 2 or not n_f else f", {colours.title().removeprefix('faults, ')}"
+    fig.suptitle(f"{title + ': ' if title else ''}{n_f} fault{'' if n_f == 1 else 's'}{how}")
     path = Path(path)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png", pil_kwargs={"compress_level": _PNG_COMPRESSION})

@@ -267,7 +267,8 @@ def plot_section(section, *, path, traces=None, samples=None, trace_name="trace"
     ax.set_ylabel(f"{name}{unit}")
     ax.xaxis.set_ticks_position("both")
     ax.tick_params(top=True, labeltop=True)
-    extra = f", {len({fid for fid, _, _ in segments})} faults" if segments else ""
+    n_faults = len({fid for fid, _, _ in segments})
+    extra = f", {n_faults} fault{'' if n_faults == 1 else 's'}" if segments else ""
     extra += " coloured by throw" if segments and color_by == "throw" else ""
     extra += f", {len(people)} given fault sticks" if people else ""
     fig.suptitle(f"{title + chr(10) if title else ''}{textwrap.fill(caption + extra, width=heading_width)}",

@@ -63,6 +63,28 @@ def test_plot_fault_slices_arguments(small_cube, tmp_path):
     assert not (tmp_path / "x.png").exists()
 
 
+@pytest.mark.slow
+def test_the_picture_s_title_names_the_faults_and_their_colouring(small_cube, tmp_path, monkeypatch):
+    """faults.png's title: the input, the count and the colouring, without nested brackets (it read
+    'demo_seismic: 3 faults (coloured by confidence (fault_summary.csv))')."""
+    from matplotlib.figure import Figure
+
+    from seismo3d.viz.faults import plot_fault_slices
+
+    cube, res = small_cube
+    titles = []
+    suptitle = Figure.suptitle
+    monkeypatch.setattr(Figure, "suptitle", lambda self, text, **kw: titles.append(text) or suptitle(self, text, **kw))
+    values = {f.id: 0.5 + 0.1 * f.id for f in res.faults}
+    plot_fault_slices(cube, res.faults, path=tmp_path / "f.png", title="cube", fault_values=values,
+                      value_label="confidence (fault_summary.csv)")
+    plot_fault_slices(cube, res.faults, path=tmp_path / "g.png")
+    plot_fault_slices(cube, res.faults[:1], path=tmp_path / "h.png")
+    n = len(res.faults)
+    assert n > 1 and titles == [f"cube: {n} faults, coloured by confidence (fault_summary.csv)",
+                                f"{n} faults, coloured by id", "1 fault, coloured by id"]
+
+
 @pytest.mark.parametrize("label, title", [("time (ms)", "time slice 204 ms"), ("depth (m)", "depth slice 204 m"),
                                           ("sample", "sample slice 204")])
 def test_the_time_slice_title_has_its_unit(label, title):

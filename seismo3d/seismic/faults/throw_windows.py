@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..._progress import progress_within
+from ..._threads import deferred
 from ..._validation import as_seismic
 from ...errors import InputError
 from .. import _kernels
@@ -113,7 +114,7 @@ class TensorWindows:
                                         self._decompose)
         return self._whole
 
-    def prepare(self, boxes, *, run=None) -> None:
+    def prepare(self, boxes, *, run=deferred) -> None:
         """Smooth the structure tensor at the traces of ``boxes`` at once (the read boxes of every patch of the faults
         measured: :func:`~seismo3d.seismic.faults.throw_patches.read_box`), a line per part (a slab of inlines, or a
         run of its crosslines; :func:`~seismo3d.seismic._kernels.structure_tensor`'s progress); reads elsewhere
@@ -126,7 +127,8 @@ class TensorWindows:
         run : callable, optional
             ``run(func, *args)`` returning an object whose ``result()`` is ``func(*args)`` (e.g. a thread pool's
             ``submit``): the parts are computed by it, several at once on a pool (each writes its own traces; the
-            same bits), and reported in order. Default: one after the other in the calling thread.
+            same bits), and reported in order. Default (:func:`~seismo3d._threads.deferred`): one after the other in
+            the calling thread.
         """
         self.window(0, 0, 0, 0)
         need = np.zeros(self.shape[:2], bool)
@@ -134,11 +136,11 @@ class TensorWindows:
             need[i0:i1, j0:j1] = True
         self._smooth(need & ~self._done, submit=run)
 
-    def _smooth(self, need: np.ndarray, submit=None) -> None:
+    def _smooth(self, need: np.ndarray, submit=deferred) -> None:
         """The tensor at the traces ``need`` ((n0, n1) bool) marks: per slab of :data:`_kernels.TENSOR_SLAB`
         inlines, at each run of its crosslines that need it (runs closer than two filter reaches joined), the rows of
         the slab that need it (:func:`~seismo3d.seismic._kernels.structure_tensor_at` on the traces within the
-        filters' reach: the whole cube's bits there); each part by ``submit`` (:meth:`prepare`'s ``run``) when given."""
+        filters' reach: the whole cube's bits there); each part by ``submit`` (:meth:`prepare`'s ``run``)."""
         n0, n1 = self.shape[:2]
         reach = _kernels.gaussian_radius(_SIGMA_TENSOR[0]) + _kernels.gaussian_radius(_SIGMA_GRADIENT)
         slab = _kernels.TENSOR_SLAB
@@ -162,12 +164,9 @@ class TensorWindows:
                                          out=tuple(t[i0:i1, j0:j1] for t in self._tensor), float32=True)
 
         with progress_within(len(work), unit="part") as bar:
-            parts = [submit(part, *box) for box in work] if submit is not None else None
-            for k, (i0, i1, j0, j1) in enumerate(work):
-                if parts is None:
-                    part(i0, i1, j0, j1)
-                else:
-                    parts[k].result()
+            parts = [submit(part, *box) for box in work]  # started at once on a pool; deferred: each at its result()
+            for (i0, i1, j0, j1), done in zip(work, parts):
+                done.result()
                 self._done[i0:i1, j0:j1] = True
                 bar.advance(1, status="structure tensor")
 

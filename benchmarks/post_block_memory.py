@@ -104,7 +104,7 @@ def _measure(sgy: pathlib.Path, out: pathlib.Path, limit: str) -> tuple[_Stages,
     for name in ("skins_from_cells", "fault_throws", "half_period", "supported_faults", "trimmed_tips"):
         stages.wrap(steps, name)
 
-    def write_steps(steps_, written, progress):
+    def write_steps(steps_, written, progress, **_):  # each writer alone (the job's thread beside: memory only)
         for key, write in steps_:
             start = _reset_peak()
             written[key] = write()

@@ -141,19 +141,23 @@ def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
 # part per fault cell. Measured by benchmarks/post_block_memory.py (the process's VmHWM reset at each stage's start,
 # a fresh process per cube) on generated SEG-Y cubes run by blocks; MiB beyond the process + 64 MiB:
 #                                cells    linked into skins   throws, half periods, evidence
-#   160 x 160 x 256, 4 faults   159,474         85, 78                  146, 136
-#   224 x 224 x 192, 8 faults   357,331        197, 245                 154, 143
-#   128 x 256 x 320, 2 faults    92,879          0, 3                   122, 114
+#   160 x 160 x 256, 4 faults   159,443         27, 27                  106, 125
+#   224 x 224 x 192, 8 faults   356,131         60, 63                  125, 110
+#   128 x 256 x 320, 2 faults    92,339         11, 1                   129, 106
 # (two runs each, the first under the limit the refusal named before these models, the second under the one it names
-# with them). The cells read from the store (36 bytes each) peak below the skins. The skins take 750 bytes a cell
-# (114, 256 and 66 MiB there); the throws 144 MiB and 48 bytes a cell (151, 160, 148): their windows of amplitudes
-# and slopes, not the cells, make most of it.
-_SKINS_PER_CELL = 750
+# with them). The cells read from the store (36 bytes each) peak below the skins. The skins take 200 bytes a cell
+# (30, 68 and 18 MiB there; their links kept as a CSR array of int32, and the merge's queries of the k-d tree a
+# bounded number of pairs each); the throws 144 MiB and 48 bytes a cell (151, 160, 148): their windows of amplitudes
+# and slopes, not the cells, make most of it. On the 400 x 400 x 500 cube of benchmarks/fault_paths.py --only target
+# (683,362 cells) the skins alone peak 112 MiB above the cells they read (benchmarks/post_block_memory.py --cube
+# 400,400,500,mosaic prints them beside the model).
+_SKINS_PER_CELL = 200
 _THROW_FIXED, _THROW_PER_CELL = 144 << 20, 48
 # Cells per seed candidate the preflight's sample predicts (CubeSample.candidates): the cells (thinned votes at or
 # above the lower threshold) were 0.54, 0.67 and 0.70 of the candidates predicted on the cubes above. The prediction
 # is a sample's: on the Parihaka cube (256 x 128 x 128) the sample found no candidate, and 17,419 cells were linked;
-# the cells counted after the blocks are checked again (chunked_fault_surfaces).
+# on the 400 x 400 x 500 cube of benchmarks/fault_paths.py --only target 683,362 cells came of 381,222 candidates
+# predicted (1.79 a candidate); the cells counted after the blocks are checked again (chunked_fault_surfaces).
 CELLS_PER_CANDIDATE = 0.75
 
 

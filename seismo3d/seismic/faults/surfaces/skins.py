@@ -286,16 +286,40 @@ def _grow(best: np.ndarray, normals: np.ndarray, order: np.ndarray, cos_mean: fl
     of intermediate orientation into another fault). ``best`` (n, 4) int32 the directed links of
     :func:`_best_neighbours`; returns the (n,) int64 skin labels."""
     n = best.shape[0]
-    # undirected adjacency (CSR, up to 8 links a cell) from the directed links: link (c, q) gives q to c's row and c
-    # to q's row, each row in the order of the links (c, then k), as the growth's ties follow that order
-    c, k = np.nonzero(best >= 0)  # row-major: by c, then k
-    q = best[c, k].astype(np.int64)
-    rows = np.stack([c, q], axis=1).reshape(-1)  # per link: its entry in row c, then its entry in row q
-    cols = np.stack([q, c], axis=1).reshape(-1)
-    adj = cols[np.argsort(rows, kind="stable")].astype(np.int32)
-    deg = np.zeros(n + 1, np.int64)
-    np.cumsum(np.bincount(rows, minlength=n), out=deg[1:])
-    return grow_by_mean_normal(deg, adj, normals, order, cos_mean)
+    # undirected adjacency (CSR, up to 8 links a cell): 8 bytes a cell and 8 a link, where the sorted index arrays
+    # of the links took about 90 bytes a link, the largest part of the skins' memory on a cube larger than memory
+    indptr = np.zeros(n + 1, np.int64)
+    indices = np.empty(2 * int(np.count_nonzero(best >= 0)), np.int32)
+    _undirected_links(best, indptr, indices)
+    return grow_by_mean_normal(indptr, indices, normals, order, cos_mean)
+
+
+@nb.njit(cache=True, no_cfunc_wrapper=True)
+def _undirected_links(best, indptr, indices):
+    # _grow's adjacency: link (c, q) of best[c, k] = q puts q in row c and c in row q; the links in the order of
+    # (c, k), so each row lists its entries in that order (the growth's ties follow it). indptr (n + 1) zeros in,
+    # rows' starts out: indptr[c + 1] counts row c; after the running sum indptr[c] is row c's cursor, which ends at
+    # row c + 1's start, so a shift by one puts the starts in place (no array beside indices)
+    n, m = best.shape
+    for c in range(n):
+        for k in range(m):
+            q = best[c, k]
+            if q >= 0:
+                indptr[c + 1] += 1
+                indptr[q + 1] += 1
+    for c in range(n):
+        indptr[c + 1] += indptr[c]
+    for c in range(n):
+        for k in range(m):
+            q = best[c, k]
+            if q >= 0:
+                indices[indptr[c]] = q
+                indptr[c] += 1
+                indices[indptr[q]] = c
+                indptr[q] += 1
+    for c in range(n, 0, -1):  # each cursor ended at the next row's start
+        indptr[c] = indptr[c - 1]
+    indptr[0] = 0
 
 
 def _edge_cells(best: np.ndarray, label: np.ndarray, two_d: bool) -> np.ndarray:

@@ -9,15 +9,18 @@ from seismo3d.seismic.faults.surfaces.skin_merging import closest_pairs
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("two_d, side, n_labels, chunk", [(False, 30, 12, None), (True, 30, 12, None),
-                                                          (False, 90, 60, 7), (True, 300, 60, None)])
-def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels, chunk, monkeypatch):
-    # the merge step's search (a k-d tree, a chunk of edge cells at a time) against every pair: for each two skins,
+@pytest.mark.parametrize("two_d, side, n_labels, pairs", [(False, 30, 12, None), (True, 30, 12, None),
+                                                          (False, 90, 60, 20), (False, 30, 12, 300),
+                                                          (True, 300, 60, None)])
+def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels, pairs, monkeypatch):
+    # the merge step's search (a k-d tree, a query of edge cells at a time) against every pair: for each two skins,
     # the closest (edge cell, cell of the other skin) within the gap, ties to the lower edge cell, then the lower
-    # other cell. Sparse cells (side 90 and 300) leave each chunk of edge cells a few pairs only; chunks of 7 edge
-    # cells: the closest pair of two skins found across chunks
-    if chunk is not None:
-        monkeypatch.setattr(skin_merging, "_EDGE_CHUNK", chunk)
+    # other cell. Sparse cells (side 90 and 300) leave each query of edge cells a few pairs only; a budget of 20 or
+    # 300 pairs a query: queries of a few edge cells each, sized by the query before, the closest pair of two skins
+    # found across them
+    if pairs is not None:
+        monkeypatch.setattr(skin_merging, "_PAIRS_PER_QUERY", pairs)
+        monkeypatch.setattr(skin_merging, "_FEWEST_EDGES", 1)
 
     rng = np.random.default_rng(7)
     pts = rng.integers(0, side, (600, 3)).astype(np.float64)

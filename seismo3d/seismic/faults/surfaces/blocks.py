@@ -149,8 +149,8 @@ def block_steps(shape, opt: FaultTracingOptions, cap: int) -> tuple:
 # (30, 68 and 18 MiB there; their links kept as a CSR array of int32, and the merge's queries of the k-d tree a
 # bounded number of pairs each); the throws 144 MiB and 48 bytes a cell (151, 160, 148): their windows of amplitudes
 # and slopes, not the cells, make most of it. On the 400 x 400 x 500 cube of benchmarks/fault_paths.py --only target
-# (683,362 cells) the skins alone peak 112 MiB above the cells they read (benchmarks/post_block_memory.py --cube
-# 400,400,500,mosaic prints them beside the model).
+# (683,362 cells) the skins peak 99 MiB above the cells they read, 230 MiB beyond the process, where the plan counts
+# 232 (benchmarks/post_block_memory.py --cube 400,400,500,mosaic --limit 1GB).
 _SKINS_PER_CELL = 200
 _THROW_FIXED, _THROW_PER_CELL = 144 << 20, 48
 # Cells per seed candidate the preflight's sample predicts (CubeSample.candidates): the cells (thinned votes at or

@@ -19,8 +19,8 @@ __all__ = ["closest_pairs", "local_normal", "merge_coplanar"]
 
 # pairs within the gap per query of :func:`closest_pairs` (about 90 bytes each while they are reduced): its edge cells
 # as many as the pairs per edge cell of the query before allow (between _FEWEST_EDGES and _MOST_EDGES). Thick skins
-# give about 500 pairs an edge cell (224 x 224 x 192, 8 faults: 523; 400 x 400 x 500: 463), where a fixed 4,096 edge
-# cells a query held 2 M pairs, about 190 MiB, the skins' largest memory.
+# give about 500 pairs an edge cell (224 x 224 x 192, 8 faults: 523; 400 x 400 x 500: 463): 4,096 edge cells would
+# hold 2 M pairs, about 190 MiB, more than the rest of the skins.
 _PAIRS_PER_QUERY = 1 << 18
 _FEWEST_EDGES, _MOST_EDGES = 16, 1 << 14
 

@@ -286,8 +286,9 @@ def _grow(best: np.ndarray, normals: np.ndarray, order: np.ndarray, cos_mean: fl
     of intermediate orientation into another fault). ``best`` (n, 4) int32 the directed links of
     :func:`_best_neighbours`; returns the (n,) int64 skin labels."""
     n = best.shape[0]
-    # undirected adjacency (CSR, up to 8 links a cell): 8 bytes a cell and 8 a link, where the sorted index arrays
-    # of the links took about 90 bytes a link, the largest part of the skins' memory on a cube larger than memory
+    # undirected adjacency (CSR, up to 8 links a cell) built in place: 8 bytes a cell and 8 a link, where sorting
+    # the links' index arrays with numpy takes about 90 bytes a link (on a cube larger than memory, its cells are
+    # tens of millions)
     indptr = np.zeros(n + 1, np.int64)
     indices = np.empty(2 * int(np.count_nonzero(best >= 0)), np.int32)
     _undirected_links(best, indptr, indices)

@@ -24,8 +24,6 @@ import ast
 import functools
 import pathlib
 
-import pytest
-
 import seismo3d
 
 ROOT = pathlib.Path(seismo3d.__file__).parent

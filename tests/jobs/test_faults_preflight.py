@@ -109,7 +109,9 @@ def test_a_limit_too_small_for_the_stages_after_the_blocks_is_refused_before_the
 
     shape = (128, 128, 128)
     few = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.0)
-    many = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=0.5)  # 1,048,576 candidates
+    # every sample a candidate (2,097,152): the cells' stages need more than the rounding of the first limit leaves
+    # beside the process, up to a process of several GB (a worker late in the suite holds 2 GB)
+    many = CubeSample(n_blocks=3, n_samples=1, saturated_fraction=0.1, candidate_density=1.0)
     baseline = _stop_at_the_blocks(monkeypatch)
 
     def refusal(sample, limit):

@@ -18,11 +18,11 @@ __all__ = ["closest_pairs", "local_normal", "merge_coplanar"]
 
 
 # pairs within the gap per query of :func:`closest_pairs` (about 90 bytes each while they are reduced): its edge cells
-# as many as the pairs per edge cell of the query before allow (between _FEWEST_EDGES and _MOST_EDGES). Thick skins
-# give about 500 pairs an edge cell (224 x 224 x 192, 8 faults: 523; 400 x 400 x 500: 463): 4,096 edge cells would
-# hold 2 M pairs, about 190 MiB, more than the rest of the skins.
+# as many as the pairs per edge cell of the query before allow (_FIRST_EDGES in the first; between _FEWEST_EDGES and
+# _MOST_EDGES). Thick skins give about 500 pairs an edge cell (224 x 224 x 192, 8 faults: 523; 400 x 400 x 500: 463):
+# 4,096 edge cells would hold 2 M pairs, about 190 MiB, more than the rest of the skins.
 _PAIRS_PER_QUERY = 1 << 18
-_FEWEST_EDGES, _MOST_EDGES = 16, 1 << 14
+_FEWEST_EDGES, _FIRST_EDGES, _MOST_EDGES = 16, 256, 1 << 14
 
 
 def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: float, n_labels: int) -> np.ndarray:
@@ -44,7 +44,7 @@ def closest_pairs(pts: np.ndarray, lab: np.ndarray, edge_idx: np.ndarray, gap: f
     tree = cKDTree(pts[cells])
     gap2 = float(gap) ** 2
     kept = []
-    start, size = 0, _FEWEST_EDGES * 16
+    start, size = 0, _FIRST_EDGES
     while start < edge_idx.size:
         edge = edge_idx[start:start + size]
         start += edge.size

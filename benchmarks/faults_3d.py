@@ -125,7 +125,8 @@ def parihaka(check: bool) -> bool:
     for w in caught:
         print(f"  warning: {str(w.message)[:150]}")
     print(f"  {'method':44s} {'bands hit':>9s} {'in bands':>9s}")
-    print(f"  {'seismo3d faults, defaults':44s} {hit:9.2f} {inside:9.2f}   ({len(res.faults)} fault{'' if len(res.faults) == 1 else 's'}, {n_points} "
+    faults = f"{len(res.faults)} fault{'' if len(res.faults) == 1 else 's'}"
+    print(f"  {'seismo3d faults, defaults':44s} {hit:9.2f} {inside:9.2f}   ({faults}, {n_points} "
           f"points on labelled slices, {seconds:.0f} s)")
     print(f"  {f'1-semblance skeleton (best quantile {q:.3f})':44s} {s_hit:9.2f} {s_inside:9.2f}")
     fn = faultnet_peer(cube, labels)
